@@ -1,0 +1,19 @@
+#include "collide/contact_set.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace collide {
+
+const char* toString(LinkFormat f) { return f == LinkFormat::Binary32 ? "binary32" : "binary64"; }
+
+std::size_t ContactSet::hits() const {
+  return static_cast<std::size_t>(std::count(hit.begin(), hit.end(), std::uint8_t{1}));
+}
+
+void ContactSet::resize(std::size_t n) {
+  hit.assign(n, 0);
+  for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &depth}) v->assign(n, 0.0);
+}
+
+}  // namespace collide

@@ -1,0 +1,22 @@
+#pragma once
+// Dense per-pair collision results, structure-of-arrays. Entry k belongs to pair k.
+// Values are stored as double; a binary32 backend stores its floats exactly
+// (float -> double is exact), so `format` tells how to print them back.
+#include <cstdint>
+#include <vector>
+
+#include "collide/batch.hpp"
+
+namespace collide {
+
+struct ContactSet {
+  LinkFormat format = LinkFormat::Binary64;
+  std::vector<std::uint8_t> hit;  // 1: contact (d <= r1 + r2, depth >= 0)
+  std::vector<double> px, py, pz, nx, ny, nz, depth;  // zero where hit == 0
+
+  std::size_t size() const { return hit.size(); }
+  std::size_t hits() const;
+  void resize(std::size_t n);  // and zero everything
+};
+
+}  // namespace collide

@@ -1,0 +1,58 @@
+#include "collide/simd_kernel.hpp"
+
+#include <cmath>
+
+namespace collide {
+
+// Reference semantics (ARCHITECTURE.md, = ODE 0.16 dCollideSpheres):
+//   d = sqrt(dx*dx + dy*dy + dz*dz), (dx,dy,dz) = p1 - p2, summed left to right
+//   d > r1 + r2: no contact   (so a NaN d IS a contact, as in ODE)
+//   d <= 0: pos p1, normal (1,0,0), depth r1 + r2
+//   else inv = 1/d; normal = (p1-p2)*inv; k = 0.5*(r2 - r1 - d); pos = p1 + normal*k;
+//        depth = r1 + r2 - d
+// Both branches are computed and selected, which is what lets the loop vectorize;
+// the division by d = 0 on the coincident path is computed and discarded.
+void collideSpheresF32(std::size_t n, const PairsF32& in, const ContactsF32& out) {
+  const float* __restrict x1 = in.x1; const float* __restrict y1 = in.y1;
+  const float* __restrict z1 = in.z1; const float* __restrict r1 = in.r1;
+  const float* __restrict x2 = in.x2; const float* __restrict y2 = in.y2;
+  const float* __restrict z2 = in.z2; const float* __restrict r2 = in.r2;
+  float* __restrict px = out.px; float* __restrict py = out.py; float* __restrict pz = out.pz;
+  float* __restrict nx = out.nx; float* __restrict ny = out.ny; float* __restrict nz = out.nz;
+  float* __restrict depth = out.depth;
+  std::uint8_t* __restrict hit = out.hit;
+
+  for (std::size_t k = 0; k < n; ++k) {
+    const float dx = x1[k] - x2[k];
+    const float dy = y1[k] - y2[k];
+    const float dz = z1[k] - z2[k];
+    const float d = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const float rsum = r1[k] + r2[k];
+    const bool h = !(d > rsum);
+    const bool coincident = d <= 0.0f;
+    const float inv = 1.0f / d;
+    const float ex = dx * inv, ey = dy * inv, ez = dz * inv;
+    const float kk = 0.5f * (r2[k] - r1[k] - d);
+    const float cx = x1[k] + ex * kk, cy = y1[k] + ey * kk, cz = z1[k] + ez * kk;
+    const float dep = rsum - d;
+
+    const float sx = coincident ? x1[k] : cx;
+    const float sy = coincident ? y1[k] : cy;
+    const float sz = coincident ? z1[k] : cz;
+    const float tx = coincident ? 1.0f : ex;
+    const float ty = coincident ? 0.0f : ey;
+    const float tz = coincident ? 0.0f : ez;
+    const float sd = coincident ? rsum : dep;
+
+    px[k] = h ? sx : 0.0f;
+    py[k] = h ? sy : 0.0f;
+    pz[k] = h ? sz : 0.0f;
+    nx[k] = h ? tx : 0.0f;
+    ny[k] = h ? ty : 0.0f;
+    nz[k] = h ? tz : 0.0f;
+    depth[k] = h ? sd : 0.0f;
+    hit[k] = h ? 1 : 0;
+  }
+}
+
+}  // namespace collide

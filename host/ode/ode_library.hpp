@@ -1,0 +1,17 @@
+#pragma once
+// RAII for ODE's process-wide initialisation. dInitODE2/dCloseODE are reference
+// counted by ODE 0.16 itself (checked with Debian's libode8: init, init, close leaves
+// ODE usable), so every owner of ODE objects can hold one of these.
+#include <ode/ode.h>
+
+namespace collide::ode {
+
+class Library {
+ public:
+  Library() { dInitODE2(0); }
+  ~Library() { dCloseODE(); }
+  Library(const Library&) = delete;
+  Library& operator=(const Library&) = delete;
+};
+
+}  // namespace collide::ode
