@@ -45,3 +45,15 @@ object RootAlgorithm {
     }
   }
 }
+
+/** The three root-type operators that share the significand cores (digit recurrence and
+  * Newton-Raphson). A core sees a significand m in [1,2) and, for Sqrt/Rsqrt, whether the
+  * exponent is odd (then it works on x = 2m in [2,4)); Recip ignores expOdd (x = m).
+  */
+sealed trait RootOp { def name: String }
+object RootOp {
+  case object Sqrt  extends RootOp { val name = "sqrt" }
+  case object Recip extends RootOp { val name = "recip" }
+  case object Rsqrt extends RootOp { val name = "rsqrt" }
+  val all: Seq[RootOp] = Seq(Sqrt, Recip, Rsqrt)
+}
