@@ -110,7 +110,7 @@ class FpAddSpec extends AnyFlatSpec with ChiselScalatestTester {
     it should s"match the golden model for ${p.name} at latency $lat in every rounding mode${if (lat > 0) ", stalls included" else ""}" in {
       val f = p.format
       val rng = Seeds.rng(s"FpAddSpec-rtl-${p.name}-L$lat")
-      val n = Seeds.cases(2000)
+      val n = Seeds.cases(if (f == fp64) 800 else 1500)
       val vecs = (FpPatterns.pairs(f, rng, n - n / 4) ++ Seq.fill(n / 4)((BigInt(f.width, rng.self), BigInt(f.width, rng.self))))
         .map { case (a, b) => (a, b, rng.nextBoolean(), RoundingMode.all(rng.nextInt(5))) }
       val want = vecs.map { case (a, b, s, rm) => FpAddModel(p, a, b, rm, s) }
