@@ -41,7 +41,7 @@ class FpCompareSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   behavior of "FpCompareModel"
 
-  for (f <- FloatFormat.presets.map(_._2); sub <- Seq(true, false)) {
+  for (f <- FloatFormat.presets.map(_._2) ++ Seq(FloatFormat(3, 3), FloatFormat(6, 12)); sub <- Seq(true, false)) {
     val p = FpParams(f, sub)
     val n = if ((f == fp32 || f == fp64) && sub) 100000 else 20000
     it should s"agree with JVM comparison of exactly converted operands for ${p.name}, min and max included" in {
@@ -70,7 +70,7 @@ class FpCompareSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   val rtlConfigs: Seq[(FpParams, Int)] = FloatFormat.presets.map(_._2).zipWithIndex.flatMap { case (f, i) =>
     Seq((FpParams(f), if (i % 2 == 0) 0 else 2), (FpParams(f, subnormals = false), if (i % 2 == 0) 1 else 0))
-  }
+  } ++ Seq((FpParams(FloatFormat(3, 3)), 1))
 
   for ((p, lat) <- rtlConfigs) {
     it should s"match the golden model for ${p.name} at latency $lat${if (lat > 0) ", stalls included" else ""}" in {

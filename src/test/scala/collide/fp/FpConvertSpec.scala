@@ -62,7 +62,8 @@ class FpConvertSpec extends AnyFlatSpec with ChiselScalatestTester {
   }
 
   // Narrowing fp32 (and fp64) to the small formats, every mode, subnormals kept and flushed.
-  for ((from, to) <- Seq(fp32 -> fp16, fp32 -> bf16, fp32 -> fp24, fp64 -> fp16); ftz <- Seq(false, true)) {
+  for ((from, to) <- Seq(fp32 -> fp16, fp32 -> bf16, fp32 -> fp24, fp64 -> fp16, fp16 -> FloatFormat(3, 3),
+                         FloatFormat(6, 12) -> bf16, FloatFormat(3, 3) -> FloatFormat(6, 12)); ftz <- Seq(false, true)) {
     val fp = FpParams(from, !ftz); val tp = FpParams(to, !ftz)
     val n = if (from == fp32 && !ftz && to != fp24) 100000 else 10000
     it should s"narrow ${fp.name} to ${tp.name} as exact BigDecimal rounding does in every mode, flags included" in {
@@ -71,8 +72,8 @@ class FpConvertSpec extends AnyFlatSpec with ChiselScalatestTester {
       // target patterns widened, with random bits below the target's last place.
       val near = FpPatterns.operands(to, rng, n / 4).map { t =>
         val v = FpConvertModel(FpParams(to), FpParams(from), t, RoundingMode.RNE).bits
-        val extra = from.sigBits - to.sigBits
-        if (((v >> from.fracBits) & from.expMask) == from.expMask) v else v ^ BigInt(extra, rng.self)
+        val extra = (from.sigBits - to.sigBits).max(0)
+        if (((v >> from.fracBits) & from.expMask) == from.expMask || extra == 0) v else v ^ BigInt(extra, rng.self)
       }
       val ops = FpPatterns.specials(from) ++ near ++ FpPatterns.operands(from, rng, n / 2) ++ Seq.fill(n / 4)(BigInt(from.width, rng.self))
       for ((a, i) <- ops.zipWithIndex) {
@@ -105,7 +106,8 @@ class FpConvertSpec extends AnyFlatSpec with ChiselScalatestTester {
       (F(fp64), F(fp32), 1), (F(fp32), F(fp64), 0), (Z(fp64), Z(fp32), 0),
       (F(fp16), F(bf16), 0), (F(bf16), F(fp16), 2), (Z(bf16), Z(fp16), 0),
       (F(fp24), F(fp32), 0), (F(fp32), F(fp24), 1), (F(fp64), F(fp16), 0), (F(fp16), F(fp64), 1),
-      (F(fp32), F(fp32), 0), (F(fp32), Z(fp32), 1)
+      (F(fp32), F(fp32), 0), (F(fp32), Z(fp32), 1),
+      (F(FloatFormat(3, 3)), F(fp16), 0), (F(fp16), F(FloatFormat(3, 3)), 1), (F(FloatFormat(6, 12)), Z(bf16), 0)
     )
   }
 

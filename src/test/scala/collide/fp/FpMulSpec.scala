@@ -90,7 +90,7 @@ class FpMulSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  for (f <- FloatFormat.presets.map(_._2); sub <- Seq(true, false)) {
+  for (f <- FloatFormat.presets.map(_._2) ++ Seq(FloatFormat(3, 3), FloatFormat(6, 12)); sub <- Seq(true, false)) {
     val p = FpParams(f, sub)
     it should s"match exact BigDecimal arithmetic for ${p.name} in every rounding mode, flags included" in {
       val rng = Seeds.rng(s"FpMulSpec-exact-${p.name}")
@@ -111,7 +111,7 @@ class FpMulSpec extends AnyFlatSpec with ChiselScalatestTester {
     * pipeline (3), alternating between the subnormal settings; plus latencies 1 and 2. */
   val rtlConfigs: Seq[(FpParams, Int)] = FloatFormat.presets.map(_._2).zipWithIndex.flatMap { case (f, i) =>
     Seq((FpParams(f), if (i % 2 == 0) 0 else 3), (FpParams(f, subnormals = false), if (i % 2 == 0) 3 else 0))
-  } ++ Seq((FpParams(fp32), 1), (FpParams(bf16), 2))
+  } ++ Seq((FpParams(fp32), 1), (FpParams(bf16), 2), (FpParams(FloatFormat(3, 3)), 0), (FpParams(FloatFormat(10, 40), false), 2))
 
   for ((p, lat) <- rtlConfigs) {
     it should s"match the golden model for ${p.name} at latency $lat in every rounding mode${if (lat > 0) ", stalls included" else ""}" in {
