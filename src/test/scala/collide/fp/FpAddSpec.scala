@@ -100,6 +100,11 @@ class FpAddSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   behavior of "FpAdd"
 
+  it should "emit SystemVerilog named after its parameters (FpAdd_fp32_ftz_L2)" in {
+    val sv = circt.stage.ChiselStage.emitSystemVerilog(new FpAdd(FpParams(fp32, subnormals = false), 2))
+    assert(sv.contains("module FpAdd_fp32_ftz_L2("), sv.take(400))
+  }
+
   /** Every preset with subnormals kept and flushed; each format sees latency 0 and its full
     * pipeline (3), the two alternating between the subnormal settings. */
   val rtlConfigs: Seq[(FpParams, Int)] = FloatFormat.presets.map(_._2).zipWithIndex.flatMap { case (f, i) =>
@@ -110,7 +115,7 @@ class FpAddSpec extends AnyFlatSpec with ChiselScalatestTester {
     it should s"match the golden model for ${p.name} at latency $lat in every rounding mode${if (lat > 0) ", stalls included" else ""}" in {
       val f = p.format
       val rng = Seeds.rng(s"FpAddSpec-rtl-${p.name}-L$lat")
-      val n = Seeds.cases(if (f == fp64) 800 else 1500)
+      val n = Seeds.cases(if (f.width > 32) 600 else 1200)
       val vecs = (FpPatterns.pairs(f, rng, n - n / 4) ++ Seq.fill(n / 4)((BigInt(f.width, rng.self), BigInt(f.width, rng.self))))
         .map { case (a, b) => (a, b, rng.nextBoolean(), RoundingMode.all(rng.nextInt(5))) }
       val want = vecs.map { case (a, b, s, rm) => FpAddModel(p, a, b, rm, s) }

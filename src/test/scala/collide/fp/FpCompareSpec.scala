@@ -68,6 +68,11 @@ class FpCompareSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   behavior of "FpCompare"
 
+  it should "emit SystemVerilog named after its parameters (FpCompare_fp64_L1)" in {
+    val sv = circt.stage.ChiselStage.emitSystemVerilog(new FpCompare(FpParams.fp64, 1))
+    assert(sv.contains("module FpCompare_fp64_L1("), sv.take(400))
+  }
+
   val rtlConfigs: Seq[(FpParams, Int)] = FloatFormat.presets.map(_._2).zipWithIndex.flatMap { case (f, i) =>
     Seq((FpParams(f), if (i % 2 == 0) 0 else 2), (FpParams(f, subnormals = false), if (i % 2 == 0) 1 else 0))
   } ++ Seq((FpParams(FloatFormat(3, 3)), 1))

@@ -98,6 +98,11 @@ class FpConvertSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   behavior of "FpConvert"
 
+  it should "emit SystemVerilog named after its parameters (FpConvert_fp32_to_fp16_ftz_L1)" in {
+    val sv = circt.stage.ChiselStage.emitSystemVerilog(new FpConvert(FpParams.fp32, FpParams(fp16, subnormals = false), 1))
+    assert(sv.contains("module FpConvert_fp32_to_fp16_ftz_L1("), sv.take(400))
+  }
+
   val rtlConfigs: Seq[(FpParams, FpParams, Int)] = {
     val F = FpParams(_: FloatFormat); val Z = FpParams(_: FloatFormat, false)
     Seq(

@@ -107,6 +107,11 @@ class FpMulSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   behavior of "FpMul"
 
+  it should "emit SystemVerilog named after its parameters (FpMul_bf16_L3)" in {
+    val sv = circt.stage.ChiselStage.emitSystemVerilog(new FpMul(FpParams(bf16), 3))
+    assert(sv.contains("module FpMul_bf16_L3("), sv.take(400))
+  }
+
   /** Every preset with subnormals kept and flushed; each format sees latency 0 and its full
     * pipeline (3), alternating between the subnormal settings; plus latencies 1 and 2. */
   val rtlConfigs: Seq[(FpParams, Int)] = FloatFormat.presets.map(_._2).zipWithIndex.flatMap { case (f, i) =>
@@ -117,7 +122,7 @@ class FpMulSpec extends AnyFlatSpec with ChiselScalatestTester {
     it should s"match the golden model for ${p.name} at latency $lat in every rounding mode${if (lat > 0) ", stalls included" else ""}" in {
       val f = p.format
       val rng = Seeds.rng(s"FpMulSpec-rtl-${p.name}-L$lat")
-      val n = Seeds.cases(if (f == fp64) 800 else 1500)
+      val n = Seeds.cases(if (f.width > 32) 600 else 1200)
       val vecs = (edgePairs(f, rng, n / 4) ++ FpPatterns.operands(f, rng, n / 2).zip(FpPatterns.operands(f, rng, n / 2)) ++
         Seq.fill(n / 4)((BigInt(f.width, rng.self), BigInt(f.width, rng.self))))
         .map { case (a, b) => (a, b, RoundingMode.all(rng.nextInt(5))) }
