@@ -98,6 +98,15 @@ class FpAddSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
+  it should "match exact BigDecimal arithmetic on every e3m3 operand pair, both signs of b, every mode and subnormal setting" in {
+    val f = FloatFormat(3, 3)
+    for (sub <- Seq(true, false); a <- 0 until 64; b <- 0 until 64; s <- Seq(false, true); rm <- RoundingMode.all) {
+      val p = FpParams(f, sub)
+      val want = oracle(p, BigInt(a), BigInt(b), rm, s); val got = FpAddModel(p, BigInt(a), BigInt(b), rm, s)
+      assert(got == FpResult(want._1, want._2), s"${p.name} 0x${a.toHexString} ${if (s) "-" else "+"} 0x${b.toHexString} $rm: got ${got.show(f)}, want ${FpResult(want._1, want._2).show(f)}")
+    }
+  }
+
   behavior of "FpAdd"
 
   it should "emit SystemVerilog named after its parameters (FpAdd_fp32_ftz_L2)" in {

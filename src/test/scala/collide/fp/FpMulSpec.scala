@@ -105,6 +105,15 @@ class FpMulSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
+  it should "match exact BigDecimal arithmetic on every e3m3 operand pair, every mode and subnormal setting" in {
+    val f = FloatFormat(3, 3)
+    for (sub <- Seq(true, false); a <- 0 until 64; b <- 0 until 64; rm <- RoundingMode.all) {
+      val p = FpParams(f, sub)
+      val want = oracle(p, BigInt(a), BigInt(b), rm); val got = FpMulModel(p, BigInt(a), BigInt(b), rm)
+      assert(got == FpResult(want._1, want._2), s"${p.name} 0x${a.toHexString} * 0x${b.toHexString} $rm: got ${got.show(f)}, want ${FpResult(want._1, want._2).show(f)}")
+    }
+  }
+
   behavior of "FpMul"
 
   it should "emit SystemVerilog named after its parameters (FpMul_bf16_L3)" in {
