@@ -145,13 +145,21 @@ object NewtonRaphsonErrorTable {
   def main(args: Array[String]): Unit = {
     val rng = Seeds.rng("NewtonRaphsonErrorTable")
     val samples = Seeds.cases(20000)
-    println("| sigBits | setting | op | cases | worst before rounding | worst after RNE | documented bound | a priori bound | faithful |")
-    println("|---|---|---|---|---|---|---|---|---|")
+    println("| sigBits | setting | op | cases | worst before rounding | worst after RNE | measured, rounded up | tested bound (ulpBound) | a priori bound | faithful |")
+    println("|---|---|---|---|---|---|---|---|---|---|")
     for ((n, settings) <- NewtonRaphsonBounds.tabulated; nr <- settings; op <- RootOp.all) {
       val st = NewtonRaphsonErrorMeter.measure(op, nr, n, NewtonRaphsonErrorMeter.cases(op, nr, n, samples, rng), Double.MaxValue)
       val kind = if (NewtonRaphsonErrorMeter.exhaustive(n)) "all" else "sampled"
       println(f"| $n | ${nr.name} | ${op.name} | ${st.count} ($kind) | ${st.pre.ulps}%.4f | ${st.rne.ulps}%.4f | " +
-        f"${NewtonRaphsonErrorMeter.roundUp2(st.rne.ulps)} | ${NewtonRaphsonBounds.analyticBound(op, nr, n)}%.4g | ${st.notFaithful == 0} |")
+        f"${NewtonRaphsonErrorMeter.roundUp2(st.rne.ulps)} | ${NewtonRaphsonBounds.ulpBound(op, nr, n)}%.4g | " +
+        f"${NewtonRaphsonBounds.analyticBound(op, nr, n)}%.4g | ${if (NewtonRaphsonBounds.faithful(op, nr, n)) "yes" else "no"} |")
+    }
+    println()
+    println("| sigBits | cheapest faithful sqrt | recip | rsqrt | all three |")
+    println("|---|---|---|---|---|")
+    for (n <- Seq(8, 11, 16, 24, 32, 53)) {
+      val per = RootOp.all.map(op => NewtonRaphsonBounds.faithfulSettings(op, n).headOption.fold("none")(_.name))
+      println(s"| $n | ${per.mkString(" | ")} | ${NewtonRaphsonBounds.cheapestFaithful(n).fold("none")(_.name)} |")
     }
   }
 }
