@@ -105,10 +105,18 @@ object NewtonRaphsonBounds {
     * (error < 1 ulp after RNE). */
   def faithful(op: RootOp, nr: NewtonRaphson, sigBits: Int): Boolean = ulpBound(op, nr, sigBits) < 1.0
 
-  /** Settings the presets choose from, cheapest first (iterations cost multipliers, then a
-    * bigger seed ROM). */
-  val candidates: Seq[NewtonRaphson] =
-    for (it <- 0 to 4; sb <- 4 to 12) yield NewtonRaphson(sb, it)
+  /** Seed ROMs above this many index bits (2^11 x 12 bits for the roots) are offered only
+    * after every smaller one: a 12-bit table is 8192 x 14 bits, several block RAMs. */
+  val preferredMaxSeedBits: Int = 10
+
+  /** Settings the presets choose from, cheapest first: seed tables of at most
+    * [[preferredMaxSeedBits]] by (iterations, seedBits) (iterations cost wide multipliers and
+    * latency), then the bigger tables in the same order. */
+  val candidates: Seq[NewtonRaphson] = {
+    val all = for (it <- 0 to 4; sb <- 4 to 12) yield NewtonRaphson(sb, it)
+    val (small, big) = all.partition(_.seedBits <= preferredMaxSeedBits)
+    small ++ big
+  }
 
   /** The candidate settings that are faithful for `op` at `sigBits`, cheapest first. */
   def faithfulSettings(op: RootOp, sigBits: Int): Seq[NewtonRaphson] =

@@ -42,17 +42,22 @@ class NewtonRaphsonErrorSpec extends AnyFlatSpec {
     assert(keys.forall(NewtonRaphsonBounds.documented.contains), s"tabulated but undocumented: ${keys.filterNot(NewtonRaphsonBounds.documented.contains)}")
   }
 
-  it should "offer faithful settings cheapest first, nr8x2 among them for fp32 and none with one iteration of a 6-bit seed for fp24" in {
+  it should "offer faithful settings cheapest first, with nr8x2 faithful for fp32 and nr6x1 not faithful for fp24 reciprocals" in {
     for (n <- Seq(8, 11, 16, 24, 53); op <- RootOp.all) {
       val fs = NewtonRaphsonBounds.faithfulSettings(op, n)
       assert(fs.nonEmpty, s"no faithful setting for ${op.name} at $n")
       assert(fs.forall(NewtonRaphsonBounds.faithful(op, _, n)))
-      val order = fs.map(nr => (nr.iterations, nr.seedBits))
-      assert(order == order.sorted, s"not cheapest first: $order")
+      val (small, big) = fs.partition(_.seedBits <= NewtonRaphsonBounds.preferredMaxSeedBits)
+      assert(fs == small ++ big, s"big seed tables not last: $fs")
+      for (part <- Seq(small, big)) {
+        val order = part.map(nr => (nr.iterations, nr.seedBits))
+        assert(order == order.sorted, s"not cheapest first: $order")
+      }
     }
     assert(RootOp.all.forall(NewtonRaphsonBounds.faithful(_, NewtonRaphson(8, 2), 24)))
     assert(!NewtonRaphsonBounds.faithful(RootOp.Recip, NewtonRaphson(6, 1), 16))
-    assert(NewtonRaphsonBounds.cheapestFaithful(24).exists(nr => RootOp.all.forall(NewtonRaphsonBounds.faithful(_, nr, 24))))
+    assert(NewtonRaphsonBounds.cheapestFaithful(24).contains(NewtonRaphson(6, 2)), NewtonRaphsonBounds.cheapestFaithful(24))
+    assert(NewtonRaphsonBounds.cheapestFaithful(53).contains(NewtonRaphson(6, 3)), NewtonRaphsonBounds.cheapestFaithful(53))
   }
 
   it should "hold seeds within the interval error the widths were chosen for" in {
