@@ -1,0 +1,113 @@
+package collide.fp
+
+import chiseltest._
+import org.scalatest.flatspec.AnyFlatSpec
+import collide.fp.model.{FpResult, RootModel}
+import collide.testutil.Seeds
+import RootTestKit._
+
+/** The checks every root-type operator spec runs (FpSqrtSpec, FpRecipSpec, FpRsqrtSpec):
+  * golden model vs independent oracles (JVM where one exists, exact integer arithmetic in
+  * every mode), exhaustive 16-bit formats, and RTL vs golden for every preset format.
+  */
+abstract class RootSpecBase(op: RootOp) extends AnyFlatSpec with ChiselScalatestTester {
+  val opName = s"Fp${op.name.capitalize}"
+  val dr: RootAlgorithm = RootAlgorithm.DigitRecurrence
+  def golden(p: FpParams, a: BigInt, rm: RoundingMode): FpResult = RootModel(op, p, dr, a, rm)
+  val jvmName: String = op match { case RootOp.Sqrt => "Math.sqrt"; case _ => "1/x" }
+
+  def checkSame(what: String, f: FloatFormat, a: BigInt, rm: RoundingMode, got: FpResult, want: FpResult): Unit =
+    assert(got == want, s"$opName $what ${f.name} a=${showBits(f, a)} $rm: golden ${got.show(f)}, oracle ${want.show(f)}")
+
+  def jvmCheck(p: FpParams, ops: Iterator[BigInt]): Int = {
+    var n = 0
+    for (a <- ops) {
+      val want = jvmRne(op, p.format, a).get
+      val got  = golden(p, a, RoundingMode.RNE).bits
+      assert(got == want, s"$opName ${p.name} a=${showBits(p.format, a)} RNE: golden ${showBits(p.format, got)}, JVM ${showBits(p.format, want)}")
+      n += 1
+    }
+    n
+  }
+
+  def exactCheck(p: FpParams, ops: Iterator[BigInt], modes: Seq[RoundingMode]): Int = {
+    var n = 0
+    for (a <- ops; rm <- modes) {
+      checkSame("vs exact", p.format, a, rm, golden(p, a, rm), ExactOracle(op, p, a, rm)); n += 1
+    }
+    n
+  }
+
+  // ---- golden model vs JVM (only sqrt and recip have one)
+  if (op != RootOp.Rsqrt) {
+    for (p <- Seq(FpParams.fp32, FpParams.fp64)) {
+      val n = Seeds.cases(100000)
+      it should s"match the JVM's $jvmName in RNE on corner operands and $n random ${p.name} operands (golden, digit recurrence)" in {
+        val rng = Seeds.rng(s"$opName-jvm-${p.name}")
+        val c = jvmCheck(p, corners(p.format).iterator ++ Iterator.fill(n)(randomOperand(p.format, rng)))
+        info(s"$c operands")
+      }
+    }
+  }
+
+  // ---- golden model vs exact integer oracle, every mode
+  for (p <- Seq(FpParams.fp32, FpParams.fp64, FpParams(FloatFormat.fp24), FpParams(FloatFormat.fp32, subnormals = false))) {
+    val n = Seeds.cases(if (op == RootOp.Rsqrt && p == FpParams.fp32) 100000 else if (p.format == FloatFormat.fp64) 10000 else 20000)
+    it should s"round exactly in every mode on corner operands and $n random ${p.name} operands (golden vs exact oracle)" in {
+      val rng = Seeds.rng(s"$opName-exact-${p.name}")
+      val cornersN = exactCheck(p, corners(p.format).iterator, RoundingMode.all)
+      // random operands each in one random mode, plus RNE for all (RNE is the default mode)
+      var c = cornersN
+      for (_ <- 0 until n) {
+        val a = randomOperand(p.format, rng)
+        c += exactCheck(p, Iterator(a), Seq(RoundingMode.RNE, RoundingMode.all(1 + rng.nextInt(4))))
+      }
+      info(s"$c (operand, mode) pairs")
+    }
+  }
+
+  // ---- exhaustive 16-bit formats
+  for (f <- Seq(FloatFormat.fp16, FloatFormat.bf16)) {
+    if (op != RootOp.Rsqrt)
+      it should s"match the JVM's $jvmName through float on every one of the 65536 ${f.name} inputs (RNE)" in {
+        jvmCheck(FpParams(f), Iterator.range(0, 1 << 16).map(BigInt(_)))
+      }
+    it should s"round exactly on every one of the 65536 ${f.name} inputs in every mode, subnormals kept and flushed" in {
+      for (p <- Seq(FpParams(f), FpParams(f, subnormals = false)))
+        exactCheck(p, Iterator.range(0, 1 << 16).map(BigInt(_)), RoundingMode.all)
+    }
+  }
+
+  // ---- RTL vs golden
+  def rtlCheck(p: FpParams, alg: RootAlgorithm, latency: Int, n: Int): Unit = {
+    val rng = Seeds.rng(s"$opName-rtl-${p.name}-${alg.name}-L$latency")
+    val f = p.format
+    val ops = corners(f) ++ Seq.fill(n)(randomOperand(f, rng))
+    val vectors = ops.flatMap(a => Seq((a, RoundingMode.all(rng.nextInt(5))))) ++
+      corners(f).take(12).flatMap(a => RoundingMode.all.map(rm => (a, rm)))
+    test(build(op, p, alg, latency)) { c =>
+      assert(c.latency == latency)
+      stream(c, vectors, rng, (a, rm) => RootModel(op, p, alg, a, rm))
+    }
+  }
+
+  /** Pipelined latency under test: core registers every other iteration (plus the operator's two). */
+  def pipelined(f: FloatFormat): Int = 2 + (f.sigBits + 1) / 2
+
+  for ((name, f) <- FloatFormat.presets) {
+    val n = Seeds.cases(if (f == FloatFormat.fp64) 150 else 600)
+    it should s"match its golden model in RTL for $name, latency 0 and ${pipelined(f)}, subnormals kept and flushed, every mode ($n random operands each)" in {
+      rtlCheck(FpParams(f), dr, 0, n)
+      rtlCheck(FpParams(f), dr, pipelined(f), n)
+      rtlCheck(FpParams(f, subnormals = false), dr, f.sigBits + 3, n) // one register per iteration
+    }
+  }
+
+  it should "carry every parameter in its Verilog module name" in {
+    val ftz16 = FpParams(FloatFormat.fp16, subnormals = false)
+    for ((p, l, want) <- Seq((FpParams.fp32, 0, s"${opName}_fp32_dr_L0"), (ftz16, 5, s"${opName}_fp16_ftz_dr_L5"))) {
+      val chirrtl = circt.stage.ChiselStage.emitCHIRRTL(build(op, p, dr, l))
+      assert(chirrtl.contains(s"module $want :"), s"no module $want")
+    }
+  }
+}
