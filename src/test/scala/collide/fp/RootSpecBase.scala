@@ -3,7 +3,7 @@ package collide.fp
 import chiseltest._
 import org.scalatest.flatspec.AnyFlatSpec
 import collide.fp.model.{FpResult, RootModel}
-import collide.testutil.Seeds
+import collide.testutil.{Seeds, Slow}
 import RootTestKit._
 
 /** The checks every root-type operator spec runs (FpSqrtSpec, FpRecipSpec, FpRsqrtSpec):
@@ -46,6 +46,21 @@ abstract class RootSpecBase(op: RootOp) extends AnyFlatSpec with ChiselScalatest
         val rng = Seeds.rng(s"$opName-jvm-${p.name}")
         val c = jvmCheck(p, corners(p.format).iterator ++ Iterator.fill(n)(randomOperand(p.format, rng)))
         info(s"$c operands")
+      }
+    }
+  }
+
+  // ---- the exact oracle itself (the only one rsqrt has) against the JVM
+  if (op != RootOp.Rsqrt) {
+    val n = Seeds.cases(20000)
+    it should s"have an exact oracle that agrees with the JVM's $jvmName in RNE ($n random fp32 and fp64 operands)" in {
+      for (p <- Seq(FpParams.fp32, FpParams.fp64)) {
+        val rng = Seeds.rng(s"$opName-oracle-${p.name}")
+        for (a <- corners(p.format).iterator ++ Iterator.fill(n)(randomOperand(p.format, rng))) {
+          val want = jvmRne(op, p.format, a).get
+          val got  = ExactOracle(op, p, a, RoundingMode.RNE).bits
+          assert(got == want, s"$opName ${p.name} a=${showBits(p.format, a)}: oracle ${showBits(p.format, got)}, JVM ${showBits(p.format, want)}")
+        }
       }
     }
   }
@@ -113,6 +128,14 @@ abstract class RootSpecBase(op: RootOp) extends AnyFlatSpec with ChiselScalatest
     it should s"match its golden model in RTL with Newton-Raphson ${nr.name} for ${p.name} at latency $l ($n random operands)" in {
       rtlCheck(p, nr, l, n)
     }
+  }
+
+  // Deeper, tagged Slow (excluded from the default run): every fp16 input through the RTL.
+  it should "match its golden model in RTL on every one of the 65536 fp16 inputs, pipelined, random modes" taggedAs Slow in {
+    val p = FpParams(FloatFormat.fp16)
+    val rng = Seeds.rng(s"$opName-rtl-exhaustive-fp16")
+    val vectors = (0 until (1 << 16)).map(a => (BigInt(a), RoundingMode.all(rng.nextInt(5))))
+    test(build(op, p, dr, pipelined(p.format))) { c => stream(c, vectors, rng, (a, rm) => RootModel(op, p, dr, a, rm)) }
   }
 
   it should "carry every parameter in its Verilog module name" in {
