@@ -144,8 +144,8 @@ object RootTestKit {
 
   // ---------------------------------------------------------------- operands
   /** Named corner operands of a format (both signs): zeros, infinities, quiet and signaling
-    * NaNs, subnormal extremes, normal extremes, 1 and its neighbours, powers of two and four. */
-  def corners(f: FloatFormat): Seq[BigInt] = {
+    * NaNs, subnormal extremes, normal extremes, 1 and its neighbours, about `powers` powers of two. */
+  def corners(f: FloatFormat, powers: Int = 40): Seq[BigInt] = {
     def enc(e: Int, fr: BigInt) = (BigInt(e) << f.fracBits) | fr
     val one = enc(f.bias, 0)
     val pos = Seq(
@@ -156,7 +156,7 @@ object RootTestKit {
       enc(f.expMask.toInt - 1, 0), enc(f.expMask.toInt - 1, f.fracMask), enc(f.expMask.toInt - 2, f.fracMask),
       enc(f.expMask.toInt - 1, BigInt(1) << (f.fracBits - 1)),
       f.infinity(false), f.canonicalNaN, f.canonicalNaN | 1, enc(f.expMask.toInt, 1), enc(f.expMask.toInt, f.fracMask >> 1)
-    ) ++ (1 until f.expMask.toInt by math.max(1, f.expMask.toInt / 40)).map(enc(_, 0))
+    ) ++ (1 until f.expMask.toInt by math.max(1, f.expMask.toInt / powers)).map(enc(_, 0))
     (pos ++ pos.map(_ | f.signBit)).distinct
   }
 
