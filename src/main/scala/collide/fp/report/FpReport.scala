@@ -21,9 +21,11 @@ object FpReport {
 
   /** Latencies used for the table: one reasonable pipelining per operator (every one of them
     * is a parameter; throughput is one result per cycle at any latency). */
-  def rootLatency(f: FloatFormat, alg: RootAlgorithm): Int = alg match {
-    case RootAlgorithm.DigitRecurrence => 2 + (f.sigBits + 3) / 4 // about 4 recurrence steps a cycle
-    case RootAlgorithm.NewtonRaphson(_, it) => 2 + 1 + 2 * it     // seed, then two multiplies a step
+  def rootLatency(op: RootOp, f: FloatFormat, alg: RootAlgorithm): Int = alg match {
+    // About four recurrence steps a cycle, plus the operator's pre-round and output registers.
+    case RootAlgorithm.DigitRecurrence => 2 + (f.sigBits + 3) / 4
+    // One register at every cut of the core (after the seed table and each multiply), plus two.
+    case nr: RootAlgorithm.NewtonRaphson => 2 + NewtonRaphsonCore.naturalLatency(op, nr)
   }
 
   private def sqrtExact(x: JBigDecimal): Option[JBigDecimal] =
@@ -33,16 +35,16 @@ object FpReport {
     val rne = RoundingMode.RNE
     val roots = Seq[RootAlgorithm](RootAlgorithm.DigitRecurrence) ++
       Seq(RootAlgorithm.NewtonRaphson(6, 1), RootAlgorithm.NewtonRaphson(8, 1),
-          RootAlgorithm.NewtonRaphson(8, 2), RootAlgorithm.NewtonRaphson(10, 2))
+          RootAlgorithm.NewtonRaphson(8, 2), RootAlgorithm.NewtonRaphson(8, 3))
     Seq(
       Op("add", "-", 2, 2, (p, a) => FpAddModel(p, a(0), a(1), rne), a => Some(a(0).bigDecimal.add(a(1).bigDecimal))),
       Op("mul", "-", 2, 2, (p, a) => FpMulModel(p, a(0), a(1), rne), a => Some(a(0).bigDecimal.multiply(a(1).bigDecimal)))
     ) ++ roots.flatMap { alg =>
       Seq(
-        Op("sqrt", alg.name, rootLatency(f, alg), 1, (p, a) => FpSqrtModel(p, alg, a(0), rne), a => sqrtExact(a(0).bigDecimal)),
-        Op("recip", alg.name, rootLatency(f, alg), 1, (p, a) => FpRecipModel(p, alg, a(0), rne),
+        Op("sqrt", alg.name, rootLatency(RootOp.Sqrt, f, alg), 1, (p, a) => FpSqrtModel(p, alg, a(0), rne), a => sqrtExact(a(0).bigDecimal)),
+        Op("recip", alg.name, rootLatency(RootOp.Recip, f, alg), 1, (p, a) => FpRecipModel(p, alg, a(0), rne),
           a => if (a(0).signum == 0) None else Some(JBigDecimal.ONE.divide(a(0).bigDecimal, mc))),
-        Op("rsqrt", alg.name, rootLatency(f, alg), 1, (p, a) => FpRsqrtModel(p, alg, a(0), rne),
+        Op("rsqrt", alg.name, rootLatency(RootOp.Rsqrt, f, alg), 1, (p, a) => FpRsqrtModel(p, alg, a(0), rne),
           a => if (a(0).signum <= 0) None else sqrtExact(a(0).bigDecimal).map(s => JBigDecimal.ONE.divide(s, mc)))
       )
     }
@@ -103,6 +105,11 @@ object FpReport {
       val s = measure(p, op, inputs)
       line(f"| ${f.name} | ${op.name} | ${op.alg} | ${op.latency} | 1 | ${s.cases}%,d | ${s.worst}%.4f | ${s.mean}%.4f |")
     }
+    line("")
+    line("Produced by `tools/sbt \"runMain collide.fp.report.FpReport " + args.mkString(" ") + "\"` on " +
+      s"${Runtime.getRuntime.availableProcessors} cores, ${sys.props("java.vm.name")} ${sys.props("java.version")}.")
+    line("Latency is a parameter of every operator; the column gives the pipelining used by this table (digit")
+    line("recurrence: about four steps a cycle plus two; Newton-Raphson: one register at every cut plus two).")
     arg("--out").foreach { path =>
       val w = new java.io.PrintWriter(path)
       try w.write(sb.toString) finally w.close()
