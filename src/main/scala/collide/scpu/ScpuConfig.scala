@@ -119,8 +119,8 @@ final case class ScpuConfig(
   val kTime: Int   = dLatency + addLatency + mulLatency
   val nTime: Int   = wLatency + mulLatency
   val posTime: Int = math.max(kTime, nTime) + mulLatency + addLatency
-  /** Compute-format datapath (difference to selected outputs). */
-  val coreLatency: Int = diffLatency + posTime
+  /** Compute-format datapath (difference to selected outputs; the compare runs beside). */
+  val coreLatency: Int = diffLatency + math.max(posTime, dLatency + cmpLatency)
   /** Compute -> link conversion. */
   val outLatency: Int = cvtLat
   /** Cycles from a pair accepted on io.in to its result on io.out. */
