@@ -155,10 +155,15 @@ final case class ScpuConfig(
   }
 
   /** One line describing every knob, for reports. */
-  def describe: String =
-    s"$name: ${format.name}${if (subnormals) "" else " ftz"} $rounding ${distance.name} " +
-      s"sqrt=${sqrtAlg.name}/$sqrtLat recip=${recipAlg.name}/$recipLat rsqrt=${rsqrtAlg.name}/$rsqrtLat " +
-      s"cvt=$cvtLat add=$addLatency mul=$mulLatency cmp=$cmpLatency latency=$latency"
+  def describe: String = {
+    val roots = distance match {
+      case DistanceMethod.Rsqrt => s"rsqrt=${rsqrtAlg.name}/L$rsqrtLat"
+      case _                    => s"sqrt=${sqrtAlg.name}/L$sqrtLat recip=${recipAlg.name}/L$recipLat"
+    }
+    val scale = if (distance == DistanceMethod.Robust) s" scale=L$scaleLatency" else ""
+    s"$name: ${format.name}${if (subnormals) "" else " ftz"} $rounding ${distance.name} $roots " +
+      s"cvt=L$cvtLat add=L$addLatency mul=L$mulLatency cmp=L$cmpLatency$scale, latency $latency"
+  }
 }
 
 object ScpuConfig {

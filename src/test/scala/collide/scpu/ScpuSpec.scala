@@ -49,7 +49,9 @@ class ScpuSpec extends AnyFlatSpec with ChiselScalatestTester {
       val model = ScpuModel(c)
       (labels, pairs, pairs.map(model.collide))
     }
+    val t0 = System.nanoTime()
     test(new ScpuBank(cfgs)).withAnnotations(annos) { dut =>
+      val t1 = System.nanoTime()
       val ports = cfgs.indices.map(i => dut.io(i).asInstanceOf[ScpuPort])
       // Phase 1: the hard cases back to back with out.ready high: each result exactly
       // `latency` cycles after its pair, one pair per cycle.
@@ -66,7 +68,8 @@ class ScpuSpec extends AnyFlatSpec with ChiselScalatestTester {
         new ScpuLane(ports(i), cfgs(i).latency, pairs, exp, new Random(rng.nextLong()), 25, 10, labels, floatOracle(cfgs(i), pairs))
       }
       val cycles = ScpuDriver.run(dut.clock, lanes, 20 * sets.map(_._2.size).max + 1000)
-      info(cfgs.zip(sets).map { case (c, s) => s"${c.name}: ${s._2.size} pairs (latency ${c.latency})" }.mkString("; ") + s"; $cycles cycles")
+      info(cfgs.zip(sets).map { case (c, s) => s"${c.name}: ${s._2.size} pairs (latency ${c.latency})" }.mkString("; ") +
+        f"; $cycles cycles; build ${(t1 - t0) / 1e9}%.0f s, simulation ${(System.nanoTime() - t1) / 1e9}%.0f s")
     }
   }
 
