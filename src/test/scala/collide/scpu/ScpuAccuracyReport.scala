@@ -79,7 +79,7 @@ object ScpuAccuracyReport {
     var nonFin = 0; var wideHits = 0; var mismBand = 0; var mismOut = 0; var badN = 0
     val wide = Seq.fill(n)(v.wideRange(rng))
     val rel = ScpuExact.pow2(-f.fracBits).multiply(new java.math.BigDecimal(ScpuBounds.bandUlps(cfg)))
-    val abs = ScpuExact.pow2(2 * f.minSubExp + 4)
+    val abs = ScpuExact.pow2(f.minSubExp + 1)
     for (p <- wide) {
       val t = model.trace(p)
       val r = t.result

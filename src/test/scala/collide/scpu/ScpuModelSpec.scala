@@ -18,9 +18,9 @@ object ScpuBounds {
     case RootAlgorithm.DigitRecurrence if cfg.distance != DistanceMethod.Rsqrt => 2.0
     case _ => 3.0
   }
-  /** The hit decision equals exact arithmetic's except where |d2 - (r1+r2)^2| <=
-    * band * max(d2, (r1+r2)^2) (+ a few subnormal steps when values are tiny). */
-  def bandUlps(cfg: ScpuConfig): Int = 8
+  /** The hit decision equals exact arithmetic's except where |d - (r1+r2)| <=
+    * bandUlps * u * max(d, |r1+r2|) + 2 * (smallest subnormal), d the exact distance. */
+  def bandUlps(cfg: ScpuConfig): Int = 4
 }
 
 class ScpuModelSpec extends AnyFlatSpec {
@@ -135,7 +135,7 @@ class ScpuModelSpec extends AnyFlatSpec {
     val band = ScpuBounds.bandUlps(cfg)
     it should s"decide hits as exact arithmetic does outside $band ulps of grazing for ${cfg.name}" in {
       val rel = ScpuExact.pow2(-(cfg.format.sigBits - 1)).multiply(new JBigDecimal(band))
-      val abs = ScpuExact.pow2(2 * cfg.format.minSubExp + 4)
+      val abs = ScpuExact.pow2(cfg.format.minSubExp + 1)
       var inBand = 0; var mism = 0; var pinned = 0; var n = 0
       for ((label, p, t) <- dataset(cfg); ex <- ScpuExact.decision(cfg.params, t.inputs)) {
         n += 1
