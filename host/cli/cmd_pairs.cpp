@@ -19,12 +19,17 @@ int runPairs(const PairsOptions& o) {
       req.link = o.link == "qpi" ? link::LinkParams::qpi() : link::LinkParams::ideal();
     } else {
       req.name = o.backend;
+      if (!o.trace.empty()) throw std::invalid_argument("--trace needs --afu DIR");
     }
     std::unique_ptr<CollisionBackend> backend;
     if (req.name == "rtl") {
       driver::DriverOptions d;
       d.dense = o.dense;
-      backend = std::make_unique<RtlBackend>(req.afuDir, req.link, d);
+      d.skipIdle = !o.noSkip;
+      driver::AfuPortOptions port;
+      port.traceFile = o.trace;
+      port.clockMHz = req.link.clockMHz;
+      backend = std::make_unique<RtlBackend>(req.afuDir, req.link, d, port);
     } else {
       backend = makeBackend(req);
     }
@@ -51,7 +56,13 @@ int runPairs(const PairsOptions& o) {
       if (!out) throw std::runtime_error(o.out + ": write failed");
     }
     std::cerr << "collide pairs: " << pairs.size() << " pairs, " << contacts.hits() << " contacts, backend "
-              << backend->name() << " (" << toString(contacts.format) << ")\n";
+              << backend->name() << " (" << toString(contacts.format) << ")";
+    if (auto* rtl = dynamic_cast<RtlBackend*>(backend.get())) {
+      const auto& b = rtl->lastBatch();
+      std::cerr << ", " << b.runs << " AFU runs, " << b.counters.cyclesTotal << " AFU cycles, "
+                << b.stats.modelledNs / 1e3 << " us modelled (link " << req.link.name << ")";
+    }
+    std::cerr << "\n";
     return 0;
   } catch (const driver::AfuUnavailable& e) {
     std::cerr << "collide pairs: " << e.what() << "\n";

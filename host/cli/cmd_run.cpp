@@ -3,10 +3,13 @@
 #include <iomanip>
 #include <iostream>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/commands.hpp"
 #include "cli/run_report.hpp"
 #include "collide/backend_factory.hpp"
 #include "collide/ode_backend.hpp"
+#include "collide/rtl_backend.hpp"
 #include "collide/simd_backend.hpp"
 #include "driver/afu_factory.hpp"
 #include "ode/simulation.hpp"
@@ -31,6 +34,42 @@ std::int64_t timeNs(F&& f) {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
 }
 
+void add(AfuTotals& a, const RtlBatchStats& b, double cycleNs) {
+  a.runs += b.runs;
+  a.cyclesTotal += b.counters.cyclesTotal;
+  a.cyclesLoading += b.counters.cyclesLoading;
+  a.cyclesComputing += b.counters.cyclesComputing;
+  a.cyclesWaitRead += b.counters.cyclesWaitRead;
+  a.cyclesWaitWrite += b.counters.cyclesWaitWrite;
+  a.cyclesStepped += b.stats.cyclesStepped;
+  a.cyclesSkipped += b.stats.cyclesSkipped;
+  a.modelledNs += b.stats.modelledNs;
+  a.cycleNs = cycleNs;
+}
+
+void printAfu(std::ostream& os, const AfuTotals& a, std::uint64_t pairs, std::uint64_t contacts,
+              const std::string& linkName, std::int64_t wallNs) {
+  const double c = a.cycleNs;
+  auto line = [&](const char* what, double ns, const char* note) {
+    os << "  " << std::left << std::setw(22) << what << std::right << std::fixed << std::setprecision(3)
+       << std::setw(12) << ns / 1e3 << " us  " << std::setw(5) << std::setprecision(1)
+       << (a.modelledNs > 0 ? 100.0 * ns / a.modelledNs : 0.0) << " %" << note << "\n";
+  };
+  os << "AFU (modelled, link " << linkName << "): " << a.runs << " runs, " << std::fixed << std::setprecision(3)
+     << a.modelledNs / 1e3 << " us";
+  if (contacts) os << ", " << std::setprecision(1) << a.modelledNs / contacts << " ns/collision";
+  if (pairs) os << ", " << std::setprecision(2) << a.modelledNs / pairs << " ns/pair";
+  os << "\n";
+  line("loading spheres", a.cyclesLoading * c, "  (status counter; includes its read waits)");
+  line("computing", a.cyclesComputing * c, "  (cycles in which an SCPU took a pair)");
+  line("waiting on reads", a.cyclesWaitRead * c, "  (may overlap loading)");
+  line("waiting on writes", a.cyclesWaitWrite * c, "");
+  line("other AFU cycles", a.otherNs(), "  (total minus the four above; negative if they overlap)");
+  line("overhead", a.overheadNs(), "  (per run: transaction, CSR writes, status write, polling)");
+  os << "  simulated: " << a.cyclesStepped << " cycles stepped, " << a.cyclesSkipped << " skipped exactly, "
+     << std::setprecision(3) << wallNs / 1e9 << " s wall\n";
+}
+
 }  // namespace
 
 int runScene(const RunOptions& o) {
@@ -38,19 +77,29 @@ int runScene(const RunOptions& o) {
     scene::Scene sc = scene::loadScene(o.scene);
     if (o.backend) sc.backend = *o.backend;
     if (o.steps) sc.steps = *o.steps;
+    if (o.link) sc.link = *o.link == "ideal" ? link::LinkParams::ideal() : link::LinkParams::qpi();
+    const bool rtl = sc.backend == "rtl";
 
-    BackendRequest req{sc.backend, sc.afuDir, sc.link};
+    BackendRequest req{sc.backend, sc.afuDir, sc.link, {}, {}};
+    req.driver.skipIdle = !o.noSkip;
+    req.port.traceFile = o.trace;
+    req.port.clockMHz = sc.link.clockMHz;
+    if (!o.trace.empty() && !rtl) throw std::invalid_argument("--trace needs --backend rtl");
     auto backend = makeBackend(req);  // rtl without an AFU throws AfuUnavailable here
+    auto* rtlBackend = dynamic_cast<RtlBackend*>(backend.get());
 
     std::cout << "scene " << sc.name << ": " << sc.spheres.size() << " spheres, " << sc.steps
               << " steps, dt " << sc.dt << ", backend " << backend->name() << ", link "
-              << (sc.backend == "rtl" ? sc.link.name : std::string("not simulated (CPU backend)")) << "\n";
+              << (rtl ? sc.link.name : std::string("not simulated (CPU backend)"));
+    if (rtl) std::cout << ", AFU " << (driver::builtInAfuPreset().empty() ? "?" : driver::builtInAfuPreset());
+    std::cout << "\n";
 
     // The same pairs through ODE's collider and the simd batch, timed each step.
     OdeBackend ode;
     SimdBackend simd;
     ContactSet odeOut, simdOut;
     RunTotals tot;
+    AfuTotals afu;
     std::int64_t stepOdeNs = 0, stepSimdNs = 0;
     std::uint64_t stepMismatch = 0;
 
@@ -66,7 +115,9 @@ int runScene(const RunOptions& o) {
     if (!o.out.empty()) {
       csv.open(o.out);
       if (!csv) throw std::runtime_error(o.out + ": cannot write");
-      csv << "step,pairs,contacts,other_contacts,backend_ns,ode_ns,simd_ns,hit_mismatches\n";
+      csv << "step,pairs,contacts,other_contacts,backend_ns,ode_ns,simd_ns,hit_mismatches";
+      if (rtl) csv << ",afu_runs,afu_modelled_ns,afu_cycles,afu_load,afu_compute,afu_wait_rd,afu_wait_wr";
+      csv << '\n';
     }
     for (long long s = 0; s < sc.steps; ++s) {
       const auto st = sim.step();
@@ -77,13 +128,25 @@ int runScene(const RunOptions& o) {
       tot.odeNs += stepOdeNs;
       tot.simdNs += stepSimdNs;
       tot.hitMismatches += stepMismatch;
-      if (o.perStep)
+      if (rtlBackend) add(afu, rtlBackend->lastBatch(), sc.link.cycleNs());
+      if (o.perStep) {
         std::cout << "step " << st.step << ": " << st.pairsTested << " pairs, " << st.contacts << " contacts"
                   << (st.otherContacts ? " (+" + std::to_string(st.otherContacts) + " plane)" : "")
-                  << ", ode " << stepOdeNs << " ns, simd " << stepSimdNs << " ns\n";
-      if (csv.is_open())
+                  << ", ode " << stepOdeNs << " ns, simd " << stepSimdNs << " ns";
+        if (rtlBackend) std::cout << ", AFU " << std::fixed << std::setprecision(0) << rtlBackend->lastBatch().stats.modelledNs << " ns modelled";
+        std::cout << "\n";
+      }
+      if (csv.is_open()) {
         csv << st.step << ',' << st.pairsTested << ',' << st.contacts << ',' << st.otherContacts << ','
-            << st.backendNs << ',' << stepOdeNs << ',' << stepSimdNs << ',' << stepMismatch << '\n';
+            << st.backendNs << ',' << stepOdeNs << ',' << stepSimdNs << ',' << stepMismatch;
+        if (rtlBackend) {
+          const auto& b = rtlBackend->lastBatch();
+          csv << ',' << b.runs << ',' << std::fixed << std::setprecision(1) << b.stats.modelledNs << ','
+              << b.counters.cyclesTotal << ',' << b.counters.cyclesLoading << ',' << b.counters.cyclesComputing
+              << ',' << b.counters.cyclesWaitRead << ',' << b.counters.cyclesWaitWrite;
+        }
+        csv << '\n';
+      }
     }
 
     std::cout << "pairs tested : " << tot.pairs << " sphere/sphere candidates from the broad phase\n"
@@ -94,10 +157,47 @@ int runScene(const RunOptions& o) {
     std::cout << "  (dCollide on the world's dSphere geoms, binary64)\nsimd batch   : ";
     printTiming(std::cout, tot.simdNs, tot.pairs, tot.contacts);
     std::cout << "  (gather + binary32 SoA kernel)\n"
-              << "simd vs ode  : " << tot.hitMismatches << " pairs disagree on hit\n"
-              << "backend " << backend->name() << "  : ";
-    printTiming(std::cout, tot.backendNs, tot.pairs, tot.contacts);
-    std::cout << "  (the backend that drove the simulation)\n";
+              << "simd vs ode  : " << tot.hitMismatches << " pairs disagree on hit\n";
+    if (rtl) {
+      printAfu(std::cout, afu, tot.pairs, tot.contacts, sc.link.name, tot.backendNs);
+    } else {
+      std::cout << "backend " << backend->name() << "  : ";
+      printTiming(std::cout, tot.backendNs, tot.pairs, tot.contacts);
+      std::cout << "  (the backend that drove the simulation)\n";
+    }
+
+    if (!o.summary.empty()) {
+      nlohmann::json j;
+      j["scene"] = sc.name;
+      j["spheres"] = sc.spheres.size();
+      j["steps"] = sc.steps;
+      j["backend"] = backend->name();
+      j["pairs"] = tot.pairs;
+      j["contacts"] = tot.contacts;
+      j["ode_ns"] = tot.odeNs;
+      j["simd_ns"] = tot.simdNs;
+      j["backend_wall_ns"] = tot.backendNs;
+      j["simd_ode_hit_mismatches"] = tot.hitMismatches;
+      if (rtl) {
+        j["afu"] = {{"preset", driver::builtInAfuPreset()},
+                    {"link", sc.link.name},
+                    {"runs", afu.runs},
+                    {"modelled_ns", afu.modelledNs},
+                    {"cycle_ns", afu.cycleNs},
+                    {"cycles_total", afu.cyclesTotal},
+                    {"loading_ns", afu.cyclesLoading * afu.cycleNs},
+                    {"computing_ns", afu.cyclesComputing * afu.cycleNs},
+                    {"wait_read_ns", afu.cyclesWaitRead * afu.cycleNs},
+                    {"wait_write_ns", afu.cyclesWaitWrite * afu.cycleNs},
+                    {"other_ns", afu.otherNs()},
+                    {"overhead_ns", afu.overheadNs()},
+                    {"cycles_stepped", afu.cyclesStepped},
+                    {"cycles_skipped", afu.cyclesSkipped}};
+      }
+      std::ofstream js(o.summary);
+      if (!js) throw std::runtime_error(o.summary + ": cannot write");
+      js << j.dump(2) << "\n";
+    }
     return 0;
   } catch (const driver::AfuUnavailable& e) {
     std::cerr << "collide run: " << e.what() << "\n";

@@ -12,6 +12,10 @@ struct RunOptions {
   std::optional<long long> steps;      // overrides the scene's
   std::string out;                     // per-step CSV
   bool perStep = false;
+  std::optional<std::string> link;     // rtl: ideal | qpi, overrides the scene's
+  std::string trace;                   // rtl: waveform file (.fst / .vcd)
+  bool noSkip = false;                 // rtl: evaluate every cycle (no idle skipping)
+  std::string summary;                 // totals as JSON
 };
 
 struct PairsOptions {
@@ -20,6 +24,8 @@ struct PairsOptions {
   std::string link = "ideal";  // rtl only
   std::string in, out;  // "-" = stdin/stdout
   bool dense = false;   // rtl: dense mode
+  std::string trace;    // rtl: waveform file (.fst / .vcd)
+  bool noSkip = false;  // rtl: evaluate every cycle
 };
 
 struct InfoOptions {

@@ -20,6 +20,12 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   r->add_option("--out", run.out, "write per-step statistics to this CSV file");
   r->add_flag("--per-step", run.perStep, "print one line per step");
+  r->add_option_function<std::string>("--link", [&](const std::string& l) { run.link = l; },
+                                      "rtl: link model, overrides the scene's (ideal | qpi = HARP v1)")
+      ->check(CLI::IsMember({"ideal", "qpi"}));
+  r->add_option("--trace", run.trace, "rtl: write a waveform of the AFU (.fst or .vcd, as built)");
+  r->add_flag("--no-skip", run.noSkip, "rtl: evaluate every cycle instead of jumping idle waits");
+  r->add_option("--summary", run.summary, "write the run's totals to this JSON file");
 
   PairsOptions pairs;
   auto* p = app.add_subcommand("pairs", "vector mode: collide the pairs of a CSV file");
@@ -29,6 +35,8 @@ int main(int argc, char** argv) {
       ->excludes(afu);
   p->add_option("--link", pairs.link, "rtl link model")->check(CLI::IsMember({"ideal", "qpi"}));
   p->add_flag("--dense", pairs.dense, "rtl: dense mode (a record per pair)");
+  p->add_option("--trace", pairs.trace, "rtl: write a waveform of the AFU (.fst or .vcd, as built)");
+  p->add_flag("--no-skip", pairs.noSkip, "rtl: evaluate every cycle instead of jumping idle waits");
   p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2), - for stdin")->required();
   p->add_option("--out", pairs.out, "output CSV, - for stdout")->required();
 

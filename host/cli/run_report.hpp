@@ -11,6 +11,24 @@ struct RunTotals {
   std::uint64_t hitMismatches = 0;  // pairs where ode and simd disagree on hit
 };
 
+// The rtl backend's modelled AFU time over a run (sums over every AFU call), split as the
+// paper's Figures 5-7: the status line's cycle counters, and what lies outside them.
+struct AfuTotals {
+  std::uint64_t runs = 0;
+  std::uint64_t cyclesTotal = 0, cyclesLoading = 0, cyclesComputing = 0, cyclesWaitRead = 0,
+                cyclesWaitWrite = 0;
+  std::uint64_t cyclesStepped = 0, cyclesSkipped = 0;  // how the simulator got there
+  double modelledNs = 0;  // host view: transaction overhead + CSRs + AFU + status + polls
+  double cycleNs = 5.0;
+  // AFU cycles that none of the four counters claims (they may overlap: then negative).
+  double otherNs() const {
+    return (static_cast<double>(cyclesTotal) - static_cast<double>(cyclesLoading + cyclesComputing +
+                                                                   cyclesWaitRead + cyclesWaitWrite)) * cycleNs;
+  }
+  // Modelled time outside the AFU's own cycle count.
+  double overheadNs() const { return modelledNs - static_cast<double>(cyclesTotal) * cycleNs; }
+};
+
 // "X ms total, Y ns/pair, Z ns/collision" ("-" where a count is 0).
 void printTiming(std::ostream& os, std::int64_t ns, std::uint64_t pairs, std::uint64_t contacts);
 

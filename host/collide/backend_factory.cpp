@@ -11,7 +11,7 @@ namespace collide {
 std::unique_ptr<CollisionBackend> makeBackend(const BackendRequest& r) {
   if (r.name == "ode") return std::make_unique<OdeBackend>();
   if (r.name == "simd") return std::make_unique<SimdBackend>();
-  if (r.name == "rtl") return std::make_unique<RtlBackend>(r.afuDir, r.link);
+  if (r.name == "rtl") return std::make_unique<RtlBackend>(r.afuDir, r.link, r.driver, r.port);
   throw std::invalid_argument("unknown backend '" + r.name + "' (expected ode, simd or rtl)");
 }
 

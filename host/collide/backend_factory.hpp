@@ -5,6 +5,8 @@
 #include <string>
 
 #include "collide/backend.hpp"
+#include "driver/afu_driver.hpp"
+#include "driver/afu_factory.hpp"
 #include "link/link_params.hpp"
 
 namespace collide {
@@ -13,6 +15,8 @@ struct BackendRequest {
   std::string name;                  // ode | simd | rtl
   std::filesystem::path afuDir;      // rtl only
   link::LinkParams link = link::LinkParams::qpi();  // rtl only
+  driver::DriverOptions driver;      // rtl only (format and maxSpheres come from the manifest)
+  driver::AfuPortOptions port;       // rtl only: trace file
 };
 
 // Throws std::invalid_argument for an unknown name, driver::AfuUnavailable for rtl

@@ -1,12 +1,16 @@
 #include "collide/rtl_backend.hpp"
 
+#include <stdexcept>
+#include <string>
+
 #include "driver/manifest.hpp"
 
 namespace collide {
 
 namespace {
 driver::DriverOptions fromManifest(const std::filesystem::path& dir, driver::DriverOptions o) {
-  const auto m = driver::loadManifest(dir);
+  const auto m = dir.empty() ? driver::parseManifest(driver::builtInAfuManifest(), "the built-in AFU's manifest")
+                             : driver::loadManifest(dir);
   o.format = m.format;
   o.maxSpheres = m.maxSpheres;
   return o;
@@ -23,9 +27,86 @@ RtlBackend::RtlBackend(std::unique_ptr<driver::AfuPort> port, const link::LinkPa
                        const driver::DriverOptions& options)
     : port_(std::move(port)), driver_(std::make_unique<driver::AfuDriver>(*port_, link, options)) {}
 
-void RtlBackend::collide(const SphereTable& spheres, const PairList& pairs, ContactSet& out) {
+void RtlBackend::runOne(const SphereTable& spheres, const PairList& pairs, ContactSet& out) {
   last_ = driver_->run(spheres, pairs);
   out = driver_->toContactSet(last_, pairs.size());
+  ++batch_.runs;
+  auto& c = batch_.counters;
+  const auto& s = last_.status;
+  c.done += s.done;
+  c.errors |= s.errors;
+  c.pairsProcessed += s.pairsProcessed;
+  c.contactsFound += s.contactsFound;
+  c.recordsWritten += s.recordsWritten;
+  c.nonFinitePairs += s.nonFinitePairs;
+  c.cyclesTotal += s.cyclesTotal;
+  c.cyclesLoading += s.cyclesLoading;
+  c.cyclesComputing += s.cyclesComputing;
+  c.cyclesWaitRead += s.cyclesWaitRead;
+  c.cyclesWaitWrite += s.cyclesWaitWrite;
+  auto& t = batch_.stats;
+  t.cyclesStepped += last_.stats.cyclesStepped;
+  t.cyclesSkipped += last_.stats.cyclesSkipped;
+  t.statusCycle += last_.stats.statusCycle;
+  t.modelledNs += last_.stats.modelledNs;
+}
+
+void RtlBackend::collide(const SphereTable& spheres, const PairList& pairs, ContactSet& out) {
+  batch_ = RtlBatchStats{};
+  const std::size_t n = pairs.size();
+  const std::size_t maxSpheres = driver_->options().maxSpheres;
+  constexpr std::size_t maxPairs = (std::size_t{1} << 24) - 1;
+  if (n == 0) {  // nothing to collide: no AFU call
+    out.resize(0);
+    out.format = format();
+    return;
+  }
+  if (spheres.size() <= maxSpheres && n <= maxPairs) {
+    runOne(spheres, pairs, out);
+    return;
+  }
+
+  // Split: greedily add pairs while their spheres fit in one AFU table.
+  out.resize(n);
+  out.format = format();
+  local_.assign(spheres.size(), -1);
+  std::vector<std::uint32_t> used;  // globals mapped in this chunk (to clear local_)
+  auto flush = [&] {
+    if (chunkPairs_.size() == 0) return;
+    runOne(chunkSpheres_, chunkPairs_, chunkOut_);
+    for (std::size_t k = 0; k < chunkOrigin_.size(); ++k) {
+      const std::size_t o = chunkOrigin_[k];
+      out.hit[o] = chunkOut_.hit[k];
+      out.px[o] = chunkOut_.px[k]; out.py[o] = chunkOut_.py[k]; out.pz[o] = chunkOut_.pz[k];
+      out.nx[o] = chunkOut_.nx[k]; out.ny[o] = chunkOut_.ny[k]; out.nz[o] = chunkOut_.nz[k];
+      out.depth[o] = chunkOut_.depth[k];
+    }
+    for (auto g : used) local_[g] = -1;
+    used.clear();
+    chunkSpheres_.clear();
+    chunkPairs_.clear();
+    chunkOrigin_.clear();
+  };
+  auto map = [&](std::uint32_t g) {
+    if (local_[g] < 0) {
+      local_[g] = static_cast<std::int32_t>(chunkSpheres_.size());
+      chunkSpheres_.push(spheres.x[g], spheres.y[g], spheres.z[g], spheres.r[g]);
+      used.push_back(g);
+    }
+    return static_cast<std::uint32_t>(local_[g]);
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = pairs.i[k], j = pairs.j[k];
+    if (i >= spheres.size() || j >= spheres.size())
+      throw std::invalid_argument("rtl: pair " + std::to_string(k) + " names a sphere beyond the table of " +
+                                  std::to_string(spheres.size()));
+    const std::size_t fresh = (local_[i] < 0) + (local_[j] < 0 && j != i);
+    if (chunkSpheres_.size() + fresh > maxSpheres || chunkPairs_.size() == maxPairs) flush();
+    const std::uint32_t li = map(i), lj = map(j);
+    chunkPairs_.push(li, lj);
+    chunkOrigin_.push_back(k);
+  }
+  flush();
 }
 
 }  // namespace collide

@@ -1,8 +1,12 @@
 #pragma once
 // `rtl` backend: the generated AFU (Verilated) behind the link model, through the driver.
 // Construction fails with driver::AfuUnavailable when this build has no AFU.
+// A batch larger than the AFU takes (afu.maxSpheres spheres, 2^24 - 1 pairs) is split into
+// runs, each with the spheres its pairs use (in first-use order); empty batches make no run.
 #include <filesystem>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "collide/backend.hpp"
 #include "driver/afu_driver.hpp"
@@ -10,6 +14,13 @@
 #include "link/link_params.hpp"
 
 namespace collide {
+
+// One backend call (a simulation step's batch), over every AFU run it took.
+struct RtlBatchStats {
+  std::size_t runs = 0;          // AFU calls: 1, more when the batch is split, 0 if empty
+  driver::StatusLine counters;   // the status lines' counters summed over the runs
+  driver::RunStats stats;        // cycles stepped/skipped, status cycles, modelled ns: sums
+};
 
 class RtlBackend final : public CollisionBackend {
  public:
@@ -23,13 +34,24 @@ class RtlBackend final : public CollisionBackend {
   LinkFormat format() const override { return driver_->options().format; }
   void collide(const SphereTable& spheres, const PairList& pairs, ContactSet& out) override;
 
-  // Statistics of the last batch (modelled time, cycles, status counters).
+  // The last AFU run (of the last batch) and the last batch as a whole.
   const driver::RunResult& lastRun() const { return last_; }
+  const RtlBatchStats& lastBatch() const { return batch_; }
+  const driver::AfuDriver& driver() const { return *driver_; }
 
  private:
+  void runOne(const SphereTable& spheres, const PairList& pairs, ContactSet& out);
+
   std::unique_ptr<driver::AfuPort> port_;
   std::unique_ptr<driver::AfuDriver> driver_;
   driver::RunResult last_;
+  RtlBatchStats batch_;
+  // Chunking scratch: global sphere -> chunk-local index, the chunk's table and pairs.
+  std::vector<std::int32_t> local_;
+  SphereTable chunkSpheres_;
+  PairList chunkPairs_;
+  std::vector<std::size_t> chunkOrigin_;
+  ContactSet chunkOut_;
 };
 
 }  // namespace collide

@@ -15,14 +15,22 @@ struct AfuUnavailable : std::runtime_error {
 };
 
 struct AfuPortOptions {
-  std::filesystem::path traceFile;  // VCD/FST; empty = no trace (needs COLLIDE_AFU_TRACE)
+  // Waveform of the whole run: .fst or .vcd, as the model was Verilated
+  // (-DCOLLIDE_AFU_TRACE=FST|VCD); empty = no trace.
+  std::filesystem::path traceFile;
+  // Simulated clock for the trace's time axis (the link model's clock).
+  double clockMHz = 200.0;
 };
 
 // The preset compiled into this binary, or "" if none.
 std::string builtInAfuPreset();
+// The manifest.json text of the AFU compiled into this binary, or "" if none (what an
+// empty AFU folder means: the built-in one).
+std::string builtInAfuManifest();
 
-// An AFU for the generated configuration in `afuDir`. Throws AfuUnavailable if this build
-// has no Verilated AFU or if `afuDir` is not the configuration it was built from.
+// An AFU for the generated configuration in `afuDir` (empty: the built-in one). Throws
+// AfuUnavailable if this build has no Verilated AFU or if `afuDir`'s manifest differs from
+// the configuration it was built from.
 std::unique_ptr<AfuPort> makeAfuPort(const std::filesystem::path& afuDir, const AfuPortOptions& options);
 
 }  // namespace collide::driver

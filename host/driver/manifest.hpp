@@ -19,5 +19,7 @@ struct Manifest {
 
 // Throws std::runtime_error naming the file: missing, unreadable, bad JSON, bad field.
 Manifest loadManifest(const std::filesystem::path& afuDir);
+// The same from JSON text; `what` names it in errors.
+Manifest parseManifest(const std::string& text, const std::string& what);
 
 }  // namespace collide::driver

@@ -4,6 +4,7 @@
 namespace collide::driver {
 
 std::string builtInAfuPreset() { return ""; }
+std::string builtInAfuManifest() { return ""; }
 
 std::unique_ptr<AfuPort> makeAfuPort(const std::filesystem::path& afuDir, const AfuPortOptions&) {
   throw AfuUnavailable(

@@ -1,0 +1,159 @@
+// The generated AFU compiled into this build (COLLIDE_AFU_PRESET / COLLIDE_AFU_DIR),
+// Verilated, through the driver and link model. Registered only when a preset is built.
+//   - golden vectors from the Scala golden model (test/vectors/...), bit for bit;
+//   - idle-cycle skipping: identical results and modelled time to stepping every cycle;
+//   - the diamond: rtl against ode (contact sets up to grazing pairs, positions within a
+//     tolerance) and, for an IEEE binary32 preset, against simd (identical).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <random>
+
+#include "collide/ode_backend.hpp"
+#include "collide/rtl_backend.hpp"
+#include "collide/simd_backend.hpp"
+#include "driver/afu_driver.hpp"
+#include "driver/afu_factory.hpp"
+#include "driver/manifest.hpp"
+#include "support/golden_vectors.hpp"
+#include "support/lockstep.hpp"
+#include "support/test_seed.hpp"
+
+using namespace collide;
+using namespace collide::driver;
+
+namespace collide::test {
+// The same stated tolerances as test_lockstep.cpp (simd vs ode).
+constexpr long long kDiamondSteps = 6;
+constexpr double kGrazingTol = 1e-6;
+constexpr double kDiamondPosTol = 0.005;
+}  // namespace collide::test
+
+namespace {
+
+Manifest builtIn() { return parseManifest(builtInAfuManifest(), "the built-in AFU's manifest"); }
+
+DriverOptions options(bool dense = false) {
+  const auto m = builtIn();
+  DriverOptions o;
+  o.format = m.format;
+  o.maxSpheres = m.maxSpheres;
+  o.dense = dense;
+  return o;
+}
+
+bool sameValue(double a, double b) {
+  if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b);
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+std::string vectorsFile() {
+  const std::string preset = builtInAfuPreset();
+  const std::string name = preset == "default" ? "fp32_default.csv" : preset + ".csv";
+  return std::string(COLLIDE_TEST_VECTORS) + "/" + name;
+}
+
+}  // namespace
+
+TEST(Afu, MatchesTheGoldenModelVectorsBitForBit) {
+  const std::string file = vectorsFile();
+  if (!std::filesystem::exists(file))
+    GTEST_SKIP() << "no golden vectors at " << file << " (the Scala golden model writes them; see docs/host.md)";
+  const auto m = builtIn();
+  const auto g = test::readGoldenVectors(file, m.format);
+  ASSERT_GT(g.pairs.size(), 0u) << file << ": no rows";
+  for (bool dense : {false, true}) {
+    RtlBackend rtl(makeAfuPort({}, {}), link::LinkParams::ideal(), options(dense));
+    ContactSet out;
+    rtl.collide(g.spheres, g.pairs, out);
+    std::size_t bad = 0;
+    for (std::size_t k = 0; k < g.pairs.size() && bad < 20; ++k) {
+      const auto& e = g.expected[k];
+      const double got[7] = {out.px[k], out.py[k], out.pz[k], out.nx[k], out.ny[k], out.nz[k], out.depth[k]};
+      bool ok = (out.hit[k] != 0) == e.hit;
+      for (int c = 0; c < 7 && ok && e.hit; ++c) ok = sameValue(got[c], e.v[c]);
+      if (!ok) {
+        ++bad;
+        ADD_FAILURE() << file << ":" << e.line << (dense ? " (dense)" : " (compact)") << ": hit " << int(out.hit[k])
+                      << " want " << int(e.hit) << "; got " << std::hexfloat << got[0] << "," << got[1] << "," << got[2]
+                      << " n " << got[3] << "," << got[4] << "," << got[5] << " depth " << got[6] << "; want "
+                      << e.v[0] << "," << e.v[1] << "," << e.v[2] << " n " << e.v[3] << "," << e.v[4] << ","
+                      << e.v[5] << " depth " << e.v[6] << std::defaultfloat;
+      }
+    }
+    std::cout << "[ info     ] " << g.pairs.size() << " golden vectors, " << out.hits() << " contacts, "
+              << rtl.lastBatch().runs << " AFU runs (" << (dense ? "dense" : "compact") << ")\n";
+  }
+}
+
+TEST(Afu, SkippingIdleCyclesMatchesSteppingExactly) {
+  const auto seed = test::testSeed(71);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> pos(-2.0, 2.0), rad(0.1, 0.5);
+  SphereTable t;
+  PairList p;
+  for (int k = 0; k < 400; ++k) t.push(pos(rng), pos(rng), pos(rng), rad(rng));
+  std::uniform_int_distribution<std::uint32_t> idx(0, 399);
+  for (int k = 0; k < 3000; ++k) p.push(idx(rng), idx(rng));
+  auto lp = link::LinkParams::qpi();
+  lp.seed = seed;
+  for (bool dense : {false, true}) {
+    DriverOptions skip = options(dense), step = options(dense);
+    step.skipIdle = false;
+    auto portA = makeAfuPort({}, {});
+    auto portB = makeAfuPort({}, {});
+    AfuDriver da(*portA, lp, skip), db(*portB, lp, step);
+    const auto a = da.run(t, p);
+    const auto b = db.run(t, p);
+    EXPECT_EQ(std::memcmp(&a.status, &b.status, sizeof a.status), 0) << "status lines differ, dense " << dense;
+    EXPECT_EQ(a.stats.statusCycle, b.stats.statusCycle);
+    EXPECT_EQ(a.stats.modelledNs, b.stats.modelledNs);
+    ASSERT_EQ(a.records.size(), b.records.size());
+    for (std::size_t k = 0; k < a.records.size(); ++k) {
+      EXPECT_EQ(a.records[k].pair, b.records[k].pair);
+      EXPECT_EQ(a.records[k].flags, b.records[k].flags);
+      EXPECT_TRUE(sameValue(a.records[k].depth, b.records[k].depth));
+    }
+    if (a.stats.cyclesSkipped == 0)
+      std::cout << "[ info     ] nothing skipped: this AFU exposes no idle/busy port (docs/host.md); stepping is exact\n";
+    std::cout << "[ info     ] " << (dense ? "dense" : "compact") << ": " << a.stats.statusCycle << " modelled cycles, "
+              << a.stats.cyclesStepped << " stepped + " << a.stats.cyclesSkipped << " skipped (stepping all: "
+              << b.stats.cyclesStepped << ")\n";
+  }
+}
+
+TEST(AfuDiamond, RtlMatchesOdeUpToGrazingPairs) {
+  auto sc = scene::loadScene(COLLIDE_REPO_SCENES "/diamond.json");
+  RtlBackend rtl(std::filesystem::path{}, link::LinkParams::ideal(), options());
+  OdeBackend ode;
+  const auto r = test::lockstep(sc, rtl, ode, test::kDiamondSteps, test::kGrazingTol);
+  for (std::size_t s = 0; s < r.size(); ++s) {
+    EXPECT_EQ(r[s].pairsA, r[s].pairsB) << "step " << s;
+    EXPECT_EQ(r[s].onlyA, r[s].onlyAGrazing) << "step " << s << ": rtl-only contacts that are not grazing";
+    EXPECT_EQ(r[s].onlyB, r[s].onlyBGrazing) << "step " << s << ": ode-only contacts that are not grazing";
+  }
+  EXPECT_LT(r.back().maxPosDiff, test::kDiamondPosTol);
+  std::size_t grazing = 0;
+  for (const auto& x : r) grazing += x.onlyA + x.onlyB;
+  std::cout << "[ info     ] " << grazing << " grazing disagreements, positions within " << r.back().maxPosDiff
+            << " m after " << r.size() << " steps\n";
+}
+
+// IEEE binary32 with RNE and correctly rounded sqrt and divide computes the ARCHITECTURE.md
+// formula exactly as the simd kernel does: same contacts, same trajectory, bit for bit.
+TEST(AfuDiamond, Binary32RtlIsTheSimdColliderExactly) {
+  if (builtIn().format != LinkFormat::Binary32) GTEST_SKIP() << "not a binary32 preset";
+  if (builtIn().raw.value(nlohmann::json::json_pointer("/scpu/format/name"), std::string("fp32")) != "fp32")
+    GTEST_SKIP() << "compute format is not fp32";
+  auto sc = scene::loadScene(COLLIDE_REPO_SCENES "/diamond.json");
+  RtlBackend rtl(std::filesystem::path{}, link::LinkParams::ideal(), options());
+  SimdBackend simd;
+  const auto r = test::lockstep(sc, rtl, simd, 20, 0.0);  // it flies apart by step 13
+  for (std::size_t s = 0; s < r.size(); ++s) {
+    EXPECT_EQ(r[s].onlyA + r[s].onlyB, 0u) << "step " << s;
+    EXPECT_EQ(r[s].maxPosDiff, 0.0) << "step " << s;
+  }
+}
+
