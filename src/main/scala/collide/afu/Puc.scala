@@ -17,6 +17,7 @@ class Puc(p: PucParams) extends Module {
     val scpuIn  = Vec(p.scpus, Decoupled(new ScpuIn(p.linkWidth, p.scpuTagBits)))
     val scpuOut = Vec(p.scpus, Flipped(Decoupled(new ScpuOut(p.linkWidth, p.scpuTagBits))))
     val busy    = Output(Bool())
+    val dbg     = Output(Vec(8, UInt(32.W))) // for test diagnosis: see the end of this file
   })
 
   // ---- CSRs: take effect at once; a run works on the copy taken at its start.
@@ -77,6 +78,7 @@ class Puc(p: PucParams) extends Module {
   val wr     = Module(new WriteEngine(p))
 
   rd.io.start       := engineStart
+  rd.io.active      := running
   rd.io.sphereBase  := sphereBase
   rd.io.sphereLines := ((numSpheres +& (lay.spheresPerLine - 1).U) >> log2Ceil(lay.spheresPerLine))(p.sphereLineBits, 0)
   rd.io.pairBase    := pairBase
@@ -166,4 +168,6 @@ class Puc(p: PucParams) extends Module {
   when(state === sStatus && !wr.io.status.fire) { cycTotal := cycTotal + 1.U }
   when(state === sStatusWait && wr.io.outstanding === 0.U) { state := sIdle }
   io.busy := state =/= sIdle
+  io.dbg := VecInit(Seq(state.asUInt.pad(32), processed, rd.io.outstanding.pad(32), Cat(loaded, disp.io.idle, rd.io.pairBufferEmpty, pack.io.idle, wr.io.lines.valid),
+    rd.io.dbg, wr.io.outstanding.pad(32), found, numPairs.pad(32)))
 }

@@ -26,7 +26,8 @@ class ReadEngine(p: PucParams) extends Module {
   override def desiredName = s"ReadEngine_r${p.maxReads}_p${p.pairBufferLines}${p.name}"
   private val spLineBits = math.max(p.sphereLineBits, 1)
   val io = IO(new Bundle {
-    val start       = Input(Bool())
+    val start       = Input(Bool())   // resets the counters; a cycle before `active`
+    val active      = Input(Bool())   // the run is on: issue reads
     val sphereBase  = Input(UInt(Link.addrBits.W))
     val sphereLines = Input(UInt((p.sphereLineBits + 1).W))
     val pairBase    = Input(UInt(Link.addrBits.W))
@@ -38,15 +39,16 @@ class ReadEngine(p: PucParams) extends Module {
     val loaded      = Output(Bool())   // every sphere line has arrived
     val outstanding = Output(UInt(log2Ceil(p.maxReads + 1).W))
     val pairBufferEmpty = Output(Bool())
+    val dbg = Output(UInt(32.W))
   })
 
   val sphereIssued = RegInit(0.U((p.sphereLineBits + 1).W))
   val sphereGot    = RegInit(0.U((p.sphereLineBits + 1).W))
   val pairIssued   = RegInit(0.U((p.pairLineBits + 1).W))
   val reserved     = RegInit(0.U(log2Ceil(p.pairBufferLines + 1).W)) // pair reads in flight + lines buffered
-  val running      = RegInit(false.B)
+  val running      = io.active
   when(io.start) {
-    sphereIssued := 0.U; sphereGot := 0.U; pairIssued := 0.U; running := true.B
+    sphereIssued := 0.U; sphereGot := 0.U; pairIssued := 0.U
   }
 
   val tags = Module(new TagPool(p.maxReads, p.tagBits, p.name))
@@ -89,5 +91,5 @@ class ReadEngine(p: PucParams) extends Module {
 
   io.loaded      := running && sphereGot === io.sphereLines && sphereIssued === io.sphereLines
   io.outstanding := tags.io.inUse
-  when(io.start) { running := true.B }
+  io.dbg := Cat(running, sphereIssued.pad(8), sphereGot.pad(8), io.sphereLines.pad(8))
 }

@@ -59,7 +59,7 @@ object AfuRun {
   val contactBase = BigInt(0x80000)
   val statusAddr  = BigInt(0x7fff0)
 
-  def run(mem: HostMemoryModel, world: World, maxCycles: Long = 2000000,
+  def run(mem: HostMemoryModel, world: World, maxCycles: Long = -1,
           csrOverride: Map[Int, BigInt] = Map.empty): RunResult = {
     val w = world.w; val lay = BufferLayout(w)
     // sphere table lines
@@ -82,8 +82,9 @@ object AfuRun {
     val startCycle = mem.cycle
     mem.writeCsr(Csr.CTRL, Csr.CTRL_START)
     val sa = csrs(Csr.STATUS_ADDR)
+    val limit = if (maxCycles > 0) maxCycles else 20000L + 400L * world.pairs.size
     var seen = false; var extra = 0
-    while (!(seen && mem.idleLink() && extra > 8) && mem.cycle - startCycle < maxCycles) {
+    while (!(seen && mem.idleLink() && extra > 8) && mem.cycle - startCycle < limit) {
       mem.step()
       if (!seen) seen = mem.writes.drop(first).exists(_.addr == sa) else extra += 1
     }

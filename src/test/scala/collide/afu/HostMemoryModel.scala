@@ -41,6 +41,7 @@ class HostMemoryModel(link: LinkIO, clock: Clock, beh: LinkBehaviour, seed: Long
   private val pendingWr = mutable.ArrayBuffer[(Long, BigInt)]()         // due, tag
   private val rdTags = mutable.Set[BigInt](); private val wrTags = mutable.Set[BigInt]()
   var cycle = 0L
+  var trace: Option[() => String] = None
   var writesResponded = 0
   var maxRdInFlight = 0; var maxWrInFlight = 0
 
@@ -59,6 +60,7 @@ class HostMemoryModel(link: LinkIO, clock: Clock, beh: LinkBehaviour, seed: Long
     if (rdDue.nonEmpty) {
       val r = pick(rdDue); pendingRd -= r; rdTags -= r._2
       link.rdResp.valid.poke(true.B); link.rdResp.bits.tag.poke(r._2.U); link.rdResp.bits.data.poke(r._3.U(512.W))
+      trace.foreach(t => println(s"$cycle rdResp tag ${r._2} ${t()}"))
     } else link.rdResp.valid.poke(false.B)
     val wrDue = pendingWr.filter(_._1 <= cycle).toSeq
     if (wrDue.nonEmpty) {
@@ -73,6 +75,7 @@ class HostMemoryModel(link: LinkIO, clock: Clock, beh: LinkBehaviour, seed: Long
       val tag = link.rdReq.bits.tag.peek().litValue; val addr = link.rdReq.bits.addr.peek().litValue
       assert(!rdTags.contains(tag), s"cycle $cycle: read tag $tag reused while in flight")
       rdTags += tag
+      trace.foreach(t => println(s"$cycle rdReq tag $tag addr 0x${addr.toString(16)} ${t()}"))
       pendingRd += ((cycle + draw(beh.rdLatency), tag, mem(addr)))
       maxRdInFlight = maxRdInFlight.max(rdTags.size)
       assert(rdTags.size <= maxReads, s"cycle $cycle: ${rdTags.size} reads in flight, limit $maxReads")
