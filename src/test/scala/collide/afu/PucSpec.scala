@@ -56,4 +56,69 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
   it should "account for every pair with three SCPUs (groups not dividing a line), binary64 link" in {
     soak(3, 64, Seeds.cases(12), Seq(LinkBehaviour.hostile, LinkBehaviour.ideal), verilator)
   }
+
+  it should "flag and contain every kind of bad input (index range, table size, capacity, non-finite, configuration)" in {
+    val p = params(4, 32)
+    val rnd = Seeds.rng("PucSpec-errors")
+    test(new PucHarness(p, 3)).withAnnotations(verilator) { dut =>
+      dut.clock.setTimeout(0)
+      def mem() = new HostMemoryModel(dut.io, dut.clock, LinkBehaviour.hostile, rnd.nextLong(), p.maxReads, p.maxWrites)
+      val spheres = (0 until 40).map(_ => Seq.fill(4)(BigInt(32, rnd.self)))
+      val pairs = (0 until 37).map(_ => (rnd.nextInt(40), rnd.nextInt(40)))
+      val base = World(32, spheres, pairs, dense = false)
+      def go(w: World, expectErr: Long = -1, csr: Map[Int, BigInt] = Map.empty): RunResult = {
+        val r = AfuRun.run(mem(), w, csrOverride = csr)
+        val errs = AfuRun.check(w, stubExpect(w), r, expectErr)
+        assert(errs.isEmpty, s"$w: ${errs.mkString("; ")}\n${r.status}")
+        r
+      }
+      // out-of-range indices: no contact, kind 3 in dense mode, the lowest bad pair reported
+      val bad = base.copy(pairs = pairs.updated(20, (40, 3)).updated(9, (2, 65535)).updated(30, (1000, 1000)))
+      for (d <- Seq(false, true)) {
+        val r = go(bad.copy(dense = d))
+        assert(r.status.get.firstBad == 9 && (r.status.get.errors & ErrorFlags.INDEX_RANGE) != 0)
+      }
+      // NUM_SPHERES above the table: nothing computed, nothing written but the status line
+      val big = go(base.copy(numSpheres = Some(p.maxSpheres + 1L)), ErrorFlags.TOO_MANY_SPHERES)
+      assert(big.writes.size == 1)
+      // a contact buffer too small: records stop at the capacity, found counts them all
+      for (d <- Seq(false, true); cap <- Seq(0L, 1L, 2L, 7L)) go(base.copy(dense = d, capacity = Some(cap)))
+      // non-finite inputs (the stub reads r1 with an all-ones exponent as non-finite): counted
+      val nf = base.copy(spheres = spheres.updated(5, spheres(5).updated(3, BigInt(0x7f800000L))), pairs = pairs.updated(0, (5, 6)))
+      assert(go(nf).status.get.nonFinite >= 1)
+      // bad configuration: status only, error bit 4
+      go(base, ErrorFlags.BAD_CONFIG, Map(Csr.PAIR_BASE -> 0))
+      go(base, ErrorFlags.BAD_CONFIG, Map(Csr.NUM_PAIRS -> (BigInt(1) << 24)))
+      go(base, ErrorFlags.BAD_CONFIG, Map(Csr.CONTACT_BASE -> 0))
+      // no status address: nothing can be reported, nothing is written, the next run works
+      val silent = AfuRun.run(mem(), base, maxCycles = 300, csrOverride = Map(Csr.STATUS_ADDR -> 0))
+      assert(silent.writes.isEmpty && silent.status.isEmpty)
+      go(base.copy(dense = true))
+    }
+  }
+
+  def rate(n: Int): Unit = {
+    {
+      val p = params(n, 32, reads = 64, writes = 64)
+      val rnd = Seeds.rng(s"PucSpec-rate-$n")
+      test(new PucHarness(p, 3)).withAnnotations(verilator) { dut =>
+        dut.clock.setTimeout(0)
+        val spheres = (0 until 256).map(_ => Seq.fill(4)(BigInt(32, rnd.self)))
+        for (dense <- Seq(false, true)) {
+          val w = World(32, spheres, (0 until 16 * 200).map(_ => (rnd.nextInt(256), rnd.nextInt(256))), dense)
+          val r = AfuRun.run(new HostMemoryModel(dut.io, dut.clock, LinkBehaviour.ideal, rnd.nextLong(), 64, 64), w)
+          val errs = AfuRun.check(w, stubExpect(w), r)
+          assert(errs.isEmpty, errs.mkString("; "))
+          val st = r.status.get
+          println(s"[PucSpec] n=$n dense=$dense: ${w.pairs.size} pairs in ${st.cycles} cycles, compute ${st.cycCompute}; $st")
+          // compact: the 200 lines need about 200 compute cycles (stub hit rate ~30%: ~5 hits a line,
+          // about 2.5 lines of records a line, so writes bound it); dense: 8 record lines per pair line
+          if (!dense) assert(st.cycles < 200 * 4 + 200, s"too slow: $st")
+        }
+      }
+    }
+  }
+
+  it should "dispatch a line a cycle with sixteen SCPUs on an ideal link" in { rate(16) }
+  it should "spread the work over all of 20 SCPUs" taggedAs (collide.testutil.Slow) in { rate(20) }
 }
