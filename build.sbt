@@ -23,6 +23,8 @@ lazy val root = (project in file("."))
     Test / fork := true,
     Test / javaOptions ++= Seq("-Xss8m", "-Xmx6g"),
     run / fork := true,
+    // `sbt "run ..."` is the generator CLI
+    Compile / run / mainClass := Some("collide.Generate"),
     run / javaOptions ++= Seq("-Xss8m", "-Xmx4g"),
     Test / testOptions += Tests.Argument(TestFrameworks.ScalaTest, "-oD")
   )
