@@ -1,0 +1,121 @@
+package collide.fp
+
+import chisel3._
+import chisel3.util._
+
+/** Correctly rounding significand core for sqrt, reciprocal and rsqrt (RootCoreIO contract):
+  * a restoring digit recurrence, one result bit per iteration, sigBits+1 iterations (the
+  * sigBits result bits and the round bit), then an exact sticky bit from the final remainder.
+  *
+  * Per iteration (n = sigBits+1 of them; q = the result bits so far):
+  *  - Sqrt (classic bit-by-bit root of sig << (sigBits+1+expOdd), two radicand bits per step):
+  *    r = 4r + next two bits; if r >= 4q+1 then r -= 4q+1, q = 2q+1 else q = 2q.
+  *    One (n+3)-bit subtractor.
+  *  - Recip (long division of 1, or of 2 when m > 1, by m): if r >= m then r -= m, bit 1;
+  *    r = 2r. One (sigBits+1)-bit subtractor.
+  *  - Rsqrt (largest y with y^2 x <= 1, or 4 when x > 1, so w = 2/sqrt(x) in (1,2)):
+  *    with Y the bits so far, x scaled to an integer X, the remainder R = target - Y^2 X and
+  *    QX = q * X are kept scaled so no multiplier is needed: trial D = 4 QX + X; if R >= D
+  *    then R -= D, QX = 2 QX + X, bit 1 else QX = 2 QX; then R = 4R. Three (2 sigBits+6)-bit
+  *    adders per step. Sticky = R != 0.
+  *
+  * `latency` registers are spread over the n iteration boundaries by Pipeline.placement
+  * (latest first): 0 is combinational, n is one register per iteration, more stacks extra
+  * registers at the output end.
+  */
+class DigitRecurrenceCore(val op: RootOp, val sigBits: Int, val latency: Int) extends Module {
+  require(sigBits >= 3, s"DigitRecurrenceCore: sigBits must be >= 3, got $sigBits")
+  require(latency >= 0, s"DigitRecurrenceCore: latency must be >= 0, got $latency")
+  val io = IO(new RootCoreIO(sigBits))
+  override def desiredName = s"DigitRecurrenceCore_${op.name}_s${sigBits}_L$latency"
+
+  val iterations: Int = sigBits + 1
+  private val n = iterations
+  private val rWidth = op match {
+    case RootOp.Sqrt  => n + 2
+    case RootOp.Recip => sigBits + 1
+    case RootOp.Rsqrt => 2 * sigBits + 6
+  }
+  private val auxWidth = if (op == RootOp.Rsqrt) 2 * sigBits + 3 else 1
+
+  class State extends Bundle {
+    val valid  = Bool()
+    val sig    = UInt(sigBits.W)
+    val expOdd = Bool()
+    val expDec = Bool()
+    val q      = UInt(n.W)
+    val r      = UInt(rWidth.W)
+    val aux    = UInt(auxWidth.W) // Rsqrt: QX
+  }
+
+  val sig    = io.in.bits.sig
+  val expOdd = io.in.bits.expOdd && (op != RootOp.Recip).B
+  val isOne  = sig === (BigInt(1) << (sigBits - 1)).U
+  val s0 = Wire(new State)
+  s0.valid  := io.in.valid
+  s0.sig    := sig
+  s0.expOdd := expOdd
+  s0.q      := 0.U
+  s0.aux    := 0.U
+  op match {
+    case RootOp.Sqrt =>
+      s0.expDec := false.B
+      s0.r      := 0.U
+    case RootOp.Recip =>
+      s0.expDec := !isOne
+      s0.r      := Mux(isOne, sig, (BigInt(1) << sigBits).U) // dividend 1 or 2, in units of sig's lsb
+    case RootOp.Rsqrt =>
+      val dec = !(isOne && !expOdd)
+      s0.expDec := dec
+      // target (1 or 4) scaled to X's units (2^-(sigBits-1)), before the first step's scaling
+      s0.r      := Mux(dec, (BigInt(4) << (sigBits - 1)).U, (BigInt(1) << (sigBits - 1)).U)
+  }
+
+  /** Radicand sig << (sigBits+1+expOdd), 2n bits: the two bits consumed at step i. */
+  private def radPair(st: State, i: Int): UInt = {
+    val even = Cat(st.sig, 0.U((sigBits + 1).W))   // 2 sigBits + 1 bits
+    val odd  = Cat(st.sig, 0.U((sigBits + 2).W))   // 2 sigBits + 2 = 2n bits
+    val rad  = Mux(st.expOdd, odd, Cat(0.U(1.W), even))
+    rad(2 * n - 1 - 2 * i, 2 * n - 2 - 2 * i)
+  }
+
+  private def step(st: State, i: Int): State = {
+    val nx = Wire(new State)
+    nx := st
+    op match {
+      case RootOp.Sqrt =>
+        val r2 = Cat(st.r, radPair(st, i))
+        val t  = Cat(st.q, 1.U(2.W))
+        val ge = r2 >= t
+        nx.r := Mux(ge, r2 - t, r2)
+        nx.q := Cat(st.q, ge)
+      case RootOp.Recip =>
+        val ge = st.r >= st.sig
+        nx.r := Cat(Mux(ge, st.r - st.sig, st.r), 0.U(1.W))
+        nx.q := Cat(st.q, ge)
+      case RootOp.Rsqrt =>
+        val x  = Mux(st.expOdd, Cat(st.sig, 0.U(1.W)), st.sig) // X = sig << expOdd
+        val d  = Cat(st.aux, 0.U(2.W)) +& x                    // 4 QX + X
+        val ge = st.r >= d
+        val r1 = Mux(ge, st.r - d, st.r)
+        // the last step keeps the remainder unscaled (only its non-zeroness matters)
+        nx.r   := (if (i == n - 1) r1 else Cat(r1, 0.U(2.W)))
+        nx.aux := Cat(st.aux, 0.U(1.W)) + Mux(ge, x, 0.U)
+        nx.q   := Cat(st.q, ge)
+    }
+    nx
+  }
+
+  private val regs = Pipeline.placement(latency, n)
+  val sN = (0 until n).foldLeft(s0) { (st, i) =>
+    val nx = step(st, i)
+    val out = Wire(new State)
+    out := Pipeline(nx, regs(i), io.en)
+    if (regs(i) > 0) out.valid := Pipeline.valid(nx.valid, regs(i), io.en)
+    out
+  }
+
+  io.out.valid       := sN.valid
+  io.out.bits.sig    := Cat(sN.q, sN.r.orR)
+  io.out.bits.expDec := sN.expDec
+}
