@@ -51,7 +51,7 @@ final case class AfuConfig(
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
 
-  val puc: PucParams = PucParams(
+  lazy val puc: PucParams = PucParams(
     scpus = scpus, linkWidth = linkWidth, scpuTagBits = scpu.tagBits, scpuLatency = scpu.latency,
     maxSpheres = maxSpheres, maxReads = maxReadsOutstanding, maxWrites = maxWritesOutstanding,
     tagBits = tagBits, ramPorts = ramPorts, denseByDefault = denseByDefault, name = "_" + id)
