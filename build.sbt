@@ -22,6 +22,8 @@ lazy val root = (project in file("."))
     Test / parallelExecution := false,
     Test / fork := true,
     Test / javaOptions ++= Seq("-Xss8m", "-Xmx6g"),
+    // Tests run in a forked JVM: forward the replay knobs (collide.testutil.Seeds).
+    Test / javaOptions ++= Seq("seed", "scale").flatMap(k => sys.props.get(k).map(v => s"-D$k=$v")),
     run / fork := true,
     // `sbt "run ..."` is the generator CLI
     Compile / run / mainClass := Some("collide.Generate"),

@@ -12,16 +12,15 @@ namespace collide {
 //        depth = r1 + r2 - d
 // Both branches are computed and selected, which is what lets the loop vectorize;
 // the division by d = 0 on the coincident path is computed and discarded.
-void collideSpheresF32(std::size_t n, const PairsF32& in, const ContactsF32& out) {
-  const float* __restrict x1 = in.x1; const float* __restrict y1 = in.y1;
-  const float* __restrict z1 = in.z1; const float* __restrict r1 = in.r1;
-  const float* __restrict x2 = in.x2; const float* __restrict y2 = in.y2;
-  const float* __restrict z2 = in.z2; const float* __restrict r2 = in.r2;
-  float* __restrict px = out.px; float* __restrict py = out.py; float* __restrict pz = out.pz;
-  float* __restrict nx = out.nx; float* __restrict ny = out.ny; float* __restrict nz = out.nz;
-  float* __restrict depth = out.depth;
-  std::uint8_t* __restrict hit = out.hit;
-
+namespace {
+// restrict-qualified *parameters*: GCC honours restrict there (not on local copies), which
+// spares the vectorizer ~90 run-time alias checks it would otherwise give up on.
+void kernel(std::size_t n, const float* __restrict x1, const float* __restrict y1,
+            const float* __restrict z1, const float* __restrict r1, const float* __restrict x2,
+            const float* __restrict y2, const float* __restrict z2, const float* __restrict r2,
+            float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict nx,
+            float* __restrict ny, float* __restrict nz, float* __restrict depth,
+            std::uint8_t* __restrict hit) {
   for (std::size_t k = 0; k < n; ++k) {
     const float dx = x1[k] - x2[k];
     const float dy = y1[k] - y2[k];
@@ -53,6 +52,12 @@ void collideSpheresF32(std::size_t n, const PairsF32& in, const ContactsF32& out
     depth[k] = h ? sd : 0.0f;
     hit[k] = h ? 1 : 0;
   }
+}
+}  // namespace
+
+void collideSpheresF32(std::size_t n, const PairsF32& in, const ContactsF32& out) {
+  kernel(n, in.x1, in.y1, in.z1, in.r1, in.x2, in.y2, in.z2, in.r2, out.px, out.py, out.pz, out.nx,
+         out.ny, out.nz, out.depth, out.hit);
 }
 
 }  // namespace collide

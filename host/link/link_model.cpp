@@ -36,6 +36,17 @@ std::uint64_t LinkModel::draw(std::uint64_t lo, std::uint64_t hi) {
   return lo + rng_() % (hi - lo + 1);
 }
 
+// A line leaves the port at cycle `now`; returns when the port is free again. A transfer
+// that waited only for the cycle boundary keeps its fractional start (so 1.83 cycles a
+// line averages 1.83, not 2); after an idle gap the port restarts at `now` (no burst
+// credit beyond that sub-cycle remainder).
+std::uint64_t LinkModel::occupy(std::uint64_t freeFx, std::uint64_t now, std::uint64_t lineFx) {
+  const std::uint64_t one = std::uint64_t{1} << kFx;
+  const std::uint64_t nowFx = now << kFx;
+  const std::uint64_t earliest = nowFx >= one ? nowFx - one + 1 : 0;
+  return std::max(freeFx, earliest) + lineFx;
+}
+
 int LinkModel::pick(const std::vector<Pending>& q, std::uint64_t now, std::uint64_t portFreeFx) const {
   if (q.empty() || (now << kFx) < portFreeFx) return -1;
   int best = -1;
@@ -84,13 +95,13 @@ void LinkModel::tick(const AfuToLink& afu) {
   if (int k = pick(reads_, now, rdPortFreeFx_); k >= 0) {
     for (const Pending& p : reads_)
       if (p.seq < reads_[k].seq) { ++stats_.reorderedReadResponses; break; }
-    rdPortFreeFx_ = std::max(rdPortFreeFx_, now << kFx) + rdLineFx_;
+    rdPortFreeFx_ = occupy(rdPortFreeFx_, now, rdLineFx_);
     reads_.erase(reads_.begin() + k);
     ++stats_.readResponses;
   }
   if (int k = pick(writes_, now, wrRespPortFreeFx_); k >= 0) {
     mem_.line(writes_[k].addr) = writes_[k].data;  // visible to the host when acknowledged
-    wrRespPortFreeFx_ = std::max(wrRespPortFreeFx_, now << kFx) + respLineFx_;
+    wrRespPortFreeFx_ = occupy(wrRespPortFreeFx_, now, respLineFx_);
     writes_.erase(writes_.begin() + k);
     ++stats_.writeResponses;
   }
@@ -105,21 +116,20 @@ void LinkModel::tick(const AfuToLink& afu) {
   auto fail = [now](const std::string& what) {
     throw LinkProtocolError("link cycle " + std::to_string(now) + ": " + what);
   };
-  if (afu.rdReq) {
+  // valid && !ready is back-pressure, not an error: the request is simply not taken.
+  if (afu.rdReq && o.rdReqReady) {
     const ReadReq& r = *afu.rdReq;
-    if (!o.rdReqReady) fail("read request while rdReq not ready (more than max_reads outstanding)");
     if (tagBusy(reads_, r.tag)) fail("read tag " + std::to_string(r.tag) + " already outstanding");
     if (!mem_.contains(r.addr)) fail("read of line " + std::to_string(r.addr) + " outside host memory");
     reads_.push_back(Pending{now + draw(rdLatLo_, rdLatHi_), seq_++, r.tag, r.addr, Line{}});
     ++stats_.readsAccepted;
     stats_.maxReadsOutstanding = std::max<unsigned>(stats_.maxReadsOutstanding, reads_.size());
   }
-  if (afu.wrReq) {
+  if (afu.wrReq && o.wrReqReady) {
     const WriteReq& w = *afu.wrReq;
-    if (!o.wrReqReady) fail("write request while wrReq not ready");
     if (tagBusy(writes_, w.tag)) fail("write tag " + std::to_string(w.tag) + " already outstanding");
     if (!mem_.contains(w.addr)) fail("write of line " + std::to_string(w.addr) + " outside host memory");
-    wrPortFreeFx_ = std::max(wrPortFreeFx_, now << kFx) + wrLineFx_;
+    wrPortFreeFx_ = occupy(wrPortFreeFx_, now, wrLineFx_);
     writes_.push_back(Pending{now + draw(wrLatLo_, wrLatHi_), seq_++, w.tag, w.addr, w.data});
     ++stats_.writesAccepted;
     stats_.maxWritesOutstanding = std::max<unsigned>(stats_.maxWritesOutstanding, writes_.size());

@@ -4,7 +4,8 @@
 // Per cycle: outputs() gives the signals the link drives (ready flags, at most one read
 // response, one write response and one CSR write); the AFU answers with its requests;
 // tick() is the clock edge: presented responses are consumed (never back-pressured),
-// requests with valid && ready are accepted, and the cycle advances.
+// requests with valid && ready are accepted (valid without ready is back-pressure: not
+// taken, the AFU keeps it valid), and the cycle advances.
 //
 // Every piece of state is an absolute cycle time (response due cycles, port-free times),
 // so nothing changes between events: nextEventCycle() says when the next response or CSR
@@ -23,7 +24,7 @@
 
 namespace collide::link {
 
-// The AFU broke the channel protocol (request without ready, duplicate tag, bad address).
+// The AFU broke the channel protocol (duplicate outstanding tag, address outside memory).
 struct LinkProtocolError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -70,6 +71,7 @@ class LinkModel {
   static constexpr int kFx = 20;
 
   static std::uint64_t lineTimeFx(double gbps, double clockMHz);
+  static std::uint64_t occupy(std::uint64_t freeFx, std::uint64_t now, std::uint64_t lineFx);
   std::uint64_t draw(std::uint64_t lo, std::uint64_t hi);
   // Index of the entry presented at cycle `now`, or -1.
   int pick(const std::vector<Pending>& q, std::uint64_t now, std::uint64_t portFreeFx) const;

@@ -4,10 +4,12 @@ import chisel3._
 import chisel3.util._
 
 /** Correctly rounding significand core for sqrt, reciprocal and rsqrt (RootCoreIO contract):
-  * a restoring digit recurrence, one result bit per iteration, sigBits+1 iterations (the
-  * sigBits result bits and the round bit), then an exact sticky bit from the final remainder.
+  * a restoring digit recurrence, one result bit per iteration, producing sigBits+1 bits (the
+  * sigBits result bits and the round bit) and an exact sticky bit from the final remainder.
+  * The first bit is always 1 (w >= 1) and is folded into the initial state, so there are
+  * n = sigBits iterations.
   *
-  * Per iteration (n = sigBits+1 of them; q = the result bits so far):
+  * Per iteration (q = the result bits so far):
   *  - Sqrt (classic bit-by-bit root of sig << (sigBits+1+expOdd), two radicand bits per step):
   *    r = 4r + next two bits; if r >= 4q+1 then r -= 4q+1, q = 2q+1 else q = 2q.
   *    One (n+3)-bit subtractor.
@@ -29,10 +31,12 @@ class DigitRecurrenceCore(val op: RootOp, val sigBits: Int, val latency: Int) ex
   val io = IO(new RootCoreIO(sigBits))
   override def desiredName = s"DigitRecurrenceCore_${op.name}_s${sigBits}_L$latency"
 
-  val iterations: Int = sigBits + 1
+  /** Recurrence steps: sigBits+1 result bits, the first of which (always 1) needs no step. */
+  val iterations: Int = sigBits
   private val n = iterations
+  private val resBits = sigBits + 1 // result bits: sigBits of w and the round bit
   private val rWidth = op match {
-    case RootOp.Sqrt  => n + 2
+    case RootOp.Sqrt  => resBits + 2
     case RootOp.Recip => sigBits + 1
     case RootOp.Rsqrt => 2 * sigBits + 6
   }
@@ -43,7 +47,7 @@ class DigitRecurrenceCore(val op: RootOp, val sigBits: Int, val latency: Int) ex
     val sig    = UInt(sigBits.W)
     val expOdd = Bool()
     val expDec = Bool()
-    val q      = UInt(n.W)
+    val q      = UInt(resBits.W)
     val r      = UInt(rWidth.W)
     val aux    = UInt(auxWidth.W) // Rsqrt: QX
   }
@@ -51,32 +55,40 @@ class DigitRecurrenceCore(val op: RootOp, val sigBits: Int, val latency: Int) ex
   val sig    = io.in.bits.sig
   val expOdd = io.in.bits.expOdd && (op != RootOp.Recip).B
   val isOne  = sig === (BigInt(1) << (sigBits - 1)).U
+  // w is in [1,2), so the first result bit is always 1: its step is folded into the
+  // initial state (q = 1 and the remainder after subtracting), leaving sigBits iterations.
   val s0 = Wire(new State)
   s0.valid  := io.in.valid
   s0.sig    := sig
   s0.expOdd := expOdd
-  s0.q      := 0.U
+  s0.q      := 1.U
   s0.aux    := 0.U
   op match {
     case RootOp.Sqrt =>
+      // radicand's top two bits are 1b when expOdd (x in [2,4)), else 01: r = pair - 1
       s0.expDec := false.B
-      s0.r      := 0.U
+      s0.r      := Mux(expOdd, 1.U +& sig(sigBits - 2), 0.U)
     case RootOp.Recip =>
+      // dividend 2 (or 1 when m = 1, where 1/m = 1 exactly), in units of sig's lsb
       s0.expDec := !isOne
-      s0.r      := Mux(isOne, sig, (BigInt(1) << sigBits).U) // dividend 1 or 2, in units of sig's lsb
+      s0.r      := Mux(isOne, 0.U, Cat((BigInt(1) << sigBits).U - sig, 0.U(1.W)))
     case RootOp.Rsqrt =>
       val dec = !(isOne && !expOdd)
+      val x   = Mux(expOdd, Cat(sig, 0.U(1.W)), sig)
       s0.expDec := dec
-      // target (1 or 4) scaled to X's units (2^-(sigBits-1)), before the first step's scaling
-      s0.r      := Mux(dec, (BigInt(4) << (sigBits - 1)).U, (BigInt(1) << (sigBits - 1)).U)
+      // target (4, or 1 when x = 1) in X's units, minus X (first bit accepted), scaled by 4
+      val target = Mux(dec, (BigInt(4) << (sigBits - 1)).U, (BigInt(1) << (sigBits - 1)).U)
+      s0.r   := Cat(target - x, 0.U(2.W))
+      s0.aux := x
   }
 
-  /** Radicand sig << (sigBits+1+expOdd), 2n bits: the two bits consumed at step i. */
+  /** Radicand sig << (sigBits+1+expOdd), 2 resBits bits: the two bits consumed at step i
+    * (the first pair went into the initial state). */
   private def radPair(st: State, i: Int): UInt = {
     val even = Cat(st.sig, 0.U((sigBits + 1).W))   // 2 sigBits + 1 bits
-    val odd  = Cat(st.sig, 0.U((sigBits + 2).W))   // 2 sigBits + 2 = 2n bits
+    val odd  = Cat(st.sig, 0.U((sigBits + 2).W))   // 2 sigBits + 2 = 2 resBits bits
     val rad  = Mux(st.expOdd, odd, Cat(0.U(1.W), even))
-    rad(2 * n - 1 - 2 * i, 2 * n - 2 - 2 * i)
+    rad(2 * resBits - 3 - 2 * i, 2 * resBits - 4 - 2 * i)
   }
 
   private def step(st: State, i: Int): State = {

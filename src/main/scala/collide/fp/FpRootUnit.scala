@@ -28,7 +28,8 @@ object RootLatency {
   * collide.fp.model.RootModel. The operators are thin subclasses that fix `op`.
   */
 abstract class FpRootUnit(val p: FpParams, val alg: RootAlgorithm, val latency: Int, val op: RootOp) extends Module {
-  require(latency >= 0, s"${op.name}: latency must be >= 0, got $latency")
+  require(latency >= 0 && latency <= RootCoreSelect.maxOperatorLatency(op, alg),
+    s"Fp${op.name.capitalize} ${alg.name}: latency must be 0..${RootCoreSelect.maxOperatorLatency(op, alg)}, got $latency")
   private val f = p.format
 
   val io = IO(new Bundle {

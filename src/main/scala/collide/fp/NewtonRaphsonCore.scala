@@ -148,6 +148,13 @@ object NewtonRaphsonCore {
       s"NewtonRaphsonCore ${op.name} ${nr.name}: latency must be $minLatency..${maxLatency(op, nr)}, got $latency")
   }
 
+  object Plan {
+    private val cache = new java.util.concurrent.ConcurrentHashMap[(RootOp, Int, RootAlgorithm.NewtonRaphson), Plan]()
+    /** One Plan per configuration, so the seed table is computed once (models call this per case). */
+    def cached(op: RootOp, sigBits: Int, nr: RootAlgorithm.NewtonRaphson): Plan =
+      cache.computeIfAbsent((op, sigBits, nr), _ => { val p = Plan(op, sigBits, nr); p.seedTable; p })
+  }
+
   /** Every width and the seed ROM of one configuration; shared by the RTL and the golden
     * model (NewtonRaphsonModel), which must agree bit for bit. */
   final case class Plan(op: RootOp, sigBits: Int, nr: RootAlgorithm.NewtonRaphson) {

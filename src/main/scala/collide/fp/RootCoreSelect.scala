@@ -2,19 +2,24 @@ package collide.fp
 
 import chisel3._
 
-/** Picks the significand core for a root-type operator by algorithm. The one place that
-  * names the Newton-Raphson core and model (branch fp-nr), so the operators and their
-  * golden models do not change when it arrives.
+/** Picks the significand core for a root-type operator by algorithm: the one place that
+  * names both cores and both core models, so the operators and RootModel stay algorithm-blind.
   */
 object RootCoreSelect {
   /** Instantiates the core; its io follows RootCoreIO with exactly `latency` cycles. */
   def apply(op: RootOp, sigBits: Int, alg: RootAlgorithm, latency: Int): RootCoreIO = alg match {
-    case RootAlgorithm.DigitRecurrence => Module(new DigitRecurrenceCore(op, sigBits, latency)).io
-    case nr: RootAlgorithm.NewtonRaphson =>
-      throw new NotImplementedError(s"${nr.name}: NewtonRaphsonCore is not merged into this branch yet (fp-nr)")
+    case RootAlgorithm.DigitRecurrence   => Module(new DigitRecurrenceCore(op, sigBits, latency)).io
+    case nr: RootAlgorithm.NewtonRaphson => Module(new NewtonRaphsonCore(op, sigBits, nr, latency)).io
   }
 
-  /** Golden model of the Newton-Raphson core. */
+  /** Golden model of the Newton-Raphson core (branch fp-nr). */
   def nrModel(op: RootOp, nr: RootAlgorithm.NewtonRaphson, sigBits: Int, sig: BigInt, expOdd: Boolean): (BigInt, Boolean) =
-    throw new NotImplementedError(s"${nr.name}: NewtonRaphsonModel is not merged into this branch yet (fp-nr)")
+    collide.fp.model.NewtonRaphsonModel.core(op, nr, sigBits, sig, expOdd)
+
+  /** Largest latency the operator accepts for `alg`: the core's own bound plus the operator's
+    * two registers (DigitRecurrence has none). */
+  def maxOperatorLatency(op: RootOp, alg: RootAlgorithm): Int = alg match {
+    case RootAlgorithm.DigitRecurrence   => Int.MaxValue
+    case nr: RootAlgorithm.NewtonRaphson => NewtonRaphsonCore.maxLatency(op, nr) + 2
+  }
 }

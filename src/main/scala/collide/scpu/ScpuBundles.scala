@@ -32,9 +32,9 @@ class DistanceD(val w: Int) extends Bundle {
 
 /** The normal's factors, n = (ux, uy, uz) * w (at the unit's wLatency); flags of the operators
   * only the contact path uses (the reciprocal). */
-class DistanceW(val width: Int) extends Bundle {
-  val ux = UInt(width.W); val uy = UInt(width.W); val uz = UInt(width.W)
-  val w     = UInt(width.W)
+class DistanceW(val fw: Int) extends Bundle {
+  val ux = UInt(fw.W); val uy = UInt(fw.W); val uz = UInt(fw.W)
+  val w     = UInt(fw.W)
   val flags = UInt(FpFlags.width.W)
 }
 

@@ -82,7 +82,7 @@ class FpAddSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  for (f <- FloatFormat.presets.map(_._2); sub <- Seq(true, false)) {
+  for (f <- FloatFormat.presets.map(_._2) ++ Seq(FloatFormat(3, 3), FloatFormat(6, 12)); sub <- Seq(true, false)) {
     val p = FpParams(f, sub)
     it should s"match exact BigDecimal arithmetic for ${p.name} in every rounding mode, flags included" in {
       val rng = Seeds.rng(s"FpAddSpec-exact-${p.name}")
@@ -98,19 +98,33 @@ class FpAddSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
+  it should "match exact BigDecimal arithmetic on every e3m3 operand pair, both signs of b, every mode and subnormal setting" in {
+    val f = FloatFormat(3, 3)
+    for (sub <- Seq(true, false); a <- 0 until 64; b <- 0 until 64; s <- Seq(false, true); rm <- RoundingMode.all) {
+      val p = FpParams(f, sub)
+      val want = oracle(p, BigInt(a), BigInt(b), rm, s); val got = FpAddModel(p, BigInt(a), BigInt(b), rm, s)
+      assert(got == FpResult(want._1, want._2), s"${p.name} 0x${a.toHexString} ${if (s) "-" else "+"} 0x${b.toHexString} $rm: got ${got.show(f)}, want ${FpResult(want._1, want._2).show(f)}")
+    }
+  }
+
   behavior of "FpAdd"
+
+  it should "emit SystemVerilog named after its parameters (FpAdd_fp32_ftz_L2)" in {
+    val sv = circt.stage.ChiselStage.emitSystemVerilog(new FpAdd(FpParams(fp32, subnormals = false), 2))
+    assert(sv.contains("module FpAdd_fp32_ftz_L2("), sv.take(400))
+  }
 
   /** Every preset with subnormals kept and flushed; each format sees latency 0 and its full
     * pipeline (3), the two alternating between the subnormal settings. */
   val rtlConfigs: Seq[(FpParams, Int)] = FloatFormat.presets.map(_._2).zipWithIndex.flatMap { case (f, i) =>
     Seq((FpParams(f), if (i % 2 == 0) 0 else 3), (FpParams(f, subnormals = false), if (i % 2 == 0) 3 else 0))
-  } ++ Seq((FpParams(fp32), 1), (FpParams(fp16), 2))
+  } ++ Seq((FpParams(fp32), 1), (FpParams(fp16), 2), (FpParams(FloatFormat(3, 3)), 0), (FpParams(FloatFormat(10, 40), false), 2))
 
   for ((p, lat) <- rtlConfigs) {
     it should s"match the golden model for ${p.name} at latency $lat in every rounding mode${if (lat > 0) ", stalls included" else ""}" in {
       val f = p.format
       val rng = Seeds.rng(s"FpAddSpec-rtl-${p.name}-L$lat")
-      val n = Seeds.cases(2000)
+      val n = Seeds.cases(if (f.width > 32) 600 else 1200)
       val vecs = (FpPatterns.pairs(f, rng, n - n / 4) ++ Seq.fill(n / 4)((BigInt(f.width, rng.self), BigInt(f.width, rng.self))))
         .map { case (a, b) => (a, b, rng.nextBoolean(), RoundingMode.all(rng.nextInt(5))) }
       val want = vecs.map { case (a, b, s, rm) => FpAddModel(p, a, b, rm, s) }

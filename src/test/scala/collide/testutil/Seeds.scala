@@ -1,7 +1,8 @@
 package collide.testutil
 
 /** Seeds for randomized specs: printed, and settable with -Dseed=N (or env SEED) so any
-  * failure can be replayed: `sbt -Dseed=1234 "testOnly collide.fp.FpAddSpec"`.
+  * failure can be replayed: `SEED=1234 tools/sbt "testOnly collide.fp.FpAddSpec"` (or -Dseed, which build.sbt forwards
+  * to the forked test JVM).
   */
 object Seeds {
   def seed(specName: String): Long = {
@@ -12,6 +13,10 @@ object Seeds {
   }
   def rng(specName: String): scala.util.Random = new scala.util.Random(seed(specName))
 
-  /** How many random cases to run: -Dcases=N scales the default, e.g. for a longer soak. */
-  def cases(default: Int): Int = sys.props.get("cases").map(_.toInt).getOrElse(default)
+  /** How many random cases to run: the default times -Dscale=K (or env SCALE), e.g. K = 10
+    * for a longer soak; K may be fractional (0.1 for a quick smoke run). */
+  def cases(default: Int): Int = {
+    val k = sys.props.get("scale").orElse(sys.env.get("SCALE")).map(_.toDouble).getOrElse(1.0)
+    math.max(1, math.round(default * k).toInt)
+  }
 }

@@ -14,7 +14,7 @@ object NewtonRaphsonModel {
   final case class Raw(value: BigInt, fracBits: Int, expDec: Boolean)
 
   def raw(op: RootOp, nr: RootAlgorithm.NewtonRaphson, sigBits: Int, sig: BigInt, expOdd: Boolean): Raw = {
-    val plan = NewtonRaphsonCore.Plan(op, sigBits, nr)
+    val plan = NewtonRaphsonCore.Plan.cached(op, sigBits, nr)
     import plan.{n, F, s}
     require(sig.bitLength == n, s"NewtonRaphsonModel: sig 0x${sig.toString(16)} must have exactly $n bits (top bit set)")
     val one    = BigInt(1)
@@ -61,5 +61,11 @@ object NewtonRaphsonModel {
   def core(op: RootOp, nr: RootAlgorithm.NewtonRaphson, sigBits: Int, sig: BigInt, expOdd: Boolean): (BigInt, Boolean) = {
     val r = raw(op, nr, sigBits, sig, expOdd)
     (pack(sigBits, r), r.expDec)
+  }
+
+  /** Both at once (the error measurement needs the raw value and the packed output). */
+  def rawAndCore(op: RootOp, nr: RootAlgorithm.NewtonRaphson, sigBits: Int, sig: BigInt, expOdd: Boolean): (Raw, BigInt) = {
+    val r = raw(op, nr, sigBits, sig, expOdd)
+    (r, pack(sigBits, r))
   }
 }

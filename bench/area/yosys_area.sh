@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Area proxy for one design: Yosys 0.23 `synth_intel_alm -family cyclonev` (shared/NOTES.md:
+# Cyclone V's 27x27 DSPs stand in for the paper's Stratix V). Prints one JSON object with
+# ALMs (LUT cells), DSP blocks, RAM bits (M10K) and flip-flops.
+# usage: bench/area/yosys_area.sh FILE.sv TOP [LOG]
+set -euo pipefail
+sv="$1"; top="$2"; log="${3:-/dev/null}"
+yosys -q -l "$log" -p "read_verilog -sv $sv; synth_intel_alm -family cyclonev -top $top; stat" >/dev/null 2>&1 || {
+  echo "yosys failed on $sv (top $top); see $log" >&2; exit 1; }
+awk -v top="$top" '
+  /Number of cells:/ { cells = $4 }
+  /MISTRAL_ALUT[0-9A-Z_]*/ { alut += $2 }
+  /MISTRAL_ALUT_ARITH/ { arith += $2 }
+  /MISTRAL_MUL[0-9X]*/ { dsp += $2 }
+  /MISTRAL_FF/ { ff += $2 }
+  /MISTRAL_M10K/ { m10k += $2 }
+  END { printf "{\"top\":\"%s\",\"luts\":%d,\"arith\":%d,\"dsp\":%d,\"ff\":%d,\"m10k\":%d}\n", top, alut, arith, dsp, ff, m10k }
+' "$log"

@@ -1,0 +1,65 @@
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "cli/commands.hpp"
+#include "cli/pairs_csv.hpp"
+#include "collide/backend_factory.hpp"
+#include "collide/rtl_backend.hpp"
+#include "driver/afu_factory.hpp"
+
+namespace collide::cli {
+
+int runPairs(const PairsOptions& o) {
+  try {
+    BackendRequest req;
+    if (!o.afu.empty()) {
+      req.name = "rtl";
+      req.afuDir = o.afu;
+      req.link = o.link == "qpi" ? link::LinkParams::qpi() : link::LinkParams::ideal();
+    } else {
+      req.name = o.backend;
+    }
+    std::unique_ptr<CollisionBackend> backend;
+    if (req.name == "rtl") {
+      driver::DriverOptions d;
+      d.dense = o.dense;
+      backend = std::make_unique<RtlBackend>(req.afuDir, req.link, d);
+    } else {
+      backend = makeBackend(req);
+    }
+
+    SphereTable spheres;
+    PairList pairs;
+    if (o.in == "-") {
+      readPairsCsv(std::cin, "<stdin>", backend->format(), spheres, pairs);
+    } else {
+      std::ifstream in(o.in);
+      if (!in) throw std::runtime_error(o.in + ": cannot open");
+      readPairsCsv(in, o.in, backend->format(), spheres, pairs);
+    }
+
+    ContactSet contacts;
+    backend->collide(spheres, pairs, contacts);
+
+    if (o.out == "-") {
+      writeContactsCsv(std::cout, contacts);
+    } else {
+      std::ofstream out(o.out);
+      if (!out) throw std::runtime_error(o.out + ": cannot write");
+      writeContactsCsv(out, contacts);
+      if (!out) throw std::runtime_error(o.out + ": write failed");
+    }
+    std::cerr << "collide pairs: " << pairs.size() << " pairs, " << contacts.hits() << " contacts, backend "
+              << backend->name() << " (" << toString(contacts.format) << ")\n";
+    return 0;
+  } catch (const driver::AfuUnavailable& e) {
+    std::cerr << "collide pairs: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "collide pairs: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace collide::cli

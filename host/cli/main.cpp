@@ -1,0 +1,49 @@
+// collide: run scenes, collide pair vectors, inspect a generated AFU. See docs/host.md.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/commands.hpp"
+
+int main(int argc, char** argv) {
+  using namespace collide::cli;
+  CLI::App app{"collide: ODE host for the sphere-collision accelerator"};
+  app.require_subcommand(1);
+
+  RunOptions run;
+  auto* r = app.add_subcommand("run", "simulate a JSON scene");
+  r->add_option("scene", run.scene, "scene file (JSON)")->required()->check(CLI::ExistingFile);
+  r->add_option_function<std::string>("--backend", [&](const std::string& b) { run.backend = b; },
+                                      "override the scene's backend")
+      ->check(CLI::IsMember({"ode", "simd", "rtl"}));
+  r->add_option_function<long long>("--steps", [&](long long n) { run.steps = n; }, "override the scene's steps")
+      ->check(CLI::PositiveNumber);
+  r->add_option("--out", run.out, "write per-step statistics to this CSV file");
+  r->add_flag("--per-step", run.perStep, "print one line per step");
+
+  PairsOptions pairs;
+  auto* p = app.add_subcommand("pairs", "vector mode: collide the pairs of a CSV file");
+  auto* afu = p->add_option("--afu", pairs.afu, "generated AFU folder (rtl backend)");
+  p->add_option("--backend", pairs.backend, "CPU backend instead of an AFU (simd: binary32, ode: binary64)")
+      ->check(CLI::IsMember({"simd", "ode"}))
+      ->excludes(afu);
+  p->add_option("--link", pairs.link, "rtl link model")->check(CLI::IsMember({"ideal", "qpi"}));
+  p->add_flag("--dense", pairs.dense, "rtl: dense mode (a record per pair)");
+  p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2), - for stdin")->required();
+  p->add_option("--out", pairs.out, "output CSV, - for stdout")->required();
+
+  InfoOptions info;
+  auto* i = app.add_subcommand("info", "print a generated AFU's manifest");
+  i->add_option("--afu", info.afu, "generated AFU folder")->required();
+
+  CLI11_PARSE(app, argc, argv);
+  if (r->parsed()) return runScene(run);
+  if (p->parsed()) {
+    if (pairs.afu.empty() && pairs.backend.empty()) {
+      std::cerr << "collide pairs: give --afu DIR (rtl) or --backend simd|ode\n";
+      return 1;
+    }
+    return runPairs(pairs);
+  }
+  return runInfo(info);
+}

@@ -1,0 +1,100 @@
+#include "cli/pairs_csv.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+namespace collide::cli {
+
+namespace {
+
+constexpr const char* kInHeader = "x1,y1,z1,r1,x2,y2,z2,r2";
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (;;) {
+    const auto comma = s.find(',', start);
+    out.push_back(trim(s.substr(start, comma - start)));
+    if (comma == std::string::npos) return out;
+    start = comma + 1;
+  }
+}
+
+// One field as a value of `format`; false with `why` set if it is not a whole number.
+bool parseField(const std::string& f, LinkFormat format, double& v, std::string& why) {
+  if (f.empty()) { why = "empty field"; return false; }
+  errno = 0;
+  char* end = nullptr;
+  if (format == LinkFormat::Binary32) v = std::strtof(f.c_str(), &end);
+  else v = std::strtod(f.c_str(), &end);
+  if (end != f.c_str() + f.size()) { why = "not a number: '" + f + "'"; return false; }
+  // ERANGE with a finite result is underflow (subnormal or zero): a valid input.
+  if (errno == ERANGE && std::isinf(v)) {
+    why = "'" + f + "' overflows " + toString(format);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void readPairsCsv(std::istream& in, const std::string& name, LinkFormat format, SphereTable& spheres,
+                  PairList& pairs) {
+  auto fail = [&](std::size_t line, const std::string& what) {
+    throw CsvError(name + ":" + std::to_string(line) + ": " + what);
+  };
+  std::string raw;
+  std::size_t line = 0;
+  bool header = false;
+  static const char* names[8] = {"x1", "y1", "z1", "r1", "x2", "y2", "z2", "r2"};
+  while (std::getline(in, raw)) {
+    ++line;
+    const std::string s = trim(raw);
+    if (s.empty()) continue;  // blank lines carry no pair
+    if (!header) {
+      if (s != kInHeader) fail(line, "expected the header '" + std::string(kInHeader) + "', got '" + s + "'");
+      header = true;
+      continue;
+    }
+    const auto fields = split(s);
+    if (fields.size() != 8) fail(line, "expected 8 fields, got " + std::to_string(fields.size()));
+    double v[8];
+    for (int k = 0; k < 8; ++k) {
+      std::string why;
+      if (!parseField(fields[k], format, v[k], why)) fail(line, std::string(names[k]) + ": " + why);
+    }
+    const auto a = static_cast<std::uint32_t>(spheres.size());
+    spheres.push(v[0], v[1], v[2], v[3]);
+    spheres.push(v[4], v[5], v[6], v[7]);
+    pairs.push(a, a + 1);
+  }
+  if (!header) fail(line == 0 ? 1 : line, "empty input: expected the header '" + std::string(kInHeader) + "'");
+}
+
+std::string hexFloat(double v, LinkFormat format) {
+  char buf[64];
+  if (format == LinkFormat::Binary32) std::snprintf(buf, sizeof buf, "%a", static_cast<double>(static_cast<float>(v)));
+  else std::snprintf(buf, sizeof buf, "%a", v);
+  return buf;
+}
+
+void writeContactsCsv(std::ostream& out, const ContactSet& c) {
+  out << "pair,hit,px,py,pz,nx,ny,nz,depth\n";
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    out << k << ',' << int{c.hit[k]};
+    for (const auto* col : {&c.px, &c.py, &c.pz, &c.nx, &c.ny, &c.nz, &c.depth})
+      out << ',' << hexFloat((*col)[k], c.format);
+    out << '\n';
+  }
+}
+
+}  // namespace collide::cli

@@ -1,0 +1,29 @@
+#pragma once
+// Vector-mode CSV: input `x1,y1,z1,r1,x2,y2,z2,r2` (decimal or C99 hex floats),
+// output `pair,hit,px,py,pz,nx,ny,nz,depth` with %a hex floats in the link format.
+#include <istream>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+
+#include "collide/batch.hpp"
+#include "collide/contact_set.hpp"
+
+namespace collide::cli {
+
+struct CsvError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Pair k becomes spheres 2k (sphere 1) and 2k+1 (sphere 2). Values are parsed straight
+// into the link format (strtof for binary32: one correct rounding, no double rounding).
+// Throws CsvError "<name>:<line>: <what>".
+void readPairsCsv(std::istream& in, const std::string& name, LinkFormat format,
+                  SphereTable& spheres, PairList& pairs);
+
+void writeContactsCsv(std::ostream& out, const ContactSet& contacts);
+
+// %a of v, printed as a value of `format` (v must be exact in it).
+std::string hexFloat(double v, LinkFormat format);
+
+}  // namespace collide::cli

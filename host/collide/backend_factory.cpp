@@ -1,0 +1,18 @@
+#include "collide/backend_factory.hpp"
+
+#include <stdexcept>
+
+#include "collide/ode_backend.hpp"
+#include "collide/rtl_backend.hpp"
+#include "collide/simd_backend.hpp"
+
+namespace collide {
+
+std::unique_ptr<CollisionBackend> makeBackend(const BackendRequest& r) {
+  if (r.name == "ode") return std::make_unique<OdeBackend>();
+  if (r.name == "simd") return std::make_unique<SimdBackend>();
+  if (r.name == "rtl") return std::make_unique<RtlBackend>(r.afuDir, r.link);
+  throw std::invalid_argument("unknown backend '" + r.name + "' (expected ode, simd or rtl)");
+}
+
+}  // namespace collide

@@ -1,0 +1,153 @@
+#include "driver/afu_driver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace collide::driver {
+
+std::string describeErrors(std::uint32_t f) {
+  static const char* names[] = {"sphere index out of range", "NUM_SPHERES above the on-chip table",
+                                "contact buffer too small", "non-finite input seen",
+                                "bad configuration"};
+  std::string s;
+  for (int b = 0; b < 5; ++b)
+    if (f & (1u << b)) s += (s.empty() ? "" : ", ") + std::string(names[b]);
+  if (f >> 5) s += (s.empty() ? "" : ", ") + std::string("unknown flag bits");
+  return s.empty() ? "none" : s;
+}
+
+AfuDriver::AfuDriver(AfuPort& port, const link::LinkParams& link, const DriverOptions& options)
+    : port_(port), opt_(options), link_(link, mem_) {
+  port_.reset();
+}
+
+RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
+  const std::size_t n = pairs.size();
+  if (spheres.size() > opt_.maxSpheres)
+    throw std::invalid_argument("rtl: " + std::to_string(spheres.size()) + " spheres, the AFU holds " +
+                                std::to_string(opt_.maxSpheres));
+  if (n >= (std::size_t{1} << 24)) throw std::invalid_argument("rtl: NUM_PAIRS must be < 2^24");
+  if (link_.readsOutstanding() || link_.writesOutstanding())
+    throw std::logic_error("AfuDriver::run: the link still has requests in flight from the last run");
+
+  // Shared buffers. Compact mode can write at most one record per pair, so capacity = n.
+  mem_.releaseAll();
+  const std::size_t capacity = n;
+  const auto sph = mem_.allocate(std::max<std::uint64_t>(1, sphereLines(spheres.size(), opt_.format)));
+  const auto pl = mem_.allocate(std::max<std::uint64_t>(1, pairLines(n)));
+  const auto ct = mem_.allocate(std::max<std::uint64_t>(1, contactLines(capacity, opt_.format)));
+  const auto st = mem_.allocate(1);
+  writeSphereTable(mem_, sph.base, spheres, opt_.format);
+  writePairList(mem_, pl.base, pairs);
+
+  // Configure, then start (docs/afu-interface.md CSR table).
+  const std::uint64_t t0 = link_.cycle();
+  link_.hostWriteCsr(kSphereBase, sph.base);
+  link_.hostWriteCsr(kNumSpheres, spheres.size());
+  link_.hostWriteCsr(kPairBase, pl.base);
+  link_.hostWriteCsr(kNumPairs, n);
+  link_.hostWriteCsr(kContactBase, ct.base);
+  link_.hostWriteCsr(kContactCapacity, capacity);
+  link_.hostWriteCsr(kStatusAddr, st.base);
+  link_.hostWriteCsr(kMode, opt_.dense ? 1 : 0);
+  link_.hostWriteCsr(kCtrl, 1);
+
+  RunResult r;
+  const std::uint64_t deadline = t0 + opt_.watchdogCycles;
+  for (;;) {
+    if (link_.cycle() >= deadline) {
+      std::ostringstream m;
+      m << "AFU hung: no status line after " << opt_.watchdogCycles << " cycles (watchdog); "
+        << link_.readsOutstanding() << " reads and " << link_.writesOutstanding()
+        << " writes outstanding, " << link_.stats().readResponses << " read and "
+        << link_.stats().writeResponses << " write responses delivered, AFU "
+        << (port_.idle() ? "idle-waiting" : "busy");
+      throw AfuError(m.str(), readStatus(mem_, st.base));
+    }
+    const link::LinkToAfu in = link_.outputs();
+    if (opt_.skipIdle && !in.anyEvent() && port_.idle()) {
+      // Nothing reaches the AFU before the link's next event: jump there in one step.
+      const std::uint64_t to = std::min(link_.nextEventCycle(), deadline);
+      if (to > link_.cycle()) {
+        port_.skipIdleCycles(to - link_.cycle());
+        r.stats.cyclesSkipped += to - link_.cycle();
+        link_.skipTo(to);
+        continue;
+      }
+    }
+    port_.setInputs(in);
+    const link::AfuToLink out = port_.evalOutputs();
+    port_.clockEdge();
+    link_.tick(out);
+    ++r.stats.cyclesStepped;
+    // Only a write response changes host memory; the status line is the AFU's last write.
+    if (in.wrResp && mem_.load<std::uint32_t>(st.base, 0) != 0) break;
+  }
+
+  // Modelled host time: the done flag lands at the end of the cycle whose write response
+  // committed it; the host, polling back to back from the start, sees it at the end of the
+  // first poll that begins after that.
+  const auto& lp = link_.params();
+  r.stats.statusCycle = link_.cycle() - t0;
+  const double commitNs = static_cast<double>(r.stats.statusCycle) * lp.cycleNs();
+  const double seenNs = lp.pollNs > 0 ? (std::ceil(commitNs / lp.pollNs) + 1) * lp.pollNs : commitNs;
+  r.stats.modelledNs = lp.transactionOverheadNs + seenNs;
+
+  r.status = readStatus(mem_, st.base);
+  const std::size_t written = std::min<std::size_t>(r.status.recordsWritten, capacity);
+  r.records.reserve(written);
+  for (std::size_t k = 0; k < written; ++k) r.records.push_back(readContact(mem_, ct.base, k, opt_.format));
+  check(r, n, capacity);
+  return r;
+}
+
+// Every pair sent must be accounted for, and the records must be consistent with the
+// counters; anything else is an AFU bug worth stopping for.
+void AfuDriver::check(const RunResult& r, std::size_t n, std::size_t capacity) const {
+  const StatusLine& s = r.status;
+  auto fail = [&](const std::string& m) { throw AfuError("AFU run: " + m, s); };
+  if (opt_.throwOnErrorFlags && (s.errors & ~std::uint32_t{kErrNonFinite}))
+    fail("error flags 0x" + [&] { std::ostringstream o; o << std::hex << s.errors; return o.str(); }() +
+         " (" + describeErrors(s.errors) + ")" +
+         (s.firstBadPair != 0xFFFFFFFFu ? ", first bad pair " + std::to_string(s.firstBadPair) : ""));
+  if (s.errors & (kErrTooManySpheres | kErrBadConfig)) return;  // nothing computed by contract
+  if (s.pairsProcessed != n)
+    fail("pairs processed " + std::to_string(s.pairsProcessed) + " != pairs sent " + std::to_string(n));
+  if (s.recordsWritten > capacity)
+    fail("records written " + std::to_string(s.recordsWritten) + " > capacity " + std::to_string(capacity));
+  if (opt_.dense) {
+    if (s.recordsWritten != n)
+      fail("dense mode: " + std::to_string(s.recordsWritten) + " records for " + std::to_string(n) + " pairs");
+    for (std::size_t k = 0; k < r.records.size(); ++k)
+      if (r.records[k].pair != k) fail("dense record " + std::to_string(k) + " names pair " + std::to_string(r.records[k].pair));
+  } else {
+    std::vector<bool> seen(n, false);
+    for (const auto& c : r.records) {
+      if (c.pair >= n) fail("record names pair " + std::to_string(c.pair) + " of " + std::to_string(n));
+      if (seen[c.pair]) fail("two records for pair " + std::to_string(c.pair));
+      if (!c.hit()) fail("compact record for pair " + std::to_string(c.pair) + " without the hit flag");
+      seen[c.pair] = true;
+    }
+    if (!(s.errors & kErrContactOverflow) && s.recordsWritten != s.contactsFound)
+      fail("contacts found " + std::to_string(s.contactsFound) + " != records written " +
+           std::to_string(s.recordsWritten));
+  }
+}
+
+ContactSet AfuDriver::toContactSet(const RunResult& r, std::size_t n) const {
+  ContactSet c;
+  c.resize(n);
+  c.format = opt_.format;
+  for (const auto& rec : r.records) {
+    if (!rec.hit() || rec.pair >= n) continue;
+    const std::size_t k = rec.pair;
+    c.hit[k] = 1;
+    c.px[k] = rec.px; c.py[k] = rec.py; c.pz[k] = rec.pz;
+    c.nx[k] = rec.nx; c.ny[k] = rec.ny; c.nz[k] = rec.nz;
+    c.depth[k] = rec.depth;
+  }
+  return c;
+}
+
+}  // namespace collide::driver

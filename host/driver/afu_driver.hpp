@@ -1,0 +1,71 @@
+#pragma once
+// AAL-like driver for one AFU behind a link model: allocates the shared buffers in host
+// memory, writes the sphere table and pair lines, configures and starts the AFU with CSR
+// writes, clocks AFU + link until the status line says done (skipping idle cycles
+// exactly), then reads and checks the contacts. See docs/host.md.
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "collide/batch.hpp"
+#include "collide/contact_set.hpp"
+#include "driver/afu_layout.hpp"
+#include "driver/afu_port.hpp"
+#include "link/host_memory.hpp"
+#include "link/link_model.hpp"
+
+namespace collide::driver {
+
+// The AFU misbehaved: hung (watchdog), raised error flags, or lost pairs/contacts.
+struct AfuError : std::runtime_error {
+  AfuError(const std::string& what, const StatusLine& s) : std::runtime_error(what), status(s) {}
+  StatusLine status;
+};
+
+struct DriverOptions {
+  LinkFormat format = LinkFormat::Binary32;  // the manifest's link.format
+  bool dense = false;                        // MODE bit 0
+  std::uint32_t maxSpheres = 65536;          // the manifest's afu.maxSpheres
+  // Cycles from the first CSR write to the status line before the run is declared hung.
+  std::uint64_t watchdogCycles = 50'000'000;
+  bool skipIdle = true;                      // jump the clock while the AFU idle-waits
+  bool throwOnErrorFlags = true;             // any flag but "non-finite input seen"
+};
+
+struct RunStats {
+  std::uint64_t cyclesStepped = 0;   // cycles evaluated one by one
+  std::uint64_t cyclesSkipped = 0;   // cycles jumped over while the AFU idle-waited
+  std::uint64_t statusCycle = 0;     // cycles from the first CSR write to the status commit
+  double modelledNs = 0;             // overhead + CSRs + AFU + poll detection
+};
+
+struct RunResult {
+  StatusLine status;
+  std::vector<ContactRecord> records;  // as written, in buffer order
+  RunStats stats;
+};
+
+std::string describeErrors(std::uint32_t flags);
+
+class AfuDriver {
+ public:
+  AfuDriver(AfuPort& port, const link::LinkParams& link, const DriverOptions& options);
+
+  RunResult run(const SphereTable& spheres, const PairList& pairs);
+
+  // Dense per-pair view of a run's records (pair k -> entry k), in the link format.
+  ContactSet toContactSet(const RunResult& r, std::size_t pairs) const;
+
+  const link::LinkModel& link() const { return link_; }
+  const DriverOptions& options() const { return opt_; }
+
+ private:
+  void check(const RunResult& r, std::size_t pairs, std::size_t capacity) const;
+
+  AfuPort& port_;
+  DriverOptions opt_;
+  link::HostMemory mem_;
+  link::LinkModel link_;
+};
+
+}  // namespace collide::driver

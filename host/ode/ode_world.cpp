@@ -1,0 +1,55 @@
+#include "ode/ode_world.hpp"
+
+#include <cstdint>
+
+namespace collide::ode {
+
+World::World(const scene::Scene& s)
+    : world_(dWorldCreate()), space_(dHashSpaceCreate(nullptr)), contacts_(dJointGroupCreate(0)) {
+  // Only what the scene declares: ODE's defaults otherwise (gravity 0 by default).
+  if (s.gravity) dWorldSetGravity(world_, (*s.gravity)[0], (*s.gravity)[1], (*s.gravity)[2]);
+  else dWorldSetGravity(world_, 0, 0, 0);
+  if (s.worldCfm) dWorldSetCFM(world_, *s.worldCfm);
+  if (s.worldErp) dWorldSetERP(world_, *s.worldErp);
+  if (s.quickStepIterations) dWorldSetQuickStepNumIterations(world_, *s.quickStepIterations);
+
+  bodies_.reserve(s.spheres.size());
+  geoms_.reserve(s.spheres.size());
+  for (std::size_t k = 0; k < s.spheres.size(); ++k) {
+    const auto& sp = s.spheres[k];
+    dBodyID b = dBodyCreate(world_);
+    dMass m;
+    dMassSetSphereTotal(&m, sp.mass, sp.radius);
+    dBodySetMass(b, &m);
+    dBodySetPosition(b, sp.pos[0], sp.pos[1], sp.pos[2]);
+    dBodySetLinearVel(b, sp.vel[0], sp.vel[1], sp.vel[2]);
+    dGeomID g = dCreateSphere(space_, sp.radius);
+    dGeomSetBody(g, b);
+    // The sphere index travels with the geom, for the near callback.
+    dGeomSetData(g, reinterpret_cast<void*>(static_cast<std::uintptr_t>(k + 1)));
+    bodies_.push_back(b);
+    geoms_.push_back(g);
+  }
+  if (s.groundZ) dCreatePlane(space_, 0, 0, 1, *s.groundZ);  // data stays null: not a sphere
+}
+
+World::~World() {
+  dJointGroupDestroy(contacts_);
+  dSpaceDestroy(space_);  // destroys the geoms it holds (cleanup mode on by default)
+  dWorldDestroy(world_);  // destroys the bodies
+}
+
+long World::sphereIndex(dGeomID g) const {
+  return static_cast<long>(reinterpret_cast<std::uintptr_t>(dGeomGetData(g))) - 1;
+}
+
+void World::fillSphereTable(SphereTable& t) const {
+  t.clear();
+  for (std::size_t k = 0; k < geoms_.size(); ++k) {
+    const dReal* p = dBodyGetPosition(bodies_[k]);
+    t.push(p[0], p[1], p[2], dGeomSphereGetRadius(geoms_[k]));
+  }
+  t.geom = geoms_;
+}
+
+}  // namespace collide::ode

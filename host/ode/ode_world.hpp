@@ -1,0 +1,42 @@
+#pragma once
+// The ODE world of a scene: one body + dSphere geom per sphere in a hash space, an
+// optional ground plane, and a contact joint group. Owns every ODE object (RAII).
+#include <vector>
+
+#include <ode/ode.h>
+
+#include "collide/batch.hpp"
+#include "ode/ode_library.hpp"
+#include "scene/scene.hpp"
+
+namespace collide::ode {
+
+class World {
+ public:
+  explicit World(const scene::Scene& scene);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  dWorldID world() const { return world_; }
+  dSpaceID space() const { return space_; }
+  dJointGroupID contacts() const { return contacts_; }
+  std::size_t sphereCount() const { return geoms_.size(); }
+  dGeomID sphereGeom(std::size_t k) const { return geoms_[k]; }
+  dBodyID sphereBody(std::size_t k) const { return bodies_[k]; }
+  // Sphere index of a geom, or -1 for a non-sphere (the ground plane).
+  long sphereIndex(dGeomID g) const;
+
+  // Refreshes `table` with the spheres' current centres and radii, and their geoms.
+  void fillSphereTable(SphereTable& table) const;
+
+ private:
+  Library lib_;
+  dWorldID world_ = nullptr;
+  dSpaceID space_ = nullptr;
+  dJointGroupID contacts_ = nullptr;
+  std::vector<dBodyID> bodies_;
+  std::vector<dGeomID> geoms_;
+};
+
+}  // namespace collide::ode

@@ -1,0 +1,56 @@
+#pragma once
+// A scene: bodies, declared effects, contact model, stepping, backend and link.
+// Anything optional that is absent is not simulated (no gravity unless declared, ...).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "link/link_params.hpp"
+#include "scene/json_reader.hpp"
+
+namespace collide::scene {
+
+struct SphereBody {
+  Vec3 pos{};
+  double radius = 0.1;
+  double mass = 1.0;
+  Vec3 vel{};
+};
+
+struct Attractor {        // a constant-magnitude force on every sphere toward `point`
+  Vec3 point{};
+  double force = 0.0;     // newtons
+};
+
+struct ContactModel {     // ODE dSurfaceParameters; unset fields leave their mode bit off
+  double mu = 0.0;        // 0 = frictionless; infinity allowed
+  std::optional<double> bounce, bounceVel;
+  std::optional<double> softCfm;
+};
+
+struct Scene {
+  std::string name;
+  std::vector<SphereBody> spheres;
+  // Effects
+  std::optional<Vec3> gravity;
+  std::optional<Attractor> attractor;
+  std::optional<double> groundZ;       // plane z = groundZ, normal +z
+  ContactModel contact;
+  // World
+  std::optional<double> worldCfm, worldErp;
+  std::optional<int> quickStepIterations;
+  // Stepping
+  long long steps = 1;
+  double dt = 0.01;
+  // Collision
+  std::string backend = "ode";         // ode | simd | rtl
+  std::filesystem::path afuDir;        // rtl: generated/<preset>
+  link::LinkParams link = link::LinkParams::ideal();
+};
+
+// Throws SceneError ("scene.<key path>: <what is wrong>").
+Scene loadScene(const std::filesystem::path& file);
+Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir = {});
+
+}  // namespace collide::scene

@@ -1,0 +1,74 @@
+package collide.scpu
+
+import org.scalatest.flatspec.AnyFlatSpec
+import collide.fp._
+
+class ScpuConfigSpec extends AnyFlatSpec {
+  behavior of "ScpuConfig"
+
+  it should "default to the fp32 correctly rounded RNE preset" in {
+    val c = ScpuConfig()
+    assert(c == ScpuConfig.fp32 && c.format == FloatFormat.fp32 && c.rounding == RoundingMode.RNE)
+    assert(c.sqrtAlg == RootAlgorithm.DigitRecurrence && c.recipAlg == RootAlgorithm.DigitRecurrence)
+    assert(c.distance == DistanceMethod.SqrtThenRecip && c.isPreset && c.id == "fp32")
+  }
+
+  it should "carry binary32 on the link up to fp32 and binary64 beyond" in {
+    assert(ScpuConfig.all.filter(_.format != FloatFormat.fp64).forall(_.linkWidth == 32))
+    assert(ScpuConfig.fp64.linkWidth == 64)
+    assert(ScpuConfig.fp32.copy(format = FloatFormat(9, 20)).linkFormat == FloatFormat.fp64)
+  }
+
+  it should "add up the per-stage latencies along the critical path" in {
+    for (c <- ScpuConfig.all) {
+      assert(c.latency == c.inLatency + c.coreLatency + c.outLatency, c.name)
+      assert(c.coreLatency >= c.diffLatency + c.dLatency + c.addLatency + 2 * c.mulLatency + c.addLatency, c.name)
+    }
+    val c = ScpuConfig.fp32
+    // fp32: no conversion; sub 1, squares 1, two adds 2, sqrt 7, recip 7, normal 1, n*k 1, pos 1.
+    assert(c.cvtLat == 0 && c.sqrtLat == 7 && c.recipLat == 7)
+    assert(c.latency == 1 + (1 + 2) + 7 + 7 + 1 + 1 + 1)
+    assert(ScpuConfig.fp16.cvtLat == 1 && ScpuConfig.fp16.latency == ScpuConfig.fp16.coreLatency + 2)
+  }
+
+  it should "name every preset distinctly and find each by name" in {
+    assert(ScpuConfig.all.map(_.name).distinct.size == ScpuConfig.all.size)
+    assert(ScpuConfig.all.map(_.id).distinct.size == ScpuConfig.all.size)
+    for (c <- ScpuConfig.all) assert(ScpuConfig.parse(c.name) == Right(c))
+    val names = ScpuConfig.all.map(_.name).toSet
+    assert(Set("fp32", "fp32-rsqrt-dr", "fp32-nr", "fp32-robust", "fp64", "fp24", "fp16", "bf16", "fp16-robust").subsetOf(names))
+  }
+
+  it should "parse options after a preset and give the result its own module name" in {
+    val r = ScpuConfig.parse("fp16:rm=RTZ:distance=robust:sqrt=nr8x2:add=2:subnormals=off")
+    assert(r.isRight, r)
+    val c = r.toOption.get
+    assert(c.format == FloatFormat.fp16 && c.rounding == RoundingMode.RTZ && c.distance == DistanceMethod.Robust)
+    assert(c.sqrtAlg == RootAlgorithm.NewtonRaphson(8, 2) && c.addLatency == 2 && !c.subnormals)
+    assert(!c.isPreset && c.id != ScpuConfig.fp16.id && c.id.startsWith("fp16_"))
+    assert(ScpuConfig.parse("fp32:format=e8m16").toOption.get.format == FloatFormat.fp24)
+  }
+
+  it should "reject bad names and options with messages that name them" in {
+    def err(s: String) = ScpuConfig.parse(s).swap.getOrElse(fail(s"'$s' parsed"))
+    assert(err("fp8").contains("unknown preset 'fp8'"))
+    assert(err("fp32:foo=1").contains("unknown option 'foo'"))
+    assert(err("fp32:add=x").contains("add needs an integer"))
+    assert(err("fp32:add=-1").contains("addLatency must be >= 0"))
+    assert(err("fp32:rm=up").contains("rounding mode 'up'"))
+    assert(err("fp32:format=e12m60").contains("does not fit IEEE binary64"))
+    assert(err("fp32:sqrt").contains("not key=value"))
+  }
+
+  it should "refuse configurations that cannot be built, saying why" in {
+    val e1 = intercept[IllegalArgumentException](ScpuConfig(tagBits = 0))
+    assert(e1.getMessage.contains("tagBits must be 1..64"))
+    val e2 = intercept[IllegalArgumentException](ScpuConfig(format = FloatFormat(15, 20)))
+    assert(e2.getMessage.contains("does not fit IEEE binary64"))
+    val e3 = intercept[IllegalArgumentException](ScpuConfig(sqrtLatency = Some(-2)))
+    assert(e3.getMessage.contains("sqrtLatency must be >= 0"))
+    val e4 = intercept[IllegalArgumentException](ScpuConfig(addLatency = 0, mulLatency = 0, cmpLatency = 0,
+      sqrtLatency = Some(0), recipLatency = Some(0)))
+    assert(e4.getMessage.contains("total latency must be >= 1"))
+  }
+}

@@ -1,0 +1,78 @@
+// Vector-mode CSV: decimal and hex input, link-format output, errors with line numbers.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "cli/pairs_csv.hpp"
+
+using namespace collide;
+using namespace collide::cli;
+
+namespace {
+std::string parseError(const std::string& text, LinkFormat f = LinkFormat::Binary32) {
+  std::istringstream in(text);
+  SphereTable s;
+  PairList p;
+  try {
+    readPairsCsv(in, "in.csv", f, s, p);
+  } catch (const CsvError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+const std::string kHeader = "x1,y1,z1,r1,x2,y2,z2,r2\n";
+}  // namespace
+
+TEST(PairsCsv, ParsesDecimalAndHexFloats) {
+  std::istringstream in(kHeader + "0.1,0x1.8p+1, -2 ,1e-3,0,0,0,1\n\n  \n0x1p-149,-0,inf,nan,1,2,3,4\r\n");
+  SphereTable s;
+  PairList p;
+  readPairsCsv(in, "in.csv", LinkFormat::Binary32, s, p);
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p.i[1], 2u);
+  EXPECT_EQ(p.j[1], 3u);
+  EXPECT_EQ(s.x[0], static_cast<double>(0.1f));  // one rounding, straight to binary32
+  EXPECT_NE(s.x[0], 0.1);
+  EXPECT_EQ(s.y[0], 3.0);
+  EXPECT_EQ(s.z[0], -2.0);
+  EXPECT_EQ(s.r[0], static_cast<double>(1e-3f));
+  EXPECT_EQ(s.x[2], static_cast<double>(0x1p-149f));  // subnormal: accepted
+  EXPECT_TRUE(std::signbit(s.y[2]));
+  EXPECT_TRUE(std::isinf(s.z[2]));
+  EXPECT_TRUE(std::isnan(s.r[2]));
+
+  std::istringstream in64(kHeader + "0.1,0,0,1,0,0,0,1\n");
+  SphereTable s64;
+  PairList p64;
+  readPairsCsv(in64, "in.csv", LinkFormat::Binary64, s64, p64);
+  EXPECT_EQ(s64.x[0], 0.1);
+}
+
+TEST(PairsCsv, ErrorsNameTheLine) {
+  EXPECT_EQ(parseError(""), "in.csv:1: empty input: expected the header 'x1,y1,z1,r1,x2,y2,z2,r2'");
+  EXPECT_EQ(parseError("x1,y1,z1\n"), "in.csv:1: expected the header 'x1,y1,z1,r1,x2,y2,z2,r2', got 'x1,y1,z1'");
+  EXPECT_EQ(parseError(kHeader + "1,2,3,4,5,6,7,8\n1,2,3,4,5,6,7\n"), "in.csv:3: expected 8 fields, got 7");
+  EXPECT_EQ(parseError(kHeader + "\n1,2,3,4,5,6,7,8,9\n"), "in.csv:3: expected 8 fields, got 9");
+  EXPECT_EQ(parseError(kHeader + "1,2,3,4,abc,6,7,8\n"), "in.csv:2: x2: not a number: 'abc'");
+  EXPECT_EQ(parseError(kHeader + "1,2,3,4,5,6,7,\n"), "in.csv:2: r2: empty field");
+  EXPECT_EQ(parseError(kHeader + "1,2,3,4,5,6,7,8\n1,2,3,1.5.2,5,6,7,8\n"), "in.csv:3: r1: not a number: '1.5.2'");
+  EXPECT_EQ(parseError(kHeader + "1e39,2,3,4,5,6,7,8\n"), "in.csv:2: x1: '1e39' overflows binary32");
+  EXPECT_EQ(parseError(kHeader + "1e39,2,3,4,5,6,7,8\n", LinkFormat::Binary64), "(no error)");
+}
+
+TEST(PairsCsv, WritesHexFloatsInTheLinkFormat) {
+  ContactSet c;
+  c.resize(2);
+  c.format = LinkFormat::Binary32;
+  c.hit[1] = 1;
+  c.px[1] = static_cast<float>(0.1);
+  c.nx[1] = 1.0;
+  c.depth[1] = 0x1.0p-21;
+  std::ostringstream out;
+  writeContactsCsv(out, c);
+  EXPECT_EQ(out.str(),
+            "pair,hit,px,py,pz,nx,ny,nz,depth\n"
+            "0,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0\n"
+            "1,1,0x1.99999ap-4,0x0p+0,0x0p+0,0x1p+0,0x0p+0,0x0p+0,0x1p-21\n");
+  EXPECT_EQ(hexFloat(0.1, LinkFormat::Binary64), "0x1.999999999999ap-4");
+}

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Installs everything the project needs on a fresh machine, idempotently: Debian packages
+# (Verilator, ODE, Yosys, the C++ libraries) and the sbt launcher from Maven Central.
+# When everything is already there it only checks, in about a second.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+
+# Debian packages, each for one job:
+#   verilator        - simulates the generated AFU for the C++ host and the big specs
+#   libode-dev       - the physics engine (double precision, Debian's 0.16.2)
+#   yosys            - area estimates (synth_intel_alm) for the design-space sweeps
+#   nlohmann-json3-dev, libcli11-dev - JSON and command-line parsing in the host
+#   libgtest-dev     - the host's unit tests (ctest)
+#   libpng-dev       - the demo's picture
+#   cmake, ninja-build, g++, pkg-config - the host build
+#   default-jdk-headless, maven - the JVM for sbt, and Maven to fetch the sbt launcher
+#   python3-venv     - the benchmark plots' pinned Python environment
+packages=(verilator libode-dev yosys nlohmann-json3-dev libcli11-dev libgtest-dev libpng-dev
+          cmake ninja-build g++ pkg-config default-jdk-headless maven python3-venv)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  sudo_cmd=""
+  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# The sbt launcher is not a Debian package (shared/NOTES.md): fetch it from Maven Central
+# with Maven, then check its checksum against the one Maven Central publishes beside it.
+sbt_version=1.10.7
+jar="$here/.cache/sbt-launch-$sbt_version.jar"
+if [ ! -s "$jar" ]; then
+  echo "setup: fetching sbt-launch $sbt_version"
+  mkdir -p "$here/.cache"
+  mvn -q dependency:get -Dartifact="org.scala-sbt:sbt-launch:$sbt_version" >/dev/null
+  m2="${HOME}/.m2/repository/org/scala-sbt/sbt-launch/$sbt_version"
+  want="$(cut -d' ' -f1 < "$m2/sbt-launch-$sbt_version.jar.sha1")"
+  got="$(sha1sum "$m2/sbt-launch-$sbt_version.jar" | cut -d' ' -f1)"
+  [ "$want" = "$got" ] || { echo "setup: sbt-launch checksum mismatch ($got, expected $want)" >&2; exit 1; }
+  cp "$m2/sbt-launch-$sbt_version.jar" "$jar"
+fi
