@@ -19817,45 +19817,47 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   reg  [24:0] sN_out_r_4_q;
   reg  [26:0] sN_out_r_4_r;
   reg         sN_out_valid_r_4;
+  wire [1:0]  _s0_r_T_2 = io_in_bits_expOdd ? {1'h0, io_in_bits_sig[22]} + 2'h1 : 2'h0;
   wire [1:0]  sN_nx_r2_rad =
-    io_in_bits_expOdd ? io_in_bits_sig[23:22] : {1'h0, io_in_bits_sig[23]};
-  wire [26:0] _GEN = {25'h0, sN_nx_r2_rad};
-  wire [26:0] sN_out_r = (|sN_nx_r2_rad) ? _GEN - 27'h1 : _GEN;
-  wire [1:0]  sN_nx_r2_rad_1 =
     io_in_bits_expOdd ? io_in_bits_sig[21:20] : io_in_bits_sig[22:21];
-  wire        sN_nx_ge_1 = {sN_out_r, sN_nx_r2_rad_1} >= {26'h0, |sN_nx_r2_rad, 2'h1};
-  wire [26:0] _GEN_0 = {sN_out_r[24:0], sN_nx_r2_rad_1};
-  wire [26:0] sN_out_1_r = sN_nx_ge_1 ? _GEN_0 - {24'h0, |sN_nx_r2_rad, 2'h1} : _GEN_0;
-  wire [1:0]  sN_nx_r2_rad_2 =
+  wire        sN_nx_ge = {25'h0, _s0_r_T_2, sN_nx_r2_rad} > 29'h4;
+  wire [26:0] _GEN = {23'h0, _s0_r_T_2, sN_nx_r2_rad};
+  wire [26:0] sN_out_r = sN_nx_ge ? _GEN - 27'h5 : _GEN;
+  wire [1:0]  sN_nx_r2_rad_1 =
     io_in_bits_expOdd ? io_in_bits_sig[19:18] : io_in_bits_sig[20:19];
+  wire        sN_nx_ge_1 = {sN_out_r, sN_nx_r2_rad_1} >= {26'h1, sN_nx_ge, 2'h1};
+  wire [26:0] _GEN_0 = {sN_out_r[24:0], sN_nx_r2_rad_1};
+  wire [26:0] sN_out_1_r = sN_nx_ge_1 ? _GEN_0 - {24'h1, sN_nx_ge, 2'h1} : _GEN_0;
+  wire [1:0]  sN_nx_r2_rad_2 =
+    io_in_bits_expOdd ? io_in_bits_sig[17:16] : io_in_bits_sig[18:17];
   wire        sN_nx_ge_2 =
-    {sN_out_1_r, sN_nx_r2_rad_2} >= {25'h0, |sN_nx_r2_rad, sN_nx_ge_1, 2'h1};
+    {sN_out_1_r, sN_nx_r2_rad_2} >= {25'h1, sN_nx_ge, sN_nx_ge_1, 2'h1};
   wire [26:0] _GEN_1 = {sN_out_1_r[24:0], sN_nx_r2_rad_2};
   wire [26:0] sN_out_2_r =
-    sN_nx_ge_2 ? _GEN_1 - {23'h0, |sN_nx_r2_rad, sN_nx_ge_1, 2'h1} : _GEN_1;
+    sN_nx_ge_2 ? _GEN_1 - {23'h1, sN_nx_ge, sN_nx_ge_1, 2'h1} : _GEN_1;
   wire [1:0]  sN_nx_r2_rad_3 =
-    io_in_bits_expOdd ? io_in_bits_sig[17:16] : io_in_bits_sig[18:17];
+    io_in_bits_expOdd ? io_in_bits_sig[15:14] : io_in_bits_sig[16:15];
   wire        sN_nx_ge_3 =
-    {sN_out_2_r, sN_nx_r2_rad_3} >= {24'h0, |sN_nx_r2_rad, sN_nx_ge_1, sN_nx_ge_2, 2'h1};
+    {sN_out_2_r, sN_nx_r2_rad_3} >= {24'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, 2'h1};
   wire [26:0] _GEN_2 = {sN_out_2_r[24:0], sN_nx_r2_rad_3};
   wire [26:0] sN_out_3_r =
-    sN_nx_ge_3 ? _GEN_2 - {22'h0, |sN_nx_r2_rad, sN_nx_ge_1, sN_nx_ge_2, 2'h1} : _GEN_2;
+    sN_nx_ge_3 ? _GEN_2 - {22'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, 2'h1} : _GEN_2;
   wire [1:0]  sN_nx_r2_rad_4 =
-    io_in_bits_expOdd ? io_in_bits_sig[15:14] : io_in_bits_sig[16:15];
+    io_in_bits_expOdd ? io_in_bits_sig[13:12] : io_in_bits_sig[14:13];
   wire        sN_nx_ge_4 =
     {sN_out_3_r,
-     sN_nx_r2_rad_4} >= {23'h0, |sN_nx_r2_rad, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1};
+     sN_nx_r2_rad_4} >= {23'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1};
   wire [26:0] _GEN_3 = {sN_out_3_r[24:0], sN_nx_r2_rad_4};
   wire [26:0] sN_out_4_r =
     sN_nx_ge_4
-      ? _GEN_3 - {21'h0, |sN_nx_r2_rad, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1}
+      ? _GEN_3 - {21'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1}
       : _GEN_3;
   wire [1:0]  sN_nx_r2_rad_5 =
-    io_in_bits_expOdd ? io_in_bits_sig[13:12] : io_in_bits_sig[14:13];
+    io_in_bits_expOdd ? io_in_bits_sig[11:10] : io_in_bits_sig[12:11];
   wire        sN_nx_ge_5 =
     {sN_out_4_r,
-     sN_nx_r2_rad_5} >= {22'h0,
-                         |sN_nx_r2_rad,
+     sN_nx_r2_rad_5} >= {22'h1,
+                         sN_nx_ge,
                          sN_nx_ge_1,
                          sN_nx_ge_2,
                          sN_nx_ge_3,
@@ -19864,15 +19866,14 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] _GEN_4 = {sN_out_4_r[24:0], sN_nx_r2_rad_5};
   wire [26:0] sN_out_5_r =
     sN_nx_ge_5
-      ? _GEN_4
-        - {20'h0, |sN_nx_r2_rad, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, sN_nx_ge_4, 2'h1}
+      ? _GEN_4 - {20'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, sN_nx_ge_4, 2'h1}
       : _GEN_4;
   wire [1:0]  sN_nx_r2_rad_6 =
-    io_in_bits_expOdd ? io_in_bits_sig[11:10] : io_in_bits_sig[12:11];
+    io_in_bits_expOdd ? io_in_bits_sig[9:8] : io_in_bits_sig[10:9];
   wire        sN_nx_ge_6 =
     {sN_out_5_r,
-     sN_nx_r2_rad_6} >= {21'h0,
-                         |sN_nx_r2_rad,
+     sN_nx_r2_rad_6} >= {21'h1,
+                         sN_nx_ge,
                          sN_nx_ge_1,
                          sN_nx_ge_2,
                          sN_nx_ge_3,
@@ -19883,8 +19884,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_6_r =
     sN_nx_ge_6
       ? _GEN_5
-        - {19'h0,
-           |sN_nx_r2_rad,
+        - {19'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -19893,11 +19894,11 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
            2'h1}
       : _GEN_5;
   wire [1:0]  sN_nx_r2_rad_7 =
-    io_in_bits_expOdd ? io_in_bits_sig[9:8] : io_in_bits_sig[10:9];
+    io_in_bits_expOdd ? io_in_bits_sig[7:6] : io_in_bits_sig[8:7];
   wire        sN_nx_ge_7 =
     {sN_out_6_r,
-     sN_nx_r2_rad_7} >= {20'h0,
-                         |sN_nx_r2_rad,
+     sN_nx_r2_rad_7} >= {20'h1,
+                         sN_nx_ge,
                          sN_nx_ge_1,
                          sN_nx_ge_2,
                          sN_nx_ge_3,
@@ -19909,8 +19910,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_7_r =
     sN_nx_ge_7
       ? _GEN_6
-        - {18'h0,
-           |sN_nx_r2_rad,
+        - {18'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -19920,11 +19921,11 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
            2'h1}
       : _GEN_6;
   wire [1:0]  sN_nx_r2_rad_8 =
-    io_in_bits_expOdd ? io_in_bits_sig[7:6] : io_in_bits_sig[8:7];
+    io_in_bits_expOdd ? io_in_bits_sig[5:4] : io_in_bits_sig[6:5];
   wire        sN_nx_ge_8 =
     {sN_out_7_r,
-     sN_nx_r2_rad_8} >= {19'h0,
-                         |sN_nx_r2_rad,
+     sN_nx_r2_rad_8} >= {19'h1,
+                         sN_nx_ge,
                          sN_nx_ge_1,
                          sN_nx_ge_2,
                          sN_nx_ge_3,
@@ -19937,8 +19938,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_8_r =
     sN_nx_ge_8
       ? _GEN_7
-        - {17'h0,
-           |sN_nx_r2_rad,
+        - {17'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -19949,11 +19950,11 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
            2'h1}
       : _GEN_7;
   wire [1:0]  sN_nx_r2_rad_9 =
-    io_in_bits_expOdd ? io_in_bits_sig[5:4] : io_in_bits_sig[6:5];
+    io_in_bits_expOdd ? io_in_bits_sig[3:2] : io_in_bits_sig[4:3];
   wire        sN_nx_ge_9 =
     {sN_out_8_r,
-     sN_nx_r2_rad_9} >= {18'h0,
-                         |sN_nx_r2_rad,
+     sN_nx_r2_rad_9} >= {18'h1,
+                         sN_nx_ge,
                          sN_nx_ge_1,
                          sN_nx_ge_2,
                          sN_nx_ge_3,
@@ -19967,8 +19968,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_9_r =
     sN_nx_ge_9
       ? _GEN_8
-        - {16'h0,
-           |sN_nx_r2_rad,
+        - {16'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -19980,11 +19981,11 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
            2'h1}
       : _GEN_8;
   wire [1:0]  sN_nx_r2_rad_10 =
-    io_in_bits_expOdd ? io_in_bits_sig[3:2] : io_in_bits_sig[4:3];
+    io_in_bits_expOdd ? io_in_bits_sig[1:0] : io_in_bits_sig[2:1];
   wire        sN_nx_ge_10 =
     {sN_out_9_r,
-     sN_nx_r2_rad_10} >= {17'h0,
-                          |sN_nx_r2_rad,
+     sN_nx_r2_rad_10} >= {17'h1,
+                          sN_nx_ge,
                           sN_nx_ge_1,
                           sN_nx_ge_2,
                           sN_nx_ge_3,
@@ -19999,8 +20000,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_10_r =
     sN_nx_ge_10
       ? _GEN_9
-        - {15'h0,
-           |sN_nx_r2_rad,
+        - {15'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -20012,12 +20013,11 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
            sN_nx_ge_9,
            2'h1}
       : _GEN_9;
-  wire [1:0]  sN_nx_r2_rad_11 =
-    io_in_bits_expOdd ? io_in_bits_sig[1:0] : io_in_bits_sig[2:1];
+  wire [1:0]  sN_nx_r2_rad_11 = io_in_bits_expOdd ? 2'h0 : {io_in_bits_sig[0], 1'h0};
   wire        sN_nx_ge_11 =
     {sN_out_10_r,
-     sN_nx_r2_rad_11} >= {16'h0,
-                          |sN_nx_r2_rad,
+     sN_nx_r2_rad_11} >= {16'h1,
+                          sN_nx_ge,
                           sN_nx_ge_1,
                           sN_nx_ge_2,
                           sN_nx_ge_3,
@@ -20033,8 +20033,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_11_r =
     sN_nx_ge_11
       ? _GEN_10
-        - {14'h0,
-           |sN_nx_r2_rad,
+        - {14'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -20047,29 +20047,28 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
            sN_nx_ge_10,
            2'h1}
       : _GEN_10;
-  wire [1:0]  sN_nx_r2_rad_12 = io_in_bits_expOdd ? 2'h0 : {io_in_bits_sig[0], 1'h0};
   wire        sN_nx_ge_12 =
     {sN_out_11_r,
-     sN_nx_r2_rad_12} >= {15'h0,
-                          |sN_nx_r2_rad,
-                          sN_nx_ge_1,
-                          sN_nx_ge_2,
-                          sN_nx_ge_3,
-                          sN_nx_ge_4,
-                          sN_nx_ge_5,
-                          sN_nx_ge_6,
-                          sN_nx_ge_7,
-                          sN_nx_ge_8,
-                          sN_nx_ge_9,
-                          sN_nx_ge_10,
-                          sN_nx_ge_11,
-                          2'h1};
-  wire [26:0] _GEN_11 = {sN_out_11_r[24:0], sN_nx_r2_rad_12};
+     2'h0} >= {15'h1,
+               sN_nx_ge,
+               sN_nx_ge_1,
+               sN_nx_ge_2,
+               sN_nx_ge_3,
+               sN_nx_ge_4,
+               sN_nx_ge_5,
+               sN_nx_ge_6,
+               sN_nx_ge_7,
+               sN_nx_ge_8,
+               sN_nx_ge_9,
+               sN_nx_ge_10,
+               sN_nx_ge_11,
+               2'h1};
+  wire [26:0] _GEN_11 = {sN_out_11_r[24:0], 2'h0};
   wire [26:0] sN_out_12_r =
     sN_nx_ge_12
       ? _GEN_11
-        - {13'h0,
-           |sN_nx_r2_rad,
+        - {13'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -20085,8 +20084,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
       : _GEN_11;
   wire        sN_nx_ge_13 =
     {sN_out_12_r,
-     2'h0} >= {14'h0,
-               |sN_nx_r2_rad,
+     2'h0} >= {14'h1,
+               sN_nx_ge,
                sN_nx_ge_1,
                sN_nx_ge_2,
                sN_nx_ge_3,
@@ -20104,8 +20103,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_13_r =
     sN_nx_ge_13
       ? _GEN_12
-        - {12'h0,
-           |sN_nx_r2_rad,
+        - {12'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -20122,8 +20121,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
       : _GEN_12;
   wire        sN_nx_ge_14 =
     {sN_out_13_r,
-     2'h0} >= {13'h0,
-               |sN_nx_r2_rad,
+     2'h0} >= {13'h1,
+               sN_nx_ge,
                sN_nx_ge_1,
                sN_nx_ge_2,
                sN_nx_ge_3,
@@ -20142,8 +20141,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_14_r =
     sN_nx_ge_14
       ? _GEN_13
-        - {11'h0,
-           |sN_nx_r2_rad,
+        - {11'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -20161,8 +20160,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
       : _GEN_13;
   wire        sN_nx_ge_15 =
     {sN_out_14_r,
-     2'h0} >= {12'h0,
-               |sN_nx_r2_rad,
+     2'h0} >= {12'h1,
+               sN_nx_ge,
                sN_nx_ge_1,
                sN_nx_ge_2,
                sN_nx_ge_3,
@@ -20182,8 +20181,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_15_r =
     sN_nx_ge_15
       ? _GEN_14
-        - {10'h0,
-           |sN_nx_r2_rad,
+        - {10'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -20202,8 +20201,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
       : _GEN_14;
   wire        sN_nx_ge_16 =
     {sN_out_15_r,
-     2'h0} >= {11'h0,
-               |sN_nx_r2_rad,
+     2'h0} >= {11'h1,
+               sN_nx_ge,
                sN_nx_ge_1,
                sN_nx_ge_2,
                sN_nx_ge_3,
@@ -20224,8 +20223,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_16_r =
     sN_nx_ge_16
       ? _GEN_15
-        - {9'h0,
-           |sN_nx_r2_rad,
+        - {9'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -20245,8 +20244,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
       : _GEN_15;
   wire        sN_nx_ge_17 =
     {sN_out_16_r,
-     2'h0} >= {10'h0,
-               |sN_nx_r2_rad,
+     2'h0} >= {10'h1,
+               sN_nx_ge,
                sN_nx_ge_1,
                sN_nx_ge_2,
                sN_nx_ge_3,
@@ -20268,8 +20267,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_17_r =
     sN_nx_ge_17
       ? _GEN_16
-        - {8'h0,
-           |sN_nx_r2_rad,
+        - {8'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -20290,8 +20289,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
       : _GEN_16;
   wire        sN_nx_ge_18 =
     {sN_out_17_r,
-     2'h0} >= {9'h0,
-               |sN_nx_r2_rad,
+     2'h0} >= {9'h1,
+               sN_nx_ge,
                sN_nx_ge_1,
                sN_nx_ge_2,
                sN_nx_ge_3,
@@ -20314,8 +20313,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] sN_out_18_r =
     sN_nx_ge_18
       ? _GEN_17
-        - {7'h0,
-           |sN_nx_r2_rad,
+        - {7'h1,
+           sN_nx_ge,
            sN_nx_ge_1,
            sN_nx_ge_2,
            sN_nx_ge_3,
@@ -20337,8 +20336,8 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
       : _GEN_17;
   wire        sN_nx_ge_19 =
     {sN_out_18_r,
-     2'h0} >= {8'h0,
-               |sN_nx_r2_rad,
+     2'h0} >= {8'h1,
+               sN_nx_ge,
                sN_nx_ge_1,
                sN_nx_ge_2,
                sN_nx_ge_3,
@@ -20359,71 +20358,21 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
                sN_nx_ge_18,
                2'h1};
   wire [26:0] _GEN_18 = {sN_out_18_r[24:0], 2'h0};
-  wire [26:0] sN_out_19_r =
-    sN_nx_ge_19
-      ? _GEN_18
-        - {6'h0,
-           |sN_nx_r2_rad,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           sN_nx_ge_14,
-           sN_nx_ge_15,
-           sN_nx_ge_16,
-           sN_nx_ge_17,
-           sN_nx_ge_18,
-           2'h1}
-      : _GEN_18;
-  wire        sN_nx_ge_20 =
-    {sN_out_19_r,
-     2'h0} >= {7'h0,
-               |sN_nx_r2_rad,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
-               sN_nx_ge_15,
-               sN_nx_ge_16,
-               sN_nx_ge_17,
-               sN_nx_ge_18,
-               sN_nx_ge_19,
-               2'h1};
-  wire [26:0] _GEN_19 = {sN_out_19_r[24:0], 2'h0};
-  wire        sN_nx_ge_21 = {sN_out_r_r, 2'h0} >= {2'h0, sN_out_r_q, 2'h1};
-  wire [26:0] _GEN_20 = {sN_out_r_r[24:0], 2'h0};
-  wire        sN_nx_ge_22 = {sN_out_r_1_r, 2'h0} >= {2'h0, sN_out_r_1_q, 2'h1};
-  wire [26:0] _GEN_21 = {sN_out_r_1_r[24:0], 2'h0};
-  wire        sN_nx_ge_23 = {sN_out_r_2_r, 2'h0} >= {2'h0, sN_out_r_2_q, 2'h1};
-  wire [26:0] _GEN_22 = {sN_out_r_2_r[24:0], 2'h0};
-  wire        sN_nx_ge_24 = {sN_out_r_3_r, 2'h0} >= {2'h0, sN_out_r_3_q, 2'h1};
-  wire [26:0] _GEN_23 = {sN_out_r_3_r[24:0], 2'h0};
+  wire        sN_nx_ge_20 = {sN_out_r_r, 2'h0} >= {2'h0, sN_out_r_q, 2'h1};
+  wire [26:0] _GEN_19 = {sN_out_r_r[24:0], 2'h0};
+  wire        sN_nx_ge_21 = {sN_out_r_1_r, 2'h0} >= {2'h0, sN_out_r_1_q, 2'h1};
+  wire [26:0] _GEN_20 = {sN_out_r_1_r[24:0], 2'h0};
+  wire        sN_nx_ge_22 = {sN_out_r_2_r, 2'h0} >= {2'h0, sN_out_r_2_q, 2'h1};
+  wire [26:0] _GEN_21 = {sN_out_r_2_r[24:0], 2'h0};
+  wire        sN_nx_ge_23 = {sN_out_r_3_r, 2'h0} >= {2'h0, sN_out_r_3_q, 2'h1};
+  wire [26:0] _GEN_22 = {sN_out_r_3_r[24:0], 2'h0};
   always @(posedge clock) begin
     if (io_en) begin
       sN_out_r_sig <= io_in_bits_sig;
       sN_out_r_expOdd <= io_in_bits_expOdd;
       sN_out_r_q <=
-        {4'h0,
-         |sN_nx_r2_rad,
+        {5'h1,
+         sN_nx_ge,
          sN_nx_ge_1,
          sN_nx_ge_2,
          sN_nx_ge_3,
@@ -20442,13 +20391,12 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
          sN_nx_ge_16,
          sN_nx_ge_17,
          sN_nx_ge_18,
-         sN_nx_ge_19,
-         sN_nx_ge_20};
+         sN_nx_ge_19};
       sN_out_r_r <=
-        sN_nx_ge_20
-          ? _GEN_19
-            - {5'h0,
-               |sN_nx_r2_rad,
+        sN_nx_ge_19
+          ? _GEN_18
+            - {6'h1,
+               sN_nx_ge,
                sN_nx_ge_1,
                sN_nx_ge_2,
                sN_nx_ge_3,
@@ -20467,23 +20415,22 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
                sN_nx_ge_16,
                sN_nx_ge_17,
                sN_nx_ge_18,
-               sN_nx_ge_19,
                2'h1}
-          : _GEN_19;
+          : _GEN_18;
       sN_out_r_1_sig <= sN_out_r_sig;
       sN_out_r_1_expOdd <= sN_out_r_expOdd;
-      sN_out_r_1_q <= {sN_out_r_q[23:0], sN_nx_ge_21};
-      sN_out_r_1_r <= sN_nx_ge_21 ? _GEN_20 - {sN_out_r_q, 2'h1} : _GEN_20;
+      sN_out_r_1_q <= {sN_out_r_q[23:0], sN_nx_ge_20};
+      sN_out_r_1_r <= sN_nx_ge_20 ? _GEN_19 - {sN_out_r_q, 2'h1} : _GEN_19;
       sN_out_r_2_sig <= sN_out_r_1_sig;
       sN_out_r_2_expOdd <= sN_out_r_1_expOdd;
-      sN_out_r_2_q <= {sN_out_r_1_q[23:0], sN_nx_ge_22};
-      sN_out_r_2_r <= sN_nx_ge_22 ? _GEN_21 - {sN_out_r_1_q, 2'h1} : _GEN_21;
+      sN_out_r_2_q <= {sN_out_r_1_q[23:0], sN_nx_ge_21};
+      sN_out_r_2_r <= sN_nx_ge_21 ? _GEN_20 - {sN_out_r_1_q, 2'h1} : _GEN_20;
       sN_out_r_3_sig <= sN_out_r_2_sig;
       sN_out_r_3_expOdd <= sN_out_r_2_expOdd;
-      sN_out_r_3_q <= {sN_out_r_2_q[23:0], sN_nx_ge_23};
-      sN_out_r_3_r <= sN_nx_ge_23 ? _GEN_22 - {sN_out_r_2_q, 2'h1} : _GEN_22;
-      sN_out_r_4_q <= {sN_out_r_3_q[23:0], sN_nx_ge_24};
-      sN_out_r_4_r <= sN_nx_ge_24 ? _GEN_23 - {sN_out_r_3_q, 2'h1} : _GEN_23;
+      sN_out_r_3_q <= {sN_out_r_2_q[23:0], sN_nx_ge_22};
+      sN_out_r_3_r <= sN_nx_ge_22 ? _GEN_21 - {sN_out_r_2_q, 2'h1} : _GEN_21;
+      sN_out_r_4_q <= {sN_out_r_3_q[23:0], sN_nx_ge_23};
+      sN_out_r_4_r <= sN_nx_ge_23 ? _GEN_22 - {sN_out_r_3_q, 2'h1} : _GEN_22;
     end
     if (reset) begin
       sN_out_valid_r <= 1'h0;
@@ -20757,10 +20704,11 @@ module DigitRecurrenceCore_recip_s24_L5_default(
   reg  [24:0] sN_out_r_4_r;
   reg         sN_out_valid_r_4;
   wire        isOne = io_in_bits_sig == 24'h800000;
+  wire [24:0] _s0_r_T_3 = isOne ? 25'h0 : {24'h0 - io_in_bits_sig, 1'h0};
   wire [24:0] _GEN = {1'h0, io_in_bits_sig};
-  wire [24:0] s0_r = isOne ? _GEN : 25'h1000000;
-  wire        sN_nx_ge = s0_r >= _GEN;
-  wire [23:0] _sN_nx_nx_r_T_2 = sN_nx_ge ? s0_r[23:0] - io_in_bits_sig : s0_r[23:0];
+  wire        sN_nx_ge = _s0_r_T_3 >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_2 =
+    sN_nx_ge ? _s0_r_T_3[23:0] - io_in_bits_sig : _s0_r_T_3[23:0];
   wire        sN_nx_ge_1 = {_sN_nx_nx_r_T_2, 1'h0} >= _GEN;
   wire [23:0] _GEN_0 = {_sN_nx_nx_r_T_2[22:0], 1'h0};
   wire [23:0] _sN_nx_nx_r_T_6 = sN_nx_ge_1 ? _GEN_0 - io_in_bits_sig : _GEN_0;
@@ -20817,19 +20765,16 @@ module DigitRecurrenceCore_recip_s24_L5_default(
   wire [23:0] _sN_nx_nx_r_T_74 = sN_nx_ge_18 ? _GEN_17 - io_in_bits_sig : _GEN_17;
   wire        sN_nx_ge_19 = {_sN_nx_nx_r_T_74, 1'h0} >= _GEN;
   wire [23:0] _GEN_18 = {_sN_nx_nx_r_T_74[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_78 = sN_nx_ge_19 ? _GEN_18 - io_in_bits_sig : _GEN_18;
-  wire        sN_nx_ge_20 = {_sN_nx_nx_r_T_78, 1'h0} >= _GEN;
-  wire [23:0] _GEN_19 = {_sN_nx_nx_r_T_78[22:0], 1'h0};
-  wire        sN_nx_ge_21 = sN_out_r_r >= {1'h0, sN_out_r_sig};
-  wire        sN_nx_ge_22 = sN_out_r_1_r >= {1'h0, sN_out_r_1_sig};
-  wire        sN_nx_ge_23 = sN_out_r_2_r >= {1'h0, sN_out_r_2_sig};
-  wire        sN_nx_ge_24 = sN_out_r_3_r >= {1'h0, sN_out_r_3_sig};
+  wire        sN_nx_ge_20 = sN_out_r_r >= {1'h0, sN_out_r_sig};
+  wire        sN_nx_ge_21 = sN_out_r_1_r >= {1'h0, sN_out_r_1_sig};
+  wire        sN_nx_ge_22 = sN_out_r_2_r >= {1'h0, sN_out_r_2_sig};
+  wire        sN_nx_ge_23 = sN_out_r_3_r >= {1'h0, sN_out_r_3_sig};
   always @(posedge clock) begin
     if (io_en) begin
       sN_out_r_sig <= io_in_bits_sig;
       sN_out_r_expDec <= ~isOne;
       sN_out_r_q <=
-        {4'h0,
+        {5'h1,
          sN_nx_ge,
          sN_nx_ge_1,
          sN_nx_ge_2,
@@ -20849,28 +20794,27 @@ module DigitRecurrenceCore_recip_s24_L5_default(
          sN_nx_ge_16,
          sN_nx_ge_17,
          sN_nx_ge_18,
-         sN_nx_ge_19,
-         sN_nx_ge_20};
-      sN_out_r_r <= {sN_nx_ge_20 ? _GEN_19 - io_in_bits_sig : _GEN_19, 1'h0};
+         sN_nx_ge_19};
+      sN_out_r_r <= {sN_nx_ge_19 ? _GEN_18 - io_in_bits_sig : _GEN_18, 1'h0};
       sN_out_r_1_sig <= sN_out_r_sig;
       sN_out_r_1_expDec <= sN_out_r_expDec;
-      sN_out_r_1_q <= {sN_out_r_q[23:0], sN_nx_ge_21};
+      sN_out_r_1_q <= {sN_out_r_q[23:0], sN_nx_ge_20};
       sN_out_r_1_r <=
-        {sN_nx_ge_21 ? sN_out_r_r[23:0] - sN_out_r_sig : sN_out_r_r[23:0], 1'h0};
+        {sN_nx_ge_20 ? sN_out_r_r[23:0] - sN_out_r_sig : sN_out_r_r[23:0], 1'h0};
       sN_out_r_2_sig <= sN_out_r_1_sig;
       sN_out_r_2_expDec <= sN_out_r_1_expDec;
-      sN_out_r_2_q <= {sN_out_r_1_q[23:0], sN_nx_ge_22};
+      sN_out_r_2_q <= {sN_out_r_1_q[23:0], sN_nx_ge_21};
       sN_out_r_2_r <=
-        {sN_nx_ge_22 ? sN_out_r_1_r[23:0] - sN_out_r_1_sig : sN_out_r_1_r[23:0], 1'h0};
+        {sN_nx_ge_21 ? sN_out_r_1_r[23:0] - sN_out_r_1_sig : sN_out_r_1_r[23:0], 1'h0};
       sN_out_r_3_sig <= sN_out_r_2_sig;
       sN_out_r_3_expDec <= sN_out_r_2_expDec;
-      sN_out_r_3_q <= {sN_out_r_2_q[23:0], sN_nx_ge_23};
+      sN_out_r_3_q <= {sN_out_r_2_q[23:0], sN_nx_ge_22};
       sN_out_r_3_r <=
-        {sN_nx_ge_23 ? sN_out_r_2_r[23:0] - sN_out_r_2_sig : sN_out_r_2_r[23:0], 1'h0};
+        {sN_nx_ge_22 ? sN_out_r_2_r[23:0] - sN_out_r_2_sig : sN_out_r_2_r[23:0], 1'h0};
       sN_out_r_4_expDec <= sN_out_r_3_expDec;
-      sN_out_r_4_q <= {sN_out_r_3_q[23:0], sN_nx_ge_24};
+      sN_out_r_4_q <= {sN_out_r_3_q[23:0], sN_nx_ge_23};
       sN_out_r_4_r <=
-        {sN_nx_ge_24 ? sN_out_r_3_r[23:0] - sN_out_r_3_sig : sN_out_r_3_r[23:0], 1'h0};
+        {sN_nx_ge_23 ? sN_out_r_3_r[23:0] - sN_out_r_3_sig : sN_out_r_3_r[23:0], 1'h0};
     end
     if (reset) begin
       sN_out_valid_r <= 1'h0;
