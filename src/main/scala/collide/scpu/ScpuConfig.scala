@@ -91,9 +91,13 @@ final case class ScpuConfig(
   /** Conversions are hardware only when they change something: a narrower format, or DAZ. */
   val converts: Boolean      = format != linkFormat || !subnormals
   val cvtLat: Int            = if (converts) cvtLatency else 0
-  val sqrtLat: Int           = sqrtLatency.getOrElse(ScpuConfig.defaultRootLatency(format, sqrtAlg))
-  val recipLat: Int          = recipLatency.getOrElse(ScpuConfig.defaultRootLatency(format, recipAlg))
-  val rsqrtLat: Int          = rsqrtLatency.getOrElse(ScpuConfig.defaultRootLatency(format, rsqrtAlg))
+  val sqrtLat: Int           = sqrtLatency.getOrElse(ScpuConfig.defaultRootLatency(format, sqrtAlg, RootOp.Sqrt))
+  val recipLat: Int          = recipLatency.getOrElse(ScpuConfig.defaultRootLatency(format, recipAlg, RootOp.Recip))
+  val rsqrtLat: Int          = rsqrtLatency.getOrElse(ScpuConfig.defaultRootLatency(format, rsqrtAlg, RootOp.Rsqrt))
+  for ((op, alg, lat) <- Seq((RootOp.Sqrt, sqrtAlg, sqrtLat), (RootOp.Recip, recipAlg, recipLat), (RootOp.Rsqrt, rsqrtAlg, rsqrtLat))) {
+    val max = RootCoreSelect.maxOperatorLatency(op, alg)
+    require(lat <= max, s"ScpuConfig $name: ${op.name} latency $lat exceeds ${alg.name}'s maximum $max")
+  }
 
   // Per-stage latencies (cycles), in datapath order; docs/scpu.md draws the schedule.
   /** Link -> compute conversion. */
@@ -151,22 +155,30 @@ final case class ScpuConfig(
   }
 
   /** One line describing every knob, for reports. */
-  def describe: String =
-    s"$name: ${format.name}${if (subnormals) "" else " ftz"} $rounding ${distance.name} " +
-      s"sqrt=${sqrtAlg.name}/$sqrtLat recip=${recipAlg.name}/$recipLat rsqrt=${rsqrtAlg.name}/$rsqrtLat " +
-      s"cvt=$cvtLat add=$addLatency mul=$mulLatency cmp=$cmpLatency latency=$latency"
+  def describe: String = {
+    val roots = distance match {
+      case DistanceMethod.Rsqrt => s"rsqrt=${rsqrtAlg.name}/L$rsqrtLat"
+      case _                    => s"sqrt=${sqrtAlg.name}/L$sqrtLat recip=${recipAlg.name}/L$recipLat"
+    }
+    val scale = if (distance == DistanceMethod.Robust) s" scale=L$scaleLatency" else ""
+    s"$name: ${format.name}${if (subnormals) "" else " ftz"} $rounding ${distance.name} $roots " +
+      s"cvt=L$cvtLat add=L$addLatency mul=L$mulLatency cmp=L$cmpLatency$scale, latency $latency"
+  }
 }
 
 object ScpuConfig {
   /** Default pipeline depth of a root operator: digit recurrence produces one bit a step, so
-    * a register every 4 steps; Newton-Raphson a register per multiply-add of each iteration.
+    * about a register every 4 steps; Newton-Raphson one register per cut of its core
+    * (NewtonRaphsonCore.naturalLatency: after the seed ROM and each multiply) plus the
+    * operator's pre-rounding and output registers.
     */
-  def defaultRootLatency(f: FloatFormat, alg: RootAlgorithm): Int = alg match {
-    case RootAlgorithm.DigitRecurrence         => (f.sigBits + 2 + 3) / 4
-    case RootAlgorithm.NewtonRaphson(_, iters) => 1 + 2 * iters
+  def defaultRootLatency(f: FloatFormat, alg: RootAlgorithm, op: RootOp): Int = alg match {
+    case RootAlgorithm.DigitRecurrence   => (f.sigBits + 5) / 4
+    case nr: RootAlgorithm.NewtonRaphson => NewtonRaphsonCore.naturalLatency(op, nr) + 2
   }
 
-  /** The Newton-Raphson setting the fp32 NR preset uses (faithful per the fp-nr bounds). */
+  /** The Newton-Raphson setting the fp32 NR preset uses: 8-bit seeds, two iterations, faithful
+    * (< 1 ulp) for sqrt, recip and rsqrt at 24 bits per docs/fp/newton-raphson.md. */
   val nrFp32: RootAlgorithm = RootAlgorithm.NewtonRaphson(8, 2)
 
   val fp32: ScpuConfig        = ScpuConfig()

@@ -19,13 +19,15 @@ object ScpuExact {
 
   /** The exact decision on the compute-format inputs, or None for a non-finite input:
     * |p1 - p2|^2 <= (r1 + r2)^2 with r1 + r2 >= 0. Also returns how far from grazing the
-    * pair is, as |d2 - rs^2| / max(d2, rs^2) (0 when both are 0), as a double. */
+    * pair is (see within). */
   final case class Decision(hit: Boolean, d2: JBigDecimal, rs: JBigDecimal) {
     def rs2: JBigDecimal = rs.multiply(rs, U)
-    /** Whether |d2 - rs^2| <= rel * max(d2, rs^2) + abs. */
+    /** Whether |d - rs| <= rel * max(d, |rs|) + abs, d = sqrt(d2). Only the band's edge
+      * uses a rounded square root (60 digits); the decision itself is exact. */
     def within(rel: JBigDecimal, abs: JBigDecimal): Boolean = {
-      val diff = d2.subtract(rs2, U).abs()
-      val m = d2.max(rs2)
+      val d = d2.sqrt(new MathContext(60))
+      val diff = d.subtract(rs, U).abs()
+      val m = d.max(rs.abs())
       diff.compareTo(m.multiply(rel, U).add(abs, U)) <= 0
     }
   }

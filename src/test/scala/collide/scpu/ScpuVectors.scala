@@ -203,11 +203,13 @@ final class ScpuVectors(cfg: ScpuConfig) {
     // Negative radii (ODE does not check them).
     add("negative radii", one, zero, zero, c(-1), zero, zero, zero, c(-1))
     add("negative radius sum exactly zero at coincident centres", one, zero, zero, c(-1), one, zero, zero, one)
-    // Non-finite inputs.
-    for ((nm, v) <- Seq("quiet NaN" -> qnan, "signaling NaN" -> snan, "+inf" -> inf, "-inf" -> negInf); idx <- 0 until 8) {
-      val base = Seq(one, c(2), c(3), c(1.5), c(1.5), c(2), c(3), one).toArray
+    // Non-finite inputs, as the link carries them (a signaling NaN must reach the SCPU as one).
+    val lfmt = lf
+    for ((nm, v) <- Seq("quiet NaN" -> lfmt.canonicalNaN, "signaling NaN" -> (lfmt.infinity(false) | 1),
+                        "+inf" -> lfmt.infinity(false), "-inf" -> lfmt.infinity(true)); idx <- 0 until 8) {
+      val base = Seq(one, c(2), c(3), c(1.5), c(1.5), c(2), c(3), one).map(link).toArray
       base(idx) = v
-      add(s"$nm in field $idx", base.toIndexedSeq: _*)
+      g += s"$nm in field $idx" -> ScpuPair.fromFields(base.toIndexedSeq)
     }
     add("infinite radii at finite distance", one, zero, zero, inf, zero, zero, zero, one)
     add("both centres infinite", inf, zero, zero, one, inf, zero, zero, one)
