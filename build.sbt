@@ -25,6 +25,8 @@ lazy val root = (project in file("."))
     // Tests run in a forked JVM: forward the replay knobs (collide.testutil.Seeds).
     Test / javaOptions ++= Seq("seed", "scale").flatMap(k => sys.props.get(k).map(v => s"-D$k=$v")),
     run / fork := true,
+    // `sbt "run ..."` is the generator CLI
+    Compile / run / mainClass := Some("collide.Generate"),
     run / javaOptions ++= Seq("-Xss8m", "-Xmx4g"),
     Test / testOptions += Tests.Argument(TestFrameworks.ScalaTest, "-oD")
   )

@@ -1,0 +1,147 @@
+package collide
+
+import java.io.File
+import java.nio.file.{Files, Paths, StandardCopyOption}
+import collide.afu._
+import collide.scpu.ScpuConfig
+
+/** The generator CLI: `sbt "run --preset default"`, `sbt "run --scpus 4 --format fp16"`,
+  * `sbt "run --help"`. Writes generated/<preset-or-derived-name>/ with the SystemVerilog,
+  * manifest.json and afu_config.hpp, all from one AfuConfig. */
+object Generate {
+  final case class Opts(
+      preset: String = "default",
+      scpus: Option[Int] = None,
+      format: Option[String] = None,
+      scpu: Option[String] = None,
+      maxSpheres: Option[Int] = None,
+      maxReads: Option[Int] = None,
+      maxWrites: Option[Int] = None,
+      tagBits: Option[Int] = None,
+      ramPorts: Option[String] = None,
+      dense: Option[Boolean] = None,
+      out: String = "generated",
+      folder: Option[String] = None,
+      split: Boolean = false,
+      noVerilog: Boolean = false,
+      listPresets: Boolean = false)
+
+  private val builder = scopt.OParser.builder[Opts]
+  val parser: scopt.OParser[Unit, Opts] = {
+    import builder._
+    scopt.OParser.sequence(
+      programName("collide.Generate"),
+      head("collide.Generate", "writes generated/<name>/: SystemVerilog, manifest.json, afu_config.hpp"),
+      opt[String]("preset").valueName("NAME").action((v, o) => o.copy(preset = v))
+        .text(s"start from a preset (${AfuConfig.all.map(_.name).mkString(", ")}); default: default"),
+      opt[Int]("scpus").valueName("N").action((v, o) => o.copy(scpus = Some(v))).text("SCPUs, 1..64"),
+      opt[String]("format").valueName("F").action((v, o) => o.copy(format = Some(v)))
+        .text("compute format: an SCPU preset (fp32, fp16, fp64, fp24, bf16) or eEmM / 'E,M'"),
+      opt[String]("scpu").valueName("SPEC").action((v, o) => o.copy(scpu = Some(v)))
+        .text("full SCPU configuration: preset[:key=value]* (e.g. fp32:rm=rtz:sqrt=nr8x2); see ScpuConfig.parse"),
+      opt[Int]("max-spheres").valueName("N").action((v, o) => o.copy(maxSpheres = Some(v)))
+        .text("on-chip sphere table entries (power of two, 64..65536)"),
+      opt[Int]("max-reads").valueName("N").action((v, o) => o.copy(maxReads = Some(v))).text("reads in flight at most"),
+      opt[Int]("max-writes").valueName("N").action((v, o) => o.copy(maxWrites = Some(v))).text("writes in flight at most"),
+      opt[Int]("tag-bits").valueName("N").action((v, o) => o.copy(tagBits = Some(v))).text("link tag width"),
+      opt[String]("ram-ports").valueName("S").action((v, o) => o.copy(ramPorts = Some(v)))
+        .text("sphere table read ports: replicated"),
+      opt[Boolean]("dense-default").valueName("true|false").action((v, o) => o.copy(dense = Some(v)))
+        .text("MODE's reset value selects dense records"),
+      opt[String]("out").valueName("DIR").action((v, o) => o.copy(out = v)).text("parent folder (default generated)"),
+      opt[String]("folder").valueName("NAME").action((v, o) => o.copy(folder = Some(v)))
+        .text("output folder name (default: the preset's name, or a name derived from every parameter)"),
+      opt[Unit]("split").action((_, o) => o.copy(split = true)).text("one .sv file per module (and filelist.f)"),
+      opt[Unit]("no-verilog").action((_, o) => o.copy(noVerilog = true)).text("write only manifest.json and afu_config.hpp"),
+      opt[Unit]("list-presets").action((_, o) => o.copy(listPresets = true)).text("print the presets and exit"),
+      help("help").text("this text"))
+  }
+
+  /** The configuration the options ask for, or an error naming the flag and the problem. */
+  def config(o: Opts): Either[String, AfuConfig] = {
+    def step(flag: String, c: => AfuConfig): Either[String, AfuConfig] =
+      try Right(c) catch { case e: IllegalArgumentException => Left(s"$flag: ${e.getMessage.stripPrefix("requirement failed: ")}") }
+    def opt[A](flag: String, v: Option[A])(f: (AfuConfig, A) => Either[String, AfuConfig])(c: AfuConfig) =
+      v.fold[Either[String, AfuConfig]](Right(c))(a => f(c, a).left.map(m => if (m.startsWith(flag)) m else s"$flag: $m"))
+    for {
+      base <- AfuConfig.presets.get(o.preset).toRight(
+        s"--preset: unknown preset '${o.preset}' (known: ${AfuConfig.all.map(_.name).mkString(", ")})")
+      c1 <- opt("--scpu", o.scpu)((c, s) => ScpuConfig.parse(s).flatMap(sc => step("--scpu", c.copy(scpu = sc))))(base)
+      c2 <- opt("--format", o.format)((c, f) => ScpuConfig.presets.get(f.toLowerCase) match {
+        case Some(sc) if o.scpu.isEmpty => step("--format", c.copy(scpu = sc))
+        case _ => ScpuConfig.parse(s"${c.scpu.name}:format=$f").flatMap(sc => step("--format", c.copy(scpu = sc)))
+      })(c1)
+      c3 <- opt("--tag-bits", o.tagBits)((c, v) => step("--tag-bits", c.copy(tagBits = v,
+        maxReadsOutstanding = c.maxReadsOutstanding.min(1 << v.max(1).min(16)),
+        maxWritesOutstanding = c.maxWritesOutstanding.min(1 << v.max(1).min(16)))))(c2)
+      c4 <- opt("--scpus", o.scpus)((c, v) => step("--scpus", c.copy(scpus = v)))(c3)
+      c5 <- opt("--max-spheres", o.maxSpheres)((c, v) => step("--max-spheres", c.copy(maxSpheres = v)))(c4)
+      c6 <- opt("--max-reads", o.maxReads)((c, v) => step("--max-reads", c.copy(maxReadsOutstanding = v)))(c5)
+      c7 <- opt("--max-writes", o.maxWrites)((c, v) => step("--max-writes", c.copy(maxWritesOutstanding = v)))(c6)
+      c8 <- opt("--ram-ports", o.ramPorts)((c, v) => SphereRamPorts.parse(v).flatMap(r => step("--ram-ports", c.copy(ramPorts = r))))(c7)
+      c9 <- opt("--dense-default", o.dense)((c, v) => step("--dense-default", c.copy(denseByDefault = v)))(c8)
+    } yield c9
+  }
+
+  val firtoolOpts: Array[String] = Array(
+    // Yosys 0.23 reads this (shared NOTES.md); no randomization or source locators, so the
+    // output depends on the configuration only.
+    "--lowering-options=disallowLocalVariables,disallowPackedArrays,noAlwaysComb",
+    "--disable-all-randomization", "--strip-debug-info")
+
+  /** Writes the folder; returns the files written. */
+  def generate(cfg: AfuConfig, dir: File, split: Boolean, verilog: Boolean, command: String): Seq[File] = {
+    dir.mkdirs()
+    val written = scala.collection.mutable.ArrayBuffer[File]()
+    if (verilog) {
+      val tmp = Files.createTempDirectory("collide-gen").toFile
+      val args = Array("--target-dir", tmp.getPath) ++ (if (split) Array("--split-verilog") else Array[String]())
+      circt.stage.ChiselStage.emitSystemVerilogFile(new Afu(cfg), args, firtoolOpts)
+      val svs = tmp.listFiles().filter(f => f.getName.endsWith(".sv") || f.getName.endsWith(".f")).sortBy(_.getName)
+      val texts = svs.map(f => f.getName -> new String(Files.readAllBytes(f.toPath), "UTF-8")).toSeq
+      val rename = foreignModules(texts.map(_._2), cfg.id)
+      for ((name, text) <- texts) {
+        val target = new File(dir, uniquify(name, rename))
+        Files.write(target.toPath, uniquify(text, rename).getBytes("UTF-8"))
+        written += target
+      }
+      def rm(f: File): Unit = { Option(f.listFiles()).foreach(_.foreach(rm)); f.delete() }
+      rm(tmp)
+    }
+    val manifest = new File(dir, "manifest.json")
+    Files.write(manifest.toPath, (ujson.write(AfuManifest.json(cfg, command), indent = 2) + "\n").getBytes("UTF-8"))
+    val header = new File(dir, "afu_config.hpp")
+    Files.write(header.toPath, AfuManifest.header(cfg, command).getBytes("UTF-8"))
+    (written :+ manifest :+ header).toSeq
+  }
+
+  /** firtool names the modules it makes itself (memories) by shape only; give every module
+    * whose name does not carry the configuration's id a suffix, so two configurations never
+    * define the same module name differently in one Verilog file. */
+  def foreignModules(texts: Seq[String], id: String): Map[String, String] =
+    texts.flatMap(t => """(?m)^module\s+(\w+)""".r.findAllMatchIn(t).map(_.group(1)))
+      .filterNot(_.contains(id)).distinct.map(n => n -> s"${n}_$id").toMap
+  def uniquify(text: String, rename: Map[String, String]): String =
+    rename.foldLeft(text) { case (acc, (from, to)) => acc.replaceAll(s"\\b$from\\b", to) }
+
+  def main(args: Array[String]): Unit = {
+    val o = scopt.OParser.parse(parser, args, Opts()).getOrElse(sys.exit(2))
+    if (o.listPresets) { AfuConfig.all.foreach(c => println(c.describe)); return }
+    val cfg = config(o) match {
+      case Right(c) => c
+      case Left(msg) => System.err.println(s"error: $msg"); sys.exit(2)
+    }
+    val folder = o.folder.getOrElse(cfg.id)
+    val dir = new File(o.out, folder)
+    val command = s"""sbt "run ${args.mkString(" ")}""""
+    try {
+      val files = generate(cfg, dir, o.split, !o.noVerilog, command)
+      println(s"${cfg.describe}")
+      files.foreach(f => println(s"  wrote ${f.getPath}"))
+    } catch {
+      case e: Throwable =>
+        System.err.println(s"error: configuration ${cfg.id} could not be built: ${e.getMessage}")
+        sys.exit(1)
+    }
+  }
+}

@@ -1,0 +1,85 @@
+package collide.afu
+
+import collide.scpu.ScpuConfig
+
+/** One AFU configuration: the SCPUs it holds and the PUC around them. Every field has a
+  * default; the default is the `default` preset (16 fp32 correctly rounded SCPUs).
+  *
+  * @param name                 preset name (the output folder and the module names' suffix
+  *                             when the configuration is exactly that preset)
+  * @param scpus                SCPUs (1..64); pairs dispatched per cycle = min(scpus, 16)
+  * @param scpu                 the SCPU configuration (format, rounding, algorithms, latencies)
+  * @param maxSpheres           on-chip sphere table entries (the paper's diamond at hMax 10
+  *                             has 670 spheres); a larger NUM_SPHERES is refused (error bit 1)
+  * @param maxReadsOutstanding  read requests in flight at most (SPL's 6-bit tags: 64)
+  * @param maxWritesOutstanding write requests in flight at most (64)
+  * @param tagBits              link tag width (HARP v1 / SPL: 6, shared NOTES.md)
+  * @param ramPorts             sphere table read-port strategy
+  * @param denseByDefault       reset value of MODE bit 0 (false: compact records)
+  */
+final case class AfuConfig(
+    name: String = "default",
+    scpus: Int = 16,
+    scpu: ScpuConfig = ScpuConfig.fp32,
+    maxSpheres: Int = 1024,
+    maxReadsOutstanding: Int = 64,
+    maxWritesOutstanding: Int = 64,
+    tagBits: Int = 6,
+    ramPorts: SphereRamPorts = SphereRamPorts.Replicated,
+    denseByDefault: Boolean = false) {
+  require(name.nonEmpty && name.forall(c => c.isLetterOrDigit || c == '-' || c == '_'),
+    s"AfuConfig name '$name': must be non-empty letters, digits, '-' or '_'")
+  require(scpus >= 1 && scpus <= 64, s"AfuConfig $name: scpus must be 1..64, got $scpus")
+  require(tagBits >= 1 && tagBits <= 16, s"AfuConfig $name: tagBits must be 1..16, got $tagBits")
+  require(maxReadsOutstanding >= 2 && maxReadsOutstanding <= (1 << tagBits),
+    s"AfuConfig $name: maxReadsOutstanding must be 2..${1 << tagBits} (2^tagBits), got $maxReadsOutstanding")
+  require(maxWritesOutstanding >= 2 && maxWritesOutstanding <= (1 << tagBits),
+    s"AfuConfig $name: maxWritesOutstanding must be 2..${1 << tagBits} (2^tagBits), got $maxWritesOutstanding")
+  require(scpu.tagBits >= 24, s"AfuConfig $name: the SCPU's tagBits must be >= 24 to carry a pair index, got ${scpu.tagBits}")
+  private val spl = BufferLayout(scpu.linkWidth).spheresPerLine
+  require(maxSpheres >= 64 && maxSpheres <= 65536 && Integer.bitCount(maxSpheres) == 1,
+    s"AfuConfig $name: maxSpheres must be a power of two in 64..65536 (pair indices are 16-bit), got $maxSpheres")
+
+  val linkWidth: Int = scpu.linkWidth
+  val layout: BufferLayout = BufferLayout(linkWidth)
+  /** Whether this is exactly the named preset. */
+  def isPreset: Boolean = AfuConfig.presets.get(name).contains(this)
+  /** A name from every parameter, for configurations that are not a preset. */
+  def derivedName: String =
+    s"n${scpus}_${scpu.id}_s${maxSpheres}_r${maxReadsOutstanding}_w${maxWritesOutstanding}_t${tagBits}_${ramPorts.name}" +
+      (if (denseByDefault) "_dense" else "")
+  /** Output folder and module-name suffix: the preset's name, else the derived name. */
+  def id: String = (if (isPreset) name else derivedName).replace('-', '_')
+
+  lazy val puc: PucParams = PucParams(
+    scpus = scpus, linkWidth = linkWidth, scpuTagBits = scpu.tagBits, scpuLatency = scpu.latency,
+    maxSpheres = maxSpheres, maxReads = maxReadsOutstanding, maxWrites = maxWritesOutstanding,
+    tagBits = tagBits, ramPorts = ramPorts, denseByDefault = denseByDefault, name = "_" + id)
+
+  /** Pairs per cycle the dispatcher can reach (a group never spans two pair lines). */
+  def peakPairsPerCycle: Double = {
+    val ppl = layout.pairsPerLine
+    if (scpus >= ppl) ppl.toDouble else ppl.toDouble / ((ppl + scpus - 1) / scpus)
+  }
+  /** Cycles from a pair's group dispatch to its result at the collector (no stalls):
+    * sphere RAM read (1) + SCPU input queue (1) + SCPU latency. */
+  def pairLatency: Int = 2 + scpu.latency
+  def describe: String =
+    s"$id: $scpus x SCPU ${scpu.describe}; maxSpheres $maxSpheres, reads $maxReadsOutstanding, writes $maxWritesOutstanding, " +
+      s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, ${if (denseByDefault) "dense" else "compact"} by default"
+}
+
+object AfuConfig {
+  val default: AfuConfig = AfuConfig()
+  /** The paper's design point in our terms: 16 units, binary32. Same as default. */
+  val paper: AfuConfig   = default.copy(name = "paper")
+  val small: AfuConfig   = default.copy(name = "small", scpus = 1, maxSpheres = 256)
+  val fp16: AfuConfig    = default.copy(name = "fp16", scpu = ScpuConfig.fp16)
+  val fp16x4: AfuConfig  = default.copy(name = "fp16x4", scpus = 4, scpu = ScpuConfig.fp16)
+  val fp64: AfuConfig    = default.copy(name = "fp64", scpu = ScpuConfig.fp64)
+  val fp32Nr: AfuConfig  = default.copy(name = "fp32-nr", scpu = ScpuConfig.fp32Nr)
+  val big: AfuConfig     = default.copy(name = "big", maxSpheres = 4096)
+
+  val all: Seq[AfuConfig] = Seq(default, paper, small, fp16, fp16x4, fp64, fp32Nr, big)
+  val presets: Map[String, AfuConfig] = all.map(c => c.name -> c).toMap
+}

@@ -1,0 +1,92 @@
+package collide.afu
+
+import chisel3._
+import chisel3.util._
+import collide.scpu.{ContactKind, ScpuOut}
+
+/** One contact record as it goes into a line (docs/afu-interface.md, Contacts). */
+class ContactRecord(w: Int) extends Bundle {
+  val px = UInt(w.W); val py = UInt(w.W); val pz = UInt(w.W)
+  val nx = UInt(w.W); val ny = UInt(w.W); val nz = UInt(w.W)
+  val depth = UInt(w.W)
+  val pair  = UInt(24.W)
+  val flags = UInt(8.W)
+}
+
+/** Takes the SCPUs' results back group by group, in dispatch order, and turns them into
+  * records: every result in dense mode, hits only in compact mode. It passes the packer at
+  * most as many records a cycle as the packer has room for (`room`), and consumes every
+  * result up to the last record taken (plus the misses after it in compact mode), so a line
+  * of 16 pairs with at most two hits leaves in one cycle. Counts every pair it consumes.
+  */
+class ContactCollector(p: PucParams) extends Module {
+  override def desiredName = s"ContactCollector_n${p.scpus}${p.name}"
+  private val n = p.scpus
+  private val L = p.lanes
+  private val R = p.layout.recordsPerLine
+  val io = IO(new Bundle {
+    val dense  = Input(Bool())
+    val groups = Flipped(Decoupled(new GroupInfo(p)))
+    val scpu   = Vec(n, Flipped(Decoupled(new ScpuOut(p.linkWidth, p.scpuTagBits))))
+    val room   = Input(UInt(log2Ceil(R + 1).W))
+    val recs   = Output(Vec(R, new ContactRecord(p.linkWidth)))
+    val nRecs  = Output(UInt(log2Ceil(R + 1).W))
+    // per-cycle increments of the status counters
+    val nPairs     = Output(UInt(log2Ceil(L + 1).W))
+    val nHits      = Output(UInt(log2Ceil(L + 1).W))
+    val nNonFinite = Output(UInt(log2Ceil(L + 1).W))
+  })
+
+  val g  = io.groups.bits
+  val sp = RegInit(0.U(log2Ceil(L + 1).W))
+
+  val scpuAt = VecInit.tabulate(L) { k =>
+    val b = g.base +& k.U
+    Mux(b >= n.U, b - n.U, b)
+  }
+  val outAt   = VecInit.tabulate(L)(k => io.scpu(scpuAt(k)).bits)
+  val validAt = VecInit.tabulate(L)(k => VecInit(io.scpu.map(_.valid))(scpuAt(k)))
+  val active  = VecInit.tabulate(L)(k => io.groups.valid && k.U >= sp && k.U < g.cnt)
+  val inv     = VecInit.tabulate(L)(k => g.invalid(k))
+  val hit     = VecInit.tabulate(L)(k => !inv(k) && outAt(k).hit)
+  val want    = VecInit.tabulate(L)(k => active(k) && (io.dense || hit(k)))
+
+  // Consume positions in order while their results are there and the records fit.
+  val okPrefix  = VecInit((0 until L).scanLeft(true.B)((acc, k) => acc && (!active(k) || validAt(k))).tail)
+  val wantCount = VecInit((0 until L).scanLeft(0.U(log2Ceil(L + 1).W))((acc, k) => acc + want(k).asUInt).tail)
+  val take      = VecInit.tabulate(L)(k => active(k) && okPrefix(k) && wantCount(k) <= io.room)
+
+  for (s <- 0 until n) {
+    io.scpu(s).ready := (0 until L).map(k => take(k) && scpuAt(k) === s.U).foldLeft(false.B)(_ || _)
+  }
+
+  private def recordOf(k: Int): ContactRecord = {
+    val o = outAt(k)
+    val r = Wire(new ContactRecord(p.linkWidth))
+    val arith = (o.flags & (collide.fp.FpFlags.Overflow | collide.fp.FpFlags.Invalid).U).orR
+    when(inv(k)) {
+      r := 0.U.asTypeOf(r)
+      r.flags := (ContactKind.Invalid << RecordFlags.KIND_SHIFT).U
+    }.otherwise {
+      r.px := o.px; r.py := o.py; r.pz := o.pz; r.nx := o.nx; r.ny := o.ny; r.nz := o.nz; r.depth := o.depth
+      r.flags := Cat(0.U(3.W), arith, o.nonFinite, o.kind, o.hit)
+    }
+    r.pair := o.tag(23, 0)
+    r
+  }
+  val records = VecInit.tabulate(L)(recordOf)
+  val nTaken  = PopCount(take)
+  val nRecs   = PopCount((0 until L).map(k => take(k) && want(k)))
+  for (r <- 0 until R) {
+    val sel = (0 until L).map(k => take(k) && want(k) && wantCount(k) === (r + 1).U)
+    io.recs(r) := Mux1H(sel, records)
+  }
+  io.nRecs      := nRecs
+  io.nPairs     := nTaken
+  io.nHits      := PopCount((0 until L).map(k => take(k) && hit(k)))
+  io.nNonFinite := PopCount((0 until L).map(k => take(k) && !inv(k) && outAt(k).nonFinite))
+
+  val spNext = sp + nTaken
+  io.groups.ready := io.groups.valid && spNext === g.cnt
+  when(io.groups.fire) { sp := 0.U }.otherwise { sp := spNext }
+}

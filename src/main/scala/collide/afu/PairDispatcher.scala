@@ -1,0 +1,119 @@
+package collide.afu
+
+import chisel3._
+import chisel3.util._
+import collide.scpu.ScpuIn
+
+/** One dispatched group: pairs `first .. first+cnt-1` of one pair line went to SCPUs
+  * `(base + k) mod N`, k < cnt. `invalid(k)`: pair k had a sphere index out of range (its
+  * SCPU computed on don't-care data; the collector replaces the result). The collector
+  * takes results group by group in this order, so dense records come out in pair order
+  * within a line. */
+class GroupInfo(p: PucParams) extends Bundle {
+  val base    = UInt(math.max(log2Ceil(p.scpus), 1).W)
+  val cnt     = UInt(log2Ceil(p.lanes + 1).W)
+  val invalid = UInt(p.lanes.W)
+  val first   = UInt(p.layout.pairIndexBits.W)
+}
+
+/** Takes pair lines (any order), cuts each into groups of up to min(N, 16) consecutive pairs,
+  * reads both spheres of every pair from the table and hands the pair to an SCPU. A group
+  * fires when every SCPU it needs has room in its input queue, so a full line goes out per
+  * cycle at N = 16 and N pairs per cycle for N dividing 16. SCPUs are used round robin, so
+  * N > 16 spreads the work over all units. Nothing is dispatched before `go` (table loaded).
+  */
+class PairDispatcher(p: PucParams) extends Module {
+  override def desiredName = s"PairDispatcher_n${p.scpus}${p.name}"
+  private val n = p.scpus
+  private val ppl = p.layout.pairsPerLine
+  private val idxBits = log2Ceil(p.maxSpheres)
+  private val baseBits = math.max(log2Ceil(n), 1)
+  val io = IO(new Bundle {
+    val go         = Input(Bool())
+    val numPairs   = Input(UInt(p.layout.pairIndexBits.W))
+    val numSpheres = Input(UInt(17.W))
+    val pairs      = Flipped(Decoupled(new PairLine(p.pairLineBits)))
+    val raddr      = Output(Vec(n, Vec(2, UInt(idxBits.W))))
+    val ren        = Output(Vec(n, Bool()))
+    val rdata      = Input(Vec(n, Vec(2, new Sphere(p.linkWidth))))
+    val scpu       = Vec(n, Decoupled(new ScpuIn(p.linkWidth, p.scpuTagBits)))
+    val groups     = Decoupled(new GroupInfo(p))
+    val fired      = Output(Bool())  // a group went out this cycle (the "computing" counter)
+    val idle       = Output(Bool())  // no line held
+  })
+
+  val cur      = Reg(new PairLine(p.pairLineBits))
+  val curValid = RegInit(false.B)
+  val ptr      = RegInit(0.U(log2Ceil(ppl + 1).W))
+  val base     = RegInit(0.U(baseBits.W))
+
+  val lineFirst = (cur.line << log2Ceil(ppl)).asUInt.pad(p.layout.pairIndexBits + 1)
+  val left      = io.numPairs.pad(p.layout.pairIndexBits + 1) - lineFirst
+  val lineCount = Mux(left > ppl.U, ppl.U, left(log2Ceil(ppl + 1) - 1, 0))
+  val rem       = lineCount - ptr
+  val cnt       = Mux(rem > p.lanes.U, p.lanes.U, rem)(log2Ceil(p.lanes + 1) - 1, 0)
+
+  val pi = VecInit.tabulate(ppl)(k => cur.data(32 * k + 15, 32 * k))
+  val pj = VecInit.tabulate(ppl)(k => cur.data(32 * k + 31, 32 * k + 16))
+  // Position k of the group: slot ptr + k of the line.
+  val slot = VecInit.tabulate(p.lanes)(k => (ptr +& k.U)(log2Ceil(ppl) - 1, 0))
+  val posI = VecInit.tabulate(p.lanes)(k => pi(slot(k)))
+  val posJ = VecInit.tabulate(p.lanes)(k => pj(slot(k)))
+  val posBad = VecInit.tabulate(p.lanes)(k => posI(k) >= io.numSpheres || posJ(k) >= io.numSpheres)
+
+  // Per SCPU: its position in the group, if any.
+  val posOf = VecInit.tabulate(n) { s =>
+    val d = (s + n).U - base
+    Mux(d >= n.U, d - n.U, d)
+  }
+  val inGroup = VecInit.tabulate(n)(s => posOf(s) < cnt)
+
+  // Input queue per SCPU, with a credit for the RAM read in flight.
+  val inflight = RegInit(VecInit(Seq.fill(n)(false.B)))
+  val queues = Seq.tabulate(n) { s =>
+    Module(new Queue(new ScpuIn(p.linkWidth, p.scpuTagBits), p.scpuQueueDepth) {
+      override def desiredName = s"ScpuInQueue_d${p.scpuQueueDepth}_w${p.linkWidth}${p.name}"
+    })
+  }
+  val credit = VecInit.tabulate(n)(s => queues(s).io.count +& inflight(s).asUInt < p.scpuQueueDepth.U)
+
+  val haveGroup = io.go && curValid && cnt =/= 0.U
+  val fire = haveGroup && io.groups.ready && (0 until n).map(s => !inGroup(s) || credit(s)).reduce(_ && _)
+  io.fired := fire
+  io.idle  := !curValid
+
+  io.groups.valid        := haveGroup && (0 until n).map(s => !inGroup(s) || credit(s)).reduce(_ && _)
+  io.groups.bits.base    := base
+  io.groups.bits.cnt     := cnt
+  io.groups.bits.invalid := VecInit.tabulate(p.lanes)(k => posBad(k) && k.U < cnt).asUInt
+  io.groups.bits.first   := lineFirst + ptr
+
+  val tagNext = Reg(Vec(n, UInt(p.layout.pairIndexBits.W)))
+  for (s <- 0 until n) {
+    val k = posOf(s)(log2Ceil(p.lanes).max(1) - 1, 0)
+    val kk = if (p.lanes == 1) 0.U else k
+    io.ren(s)      := fire && inGroup(s)
+    io.raddr(s)(0) := posI(kk)(idxBits - 1, 0)
+    io.raddr(s)(1) := posJ(kk)(idxBits - 1, 0)
+    inflight(s)    := io.ren(s)
+    when(io.ren(s)) { tagNext(s) := lineFirst + ptr + kk }
+    val q = queues(s).io.enq
+    q.valid := inflight(s)
+    q.bits.x1 := io.rdata(s)(0).x; q.bits.y1 := io.rdata(s)(0).y; q.bits.z1 := io.rdata(s)(0).z; q.bits.r1 := io.rdata(s)(0).r
+    q.bits.x2 := io.rdata(s)(1).x; q.bits.y2 := io.rdata(s)(1).y; q.bits.z2 := io.rdata(s)(1).z; q.bits.r2 := io.rdata(s)(1).r
+    q.bits.tag := tagNext(s)
+    assert(!q.valid || q.ready, "PairDispatcher: SCPU input queue overflow (credit broken)")
+    io.scpu(s) <> queues(s).io.deq
+  }
+
+  val lineDone = fire && ptr + cnt === lineCount
+  when(fire) {
+    ptr := ptr + cnt
+    val b = base +& cnt
+    base := Mux(b >= n.U, b - n.U, b)
+  }
+  io.pairs.ready := !curValid || lineDone
+  when(io.pairs.fire) {
+    cur := io.pairs.bits; curValid := true.B; ptr := 0.U
+  }.elsewhen(lineDone) { curValid := false.B }
+}

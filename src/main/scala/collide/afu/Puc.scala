@@ -1,0 +1,173 @@
+package collide.afu
+
+import chisel3._
+import chisel3.util._
+import collide.scpu.{ScpuIn, ScpuOut}
+
+/** The PUC: everything of the AFU but the SCPUs. CSRs, the run's state machine, the read
+  * engine (sphere table then pair lines, reordered responses), the on-chip sphere table,
+  * the dispatcher (a pair line's 16 pairs over N SCPUs), the collector and packer (records,
+  * compact or dense), the write engine and the status line. docs/afu.md describes it.
+  */
+class Puc(p: PucParams) extends Module {
+  override def desiredName = s"Puc${p.name}"
+  private val lay = p.layout
+  val io = IO(new Bundle {
+    val link    = new LinkIO(p.tagBits)
+    val scpuIn  = Vec(p.scpus, Decoupled(new ScpuIn(p.linkWidth, p.scpuTagBits)))
+    val scpuOut = Vec(p.scpus, Flipped(Decoupled(new ScpuOut(p.linkWidth, p.scpuTagBits))))
+    val busy    = Output(Bool())
+    val dbg     = Output(Vec(8, UInt(32.W))) // for test diagnosis: see the end of this file
+  })
+
+  // ---- CSRs: take effect at once; a run works on the copy taken at its start.
+  val csr = RegInit(VecInit(Seq.tabulate(Csr.count)(i =>
+    (if (i == Csr.MODE && p.denseByDefault) 1 else 0).U(64.W))))
+  val sIdle :: sCheck :: sRun :: sDrain :: sStatus :: sStatusWait :: Nil = Enum(6)
+  val state = RegInit(sIdle)
+  val startReq = io.link.csr.valid && io.link.csr.bits.index === Csr.CTRL.U && io.link.csr.bits.data === Csr.CTRL_START.U
+  when(io.link.csr.valid && io.link.csr.bits.index =/= Csr.CTRL.U && io.link.csr.bits.index < Csr.count.U) {
+    csr(io.link.csr.bits.index) := io.link.csr.bits.data
+  }
+  val run = Reg(Vec(Csr.count, UInt(64.W)))
+  when(state === sIdle && startReq) { run := csr; state := sCheck }
+  val sphereBase = run(Csr.SPHERE_BASE); val numSpheres = run(Csr.NUM_SPHERES)
+  val pairBase = run(Csr.PAIR_BASE); val numPairs64 = run(Csr.NUM_PAIRS)
+  val contactBase = run(Csr.CONTACT_BASE); val capacity = run(Csr.CONTACT_CAPACITY)
+  val statusAddr = run(Csr.STATUS_ADDR); val dense = run(Csr.MODE)(0)
+  val numPairs = numPairs64(lay.pairIndexBits - 1, 0)
+
+  // ---- counters of the status line
+  val errors     = RegInit(0.U(ErrorFlags.width.W))
+  val processed  = RegInit(0.U(32.W))
+  val found      = RegInit(0.U(32.W))
+  val nonFinite  = RegInit(0.U(32.W))
+  val firstBad   = RegInit(StatusLine.NO_BAD_PAIR.U(32.W))
+  val cycTotal   = RegInit(0.U(32.W))
+  val cycLoad    = RegInit(0.U(32.W))
+  val cycCompute = RegInit(0.U(32.W))
+  val cycWaitRd  = RegInit(0.U(32.W))
+  val cycWaitWr  = RegInit(0.U(32.W))
+
+  val engineStart = WireDefault(false.B)
+  when(state === sCheck) {
+    val badConfig = numPairs64 >= lay.maxPairs.U ||
+      (numPairs64 =/= 0.U && pairBase === 0.U) || (numSpheres =/= 0.U && sphereBase === 0.U) ||
+      (capacity =/= 0.U && contactBase === 0.U) || statusAddr === 0.U
+    val tooMany = numSpheres > p.maxSpheres.U
+    errors := Cat(badConfig, 0.U(2.W), tooMany, 0.U(1.W))
+    when(badConfig && statusAddr === 0.U) {
+      state := sIdle // nowhere to report: write nothing at all
+    }.elsewhen(badConfig || tooMany) {
+      state := sStatus
+    }.otherwise {
+      engineStart := true.B; state := sRun
+    }
+  }
+  val running = state === sRun || state === sDrain
+
+  // ---- blocks
+  val rd     = Module(new ReadEngine(p))
+  val ram    = Module(new SphereRam(p))
+  val disp   = Module(new PairDispatcher(p))
+  val groups = Module(new Queue(new GroupInfo(p), p.groupsInFlight) {
+    override def desiredName = s"GroupQueue_d${p.groupsInFlight}${p.name}"
+  })
+  val coll   = Module(new ContactCollector(p))
+  val pack   = Module(new ContactPacker(p))
+  val wr     = Module(new WriteEngine(p))
+
+  rd.io.start       := engineStart
+  rd.io.active      := running
+  rd.io.sphereBase  := sphereBase
+  rd.io.sphereLines := ((numSpheres +& (lay.spheresPerLine - 1).U) >> log2Ceil(lay.spheresPerLine))(p.sphereLineBits, 0)
+  rd.io.pairBase    := pairBase
+  rd.io.pairLines   := ((numPairs +& (lay.pairsPerLine - 1).U) >> log2Ceil(lay.pairsPerLine))(p.pairLineBits, 0)
+  io.link.rdReq <> rd.io.rdReq
+  rd.io.rdResp := io.link.rdResp
+  ram.io.write := rd.io.sphereWrite
+
+  val loaded = rd.io.loaded && running
+  disp.io.go         := loaded
+  disp.io.numPairs   := numPairs
+  disp.io.numSpheres := numSpheres(16, 0)
+  disp.io.pairs <> rd.io.pairs
+  ram.io.raddr := disp.io.raddr
+  ram.io.ren   := disp.io.ren
+  disp.io.rdata := ram.io.rdata
+  io.scpuIn <> disp.io.scpu
+  groups.io.enq <> disp.io.groups
+
+  coll.io.dense := dense
+  coll.io.groups <> groups.io.deq
+  coll.io.scpu <> io.scpuOut
+  coll.io.room := pack.io.room
+
+  pack.io.start    := engineStart
+  pack.io.dense    := dense
+  pack.io.numPairs := numPairs
+  pack.io.base     := contactBase
+  pack.io.capacity := capacity
+  pack.io.recs     := coll.io.recs
+  pack.io.nRecs    := coll.io.nRecs
+  pack.io.flush    := state === sDrain
+  wr.io.lines <> pack.io.lines
+  wr.io.wrResp := io.link.wrResp
+  io.link.wrReq <> wr.io.wrReq
+
+  // ---- first pair with an out-of-range index: the lowest such pair index seen
+  when(groups.io.enq.fire && groups.io.enq.bits.invalid.orR) {
+    val idx = groups.io.enq.bits.first + PriorityEncoder(groups.io.enq.bits.invalid)
+    when(idx < firstBad) { firstBad := idx }
+  }
+
+  // ---- counting
+  processed := processed + coll.io.nPairs
+  found     := found + coll.io.nHits
+  nonFinite := nonFinite + coll.io.nNonFinite
+  when(running) {
+    cycTotal := cycTotal + 1.U
+    when(!loaded) { cycLoad := cycLoad + 1.U }
+    when(disp.io.fired) { cycCompute := cycCompute + 1.U }
+    when(!disp.io.fired && rd.io.outstanding =/= 0.U && (!loaded || (disp.io.idle && rd.io.pairBufferEmpty))) {
+      cycWaitRd := cycWaitRd + 1.U
+    }
+    when(wr.io.blocked || (state === sDrain && wr.io.outstanding =/= 0.U)) { cycWaitWr := cycWaitWr + 1.U }
+  }
+
+  when(state === sCheck) { // a new run: after the counting above, so these win
+    processed := 0.U; found := 0.U; nonFinite := 0.U; firstBad := StatusLine.NO_BAD_PAIR.U
+    cycTotal := 1.U; cycLoad := 0.U; cycCompute := 0.U; cycWaitRd := 0.U; cycWaitWr := 0.U
+  }
+
+  when(state === sRun && processed === numPairs && rd.io.outstanding === 0.U && rd.io.loaded) { state := sDrain }
+  when(state === sDrain && pack.io.idle && !wr.io.lines.valid && wr.io.outstanding === 0.U) { state := sStatus }
+
+  // ---- the status line
+  val totalRecords = Mux(dense, numPairs.pad(64), found.pad(64))
+  val written      = Mux(totalRecords > capacity, capacity, totalRecords)(31, 0)
+  val capErr       = totalRecords > capacity && !errors(1) && !errors(4)
+  val errFlags     = errors | Cat(0.U(1.W), nonFinite =/= 0.U, capErr, 0.U(1.W), firstBad =/= StatusLine.NO_BAD_PAIR.U)
+  val words = WireInit(VecInit(Seq.fill(16)(0.U(32.W))))
+  words(StatusLine.DONE / 4)            := 1.U
+  words(StatusLine.ERROR_FLAGS / 4)     := errFlags
+  words(StatusLine.PAIRS_PROCESSED / 4) := processed
+  words(StatusLine.CONTACTS_FOUND / 4)  := found
+  words(StatusLine.RECORDS_WRITTEN / 4) := Mux(errors(1) || errors(4), 0.U, written)
+  words(StatusLine.NONFINITE_PAIRS / 4) := nonFinite
+  words(StatusLine.FIRST_BAD_PAIR / 4)  := firstBad
+  words(StatusLine.CYCLES_TOTAL / 4)    := cycTotal
+  words(StatusLine.CYCLES_LOAD / 4)     := cycLoad
+  words(StatusLine.CYCLES_COMPUTE / 4)  := cycCompute
+  words(StatusLine.CYCLES_WAIT_RD / 4)  := cycWaitRd
+  words(StatusLine.CYCLES_WAIT_WR / 4)  := cycWaitWr
+  wr.io.status.valid     := state === sStatus
+  wr.io.status.bits.addr := statusAddr
+  wr.io.status.bits.data := words.asUInt
+  when(wr.io.status.fire) { state := sStatusWait }
+  when(state === sStatus && !wr.io.status.fire) { cycTotal := cycTotal + 1.U }
+  when(state === sStatusWait && wr.io.outstanding === 0.U) { state := sIdle }
+  io.busy := state =/= sIdle
+  io.dbg := VecInit(Seq(state.asUInt.pad(32), processed, rd.io.outstanding.pad(32), Cat(loaded, disp.io.idle, rd.io.pairBufferEmpty, pack.io.idle, wr.io.lines.valid),
+    rd.io.dbg, wr.io.outstanding.pad(32), found, numPairs.pad(32)))
+}

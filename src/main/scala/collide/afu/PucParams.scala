@@ -1,0 +1,75 @@
+package collide.afu
+
+/** How the on-chip sphere table gives each SCPU its two sphere reads a cycle. */
+sealed trait SphereRamPorts { def name: String }
+object SphereRamPorts {
+  /** One copy of the table per SCPU, each with one write port (loading) and two read ports
+    * (spheres i and j). Loading and computing never touch the table at the same time, so a
+    * true-dual-port block RAM (e.g. Stratix V M20K) implements each copy. */
+  case object Replicated extends SphereRamPorts { val name = "rep" }
+
+  def parse(s: String): Either[String, SphereRamPorts] = s.trim.toLowerCase match {
+    case "rep" | "replicated" => Right(Replicated)
+    case other => Left(s"sphere RAM ports '$other': expected 'replicated' (banked tables are not implemented)")
+  }
+}
+
+/** What the PUC (everything of the AFU but the SCPUs) needs to know. Derived from AfuConfig;
+  * kept apart so the memory side does not depend on the floating-point configuration.
+  *
+  * @param scpus        SCPUs to feed (1..64)
+  * @param linkWidth    32 (IEEE binary32 on the link) or 64 (binary64)
+  * @param scpuTagBits  the SCPU's tag width (carries the pair index: at least 24)
+  * @param scpuLatency  the SCPU's pipeline latency (sizes the in-flight bookkeeping)
+  * @param maxSpheres   on-chip sphere table entries
+  * @param maxReads     read requests in flight at most
+  * @param maxWrites    write requests in flight at most
+  * @param tagBits      link tag width
+  * @param ramPorts     sphere table read-port strategy
+  * @param denseByDefault reset value of MODE bit 0
+  * @param name         suffix of every module name, so two configurations never collide
+  */
+final case class PucParams(
+    scpus: Int,
+    linkWidth: Int,
+    scpuTagBits: Int,
+    scpuLatency: Int,
+    maxSpheres: Int,
+    maxReads: Int,
+    maxWrites: Int,
+    tagBits: Int,
+    ramPorts: SphereRamPorts = SphereRamPorts.Replicated,
+    denseByDefault: Boolean = false,
+    name: String = "") {
+  require(scpus >= 1 && scpus <= 64, s"scpus must be 1..64, got $scpus")
+  require(linkWidth == 32 || linkWidth == 64, s"linkWidth must be 32 or 64, got $linkWidth")
+  require(scpuTagBits >= 24, s"scpuTagBits must be >= 24 (it carries the pair index), got $scpuTagBits")
+  require(scpuLatency >= 0, s"scpuLatency must be >= 0, got $scpuLatency")
+  require(maxReads >= 2 && maxReads <= (1 << tagBits), s"maxReads must be 2..2^tagBits (${1 << tagBits}), got $maxReads")
+  require(maxWrites >= 2 && maxWrites <= (1 << tagBits), s"maxWrites must be 2..2^tagBits (${1 << tagBits}), got $maxWrites")
+  val layout: BufferLayout = BufferLayout(linkWidth)
+  require(maxSpheres >= 64 && maxSpheres % layout.spheresPerLine == 0 && maxSpheres <= 65536,
+    s"maxSpheres must be a multiple of ${layout.spheresPerLine} (spheres a line) in 64..65536, got $maxSpheres")
+
+  /** Pairs dispatched per cycle at most: a group never spans two pair lines. */
+  val lanes: Int = math.min(scpus, layout.pairsPerLine)
+  /** Pair lines buffered on chip: one slot reserved for every pair read in flight. */
+  val pairBufferLines: Int = maxReads
+  /** Entries of each SCPU's input queue (covers the sphere RAM's read latency at full rate). */
+  val scpuQueueDepth: Int = 3
+  /** Dispatched groups whose results are not yet collected, at most. */
+  val groupsInFlight: Int = {
+    val perScpu = scpuLatency + scpuQueueDepth + 2
+    val g = perScpu * ((scpus + lanes - 1) / lanes) + 4
+    1 << chisel3.util.log2Ceil(g)
+  }
+  /** Contact lines buffered between the packer and the write channel. */
+  val writeQueueLines: Int = 8
+  val sphereLineBits: Int = chisel3.util.log2Ceil(maxSpheres / layout.spheresPerLine)
+  val pairLineBits: Int = layout.pairIndexBits - chisel3.util.log2Ceil(layout.pairsPerLine)
+  val ramCopies: Int = ramPorts match { case SphereRamPorts.Replicated => scpus }
+  /** Sphere table bits on chip, all copies. */
+  val ramBitsPerCopy: Long = maxSpheres.toLong * 4 * linkWidth
+  val ramBits: Long = ramBitsPerCopy * ramCopies
+  val pairBufferBits: Long = pairBufferLines.toLong * (Link.lineBits + pairLineBits)
+}

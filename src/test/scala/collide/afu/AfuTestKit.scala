@@ -1,0 +1,163 @@
+package collide.afu
+
+import chisel3._
+import chiseltest._
+
+/** One contact record, decoded: seven link words (px, py, pz, nx, ny, nz, depth), the pair
+  * index and the record flags. */
+final case class AfuRecord(fields: Seq[BigInt], pair: Int, flags: Int) {
+  def hit: Boolean = (flags & 1) != 0
+  override def toString: String =
+    f"rec(pair=$pair flags=0x$flags%02x ${fields.map(f => f"0x$f%x").mkString(",")})"
+}
+object AfuRecord {
+  def invalid(pair: Int) = AfuRecord(Seq.fill(7)(BigInt(0)), pair, 3 << 1)
+  def word(line: BigInt, bit: Int, w: Int): BigInt = (line >> bit) & ((BigInt(1) << w) - 1)
+  def decode(line: BigInt, slot: Int, w: Int): AfuRecord = {
+    val lay = BufferLayout(w)
+    val b = slot * lay.recordBytes * 8
+    val fields = (0 until 7).map(i => word(line, b + i * w, w))
+    AfuRecord(fields, word(line, b + lay.pairIndexBit, 24).toInt, word(line, b + lay.flagsBit, 8).toInt)
+  }
+  def isZero(line: BigInt, slot: Int, w: Int): Boolean =
+    word(line, slot * BufferLayout(w).recordBytes * 8, BufferLayout(w).recordBytes * 8) == 0
+}
+
+/** A run's input: spheres as link words (x, y, z, r), pairs of indices, the mode and the
+  * contact buffer's capacity (None: room for every record). */
+final case class World(w: Int, spheres: IndexedSeq[Seq[BigInt]], pairs: IndexedSeq[(Int, Int)],
+                       dense: Boolean, capacity: Option[Long] = None, numSpheres: Option[Long] = None) {
+  def nSpheres: Long = numSpheres.getOrElse(spheres.size.toLong)
+  def bad(k: Int): Boolean = pairs(k)._1 >= nSpheres || pairs(k)._2 >= nSpheres
+}
+
+/** The status line, decoded. */
+final case class Status(words: IndexedSeq[Long]) {
+  private def f(off: Int) = words(off / 4)
+  def done = f(StatusLine.DONE); def errors = f(StatusLine.ERROR_FLAGS)
+  def processed = f(StatusLine.PAIRS_PROCESSED); def found = f(StatusLine.CONTACTS_FOUND)
+  def written = f(StatusLine.RECORDS_WRITTEN); def nonFinite = f(StatusLine.NONFINITE_PAIRS)
+  def firstBad = f(StatusLine.FIRST_BAD_PAIR); def cycles = f(StatusLine.CYCLES_TOTAL)
+  def cycLoad = f(StatusLine.CYCLES_LOAD); def cycCompute = f(StatusLine.CYCLES_COMPUTE)
+  def cycWaitRd = f(StatusLine.CYCLES_WAIT_RD); def cycWaitWr = f(StatusLine.CYCLES_WAIT_WR)
+  override def toString = s"Status(done=$done err=0x${errors.toHexString} processed=$processed found=$found " +
+    s"written=$written nonFinite=$nonFinite firstBad=$firstBad cycles=$cycles load=$cycLoad compute=$cycCompute " +
+    s"waitRd=$cycWaitRd waitWr=$cycWaitWr)"
+}
+object Status {
+  def apply(line: BigInt): Status = Status((0 until 16).map(i => ((line >> (32 * i)) & 0xFFFFFFFFL).toLong))
+}
+
+final case class RunResult(status: Option[Status], writes: Seq[WriteEvent], cycles: Long,
+                           contactBase: BigInt, statusAddr: BigInt)
+
+/** Puts a world into host memory, programs the CSRs, starts the AFU and runs the link until
+  * the status line is written and every response has returned. */
+object AfuRun {
+  val sphereBase  = BigInt(0x1000)
+  val pairBase    = BigInt(0x20000)
+  val contactBase = BigInt(0x80000)
+  val statusAddr  = BigInt(0x7fff0)
+
+  def run(mem: HostMemoryModel, world: World, maxCycles: Long = -1,
+          csrOverride: Map[Int, BigInt] = Map.empty): RunResult = {
+    val w = world.w; val lay = BufferLayout(w)
+    // sphere table lines
+    world.spheres.grouped(lay.spheresPerLine).zipWithIndex.foreach { case (group, l) =>
+      val line = group.zipWithIndex.map { case (s, k) =>
+        s.zipWithIndex.map { case (v, c) => v << (k * 4 * w + c * w) }.sum
+      }.sum
+      mem.mem(sphereBase + l) = line
+    }
+    world.pairs.grouped(lay.pairsPerLine).zipWithIndex.foreach { case (group, l) =>
+      mem.mem(pairBase + l) = group.zipWithIndex.map { case ((i, j), k) =>
+        (BigInt(i & 0xffff) << (32 * k)) | (BigInt(j & 0xffff) << (32 * k + 16)) }.sum
+    }
+    val cap = world.capacity.getOrElse(world.pairs.size.toLong + 3)
+    val csrs = Map[Int, BigInt](Csr.SPHERE_BASE -> sphereBase, Csr.NUM_SPHERES -> world.nSpheres,
+      Csr.PAIR_BASE -> pairBase, Csr.NUM_PAIRS -> world.pairs.size, Csr.CONTACT_BASE -> contactBase,
+      Csr.CONTACT_CAPACITY -> cap, Csr.STATUS_ADDR -> statusAddr, Csr.MODE -> (if (world.dense) 1 else 0)) ++ csrOverride
+    csrs.toSeq.sortBy(_._1).foreach { case (i, v) => mem.writeCsr(i, v) }
+    val first = mem.writes.size
+    val startCycle = mem.cycle
+    mem.writeCsr(Csr.CTRL, Csr.CTRL_START)
+    val sa = csrs(Csr.STATUS_ADDR)
+    val limit = if (maxCycles > 0) maxCycles else 20000L + 400L * world.pairs.size
+    var seen = false; var extra = 0
+    while (!(seen && mem.idleLink() && extra > 8) && mem.cycle - startCycle < limit) {
+      mem.step()
+      if (!seen) seen = mem.writes.drop(first).exists(_.addr == sa) else extra += 1
+    }
+    val ws = mem.writes.drop(first).toSeq
+    RunResult(ws.find(_.addr == sa).map(e => Status(e.data)), ws, mem.cycle - startCycle, csrs(Csr.CONTACT_BASE), sa)
+  }
+
+  /** Checks one run against the expected record of every pair; returns failures (empty = ok). */
+  def check(world: World, expect: Int => AfuRecord, r: RunResult, expectErrors: Long = -1): Seq[String] = {
+    val w = world.w; val lay = BufferLayout(w); val R = lay.recordsPerLine
+    val errs = scala.collection.mutable.ArrayBuffer[String]()
+    def fail(s: String) = errs += s
+    val n = world.pairs.size
+    val exp = (0 until n).map(k => if (world.bad(k)) AfuRecord.invalid(k) else expect(k))
+    val hits = exp.filter(_.hit)
+    val cap = world.capacity.getOrElse(n.toLong + 3)
+    r.status match {
+      case None => fail(s"no status line written in ${r.cycles} cycles"); return errs.toSeq
+      case Some(st) =>
+        val statusWrites = r.writes.filter(_.addr == r.statusAddr)
+        if (statusWrites.size != 1) fail(s"status line written ${statusWrites.size} times")
+        val sw = statusWrites.head
+        if (r.writes.last != sw) fail("status line is not the last write")
+        val before = r.writes.indexOf(sw)
+        if (sw.respondedBefore < before) fail(s"status written with ${before - sw.respondedBefore} contact writes unacknowledged")
+        val contactLines = lay.contactLines(cap)
+        for (e <- r.writes if e.addr != r.statusAddr)
+          if (e.addr < r.contactBase || e.addr >= r.contactBase + contactLines)
+            fail(s"write outside the buffers: line 0x${e.addr.toString(16)}")
+        val lines = r.writes.filter(_.addr != r.statusAddr)
+        if (lines.map(_.addr).distinct.size != lines.size) fail("a contact line written twice")
+        val total = if (world.dense) n.toLong else hits.size.toLong
+        val written = math.min(total, cap)
+        val nonFin = exp.count(e => (e.flags & RecordFlags.NONFINITE) != 0)
+        val firstBad = (0 until n).find(world.bad).map(_.toLong).getOrElse(StatusLine.NO_BAD_PAIR)
+        val expErr = if (expectErrors >= 0) expectErrors else
+          (if (firstBad != StatusLine.NO_BAD_PAIR) ErrorFlags.INDEX_RANGE else 0) |
+          (if (total > cap) ErrorFlags.CAPACITY else 0) | (if (nonFin > 0) ErrorFlags.NONFINITE else 0)
+        if (st.done != 1) fail(s"done = ${st.done}")
+        if (st.errors != expErr) fail(s"error flags 0x${st.errors.toHexString}, expected 0x${expErr.toHexString}")
+        if ((expErr & (ErrorFlags.BAD_CONFIG | ErrorFlags.TOO_MANY_SPHERES)) != 0) {
+          if (lines.nonEmpty) fail(s"${lines.size} contact lines written despite error 0x${expErr.toHexString}")
+          if (st.processed != 0 || st.written != 0) fail(s"counters not zero: $st")
+          return errs.toSeq
+        }
+        if (st.processed != n) fail(s"pairs processed ${st.processed}, expected $n")
+        if (st.found != hits.size) fail(s"contacts found ${st.found}, expected ${hits.size}")
+        if (st.written != written) fail(s"records written ${st.written}, expected $written")
+        if (st.nonFinite != nonFin) fail(s"non-finite pairs ${st.nonFinite}, expected $nonFin")
+        if (st.firstBad != firstBad) fail(s"first bad pair ${st.firstBad}, expected $firstBad")
+        if (lines.size != lay.contactLines(written)) fail(s"${lines.size} contact lines written, expected ${lay.contactLines(written)}")
+        val byAddr = lines.map(e => e.addr -> e.data).toMap
+        val recs = (0L until written).map { rn =>
+          val line = byAddr.getOrElse(r.contactBase + rn / R, BigInt(0))
+          AfuRecord.decode(line, (rn % R).toInt, w)
+        }
+        // the unused record of a final half line is zero
+        if (R == 2 && written % 2 == 1) {
+          val line = byAddr.getOrElse(r.contactBase + written / 2, BigInt(0))
+          if (!AfuRecord.isZero(line, 1, w)) fail("the unused half of the last line is not zero")
+        }
+        if (world.dense) {
+          for (k <- 0 until written.toInt if recs(k) != exp(k))
+            if (errs.size < 20) fail(s"dense record $k: got ${recs(k)}, expected ${exp(k)}")
+        } else {
+          val pairsSeen = recs.map(_.pair)
+          if (pairsSeen.distinct.size != pairsSeen.size) fail("a pair has two records")
+          for (rec <- recs) {
+            if (rec.pair >= n || exp(rec.pair) != rec) { if (errs.size < 20) fail(s"compact record $rec, expected ${if (rec.pair < n) exp(rec.pair) else "none"}") }
+          }
+          if (written == hits.size && pairsSeen.toSet != hits.map(_.pair).toSet) fail("the set of hit pairs differs")
+        }
+    }
+    errs.toSeq
+  }
+}

@@ -1,0 +1,125 @@
+package collide.afu
+
+import chisel3._
+import chiseltest._
+import org.scalatest.flatspec.AnyFlatSpec
+import collide.testutil.Seeds
+
+/** The PUC with stand-in compute units (StubScpu): ordering, accounting, errors and link
+  * rules over many seeded worlds, on hostile and ideal links. */
+class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
+  behavior of "Puc"
+
+  def params(n: Int, w: Int, maxSpheres: Int = 256, reads: Int = 16, writes: Int = 8) =
+    PucParams(scpus = n, linkWidth = w, scpuTagBits = 24, scpuLatency = 3, maxSpheres = maxSpheres,
+      maxReads = reads, maxWrites = writes, tagBits = 6, name = s"_t$n")
+
+  def randomWorld(rnd: scala.util.Random, w: Int, maxSpheres: Int, dense: Boolean, bad: Boolean): World = {
+    val ns = 1 + rnd.nextInt(maxSpheres)
+    val spheres = (0 until ns).map { _ =>
+      Seq.fill(4)(BigInt(w, rnd.self)).updated(3, if (rnd.nextInt(20) == 0) BigInt(0xff) << (w - 9) else BigInt(w, rnd.self))
+    }
+    val np = rnd.nextInt(4) match { case 0 => rnd.nextInt(5); case 1 => 1 + rnd.nextInt(40); case _ => 16 * (1 + rnd.nextInt(12)) + rnd.nextInt(3) }
+    val pairs = (0 until np).map { _ =>
+      def idx = if (bad && rnd.nextInt(25) == 0) ns + rnd.nextInt(70000 - ns) min 65535 else rnd.nextInt(ns)
+      (idx, idx)
+    }
+    World(w, spheres, pairs, dense)
+  }
+  def stubExpect(world: World)(k: Int): AfuRecord =
+    StubScpu.model(world.w, world.spheres(world.pairs(k)._1), world.spheres(world.pairs(k)._2), k)
+
+  def soak(n: Int, w: Int, worlds: Int, beh: Seq[LinkBehaviour], anno: Seq[firrtl2.annotations.Annotation] = Seq()): Unit = {
+    val p = params(n, w)
+    val rnd = Seeds.rng(s"PucSpec-n$n-w$w")
+    test(new PucHarness(p, 3)).withAnnotations(anno) { dut =>
+      dut.clock.setTimeout(0)
+      for (i <- 0 until worlds) {
+        val b = beh(i % beh.size)
+        val mem = new HostMemoryModel(dut.io, dut.clock, b, rnd.nextLong(), p.maxReads, p.maxWrites)
+        val world = randomWorld(rnd, w, p.maxSpheres, dense = rnd.nextBoolean(), bad = rnd.nextInt(3) == 0)
+        val cap = if (rnd.nextInt(5) == 0) Some(rnd.nextInt(world.pairs.size + 2).toLong) else None
+        val wc = world.copy(capacity = cap)
+        val r = AfuRun.run(mem, wc)
+        val errs = AfuRun.check(wc, stubExpect(wc), r)
+        if (errs.nonEmpty) println(s"dbg: ${dut.dbg.map(_.peek().litValue)} pairs ${wc.pairs}")
+        assert(errs.isEmpty, s"world $i (${b.name}, ${wc.pairs.size} pairs, ${wc.spheres.size} spheres, dense=${wc.dense}, cap=$cap): " +
+          errs.mkString("; ") + s"\n${r.status}")
+      }
+    }
+  }
+
+  val verilator = Seq(chiseltest.simulator.VerilatorBackendAnnotation, chiseltest.simulator.VerilatorCFlags(Seq("-O1")))
+  it should "account for every pair with one SCPU on a hostile link (binary32)" in {
+    soak(1, 32, Seeds.cases(12), Seq(LinkBehaviour.ideal, LinkBehaviour.hostile), verilator)
+  }
+  it should "account for every pair with three SCPUs (groups not dividing a line), binary64 link" in {
+    soak(3, 64, Seeds.cases(12), Seq(LinkBehaviour.hostile, LinkBehaviour.ideal), verilator)
+  }
+
+  it should "flag and contain every kind of bad input (index range, table size, capacity, non-finite, configuration)" in {
+    val p = params(4, 32)
+    val rnd = Seeds.rng("PucSpec-errors")
+    test(new PucHarness(p, 3)).withAnnotations(verilator) { dut =>
+      dut.clock.setTimeout(0)
+      def mem() = new HostMemoryModel(dut.io, dut.clock, LinkBehaviour.hostile, rnd.nextLong(), p.maxReads, p.maxWrites)
+      val spheres = (0 until 40).map(_ => Seq.fill(4)(BigInt(32, rnd.self)))
+      val pairs = (0 until 37).map(_ => (rnd.nextInt(40), rnd.nextInt(40)))
+      val base = World(32, spheres, pairs, dense = false)
+      def go(w: World, expectErr: Long = -1, csr: Map[Int, BigInt] = Map.empty): RunResult = {
+        val r = AfuRun.run(mem(), w, csrOverride = csr)
+        val errs = AfuRun.check(w, stubExpect(w), r, expectErr)
+        assert(errs.isEmpty, s"$w: ${errs.mkString("; ")}\n${r.status}")
+        r
+      }
+      // out-of-range indices: no contact, kind 3 in dense mode, the lowest bad pair reported
+      val bad = base.copy(pairs = pairs.updated(20, (40, 3)).updated(9, (2, 65535)).updated(30, (1000, 1000)))
+      for (d <- Seq(false, true)) {
+        val r = go(bad.copy(dense = d))
+        assert(r.status.get.firstBad == 9 && (r.status.get.errors & ErrorFlags.INDEX_RANGE) != 0)
+      }
+      // NUM_SPHERES above the table: nothing computed, nothing written but the status line
+      val big = go(base.copy(numSpheres = Some(p.maxSpheres + 1L)), ErrorFlags.TOO_MANY_SPHERES)
+      assert(big.writes.size == 1)
+      // a contact buffer too small: records stop at the capacity, found counts them all
+      for (d <- Seq(false, true); cap <- Seq(0L, 1L, 2L, 7L)) go(base.copy(dense = d, capacity = Some(cap)))
+      // non-finite inputs (the stub reads r1 with an all-ones exponent as non-finite): counted
+      val nf = base.copy(spheres = spheres.updated(5, spheres(5).updated(3, BigInt(0x7f800000L))), pairs = pairs.updated(0, (5, 6)))
+      assert(go(nf).status.get.nonFinite >= 1)
+      // bad configuration: status only, error bit 4
+      go(base, ErrorFlags.BAD_CONFIG, Map(Csr.PAIR_BASE -> 0))
+      go(base, ErrorFlags.BAD_CONFIG, Map(Csr.NUM_PAIRS -> (BigInt(1) << 24)))
+      go(base, ErrorFlags.BAD_CONFIG, Map(Csr.CONTACT_BASE -> 0))
+      // no status address: nothing can be reported, nothing is written, the next run works
+      val silent = AfuRun.run(mem(), base, maxCycles = 300, csrOverride = Map(Csr.STATUS_ADDR -> 0))
+      assert(silent.writes.isEmpty && silent.status.isEmpty)
+      go(base.copy(dense = true))
+    }
+  }
+
+  def rate(n: Int): Unit = {
+    {
+      val p = params(n, 32, reads = 64, writes = 64)
+      val rnd = Seeds.rng(s"PucSpec-rate-$n")
+      test(new PucHarness(p, 3)).withAnnotations(verilator) { dut =>
+        dut.clock.setTimeout(0)
+        val spheres = (0 until 256).map(_ => Seq.fill(4)(BigInt(32, rnd.self)))
+        for (dense <- Seq(false, true)) {
+          val w = World(32, spheres, (0 until 16 * 120).map(_ => (rnd.nextInt(256), rnd.nextInt(256))), dense)
+          val r = AfuRun.run(new HostMemoryModel(dut.io, dut.clock, LinkBehaviour.ideal, rnd.nextLong(), 64, 64), w)
+          val errs = AfuRun.check(w, stubExpect(w), r)
+          assert(errs.isEmpty, errs.mkString("; "))
+          val st = r.status.get
+          println(s"[PucSpec] n=$n dense=$dense: ${w.pairs.size} pairs in ${st.cycles} cycles, compute ${st.cycCompute}; $st")
+          // a group (a whole line) a cycle: 120 compute cycles. Compact: the stub hits ~30% (~5 hits a
+          // line, ~2.5 record lines a pair line), so writes bound the run; dense: 8 record lines a pair line.
+          assert(st.cycCompute == 120, s"not a line a cycle: $st")
+          if (!dense) assert(st.cycles < 120 * 4 + 200, s"too slow: $st")
+        }
+      }
+    }
+  }
+
+  it should "dispatch a line a cycle with sixteen SCPUs on an ideal link" in { rate(16) }
+  it should "spread the work over all of 20 SCPUs" taggedAs (collide.testutil.Slow) in { rate(20) }
+}
