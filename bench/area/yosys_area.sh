@@ -7,10 +7,11 @@ set -euo pipefail
 sv="$1"; top="$2"; log="${3:-/dev/null}"
 yosys -q -l "$log" -p "read_verilog -sv $sv; synth_intel_alm -family cyclonev -top $top; stat" >/dev/null 2>&1 || {
   echo "yosys failed on $sv (top $top); see $log" >&2; exit 1; }
+# synth prints its own statistics before ours: keep only the last block.
 awk -v top="$top" '
-  /Number of cells:/ { cells = $4 }
+  /Number of cells:/ { cells = $4; alut = 0; arith = 0; dsp = 0; ff = 0; m10k = 0 }
+  /MISTRAL_ALUT_ARITH/ { arith += $2; next }
   /MISTRAL_ALUT[0-9A-Z_]*/ { alut += $2 }
-  /MISTRAL_ALUT_ARITH/ { arith += $2 }
   /MISTRAL_MUL[0-9X]*/ { dsp += $2 }
   /MISTRAL_FF/ { ff += $2 }
   /MISTRAL_M10K/ { m10k += $2 }
