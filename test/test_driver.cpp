@@ -185,3 +185,26 @@ TEST(Driver, EmptyBatchAndModelledTime) {
   EXPECT_GT(q2.result.stats.modelledNs, 5000.0 + 3 * 200.0);
   EXPECT_GT(q2.result.stats.statusCycle, 5 * i2.result.stats.statusCycle);
 }
+
+TEST(Driver, TheLinkBoundCountsTheLinesMovedAndNeverExceedsTheModelledTime) {
+  SphereTable t;
+  PairList p;
+  randomBatch(test::testSeed(97), 300, 2000, t, p);
+  for (const auto& lp : {link::LinkParams::qpi(), link::LinkParams::ideal()}) {
+    const auto r = drive(ModelAfuConfig{}, lp, DriverOptions{}, t, p);
+    const auto& s = r.result.stats;
+    // binary32: 4 spheres and 16 pairs a read line; 2 records a contact line, plus the status line
+    EXPECT_EQ(s.readLines, (300 + 3) / 4 + (2000 + 15) / 16) << lp.name;
+    EXPECT_EQ(s.writeLines, (r.result.status.recordsWritten + 1) / 2 + 1) << lp.name;
+    EXPECT_DOUBLE_EQ(s.linkBoundNs, linkBoundNs(lp, s.readLines, s.writeLines));
+    EXPECT_GT(s.linkBoundNs, 0.0);
+    EXPECT_LE(s.linkBoundNs, s.modelledNs) << lp.name << ": the bound is above the modelled run";
+  }
+  // The formula itself: QPI writes at 5 GB/s are 12.8 ns a line; reads at 7 GB/s 9.14 ns.
+  const auto q = link::LinkParams::qpi();
+  const double fixed = q.transactionOverheadNs + q.csrWriteNs + q.pollNs + q.readLatencyMinNs + q.writeLatencyMinNs;
+  EXPECT_DOUBLE_EQ(linkBoundNs(q, 10, 100), fixed + 100 * 12.8);
+  EXPECT_DOUBLE_EQ(linkBoundNs(q, 1000, 100), fixed + 1000 * 64.0 / 7.0);
+  // Ideal: one line a cycle each way, no per-call costs but a CSR and two 1-cycle trips.
+  EXPECT_DOUBLE_EQ(linkBoundNs(link::LinkParams::ideal(), 7, 30), 3 * 5.0 + 30 * 5.0);
+}

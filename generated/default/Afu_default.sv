@@ -17825,11 +17825,15 @@ module Puc_default(
                  io_scpuOut_15_bits_depth,
   input          io_scpuOut_15_bits_nonFinite,
   input  [4:0]   io_scpuOut_15_bits_flags,
-  input  [23:0]  io_scpuOut_15_bits_tag
+  input  [23:0]  io_scpuOut_15_bits_tag,
+  output         io_busy,
+                 io_idle,
+  input  [31:0]  io_skipCycles
 );
 
   wire         _wr_io_lines_ready;
   wire         _wr_io_status_ready;
+  wire         _wr_io_wrReq_valid;
   wire [6:0]   _wr_io_outstanding;
   wire         _wr_io_blocked;
   wire [1:0]   _pack_io_room;
@@ -18049,6 +18053,7 @@ module Puc_default(
   wire [31:0]  _ram_io_rdata_15_1_y;
   wire [31:0]  _ram_io_rdata_15_1_z;
   wire [31:0]  _ram_io_rdata_15_1_r;
+  wire         _rd_io_rdReq_valid;
   wire         _rd_io_sphereWrite_valid;
   wire [7:0]   _rd_io_sphereWrite_bits_line;
   wire [511:0] _rd_io_sphereWrite_bits_data;
@@ -18100,9 +18105,34 @@ module Puc_default(
   wire [10:0]  _rd_io_sphereLines_T = run_2[10:0] + 11'h3;
   wire [24:0]  _rd_io_pairLines_T = {1'h0, run_4[23:0]} + 25'hF;
   wire         loaded = _rd_io_loaded & running;
+  reg  [24:0]  pairsInFlight;
+  wire         runDone =
+    processed == {8'h0, run_4[23:0]} & ~(|_rd_io_outstanding) & _rd_io_loaded;
+  wire         drainDone = _pack_io_idle & ~_pack_io_lines_valid & ~(|_wr_io_outstanding);
   wire [63:0]  totalRecords = run_8[0] ? {40'h0, run_4[23:0]} : {32'h0, found};
   wire         _capErr_T = totalRecords > run_6;
   wire         _wr_io_status_valid_T = state == 3'h4;
+  wire         quietRun =
+    ~_disp_io_fired & ~(_disp_io_pairs_ready & _rd_io_pairs_valid)
+    & pairsInFlight == 25'h0;
+  wire         io_idle_0 =
+    ~_rd_io_rdReq_valid & ~_wr_io_wrReq_valid
+    & (state == 3'h5
+         ? (|_wr_io_outstanding)
+         : state == 3'h4
+           | (state == 3'h3
+                ? quietRun & _pack_io_idle & ~drainDone
+                : state == 3'h2 ? quietRun & ~runDone : ~(|state)));
+  `ifndef SYNTHESIS
+    always @(posedge clock) begin
+      if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:200 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+    end // always @(posedge)
+  `endif // not def SYNTHESIS
   wire [31:0]  _GEN_2 =
     {8'h0,
      _disp_io_groups_bits_first
@@ -18139,9 +18169,10 @@ module Puc_default(
                                                                    ~(_disp_io_groups_bits_invalid[14])}}};
   wire         _GEN_3 =
     io_link_csr_valid & (|io_link_csr_bits_index) & io_link_csr_bits_index < 8'h9;
+  wire [31:0]  tick = (|io_skipCycles) ? io_skipCycles : 32'h1;
   wire         _GEN_4 = _wr_io_status_ready & _wr_io_status_valid_T;
   wire         _GEN_5 =
-    state == 3'h0 & io_link_csr_valid & ~(|io_link_csr_bits_index)
+    ~(|state) & io_link_csr_valid & ~(|io_link_csr_bits_index)
     & io_link_csr_bits_data == 64'h1;
   always @(posedge clock) begin
     if (reset) begin
@@ -18164,6 +18195,7 @@ module Puc_default(
       cycCompute <= 32'h0;
       cycWaitRd <= 32'h0;
       cycWaitWr <= 32'h0;
+      pairsInFlight <= 25'h0;
     end
     else begin
       if (_GEN_3 & io_link_csr_bits_index[3:0] == 4'h1)
@@ -18186,11 +18218,9 @@ module Puc_default(
         state <= 3'h0;
       else if (_GEN_4)
         state <= 3'h5;
-      else if (_pack_io_flush_T & _pack_io_idle & ~_pack_io_lines_valid
-               & ~(|_wr_io_outstanding))
+      else if (_pack_io_flush_T & drainDone)
         state <= 3'h4;
-      else if (_running_T & processed == {8'h0, run_4[23:0]} & ~(|_rd_io_outstanding)
-               & _rd_io_loaded)
+      else if (_running_T & runDone)
         state <= 3'h3;
       else if (_GEN)
         state <= _GEN_0 ? 3'h0 : _GEN_1 ? 3'h4 : 3'h2;
@@ -18215,21 +18245,24 @@ module Puc_default(
             & _GEN_2 < firstBad)
           firstBad <= _GEN_2;
         if (running & ~loaded)
-          cycLoad <= cycLoad + 32'h1;
+          cycLoad <= cycLoad + tick;
         if (running & _disp_io_fired)
           cycCompute <= cycCompute + 32'h1;
         if (running & ~_disp_io_fired & (|_rd_io_outstanding)
             & (~loaded | _disp_io_idle & _rd_io_pairBufferEmpty))
-          cycWaitRd <= cycWaitRd + 32'h1;
+          cycWaitRd <= cycWaitRd + tick;
         if (running & (_wr_io_blocked | _pack_io_flush_T & (|_wr_io_outstanding)))
-          cycWaitWr <= cycWaitWr + 32'h1;
+          cycWaitWr <= cycWaitWr + tick;
       end
       if (_wr_io_status_valid_T & ~_GEN_4)
-        cycTotal <= cycTotal + 32'h1;
+        cycTotal <= cycTotal + tick;
       else if (_GEN)
         cycTotal <= 32'h1;
       else if (running)
-        cycTotal <= cycTotal + 32'h1;
+        cycTotal <= cycTotal + tick;
+      pairsInFlight <=
+        pairsInFlight + {20'h0, _disp_io_fired ? _disp_io_groups_bits_cnt : 5'h0}
+        - {20'h0, _coll_io_nPairs};
     end
     if (_GEN_5) begin
       run_1 <= csr_1;
@@ -18252,7 +18285,7 @@ module Puc_default(
     .io_pairBase              (run_3),
     .io_pairLines             (_rd_io_pairLines_T[24:4]),
     .io_rdReq_ready           (io_link_rdReq_ready),
-    .io_rdReq_valid           (io_link_rdReq_valid),
+    .io_rdReq_valid           (_rd_io_rdReq_valid),
     .io_rdReq_bits_addr       (io_link_rdReq_bits_addr),
     .io_rdReq_bits_tag        (io_link_rdReq_bits_tag),
     .io_rdResp_valid          (io_link_rdResp_valid),
@@ -19161,7 +19194,7 @@ module Puc_default(
              firstBad != 32'hFFFFFFFF},
         32'h1}),
     .io_wrReq_ready      (io_link_wrReq_ready),
-    .io_wrReq_valid      (io_link_wrReq_valid),
+    .io_wrReq_valid      (_wr_io_wrReq_valid),
     .io_wrReq_bits_addr  (io_link_wrReq_bits_addr),
     .io_wrReq_bits_tag   (io_link_wrReq_bits_tag),
     .io_wrReq_bits_data  (io_link_wrReq_bits_data),
@@ -19170,6 +19203,10 @@ module Puc_default(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
+  assign io_link_rdReq_valid = _rd_io_rdReq_valid;
+  assign io_link_wrReq_valid = _wr_io_wrReq_valid;
+  assign io_busy = |state;
+  assign io_idle = io_idle_0;
 endmodule
 
 module ScpuConvertIn_fp32_default(
@@ -22358,7 +22395,10 @@ module Afu_default(
   input  [5:0]   io_wrResp_bits_tag,
   input          io_csr_valid,
   input  [7:0]   io_csr_bits_index,
-  input  [63:0]  io_csr_bits_data
+  input  [63:0]  io_csr_bits_data,
+  output         io_busy,
+                 io_idle,
+  input  [31:0]  io_skipCycles
 );
 
   wire        _units_15_io_in_ready;
@@ -23180,7 +23220,10 @@ module Afu_default(
     .io_scpuOut_15_bits_depth     (_units_15_io_out_bits_depth),
     .io_scpuOut_15_bits_nonFinite (_units_15_io_out_bits_nonFinite),
     .io_scpuOut_15_bits_flags     (_units_15_io_out_bits_flags),
-    .io_scpuOut_15_bits_tag       (_units_15_io_out_bits_tag)
+    .io_scpuOut_15_bits_tag       (_units_15_io_out_bits_tag),
+    .io_busy                      (io_busy),
+    .io_idle                      (io_idle),
+    .io_skipCycles                (io_skipCycles)
   );
   Scpu_fp32_default units_0 (
     .clock                 (clock),

@@ -16,6 +16,8 @@ struct RunOptions {
   std::string trace;                   // rtl: waveform file (.fst / .vcd)
   bool noSkip = false;                 // rtl: evaluate every cycle (no idle skipping)
   std::string summary;                 // totals as JSON
+  int cpuRepeat = 1;                   // time ODE and simd this many times a step, keep the least
+  std::string positions;               // final sphere positions as CSV
 };
 
 struct PairsOptions {

@@ -26,6 +26,10 @@ int main(int argc, char** argv) {
   r->add_option("--trace", run.trace, "rtl: write a waveform of the AFU (.fst or .vcd, as built)");
   r->add_flag("--no-skip", run.noSkip, "rtl: evaluate every cycle instead of jumping idle waits");
   r->add_option("--summary", run.summary, "write the run's totals to this JSON file");
+  r->add_option("--cpu-repeat", run.cpuRepeat,
+                "time ODE's collider and the simd batch this many times a step and keep the fastest")
+      ->check(CLI::Range(1, 1000));
+  r->add_option("--positions", run.positions, "write the spheres' final positions to this CSV file");
 
   PairsOptions pairs;
   auto* p = app.add_subcommand("pairs", "vector mode: collide the pairs of a CSV file");

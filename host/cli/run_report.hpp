@@ -20,6 +20,8 @@ struct AfuTotals {
   std::uint64_t cyclesStepped = 0, cyclesSkipped = 0;  // how the simulator got there
   double modelledNs = 0;  // host view: transaction overhead + CSRs + AFU + status + polls
   double cycleNs = 5.0;
+  std::uint64_t readLines = 0, writeLines = 0;  // lines moved over the link
+  double linkBoundNs = 0;  // the link model's floor for those lines (driver::linkBoundNs)
   // AFU cycles that none of the four counters claims (they may overlap: then negative).
   double otherNs() const {
     return (static_cast<double>(cyclesTotal) - static_cast<double>(cyclesLoading + cyclesComputing +

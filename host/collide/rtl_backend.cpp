@@ -49,6 +49,9 @@ void RtlBackend::runOne(const SphereTable& spheres, const PairList& pairs, Conta
   t.cyclesSkipped += last_.stats.cyclesSkipped;
   t.statusCycle += last_.stats.statusCycle;
   t.modelledNs += last_.stats.modelledNs;
+  t.readLines += last_.stats.readLines;
+  t.writeLines += last_.stats.writeLines;
+  t.linkBoundNs += last_.stats.linkBoundNs;
 }
 
 void RtlBackend::collide(const SphereTable& spheres, const PairList& pairs, ContactSet& out) {

@@ -22,6 +22,16 @@ AfuDriver::AfuDriver(AfuPort& port, const link::LinkParams& link, const DriverOp
   port_.reset();
 }
 
+double linkBoundNs(const link::LinkParams& lp, std::uint64_t readLines, std::uint64_t writeLines) {
+  auto perLine = [&](double gbps) {
+    const double bw = gbps > 0 ? lp.lineBytes / gbps : 0.0;  // bytes / (GB/s) = ns
+    return std::max(bw, lp.cycleNs());
+  };
+  const double transfer = std::max(static_cast<double>(readLines) * perLine(lp.readGBps),
+                                   static_cast<double>(writeLines) * perLine(lp.writeGBps));
+  return lp.transactionOverheadNs + lp.csrWriteNs + lp.pollNs + lp.readLatencyMinNs + lp.writeLatencyMinNs + transfer;
+}
+
 RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
   const std::size_t n = pairs.size();
   if (spheres.size() > opt_.maxSpheres)
@@ -43,6 +53,7 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
 
   // Configure, then start (docs/afu-interface.md CSR table).
   const std::uint64_t t0 = link_.cycle();
+  const std::uint64_t reads0 = link_.stats().readsAccepted, writes0 = link_.stats().writesAccepted;
   link_.hostWriteCsr(kSphereBase, sph.base);
   link_.hostWriteCsr(kNumSpheres, spheres.size());
   link_.hostWriteCsr(kPairBase, pl.base);
@@ -93,6 +104,9 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
   const double commitNs = static_cast<double>(r.stats.statusCycle) * lp.cycleNs();
   const double seenNs = lp.pollNs > 0 ? (std::ceil(commitNs / lp.pollNs) + 1) * lp.pollNs : commitNs;
   r.stats.modelledNs = lp.transactionOverheadNs + seenNs;
+  r.stats.readLines = link_.stats().readsAccepted - reads0;
+  r.stats.writeLines = link_.stats().writesAccepted - writes0;
+  r.stats.linkBoundNs = linkBoundNs(lp, r.stats.readLines, r.stats.writeLines);
 
   r.status = readStatus(mem_, st.base);
   const std::size_t written = std::min<std::size_t>(r.status.recordsWritten, capacity);

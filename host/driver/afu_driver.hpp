@@ -37,7 +37,18 @@ struct RunStats {
   std::uint64_t cyclesSkipped = 0;   // cycles jumped over while the AFU idle-waited
   std::uint64_t statusCycle = 0;     // cycles from the first CSR write to the status commit
   double modelledNs = 0;             // overhead + CSRs + AFU + poll detection
+  std::uint64_t readLines = 0;       // lines the AFU read (sphere table + pair list)
+  std::uint64_t writeLines = 0;      // lines the AFU wrote (contacts + status line)
+  // The least time the link model allows for these lines (linkBoundNs below).
+  double linkBoundNs = 0;
 };
+
+// Lower bound the link model implies for a run that reads `readLines` and writes
+// `writeLines` lines: the per-call costs it charges (transaction overhead, one CSR
+// arrival, one poll), the shortest read and write round trips (the first pair line cannot
+// arrive sooner; the status line waits for the last contact's acknowledgement), and the
+// busier direction's transfer at max(its bandwidth, one line per cycle). docs/host.md.
+double linkBoundNs(const link::LinkParams& lp, std::uint64_t readLines, std::uint64_t writeLines);
 
 struct RunResult {
   StatusLine status;

@@ -31,6 +31,8 @@ class AfuPort {
   // state: no request pending, every SCPU empty, waiting only on responses or a start.
   // A port that cannot tell returns false and is simply stepped every cycle.
   virtual bool idle() const { return false; }
+  // True when idle() can ever hold (the AFU exports an idle or busy port).
+  virtual bool reportsIdle() const { return false; }
 
   // Equivalent to n cycles of {setInputs(no events); evalOutputs(); clockEdge();} while
   // idle() holds: advances the AFU's cycle counters (total, waiting on reads or writes)

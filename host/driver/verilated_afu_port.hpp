@@ -210,6 +210,8 @@ class VerilatedAfuPort final : public AfuPort {
     else return false;
   }
 
+  bool reportsIdle() const override { return kHasIdle || kHasBusy; }
+
   void skipIdleCycles(std::uint64_t n) override {
     if constexpr (kHasSkip) {
       auto& skip = vport::skipCyclesOf(*top_);

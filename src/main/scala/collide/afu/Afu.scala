@@ -3,13 +3,33 @@ package collide.afu
 import chisel3._
 import collide.scpu.Scpu
 
-/** The accelerator: the PUC and N SCPUs behind the link of docs/afu-interface.md. Verilog
-  * ports: clock, reset and io_<channel>_<field> (io_rdReq_valid, io_rdReq_bits_addr, ...). */
+/** The AFU's ports: the link channels (io_rdReq_valid, io_rdReq_bits_addr, ...) plus the
+  * simulation-side idle/skip pair and a busy flag (docs/afu-interface.md, "Idle and skipping").
+  * On an FPGA `skipCycles` is tied to 0 and `idle`/`busy` are left open. */
+class AfuIO(tagBits: Int) extends LinkIO(tagBits) {
+  val busy       = Output(Bool())
+  val idle       = Output(Bool())
+  val skipCycles = Input(UInt(32.W))
+
+  /** Wires these ports to a PUC (the AFU top and the PUC test harness share this). */
+  def attach(puc: Puc): Unit = {
+    rdReq <> puc.io.link.rdReq
+    puc.io.link.rdResp := rdResp
+    wrReq <> puc.io.link.wrReq
+    puc.io.link.wrResp := wrResp
+    puc.io.link.csr := csr
+    busy := puc.io.busy
+    idle := puc.io.idle
+    puc.io.skipCycles := skipCycles
+  }
+}
+
+/** The accelerator: the PUC and N SCPUs behind the link of docs/afu-interface.md. */
 class Afu(val cfg: AfuConfig) extends Module {
   override def desiredName = s"Afu_${cfg.id}"
-  val io = IO(new LinkIO(cfg.tagBits))
+  val io = IO(new AfuIO(cfg.tagBits))
   val puc = Module(new Puc(cfg.puc))
-  io <> puc.io.link
+  io.attach(puc)
   val units = Seq.fill(cfg.scpus)(Module(new Scpu(cfg.scpu)))
   for ((u, s) <- units.zipWithIndex) {
     u.io.in <> puc.io.scpuIn(s)

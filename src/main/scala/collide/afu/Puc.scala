@@ -17,6 +17,11 @@ class Puc(p: PucParams) extends Module {
     val scpuIn  = Vec(p.scpus, Decoupled(new ScpuIn(p.linkWidth, p.scpuTagBits)))
     val scpuOut = Vec(p.scpus, Flipped(Decoupled(new ScpuOut(p.linkWidth, p.scpuTagBits))))
     val busy    = Output(Bool())
+    // Idle-waiting (docs/afu-interface.md, "Idle and skipping"): with no response and no CSR
+    // arriving this cycle, the PUC drives no request and changes no state but its cycle
+    // counters. Conservative: false whenever that is not certain.
+    val idle       = Output(Bool())
+    val skipCycles = Input(UInt(32.W)) // n > 0, only while idle: this edge counts as n cycles
     val dbg     = Output(Vec(8, UInt(32.W))) // for test diagnosis: see the end of this file
   })
 
@@ -48,6 +53,9 @@ class Puc(p: PucParams) extends Module {
   val cycCompute = RegInit(0.U(32.W))
   val cycWaitRd  = RegInit(0.U(32.W))
   val cycWaitWr  = RegInit(0.U(32.W))
+
+  // Cycles this edge stands for in every cycle counter: 1, or n when the host skips n idle cycles.
+  val tick = Mux(io.skipCycles =/= 0.U, io.skipCycles, 1.U(32.W))
 
   val engineStart = WireDefault(false.B)
   when(state === sCheck) {
@@ -126,22 +134,29 @@ class Puc(p: PucParams) extends Module {
   found     := found + coll.io.nHits
   nonFinite := nonFinite + coll.io.nNonFinite
   when(running) {
-    cycTotal := cycTotal + 1.U
-    when(!loaded) { cycLoad := cycLoad + 1.U }
-    when(disp.io.fired) { cycCompute := cycCompute + 1.U }
+    cycTotal := cycTotal + tick
+    when(!loaded) { cycLoad := cycLoad + tick }
+    when(disp.io.fired) { cycCompute := cycCompute + 1.U } // never idle: a group fired
     when(!disp.io.fired && rd.io.outstanding =/= 0.U && (!loaded || (disp.io.idle && rd.io.pairBufferEmpty))) {
-      cycWaitRd := cycWaitRd + 1.U
+      cycWaitRd := cycWaitRd + tick
     }
-    when(wr.io.blocked || (state === sDrain && wr.io.outstanding =/= 0.U)) { cycWaitWr := cycWaitWr + 1.U }
+    when(wr.io.blocked || (state === sDrain && wr.io.outstanding =/= 0.U)) { cycWaitWr := cycWaitWr + tick }
   }
+
+  // Pairs handed to the dispatcher's RAM read, the SCPU queues and pipelines, or waiting in
+  // the collector: zero means no result can still appear without a new pair line.
+  val pairsInFlight = RegInit(0.U((lay.pairIndexBits + 1).W))
+  pairsInFlight := pairsInFlight + Mux(disp.io.fired, groups.io.enq.bits.cnt, 0.U) - coll.io.nPairs
 
   when(state === sCheck) { // a new run: after the counting above, so these win
     processed := 0.U; found := 0.U; nonFinite := 0.U; firstBad := StatusLine.NO_BAD_PAIR.U
     cycTotal := 1.U; cycLoad := 0.U; cycCompute := 0.U; cycWaitRd := 0.U; cycWaitWr := 0.U
   }
 
-  when(state === sRun && processed === numPairs && rd.io.outstanding === 0.U && rd.io.loaded) { state := sDrain }
-  when(state === sDrain && pack.io.idle && !wr.io.lines.valid && wr.io.outstanding === 0.U) { state := sStatus }
+  val runDone   = processed === numPairs && rd.io.outstanding === 0.U && rd.io.loaded
+  val drainDone = pack.io.idle && !wr.io.lines.valid && wr.io.outstanding === 0.U
+  when(state === sRun && runDone) { state := sDrain }
+  when(state === sDrain && drainDone) { state := sStatus }
 
   // ---- the status line
   val totalRecords = Mux(dense, numPairs.pad(64), found.pad(64))
@@ -165,9 +180,24 @@ class Puc(p: PucParams) extends Module {
   wr.io.status.bits.addr := statusAddr
   wr.io.status.bits.data := words.asUInt
   when(wr.io.status.fire) { state := sStatusWait }
-  when(state === sStatus && !wr.io.status.fire) { cycTotal := cycTotal + 1.U }
+  when(state === sStatus && !wr.io.status.fire) { cycTotal := cycTotal + tick }
   when(state === sStatusWait && wr.io.outstanding === 0.U) { state := sIdle }
   io.busy := state =/= sIdle
+
+  // Idle: no request goes out, and nothing inside can move without an input. In a run that
+  // means no group fires, no pair line is taken, no pair is in flight (so the SCPUs and the
+  // collector hold nothing valid and no record reaches the packer), and the state machine
+  // waits on a response (sRun, sDrain: packer empty; sStatus: no free write tag; sStatusWait).
+  val noRequest = !io.link.rdReq.valid && !io.link.wrReq.valid
+  val quietRun  = !disp.io.fired && !rd.io.pairs.fire && pairsInFlight === 0.U
+  io.idle := noRequest && MuxLookup(state, false.B)(Seq(
+    sIdle       -> true.B,
+    sRun        -> (quietRun && !runDone),
+    sDrain      -> (quietRun && pack.io.idle && !drainDone),
+    sStatus     -> true.B,
+    sStatusWait -> (wr.io.outstanding =/= 0.U)
+  ))
+  assert(io.skipCycles === 0.U || io.idle, "Puc: skipCycles given while not idle")
   io.dbg := VecInit(Seq(state.asUInt.pad(32), processed, rd.io.outstanding.pad(32), Cat(loaded, disp.io.idle, rd.io.pairBufferEmpty, pack.io.idle, wr.io.lines.valid),
     rd.io.dbg, wr.io.outstanding.pad(32), found, numPairs.pad(32)))
 }

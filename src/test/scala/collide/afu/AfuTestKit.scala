@@ -83,10 +83,10 @@ object AfuRun {
     mem.writeCsr(Csr.CTRL, Csr.CTRL_START)
     val sa = csrs(Csr.STATUS_ADDR)
     val limit = if (maxCycles > 0) maxCycles else 20000L + 400L * world.pairs.size
-    var seen = false; var extra = 0
-    while (!(seen && mem.idleLink() && extra > 8) && mem.cycle - startCycle < limit) {
+    var seenAt = -1L // the cycle the status line was written (counted in cycles, so skipping changes nothing)
+    while (!(seenAt >= 0 && mem.idleLink() && mem.cycle - seenAt > 8) && mem.cycle - startCycle < limit) {
       mem.step()
-      if (!seen) seen = mem.writes.drop(first).exists(_.addr == sa) else extra += 1
+      if (seenAt < 0 && mem.writes.drop(first).exists(_.addr == sa)) seenAt = mem.cycle
     }
     val ws = mem.writes.drop(first).toSeq
     RunResult(ws.find(_.addr == sa).map(e => Status(e.data)), ws, mem.cycle - startCycle, csrs(Csr.CONTACT_BASE), sa)

@@ -31,9 +31,13 @@ final case class WriteEvent(cycle: Long, addr: BigInt, data: BigInt, respondedBe
 /** TEST ONLY: host shared memory plus the CCI link, driven cycle by cycle through chiseltest.
   * Seeded: the same seed gives the same latencies, order and back-pressure. It checks the
   * link rules as it goes: no more requests in flight than the AFU's limits, no response
-  * tag reused while in flight. */
+  * tag reused while in flight.
+  * `skipIdle`: while the AFU reports idle and no response is due, one clock edge with
+  * `skipCycles = n` stands for the n cycles up to the next response (the AFU's io.idle
+  * contract, docs/afu-interface.md); the random stream is drawn as if stepped, so a run
+  * with skipping must equal the same run stepped cycle by cycle. */
 class HostMemoryModel(link: LinkIO, clock: Clock, beh: LinkBehaviour, seed: Long,
-                      maxReads: Int, maxWrites: Int) {
+                      maxReads: Int, maxWrites: Int, skipIdle: Boolean = false) {
   private val rnd = new scala.util.Random(seed)
   val mem = mutable.Map[BigInt, BigInt]().withDefaultValue(BigInt(0))
   val writes = mutable.ArrayBuffer[WriteEvent]()
@@ -44,17 +48,39 @@ class HostMemoryModel(link: LinkIO, clock: Clock, beh: LinkBehaviour, seed: Long
   var trace: Option[() => String] = None
   var writesResponded = 0
   var maxRdInFlight = 0; var maxWrInFlight = 0
+  var cyclesSkipped = 0L
+  private val skipPorts = link match { case a: AfuIO => Some(a); case _ => None }
+  require(!skipIdle || skipPorts.isDefined, "HostMemoryModel: skipIdle needs the AFU's idle/skipCycles ports")
+  skipPorts.foreach(_.skipCycles.poke(0.U))
+  private var csrPresented = false
 
   private def draw(r: (Int, Int)) = r._1 + rnd.nextInt(r._2 - r._1 + 1)
   private def pick[T](due: Seq[T]): T = if (beh.reorder) due(rnd.nextInt(due.size)) else due.head
 
   def writeCsr(index: Int, value: BigInt): Unit = {
     link.csr.valid.poke(true.B); link.csr.bits.index.poke(index.U); link.csr.bits.data.poke(value.U(64.W))
+    csrPresented = true
     step(); link.csr.valid.poke(false.B)
+    csrPresented = false
+  }
+
+  /** Jumps to the next response when the AFU idles until then; true if it did. */
+  private def trySkip(): Boolean = {
+    val next = (pendingRd.map(_._1) ++ pendingWr.map(_._1)).minOption
+    val n = next.map(_ - cycle).getOrElse(0L)
+    if (!skipIdle || csrPresented || n < 2 || !skipPorts.get.idle.peek().litToBoolean) return false
+    link.rdResp.valid.poke(false.B); link.wrResp.valid.poke(false.B)
+    for (_ <- 0L until n) { rnd.nextDouble(); rnd.nextDouble() } // the ready draws of n stepped cycles
+    skipPorts.get.skipCycles.poke(n.U)
+    clock.step()
+    skipPorts.get.skipCycles.poke(0.U)
+    cycle += n; cyclesSkipped += n
+    true
   }
 
   /** One clock cycle of the link. */
   def step(): Unit = {
+    if (trySkip()) return
     // responses due this cycle (one read, one write response a cycle)
     val rdDue = pendingRd.filter(_._1 <= cycle).toSeq
     if (rdDue.nonEmpty) {

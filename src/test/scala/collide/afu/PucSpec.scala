@@ -57,6 +57,35 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
     soak(3, 64, Seeds.cases(12), Seq(LinkBehaviour.hostile, LinkBehaviour.ideal), verilator)
   }
 
+  it should "give identical writes, cycles and status lines when the host skips its idle cycles" in {
+    val p = params(4, 32)
+    val rnd = Seeds.rng("PucSpec-skip")
+    test(new PucHarness(p, 3)).withAnnotations(verilator) { dut =>
+      dut.clock.setTimeout(0)
+      var skipped = 0L
+      for (i <- 0 until Seeds.cases(8)) {
+        val b = Seq(LinkBehaviour.harp, LinkBehaviour.hostile)(i % 2)
+        val world = randomWorld(rnd, 32, p.maxSpheres, dense = rnd.nextBoolean(), bad = i % 3 == 2)
+        val seed = rnd.nextLong()
+        def once(skip: Boolean): (RunResult, Long) = {
+          dut.reset.poke(true.B); dut.clock.step(); dut.reset.poke(false.B)
+          val mem = new HostMemoryModel(dut.io, dut.clock, b, seed, p.maxReads, p.maxWrites, skipIdle = skip)
+          (AfuRun.run(mem, world), mem.cyclesSkipped)
+        }
+        val (stepped, none) = once(skip = false)
+        val (jumped, n) = once(skip = true)
+        assert(none == 0)
+        assert(AfuRun.check(world, stubExpect(world), jumped).isEmpty)
+        assert(jumped.status == stepped.status, s"world $i (${b.name}): status differs")
+        assert(jumped.writes == stepped.writes, s"world $i (${b.name}): writes differ (cycle, address or data)")
+        assert(jumped.cycles == stepped.cycles)
+        skipped += n
+        println(f"[PucSpec] skip world $i (${b.name}, ${world.pairs.size} pairs): ${stepped.cycles} cycles, $n skipped")
+      }
+      assert(skipped > 0, "nothing was ever skipped: io.idle never held")
+    }
+  }
+
   it should "flag and contain every kind of bad input (index range, table size, capacity, non-finite, configuration)" in {
     val p = params(4, 32)
     val rnd = Seeds.rng("PucSpec-errors")

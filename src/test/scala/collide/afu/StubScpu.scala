@@ -49,11 +49,11 @@ object StubScpu {
 
 /** TEST ONLY: the PUC with N stub units, link ports as the AFU's. */
 class PucHarness(p: PucParams, stubLatency: Int) extends Module {
-  val io = IO(new LinkIO(p.tagBits))
+  val io = IO(new AfuIO(p.tagBits))
   val dbg = IO(Output(Vec(8, UInt(32.W))))
   val puc = Module(new Puc(p))
   dbg := puc.io.dbg
-  io <> puc.io.link
+  io.attach(puc)
   for (s <- 0 until p.scpus) {
     val u = Module(new StubScpu(p.linkWidth, p.scpuTagBits, stubLatency))
     u.io.in <> puc.io.scpuIn(s)
