@@ -15,8 +15,10 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 #   cmake, ninja-build, g++, pkg-config - the host build
 #   default-jdk-headless, maven - the JVM for sbt, and Maven to fetch the sbt launcher
 #   python3-venv     - the benchmark plots' pinned Python environment
+#   ccache           - bench/sweep builds one host per AFU configuration: the host's own
+#                      sources compile once, not once per configuration
 packages=(verilator libode-dev yosys nlohmann-json3-dev libcli11-dev libgtest-dev libpng-dev
-          cmake ninja-build g++ pkg-config default-jdk-headless maven python3-venv)
+          cmake ninja-build g++ pkg-config default-jdk-headless maven python3-venv ccache)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -116,18 +116,46 @@ object ScpuAccuracyReport {
     sb.result()
   }
 
-  def main(args: Array[String]): Unit = {
+  /** One row per preset, machine-readable, for bench/sweep's accuracy-cost tables. */
+  def csv(rows: Seq[Row]): String = {
+    val stats = Seq[(String, Row => Stat)]("pos_ulps" -> (_.pos), "pos_rel" -> (_.posRel), "normal_ulps" -> (_.nrm),
+      "normal_rel" -> (_.nrmRel), "nlen_ulps" -> (_.nlen), "depth_ulps" -> (_.depth), "depth_rs_ulps" -> (_.depthRs))
+    val head = Seq("preset", "latency") ++ stats.flatMap { case (k, _) => Seq(s"${k}_worst", s"${k}_mean") } ++
+      Seq("contacts", "grazing_pairs", "decision_mismatch_grazing", "decision_mismatch_all", "kind_mismatch",
+        "wide_pairs", "wide_hits", "wide_nonfinite_hits", "wide_mismatch_band", "wide_mismatch_outside", "wide_bad_normal")
+    val body = rows.map { r =>
+      (Seq(r.cfg.name, r.cfg.latency.toString) ++ stats.flatMap { case (_, f) => Seq(f(r).worst.toString, f(r).mean.toString) } ++
+        Seq(r.contacts, r.grazingPairs, r.mismatchGrazing, r.mismatchAll, r.kindMismatch, r.widePairs, r.wideHits,
+          r.nonFiniteWide, r.mismatchWideBand, r.mismatchWideOut, r.badNormalWide).map(_.toString)).mkString(",")
+    }
+    (head.mkString(",") +: body).mkString("", "\n", "\n")
+  }
+
+  /** args: [pairs] [seed] [--csv FILE] [--configs SPEC,SPEC...] (ScpuConfig.parse specs; default
+    * every preset). The markdown report goes to stdout either way. */
+  def main(argv: Array[String]): Unit = {
+    def opt(name: String, a: Array[String]): (Option[String], Array[String]) = {
+      val at = a.indexOf(name)
+      if (at < 0) (None, a) else (Some(a.lift(at + 1).getOrElse(sys.error(s"$name: missing value"))), a.patch(at, Nil, 2))
+    }
+    val (csvFile, a1) = opt("--csv", argv)
+    val (specs, args) = opt("--configs", a1)
+    val configs = specs.map(_.split(",").toSeq.map(s => ScpuConfig.parse(s.trim) match {
+      case Right(c) => c
+      case Left(e) => sys.error(s"--configs: $e")
+    })).getOrElse(ScpuConfig.all)
     val n = args.headOption.map(_.toInt).getOrElse(10000)
     val seed = args.lift(1).map(_.toLong).getOrElse(20261122L)
-    val rows = ScpuConfig.all.map { c =>
+    val rows = configs.map { c =>
       val t0 = System.nanoTime()
       val r = measure(c, n, seed)
       System.err.println(f"${c.name}: ${(System.nanoTime() - t0) / 1e9}%.1f s")
       r
     }
+    csvFile.foreach(f => java.nio.file.Files.writeString(java.nio.file.Paths.get(f), csv(rows)))
     println(s"<!-- sbt \"Test/runMain collide.scpu.ScpuAccuracyReport $n $seed\" -->")
     println(table(rows, n))
     println("\nConfigurations:\n")
-    ScpuConfig.all.foreach(c => println(s"- ${c.describe}; operators ${c.operatorCount.toSeq.sorted.map { case (k, v) => s"$k $v" }.mkString(", ")}"))
+    configs.foreach(c => println(s"- ${c.describe}; operators ${c.operatorCount.toSeq.sorted.map { case (k, v) => s"$k $v" }.mkString(", ")}"))
   }
 }

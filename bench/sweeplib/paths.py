@@ -1,0 +1,37 @@
+"""Where things live, and the content hash that keys every cached step."""
+import hashlib
+import os
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+BUILD = ROOT / "build" / "sweep"          # caches: generated RTL, host builds, run results
+RESULTS = ROOT / "bench" / "results"      # committed: CSV, plots, machine description
+
+
+def tree_hash(*parts: str) -> str:
+    """sha1 over the files under ROOT/part for each part (a file or a folder)."""
+    h = hashlib.sha1()
+    for part in parts:
+        p = ROOT / part
+        files = sorted(f for f in (p.rglob("*") if p.is_dir() else [p]) if f.is_file())
+        for f in files:
+            h.update(str(f.relative_to(ROOT)).encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def rtl_hash() -> str:
+    """What the generated Verilog depends on."""
+    return tree_hash("src/main", "build.sbt", "project/build.properties")
+
+
+def host_hash() -> str:
+    """What a host binary depends on, besides its AFU."""
+    return tree_hash("host")
+
+
+def write_atomic(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(path.suffix + ".tmp")
+    tmp.write_text(text)
+    os.replace(tmp, path)

@@ -1,0 +1,53 @@
+"""Scene runs through a configuration's `collide` binary, and the diamond's drift from ODE."""
+import json
+import math
+import subprocess
+from pathlib import Path
+
+from paths import BUILD, ROOT, write_atomic
+
+SCENES = BUILD / "scenes"
+
+
+def scene_file(scene) -> Path:
+    """scenes/diamond.json with the sweep's hMax and step count."""
+    s = json.loads((ROOT / "scenes" / "diamond.json").read_text())
+    s["name"] = scene.id
+    s["steps"] = scene.steps
+    s["bodies"]["diamond"]["hMax"] = scene.hmax
+    s["bodies"]["diamond"]["dSph"] = 0
+    path = SCENES / f"{scene.id}.json"
+    write_atomic(path, json.dumps(s, indent=2) + "\n")
+    return path
+
+
+def run(binary: Path, scene, backend: str, out_dir: Path, link: str = None, cpu_repeat: int = 1,
+        positions: bool = False) -> dict:
+    """`collide run` for one scene; returns its summary JSON (plus the positions file's path)."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    summary = out_dir / "summary.json"
+    cmd = [str(binary), "run", str(scene_file(scene)), "--backend", backend, "--steps", str(scene.steps),
+           "--summary", str(summary), "--cpu-repeat", str(cpu_repeat)]
+    if link:
+        cmd += ["--link", link]
+    if positions:
+        cmd += ["--positions", str(out_dir / "positions.csv")]
+    with open(out_dir / "stdout.txt", "w") as out:
+        r = subprocess.run(cmd, stdout=out, stderr=subprocess.STDOUT)
+    if r.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed ({r.returncode}); see {out_dir / 'stdout.txt'}")
+    return json.loads(summary.read_text())
+
+
+def read_positions(path: Path) -> list:
+    rows = path.read_text().splitlines()[1:]
+    return [tuple(float.fromhex(v) for v in line.split(",")[1:4]) for line in rows]
+
+
+def drift(a: Path, b: Path) -> dict:
+    """Distance between the same sphere's final positions in two runs: worst and mean (m)."""
+    pa, pb = read_positions(a), read_positions(b)
+    if len(pa) != len(pb):
+        raise RuntimeError(f"{a} and {b} hold different sphere counts ({len(pa)} vs {len(pb)})")
+    d = [math.dist(x, y) for x, y in zip(pa, pb)]
+    return {"drift_max_m": max(d), "drift_mean_m": sum(d) / len(d)}

@@ -1,0 +1,71 @@
+"""Named sweeps: which AFU configurations, scenes and links each one runs.
+
+A configuration is what the generator builds (SCPU count + SCPU spec, ScpuConfig.parse
+syntax); a scene is a diamond (hMax, dSph 0) simulated for a number of steps; a link is the
+host's `qpi` (HARP v1) or `ideal` model. Every (configuration, scene, link) is one CSV row.
+"""
+from dataclasses import dataclass, field
+import re
+
+
+@dataclass(frozen=True)
+class Config:
+    scpus: int
+    spec: str  # ScpuConfig.parse: preset[:key=value]*
+
+    @property
+    def id(self) -> str:
+        return f"n{self.scpus}_" + re.sub(r"[^A-Za-z0-9-]+", "_", self.spec)
+
+    def generator_args(self) -> str:
+        return f"--scpus {self.scpus} --scpu {self.spec}"
+
+
+@dataclass(frozen=True)
+class Scene:
+    hmax: int
+    steps: int = 1
+
+    @property
+    def id(self) -> str:
+        return f"diamond_h{self.hmax}_s{self.steps}"
+
+
+@dataclass(frozen=True)
+class Sweep:
+    name: str
+    about: str
+    configs: tuple
+    scenes: tuple
+    links: tuple = ("qpi", "ideal")
+    area: bool = True          # Yosys area of the SCPU and the PUC of each configuration
+    accuracy: bool = False     # the golden model's error against double, per SCPU spec
+    drift_steps: int = 0       # > 0: diamond hMax 10 drift from ODE (double) after this many steps
+    cpu_repeat: int = 20       # ODE / simd timings: fastest of this many a step
+
+
+SCPU_COUNTS = (1, 2, 4, 8, 16, 32)
+
+# Arithmetic configurations at 16 SCPUs: formats, algorithms and Newton-Raphson settings.
+ARITH_SPECS = (
+    "fp32",                            # correctly rounded sqrt then reciprocal (digit recurrence)
+    "fp32-rsqrt-dr",                   # one correctly rounded rsqrt instead
+    "fp32-nr",                         # Newton-Raphson, 8-bit table, 2 iterations (faithful)
+    "fp32:sqrt=nr8x1:recip=nr8x1",     # Newton-Raphson, one iteration (cheaper, less accurate)
+    "fp32-robust",                     # power-of-two scaling: no overflow/underflow of d^2
+    "fp64", "fp24", "fp16", "bf16",
+    "fp16-robust",
+)
+
+SWEEPS = {s.name: s for s in (
+    Sweep("paper", "the paper's Figures 5-7: 16 fp32 SCPUs, diamond hMax 1..10, HARP v1 and ideal links",
+          configs=(Config(16, "fp32"),), scenes=tuple(Scene(h) for h in range(1, 11))),
+    Sweep("scpus", "SCPU count 1..32 (fp32), diamond hMax 10",
+          configs=tuple(Config(n, "fp32") for n in SCPU_COUNTS), scenes=(Scene(10),)),
+    Sweep("arith", "what accuracy costs: formats and algorithms at 16 SCPUs, diamond hMax 10",
+          configs=tuple(Config(16, s) for s in ARITH_SPECS), scenes=(Scene(10),),
+          accuracy=True, drift_steps=6),
+    Sweep("smoke", "a quick check of the tool itself: 2 fp32 SCPUs, diamond hMax 2, ideal link",
+          configs=(Config(2, "fp32"),), scenes=(Scene(2),), links=("ideal",), area=False,
+          accuracy=False, drift_steps=3, cpu_repeat=3),
+)}
