@@ -16,4 +16,9 @@ void ContactSet::resize(std::size_t n) {
   for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &depth}) v->assign(n, 0.0);
 }
 
+void ContactSet::resizeForOverwrite(std::size_t n) {
+  hit.resize(n);
+  for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &depth}) v->resize(n);
+}
+
 }  // namespace collide

@@ -17,6 +17,8 @@ struct ContactSet {
   std::size_t size() const { return hit.size(); }
   std::size_t hits() const;
   void resize(std::size_t n);  // and zero everything
+  // Size n without clearing the entries kept: for a writer that sets every entry.
+  void resizeForOverwrite(std::size_t n);
 };
 
 }  // namespace collide

@@ -17,4 +17,17 @@ struct ContactsF32 {  // outputs, n entries each; zero where hit == 0
 
 void collideSpheresF32(std::size_t n, const PairsF32& in, const ContactsF32& out);
 
+// The whole batch: pair k's spheres i[k], j[k] gathered from a binary64 table (one RNE
+// rounding to binary32, as the AFU's link does), the kernel above, and the binary32 results
+// widened into binary64 outputs, block by block so everything stays in L1.
+struct SpheresF64 {  // the sphere table
+  const double *x, *y, *z, *r;
+};
+struct ContactsF64 {  // outputs, n entries each; zero where hit == 0
+  double *px, *py, *pz, *nx, *ny, *nz, *depth;
+  std::uint8_t* hit;
+};
+void gatherCollideF32(std::size_t n, const SpheresF64& s, const std::uint32_t* i, const std::uint32_t* j,
+                      const ContactsF64& out);
+
 }  // namespace collide

@@ -1,0 +1,114 @@
+"""Tests of bench/sweep's own logic (no builds): ids, derived figures, drift, caching, CSV
+and plots. Run: tools/.cache/bench-venv/bin/python -m unittest discover -s bench/tests -v"""
+import json
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sweeplib"))
+
+import plots  # noqa: E402
+import runs  # noqa: E402
+import sweep  # noqa: E402
+from sweeps import SWEEPS, Config, Scene  # noqa: E402
+
+MANIFEST = {"afu": {"peakPairsPerCycle": 16, "ram": {"sphereTableBits": 2097152, "pairBufferBits": 34048}},
+            "scpu": {"format": {"name": "fp32"}, "distance": "sqrt-recip", "sqrtAlg": "dr", "recipAlg": "dr",
+                     "rsqrtAlg": "dr", "latency": 21}}
+
+
+def summary(pairs=5829, contacts=3593, modelled=31100.0, bound=28829.0):
+    return {"spheres": 670, "pairs": pairs, "contacts": contacts, "ode_ns": 93000, "simd_ns": 56000,
+            "backend_wall_ns": 91000000, "cpu_repeat": 20,
+            "afu": {"modelled_ns": modelled, "link_bound_ns": bound, "cycle_ns": 5.0, "loading_ns": 1785.0,
+                    "computing_ns": 1825.0, "wait_read_ns": 1780.0, "wait_write_ns": 14255.0, "other_ns": 5475.0,
+                    "overhead_ns": 5980.0, "read_lines": 533, "write_lines": 1798, "runs": 1,
+                    "cycles_stepped": 5011, "cycles_skipped": 94}}
+
+
+class ConfigIds(unittest.TestCase):
+    def test_every_configuration_of_every_sweep_has_a_distinct_folder_name(self):
+        cfgs = {c for s in SWEEPS.values() for c in s.configs}
+        ids = [c.id for c in cfgs]
+        self.assertEqual(len(ids), len(set(ids)))
+        for i in ids:
+            self.assertRegex(i, r"^[A-Za-z0-9_-]+$")
+
+    def test_the_generator_gets_the_count_and_the_spec(self):
+        c = Config(8, "fp32:sqrt=nr8x1:recip=nr8x1")
+        self.assertEqual(c.generator_args(), "--scpus 8 --scpu fp32:sqrt=nr8x1:recip=nr8x1")
+        self.assertEqual(c.id, "n8_fp32_sqrt_nr8x1_recip_nr8x1")
+
+
+class Rows(unittest.TestCase):
+    def test_a_row_derives_per_collision_figures_and_both_bounds(self):
+        sw = SWEEPS["paper"]
+        r = sweep.row(sw, Config(16, "fp32"), MANIFEST, Scene(10), "qpi", summary(), {}, {}, {})
+        self.assertAlmostEqual(r["ns_per_collision"], 31100.0 / 3593)
+        self.assertAlmostEqual(r["ns_per_pair"], 31100.0 / 5829)
+        self.assertAlmostEqual(r["over_link_bound"], 31100.0 / 28829.0)
+        # 16 pairs a cycle at 5 ns: 0.3125 ns a pair
+        self.assertAlmostEqual(r["compute_bound_ns"], 5829 * 0.3125)
+        self.assertAlmostEqual(r["rtl_wall_over_ode"], 91000000 / 93000)
+        self.assertEqual(r["ram_bits"], 2097152 + 34048)
+
+    def test_an_empty_step_gives_blank_ratios_not_a_division_error(self):
+        r = sweep.row(SWEEPS["paper"], Config(16, "fp32"), MANIFEST, Scene(1), "qpi",
+                      summary(pairs=0, contacts=0), {}, {}, {})
+        self.assertEqual(r["ns_per_collision"], "")
+        self.assertEqual(r["over_compute_bound"], "")
+
+    def test_csv_round_trip_keeps_every_column_of_every_row(self):
+        with tempfile.TemporaryDirectory() as d:
+            p = Path(d) / "x.csv"
+            sweep.write_csv(p, [{"a": 1, "b": 2}, {"a": 3, "c": 4}])
+            rows = sweep.read_csv(p)
+            self.assertEqual(rows, [{"a": "1", "b": "2", "c": ""}, {"a": "3", "b": "", "c": "4"}])
+
+
+class Drift(unittest.TestCase):
+    def test_drift_is_the_distance_between_the_same_spheres(self):
+        with tempfile.TemporaryDirectory() as d:
+            a, b = Path(d) / "a.csv", Path(d) / "b.csv"
+            a.write_text("sphere,x,y,z\n0,0x0p+0,0x0p+0,0x0p+0\n1,0x1p+0,0x0p+0,0x0p+0\n")
+            b.write_text("sphere,x,y,z\n0,0x1.8p+1,0x1p+2,0x0p+0\n1,0x1p+0,0x0p+0,0x0p+0\n")
+            self.assertEqual(runs.drift(a, b), {"drift_max_m": 5.0, "drift_mean_m": 2.5})
+            b.write_text("sphere,x,y,z\n0,0x0p+0,0x0p+0,0x0p+0\n")
+            with self.assertRaisesRegex(RuntimeError, "different sphere counts"):
+                runs.drift(a, b)
+
+
+class Caching(unittest.TestCase):
+    def test_a_cached_run_is_used_only_with_the_same_sources_and_settings(self):
+        with tempfile.TemporaryDirectory() as d:
+            r = sweep.Runner.__new__(sweep.Runner)
+            r.key = {"rtl": "abc", "host": "def", "cpu_repeat": 20}
+            run = Path(d)
+            self.assertIsNone(r.cached(run))
+            (run / "summary.json").write_text(json.dumps({"pairs": 1}))
+            (run / "key.json").write_text(json.dumps(r.key))
+            self.assertEqual(r.cached(run), {"pairs": 1})
+            r.key = dict(r.key, rtl="changed")
+            self.assertIsNone(r.cached(run))
+
+
+class Plots(unittest.TestCase):
+    def test_the_paper_sweep_draws_figures_5_6_and_7(self):
+        rows = []
+        for h, (pairs, contacts) in enumerate([(13, 13), (300, 200), (5829, 3593)], start=1):
+            for link in ("qpi", "ideal"):
+                r = sweep.row(SWEEPS["paper"], Config(16, "fp32"), MANIFEST, Scene(h), link,
+                              summary(pairs, contacts), {}, {}, {})
+                rows.append({k: str(v) for k, v in r.items()})
+        with tempfile.TemporaryDirectory() as d:
+            files = plots.draw("paper", rows, Path(d))
+            self.assertEqual(sorted(f.name for f in files),
+                             ["fig5_time_vs_collisions.png", "fig6_time_split.png", "fig7_ideal_link.png"])
+            for f in files:
+                self.assertGreater(f.stat().st_size, 10000)
+                self.assertEqual(f.read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
+
+
+if __name__ == "__main__":
+    unittest.main()
