@@ -2,7 +2,7 @@
 
   bench/sweep list                      the named sweeps
   bench/sweep run NAME [--no-area] ...  run one (resumes where it stopped), write CSV + plots
-  bench/sweep plot NAME                 redraw the plots from the CSV
+  bench/sweep plot NAME                 redraw the plots and tables from the CSV
 """
 import argparse
 import datetime
@@ -14,6 +14,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import plots  # noqa: E402
+import report  # noqa: E402
 import sweep as sweeplib  # noqa: E402
 from paths import RESULTS, ROOT, write_atomic  # noqa: E402
 from sweeps import SWEEPS  # noqa: E402
@@ -74,6 +75,7 @@ def main(argv=None):
     rows = sweeplib.read_csv(out / f"{sw.name}.csv")
     for f in plots.draw(sw.name, rows, out):
         print(f"  plot {f}")
+    print(f"  tables {report.write(sw.name, rows, out)}")
     return 0
 
 

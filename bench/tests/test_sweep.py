@@ -9,6 +9,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sweeplib"))
 
 import plots  # noqa: E402
+import report  # noqa: E402
 import runs  # noqa: E402
 import sweep  # noqa: E402
 from sweeps import SWEEPS, Config, Scene  # noqa: E402
@@ -108,6 +109,10 @@ class Plots(unittest.TestCase):
             for f in files:
                 self.assertGreater(f.stat().st_size, 10000)
                 self.assertEqual(f.read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
+            md = report.write("paper", rows, Path(d)).read_text()
+            # hMax 3 over qpi: 31.10 us modelled, 8.66 ns/collision, 1.08x the link bound
+            self.assertIn("| n16_fp32 | 3 | qpi | 5829 | 3593 | 31.10 | 8.66 | 5.34 | 28.83 | 1.08 |", md)
+            self.assertIn("200,844 logic elements", md)
 
 
 if __name__ == "__main__":

@@ -43,45 +43,29 @@ std::int64_t timeNs(int repeat, F&& f) {
   return best;
 }
 
-void add(AfuTotals& a, const RtlBatchStats& b, double cycleNs) {
-  a.runs += b.runs;
-  a.cyclesTotal += b.counters.cyclesTotal;
-  a.cyclesLoading += b.counters.cyclesLoading;
-  a.cyclesComputing += b.counters.cyclesComputing;
-  a.cyclesWaitRead += b.counters.cyclesWaitRead;
-  a.cyclesWaitWrite += b.counters.cyclesWaitWrite;
-  a.cyclesStepped += b.stats.cyclesStepped;
-  a.cyclesSkipped += b.stats.cyclesSkipped;
-  a.modelledNs += b.stats.modelledNs;
-  a.readLines += b.stats.readLines;
-  a.writeLines += b.stats.writeLines;
-  a.linkBoundNs += b.stats.linkBoundNs;
-  a.cycleNs = cycleNs;
-}
-
 void printAfu(std::ostream& os, const AfuTotals& a, std::uint64_t pairs, std::uint64_t contacts,
               const std::string& linkName, std::int64_t wallNs) {
   const double c = a.cycleNs;
   auto line = [&](const char* what, double ns, const char* note) {
     os << "  " << std::left << std::setw(22) << what << std::right << std::fixed << std::setprecision(3)
        << std::setw(12) << ns / 1e3 << " us  " << std::setw(5) << std::setprecision(1)
-       << (a.modelledNs > 0 ? 100.0 * ns / a.modelledNs : 0.0) << " %" << note << "\n";
+       << (a.stats.modelledNs > 0 ? 100.0 * ns / a.stats.modelledNs : 0.0) << " %" << note << "\n";
   };
   os << "AFU (modelled, link " << linkName << "): " << a.runs << " runs, " << std::fixed << std::setprecision(3)
-     << a.modelledNs / 1e3 << " us";
-  if (contacts) os << ", " << std::setprecision(1) << a.modelledNs / contacts << " ns/collision";
-  if (pairs) os << ", " << std::setprecision(2) << a.modelledNs / pairs << " ns/pair";
+     << a.stats.modelledNs / 1e3 << " us";
+  if (contacts) os << ", " << std::setprecision(1) << a.stats.modelledNs / contacts << " ns/collision";
+  if (pairs) os << ", " << std::setprecision(2) << a.stats.modelledNs / pairs << " ns/pair";
   os << "\n";
-  line("loading spheres", a.cyclesLoading * c, "  (status counter; includes its read waits)");
-  line("computing", a.cyclesComputing * c, "  (cycles in which an SCPU took a pair)");
-  line("waiting on reads", a.cyclesWaitRead * c, "  (may overlap loading)");
-  line("waiting on writes", a.cyclesWaitWrite * c, "");
+  line("loading spheres", a.counters.cyclesLoading * c, "  (status counter; includes its read waits)");
+  line("computing", a.counters.cyclesComputing * c, "  (cycles in which an SCPU took a pair)");
+  line("waiting on reads", a.counters.cyclesWaitRead * c, "  (may overlap loading)");
+  line("waiting on writes", a.counters.cyclesWaitWrite * c, "");
   line("other AFU cycles", a.otherNs(), "  (total minus the four above; negative if they overlap)");
   line("overhead", a.overheadNs(), "  (per run: transaction, CSR writes, status write, polling)");
-  os << "  link bound " << std::setw(18) << std::setprecision(3) << a.linkBoundNs / 1e3 << " us  ("
-     << a.readLines << " lines read, " << a.writeLines << " written; modelled/bound "
-     << std::setprecision(2) << (a.linkBoundNs > 0 ? a.modelledNs / a.linkBoundNs : 0.0) << ")\n";
-  os << "  simulated: " << a.cyclesStepped << " cycles stepped, " << a.cyclesSkipped << " skipped exactly, "
+  os << "  link bound " << std::setw(18) << std::setprecision(3) << a.stats.linkBoundNs / 1e3 << " us  ("
+     << a.stats.readLines << " lines read, " << a.stats.writeLines << " written; modelled/bound "
+     << std::setprecision(2) << (a.stats.linkBoundNs > 0 ? a.stats.modelledNs / a.stats.linkBoundNs : 0.0) << ")\n";
+  os << "  simulated: " << a.stats.cyclesStepped << " cycles stepped, " << a.stats.cyclesSkipped << " skipped exactly, "
      << std::setprecision(3) << wallNs / 1e9 << " s wall\n";
 }
 
@@ -143,7 +127,7 @@ int runScene(const RunOptions& o) {
       tot.odeNs += stepOdeNs;
       tot.simdNs += stepSimdNs;
       tot.hitMismatches += stepMismatch;
-      if (rtlBackend) add(afu, rtlBackend->lastBatch(), sc.link.cycleNs());
+      if (rtlBackend) { afu.add(rtlBackend->lastBatch()); afu.cycleNs = sc.link.cycleNs(); }
       if (o.perStep) {
         std::cout << "step " << st.step << ": " << st.pairsTested << " pairs, " << st.contacts << " contacts"
                   << (st.otherContacts ? " (+" + std::to_string(st.otherContacts) + " plane)" : "")
@@ -212,20 +196,20 @@ int runScene(const RunOptions& o) {
         j["afu"] = {{"preset", driver::builtInAfuPreset()},
                     {"link", sc.link.name},
                     {"runs", afu.runs},
-                    {"modelled_ns", afu.modelledNs},
+                    {"modelled_ns", afu.stats.modelledNs},
                     {"cycle_ns", afu.cycleNs},
-                    {"cycles_total", afu.cyclesTotal},
-                    {"loading_ns", afu.cyclesLoading * afu.cycleNs},
-                    {"computing_ns", afu.cyclesComputing * afu.cycleNs},
-                    {"wait_read_ns", afu.cyclesWaitRead * afu.cycleNs},
-                    {"wait_write_ns", afu.cyclesWaitWrite * afu.cycleNs},
+                    {"cycles_total", afu.counters.cyclesTotal},
+                    {"loading_ns", afu.counters.cyclesLoading * afu.cycleNs},
+                    {"computing_ns", afu.counters.cyclesComputing * afu.cycleNs},
+                    {"wait_read_ns", afu.counters.cyclesWaitRead * afu.cycleNs},
+                    {"wait_write_ns", afu.counters.cyclesWaitWrite * afu.cycleNs},
                     {"other_ns", afu.otherNs()},
                     {"overhead_ns", afu.overheadNs()},
-                    {"read_lines", afu.readLines},
-                    {"write_lines", afu.writeLines},
-                    {"link_bound_ns", afu.linkBoundNs},
-                    {"cycles_stepped", afu.cyclesStepped},
-                    {"cycles_skipped", afu.cyclesSkipped}};
+                    {"read_lines", afu.stats.readLines},
+                    {"write_lines", afu.stats.writeLines},
+                    {"link_bound_ns", afu.stats.linkBoundNs},
+                    {"cycles_stepped", afu.stats.cyclesStepped},
+                    {"cycles_skipped", afu.stats.cyclesSkipped}};
       }
       std::ofstream js(o.summary);
       if (!js) throw std::runtime_error(o.summary + ": cannot write");

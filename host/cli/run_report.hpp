@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <ostream>
 
+#include "collide/rtl_backend.hpp"
+
 namespace collide::cli {
 
 struct RunTotals {
@@ -13,22 +15,16 @@ struct RunTotals {
 
 // The rtl backend's modelled AFU time over a run (sums over every AFU call), split as the
 // paper's Figures 5-7: the status line's cycle counters, and what lies outside them.
-struct AfuTotals {
-  std::uint64_t runs = 0;
-  std::uint64_t cyclesTotal = 0, cyclesLoading = 0, cyclesComputing = 0, cyclesWaitRead = 0,
-                cyclesWaitWrite = 0;
-  std::uint64_t cyclesStepped = 0, cyclesSkipped = 0;  // how the simulator got there
-  double modelledNs = 0;  // host view: transaction overhead + CSRs + AFU + status + polls
+struct AfuTotals : RtlBatchStats {
   double cycleNs = 5.0;
-  std::uint64_t readLines = 0, writeLines = 0;  // lines moved over the link
-  double linkBoundNs = 0;  // the link model's floor for those lines (driver::linkBoundNs)
   // AFU cycles that none of the four counters claims (they may overlap: then negative).
   double otherNs() const {
-    return (static_cast<double>(cyclesTotal) - static_cast<double>(cyclesLoading + cyclesComputing +
-                                                                   cyclesWaitRead + cyclesWaitWrite)) * cycleNs;
+    const auto& c = counters;
+    return (static_cast<double>(c.cyclesTotal) -
+            static_cast<double>(c.cyclesLoading + c.cyclesComputing + c.cyclesWaitRead + c.cyclesWaitWrite)) * cycleNs;
   }
   // Modelled time outside the AFU's own cycle count.
-  double overheadNs() const { return modelledNs - static_cast<double>(cyclesTotal) * cycleNs; }
+  double overheadNs() const { return stats.modelledNs - static_cast<double>(counters.cyclesTotal) * cycleNs; }
 };
 
 // "X ms total, Y ns/pair, Z ns/collision" ("-" where a count is 0).

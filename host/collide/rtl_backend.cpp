@@ -30,9 +30,12 @@ RtlBackend::RtlBackend(std::unique_ptr<driver::AfuPort> port, const link::LinkPa
 void RtlBackend::runOne(const SphereTable& spheres, const PairList& pairs, ContactSet& out) {
   last_ = driver_->run(spheres, pairs);
   out = driver_->toContactSet(last_, pairs.size());
-  ++batch_.runs;
-  auto& c = batch_.counters;
-  const auto& s = last_.status;
+  batch_.add(last_.status, last_.stats);
+}
+
+void RtlBatchStats::add(const driver::StatusLine& s, const driver::RunStats& r, std::size_t n) {
+  runs += n;
+  auto& c = counters;
   c.done += s.done;
   c.errors |= s.errors;
   c.pairsProcessed += s.pairsProcessed;
@@ -44,14 +47,13 @@ void RtlBackend::runOne(const SphereTable& spheres, const PairList& pairs, Conta
   c.cyclesComputing += s.cyclesComputing;
   c.cyclesWaitRead += s.cyclesWaitRead;
   c.cyclesWaitWrite += s.cyclesWaitWrite;
-  auto& t = batch_.stats;
-  t.cyclesStepped += last_.stats.cyclesStepped;
-  t.cyclesSkipped += last_.stats.cyclesSkipped;
-  t.statusCycle += last_.stats.statusCycle;
-  t.modelledNs += last_.stats.modelledNs;
-  t.readLines += last_.stats.readLines;
-  t.writeLines += last_.stats.writeLines;
-  t.linkBoundNs += last_.stats.linkBoundNs;
+  stats.cyclesStepped += r.cyclesStepped;
+  stats.cyclesSkipped += r.cyclesSkipped;
+  stats.statusCycle += r.statusCycle;
+  stats.modelledNs += r.modelledNs;
+  stats.readLines += r.readLines;
+  stats.writeLines += r.writeLines;
+  stats.linkBoundNs += r.linkBoundNs;
 }
 
 void RtlBackend::collide(const SphereTable& spheres, const PairList& pairs, ContactSet& out) {

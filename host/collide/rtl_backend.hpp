@@ -20,6 +20,10 @@ struct RtlBatchStats {
   std::size_t runs = 0;          // AFU calls: 1, more when the batch is split, 0 if empty
   driver::StatusLine counters;   // the status lines' counters summed over the runs
   driver::RunStats stats;        // cycles stepped/skipped, status cycles, modelled ns: sums
+
+  // Sums `runs` AFU runs' status line and statistics into these totals (errors: OR).
+  void add(const driver::StatusLine& s, const driver::RunStats& r, std::size_t n = 1);
+  void add(const RtlBatchStats& b) { add(b.counters, b.stats, b.runs); }
 };
 
 class RtlBackend final : public CollisionBackend {
