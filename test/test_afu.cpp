@@ -19,6 +19,7 @@
 #include "driver/manifest.hpp"
 #include "support/golden_vectors.hpp"
 #include "support/lockstep.hpp"
+#include "support/random_batch.hpp"
 #include "support/test_seed.hpp"
 
 using namespace collide;
@@ -90,13 +91,9 @@ TEST(Afu, MatchesTheGoldenModelVectorsBitForBit) {
 
 TEST(Afu, SkippingIdleCyclesMatchesSteppingExactly) {
   const auto seed = test::testSeed(71);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> pos(-2.0, 2.0), rad(0.1, 0.5);
   SphereTable t;
   PairList p;
-  for (int k = 0; k < 400; ++k) t.push(pos(rng), pos(rng), pos(rng), rad(rng));
-  std::uniform_int_distribution<std::uint32_t> idx(0, 399);
-  for (int k = 0; k < 3000; ++k) p.push(idx(rng), idx(rng));
+  test::randomBatch(seed, 400, 3000, t, p, {2.0, 0.1, 0.5});
   auto lp = link::LinkParams::qpi();
   lp.seed = seed;
   for (bool dense : {false, true}) {

@@ -9,6 +9,7 @@
 #include "collide/simd_backend.hpp"
 #include "driver/afu_driver.hpp"
 #include "support/model_afu.hpp"
+#include "support/random_batch.hpp"
 #include "support/test_seed.hpp"
 
 using namespace collide;
@@ -18,13 +19,7 @@ using collide::test::ModelAfuConfig;
 
 namespace {
 
-void randomBatch(std::uint64_t seed, std::size_t spheres, std::size_t pairs, SphereTable& t, PairList& p) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> pos(-1.0, 1.0), rad(0.05, 0.4);
-  for (std::size_t k = 0; k < spheres; ++k) t.push(pos(rng), pos(rng), pos(rng), rad(rng));
-  std::uniform_int_distribution<std::uint32_t> idx(0, static_cast<std::uint32_t>(spheres - 1));
-  for (std::size_t k = 0; k < pairs; ++k) p.push(idx(rng), idx(rng));
-}
+using collide::test::randomBatch;
 
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 

@@ -9,19 +9,16 @@
 #include "collide/rtl_backend.hpp"
 #include "collide/simd_backend.hpp"
 #include "support/model_afu.hpp"
+#include "support/random_batch.hpp"
 #include "support/test_seed.hpp"
 
 using namespace collide;
 
 TEST(RtlChunking, BatchesBeyondTheSphereTableAreSplitAndMatchSimd) {
   const auto seed = test::testSeed(61);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> pos(-1.5, 1.5), rad(0.1, 0.6);
   SphereTable t;
   PairList p;
-  for (int k = 0; k < 700; ++k) t.push(pos(rng), pos(rng), pos(rng), rad(rng));
-  std::uniform_int_distribution<std::uint32_t> idx(0, 699);
-  for (int k = 0; k < 4000; ++k) p.push(idx(rng), idx(rng));
+  test::randomBatch(seed, 700, 4000, t, p, {1.5, 0.1, 0.6});
 
   test::ModelAfuConfig mc;
   mc.maxSpheres = 64;  // 700 spheres: at least 11 runs

@@ -3,6 +3,7 @@ by the block's Verilog. The AFU's area is reported as PUC + N x SCPU, each synth
 own (no optimization across the boundary; the SCPUs are identical, so one synthesis serves N)."""
 import hashlib
 import json
+import re
 import subprocess
 from pathlib import Path
 
@@ -11,14 +12,38 @@ from paths import BUILD, ROOT, write_atomic
 CACHE = BUILD / "area"
 
 
-def synth(sv: Path, top: str, log_dir: Path) -> dict:
-    key = hashlib.sha1(sv.read_bytes() + top.encode()).hexdigest()[:16]
-    cached = CACHE / f"{top}-{key}.json"
+def subtree(text: str, top: str):
+    """The preamble (macros) and the modules `top` instantiates, transitively: what Yosys needs."""
+    first = re.search(r"^module ", text, re.M)
+    pre = text[:first.start()] if first else ""
+    blocks = {m.group(1): m.group(0) for m in re.finditer(r"^module (\w+)\(.*?^endmodule\n?", text, re.M | re.S)}
+    if top not in blocks:
+        raise RuntimeError(f"no module {top}")
+    seen, todo = [], [top]
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        seen.append(name)
+        todo += [n for n in re.findall(r"^\s+(\w+)\s+\w+\s*\(", blocks[name], re.M) if n in blocks]
+    return pre, [blocks[n] for n in sorted(seen)]
+
+
+def synth(sv: Path, top: str, log_dir: Path, config_id: str) -> dict:
+    """Area of `top` and what it instantiates. Cached by that Verilog with the configuration's
+    id (which every module name carries) taken out, so an SCPU shared by several
+    configurations (same spec, other SCPU counts) is synthesized once."""
+    pre, mods = subtree(sv.read_text(), top)
+    norm = "".join(mods).replace(config_id, "ID")
+    key = hashlib.sha1((norm + top.replace(config_id, "ID")).encode()).hexdigest()[:16]
+    cached = CACHE / f"{top.replace(config_id, 'ID')}-{key}.json"
     if cached.exists():
         return json.loads(cached.read_text())
     log_dir.mkdir(parents=True, exist_ok=True)
+    part = log_dir / f"{top}.sv"
+    part.write_text(pre + "".join(mods))
     log = log_dir / f"yosys-{top}.log"
-    r = subprocess.run(["bash", str(ROOT / "bench" / "area" / "yosys_area.sh"), str(sv), top, str(log)],
+    r = subprocess.run(["bash", str(ROOT / "bench" / "area" / "yosys_area.sh"), str(part), top, str(log)],
                        capture_output=True, text=True)
     if r.returncode != 0:
         raise RuntimeError(f"yosys on {top}: {r.stderr.strip()}")
@@ -30,6 +55,10 @@ def synth(sv: Path, top: str, log_dir: Path) -> dict:
 FIELDS = ("luts", "arith", "dsp", "ff", "m10k")
 
 
-def afu_area(puc: dict, scpu: dict, n: int) -> dict:
-    return {f"area_{k}": puc[k] + n * scpu[k] for k in FIELDS} | \
-           {f"scpu_{k}": scpu[k] for k in FIELDS} | {f"puc_{k}": puc[k] for k in FIELDS}
+def afu_area(puc, scpu: dict, n: int) -> dict:
+    """scpu_*: one SCPU; scpus_*: N of them; puc_* and area_* (PUC + N x SCPU) when the PUC was
+    synthesized (puc is None otherwise)."""
+    r = {f"scpu_{k}": scpu[k] for k in FIELDS} | {f"scpus_{k}": n * scpu[k] for k in FIELDS}
+    if puc is not None:
+        r |= {f"area_{k}": puc[k] + n * scpu[k] for k in FIELDS} | {f"puc_{k}": puc[k] for k in FIELDS}
+    return r

@@ -126,7 +126,7 @@ def arith(rows, out):
     for xkey, xlabel, fname, src in (
             ("ns_per_collision", "modelled ns per collision, ideal link (diamond hMax 10)", "arith_pareto_time.png", "ideal"),
             ("latency", "SCPU latency (cycles)", "arith_pareto_latency.png", "qpi"),
-            ("area_luts", "area: LUTs of PUC + 16 SCPUs (Yosys)", "arith_pareto_area.png", "qpi")):
+            ("scpus_luts", "area: LUTs of the 16 SCPUs (Yosys, Cyclone V; PUC not included)", "arith_pareto_area.png", "qpi")):
         pts = [(f(ideal.get(r["config"], r) if src == "ideal" else r, xkey), f(r, err), r["scpu_spec"]) for r in rs]
         pts = [p for p in pts if p[0] is not None and p[1] is not None]
         if not pts:

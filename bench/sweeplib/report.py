@@ -45,22 +45,25 @@ def split_table(rows):
 
 def area_table(rows):
     head = ["config", "SCPUs", "LUTs (PUC + N x SCPU)", "arith cells", "DSP", "FF", "M10K", "RAM bits (manifest)",
-            "one SCPU: LUTs / DSP / FF", "PUC: LUTs / FF / M10K"]
+            "one SCPU: LUTs / arith / DSP / FF", "PUC: LUTs / FF / M10K"]
     body, seen = [], set()
     for r in rows:
-        if r["config"] in seen or f(r, "area_luts") is None:
+        if r["config"] in seen or f(r, "scpu_luts") is None:
             continue
         seen.add(r["config"])
-        body.append([r["config"], r["scpus"], r["area_luts"], r["area_arith"], r["area_dsp"], r["area_ff"], r["area_m10k"],
-                     r["ram_bits"], f"{r['scpu_luts']} / {r['scpu_dsp']} / {r['scpu_ff']}",
-                     f"{r['puc_luts']} / {r['puc_ff']} / {r['puc_m10k']}"])
+        has_puc = f(r, "area_luts") is not None
+        total = [r["area_luts"], r["area_arith"], r["area_dsp"], r["area_ff"], r["area_m10k"]] if has_puc else \
+            [f"{r['scpus_luts']} (SCPUs only)", r["scpus_arith"], r["scpus_dsp"], r["scpus_ff"], "-"]
+        body.append([r["config"], r["scpus"], *total, r["ram_bits"],
+                     f"{r['scpu_luts']} / {r['scpu_arith']} / {r['scpu_dsp']} / {r['scpu_ff']}",
+                     f"{r['puc_luts']} / {r['puc_ff']} / {r['puc_m10k']}" if has_puc else "not synthesized"])
     return table(head, body) if body else "(area not measured in this run: `--no-area`)\n"
 
 
 def accuracy_table(rows):
     head = ["SCPU spec", "latency", "pos rel err worst / mean", "normal ulps worst / mean", "depth / ulp(r1+r2) worst / mean",
             "grazing decisions != double", "wide-range decisions != exact (outside band)",
-            f"drift from ODE (max / mean, m)", "ns/collision qpi / ideal", "LUTs", "DSP"]
+            f"drift from ODE (max / mean, m)", "ns/collision qpi / ideal", "16 SCPUs: LUTs", "DSP"]
     body = []
     ideal = {r["config"]: r for r in sel(rows, link="ideal")}
     for r in sel(rows, link="qpi"):
@@ -73,7 +76,7 @@ def accuracy_table(rows):
                      r.get("acc_wide_mismatch_outside", ""),
                      f"{fmt(f(r, 'drift_max_m'), '.1e')} / {fmt(f(r, 'drift_mean_m'), '.1e')}",
                      f"{fmt(f(r, 'ns_per_collision'), '.2f')} / {fmt(f(i, 'ns_per_collision') if i else None, '.2f')}",
-                     r.get("area_luts", ""), r.get("area_dsp", "")])
+                     r.get("scpus_luts", ""), r.get("scpus_dsp", "")])
     return table(head, body)
 
 

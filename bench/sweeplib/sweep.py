@@ -5,6 +5,7 @@ stops (Ctrl-C, a crash, a reboot) resumes where it was, and a second run only re
 changed."""
 import csv
 import json
+import threading
 import time
 from pathlib import Path
 
@@ -27,8 +28,8 @@ def w_build(cfg):
     return 30 + 12 * cfg.scpus * (2 if "64" in cfg.spec else 1)
 
 
-def w_area(cfg):
-    return 400
+def w_area(cfg, puc=True):
+    return (200 if puc else 0) + (600 if "64" in cfg.spec else 200)
 
 
 class Runner:
@@ -62,7 +63,7 @@ class Runner:
         w = W_GEN * len(stale) + sum(w_build(c) for c in sw.configs)
         w += W_RUN * len(sw.configs) * len(sw.scenes) * len(sw.links)
         if self.do_area:
-            w += sum(w_area(c) for c in sw.configs)
+            w += sum(w_area(c, sw.puc_area) for c in sw.configs)
         if sw.accuracy:
             w += W_ACC
         if sw.drift_steps:
@@ -72,8 +73,13 @@ class Runner:
     def go(self):
         sw = self.sweep
         t0 = time.time()
-        bar = tqdm(total=self.plan_weight(), unit="s~", desc=sw.name, dynamic_ncols=True,
+        # smoothing=0: the time left is the average rate so far applied to the weight left; a
+        # ticker redraws every 2 s so a long step (a Yosys run) still shows time passing.
+        bar = tqdm(total=self.plan_weight(), unit="s~", desc=sw.name, dynamic_ncols=True, smoothing=0,
                    bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed} elapsed, ~{remaining} left {postfix}")
+        stop = threading.Event()
+        threading.Thread(target=lambda: [bar.refresh() for _ in iter(lambda: stop.wait(2), True)],
+                         daemon=True).start()
 
         def step(what, weight, f):
             bar.set_postfix_str(what)
@@ -96,11 +102,11 @@ class Runner:
             areas = {}
             if self.do_area:
                 def synth():
-                    sv = generate.verilog(cfg)
-                    scpu = area.synth(sv, generate.module_named(cfg, "Scpu_"), self.logs)
-                    puc = area.synth(sv, generate.module_named(cfg, "Puc_"), self.logs)
+                    sv, cid = generate.verilog(cfg), m["id"]
+                    scpu = area.synth(sv, generate.module_named(cfg, "Scpu_"), self.logs, cid)
+                    puc = area.synth(sv, generate.module_named(cfg, "Puc_"), self.logs, cid) if sw.puc_area else None
                     return area.afu_area(puc, scpu, cfg.scpus)
-                areas = step(f"{cfg.id}: Yosys area", w_area(cfg), synth)
+                areas = step(f"{cfg.id}: Yosys area", w_area(cfg, sw.puc_area), synth)
             drift = {}
             if sw.drift_steps:
                 dscene = Scene(10, sw.drift_steps) if sw.name != "smoke" else Scene(sw.scenes[0].hmax, sw.drift_steps)
@@ -116,6 +122,7 @@ class Runner:
                     s, _ = step(f"{cfg.id}: {scene.id} over {link}", W_RUN,
                                 lambda: self.run_scene(cfg, scene, "rtl", link))
                     rows.append(row(sw, cfg, m, scene, link, s, areas, acc.get(cfg.spec, {}), drift))
+        stop.set()
         bar.close()
         write_csv(self.out / f"{sw.name}.csv", rows)
         return rows, time.time() - t0

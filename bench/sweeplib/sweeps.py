@@ -38,7 +38,8 @@ class Sweep:
     configs: tuple
     scenes: tuple
     links: tuple = ("qpi", "ideal")
-    area: bool = True          # Yosys area of the SCPU and the PUC of each configuration
+    area: bool = True          # Yosys area of each configuration's SCPU
+    puc_area: bool = True      # ... and of its PUC (the AFU's area is then PUC + N x SCPU)
     accuracy: bool = False     # the golden model's error against double, per SCPU spec
     drift_steps: int = 0       # > 0: diamond hMax 10 drift from ODE (double) after this many steps
     cpu_repeat: int = 20       # ODE / simd timings: fastest of this many a step
@@ -64,7 +65,7 @@ SWEEPS = {s.name: s for s in (
           configs=tuple(Config(n, "fp32") for n in SCPU_COUNTS), scenes=(Scene(10),)),
     Sweep("arith", "what accuracy costs: formats and algorithms at 16 SCPUs, diamond hMax 10",
           configs=tuple(Config(16, s) for s in ARITH_SPECS), scenes=(Scene(10),),
-          accuracy=True, drift_steps=6),
+          accuracy=True, drift_steps=6, puc_area=False),  # the PUC barely changes with the arithmetic
     Sweep("smoke", "a quick check of the tool itself: 2 fp32 SCPUs, diamond hMax 2, ideal link",
           configs=(Config(2, "fp32"),), scenes=(Scene(2),), links=("ideal",), area=False,
           accuracy=False, drift_steps=3, cpu_repeat=3),

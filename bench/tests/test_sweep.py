@@ -117,3 +117,32 @@ class Plots(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class Area(unittest.TestCase):
+    SV = ("`define X 1\n"
+          "module Leaf_a(\n  input x\n);\nendmodule\n"
+          "module Mid_a(\n  input x\n);\n  Leaf_a leaf (\n    .x(x)\n  );\nendmodule\n"
+          "module Other_a(\n  input x\n);\nendmodule\n"
+          "module Top_a(\n  input x\n);\n  Mid_a m (\n    .x(x)\n  );\n  Other_a o (\n    .x(x)\n  );\nendmodule\n")
+
+    def test_a_blocks_verilog_is_its_module_and_everything_below_it(self):
+        import area
+        pre, mods = area.subtree(self.SV, "Mid_a")
+        self.assertEqual(pre, "`define X 1\n")
+        self.assertEqual([m.split("(")[0] for m in mods], ["module Leaf_a", "module Mid_a"])
+        _, mods = area.subtree(self.SV, "Top_a")
+        self.assertEqual(len(mods), 4)
+        with self.assertRaisesRegex(RuntimeError, "no module Nope"):
+            area.subtree(self.SV, "Nope")
+
+    def test_the_afu_area_is_the_puc_plus_n_scpus(self):
+        import area
+        puc = {"luts": 100, "arith": 10, "dsp": 0, "ff": 50, "m10k": 40}
+        scpu = {"luts": 7, "arith": 3, "dsp": 9, "ff": 5, "m10k": 0}
+        a = area.afu_area(puc, scpu, 16)
+        self.assertEqual((a["area_luts"], a["area_dsp"], a["area_m10k"]), (212, 144, 40))
+        self.assertEqual(a["scpus_luts"], 112)
+        b = area.afu_area(None, scpu, 16)
+        self.assertNotIn("area_luts", b)
+        self.assertEqual(b["scpus_dsp"], 144)
