@@ -70,7 +70,7 @@ def main(argv=None):
         write_atomic(out / "MACHINE.md",
                      f"# {sw.name}: how these results were made\n\n- command: `{cmd.strip()}`\n"
                      f"- date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, "
-                     f"{secs / 60:.1f} min (cached steps excluded)\n" + machine())
+                     f"{secs:.0f} s for the steps not already cached\n" + machine())
         print(f"{sw.name}: {len(rows)} rows -> {out / (sw.name + '.csv')}")
     rows = sweeplib.read_csv(out / f"{sw.name}.csv")
     for f in plots.draw(sw.name, rows, out):

@@ -41,6 +41,9 @@ def paper(rows, out):
         ax.plot(x, [f(r, "ode_ns") / 1e3 for r in rs], "s-", label="ODE dCollide (measured here)")
         ax.plot(x, [f(r, "simd_ns") / 1e3 for r in rs], "^-", label="simd batch, binary32 (measured here)")
         ax.plot(x, [f(r, "link_bound_ns") / 1e3 for r in rs], ":", color="gray", label="link model's bound")
+        if link == "ideal":
+            ax.plot(x, [f(r, "compute_bound_ns") / 1e3 for r in rs], "-.", color="black", lw=.8,
+                    label="compute bound (16 pairs a cycle)")
         if link == "qpi":
             ax.plot(x, [PAPER_AFU_NS_PER_COLLISION * v / 1e3 for v in x], "--", color="C0", alpha=.5,
                     label="paper: AFU, 36 ns/collision (average)")
@@ -116,6 +119,16 @@ def scpus(rows, out):
     return files
 
 
+def pareto(pts):
+    """The points no other point beats on both cost (x) and error (y), by increasing cost."""
+    front, best = [], float("inf")
+    for x, y, name in sorted(pts, key=lambda p: (p[0], p[1])):
+        if y < best:
+            front.append((x, y, name))
+            best = y
+    return front
+
+
 def arith(rows, out):
     files = []
     rs = sel(rows, link="qpi")
@@ -133,8 +146,12 @@ def arith(rows, out):
             continue
         fig, ax = plt.subplots(figsize=(7, 4.5))
         ax.scatter([p[0] for p in pts], [max(p[1], 1e-17) for p in pts])
-        for x, y, name in pts:
-            ax.annotate(name, (x, max(y, 1e-17)), fontsize=7, xytext=(3, 3), textcoords="offset points")
+        front = pareto(pts)
+        ax.step([p[0] for p in front], [max(p[1], 1e-17) for p in front], where="post", color="C1", lw=.8,
+                label="Pareto front (nothing both cheaper and more accurate)")
+        for k, (x, y, name) in enumerate(sorted(pts)):
+            ax.annotate(name, (x, max(y, 1e-17)), fontsize=7, xytext=(3, 3 + 8 * (k % 3)), textcoords="offset points")
+        ax.legend(fontsize=8, loc="lower left")
         ax.set_yscale("log")
         ax.set_xlabel(xlabel)
         ax.set_ylabel("worst relative error of the contact position\n(golden model vs double; fp64: exact)")

@@ -146,3 +146,9 @@ class Area(unittest.TestCase):
         b = area.afu_area(None, scpu, 16)
         self.assertNotIn("area_luts", b)
         self.assertEqual(b["scpus_dsp"], 144)
+
+
+class Pareto(unittest.TestCase):
+    def test_the_front_keeps_only_points_nothing_beats_on_both_axes(self):
+        pts = [(3, 1e-7, "fp32"), (1, 1e-2, "bf16"), (2, 1e-3, "fp16"), (2.5, 1e-2, "worse"), (9, 0.0, "fp64")]
+        self.assertEqual([p[2] for p in plots.pareto(pts)], ["bf16", "fp16", "fp32", "fp64"])
