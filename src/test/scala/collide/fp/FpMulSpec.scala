@@ -121,11 +121,8 @@ class FpMulSpec extends AnyFlatSpec with ChiselScalatestTester {
     assert(sv.contains("module FpMul_bf16_L3("), sv.take(400))
   }
 
-  /** Every preset with subnormals kept and flushed; each format sees latency 0 and its full
-    * pipeline (3), alternating between the subnormal settings; plus latencies 1 and 2. */
-  val rtlConfigs: Seq[(FpParams, Int)] = FloatFormat.presets.map(_._2).zipWithIndex.flatMap { case (f, i) =>
-    Seq((FpParams(f), if (i % 2 == 0) 0 else 3), (FpParams(f, subnormals = false), if (i % 2 == 0) 3 else 0))
-  } ++ Seq((FpParams(fp32), 1), (FpParams(bf16), 2), (FpParams(FloatFormat(3, 3)), 0), (FpParams(FloatFormat(10, 40), false), 2))
+  val rtlConfigs: Seq[(FpParams, Int)] = collide.testutil.FpRtlMatrix.configs(
+    (FpParams(fp32), 1), (FpParams(bf16), 2), (FpParams(FloatFormat(3, 3)), 0), (FpParams(FloatFormat(10, 40), false), 2))
 
   for ((p, lat) <- rtlConfigs) {
     it should s"match the golden model for ${p.name} at latency $lat in every rounding mode${if (lat > 0) ", stalls included" else ""}" in {

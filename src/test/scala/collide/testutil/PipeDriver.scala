@@ -43,3 +43,14 @@ object PipeDriver {
     cycle
   }
 }
+
+/** The configurations a two-operand FP operator's RTL spec streams through: every preset with
+  * subnormals kept and flushed, each format at latency 0 and at its full pipeline (3), the two
+  * alternating between the subnormal settings; plus the spec's own extra cases. */
+object FpRtlMatrix {
+  import collide.fp.{FloatFormat, FpParams}
+  def configs(extra: (FpParams, Int)*): Seq[(FpParams, Int)] =
+    FloatFormat.presets.map(_._2).zipWithIndex.flatMap { case (f, i) =>
+      Seq((FpParams(f), if (i % 2 == 0) 0 else 3), (FpParams(f, subnormals = false), if (i % 2 == 0) 3 else 0))
+    } ++ extra
+}
