@@ -1,6 +1,7 @@
 """Tests of bench/sweep's own logic (no builds): ids, derived figures, drift, caching, CSV
 and plots. Run: tools/.cache/bench-venv/bin/python -m unittest discover -s bench/tests -v"""
 import json
+import os
 import sys
 import tempfile
 import unittest
@@ -152,3 +153,23 @@ class Pareto(unittest.TestCase):
     def test_the_front_keeps_only_points_nothing_beats_on_both_axes(self):
         pts = [(3, 1e-7, "fp32"), (1, 1e-2, "bf16"), (2, 1e-3, "fp16"), (2.5, 1e-2, "worse"), (9, 0.0, "fp64")]
         self.assertEqual([p[2] for p in plots.pareto(pts)], ["bf16", "fp16", "fp32", "fp64"])
+
+
+@unittest.skipUnless(os.environ.get("COLLIDE_SWEEP_SMOKE") == "1",
+                     "end to end (sbt, Verilator, a host build): set COLLIDE_SWEEP_SMOKE=1, as tools/test does")
+class SmokeSweep(unittest.TestCase):
+    def test_one_command_generates_builds_runs_and_writes_the_csv_tables_and_machine_note(self):
+        import cli
+        with tempfile.TemporaryDirectory() as d:
+            self.assertEqual(cli.main(["run", "smoke", "--out", d]), 0)
+            rows = sweep.read_csv(Path(d) / "smoke.csv")
+            self.assertEqual(len(rows), 1)
+            r = rows[0]
+            self.assertEqual((r["config"], r["link"], r["hmax"]), ("n2_fp32", "ideal", "2"))
+            # the diamond at hMax 2: 6 spheres, every tested pair touching or overlapping
+            self.assertEqual((r["spheres"], r["pairs"], r["contacts"]), ("6", "13", "13"))
+            self.assertGreater(float(r["modelled_ns"]), 0)
+            self.assertGreaterEqual(float(r["modelled_ns"]), float(r["link_bound_ns"]))
+            self.assertGreater(float(r["drift_max_m"]), 0)  # fp32 against ODE's double
+            self.assertIn("| n2_fp32 | 2 | ideal | 13 | 13 |", (Path(d) / "smoke.md").read_text())
+            self.assertIn("- command: `bench/sweep run", (Path(d) / "MACHINE.md").read_text())
