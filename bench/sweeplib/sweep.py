@@ -5,6 +5,7 @@ stops (Ctrl-C, a crash, a reboot) resumes where it was, and a second run only re
 changed."""
 import csv
 import json
+import sys
 import threading
 import time
 from pathlib import Path
@@ -78,8 +79,9 @@ class Runner:
         bar = tqdm(total=self.plan_weight(), unit="s~", desc=sw.name, dynamic_ncols=True, smoothing=0,
                    bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed} elapsed, ~{remaining} left {postfix}")
         stop = threading.Event()
-        threading.Thread(target=lambda: [bar.refresh() for _ in iter(lambda: stop.wait(2), True)],
-                         daemon=True).start()
+        if sys.stderr.isatty():  # in a log file, one line a step is enough
+            threading.Thread(target=lambda: [bar.refresh() for _ in iter(lambda: stop.wait(2), True)],
+                             daemon=True).start()
 
         def step(what, weight, f):
             bar.set_postfix_str(what)
