@@ -34,9 +34,9 @@ def synth(sv: Path, top: str, log_dir: Path, config_id: str) -> dict:
     id (which every module name carries) taken out, so an SCPU shared by several
     configurations (same spec, other SCPU counts) is synthesized once."""
     pre, mods = subtree(sv.read_text(), top)
-    norm = "".join(mods).replace(config_id, "ID")
-    key = hashlib.sha1((norm + top.replace(config_id, "ID")).encode()).hexdigest()[:16]
-    cached = CACHE / f"{top.replace(config_id, 'ID')}-{key}.json"
+    generic_top = top.replace(config_id, "ID")
+    key = hashlib.sha1(("".join(mods).replace(config_id, "ID") + generic_top).encode()).hexdigest()[:16]
+    cached = CACHE / f"{generic_top}-{key}.json"
     if cached.exists():
         return json.loads(cached.read_text())
     log_dir.mkdir(parents=True, exist_ok=True)

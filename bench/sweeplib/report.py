@@ -90,9 +90,10 @@ def paper_side_by_side(rows):
     tot = lambda rs, k: sum(f(r, k) for r in rs)
     avg_afu = tot(q, "modelled_ns") / tot(q, "contacts")
     avg_ode = tot(q, "ode_ns") / tot(q, "contacts")
-    faster = [r for r in q if f(r, "modelled_ns") < f(r, "ode_ns")]
-    first = faster[0] if faster and all(f(r, "modelled_ns") < f(r, "ode_ns") for r in q[q.index(faster[0]):]) else None
-    mem = sum(f(big, k) for k in ("loading_ns", "wait_read_ns", "wait_write_ns")) - 0.0
+    faster = lambda r: f(r, "modelled_ns") < f(r, "ode_ns")
+    k0 = next((k for k, r in enumerate(q) if faster(r)), None)  # the first set the AFU wins ...
+    first = q[k0] if k0 is not None and all(faster(r) for r in q[k0:]) else None  # ... and every larger one
+    mem = sum(f(big, k) for k in ("loading_ns", "wait_read_ns", "wait_write_ns"))
     bi = i.get(big["hmax"])
     body = [
         ["collisions at the largest set", "4,812 (hMax 10)", f"{int(big['contacts']):,} (hMax {big['hmax']}, {int(big['pairs']):,} pairs tested)"],

@@ -79,9 +79,13 @@ class Runner:
         bar = tqdm(total=self.plan_weight(), unit="s~", desc=sw.name, dynamic_ncols=True, smoothing=0,
                    bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed} elapsed, ~{remaining} left {postfix}")
         stop = threading.Event()
+
+        def tick():
+            while not stop.wait(2):
+                bar.refresh()
+
         if sys.stderr.isatty():  # in a log file, one line a step is enough
-            threading.Thread(target=lambda: [bar.refresh() for _ in iter(lambda: stop.wait(2), True)],
-                             daemon=True).start()
+            threading.Thread(target=tick, daemon=True).start()
 
         def step(what, weight, f):
             bar.set_postfix_str(what)
