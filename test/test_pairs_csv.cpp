@@ -65,14 +65,16 @@ TEST(PairsCsv, WritesHexFloatsInTheLinkFormat) {
   c.resize(2);
   c.format = LinkFormat::Binary32;
   c.hit[1] = 1;
+  c.flags[1] = 3;  // hit, kind contact
   c.px[1] = static_cast<float>(0.1);
   c.nx[1] = 1.0;
   c.depth[1] = 0x1.0p-21;
   std::ostringstream out;
   writeContactsCsv(out, c);
   EXPECT_EQ(out.str(),
-            "pair,hit,px,py,pz,nx,ny,nz,depth\n"
-            "0,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0\n"
-            "1,1,0x1.99999ap-4,0x0p+0,0x0p+0,0x1p+0,0x0p+0,0x0p+0,0x1p-21\n");
+            "pair,hit,px,py,pz,nx,ny,nz,depth,flags\n"
+            "0,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0\n"
+            "1,1,0x1.99999ap-4,0x0p+0,0x0p+0,0x1p+0,0x0p+0,0x0p+0,0x1p-21,3\n");
+  EXPECT_EQ(hexFloat(1.0 + 0x1p-10, LinkFormat::Binary16), "0x1.004p+0");
   EXPECT_EQ(hexFloat(0.1, LinkFormat::Binary64), "0x1.999999999999ap-4");
 }

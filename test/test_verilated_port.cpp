@@ -126,7 +126,7 @@ TYPED_TEST(VerilatedPort, DenseRecordsNameTheirPairsAndFlagBadIndices) {
   TypeParam port;
   AfuDriver d(port, qpi(seed), o);
   const auto r = d.run(t, p);
-  EXPECT_EQ(r.status.errors, static_cast<std::uint32_t>(kErrSphereIndex));
+  EXPECT_EQ(r.status.errors, contract::ERR_INDEX_RANGE);
   EXPECT_EQ(r.status.firstBadPair, bad.front());
   EXPECT_EQ(r.status.pairsProcessed, p.size());
   ASSERT_EQ(r.records.size(), p.size());
@@ -136,7 +136,7 @@ TYPED_TEST(VerilatedPort, DenseRecordsNameTheirPairsAndFlagBadIndices) {
     b += isBad;
     EXPECT_EQ(r.records[k].pair, k);
     EXPECT_FALSE(r.records[k].hit());
-    EXPECT_EQ(r.records[k].recordCase(), isBad ? kCaseInvalid : kCaseSeparated) << "pair " << k;
+    EXPECT_EQ(r.records[k].recordCase(), isBad ? contract::KIND_INVALID : contract::KIND_SEPARATED) << "pair " << k;
   }
   // The default options turn the flag into an error naming the pair.
   TypeParam port2;

@@ -7754,13 +7754,8 @@ module ContactCollector_n16_default(
   input         io_scpu_0_valid,
                 io_scpu_0_bits_hit,
   input  [1:0]  io_scpu_0_bits_kind,
-  input  [31:0] io_scpu_0_bits_px,
-                io_scpu_0_bits_py,
-                io_scpu_0_bits_pz,
-                io_scpu_0_bits_nx,
-                io_scpu_0_bits_ny,
-                io_scpu_0_bits_nz,
-                io_scpu_0_bits_depth,
+  input  [31:0] io_scpu_0_bits_d,
+                io_scpu_0_bits_nw,
   input         io_scpu_0_bits_nonFinite,
   input  [4:0]  io_scpu_0_bits_flags,
   input  [23:0] io_scpu_0_bits_tag,
@@ -7768,13 +7763,8 @@ module ContactCollector_n16_default(
   input         io_scpu_1_valid,
                 io_scpu_1_bits_hit,
   input  [1:0]  io_scpu_1_bits_kind,
-  input  [31:0] io_scpu_1_bits_px,
-                io_scpu_1_bits_py,
-                io_scpu_1_bits_pz,
-                io_scpu_1_bits_nx,
-                io_scpu_1_bits_ny,
-                io_scpu_1_bits_nz,
-                io_scpu_1_bits_depth,
+  input  [31:0] io_scpu_1_bits_d,
+                io_scpu_1_bits_nw,
   input         io_scpu_1_bits_nonFinite,
   input  [4:0]  io_scpu_1_bits_flags,
   input  [23:0] io_scpu_1_bits_tag,
@@ -7782,13 +7772,8 @@ module ContactCollector_n16_default(
   input         io_scpu_2_valid,
                 io_scpu_2_bits_hit,
   input  [1:0]  io_scpu_2_bits_kind,
-  input  [31:0] io_scpu_2_bits_px,
-                io_scpu_2_bits_py,
-                io_scpu_2_bits_pz,
-                io_scpu_2_bits_nx,
-                io_scpu_2_bits_ny,
-                io_scpu_2_bits_nz,
-                io_scpu_2_bits_depth,
+  input  [31:0] io_scpu_2_bits_d,
+                io_scpu_2_bits_nw,
   input         io_scpu_2_bits_nonFinite,
   input  [4:0]  io_scpu_2_bits_flags,
   input  [23:0] io_scpu_2_bits_tag,
@@ -7796,13 +7781,8 @@ module ContactCollector_n16_default(
   input         io_scpu_3_valid,
                 io_scpu_3_bits_hit,
   input  [1:0]  io_scpu_3_bits_kind,
-  input  [31:0] io_scpu_3_bits_px,
-                io_scpu_3_bits_py,
-                io_scpu_3_bits_pz,
-                io_scpu_3_bits_nx,
-                io_scpu_3_bits_ny,
-                io_scpu_3_bits_nz,
-                io_scpu_3_bits_depth,
+  input  [31:0] io_scpu_3_bits_d,
+                io_scpu_3_bits_nw,
   input         io_scpu_3_bits_nonFinite,
   input  [4:0]  io_scpu_3_bits_flags,
   input  [23:0] io_scpu_3_bits_tag,
@@ -7810,13 +7790,8 @@ module ContactCollector_n16_default(
   input         io_scpu_4_valid,
                 io_scpu_4_bits_hit,
   input  [1:0]  io_scpu_4_bits_kind,
-  input  [31:0] io_scpu_4_bits_px,
-                io_scpu_4_bits_py,
-                io_scpu_4_bits_pz,
-                io_scpu_4_bits_nx,
-                io_scpu_4_bits_ny,
-                io_scpu_4_bits_nz,
-                io_scpu_4_bits_depth,
+  input  [31:0] io_scpu_4_bits_d,
+                io_scpu_4_bits_nw,
   input         io_scpu_4_bits_nonFinite,
   input  [4:0]  io_scpu_4_bits_flags,
   input  [23:0] io_scpu_4_bits_tag,
@@ -7824,13 +7799,8 @@ module ContactCollector_n16_default(
   input         io_scpu_5_valid,
                 io_scpu_5_bits_hit,
   input  [1:0]  io_scpu_5_bits_kind,
-  input  [31:0] io_scpu_5_bits_px,
-                io_scpu_5_bits_py,
-                io_scpu_5_bits_pz,
-                io_scpu_5_bits_nx,
-                io_scpu_5_bits_ny,
-                io_scpu_5_bits_nz,
-                io_scpu_5_bits_depth,
+  input  [31:0] io_scpu_5_bits_d,
+                io_scpu_5_bits_nw,
   input         io_scpu_5_bits_nonFinite,
   input  [4:0]  io_scpu_5_bits_flags,
   input  [23:0] io_scpu_5_bits_tag,
@@ -7838,13 +7808,8 @@ module ContactCollector_n16_default(
   input         io_scpu_6_valid,
                 io_scpu_6_bits_hit,
   input  [1:0]  io_scpu_6_bits_kind,
-  input  [31:0] io_scpu_6_bits_px,
-                io_scpu_6_bits_py,
-                io_scpu_6_bits_pz,
-                io_scpu_6_bits_nx,
-                io_scpu_6_bits_ny,
-                io_scpu_6_bits_nz,
-                io_scpu_6_bits_depth,
+  input  [31:0] io_scpu_6_bits_d,
+                io_scpu_6_bits_nw,
   input         io_scpu_6_bits_nonFinite,
   input  [4:0]  io_scpu_6_bits_flags,
   input  [23:0] io_scpu_6_bits_tag,
@@ -7852,13 +7817,8 @@ module ContactCollector_n16_default(
   input         io_scpu_7_valid,
                 io_scpu_7_bits_hit,
   input  [1:0]  io_scpu_7_bits_kind,
-  input  [31:0] io_scpu_7_bits_px,
-                io_scpu_7_bits_py,
-                io_scpu_7_bits_pz,
-                io_scpu_7_bits_nx,
-                io_scpu_7_bits_ny,
-                io_scpu_7_bits_nz,
-                io_scpu_7_bits_depth,
+  input  [31:0] io_scpu_7_bits_d,
+                io_scpu_7_bits_nw,
   input         io_scpu_7_bits_nonFinite,
   input  [4:0]  io_scpu_7_bits_flags,
   input  [23:0] io_scpu_7_bits_tag,
@@ -7866,13 +7826,8 @@ module ContactCollector_n16_default(
   input         io_scpu_8_valid,
                 io_scpu_8_bits_hit,
   input  [1:0]  io_scpu_8_bits_kind,
-  input  [31:0] io_scpu_8_bits_px,
-                io_scpu_8_bits_py,
-                io_scpu_8_bits_pz,
-                io_scpu_8_bits_nx,
-                io_scpu_8_bits_ny,
-                io_scpu_8_bits_nz,
-                io_scpu_8_bits_depth,
+  input  [31:0] io_scpu_8_bits_d,
+                io_scpu_8_bits_nw,
   input         io_scpu_8_bits_nonFinite,
   input  [4:0]  io_scpu_8_bits_flags,
   input  [23:0] io_scpu_8_bits_tag,
@@ -7880,13 +7835,8 @@ module ContactCollector_n16_default(
   input         io_scpu_9_valid,
                 io_scpu_9_bits_hit,
   input  [1:0]  io_scpu_9_bits_kind,
-  input  [31:0] io_scpu_9_bits_px,
-                io_scpu_9_bits_py,
-                io_scpu_9_bits_pz,
-                io_scpu_9_bits_nx,
-                io_scpu_9_bits_ny,
-                io_scpu_9_bits_nz,
-                io_scpu_9_bits_depth,
+  input  [31:0] io_scpu_9_bits_d,
+                io_scpu_9_bits_nw,
   input         io_scpu_9_bits_nonFinite,
   input  [4:0]  io_scpu_9_bits_flags,
   input  [23:0] io_scpu_9_bits_tag,
@@ -7894,13 +7844,8 @@ module ContactCollector_n16_default(
   input         io_scpu_10_valid,
                 io_scpu_10_bits_hit,
   input  [1:0]  io_scpu_10_bits_kind,
-  input  [31:0] io_scpu_10_bits_px,
-                io_scpu_10_bits_py,
-                io_scpu_10_bits_pz,
-                io_scpu_10_bits_nx,
-                io_scpu_10_bits_ny,
-                io_scpu_10_bits_nz,
-                io_scpu_10_bits_depth,
+  input  [31:0] io_scpu_10_bits_d,
+                io_scpu_10_bits_nw,
   input         io_scpu_10_bits_nonFinite,
   input  [4:0]  io_scpu_10_bits_flags,
   input  [23:0] io_scpu_10_bits_tag,
@@ -7908,13 +7853,8 @@ module ContactCollector_n16_default(
   input         io_scpu_11_valid,
                 io_scpu_11_bits_hit,
   input  [1:0]  io_scpu_11_bits_kind,
-  input  [31:0] io_scpu_11_bits_px,
-                io_scpu_11_bits_py,
-                io_scpu_11_bits_pz,
-                io_scpu_11_bits_nx,
-                io_scpu_11_bits_ny,
-                io_scpu_11_bits_nz,
-                io_scpu_11_bits_depth,
+  input  [31:0] io_scpu_11_bits_d,
+                io_scpu_11_bits_nw,
   input         io_scpu_11_bits_nonFinite,
   input  [4:0]  io_scpu_11_bits_flags,
   input  [23:0] io_scpu_11_bits_tag,
@@ -7922,13 +7862,8 @@ module ContactCollector_n16_default(
   input         io_scpu_12_valid,
                 io_scpu_12_bits_hit,
   input  [1:0]  io_scpu_12_bits_kind,
-  input  [31:0] io_scpu_12_bits_px,
-                io_scpu_12_bits_py,
-                io_scpu_12_bits_pz,
-                io_scpu_12_bits_nx,
-                io_scpu_12_bits_ny,
-                io_scpu_12_bits_nz,
-                io_scpu_12_bits_depth,
+  input  [31:0] io_scpu_12_bits_d,
+                io_scpu_12_bits_nw,
   input         io_scpu_12_bits_nonFinite,
   input  [4:0]  io_scpu_12_bits_flags,
   input  [23:0] io_scpu_12_bits_tag,
@@ -7936,13 +7871,8 @@ module ContactCollector_n16_default(
   input         io_scpu_13_valid,
                 io_scpu_13_bits_hit,
   input  [1:0]  io_scpu_13_bits_kind,
-  input  [31:0] io_scpu_13_bits_px,
-                io_scpu_13_bits_py,
-                io_scpu_13_bits_pz,
-                io_scpu_13_bits_nx,
-                io_scpu_13_bits_ny,
-                io_scpu_13_bits_nz,
-                io_scpu_13_bits_depth,
+  input  [31:0] io_scpu_13_bits_d,
+                io_scpu_13_bits_nw,
   input         io_scpu_13_bits_nonFinite,
   input  [4:0]  io_scpu_13_bits_flags,
   input  [23:0] io_scpu_13_bits_tag,
@@ -7950,13 +7880,8 @@ module ContactCollector_n16_default(
   input         io_scpu_14_valid,
                 io_scpu_14_bits_hit,
   input  [1:0]  io_scpu_14_bits_kind,
-  input  [31:0] io_scpu_14_bits_px,
-                io_scpu_14_bits_py,
-                io_scpu_14_bits_pz,
-                io_scpu_14_bits_nx,
-                io_scpu_14_bits_ny,
-                io_scpu_14_bits_nz,
-                io_scpu_14_bits_depth,
+  input  [31:0] io_scpu_14_bits_d,
+                io_scpu_14_bits_nw,
   input         io_scpu_14_bits_nonFinite,
   input  [4:0]  io_scpu_14_bits_flags,
   input  [23:0] io_scpu_14_bits_tag,
@@ -7964,36 +7889,33 @@ module ContactCollector_n16_default(
   input         io_scpu_15_valid,
                 io_scpu_15_bits_hit,
   input  [1:0]  io_scpu_15_bits_kind,
-  input  [31:0] io_scpu_15_bits_px,
-                io_scpu_15_bits_py,
-                io_scpu_15_bits_pz,
-                io_scpu_15_bits_nx,
-                io_scpu_15_bits_ny,
-                io_scpu_15_bits_nz,
-                io_scpu_15_bits_depth,
+  input  [31:0] io_scpu_15_bits_d,
+                io_scpu_15_bits_nw,
   input         io_scpu_15_bits_nonFinite,
   input  [4:0]  io_scpu_15_bits_flags,
   input  [23:0] io_scpu_15_bits_tag,
-  input  [1:0]  io_room,
-  output [31:0] io_recs_0_px,
-                io_recs_0_py,
-                io_recs_0_pz,
-                io_recs_0_nx,
-                io_recs_0_ny,
-                io_recs_0_nz,
-                io_recs_0_depth,
+  input  [2:0]  io_room,
+  output [31:0] io_recs_0_vals_0,
+                io_recs_0_vals_1,
   output [23:0] io_recs_0_pair,
   output [7:0]  io_recs_0_flags,
-  output [31:0] io_recs_1_px,
-                io_recs_1_py,
-                io_recs_1_pz,
-                io_recs_1_nx,
-                io_recs_1_ny,
-                io_recs_1_nz,
-                io_recs_1_depth,
+  output [31:0] io_recs_1_vals_0,
+                io_recs_1_vals_1,
   output [23:0] io_recs_1_pair,
   output [7:0]  io_recs_1_flags,
-  output [1:0]  io_nRecs,
+  output [31:0] io_recs_2_vals_0,
+                io_recs_2_vals_1,
+  output [23:0] io_recs_2_pair,
+  output [7:0]  io_recs_2_flags,
+  output [31:0] io_recs_3_vals_0,
+                io_recs_3_vals_1,
+  output [23:0] io_recs_3_pair,
+  output [7:0]  io_recs_3_flags,
+  output [31:0] io_recs_4_vals_0,
+                io_recs_4_vals_1,
+  output [23:0] io_recs_4_pair,
+  output [7:0]  io_recs_4_flags,
+  output [2:0]  io_nRecs,
   output [4:0]  io_nPairs,
                 io_nHits,
                 io_nNonFinite
@@ -8109,2928 +8031,2928 @@ module ContactCollector_n16_default(
   always @(*) begin
     casez (io_groups_bits_base)
       4'b0000:
-        casez_tmp_1 = io_scpu_0_bits_px;
+        casez_tmp_1 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_1 = io_scpu_1_bits_px;
+        casez_tmp_1 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_1 = io_scpu_2_bits_px;
+        casez_tmp_1 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_1 = io_scpu_3_bits_px;
+        casez_tmp_1 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_1 = io_scpu_4_bits_px;
+        casez_tmp_1 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_1 = io_scpu_5_bits_px;
+        casez_tmp_1 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_1 = io_scpu_6_bits_px;
+        casez_tmp_1 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_1 = io_scpu_7_bits_px;
+        casez_tmp_1 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_1 = io_scpu_8_bits_px;
+        casez_tmp_1 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_1 = io_scpu_9_bits_px;
+        casez_tmp_1 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_1 = io_scpu_10_bits_px;
+        casez_tmp_1 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_1 = io_scpu_11_bits_px;
+        casez_tmp_1 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_1 = io_scpu_12_bits_px;
+        casez_tmp_1 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_1 = io_scpu_13_bits_px;
+        casez_tmp_1 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_1 = io_scpu_14_bits_px;
+        casez_tmp_1 = io_scpu_14_bits_d;
       default:
-        casez_tmp_1 = io_scpu_15_bits_px;
+        casez_tmp_1 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_2;
   always @(*) begin
     casez (io_groups_bits_base)
       4'b0000:
-        casez_tmp_2 = io_scpu_0_bits_py;
+        casez_tmp_2 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_2 = io_scpu_1_bits_py;
+        casez_tmp_2 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_2 = io_scpu_2_bits_py;
+        casez_tmp_2 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_2 = io_scpu_3_bits_py;
+        casez_tmp_2 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_2 = io_scpu_4_bits_py;
+        casez_tmp_2 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_2 = io_scpu_5_bits_py;
+        casez_tmp_2 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_2 = io_scpu_6_bits_py;
+        casez_tmp_2 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_2 = io_scpu_7_bits_py;
+        casez_tmp_2 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_2 = io_scpu_8_bits_py;
+        casez_tmp_2 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_2 = io_scpu_9_bits_py;
+        casez_tmp_2 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_2 = io_scpu_10_bits_py;
+        casez_tmp_2 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_2 = io_scpu_11_bits_py;
+        casez_tmp_2 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_2 = io_scpu_12_bits_py;
+        casez_tmp_2 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_2 = io_scpu_13_bits_py;
+        casez_tmp_2 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_2 = io_scpu_14_bits_py;
+        casez_tmp_2 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_2 = io_scpu_15_bits_py;
+        casez_tmp_2 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_3;
+  reg         casez_tmp_3;
   always @(*) begin
     casez (io_groups_bits_base)
       4'b0000:
-        casez_tmp_3 = io_scpu_0_bits_pz;
+        casez_tmp_3 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_3 = io_scpu_1_bits_pz;
+        casez_tmp_3 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_3 = io_scpu_2_bits_pz;
+        casez_tmp_3 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_3 = io_scpu_3_bits_pz;
+        casez_tmp_3 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_3 = io_scpu_4_bits_pz;
+        casez_tmp_3 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_3 = io_scpu_5_bits_pz;
+        casez_tmp_3 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_3 = io_scpu_6_bits_pz;
+        casez_tmp_3 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_3 = io_scpu_7_bits_pz;
+        casez_tmp_3 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_3 = io_scpu_8_bits_pz;
+        casez_tmp_3 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_3 = io_scpu_9_bits_pz;
+        casez_tmp_3 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_3 = io_scpu_10_bits_pz;
+        casez_tmp_3 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_3 = io_scpu_11_bits_pz;
+        casez_tmp_3 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_3 = io_scpu_12_bits_pz;
+        casez_tmp_3 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_3 = io_scpu_13_bits_pz;
+        casez_tmp_3 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_3 = io_scpu_14_bits_pz;
+        casez_tmp_3 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_3 = io_scpu_15_bits_pz;
+        casez_tmp_3 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_4;
+  reg  [4:0]  casez_tmp_4;
   always @(*) begin
     casez (io_groups_bits_base)
       4'b0000:
-        casez_tmp_4 = io_scpu_0_bits_nx;
+        casez_tmp_4 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_4 = io_scpu_1_bits_nx;
+        casez_tmp_4 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_4 = io_scpu_2_bits_nx;
+        casez_tmp_4 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_4 = io_scpu_3_bits_nx;
+        casez_tmp_4 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_4 = io_scpu_4_bits_nx;
+        casez_tmp_4 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_4 = io_scpu_5_bits_nx;
+        casez_tmp_4 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_4 = io_scpu_6_bits_nx;
+        casez_tmp_4 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_4 = io_scpu_7_bits_nx;
+        casez_tmp_4 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_4 = io_scpu_8_bits_nx;
+        casez_tmp_4 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_4 = io_scpu_9_bits_nx;
+        casez_tmp_4 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_4 = io_scpu_10_bits_nx;
+        casez_tmp_4 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_4 = io_scpu_11_bits_nx;
+        casez_tmp_4 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_4 = io_scpu_12_bits_nx;
+        casez_tmp_4 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_4 = io_scpu_13_bits_nx;
+        casez_tmp_4 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_4 = io_scpu_14_bits_nx;
+        casez_tmp_4 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_4 = io_scpu_15_bits_nx;
+        casez_tmp_4 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_5;
+  reg  [23:0] casez_tmp_5;
   always @(*) begin
     casez (io_groups_bits_base)
       4'b0000:
-        casez_tmp_5 = io_scpu_0_bits_ny;
+        casez_tmp_5 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_5 = io_scpu_1_bits_ny;
+        casez_tmp_5 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_5 = io_scpu_2_bits_ny;
+        casez_tmp_5 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_5 = io_scpu_3_bits_ny;
+        casez_tmp_5 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_5 = io_scpu_4_bits_ny;
+        casez_tmp_5 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_5 = io_scpu_5_bits_ny;
+        casez_tmp_5 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_5 = io_scpu_6_bits_ny;
+        casez_tmp_5 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_5 = io_scpu_7_bits_ny;
+        casez_tmp_5 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_5 = io_scpu_8_bits_ny;
+        casez_tmp_5 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_5 = io_scpu_9_bits_ny;
+        casez_tmp_5 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_5 = io_scpu_10_bits_ny;
+        casez_tmp_5 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_5 = io_scpu_11_bits_ny;
+        casez_tmp_5 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_5 = io_scpu_12_bits_ny;
+        casez_tmp_5 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_5 = io_scpu_13_bits_ny;
+        casez_tmp_5 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_5 = io_scpu_14_bits_ny;
+        casez_tmp_5 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_5 = io_scpu_15_bits_ny;
+        casez_tmp_5 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_6;
-  always @(*) begin
-    casez (io_groups_bits_base)
-      4'b0000:
-        casez_tmp_6 = io_scpu_0_bits_nz;
-      4'b0001:
-        casez_tmp_6 = io_scpu_1_bits_nz;
-      4'b0010:
-        casez_tmp_6 = io_scpu_2_bits_nz;
-      4'b0011:
-        casez_tmp_6 = io_scpu_3_bits_nz;
-      4'b0100:
-        casez_tmp_6 = io_scpu_4_bits_nz;
-      4'b0101:
-        casez_tmp_6 = io_scpu_5_bits_nz;
-      4'b0110:
-        casez_tmp_6 = io_scpu_6_bits_nz;
-      4'b0111:
-        casez_tmp_6 = io_scpu_7_bits_nz;
-      4'b1000:
-        casez_tmp_6 = io_scpu_8_bits_nz;
-      4'b1001:
-        casez_tmp_6 = io_scpu_9_bits_nz;
-      4'b1010:
-        casez_tmp_6 = io_scpu_10_bits_nz;
-      4'b1011:
-        casez_tmp_6 = io_scpu_11_bits_nz;
-      4'b1100:
-        casez_tmp_6 = io_scpu_12_bits_nz;
-      4'b1101:
-        casez_tmp_6 = io_scpu_13_bits_nz;
-      4'b1110:
-        casez_tmp_6 = io_scpu_14_bits_nz;
-      default:
-        casez_tmp_6 = io_scpu_15_bits_nz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_7;
-  always @(*) begin
-    casez (io_groups_bits_base)
-      4'b0000:
-        casez_tmp_7 = io_scpu_0_bits_depth;
-      4'b0001:
-        casez_tmp_7 = io_scpu_1_bits_depth;
-      4'b0010:
-        casez_tmp_7 = io_scpu_2_bits_depth;
-      4'b0011:
-        casez_tmp_7 = io_scpu_3_bits_depth;
-      4'b0100:
-        casez_tmp_7 = io_scpu_4_bits_depth;
-      4'b0101:
-        casez_tmp_7 = io_scpu_5_bits_depth;
-      4'b0110:
-        casez_tmp_7 = io_scpu_6_bits_depth;
-      4'b0111:
-        casez_tmp_7 = io_scpu_7_bits_depth;
-      4'b1000:
-        casez_tmp_7 = io_scpu_8_bits_depth;
-      4'b1001:
-        casez_tmp_7 = io_scpu_9_bits_depth;
-      4'b1010:
-        casez_tmp_7 = io_scpu_10_bits_depth;
-      4'b1011:
-        casez_tmp_7 = io_scpu_11_bits_depth;
-      4'b1100:
-        casez_tmp_7 = io_scpu_12_bits_depth;
-      4'b1101:
-        casez_tmp_7 = io_scpu_13_bits_depth;
-      4'b1110:
-        casez_tmp_7 = io_scpu_14_bits_depth;
-      default:
-        casez_tmp_7 = io_scpu_15_bits_depth;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_8;
-  always @(*) begin
-    casez (io_groups_bits_base)
-      4'b0000:
-        casez_tmp_8 = io_scpu_0_bits_nonFinite;
-      4'b0001:
-        casez_tmp_8 = io_scpu_1_bits_nonFinite;
-      4'b0010:
-        casez_tmp_8 = io_scpu_2_bits_nonFinite;
-      4'b0011:
-        casez_tmp_8 = io_scpu_3_bits_nonFinite;
-      4'b0100:
-        casez_tmp_8 = io_scpu_4_bits_nonFinite;
-      4'b0101:
-        casez_tmp_8 = io_scpu_5_bits_nonFinite;
-      4'b0110:
-        casez_tmp_8 = io_scpu_6_bits_nonFinite;
-      4'b0111:
-        casez_tmp_8 = io_scpu_7_bits_nonFinite;
-      4'b1000:
-        casez_tmp_8 = io_scpu_8_bits_nonFinite;
-      4'b1001:
-        casez_tmp_8 = io_scpu_9_bits_nonFinite;
-      4'b1010:
-        casez_tmp_8 = io_scpu_10_bits_nonFinite;
-      4'b1011:
-        casez_tmp_8 = io_scpu_11_bits_nonFinite;
-      4'b1100:
-        casez_tmp_8 = io_scpu_12_bits_nonFinite;
-      4'b1101:
-        casez_tmp_8 = io_scpu_13_bits_nonFinite;
-      4'b1110:
-        casez_tmp_8 = io_scpu_14_bits_nonFinite;
-      default:
-        casez_tmp_8 = io_scpu_15_bits_nonFinite;
-    endcase
-  end // always @(*)
-  reg  [4:0]  casez_tmp_9;
-  always @(*) begin
-    casez (io_groups_bits_base)
-      4'b0000:
-        casez_tmp_9 = io_scpu_0_bits_flags;
-      4'b0001:
-        casez_tmp_9 = io_scpu_1_bits_flags;
-      4'b0010:
-        casez_tmp_9 = io_scpu_2_bits_flags;
-      4'b0011:
-        casez_tmp_9 = io_scpu_3_bits_flags;
-      4'b0100:
-        casez_tmp_9 = io_scpu_4_bits_flags;
-      4'b0101:
-        casez_tmp_9 = io_scpu_5_bits_flags;
-      4'b0110:
-        casez_tmp_9 = io_scpu_6_bits_flags;
-      4'b0111:
-        casez_tmp_9 = io_scpu_7_bits_flags;
-      4'b1000:
-        casez_tmp_9 = io_scpu_8_bits_flags;
-      4'b1001:
-        casez_tmp_9 = io_scpu_9_bits_flags;
-      4'b1010:
-        casez_tmp_9 = io_scpu_10_bits_flags;
-      4'b1011:
-        casez_tmp_9 = io_scpu_11_bits_flags;
-      4'b1100:
-        casez_tmp_9 = io_scpu_12_bits_flags;
-      4'b1101:
-        casez_tmp_9 = io_scpu_13_bits_flags;
-      4'b1110:
-        casez_tmp_9 = io_scpu_14_bits_flags;
-      default:
-        casez_tmp_9 = io_scpu_15_bits_flags;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_10;
-  always @(*) begin
-    casez (io_groups_bits_base)
-      4'b0000:
-        casez_tmp_10 = io_scpu_0_bits_tag;
-      4'b0001:
-        casez_tmp_10 = io_scpu_1_bits_tag;
-      4'b0010:
-        casez_tmp_10 = io_scpu_2_bits_tag;
-      4'b0011:
-        casez_tmp_10 = io_scpu_3_bits_tag;
-      4'b0100:
-        casez_tmp_10 = io_scpu_4_bits_tag;
-      4'b0101:
-        casez_tmp_10 = io_scpu_5_bits_tag;
-      4'b0110:
-        casez_tmp_10 = io_scpu_6_bits_tag;
-      4'b0111:
-        casez_tmp_10 = io_scpu_7_bits_tag;
-      4'b1000:
-        casez_tmp_10 = io_scpu_8_bits_tag;
-      4'b1001:
-        casez_tmp_10 = io_scpu_9_bits_tag;
-      4'b1010:
-        casez_tmp_10 = io_scpu_10_bits_tag;
-      4'b1011:
-        casez_tmp_10 = io_scpu_11_bits_tag;
-      4'b1100:
-        casez_tmp_10 = io_scpu_12_bits_tag;
-      4'b1101:
-        casez_tmp_10 = io_scpu_13_bits_tag;
-      4'b1110:
-        casez_tmp_10 = io_scpu_14_bits_tag;
-      default:
-        casez_tmp_10 = io_scpu_15_bits_tag;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_11;
+  reg         casez_tmp_6;
   always @(*) begin
     casez (scpuAt_1[3:0])
       4'b0000:
-        casez_tmp_11 = io_scpu_0_bits_hit;
+        casez_tmp_6 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_11 = io_scpu_1_bits_hit;
+        casez_tmp_6 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_11 = io_scpu_2_bits_hit;
+        casez_tmp_6 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_11 = io_scpu_3_bits_hit;
+        casez_tmp_6 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_11 = io_scpu_4_bits_hit;
+        casez_tmp_6 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_11 = io_scpu_5_bits_hit;
+        casez_tmp_6 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_11 = io_scpu_6_bits_hit;
+        casez_tmp_6 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_11 = io_scpu_7_bits_hit;
+        casez_tmp_6 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_11 = io_scpu_8_bits_hit;
+        casez_tmp_6 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_11 = io_scpu_9_bits_hit;
+        casez_tmp_6 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_11 = io_scpu_10_bits_hit;
+        casez_tmp_6 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_11 = io_scpu_11_bits_hit;
+        casez_tmp_6 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_11 = io_scpu_12_bits_hit;
+        casez_tmp_6 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_11 = io_scpu_13_bits_hit;
+        casez_tmp_6 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_11 = io_scpu_14_bits_hit;
+        casez_tmp_6 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_11 = io_scpu_15_bits_hit;
+        casez_tmp_6 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [1:0]  casez_tmp_12;
+  reg  [1:0]  casez_tmp_7;
   always @(*) begin
     casez (scpuAt_1[3:0])
       4'b0000:
-        casez_tmp_12 = io_scpu_0_bits_kind;
+        casez_tmp_7 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_12 = io_scpu_1_bits_kind;
+        casez_tmp_7 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_12 = io_scpu_2_bits_kind;
+        casez_tmp_7 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_12 = io_scpu_3_bits_kind;
+        casez_tmp_7 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_12 = io_scpu_4_bits_kind;
+        casez_tmp_7 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_12 = io_scpu_5_bits_kind;
+        casez_tmp_7 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_12 = io_scpu_6_bits_kind;
+        casez_tmp_7 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_12 = io_scpu_7_bits_kind;
+        casez_tmp_7 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_12 = io_scpu_8_bits_kind;
+        casez_tmp_7 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_12 = io_scpu_9_bits_kind;
+        casez_tmp_7 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_12 = io_scpu_10_bits_kind;
+        casez_tmp_7 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_12 = io_scpu_11_bits_kind;
+        casez_tmp_7 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_12 = io_scpu_12_bits_kind;
+        casez_tmp_7 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_12 = io_scpu_13_bits_kind;
+        casez_tmp_7 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_12 = io_scpu_14_bits_kind;
+        casez_tmp_7 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_12 = io_scpu_15_bits_kind;
+        casez_tmp_7 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_13;
+  reg  [31:0] casez_tmp_8;
   always @(*) begin
     casez (scpuAt_1[3:0])
       4'b0000:
-        casez_tmp_13 = io_scpu_0_bits_px;
+        casez_tmp_8 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_13 = io_scpu_1_bits_px;
+        casez_tmp_8 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_13 = io_scpu_2_bits_px;
+        casez_tmp_8 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_13 = io_scpu_3_bits_px;
+        casez_tmp_8 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_13 = io_scpu_4_bits_px;
+        casez_tmp_8 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_13 = io_scpu_5_bits_px;
+        casez_tmp_8 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_13 = io_scpu_6_bits_px;
+        casez_tmp_8 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_13 = io_scpu_7_bits_px;
+        casez_tmp_8 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_13 = io_scpu_8_bits_px;
+        casez_tmp_8 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_13 = io_scpu_9_bits_px;
+        casez_tmp_8 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_13 = io_scpu_10_bits_px;
+        casez_tmp_8 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_13 = io_scpu_11_bits_px;
+        casez_tmp_8 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_13 = io_scpu_12_bits_px;
+        casez_tmp_8 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_13 = io_scpu_13_bits_px;
+        casez_tmp_8 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_13 = io_scpu_14_bits_px;
+        casez_tmp_8 = io_scpu_14_bits_d;
       default:
-        casez_tmp_13 = io_scpu_15_bits_px;
+        casez_tmp_8 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_14;
+  reg  [31:0] casez_tmp_9;
   always @(*) begin
     casez (scpuAt_1[3:0])
       4'b0000:
-        casez_tmp_14 = io_scpu_0_bits_py;
+        casez_tmp_9 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_14 = io_scpu_1_bits_py;
+        casez_tmp_9 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_14 = io_scpu_2_bits_py;
+        casez_tmp_9 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_14 = io_scpu_3_bits_py;
+        casez_tmp_9 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_14 = io_scpu_4_bits_py;
+        casez_tmp_9 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_14 = io_scpu_5_bits_py;
+        casez_tmp_9 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_14 = io_scpu_6_bits_py;
+        casez_tmp_9 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_14 = io_scpu_7_bits_py;
+        casez_tmp_9 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_14 = io_scpu_8_bits_py;
+        casez_tmp_9 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_14 = io_scpu_9_bits_py;
+        casez_tmp_9 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_14 = io_scpu_10_bits_py;
+        casez_tmp_9 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_14 = io_scpu_11_bits_py;
+        casez_tmp_9 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_14 = io_scpu_12_bits_py;
+        casez_tmp_9 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_14 = io_scpu_13_bits_py;
+        casez_tmp_9 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_14 = io_scpu_14_bits_py;
+        casez_tmp_9 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_14 = io_scpu_15_bits_py;
+        casez_tmp_9 = io_scpu_15_bits_nw;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_10;
+  always @(*) begin
+    casez (scpuAt_1[3:0])
+      4'b0000:
+        casez_tmp_10 = io_scpu_0_bits_nonFinite;
+      4'b0001:
+        casez_tmp_10 = io_scpu_1_bits_nonFinite;
+      4'b0010:
+        casez_tmp_10 = io_scpu_2_bits_nonFinite;
+      4'b0011:
+        casez_tmp_10 = io_scpu_3_bits_nonFinite;
+      4'b0100:
+        casez_tmp_10 = io_scpu_4_bits_nonFinite;
+      4'b0101:
+        casez_tmp_10 = io_scpu_5_bits_nonFinite;
+      4'b0110:
+        casez_tmp_10 = io_scpu_6_bits_nonFinite;
+      4'b0111:
+        casez_tmp_10 = io_scpu_7_bits_nonFinite;
+      4'b1000:
+        casez_tmp_10 = io_scpu_8_bits_nonFinite;
+      4'b1001:
+        casez_tmp_10 = io_scpu_9_bits_nonFinite;
+      4'b1010:
+        casez_tmp_10 = io_scpu_10_bits_nonFinite;
+      4'b1011:
+        casez_tmp_10 = io_scpu_11_bits_nonFinite;
+      4'b1100:
+        casez_tmp_10 = io_scpu_12_bits_nonFinite;
+      4'b1101:
+        casez_tmp_10 = io_scpu_13_bits_nonFinite;
+      4'b1110:
+        casez_tmp_10 = io_scpu_14_bits_nonFinite;
+      default:
+        casez_tmp_10 = io_scpu_15_bits_nonFinite;
+    endcase
+  end // always @(*)
+  reg  [4:0]  casez_tmp_11;
+  always @(*) begin
+    casez (scpuAt_1[3:0])
+      4'b0000:
+        casez_tmp_11 = io_scpu_0_bits_flags;
+      4'b0001:
+        casez_tmp_11 = io_scpu_1_bits_flags;
+      4'b0010:
+        casez_tmp_11 = io_scpu_2_bits_flags;
+      4'b0011:
+        casez_tmp_11 = io_scpu_3_bits_flags;
+      4'b0100:
+        casez_tmp_11 = io_scpu_4_bits_flags;
+      4'b0101:
+        casez_tmp_11 = io_scpu_5_bits_flags;
+      4'b0110:
+        casez_tmp_11 = io_scpu_6_bits_flags;
+      4'b0111:
+        casez_tmp_11 = io_scpu_7_bits_flags;
+      4'b1000:
+        casez_tmp_11 = io_scpu_8_bits_flags;
+      4'b1001:
+        casez_tmp_11 = io_scpu_9_bits_flags;
+      4'b1010:
+        casez_tmp_11 = io_scpu_10_bits_flags;
+      4'b1011:
+        casez_tmp_11 = io_scpu_11_bits_flags;
+      4'b1100:
+        casez_tmp_11 = io_scpu_12_bits_flags;
+      4'b1101:
+        casez_tmp_11 = io_scpu_13_bits_flags;
+      4'b1110:
+        casez_tmp_11 = io_scpu_14_bits_flags;
+      default:
+        casez_tmp_11 = io_scpu_15_bits_flags;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_12;
+  always @(*) begin
+    casez (scpuAt_1[3:0])
+      4'b0000:
+        casez_tmp_12 = io_scpu_0_bits_tag;
+      4'b0001:
+        casez_tmp_12 = io_scpu_1_bits_tag;
+      4'b0010:
+        casez_tmp_12 = io_scpu_2_bits_tag;
+      4'b0011:
+        casez_tmp_12 = io_scpu_3_bits_tag;
+      4'b0100:
+        casez_tmp_12 = io_scpu_4_bits_tag;
+      4'b0101:
+        casez_tmp_12 = io_scpu_5_bits_tag;
+      4'b0110:
+        casez_tmp_12 = io_scpu_6_bits_tag;
+      4'b0111:
+        casez_tmp_12 = io_scpu_7_bits_tag;
+      4'b1000:
+        casez_tmp_12 = io_scpu_8_bits_tag;
+      4'b1001:
+        casez_tmp_12 = io_scpu_9_bits_tag;
+      4'b1010:
+        casez_tmp_12 = io_scpu_10_bits_tag;
+      4'b1011:
+        casez_tmp_12 = io_scpu_11_bits_tag;
+      4'b1100:
+        casez_tmp_12 = io_scpu_12_bits_tag;
+      4'b1101:
+        casez_tmp_12 = io_scpu_13_bits_tag;
+      4'b1110:
+        casez_tmp_12 = io_scpu_14_bits_tag;
+      default:
+        casez_tmp_12 = io_scpu_15_bits_tag;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_13;
+  always @(*) begin
+    casez (scpuAt_2[3:0])
+      4'b0000:
+        casez_tmp_13 = io_scpu_0_bits_hit;
+      4'b0001:
+        casez_tmp_13 = io_scpu_1_bits_hit;
+      4'b0010:
+        casez_tmp_13 = io_scpu_2_bits_hit;
+      4'b0011:
+        casez_tmp_13 = io_scpu_3_bits_hit;
+      4'b0100:
+        casez_tmp_13 = io_scpu_4_bits_hit;
+      4'b0101:
+        casez_tmp_13 = io_scpu_5_bits_hit;
+      4'b0110:
+        casez_tmp_13 = io_scpu_6_bits_hit;
+      4'b0111:
+        casez_tmp_13 = io_scpu_7_bits_hit;
+      4'b1000:
+        casez_tmp_13 = io_scpu_8_bits_hit;
+      4'b1001:
+        casez_tmp_13 = io_scpu_9_bits_hit;
+      4'b1010:
+        casez_tmp_13 = io_scpu_10_bits_hit;
+      4'b1011:
+        casez_tmp_13 = io_scpu_11_bits_hit;
+      4'b1100:
+        casez_tmp_13 = io_scpu_12_bits_hit;
+      4'b1101:
+        casez_tmp_13 = io_scpu_13_bits_hit;
+      4'b1110:
+        casez_tmp_13 = io_scpu_14_bits_hit;
+      default:
+        casez_tmp_13 = io_scpu_15_bits_hit;
+    endcase
+  end // always @(*)
+  reg  [1:0]  casez_tmp_14;
+  always @(*) begin
+    casez (scpuAt_2[3:0])
+      4'b0000:
+        casez_tmp_14 = io_scpu_0_bits_kind;
+      4'b0001:
+        casez_tmp_14 = io_scpu_1_bits_kind;
+      4'b0010:
+        casez_tmp_14 = io_scpu_2_bits_kind;
+      4'b0011:
+        casez_tmp_14 = io_scpu_3_bits_kind;
+      4'b0100:
+        casez_tmp_14 = io_scpu_4_bits_kind;
+      4'b0101:
+        casez_tmp_14 = io_scpu_5_bits_kind;
+      4'b0110:
+        casez_tmp_14 = io_scpu_6_bits_kind;
+      4'b0111:
+        casez_tmp_14 = io_scpu_7_bits_kind;
+      4'b1000:
+        casez_tmp_14 = io_scpu_8_bits_kind;
+      4'b1001:
+        casez_tmp_14 = io_scpu_9_bits_kind;
+      4'b1010:
+        casez_tmp_14 = io_scpu_10_bits_kind;
+      4'b1011:
+        casez_tmp_14 = io_scpu_11_bits_kind;
+      4'b1100:
+        casez_tmp_14 = io_scpu_12_bits_kind;
+      4'b1101:
+        casez_tmp_14 = io_scpu_13_bits_kind;
+      4'b1110:
+        casez_tmp_14 = io_scpu_14_bits_kind;
+      default:
+        casez_tmp_14 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_15;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (scpuAt_2[3:0])
       4'b0000:
-        casez_tmp_15 = io_scpu_0_bits_pz;
+        casez_tmp_15 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_15 = io_scpu_1_bits_pz;
+        casez_tmp_15 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_15 = io_scpu_2_bits_pz;
+        casez_tmp_15 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_15 = io_scpu_3_bits_pz;
+        casez_tmp_15 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_15 = io_scpu_4_bits_pz;
+        casez_tmp_15 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_15 = io_scpu_5_bits_pz;
+        casez_tmp_15 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_15 = io_scpu_6_bits_pz;
+        casez_tmp_15 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_15 = io_scpu_7_bits_pz;
+        casez_tmp_15 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_15 = io_scpu_8_bits_pz;
+        casez_tmp_15 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_15 = io_scpu_9_bits_pz;
+        casez_tmp_15 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_15 = io_scpu_10_bits_pz;
+        casez_tmp_15 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_15 = io_scpu_11_bits_pz;
+        casez_tmp_15 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_15 = io_scpu_12_bits_pz;
+        casez_tmp_15 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_15 = io_scpu_13_bits_pz;
+        casez_tmp_15 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_15 = io_scpu_14_bits_pz;
+        casez_tmp_15 = io_scpu_14_bits_d;
       default:
-        casez_tmp_15 = io_scpu_15_bits_pz;
+        casez_tmp_15 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_16;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (scpuAt_2[3:0])
       4'b0000:
-        casez_tmp_16 = io_scpu_0_bits_nx;
+        casez_tmp_16 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_16 = io_scpu_1_bits_nx;
+        casez_tmp_16 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_16 = io_scpu_2_bits_nx;
+        casez_tmp_16 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_16 = io_scpu_3_bits_nx;
+        casez_tmp_16 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_16 = io_scpu_4_bits_nx;
+        casez_tmp_16 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_16 = io_scpu_5_bits_nx;
+        casez_tmp_16 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_16 = io_scpu_6_bits_nx;
+        casez_tmp_16 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_16 = io_scpu_7_bits_nx;
+        casez_tmp_16 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_16 = io_scpu_8_bits_nx;
+        casez_tmp_16 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_16 = io_scpu_9_bits_nx;
+        casez_tmp_16 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_16 = io_scpu_10_bits_nx;
+        casez_tmp_16 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_16 = io_scpu_11_bits_nx;
+        casez_tmp_16 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_16 = io_scpu_12_bits_nx;
+        casez_tmp_16 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_16 = io_scpu_13_bits_nx;
+        casez_tmp_16 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_16 = io_scpu_14_bits_nx;
+        casez_tmp_16 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_16 = io_scpu_15_bits_nx;
+        casez_tmp_16 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_17;
+  reg         casez_tmp_17;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (scpuAt_2[3:0])
       4'b0000:
-        casez_tmp_17 = io_scpu_0_bits_ny;
+        casez_tmp_17 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_17 = io_scpu_1_bits_ny;
+        casez_tmp_17 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_17 = io_scpu_2_bits_ny;
+        casez_tmp_17 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_17 = io_scpu_3_bits_ny;
+        casez_tmp_17 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_17 = io_scpu_4_bits_ny;
+        casez_tmp_17 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_17 = io_scpu_5_bits_ny;
+        casez_tmp_17 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_17 = io_scpu_6_bits_ny;
+        casez_tmp_17 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_17 = io_scpu_7_bits_ny;
+        casez_tmp_17 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_17 = io_scpu_8_bits_ny;
+        casez_tmp_17 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_17 = io_scpu_9_bits_ny;
+        casez_tmp_17 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_17 = io_scpu_10_bits_ny;
+        casez_tmp_17 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_17 = io_scpu_11_bits_ny;
+        casez_tmp_17 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_17 = io_scpu_12_bits_ny;
+        casez_tmp_17 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_17 = io_scpu_13_bits_ny;
+        casez_tmp_17 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_17 = io_scpu_14_bits_ny;
+        casez_tmp_17 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_17 = io_scpu_15_bits_ny;
+        casez_tmp_17 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_18;
+  reg  [4:0]  casez_tmp_18;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (scpuAt_2[3:0])
       4'b0000:
-        casez_tmp_18 = io_scpu_0_bits_nz;
+        casez_tmp_18 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_18 = io_scpu_1_bits_nz;
+        casez_tmp_18 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_18 = io_scpu_2_bits_nz;
+        casez_tmp_18 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_18 = io_scpu_3_bits_nz;
+        casez_tmp_18 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_18 = io_scpu_4_bits_nz;
+        casez_tmp_18 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_18 = io_scpu_5_bits_nz;
+        casez_tmp_18 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_18 = io_scpu_6_bits_nz;
+        casez_tmp_18 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_18 = io_scpu_7_bits_nz;
+        casez_tmp_18 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_18 = io_scpu_8_bits_nz;
+        casez_tmp_18 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_18 = io_scpu_9_bits_nz;
+        casez_tmp_18 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_18 = io_scpu_10_bits_nz;
+        casez_tmp_18 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_18 = io_scpu_11_bits_nz;
+        casez_tmp_18 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_18 = io_scpu_12_bits_nz;
+        casez_tmp_18 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_18 = io_scpu_13_bits_nz;
+        casez_tmp_18 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_18 = io_scpu_14_bits_nz;
+        casez_tmp_18 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_18 = io_scpu_15_bits_nz;
+        casez_tmp_18 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_19;
+  reg  [23:0] casez_tmp_19;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (scpuAt_2[3:0])
       4'b0000:
-        casez_tmp_19 = io_scpu_0_bits_depth;
+        casez_tmp_19 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_19 = io_scpu_1_bits_depth;
+        casez_tmp_19 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_19 = io_scpu_2_bits_depth;
+        casez_tmp_19 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_19 = io_scpu_3_bits_depth;
+        casez_tmp_19 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_19 = io_scpu_4_bits_depth;
+        casez_tmp_19 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_19 = io_scpu_5_bits_depth;
+        casez_tmp_19 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_19 = io_scpu_6_bits_depth;
+        casez_tmp_19 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_19 = io_scpu_7_bits_depth;
+        casez_tmp_19 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_19 = io_scpu_8_bits_depth;
+        casez_tmp_19 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_19 = io_scpu_9_bits_depth;
+        casez_tmp_19 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_19 = io_scpu_10_bits_depth;
+        casez_tmp_19 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_19 = io_scpu_11_bits_depth;
+        casez_tmp_19 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_19 = io_scpu_12_bits_depth;
+        casez_tmp_19 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_19 = io_scpu_13_bits_depth;
+        casez_tmp_19 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_19 = io_scpu_14_bits_depth;
+        casez_tmp_19 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_19 = io_scpu_15_bits_depth;
+        casez_tmp_19 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_20;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (scpuAt_3[3:0])
       4'b0000:
-        casez_tmp_20 = io_scpu_0_bits_nonFinite;
+        casez_tmp_20 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_20 = io_scpu_1_bits_nonFinite;
+        casez_tmp_20 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_20 = io_scpu_2_bits_nonFinite;
+        casez_tmp_20 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_20 = io_scpu_3_bits_nonFinite;
+        casez_tmp_20 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_20 = io_scpu_4_bits_nonFinite;
+        casez_tmp_20 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_20 = io_scpu_5_bits_nonFinite;
+        casez_tmp_20 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_20 = io_scpu_6_bits_nonFinite;
+        casez_tmp_20 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_20 = io_scpu_7_bits_nonFinite;
+        casez_tmp_20 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_20 = io_scpu_8_bits_nonFinite;
+        casez_tmp_20 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_20 = io_scpu_9_bits_nonFinite;
+        casez_tmp_20 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_20 = io_scpu_10_bits_nonFinite;
+        casez_tmp_20 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_20 = io_scpu_11_bits_nonFinite;
+        casez_tmp_20 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_20 = io_scpu_12_bits_nonFinite;
+        casez_tmp_20 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_20 = io_scpu_13_bits_nonFinite;
+        casez_tmp_20 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_20 = io_scpu_14_bits_nonFinite;
+        casez_tmp_20 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_20 = io_scpu_15_bits_nonFinite;
+        casez_tmp_20 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [4:0]  casez_tmp_21;
+  reg  [1:0]  casez_tmp_21;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (scpuAt_3[3:0])
       4'b0000:
-        casez_tmp_21 = io_scpu_0_bits_flags;
+        casez_tmp_21 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_21 = io_scpu_1_bits_flags;
+        casez_tmp_21 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_21 = io_scpu_2_bits_flags;
+        casez_tmp_21 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_21 = io_scpu_3_bits_flags;
+        casez_tmp_21 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_21 = io_scpu_4_bits_flags;
+        casez_tmp_21 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_21 = io_scpu_5_bits_flags;
+        casez_tmp_21 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_21 = io_scpu_6_bits_flags;
+        casez_tmp_21 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_21 = io_scpu_7_bits_flags;
+        casez_tmp_21 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_21 = io_scpu_8_bits_flags;
+        casez_tmp_21 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_21 = io_scpu_9_bits_flags;
+        casez_tmp_21 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_21 = io_scpu_10_bits_flags;
+        casez_tmp_21 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_21 = io_scpu_11_bits_flags;
+        casez_tmp_21 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_21 = io_scpu_12_bits_flags;
+        casez_tmp_21 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_21 = io_scpu_13_bits_flags;
+        casez_tmp_21 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_21 = io_scpu_14_bits_flags;
+        casez_tmp_21 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_21 = io_scpu_15_bits_flags;
+        casez_tmp_21 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_22;
+  reg  [31:0] casez_tmp_22;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (scpuAt_3[3:0])
       4'b0000:
-        casez_tmp_22 = io_scpu_0_bits_tag;
+        casez_tmp_22 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_22 = io_scpu_1_bits_tag;
+        casez_tmp_22 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_22 = io_scpu_2_bits_tag;
+        casez_tmp_22 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_22 = io_scpu_3_bits_tag;
+        casez_tmp_22 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_22 = io_scpu_4_bits_tag;
+        casez_tmp_22 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_22 = io_scpu_5_bits_tag;
+        casez_tmp_22 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_22 = io_scpu_6_bits_tag;
+        casez_tmp_22 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_22 = io_scpu_7_bits_tag;
+        casez_tmp_22 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_22 = io_scpu_8_bits_tag;
+        casez_tmp_22 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_22 = io_scpu_9_bits_tag;
+        casez_tmp_22 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_22 = io_scpu_10_bits_tag;
+        casez_tmp_22 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_22 = io_scpu_11_bits_tag;
+        casez_tmp_22 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_22 = io_scpu_12_bits_tag;
+        casez_tmp_22 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_22 = io_scpu_13_bits_tag;
+        casez_tmp_22 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_22 = io_scpu_14_bits_tag;
+        casez_tmp_22 = io_scpu_14_bits_d;
       default:
-        casez_tmp_22 = io_scpu_15_bits_tag;
+        casez_tmp_22 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
-  reg         casez_tmp_23;
+  reg  [31:0] casez_tmp_23;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_3[3:0])
       4'b0000:
-        casez_tmp_23 = io_scpu_0_bits_hit;
+        casez_tmp_23 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_23 = io_scpu_1_bits_hit;
+        casez_tmp_23 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_23 = io_scpu_2_bits_hit;
+        casez_tmp_23 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_23 = io_scpu_3_bits_hit;
+        casez_tmp_23 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_23 = io_scpu_4_bits_hit;
+        casez_tmp_23 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_23 = io_scpu_5_bits_hit;
+        casez_tmp_23 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_23 = io_scpu_6_bits_hit;
+        casez_tmp_23 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_23 = io_scpu_7_bits_hit;
+        casez_tmp_23 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_23 = io_scpu_8_bits_hit;
+        casez_tmp_23 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_23 = io_scpu_9_bits_hit;
+        casez_tmp_23 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_23 = io_scpu_10_bits_hit;
+        casez_tmp_23 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_23 = io_scpu_11_bits_hit;
+        casez_tmp_23 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_23 = io_scpu_12_bits_hit;
+        casez_tmp_23 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_23 = io_scpu_13_bits_hit;
+        casez_tmp_23 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_23 = io_scpu_14_bits_hit;
+        casez_tmp_23 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_23 = io_scpu_15_bits_hit;
+        casez_tmp_23 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [1:0]  casez_tmp_24;
+  reg         casez_tmp_24;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_3[3:0])
       4'b0000:
-        casez_tmp_24 = io_scpu_0_bits_kind;
+        casez_tmp_24 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_24 = io_scpu_1_bits_kind;
+        casez_tmp_24 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_24 = io_scpu_2_bits_kind;
+        casez_tmp_24 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_24 = io_scpu_3_bits_kind;
+        casez_tmp_24 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_24 = io_scpu_4_bits_kind;
+        casez_tmp_24 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_24 = io_scpu_5_bits_kind;
+        casez_tmp_24 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_24 = io_scpu_6_bits_kind;
+        casez_tmp_24 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_24 = io_scpu_7_bits_kind;
+        casez_tmp_24 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_24 = io_scpu_8_bits_kind;
+        casez_tmp_24 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_24 = io_scpu_9_bits_kind;
+        casez_tmp_24 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_24 = io_scpu_10_bits_kind;
+        casez_tmp_24 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_24 = io_scpu_11_bits_kind;
+        casez_tmp_24 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_24 = io_scpu_12_bits_kind;
+        casez_tmp_24 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_24 = io_scpu_13_bits_kind;
+        casez_tmp_24 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_24 = io_scpu_14_bits_kind;
+        casez_tmp_24 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_24 = io_scpu_15_bits_kind;
+        casez_tmp_24 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_25;
+  reg  [4:0]  casez_tmp_25;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_3[3:0])
       4'b0000:
-        casez_tmp_25 = io_scpu_0_bits_px;
+        casez_tmp_25 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_25 = io_scpu_1_bits_px;
+        casez_tmp_25 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_25 = io_scpu_2_bits_px;
+        casez_tmp_25 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_25 = io_scpu_3_bits_px;
+        casez_tmp_25 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_25 = io_scpu_4_bits_px;
+        casez_tmp_25 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_25 = io_scpu_5_bits_px;
+        casez_tmp_25 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_25 = io_scpu_6_bits_px;
+        casez_tmp_25 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_25 = io_scpu_7_bits_px;
+        casez_tmp_25 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_25 = io_scpu_8_bits_px;
+        casez_tmp_25 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_25 = io_scpu_9_bits_px;
+        casez_tmp_25 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_25 = io_scpu_10_bits_px;
+        casez_tmp_25 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_25 = io_scpu_11_bits_px;
+        casez_tmp_25 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_25 = io_scpu_12_bits_px;
+        casez_tmp_25 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_25 = io_scpu_13_bits_px;
+        casez_tmp_25 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_25 = io_scpu_14_bits_px;
+        casez_tmp_25 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_25 = io_scpu_15_bits_px;
+        casez_tmp_25 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_26;
+  reg  [23:0] casez_tmp_26;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_3[3:0])
       4'b0000:
-        casez_tmp_26 = io_scpu_0_bits_py;
+        casez_tmp_26 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_26 = io_scpu_1_bits_py;
+        casez_tmp_26 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_26 = io_scpu_2_bits_py;
+        casez_tmp_26 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_26 = io_scpu_3_bits_py;
+        casez_tmp_26 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_26 = io_scpu_4_bits_py;
+        casez_tmp_26 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_26 = io_scpu_5_bits_py;
+        casez_tmp_26 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_26 = io_scpu_6_bits_py;
+        casez_tmp_26 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_26 = io_scpu_7_bits_py;
+        casez_tmp_26 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_26 = io_scpu_8_bits_py;
+        casez_tmp_26 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_26 = io_scpu_9_bits_py;
+        casez_tmp_26 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_26 = io_scpu_10_bits_py;
+        casez_tmp_26 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_26 = io_scpu_11_bits_py;
+        casez_tmp_26 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_26 = io_scpu_12_bits_py;
+        casez_tmp_26 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_26 = io_scpu_13_bits_py;
+        casez_tmp_26 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_26 = io_scpu_14_bits_py;
+        casez_tmp_26 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_26 = io_scpu_15_bits_py;
+        casez_tmp_26 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_27;
+  reg         casez_tmp_27;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_4[3:0])
       4'b0000:
-        casez_tmp_27 = io_scpu_0_bits_pz;
+        casez_tmp_27 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_27 = io_scpu_1_bits_pz;
+        casez_tmp_27 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_27 = io_scpu_2_bits_pz;
+        casez_tmp_27 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_27 = io_scpu_3_bits_pz;
+        casez_tmp_27 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_27 = io_scpu_4_bits_pz;
+        casez_tmp_27 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_27 = io_scpu_5_bits_pz;
+        casez_tmp_27 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_27 = io_scpu_6_bits_pz;
+        casez_tmp_27 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_27 = io_scpu_7_bits_pz;
+        casez_tmp_27 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_27 = io_scpu_8_bits_pz;
+        casez_tmp_27 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_27 = io_scpu_9_bits_pz;
+        casez_tmp_27 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_27 = io_scpu_10_bits_pz;
+        casez_tmp_27 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_27 = io_scpu_11_bits_pz;
+        casez_tmp_27 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_27 = io_scpu_12_bits_pz;
+        casez_tmp_27 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_27 = io_scpu_13_bits_pz;
+        casez_tmp_27 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_27 = io_scpu_14_bits_pz;
+        casez_tmp_27 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_27 = io_scpu_15_bits_pz;
+        casez_tmp_27 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_28;
+  reg  [1:0]  casez_tmp_28;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_4[3:0])
       4'b0000:
-        casez_tmp_28 = io_scpu_0_bits_nx;
+        casez_tmp_28 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_28 = io_scpu_1_bits_nx;
+        casez_tmp_28 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_28 = io_scpu_2_bits_nx;
+        casez_tmp_28 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_28 = io_scpu_3_bits_nx;
+        casez_tmp_28 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_28 = io_scpu_4_bits_nx;
+        casez_tmp_28 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_28 = io_scpu_5_bits_nx;
+        casez_tmp_28 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_28 = io_scpu_6_bits_nx;
+        casez_tmp_28 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_28 = io_scpu_7_bits_nx;
+        casez_tmp_28 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_28 = io_scpu_8_bits_nx;
+        casez_tmp_28 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_28 = io_scpu_9_bits_nx;
+        casez_tmp_28 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_28 = io_scpu_10_bits_nx;
+        casez_tmp_28 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_28 = io_scpu_11_bits_nx;
+        casez_tmp_28 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_28 = io_scpu_12_bits_nx;
+        casez_tmp_28 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_28 = io_scpu_13_bits_nx;
+        casez_tmp_28 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_28 = io_scpu_14_bits_nx;
+        casez_tmp_28 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_28 = io_scpu_15_bits_nx;
+        casez_tmp_28 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_29;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_4[3:0])
       4'b0000:
-        casez_tmp_29 = io_scpu_0_bits_ny;
+        casez_tmp_29 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_29 = io_scpu_1_bits_ny;
+        casez_tmp_29 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_29 = io_scpu_2_bits_ny;
+        casez_tmp_29 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_29 = io_scpu_3_bits_ny;
+        casez_tmp_29 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_29 = io_scpu_4_bits_ny;
+        casez_tmp_29 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_29 = io_scpu_5_bits_ny;
+        casez_tmp_29 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_29 = io_scpu_6_bits_ny;
+        casez_tmp_29 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_29 = io_scpu_7_bits_ny;
+        casez_tmp_29 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_29 = io_scpu_8_bits_ny;
+        casez_tmp_29 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_29 = io_scpu_9_bits_ny;
+        casez_tmp_29 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_29 = io_scpu_10_bits_ny;
+        casez_tmp_29 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_29 = io_scpu_11_bits_ny;
+        casez_tmp_29 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_29 = io_scpu_12_bits_ny;
+        casez_tmp_29 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_29 = io_scpu_13_bits_ny;
+        casez_tmp_29 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_29 = io_scpu_14_bits_ny;
+        casez_tmp_29 = io_scpu_14_bits_d;
       default:
-        casez_tmp_29 = io_scpu_15_bits_ny;
+        casez_tmp_29 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_30;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_4[3:0])
       4'b0000:
-        casez_tmp_30 = io_scpu_0_bits_nz;
+        casez_tmp_30 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_30 = io_scpu_1_bits_nz;
+        casez_tmp_30 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_30 = io_scpu_2_bits_nz;
+        casez_tmp_30 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_30 = io_scpu_3_bits_nz;
+        casez_tmp_30 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_30 = io_scpu_4_bits_nz;
+        casez_tmp_30 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_30 = io_scpu_5_bits_nz;
+        casez_tmp_30 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_30 = io_scpu_6_bits_nz;
+        casez_tmp_30 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_30 = io_scpu_7_bits_nz;
+        casez_tmp_30 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_30 = io_scpu_8_bits_nz;
+        casez_tmp_30 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_30 = io_scpu_9_bits_nz;
+        casez_tmp_30 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_30 = io_scpu_10_bits_nz;
+        casez_tmp_30 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_30 = io_scpu_11_bits_nz;
+        casez_tmp_30 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_30 = io_scpu_12_bits_nz;
+        casez_tmp_30 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_30 = io_scpu_13_bits_nz;
+        casez_tmp_30 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_30 = io_scpu_14_bits_nz;
+        casez_tmp_30 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_30 = io_scpu_15_bits_nz;
+        casez_tmp_30 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_31;
+  reg         casez_tmp_31;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_4[3:0])
       4'b0000:
-        casez_tmp_31 = io_scpu_0_bits_depth;
+        casez_tmp_31 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_31 = io_scpu_1_bits_depth;
+        casez_tmp_31 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_31 = io_scpu_2_bits_depth;
+        casez_tmp_31 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_31 = io_scpu_3_bits_depth;
+        casez_tmp_31 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_31 = io_scpu_4_bits_depth;
+        casez_tmp_31 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_31 = io_scpu_5_bits_depth;
+        casez_tmp_31 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_31 = io_scpu_6_bits_depth;
+        casez_tmp_31 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_31 = io_scpu_7_bits_depth;
+        casez_tmp_31 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_31 = io_scpu_8_bits_depth;
+        casez_tmp_31 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_31 = io_scpu_9_bits_depth;
+        casez_tmp_31 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_31 = io_scpu_10_bits_depth;
+        casez_tmp_31 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_31 = io_scpu_11_bits_depth;
+        casez_tmp_31 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_31 = io_scpu_12_bits_depth;
+        casez_tmp_31 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_31 = io_scpu_13_bits_depth;
+        casez_tmp_31 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_31 = io_scpu_14_bits_depth;
+        casez_tmp_31 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_31 = io_scpu_15_bits_depth;
+        casez_tmp_31 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg         casez_tmp_32;
+  reg  [4:0]  casez_tmp_32;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_4[3:0])
       4'b0000:
-        casez_tmp_32 = io_scpu_0_bits_nonFinite;
+        casez_tmp_32 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_32 = io_scpu_1_bits_nonFinite;
+        casez_tmp_32 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_32 = io_scpu_2_bits_nonFinite;
+        casez_tmp_32 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_32 = io_scpu_3_bits_nonFinite;
+        casez_tmp_32 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_32 = io_scpu_4_bits_nonFinite;
+        casez_tmp_32 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_32 = io_scpu_5_bits_nonFinite;
+        casez_tmp_32 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_32 = io_scpu_6_bits_nonFinite;
+        casez_tmp_32 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_32 = io_scpu_7_bits_nonFinite;
+        casez_tmp_32 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_32 = io_scpu_8_bits_nonFinite;
+        casez_tmp_32 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_32 = io_scpu_9_bits_nonFinite;
+        casez_tmp_32 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_32 = io_scpu_10_bits_nonFinite;
+        casez_tmp_32 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_32 = io_scpu_11_bits_nonFinite;
+        casez_tmp_32 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_32 = io_scpu_12_bits_nonFinite;
+        casez_tmp_32 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_32 = io_scpu_13_bits_nonFinite;
+        casez_tmp_32 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_32 = io_scpu_14_bits_nonFinite;
+        casez_tmp_32 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_32 = io_scpu_15_bits_nonFinite;
+        casez_tmp_32 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [4:0]  casez_tmp_33;
+  reg  [23:0] casez_tmp_33;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_4[3:0])
       4'b0000:
-        casez_tmp_33 = io_scpu_0_bits_flags;
+        casez_tmp_33 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_33 = io_scpu_1_bits_flags;
+        casez_tmp_33 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_33 = io_scpu_2_bits_flags;
+        casez_tmp_33 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_33 = io_scpu_3_bits_flags;
+        casez_tmp_33 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_33 = io_scpu_4_bits_flags;
+        casez_tmp_33 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_33 = io_scpu_5_bits_flags;
+        casez_tmp_33 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_33 = io_scpu_6_bits_flags;
+        casez_tmp_33 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_33 = io_scpu_7_bits_flags;
+        casez_tmp_33 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_33 = io_scpu_8_bits_flags;
+        casez_tmp_33 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_33 = io_scpu_9_bits_flags;
+        casez_tmp_33 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_33 = io_scpu_10_bits_flags;
+        casez_tmp_33 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_33 = io_scpu_11_bits_flags;
+        casez_tmp_33 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_33 = io_scpu_12_bits_flags;
+        casez_tmp_33 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_33 = io_scpu_13_bits_flags;
+        casez_tmp_33 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_33 = io_scpu_14_bits_flags;
+        casez_tmp_33 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_33 = io_scpu_15_bits_flags;
+        casez_tmp_33 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_34;
+  reg         casez_tmp_34;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (scpuAt_5[3:0])
       4'b0000:
-        casez_tmp_34 = io_scpu_0_bits_tag;
+        casez_tmp_34 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_34 = io_scpu_1_bits_tag;
+        casez_tmp_34 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_34 = io_scpu_2_bits_tag;
+        casez_tmp_34 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_34 = io_scpu_3_bits_tag;
+        casez_tmp_34 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_34 = io_scpu_4_bits_tag;
+        casez_tmp_34 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_34 = io_scpu_5_bits_tag;
+        casez_tmp_34 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_34 = io_scpu_6_bits_tag;
+        casez_tmp_34 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_34 = io_scpu_7_bits_tag;
+        casez_tmp_34 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_34 = io_scpu_8_bits_tag;
+        casez_tmp_34 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_34 = io_scpu_9_bits_tag;
+        casez_tmp_34 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_34 = io_scpu_10_bits_tag;
+        casez_tmp_34 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_34 = io_scpu_11_bits_tag;
+        casez_tmp_34 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_34 = io_scpu_12_bits_tag;
+        casez_tmp_34 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_34 = io_scpu_13_bits_tag;
+        casez_tmp_34 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_34 = io_scpu_14_bits_tag;
+        casez_tmp_34 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_34 = io_scpu_15_bits_tag;
+        casez_tmp_34 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg         casez_tmp_35;
+  reg  [1:0]  casez_tmp_35;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_5[3:0])
       4'b0000:
-        casez_tmp_35 = io_scpu_0_bits_hit;
+        casez_tmp_35 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_35 = io_scpu_1_bits_hit;
+        casez_tmp_35 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_35 = io_scpu_2_bits_hit;
+        casez_tmp_35 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_35 = io_scpu_3_bits_hit;
+        casez_tmp_35 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_35 = io_scpu_4_bits_hit;
+        casez_tmp_35 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_35 = io_scpu_5_bits_hit;
+        casez_tmp_35 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_35 = io_scpu_6_bits_hit;
+        casez_tmp_35 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_35 = io_scpu_7_bits_hit;
+        casez_tmp_35 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_35 = io_scpu_8_bits_hit;
+        casez_tmp_35 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_35 = io_scpu_9_bits_hit;
+        casez_tmp_35 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_35 = io_scpu_10_bits_hit;
+        casez_tmp_35 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_35 = io_scpu_11_bits_hit;
+        casez_tmp_35 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_35 = io_scpu_12_bits_hit;
+        casez_tmp_35 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_35 = io_scpu_13_bits_hit;
+        casez_tmp_35 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_35 = io_scpu_14_bits_hit;
+        casez_tmp_35 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_35 = io_scpu_15_bits_hit;
+        casez_tmp_35 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
-  reg  [1:0]  casez_tmp_36;
+  reg  [31:0] casez_tmp_36;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_5[3:0])
       4'b0000:
-        casez_tmp_36 = io_scpu_0_bits_kind;
+        casez_tmp_36 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_36 = io_scpu_1_bits_kind;
+        casez_tmp_36 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_36 = io_scpu_2_bits_kind;
+        casez_tmp_36 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_36 = io_scpu_3_bits_kind;
+        casez_tmp_36 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_36 = io_scpu_4_bits_kind;
+        casez_tmp_36 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_36 = io_scpu_5_bits_kind;
+        casez_tmp_36 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_36 = io_scpu_6_bits_kind;
+        casez_tmp_36 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_36 = io_scpu_7_bits_kind;
+        casez_tmp_36 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_36 = io_scpu_8_bits_kind;
+        casez_tmp_36 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_36 = io_scpu_9_bits_kind;
+        casez_tmp_36 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_36 = io_scpu_10_bits_kind;
+        casez_tmp_36 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_36 = io_scpu_11_bits_kind;
+        casez_tmp_36 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_36 = io_scpu_12_bits_kind;
+        casez_tmp_36 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_36 = io_scpu_13_bits_kind;
+        casez_tmp_36 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_36 = io_scpu_14_bits_kind;
+        casez_tmp_36 = io_scpu_14_bits_d;
       default:
-        casez_tmp_36 = io_scpu_15_bits_kind;
+        casez_tmp_36 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_37;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_5[3:0])
       4'b0000:
-        casez_tmp_37 = io_scpu_0_bits_px;
+        casez_tmp_37 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_37 = io_scpu_1_bits_px;
+        casez_tmp_37 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_37 = io_scpu_2_bits_px;
+        casez_tmp_37 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_37 = io_scpu_3_bits_px;
+        casez_tmp_37 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_37 = io_scpu_4_bits_px;
+        casez_tmp_37 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_37 = io_scpu_5_bits_px;
+        casez_tmp_37 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_37 = io_scpu_6_bits_px;
+        casez_tmp_37 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_37 = io_scpu_7_bits_px;
+        casez_tmp_37 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_37 = io_scpu_8_bits_px;
+        casez_tmp_37 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_37 = io_scpu_9_bits_px;
+        casez_tmp_37 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_37 = io_scpu_10_bits_px;
+        casez_tmp_37 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_37 = io_scpu_11_bits_px;
+        casez_tmp_37 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_37 = io_scpu_12_bits_px;
+        casez_tmp_37 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_37 = io_scpu_13_bits_px;
+        casez_tmp_37 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_37 = io_scpu_14_bits_px;
+        casez_tmp_37 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_37 = io_scpu_15_bits_px;
+        casez_tmp_37 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_38;
+  reg         casez_tmp_38;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_5[3:0])
       4'b0000:
-        casez_tmp_38 = io_scpu_0_bits_py;
+        casez_tmp_38 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_38 = io_scpu_1_bits_py;
+        casez_tmp_38 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_38 = io_scpu_2_bits_py;
+        casez_tmp_38 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_38 = io_scpu_3_bits_py;
+        casez_tmp_38 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_38 = io_scpu_4_bits_py;
+        casez_tmp_38 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_38 = io_scpu_5_bits_py;
+        casez_tmp_38 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_38 = io_scpu_6_bits_py;
+        casez_tmp_38 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_38 = io_scpu_7_bits_py;
+        casez_tmp_38 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_38 = io_scpu_8_bits_py;
+        casez_tmp_38 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_38 = io_scpu_9_bits_py;
+        casez_tmp_38 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_38 = io_scpu_10_bits_py;
+        casez_tmp_38 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_38 = io_scpu_11_bits_py;
+        casez_tmp_38 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_38 = io_scpu_12_bits_py;
+        casez_tmp_38 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_38 = io_scpu_13_bits_py;
+        casez_tmp_38 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_38 = io_scpu_14_bits_py;
+        casez_tmp_38 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_38 = io_scpu_15_bits_py;
+        casez_tmp_38 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_39;
+  reg  [4:0]  casez_tmp_39;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_5[3:0])
       4'b0000:
-        casez_tmp_39 = io_scpu_0_bits_pz;
+        casez_tmp_39 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_39 = io_scpu_1_bits_pz;
+        casez_tmp_39 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_39 = io_scpu_2_bits_pz;
+        casez_tmp_39 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_39 = io_scpu_3_bits_pz;
+        casez_tmp_39 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_39 = io_scpu_4_bits_pz;
+        casez_tmp_39 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_39 = io_scpu_5_bits_pz;
+        casez_tmp_39 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_39 = io_scpu_6_bits_pz;
+        casez_tmp_39 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_39 = io_scpu_7_bits_pz;
+        casez_tmp_39 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_39 = io_scpu_8_bits_pz;
+        casez_tmp_39 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_39 = io_scpu_9_bits_pz;
+        casez_tmp_39 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_39 = io_scpu_10_bits_pz;
+        casez_tmp_39 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_39 = io_scpu_11_bits_pz;
+        casez_tmp_39 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_39 = io_scpu_12_bits_pz;
+        casez_tmp_39 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_39 = io_scpu_13_bits_pz;
+        casez_tmp_39 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_39 = io_scpu_14_bits_pz;
+        casez_tmp_39 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_39 = io_scpu_15_bits_pz;
+        casez_tmp_39 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_40;
+  reg  [23:0] casez_tmp_40;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_5[3:0])
       4'b0000:
-        casez_tmp_40 = io_scpu_0_bits_nx;
+        casez_tmp_40 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_40 = io_scpu_1_bits_nx;
+        casez_tmp_40 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_40 = io_scpu_2_bits_nx;
+        casez_tmp_40 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_40 = io_scpu_3_bits_nx;
+        casez_tmp_40 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_40 = io_scpu_4_bits_nx;
+        casez_tmp_40 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_40 = io_scpu_5_bits_nx;
+        casez_tmp_40 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_40 = io_scpu_6_bits_nx;
+        casez_tmp_40 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_40 = io_scpu_7_bits_nx;
+        casez_tmp_40 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_40 = io_scpu_8_bits_nx;
+        casez_tmp_40 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_40 = io_scpu_9_bits_nx;
+        casez_tmp_40 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_40 = io_scpu_10_bits_nx;
+        casez_tmp_40 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_40 = io_scpu_11_bits_nx;
+        casez_tmp_40 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_40 = io_scpu_12_bits_nx;
+        casez_tmp_40 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_40 = io_scpu_13_bits_nx;
+        casez_tmp_40 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_40 = io_scpu_14_bits_nx;
+        casez_tmp_40 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_40 = io_scpu_15_bits_nx;
+        casez_tmp_40 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_41;
+  reg         casez_tmp_41;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_6[3:0])
       4'b0000:
-        casez_tmp_41 = io_scpu_0_bits_ny;
+        casez_tmp_41 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_41 = io_scpu_1_bits_ny;
+        casez_tmp_41 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_41 = io_scpu_2_bits_ny;
+        casez_tmp_41 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_41 = io_scpu_3_bits_ny;
+        casez_tmp_41 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_41 = io_scpu_4_bits_ny;
+        casez_tmp_41 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_41 = io_scpu_5_bits_ny;
+        casez_tmp_41 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_41 = io_scpu_6_bits_ny;
+        casez_tmp_41 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_41 = io_scpu_7_bits_ny;
+        casez_tmp_41 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_41 = io_scpu_8_bits_ny;
+        casez_tmp_41 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_41 = io_scpu_9_bits_ny;
+        casez_tmp_41 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_41 = io_scpu_10_bits_ny;
+        casez_tmp_41 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_41 = io_scpu_11_bits_ny;
+        casez_tmp_41 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_41 = io_scpu_12_bits_ny;
+        casez_tmp_41 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_41 = io_scpu_13_bits_ny;
+        casez_tmp_41 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_41 = io_scpu_14_bits_ny;
+        casez_tmp_41 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_41 = io_scpu_15_bits_ny;
+        casez_tmp_41 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_42;
+  reg  [1:0]  casez_tmp_42;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_6[3:0])
       4'b0000:
-        casez_tmp_42 = io_scpu_0_bits_nz;
+        casez_tmp_42 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_42 = io_scpu_1_bits_nz;
+        casez_tmp_42 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_42 = io_scpu_2_bits_nz;
+        casez_tmp_42 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_42 = io_scpu_3_bits_nz;
+        casez_tmp_42 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_42 = io_scpu_4_bits_nz;
+        casez_tmp_42 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_42 = io_scpu_5_bits_nz;
+        casez_tmp_42 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_42 = io_scpu_6_bits_nz;
+        casez_tmp_42 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_42 = io_scpu_7_bits_nz;
+        casez_tmp_42 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_42 = io_scpu_8_bits_nz;
+        casez_tmp_42 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_42 = io_scpu_9_bits_nz;
+        casez_tmp_42 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_42 = io_scpu_10_bits_nz;
+        casez_tmp_42 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_42 = io_scpu_11_bits_nz;
+        casez_tmp_42 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_42 = io_scpu_12_bits_nz;
+        casez_tmp_42 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_42 = io_scpu_13_bits_nz;
+        casez_tmp_42 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_42 = io_scpu_14_bits_nz;
+        casez_tmp_42 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_42 = io_scpu_15_bits_nz;
+        casez_tmp_42 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_43;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_6[3:0])
       4'b0000:
-        casez_tmp_43 = io_scpu_0_bits_depth;
+        casez_tmp_43 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_43 = io_scpu_1_bits_depth;
+        casez_tmp_43 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_43 = io_scpu_2_bits_depth;
+        casez_tmp_43 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_43 = io_scpu_3_bits_depth;
+        casez_tmp_43 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_43 = io_scpu_4_bits_depth;
+        casez_tmp_43 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_43 = io_scpu_5_bits_depth;
+        casez_tmp_43 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_43 = io_scpu_6_bits_depth;
+        casez_tmp_43 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_43 = io_scpu_7_bits_depth;
+        casez_tmp_43 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_43 = io_scpu_8_bits_depth;
+        casez_tmp_43 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_43 = io_scpu_9_bits_depth;
+        casez_tmp_43 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_43 = io_scpu_10_bits_depth;
+        casez_tmp_43 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_43 = io_scpu_11_bits_depth;
+        casez_tmp_43 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_43 = io_scpu_12_bits_depth;
+        casez_tmp_43 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_43 = io_scpu_13_bits_depth;
+        casez_tmp_43 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_43 = io_scpu_14_bits_depth;
+        casez_tmp_43 = io_scpu_14_bits_d;
       default:
-        casez_tmp_43 = io_scpu_15_bits_depth;
+        casez_tmp_43 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
-  reg         casez_tmp_44;
+  reg  [31:0] casez_tmp_44;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_6[3:0])
       4'b0000:
-        casez_tmp_44 = io_scpu_0_bits_nonFinite;
+        casez_tmp_44 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_44 = io_scpu_1_bits_nonFinite;
+        casez_tmp_44 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_44 = io_scpu_2_bits_nonFinite;
+        casez_tmp_44 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_44 = io_scpu_3_bits_nonFinite;
+        casez_tmp_44 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_44 = io_scpu_4_bits_nonFinite;
+        casez_tmp_44 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_44 = io_scpu_5_bits_nonFinite;
+        casez_tmp_44 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_44 = io_scpu_6_bits_nonFinite;
+        casez_tmp_44 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_44 = io_scpu_7_bits_nonFinite;
+        casez_tmp_44 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_44 = io_scpu_8_bits_nonFinite;
+        casez_tmp_44 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_44 = io_scpu_9_bits_nonFinite;
+        casez_tmp_44 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_44 = io_scpu_10_bits_nonFinite;
+        casez_tmp_44 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_44 = io_scpu_11_bits_nonFinite;
+        casez_tmp_44 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_44 = io_scpu_12_bits_nonFinite;
+        casez_tmp_44 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_44 = io_scpu_13_bits_nonFinite;
+        casez_tmp_44 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_44 = io_scpu_14_bits_nonFinite;
+        casez_tmp_44 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_44 = io_scpu_15_bits_nonFinite;
+        casez_tmp_44 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [4:0]  casez_tmp_45;
+  reg         casez_tmp_45;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_6[3:0])
       4'b0000:
-        casez_tmp_45 = io_scpu_0_bits_flags;
+        casez_tmp_45 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_45 = io_scpu_1_bits_flags;
+        casez_tmp_45 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_45 = io_scpu_2_bits_flags;
+        casez_tmp_45 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_45 = io_scpu_3_bits_flags;
+        casez_tmp_45 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_45 = io_scpu_4_bits_flags;
+        casez_tmp_45 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_45 = io_scpu_5_bits_flags;
+        casez_tmp_45 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_45 = io_scpu_6_bits_flags;
+        casez_tmp_45 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_45 = io_scpu_7_bits_flags;
+        casez_tmp_45 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_45 = io_scpu_8_bits_flags;
+        casez_tmp_45 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_45 = io_scpu_9_bits_flags;
+        casez_tmp_45 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_45 = io_scpu_10_bits_flags;
+        casez_tmp_45 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_45 = io_scpu_11_bits_flags;
+        casez_tmp_45 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_45 = io_scpu_12_bits_flags;
+        casez_tmp_45 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_45 = io_scpu_13_bits_flags;
+        casez_tmp_45 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_45 = io_scpu_14_bits_flags;
+        casez_tmp_45 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_45 = io_scpu_15_bits_flags;
+        casez_tmp_45 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_46;
+  reg  [4:0]  casez_tmp_46;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (scpuAt_6[3:0])
       4'b0000:
-        casez_tmp_46 = io_scpu_0_bits_tag;
+        casez_tmp_46 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_46 = io_scpu_1_bits_tag;
+        casez_tmp_46 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_46 = io_scpu_2_bits_tag;
+        casez_tmp_46 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_46 = io_scpu_3_bits_tag;
+        casez_tmp_46 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_46 = io_scpu_4_bits_tag;
+        casez_tmp_46 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_46 = io_scpu_5_bits_tag;
+        casez_tmp_46 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_46 = io_scpu_6_bits_tag;
+        casez_tmp_46 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_46 = io_scpu_7_bits_tag;
+        casez_tmp_46 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_46 = io_scpu_8_bits_tag;
+        casez_tmp_46 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_46 = io_scpu_9_bits_tag;
+        casez_tmp_46 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_46 = io_scpu_10_bits_tag;
+        casez_tmp_46 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_46 = io_scpu_11_bits_tag;
+        casez_tmp_46 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_46 = io_scpu_12_bits_tag;
+        casez_tmp_46 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_46 = io_scpu_13_bits_tag;
+        casez_tmp_46 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_46 = io_scpu_14_bits_tag;
+        casez_tmp_46 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_46 = io_scpu_15_bits_tag;
+        casez_tmp_46 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg         casez_tmp_47;
+  reg  [23:0] casez_tmp_47;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_6[3:0])
       4'b0000:
-        casez_tmp_47 = io_scpu_0_bits_hit;
+        casez_tmp_47 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_47 = io_scpu_1_bits_hit;
+        casez_tmp_47 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_47 = io_scpu_2_bits_hit;
+        casez_tmp_47 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_47 = io_scpu_3_bits_hit;
+        casez_tmp_47 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_47 = io_scpu_4_bits_hit;
+        casez_tmp_47 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_47 = io_scpu_5_bits_hit;
+        casez_tmp_47 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_47 = io_scpu_6_bits_hit;
+        casez_tmp_47 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_47 = io_scpu_7_bits_hit;
+        casez_tmp_47 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_47 = io_scpu_8_bits_hit;
+        casez_tmp_47 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_47 = io_scpu_9_bits_hit;
+        casez_tmp_47 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_47 = io_scpu_10_bits_hit;
+        casez_tmp_47 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_47 = io_scpu_11_bits_hit;
+        casez_tmp_47 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_47 = io_scpu_12_bits_hit;
+        casez_tmp_47 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_47 = io_scpu_13_bits_hit;
+        casez_tmp_47 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_47 = io_scpu_14_bits_hit;
+        casez_tmp_47 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_47 = io_scpu_15_bits_hit;
+        casez_tmp_47 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [1:0]  casez_tmp_48;
+  reg         casez_tmp_48;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_7[3:0])
       4'b0000:
-        casez_tmp_48 = io_scpu_0_bits_kind;
+        casez_tmp_48 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_48 = io_scpu_1_bits_kind;
+        casez_tmp_48 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_48 = io_scpu_2_bits_kind;
+        casez_tmp_48 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_48 = io_scpu_3_bits_kind;
+        casez_tmp_48 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_48 = io_scpu_4_bits_kind;
+        casez_tmp_48 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_48 = io_scpu_5_bits_kind;
+        casez_tmp_48 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_48 = io_scpu_6_bits_kind;
+        casez_tmp_48 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_48 = io_scpu_7_bits_kind;
+        casez_tmp_48 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_48 = io_scpu_8_bits_kind;
+        casez_tmp_48 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_48 = io_scpu_9_bits_kind;
+        casez_tmp_48 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_48 = io_scpu_10_bits_kind;
+        casez_tmp_48 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_48 = io_scpu_11_bits_kind;
+        casez_tmp_48 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_48 = io_scpu_12_bits_kind;
+        casez_tmp_48 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_48 = io_scpu_13_bits_kind;
+        casez_tmp_48 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_48 = io_scpu_14_bits_kind;
+        casez_tmp_48 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_48 = io_scpu_15_bits_kind;
+        casez_tmp_48 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_49;
+  reg  [1:0]  casez_tmp_49;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_7[3:0])
       4'b0000:
-        casez_tmp_49 = io_scpu_0_bits_px;
+        casez_tmp_49 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_49 = io_scpu_1_bits_px;
+        casez_tmp_49 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_49 = io_scpu_2_bits_px;
+        casez_tmp_49 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_49 = io_scpu_3_bits_px;
+        casez_tmp_49 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_49 = io_scpu_4_bits_px;
+        casez_tmp_49 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_49 = io_scpu_5_bits_px;
+        casez_tmp_49 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_49 = io_scpu_6_bits_px;
+        casez_tmp_49 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_49 = io_scpu_7_bits_px;
+        casez_tmp_49 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_49 = io_scpu_8_bits_px;
+        casez_tmp_49 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_49 = io_scpu_9_bits_px;
+        casez_tmp_49 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_49 = io_scpu_10_bits_px;
+        casez_tmp_49 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_49 = io_scpu_11_bits_px;
+        casez_tmp_49 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_49 = io_scpu_12_bits_px;
+        casez_tmp_49 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_49 = io_scpu_13_bits_px;
+        casez_tmp_49 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_49 = io_scpu_14_bits_px;
+        casez_tmp_49 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_49 = io_scpu_15_bits_px;
+        casez_tmp_49 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_50;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_7[3:0])
       4'b0000:
-        casez_tmp_50 = io_scpu_0_bits_py;
+        casez_tmp_50 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_50 = io_scpu_1_bits_py;
+        casez_tmp_50 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_50 = io_scpu_2_bits_py;
+        casez_tmp_50 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_50 = io_scpu_3_bits_py;
+        casez_tmp_50 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_50 = io_scpu_4_bits_py;
+        casez_tmp_50 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_50 = io_scpu_5_bits_py;
+        casez_tmp_50 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_50 = io_scpu_6_bits_py;
+        casez_tmp_50 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_50 = io_scpu_7_bits_py;
+        casez_tmp_50 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_50 = io_scpu_8_bits_py;
+        casez_tmp_50 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_50 = io_scpu_9_bits_py;
+        casez_tmp_50 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_50 = io_scpu_10_bits_py;
+        casez_tmp_50 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_50 = io_scpu_11_bits_py;
+        casez_tmp_50 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_50 = io_scpu_12_bits_py;
+        casez_tmp_50 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_50 = io_scpu_13_bits_py;
+        casez_tmp_50 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_50 = io_scpu_14_bits_py;
+        casez_tmp_50 = io_scpu_14_bits_d;
       default:
-        casez_tmp_50 = io_scpu_15_bits_py;
+        casez_tmp_50 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_51;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_7[3:0])
       4'b0000:
-        casez_tmp_51 = io_scpu_0_bits_pz;
+        casez_tmp_51 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_51 = io_scpu_1_bits_pz;
+        casez_tmp_51 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_51 = io_scpu_2_bits_pz;
+        casez_tmp_51 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_51 = io_scpu_3_bits_pz;
+        casez_tmp_51 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_51 = io_scpu_4_bits_pz;
+        casez_tmp_51 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_51 = io_scpu_5_bits_pz;
+        casez_tmp_51 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_51 = io_scpu_6_bits_pz;
+        casez_tmp_51 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_51 = io_scpu_7_bits_pz;
+        casez_tmp_51 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_51 = io_scpu_8_bits_pz;
+        casez_tmp_51 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_51 = io_scpu_9_bits_pz;
+        casez_tmp_51 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_51 = io_scpu_10_bits_pz;
+        casez_tmp_51 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_51 = io_scpu_11_bits_pz;
+        casez_tmp_51 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_51 = io_scpu_12_bits_pz;
+        casez_tmp_51 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_51 = io_scpu_13_bits_pz;
+        casez_tmp_51 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_51 = io_scpu_14_bits_pz;
+        casez_tmp_51 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_51 = io_scpu_15_bits_pz;
+        casez_tmp_51 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_52;
+  reg         casez_tmp_52;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_7[3:0])
       4'b0000:
-        casez_tmp_52 = io_scpu_0_bits_nx;
+        casez_tmp_52 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_52 = io_scpu_1_bits_nx;
+        casez_tmp_52 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_52 = io_scpu_2_bits_nx;
+        casez_tmp_52 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_52 = io_scpu_3_bits_nx;
+        casez_tmp_52 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_52 = io_scpu_4_bits_nx;
+        casez_tmp_52 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_52 = io_scpu_5_bits_nx;
+        casez_tmp_52 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_52 = io_scpu_6_bits_nx;
+        casez_tmp_52 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_52 = io_scpu_7_bits_nx;
+        casez_tmp_52 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_52 = io_scpu_8_bits_nx;
+        casez_tmp_52 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_52 = io_scpu_9_bits_nx;
+        casez_tmp_52 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_52 = io_scpu_10_bits_nx;
+        casez_tmp_52 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_52 = io_scpu_11_bits_nx;
+        casez_tmp_52 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_52 = io_scpu_12_bits_nx;
+        casez_tmp_52 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_52 = io_scpu_13_bits_nx;
+        casez_tmp_52 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_52 = io_scpu_14_bits_nx;
+        casez_tmp_52 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_52 = io_scpu_15_bits_nx;
+        casez_tmp_52 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_53;
+  reg  [4:0]  casez_tmp_53;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_7[3:0])
       4'b0000:
-        casez_tmp_53 = io_scpu_0_bits_ny;
+        casez_tmp_53 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_53 = io_scpu_1_bits_ny;
+        casez_tmp_53 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_53 = io_scpu_2_bits_ny;
+        casez_tmp_53 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_53 = io_scpu_3_bits_ny;
+        casez_tmp_53 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_53 = io_scpu_4_bits_ny;
+        casez_tmp_53 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_53 = io_scpu_5_bits_ny;
+        casez_tmp_53 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_53 = io_scpu_6_bits_ny;
+        casez_tmp_53 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_53 = io_scpu_7_bits_ny;
+        casez_tmp_53 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_53 = io_scpu_8_bits_ny;
+        casez_tmp_53 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_53 = io_scpu_9_bits_ny;
+        casez_tmp_53 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_53 = io_scpu_10_bits_ny;
+        casez_tmp_53 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_53 = io_scpu_11_bits_ny;
+        casez_tmp_53 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_53 = io_scpu_12_bits_ny;
+        casez_tmp_53 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_53 = io_scpu_13_bits_ny;
+        casez_tmp_53 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_53 = io_scpu_14_bits_ny;
+        casez_tmp_53 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_53 = io_scpu_15_bits_ny;
+        casez_tmp_53 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_54;
+  reg  [23:0] casez_tmp_54;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_7[3:0])
       4'b0000:
-        casez_tmp_54 = io_scpu_0_bits_nz;
+        casez_tmp_54 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_54 = io_scpu_1_bits_nz;
+        casez_tmp_54 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_54 = io_scpu_2_bits_nz;
+        casez_tmp_54 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_54 = io_scpu_3_bits_nz;
+        casez_tmp_54 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_54 = io_scpu_4_bits_nz;
+        casez_tmp_54 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_54 = io_scpu_5_bits_nz;
+        casez_tmp_54 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_54 = io_scpu_6_bits_nz;
+        casez_tmp_54 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_54 = io_scpu_7_bits_nz;
+        casez_tmp_54 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_54 = io_scpu_8_bits_nz;
+        casez_tmp_54 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_54 = io_scpu_9_bits_nz;
+        casez_tmp_54 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_54 = io_scpu_10_bits_nz;
+        casez_tmp_54 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_54 = io_scpu_11_bits_nz;
+        casez_tmp_54 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_54 = io_scpu_12_bits_nz;
+        casez_tmp_54 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_54 = io_scpu_13_bits_nz;
+        casez_tmp_54 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_54 = io_scpu_14_bits_nz;
+        casez_tmp_54 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_54 = io_scpu_15_bits_nz;
+        casez_tmp_54 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_55;
+  reg         casez_tmp_55;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_8[3:0])
       4'b0000:
-        casez_tmp_55 = io_scpu_0_bits_depth;
+        casez_tmp_55 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_55 = io_scpu_1_bits_depth;
+        casez_tmp_55 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_55 = io_scpu_2_bits_depth;
+        casez_tmp_55 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_55 = io_scpu_3_bits_depth;
+        casez_tmp_55 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_55 = io_scpu_4_bits_depth;
+        casez_tmp_55 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_55 = io_scpu_5_bits_depth;
+        casez_tmp_55 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_55 = io_scpu_6_bits_depth;
+        casez_tmp_55 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_55 = io_scpu_7_bits_depth;
+        casez_tmp_55 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_55 = io_scpu_8_bits_depth;
+        casez_tmp_55 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_55 = io_scpu_9_bits_depth;
+        casez_tmp_55 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_55 = io_scpu_10_bits_depth;
+        casez_tmp_55 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_55 = io_scpu_11_bits_depth;
+        casez_tmp_55 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_55 = io_scpu_12_bits_depth;
+        casez_tmp_55 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_55 = io_scpu_13_bits_depth;
+        casez_tmp_55 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_55 = io_scpu_14_bits_depth;
+        casez_tmp_55 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_55 = io_scpu_15_bits_depth;
+        casez_tmp_55 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg         casez_tmp_56;
+  reg  [1:0]  casez_tmp_56;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_8[3:0])
       4'b0000:
-        casez_tmp_56 = io_scpu_0_bits_nonFinite;
+        casez_tmp_56 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_56 = io_scpu_1_bits_nonFinite;
+        casez_tmp_56 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_56 = io_scpu_2_bits_nonFinite;
+        casez_tmp_56 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_56 = io_scpu_3_bits_nonFinite;
+        casez_tmp_56 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_56 = io_scpu_4_bits_nonFinite;
+        casez_tmp_56 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_56 = io_scpu_5_bits_nonFinite;
+        casez_tmp_56 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_56 = io_scpu_6_bits_nonFinite;
+        casez_tmp_56 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_56 = io_scpu_7_bits_nonFinite;
+        casez_tmp_56 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_56 = io_scpu_8_bits_nonFinite;
+        casez_tmp_56 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_56 = io_scpu_9_bits_nonFinite;
+        casez_tmp_56 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_56 = io_scpu_10_bits_nonFinite;
+        casez_tmp_56 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_56 = io_scpu_11_bits_nonFinite;
+        casez_tmp_56 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_56 = io_scpu_12_bits_nonFinite;
+        casez_tmp_56 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_56 = io_scpu_13_bits_nonFinite;
+        casez_tmp_56 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_56 = io_scpu_14_bits_nonFinite;
+        casez_tmp_56 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_56 = io_scpu_15_bits_nonFinite;
+        casez_tmp_56 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
-  reg  [4:0]  casez_tmp_57;
+  reg  [31:0] casez_tmp_57;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_8[3:0])
       4'b0000:
-        casez_tmp_57 = io_scpu_0_bits_flags;
+        casez_tmp_57 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_57 = io_scpu_1_bits_flags;
+        casez_tmp_57 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_57 = io_scpu_2_bits_flags;
+        casez_tmp_57 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_57 = io_scpu_3_bits_flags;
+        casez_tmp_57 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_57 = io_scpu_4_bits_flags;
+        casez_tmp_57 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_57 = io_scpu_5_bits_flags;
+        casez_tmp_57 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_57 = io_scpu_6_bits_flags;
+        casez_tmp_57 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_57 = io_scpu_7_bits_flags;
+        casez_tmp_57 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_57 = io_scpu_8_bits_flags;
+        casez_tmp_57 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_57 = io_scpu_9_bits_flags;
+        casez_tmp_57 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_57 = io_scpu_10_bits_flags;
+        casez_tmp_57 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_57 = io_scpu_11_bits_flags;
+        casez_tmp_57 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_57 = io_scpu_12_bits_flags;
+        casez_tmp_57 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_57 = io_scpu_13_bits_flags;
+        casez_tmp_57 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_57 = io_scpu_14_bits_flags;
+        casez_tmp_57 = io_scpu_14_bits_d;
       default:
-        casez_tmp_57 = io_scpu_15_bits_flags;
+        casez_tmp_57 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_58;
+  reg  [31:0] casez_tmp_58;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (scpuAt_8[3:0])
       4'b0000:
-        casez_tmp_58 = io_scpu_0_bits_tag;
+        casez_tmp_58 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_58 = io_scpu_1_bits_tag;
+        casez_tmp_58 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_58 = io_scpu_2_bits_tag;
+        casez_tmp_58 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_58 = io_scpu_3_bits_tag;
+        casez_tmp_58 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_58 = io_scpu_4_bits_tag;
+        casez_tmp_58 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_58 = io_scpu_5_bits_tag;
+        casez_tmp_58 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_58 = io_scpu_6_bits_tag;
+        casez_tmp_58 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_58 = io_scpu_7_bits_tag;
+        casez_tmp_58 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_58 = io_scpu_8_bits_tag;
+        casez_tmp_58 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_58 = io_scpu_9_bits_tag;
+        casez_tmp_58 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_58 = io_scpu_10_bits_tag;
+        casez_tmp_58 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_58 = io_scpu_11_bits_tag;
+        casez_tmp_58 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_58 = io_scpu_12_bits_tag;
+        casez_tmp_58 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_58 = io_scpu_13_bits_tag;
+        casez_tmp_58 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_58 = io_scpu_14_bits_tag;
+        casez_tmp_58 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_58 = io_scpu_15_bits_tag;
+        casez_tmp_58 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_59;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_8[3:0])
       4'b0000:
-        casez_tmp_59 = io_scpu_0_bits_hit;
+        casez_tmp_59 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_59 = io_scpu_1_bits_hit;
+        casez_tmp_59 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_59 = io_scpu_2_bits_hit;
+        casez_tmp_59 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_59 = io_scpu_3_bits_hit;
+        casez_tmp_59 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_59 = io_scpu_4_bits_hit;
+        casez_tmp_59 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_59 = io_scpu_5_bits_hit;
+        casez_tmp_59 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_59 = io_scpu_6_bits_hit;
+        casez_tmp_59 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_59 = io_scpu_7_bits_hit;
+        casez_tmp_59 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_59 = io_scpu_8_bits_hit;
+        casez_tmp_59 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_59 = io_scpu_9_bits_hit;
+        casez_tmp_59 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_59 = io_scpu_10_bits_hit;
+        casez_tmp_59 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_59 = io_scpu_11_bits_hit;
+        casez_tmp_59 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_59 = io_scpu_12_bits_hit;
+        casez_tmp_59 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_59 = io_scpu_13_bits_hit;
+        casez_tmp_59 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_59 = io_scpu_14_bits_hit;
+        casez_tmp_59 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_59 = io_scpu_15_bits_hit;
+        casez_tmp_59 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [1:0]  casez_tmp_60;
+  reg  [4:0]  casez_tmp_60;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_8[3:0])
       4'b0000:
-        casez_tmp_60 = io_scpu_0_bits_kind;
+        casez_tmp_60 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_60 = io_scpu_1_bits_kind;
+        casez_tmp_60 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_60 = io_scpu_2_bits_kind;
+        casez_tmp_60 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_60 = io_scpu_3_bits_kind;
+        casez_tmp_60 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_60 = io_scpu_4_bits_kind;
+        casez_tmp_60 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_60 = io_scpu_5_bits_kind;
+        casez_tmp_60 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_60 = io_scpu_6_bits_kind;
+        casez_tmp_60 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_60 = io_scpu_7_bits_kind;
+        casez_tmp_60 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_60 = io_scpu_8_bits_kind;
+        casez_tmp_60 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_60 = io_scpu_9_bits_kind;
+        casez_tmp_60 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_60 = io_scpu_10_bits_kind;
+        casez_tmp_60 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_60 = io_scpu_11_bits_kind;
+        casez_tmp_60 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_60 = io_scpu_12_bits_kind;
+        casez_tmp_60 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_60 = io_scpu_13_bits_kind;
+        casez_tmp_60 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_60 = io_scpu_14_bits_kind;
+        casez_tmp_60 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_60 = io_scpu_15_bits_kind;
+        casez_tmp_60 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_61;
+  reg  [23:0] casez_tmp_61;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_8[3:0])
       4'b0000:
-        casez_tmp_61 = io_scpu_0_bits_px;
+        casez_tmp_61 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_61 = io_scpu_1_bits_px;
+        casez_tmp_61 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_61 = io_scpu_2_bits_px;
+        casez_tmp_61 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_61 = io_scpu_3_bits_px;
+        casez_tmp_61 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_61 = io_scpu_4_bits_px;
+        casez_tmp_61 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_61 = io_scpu_5_bits_px;
+        casez_tmp_61 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_61 = io_scpu_6_bits_px;
+        casez_tmp_61 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_61 = io_scpu_7_bits_px;
+        casez_tmp_61 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_61 = io_scpu_8_bits_px;
+        casez_tmp_61 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_61 = io_scpu_9_bits_px;
+        casez_tmp_61 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_61 = io_scpu_10_bits_px;
+        casez_tmp_61 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_61 = io_scpu_11_bits_px;
+        casez_tmp_61 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_61 = io_scpu_12_bits_px;
+        casez_tmp_61 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_61 = io_scpu_13_bits_px;
+        casez_tmp_61 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_61 = io_scpu_14_bits_px;
+        casez_tmp_61 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_61 = io_scpu_15_bits_px;
+        casez_tmp_61 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_62;
+  reg         casez_tmp_62;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_9[3:0])
       4'b0000:
-        casez_tmp_62 = io_scpu_0_bits_py;
+        casez_tmp_62 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_62 = io_scpu_1_bits_py;
+        casez_tmp_62 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_62 = io_scpu_2_bits_py;
+        casez_tmp_62 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_62 = io_scpu_3_bits_py;
+        casez_tmp_62 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_62 = io_scpu_4_bits_py;
+        casez_tmp_62 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_62 = io_scpu_5_bits_py;
+        casez_tmp_62 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_62 = io_scpu_6_bits_py;
+        casez_tmp_62 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_62 = io_scpu_7_bits_py;
+        casez_tmp_62 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_62 = io_scpu_8_bits_py;
+        casez_tmp_62 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_62 = io_scpu_9_bits_py;
+        casez_tmp_62 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_62 = io_scpu_10_bits_py;
+        casez_tmp_62 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_62 = io_scpu_11_bits_py;
+        casez_tmp_62 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_62 = io_scpu_12_bits_py;
+        casez_tmp_62 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_62 = io_scpu_13_bits_py;
+        casez_tmp_62 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_62 = io_scpu_14_bits_py;
+        casez_tmp_62 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_62 = io_scpu_15_bits_py;
+        casez_tmp_62 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_63;
+  reg  [1:0]  casez_tmp_63;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_9[3:0])
       4'b0000:
-        casez_tmp_63 = io_scpu_0_bits_pz;
+        casez_tmp_63 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_63 = io_scpu_1_bits_pz;
+        casez_tmp_63 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_63 = io_scpu_2_bits_pz;
+        casez_tmp_63 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_63 = io_scpu_3_bits_pz;
+        casez_tmp_63 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_63 = io_scpu_4_bits_pz;
+        casez_tmp_63 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_63 = io_scpu_5_bits_pz;
+        casez_tmp_63 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_63 = io_scpu_6_bits_pz;
+        casez_tmp_63 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_63 = io_scpu_7_bits_pz;
+        casez_tmp_63 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_63 = io_scpu_8_bits_pz;
+        casez_tmp_63 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_63 = io_scpu_9_bits_pz;
+        casez_tmp_63 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_63 = io_scpu_10_bits_pz;
+        casez_tmp_63 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_63 = io_scpu_11_bits_pz;
+        casez_tmp_63 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_63 = io_scpu_12_bits_pz;
+        casez_tmp_63 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_63 = io_scpu_13_bits_pz;
+        casez_tmp_63 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_63 = io_scpu_14_bits_pz;
+        casez_tmp_63 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_63 = io_scpu_15_bits_pz;
+        casez_tmp_63 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_64;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_9[3:0])
       4'b0000:
-        casez_tmp_64 = io_scpu_0_bits_nx;
+        casez_tmp_64 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_64 = io_scpu_1_bits_nx;
+        casez_tmp_64 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_64 = io_scpu_2_bits_nx;
+        casez_tmp_64 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_64 = io_scpu_3_bits_nx;
+        casez_tmp_64 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_64 = io_scpu_4_bits_nx;
+        casez_tmp_64 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_64 = io_scpu_5_bits_nx;
+        casez_tmp_64 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_64 = io_scpu_6_bits_nx;
+        casez_tmp_64 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_64 = io_scpu_7_bits_nx;
+        casez_tmp_64 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_64 = io_scpu_8_bits_nx;
+        casez_tmp_64 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_64 = io_scpu_9_bits_nx;
+        casez_tmp_64 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_64 = io_scpu_10_bits_nx;
+        casez_tmp_64 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_64 = io_scpu_11_bits_nx;
+        casez_tmp_64 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_64 = io_scpu_12_bits_nx;
+        casez_tmp_64 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_64 = io_scpu_13_bits_nx;
+        casez_tmp_64 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_64 = io_scpu_14_bits_nx;
+        casez_tmp_64 = io_scpu_14_bits_d;
       default:
-        casez_tmp_64 = io_scpu_15_bits_nx;
+        casez_tmp_64 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_65;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_9[3:0])
       4'b0000:
-        casez_tmp_65 = io_scpu_0_bits_ny;
+        casez_tmp_65 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_65 = io_scpu_1_bits_ny;
+        casez_tmp_65 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_65 = io_scpu_2_bits_ny;
+        casez_tmp_65 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_65 = io_scpu_3_bits_ny;
+        casez_tmp_65 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_65 = io_scpu_4_bits_ny;
+        casez_tmp_65 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_65 = io_scpu_5_bits_ny;
+        casez_tmp_65 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_65 = io_scpu_6_bits_ny;
+        casez_tmp_65 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_65 = io_scpu_7_bits_ny;
+        casez_tmp_65 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_65 = io_scpu_8_bits_ny;
+        casez_tmp_65 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_65 = io_scpu_9_bits_ny;
+        casez_tmp_65 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_65 = io_scpu_10_bits_ny;
+        casez_tmp_65 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_65 = io_scpu_11_bits_ny;
+        casez_tmp_65 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_65 = io_scpu_12_bits_ny;
+        casez_tmp_65 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_65 = io_scpu_13_bits_ny;
+        casez_tmp_65 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_65 = io_scpu_14_bits_ny;
+        casez_tmp_65 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_65 = io_scpu_15_bits_ny;
+        casez_tmp_65 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_66;
+  reg         casez_tmp_66;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_9[3:0])
       4'b0000:
-        casez_tmp_66 = io_scpu_0_bits_nz;
+        casez_tmp_66 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_66 = io_scpu_1_bits_nz;
+        casez_tmp_66 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_66 = io_scpu_2_bits_nz;
+        casez_tmp_66 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_66 = io_scpu_3_bits_nz;
+        casez_tmp_66 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_66 = io_scpu_4_bits_nz;
+        casez_tmp_66 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_66 = io_scpu_5_bits_nz;
+        casez_tmp_66 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_66 = io_scpu_6_bits_nz;
+        casez_tmp_66 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_66 = io_scpu_7_bits_nz;
+        casez_tmp_66 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_66 = io_scpu_8_bits_nz;
+        casez_tmp_66 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_66 = io_scpu_9_bits_nz;
+        casez_tmp_66 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_66 = io_scpu_10_bits_nz;
+        casez_tmp_66 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_66 = io_scpu_11_bits_nz;
+        casez_tmp_66 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_66 = io_scpu_12_bits_nz;
+        casez_tmp_66 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_66 = io_scpu_13_bits_nz;
+        casez_tmp_66 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_66 = io_scpu_14_bits_nz;
+        casez_tmp_66 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_66 = io_scpu_15_bits_nz;
+        casez_tmp_66 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_67;
+  reg  [4:0]  casez_tmp_67;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_9[3:0])
       4'b0000:
-        casez_tmp_67 = io_scpu_0_bits_depth;
+        casez_tmp_67 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_67 = io_scpu_1_bits_depth;
+        casez_tmp_67 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_67 = io_scpu_2_bits_depth;
+        casez_tmp_67 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_67 = io_scpu_3_bits_depth;
+        casez_tmp_67 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_67 = io_scpu_4_bits_depth;
+        casez_tmp_67 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_67 = io_scpu_5_bits_depth;
+        casez_tmp_67 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_67 = io_scpu_6_bits_depth;
+        casez_tmp_67 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_67 = io_scpu_7_bits_depth;
+        casez_tmp_67 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_67 = io_scpu_8_bits_depth;
+        casez_tmp_67 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_67 = io_scpu_9_bits_depth;
+        casez_tmp_67 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_67 = io_scpu_10_bits_depth;
+        casez_tmp_67 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_67 = io_scpu_11_bits_depth;
+        casez_tmp_67 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_67 = io_scpu_12_bits_depth;
+        casez_tmp_67 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_67 = io_scpu_13_bits_depth;
+        casez_tmp_67 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_67 = io_scpu_14_bits_depth;
+        casez_tmp_67 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_67 = io_scpu_15_bits_depth;
+        casez_tmp_67 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg         casez_tmp_68;
+  reg  [23:0] casez_tmp_68;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_9[3:0])
       4'b0000:
-        casez_tmp_68 = io_scpu_0_bits_nonFinite;
+        casez_tmp_68 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_68 = io_scpu_1_bits_nonFinite;
+        casez_tmp_68 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_68 = io_scpu_2_bits_nonFinite;
+        casez_tmp_68 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_68 = io_scpu_3_bits_nonFinite;
+        casez_tmp_68 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_68 = io_scpu_4_bits_nonFinite;
+        casez_tmp_68 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_68 = io_scpu_5_bits_nonFinite;
+        casez_tmp_68 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_68 = io_scpu_6_bits_nonFinite;
+        casez_tmp_68 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_68 = io_scpu_7_bits_nonFinite;
+        casez_tmp_68 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_68 = io_scpu_8_bits_nonFinite;
+        casez_tmp_68 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_68 = io_scpu_9_bits_nonFinite;
+        casez_tmp_68 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_68 = io_scpu_10_bits_nonFinite;
+        casez_tmp_68 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_68 = io_scpu_11_bits_nonFinite;
+        casez_tmp_68 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_68 = io_scpu_12_bits_nonFinite;
+        casez_tmp_68 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_68 = io_scpu_13_bits_nonFinite;
+        casez_tmp_68 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_68 = io_scpu_14_bits_nonFinite;
+        casez_tmp_68 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_68 = io_scpu_15_bits_nonFinite;
+        casez_tmp_68 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [4:0]  casez_tmp_69;
+  reg         casez_tmp_69;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_10[3:0])
       4'b0000:
-        casez_tmp_69 = io_scpu_0_bits_flags;
+        casez_tmp_69 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_69 = io_scpu_1_bits_flags;
+        casez_tmp_69 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_69 = io_scpu_2_bits_flags;
+        casez_tmp_69 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_69 = io_scpu_3_bits_flags;
+        casez_tmp_69 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_69 = io_scpu_4_bits_flags;
+        casez_tmp_69 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_69 = io_scpu_5_bits_flags;
+        casez_tmp_69 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_69 = io_scpu_6_bits_flags;
+        casez_tmp_69 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_69 = io_scpu_7_bits_flags;
+        casez_tmp_69 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_69 = io_scpu_8_bits_flags;
+        casez_tmp_69 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_69 = io_scpu_9_bits_flags;
+        casez_tmp_69 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_69 = io_scpu_10_bits_flags;
+        casez_tmp_69 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_69 = io_scpu_11_bits_flags;
+        casez_tmp_69 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_69 = io_scpu_12_bits_flags;
+        casez_tmp_69 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_69 = io_scpu_13_bits_flags;
+        casez_tmp_69 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_69 = io_scpu_14_bits_flags;
+        casez_tmp_69 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_69 = io_scpu_15_bits_flags;
+        casez_tmp_69 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_70;
+  reg  [1:0]  casez_tmp_70;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (scpuAt_10[3:0])
       4'b0000:
-        casez_tmp_70 = io_scpu_0_bits_tag;
+        casez_tmp_70 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_70 = io_scpu_1_bits_tag;
+        casez_tmp_70 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_70 = io_scpu_2_bits_tag;
+        casez_tmp_70 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_70 = io_scpu_3_bits_tag;
+        casez_tmp_70 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_70 = io_scpu_4_bits_tag;
+        casez_tmp_70 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_70 = io_scpu_5_bits_tag;
+        casez_tmp_70 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_70 = io_scpu_6_bits_tag;
+        casez_tmp_70 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_70 = io_scpu_7_bits_tag;
+        casez_tmp_70 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_70 = io_scpu_8_bits_tag;
+        casez_tmp_70 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_70 = io_scpu_9_bits_tag;
+        casez_tmp_70 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_70 = io_scpu_10_bits_tag;
+        casez_tmp_70 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_70 = io_scpu_11_bits_tag;
+        casez_tmp_70 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_70 = io_scpu_12_bits_tag;
+        casez_tmp_70 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_70 = io_scpu_13_bits_tag;
+        casez_tmp_70 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_70 = io_scpu_14_bits_tag;
+        casez_tmp_70 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_70 = io_scpu_15_bits_tag;
+        casez_tmp_70 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
-  reg         casez_tmp_71;
+  reg  [31:0] casez_tmp_71;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_10[3:0])
       4'b0000:
-        casez_tmp_71 = io_scpu_0_bits_hit;
+        casez_tmp_71 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_71 = io_scpu_1_bits_hit;
+        casez_tmp_71 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_71 = io_scpu_2_bits_hit;
+        casez_tmp_71 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_71 = io_scpu_3_bits_hit;
+        casez_tmp_71 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_71 = io_scpu_4_bits_hit;
+        casez_tmp_71 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_71 = io_scpu_5_bits_hit;
+        casez_tmp_71 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_71 = io_scpu_6_bits_hit;
+        casez_tmp_71 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_71 = io_scpu_7_bits_hit;
+        casez_tmp_71 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_71 = io_scpu_8_bits_hit;
+        casez_tmp_71 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_71 = io_scpu_9_bits_hit;
+        casez_tmp_71 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_71 = io_scpu_10_bits_hit;
+        casez_tmp_71 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_71 = io_scpu_11_bits_hit;
+        casez_tmp_71 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_71 = io_scpu_12_bits_hit;
+        casez_tmp_71 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_71 = io_scpu_13_bits_hit;
+        casez_tmp_71 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_71 = io_scpu_14_bits_hit;
+        casez_tmp_71 = io_scpu_14_bits_d;
       default:
-        casez_tmp_71 = io_scpu_15_bits_hit;
+        casez_tmp_71 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
-  reg  [1:0]  casez_tmp_72;
+  reg  [31:0] casez_tmp_72;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_10[3:0])
       4'b0000:
-        casez_tmp_72 = io_scpu_0_bits_kind;
+        casez_tmp_72 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_72 = io_scpu_1_bits_kind;
+        casez_tmp_72 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_72 = io_scpu_2_bits_kind;
+        casez_tmp_72 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_72 = io_scpu_3_bits_kind;
+        casez_tmp_72 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_72 = io_scpu_4_bits_kind;
+        casez_tmp_72 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_72 = io_scpu_5_bits_kind;
+        casez_tmp_72 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_72 = io_scpu_6_bits_kind;
+        casez_tmp_72 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_72 = io_scpu_7_bits_kind;
+        casez_tmp_72 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_72 = io_scpu_8_bits_kind;
+        casez_tmp_72 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_72 = io_scpu_9_bits_kind;
+        casez_tmp_72 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_72 = io_scpu_10_bits_kind;
+        casez_tmp_72 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_72 = io_scpu_11_bits_kind;
+        casez_tmp_72 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_72 = io_scpu_12_bits_kind;
+        casez_tmp_72 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_72 = io_scpu_13_bits_kind;
+        casez_tmp_72 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_72 = io_scpu_14_bits_kind;
+        casez_tmp_72 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_72 = io_scpu_15_bits_kind;
+        casez_tmp_72 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_73;
+  reg         casez_tmp_73;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_10[3:0])
       4'b0000:
-        casez_tmp_73 = io_scpu_0_bits_px;
+        casez_tmp_73 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_73 = io_scpu_1_bits_px;
+        casez_tmp_73 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_73 = io_scpu_2_bits_px;
+        casez_tmp_73 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_73 = io_scpu_3_bits_px;
+        casez_tmp_73 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_73 = io_scpu_4_bits_px;
+        casez_tmp_73 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_73 = io_scpu_5_bits_px;
+        casez_tmp_73 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_73 = io_scpu_6_bits_px;
+        casez_tmp_73 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_73 = io_scpu_7_bits_px;
+        casez_tmp_73 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_73 = io_scpu_8_bits_px;
+        casez_tmp_73 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_73 = io_scpu_9_bits_px;
+        casez_tmp_73 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_73 = io_scpu_10_bits_px;
+        casez_tmp_73 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_73 = io_scpu_11_bits_px;
+        casez_tmp_73 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_73 = io_scpu_12_bits_px;
+        casez_tmp_73 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_73 = io_scpu_13_bits_px;
+        casez_tmp_73 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_73 = io_scpu_14_bits_px;
+        casez_tmp_73 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_73 = io_scpu_15_bits_px;
+        casez_tmp_73 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_74;
+  reg  [4:0]  casez_tmp_74;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_10[3:0])
       4'b0000:
-        casez_tmp_74 = io_scpu_0_bits_py;
+        casez_tmp_74 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_74 = io_scpu_1_bits_py;
+        casez_tmp_74 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_74 = io_scpu_2_bits_py;
+        casez_tmp_74 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_74 = io_scpu_3_bits_py;
+        casez_tmp_74 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_74 = io_scpu_4_bits_py;
+        casez_tmp_74 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_74 = io_scpu_5_bits_py;
+        casez_tmp_74 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_74 = io_scpu_6_bits_py;
+        casez_tmp_74 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_74 = io_scpu_7_bits_py;
+        casez_tmp_74 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_74 = io_scpu_8_bits_py;
+        casez_tmp_74 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_74 = io_scpu_9_bits_py;
+        casez_tmp_74 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_74 = io_scpu_10_bits_py;
+        casez_tmp_74 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_74 = io_scpu_11_bits_py;
+        casez_tmp_74 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_74 = io_scpu_12_bits_py;
+        casez_tmp_74 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_74 = io_scpu_13_bits_py;
+        casez_tmp_74 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_74 = io_scpu_14_bits_py;
+        casez_tmp_74 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_74 = io_scpu_15_bits_py;
+        casez_tmp_74 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_75;
+  reg  [23:0] casez_tmp_75;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_10[3:0])
       4'b0000:
-        casez_tmp_75 = io_scpu_0_bits_pz;
+        casez_tmp_75 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_75 = io_scpu_1_bits_pz;
+        casez_tmp_75 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_75 = io_scpu_2_bits_pz;
+        casez_tmp_75 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_75 = io_scpu_3_bits_pz;
+        casez_tmp_75 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_75 = io_scpu_4_bits_pz;
+        casez_tmp_75 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_75 = io_scpu_5_bits_pz;
+        casez_tmp_75 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_75 = io_scpu_6_bits_pz;
+        casez_tmp_75 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_75 = io_scpu_7_bits_pz;
+        casez_tmp_75 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_75 = io_scpu_8_bits_pz;
+        casez_tmp_75 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_75 = io_scpu_9_bits_pz;
+        casez_tmp_75 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_75 = io_scpu_10_bits_pz;
+        casez_tmp_75 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_75 = io_scpu_11_bits_pz;
+        casez_tmp_75 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_75 = io_scpu_12_bits_pz;
+        casez_tmp_75 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_75 = io_scpu_13_bits_pz;
+        casez_tmp_75 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_75 = io_scpu_14_bits_pz;
+        casez_tmp_75 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_75 = io_scpu_15_bits_pz;
+        casez_tmp_75 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_76;
+  reg         casez_tmp_76;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_11[3:0])
       4'b0000:
-        casez_tmp_76 = io_scpu_0_bits_nx;
+        casez_tmp_76 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_76 = io_scpu_1_bits_nx;
+        casez_tmp_76 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_76 = io_scpu_2_bits_nx;
+        casez_tmp_76 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_76 = io_scpu_3_bits_nx;
+        casez_tmp_76 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_76 = io_scpu_4_bits_nx;
+        casez_tmp_76 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_76 = io_scpu_5_bits_nx;
+        casez_tmp_76 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_76 = io_scpu_6_bits_nx;
+        casez_tmp_76 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_76 = io_scpu_7_bits_nx;
+        casez_tmp_76 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_76 = io_scpu_8_bits_nx;
+        casez_tmp_76 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_76 = io_scpu_9_bits_nx;
+        casez_tmp_76 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_76 = io_scpu_10_bits_nx;
+        casez_tmp_76 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_76 = io_scpu_11_bits_nx;
+        casez_tmp_76 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_76 = io_scpu_12_bits_nx;
+        casez_tmp_76 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_76 = io_scpu_13_bits_nx;
+        casez_tmp_76 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_76 = io_scpu_14_bits_nx;
+        casez_tmp_76 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_76 = io_scpu_15_bits_nx;
+        casez_tmp_76 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_77;
+  reg  [1:0]  casez_tmp_77;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_11[3:0])
       4'b0000:
-        casez_tmp_77 = io_scpu_0_bits_ny;
+        casez_tmp_77 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_77 = io_scpu_1_bits_ny;
+        casez_tmp_77 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_77 = io_scpu_2_bits_ny;
+        casez_tmp_77 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_77 = io_scpu_3_bits_ny;
+        casez_tmp_77 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_77 = io_scpu_4_bits_ny;
+        casez_tmp_77 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_77 = io_scpu_5_bits_ny;
+        casez_tmp_77 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_77 = io_scpu_6_bits_ny;
+        casez_tmp_77 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_77 = io_scpu_7_bits_ny;
+        casez_tmp_77 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_77 = io_scpu_8_bits_ny;
+        casez_tmp_77 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_77 = io_scpu_9_bits_ny;
+        casez_tmp_77 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_77 = io_scpu_10_bits_ny;
+        casez_tmp_77 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_77 = io_scpu_11_bits_ny;
+        casez_tmp_77 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_77 = io_scpu_12_bits_ny;
+        casez_tmp_77 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_77 = io_scpu_13_bits_ny;
+        casez_tmp_77 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_77 = io_scpu_14_bits_ny;
+        casez_tmp_77 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_77 = io_scpu_15_bits_ny;
+        casez_tmp_77 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_78;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_11[3:0])
       4'b0000:
-        casez_tmp_78 = io_scpu_0_bits_nz;
+        casez_tmp_78 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_78 = io_scpu_1_bits_nz;
+        casez_tmp_78 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_78 = io_scpu_2_bits_nz;
+        casez_tmp_78 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_78 = io_scpu_3_bits_nz;
+        casez_tmp_78 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_78 = io_scpu_4_bits_nz;
+        casez_tmp_78 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_78 = io_scpu_5_bits_nz;
+        casez_tmp_78 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_78 = io_scpu_6_bits_nz;
+        casez_tmp_78 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_78 = io_scpu_7_bits_nz;
+        casez_tmp_78 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_78 = io_scpu_8_bits_nz;
+        casez_tmp_78 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_78 = io_scpu_9_bits_nz;
+        casez_tmp_78 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_78 = io_scpu_10_bits_nz;
+        casez_tmp_78 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_78 = io_scpu_11_bits_nz;
+        casez_tmp_78 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_78 = io_scpu_12_bits_nz;
+        casez_tmp_78 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_78 = io_scpu_13_bits_nz;
+        casez_tmp_78 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_78 = io_scpu_14_bits_nz;
+        casez_tmp_78 = io_scpu_14_bits_d;
       default:
-        casez_tmp_78 = io_scpu_15_bits_nz;
+        casez_tmp_78 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_79;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_11[3:0])
       4'b0000:
-        casez_tmp_79 = io_scpu_0_bits_depth;
+        casez_tmp_79 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_79 = io_scpu_1_bits_depth;
+        casez_tmp_79 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_79 = io_scpu_2_bits_depth;
+        casez_tmp_79 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_79 = io_scpu_3_bits_depth;
+        casez_tmp_79 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_79 = io_scpu_4_bits_depth;
+        casez_tmp_79 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_79 = io_scpu_5_bits_depth;
+        casez_tmp_79 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_79 = io_scpu_6_bits_depth;
+        casez_tmp_79 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_79 = io_scpu_7_bits_depth;
+        casez_tmp_79 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_79 = io_scpu_8_bits_depth;
+        casez_tmp_79 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_79 = io_scpu_9_bits_depth;
+        casez_tmp_79 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_79 = io_scpu_10_bits_depth;
+        casez_tmp_79 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_79 = io_scpu_11_bits_depth;
+        casez_tmp_79 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_79 = io_scpu_12_bits_depth;
+        casez_tmp_79 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_79 = io_scpu_13_bits_depth;
+        casez_tmp_79 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_79 = io_scpu_14_bits_depth;
+        casez_tmp_79 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_79 = io_scpu_15_bits_depth;
+        casez_tmp_79 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_80;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_11[3:0])
       4'b0000:
         casez_tmp_80 = io_scpu_0_bits_nonFinite;
       4'b0001:
@@ -11067,7 +10989,7 @@ module ContactCollector_n16_default(
   end // always @(*)
   reg  [4:0]  casez_tmp_81;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_11[3:0])
       4'b0000:
         casez_tmp_81 = io_scpu_0_bits_flags;
       4'b0001:
@@ -11104,7 +11026,7 @@ module ContactCollector_n16_default(
   end // always @(*)
   reg  [23:0] casez_tmp_82;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (scpuAt_11[3:0])
       4'b0000:
         casez_tmp_82 = io_scpu_0_bits_tag;
       4'b0001:
@@ -11141,7 +11063,7 @@ module ContactCollector_n16_default(
   end // always @(*)
   reg         casez_tmp_83;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_12[3:0])
       4'b0000:
         casez_tmp_83 = io_scpu_0_bits_hit;
       4'b0001:
@@ -11178,7 +11100,7 @@ module ContactCollector_n16_default(
   end // always @(*)
   reg  [1:0]  casez_tmp_84;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_12[3:0])
       4'b0000:
         casez_tmp_84 = io_scpu_0_bits_kind;
       4'b0001:
@@ -11215,4516 +11137,1556 @@ module ContactCollector_n16_default(
   end // always @(*)
   reg  [31:0] casez_tmp_85;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_12[3:0])
       4'b0000:
-        casez_tmp_85 = io_scpu_0_bits_px;
+        casez_tmp_85 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_85 = io_scpu_1_bits_px;
+        casez_tmp_85 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_85 = io_scpu_2_bits_px;
+        casez_tmp_85 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_85 = io_scpu_3_bits_px;
+        casez_tmp_85 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_85 = io_scpu_4_bits_px;
+        casez_tmp_85 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_85 = io_scpu_5_bits_px;
+        casez_tmp_85 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_85 = io_scpu_6_bits_px;
+        casez_tmp_85 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_85 = io_scpu_7_bits_px;
+        casez_tmp_85 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_85 = io_scpu_8_bits_px;
+        casez_tmp_85 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_85 = io_scpu_9_bits_px;
+        casez_tmp_85 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_85 = io_scpu_10_bits_px;
+        casez_tmp_85 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_85 = io_scpu_11_bits_px;
+        casez_tmp_85 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_85 = io_scpu_12_bits_px;
+        casez_tmp_85 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_85 = io_scpu_13_bits_px;
+        casez_tmp_85 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_85 = io_scpu_14_bits_px;
+        casez_tmp_85 = io_scpu_14_bits_d;
       default:
-        casez_tmp_85 = io_scpu_15_bits_px;
+        casez_tmp_85 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_86;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_12[3:0])
       4'b0000:
-        casez_tmp_86 = io_scpu_0_bits_py;
+        casez_tmp_86 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_86 = io_scpu_1_bits_py;
+        casez_tmp_86 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_86 = io_scpu_2_bits_py;
+        casez_tmp_86 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_86 = io_scpu_3_bits_py;
+        casez_tmp_86 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_86 = io_scpu_4_bits_py;
+        casez_tmp_86 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_86 = io_scpu_5_bits_py;
+        casez_tmp_86 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_86 = io_scpu_6_bits_py;
+        casez_tmp_86 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_86 = io_scpu_7_bits_py;
+        casez_tmp_86 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_86 = io_scpu_8_bits_py;
+        casez_tmp_86 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_86 = io_scpu_9_bits_py;
+        casez_tmp_86 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_86 = io_scpu_10_bits_py;
+        casez_tmp_86 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_86 = io_scpu_11_bits_py;
+        casez_tmp_86 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_86 = io_scpu_12_bits_py;
+        casez_tmp_86 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_86 = io_scpu_13_bits_py;
+        casez_tmp_86 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_86 = io_scpu_14_bits_py;
+        casez_tmp_86 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_86 = io_scpu_15_bits_py;
+        casez_tmp_86 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_87;
+  reg         casez_tmp_87;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_12[3:0])
       4'b0000:
-        casez_tmp_87 = io_scpu_0_bits_pz;
+        casez_tmp_87 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_87 = io_scpu_1_bits_pz;
+        casez_tmp_87 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_87 = io_scpu_2_bits_pz;
+        casez_tmp_87 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_87 = io_scpu_3_bits_pz;
+        casez_tmp_87 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_87 = io_scpu_4_bits_pz;
+        casez_tmp_87 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_87 = io_scpu_5_bits_pz;
+        casez_tmp_87 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_87 = io_scpu_6_bits_pz;
+        casez_tmp_87 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_87 = io_scpu_7_bits_pz;
+        casez_tmp_87 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_87 = io_scpu_8_bits_pz;
+        casez_tmp_87 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_87 = io_scpu_9_bits_pz;
+        casez_tmp_87 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_87 = io_scpu_10_bits_pz;
+        casez_tmp_87 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_87 = io_scpu_11_bits_pz;
+        casez_tmp_87 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_87 = io_scpu_12_bits_pz;
+        casez_tmp_87 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_87 = io_scpu_13_bits_pz;
+        casez_tmp_87 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_87 = io_scpu_14_bits_pz;
+        casez_tmp_87 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_87 = io_scpu_15_bits_pz;
+        casez_tmp_87 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_88;
+  reg  [4:0]  casez_tmp_88;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_12[3:0])
       4'b0000:
-        casez_tmp_88 = io_scpu_0_bits_nx;
+        casez_tmp_88 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_88 = io_scpu_1_bits_nx;
+        casez_tmp_88 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_88 = io_scpu_2_bits_nx;
+        casez_tmp_88 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_88 = io_scpu_3_bits_nx;
+        casez_tmp_88 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_88 = io_scpu_4_bits_nx;
+        casez_tmp_88 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_88 = io_scpu_5_bits_nx;
+        casez_tmp_88 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_88 = io_scpu_6_bits_nx;
+        casez_tmp_88 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_88 = io_scpu_7_bits_nx;
+        casez_tmp_88 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_88 = io_scpu_8_bits_nx;
+        casez_tmp_88 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_88 = io_scpu_9_bits_nx;
+        casez_tmp_88 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_88 = io_scpu_10_bits_nx;
+        casez_tmp_88 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_88 = io_scpu_11_bits_nx;
+        casez_tmp_88 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_88 = io_scpu_12_bits_nx;
+        casez_tmp_88 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_88 = io_scpu_13_bits_nx;
+        casez_tmp_88 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_88 = io_scpu_14_bits_nx;
+        casez_tmp_88 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_88 = io_scpu_15_bits_nx;
+        casez_tmp_88 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_89;
+  reg  [23:0] casez_tmp_89;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_12[3:0])
       4'b0000:
-        casez_tmp_89 = io_scpu_0_bits_ny;
+        casez_tmp_89 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_89 = io_scpu_1_bits_ny;
+        casez_tmp_89 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_89 = io_scpu_2_bits_ny;
+        casez_tmp_89 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_89 = io_scpu_3_bits_ny;
+        casez_tmp_89 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_89 = io_scpu_4_bits_ny;
+        casez_tmp_89 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_89 = io_scpu_5_bits_ny;
+        casez_tmp_89 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_89 = io_scpu_6_bits_ny;
+        casez_tmp_89 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_89 = io_scpu_7_bits_ny;
+        casez_tmp_89 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_89 = io_scpu_8_bits_ny;
+        casez_tmp_89 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_89 = io_scpu_9_bits_ny;
+        casez_tmp_89 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_89 = io_scpu_10_bits_ny;
+        casez_tmp_89 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_89 = io_scpu_11_bits_ny;
+        casez_tmp_89 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_89 = io_scpu_12_bits_ny;
+        casez_tmp_89 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_89 = io_scpu_13_bits_ny;
+        casez_tmp_89 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_89 = io_scpu_14_bits_ny;
+        casez_tmp_89 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_89 = io_scpu_15_bits_ny;
+        casez_tmp_89 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_90;
+  reg         casez_tmp_90;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_13[3:0])
       4'b0000:
-        casez_tmp_90 = io_scpu_0_bits_nz;
+        casez_tmp_90 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_90 = io_scpu_1_bits_nz;
+        casez_tmp_90 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_90 = io_scpu_2_bits_nz;
+        casez_tmp_90 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_90 = io_scpu_3_bits_nz;
+        casez_tmp_90 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_90 = io_scpu_4_bits_nz;
+        casez_tmp_90 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_90 = io_scpu_5_bits_nz;
+        casez_tmp_90 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_90 = io_scpu_6_bits_nz;
+        casez_tmp_90 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_90 = io_scpu_7_bits_nz;
+        casez_tmp_90 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_90 = io_scpu_8_bits_nz;
+        casez_tmp_90 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_90 = io_scpu_9_bits_nz;
+        casez_tmp_90 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_90 = io_scpu_10_bits_nz;
+        casez_tmp_90 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_90 = io_scpu_11_bits_nz;
+        casez_tmp_90 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_90 = io_scpu_12_bits_nz;
+        casez_tmp_90 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_90 = io_scpu_13_bits_nz;
+        casez_tmp_90 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_90 = io_scpu_14_bits_nz;
+        casez_tmp_90 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_90 = io_scpu_15_bits_nz;
+        casez_tmp_90 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_91;
+  reg  [1:0]  casez_tmp_91;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_13[3:0])
       4'b0000:
-        casez_tmp_91 = io_scpu_0_bits_depth;
+        casez_tmp_91 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_91 = io_scpu_1_bits_depth;
+        casez_tmp_91 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_91 = io_scpu_2_bits_depth;
+        casez_tmp_91 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_91 = io_scpu_3_bits_depth;
+        casez_tmp_91 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_91 = io_scpu_4_bits_depth;
+        casez_tmp_91 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_91 = io_scpu_5_bits_depth;
+        casez_tmp_91 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_91 = io_scpu_6_bits_depth;
+        casez_tmp_91 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_91 = io_scpu_7_bits_depth;
+        casez_tmp_91 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_91 = io_scpu_8_bits_depth;
+        casez_tmp_91 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_91 = io_scpu_9_bits_depth;
+        casez_tmp_91 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_91 = io_scpu_10_bits_depth;
+        casez_tmp_91 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_91 = io_scpu_11_bits_depth;
+        casez_tmp_91 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_91 = io_scpu_12_bits_depth;
+        casez_tmp_91 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_91 = io_scpu_13_bits_depth;
+        casez_tmp_91 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_91 = io_scpu_14_bits_depth;
+        casez_tmp_91 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_91 = io_scpu_15_bits_depth;
+        casez_tmp_91 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
-  reg         casez_tmp_92;
+  reg  [31:0] casez_tmp_92;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_13[3:0])
       4'b0000:
-        casez_tmp_92 = io_scpu_0_bits_nonFinite;
+        casez_tmp_92 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_92 = io_scpu_1_bits_nonFinite;
+        casez_tmp_92 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_92 = io_scpu_2_bits_nonFinite;
+        casez_tmp_92 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_92 = io_scpu_3_bits_nonFinite;
+        casez_tmp_92 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_92 = io_scpu_4_bits_nonFinite;
+        casez_tmp_92 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_92 = io_scpu_5_bits_nonFinite;
+        casez_tmp_92 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_92 = io_scpu_6_bits_nonFinite;
+        casez_tmp_92 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_92 = io_scpu_7_bits_nonFinite;
+        casez_tmp_92 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_92 = io_scpu_8_bits_nonFinite;
+        casez_tmp_92 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_92 = io_scpu_9_bits_nonFinite;
+        casez_tmp_92 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_92 = io_scpu_10_bits_nonFinite;
+        casez_tmp_92 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_92 = io_scpu_11_bits_nonFinite;
+        casez_tmp_92 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_92 = io_scpu_12_bits_nonFinite;
+        casez_tmp_92 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_92 = io_scpu_13_bits_nonFinite;
+        casez_tmp_92 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_92 = io_scpu_14_bits_nonFinite;
+        casez_tmp_92 = io_scpu_14_bits_d;
       default:
-        casez_tmp_92 = io_scpu_15_bits_nonFinite;
+        casez_tmp_92 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
-  reg  [4:0]  casez_tmp_93;
+  reg  [31:0] casez_tmp_93;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_13[3:0])
       4'b0000:
-        casez_tmp_93 = io_scpu_0_bits_flags;
+        casez_tmp_93 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_93 = io_scpu_1_bits_flags;
+        casez_tmp_93 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_93 = io_scpu_2_bits_flags;
+        casez_tmp_93 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_93 = io_scpu_3_bits_flags;
+        casez_tmp_93 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_93 = io_scpu_4_bits_flags;
+        casez_tmp_93 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_93 = io_scpu_5_bits_flags;
+        casez_tmp_93 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_93 = io_scpu_6_bits_flags;
+        casez_tmp_93 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_93 = io_scpu_7_bits_flags;
+        casez_tmp_93 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_93 = io_scpu_8_bits_flags;
+        casez_tmp_93 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_93 = io_scpu_9_bits_flags;
+        casez_tmp_93 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_93 = io_scpu_10_bits_flags;
+        casez_tmp_93 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_93 = io_scpu_11_bits_flags;
+        casez_tmp_93 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_93 = io_scpu_12_bits_flags;
+        casez_tmp_93 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_93 = io_scpu_13_bits_flags;
+        casez_tmp_93 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_93 = io_scpu_14_bits_flags;
+        casez_tmp_93 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_93 = io_scpu_15_bits_flags;
+        casez_tmp_93 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_94;
+  reg         casez_tmp_94;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (scpuAt_13[3:0])
       4'b0000:
-        casez_tmp_94 = io_scpu_0_bits_tag;
+        casez_tmp_94 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_94 = io_scpu_1_bits_tag;
+        casez_tmp_94 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_94 = io_scpu_2_bits_tag;
+        casez_tmp_94 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_94 = io_scpu_3_bits_tag;
+        casez_tmp_94 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_94 = io_scpu_4_bits_tag;
+        casez_tmp_94 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_94 = io_scpu_5_bits_tag;
+        casez_tmp_94 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_94 = io_scpu_6_bits_tag;
+        casez_tmp_94 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_94 = io_scpu_7_bits_tag;
+        casez_tmp_94 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_94 = io_scpu_8_bits_tag;
+        casez_tmp_94 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_94 = io_scpu_9_bits_tag;
+        casez_tmp_94 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_94 = io_scpu_10_bits_tag;
+        casez_tmp_94 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_94 = io_scpu_11_bits_tag;
+        casez_tmp_94 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_94 = io_scpu_12_bits_tag;
+        casez_tmp_94 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_94 = io_scpu_13_bits_tag;
+        casez_tmp_94 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_94 = io_scpu_14_bits_tag;
+        casez_tmp_94 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_94 = io_scpu_15_bits_tag;
+        casez_tmp_94 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg         casez_tmp_95;
+  reg  [4:0]  casez_tmp_95;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_13[3:0])
       4'b0000:
-        casez_tmp_95 = io_scpu_0_bits_hit;
+        casez_tmp_95 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_95 = io_scpu_1_bits_hit;
+        casez_tmp_95 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_95 = io_scpu_2_bits_hit;
+        casez_tmp_95 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_95 = io_scpu_3_bits_hit;
+        casez_tmp_95 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_95 = io_scpu_4_bits_hit;
+        casez_tmp_95 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_95 = io_scpu_5_bits_hit;
+        casez_tmp_95 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_95 = io_scpu_6_bits_hit;
+        casez_tmp_95 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_95 = io_scpu_7_bits_hit;
+        casez_tmp_95 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_95 = io_scpu_8_bits_hit;
+        casez_tmp_95 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_95 = io_scpu_9_bits_hit;
+        casez_tmp_95 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_95 = io_scpu_10_bits_hit;
+        casez_tmp_95 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_95 = io_scpu_11_bits_hit;
+        casez_tmp_95 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_95 = io_scpu_12_bits_hit;
+        casez_tmp_95 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_95 = io_scpu_13_bits_hit;
+        casez_tmp_95 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_95 = io_scpu_14_bits_hit;
+        casez_tmp_95 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_95 = io_scpu_15_bits_hit;
+        casez_tmp_95 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [1:0]  casez_tmp_96;
+  reg  [23:0] casez_tmp_96;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_13[3:0])
       4'b0000:
-        casez_tmp_96 = io_scpu_0_bits_kind;
+        casez_tmp_96 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_96 = io_scpu_1_bits_kind;
+        casez_tmp_96 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_96 = io_scpu_2_bits_kind;
+        casez_tmp_96 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_96 = io_scpu_3_bits_kind;
+        casez_tmp_96 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_96 = io_scpu_4_bits_kind;
+        casez_tmp_96 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_96 = io_scpu_5_bits_kind;
+        casez_tmp_96 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_96 = io_scpu_6_bits_kind;
+        casez_tmp_96 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_96 = io_scpu_7_bits_kind;
+        casez_tmp_96 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_96 = io_scpu_8_bits_kind;
+        casez_tmp_96 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_96 = io_scpu_9_bits_kind;
+        casez_tmp_96 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_96 = io_scpu_10_bits_kind;
+        casez_tmp_96 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_96 = io_scpu_11_bits_kind;
+        casez_tmp_96 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_96 = io_scpu_12_bits_kind;
+        casez_tmp_96 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_96 = io_scpu_13_bits_kind;
+        casez_tmp_96 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_96 = io_scpu_14_bits_kind;
+        casez_tmp_96 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_96 = io_scpu_15_bits_kind;
+        casez_tmp_96 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_97;
+  reg         casez_tmp_97;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_14[3:0])
       4'b0000:
-        casez_tmp_97 = io_scpu_0_bits_px;
+        casez_tmp_97 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_97 = io_scpu_1_bits_px;
+        casez_tmp_97 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_97 = io_scpu_2_bits_px;
+        casez_tmp_97 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_97 = io_scpu_3_bits_px;
+        casez_tmp_97 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_97 = io_scpu_4_bits_px;
+        casez_tmp_97 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_97 = io_scpu_5_bits_px;
+        casez_tmp_97 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_97 = io_scpu_6_bits_px;
+        casez_tmp_97 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_97 = io_scpu_7_bits_px;
+        casez_tmp_97 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_97 = io_scpu_8_bits_px;
+        casez_tmp_97 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_97 = io_scpu_9_bits_px;
+        casez_tmp_97 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_97 = io_scpu_10_bits_px;
+        casez_tmp_97 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_97 = io_scpu_11_bits_px;
+        casez_tmp_97 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_97 = io_scpu_12_bits_px;
+        casez_tmp_97 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_97 = io_scpu_13_bits_px;
+        casez_tmp_97 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_97 = io_scpu_14_bits_px;
+        casez_tmp_97 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_97 = io_scpu_15_bits_px;
+        casez_tmp_97 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_98;
+  reg  [1:0]  casez_tmp_98;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_14[3:0])
       4'b0000:
-        casez_tmp_98 = io_scpu_0_bits_py;
+        casez_tmp_98 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_98 = io_scpu_1_bits_py;
+        casez_tmp_98 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_98 = io_scpu_2_bits_py;
+        casez_tmp_98 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_98 = io_scpu_3_bits_py;
+        casez_tmp_98 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_98 = io_scpu_4_bits_py;
+        casez_tmp_98 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_98 = io_scpu_5_bits_py;
+        casez_tmp_98 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_98 = io_scpu_6_bits_py;
+        casez_tmp_98 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_98 = io_scpu_7_bits_py;
+        casez_tmp_98 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_98 = io_scpu_8_bits_py;
+        casez_tmp_98 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_98 = io_scpu_9_bits_py;
+        casez_tmp_98 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_98 = io_scpu_10_bits_py;
+        casez_tmp_98 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_98 = io_scpu_11_bits_py;
+        casez_tmp_98 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_98 = io_scpu_12_bits_py;
+        casez_tmp_98 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_98 = io_scpu_13_bits_py;
+        casez_tmp_98 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_98 = io_scpu_14_bits_py;
+        casez_tmp_98 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_98 = io_scpu_15_bits_py;
+        casez_tmp_98 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_99;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_14[3:0])
       4'b0000:
-        casez_tmp_99 = io_scpu_0_bits_pz;
+        casez_tmp_99 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_99 = io_scpu_1_bits_pz;
+        casez_tmp_99 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_99 = io_scpu_2_bits_pz;
+        casez_tmp_99 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_99 = io_scpu_3_bits_pz;
+        casez_tmp_99 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_99 = io_scpu_4_bits_pz;
+        casez_tmp_99 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_99 = io_scpu_5_bits_pz;
+        casez_tmp_99 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_99 = io_scpu_6_bits_pz;
+        casez_tmp_99 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_99 = io_scpu_7_bits_pz;
+        casez_tmp_99 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_99 = io_scpu_8_bits_pz;
+        casez_tmp_99 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_99 = io_scpu_9_bits_pz;
+        casez_tmp_99 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_99 = io_scpu_10_bits_pz;
+        casez_tmp_99 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_99 = io_scpu_11_bits_pz;
+        casez_tmp_99 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_99 = io_scpu_12_bits_pz;
+        casez_tmp_99 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_99 = io_scpu_13_bits_pz;
+        casez_tmp_99 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_99 = io_scpu_14_bits_pz;
+        casez_tmp_99 = io_scpu_14_bits_d;
       default:
-        casez_tmp_99 = io_scpu_15_bits_pz;
+        casez_tmp_99 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_100;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_14[3:0])
       4'b0000:
-        casez_tmp_100 = io_scpu_0_bits_nx;
+        casez_tmp_100 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_100 = io_scpu_1_bits_nx;
+        casez_tmp_100 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_100 = io_scpu_2_bits_nx;
+        casez_tmp_100 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_100 = io_scpu_3_bits_nx;
+        casez_tmp_100 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_100 = io_scpu_4_bits_nx;
+        casez_tmp_100 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_100 = io_scpu_5_bits_nx;
+        casez_tmp_100 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_100 = io_scpu_6_bits_nx;
+        casez_tmp_100 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_100 = io_scpu_7_bits_nx;
+        casez_tmp_100 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_100 = io_scpu_8_bits_nx;
+        casez_tmp_100 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_100 = io_scpu_9_bits_nx;
+        casez_tmp_100 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_100 = io_scpu_10_bits_nx;
+        casez_tmp_100 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_100 = io_scpu_11_bits_nx;
+        casez_tmp_100 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_100 = io_scpu_12_bits_nx;
+        casez_tmp_100 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_100 = io_scpu_13_bits_nx;
+        casez_tmp_100 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_100 = io_scpu_14_bits_nx;
+        casez_tmp_100 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_100 = io_scpu_15_bits_nx;
+        casez_tmp_100 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_101;
+  reg         casez_tmp_101;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_14[3:0])
       4'b0000:
-        casez_tmp_101 = io_scpu_0_bits_ny;
+        casez_tmp_101 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_101 = io_scpu_1_bits_ny;
+        casez_tmp_101 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_101 = io_scpu_2_bits_ny;
+        casez_tmp_101 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_101 = io_scpu_3_bits_ny;
+        casez_tmp_101 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_101 = io_scpu_4_bits_ny;
+        casez_tmp_101 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_101 = io_scpu_5_bits_ny;
+        casez_tmp_101 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_101 = io_scpu_6_bits_ny;
+        casez_tmp_101 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_101 = io_scpu_7_bits_ny;
+        casez_tmp_101 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_101 = io_scpu_8_bits_ny;
+        casez_tmp_101 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_101 = io_scpu_9_bits_ny;
+        casez_tmp_101 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_101 = io_scpu_10_bits_ny;
+        casez_tmp_101 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_101 = io_scpu_11_bits_ny;
+        casez_tmp_101 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_101 = io_scpu_12_bits_ny;
+        casez_tmp_101 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_101 = io_scpu_13_bits_ny;
+        casez_tmp_101 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_101 = io_scpu_14_bits_ny;
+        casez_tmp_101 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_101 = io_scpu_15_bits_ny;
+        casez_tmp_101 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_102;
+  reg  [4:0]  casez_tmp_102;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_14[3:0])
       4'b0000:
-        casez_tmp_102 = io_scpu_0_bits_nz;
+        casez_tmp_102 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_102 = io_scpu_1_bits_nz;
+        casez_tmp_102 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_102 = io_scpu_2_bits_nz;
+        casez_tmp_102 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_102 = io_scpu_3_bits_nz;
+        casez_tmp_102 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_102 = io_scpu_4_bits_nz;
+        casez_tmp_102 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_102 = io_scpu_5_bits_nz;
+        casez_tmp_102 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_102 = io_scpu_6_bits_nz;
+        casez_tmp_102 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_102 = io_scpu_7_bits_nz;
+        casez_tmp_102 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_102 = io_scpu_8_bits_nz;
+        casez_tmp_102 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_102 = io_scpu_9_bits_nz;
+        casez_tmp_102 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_102 = io_scpu_10_bits_nz;
+        casez_tmp_102 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_102 = io_scpu_11_bits_nz;
+        casez_tmp_102 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_102 = io_scpu_12_bits_nz;
+        casez_tmp_102 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_102 = io_scpu_13_bits_nz;
+        casez_tmp_102 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_102 = io_scpu_14_bits_nz;
+        casez_tmp_102 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_102 = io_scpu_15_bits_nz;
+        casez_tmp_102 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_103;
+  reg  [23:0] casez_tmp_103;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_14[3:0])
       4'b0000:
-        casez_tmp_103 = io_scpu_0_bits_depth;
+        casez_tmp_103 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_103 = io_scpu_1_bits_depth;
+        casez_tmp_103 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_103 = io_scpu_2_bits_depth;
+        casez_tmp_103 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_103 = io_scpu_3_bits_depth;
+        casez_tmp_103 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_103 = io_scpu_4_bits_depth;
+        casez_tmp_103 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_103 = io_scpu_5_bits_depth;
+        casez_tmp_103 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_103 = io_scpu_6_bits_depth;
+        casez_tmp_103 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_103 = io_scpu_7_bits_depth;
+        casez_tmp_103 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_103 = io_scpu_8_bits_depth;
+        casez_tmp_103 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_103 = io_scpu_9_bits_depth;
+        casez_tmp_103 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_103 = io_scpu_10_bits_depth;
+        casez_tmp_103 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_103 = io_scpu_11_bits_depth;
+        casez_tmp_103 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_103 = io_scpu_12_bits_depth;
+        casez_tmp_103 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_103 = io_scpu_13_bits_depth;
+        casez_tmp_103 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_103 = io_scpu_14_bits_depth;
+        casez_tmp_103 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_103 = io_scpu_15_bits_depth;
+        casez_tmp_103 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_104;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_15[3:0])
       4'b0000:
-        casez_tmp_104 = io_scpu_0_bits_nonFinite;
+        casez_tmp_104 = io_scpu_0_bits_hit;
       4'b0001:
-        casez_tmp_104 = io_scpu_1_bits_nonFinite;
+        casez_tmp_104 = io_scpu_1_bits_hit;
       4'b0010:
-        casez_tmp_104 = io_scpu_2_bits_nonFinite;
+        casez_tmp_104 = io_scpu_2_bits_hit;
       4'b0011:
-        casez_tmp_104 = io_scpu_3_bits_nonFinite;
+        casez_tmp_104 = io_scpu_3_bits_hit;
       4'b0100:
-        casez_tmp_104 = io_scpu_4_bits_nonFinite;
+        casez_tmp_104 = io_scpu_4_bits_hit;
       4'b0101:
-        casez_tmp_104 = io_scpu_5_bits_nonFinite;
+        casez_tmp_104 = io_scpu_5_bits_hit;
       4'b0110:
-        casez_tmp_104 = io_scpu_6_bits_nonFinite;
+        casez_tmp_104 = io_scpu_6_bits_hit;
       4'b0111:
-        casez_tmp_104 = io_scpu_7_bits_nonFinite;
+        casez_tmp_104 = io_scpu_7_bits_hit;
       4'b1000:
-        casez_tmp_104 = io_scpu_8_bits_nonFinite;
+        casez_tmp_104 = io_scpu_8_bits_hit;
       4'b1001:
-        casez_tmp_104 = io_scpu_9_bits_nonFinite;
+        casez_tmp_104 = io_scpu_9_bits_hit;
       4'b1010:
-        casez_tmp_104 = io_scpu_10_bits_nonFinite;
+        casez_tmp_104 = io_scpu_10_bits_hit;
       4'b1011:
-        casez_tmp_104 = io_scpu_11_bits_nonFinite;
+        casez_tmp_104 = io_scpu_11_bits_hit;
       4'b1100:
-        casez_tmp_104 = io_scpu_12_bits_nonFinite;
+        casez_tmp_104 = io_scpu_12_bits_hit;
       4'b1101:
-        casez_tmp_104 = io_scpu_13_bits_nonFinite;
+        casez_tmp_104 = io_scpu_13_bits_hit;
       4'b1110:
-        casez_tmp_104 = io_scpu_14_bits_nonFinite;
+        casez_tmp_104 = io_scpu_14_bits_hit;
       default:
-        casez_tmp_104 = io_scpu_15_bits_nonFinite;
+        casez_tmp_104 = io_scpu_15_bits_hit;
     endcase
   end // always @(*)
-  reg  [4:0]  casez_tmp_105;
+  reg  [1:0]  casez_tmp_105;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_15[3:0])
       4'b0000:
-        casez_tmp_105 = io_scpu_0_bits_flags;
+        casez_tmp_105 = io_scpu_0_bits_kind;
       4'b0001:
-        casez_tmp_105 = io_scpu_1_bits_flags;
+        casez_tmp_105 = io_scpu_1_bits_kind;
       4'b0010:
-        casez_tmp_105 = io_scpu_2_bits_flags;
+        casez_tmp_105 = io_scpu_2_bits_kind;
       4'b0011:
-        casez_tmp_105 = io_scpu_3_bits_flags;
+        casez_tmp_105 = io_scpu_3_bits_kind;
       4'b0100:
-        casez_tmp_105 = io_scpu_4_bits_flags;
+        casez_tmp_105 = io_scpu_4_bits_kind;
       4'b0101:
-        casez_tmp_105 = io_scpu_5_bits_flags;
+        casez_tmp_105 = io_scpu_5_bits_kind;
       4'b0110:
-        casez_tmp_105 = io_scpu_6_bits_flags;
+        casez_tmp_105 = io_scpu_6_bits_kind;
       4'b0111:
-        casez_tmp_105 = io_scpu_7_bits_flags;
+        casez_tmp_105 = io_scpu_7_bits_kind;
       4'b1000:
-        casez_tmp_105 = io_scpu_8_bits_flags;
+        casez_tmp_105 = io_scpu_8_bits_kind;
       4'b1001:
-        casez_tmp_105 = io_scpu_9_bits_flags;
+        casez_tmp_105 = io_scpu_9_bits_kind;
       4'b1010:
-        casez_tmp_105 = io_scpu_10_bits_flags;
+        casez_tmp_105 = io_scpu_10_bits_kind;
       4'b1011:
-        casez_tmp_105 = io_scpu_11_bits_flags;
+        casez_tmp_105 = io_scpu_11_bits_kind;
       4'b1100:
-        casez_tmp_105 = io_scpu_12_bits_flags;
+        casez_tmp_105 = io_scpu_12_bits_kind;
       4'b1101:
-        casez_tmp_105 = io_scpu_13_bits_flags;
+        casez_tmp_105 = io_scpu_13_bits_kind;
       4'b1110:
-        casez_tmp_105 = io_scpu_14_bits_flags;
+        casez_tmp_105 = io_scpu_14_bits_kind;
       default:
-        casez_tmp_105 = io_scpu_15_bits_flags;
+        casez_tmp_105 = io_scpu_15_bits_kind;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_106;
+  reg  [31:0] casez_tmp_106;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (scpuAt_15[3:0])
       4'b0000:
-        casez_tmp_106 = io_scpu_0_bits_tag;
+        casez_tmp_106 = io_scpu_0_bits_d;
       4'b0001:
-        casez_tmp_106 = io_scpu_1_bits_tag;
+        casez_tmp_106 = io_scpu_1_bits_d;
       4'b0010:
-        casez_tmp_106 = io_scpu_2_bits_tag;
+        casez_tmp_106 = io_scpu_2_bits_d;
       4'b0011:
-        casez_tmp_106 = io_scpu_3_bits_tag;
+        casez_tmp_106 = io_scpu_3_bits_d;
       4'b0100:
-        casez_tmp_106 = io_scpu_4_bits_tag;
+        casez_tmp_106 = io_scpu_4_bits_d;
       4'b0101:
-        casez_tmp_106 = io_scpu_5_bits_tag;
+        casez_tmp_106 = io_scpu_5_bits_d;
       4'b0110:
-        casez_tmp_106 = io_scpu_6_bits_tag;
+        casez_tmp_106 = io_scpu_6_bits_d;
       4'b0111:
-        casez_tmp_106 = io_scpu_7_bits_tag;
+        casez_tmp_106 = io_scpu_7_bits_d;
       4'b1000:
-        casez_tmp_106 = io_scpu_8_bits_tag;
+        casez_tmp_106 = io_scpu_8_bits_d;
       4'b1001:
-        casez_tmp_106 = io_scpu_9_bits_tag;
+        casez_tmp_106 = io_scpu_9_bits_d;
       4'b1010:
-        casez_tmp_106 = io_scpu_10_bits_tag;
+        casez_tmp_106 = io_scpu_10_bits_d;
       4'b1011:
-        casez_tmp_106 = io_scpu_11_bits_tag;
+        casez_tmp_106 = io_scpu_11_bits_d;
       4'b1100:
-        casez_tmp_106 = io_scpu_12_bits_tag;
+        casez_tmp_106 = io_scpu_12_bits_d;
       4'b1101:
-        casez_tmp_106 = io_scpu_13_bits_tag;
+        casez_tmp_106 = io_scpu_13_bits_d;
       4'b1110:
-        casez_tmp_106 = io_scpu_14_bits_tag;
+        casez_tmp_106 = io_scpu_14_bits_d;
       default:
-        casez_tmp_106 = io_scpu_15_bits_tag;
+        casez_tmp_106 = io_scpu_15_bits_d;
     endcase
   end // always @(*)
-  reg         casez_tmp_107;
+  reg  [31:0] casez_tmp_107;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_15[3:0])
       4'b0000:
-        casez_tmp_107 = io_scpu_0_bits_hit;
+        casez_tmp_107 = io_scpu_0_bits_nw;
       4'b0001:
-        casez_tmp_107 = io_scpu_1_bits_hit;
+        casez_tmp_107 = io_scpu_1_bits_nw;
       4'b0010:
-        casez_tmp_107 = io_scpu_2_bits_hit;
+        casez_tmp_107 = io_scpu_2_bits_nw;
       4'b0011:
-        casez_tmp_107 = io_scpu_3_bits_hit;
+        casez_tmp_107 = io_scpu_3_bits_nw;
       4'b0100:
-        casez_tmp_107 = io_scpu_4_bits_hit;
+        casez_tmp_107 = io_scpu_4_bits_nw;
       4'b0101:
-        casez_tmp_107 = io_scpu_5_bits_hit;
+        casez_tmp_107 = io_scpu_5_bits_nw;
       4'b0110:
-        casez_tmp_107 = io_scpu_6_bits_hit;
+        casez_tmp_107 = io_scpu_6_bits_nw;
       4'b0111:
-        casez_tmp_107 = io_scpu_7_bits_hit;
+        casez_tmp_107 = io_scpu_7_bits_nw;
       4'b1000:
-        casez_tmp_107 = io_scpu_8_bits_hit;
+        casez_tmp_107 = io_scpu_8_bits_nw;
       4'b1001:
-        casez_tmp_107 = io_scpu_9_bits_hit;
+        casez_tmp_107 = io_scpu_9_bits_nw;
       4'b1010:
-        casez_tmp_107 = io_scpu_10_bits_hit;
+        casez_tmp_107 = io_scpu_10_bits_nw;
       4'b1011:
-        casez_tmp_107 = io_scpu_11_bits_hit;
+        casez_tmp_107 = io_scpu_11_bits_nw;
       4'b1100:
-        casez_tmp_107 = io_scpu_12_bits_hit;
+        casez_tmp_107 = io_scpu_12_bits_nw;
       4'b1101:
-        casez_tmp_107 = io_scpu_13_bits_hit;
+        casez_tmp_107 = io_scpu_13_bits_nw;
       4'b1110:
-        casez_tmp_107 = io_scpu_14_bits_hit;
+        casez_tmp_107 = io_scpu_14_bits_nw;
       default:
-        casez_tmp_107 = io_scpu_15_bits_hit;
+        casez_tmp_107 = io_scpu_15_bits_nw;
     endcase
   end // always @(*)
-  reg  [1:0]  casez_tmp_108;
+  reg         casez_tmp_108;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_15[3:0])
       4'b0000:
-        casez_tmp_108 = io_scpu_0_bits_kind;
+        casez_tmp_108 = io_scpu_0_bits_nonFinite;
       4'b0001:
-        casez_tmp_108 = io_scpu_1_bits_kind;
+        casez_tmp_108 = io_scpu_1_bits_nonFinite;
       4'b0010:
-        casez_tmp_108 = io_scpu_2_bits_kind;
+        casez_tmp_108 = io_scpu_2_bits_nonFinite;
       4'b0011:
-        casez_tmp_108 = io_scpu_3_bits_kind;
+        casez_tmp_108 = io_scpu_3_bits_nonFinite;
       4'b0100:
-        casez_tmp_108 = io_scpu_4_bits_kind;
+        casez_tmp_108 = io_scpu_4_bits_nonFinite;
       4'b0101:
-        casez_tmp_108 = io_scpu_5_bits_kind;
+        casez_tmp_108 = io_scpu_5_bits_nonFinite;
       4'b0110:
-        casez_tmp_108 = io_scpu_6_bits_kind;
+        casez_tmp_108 = io_scpu_6_bits_nonFinite;
       4'b0111:
-        casez_tmp_108 = io_scpu_7_bits_kind;
+        casez_tmp_108 = io_scpu_7_bits_nonFinite;
       4'b1000:
-        casez_tmp_108 = io_scpu_8_bits_kind;
+        casez_tmp_108 = io_scpu_8_bits_nonFinite;
       4'b1001:
-        casez_tmp_108 = io_scpu_9_bits_kind;
+        casez_tmp_108 = io_scpu_9_bits_nonFinite;
       4'b1010:
-        casez_tmp_108 = io_scpu_10_bits_kind;
+        casez_tmp_108 = io_scpu_10_bits_nonFinite;
       4'b1011:
-        casez_tmp_108 = io_scpu_11_bits_kind;
+        casez_tmp_108 = io_scpu_11_bits_nonFinite;
       4'b1100:
-        casez_tmp_108 = io_scpu_12_bits_kind;
+        casez_tmp_108 = io_scpu_12_bits_nonFinite;
       4'b1101:
-        casez_tmp_108 = io_scpu_13_bits_kind;
+        casez_tmp_108 = io_scpu_13_bits_nonFinite;
       4'b1110:
-        casez_tmp_108 = io_scpu_14_bits_kind;
+        casez_tmp_108 = io_scpu_14_bits_nonFinite;
       default:
-        casez_tmp_108 = io_scpu_15_bits_kind;
+        casez_tmp_108 = io_scpu_15_bits_nonFinite;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_109;
+  reg  [4:0]  casez_tmp_109;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_15[3:0])
       4'b0000:
-        casez_tmp_109 = io_scpu_0_bits_px;
+        casez_tmp_109 = io_scpu_0_bits_flags;
       4'b0001:
-        casez_tmp_109 = io_scpu_1_bits_px;
+        casez_tmp_109 = io_scpu_1_bits_flags;
       4'b0010:
-        casez_tmp_109 = io_scpu_2_bits_px;
+        casez_tmp_109 = io_scpu_2_bits_flags;
       4'b0011:
-        casez_tmp_109 = io_scpu_3_bits_px;
+        casez_tmp_109 = io_scpu_3_bits_flags;
       4'b0100:
-        casez_tmp_109 = io_scpu_4_bits_px;
+        casez_tmp_109 = io_scpu_4_bits_flags;
       4'b0101:
-        casez_tmp_109 = io_scpu_5_bits_px;
+        casez_tmp_109 = io_scpu_5_bits_flags;
       4'b0110:
-        casez_tmp_109 = io_scpu_6_bits_px;
+        casez_tmp_109 = io_scpu_6_bits_flags;
       4'b0111:
-        casez_tmp_109 = io_scpu_7_bits_px;
+        casez_tmp_109 = io_scpu_7_bits_flags;
       4'b1000:
-        casez_tmp_109 = io_scpu_8_bits_px;
+        casez_tmp_109 = io_scpu_8_bits_flags;
       4'b1001:
-        casez_tmp_109 = io_scpu_9_bits_px;
+        casez_tmp_109 = io_scpu_9_bits_flags;
       4'b1010:
-        casez_tmp_109 = io_scpu_10_bits_px;
+        casez_tmp_109 = io_scpu_10_bits_flags;
       4'b1011:
-        casez_tmp_109 = io_scpu_11_bits_px;
+        casez_tmp_109 = io_scpu_11_bits_flags;
       4'b1100:
-        casez_tmp_109 = io_scpu_12_bits_px;
+        casez_tmp_109 = io_scpu_12_bits_flags;
       4'b1101:
-        casez_tmp_109 = io_scpu_13_bits_px;
+        casez_tmp_109 = io_scpu_13_bits_flags;
       4'b1110:
-        casez_tmp_109 = io_scpu_14_bits_px;
+        casez_tmp_109 = io_scpu_14_bits_flags;
       default:
-        casez_tmp_109 = io_scpu_15_bits_px;
+        casez_tmp_109 = io_scpu_15_bits_flags;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_110;
+  reg  [23:0] casez_tmp_110;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_15[3:0])
       4'b0000:
-        casez_tmp_110 = io_scpu_0_bits_py;
+        casez_tmp_110 = io_scpu_0_bits_tag;
       4'b0001:
-        casez_tmp_110 = io_scpu_1_bits_py;
+        casez_tmp_110 = io_scpu_1_bits_tag;
       4'b0010:
-        casez_tmp_110 = io_scpu_2_bits_py;
+        casez_tmp_110 = io_scpu_2_bits_tag;
       4'b0011:
-        casez_tmp_110 = io_scpu_3_bits_py;
+        casez_tmp_110 = io_scpu_3_bits_tag;
       4'b0100:
-        casez_tmp_110 = io_scpu_4_bits_py;
+        casez_tmp_110 = io_scpu_4_bits_tag;
       4'b0101:
-        casez_tmp_110 = io_scpu_5_bits_py;
+        casez_tmp_110 = io_scpu_5_bits_tag;
       4'b0110:
-        casez_tmp_110 = io_scpu_6_bits_py;
+        casez_tmp_110 = io_scpu_6_bits_tag;
       4'b0111:
-        casez_tmp_110 = io_scpu_7_bits_py;
+        casez_tmp_110 = io_scpu_7_bits_tag;
       4'b1000:
-        casez_tmp_110 = io_scpu_8_bits_py;
+        casez_tmp_110 = io_scpu_8_bits_tag;
       4'b1001:
-        casez_tmp_110 = io_scpu_9_bits_py;
+        casez_tmp_110 = io_scpu_9_bits_tag;
       4'b1010:
-        casez_tmp_110 = io_scpu_10_bits_py;
+        casez_tmp_110 = io_scpu_10_bits_tag;
       4'b1011:
-        casez_tmp_110 = io_scpu_11_bits_py;
+        casez_tmp_110 = io_scpu_11_bits_tag;
       4'b1100:
-        casez_tmp_110 = io_scpu_12_bits_py;
+        casez_tmp_110 = io_scpu_12_bits_tag;
       4'b1101:
-        casez_tmp_110 = io_scpu_13_bits_py;
+        casez_tmp_110 = io_scpu_13_bits_tag;
       4'b1110:
-        casez_tmp_110 = io_scpu_14_bits_py;
+        casez_tmp_110 = io_scpu_14_bits_tag;
       default:
-        casez_tmp_110 = io_scpu_15_bits_py;
+        casez_tmp_110 = io_scpu_15_bits_tag;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_111;
+  reg         casez_tmp_111;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (io_groups_bits_base)
       4'b0000:
-        casez_tmp_111 = io_scpu_0_bits_pz;
+        casez_tmp_111 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_111 = io_scpu_1_bits_pz;
+        casez_tmp_111 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_111 = io_scpu_2_bits_pz;
+        casez_tmp_111 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_111 = io_scpu_3_bits_pz;
+        casez_tmp_111 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_111 = io_scpu_4_bits_pz;
+        casez_tmp_111 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_111 = io_scpu_5_bits_pz;
+        casez_tmp_111 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_111 = io_scpu_6_bits_pz;
+        casez_tmp_111 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_111 = io_scpu_7_bits_pz;
+        casez_tmp_111 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_111 = io_scpu_8_bits_pz;
+        casez_tmp_111 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_111 = io_scpu_9_bits_pz;
+        casez_tmp_111 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_111 = io_scpu_10_bits_pz;
+        casez_tmp_111 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_111 = io_scpu_11_bits_pz;
+        casez_tmp_111 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_111 = io_scpu_12_bits_pz;
+        casez_tmp_111 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_111 = io_scpu_13_bits_pz;
+        casez_tmp_111 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_111 = io_scpu_14_bits_pz;
+        casez_tmp_111 = io_scpu_14_valid;
       default:
-        casez_tmp_111 = io_scpu_15_bits_pz;
+        casez_tmp_111 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_112;
+  reg         casez_tmp_112;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_1[3:0])
       4'b0000:
-        casez_tmp_112 = io_scpu_0_bits_nx;
+        casez_tmp_112 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_112 = io_scpu_1_bits_nx;
+        casez_tmp_112 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_112 = io_scpu_2_bits_nx;
+        casez_tmp_112 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_112 = io_scpu_3_bits_nx;
+        casez_tmp_112 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_112 = io_scpu_4_bits_nx;
+        casez_tmp_112 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_112 = io_scpu_5_bits_nx;
+        casez_tmp_112 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_112 = io_scpu_6_bits_nx;
+        casez_tmp_112 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_112 = io_scpu_7_bits_nx;
+        casez_tmp_112 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_112 = io_scpu_8_bits_nx;
+        casez_tmp_112 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_112 = io_scpu_9_bits_nx;
+        casez_tmp_112 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_112 = io_scpu_10_bits_nx;
+        casez_tmp_112 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_112 = io_scpu_11_bits_nx;
+        casez_tmp_112 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_112 = io_scpu_12_bits_nx;
+        casez_tmp_112 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_112 = io_scpu_13_bits_nx;
+        casez_tmp_112 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_112 = io_scpu_14_bits_nx;
+        casez_tmp_112 = io_scpu_14_valid;
       default:
-        casez_tmp_112 = io_scpu_15_bits_nx;
+        casez_tmp_112 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_113;
+  reg         casez_tmp_113;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_2[3:0])
       4'b0000:
-        casez_tmp_113 = io_scpu_0_bits_ny;
+        casez_tmp_113 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_113 = io_scpu_1_bits_ny;
+        casez_tmp_113 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_113 = io_scpu_2_bits_ny;
+        casez_tmp_113 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_113 = io_scpu_3_bits_ny;
+        casez_tmp_113 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_113 = io_scpu_4_bits_ny;
+        casez_tmp_113 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_113 = io_scpu_5_bits_ny;
+        casez_tmp_113 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_113 = io_scpu_6_bits_ny;
+        casez_tmp_113 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_113 = io_scpu_7_bits_ny;
+        casez_tmp_113 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_113 = io_scpu_8_bits_ny;
+        casez_tmp_113 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_113 = io_scpu_9_bits_ny;
+        casez_tmp_113 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_113 = io_scpu_10_bits_ny;
+        casez_tmp_113 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_113 = io_scpu_11_bits_ny;
+        casez_tmp_113 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_113 = io_scpu_12_bits_ny;
+        casez_tmp_113 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_113 = io_scpu_13_bits_ny;
+        casez_tmp_113 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_113 = io_scpu_14_bits_ny;
+        casez_tmp_113 = io_scpu_14_valid;
       default:
-        casez_tmp_113 = io_scpu_15_bits_ny;
+        casez_tmp_113 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_114;
+  reg         casez_tmp_114;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_3[3:0])
       4'b0000:
-        casez_tmp_114 = io_scpu_0_bits_nz;
+        casez_tmp_114 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_114 = io_scpu_1_bits_nz;
+        casez_tmp_114 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_114 = io_scpu_2_bits_nz;
+        casez_tmp_114 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_114 = io_scpu_3_bits_nz;
+        casez_tmp_114 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_114 = io_scpu_4_bits_nz;
+        casez_tmp_114 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_114 = io_scpu_5_bits_nz;
+        casez_tmp_114 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_114 = io_scpu_6_bits_nz;
+        casez_tmp_114 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_114 = io_scpu_7_bits_nz;
+        casez_tmp_114 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_114 = io_scpu_8_bits_nz;
+        casez_tmp_114 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_114 = io_scpu_9_bits_nz;
+        casez_tmp_114 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_114 = io_scpu_10_bits_nz;
+        casez_tmp_114 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_114 = io_scpu_11_bits_nz;
+        casez_tmp_114 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_114 = io_scpu_12_bits_nz;
+        casez_tmp_114 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_114 = io_scpu_13_bits_nz;
+        casez_tmp_114 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_114 = io_scpu_14_bits_nz;
+        casez_tmp_114 = io_scpu_14_valid;
       default:
-        casez_tmp_114 = io_scpu_15_bits_nz;
+        casez_tmp_114 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_115;
+  reg         casez_tmp_115;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_4[3:0])
       4'b0000:
-        casez_tmp_115 = io_scpu_0_bits_depth;
+        casez_tmp_115 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_115 = io_scpu_1_bits_depth;
+        casez_tmp_115 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_115 = io_scpu_2_bits_depth;
+        casez_tmp_115 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_115 = io_scpu_3_bits_depth;
+        casez_tmp_115 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_115 = io_scpu_4_bits_depth;
+        casez_tmp_115 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_115 = io_scpu_5_bits_depth;
+        casez_tmp_115 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_115 = io_scpu_6_bits_depth;
+        casez_tmp_115 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_115 = io_scpu_7_bits_depth;
+        casez_tmp_115 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_115 = io_scpu_8_bits_depth;
+        casez_tmp_115 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_115 = io_scpu_9_bits_depth;
+        casez_tmp_115 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_115 = io_scpu_10_bits_depth;
+        casez_tmp_115 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_115 = io_scpu_11_bits_depth;
+        casez_tmp_115 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_115 = io_scpu_12_bits_depth;
+        casez_tmp_115 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_115 = io_scpu_13_bits_depth;
+        casez_tmp_115 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_115 = io_scpu_14_bits_depth;
+        casez_tmp_115 = io_scpu_14_valid;
       default:
-        casez_tmp_115 = io_scpu_15_bits_depth;
+        casez_tmp_115 = io_scpu_15_valid;
     endcase
   end // always @(*)
   reg         casez_tmp_116;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_5[3:0])
       4'b0000:
-        casez_tmp_116 = io_scpu_0_bits_nonFinite;
+        casez_tmp_116 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_116 = io_scpu_1_bits_nonFinite;
+        casez_tmp_116 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_116 = io_scpu_2_bits_nonFinite;
+        casez_tmp_116 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_116 = io_scpu_3_bits_nonFinite;
+        casez_tmp_116 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_116 = io_scpu_4_bits_nonFinite;
+        casez_tmp_116 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_116 = io_scpu_5_bits_nonFinite;
+        casez_tmp_116 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_116 = io_scpu_6_bits_nonFinite;
+        casez_tmp_116 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_116 = io_scpu_7_bits_nonFinite;
+        casez_tmp_116 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_116 = io_scpu_8_bits_nonFinite;
+        casez_tmp_116 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_116 = io_scpu_9_bits_nonFinite;
+        casez_tmp_116 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_116 = io_scpu_10_bits_nonFinite;
+        casez_tmp_116 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_116 = io_scpu_11_bits_nonFinite;
+        casez_tmp_116 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_116 = io_scpu_12_bits_nonFinite;
+        casez_tmp_116 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_116 = io_scpu_13_bits_nonFinite;
+        casez_tmp_116 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_116 = io_scpu_14_bits_nonFinite;
+        casez_tmp_116 = io_scpu_14_valid;
       default:
-        casez_tmp_116 = io_scpu_15_bits_nonFinite;
+        casez_tmp_116 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg  [4:0]  casez_tmp_117;
+  reg         casez_tmp_117;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_6[3:0])
       4'b0000:
-        casez_tmp_117 = io_scpu_0_bits_flags;
+        casez_tmp_117 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_117 = io_scpu_1_bits_flags;
+        casez_tmp_117 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_117 = io_scpu_2_bits_flags;
+        casez_tmp_117 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_117 = io_scpu_3_bits_flags;
+        casez_tmp_117 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_117 = io_scpu_4_bits_flags;
+        casez_tmp_117 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_117 = io_scpu_5_bits_flags;
+        casez_tmp_117 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_117 = io_scpu_6_bits_flags;
+        casez_tmp_117 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_117 = io_scpu_7_bits_flags;
+        casez_tmp_117 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_117 = io_scpu_8_bits_flags;
+        casez_tmp_117 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_117 = io_scpu_9_bits_flags;
+        casez_tmp_117 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_117 = io_scpu_10_bits_flags;
+        casez_tmp_117 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_117 = io_scpu_11_bits_flags;
+        casez_tmp_117 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_117 = io_scpu_12_bits_flags;
+        casez_tmp_117 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_117 = io_scpu_13_bits_flags;
+        casez_tmp_117 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_117 = io_scpu_14_bits_flags;
+        casez_tmp_117 = io_scpu_14_valid;
       default:
-        casez_tmp_117 = io_scpu_15_bits_flags;
+        casez_tmp_117 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_118;
+  reg         casez_tmp_118;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (scpuAt_7[3:0])
       4'b0000:
-        casez_tmp_118 = io_scpu_0_bits_tag;
+        casez_tmp_118 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_118 = io_scpu_1_bits_tag;
+        casez_tmp_118 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_118 = io_scpu_2_bits_tag;
+        casez_tmp_118 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_118 = io_scpu_3_bits_tag;
+        casez_tmp_118 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_118 = io_scpu_4_bits_tag;
+        casez_tmp_118 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_118 = io_scpu_5_bits_tag;
+        casez_tmp_118 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_118 = io_scpu_6_bits_tag;
+        casez_tmp_118 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_118 = io_scpu_7_bits_tag;
+        casez_tmp_118 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_118 = io_scpu_8_bits_tag;
+        casez_tmp_118 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_118 = io_scpu_9_bits_tag;
+        casez_tmp_118 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_118 = io_scpu_10_bits_tag;
+        casez_tmp_118 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_118 = io_scpu_11_bits_tag;
+        casez_tmp_118 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_118 = io_scpu_12_bits_tag;
+        casez_tmp_118 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_118 = io_scpu_13_bits_tag;
+        casez_tmp_118 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_118 = io_scpu_14_bits_tag;
+        casez_tmp_118 = io_scpu_14_valid;
       default:
-        casez_tmp_118 = io_scpu_15_bits_tag;
+        casez_tmp_118 = io_scpu_15_valid;
     endcase
   end // always @(*)
   reg         casez_tmp_119;
   always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_119 = io_scpu_0_bits_hit;
-      4'b0001:
-        casez_tmp_119 = io_scpu_1_bits_hit;
-      4'b0010:
-        casez_tmp_119 = io_scpu_2_bits_hit;
-      4'b0011:
-        casez_tmp_119 = io_scpu_3_bits_hit;
-      4'b0100:
-        casez_tmp_119 = io_scpu_4_bits_hit;
-      4'b0101:
-        casez_tmp_119 = io_scpu_5_bits_hit;
-      4'b0110:
-        casez_tmp_119 = io_scpu_6_bits_hit;
-      4'b0111:
-        casez_tmp_119 = io_scpu_7_bits_hit;
-      4'b1000:
-        casez_tmp_119 = io_scpu_8_bits_hit;
-      4'b1001:
-        casez_tmp_119 = io_scpu_9_bits_hit;
-      4'b1010:
-        casez_tmp_119 = io_scpu_10_bits_hit;
-      4'b1011:
-        casez_tmp_119 = io_scpu_11_bits_hit;
-      4'b1100:
-        casez_tmp_119 = io_scpu_12_bits_hit;
-      4'b1101:
-        casez_tmp_119 = io_scpu_13_bits_hit;
-      4'b1110:
-        casez_tmp_119 = io_scpu_14_bits_hit;
-      default:
-        casez_tmp_119 = io_scpu_15_bits_hit;
-    endcase
-  end // always @(*)
-  reg  [1:0]  casez_tmp_120;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_120 = io_scpu_0_bits_kind;
-      4'b0001:
-        casez_tmp_120 = io_scpu_1_bits_kind;
-      4'b0010:
-        casez_tmp_120 = io_scpu_2_bits_kind;
-      4'b0011:
-        casez_tmp_120 = io_scpu_3_bits_kind;
-      4'b0100:
-        casez_tmp_120 = io_scpu_4_bits_kind;
-      4'b0101:
-        casez_tmp_120 = io_scpu_5_bits_kind;
-      4'b0110:
-        casez_tmp_120 = io_scpu_6_bits_kind;
-      4'b0111:
-        casez_tmp_120 = io_scpu_7_bits_kind;
-      4'b1000:
-        casez_tmp_120 = io_scpu_8_bits_kind;
-      4'b1001:
-        casez_tmp_120 = io_scpu_9_bits_kind;
-      4'b1010:
-        casez_tmp_120 = io_scpu_10_bits_kind;
-      4'b1011:
-        casez_tmp_120 = io_scpu_11_bits_kind;
-      4'b1100:
-        casez_tmp_120 = io_scpu_12_bits_kind;
-      4'b1101:
-        casez_tmp_120 = io_scpu_13_bits_kind;
-      4'b1110:
-        casez_tmp_120 = io_scpu_14_bits_kind;
-      default:
-        casez_tmp_120 = io_scpu_15_bits_kind;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_121;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_121 = io_scpu_0_bits_px;
-      4'b0001:
-        casez_tmp_121 = io_scpu_1_bits_px;
-      4'b0010:
-        casez_tmp_121 = io_scpu_2_bits_px;
-      4'b0011:
-        casez_tmp_121 = io_scpu_3_bits_px;
-      4'b0100:
-        casez_tmp_121 = io_scpu_4_bits_px;
-      4'b0101:
-        casez_tmp_121 = io_scpu_5_bits_px;
-      4'b0110:
-        casez_tmp_121 = io_scpu_6_bits_px;
-      4'b0111:
-        casez_tmp_121 = io_scpu_7_bits_px;
-      4'b1000:
-        casez_tmp_121 = io_scpu_8_bits_px;
-      4'b1001:
-        casez_tmp_121 = io_scpu_9_bits_px;
-      4'b1010:
-        casez_tmp_121 = io_scpu_10_bits_px;
-      4'b1011:
-        casez_tmp_121 = io_scpu_11_bits_px;
-      4'b1100:
-        casez_tmp_121 = io_scpu_12_bits_px;
-      4'b1101:
-        casez_tmp_121 = io_scpu_13_bits_px;
-      4'b1110:
-        casez_tmp_121 = io_scpu_14_bits_px;
-      default:
-        casez_tmp_121 = io_scpu_15_bits_px;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_122;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_122 = io_scpu_0_bits_py;
-      4'b0001:
-        casez_tmp_122 = io_scpu_1_bits_py;
-      4'b0010:
-        casez_tmp_122 = io_scpu_2_bits_py;
-      4'b0011:
-        casez_tmp_122 = io_scpu_3_bits_py;
-      4'b0100:
-        casez_tmp_122 = io_scpu_4_bits_py;
-      4'b0101:
-        casez_tmp_122 = io_scpu_5_bits_py;
-      4'b0110:
-        casez_tmp_122 = io_scpu_6_bits_py;
-      4'b0111:
-        casez_tmp_122 = io_scpu_7_bits_py;
-      4'b1000:
-        casez_tmp_122 = io_scpu_8_bits_py;
-      4'b1001:
-        casez_tmp_122 = io_scpu_9_bits_py;
-      4'b1010:
-        casez_tmp_122 = io_scpu_10_bits_py;
-      4'b1011:
-        casez_tmp_122 = io_scpu_11_bits_py;
-      4'b1100:
-        casez_tmp_122 = io_scpu_12_bits_py;
-      4'b1101:
-        casez_tmp_122 = io_scpu_13_bits_py;
-      4'b1110:
-        casez_tmp_122 = io_scpu_14_bits_py;
-      default:
-        casez_tmp_122 = io_scpu_15_bits_py;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_123;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_123 = io_scpu_0_bits_pz;
-      4'b0001:
-        casez_tmp_123 = io_scpu_1_bits_pz;
-      4'b0010:
-        casez_tmp_123 = io_scpu_2_bits_pz;
-      4'b0011:
-        casez_tmp_123 = io_scpu_3_bits_pz;
-      4'b0100:
-        casez_tmp_123 = io_scpu_4_bits_pz;
-      4'b0101:
-        casez_tmp_123 = io_scpu_5_bits_pz;
-      4'b0110:
-        casez_tmp_123 = io_scpu_6_bits_pz;
-      4'b0111:
-        casez_tmp_123 = io_scpu_7_bits_pz;
-      4'b1000:
-        casez_tmp_123 = io_scpu_8_bits_pz;
-      4'b1001:
-        casez_tmp_123 = io_scpu_9_bits_pz;
-      4'b1010:
-        casez_tmp_123 = io_scpu_10_bits_pz;
-      4'b1011:
-        casez_tmp_123 = io_scpu_11_bits_pz;
-      4'b1100:
-        casez_tmp_123 = io_scpu_12_bits_pz;
-      4'b1101:
-        casez_tmp_123 = io_scpu_13_bits_pz;
-      4'b1110:
-        casez_tmp_123 = io_scpu_14_bits_pz;
-      default:
-        casez_tmp_123 = io_scpu_15_bits_pz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_124;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_124 = io_scpu_0_bits_nx;
-      4'b0001:
-        casez_tmp_124 = io_scpu_1_bits_nx;
-      4'b0010:
-        casez_tmp_124 = io_scpu_2_bits_nx;
-      4'b0011:
-        casez_tmp_124 = io_scpu_3_bits_nx;
-      4'b0100:
-        casez_tmp_124 = io_scpu_4_bits_nx;
-      4'b0101:
-        casez_tmp_124 = io_scpu_5_bits_nx;
-      4'b0110:
-        casez_tmp_124 = io_scpu_6_bits_nx;
-      4'b0111:
-        casez_tmp_124 = io_scpu_7_bits_nx;
-      4'b1000:
-        casez_tmp_124 = io_scpu_8_bits_nx;
-      4'b1001:
-        casez_tmp_124 = io_scpu_9_bits_nx;
-      4'b1010:
-        casez_tmp_124 = io_scpu_10_bits_nx;
-      4'b1011:
-        casez_tmp_124 = io_scpu_11_bits_nx;
-      4'b1100:
-        casez_tmp_124 = io_scpu_12_bits_nx;
-      4'b1101:
-        casez_tmp_124 = io_scpu_13_bits_nx;
-      4'b1110:
-        casez_tmp_124 = io_scpu_14_bits_nx;
-      default:
-        casez_tmp_124 = io_scpu_15_bits_nx;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_125;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_125 = io_scpu_0_bits_ny;
-      4'b0001:
-        casez_tmp_125 = io_scpu_1_bits_ny;
-      4'b0010:
-        casez_tmp_125 = io_scpu_2_bits_ny;
-      4'b0011:
-        casez_tmp_125 = io_scpu_3_bits_ny;
-      4'b0100:
-        casez_tmp_125 = io_scpu_4_bits_ny;
-      4'b0101:
-        casez_tmp_125 = io_scpu_5_bits_ny;
-      4'b0110:
-        casez_tmp_125 = io_scpu_6_bits_ny;
-      4'b0111:
-        casez_tmp_125 = io_scpu_7_bits_ny;
-      4'b1000:
-        casez_tmp_125 = io_scpu_8_bits_ny;
-      4'b1001:
-        casez_tmp_125 = io_scpu_9_bits_ny;
-      4'b1010:
-        casez_tmp_125 = io_scpu_10_bits_ny;
-      4'b1011:
-        casez_tmp_125 = io_scpu_11_bits_ny;
-      4'b1100:
-        casez_tmp_125 = io_scpu_12_bits_ny;
-      4'b1101:
-        casez_tmp_125 = io_scpu_13_bits_ny;
-      4'b1110:
-        casez_tmp_125 = io_scpu_14_bits_ny;
-      default:
-        casez_tmp_125 = io_scpu_15_bits_ny;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_126;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_126 = io_scpu_0_bits_nz;
-      4'b0001:
-        casez_tmp_126 = io_scpu_1_bits_nz;
-      4'b0010:
-        casez_tmp_126 = io_scpu_2_bits_nz;
-      4'b0011:
-        casez_tmp_126 = io_scpu_3_bits_nz;
-      4'b0100:
-        casez_tmp_126 = io_scpu_4_bits_nz;
-      4'b0101:
-        casez_tmp_126 = io_scpu_5_bits_nz;
-      4'b0110:
-        casez_tmp_126 = io_scpu_6_bits_nz;
-      4'b0111:
-        casez_tmp_126 = io_scpu_7_bits_nz;
-      4'b1000:
-        casez_tmp_126 = io_scpu_8_bits_nz;
-      4'b1001:
-        casez_tmp_126 = io_scpu_9_bits_nz;
-      4'b1010:
-        casez_tmp_126 = io_scpu_10_bits_nz;
-      4'b1011:
-        casez_tmp_126 = io_scpu_11_bits_nz;
-      4'b1100:
-        casez_tmp_126 = io_scpu_12_bits_nz;
-      4'b1101:
-        casez_tmp_126 = io_scpu_13_bits_nz;
-      4'b1110:
-        casez_tmp_126 = io_scpu_14_bits_nz;
-      default:
-        casez_tmp_126 = io_scpu_15_bits_nz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_127;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_127 = io_scpu_0_bits_depth;
-      4'b0001:
-        casez_tmp_127 = io_scpu_1_bits_depth;
-      4'b0010:
-        casez_tmp_127 = io_scpu_2_bits_depth;
-      4'b0011:
-        casez_tmp_127 = io_scpu_3_bits_depth;
-      4'b0100:
-        casez_tmp_127 = io_scpu_4_bits_depth;
-      4'b0101:
-        casez_tmp_127 = io_scpu_5_bits_depth;
-      4'b0110:
-        casez_tmp_127 = io_scpu_6_bits_depth;
-      4'b0111:
-        casez_tmp_127 = io_scpu_7_bits_depth;
-      4'b1000:
-        casez_tmp_127 = io_scpu_8_bits_depth;
-      4'b1001:
-        casez_tmp_127 = io_scpu_9_bits_depth;
-      4'b1010:
-        casez_tmp_127 = io_scpu_10_bits_depth;
-      4'b1011:
-        casez_tmp_127 = io_scpu_11_bits_depth;
-      4'b1100:
-        casez_tmp_127 = io_scpu_12_bits_depth;
-      4'b1101:
-        casez_tmp_127 = io_scpu_13_bits_depth;
-      4'b1110:
-        casez_tmp_127 = io_scpu_14_bits_depth;
-      default:
-        casez_tmp_127 = io_scpu_15_bits_depth;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_128;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_128 = io_scpu_0_bits_nonFinite;
-      4'b0001:
-        casez_tmp_128 = io_scpu_1_bits_nonFinite;
-      4'b0010:
-        casez_tmp_128 = io_scpu_2_bits_nonFinite;
-      4'b0011:
-        casez_tmp_128 = io_scpu_3_bits_nonFinite;
-      4'b0100:
-        casez_tmp_128 = io_scpu_4_bits_nonFinite;
-      4'b0101:
-        casez_tmp_128 = io_scpu_5_bits_nonFinite;
-      4'b0110:
-        casez_tmp_128 = io_scpu_6_bits_nonFinite;
-      4'b0111:
-        casez_tmp_128 = io_scpu_7_bits_nonFinite;
-      4'b1000:
-        casez_tmp_128 = io_scpu_8_bits_nonFinite;
-      4'b1001:
-        casez_tmp_128 = io_scpu_9_bits_nonFinite;
-      4'b1010:
-        casez_tmp_128 = io_scpu_10_bits_nonFinite;
-      4'b1011:
-        casez_tmp_128 = io_scpu_11_bits_nonFinite;
-      4'b1100:
-        casez_tmp_128 = io_scpu_12_bits_nonFinite;
-      4'b1101:
-        casez_tmp_128 = io_scpu_13_bits_nonFinite;
-      4'b1110:
-        casez_tmp_128 = io_scpu_14_bits_nonFinite;
-      default:
-        casez_tmp_128 = io_scpu_15_bits_nonFinite;
-    endcase
-  end // always @(*)
-  reg  [4:0]  casez_tmp_129;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_129 = io_scpu_0_bits_flags;
-      4'b0001:
-        casez_tmp_129 = io_scpu_1_bits_flags;
-      4'b0010:
-        casez_tmp_129 = io_scpu_2_bits_flags;
-      4'b0011:
-        casez_tmp_129 = io_scpu_3_bits_flags;
-      4'b0100:
-        casez_tmp_129 = io_scpu_4_bits_flags;
-      4'b0101:
-        casez_tmp_129 = io_scpu_5_bits_flags;
-      4'b0110:
-        casez_tmp_129 = io_scpu_6_bits_flags;
-      4'b0111:
-        casez_tmp_129 = io_scpu_7_bits_flags;
-      4'b1000:
-        casez_tmp_129 = io_scpu_8_bits_flags;
-      4'b1001:
-        casez_tmp_129 = io_scpu_9_bits_flags;
-      4'b1010:
-        casez_tmp_129 = io_scpu_10_bits_flags;
-      4'b1011:
-        casez_tmp_129 = io_scpu_11_bits_flags;
-      4'b1100:
-        casez_tmp_129 = io_scpu_12_bits_flags;
-      4'b1101:
-        casez_tmp_129 = io_scpu_13_bits_flags;
-      4'b1110:
-        casez_tmp_129 = io_scpu_14_bits_flags;
-      default:
-        casez_tmp_129 = io_scpu_15_bits_flags;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_130;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_130 = io_scpu_0_bits_tag;
-      4'b0001:
-        casez_tmp_130 = io_scpu_1_bits_tag;
-      4'b0010:
-        casez_tmp_130 = io_scpu_2_bits_tag;
-      4'b0011:
-        casez_tmp_130 = io_scpu_3_bits_tag;
-      4'b0100:
-        casez_tmp_130 = io_scpu_4_bits_tag;
-      4'b0101:
-        casez_tmp_130 = io_scpu_5_bits_tag;
-      4'b0110:
-        casez_tmp_130 = io_scpu_6_bits_tag;
-      4'b0111:
-        casez_tmp_130 = io_scpu_7_bits_tag;
-      4'b1000:
-        casez_tmp_130 = io_scpu_8_bits_tag;
-      4'b1001:
-        casez_tmp_130 = io_scpu_9_bits_tag;
-      4'b1010:
-        casez_tmp_130 = io_scpu_10_bits_tag;
-      4'b1011:
-        casez_tmp_130 = io_scpu_11_bits_tag;
-      4'b1100:
-        casez_tmp_130 = io_scpu_12_bits_tag;
-      4'b1101:
-        casez_tmp_130 = io_scpu_13_bits_tag;
-      4'b1110:
-        casez_tmp_130 = io_scpu_14_bits_tag;
-      default:
-        casez_tmp_130 = io_scpu_15_bits_tag;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_131;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_131 = io_scpu_0_bits_hit;
-      4'b0001:
-        casez_tmp_131 = io_scpu_1_bits_hit;
-      4'b0010:
-        casez_tmp_131 = io_scpu_2_bits_hit;
-      4'b0011:
-        casez_tmp_131 = io_scpu_3_bits_hit;
-      4'b0100:
-        casez_tmp_131 = io_scpu_4_bits_hit;
-      4'b0101:
-        casez_tmp_131 = io_scpu_5_bits_hit;
-      4'b0110:
-        casez_tmp_131 = io_scpu_6_bits_hit;
-      4'b0111:
-        casez_tmp_131 = io_scpu_7_bits_hit;
-      4'b1000:
-        casez_tmp_131 = io_scpu_8_bits_hit;
-      4'b1001:
-        casez_tmp_131 = io_scpu_9_bits_hit;
-      4'b1010:
-        casez_tmp_131 = io_scpu_10_bits_hit;
-      4'b1011:
-        casez_tmp_131 = io_scpu_11_bits_hit;
-      4'b1100:
-        casez_tmp_131 = io_scpu_12_bits_hit;
-      4'b1101:
-        casez_tmp_131 = io_scpu_13_bits_hit;
-      4'b1110:
-        casez_tmp_131 = io_scpu_14_bits_hit;
-      default:
-        casez_tmp_131 = io_scpu_15_bits_hit;
-    endcase
-  end // always @(*)
-  reg  [1:0]  casez_tmp_132;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_132 = io_scpu_0_bits_kind;
-      4'b0001:
-        casez_tmp_132 = io_scpu_1_bits_kind;
-      4'b0010:
-        casez_tmp_132 = io_scpu_2_bits_kind;
-      4'b0011:
-        casez_tmp_132 = io_scpu_3_bits_kind;
-      4'b0100:
-        casez_tmp_132 = io_scpu_4_bits_kind;
-      4'b0101:
-        casez_tmp_132 = io_scpu_5_bits_kind;
-      4'b0110:
-        casez_tmp_132 = io_scpu_6_bits_kind;
-      4'b0111:
-        casez_tmp_132 = io_scpu_7_bits_kind;
-      4'b1000:
-        casez_tmp_132 = io_scpu_8_bits_kind;
-      4'b1001:
-        casez_tmp_132 = io_scpu_9_bits_kind;
-      4'b1010:
-        casez_tmp_132 = io_scpu_10_bits_kind;
-      4'b1011:
-        casez_tmp_132 = io_scpu_11_bits_kind;
-      4'b1100:
-        casez_tmp_132 = io_scpu_12_bits_kind;
-      4'b1101:
-        casez_tmp_132 = io_scpu_13_bits_kind;
-      4'b1110:
-        casez_tmp_132 = io_scpu_14_bits_kind;
-      default:
-        casez_tmp_132 = io_scpu_15_bits_kind;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_133;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_133 = io_scpu_0_bits_px;
-      4'b0001:
-        casez_tmp_133 = io_scpu_1_bits_px;
-      4'b0010:
-        casez_tmp_133 = io_scpu_2_bits_px;
-      4'b0011:
-        casez_tmp_133 = io_scpu_3_bits_px;
-      4'b0100:
-        casez_tmp_133 = io_scpu_4_bits_px;
-      4'b0101:
-        casez_tmp_133 = io_scpu_5_bits_px;
-      4'b0110:
-        casez_tmp_133 = io_scpu_6_bits_px;
-      4'b0111:
-        casez_tmp_133 = io_scpu_7_bits_px;
-      4'b1000:
-        casez_tmp_133 = io_scpu_8_bits_px;
-      4'b1001:
-        casez_tmp_133 = io_scpu_9_bits_px;
-      4'b1010:
-        casez_tmp_133 = io_scpu_10_bits_px;
-      4'b1011:
-        casez_tmp_133 = io_scpu_11_bits_px;
-      4'b1100:
-        casez_tmp_133 = io_scpu_12_bits_px;
-      4'b1101:
-        casez_tmp_133 = io_scpu_13_bits_px;
-      4'b1110:
-        casez_tmp_133 = io_scpu_14_bits_px;
-      default:
-        casez_tmp_133 = io_scpu_15_bits_px;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_134;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_134 = io_scpu_0_bits_py;
-      4'b0001:
-        casez_tmp_134 = io_scpu_1_bits_py;
-      4'b0010:
-        casez_tmp_134 = io_scpu_2_bits_py;
-      4'b0011:
-        casez_tmp_134 = io_scpu_3_bits_py;
-      4'b0100:
-        casez_tmp_134 = io_scpu_4_bits_py;
-      4'b0101:
-        casez_tmp_134 = io_scpu_5_bits_py;
-      4'b0110:
-        casez_tmp_134 = io_scpu_6_bits_py;
-      4'b0111:
-        casez_tmp_134 = io_scpu_7_bits_py;
-      4'b1000:
-        casez_tmp_134 = io_scpu_8_bits_py;
-      4'b1001:
-        casez_tmp_134 = io_scpu_9_bits_py;
-      4'b1010:
-        casez_tmp_134 = io_scpu_10_bits_py;
-      4'b1011:
-        casez_tmp_134 = io_scpu_11_bits_py;
-      4'b1100:
-        casez_tmp_134 = io_scpu_12_bits_py;
-      4'b1101:
-        casez_tmp_134 = io_scpu_13_bits_py;
-      4'b1110:
-        casez_tmp_134 = io_scpu_14_bits_py;
-      default:
-        casez_tmp_134 = io_scpu_15_bits_py;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_135;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_135 = io_scpu_0_bits_pz;
-      4'b0001:
-        casez_tmp_135 = io_scpu_1_bits_pz;
-      4'b0010:
-        casez_tmp_135 = io_scpu_2_bits_pz;
-      4'b0011:
-        casez_tmp_135 = io_scpu_3_bits_pz;
-      4'b0100:
-        casez_tmp_135 = io_scpu_4_bits_pz;
-      4'b0101:
-        casez_tmp_135 = io_scpu_5_bits_pz;
-      4'b0110:
-        casez_tmp_135 = io_scpu_6_bits_pz;
-      4'b0111:
-        casez_tmp_135 = io_scpu_7_bits_pz;
-      4'b1000:
-        casez_tmp_135 = io_scpu_8_bits_pz;
-      4'b1001:
-        casez_tmp_135 = io_scpu_9_bits_pz;
-      4'b1010:
-        casez_tmp_135 = io_scpu_10_bits_pz;
-      4'b1011:
-        casez_tmp_135 = io_scpu_11_bits_pz;
-      4'b1100:
-        casez_tmp_135 = io_scpu_12_bits_pz;
-      4'b1101:
-        casez_tmp_135 = io_scpu_13_bits_pz;
-      4'b1110:
-        casez_tmp_135 = io_scpu_14_bits_pz;
-      default:
-        casez_tmp_135 = io_scpu_15_bits_pz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_136;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_136 = io_scpu_0_bits_nx;
-      4'b0001:
-        casez_tmp_136 = io_scpu_1_bits_nx;
-      4'b0010:
-        casez_tmp_136 = io_scpu_2_bits_nx;
-      4'b0011:
-        casez_tmp_136 = io_scpu_3_bits_nx;
-      4'b0100:
-        casez_tmp_136 = io_scpu_4_bits_nx;
-      4'b0101:
-        casez_tmp_136 = io_scpu_5_bits_nx;
-      4'b0110:
-        casez_tmp_136 = io_scpu_6_bits_nx;
-      4'b0111:
-        casez_tmp_136 = io_scpu_7_bits_nx;
-      4'b1000:
-        casez_tmp_136 = io_scpu_8_bits_nx;
-      4'b1001:
-        casez_tmp_136 = io_scpu_9_bits_nx;
-      4'b1010:
-        casez_tmp_136 = io_scpu_10_bits_nx;
-      4'b1011:
-        casez_tmp_136 = io_scpu_11_bits_nx;
-      4'b1100:
-        casez_tmp_136 = io_scpu_12_bits_nx;
-      4'b1101:
-        casez_tmp_136 = io_scpu_13_bits_nx;
-      4'b1110:
-        casez_tmp_136 = io_scpu_14_bits_nx;
-      default:
-        casez_tmp_136 = io_scpu_15_bits_nx;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_137;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_137 = io_scpu_0_bits_ny;
-      4'b0001:
-        casez_tmp_137 = io_scpu_1_bits_ny;
-      4'b0010:
-        casez_tmp_137 = io_scpu_2_bits_ny;
-      4'b0011:
-        casez_tmp_137 = io_scpu_3_bits_ny;
-      4'b0100:
-        casez_tmp_137 = io_scpu_4_bits_ny;
-      4'b0101:
-        casez_tmp_137 = io_scpu_5_bits_ny;
-      4'b0110:
-        casez_tmp_137 = io_scpu_6_bits_ny;
-      4'b0111:
-        casez_tmp_137 = io_scpu_7_bits_ny;
-      4'b1000:
-        casez_tmp_137 = io_scpu_8_bits_ny;
-      4'b1001:
-        casez_tmp_137 = io_scpu_9_bits_ny;
-      4'b1010:
-        casez_tmp_137 = io_scpu_10_bits_ny;
-      4'b1011:
-        casez_tmp_137 = io_scpu_11_bits_ny;
-      4'b1100:
-        casez_tmp_137 = io_scpu_12_bits_ny;
-      4'b1101:
-        casez_tmp_137 = io_scpu_13_bits_ny;
-      4'b1110:
-        casez_tmp_137 = io_scpu_14_bits_ny;
-      default:
-        casez_tmp_137 = io_scpu_15_bits_ny;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_138;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_138 = io_scpu_0_bits_nz;
-      4'b0001:
-        casez_tmp_138 = io_scpu_1_bits_nz;
-      4'b0010:
-        casez_tmp_138 = io_scpu_2_bits_nz;
-      4'b0011:
-        casez_tmp_138 = io_scpu_3_bits_nz;
-      4'b0100:
-        casez_tmp_138 = io_scpu_4_bits_nz;
-      4'b0101:
-        casez_tmp_138 = io_scpu_5_bits_nz;
-      4'b0110:
-        casez_tmp_138 = io_scpu_6_bits_nz;
-      4'b0111:
-        casez_tmp_138 = io_scpu_7_bits_nz;
-      4'b1000:
-        casez_tmp_138 = io_scpu_8_bits_nz;
-      4'b1001:
-        casez_tmp_138 = io_scpu_9_bits_nz;
-      4'b1010:
-        casez_tmp_138 = io_scpu_10_bits_nz;
-      4'b1011:
-        casez_tmp_138 = io_scpu_11_bits_nz;
-      4'b1100:
-        casez_tmp_138 = io_scpu_12_bits_nz;
-      4'b1101:
-        casez_tmp_138 = io_scpu_13_bits_nz;
-      4'b1110:
-        casez_tmp_138 = io_scpu_14_bits_nz;
-      default:
-        casez_tmp_138 = io_scpu_15_bits_nz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_139;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_139 = io_scpu_0_bits_depth;
-      4'b0001:
-        casez_tmp_139 = io_scpu_1_bits_depth;
-      4'b0010:
-        casez_tmp_139 = io_scpu_2_bits_depth;
-      4'b0011:
-        casez_tmp_139 = io_scpu_3_bits_depth;
-      4'b0100:
-        casez_tmp_139 = io_scpu_4_bits_depth;
-      4'b0101:
-        casez_tmp_139 = io_scpu_5_bits_depth;
-      4'b0110:
-        casez_tmp_139 = io_scpu_6_bits_depth;
-      4'b0111:
-        casez_tmp_139 = io_scpu_7_bits_depth;
-      4'b1000:
-        casez_tmp_139 = io_scpu_8_bits_depth;
-      4'b1001:
-        casez_tmp_139 = io_scpu_9_bits_depth;
-      4'b1010:
-        casez_tmp_139 = io_scpu_10_bits_depth;
-      4'b1011:
-        casez_tmp_139 = io_scpu_11_bits_depth;
-      4'b1100:
-        casez_tmp_139 = io_scpu_12_bits_depth;
-      4'b1101:
-        casez_tmp_139 = io_scpu_13_bits_depth;
-      4'b1110:
-        casez_tmp_139 = io_scpu_14_bits_depth;
-      default:
-        casez_tmp_139 = io_scpu_15_bits_depth;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_140;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_140 = io_scpu_0_bits_nonFinite;
-      4'b0001:
-        casez_tmp_140 = io_scpu_1_bits_nonFinite;
-      4'b0010:
-        casez_tmp_140 = io_scpu_2_bits_nonFinite;
-      4'b0011:
-        casez_tmp_140 = io_scpu_3_bits_nonFinite;
-      4'b0100:
-        casez_tmp_140 = io_scpu_4_bits_nonFinite;
-      4'b0101:
-        casez_tmp_140 = io_scpu_5_bits_nonFinite;
-      4'b0110:
-        casez_tmp_140 = io_scpu_6_bits_nonFinite;
-      4'b0111:
-        casez_tmp_140 = io_scpu_7_bits_nonFinite;
-      4'b1000:
-        casez_tmp_140 = io_scpu_8_bits_nonFinite;
-      4'b1001:
-        casez_tmp_140 = io_scpu_9_bits_nonFinite;
-      4'b1010:
-        casez_tmp_140 = io_scpu_10_bits_nonFinite;
-      4'b1011:
-        casez_tmp_140 = io_scpu_11_bits_nonFinite;
-      4'b1100:
-        casez_tmp_140 = io_scpu_12_bits_nonFinite;
-      4'b1101:
-        casez_tmp_140 = io_scpu_13_bits_nonFinite;
-      4'b1110:
-        casez_tmp_140 = io_scpu_14_bits_nonFinite;
-      default:
-        casez_tmp_140 = io_scpu_15_bits_nonFinite;
-    endcase
-  end // always @(*)
-  reg  [4:0]  casez_tmp_141;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_141 = io_scpu_0_bits_flags;
-      4'b0001:
-        casez_tmp_141 = io_scpu_1_bits_flags;
-      4'b0010:
-        casez_tmp_141 = io_scpu_2_bits_flags;
-      4'b0011:
-        casez_tmp_141 = io_scpu_3_bits_flags;
-      4'b0100:
-        casez_tmp_141 = io_scpu_4_bits_flags;
-      4'b0101:
-        casez_tmp_141 = io_scpu_5_bits_flags;
-      4'b0110:
-        casez_tmp_141 = io_scpu_6_bits_flags;
-      4'b0111:
-        casez_tmp_141 = io_scpu_7_bits_flags;
-      4'b1000:
-        casez_tmp_141 = io_scpu_8_bits_flags;
-      4'b1001:
-        casez_tmp_141 = io_scpu_9_bits_flags;
-      4'b1010:
-        casez_tmp_141 = io_scpu_10_bits_flags;
-      4'b1011:
-        casez_tmp_141 = io_scpu_11_bits_flags;
-      4'b1100:
-        casez_tmp_141 = io_scpu_12_bits_flags;
-      4'b1101:
-        casez_tmp_141 = io_scpu_13_bits_flags;
-      4'b1110:
-        casez_tmp_141 = io_scpu_14_bits_flags;
-      default:
-        casez_tmp_141 = io_scpu_15_bits_flags;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_142;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_142 = io_scpu_0_bits_tag;
-      4'b0001:
-        casez_tmp_142 = io_scpu_1_bits_tag;
-      4'b0010:
-        casez_tmp_142 = io_scpu_2_bits_tag;
-      4'b0011:
-        casez_tmp_142 = io_scpu_3_bits_tag;
-      4'b0100:
-        casez_tmp_142 = io_scpu_4_bits_tag;
-      4'b0101:
-        casez_tmp_142 = io_scpu_5_bits_tag;
-      4'b0110:
-        casez_tmp_142 = io_scpu_6_bits_tag;
-      4'b0111:
-        casez_tmp_142 = io_scpu_7_bits_tag;
-      4'b1000:
-        casez_tmp_142 = io_scpu_8_bits_tag;
-      4'b1001:
-        casez_tmp_142 = io_scpu_9_bits_tag;
-      4'b1010:
-        casez_tmp_142 = io_scpu_10_bits_tag;
-      4'b1011:
-        casez_tmp_142 = io_scpu_11_bits_tag;
-      4'b1100:
-        casez_tmp_142 = io_scpu_12_bits_tag;
-      4'b1101:
-        casez_tmp_142 = io_scpu_13_bits_tag;
-      4'b1110:
-        casez_tmp_142 = io_scpu_14_bits_tag;
-      default:
-        casez_tmp_142 = io_scpu_15_bits_tag;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_143;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_143 = io_scpu_0_bits_hit;
-      4'b0001:
-        casez_tmp_143 = io_scpu_1_bits_hit;
-      4'b0010:
-        casez_tmp_143 = io_scpu_2_bits_hit;
-      4'b0011:
-        casez_tmp_143 = io_scpu_3_bits_hit;
-      4'b0100:
-        casez_tmp_143 = io_scpu_4_bits_hit;
-      4'b0101:
-        casez_tmp_143 = io_scpu_5_bits_hit;
-      4'b0110:
-        casez_tmp_143 = io_scpu_6_bits_hit;
-      4'b0111:
-        casez_tmp_143 = io_scpu_7_bits_hit;
-      4'b1000:
-        casez_tmp_143 = io_scpu_8_bits_hit;
-      4'b1001:
-        casez_tmp_143 = io_scpu_9_bits_hit;
-      4'b1010:
-        casez_tmp_143 = io_scpu_10_bits_hit;
-      4'b1011:
-        casez_tmp_143 = io_scpu_11_bits_hit;
-      4'b1100:
-        casez_tmp_143 = io_scpu_12_bits_hit;
-      4'b1101:
-        casez_tmp_143 = io_scpu_13_bits_hit;
-      4'b1110:
-        casez_tmp_143 = io_scpu_14_bits_hit;
-      default:
-        casez_tmp_143 = io_scpu_15_bits_hit;
-    endcase
-  end // always @(*)
-  reg  [1:0]  casez_tmp_144;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_144 = io_scpu_0_bits_kind;
-      4'b0001:
-        casez_tmp_144 = io_scpu_1_bits_kind;
-      4'b0010:
-        casez_tmp_144 = io_scpu_2_bits_kind;
-      4'b0011:
-        casez_tmp_144 = io_scpu_3_bits_kind;
-      4'b0100:
-        casez_tmp_144 = io_scpu_4_bits_kind;
-      4'b0101:
-        casez_tmp_144 = io_scpu_5_bits_kind;
-      4'b0110:
-        casez_tmp_144 = io_scpu_6_bits_kind;
-      4'b0111:
-        casez_tmp_144 = io_scpu_7_bits_kind;
-      4'b1000:
-        casez_tmp_144 = io_scpu_8_bits_kind;
-      4'b1001:
-        casez_tmp_144 = io_scpu_9_bits_kind;
-      4'b1010:
-        casez_tmp_144 = io_scpu_10_bits_kind;
-      4'b1011:
-        casez_tmp_144 = io_scpu_11_bits_kind;
-      4'b1100:
-        casez_tmp_144 = io_scpu_12_bits_kind;
-      4'b1101:
-        casez_tmp_144 = io_scpu_13_bits_kind;
-      4'b1110:
-        casez_tmp_144 = io_scpu_14_bits_kind;
-      default:
-        casez_tmp_144 = io_scpu_15_bits_kind;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_145;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_145 = io_scpu_0_bits_px;
-      4'b0001:
-        casez_tmp_145 = io_scpu_1_bits_px;
-      4'b0010:
-        casez_tmp_145 = io_scpu_2_bits_px;
-      4'b0011:
-        casez_tmp_145 = io_scpu_3_bits_px;
-      4'b0100:
-        casez_tmp_145 = io_scpu_4_bits_px;
-      4'b0101:
-        casez_tmp_145 = io_scpu_5_bits_px;
-      4'b0110:
-        casez_tmp_145 = io_scpu_6_bits_px;
-      4'b0111:
-        casez_tmp_145 = io_scpu_7_bits_px;
-      4'b1000:
-        casez_tmp_145 = io_scpu_8_bits_px;
-      4'b1001:
-        casez_tmp_145 = io_scpu_9_bits_px;
-      4'b1010:
-        casez_tmp_145 = io_scpu_10_bits_px;
-      4'b1011:
-        casez_tmp_145 = io_scpu_11_bits_px;
-      4'b1100:
-        casez_tmp_145 = io_scpu_12_bits_px;
-      4'b1101:
-        casez_tmp_145 = io_scpu_13_bits_px;
-      4'b1110:
-        casez_tmp_145 = io_scpu_14_bits_px;
-      default:
-        casez_tmp_145 = io_scpu_15_bits_px;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_146;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_146 = io_scpu_0_bits_py;
-      4'b0001:
-        casez_tmp_146 = io_scpu_1_bits_py;
-      4'b0010:
-        casez_tmp_146 = io_scpu_2_bits_py;
-      4'b0011:
-        casez_tmp_146 = io_scpu_3_bits_py;
-      4'b0100:
-        casez_tmp_146 = io_scpu_4_bits_py;
-      4'b0101:
-        casez_tmp_146 = io_scpu_5_bits_py;
-      4'b0110:
-        casez_tmp_146 = io_scpu_6_bits_py;
-      4'b0111:
-        casez_tmp_146 = io_scpu_7_bits_py;
-      4'b1000:
-        casez_tmp_146 = io_scpu_8_bits_py;
-      4'b1001:
-        casez_tmp_146 = io_scpu_9_bits_py;
-      4'b1010:
-        casez_tmp_146 = io_scpu_10_bits_py;
-      4'b1011:
-        casez_tmp_146 = io_scpu_11_bits_py;
-      4'b1100:
-        casez_tmp_146 = io_scpu_12_bits_py;
-      4'b1101:
-        casez_tmp_146 = io_scpu_13_bits_py;
-      4'b1110:
-        casez_tmp_146 = io_scpu_14_bits_py;
-      default:
-        casez_tmp_146 = io_scpu_15_bits_py;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_147;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_147 = io_scpu_0_bits_pz;
-      4'b0001:
-        casez_tmp_147 = io_scpu_1_bits_pz;
-      4'b0010:
-        casez_tmp_147 = io_scpu_2_bits_pz;
-      4'b0011:
-        casez_tmp_147 = io_scpu_3_bits_pz;
-      4'b0100:
-        casez_tmp_147 = io_scpu_4_bits_pz;
-      4'b0101:
-        casez_tmp_147 = io_scpu_5_bits_pz;
-      4'b0110:
-        casez_tmp_147 = io_scpu_6_bits_pz;
-      4'b0111:
-        casez_tmp_147 = io_scpu_7_bits_pz;
-      4'b1000:
-        casez_tmp_147 = io_scpu_8_bits_pz;
-      4'b1001:
-        casez_tmp_147 = io_scpu_9_bits_pz;
-      4'b1010:
-        casez_tmp_147 = io_scpu_10_bits_pz;
-      4'b1011:
-        casez_tmp_147 = io_scpu_11_bits_pz;
-      4'b1100:
-        casez_tmp_147 = io_scpu_12_bits_pz;
-      4'b1101:
-        casez_tmp_147 = io_scpu_13_bits_pz;
-      4'b1110:
-        casez_tmp_147 = io_scpu_14_bits_pz;
-      default:
-        casez_tmp_147 = io_scpu_15_bits_pz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_148;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_148 = io_scpu_0_bits_nx;
-      4'b0001:
-        casez_tmp_148 = io_scpu_1_bits_nx;
-      4'b0010:
-        casez_tmp_148 = io_scpu_2_bits_nx;
-      4'b0011:
-        casez_tmp_148 = io_scpu_3_bits_nx;
-      4'b0100:
-        casez_tmp_148 = io_scpu_4_bits_nx;
-      4'b0101:
-        casez_tmp_148 = io_scpu_5_bits_nx;
-      4'b0110:
-        casez_tmp_148 = io_scpu_6_bits_nx;
-      4'b0111:
-        casez_tmp_148 = io_scpu_7_bits_nx;
-      4'b1000:
-        casez_tmp_148 = io_scpu_8_bits_nx;
-      4'b1001:
-        casez_tmp_148 = io_scpu_9_bits_nx;
-      4'b1010:
-        casez_tmp_148 = io_scpu_10_bits_nx;
-      4'b1011:
-        casez_tmp_148 = io_scpu_11_bits_nx;
-      4'b1100:
-        casez_tmp_148 = io_scpu_12_bits_nx;
-      4'b1101:
-        casez_tmp_148 = io_scpu_13_bits_nx;
-      4'b1110:
-        casez_tmp_148 = io_scpu_14_bits_nx;
-      default:
-        casez_tmp_148 = io_scpu_15_bits_nx;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_149;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_149 = io_scpu_0_bits_ny;
-      4'b0001:
-        casez_tmp_149 = io_scpu_1_bits_ny;
-      4'b0010:
-        casez_tmp_149 = io_scpu_2_bits_ny;
-      4'b0011:
-        casez_tmp_149 = io_scpu_3_bits_ny;
-      4'b0100:
-        casez_tmp_149 = io_scpu_4_bits_ny;
-      4'b0101:
-        casez_tmp_149 = io_scpu_5_bits_ny;
-      4'b0110:
-        casez_tmp_149 = io_scpu_6_bits_ny;
-      4'b0111:
-        casez_tmp_149 = io_scpu_7_bits_ny;
-      4'b1000:
-        casez_tmp_149 = io_scpu_8_bits_ny;
-      4'b1001:
-        casez_tmp_149 = io_scpu_9_bits_ny;
-      4'b1010:
-        casez_tmp_149 = io_scpu_10_bits_ny;
-      4'b1011:
-        casez_tmp_149 = io_scpu_11_bits_ny;
-      4'b1100:
-        casez_tmp_149 = io_scpu_12_bits_ny;
-      4'b1101:
-        casez_tmp_149 = io_scpu_13_bits_ny;
-      4'b1110:
-        casez_tmp_149 = io_scpu_14_bits_ny;
-      default:
-        casez_tmp_149 = io_scpu_15_bits_ny;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_150;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_150 = io_scpu_0_bits_nz;
-      4'b0001:
-        casez_tmp_150 = io_scpu_1_bits_nz;
-      4'b0010:
-        casez_tmp_150 = io_scpu_2_bits_nz;
-      4'b0011:
-        casez_tmp_150 = io_scpu_3_bits_nz;
-      4'b0100:
-        casez_tmp_150 = io_scpu_4_bits_nz;
-      4'b0101:
-        casez_tmp_150 = io_scpu_5_bits_nz;
-      4'b0110:
-        casez_tmp_150 = io_scpu_6_bits_nz;
-      4'b0111:
-        casez_tmp_150 = io_scpu_7_bits_nz;
-      4'b1000:
-        casez_tmp_150 = io_scpu_8_bits_nz;
-      4'b1001:
-        casez_tmp_150 = io_scpu_9_bits_nz;
-      4'b1010:
-        casez_tmp_150 = io_scpu_10_bits_nz;
-      4'b1011:
-        casez_tmp_150 = io_scpu_11_bits_nz;
-      4'b1100:
-        casez_tmp_150 = io_scpu_12_bits_nz;
-      4'b1101:
-        casez_tmp_150 = io_scpu_13_bits_nz;
-      4'b1110:
-        casez_tmp_150 = io_scpu_14_bits_nz;
-      default:
-        casez_tmp_150 = io_scpu_15_bits_nz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_151;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_151 = io_scpu_0_bits_depth;
-      4'b0001:
-        casez_tmp_151 = io_scpu_1_bits_depth;
-      4'b0010:
-        casez_tmp_151 = io_scpu_2_bits_depth;
-      4'b0011:
-        casez_tmp_151 = io_scpu_3_bits_depth;
-      4'b0100:
-        casez_tmp_151 = io_scpu_4_bits_depth;
-      4'b0101:
-        casez_tmp_151 = io_scpu_5_bits_depth;
-      4'b0110:
-        casez_tmp_151 = io_scpu_6_bits_depth;
-      4'b0111:
-        casez_tmp_151 = io_scpu_7_bits_depth;
-      4'b1000:
-        casez_tmp_151 = io_scpu_8_bits_depth;
-      4'b1001:
-        casez_tmp_151 = io_scpu_9_bits_depth;
-      4'b1010:
-        casez_tmp_151 = io_scpu_10_bits_depth;
-      4'b1011:
-        casez_tmp_151 = io_scpu_11_bits_depth;
-      4'b1100:
-        casez_tmp_151 = io_scpu_12_bits_depth;
-      4'b1101:
-        casez_tmp_151 = io_scpu_13_bits_depth;
-      4'b1110:
-        casez_tmp_151 = io_scpu_14_bits_depth;
-      default:
-        casez_tmp_151 = io_scpu_15_bits_depth;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_152;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_152 = io_scpu_0_bits_nonFinite;
-      4'b0001:
-        casez_tmp_152 = io_scpu_1_bits_nonFinite;
-      4'b0010:
-        casez_tmp_152 = io_scpu_2_bits_nonFinite;
-      4'b0011:
-        casez_tmp_152 = io_scpu_3_bits_nonFinite;
-      4'b0100:
-        casez_tmp_152 = io_scpu_4_bits_nonFinite;
-      4'b0101:
-        casez_tmp_152 = io_scpu_5_bits_nonFinite;
-      4'b0110:
-        casez_tmp_152 = io_scpu_6_bits_nonFinite;
-      4'b0111:
-        casez_tmp_152 = io_scpu_7_bits_nonFinite;
-      4'b1000:
-        casez_tmp_152 = io_scpu_8_bits_nonFinite;
-      4'b1001:
-        casez_tmp_152 = io_scpu_9_bits_nonFinite;
-      4'b1010:
-        casez_tmp_152 = io_scpu_10_bits_nonFinite;
-      4'b1011:
-        casez_tmp_152 = io_scpu_11_bits_nonFinite;
-      4'b1100:
-        casez_tmp_152 = io_scpu_12_bits_nonFinite;
-      4'b1101:
-        casez_tmp_152 = io_scpu_13_bits_nonFinite;
-      4'b1110:
-        casez_tmp_152 = io_scpu_14_bits_nonFinite;
-      default:
-        casez_tmp_152 = io_scpu_15_bits_nonFinite;
-    endcase
-  end // always @(*)
-  reg  [4:0]  casez_tmp_153;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_153 = io_scpu_0_bits_flags;
-      4'b0001:
-        casez_tmp_153 = io_scpu_1_bits_flags;
-      4'b0010:
-        casez_tmp_153 = io_scpu_2_bits_flags;
-      4'b0011:
-        casez_tmp_153 = io_scpu_3_bits_flags;
-      4'b0100:
-        casez_tmp_153 = io_scpu_4_bits_flags;
-      4'b0101:
-        casez_tmp_153 = io_scpu_5_bits_flags;
-      4'b0110:
-        casez_tmp_153 = io_scpu_6_bits_flags;
-      4'b0111:
-        casez_tmp_153 = io_scpu_7_bits_flags;
-      4'b1000:
-        casez_tmp_153 = io_scpu_8_bits_flags;
-      4'b1001:
-        casez_tmp_153 = io_scpu_9_bits_flags;
-      4'b1010:
-        casez_tmp_153 = io_scpu_10_bits_flags;
-      4'b1011:
-        casez_tmp_153 = io_scpu_11_bits_flags;
-      4'b1100:
-        casez_tmp_153 = io_scpu_12_bits_flags;
-      4'b1101:
-        casez_tmp_153 = io_scpu_13_bits_flags;
-      4'b1110:
-        casez_tmp_153 = io_scpu_14_bits_flags;
-      default:
-        casez_tmp_153 = io_scpu_15_bits_flags;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_154;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_154 = io_scpu_0_bits_tag;
-      4'b0001:
-        casez_tmp_154 = io_scpu_1_bits_tag;
-      4'b0010:
-        casez_tmp_154 = io_scpu_2_bits_tag;
-      4'b0011:
-        casez_tmp_154 = io_scpu_3_bits_tag;
-      4'b0100:
-        casez_tmp_154 = io_scpu_4_bits_tag;
-      4'b0101:
-        casez_tmp_154 = io_scpu_5_bits_tag;
-      4'b0110:
-        casez_tmp_154 = io_scpu_6_bits_tag;
-      4'b0111:
-        casez_tmp_154 = io_scpu_7_bits_tag;
-      4'b1000:
-        casez_tmp_154 = io_scpu_8_bits_tag;
-      4'b1001:
-        casez_tmp_154 = io_scpu_9_bits_tag;
-      4'b1010:
-        casez_tmp_154 = io_scpu_10_bits_tag;
-      4'b1011:
-        casez_tmp_154 = io_scpu_11_bits_tag;
-      4'b1100:
-        casez_tmp_154 = io_scpu_12_bits_tag;
-      4'b1101:
-        casez_tmp_154 = io_scpu_13_bits_tag;
-      4'b1110:
-        casez_tmp_154 = io_scpu_14_bits_tag;
-      default:
-        casez_tmp_154 = io_scpu_15_bits_tag;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_155;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_155 = io_scpu_0_bits_hit;
-      4'b0001:
-        casez_tmp_155 = io_scpu_1_bits_hit;
-      4'b0010:
-        casez_tmp_155 = io_scpu_2_bits_hit;
-      4'b0011:
-        casez_tmp_155 = io_scpu_3_bits_hit;
-      4'b0100:
-        casez_tmp_155 = io_scpu_4_bits_hit;
-      4'b0101:
-        casez_tmp_155 = io_scpu_5_bits_hit;
-      4'b0110:
-        casez_tmp_155 = io_scpu_6_bits_hit;
-      4'b0111:
-        casez_tmp_155 = io_scpu_7_bits_hit;
-      4'b1000:
-        casez_tmp_155 = io_scpu_8_bits_hit;
-      4'b1001:
-        casez_tmp_155 = io_scpu_9_bits_hit;
-      4'b1010:
-        casez_tmp_155 = io_scpu_10_bits_hit;
-      4'b1011:
-        casez_tmp_155 = io_scpu_11_bits_hit;
-      4'b1100:
-        casez_tmp_155 = io_scpu_12_bits_hit;
-      4'b1101:
-        casez_tmp_155 = io_scpu_13_bits_hit;
-      4'b1110:
-        casez_tmp_155 = io_scpu_14_bits_hit;
-      default:
-        casez_tmp_155 = io_scpu_15_bits_hit;
-    endcase
-  end // always @(*)
-  reg  [1:0]  casez_tmp_156;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_156 = io_scpu_0_bits_kind;
-      4'b0001:
-        casez_tmp_156 = io_scpu_1_bits_kind;
-      4'b0010:
-        casez_tmp_156 = io_scpu_2_bits_kind;
-      4'b0011:
-        casez_tmp_156 = io_scpu_3_bits_kind;
-      4'b0100:
-        casez_tmp_156 = io_scpu_4_bits_kind;
-      4'b0101:
-        casez_tmp_156 = io_scpu_5_bits_kind;
-      4'b0110:
-        casez_tmp_156 = io_scpu_6_bits_kind;
-      4'b0111:
-        casez_tmp_156 = io_scpu_7_bits_kind;
-      4'b1000:
-        casez_tmp_156 = io_scpu_8_bits_kind;
-      4'b1001:
-        casez_tmp_156 = io_scpu_9_bits_kind;
-      4'b1010:
-        casez_tmp_156 = io_scpu_10_bits_kind;
-      4'b1011:
-        casez_tmp_156 = io_scpu_11_bits_kind;
-      4'b1100:
-        casez_tmp_156 = io_scpu_12_bits_kind;
-      4'b1101:
-        casez_tmp_156 = io_scpu_13_bits_kind;
-      4'b1110:
-        casez_tmp_156 = io_scpu_14_bits_kind;
-      default:
-        casez_tmp_156 = io_scpu_15_bits_kind;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_157;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_157 = io_scpu_0_bits_px;
-      4'b0001:
-        casez_tmp_157 = io_scpu_1_bits_px;
-      4'b0010:
-        casez_tmp_157 = io_scpu_2_bits_px;
-      4'b0011:
-        casez_tmp_157 = io_scpu_3_bits_px;
-      4'b0100:
-        casez_tmp_157 = io_scpu_4_bits_px;
-      4'b0101:
-        casez_tmp_157 = io_scpu_5_bits_px;
-      4'b0110:
-        casez_tmp_157 = io_scpu_6_bits_px;
-      4'b0111:
-        casez_tmp_157 = io_scpu_7_bits_px;
-      4'b1000:
-        casez_tmp_157 = io_scpu_8_bits_px;
-      4'b1001:
-        casez_tmp_157 = io_scpu_9_bits_px;
-      4'b1010:
-        casez_tmp_157 = io_scpu_10_bits_px;
-      4'b1011:
-        casez_tmp_157 = io_scpu_11_bits_px;
-      4'b1100:
-        casez_tmp_157 = io_scpu_12_bits_px;
-      4'b1101:
-        casez_tmp_157 = io_scpu_13_bits_px;
-      4'b1110:
-        casez_tmp_157 = io_scpu_14_bits_px;
-      default:
-        casez_tmp_157 = io_scpu_15_bits_px;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_158;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_158 = io_scpu_0_bits_py;
-      4'b0001:
-        casez_tmp_158 = io_scpu_1_bits_py;
-      4'b0010:
-        casez_tmp_158 = io_scpu_2_bits_py;
-      4'b0011:
-        casez_tmp_158 = io_scpu_3_bits_py;
-      4'b0100:
-        casez_tmp_158 = io_scpu_4_bits_py;
-      4'b0101:
-        casez_tmp_158 = io_scpu_5_bits_py;
-      4'b0110:
-        casez_tmp_158 = io_scpu_6_bits_py;
-      4'b0111:
-        casez_tmp_158 = io_scpu_7_bits_py;
-      4'b1000:
-        casez_tmp_158 = io_scpu_8_bits_py;
-      4'b1001:
-        casez_tmp_158 = io_scpu_9_bits_py;
-      4'b1010:
-        casez_tmp_158 = io_scpu_10_bits_py;
-      4'b1011:
-        casez_tmp_158 = io_scpu_11_bits_py;
-      4'b1100:
-        casez_tmp_158 = io_scpu_12_bits_py;
-      4'b1101:
-        casez_tmp_158 = io_scpu_13_bits_py;
-      4'b1110:
-        casez_tmp_158 = io_scpu_14_bits_py;
-      default:
-        casez_tmp_158 = io_scpu_15_bits_py;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_159;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_159 = io_scpu_0_bits_pz;
-      4'b0001:
-        casez_tmp_159 = io_scpu_1_bits_pz;
-      4'b0010:
-        casez_tmp_159 = io_scpu_2_bits_pz;
-      4'b0011:
-        casez_tmp_159 = io_scpu_3_bits_pz;
-      4'b0100:
-        casez_tmp_159 = io_scpu_4_bits_pz;
-      4'b0101:
-        casez_tmp_159 = io_scpu_5_bits_pz;
-      4'b0110:
-        casez_tmp_159 = io_scpu_6_bits_pz;
-      4'b0111:
-        casez_tmp_159 = io_scpu_7_bits_pz;
-      4'b1000:
-        casez_tmp_159 = io_scpu_8_bits_pz;
-      4'b1001:
-        casez_tmp_159 = io_scpu_9_bits_pz;
-      4'b1010:
-        casez_tmp_159 = io_scpu_10_bits_pz;
-      4'b1011:
-        casez_tmp_159 = io_scpu_11_bits_pz;
-      4'b1100:
-        casez_tmp_159 = io_scpu_12_bits_pz;
-      4'b1101:
-        casez_tmp_159 = io_scpu_13_bits_pz;
-      4'b1110:
-        casez_tmp_159 = io_scpu_14_bits_pz;
-      default:
-        casez_tmp_159 = io_scpu_15_bits_pz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_160;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_160 = io_scpu_0_bits_nx;
-      4'b0001:
-        casez_tmp_160 = io_scpu_1_bits_nx;
-      4'b0010:
-        casez_tmp_160 = io_scpu_2_bits_nx;
-      4'b0011:
-        casez_tmp_160 = io_scpu_3_bits_nx;
-      4'b0100:
-        casez_tmp_160 = io_scpu_4_bits_nx;
-      4'b0101:
-        casez_tmp_160 = io_scpu_5_bits_nx;
-      4'b0110:
-        casez_tmp_160 = io_scpu_6_bits_nx;
-      4'b0111:
-        casez_tmp_160 = io_scpu_7_bits_nx;
-      4'b1000:
-        casez_tmp_160 = io_scpu_8_bits_nx;
-      4'b1001:
-        casez_tmp_160 = io_scpu_9_bits_nx;
-      4'b1010:
-        casez_tmp_160 = io_scpu_10_bits_nx;
-      4'b1011:
-        casez_tmp_160 = io_scpu_11_bits_nx;
-      4'b1100:
-        casez_tmp_160 = io_scpu_12_bits_nx;
-      4'b1101:
-        casez_tmp_160 = io_scpu_13_bits_nx;
-      4'b1110:
-        casez_tmp_160 = io_scpu_14_bits_nx;
-      default:
-        casez_tmp_160 = io_scpu_15_bits_nx;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_161;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_161 = io_scpu_0_bits_ny;
-      4'b0001:
-        casez_tmp_161 = io_scpu_1_bits_ny;
-      4'b0010:
-        casez_tmp_161 = io_scpu_2_bits_ny;
-      4'b0011:
-        casez_tmp_161 = io_scpu_3_bits_ny;
-      4'b0100:
-        casez_tmp_161 = io_scpu_4_bits_ny;
-      4'b0101:
-        casez_tmp_161 = io_scpu_5_bits_ny;
-      4'b0110:
-        casez_tmp_161 = io_scpu_6_bits_ny;
-      4'b0111:
-        casez_tmp_161 = io_scpu_7_bits_ny;
-      4'b1000:
-        casez_tmp_161 = io_scpu_8_bits_ny;
-      4'b1001:
-        casez_tmp_161 = io_scpu_9_bits_ny;
-      4'b1010:
-        casez_tmp_161 = io_scpu_10_bits_ny;
-      4'b1011:
-        casez_tmp_161 = io_scpu_11_bits_ny;
-      4'b1100:
-        casez_tmp_161 = io_scpu_12_bits_ny;
-      4'b1101:
-        casez_tmp_161 = io_scpu_13_bits_ny;
-      4'b1110:
-        casez_tmp_161 = io_scpu_14_bits_ny;
-      default:
-        casez_tmp_161 = io_scpu_15_bits_ny;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_162;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_162 = io_scpu_0_bits_nz;
-      4'b0001:
-        casez_tmp_162 = io_scpu_1_bits_nz;
-      4'b0010:
-        casez_tmp_162 = io_scpu_2_bits_nz;
-      4'b0011:
-        casez_tmp_162 = io_scpu_3_bits_nz;
-      4'b0100:
-        casez_tmp_162 = io_scpu_4_bits_nz;
-      4'b0101:
-        casez_tmp_162 = io_scpu_5_bits_nz;
-      4'b0110:
-        casez_tmp_162 = io_scpu_6_bits_nz;
-      4'b0111:
-        casez_tmp_162 = io_scpu_7_bits_nz;
-      4'b1000:
-        casez_tmp_162 = io_scpu_8_bits_nz;
-      4'b1001:
-        casez_tmp_162 = io_scpu_9_bits_nz;
-      4'b1010:
-        casez_tmp_162 = io_scpu_10_bits_nz;
-      4'b1011:
-        casez_tmp_162 = io_scpu_11_bits_nz;
-      4'b1100:
-        casez_tmp_162 = io_scpu_12_bits_nz;
-      4'b1101:
-        casez_tmp_162 = io_scpu_13_bits_nz;
-      4'b1110:
-        casez_tmp_162 = io_scpu_14_bits_nz;
-      default:
-        casez_tmp_162 = io_scpu_15_bits_nz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_163;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_163 = io_scpu_0_bits_depth;
-      4'b0001:
-        casez_tmp_163 = io_scpu_1_bits_depth;
-      4'b0010:
-        casez_tmp_163 = io_scpu_2_bits_depth;
-      4'b0011:
-        casez_tmp_163 = io_scpu_3_bits_depth;
-      4'b0100:
-        casez_tmp_163 = io_scpu_4_bits_depth;
-      4'b0101:
-        casez_tmp_163 = io_scpu_5_bits_depth;
-      4'b0110:
-        casez_tmp_163 = io_scpu_6_bits_depth;
-      4'b0111:
-        casez_tmp_163 = io_scpu_7_bits_depth;
-      4'b1000:
-        casez_tmp_163 = io_scpu_8_bits_depth;
-      4'b1001:
-        casez_tmp_163 = io_scpu_9_bits_depth;
-      4'b1010:
-        casez_tmp_163 = io_scpu_10_bits_depth;
-      4'b1011:
-        casez_tmp_163 = io_scpu_11_bits_depth;
-      4'b1100:
-        casez_tmp_163 = io_scpu_12_bits_depth;
-      4'b1101:
-        casez_tmp_163 = io_scpu_13_bits_depth;
-      4'b1110:
-        casez_tmp_163 = io_scpu_14_bits_depth;
-      default:
-        casez_tmp_163 = io_scpu_15_bits_depth;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_164;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_164 = io_scpu_0_bits_nonFinite;
-      4'b0001:
-        casez_tmp_164 = io_scpu_1_bits_nonFinite;
-      4'b0010:
-        casez_tmp_164 = io_scpu_2_bits_nonFinite;
-      4'b0011:
-        casez_tmp_164 = io_scpu_3_bits_nonFinite;
-      4'b0100:
-        casez_tmp_164 = io_scpu_4_bits_nonFinite;
-      4'b0101:
-        casez_tmp_164 = io_scpu_5_bits_nonFinite;
-      4'b0110:
-        casez_tmp_164 = io_scpu_6_bits_nonFinite;
-      4'b0111:
-        casez_tmp_164 = io_scpu_7_bits_nonFinite;
-      4'b1000:
-        casez_tmp_164 = io_scpu_8_bits_nonFinite;
-      4'b1001:
-        casez_tmp_164 = io_scpu_9_bits_nonFinite;
-      4'b1010:
-        casez_tmp_164 = io_scpu_10_bits_nonFinite;
-      4'b1011:
-        casez_tmp_164 = io_scpu_11_bits_nonFinite;
-      4'b1100:
-        casez_tmp_164 = io_scpu_12_bits_nonFinite;
-      4'b1101:
-        casez_tmp_164 = io_scpu_13_bits_nonFinite;
-      4'b1110:
-        casez_tmp_164 = io_scpu_14_bits_nonFinite;
-      default:
-        casez_tmp_164 = io_scpu_15_bits_nonFinite;
-    endcase
-  end // always @(*)
-  reg  [4:0]  casez_tmp_165;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_165 = io_scpu_0_bits_flags;
-      4'b0001:
-        casez_tmp_165 = io_scpu_1_bits_flags;
-      4'b0010:
-        casez_tmp_165 = io_scpu_2_bits_flags;
-      4'b0011:
-        casez_tmp_165 = io_scpu_3_bits_flags;
-      4'b0100:
-        casez_tmp_165 = io_scpu_4_bits_flags;
-      4'b0101:
-        casez_tmp_165 = io_scpu_5_bits_flags;
-      4'b0110:
-        casez_tmp_165 = io_scpu_6_bits_flags;
-      4'b0111:
-        casez_tmp_165 = io_scpu_7_bits_flags;
-      4'b1000:
-        casez_tmp_165 = io_scpu_8_bits_flags;
-      4'b1001:
-        casez_tmp_165 = io_scpu_9_bits_flags;
-      4'b1010:
-        casez_tmp_165 = io_scpu_10_bits_flags;
-      4'b1011:
-        casez_tmp_165 = io_scpu_11_bits_flags;
-      4'b1100:
-        casez_tmp_165 = io_scpu_12_bits_flags;
-      4'b1101:
-        casez_tmp_165 = io_scpu_13_bits_flags;
-      4'b1110:
-        casez_tmp_165 = io_scpu_14_bits_flags;
-      default:
-        casez_tmp_165 = io_scpu_15_bits_flags;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_166;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_166 = io_scpu_0_bits_tag;
-      4'b0001:
-        casez_tmp_166 = io_scpu_1_bits_tag;
-      4'b0010:
-        casez_tmp_166 = io_scpu_2_bits_tag;
-      4'b0011:
-        casez_tmp_166 = io_scpu_3_bits_tag;
-      4'b0100:
-        casez_tmp_166 = io_scpu_4_bits_tag;
-      4'b0101:
-        casez_tmp_166 = io_scpu_5_bits_tag;
-      4'b0110:
-        casez_tmp_166 = io_scpu_6_bits_tag;
-      4'b0111:
-        casez_tmp_166 = io_scpu_7_bits_tag;
-      4'b1000:
-        casez_tmp_166 = io_scpu_8_bits_tag;
-      4'b1001:
-        casez_tmp_166 = io_scpu_9_bits_tag;
-      4'b1010:
-        casez_tmp_166 = io_scpu_10_bits_tag;
-      4'b1011:
-        casez_tmp_166 = io_scpu_11_bits_tag;
-      4'b1100:
-        casez_tmp_166 = io_scpu_12_bits_tag;
-      4'b1101:
-        casez_tmp_166 = io_scpu_13_bits_tag;
-      4'b1110:
-        casez_tmp_166 = io_scpu_14_bits_tag;
-      default:
-        casez_tmp_166 = io_scpu_15_bits_tag;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_167;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_167 = io_scpu_0_bits_hit;
-      4'b0001:
-        casez_tmp_167 = io_scpu_1_bits_hit;
-      4'b0010:
-        casez_tmp_167 = io_scpu_2_bits_hit;
-      4'b0011:
-        casez_tmp_167 = io_scpu_3_bits_hit;
-      4'b0100:
-        casez_tmp_167 = io_scpu_4_bits_hit;
-      4'b0101:
-        casez_tmp_167 = io_scpu_5_bits_hit;
-      4'b0110:
-        casez_tmp_167 = io_scpu_6_bits_hit;
-      4'b0111:
-        casez_tmp_167 = io_scpu_7_bits_hit;
-      4'b1000:
-        casez_tmp_167 = io_scpu_8_bits_hit;
-      4'b1001:
-        casez_tmp_167 = io_scpu_9_bits_hit;
-      4'b1010:
-        casez_tmp_167 = io_scpu_10_bits_hit;
-      4'b1011:
-        casez_tmp_167 = io_scpu_11_bits_hit;
-      4'b1100:
-        casez_tmp_167 = io_scpu_12_bits_hit;
-      4'b1101:
-        casez_tmp_167 = io_scpu_13_bits_hit;
-      4'b1110:
-        casez_tmp_167 = io_scpu_14_bits_hit;
-      default:
-        casez_tmp_167 = io_scpu_15_bits_hit;
-    endcase
-  end // always @(*)
-  reg  [1:0]  casez_tmp_168;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_168 = io_scpu_0_bits_kind;
-      4'b0001:
-        casez_tmp_168 = io_scpu_1_bits_kind;
-      4'b0010:
-        casez_tmp_168 = io_scpu_2_bits_kind;
-      4'b0011:
-        casez_tmp_168 = io_scpu_3_bits_kind;
-      4'b0100:
-        casez_tmp_168 = io_scpu_4_bits_kind;
-      4'b0101:
-        casez_tmp_168 = io_scpu_5_bits_kind;
-      4'b0110:
-        casez_tmp_168 = io_scpu_6_bits_kind;
-      4'b0111:
-        casez_tmp_168 = io_scpu_7_bits_kind;
-      4'b1000:
-        casez_tmp_168 = io_scpu_8_bits_kind;
-      4'b1001:
-        casez_tmp_168 = io_scpu_9_bits_kind;
-      4'b1010:
-        casez_tmp_168 = io_scpu_10_bits_kind;
-      4'b1011:
-        casez_tmp_168 = io_scpu_11_bits_kind;
-      4'b1100:
-        casez_tmp_168 = io_scpu_12_bits_kind;
-      4'b1101:
-        casez_tmp_168 = io_scpu_13_bits_kind;
-      4'b1110:
-        casez_tmp_168 = io_scpu_14_bits_kind;
-      default:
-        casez_tmp_168 = io_scpu_15_bits_kind;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_169;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_169 = io_scpu_0_bits_px;
-      4'b0001:
-        casez_tmp_169 = io_scpu_1_bits_px;
-      4'b0010:
-        casez_tmp_169 = io_scpu_2_bits_px;
-      4'b0011:
-        casez_tmp_169 = io_scpu_3_bits_px;
-      4'b0100:
-        casez_tmp_169 = io_scpu_4_bits_px;
-      4'b0101:
-        casez_tmp_169 = io_scpu_5_bits_px;
-      4'b0110:
-        casez_tmp_169 = io_scpu_6_bits_px;
-      4'b0111:
-        casez_tmp_169 = io_scpu_7_bits_px;
-      4'b1000:
-        casez_tmp_169 = io_scpu_8_bits_px;
-      4'b1001:
-        casez_tmp_169 = io_scpu_9_bits_px;
-      4'b1010:
-        casez_tmp_169 = io_scpu_10_bits_px;
-      4'b1011:
-        casez_tmp_169 = io_scpu_11_bits_px;
-      4'b1100:
-        casez_tmp_169 = io_scpu_12_bits_px;
-      4'b1101:
-        casez_tmp_169 = io_scpu_13_bits_px;
-      4'b1110:
-        casez_tmp_169 = io_scpu_14_bits_px;
-      default:
-        casez_tmp_169 = io_scpu_15_bits_px;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_170;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_170 = io_scpu_0_bits_py;
-      4'b0001:
-        casez_tmp_170 = io_scpu_1_bits_py;
-      4'b0010:
-        casez_tmp_170 = io_scpu_2_bits_py;
-      4'b0011:
-        casez_tmp_170 = io_scpu_3_bits_py;
-      4'b0100:
-        casez_tmp_170 = io_scpu_4_bits_py;
-      4'b0101:
-        casez_tmp_170 = io_scpu_5_bits_py;
-      4'b0110:
-        casez_tmp_170 = io_scpu_6_bits_py;
-      4'b0111:
-        casez_tmp_170 = io_scpu_7_bits_py;
-      4'b1000:
-        casez_tmp_170 = io_scpu_8_bits_py;
-      4'b1001:
-        casez_tmp_170 = io_scpu_9_bits_py;
-      4'b1010:
-        casez_tmp_170 = io_scpu_10_bits_py;
-      4'b1011:
-        casez_tmp_170 = io_scpu_11_bits_py;
-      4'b1100:
-        casez_tmp_170 = io_scpu_12_bits_py;
-      4'b1101:
-        casez_tmp_170 = io_scpu_13_bits_py;
-      4'b1110:
-        casez_tmp_170 = io_scpu_14_bits_py;
-      default:
-        casez_tmp_170 = io_scpu_15_bits_py;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_171;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_171 = io_scpu_0_bits_pz;
-      4'b0001:
-        casez_tmp_171 = io_scpu_1_bits_pz;
-      4'b0010:
-        casez_tmp_171 = io_scpu_2_bits_pz;
-      4'b0011:
-        casez_tmp_171 = io_scpu_3_bits_pz;
-      4'b0100:
-        casez_tmp_171 = io_scpu_4_bits_pz;
-      4'b0101:
-        casez_tmp_171 = io_scpu_5_bits_pz;
-      4'b0110:
-        casez_tmp_171 = io_scpu_6_bits_pz;
-      4'b0111:
-        casez_tmp_171 = io_scpu_7_bits_pz;
-      4'b1000:
-        casez_tmp_171 = io_scpu_8_bits_pz;
-      4'b1001:
-        casez_tmp_171 = io_scpu_9_bits_pz;
-      4'b1010:
-        casez_tmp_171 = io_scpu_10_bits_pz;
-      4'b1011:
-        casez_tmp_171 = io_scpu_11_bits_pz;
-      4'b1100:
-        casez_tmp_171 = io_scpu_12_bits_pz;
-      4'b1101:
-        casez_tmp_171 = io_scpu_13_bits_pz;
-      4'b1110:
-        casez_tmp_171 = io_scpu_14_bits_pz;
-      default:
-        casez_tmp_171 = io_scpu_15_bits_pz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_172;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_172 = io_scpu_0_bits_nx;
-      4'b0001:
-        casez_tmp_172 = io_scpu_1_bits_nx;
-      4'b0010:
-        casez_tmp_172 = io_scpu_2_bits_nx;
-      4'b0011:
-        casez_tmp_172 = io_scpu_3_bits_nx;
-      4'b0100:
-        casez_tmp_172 = io_scpu_4_bits_nx;
-      4'b0101:
-        casez_tmp_172 = io_scpu_5_bits_nx;
-      4'b0110:
-        casez_tmp_172 = io_scpu_6_bits_nx;
-      4'b0111:
-        casez_tmp_172 = io_scpu_7_bits_nx;
-      4'b1000:
-        casez_tmp_172 = io_scpu_8_bits_nx;
-      4'b1001:
-        casez_tmp_172 = io_scpu_9_bits_nx;
-      4'b1010:
-        casez_tmp_172 = io_scpu_10_bits_nx;
-      4'b1011:
-        casez_tmp_172 = io_scpu_11_bits_nx;
-      4'b1100:
-        casez_tmp_172 = io_scpu_12_bits_nx;
-      4'b1101:
-        casez_tmp_172 = io_scpu_13_bits_nx;
-      4'b1110:
-        casez_tmp_172 = io_scpu_14_bits_nx;
-      default:
-        casez_tmp_172 = io_scpu_15_bits_nx;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_173;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_173 = io_scpu_0_bits_ny;
-      4'b0001:
-        casez_tmp_173 = io_scpu_1_bits_ny;
-      4'b0010:
-        casez_tmp_173 = io_scpu_2_bits_ny;
-      4'b0011:
-        casez_tmp_173 = io_scpu_3_bits_ny;
-      4'b0100:
-        casez_tmp_173 = io_scpu_4_bits_ny;
-      4'b0101:
-        casez_tmp_173 = io_scpu_5_bits_ny;
-      4'b0110:
-        casez_tmp_173 = io_scpu_6_bits_ny;
-      4'b0111:
-        casez_tmp_173 = io_scpu_7_bits_ny;
-      4'b1000:
-        casez_tmp_173 = io_scpu_8_bits_ny;
-      4'b1001:
-        casez_tmp_173 = io_scpu_9_bits_ny;
-      4'b1010:
-        casez_tmp_173 = io_scpu_10_bits_ny;
-      4'b1011:
-        casez_tmp_173 = io_scpu_11_bits_ny;
-      4'b1100:
-        casez_tmp_173 = io_scpu_12_bits_ny;
-      4'b1101:
-        casez_tmp_173 = io_scpu_13_bits_ny;
-      4'b1110:
-        casez_tmp_173 = io_scpu_14_bits_ny;
-      default:
-        casez_tmp_173 = io_scpu_15_bits_ny;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_174;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_174 = io_scpu_0_bits_nz;
-      4'b0001:
-        casez_tmp_174 = io_scpu_1_bits_nz;
-      4'b0010:
-        casez_tmp_174 = io_scpu_2_bits_nz;
-      4'b0011:
-        casez_tmp_174 = io_scpu_3_bits_nz;
-      4'b0100:
-        casez_tmp_174 = io_scpu_4_bits_nz;
-      4'b0101:
-        casez_tmp_174 = io_scpu_5_bits_nz;
-      4'b0110:
-        casez_tmp_174 = io_scpu_6_bits_nz;
-      4'b0111:
-        casez_tmp_174 = io_scpu_7_bits_nz;
-      4'b1000:
-        casez_tmp_174 = io_scpu_8_bits_nz;
-      4'b1001:
-        casez_tmp_174 = io_scpu_9_bits_nz;
-      4'b1010:
-        casez_tmp_174 = io_scpu_10_bits_nz;
-      4'b1011:
-        casez_tmp_174 = io_scpu_11_bits_nz;
-      4'b1100:
-        casez_tmp_174 = io_scpu_12_bits_nz;
-      4'b1101:
-        casez_tmp_174 = io_scpu_13_bits_nz;
-      4'b1110:
-        casez_tmp_174 = io_scpu_14_bits_nz;
-      default:
-        casez_tmp_174 = io_scpu_15_bits_nz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_175;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_175 = io_scpu_0_bits_depth;
-      4'b0001:
-        casez_tmp_175 = io_scpu_1_bits_depth;
-      4'b0010:
-        casez_tmp_175 = io_scpu_2_bits_depth;
-      4'b0011:
-        casez_tmp_175 = io_scpu_3_bits_depth;
-      4'b0100:
-        casez_tmp_175 = io_scpu_4_bits_depth;
-      4'b0101:
-        casez_tmp_175 = io_scpu_5_bits_depth;
-      4'b0110:
-        casez_tmp_175 = io_scpu_6_bits_depth;
-      4'b0111:
-        casez_tmp_175 = io_scpu_7_bits_depth;
-      4'b1000:
-        casez_tmp_175 = io_scpu_8_bits_depth;
-      4'b1001:
-        casez_tmp_175 = io_scpu_9_bits_depth;
-      4'b1010:
-        casez_tmp_175 = io_scpu_10_bits_depth;
-      4'b1011:
-        casez_tmp_175 = io_scpu_11_bits_depth;
-      4'b1100:
-        casez_tmp_175 = io_scpu_12_bits_depth;
-      4'b1101:
-        casez_tmp_175 = io_scpu_13_bits_depth;
-      4'b1110:
-        casez_tmp_175 = io_scpu_14_bits_depth;
-      default:
-        casez_tmp_175 = io_scpu_15_bits_depth;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_176;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_176 = io_scpu_0_bits_nonFinite;
-      4'b0001:
-        casez_tmp_176 = io_scpu_1_bits_nonFinite;
-      4'b0010:
-        casez_tmp_176 = io_scpu_2_bits_nonFinite;
-      4'b0011:
-        casez_tmp_176 = io_scpu_3_bits_nonFinite;
-      4'b0100:
-        casez_tmp_176 = io_scpu_4_bits_nonFinite;
-      4'b0101:
-        casez_tmp_176 = io_scpu_5_bits_nonFinite;
-      4'b0110:
-        casez_tmp_176 = io_scpu_6_bits_nonFinite;
-      4'b0111:
-        casez_tmp_176 = io_scpu_7_bits_nonFinite;
-      4'b1000:
-        casez_tmp_176 = io_scpu_8_bits_nonFinite;
-      4'b1001:
-        casez_tmp_176 = io_scpu_9_bits_nonFinite;
-      4'b1010:
-        casez_tmp_176 = io_scpu_10_bits_nonFinite;
-      4'b1011:
-        casez_tmp_176 = io_scpu_11_bits_nonFinite;
-      4'b1100:
-        casez_tmp_176 = io_scpu_12_bits_nonFinite;
-      4'b1101:
-        casez_tmp_176 = io_scpu_13_bits_nonFinite;
-      4'b1110:
-        casez_tmp_176 = io_scpu_14_bits_nonFinite;
-      default:
-        casez_tmp_176 = io_scpu_15_bits_nonFinite;
-    endcase
-  end // always @(*)
-  reg  [4:0]  casez_tmp_177;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_177 = io_scpu_0_bits_flags;
-      4'b0001:
-        casez_tmp_177 = io_scpu_1_bits_flags;
-      4'b0010:
-        casez_tmp_177 = io_scpu_2_bits_flags;
-      4'b0011:
-        casez_tmp_177 = io_scpu_3_bits_flags;
-      4'b0100:
-        casez_tmp_177 = io_scpu_4_bits_flags;
-      4'b0101:
-        casez_tmp_177 = io_scpu_5_bits_flags;
-      4'b0110:
-        casez_tmp_177 = io_scpu_6_bits_flags;
-      4'b0111:
-        casez_tmp_177 = io_scpu_7_bits_flags;
-      4'b1000:
-        casez_tmp_177 = io_scpu_8_bits_flags;
-      4'b1001:
-        casez_tmp_177 = io_scpu_9_bits_flags;
-      4'b1010:
-        casez_tmp_177 = io_scpu_10_bits_flags;
-      4'b1011:
-        casez_tmp_177 = io_scpu_11_bits_flags;
-      4'b1100:
-        casez_tmp_177 = io_scpu_12_bits_flags;
-      4'b1101:
-        casez_tmp_177 = io_scpu_13_bits_flags;
-      4'b1110:
-        casez_tmp_177 = io_scpu_14_bits_flags;
-      default:
-        casez_tmp_177 = io_scpu_15_bits_flags;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_178;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_178 = io_scpu_0_bits_tag;
-      4'b0001:
-        casez_tmp_178 = io_scpu_1_bits_tag;
-      4'b0010:
-        casez_tmp_178 = io_scpu_2_bits_tag;
-      4'b0011:
-        casez_tmp_178 = io_scpu_3_bits_tag;
-      4'b0100:
-        casez_tmp_178 = io_scpu_4_bits_tag;
-      4'b0101:
-        casez_tmp_178 = io_scpu_5_bits_tag;
-      4'b0110:
-        casez_tmp_178 = io_scpu_6_bits_tag;
-      4'b0111:
-        casez_tmp_178 = io_scpu_7_bits_tag;
-      4'b1000:
-        casez_tmp_178 = io_scpu_8_bits_tag;
-      4'b1001:
-        casez_tmp_178 = io_scpu_9_bits_tag;
-      4'b1010:
-        casez_tmp_178 = io_scpu_10_bits_tag;
-      4'b1011:
-        casez_tmp_178 = io_scpu_11_bits_tag;
-      4'b1100:
-        casez_tmp_178 = io_scpu_12_bits_tag;
-      4'b1101:
-        casez_tmp_178 = io_scpu_13_bits_tag;
-      4'b1110:
-        casez_tmp_178 = io_scpu_14_bits_tag;
-      default:
-        casez_tmp_178 = io_scpu_15_bits_tag;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_179;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_179 = io_scpu_0_bits_hit;
-      4'b0001:
-        casez_tmp_179 = io_scpu_1_bits_hit;
-      4'b0010:
-        casez_tmp_179 = io_scpu_2_bits_hit;
-      4'b0011:
-        casez_tmp_179 = io_scpu_3_bits_hit;
-      4'b0100:
-        casez_tmp_179 = io_scpu_4_bits_hit;
-      4'b0101:
-        casez_tmp_179 = io_scpu_5_bits_hit;
-      4'b0110:
-        casez_tmp_179 = io_scpu_6_bits_hit;
-      4'b0111:
-        casez_tmp_179 = io_scpu_7_bits_hit;
-      4'b1000:
-        casez_tmp_179 = io_scpu_8_bits_hit;
-      4'b1001:
-        casez_tmp_179 = io_scpu_9_bits_hit;
-      4'b1010:
-        casez_tmp_179 = io_scpu_10_bits_hit;
-      4'b1011:
-        casez_tmp_179 = io_scpu_11_bits_hit;
-      4'b1100:
-        casez_tmp_179 = io_scpu_12_bits_hit;
-      4'b1101:
-        casez_tmp_179 = io_scpu_13_bits_hit;
-      4'b1110:
-        casez_tmp_179 = io_scpu_14_bits_hit;
-      default:
-        casez_tmp_179 = io_scpu_15_bits_hit;
-    endcase
-  end // always @(*)
-  reg  [1:0]  casez_tmp_180;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_180 = io_scpu_0_bits_kind;
-      4'b0001:
-        casez_tmp_180 = io_scpu_1_bits_kind;
-      4'b0010:
-        casez_tmp_180 = io_scpu_2_bits_kind;
-      4'b0011:
-        casez_tmp_180 = io_scpu_3_bits_kind;
-      4'b0100:
-        casez_tmp_180 = io_scpu_4_bits_kind;
-      4'b0101:
-        casez_tmp_180 = io_scpu_5_bits_kind;
-      4'b0110:
-        casez_tmp_180 = io_scpu_6_bits_kind;
-      4'b0111:
-        casez_tmp_180 = io_scpu_7_bits_kind;
-      4'b1000:
-        casez_tmp_180 = io_scpu_8_bits_kind;
-      4'b1001:
-        casez_tmp_180 = io_scpu_9_bits_kind;
-      4'b1010:
-        casez_tmp_180 = io_scpu_10_bits_kind;
-      4'b1011:
-        casez_tmp_180 = io_scpu_11_bits_kind;
-      4'b1100:
-        casez_tmp_180 = io_scpu_12_bits_kind;
-      4'b1101:
-        casez_tmp_180 = io_scpu_13_bits_kind;
-      4'b1110:
-        casez_tmp_180 = io_scpu_14_bits_kind;
-      default:
-        casez_tmp_180 = io_scpu_15_bits_kind;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_181;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_181 = io_scpu_0_bits_px;
-      4'b0001:
-        casez_tmp_181 = io_scpu_1_bits_px;
-      4'b0010:
-        casez_tmp_181 = io_scpu_2_bits_px;
-      4'b0011:
-        casez_tmp_181 = io_scpu_3_bits_px;
-      4'b0100:
-        casez_tmp_181 = io_scpu_4_bits_px;
-      4'b0101:
-        casez_tmp_181 = io_scpu_5_bits_px;
-      4'b0110:
-        casez_tmp_181 = io_scpu_6_bits_px;
-      4'b0111:
-        casez_tmp_181 = io_scpu_7_bits_px;
-      4'b1000:
-        casez_tmp_181 = io_scpu_8_bits_px;
-      4'b1001:
-        casez_tmp_181 = io_scpu_9_bits_px;
-      4'b1010:
-        casez_tmp_181 = io_scpu_10_bits_px;
-      4'b1011:
-        casez_tmp_181 = io_scpu_11_bits_px;
-      4'b1100:
-        casez_tmp_181 = io_scpu_12_bits_px;
-      4'b1101:
-        casez_tmp_181 = io_scpu_13_bits_px;
-      4'b1110:
-        casez_tmp_181 = io_scpu_14_bits_px;
-      default:
-        casez_tmp_181 = io_scpu_15_bits_px;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_182;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_182 = io_scpu_0_bits_py;
-      4'b0001:
-        casez_tmp_182 = io_scpu_1_bits_py;
-      4'b0010:
-        casez_tmp_182 = io_scpu_2_bits_py;
-      4'b0011:
-        casez_tmp_182 = io_scpu_3_bits_py;
-      4'b0100:
-        casez_tmp_182 = io_scpu_4_bits_py;
-      4'b0101:
-        casez_tmp_182 = io_scpu_5_bits_py;
-      4'b0110:
-        casez_tmp_182 = io_scpu_6_bits_py;
-      4'b0111:
-        casez_tmp_182 = io_scpu_7_bits_py;
-      4'b1000:
-        casez_tmp_182 = io_scpu_8_bits_py;
-      4'b1001:
-        casez_tmp_182 = io_scpu_9_bits_py;
-      4'b1010:
-        casez_tmp_182 = io_scpu_10_bits_py;
-      4'b1011:
-        casez_tmp_182 = io_scpu_11_bits_py;
-      4'b1100:
-        casez_tmp_182 = io_scpu_12_bits_py;
-      4'b1101:
-        casez_tmp_182 = io_scpu_13_bits_py;
-      4'b1110:
-        casez_tmp_182 = io_scpu_14_bits_py;
-      default:
-        casez_tmp_182 = io_scpu_15_bits_py;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_183;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_183 = io_scpu_0_bits_pz;
-      4'b0001:
-        casez_tmp_183 = io_scpu_1_bits_pz;
-      4'b0010:
-        casez_tmp_183 = io_scpu_2_bits_pz;
-      4'b0011:
-        casez_tmp_183 = io_scpu_3_bits_pz;
-      4'b0100:
-        casez_tmp_183 = io_scpu_4_bits_pz;
-      4'b0101:
-        casez_tmp_183 = io_scpu_5_bits_pz;
-      4'b0110:
-        casez_tmp_183 = io_scpu_6_bits_pz;
-      4'b0111:
-        casez_tmp_183 = io_scpu_7_bits_pz;
-      4'b1000:
-        casez_tmp_183 = io_scpu_8_bits_pz;
-      4'b1001:
-        casez_tmp_183 = io_scpu_9_bits_pz;
-      4'b1010:
-        casez_tmp_183 = io_scpu_10_bits_pz;
-      4'b1011:
-        casez_tmp_183 = io_scpu_11_bits_pz;
-      4'b1100:
-        casez_tmp_183 = io_scpu_12_bits_pz;
-      4'b1101:
-        casez_tmp_183 = io_scpu_13_bits_pz;
-      4'b1110:
-        casez_tmp_183 = io_scpu_14_bits_pz;
-      default:
-        casez_tmp_183 = io_scpu_15_bits_pz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_184;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_184 = io_scpu_0_bits_nx;
-      4'b0001:
-        casez_tmp_184 = io_scpu_1_bits_nx;
-      4'b0010:
-        casez_tmp_184 = io_scpu_2_bits_nx;
-      4'b0011:
-        casez_tmp_184 = io_scpu_3_bits_nx;
-      4'b0100:
-        casez_tmp_184 = io_scpu_4_bits_nx;
-      4'b0101:
-        casez_tmp_184 = io_scpu_5_bits_nx;
-      4'b0110:
-        casez_tmp_184 = io_scpu_6_bits_nx;
-      4'b0111:
-        casez_tmp_184 = io_scpu_7_bits_nx;
-      4'b1000:
-        casez_tmp_184 = io_scpu_8_bits_nx;
-      4'b1001:
-        casez_tmp_184 = io_scpu_9_bits_nx;
-      4'b1010:
-        casez_tmp_184 = io_scpu_10_bits_nx;
-      4'b1011:
-        casez_tmp_184 = io_scpu_11_bits_nx;
-      4'b1100:
-        casez_tmp_184 = io_scpu_12_bits_nx;
-      4'b1101:
-        casez_tmp_184 = io_scpu_13_bits_nx;
-      4'b1110:
-        casez_tmp_184 = io_scpu_14_bits_nx;
-      default:
-        casez_tmp_184 = io_scpu_15_bits_nx;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_185;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_185 = io_scpu_0_bits_ny;
-      4'b0001:
-        casez_tmp_185 = io_scpu_1_bits_ny;
-      4'b0010:
-        casez_tmp_185 = io_scpu_2_bits_ny;
-      4'b0011:
-        casez_tmp_185 = io_scpu_3_bits_ny;
-      4'b0100:
-        casez_tmp_185 = io_scpu_4_bits_ny;
-      4'b0101:
-        casez_tmp_185 = io_scpu_5_bits_ny;
-      4'b0110:
-        casez_tmp_185 = io_scpu_6_bits_ny;
-      4'b0111:
-        casez_tmp_185 = io_scpu_7_bits_ny;
-      4'b1000:
-        casez_tmp_185 = io_scpu_8_bits_ny;
-      4'b1001:
-        casez_tmp_185 = io_scpu_9_bits_ny;
-      4'b1010:
-        casez_tmp_185 = io_scpu_10_bits_ny;
-      4'b1011:
-        casez_tmp_185 = io_scpu_11_bits_ny;
-      4'b1100:
-        casez_tmp_185 = io_scpu_12_bits_ny;
-      4'b1101:
-        casez_tmp_185 = io_scpu_13_bits_ny;
-      4'b1110:
-        casez_tmp_185 = io_scpu_14_bits_ny;
-      default:
-        casez_tmp_185 = io_scpu_15_bits_ny;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_186;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_186 = io_scpu_0_bits_nz;
-      4'b0001:
-        casez_tmp_186 = io_scpu_1_bits_nz;
-      4'b0010:
-        casez_tmp_186 = io_scpu_2_bits_nz;
-      4'b0011:
-        casez_tmp_186 = io_scpu_3_bits_nz;
-      4'b0100:
-        casez_tmp_186 = io_scpu_4_bits_nz;
-      4'b0101:
-        casez_tmp_186 = io_scpu_5_bits_nz;
-      4'b0110:
-        casez_tmp_186 = io_scpu_6_bits_nz;
-      4'b0111:
-        casez_tmp_186 = io_scpu_7_bits_nz;
-      4'b1000:
-        casez_tmp_186 = io_scpu_8_bits_nz;
-      4'b1001:
-        casez_tmp_186 = io_scpu_9_bits_nz;
-      4'b1010:
-        casez_tmp_186 = io_scpu_10_bits_nz;
-      4'b1011:
-        casez_tmp_186 = io_scpu_11_bits_nz;
-      4'b1100:
-        casez_tmp_186 = io_scpu_12_bits_nz;
-      4'b1101:
-        casez_tmp_186 = io_scpu_13_bits_nz;
-      4'b1110:
-        casez_tmp_186 = io_scpu_14_bits_nz;
-      default:
-        casez_tmp_186 = io_scpu_15_bits_nz;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_187;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_187 = io_scpu_0_bits_depth;
-      4'b0001:
-        casez_tmp_187 = io_scpu_1_bits_depth;
-      4'b0010:
-        casez_tmp_187 = io_scpu_2_bits_depth;
-      4'b0011:
-        casez_tmp_187 = io_scpu_3_bits_depth;
-      4'b0100:
-        casez_tmp_187 = io_scpu_4_bits_depth;
-      4'b0101:
-        casez_tmp_187 = io_scpu_5_bits_depth;
-      4'b0110:
-        casez_tmp_187 = io_scpu_6_bits_depth;
-      4'b0111:
-        casez_tmp_187 = io_scpu_7_bits_depth;
-      4'b1000:
-        casez_tmp_187 = io_scpu_8_bits_depth;
-      4'b1001:
-        casez_tmp_187 = io_scpu_9_bits_depth;
-      4'b1010:
-        casez_tmp_187 = io_scpu_10_bits_depth;
-      4'b1011:
-        casez_tmp_187 = io_scpu_11_bits_depth;
-      4'b1100:
-        casez_tmp_187 = io_scpu_12_bits_depth;
-      4'b1101:
-        casez_tmp_187 = io_scpu_13_bits_depth;
-      4'b1110:
-        casez_tmp_187 = io_scpu_14_bits_depth;
-      default:
-        casez_tmp_187 = io_scpu_15_bits_depth;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_188;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_188 = io_scpu_0_bits_nonFinite;
-      4'b0001:
-        casez_tmp_188 = io_scpu_1_bits_nonFinite;
-      4'b0010:
-        casez_tmp_188 = io_scpu_2_bits_nonFinite;
-      4'b0011:
-        casez_tmp_188 = io_scpu_3_bits_nonFinite;
-      4'b0100:
-        casez_tmp_188 = io_scpu_4_bits_nonFinite;
-      4'b0101:
-        casez_tmp_188 = io_scpu_5_bits_nonFinite;
-      4'b0110:
-        casez_tmp_188 = io_scpu_6_bits_nonFinite;
-      4'b0111:
-        casez_tmp_188 = io_scpu_7_bits_nonFinite;
-      4'b1000:
-        casez_tmp_188 = io_scpu_8_bits_nonFinite;
-      4'b1001:
-        casez_tmp_188 = io_scpu_9_bits_nonFinite;
-      4'b1010:
-        casez_tmp_188 = io_scpu_10_bits_nonFinite;
-      4'b1011:
-        casez_tmp_188 = io_scpu_11_bits_nonFinite;
-      4'b1100:
-        casez_tmp_188 = io_scpu_12_bits_nonFinite;
-      4'b1101:
-        casez_tmp_188 = io_scpu_13_bits_nonFinite;
-      4'b1110:
-        casez_tmp_188 = io_scpu_14_bits_nonFinite;
-      default:
-        casez_tmp_188 = io_scpu_15_bits_nonFinite;
-    endcase
-  end // always @(*)
-  reg  [4:0]  casez_tmp_189;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_189 = io_scpu_0_bits_flags;
-      4'b0001:
-        casez_tmp_189 = io_scpu_1_bits_flags;
-      4'b0010:
-        casez_tmp_189 = io_scpu_2_bits_flags;
-      4'b0011:
-        casez_tmp_189 = io_scpu_3_bits_flags;
-      4'b0100:
-        casez_tmp_189 = io_scpu_4_bits_flags;
-      4'b0101:
-        casez_tmp_189 = io_scpu_5_bits_flags;
-      4'b0110:
-        casez_tmp_189 = io_scpu_6_bits_flags;
-      4'b0111:
-        casez_tmp_189 = io_scpu_7_bits_flags;
-      4'b1000:
-        casez_tmp_189 = io_scpu_8_bits_flags;
-      4'b1001:
-        casez_tmp_189 = io_scpu_9_bits_flags;
-      4'b1010:
-        casez_tmp_189 = io_scpu_10_bits_flags;
-      4'b1011:
-        casez_tmp_189 = io_scpu_11_bits_flags;
-      4'b1100:
-        casez_tmp_189 = io_scpu_12_bits_flags;
-      4'b1101:
-        casez_tmp_189 = io_scpu_13_bits_flags;
-      4'b1110:
-        casez_tmp_189 = io_scpu_14_bits_flags;
-      default:
-        casez_tmp_189 = io_scpu_15_bits_flags;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_190;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_190 = io_scpu_0_bits_tag;
-      4'b0001:
-        casez_tmp_190 = io_scpu_1_bits_tag;
-      4'b0010:
-        casez_tmp_190 = io_scpu_2_bits_tag;
-      4'b0011:
-        casez_tmp_190 = io_scpu_3_bits_tag;
-      4'b0100:
-        casez_tmp_190 = io_scpu_4_bits_tag;
-      4'b0101:
-        casez_tmp_190 = io_scpu_5_bits_tag;
-      4'b0110:
-        casez_tmp_190 = io_scpu_6_bits_tag;
-      4'b0111:
-        casez_tmp_190 = io_scpu_7_bits_tag;
-      4'b1000:
-        casez_tmp_190 = io_scpu_8_bits_tag;
-      4'b1001:
-        casez_tmp_190 = io_scpu_9_bits_tag;
-      4'b1010:
-        casez_tmp_190 = io_scpu_10_bits_tag;
-      4'b1011:
-        casez_tmp_190 = io_scpu_11_bits_tag;
-      4'b1100:
-        casez_tmp_190 = io_scpu_12_bits_tag;
-      4'b1101:
-        casez_tmp_190 = io_scpu_13_bits_tag;
-      4'b1110:
-        casez_tmp_190 = io_scpu_14_bits_tag;
-      default:
-        casez_tmp_190 = io_scpu_15_bits_tag;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_191;
-  always @(*) begin
-    casez (io_groups_bits_base)
-      4'b0000:
-        casez_tmp_191 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_191 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_191 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_191 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_191 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_191 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_191 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_191 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_191 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_191 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_191 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_191 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_191 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_191 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_191 = io_scpu_14_valid;
-      default:
-        casez_tmp_191 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_192;
-  always @(*) begin
-    casez (scpuAt_1[3:0])
-      4'b0000:
-        casez_tmp_192 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_192 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_192 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_192 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_192 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_192 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_192 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_192 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_192 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_192 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_192 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_192 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_192 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_192 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_192 = io_scpu_14_valid;
-      default:
-        casez_tmp_192 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_193;
-  always @(*) begin
-    casez (scpuAt_2[3:0])
-      4'b0000:
-        casez_tmp_193 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_193 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_193 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_193 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_193 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_193 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_193 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_193 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_193 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_193 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_193 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_193 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_193 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_193 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_193 = io_scpu_14_valid;
-      default:
-        casez_tmp_193 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_194;
-  always @(*) begin
-    casez (scpuAt_3[3:0])
-      4'b0000:
-        casez_tmp_194 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_194 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_194 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_194 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_194 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_194 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_194 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_194 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_194 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_194 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_194 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_194 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_194 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_194 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_194 = io_scpu_14_valid;
-      default:
-        casez_tmp_194 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_195;
-  always @(*) begin
-    casez (scpuAt_4[3:0])
-      4'b0000:
-        casez_tmp_195 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_195 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_195 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_195 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_195 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_195 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_195 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_195 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_195 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_195 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_195 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_195 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_195 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_195 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_195 = io_scpu_14_valid;
-      default:
-        casez_tmp_195 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_196;
-  always @(*) begin
-    casez (scpuAt_5[3:0])
-      4'b0000:
-        casez_tmp_196 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_196 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_196 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_196 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_196 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_196 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_196 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_196 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_196 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_196 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_196 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_196 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_196 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_196 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_196 = io_scpu_14_valid;
-      default:
-        casez_tmp_196 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_197;
-  always @(*) begin
-    casez (scpuAt_6[3:0])
-      4'b0000:
-        casez_tmp_197 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_197 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_197 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_197 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_197 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_197 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_197 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_197 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_197 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_197 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_197 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_197 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_197 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_197 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_197 = io_scpu_14_valid;
-      default:
-        casez_tmp_197 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_198;
-  always @(*) begin
-    casez (scpuAt_7[3:0])
-      4'b0000:
-        casez_tmp_198 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_198 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_198 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_198 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_198 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_198 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_198 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_198 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_198 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_198 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_198 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_198 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_198 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_198 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_198 = io_scpu_14_valid;
-      default:
-        casez_tmp_198 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_199;
-  always @(*) begin
     casez (scpuAt_8[3:0])
       4'b0000:
-        casez_tmp_199 = io_scpu_0_valid;
+        casez_tmp_119 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_199 = io_scpu_1_valid;
+        casez_tmp_119 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_199 = io_scpu_2_valid;
+        casez_tmp_119 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_199 = io_scpu_3_valid;
+        casez_tmp_119 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_199 = io_scpu_4_valid;
+        casez_tmp_119 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_199 = io_scpu_5_valid;
+        casez_tmp_119 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_199 = io_scpu_6_valid;
+        casez_tmp_119 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_199 = io_scpu_7_valid;
+        casez_tmp_119 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_199 = io_scpu_8_valid;
+        casez_tmp_119 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_199 = io_scpu_9_valid;
+        casez_tmp_119 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_199 = io_scpu_10_valid;
+        casez_tmp_119 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_199 = io_scpu_11_valid;
+        casez_tmp_119 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_199 = io_scpu_12_valid;
+        casez_tmp_119 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_199 = io_scpu_13_valid;
+        casez_tmp_119 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_199 = io_scpu_14_valid;
+        casez_tmp_119 = io_scpu_14_valid;
       default:
-        casez_tmp_199 = io_scpu_15_valid;
+        casez_tmp_119 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg         casez_tmp_200;
+  reg         casez_tmp_120;
   always @(*) begin
     casez (scpuAt_9[3:0])
       4'b0000:
-        casez_tmp_200 = io_scpu_0_valid;
+        casez_tmp_120 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_200 = io_scpu_1_valid;
+        casez_tmp_120 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_200 = io_scpu_2_valid;
+        casez_tmp_120 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_200 = io_scpu_3_valid;
+        casez_tmp_120 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_200 = io_scpu_4_valid;
+        casez_tmp_120 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_200 = io_scpu_5_valid;
+        casez_tmp_120 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_200 = io_scpu_6_valid;
+        casez_tmp_120 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_200 = io_scpu_7_valid;
+        casez_tmp_120 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_200 = io_scpu_8_valid;
+        casez_tmp_120 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_200 = io_scpu_9_valid;
+        casez_tmp_120 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_200 = io_scpu_10_valid;
+        casez_tmp_120 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_200 = io_scpu_11_valid;
+        casez_tmp_120 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_200 = io_scpu_12_valid;
+        casez_tmp_120 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_200 = io_scpu_13_valid;
+        casez_tmp_120 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_200 = io_scpu_14_valid;
+        casez_tmp_120 = io_scpu_14_valid;
       default:
-        casez_tmp_200 = io_scpu_15_valid;
+        casez_tmp_120 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg         casez_tmp_201;
+  reg         casez_tmp_121;
   always @(*) begin
     casez (scpuAt_10[3:0])
       4'b0000:
-        casez_tmp_201 = io_scpu_0_valid;
+        casez_tmp_121 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_201 = io_scpu_1_valid;
+        casez_tmp_121 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_201 = io_scpu_2_valid;
+        casez_tmp_121 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_201 = io_scpu_3_valid;
+        casez_tmp_121 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_201 = io_scpu_4_valid;
+        casez_tmp_121 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_201 = io_scpu_5_valid;
+        casez_tmp_121 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_201 = io_scpu_6_valid;
+        casez_tmp_121 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_201 = io_scpu_7_valid;
+        casez_tmp_121 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_201 = io_scpu_8_valid;
+        casez_tmp_121 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_201 = io_scpu_9_valid;
+        casez_tmp_121 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_201 = io_scpu_10_valid;
+        casez_tmp_121 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_201 = io_scpu_11_valid;
+        casez_tmp_121 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_201 = io_scpu_12_valid;
+        casez_tmp_121 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_201 = io_scpu_13_valid;
+        casez_tmp_121 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_201 = io_scpu_14_valid;
+        casez_tmp_121 = io_scpu_14_valid;
       default:
-        casez_tmp_201 = io_scpu_15_valid;
+        casez_tmp_121 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg         casez_tmp_202;
+  reg         casez_tmp_122;
   always @(*) begin
     casez (scpuAt_11[3:0])
       4'b0000:
-        casez_tmp_202 = io_scpu_0_valid;
+        casez_tmp_122 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_202 = io_scpu_1_valid;
+        casez_tmp_122 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_202 = io_scpu_2_valid;
+        casez_tmp_122 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_202 = io_scpu_3_valid;
+        casez_tmp_122 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_202 = io_scpu_4_valid;
+        casez_tmp_122 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_202 = io_scpu_5_valid;
+        casez_tmp_122 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_202 = io_scpu_6_valid;
+        casez_tmp_122 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_202 = io_scpu_7_valid;
+        casez_tmp_122 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_202 = io_scpu_8_valid;
+        casez_tmp_122 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_202 = io_scpu_9_valid;
+        casez_tmp_122 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_202 = io_scpu_10_valid;
+        casez_tmp_122 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_202 = io_scpu_11_valid;
+        casez_tmp_122 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_202 = io_scpu_12_valid;
+        casez_tmp_122 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_202 = io_scpu_13_valid;
+        casez_tmp_122 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_202 = io_scpu_14_valid;
+        casez_tmp_122 = io_scpu_14_valid;
       default:
-        casez_tmp_202 = io_scpu_15_valid;
+        casez_tmp_122 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg         casez_tmp_203;
+  reg         casez_tmp_123;
   always @(*) begin
     casez (scpuAt_12[3:0])
       4'b0000:
-        casez_tmp_203 = io_scpu_0_valid;
+        casez_tmp_123 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_203 = io_scpu_1_valid;
+        casez_tmp_123 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_203 = io_scpu_2_valid;
+        casez_tmp_123 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_203 = io_scpu_3_valid;
+        casez_tmp_123 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_203 = io_scpu_4_valid;
+        casez_tmp_123 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_203 = io_scpu_5_valid;
+        casez_tmp_123 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_203 = io_scpu_6_valid;
+        casez_tmp_123 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_203 = io_scpu_7_valid;
+        casez_tmp_123 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_203 = io_scpu_8_valid;
+        casez_tmp_123 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_203 = io_scpu_9_valid;
+        casez_tmp_123 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_203 = io_scpu_10_valid;
+        casez_tmp_123 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_203 = io_scpu_11_valid;
+        casez_tmp_123 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_203 = io_scpu_12_valid;
+        casez_tmp_123 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_203 = io_scpu_13_valid;
+        casez_tmp_123 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_203 = io_scpu_14_valid;
+        casez_tmp_123 = io_scpu_14_valid;
       default:
-        casez_tmp_203 = io_scpu_15_valid;
+        casez_tmp_123 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg         casez_tmp_204;
+  reg         casez_tmp_124;
   always @(*) begin
     casez (scpuAt_13[3:0])
       4'b0000:
-        casez_tmp_204 = io_scpu_0_valid;
+        casez_tmp_124 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_204 = io_scpu_1_valid;
+        casez_tmp_124 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_204 = io_scpu_2_valid;
+        casez_tmp_124 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_204 = io_scpu_3_valid;
+        casez_tmp_124 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_204 = io_scpu_4_valid;
+        casez_tmp_124 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_204 = io_scpu_5_valid;
+        casez_tmp_124 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_204 = io_scpu_6_valid;
+        casez_tmp_124 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_204 = io_scpu_7_valid;
+        casez_tmp_124 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_204 = io_scpu_8_valid;
+        casez_tmp_124 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_204 = io_scpu_9_valid;
+        casez_tmp_124 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_204 = io_scpu_10_valid;
+        casez_tmp_124 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_204 = io_scpu_11_valid;
+        casez_tmp_124 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_204 = io_scpu_12_valid;
+        casez_tmp_124 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_204 = io_scpu_13_valid;
+        casez_tmp_124 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_204 = io_scpu_14_valid;
+        casez_tmp_124 = io_scpu_14_valid;
       default:
-        casez_tmp_204 = io_scpu_15_valid;
+        casez_tmp_124 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg         casez_tmp_205;
+  reg         casez_tmp_125;
   always @(*) begin
     casez (scpuAt_14[3:0])
       4'b0000:
-        casez_tmp_205 = io_scpu_0_valid;
+        casez_tmp_125 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_205 = io_scpu_1_valid;
+        casez_tmp_125 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_205 = io_scpu_2_valid;
+        casez_tmp_125 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_205 = io_scpu_3_valid;
+        casez_tmp_125 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_205 = io_scpu_4_valid;
+        casez_tmp_125 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_205 = io_scpu_5_valid;
+        casez_tmp_125 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_205 = io_scpu_6_valid;
+        casez_tmp_125 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_205 = io_scpu_7_valid;
+        casez_tmp_125 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_205 = io_scpu_8_valid;
+        casez_tmp_125 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_205 = io_scpu_9_valid;
+        casez_tmp_125 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_205 = io_scpu_10_valid;
+        casez_tmp_125 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_205 = io_scpu_11_valid;
+        casez_tmp_125 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_205 = io_scpu_12_valid;
+        casez_tmp_125 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_205 = io_scpu_13_valid;
+        casez_tmp_125 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_205 = io_scpu_14_valid;
+        casez_tmp_125 = io_scpu_14_valid;
       default:
-        casez_tmp_205 = io_scpu_15_valid;
+        casez_tmp_125 = io_scpu_15_valid;
     endcase
   end // always @(*)
-  reg         casez_tmp_206;
+  reg         casez_tmp_126;
   always @(*) begin
     casez (scpuAt_15[3:0])
       4'b0000:
-        casez_tmp_206 = io_scpu_0_valid;
+        casez_tmp_126 = io_scpu_0_valid;
       4'b0001:
-        casez_tmp_206 = io_scpu_1_valid;
+        casez_tmp_126 = io_scpu_1_valid;
       4'b0010:
-        casez_tmp_206 = io_scpu_2_valid;
+        casez_tmp_126 = io_scpu_2_valid;
       4'b0011:
-        casez_tmp_206 = io_scpu_3_valid;
+        casez_tmp_126 = io_scpu_3_valid;
       4'b0100:
-        casez_tmp_206 = io_scpu_4_valid;
+        casez_tmp_126 = io_scpu_4_valid;
       4'b0101:
-        casez_tmp_206 = io_scpu_5_valid;
+        casez_tmp_126 = io_scpu_5_valid;
       4'b0110:
-        casez_tmp_206 = io_scpu_6_valid;
+        casez_tmp_126 = io_scpu_6_valid;
       4'b0111:
-        casez_tmp_206 = io_scpu_7_valid;
+        casez_tmp_126 = io_scpu_7_valid;
       4'b1000:
-        casez_tmp_206 = io_scpu_8_valid;
+        casez_tmp_126 = io_scpu_8_valid;
       4'b1001:
-        casez_tmp_206 = io_scpu_9_valid;
+        casez_tmp_126 = io_scpu_9_valid;
       4'b1010:
-        casez_tmp_206 = io_scpu_10_valid;
+        casez_tmp_126 = io_scpu_10_valid;
       4'b1011:
-        casez_tmp_206 = io_scpu_11_valid;
+        casez_tmp_126 = io_scpu_11_valid;
       4'b1100:
-        casez_tmp_206 = io_scpu_12_valid;
+        casez_tmp_126 = io_scpu_12_valid;
       4'b1101:
-        casez_tmp_206 = io_scpu_13_valid;
+        casez_tmp_126 = io_scpu_13_valid;
       4'b1110:
-        casez_tmp_206 = io_scpu_14_valid;
+        casez_tmp_126 = io_scpu_14_valid;
       default:
-        casez_tmp_206 = io_scpu_15_valid;
+        casez_tmp_126 = io_scpu_15_valid;
     endcase
   end // always @(*)
   wire        active_0 = io_groups_valid & sp == 5'h0 & (|io_groups_bits_cnt);
@@ -15744,21 +12706,21 @@ module ContactCollector_n16_default(
   wire        active_14 = io_groups_valid & sp < 5'hF & io_groups_bits_cnt > 5'hE;
   wire        active_15 = io_groups_valid & ~(sp[4]) & io_groups_bits_cnt[4];
   wire        hit_0 = ~(io_groups_bits_invalid[0]) & casez_tmp;
-  wire        hit_1 = ~(io_groups_bits_invalid[1]) & casez_tmp_11;
-  wire        hit_2 = ~(io_groups_bits_invalid[2]) & casez_tmp_23;
-  wire        hit_3 = ~(io_groups_bits_invalid[3]) & casez_tmp_35;
-  wire        hit_4 = ~(io_groups_bits_invalid[4]) & casez_tmp_47;
-  wire        hit_5 = ~(io_groups_bits_invalid[5]) & casez_tmp_59;
-  wire        hit_6 = ~(io_groups_bits_invalid[6]) & casez_tmp_71;
-  wire        hit_7 = ~(io_groups_bits_invalid[7]) & casez_tmp_83;
-  wire        hit_8 = ~(io_groups_bits_invalid[8]) & casez_tmp_95;
-  wire        hit_9 = ~(io_groups_bits_invalid[9]) & casez_tmp_107;
-  wire        hit_10 = ~(io_groups_bits_invalid[10]) & casez_tmp_119;
-  wire        hit_11 = ~(io_groups_bits_invalid[11]) & casez_tmp_131;
-  wire        hit_12 = ~(io_groups_bits_invalid[12]) & casez_tmp_143;
-  wire        hit_13 = ~(io_groups_bits_invalid[13]) & casez_tmp_155;
-  wire        hit_14 = ~(io_groups_bits_invalid[14]) & casez_tmp_167;
-  wire        hit_15 = ~(io_groups_bits_invalid[15]) & casez_tmp_179;
+  wire        hit_1 = ~(io_groups_bits_invalid[1]) & casez_tmp_6;
+  wire        hit_2 = ~(io_groups_bits_invalid[2]) & casez_tmp_13;
+  wire        hit_3 = ~(io_groups_bits_invalid[3]) & casez_tmp_20;
+  wire        hit_4 = ~(io_groups_bits_invalid[4]) & casez_tmp_27;
+  wire        hit_5 = ~(io_groups_bits_invalid[5]) & casez_tmp_34;
+  wire        hit_6 = ~(io_groups_bits_invalid[6]) & casez_tmp_41;
+  wire        hit_7 = ~(io_groups_bits_invalid[7]) & casez_tmp_48;
+  wire        hit_8 = ~(io_groups_bits_invalid[8]) & casez_tmp_55;
+  wire        hit_9 = ~(io_groups_bits_invalid[9]) & casez_tmp_62;
+  wire        hit_10 = ~(io_groups_bits_invalid[10]) & casez_tmp_69;
+  wire        hit_11 = ~(io_groups_bits_invalid[11]) & casez_tmp_76;
+  wire        hit_12 = ~(io_groups_bits_invalid[12]) & casez_tmp_83;
+  wire        hit_13 = ~(io_groups_bits_invalid[13]) & casez_tmp_90;
+  wire        hit_14 = ~(io_groups_bits_invalid[14]) & casez_tmp_97;
+  wire        hit_15 = ~(io_groups_bits_invalid[15]) & casez_tmp_104;
   wire        want_0 = active_0 & (io_dense | hit_0);
   wire        want_1 = active_1 & (io_dense | hit_1);
   wire        want_2 = active_2 & (io_dense | hit_2);
@@ -15775,21 +12737,21 @@ module ContactCollector_n16_default(
   wire        want_13 = active_13 & (io_dense | hit_13);
   wire        want_14 = active_14 & (io_dense | hit_14);
   wire        want_15 = active_15 & (io_dense | hit_15);
-  wire        okPrefix_0 = ~active_0 | casez_tmp_191;
-  wire        okPrefix_1 = okPrefix_0 & (~active_1 | casez_tmp_192);
-  wire        okPrefix_2 = okPrefix_1 & (~active_2 | casez_tmp_193);
-  wire        okPrefix_3 = okPrefix_2 & (~active_3 | casez_tmp_194);
-  wire        okPrefix_4 = okPrefix_3 & (~active_4 | casez_tmp_195);
-  wire        okPrefix_5 = okPrefix_4 & (~active_5 | casez_tmp_196);
-  wire        okPrefix_6 = okPrefix_5 & (~active_6 | casez_tmp_197);
-  wire        okPrefix_7 = okPrefix_6 & (~active_7 | casez_tmp_198);
-  wire        okPrefix_8 = okPrefix_7 & (~active_8 | casez_tmp_199);
-  wire        okPrefix_9 = okPrefix_8 & (~active_9 | casez_tmp_200);
-  wire        okPrefix_10 = okPrefix_9 & (~active_10 | casez_tmp_201);
-  wire        okPrefix_11 = okPrefix_10 & (~active_11 | casez_tmp_202);
-  wire        okPrefix_12 = okPrefix_11 & (~active_12 | casez_tmp_203);
-  wire        okPrefix_13 = okPrefix_12 & (~active_13 | casez_tmp_204);
-  wire        okPrefix_14 = okPrefix_13 & (~active_14 | casez_tmp_205);
+  wire        okPrefix_0 = ~active_0 | casez_tmp_111;
+  wire        okPrefix_1 = okPrefix_0 & (~active_1 | casez_tmp_112);
+  wire        okPrefix_2 = okPrefix_1 & (~active_2 | casez_tmp_113);
+  wire        okPrefix_3 = okPrefix_2 & (~active_3 | casez_tmp_114);
+  wire        okPrefix_4 = okPrefix_3 & (~active_4 | casez_tmp_115);
+  wire        okPrefix_5 = okPrefix_4 & (~active_5 | casez_tmp_116);
+  wire        okPrefix_6 = okPrefix_5 & (~active_6 | casez_tmp_117);
+  wire        okPrefix_7 = okPrefix_6 & (~active_7 | casez_tmp_118);
+  wire        okPrefix_8 = okPrefix_7 & (~active_8 | casez_tmp_119);
+  wire        okPrefix_9 = okPrefix_8 & (~active_9 | casez_tmp_120);
+  wire        okPrefix_10 = okPrefix_9 & (~active_10 | casez_tmp_121);
+  wire        okPrefix_11 = okPrefix_10 & (~active_11 | casez_tmp_122);
+  wire        okPrefix_12 = okPrefix_11 & (~active_12 | casez_tmp_123);
+  wire        okPrefix_13 = okPrefix_12 & (~active_13 | casez_tmp_124);
+  wire        okPrefix_14 = okPrefix_13 & (~active_14 | casez_tmp_125);
   wire [4:0]  wantCount_1 = {4'h0, want_0} + {4'h0, want_1};
   wire [4:0]  wantCount_2 = wantCount_1 + {4'h0, want_2};
   wire [4:0]  wantCount_3 = wantCount_2 + {4'h0, want_3};
@@ -15805,7 +12767,7 @@ module ContactCollector_n16_default(
   wire [4:0]  wantCount_13 = wantCount_12 + {4'h0, want_13};
   wire [4:0]  wantCount_14 = wantCount_13 + {4'h0, want_14};
   wire [4:0]  wantCount_15 = wantCount_14 + {4'h0, want_15};
-  wire [4:0]  _GEN = {3'h0, io_room};
+  wire [4:0]  _GEN = {2'h0, io_room};
   wire        take_0 = active_0 & okPrefix_0 & {4'h0, want_0} <= _GEN;
   wire        take_1 = active_1 & okPrefix_1 & wantCount_1 <= _GEN;
   wire        take_2 = active_2 & okPrefix_2 & wantCount_2 <= _GEN;
@@ -15822,127 +12784,127 @@ module ContactCollector_n16_default(
   wire        take_13 = active_13 & okPrefix_13 & wantCount_13 <= _GEN;
   wire        take_14 = active_14 & okPrefix_14 & wantCount_14 <= _GEN;
   wire        take_15 =
-    active_15 & okPrefix_14 & (~active_15 | casez_tmp_206) & wantCount_15 <= _GEN;
+    active_15 & okPrefix_14 & (~active_15 | casez_tmp_126) & wantCount_15 <= _GEN;
   wire [7:0]  records_1_flags =
     io_groups_bits_invalid[1]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_21[4], casez_tmp_21[2]},
-         casez_tmp_20,
-         casez_tmp_12,
-         casez_tmp_11};
+         |{casez_tmp_11[4], casez_tmp_11[2]},
+         casez_tmp_10,
+         casez_tmp_7,
+         casez_tmp_6};
   wire [7:0]  records_2_flags =
     io_groups_bits_invalid[2]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_33[4], casez_tmp_33[2]},
-         casez_tmp_32,
-         casez_tmp_24,
-         casez_tmp_23};
+         |{casez_tmp_18[4], casez_tmp_18[2]},
+         casez_tmp_17,
+         casez_tmp_14,
+         casez_tmp_13};
   wire [7:0]  records_3_flags =
     io_groups_bits_invalid[3]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_45[4], casez_tmp_45[2]},
-         casez_tmp_44,
-         casez_tmp_36,
-         casez_tmp_35};
+         |{casez_tmp_25[4], casez_tmp_25[2]},
+         casez_tmp_24,
+         casez_tmp_21,
+         casez_tmp_20};
   wire [7:0]  records_4_flags =
     io_groups_bits_invalid[4]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_57[4], casez_tmp_57[2]},
-         casez_tmp_56,
-         casez_tmp_48,
-         casez_tmp_47};
+         |{casez_tmp_32[4], casez_tmp_32[2]},
+         casez_tmp_31,
+         casez_tmp_28,
+         casez_tmp_27};
   wire [7:0]  records_5_flags =
     io_groups_bits_invalid[5]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_69[4], casez_tmp_69[2]},
-         casez_tmp_68,
-         casez_tmp_60,
-         casez_tmp_59};
+         |{casez_tmp_39[4], casez_tmp_39[2]},
+         casez_tmp_38,
+         casez_tmp_35,
+         casez_tmp_34};
   wire [7:0]  records_6_flags =
     io_groups_bits_invalid[6]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_81[4], casez_tmp_81[2]},
-         casez_tmp_80,
-         casez_tmp_72,
-         casez_tmp_71};
+         |{casez_tmp_46[4], casez_tmp_46[2]},
+         casez_tmp_45,
+         casez_tmp_42,
+         casez_tmp_41};
   wire [7:0]  records_7_flags =
     io_groups_bits_invalid[7]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_93[4], casez_tmp_93[2]},
-         casez_tmp_92,
-         casez_tmp_84,
-         casez_tmp_83};
+         |{casez_tmp_53[4], casez_tmp_53[2]},
+         casez_tmp_52,
+         casez_tmp_49,
+         casez_tmp_48};
   wire [7:0]  records_8_flags =
     io_groups_bits_invalid[8]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_105[4], casez_tmp_105[2]},
-         casez_tmp_104,
-         casez_tmp_96,
-         casez_tmp_95};
+         |{casez_tmp_60[4], casez_tmp_60[2]},
+         casez_tmp_59,
+         casez_tmp_56,
+         casez_tmp_55};
   wire [7:0]  records_9_flags =
     io_groups_bits_invalid[9]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_117[4], casez_tmp_117[2]},
-         casez_tmp_116,
-         casez_tmp_108,
-         casez_tmp_107};
+         |{casez_tmp_67[4], casez_tmp_67[2]},
+         casez_tmp_66,
+         casez_tmp_63,
+         casez_tmp_62};
   wire [7:0]  records_10_flags =
     io_groups_bits_invalid[10]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_129[4], casez_tmp_129[2]},
-         casez_tmp_128,
-         casez_tmp_120,
-         casez_tmp_119};
+         |{casez_tmp_74[4], casez_tmp_74[2]},
+         casez_tmp_73,
+         casez_tmp_70,
+         casez_tmp_69};
   wire [7:0]  records_11_flags =
     io_groups_bits_invalid[11]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_141[4], casez_tmp_141[2]},
-         casez_tmp_140,
-         casez_tmp_132,
-         casez_tmp_131};
+         |{casez_tmp_81[4], casez_tmp_81[2]},
+         casez_tmp_80,
+         casez_tmp_77,
+         casez_tmp_76};
   wire [7:0]  records_12_flags =
     io_groups_bits_invalid[12]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_153[4], casez_tmp_153[2]},
-         casez_tmp_152,
-         casez_tmp_144,
-         casez_tmp_143};
+         |{casez_tmp_88[4], casez_tmp_88[2]},
+         casez_tmp_87,
+         casez_tmp_84,
+         casez_tmp_83};
   wire [7:0]  records_13_flags =
     io_groups_bits_invalid[13]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_165[4], casez_tmp_165[2]},
-         casez_tmp_164,
-         casez_tmp_156,
-         casez_tmp_155};
+         |{casez_tmp_95[4], casez_tmp_95[2]},
+         casez_tmp_94,
+         casez_tmp_91,
+         casez_tmp_90};
   wire [7:0]  records_14_flags =
     io_groups_bits_invalid[14]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_177[4], casez_tmp_177[2]},
-         casez_tmp_176,
-         casez_tmp_168,
-         casez_tmp_167};
+         |{casez_tmp_102[4], casez_tmp_102[2]},
+         casez_tmp_101,
+         casez_tmp_98,
+         casez_tmp_97};
   wire [7:0]  records_15_flags =
     io_groups_bits_invalid[15]
       ? 8'h6
       : {3'h0,
-         |{casez_tmp_189[4], casez_tmp_189[2]},
-         casez_tmp_188,
-         casez_tmp_180,
-         casez_tmp_179};
+         |{casez_tmp_109[4], casez_tmp_109[2]},
+         casez_tmp_108,
+         casez_tmp_105,
+         casez_tmp_104};
   wire [4:0]  nTaken =
     {1'h0,
      {1'h0,
@@ -15957,38 +12919,38 @@ module ContactCollector_n16_default(
          + {1'h0,
             {1'h0, {1'h0, take_12} + {1'h0, take_13}}
               + {1'h0, {1'h0, take_14} + {1'h0, take_15}}}};
-  wire        _sel_T_32 = take_0 & want_0;
-  wire        _sel_T_34 = take_1 & want_1;
-  wire        _sel_T_36 = take_2 & want_2;
-  wire        _sel_T_38 = take_3 & want_3;
-  wire        _sel_T_40 = take_4 & want_4;
-  wire        _sel_T_42 = take_5 & want_5;
-  wire        _sel_T_44 = take_6 & want_6;
-  wire        _sel_T_46 = take_7 & want_7;
-  wire        _sel_T_48 = take_8 & want_8;
-  wire        _sel_T_50 = take_9 & want_9;
-  wire        _sel_T_52 = take_10 & want_10;
-  wire        _sel_T_54 = take_11 & want_11;
-  wire        _sel_T_56 = take_12 & want_12;
-  wire        _sel_T_58 = take_13 & want_13;
-  wire        _sel_T_60 = take_14 & want_14;
-  wire        _sel_T_62 = take_15 & want_15;
-  wire        sel_0 = _sel_T_32 & want_0;
-  wire        sel_1 = _sel_T_34 & wantCount_1 == 5'h1;
-  wire        sel_2 = _sel_T_36 & wantCount_2 == 5'h1;
-  wire        sel_3 = _sel_T_38 & wantCount_3 == 5'h1;
-  wire        sel_4 = _sel_T_40 & wantCount_4 == 5'h1;
-  wire        sel_5 = _sel_T_42 & wantCount_5 == 5'h1;
-  wire        sel_6 = _sel_T_44 & wantCount_6 == 5'h1;
-  wire        sel_7 = _sel_T_46 & wantCount_7 == 5'h1;
-  wire        sel_8 = _sel_T_48 & wantCount_8 == 5'h1;
-  wire        sel_9 = _sel_T_50 & wantCount_9 == 5'h1;
-  wire        sel_10 = _sel_T_52 & wantCount_10 == 5'h1;
-  wire        sel_11 = _sel_T_54 & wantCount_11 == 5'h1;
-  wire        sel_12 = _sel_T_56 & wantCount_12 == 5'h1;
-  wire        sel_13 = _sel_T_58 & wantCount_13 == 5'h1;
-  wire        sel_14 = _sel_T_60 & wantCount_14 == 5'h1;
-  wire        sel_15 = _sel_T_62 & wantCount_15 == 5'h1;
+  wire        _sel_T_128 = take_0 & want_0;
+  wire        _sel_T_130 = take_1 & want_1;
+  wire        _sel_T_132 = take_2 & want_2;
+  wire        _sel_T_134 = take_3 & want_3;
+  wire        _sel_T_136 = take_4 & want_4;
+  wire        _sel_T_138 = take_5 & want_5;
+  wire        _sel_T_140 = take_6 & want_6;
+  wire        _sel_T_142 = take_7 & want_7;
+  wire        _sel_T_144 = take_8 & want_8;
+  wire        _sel_T_146 = take_9 & want_9;
+  wire        _sel_T_148 = take_10 & want_10;
+  wire        _sel_T_150 = take_11 & want_11;
+  wire        _sel_T_152 = take_12 & want_12;
+  wire        _sel_T_154 = take_13 & want_13;
+  wire        _sel_T_156 = take_14 & want_14;
+  wire        _sel_T_158 = take_15 & want_15;
+  wire        sel_0 = _sel_T_128 & want_0;
+  wire        sel_1 = _sel_T_130 & wantCount_1 == 5'h1;
+  wire        sel_2 = _sel_T_132 & wantCount_2 == 5'h1;
+  wire        sel_3 = _sel_T_134 & wantCount_3 == 5'h1;
+  wire        sel_4 = _sel_T_136 & wantCount_4 == 5'h1;
+  wire        sel_5 = _sel_T_138 & wantCount_5 == 5'h1;
+  wire        sel_6 = _sel_T_140 & wantCount_6 == 5'h1;
+  wire        sel_7 = _sel_T_142 & wantCount_7 == 5'h1;
+  wire        sel_8 = _sel_T_144 & wantCount_8 == 5'h1;
+  wire        sel_9 = _sel_T_146 & wantCount_9 == 5'h1;
+  wire        sel_10 = _sel_T_148 & wantCount_10 == 5'h1;
+  wire        sel_11 = _sel_T_150 & wantCount_11 == 5'h1;
+  wire        sel_12 = _sel_T_152 & wantCount_12 == 5'h1;
+  wire        sel_13 = _sel_T_154 & wantCount_13 == 5'h1;
+  wire        sel_14 = _sel_T_156 & wantCount_14 == 5'h1;
+  wire        sel_15 = _sel_T_158 & wantCount_15 == 5'h1;
   wire        _GEN_0 = ~sel_0 | io_groups_bits_invalid[0];
   wire        _GEN_1 = ~sel_1 | io_groups_bits_invalid[1];
   wire        _GEN_2 = ~sel_2 | io_groups_bits_invalid[2];
@@ -16005,21 +12967,21 @@ module ContactCollector_n16_default(
   wire        _GEN_13 = ~sel_13 | io_groups_bits_invalid[13];
   wire        _GEN_14 = ~sel_14 | io_groups_bits_invalid[14];
   wire        _GEN_15 = ~sel_15 | io_groups_bits_invalid[15];
-  wire        sel_1_1 = _sel_T_34 & wantCount_1 == 5'h2;
-  wire        sel_2_1 = _sel_T_36 & wantCount_2 == 5'h2;
-  wire        sel_3_1 = _sel_T_38 & wantCount_3 == 5'h2;
-  wire        sel_4_1 = _sel_T_40 & wantCount_4 == 5'h2;
-  wire        sel_5_1 = _sel_T_42 & wantCount_5 == 5'h2;
-  wire        sel_6_1 = _sel_T_44 & wantCount_6 == 5'h2;
-  wire        sel_7_1 = _sel_T_46 & wantCount_7 == 5'h2;
-  wire        sel_8_1 = _sel_T_48 & wantCount_8 == 5'h2;
-  wire        sel_9_1 = _sel_T_50 & wantCount_9 == 5'h2;
-  wire        sel_10_1 = _sel_T_52 & wantCount_10 == 5'h2;
-  wire        sel_11_1 = _sel_T_54 & wantCount_11 == 5'h2;
-  wire        sel_12_1 = _sel_T_56 & wantCount_12 == 5'h2;
-  wire        sel_13_1 = _sel_T_58 & wantCount_13 == 5'h2;
-  wire        sel_14_1 = _sel_T_60 & wantCount_14 == 5'h2;
-  wire        sel_15_1 = _sel_T_62 & wantCount_15 == 5'h2;
+  wire        sel_1_1 = _sel_T_130 & wantCount_1 == 5'h2;
+  wire        sel_2_1 = _sel_T_132 & wantCount_2 == 5'h2;
+  wire        sel_3_1 = _sel_T_134 & wantCount_3 == 5'h2;
+  wire        sel_4_1 = _sel_T_136 & wantCount_4 == 5'h2;
+  wire        sel_5_1 = _sel_T_138 & wantCount_5 == 5'h2;
+  wire        sel_6_1 = _sel_T_140 & wantCount_6 == 5'h2;
+  wire        sel_7_1 = _sel_T_142 & wantCount_7 == 5'h2;
+  wire        sel_8_1 = _sel_T_144 & wantCount_8 == 5'h2;
+  wire        sel_9_1 = _sel_T_146 & wantCount_9 == 5'h2;
+  wire        sel_10_1 = _sel_T_148 & wantCount_10 == 5'h2;
+  wire        sel_11_1 = _sel_T_150 & wantCount_11 == 5'h2;
+  wire        sel_12_1 = _sel_T_152 & wantCount_12 == 5'h2;
+  wire        sel_13_1 = _sel_T_154 & wantCount_13 == 5'h2;
+  wire        sel_14_1 = _sel_T_156 & wantCount_14 == 5'h2;
+  wire        sel_15_1 = _sel_T_158 & wantCount_15 == 5'h2;
   wire        _GEN_16 = ~sel_1_1 | io_groups_bits_invalid[1];
   wire        _GEN_17 = ~sel_2_1 | io_groups_bits_invalid[2];
   wire        _GEN_18 = ~sel_3_1 | io_groups_bits_invalid[3];
@@ -16035,6 +12997,96 @@ module ContactCollector_n16_default(
   wire        _GEN_28 = ~sel_13_1 | io_groups_bits_invalid[13];
   wire        _GEN_29 = ~sel_14_1 | io_groups_bits_invalid[14];
   wire        _GEN_30 = ~sel_15_1 | io_groups_bits_invalid[15];
+  wire        sel_1_2 = _sel_T_130 & wantCount_1 == 5'h3;
+  wire        sel_2_2 = _sel_T_132 & wantCount_2 == 5'h3;
+  wire        sel_3_2 = _sel_T_134 & wantCount_3 == 5'h3;
+  wire        sel_4_2 = _sel_T_136 & wantCount_4 == 5'h3;
+  wire        sel_5_2 = _sel_T_138 & wantCount_5 == 5'h3;
+  wire        sel_6_2 = _sel_T_140 & wantCount_6 == 5'h3;
+  wire        sel_7_2 = _sel_T_142 & wantCount_7 == 5'h3;
+  wire        sel_8_2 = _sel_T_144 & wantCount_8 == 5'h3;
+  wire        sel_9_2 = _sel_T_146 & wantCount_9 == 5'h3;
+  wire        sel_10_2 = _sel_T_148 & wantCount_10 == 5'h3;
+  wire        sel_11_2 = _sel_T_150 & wantCount_11 == 5'h3;
+  wire        sel_12_2 = _sel_T_152 & wantCount_12 == 5'h3;
+  wire        sel_13_2 = _sel_T_154 & wantCount_13 == 5'h3;
+  wire        sel_14_2 = _sel_T_156 & wantCount_14 == 5'h3;
+  wire        sel_15_2 = _sel_T_158 & wantCount_15 == 5'h3;
+  wire        _GEN_31 = ~sel_1_2 | io_groups_bits_invalid[1];
+  wire        _GEN_32 = ~sel_2_2 | io_groups_bits_invalid[2];
+  wire        _GEN_33 = ~sel_3_2 | io_groups_bits_invalid[3];
+  wire        _GEN_34 = ~sel_4_2 | io_groups_bits_invalid[4];
+  wire        _GEN_35 = ~sel_5_2 | io_groups_bits_invalid[5];
+  wire        _GEN_36 = ~sel_6_2 | io_groups_bits_invalid[6];
+  wire        _GEN_37 = ~sel_7_2 | io_groups_bits_invalid[7];
+  wire        _GEN_38 = ~sel_8_2 | io_groups_bits_invalid[8];
+  wire        _GEN_39 = ~sel_9_2 | io_groups_bits_invalid[9];
+  wire        _GEN_40 = ~sel_10_2 | io_groups_bits_invalid[10];
+  wire        _GEN_41 = ~sel_11_2 | io_groups_bits_invalid[11];
+  wire        _GEN_42 = ~sel_12_2 | io_groups_bits_invalid[12];
+  wire        _GEN_43 = ~sel_13_2 | io_groups_bits_invalid[13];
+  wire        _GEN_44 = ~sel_14_2 | io_groups_bits_invalid[14];
+  wire        _GEN_45 = ~sel_15_2 | io_groups_bits_invalid[15];
+  wire        sel_1_3 = _sel_T_130 & wantCount_1 == 5'h4;
+  wire        sel_2_3 = _sel_T_132 & wantCount_2 == 5'h4;
+  wire        sel_3_3 = _sel_T_134 & wantCount_3 == 5'h4;
+  wire        sel_4_3 = _sel_T_136 & wantCount_4 == 5'h4;
+  wire        sel_5_3 = _sel_T_138 & wantCount_5 == 5'h4;
+  wire        sel_6_3 = _sel_T_140 & wantCount_6 == 5'h4;
+  wire        sel_7_3 = _sel_T_142 & wantCount_7 == 5'h4;
+  wire        sel_8_3 = _sel_T_144 & wantCount_8 == 5'h4;
+  wire        sel_9_3 = _sel_T_146 & wantCount_9 == 5'h4;
+  wire        sel_10_3 = _sel_T_148 & wantCount_10 == 5'h4;
+  wire        sel_11_3 = _sel_T_150 & wantCount_11 == 5'h4;
+  wire        sel_12_3 = _sel_T_152 & wantCount_12 == 5'h4;
+  wire        sel_13_3 = _sel_T_154 & wantCount_13 == 5'h4;
+  wire        sel_14_3 = _sel_T_156 & wantCount_14 == 5'h4;
+  wire        sel_15_3 = _sel_T_158 & wantCount_15 == 5'h4;
+  wire        _GEN_46 = ~sel_1_3 | io_groups_bits_invalid[1];
+  wire        _GEN_47 = ~sel_2_3 | io_groups_bits_invalid[2];
+  wire        _GEN_48 = ~sel_3_3 | io_groups_bits_invalid[3];
+  wire        _GEN_49 = ~sel_4_3 | io_groups_bits_invalid[4];
+  wire        _GEN_50 = ~sel_5_3 | io_groups_bits_invalid[5];
+  wire        _GEN_51 = ~sel_6_3 | io_groups_bits_invalid[6];
+  wire        _GEN_52 = ~sel_7_3 | io_groups_bits_invalid[7];
+  wire        _GEN_53 = ~sel_8_3 | io_groups_bits_invalid[8];
+  wire        _GEN_54 = ~sel_9_3 | io_groups_bits_invalid[9];
+  wire        _GEN_55 = ~sel_10_3 | io_groups_bits_invalid[10];
+  wire        _GEN_56 = ~sel_11_3 | io_groups_bits_invalid[11];
+  wire        _GEN_57 = ~sel_12_3 | io_groups_bits_invalid[12];
+  wire        _GEN_58 = ~sel_13_3 | io_groups_bits_invalid[13];
+  wire        _GEN_59 = ~sel_14_3 | io_groups_bits_invalid[14];
+  wire        _GEN_60 = ~sel_15_3 | io_groups_bits_invalid[15];
+  wire        sel_1_4 = _sel_T_130 & wantCount_1 == 5'h5;
+  wire        sel_2_4 = _sel_T_132 & wantCount_2 == 5'h5;
+  wire        sel_3_4 = _sel_T_134 & wantCount_3 == 5'h5;
+  wire        sel_4_4 = _sel_T_136 & wantCount_4 == 5'h5;
+  wire        sel_5_4 = _sel_T_138 & wantCount_5 == 5'h5;
+  wire        sel_6_4 = _sel_T_140 & wantCount_6 == 5'h5;
+  wire        sel_7_4 = _sel_T_142 & wantCount_7 == 5'h5;
+  wire        sel_8_4 = _sel_T_144 & wantCount_8 == 5'h5;
+  wire        sel_9_4 = _sel_T_146 & wantCount_9 == 5'h5;
+  wire        sel_10_4 = _sel_T_148 & wantCount_10 == 5'h5;
+  wire        sel_11_4 = _sel_T_150 & wantCount_11 == 5'h5;
+  wire        sel_12_4 = _sel_T_152 & wantCount_12 == 5'h5;
+  wire        sel_13_4 = _sel_T_154 & wantCount_13 == 5'h5;
+  wire        sel_14_4 = _sel_T_156 & wantCount_14 == 5'h5;
+  wire        sel_15_4 = _sel_T_158 & wantCount_15 == 5'h5;
+  wire        _GEN_61 = ~sel_1_4 | io_groups_bits_invalid[1];
+  wire        _GEN_62 = ~sel_2_4 | io_groups_bits_invalid[2];
+  wire        _GEN_63 = ~sel_3_4 | io_groups_bits_invalid[3];
+  wire        _GEN_64 = ~sel_4_4 | io_groups_bits_invalid[4];
+  wire        _GEN_65 = ~sel_5_4 | io_groups_bits_invalid[5];
+  wire        _GEN_66 = ~sel_6_4 | io_groups_bits_invalid[6];
+  wire        _GEN_67 = ~sel_7_4 | io_groups_bits_invalid[7];
+  wire        _GEN_68 = ~sel_8_4 | io_groups_bits_invalid[8];
+  wire        _GEN_69 = ~sel_9_4 | io_groups_bits_invalid[9];
+  wire        _GEN_70 = ~sel_10_4 | io_groups_bits_invalid[10];
+  wire        _GEN_71 = ~sel_11_4 | io_groups_bits_invalid[11];
+  wire        _GEN_72 = ~sel_12_4 | io_groups_bits_invalid[12];
+  wire        _GEN_73 = ~sel_13_4 | io_groups_bits_invalid[13];
+  wire        _GEN_74 = ~sel_14_4 | io_groups_bits_invalid[14];
+  wire        _GEN_75 = ~sel_15_4 | io_groups_bits_invalid[15];
   wire [4:0]  _spNext_T = sp + nTaken;
   wire        io_groups_ready_0 = io_groups_valid & _spNext_T == io_groups_bits_cnt;
   always @(posedge clock) begin
@@ -16158,85 +13210,40 @@ module ContactCollector_n16_default(
     & scpuAt_8 == 5'hF | take_9 & scpuAt_9 == 5'hF | take_10 & scpuAt_10 == 5'hF | take_11
     & scpuAt_11 == 5'hF | take_12 & scpuAt_12 == 5'hF | take_13 & scpuAt_13 == 5'hF
     | take_14 & scpuAt_14 == 5'hF | take_15 & scpuAt_15 == 5'hF;
-  assign io_recs_0_px =
-    (_GEN_0 ? 32'h0 : casez_tmp_1) | (_GEN_1 ? 32'h0 : casez_tmp_13)
-    | (_GEN_2 ? 32'h0 : casez_tmp_25) | (_GEN_3 ? 32'h0 : casez_tmp_37)
-    | (_GEN_4 ? 32'h0 : casez_tmp_49) | (_GEN_5 ? 32'h0 : casez_tmp_61)
-    | (_GEN_6 ? 32'h0 : casez_tmp_73) | (_GEN_7 ? 32'h0 : casez_tmp_85)
-    | (_GEN_8 ? 32'h0 : casez_tmp_97) | (_GEN_9 ? 32'h0 : casez_tmp_109)
-    | (_GEN_10 ? 32'h0 : casez_tmp_121) | (_GEN_11 ? 32'h0 : casez_tmp_133)
-    | (_GEN_12 ? 32'h0 : casez_tmp_145) | (_GEN_13 ? 32'h0 : casez_tmp_157)
-    | (_GEN_14 ? 32'h0 : casez_tmp_169) | (_GEN_15 ? 32'h0 : casez_tmp_181);
-  assign io_recs_0_py =
-    (_GEN_0 ? 32'h0 : casez_tmp_2) | (_GEN_1 ? 32'h0 : casez_tmp_14)
-    | (_GEN_2 ? 32'h0 : casez_tmp_26) | (_GEN_3 ? 32'h0 : casez_tmp_38)
-    | (_GEN_4 ? 32'h0 : casez_tmp_50) | (_GEN_5 ? 32'h0 : casez_tmp_62)
-    | (_GEN_6 ? 32'h0 : casez_tmp_74) | (_GEN_7 ? 32'h0 : casez_tmp_86)
-    | (_GEN_8 ? 32'h0 : casez_tmp_98) | (_GEN_9 ? 32'h0 : casez_tmp_110)
-    | (_GEN_10 ? 32'h0 : casez_tmp_122) | (_GEN_11 ? 32'h0 : casez_tmp_134)
-    | (_GEN_12 ? 32'h0 : casez_tmp_146) | (_GEN_13 ? 32'h0 : casez_tmp_158)
-    | (_GEN_14 ? 32'h0 : casez_tmp_170) | (_GEN_15 ? 32'h0 : casez_tmp_182);
-  assign io_recs_0_pz =
-    (_GEN_0 ? 32'h0 : casez_tmp_3) | (_GEN_1 ? 32'h0 : casez_tmp_15)
-    | (_GEN_2 ? 32'h0 : casez_tmp_27) | (_GEN_3 ? 32'h0 : casez_tmp_39)
-    | (_GEN_4 ? 32'h0 : casez_tmp_51) | (_GEN_5 ? 32'h0 : casez_tmp_63)
-    | (_GEN_6 ? 32'h0 : casez_tmp_75) | (_GEN_7 ? 32'h0 : casez_tmp_87)
-    | (_GEN_8 ? 32'h0 : casez_tmp_99) | (_GEN_9 ? 32'h0 : casez_tmp_111)
-    | (_GEN_10 ? 32'h0 : casez_tmp_123) | (_GEN_11 ? 32'h0 : casez_tmp_135)
-    | (_GEN_12 ? 32'h0 : casez_tmp_147) | (_GEN_13 ? 32'h0 : casez_tmp_159)
-    | (_GEN_14 ? 32'h0 : casez_tmp_171) | (_GEN_15 ? 32'h0 : casez_tmp_183);
-  assign io_recs_0_nx =
-    (_GEN_0 ? 32'h0 : casez_tmp_4) | (_GEN_1 ? 32'h0 : casez_tmp_16)
-    | (_GEN_2 ? 32'h0 : casez_tmp_28) | (_GEN_3 ? 32'h0 : casez_tmp_40)
-    | (_GEN_4 ? 32'h0 : casez_tmp_52) | (_GEN_5 ? 32'h0 : casez_tmp_64)
-    | (_GEN_6 ? 32'h0 : casez_tmp_76) | (_GEN_7 ? 32'h0 : casez_tmp_88)
-    | (_GEN_8 ? 32'h0 : casez_tmp_100) | (_GEN_9 ? 32'h0 : casez_tmp_112)
-    | (_GEN_10 ? 32'h0 : casez_tmp_124) | (_GEN_11 ? 32'h0 : casez_tmp_136)
-    | (_GEN_12 ? 32'h0 : casez_tmp_148) | (_GEN_13 ? 32'h0 : casez_tmp_160)
-    | (_GEN_14 ? 32'h0 : casez_tmp_172) | (_GEN_15 ? 32'h0 : casez_tmp_184);
-  assign io_recs_0_ny =
-    (_GEN_0 ? 32'h0 : casez_tmp_5) | (_GEN_1 ? 32'h0 : casez_tmp_17)
-    | (_GEN_2 ? 32'h0 : casez_tmp_29) | (_GEN_3 ? 32'h0 : casez_tmp_41)
-    | (_GEN_4 ? 32'h0 : casez_tmp_53) | (_GEN_5 ? 32'h0 : casez_tmp_65)
-    | (_GEN_6 ? 32'h0 : casez_tmp_77) | (_GEN_7 ? 32'h0 : casez_tmp_89)
-    | (_GEN_8 ? 32'h0 : casez_tmp_101) | (_GEN_9 ? 32'h0 : casez_tmp_113)
-    | (_GEN_10 ? 32'h0 : casez_tmp_125) | (_GEN_11 ? 32'h0 : casez_tmp_137)
-    | (_GEN_12 ? 32'h0 : casez_tmp_149) | (_GEN_13 ? 32'h0 : casez_tmp_161)
-    | (_GEN_14 ? 32'h0 : casez_tmp_173) | (_GEN_15 ? 32'h0 : casez_tmp_185);
-  assign io_recs_0_nz =
-    (_GEN_0 ? 32'h0 : casez_tmp_6) | (_GEN_1 ? 32'h0 : casez_tmp_18)
-    | (_GEN_2 ? 32'h0 : casez_tmp_30) | (_GEN_3 ? 32'h0 : casez_tmp_42)
-    | (_GEN_4 ? 32'h0 : casez_tmp_54) | (_GEN_5 ? 32'h0 : casez_tmp_66)
-    | (_GEN_6 ? 32'h0 : casez_tmp_78) | (_GEN_7 ? 32'h0 : casez_tmp_90)
-    | (_GEN_8 ? 32'h0 : casez_tmp_102) | (_GEN_9 ? 32'h0 : casez_tmp_114)
-    | (_GEN_10 ? 32'h0 : casez_tmp_126) | (_GEN_11 ? 32'h0 : casez_tmp_138)
-    | (_GEN_12 ? 32'h0 : casez_tmp_150) | (_GEN_13 ? 32'h0 : casez_tmp_162)
-    | (_GEN_14 ? 32'h0 : casez_tmp_174) | (_GEN_15 ? 32'h0 : casez_tmp_186);
-  assign io_recs_0_depth =
-    (_GEN_0 ? 32'h0 : casez_tmp_7) | (_GEN_1 ? 32'h0 : casez_tmp_19)
-    | (_GEN_2 ? 32'h0 : casez_tmp_31) | (_GEN_3 ? 32'h0 : casez_tmp_43)
-    | (_GEN_4 ? 32'h0 : casez_tmp_55) | (_GEN_5 ? 32'h0 : casez_tmp_67)
-    | (_GEN_6 ? 32'h0 : casez_tmp_79) | (_GEN_7 ? 32'h0 : casez_tmp_91)
-    | (_GEN_8 ? 32'h0 : casez_tmp_103) | (_GEN_9 ? 32'h0 : casez_tmp_115)
-    | (_GEN_10 ? 32'h0 : casez_tmp_127) | (_GEN_11 ? 32'h0 : casez_tmp_139)
-    | (_GEN_12 ? 32'h0 : casez_tmp_151) | (_GEN_13 ? 32'h0 : casez_tmp_163)
-    | (_GEN_14 ? 32'h0 : casez_tmp_175) | (_GEN_15 ? 32'h0 : casez_tmp_187);
+  assign io_recs_0_vals_0 =
+    (_GEN_0 ? 32'h0 : casez_tmp_1) | (_GEN_1 ? 32'h0 : casez_tmp_8)
+    | (_GEN_2 ? 32'h0 : casez_tmp_15) | (_GEN_3 ? 32'h0 : casez_tmp_22)
+    | (_GEN_4 ? 32'h0 : casez_tmp_29) | (_GEN_5 ? 32'h0 : casez_tmp_36)
+    | (_GEN_6 ? 32'h0 : casez_tmp_43) | (_GEN_7 ? 32'h0 : casez_tmp_50)
+    | (_GEN_8 ? 32'h0 : casez_tmp_57) | (_GEN_9 ? 32'h0 : casez_tmp_64)
+    | (_GEN_10 ? 32'h0 : casez_tmp_71) | (_GEN_11 ? 32'h0 : casez_tmp_78)
+    | (_GEN_12 ? 32'h0 : casez_tmp_85) | (_GEN_13 ? 32'h0 : casez_tmp_92)
+    | (_GEN_14 ? 32'h0 : casez_tmp_99) | (_GEN_15 ? 32'h0 : casez_tmp_106);
+  assign io_recs_0_vals_1 =
+    (_GEN_0 ? 32'h0 : casez_tmp_2) | (_GEN_1 ? 32'h0 : casez_tmp_9)
+    | (_GEN_2 ? 32'h0 : casez_tmp_16) | (_GEN_3 ? 32'h0 : casez_tmp_23)
+    | (_GEN_4 ? 32'h0 : casez_tmp_30) | (_GEN_5 ? 32'h0 : casez_tmp_37)
+    | (_GEN_6 ? 32'h0 : casez_tmp_44) | (_GEN_7 ? 32'h0 : casez_tmp_51)
+    | (_GEN_8 ? 32'h0 : casez_tmp_58) | (_GEN_9 ? 32'h0 : casez_tmp_65)
+    | (_GEN_10 ? 32'h0 : casez_tmp_72) | (_GEN_11 ? 32'h0 : casez_tmp_79)
+    | (_GEN_12 ? 32'h0 : casez_tmp_86) | (_GEN_13 ? 32'h0 : casez_tmp_93)
+    | (_GEN_14 ? 32'h0 : casez_tmp_100) | (_GEN_15 ? 32'h0 : casez_tmp_107);
   assign io_recs_0_pair =
-    (sel_0 ? casez_tmp_10 : 24'h0) | (sel_1 ? casez_tmp_22 : 24'h0)
-    | (sel_2 ? casez_tmp_34 : 24'h0) | (sel_3 ? casez_tmp_46 : 24'h0)
-    | (sel_4 ? casez_tmp_58 : 24'h0) | (sel_5 ? casez_tmp_70 : 24'h0)
-    | (sel_6 ? casez_tmp_82 : 24'h0) | (sel_7 ? casez_tmp_94 : 24'h0)
-    | (sel_8 ? casez_tmp_106 : 24'h0) | (sel_9 ? casez_tmp_118 : 24'h0)
-    | (sel_10 ? casez_tmp_130 : 24'h0) | (sel_11 ? casez_tmp_142 : 24'h0)
-    | (sel_12 ? casez_tmp_154 : 24'h0) | (sel_13 ? casez_tmp_166 : 24'h0)
-    | (sel_14 ? casez_tmp_178 : 24'h0) | (sel_15 ? casez_tmp_190 : 24'h0);
+    (sel_0 ? casez_tmp_5 : 24'h0) | (sel_1 ? casez_tmp_12 : 24'h0)
+    | (sel_2 ? casez_tmp_19 : 24'h0) | (sel_3 ? casez_tmp_26 : 24'h0)
+    | (sel_4 ? casez_tmp_33 : 24'h0) | (sel_5 ? casez_tmp_40 : 24'h0)
+    | (sel_6 ? casez_tmp_47 : 24'h0) | (sel_7 ? casez_tmp_54 : 24'h0)
+    | (sel_8 ? casez_tmp_61 : 24'h0) | (sel_9 ? casez_tmp_68 : 24'h0)
+    | (sel_10 ? casez_tmp_75 : 24'h0) | (sel_11 ? casez_tmp_82 : 24'h0)
+    | (sel_12 ? casez_tmp_89 : 24'h0) | (sel_13 ? casez_tmp_96 : 24'h0)
+    | (sel_14 ? casez_tmp_103 : 24'h0) | (sel_15 ? casez_tmp_110 : 24'h0);
   assign io_recs_0_flags =
     (sel_0
        ? (io_groups_bits_invalid[0]
             ? 8'h6
             : {3'h0,
-               |{casez_tmp_9[4], casez_tmp_9[2]},
-               casez_tmp_8,
+               |{casez_tmp_4[4], casez_tmp_4[2]},
+               casez_tmp_3,
                casez_tmp_0,
                casez_tmp})
        : 8'h0) | (sel_1 ? records_1_flags : 8'h0) | (sel_2 ? records_2_flags : 8'h0)
@@ -16247,78 +13254,33 @@ module ContactCollector_n16_default(
     | (sel_11 ? records_11_flags : 8'h0) | (sel_12 ? records_12_flags : 8'h0)
     | (sel_13 ? records_13_flags : 8'h0) | (sel_14 ? records_14_flags : 8'h0)
     | (sel_15 ? records_15_flags : 8'h0);
-  assign io_recs_1_px =
-    (_GEN_16 ? 32'h0 : casez_tmp_13) | (_GEN_17 ? 32'h0 : casez_tmp_25)
-    | (_GEN_18 ? 32'h0 : casez_tmp_37) | (_GEN_19 ? 32'h0 : casez_tmp_49)
-    | (_GEN_20 ? 32'h0 : casez_tmp_61) | (_GEN_21 ? 32'h0 : casez_tmp_73)
-    | (_GEN_22 ? 32'h0 : casez_tmp_85) | (_GEN_23 ? 32'h0 : casez_tmp_97)
-    | (_GEN_24 ? 32'h0 : casez_tmp_109) | (_GEN_25 ? 32'h0 : casez_tmp_121)
-    | (_GEN_26 ? 32'h0 : casez_tmp_133) | (_GEN_27 ? 32'h0 : casez_tmp_145)
-    | (_GEN_28 ? 32'h0 : casez_tmp_157) | (_GEN_29 ? 32'h0 : casez_tmp_169)
-    | (_GEN_30 ? 32'h0 : casez_tmp_181);
-  assign io_recs_1_py =
-    (_GEN_16 ? 32'h0 : casez_tmp_14) | (_GEN_17 ? 32'h0 : casez_tmp_26)
-    | (_GEN_18 ? 32'h0 : casez_tmp_38) | (_GEN_19 ? 32'h0 : casez_tmp_50)
-    | (_GEN_20 ? 32'h0 : casez_tmp_62) | (_GEN_21 ? 32'h0 : casez_tmp_74)
-    | (_GEN_22 ? 32'h0 : casez_tmp_86) | (_GEN_23 ? 32'h0 : casez_tmp_98)
-    | (_GEN_24 ? 32'h0 : casez_tmp_110) | (_GEN_25 ? 32'h0 : casez_tmp_122)
-    | (_GEN_26 ? 32'h0 : casez_tmp_134) | (_GEN_27 ? 32'h0 : casez_tmp_146)
-    | (_GEN_28 ? 32'h0 : casez_tmp_158) | (_GEN_29 ? 32'h0 : casez_tmp_170)
-    | (_GEN_30 ? 32'h0 : casez_tmp_182);
-  assign io_recs_1_pz =
-    (_GEN_16 ? 32'h0 : casez_tmp_15) | (_GEN_17 ? 32'h0 : casez_tmp_27)
-    | (_GEN_18 ? 32'h0 : casez_tmp_39) | (_GEN_19 ? 32'h0 : casez_tmp_51)
-    | (_GEN_20 ? 32'h0 : casez_tmp_63) | (_GEN_21 ? 32'h0 : casez_tmp_75)
-    | (_GEN_22 ? 32'h0 : casez_tmp_87) | (_GEN_23 ? 32'h0 : casez_tmp_99)
-    | (_GEN_24 ? 32'h0 : casez_tmp_111) | (_GEN_25 ? 32'h0 : casez_tmp_123)
-    | (_GEN_26 ? 32'h0 : casez_tmp_135) | (_GEN_27 ? 32'h0 : casez_tmp_147)
-    | (_GEN_28 ? 32'h0 : casez_tmp_159) | (_GEN_29 ? 32'h0 : casez_tmp_171)
-    | (_GEN_30 ? 32'h0 : casez_tmp_183);
-  assign io_recs_1_nx =
-    (_GEN_16 ? 32'h0 : casez_tmp_16) | (_GEN_17 ? 32'h0 : casez_tmp_28)
-    | (_GEN_18 ? 32'h0 : casez_tmp_40) | (_GEN_19 ? 32'h0 : casez_tmp_52)
-    | (_GEN_20 ? 32'h0 : casez_tmp_64) | (_GEN_21 ? 32'h0 : casez_tmp_76)
-    | (_GEN_22 ? 32'h0 : casez_tmp_88) | (_GEN_23 ? 32'h0 : casez_tmp_100)
-    | (_GEN_24 ? 32'h0 : casez_tmp_112) | (_GEN_25 ? 32'h0 : casez_tmp_124)
-    | (_GEN_26 ? 32'h0 : casez_tmp_136) | (_GEN_27 ? 32'h0 : casez_tmp_148)
-    | (_GEN_28 ? 32'h0 : casez_tmp_160) | (_GEN_29 ? 32'h0 : casez_tmp_172)
-    | (_GEN_30 ? 32'h0 : casez_tmp_184);
-  assign io_recs_1_ny =
-    (_GEN_16 ? 32'h0 : casez_tmp_17) | (_GEN_17 ? 32'h0 : casez_tmp_29)
-    | (_GEN_18 ? 32'h0 : casez_tmp_41) | (_GEN_19 ? 32'h0 : casez_tmp_53)
-    | (_GEN_20 ? 32'h0 : casez_tmp_65) | (_GEN_21 ? 32'h0 : casez_tmp_77)
-    | (_GEN_22 ? 32'h0 : casez_tmp_89) | (_GEN_23 ? 32'h0 : casez_tmp_101)
-    | (_GEN_24 ? 32'h0 : casez_tmp_113) | (_GEN_25 ? 32'h0 : casez_tmp_125)
-    | (_GEN_26 ? 32'h0 : casez_tmp_137) | (_GEN_27 ? 32'h0 : casez_tmp_149)
-    | (_GEN_28 ? 32'h0 : casez_tmp_161) | (_GEN_29 ? 32'h0 : casez_tmp_173)
-    | (_GEN_30 ? 32'h0 : casez_tmp_185);
-  assign io_recs_1_nz =
-    (_GEN_16 ? 32'h0 : casez_tmp_18) | (_GEN_17 ? 32'h0 : casez_tmp_30)
-    | (_GEN_18 ? 32'h0 : casez_tmp_42) | (_GEN_19 ? 32'h0 : casez_tmp_54)
-    | (_GEN_20 ? 32'h0 : casez_tmp_66) | (_GEN_21 ? 32'h0 : casez_tmp_78)
-    | (_GEN_22 ? 32'h0 : casez_tmp_90) | (_GEN_23 ? 32'h0 : casez_tmp_102)
-    | (_GEN_24 ? 32'h0 : casez_tmp_114) | (_GEN_25 ? 32'h0 : casez_tmp_126)
-    | (_GEN_26 ? 32'h0 : casez_tmp_138) | (_GEN_27 ? 32'h0 : casez_tmp_150)
-    | (_GEN_28 ? 32'h0 : casez_tmp_162) | (_GEN_29 ? 32'h0 : casez_tmp_174)
-    | (_GEN_30 ? 32'h0 : casez_tmp_186);
-  assign io_recs_1_depth =
-    (_GEN_16 ? 32'h0 : casez_tmp_19) | (_GEN_17 ? 32'h0 : casez_tmp_31)
-    | (_GEN_18 ? 32'h0 : casez_tmp_43) | (_GEN_19 ? 32'h0 : casez_tmp_55)
-    | (_GEN_20 ? 32'h0 : casez_tmp_67) | (_GEN_21 ? 32'h0 : casez_tmp_79)
-    | (_GEN_22 ? 32'h0 : casez_tmp_91) | (_GEN_23 ? 32'h0 : casez_tmp_103)
-    | (_GEN_24 ? 32'h0 : casez_tmp_115) | (_GEN_25 ? 32'h0 : casez_tmp_127)
-    | (_GEN_26 ? 32'h0 : casez_tmp_139) | (_GEN_27 ? 32'h0 : casez_tmp_151)
-    | (_GEN_28 ? 32'h0 : casez_tmp_163) | (_GEN_29 ? 32'h0 : casez_tmp_175)
-    | (_GEN_30 ? 32'h0 : casez_tmp_187);
+  assign io_recs_1_vals_0 =
+    (_GEN_16 ? 32'h0 : casez_tmp_8) | (_GEN_17 ? 32'h0 : casez_tmp_15)
+    | (_GEN_18 ? 32'h0 : casez_tmp_22) | (_GEN_19 ? 32'h0 : casez_tmp_29)
+    | (_GEN_20 ? 32'h0 : casez_tmp_36) | (_GEN_21 ? 32'h0 : casez_tmp_43)
+    | (_GEN_22 ? 32'h0 : casez_tmp_50) | (_GEN_23 ? 32'h0 : casez_tmp_57)
+    | (_GEN_24 ? 32'h0 : casez_tmp_64) | (_GEN_25 ? 32'h0 : casez_tmp_71)
+    | (_GEN_26 ? 32'h0 : casez_tmp_78) | (_GEN_27 ? 32'h0 : casez_tmp_85)
+    | (_GEN_28 ? 32'h0 : casez_tmp_92) | (_GEN_29 ? 32'h0 : casez_tmp_99)
+    | (_GEN_30 ? 32'h0 : casez_tmp_106);
+  assign io_recs_1_vals_1 =
+    (_GEN_16 ? 32'h0 : casez_tmp_9) | (_GEN_17 ? 32'h0 : casez_tmp_16)
+    | (_GEN_18 ? 32'h0 : casez_tmp_23) | (_GEN_19 ? 32'h0 : casez_tmp_30)
+    | (_GEN_20 ? 32'h0 : casez_tmp_37) | (_GEN_21 ? 32'h0 : casez_tmp_44)
+    | (_GEN_22 ? 32'h0 : casez_tmp_51) | (_GEN_23 ? 32'h0 : casez_tmp_58)
+    | (_GEN_24 ? 32'h0 : casez_tmp_65) | (_GEN_25 ? 32'h0 : casez_tmp_72)
+    | (_GEN_26 ? 32'h0 : casez_tmp_79) | (_GEN_27 ? 32'h0 : casez_tmp_86)
+    | (_GEN_28 ? 32'h0 : casez_tmp_93) | (_GEN_29 ? 32'h0 : casez_tmp_100)
+    | (_GEN_30 ? 32'h0 : casez_tmp_107);
   assign io_recs_1_pair =
-    (sel_1_1 ? casez_tmp_22 : 24'h0) | (sel_2_1 ? casez_tmp_34 : 24'h0)
-    | (sel_3_1 ? casez_tmp_46 : 24'h0) | (sel_4_1 ? casez_tmp_58 : 24'h0)
-    | (sel_5_1 ? casez_tmp_70 : 24'h0) | (sel_6_1 ? casez_tmp_82 : 24'h0)
-    | (sel_7_1 ? casez_tmp_94 : 24'h0) | (sel_8_1 ? casez_tmp_106 : 24'h0)
-    | (sel_9_1 ? casez_tmp_118 : 24'h0) | (sel_10_1 ? casez_tmp_130 : 24'h0)
-    | (sel_11_1 ? casez_tmp_142 : 24'h0) | (sel_12_1 ? casez_tmp_154 : 24'h0)
-    | (sel_13_1 ? casez_tmp_166 : 24'h0) | (sel_14_1 ? casez_tmp_178 : 24'h0)
-    | (sel_15_1 ? casez_tmp_190 : 24'h0);
+    (sel_1_1 ? casez_tmp_12 : 24'h0) | (sel_2_1 ? casez_tmp_19 : 24'h0)
+    | (sel_3_1 ? casez_tmp_26 : 24'h0) | (sel_4_1 ? casez_tmp_33 : 24'h0)
+    | (sel_5_1 ? casez_tmp_40 : 24'h0) | (sel_6_1 ? casez_tmp_47 : 24'h0)
+    | (sel_7_1 ? casez_tmp_54 : 24'h0) | (sel_8_1 ? casez_tmp_61 : 24'h0)
+    | (sel_9_1 ? casez_tmp_68 : 24'h0) | (sel_10_1 ? casez_tmp_75 : 24'h0)
+    | (sel_11_1 ? casez_tmp_82 : 24'h0) | (sel_12_1 ? casez_tmp_89 : 24'h0)
+    | (sel_13_1 ? casez_tmp_96 : 24'h0) | (sel_14_1 ? casez_tmp_103 : 24'h0)
+    | (sel_15_1 ? casez_tmp_110 : 24'h0);
   assign io_recs_1_flags =
     (sel_1_1 ? records_1_flags : 8'h0) | (sel_2_1 ? records_2_flags : 8'h0)
     | (sel_3_1 ? records_3_flags : 8'h0) | (sel_4_1 ? records_4_flags : 8'h0)
@@ -16328,11 +13290,123 @@ module ContactCollector_n16_default(
     | (sel_11_1 ? records_11_flags : 8'h0) | (sel_12_1 ? records_12_flags : 8'h0)
     | (sel_13_1 ? records_13_flags : 8'h0) | (sel_14_1 ? records_14_flags : 8'h0)
     | (sel_15_1 ? records_15_flags : 8'h0);
+  assign io_recs_2_vals_0 =
+    (_GEN_31 ? 32'h0 : casez_tmp_8) | (_GEN_32 ? 32'h0 : casez_tmp_15)
+    | (_GEN_33 ? 32'h0 : casez_tmp_22) | (_GEN_34 ? 32'h0 : casez_tmp_29)
+    | (_GEN_35 ? 32'h0 : casez_tmp_36) | (_GEN_36 ? 32'h0 : casez_tmp_43)
+    | (_GEN_37 ? 32'h0 : casez_tmp_50) | (_GEN_38 ? 32'h0 : casez_tmp_57)
+    | (_GEN_39 ? 32'h0 : casez_tmp_64) | (_GEN_40 ? 32'h0 : casez_tmp_71)
+    | (_GEN_41 ? 32'h0 : casez_tmp_78) | (_GEN_42 ? 32'h0 : casez_tmp_85)
+    | (_GEN_43 ? 32'h0 : casez_tmp_92) | (_GEN_44 ? 32'h0 : casez_tmp_99)
+    | (_GEN_45 ? 32'h0 : casez_tmp_106);
+  assign io_recs_2_vals_1 =
+    (_GEN_31 ? 32'h0 : casez_tmp_9) | (_GEN_32 ? 32'h0 : casez_tmp_16)
+    | (_GEN_33 ? 32'h0 : casez_tmp_23) | (_GEN_34 ? 32'h0 : casez_tmp_30)
+    | (_GEN_35 ? 32'h0 : casez_tmp_37) | (_GEN_36 ? 32'h0 : casez_tmp_44)
+    | (_GEN_37 ? 32'h0 : casez_tmp_51) | (_GEN_38 ? 32'h0 : casez_tmp_58)
+    | (_GEN_39 ? 32'h0 : casez_tmp_65) | (_GEN_40 ? 32'h0 : casez_tmp_72)
+    | (_GEN_41 ? 32'h0 : casez_tmp_79) | (_GEN_42 ? 32'h0 : casez_tmp_86)
+    | (_GEN_43 ? 32'h0 : casez_tmp_93) | (_GEN_44 ? 32'h0 : casez_tmp_100)
+    | (_GEN_45 ? 32'h0 : casez_tmp_107);
+  assign io_recs_2_pair =
+    (sel_1_2 ? casez_tmp_12 : 24'h0) | (sel_2_2 ? casez_tmp_19 : 24'h0)
+    | (sel_3_2 ? casez_tmp_26 : 24'h0) | (sel_4_2 ? casez_tmp_33 : 24'h0)
+    | (sel_5_2 ? casez_tmp_40 : 24'h0) | (sel_6_2 ? casez_tmp_47 : 24'h0)
+    | (sel_7_2 ? casez_tmp_54 : 24'h0) | (sel_8_2 ? casez_tmp_61 : 24'h0)
+    | (sel_9_2 ? casez_tmp_68 : 24'h0) | (sel_10_2 ? casez_tmp_75 : 24'h0)
+    | (sel_11_2 ? casez_tmp_82 : 24'h0) | (sel_12_2 ? casez_tmp_89 : 24'h0)
+    | (sel_13_2 ? casez_tmp_96 : 24'h0) | (sel_14_2 ? casez_tmp_103 : 24'h0)
+    | (sel_15_2 ? casez_tmp_110 : 24'h0);
+  assign io_recs_2_flags =
+    (sel_1_2 ? records_1_flags : 8'h0) | (sel_2_2 ? records_2_flags : 8'h0)
+    | (sel_3_2 ? records_3_flags : 8'h0) | (sel_4_2 ? records_4_flags : 8'h0)
+    | (sel_5_2 ? records_5_flags : 8'h0) | (sel_6_2 ? records_6_flags : 8'h0)
+    | (sel_7_2 ? records_7_flags : 8'h0) | (sel_8_2 ? records_8_flags : 8'h0)
+    | (sel_9_2 ? records_9_flags : 8'h0) | (sel_10_2 ? records_10_flags : 8'h0)
+    | (sel_11_2 ? records_11_flags : 8'h0) | (sel_12_2 ? records_12_flags : 8'h0)
+    | (sel_13_2 ? records_13_flags : 8'h0) | (sel_14_2 ? records_14_flags : 8'h0)
+    | (sel_15_2 ? records_15_flags : 8'h0);
+  assign io_recs_3_vals_0 =
+    (_GEN_46 ? 32'h0 : casez_tmp_8) | (_GEN_47 ? 32'h0 : casez_tmp_15)
+    | (_GEN_48 ? 32'h0 : casez_tmp_22) | (_GEN_49 ? 32'h0 : casez_tmp_29)
+    | (_GEN_50 ? 32'h0 : casez_tmp_36) | (_GEN_51 ? 32'h0 : casez_tmp_43)
+    | (_GEN_52 ? 32'h0 : casez_tmp_50) | (_GEN_53 ? 32'h0 : casez_tmp_57)
+    | (_GEN_54 ? 32'h0 : casez_tmp_64) | (_GEN_55 ? 32'h0 : casez_tmp_71)
+    | (_GEN_56 ? 32'h0 : casez_tmp_78) | (_GEN_57 ? 32'h0 : casez_tmp_85)
+    | (_GEN_58 ? 32'h0 : casez_tmp_92) | (_GEN_59 ? 32'h0 : casez_tmp_99)
+    | (_GEN_60 ? 32'h0 : casez_tmp_106);
+  assign io_recs_3_vals_1 =
+    (_GEN_46 ? 32'h0 : casez_tmp_9) | (_GEN_47 ? 32'h0 : casez_tmp_16)
+    | (_GEN_48 ? 32'h0 : casez_tmp_23) | (_GEN_49 ? 32'h0 : casez_tmp_30)
+    | (_GEN_50 ? 32'h0 : casez_tmp_37) | (_GEN_51 ? 32'h0 : casez_tmp_44)
+    | (_GEN_52 ? 32'h0 : casez_tmp_51) | (_GEN_53 ? 32'h0 : casez_tmp_58)
+    | (_GEN_54 ? 32'h0 : casez_tmp_65) | (_GEN_55 ? 32'h0 : casez_tmp_72)
+    | (_GEN_56 ? 32'h0 : casez_tmp_79) | (_GEN_57 ? 32'h0 : casez_tmp_86)
+    | (_GEN_58 ? 32'h0 : casez_tmp_93) | (_GEN_59 ? 32'h0 : casez_tmp_100)
+    | (_GEN_60 ? 32'h0 : casez_tmp_107);
+  assign io_recs_3_pair =
+    (sel_1_3 ? casez_tmp_12 : 24'h0) | (sel_2_3 ? casez_tmp_19 : 24'h0)
+    | (sel_3_3 ? casez_tmp_26 : 24'h0) | (sel_4_3 ? casez_tmp_33 : 24'h0)
+    | (sel_5_3 ? casez_tmp_40 : 24'h0) | (sel_6_3 ? casez_tmp_47 : 24'h0)
+    | (sel_7_3 ? casez_tmp_54 : 24'h0) | (sel_8_3 ? casez_tmp_61 : 24'h0)
+    | (sel_9_3 ? casez_tmp_68 : 24'h0) | (sel_10_3 ? casez_tmp_75 : 24'h0)
+    | (sel_11_3 ? casez_tmp_82 : 24'h0) | (sel_12_3 ? casez_tmp_89 : 24'h0)
+    | (sel_13_3 ? casez_tmp_96 : 24'h0) | (sel_14_3 ? casez_tmp_103 : 24'h0)
+    | (sel_15_3 ? casez_tmp_110 : 24'h0);
+  assign io_recs_3_flags =
+    (sel_1_3 ? records_1_flags : 8'h0) | (sel_2_3 ? records_2_flags : 8'h0)
+    | (sel_3_3 ? records_3_flags : 8'h0) | (sel_4_3 ? records_4_flags : 8'h0)
+    | (sel_5_3 ? records_5_flags : 8'h0) | (sel_6_3 ? records_6_flags : 8'h0)
+    | (sel_7_3 ? records_7_flags : 8'h0) | (sel_8_3 ? records_8_flags : 8'h0)
+    | (sel_9_3 ? records_9_flags : 8'h0) | (sel_10_3 ? records_10_flags : 8'h0)
+    | (sel_11_3 ? records_11_flags : 8'h0) | (sel_12_3 ? records_12_flags : 8'h0)
+    | (sel_13_3 ? records_13_flags : 8'h0) | (sel_14_3 ? records_14_flags : 8'h0)
+    | (sel_15_3 ? records_15_flags : 8'h0);
+  assign io_recs_4_vals_0 =
+    (_GEN_61 ? 32'h0 : casez_tmp_8) | (_GEN_62 ? 32'h0 : casez_tmp_15)
+    | (_GEN_63 ? 32'h0 : casez_tmp_22) | (_GEN_64 ? 32'h0 : casez_tmp_29)
+    | (_GEN_65 ? 32'h0 : casez_tmp_36) | (_GEN_66 ? 32'h0 : casez_tmp_43)
+    | (_GEN_67 ? 32'h0 : casez_tmp_50) | (_GEN_68 ? 32'h0 : casez_tmp_57)
+    | (_GEN_69 ? 32'h0 : casez_tmp_64) | (_GEN_70 ? 32'h0 : casez_tmp_71)
+    | (_GEN_71 ? 32'h0 : casez_tmp_78) | (_GEN_72 ? 32'h0 : casez_tmp_85)
+    | (_GEN_73 ? 32'h0 : casez_tmp_92) | (_GEN_74 ? 32'h0 : casez_tmp_99)
+    | (_GEN_75 ? 32'h0 : casez_tmp_106);
+  assign io_recs_4_vals_1 =
+    (_GEN_61 ? 32'h0 : casez_tmp_9) | (_GEN_62 ? 32'h0 : casez_tmp_16)
+    | (_GEN_63 ? 32'h0 : casez_tmp_23) | (_GEN_64 ? 32'h0 : casez_tmp_30)
+    | (_GEN_65 ? 32'h0 : casez_tmp_37) | (_GEN_66 ? 32'h0 : casez_tmp_44)
+    | (_GEN_67 ? 32'h0 : casez_tmp_51) | (_GEN_68 ? 32'h0 : casez_tmp_58)
+    | (_GEN_69 ? 32'h0 : casez_tmp_65) | (_GEN_70 ? 32'h0 : casez_tmp_72)
+    | (_GEN_71 ? 32'h0 : casez_tmp_79) | (_GEN_72 ? 32'h0 : casez_tmp_86)
+    | (_GEN_73 ? 32'h0 : casez_tmp_93) | (_GEN_74 ? 32'h0 : casez_tmp_100)
+    | (_GEN_75 ? 32'h0 : casez_tmp_107);
+  assign io_recs_4_pair =
+    (sel_1_4 ? casez_tmp_12 : 24'h0) | (sel_2_4 ? casez_tmp_19 : 24'h0)
+    | (sel_3_4 ? casez_tmp_26 : 24'h0) | (sel_4_4 ? casez_tmp_33 : 24'h0)
+    | (sel_5_4 ? casez_tmp_40 : 24'h0) | (sel_6_4 ? casez_tmp_47 : 24'h0)
+    | (sel_7_4 ? casez_tmp_54 : 24'h0) | (sel_8_4 ? casez_tmp_61 : 24'h0)
+    | (sel_9_4 ? casez_tmp_68 : 24'h0) | (sel_10_4 ? casez_tmp_75 : 24'h0)
+    | (sel_11_4 ? casez_tmp_82 : 24'h0) | (sel_12_4 ? casez_tmp_89 : 24'h0)
+    | (sel_13_4 ? casez_tmp_96 : 24'h0) | (sel_14_4 ? casez_tmp_103 : 24'h0)
+    | (sel_15_4 ? casez_tmp_110 : 24'h0);
+  assign io_recs_4_flags =
+    (sel_1_4 ? records_1_flags : 8'h0) | (sel_2_4 ? records_2_flags : 8'h0)
+    | (sel_3_4 ? records_3_flags : 8'h0) | (sel_4_4 ? records_4_flags : 8'h0)
+    | (sel_5_4 ? records_5_flags : 8'h0) | (sel_6_4 ? records_6_flags : 8'h0)
+    | (sel_7_4 ? records_7_flags : 8'h0) | (sel_8_4 ? records_8_flags : 8'h0)
+    | (sel_9_4 ? records_9_flags : 8'h0) | (sel_10_4 ? records_10_flags : 8'h0)
+    | (sel_11_4 ? records_11_flags : 8'h0) | (sel_12_4 ? records_12_flags : 8'h0)
+    | (sel_13_4 ? records_13_flags : 8'h0) | (sel_14_4 ? records_14_flags : 8'h0)
+    | (sel_15_4 ? records_15_flags : 8'h0);
   assign io_nRecs =
-    {1'h0, _sel_T_32} + {1'h0, _sel_T_34} + {1'h0, _sel_T_36} + {1'h0, _sel_T_38}
-    + {1'h0, _sel_T_40} + {1'h0, _sel_T_42} + {1'h0, _sel_T_44} + {1'h0, _sel_T_46}
-    + {1'h0, _sel_T_48} + {1'h0, _sel_T_50} + {1'h0, _sel_T_52} + {1'h0, _sel_T_54}
-    + {1'h0, _sel_T_56} + {1'h0, _sel_T_58} + {1'h0, _sel_T_60} + {1'h0, _sel_T_62};
+    {1'h0, {1'h0, _sel_T_128} + {1'h0, _sel_T_130}}
+    + {1'h0, {1'h0, _sel_T_132} + {1'h0, _sel_T_134}}
+    + {1'h0, {1'h0, _sel_T_136} + {1'h0, _sel_T_138}}
+    + {1'h0, {1'h0, _sel_T_140} + {1'h0, _sel_T_142}}
+    + {1'h0, {1'h0, _sel_T_144} + {1'h0, _sel_T_146}}
+    + {1'h0, {1'h0, _sel_T_148} + {1'h0, _sel_T_150}}
+    + {1'h0, {1'h0, _sel_T_152} + {1'h0, _sel_T_154}}
+    + {1'h0, {1'h0, _sel_T_156} + {1'h0, _sel_T_158}};
   assign io_nPairs = nTaken;
   assign io_nHits =
     {1'h0,
@@ -16353,33 +13427,33 @@ module ContactCollector_n16_default(
     {1'h0,
      {1'h0,
       {1'h0,
-       {1'h0, take_0 & ~(io_groups_bits_invalid[0]) & casez_tmp_8}
-         + {1'h0, take_1 & ~(io_groups_bits_invalid[1]) & casez_tmp_20}}
+       {1'h0, take_0 & ~(io_groups_bits_invalid[0]) & casez_tmp_3}
+         + {1'h0, take_1 & ~(io_groups_bits_invalid[1]) & casez_tmp_10}}
         + {1'h0,
-           {1'h0, take_2 & ~(io_groups_bits_invalid[2]) & casez_tmp_32}
-             + {1'h0, take_3 & ~(io_groups_bits_invalid[3]) & casez_tmp_44}}}
+           {1'h0, take_2 & ~(io_groups_bits_invalid[2]) & casez_tmp_17}
+             + {1'h0, take_3 & ~(io_groups_bits_invalid[3]) & casez_tmp_24}}}
        + {1'h0,
           {1'h0,
-           {1'h0, take_4 & ~(io_groups_bits_invalid[4]) & casez_tmp_56}
-             + {1'h0, take_5 & ~(io_groups_bits_invalid[5]) & casez_tmp_68}}
+           {1'h0, take_4 & ~(io_groups_bits_invalid[4]) & casez_tmp_31}
+             + {1'h0, take_5 & ~(io_groups_bits_invalid[5]) & casez_tmp_38}}
             + {1'h0,
-               {1'h0, take_6 & ~(io_groups_bits_invalid[6]) & casez_tmp_80}
-                 + {1'h0, take_7 & ~(io_groups_bits_invalid[7]) & casez_tmp_92}}}}
+               {1'h0, take_6 & ~(io_groups_bits_invalid[6]) & casez_tmp_45}
+                 + {1'h0, take_7 & ~(io_groups_bits_invalid[7]) & casez_tmp_52}}}}
     + {1'h0,
        {1'h0,
         {1'h0,
-         {1'h0, take_8 & ~(io_groups_bits_invalid[8]) & casez_tmp_104}
-           + {1'h0, take_9 & ~(io_groups_bits_invalid[9]) & casez_tmp_116}}
+         {1'h0, take_8 & ~(io_groups_bits_invalid[8]) & casez_tmp_59}
+           + {1'h0, take_9 & ~(io_groups_bits_invalid[9]) & casez_tmp_66}}
           + {1'h0,
-             {1'h0, take_10 & ~(io_groups_bits_invalid[10]) & casez_tmp_128}
-               + {1'h0, take_11 & ~(io_groups_bits_invalid[11]) & casez_tmp_140}}}
+             {1'h0, take_10 & ~(io_groups_bits_invalid[10]) & casez_tmp_73}
+               + {1'h0, take_11 & ~(io_groups_bits_invalid[11]) & casez_tmp_80}}}
          + {1'h0,
             {1'h0,
-             {1'h0, take_12 & ~(io_groups_bits_invalid[12]) & casez_tmp_152}
-               + {1'h0, take_13 & ~(io_groups_bits_invalid[13]) & casez_tmp_164}}
+             {1'h0, take_12 & ~(io_groups_bits_invalid[12]) & casez_tmp_87}
+               + {1'h0, take_13 & ~(io_groups_bits_invalid[13]) & casez_tmp_94}}
               + {1'h0,
-                 {1'h0, take_14 & ~(io_groups_bits_invalid[14]) & casez_tmp_176}
-                   + {1'h0, take_15 & ~(io_groups_bits_invalid[15]) & casez_tmp_188}}}};
+                 {1'h0, take_14 & ~(io_groups_bits_invalid[14]) & casez_tmp_101}
+                   + {1'h0, take_15 & ~(io_groups_bits_invalid[15]) & casez_tmp_108}}}};
 endmodule
 
 // VCS coverage exclude_file
@@ -16455,7 +13529,7 @@ module ContactLineQueue_d8_default(
   assign io_deq_bits_data = _ram_ext_R0_data[575:64];
 endmodule
 
-module ContactPacker_w32_default(
+module ContactPacker_w32_derived_r5_default(
   input          clock,
                  reset,
                  io_start,
@@ -16463,26 +13537,28 @@ module ContactPacker_w32_default(
   input  [23:0]  io_numPairs,
   input  [63:0]  io_base,
                  io_capacity,
-  output [1:0]   io_room,
-  input  [31:0]  io_recs_0_px,
-                 io_recs_0_py,
-                 io_recs_0_pz,
-                 io_recs_0_nx,
-                 io_recs_0_ny,
-                 io_recs_0_nz,
-                 io_recs_0_depth,
+  output [2:0]   io_room,
+  input  [31:0]  io_recs_0_vals_0,
+                 io_recs_0_vals_1,
   input  [23:0]  io_recs_0_pair,
   input  [7:0]   io_recs_0_flags,
-  input  [31:0]  io_recs_1_px,
-                 io_recs_1_py,
-                 io_recs_1_pz,
-                 io_recs_1_nx,
-                 io_recs_1_ny,
-                 io_recs_1_nz,
-                 io_recs_1_depth,
+  input  [31:0]  io_recs_1_vals_0,
+                 io_recs_1_vals_1,
   input  [23:0]  io_recs_1_pair,
   input  [7:0]   io_recs_1_flags,
-  input  [1:0]   io_nRecs,
+  input  [31:0]  io_recs_2_vals_0,
+                 io_recs_2_vals_1,
+  input  [23:0]  io_recs_2_pair,
+  input  [7:0]   io_recs_2_flags,
+  input  [31:0]  io_recs_3_vals_0,
+                 io_recs_3_vals_1,
+  input  [23:0]  io_recs_3_pair,
+  input  [7:0]   io_recs_3_flags,
+  input  [31:0]  io_recs_4_vals_0,
+                 io_recs_4_vals_1,
+  input  [23:0]  io_recs_4_pair,
+  input  [7:0]   io_recs_4_flags,
+  input  [2:0]   io_nRecs,
   input          io_flush,
   output         io_idle,
   input          io_lines_ready,
@@ -16492,40 +13568,532 @@ module ContactPacker_w32_default(
 );
 
   wire        _q_io_enq_ready;
-  reg  [23:0] hitCount;
-  wire [23:0] rn_0 = io_dense ? io_recs_0_pair : hitCount;
-  wire [23:0] rn_1 = io_dense ? io_recs_1_pair : hitCount + 24'h1;
-  reg         held;
-  reg  [31:0] heldRec_px;
-  reg  [31:0] heldRec_py;
-  reg  [31:0] heldRec_pz;
-  reg  [31:0] heldRec_nx;
-  reg  [31:0] heldRec_ny;
-  reg  [31:0] heldRec_nz;
-  reg  [31:0] heldRec_depth;
-  reg  [23:0] heldRec_pair;
-  reg  [7:0]  heldRec_flags;
-  reg  [23:0] heldRn;
-  wire        lastA = io_dense & rn_0 == io_numPairs - 24'h1 & ~(rn_0[0]);
-  wire        _GEN = io_flush & held & _q_io_enq_ready;
-  wire [63:0] _GEN_0 = {40'h0, heldRn};
-  wire        _GEN_1 = io_nRecs == 2'h1;
-  wire [63:0] _GEN_2 = {40'h0, rn_0};
-  wire        _GEN_3 = io_nRecs == 2'h2;
-  wire [23:0] enqRn = _GEN | held & _GEN_1 ? heldRn : rn_0;
-  wire        _q_io_enq_valid_T_1 =
-    (_GEN | (held ? _GEN_1 : _GEN_3 | _GEN_1 & lastA)) & {40'h0, enqRn} < io_capacity;
+  reg  [2:0]  fill;
+  reg  [95:0] held_0;
+  reg  [95:0] held_1;
+  reg  [95:0] held_2;
+  reg  [95:0] held_3;
+  reg  [24:0] count;
+  reg  [24:0] lineNo;
+  reg  [24:0] heldLine;
+  reg  [24:0] heldRn;
+  wire [2:0]  io_room_0 = _q_io_enq_ready ? 3'h5 - fill : 3'h0;
+  reg  [4:0]  casez_tmp;
+  always @(*) begin
+    casez (io_recs_0_pair[3:0])
+      4'b0000:
+        casez_tmp = 5'h0;
+      4'b0001:
+        casez_tmp = 5'h0;
+      4'b0010:
+        casez_tmp = 5'h0;
+      4'b0011:
+        casez_tmp = 5'h0;
+      4'b0100:
+        casez_tmp = 5'h0;
+      4'b0101:
+        casez_tmp = 5'h1;
+      4'b0110:
+        casez_tmp = 5'h1;
+      4'b0111:
+        casez_tmp = 5'h1;
+      4'b1000:
+        casez_tmp = 5'h1;
+      4'b1001:
+        casez_tmp = 5'h1;
+      4'b1010:
+        casez_tmp = 5'h2;
+      4'b1011:
+        casez_tmp = 5'h2;
+      4'b1100:
+        casez_tmp = 5'h2;
+      4'b1101:
+        casez_tmp = 5'h2;
+      4'b1110:
+        casez_tmp = 5'h2;
+      default:
+        casez_tmp = 5'h3;
+    endcase
+  end // always @(*)
+  wire [24:0] _lineOf_T_4 =
+    io_dense ? {1'h0, {2'h0, io_recs_0_pair[23:4], 2'h0} + {19'h0, casez_tmp}} : lineNo;
+  wire [24:0] _rnOf_T_2 = io_dense ? {1'h0, io_recs_0_pair} : count;
+  wire [24:0] rnOf = (|fill) ? heldRn : _rnOf_T_2;
+  wire [3:0]  total = {1'h0, fill} + {1'h0, io_nRecs};
+  wire [2:0]  _slots_v_T_3 = 3'h0 - fill;
+  reg  [31:0] casez_tmp_0;
+  always @(*) begin
+    casez (_slots_v_T_3)
+      3'b000:
+        casez_tmp_0 = io_recs_0_vals_0;
+      3'b001:
+        casez_tmp_0 = io_recs_1_vals_0;
+      3'b010:
+        casez_tmp_0 = io_recs_2_vals_0;
+      3'b011:
+        casez_tmp_0 = io_recs_3_vals_0;
+      3'b100:
+        casez_tmp_0 = io_recs_4_vals_0;
+      3'b101:
+        casez_tmp_0 = io_recs_0_vals_0;
+      3'b110:
+        casez_tmp_0 = io_recs_0_vals_0;
+      default:
+        casez_tmp_0 = io_recs_0_vals_0;
+    endcase
+  end // always @(*)
+  reg  [31:0] casez_tmp_1;
+  always @(*) begin
+    casez (_slots_v_T_3)
+      3'b000:
+        casez_tmp_1 = io_recs_0_vals_1;
+      3'b001:
+        casez_tmp_1 = io_recs_1_vals_1;
+      3'b010:
+        casez_tmp_1 = io_recs_2_vals_1;
+      3'b011:
+        casez_tmp_1 = io_recs_3_vals_1;
+      3'b100:
+        casez_tmp_1 = io_recs_4_vals_1;
+      3'b101:
+        casez_tmp_1 = io_recs_0_vals_1;
+      3'b110:
+        casez_tmp_1 = io_recs_0_vals_1;
+      default:
+        casez_tmp_1 = io_recs_0_vals_1;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_2;
+  always @(*) begin
+    casez (_slots_v_T_3)
+      3'b000:
+        casez_tmp_2 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_2 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_2 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_2 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_2 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_2 = io_recs_0_pair;
+      3'b110:
+        casez_tmp_2 = io_recs_0_pair;
+      default:
+        casez_tmp_2 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  reg  [7:0]  casez_tmp_3;
+  always @(*) begin
+    casez (_slots_v_T_3)
+      3'b000:
+        casez_tmp_3 = io_recs_0_flags;
+      3'b001:
+        casez_tmp_3 = io_recs_1_flags;
+      3'b010:
+        casez_tmp_3 = io_recs_2_flags;
+      3'b011:
+        casez_tmp_3 = io_recs_3_flags;
+      3'b100:
+        casez_tmp_3 = io_recs_4_flags;
+      3'b101:
+        casez_tmp_3 = io_recs_0_flags;
+      3'b110:
+        casez_tmp_3 = io_recs_0_flags;
+      default:
+        casez_tmp_3 = io_recs_0_flags;
+    endcase
+  end // always @(*)
+  wire [95:0] _slots_v_T_5 = {casez_tmp_3, casez_tmp_2, casez_tmp_1, casez_tmp_0};
+  wire [63:0] _GEN = {39'h0, rnOf};
+  wire        _slots_T_4 = (|total) & _GEN < io_capacity;
+  wire [2:0]  _slots_v_T_7 = 3'h1 - fill;
+  reg  [31:0] casez_tmp_4;
+  always @(*) begin
+    casez (_slots_v_T_7)
+      3'b000:
+        casez_tmp_4 = io_recs_0_vals_0;
+      3'b001:
+        casez_tmp_4 = io_recs_1_vals_0;
+      3'b010:
+        casez_tmp_4 = io_recs_2_vals_0;
+      3'b011:
+        casez_tmp_4 = io_recs_3_vals_0;
+      3'b100:
+        casez_tmp_4 = io_recs_4_vals_0;
+      3'b101:
+        casez_tmp_4 = io_recs_0_vals_0;
+      3'b110:
+        casez_tmp_4 = io_recs_0_vals_0;
+      default:
+        casez_tmp_4 = io_recs_0_vals_0;
+    endcase
+  end // always @(*)
+  reg  [31:0] casez_tmp_5;
+  always @(*) begin
+    casez (_slots_v_T_7)
+      3'b000:
+        casez_tmp_5 = io_recs_0_vals_1;
+      3'b001:
+        casez_tmp_5 = io_recs_1_vals_1;
+      3'b010:
+        casez_tmp_5 = io_recs_2_vals_1;
+      3'b011:
+        casez_tmp_5 = io_recs_3_vals_1;
+      3'b100:
+        casez_tmp_5 = io_recs_4_vals_1;
+      3'b101:
+        casez_tmp_5 = io_recs_0_vals_1;
+      3'b110:
+        casez_tmp_5 = io_recs_0_vals_1;
+      default:
+        casez_tmp_5 = io_recs_0_vals_1;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_6;
+  always @(*) begin
+    casez (_slots_v_T_7)
+      3'b000:
+        casez_tmp_6 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_6 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_6 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_6 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_6 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_6 = io_recs_0_pair;
+      3'b110:
+        casez_tmp_6 = io_recs_0_pair;
+      default:
+        casez_tmp_6 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  reg  [7:0]  casez_tmp_7;
+  always @(*) begin
+    casez (_slots_v_T_7)
+      3'b000:
+        casez_tmp_7 = io_recs_0_flags;
+      3'b001:
+        casez_tmp_7 = io_recs_1_flags;
+      3'b010:
+        casez_tmp_7 = io_recs_2_flags;
+      3'b011:
+        casez_tmp_7 = io_recs_3_flags;
+      3'b100:
+        casez_tmp_7 = io_recs_4_flags;
+      3'b101:
+        casez_tmp_7 = io_recs_0_flags;
+      3'b110:
+        casez_tmp_7 = io_recs_0_flags;
+      default:
+        casez_tmp_7 = io_recs_0_flags;
+    endcase
+  end // always @(*)
+  wire [95:0] _slots_v_T_11 = {casez_tmp_7, casez_tmp_6, casez_tmp_5, casez_tmp_4};
+  wire        _slots_T_10 = (|(total[3:1])) & {39'h0, rnOf + 25'h1} < io_capacity;
+  wire        _slots_v_T_12 = fill > 3'h2;
+  wire [2:0]  _slots_v_T_13 = 3'h2 - fill;
+  reg  [31:0] casez_tmp_8;
+  always @(*) begin
+    casez (_slots_v_T_13)
+      3'b000:
+        casez_tmp_8 = io_recs_0_vals_0;
+      3'b001:
+        casez_tmp_8 = io_recs_1_vals_0;
+      3'b010:
+        casez_tmp_8 = io_recs_2_vals_0;
+      3'b011:
+        casez_tmp_8 = io_recs_3_vals_0;
+      3'b100:
+        casez_tmp_8 = io_recs_4_vals_0;
+      3'b101:
+        casez_tmp_8 = io_recs_0_vals_0;
+      3'b110:
+        casez_tmp_8 = io_recs_0_vals_0;
+      default:
+        casez_tmp_8 = io_recs_0_vals_0;
+    endcase
+  end // always @(*)
+  reg  [31:0] casez_tmp_9;
+  always @(*) begin
+    casez (_slots_v_T_13)
+      3'b000:
+        casez_tmp_9 = io_recs_0_vals_1;
+      3'b001:
+        casez_tmp_9 = io_recs_1_vals_1;
+      3'b010:
+        casez_tmp_9 = io_recs_2_vals_1;
+      3'b011:
+        casez_tmp_9 = io_recs_3_vals_1;
+      3'b100:
+        casez_tmp_9 = io_recs_4_vals_1;
+      3'b101:
+        casez_tmp_9 = io_recs_0_vals_1;
+      3'b110:
+        casez_tmp_9 = io_recs_0_vals_1;
+      default:
+        casez_tmp_9 = io_recs_0_vals_1;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_10;
+  always @(*) begin
+    casez (_slots_v_T_13)
+      3'b000:
+        casez_tmp_10 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_10 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_10 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_10 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_10 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_10 = io_recs_0_pair;
+      3'b110:
+        casez_tmp_10 = io_recs_0_pair;
+      default:
+        casez_tmp_10 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  reg  [7:0]  casez_tmp_11;
+  always @(*) begin
+    casez (_slots_v_T_13)
+      3'b000:
+        casez_tmp_11 = io_recs_0_flags;
+      3'b001:
+        casez_tmp_11 = io_recs_1_flags;
+      3'b010:
+        casez_tmp_11 = io_recs_2_flags;
+      3'b011:
+        casez_tmp_11 = io_recs_3_flags;
+      3'b100:
+        casez_tmp_11 = io_recs_4_flags;
+      3'b101:
+        casez_tmp_11 = io_recs_0_flags;
+      3'b110:
+        casez_tmp_11 = io_recs_0_flags;
+      default:
+        casez_tmp_11 = io_recs_0_flags;
+    endcase
+  end // always @(*)
+  wire [95:0] _slots_v_T_17 = {casez_tmp_11, casez_tmp_10, casez_tmp_9, casez_tmp_8};
+  wire        _slots_T_12 = total > 4'h2;
+  wire        _slots_T_16 = _slots_T_12 & {39'h0, rnOf + 25'h2} < io_capacity;
+  wire [2:0]  _slots_v_T_19 = 3'h3 - fill;
+  reg  [31:0] casez_tmp_12;
+  always @(*) begin
+    casez (_slots_v_T_19)
+      3'b000:
+        casez_tmp_12 = io_recs_0_vals_0;
+      3'b001:
+        casez_tmp_12 = io_recs_1_vals_0;
+      3'b010:
+        casez_tmp_12 = io_recs_2_vals_0;
+      3'b011:
+        casez_tmp_12 = io_recs_3_vals_0;
+      3'b100:
+        casez_tmp_12 = io_recs_4_vals_0;
+      3'b101:
+        casez_tmp_12 = io_recs_0_vals_0;
+      3'b110:
+        casez_tmp_12 = io_recs_0_vals_0;
+      default:
+        casez_tmp_12 = io_recs_0_vals_0;
+    endcase
+  end // always @(*)
+  reg  [31:0] casez_tmp_13;
+  always @(*) begin
+    casez (_slots_v_T_19)
+      3'b000:
+        casez_tmp_13 = io_recs_0_vals_1;
+      3'b001:
+        casez_tmp_13 = io_recs_1_vals_1;
+      3'b010:
+        casez_tmp_13 = io_recs_2_vals_1;
+      3'b011:
+        casez_tmp_13 = io_recs_3_vals_1;
+      3'b100:
+        casez_tmp_13 = io_recs_4_vals_1;
+      3'b101:
+        casez_tmp_13 = io_recs_0_vals_1;
+      3'b110:
+        casez_tmp_13 = io_recs_0_vals_1;
+      default:
+        casez_tmp_13 = io_recs_0_vals_1;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_14;
+  always @(*) begin
+    casez (_slots_v_T_19)
+      3'b000:
+        casez_tmp_14 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_14 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_14 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_14 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_14 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_14 = io_recs_0_pair;
+      3'b110:
+        casez_tmp_14 = io_recs_0_pair;
+      default:
+        casez_tmp_14 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  reg  [7:0]  casez_tmp_15;
+  always @(*) begin
+    casez (_slots_v_T_19)
+      3'b000:
+        casez_tmp_15 = io_recs_0_flags;
+      3'b001:
+        casez_tmp_15 = io_recs_1_flags;
+      3'b010:
+        casez_tmp_15 = io_recs_2_flags;
+      3'b011:
+        casez_tmp_15 = io_recs_3_flags;
+      3'b100:
+        casez_tmp_15 = io_recs_4_flags;
+      3'b101:
+        casez_tmp_15 = io_recs_0_flags;
+      3'b110:
+        casez_tmp_15 = io_recs_0_flags;
+      default:
+        casez_tmp_15 = io_recs_0_flags;
+    endcase
+  end // always @(*)
+  wire [95:0] _slots_v_T_23 = {casez_tmp_15, casez_tmp_14, casez_tmp_13, casez_tmp_12};
+  wire        _slots_T_22 = (|(total[3:2])) & {39'h0, rnOf + 25'h3} < io_capacity;
+  wire [2:0]  _slots_v_T_25 = 3'h4 - fill;
+  reg  [31:0] casez_tmp_16;
+  always @(*) begin
+    casez (_slots_v_T_25)
+      3'b000:
+        casez_tmp_16 = io_recs_0_vals_0;
+      3'b001:
+        casez_tmp_16 = io_recs_1_vals_0;
+      3'b010:
+        casez_tmp_16 = io_recs_2_vals_0;
+      3'b011:
+        casez_tmp_16 = io_recs_3_vals_0;
+      3'b100:
+        casez_tmp_16 = io_recs_4_vals_0;
+      3'b101:
+        casez_tmp_16 = io_recs_0_vals_0;
+      3'b110:
+        casez_tmp_16 = io_recs_0_vals_0;
+      default:
+        casez_tmp_16 = io_recs_0_vals_0;
+    endcase
+  end // always @(*)
+  reg  [31:0] casez_tmp_17;
+  always @(*) begin
+    casez (_slots_v_T_25)
+      3'b000:
+        casez_tmp_17 = io_recs_0_vals_1;
+      3'b001:
+        casez_tmp_17 = io_recs_1_vals_1;
+      3'b010:
+        casez_tmp_17 = io_recs_2_vals_1;
+      3'b011:
+        casez_tmp_17 = io_recs_3_vals_1;
+      3'b100:
+        casez_tmp_17 = io_recs_4_vals_1;
+      3'b101:
+        casez_tmp_17 = io_recs_0_vals_1;
+      3'b110:
+        casez_tmp_17 = io_recs_0_vals_1;
+      default:
+        casez_tmp_17 = io_recs_0_vals_1;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_18;
+  always @(*) begin
+    casez (_slots_v_T_25)
+      3'b000:
+        casez_tmp_18 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_18 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_18 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_18 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_18 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_18 = io_recs_0_pair;
+      3'b110:
+        casez_tmp_18 = io_recs_0_pair;
+      default:
+        casez_tmp_18 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  reg  [7:0]  casez_tmp_19;
+  always @(*) begin
+    casez (_slots_v_T_25)
+      3'b000:
+        casez_tmp_19 = io_recs_0_flags;
+      3'b001:
+        casez_tmp_19 = io_recs_1_flags;
+      3'b010:
+        casez_tmp_19 = io_recs_2_flags;
+      3'b011:
+        casez_tmp_19 = io_recs_3_flags;
+      3'b100:
+        casez_tmp_19 = io_recs_4_flags;
+      3'b101:
+        casez_tmp_19 = io_recs_0_flags;
+      3'b110:
+        casez_tmp_19 = io_recs_0_flags;
+      default:
+        casez_tmp_19 = io_recs_0_flags;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_20;
+  always @(*) begin
+    casez (io_nRecs - 3'h1)
+      3'b000:
+        casez_tmp_20 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_20 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_20 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_20 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_20 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_20 = io_recs_0_pair;
+      3'b110:
+        casez_tmp_20 = io_recs_0_pair;
+      default:
+        casez_tmp_20 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  wire        emit =
+    _q_io_enq_ready
+    & (total == 4'h5 | io_dense & (|io_nRecs)
+       & ((&(casez_tmp_20[3:0])) | casez_tmp_20 == io_numPairs - 24'h1) & (|total)
+       | io_flush & (|total));
+  wire        _q_io_enq_valid_T_1 = emit & _GEN < io_capacity;
   `ifndef SYNTHESIS
     always @(posedge clock) begin
-      if (~reset & held & (|io_nRecs) & ~(rn_0[0]) & ~io_flush) begin
+      if (~reset & io_nRecs > io_room_0) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ContactPacker: record stream out of order\n    at ContactPacker.scala:98 assert(!(held && io.nRecs =/= 0.U && rn(0)(0) === 0.U && !io.flush), \"ContactPacker: record stream out of order\")\n");
+          $error("Assertion failed: ContactPacker: more records than room\n    at ContactPacker.scala:93 assert(io.nRecs <= io.room, \"ContactPacker: more records than room\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_q_io_enq_valid_T_1 | _q_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ContactPacker: line queue overflow\n    at ContactPacker.scala:102 assert(!q.io.enq.valid || q.io.enq.ready, \"ContactPacker: line queue overflow\")\n");
+          $error("Assertion failed: ContactPacker: line queue overflow\n    at ContactPacker.scala:94 assert(!q.io.enq.valid || q.io.enq.ready, \"ContactPacker: line queue overflow\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -16533,48 +14101,65 @@ module ContactPacker_w32_default(
   `endif // not def SYNTHESIS
   always @(posedge clock) begin
     if (reset) begin
-      hitCount <= 24'h0;
-      held <= 1'h0;
+      fill <= 3'h0;
+      count <= 25'h0;
+      lineNo <= 25'h0;
     end
     else begin
-      if (io_start)
-        hitCount <= 24'h0;
-      else if (io_dense) begin
-      end
+      if (io_start | emit)
+        fill <= 3'h0;
       else
-        hitCount <= hitCount + {22'h0, io_nRecs};
-      held <=
-        ~_GEN & (held ? ~_GEN_1 & held : _GEN_3 ? lastA | held : _GEN_1 & ~lastA | held);
-    end
-    if (~(_GEN | held)) begin
-      if (_GEN_3) begin
-        if (lastA) begin
-          heldRec_px <= io_recs_1_px;
-          heldRec_py <= io_recs_1_py;
-          heldRec_pz <= io_recs_1_pz;
-          heldRec_nx <= io_recs_1_nx;
-          heldRec_ny <= io_recs_1_ny;
-          heldRec_nz <= io_recs_1_nz;
-          heldRec_depth <= io_recs_1_depth;
-          heldRec_pair <= io_recs_1_pair;
-          heldRec_flags <= io_recs_1_flags;
-          heldRn <= rn_1;
-        end
-      end
-      else if (~_GEN_1 | lastA) begin
+        fill <= total[2:0];
+      if (io_start) begin
+        count <= 25'h0;
+        lineNo <= 25'h0;
       end
       else begin
-        heldRec_px <= io_recs_0_px;
-        heldRec_py <= io_recs_0_py;
-        heldRec_pz <= io_recs_0_pz;
-        heldRec_nx <= io_recs_0_nx;
-        heldRec_ny <= io_recs_0_ny;
-        heldRec_nz <= io_recs_0_nz;
-        heldRec_depth <= io_recs_0_depth;
-        heldRec_pair <= io_recs_0_pair;
-        heldRec_flags <= io_recs_0_flags;
-        heldRn <= rn_0;
+        if (io_dense) begin
+        end
+        else
+          count <= count + {22'h0, io_nRecs};
+        if (emit & ~io_dense)
+          lineNo <= lineNo + 25'h1;
       end
+    end
+    if (emit | ~(|total)) begin
+    end
+    else if (_slots_T_4) begin
+      if (~(|fill))
+        held_0 <= _slots_v_T_5;
+    end
+    else
+      held_0 <= 96'h0;
+    if (emit | ~(|(total[3:1]))) begin
+    end
+    else if (_slots_T_10) begin
+      if (~(|(fill[2:1])))
+        held_1 <= _slots_v_T_11;
+    end
+    else
+      held_1 <= 96'h0;
+    if (emit | ~_slots_T_12) begin
+    end
+    else if (_slots_T_16) begin
+      if (~_slots_v_T_12)
+        held_2 <= _slots_v_T_17;
+    end
+    else
+      held_2 <= 96'h0;
+    if (emit | ~(|(total[3:2]))) begin
+    end
+    else if (_slots_T_22) begin
+      if (fill[2]) begin
+      end
+      else
+        held_3 <= _slots_v_T_23;
+    end
+    else
+      held_3 <= 96'h0;
+    if (~(emit | (|fill))) begin
+      heldLine <= _lineOf_T_4;
+      heldRn <= _rnOf_T_2;
     end
   end // always @(posedge)
   ContactLineQueue_d8_default q (
@@ -16582,103 +14167,23 @@ module ContactPacker_w32_default(
     .reset            (reset),
     .io_enq_ready     (_q_io_enq_ready),
     .io_enq_valid     (_q_io_enq_valid_T_1),
-    .io_enq_bits_addr (io_base + {41'h0, enqRn[23:1]}),
+    .io_enq_bits_addr (io_base + {39'h0, (|fill) ? heldLine : _lineOf_T_4}),
     .io_enq_bits_data
-      (_GEN
-         ? {256'h0,
-            _GEN_0 < io_capacity
-              ? {heldRec_flags,
-                 heldRec_pair,
-                 heldRec_depth,
-                 heldRec_nz,
-                 heldRec_ny,
-                 heldRec_nx,
-                 heldRec_pz,
-                 heldRec_py,
-                 heldRec_px}
-              : 256'h0}
-         : held
-             ? (_GEN_1
-                  ? {_GEN_2 < io_capacity
-                       ? {io_recs_0_flags,
-                          io_recs_0_pair,
-                          io_recs_0_depth,
-                          io_recs_0_nz,
-                          io_recs_0_ny,
-                          io_recs_0_nx,
-                          io_recs_0_pz,
-                          io_recs_0_py,
-                          io_recs_0_px}
-                       : 256'h0,
-                     _GEN_0 < io_capacity
-                       ? {heldRec_flags,
-                          heldRec_pair,
-                          heldRec_depth,
-                          heldRec_nz,
-                          heldRec_ny,
-                          heldRec_nx,
-                          heldRec_pz,
-                          heldRec_py,
-                          heldRec_px}
-                       : 256'h0}
-                  : 512'h0)
-             : _GEN_3
-                 ? (lastA
-                      ? {256'h0,
-                         _GEN_2 < io_capacity
-                           ? {io_recs_0_flags,
-                              io_recs_0_pair,
-                              io_recs_0_depth,
-                              io_recs_0_nz,
-                              io_recs_0_ny,
-                              io_recs_0_nx,
-                              io_recs_0_pz,
-                              io_recs_0_py,
-                              io_recs_0_px}
-                           : 256'h0}
-                      : {{40'h0, rn_1} < io_capacity
-                           ? {io_recs_1_flags,
-                              io_recs_1_pair,
-                              io_recs_1_depth,
-                              io_recs_1_nz,
-                              io_recs_1_ny,
-                              io_recs_1_nx,
-                              io_recs_1_pz,
-                              io_recs_1_py,
-                              io_recs_1_px}
-                           : 256'h0,
-                         _GEN_2 < io_capacity
-                           ? {io_recs_0_flags,
-                              io_recs_0_pair,
-                              io_recs_0_depth,
-                              io_recs_0_nz,
-                              io_recs_0_ny,
-                              io_recs_0_nx,
-                              io_recs_0_pz,
-                              io_recs_0_py,
-                              io_recs_0_px}
-                           : 256'h0})
-                 : _GEN_1 & lastA
-                     ? {256'h0,
-                        _GEN_2 < io_capacity
-                          ? {io_recs_0_flags,
-                             io_recs_0_pair,
-                             io_recs_0_depth,
-                             io_recs_0_nz,
-                             io_recs_0_ny,
-                             io_recs_0_nx,
-                             io_recs_0_pz,
-                             io_recs_0_py,
-                             io_recs_0_px}
-                          : 256'h0}
-                     : 512'h0),
+      ({32'h0,
+        ~(total > 4'h4 & {39'h0, rnOf + 25'h4} < io_capacity) | fill > 3'h4
+          ? 96'h0
+          : {casez_tmp_19, casez_tmp_18, casez_tmp_17, casez_tmp_16},
+        _slots_T_22 ? (fill[2] ? held_3 : _slots_v_T_23) : 96'h0,
+        _slots_T_16 ? (_slots_v_T_12 ? held_2 : _slots_v_T_17) : 96'h0,
+        _slots_T_10 ? ((|(fill[2:1])) ? held_1 : _slots_v_T_11) : 96'h0,
+        _slots_T_4 ? ((|fill) ? held_0 : _slots_v_T_5) : 96'h0}),
     .io_deq_ready     (io_lines_ready),
     .io_deq_valid     (io_lines_valid),
     .io_deq_bits_addr (io_lines_bits_addr),
     .io_deq_bits_data (io_lines_bits_data)
   );
-  assign io_room = _q_io_enq_ready ? (held ? 2'h1 : 2'h2) : 2'h0;
-  assign io_idle = ~held;
+  assign io_room = io_room_0;
+  assign io_idle = fill == 3'h0;
 endmodule
 
 module TagPool_n64_default_wr(
@@ -17606,13 +15111,8 @@ module Puc_default(
   input          io_scpuOut_0_valid,
                  io_scpuOut_0_bits_hit,
   input  [1:0]   io_scpuOut_0_bits_kind,
-  input  [31:0]  io_scpuOut_0_bits_px,
-                 io_scpuOut_0_bits_py,
-                 io_scpuOut_0_bits_pz,
-                 io_scpuOut_0_bits_nx,
-                 io_scpuOut_0_bits_ny,
-                 io_scpuOut_0_bits_nz,
-                 io_scpuOut_0_bits_depth,
+  input  [31:0]  io_scpuOut_0_bits_d,
+                 io_scpuOut_0_bits_nw,
   input          io_scpuOut_0_bits_nonFinite,
   input  [4:0]   io_scpuOut_0_bits_flags,
   input  [23:0]  io_scpuOut_0_bits_tag,
@@ -17620,13 +15120,8 @@ module Puc_default(
   input          io_scpuOut_1_valid,
                  io_scpuOut_1_bits_hit,
   input  [1:0]   io_scpuOut_1_bits_kind,
-  input  [31:0]  io_scpuOut_1_bits_px,
-                 io_scpuOut_1_bits_py,
-                 io_scpuOut_1_bits_pz,
-                 io_scpuOut_1_bits_nx,
-                 io_scpuOut_1_bits_ny,
-                 io_scpuOut_1_bits_nz,
-                 io_scpuOut_1_bits_depth,
+  input  [31:0]  io_scpuOut_1_bits_d,
+                 io_scpuOut_1_bits_nw,
   input          io_scpuOut_1_bits_nonFinite,
   input  [4:0]   io_scpuOut_1_bits_flags,
   input  [23:0]  io_scpuOut_1_bits_tag,
@@ -17634,13 +15129,8 @@ module Puc_default(
   input          io_scpuOut_2_valid,
                  io_scpuOut_2_bits_hit,
   input  [1:0]   io_scpuOut_2_bits_kind,
-  input  [31:0]  io_scpuOut_2_bits_px,
-                 io_scpuOut_2_bits_py,
-                 io_scpuOut_2_bits_pz,
-                 io_scpuOut_2_bits_nx,
-                 io_scpuOut_2_bits_ny,
-                 io_scpuOut_2_bits_nz,
-                 io_scpuOut_2_bits_depth,
+  input  [31:0]  io_scpuOut_2_bits_d,
+                 io_scpuOut_2_bits_nw,
   input          io_scpuOut_2_bits_nonFinite,
   input  [4:0]   io_scpuOut_2_bits_flags,
   input  [23:0]  io_scpuOut_2_bits_tag,
@@ -17648,13 +15138,8 @@ module Puc_default(
   input          io_scpuOut_3_valid,
                  io_scpuOut_3_bits_hit,
   input  [1:0]   io_scpuOut_3_bits_kind,
-  input  [31:0]  io_scpuOut_3_bits_px,
-                 io_scpuOut_3_bits_py,
-                 io_scpuOut_3_bits_pz,
-                 io_scpuOut_3_bits_nx,
-                 io_scpuOut_3_bits_ny,
-                 io_scpuOut_3_bits_nz,
-                 io_scpuOut_3_bits_depth,
+  input  [31:0]  io_scpuOut_3_bits_d,
+                 io_scpuOut_3_bits_nw,
   input          io_scpuOut_3_bits_nonFinite,
   input  [4:0]   io_scpuOut_3_bits_flags,
   input  [23:0]  io_scpuOut_3_bits_tag,
@@ -17662,13 +15147,8 @@ module Puc_default(
   input          io_scpuOut_4_valid,
                  io_scpuOut_4_bits_hit,
   input  [1:0]   io_scpuOut_4_bits_kind,
-  input  [31:0]  io_scpuOut_4_bits_px,
-                 io_scpuOut_4_bits_py,
-                 io_scpuOut_4_bits_pz,
-                 io_scpuOut_4_bits_nx,
-                 io_scpuOut_4_bits_ny,
-                 io_scpuOut_4_bits_nz,
-                 io_scpuOut_4_bits_depth,
+  input  [31:0]  io_scpuOut_4_bits_d,
+                 io_scpuOut_4_bits_nw,
   input          io_scpuOut_4_bits_nonFinite,
   input  [4:0]   io_scpuOut_4_bits_flags,
   input  [23:0]  io_scpuOut_4_bits_tag,
@@ -17676,13 +15156,8 @@ module Puc_default(
   input          io_scpuOut_5_valid,
                  io_scpuOut_5_bits_hit,
   input  [1:0]   io_scpuOut_5_bits_kind,
-  input  [31:0]  io_scpuOut_5_bits_px,
-                 io_scpuOut_5_bits_py,
-                 io_scpuOut_5_bits_pz,
-                 io_scpuOut_5_bits_nx,
-                 io_scpuOut_5_bits_ny,
-                 io_scpuOut_5_bits_nz,
-                 io_scpuOut_5_bits_depth,
+  input  [31:0]  io_scpuOut_5_bits_d,
+                 io_scpuOut_5_bits_nw,
   input          io_scpuOut_5_bits_nonFinite,
   input  [4:0]   io_scpuOut_5_bits_flags,
   input  [23:0]  io_scpuOut_5_bits_tag,
@@ -17690,13 +15165,8 @@ module Puc_default(
   input          io_scpuOut_6_valid,
                  io_scpuOut_6_bits_hit,
   input  [1:0]   io_scpuOut_6_bits_kind,
-  input  [31:0]  io_scpuOut_6_bits_px,
-                 io_scpuOut_6_bits_py,
-                 io_scpuOut_6_bits_pz,
-                 io_scpuOut_6_bits_nx,
-                 io_scpuOut_6_bits_ny,
-                 io_scpuOut_6_bits_nz,
-                 io_scpuOut_6_bits_depth,
+  input  [31:0]  io_scpuOut_6_bits_d,
+                 io_scpuOut_6_bits_nw,
   input          io_scpuOut_6_bits_nonFinite,
   input  [4:0]   io_scpuOut_6_bits_flags,
   input  [23:0]  io_scpuOut_6_bits_tag,
@@ -17704,13 +15174,8 @@ module Puc_default(
   input          io_scpuOut_7_valid,
                  io_scpuOut_7_bits_hit,
   input  [1:0]   io_scpuOut_7_bits_kind,
-  input  [31:0]  io_scpuOut_7_bits_px,
-                 io_scpuOut_7_bits_py,
-                 io_scpuOut_7_bits_pz,
-                 io_scpuOut_7_bits_nx,
-                 io_scpuOut_7_bits_ny,
-                 io_scpuOut_7_bits_nz,
-                 io_scpuOut_7_bits_depth,
+  input  [31:0]  io_scpuOut_7_bits_d,
+                 io_scpuOut_7_bits_nw,
   input          io_scpuOut_7_bits_nonFinite,
   input  [4:0]   io_scpuOut_7_bits_flags,
   input  [23:0]  io_scpuOut_7_bits_tag,
@@ -17718,13 +15183,8 @@ module Puc_default(
   input          io_scpuOut_8_valid,
                  io_scpuOut_8_bits_hit,
   input  [1:0]   io_scpuOut_8_bits_kind,
-  input  [31:0]  io_scpuOut_8_bits_px,
-                 io_scpuOut_8_bits_py,
-                 io_scpuOut_8_bits_pz,
-                 io_scpuOut_8_bits_nx,
-                 io_scpuOut_8_bits_ny,
-                 io_scpuOut_8_bits_nz,
-                 io_scpuOut_8_bits_depth,
+  input  [31:0]  io_scpuOut_8_bits_d,
+                 io_scpuOut_8_bits_nw,
   input          io_scpuOut_8_bits_nonFinite,
   input  [4:0]   io_scpuOut_8_bits_flags,
   input  [23:0]  io_scpuOut_8_bits_tag,
@@ -17732,13 +15192,8 @@ module Puc_default(
   input          io_scpuOut_9_valid,
                  io_scpuOut_9_bits_hit,
   input  [1:0]   io_scpuOut_9_bits_kind,
-  input  [31:0]  io_scpuOut_9_bits_px,
-                 io_scpuOut_9_bits_py,
-                 io_scpuOut_9_bits_pz,
-                 io_scpuOut_9_bits_nx,
-                 io_scpuOut_9_bits_ny,
-                 io_scpuOut_9_bits_nz,
-                 io_scpuOut_9_bits_depth,
+  input  [31:0]  io_scpuOut_9_bits_d,
+                 io_scpuOut_9_bits_nw,
   input          io_scpuOut_9_bits_nonFinite,
   input  [4:0]   io_scpuOut_9_bits_flags,
   input  [23:0]  io_scpuOut_9_bits_tag,
@@ -17746,13 +15201,8 @@ module Puc_default(
   input          io_scpuOut_10_valid,
                  io_scpuOut_10_bits_hit,
   input  [1:0]   io_scpuOut_10_bits_kind,
-  input  [31:0]  io_scpuOut_10_bits_px,
-                 io_scpuOut_10_bits_py,
-                 io_scpuOut_10_bits_pz,
-                 io_scpuOut_10_bits_nx,
-                 io_scpuOut_10_bits_ny,
-                 io_scpuOut_10_bits_nz,
-                 io_scpuOut_10_bits_depth,
+  input  [31:0]  io_scpuOut_10_bits_d,
+                 io_scpuOut_10_bits_nw,
   input          io_scpuOut_10_bits_nonFinite,
   input  [4:0]   io_scpuOut_10_bits_flags,
   input  [23:0]  io_scpuOut_10_bits_tag,
@@ -17760,13 +15210,8 @@ module Puc_default(
   input          io_scpuOut_11_valid,
                  io_scpuOut_11_bits_hit,
   input  [1:0]   io_scpuOut_11_bits_kind,
-  input  [31:0]  io_scpuOut_11_bits_px,
-                 io_scpuOut_11_bits_py,
-                 io_scpuOut_11_bits_pz,
-                 io_scpuOut_11_bits_nx,
-                 io_scpuOut_11_bits_ny,
-                 io_scpuOut_11_bits_nz,
-                 io_scpuOut_11_bits_depth,
+  input  [31:0]  io_scpuOut_11_bits_d,
+                 io_scpuOut_11_bits_nw,
   input          io_scpuOut_11_bits_nonFinite,
   input  [4:0]   io_scpuOut_11_bits_flags,
   input  [23:0]  io_scpuOut_11_bits_tag,
@@ -17774,13 +15219,8 @@ module Puc_default(
   input          io_scpuOut_12_valid,
                  io_scpuOut_12_bits_hit,
   input  [1:0]   io_scpuOut_12_bits_kind,
-  input  [31:0]  io_scpuOut_12_bits_px,
-                 io_scpuOut_12_bits_py,
-                 io_scpuOut_12_bits_pz,
-                 io_scpuOut_12_bits_nx,
-                 io_scpuOut_12_bits_ny,
-                 io_scpuOut_12_bits_nz,
-                 io_scpuOut_12_bits_depth,
+  input  [31:0]  io_scpuOut_12_bits_d,
+                 io_scpuOut_12_bits_nw,
   input          io_scpuOut_12_bits_nonFinite,
   input  [4:0]   io_scpuOut_12_bits_flags,
   input  [23:0]  io_scpuOut_12_bits_tag,
@@ -17788,13 +15228,8 @@ module Puc_default(
   input          io_scpuOut_13_valid,
                  io_scpuOut_13_bits_hit,
   input  [1:0]   io_scpuOut_13_bits_kind,
-  input  [31:0]  io_scpuOut_13_bits_px,
-                 io_scpuOut_13_bits_py,
-                 io_scpuOut_13_bits_pz,
-                 io_scpuOut_13_bits_nx,
-                 io_scpuOut_13_bits_ny,
-                 io_scpuOut_13_bits_nz,
-                 io_scpuOut_13_bits_depth,
+  input  [31:0]  io_scpuOut_13_bits_d,
+                 io_scpuOut_13_bits_nw,
   input          io_scpuOut_13_bits_nonFinite,
   input  [4:0]   io_scpuOut_13_bits_flags,
   input  [23:0]  io_scpuOut_13_bits_tag,
@@ -17802,13 +15237,8 @@ module Puc_default(
   input          io_scpuOut_14_valid,
                  io_scpuOut_14_bits_hit,
   input  [1:0]   io_scpuOut_14_bits_kind,
-  input  [31:0]  io_scpuOut_14_bits_px,
-                 io_scpuOut_14_bits_py,
-                 io_scpuOut_14_bits_pz,
-                 io_scpuOut_14_bits_nx,
-                 io_scpuOut_14_bits_ny,
-                 io_scpuOut_14_bits_nz,
-                 io_scpuOut_14_bits_depth,
+  input  [31:0]  io_scpuOut_14_bits_d,
+                 io_scpuOut_14_bits_nw,
   input          io_scpuOut_14_bits_nonFinite,
   input  [4:0]   io_scpuOut_14_bits_flags,
   input  [23:0]  io_scpuOut_14_bits_tag,
@@ -17816,13 +15246,8 @@ module Puc_default(
   input          io_scpuOut_15_valid,
                  io_scpuOut_15_bits_hit,
   input  [1:0]   io_scpuOut_15_bits_kind,
-  input  [31:0]  io_scpuOut_15_bits_px,
-                 io_scpuOut_15_bits_py,
-                 io_scpuOut_15_bits_pz,
-                 io_scpuOut_15_bits_nx,
-                 io_scpuOut_15_bits_ny,
-                 io_scpuOut_15_bits_nz,
-                 io_scpuOut_15_bits_depth,
+  input  [31:0]  io_scpuOut_15_bits_d,
+                 io_scpuOut_15_bits_nw,
   input          io_scpuOut_15_bits_nonFinite,
   input  [4:0]   io_scpuOut_15_bits_flags,
   input  [23:0]  io_scpuOut_15_bits_tag,
@@ -17836,31 +15261,33 @@ module Puc_default(
   wire         _wr_io_wrReq_valid;
   wire [6:0]   _wr_io_outstanding;
   wire         _wr_io_blocked;
-  wire [1:0]   _pack_io_room;
+  wire [2:0]   _pack_io_room;
   wire         _pack_io_idle;
   wire         _pack_io_lines_valid;
   wire [63:0]  _pack_io_lines_bits_addr;
   wire [511:0] _pack_io_lines_bits_data;
   wire         _coll_io_groups_ready;
-  wire [31:0]  _coll_io_recs_0_px;
-  wire [31:0]  _coll_io_recs_0_py;
-  wire [31:0]  _coll_io_recs_0_pz;
-  wire [31:0]  _coll_io_recs_0_nx;
-  wire [31:0]  _coll_io_recs_0_ny;
-  wire [31:0]  _coll_io_recs_0_nz;
-  wire [31:0]  _coll_io_recs_0_depth;
+  wire [31:0]  _coll_io_recs_0_vals_0;
+  wire [31:0]  _coll_io_recs_0_vals_1;
   wire [23:0]  _coll_io_recs_0_pair;
   wire [7:0]   _coll_io_recs_0_flags;
-  wire [31:0]  _coll_io_recs_1_px;
-  wire [31:0]  _coll_io_recs_1_py;
-  wire [31:0]  _coll_io_recs_1_pz;
-  wire [31:0]  _coll_io_recs_1_nx;
-  wire [31:0]  _coll_io_recs_1_ny;
-  wire [31:0]  _coll_io_recs_1_nz;
-  wire [31:0]  _coll_io_recs_1_depth;
+  wire [31:0]  _coll_io_recs_1_vals_0;
+  wire [31:0]  _coll_io_recs_1_vals_1;
   wire [23:0]  _coll_io_recs_1_pair;
   wire [7:0]   _coll_io_recs_1_flags;
-  wire [1:0]   _coll_io_nRecs;
+  wire [31:0]  _coll_io_recs_2_vals_0;
+  wire [31:0]  _coll_io_recs_2_vals_1;
+  wire [23:0]  _coll_io_recs_2_pair;
+  wire [7:0]   _coll_io_recs_2_flags;
+  wire [31:0]  _coll_io_recs_3_vals_0;
+  wire [31:0]  _coll_io_recs_3_vals_1;
+  wire [23:0]  _coll_io_recs_3_pair;
+  wire [7:0]   _coll_io_recs_3_flags;
+  wire [31:0]  _coll_io_recs_4_vals_0;
+  wire [31:0]  _coll_io_recs_4_vals_1;
+  wire [23:0]  _coll_io_recs_4_pair;
+  wire [7:0]   _coll_io_recs_4_flags;
+  wire [2:0]   _coll_io_nRecs;
   wire [4:0]   _coll_io_nPairs;
   wire [4:0]   _coll_io_nHits;
   wire [4:0]   _coll_io_nNonFinite;
@@ -18111,6 +15538,9 @@ module Puc_default(
   wire         drainDone = _pack_io_idle & ~_pack_io_lines_valid & ~(|_wr_io_outstanding);
   wire [63:0]  totalRecords = run_8[0] ? {40'h0, run_4[23:0]} : {32'h0, found};
   wire         _capErr_T = totalRecords > run_6;
+  wire [1:0]   _GEN_2 = {errors[4], errors[1]};
+  wire [3:0]   _GEN_3 = errors[3:0] | {|nonFinite, 3'h0};
+  wire [2:0]   _GEN_4 = _GEN_3[2:0] | {_capErr_T & ~(|_GEN_2), 2'h0};
   wire         _wr_io_status_valid_T = state == 3'h4;
   wire         quietRun =
     ~_disp_io_fired & ~(_disp_io_pairs_ready & _rd_io_pairs_valid)
@@ -18127,13 +15557,13 @@ module Puc_default(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:200 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:202 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [31:0]  _GEN_2 =
+  wire [31:0]  _GEN_5 =
     {8'h0,
      _disp_io_groups_bits_first
        + {20'h0,
@@ -18167,11 +15597,11 @@ module Puc_default(
                                                                 ? 4'hD
                                                                 : {3'h7,
                                                                    ~(_disp_io_groups_bits_invalid[14])}}};
-  wire         _GEN_3 =
+  wire         _GEN_6 =
     io_link_csr_valid & (|io_link_csr_bits_index) & io_link_csr_bits_index < 8'h9;
   wire [31:0]  tick = (|io_skipCycles) ? io_skipCycles : 32'h1;
-  wire         _GEN_4 = _wr_io_status_ready & _wr_io_status_valid_T;
-  wire         _GEN_5 =
+  wire         _GEN_7 = _wr_io_status_ready & _wr_io_status_valid_T;
+  wire         _GEN_8 =
     ~(|state) & io_link_csr_valid & ~(|io_link_csr_bits_index)
     & io_link_csr_bits_data == 64'h1;
   always @(posedge clock) begin
@@ -18198,25 +15628,25 @@ module Puc_default(
       pairsInFlight <= 25'h0;
     end
     else begin
-      if (_GEN_3 & io_link_csr_bits_index[3:0] == 4'h1)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h1)
         csr_1 <= io_link_csr_bits_data;
-      if (_GEN_3 & io_link_csr_bits_index[3:0] == 4'h2)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h2)
         csr_2 <= io_link_csr_bits_data;
-      if (_GEN_3 & io_link_csr_bits_index[3:0] == 4'h3)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h3)
         csr_3 <= io_link_csr_bits_data;
-      if (_GEN_3 & io_link_csr_bits_index[3:0] == 4'h4)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h4)
         csr_4 <= io_link_csr_bits_data;
-      if (_GEN_3 & io_link_csr_bits_index[3:0] == 4'h5)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h5)
         csr_5 <= io_link_csr_bits_data;
-      if (_GEN_3 & io_link_csr_bits_index[3:0] == 4'h6)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h6)
         csr_6 <= io_link_csr_bits_data;
-      if (_GEN_3 & io_link_csr_bits_index[3:0] == 4'h7)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h7)
         csr_7 <= io_link_csr_bits_data;
-      if (_GEN_3 & io_link_csr_bits_index[3:0] == 4'h8)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h8)
         csr_8 <= io_link_csr_bits_data;
       if (state == 3'h5 & ~(|_wr_io_outstanding))
         state <= 3'h0;
-      else if (_GEN_4)
+      else if (_GEN_7)
         state <= 3'h5;
       else if (_pack_io_flush_T & drainDone)
         state <= 3'h4;
@@ -18224,7 +15654,7 @@ module Puc_default(
         state <= 3'h3;
       else if (_GEN)
         state <= _GEN_0 ? 3'h0 : _GEN_1 ? 3'h4 : 3'h2;
-      else if (_GEN_5)
+      else if (_GEN_8)
         state <= 3'h1;
       if (_GEN) begin
         errors <= {badConfig, 2'h0, tooMany, 1'h0};
@@ -18242,8 +15672,8 @@ module Puc_default(
         found <= found + {27'h0, _coll_io_nHits};
         nonFinite <= nonFinite + {27'h0, _coll_io_nNonFinite};
         if (_groups_io_enq_ready & _disp_io_groups_valid & (|_disp_io_groups_bits_invalid)
-            & _GEN_2 < firstBad)
-          firstBad <= _GEN_2;
+            & _GEN_5 < firstBad)
+          firstBad <= _GEN_5;
         if (running & ~loaded)
           cycLoad <= cycLoad + tick;
         if (running & _disp_io_fired)
@@ -18254,7 +15684,7 @@ module Puc_default(
         if (running & (_wr_io_blocked | _pack_io_flush_T & (|_wr_io_outstanding)))
           cycWaitWr <= cycWaitWr + tick;
       end
-      if (_wr_io_status_valid_T & ~_GEN_4)
+      if (_wr_io_status_valid_T & ~_GEN_7)
         cycTotal <= cycTotal + tick;
       else if (_GEN)
         cycTotal <= 32'h1;
@@ -18264,7 +15694,7 @@ module Puc_default(
         pairsInFlight + {20'h0, _disp_io_fired ? _disp_io_groups_bits_cnt : 5'h0}
         - {20'h0, _coll_io_nPairs};
     end
-    if (_GEN_5) begin
+    if (_GEN_8) begin
       run_1 <= csr_1;
       run_2 <= csr_2;
       run_3 <= csr_3;
@@ -18883,13 +16313,8 @@ module Puc_default(
     .io_scpu_0_valid           (io_scpuOut_0_valid),
     .io_scpu_0_bits_hit        (io_scpuOut_0_bits_hit),
     .io_scpu_0_bits_kind       (io_scpuOut_0_bits_kind),
-    .io_scpu_0_bits_px         (io_scpuOut_0_bits_px),
-    .io_scpu_0_bits_py         (io_scpuOut_0_bits_py),
-    .io_scpu_0_bits_pz         (io_scpuOut_0_bits_pz),
-    .io_scpu_0_bits_nx         (io_scpuOut_0_bits_nx),
-    .io_scpu_0_bits_ny         (io_scpuOut_0_bits_ny),
-    .io_scpu_0_bits_nz         (io_scpuOut_0_bits_nz),
-    .io_scpu_0_bits_depth      (io_scpuOut_0_bits_depth),
+    .io_scpu_0_bits_d          (io_scpuOut_0_bits_d),
+    .io_scpu_0_bits_nw         (io_scpuOut_0_bits_nw),
     .io_scpu_0_bits_nonFinite  (io_scpuOut_0_bits_nonFinite),
     .io_scpu_0_bits_flags      (io_scpuOut_0_bits_flags),
     .io_scpu_0_bits_tag        (io_scpuOut_0_bits_tag),
@@ -18897,13 +16322,8 @@ module Puc_default(
     .io_scpu_1_valid           (io_scpuOut_1_valid),
     .io_scpu_1_bits_hit        (io_scpuOut_1_bits_hit),
     .io_scpu_1_bits_kind       (io_scpuOut_1_bits_kind),
-    .io_scpu_1_bits_px         (io_scpuOut_1_bits_px),
-    .io_scpu_1_bits_py         (io_scpuOut_1_bits_py),
-    .io_scpu_1_bits_pz         (io_scpuOut_1_bits_pz),
-    .io_scpu_1_bits_nx         (io_scpuOut_1_bits_nx),
-    .io_scpu_1_bits_ny         (io_scpuOut_1_bits_ny),
-    .io_scpu_1_bits_nz         (io_scpuOut_1_bits_nz),
-    .io_scpu_1_bits_depth      (io_scpuOut_1_bits_depth),
+    .io_scpu_1_bits_d          (io_scpuOut_1_bits_d),
+    .io_scpu_1_bits_nw         (io_scpuOut_1_bits_nw),
     .io_scpu_1_bits_nonFinite  (io_scpuOut_1_bits_nonFinite),
     .io_scpu_1_bits_flags      (io_scpuOut_1_bits_flags),
     .io_scpu_1_bits_tag        (io_scpuOut_1_bits_tag),
@@ -18911,13 +16331,8 @@ module Puc_default(
     .io_scpu_2_valid           (io_scpuOut_2_valid),
     .io_scpu_2_bits_hit        (io_scpuOut_2_bits_hit),
     .io_scpu_2_bits_kind       (io_scpuOut_2_bits_kind),
-    .io_scpu_2_bits_px         (io_scpuOut_2_bits_px),
-    .io_scpu_2_bits_py         (io_scpuOut_2_bits_py),
-    .io_scpu_2_bits_pz         (io_scpuOut_2_bits_pz),
-    .io_scpu_2_bits_nx         (io_scpuOut_2_bits_nx),
-    .io_scpu_2_bits_ny         (io_scpuOut_2_bits_ny),
-    .io_scpu_2_bits_nz         (io_scpuOut_2_bits_nz),
-    .io_scpu_2_bits_depth      (io_scpuOut_2_bits_depth),
+    .io_scpu_2_bits_d          (io_scpuOut_2_bits_d),
+    .io_scpu_2_bits_nw         (io_scpuOut_2_bits_nw),
     .io_scpu_2_bits_nonFinite  (io_scpuOut_2_bits_nonFinite),
     .io_scpu_2_bits_flags      (io_scpuOut_2_bits_flags),
     .io_scpu_2_bits_tag        (io_scpuOut_2_bits_tag),
@@ -18925,13 +16340,8 @@ module Puc_default(
     .io_scpu_3_valid           (io_scpuOut_3_valid),
     .io_scpu_3_bits_hit        (io_scpuOut_3_bits_hit),
     .io_scpu_3_bits_kind       (io_scpuOut_3_bits_kind),
-    .io_scpu_3_bits_px         (io_scpuOut_3_bits_px),
-    .io_scpu_3_bits_py         (io_scpuOut_3_bits_py),
-    .io_scpu_3_bits_pz         (io_scpuOut_3_bits_pz),
-    .io_scpu_3_bits_nx         (io_scpuOut_3_bits_nx),
-    .io_scpu_3_bits_ny         (io_scpuOut_3_bits_ny),
-    .io_scpu_3_bits_nz         (io_scpuOut_3_bits_nz),
-    .io_scpu_3_bits_depth      (io_scpuOut_3_bits_depth),
+    .io_scpu_3_bits_d          (io_scpuOut_3_bits_d),
+    .io_scpu_3_bits_nw         (io_scpuOut_3_bits_nw),
     .io_scpu_3_bits_nonFinite  (io_scpuOut_3_bits_nonFinite),
     .io_scpu_3_bits_flags      (io_scpuOut_3_bits_flags),
     .io_scpu_3_bits_tag        (io_scpuOut_3_bits_tag),
@@ -18939,13 +16349,8 @@ module Puc_default(
     .io_scpu_4_valid           (io_scpuOut_4_valid),
     .io_scpu_4_bits_hit        (io_scpuOut_4_bits_hit),
     .io_scpu_4_bits_kind       (io_scpuOut_4_bits_kind),
-    .io_scpu_4_bits_px         (io_scpuOut_4_bits_px),
-    .io_scpu_4_bits_py         (io_scpuOut_4_bits_py),
-    .io_scpu_4_bits_pz         (io_scpuOut_4_bits_pz),
-    .io_scpu_4_bits_nx         (io_scpuOut_4_bits_nx),
-    .io_scpu_4_bits_ny         (io_scpuOut_4_bits_ny),
-    .io_scpu_4_bits_nz         (io_scpuOut_4_bits_nz),
-    .io_scpu_4_bits_depth      (io_scpuOut_4_bits_depth),
+    .io_scpu_4_bits_d          (io_scpuOut_4_bits_d),
+    .io_scpu_4_bits_nw         (io_scpuOut_4_bits_nw),
     .io_scpu_4_bits_nonFinite  (io_scpuOut_4_bits_nonFinite),
     .io_scpu_4_bits_flags      (io_scpuOut_4_bits_flags),
     .io_scpu_4_bits_tag        (io_scpuOut_4_bits_tag),
@@ -18953,13 +16358,8 @@ module Puc_default(
     .io_scpu_5_valid           (io_scpuOut_5_valid),
     .io_scpu_5_bits_hit        (io_scpuOut_5_bits_hit),
     .io_scpu_5_bits_kind       (io_scpuOut_5_bits_kind),
-    .io_scpu_5_bits_px         (io_scpuOut_5_bits_px),
-    .io_scpu_5_bits_py         (io_scpuOut_5_bits_py),
-    .io_scpu_5_bits_pz         (io_scpuOut_5_bits_pz),
-    .io_scpu_5_bits_nx         (io_scpuOut_5_bits_nx),
-    .io_scpu_5_bits_ny         (io_scpuOut_5_bits_ny),
-    .io_scpu_5_bits_nz         (io_scpuOut_5_bits_nz),
-    .io_scpu_5_bits_depth      (io_scpuOut_5_bits_depth),
+    .io_scpu_5_bits_d          (io_scpuOut_5_bits_d),
+    .io_scpu_5_bits_nw         (io_scpuOut_5_bits_nw),
     .io_scpu_5_bits_nonFinite  (io_scpuOut_5_bits_nonFinite),
     .io_scpu_5_bits_flags      (io_scpuOut_5_bits_flags),
     .io_scpu_5_bits_tag        (io_scpuOut_5_bits_tag),
@@ -18967,13 +16367,8 @@ module Puc_default(
     .io_scpu_6_valid           (io_scpuOut_6_valid),
     .io_scpu_6_bits_hit        (io_scpuOut_6_bits_hit),
     .io_scpu_6_bits_kind       (io_scpuOut_6_bits_kind),
-    .io_scpu_6_bits_px         (io_scpuOut_6_bits_px),
-    .io_scpu_6_bits_py         (io_scpuOut_6_bits_py),
-    .io_scpu_6_bits_pz         (io_scpuOut_6_bits_pz),
-    .io_scpu_6_bits_nx         (io_scpuOut_6_bits_nx),
-    .io_scpu_6_bits_ny         (io_scpuOut_6_bits_ny),
-    .io_scpu_6_bits_nz         (io_scpuOut_6_bits_nz),
-    .io_scpu_6_bits_depth      (io_scpuOut_6_bits_depth),
+    .io_scpu_6_bits_d          (io_scpuOut_6_bits_d),
+    .io_scpu_6_bits_nw         (io_scpuOut_6_bits_nw),
     .io_scpu_6_bits_nonFinite  (io_scpuOut_6_bits_nonFinite),
     .io_scpu_6_bits_flags      (io_scpuOut_6_bits_flags),
     .io_scpu_6_bits_tag        (io_scpuOut_6_bits_tag),
@@ -18981,13 +16376,8 @@ module Puc_default(
     .io_scpu_7_valid           (io_scpuOut_7_valid),
     .io_scpu_7_bits_hit        (io_scpuOut_7_bits_hit),
     .io_scpu_7_bits_kind       (io_scpuOut_7_bits_kind),
-    .io_scpu_7_bits_px         (io_scpuOut_7_bits_px),
-    .io_scpu_7_bits_py         (io_scpuOut_7_bits_py),
-    .io_scpu_7_bits_pz         (io_scpuOut_7_bits_pz),
-    .io_scpu_7_bits_nx         (io_scpuOut_7_bits_nx),
-    .io_scpu_7_bits_ny         (io_scpuOut_7_bits_ny),
-    .io_scpu_7_bits_nz         (io_scpuOut_7_bits_nz),
-    .io_scpu_7_bits_depth      (io_scpuOut_7_bits_depth),
+    .io_scpu_7_bits_d          (io_scpuOut_7_bits_d),
+    .io_scpu_7_bits_nw         (io_scpuOut_7_bits_nw),
     .io_scpu_7_bits_nonFinite  (io_scpuOut_7_bits_nonFinite),
     .io_scpu_7_bits_flags      (io_scpuOut_7_bits_flags),
     .io_scpu_7_bits_tag        (io_scpuOut_7_bits_tag),
@@ -18995,13 +16385,8 @@ module Puc_default(
     .io_scpu_8_valid           (io_scpuOut_8_valid),
     .io_scpu_8_bits_hit        (io_scpuOut_8_bits_hit),
     .io_scpu_8_bits_kind       (io_scpuOut_8_bits_kind),
-    .io_scpu_8_bits_px         (io_scpuOut_8_bits_px),
-    .io_scpu_8_bits_py         (io_scpuOut_8_bits_py),
-    .io_scpu_8_bits_pz         (io_scpuOut_8_bits_pz),
-    .io_scpu_8_bits_nx         (io_scpuOut_8_bits_nx),
-    .io_scpu_8_bits_ny         (io_scpuOut_8_bits_ny),
-    .io_scpu_8_bits_nz         (io_scpuOut_8_bits_nz),
-    .io_scpu_8_bits_depth      (io_scpuOut_8_bits_depth),
+    .io_scpu_8_bits_d          (io_scpuOut_8_bits_d),
+    .io_scpu_8_bits_nw         (io_scpuOut_8_bits_nw),
     .io_scpu_8_bits_nonFinite  (io_scpuOut_8_bits_nonFinite),
     .io_scpu_8_bits_flags      (io_scpuOut_8_bits_flags),
     .io_scpu_8_bits_tag        (io_scpuOut_8_bits_tag),
@@ -19009,13 +16394,8 @@ module Puc_default(
     .io_scpu_9_valid           (io_scpuOut_9_valid),
     .io_scpu_9_bits_hit        (io_scpuOut_9_bits_hit),
     .io_scpu_9_bits_kind       (io_scpuOut_9_bits_kind),
-    .io_scpu_9_bits_px         (io_scpuOut_9_bits_px),
-    .io_scpu_9_bits_py         (io_scpuOut_9_bits_py),
-    .io_scpu_9_bits_pz         (io_scpuOut_9_bits_pz),
-    .io_scpu_9_bits_nx         (io_scpuOut_9_bits_nx),
-    .io_scpu_9_bits_ny         (io_scpuOut_9_bits_ny),
-    .io_scpu_9_bits_nz         (io_scpuOut_9_bits_nz),
-    .io_scpu_9_bits_depth      (io_scpuOut_9_bits_depth),
+    .io_scpu_9_bits_d          (io_scpuOut_9_bits_d),
+    .io_scpu_9_bits_nw         (io_scpuOut_9_bits_nw),
     .io_scpu_9_bits_nonFinite  (io_scpuOut_9_bits_nonFinite),
     .io_scpu_9_bits_flags      (io_scpuOut_9_bits_flags),
     .io_scpu_9_bits_tag        (io_scpuOut_9_bits_tag),
@@ -19023,13 +16403,8 @@ module Puc_default(
     .io_scpu_10_valid          (io_scpuOut_10_valid),
     .io_scpu_10_bits_hit       (io_scpuOut_10_bits_hit),
     .io_scpu_10_bits_kind      (io_scpuOut_10_bits_kind),
-    .io_scpu_10_bits_px        (io_scpuOut_10_bits_px),
-    .io_scpu_10_bits_py        (io_scpuOut_10_bits_py),
-    .io_scpu_10_bits_pz        (io_scpuOut_10_bits_pz),
-    .io_scpu_10_bits_nx        (io_scpuOut_10_bits_nx),
-    .io_scpu_10_bits_ny        (io_scpuOut_10_bits_ny),
-    .io_scpu_10_bits_nz        (io_scpuOut_10_bits_nz),
-    .io_scpu_10_bits_depth     (io_scpuOut_10_bits_depth),
+    .io_scpu_10_bits_d         (io_scpuOut_10_bits_d),
+    .io_scpu_10_bits_nw        (io_scpuOut_10_bits_nw),
     .io_scpu_10_bits_nonFinite (io_scpuOut_10_bits_nonFinite),
     .io_scpu_10_bits_flags     (io_scpuOut_10_bits_flags),
     .io_scpu_10_bits_tag       (io_scpuOut_10_bits_tag),
@@ -19037,13 +16412,8 @@ module Puc_default(
     .io_scpu_11_valid          (io_scpuOut_11_valid),
     .io_scpu_11_bits_hit       (io_scpuOut_11_bits_hit),
     .io_scpu_11_bits_kind      (io_scpuOut_11_bits_kind),
-    .io_scpu_11_bits_px        (io_scpuOut_11_bits_px),
-    .io_scpu_11_bits_py        (io_scpuOut_11_bits_py),
-    .io_scpu_11_bits_pz        (io_scpuOut_11_bits_pz),
-    .io_scpu_11_bits_nx        (io_scpuOut_11_bits_nx),
-    .io_scpu_11_bits_ny        (io_scpuOut_11_bits_ny),
-    .io_scpu_11_bits_nz        (io_scpuOut_11_bits_nz),
-    .io_scpu_11_bits_depth     (io_scpuOut_11_bits_depth),
+    .io_scpu_11_bits_d         (io_scpuOut_11_bits_d),
+    .io_scpu_11_bits_nw        (io_scpuOut_11_bits_nw),
     .io_scpu_11_bits_nonFinite (io_scpuOut_11_bits_nonFinite),
     .io_scpu_11_bits_flags     (io_scpuOut_11_bits_flags),
     .io_scpu_11_bits_tag       (io_scpuOut_11_bits_tag),
@@ -19051,13 +16421,8 @@ module Puc_default(
     .io_scpu_12_valid          (io_scpuOut_12_valid),
     .io_scpu_12_bits_hit       (io_scpuOut_12_bits_hit),
     .io_scpu_12_bits_kind      (io_scpuOut_12_bits_kind),
-    .io_scpu_12_bits_px        (io_scpuOut_12_bits_px),
-    .io_scpu_12_bits_py        (io_scpuOut_12_bits_py),
-    .io_scpu_12_bits_pz        (io_scpuOut_12_bits_pz),
-    .io_scpu_12_bits_nx        (io_scpuOut_12_bits_nx),
-    .io_scpu_12_bits_ny        (io_scpuOut_12_bits_ny),
-    .io_scpu_12_bits_nz        (io_scpuOut_12_bits_nz),
-    .io_scpu_12_bits_depth     (io_scpuOut_12_bits_depth),
+    .io_scpu_12_bits_d         (io_scpuOut_12_bits_d),
+    .io_scpu_12_bits_nw        (io_scpuOut_12_bits_nw),
     .io_scpu_12_bits_nonFinite (io_scpuOut_12_bits_nonFinite),
     .io_scpu_12_bits_flags     (io_scpuOut_12_bits_flags),
     .io_scpu_12_bits_tag       (io_scpuOut_12_bits_tag),
@@ -19065,13 +16430,8 @@ module Puc_default(
     .io_scpu_13_valid          (io_scpuOut_13_valid),
     .io_scpu_13_bits_hit       (io_scpuOut_13_bits_hit),
     .io_scpu_13_bits_kind      (io_scpuOut_13_bits_kind),
-    .io_scpu_13_bits_px        (io_scpuOut_13_bits_px),
-    .io_scpu_13_bits_py        (io_scpuOut_13_bits_py),
-    .io_scpu_13_bits_pz        (io_scpuOut_13_bits_pz),
-    .io_scpu_13_bits_nx        (io_scpuOut_13_bits_nx),
-    .io_scpu_13_bits_ny        (io_scpuOut_13_bits_ny),
-    .io_scpu_13_bits_nz        (io_scpuOut_13_bits_nz),
-    .io_scpu_13_bits_depth     (io_scpuOut_13_bits_depth),
+    .io_scpu_13_bits_d         (io_scpuOut_13_bits_d),
+    .io_scpu_13_bits_nw        (io_scpuOut_13_bits_nw),
     .io_scpu_13_bits_nonFinite (io_scpuOut_13_bits_nonFinite),
     .io_scpu_13_bits_flags     (io_scpuOut_13_bits_flags),
     .io_scpu_13_bits_tag       (io_scpuOut_13_bits_tag),
@@ -19079,13 +16439,8 @@ module Puc_default(
     .io_scpu_14_valid          (io_scpuOut_14_valid),
     .io_scpu_14_bits_hit       (io_scpuOut_14_bits_hit),
     .io_scpu_14_bits_kind      (io_scpuOut_14_bits_kind),
-    .io_scpu_14_bits_px        (io_scpuOut_14_bits_px),
-    .io_scpu_14_bits_py        (io_scpuOut_14_bits_py),
-    .io_scpu_14_bits_pz        (io_scpuOut_14_bits_pz),
-    .io_scpu_14_bits_nx        (io_scpuOut_14_bits_nx),
-    .io_scpu_14_bits_ny        (io_scpuOut_14_bits_ny),
-    .io_scpu_14_bits_nz        (io_scpuOut_14_bits_nz),
-    .io_scpu_14_bits_depth     (io_scpuOut_14_bits_depth),
+    .io_scpu_14_bits_d         (io_scpuOut_14_bits_d),
+    .io_scpu_14_bits_nw        (io_scpuOut_14_bits_nw),
     .io_scpu_14_bits_nonFinite (io_scpuOut_14_bits_nonFinite),
     .io_scpu_14_bits_flags     (io_scpuOut_14_bits_flags),
     .io_scpu_14_bits_tag       (io_scpuOut_14_bits_tag),
@@ -19093,41 +16448,38 @@ module Puc_default(
     .io_scpu_15_valid          (io_scpuOut_15_valid),
     .io_scpu_15_bits_hit       (io_scpuOut_15_bits_hit),
     .io_scpu_15_bits_kind      (io_scpuOut_15_bits_kind),
-    .io_scpu_15_bits_px        (io_scpuOut_15_bits_px),
-    .io_scpu_15_bits_py        (io_scpuOut_15_bits_py),
-    .io_scpu_15_bits_pz        (io_scpuOut_15_bits_pz),
-    .io_scpu_15_bits_nx        (io_scpuOut_15_bits_nx),
-    .io_scpu_15_bits_ny        (io_scpuOut_15_bits_ny),
-    .io_scpu_15_bits_nz        (io_scpuOut_15_bits_nz),
-    .io_scpu_15_bits_depth     (io_scpuOut_15_bits_depth),
+    .io_scpu_15_bits_d         (io_scpuOut_15_bits_d),
+    .io_scpu_15_bits_nw        (io_scpuOut_15_bits_nw),
     .io_scpu_15_bits_nonFinite (io_scpuOut_15_bits_nonFinite),
     .io_scpu_15_bits_flags     (io_scpuOut_15_bits_flags),
     .io_scpu_15_bits_tag       (io_scpuOut_15_bits_tag),
     .io_room                   (_pack_io_room),
-    .io_recs_0_px              (_coll_io_recs_0_px),
-    .io_recs_0_py              (_coll_io_recs_0_py),
-    .io_recs_0_pz              (_coll_io_recs_0_pz),
-    .io_recs_0_nx              (_coll_io_recs_0_nx),
-    .io_recs_0_ny              (_coll_io_recs_0_ny),
-    .io_recs_0_nz              (_coll_io_recs_0_nz),
-    .io_recs_0_depth           (_coll_io_recs_0_depth),
+    .io_recs_0_vals_0          (_coll_io_recs_0_vals_0),
+    .io_recs_0_vals_1          (_coll_io_recs_0_vals_1),
     .io_recs_0_pair            (_coll_io_recs_0_pair),
     .io_recs_0_flags           (_coll_io_recs_0_flags),
-    .io_recs_1_px              (_coll_io_recs_1_px),
-    .io_recs_1_py              (_coll_io_recs_1_py),
-    .io_recs_1_pz              (_coll_io_recs_1_pz),
-    .io_recs_1_nx              (_coll_io_recs_1_nx),
-    .io_recs_1_ny              (_coll_io_recs_1_ny),
-    .io_recs_1_nz              (_coll_io_recs_1_nz),
-    .io_recs_1_depth           (_coll_io_recs_1_depth),
+    .io_recs_1_vals_0          (_coll_io_recs_1_vals_0),
+    .io_recs_1_vals_1          (_coll_io_recs_1_vals_1),
     .io_recs_1_pair            (_coll_io_recs_1_pair),
     .io_recs_1_flags           (_coll_io_recs_1_flags),
+    .io_recs_2_vals_0          (_coll_io_recs_2_vals_0),
+    .io_recs_2_vals_1          (_coll_io_recs_2_vals_1),
+    .io_recs_2_pair            (_coll_io_recs_2_pair),
+    .io_recs_2_flags           (_coll_io_recs_2_flags),
+    .io_recs_3_vals_0          (_coll_io_recs_3_vals_0),
+    .io_recs_3_vals_1          (_coll_io_recs_3_vals_1),
+    .io_recs_3_pair            (_coll_io_recs_3_pair),
+    .io_recs_3_flags           (_coll_io_recs_3_flags),
+    .io_recs_4_vals_0          (_coll_io_recs_4_vals_0),
+    .io_recs_4_vals_1          (_coll_io_recs_4_vals_1),
+    .io_recs_4_pair            (_coll_io_recs_4_pair),
+    .io_recs_4_flags           (_coll_io_recs_4_flags),
     .io_nRecs                  (_coll_io_nRecs),
     .io_nPairs                 (_coll_io_nPairs),
     .io_nHits                  (_coll_io_nHits),
     .io_nNonFinite             (_coll_io_nNonFinite)
   );
-  ContactPacker_w32_default pack (
+  ContactPacker_w32_derived_r5_default pack (
     .clock              (clock),
     .reset              (reset),
     .io_start           (engineStart),
@@ -19136,24 +16488,26 @@ module Puc_default(
     .io_base            (run_5),
     .io_capacity        (run_6),
     .io_room            (_pack_io_room),
-    .io_recs_0_px       (_coll_io_recs_0_px),
-    .io_recs_0_py       (_coll_io_recs_0_py),
-    .io_recs_0_pz       (_coll_io_recs_0_pz),
-    .io_recs_0_nx       (_coll_io_recs_0_nx),
-    .io_recs_0_ny       (_coll_io_recs_0_ny),
-    .io_recs_0_nz       (_coll_io_recs_0_nz),
-    .io_recs_0_depth    (_coll_io_recs_0_depth),
+    .io_recs_0_vals_0   (_coll_io_recs_0_vals_0),
+    .io_recs_0_vals_1   (_coll_io_recs_0_vals_1),
     .io_recs_0_pair     (_coll_io_recs_0_pair),
     .io_recs_0_flags    (_coll_io_recs_0_flags),
-    .io_recs_1_px       (_coll_io_recs_1_px),
-    .io_recs_1_py       (_coll_io_recs_1_py),
-    .io_recs_1_pz       (_coll_io_recs_1_pz),
-    .io_recs_1_nx       (_coll_io_recs_1_nx),
-    .io_recs_1_ny       (_coll_io_recs_1_ny),
-    .io_recs_1_nz       (_coll_io_recs_1_nz),
-    .io_recs_1_depth    (_coll_io_recs_1_depth),
+    .io_recs_1_vals_0   (_coll_io_recs_1_vals_0),
+    .io_recs_1_vals_1   (_coll_io_recs_1_vals_1),
     .io_recs_1_pair     (_coll_io_recs_1_pair),
     .io_recs_1_flags    (_coll_io_recs_1_flags),
+    .io_recs_2_vals_0   (_coll_io_recs_2_vals_0),
+    .io_recs_2_vals_1   (_coll_io_recs_2_vals_1),
+    .io_recs_2_pair     (_coll_io_recs_2_pair),
+    .io_recs_2_flags    (_coll_io_recs_2_flags),
+    .io_recs_3_vals_0   (_coll_io_recs_3_vals_0),
+    .io_recs_3_vals_1   (_coll_io_recs_3_vals_1),
+    .io_recs_3_pair     (_coll_io_recs_3_pair),
+    .io_recs_3_flags    (_coll_io_recs_3_flags),
+    .io_recs_4_vals_0   (_coll_io_recs_4_vals_0),
+    .io_recs_4_vals_1   (_coll_io_recs_4_vals_1),
+    .io_recs_4_pair     (_coll_io_recs_4_pair),
+    .io_recs_4_flags    (_coll_io_recs_4_flags),
     .io_nRecs           (_coll_io_nRecs),
     .io_flush           (_pack_io_flush_T),
     .io_idle            (_pack_io_idle),
@@ -19182,16 +16536,14 @@ module Puc_default(
         32'h0,
         firstBad,
         nonFinite,
-        errors[1] | errors[4] ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
+        (|_GEN_2) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
         found,
         processed,
         27'h0,
-        errors
-          | {1'h0,
-             |nonFinite,
-             _capErr_T & ~(errors[1]) & ~(errors[4]),
-             1'h0,
-             firstBad != 32'hFFFFFFFF},
+        errors[4],
+        _GEN_3[3],
+        _GEN_4[2:1],
+        _GEN_4[0] | firstBad != 32'hFFFFFFFF,
         32'h1}),
     .io_wrReq_ready      (io_link_wrReq_ready),
     .io_wrReq_valid      (_wr_io_wrReq_valid),
@@ -21335,23 +18687,15 @@ module ScpuDatapath_fp32_default(
   output        io_out_valid,
                 io_out_bits_hit,
   output [1:0]  io_out_bits_kind,
-  output [31:0] io_out_bits_px,
-                io_out_bits_py,
-                io_out_bits_pz,
-                io_out_bits_nx,
-                io_out_bits_ny,
-                io_out_bits_nz,
-                io_out_bits_depth,
+  output [31:0] io_out_bits_d,
+                io_out_bits_nw,
   output [23:0] io_out_bits_meta_tag,
   output        io_out_bits_meta_nonFinite,
   output [4:0]  io_out_bits_meta_flags
 );
 
-  wire [31:0] _pos_m_2_io_out_bits_bits;
   wire [4:0]  _pos_m_2_io_out_bits_flags;
-  wire [31:0] _pos_m_1_io_out_bits_bits;
   wire [4:0]  _pos_m_1_io_out_bits_flags;
-  wire [31:0] _pos_m_io_out_bits_bits;
   wire [4:0]  _pos_m_io_out_bits_flags;
   wire        _nk_m_2_io_out_valid;
   wire [31:0] _nk_m_2_io_out_bits_bits;
@@ -21374,7 +18718,6 @@ module ScpuDatapath_fp32_default(
   wire        _k0_m_io_out_valid;
   wire [31:0] _k0_m_io_out_bits_bits;
   wire [4:0]  _k0_m_io_out_bits_flags;
-  wire [31:0] _depth_m_io_out_bits_bits;
   wire [4:0]  _depth_m_io_out_bits_flags;
   wire        _cmp_m_io_out_bits_lt;
   wire        _cmp_m_io_out_bits_eq;
@@ -21592,36 +18935,20 @@ module ScpuDatapath_fp32_default(
   reg         zero_r_7;
   reg         zero_r_8;
   reg         zero;
-  wire        coinc = le & zero;
   wire        contact = le & ~zero;
-  reg  [31:0] p1O_0;
-  reg  [31:0] p1O_1;
-  reg  [31:0] p1O_2;
-  reg  [31:0] nO_r;
-  reg  [31:0] nO_0;
-  reg  [31:0] nO_r_1;
-  reg  [31:0] nO_1;
-  reg  [31:0] nO_r_2;
-  reg  [31:0] nO_2;
-  reg  [31:0] depthO_r;
-  reg  [31:0] depthO_r_1;
-  reg  [31:0] depthO_r_2;
-  reg  [31:0] depthO_r_3;
-  reg  [31:0] depthO_r_4;
-  reg  [31:0] depthO_r_5;
-  reg  [31:0] depthO_r_6;
-  reg  [31:0] depthO_r_7;
-  reg  [31:0] depthO;
-  reg  [31:0] rsO_r;
-  reg  [31:0] rsO_r_1;
-  reg  [31:0] rsO_r_2;
-  reg  [31:0] rsO_r_3;
-  reg  [31:0] rsO_r_4;
-  reg  [31:0] rsO_r_5;
-  reg  [31:0] rsO_r_6;
-  reg  [31:0] rsO_r_7;
-  reg  [31:0] rsO_r_8;
-  reg  [31:0] rsO;
+  reg  [31:0] dO_r;
+  reg  [31:0] dO_r_1;
+  reg  [31:0] dO_r_2;
+  reg  [31:0] dO_r_3;
+  reg  [31:0] dO_r_4;
+  reg  [31:0] dO_r_5;
+  reg  [31:0] dO_r_6;
+  reg  [31:0] dO_r_7;
+  reg  [31:0] dO_r_8;
+  reg  [31:0] dO;
+  reg  [31:0] wO_r;
+  reg  [31:0] wO_r_1;
+  reg  [31:0] wO;
   reg  [23:0] io_out_bits_meta_tag_r;
   reg  [23:0] io_out_bits_meta_tag_r_1;
   reg  [23:0] io_out_bits_meta_tag_r_2;
@@ -21860,34 +19187,19 @@ module ScpuDatapath_fp32_default(
       zero_r_7 <= zero_r_6;
       zero_r_8 <= zero_r_7;
       zero <= zero_r_8;
-      p1O_0 <= p1_0;
-      p1O_1 <= p1_1;
-      p1O_2 <= p1_2;
-      nO_r <= _n_m_io_out_bits_bits;
-      nO_0 <= nO_r;
-      nO_r_1 <= _n_m_1_io_out_bits_bits;
-      nO_1 <= nO_r_1;
-      nO_r_2 <= _n_m_2_io_out_bits_bits;
-      nO_2 <= nO_r_2;
-      depthO_r <= _depth_m_io_out_bits_bits;
-      depthO_r_1 <= depthO_r;
-      depthO_r_2 <= depthO_r_1;
-      depthO_r_3 <= depthO_r_2;
-      depthO_r_4 <= depthO_r_3;
-      depthO_r_5 <= depthO_r_4;
-      depthO_r_6 <= depthO_r_5;
-      depthO_r_7 <= depthO_r_6;
-      depthO <= depthO_r_7;
-      rsO_r <= rsD_bits;
-      rsO_r_1 <= rsO_r;
-      rsO_r_2 <= rsO_r_1;
-      rsO_r_3 <= rsO_r_2;
-      rsO_r_4 <= rsO_r_3;
-      rsO_r_5 <= rsO_r_4;
-      rsO_r_6 <= rsO_r_5;
-      rsO_r_7 <= rsO_r_6;
-      rsO_r_8 <= rsO_r_7;
-      rsO <= rsO_r_8;
+      dO_r <= _dist_io_d_bits_d;
+      dO_r_1 <= dO_r;
+      dO_r_2 <= dO_r_1;
+      dO_r_3 <= dO_r_2;
+      dO_r_4 <= dO_r_3;
+      dO_r_5 <= dO_r_4;
+      dO_r_6 <= dO_r_5;
+      dO_r_7 <= dO_r_6;
+      dO_r_8 <= dO_r_7;
+      dO <= dO_r_8;
+      wO_r <= _dist_io_w_bits_w;
+      wO_r_1 <= wO_r;
+      wO <= wO_r_1;
       io_out_bits_meta_tag_r <= io_in_bits_meta_tag;
       io_out_bits_meta_tag_r_1 <= io_out_bits_meta_tag_r;
       io_out_bits_meta_tag_r_2 <= io_out_bits_meta_tag_r_1;
@@ -22044,7 +19356,7 @@ module ScpuDatapath_fp32_default(
     .io_in_bits_b        (_dist_io_d_bits_d),
     .io_in_bits_subtract (1'h1),
     .io_out_valid        (/* unused */),
-    .io_out_bits_bits    (_depth_m_io_out_bits_bits),
+    .io_out_bits_bits    (/* unused */),
     .io_out_bits_flags   (_depth_m_io_out_bits_flags)
   );
   FpAdd_fp32_L1_default k0_m (
@@ -22145,7 +19457,7 @@ module ScpuDatapath_fp32_default(
     .io_in_bits_b        (_nk_m_io_out_bits_bits),
     .io_in_bits_subtract (1'h0),
     .io_out_valid        (io_out_valid),
-    .io_out_bits_bits    (_pos_m_io_out_bits_bits),
+    .io_out_bits_bits    (/* unused */),
     .io_out_bits_flags   (_pos_m_io_out_bits_flags)
   );
   FpAdd_fp32_L1_default pos_m_1 (
@@ -22157,7 +19469,7 @@ module ScpuDatapath_fp32_default(
     .io_in_bits_b        (_nk_m_1_io_out_bits_bits),
     .io_in_bits_subtract (1'h0),
     .io_out_valid        (/* unused */),
-    .io_out_bits_bits    (_pos_m_1_io_out_bits_bits),
+    .io_out_bits_bits    (/* unused */),
     .io_out_bits_flags   (_pos_m_1_io_out_bits_flags)
   );
   FpAdd_fp32_L1_default pos_m_2 (
@@ -22169,18 +19481,13 @@ module ScpuDatapath_fp32_default(
     .io_in_bits_b        (_nk_m_2_io_out_bits_bits),
     .io_in_bits_subtract (1'h0),
     .io_out_valid        (/* unused */),
-    .io_out_bits_bits    (_pos_m_2_io_out_bits_bits),
+    .io_out_bits_bits    (/* unused */),
     .io_out_bits_flags   (_pos_m_2_io_out_bits_flags)
   );
   assign io_out_bits_hit = le;
-  assign io_out_bits_kind = contact ? 2'h1 : {coinc, 1'h0};
-  assign io_out_bits_px = contact ? _pos_m_io_out_bits_bits : coinc ? p1O_0 : 32'h0;
-  assign io_out_bits_py = contact ? _pos_m_1_io_out_bits_bits : coinc ? p1O_1 : 32'h0;
-  assign io_out_bits_pz = contact ? _pos_m_2_io_out_bits_bits : coinc ? p1O_2 : 32'h0;
-  assign io_out_bits_nx = contact ? nO_0 : coinc ? 32'h3F800000 : 32'h0;
-  assign io_out_bits_ny = contact ? nO_1 : 32'h0;
-  assign io_out_bits_nz = contact ? nO_2 : 32'h0;
-  assign io_out_bits_depth = contact ? depthO : coinc ? rsO : 32'h0;
+  assign io_out_bits_kind = contact ? 2'h1 : {le & zero, 1'h0};
+  assign io_out_bits_d = contact ? dO : 32'h0;
+  assign io_out_bits_nw = contact ? wO : 32'h0;
   assign io_out_bits_meta_tag = io_out_bits_meta_tag_r_20;
   assign io_out_bits_meta_nonFinite = io_out_bits_meta_nonFinite_r_20;
   assign io_out_bits_meta_flags =
@@ -22196,26 +19503,16 @@ module ScpuConvertOut_fp32_default(
   input         io_in_valid,
                 io_in_bits_hit,
   input  [1:0]  io_in_bits_kind,
-  input  [31:0] io_in_bits_px,
-                io_in_bits_py,
-                io_in_bits_pz,
-                io_in_bits_nx,
-                io_in_bits_ny,
-                io_in_bits_nz,
-                io_in_bits_depth,
+  input  [31:0] io_in_bits_d,
+                io_in_bits_nw,
   input  [23:0] io_in_bits_meta_tag,
   input         io_in_bits_meta_nonFinite,
   input  [4:0]  io_in_bits_meta_flags,
   output        io_out_valid,
                 io_out_bits_hit,
   output [1:0]  io_out_bits_kind,
-  output [31:0] io_out_bits_px,
-                io_out_bits_py,
-                io_out_bits_pz,
-                io_out_bits_nx,
-                io_out_bits_ny,
-                io_out_bits_nz,
-                io_out_bits_depth,
+  output [31:0] io_out_bits_d,
+                io_out_bits_nw,
   output        io_out_bits_nonFinite,
   output [4:0]  io_out_bits_flags,
   output [23:0] io_out_bits_tag
@@ -22224,13 +19521,8 @@ module ScpuConvertOut_fp32_default(
   assign io_out_valid = io_in_valid;
   assign io_out_bits_hit = io_in_bits_hit;
   assign io_out_bits_kind = io_in_bits_kind;
-  assign io_out_bits_px = io_in_bits_px;
-  assign io_out_bits_py = io_in_bits_py;
-  assign io_out_bits_pz = io_in_bits_pz;
-  assign io_out_bits_nx = io_in_bits_nx;
-  assign io_out_bits_ny = io_in_bits_ny;
-  assign io_out_bits_nz = io_in_bits_nz;
-  assign io_out_bits_depth = io_in_bits_depth;
+  assign io_out_bits_d = io_in_bits_d;
+  assign io_out_bits_nw = io_in_bits_nw;
   assign io_out_bits_nonFinite = io_in_bits_meta_nonFinite;
   assign io_out_bits_flags = io_in_bits_meta_flags;
   assign io_out_bits_tag = io_in_bits_meta_tag;
@@ -22254,13 +19546,8 @@ module Scpu_fp32_default(
   output        io_out_valid,
                 io_out_bits_hit,
   output [1:0]  io_out_bits_kind,
-  output [31:0] io_out_bits_px,
-                io_out_bits_py,
-                io_out_bits_pz,
-                io_out_bits_nx,
-                io_out_bits_ny,
-                io_out_bits_nz,
-                io_out_bits_depth,
+  output [31:0] io_out_bits_d,
+                io_out_bits_nw,
   output        io_out_bits_nonFinite,
   output [4:0]  io_out_bits_flags,
   output [23:0] io_out_bits_tag
@@ -22270,13 +19557,8 @@ module Scpu_fp32_default(
   wire        _core_io_out_valid;
   wire        _core_io_out_bits_hit;
   wire [1:0]  _core_io_out_bits_kind;
-  wire [31:0] _core_io_out_bits_px;
-  wire [31:0] _core_io_out_bits_py;
-  wire [31:0] _core_io_out_bits_pz;
-  wire [31:0] _core_io_out_bits_nx;
-  wire [31:0] _core_io_out_bits_ny;
-  wire [31:0] _core_io_out_bits_nz;
-  wire [31:0] _core_io_out_bits_depth;
+  wire [31:0] _core_io_out_bits_d;
+  wire [31:0] _core_io_out_bits_nw;
   wire [23:0] _core_io_out_bits_meta_tag;
   wire        _core_io_out_bits_meta_nonFinite;
   wire [4:0]  _core_io_out_bits_meta_flags;
@@ -22333,13 +19615,8 @@ module Scpu_fp32_default(
     .io_out_valid               (_core_io_out_valid),
     .io_out_bits_hit            (_core_io_out_bits_hit),
     .io_out_bits_kind           (_core_io_out_bits_kind),
-    .io_out_bits_px             (_core_io_out_bits_px),
-    .io_out_bits_py             (_core_io_out_bits_py),
-    .io_out_bits_pz             (_core_io_out_bits_pz),
-    .io_out_bits_nx             (_core_io_out_bits_nx),
-    .io_out_bits_ny             (_core_io_out_bits_ny),
-    .io_out_bits_nz             (_core_io_out_bits_nz),
-    .io_out_bits_depth          (_core_io_out_bits_depth),
+    .io_out_bits_d              (_core_io_out_bits_d),
+    .io_out_bits_nw             (_core_io_out_bits_nw),
     .io_out_bits_meta_tag       (_core_io_out_bits_meta_tag),
     .io_out_bits_meta_nonFinite (_core_io_out_bits_meta_nonFinite),
     .io_out_bits_meta_flags     (_core_io_out_bits_meta_flags)
@@ -22348,26 +19625,16 @@ module Scpu_fp32_default(
     .io_in_valid               (_core_io_out_valid),
     .io_in_bits_hit            (_core_io_out_bits_hit),
     .io_in_bits_kind           (_core_io_out_bits_kind),
-    .io_in_bits_px             (_core_io_out_bits_px),
-    .io_in_bits_py             (_core_io_out_bits_py),
-    .io_in_bits_pz             (_core_io_out_bits_pz),
-    .io_in_bits_nx             (_core_io_out_bits_nx),
-    .io_in_bits_ny             (_core_io_out_bits_ny),
-    .io_in_bits_nz             (_core_io_out_bits_nz),
-    .io_in_bits_depth          (_core_io_out_bits_depth),
+    .io_in_bits_d              (_core_io_out_bits_d),
+    .io_in_bits_nw             (_core_io_out_bits_nw),
     .io_in_bits_meta_tag       (_core_io_out_bits_meta_tag),
     .io_in_bits_meta_nonFinite (_core_io_out_bits_meta_nonFinite),
     .io_in_bits_meta_flags     (_core_io_out_bits_meta_flags),
     .io_out_valid              (_cout_io_out_valid),
     .io_out_bits_hit           (io_out_bits_hit),
     .io_out_bits_kind          (io_out_bits_kind),
-    .io_out_bits_px            (io_out_bits_px),
-    .io_out_bits_py            (io_out_bits_py),
-    .io_out_bits_pz            (io_out_bits_pz),
-    .io_out_bits_nx            (io_out_bits_nx),
-    .io_out_bits_ny            (io_out_bits_ny),
-    .io_out_bits_nz            (io_out_bits_nz),
-    .io_out_bits_depth         (io_out_bits_depth),
+    .io_out_bits_d             (io_out_bits_d),
+    .io_out_bits_nw            (io_out_bits_nw),
     .io_out_bits_nonFinite     (io_out_bits_nonFinite),
     .io_out_bits_flags         (io_out_bits_flags),
     .io_out_bits_tag           (io_out_bits_tag)
@@ -22405,13 +19672,8 @@ module Afu_default(
   wire        _units_15_io_out_valid;
   wire        _units_15_io_out_bits_hit;
   wire [1:0]  _units_15_io_out_bits_kind;
-  wire [31:0] _units_15_io_out_bits_px;
-  wire [31:0] _units_15_io_out_bits_py;
-  wire [31:0] _units_15_io_out_bits_pz;
-  wire [31:0] _units_15_io_out_bits_nx;
-  wire [31:0] _units_15_io_out_bits_ny;
-  wire [31:0] _units_15_io_out_bits_nz;
-  wire [31:0] _units_15_io_out_bits_depth;
+  wire [31:0] _units_15_io_out_bits_d;
+  wire [31:0] _units_15_io_out_bits_nw;
   wire        _units_15_io_out_bits_nonFinite;
   wire [4:0]  _units_15_io_out_bits_flags;
   wire [23:0] _units_15_io_out_bits_tag;
@@ -22419,13 +19681,8 @@ module Afu_default(
   wire        _units_14_io_out_valid;
   wire        _units_14_io_out_bits_hit;
   wire [1:0]  _units_14_io_out_bits_kind;
-  wire [31:0] _units_14_io_out_bits_px;
-  wire [31:0] _units_14_io_out_bits_py;
-  wire [31:0] _units_14_io_out_bits_pz;
-  wire [31:0] _units_14_io_out_bits_nx;
-  wire [31:0] _units_14_io_out_bits_ny;
-  wire [31:0] _units_14_io_out_bits_nz;
-  wire [31:0] _units_14_io_out_bits_depth;
+  wire [31:0] _units_14_io_out_bits_d;
+  wire [31:0] _units_14_io_out_bits_nw;
   wire        _units_14_io_out_bits_nonFinite;
   wire [4:0]  _units_14_io_out_bits_flags;
   wire [23:0] _units_14_io_out_bits_tag;
@@ -22433,13 +19690,8 @@ module Afu_default(
   wire        _units_13_io_out_valid;
   wire        _units_13_io_out_bits_hit;
   wire [1:0]  _units_13_io_out_bits_kind;
-  wire [31:0] _units_13_io_out_bits_px;
-  wire [31:0] _units_13_io_out_bits_py;
-  wire [31:0] _units_13_io_out_bits_pz;
-  wire [31:0] _units_13_io_out_bits_nx;
-  wire [31:0] _units_13_io_out_bits_ny;
-  wire [31:0] _units_13_io_out_bits_nz;
-  wire [31:0] _units_13_io_out_bits_depth;
+  wire [31:0] _units_13_io_out_bits_d;
+  wire [31:0] _units_13_io_out_bits_nw;
   wire        _units_13_io_out_bits_nonFinite;
   wire [4:0]  _units_13_io_out_bits_flags;
   wire [23:0] _units_13_io_out_bits_tag;
@@ -22447,13 +19699,8 @@ module Afu_default(
   wire        _units_12_io_out_valid;
   wire        _units_12_io_out_bits_hit;
   wire [1:0]  _units_12_io_out_bits_kind;
-  wire [31:0] _units_12_io_out_bits_px;
-  wire [31:0] _units_12_io_out_bits_py;
-  wire [31:0] _units_12_io_out_bits_pz;
-  wire [31:0] _units_12_io_out_bits_nx;
-  wire [31:0] _units_12_io_out_bits_ny;
-  wire [31:0] _units_12_io_out_bits_nz;
-  wire [31:0] _units_12_io_out_bits_depth;
+  wire [31:0] _units_12_io_out_bits_d;
+  wire [31:0] _units_12_io_out_bits_nw;
   wire        _units_12_io_out_bits_nonFinite;
   wire [4:0]  _units_12_io_out_bits_flags;
   wire [23:0] _units_12_io_out_bits_tag;
@@ -22461,13 +19708,8 @@ module Afu_default(
   wire        _units_11_io_out_valid;
   wire        _units_11_io_out_bits_hit;
   wire [1:0]  _units_11_io_out_bits_kind;
-  wire [31:0] _units_11_io_out_bits_px;
-  wire [31:0] _units_11_io_out_bits_py;
-  wire [31:0] _units_11_io_out_bits_pz;
-  wire [31:0] _units_11_io_out_bits_nx;
-  wire [31:0] _units_11_io_out_bits_ny;
-  wire [31:0] _units_11_io_out_bits_nz;
-  wire [31:0] _units_11_io_out_bits_depth;
+  wire [31:0] _units_11_io_out_bits_d;
+  wire [31:0] _units_11_io_out_bits_nw;
   wire        _units_11_io_out_bits_nonFinite;
   wire [4:0]  _units_11_io_out_bits_flags;
   wire [23:0] _units_11_io_out_bits_tag;
@@ -22475,13 +19717,8 @@ module Afu_default(
   wire        _units_10_io_out_valid;
   wire        _units_10_io_out_bits_hit;
   wire [1:0]  _units_10_io_out_bits_kind;
-  wire [31:0] _units_10_io_out_bits_px;
-  wire [31:0] _units_10_io_out_bits_py;
-  wire [31:0] _units_10_io_out_bits_pz;
-  wire [31:0] _units_10_io_out_bits_nx;
-  wire [31:0] _units_10_io_out_bits_ny;
-  wire [31:0] _units_10_io_out_bits_nz;
-  wire [31:0] _units_10_io_out_bits_depth;
+  wire [31:0] _units_10_io_out_bits_d;
+  wire [31:0] _units_10_io_out_bits_nw;
   wire        _units_10_io_out_bits_nonFinite;
   wire [4:0]  _units_10_io_out_bits_flags;
   wire [23:0] _units_10_io_out_bits_tag;
@@ -22489,13 +19726,8 @@ module Afu_default(
   wire        _units_9_io_out_valid;
   wire        _units_9_io_out_bits_hit;
   wire [1:0]  _units_9_io_out_bits_kind;
-  wire [31:0] _units_9_io_out_bits_px;
-  wire [31:0] _units_9_io_out_bits_py;
-  wire [31:0] _units_9_io_out_bits_pz;
-  wire [31:0] _units_9_io_out_bits_nx;
-  wire [31:0] _units_9_io_out_bits_ny;
-  wire [31:0] _units_9_io_out_bits_nz;
-  wire [31:0] _units_9_io_out_bits_depth;
+  wire [31:0] _units_9_io_out_bits_d;
+  wire [31:0] _units_9_io_out_bits_nw;
   wire        _units_9_io_out_bits_nonFinite;
   wire [4:0]  _units_9_io_out_bits_flags;
   wire [23:0] _units_9_io_out_bits_tag;
@@ -22503,13 +19735,8 @@ module Afu_default(
   wire        _units_8_io_out_valid;
   wire        _units_8_io_out_bits_hit;
   wire [1:0]  _units_8_io_out_bits_kind;
-  wire [31:0] _units_8_io_out_bits_px;
-  wire [31:0] _units_8_io_out_bits_py;
-  wire [31:0] _units_8_io_out_bits_pz;
-  wire [31:0] _units_8_io_out_bits_nx;
-  wire [31:0] _units_8_io_out_bits_ny;
-  wire [31:0] _units_8_io_out_bits_nz;
-  wire [31:0] _units_8_io_out_bits_depth;
+  wire [31:0] _units_8_io_out_bits_d;
+  wire [31:0] _units_8_io_out_bits_nw;
   wire        _units_8_io_out_bits_nonFinite;
   wire [4:0]  _units_8_io_out_bits_flags;
   wire [23:0] _units_8_io_out_bits_tag;
@@ -22517,13 +19744,8 @@ module Afu_default(
   wire        _units_7_io_out_valid;
   wire        _units_7_io_out_bits_hit;
   wire [1:0]  _units_7_io_out_bits_kind;
-  wire [31:0] _units_7_io_out_bits_px;
-  wire [31:0] _units_7_io_out_bits_py;
-  wire [31:0] _units_7_io_out_bits_pz;
-  wire [31:0] _units_7_io_out_bits_nx;
-  wire [31:0] _units_7_io_out_bits_ny;
-  wire [31:0] _units_7_io_out_bits_nz;
-  wire [31:0] _units_7_io_out_bits_depth;
+  wire [31:0] _units_7_io_out_bits_d;
+  wire [31:0] _units_7_io_out_bits_nw;
   wire        _units_7_io_out_bits_nonFinite;
   wire [4:0]  _units_7_io_out_bits_flags;
   wire [23:0] _units_7_io_out_bits_tag;
@@ -22531,13 +19753,8 @@ module Afu_default(
   wire        _units_6_io_out_valid;
   wire        _units_6_io_out_bits_hit;
   wire [1:0]  _units_6_io_out_bits_kind;
-  wire [31:0] _units_6_io_out_bits_px;
-  wire [31:0] _units_6_io_out_bits_py;
-  wire [31:0] _units_6_io_out_bits_pz;
-  wire [31:0] _units_6_io_out_bits_nx;
-  wire [31:0] _units_6_io_out_bits_ny;
-  wire [31:0] _units_6_io_out_bits_nz;
-  wire [31:0] _units_6_io_out_bits_depth;
+  wire [31:0] _units_6_io_out_bits_d;
+  wire [31:0] _units_6_io_out_bits_nw;
   wire        _units_6_io_out_bits_nonFinite;
   wire [4:0]  _units_6_io_out_bits_flags;
   wire [23:0] _units_6_io_out_bits_tag;
@@ -22545,13 +19762,8 @@ module Afu_default(
   wire        _units_5_io_out_valid;
   wire        _units_5_io_out_bits_hit;
   wire [1:0]  _units_5_io_out_bits_kind;
-  wire [31:0] _units_5_io_out_bits_px;
-  wire [31:0] _units_5_io_out_bits_py;
-  wire [31:0] _units_5_io_out_bits_pz;
-  wire [31:0] _units_5_io_out_bits_nx;
-  wire [31:0] _units_5_io_out_bits_ny;
-  wire [31:0] _units_5_io_out_bits_nz;
-  wire [31:0] _units_5_io_out_bits_depth;
+  wire [31:0] _units_5_io_out_bits_d;
+  wire [31:0] _units_5_io_out_bits_nw;
   wire        _units_5_io_out_bits_nonFinite;
   wire [4:0]  _units_5_io_out_bits_flags;
   wire [23:0] _units_5_io_out_bits_tag;
@@ -22559,13 +19771,8 @@ module Afu_default(
   wire        _units_4_io_out_valid;
   wire        _units_4_io_out_bits_hit;
   wire [1:0]  _units_4_io_out_bits_kind;
-  wire [31:0] _units_4_io_out_bits_px;
-  wire [31:0] _units_4_io_out_bits_py;
-  wire [31:0] _units_4_io_out_bits_pz;
-  wire [31:0] _units_4_io_out_bits_nx;
-  wire [31:0] _units_4_io_out_bits_ny;
-  wire [31:0] _units_4_io_out_bits_nz;
-  wire [31:0] _units_4_io_out_bits_depth;
+  wire [31:0] _units_4_io_out_bits_d;
+  wire [31:0] _units_4_io_out_bits_nw;
   wire        _units_4_io_out_bits_nonFinite;
   wire [4:0]  _units_4_io_out_bits_flags;
   wire [23:0] _units_4_io_out_bits_tag;
@@ -22573,13 +19780,8 @@ module Afu_default(
   wire        _units_3_io_out_valid;
   wire        _units_3_io_out_bits_hit;
   wire [1:0]  _units_3_io_out_bits_kind;
-  wire [31:0] _units_3_io_out_bits_px;
-  wire [31:0] _units_3_io_out_bits_py;
-  wire [31:0] _units_3_io_out_bits_pz;
-  wire [31:0] _units_3_io_out_bits_nx;
-  wire [31:0] _units_3_io_out_bits_ny;
-  wire [31:0] _units_3_io_out_bits_nz;
-  wire [31:0] _units_3_io_out_bits_depth;
+  wire [31:0] _units_3_io_out_bits_d;
+  wire [31:0] _units_3_io_out_bits_nw;
   wire        _units_3_io_out_bits_nonFinite;
   wire [4:0]  _units_3_io_out_bits_flags;
   wire [23:0] _units_3_io_out_bits_tag;
@@ -22587,13 +19789,8 @@ module Afu_default(
   wire        _units_2_io_out_valid;
   wire        _units_2_io_out_bits_hit;
   wire [1:0]  _units_2_io_out_bits_kind;
-  wire [31:0] _units_2_io_out_bits_px;
-  wire [31:0] _units_2_io_out_bits_py;
-  wire [31:0] _units_2_io_out_bits_pz;
-  wire [31:0] _units_2_io_out_bits_nx;
-  wire [31:0] _units_2_io_out_bits_ny;
-  wire [31:0] _units_2_io_out_bits_nz;
-  wire [31:0] _units_2_io_out_bits_depth;
+  wire [31:0] _units_2_io_out_bits_d;
+  wire [31:0] _units_2_io_out_bits_nw;
   wire        _units_2_io_out_bits_nonFinite;
   wire [4:0]  _units_2_io_out_bits_flags;
   wire [23:0] _units_2_io_out_bits_tag;
@@ -22601,13 +19798,8 @@ module Afu_default(
   wire        _units_1_io_out_valid;
   wire        _units_1_io_out_bits_hit;
   wire [1:0]  _units_1_io_out_bits_kind;
-  wire [31:0] _units_1_io_out_bits_px;
-  wire [31:0] _units_1_io_out_bits_py;
-  wire [31:0] _units_1_io_out_bits_pz;
-  wire [31:0] _units_1_io_out_bits_nx;
-  wire [31:0] _units_1_io_out_bits_ny;
-  wire [31:0] _units_1_io_out_bits_nz;
-  wire [31:0] _units_1_io_out_bits_depth;
+  wire [31:0] _units_1_io_out_bits_d;
+  wire [31:0] _units_1_io_out_bits_nw;
   wire        _units_1_io_out_bits_nonFinite;
   wire [4:0]  _units_1_io_out_bits_flags;
   wire [23:0] _units_1_io_out_bits_tag;
@@ -22615,13 +19807,8 @@ module Afu_default(
   wire        _units_0_io_out_valid;
   wire        _units_0_io_out_bits_hit;
   wire [1:0]  _units_0_io_out_bits_kind;
-  wire [31:0] _units_0_io_out_bits_px;
-  wire [31:0] _units_0_io_out_bits_py;
-  wire [31:0] _units_0_io_out_bits_pz;
-  wire [31:0] _units_0_io_out_bits_nx;
-  wire [31:0] _units_0_io_out_bits_ny;
-  wire [31:0] _units_0_io_out_bits_nz;
-  wire [31:0] _units_0_io_out_bits_depth;
+  wire [31:0] _units_0_io_out_bits_d;
+  wire [31:0] _units_0_io_out_bits_nw;
   wire        _units_0_io_out_bits_nonFinite;
   wire [4:0]  _units_0_io_out_bits_flags;
   wire [23:0] _units_0_io_out_bits_tag;
@@ -23001,13 +20188,8 @@ module Afu_default(
     .io_scpuOut_0_valid           (_units_0_io_out_valid),
     .io_scpuOut_0_bits_hit        (_units_0_io_out_bits_hit),
     .io_scpuOut_0_bits_kind       (_units_0_io_out_bits_kind),
-    .io_scpuOut_0_bits_px         (_units_0_io_out_bits_px),
-    .io_scpuOut_0_bits_py         (_units_0_io_out_bits_py),
-    .io_scpuOut_0_bits_pz         (_units_0_io_out_bits_pz),
-    .io_scpuOut_0_bits_nx         (_units_0_io_out_bits_nx),
-    .io_scpuOut_0_bits_ny         (_units_0_io_out_bits_ny),
-    .io_scpuOut_0_bits_nz         (_units_0_io_out_bits_nz),
-    .io_scpuOut_0_bits_depth      (_units_0_io_out_bits_depth),
+    .io_scpuOut_0_bits_d          (_units_0_io_out_bits_d),
+    .io_scpuOut_0_bits_nw         (_units_0_io_out_bits_nw),
     .io_scpuOut_0_bits_nonFinite  (_units_0_io_out_bits_nonFinite),
     .io_scpuOut_0_bits_flags      (_units_0_io_out_bits_flags),
     .io_scpuOut_0_bits_tag        (_units_0_io_out_bits_tag),
@@ -23015,13 +20197,8 @@ module Afu_default(
     .io_scpuOut_1_valid           (_units_1_io_out_valid),
     .io_scpuOut_1_bits_hit        (_units_1_io_out_bits_hit),
     .io_scpuOut_1_bits_kind       (_units_1_io_out_bits_kind),
-    .io_scpuOut_1_bits_px         (_units_1_io_out_bits_px),
-    .io_scpuOut_1_bits_py         (_units_1_io_out_bits_py),
-    .io_scpuOut_1_bits_pz         (_units_1_io_out_bits_pz),
-    .io_scpuOut_1_bits_nx         (_units_1_io_out_bits_nx),
-    .io_scpuOut_1_bits_ny         (_units_1_io_out_bits_ny),
-    .io_scpuOut_1_bits_nz         (_units_1_io_out_bits_nz),
-    .io_scpuOut_1_bits_depth      (_units_1_io_out_bits_depth),
+    .io_scpuOut_1_bits_d          (_units_1_io_out_bits_d),
+    .io_scpuOut_1_bits_nw         (_units_1_io_out_bits_nw),
     .io_scpuOut_1_bits_nonFinite  (_units_1_io_out_bits_nonFinite),
     .io_scpuOut_1_bits_flags      (_units_1_io_out_bits_flags),
     .io_scpuOut_1_bits_tag        (_units_1_io_out_bits_tag),
@@ -23029,13 +20206,8 @@ module Afu_default(
     .io_scpuOut_2_valid           (_units_2_io_out_valid),
     .io_scpuOut_2_bits_hit        (_units_2_io_out_bits_hit),
     .io_scpuOut_2_bits_kind       (_units_2_io_out_bits_kind),
-    .io_scpuOut_2_bits_px         (_units_2_io_out_bits_px),
-    .io_scpuOut_2_bits_py         (_units_2_io_out_bits_py),
-    .io_scpuOut_2_bits_pz         (_units_2_io_out_bits_pz),
-    .io_scpuOut_2_bits_nx         (_units_2_io_out_bits_nx),
-    .io_scpuOut_2_bits_ny         (_units_2_io_out_bits_ny),
-    .io_scpuOut_2_bits_nz         (_units_2_io_out_bits_nz),
-    .io_scpuOut_2_bits_depth      (_units_2_io_out_bits_depth),
+    .io_scpuOut_2_bits_d          (_units_2_io_out_bits_d),
+    .io_scpuOut_2_bits_nw         (_units_2_io_out_bits_nw),
     .io_scpuOut_2_bits_nonFinite  (_units_2_io_out_bits_nonFinite),
     .io_scpuOut_2_bits_flags      (_units_2_io_out_bits_flags),
     .io_scpuOut_2_bits_tag        (_units_2_io_out_bits_tag),
@@ -23043,13 +20215,8 @@ module Afu_default(
     .io_scpuOut_3_valid           (_units_3_io_out_valid),
     .io_scpuOut_3_bits_hit        (_units_3_io_out_bits_hit),
     .io_scpuOut_3_bits_kind       (_units_3_io_out_bits_kind),
-    .io_scpuOut_3_bits_px         (_units_3_io_out_bits_px),
-    .io_scpuOut_3_bits_py         (_units_3_io_out_bits_py),
-    .io_scpuOut_3_bits_pz         (_units_3_io_out_bits_pz),
-    .io_scpuOut_3_bits_nx         (_units_3_io_out_bits_nx),
-    .io_scpuOut_3_bits_ny         (_units_3_io_out_bits_ny),
-    .io_scpuOut_3_bits_nz         (_units_3_io_out_bits_nz),
-    .io_scpuOut_3_bits_depth      (_units_3_io_out_bits_depth),
+    .io_scpuOut_3_bits_d          (_units_3_io_out_bits_d),
+    .io_scpuOut_3_bits_nw         (_units_3_io_out_bits_nw),
     .io_scpuOut_3_bits_nonFinite  (_units_3_io_out_bits_nonFinite),
     .io_scpuOut_3_bits_flags      (_units_3_io_out_bits_flags),
     .io_scpuOut_3_bits_tag        (_units_3_io_out_bits_tag),
@@ -23057,13 +20224,8 @@ module Afu_default(
     .io_scpuOut_4_valid           (_units_4_io_out_valid),
     .io_scpuOut_4_bits_hit        (_units_4_io_out_bits_hit),
     .io_scpuOut_4_bits_kind       (_units_4_io_out_bits_kind),
-    .io_scpuOut_4_bits_px         (_units_4_io_out_bits_px),
-    .io_scpuOut_4_bits_py         (_units_4_io_out_bits_py),
-    .io_scpuOut_4_bits_pz         (_units_4_io_out_bits_pz),
-    .io_scpuOut_4_bits_nx         (_units_4_io_out_bits_nx),
-    .io_scpuOut_4_bits_ny         (_units_4_io_out_bits_ny),
-    .io_scpuOut_4_bits_nz         (_units_4_io_out_bits_nz),
-    .io_scpuOut_4_bits_depth      (_units_4_io_out_bits_depth),
+    .io_scpuOut_4_bits_d          (_units_4_io_out_bits_d),
+    .io_scpuOut_4_bits_nw         (_units_4_io_out_bits_nw),
     .io_scpuOut_4_bits_nonFinite  (_units_4_io_out_bits_nonFinite),
     .io_scpuOut_4_bits_flags      (_units_4_io_out_bits_flags),
     .io_scpuOut_4_bits_tag        (_units_4_io_out_bits_tag),
@@ -23071,13 +20233,8 @@ module Afu_default(
     .io_scpuOut_5_valid           (_units_5_io_out_valid),
     .io_scpuOut_5_bits_hit        (_units_5_io_out_bits_hit),
     .io_scpuOut_5_bits_kind       (_units_5_io_out_bits_kind),
-    .io_scpuOut_5_bits_px         (_units_5_io_out_bits_px),
-    .io_scpuOut_5_bits_py         (_units_5_io_out_bits_py),
-    .io_scpuOut_5_bits_pz         (_units_5_io_out_bits_pz),
-    .io_scpuOut_5_bits_nx         (_units_5_io_out_bits_nx),
-    .io_scpuOut_5_bits_ny         (_units_5_io_out_bits_ny),
-    .io_scpuOut_5_bits_nz         (_units_5_io_out_bits_nz),
-    .io_scpuOut_5_bits_depth      (_units_5_io_out_bits_depth),
+    .io_scpuOut_5_bits_d          (_units_5_io_out_bits_d),
+    .io_scpuOut_5_bits_nw         (_units_5_io_out_bits_nw),
     .io_scpuOut_5_bits_nonFinite  (_units_5_io_out_bits_nonFinite),
     .io_scpuOut_5_bits_flags      (_units_5_io_out_bits_flags),
     .io_scpuOut_5_bits_tag        (_units_5_io_out_bits_tag),
@@ -23085,13 +20242,8 @@ module Afu_default(
     .io_scpuOut_6_valid           (_units_6_io_out_valid),
     .io_scpuOut_6_bits_hit        (_units_6_io_out_bits_hit),
     .io_scpuOut_6_bits_kind       (_units_6_io_out_bits_kind),
-    .io_scpuOut_6_bits_px         (_units_6_io_out_bits_px),
-    .io_scpuOut_6_bits_py         (_units_6_io_out_bits_py),
-    .io_scpuOut_6_bits_pz         (_units_6_io_out_bits_pz),
-    .io_scpuOut_6_bits_nx         (_units_6_io_out_bits_nx),
-    .io_scpuOut_6_bits_ny         (_units_6_io_out_bits_ny),
-    .io_scpuOut_6_bits_nz         (_units_6_io_out_bits_nz),
-    .io_scpuOut_6_bits_depth      (_units_6_io_out_bits_depth),
+    .io_scpuOut_6_bits_d          (_units_6_io_out_bits_d),
+    .io_scpuOut_6_bits_nw         (_units_6_io_out_bits_nw),
     .io_scpuOut_6_bits_nonFinite  (_units_6_io_out_bits_nonFinite),
     .io_scpuOut_6_bits_flags      (_units_6_io_out_bits_flags),
     .io_scpuOut_6_bits_tag        (_units_6_io_out_bits_tag),
@@ -23099,13 +20251,8 @@ module Afu_default(
     .io_scpuOut_7_valid           (_units_7_io_out_valid),
     .io_scpuOut_7_bits_hit        (_units_7_io_out_bits_hit),
     .io_scpuOut_7_bits_kind       (_units_7_io_out_bits_kind),
-    .io_scpuOut_7_bits_px         (_units_7_io_out_bits_px),
-    .io_scpuOut_7_bits_py         (_units_7_io_out_bits_py),
-    .io_scpuOut_7_bits_pz         (_units_7_io_out_bits_pz),
-    .io_scpuOut_7_bits_nx         (_units_7_io_out_bits_nx),
-    .io_scpuOut_7_bits_ny         (_units_7_io_out_bits_ny),
-    .io_scpuOut_7_bits_nz         (_units_7_io_out_bits_nz),
-    .io_scpuOut_7_bits_depth      (_units_7_io_out_bits_depth),
+    .io_scpuOut_7_bits_d          (_units_7_io_out_bits_d),
+    .io_scpuOut_7_bits_nw         (_units_7_io_out_bits_nw),
     .io_scpuOut_7_bits_nonFinite  (_units_7_io_out_bits_nonFinite),
     .io_scpuOut_7_bits_flags      (_units_7_io_out_bits_flags),
     .io_scpuOut_7_bits_tag        (_units_7_io_out_bits_tag),
@@ -23113,13 +20260,8 @@ module Afu_default(
     .io_scpuOut_8_valid           (_units_8_io_out_valid),
     .io_scpuOut_8_bits_hit        (_units_8_io_out_bits_hit),
     .io_scpuOut_8_bits_kind       (_units_8_io_out_bits_kind),
-    .io_scpuOut_8_bits_px         (_units_8_io_out_bits_px),
-    .io_scpuOut_8_bits_py         (_units_8_io_out_bits_py),
-    .io_scpuOut_8_bits_pz         (_units_8_io_out_bits_pz),
-    .io_scpuOut_8_bits_nx         (_units_8_io_out_bits_nx),
-    .io_scpuOut_8_bits_ny         (_units_8_io_out_bits_ny),
-    .io_scpuOut_8_bits_nz         (_units_8_io_out_bits_nz),
-    .io_scpuOut_8_bits_depth      (_units_8_io_out_bits_depth),
+    .io_scpuOut_8_bits_d          (_units_8_io_out_bits_d),
+    .io_scpuOut_8_bits_nw         (_units_8_io_out_bits_nw),
     .io_scpuOut_8_bits_nonFinite  (_units_8_io_out_bits_nonFinite),
     .io_scpuOut_8_bits_flags      (_units_8_io_out_bits_flags),
     .io_scpuOut_8_bits_tag        (_units_8_io_out_bits_tag),
@@ -23127,13 +20269,8 @@ module Afu_default(
     .io_scpuOut_9_valid           (_units_9_io_out_valid),
     .io_scpuOut_9_bits_hit        (_units_9_io_out_bits_hit),
     .io_scpuOut_9_bits_kind       (_units_9_io_out_bits_kind),
-    .io_scpuOut_9_bits_px         (_units_9_io_out_bits_px),
-    .io_scpuOut_9_bits_py         (_units_9_io_out_bits_py),
-    .io_scpuOut_9_bits_pz         (_units_9_io_out_bits_pz),
-    .io_scpuOut_9_bits_nx         (_units_9_io_out_bits_nx),
-    .io_scpuOut_9_bits_ny         (_units_9_io_out_bits_ny),
-    .io_scpuOut_9_bits_nz         (_units_9_io_out_bits_nz),
-    .io_scpuOut_9_bits_depth      (_units_9_io_out_bits_depth),
+    .io_scpuOut_9_bits_d          (_units_9_io_out_bits_d),
+    .io_scpuOut_9_bits_nw         (_units_9_io_out_bits_nw),
     .io_scpuOut_9_bits_nonFinite  (_units_9_io_out_bits_nonFinite),
     .io_scpuOut_9_bits_flags      (_units_9_io_out_bits_flags),
     .io_scpuOut_9_bits_tag        (_units_9_io_out_bits_tag),
@@ -23141,13 +20278,8 @@ module Afu_default(
     .io_scpuOut_10_valid          (_units_10_io_out_valid),
     .io_scpuOut_10_bits_hit       (_units_10_io_out_bits_hit),
     .io_scpuOut_10_bits_kind      (_units_10_io_out_bits_kind),
-    .io_scpuOut_10_bits_px        (_units_10_io_out_bits_px),
-    .io_scpuOut_10_bits_py        (_units_10_io_out_bits_py),
-    .io_scpuOut_10_bits_pz        (_units_10_io_out_bits_pz),
-    .io_scpuOut_10_bits_nx        (_units_10_io_out_bits_nx),
-    .io_scpuOut_10_bits_ny        (_units_10_io_out_bits_ny),
-    .io_scpuOut_10_bits_nz        (_units_10_io_out_bits_nz),
-    .io_scpuOut_10_bits_depth     (_units_10_io_out_bits_depth),
+    .io_scpuOut_10_bits_d         (_units_10_io_out_bits_d),
+    .io_scpuOut_10_bits_nw        (_units_10_io_out_bits_nw),
     .io_scpuOut_10_bits_nonFinite (_units_10_io_out_bits_nonFinite),
     .io_scpuOut_10_bits_flags     (_units_10_io_out_bits_flags),
     .io_scpuOut_10_bits_tag       (_units_10_io_out_bits_tag),
@@ -23155,13 +20287,8 @@ module Afu_default(
     .io_scpuOut_11_valid          (_units_11_io_out_valid),
     .io_scpuOut_11_bits_hit       (_units_11_io_out_bits_hit),
     .io_scpuOut_11_bits_kind      (_units_11_io_out_bits_kind),
-    .io_scpuOut_11_bits_px        (_units_11_io_out_bits_px),
-    .io_scpuOut_11_bits_py        (_units_11_io_out_bits_py),
-    .io_scpuOut_11_bits_pz        (_units_11_io_out_bits_pz),
-    .io_scpuOut_11_bits_nx        (_units_11_io_out_bits_nx),
-    .io_scpuOut_11_bits_ny        (_units_11_io_out_bits_ny),
-    .io_scpuOut_11_bits_nz        (_units_11_io_out_bits_nz),
-    .io_scpuOut_11_bits_depth     (_units_11_io_out_bits_depth),
+    .io_scpuOut_11_bits_d         (_units_11_io_out_bits_d),
+    .io_scpuOut_11_bits_nw        (_units_11_io_out_bits_nw),
     .io_scpuOut_11_bits_nonFinite (_units_11_io_out_bits_nonFinite),
     .io_scpuOut_11_bits_flags     (_units_11_io_out_bits_flags),
     .io_scpuOut_11_bits_tag       (_units_11_io_out_bits_tag),
@@ -23169,13 +20296,8 @@ module Afu_default(
     .io_scpuOut_12_valid          (_units_12_io_out_valid),
     .io_scpuOut_12_bits_hit       (_units_12_io_out_bits_hit),
     .io_scpuOut_12_bits_kind      (_units_12_io_out_bits_kind),
-    .io_scpuOut_12_bits_px        (_units_12_io_out_bits_px),
-    .io_scpuOut_12_bits_py        (_units_12_io_out_bits_py),
-    .io_scpuOut_12_bits_pz        (_units_12_io_out_bits_pz),
-    .io_scpuOut_12_bits_nx        (_units_12_io_out_bits_nx),
-    .io_scpuOut_12_bits_ny        (_units_12_io_out_bits_ny),
-    .io_scpuOut_12_bits_nz        (_units_12_io_out_bits_nz),
-    .io_scpuOut_12_bits_depth     (_units_12_io_out_bits_depth),
+    .io_scpuOut_12_bits_d         (_units_12_io_out_bits_d),
+    .io_scpuOut_12_bits_nw        (_units_12_io_out_bits_nw),
     .io_scpuOut_12_bits_nonFinite (_units_12_io_out_bits_nonFinite),
     .io_scpuOut_12_bits_flags     (_units_12_io_out_bits_flags),
     .io_scpuOut_12_bits_tag       (_units_12_io_out_bits_tag),
@@ -23183,13 +20305,8 @@ module Afu_default(
     .io_scpuOut_13_valid          (_units_13_io_out_valid),
     .io_scpuOut_13_bits_hit       (_units_13_io_out_bits_hit),
     .io_scpuOut_13_bits_kind      (_units_13_io_out_bits_kind),
-    .io_scpuOut_13_bits_px        (_units_13_io_out_bits_px),
-    .io_scpuOut_13_bits_py        (_units_13_io_out_bits_py),
-    .io_scpuOut_13_bits_pz        (_units_13_io_out_bits_pz),
-    .io_scpuOut_13_bits_nx        (_units_13_io_out_bits_nx),
-    .io_scpuOut_13_bits_ny        (_units_13_io_out_bits_ny),
-    .io_scpuOut_13_bits_nz        (_units_13_io_out_bits_nz),
-    .io_scpuOut_13_bits_depth     (_units_13_io_out_bits_depth),
+    .io_scpuOut_13_bits_d         (_units_13_io_out_bits_d),
+    .io_scpuOut_13_bits_nw        (_units_13_io_out_bits_nw),
     .io_scpuOut_13_bits_nonFinite (_units_13_io_out_bits_nonFinite),
     .io_scpuOut_13_bits_flags     (_units_13_io_out_bits_flags),
     .io_scpuOut_13_bits_tag       (_units_13_io_out_bits_tag),
@@ -23197,13 +20314,8 @@ module Afu_default(
     .io_scpuOut_14_valid          (_units_14_io_out_valid),
     .io_scpuOut_14_bits_hit       (_units_14_io_out_bits_hit),
     .io_scpuOut_14_bits_kind      (_units_14_io_out_bits_kind),
-    .io_scpuOut_14_bits_px        (_units_14_io_out_bits_px),
-    .io_scpuOut_14_bits_py        (_units_14_io_out_bits_py),
-    .io_scpuOut_14_bits_pz        (_units_14_io_out_bits_pz),
-    .io_scpuOut_14_bits_nx        (_units_14_io_out_bits_nx),
-    .io_scpuOut_14_bits_ny        (_units_14_io_out_bits_ny),
-    .io_scpuOut_14_bits_nz        (_units_14_io_out_bits_nz),
-    .io_scpuOut_14_bits_depth     (_units_14_io_out_bits_depth),
+    .io_scpuOut_14_bits_d         (_units_14_io_out_bits_d),
+    .io_scpuOut_14_bits_nw        (_units_14_io_out_bits_nw),
     .io_scpuOut_14_bits_nonFinite (_units_14_io_out_bits_nonFinite),
     .io_scpuOut_14_bits_flags     (_units_14_io_out_bits_flags),
     .io_scpuOut_14_bits_tag       (_units_14_io_out_bits_tag),
@@ -23211,13 +20323,8 @@ module Afu_default(
     .io_scpuOut_15_valid          (_units_15_io_out_valid),
     .io_scpuOut_15_bits_hit       (_units_15_io_out_bits_hit),
     .io_scpuOut_15_bits_kind      (_units_15_io_out_bits_kind),
-    .io_scpuOut_15_bits_px        (_units_15_io_out_bits_px),
-    .io_scpuOut_15_bits_py        (_units_15_io_out_bits_py),
-    .io_scpuOut_15_bits_pz        (_units_15_io_out_bits_pz),
-    .io_scpuOut_15_bits_nx        (_units_15_io_out_bits_nx),
-    .io_scpuOut_15_bits_ny        (_units_15_io_out_bits_ny),
-    .io_scpuOut_15_bits_nz        (_units_15_io_out_bits_nz),
-    .io_scpuOut_15_bits_depth     (_units_15_io_out_bits_depth),
+    .io_scpuOut_15_bits_d         (_units_15_io_out_bits_d),
+    .io_scpuOut_15_bits_nw        (_units_15_io_out_bits_nw),
     .io_scpuOut_15_bits_nonFinite (_units_15_io_out_bits_nonFinite),
     .io_scpuOut_15_bits_flags     (_units_15_io_out_bits_flags),
     .io_scpuOut_15_bits_tag       (_units_15_io_out_bits_tag),
@@ -23243,13 +20350,8 @@ module Afu_default(
     .io_out_valid          (_units_0_io_out_valid),
     .io_out_bits_hit       (_units_0_io_out_bits_hit),
     .io_out_bits_kind      (_units_0_io_out_bits_kind),
-    .io_out_bits_px        (_units_0_io_out_bits_px),
-    .io_out_bits_py        (_units_0_io_out_bits_py),
-    .io_out_bits_pz        (_units_0_io_out_bits_pz),
-    .io_out_bits_nx        (_units_0_io_out_bits_nx),
-    .io_out_bits_ny        (_units_0_io_out_bits_ny),
-    .io_out_bits_nz        (_units_0_io_out_bits_nz),
-    .io_out_bits_depth     (_units_0_io_out_bits_depth),
+    .io_out_bits_d         (_units_0_io_out_bits_d),
+    .io_out_bits_nw        (_units_0_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_0_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_0_io_out_bits_flags),
     .io_out_bits_tag       (_units_0_io_out_bits_tag)
@@ -23272,13 +20374,8 @@ module Afu_default(
     .io_out_valid          (_units_1_io_out_valid),
     .io_out_bits_hit       (_units_1_io_out_bits_hit),
     .io_out_bits_kind      (_units_1_io_out_bits_kind),
-    .io_out_bits_px        (_units_1_io_out_bits_px),
-    .io_out_bits_py        (_units_1_io_out_bits_py),
-    .io_out_bits_pz        (_units_1_io_out_bits_pz),
-    .io_out_bits_nx        (_units_1_io_out_bits_nx),
-    .io_out_bits_ny        (_units_1_io_out_bits_ny),
-    .io_out_bits_nz        (_units_1_io_out_bits_nz),
-    .io_out_bits_depth     (_units_1_io_out_bits_depth),
+    .io_out_bits_d         (_units_1_io_out_bits_d),
+    .io_out_bits_nw        (_units_1_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_1_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_1_io_out_bits_flags),
     .io_out_bits_tag       (_units_1_io_out_bits_tag)
@@ -23301,13 +20398,8 @@ module Afu_default(
     .io_out_valid          (_units_2_io_out_valid),
     .io_out_bits_hit       (_units_2_io_out_bits_hit),
     .io_out_bits_kind      (_units_2_io_out_bits_kind),
-    .io_out_bits_px        (_units_2_io_out_bits_px),
-    .io_out_bits_py        (_units_2_io_out_bits_py),
-    .io_out_bits_pz        (_units_2_io_out_bits_pz),
-    .io_out_bits_nx        (_units_2_io_out_bits_nx),
-    .io_out_bits_ny        (_units_2_io_out_bits_ny),
-    .io_out_bits_nz        (_units_2_io_out_bits_nz),
-    .io_out_bits_depth     (_units_2_io_out_bits_depth),
+    .io_out_bits_d         (_units_2_io_out_bits_d),
+    .io_out_bits_nw        (_units_2_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_2_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_2_io_out_bits_flags),
     .io_out_bits_tag       (_units_2_io_out_bits_tag)
@@ -23330,13 +20422,8 @@ module Afu_default(
     .io_out_valid          (_units_3_io_out_valid),
     .io_out_bits_hit       (_units_3_io_out_bits_hit),
     .io_out_bits_kind      (_units_3_io_out_bits_kind),
-    .io_out_bits_px        (_units_3_io_out_bits_px),
-    .io_out_bits_py        (_units_3_io_out_bits_py),
-    .io_out_bits_pz        (_units_3_io_out_bits_pz),
-    .io_out_bits_nx        (_units_3_io_out_bits_nx),
-    .io_out_bits_ny        (_units_3_io_out_bits_ny),
-    .io_out_bits_nz        (_units_3_io_out_bits_nz),
-    .io_out_bits_depth     (_units_3_io_out_bits_depth),
+    .io_out_bits_d         (_units_3_io_out_bits_d),
+    .io_out_bits_nw        (_units_3_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_3_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_3_io_out_bits_flags),
     .io_out_bits_tag       (_units_3_io_out_bits_tag)
@@ -23359,13 +20446,8 @@ module Afu_default(
     .io_out_valid          (_units_4_io_out_valid),
     .io_out_bits_hit       (_units_4_io_out_bits_hit),
     .io_out_bits_kind      (_units_4_io_out_bits_kind),
-    .io_out_bits_px        (_units_4_io_out_bits_px),
-    .io_out_bits_py        (_units_4_io_out_bits_py),
-    .io_out_bits_pz        (_units_4_io_out_bits_pz),
-    .io_out_bits_nx        (_units_4_io_out_bits_nx),
-    .io_out_bits_ny        (_units_4_io_out_bits_ny),
-    .io_out_bits_nz        (_units_4_io_out_bits_nz),
-    .io_out_bits_depth     (_units_4_io_out_bits_depth),
+    .io_out_bits_d         (_units_4_io_out_bits_d),
+    .io_out_bits_nw        (_units_4_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_4_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_4_io_out_bits_flags),
     .io_out_bits_tag       (_units_4_io_out_bits_tag)
@@ -23388,13 +20470,8 @@ module Afu_default(
     .io_out_valid          (_units_5_io_out_valid),
     .io_out_bits_hit       (_units_5_io_out_bits_hit),
     .io_out_bits_kind      (_units_5_io_out_bits_kind),
-    .io_out_bits_px        (_units_5_io_out_bits_px),
-    .io_out_bits_py        (_units_5_io_out_bits_py),
-    .io_out_bits_pz        (_units_5_io_out_bits_pz),
-    .io_out_bits_nx        (_units_5_io_out_bits_nx),
-    .io_out_bits_ny        (_units_5_io_out_bits_ny),
-    .io_out_bits_nz        (_units_5_io_out_bits_nz),
-    .io_out_bits_depth     (_units_5_io_out_bits_depth),
+    .io_out_bits_d         (_units_5_io_out_bits_d),
+    .io_out_bits_nw        (_units_5_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_5_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_5_io_out_bits_flags),
     .io_out_bits_tag       (_units_5_io_out_bits_tag)
@@ -23417,13 +20494,8 @@ module Afu_default(
     .io_out_valid          (_units_6_io_out_valid),
     .io_out_bits_hit       (_units_6_io_out_bits_hit),
     .io_out_bits_kind      (_units_6_io_out_bits_kind),
-    .io_out_bits_px        (_units_6_io_out_bits_px),
-    .io_out_bits_py        (_units_6_io_out_bits_py),
-    .io_out_bits_pz        (_units_6_io_out_bits_pz),
-    .io_out_bits_nx        (_units_6_io_out_bits_nx),
-    .io_out_bits_ny        (_units_6_io_out_bits_ny),
-    .io_out_bits_nz        (_units_6_io_out_bits_nz),
-    .io_out_bits_depth     (_units_6_io_out_bits_depth),
+    .io_out_bits_d         (_units_6_io_out_bits_d),
+    .io_out_bits_nw        (_units_6_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_6_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_6_io_out_bits_flags),
     .io_out_bits_tag       (_units_6_io_out_bits_tag)
@@ -23446,13 +20518,8 @@ module Afu_default(
     .io_out_valid          (_units_7_io_out_valid),
     .io_out_bits_hit       (_units_7_io_out_bits_hit),
     .io_out_bits_kind      (_units_7_io_out_bits_kind),
-    .io_out_bits_px        (_units_7_io_out_bits_px),
-    .io_out_bits_py        (_units_7_io_out_bits_py),
-    .io_out_bits_pz        (_units_7_io_out_bits_pz),
-    .io_out_bits_nx        (_units_7_io_out_bits_nx),
-    .io_out_bits_ny        (_units_7_io_out_bits_ny),
-    .io_out_bits_nz        (_units_7_io_out_bits_nz),
-    .io_out_bits_depth     (_units_7_io_out_bits_depth),
+    .io_out_bits_d         (_units_7_io_out_bits_d),
+    .io_out_bits_nw        (_units_7_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_7_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_7_io_out_bits_flags),
     .io_out_bits_tag       (_units_7_io_out_bits_tag)
@@ -23475,13 +20542,8 @@ module Afu_default(
     .io_out_valid          (_units_8_io_out_valid),
     .io_out_bits_hit       (_units_8_io_out_bits_hit),
     .io_out_bits_kind      (_units_8_io_out_bits_kind),
-    .io_out_bits_px        (_units_8_io_out_bits_px),
-    .io_out_bits_py        (_units_8_io_out_bits_py),
-    .io_out_bits_pz        (_units_8_io_out_bits_pz),
-    .io_out_bits_nx        (_units_8_io_out_bits_nx),
-    .io_out_bits_ny        (_units_8_io_out_bits_ny),
-    .io_out_bits_nz        (_units_8_io_out_bits_nz),
-    .io_out_bits_depth     (_units_8_io_out_bits_depth),
+    .io_out_bits_d         (_units_8_io_out_bits_d),
+    .io_out_bits_nw        (_units_8_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_8_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_8_io_out_bits_flags),
     .io_out_bits_tag       (_units_8_io_out_bits_tag)
@@ -23504,13 +20566,8 @@ module Afu_default(
     .io_out_valid          (_units_9_io_out_valid),
     .io_out_bits_hit       (_units_9_io_out_bits_hit),
     .io_out_bits_kind      (_units_9_io_out_bits_kind),
-    .io_out_bits_px        (_units_9_io_out_bits_px),
-    .io_out_bits_py        (_units_9_io_out_bits_py),
-    .io_out_bits_pz        (_units_9_io_out_bits_pz),
-    .io_out_bits_nx        (_units_9_io_out_bits_nx),
-    .io_out_bits_ny        (_units_9_io_out_bits_ny),
-    .io_out_bits_nz        (_units_9_io_out_bits_nz),
-    .io_out_bits_depth     (_units_9_io_out_bits_depth),
+    .io_out_bits_d         (_units_9_io_out_bits_d),
+    .io_out_bits_nw        (_units_9_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_9_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_9_io_out_bits_flags),
     .io_out_bits_tag       (_units_9_io_out_bits_tag)
@@ -23533,13 +20590,8 @@ module Afu_default(
     .io_out_valid          (_units_10_io_out_valid),
     .io_out_bits_hit       (_units_10_io_out_bits_hit),
     .io_out_bits_kind      (_units_10_io_out_bits_kind),
-    .io_out_bits_px        (_units_10_io_out_bits_px),
-    .io_out_bits_py        (_units_10_io_out_bits_py),
-    .io_out_bits_pz        (_units_10_io_out_bits_pz),
-    .io_out_bits_nx        (_units_10_io_out_bits_nx),
-    .io_out_bits_ny        (_units_10_io_out_bits_ny),
-    .io_out_bits_nz        (_units_10_io_out_bits_nz),
-    .io_out_bits_depth     (_units_10_io_out_bits_depth),
+    .io_out_bits_d         (_units_10_io_out_bits_d),
+    .io_out_bits_nw        (_units_10_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_10_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_10_io_out_bits_flags),
     .io_out_bits_tag       (_units_10_io_out_bits_tag)
@@ -23562,13 +20614,8 @@ module Afu_default(
     .io_out_valid          (_units_11_io_out_valid),
     .io_out_bits_hit       (_units_11_io_out_bits_hit),
     .io_out_bits_kind      (_units_11_io_out_bits_kind),
-    .io_out_bits_px        (_units_11_io_out_bits_px),
-    .io_out_bits_py        (_units_11_io_out_bits_py),
-    .io_out_bits_pz        (_units_11_io_out_bits_pz),
-    .io_out_bits_nx        (_units_11_io_out_bits_nx),
-    .io_out_bits_ny        (_units_11_io_out_bits_ny),
-    .io_out_bits_nz        (_units_11_io_out_bits_nz),
-    .io_out_bits_depth     (_units_11_io_out_bits_depth),
+    .io_out_bits_d         (_units_11_io_out_bits_d),
+    .io_out_bits_nw        (_units_11_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_11_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_11_io_out_bits_flags),
     .io_out_bits_tag       (_units_11_io_out_bits_tag)
@@ -23591,13 +20638,8 @@ module Afu_default(
     .io_out_valid          (_units_12_io_out_valid),
     .io_out_bits_hit       (_units_12_io_out_bits_hit),
     .io_out_bits_kind      (_units_12_io_out_bits_kind),
-    .io_out_bits_px        (_units_12_io_out_bits_px),
-    .io_out_bits_py        (_units_12_io_out_bits_py),
-    .io_out_bits_pz        (_units_12_io_out_bits_pz),
-    .io_out_bits_nx        (_units_12_io_out_bits_nx),
-    .io_out_bits_ny        (_units_12_io_out_bits_ny),
-    .io_out_bits_nz        (_units_12_io_out_bits_nz),
-    .io_out_bits_depth     (_units_12_io_out_bits_depth),
+    .io_out_bits_d         (_units_12_io_out_bits_d),
+    .io_out_bits_nw        (_units_12_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_12_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_12_io_out_bits_flags),
     .io_out_bits_tag       (_units_12_io_out_bits_tag)
@@ -23620,13 +20662,8 @@ module Afu_default(
     .io_out_valid          (_units_13_io_out_valid),
     .io_out_bits_hit       (_units_13_io_out_bits_hit),
     .io_out_bits_kind      (_units_13_io_out_bits_kind),
-    .io_out_bits_px        (_units_13_io_out_bits_px),
-    .io_out_bits_py        (_units_13_io_out_bits_py),
-    .io_out_bits_pz        (_units_13_io_out_bits_pz),
-    .io_out_bits_nx        (_units_13_io_out_bits_nx),
-    .io_out_bits_ny        (_units_13_io_out_bits_ny),
-    .io_out_bits_nz        (_units_13_io_out_bits_nz),
-    .io_out_bits_depth     (_units_13_io_out_bits_depth),
+    .io_out_bits_d         (_units_13_io_out_bits_d),
+    .io_out_bits_nw        (_units_13_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_13_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_13_io_out_bits_flags),
     .io_out_bits_tag       (_units_13_io_out_bits_tag)
@@ -23649,13 +20686,8 @@ module Afu_default(
     .io_out_valid          (_units_14_io_out_valid),
     .io_out_bits_hit       (_units_14_io_out_bits_hit),
     .io_out_bits_kind      (_units_14_io_out_bits_kind),
-    .io_out_bits_px        (_units_14_io_out_bits_px),
-    .io_out_bits_py        (_units_14_io_out_bits_py),
-    .io_out_bits_pz        (_units_14_io_out_bits_pz),
-    .io_out_bits_nx        (_units_14_io_out_bits_nx),
-    .io_out_bits_ny        (_units_14_io_out_bits_ny),
-    .io_out_bits_nz        (_units_14_io_out_bits_nz),
-    .io_out_bits_depth     (_units_14_io_out_bits_depth),
+    .io_out_bits_d         (_units_14_io_out_bits_d),
+    .io_out_bits_nw        (_units_14_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_14_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_14_io_out_bits_flags),
     .io_out_bits_tag       (_units_14_io_out_bits_tag)
@@ -23678,13 +20710,8 @@ module Afu_default(
     .io_out_valid          (_units_15_io_out_valid),
     .io_out_bits_hit       (_units_15_io_out_bits_hit),
     .io_out_bits_kind      (_units_15_io_out_bits_kind),
-    .io_out_bits_px        (_units_15_io_out_bits_px),
-    .io_out_bits_py        (_units_15_io_out_bits_py),
-    .io_out_bits_pz        (_units_15_io_out_bits_pz),
-    .io_out_bits_nx        (_units_15_io_out_bits_nx),
-    .io_out_bits_ny        (_units_15_io_out_bits_ny),
-    .io_out_bits_nz        (_units_15_io_out_bits_nz),
-    .io_out_bits_depth     (_units_15_io_out_bits_depth),
+    .io_out_bits_d         (_units_15_io_out_bits_d),
+    .io_out_bits_nw        (_units_15_io_out_bits_nw),
     .io_out_bits_nonFinite (_units_15_io_out_bits_nonFinite),
     .io_out_bits_flags     (_units_15_io_out_bits_flags),
     .io_out_bits_tag       (_units_15_io_out_bits_tag)

@@ -5,6 +5,7 @@
 #include "cli/commands.hpp"
 #include "cli/pairs_csv.hpp"
 #include "collide/backend_factory.hpp"
+#include "collide/contact_flags.hpp"
 #include "collide/rtl_backend.hpp"
 #include "driver/afu_factory.hpp"
 
@@ -46,6 +47,7 @@ int runPairs(const PairsOptions& o) {
 
     ContactSet contacts;
     backend->collide(spheres, pairs, contacts);
+    if (req.name != "rtl") setCpuRecordFlags(spheres, pairs, contacts.format, contacts);
 
     if (o.out == "-") {
       writeContactsCsv(std::cout, contacts);

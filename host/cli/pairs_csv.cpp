@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 #include <vector>
 
 namespace collide::cli {
@@ -32,13 +33,10 @@ std::vector<std::string> split(const std::string& s) {
 // One field as a value of `format`; false with `why` set if it is not a whole number.
 bool parseField(const std::string& f, LinkFormat format, double& v, std::string& why) {
   if (f.empty()) { why = "empty field"; return false; }
-  errno = 0;
-  char* end = nullptr;
-  if (format == LinkFormat::Binary32) v = std::strtof(f.c_str(), &end);
-  else v = std::strtod(f.c_str(), &end);
-  if (end != f.c_str() + f.size()) { why = "not a number: '" + f + "'"; return false; }
-  // ERANGE with a finite result is underflow (subnormal or zero): a valid input.
-  if (errno == ERANGE && std::isinf(v)) {
+  if (!format::parseInto(f.c_str(), numberFormat(format), v)) { why = "not a number: '" + f + "'"; return false; }
+  // Underflow (a subnormal or zero) is a valid input; overflow of a finite literal is not.
+  const bool literalInf = f.find_first_of("iI") != std::string::npos;
+  if (std::isinf(v) && !literalInf) {
     why = "'" + f + "' overflows " + toString(format);
     return false;
   }
@@ -82,18 +80,18 @@ void readPairsCsv(std::istream& in, const std::string& name, LinkFormat format, 
 
 std::string hexFloat(double v, LinkFormat format) {
   char buf[64];
-  if (format == LinkFormat::Binary32) std::snprintf(buf, sizeof buf, "%a", static_cast<double>(static_cast<float>(v)));
-  else std::snprintf(buf, sizeof buf, "%a", v);
+  std::snprintf(buf, sizeof buf, "%a", format::roundTo(v, numberFormat(format)));
   return buf;
 }
 
 void writeContactsCsv(std::ostream& out, const ContactSet& c) {
-  out << "pair,hit,px,py,pz,nx,ny,nz,depth\n";
+  if (c.flags.size() != c.size()) throw std::logic_error("writeContactsCsv: the contact set has no flags");
+  out << "pair,hit,px,py,pz,nx,ny,nz,depth,flags\n";
   for (std::size_t k = 0; k < c.size(); ++k) {
     out << k << ',' << int{c.hit[k]};
     for (const auto* col : {&c.px, &c.py, &c.pz, &c.nx, &c.ny, &c.nz, &c.depth})
       out << ',' << hexFloat((*col)[k], c.format);
-    out << '\n';
+    out << ',' << int{c.flags[k]} << '\n';
   }
 }
 

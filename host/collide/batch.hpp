@@ -7,12 +7,9 @@
 
 #include <ode/ode.h>
 
+#include "format/link_format.hpp"
+
 namespace collide {
-
-// Link format: the number format on the host<->AFU link (docs/afu-interface.md).
-enum class LinkFormat { Binary32, Binary64 };
-
-const char* toString(LinkFormat f);
 
 struct SphereTable {
   std::vector<double> x, y, z, r;

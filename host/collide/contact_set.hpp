@@ -13,6 +13,10 @@ struct ContactSet {
   LinkFormat format = LinkFormat::Binary64;
   std::vector<std::uint8_t> hit;  // 1: contact (d <= r1 + r2, depth >= 0)
   std::vector<double> px, py, pz, nx, ny, nz, depth;  // zero where hit == 0
+  // The record flags of docs/afu-interface.md (contract::REC_*): the AFU's own for rtl, with
+  // REC_HOST_RANGE where an input did not fit the link format. The CPU backends leave them
+  // zero or empty on their hot path; setCpuRecordFlags (contact_flags.hpp) fills them.
+  std::vector<std::uint8_t> flags;
 
   std::size_t size() const { return hit.size(); }
   std::size_t hits() const;

@@ -12,6 +12,8 @@ driver::DriverOptions fromManifest(const std::filesystem::path& dir, driver::Dri
   const auto m = dir.empty() ? driver::parseManifest(driver::builtInAfuManifest(), "the built-in AFU's manifest")
                              : driver::loadManifest(dir);
   o.format = m.format;
+  o.records = m.records;
+  o.arith = m.arith;
   o.maxSpheres = m.maxSpheres;
   return o;
 }
@@ -82,6 +84,7 @@ void RtlBackend::collide(const SphereTable& spheres, const PairList& pairs, Cont
     for (std::size_t k = 0; k < chunkOrigin_.size(); ++k) {
       const std::size_t o = chunkOrigin_[k];
       out.hit[o] = chunkOut_.hit[k];
+      out.flags[o] = chunkOut_.flags[k];
       out.px[o] = chunkOut_.px[k]; out.py[o] = chunkOut_.py[k]; out.pz[o] = chunkOut_.pz[k];
       out.nx[o] = chunkOut_.nx[k]; out.ny[o] = chunkOut_.ny[k]; out.nz[o] = chunkOut_.nz[k];
       out.depth[o] = chunkOut_.depth[k];

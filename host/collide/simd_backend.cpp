@@ -1,6 +1,5 @@
 #include "collide/simd_backend.hpp"
 
-
 #include "collide/simd_kernel.hpp"
 
 namespace collide {
@@ -12,6 +11,7 @@ void SimdBackend::collide(const SphereTable& s, const PairList& pairs, ContactSe
   gatherCollideF32(n, SpheresF64{s.x.data(), s.y.data(), s.z.data(), s.r.data()}, pairs.i.data(), pairs.j.data(),
                    ContactsF64{out.px.data(), out.py.data(), out.pz.data(), out.nx.data(), out.ny.data(),
                                out.nz.data(), out.depth.data(), out.hit.data()});
+  out.flags.clear();  // not computed on the hot path: setCpuRecordFlags when wanted
 }
 
 }  // namespace collide

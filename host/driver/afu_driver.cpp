@@ -7,13 +7,10 @@
 namespace collide::driver {
 
 std::string describeErrors(std::uint32_t f) {
-  static const char* names[] = {"sphere index out of range", "NUM_SPHERES above the on-chip table",
-                                "contact buffer too small", "non-finite input seen",
-                                "bad configuration"};
   std::string s;
-  for (int b = 0; b < 5; ++b)
-    if (f & (1u << b)) s += (s.empty() ? "" : ", ") + std::string(names[b]);
-  if (f >> 5) s += (s.empty() ? "" : ", ") + std::string("unknown flag bits");
+  for (std::uint32_t b = 0; b < contract::ERR_COUNT; ++b)
+    if (f & (1u << b)) s += (s.empty() ? "" : ", ") + std::string(contract::kErrorText[b]);
+  if (f >> contract::ERR_COUNT) s += (s.empty() ? "" : ", ") + std::string("unknown flag bits");
   return s.empty() ? "none" : s;
 }
 
@@ -46,25 +43,30 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
   const std::size_t capacity = n;
   const auto sph = mem_.allocate(std::max<std::uint64_t>(1, sphereLines(spheres.size(), opt_.format)));
   const auto pl = mem_.allocate(std::max<std::uint64_t>(1, pairLines(n)));
-  const auto ct = mem_.allocate(std::max<std::uint64_t>(1, contactLines(capacity, opt_.format)));
+  const BufferLayout lay = layout();
+  const auto ct = mem_.allocate(std::max<std::uint64_t>(1, contactLines(capacity, lay, opt_.dense)));
   const auto st = mem_.allocate(1);
-  writeSphereTable(mem_, sph.base, spheres, opt_.format);
+  const auto outOfRange = writeSphereTable(mem_, sph.base, spheres, opt_.format);
   writePairList(mem_, pl.base, pairs);
 
   // Configure, then start (docs/afu-interface.md CSR table).
   const std::uint64_t t0 = link_.cycle();
   const std::uint64_t reads0 = link_.stats().readsAccepted, writes0 = link_.stats().writesAccepted;
-  link_.hostWriteCsr(kSphereBase, sph.base);
-  link_.hostWriteCsr(kNumSpheres, spheres.size());
-  link_.hostWriteCsr(kPairBase, pl.base);
-  link_.hostWriteCsr(kNumPairs, n);
-  link_.hostWriteCsr(kContactBase, ct.base);
-  link_.hostWriteCsr(kContactCapacity, capacity);
-  link_.hostWriteCsr(kStatusAddr, st.base);
-  link_.hostWriteCsr(kMode, opt_.dense ? 1 : 0);
-  link_.hostWriteCsr(kCtrl, 1);
+  using namespace contract;
+  link_.hostWriteCsr(CSR_SPHERE_BASE, sph.base);
+  link_.hostWriteCsr(CSR_NUM_SPHERES, spheres.size());
+  link_.hostWriteCsr(CSR_PAIR_BASE, pl.base);
+  link_.hostWriteCsr(CSR_NUM_PAIRS, n);
+  link_.hostWriteCsr(CSR_CONTACT_BASE, ct.base);
+  link_.hostWriteCsr(CSR_CONTACT_CAPACITY, capacity);
+  link_.hostWriteCsr(CSR_STATUS_ADDR, st.base);
+  link_.hostWriteCsr(CSR_MODE, opt_.dense ? MODE_DENSE : 0);
+  link_.hostWriteCsr(CSR_CTRL, CTRL_START);
 
   RunResult r;
+  for (std::size_t k = 0; k < n; ++k)
+    if ((pairs.i[k] < outOfRange.size() && outOfRange[pairs.i[k]]) || (pairs.j[k] < outOfRange.size() && outOfRange[pairs.j[k]]))
+      r.rangePairs.push_back(static_cast<std::uint32_t>(k));
   const std::uint64_t deadline = t0 + opt_.watchdogCycles;
   for (;;) {
     if (link_.cycle() >= deadline) {
@@ -93,7 +95,7 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
     link_.tick(out);
     ++r.stats.cyclesStepped;
     // Only a write response changes host memory; the status line is the AFU's last write.
-    if (in.wrResp && mem_.load<std::uint32_t>(st.base, 0) != 0) break;
+    if (in.wrResp && mem_.load<std::uint32_t>(st.base, STATUS_DONE) != 0) break;
   }
 
   // Modelled host time: the done flag lands at the end of the cycle whose write response
@@ -111,8 +113,18 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
   r.status = readStatus(mem_, st.base);
   const std::size_t written = std::min<std::size_t>(r.status.recordsWritten, capacity);
   r.records.reserve(written);
-  for (std::size_t k = 0; k < written; ++k) r.records.push_back(readContact(mem_, ct.base, k, opt_.format));
+  for (std::size_t k = 0; k < written; ++k) r.records.push_back(readContact(mem_, ct.base, k, lay, opt_.dense));
   check(r, n, capacity);
+  if (lay.derived()) {
+    // Rebuild pos, normal and depth from d, w and the spheres as the link carried them.
+    for (auto& rec : r.records) {
+      double s1[4], s2[4], v[7];
+      linkSphere(spheres, pairs.i[rec.pair], opt_.format, s1);
+      linkSphere(spheres, pairs.j[rec.pair], opt_.format, s2);
+      rebuildContact(opt_.arith, s1, s2, rec.d, rec.w, rec.flags, v);
+      rec.px = v[0]; rec.py = v[1]; rec.pz = v[2]; rec.nx = v[3]; rec.ny = v[4]; rec.nz = v[5]; rec.depth = v[6];
+    }
+  }
   return r;
 }
 
@@ -121,11 +133,11 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
 void AfuDriver::check(const RunResult& r, std::size_t n, std::size_t capacity) const {
   const StatusLine& s = r.status;
   auto fail = [&](const std::string& m) { throw AfuError("AFU run: " + m, s); };
-  if (opt_.throwOnErrorFlags && (s.errors & ~std::uint32_t{kErrNonFinite}))
+  if (opt_.throwOnErrorFlags && (s.errors & ~std::uint32_t{contract::ERR_NONFINITE}))
     fail("error flags 0x" + [&] { std::ostringstream o; o << std::hex << s.errors; return o.str(); }() +
          " (" + describeErrors(s.errors) + ")" +
-         (s.firstBadPair != 0xFFFFFFFFu ? ", first bad pair " + std::to_string(s.firstBadPair) : ""));
-  if (s.errors & (kErrTooManySpheres | kErrBadConfig)) return;  // nothing computed by contract
+         (s.firstBadPair != contract::NO_BAD_PAIR ? ", first bad pair " + std::to_string(s.firstBadPair) : ""));
+  if (s.errors & (contract::ERR_TOO_MANY_SPHERES | contract::ERR_BAD_CONFIG)) return;  // nothing computed by contract
   if (s.pairsProcessed != n)
     fail("pairs processed " + std::to_string(s.pairsProcessed) + " != pairs sent " + std::to_string(n));
   if (s.recordsWritten > capacity)
@@ -143,7 +155,7 @@ void AfuDriver::check(const RunResult& r, std::size_t n, std::size_t capacity) c
       if (!c.hit()) fail("compact record for pair " + std::to_string(c.pair) + " without the hit flag");
       seen[c.pair] = true;
     }
-    if (!(s.errors & kErrContactOverflow) && s.recordsWritten != s.contactsFound)
+    if (!(s.errors & contract::ERR_CAPACITY) && s.recordsWritten != s.contactsFound)
       fail("contacts found " + std::to_string(s.contactsFound) + " != records written " +
            std::to_string(s.recordsWritten));
   }
@@ -153,9 +165,12 @@ ContactSet AfuDriver::toContactSet(const RunResult& r, std::size_t n) const {
   ContactSet c;
   c.resize(n);
   c.format = opt_.format;
+  for (auto k : r.rangePairs) c.flags[k] |= contract::REC_HOST_RANGE;
   for (const auto& rec : r.records) {
-    if (!rec.hit() || rec.pair >= n) continue;
+    if (rec.pair >= n) continue;
     const std::size_t k = rec.pair;
+    c.flags[k] |= rec.flags;
+    if (!rec.hit()) continue;
     c.hit[k] = 1;
     c.px[k] = rec.px; c.py[k] = rec.py; c.pz[k] = rec.pz;
     c.nx[k] = rec.nx; c.ny[k] = rec.ny; c.nz[k] = rec.nz;

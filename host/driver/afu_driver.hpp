@@ -11,6 +11,7 @@
 #include "collide/contact_set.hpp"
 #include "driver/afu_layout.hpp"
 #include "driver/afu_port.hpp"
+#include "driver/contact_rebuild.hpp"
 #include "link/host_memory.hpp"
 #include "link/link_model.hpp"
 
@@ -24,6 +25,8 @@ struct AfuError : std::runtime_error {
 
 struct DriverOptions {
   LinkFormat format = LinkFormat::Binary32;  // the manifest's link.format
+  std::uint32_t records = contract::LAYOUT_FULL;  // the manifest's buffers.records.layout
+  ComputeArith arith;                        // the SCPU's arithmetic, to rebuild derived records
   bool dense = false;                        // MODE bit 0
   std::uint32_t maxSpheres = 65536;          // the manifest's afu.maxSpheres
   // Cycles from the first CSR write to the status line before the run is declared hung.
@@ -52,7 +55,10 @@ double linkBoundNs(const link::LinkParams& lp, std::uint64_t readLines, std::uin
 
 struct RunResult {
   StatusLine status;
-  std::vector<ContactRecord> records;  // as written, in buffer order
+  std::vector<ContactRecord> records;  // as written, in buffer order (derived ones rebuilt)
+  // Pairs with an input that did not fit the link format (contract::REC_HOST_RANGE): the
+  // AFU computed them on infinities or a zero radius, so their result is not the scene's.
+  std::vector<std::uint32_t> rangePairs;
   RunStats stats;
 };
 
@@ -64,8 +70,10 @@ class AfuDriver {
 
   RunResult run(const SphereTable& spheres, const PairList& pairs);
 
-  // Dense per-pair view of a run's records (pair k -> entry k), in the link format.
+  // Dense per-pair view of a run's records (pair k -> entry k), in the link format, with the
+  // record flags (and REC_HOST_RANGE on the run's rangePairs, whether or not they hit).
   ContactSet toContactSet(const RunResult& r, std::size_t pairs) const;
+  BufferLayout layout() const { return BufferLayout{opt_.format, opt_.records}; }
 
   const link::LinkModel& link() const { return link_; }
   const DriverOptions& options() const { return opt_; }

@@ -1,12 +1,16 @@
 #include "driver/afu_layout.hpp"
 
+#include <cmath>
 #include <cstring>
+#include <iterator>
 #include <stdexcept>
+#include <string>
 
 namespace collide::driver {
 
 using link::HostMemory;
 using link::Line;
+namespace c = contract;
 
 namespace {
 template <typename T>
@@ -17,103 +21,148 @@ T get(const Line& l, std::size_t byte) {
   std::memcpy(&v, l.data() + byte, sizeof(T));
   return v;
 }
-unsigned spheresPerLine(LinkFormat f) { return f == LinkFormat::Binary32 ? 4 : 2; }
+
+// One link field: the value's bit pattern in the link format, little-endian.
+void putField(Line& l, std::size_t byte, LinkFormat f, double v) {
+  switch (f) {
+    case LinkFormat::Binary16:
+    case LinkFormat::BFloat16: put(l, byte, static_cast<std::uint16_t>(format::encode(v, numberFormat(f)))); break;
+    case LinkFormat::Binary32: put(l, byte, static_cast<float>(v)); break;
+    case LinkFormat::Binary64: put(l, byte, v); break;
+  }
+}
+double getField(const Line& l, std::size_t byte, LinkFormat f) {
+  switch (f) {
+    case LinkFormat::Binary16:
+    case LinkFormat::BFloat16: return format::decode(get<std::uint16_t>(l, byte), numberFormat(f));
+    case LinkFormat::Binary32: return get<float>(l, byte);
+    case LinkFormat::Binary64: return get<double>(l, byte);
+  }
+  return 0;
+}
+double& valueRef(ContactRecord& r, const BufferLayout& lay, unsigned k) {
+  double* full[7] = {&r.px, &r.py, &r.pz, &r.nx, &r.ny, &r.nz, &r.depth};
+  double* derived[2] = {&r.d, &r.w};
+  return lay.derived() ? *derived[k] : *full[k];
+}
 }  // namespace
 
-unsigned recordsPerLine(LinkFormat f) { return f == LinkFormat::Binary32 ? 2 : 1; }
-std::uint64_t sphereLines(std::size_t s, LinkFormat f) { return (s + spheresPerLine(f) - 1) / spheresPerLine(f); }
-std::uint64_t pairLines(std::size_t p) { return (p + 15) / 16; }
-std::uint64_t contactLines(std::size_t r, LinkFormat f) { return (r + recordsPerLine(f) - 1) / recordsPerLine(f); }
+unsigned BufferLayout::valueFields() const {
+  return derived() ? static_cast<unsigned>(std::size(c::kDerivedFields)) : static_cast<unsigned>(std::size(c::kFullFields));
+}
 
-void writeSphereTable(HostMemory& m, std::uint64_t base, const SphereTable& s, LinkFormat f) {
-  const unsigned per = spheresPerLine(f);
+std::uint64_t sphereLines(std::size_t s, LinkFormat f) {
+  const unsigned per = BufferLayout{f}.spheresPerLine();
+  return (s + per - 1) / per;
+}
+std::uint64_t pairLines(std::size_t p) { return (p + c::PAIRS_PER_LINE - 1) / c::PAIRS_PER_LINE; }
+std::uint64_t BufferLayout::recordLine(std::size_t n, bool dense) const {
+  const unsigned per = recordsPerLine();
+  if (!dense) return n / per;
+  const unsigned perPairLine = (c::PAIRS_PER_LINE + per - 1) / per;
+  return (n / c::PAIRS_PER_LINE) * perPairLine + (n % c::PAIRS_PER_LINE) / per;
+}
+unsigned BufferLayout::recordSlot(std::size_t n, bool dense) const {
+  const unsigned per = recordsPerLine();
+  return static_cast<unsigned>(dense ? (n % c::PAIRS_PER_LINE) % per : n % per);
+}
+std::uint64_t contactLines(std::size_t r, const BufferLayout& l, bool dense) {
+  return r == 0 ? 0 : l.recordLine(r - 1, dense) + 1;
+}
+
+void linkSphere(const SphereTable& s, std::size_t k, LinkFormat f, double out[4]) {
+  const auto nf = numberFormat(f);
+  const double v[4] = {s.x[k], s.y[k], s.z[k], s.r[k]};
+  for (int i = 0; i < 4; ++i) out[i] = format::roundTo(v[i], nf);
+}
+
+std::vector<std::uint8_t> writeSphereTable(HostMemory& m, std::uint64_t base, const SphereTable& s, LinkFormat f) {
+  const BufferLayout lay{f};
+  const unsigned per = lay.spheresPerLine(), fb = lay.fieldBytes();
+  std::vector<std::uint8_t> outOfRange(s.size(), 0);
   for (std::size_t k = 0; k < s.size(); ++k) {
     Line& l = m.line(base + k / per);
-    const std::size_t off = (k % per) * (f == LinkFormat::Binary32 ? 16 : 32);
+    const std::size_t off = (k % per) * lay.sphereBytes();
     const double v[4] = {s.x[k], s.y[k], s.z[k], s.r[k]};
-    for (int c = 0; c < 4; ++c) {
-      if (f == LinkFormat::Binary32) put(l, off + 4 * c, static_cast<float>(v[c]));
-      else put(l, off + 8 * c, v[c]);
+    double q[4];
+    linkSphere(s, k, f, q);
+    for (int i = 0; i < 4; ++i) {
+      putField(l, off + fb * i, f, q[i]);
+      if (std::isfinite(v[i]) && !std::isfinite(q[i])) outOfRange[k] = 1;
     }
+    if (v[3] > 0 && q[3] == 0) outOfRange[k] = 1;
   }
+  return outOfRange;
 }
 
 void writePairList(HostMemory& m, std::uint64_t base, const PairList& p) {
   for (std::size_t k = 0; k < p.size(); ++k) {
     if (p.i[k] > 0xFFFF || p.j[k] > 0xFFFF)
       throw std::out_of_range("pair " + std::to_string(k) + ": sphere index above 65535 (u16 on the link)");
-    Line& l = m.line(base + k / 16);
-    put(l, 4 * (k % 16), static_cast<std::uint16_t>(p.i[k]));
-    put(l, 4 * (k % 16) + 2, static_cast<std::uint16_t>(p.j[k]));
+    Line& l = m.line(base + k / c::PAIRS_PER_LINE);
+    const std::size_t off = c::PAIR_BYTES * (k % c::PAIRS_PER_LINE);
+    put(l, off, static_cast<std::uint16_t>(p.i[k]));
+    put(l, off + 2, static_cast<std::uint16_t>(p.j[k]));
   }
 }
 
 void sphereFromLine(const Line& l, unsigned slot, LinkFormat f, double out[4]) {
-  for (int c = 0; c < 4; ++c)
-    out[c] = f == LinkFormat::Binary32 ? get<float>(l, 16 * slot + 4 * c) : get<double>(l, 32 * slot + 8 * c);
+  const BufferLayout lay{f};
+  for (unsigned i = 0; i < 4; ++i) out[i] = getField(l, slot * lay.sphereBytes() + i * lay.fieldBytes(), f);
 }
 
 void pairFromLine(const Line& l, unsigned slot, std::uint16_t& i, std::uint16_t& j) {
-  i = get<std::uint16_t>(l, 4 * slot);
-  j = get<std::uint16_t>(l, 4 * slot + 2);
+  i = get<std::uint16_t>(l, c::PAIR_BYTES * slot);
+  j = get<std::uint16_t>(l, c::PAIR_BYTES * slot + 2);
 }
 
-void contactToLine(Line& l, unsigned slot, LinkFormat f, const ContactRecord& c) {
-  const double v[7] = {c.px, c.py, c.pz, c.nx, c.ny, c.nz, c.depth};
-  if (f == LinkFormat::Binary32) {
-    const std::size_t off = 32 * slot;
-    for (int k = 0; k < 7; ++k) put(l, off + 4 * k, static_cast<float>(v[k]));
-    put(l, off + 28, (c.pair & 0xFFFFFFu) | (std::uint32_t{c.flags} << 24));
-  } else {
-    for (int k = 0; k < 7; ++k) put(l, 8 * k, v[k]);
-    put(l, 56, c.pair);
-    put(l, 60, std::uint32_t{c.flags});
-  }
+void contactToLine(Line& l, unsigned slot, const BufferLayout& lay, const ContactRecord& r) {
+  const std::size_t off = std::size_t{slot} * lay.recordBytes();
+  ContactRecord copy = r;
+  for (unsigned k = 0; k < lay.valueFields(); ++k) putField(l, off + k * lay.fieldBytes(), lay.format, valueRef(copy, lay, k));
+  const std::uint32_t pairMask = (std::uint32_t{1} << c::TAG_PAIR_BITS) - 1;
+  put(l, off + lay.valueFields() * lay.fieldBytes(), (r.pair & pairMask) | (std::uint32_t{r.flags} << c::TAG_FLAGS_SHIFT));
 }
 
-ContactRecord readContact(const HostMemory& m, std::uint64_t base, std::size_t n, LinkFormat f) {
-  const unsigned per = recordsPerLine(f);
-  const Line& l = m.line(base + n / per);
-  ContactRecord c;
-  double* v[7] = {&c.px, &c.py, &c.pz, &c.nx, &c.ny, &c.nz, &c.depth};
-  if (f == LinkFormat::Binary32) {
-    const std::size_t off = 32 * (n % per);
-    for (int k = 0; k < 7; ++k) *v[k] = get<float>(l, off + 4 * k);
-    const auto w = get<std::uint32_t>(l, off + 28);
-    c.pair = w & 0xFFFFFFu;
-    c.flags = static_cast<std::uint8_t>(w >> 24);
-  } else {
-    for (int k = 0; k < 7; ++k) *v[k] = get<double>(l, 8 * k);
-    c.pair = get<std::uint32_t>(l, 56);
-    c.flags = static_cast<std::uint8_t>(get<std::uint32_t>(l, 60));
-  }
-  return c;
+ContactRecord readContact(const HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& lay, bool dense) {
+  const Line& l = m.line(base + lay.recordLine(n, dense));
+  const std::size_t off = std::size_t{lay.recordSlot(n, dense)} * lay.recordBytes();
+  ContactRecord r;
+  for (unsigned k = 0; k < lay.valueFields(); ++k) valueRef(r, lay, k) = getField(l, off + k * lay.fieldBytes(), lay.format);
+  const auto tag = get<std::uint32_t>(l, off + lay.valueFields() * lay.fieldBytes());
+  r.pair = tag & ((std::uint32_t{1} << c::TAG_PAIR_BITS) - 1);
+  r.flags = static_cast<std::uint8_t>(tag >> c::TAG_FLAGS_SHIFT);
+  return r;
 }
 
-void writeContact(HostMemory& m, std::uint64_t base, std::size_t n, LinkFormat f, const ContactRecord& c) {
-  contactToLine(m.line(base + n / recordsPerLine(f)), static_cast<unsigned>(n % recordsPerLine(f)), f, c);
+void writeContact(HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& lay, bool dense,
+                  const ContactRecord& r) {
+  contactToLine(m.line(base + lay.recordLine(n, dense)), lay.recordSlot(n, dense), lay, r);
 }
+
+namespace {
+// The status line's fields, each at its contract offset.
+template <typename S, typename F>
+void eachStatusField(S& s, F&& f) {
+  f(c::STATUS_DONE, s.done); f(c::STATUS_ERROR_FLAGS, s.errors); f(c::STATUS_PAIRS_PROCESSED, s.pairsProcessed);
+  f(c::STATUS_CONTACTS_FOUND, s.contactsFound); f(c::STATUS_RECORDS_WRITTEN, s.recordsWritten);
+  f(c::STATUS_NONFINITE_PAIRS, s.nonFinitePairs); f(c::STATUS_FIRST_BAD_PAIR, s.firstBadPair);
+  f(c::STATUS_CYCLES_TOTAL, s.cyclesTotal); f(c::STATUS_CYCLES_LOAD, s.cyclesLoading);
+  f(c::STATUS_CYCLES_COMPUTE, s.cyclesComputing); f(c::STATUS_CYCLES_WAIT_RD, s.cyclesWaitRead);
+  f(c::STATUS_CYCLES_WAIT_WR, s.cyclesWaitWrite);
+}
+}  // namespace
 
 StatusLine readStatus(const HostMemory& m, std::uint64_t addr) {
   const Line& l = m.line(addr);
   StatusLine s;
-  std::uint32_t* f[] = {&s.done, &s.errors, &s.pairsProcessed, &s.contactsFound, &s.recordsWritten,
-                        &s.nonFinitePairs, &s.firstBadPair};
-  for (int k = 0; k < 7; ++k) *f[k] = get<std::uint32_t>(l, 4 * k);
-  std::uint32_t* c[] = {&s.cyclesTotal, &s.cyclesLoading, &s.cyclesComputing, &s.cyclesWaitRead,
-                        &s.cyclesWaitWrite};
-  for (int k = 0; k < 5; ++k) *c[k] = get<std::uint32_t>(l, 32 + 4 * k);
+  eachStatusField(s, [&](std::uint32_t off, std::uint32_t& v) { v = get<std::uint32_t>(l, off); });
   return s;
 }
 
 Line encodeStatus(const StatusLine& s) {
   Line l{};
-  const std::uint32_t f[] = {s.done, s.errors, s.pairsProcessed, s.contactsFound, s.recordsWritten,
-                             s.nonFinitePairs, s.firstBadPair};
-  for (int k = 0; k < 7; ++k) put(l, 4 * k, f[k]);
-  const std::uint32_t c[] = {s.cyclesTotal, s.cyclesLoading, s.cyclesComputing, s.cyclesWaitRead,
-                             s.cyclesWaitWrite};
-  for (int k = 0; k < 5; ++k) put(l, 32 + 4 * k, c[k]);
+  eachStatusField(s, [&](std::uint32_t off, const std::uint32_t& v) { put(l, off, v); });
   return l;
 }
 

@@ -3,6 +3,9 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "afu_contract.hpp"
+#include "driver/afu_layout.hpp"
+
 namespace collide::driver {
 
 namespace {
@@ -32,10 +35,38 @@ namespace {
 Manifest fromJson(nlohmann::json raw, const std::string& file) {
   Manifest m;
   m.raw = std::move(raw);
-  const auto fmt = m.raw.value(nlohmann::json::json_pointer("/link/format"), std::string("binary32"));
-  if (fmt == "binary32") m.format = LinkFormat::Binary32;
-  else if (fmt == "binary64") m.format = LinkFormat::Binary64;
-  else throw std::runtime_error(file + ": link.format: expected binary32 or binary64, got " + fmt);
+  using nlohmann::json;
+  auto at = [&](const char* ptr, auto dflt) { return m.raw.value(json::json_pointer(ptr), dflt); };
+  auto bad = [&](const std::string& what) { throw std::runtime_error(file + ": " + what); };
+  const auto fmt = at("/link/format", std::string("binary32"));
+  if (!linkFormatFromString(fmt, m.format))
+    bad("link.format: expected binary16, bfloat16, binary32 or binary64, got " + fmt);
+  const auto layout = at("/buffers/records/layout", std::string("full"));
+  if (layout == "full") m.records = contract::LAYOUT_FULL;
+  else if (layout == "derived") m.records = contract::LAYOUT_DERIVED;
+  else bad("buffers.records.layout: expected full or derived, got " + layout);
+  // The record size the manifest states must be the one the contract's rule gives.
+  const BufferLayout lay{m.format, m.records};
+  const auto rb = at("/buffers/recordBytes", static_cast<long long>(lay.recordBytes()));
+  if (rb != static_cast<long long>(lay.recordBytes()))
+    bad("buffers.recordBytes " + std::to_string(rb) + " disagrees with " + std::to_string(lay.recordBytes()) +
+        " for " + layout + " records on a " + fmt + " link");
+  m.arith.link = numberFormat(m.format);
+  m.arith.compute = format::NumberFormat{static_cast<int>(at("/scpu/format/expBits", 8LL)),
+                                         static_cast<int>(at("/scpu/format/sigBits", 24LL))};
+  const auto dist = at("/scpu/distance", std::string("sqrt-recip"));
+  if (dist == "sqrt-recip") m.arith.distance = DistanceMethod::SqrtThenRecip;
+  else if (dist == "rsqrt") m.arith.distance = DistanceMethod::Rsqrt;
+  else if (dist == "robust") m.arith.distance = DistanceMethod::Robust;
+  else bad("scpu.distance: expected sqrt-recip, rsqrt or robust, got " + dist);
+  if (m.records == contract::LAYOUT_DERIVED) {
+    if (at("/scpu/rounding", std::string("RNE")) != "RNE" || !at("/scpu/subnormals", true))
+      bad("derived records need an SCPU that rounds to nearest even with subnormals kept");
+    const auto& c = m.arith.compute;
+    if (c.expBits < 3 || c.expBits > 11 || c.sigBits < 3 || !c.emulatedExactlyByBinary64() ||
+        c.expBits > m.arith.link.expBits || c.sigBits > m.arith.link.sigBits)
+      bad("derived records: the host cannot reproduce scpu.format " + format::describe(c) + " exactly");
+  }
   const auto ms = m.raw.value(nlohmann::json::json_pointer("/afu/maxSpheres"), 65536LL);
   if (ms < 1 || ms > 65536) throw std::runtime_error(file + ": afu.maxSpheres: expected 1..65536");
   m.maxSpheres = static_cast<std::uint32_t>(ms);

@@ -1,19 +1,23 @@
 #pragma once
-// The generator's manifest (generated/<preset>/manifest.json). The host reads only what
-// crosses the link contract: link.format and afu.maxSpheres; the rest is printed by
-// `collide info`.
+// The generator's manifest (generated/<preset>/manifest.json). The host reads what crosses
+// the link contract: link.format, the record layout (buffers.records), afu.maxSpheres, and
+// for derived records the SCPU's arithmetic it must reproduce (scpu.format, rounding,
+// subnormals, distance); the rest is printed by `collide info`.
 #include <cstdint>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
 
-#include "collide/batch.hpp"
+#include "driver/contact_rebuild.hpp"
+#include "format/link_format.hpp"
 
 namespace collide::driver {
 
 struct Manifest {
   nlohmann::json raw;
   LinkFormat format = LinkFormat::Binary32;
+  std::uint32_t records = 0;   // contract::LAYOUT_*
+  ComputeArith arith;          // what rebuilds derived records
   std::uint32_t maxSpheres = 65536;
 };
 

@@ -7,7 +7,8 @@
 //   expected hit,px,py,pz,nx,ny,nz,depth          (hit 0/1; the values in the link format,
 //            optionally prefixed exp_ / expected_  hex floats preferred; a miss may be zeros)
 //            flags                                (optional: the dense record's flags byte)
-// Inputs are parsed straight into binary32 (strtof: one rounding), like `collide pairs`.
+//            d,w                                  (optional: the derived record's values)
+// Inputs are parsed straight into the link format (one rounding), like `collide pairs`.
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "collide/batch.hpp"
+#include "format/number_format.hpp"
 
 namespace collide::test {
 
@@ -28,6 +30,7 @@ struct GoldenRow {
   bool hit = false;
   double v[7] = {};                  // px, py, pz, nx, ny, nz, depth
   std::optional<unsigned> flags;
+  std::optional<double> d, w;        // the derived record's values, where the file has them
 };
 
 struct GoldenVectors {
@@ -68,12 +71,18 @@ inline GoldenVectors readGoldenVectors(const std::string& file, LinkFormat forma
   static const char* in8[8] = {"x1", "y1", "z1", "r1", "x2", "y2", "z2", "r2"};
   static const char* out7[7] = {"px", "py", "pz", "nx", "ny", "nz", "depth"};
   std::size_t ci[8], co[7], chit = 0;
-  std::optional<std::size_t> cflags;
+  std::optional<std::size_t> cflags, cd, cw;
   bool header = false;
-  auto number = [&](const std::string& f, bool asFloat, const char* what) {
-    char* end = nullptr;
-    const double v = asFloat ? std::strtof(f.c_str(), &end) : std::strtod(f.c_str(), &end);
-    if (f.empty() || end != f.c_str() + f.size()) fail(std::string(what) + ": not a number: '" + f + "'");
+  const format::NumberFormat nf = numberFormat(format);
+  auto number = [&](const std::string& f, bool inLinkFormat, const char* what) {
+    double v = 0;
+    if (f.empty() || !format::parseInto(f.c_str(), inLinkFormat ? nf : format::kBinary64, v))
+      fail(std::string(what) + ": not a number: '" + f + "'");
+    return v;
+  };
+  auto linkValue = [&](const std::string& f, const char* what) {
+    const double v = number(f, false, what);
+    if (!format::representable(v, nf)) fail(std::string(what) + ": '" + f + "' is not a " + toString(format) + " value");
     return v;
   };
   while (std::getline(in, raw)) {
@@ -87,13 +96,14 @@ inline GoldenVectors readGoldenVectors(const std::string& file, LinkFormat forma
       for (int k = 0; k < 7; ++k) co[k] = *find(out7[k], true);
       chit = *find("hit", true);
       cflags = find("flags", false);
+      cd = find("d", false);
+      cw = find("w", false);
       header = true;
       continue;
     }
     if (fields.size() < col.size()) fail("expected " + std::to_string(col.size()) + " fields, got " + std::to_string(fields.size()));
-    const bool f32 = format == LinkFormat::Binary32;
     double x[8];
-    for (int k = 0; k < 8; ++k) x[k] = number(fields[ci[k]], f32, in8[k]);
+    for (int k = 0; k < 8; ++k) x[k] = number(fields[ci[k]], true, in8[k]);
     const auto a = static_cast<std::uint32_t>(g.spheres.size());
     g.spheres.push(x[0], x[1], x[2], x[3]);
     g.spheres.push(x[4], x[5], x[6], x[7]);
@@ -101,13 +111,10 @@ inline GoldenVectors readGoldenVectors(const std::string& file, LinkFormat forma
     GoldenRow r;
     r.line = line;
     r.hit = number(fields[chit], false, "hit") != 0;
-    for (int k = 0; k < 7; ++k) {
-      const double v = number(fields[co[k]], false, out7[k]);
-      if (f32 && !std::isnan(v) && static_cast<double>(static_cast<float>(v)) != v)
-        fail(std::string(out7[k]) + ": '" + fields[co[k]] + "' is not a binary32 value");
-      r.v[k] = v;
-    }
+    for (int k = 0; k < 7; ++k) r.v[k] = linkValue(fields[co[k]], out7[k]);
     if (cflags) r.flags = static_cast<unsigned>(std::stoul(fields[*cflags], nullptr, 0));
+    if (cd) r.d = linkValue(fields[*cd], "d");
+    if (cw) r.w = linkValue(fields[*cw], "w");
     g.expected.push_back(r);
   }
   if (!header) throw std::runtime_error(file + ": empty (no header)");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "collide/simd_kernel.hpp"
 
@@ -15,21 +16,21 @@ void ModelAfu::reset() {
 
 void ModelAfu::start() {
   st_ = StatusLine{};
-  sx_.assign(csr_[kNumSpheres], 0); sy_ = sx_; sz_ = sx_; sr_ = sx_;
+  sx_.assign(csr_[contract::CSR_NUM_SPHERES], 0); sy_ = sx_; sz_ = sx_; sr_ = sx_;
   compact_.clear();
   denseLines_.clear();
   contactLine_ = 0;
-  const bool badBase = !csr_[kSphereBase] || !csr_[kPairBase] || !csr_[kContactBase] || !csr_[kStatusAddr];
-  if (badBase || csr_[kNumPairs] >= (1u << 24)) {
-    st_.errors |= kErrBadConfig;
+  const bool badBase = !csr_[contract::CSR_SPHERE_BASE] || !csr_[contract::CSR_PAIR_BASE] || !csr_[contract::CSR_CONTACT_BASE] || !csr_[contract::CSR_STATUS_ADDR];
+  if (badBase || csr_[contract::CSR_NUM_PAIRS] >= (1u << 24)) {
+    st_.errors |= contract::ERR_BAD_CONFIG;
     phase_ = Phase::Finish;
-  } else if (csr_[kNumSpheres] > cfg_.maxSpheres) {
-    st_.errors |= kErrTooManySpheres;
+  } else if (csr_[contract::CSR_NUM_SPHERES] > cfg_.maxSpheres) {
+    st_.errors |= contract::ERR_TOO_MANY_SPHERES;
     phase_ = Phase::Finish;
   } else {
     phase_ = Phase::Spheres;
     nextLine_ = linesDone_ = 0;
-    linesTotal_ = sphereLines(csr_[kNumSpheres], cfg_.format);
+    linesTotal_ = sphereLines(csr_[contract::CSR_NUM_SPHERES], cfg_.format);
   }
 }
 
@@ -43,7 +44,7 @@ link::AfuToLink ModelAfu::evalOutputs() {
   if (wantRead()) {
     std::uint32_t tag = nextRdTag_;
     while (rd_.count(tag)) tag = (tag + 1) % cfg_.maxReads;
-    const std::uint64_t base = phase_ == Phase::Spheres ? csr_[kSphereBase] : csr_[kPairBase];
+    const std::uint64_t base = phase_ == Phase::Spheres ? csr_[contract::CSR_SPHERE_BASE] : csr_[contract::CSR_PAIR_BASE];
     out_.rdReq = link::ReadReq{base + nextLine_, tag};
   }
   if (wantWrite()) {
@@ -59,9 +60,9 @@ void ModelAfu::clockEdge() {
   computedThisCycle_ = false;
   if (in_.csr) {
     const auto& c = *in_.csr;
-    if (c.index == kCtrl) {
+    if (c.index == contract::CSR_CTRL) {
       if (c.data == 1 && (phase_ == Phase::Idle)) start();
-    } else if (c.index < 9) {
+    } else if (c.index < std::size(csr_)) {
       csr_[c.index] = c.data;
     }
   }
@@ -94,7 +95,7 @@ void ModelAfu::clockEdge() {
 
 void ModelAfu::onReadData(const Inflight& f, const link::Line& data) {
   if (f.sphere) {
-    const unsigned per = cfg_.format == LinkFormat::Binary32 ? 4 : 2;
+    const unsigned per = lay_.spheresPerLine();
     for (unsigned s = 0; s < per; ++s) {
       const std::uint64_t k = f.line * per + s;
       if (k >= sx_.size()) break;
@@ -139,26 +140,26 @@ ContactRecord collideOne(LinkFormat fmt, const double a[4], const double b[4]) {
       r.depth = a[3] + b[3] - d;
     }
   }
-  r.flags = static_cast<std::uint8_t>((hit ? kRecHit : 0) |
-                                      ((hit ? (coincident ? kCaseCoincident : kCaseContact) : kCaseSeparated) << 1));
+  r.flags = static_cast<std::uint8_t>((hit ? contract::REC_HIT : 0) |
+      ((hit ? (coincident ? contract::KIND_COINCIDENT : contract::KIND_CONTACT) : contract::KIND_SEPARATED) << contract::REC_KIND_SHIFT));
   return r;
 }
 }  // namespace
 
 void ModelAfu::computePairLine(std::uint64_t line, const link::Line& data) {
   computedThisCycle_ = true;
-  const unsigned per = recordsPerLine(cfg_.format);
-  for (unsigned slot = 0; slot < 16; ++slot) {
-    const std::uint64_t k = line * 16 + slot;
-    if (k >= csr_[kNumPairs]) break;
+  const unsigned per = lay_.recordsPerLine();
+  for (unsigned slot = 0; slot < contract::PAIRS_PER_LINE; ++slot) {
+    const std::uint64_t k = line * contract::PAIRS_PER_LINE + slot;
+    if (k >= csr_[contract::CSR_NUM_PAIRS]) break;
     std::uint16_t i, j;
     pairFromLine(data, slot, i, j);
     ++st_.pairsProcessed;
     ContactRecord r;
     if (i >= sx_.size() || j >= sx_.size()) {
-      st_.errors |= kErrSphereIndex;
+      st_.errors |= contract::ERR_INDEX_RANGE;
       st_.firstBadPair = std::min<std::uint32_t>(st_.firstBadPair, static_cast<std::uint32_t>(k));
-      r.flags = kCaseInvalid << 1;
+      r.flags = contract::KIND_INVALID << contract::REC_KIND_SHIFT;
     } else {
       const double a[4] = {sx_[i], sy_[i], sz_[i], sr_[i]}, b[4] = {sx_[j], sy_[j], sz_[j], sr_[j]};
       r = collideOne(cfg_.format, a, b);
@@ -166,21 +167,22 @@ void ModelAfu::computePairLine(std::uint64_t line, const link::Line& data) {
       for (int c = 0; c < 4; ++c) finite = finite && std::isfinite(a[c]) && std::isfinite(b[c]);
       if (!finite) {
         ++st_.nonFinitePairs;
-        st_.errors |= kErrNonFinite;
-        r.flags |= kRecNonFinite;
+        st_.errors |= contract::ERR_NONFINITE;
+        r.flags |= contract::REC_NONFINITE;
       }
     }
     r.pair = static_cast<std::uint32_t>(k);
     if (r.hit()) ++st_.contactsFound;
-    if (csr_[kMode] & 1) {  // dense: record k in contact line k / per
-      if (k >= csr_[kContactCapacity]) { st_.errors |= kErrContactOverflow; continue; }
-      const std::uint64_t cl = k / per;
+    if (csr_[contract::CSR_MODE] & contract::MODE_DENSE) {  // dense: record k is pair k
+      if (k >= csr_[contract::CSR_CONTACT_CAPACITY]) { st_.errors |= contract::ERR_CAPACITY; continue; }
+      const std::uint64_t cl = lay_.recordLine(k, true);
       link::Line& l = denseLines_[cl];
-      contactToLine(l, static_cast<unsigned>(k % per), cfg_.format, r);
+      contactToLine(l, lay_.recordSlot(k, true), lay_, r);
       ++st_.recordsWritten;
-      const bool lineFull = (k % per) == per - 1 || k + 1 == csr_[kNumPairs];
+      const bool lineFull = lay_.recordSlot(k, true) == per - 1 || slot == contract::PAIRS_PER_LINE - 1 ||
+                            k + 1 == csr_[contract::CSR_NUM_PAIRS];
       if (lineFull) {
-        wq_.emplace_back(csr_[kContactBase] + cl, l);
+        wq_.emplace_back(csr_[contract::CSR_CONTACT_BASE] + cl, l);
         denseLines_.erase(cl);
       }
     } else if (r.hit()) {
@@ -190,20 +192,20 @@ void ModelAfu::computePairLine(std::uint64_t line, const link::Line& data) {
 }
 
 void ModelAfu::queueContact(const ContactRecord& r) {
-  if (st_.recordsWritten >= csr_[kContactCapacity]) {
-    st_.errors |= kErrContactOverflow;
+  if (st_.recordsWritten >= csr_[contract::CSR_CONTACT_CAPACITY]) {
+    st_.errors |= contract::ERR_CAPACITY;
     return;
   }
   ++st_.recordsWritten;
   compact_.push_back(r);
-  if (compact_.size() == recordsPerLine(cfg_.format)) flushCompact();
+  if (compact_.size() == lay_.recordsPerLine()) flushCompact();
 }
 
 void ModelAfu::flushCompact() {
   if (compact_.empty()) return;
-  link::Line l{};  // a half-filled binary32 line has its unused record zeroed
-  for (unsigned s = 0; s < compact_.size(); ++s) contactToLine(l, s, cfg_.format, compact_[s]);
-  wq_.emplace_back(csr_[kContactBase] + contactLine_++, l);
+  link::Line l{};  // a partial line has its unused records zeroed
+  for (unsigned s = 0; s < compact_.size(); ++s) contactToLine(l, s, lay_, compact_[s]);
+  wq_.emplace_back(csr_[contract::CSR_CONTACT_BASE] + contactLine_++, l);
   compact_.clear();
 }
 
@@ -212,7 +214,7 @@ void ModelAfu::advance() {
     if (phase_ == Phase::Spheres && nextLine_ == linesTotal_ && rd_.empty()) {
       phase_ = Phase::Pairs;
       nextLine_ = linesDone_ = 0;
-      linesTotal_ = pairLines(csr_[kNumPairs]);
+      linesTotal_ = pairLines(csr_[contract::CSR_NUM_PAIRS]);
     } else if (phase_ == Phase::Pairs && nextLine_ == linesTotal_ && rd_.empty()) {
       flushCompact();
       phase_ = Phase::Finish;
@@ -220,7 +222,7 @@ void ModelAfu::advance() {
       StatusLine s = st_;
       s.done = 1;
       if (cfg_.losePair && s.pairsProcessed) --s.pairsProcessed;
-      wq_.emplace_back(csr_[kStatusAddr], encodeStatus(s));
+      wq_.emplace_back(csr_[contract::CSR_STATUS_ADDR], encodeStatus(s));
       phase_ = Phase::StatusSent;
     } else if (phase_ == Phase::StatusSent && wq_.empty() && wrTagsUsed_ == 0) {
       phase_ = Phase::Idle;

@@ -53,6 +53,7 @@ class ModelAfu final : public driver::AfuPort {
   bool wantWrite() const { return !wq_.empty() && wrTagsUsed_ < cfg_.maxWrites; }
 
   ModelAfuConfig cfg_;
+  driver::BufferLayout lay_{cfg_.format, contract::LAYOUT_FULL};  // full records only
   link::LinkToAfu in_;
   link::AfuToLink out_;
   std::uint64_t csr_[9] = {};

@@ -6,8 +6,9 @@ import collide.afu._
 import collide.scpu.ScpuConfig
 
 /** The generator CLI: `sbt "run --preset default"`, `sbt "run --scpus 4 --format fp16"`,
-  * `sbt "run --help"`. Writes generated/<preset-or-derived-name>/ with the SystemVerilog,
-  * manifest.json and afu_config.hpp, all from one AfuConfig. */
+  * `sbt "run --help"`. Writes generated/<preset-or-derived-name>/ with the SystemVerilog and
+  * manifest.json from one AfuConfig, and the configuration-independent contract headers
+  * (AfuContract) beside the folder. */
 object Generate {
   final case class Opts(
       preset: String = "default",
@@ -20,6 +21,7 @@ object Generate {
       tagBits: Option[Int] = None,
       ramPorts: Option[String] = None,
       dense: Option[Boolean] = None,
+      records: Option[String] = None,
       out: String = "generated",
       folder: Option[String] = None,
       split: Boolean = false,
@@ -31,7 +33,7 @@ object Generate {
     import builder._
     scopt.OParser.sequence(
       programName("collide.Generate"),
-      head("collide.Generate", "writes generated/<name>/: SystemVerilog, manifest.json, afu_config.hpp"),
+      head("collide.Generate", "writes generated/<name>/ (SystemVerilog, manifest.json) and generated/afu_contract.{hpp,svh}"),
       opt[String]("preset").valueName("NAME").action((v, o) => o.copy(preset = v))
         .text(s"start from a preset (${AfuConfig.all.map(_.name).mkString(", ")}); default: default"),
       opt[Int]("scpus").valueName("N").action((v, o) => o.copy(scpus = Some(v))).text("SCPUs, 1..64"),
@@ -46,13 +48,15 @@ object Generate {
       opt[Int]("tag-bits").valueName("N").action((v, o) => o.copy(tagBits = Some(v))).text("link tag width"),
       opt[String]("ram-ports").valueName("S").action((v, o) => o.copy(ramPorts = Some(v)))
         .text("sphere table read ports: replicated"),
+      opt[String]("records").valueName("L").action((v, o) => o.copy(records = Some(v)))
+        .text(s"contact record layout: ${RecordLayout.all.map(_.name).mkString(" | ")} (default: derived where the host can rebuild it exactly, else full)"),
       opt[Boolean]("dense-default").valueName("true|false").action((v, o) => o.copy(dense = Some(v)))
         .text("MODE's reset value selects dense records"),
       opt[String]("out").valueName("DIR").action((v, o) => o.copy(out = v)).text("parent folder (default generated)"),
       opt[String]("folder").valueName("NAME").action((v, o) => o.copy(folder = Some(v)))
         .text("output folder name (default: the preset's name, or a name derived from every parameter)"),
       opt[Unit]("split").action((_, o) => o.copy(split = true)).text("one .sv file per module (and filelist.f)"),
-      opt[Unit]("no-verilog").action((_, o) => o.copy(noVerilog = true)).text("write only manifest.json and afu_config.hpp"),
+      opt[Unit]("no-verilog").action((_, o) => o.copy(noVerilog = true)).text("write only manifest.json and the contract headers"),
       opt[Unit]("list-presets").action((_, o) => o.copy(listPresets = true)).text("print the presets and exit"),
       help("help").text("this text"))
   }
@@ -80,7 +84,8 @@ object Generate {
       c7 <- opt("--max-writes", o.maxWrites)((c, v) => step("--max-writes", c.copy(maxWritesOutstanding = v)))(c6)
       c8 <- opt("--ram-ports", o.ramPorts)((c, v) => SphereRamPorts.parse(v).flatMap(r => step("--ram-ports", c.copy(ramPorts = r))))(c7)
       c9 <- opt("--dense-default", o.dense)((c, v) => step("--dense-default", c.copy(denseByDefault = v)))(c8)
-    } yield c9
+      c10 <- opt("--records", o.records)((c, v) => RecordLayout.parse(v).flatMap(r => step("--records", c.copy(records = Some(r)))))(c9)
+    } yield c10
   }
 
   val firtoolOpts: Array[String] = Array(
@@ -110,9 +115,17 @@ object Generate {
     }
     val manifest = new File(dir, "manifest.json")
     Files.write(manifest.toPath, (ujson.write(AfuManifest.json(cfg, command), indent = 2) + "\n").getBytes("UTF-8"))
-    val header = new File(dir, "afu_config.hpp")
-    Files.write(header.toPath, AfuManifest.header(cfg, command).getBytes("UTF-8"))
-    (written :+ manifest :+ header).toSeq
+    (written :+ manifest).toSeq ++ writeContract(dir.getAbsoluteFile.getParentFile)
+  }
+
+  /** The configuration-independent contract headers, in `parent` (generated/). */
+  def writeContract(parent: File): Seq[File] = {
+    parent.mkdirs()
+    Seq(AfuContract.cppFile -> AfuContract.cpp, AfuContract.svFile -> AfuContract.sv).map { case (n, text) =>
+      val f = new File(parent, n)
+      Files.write(f.toPath, text.getBytes("UTF-8"))
+      f
+    }
   }
 
   /** firtool names the modules it makes itself (memories) by shape only; give every module

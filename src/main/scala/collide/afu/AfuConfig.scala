@@ -16,6 +16,8 @@ import collide.scpu.ScpuConfig
   * @param tagBits              link tag width (HARP v1 / SPL: 6, shared NOTES.md)
   * @param ramPorts             sphere table read-port strategy
   * @param denseByDefault       reset value of MODE bit 0 (false: compact records)
+  * @param records              contact record layout; None = the best one offered for the SCPU
+  *                             (derived where the host can rebuild contacts exactly, else full)
   */
 final case class AfuConfig(
     name: String = "default",
@@ -26,7 +28,8 @@ final case class AfuConfig(
     maxWritesOutstanding: Int = 64,
     tagBits: Int = 6,
     ramPorts: SphereRamPorts = SphereRamPorts.Replicated,
-    denseByDefault: Boolean = false) {
+    denseByDefault: Boolean = false,
+    records: Option[RecordLayout] = None) {
   require(name.nonEmpty && name.forall(c => c.isLetterOrDigit || c == '-' || c == '_'),
     s"AfuConfig name '$name': must be non-empty letters, digits, '-' or '_'")
   require(scpus >= 1 && scpus <= 64, s"AfuConfig $name: scpus must be 1..64, got $scpus")
@@ -36,25 +39,30 @@ final case class AfuConfig(
   require(maxWritesOutstanding >= 2 && maxWritesOutstanding <= (1 << tagBits),
     s"AfuConfig $name: maxWritesOutstanding must be 2..${1 << tagBits} (2^tagBits), got $maxWritesOutstanding")
   require(scpu.tagBits >= 24, s"AfuConfig $name: the SCPU's tagBits must be >= 24 to carry a pair index, got ${scpu.tagBits}")
-  private val spl = BufferLayout(scpu.linkWidth).spheresPerLine
   require(maxSpheres >= 64 && maxSpheres <= 65536 && Integer.bitCount(maxSpheres) == 1,
     s"AfuConfig $name: maxSpheres must be a power of two in 64..65536 (pair indices are 16-bit), got $maxSpheres")
 
+  for (r <- records; why <- r.refusal(scpu))
+    require(false, s"AfuConfig $name: record layout ${r.name} is not offered for SCPU ${scpu.name}: $why")
+  /** The record layout in effect. Derived moves 12 bytes a binary32 contact instead of 32
+    * (bench/results/links), so it is the default wherever it is exact. */
+  val recordLayout: RecordLayout = records.getOrElse(AfuConfig.bestLayout(scpu))
+
   val linkWidth: Int = scpu.linkWidth
-  val layout: BufferLayout = BufferLayout(linkWidth)
+  val layout: BufferLayout = BufferLayout(linkWidth, recordLayout)
   /** Whether this is exactly the named preset. */
   def isPreset: Boolean = AfuConfig.presets.get(name).contains(this)
   /** A name from every parameter, for configurations that are not a preset. */
   def derivedName: String =
     s"n${scpus}_${scpu.id}_s${maxSpheres}_r${maxReadsOutstanding}_w${maxWritesOutstanding}_t${tagBits}_${ramPorts.name}" +
-      (if (denseByDefault) "_dense" else "")
+      (if (recordLayout != AfuConfig.bestLayout(scpu)) s"_${recordLayout.name}" else "") + (if (denseByDefault) "_dense" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
 
   lazy val puc: PucParams = PucParams(
     scpus = scpus, linkWidth = linkWidth, scpuTagBits = scpu.tagBits, scpuLatency = scpu.latency,
     maxSpheres = maxSpheres, maxReads = maxReadsOutstanding, maxWrites = maxWritesOutstanding,
-    tagBits = tagBits, ramPorts = ramPorts, denseByDefault = denseByDefault, name = "_" + id)
+    tagBits = tagBits, ramPorts = ramPorts, denseByDefault = denseByDefault, records = recordLayout, name = "_" + id)
 
   /** Pairs per cycle the dispatcher can reach (a group never spans two pair lines). */
   def peakPairsPerCycle: Double = {
@@ -66,20 +74,27 @@ final case class AfuConfig(
   def pairLatency: Int = 2 + scpu.latency
   def describe: String =
     s"$id: $scpus x SCPU ${scpu.describe}; maxSpheres $maxSpheres, reads $maxReadsOutstanding, writes $maxWritesOutstanding, " +
-      s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, ${if (denseByDefault) "dense" else "compact"} by default"
+      s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, link ${scpu.linkFormat.name}, ${recordLayout.name} records " +
+      s"(${layout.recordBytes} B, ${layout.recordsPerLine} a line), ${if (denseByDefault) "dense" else "compact"} by default"
 }
 
 object AfuConfig {
+  /** Derived where the SCPU's arithmetic lets the host rebuild contacts exactly, else full. */
+  def bestLayout(scpu: ScpuConfig): RecordLayout =
+    if (RecordLayout.Derived.refusal(scpu).isEmpty) RecordLayout.Derived else RecordLayout.Full
+
   val default: AfuConfig = AfuConfig()
-  /** The paper's design point in our terms: 16 units, binary32. Same as default. */
-  val paper: AfuConfig   = default.copy(name = "paper")
+  /** The paper's design point in our terms: 16 units, binary32, whole contacts on the link. */
+  val paper: AfuConfig   = default.copy(name = "paper", records = Some(RecordLayout.Full))
   val small: AfuConfig   = default.copy(name = "small", scpus = 1, maxSpheres = 256)
   val fp16: AfuConfig    = default.copy(name = "fp16", scpu = ScpuConfig.fp16)
+  val fp16Full: AfuConfig = fp16.copy(name = "fp16-full", records = Some(RecordLayout.Full))
   val fp16x4: AfuConfig  = default.copy(name = "fp16x4", scpus = 4, scpu = ScpuConfig.fp16)
   val fp64: AfuConfig    = default.copy(name = "fp64", scpu = ScpuConfig.fp64)
+  val fp64Full: AfuConfig = fp64.copy(name = "fp64-full", records = Some(RecordLayout.Full))
   val fp32Nr: AfuConfig  = default.copy(name = "fp32-nr", scpu = ScpuConfig.fp32Nr)
   val big: AfuConfig     = default.copy(name = "big", maxSpheres = 4096)
 
-  val all: Seq[AfuConfig] = Seq(default, paper, small, fp16, fp16x4, fp64, fp32Nr, big)
+  val all: Seq[AfuConfig] = Seq(default, paper, small, fp16, fp16Full, fp16x4, fp64, fp64Full, fp32Nr, big)
   val presets: Map[String, AfuConfig] = all.map(c => c.name -> c).toMap
 }

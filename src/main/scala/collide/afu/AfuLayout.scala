@@ -1,8 +1,15 @@
 package collide.afu
 
+import collide.fp.{FloatFormat, RoundingMode}
+import collide.scpu.{DistanceMethod, ScpuConfig}
+
 /** Every number of docs/afu-interface.md that both sides must agree on, in one place: the
-  * RTL, the manifest and the C++ header all read them from here.
+  * RTL reads them from here, and AfuContract writes the configuration-independent C++ and
+  * SystemVerilog headers every host-side consumer includes. Each entry carries the sentence
+  * the headers print beside it.
   */
+final case class ContractEntry(name: String, value: Long, doc: String)
+
 object Csr {
   val CTRL             = 0
   val SPHERE_BASE      = 1
@@ -14,10 +21,17 @@ object Csr {
   val STATUS_ADDR      = 7
   val MODE             = 8
   val count            = 9
-  val all: Seq[(String, Int)] = Seq(
-    "CTRL" -> CTRL, "SPHERE_BASE" -> SPHERE_BASE, "NUM_SPHERES" -> NUM_SPHERES,
-    "PAIR_BASE" -> PAIR_BASE, "NUM_PAIRS" -> NUM_PAIRS, "CONTACT_BASE" -> CONTACT_BASE,
-    "CONTACT_CAPACITY" -> CONTACT_CAPACITY, "STATUS_ADDR" -> STATUS_ADDR, "MODE" -> MODE)
+  val entries: Seq[ContractEntry] = Seq(
+    ContractEntry("CTRL", CTRL, "write CTRL_START to start a run"),
+    ContractEntry("SPHERE_BASE", SPHERE_BASE, "line address of the sphere table"),
+    ContractEntry("NUM_SPHERES", NUM_SPHERES, "spheres in the table"),
+    ContractEntry("PAIR_BASE", PAIR_BASE, "line address of the pair list"),
+    ContractEntry("NUM_PAIRS", NUM_PAIRS, "pairs in the list (< 2^PAIR_INDEX_BITS)"),
+    ContractEntry("CONTACT_BASE", CONTACT_BASE, "line address of the contact buffer"),
+    ContractEntry("CONTACT_CAPACITY", CONTACT_CAPACITY, "contact records the buffer holds"),
+    ContractEntry("STATUS_ADDR", STATUS_ADDR, "line address of the status line"),
+    ContractEntry("MODE", MODE, "bit 0: dense records"))
+  val all: Seq[(String, Int)] = entries.map(e => e.name -> e.value.toInt)
   /** CTRL value that starts a run; MODE bit 0 selects dense records. */
   val CTRL_START = 1
   val MODE_DENSE = 1
@@ -37,51 +51,137 @@ object StatusLine {
   val CYCLES_COMPUTE  = 40
   val CYCLES_WAIT_RD  = 44
   val CYCLES_WAIT_WR  = 48
-  val all: Seq[(String, Int)] = Seq(
-    "DONE" -> DONE, "ERROR_FLAGS" -> ERROR_FLAGS, "PAIRS_PROCESSED" -> PAIRS_PROCESSED,
-    "CONTACTS_FOUND" -> CONTACTS_FOUND, "RECORDS_WRITTEN" -> RECORDS_WRITTEN,
-    "NONFINITE_PAIRS" -> NONFINITE_PAIRS, "FIRST_BAD_PAIR" -> FIRST_BAD_PAIR,
-    "CYCLES_TOTAL" -> CYCLES_TOTAL, "CYCLES_LOAD" -> CYCLES_LOAD, "CYCLES_COMPUTE" -> CYCLES_COMPUTE,
-    "CYCLES_WAIT_RD" -> CYCLES_WAIT_RD, "CYCLES_WAIT_WR" -> CYCLES_WAIT_WR)
+  val entries: Seq[ContractEntry] = Seq(
+    ContractEntry("DONE", DONE, "1 when the run is over"),
+    ContractEntry("ERROR_FLAGS", ERROR_FLAGS, "ERR_* bits"),
+    ContractEntry("PAIRS_PROCESSED", PAIRS_PROCESSED, "every pair read, bad ones included"),
+    ContractEntry("CONTACTS_FOUND", CONTACTS_FOUND, "hits (may exceed the records written)"),
+    ContractEntry("RECORDS_WRITTEN", RECORDS_WRITTEN, "contact records written"),
+    ContractEntry("NONFINITE_PAIRS", NONFINITE_PAIRS, "pairs with a NaN or infinite input"),
+    ContractEntry("FIRST_BAD_PAIR", FIRST_BAD_PAIR, "lowest pair with an index out of range, or NO_BAD_PAIR"),
+    ContractEntry("CYCLES_TOTAL", CYCLES_TOTAL, "cycles from start to the status write"),
+    ContractEntry("CYCLES_LOAD", CYCLES_LOAD, "cycles loading the sphere table"),
+    ContractEntry("CYCLES_COMPUTE", CYCLES_COMPUTE, "cycles in which a group of pairs was dispatched"),
+    ContractEntry("CYCLES_WAIT_RD", CYCLES_WAIT_RD, "cycles waiting on read responses"),
+    ContractEntry("CYCLES_WAIT_WR", CYCLES_WAIT_WR, "cycles waiting on write responses or back-pressure"))
+  val all: Seq[(String, Int)] = entries.map(e => e.name -> e.value.toInt)
+  /** The u32 fields in offset order (the decoders iterate these, never literal offsets). */
+  val fields: Int = 16
   val NO_BAD_PAIR = 0xFFFFFFFFL
 }
 
-/** Error flag bits of the status line. */
+/** Error flag bits of the status line, each with the sentence a host prints for it. */
 object ErrorFlags {
-  val INDEX_RANGE    = 1 << 0
+  val INDEX_RANGE      = 1 << 0
   val TOO_MANY_SPHERES = 1 << 1
-  val CAPACITY       = 1 << 2
-  val NONFINITE      = 1 << 3
-  val BAD_CONFIG     = 1 << 4
-  val width          = 5
-  val all: Seq[(String, Int)] = Seq("INDEX_RANGE" -> INDEX_RANGE, "TOO_MANY_SPHERES" -> TOO_MANY_SPHERES,
-    "CAPACITY" -> CAPACITY, "NONFINITE" -> NONFINITE, "BAD_CONFIG" -> BAD_CONFIG)
+  val CAPACITY         = 1 << 2
+  val NONFINITE        = 1 << 3
+  val BAD_CONFIG       = 1 << 4
+  val entries: Seq[ContractEntry] = Seq(
+    ContractEntry("INDEX_RANGE", INDEX_RANGE, "sphere index out of range"),
+    ContractEntry("TOO_MANY_SPHERES", TOO_MANY_SPHERES, "NUM_SPHERES above the on-chip table"),
+    ContractEntry("CAPACITY", CAPACITY, "contact buffer too small"),
+    ContractEntry("NONFINITE", NONFINITE, "non-finite input seen"),
+    ContractEntry("BAD_CONFIG", BAD_CONFIG, "bad configuration"))
+  val width: Int = entries.size
+  require(entries.map(_.value).zipWithIndex.forall { case (v, i) => v == (1L << i) }, "error flags must be bits 0..n-1")
+  val all: Seq[(String, Int)] = entries.map(e => e.name -> e.value.toInt)
 }
 
-/** Record flag bits (bits 24..31 of a binary32 record's last word; the flags word in binary64). */
+/** Record flag bits (the top byte of a record's tag word). Bit 5 is never written by the
+  * AFU: a host sets it on a pair whose inputs did not fit the link format. */
 object RecordFlags {
   val HIT        = 1 << 0
   val KIND_SHIFT = 1       // bits 1..2: collide.scpu.ContactKind
+  val KIND_MASK  = 3
   val NONFINITE  = 1 << 3
   val ARITH      = 1 << 4  // the SCPU's arithmetic raised overflow or invalid
-  val all: Seq[(String, Int)] = Seq("HIT" -> HIT, "KIND_SHIFT" -> KIND_SHIFT, "NONFINITE" -> NONFINITE, "ARITH" -> ARITH)
+  val HOST_RANGE = 1 << 5  // host only: an input overflowed the link format or a radius rounded to 0
+  val entries: Seq[ContractEntry] = Seq(
+    ContractEntry("HIT", HIT, "the pair is a contact"),
+    ContractEntry("KIND_SHIFT", KIND_SHIFT, "bits 1..2: KIND_*"),
+    ContractEntry("KIND_MASK", KIND_MASK, "mask of the kind after the shift"),
+    ContractEntry("NONFINITE", NONFINITE, "a NaN or infinity among the pair's inputs"),
+    ContractEntry("ARITH", ARITH, "the arithmetic raised overflow or invalid"),
+    ContractEntry("HOST_RANGE", HOST_RANGE, "set by the host: an input did not fit the link format"))
+  val all: Seq[(String, Int)] = entries.map(e => e.name -> e.value.toInt)
+  /** The kinds (collide.scpu.ContactKind). */
+  val kinds: Seq[ContractEntry] = Seq(
+    ContractEntry("KIND_SEPARATED", 0, "no contact"), ContractEntry("KIND_CONTACT", 1, "0 < d <= r1 + r2"),
+    ContractEntry("KIND_COINCIDENT", 2, "d <= 0: pos p1, normal (1,0,0), depth r1 + r2"),
+    ContractEntry("KIND_INVALID", 3, "a sphere index out of range"))
 }
 
-/** Buffer layout for one link width (32: IEEE binary32, 64: binary64). */
-final case class BufferLayout(linkWidth: Int) {
-  require(linkWidth == 32 || linkWidth == 64, s"link width must be 32 or 64, got $linkWidth")
+/** The record tag word: a u32 after a record's value fields. */
+object RecordTag {
+  val PAIR_BITS   = 24 // bits 0..23: the pair index
+  val FLAGS_SHIFT = 24 // bits 24..31: RecordFlags
+  val BYTES       = 4
+}
+
+/** What a contact record carries besides its tag word (docs/afu-interface.md, "Contacts"). */
+sealed trait RecordLayout {
+  def name: String
+  /** Contract id (LAYOUT_* in the headers and `buffers.records.layout` in the manifest). */
+  def code: Int
+  /** The value fields in order, each one link word. */
+  def fields: Seq[String]
+  /** Why this layout cannot be offered for `cfg`, if it cannot. */
+  def refusal(cfg: ScpuConfig): Option[String]
+}
+object RecordLayout {
+  /** Position, normal and depth: the contact as a physics engine takes it. */
+  case object Full extends RecordLayout {
+    val name = "full"; val code = 0
+    val fields = Seq("px", "py", "pz", "nx", "ny", "nz", "depth")
+    def refusal(cfg: ScpuConfig): Option[String] = None
+  }
+  /** Only the two values that need a square root or a reciprocal: d and the normal's factor
+    * w (n = u * w, u = p1 - p2, or the Robust method's scaled difference). The host rebuilds
+    * u, n, k, pos and depth from its own sphere table with + and x in the compute format,
+    * in the SCPU's order, so its contacts are bit for bit those of Full. That needs
+    * operations the host reproduces exactly: RNE, subnormals kept, and either binary64
+    * itself or a significand of at most 25 bits, so that one binary64 operation followed by
+    * one rounding to the format equals the format's own operation (the 2p+2 rule). */
+  case object Derived extends RecordLayout {
+    val name = "derived"; val code = 1
+    val fields = Seq("d", "w")
+    def refusal(cfg: ScpuConfig): Option[String] =
+      if (cfg.rounding != RoundingMode.RNE) Some(s"the host rebuilds contacts in RNE only, the SCPU rounds ${cfg.rounding}")
+      else if (!cfg.subnormals) Some("the host rebuilds contacts with subnormals kept, the SCPU flushes them")
+      else if (cfg.format != FloatFormat.fp64 && cfg.format.sigBits > 25)
+        Some(s"${cfg.format.name} has ${cfg.format.sigBits} significand bits: binary64 cannot emulate it exactly (2p+2 > 53) and it is not binary64")
+      else None
+  }
+  val all: Seq[RecordLayout] = Seq(Full, Derived)
+  def parse(s: String): Either[String, RecordLayout] =
+    all.find(_.name.equalsIgnoreCase(s.trim)).toRight(s"record layout '$s': expected one of ${all.map(_.name).mkString(", ")}")
+}
+
+/** Buffer layout for one link format and record layout. Records are packed whole, with no
+  * padding, `recordsPerLine` a line from byte 0; the rest of a line is zero. */
+final case class BufferLayout(linkWidth: Int, records: RecordLayout = RecordLayout.Full) {
+  require(linkWidth == 16 || linkWidth == 32 || linkWidth == 64, s"link width must be 16, 32 or 64, got $linkWidth")
   val sphereBytes: Int    = 4 * linkWidth / 8
   val spheresPerLine: Int = Link.lineBytes / sphereBytes
   val pairBytes: Int      = 4
   val pairsPerLine: Int   = Link.lineBytes / pairBytes
-  val recordBytes: Int    = if (linkWidth == 32) 32 else 64
+  val valueFields: Int    = records.fields.size
+  val recordBytes: Int    = valueFields * linkWidth / 8 + RecordTag.BYTES
   val recordsPerLine: Int = Link.lineBytes / recordBytes
   /** Bit offset of the pair index / flags in a record. */
-  val pairIndexBit: Int   = if (linkWidth == 32) 7 * 32 else 7 * 64
-  val flagsBit: Int       = if (linkWidth == 32) 7 * 32 + 24 else 7 * 64 + 32
-  val pairIndexBits: Int  = 24
+  val pairIndexBit: Int   = valueFields * linkWidth
+  val flagsBit: Int       = pairIndexBit + RecordTag.FLAGS_SHIFT
+  val pairIndexBits: Int  = RecordTag.PAIR_BITS
   val maxPairs: Long      = 1L << pairIndexBits
   def sphereLines(n: Long): Long  = (n + spheresPerLine - 1) / spheresPerLine
   def pairLines(n: Long): Long    = (n + pairsPerLine - 1) / pairsPerLine
   def contactLines(n: Long): Long = (n + recordsPerLine - 1) / recordsPerLine
+  /** Dense mode: every pair line's records start a contact line (the ContactPacker). */
+  val denseLinesPerPairLine: Int = (pairsPerLine + recordsPerLine - 1) / recordsPerLine
+  def denseLine(k: Long): Long = (k / pairsPerLine) * denseLinesPerPairLine + (k % pairsPerLine) / recordsPerLine
+  def denseSlot(k: Long): Int = ((k % pairsPerLine) % recordsPerLine).toInt
+  def denseContactLines(n: Long): Long = if (n == 0) 0 else denseLine(n - 1) + 1
+  /** Lines a buffer of `capacity` records takes in either mode. */
+  def contactBufferLines(capacity: Long, dense: Boolean): Long = if (dense) denseContactLines(capacity) else contactLines(capacity)
 }

@@ -4,13 +4,14 @@ import chisel3._
 import chisel3.util._
 import collide.scpu.{ContactKind, ScpuOut}
 
-/** One contact record as it goes into a line (docs/afu-interface.md, Contacts). */
-class ContactRecord(w: Int) extends Bundle {
-  val px = UInt(w.W); val py = UInt(w.W); val pz = UInt(w.W)
-  val nx = UInt(w.W); val ny = UInt(w.W); val nz = UInt(w.W)
-  val depth = UInt(w.W)
-  val pair  = UInt(24.W)
-  val flags = UInt(8.W)
+/** One contact record as it goes into a line (docs/afu-interface.md, Contacts): the layout's
+  * value fields, then the tag word. */
+class ContactRecord(val lay: BufferLayout) extends Bundle {
+  val vals  = Vec(lay.valueFields, UInt(lay.linkWidth.W))
+  val pair  = UInt(RecordTag.PAIR_BITS.W)
+  val flags = UInt((32 - RecordTag.FLAGS_SHIFT).W)
+  /** The record's bits as they lie in a line: field 0 at the lowest bits. */
+  def packed: UInt = Cat(flags, pair, Cat(vals.reverse))
 }
 
 /** Takes the SCPUs' results back group by group, in dispatch order, and turns them into
@@ -29,7 +30,7 @@ class ContactCollector(p: PucParams) extends Module {
     val groups = Flipped(Decoupled(new GroupInfo(p)))
     val scpu   = Vec(n, Flipped(Decoupled(new ScpuOut(p.linkWidth, p.scpuTagBits))))
     val room   = Input(UInt(log2Ceil(R + 1).W))
-    val recs   = Output(Vec(R, new ContactRecord(p.linkWidth)))
+    val recs   = Output(Vec(R, new ContactRecord(p.layout)))
     val nRecs  = Output(UInt(log2Ceil(R + 1).W))
     // per-cycle increments of the status counters
     val nPairs     = Output(UInt(log2Ceil(L + 1).W))
@@ -62,14 +63,17 @@ class ContactCollector(p: PucParams) extends Module {
 
   private def recordOf(k: Int): ContactRecord = {
     val o = outAt(k)
-    val r = Wire(new ContactRecord(p.linkWidth))
+    val r = Wire(new ContactRecord(p.layout))
     val arith = (o.flags & (collide.fp.FpFlags.Overflow | collide.fp.FpFlags.Invalid).U).orR
+    val fields: Map[String, UInt] = Map("px" -> o.px, "py" -> o.py, "pz" -> o.pz, "nx" -> o.nx, "ny" -> o.ny,
+      "nz" -> o.nz, "depth" -> o.depth, "d" -> o.d, "w" -> o.nw)
     when(inv(k)) {
       r := 0.U.asTypeOf(r)
       r.flags := (ContactKind.Invalid << RecordFlags.KIND_SHIFT).U
     }.otherwise {
-      r.px := o.px; r.py := o.py; r.pz := o.pz; r.nx := o.nx; r.ny := o.ny; r.nz := o.nz; r.depth := o.depth
-      r.flags := Cat(0.U(3.W), arith, o.nonFinite, o.kind, o.hit)
+      r.vals := VecInit(p.layout.records.fields.map(fields))
+      r.flags := (Mux(arith, RecordFlags.ARITH.U, 0.U) | Mux(o.nonFinite, RecordFlags.NONFINITE.U, 0.U) |
+        (o.kind << RecordFlags.KIND_SHIFT) | Mux(o.hit, RecordFlags.HIT.U, 0.U))
     }
     r.pair := o.tag(23, 0)
     r

@@ -9,95 +9,87 @@ class LineWrite extends Bundle {
   val data = UInt(Link.lineBits.W)
 }
 
-/** Packs records into lines. Record number rn: the pair index in dense mode, the running hit
-  * count in compact mode; record rn lives at line rn / R, slot rn % R (R records a line).
-  * Records come in order with consecutive numbers within a pair line, so at most one line
-  * completes a cycle: the packer asks for one record less while it holds a half line. A
-  * line holding no record below CONTACT_CAPACITY is dropped; records at or past it are zero.
-  * `flush` (end of run) writes a held half line with its other record zero.
+/** Packs records into lines, R = recordsPerLine of the layout (docs/afu-interface.md,
+  * "Contacts"). Compact mode: record n (the running hit count) lives at line n / R, slot
+  * n % R. Dense mode: record k is pair k, and since pair lines may arrive in any order each
+  * pair line's 16 records start a contact line of their own: record k at line
+  * (k / 16) * ceil(16 / R) + (k % 16) / R, slot (k % 16) % R (the plain k / R whenever R
+  * divides 16). Either way the records of one cycle are consecutive in their line, so the
+  * packer only counts: it holds at most R - 1 records and asks for no more than complete
+  * the line (`room`), so at most one line leaves a cycle. Records at or past
+  * CONTACT_CAPACITY are written as zero, and a line holding none below it is dropped.
+  * `flush` (end of run) writes a held partial line with its other slots zero.
   */
 class ContactPacker(p: PucParams) extends Module {
-  override def desiredName = s"ContactPacker_w${p.linkWidth}${p.name}"
-  private val R = p.layout.recordsPerLine
-  private val w = p.linkWidth
+  private val lay = p.layout
+  private val R = lay.recordsPerLine
+  private val ppl = lay.pairsPerLine
+  private val recBits = lay.recordBytes * 8
+  private val idxBits = lay.pairIndexBits
+  override def desiredName = s"ContactPacker_w${p.linkWidth}_${lay.records.name}_r$R${p.name}"
   val io = IO(new Bundle {
     val start    = Input(Bool())
     val dense    = Input(Bool())
-    val numPairs = Input(UInt(p.layout.pairIndexBits.W))
+    val numPairs = Input(UInt(idxBits.W))
     val base     = Input(UInt(Link.addrBits.W))
     val capacity = Input(UInt(Link.csrDataBits.W))
     val room     = Output(UInt(log2Ceil(R + 1).W))
-    val recs     = Input(Vec(R, new ContactRecord(w)))
+    val recs     = Input(Vec(R, new ContactRecord(lay)))
     val nRecs    = Input(UInt(log2Ceil(R + 1).W))
     val flush    = Input(Bool())
     val idle     = Output(Bool())   // nothing held
     val lines    = Decoupled(new LineWrite)
   })
 
-  private def pack(r: ContactRecord): UInt =
-    if (w == 32) Cat(r.flags, r.pair, r.depth, r.nz, r.ny, r.nx, r.pz, r.py, r.px)
-    else Cat(r.flags.pad(32), r.pair.pad(32), r.depth, r.nz, r.ny, r.nx, r.pz, r.py, r.px)
-
   val q = Module(new Queue(new LineWrite, p.writeQueueLines) {
     override def desiredName = s"ContactLineQueue_d${p.writeQueueLines}${p.name}"
   })
   io.lines <> q.io.deq
-  val hitCount = RegInit(0.U(p.layout.pairIndexBits.W)) // compact record numbers
-  when(io.start) { hitCount := 0.U }
 
-  val rn = VecInit.tabulate(R)(r => Mux(io.dense, io.recs(r).pair, hitCount + r.U))
-  private val recBits = p.layout.recordBytes * 8
+  val fill     = RegInit(0.U(log2Ceil(R + 1).W))     // records held, < R
+  val held     = Reg(Vec(math.max(R - 1, 1), UInt(recBits.W)))
+  val count    = RegInit(0.U((idxBits + 1).W))        // compact: records so far
+  val lineNo   = RegInit(0.U((idxBits + 1).W))        // compact: lines so far
+  val heldLine = Reg(UInt((idxBits + 1).W))           // the held records' line
+  val heldRn   = Reg(UInt((idxBits + 1).W))           // record number of its slot 0
+  io.room := Mux(q.io.enq.ready, R.U - fill, 0.U)
+  io.idle := fill === 0.U
 
-  if (R == 1) {
-    io.room := q.io.enq.ready.asUInt
-    val ok = rn(0) < io.capacity
-    q.io.enq.valid := io.nRecs === 1.U && ok
-    q.io.enq.bits.addr := io.base + rn(0)
-    q.io.enq.bits.data := pack(io.recs(0))
-    io.idle := true.B
-  } else {
-    // R == 2 (binary32)
-    val held      = RegInit(false.B)
-    val heldRec   = Reg(new ContactRecord(w))
-    val heldRn    = Reg(UInt(p.layout.pairIndexBits.W))
-    io.room := Mux(q.io.enq.ready, Mux(held, 1.U, 2.U), 0.U)
-    io.idle := !held
-    def inCap(x: UInt) = x < io.capacity
-    def recOrZero(r: ContactRecord, x: UInt): UInt = Mux(inCap(x), pack(r), 0.U(recBits.W))
-    val a = io.recs(0); val b = io.recs(1); val ra = rn(0); val rb = rn(1)
-    val lastA = io.dense && ra === io.numPairs - 1.U && !ra(0) // a final half line (dense)
-    val enqValid = WireDefault(false.B)
-    val enqRn    = WireDefault(ra)   // number of the line's slot-0 record
-    val enqData  = WireDefault(0.U(Link.lineBits.W))
-    when(io.flush && held && q.io.enq.ready) {
-      enqValid := true.B; enqRn := heldRn; enqData := Cat(0.U(recBits.W), recOrZero(heldRec, heldRn))
-      held := false.B
-    }.elsewhen(held) {
-      when(io.nRecs === 1.U) { // a completes the held line
-        enqValid := true.B; enqRn := heldRn
-        enqData := Cat(recOrZero(a, ra), recOrZero(heldRec, heldRn))
-        held := false.B
-      }
-    }.otherwise {
-      when(io.nRecs === 2.U) {
-        when(lastA) { // a alone, b starts the next line
-          enqValid := true.B; enqRn := ra; enqData := Cat(0.U(recBits.W), recOrZero(a, ra))
-          held := true.B; heldRec := b; heldRn := rb
-        }.otherwise {
-          enqValid := true.B; enqRn := ra; enqData := Cat(recOrZero(b, rb), recOrZero(a, ra))
-        }
-      }.elsewhen(io.nRecs === 1.U) {
-        when(lastA) {
-          enqValid := true.B; enqRn := ra; enqData := Cat(0.U(recBits.W), recOrZero(a, ra))
-        }.otherwise { held := true.B; heldRec := a; heldRn := ra }
-      }
-    }
-    q.io.enq.valid := enqValid && inCap(enqRn)
-    q.io.enq.bits.addr := io.base + (enqRn >> 1)
-    q.io.enq.bits.data := enqData
-    assert(!(held && io.nRecs =/= 0.U && rn(0)(0) === 0.U && !io.flush), "ContactPacker: record stream out of order")
+  // Dense line of a pair: (k / 16) * ceil(16 / R) + (k % 16) / R, the last term from a table.
+  private val linesPerPairLine = (ppl + R - 1) / R
+  private def denseLine(k: UInt): UInt = {
+    val inLine = VecInit.tabulate(ppl)(i => (i / R).U(log2Ceil(ppl + 1).W))(k(log2Ceil(ppl) - 1, 0))
+    ((k >> log2Ceil(ppl)) * linesPerPairLine.U) +& inLine
   }
-  when(!io.dense) { hitCount := hitCount + io.nRecs }
-  when(io.start) { hitCount := 0.U }
+  val first    = io.recs(0)
+  val lineOf   = Mux(fill =/= 0.U, heldLine, Mux(io.dense, denseLine(first.pair), lineNo))
+  val rnOf     = Mux(fill =/= 0.U, heldRn, Mux(io.dense, first.pair.pad(idxBits + 1), count))
+
+  val total = fill +& io.nRecs
+  private def idx(x: UInt): UInt = if (R == 1) 0.U else x(log2Ceil(R) - 1, 0)
+  val slots = VecInit.tabulate(R) { s =>
+    val fromHeld = if (s < R - 1) held(s) else 0.U(recBits.W)
+    val v = Mux(s.U < fill, fromHeld, io.recs(idx(s.U - fill)).packed)
+    Mux(s.U < total && (rnOf + s.U) < io.capacity, v, 0.U(recBits.W))
+  }
+  // Dense: a pair line's last record (pair 15 of its line, or the run's last pair) ends the line.
+  val lastIn   = io.recs(idx(io.nRecs - 1.U)).pair
+  val endsPairLine = io.dense && io.nRecs =/= 0.U &&
+    (lastIn(log2Ceil(ppl) - 1, 0).andR || lastIn === io.numPairs - 1.U)
+  val emit = q.io.enq.ready && (total === R.U || (endsPairLine && total =/= 0.U) || (io.flush && total =/= 0.U))
+  q.io.enq.valid     := emit && rnOf < io.capacity
+  q.io.enq.bits.addr := io.base + lineOf
+  q.io.enq.bits.data := Cat(slots.reverse).pad(Link.lineBits)
+  when(emit) {
+    fill := 0.U
+    when(!io.dense) { lineNo := lineNo + 1.U }
+  }.otherwise {
+    fill := total
+    heldLine := lineOf; heldRn := rnOf
+    for (s <- 0 until R - 1) when(s.U < total) { held(s) := slots(s) }
+  }
+  when(!io.dense) { count := count + io.nRecs }
+  when(io.start) { fill := 0.U; count := 0.U; lineNo := 0.U }
+  assert(io.nRecs <= io.room, "ContactPacker: more records than room")
   assert(!q.io.enq.valid || q.io.enq.ready, "ContactPacker: line queue overflow")
 }

@@ -63,7 +63,7 @@ class Puc(p: PucParams) extends Module {
       (numPairs64 =/= 0.U && pairBase === 0.U) || (numSpheres =/= 0.U && sphereBase === 0.U) ||
       (capacity =/= 0.U && contactBase === 0.U) || statusAddr === 0.U
     val tooMany = numSpheres > p.maxSpheres.U
-    errors := Cat(badConfig, 0.U(2.W), tooMany, 0.U(1.W))
+    errors := Mux(badConfig, ErrorFlags.BAD_CONFIG.U, 0.U) | Mux(tooMany, ErrorFlags.TOO_MANY_SPHERES.U, 0.U)
     when(badConfig && statusAddr === 0.U) {
       state := sIdle // nowhere to report: write nothing at all
     }.elsewhen(badConfig || tooMany) {
@@ -161,14 +161,16 @@ class Puc(p: PucParams) extends Module {
   // ---- the status line
   val totalRecords = Mux(dense, numPairs.pad(64), found.pad(64))
   val written      = Mux(totalRecords > capacity, capacity, totalRecords)(31, 0)
-  val capErr       = totalRecords > capacity && !errors(1) && !errors(4)
-  val errFlags     = errors | Cat(0.U(1.W), nonFinite =/= 0.U, capErr, 0.U(1.W), firstBad =/= StatusLine.NO_BAD_PAIR.U)
-  val words = WireInit(VecInit(Seq.fill(16)(0.U(32.W))))
+  val nothingRun   = (errors & (ErrorFlags.TOO_MANY_SPHERES | ErrorFlags.BAD_CONFIG).U).orR
+  val capErr       = totalRecords > capacity && !nothingRun
+  val errFlags     = errors | Mux(nonFinite =/= 0.U, ErrorFlags.NONFINITE.U, 0.U) | Mux(capErr, ErrorFlags.CAPACITY.U, 0.U) |
+    Mux(firstBad =/= StatusLine.NO_BAD_PAIR.U, ErrorFlags.INDEX_RANGE.U, 0.U)
+  val words = WireInit(VecInit(Seq.fill(StatusLine.fields)(0.U(32.W))))
   words(StatusLine.DONE / 4)            := 1.U
   words(StatusLine.ERROR_FLAGS / 4)     := errFlags
   words(StatusLine.PAIRS_PROCESSED / 4) := processed
   words(StatusLine.CONTACTS_FOUND / 4)  := found
-  words(StatusLine.RECORDS_WRITTEN / 4) := Mux(errors(1) || errors(4), 0.U, written)
+  words(StatusLine.RECORDS_WRITTEN / 4) := Mux(nothingRun, 0.U, written)
   words(StatusLine.NONFINITE_PAIRS / 4) := nonFinite
   words(StatusLine.FIRST_BAD_PAIR / 4)  := firstBad
   words(StatusLine.CYCLES_TOTAL / 4)    := cycTotal

@@ -18,7 +18,7 @@ object SphereRamPorts {
   * kept apart so the memory side does not depend on the floating-point configuration.
   *
   * @param scpus        SCPUs to feed (1..64)
-  * @param linkWidth    32 (IEEE binary32 on the link) or 64 (binary64)
+  * @param linkWidth    bits of one link field: 16 (binary16 or bfloat16), 32 (binary32), 64 (binary64)
   * @param scpuTagBits  the SCPU's tag width (carries the pair index: at least 24)
   * @param scpuLatency  the SCPU's pipeline latency (sizes the in-flight bookkeeping)
   * @param maxSpheres   on-chip sphere table entries
@@ -27,6 +27,7 @@ object SphereRamPorts {
   * @param tagBits      link tag width
   * @param ramPorts     sphere table read-port strategy
   * @param denseByDefault reset value of MODE bit 0
+  * @param records      what a contact record carries (RecordLayout)
   * @param name         suffix of every module name, so two configurations never collide
   */
 final case class PucParams(
@@ -40,14 +41,15 @@ final case class PucParams(
     tagBits: Int,
     ramPorts: SphereRamPorts = SphereRamPorts.Replicated,
     denseByDefault: Boolean = false,
+    records: RecordLayout = RecordLayout.Full,
     name: String = "") {
   require(scpus >= 1 && scpus <= 64, s"scpus must be 1..64, got $scpus")
-  require(linkWidth == 32 || linkWidth == 64, s"linkWidth must be 32 or 64, got $linkWidth")
+  require(linkWidth == 16 || linkWidth == 32 || linkWidth == 64, s"linkWidth must be 16, 32 or 64, got $linkWidth")
   require(scpuTagBits >= 24, s"scpuTagBits must be >= 24 (it carries the pair index), got $scpuTagBits")
   require(scpuLatency >= 0, s"scpuLatency must be >= 0, got $scpuLatency")
   require(maxReads >= 2 && maxReads <= (1 << tagBits), s"maxReads must be 2..2^tagBits (${1 << tagBits}), got $maxReads")
   require(maxWrites >= 2 && maxWrites <= (1 << tagBits), s"maxWrites must be 2..2^tagBits (${1 << tagBits}), got $maxWrites")
-  val layout: BufferLayout = BufferLayout(linkWidth)
+  val layout: BufferLayout = BufferLayout(linkWidth, records)
   require(maxSpheres >= 64 && maxSpheres % layout.spheresPerLine == 0 && maxSpheres <= 65536,
     s"maxSpheres must be a multiple of ${layout.spheresPerLine} (spheres a line) in 64..65536, got $maxSpheres")
 

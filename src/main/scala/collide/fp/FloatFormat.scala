@@ -29,10 +29,16 @@ final case class FloatFormat(expBits: Int, sigBits: Int) {
   /** Preset name if this is one, else e<E>m<M>. */
   def name: String = FloatFormat.presetName(this).getOrElse(s"e${expBits}m$sigBits")
 
-  /** Whether the IEEE link format (binary32 or binary64) holds every value of this format. */
+  /** Whether IEEE binary32 holds every value of this format. */
   def fitsBinary32: Boolean = expBits <= 8 && sigBits <= 24
-  /** The IEEE format the link carries for this compute format (ARCHITECTURE.md). */
-  def linkFormat: FloatFormat = if (fitsBinary32) FloatFormat.fp32 else FloatFormat.fp64
+  /** Whether every value of this format is also a value of `wider` (no rounding, no overflow). */
+  def fitsIn(wider: FloatFormat): Boolean = expBits <= wider.expBits && sigBits <= wider.sigBits
+  /** The default link format for this compute format (docs/afu-interface.md, "Link format"):
+    * the 16-bit formats travel as themselves, so a narrow SCPU moves half the bytes; any other
+    * format the narrowest of binary32 and binary64 that holds it. */
+  def linkFormat: FloatFormat =
+    if (FloatFormat.linkFormats16.contains(this)) this
+    else if (fitsBinary32) FloatFormat.fp32 else FloatFormat.fp64
 
   // Bit patterns, as BigInt so fp64 and wider significands need no special casing.
   def expMask: BigInt   = (BigInt(1) << expBits) - 1
@@ -52,6 +58,10 @@ object FloatFormat {
   val fp24 = FloatFormat(8, 16)
   val fp32 = FloatFormat(8, 24)
   val fp64 = FloatFormat(11, 53)
+  /** 16-bit formats the link can carry as they are (the host decodes both). */
+  val linkFormats16: Seq[FloatFormat] = Seq(fp16, bf16)
+  /** Every format a link field may have: one a host can encode and decode exactly. */
+  val linkFormats: Seq[FloatFormat] = Seq(fp16, bf16, fp32, fp64)
 
   val presets: Seq[(String, FloatFormat)] =
     Seq("bf16" -> bf16, "fp16" -> fp16, "fp24" -> fp24, "fp32" -> fp32, "fp64" -> fp64)

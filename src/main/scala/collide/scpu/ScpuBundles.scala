@@ -38,12 +38,16 @@ class DistanceW(val fw: Int) extends Bundle {
   val flags = UInt(FpFlags.width.W)
 }
 
-/** The selected result in the compute format, zero fields when there is no hit. */
+/** The selected result in the compute format, zero fields when there is no hit. `d` and
+  * `w` (the distance and the normal's factor, n = (p1 - p2) * w) are set for a Contact only:
+  * from them and the inputs a host rebuilds pos, n and depth with + and x alone (the AFU's
+  * derived record layout, docs/afu-interface.md). */
 class ComputeResult(val w: Int, tagBits: Int) extends Bundle {
   val hit  = Bool()
   val kind = UInt(2.W)
   val px = UInt(w.W); val py = UInt(w.W); val pz = UInt(w.W)
   val nx = UInt(w.W); val ny = UInt(w.W); val nz = UInt(w.W)
   val depth = UInt(w.W)
+  val d = UInt(w.W); val nw = UInt(w.W)
   val meta  = new ScpuMeta(tagBits)
 }

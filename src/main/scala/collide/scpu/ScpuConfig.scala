@@ -48,6 +48,8 @@ object DistanceMethod {
   * @param rsqrtLatency FpRsqrt; None = default as above
   * @param scaleLatency the Robust method's power-of-two scaling and unscaling (each)
   * @param tagBits      width of the tag carried through (the AFU's pair index)
+  * @param link         the link's number format; None = [[FloatFormat.linkFormat]] of `format`
+  *                     (fp16 and bf16 as themselves, else binary32 or binary64)
   */
 final case class ScpuConfig(
     name: String = "fp32",
@@ -66,7 +68,8 @@ final case class ScpuConfig(
     recipLatency: Option[Int] = None,
     rsqrtLatency: Option[Int] = None,
     scaleLatency: Int = 1,
-    tagBits: Int = 24
+    tagBits: Int = 24,
+    link: Option[FloatFormat] = None
 ) {
   require(name.nonEmpty && name.forall(c => c.isLetterOrDigit || c == '-' || c == '_'),
     s"ScpuConfig name '$name': must be non-empty letters, digits, '-' or '_'")
@@ -82,8 +85,12 @@ final case class ScpuConfig(
   require(tagBits >= 1 && tagBits <= 64, s"ScpuConfig $name: tagBits must be 1..64, got $tagBits")
 
   val params: FpParams         = FpParams(format, subnormals)
-  /** The IEEE format on the link (binary32, or binary64 for wider compute formats). */
-  val linkFormat: FloatFormat  = format.linkFormat
+  /** The number format of every field on the link (spheres in, contacts out). */
+  val linkFormat: FloatFormat  = link.getOrElse(format.linkFormat)
+  require(FloatFormat.linkFormats.contains(linkFormat),
+    s"ScpuConfig $name: link format ${linkFormat.name} is not one the host can carry (${FloatFormat.linkFormats.map(_.name).mkString(", ")})")
+  require(format.fitsIn(linkFormat),
+    s"ScpuConfig $name: link format ${linkFormat.name} does not hold every ${format.name} value")
   val linkParams: FpParams     = FpParams(linkFormat)
   val linkWidth: Int           = linkFormat.width
   val rm: RoundingMode         = rounding
@@ -161,7 +168,7 @@ final case class ScpuConfig(
       case _                    => s"sqrt=${sqrtAlg.name}/L$sqrtLat recip=${recipAlg.name}/L$recipLat"
     }
     val scale = if (distance == DistanceMethod.Robust) s" scale=L$scaleLatency" else ""
-    s"$name: ${format.name}${if (subnormals) "" else " ftz"} $rounding ${distance.name} $roots " +
+    s"$name: ${format.name}${if (subnormals) "" else " ftz"}${link.fold("")(l => s" link=${l.name}")} $rounding ${distance.name} $roots " +
       s"cvt=L$cvtLat add=L$addLatency mul=L$mulLatency cmp=L$cmpLatency$scale, latency $latency"
   }
 }
@@ -250,7 +257,8 @@ object ScpuConfig {
       case "reciplat" => int.flatMap(n => safely(s)(c.copy(recipLatency = Some(n))))
       case "rsqrtlat" => int.flatMap(n => safely(s)(c.copy(rsqrtLatency = Some(n))))
       case "tag"      => int.flatMap(n => safely(s)(c.copy(tagBits = n)))
-      case _ => Left(s"SCPU config '$s': unknown option '$k' (format, rm, subnormals, distance, sqrt, recip, rsqrt, roots, cvt, add, mul, cmp, scale, sqrtLat, recipLat, rsqrtLat, tag)")
+      case "link"     => ctx(FloatFormat.parse(v)).flatMap(f => safely(s)(c.copy(link = Some(f))))
+      case _ => Left(s"SCPU config '$s': unknown option '$k' (format, rm, subnormals, distance, sqrt, recip, rsqrt, roots, cvt, add, mul, cmp, scale, sqrtLat, recipLat, rsqrtLat, tag, link)")
     }
   }
 }

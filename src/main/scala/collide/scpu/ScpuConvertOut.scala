@@ -4,7 +4,7 @@ import chisel3._
 import chisel3.util._
 import collide.fp._
 
-/** Compute format -> link format for the seven contact fields. The link format holds every
+/** Compute format -> link format for the seven contact fields and d, w. The link format holds every
   * compute-format value (ScpuConfig requires it), so these conversions are exact and raise no
   * flags; their flags are OR-ed in all the same. No hardware when the formats are equal
   * (cfg.outLatency = 0).
@@ -22,7 +22,7 @@ class ScpuConvertOut(cfg: ScpuConfig) extends Module {
 
   private val ops = new FpOps(cfg, io.en)
   private val b = io.in.bits
-  private val fields = Seq(b.px, b.py, b.pz, b.nx, b.ny, b.nz, b.depth)
+  private val fields = Seq(b.px, b.py, b.pz, b.nx, b.ny, b.nz, b.depth, b.d, b.nw)
 
   private val (vals, flags, valid) =
     if (cfg.converts) {
@@ -31,7 +31,7 @@ class ScpuConvertOut(cfg: ScpuConfig) extends Module {
     } else (fields, 0.U(FpFlags.width.W), io.in.valid)
 
   private val o = io.out.bits
-  Seq(o.px, o.py, o.pz, o.nx, o.ny, o.nz, o.depth).zip(vals).foreach { case (d, s) => d := s }
+  Seq(o.px, o.py, o.pz, o.nx, o.ny, o.nz, o.depth, o.d, o.nw).zip(vals).foreach { case (d, s) => d := s }
   o.hit       := ops.delay(b.hit, 0, latency)
   o.kind      := ops.delay(b.kind, 0, latency)
   o.tag       := ops.delay(b.meta.tag, 0, latency)

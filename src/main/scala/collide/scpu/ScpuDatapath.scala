@@ -14,7 +14,8 @@ import collide.fp._
   *   tW         n = u * w                                                      (FpMul x3)
   *   tM         n * k, tM = max(k ready, n ready)                              (FpMul x3)
   *   tM+Lm      pos = p1 + n * k                                               (FpAdd x3)
-  *   tOut       select: separated -> zeros; d <= 0 -> (p1, (1,0,0), rs); else (pos, n, depth)
+  *   tOut       select: separated -> zeros; d <= 0 -> (p1, (1,0,0), rs); else (pos, n, depth),
+  *              and d, w beside them for a Contact (the derived record layout)
   * Everything that skips an operator goes through delay-matching Pipeline registers.
   *
   * Flags (docs/scpu.md): always the input conversions, the differences, r1 + r2, d's path and
@@ -105,6 +106,8 @@ class ScpuDatapath(cfg: ScpuConfig) extends Module {
   private val nO    = nM.map(x => ops.delay(x, tM, tOut))
   private val depthO = ops.delay(depth.bits.bits, tD + la, tOut)
   private val rsO   = ops.delay(rsD.bits, tD, tOut)
+  private val dO    = ops.delay(d, tD, tOut)
+  private val wO    = ops.delay(wv.w, tW, tOut)
   private def pick(c: UInt, co: UInt): UInt = Mux(contact, c, Mux(coinc, co, 0.U(w.W)))
 
   private val o = io.out.bits
@@ -113,6 +116,8 @@ class ScpuDatapath(cfg: ScpuConfig) extends Module {
   o.px := pick(posO(0), p1O(0)); o.py := pick(posO(1), p1O(1)); o.pz := pick(posO(2), p1O(2))
   o.nx := pick(nO(0), one);      o.ny := pick(nO(1), 0.U);      o.nz := pick(nO(2), 0.U)
   o.depth := pick(depthO, rsO)
+  o.d  := Mux(contact, dO, 0.U)
+  o.nw := Mux(contact, wO, 0.U)
   o.meta.tag       := ops.delay(in.meta.tag, 0, tOut)
   o.meta.nonFinite := ops.delay(in.meta.nonFinite, 0, tOut)
   o.meta.flags     := baseFlags | Mux(contact, contactFlags, 0.U)

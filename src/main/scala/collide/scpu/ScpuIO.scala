@@ -21,7 +21,8 @@ class ScpuIn(val linkWidth: Int, val tagBits: Int) extends Bundle {
 }
 
 /** One SCPU result in the link format. Fields other than hit/kind/flags/tag are zero when
-  * there is no contact.
+  * there is no contact; `d` and `nw` (the distance and the normal's factor) only for a
+  * Contact (kind 1), zero otherwise.
   */
 class ScpuOut(val linkWidth: Int, val tagBits: Int) extends Bundle {
   val hit   = Bool()
@@ -29,6 +30,7 @@ class ScpuOut(val linkWidth: Int, val tagBits: Int) extends Bundle {
   val px = UInt(linkWidth.W); val py = UInt(linkWidth.W); val pz = UInt(linkWidth.W)
   val nx = UInt(linkWidth.W); val ny = UInt(linkWidth.W); val nz = UInt(linkWidth.W)
   val depth = UInt(linkWidth.W)
+  val d = UInt(linkWidth.W); val nw = UInt(linkWidth.W)
   val nonFinite = Bool() // a NaN or infinity among the eight inputs
   val flags = UInt(collide.fp.FpFlags.width.W) // OR of every operator's exception flags
   val tag   = UInt(tagBits.W)

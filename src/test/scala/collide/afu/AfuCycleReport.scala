@@ -31,7 +31,7 @@ object AfuCycleReport {
         0.1 + rnd.nextDouble() * 0.4).map(ScpuModel.fromDouble(lf, _)))
       val all = (0 until p2).map(_ => (rnd.nextInt(ns), rnd.nextInt(ns)))
       def runOnce(p: Int): RunResult = {
-        val w = World(lf.width, spheres, all.take(p), dense = false)
+        val w = World(cfg.layout, spheres, all.take(p), dense = false)
         val r = AfuRun.run(new HostMemoryModel(dut.io, dut.clock, LinkBehaviour.ideal, seed, cfg.maxReadsOutstanding,
           cfg.maxWritesOutstanding), w, maxCycles = 50L * p + 100000)
         val errs = AfuRun.check(w, AfuWorlds.expect(cfg.scpu, w), r)

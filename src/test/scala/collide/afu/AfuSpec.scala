@@ -24,7 +24,7 @@ class AfuSpec extends AnyFlatSpec with ChiselScalatestTester {
       var pairsRun = 0L; var hits = 0L
       for (i <- 0 until worlds) {
         val b = behaviours(i % behaviours.size)
-        val world = AfuWorlds.random(rnd, cfg.scpu, cfg.maxSpheres, rnd.nextInt(maxPairs + 1),
+        val world = AfuWorlds.random(rnd, cfg, rnd.nextInt(maxPairs + 1),
           dense = i % 2 == 1, specials = i % 3 == 2)
         val capped = if (i % 5 == 4) world.copy(capacity = Some(rnd.nextInt(world.pairs.size / 4 + 2).toLong)) else world
         val mem = new HostMemoryModel(dut.io, dut.clock, b, rnd.nextLong(), cfg.maxReadsOutstanding, cfg.maxWritesOutstanding)
@@ -34,15 +34,21 @@ class AfuSpec extends AnyFlatSpec with ChiselScalatestTester {
           s"cap=${capped.capacity}): ${errs.mkString("; ")}\n${r.status}")
         pairsRun += capped.pairs.size; hits += r.status.get.found
       }
-      println(s"[AfuSpec] ${cfg.id}: $worlds worlds, $pairsRun pairs, $hits contacts, all equal to ScpuModel")
+      println(s"[AfuSpec] ${cfg.id} (${cfg.scpu.linkFormat.name} link, ${cfg.recordLayout.name} records): $worlds worlds, $pairsRun pairs, $hits contacts, all equal to ScpuModel")
     }
   }
 
-  it should "equal ScpuModel with one fp32 SCPU" in {
+  it should "equal ScpuModel with one fp32 SCPU (derived records)" in {
     endToEnd(AfuConfig.default.copy(scpus = 1, maxSpheres = 512), Seeds.cases(12))
   }
-  it should "equal ScpuModel with two fp16 SCPUs" in {
+  it should "equal ScpuModel with one fp32 SCPU (full records)" in {
+    endToEnd(AfuConfig.paper.copy(scpus = 1, maxSpheres = 512), Seeds.cases(8))
+  }
+  it should "equal ScpuModel with two fp16 SCPUs on a binary16 link (derived records)" in {
     endToEnd(AfuConfig.fp16.copy(scpus = 2, maxSpheres = 512), Seeds.cases(12))
+  }
+  it should "equal ScpuModel with two bf16 SCPUs on a bfloat16 link (full records)" in {
+    endToEnd(AfuConfig.fp16Full.copy(scpus = 2, maxSpheres = 512, scpu = collide.scpu.ScpuConfig.bf16), Seeds.cases(8))
   }
   it should "equal ScpuModel with four fp32 SCPUs" in {
     endToEnd(AfuConfig.default.copy(scpus = 4, maxSpheres = 512), Seeds.cases(9))

@@ -3,30 +3,31 @@ package collide.afu
 import chisel3._
 import chiseltest._
 
-/** One contact record, decoded: seven link words (px, py, pz, nx, ny, nz, depth), the pair
-  * index and the record flags. */
+/** One contact record, decoded: the layout's value fields as link words (full: px, py, pz,
+  * nx, ny, nz, depth; derived: d, w), the pair index and the record flags. */
 final case class AfuRecord(fields: Seq[BigInt], pair: Int, flags: Int) {
   def hit: Boolean = (flags & 1) != 0
   override def toString: String =
     f"rec(pair=$pair flags=0x$flags%02x ${fields.map(f => f"0x$f%x").mkString(",")})"
 }
 object AfuRecord {
-  def invalid(pair: Int) = AfuRecord(Seq.fill(7)(BigInt(0)), pair, 3 << 1)
+  def invalid(lay: BufferLayout, pair: Int) = AfuRecord(Seq.fill(lay.valueFields)(BigInt(0)), pair, 3 << 1)
   def word(line: BigInt, bit: Int, w: Int): BigInt = (line >> bit) & ((BigInt(1) << w) - 1)
-  def decode(line: BigInt, slot: Int, w: Int): AfuRecord = {
-    val lay = BufferLayout(w)
+  def decode(line: BigInt, slot: Int, lay: BufferLayout): AfuRecord = {
+    val w = lay.linkWidth
     val b = slot * lay.recordBytes * 8
-    val fields = (0 until 7).map(i => word(line, b + i * w, w))
+    val fields = (0 until lay.valueFields).map(i => word(line, b + i * w, w))
     AfuRecord(fields, word(line, b + lay.pairIndexBit, 24).toInt, word(line, b + lay.flagsBit, 8).toInt)
   }
-  def isZero(line: BigInt, slot: Int, w: Int): Boolean =
-    word(line, slot * BufferLayout(w).recordBytes * 8, BufferLayout(w).recordBytes * 8) == 0
+  /** Whether a line is zero from record slot `slot` to its end (unused slots and padding). */
+  def zeroFrom(line: BigInt, slot: Int, lay: BufferLayout): Boolean = (line >> (slot * lay.recordBytes * 8)) == 0
 }
 
 /** A run's input: spheres as link words (x, y, z, r), pairs of indices, the mode and the
   * contact buffer's capacity (None: room for every record). */
-final case class World(w: Int, spheres: IndexedSeq[Seq[BigInt]], pairs: IndexedSeq[(Int, Int)],
+final case class World(lay: BufferLayout, spheres: IndexedSeq[Seq[BigInt]], pairs: IndexedSeq[(Int, Int)],
                        dense: Boolean, capacity: Option[Long] = None, numSpheres: Option[Long] = None) {
+  def w: Int = lay.linkWidth
   def nSpheres: Long = numSpheres.getOrElse(spheres.size.toLong)
   def bad(k: Int): Boolean = pairs(k)._1 >= nSpheres || pairs(k)._2 >= nSpheres
 }
@@ -61,7 +62,7 @@ object AfuRun {
 
   def run(mem: HostMemoryModel, world: World, maxCycles: Long = -1,
           csrOverride: Map[Int, BigInt] = Map.empty): RunResult = {
-    val w = world.w; val lay = BufferLayout(w)
+    val w = world.w; val lay = world.lay
     // sphere table lines
     world.spheres.grouped(lay.spheresPerLine).zipWithIndex.foreach { case (group, l) =>
       val line = group.zipWithIndex.map { case (s, k) =>
@@ -94,11 +95,11 @@ object AfuRun {
 
   /** Checks one run against the expected record of every pair; returns failures (empty = ok). */
   def check(world: World, expect: Int => AfuRecord, r: RunResult, expectErrors: Long = -1): Seq[String] = {
-    val w = world.w; val lay = BufferLayout(w); val R = lay.recordsPerLine
+    val lay = world.lay; val R = lay.recordsPerLine
     val errs = scala.collection.mutable.ArrayBuffer[String]()
     def fail(s: String) = errs += s
     val n = world.pairs.size
-    val exp = (0 until n).map(k => if (world.bad(k)) AfuRecord.invalid(k) else expect(k))
+    val exp = (0 until n).map(k => if (world.bad(k)) AfuRecord.invalid(lay, k) else expect(k))
     val hits = exp.filter(_.hit)
     val cap = world.capacity.getOrElse(n.toLong + 3)
     r.status match {
@@ -110,7 +111,7 @@ object AfuRun {
         if (r.writes.last != sw) fail("status line is not the last write")
         val before = r.writes.indexOf(sw)
         if (sw.respondedBefore < before) fail(s"status written with ${before - sw.respondedBefore} contact writes unacknowledged")
-        val contactLines = lay.contactLines(cap)
+        val contactLines = lay.contactBufferLines(cap, world.dense)
         for (e <- r.writes if e.addr != r.statusAddr)
           if (e.addr < r.contactBase || e.addr >= r.contactBase + contactLines)
             fail(s"write outside the buffers: line 0x${e.addr.toString(16)}")
@@ -135,17 +136,20 @@ object AfuRun {
         if (st.written != written) fail(s"records written ${st.written}, expected $written")
         if (st.nonFinite != nonFin) fail(s"non-finite pairs ${st.nonFinite}, expected $nonFin")
         if (st.firstBad != firstBad) fail(s"first bad pair ${st.firstBad}, expected $firstBad")
-        if (lines.size != lay.contactLines(written)) fail(s"${lines.size} contact lines written, expected ${lay.contactLines(written)}")
+        def place(rn: Long): (Long, Int) =
+          if (world.dense) (lay.denseLine(rn), lay.denseSlot(rn)) else (rn / R, (rn % R).toInt)
+        val wantLines = lay.contactBufferLines(written, world.dense)
+        if (lines.size != wantLines) fail(s"${lines.size} contact lines written, expected $wantLines")
         val byAddr = lines.map(e => e.addr -> e.data).toMap
         val recs = (0L until written).map { rn =>
-          val line = byAddr.getOrElse(r.contactBase + rn / R, BigInt(0))
-          AfuRecord.decode(line, (rn % R).toInt, w)
+          val (l, slot) = place(rn)
+          AfuRecord.decode(byAddr.getOrElse(r.contactBase + l, BigInt(0)), slot, lay)
         }
-        // the unused record of a final half line is zero
-        if (R == 2 && written % 2 == 1) {
-          val line = byAddr.getOrElse(r.contactBase + written / 2, BigInt(0))
-          if (!AfuRecord.isZero(line, 1, w)) fail("the unused half of the last line is not zero")
-        }
+        // slots holding no record, and every line's padding, are zero
+        val used = (0L until written).map(place).groupBy(_._1).map { case (l, ss) => l -> ss.map(_._2).toSet }
+        for (e <- lines; l = (e.addr - r.contactBase).toLong; slot <- 0 until R if !used.getOrElse(l, Set.empty[Int]).contains(slot))
+          if (AfuRecord.word(e.data, slot * lay.recordBytes * 8, lay.recordBytes * 8) != 0) fail(s"line $l slot $slot: not zero")
+        for (e <- lines if !AfuRecord.zeroFrom(e.data, R, lay)) fail(s"line ${e.addr - r.contactBase}: padding not zero")
         if (world.dense) {
           for (k <- 0 until written.toInt if recs(k) != exp(k))
             if (errs.size < 20) fail(s"dense record $k: got ${recs(k)}, expected ${exp(k)}")

@@ -7,9 +7,10 @@ import collide.scpu.model.{ScpuModel, ScpuResult}
 /** Random sphere worlds in real floating point, and the records ScpuModel expects for them. */
 object AfuWorlds {
   /** The record the AFU writes for an SCPU result (docs/afu-interface.md, record flags). */
-  def record(r: ScpuResult, pair: Int): AfuRecord = {
+  def record(lay: BufferLayout, r: ScpuResult, pair: Int): AfuRecord = {
     val arith = (r.flags & (FpFlags.Overflow | FpFlags.Invalid)) != 0
-    AfuRecord(r.fields, pair, (if (r.hit) 1 else 0) | (r.kind << 1) | (if (r.nonFinite) 8 else 0) | (if (arith) 16 else 0))
+    val values = lay.records match { case RecordLayout.Full => r.fields; case RecordLayout.Derived => r.derived }
+    AfuRecord(values, pair, (if (r.hit) 1 else 0) | (r.kind << 1) | (if (r.nonFinite) 8 else 0) | (if (arith) 16 else 0))
   }
 
   def expect(cfg: ScpuConfig, world: World): Int => AfuRecord = {
@@ -17,16 +18,16 @@ object AfuWorlds {
     k => {
       val (i, j) = world.pairs(k)
       val Seq(x1, y1, z1, r1) = world.spheres(i); val Seq(x2, y2, z2, r2) = world.spheres(j)
-      record(m.collide(x1, y1, z1, r1, x2, y2, z2, r2, BigInt(k)), k)
+      record(world.lay, m.collide(x1, y1, z1, r1, x2, y2, z2, r2, BigInt(k)), k)
     }
   }
 
   /** Spheres in a box (about one pair in six collides), with some coincident pairs (i, i),
     * exactly grazing pairs, copies, and, when `specials`, NaN / infinite / huge values and
     * out-of-range indices. */
-  def random(rnd: scala.util.Random, cfg: ScpuConfig, maxSpheres: Int, nPairs: Int, dense: Boolean,
-             specials: Boolean): World = {
-    val lf = cfg.linkFormat
+  def random(rnd: scala.util.Random, cfg: AfuConfig, nPairs: Int, dense: Boolean, specials: Boolean): World = {
+    val maxSpheres = cfg.maxSpheres
+    val lf = cfg.scpu.linkFormat
     def bits(v: Double) = ScpuModel.fromDouble(lf, v)
     val ns = 2 + rnd.nextInt(math.min(maxSpheres, 300) - 1)
     val side = 3.0 + rnd.nextDouble() * 3
@@ -48,6 +49,6 @@ object AfuWorlds {
         case _ => (rnd.nextInt(ns), rnd.nextInt(ns))
       }
     }
-    World(lf.width, spheres, pairs, dense)
+    World(cfg.layout, spheres, pairs, dense)
   }
 }

@@ -39,14 +39,60 @@ class GenerateSpec extends AnyFlatSpec {
     err("--ram-ports", "banked")("--ram-ports", "not implemented")
   }
 
-  it should "write every CSR, status offset and flag into the manifest and the header" in {
+  it should "pick the link format from the compute format, or the one asked for" in {
+    import collide.fp.FloatFormat
+    assert(cfg("--format", "fp16").toOption.get.scpu.linkFormat == FloatFormat.fp16)
+    assert(cfg("--format", "bf16").toOption.get.scpu.linkFormat == FloatFormat.bf16)
+    assert(cfg("--format", "fp24").toOption.get.scpu.linkFormat == FloatFormat.fp32)
+    assert(cfg("--format", "fp64").toOption.get.scpu.linkFormat == FloatFormat.fp64)
+    assert(cfg("--scpu", "fp16:link=fp32").toOption.get.layout.sphereBytes == 16)
+    assert(cfg("--scpu", "fp16").toOption.get.layout.spheresPerLine == 8)
+    val e = cfg("--scpu", "fp32:link=fp16")
+    assert(e.isLeft && e.swap.toOption.get.contains("does not hold every fp32 value"), e.toString)
+  }
+
+  it should "default to derived records where the host rebuilds them exactly and refuse them elsewhere, saying why" in {
+    assert(AfuConfig.default.recordLayout == RecordLayout.Derived)
+    assert(AfuConfig.paper.recordLayout == RecordLayout.Full)
+    assert(cfg("--scpu", "fp32:rm=rtz").toOption.get.recordLayout == RecordLayout.Full)
+    assert(cfg("--records", "full").toOption.get.layout.recordBytes == 32)
+    def refused(args: String*)(why: String) = {
+      val e = cfg(args: _*)
+      assert(e.isLeft, s"$args should fail")
+      val m = e.swap.toOption.get
+      assert(m.startsWith("--records") && m.contains("derived") && m.contains(why), m)
+    }
+    refused("--scpu", "fp32:rm=rtz", "--records", "derived")("RNE")
+    refused("--scpu", "fp32:subnormals=off", "--records", "derived")("subnormals")
+    refused("--format", "e8m30", "--records", "derived")("2p+2")
+    assert(cfg("--records", "masked").swap.toOption.get.contains("expected one of full, derived"))
+  }
+
+  it should "size records from the layout and the link width" in {
+    // (link width, layout) -> (record bytes, records a line)
+    val want = Map((16, RecordLayout.Full) -> (18, 3), (16, RecordLayout.Derived) -> (8, 8),
+      (32, RecordLayout.Full) -> (32, 2), (32, RecordLayout.Derived) -> (12, 5),
+      (64, RecordLayout.Full) -> (60, 1), (64, RecordLayout.Derived) -> (20, 3))
+    for (((w, l), (bytes, per)) <- want) {
+      val b = BufferLayout(w, l)
+      assert(b.recordBytes == bytes && b.recordsPerLine == per, s"$w $l: ${b.recordBytes} B, ${b.recordsPerLine} a line")
+      assert(b.pairIndexBit == l.fields.size * w && b.flagsBit == b.pairIndexBit + 24)
+    }
+  }
+
+  it should "write every CSR, status offset and flag into the manifest and the contract headers" in {
     val c = AfuConfig.fp64.copy(scpus = 3)
     val m = AfuManifest.json(c, "cmd")
-    val h = AfuManifest.header(c, "cmd")
-    for ((k, v) <- Csr.all) { assert(m("csr")(k).num == v); assert(h.contains(s"CSR_$k = ${v}u;")) }
+    val h = AfuContract.cpp; val sv = AfuContract.sv
+    for ((k, v) <- Csr.all) {
+      assert(m("csr")(k).num == v); assert(h.contains(s"CSR_$k = ${v}u;")); assert(sv.contains(s"AFU_CSR_$k = $v;"))
+    }
     for ((k, v) <- StatusLine.all) { assert(m("status")(k).num == v); assert(h.contains(s"STATUS_$k = ${v}u;")) }
-    for ((k, v) <- ErrorFlags.all) assert(h.contains(s"ERR_$k = ${v}u;"))
-    assert(m("link")("format").str == "binary64" && h.contains("records_per_line = 1;") && h.contains("spheres_per_line = 2;"))
+    for ((k, v) <- ErrorFlags.all) { assert(h.contains(s"ERR_$k = ${v}u;")); assert(sv.contains(s"AFU_ERR_$k = $v;")) }
+    for ((k, v) <- RecordFlags.all) assert(h.contains(s"REC_$k = ${v}u;"))
+    for (l <- RecordLayout.all) assert(h.contains(s"LAYOUT_${l.name.toUpperCase} = ${l.code}u;"))
+    assert(m("link")("format").str == "binary64" && m("buffers")("recordsPerLine").num == 3 && m("buffers")("spheresPerLine").num == 2)
+    assert(m("buffers")("records")("layout").str == "derived" && m("buffers")("records")("fields").arr.map(_.str) == Seq("d", "w"))
     assert(m("afu")("ram")("sphereTableBits").num == 3.0 * 1024 * 4 * 64)
     assert(m("scpu")("latency").num == c.scpu.latency)
   }

@@ -10,11 +10,13 @@ import collide.testutil.Seeds
 class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
   behavior of "Puc"
 
-  def params(n: Int, w: Int, maxSpheres: Int = 256, reads: Int = 16, writes: Int = 8) =
+  def params(n: Int, w: Int, maxSpheres: Int = 256, reads: Int = 16, writes: Int = 8,
+             records: RecordLayout = RecordLayout.Full) =
     PucParams(scpus = n, linkWidth = w, scpuTagBits = 24, scpuLatency = 3, maxSpheres = maxSpheres,
-      maxReads = reads, maxWrites = writes, tagBits = 6, name = s"_t$n")
+      maxReads = reads, maxWrites = writes, tagBits = 6, records = records, name = s"_t${n}_w${w}_${records.name}")
 
-  def randomWorld(rnd: scala.util.Random, w: Int, maxSpheres: Int, dense: Boolean, bad: Boolean): World = {
+  def randomWorld(rnd: scala.util.Random, lay: BufferLayout, maxSpheres: Int, dense: Boolean, bad: Boolean): World = {
+    val w = lay.linkWidth
     val ns = 1 + rnd.nextInt(maxSpheres)
     val spheres = (0 until ns).map { _ =>
       Seq.fill(4)(BigInt(w, rnd.self)).updated(3, if (rnd.nextInt(20) == 0) BigInt(0xff) << (w - 9) else BigInt(w, rnd.self))
@@ -24,20 +26,21 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
       def idx = if (bad && rnd.nextInt(25) == 0) ns + rnd.nextInt(70000 - ns) min 65535 else rnd.nextInt(ns)
       (idx, idx)
     }
-    World(w, spheres, pairs, dense)
+    World(lay, spheres, pairs, dense)
   }
   def stubExpect(world: World)(k: Int): AfuRecord =
-    StubScpu.model(world.w, world.spheres(world.pairs(k)._1), world.spheres(world.pairs(k)._2), k)
+    StubScpu.model(world.lay, world.spheres(world.pairs(k)._1), world.spheres(world.pairs(k)._2), k)
 
-  def soak(n: Int, w: Int, worlds: Int, beh: Seq[LinkBehaviour], anno: Seq[firrtl2.annotations.Annotation] = Seq()): Unit = {
-    val p = params(n, w)
-    val rnd = Seeds.rng(s"PucSpec-n$n-w$w")
+  def soak(n: Int, w: Int, worlds: Int, beh: Seq[LinkBehaviour], anno: Seq[firrtl2.annotations.Annotation] = Seq(),
+           records: RecordLayout = RecordLayout.Full): Unit = {
+    val p = params(n, w, records = records)
+    val rnd = Seeds.rng(s"PucSpec-n$n-w$w-${records.name}")
     test(new PucHarness(p, 3)).withAnnotations(anno) { dut =>
       dut.clock.setTimeout(0)
       for (i <- 0 until worlds) {
         val b = beh(i % beh.size)
         val mem = new HostMemoryModel(dut.io, dut.clock, b, rnd.nextLong(), p.maxReads, p.maxWrites)
-        val world = randomWorld(rnd, w, p.maxSpheres, dense = rnd.nextBoolean(), bad = rnd.nextInt(3) == 0)
+        val world = randomWorld(rnd, p.layout, p.maxSpheres, dense = rnd.nextBoolean(), bad = rnd.nextInt(3) == 0)
         val cap = if (rnd.nextInt(5) == 0) Some(rnd.nextInt(world.pairs.size + 2).toLong) else None
         val wc = world.copy(capacity = cap)
         val r = AfuRun.run(mem, wc)
@@ -56,6 +59,14 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
   it should "account for every pair with three SCPUs (groups not dividing a line), binary64 link" in {
     soak(3, 64, Seeds.cases(12), Seq(LinkBehaviour.hostile, LinkBehaviour.ideal), verilator)
   }
+  // Every record packing: (link width, layout) -> records a line 3 (16 full), 5 (32 derived),
+  // 8 (16 derived), 3 (64 derived); 2 and 1 are the two cases above.
+  for ((w, lay, n) <- Seq((16, RecordLayout.Full, 2), (32, RecordLayout.Derived, 5), (16, RecordLayout.Derived, 16),
+                         (64, RecordLayout.Derived, 3))) {
+    it should s"account for every pair with $n SCPUs, $w-bit link fields and ${lay.name} records (${BufferLayout(w, lay).recordsPerLine} a line)" in {
+      soak(n, w, Seeds.cases(10), Seq(LinkBehaviour.hostile, LinkBehaviour.ideal), verilator, lay)
+    }
+  }
 
   it should "give identical writes, cycles and status lines when the host skips its idle cycles" in {
     val p = params(4, 32)
@@ -65,7 +76,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
       var skipped = 0L
       for (i <- 0 until Seeds.cases(8)) {
         val b = Seq(LinkBehaviour.harp, LinkBehaviour.hostile)(i % 2)
-        val world = randomWorld(rnd, 32, p.maxSpheres, dense = rnd.nextBoolean(), bad = i % 3 == 2)
+        val world = randomWorld(rnd, p.layout, p.maxSpheres, dense = rnd.nextBoolean(), bad = i % 3 == 2)
         val seed = rnd.nextLong()
         def once(skip: Boolean): (RunResult, Long) = {
           dut.reset.poke(true.B); dut.clock.step(); dut.reset.poke(false.B)
@@ -94,7 +105,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
       def mem() = new HostMemoryModel(dut.io, dut.clock, LinkBehaviour.hostile, rnd.nextLong(), p.maxReads, p.maxWrites)
       val spheres = (0 until 40).map(_ => Seq.fill(4)(BigInt(32, rnd.self)))
       val pairs = (0 until 37).map(_ => (rnd.nextInt(40), rnd.nextInt(40)))
-      val base = World(32, spheres, pairs, dense = false)
+      val base = World(p.layout, spheres, pairs, dense = false)
       def go(w: World, expectErr: Long = -1, csr: Map[Int, BigInt] = Map.empty): RunResult = {
         val r = AfuRun.run(mem(), w, csrOverride = csr)
         val errs = AfuRun.check(w, stubExpect(w), r, expectErr)
@@ -134,7 +145,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
         dut.clock.setTimeout(0)
         val spheres = (0 until 256).map(_ => Seq.fill(4)(BigInt(32, rnd.self)))
         for (dense <- Seq(false, true)) {
-          val w = World(32, spheres, (0 until 16 * 120).map(_ => (rnd.nextInt(256), rnd.nextInt(256))), dense)
+          val w = World(p.layout, spheres, (0 until 16 * 120).map(_ => (rnd.nextInt(256), rnd.nextInt(256))), dense)
           val r = AfuRun.run(new HostMemoryModel(dut.io, dut.clock, LinkBehaviour.ideal, rnd.nextLong(), 64, 64), w)
           val errs = AfuRun.check(w, stubExpect(w), r)
           assert(errs.isEmpty, errs.mkString("; "))

@@ -22,6 +22,9 @@ class StubScpu(w: Int, tagBits: Int, latency: Int) extends Module {
   o.px := Mux(hit, i.x1, 0.U); o.py := Mux(hit, i.y1, 0.U); o.pz := Mux(hit, i.z1, 0.U)
   o.nx := Mux(hit, i.x2, 0.U); o.ny := Mux(hit, i.y2, 0.U); o.nz := Mux(hit, i.z2, 0.U)
   o.depth := Mux(hit, i.r1 ^ i.r2, 0.U)
+  // d and w only for a Contact (kind 1), as the real SCPU
+  o.d  := Mux(hit && !i.z1(0), i.x1 ^ i.z2, 0.U)
+  o.nw := Mux(hit && !i.z1(0), i.y1 ^ i.r2, 0.U)
   o.nonFinite := i.r1(w - 2, w - 9).andR
   o.flags := Mux(i.r2(1), collide.fp.FpFlags.Overflow.U, 0.U) | Mux(i.r2(2), collide.fp.FpFlags.Inexact.U, 0.U)
   o.tag := i.tag
@@ -33,7 +36,8 @@ class StubScpu(w: Int, tagBits: Int, latency: Int) extends Module {
 
 object StubScpu {
   /** The stub's function on link-format words (x1..r2), as the record the AFU should write. */
-  def model(w: Int, s1: Seq[BigInt], s2: Seq[BigInt], pair: Int): AfuRecord = {
+  def model(lay: BufferLayout, s1: Seq[BigInt], s2: Seq[BigInt], pair: Int): AfuRecord = {
+    val w = lay.linkWidth
     val Seq(x1, y1, z1, r1) = s1; val Seq(x2, y2, z2, r2) = s2
     val hit = ((x1 & 15) ^ (y2 & 15)) < 5
     val kind = if (!hit) 0 else if (z1.testBit(0)) 2 else 1
@@ -42,8 +46,9 @@ object StubScpu {
     val arith = r2.testBit(1)
     val z = BigInt(0)
     val flags = (if (hit) 1 else 0) | (kind << 1) | (if (nonFinite) 8 else 0) | (if (arith) 16 else 0)
-    if (hit) AfuRecord(Seq(x1, y1, z1, x2, y2, z2, r1 ^ r2), pair, flags)
-    else AfuRecord(Seq.fill(7)(z), pair, flags)
+    val full = if (hit) Seq(x1, y1, z1, x2, y2, z2, r1 ^ r2) else Seq.fill(7)(z)
+    val derived = if (kind == 1) Seq(x1 ^ z2, y1 ^ r2) else Seq(z, z)
+    AfuRecord(if (lay.records == RecordLayout.Full) full else derived, pair, flags)
   }
 }
 

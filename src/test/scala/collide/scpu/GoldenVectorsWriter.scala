@@ -3,15 +3,18 @@ package collide.scpu
 import collide.fp.FpFlags
 import collide.scpu.model._
 
-/** Writes the golden vectors the C++ host checks the Verilated AFU against
-  * (test/vectors/<preset>.csv, format in docs/host.md): the hard cases plus seeded random
-  * pairs, inputs and expected outputs as C99 hex floats in the link format, all produced by
-  * the Scala golden model. Binary32 link formats only (the host's vector mode parses floats).
+/** Writes the golden vectors the C++ host checks the Verilated AFU and its record decoders
+  * against (test/vectors/<preset>.csv, format in docs/host.md): the hard cases plus seeded
+  * random pairs, inputs and expected outputs as C99 hex floats of the link format's values,
+  * with the derived record's d and w, all produced by the Scala golden model.
   *
   * usage: tools/sbt "Test/runMain collide.scpu.GoldenVectorsWriter [preset] [out.csv] [randomPairs] [seed]"
   */
 object GoldenVectorsWriter {
   def hex32(bits: BigInt): String = java.lang.Float.toHexString(java.lang.Float.intBitsToFloat(bits.toInt))
+  /** The exact value of a link word as a hex float (binary32 as Float.toHexString prints it). */
+  def hex(lf: collide.fp.FloatFormat, bits: BigInt): String =
+    if (lf == collide.fp.FloatFormat.fp32) hex32(bits) else java.lang.Double.toHexString(ScpuModel.toDouble(lf, bits))
 
   /** The dense record's flags byte (docs/afu-interface.md). */
   def recordFlags(r: ScpuResult): Int =
@@ -24,7 +27,6 @@ object GoldenVectorsWriter {
     val n      = args.lift(2).map(_.toInt).getOrElse(3000)
     val seed   = args.lift(3).map(_.toLong).getOrElse(20261122L)
     val cfg = ScpuConfig.parse(preset).fold(e => sys.error(e), identity)
-    require(cfg.linkWidth == 32, s"golden vectors: preset $preset has a binary64 link; the host's vector files are binary32")
     val vec   = new ScpuVectors(cfg)
     val model = ScpuModel(cfg)
     val rng   = new scala.util.Random(seed)
@@ -35,11 +37,12 @@ object GoldenVectorsWriter {
     if (dir != null) dir.mkdirs()
     val w = new java.io.PrintWriter(out)
     try {
-      w.println("x1,y1,z1,r1,x2,y2,z2,r2,hit,px,py,pz,nx,ny,nz,depth,flags")
+      val lf = cfg.linkFormat
+      w.println("x1,y1,z1,r1,x2,y2,z2,r2,hit,px,py,pz,nx,ny,nz,depth,flags,d,w")
       for (p <- pairs) {
         val r = model.collide(p)
-        w.println((p.fields.map(hex32) ++ Seq(if (r.hit) "1" else "0") ++ r.fields.map(hex32) ++
-          Seq(recordFlags(r).toString)).mkString(","))
+        w.println((p.fields.map(hex(lf, _)) ++ Seq(if (r.hit) "1" else "0") ++ r.fields.map(hex(lf, _)) ++
+          Seq(recordFlags(r).toString) ++ r.derived.map(hex(lf, _))).mkString(","))
       }
     } finally w.close()
     println(s"wrote ${pairs.size} golden vectors for ${cfg.name} to $out")

@@ -13,9 +13,16 @@ class ScpuConfigSpec extends AnyFlatSpec {
     assert(c.distance == DistanceMethod.SqrtThenRecip && c.isPreset && c.id == "fp32")
   }
 
-  it should "carry binary32 on the link up to fp32 and binary64 beyond" in {
-    assert(ScpuConfig.all.filter(_.format != FloatFormat.fp64).forall(_.linkWidth == 32))
-    assert(ScpuConfig.fp64.linkWidth == 64)
+  it should "carry fp16 and bf16 as themselves, binary32 up to fp32 and binary64 beyond" in {
+    for (c <- ScpuConfig.all) {
+      val want = if (c.format == FloatFormat.fp16 || c.format == FloatFormat.bf16) c.format
+        else if (c.format == FloatFormat.fp64) FloatFormat.fp64 else FloatFormat.fp32
+      assert(c.linkFormat == want, c.name)
+    }
+    assert(ScpuConfig.fp16.linkWidth == 16 && ScpuConfig.fp64.linkWidth == 64)
+    assert(ScpuConfig.fp16.copy(link = Some(FloatFormat.fp32)).linkWidth == 32)
+    assert(ScpuConfig.parse("fp32:link=fp16").isLeft && ScpuConfig.parse("fp16:link=bf16").isLeft)
+    assert(ScpuConfig.parse("fp24:link=fp24").swap.toOption.get.contains("not one the host can carry"))
     assert(ScpuConfig.fp32.copy(format = FloatFormat(9, 20)).linkFormat == FloatFormat.fp64)
   }
 
@@ -28,7 +35,8 @@ class ScpuConfigSpec extends AnyFlatSpec {
     // fp32: no conversion; sub 1, squares 1, two adds 2, sqrt 7, recip 7, normal 1, n*k 1, pos 1.
     assert(c.cvtLat == 0 && c.sqrtLat == 7 && c.recipLat == 7)
     assert(c.latency == 1 + (1 + 2) + 7 + 7 + 1 + 1 + 1)
-    assert(ScpuConfig.fp16.cvtLat == 1 && ScpuConfig.fp16.latency == ScpuConfig.fp16.coreLatency + 2)
+    assert(ScpuConfig.fp16.cvtLat == 0 && ScpuConfig.fp16.latency == ScpuConfig.fp16.coreLatency)
+    assert(ScpuConfig.fp24.cvtLat == 1 && ScpuConfig.fp24.latency == ScpuConfig.fp24.coreLatency + 2)
   }
 
   it should "name every preset distinctly and find each by name" in {

@@ -17,7 +17,7 @@ class ScpuPort(val cfg: ScpuConfig) extends Bundle {
 
 object ScpuPort {
   def inWidth(c: ScpuConfig): Int  = 8 * c.linkWidth + c.tagBits
-  def outWidth(c: ScpuConfig): Int = 1 + 2 + 7 * c.linkWidth + 1 + collide.fp.FpFlags.width + c.tagBits
+  def outWidth(c: ScpuConfig): Int = 1 + 2 + 9 * c.linkWidth + 1 + collide.fp.FpFlags.width + c.tagBits
 
   /** ScpuIn.asUInt: the first field (x1) in the most significant bits, tag in the least. */
   def pack(c: ScpuConfig, p: ScpuPair, tag: BigInt): BigInt =
@@ -28,9 +28,9 @@ object ScpuPort {
     var b = bits
     def take(w: Int): BigInt = { val v = b & ((BigInt(1) << w) - 1); b >>= w; v }
     val tag = take(c.tagBits); val flags = take(collide.fp.FpFlags.width).toInt; val nonFinite = take(1) == 1
-    val Seq(depth, nz, ny, nx, pz, py, px) = Seq.fill(7)(take(c.linkWidth))
+    val Seq(w, d, depth, nz, ny, nx, pz, py, px) = Seq.fill(9)(take(c.linkWidth))
     val kind = take(2).toInt; val hit = take(1) == 1
-    ScpuResult(hit, kind, px, py, pz, nx, ny, nz, depth, nonFinite, flags, tag)
+    ScpuResult(hit, kind, px, py, pz, nx, ny, nz, depth, nonFinite, flags, tag, d, w)
   }
 }
 

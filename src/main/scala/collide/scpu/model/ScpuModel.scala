@@ -24,12 +24,14 @@ object ScpuPair {
 /** One SCPU result, as io.out carries it: link-format bit patterns (zero when !hit). */
 final case class ScpuResult(hit: Boolean, kind: Int, px: BigInt, py: BigInt, pz: BigInt,
                             nx: BigInt, ny: BigInt, nz: BigInt, depth: BigInt,
-                            nonFinite: Boolean, flags: Int, tag: BigInt) {
+                            nonFinite: Boolean, flags: Int, tag: BigInt, d: BigInt, w: BigInt) {
   def fields: Seq[BigInt] = Seq(px, py, pz, nx, ny, nz, depth)
+  /** The derived record's values: d and the normal's factor w (zero unless a Contact). */
+  def derived: Seq[BigInt] = Seq(d, w)
   def show: String =
     s"hit=$hit kind=$kind pos=(${px.toString(16)},${py.toString(16)},${pz.toString(16)}) " +
       s"n=(${nx.toString(16)},${ny.toString(16)},${nz.toString(16)}) depth=${depth.toString(16)} " +
-      s"nonFinite=$nonFinite flags=${FpFlags.show(flags)} tag=$tag"
+      s"d=${d.toString(16)} w=${w.toString(16)} nonFinite=$nonFinite flags=${FpFlags.show(flags)} tag=$tag"
 }
 
 /** The compute-format values inside the SCPU for one pair, for tests and reports. */
@@ -120,8 +122,8 @@ final class ScpuModel(val cfg: ScpuConfig) {
     val baseFlags = c.map(_.flags).reduce(_ | _) | dx.flags | dy.flags | dz.flags | rs.flags | dist.d.flags | cmp.flags
 
     val (kind, fields, pathFlags) =
-      if (!le) (ContactKind.Separated, Seq.fill(7)(BigInt(0)), 0)
-      else if (dZero) (ContactKind.Coincident, Seq(x1, y1, z1, one, BigInt(0), BigInt(0), rs.bits), 0)
+      if (!le) (ContactKind.Separated, Seq.fill(9)(BigInt(0)), 0)
+      else if (dZero) (ContactKind.Coincident, Seq(x1, y1, z1, one, BigInt(0), BigInt(0), rs.bits, BigInt(0), BigInt(0)), 0)
       else {
         val depth = sub(rs.bits, d)
         val k0 = sub(rdiff.bits, d)
@@ -130,12 +132,12 @@ final class ScpuModel(val cfg: ScpuConfig) {
         val nk = n.map(ni => mul(ni.bits, k.bits))
         val pos = Seq(x1, y1, z1).zip(nk).map { case (pi, t) => add(pi, t.bits) }
         val fl = (Seq(rdiff, dist.w, depth, k0, k) ++ n ++ nk ++ pos).map(_.flags).reduce(_ | _)
-        (ContactKind.Contact, pos.map(_.bits) ++ n.map(_.bits) :+ depth.bits, fl)
+        (ContactKind.Contact, pos.map(_.bits) ++ n.map(_.bits) ++ Seq(depth.bits, d, dist.w.bits), fl)
       }
     val out = fields.map(convertOut)
     val flags = baseFlags | pathFlags | out.map(_.flags).reduce(_ | _)
     val o = out.map(_.bits)
-    val res = ScpuResult(le, kind, o(0), o(1), o(2), o(3), o(4), o(5), o(6), nonFinite, flags, in.tag)
+    val res = ScpuResult(le, kind, o(0), o(1), o(2), o(3), o(4), o(5), o(6), nonFinite, flags, in.tag, o(7), o(8))
     ScpuTrace(c, dx, dy, dz, rs, rdiff, dist, le, dZero, res)
   }
 
