@@ -37,12 +37,9 @@ namespace {
 Manifest builtIn() { return parseManifest(builtInAfuManifest(), "the built-in AFU's manifest"); }
 
 DriverOptions options(bool dense = false) {
-  const auto m = builtIn();
   DriverOptions o;
-  o.format = m.format;
-  o.maxSpheres = m.maxSpheres;
   o.dense = dense;
-  return o;
+  return withManifest(o, builtIn());
 }
 
 bool sameValue(double a, double b) {

@@ -42,7 +42,7 @@ function(collide_verilate target)
   # -w: the generated C++ is not ours to warn about (the project builds with -Wall -Wextra).
   verilate(${target} SOURCES ${CV_SOURCES} TOP_MODULE ${CV_TOP} PREFIX ${CV_PREFIX} ${trace_kw}
            VERILATOR_ARGS -Wno-fatal -Wno-lint -Wno-style --x-assign fast --x-initial fast
-                          --output-split 20000 --output-split-cfuncs 20000 ${CV_ARGS}
+                          --output-split 20000 --output-split-cfuncs 20000 -I${COLLIDE_REPO_ROOT}/generated ${CV_ARGS}
            OPT_FAST ${COLLIDE_VERILATOR_OPT_FAST} -w
            OPT_SLOW -O0 -w
            OPT_GLOBAL -O2 -w)

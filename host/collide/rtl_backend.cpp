@@ -11,11 +11,7 @@ namespace {
 driver::DriverOptions fromManifest(const std::filesystem::path& dir, driver::DriverOptions o) {
   const auto m = dir.empty() ? driver::parseManifest(driver::builtInAfuManifest(), "the built-in AFU's manifest")
                              : driver::loadManifest(dir);
-  o.format = m.format;
-  o.records = m.records;
-  o.arith = m.arith;
-  o.maxSpheres = m.maxSpheres;
-  return o;
+  return driver::withManifest(o, m);
 }
 }  // namespace
 

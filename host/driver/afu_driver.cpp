@@ -14,6 +14,14 @@ std::string describeErrors(std::uint32_t f) {
   return s.empty() ? "none" : s;
 }
 
+DriverOptions withManifest(DriverOptions o, const Manifest& m) {
+  o.format = m.format;
+  o.records = m.records;
+  o.arith = m.arith;
+  o.maxSpheres = m.maxSpheres;
+  return o;
+}
+
 AfuDriver::AfuDriver(AfuPort& port, const link::LinkParams& link, const DriverOptions& options)
     : port_(port), opt_(options), link_(link, mem_) {
   port_.reset();

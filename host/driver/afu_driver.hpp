@@ -12,6 +12,7 @@
 #include "driver/afu_layout.hpp"
 #include "driver/afu_port.hpp"
 #include "driver/contact_rebuild.hpp"
+#include "driver/manifest.hpp"
 #include "link/host_memory.hpp"
 #include "link/link_model.hpp"
 
@@ -34,6 +35,9 @@ struct DriverOptions {
   bool skipIdle = true;                      // jump the clock while the AFU idle-waits
   bool throwOnErrorFlags = true;             // any flag but "non-finite input seen"
 };
+
+// `o` with what the manifest fixes: link format, record layout, arithmetic, table size.
+DriverOptions withManifest(DriverOptions o, const Manifest& m);
 
 struct RunStats {
   std::uint64_t cyclesStepped = 0;   // cycles evaluated one by one

@@ -19,6 +19,10 @@
 // double drives no request and changes no state but its cycle counters; an edge with
 // `io_skipCycles` = n > 0 (only ever given while idle) counts as n cycles. Built with
 // +define+NO_SKIP_PORTS it has neither port (only `io_busy`), like an AFU that cannot tell.
+//
+// Every CSR index, status offset, error bit and record field comes from the generated
+// contract (generated/afu_contract.svh); records are the binary32 full layout.
+`include "afu_contract.svh"
 module CollideAfuTestDouble #(
   parameter int MAX_SPHERES = 1024,
   parameter int MAXR = 64,  // reads in flight (<= 64: one bit per 6-bit tag)
@@ -54,8 +58,13 @@ module CollideAfuTestDouble #(
   } state_t;
   state_t state;
 
+  // binary32 full records: seven 32-bit fields, then the tag word.
+  localparam int REC_BITS = (7 * 4 + AFU_TAG_BYTES) * 8;
+  localparam int TAG_BIT  = 7 * 32;
+  localparam int NCSR     = AFU_CSR_MODE + 1;
+
   // CSRs as written, and the run's copy taken at start.
-  logic [63:0] csr [1:8];
+  logic [63:0] csr [1:NCSR-1];
   logic [63:0] sphereBase, numSpheres, pairBase, numPairs, contactBase, capacity, statusAddr;
   logic        dense;
 
@@ -124,10 +133,10 @@ module CollideAfuTestDouble #(
     denseData = 512'd0;
     for (int s = 0; s < 16; s++) begin
       if (4'(s >> 1) == wIdx && 5'(s) < curCount && {32'd0, (curLine << 4) + 32'(s)} < capacity) begin
-        // u32 at byte 28 of the record: pair index | flags << 24 (case 3 = invalid: 0x06)
-        denseData[256 * (s % 2) + 224 +: 32] = ((curLine << 4) + 32'(s)) |
+        // the tag word: pair index | flags << TAG_FLAGS_SHIFT (an invalid pair: kind 3)
+        denseData[REC_BITS * (s % 2) + TAG_BIT +: 32] = ((curLine << 4) + 32'(s)) |
             (({48'd0, curData[32*s +: 16]} >= numSpheres || {48'd0, curData[32*s + 16 +: 16]} >= numSpheres)
-                ? 32'h0600_0000 : 32'd0);
+                ? 32'(AFU_KIND_INVALID << (AFU_REC_KIND_SHIFT + AFU_TAG_FLAGS_SHIFT)) : 32'd0);
       end
     end
   end
@@ -153,11 +162,16 @@ module CollideAfuTestDouble #(
     if (state == STATUS) begin
       wrWant = 1'b1;
       io_wrReq_bits_addr = statusAddr;
-      io_wrReq_bits_data = {
-        64'd0, 32'd0,                                  // bytes 52..63 reserved
-        cycWaitWr, cycWaitRd, cycCompute, cycLoad, cycTotal,  // bytes 48, 44, 40, 36, 32
-        32'd0, firstBad, 32'd0 /* non-finite */, written, 32'd0 /* found */, processed,
-        errors, 32'd1};                                // bytes 4, 0
+      io_wrReq_bits_data[8*AFU_STATUS_DONE +: 32]            = 32'd1;
+      io_wrReq_bits_data[8*AFU_STATUS_ERROR_FLAGS +: 32]     = errors;
+      io_wrReq_bits_data[8*AFU_STATUS_PAIRS_PROCESSED +: 32] = processed;
+      io_wrReq_bits_data[8*AFU_STATUS_RECORDS_WRITTEN +: 32] = written;
+      io_wrReq_bits_data[8*AFU_STATUS_FIRST_BAD_PAIR +: 32]  = firstBad;
+      io_wrReq_bits_data[8*AFU_STATUS_CYCLES_TOTAL +: 32]    = cycTotal;
+      io_wrReq_bits_data[8*AFU_STATUS_CYCLES_LOAD +: 32]     = cycLoad;
+      io_wrReq_bits_data[8*AFU_STATUS_CYCLES_COMPUTE +: 32]  = cycCompute;
+      io_wrReq_bits_data[8*AFU_STATUS_CYCLES_WAIT_RD +: 32]  = cycWaitRd;
+      io_wrReq_bits_data[8*AFU_STATUS_CYCLES_WAIT_WR +: 32]  = cycWaitWr;  // found, non-finite: 0
     end
     io_wrReq_valid = wrWant;
     io_wrReq_bits_tag = wrFree;
@@ -188,17 +202,17 @@ module CollideAfuTestDouble #(
   always_ff @(posedge clock) begin
     if (reset) begin
       state <= IDLE;
-      for (int k = 1; k <= 8; k++) csr[k] <= 64'd0;
+      for (int k = 1; k < NCSR; k++) csr[k] <= 64'd0;
       rdBusy <= 64'd0; rdOut <= 7'd0; wrBusy <= 64'd0; wrOut <= 7'd0;
       issued <= 32'd0; received <= 32'd0; lines <= 32'd0;
       curLine <= 32'd0; curData <= 512'd0; wIdx <= 4'd0;
-      errors <= 32'd0; processed <= 32'd0; written <= 32'd0; firstBad <= 32'hFFFF_FFFF;
+      errors <= 32'd0; processed <= 32'd0; written <= 32'd0; firstBad <= AFU_NO_BAD_PAIR;
       cycTotal <= 32'd0; cycLoad <= 32'd0; cycCompute <= 32'd0; cycWaitRd <= 32'd0; cycWaitWr <= 32'd0;
       sphereBase <= 64'd0; numSpheres <= 64'd0; pairBase <= 64'd0; numPairs <= 64'd0;
       contactBase <= 64'd0; capacity <= 64'd0; statusAddr <= 64'd0; dense <= 1'b0;
     end else begin
       // CSRs: take effect at once; CTRL=1 starts when idle.
-      if (io_csr_valid && io_csr_bits_index >= 8'd1 && io_csr_bits_index <= 8'd8)
+      if (io_csr_valid && io_csr_bits_index != 8'(AFU_CSR_CTRL) && io_csr_bits_index < 8'(NCSR))
         csr[io_csr_bits_index[3:0]] <= io_csr_bits_data;
 
       // Counters: every cycle of a run up to the status write; n at once when skipping.
@@ -225,26 +239,28 @@ module CollideAfuTestDouble #(
         processed <= processed + {27'd0, respCount};
         cycCompute <= cycCompute + 32'd1;
         if (respBad != 16'd0) begin
-          errors[0] <= 1'b1;
+          errors <= errors | AFU_ERR_INDEX_RANGE;
           if (respFirstBad < firstBad) firstBad <= respFirstBad;
         end
       end
 
       case (state)
-        IDLE: if (io_csr_valid && io_csr_bits_index == 8'd0 && io_csr_bits_data == 64'd1) begin
-          sphereBase <= csr[1]; numSpheres <= csr[2]; pairBase <= csr[3]; numPairs <= csr[4];
-          contactBase <= csr[5]; capacity <= csr[6]; statusAddr <= csr[7]; dense <= csr[8][0];
-          errors <= 32'd0; processed <= 32'd0; written <= 32'd0; firstBad <= 32'hFFFF_FFFF;
+        IDLE: if (io_csr_valid && io_csr_bits_index == 8'(AFU_CSR_CTRL) && io_csr_bits_data == 64'(AFU_CTRL_START)) begin
+          sphereBase <= csr[AFU_CSR_SPHERE_BASE]; numSpheres <= csr[AFU_CSR_NUM_SPHERES];
+          pairBase <= csr[AFU_CSR_PAIR_BASE]; numPairs <= csr[AFU_CSR_NUM_PAIRS];
+          contactBase <= csr[AFU_CSR_CONTACT_BASE]; capacity <= csr[AFU_CSR_CONTACT_CAPACITY];
+          statusAddr <= csr[AFU_CSR_STATUS_ADDR]; dense <= (csr[AFU_CSR_MODE] & 64'(AFU_MODE_DENSE)) != 0;
+          errors <= 32'd0; processed <= 32'd0; written <= 32'd0; firstBad <= AFU_NO_BAD_PAIR;
           cycTotal <= 32'd0; cycLoad <= 32'd0; cycCompute <= 32'd0; cycWaitRd <= 32'd0; cycWaitWr <= 32'd0;
           state <= CHECK;
         end
         CHECK: begin
           if (numPairs >= 64'h100_0000 || (numPairs != 0 && pairBase == 0) ||
               (numSpheres != 0 && sphereBase == 0) || (capacity != 0 && contactBase == 0) || statusAddr == 0) begin
-            errors[4] <= 1'b1;
+            errors <= errors | AFU_ERR_BAD_CONFIG;
             state <= statusAddr == 0 ? IDLE : STATUS;
           end else if (numSpheres > 64'(MAX_SPHERES)) begin
-            errors[1] <= 1'b1;
+            errors <= errors | AFU_ERR_TOO_MANY_SPHERES;
             state <= STATUS;
           end else begin
             state <= LOAD;
@@ -279,7 +295,7 @@ module CollideAfuTestDouble #(
             written <= written + ((64'(rec1) < capacity && 5'(rec1 - (curLine << 4)) < curCount) ? 32'd2 : 32'd1);
           end
           if (wIdx == curWrites || {32'd0, rec0} >= capacity) begin
-            if ({32'd0, curLine << 4} + {59'd0, curCount} > capacity) errors[2] <= 1'b1;
+            if ({32'd0, curLine << 4} + {59'd0, curCount} > capacity) errors <= errors | AFU_ERR_CAPACITY;
             curLine <= curLine + 32'd1;
             state <= DREAD;
           end

@@ -14,9 +14,11 @@ class LineWrite extends Bundle {
   * n % R. Dense mode: record k is pair k, and since pair lines may arrive in any order each
   * pair line's 16 records start a contact line of their own: record k at line
   * (k / 16) * ceil(16 / R) + (k % 16) / R, slot (k % 16) % R (the plain k / R whenever R
-  * divides 16). Either way the records of one cycle are consecutive in their line, so the
-  * packer only counts: it holds at most R - 1 records and asks for no more than complete
-  * the line (`room`), so at most one line leaves a cycle. Records at or past
+  * divides 16). Either way the records of one cycle are consecutive, so the packer only
+  * counts. It holds at most R - 1 records. In compact mode it takes up to R a cycle and
+  * keeps what passes the line it completes, so the write port can leave with a full line
+  * every cycle; in dense mode it asks for no more than complete the line (a pair line's
+  * end must end a line too). Either way at most one line leaves a cycle. Records at or past
   * CONTACT_CAPACITY are written as zero, and a line holding none below it is dropped.
   * `flush` (end of run) writes a held partial line with its other slots zero.
   */
@@ -52,7 +54,7 @@ class ContactPacker(p: PucParams) extends Module {
   val lineNo   = RegInit(0.U((idxBits + 1).W))        // compact: lines so far
   val heldLine = Reg(UInt((idxBits + 1).W))           // the held records' line
   val heldRn   = Reg(UInt((idxBits + 1).W))           // record number of its slot 0
-  io.room := Mux(q.io.enq.ready, R.U - fill, 0.U)
+  io.room := Mux(q.io.enq.ready, Mux(io.dense, R.U - fill, R.U), 0.U)
   io.idle := fill === 0.U
 
   // Dense line of a pair: (k / 16) * ceil(16 / R) + (k % 16) / R, the last term from a table.
@@ -65,7 +67,7 @@ class ContactPacker(p: PucParams) extends Module {
   val lineOf   = Mux(fill =/= 0.U, heldLine, Mux(io.dense, denseLine(first.pair), lineNo))
   val rnOf     = Mux(fill =/= 0.U, heldRn, Mux(io.dense, first.pair.pad(idxBits + 1), count))
 
-  val total = fill +& io.nRecs
+  val total = fill +& io.nRecs   // < 2R: at most one full line
   private def idx(x: UInt): UInt = if (R == 1) 0.U else x(log2Ceil(R) - 1, 0)
   val slots = VecInit.tabulate(R) { s =>
     val fromHeld = if (s < R - 1) held(s) else 0.U(recBits.W)
@@ -76,13 +78,19 @@ class ContactPacker(p: PucParams) extends Module {
   val lastIn   = io.recs(idx(io.nRecs - 1.U)).pair
   val endsPairLine = io.dense && io.nRecs =/= 0.U &&
     (lastIn(log2Ceil(ppl) - 1, 0).andR || lastIn === io.numPairs - 1.U)
-  val emit = q.io.enq.ready && (total === R.U || (endsPairLine && total =/= 0.U) || (io.flush && total =/= 0.U))
+  val emit = q.io.enq.ready && (total >= R.U || (endsPairLine && total =/= 0.U) || (io.flush && total =/= 0.U))
+  // Compact: the records that pass the completed line stay, shifted to slot 0.
+  val carry = Mux(total > R.U, total - R.U, 0.U)
   q.io.enq.valid     := emit && rnOf < io.capacity
   q.io.enq.bits.addr := io.base + lineOf
   q.io.enq.bits.data := Cat(slots.reverse).pad(Link.lineBits)
   when(emit) {
-    fill := 0.U
+    fill := carry
     when(!io.dense) { lineNo := lineNo + 1.U }
+    heldLine := lineNo + 1.U; heldRn := rnOf + R.U
+    for (s <- 0 until R - 1) when(s.U < carry) {
+      held(s) := io.recs(idx(s.U +& R.U - fill)).packed
+    }
   }.otherwise {
     fill := total
     heldLine := lineOf; heldRn := rnOf
