@@ -8,22 +8,6 @@
 
 namespace collide::link {
 
-LinkParams LinkParams::qpi() { return LinkParams{}; }
-
-LinkParams LinkParams::ideal() {
-  LinkParams p;
-  p.name = "ideal";
-  p.channelName = "ideal";
-  p.readLatencyMinNs = p.readLatencyMaxNs = p.cycleNs();
-  p.writeLatencyMinNs = p.writeLatencyMaxNs = p.cycleNs();
-  p.readGBps = p.writeGBps = 0.0;
-  p.reorder = false;
-  p.csrWriteNs = p.cycleNs();
-  p.pollNs = 0.0;
-  p.transactionOverheadNs = 0.0;
-  return p;
-}
-
 std::vector<ChannelParams> LinkParams::channels() const {
   std::vector<ChannelParams> all;
   all.reserve(1 + moreChannels.size());
@@ -165,7 +149,7 @@ LinkParams linkParamsFromJson(const nlohmann::json& j, const std::string& path, 
   ChannelParams first = p.channels().front();
   for (const auto& [key, v] : j.items()) {
     const std::string at = path + "." + key;
-    if (key == "type" || key == "channels") continue;  // type: read by the caller (qpi | ideal)
+    if (key == "type" || key == "channels") continue;  // type: read by the caller (a preset name)
     if (channelKey(key, v, at, first)) {
       if (listed) throw std::invalid_argument(at + ": give it inside \"channels\" when \"channels\" is set");
       continue;

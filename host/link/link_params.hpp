@@ -1,6 +1,7 @@
 #pragma once
 // Parameters of the host<->AFU link model. The defaults are HARP v1 (Xeon E5-2680 v2 +
-// Stratix V over QPI/CCI), each naming its source. Treat every number as calibratable.
+// Stratix V over QPI/CCI), each naming its source; link/link_presets.cpp holds the other
+// platforms. Treat every number as calibratable.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -59,10 +60,14 @@ struct LinkParams {
   // microbenchmark logs. Added to the modelled time of each run, outside the cycle model.
   double transactionOverheadNs = 5000.0;
 
-  static LinkParams qpi();
+  // Presets (numbers and sources in link/link_presets.cpp; link::presets() lists them).
+  static LinkParams qpi();    // HARP v1 (also "harp1")
   // Preloaded/ideal link: 1-cycle latency both ways, no bandwidth limit beyond one line
   // per cycle per port, no reordering, free CSRs, polls and transactions.
   static LinkParams ideal();
+  static LinkParams harp2();  // HARP v2: QPI + 2 x PCIe Gen3 x8 in one package
+  static LinkParams pac();    // Intel PAC with Arria 10 GX: one PCIe Gen3 x8
+  static LinkParams cxl();    // a CXL-class link on PCIe 5.0 x16
 
   // Every channel, channel 0 (the flat fields) first.
   std::vector<ChannelParams> channels() const;
