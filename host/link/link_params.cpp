@@ -94,6 +94,11 @@ void range(const nlohmann::json& v, const std::string& path, double& lo, double&
   if (!(lo >= 0) || !(hi >= lo))
     throw std::invalid_argument(path + ": expected 0 <= min <= max, got " + v.dump());
 }
+double bandwidth(const nlohmann::json& v, const std::string& path) {
+  const double g = number(v, path);
+  if (!(g >= 0)) throw std::invalid_argument(path + ": expected >= 0 GB/s (0 = unlimited), got " + v.dump());
+  return g;
+}
 unsigned count(const nlohmann::json& v, const std::string& path) {
   if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 1 << 20)
     throw std::invalid_argument(path + ": expected a positive integer, got " + v.dump());
@@ -104,8 +109,8 @@ unsigned count(const nlohmann::json& v, const std::string& path) {
 bool channelKey(const std::string& key, const nlohmann::json& v, const std::string& at, ChannelParams& c) {
   if (key == "read_latency_ns") range(v, at, c.readLatencyMinNs, c.readLatencyMaxNs);
   else if (key == "write_latency_ns") range(v, at, c.writeLatencyMinNs, c.writeLatencyMaxNs);
-  else if (key == "read_gbps") c.readGBps = number(v, at);
-  else if (key == "write_gbps") c.writeGBps = number(v, at);
+  else if (key == "read_gbps") c.readGBps = bandwidth(v, at);
+  else if (key == "write_gbps") c.writeGBps = bandwidth(v, at);
   else return false;
   return true;
 }
