@@ -3,6 +3,7 @@
 // finishes sooner than it says.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "driver/afu_driver.hpp"
@@ -133,4 +134,39 @@ TEST(LinkBound, UsesTheAggregateBandwidthAndTheFastestChannel) {
   // CXL's 64 GB/s is more than the 400 MHz port's line a cycle: the port sets the pace.
   const LinkParams c = LinkParams::cxl();
   EXPECT_DOUBLE_EQ(driver::linkBoundNs(c, 1000, 0) - driver::linkBoundNs(c, 0, 0), 1000 * 2.5);
+  // On every preset the transfer term is the plain one: lines at the aggregate rate, capped
+  // at the port (no slow-channel correction applies).
+  for (const auto& preset : presets()) {
+    const LinkParams& p = preset.params;
+    auto perLine = [&](double gbps) { return std::max(gbps > 0 ? 64.0 / gbps : 0.0, p.cycleNs()); };
+    const double base = driver::linkBoundNs(p, 0, 0);
+    EXPECT_DOUBLE_EQ(driver::linkBoundNs(p, 5000, 1) - base, 5000 * perLine(p.aggregateReadGBps())) << preset.name;
+    EXPECT_DOUBLE_EQ(driver::linkBoundNs(p, 1, 5000) - base, 5000 * perLine(p.aggregateWriteGBps())) << preset.name;
+  }
 }
+
+TEST(LinkBound, SlowChannelsSetInAScenesStillNeverBeatIt) {
+  // A line time beyond the driver's eight extra CSR cycles: the case the bound's
+  // correction exists for (without it, a 0.4 GB/s channel beats the bound by a line).
+  const auto seed = test::testSeed(53);
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<unsigned> lines(1, 300), window(1, 64);
+  LinkParams one = LinkParams::qpi();
+  one.readGBps = 0.4;  // 32 cycles a line at 200 MHz
+  one.writeGBps = 0.3;
+  LinkParams four = LinkParams::qpi();
+  four.setChannels({{"a", 0.5, 0.5, 200, 290, 200, 290}, {"b", 0.5, 0.5, 200, 290, 200, 290},
+                    {"c", 0.5, 0.5, 200, 200, 200, 200}, {"d", 0.5, 0.5, 200, 200, 200, 200}});
+  for (const auto& base : {one, four}) {
+    std::vector<Shape> shapes = {{200, 1, 1, 1, 64}, {1, 200, 1, 1, 64}, {4, 1, 1, 1, 64}, {1, 4, 1, 1, 64}};
+    for (int k = 0; k < 8; ++k) shapes.push_back({lines(rng), lines(rng), 1.0, 1.0, window(rng)});
+    for (const Shape& s : shapes) {
+      LinkParams p = base;
+      p.seed = rng();
+      const auto status = runShaped(p, s, rng());
+      EXPECT_LE(driver::linkBoundNs(p, s.reads, s.writes), driver::modelledRunNs(p, status))
+          << p.channels().size() << " channels, " << s.reads << " reads, " << s.writes << " writes";
+    }
+  }
+}
+

@@ -23,6 +23,9 @@ AfuDriver::AfuDriver(AfuPort& port, const link::LinkParams& link, const DriverOp
   port_.reset();
 }
 
+// run() posts this many CSR writes, one a cycle; the AFU starts on the last (CTRL).
+constexpr unsigned kStartCsrWrites = 9;
+
 double linkBoundNs(const link::LinkParams& lp, std::uint64_t readLines, std::uint64_t writeLines) {
   // The model counts latencies in whole cycles (rounded to nearest): so does the bound,
   // or a latency that rounds down would put the bound above the model.
@@ -33,12 +36,22 @@ double linkBoundNs(const link::LinkParams& lp, std::uint64_t readLines, std::uin
     wrTrip = std::min(wrTrip, asDrawn(c.writeLatencyMinNs));
   }
   // Lines move over every channel at once, but the AFU port takes one a cycle at most.
-  auto perLine = [&](double aggregateGBps) {
+  // n lines are counted as n line times at that rate. The model charges a line's
+  // bandwidth as it leaves, so each channel's last line needs none after it: n lines over
+  // C channels may finish up to C line times sooner. The CSR writes after the first (the
+  // only one counted) absorb that while it is at most kStartCsrWrites - 1 cycles, as on
+  // every preset; beyond that the excess is given back, so the bound holds for any
+  // channels a scene sets.
+  const double channels = static_cast<double>(lp.channels().size());
+  const double absorbed = (kStartCsrWrites - 1) * lp.cycleNs();
+  auto transferNs = [&](std::uint64_t lines, double aggregateGBps) {
     const double bw = aggregateGBps > 0 ? lp.lineBytes / aggregateGBps : 0.0;  // bytes / (GB/s) = ns
-    return std::max(bw, lp.cycleNs());
+    const double perLine = std::max(bw, lp.cycleNs());
+    const double t = static_cast<double>(lines) * perLine - std::max(0.0, channels * perLine - absorbed);
+    return std::max(0.0, t);
   };
-  const double transfer = std::max(static_cast<double>(readLines) * perLine(lp.aggregateReadGBps()),
-                                   static_cast<double>(writeLines) * perLine(lp.aggregateWriteGBps()));
+  const double transfer = std::max(transferNs(readLines, lp.aggregateReadGBps()),
+                                   transferNs(writeLines, lp.aggregateWriteGBps()));
   return lp.transactionOverheadNs + asDrawn(lp.csrWriteNs) + lp.pollNs + rdTrip + wrTrip + transfer;
 }
 

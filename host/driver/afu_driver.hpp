@@ -48,8 +48,10 @@ struct RunStats {
 // arrival, one poll), the shortest read and write round trips of the fastest channel (the
 // first pair line cannot arrive sooner; the status line waits for the last contact's
 // acknowledgement), and the busier direction's transfer at the channels' aggregate
-// bandwidth, never faster than one line per cycle at the AFU port. Latencies count in
-// whole cycles, as the model draws them. docs/host.md.
+// bandwidth, never faster than one line per cycle at the AFU port (less a correction for
+// channels slower than any preset, see the .cpp). Latencies count in whole cycles, as
+// the model draws them. It relies on run()'s protocol: nine CSR writes, no write before
+// the first read's data, the status line last. docs/host.md.
 double linkBoundNs(const link::LinkParams& lp, std::uint64_t readLines, std::uint64_t writeLines);
 
 // Modelled host time of one call whose status line committed `statusCycle` cycles after
