@@ -47,8 +47,11 @@ LinkParams LinkParams::harp2() {
   p.setChannels({{"QPI", 8.0, 8.0, 62.0, 150.0, 62.0, 150.0},
                  {"PCIe0", 6.23, 6.26, 400.0, 600.0, 400.0, 600.0},
                  {"PCIe1", 6.23, 6.26, 400.0, 600.0, 400.0, 600.0}});
-  // Outstanding: CCI-P accepts more, but the AFU's 6-bit tags (docs/afu-interface.md)
-  // bind at 64, so the link's limit stays there. CCI-P returns responses out of order.
+  // Outstanding: an assumption. CCI-P takes more requests in flight, but the AFU's default
+  // 6-bit tags (docs/afu-interface.md) stop at 64, so the link's limit is set there; raise
+  // max_reads/max_writes with the AFU's tags. With 64 in flight over these round trips the
+  // AFU sustains about 12 GB/s each way, below the 20.5 aggregate: the tags bind first.
+  // CCI-P returns responses out of order.
   p.maxReads = p.maxWrites = 64;
   p.reorder = true;
   // No published CSR/poll figures: assumption, qpi's rule on the fastest channel: a CSR
@@ -73,7 +76,7 @@ LinkParams LinkParams::pac() {
   // direction in theory for Gen3 x8). Latency: no published figure; assumption, a PCIe
   // round trip to host memory of 400-600 ns, writes like reads.
   p.setChannels({{"PCIe", 6.23, 6.26, 400.0, 600.0, 400.0, 600.0}});
-  p.maxReads = p.maxWrites = 64;  // the AFU's tag limit, as harp2
+  p.maxReads = p.maxWrites = 64;  // the AFU's default tag count, as harp2 (assumption)
   p.reorder = true;               // CCI-P: responses out of order
   // Assumption, qpi's rule: CSR half the mid round trip (250 ns), poll the longest (600 ns).
   p.csrWriteNs = 250.0;
@@ -87,15 +90,17 @@ LinkParams LinkParams::pac() {
 LinkParams LinkParams::cxl() {
   LinkParams p;
   p.name = "cxl";
-  // Assumption: a CCI-P-like 400 MHz interface clock. At one line a cycle the AFU port
-  // then carries 25.6 GB/s a direction, so the port, not the link, is the limit: which
-  // is what this preset is for (clock_mhz can raise it).
+  // Assumption: a CCI-P-like 400 MHz interface clock; the AFU port then carries 25.6 GB/s
+  // a direction at one line a cycle.
   p.clockMHz = 400.0;
   // Bandwidth: 64 GB/s a direction, the PCIe 5.0 x16 signalling rate (32 GT/s x 16 lanes)
   // that CXL 1.1/2.0 run on (CXL specification); before flit and CRC overhead, so an
   // upper end. Latency: assumption, 300-400 ns load-to-use, writes like reads.
   p.setChannels({{"CXL", 64.0, 64.0, 300.0, 400.0, 300.0, 400.0}});
-  p.maxReads = p.maxWrites = 64;  // the AFU's tag limit
+  // The AFU's default 64 tags (assumption, as harp2). 64 lines in flight over a 300-400 ns
+  // round trip sustain about 10-14 GB/s: the tags bind, then the port, never the link.
+  // That is what this preset shows; max_reads/max_writes and clock_mhz move the limits.
+  p.maxReads = p.maxWrites = 64;
   p.reorder = true;
   // Assumption, qpi's rule: CSR half the mid round trip (175 ns), poll the longest (400 ns).
   p.csrWriteNs = 175.0;
@@ -129,6 +134,8 @@ const std::vector<LinkPreset>& presets() {
         "QPI latency 62 ns floor: the characterisation's 25-cycle FPGA cache hit at 400 MHz; 150 ns top "
         "assumed",
         "PCIe latency 400-600 ns: assumption; writes assumed like reads",
+        "64 reads / 64 writes outstanding: assumption, the AFU's default tags (CCI-P takes more); "
+        "they sustain about 12 GB/s over these round trips, below the aggregate",
         "CSR write 53 ns, poll 150 ns: assumptions (qpi's rule on the QPI channel)",
         "overhead 5 us a call: HARP v1's figure kept (none published for HARP v2)"},
        LinkParams::harp2()},
@@ -137,14 +144,17 @@ const std::vector<LinkPreset>& presets() {
         "bandwidth 6.23 GB/s read, 6.26 GB/s write at once: the FPGA loopback self-test in Intel's PAC "
         "user guide (OPAE); 7.87 GB/s a direction in theory",
         "latency 400-600 ns: assumption (a PCIe round trip); writes assumed like reads",
+        "64 reads / 64 writes outstanding: assumption, the AFU's default tags (enough for 6.2 GB/s here)",
         "CSR write 250 ns, poll 600 ns: assumptions (qpi's rule)",
         "overhead 5 us a call: HARP v1's figure kept (none published for the PAC)"},
        LinkParams::pac()},
       {"cxl", {}, "a CXL 1.1/2.0-class link on PCIe 5.0 x16",
-       {"clock 400 MHz: assumption (CCI-P-like); the AFU port's 25.6 GB/s then binds before the link",
+       {"clock 400 MHz: assumption (CCI-P-like): the AFU port carries 25.6 GB/s a direction",
         "bandwidth 64 GB/s a direction: PCIe 5.0 x16 signalling rate used by CXL 1.1/2.0 (CXL "
         "specification), before protocol overhead",
         "latency 300-400 ns load-to-use: assumption; writes assumed like reads",
+        "64 reads / 64 writes outstanding: assumption, the AFU's default tags; over these round trips "
+        "they sustain about 12 GB/s, so the tags bind, then the port, never the link",
         "CSR write 175 ns, poll 400 ns: assumptions (qpi's rule)",
         "overhead 5 us a call: HARP v1's figure kept (none published)"},
        LinkParams::cxl()},
