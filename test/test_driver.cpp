@@ -110,6 +110,24 @@ TEST(Driver, SkippingIdleCyclesGivesIdenticalResultsAndTime) {
             << a.result.stats.statusCycle << " modelled cycles\n";
 }
 
+TEST(Driver, SkippingIsExactOnAMultiChannelLinkToo) {
+  const auto seed = test::testSeed(34);
+  SphereTable t;
+  PairList p;
+  randomBatch(seed, 200, 3000, t, p);
+  link::LinkParams lp = link::LinkParams::harp2();
+  lp.seed = seed;
+  DriverOptions skip, step;
+  step.skipIdle = false;
+  const auto a = drive({}, lp, skip, t, p);
+  const auto b = drive({}, lp, step, t, p);
+  EXPECT_EQ(a.result.stats.statusCycle, b.result.stats.statusCycle);
+  EXPECT_EQ(a.result.stats.modelledNs, b.result.stats.modelledNs);
+  EXPECT_EQ(std::memcmp(&a.result.status, &b.result.status, sizeof(StatusLine)), 0);
+  expectSameContacts(a.contacts, b.contacts);
+  EXPECT_GT(a.result.stats.cyclesSkipped, 0u);
+}
+
 TEST(Driver, AHungAfuIsAClearErrorNotAHang) {
   SphereTable t;
   PairList p;

@@ -51,6 +51,23 @@ TEST(LinkSkip, SkippingMatchesSteppingInOrderAndSlow) {
   expectSameRun(p, 300, 16, false, 0.1);
 }
 
+// Several channels: per-channel response ports and latencies set the events.
+TEST(LinkSkip, SkippingMatchesSteppingOnAMultiChannelLink) {
+  LinkParams p = LinkParams::harp2();
+  p.seed = test::testSeed(25);
+  for (bool writes : {false, true}) {
+    expectSameRun(p, 600, 1, writes, 0.9);
+    expectSameRun(p, 600, 5, writes, 0.5);
+    expectSameRun(p, 600, 64, writes, 0.1);
+  }
+  // In order and bandwidth-bound on every channel: port-free times on different
+  // channels, not due times, decide when the oldest response may go.
+  p.reorder = false;
+  p.moreChannels[0].readGBps = 0.5;
+  p.readGBps = p.moreChannels[1].readGBps = 1.0;
+  expectSameRun(p, 300, 16, false, 0.1);
+}
+
 TEST(LinkSkip, NextEventIsTheFirstCycleWithAnEvent) {
   HostMemory mem;
   const auto b = mem.allocate(1);

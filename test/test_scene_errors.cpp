@@ -56,7 +56,7 @@ TEST(SceneErrors, InlineFaults) {
                     R"(, "bodies": {"random_cloud": {"count": 5, "seed": 1, "min": [0,0,0], "max": [1,1,-1], "radius": 0.1}}})"),
             "scene.bodies.random_cloud.max: must be >= min in every coordinate");
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "link": "pcie", "bodies": {"diamond": {"hMax": 2}}})"),
-            "scene.link: expected \"ideal\" or \"qpi\", got \"pcie\"");
+            "scene.link: expected \"ideal\", \"qpi\", \"harp1\", \"harp2\", \"pac\" or \"cxl\", got \"pcie\"");
 }
 
 TEST(Scenes, ExampleScenesLoadAsDeclared) {

@@ -8,6 +8,7 @@
 #include "collide/contact_flags.hpp"
 #include "collide/rtl_backend.hpp"
 #include "driver/afu_factory.hpp"
+#include "link/link_presets.hpp"
 
 namespace collide::cli {
 
@@ -17,7 +18,7 @@ int runPairs(const PairsOptions& o) {
     if (!o.afu.empty()) {
       req.name = "rtl";
       req.afuDir = o.afu;
-      req.link = o.link == "qpi" ? link::LinkParams::qpi() : link::LinkParams::ideal();
+      req.link = link::presetParams(o.link);
     } else {
       req.name = o.backend;
       if (!o.trace.empty()) throw std::invalid_argument("--trace needs --afu DIR");

@@ -15,6 +15,7 @@
 #include "collide/rtl_backend.hpp"
 #include "collide/simd_backend.hpp"
 #include "driver/afu_factory.hpp"
+#include "link/link_presets.hpp"
 #include "ode/simulation.hpp"
 #include "scene/scene.hpp"
 
@@ -76,7 +77,7 @@ int runScene(const RunOptions& o) {
     scene::Scene sc = scene::loadScene(o.scene);
     if (o.backend) sc.backend = *o.backend;
     if (o.steps) sc.steps = *o.steps;
-    if (o.link) sc.link = *o.link == "ideal" ? link::LinkParams::ideal() : link::LinkParams::qpi();
+    if (o.link) sc.link = link::presetParams(*o.link);
     const bool rtl = sc.backend == "rtl";
 
     BackendRequest req{sc.backend, sc.afuDir, sc.link, {}, {}};

@@ -12,7 +12,7 @@ struct RunOptions {
   std::optional<long long> steps;      // overrides the scene's
   std::string out;                     // per-step CSV
   bool perStep = false;
-  std::optional<std::string> link;     // rtl: ideal | qpi, overrides the scene's
+  std::optional<std::string> link;     // rtl: a link preset name, overrides the scene's
   std::string trace;                   // rtl: waveform file (.fst / .vcd)
   bool noSkip = false;                 // rtl: evaluate every cycle (no idle skipping)
   std::string summary;                 // totals as JSON
@@ -23,7 +23,7 @@ struct RunOptions {
 struct PairsOptions {
   std::string afu;      // rtl with the AFU in this generated/<preset> folder
   std::string backend;  // simd | ode (until the AFU exists)
-  std::string link = "ideal";  // rtl only
+  std::string link = "ideal";  // rtl only: a link preset name
   std::string in, out;  // "-" = stdin/stdout
   bool dense = false;   // rtl: dense mode
   std::string trace;    // rtl: waveform file (.fst / .vcd)
@@ -31,7 +31,8 @@ struct PairsOptions {
 };
 
 struct InfoOptions {
-  std::string afu;
+  std::string afu;     // print this generated AFU's manifest...
+  bool links = false;  // ...or list the link presets
 };
 
 int runScene(const RunOptions& o);

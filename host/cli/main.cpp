@@ -1,14 +1,17 @@
-// collide: run scenes, collide pair vectors, inspect a generated AFU. See docs/host.md.
+// collide: run scenes, collide pair vectors, inspect a generated AFU or the link presets. See docs/host.md.
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
+#include "link/link_presets.hpp"
 
 int main(int argc, char** argv) {
   using namespace collide::cli;
   CLI::App app{"collide: ODE host for the sphere-collision accelerator"};
   app.require_subcommand(1);
+  // Built from the registry, so a new preset needs no edit here; the error lists them.
+  const auto linkNames = collide::link::presetNames();
 
   RunOptions run;
   auto* r = app.add_subcommand("run", "simulate a JSON scene");
@@ -21,8 +24,8 @@ int main(int argc, char** argv) {
   r->add_option("--out", run.out, "write per-step statistics to this CSV file");
   r->add_flag("--per-step", run.perStep, "print one line per step");
   r->add_option_function<std::string>("--link", [&](const std::string& l) { run.link = l; },
-                                      "rtl: link model, overrides the scene's (ideal | qpi = HARP v1)")
-      ->check(CLI::IsMember({"ideal", "qpi"}));
+                                      "rtl: link preset, overrides the scene's (collide info --links)")
+      ->check(CLI::IsMember(linkNames));
   r->add_option("--trace", run.trace, "rtl: write a waveform of the AFU (.fst or .vcd, as built)");
   r->add_flag("--no-skip", run.noSkip, "rtl: evaluate every cycle instead of jumping idle waits");
   r->add_option("--summary", run.summary, "write the run's totals to this JSON file");
@@ -37,7 +40,9 @@ int main(int argc, char** argv) {
   p->add_option("--backend", pairs.backend, "CPU backend instead of an AFU (simd: binary32, ode: binary64)")
       ->check(CLI::IsMember({"simd", "ode"}))
       ->excludes(afu);
-  p->add_option("--link", pairs.link, "rtl link model")->check(CLI::IsMember({"ideal", "qpi"}));
+  p->add_option("--link", pairs.link, "rtl: link preset (collide info --links)")
+      ->capture_default_str()
+      ->check(CLI::IsMember(linkNames));
   p->add_flag("--dense", pairs.dense, "rtl: dense mode (a record per pair)");
   p->add_option("--trace", pairs.trace, "rtl: write a waveform of the AFU (.fst or .vcd, as built)");
   p->add_flag("--no-skip", pairs.noSkip, "rtl: evaluate every cycle instead of jumping idle waits");
@@ -45,8 +50,9 @@ int main(int argc, char** argv) {
   p->add_option("--out", pairs.out, "output CSV, - for stdout")->required();
 
   InfoOptions info;
-  auto* i = app.add_subcommand("info", "print a generated AFU's manifest");
-  i->add_option("--afu", info.afu, "generated AFU folder")->required();
+  auto* i = app.add_subcommand("info", "print a generated AFU's manifest, or the link presets");
+  i->add_option("--afu", info.afu, "generated AFU folder: print its manifest");
+  i->add_flag("--links", info.links, "list the link presets: clock, channels, per-call costs, sources");
 
   CLI11_PARSE(app, argc, argv);
   if (r->parsed()) return runScene(run);
@@ -56,6 +62,11 @@ int main(int argc, char** argv) {
       return 1;
     }
     return runPairs(pairs);
+  }
+  // Exactly one of the two: checked here for one clear message either way.
+  if ((i->count("--afu") > 0) == info.links) {
+    std::cerr << "collide info: give exactly one of --afu DIR (a generated AFU's manifest) or --links (the link presets)\n";
+    return 1;
   }
   return runInfo(info);
 }

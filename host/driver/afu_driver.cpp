@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace collide::driver {
@@ -27,14 +28,44 @@ AfuDriver::AfuDriver(AfuPort& port, const link::LinkParams& link, const DriverOp
   port_.reset();
 }
 
+// run() posts this many CSR writes, one a cycle; the AFU starts on the last (CTRL).
+constexpr unsigned kStartCsrWrites = 9;
+
 double linkBoundNs(const link::LinkParams& lp, std::uint64_t readLines, std::uint64_t writeLines) {
-  auto perLine = [&](double gbps) {
-    const double bw = gbps > 0 ? lp.lineBytes / gbps : 0.0;  // bytes / (GB/s) = ns
-    return std::max(bw, lp.cycleNs());
+  // The model counts latencies in whole cycles (rounded to nearest): so does the bound,
+  // or a latency that rounds down would put the bound above the model.
+  auto asDrawn = [&](double ns) { return static_cast<double>(lp.nsToCycles(ns)) * lp.cycleNs(); };
+  double rdTrip = std::numeric_limits<double>::infinity(), wrTrip = rdTrip;
+  for (const auto& c : lp.channels()) {  // the fastest channel sets the shortest trips
+    rdTrip = std::min(rdTrip, asDrawn(c.readLatencyMinNs));
+    wrTrip = std::min(wrTrip, asDrawn(c.writeLatencyMinNs));
+  }
+  // Lines move over every channel at once, but the AFU port takes one a cycle at most.
+  // n lines are counted as n line times at that rate. The model charges a line's
+  // bandwidth as it leaves, so each channel's last line needs none after it: n lines over
+  // C channels may finish up to C line times sooner. The CSR writes after the first (the
+  // only one counted) absorb that while it is at most kStartCsrWrites - 1 cycles, as on
+  // every preset; beyond that the excess is given back, so the bound holds for any
+  // channels a scene sets.
+  const double channels = static_cast<double>(lp.channels().size());
+  const double absorbed = (kStartCsrWrites - 1) * lp.cycleNs();
+  auto transferNs = [&](std::uint64_t lines, double aggregateGBps) {
+    const double bw = aggregateGBps > 0 ? lp.lineBytes / aggregateGBps : 0.0;  // bytes / (GB/s) = ns
+    const double perLine = std::max(bw, lp.cycleNs());
+    const double t = static_cast<double>(lines) * perLine - std::max(0.0, channels * perLine - absorbed);
+    return std::max(0.0, t);
   };
-  const double transfer = std::max(static_cast<double>(readLines) * perLine(lp.readGBps),
-                                   static_cast<double>(writeLines) * perLine(lp.writeGBps));
-  return lp.transactionOverheadNs + lp.csrWriteNs + lp.pollNs + lp.readLatencyMinNs + lp.writeLatencyMinNs + transfer;
+  const double transfer = std::max(transferNs(readLines, lp.aggregateReadGBps()),
+                                   transferNs(writeLines, lp.aggregateWriteGBps()));
+  return lp.transactionOverheadNs + asDrawn(lp.csrWriteNs) + lp.pollNs + rdTrip + wrTrip + transfer;
+}
+
+double modelledRunNs(const link::LinkParams& lp, std::uint64_t statusCycle) {
+  // The done flag lands at the end of the status cycle; the host, polling back to back
+  // from the start, sees it at the end of the first poll that begins after that.
+  const double commitNs = static_cast<double>(statusCycle) * lp.cycleNs();
+  const double seenNs = lp.pollNs > 0 ? (std::ceil(commitNs / lp.pollNs) + 1) * lp.pollNs : commitNs;
+  return lp.transactionOverheadNs + seenNs;
 }
 
 RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
@@ -106,14 +137,11 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
     if (in.wrResp && mem_.load<std::uint32_t>(st.base, STATUS_DONE) != 0) break;
   }
 
-  // Modelled host time: the done flag lands at the end of the cycle whose write response
-  // committed it; the host, polling back to back from the start, sees it at the end of the
-  // first poll that begins after that.
+  // Modelled host time: statusCycle counts to the end of the cycle whose write response
+  // committed the done flag.
   const auto& lp = link_.params();
   r.stats.statusCycle = link_.cycle() - t0;
-  const double commitNs = static_cast<double>(r.stats.statusCycle) * lp.cycleNs();
-  const double seenNs = lp.pollNs > 0 ? (std::ceil(commitNs / lp.pollNs) + 1) * lp.pollNs : commitNs;
-  r.stats.modelledNs = lp.transactionOverheadNs + seenNs;
+  r.stats.modelledNs = modelledRunNs(lp, r.stats.statusCycle);
   r.stats.readLines = link_.stats().readsAccepted - reads0;
   r.stats.writeLines = link_.stats().writesAccepted - writes0;
   r.stats.linkBoundNs = linkBoundNs(lp, r.stats.readLines, r.stats.writeLines);

@@ -52,10 +52,18 @@ struct RunStats {
 
 // Lower bound the link model implies for a run that reads `readLines` and writes
 // `writeLines` lines: the per-call costs it charges (transaction overhead, one CSR
-// arrival, one poll), the shortest read and write round trips (the first pair line cannot
-// arrive sooner; the status line waits for the last contact's acknowledgement), and the
-// busier direction's transfer at max(its bandwidth, one line per cycle). docs/host.md.
+// arrival, one poll), the shortest read and write round trips of the fastest channel (the
+// first pair line cannot arrive sooner; the status line waits for the last contact's
+// acknowledgement), and the busier direction's transfer at the channels' aggregate
+// bandwidth, never faster than one line per cycle at the AFU port (less a correction for
+// channels slower than any preset, see the .cpp). Latencies count in whole cycles, as
+// the model draws them. It relies on run()'s protocol: nine CSR writes, no write before
+// the first read's data, the status line last. docs/host.md.
 double linkBoundNs(const link::LinkParams& lp, std::uint64_t readLines, std::uint64_t writeLines);
+
+// Modelled host time of one call whose status line committed `statusCycle` cycles after
+// the first CSR write: transaction overhead plus the poll that sees it.
+double modelledRunNs(const link::LinkParams& lp, std::uint64_t statusCycle);
 
 struct RunResult {
   StatusLine status;

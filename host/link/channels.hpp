@@ -1,6 +1,8 @@
 #pragma once
-// CCI-style channel payloads between the link model and the AFU, one 200 MHz clock
-// (docs/afu-interface.md "Link channels"). A std::optional is a valid signal.
+// CCI-style channel payloads between the link model and the AFU, on the link's one
+// interface clock (200 MHz on HARP v1, 400 MHz on CCI-P platforms; docs/afu-interface.md
+// "Link channels"). A std::optional is a valid signal. These are the AFU port's signals;
+// the physical channels behind it are the link model's business (LinkParams::channels()).
 #include <cstdint>
 #include <optional>
 

@@ -9,18 +9,24 @@ namespace collide::link {
 LinkModel::LinkModel(const LinkParams& params, HostMemory& memory)
     : params_(params), mem_(memory), rng_(params.seed) {
   params_.validate();
-  rdLatLo_ = params_.nsToCycles(params_.readLatencyMinNs);
-  rdLatHi_ = std::max(rdLatLo_, params_.nsToCycles(params_.readLatencyMaxNs));
-  wrLatLo_ = params_.nsToCycles(params_.writeLatencyMinNs);
-  wrLatHi_ = std::max(wrLatLo_, params_.nsToCycles(params_.writeLatencyMaxNs));
+  for (const ChannelParams& c : params_.channels()) {
+    Channel ch{};
+    ch.rdLatLo = params_.nsToCycles(c.readLatencyMinNs);
+    ch.rdLatHi = std::max(ch.rdLatLo, params_.nsToCycles(c.readLatencyMaxNs));
+    ch.wrLatLo = params_.nsToCycles(c.writeLatencyMinNs);
+    ch.wrLatHi = std::max(ch.wrLatLo, params_.nsToCycles(c.writeLatencyMaxNs));
+    ch.rdLineFx = lineTimeFx(c.readGBps, params_.clockMHz);
+    ch.wrLineFx = lineTimeFx(c.writeGBps, params_.clockMHz);
+    chans_.push_back(ch);
+  }
   csrLat_ = params_.nsToCycles(params_.csrWriteNs);
-  rdLineFx_ = lineTimeFx(params_.readGBps, params_.clockMHz);
-  wrLineFx_ = lineTimeFx(params_.writeGBps, params_.clockMHz);
   respLineFx_ = std::uint64_t{1} << kFx;  // one write response per cycle
+  stats_.readsByChannel.assign(chans_.size(), 0);
+  stats_.writesByChannel.assign(chans_.size(), 0);
 }
 
-// Cycles (fixed point) a 64-byte line occupies a port at `gbps`; never below one cycle,
-// the port width (64 B x 200 MHz = 12.8 GB/s ceiling, ARCHITECTURE.md).
+// Cycles (fixed point) a 64-byte line occupies a channel's port at `gbps`; never below
+// one cycle, the AFU port's width (64 B a cycle: 12.8 GB/s at 200 MHz, 25.6 at 400).
 std::uint64_t LinkModel::lineTimeFx(double gbps, double clockMHz) {
   const double one = static_cast<double>(std::uint64_t{1} << kFx);
   if (gbps <= 0) return static_cast<std::uint64_t>(one);
@@ -36,53 +42,83 @@ std::uint64_t LinkModel::draw(std::uint64_t lo, std::uint64_t hi) {
   return lo + rng_() % (hi - lo + 1);
 }
 
-// A line leaves the port at cycle `now`; returns when the port is free again. A transfer
-// that waited only for the cycle boundary keeps its fractional start (so 1.83 cycles a
-// line averages 1.83, not 2); after an idle gap the port restarts at `now` (no burst
-// credit beyond that sub-cycle remainder).
-std::uint64_t LinkModel::occupy(std::uint64_t freeFx, std::uint64_t now, std::uint64_t lineFx) {
+// When a line sent at cycle `now` starts on a port free at `freeFx`. A transfer that
+// waited only for the cycle boundary keeps its fractional start (so 1.83 cycles a line
+// averages 1.83, not 2); after an idle gap the port restarts at `now` (no burst credit
+// beyond that sub-cycle remainder).
+std::uint64_t LinkModel::startFx(std::uint64_t freeFx, std::uint64_t now) {
   const std::uint64_t one = std::uint64_t{1} << kFx;
   const std::uint64_t nowFx = now << kFx;
-  const std::uint64_t earliest = nowFx >= one ? nowFx - one + 1 : 0;
-  return std::max(freeFx, earliest) + lineFx;
+  return std::max(freeFx, nowFx >= one ? nowFx - one + 1 : 0);
 }
 
-int LinkModel::pick(const std::vector<Pending>& q, std::uint64_t now, std::uint64_t portFreeFx) const {
-  if (q.empty() || (now << kFx) < portFreeFx) return -1;
+// A line leaves the port at cycle `now`; returns when the port is free again.
+std::uint64_t LinkModel::occupy(std::uint64_t freeFx, std::uint64_t now, std::uint64_t lineFx) {
+  return startFx(freeFx, now) + lineFx;
+}
+
+// eVC_VA-style: the channel whose port lets this line start first. Comparing start times
+// (not raw free times) makes every already-idle channel equal, so ties, and with them
+// the choice after a pause, go to the lowest index.
+unsigned LinkModel::choose(std::uint64_t Channel::*port, std::uint64_t now) const {
+  unsigned best = 0;
+  std::uint64_t bestStart = startFx(chans_[0].*port, now);
+  for (unsigned k = 1; k < chans_.size(); ++k) {
+    const std::uint64_t s = startFx(chans_[k].*port, now);
+    if (s < bestStart) { best = k; bestStart = s; }
+  }
+  return best;
+}
+
+std::uint64_t LinkModel::respPortFreeFx(const Pending& p, bool read) const {
+  return read ? chans_[p.channel].rdPortFreeFx : wrRespPortFreeFx_;
+}
+
+int LinkModel::pick(const std::vector<Pending>& q, std::uint64_t now, bool read) const {
+  const std::uint64_t nowFx = now << kFx;
+  auto ready = [&](const Pending& p) { return p.due <= now && respPortFreeFx(p, read) <= nowFx; };
   int best = -1;
   for (int k = 0; k < static_cast<int>(q.size()); ++k) {
     const Pending& p = q[k];
     if (params_.reorder) {
-      // Whichever is due first goes first: the random latencies reorder responses.
-      if (p.due <= now && (best < 0 || p.due < q[best].due || (p.due == q[best].due && p.seq < q[best].seq)))
+      // Whichever is due first (and whose port is free) goes first: the random latencies
+      // and the channels reorder responses.
+      if (ready(p) && (best < 0 || p.due < q[best].due || (p.due == q[best].due && p.seq < q[best].seq)))
         best = k;
     } else if (best < 0 || p.seq < q[best].seq) {
       best = k;  // in order: only the oldest may go
     }
   }
-  if (best >= 0 && q[best].due > now) return -1;
+  if (best >= 0 && !ready(q[best])) return -1;
   return best;
 }
 
-std::uint64_t LinkModel::earliest(const std::vector<Pending>& q, std::uint64_t portFreeFx) const {
-  if (q.empty()) return kNever;
-  std::uint64_t due = kNever, oldest = kNever;
-  for (const Pending& p : q) {
-    if (params_.reorder) due = std::min(due, p.due);
-    else if (p.seq < oldest) { oldest = p.seq; due = p.due; }
-  }
+// The first cycle >= cycle_ at which pick() finds an entry: nothing changes between
+// events, so an entry is ready from max(due, its port's free cycle) on.
+std::uint64_t LinkModel::earliest(const std::vector<Pending>& q, bool read) const {
   const std::uint64_t one = std::uint64_t{1} << kFx;
-  const std::uint64_t portFree = (portFreeFx + one - 1) >> kFx;
-  return std::max({due, portFree, cycle_});
+  auto readyAt = [&](const Pending& p) {
+    return std::max(p.due, (respPortFreeFx(p, read) + one - 1) >> kFx);
+  };
+  std::uint64_t t = kNever;
+  const Pending* oldest = nullptr;
+  for (const Pending& p : q) {
+    if (params_.reorder) t = std::min(t, readyAt(p));
+    else if (!oldest || p.seq < oldest->seq) oldest = &p;
+  }
+  if (oldest) t = readyAt(*oldest);
+  return t == kNever ? kNever : std::max(t, cycle_);
 }
 
 LinkToAfu LinkModel::outputs() const {
   LinkToAfu o;
+  const std::uint64_t nowFx = cycle_ << kFx;
   o.rdReqReady = reads_.size() < params_.maxReads;
-  o.wrReqReady = writes_.size() < params_.maxWrites && (cycle_ << kFx) >= wrPortFreeFx_;
-  if (int k = pick(reads_, cycle_, rdPortFreeFx_); k >= 0)
+  o.wrReqReady = writes_.size() < params_.maxWrites &&
+                 std::any_of(chans_.begin(), chans_.end(), [&](const Channel& c) { return c.wrPortFreeFx <= nowFx; });
+  if (int k = pick(reads_, cycle_, true); k >= 0)
     o.rdResp = ReadResp{reads_[k].tag, mem_.line(reads_[k].addr)};  // data as of delivery
-  if (int k = pick(writes_, cycle_, wrRespPortFreeFx_); k >= 0) o.wrResp = WriteResp{writes_[k].tag};
+  if (int k = pick(writes_, cycle_, false); k >= 0) o.wrResp = WriteResp{writes_[k].tag};
   if (!csrs_.empty() && csrs_.front().first <= cycle_) o.csr = csrs_.front().second;
   return o;
 }
@@ -92,14 +128,15 @@ void LinkModel::tick(const AfuToLink& afu) {
   const LinkToAfu o = outputs();  // what the AFU saw this cycle: the handshake uses it
 
   // Responses presented this cycle are consumed: the AFU cannot refuse them.
-  if (int k = pick(reads_, now, rdPortFreeFx_); k >= 0) {
+  if (int k = pick(reads_, now, true); k >= 0) {
     for (const Pending& p : reads_)
       if (p.seq < reads_[k].seq) { ++stats_.reorderedReadResponses; break; }
-    rdPortFreeFx_ = occupy(rdPortFreeFx_, now, rdLineFx_);
+    Channel& c = chans_[reads_[k].channel];
+    c.rdPortFreeFx = occupy(c.rdPortFreeFx, now, c.rdLineFx);
     reads_.erase(reads_.begin() + k);
     ++stats_.readResponses;
   }
-  if (int k = pick(writes_, now, wrRespPortFreeFx_); k >= 0) {
+  if (int k = pick(writes_, now, false); k >= 0) {
     mem_.line(writes_[k].addr) = writes_[k].data;  // visible to the host when acknowledged
     wrRespPortFreeFx_ = occupy(wrRespPortFreeFx_, now, respLineFx_);
     writes_.erase(writes_.begin() + k);
@@ -117,21 +154,30 @@ void LinkModel::tick(const AfuToLink& afu) {
     throw LinkProtocolError("link cycle " + std::to_string(now) + ": " + what);
   };
   // valid && !ready is back-pressure, not an error: the request is simply not taken.
+  // One RNG draw per accepted request, reads before writes: a seed replays exactly.
   if (afu.rdReq && o.rdReqReady) {
     const ReadReq& r = *afu.rdReq;
     if (tagBusy(reads_, r.tag)) fail("read tag " + std::to_string(r.tag) + " already outstanding");
     if (!mem_.contains(r.addr)) fail("read of line " + std::to_string(r.addr) + " outside host memory");
-    reads_.push_back(Pending{now + draw(rdLatLo_, rdLatHi_), seq_++, r.tag, r.addr, Line{}});
+    const unsigned ch = choose(&Channel::rdBookedFx, now);
+    Channel& c = chans_[ch];
+    c.rdBookedFx = occupy(c.rdBookedFx, now, c.rdLineFx);
+    reads_.push_back(Pending{now + draw(c.rdLatLo, c.rdLatHi), seq_++, r.tag, r.addr, ch, Line{}});
     ++stats_.readsAccepted;
+    ++stats_.readsByChannel[ch];
     stats_.maxReadsOutstanding = std::max<unsigned>(stats_.maxReadsOutstanding, reads_.size());
   }
   if (afu.wrReq && o.wrReqReady) {
     const WriteReq& w = *afu.wrReq;
     if (tagBusy(writes_, w.tag)) fail("write tag " + std::to_string(w.tag) + " already outstanding");
     if (!mem_.contains(w.addr)) fail("write of line " + std::to_string(w.addr) + " outside host memory");
-    wrPortFreeFx_ = occupy(wrPortFreeFx_, now, wrLineFx_);
-    writes_.push_back(Pending{now + draw(wrLatLo_, wrLatHi_), seq_++, w.tag, w.addr, w.data});
+    // wrReqReady promised a free write port; the earliest start is on a free one.
+    const unsigned ch = choose(&Channel::wrPortFreeFx, now);
+    Channel& c = chans_[ch];
+    c.wrPortFreeFx = occupy(c.wrPortFreeFx, now, c.wrLineFx);
+    writes_.push_back(Pending{now + draw(c.wrLatLo, c.wrLatHi), seq_++, w.tag, w.addr, ch, w.data});
     ++stats_.writesAccepted;
+    ++stats_.writesByChannel[ch];
     stats_.maxWritesOutstanding = std::max<unsigned>(stats_.maxWritesOutstanding, writes_.size());
   }
   ++cycle_;
@@ -145,7 +191,7 @@ void LinkModel::hostWriteCsr(std::uint8_t index, std::uint64_t data) {
 }
 
 std::uint64_t LinkModel::nextEventCycle() const {
-  std::uint64_t t = std::min(earliest(reads_, rdPortFreeFx_), earliest(writes_, wrRespPortFreeFx_));
+  std::uint64_t t = std::min(earliest(reads_, true), earliest(writes_, false));
   if (!csrs_.empty()) t = std::min(t, std::max(csrs_.front().first, cycle_));
   return t;
 }

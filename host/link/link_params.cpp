@@ -1,26 +1,49 @@
 #include "link/link_params.hpp"
 
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 namespace collide::link {
 
-LinkParams LinkParams::qpi() { return LinkParams{}; }
-
-LinkParams LinkParams::ideal() {
-  LinkParams p;
-  p.name = "ideal";
-  p.readLatencyMinNs = p.readLatencyMaxNs = p.cycleNs();
-  p.writeLatencyMinNs = p.writeLatencyMaxNs = p.cycleNs();
-  p.readGBps = p.writeGBps = 0.0;
-  p.reorder = false;
-  p.csrWriteNs = p.cycleNs();
-  p.pollNs = 0.0;
-  p.transactionOverheadNs = 0.0;
-  return p;
+std::vector<ChannelParams> LinkParams::channels() const {
+  std::vector<ChannelParams> all;
+  all.reserve(1 + moreChannels.size());
+  all.push_back(ChannelParams{channelName, readGBps, writeGBps, readLatencyMinNs, readLatencyMaxNs,
+                              writeLatencyMinNs, writeLatencyMaxNs});
+  all.insert(all.end(), moreChannels.begin(), moreChannels.end());
+  return all;
 }
+
+void LinkParams::setChannels(const std::vector<ChannelParams>& all) {
+  if (all.empty()) throw std::invalid_argument("channels: need at least one");
+  const ChannelParams& c = all.front();
+  channelName = c.name;
+  readGBps = c.readGBps;
+  writeGBps = c.writeGBps;
+  readLatencyMinNs = c.readLatencyMinNs;
+  readLatencyMaxNs = c.readLatencyMaxNs;
+  writeLatencyMinNs = c.writeLatencyMinNs;
+  writeLatencyMaxNs = c.writeLatencyMaxNs;
+  moreChannels.assign(all.begin() + 1, all.end());
+}
+
+namespace {
+// 0 means unlimited, so one unlimited channel makes the sum unlimited.
+double aggregate(const std::vector<ChannelParams>& all, double ChannelParams::*gbps) {
+  double sum = 0;
+  for (const auto& c : all) {
+    if (!(c.*gbps > 0)) return 0.0;
+    sum += c.*gbps;
+  }
+  return sum;
+}
+}  // namespace
+
+double LinkParams::aggregateReadGBps() const { return aggregate(channels(), &ChannelParams::readGBps); }
+double LinkParams::aggregateWriteGBps() const { return aggregate(channels(), &ChannelParams::writeGBps); }
 
 std::uint64_t LinkParams::nsToCycles(double ns) const {
   const double c = std::round(ns / cycleNs());
@@ -28,14 +51,27 @@ std::uint64_t LinkParams::nsToCycles(double ns) const {
 }
 
 void LinkParams::validate() const {
-  auto bad = [](const char* what) { throw std::invalid_argument(what); };
+  auto bad = [](const std::string& what) { throw std::invalid_argument(what); };
   if (!(clockMHz > 0)) bad("clock_mhz: must be > 0");
   if (lineBytes != 64) bad("line_bytes: the AFU contract fixes 64");
-  if (!(readLatencyMinNs >= 0) || !(readLatencyMaxNs >= readLatencyMinNs))
-    bad("read_latency_ns: need 0 <= min <= max");
-  if (!(writeLatencyMinNs >= 0) || !(writeLatencyMaxNs >= writeLatencyMinNs))
-    bad("write_latency_ns: need 0 <= min <= max");
-  if (!(readGBps >= 0) || !(writeGBps >= 0)) bad("read_gbps/write_gbps: must be >= 0 (0 = unlimited)");
+  // Channel 0's errors keep the flat key names a scene uses for it.
+  const auto all = channels();
+  std::set<std::string> names;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const ChannelParams& c = all[k];
+    const std::string at = k == 0 ? "" : "channels[" + std::to_string(k) + "].";
+    // Only "channels" sets names, so name errors always give the list index.
+    const std::string nameAt = "channels[" + std::to_string(k) + "].name";
+    if (c.name.empty()) bad(nameAt + ": must not be empty");
+    if (!names.insert(c.name).second) bad(nameAt + ": \"" + c.name + "\" names two channels");
+    if (!(c.readLatencyMinNs >= 0) || !(c.readLatencyMaxNs >= c.readLatencyMinNs))
+      bad(at + "read_latency_ns: need 0 <= min <= max");
+    if (!(c.writeLatencyMinNs >= 0) || !(c.writeLatencyMaxNs >= c.writeLatencyMinNs))
+      bad(at + "write_latency_ns: need 0 <= min <= max");
+    if (!(c.readGBps >= 0) || !(c.writeGBps >= 0))
+      bad(at + "read_gbps/write_gbps: must be >= 0 (0 = unlimited)");
+  }
+  if (all.size() > 16) bad("channels: at most 16");
   if (maxReads == 0 || maxWrites == 0) bad("max_reads/max_writes: must be >= 1");
   if (!(csrWriteNs >= 0) || !(pollNs >= 0) || !(transactionOverheadNs >= 0))
     bad("csr_write_ns/poll_ns/transaction_overhead_ns: must be >= 0");
@@ -58,23 +94,72 @@ void range(const nlohmann::json& v, const std::string& path, double& lo, double&
   if (!(lo >= 0) || !(hi >= lo))
     throw std::invalid_argument(path + ": expected 0 <= min <= max, got " + v.dump());
 }
+double bandwidth(const nlohmann::json& v, const std::string& path) {
+  const double g = number(v, path);
+  if (!(g >= 0)) throw std::invalid_argument(path + ": expected >= 0 GB/s (0 = unlimited), got " + v.dump());
+  return g;
+}
 unsigned count(const nlohmann::json& v, const std::string& path) {
   if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 1 << 20)
     throw std::invalid_argument(path + ": expected a positive integer, got " + v.dump());
   return v.get<unsigned>();
 }
+
+// The keys that describe one channel, as the flat keys of channel 0 or inside "channels".
+bool channelKey(const std::string& key, const nlohmann::json& v, const std::string& at, ChannelParams& c) {
+  if (key == "read_latency_ns") range(v, at, c.readLatencyMinNs, c.readLatencyMaxNs);
+  else if (key == "write_latency_ns") range(v, at, c.writeLatencyMinNs, c.writeLatencyMaxNs);
+  else if (key == "read_gbps") c.readGBps = bandwidth(v, at);
+  else if (key == "write_gbps") c.writeGBps = bandwidth(v, at);
+  else return false;
+  return true;
+}
+
+// "channels": [{"name": ..., "read_gbps": ..., "write_gbps": ..., "read_latency_ns": ...,
+// "write_latency_ns": ...}, ...], every key required: a channel half inherited from a
+// preset would be hard to read.
+std::vector<ChannelParams> channelList(const nlohmann::json& v, const std::string& path) {
+  if (!v.is_array() || v.empty())
+    throw std::invalid_argument(path + ": expected a non-empty array of channels, got " + v.dump());
+  std::vector<ChannelParams> all;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const std::string at = path + "[" + std::to_string(k) + "]";
+    const nlohmann::json& e = v[k];
+    if (!e.is_object()) throw std::invalid_argument(at + ": expected an object, got " + e.dump());
+    ChannelParams c;
+    for (const auto& [key, x] : e.items()) {
+      if (key == "name") {
+        if (!x.is_string()) throw std::invalid_argument(at + ".name: expected a string, got " + x.dump());
+        c.name = x.get<std::string>();
+      } else if (!channelKey(key, x, at + "." + key, c)) {
+        throw std::invalid_argument(at + "." + key +
+                                    ": unknown key (known here: name, read_gbps, write_gbps, "
+                                    "read_latency_ns, write_latency_ns)");
+      }
+    }
+    for (const char* need : {"name", "read_gbps", "write_gbps", "read_latency_ns", "write_latency_ns"})
+      if (!e.contains(need)) throw std::invalid_argument(at + "." + need + ": missing");
+    all.push_back(c);
+  }
+  return all;
+}
 }  // namespace
 
 LinkParams linkParamsFromJson(const nlohmann::json& j, const std::string& path, LinkParams p) {
   if (!j.is_object()) throw std::invalid_argument(path + ": expected an object, got " + j.dump());
+  // "channels" replaces the list; a flat channel key next to it would edit channel 0 of
+  // which list? Refuse rather than guess.
+  const bool listed = j.contains("channels");
+  if (listed) p.setChannels(channelList(j.at("channels"), path + ".channels"));
+  ChannelParams first = p.channels().front();
   for (const auto& [key, v] : j.items()) {
     const std::string at = path + "." + key;
-    if (key == "type") continue;  // read by the caller (qpi | ideal)
-    else if (key == "clock_mhz") p.clockMHz = number(v, at);
-    else if (key == "read_latency_ns") range(v, at, p.readLatencyMinNs, p.readLatencyMaxNs);
-    else if (key == "write_latency_ns") range(v, at, p.writeLatencyMinNs, p.writeLatencyMaxNs);
-    else if (key == "read_gbps") p.readGBps = number(v, at);
-    else if (key == "write_gbps") p.writeGBps = number(v, at);
+    if (key == "type" || key == "channels") continue;  // type: read by the caller (a preset name)
+    if (channelKey(key, v, at, first)) {
+      if (listed) throw std::invalid_argument(at + ": give it inside \"channels\" when \"channels\" is set");
+      continue;
+    }
+    if (key == "clock_mhz") p.clockMHz = number(v, at);
     else if (key == "max_reads") p.maxReads = count(v, at);
     else if (key == "max_writes") p.maxWrites = count(v, at);
     else if (key == "reorder") {
@@ -87,6 +172,11 @@ LinkParams linkParamsFromJson(const nlohmann::json& j, const std::string& path, 
     else if (key == "poll_ns") p.pollNs = number(v, at);
     else if (key == "transaction_overhead_ns") p.transactionOverheadNs = number(v, at);
     else throw std::invalid_argument(at + ": unknown key");
+  }
+  if (!listed) {
+    auto all = p.channels();
+    all.front() = first;
+    p.setChannels(all);
   }
   try {
     p.validate();

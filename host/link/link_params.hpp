@@ -1,48 +1,83 @@
 #pragma once
-// Parameters of the host<->AFU link model. Defaults are HARP v1 (Xeon E5-2680 v2 +
-// Stratix V over QPI/CCI); each names its source. Treat them as calibratable.
+// Parameters of the host<->AFU link model. The defaults are HARP v1 (Xeon E5-2680 v2 +
+// Stratix V over QPI/CCI), each naming its source; link/link_presets.cpp holds the other
+// platforms. Treat every number as calibratable.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
 namespace collide::link {
 
+// One physical link between host memory and the FPGA (HARP v2 has a QPI link and two PCIe
+// links behind one CCI-P port). Bandwidth 0 = unlimited: only the AFU port's line a cycle.
+struct ChannelParams {
+  std::string name;
+  double readGBps = 0, writeGBps = 0;
+  double readLatencyMinNs = 0, readLatencyMaxNs = 0;
+  double writeLatencyMinNs = 0, writeLatencyMaxNs = 0;
+};
+
 struct LinkParams {
   std::string name = "qpi";
-  // ARCHITECTURE.md "AFU/CCI clock 200 MHz".
+  // Stratix V AFU clock 200 MHz (Alves et al., "Designing a Collision Detection
+  // Accelerator on a Heterogeneous CPU-FPGA Platform", Table II): the CCI interface clock.
   double clockMHz = 200.0;
-  // ARCHITECTURE.md "Data moves in 64-byte lines". Fixed by the AFU contract.
+  // CCI moves 64-byte cache lines. Fixed by the AFU contract.
   unsigned lineBytes = 64;
-  // NOTES.md / ARCHITECTURE.md: one in-flight read about 200-290 ns round trip
-  // (HARP v1 microbenchmark logs). Drawn uniformly per request, in whole cycles.
+
+  // ---- Channel 0, the only one unless moreChannels is set. These flat fields stay the
+  // first channel so that every scene and test written before channels existed means the
+  // same thing.
+  std::string channelName = "QPI";
+  // One in-flight read about 200-290 ns round trip (public HARP v1 microbenchmark logs).
+  // Drawn uniformly per request, in whole cycles.
   double readLatencyMinNs = 200.0, readLatencyMaxNs = 290.0;
-  // No HARP v1 figure for the write-response latency in our notes: assumed equal to the
-  // read round trip. Calibrate when a measurement exists.
+  // No published HARP v1 write-response latency: assumed equal to the read round trip.
   double writeLatencyMinNs = 200.0, writeLatencyMaxNs = 290.0;
-  // ARCHITECTURE.md: about 7 GB/s read, 5 GB/s write sustained (Choi et al., DAC 2016).
+  // About 7 GB/s read, 5 GB/s write sustained on HARP v1 (Choi et al., "A Quantitative
+  // Analysis on Microarchitectures of Modern CPU-FPGA Platforms", DAC 2016).
   // 0 = unlimited (only the port's one line per cycle = 12.8 GB/s at 200 MHz).
   double readGBps = 7.0, writeGBps = 5.0;
-  // ARCHITECTURE.md / NOTES.md: SPL's 6-bit tags, 64 reads and 64 writes outstanding.
+  // Channels 1.. (their names must differ from channelName and from each other).
+  std::vector<ChannelParams> moreChannels;
+
+  // ---- The AFU port, shared by every channel.
+  // SPL2's 6-bit request tags on HARP v1: 64 reads and 64 writes outstanding.
   unsigned maxReads = 64, maxWrites = 64;
-  // NOTES.md: responses may return out of order. Off: responses in request order.
+  // CCI may return responses out of order. Off: responses in request order.
   bool reorder = true;
   std::uint64_t seed = 1;  // the latency/reordering RNG
-  // Host MMIO CSR write, issue to arrival at the AFU. No measured figure in our notes:
-  // assumed about one QPI traversal, half the 200-290 ns round trip.
+  // Host MMIO CSR write, issue to arrival at the AFU. No published figure: assumed about
+  // one QPI traversal, half the 200-290 ns round trip.
   double csrWriteNs = 125.0;
   // Cost of one status-line poll by the CPU: the AFU's write invalidated the line, so a
-  // poll that sees it pays a QPI round trip (NOTES.md 200-290 ns; upper end taken).
+  // poll that sees it pays a QPI round trip (200-290 ns, upper end taken).
   double pollNs = 290.0;
-  // Fixed host cost per AFU call (AAL transaction configuration and handshake):
-  // the paper says about 5 us; the measured HARP v1 start+poll cost was about 8.5 us
-  // (NOTES.md). Added to the modelled time of each run, outside the cycle model.
+  // Fixed host cost per AFU call (AAL transaction configuration and handshake): about 5 us
+  // in Alves et al. (Section V); start+poll measured about 8.5 us in public HARP v1
+  // microbenchmark logs. Added to the modelled time of each run, outside the cycle model.
   double transactionOverheadNs = 5000.0;
 
-  static LinkParams qpi();
+  // Presets (numbers and sources in link/link_presets.cpp; link::presets() lists them).
+  static LinkParams qpi();    // HARP v1 (also "harp1")
   // Preloaded/ideal link: 1-cycle latency both ways, no bandwidth limit beyond one line
   // per cycle per port, no reordering, free CSRs, polls and transactions.
   static LinkParams ideal();
+  static LinkParams harp2();  // HARP v2: QPI + 2 x PCIe Gen3 x8 in one package
+  static LinkParams pac();    // Intel PAC with Arria 10 GX: one PCIe Gen3 x8
+  static LinkParams cxl();    // a CXL-class link on PCIe 5.0 x16
+
+  // Every channel, channel 0 (the flat fields) first.
+  std::vector<ChannelParams> channels() const;
+  // Replaces every channel: the first goes to the flat fields. Throws on an empty list.
+  void setChannels(const std::vector<ChannelParams>& all);
+  // Sum over the channels; 0 (unlimited) if any channel is unlimited.
+  double aggregateReadGBps() const;
+  double aggregateWriteGBps() const;
+  // One line per cycle: what the AFU port carries a direction at most.
+  double portGBps() const { return lineBytes * clockMHz / 1000.0; }
 
   double cycleNs() const { return 1000.0 / clockMHz; }
   std::uint64_t nsToCycles(double ns) const;  // rounded to nearest, at least 1
@@ -51,7 +86,8 @@ struct LinkParams {
 };
 
 // Reads overrides from a JSON object over `base` (keys as in docs/host.md); throws
-// std::invalid_argument with the key path on a bad value or an unknown key.
+// std::invalid_argument with the key path on a bad value or an unknown key. The flat
+// per-channel keys set channel 0; "channels" replaces every channel.
 LinkParams linkParamsFromJson(const nlohmann::json& j, const std::string& path, LinkParams base);
 
 }  // namespace collide::link

@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "link/link_presets.hpp"
 #include "scene/diamond.hpp"
 #include "scene/random_cloud.hpp"
 
@@ -115,6 +116,7 @@ void readWorld(const JsonNode& n, Scene& s) {
   }
 }
 
+// "link": NAME or {"type": NAME, ...overrides}; NAME is any link preset or alias.
 void readLink(const JsonNode& n, Scene& s) {
   std::string type;
   if (n.json().is_string()) {
@@ -123,16 +125,21 @@ void readLink(const JsonNode& n, Scene& s) {
     n.requireObject();
     type = n.at("type").string();
   }
-  if (type != "ideal" && type != "qpi") {
-    (n.json().is_string() ? n : n.at("type")).expected("\"ideal\" or \"qpi\"");
+  const link::LinkPreset* preset = link::findPreset(type);
+  if (!preset) {
+    // "ideal", "qpi", ... or "cxl", from the registry
+    const auto names = link::presetNames();
+    std::string list;
+    for (std::size_t k = 0; k < names.size(); ++k)
+      list += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + ("\"" + names[k] + "\"");
+    (n.json().is_string() ? n : n.at("type")).expected(list);
   }
-  const auto base = type == "ideal" ? link::LinkParams::ideal() : link::LinkParams::qpi();
   if (!n.json().is_object()) {
-    s.link = base;
+    s.link = preset->params;
     return;
   }
   try {
-    s.link = link::linkParamsFromJson(n.json(), n.path(), base);
+    s.link = link::linkParamsFromJson(n.json(), n.path(), preset->params);
   } catch (const std::invalid_argument& e) {
     throw SceneError(e.what());
   }
