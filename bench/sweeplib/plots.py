@@ -161,10 +161,46 @@ def arith(rows, out):
     return files
 
 
+def label(r):
+    """A links-sweep configuration as a reader names it: format, link format, record layout."""
+    return f"{r['format']} {r['records']} ({r.get('record_bytes', '?')} B)"
+
+
+def links(rows, out):
+    """One Pareto plot per link preset: the contact position's worst error against modelled ns
+    per collision (diamond hMax 10), every format and record layout."""
+    files = []
+    err = "acc_pos_rel_worst"
+    for link in dict.fromkeys(r["link"] for r in rows):
+        rs = [r for r in sel(rows, link=link, hmax=10) if f(r, err) is not None and f(r, "ns_per_collision")]
+        if not rs:
+            continue
+        pts = [(f(r, "ns_per_collision"), max(f(r, err), 1e-17), label(r)) for r in rs]
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        for r, p in zip(rs, pts):
+            ax.scatter([p[0]], [p[1]], marker="o" if r["records"] == "derived" else "s",
+                       color="C0" if r["records"] == "derived" else "C2")
+        front = pareto(pts)
+        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="C1", lw=.8,
+                label="Pareto front (nothing both faster and more accurate)")
+        for k, (x, y, name) in enumerate(sorted(pts)):
+            ax.annotate(name, (x, y), fontsize=7, xytext=(3, 3 + 8 * (k % 3)), textcoords="offset points")
+        ax.scatter([], [], marker="o", color="C0", label="derived records")
+        ax.scatter([], [], marker="s", color="C2", label="full records")
+        ax.legend(fontsize=8, loc="upper right")
+        ax.set_yscale("log")
+        ax.set_xlabel(f"modelled ns per collision, link {link} (diamond hMax 10, 16 SCPUs)")
+        ax.set_ylabel("worst relative error of the contact position\n(golden model vs double; fp64: exact)")
+        ax.set_title(f"What accuracy costs in time: link {link}")
+        ax.grid(alpha=.3, which="both")
+        files.append(save(fig, out / f"links_pareto_{link}.png"))
+    return files
+
+
 def smoke(rows, out):
     return []
 
 
 def draw(name, rows, out: Path):
     out.mkdir(parents=True, exist_ok=True)
-    return {"paper": paper, "scpus": scpus, "arith": arith, "smoke": smoke}[name](rows, out)
+    return {"paper": paper, "scpus": scpus, "arith": arith, "links": links, "smoke": smoke}[name](rows, out)

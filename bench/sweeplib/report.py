@@ -65,10 +65,16 @@ def accuracy_table(rows):
             "grazing decisions != double", "wide-range decisions != exact (outside band)",
             f"drift from ODE (max / mean, m)", "ns/collision qpi / ideal", "16 SCPUs: LUTs", "DSP"]
     body = []
-    ideal = {r["config"]: r for r in sel(rows, link="ideal")}
+    ideal = {}
+    for r in sel(rows, link="ideal"):
+        ideal.setdefault(r["config"], r)
+    seen = set()
     for r in sel(rows, link="qpi"):
+        if r["config"] in seen:  # one row a configuration (its first scene)
+            continue
+        seen.add(r["config"])
         i = ideal.get(r["config"], {})
-        body.append([r["scpu_spec"], r["latency"],
+        body.append([r["scpu_spec"] + (f" ({r['records']})" if r.get("records") else ""), r["latency"],
                      f"{fmt(f(r, 'acc_pos_rel_worst'), '.1e')} / {fmt(f(r, 'acc_pos_rel_mean'), '.1e')}",
                      f"{fmt(f(r, 'acc_normal_ulps_worst'), '.2f')} / {fmt(f(r, 'acc_normal_ulps_mean'), '.2f')}",
                      f"{fmt(f(r, 'acc_depth_rs_ulps_worst'), '.2f')} / {fmt(f(r, 'acc_depth_rs_ulps_mean'), '.2f')}",
@@ -77,6 +83,21 @@ def accuracy_table(rows):
                      f"{fmt(f(r, 'drift_max_m'), '.1e')} / {fmt(f(r, 'drift_mean_m'), '.1e')}",
                      f"{fmt(f(r, 'ns_per_collision'), '.2f')} / {fmt(f(i, 'ns_per_collision') if i else None, '.2f')}",
                      r.get("scpus_luts", ""), r.get("scpus_dsp", "")])
+    return table(head, body)
+
+
+def links_table(rows):
+    """ns per collision for every configuration (rows) on every link preset (columns), and how
+    close each is to its link bound."""
+    presets = list(dict.fromkeys(r["link"] for r in rows))
+    head = ["format", "link format", "records", "B a record", "hMax"] + [f"{p}: ns/collision (x bound)" for p in presets]
+    body = []
+    for (cfg, hmax) in dict.fromkeys((r["config"], r["hmax"]) for r in rows):
+        rs = {r["link"]: r for r in rows if r["config"] == cfg and r["hmax"] == hmax}
+        r0 = next(iter(rs.values()))
+        cells = [f"{fmt(f(rs[p], 'ns_per_collision'), '.2f')} ({fmt(f(rs[p], 'over_link_bound'), '.2f')})" if p in rs else ""
+                 for p in presets]
+        body.append([r0["format"], r0["link_format"], r0["records"], r0["record_bytes"], hmax] + cells)
     return table(head, body)
 
 
@@ -126,6 +147,9 @@ def write(name, rows, out: Path) -> Path:
                      f"{PAPER_TABLE_III['dsp']} DSP blocks, {PAPER_TABLE_III['memory_bits']:,} memory bits; "
                      f"{PAPER_AFU_NS_PER_COLLISION:.0f} ns/collision (AFU) and {PAPER_ODE_NS_PER_COLLISION:.0f} "
                      "ns/collision (ODE) on average.\n")
+    if name == "links":
+        parts += ["\n## ns per collision on every link (modelled; in brackets: modelled / the link model's bound)\n",
+                  links_table(rows)]
     if any(k.startswith("acc_") for k in rows[0]):
         parts += ["\n## What accuracy costs\n", accuracy_table(rows)]
     path = out / f"{name}.md"

@@ -144,6 +144,8 @@ def row(sw, cfg, m, scene, link, s, areas, acc, drift):
         "sweep": sw.name, "config": cfg.id, "scpus": cfg.scpus, "scpu_spec": cfg.spec,
         "format": sc["format"]["name"], "distance": sc["distance"], "sqrt_alg": sc["sqrtAlg"],
         "recip_alg": sc["recipAlg"], "rsqrt_alg": sc["rsqrtAlg"], "latency": sc["latency"],
+        "link_format": m["link"]["format"], "records": m["buffers"].get("records", {}).get("layout", "full"),
+        "record_bytes": m["buffers"]["recordBytes"],
         "scene": scene.id, "hmax": scene.hmax, "steps": scene.steps, "link": link,
         "spheres": s["spheres"], "pairs": pairs, "contacts": contacts,
         "modelled_ns": a["modelled_ns"], "ns_per_collision": per(a["modelled_ns"], contacts),

@@ -1,8 +1,9 @@
 """Named sweeps: which AFU configurations, scenes and links each one runs.
 
 A configuration is what the generator builds (SCPU count + SCPU spec, ScpuConfig.parse
-syntax); a scene is a diamond (hMax, dSph 0) simulated for a number of steps; a link is the
-host's `qpi` (HARP v1) or `ideal` model. Every (configuration, scene, link) is one CSV row.
+syntax, and a record layout or the generator's default); a scene is a diamond (hMax, dSph 0)
+simulated for a number of steps; a link is one of the host's link presets (`collide info
+--links`). Every (configuration, scene, link) is one CSV row.
 """
 from dataclasses import dataclass, field
 import re
@@ -12,13 +13,14 @@ import re
 class Config:
     scpus: int
     spec: str  # ScpuConfig.parse: preset[:key=value]*
+    records: str = ""  # full | derived; "" = the generator's default for the SCPU
 
     @property
     def id(self) -> str:
-        return f"n{self.scpus}_" + re.sub(r"[^A-Za-z0-9-]+", "_", self.spec)
+        return f"n{self.scpus}_" + re.sub(r"[^A-Za-z0-9-]+", "_", self.spec) + (f"_{self.records}" if self.records else "")
 
     def generator_args(self) -> str:
-        return f"--scpus {self.scpus} --scpu {self.spec}"
+        return f"--scpus {self.scpus} --scpu {self.spec}" + (f" --records {self.records}" if self.records else "")
 
 
 @dataclass(frozen=True)
@@ -58,6 +60,15 @@ ARITH_SPECS = (
     "fp16-robust",
 )
 
+# Link formats x record layouts at 16 SCPUs: what the bytes on the link cost.
+LINK_CONFIGS = tuple(Config(16, spec, rec) for spec, rec in (
+    ("fp32", "full"), ("fp32", "derived"),
+    ("fp16", "full"), ("fp16", "derived"), ("bf16", "derived"),
+    ("fp24", "derived"),
+    ("fp64", "full"), ("fp64", "derived"),
+))
+LINK_PRESETS = ("ideal", "qpi", "harp2", "pac", "cxl")
+
 SWEEPS = {s.name: s for s in (
     Sweep("paper", "the paper's Figures 5-7: 16 fp32 SCPUs, diamond hMax 1..10, HARP v1 and ideal links",
           configs=(Config(16, "fp32"),), scenes=tuple(Scene(h) for h in range(1, 11))),
@@ -66,6 +77,9 @@ SWEEPS = {s.name: s for s in (
     Sweep("arith", "what accuracy costs: formats and algorithms at 16 SCPUs, diamond hMax 10",
           configs=tuple(Config(16, s) for s in ARITH_SPECS), scenes=(Scene(10),),
           accuracy=True, drift_steps=6, puc_area=False),  # the PUC barely changes with the arithmetic
+    Sweep("links", "what the link's bytes cost: formats x record layouts x link presets, diamond hMax 10 and 13",
+          configs=LINK_CONFIGS, scenes=(Scene(10), Scene(13)), links=LINK_PRESETS, area=False, accuracy=True,
+          cpu_repeat=5),
     Sweep("smoke", "a quick check of the tool itself: 2 fp32 SCPUs, diamond hMax 2, ideal link",
           configs=(Config(2, "fp32"),), scenes=(Scene(2),), links=("ideal",), area=False,
           accuracy=False, drift_steps=3, cpu_repeat=3),

@@ -13577,7 +13577,7 @@ module ContactPacker_w32_derived_r5_default(
   reg  [24:0] lineNo;
   reg  [24:0] heldLine;
   reg  [24:0] heldRn;
-  wire [2:0]  io_room_0 = _q_io_enq_ready ? 3'h5 - fill : 3'h0;
+  wire [2:0]  io_room_0 = _q_io_enq_ready ? (io_dense ? 3'h5 - fill : 3'h5) : 3'h0;
   reg  [4:0]  casez_tmp;
   always @(*) begin
     casez (io_recs_0_pair[3:0])
@@ -14079,87 +14079,441 @@ module ContactPacker_w32_derived_r5_default(
   end // always @(*)
   wire        emit =
     _q_io_enq_ready
-    & (total == 4'h5 | io_dense & (|io_nRecs)
+    & (total > 4'h4 | io_dense & (|io_nRecs)
        & ((&(casez_tmp_20[3:0])) | casez_tmp_20 == io_numPairs - 24'h1) & (|total)
        | io_flush & (|total));
   wire        _q_io_enq_valid_T_1 = emit & _GEN < io_capacity;
+  wire [2:0]  _held_0_T_1 = 3'h5 - fill;
+  reg  [31:0] casez_tmp_21;
+  always @(*) begin
+    casez (_held_0_T_1)
+      3'b000:
+        casez_tmp_21 = io_recs_0_vals_0;
+      3'b001:
+        casez_tmp_21 = io_recs_1_vals_0;
+      3'b010:
+        casez_tmp_21 = io_recs_2_vals_0;
+      3'b011:
+        casez_tmp_21 = io_recs_3_vals_0;
+      3'b100:
+        casez_tmp_21 = io_recs_4_vals_0;
+      3'b101:
+        casez_tmp_21 = io_recs_0_vals_0;
+      3'b110:
+        casez_tmp_21 = io_recs_0_vals_0;
+      default:
+        casez_tmp_21 = io_recs_0_vals_0;
+    endcase
+  end // always @(*)
+  reg  [31:0] casez_tmp_22;
+  always @(*) begin
+    casez (_held_0_T_1)
+      3'b000:
+        casez_tmp_22 = io_recs_0_vals_1;
+      3'b001:
+        casez_tmp_22 = io_recs_1_vals_1;
+      3'b010:
+        casez_tmp_22 = io_recs_2_vals_1;
+      3'b011:
+        casez_tmp_22 = io_recs_3_vals_1;
+      3'b100:
+        casez_tmp_22 = io_recs_4_vals_1;
+      3'b101:
+        casez_tmp_22 = io_recs_0_vals_1;
+      3'b110:
+        casez_tmp_22 = io_recs_0_vals_1;
+      default:
+        casez_tmp_22 = io_recs_0_vals_1;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_23;
+  always @(*) begin
+    casez (_held_0_T_1)
+      3'b000:
+        casez_tmp_23 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_23 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_23 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_23 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_23 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_23 = io_recs_0_pair;
+      3'b110:
+        casez_tmp_23 = io_recs_0_pair;
+      default:
+        casez_tmp_23 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  reg  [7:0]  casez_tmp_24;
+  always @(*) begin
+    casez (_held_0_T_1)
+      3'b000:
+        casez_tmp_24 = io_recs_0_flags;
+      3'b001:
+        casez_tmp_24 = io_recs_1_flags;
+      3'b010:
+        casez_tmp_24 = io_recs_2_flags;
+      3'b011:
+        casez_tmp_24 = io_recs_3_flags;
+      3'b100:
+        casez_tmp_24 = io_recs_4_flags;
+      3'b101:
+        casez_tmp_24 = io_recs_0_flags;
+      3'b110:
+        casez_tmp_24 = io_recs_0_flags;
+      default:
+        casez_tmp_24 = io_recs_0_flags;
+    endcase
+  end // always @(*)
+  wire [2:0]  _held_1_T_1 = 3'h6 - fill;
+  reg  [31:0] casez_tmp_25;
+  always @(*) begin
+    casez (_held_1_T_1)
+      3'b000:
+        casez_tmp_25 = io_recs_0_vals_0;
+      3'b001:
+        casez_tmp_25 = io_recs_1_vals_0;
+      3'b010:
+        casez_tmp_25 = io_recs_2_vals_0;
+      3'b011:
+        casez_tmp_25 = io_recs_3_vals_0;
+      3'b100:
+        casez_tmp_25 = io_recs_4_vals_0;
+      3'b101:
+        casez_tmp_25 = io_recs_0_vals_0;
+      3'b110:
+        casez_tmp_25 = io_recs_0_vals_0;
+      default:
+        casez_tmp_25 = io_recs_0_vals_0;
+    endcase
+  end // always @(*)
+  reg  [31:0] casez_tmp_26;
+  always @(*) begin
+    casez (_held_1_T_1)
+      3'b000:
+        casez_tmp_26 = io_recs_0_vals_1;
+      3'b001:
+        casez_tmp_26 = io_recs_1_vals_1;
+      3'b010:
+        casez_tmp_26 = io_recs_2_vals_1;
+      3'b011:
+        casez_tmp_26 = io_recs_3_vals_1;
+      3'b100:
+        casez_tmp_26 = io_recs_4_vals_1;
+      3'b101:
+        casez_tmp_26 = io_recs_0_vals_1;
+      3'b110:
+        casez_tmp_26 = io_recs_0_vals_1;
+      default:
+        casez_tmp_26 = io_recs_0_vals_1;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_27;
+  always @(*) begin
+    casez (_held_1_T_1)
+      3'b000:
+        casez_tmp_27 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_27 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_27 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_27 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_27 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_27 = io_recs_0_pair;
+      3'b110:
+        casez_tmp_27 = io_recs_0_pair;
+      default:
+        casez_tmp_27 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  reg  [7:0]  casez_tmp_28;
+  always @(*) begin
+    casez (_held_1_T_1)
+      3'b000:
+        casez_tmp_28 = io_recs_0_flags;
+      3'b001:
+        casez_tmp_28 = io_recs_1_flags;
+      3'b010:
+        casez_tmp_28 = io_recs_2_flags;
+      3'b011:
+        casez_tmp_28 = io_recs_3_flags;
+      3'b100:
+        casez_tmp_28 = io_recs_4_flags;
+      3'b101:
+        casez_tmp_28 = io_recs_0_flags;
+      3'b110:
+        casez_tmp_28 = io_recs_0_flags;
+      default:
+        casez_tmp_28 = io_recs_0_flags;
+    endcase
+  end // always @(*)
+  wire [2:0]  _held_2_T_1 = 3'h7 - fill;
+  reg  [31:0] casez_tmp_29;
+  always @(*) begin
+    casez (_held_2_T_1)
+      3'b000:
+        casez_tmp_29 = io_recs_0_vals_0;
+      3'b001:
+        casez_tmp_29 = io_recs_1_vals_0;
+      3'b010:
+        casez_tmp_29 = io_recs_2_vals_0;
+      3'b011:
+        casez_tmp_29 = io_recs_3_vals_0;
+      3'b100:
+        casez_tmp_29 = io_recs_4_vals_0;
+      3'b101:
+        casez_tmp_29 = io_recs_0_vals_0;
+      3'b110:
+        casez_tmp_29 = io_recs_0_vals_0;
+      default:
+        casez_tmp_29 = io_recs_0_vals_0;
+    endcase
+  end // always @(*)
+  reg  [31:0] casez_tmp_30;
+  always @(*) begin
+    casez (_held_2_T_1)
+      3'b000:
+        casez_tmp_30 = io_recs_0_vals_1;
+      3'b001:
+        casez_tmp_30 = io_recs_1_vals_1;
+      3'b010:
+        casez_tmp_30 = io_recs_2_vals_1;
+      3'b011:
+        casez_tmp_30 = io_recs_3_vals_1;
+      3'b100:
+        casez_tmp_30 = io_recs_4_vals_1;
+      3'b101:
+        casez_tmp_30 = io_recs_0_vals_1;
+      3'b110:
+        casez_tmp_30 = io_recs_0_vals_1;
+      default:
+        casez_tmp_30 = io_recs_0_vals_1;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_31;
+  always @(*) begin
+    casez (_held_2_T_1)
+      3'b000:
+        casez_tmp_31 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_31 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_31 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_31 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_31 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_31 = io_recs_0_pair;
+      3'b110:
+        casez_tmp_31 = io_recs_0_pair;
+      default:
+        casez_tmp_31 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  reg  [7:0]  casez_tmp_32;
+  always @(*) begin
+    casez (_held_2_T_1)
+      3'b000:
+        casez_tmp_32 = io_recs_0_flags;
+      3'b001:
+        casez_tmp_32 = io_recs_1_flags;
+      3'b010:
+        casez_tmp_32 = io_recs_2_flags;
+      3'b011:
+        casez_tmp_32 = io_recs_3_flags;
+      3'b100:
+        casez_tmp_32 = io_recs_4_flags;
+      3'b101:
+        casez_tmp_32 = io_recs_0_flags;
+      3'b110:
+        casez_tmp_32 = io_recs_0_flags;
+      default:
+        casez_tmp_32 = io_recs_0_flags;
+    endcase
+  end // always @(*)
+  wire [2:0]  _held_3_T_1 = 3'h0 - fill;
+  reg  [31:0] casez_tmp_33;
+  always @(*) begin
+    casez (_held_3_T_1)
+      3'b000:
+        casez_tmp_33 = io_recs_0_vals_0;
+      3'b001:
+        casez_tmp_33 = io_recs_1_vals_0;
+      3'b010:
+        casez_tmp_33 = io_recs_2_vals_0;
+      3'b011:
+        casez_tmp_33 = io_recs_3_vals_0;
+      3'b100:
+        casez_tmp_33 = io_recs_4_vals_0;
+      3'b101:
+        casez_tmp_33 = io_recs_0_vals_0;
+      3'b110:
+        casez_tmp_33 = io_recs_0_vals_0;
+      default:
+        casez_tmp_33 = io_recs_0_vals_0;
+    endcase
+  end // always @(*)
+  reg  [31:0] casez_tmp_34;
+  always @(*) begin
+    casez (_held_3_T_1)
+      3'b000:
+        casez_tmp_34 = io_recs_0_vals_1;
+      3'b001:
+        casez_tmp_34 = io_recs_1_vals_1;
+      3'b010:
+        casez_tmp_34 = io_recs_2_vals_1;
+      3'b011:
+        casez_tmp_34 = io_recs_3_vals_1;
+      3'b100:
+        casez_tmp_34 = io_recs_4_vals_1;
+      3'b101:
+        casez_tmp_34 = io_recs_0_vals_1;
+      3'b110:
+        casez_tmp_34 = io_recs_0_vals_1;
+      default:
+        casez_tmp_34 = io_recs_0_vals_1;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_35;
+  always @(*) begin
+    casez (_held_3_T_1)
+      3'b000:
+        casez_tmp_35 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_35 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_35 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_35 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_35 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_35 = io_recs_0_pair;
+      3'b110:
+        casez_tmp_35 = io_recs_0_pair;
+      default:
+        casez_tmp_35 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  reg  [7:0]  casez_tmp_36;
+  always @(*) begin
+    casez (_held_3_T_1)
+      3'b000:
+        casez_tmp_36 = io_recs_0_flags;
+      3'b001:
+        casez_tmp_36 = io_recs_1_flags;
+      3'b010:
+        casez_tmp_36 = io_recs_2_flags;
+      3'b011:
+        casez_tmp_36 = io_recs_3_flags;
+      3'b100:
+        casez_tmp_36 = io_recs_4_flags;
+      3'b101:
+        casez_tmp_36 = io_recs_0_flags;
+      3'b110:
+        casez_tmp_36 = io_recs_0_flags;
+      default:
+        casez_tmp_36 = io_recs_0_flags;
+    endcase
+  end // always @(*)
   `ifndef SYNTHESIS
     always @(posedge clock) begin
       if (~reset & io_nRecs > io_room_0) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ContactPacker: more records than room\n    at ContactPacker.scala:93 assert(io.nRecs <= io.room, \"ContactPacker: more records than room\")\n");
+          $error("Assertion failed: ContactPacker: more records than room\n    at ContactPacker.scala:101 assert(io.nRecs <= io.room, \"ContactPacker: more records than room\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_q_io_enq_valid_T_1 | _q_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ContactPacker: line queue overflow\n    at ContactPacker.scala:94 assert(!q.io.enq.valid || q.io.enq.ready, \"ContactPacker: line queue overflow\")\n");
+          $error("Assertion failed: ContactPacker: line queue overflow\n    at ContactPacker.scala:102 assert(!q.io.enq.valid || q.io.enq.ready, \"ContactPacker: line queue overflow\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
+  wire [3:0]  carry = total > 4'h5 ? total - 4'h5 : 4'h0;
   always @(posedge clock) begin
     if (reset) begin
       fill <= 3'h0;
       count <= 25'h0;
       lineNo <= 25'h0;
     end
+    else if (io_start) begin
+      fill <= 3'h0;
+      count <= 25'h0;
+      lineNo <= 25'h0;
+    end
     else begin
-      if (io_start | emit)
-        fill <= 3'h0;
+      if (emit)
+        fill <= carry[2:0];
       else
         fill <= total[2:0];
-      if (io_start) begin
-        count <= 25'h0;
-        lineNo <= 25'h0;
-      end
-      else begin
-        if (io_dense) begin
-        end
-        else
-          count <= count + {22'h0, io_nRecs};
-        if (emit & ~io_dense)
-          lineNo <= lineNo + 25'h1;
-      end
-    end
-    if (emit | ~(|total)) begin
-    end
-    else if (_slots_T_4) begin
-      if (~(|fill))
-        held_0 <= _slots_v_T_5;
-    end
-    else
-      held_0 <= 96'h0;
-    if (emit | ~(|(total[3:1]))) begin
-    end
-    else if (_slots_T_10) begin
-      if (~(|(fill[2:1])))
-        held_1 <= _slots_v_T_11;
-    end
-    else
-      held_1 <= 96'h0;
-    if (emit | ~_slots_T_12) begin
-    end
-    else if (_slots_T_16) begin
-      if (~_slots_v_T_12)
-        held_2 <= _slots_v_T_17;
-    end
-    else
-      held_2 <= 96'h0;
-    if (emit | ~(|(total[3:2]))) begin
-    end
-    else if (_slots_T_22) begin
-      if (fill[2]) begin
+      if (io_dense) begin
       end
       else
-        held_3 <= _slots_v_T_23;
+        count <= count + {22'h0, io_nRecs};
+      if (emit & ~io_dense)
+        lineNo <= lineNo + 25'h1;
     end
-    else
-      held_3 <= 96'h0;
-    if (~(emit | (|fill))) begin
-      heldLine <= _lineOf_T_4;
-      heldRn <= _rnOf_T_2;
+    if (emit) begin
+      if (|carry)
+        held_0 <= {casez_tmp_24, casez_tmp_23, casez_tmp_22, casez_tmp_21};
+      if (|(carry[3:1]))
+        held_1 <= {casez_tmp_28, casez_tmp_27, casez_tmp_26, casez_tmp_25};
+      if (carry > 4'h2)
+        held_2 <= {casez_tmp_32, casez_tmp_31, casez_tmp_30, casez_tmp_29};
+      if (|(carry[3:2]))
+        held_3 <= {casez_tmp_36, casez_tmp_35, casez_tmp_34, casez_tmp_33};
+      heldLine <= lineNo + 25'h1;
+      heldRn <= rnOf + 25'h5;
+    end
+    else begin
+      if (|total) begin
+        if (_slots_T_4) begin
+          if (~(|fill))
+            held_0 <= _slots_v_T_5;
+        end
+        else
+          held_0 <= 96'h0;
+      end
+      if (|(total[3:1])) begin
+        if (_slots_T_10) begin
+          if (~(|(fill[2:1])))
+            held_1 <= _slots_v_T_11;
+        end
+        else
+          held_1 <= 96'h0;
+      end
+      if (_slots_T_12) begin
+        if (_slots_T_16) begin
+          if (~_slots_v_T_12)
+            held_2 <= _slots_v_T_17;
+        end
+        else
+          held_2 <= 96'h0;
+      end
+      if (|(total[3:2])) begin
+        if (_slots_T_22) begin
+          if (fill[2]) begin
+          end
+          else
+            held_3 <= _slots_v_T_23;
+        end
+        else
+          held_3 <= 96'h0;
+      end
+      if (~(|fill)) begin
+        heldLine <= _lineOf_T_4;
+        heldRn <= _rnOf_T_2;
+      end
     end
   end // always @(posedge)
   ContactLineQueue_d8_default q (
