@@ -87,12 +87,12 @@ TEST(Driver, Binary64RunMatchesOdeBitForBit) {
   expectSameContacts(r.contacts, ref);
 }
 
-TEST(Driver, SkippingIdleCyclesGivesIdenticalResultsAndTime) {
-  const auto seed = test::testSeed(33);
+namespace {
+// Skipping idle cycles changes nothing but the evaluations: same status, time and contacts.
+void expectSkippingIsExact(link::LinkParams lp, std::uint64_t seed) {
   SphereTable t;
   PairList p;
   randomBatch(seed, 200, 3000, t, p);
-  link::LinkParams lp = link::LinkParams::qpi();
   lp.seed = seed;
   DriverOptions skip, step;
   step.skipIdle = false;
@@ -106,26 +106,17 @@ TEST(Driver, SkippingIdleCyclesGivesIdenticalResultsAndTime) {
   EXPECT_EQ(b.result.stats.cyclesSkipped, 0u);
   EXPECT_GT(a.result.stats.cyclesSkipped, 0u);
   EXPECT_LT(a.edges, b.edges);  // and it saved evaluations
-  std::cout << "[ info     ] stepped " << b.edges << " edges, skipping " << a.edges << " edges, "
-            << a.result.stats.statusCycle << " modelled cycles\n";
+  std::cout << "[ info     ] " << lp.name << ": stepped " << b.edges << " edges, skipping " << a.edges
+            << " edges, " << a.result.stats.statusCycle << " modelled cycles\n";
+}
+}  // namespace
+
+TEST(Driver, SkippingIdleCyclesGivesIdenticalResultsAndTime) {
+  expectSkippingIsExact(link::LinkParams::qpi(), test::testSeed(33));
 }
 
 TEST(Driver, SkippingIsExactOnAMultiChannelLinkToo) {
-  const auto seed = test::testSeed(34);
-  SphereTable t;
-  PairList p;
-  randomBatch(seed, 200, 3000, t, p);
-  link::LinkParams lp = link::LinkParams::harp2();
-  lp.seed = seed;
-  DriverOptions skip, step;
-  step.skipIdle = false;
-  const auto a = drive({}, lp, skip, t, p);
-  const auto b = drive({}, lp, step, t, p);
-  EXPECT_EQ(a.result.stats.statusCycle, b.result.stats.statusCycle);
-  EXPECT_EQ(a.result.stats.modelledNs, b.result.stats.modelledNs);
-  EXPECT_EQ(std::memcmp(&a.result.status, &b.result.status, sizeof(StatusLine)), 0);
-  expectSameContacts(a.contacts, b.contacts);
-  EXPECT_GT(a.result.stats.cyclesSkipped, 0u);
+  expectSkippingIsExact(link::LinkParams::harp2(), test::testSeed(34));
 }
 
 TEST(Driver, AHungAfuIsAClearErrorNotAHang) {
@@ -220,4 +211,36 @@ TEST(Driver, TheLinkBoundCountsTheLinesMovedAndNeverExceedsTheModelledTime) {
   EXPECT_DOUBLE_EQ(linkBoundNs(q, 1000, 100), fixed + 1000 * 64.0 / 7.0);
   // Ideal: one line a cycle each way, no per-call costs but a CSR and two 1-cycle trips.
   EXPECT_DOUBLE_EQ(linkBoundNs(link::LinkParams::ideal(), 7, 30), 3 * 5.0 + 30 * 5.0);
+}
+
+// A value that does not fit the link format is never silently a miss: every pair that uses
+// the sphere carries REC_HOST_RANGE, whether the AFU called it a contact or not.
+TEST(Driver, PairsWithInputsOutsideTheLinkFormatAreFlaggedNotDropped) {
+  SphereTable t;
+  t.push(0, 0, 0, 1);        // 0: fine
+  t.push(1e39, 0, 0, 1);     // 1: x overflows binary32
+  t.push(0.5, 0, 0, 1e-50);  // 2: a positive radius that rounds to zero in binary32
+  t.push(0.5, 0, 0, 1);      // 3: fine, touches 0
+  PairList p;
+  p.push(0, 3); p.push(0, 1); p.push(0, 2); p.push(1, 2); p.push(3, 0);
+  for (bool dense : {false, true}) {
+    DriverOptions o;
+    o.dense = dense;
+    const auto r = drive({}, link::LinkParams::ideal(), o, t, p);
+    EXPECT_EQ(r.result.rangePairs, (std::vector<std::uint32_t>{1, 2, 3})) << "dense " << dense;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const bool bad = k >= 1 && k <= 3;
+      EXPECT_EQ((r.contacts.flags[k] & contract::REC_HOST_RANGE) != 0, bad) << "pair " << k << " dense " << dense;
+    }
+    EXPECT_TRUE(r.contacts.hit[0] && r.contacts.hit[4]);
+    EXPECT_FALSE(r.contacts.hit[1]);  // the AFU saw an infinity: no contact, but flagged
+    if (dense) EXPECT_TRUE(r.contacts.flags[1] & contract::REC_NONFINITE);  // compact mode has no record for a miss
+  }
+  // The same on the wire's own widths: writeSphereTable says which spheres did not fit.
+  link::HostMemory m;
+  const auto a = m.allocate(2);
+  SphereTable h;
+  h.push(70000, 0, 0, 1); h.push(1, 2, 3, 1e-9); h.push(1, 2, 3, 4); h.push(INFINITY, 0, 0, 1);
+  EXPECT_EQ(writeSphereTable(m, a.base, h, LinkFormat::Binary16), (std::vector<std::uint8_t>{1, 1, 0, 0}));
+  EXPECT_EQ(writeSphereTable(m, a.base, h, LinkFormat::BFloat16), (std::vector<std::uint8_t>{0, 0, 0, 0}));
 }

@@ -101,6 +101,32 @@ def links_table(rows):
     return table(head, body)
 
 
+def isoarea_table(rows, results: Path):
+    """Per arithmetic: the SCPUs that fit the chip under each calibration and the time per
+    collision at that count on every link (isoarea.py; 16+ SCPUs run in the 16-SCPU time)."""
+    import csv
+    import isoarea
+    from sweeps import ISOAREA_SPECS, LANES
+    load = lambda n: list(csv.DictReader(open(results / n / f"{n}.csv", newline="")))
+    arith, pucs = load("arith"), load("scpus")
+    fit, areas = isoarea.fits(arith, pucs), isoarea.scpu_areas(arith)
+    presets = list(dict.fromkeys(r["link"] for r in rows))
+    by = {(r["scpu_spec"], int(r["scpus"]), r["link"]): r for r in rows}
+    head = ["arithmetic", "one SCPU: ALMs packed / unpacked", "DSPs", "SCPUs that fit: packed / unpacked (limit)"] + \
+        [f"{p}: ns/collision packed / unpacked" for p in presets]
+    body = []
+    for spec in ISOAREA_SPECS:
+        if spec not in areas:
+            continue
+        a = areas[spec]
+        (np, wp), (nu, wu) = fit[(spec, "packed")], fit[(spec, "unpacked")]
+        cell = lambda n, p: fmt(f(by.get((spec, max(1, min(n, LANES)), p), {}), "ns_per_collision"), ".2f")
+        body.append([spec, f"{isoarea.alms(a['luts'], a['arith'], a['ff'], 'packed'):,} / "
+                           f"{isoarea.alms(a['luts'], a['arith'], a['ff'], 'unpacked'):,}", int(a["dsp"]),
+                     f"{np} / {nu} ({wp}, {wu})"] + [f"{cell(np, p)} / {cell(nu, p)}" for p in presets])
+    return table(head, body)
+
+
 def paper_side_by_side(rows):
     """The paper's stated figures next to ours, computed from the sweep's rows."""
     q = sorted((r for r in sel(rows, link="qpi") if f(r, "contacts")), key=lambda r: int(r["hmax"]))
@@ -147,6 +173,9 @@ def write(name, rows, out: Path) -> Path:
                      f"{PAPER_TABLE_III['dsp']} DSP blocks, {PAPER_TABLE_III['memory_bits']:,} memory bits; "
                      f"{PAPER_AFU_NS_PER_COLLISION:.0f} ns/collision (AFU) and {PAPER_ODE_NS_PER_COLLISION:.0f} "
                      "ns/collision (ODE) on average.\n")
+    if name == "isoarea":
+        parts += [f"\n## At a fixed chip ({__import__('isoarea').CHIP['name']}; calibration in sweeplib/isoarea.py)\n",
+                  isoarea_table(rows, out.parent)]
     if name == "links":
         parts += ["\n## ns per collision on every link (modelled; in brackets: modelled / the link model's bound)\n",
                   links_table(rows)]

@@ -5,8 +5,12 @@ syntax, and a record layout or the generator's default); a scene is a diamond (h
 simulated for a number of steps; a link is one of the host's link presets (`collide info
 --links`). Every (configuration, scene, link) is one CSV row.
 """
+import csv
 from dataclasses import dataclass, field
+from pathlib import Path
 import re
+
+import isoarea
 
 
 @dataclass(frozen=True)
@@ -60,14 +64,35 @@ ARITH_SPECS = (
     "fp16-robust",
 )
 
-# Link formats x record layouts at 16 SCPUs: what the bytes on the link cost.
+# Link formats x record layouts at 16 SCPUs: what the bytes on the link cost. "" is the
+# generator's default, derived records for all of these (so the builds are the arith sweep's).
 LINK_CONFIGS = tuple(Config(16, spec, rec) for spec, rec in (
-    ("fp32", "full"), ("fp32", "derived"),
-    ("fp16", "full"), ("fp16", "derived"), ("bf16", "derived"),
-    ("fp24", "derived"),
-    ("fp64", "full"), ("fp64", "derived"),
+    ("fp32", "full"), ("fp32", ""),
+    ("fp16", "full"), ("fp16", ""), ("bf16", ""),
+    ("fp24", ""),
+    ("fp64", "full"), ("fp64", ""),
 ))
 LINK_PRESETS = ("ideal", "qpi", "harp2", "pac", "cxl")
+
+# The dispatcher hands out at most 16 pairs a cycle (one pair line), so an AFU with more SCPUs
+# runs in the 16-SCPU time to the cycle (the scpus sweep: 16 and 32 are identical).
+LANES = 16
+
+
+def isoarea_configs(results: Path):
+    """One configuration per arithmetic and calibration at the SCPU count that fits the chip
+    (isoarea.py), capped at LANES; empty until the arith and scpus sweeps have results."""
+    def rows(name):
+        p = results / name / f"{name}.csv"
+        return list(csv.DictReader(open(p, newline=""))) if p.exists() else []
+    fit = isoarea.fits(rows("arith"), rows("scpus")) if rows("arith") and rows("scpus") else {}
+    return tuple(dict.fromkeys(Config(max(1, min(n, LANES)), spec) for (spec, _), (n, _) in sorted(fit.items())
+                               if spec in ISOAREA_SPECS))
+
+
+# The formats, and the two other root algorithms / distance methods of fp32.
+ISOAREA_SPECS = ("fp32", "fp32-nr", "fp32-robust", "fp24", "fp16", "bf16", "fp64")
+
 
 SWEEPS = {s.name: s for s in (
     Sweep("paper", "the paper's Figures 5-7: 16 fp32 SCPUs, diamond hMax 1..10, HARP v1 and ideal links",
@@ -80,6 +105,10 @@ SWEEPS = {s.name: s for s in (
     Sweep("links", "what the link's bytes cost: formats x record layouts x link presets, diamond hMax 10 and 13",
           configs=LINK_CONFIGS, scenes=(Scene(10), Scene(13)), links=LINK_PRESETS, area=False, accuracy=True,
           cpu_repeat=5),
+    Sweep("isoarea", "what accuracy costs in time at a fixed chip (Stratix V 5SGXEA7): each arithmetic at the "
+          "SCPU count that fits, diamond hMax 10, every link preset",
+          configs=isoarea_configs(Path(__file__).resolve().parents[1] / "results"), scenes=(Scene(10),),
+          links=LINK_PRESETS, area=False, cpu_repeat=3),
     Sweep("smoke", "a quick check of the tool itself: 2 fp32 SCPUs, diamond hMax 2, ideal link",
           configs=(Config(2, "fp32"),), scenes=(Scene(2),), links=("ideal",), area=False,
           accuracy=False, drift_steps=3, cpu_repeat=3),

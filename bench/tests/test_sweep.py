@@ -12,12 +12,15 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sweeplib"))
 import plots  # noqa: E402
 import report  # noqa: E402
 import runs  # noqa: E402
+import isoarea  # noqa: E402
 import sweep  # noqa: E402
 from sweeps import SWEEPS, Config, Scene  # noqa: E402
 
 MANIFEST = {"afu": {"peakPairsPerCycle": 16, "ram": {"sphereTableBits": 2097152, "pairBufferBits": 34048}},
             "scpu": {"format": {"name": "fp32"}, "distance": "sqrt-recip", "sqrtAlg": "dr", "recipAlg": "dr",
-                     "rsqrtAlg": "dr", "latency": 21}}
+                     "rsqrtAlg": "dr", "latency": 21},
+            "link": {"format": "binary32"},
+            "buffers": {"recordBytes": 12, "records": {"layout": "derived"}}}
 
 
 def summary(pairs=5829, contacts=3593, modelled=31100.0, bound=28829.0):
@@ -41,6 +44,40 @@ class ConfigIds(unittest.TestCase):
         c = Config(8, "fp32:sqrt=nr8x1:recip=nr8x1")
         self.assertEqual(c.generator_args(), "--scpus 8 --scpu fp32:sqrt=nr8x1:recip=nr8x1")
         self.assertEqual(c.id, "n8_fp32_sqrt_nr8x1_recip_nr8x1")
+
+    def test_a_record_layout_is_passed_on_and_named_only_when_asked_for(self):
+        self.assertEqual(Config(16, "fp16", "full").generator_args(), "--scpus 16 --scpu fp16 --records full")
+        self.assertEqual(Config(16, "fp16", "full").id, "n16_fp16_full")
+        self.assertEqual(Config(16, "fp16").id, "n16_fp16")
+        r = sweep.row(SWEEPS["links"], Config(16, "fp32"), MANIFEST, Scene(10), "pac", summary(), {}, {}, {})
+        self.assertEqual((r["link_format"], r["records"], r["record_bytes"], r["link"]), ("binary32", "derived", 12, "pac"))
+
+
+class IsoArea(unittest.TestCase):
+    PUCS = [{"scpus": "1", "puc_luts": "1000", "puc_arith": "0", "puc_ff": "0"},
+            {"scpus": "3", "puc_luts": "3000", "puc_arith": "0", "puc_ff": "0"}]
+
+    def arith(self, luts, arith, dsp, ff, fmt="fp32"):
+        return [{"scpu_spec": "x", "format": fmt, "scpu_luts": str(luts), "scpu_arith": str(arith),
+                 "scpu_dsp": str(dsp), "scpu_ff": str(ff)}]
+
+    def test_the_two_calibrations_bracket_the_alms_a_block_needs(self):
+        self.assertEqual(isoarea.alms(100, 50, 40, "unpacked"), 150)
+        self.assertEqual(isoarea.alms(100, 50, 40, "packed"), 75)
+        self.assertEqual(isoarea.alms(10, 0, 400, "packed"), 100)  # four registers an ALM
+
+    def test_the_puc_is_interpolated_and_extrapolated_with_the_last_slope(self):
+        t = isoarea.puc_table(self.PUCS)
+        self.assertEqual(isoarea.puc_at(t, 2)["luts"], 2000)
+        self.assertEqual(isoarea.puc_at(t, 5)["luts"], 5000)
+
+    def test_the_count_stops_at_the_first_resource_that_runs_out(self):
+        cap = isoarea.CHIP
+        # ALMs: PUC n * 1000 + n * 9000 (unpacked) <= 234,720 -> 23
+        n, why = isoarea.fits(self.arith(9000, 0, 1, 0), self.PUCS)[("x", "unpacked")]
+        self.assertEqual((n, why), (cap["alms"] // 10000, "ALMs"))
+        # DSPs: 100 a unit -> 2
+        self.assertEqual(isoarea.fits(self.arith(10, 0, 100, 0), self.PUCS)[("x", "packed")], (2, "DSPs"))
 
 
 class Rows(unittest.TestCase):
@@ -114,6 +151,31 @@ class Plots(unittest.TestCase):
             # hMax 3 over qpi: 31.10 us modelled, 8.66 ns/collision, 1.08x the link bound
             self.assertIn("| n16_fp32 | 3 | qpi | 5829 | 3593 | 31.10 | 8.66 | 5.34 | 28.83 | 1.08 |", md)
             self.assertIn("200,844 logic elements", md)
+
+
+class Links(unittest.TestCase):
+    def rows(self):
+        out = []
+        for cfg, fmt, rec, nbytes, err, ns in (("n16_fp32", "fp32", "derived", 12, 1e-7, {"qpi": 4.8, "ideal": 1.5}),
+                                                ("n16_fp16", "fp16", "derived", 8, 1e-3, {"qpi": 3.9, "ideal": 1.1}),
+                                                ("n16_fp32_full", "fp32", "full", 32, 1e-7, {"qpi": 8.7, "ideal": 3.0})):
+            for link, v in ns.items():
+                out.append({"config": cfg, "format": fmt, "link_format": "binary" + fmt[2:], "records": rec,
+                            "record_bytes": str(nbytes), "hmax": "10", "link": link, "ns_per_collision": str(v),
+                            "over_link_bound": "1.10", "acc_pos_rel_worst": str(err), "scpu_spec": fmt})
+        return out
+
+    def test_one_pareto_plot_per_link_and_a_table_of_every_configuration_on_every_link(self):
+        with tempfile.TemporaryDirectory() as d:
+            files = plots.draw("links", self.rows(), Path(d))
+            self.assertEqual(sorted(f.name for f in files), ["links_pareto_ideal.png", "links_pareto_qpi.png"])
+            md = report.links_table(self.rows())
+            self.assertIn("| fp16 | binary16 | derived | 8 | 10 | 3.90 (1.10) | 1.10 (1.10) |", md)
+            self.assertIn("| fp32 | binary32 | full | 32 | 10 | 8.70 (1.10) | 3.00 (1.10) |", md)
+
+    def test_the_front_is_the_fast_and_accurate_points(self):
+        pts = [(4.8, 1e-7, "fp32"), (3.9, 1e-3, "fp16"), (8.7, 1e-7, "fp32 full")]
+        self.assertEqual([p[2] for p in plots.pareto(pts)], ["fp16", "fp32"])
 
 
 if __name__ == "__main__":
