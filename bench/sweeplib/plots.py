@@ -187,7 +187,7 @@ def links(rows, out):
             ax.annotate(name, (x, y), fontsize=7, xytext=(3, 3 + 8 * (k % 3)), textcoords="offset points")
         ax.scatter([], [], marker="o", color="C0", label="derived records")
         ax.scatter([], [], marker="s", color="C2", label="full records")
-        ax.legend(fontsize=8, loc="upper right")
+        ax.legend(fontsize=8, loc="center right")
         ax.set_yscale("log")
         ax.set_xlabel(f"modelled ns per collision, link {link} (diamond hMax 10, 16 SCPUs)")
         ax.set_ylabel("worst relative error of the contact position\n(golden model vs double; fp64: exact)")
@@ -203,4 +203,5 @@ def smoke(rows, out):
 
 def draw(name, rows, out: Path):
     out.mkdir(parents=True, exist_ok=True)
-    return {"paper": paper, "scpus": scpus, "arith": arith, "links": links, "smoke": smoke}[name](rows, out)
+    # isoarea and smoke: tables only
+    return {"paper": paper, "scpus": scpus, "arith": arith, "links": links}.get(name, smoke)(rows, out)

@@ -106,24 +106,25 @@ def isoarea_table(rows, results: Path):
     collision at that count on every link (isoarea.py; 16+ SCPUs run in the 16-SCPU time)."""
     import csv
     import isoarea
-    from sweeps import ISOAREA_SPECS, LANES
+    from sweeps import ISOAREA_SPECS, built_count
     load = lambda n: list(csv.DictReader(open(results / n / f"{n}.csv", newline="")))
     arith, pucs = load("arith"), load("scpus")
     fit, areas = isoarea.fits(arith, pucs), isoarea.scpu_areas(arith)
     presets = list(dict.fromkeys(r["link"] for r in rows))
     by = {(r["scpu_spec"], int(r["scpus"]), r["link"]): r for r in rows}
-    head = ["arithmetic", "one SCPU: ALMs packed / unpacked", "DSPs", "SCPUs that fit: packed / unpacked (limit)"] + \
-        [f"{p}: ns/collision packed / unpacked" for p in presets]
+    head = ["arithmetic", "one SCPU: ALMs packed / unpacked", "DSPs", "SCPUs that fit: packed / unpacked (limit)",
+            "built"] + [f"{p}: ns/collision packed / unpacked" for p in presets]
     body = []
     for spec in ISOAREA_SPECS:
         if spec not in areas:
             continue
         a = areas[spec]
         (np, wp), (nu, wu) = fit[(spec, "packed")], fit[(spec, "unpacked")]
-        cell = lambda n, p: fmt(f(by.get((spec, max(1, min(n, LANES)), p), {}), "ns_per_collision"), ".2f")
-        body.append([spec, f"{isoarea.alms(a['luts'], a['arith'], a['ff'], 'packed'):,} / "
-                           f"{isoarea.alms(a['luts'], a['arith'], a['ff'], 'unpacked'):,}", int(a["dsp"]),
-                     f"{np} / {nu} ({wp}, {wu})"] + [f"{cell(np, p)} / {cell(nu, p)}" for p in presets])
+        cell = lambda n, p: fmt(f(by.get((spec, built_count(n), p), {}), "ns_per_collision"), ".2f")
+        body.append([spec, f"{int(isoarea.alms(a['luts'], a['arith'], a['ff'], 'packed')):,} / "
+                           f"{int(isoarea.alms(a['luts'], a['arith'], a['ff'], 'unpacked')):,}", int(a["dsp"]),
+                     f"{np} / {nu} ({wp}, {wu})", f"{built_count(np)} / {built_count(nu)}"] +
+                    [f"{cell(np, p)} / {cell(nu, p)}" for p in presets])
     return table(head, body)
 
 

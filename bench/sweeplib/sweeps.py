@@ -79,6 +79,13 @@ LINK_PRESETS = ("ideal", "qpi", "harp2", "pac", "cxl")
 LANES = 16
 
 
+def built_count(fit: int) -> int:
+    """The SCPU count one would build when `fit` fit: the largest divisor of the 16 pairs of a
+    pair line not above it. A pair line is dispatched in groups of N, so N = 15 takes two
+    groups a line (15 + 1) and is no faster than 8 (the isoarea sweep measured it slower)."""
+    return max(d for d in (1, 2, 4, 8, 16) if d <= max(1, min(fit, LANES)))
+
+
 def isoarea_configs(results: Path):
     """One configuration per arithmetic and calibration at the SCPU count that fits the chip
     (isoarea.py), capped at LANES; empty until the arith and scpus sweeps have results."""
@@ -86,7 +93,7 @@ def isoarea_configs(results: Path):
         p = results / name / f"{name}.csv"
         return list(csv.DictReader(open(p, newline=""))) if p.exists() else []
     fit = isoarea.fits(rows("arith"), rows("scpus")) if rows("arith") and rows("scpus") else {}
-    return tuple(dict.fromkeys(Config(max(1, min(n, LANES)), spec) for (spec, _), (n, _) in sorted(fit.items())
+    return tuple(dict.fromkeys(Config(built_count(n), spec) for (spec, _), (n, _) in sorted(fit.items())
                                if spec in ISOAREA_SPECS))
 
 
@@ -95,8 +102,9 @@ ISOAREA_SPECS = ("fp32", "fp32-nr", "fp32-robust", "fp24", "fp16", "bf16", "fp64
 
 
 SWEEPS = {s.name: s for s in (
-    Sweep("paper", "the paper's Figures 5-7: 16 fp32 SCPUs, diamond hMax 1..10, HARP v1 and ideal links",
-          configs=(Config(16, "fp32"),), scenes=tuple(Scene(h) for h in range(1, 11))),
+    Sweep("paper", "the paper's Figures 5-7: 16 fp32 SCPUs with the paper's full records, diamond hMax 1..10, "
+          "HARP v1 and ideal links",
+          configs=(Config(16, "fp32", "full"),), scenes=tuple(Scene(h) for h in range(1, 11))),
     Sweep("scpus", "SCPU count 1..32 (fp32), diamond hMax 10",
           configs=tuple(Config(n, "fp32") for n in SCPU_COUNTS), scenes=(Scene(10),)),
     Sweep("arith", "what accuracy costs: formats and algorithms at 16 SCPUs, diamond hMax 10",
