@@ -140,7 +140,7 @@ final case class ScpuConfig(
 
   /** Operators instantiated (FpAdd, FpMul, FpCompare, FpConvert, roots), for docs/scpu.md. */
   def operatorCount: Map[String, Int] = {
-    val cvt = if (converts) 8 + 7 else 0
+    val cvt = if (converts) 8 + 9 else 0 // in: 8 sphere fields; out: 7 contact fields and d, w
     val (adds, muls, roots) = distance match {
       case DistanceMethod.SqrtThenRecip => (5 + 2 + 2 + 3, 3 + 3 + 1 + 3, Map("sqrt" -> 1, "recip" -> 1))
       case DistanceMethod.Rsqrt         => (5 + 2 + 2 + 3, 3 + 1 + 3 + 1 + 3, Map("rsqrt" -> 1))
