@@ -103,9 +103,11 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
   link_.hostWriteCsr(CSR_CTRL, CTRL_START);
 
   RunResult r;
-  for (std::size_t k = 0; k < n; ++k)
-    if ((pairs.i[k] < outOfRange.size() && outOfRange[pairs.i[k]]) || (pairs.j[k] < outOfRange.size() && outOfRange[pairs.j[k]]))
-      r.rangePairs.push_back(static_cast<std::uint32_t>(k));
+  // Scan the pairs only when a sphere did not fit: the usual call pays nothing per pair.
+  if (std::find(outOfRange.begin(), outOfRange.end(), std::uint8_t{1}) != outOfRange.end())
+    for (std::size_t k = 0; k < n; ++k)
+      if ((pairs.i[k] < outOfRange.size() && outOfRange[pairs.i[k]]) || (pairs.j[k] < outOfRange.size() && outOfRange[pairs.j[k]]))
+        r.rangePairs.push_back(static_cast<std::uint32_t>(k));
   const std::uint64_t deadline = t0 + opt_.watchdogCycles;
   for (;;) {
     if (link_.cycle() >= deadline) {
