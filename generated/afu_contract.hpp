@@ -64,8 +64,17 @@ inline constexpr std::uint32_t TAG_FLAGS_SHIFT = 24u;  // bits 24..31: REC_* fla
 inline constexpr std::uint32_t TAG_BYTES = 4u;  // bytes of the tag word
 
 // record layouts (manifest buffers.records.layout)
-inline constexpr std::uint32_t LAYOUT_FULL = 0u;  // value fields: px, py, pz, nx, ny, nz, depth
-inline constexpr std::uint32_t LAYOUT_DERIVED = 1u;  // value fields: d, w
+inline constexpr std::uint32_t LAYOUT_FULL = 0u;  // value fields: px, py, pz, nx, ny, nz, depth; then the tag word
+inline constexpr std::uint32_t LAYOUT_DERIVED = 1u;  // value fields: d, w; then the tag word
+inline constexpr std::uint32_t LAYOUT_FULL_MASKED = 2u;  // value fields: px, py, pz, nx, ny, nz, depth; then the flags byte; compact: a mask header before each group's hits
+inline constexpr std::uint32_t LAYOUT_DERIVED_MASKED = 3u;  // value fields: d, w; then the flags byte; compact: a mask header before each group's hits
+
+// mask header (masked layouts, compact mode): a slot before each group's hits
+inline constexpr std::uint32_t HEADER_PAIR_SHIFT = 0u;  // bits 0..23: the group's first pair index
+inline constexpr std::uint32_t HEADER_PAIR_BITS = 24u;  // width of the first pair index
+inline constexpr std::uint32_t HEADER_MASK_SHIFT = 24u;  // bits 24..39: bit k set when pair first + k is a hit
+inline constexpr std::uint32_t HEADER_MASK_BITS = 16u;  // width of the hit mask (a group has at most 16 pairs)
+inline constexpr std::uint32_t HEADER_BITS = 40u;  // bits of a header (the rest of its slot is zero)
 
 // lines and pairs
 inline constexpr std::uint32_t LINE_BYTES = 64u;  // every transfer is one line

@@ -61,8 +61,17 @@ localparam int unsigned AFU_TAG_FLAGS_SHIFT = 24;  // bits 24..31: REC_* flags
 localparam int unsigned AFU_TAG_BYTES = 4;  // bytes of the tag word
 
 // record layouts (manifest buffers.records.layout)
-localparam int unsigned AFU_LAYOUT_FULL = 0;  // value fields: px, py, pz, nx, ny, nz, depth
-localparam int unsigned AFU_LAYOUT_DERIVED = 1;  // value fields: d, w
+localparam int unsigned AFU_LAYOUT_FULL = 0;  // value fields: px, py, pz, nx, ny, nz, depth; then the tag word
+localparam int unsigned AFU_LAYOUT_DERIVED = 1;  // value fields: d, w; then the tag word
+localparam int unsigned AFU_LAYOUT_FULL_MASKED = 2;  // value fields: px, py, pz, nx, ny, nz, depth; then the flags byte; compact: a mask header before each group's hits
+localparam int unsigned AFU_LAYOUT_DERIVED_MASKED = 3;  // value fields: d, w; then the flags byte; compact: a mask header before each group's hits
+
+// mask header (masked layouts, compact mode): a slot before each group's hits
+localparam int unsigned AFU_HEADER_PAIR_SHIFT = 0;  // bits 0..23: the group's first pair index
+localparam int unsigned AFU_HEADER_PAIR_BITS = 24;  // width of the first pair index
+localparam int unsigned AFU_HEADER_MASK_SHIFT = 24;  // bits 24..39: bit k set when pair first + k is a hit
+localparam int unsigned AFU_HEADER_MASK_BITS = 16;  // width of the hit mask (a group has at most 16 pairs)
+localparam int unsigned AFU_HEADER_BITS = 40;  // bits of a header (the rest of its slot is zero)
 
 // lines and pairs
 localparam int unsigned AFU_LINE_BYTES = 64;  // every transfer is one line

@@ -92,3 +92,77 @@ TEST(Contract, DenseRecordsStartALineAtEveryPairLine) {
   const BufferLayout full{LinkFormat::Binary32, contract::LAYOUT_FULL};  // 2 a line: no gaps
   for (std::size_t n = 0; n < 100; ++n) EXPECT_EQ(full.recordLine(n, true), n / 2);
 }
+
+TEST(Contract, MaskedRecordsAreTheirFieldsThenTheFlagsByte) {
+  for (LinkFormat f : {LinkFormat::Binary16, LinkFormat::Binary32, LinkFormat::Binary64}) {
+    for (std::uint32_t layout : {contract::LAYOUT_FULL_MASKED, contract::LAYOUT_DERIVED_MASKED}) {
+      const BufferLayout lay{f, layout};
+      ASSERT_TRUE(lay.masked());
+      const unsigned fields = lay.derived() ? std::size(contract::kDerivedFields) : std::size(contract::kFullFields);
+      EXPECT_EQ(lay.recordBytes(), fields * fieldBytes(f) + 1);
+      EXPECT_GE(lay.recordBytes() * 8, contract::HEADER_BITS) << "a header must fit a slot";
+      link::HostMemory m;
+      const auto a = m.allocate(4);
+      ContactRecord r;
+      r.d = 2.5; r.w = 0.75; r.px = 1; r.depth = 7;
+      r.flags = static_cast<std::uint8_t>(contract::REC_HIT | contract::REC_ARITH);
+      writeContact(m, a.base, 1, lay, false, r);
+      const std::size_t flagsAt = lay.recordSlot(1, false) * lay.recordBytes() + fields * fieldBytes(f);
+      EXPECT_EQ(m.line(a.base + lay.recordLine(1, false))[flagsAt], r.flags);
+      const ContactRecord back = readContact(m, a.base, 1, lay, false, 42);
+      EXPECT_EQ(back.pair, 42u) << "a masked record's pair is the one its position names";
+      EXPECT_EQ(back.flags, r.flags);
+      EXPECT_EQ(lay.derived() ? back.w : back.depth, lay.derived() ? 0.75 : 7.0);
+    }
+  }
+}
+
+// A compact masked buffer built slot by slot from the header's constants: headers with their
+// hits, groups out of pair order (pair lines arrive in any order), a group cut by the end.
+TEST(Contract, MaskedBuffersDecodeHeaderByHeader) {
+  const BufferLayout lay{LinkFormat::Binary32, contract::LAYOUT_DERIVED_MASKED};  // 9 B, 7 a line
+  ASSERT_EQ(lay.recordsPerLine(), 7u);
+  link::HostMemory m;
+  const auto a = m.allocate(4);
+  std::size_t slot = 0;
+  auto group = [&](std::uint32_t first, std::uint32_t mask) {
+    writeMaskHeader(m, a.base, slot++, lay, {first, mask});
+    for (unsigned k = 0; k < contract::HEADER_MASK_BITS; ++k)
+      if (mask >> k & 1) {
+        ContactRecord r;
+        r.d = first + k; r.w = 1;
+        r.flags = contract::REC_HIT;
+        writeContact(m, a.base, slot++, lay, false, r);
+      }
+  };
+  group(32, 0x8001);  // pairs 32 and 47
+  group(0, 0x0006);   // pairs 1 and 2
+  group(16, 0x0010);  // pair 20
+  const MaskHeader h = readMaskHeader(m, a.base, 0, lay);
+  EXPECT_EQ(h.first, 32u);
+  EXPECT_EQ(h.mask, 0x8001u);
+  auto d = readRecords(m, a.base, slot, lay, false, 48);
+  EXPECT_EQ(d.headers, 3u);
+  std::vector<std::uint32_t> pairs;
+  for (const auto& r : d.records) {
+    pairs.push_back(r.pair);
+    EXPECT_EQ(r.d, r.pair) << "record and pair must match";
+  }
+  EXPECT_EQ(pairs, (std::vector<std::uint32_t>{32, 47, 1, 2, 20}));
+  // a buffer that ends inside a group (capacity): the records before the end
+  d = readRecords(m, a.base, 5, lay, false, 48);
+  EXPECT_EQ(d.records.size(), 3u);
+  // corrupt headers are errors naming the slot
+  EXPECT_THROW(readRecords(m, a.base, slot, lay, false, 40), std::runtime_error);  // pair 47 of 40
+  writeMaskHeader(m, a.base, 3, lay, {0, 0});
+  try {
+    readRecords(m, a.base, slot, lay, false, 48);
+    FAIL() << "an empty mask must be refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("slot 3"), std::string::npos) << e.what();
+  }
+  // dense masked: record k is pair k, no headers
+  const auto dd = readRecords(m, a.base, 3, lay, true, 3);
+  EXPECT_EQ(dd.headers, 0u);
+  EXPECT_EQ(dd.records[2].pair, 2u);
+}

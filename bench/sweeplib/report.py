@@ -177,7 +177,7 @@ def write(name, rows, out: Path) -> Path:
     if name == "isoarea":
         parts += [f"\n## At a fixed chip ({__import__('isoarea').CHIP['name']}; calibration in sweeplib/isoarea.py)\n",
                   isoarea_table(rows, out.parent)]
-    if name == "links":
+    if name in ("links", "masked"):
         parts += ["\n## ns per collision on every link (modelled; in brackets: modelled / the link model's bound)\n",
                   links_table(rows)]
     if any(k.startswith("acc_") for k in rows[0]):

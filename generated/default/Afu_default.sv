@@ -7895,26 +7895,16 @@ module ContactCollector_n16_default(
   input  [4:0]  io_scpu_15_bits_flags,
   input  [23:0] io_scpu_15_bits_tag,
   input  [2:0]  io_room,
-  output [31:0] io_recs_0_vals_0,
-                io_recs_0_vals_1,
+  output [95:0] io_recs_0_bits,
   output [23:0] io_recs_0_pair,
-  output [7:0]  io_recs_0_flags,
-  output [31:0] io_recs_1_vals_0,
-                io_recs_1_vals_1,
+  output [95:0] io_recs_1_bits,
   output [23:0] io_recs_1_pair,
-  output [7:0]  io_recs_1_flags,
-  output [31:0] io_recs_2_vals_0,
-                io_recs_2_vals_1,
+  output [95:0] io_recs_2_bits,
   output [23:0] io_recs_2_pair,
-  output [7:0]  io_recs_2_flags,
-  output [31:0] io_recs_3_vals_0,
-                io_recs_3_vals_1,
+  output [95:0] io_recs_3_bits,
   output [23:0] io_recs_3_pair,
-  output [7:0]  io_recs_3_flags,
-  output [31:0] io_recs_4_vals_0,
-                io_recs_4_vals_1,
+  output [95:0] io_recs_4_bits,
   output [23:0] io_recs_4_pair,
-  output [7:0]  io_recs_4_flags,
   output [2:0]  io_nRecs,
   output [4:0]  io_nPairs,
                 io_nHits,
@@ -12767,144 +12757,189 @@ module ContactCollector_n16_default(
   wire [4:0]  wantCount_13 = wantCount_12 + {4'h0, want_13};
   wire [4:0]  wantCount_14 = wantCount_13 + {4'h0, want_14};
   wire [4:0]  wantCount_15 = wantCount_14 + {4'h0, want_15};
-  wire [4:0]  _GEN = {2'h0, io_room};
-  wire        take_0 = active_0 & okPrefix_0 & {4'h0, want_0} <= _GEN;
-  wire        take_1 = active_1 & okPrefix_1 & wantCount_1 <= _GEN;
-  wire        take_2 = active_2 & okPrefix_2 & wantCount_2 <= _GEN;
-  wire        take_3 = active_3 & okPrefix_3 & wantCount_3 <= _GEN;
-  wire        take_4 = active_4 & okPrefix_4 & wantCount_4 <= _GEN;
-  wire        take_5 = active_5 & okPrefix_5 & wantCount_5 <= _GEN;
-  wire        take_6 = active_6 & okPrefix_6 & wantCount_6 <= _GEN;
-  wire        take_7 = active_7 & okPrefix_7 & wantCount_7 <= _GEN;
-  wire        take_8 = active_8 & okPrefix_8 & wantCount_8 <= _GEN;
-  wire        take_9 = active_9 & okPrefix_9 & wantCount_9 <= _GEN;
-  wire        take_10 = active_10 & okPrefix_10 & wantCount_10 <= _GEN;
-  wire        take_11 = active_11 & okPrefix_11 & wantCount_11 <= _GEN;
-  wire        take_12 = active_12 & okPrefix_12 & wantCount_12 <= _GEN;
-  wire        take_13 = active_13 & okPrefix_13 & wantCount_13 <= _GEN;
-  wire        take_14 = active_14 & okPrefix_14 & wantCount_14 <= _GEN;
+  wire [5:0]  _GEN = {3'h0, io_room};
+  wire        take_0 = active_0 & okPrefix_0 & {5'h0, want_0} <= _GEN;
+  wire        take_1 = active_1 & okPrefix_1 & {1'h0, wantCount_1} <= _GEN;
+  wire        take_2 = active_2 & okPrefix_2 & {1'h0, wantCount_2} <= _GEN;
+  wire        take_3 = active_3 & okPrefix_3 & {1'h0, wantCount_3} <= _GEN;
+  wire        take_4 = active_4 & okPrefix_4 & {1'h0, wantCount_4} <= _GEN;
+  wire        take_5 = active_5 & okPrefix_5 & {1'h0, wantCount_5} <= _GEN;
+  wire        take_6 = active_6 & okPrefix_6 & {1'h0, wantCount_6} <= _GEN;
+  wire        take_7 = active_7 & okPrefix_7 & {1'h0, wantCount_7} <= _GEN;
+  wire        take_8 = active_8 & okPrefix_8 & {1'h0, wantCount_8} <= _GEN;
+  wire        take_9 = active_9 & okPrefix_9 & {1'h0, wantCount_9} <= _GEN;
+  wire        take_10 = active_10 & okPrefix_10 & {1'h0, wantCount_10} <= _GEN;
+  wire        take_11 = active_11 & okPrefix_11 & {1'h0, wantCount_11} <= _GEN;
+  wire        take_12 = active_12 & okPrefix_12 & {1'h0, wantCount_12} <= _GEN;
+  wire        take_13 = active_13 & okPrefix_13 & {1'h0, wantCount_13} <= _GEN;
+  wire        take_14 = active_14 & okPrefix_14 & {1'h0, wantCount_14} <= _GEN;
   wire        take_15 =
-    active_15 & okPrefix_14 & (~active_15 | casez_tmp_126) & wantCount_15 <= _GEN;
-  wire [7:0]  records_1_flags =
+    active_15 & okPrefix_14 & (~active_15 | casez_tmp_126) & {1'h0, wantCount_15} <= _GEN;
+  wire [95:0] records_1_bits =
     io_groups_bits_invalid[1]
-      ? 8'h6
+      ? {8'h6, casez_tmp_12, 64'h0}
       : {3'h0,
          |{casez_tmp_11[4], casez_tmp_11[2]},
          casez_tmp_10,
          casez_tmp_7,
-         casez_tmp_6};
-  wire [7:0]  records_2_flags =
+         casez_tmp_6,
+         casez_tmp_12,
+         casez_tmp_9,
+         casez_tmp_8};
+  wire [95:0] records_2_bits =
     io_groups_bits_invalid[2]
-      ? 8'h6
+      ? {8'h6, casez_tmp_19, 64'h0}
       : {3'h0,
          |{casez_tmp_18[4], casez_tmp_18[2]},
          casez_tmp_17,
          casez_tmp_14,
-         casez_tmp_13};
-  wire [7:0]  records_3_flags =
+         casez_tmp_13,
+         casez_tmp_19,
+         casez_tmp_16,
+         casez_tmp_15};
+  wire [95:0] records_3_bits =
     io_groups_bits_invalid[3]
-      ? 8'h6
+      ? {8'h6, casez_tmp_26, 64'h0}
       : {3'h0,
          |{casez_tmp_25[4], casez_tmp_25[2]},
          casez_tmp_24,
          casez_tmp_21,
-         casez_tmp_20};
-  wire [7:0]  records_4_flags =
+         casez_tmp_20,
+         casez_tmp_26,
+         casez_tmp_23,
+         casez_tmp_22};
+  wire [95:0] records_4_bits =
     io_groups_bits_invalid[4]
-      ? 8'h6
+      ? {8'h6, casez_tmp_33, 64'h0}
       : {3'h0,
          |{casez_tmp_32[4], casez_tmp_32[2]},
          casez_tmp_31,
          casez_tmp_28,
-         casez_tmp_27};
-  wire [7:0]  records_5_flags =
+         casez_tmp_27,
+         casez_tmp_33,
+         casez_tmp_30,
+         casez_tmp_29};
+  wire [95:0] records_5_bits =
     io_groups_bits_invalid[5]
-      ? 8'h6
+      ? {8'h6, casez_tmp_40, 64'h0}
       : {3'h0,
          |{casez_tmp_39[4], casez_tmp_39[2]},
          casez_tmp_38,
          casez_tmp_35,
-         casez_tmp_34};
-  wire [7:0]  records_6_flags =
+         casez_tmp_34,
+         casez_tmp_40,
+         casez_tmp_37,
+         casez_tmp_36};
+  wire [95:0] records_6_bits =
     io_groups_bits_invalid[6]
-      ? 8'h6
+      ? {8'h6, casez_tmp_47, 64'h0}
       : {3'h0,
          |{casez_tmp_46[4], casez_tmp_46[2]},
          casez_tmp_45,
          casez_tmp_42,
-         casez_tmp_41};
-  wire [7:0]  records_7_flags =
+         casez_tmp_41,
+         casez_tmp_47,
+         casez_tmp_44,
+         casez_tmp_43};
+  wire [95:0] records_7_bits =
     io_groups_bits_invalid[7]
-      ? 8'h6
+      ? {8'h6, casez_tmp_54, 64'h0}
       : {3'h0,
          |{casez_tmp_53[4], casez_tmp_53[2]},
          casez_tmp_52,
          casez_tmp_49,
-         casez_tmp_48};
-  wire [7:0]  records_8_flags =
+         casez_tmp_48,
+         casez_tmp_54,
+         casez_tmp_51,
+         casez_tmp_50};
+  wire [95:0] records_8_bits =
     io_groups_bits_invalid[8]
-      ? 8'h6
+      ? {8'h6, casez_tmp_61, 64'h0}
       : {3'h0,
          |{casez_tmp_60[4], casez_tmp_60[2]},
          casez_tmp_59,
          casez_tmp_56,
-         casez_tmp_55};
-  wire [7:0]  records_9_flags =
+         casez_tmp_55,
+         casez_tmp_61,
+         casez_tmp_58,
+         casez_tmp_57};
+  wire [95:0] records_9_bits =
     io_groups_bits_invalid[9]
-      ? 8'h6
+      ? {8'h6, casez_tmp_68, 64'h0}
       : {3'h0,
          |{casez_tmp_67[4], casez_tmp_67[2]},
          casez_tmp_66,
          casez_tmp_63,
-         casez_tmp_62};
-  wire [7:0]  records_10_flags =
+         casez_tmp_62,
+         casez_tmp_68,
+         casez_tmp_65,
+         casez_tmp_64};
+  wire [95:0] records_10_bits =
     io_groups_bits_invalid[10]
-      ? 8'h6
+      ? {8'h6, casez_tmp_75, 64'h0}
       : {3'h0,
          |{casez_tmp_74[4], casez_tmp_74[2]},
          casez_tmp_73,
          casez_tmp_70,
-         casez_tmp_69};
-  wire [7:0]  records_11_flags =
+         casez_tmp_69,
+         casez_tmp_75,
+         casez_tmp_72,
+         casez_tmp_71};
+  wire [95:0] records_11_bits =
     io_groups_bits_invalid[11]
-      ? 8'h6
+      ? {8'h6, casez_tmp_82, 64'h0}
       : {3'h0,
          |{casez_tmp_81[4], casez_tmp_81[2]},
          casez_tmp_80,
          casez_tmp_77,
-         casez_tmp_76};
-  wire [7:0]  records_12_flags =
+         casez_tmp_76,
+         casez_tmp_82,
+         casez_tmp_79,
+         casez_tmp_78};
+  wire [95:0] records_12_bits =
     io_groups_bits_invalid[12]
-      ? 8'h6
+      ? {8'h6, casez_tmp_89, 64'h0}
       : {3'h0,
          |{casez_tmp_88[4], casez_tmp_88[2]},
          casez_tmp_87,
          casez_tmp_84,
-         casez_tmp_83};
-  wire [7:0]  records_13_flags =
+         casez_tmp_83,
+         casez_tmp_89,
+         casez_tmp_86,
+         casez_tmp_85};
+  wire [95:0] records_13_bits =
     io_groups_bits_invalid[13]
-      ? 8'h6
+      ? {8'h6, casez_tmp_96, 64'h0}
       : {3'h0,
          |{casez_tmp_95[4], casez_tmp_95[2]},
          casez_tmp_94,
          casez_tmp_91,
-         casez_tmp_90};
-  wire [7:0]  records_14_flags =
+         casez_tmp_90,
+         casez_tmp_96,
+         casez_tmp_93,
+         casez_tmp_92};
+  wire [95:0] records_14_bits =
     io_groups_bits_invalid[14]
-      ? 8'h6
+      ? {8'h6, casez_tmp_103, 64'h0}
       : {3'h0,
          |{casez_tmp_102[4], casez_tmp_102[2]},
          casez_tmp_101,
          casez_tmp_98,
-         casez_tmp_97};
-  wire [7:0]  records_15_flags =
+         casez_tmp_97,
+         casez_tmp_103,
+         casez_tmp_100,
+         casez_tmp_99};
+  wire [95:0] records_15_bits =
     io_groups_bits_invalid[15]
-      ? 8'h6
+      ? {8'h6, casez_tmp_110, 64'h0}
       : {3'h0,
          |{casez_tmp_109[4], casez_tmp_109[2]},
          casez_tmp_108,
          casez_tmp_105,
-         casez_tmp_104};
+         casez_tmp_104,
+         casez_tmp_110,
+         casez_tmp_107,
+         casez_tmp_106};
   wire [4:0]  nTaken =
     {1'h0,
      {1'h0,
@@ -12919,174 +12954,98 @@ module ContactCollector_n16_default(
          + {1'h0,
             {1'h0, {1'h0, take_12} + {1'h0, take_13}}
               + {1'h0, {1'h0, take_14} + {1'h0, take_15}}}};
-  wire        _sel_T_128 = take_0 & want_0;
-  wire        _sel_T_130 = take_1 & want_1;
-  wire        _sel_T_132 = take_2 & want_2;
-  wire        _sel_T_134 = take_3 & want_3;
-  wire        _sel_T_136 = take_4 & want_4;
-  wire        _sel_T_138 = take_5 & want_5;
-  wire        _sel_T_140 = take_6 & want_6;
-  wire        _sel_T_142 = take_7 & want_7;
-  wire        _sel_T_144 = take_8 & want_8;
-  wire        _sel_T_146 = take_9 & want_9;
-  wire        _sel_T_148 = take_10 & want_10;
-  wire        _sel_T_150 = take_11 & want_11;
-  wire        _sel_T_152 = take_12 & want_12;
-  wire        _sel_T_154 = take_13 & want_13;
-  wire        _sel_T_156 = take_14 & want_14;
-  wire        _sel_T_158 = take_15 & want_15;
-  wire        sel_0 = _sel_T_128 & want_0;
-  wire        sel_1 = _sel_T_130 & wantCount_1 == 5'h1;
-  wire        sel_2 = _sel_T_132 & wantCount_2 == 5'h1;
-  wire        sel_3 = _sel_T_134 & wantCount_3 == 5'h1;
-  wire        sel_4 = _sel_T_136 & wantCount_4 == 5'h1;
-  wire        sel_5 = _sel_T_138 & wantCount_5 == 5'h1;
-  wire        sel_6 = _sel_T_140 & wantCount_6 == 5'h1;
-  wire        sel_7 = _sel_T_142 & wantCount_7 == 5'h1;
-  wire        sel_8 = _sel_T_144 & wantCount_8 == 5'h1;
-  wire        sel_9 = _sel_T_146 & wantCount_9 == 5'h1;
-  wire        sel_10 = _sel_T_148 & wantCount_10 == 5'h1;
-  wire        sel_11 = _sel_T_150 & wantCount_11 == 5'h1;
-  wire        sel_12 = _sel_T_152 & wantCount_12 == 5'h1;
-  wire        sel_13 = _sel_T_154 & wantCount_13 == 5'h1;
-  wire        sel_14 = _sel_T_156 & wantCount_14 == 5'h1;
-  wire        sel_15 = _sel_T_158 & wantCount_15 == 5'h1;
-  wire        _GEN_0 = ~sel_0 | io_groups_bits_invalid[0];
-  wire        _GEN_1 = ~sel_1 | io_groups_bits_invalid[1];
-  wire        _GEN_2 = ~sel_2 | io_groups_bits_invalid[2];
-  wire        _GEN_3 = ~sel_3 | io_groups_bits_invalid[3];
-  wire        _GEN_4 = ~sel_4 | io_groups_bits_invalid[4];
-  wire        _GEN_5 = ~sel_5 | io_groups_bits_invalid[5];
-  wire        _GEN_6 = ~sel_6 | io_groups_bits_invalid[6];
-  wire        _GEN_7 = ~sel_7 | io_groups_bits_invalid[7];
-  wire        _GEN_8 = ~sel_8 | io_groups_bits_invalid[8];
-  wire        _GEN_9 = ~sel_9 | io_groups_bits_invalid[9];
-  wire        _GEN_10 = ~sel_10 | io_groups_bits_invalid[10];
-  wire        _GEN_11 = ~sel_11 | io_groups_bits_invalid[11];
-  wire        _GEN_12 = ~sel_12 | io_groups_bits_invalid[12];
-  wire        _GEN_13 = ~sel_13 | io_groups_bits_invalid[13];
-  wire        _GEN_14 = ~sel_14 | io_groups_bits_invalid[14];
-  wire        _GEN_15 = ~sel_15 | io_groups_bits_invalid[15];
-  wire        sel_1_1 = _sel_T_130 & wantCount_1 == 5'h2;
-  wire        sel_2_1 = _sel_T_132 & wantCount_2 == 5'h2;
-  wire        sel_3_1 = _sel_T_134 & wantCount_3 == 5'h2;
-  wire        sel_4_1 = _sel_T_136 & wantCount_4 == 5'h2;
-  wire        sel_5_1 = _sel_T_138 & wantCount_5 == 5'h2;
-  wire        sel_6_1 = _sel_T_140 & wantCount_6 == 5'h2;
-  wire        sel_7_1 = _sel_T_142 & wantCount_7 == 5'h2;
-  wire        sel_8_1 = _sel_T_144 & wantCount_8 == 5'h2;
-  wire        sel_9_1 = _sel_T_146 & wantCount_9 == 5'h2;
-  wire        sel_10_1 = _sel_T_148 & wantCount_10 == 5'h2;
-  wire        sel_11_1 = _sel_T_150 & wantCount_11 == 5'h2;
-  wire        sel_12_1 = _sel_T_152 & wantCount_12 == 5'h2;
-  wire        sel_13_1 = _sel_T_154 & wantCount_13 == 5'h2;
-  wire        sel_14_1 = _sel_T_156 & wantCount_14 == 5'h2;
-  wire        sel_15_1 = _sel_T_158 & wantCount_15 == 5'h2;
-  wire        _GEN_16 = ~sel_1_1 | io_groups_bits_invalid[1];
-  wire        _GEN_17 = ~sel_2_1 | io_groups_bits_invalid[2];
-  wire        _GEN_18 = ~sel_3_1 | io_groups_bits_invalid[3];
-  wire        _GEN_19 = ~sel_4_1 | io_groups_bits_invalid[4];
-  wire        _GEN_20 = ~sel_5_1 | io_groups_bits_invalid[5];
-  wire        _GEN_21 = ~sel_6_1 | io_groups_bits_invalid[6];
-  wire        _GEN_22 = ~sel_7_1 | io_groups_bits_invalid[7];
-  wire        _GEN_23 = ~sel_8_1 | io_groups_bits_invalid[8];
-  wire        _GEN_24 = ~sel_9_1 | io_groups_bits_invalid[9];
-  wire        _GEN_25 = ~sel_10_1 | io_groups_bits_invalid[10];
-  wire        _GEN_26 = ~sel_11_1 | io_groups_bits_invalid[11];
-  wire        _GEN_27 = ~sel_12_1 | io_groups_bits_invalid[12];
-  wire        _GEN_28 = ~sel_13_1 | io_groups_bits_invalid[13];
-  wire        _GEN_29 = ~sel_14_1 | io_groups_bits_invalid[14];
-  wire        _GEN_30 = ~sel_15_1 | io_groups_bits_invalid[15];
-  wire        sel_1_2 = _sel_T_130 & wantCount_1 == 5'h3;
-  wire        sel_2_2 = _sel_T_132 & wantCount_2 == 5'h3;
-  wire        sel_3_2 = _sel_T_134 & wantCount_3 == 5'h3;
-  wire        sel_4_2 = _sel_T_136 & wantCount_4 == 5'h3;
-  wire        sel_5_2 = _sel_T_138 & wantCount_5 == 5'h3;
-  wire        sel_6_2 = _sel_T_140 & wantCount_6 == 5'h3;
-  wire        sel_7_2 = _sel_T_142 & wantCount_7 == 5'h3;
-  wire        sel_8_2 = _sel_T_144 & wantCount_8 == 5'h3;
-  wire        sel_9_2 = _sel_T_146 & wantCount_9 == 5'h3;
-  wire        sel_10_2 = _sel_T_148 & wantCount_10 == 5'h3;
-  wire        sel_11_2 = _sel_T_150 & wantCount_11 == 5'h3;
-  wire        sel_12_2 = _sel_T_152 & wantCount_12 == 5'h3;
-  wire        sel_13_2 = _sel_T_154 & wantCount_13 == 5'h3;
-  wire        sel_14_2 = _sel_T_156 & wantCount_14 == 5'h3;
-  wire        sel_15_2 = _sel_T_158 & wantCount_15 == 5'h3;
-  wire        _GEN_31 = ~sel_1_2 | io_groups_bits_invalid[1];
-  wire        _GEN_32 = ~sel_2_2 | io_groups_bits_invalid[2];
-  wire        _GEN_33 = ~sel_3_2 | io_groups_bits_invalid[3];
-  wire        _GEN_34 = ~sel_4_2 | io_groups_bits_invalid[4];
-  wire        _GEN_35 = ~sel_5_2 | io_groups_bits_invalid[5];
-  wire        _GEN_36 = ~sel_6_2 | io_groups_bits_invalid[6];
-  wire        _GEN_37 = ~sel_7_2 | io_groups_bits_invalid[7];
-  wire        _GEN_38 = ~sel_8_2 | io_groups_bits_invalid[8];
-  wire        _GEN_39 = ~sel_9_2 | io_groups_bits_invalid[9];
-  wire        _GEN_40 = ~sel_10_2 | io_groups_bits_invalid[10];
-  wire        _GEN_41 = ~sel_11_2 | io_groups_bits_invalid[11];
-  wire        _GEN_42 = ~sel_12_2 | io_groups_bits_invalid[12];
-  wire        _GEN_43 = ~sel_13_2 | io_groups_bits_invalid[13];
-  wire        _GEN_44 = ~sel_14_2 | io_groups_bits_invalid[14];
-  wire        _GEN_45 = ~sel_15_2 | io_groups_bits_invalid[15];
-  wire        sel_1_3 = _sel_T_130 & wantCount_1 == 5'h4;
-  wire        sel_2_3 = _sel_T_132 & wantCount_2 == 5'h4;
-  wire        sel_3_3 = _sel_T_134 & wantCount_3 == 5'h4;
-  wire        sel_4_3 = _sel_T_136 & wantCount_4 == 5'h4;
-  wire        sel_5_3 = _sel_T_138 & wantCount_5 == 5'h4;
-  wire        sel_6_3 = _sel_T_140 & wantCount_6 == 5'h4;
-  wire        sel_7_3 = _sel_T_142 & wantCount_7 == 5'h4;
-  wire        sel_8_3 = _sel_T_144 & wantCount_8 == 5'h4;
-  wire        sel_9_3 = _sel_T_146 & wantCount_9 == 5'h4;
-  wire        sel_10_3 = _sel_T_148 & wantCount_10 == 5'h4;
-  wire        sel_11_3 = _sel_T_150 & wantCount_11 == 5'h4;
-  wire        sel_12_3 = _sel_T_152 & wantCount_12 == 5'h4;
-  wire        sel_13_3 = _sel_T_154 & wantCount_13 == 5'h4;
-  wire        sel_14_3 = _sel_T_156 & wantCount_14 == 5'h4;
-  wire        sel_15_3 = _sel_T_158 & wantCount_15 == 5'h4;
-  wire        _GEN_46 = ~sel_1_3 | io_groups_bits_invalid[1];
-  wire        _GEN_47 = ~sel_2_3 | io_groups_bits_invalid[2];
-  wire        _GEN_48 = ~sel_3_3 | io_groups_bits_invalid[3];
-  wire        _GEN_49 = ~sel_4_3 | io_groups_bits_invalid[4];
-  wire        _GEN_50 = ~sel_5_3 | io_groups_bits_invalid[5];
-  wire        _GEN_51 = ~sel_6_3 | io_groups_bits_invalid[6];
-  wire        _GEN_52 = ~sel_7_3 | io_groups_bits_invalid[7];
-  wire        _GEN_53 = ~sel_8_3 | io_groups_bits_invalid[8];
-  wire        _GEN_54 = ~sel_9_3 | io_groups_bits_invalid[9];
-  wire        _GEN_55 = ~sel_10_3 | io_groups_bits_invalid[10];
-  wire        _GEN_56 = ~sel_11_3 | io_groups_bits_invalid[11];
-  wire        _GEN_57 = ~sel_12_3 | io_groups_bits_invalid[12];
-  wire        _GEN_58 = ~sel_13_3 | io_groups_bits_invalid[13];
-  wire        _GEN_59 = ~sel_14_3 | io_groups_bits_invalid[14];
-  wire        _GEN_60 = ~sel_15_3 | io_groups_bits_invalid[15];
-  wire        sel_1_4 = _sel_T_130 & wantCount_1 == 5'h5;
-  wire        sel_2_4 = _sel_T_132 & wantCount_2 == 5'h5;
-  wire        sel_3_4 = _sel_T_134 & wantCount_3 == 5'h5;
-  wire        sel_4_4 = _sel_T_136 & wantCount_4 == 5'h5;
-  wire        sel_5_4 = _sel_T_138 & wantCount_5 == 5'h5;
-  wire        sel_6_4 = _sel_T_140 & wantCount_6 == 5'h5;
-  wire        sel_7_4 = _sel_T_142 & wantCount_7 == 5'h5;
-  wire        sel_8_4 = _sel_T_144 & wantCount_8 == 5'h5;
-  wire        sel_9_4 = _sel_T_146 & wantCount_9 == 5'h5;
-  wire        sel_10_4 = _sel_T_148 & wantCount_10 == 5'h5;
-  wire        sel_11_4 = _sel_T_150 & wantCount_11 == 5'h5;
-  wire        sel_12_4 = _sel_T_152 & wantCount_12 == 5'h5;
-  wire        sel_13_4 = _sel_T_154 & wantCount_13 == 5'h5;
-  wire        sel_14_4 = _sel_T_156 & wantCount_14 == 5'h5;
-  wire        sel_15_4 = _sel_T_158 & wantCount_15 == 5'h5;
-  wire        _GEN_61 = ~sel_1_4 | io_groups_bits_invalid[1];
-  wire        _GEN_62 = ~sel_2_4 | io_groups_bits_invalid[2];
-  wire        _GEN_63 = ~sel_3_4 | io_groups_bits_invalid[3];
-  wire        _GEN_64 = ~sel_4_4 | io_groups_bits_invalid[4];
-  wire        _GEN_65 = ~sel_5_4 | io_groups_bits_invalid[5];
-  wire        _GEN_66 = ~sel_6_4 | io_groups_bits_invalid[6];
-  wire        _GEN_67 = ~sel_7_4 | io_groups_bits_invalid[7];
-  wire        _GEN_68 = ~sel_8_4 | io_groups_bits_invalid[8];
-  wire        _GEN_69 = ~sel_9_4 | io_groups_bits_invalid[9];
-  wire        _GEN_70 = ~sel_10_4 | io_groups_bits_invalid[10];
-  wire        _GEN_71 = ~sel_11_4 | io_groups_bits_invalid[11];
-  wire        _GEN_72 = ~sel_12_4 | io_groups_bits_invalid[12];
-  wire        _GEN_73 = ~sel_13_4 | io_groups_bits_invalid[13];
-  wire        _GEN_74 = ~sel_14_4 | io_groups_bits_invalid[14];
-  wire        _GEN_75 = ~sel_15_4 | io_groups_bits_invalid[15];
+  wire        _sel_T_192 = take_0 & want_0;
+  wire        _sel_T_195 = take_1 & want_1;
+  wire        _sel_T_198 = take_2 & want_2;
+  wire        _sel_T_201 = take_3 & want_3;
+  wire        _sel_T_204 = take_4 & want_4;
+  wire        _sel_T_207 = take_5 & want_5;
+  wire        _sel_T_210 = take_6 & want_6;
+  wire        _sel_T_213 = take_7 & want_7;
+  wire        _sel_T_216 = take_8 & want_8;
+  wire        _sel_T_219 = take_9 & want_9;
+  wire        _sel_T_222 = take_10 & want_10;
+  wire        _sel_T_225 = take_11 & want_11;
+  wire        _sel_T_228 = take_12 & want_12;
+  wire        _sel_T_231 = take_13 & want_13;
+  wire        _sel_T_234 = take_14 & want_14;
+  wire        _sel_T_237 = take_15 & want_15;
+  wire        sel_0 = _sel_T_192 & want_0;
+  wire        sel_1 = _sel_T_195 & wantCount_1 == 5'h1;
+  wire        sel_2 = _sel_T_198 & wantCount_2 == 5'h1;
+  wire        sel_3 = _sel_T_201 & wantCount_3 == 5'h1;
+  wire        sel_4 = _sel_T_204 & wantCount_4 == 5'h1;
+  wire        sel_5 = _sel_T_207 & wantCount_5 == 5'h1;
+  wire        sel_6 = _sel_T_210 & wantCount_6 == 5'h1;
+  wire        sel_7 = _sel_T_213 & wantCount_7 == 5'h1;
+  wire        sel_8 = _sel_T_216 & wantCount_8 == 5'h1;
+  wire        sel_9 = _sel_T_219 & wantCount_9 == 5'h1;
+  wire        sel_10 = _sel_T_222 & wantCount_10 == 5'h1;
+  wire        sel_11 = _sel_T_225 & wantCount_11 == 5'h1;
+  wire        sel_12 = _sel_T_228 & wantCount_12 == 5'h1;
+  wire        sel_13 = _sel_T_231 & wantCount_13 == 5'h1;
+  wire        sel_14 = _sel_T_234 & wantCount_14 == 5'h1;
+  wire        sel_15 = _sel_T_237 & wantCount_15 == 5'h1;
+  wire        sel_1_1 = _sel_T_195 & wantCount_1 == 5'h2;
+  wire        sel_2_1 = _sel_T_198 & wantCount_2 == 5'h2;
+  wire        sel_3_1 = _sel_T_201 & wantCount_3 == 5'h2;
+  wire        sel_4_1 = _sel_T_204 & wantCount_4 == 5'h2;
+  wire        sel_5_1 = _sel_T_207 & wantCount_5 == 5'h2;
+  wire        sel_6_1 = _sel_T_210 & wantCount_6 == 5'h2;
+  wire        sel_7_1 = _sel_T_213 & wantCount_7 == 5'h2;
+  wire        sel_8_1 = _sel_T_216 & wantCount_8 == 5'h2;
+  wire        sel_9_1 = _sel_T_219 & wantCount_9 == 5'h2;
+  wire        sel_10_1 = _sel_T_222 & wantCount_10 == 5'h2;
+  wire        sel_11_1 = _sel_T_225 & wantCount_11 == 5'h2;
+  wire        sel_12_1 = _sel_T_228 & wantCount_12 == 5'h2;
+  wire        sel_13_1 = _sel_T_231 & wantCount_13 == 5'h2;
+  wire        sel_14_1 = _sel_T_234 & wantCount_14 == 5'h2;
+  wire        sel_15_1 = _sel_T_237 & wantCount_15 == 5'h2;
+  wire        sel_1_2 = _sel_T_195 & wantCount_1 == 5'h3;
+  wire        sel_2_2 = _sel_T_198 & wantCount_2 == 5'h3;
+  wire        sel_3_2 = _sel_T_201 & wantCount_3 == 5'h3;
+  wire        sel_4_2 = _sel_T_204 & wantCount_4 == 5'h3;
+  wire        sel_5_2 = _sel_T_207 & wantCount_5 == 5'h3;
+  wire        sel_6_2 = _sel_T_210 & wantCount_6 == 5'h3;
+  wire        sel_7_2 = _sel_T_213 & wantCount_7 == 5'h3;
+  wire        sel_8_2 = _sel_T_216 & wantCount_8 == 5'h3;
+  wire        sel_9_2 = _sel_T_219 & wantCount_9 == 5'h3;
+  wire        sel_10_2 = _sel_T_222 & wantCount_10 == 5'h3;
+  wire        sel_11_2 = _sel_T_225 & wantCount_11 == 5'h3;
+  wire        sel_12_2 = _sel_T_228 & wantCount_12 == 5'h3;
+  wire        sel_13_2 = _sel_T_231 & wantCount_13 == 5'h3;
+  wire        sel_14_2 = _sel_T_234 & wantCount_14 == 5'h3;
+  wire        sel_15_2 = _sel_T_237 & wantCount_15 == 5'h3;
+  wire        sel_1_3 = _sel_T_195 & wantCount_1 == 5'h4;
+  wire        sel_2_3 = _sel_T_198 & wantCount_2 == 5'h4;
+  wire        sel_3_3 = _sel_T_201 & wantCount_3 == 5'h4;
+  wire        sel_4_3 = _sel_T_204 & wantCount_4 == 5'h4;
+  wire        sel_5_3 = _sel_T_207 & wantCount_5 == 5'h4;
+  wire        sel_6_3 = _sel_T_210 & wantCount_6 == 5'h4;
+  wire        sel_7_3 = _sel_T_213 & wantCount_7 == 5'h4;
+  wire        sel_8_3 = _sel_T_216 & wantCount_8 == 5'h4;
+  wire        sel_9_3 = _sel_T_219 & wantCount_9 == 5'h4;
+  wire        sel_10_3 = _sel_T_222 & wantCount_10 == 5'h4;
+  wire        sel_11_3 = _sel_T_225 & wantCount_11 == 5'h4;
+  wire        sel_12_3 = _sel_T_228 & wantCount_12 == 5'h4;
+  wire        sel_13_3 = _sel_T_231 & wantCount_13 == 5'h4;
+  wire        sel_14_3 = _sel_T_234 & wantCount_14 == 5'h4;
+  wire        sel_15_3 = _sel_T_237 & wantCount_15 == 5'h4;
+  wire        sel_1_4 = _sel_T_195 & wantCount_1 == 5'h5;
+  wire        sel_2_4 = _sel_T_198 & wantCount_2 == 5'h5;
+  wire        sel_3_4 = _sel_T_201 & wantCount_3 == 5'h5;
+  wire        sel_4_4 = _sel_T_204 & wantCount_4 == 5'h5;
+  wire        sel_5_4 = _sel_T_207 & wantCount_5 == 5'h5;
+  wire        sel_6_4 = _sel_T_210 & wantCount_6 == 5'h5;
+  wire        sel_7_4 = _sel_T_213 & wantCount_7 == 5'h5;
+  wire        sel_8_4 = _sel_T_216 & wantCount_8 == 5'h5;
+  wire        sel_9_4 = _sel_T_219 & wantCount_9 == 5'h5;
+  wire        sel_10_4 = _sel_T_222 & wantCount_10 == 5'h5;
+  wire        sel_11_4 = _sel_T_225 & wantCount_11 == 5'h5;
+  wire        sel_12_4 = _sel_T_228 & wantCount_12 == 5'h5;
+  wire        sel_13_4 = _sel_T_231 & wantCount_13 == 5'h5;
+  wire        sel_14_4 = _sel_T_234 & wantCount_14 == 5'h5;
+  wire        sel_15_4 = _sel_T_237 & wantCount_15 == 5'h5;
   wire [4:0]  _spNext_T = sp + nTaken;
   wire        io_groups_ready_0 = io_groups_valid & _spNext_T == io_groups_bits_cnt;
   always @(posedge clock) begin
@@ -13210,24 +13169,26 @@ module ContactCollector_n16_default(
     & scpuAt_8 == 5'hF | take_9 & scpuAt_9 == 5'hF | take_10 & scpuAt_10 == 5'hF | take_11
     & scpuAt_11 == 5'hF | take_12 & scpuAt_12 == 5'hF | take_13 & scpuAt_13 == 5'hF
     | take_14 & scpuAt_14 == 5'hF | take_15 & scpuAt_15 == 5'hF;
-  assign io_recs_0_vals_0 =
-    (_GEN_0 ? 32'h0 : casez_tmp_1) | (_GEN_1 ? 32'h0 : casez_tmp_8)
-    | (_GEN_2 ? 32'h0 : casez_tmp_15) | (_GEN_3 ? 32'h0 : casez_tmp_22)
-    | (_GEN_4 ? 32'h0 : casez_tmp_29) | (_GEN_5 ? 32'h0 : casez_tmp_36)
-    | (_GEN_6 ? 32'h0 : casez_tmp_43) | (_GEN_7 ? 32'h0 : casez_tmp_50)
-    | (_GEN_8 ? 32'h0 : casez_tmp_57) | (_GEN_9 ? 32'h0 : casez_tmp_64)
-    | (_GEN_10 ? 32'h0 : casez_tmp_71) | (_GEN_11 ? 32'h0 : casez_tmp_78)
-    | (_GEN_12 ? 32'h0 : casez_tmp_85) | (_GEN_13 ? 32'h0 : casez_tmp_92)
-    | (_GEN_14 ? 32'h0 : casez_tmp_99) | (_GEN_15 ? 32'h0 : casez_tmp_106);
-  assign io_recs_0_vals_1 =
-    (_GEN_0 ? 32'h0 : casez_tmp_2) | (_GEN_1 ? 32'h0 : casez_tmp_9)
-    | (_GEN_2 ? 32'h0 : casez_tmp_16) | (_GEN_3 ? 32'h0 : casez_tmp_23)
-    | (_GEN_4 ? 32'h0 : casez_tmp_30) | (_GEN_5 ? 32'h0 : casez_tmp_37)
-    | (_GEN_6 ? 32'h0 : casez_tmp_44) | (_GEN_7 ? 32'h0 : casez_tmp_51)
-    | (_GEN_8 ? 32'h0 : casez_tmp_58) | (_GEN_9 ? 32'h0 : casez_tmp_65)
-    | (_GEN_10 ? 32'h0 : casez_tmp_72) | (_GEN_11 ? 32'h0 : casez_tmp_79)
-    | (_GEN_12 ? 32'h0 : casez_tmp_86) | (_GEN_13 ? 32'h0 : casez_tmp_93)
-    | (_GEN_14 ? 32'h0 : casez_tmp_100) | (_GEN_15 ? 32'h0 : casez_tmp_107);
+  assign io_recs_0_bits =
+    (sel_0
+       ? (io_groups_bits_invalid[0]
+            ? {8'h6, casez_tmp_5, 64'h0}
+            : {3'h0,
+               |{casez_tmp_4[4], casez_tmp_4[2]},
+               casez_tmp_3,
+               casez_tmp_0,
+               casez_tmp,
+               casez_tmp_5,
+               casez_tmp_2,
+               casez_tmp_1})
+       : 96'h0) | (sel_1 ? records_1_bits : 96'h0) | (sel_2 ? records_2_bits : 96'h0)
+    | (sel_3 ? records_3_bits : 96'h0) | (sel_4 ? records_4_bits : 96'h0)
+    | (sel_5 ? records_5_bits : 96'h0) | (sel_6 ? records_6_bits : 96'h0)
+    | (sel_7 ? records_7_bits : 96'h0) | (sel_8 ? records_8_bits : 96'h0)
+    | (sel_9 ? records_9_bits : 96'h0) | (sel_10 ? records_10_bits : 96'h0)
+    | (sel_11 ? records_11_bits : 96'h0) | (sel_12 ? records_12_bits : 96'h0)
+    | (sel_13 ? records_13_bits : 96'h0) | (sel_14 ? records_14_bits : 96'h0)
+    | (sel_15 ? records_15_bits : 96'h0);
   assign io_recs_0_pair =
     (sel_0 ? casez_tmp_5 : 24'h0) | (sel_1 ? casez_tmp_12 : 24'h0)
     | (sel_2 ? casez_tmp_19 : 24'h0) | (sel_3 ? casez_tmp_26 : 24'h0)
@@ -13237,41 +13198,15 @@ module ContactCollector_n16_default(
     | (sel_10 ? casez_tmp_75 : 24'h0) | (sel_11 ? casez_tmp_82 : 24'h0)
     | (sel_12 ? casez_tmp_89 : 24'h0) | (sel_13 ? casez_tmp_96 : 24'h0)
     | (sel_14 ? casez_tmp_103 : 24'h0) | (sel_15 ? casez_tmp_110 : 24'h0);
-  assign io_recs_0_flags =
-    (sel_0
-       ? (io_groups_bits_invalid[0]
-            ? 8'h6
-            : {3'h0,
-               |{casez_tmp_4[4], casez_tmp_4[2]},
-               casez_tmp_3,
-               casez_tmp_0,
-               casez_tmp})
-       : 8'h0) | (sel_1 ? records_1_flags : 8'h0) | (sel_2 ? records_2_flags : 8'h0)
-    | (sel_3 ? records_3_flags : 8'h0) | (sel_4 ? records_4_flags : 8'h0)
-    | (sel_5 ? records_5_flags : 8'h0) | (sel_6 ? records_6_flags : 8'h0)
-    | (sel_7 ? records_7_flags : 8'h0) | (sel_8 ? records_8_flags : 8'h0)
-    | (sel_9 ? records_9_flags : 8'h0) | (sel_10 ? records_10_flags : 8'h0)
-    | (sel_11 ? records_11_flags : 8'h0) | (sel_12 ? records_12_flags : 8'h0)
-    | (sel_13 ? records_13_flags : 8'h0) | (sel_14 ? records_14_flags : 8'h0)
-    | (sel_15 ? records_15_flags : 8'h0);
-  assign io_recs_1_vals_0 =
-    (_GEN_16 ? 32'h0 : casez_tmp_8) | (_GEN_17 ? 32'h0 : casez_tmp_15)
-    | (_GEN_18 ? 32'h0 : casez_tmp_22) | (_GEN_19 ? 32'h0 : casez_tmp_29)
-    | (_GEN_20 ? 32'h0 : casez_tmp_36) | (_GEN_21 ? 32'h0 : casez_tmp_43)
-    | (_GEN_22 ? 32'h0 : casez_tmp_50) | (_GEN_23 ? 32'h0 : casez_tmp_57)
-    | (_GEN_24 ? 32'h0 : casez_tmp_64) | (_GEN_25 ? 32'h0 : casez_tmp_71)
-    | (_GEN_26 ? 32'h0 : casez_tmp_78) | (_GEN_27 ? 32'h0 : casez_tmp_85)
-    | (_GEN_28 ? 32'h0 : casez_tmp_92) | (_GEN_29 ? 32'h0 : casez_tmp_99)
-    | (_GEN_30 ? 32'h0 : casez_tmp_106);
-  assign io_recs_1_vals_1 =
-    (_GEN_16 ? 32'h0 : casez_tmp_9) | (_GEN_17 ? 32'h0 : casez_tmp_16)
-    | (_GEN_18 ? 32'h0 : casez_tmp_23) | (_GEN_19 ? 32'h0 : casez_tmp_30)
-    | (_GEN_20 ? 32'h0 : casez_tmp_37) | (_GEN_21 ? 32'h0 : casez_tmp_44)
-    | (_GEN_22 ? 32'h0 : casez_tmp_51) | (_GEN_23 ? 32'h0 : casez_tmp_58)
-    | (_GEN_24 ? 32'h0 : casez_tmp_65) | (_GEN_25 ? 32'h0 : casez_tmp_72)
-    | (_GEN_26 ? 32'h0 : casez_tmp_79) | (_GEN_27 ? 32'h0 : casez_tmp_86)
-    | (_GEN_28 ? 32'h0 : casez_tmp_93) | (_GEN_29 ? 32'h0 : casez_tmp_100)
-    | (_GEN_30 ? 32'h0 : casez_tmp_107);
+  assign io_recs_1_bits =
+    (sel_1_1 ? records_1_bits : 96'h0) | (sel_2_1 ? records_2_bits : 96'h0)
+    | (sel_3_1 ? records_3_bits : 96'h0) | (sel_4_1 ? records_4_bits : 96'h0)
+    | (sel_5_1 ? records_5_bits : 96'h0) | (sel_6_1 ? records_6_bits : 96'h0)
+    | (sel_7_1 ? records_7_bits : 96'h0) | (sel_8_1 ? records_8_bits : 96'h0)
+    | (sel_9_1 ? records_9_bits : 96'h0) | (sel_10_1 ? records_10_bits : 96'h0)
+    | (sel_11_1 ? records_11_bits : 96'h0) | (sel_12_1 ? records_12_bits : 96'h0)
+    | (sel_13_1 ? records_13_bits : 96'h0) | (sel_14_1 ? records_14_bits : 96'h0)
+    | (sel_15_1 ? records_15_bits : 96'h0);
   assign io_recs_1_pair =
     (sel_1_1 ? casez_tmp_12 : 24'h0) | (sel_2_1 ? casez_tmp_19 : 24'h0)
     | (sel_3_1 ? casez_tmp_26 : 24'h0) | (sel_4_1 ? casez_tmp_33 : 24'h0)
@@ -13281,33 +13216,15 @@ module ContactCollector_n16_default(
     | (sel_11_1 ? casez_tmp_82 : 24'h0) | (sel_12_1 ? casez_tmp_89 : 24'h0)
     | (sel_13_1 ? casez_tmp_96 : 24'h0) | (sel_14_1 ? casez_tmp_103 : 24'h0)
     | (sel_15_1 ? casez_tmp_110 : 24'h0);
-  assign io_recs_1_flags =
-    (sel_1_1 ? records_1_flags : 8'h0) | (sel_2_1 ? records_2_flags : 8'h0)
-    | (sel_3_1 ? records_3_flags : 8'h0) | (sel_4_1 ? records_4_flags : 8'h0)
-    | (sel_5_1 ? records_5_flags : 8'h0) | (sel_6_1 ? records_6_flags : 8'h0)
-    | (sel_7_1 ? records_7_flags : 8'h0) | (sel_8_1 ? records_8_flags : 8'h0)
-    | (sel_9_1 ? records_9_flags : 8'h0) | (sel_10_1 ? records_10_flags : 8'h0)
-    | (sel_11_1 ? records_11_flags : 8'h0) | (sel_12_1 ? records_12_flags : 8'h0)
-    | (sel_13_1 ? records_13_flags : 8'h0) | (sel_14_1 ? records_14_flags : 8'h0)
-    | (sel_15_1 ? records_15_flags : 8'h0);
-  assign io_recs_2_vals_0 =
-    (_GEN_31 ? 32'h0 : casez_tmp_8) | (_GEN_32 ? 32'h0 : casez_tmp_15)
-    | (_GEN_33 ? 32'h0 : casez_tmp_22) | (_GEN_34 ? 32'h0 : casez_tmp_29)
-    | (_GEN_35 ? 32'h0 : casez_tmp_36) | (_GEN_36 ? 32'h0 : casez_tmp_43)
-    | (_GEN_37 ? 32'h0 : casez_tmp_50) | (_GEN_38 ? 32'h0 : casez_tmp_57)
-    | (_GEN_39 ? 32'h0 : casez_tmp_64) | (_GEN_40 ? 32'h0 : casez_tmp_71)
-    | (_GEN_41 ? 32'h0 : casez_tmp_78) | (_GEN_42 ? 32'h0 : casez_tmp_85)
-    | (_GEN_43 ? 32'h0 : casez_tmp_92) | (_GEN_44 ? 32'h0 : casez_tmp_99)
-    | (_GEN_45 ? 32'h0 : casez_tmp_106);
-  assign io_recs_2_vals_1 =
-    (_GEN_31 ? 32'h0 : casez_tmp_9) | (_GEN_32 ? 32'h0 : casez_tmp_16)
-    | (_GEN_33 ? 32'h0 : casez_tmp_23) | (_GEN_34 ? 32'h0 : casez_tmp_30)
-    | (_GEN_35 ? 32'h0 : casez_tmp_37) | (_GEN_36 ? 32'h0 : casez_tmp_44)
-    | (_GEN_37 ? 32'h0 : casez_tmp_51) | (_GEN_38 ? 32'h0 : casez_tmp_58)
-    | (_GEN_39 ? 32'h0 : casez_tmp_65) | (_GEN_40 ? 32'h0 : casez_tmp_72)
-    | (_GEN_41 ? 32'h0 : casez_tmp_79) | (_GEN_42 ? 32'h0 : casez_tmp_86)
-    | (_GEN_43 ? 32'h0 : casez_tmp_93) | (_GEN_44 ? 32'h0 : casez_tmp_100)
-    | (_GEN_45 ? 32'h0 : casez_tmp_107);
+  assign io_recs_2_bits =
+    (sel_1_2 ? records_1_bits : 96'h0) | (sel_2_2 ? records_2_bits : 96'h0)
+    | (sel_3_2 ? records_3_bits : 96'h0) | (sel_4_2 ? records_4_bits : 96'h0)
+    | (sel_5_2 ? records_5_bits : 96'h0) | (sel_6_2 ? records_6_bits : 96'h0)
+    | (sel_7_2 ? records_7_bits : 96'h0) | (sel_8_2 ? records_8_bits : 96'h0)
+    | (sel_9_2 ? records_9_bits : 96'h0) | (sel_10_2 ? records_10_bits : 96'h0)
+    | (sel_11_2 ? records_11_bits : 96'h0) | (sel_12_2 ? records_12_bits : 96'h0)
+    | (sel_13_2 ? records_13_bits : 96'h0) | (sel_14_2 ? records_14_bits : 96'h0)
+    | (sel_15_2 ? records_15_bits : 96'h0);
   assign io_recs_2_pair =
     (sel_1_2 ? casez_tmp_12 : 24'h0) | (sel_2_2 ? casez_tmp_19 : 24'h0)
     | (sel_3_2 ? casez_tmp_26 : 24'h0) | (sel_4_2 ? casez_tmp_33 : 24'h0)
@@ -13317,33 +13234,15 @@ module ContactCollector_n16_default(
     | (sel_11_2 ? casez_tmp_82 : 24'h0) | (sel_12_2 ? casez_tmp_89 : 24'h0)
     | (sel_13_2 ? casez_tmp_96 : 24'h0) | (sel_14_2 ? casez_tmp_103 : 24'h0)
     | (sel_15_2 ? casez_tmp_110 : 24'h0);
-  assign io_recs_2_flags =
-    (sel_1_2 ? records_1_flags : 8'h0) | (sel_2_2 ? records_2_flags : 8'h0)
-    | (sel_3_2 ? records_3_flags : 8'h0) | (sel_4_2 ? records_4_flags : 8'h0)
-    | (sel_5_2 ? records_5_flags : 8'h0) | (sel_6_2 ? records_6_flags : 8'h0)
-    | (sel_7_2 ? records_7_flags : 8'h0) | (sel_8_2 ? records_8_flags : 8'h0)
-    | (sel_9_2 ? records_9_flags : 8'h0) | (sel_10_2 ? records_10_flags : 8'h0)
-    | (sel_11_2 ? records_11_flags : 8'h0) | (sel_12_2 ? records_12_flags : 8'h0)
-    | (sel_13_2 ? records_13_flags : 8'h0) | (sel_14_2 ? records_14_flags : 8'h0)
-    | (sel_15_2 ? records_15_flags : 8'h0);
-  assign io_recs_3_vals_0 =
-    (_GEN_46 ? 32'h0 : casez_tmp_8) | (_GEN_47 ? 32'h0 : casez_tmp_15)
-    | (_GEN_48 ? 32'h0 : casez_tmp_22) | (_GEN_49 ? 32'h0 : casez_tmp_29)
-    | (_GEN_50 ? 32'h0 : casez_tmp_36) | (_GEN_51 ? 32'h0 : casez_tmp_43)
-    | (_GEN_52 ? 32'h0 : casez_tmp_50) | (_GEN_53 ? 32'h0 : casez_tmp_57)
-    | (_GEN_54 ? 32'h0 : casez_tmp_64) | (_GEN_55 ? 32'h0 : casez_tmp_71)
-    | (_GEN_56 ? 32'h0 : casez_tmp_78) | (_GEN_57 ? 32'h0 : casez_tmp_85)
-    | (_GEN_58 ? 32'h0 : casez_tmp_92) | (_GEN_59 ? 32'h0 : casez_tmp_99)
-    | (_GEN_60 ? 32'h0 : casez_tmp_106);
-  assign io_recs_3_vals_1 =
-    (_GEN_46 ? 32'h0 : casez_tmp_9) | (_GEN_47 ? 32'h0 : casez_tmp_16)
-    | (_GEN_48 ? 32'h0 : casez_tmp_23) | (_GEN_49 ? 32'h0 : casez_tmp_30)
-    | (_GEN_50 ? 32'h0 : casez_tmp_37) | (_GEN_51 ? 32'h0 : casez_tmp_44)
-    | (_GEN_52 ? 32'h0 : casez_tmp_51) | (_GEN_53 ? 32'h0 : casez_tmp_58)
-    | (_GEN_54 ? 32'h0 : casez_tmp_65) | (_GEN_55 ? 32'h0 : casez_tmp_72)
-    | (_GEN_56 ? 32'h0 : casez_tmp_79) | (_GEN_57 ? 32'h0 : casez_tmp_86)
-    | (_GEN_58 ? 32'h0 : casez_tmp_93) | (_GEN_59 ? 32'h0 : casez_tmp_100)
-    | (_GEN_60 ? 32'h0 : casez_tmp_107);
+  assign io_recs_3_bits =
+    (sel_1_3 ? records_1_bits : 96'h0) | (sel_2_3 ? records_2_bits : 96'h0)
+    | (sel_3_3 ? records_3_bits : 96'h0) | (sel_4_3 ? records_4_bits : 96'h0)
+    | (sel_5_3 ? records_5_bits : 96'h0) | (sel_6_3 ? records_6_bits : 96'h0)
+    | (sel_7_3 ? records_7_bits : 96'h0) | (sel_8_3 ? records_8_bits : 96'h0)
+    | (sel_9_3 ? records_9_bits : 96'h0) | (sel_10_3 ? records_10_bits : 96'h0)
+    | (sel_11_3 ? records_11_bits : 96'h0) | (sel_12_3 ? records_12_bits : 96'h0)
+    | (sel_13_3 ? records_13_bits : 96'h0) | (sel_14_3 ? records_14_bits : 96'h0)
+    | (sel_15_3 ? records_15_bits : 96'h0);
   assign io_recs_3_pair =
     (sel_1_3 ? casez_tmp_12 : 24'h0) | (sel_2_3 ? casez_tmp_19 : 24'h0)
     | (sel_3_3 ? casez_tmp_26 : 24'h0) | (sel_4_3 ? casez_tmp_33 : 24'h0)
@@ -13353,33 +13252,15 @@ module ContactCollector_n16_default(
     | (sel_11_3 ? casez_tmp_82 : 24'h0) | (sel_12_3 ? casez_tmp_89 : 24'h0)
     | (sel_13_3 ? casez_tmp_96 : 24'h0) | (sel_14_3 ? casez_tmp_103 : 24'h0)
     | (sel_15_3 ? casez_tmp_110 : 24'h0);
-  assign io_recs_3_flags =
-    (sel_1_3 ? records_1_flags : 8'h0) | (sel_2_3 ? records_2_flags : 8'h0)
-    | (sel_3_3 ? records_3_flags : 8'h0) | (sel_4_3 ? records_4_flags : 8'h0)
-    | (sel_5_3 ? records_5_flags : 8'h0) | (sel_6_3 ? records_6_flags : 8'h0)
-    | (sel_7_3 ? records_7_flags : 8'h0) | (sel_8_3 ? records_8_flags : 8'h0)
-    | (sel_9_3 ? records_9_flags : 8'h0) | (sel_10_3 ? records_10_flags : 8'h0)
-    | (sel_11_3 ? records_11_flags : 8'h0) | (sel_12_3 ? records_12_flags : 8'h0)
-    | (sel_13_3 ? records_13_flags : 8'h0) | (sel_14_3 ? records_14_flags : 8'h0)
-    | (sel_15_3 ? records_15_flags : 8'h0);
-  assign io_recs_4_vals_0 =
-    (_GEN_61 ? 32'h0 : casez_tmp_8) | (_GEN_62 ? 32'h0 : casez_tmp_15)
-    | (_GEN_63 ? 32'h0 : casez_tmp_22) | (_GEN_64 ? 32'h0 : casez_tmp_29)
-    | (_GEN_65 ? 32'h0 : casez_tmp_36) | (_GEN_66 ? 32'h0 : casez_tmp_43)
-    | (_GEN_67 ? 32'h0 : casez_tmp_50) | (_GEN_68 ? 32'h0 : casez_tmp_57)
-    | (_GEN_69 ? 32'h0 : casez_tmp_64) | (_GEN_70 ? 32'h0 : casez_tmp_71)
-    | (_GEN_71 ? 32'h0 : casez_tmp_78) | (_GEN_72 ? 32'h0 : casez_tmp_85)
-    | (_GEN_73 ? 32'h0 : casez_tmp_92) | (_GEN_74 ? 32'h0 : casez_tmp_99)
-    | (_GEN_75 ? 32'h0 : casez_tmp_106);
-  assign io_recs_4_vals_1 =
-    (_GEN_61 ? 32'h0 : casez_tmp_9) | (_GEN_62 ? 32'h0 : casez_tmp_16)
-    | (_GEN_63 ? 32'h0 : casez_tmp_23) | (_GEN_64 ? 32'h0 : casez_tmp_30)
-    | (_GEN_65 ? 32'h0 : casez_tmp_37) | (_GEN_66 ? 32'h0 : casez_tmp_44)
-    | (_GEN_67 ? 32'h0 : casez_tmp_51) | (_GEN_68 ? 32'h0 : casez_tmp_58)
-    | (_GEN_69 ? 32'h0 : casez_tmp_65) | (_GEN_70 ? 32'h0 : casez_tmp_72)
-    | (_GEN_71 ? 32'h0 : casez_tmp_79) | (_GEN_72 ? 32'h0 : casez_tmp_86)
-    | (_GEN_73 ? 32'h0 : casez_tmp_93) | (_GEN_74 ? 32'h0 : casez_tmp_100)
-    | (_GEN_75 ? 32'h0 : casez_tmp_107);
+  assign io_recs_4_bits =
+    (sel_1_4 ? records_1_bits : 96'h0) | (sel_2_4 ? records_2_bits : 96'h0)
+    | (sel_3_4 ? records_3_bits : 96'h0) | (sel_4_4 ? records_4_bits : 96'h0)
+    | (sel_5_4 ? records_5_bits : 96'h0) | (sel_6_4 ? records_6_bits : 96'h0)
+    | (sel_7_4 ? records_7_bits : 96'h0) | (sel_8_4 ? records_8_bits : 96'h0)
+    | (sel_9_4 ? records_9_bits : 96'h0) | (sel_10_4 ? records_10_bits : 96'h0)
+    | (sel_11_4 ? records_11_bits : 96'h0) | (sel_12_4 ? records_12_bits : 96'h0)
+    | (sel_13_4 ? records_13_bits : 96'h0) | (sel_14_4 ? records_14_bits : 96'h0)
+    | (sel_15_4 ? records_15_bits : 96'h0);
   assign io_recs_4_pair =
     (sel_1_4 ? casez_tmp_12 : 24'h0) | (sel_2_4 ? casez_tmp_19 : 24'h0)
     | (sel_3_4 ? casez_tmp_26 : 24'h0) | (sel_4_4 ? casez_tmp_33 : 24'h0)
@@ -13389,24 +13270,15 @@ module ContactCollector_n16_default(
     | (sel_11_4 ? casez_tmp_82 : 24'h0) | (sel_12_4 ? casez_tmp_89 : 24'h0)
     | (sel_13_4 ? casez_tmp_96 : 24'h0) | (sel_14_4 ? casez_tmp_103 : 24'h0)
     | (sel_15_4 ? casez_tmp_110 : 24'h0);
-  assign io_recs_4_flags =
-    (sel_1_4 ? records_1_flags : 8'h0) | (sel_2_4 ? records_2_flags : 8'h0)
-    | (sel_3_4 ? records_3_flags : 8'h0) | (sel_4_4 ? records_4_flags : 8'h0)
-    | (sel_5_4 ? records_5_flags : 8'h0) | (sel_6_4 ? records_6_flags : 8'h0)
-    | (sel_7_4 ? records_7_flags : 8'h0) | (sel_8_4 ? records_8_flags : 8'h0)
-    | (sel_9_4 ? records_9_flags : 8'h0) | (sel_10_4 ? records_10_flags : 8'h0)
-    | (sel_11_4 ? records_11_flags : 8'h0) | (sel_12_4 ? records_12_flags : 8'h0)
-    | (sel_13_4 ? records_13_flags : 8'h0) | (sel_14_4 ? records_14_flags : 8'h0)
-    | (sel_15_4 ? records_15_flags : 8'h0);
   assign io_nRecs =
-    {1'h0, {1'h0, _sel_T_128} + {1'h0, _sel_T_130}}
-    + {1'h0, {1'h0, _sel_T_132} + {1'h0, _sel_T_134}}
-    + {1'h0, {1'h0, _sel_T_136} + {1'h0, _sel_T_138}}
-    + {1'h0, {1'h0, _sel_T_140} + {1'h0, _sel_T_142}}
-    + {1'h0, {1'h0, _sel_T_144} + {1'h0, _sel_T_146}}
-    + {1'h0, {1'h0, _sel_T_148} + {1'h0, _sel_T_150}}
-    + {1'h0, {1'h0, _sel_T_152} + {1'h0, _sel_T_154}}
-    + {1'h0, {1'h0, _sel_T_156} + {1'h0, _sel_T_158}};
+    {1'h0, {1'h0, _sel_T_192} + {1'h0, _sel_T_195}}
+    + {1'h0, {1'h0, _sel_T_198} + {1'h0, _sel_T_201}}
+    + {1'h0, {1'h0, _sel_T_204} + {1'h0, _sel_T_207}}
+    + {1'h0, {1'h0, _sel_T_210} + {1'h0, _sel_T_213}}
+    + {1'h0, {1'h0, _sel_T_216} + {1'h0, _sel_T_219}}
+    + {1'h0, {1'h0, _sel_T_222} + {1'h0, _sel_T_225}}
+    + {1'h0, {1'h0, _sel_T_228} + {1'h0, _sel_T_231}}
+    + {1'h0, {1'h0, _sel_T_234} + {1'h0, _sel_T_237}};
   assign io_nPairs = nTaken;
   assign io_nHits =
     {1'h0,
@@ -13538,26 +13410,16 @@ module ContactPacker_w32_derived_r5_default(
   input  [63:0]  io_base,
                  io_capacity,
   output [2:0]   io_room,
-  input  [31:0]  io_recs_0_vals_0,
-                 io_recs_0_vals_1,
+  input  [95:0]  io_recs_0_bits,
   input  [23:0]  io_recs_0_pair,
-  input  [7:0]   io_recs_0_flags,
-  input  [31:0]  io_recs_1_vals_0,
-                 io_recs_1_vals_1,
+  input  [95:0]  io_recs_1_bits,
   input  [23:0]  io_recs_1_pair,
-  input  [7:0]   io_recs_1_flags,
-  input  [31:0]  io_recs_2_vals_0,
-                 io_recs_2_vals_1,
+  input  [95:0]  io_recs_2_bits,
   input  [23:0]  io_recs_2_pair,
-  input  [7:0]   io_recs_2_flags,
-  input  [31:0]  io_recs_3_vals_0,
-                 io_recs_3_vals_1,
+  input  [95:0]  io_recs_3_bits,
   input  [23:0]  io_recs_3_pair,
-  input  [7:0]   io_recs_3_flags,
-  input  [31:0]  io_recs_4_vals_0,
-                 io_recs_4_vals_1,
+  input  [95:0]  io_recs_4_bits,
   input  [23:0]  io_recs_4_pair,
-  input  [7:0]   io_recs_4_flags,
   input  [2:0]   io_nRecs,
   input          io_flush,
   output         io_idle,
@@ -13620,820 +13482,240 @@ module ContactPacker_w32_derived_r5_default(
   wire [24:0] _rnOf_T_2 = io_dense ? {1'h0, io_recs_0_pair} : count;
   wire [24:0] rnOf = (|fill) ? heldRn : _rnOf_T_2;
   wire [3:0]  total = {1'h0, fill} + {1'h0, io_nRecs};
-  wire [2:0]  _slots_v_T_3 = 3'h0 - fill;
-  reg  [31:0] casez_tmp_0;
+  reg  [95:0] casez_tmp_0;
   always @(*) begin
-    casez (_slots_v_T_3)
+    casez (3'h0 - fill)
       3'b000:
-        casez_tmp_0 = io_recs_0_vals_0;
+        casez_tmp_0 = io_recs_0_bits;
       3'b001:
-        casez_tmp_0 = io_recs_1_vals_0;
+        casez_tmp_0 = io_recs_1_bits;
       3'b010:
-        casez_tmp_0 = io_recs_2_vals_0;
+        casez_tmp_0 = io_recs_2_bits;
       3'b011:
-        casez_tmp_0 = io_recs_3_vals_0;
+        casez_tmp_0 = io_recs_3_bits;
       3'b100:
-        casez_tmp_0 = io_recs_4_vals_0;
+        casez_tmp_0 = io_recs_4_bits;
       3'b101:
-        casez_tmp_0 = io_recs_0_vals_0;
+        casez_tmp_0 = io_recs_0_bits;
       3'b110:
-        casez_tmp_0 = io_recs_0_vals_0;
+        casez_tmp_0 = io_recs_0_bits;
       default:
-        casez_tmp_0 = io_recs_0_vals_0;
+        casez_tmp_0 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_1;
-  always @(*) begin
-    casez (_slots_v_T_3)
-      3'b000:
-        casez_tmp_1 = io_recs_0_vals_1;
-      3'b001:
-        casez_tmp_1 = io_recs_1_vals_1;
-      3'b010:
-        casez_tmp_1 = io_recs_2_vals_1;
-      3'b011:
-        casez_tmp_1 = io_recs_3_vals_1;
-      3'b100:
-        casez_tmp_1 = io_recs_4_vals_1;
-      3'b101:
-        casez_tmp_1 = io_recs_0_vals_1;
-      3'b110:
-        casez_tmp_1 = io_recs_0_vals_1;
-      default:
-        casez_tmp_1 = io_recs_0_vals_1;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_2;
-  always @(*) begin
-    casez (_slots_v_T_3)
-      3'b000:
-        casez_tmp_2 = io_recs_0_pair;
-      3'b001:
-        casez_tmp_2 = io_recs_1_pair;
-      3'b010:
-        casez_tmp_2 = io_recs_2_pair;
-      3'b011:
-        casez_tmp_2 = io_recs_3_pair;
-      3'b100:
-        casez_tmp_2 = io_recs_4_pair;
-      3'b101:
-        casez_tmp_2 = io_recs_0_pair;
-      3'b110:
-        casez_tmp_2 = io_recs_0_pair;
-      default:
-        casez_tmp_2 = io_recs_0_pair;
-    endcase
-  end // always @(*)
-  reg  [7:0]  casez_tmp_3;
-  always @(*) begin
-    casez (_slots_v_T_3)
-      3'b000:
-        casez_tmp_3 = io_recs_0_flags;
-      3'b001:
-        casez_tmp_3 = io_recs_1_flags;
-      3'b010:
-        casez_tmp_3 = io_recs_2_flags;
-      3'b011:
-        casez_tmp_3 = io_recs_3_flags;
-      3'b100:
-        casez_tmp_3 = io_recs_4_flags;
-      3'b101:
-        casez_tmp_3 = io_recs_0_flags;
-      3'b110:
-        casez_tmp_3 = io_recs_0_flags;
-      default:
-        casez_tmp_3 = io_recs_0_flags;
-    endcase
-  end // always @(*)
-  wire [95:0] _slots_v_T_5 = {casez_tmp_3, casez_tmp_2, casez_tmp_1, casez_tmp_0};
   wire [63:0] _GEN = {39'h0, rnOf};
   wire        _slots_T_4 = (|total) & _GEN < io_capacity;
-  wire [2:0]  _slots_v_T_7 = 3'h1 - fill;
-  reg  [31:0] casez_tmp_4;
+  reg  [95:0] casez_tmp_1;
   always @(*) begin
-    casez (_slots_v_T_7)
+    casez (3'h1 - fill)
       3'b000:
-        casez_tmp_4 = io_recs_0_vals_0;
+        casez_tmp_1 = io_recs_0_bits;
       3'b001:
-        casez_tmp_4 = io_recs_1_vals_0;
+        casez_tmp_1 = io_recs_1_bits;
       3'b010:
-        casez_tmp_4 = io_recs_2_vals_0;
+        casez_tmp_1 = io_recs_2_bits;
       3'b011:
-        casez_tmp_4 = io_recs_3_vals_0;
+        casez_tmp_1 = io_recs_3_bits;
       3'b100:
-        casez_tmp_4 = io_recs_4_vals_0;
+        casez_tmp_1 = io_recs_4_bits;
       3'b101:
-        casez_tmp_4 = io_recs_0_vals_0;
+        casez_tmp_1 = io_recs_0_bits;
       3'b110:
-        casez_tmp_4 = io_recs_0_vals_0;
+        casez_tmp_1 = io_recs_0_bits;
       default:
-        casez_tmp_4 = io_recs_0_vals_0;
+        casez_tmp_1 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_5;
-  always @(*) begin
-    casez (_slots_v_T_7)
-      3'b000:
-        casez_tmp_5 = io_recs_0_vals_1;
-      3'b001:
-        casez_tmp_5 = io_recs_1_vals_1;
-      3'b010:
-        casez_tmp_5 = io_recs_2_vals_1;
-      3'b011:
-        casez_tmp_5 = io_recs_3_vals_1;
-      3'b100:
-        casez_tmp_5 = io_recs_4_vals_1;
-      3'b101:
-        casez_tmp_5 = io_recs_0_vals_1;
-      3'b110:
-        casez_tmp_5 = io_recs_0_vals_1;
-      default:
-        casez_tmp_5 = io_recs_0_vals_1;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_6;
-  always @(*) begin
-    casez (_slots_v_T_7)
-      3'b000:
-        casez_tmp_6 = io_recs_0_pair;
-      3'b001:
-        casez_tmp_6 = io_recs_1_pair;
-      3'b010:
-        casez_tmp_6 = io_recs_2_pair;
-      3'b011:
-        casez_tmp_6 = io_recs_3_pair;
-      3'b100:
-        casez_tmp_6 = io_recs_4_pair;
-      3'b101:
-        casez_tmp_6 = io_recs_0_pair;
-      3'b110:
-        casez_tmp_6 = io_recs_0_pair;
-      default:
-        casez_tmp_6 = io_recs_0_pair;
-    endcase
-  end // always @(*)
-  reg  [7:0]  casez_tmp_7;
-  always @(*) begin
-    casez (_slots_v_T_7)
-      3'b000:
-        casez_tmp_7 = io_recs_0_flags;
-      3'b001:
-        casez_tmp_7 = io_recs_1_flags;
-      3'b010:
-        casez_tmp_7 = io_recs_2_flags;
-      3'b011:
-        casez_tmp_7 = io_recs_3_flags;
-      3'b100:
-        casez_tmp_7 = io_recs_4_flags;
-      3'b101:
-        casez_tmp_7 = io_recs_0_flags;
-      3'b110:
-        casez_tmp_7 = io_recs_0_flags;
-      default:
-        casez_tmp_7 = io_recs_0_flags;
-    endcase
-  end // always @(*)
-  wire [95:0] _slots_v_T_11 = {casez_tmp_7, casez_tmp_6, casez_tmp_5, casez_tmp_4};
   wire        _slots_T_10 = (|(total[3:1])) & {39'h0, rnOf + 25'h1} < io_capacity;
-  wire        _slots_v_T_12 = fill > 3'h2;
-  wire [2:0]  _slots_v_T_13 = 3'h2 - fill;
-  reg  [31:0] casez_tmp_8;
+  wire        _slots_v_T_8 = fill > 3'h2;
+  reg  [95:0] casez_tmp_2;
   always @(*) begin
-    casez (_slots_v_T_13)
+    casez (3'h2 - fill)
       3'b000:
-        casez_tmp_8 = io_recs_0_vals_0;
+        casez_tmp_2 = io_recs_0_bits;
       3'b001:
-        casez_tmp_8 = io_recs_1_vals_0;
+        casez_tmp_2 = io_recs_1_bits;
       3'b010:
-        casez_tmp_8 = io_recs_2_vals_0;
+        casez_tmp_2 = io_recs_2_bits;
       3'b011:
-        casez_tmp_8 = io_recs_3_vals_0;
+        casez_tmp_2 = io_recs_3_bits;
       3'b100:
-        casez_tmp_8 = io_recs_4_vals_0;
+        casez_tmp_2 = io_recs_4_bits;
       3'b101:
-        casez_tmp_8 = io_recs_0_vals_0;
+        casez_tmp_2 = io_recs_0_bits;
       3'b110:
-        casez_tmp_8 = io_recs_0_vals_0;
+        casez_tmp_2 = io_recs_0_bits;
       default:
-        casez_tmp_8 = io_recs_0_vals_0;
+        casez_tmp_2 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_9;
-  always @(*) begin
-    casez (_slots_v_T_13)
-      3'b000:
-        casez_tmp_9 = io_recs_0_vals_1;
-      3'b001:
-        casez_tmp_9 = io_recs_1_vals_1;
-      3'b010:
-        casez_tmp_9 = io_recs_2_vals_1;
-      3'b011:
-        casez_tmp_9 = io_recs_3_vals_1;
-      3'b100:
-        casez_tmp_9 = io_recs_4_vals_1;
-      3'b101:
-        casez_tmp_9 = io_recs_0_vals_1;
-      3'b110:
-        casez_tmp_9 = io_recs_0_vals_1;
-      default:
-        casez_tmp_9 = io_recs_0_vals_1;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_10;
-  always @(*) begin
-    casez (_slots_v_T_13)
-      3'b000:
-        casez_tmp_10 = io_recs_0_pair;
-      3'b001:
-        casez_tmp_10 = io_recs_1_pair;
-      3'b010:
-        casez_tmp_10 = io_recs_2_pair;
-      3'b011:
-        casez_tmp_10 = io_recs_3_pair;
-      3'b100:
-        casez_tmp_10 = io_recs_4_pair;
-      3'b101:
-        casez_tmp_10 = io_recs_0_pair;
-      3'b110:
-        casez_tmp_10 = io_recs_0_pair;
-      default:
-        casez_tmp_10 = io_recs_0_pair;
-    endcase
-  end // always @(*)
-  reg  [7:0]  casez_tmp_11;
-  always @(*) begin
-    casez (_slots_v_T_13)
-      3'b000:
-        casez_tmp_11 = io_recs_0_flags;
-      3'b001:
-        casez_tmp_11 = io_recs_1_flags;
-      3'b010:
-        casez_tmp_11 = io_recs_2_flags;
-      3'b011:
-        casez_tmp_11 = io_recs_3_flags;
-      3'b100:
-        casez_tmp_11 = io_recs_4_flags;
-      3'b101:
-        casez_tmp_11 = io_recs_0_flags;
-      3'b110:
-        casez_tmp_11 = io_recs_0_flags;
-      default:
-        casez_tmp_11 = io_recs_0_flags;
-    endcase
-  end // always @(*)
-  wire [95:0] _slots_v_T_17 = {casez_tmp_11, casez_tmp_10, casez_tmp_9, casez_tmp_8};
   wire        _slots_T_12 = total > 4'h2;
   wire        _slots_T_16 = _slots_T_12 & {39'h0, rnOf + 25'h2} < io_capacity;
-  wire [2:0]  _slots_v_T_19 = 3'h3 - fill;
-  reg  [31:0] casez_tmp_12;
+  reg  [95:0] casez_tmp_3;
   always @(*) begin
-    casez (_slots_v_T_19)
+    casez (3'h3 - fill)
       3'b000:
-        casez_tmp_12 = io_recs_0_vals_0;
+        casez_tmp_3 = io_recs_0_bits;
       3'b001:
-        casez_tmp_12 = io_recs_1_vals_0;
+        casez_tmp_3 = io_recs_1_bits;
       3'b010:
-        casez_tmp_12 = io_recs_2_vals_0;
+        casez_tmp_3 = io_recs_2_bits;
       3'b011:
-        casez_tmp_12 = io_recs_3_vals_0;
+        casez_tmp_3 = io_recs_3_bits;
       3'b100:
-        casez_tmp_12 = io_recs_4_vals_0;
+        casez_tmp_3 = io_recs_4_bits;
       3'b101:
-        casez_tmp_12 = io_recs_0_vals_0;
+        casez_tmp_3 = io_recs_0_bits;
       3'b110:
-        casez_tmp_12 = io_recs_0_vals_0;
+        casez_tmp_3 = io_recs_0_bits;
       default:
-        casez_tmp_12 = io_recs_0_vals_0;
+        casez_tmp_3 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_13;
-  always @(*) begin
-    casez (_slots_v_T_19)
-      3'b000:
-        casez_tmp_13 = io_recs_0_vals_1;
-      3'b001:
-        casez_tmp_13 = io_recs_1_vals_1;
-      3'b010:
-        casez_tmp_13 = io_recs_2_vals_1;
-      3'b011:
-        casez_tmp_13 = io_recs_3_vals_1;
-      3'b100:
-        casez_tmp_13 = io_recs_4_vals_1;
-      3'b101:
-        casez_tmp_13 = io_recs_0_vals_1;
-      3'b110:
-        casez_tmp_13 = io_recs_0_vals_1;
-      default:
-        casez_tmp_13 = io_recs_0_vals_1;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_14;
-  always @(*) begin
-    casez (_slots_v_T_19)
-      3'b000:
-        casez_tmp_14 = io_recs_0_pair;
-      3'b001:
-        casez_tmp_14 = io_recs_1_pair;
-      3'b010:
-        casez_tmp_14 = io_recs_2_pair;
-      3'b011:
-        casez_tmp_14 = io_recs_3_pair;
-      3'b100:
-        casez_tmp_14 = io_recs_4_pair;
-      3'b101:
-        casez_tmp_14 = io_recs_0_pair;
-      3'b110:
-        casez_tmp_14 = io_recs_0_pair;
-      default:
-        casez_tmp_14 = io_recs_0_pair;
-    endcase
-  end // always @(*)
-  reg  [7:0]  casez_tmp_15;
-  always @(*) begin
-    casez (_slots_v_T_19)
-      3'b000:
-        casez_tmp_15 = io_recs_0_flags;
-      3'b001:
-        casez_tmp_15 = io_recs_1_flags;
-      3'b010:
-        casez_tmp_15 = io_recs_2_flags;
-      3'b011:
-        casez_tmp_15 = io_recs_3_flags;
-      3'b100:
-        casez_tmp_15 = io_recs_4_flags;
-      3'b101:
-        casez_tmp_15 = io_recs_0_flags;
-      3'b110:
-        casez_tmp_15 = io_recs_0_flags;
-      default:
-        casez_tmp_15 = io_recs_0_flags;
-    endcase
-  end // always @(*)
-  wire [95:0] _slots_v_T_23 = {casez_tmp_15, casez_tmp_14, casez_tmp_13, casez_tmp_12};
   wire        _slots_T_22 = (|(total[3:2])) & {39'h0, rnOf + 25'h3} < io_capacity;
-  wire [2:0]  _slots_v_T_25 = 3'h4 - fill;
-  reg  [31:0] casez_tmp_16;
+  reg  [95:0] casez_tmp_4;
   always @(*) begin
-    casez (_slots_v_T_25)
+    casez (3'h4 - fill)
       3'b000:
-        casez_tmp_16 = io_recs_0_vals_0;
+        casez_tmp_4 = io_recs_0_bits;
       3'b001:
-        casez_tmp_16 = io_recs_1_vals_0;
+        casez_tmp_4 = io_recs_1_bits;
       3'b010:
-        casez_tmp_16 = io_recs_2_vals_0;
+        casez_tmp_4 = io_recs_2_bits;
       3'b011:
-        casez_tmp_16 = io_recs_3_vals_0;
+        casez_tmp_4 = io_recs_3_bits;
       3'b100:
-        casez_tmp_16 = io_recs_4_vals_0;
+        casez_tmp_4 = io_recs_4_bits;
       3'b101:
-        casez_tmp_16 = io_recs_0_vals_0;
+        casez_tmp_4 = io_recs_0_bits;
       3'b110:
-        casez_tmp_16 = io_recs_0_vals_0;
+        casez_tmp_4 = io_recs_0_bits;
       default:
-        casez_tmp_16 = io_recs_0_vals_0;
+        casez_tmp_4 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_17;
-  always @(*) begin
-    casez (_slots_v_T_25)
-      3'b000:
-        casez_tmp_17 = io_recs_0_vals_1;
-      3'b001:
-        casez_tmp_17 = io_recs_1_vals_1;
-      3'b010:
-        casez_tmp_17 = io_recs_2_vals_1;
-      3'b011:
-        casez_tmp_17 = io_recs_3_vals_1;
-      3'b100:
-        casez_tmp_17 = io_recs_4_vals_1;
-      3'b101:
-        casez_tmp_17 = io_recs_0_vals_1;
-      3'b110:
-        casez_tmp_17 = io_recs_0_vals_1;
-      default:
-        casez_tmp_17 = io_recs_0_vals_1;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_18;
-  always @(*) begin
-    casez (_slots_v_T_25)
-      3'b000:
-        casez_tmp_18 = io_recs_0_pair;
-      3'b001:
-        casez_tmp_18 = io_recs_1_pair;
-      3'b010:
-        casez_tmp_18 = io_recs_2_pair;
-      3'b011:
-        casez_tmp_18 = io_recs_3_pair;
-      3'b100:
-        casez_tmp_18 = io_recs_4_pair;
-      3'b101:
-        casez_tmp_18 = io_recs_0_pair;
-      3'b110:
-        casez_tmp_18 = io_recs_0_pair;
-      default:
-        casez_tmp_18 = io_recs_0_pair;
-    endcase
-  end // always @(*)
-  reg  [7:0]  casez_tmp_19;
-  always @(*) begin
-    casez (_slots_v_T_25)
-      3'b000:
-        casez_tmp_19 = io_recs_0_flags;
-      3'b001:
-        casez_tmp_19 = io_recs_1_flags;
-      3'b010:
-        casez_tmp_19 = io_recs_2_flags;
-      3'b011:
-        casez_tmp_19 = io_recs_3_flags;
-      3'b100:
-        casez_tmp_19 = io_recs_4_flags;
-      3'b101:
-        casez_tmp_19 = io_recs_0_flags;
-      3'b110:
-        casez_tmp_19 = io_recs_0_flags;
-      default:
-        casez_tmp_19 = io_recs_0_flags;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_20;
+  reg  [23:0] casez_tmp_5;
   always @(*) begin
     casez (io_nRecs - 3'h1)
       3'b000:
-        casez_tmp_20 = io_recs_0_pair;
+        casez_tmp_5 = io_recs_0_pair;
       3'b001:
-        casez_tmp_20 = io_recs_1_pair;
+        casez_tmp_5 = io_recs_1_pair;
       3'b010:
-        casez_tmp_20 = io_recs_2_pair;
+        casez_tmp_5 = io_recs_2_pair;
       3'b011:
-        casez_tmp_20 = io_recs_3_pair;
+        casez_tmp_5 = io_recs_3_pair;
       3'b100:
-        casez_tmp_20 = io_recs_4_pair;
+        casez_tmp_5 = io_recs_4_pair;
       3'b101:
-        casez_tmp_20 = io_recs_0_pair;
+        casez_tmp_5 = io_recs_0_pair;
       3'b110:
-        casez_tmp_20 = io_recs_0_pair;
+        casez_tmp_5 = io_recs_0_pair;
       default:
-        casez_tmp_20 = io_recs_0_pair;
+        casez_tmp_5 = io_recs_0_pair;
     endcase
   end // always @(*)
   wire        emit =
     _q_io_enq_ready
     & (total > 4'h4 | io_dense & (|io_nRecs)
-       & ((&(casez_tmp_20[3:0])) | casez_tmp_20 == io_numPairs - 24'h1) & (|total)
+       & ((&(casez_tmp_5[3:0])) | casez_tmp_5 == io_numPairs - 24'h1) & (|total)
        | io_flush & (|total));
   wire        _q_io_enq_valid_T_1 = emit & _GEN < io_capacity;
-  wire [2:0]  _held_0_T_1 = 3'h5 - fill;
-  reg  [31:0] casez_tmp_21;
+  reg  [95:0] casez_tmp_6;
   always @(*) begin
-    casez (_held_0_T_1)
+    casez (3'h5 - fill)
       3'b000:
-        casez_tmp_21 = io_recs_0_vals_0;
+        casez_tmp_6 = io_recs_0_bits;
       3'b001:
-        casez_tmp_21 = io_recs_1_vals_0;
+        casez_tmp_6 = io_recs_1_bits;
       3'b010:
-        casez_tmp_21 = io_recs_2_vals_0;
+        casez_tmp_6 = io_recs_2_bits;
       3'b011:
-        casez_tmp_21 = io_recs_3_vals_0;
+        casez_tmp_6 = io_recs_3_bits;
       3'b100:
-        casez_tmp_21 = io_recs_4_vals_0;
+        casez_tmp_6 = io_recs_4_bits;
       3'b101:
-        casez_tmp_21 = io_recs_0_vals_0;
+        casez_tmp_6 = io_recs_0_bits;
       3'b110:
-        casez_tmp_21 = io_recs_0_vals_0;
+        casez_tmp_6 = io_recs_0_bits;
       default:
-        casez_tmp_21 = io_recs_0_vals_0;
+        casez_tmp_6 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [31:0] casez_tmp_22;
+  reg  [95:0] casez_tmp_7;
   always @(*) begin
-    casez (_held_0_T_1)
+    casez (3'h6 - fill)
       3'b000:
-        casez_tmp_22 = io_recs_0_vals_1;
+        casez_tmp_7 = io_recs_0_bits;
       3'b001:
-        casez_tmp_22 = io_recs_1_vals_1;
+        casez_tmp_7 = io_recs_1_bits;
       3'b010:
-        casez_tmp_22 = io_recs_2_vals_1;
+        casez_tmp_7 = io_recs_2_bits;
       3'b011:
-        casez_tmp_22 = io_recs_3_vals_1;
+        casez_tmp_7 = io_recs_3_bits;
       3'b100:
-        casez_tmp_22 = io_recs_4_vals_1;
+        casez_tmp_7 = io_recs_4_bits;
       3'b101:
-        casez_tmp_22 = io_recs_0_vals_1;
+        casez_tmp_7 = io_recs_0_bits;
       3'b110:
-        casez_tmp_22 = io_recs_0_vals_1;
+        casez_tmp_7 = io_recs_0_bits;
       default:
-        casez_tmp_22 = io_recs_0_vals_1;
+        casez_tmp_7 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_23;
+  reg  [95:0] casez_tmp_8;
   always @(*) begin
-    casez (_held_0_T_1)
+    casez (3'h7 - fill)
       3'b000:
-        casez_tmp_23 = io_recs_0_pair;
+        casez_tmp_8 = io_recs_0_bits;
       3'b001:
-        casez_tmp_23 = io_recs_1_pair;
+        casez_tmp_8 = io_recs_1_bits;
       3'b010:
-        casez_tmp_23 = io_recs_2_pair;
+        casez_tmp_8 = io_recs_2_bits;
       3'b011:
-        casez_tmp_23 = io_recs_3_pair;
+        casez_tmp_8 = io_recs_3_bits;
       3'b100:
-        casez_tmp_23 = io_recs_4_pair;
+        casez_tmp_8 = io_recs_4_bits;
       3'b101:
-        casez_tmp_23 = io_recs_0_pair;
+        casez_tmp_8 = io_recs_0_bits;
       3'b110:
-        casez_tmp_23 = io_recs_0_pair;
+        casez_tmp_8 = io_recs_0_bits;
       default:
-        casez_tmp_23 = io_recs_0_pair;
+        casez_tmp_8 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [7:0]  casez_tmp_24;
+  reg  [95:0] casez_tmp_9;
   always @(*) begin
-    casez (_held_0_T_1)
+    casez (3'h0 - fill)
       3'b000:
-        casez_tmp_24 = io_recs_0_flags;
+        casez_tmp_9 = io_recs_0_bits;
       3'b001:
-        casez_tmp_24 = io_recs_1_flags;
+        casez_tmp_9 = io_recs_1_bits;
       3'b010:
-        casez_tmp_24 = io_recs_2_flags;
+        casez_tmp_9 = io_recs_2_bits;
       3'b011:
-        casez_tmp_24 = io_recs_3_flags;
+        casez_tmp_9 = io_recs_3_bits;
       3'b100:
-        casez_tmp_24 = io_recs_4_flags;
+        casez_tmp_9 = io_recs_4_bits;
       3'b101:
-        casez_tmp_24 = io_recs_0_flags;
+        casez_tmp_9 = io_recs_0_bits;
       3'b110:
-        casez_tmp_24 = io_recs_0_flags;
+        casez_tmp_9 = io_recs_0_bits;
       default:
-        casez_tmp_24 = io_recs_0_flags;
-    endcase
-  end // always @(*)
-  wire [2:0]  _held_1_T_1 = 3'h6 - fill;
-  reg  [31:0] casez_tmp_25;
-  always @(*) begin
-    casez (_held_1_T_1)
-      3'b000:
-        casez_tmp_25 = io_recs_0_vals_0;
-      3'b001:
-        casez_tmp_25 = io_recs_1_vals_0;
-      3'b010:
-        casez_tmp_25 = io_recs_2_vals_0;
-      3'b011:
-        casez_tmp_25 = io_recs_3_vals_0;
-      3'b100:
-        casez_tmp_25 = io_recs_4_vals_0;
-      3'b101:
-        casez_tmp_25 = io_recs_0_vals_0;
-      3'b110:
-        casez_tmp_25 = io_recs_0_vals_0;
-      default:
-        casez_tmp_25 = io_recs_0_vals_0;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_26;
-  always @(*) begin
-    casez (_held_1_T_1)
-      3'b000:
-        casez_tmp_26 = io_recs_0_vals_1;
-      3'b001:
-        casez_tmp_26 = io_recs_1_vals_1;
-      3'b010:
-        casez_tmp_26 = io_recs_2_vals_1;
-      3'b011:
-        casez_tmp_26 = io_recs_3_vals_1;
-      3'b100:
-        casez_tmp_26 = io_recs_4_vals_1;
-      3'b101:
-        casez_tmp_26 = io_recs_0_vals_1;
-      3'b110:
-        casez_tmp_26 = io_recs_0_vals_1;
-      default:
-        casez_tmp_26 = io_recs_0_vals_1;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_27;
-  always @(*) begin
-    casez (_held_1_T_1)
-      3'b000:
-        casez_tmp_27 = io_recs_0_pair;
-      3'b001:
-        casez_tmp_27 = io_recs_1_pair;
-      3'b010:
-        casez_tmp_27 = io_recs_2_pair;
-      3'b011:
-        casez_tmp_27 = io_recs_3_pair;
-      3'b100:
-        casez_tmp_27 = io_recs_4_pair;
-      3'b101:
-        casez_tmp_27 = io_recs_0_pair;
-      3'b110:
-        casez_tmp_27 = io_recs_0_pair;
-      default:
-        casez_tmp_27 = io_recs_0_pair;
-    endcase
-  end // always @(*)
-  reg  [7:0]  casez_tmp_28;
-  always @(*) begin
-    casez (_held_1_T_1)
-      3'b000:
-        casez_tmp_28 = io_recs_0_flags;
-      3'b001:
-        casez_tmp_28 = io_recs_1_flags;
-      3'b010:
-        casez_tmp_28 = io_recs_2_flags;
-      3'b011:
-        casez_tmp_28 = io_recs_3_flags;
-      3'b100:
-        casez_tmp_28 = io_recs_4_flags;
-      3'b101:
-        casez_tmp_28 = io_recs_0_flags;
-      3'b110:
-        casez_tmp_28 = io_recs_0_flags;
-      default:
-        casez_tmp_28 = io_recs_0_flags;
-    endcase
-  end // always @(*)
-  wire [2:0]  _held_2_T_1 = 3'h7 - fill;
-  reg  [31:0] casez_tmp_29;
-  always @(*) begin
-    casez (_held_2_T_1)
-      3'b000:
-        casez_tmp_29 = io_recs_0_vals_0;
-      3'b001:
-        casez_tmp_29 = io_recs_1_vals_0;
-      3'b010:
-        casez_tmp_29 = io_recs_2_vals_0;
-      3'b011:
-        casez_tmp_29 = io_recs_3_vals_0;
-      3'b100:
-        casez_tmp_29 = io_recs_4_vals_0;
-      3'b101:
-        casez_tmp_29 = io_recs_0_vals_0;
-      3'b110:
-        casez_tmp_29 = io_recs_0_vals_0;
-      default:
-        casez_tmp_29 = io_recs_0_vals_0;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_30;
-  always @(*) begin
-    casez (_held_2_T_1)
-      3'b000:
-        casez_tmp_30 = io_recs_0_vals_1;
-      3'b001:
-        casez_tmp_30 = io_recs_1_vals_1;
-      3'b010:
-        casez_tmp_30 = io_recs_2_vals_1;
-      3'b011:
-        casez_tmp_30 = io_recs_3_vals_1;
-      3'b100:
-        casez_tmp_30 = io_recs_4_vals_1;
-      3'b101:
-        casez_tmp_30 = io_recs_0_vals_1;
-      3'b110:
-        casez_tmp_30 = io_recs_0_vals_1;
-      default:
-        casez_tmp_30 = io_recs_0_vals_1;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_31;
-  always @(*) begin
-    casez (_held_2_T_1)
-      3'b000:
-        casez_tmp_31 = io_recs_0_pair;
-      3'b001:
-        casez_tmp_31 = io_recs_1_pair;
-      3'b010:
-        casez_tmp_31 = io_recs_2_pair;
-      3'b011:
-        casez_tmp_31 = io_recs_3_pair;
-      3'b100:
-        casez_tmp_31 = io_recs_4_pair;
-      3'b101:
-        casez_tmp_31 = io_recs_0_pair;
-      3'b110:
-        casez_tmp_31 = io_recs_0_pair;
-      default:
-        casez_tmp_31 = io_recs_0_pair;
-    endcase
-  end // always @(*)
-  reg  [7:0]  casez_tmp_32;
-  always @(*) begin
-    casez (_held_2_T_1)
-      3'b000:
-        casez_tmp_32 = io_recs_0_flags;
-      3'b001:
-        casez_tmp_32 = io_recs_1_flags;
-      3'b010:
-        casez_tmp_32 = io_recs_2_flags;
-      3'b011:
-        casez_tmp_32 = io_recs_3_flags;
-      3'b100:
-        casez_tmp_32 = io_recs_4_flags;
-      3'b101:
-        casez_tmp_32 = io_recs_0_flags;
-      3'b110:
-        casez_tmp_32 = io_recs_0_flags;
-      default:
-        casez_tmp_32 = io_recs_0_flags;
-    endcase
-  end // always @(*)
-  wire [2:0]  _held_3_T_1 = 3'h0 - fill;
-  reg  [31:0] casez_tmp_33;
-  always @(*) begin
-    casez (_held_3_T_1)
-      3'b000:
-        casez_tmp_33 = io_recs_0_vals_0;
-      3'b001:
-        casez_tmp_33 = io_recs_1_vals_0;
-      3'b010:
-        casez_tmp_33 = io_recs_2_vals_0;
-      3'b011:
-        casez_tmp_33 = io_recs_3_vals_0;
-      3'b100:
-        casez_tmp_33 = io_recs_4_vals_0;
-      3'b101:
-        casez_tmp_33 = io_recs_0_vals_0;
-      3'b110:
-        casez_tmp_33 = io_recs_0_vals_0;
-      default:
-        casez_tmp_33 = io_recs_0_vals_0;
-    endcase
-  end // always @(*)
-  reg  [31:0] casez_tmp_34;
-  always @(*) begin
-    casez (_held_3_T_1)
-      3'b000:
-        casez_tmp_34 = io_recs_0_vals_1;
-      3'b001:
-        casez_tmp_34 = io_recs_1_vals_1;
-      3'b010:
-        casez_tmp_34 = io_recs_2_vals_1;
-      3'b011:
-        casez_tmp_34 = io_recs_3_vals_1;
-      3'b100:
-        casez_tmp_34 = io_recs_4_vals_1;
-      3'b101:
-        casez_tmp_34 = io_recs_0_vals_1;
-      3'b110:
-        casez_tmp_34 = io_recs_0_vals_1;
-      default:
-        casez_tmp_34 = io_recs_0_vals_1;
-    endcase
-  end // always @(*)
-  reg  [23:0] casez_tmp_35;
-  always @(*) begin
-    casez (_held_3_T_1)
-      3'b000:
-        casez_tmp_35 = io_recs_0_pair;
-      3'b001:
-        casez_tmp_35 = io_recs_1_pair;
-      3'b010:
-        casez_tmp_35 = io_recs_2_pair;
-      3'b011:
-        casez_tmp_35 = io_recs_3_pair;
-      3'b100:
-        casez_tmp_35 = io_recs_4_pair;
-      3'b101:
-        casez_tmp_35 = io_recs_0_pair;
-      3'b110:
-        casez_tmp_35 = io_recs_0_pair;
-      default:
-        casez_tmp_35 = io_recs_0_pair;
-    endcase
-  end // always @(*)
-  reg  [7:0]  casez_tmp_36;
-  always @(*) begin
-    casez (_held_3_T_1)
-      3'b000:
-        casez_tmp_36 = io_recs_0_flags;
-      3'b001:
-        casez_tmp_36 = io_recs_1_flags;
-      3'b010:
-        casez_tmp_36 = io_recs_2_flags;
-      3'b011:
-        casez_tmp_36 = io_recs_3_flags;
-      3'b100:
-        casez_tmp_36 = io_recs_4_flags;
-      3'b101:
-        casez_tmp_36 = io_recs_0_flags;
-      3'b110:
-        casez_tmp_36 = io_recs_0_flags;
-      default:
-        casez_tmp_36 = io_recs_0_flags;
+        casez_tmp_9 = io_recs_0_bits;
     endcase
   end // always @(*)
   `ifndef SYNTHESIS
     always @(posedge clock) begin
       if (~reset & io_nRecs > io_room_0) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ContactPacker: more records than room\n    at ContactPacker.scala:101 assert(io.nRecs <= io.room, \"ContactPacker: more records than room\")\n");
+          $error("Assertion failed: ContactPacker: more records than room\n    at ContactPacker.scala:102 assert(io.nRecs <= io.room, \"ContactPacker: more records than room\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_q_io_enq_valid_T_1 | _q_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ContactPacker: line queue overflow\n    at ContactPacker.scala:102 assert(!q.io.enq.valid || q.io.enq.ready, \"ContactPacker: line queue overflow\")\n");
+          $error("Assertion failed: ContactPacker: line queue overflow\n    at ContactPacker.scala:103 assert(!q.io.enq.valid || q.io.enq.ready, \"ContactPacker: line queue overflow\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -14465,13 +13747,13 @@ module ContactPacker_w32_derived_r5_default(
     end
     if (emit) begin
       if (|carry)
-        held_0 <= {casez_tmp_24, casez_tmp_23, casez_tmp_22, casez_tmp_21};
+        held_0 <= casez_tmp_6;
       if (|(carry[3:1]))
-        held_1 <= {casez_tmp_28, casez_tmp_27, casez_tmp_26, casez_tmp_25};
+        held_1 <= casez_tmp_7;
       if (carry > 4'h2)
-        held_2 <= {casez_tmp_32, casez_tmp_31, casez_tmp_30, casez_tmp_29};
+        held_2 <= casez_tmp_8;
       if (|(carry[3:2]))
-        held_3 <= {casez_tmp_36, casez_tmp_35, casez_tmp_34, casez_tmp_33};
+        held_3 <= casez_tmp_9;
       heldLine <= lineNo + 25'h1;
       heldRn <= rnOf + 25'h5;
     end
@@ -14479,7 +13761,7 @@ module ContactPacker_w32_derived_r5_default(
       if (|total) begin
         if (_slots_T_4) begin
           if (~(|fill))
-            held_0 <= _slots_v_T_5;
+            held_0 <= casez_tmp_0;
         end
         else
           held_0 <= 96'h0;
@@ -14487,15 +13769,15 @@ module ContactPacker_w32_derived_r5_default(
       if (|(total[3:1])) begin
         if (_slots_T_10) begin
           if (~(|(fill[2:1])))
-            held_1 <= _slots_v_T_11;
+            held_1 <= casez_tmp_1;
         end
         else
           held_1 <= 96'h0;
       end
       if (_slots_T_12) begin
         if (_slots_T_16) begin
-          if (~_slots_v_T_12)
-            held_2 <= _slots_v_T_17;
+          if (~_slots_v_T_8)
+            held_2 <= casez_tmp_2;
         end
         else
           held_2 <= 96'h0;
@@ -14505,7 +13787,7 @@ module ContactPacker_w32_derived_r5_default(
           if (fill[2]) begin
           end
           else
-            held_3 <= _slots_v_T_23;
+            held_3 <= casez_tmp_3;
         end
         else
           held_3 <= 96'h0;
@@ -14526,11 +13808,11 @@ module ContactPacker_w32_derived_r5_default(
       ({32'h0,
         ~(total > 4'h4 & {39'h0, rnOf + 25'h4} < io_capacity) | fill > 3'h4
           ? 96'h0
-          : {casez_tmp_19, casez_tmp_18, casez_tmp_17, casez_tmp_16},
-        _slots_T_22 ? (fill[2] ? held_3 : _slots_v_T_23) : 96'h0,
-        _slots_T_16 ? (_slots_v_T_12 ? held_2 : _slots_v_T_17) : 96'h0,
-        _slots_T_10 ? ((|(fill[2:1])) ? held_1 : _slots_v_T_11) : 96'h0,
-        _slots_T_4 ? ((|fill) ? held_0 : _slots_v_T_5) : 96'h0}),
+          : casez_tmp_4,
+        _slots_T_22 ? (fill[2] ? held_3 : casez_tmp_3) : 96'h0,
+        _slots_T_16 ? (_slots_v_T_8 ? held_2 : casez_tmp_2) : 96'h0,
+        _slots_T_10 ? ((|(fill[2:1])) ? held_1 : casez_tmp_1) : 96'h0,
+        _slots_T_4 ? ((|fill) ? held_0 : casez_tmp_0) : 96'h0}),
     .io_deq_ready     (io_lines_ready),
     .io_deq_valid     (io_lines_valid),
     .io_deq_bits_addr (io_lines_bits_addr),
@@ -15621,26 +14903,16 @@ module Puc_default(
   wire [63:0]  _pack_io_lines_bits_addr;
   wire [511:0] _pack_io_lines_bits_data;
   wire         _coll_io_groups_ready;
-  wire [31:0]  _coll_io_recs_0_vals_0;
-  wire [31:0]  _coll_io_recs_0_vals_1;
+  wire [95:0]  _coll_io_recs_0_bits;
   wire [23:0]  _coll_io_recs_0_pair;
-  wire [7:0]   _coll_io_recs_0_flags;
-  wire [31:0]  _coll_io_recs_1_vals_0;
-  wire [31:0]  _coll_io_recs_1_vals_1;
+  wire [95:0]  _coll_io_recs_1_bits;
   wire [23:0]  _coll_io_recs_1_pair;
-  wire [7:0]   _coll_io_recs_1_flags;
-  wire [31:0]  _coll_io_recs_2_vals_0;
-  wire [31:0]  _coll_io_recs_2_vals_1;
+  wire [95:0]  _coll_io_recs_2_bits;
   wire [23:0]  _coll_io_recs_2_pair;
-  wire [7:0]   _coll_io_recs_2_flags;
-  wire [31:0]  _coll_io_recs_3_vals_0;
-  wire [31:0]  _coll_io_recs_3_vals_1;
+  wire [95:0]  _coll_io_recs_3_bits;
   wire [23:0]  _coll_io_recs_3_pair;
-  wire [7:0]   _coll_io_recs_3_flags;
-  wire [31:0]  _coll_io_recs_4_vals_0;
-  wire [31:0]  _coll_io_recs_4_vals_1;
+  wire [95:0]  _coll_io_recs_4_bits;
   wire [23:0]  _coll_io_recs_4_pair;
-  wire [7:0]   _coll_io_recs_4_flags;
   wire [2:0]   _coll_io_nRecs;
   wire [4:0]   _coll_io_nPairs;
   wire [4:0]   _coll_io_nHits;
@@ -15911,7 +15183,7 @@ module Puc_default(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:202 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:204 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -16808,26 +16080,16 @@ module Puc_default(
     .io_scpu_15_bits_flags     (io_scpuOut_15_bits_flags),
     .io_scpu_15_bits_tag       (io_scpuOut_15_bits_tag),
     .io_room                   (_pack_io_room),
-    .io_recs_0_vals_0          (_coll_io_recs_0_vals_0),
-    .io_recs_0_vals_1          (_coll_io_recs_0_vals_1),
+    .io_recs_0_bits            (_coll_io_recs_0_bits),
     .io_recs_0_pair            (_coll_io_recs_0_pair),
-    .io_recs_0_flags           (_coll_io_recs_0_flags),
-    .io_recs_1_vals_0          (_coll_io_recs_1_vals_0),
-    .io_recs_1_vals_1          (_coll_io_recs_1_vals_1),
+    .io_recs_1_bits            (_coll_io_recs_1_bits),
     .io_recs_1_pair            (_coll_io_recs_1_pair),
-    .io_recs_1_flags           (_coll_io_recs_1_flags),
-    .io_recs_2_vals_0          (_coll_io_recs_2_vals_0),
-    .io_recs_2_vals_1          (_coll_io_recs_2_vals_1),
+    .io_recs_2_bits            (_coll_io_recs_2_bits),
     .io_recs_2_pair            (_coll_io_recs_2_pair),
-    .io_recs_2_flags           (_coll_io_recs_2_flags),
-    .io_recs_3_vals_0          (_coll_io_recs_3_vals_0),
-    .io_recs_3_vals_1          (_coll_io_recs_3_vals_1),
+    .io_recs_3_bits            (_coll_io_recs_3_bits),
     .io_recs_3_pair            (_coll_io_recs_3_pair),
-    .io_recs_3_flags           (_coll_io_recs_3_flags),
-    .io_recs_4_vals_0          (_coll_io_recs_4_vals_0),
-    .io_recs_4_vals_1          (_coll_io_recs_4_vals_1),
+    .io_recs_4_bits            (_coll_io_recs_4_bits),
     .io_recs_4_pair            (_coll_io_recs_4_pair),
-    .io_recs_4_flags           (_coll_io_recs_4_flags),
     .io_nRecs                  (_coll_io_nRecs),
     .io_nPairs                 (_coll_io_nPairs),
     .io_nHits                  (_coll_io_nHits),
@@ -16842,26 +16104,16 @@ module Puc_default(
     .io_base            (run_5),
     .io_capacity        (run_6),
     .io_room            (_pack_io_room),
-    .io_recs_0_vals_0   (_coll_io_recs_0_vals_0),
-    .io_recs_0_vals_1   (_coll_io_recs_0_vals_1),
+    .io_recs_0_bits     (_coll_io_recs_0_bits),
     .io_recs_0_pair     (_coll_io_recs_0_pair),
-    .io_recs_0_flags    (_coll_io_recs_0_flags),
-    .io_recs_1_vals_0   (_coll_io_recs_1_vals_0),
-    .io_recs_1_vals_1   (_coll_io_recs_1_vals_1),
+    .io_recs_1_bits     (_coll_io_recs_1_bits),
     .io_recs_1_pair     (_coll_io_recs_1_pair),
-    .io_recs_1_flags    (_coll_io_recs_1_flags),
-    .io_recs_2_vals_0   (_coll_io_recs_2_vals_0),
-    .io_recs_2_vals_1   (_coll_io_recs_2_vals_1),
+    .io_recs_2_bits     (_coll_io_recs_2_bits),
     .io_recs_2_pair     (_coll_io_recs_2_pair),
-    .io_recs_2_flags    (_coll_io_recs_2_flags),
-    .io_recs_3_vals_0   (_coll_io_recs_3_vals_0),
-    .io_recs_3_vals_1   (_coll_io_recs_3_vals_1),
+    .io_recs_3_bits     (_coll_io_recs_3_bits),
     .io_recs_3_pair     (_coll_io_recs_3_pair),
-    .io_recs_3_flags    (_coll_io_recs_3_flags),
-    .io_recs_4_vals_0   (_coll_io_recs_4_vals_0),
-    .io_recs_4_vals_1   (_coll_io_recs_4_vals_1),
+    .io_recs_4_bits     (_coll_io_recs_4_bits),
     .io_recs_4_pair     (_coll_io_recs_4_pair),
-    .io_recs_4_flags    (_coll_io_recs_4_flags),
     .io_nRecs           (_coll_io_nRecs),
     .io_flush           (_pack_io_flush_T),
     .io_idle            (_pack_io_idle),

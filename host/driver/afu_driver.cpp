@@ -77,12 +77,13 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
   if (link_.readsOutstanding() || link_.writesOutstanding())
     throw std::logic_error("AfuDriver::run: the link still has requests in flight from the last run");
 
-  // Shared buffers. Compact mode can write at most one record per pair, so capacity = n.
+  // Shared buffers. Compact mode can write at most one record per pair (masked: and a
+  // header per group with a hit), so the buffer never runs short.
   mem_.releaseAll();
-  const std::size_t capacity = n;
+  const BufferLayout lay = layout();
+  const std::size_t capacity = opt_.dense ? n : lay.compactSlotsFor(n);
   const auto sph = mem_.allocate(std::max<std::uint64_t>(1, sphereLines(spheres.size(), opt_.format)));
   const auto pl = mem_.allocate(std::max<std::uint64_t>(1, pairLines(n)));
-  const BufferLayout lay = layout();
   const auto ct = mem_.allocate(std::max<std::uint64_t>(1, contactLines(capacity, lay, opt_.dense)));
   const auto st = mem_.allocate(1);
   const auto outOfRange = writeSphereTable(mem_, sph.base, spheres, opt_.format);
@@ -150,9 +151,15 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
 
   r.status = readStatus(mem_, st.base);
   const std::size_t written = std::min<std::size_t>(r.status.recordsWritten, capacity);
-  r.records.reserve(written);
-  for (std::size_t k = 0; k < written; ++k) r.records.push_back(readContact(mem_, ct.base, k, lay, opt_.dense));
-  check(r, n, capacity);
+  std::size_t headers = 0;
+  try {
+    auto d = readRecords(mem_, ct.base, written, lay, opt_.dense, n);
+    r.records = std::move(d.records);
+    headers = d.headers;
+  } catch (const std::runtime_error& e) {
+    throw AfuError(std::string("AFU run: ") + e.what(), r.status);
+  }
+  check(r, n, capacity, headers);
   if (lay.derived()) {
     // Rebuild pos, normal and depth from d, w and the spheres as the link carried them.
     for (auto& rec : r.records) {
@@ -168,7 +175,7 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
 
 // Every pair sent must be accounted for, and the records must be consistent with the
 // counters; anything else is an AFU bug worth stopping for.
-void AfuDriver::check(const RunResult& r, std::size_t n, std::size_t capacity) const {
+void AfuDriver::check(const RunResult& r, std::size_t n, std::size_t capacity, std::size_t headers) const {
   const StatusLine& s = r.status;
   auto fail = [&](const std::string& m) { throw AfuError("AFU run: " + m, s); };
   if (opt_.throwOnErrorFlags && (s.errors & ~std::uint32_t{contract::ERR_NONFINITE}))
@@ -193,9 +200,9 @@ void AfuDriver::check(const RunResult& r, std::size_t n, std::size_t capacity) c
       if (!c.hit()) fail("compact record for pair " + std::to_string(c.pair) + " without the hit flag");
       seen[c.pair] = true;
     }
-    if (!(s.errors & contract::ERR_CAPACITY) && s.recordsWritten != s.contactsFound)
-      fail("contacts found " + std::to_string(s.contactsFound) + " != records written " +
-           std::to_string(s.recordsWritten));
+    if (!(s.errors & contract::ERR_CAPACITY) && s.recordsWritten != s.contactsFound + headers)
+      fail("contacts found " + std::to_string(s.contactsFound) + (headers ? " + mask headers " + std::to_string(headers) : "") +
+           " != records written " + std::to_string(s.recordsWritten));
   }
 }
 

@@ -91,7 +91,7 @@ class AfuDriver {
   const DriverOptions& options() const { return opt_; }
 
  private:
-  void check(const RunResult& r, std::size_t pairs, std::size_t capacity) const;
+  void check(const RunResult& r, std::size_t pairs, std::size_t capacity, std::size_t headers) const;
 
   AfuPort& port_;
   DriverOptions opt_;

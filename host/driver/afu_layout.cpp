@@ -120,24 +120,91 @@ void contactToLine(Line& l, unsigned slot, const BufferLayout& lay, const Contac
   const std::size_t off = std::size_t{slot} * lay.recordBytes();
   ContactRecord copy = r;
   for (unsigned k = 0; k < lay.valueFields(); ++k) putField(l, off + k * lay.fieldBytes(), lay.format, valueRef(copy, lay, k));
+  const std::size_t tag = off + lay.valueFields() * lay.fieldBytes();
   const std::uint32_t pairMask = (std::uint32_t{1} << c::TAG_PAIR_BITS) - 1;
-  put(l, off + lay.valueFields() * lay.fieldBytes(), (r.pair & pairMask) | (std::uint32_t{r.flags} << c::TAG_FLAGS_SHIFT));
+  if (lay.masked()) put(l, tag, r.flags);
+  else put(l, tag, (r.pair & pairMask) | (std::uint32_t{r.flags} << c::TAG_FLAGS_SHIFT));
 }
 
-ContactRecord readContact(const HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& lay, bool dense) {
+ContactRecord readContact(const HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& lay, bool dense,
+                          std::int64_t pair) {
   const Line& l = m.line(base + lay.recordLine(n, dense));
   const std::size_t off = std::size_t{lay.recordSlot(n, dense)} * lay.recordBytes();
   ContactRecord r;
   for (unsigned k = 0; k < lay.valueFields(); ++k) valueRef(r, lay, k) = getField(l, off + k * lay.fieldBytes(), lay.format);
-  const auto tag = get<std::uint32_t>(l, off + lay.valueFields() * lay.fieldBytes());
-  r.pair = tag & ((std::uint32_t{1} << c::TAG_PAIR_BITS) - 1);
-  r.flags = static_cast<std::uint8_t>(tag >> c::TAG_FLAGS_SHIFT);
+  const std::size_t tagAt = off + lay.valueFields() * lay.fieldBytes();
+  if (lay.masked()) {
+    r.pair = static_cast<std::uint32_t>(pair >= 0 ? pair : static_cast<std::int64_t>(n));
+    r.flags = get<std::uint8_t>(l, tagAt);
+  } else {
+    const auto tag = get<std::uint32_t>(l, tagAt);
+    r.pair = tag & ((std::uint32_t{1} << c::TAG_PAIR_BITS) - 1);
+    r.flags = static_cast<std::uint8_t>(tag >> c::TAG_FLAGS_SHIFT);
+  }
   return r;
 }
 
 void writeContact(HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& lay, bool dense,
                   const ContactRecord& r) {
   contactToLine(m.line(base + lay.recordLine(n, dense)), lay.recordSlot(n, dense), lay, r);
+}
+
+namespace {
+static_assert(c::HEADER_BITS <= 64, "a mask header's bits fit a u64");
+// A header's bits, u64 little-endian from its slot's first byte; `beyond` whether any bit
+// of the slot past them is set.
+std::uint64_t headerBits(const Line& l, std::size_t off, const BufferLayout& lay, bool& beyond) {
+  std::uint64_t v = 0;
+  const unsigned bytes = (c::HEADER_BITS + 7) / 8;
+  for (unsigned b = 0; b < bytes; ++b) v |= std::uint64_t{l[off + b]} << (8 * b);
+  beyond = (v >> c::HEADER_BITS) != 0;
+  for (unsigned b = bytes; b < lay.recordBytes(); ++b) beyond = beyond || l[off + b] != 0;
+  return v & ((std::uint64_t{1} << c::HEADER_BITS) - 1);
+}
+}  // namespace
+
+MaskHeader readMaskHeader(const HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& lay) {
+  bool beyond = false;
+  const std::uint64_t v = headerBits(m.line(base + lay.recordLine(n, false)), std::size_t{lay.recordSlot(n, false)} * lay.recordBytes(), lay, beyond);
+  MaskHeader h;
+  h.first = static_cast<std::uint32_t>((v >> c::HEADER_PAIR_SHIFT) & ((std::uint64_t{1} << c::HEADER_PAIR_BITS) - 1));
+  h.mask = static_cast<std::uint32_t>((v >> c::HEADER_MASK_SHIFT) & ((std::uint64_t{1} << c::HEADER_MASK_BITS) - 1));
+  return h;
+}
+
+void writeMaskHeader(HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& lay, const MaskHeader& h) {
+  Line& l = m.line(base + lay.recordLine(n, false));
+  const std::size_t off = std::size_t{lay.recordSlot(n, false)} * lay.recordBytes();
+  const std::uint64_t v = (std::uint64_t{h.first} << c::HEADER_PAIR_SHIFT) | (std::uint64_t{h.mask} << c::HEADER_MASK_SHIFT);
+  for (unsigned b = 0; b < lay.recordBytes(); ++b) l[off + b] = b < 8 ? static_cast<std::uint8_t>(v >> (8 * b)) : 0;
+}
+
+DecodedRecords readRecords(const HostMemory& m, std::uint64_t base, std::size_t written, const BufferLayout& lay,
+                           bool dense, std::size_t numPairs) {
+  DecodedRecords out;
+  out.records.reserve(written);
+  if (!lay.masked() || dense) {
+    for (std::size_t k = 0; k < written; ++k) out.records.push_back(readContact(m, base, k, lay, dense));
+    return out;
+  }
+  for (std::size_t slot = 0; slot < written;) {
+    bool beyond = false;
+    headerBits(m.line(base + lay.recordLine(slot, false)), std::size_t{lay.recordSlot(slot, false)} * lay.recordBytes(), lay, beyond);
+    const MaskHeader h = readMaskHeader(m, base, slot, lay);
+    const auto where = "contact slot " + std::to_string(slot) + ": mask header (first pair " + std::to_string(h.first) + ")";
+    if (beyond) throw std::runtime_error(where + " has bits set past its mask");
+    if (h.mask == 0) throw std::runtime_error(where + " has an empty mask");
+    ++out.headers;
+    ++slot;
+    for (unsigned k = 0; k < c::HEADER_MASK_BITS && slot < written; ++k) {
+      if (!(h.mask >> k & 1)) continue;
+      const std::size_t pair = std::size_t{h.first} + k;
+      if (pair >= numPairs)
+        throw std::runtime_error(where + " names pair " + std::to_string(pair) + " of " + std::to_string(numPairs));
+      out.records.push_back(readContact(m, base, slot++, lay, false, static_cast<std::int64_t>(pair)));
+    }
+  }
+  return out;
 }
 
 namespace {

@@ -16,13 +16,19 @@ struct BufferLayout {
   LinkFormat format = LinkFormat::Binary32;
   std::uint32_t records = contract::LAYOUT_FULL;  // contract::LAYOUT_*
 
-  bool derived() const { return records == contract::LAYOUT_DERIVED; }
+  // d and w instead of the contact (the driver rebuilds it, contact_rebuild.hpp)
+  bool derived() const { return records == contract::LAYOUT_DERIVED || records == contract::LAYOUT_DERIVED_MASKED; }
+  // no pair index in a record: its position names it (compact: mask headers)
+  bool masked() const { return records == contract::LAYOUT_FULL_MASKED || records == contract::LAYOUT_DERIVED_MASKED; }
   unsigned fieldBytes() const { return collide::fieldBytes(format); }
   unsigned sphereBytes() const { return contract::SPHERE_FIELDS * fieldBytes(); }
   unsigned spheresPerLine() const { return contract::LINE_BYTES / sphereBytes(); }
   unsigned valueFields() const;  // 7 (full) or 2 (derived)
-  unsigned recordBytes() const { return valueFields() * fieldBytes() + contract::TAG_BYTES; }
+  unsigned tagBytes() const { return masked() ? 1 : contract::TAG_BYTES; }  // the tag word, or the flags byte
+  unsigned recordBytes() const { return valueFields() * fieldBytes() + tagBytes(); }
   unsigned recordsPerLine() const { return contract::LINE_BYTES / recordBytes(); }
+  // Compact slots `hits` contacts can take: masked adds a header per group with a hit.
+  std::size_t compactSlotsFor(std::size_t hits) const { return masked() ? 2 * hits : hits; }
   // Where record n lives. Compact: line n / R, slot n % R. Dense (record n = pair n): each
   // pair line's records start a contact line, since pair lines are computed in the order
   // they arrive: line (n / 16) * ceil(16 / R) + (n % 16) / R, slot (n % 16) % R.
@@ -39,6 +45,13 @@ struct ContactRecord {
   std::uint8_t flags = 0;
   bool hit() const { return flags & contract::REC_HIT; }
   std::uint8_t recordCase() const { return (flags >> contract::REC_KIND_SHIFT) & contract::REC_KIND_MASK; }
+};
+
+// A masked layout's compact slot before a group's hits: bit k of `mask` set when pair
+// first + k is a hit.
+struct MaskHeader {
+  std::uint32_t first = 0;
+  std::uint32_t mask = 0;
 };
 
 struct StatusLine {
@@ -61,10 +74,25 @@ std::vector<std::uint8_t> writeSphereTable(link::HostMemory& m, std::uint64_t ba
 // Sphere k of the table as the link carries it (x, y, z, r).
 void linkSphere(const SphereTable& s, std::size_t k, LinkFormat f, double out[4]);
 void writePairList(link::HostMemory& m, std::uint64_t base, const PairList& p);
+// Slot n of a contact buffer. A masked record has no pair index: `pair` is what the caller
+// knows of it (dense: n, which is the default).
 ContactRecord readContact(const link::HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& l,
-                          bool dense);
+                          bool dense, std::int64_t pair = -1);
 void writeContact(link::HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& l, bool dense,
                   const ContactRecord& c);
+MaskHeader readMaskHeader(const link::HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& l);
+void writeMaskHeader(link::HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& l, const MaskHeader& h);
+
+// The `written` slots of a run's buffer as records, pair indices filled in. Masked compact
+// buffers are read header by header (a truncated buffer may end inside a group); a header
+// naming a pair at or past `numPairs`, with an empty mask or bits beyond the mask, is
+// corrupt: std::runtime_error naming the slot.
+struct DecodedRecords {
+  std::vector<ContactRecord> records;
+  std::size_t headers = 0;
+};
+DecodedRecords readRecords(const link::HostMemory& m, std::uint64_t base, std::size_t written, const BufferLayout& l,
+                           bool dense, std::size_t numPairs);
 StatusLine readStatus(const link::HostMemory& m, std::uint64_t addr);
 link::Line encodeStatus(const StatusLine& s);
 

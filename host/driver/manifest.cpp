@@ -44,7 +44,9 @@ Manifest fromJson(nlohmann::json raw, const std::string& file) {
   const auto layout = at("/buffers/records/layout", std::string("full"));
   if (layout == "full") m.records = contract::LAYOUT_FULL;
   else if (layout == "derived") m.records = contract::LAYOUT_DERIVED;
-  else bad("buffers.records.layout: expected full or derived, got " + layout);
+  else if (layout == "full-masked") m.records = contract::LAYOUT_FULL_MASKED;
+  else if (layout == "derived-masked") m.records = contract::LAYOUT_DERIVED_MASKED;
+  else bad("buffers.records.layout: expected full, derived, full-masked or derived-masked, got " + layout);
   // The record size the manifest states must be the one the contract's rule gives.
   const BufferLayout lay{m.format, m.records};
   const auto rb = at("/buffers/recordBytes", static_cast<long long>(lay.recordBytes()));
@@ -59,7 +61,7 @@ Manifest fromJson(nlohmann::json raw, const std::string& file) {
   else if (dist == "rsqrt") m.arith.distance = DistanceMethod::Rsqrt;
   else if (dist == "robust") m.arith.distance = DistanceMethod::Robust;
   else bad("scpu.distance: expected sqrt-recip, rsqrt or robust, got " + dist);
-  if (m.records == contract::LAYOUT_DERIVED) {
+  if (lay.derived()) {
     if (at("/scpu/rounding", std::string("RNE")) != "RNE" || !at("/scpu/subnormals", true))
       bad("derived records need an SCPU that rounds to nearest even with subnormals kept");
     const auto& c = m.arith.compute;

@@ -13,7 +13,7 @@ import collide.scpu.ScpuConfig
   *                             has 670 spheres); a larger NUM_SPHERES is refused (error bit 1)
   * @param maxReadsOutstanding  read requests in flight at most (SPL's 6-bit tags: 64)
   * @param maxWritesOutstanding write requests in flight at most (64)
-  * @param tagBits              link tag width (HARP v1 / SPL: 6, shared NOTES.md)
+  * @param tagBits              link tag width (HARP v1 / SPL: 6, docs/afu-interface.md)
   * @param ramPorts             sphere table read-port strategy
   * @param denseByDefault       reset value of MODE bit 0 (false: compact records)
   * @param records              contact record layout; None = the best one offered for the SCPU

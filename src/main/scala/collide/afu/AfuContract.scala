@@ -29,7 +29,9 @@ object AfuContract {
       ContractEntry("TAG_FLAGS_SHIFT", RecordTag.FLAGS_SHIFT, "bits 24..31: REC_* flags"),
       ContractEntry("TAG_BYTES", RecordTag.BYTES, "bytes of the tag word"))),
     ("LAYOUT_", "record layouts (manifest buffers.records.layout)", RecordLayout.all.map(l =>
-      ContractEntry(l.name.toUpperCase, l.code, s"value fields: ${l.fields.mkString(", ")}"))),
+      ContractEntry(constName(l), l.code, s"value fields: ${l.fields.mkString(", ")}; " +
+        (if (l.masked) "then the flags byte; compact: a mask header before each group's hits" else "then the tag word")))),
+    ("HEADER_", "mask header (masked layouts, compact mode): a slot before each group's hits", MaskHeader.entries),
     ("", "lines and pairs", Seq(
       ContractEntry("LINE_BYTES", Link.lineBytes, "every transfer is one line"),
       ContractEntry("PAIR_BYTES", 4, "u16 index i at +0, u16 index j at +2"),
@@ -59,8 +61,8 @@ namespace collide::contract {
     ErrorFlags.entries.foreach(e => b ++= s"    \"${e.doc}\",\n")
     b ++= "};\n"
     b ++= "\n// value fields of each layout, in record order\n"
-    RecordLayout.all.foreach { l =>
-      b ++= s"inline constexpr const char* k${l.name.capitalize}Fields[] = {${l.fields.map(f => "\"" + f + "\"").mkString(", ")}};\n"
+    Seq("Full" -> RecordLayout.fullFields, "Derived" -> RecordLayout.derivedFields).foreach { case (n, fs) =>
+      b ++= s"inline constexpr const char* k${n}Fields[] = {${fs.map(f => "\"" + f + "\"").mkString(", ")}};\n"
     }
     b ++= "\n// link formats the host encodes: exponent bits, significand bits (with the hidden one)\n"
     b ++= "struct LinkFormatInfo { const char* name; int width, expBits, sigBits; };\n"
@@ -84,6 +86,9 @@ namespace collide::contract {
     b ++= "\n`endif\n"
     b.toString
   }
+
+  /** A layout's name as a constant: LAYOUT_FULL_MASKED. */
+  def constName(l: RecordLayout): String = l.name.toUpperCase.replace('-', '_')
 
   /** The manifest's name of a link format. */
   def linkName(f: FloatFormat): String = f match {

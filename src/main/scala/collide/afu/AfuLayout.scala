@@ -119,21 +119,28 @@ object RecordTag {
   val BYTES       = 4
 }
 
-/** What a contact record carries besides its tag word (docs/afu-interface.md, "Contacts"). */
+/** What a contact record carries (docs/afu-interface.md, "Contacts"): its value fields,
+  * and how a record says which pair it is. Indexed layouts end each record with the tag
+  * word (pair index and flags); masked layouts end it with the flags byte alone and, in
+  * compact mode, put a MaskHeader (first pair, hit mask) before the hits of each group of
+  * pairs the AFU computed together, so the pair index is not repeated in every record. */
 sealed trait RecordLayout {
   def name: String
   /** Contract id (LAYOUT_* in the headers and `buffers.records.layout` in the manifest). */
   def code: Int
   /** The value fields in order, each one link word. */
   def fields: Seq[String]
+  /** Pair indices by position (mask headers in compact mode), not in each record. */
+  def masked: Boolean
   /** Why this layout cannot be offered for `cfg`, if it cannot. */
   def refusal(cfg: ScpuConfig): Option[String]
 }
 object RecordLayout {
+  val fullFields: Seq[String]    = Seq("px", "py", "pz", "nx", "ny", "nz", "depth")
+  val derivedFields: Seq[String] = Seq("d", "w")
   /** Position, normal and depth: the contact as a physics engine takes it. */
   case object Full extends RecordLayout {
-    val name = "full"; val code = 0
-    val fields = Seq("px", "py", "pz", "nx", "ny", "nz", "depth")
+    val name = "full"; val code = 0; val fields = fullFields; val masked = false
     def refusal(cfg: ScpuConfig): Option[String] = None
   }
   /** Only the two values that need a square root or a reciprocal: d and the normal's factor
@@ -144,8 +151,7 @@ object RecordLayout {
     * itself or a significand of at most 25 bits, so that one binary64 operation followed by
     * one rounding to the format equals the format's own operation (the 2p+2 rule). */
   case object Derived extends RecordLayout {
-    val name = "derived"; val code = 1
-    val fields = Seq("d", "w")
+    val name = "derived"; val code = 1; val fields = derivedFields; val masked = false
     def refusal(cfg: ScpuConfig): Option[String] =
       if (cfg.rounding != RoundingMode.RNE) Some(s"the host rebuilds contacts in RNE only, the SCPU rounds ${cfg.rounding}")
       else if (!cfg.subnormals) Some("the host rebuilds contacts with subnormals kept, the SCPU flushes them")
@@ -153,13 +159,42 @@ object RecordLayout {
         Some(s"${cfg.format.name} has ${cfg.format.sigBits} significand bits: binary64 cannot emulate it exactly (2p+2 > 53) and it is not binary64")
       else None
   }
-  val all: Seq[RecordLayout] = Seq(Full, Derived)
+  /** Full's values, masked. */
+  case object FullMasked extends RecordLayout {
+    val name = "full-masked"; val code = 2; val fields = fullFields; val masked = true
+    def refusal(cfg: ScpuConfig): Option[String] = None
+  }
+  /** Derived's values, masked: the fewest bytes a contact (offered where Derived is). */
+  case object DerivedMasked extends RecordLayout {
+    val name = "derived-masked"; val code = 3; val fields = derivedFields; val masked = true
+    def refusal(cfg: ScpuConfig): Option[String] = Derived.refusal(cfg)
+  }
+  val all: Seq[RecordLayout] = Seq(Full, Derived, FullMasked, DerivedMasked)
   def parse(s: String): Either[String, RecordLayout] =
     all.find(_.name.equalsIgnoreCase(s.trim)).toRight(s"record layout '$s': expected one of ${all.map(_.name).mkString(", ")}")
 }
 
-/** Buffer layout for one link format and record layout. Records are packed whole, with no
-  * padding, `recordsPerLine` a line from byte 0; the rest of a line is zero. */
+/** The slot before a group's hits in a masked layout's compact buffer: the group's first
+  * pair index and a bit per pair of the group (bit k: pair first + k hit), the rest zero.
+  * A group is what the AFU computes in one go: up to min(SCPUs, 16) consecutive pairs of one
+  * pair line. Only groups with a hit get a header, so the buffer holds headers + hits slots. */
+object MaskHeader {
+  val PAIR_SHIFT = 0
+  val PAIR_BITS  = RecordTag.PAIR_BITS
+  val MASK_SHIFT = 24
+  val MASK_BITS  = 16
+  val BITS       = MASK_SHIFT + MASK_BITS
+  val entries: Seq[ContractEntry] = Seq(
+    ContractEntry("PAIR_SHIFT", PAIR_SHIFT, "bits 0..23: the group's first pair index"),
+    ContractEntry("PAIR_BITS", PAIR_BITS, "width of the first pair index"),
+    ContractEntry("MASK_SHIFT", MASK_SHIFT, "bits 24..39: bit k set when pair first + k is a hit"),
+    ContractEntry("MASK_BITS", MASK_BITS, "width of the hit mask (a group has at most 16 pairs)"),
+    ContractEntry("BITS", BITS, "bits of a header (the rest of its slot is zero)"))
+}
+
+/** Buffer layout for one link format and record layout. Records (and, masked, headers) are
+  * slots of `recordBytes`, packed whole with no padding, `recordsPerLine` a line from byte
+  * 0; the rest of a line is zero. */
 final case class BufferLayout(linkWidth: Int, records: RecordLayout = RecordLayout.Full) {
   require(linkWidth == 16 || linkWidth == 32 || linkWidth == 64, s"link width must be 16, 32 or 64, got $linkWidth")
   val sphereBytes: Int    = 4 * linkWidth / 8
@@ -167,11 +202,16 @@ final case class BufferLayout(linkWidth: Int, records: RecordLayout = RecordLayo
   val pairBytes: Int      = 4
   val pairsPerLine: Int   = Link.lineBytes / pairBytes
   val valueFields: Int    = records.fields.size
-  val recordBytes: Int    = valueFields * linkWidth / 8 + RecordTag.BYTES
+  val masked: Boolean     = records.masked
+  /** Bits after the value fields: the tag word, or the flags byte alone when masked. */
+  val tagBits: Int        = if (masked) 8 else RecordTag.BYTES * 8
+  val recordBits: Int     = valueFields * linkWidth + tagBits
+  val recordBytes: Int    = recordBits / 8
   val recordsPerLine: Int = Link.lineBytes / recordBytes
-  /** Bit offset of the pair index / flags in a record. */
-  val pairIndexBit: Int   = valueFields * linkWidth
-  val flagsBit: Int       = pairIndexBit + RecordTag.FLAGS_SHIFT
+  require(!masked || recordBits >= MaskHeader.BITS, s"a ${records.name} slot of $recordBits bits cannot hold a mask header")
+  /** Bit offset of the pair index (indexed layouts) and of the flags in a record. */
+  val pairIndexBit: Option[Int] = if (masked) None else Some(valueFields * linkWidth)
+  val flagsBit: Int       = valueFields * linkWidth + (if (masked) 0 else RecordTag.FLAGS_SHIFT)
   val pairIndexBits: Int  = RecordTag.PAIR_BITS
   val maxPairs: Long      = 1L << pairIndexBits
   def sphereLines(n: Long): Long  = (n + spheresPerLine - 1) / spheresPerLine
@@ -184,4 +224,7 @@ final case class BufferLayout(linkWidth: Int, records: RecordLayout = RecordLayo
   def denseContactLines(n: Long): Long = if (n == 0) 0 else denseLine(n - 1) + 1
   /** Lines a buffer of `capacity` records takes in either mode. */
   def contactBufferLines(capacity: Long, dense: Boolean): Long = if (dense) denseContactLines(capacity) else contactLines(capacity)
+  /** Compact slots `hits` contacts can take at most: one each, and masked a header for each
+    * group with a hit (never more groups than hits). */
+  def compactSlotsFor(hits: Long): Long = if (masked) 2 * hits else hits
 }

@@ -6,7 +6,7 @@ import collide.scpu.ScpuConfig
   * manifest.json (ujson). What does not depend on the configuration is in AfuContract's
   * generated/afu_contract.hpp. */
 object AfuManifest {
-  /** CCI interface clock of HARP v1 (shared ARCHITECTURE.md, NOTES.md). */
+  /** CCI interface clock of HARP v1 (docs/host.md, link presets). */
   val clockMHz = 200
 
   def json(cfg: AfuConfig, command: String): ujson.Obj = {
@@ -36,12 +36,13 @@ object AfuManifest {
         "sphereBytes" -> lay.sphereBytes, "spheresPerLine" -> lay.spheresPerLine,
         "pairBytes" -> lay.pairBytes, "pairsPerLine" -> lay.pairsPerLine,
         "recordBytes" -> lay.recordBytes, "recordsPerLine" -> lay.recordsPerLine,
-        "recordPairIndexBit" -> lay.pairIndexBit, "recordFlagsBit" -> lay.flagsBit,
+        "recordPairIndexBit" -> lay.pairIndexBit.map(ujson.Num(_)).getOrElse(ujson.Null), "recordFlagsBit" -> lay.flagsBit,
         "pairIndexBits" -> lay.pairIndexBits, "maxPairs" -> lay.maxPairs.toDouble,
         "recordFlags" -> ujson.Obj.from(RecordFlags.all.map { case (k, v) => k -> ujson.Num(v) }),
         "records" -> ujson.Obj("layout" -> cfg.recordLayout.name, "code" -> cfg.recordLayout.code,
-          "fields" -> ujson.Arr.from(cfg.recordLayout.fields.map(ujson.Str)), "recordBytes" -> lay.recordBytes,
-          "recordsPerLine" -> lay.recordsPerLine)),
+          "fields" -> ujson.Arr.from(cfg.recordLayout.fields.map(ujson.Str)), "masked" -> lay.masked,
+          "recordBits" -> lay.recordBits, "recordBytes" -> lay.recordBytes, "recordsPerLine" -> lay.recordsPerLine,
+          "groupPairs" -> p.lanes)),
       "csr" -> ujson.Obj.from(Csr.all.map { case (k, v) => k -> ujson.Num(v) }),
       "csrValues" -> ujson.Obj("CTRL_START" -> Csr.CTRL_START, "MODE_DENSE" -> Csr.MODE_DENSE),
       "status" -> ujson.Obj.from(StatusLine.all.map { case (k, v) => k -> ujson.Num(v) }),

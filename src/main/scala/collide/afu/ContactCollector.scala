@@ -4,14 +4,19 @@ import chisel3._
 import chisel3.util._
 import collide.scpu.{ContactKind, ScpuOut}
 
-/** One contact record as it goes into a line (docs/afu-interface.md, Contacts): the layout's
-  * value fields, then the tag word. */
+/** One slot as it goes into a line (docs/afu-interface.md, Contacts): a record (the
+  * layout's value fields, then the tag word or, masked, the flags byte) or a mask header,
+  * with the pair index the dense placement needs (for a header: its group's first pair). */
 class ContactRecord(val lay: BufferLayout) extends Bundle {
-  val vals  = Vec(lay.valueFields, UInt(lay.linkWidth.W))
-  val pair  = UInt(RecordTag.PAIR_BITS.W)
-  val flags = UInt((32 - RecordTag.FLAGS_SHIFT).W)
-  /** The record's bits as they lie in a line: field 0 at the lowest bits. */
-  def packed: UInt = Cat(flags, pair, Cat(vals.reverse))
+  val bits = UInt(lay.recordBits.W)
+  val pair = UInt(RecordTag.PAIR_BITS.W)
+}
+object ContactRecord {
+  /** A record's bits as they lie in a line: field 0 at the lowest bits. */
+  def pack(lay: BufferLayout, vals: Seq[UInt], pair: UInt, flags: UInt): UInt =
+    if (lay.masked) Cat(flags, Cat(vals.reverse)) else Cat(flags, pair, Cat(vals.reverse))
+  def header(lay: BufferLayout, first: UInt, mask: UInt): UInt =
+    (Cat(mask.pad(MaskHeader.MASK_BITS), first.pad(MaskHeader.PAIR_BITS)) << MaskHeader.PAIR_SHIFT).pad(lay.recordBits)
 }
 
 /** Takes the SCPUs' results back group by group, in dispatch order, and turns them into
@@ -19,6 +24,8 @@ class ContactRecord(val lay: BufferLayout) extends Bundle {
   * most as many records a cycle as the packer has room for (`room`), and consumes every
   * result up to the last record taken (plus the misses after it in compact mode), so a line
   * of 16 pairs with at most two hits leaves in one cycle. Counts every pair it consumes.
+  * Masked layouts in compact mode: a group with a hit waits until all its results are there,
+  * then its mask header goes first (in the slot before its first record, `nHeaders`).
   */
 class ContactCollector(p: PucParams) extends Module {
   override def desiredName = s"ContactCollector_n${p.scpus}${p.name}"
@@ -36,6 +43,7 @@ class ContactCollector(p: PucParams) extends Module {
     val nPairs     = Output(UInt(log2Ceil(L + 1).W))
     val nHits      = Output(UInt(log2Ceil(L + 1).W))
     val nNonFinite = Output(UInt(log2Ceil(L + 1).W))
+    val nHeaders   = Output(Bool())
   })
 
   val g  = io.groups.bits
@@ -52,11 +60,19 @@ class ContactCollector(p: PucParams) extends Module {
   val hit     = VecInit.tabulate(L)(k => !inv(k) && outAt(k).hit)
   val want    = VecInit.tabulate(L)(k => active(k) && (io.dense || hit(k)))
 
+  // Masked compact: the header needs the whole group's hits, so nothing of a group with a
+  // hit is taken before every result is there, and the header takes the first free slot.
+  val hdrMode  = p.layout.masked.B && !io.dense
+  val hdrSent  = RegInit(false.B)
+  val allValid = (0 until L).map(k => !active(k) || validAt(k)).reduce(_ && _)
+  val needHdr  = hdrMode && !hdrSent && (0 until L).map(k => active(k) && hit(k)).reduce(_ || _)
+  val hdrFire  = needHdr && allValid && io.room =/= 0.U
+  val off      = needHdr.asUInt
+
   // Consume positions in order while their results are there and the records fit.
   val okPrefix  = VecInit((0 until L).scanLeft(true.B)((acc, k) => acc && (!active(k) || validAt(k))).tail)
   val wantCount = VecInit((0 until L).scanLeft(0.U(log2Ceil(L + 1).W))((acc, k) => acc + want(k).asUInt).tail)
-  val take      = VecInit.tabulate(L)(k => active(k) && okPrefix(k) && wantCount(k) <= io.room)
-
+  val take      = VecInit.tabulate(L)(k => active(k) && okPrefix(k) && (!needHdr || allValid) && wantCount(k) +& off <= io.room)
   for (s <- 0 until n) {
     io.scpu(s).ready := (0 until L).map(k => take(k) && scpuAt(k) === s.U).foldLeft(false.B)(_ || _)
   }
@@ -67,30 +83,33 @@ class ContactCollector(p: PucParams) extends Module {
     val arith = (o.flags & (collide.fp.FpFlags.Overflow | collide.fp.FpFlags.Invalid).U).orR
     val fields: Map[String, UInt] = Map("px" -> o.px, "py" -> o.py, "pz" -> o.pz, "nx" -> o.nx, "ny" -> o.ny,
       "nz" -> o.nz, "depth" -> o.depth, "d" -> o.d, "w" -> o.nw)
-    when(inv(k)) {
-      r := 0.U.asTypeOf(r)
-      r.flags := (ContactKind.Invalid << RecordFlags.KIND_SHIFT).U
-    }.otherwise {
-      r.vals := VecInit(p.layout.records.fields.map(fields))
-      r.flags := (Mux(arith, RecordFlags.ARITH.U, 0.U) | Mux(o.nonFinite, RecordFlags.NONFINITE.U, 0.U) |
-        (o.kind << RecordFlags.KIND_SHIFT) | Mux(o.hit, RecordFlags.HIT.U, 0.U))
-    }
-    r.pair := o.tag(23, 0)
+    val pair = o.tag(RecordTag.PAIR_BITS - 1, 0)
+    val flags = Mux(arith, RecordFlags.ARITH.U, 0.U) | Mux(o.nonFinite, RecordFlags.NONFINITE.U, 0.U) |
+      (o.kind << RecordFlags.KIND_SHIFT) | Mux(o.hit, RecordFlags.HIT.U, 0.U)
+    val zero = Seq.fill(p.layout.valueFields)(0.U(p.linkWidth.W))
+    r.bits := Mux(inv(k), ContactRecord.pack(p.layout, zero, pair, (ContactKind.Invalid << RecordFlags.KIND_SHIFT).U(8.W)),
+      ContactRecord.pack(p.layout, p.layout.records.fields.map(fields), pair, flags.pad(8)))
+    r.pair := pair
     r
   }
   val records = VecInit.tabulate(L)(recordOf)
+  val header  = Wire(new ContactRecord(p.layout))
+  header.bits := ContactRecord.header(p.layout, g.first, Cat((0 until L).reverse.map(k => k.U < g.cnt && hit(k))))
+  header.pair := g.first
   val nTaken  = PopCount(take)
-  val nRecs   = PopCount((0 until L).map(k => take(k) && want(k)))
+  val nRecs   = PopCount((0 until L).map(k => take(k) && want(k))) +& hdrFire.asUInt
   for (r <- 0 until R) {
-    val sel = (0 until L).map(k => take(k) && want(k) && wantCount(k) === (r + 1).U)
-    io.recs(r) := Mux1H(sel, records)
+    val sel = (0 until L).map(k => take(k) && want(k) && (wantCount(k) +& off) === (r + 1).U)
+    io.recs(r) := (if (r == 0) Mux(hdrFire, header, Mux1H(sel, records)) else Mux1H(sel, records))
   }
   io.nRecs      := nRecs
   io.nPairs     := nTaken
   io.nHits      := PopCount((0 until L).map(k => take(k) && hit(k)))
   io.nNonFinite := PopCount((0 until L).map(k => take(k) && !inv(k) && outAt(k).nonFinite))
+  io.nHeaders   := hdrFire
 
   val spNext = sp + nTaken
   io.groups.ready := io.groups.valid && spNext === g.cnt
   when(io.groups.fire) { sp := 0.U }.otherwise { sp := spNext }
+  when(io.groups.fire) { hdrSent := false.B }.elsewhen(hdrFire) { hdrSent := true.B }
 }

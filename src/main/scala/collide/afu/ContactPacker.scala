@@ -20,13 +20,14 @@ class LineWrite extends Bundle {
   * every cycle; in dense mode it asks for no more than complete the line (a pair line's
   * end must end a line too). Either way at most one line leaves a cycle. Records at or past
   * CONTACT_CAPACITY are written as zero, and a line holding none below it is dropped.
-  * `flush` (end of run) writes a held partial line with its other slots zero.
+  * `flush` (end of run) writes a held partial line with its other slots zero. Masked
+  * layouts' mask headers are slots like records: the packer does not tell them apart.
   */
 class ContactPacker(p: PucParams) extends Module {
   private val lay = p.layout
   private val R = lay.recordsPerLine
   private val ppl = lay.pairsPerLine
-  private val recBits = lay.recordBytes * 8
+  private val recBits = lay.recordBits
   private val idxBits = lay.pairIndexBits
   override def desiredName = s"ContactPacker_w${p.linkWidth}_${lay.records.name}_r$R${p.name}"
   val io = IO(new Bundle {
@@ -71,7 +72,7 @@ class ContactPacker(p: PucParams) extends Module {
   private def idx(x: UInt): UInt = if (R == 1) 0.U else x(log2Ceil(R) - 1, 0)
   val slots = VecInit.tabulate(R) { s =>
     val fromHeld = if (s < R - 1) held(s) else 0.U(recBits.W)
-    val v = Mux(s.U < fill, fromHeld, io.recs(idx(s.U - fill)).packed)
+    val v = Mux(s.U < fill, fromHeld, io.recs(idx(s.U - fill)).bits)
     Mux(s.U < total && (rnOf + s.U) < io.capacity, v, 0.U(recBits.W))
   }
   // Dense: a pair line's last record (pair 15 of its line, or the run's last pair) ends the line.
@@ -89,7 +90,7 @@ class ContactPacker(p: PucParams) extends Module {
     when(!io.dense) { lineNo := lineNo + 1.U }
     heldLine := lineNo + 1.U; heldRn := rnOf + R.U
     for (s <- 0 until R - 1) when(s.U < carry) {
-      held(s) := io.recs(idx(s.U +& R.U - fill)).packed
+      held(s) := io.recs(idx(s.U +& R.U - fill)).bits
     }
   }.otherwise {
     fill := total

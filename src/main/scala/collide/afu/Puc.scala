@@ -46,6 +46,7 @@ class Puc(p: PucParams) extends Module {
   val errors     = RegInit(0.U(ErrorFlags.width.W))
   val processed  = RegInit(0.U(32.W))
   val found      = RegInit(0.U(32.W))
+  val headers    = RegInit(0.U(32.W))   // masked compact: mask headers handed to the packer
   val nonFinite  = RegInit(0.U(32.W))
   val firstBad   = RegInit(StatusLine.NO_BAD_PAIR.U(32.W))
   val cycTotal   = RegInit(0.U(32.W))
@@ -132,6 +133,7 @@ class Puc(p: PucParams) extends Module {
   // ---- counting
   processed := processed + coll.io.nPairs
   found     := found + coll.io.nHits
+  headers   := headers + coll.io.nHeaders
   nonFinite := nonFinite + coll.io.nNonFinite
   when(running) {
     cycTotal := cycTotal + tick
@@ -149,7 +151,7 @@ class Puc(p: PucParams) extends Module {
   pairsInFlight := pairsInFlight + Mux(disp.io.fired, groups.io.enq.bits.cnt, 0.U) - coll.io.nPairs
 
   when(state === sCheck) { // a new run: after the counting above, so these win
-    processed := 0.U; found := 0.U; nonFinite := 0.U; firstBad := StatusLine.NO_BAD_PAIR.U
+    processed := 0.U; found := 0.U; headers := 0.U; nonFinite := 0.U; firstBad := StatusLine.NO_BAD_PAIR.U
     cycTotal := 1.U; cycLoad := 0.U; cycCompute := 0.U; cycWaitRd := 0.U; cycWaitWr := 0.U
   }
 
@@ -159,7 +161,7 @@ class Puc(p: PucParams) extends Module {
   when(state === sDrain && drainDone) { state := sStatus }
 
   // ---- the status line
-  val totalRecords = Mux(dense, numPairs.pad(64), found.pad(64))
+  val totalRecords = Mux(dense, numPairs.pad(64), found.pad(64) + headers.pad(64)) // slots, headers included
   val written      = Mux(totalRecords > capacity, capacity, totalRecords)(31, 0)
   val nothingRun   = (errors & (ErrorFlags.TOO_MANY_SPHERES | ErrorFlags.BAD_CONFIG).U).orR
   val capErr       = totalRecords > capacity && !nothingRun

@@ -50,8 +50,8 @@ class AfuSpec extends AnyFlatSpec with ChiselScalatestTester {
   it should "equal ScpuModel with two bf16 SCPUs on a bfloat16 link (full records)" in {
     endToEnd(AfuConfig.fp16Full.copy(scpus = 2, maxSpheres = 512, scpu = collide.scpu.ScpuConfig.bf16), Seeds.cases(8))
   }
-  it should "equal ScpuModel with four fp32 SCPUs" in {
-    endToEnd(AfuConfig.default.copy(scpus = 4, maxSpheres = 512), Seeds.cases(9))
+  it should "equal ScpuModel with four fp32 SCPUs (derived-masked records)" in {
+    endToEnd(AfuConfig.default.copy(scpus = 4, maxSpheres = 512, records = Some(RecordLayout.DerivedMasked)), Seeds.cases(9))
   }
   it should "equal ScpuModel in the default preset (16 fp32 SCPUs)" taggedAs Slow in {
     endToEnd(AfuConfig.default, Seeds.cases(9), maxPairs = 400)

@@ -13,23 +13,37 @@ final case class AfuRecord(fields: Seq[BigInt], pair: Int, flags: Int) {
 object AfuRecord {
   def invalid(lay: BufferLayout, pair: Int) = AfuRecord(Seq.fill(lay.valueFields)(BigInt(0)), pair, 3 << 1)
   def word(line: BigInt, bit: Int, w: Int): BigInt = (line >> bit) & ((BigInt(1) << w) - 1)
-  def decode(line: BigInt, slot: Int, lay: BufferLayout): AfuRecord = {
+  /** The record in `slot`; masked layouts carry no pair index, so `pair` names it. */
+  def decode(line: BigInt, slot: Int, lay: BufferLayout, pair: Int = -1): AfuRecord = {
     val w = lay.linkWidth
     val b = slot * lay.recordBytes * 8
     val fields = (0 until lay.valueFields).map(i => word(line, b + i * w, w))
-    AfuRecord(fields, word(line, b + lay.pairIndexBit, 24).toInt, word(line, b + lay.flagsBit, 8).toInt)
+    val p = lay.pairIndexBit.map(i => word(line, b + i, 24).toInt).getOrElse(pair)
+    AfuRecord(fields, p, word(line, b + lay.flagsBit, 8).toInt)
+  }
+  /** A mask header: (first pair, hit mask). */
+  def header(line: BigInt, slot: Int, lay: BufferLayout): (Int, Int) = {
+    val b = slot * lay.recordBytes * 8
+    (word(line, b + MaskHeader.PAIR_SHIFT, MaskHeader.PAIR_BITS).toInt, word(line, b + MaskHeader.MASK_SHIFT, MaskHeader.MASK_BITS).toInt)
   }
   /** Whether a line is zero from record slot `slot` to its end (unused slots and padding). */
   def zeroFrom(line: BigInt, slot: Int, lay: BufferLayout): Boolean = (line >> (slot * lay.recordBytes * 8)) == 0
 }
 
 /** A run's input: spheres as link words (x, y, z, r), pairs of indices, the mode and the
-  * contact buffer's capacity (None: room for every record). */
+  * contact buffer's capacity (None: room for every record); `lanes`, the AFU's group size
+  * (min(SCPUs, 16)), tells where masked layouts put their headers. */
 final case class World(lay: BufferLayout, spheres: IndexedSeq[Seq[BigInt]], pairs: IndexedSeq[(Int, Int)],
-                       dense: Boolean, capacity: Option[Long] = None, numSpheres: Option[Long] = None) {
+                       dense: Boolean, capacity: Option[Long] = None, numSpheres: Option[Long] = None,
+                       lanes: Int = 16) {
   def w: Int = lay.linkWidth
   def nSpheres: Long = numSpheres.getOrElse(spheres.size.toLong)
   def bad(k: Int): Boolean = pairs(k)._1 >= nSpheres || pairs(k)._2 >= nSpheres
+  /** The groups the dispatcher cuts the pairs into: up to `lanes` consecutive pairs of one line. */
+  def groups: Seq[Range] = (0 until pairs.size by lay.pairsPerLine).flatMap { l =>
+    val end = math.min(l + lay.pairsPerLine, pairs.size)
+    (l until end by lanes).map(g => g until math.min(g + lanes, end))
+  }
 }
 
 /** The status line, decoded. */
@@ -74,7 +88,7 @@ object AfuRun {
       mem.mem(pairBase + l) = group.zipWithIndex.map { case ((i, j), k) =>
         (BigInt(i & 0xffff) << (32 * k)) | (BigInt(j & 0xffff) << (32 * k + 16)) }.sum
     }
-    val cap = world.capacity.getOrElse(world.pairs.size.toLong + 3)
+    val cap = world.capacity.getOrElse(world.lay.compactSlotsFor(world.pairs.size.toLong) + 3)
     val csrs = Map[Int, BigInt](Csr.SPHERE_BASE -> sphereBase, Csr.NUM_SPHERES -> world.nSpheres,
       Csr.PAIR_BASE -> pairBase, Csr.NUM_PAIRS -> world.pairs.size, Csr.CONTACT_BASE -> contactBase,
       Csr.CONTACT_CAPACITY -> cap, Csr.STATUS_ADDR -> statusAddr, Csr.MODE -> (if (world.dense) 1 else 0)) ++ csrOverride
@@ -101,7 +115,10 @@ object AfuRun {
     val n = world.pairs.size
     val exp = (0 until n).map(k => if (world.bad(k)) AfuRecord.invalid(lay, k) else expect(k))
     val hits = exp.filter(_.hit)
-    val cap = world.capacity.getOrElse(n.toLong + 3)
+    val cap = world.capacity.getOrElse(lay.compactSlotsFor(n.toLong) + 3)
+    // masked compact: a header before the hits of each group with one
+    val hitGroups = world.groups.filter(_.exists(k => exp(k).hit))
+    val masked = lay.masked && !world.dense
     r.status match {
       case None => fail(s"no status line written in ${r.cycles} cycles"); return errs.toSeq
       case Some(st) =>
@@ -117,7 +134,7 @@ object AfuRun {
             fail(s"write outside the buffers: line 0x${e.addr.toString(16)}")
         val lines = r.writes.filter(_.addr != r.statusAddr)
         if (lines.map(_.addr).distinct.size != lines.size) fail("a contact line written twice")
-        val total = if (world.dense) n.toLong else hits.size.toLong
+        val total = if (world.dense) n.toLong else hits.size.toLong + (if (masked) hitGroups.size else 0)
         val written = math.min(total, cap)
         val nonFin = exp.count(e => (e.flags & RecordFlags.NONFINITE) != 0)
         val firstBad = (0 until n).find(world.bad).map(_.toLong).getOrElse(StatusLine.NO_BAD_PAIR)
@@ -141,9 +158,33 @@ object AfuRun {
         val wantLines = lay.contactBufferLines(written, world.dense)
         if (lines.size != wantLines) fail(s"${lines.size} contact lines written, expected $wantLines")
         val byAddr = lines.map(e => e.addr -> e.data).toMap
-        val recs = (0L until written).map { rn =>
-          val (l, slot) = place(rn)
-          AfuRecord.decode(byAddr.getOrElse(r.contactBase + l, BigInt(0)), slot, lay)
+        val slotAt = (rn: Long) => { val (l, slot) = place(rn); (byAddr.getOrElse(r.contactBase + l, BigInt(0)), slot) }
+        val recs: Seq[AfuRecord] = if (!masked) (0L until written).map { rn =>
+          val (line, slot) = slotAt(rn); AfuRecord.decode(line, slot, lay, if (world.dense) rn.toInt else -1)
+        } else {
+          // header, its hits, the next header...: groups in the order pair lines arrived (any),
+          // each once; the buffer may end inside a group
+          val byFirst = hitGroups.map(g => g.head -> g).toMap
+          val seen = scala.collection.mutable.Set[Int]()
+          val out = scala.collection.mutable.ArrayBuffer[AfuRecord]()
+          var rn = 0L
+          while (rn < written) {
+            val (line, slot) = slotAt(rn)
+            val (first, mask) = AfuRecord.header(line, slot, lay)
+            val rest = AfuRecord.word(line, slot * lay.recordBits, lay.recordBits) >> MaskHeader.BITS
+            if (!byFirst.contains(first) || seen(first) || rest != 0) {
+              fail(s"slot $rn: header (first $first, mask 0x${mask.toHexString}) names no group with a hit, or one seen before")
+              rn = written
+            } else {
+              seen += first
+              val want = byFirst(first).filter(k => exp(k).hit)
+              val wantMask = want.map(k => 1 << (k - first)).sum
+              if (mask != wantMask) fail(s"slot $rn: mask 0x${mask.toHexString}, expected 0x${wantMask.toHexString}")
+              rn += 1
+              for (k <- want if rn < written) { val (l2, s2) = slotAt(rn); out += AfuRecord.decode(l2, s2, lay, k); rn += 1 }
+            }
+          }
+          out.toSeq
         }
         // slots holding no record, and every line's padding, are zero
         val used = (0L until written).map(place).groupBy(_._1).map { case (l, ss) => l -> ss.map(_._2).toSet }
@@ -159,7 +200,7 @@ object AfuRun {
           for (rec <- recs) {
             if (rec.pair >= n || exp(rec.pair) != rec) { if (errs.size < 20) fail(s"compact record $rec, expected ${if (rec.pair < n) exp(rec.pair) else "none"}") }
           }
-          if (written == hits.size && pairsSeen.toSet != hits.map(_.pair).toSet) fail("the set of hit pairs differs")
+          if (written == total && pairsSeen.toSet != hits.map(_.pair).toSet) fail("the set of hit pairs differs")
         }
     }
     errs.toSeq

@@ -9,7 +9,7 @@ object AfuWorlds {
   /** The record the AFU writes for an SCPU result (docs/afu-interface.md, record flags). */
   def record(lay: BufferLayout, r: ScpuResult, pair: Int): AfuRecord = {
     val arith = (r.flags & (FpFlags.Overflow | FpFlags.Invalid)) != 0
-    val values = lay.records match { case RecordLayout.Full => r.fields; case RecordLayout.Derived => r.derived }
+    val values = if (lay.records.fields == RecordLayout.fullFields) r.fields else r.derived
     AfuRecord(values, pair, (if (r.hit) 1 else 0) | (r.kind << 1) | (if (r.nonFinite) 8 else 0) | (if (arith) 16 else 0))
   }
 
@@ -49,6 +49,6 @@ object AfuWorlds {
         case _ => (rnd.nextInt(ns), rnd.nextInt(ns))
       }
     }
-    World(cfg.layout, spheres, pairs, dense)
+    World(cfg.layout, spheres, pairs, dense, lanes = cfg.puc.lanes)
   }
 }

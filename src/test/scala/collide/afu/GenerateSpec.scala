@@ -65,18 +65,24 @@ class GenerateSpec extends AnyFlatSpec {
     refused("--scpu", "fp32:rm=rtz", "--records", "derived")("RNE")
     refused("--scpu", "fp32:subnormals=off", "--records", "derived")("subnormals")
     refused("--format", "e8m30", "--records", "derived")("2p+2")
-    assert(cfg("--records", "masked").swap.toOption.get.contains("expected one of full, derived"))
+    refused("--format", "e8m30", "--records", "derived-masked")("2p+2")
+    assert(cfg("--format", "e8m30", "--records", "full-masked").toOption.get.recordLayout == RecordLayout.FullMasked)
+    assert(cfg("--records", "masked").swap.toOption.get.contains("expected one of full, derived, full-masked, derived-masked"))
   }
 
   it should "size records from the layout and the link width" in {
-    // (link width, layout) -> (record bytes, records a line)
+    // (link width, layout) -> (record bytes, records a line); masked: the flags byte replaces the tag word
     val want = Map((16, RecordLayout.Full) -> (18, 3), (16, RecordLayout.Derived) -> (8, 8),
       (32, RecordLayout.Full) -> (32, 2), (32, RecordLayout.Derived) -> (12, 5),
-      (64, RecordLayout.Full) -> (60, 1), (64, RecordLayout.Derived) -> (20, 3))
+      (64, RecordLayout.Full) -> (60, 1), (64, RecordLayout.Derived) -> (20, 3),
+      (16, RecordLayout.FullMasked) -> (15, 4), (16, RecordLayout.DerivedMasked) -> (5, 12),
+      (32, RecordLayout.FullMasked) -> (29, 2), (32, RecordLayout.DerivedMasked) -> (9, 7),
+      (64, RecordLayout.FullMasked) -> (57, 1), (64, RecordLayout.DerivedMasked) -> (17, 3))
     for (((w, l), (bytes, per)) <- want) {
       val b = BufferLayout(w, l)
       assert(b.recordBytes == bytes && b.recordsPerLine == per, s"$w $l: ${b.recordBytes} B, ${b.recordsPerLine} a line")
-      assert(b.pairIndexBit == l.fields.size * w && b.flagsBit == b.pairIndexBit + 24)
+      if (l.masked) assert(b.pairIndexBit.isEmpty && b.flagsBit == l.fields.size * w && b.recordBits >= MaskHeader.BITS)
+      else assert(b.pairIndexBit.contains(l.fields.size * w) && b.flagsBit == l.fields.size * w + 24)
     }
   }
 
@@ -90,7 +96,8 @@ class GenerateSpec extends AnyFlatSpec {
     for ((k, v) <- StatusLine.all) { assert(m("status")(k).num == v); assert(h.contains(s"STATUS_$k = ${v}u;")) }
     for ((k, v) <- ErrorFlags.all) { assert(h.contains(s"ERR_$k = ${v}u;")); assert(sv.contains(s"AFU_ERR_$k = $v;")) }
     for ((k, v) <- RecordFlags.all) assert(h.contains(s"REC_$k = ${v}u;"))
-    for (l <- RecordLayout.all) assert(h.contains(s"LAYOUT_${l.name.toUpperCase} = ${l.code}u;"))
+    for (l <- RecordLayout.all) assert(h.contains(s"LAYOUT_${AfuContract.constName(l)} = ${l.code}u;"))
+    for (e <- MaskHeader.entries) assert(h.contains(s"HEADER_${e.name} = ${e.value}u;"))
     assert(m("link")("format").str == "binary64" && m("buffers")("recordsPerLine").num == 3 && m("buffers")("spheresPerLine").num == 2)
     assert(m("buffers")("records")("layout").str == "derived" && m("buffers")("records")("fields").arr.map(_.str) == Seq("d", "w"))
     assert(m("afu")("ram")("sphereTableBits").num == 3.0 * 1024 * 4 * 64)

@@ -21,7 +21,7 @@ object LinkBehaviour {
   val ideal = LinkBehaviour()
   /** A hostile link: long, random, reordered latencies and frequent back-pressure. */
   val hostile = LinkBehaviour((1, 60), (1, 40), reorder = true, rdReady = 0.6, wrReady = 0.5)
-  /** About HARP v1 at 200 MHz: a read round trip of 200-290 ns is 40-58 cycles (NOTES.md). */
+  /** About HARP v1 at 200 MHz: a read round trip of 200-290 ns is 40-58 cycles (docs/host.md, link presets). */
   val harp = LinkBehaviour((40, 58), (30, 50), reorder = true, rdReady = 0.9, wrReady = 0.9)
 }
 

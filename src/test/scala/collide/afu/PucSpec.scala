@@ -15,7 +15,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
     PucParams(scpus = n, linkWidth = w, scpuTagBits = 24, scpuLatency = 3, maxSpheres = maxSpheres,
       maxReads = reads, maxWrites = writes, tagBits = 6, records = records, name = s"_t${n}_w${w}_${records.name}")
 
-  def randomWorld(rnd: scala.util.Random, lay: BufferLayout, maxSpheres: Int, dense: Boolean, bad: Boolean): World = {
+  def randomWorld(rnd: scala.util.Random, lay: BufferLayout, maxSpheres: Int, dense: Boolean, bad: Boolean, lanes: Int): World = {
     val w = lay.linkWidth
     val ns = 1 + rnd.nextInt(maxSpheres)
     val spheres = (0 until ns).map { _ =>
@@ -26,7 +26,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
       def idx = if (bad && rnd.nextInt(25) == 0) ns + rnd.nextInt(70000 - ns) min 65535 else rnd.nextInt(ns)
       (idx, idx)
     }
-    World(lay, spheres, pairs, dense)
+    World(lay, spheres, pairs, dense, lanes = lanes)
   }
   def stubExpect(world: World)(k: Int): AfuRecord =
     StubScpu.model(world.lay, world.spheres(world.pairs(k)._1), world.spheres(world.pairs(k)._2), k)
@@ -40,7 +40,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
       for (i <- 0 until worlds) {
         val b = beh(i % beh.size)
         val mem = new HostMemoryModel(dut.io, dut.clock, b, rnd.nextLong(), p.maxReads, p.maxWrites)
-        val world = randomWorld(rnd, p.layout, p.maxSpheres, dense = rnd.nextBoolean(), bad = rnd.nextInt(3) == 0)
+        val world = randomWorld(rnd, p.layout, p.maxSpheres, dense = rnd.nextBoolean(), bad = rnd.nextInt(3) == 0, p.lanes)
         val cap = if (rnd.nextInt(5) == 0) Some(rnd.nextInt(world.pairs.size + 2).toLong) else None
         val wc = world.copy(capacity = cap)
         val r = AfuRun.run(mem, wc)
@@ -60,9 +60,12 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
     soak(3, 64, Seeds.cases(12), Seq(LinkBehaviour.hostile, LinkBehaviour.ideal), verilator)
   }
   // Every record packing: (link width, layout) -> records a line 3 (16 full), 5 (32 derived),
-  // 8 (16 derived), 3 (64 derived); 2 and 1 are the two cases above.
+  // 8 (16 derived), 3 (64 derived); 2 and 1 are the two cases above. Masked: 12 slots of
+  // 5 bytes (a header fills its slot exactly), 7 of 9 with groups of 5 (5, 5, 5, 1 a line),
+  // and 1 of 57.
   for ((w, lay, n) <- Seq((16, RecordLayout.Full, 2), (32, RecordLayout.Derived, 5), (16, RecordLayout.Derived, 16),
-                         (64, RecordLayout.Derived, 3))) {
+                         (64, RecordLayout.Derived, 3), (16, RecordLayout.DerivedMasked, 16),
+                         (32, RecordLayout.DerivedMasked, 5), (64, RecordLayout.FullMasked, 3))) {
     it should s"account for every pair with $n SCPUs, $w-bit link fields and ${lay.name} records (${BufferLayout(w, lay).recordsPerLine} a line)" in {
       soak(n, w, Seeds.cases(10), Seq(LinkBehaviour.hostile, LinkBehaviour.ideal), verilator, lay)
     }
@@ -76,7 +79,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
       var skipped = 0L
       for (i <- 0 until Seeds.cases(8)) {
         val b = Seq(LinkBehaviour.harp, LinkBehaviour.hostile)(i % 2)
-        val world = randomWorld(rnd, p.layout, p.maxSpheres, dense = rnd.nextBoolean(), bad = i % 3 == 2)
+        val world = randomWorld(rnd, p.layout, p.maxSpheres, dense = rnd.nextBoolean(), bad = i % 3 == 2, p.lanes)
         val seed = rnd.nextLong()
         def once(skip: Boolean): (RunResult, Long) = {
           dut.reset.poke(true.B); dut.clock.step(); dut.reset.poke(false.B)
@@ -105,7 +108,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
       def mem() = new HostMemoryModel(dut.io, dut.clock, LinkBehaviour.hostile, rnd.nextLong(), p.maxReads, p.maxWrites)
       val spheres = (0 until 40).map(_ => Seq.fill(4)(BigInt(32, rnd.self)))
       val pairs = (0 until 37).map(_ => (rnd.nextInt(40), rnd.nextInt(40)))
-      val base = World(p.layout, spheres, pairs, dense = false)
+      val base = World(p.layout, spheres, pairs, dense = false, lanes = p.lanes)
       def go(w: World, expectErr: Long = -1, csr: Map[Int, BigInt] = Map.empty): RunResult = {
         val r = AfuRun.run(mem(), w, csrOverride = csr)
         val errs = AfuRun.check(w, stubExpect(w), r, expectErr)

@@ -48,7 +48,7 @@ object StubScpu {
     val flags = (if (hit) 1 else 0) | (kind << 1) | (if (nonFinite) 8 else 0) | (if (arith) 16 else 0)
     val full = if (hit) Seq(x1, y1, z1, x2, y2, z2, r1 ^ r2) else Seq.fill(7)(z)
     val derived = if (kind == 1) Seq(x1 ^ z2, y1 ^ r2) else Seq(z, z)
-    AfuRecord(if (lay.records == RecordLayout.Full) full else derived, pair, flags)
+    AfuRecord(if (lay.records.fields == RecordLayout.fullFields) full else derived, pair, flags)
   }
 }
 
