@@ -64,13 +64,14 @@ ARITH_SPECS = (
     "fp16-robust",
 )
 
-# Link formats x record layouts at 16 SCPUs: what the bytes on the link cost. "" is the
-# generator's default, derived records for all of these (so the builds are the arith sweep's).
+# Link formats x record layouts at 16 SCPUs: what the bytes on the link cost, with indexed
+# records (the masked sweep sets masked ones beside derived). Its results were measured when
+# derived was the generator's default, under the config ids n16_<spec> (now n16_<spec>_derived).
 LINK_CONFIGS = tuple(Config(16, spec, rec) for spec, rec in (
-    ("fp32", "full"), ("fp32", ""),
-    ("fp16", "full"), ("fp16", ""), ("bf16", ""),
-    ("fp24", ""),
-    ("fp64", "full"), ("fp64", ""),
+    ("fp32", "full"), ("fp32", "derived"),
+    ("fp16", "full"), ("fp16", "derived"), ("bf16", "derived"),
+    ("fp24", "derived"),
+    ("fp64", "full"), ("fp64", "derived"),
 ))
 LINK_PRESETS = ("ideal", "qpi", "harp2", "pac", "cxl")
 
@@ -93,12 +94,13 @@ def built_count(fit: int) -> int:
 
 def isoarea_configs(results: Path):
     """One configuration per arithmetic and calibration at the SCPU count that fits the chip
-    (isoarea.py), capped at LANES; empty until the arith and scpus sweeps have results."""
+    (isoarea.py), capped at LANES, with derived records (what its results were measured with:
+    the default then); empty until the arith and scpus sweeps have results."""
     def rows(name):
         p = results / name / f"{name}.csv"
         return list(csv.DictReader(open(p, newline=""))) if p.exists() else []
     fit = isoarea.fits(rows("arith"), rows("scpus")) if rows("arith") and rows("scpus") else {}
-    return tuple(dict.fromkeys(Config(built_count(n), spec) for (spec, _), (n, _) in sorted(fit.items())
+    return tuple(dict.fromkeys(Config(built_count(n), spec, "derived") for (spec, _), (n, _) in sorted(fit.items())
                                if spec in ISOAREA_SPECS))
 
 

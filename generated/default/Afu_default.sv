@@ -7665,23 +7665,23 @@ module PairDispatcher_n16_default(
 endmodule
 
 // VCS coverage exclude_file
-module ram_32x25_default(
+module ram_32x49_default(
   input  [4:0]  R0_addr,
   input         R0_en,
                 R0_clk,
-  output [24:0] R0_data,
+  output [48:0] R0_data,
   input  [4:0]  W0_addr,
   input         W0_en,
                 W0_clk,
-  input  [24:0] W0_data
+  input  [48:0] W0_data
 );
 
-  reg [24:0] Memory[0:31];
+  reg [48:0] Memory[0:31];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = R0_en ? Memory[R0_addr] : 25'bx;
+  assign R0_data = R0_en ? Memory[R0_addr] : 49'bx;
 endmodule
 
 module GroupQueue_d32_default(
@@ -7697,10 +7697,11 @@ module GroupQueue_d32_default(
   output        io_deq_valid,
   output [3:0]  io_deq_bits_base,
   output [4:0]  io_deq_bits_cnt,
-  output [15:0] io_deq_bits_invalid
+  output [15:0] io_deq_bits_invalid,
+  output [23:0] io_deq_bits_first
 );
 
-  wire [24:0] _ram_ext_R0_data;
+  wire [48:0] _ram_ext_R0_data;
   reg  [4:0]  enq_ptr_value;
   reg  [4:0]  deq_ptr_value;
   reg         maybe_full;
@@ -7724,7 +7725,7 @@ module GroupQueue_d32_default(
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_32x25_default ram_ext (
+  ram_32x49_default ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -7732,13 +7733,14 @@ module GroupQueue_d32_default(
     .W0_addr (enq_ptr_value),
     .W0_en   (do_enq),
     .W0_clk  (clock),
-    .W0_data ({io_enq_bits_invalid, io_enq_bits_cnt, io_enq_bits_base})
+    .W0_data ({io_enq_bits_first, io_enq_bits_invalid, io_enq_bits_cnt, io_enq_bits_base})
   );
   assign io_enq_ready = ~full;
   assign io_deq_valid = ~empty;
   assign io_deq_bits_base = _ram_ext_R0_data[3:0];
   assign io_deq_bits_cnt = _ram_ext_R0_data[8:4];
   assign io_deq_bits_invalid = _ram_ext_R0_data[24:9];
+  assign io_deq_bits_first = _ram_ext_R0_data[48:25];
 endmodule
 
 module ContactCollector_n16_default(
@@ -7750,6 +7752,7 @@ module ContactCollector_n16_default(
   input  [3:0]  io_groups_bits_base,
   input  [4:0]  io_groups_bits_cnt,
   input  [15:0] io_groups_bits_invalid,
+  input  [23:0] io_groups_bits_first,
   output        io_scpu_0_ready,
   input         io_scpu_0_valid,
                 io_scpu_0_bits_hit,
@@ -7895,20 +7898,25 @@ module ContactCollector_n16_default(
   input  [4:0]  io_scpu_15_bits_flags,
   input  [23:0] io_scpu_15_bits_tag,
   input  [2:0]  io_room,
-  output [95:0] io_recs_0_bits,
+  output [71:0] io_recs_0_bits,
   output [23:0] io_recs_0_pair,
-  output [95:0] io_recs_1_bits,
+  output [71:0] io_recs_1_bits,
   output [23:0] io_recs_1_pair,
-  output [95:0] io_recs_2_bits,
+  output [71:0] io_recs_2_bits,
   output [23:0] io_recs_2_pair,
-  output [95:0] io_recs_3_bits,
+  output [71:0] io_recs_3_bits,
   output [23:0] io_recs_3_pair,
-  output [95:0] io_recs_4_bits,
+  output [71:0] io_recs_4_bits,
   output [23:0] io_recs_4_pair,
+  output [71:0] io_recs_5_bits,
+  output [23:0] io_recs_5_pair,
+  output [71:0] io_recs_6_bits,
+  output [23:0] io_recs_6_pair,
   output [2:0]  io_nRecs,
   output [4:0]  io_nPairs,
                 io_nHits,
-                io_nNonFinite
+                io_nNonFinite,
+  output        io_nHeaders
 );
 
   reg  [4:0]  sp;
@@ -12681,19 +12689,30 @@ module ContactCollector_n16_default(
   end // always @(*)
   wire        active_0 = io_groups_valid & sp == 5'h0 & (|io_groups_bits_cnt);
   wire        active_1 = io_groups_valid & sp < 5'h2 & (|(io_groups_bits_cnt[4:1]));
-  wire        active_2 = io_groups_valid & sp < 5'h3 & io_groups_bits_cnt > 5'h2;
+  wire        _header_bits_T_26 = io_groups_bits_cnt > 5'h2;
+  wire        active_2 = io_groups_valid & sp < 5'h3 & _header_bits_T_26;
   wire        active_3 = io_groups_valid & sp < 5'h4 & (|(io_groups_bits_cnt[4:2]));
-  wire        active_4 = io_groups_valid & sp < 5'h5 & io_groups_bits_cnt > 5'h4;
-  wire        active_5 = io_groups_valid & sp < 5'h6 & io_groups_bits_cnt > 5'h5;
-  wire        active_6 = io_groups_valid & sp < 5'h7 & io_groups_bits_cnt > 5'h6;
+  wire        _header_bits_T_22 = io_groups_bits_cnt > 5'h4;
+  wire        active_4 = io_groups_valid & sp < 5'h5 & _header_bits_T_22;
+  wire        _header_bits_T_20 = io_groups_bits_cnt > 5'h5;
+  wire        active_5 = io_groups_valid & sp < 5'h6 & _header_bits_T_20;
+  wire        _header_bits_T_18 = io_groups_bits_cnt > 5'h6;
+  wire        active_6 = io_groups_valid & sp < 5'h7 & _header_bits_T_18;
   wire        active_7 = io_groups_valid & sp < 5'h8 & (|(io_groups_bits_cnt[4:3]));
-  wire        active_8 = io_groups_valid & sp < 5'h9 & io_groups_bits_cnt > 5'h8;
-  wire        active_9 = io_groups_valid & sp < 5'hA & io_groups_bits_cnt > 5'h9;
-  wire        active_10 = io_groups_valid & sp < 5'hB & io_groups_bits_cnt > 5'hA;
-  wire        active_11 = io_groups_valid & sp < 5'hC & io_groups_bits_cnt > 5'hB;
-  wire        active_12 = io_groups_valid & sp < 5'hD & io_groups_bits_cnt > 5'hC;
-  wire        active_13 = io_groups_valid & sp < 5'hE & io_groups_bits_cnt > 5'hD;
-  wire        active_14 = io_groups_valid & sp < 5'hF & io_groups_bits_cnt > 5'hE;
+  wire        _header_bits_T_14 = io_groups_bits_cnt > 5'h8;
+  wire        active_8 = io_groups_valid & sp < 5'h9 & _header_bits_T_14;
+  wire        _header_bits_T_12 = io_groups_bits_cnt > 5'h9;
+  wire        active_9 = io_groups_valid & sp < 5'hA & _header_bits_T_12;
+  wire        _header_bits_T_10 = io_groups_bits_cnt > 5'hA;
+  wire        active_10 = io_groups_valid & sp < 5'hB & _header_bits_T_10;
+  wire        _header_bits_T_8 = io_groups_bits_cnt > 5'hB;
+  wire        active_11 = io_groups_valid & sp < 5'hC & _header_bits_T_8;
+  wire        _header_bits_T_6 = io_groups_bits_cnt > 5'hC;
+  wire        active_12 = io_groups_valid & sp < 5'hD & _header_bits_T_6;
+  wire        _header_bits_T_4 = io_groups_bits_cnt > 5'hD;
+  wire        active_13 = io_groups_valid & sp < 5'hE & _header_bits_T_4;
+  wire        _header_bits_T_2 = io_groups_bits_cnt > 5'hE;
+  wire        active_14 = io_groups_valid & sp < 5'hF & _header_bits_T_2;
   wire        active_15 = io_groups_valid & ~(sp[4]) & io_groups_bits_cnt[4];
   wire        hit_0 = ~(io_groups_bits_invalid[0]) & casez_tmp;
   wire        hit_1 = ~(io_groups_bits_invalid[1]) & casez_tmp_6;
@@ -12727,6 +12746,24 @@ module ContactCollector_n16_default(
   wire        want_13 = active_13 & (io_dense | hit_13);
   wire        want_14 = active_14 & (io_dense | hit_14);
   wire        want_15 = active_15 & (io_dense | hit_15);
+  reg         hdrSent;
+  wire        allValid =
+    (~active_0 | casez_tmp_111) & (~active_1 | casez_tmp_112)
+    & (~active_2 | casez_tmp_113) & (~active_3 | casez_tmp_114)
+    & (~active_4 | casez_tmp_115) & (~active_5 | casez_tmp_116)
+    & (~active_6 | casez_tmp_117) & (~active_7 | casez_tmp_118)
+    & (~active_8 | casez_tmp_119) & (~active_9 | casez_tmp_120)
+    & (~active_10 | casez_tmp_121) & (~active_11 | casez_tmp_122)
+    & (~active_12 | casez_tmp_123) & (~active_13 | casez_tmp_124)
+    & (~active_14 | casez_tmp_125) & (~active_15 | casez_tmp_126);
+  wire        needHdr =
+    ~io_dense & ~hdrSent
+    & (active_0 & hit_0 | active_1 & hit_1 | active_2 & hit_2 | active_3 & hit_3
+       | active_4 & hit_4 | active_5 & hit_5 | active_6 & hit_6 | active_7 & hit_7
+       | active_8 & hit_8 | active_9 & hit_9 | active_10 & hit_10 | active_11 & hit_11
+       | active_12 & hit_12 | active_13 & hit_13 | active_14 & hit_14 | active_15
+       & hit_15);
+  wire        hdrFire = needHdr & allValid & (|io_room);
   wire        okPrefix_0 = ~active_0 | casez_tmp_111;
   wire        okPrefix_1 = okPrefix_0 & (~active_1 | casez_tmp_112);
   wire        okPrefix_2 = okPrefix_1 & (~active_2 | casez_tmp_113);
@@ -12756,188 +12793,215 @@ module ContactCollector_n16_default(
   wire [4:0]  wantCount_12 = wantCount_11 + {4'h0, want_12};
   wire [4:0]  wantCount_13 = wantCount_12 + {4'h0, want_13};
   wire [4:0]  wantCount_14 = wantCount_13 + {4'h0, want_14};
-  wire [4:0]  wantCount_15 = wantCount_14 + {4'h0, want_15};
-  wire [5:0]  _GEN = {3'h0, io_room};
-  wire        take_0 = active_0 & okPrefix_0 & {5'h0, want_0} <= _GEN;
-  wire        take_1 = active_1 & okPrefix_1 & {1'h0, wantCount_1} <= _GEN;
-  wire        take_2 = active_2 & okPrefix_2 & {1'h0, wantCount_2} <= _GEN;
-  wire        take_3 = active_3 & okPrefix_3 & {1'h0, wantCount_3} <= _GEN;
-  wire        take_4 = active_4 & okPrefix_4 & {1'h0, wantCount_4} <= _GEN;
-  wire        take_5 = active_5 & okPrefix_5 & {1'h0, wantCount_5} <= _GEN;
-  wire        take_6 = active_6 & okPrefix_6 & {1'h0, wantCount_6} <= _GEN;
-  wire        take_7 = active_7 & okPrefix_7 & {1'h0, wantCount_7} <= _GEN;
-  wire        take_8 = active_8 & okPrefix_8 & {1'h0, wantCount_8} <= _GEN;
-  wire        take_9 = active_9 & okPrefix_9 & {1'h0, wantCount_9} <= _GEN;
-  wire        take_10 = active_10 & okPrefix_10 & {1'h0, wantCount_10} <= _GEN;
-  wire        take_11 = active_11 & okPrefix_11 & {1'h0, wantCount_11} <= _GEN;
-  wire        take_12 = active_12 & okPrefix_12 & {1'h0, wantCount_12} <= _GEN;
-  wire        take_13 = active_13 & okPrefix_13 & {1'h0, wantCount_13} <= _GEN;
-  wire        take_14 = active_14 & okPrefix_14 & {1'h0, wantCount_14} <= _GEN;
+  wire [5:0]  _GEN = {5'h0, needHdr};
+  wire [5:0]  _sel_T_289 = {5'h0, want_0} + _GEN;
+  wire [5:0]  _GEN_0 = {3'h0, io_room};
+  wire        take_0 =
+    active_0 & okPrefix_0 & (~needHdr | allValid) & _sel_T_289 <= _GEN_0;
+  wire [5:0]  _sel_T_292 = {1'h0, wantCount_1} + _GEN;
+  wire        take_1 =
+    active_1 & okPrefix_1 & (~needHdr | allValid) & _sel_T_292 <= _GEN_0;
+  wire [5:0]  _sel_T_295 = {1'h0, wantCount_2} + _GEN;
+  wire        take_2 =
+    active_2 & okPrefix_2 & (~needHdr | allValid) & _sel_T_295 <= _GEN_0;
+  wire [5:0]  _sel_T_298 = {1'h0, wantCount_3} + _GEN;
+  wire        take_3 =
+    active_3 & okPrefix_3 & (~needHdr | allValid) & _sel_T_298 <= _GEN_0;
+  wire [5:0]  _sel_T_301 = {1'h0, wantCount_4} + _GEN;
+  wire        take_4 =
+    active_4 & okPrefix_4 & (~needHdr | allValid) & _sel_T_301 <= _GEN_0;
+  wire [5:0]  _sel_T_304 = {1'h0, wantCount_5} + _GEN;
+  wire        take_5 =
+    active_5 & okPrefix_5 & (~needHdr | allValid) & _sel_T_304 <= _GEN_0;
+  wire [5:0]  _sel_T_307 = {1'h0, wantCount_6} + _GEN;
+  wire        take_6 =
+    active_6 & okPrefix_6 & (~needHdr | allValid) & _sel_T_307 <= _GEN_0;
+  wire [5:0]  _sel_T_310 = {1'h0, wantCount_7} + _GEN;
+  wire        take_7 =
+    active_7 & okPrefix_7 & (~needHdr | allValid) & _sel_T_310 <= _GEN_0;
+  wire [5:0]  _sel_T_313 = {1'h0, wantCount_8} + _GEN;
+  wire        take_8 =
+    active_8 & okPrefix_8 & (~needHdr | allValid) & _sel_T_313 <= _GEN_0;
+  wire [5:0]  _sel_T_316 = {1'h0, wantCount_9} + _GEN;
+  wire        take_9 =
+    active_9 & okPrefix_9 & (~needHdr | allValid) & _sel_T_316 <= _GEN_0;
+  wire [5:0]  _sel_T_319 = {1'h0, wantCount_10} + _GEN;
+  wire        take_10 =
+    active_10 & okPrefix_10 & (~needHdr | allValid) & _sel_T_319 <= _GEN_0;
+  wire [5:0]  _sel_T_322 = {1'h0, wantCount_11} + _GEN;
+  wire        take_11 =
+    active_11 & okPrefix_11 & (~needHdr | allValid) & _sel_T_322 <= _GEN_0;
+  wire [5:0]  _sel_T_325 = {1'h0, wantCount_12} + _GEN;
+  wire        take_12 =
+    active_12 & okPrefix_12 & (~needHdr | allValid) & _sel_T_325 <= _GEN_0;
+  wire [5:0]  _sel_T_328 = {1'h0, wantCount_13} + _GEN;
+  wire        take_13 =
+    active_13 & okPrefix_13 & (~needHdr | allValid) & _sel_T_328 <= _GEN_0;
+  wire [5:0]  _sel_T_331 = {1'h0, wantCount_14} + _GEN;
+  wire        take_14 =
+    active_14 & okPrefix_14 & (~needHdr | allValid) & _sel_T_331 <= _GEN_0;
+  wire [5:0]  _sel_T_334 = {1'h0, wantCount_14 + {4'h0, want_15}} + _GEN;
   wire        take_15 =
-    active_15 & okPrefix_14 & (~active_15 | casez_tmp_126) & {1'h0, wantCount_15} <= _GEN;
-  wire [95:0] records_1_bits =
+    active_15 & okPrefix_14 & (~active_15 | casez_tmp_126) & (~needHdr | allValid)
+    & _sel_T_334 <= _GEN_0;
+  wire [71:0] records_0_bits =
+    io_groups_bits_invalid[0]
+      ? 72'h60000000000000000
+      : {3'h0,
+         |{casez_tmp_4[4], casez_tmp_4[2]},
+         casez_tmp_3,
+         casez_tmp_0,
+         casez_tmp,
+         casez_tmp_2,
+         casez_tmp_1};
+  wire [71:0] records_1_bits =
     io_groups_bits_invalid[1]
-      ? {8'h6, casez_tmp_12, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_11[4], casez_tmp_11[2]},
          casez_tmp_10,
          casez_tmp_7,
          casez_tmp_6,
-         casez_tmp_12,
          casez_tmp_9,
          casez_tmp_8};
-  wire [95:0] records_2_bits =
+  wire [71:0] records_2_bits =
     io_groups_bits_invalid[2]
-      ? {8'h6, casez_tmp_19, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_18[4], casez_tmp_18[2]},
          casez_tmp_17,
          casez_tmp_14,
          casez_tmp_13,
-         casez_tmp_19,
          casez_tmp_16,
          casez_tmp_15};
-  wire [95:0] records_3_bits =
+  wire [71:0] records_3_bits =
     io_groups_bits_invalid[3]
-      ? {8'h6, casez_tmp_26, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_25[4], casez_tmp_25[2]},
          casez_tmp_24,
          casez_tmp_21,
          casez_tmp_20,
-         casez_tmp_26,
          casez_tmp_23,
          casez_tmp_22};
-  wire [95:0] records_4_bits =
+  wire [71:0] records_4_bits =
     io_groups_bits_invalid[4]
-      ? {8'h6, casez_tmp_33, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_32[4], casez_tmp_32[2]},
          casez_tmp_31,
          casez_tmp_28,
          casez_tmp_27,
-         casez_tmp_33,
          casez_tmp_30,
          casez_tmp_29};
-  wire [95:0] records_5_bits =
+  wire [71:0] records_5_bits =
     io_groups_bits_invalid[5]
-      ? {8'h6, casez_tmp_40, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_39[4], casez_tmp_39[2]},
          casez_tmp_38,
          casez_tmp_35,
          casez_tmp_34,
-         casez_tmp_40,
          casez_tmp_37,
          casez_tmp_36};
-  wire [95:0] records_6_bits =
+  wire [71:0] records_6_bits =
     io_groups_bits_invalid[6]
-      ? {8'h6, casez_tmp_47, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_46[4], casez_tmp_46[2]},
          casez_tmp_45,
          casez_tmp_42,
          casez_tmp_41,
-         casez_tmp_47,
          casez_tmp_44,
          casez_tmp_43};
-  wire [95:0] records_7_bits =
+  wire [71:0] records_7_bits =
     io_groups_bits_invalid[7]
-      ? {8'h6, casez_tmp_54, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_53[4], casez_tmp_53[2]},
          casez_tmp_52,
          casez_tmp_49,
          casez_tmp_48,
-         casez_tmp_54,
          casez_tmp_51,
          casez_tmp_50};
-  wire [95:0] records_8_bits =
+  wire [71:0] records_8_bits =
     io_groups_bits_invalid[8]
-      ? {8'h6, casez_tmp_61, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_60[4], casez_tmp_60[2]},
          casez_tmp_59,
          casez_tmp_56,
          casez_tmp_55,
-         casez_tmp_61,
          casez_tmp_58,
          casez_tmp_57};
-  wire [95:0] records_9_bits =
+  wire [71:0] records_9_bits =
     io_groups_bits_invalid[9]
-      ? {8'h6, casez_tmp_68, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_67[4], casez_tmp_67[2]},
          casez_tmp_66,
          casez_tmp_63,
          casez_tmp_62,
-         casez_tmp_68,
          casez_tmp_65,
          casez_tmp_64};
-  wire [95:0] records_10_bits =
+  wire [71:0] records_10_bits =
     io_groups_bits_invalid[10]
-      ? {8'h6, casez_tmp_75, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_74[4], casez_tmp_74[2]},
          casez_tmp_73,
          casez_tmp_70,
          casez_tmp_69,
-         casez_tmp_75,
          casez_tmp_72,
          casez_tmp_71};
-  wire [95:0] records_11_bits =
+  wire [71:0] records_11_bits =
     io_groups_bits_invalid[11]
-      ? {8'h6, casez_tmp_82, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_81[4], casez_tmp_81[2]},
          casez_tmp_80,
          casez_tmp_77,
          casez_tmp_76,
-         casez_tmp_82,
          casez_tmp_79,
          casez_tmp_78};
-  wire [95:0] records_12_bits =
+  wire [71:0] records_12_bits =
     io_groups_bits_invalid[12]
-      ? {8'h6, casez_tmp_89, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_88[4], casez_tmp_88[2]},
          casez_tmp_87,
          casez_tmp_84,
          casez_tmp_83,
-         casez_tmp_89,
          casez_tmp_86,
          casez_tmp_85};
-  wire [95:0] records_13_bits =
+  wire [71:0] records_13_bits =
     io_groups_bits_invalid[13]
-      ? {8'h6, casez_tmp_96, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_95[4], casez_tmp_95[2]},
          casez_tmp_94,
          casez_tmp_91,
          casez_tmp_90,
-         casez_tmp_96,
          casez_tmp_93,
          casez_tmp_92};
-  wire [95:0] records_14_bits =
+  wire [71:0] records_14_bits =
     io_groups_bits_invalid[14]
-      ? {8'h6, casez_tmp_103, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_102[4], casez_tmp_102[2]},
          casez_tmp_101,
          casez_tmp_98,
          casez_tmp_97,
-         casez_tmp_103,
          casez_tmp_100,
          casez_tmp_99};
-  wire [95:0] records_15_bits =
+  wire [71:0] records_15_bits =
     io_groups_bits_invalid[15]
-      ? {8'h6, casez_tmp_110, 64'h0}
+      ? 72'h60000000000000000
       : {3'h0,
          |{casez_tmp_109[4], casez_tmp_109[2]},
          casez_tmp_108,
          casez_tmp_105,
          casez_tmp_104,
-         casez_tmp_110,
          casez_tmp_107,
          casez_tmp_106};
   wire [4:0]  nTaken =
@@ -12954,107 +13018,149 @@ module ContactCollector_n16_default(
          + {1'h0,
             {1'h0, {1'h0, take_12} + {1'h0, take_13}}
               + {1'h0, {1'h0, take_14} + {1'h0, take_15}}}};
-  wire        _sel_T_192 = take_0 & want_0;
-  wire        _sel_T_195 = take_1 & want_1;
-  wire        _sel_T_198 = take_2 & want_2;
-  wire        _sel_T_201 = take_3 & want_3;
-  wire        _sel_T_204 = take_4 & want_4;
-  wire        _sel_T_207 = take_5 & want_5;
-  wire        _sel_T_210 = take_6 & want_6;
-  wire        _sel_T_213 = take_7 & want_7;
-  wire        _sel_T_216 = take_8 & want_8;
-  wire        _sel_T_219 = take_9 & want_9;
-  wire        _sel_T_222 = take_10 & want_10;
-  wire        _sel_T_225 = take_11 & want_11;
-  wire        _sel_T_228 = take_12 & want_12;
-  wire        _sel_T_231 = take_13 & want_13;
-  wire        _sel_T_234 = take_14 & want_14;
-  wire        _sel_T_237 = take_15 & want_15;
-  wire        sel_0 = _sel_T_192 & want_0;
-  wire        sel_1 = _sel_T_195 & wantCount_1 == 5'h1;
-  wire        sel_2 = _sel_T_198 & wantCount_2 == 5'h1;
-  wire        sel_3 = _sel_T_201 & wantCount_3 == 5'h1;
-  wire        sel_4 = _sel_T_204 & wantCount_4 == 5'h1;
-  wire        sel_5 = _sel_T_207 & wantCount_5 == 5'h1;
-  wire        sel_6 = _sel_T_210 & wantCount_6 == 5'h1;
-  wire        sel_7 = _sel_T_213 & wantCount_7 == 5'h1;
-  wire        sel_8 = _sel_T_216 & wantCount_8 == 5'h1;
-  wire        sel_9 = _sel_T_219 & wantCount_9 == 5'h1;
-  wire        sel_10 = _sel_T_222 & wantCount_10 == 5'h1;
-  wire        sel_11 = _sel_T_225 & wantCount_11 == 5'h1;
-  wire        sel_12 = _sel_T_228 & wantCount_12 == 5'h1;
-  wire        sel_13 = _sel_T_231 & wantCount_13 == 5'h1;
-  wire        sel_14 = _sel_T_234 & wantCount_14 == 5'h1;
-  wire        sel_15 = _sel_T_237 & wantCount_15 == 5'h1;
-  wire        sel_1_1 = _sel_T_195 & wantCount_1 == 5'h2;
-  wire        sel_2_1 = _sel_T_198 & wantCount_2 == 5'h2;
-  wire        sel_3_1 = _sel_T_201 & wantCount_3 == 5'h2;
-  wire        sel_4_1 = _sel_T_204 & wantCount_4 == 5'h2;
-  wire        sel_5_1 = _sel_T_207 & wantCount_5 == 5'h2;
-  wire        sel_6_1 = _sel_T_210 & wantCount_6 == 5'h2;
-  wire        sel_7_1 = _sel_T_213 & wantCount_7 == 5'h2;
-  wire        sel_8_1 = _sel_T_216 & wantCount_8 == 5'h2;
-  wire        sel_9_1 = _sel_T_219 & wantCount_9 == 5'h2;
-  wire        sel_10_1 = _sel_T_222 & wantCount_10 == 5'h2;
-  wire        sel_11_1 = _sel_T_225 & wantCount_11 == 5'h2;
-  wire        sel_12_1 = _sel_T_228 & wantCount_12 == 5'h2;
-  wire        sel_13_1 = _sel_T_231 & wantCount_13 == 5'h2;
-  wire        sel_14_1 = _sel_T_234 & wantCount_14 == 5'h2;
-  wire        sel_15_1 = _sel_T_237 & wantCount_15 == 5'h2;
-  wire        sel_1_2 = _sel_T_195 & wantCount_1 == 5'h3;
-  wire        sel_2_2 = _sel_T_198 & wantCount_2 == 5'h3;
-  wire        sel_3_2 = _sel_T_201 & wantCount_3 == 5'h3;
-  wire        sel_4_2 = _sel_T_204 & wantCount_4 == 5'h3;
-  wire        sel_5_2 = _sel_T_207 & wantCount_5 == 5'h3;
-  wire        sel_6_2 = _sel_T_210 & wantCount_6 == 5'h3;
-  wire        sel_7_2 = _sel_T_213 & wantCount_7 == 5'h3;
-  wire        sel_8_2 = _sel_T_216 & wantCount_8 == 5'h3;
-  wire        sel_9_2 = _sel_T_219 & wantCount_9 == 5'h3;
-  wire        sel_10_2 = _sel_T_222 & wantCount_10 == 5'h3;
-  wire        sel_11_2 = _sel_T_225 & wantCount_11 == 5'h3;
-  wire        sel_12_2 = _sel_T_228 & wantCount_12 == 5'h3;
-  wire        sel_13_2 = _sel_T_231 & wantCount_13 == 5'h3;
-  wire        sel_14_2 = _sel_T_234 & wantCount_14 == 5'h3;
-  wire        sel_15_2 = _sel_T_237 & wantCount_15 == 5'h3;
-  wire        sel_1_3 = _sel_T_195 & wantCount_1 == 5'h4;
-  wire        sel_2_3 = _sel_T_198 & wantCount_2 == 5'h4;
-  wire        sel_3_3 = _sel_T_201 & wantCount_3 == 5'h4;
-  wire        sel_4_3 = _sel_T_204 & wantCount_4 == 5'h4;
-  wire        sel_5_3 = _sel_T_207 & wantCount_5 == 5'h4;
-  wire        sel_6_3 = _sel_T_210 & wantCount_6 == 5'h4;
-  wire        sel_7_3 = _sel_T_213 & wantCount_7 == 5'h4;
-  wire        sel_8_3 = _sel_T_216 & wantCount_8 == 5'h4;
-  wire        sel_9_3 = _sel_T_219 & wantCount_9 == 5'h4;
-  wire        sel_10_3 = _sel_T_222 & wantCount_10 == 5'h4;
-  wire        sel_11_3 = _sel_T_225 & wantCount_11 == 5'h4;
-  wire        sel_12_3 = _sel_T_228 & wantCount_12 == 5'h4;
-  wire        sel_13_3 = _sel_T_231 & wantCount_13 == 5'h4;
-  wire        sel_14_3 = _sel_T_234 & wantCount_14 == 5'h4;
-  wire        sel_15_3 = _sel_T_237 & wantCount_15 == 5'h4;
-  wire        sel_1_4 = _sel_T_195 & wantCount_1 == 5'h5;
-  wire        sel_2_4 = _sel_T_198 & wantCount_2 == 5'h5;
-  wire        sel_3_4 = _sel_T_201 & wantCount_3 == 5'h5;
-  wire        sel_4_4 = _sel_T_204 & wantCount_4 == 5'h5;
-  wire        sel_5_4 = _sel_T_207 & wantCount_5 == 5'h5;
-  wire        sel_6_4 = _sel_T_210 & wantCount_6 == 5'h5;
-  wire        sel_7_4 = _sel_T_213 & wantCount_7 == 5'h5;
-  wire        sel_8_4 = _sel_T_216 & wantCount_8 == 5'h5;
-  wire        sel_9_4 = _sel_T_219 & wantCount_9 == 5'h5;
-  wire        sel_10_4 = _sel_T_222 & wantCount_10 == 5'h5;
-  wire        sel_11_4 = _sel_T_225 & wantCount_11 == 5'h5;
-  wire        sel_12_4 = _sel_T_228 & wantCount_12 == 5'h5;
-  wire        sel_13_4 = _sel_T_231 & wantCount_13 == 5'h5;
-  wire        sel_14_4 = _sel_T_234 & wantCount_14 == 5'h5;
-  wire        sel_15_4 = _sel_T_237 & wantCount_15 == 5'h5;
+  wire        _sel_T_288 = take_0 & want_0;
+  wire        _sel_T_291 = take_1 & want_1;
+  wire        _sel_T_294 = take_2 & want_2;
+  wire        _sel_T_297 = take_3 & want_3;
+  wire        _sel_T_300 = take_4 & want_4;
+  wire        _sel_T_303 = take_5 & want_5;
+  wire        _sel_T_306 = take_6 & want_6;
+  wire        _sel_T_309 = take_7 & want_7;
+  wire        _sel_T_312 = take_8 & want_8;
+  wire        _sel_T_315 = take_9 & want_9;
+  wire        _sel_T_318 = take_10 & want_10;
+  wire        _sel_T_321 = take_11 & want_11;
+  wire        _sel_T_324 = take_12 & want_12;
+  wire        _sel_T_327 = take_13 & want_13;
+  wire        _sel_T_330 = take_14 & want_14;
+  wire        _sel_T_333 = take_15 & want_15;
+  wire        sel_0 = _sel_T_288 & _sel_T_289 == 6'h1;
+  wire        sel_1 = _sel_T_291 & _sel_T_292 == 6'h1;
+  wire        sel_2 = _sel_T_294 & _sel_T_295 == 6'h1;
+  wire        sel_3 = _sel_T_297 & _sel_T_298 == 6'h1;
+  wire        sel_4 = _sel_T_300 & _sel_T_301 == 6'h1;
+  wire        sel_5 = _sel_T_303 & _sel_T_304 == 6'h1;
+  wire        sel_6 = _sel_T_306 & _sel_T_307 == 6'h1;
+  wire        sel_7 = _sel_T_309 & _sel_T_310 == 6'h1;
+  wire        sel_8 = _sel_T_312 & _sel_T_313 == 6'h1;
+  wire        sel_9 = _sel_T_315 & _sel_T_316 == 6'h1;
+  wire        sel_10 = _sel_T_318 & _sel_T_319 == 6'h1;
+  wire        sel_11 = _sel_T_321 & _sel_T_322 == 6'h1;
+  wire        sel_12 = _sel_T_324 & _sel_T_325 == 6'h1;
+  wire        sel_13 = _sel_T_327 & _sel_T_328 == 6'h1;
+  wire        sel_14 = _sel_T_330 & _sel_T_331 == 6'h1;
+  wire        sel_15 = _sel_T_333 & _sel_T_334 == 6'h1;
+  wire        sel_0_1 = _sel_T_288 & _sel_T_289 == 6'h2;
+  wire        sel_1_1 = _sel_T_291 & _sel_T_292 == 6'h2;
+  wire        sel_2_1 = _sel_T_294 & _sel_T_295 == 6'h2;
+  wire        sel_3_1 = _sel_T_297 & _sel_T_298 == 6'h2;
+  wire        sel_4_1 = _sel_T_300 & _sel_T_301 == 6'h2;
+  wire        sel_5_1 = _sel_T_303 & _sel_T_304 == 6'h2;
+  wire        sel_6_1 = _sel_T_306 & _sel_T_307 == 6'h2;
+  wire        sel_7_1 = _sel_T_309 & _sel_T_310 == 6'h2;
+  wire        sel_8_1 = _sel_T_312 & _sel_T_313 == 6'h2;
+  wire        sel_9_1 = _sel_T_315 & _sel_T_316 == 6'h2;
+  wire        sel_10_1 = _sel_T_318 & _sel_T_319 == 6'h2;
+  wire        sel_11_1 = _sel_T_321 & _sel_T_322 == 6'h2;
+  wire        sel_12_1 = _sel_T_324 & _sel_T_325 == 6'h2;
+  wire        sel_13_1 = _sel_T_327 & _sel_T_328 == 6'h2;
+  wire        sel_14_1 = _sel_T_330 & _sel_T_331 == 6'h2;
+  wire        sel_15_1 = _sel_T_333 & _sel_T_334 == 6'h2;
+  wire        sel_0_2 = _sel_T_288 & _sel_T_289 == 6'h3;
+  wire        sel_1_2 = _sel_T_291 & _sel_T_292 == 6'h3;
+  wire        sel_2_2 = _sel_T_294 & _sel_T_295 == 6'h3;
+  wire        sel_3_2 = _sel_T_297 & _sel_T_298 == 6'h3;
+  wire        sel_4_2 = _sel_T_300 & _sel_T_301 == 6'h3;
+  wire        sel_5_2 = _sel_T_303 & _sel_T_304 == 6'h3;
+  wire        sel_6_2 = _sel_T_306 & _sel_T_307 == 6'h3;
+  wire        sel_7_2 = _sel_T_309 & _sel_T_310 == 6'h3;
+  wire        sel_8_2 = _sel_T_312 & _sel_T_313 == 6'h3;
+  wire        sel_9_2 = _sel_T_315 & _sel_T_316 == 6'h3;
+  wire        sel_10_2 = _sel_T_318 & _sel_T_319 == 6'h3;
+  wire        sel_11_2 = _sel_T_321 & _sel_T_322 == 6'h3;
+  wire        sel_12_2 = _sel_T_324 & _sel_T_325 == 6'h3;
+  wire        sel_13_2 = _sel_T_327 & _sel_T_328 == 6'h3;
+  wire        sel_14_2 = _sel_T_330 & _sel_T_331 == 6'h3;
+  wire        sel_15_2 = _sel_T_333 & _sel_T_334 == 6'h3;
+  wire        sel_0_3 = _sel_T_288 & _sel_T_289 == 6'h4;
+  wire        sel_1_3 = _sel_T_291 & _sel_T_292 == 6'h4;
+  wire        sel_2_3 = _sel_T_294 & _sel_T_295 == 6'h4;
+  wire        sel_3_3 = _sel_T_297 & _sel_T_298 == 6'h4;
+  wire        sel_4_3 = _sel_T_300 & _sel_T_301 == 6'h4;
+  wire        sel_5_3 = _sel_T_303 & _sel_T_304 == 6'h4;
+  wire        sel_6_3 = _sel_T_306 & _sel_T_307 == 6'h4;
+  wire        sel_7_3 = _sel_T_309 & _sel_T_310 == 6'h4;
+  wire        sel_8_3 = _sel_T_312 & _sel_T_313 == 6'h4;
+  wire        sel_9_3 = _sel_T_315 & _sel_T_316 == 6'h4;
+  wire        sel_10_3 = _sel_T_318 & _sel_T_319 == 6'h4;
+  wire        sel_11_3 = _sel_T_321 & _sel_T_322 == 6'h4;
+  wire        sel_12_3 = _sel_T_324 & _sel_T_325 == 6'h4;
+  wire        sel_13_3 = _sel_T_327 & _sel_T_328 == 6'h4;
+  wire        sel_14_3 = _sel_T_330 & _sel_T_331 == 6'h4;
+  wire        sel_15_3 = _sel_T_333 & _sel_T_334 == 6'h4;
+  wire        sel_0_4 = _sel_T_288 & _sel_T_289 == 6'h5;
+  wire        sel_1_4 = _sel_T_291 & _sel_T_292 == 6'h5;
+  wire        sel_2_4 = _sel_T_294 & _sel_T_295 == 6'h5;
+  wire        sel_3_4 = _sel_T_297 & _sel_T_298 == 6'h5;
+  wire        sel_4_4 = _sel_T_300 & _sel_T_301 == 6'h5;
+  wire        sel_5_4 = _sel_T_303 & _sel_T_304 == 6'h5;
+  wire        sel_6_4 = _sel_T_306 & _sel_T_307 == 6'h5;
+  wire        sel_7_4 = _sel_T_309 & _sel_T_310 == 6'h5;
+  wire        sel_8_4 = _sel_T_312 & _sel_T_313 == 6'h5;
+  wire        sel_9_4 = _sel_T_315 & _sel_T_316 == 6'h5;
+  wire        sel_10_4 = _sel_T_318 & _sel_T_319 == 6'h5;
+  wire        sel_11_4 = _sel_T_321 & _sel_T_322 == 6'h5;
+  wire        sel_12_4 = _sel_T_324 & _sel_T_325 == 6'h5;
+  wire        sel_13_4 = _sel_T_327 & _sel_T_328 == 6'h5;
+  wire        sel_14_4 = _sel_T_330 & _sel_T_331 == 6'h5;
+  wire        sel_15_4 = _sel_T_333 & _sel_T_334 == 6'h5;
+  wire        sel_0_5 = _sel_T_288 & _sel_T_289 == 6'h6;
+  wire        sel_1_5 = _sel_T_291 & _sel_T_292 == 6'h6;
+  wire        sel_2_5 = _sel_T_294 & _sel_T_295 == 6'h6;
+  wire        sel_3_5 = _sel_T_297 & _sel_T_298 == 6'h6;
+  wire        sel_4_5 = _sel_T_300 & _sel_T_301 == 6'h6;
+  wire        sel_5_5 = _sel_T_303 & _sel_T_304 == 6'h6;
+  wire        sel_6_5 = _sel_T_306 & _sel_T_307 == 6'h6;
+  wire        sel_7_5 = _sel_T_309 & _sel_T_310 == 6'h6;
+  wire        sel_8_5 = _sel_T_312 & _sel_T_313 == 6'h6;
+  wire        sel_9_5 = _sel_T_315 & _sel_T_316 == 6'h6;
+  wire        sel_10_5 = _sel_T_318 & _sel_T_319 == 6'h6;
+  wire        sel_11_5 = _sel_T_321 & _sel_T_322 == 6'h6;
+  wire        sel_12_5 = _sel_T_324 & _sel_T_325 == 6'h6;
+  wire        sel_13_5 = _sel_T_327 & _sel_T_328 == 6'h6;
+  wire        sel_14_5 = _sel_T_330 & _sel_T_331 == 6'h6;
+  wire        sel_15_5 = _sel_T_333 & _sel_T_334 == 6'h6;
+  wire        sel_0_6 = _sel_T_288 & _sel_T_289 == 6'h7;
+  wire        sel_1_6 = _sel_T_291 & _sel_T_292 == 6'h7;
+  wire        sel_2_6 = _sel_T_294 & _sel_T_295 == 6'h7;
+  wire        sel_3_6 = _sel_T_297 & _sel_T_298 == 6'h7;
+  wire        sel_4_6 = _sel_T_300 & _sel_T_301 == 6'h7;
+  wire        sel_5_6 = _sel_T_303 & _sel_T_304 == 6'h7;
+  wire        sel_6_6 = _sel_T_306 & _sel_T_307 == 6'h7;
+  wire        sel_7_6 = _sel_T_309 & _sel_T_310 == 6'h7;
+  wire        sel_8_6 = _sel_T_312 & _sel_T_313 == 6'h7;
+  wire        sel_9_6 = _sel_T_315 & _sel_T_316 == 6'h7;
+  wire        sel_10_6 = _sel_T_318 & _sel_T_319 == 6'h7;
+  wire        sel_11_6 = _sel_T_321 & _sel_T_322 == 6'h7;
+  wire        sel_12_6 = _sel_T_324 & _sel_T_325 == 6'h7;
+  wire        sel_13_6 = _sel_T_327 & _sel_T_328 == 6'h7;
+  wire        sel_14_6 = _sel_T_330 & _sel_T_331 == 6'h7;
+  wire        sel_15_6 = _sel_T_333 & _sel_T_334 == 6'h7;
   wire [4:0]  _spNext_T = sp + nTaken;
   wire        io_groups_ready_0 = io_groups_valid & _spNext_T == io_groups_bits_cnt;
+  wire        _GEN_1 = io_groups_ready_0 & io_groups_valid;
   always @(posedge clock) begin
-    if (reset)
+    if (reset) begin
       sp <= 5'h0;
-    else if (io_groups_ready_0 & io_groups_valid)
-      sp <= 5'h0;
-    else
-      sp <= _spNext_T;
+      hdrSent <= 1'h0;
+    end
+    else begin
+      if (_GEN_1)
+        sp <= 5'h0;
+      else
+        sp <= _spNext_T;
+      hdrSent <= ~_GEN_1 & (hdrFire | hdrSent);
+    end
   end // always @(posedge)
   assign io_groups_ready = io_groups_ready_0;
   assign io_scpu_0_ready =
@@ -13170,115 +13276,161 @@ module ContactCollector_n16_default(
     & scpuAt_11 == 5'hF | take_12 & scpuAt_12 == 5'hF | take_13 & scpuAt_13 == 5'hF
     | take_14 & scpuAt_14 == 5'hF | take_15 & scpuAt_15 == 5'hF;
   assign io_recs_0_bits =
-    (sel_0
-       ? (io_groups_bits_invalid[0]
-            ? {8'h6, casez_tmp_5, 64'h0}
-            : {3'h0,
-               |{casez_tmp_4[4], casez_tmp_4[2]},
-               casez_tmp_3,
-               casez_tmp_0,
-               casez_tmp,
-               casez_tmp_5,
-               casez_tmp_2,
-               casez_tmp_1})
-       : 96'h0) | (sel_1 ? records_1_bits : 96'h0) | (sel_2 ? records_2_bits : 96'h0)
-    | (sel_3 ? records_3_bits : 96'h0) | (sel_4 ? records_4_bits : 96'h0)
-    | (sel_5 ? records_5_bits : 96'h0) | (sel_6 ? records_6_bits : 96'h0)
-    | (sel_7 ? records_7_bits : 96'h0) | (sel_8 ? records_8_bits : 96'h0)
-    | (sel_9 ? records_9_bits : 96'h0) | (sel_10 ? records_10_bits : 96'h0)
-    | (sel_11 ? records_11_bits : 96'h0) | (sel_12 ? records_12_bits : 96'h0)
-    | (sel_13 ? records_13_bits : 96'h0) | (sel_14 ? records_14_bits : 96'h0)
-    | (sel_15 ? records_15_bits : 96'h0);
+    hdrFire
+      ? {32'h0,
+         io_groups_bits_cnt[4] & hit_15,
+         _header_bits_T_2 & hit_14,
+         _header_bits_T_4 & hit_13,
+         _header_bits_T_6 & hit_12,
+         _header_bits_T_8 & hit_11,
+         _header_bits_T_10 & hit_10,
+         _header_bits_T_12 & hit_9,
+         _header_bits_T_14 & hit_8,
+         (|(io_groups_bits_cnt[4:3])) & hit_7,
+         _header_bits_T_18 & hit_6,
+         _header_bits_T_20 & hit_5,
+         _header_bits_T_22 & hit_4,
+         (|(io_groups_bits_cnt[4:2])) & hit_3,
+         _header_bits_T_26 & hit_2,
+         (|(io_groups_bits_cnt[4:1])) & hit_1,
+         (|io_groups_bits_cnt) & hit_0,
+         io_groups_bits_first}
+      : (sel_0 ? records_0_bits : 72'h0) | (sel_1 ? records_1_bits : 72'h0)
+        | (sel_2 ? records_2_bits : 72'h0) | (sel_3 ? records_3_bits : 72'h0)
+        | (sel_4 ? records_4_bits : 72'h0) | (sel_5 ? records_5_bits : 72'h0)
+        | (sel_6 ? records_6_bits : 72'h0) | (sel_7 ? records_7_bits : 72'h0)
+        | (sel_8 ? records_8_bits : 72'h0) | (sel_9 ? records_9_bits : 72'h0)
+        | (sel_10 ? records_10_bits : 72'h0) | (sel_11 ? records_11_bits : 72'h0)
+        | (sel_12 ? records_12_bits : 72'h0) | (sel_13 ? records_13_bits : 72'h0)
+        | (sel_14 ? records_14_bits : 72'h0) | (sel_15 ? records_15_bits : 72'h0);
   assign io_recs_0_pair =
-    (sel_0 ? casez_tmp_5 : 24'h0) | (sel_1 ? casez_tmp_12 : 24'h0)
-    | (sel_2 ? casez_tmp_19 : 24'h0) | (sel_3 ? casez_tmp_26 : 24'h0)
-    | (sel_4 ? casez_tmp_33 : 24'h0) | (sel_5 ? casez_tmp_40 : 24'h0)
-    | (sel_6 ? casez_tmp_47 : 24'h0) | (sel_7 ? casez_tmp_54 : 24'h0)
-    | (sel_8 ? casez_tmp_61 : 24'h0) | (sel_9 ? casez_tmp_68 : 24'h0)
-    | (sel_10 ? casez_tmp_75 : 24'h0) | (sel_11 ? casez_tmp_82 : 24'h0)
-    | (sel_12 ? casez_tmp_89 : 24'h0) | (sel_13 ? casez_tmp_96 : 24'h0)
-    | (sel_14 ? casez_tmp_103 : 24'h0) | (sel_15 ? casez_tmp_110 : 24'h0);
+    hdrFire
+      ? io_groups_bits_first
+      : (sel_0 ? casez_tmp_5 : 24'h0) | (sel_1 ? casez_tmp_12 : 24'h0)
+        | (sel_2 ? casez_tmp_19 : 24'h0) | (sel_3 ? casez_tmp_26 : 24'h0)
+        | (sel_4 ? casez_tmp_33 : 24'h0) | (sel_5 ? casez_tmp_40 : 24'h0)
+        | (sel_6 ? casez_tmp_47 : 24'h0) | (sel_7 ? casez_tmp_54 : 24'h0)
+        | (sel_8 ? casez_tmp_61 : 24'h0) | (sel_9 ? casez_tmp_68 : 24'h0)
+        | (sel_10 ? casez_tmp_75 : 24'h0) | (sel_11 ? casez_tmp_82 : 24'h0)
+        | (sel_12 ? casez_tmp_89 : 24'h0) | (sel_13 ? casez_tmp_96 : 24'h0)
+        | (sel_14 ? casez_tmp_103 : 24'h0) | (sel_15 ? casez_tmp_110 : 24'h0);
   assign io_recs_1_bits =
-    (sel_1_1 ? records_1_bits : 96'h0) | (sel_2_1 ? records_2_bits : 96'h0)
-    | (sel_3_1 ? records_3_bits : 96'h0) | (sel_4_1 ? records_4_bits : 96'h0)
-    | (sel_5_1 ? records_5_bits : 96'h0) | (sel_6_1 ? records_6_bits : 96'h0)
-    | (sel_7_1 ? records_7_bits : 96'h0) | (sel_8_1 ? records_8_bits : 96'h0)
-    | (sel_9_1 ? records_9_bits : 96'h0) | (sel_10_1 ? records_10_bits : 96'h0)
-    | (sel_11_1 ? records_11_bits : 96'h0) | (sel_12_1 ? records_12_bits : 96'h0)
-    | (sel_13_1 ? records_13_bits : 96'h0) | (sel_14_1 ? records_14_bits : 96'h0)
-    | (sel_15_1 ? records_15_bits : 96'h0);
+    (sel_0_1 ? records_0_bits : 72'h0) | (sel_1_1 ? records_1_bits : 72'h0)
+    | (sel_2_1 ? records_2_bits : 72'h0) | (sel_3_1 ? records_3_bits : 72'h0)
+    | (sel_4_1 ? records_4_bits : 72'h0) | (sel_5_1 ? records_5_bits : 72'h0)
+    | (sel_6_1 ? records_6_bits : 72'h0) | (sel_7_1 ? records_7_bits : 72'h0)
+    | (sel_8_1 ? records_8_bits : 72'h0) | (sel_9_1 ? records_9_bits : 72'h0)
+    | (sel_10_1 ? records_10_bits : 72'h0) | (sel_11_1 ? records_11_bits : 72'h0)
+    | (sel_12_1 ? records_12_bits : 72'h0) | (sel_13_1 ? records_13_bits : 72'h0)
+    | (sel_14_1 ? records_14_bits : 72'h0) | (sel_15_1 ? records_15_bits : 72'h0);
   assign io_recs_1_pair =
-    (sel_1_1 ? casez_tmp_12 : 24'h0) | (sel_2_1 ? casez_tmp_19 : 24'h0)
-    | (sel_3_1 ? casez_tmp_26 : 24'h0) | (sel_4_1 ? casez_tmp_33 : 24'h0)
-    | (sel_5_1 ? casez_tmp_40 : 24'h0) | (sel_6_1 ? casez_tmp_47 : 24'h0)
-    | (sel_7_1 ? casez_tmp_54 : 24'h0) | (sel_8_1 ? casez_tmp_61 : 24'h0)
-    | (sel_9_1 ? casez_tmp_68 : 24'h0) | (sel_10_1 ? casez_tmp_75 : 24'h0)
-    | (sel_11_1 ? casez_tmp_82 : 24'h0) | (sel_12_1 ? casez_tmp_89 : 24'h0)
-    | (sel_13_1 ? casez_tmp_96 : 24'h0) | (sel_14_1 ? casez_tmp_103 : 24'h0)
-    | (sel_15_1 ? casez_tmp_110 : 24'h0);
+    (sel_0_1 ? casez_tmp_5 : 24'h0) | (sel_1_1 ? casez_tmp_12 : 24'h0)
+    | (sel_2_1 ? casez_tmp_19 : 24'h0) | (sel_3_1 ? casez_tmp_26 : 24'h0)
+    | (sel_4_1 ? casez_tmp_33 : 24'h0) | (sel_5_1 ? casez_tmp_40 : 24'h0)
+    | (sel_6_1 ? casez_tmp_47 : 24'h0) | (sel_7_1 ? casez_tmp_54 : 24'h0)
+    | (sel_8_1 ? casez_tmp_61 : 24'h0) | (sel_9_1 ? casez_tmp_68 : 24'h0)
+    | (sel_10_1 ? casez_tmp_75 : 24'h0) | (sel_11_1 ? casez_tmp_82 : 24'h0)
+    | (sel_12_1 ? casez_tmp_89 : 24'h0) | (sel_13_1 ? casez_tmp_96 : 24'h0)
+    | (sel_14_1 ? casez_tmp_103 : 24'h0) | (sel_15_1 ? casez_tmp_110 : 24'h0);
   assign io_recs_2_bits =
-    (sel_1_2 ? records_1_bits : 96'h0) | (sel_2_2 ? records_2_bits : 96'h0)
-    | (sel_3_2 ? records_3_bits : 96'h0) | (sel_4_2 ? records_4_bits : 96'h0)
-    | (sel_5_2 ? records_5_bits : 96'h0) | (sel_6_2 ? records_6_bits : 96'h0)
-    | (sel_7_2 ? records_7_bits : 96'h0) | (sel_8_2 ? records_8_bits : 96'h0)
-    | (sel_9_2 ? records_9_bits : 96'h0) | (sel_10_2 ? records_10_bits : 96'h0)
-    | (sel_11_2 ? records_11_bits : 96'h0) | (sel_12_2 ? records_12_bits : 96'h0)
-    | (sel_13_2 ? records_13_bits : 96'h0) | (sel_14_2 ? records_14_bits : 96'h0)
-    | (sel_15_2 ? records_15_bits : 96'h0);
+    (sel_0_2 ? records_0_bits : 72'h0) | (sel_1_2 ? records_1_bits : 72'h0)
+    | (sel_2_2 ? records_2_bits : 72'h0) | (sel_3_2 ? records_3_bits : 72'h0)
+    | (sel_4_2 ? records_4_bits : 72'h0) | (sel_5_2 ? records_5_bits : 72'h0)
+    | (sel_6_2 ? records_6_bits : 72'h0) | (sel_7_2 ? records_7_bits : 72'h0)
+    | (sel_8_2 ? records_8_bits : 72'h0) | (sel_9_2 ? records_9_bits : 72'h0)
+    | (sel_10_2 ? records_10_bits : 72'h0) | (sel_11_2 ? records_11_bits : 72'h0)
+    | (sel_12_2 ? records_12_bits : 72'h0) | (sel_13_2 ? records_13_bits : 72'h0)
+    | (sel_14_2 ? records_14_bits : 72'h0) | (sel_15_2 ? records_15_bits : 72'h0);
   assign io_recs_2_pair =
-    (sel_1_2 ? casez_tmp_12 : 24'h0) | (sel_2_2 ? casez_tmp_19 : 24'h0)
-    | (sel_3_2 ? casez_tmp_26 : 24'h0) | (sel_4_2 ? casez_tmp_33 : 24'h0)
-    | (sel_5_2 ? casez_tmp_40 : 24'h0) | (sel_6_2 ? casez_tmp_47 : 24'h0)
-    | (sel_7_2 ? casez_tmp_54 : 24'h0) | (sel_8_2 ? casez_tmp_61 : 24'h0)
-    | (sel_9_2 ? casez_tmp_68 : 24'h0) | (sel_10_2 ? casez_tmp_75 : 24'h0)
-    | (sel_11_2 ? casez_tmp_82 : 24'h0) | (sel_12_2 ? casez_tmp_89 : 24'h0)
-    | (sel_13_2 ? casez_tmp_96 : 24'h0) | (sel_14_2 ? casez_tmp_103 : 24'h0)
-    | (sel_15_2 ? casez_tmp_110 : 24'h0);
+    (sel_0_2 ? casez_tmp_5 : 24'h0) | (sel_1_2 ? casez_tmp_12 : 24'h0)
+    | (sel_2_2 ? casez_tmp_19 : 24'h0) | (sel_3_2 ? casez_tmp_26 : 24'h0)
+    | (sel_4_2 ? casez_tmp_33 : 24'h0) | (sel_5_2 ? casez_tmp_40 : 24'h0)
+    | (sel_6_2 ? casez_tmp_47 : 24'h0) | (sel_7_2 ? casez_tmp_54 : 24'h0)
+    | (sel_8_2 ? casez_tmp_61 : 24'h0) | (sel_9_2 ? casez_tmp_68 : 24'h0)
+    | (sel_10_2 ? casez_tmp_75 : 24'h0) | (sel_11_2 ? casez_tmp_82 : 24'h0)
+    | (sel_12_2 ? casez_tmp_89 : 24'h0) | (sel_13_2 ? casez_tmp_96 : 24'h0)
+    | (sel_14_2 ? casez_tmp_103 : 24'h0) | (sel_15_2 ? casez_tmp_110 : 24'h0);
   assign io_recs_3_bits =
-    (sel_1_3 ? records_1_bits : 96'h0) | (sel_2_3 ? records_2_bits : 96'h0)
-    | (sel_3_3 ? records_3_bits : 96'h0) | (sel_4_3 ? records_4_bits : 96'h0)
-    | (sel_5_3 ? records_5_bits : 96'h0) | (sel_6_3 ? records_6_bits : 96'h0)
-    | (sel_7_3 ? records_7_bits : 96'h0) | (sel_8_3 ? records_8_bits : 96'h0)
-    | (sel_9_3 ? records_9_bits : 96'h0) | (sel_10_3 ? records_10_bits : 96'h0)
-    | (sel_11_3 ? records_11_bits : 96'h0) | (sel_12_3 ? records_12_bits : 96'h0)
-    | (sel_13_3 ? records_13_bits : 96'h0) | (sel_14_3 ? records_14_bits : 96'h0)
-    | (sel_15_3 ? records_15_bits : 96'h0);
+    (sel_0_3 ? records_0_bits : 72'h0) | (sel_1_3 ? records_1_bits : 72'h0)
+    | (sel_2_3 ? records_2_bits : 72'h0) | (sel_3_3 ? records_3_bits : 72'h0)
+    | (sel_4_3 ? records_4_bits : 72'h0) | (sel_5_3 ? records_5_bits : 72'h0)
+    | (sel_6_3 ? records_6_bits : 72'h0) | (sel_7_3 ? records_7_bits : 72'h0)
+    | (sel_8_3 ? records_8_bits : 72'h0) | (sel_9_3 ? records_9_bits : 72'h0)
+    | (sel_10_3 ? records_10_bits : 72'h0) | (sel_11_3 ? records_11_bits : 72'h0)
+    | (sel_12_3 ? records_12_bits : 72'h0) | (sel_13_3 ? records_13_bits : 72'h0)
+    | (sel_14_3 ? records_14_bits : 72'h0) | (sel_15_3 ? records_15_bits : 72'h0);
   assign io_recs_3_pair =
-    (sel_1_3 ? casez_tmp_12 : 24'h0) | (sel_2_3 ? casez_tmp_19 : 24'h0)
-    | (sel_3_3 ? casez_tmp_26 : 24'h0) | (sel_4_3 ? casez_tmp_33 : 24'h0)
-    | (sel_5_3 ? casez_tmp_40 : 24'h0) | (sel_6_3 ? casez_tmp_47 : 24'h0)
-    | (sel_7_3 ? casez_tmp_54 : 24'h0) | (sel_8_3 ? casez_tmp_61 : 24'h0)
-    | (sel_9_3 ? casez_tmp_68 : 24'h0) | (sel_10_3 ? casez_tmp_75 : 24'h0)
-    | (sel_11_3 ? casez_tmp_82 : 24'h0) | (sel_12_3 ? casez_tmp_89 : 24'h0)
-    | (sel_13_3 ? casez_tmp_96 : 24'h0) | (sel_14_3 ? casez_tmp_103 : 24'h0)
-    | (sel_15_3 ? casez_tmp_110 : 24'h0);
+    (sel_0_3 ? casez_tmp_5 : 24'h0) | (sel_1_3 ? casez_tmp_12 : 24'h0)
+    | (sel_2_3 ? casez_tmp_19 : 24'h0) | (sel_3_3 ? casez_tmp_26 : 24'h0)
+    | (sel_4_3 ? casez_tmp_33 : 24'h0) | (sel_5_3 ? casez_tmp_40 : 24'h0)
+    | (sel_6_3 ? casez_tmp_47 : 24'h0) | (sel_7_3 ? casez_tmp_54 : 24'h0)
+    | (sel_8_3 ? casez_tmp_61 : 24'h0) | (sel_9_3 ? casez_tmp_68 : 24'h0)
+    | (sel_10_3 ? casez_tmp_75 : 24'h0) | (sel_11_3 ? casez_tmp_82 : 24'h0)
+    | (sel_12_3 ? casez_tmp_89 : 24'h0) | (sel_13_3 ? casez_tmp_96 : 24'h0)
+    | (sel_14_3 ? casez_tmp_103 : 24'h0) | (sel_15_3 ? casez_tmp_110 : 24'h0);
   assign io_recs_4_bits =
-    (sel_1_4 ? records_1_bits : 96'h0) | (sel_2_4 ? records_2_bits : 96'h0)
-    | (sel_3_4 ? records_3_bits : 96'h0) | (sel_4_4 ? records_4_bits : 96'h0)
-    | (sel_5_4 ? records_5_bits : 96'h0) | (sel_6_4 ? records_6_bits : 96'h0)
-    | (sel_7_4 ? records_7_bits : 96'h0) | (sel_8_4 ? records_8_bits : 96'h0)
-    | (sel_9_4 ? records_9_bits : 96'h0) | (sel_10_4 ? records_10_bits : 96'h0)
-    | (sel_11_4 ? records_11_bits : 96'h0) | (sel_12_4 ? records_12_bits : 96'h0)
-    | (sel_13_4 ? records_13_bits : 96'h0) | (sel_14_4 ? records_14_bits : 96'h0)
-    | (sel_15_4 ? records_15_bits : 96'h0);
+    (sel_0_4 ? records_0_bits : 72'h0) | (sel_1_4 ? records_1_bits : 72'h0)
+    | (sel_2_4 ? records_2_bits : 72'h0) | (sel_3_4 ? records_3_bits : 72'h0)
+    | (sel_4_4 ? records_4_bits : 72'h0) | (sel_5_4 ? records_5_bits : 72'h0)
+    | (sel_6_4 ? records_6_bits : 72'h0) | (sel_7_4 ? records_7_bits : 72'h0)
+    | (sel_8_4 ? records_8_bits : 72'h0) | (sel_9_4 ? records_9_bits : 72'h0)
+    | (sel_10_4 ? records_10_bits : 72'h0) | (sel_11_4 ? records_11_bits : 72'h0)
+    | (sel_12_4 ? records_12_bits : 72'h0) | (sel_13_4 ? records_13_bits : 72'h0)
+    | (sel_14_4 ? records_14_bits : 72'h0) | (sel_15_4 ? records_15_bits : 72'h0);
   assign io_recs_4_pair =
-    (sel_1_4 ? casez_tmp_12 : 24'h0) | (sel_2_4 ? casez_tmp_19 : 24'h0)
-    | (sel_3_4 ? casez_tmp_26 : 24'h0) | (sel_4_4 ? casez_tmp_33 : 24'h0)
-    | (sel_5_4 ? casez_tmp_40 : 24'h0) | (sel_6_4 ? casez_tmp_47 : 24'h0)
-    | (sel_7_4 ? casez_tmp_54 : 24'h0) | (sel_8_4 ? casez_tmp_61 : 24'h0)
-    | (sel_9_4 ? casez_tmp_68 : 24'h0) | (sel_10_4 ? casez_tmp_75 : 24'h0)
-    | (sel_11_4 ? casez_tmp_82 : 24'h0) | (sel_12_4 ? casez_tmp_89 : 24'h0)
-    | (sel_13_4 ? casez_tmp_96 : 24'h0) | (sel_14_4 ? casez_tmp_103 : 24'h0)
-    | (sel_15_4 ? casez_tmp_110 : 24'h0);
+    (sel_0_4 ? casez_tmp_5 : 24'h0) | (sel_1_4 ? casez_tmp_12 : 24'h0)
+    | (sel_2_4 ? casez_tmp_19 : 24'h0) | (sel_3_4 ? casez_tmp_26 : 24'h0)
+    | (sel_4_4 ? casez_tmp_33 : 24'h0) | (sel_5_4 ? casez_tmp_40 : 24'h0)
+    | (sel_6_4 ? casez_tmp_47 : 24'h0) | (sel_7_4 ? casez_tmp_54 : 24'h0)
+    | (sel_8_4 ? casez_tmp_61 : 24'h0) | (sel_9_4 ? casez_tmp_68 : 24'h0)
+    | (sel_10_4 ? casez_tmp_75 : 24'h0) | (sel_11_4 ? casez_tmp_82 : 24'h0)
+    | (sel_12_4 ? casez_tmp_89 : 24'h0) | (sel_13_4 ? casez_tmp_96 : 24'h0)
+    | (sel_14_4 ? casez_tmp_103 : 24'h0) | (sel_15_4 ? casez_tmp_110 : 24'h0);
+  assign io_recs_5_bits =
+    (sel_0_5 ? records_0_bits : 72'h0) | (sel_1_5 ? records_1_bits : 72'h0)
+    | (sel_2_5 ? records_2_bits : 72'h0) | (sel_3_5 ? records_3_bits : 72'h0)
+    | (sel_4_5 ? records_4_bits : 72'h0) | (sel_5_5 ? records_5_bits : 72'h0)
+    | (sel_6_5 ? records_6_bits : 72'h0) | (sel_7_5 ? records_7_bits : 72'h0)
+    | (sel_8_5 ? records_8_bits : 72'h0) | (sel_9_5 ? records_9_bits : 72'h0)
+    | (sel_10_5 ? records_10_bits : 72'h0) | (sel_11_5 ? records_11_bits : 72'h0)
+    | (sel_12_5 ? records_12_bits : 72'h0) | (sel_13_5 ? records_13_bits : 72'h0)
+    | (sel_14_5 ? records_14_bits : 72'h0) | (sel_15_5 ? records_15_bits : 72'h0);
+  assign io_recs_5_pair =
+    (sel_0_5 ? casez_tmp_5 : 24'h0) | (sel_1_5 ? casez_tmp_12 : 24'h0)
+    | (sel_2_5 ? casez_tmp_19 : 24'h0) | (sel_3_5 ? casez_tmp_26 : 24'h0)
+    | (sel_4_5 ? casez_tmp_33 : 24'h0) | (sel_5_5 ? casez_tmp_40 : 24'h0)
+    | (sel_6_5 ? casez_tmp_47 : 24'h0) | (sel_7_5 ? casez_tmp_54 : 24'h0)
+    | (sel_8_5 ? casez_tmp_61 : 24'h0) | (sel_9_5 ? casez_tmp_68 : 24'h0)
+    | (sel_10_5 ? casez_tmp_75 : 24'h0) | (sel_11_5 ? casez_tmp_82 : 24'h0)
+    | (sel_12_5 ? casez_tmp_89 : 24'h0) | (sel_13_5 ? casez_tmp_96 : 24'h0)
+    | (sel_14_5 ? casez_tmp_103 : 24'h0) | (sel_15_5 ? casez_tmp_110 : 24'h0);
+  assign io_recs_6_bits =
+    (sel_0_6 ? records_0_bits : 72'h0) | (sel_1_6 ? records_1_bits : 72'h0)
+    | (sel_2_6 ? records_2_bits : 72'h0) | (sel_3_6 ? records_3_bits : 72'h0)
+    | (sel_4_6 ? records_4_bits : 72'h0) | (sel_5_6 ? records_5_bits : 72'h0)
+    | (sel_6_6 ? records_6_bits : 72'h0) | (sel_7_6 ? records_7_bits : 72'h0)
+    | (sel_8_6 ? records_8_bits : 72'h0) | (sel_9_6 ? records_9_bits : 72'h0)
+    | (sel_10_6 ? records_10_bits : 72'h0) | (sel_11_6 ? records_11_bits : 72'h0)
+    | (sel_12_6 ? records_12_bits : 72'h0) | (sel_13_6 ? records_13_bits : 72'h0)
+    | (sel_14_6 ? records_14_bits : 72'h0) | (sel_15_6 ? records_15_bits : 72'h0);
+  assign io_recs_6_pair =
+    (sel_0_6 ? casez_tmp_5 : 24'h0) | (sel_1_6 ? casez_tmp_12 : 24'h0)
+    | (sel_2_6 ? casez_tmp_19 : 24'h0) | (sel_3_6 ? casez_tmp_26 : 24'h0)
+    | (sel_4_6 ? casez_tmp_33 : 24'h0) | (sel_5_6 ? casez_tmp_40 : 24'h0)
+    | (sel_6_6 ? casez_tmp_47 : 24'h0) | (sel_7_6 ? casez_tmp_54 : 24'h0)
+    | (sel_8_6 ? casez_tmp_61 : 24'h0) | (sel_9_6 ? casez_tmp_68 : 24'h0)
+    | (sel_10_6 ? casez_tmp_75 : 24'h0) | (sel_11_6 ? casez_tmp_82 : 24'h0)
+    | (sel_12_6 ? casez_tmp_89 : 24'h0) | (sel_13_6 ? casez_tmp_96 : 24'h0)
+    | (sel_14_6 ? casez_tmp_103 : 24'h0) | (sel_15_6 ? casez_tmp_110 : 24'h0);
   assign io_nRecs =
-    {1'h0, {1'h0, _sel_T_192} + {1'h0, _sel_T_195}}
-    + {1'h0, {1'h0, _sel_T_198} + {1'h0, _sel_T_201}}
-    + {1'h0, {1'h0, _sel_T_204} + {1'h0, _sel_T_207}}
-    + {1'h0, {1'h0, _sel_T_210} + {1'h0, _sel_T_213}}
-    + {1'h0, {1'h0, _sel_T_216} + {1'h0, _sel_T_219}}
-    + {1'h0, {1'h0, _sel_T_222} + {1'h0, _sel_T_225}}
-    + {1'h0, {1'h0, _sel_T_228} + {1'h0, _sel_T_231}}
-    + {1'h0, {1'h0, _sel_T_234} + {1'h0, _sel_T_237}};
+    {1'h0, {1'h0, _sel_T_288} + {1'h0, _sel_T_291}}
+    + {1'h0, {1'h0, _sel_T_294} + {1'h0, _sel_T_297}}
+    + {1'h0, {1'h0, _sel_T_300} + {1'h0, _sel_T_303}}
+    + {1'h0, {1'h0, _sel_T_306} + {1'h0, _sel_T_309}}
+    + {1'h0, {1'h0, _sel_T_312} + {1'h0, _sel_T_315}}
+    + {1'h0, {1'h0, _sel_T_318} + {1'h0, _sel_T_321}}
+    + {1'h0, {1'h0, _sel_T_324} + {1'h0, _sel_T_327}}
+    + {1'h0, {1'h0, _sel_T_330} + {1'h0, _sel_T_333}} + {2'h0, hdrFire};
   assign io_nPairs = nTaken;
   assign io_nHits =
     {1'h0,
@@ -13326,6 +13478,7 @@ module ContactCollector_n16_default(
               + {1'h0,
                  {1'h0, take_14 & ~(io_groups_bits_invalid[14]) & casez_tmp_101}
                    + {1'h0, take_15 & ~(io_groups_bits_invalid[15]) & casez_tmp_108}}}};
+  assign io_nHeaders = hdrFire;
 endmodule
 
 // VCS coverage exclude_file
@@ -13401,7 +13554,7 @@ module ContactLineQueue_d8_default(
   assign io_deq_bits_data = _ram_ext_R0_data[575:64];
 endmodule
 
-module ContactPacker_w32_derived_r5_default(
+module ContactPacker_w32_derivedmasked_r7_default(
   input          clock,
                  reset,
                  io_start,
@@ -13410,16 +13563,20 @@ module ContactPacker_w32_derived_r5_default(
   input  [63:0]  io_base,
                  io_capacity,
   output [2:0]   io_room,
-  input  [95:0]  io_recs_0_bits,
+  input  [71:0]  io_recs_0_bits,
   input  [23:0]  io_recs_0_pair,
-  input  [95:0]  io_recs_1_bits,
+  input  [71:0]  io_recs_1_bits,
   input  [23:0]  io_recs_1_pair,
-  input  [95:0]  io_recs_2_bits,
+  input  [71:0]  io_recs_2_bits,
   input  [23:0]  io_recs_2_pair,
-  input  [95:0]  io_recs_3_bits,
+  input  [71:0]  io_recs_3_bits,
   input  [23:0]  io_recs_3_pair,
-  input  [95:0]  io_recs_4_bits,
+  input  [71:0]  io_recs_4_bits,
   input  [23:0]  io_recs_4_pair,
+  input  [71:0]  io_recs_5_bits,
+  input  [23:0]  io_recs_5_pair,
+  input  [71:0]  io_recs_6_bits,
+  input  [23:0]  io_recs_6_pair,
   input  [2:0]   io_nRecs,
   input          io_flush,
   output         io_idle,
@@ -13431,15 +13588,17 @@ module ContactPacker_w32_derived_r5_default(
 
   wire        _q_io_enq_ready;
   reg  [2:0]  fill;
-  reg  [95:0] held_0;
-  reg  [95:0] held_1;
-  reg  [95:0] held_2;
-  reg  [95:0] held_3;
+  reg  [71:0] held_0;
+  reg  [71:0] held_1;
+  reg  [71:0] held_2;
+  reg  [71:0] held_3;
+  reg  [71:0] held_4;
+  reg  [71:0] held_5;
   reg  [24:0] count;
   reg  [24:0] lineNo;
   reg  [24:0] heldLine;
   reg  [24:0] heldRn;
-  wire [2:0]  io_room_0 = _q_io_enq_ready ? (io_dense ? 3'h5 - fill : 3'h5) : 3'h0;
+  wire [2:0]  io_room_0 = _q_io_enq_ready ? (io_dense ? 3'h7 - fill : 3'h7) : 3'h0;
   reg  [4:0]  casez_tmp;
   always @(*) begin
     casez (io_recs_0_pair[3:0])
@@ -13454,9 +13613,9 @@ module ContactPacker_w32_derived_r5_default(
       4'b0100:
         casez_tmp = 5'h0;
       4'b0101:
-        casez_tmp = 5'h1;
+        casez_tmp = 5'h0;
       4'b0110:
-        casez_tmp = 5'h1;
+        casez_tmp = 5'h0;
       4'b0111:
         casez_tmp = 5'h1;
       4'b1000:
@@ -13464,25 +13623,27 @@ module ContactPacker_w32_derived_r5_default(
       4'b1001:
         casez_tmp = 5'h1;
       4'b1010:
-        casez_tmp = 5'h2;
+        casez_tmp = 5'h1;
       4'b1011:
-        casez_tmp = 5'h2;
+        casez_tmp = 5'h1;
       4'b1100:
-        casez_tmp = 5'h2;
+        casez_tmp = 5'h1;
       4'b1101:
-        casez_tmp = 5'h2;
+        casez_tmp = 5'h1;
       4'b1110:
         casez_tmp = 5'h2;
       default:
-        casez_tmp = 5'h3;
+        casez_tmp = 5'h2;
     endcase
   end // always @(*)
   wire [24:0] _lineOf_T_4 =
-    io_dense ? {1'h0, {2'h0, io_recs_0_pair[23:4], 2'h0} + {19'h0, casez_tmp}} : lineNo;
+    io_dense
+      ? {2'h0, {1'h0, {2'h0, io_recs_0_pair[23:4]} * 22'h3} + {18'h0, casez_tmp}}
+      : lineNo;
   wire [24:0] _rnOf_T_2 = io_dense ? {1'h0, io_recs_0_pair} : count;
   wire [24:0] rnOf = (|fill) ? heldRn : _rnOf_T_2;
   wire [3:0]  total = {1'h0, fill} + {1'h0, io_nRecs};
-  reg  [95:0] casez_tmp_0;
+  reg  [71:0] casez_tmp_0;
   always @(*) begin
     casez (3'h0 - fill)
       3'b000:
@@ -13496,16 +13657,16 @@ module ContactPacker_w32_derived_r5_default(
       3'b100:
         casez_tmp_0 = io_recs_4_bits;
       3'b101:
-        casez_tmp_0 = io_recs_0_bits;
+        casez_tmp_0 = io_recs_5_bits;
       3'b110:
-        casez_tmp_0 = io_recs_0_bits;
+        casez_tmp_0 = io_recs_6_bits;
       default:
         casez_tmp_0 = io_recs_0_bits;
     endcase
   end // always @(*)
   wire [63:0] _GEN = {39'h0, rnOf};
   wire        _slots_T_4 = (|total) & _GEN < io_capacity;
-  reg  [95:0] casez_tmp_1;
+  reg  [71:0] casez_tmp_1;
   always @(*) begin
     casez (3'h1 - fill)
       3'b000:
@@ -13519,16 +13680,16 @@ module ContactPacker_w32_derived_r5_default(
       3'b100:
         casez_tmp_1 = io_recs_4_bits;
       3'b101:
-        casez_tmp_1 = io_recs_0_bits;
+        casez_tmp_1 = io_recs_5_bits;
       3'b110:
-        casez_tmp_1 = io_recs_0_bits;
+        casez_tmp_1 = io_recs_6_bits;
       default:
         casez_tmp_1 = io_recs_0_bits;
     endcase
   end // always @(*)
   wire        _slots_T_10 = (|(total[3:1])) & {39'h0, rnOf + 25'h1} < io_capacity;
   wire        _slots_v_T_8 = fill > 3'h2;
-  reg  [95:0] casez_tmp_2;
+  reg  [71:0] casez_tmp_2;
   always @(*) begin
     casez (3'h2 - fill)
       3'b000:
@@ -13542,16 +13703,16 @@ module ContactPacker_w32_derived_r5_default(
       3'b100:
         casez_tmp_2 = io_recs_4_bits;
       3'b101:
-        casez_tmp_2 = io_recs_0_bits;
+        casez_tmp_2 = io_recs_5_bits;
       3'b110:
-        casez_tmp_2 = io_recs_0_bits;
+        casez_tmp_2 = io_recs_6_bits;
       default:
         casez_tmp_2 = io_recs_0_bits;
     endcase
   end // always @(*)
   wire        _slots_T_12 = total > 4'h2;
   wire        _slots_T_16 = _slots_T_12 & {39'h0, rnOf + 25'h2} < io_capacity;
-  reg  [95:0] casez_tmp_3;
+  reg  [71:0] casez_tmp_3;
   always @(*) begin
     casez (3'h3 - fill)
       3'b000:
@@ -13565,15 +13726,16 @@ module ContactPacker_w32_derived_r5_default(
       3'b100:
         casez_tmp_3 = io_recs_4_bits;
       3'b101:
-        casez_tmp_3 = io_recs_0_bits;
+        casez_tmp_3 = io_recs_5_bits;
       3'b110:
-        casez_tmp_3 = io_recs_0_bits;
+        casez_tmp_3 = io_recs_6_bits;
       default:
         casez_tmp_3 = io_recs_0_bits;
     endcase
   end // always @(*)
   wire        _slots_T_22 = (|(total[3:2])) & {39'h0, rnOf + 25'h3} < io_capacity;
-  reg  [95:0] casez_tmp_4;
+  wire        _slots_v_T_16 = fill > 3'h4;
+  reg  [71:0] casez_tmp_4;
   always @(*) begin
     casez (3'h4 - fill)
       3'b000:
@@ -13587,43 +13749,42 @@ module ContactPacker_w32_derived_r5_default(
       3'b100:
         casez_tmp_4 = io_recs_4_bits;
       3'b101:
-        casez_tmp_4 = io_recs_0_bits;
+        casez_tmp_4 = io_recs_5_bits;
       3'b110:
-        casez_tmp_4 = io_recs_0_bits;
+        casez_tmp_4 = io_recs_6_bits;
       default:
         casez_tmp_4 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_5;
-  always @(*) begin
-    casez (io_nRecs - 3'h1)
-      3'b000:
-        casez_tmp_5 = io_recs_0_pair;
-      3'b001:
-        casez_tmp_5 = io_recs_1_pair;
-      3'b010:
-        casez_tmp_5 = io_recs_2_pair;
-      3'b011:
-        casez_tmp_5 = io_recs_3_pair;
-      3'b100:
-        casez_tmp_5 = io_recs_4_pair;
-      3'b101:
-        casez_tmp_5 = io_recs_0_pair;
-      3'b110:
-        casez_tmp_5 = io_recs_0_pair;
-      default:
-        casez_tmp_5 = io_recs_0_pair;
-    endcase
-  end // always @(*)
-  wire        emit =
-    _q_io_enq_ready
-    & (total > 4'h4 | io_dense & (|io_nRecs)
-       & ((&(casez_tmp_5[3:0])) | casez_tmp_5 == io_numPairs - 24'h1) & (|total)
-       | io_flush & (|total));
-  wire        _q_io_enq_valid_T_1 = emit & _GEN < io_capacity;
-  reg  [95:0] casez_tmp_6;
+  wire        _slots_T_24 = total > 4'h4;
+  wire        _slots_T_28 = _slots_T_24 & {39'h0, rnOf + 25'h4} < io_capacity;
+  wire        _slots_v_T_20 = fill > 3'h5;
+  reg  [71:0] casez_tmp_5;
   always @(*) begin
     casez (3'h5 - fill)
+      3'b000:
+        casez_tmp_5 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_5 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_5 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_5 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_5 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_5 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_5 = io_recs_6_bits;
+      default:
+        casez_tmp_5 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  wire        _slots_T_30 = total > 4'h5;
+  wire        _slots_T_34 = _slots_T_30 & {39'h0, rnOf + 25'h5} < io_capacity;
+  reg  [71:0] casez_tmp_6;
+  always @(*) begin
+    casez (3'h6 - fill)
       3'b000:
         casez_tmp_6 = io_recs_0_bits;
       3'b001:
@@ -13635,35 +13796,41 @@ module ContactPacker_w32_derived_r5_default(
       3'b100:
         casez_tmp_6 = io_recs_4_bits;
       3'b101:
-        casez_tmp_6 = io_recs_0_bits;
+        casez_tmp_6 = io_recs_5_bits;
       3'b110:
-        casez_tmp_6 = io_recs_0_bits;
+        casez_tmp_6 = io_recs_6_bits;
       default:
         casez_tmp_6 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [95:0] casez_tmp_7;
+  reg  [23:0] casez_tmp_7;
   always @(*) begin
-    casez (3'h6 - fill)
+    casez (io_nRecs - 3'h1)
       3'b000:
-        casez_tmp_7 = io_recs_0_bits;
+        casez_tmp_7 = io_recs_0_pair;
       3'b001:
-        casez_tmp_7 = io_recs_1_bits;
+        casez_tmp_7 = io_recs_1_pair;
       3'b010:
-        casez_tmp_7 = io_recs_2_bits;
+        casez_tmp_7 = io_recs_2_pair;
       3'b011:
-        casez_tmp_7 = io_recs_3_bits;
+        casez_tmp_7 = io_recs_3_pair;
       3'b100:
-        casez_tmp_7 = io_recs_4_bits;
+        casez_tmp_7 = io_recs_4_pair;
       3'b101:
-        casez_tmp_7 = io_recs_0_bits;
+        casez_tmp_7 = io_recs_5_pair;
       3'b110:
-        casez_tmp_7 = io_recs_0_bits;
+        casez_tmp_7 = io_recs_6_pair;
       default:
-        casez_tmp_7 = io_recs_0_bits;
+        casez_tmp_7 = io_recs_0_pair;
     endcase
   end // always @(*)
-  reg  [95:0] casez_tmp_8;
+  wire        emit =
+    _q_io_enq_ready
+    & (total > 4'h6 | io_dense & (|io_nRecs)
+       & ((&(casez_tmp_7[3:0])) | casez_tmp_7 == io_numPairs - 24'h1) & (|total)
+       | io_flush & (|total));
+  wire        _q_io_enq_valid_T_1 = emit & _GEN < io_capacity;
+  reg  [71:0] casez_tmp_8;
   always @(*) begin
     casez (3'h7 - fill)
       3'b000:
@@ -13677,14 +13844,14 @@ module ContactPacker_w32_derived_r5_default(
       3'b100:
         casez_tmp_8 = io_recs_4_bits;
       3'b101:
-        casez_tmp_8 = io_recs_0_bits;
+        casez_tmp_8 = io_recs_5_bits;
       3'b110:
-        casez_tmp_8 = io_recs_0_bits;
+        casez_tmp_8 = io_recs_6_bits;
       default:
         casez_tmp_8 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [95:0] casez_tmp_9;
+  reg  [71:0] casez_tmp_9;
   always @(*) begin
     casez (3'h0 - fill)
       3'b000:
@@ -13698,11 +13865,95 @@ module ContactPacker_w32_derived_r5_default(
       3'b100:
         casez_tmp_9 = io_recs_4_bits;
       3'b101:
-        casez_tmp_9 = io_recs_0_bits;
+        casez_tmp_9 = io_recs_5_bits;
       3'b110:
-        casez_tmp_9 = io_recs_0_bits;
+        casez_tmp_9 = io_recs_6_bits;
       default:
         casez_tmp_9 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_10;
+  always @(*) begin
+    casez (3'h1 - fill)
+      3'b000:
+        casez_tmp_10 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_10 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_10 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_10 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_10 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_10 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_10 = io_recs_6_bits;
+      default:
+        casez_tmp_10 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_11;
+  always @(*) begin
+    casez (3'h2 - fill)
+      3'b000:
+        casez_tmp_11 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_11 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_11 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_11 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_11 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_11 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_11 = io_recs_6_bits;
+      default:
+        casez_tmp_11 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_12;
+  always @(*) begin
+    casez (3'h3 - fill)
+      3'b000:
+        casez_tmp_12 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_12 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_12 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_12 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_12 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_12 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_12 = io_recs_6_bits;
+      default:
+        casez_tmp_12 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_13;
+  always @(*) begin
+    casez (3'h4 - fill)
+      3'b000:
+        casez_tmp_13 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_13 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_13 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_13 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_13 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_13 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_13 = io_recs_6_bits;
+      default:
+        casez_tmp_13 = io_recs_0_bits;
     endcase
   end // always @(*)
   `ifndef SYNTHESIS
@@ -13721,7 +13972,7 @@ module ContactPacker_w32_derived_r5_default(
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [3:0]  carry = total > 4'h5 ? total - 4'h5 : 4'h0;
+  wire [3:0]  carry = total[3] ? total - 4'h7 : 4'h0;
   always @(posedge clock) begin
     if (reset) begin
       fill <= 3'h0;
@@ -13747,15 +13998,19 @@ module ContactPacker_w32_derived_r5_default(
     end
     if (emit) begin
       if (|carry)
-        held_0 <= casez_tmp_6;
+        held_0 <= casez_tmp_8;
       if (|(carry[3:1]))
-        held_1 <= casez_tmp_7;
+        held_1 <= casez_tmp_9;
       if (carry > 4'h2)
-        held_2 <= casez_tmp_8;
+        held_2 <= casez_tmp_10;
       if (|(carry[3:2]))
-        held_3 <= casez_tmp_9;
+        held_3 <= casez_tmp_11;
+      if (carry > 4'h4)
+        held_4 <= casez_tmp_12;
+      if (carry > 4'h5)
+        held_5 <= casez_tmp_13;
       heldLine <= lineNo + 25'h1;
-      heldRn <= rnOf + 25'h5;
+      heldRn <= rnOf + 25'h7;
     end
     else begin
       if (|total) begin
@@ -13764,7 +14019,7 @@ module ContactPacker_w32_derived_r5_default(
             held_0 <= casez_tmp_0;
         end
         else
-          held_0 <= 96'h0;
+          held_0 <= 72'h0;
       end
       if (|(total[3:1])) begin
         if (_slots_T_10) begin
@@ -13772,7 +14027,7 @@ module ContactPacker_w32_derived_r5_default(
             held_1 <= casez_tmp_1;
         end
         else
-          held_1 <= 96'h0;
+          held_1 <= 72'h0;
       end
       if (_slots_T_12) begin
         if (_slots_T_16) begin
@@ -13780,7 +14035,7 @@ module ContactPacker_w32_derived_r5_default(
             held_2 <= casez_tmp_2;
         end
         else
-          held_2 <= 96'h0;
+          held_2 <= 72'h0;
       end
       if (|(total[3:2])) begin
         if (_slots_T_22) begin
@@ -13790,7 +14045,23 @@ module ContactPacker_w32_derived_r5_default(
             held_3 <= casez_tmp_3;
         end
         else
-          held_3 <= 96'h0;
+          held_3 <= 72'h0;
+      end
+      if (_slots_T_24) begin
+        if (_slots_T_28) begin
+          if (~_slots_v_T_16)
+            held_4 <= casez_tmp_4;
+        end
+        else
+          held_4 <= 72'h0;
+      end
+      if (_slots_T_30) begin
+        if (_slots_T_34) begin
+          if (~_slots_v_T_20)
+            held_5 <= casez_tmp_5;
+        end
+        else
+          held_5 <= 72'h0;
       end
       if (~(|fill)) begin
         heldLine <= _lineOf_T_4;
@@ -13805,14 +14076,16 @@ module ContactPacker_w32_derived_r5_default(
     .io_enq_valid     (_q_io_enq_valid_T_1),
     .io_enq_bits_addr (io_base + {39'h0, (|fill) ? heldLine : _lineOf_T_4}),
     .io_enq_bits_data
-      ({32'h0,
-        ~(total > 4'h4 & {39'h0, rnOf + 25'h4} < io_capacity) | fill > 3'h4
-          ? 96'h0
-          : casez_tmp_4,
-        _slots_T_22 ? (fill[2] ? held_3 : casez_tmp_3) : 96'h0,
-        _slots_T_16 ? (_slots_v_T_8 ? held_2 : casez_tmp_2) : 96'h0,
-        _slots_T_10 ? ((|(fill[2:1])) ? held_1 : casez_tmp_1) : 96'h0,
-        _slots_T_4 ? ((|fill) ? held_0 : casez_tmp_0) : 96'h0}),
+      ({8'h0,
+        ~(total > 4'h6 & {39'h0, rnOf + 25'h6} < io_capacity) | (&fill)
+          ? 72'h0
+          : casez_tmp_6,
+        _slots_T_34 ? (_slots_v_T_20 ? held_5 : casez_tmp_5) : 72'h0,
+        _slots_T_28 ? (_slots_v_T_16 ? held_4 : casez_tmp_4) : 72'h0,
+        _slots_T_22 ? (fill[2] ? held_3 : casez_tmp_3) : 72'h0,
+        _slots_T_16 ? (_slots_v_T_8 ? held_2 : casez_tmp_2) : 72'h0,
+        _slots_T_10 ? ((|(fill[2:1])) ? held_1 : casez_tmp_1) : 72'h0,
+        _slots_T_4 ? ((|fill) ? held_0 : casez_tmp_0) : 72'h0}),
     .io_deq_ready     (io_lines_ready),
     .io_deq_valid     (io_lines_valid),
     .io_deq_bits_addr (io_lines_bits_addr),
@@ -14903,25 +15176,31 @@ module Puc_default(
   wire [63:0]  _pack_io_lines_bits_addr;
   wire [511:0] _pack_io_lines_bits_data;
   wire         _coll_io_groups_ready;
-  wire [95:0]  _coll_io_recs_0_bits;
+  wire [71:0]  _coll_io_recs_0_bits;
   wire [23:0]  _coll_io_recs_0_pair;
-  wire [95:0]  _coll_io_recs_1_bits;
+  wire [71:0]  _coll_io_recs_1_bits;
   wire [23:0]  _coll_io_recs_1_pair;
-  wire [95:0]  _coll_io_recs_2_bits;
+  wire [71:0]  _coll_io_recs_2_bits;
   wire [23:0]  _coll_io_recs_2_pair;
-  wire [95:0]  _coll_io_recs_3_bits;
+  wire [71:0]  _coll_io_recs_3_bits;
   wire [23:0]  _coll_io_recs_3_pair;
-  wire [95:0]  _coll_io_recs_4_bits;
+  wire [71:0]  _coll_io_recs_4_bits;
   wire [23:0]  _coll_io_recs_4_pair;
+  wire [71:0]  _coll_io_recs_5_bits;
+  wire [23:0]  _coll_io_recs_5_pair;
+  wire [71:0]  _coll_io_recs_6_bits;
+  wire [23:0]  _coll_io_recs_6_pair;
   wire [2:0]   _coll_io_nRecs;
   wire [4:0]   _coll_io_nPairs;
   wire [4:0]   _coll_io_nHits;
   wire [4:0]   _coll_io_nNonFinite;
+  wire         _coll_io_nHeaders;
   wire         _groups_io_enq_ready;
   wire         _groups_io_deq_valid;
   wire [3:0]   _groups_io_deq_bits_base;
   wire [4:0]   _groups_io_deq_bits_cnt;
   wire [15:0]  _groups_io_deq_bits_invalid;
+  wire [23:0]  _groups_io_deq_bits_first;
   wire         _disp_io_pairs_ready;
   wire [9:0]   _disp_io_raddr_0_0;
   wire [9:0]   _disp_io_raddr_0_1;
@@ -15136,6 +15415,7 @@ module Puc_default(
   reg  [4:0]   errors;
   reg  [31:0]  processed;
   reg  [31:0]  found;
+  reg  [31:0]  headers;
   reg  [31:0]  nonFinite;
   reg  [31:0]  firstBad;
   reg  [31:0]  cycTotal;
@@ -15162,7 +15442,8 @@ module Puc_default(
   wire         runDone =
     processed == {8'h0, run_4[23:0]} & ~(|_rd_io_outstanding) & _rd_io_loaded;
   wire         drainDone = _pack_io_idle & ~_pack_io_lines_valid & ~(|_wr_io_outstanding);
-  wire [63:0]  totalRecords = run_8[0] ? {40'h0, run_4[23:0]} : {32'h0, found};
+  wire [63:0]  totalRecords =
+    run_8[0] ? {40'h0, run_4[23:0]} : {31'h0, {1'h0, headers} + {1'h0, found}};
   wire         _capErr_T = totalRecords > run_6;
   wire [1:0]   _GEN_2 = {errors[4], errors[1]};
   wire [3:0]   _GEN_3 = errors[3:0] | {|nonFinite, 3'h0};
@@ -15244,6 +15525,7 @@ module Puc_default(
       errors <= 5'h0;
       processed <= 32'h0;
       found <= 32'h0;
+      headers <= 32'h0;
       nonFinite <= 32'h0;
       firstBad <= 32'hFFFFFFFF;
       cycTotal <= 32'h0;
@@ -15286,6 +15568,7 @@ module Puc_default(
         errors <= {badConfig, 2'h0, tooMany, 1'h0};
         processed <= 32'h0;
         found <= 32'h0;
+        headers <= 32'h0;
         nonFinite <= 32'h0;
         firstBad <= 32'hFFFFFFFF;
         cycLoad <= 32'h0;
@@ -15296,6 +15579,7 @@ module Puc_default(
       else begin
         processed <= processed + {27'h0, _coll_io_nPairs};
         found <= found + {27'h0, _coll_io_nHits};
+        headers <= headers + {31'h0, _coll_io_nHeaders};
         nonFinite <= nonFinite + {27'h0, _coll_io_nNonFinite};
         if (_groups_io_enq_ready & _disp_io_groups_valid & (|_disp_io_groups_bits_invalid)
             & _GEN_5 < firstBad)
@@ -15924,7 +16208,8 @@ module Puc_default(
     .io_deq_valid        (_groups_io_deq_valid),
     .io_deq_bits_base    (_groups_io_deq_bits_base),
     .io_deq_bits_cnt     (_groups_io_deq_bits_cnt),
-    .io_deq_bits_invalid (_groups_io_deq_bits_invalid)
+    .io_deq_bits_invalid (_groups_io_deq_bits_invalid),
+    .io_deq_bits_first   (_groups_io_deq_bits_first)
   );
   ContactCollector_n16_default coll (
     .clock                     (clock),
@@ -15935,6 +16220,7 @@ module Puc_default(
     .io_groups_bits_base       (_groups_io_deq_bits_base),
     .io_groups_bits_cnt        (_groups_io_deq_bits_cnt),
     .io_groups_bits_invalid    (_groups_io_deq_bits_invalid),
+    .io_groups_bits_first      (_groups_io_deq_bits_first),
     .io_scpu_0_ready           (io_scpuOut_0_ready),
     .io_scpu_0_valid           (io_scpuOut_0_valid),
     .io_scpu_0_bits_hit        (io_scpuOut_0_bits_hit),
@@ -16090,12 +16376,17 @@ module Puc_default(
     .io_recs_3_pair            (_coll_io_recs_3_pair),
     .io_recs_4_bits            (_coll_io_recs_4_bits),
     .io_recs_4_pair            (_coll_io_recs_4_pair),
+    .io_recs_5_bits            (_coll_io_recs_5_bits),
+    .io_recs_5_pair            (_coll_io_recs_5_pair),
+    .io_recs_6_bits            (_coll_io_recs_6_bits),
+    .io_recs_6_pair            (_coll_io_recs_6_pair),
     .io_nRecs                  (_coll_io_nRecs),
     .io_nPairs                 (_coll_io_nPairs),
     .io_nHits                  (_coll_io_nHits),
-    .io_nNonFinite             (_coll_io_nNonFinite)
+    .io_nNonFinite             (_coll_io_nNonFinite),
+    .io_nHeaders               (_coll_io_nHeaders)
   );
-  ContactPacker_w32_derived_r5_default pack (
+  ContactPacker_w32_derivedmasked_r7_default pack (
     .clock              (clock),
     .reset              (reset),
     .io_start           (engineStart),
@@ -16114,6 +16405,10 @@ module Puc_default(
     .io_recs_3_pair     (_coll_io_recs_3_pair),
     .io_recs_4_bits     (_coll_io_recs_4_bits),
     .io_recs_4_pair     (_coll_io_recs_4_pair),
+    .io_recs_5_bits     (_coll_io_recs_5_bits),
+    .io_recs_5_pair     (_coll_io_recs_5_pair),
+    .io_recs_6_bits     (_coll_io_recs_6_bits),
+    .io_recs_6_pair     (_coll_io_recs_6_pair),
     .io_nRecs           (_coll_io_nRecs),
     .io_flush           (_pack_io_flush_T),
     .io_idle            (_pack_io_idle),

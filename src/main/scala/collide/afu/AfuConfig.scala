@@ -17,7 +17,8 @@ import collide.scpu.ScpuConfig
   * @param ramPorts             sphere table read-port strategy
   * @param denseByDefault       reset value of MODE bit 0 (false: compact records)
   * @param records              contact record layout; None = the best one offered for the SCPU
-  *                             (derived where the host can rebuild contacts exactly, else full)
+  *                             (AfuConfig.bestLayout: derived where the host can rebuild contacts
+  *                             exactly, else full; masked where that fits more a line)
   */
 final case class AfuConfig(
     name: String = "default",
@@ -44,8 +45,7 @@ final case class AfuConfig(
 
   for (r <- records; why <- r.refusal(scpu))
     require(false, s"AfuConfig $name: record layout ${r.name} is not offered for SCPU ${scpu.name}: $why")
-  /** The record layout in effect. Derived moves 12 bytes a binary32 contact instead of 32
-    * (bench/results/links), so it is the default wherever it is exact. */
+  /** The record layout in effect (bestLayout unless asked for). */
   val recordLayout: RecordLayout = records.getOrElse(AfuConfig.bestLayout(scpu))
 
   val linkWidth: Int = scpu.linkWidth
@@ -79,9 +79,18 @@ final case class AfuConfig(
 }
 
 object AfuConfig {
-  /** Derived where the SCPU's arithmetic lets the host rebuild contacts exactly, else full. */
-  def bestLayout(scpu: ScpuConfig): RecordLayout =
-    if (RecordLayout.Derived.refusal(scpu).isEmpty) RecordLayout.Derived else RecordLayout.Full
+  /** The layout that moves the fewest lines: derived values where the SCPU's arithmetic lets
+    * the host rebuild contacts exactly, else full; masked when that puts more records in a
+    * line than the indexed form (16- and 32-bit fields; at 64 bits both hold the same and the
+    * headers would be extra). bench/results/masked measures it: fp32 derived-masked writes
+    * 567 lines for the diamond at hMax 10 where derived writes 720. */
+  def bestLayout(scpu: ScpuConfig): RecordLayout = {
+    val (indexed, masked) =
+      if (RecordLayout.Derived.refusal(scpu).isEmpty) (RecordLayout.Derived, RecordLayout.DerivedMasked)
+      else (RecordLayout.Full, RecordLayout.FullMasked)
+    if (BufferLayout(scpu.linkWidth, masked).recordsPerLine > BufferLayout(scpu.linkWidth, indexed).recordsPerLine) masked
+    else indexed
+  }
 
   val default: AfuConfig = AfuConfig()
   /** The paper's design point in our terms: 16 units, binary32, whole contacts on the link. */

@@ -16,7 +16,7 @@ object ContactRecord {
   def pack(lay: BufferLayout, vals: Seq[UInt], pair: UInt, flags: UInt): UInt =
     if (lay.masked) Cat(flags, Cat(vals.reverse)) else Cat(flags, pair, Cat(vals.reverse))
   def header(lay: BufferLayout, first: UInt, mask: UInt): UInt =
-    (Cat(mask.pad(MaskHeader.MASK_BITS), first.pad(MaskHeader.PAIR_BITS)) << MaskHeader.PAIR_SHIFT).pad(lay.recordBits)
+    (Cat(0.U(MaskHeader.MASK_BITS.W) | mask, first.pad(MaskHeader.PAIR_BITS)) << MaskHeader.PAIR_SHIFT).pad(lay.recordBits) // (a Bool mask has no pad)
 }
 
 /** Takes the SCPUs' results back group by group, in dispatch order, and turns them into
@@ -94,7 +94,7 @@ class ContactCollector(p: PucParams) extends Module {
   }
   val records = VecInit.tabulate(L)(recordOf)
   val header  = Wire(new ContactRecord(p.layout))
-  header.bits := ContactRecord.header(p.layout, g.first, Cat((0 until L).reverse.map(k => k.U < g.cnt && hit(k))))
+  header.bits := ContactRecord.header(p.layout, g.first, VecInit.tabulate(L)(k => k.U < g.cnt && hit(k)).asUInt)
   header.pair := g.first
   val nTaken  = PopCount(take)
   val nRecs   = PopCount((0 until L).map(k => take(k) && want(k))) +& hdrFire.asUInt

@@ -39,12 +39,12 @@ class AfuSpec extends AnyFlatSpec with ChiselScalatestTester {
   }
 
   it should "equal ScpuModel with one fp32 SCPU (derived records)" in {
-    endToEnd(AfuConfig.default.copy(scpus = 1, maxSpheres = 512), Seeds.cases(12))
+    endToEnd(AfuConfig.default.copy(scpus = 1, maxSpheres = 512, records = Some(RecordLayout.Derived)), Seeds.cases(12))
   }
   it should "equal ScpuModel with one fp32 SCPU (full records)" in {
     endToEnd(AfuConfig.paper.copy(scpus = 1, maxSpheres = 512), Seeds.cases(8))
   }
-  it should "equal ScpuModel with two fp16 SCPUs on a binary16 link (derived records)" in {
+  it should "equal ScpuModel with two fp16 SCPUs on a binary16 link (derived-masked records: a header fills its slot)" in {
     endToEnd(AfuConfig.fp16.copy(scpus = 2, maxSpheres = 512), Seeds.cases(12))
   }
   it should "equal ScpuModel with two bf16 SCPUs on a bfloat16 link (full records)" in {

@@ -51,10 +51,13 @@ class GenerateSpec extends AnyFlatSpec {
     assert(e.isLeft && e.swap.toOption.get.contains("does not hold every fp32 value"), e.toString)
   }
 
-  it should "default to derived records where the host rebuilds them exactly and refuse them elsewhere, saying why" in {
-    assert(AfuConfig.default.recordLayout == RecordLayout.Derived)
+  it should "default to derived records where the host rebuilds them exactly, masked where that fits more a line, and refuse derived elsewhere, saying why" in {
+    assert(AfuConfig.default.recordLayout == RecordLayout.DerivedMasked)    // 7 a line, not 5
+    assert(AfuConfig.fp16.recordLayout == RecordLayout.DerivedMasked)       // 12, not 8
+    assert(AfuConfig.fp64.recordLayout == RecordLayout.Derived)             // 3 either way
     assert(AfuConfig.paper.recordLayout == RecordLayout.Full)
-    assert(cfg("--scpu", "fp32:rm=rtz").toOption.get.recordLayout == RecordLayout.Full)
+    assert(cfg("--scpu", "fp32:rm=rtz").toOption.get.recordLayout == RecordLayout.Full)          // 2 either way
+    assert(cfg("--scpu", "fp16:rm=rtz").toOption.get.recordLayout == RecordLayout.FullMasked)    // 4, not 3
     assert(cfg("--records", "full").toOption.get.layout.recordBytes == 32)
     def refused(args: String*)(why: String) = {
       val e = cfg(args: _*)
