@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "cli/output_file.hpp"
 #include "cli/pairs_csv.hpp"
 #include "collide/backend_factory.hpp"
 #include "collide/contact_flags.hpp"
@@ -36,6 +37,8 @@ int runPairs(const PairsOptions& o) {
       backend = makeBackend(req);
     }
 
+    // Opened first, so that a bad path fails before the work; replaced only when complete.
+    OutputFile out(o.out, OutputFile::Dash::IsStdout);
     SphereTable spheres;
     PairList pairs;
     if (o.in == "-") {
@@ -50,14 +53,8 @@ int runPairs(const PairsOptions& o) {
     backend->collide(spheres, pairs, contacts);
     if (req.name != "rtl") setCpuRecordFlags(spheres, pairs, contacts.format, contacts);
 
-    if (o.out == "-") {
-      writeContactsCsv(std::cout, contacts);
-    } else {
-      std::ofstream out(o.out);
-      if (!out) throw std::runtime_error(o.out + ": cannot write");
-      writeContactsCsv(out, contacts);
-      if (!out) throw std::runtime_error(o.out + ": write failed");
-    }
+    writeContactsCsv(out.stream(), contacts);
+    out.commit();
     std::cerr << "collide pairs: " << pairs.size() << " pairs, " << contacts.hits() << " contacts, backend "
               << backend->name() << " (" << toString(contacts.format) << ")";
     if (auto* rtl = dynamic_cast<RtlBackend*>(backend.get())) {
