@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "util/echo.hpp"
+
 namespace collide::cli {
 
 namespace {
@@ -33,11 +35,11 @@ std::vector<std::string> split(const std::string& s) {
 // One field as a value of `format`; false with `why` set if it is not a whole number.
 bool parseField(const std::string& f, LinkFormat format, double& v, std::string& why) {
   if (f.empty()) { why = "empty field"; return false; }
-  if (!format::parseInto(f.c_str(), numberFormat(format), v)) { why = "not a number: '" + f + "'"; return false; }
+  if (!format::parseInto(f.c_str(), numberFormat(format), v)) { why = "not a number: '" + util::clip(f) + "'"; return false; }
   // Underflow (a subnormal or zero) is a valid input; overflow of a finite literal is not.
   const bool literalInf = f.find_first_of("iI") != std::string::npos;
   if (std::isinf(v) && !literalInf) {
-    why = "'" + f + "' overflows " + toString(format);
+    why = "'" + util::clip(f) + "' overflows " + toString(format);
     return false;
   }
   return true;
@@ -59,7 +61,7 @@ void readPairsCsv(std::istream& in, const std::string& name, LinkFormat format, 
     const std::string s = trim(raw);
     if (s.empty()) continue;  // blank lines carry no pair
     if (!header) {
-      if (s != kInHeader) fail(line, "expected the header '" + std::string(kInHeader) + "', got '" + s + "'");
+      if (s != kInHeader) fail(line, "expected the header '" + std::string(kInHeader) + "', got '" + util::clip(s) + "'");
       header = true;
       continue;
     }

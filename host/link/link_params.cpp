@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "util/echo.hpp"
+
 namespace collide::link {
 
 std::vector<ChannelParams> LinkParams::channels() const {
@@ -79,7 +81,7 @@ void LinkParams::validate() const {
 
 namespace {
 double number(const nlohmann::json& v, const std::string& path) {
-  if (!v.is_number()) throw std::invalid_argument(path + ": expected a number, got " + v.dump());
+  if (!v.is_number()) throw std::invalid_argument(path + ": expected a number, got " + util::echoJson(v));
   return v.get<double>();
 }
 void range(const nlohmann::json& v, const std::string& path, double& lo, double& hi) {
@@ -89,19 +91,19 @@ void range(const nlohmann::json& v, const std::string& path, double& lo, double&
     lo = v[0].get<double>();
     hi = v[1].get<double>();
   } else {
-    throw std::invalid_argument(path + ": expected a number or [min, max], got " + v.dump());
+    throw std::invalid_argument(path + ": expected a number or [min, max], got " + util::echoJson(v));
   }
   if (!(lo >= 0) || !(hi >= lo))
-    throw std::invalid_argument(path + ": expected 0 <= min <= max, got " + v.dump());
+    throw std::invalid_argument(path + ": expected 0 <= min <= max, got " + util::echoJson(v));
 }
 double bandwidth(const nlohmann::json& v, const std::string& path) {
   const double g = number(v, path);
-  if (!(g >= 0)) throw std::invalid_argument(path + ": expected >= 0 GB/s (0 = unlimited), got " + v.dump());
+  if (!(g >= 0)) throw std::invalid_argument(path + ": expected >= 0 GB/s (0 = unlimited), got " + util::echoJson(v));
   return g;
 }
 unsigned count(const nlohmann::json& v, const std::string& path) {
   if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 1 << 20)
-    throw std::invalid_argument(path + ": expected a positive integer, got " + v.dump());
+    throw std::invalid_argument(path + ": expected a positive integer, got " + util::echoJson(v));
   return v.get<unsigned>();
 }
 
@@ -120,16 +122,16 @@ bool channelKey(const std::string& key, const nlohmann::json& v, const std::stri
 // preset would be hard to read.
 std::vector<ChannelParams> channelList(const nlohmann::json& v, const std::string& path) {
   if (!v.is_array() || v.empty())
-    throw std::invalid_argument(path + ": expected a non-empty array of channels, got " + v.dump());
+    throw std::invalid_argument(path + ": expected a non-empty array of channels, got " + util::echoJson(v));
   std::vector<ChannelParams> all;
   for (std::size_t k = 0; k < v.size(); ++k) {
     const std::string at = path + "[" + std::to_string(k) + "]";
     const nlohmann::json& e = v[k];
-    if (!e.is_object()) throw std::invalid_argument(at + ": expected an object, got " + e.dump());
+    if (!e.is_object()) throw std::invalid_argument(at + ": expected an object, got " + util::echoJson(e));
     ChannelParams c;
     for (const auto& [key, x] : e.items()) {
       if (key == "name") {
-        if (!x.is_string()) throw std::invalid_argument(at + ".name: expected a string, got " + x.dump());
+        if (!x.is_string()) throw std::invalid_argument(at + ".name: expected a string, got " + util::echoJson(x));
         c.name = x.get<std::string>();
       } else if (!channelKey(key, x, at + "." + key, c)) {
         throw std::invalid_argument(at + "." + key +
@@ -146,7 +148,7 @@ std::vector<ChannelParams> channelList(const nlohmann::json& v, const std::strin
 }  // namespace
 
 LinkParams linkParamsFromJson(const nlohmann::json& j, const std::string& path, LinkParams p) {
-  if (!j.is_object()) throw std::invalid_argument(path + ": expected an object, got " + j.dump());
+  if (!j.is_object()) throw std::invalid_argument(path + ": expected an object, got " + util::echoJson(j));
   // "channels" replaces the list; a flat channel key next to it would edit channel 0 of
   // which list? Refuse rather than guess.
   const bool listed = j.contains("channels");
@@ -163,10 +165,10 @@ LinkParams linkParamsFromJson(const nlohmann::json& j, const std::string& path, 
     else if (key == "max_reads") p.maxReads = count(v, at);
     else if (key == "max_writes") p.maxWrites = count(v, at);
     else if (key == "reorder") {
-      if (!v.is_boolean()) throw std::invalid_argument(at + ": expected true or false, got " + v.dump());
+      if (!v.is_boolean()) throw std::invalid_argument(at + ": expected true or false, got " + util::echoJson(v));
       p.reorder = v.get<bool>();
     } else if (key == "seed") {
-      if (!v.is_number_unsigned()) throw std::invalid_argument(at + ": expected an unsigned integer, got " + v.dump());
+      if (!v.is_number_unsigned()) throw std::invalid_argument(at + ": expected an unsigned integer, got " + util::echoJson(v));
       p.seed = v.get<std::uint64_t>();
     } else if (key == "csr_write_ns") p.csrWriteNs = number(v, at);
     else if (key == "poll_ns") p.pollNs = number(v, at);

@@ -5,6 +5,8 @@
 #include "link/link_presets.hpp"
 #include "scene/diamond.hpp"
 #include "scene/random_cloud.hpp"
+#include "util/input_file.hpp"
+#include "util/json_input.hpp"
 
 namespace collide::scene {
 
@@ -179,13 +181,14 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
 }
 
 Scene loadScene(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw SceneError(file.string() + ": cannot open");
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw SceneError(file.string() + ": not valid JSON: " + e.what());
+    std::ifstream in = util::openInput(file);
+    j = util::parseJson(in, file.string(), "scene");
+  } catch (const util::InputError& e) {
+    throw SceneError(e.what());
+  } catch (const util::JsonInputError& e) {
+    throw SceneError(e.what());
   }
   Scene s = parseScene(j, file.parent_path());
   if (s.name.empty()) s.name = file.stem().string();
