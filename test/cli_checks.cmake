@@ -252,6 +252,20 @@ elseif(CHECK STREQUAL "deep_json")
     message(FATAL_ERROR "a 1 MB value was echoed in ${n} characters")
   endif()
   expect_match("${err}" "scene.steps: expected a positive integer, got \"xxx+\\.\\.\\.")
+elseif(CHECK STREQUAL "link_absurd")
+  # Absurd link numbers are refused with the key, the value and the range (they were
+  # accepted and overflowed a conversion to cycles before).
+  foreach(kv "read_latency_ns\": 1e30;read_latency_ns: 1e\\+30 ns is outside the sane range 0..1e\\+06 ns"
+             "read_gbps\": 1e-300;read_gbps: 1e-300 GB/s is outside the sane range 0 \\(unlimited\\) or 0.001..10000 GB/s"
+             "clock_mhz\": 1e15;clock_mhz: 1e\\+15 MHz is outside the sane range 1..2000 MHz"
+             "transaction_overhead_ns\": 1e300;transaction_overhead_ns: 1e\\+300 ns is outside")
+    list(GET kv 0 setting)
+    list(GET kv 1 want)
+    file(WRITE ${WORK}/bad.json "{\"steps\": 1, \"dt\": 0.01, \"link\": {\"type\": \"qpi\", \"${setting}}, \"bodies\": {\"diamond\": {\"hMax\": 2}}}")
+    execute_process(COMMAND ${COLLIDE} run ${WORK}/bad.json RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(1)
+    expect_match("${err}" "scene.link.${want}")
+  endforeach()
 else()
   message(FATAL_ERROR "unknown CHECK ${CHECK}")
 endif()

@@ -1,5 +1,7 @@
 #include "collide/rtl_backend.hpp"
 
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -25,8 +27,20 @@ RtlBackend::RtlBackend(std::unique_ptr<driver::AfuPort> port, const link::LinkPa
                        const driver::DriverOptions& options)
     : port_(std::move(port)), driver_(std::make_unique<driver::AfuDriver>(*port_, link, options)) {}
 
+void requireAtLeastLinkBound(const driver::RunStats& r, const std::string& linkName) {
+  // Both are sums of a few doubles: allow their rounding, nothing more.
+  if (r.modelledNs >= r.linkBoundNs * (1 - 1e-12)) return;
+  std::ostringstream m;
+  m << std::setprecision(17) << "internal error: modelled run time " << r.modelledNs << " ns is below its link bound "
+    << r.linkBoundNs << " ns (link " << linkName << ", " << r.readLines << " lines read, " << r.writeLines
+    << " written, status after " << r.statusCycle << " cycles); the link model, driver::linkBoundNs or the "
+    << "driver's protocol is wrong";
+  throw std::logic_error(m.str());
+}
+
 void RtlBackend::runOne(const SphereTable& spheres, const PairList& pairs, ContactSet& out) {
   last_ = driver_->run(spheres, pairs);
+  requireAtLeastLinkBound(last_.stats, driver_->link().params().name);
   out = driver_->toContactSet(last_, pairs.size());
   batch_.add(last_.status, last_.stats);
 }

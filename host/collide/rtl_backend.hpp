@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "collide/backend.hpp"
@@ -25,6 +26,11 @@ struct RtlBatchStats {
   void add(const driver::StatusLine& s, const driver::RunStats& r, std::size_t n = 1);
   void add(const RtlBatchStats& b) { add(b.counters, b.stats, b.runs); }
 };
+
+// The link model can never finish a run sooner than driver::linkBoundNs allows; a modelled
+// time below it means the model, the bound or the driver's protocol is broken, and every
+// time reported from then on would be wrong. Throws std::logic_error ("internal error").
+void requireAtLeastLinkBound(const driver::RunStats& run, const std::string& linkName);
 
 class RtlBackend final : public CollisionBackend {
  public:

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <set>
+#include <sstream>
+#include <tuple>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -47,17 +49,42 @@ double aggregate(const std::vector<ChannelParams>& all, double ChannelParams::*g
 double LinkParams::aggregateReadGBps() const { return aggregate(channels(), &ChannelParams::readGBps); }
 double LinkParams::aggregateWriteGBps() const { return aggregate(channels(), &ChannelParams::writeGBps); }
 
+namespace {
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+std::string rangeText(const ParamRange& r) { return num(r.lo) + ".." + num(r.hi) + " " + r.unit; }
+// !(in range) rather than (out of range), so that NaN is refused too.
+void inRange(const std::string& key, double v, const ParamRange& r, const char* which = "") {
+  if (!(v >= r.lo && v <= r.hi))
+    throw std::invalid_argument(key + ": " + which + num(v) + " " + r.unit + " is outside the sane range " +
+                                rangeText(r));
+}
+void bandwidthInRange(const std::string& key, double v) {
+  if (v == 0) return;  // unlimited
+  if (!(v >= kBandwidthRange.lo && v <= kBandwidthRange.hi))
+    throw std::invalid_argument(key + ": " + num(v) + " GB/s is outside the sane range 0 (unlimited) or " +
+                                rangeText(kBandwidthRange));
+}
+}  // namespace
+
 std::uint64_t LinkParams::nsToCycles(double ns) const {
   const double c = std::round(ns / cycleNs());
+  // validate() keeps every time below 2^40 cycles; past that the cast would be undefined.
+  if (!(c < 0x1p62)) throw std::logic_error("LinkParams::nsToCycles: " + num(ns) + " ns is not a cycle count (unvalidated link)");
   return c < 1.0 ? 1 : static_cast<std::uint64_t>(c);
 }
 
 void LinkParams::validate() const {
   auto bad = [](const std::string& what) { throw std::invalid_argument(what); };
-  if (!(clockMHz > 0)) bad("clock_mhz: must be > 0");
+  inRange("clock_mhz", clockMHz, kClockRange);
   if (lineBytes != 64) bad("line_bytes: the AFU contract fixes 64");
   // Channel 0's errors keep the flat key names a scene uses for it.
   const auto all = channels();
+  if (all.size() > kMaxChannels)
+    bad("channels: " + std::to_string(all.size()) + " channels, at most " + std::to_string(kMaxChannels));
   std::set<std::string> names;
   for (std::size_t k = 0; k < all.size(); ++k) {
     const ChannelParams& c = all[k];
@@ -66,17 +93,21 @@ void LinkParams::validate() const {
     const std::string nameAt = "channels[" + std::to_string(k) + "].name";
     if (c.name.empty()) bad(nameAt + ": must not be empty");
     if (!names.insert(c.name).second) bad(nameAt + ": \"" + c.name + "\" names two channels");
-    if (!(c.readLatencyMinNs >= 0) || !(c.readLatencyMaxNs >= c.readLatencyMinNs))
-      bad(at + "read_latency_ns: need 0 <= min <= max");
-    if (!(c.writeLatencyMinNs >= 0) || !(c.writeLatencyMaxNs >= c.writeLatencyMinNs))
-      bad(at + "write_latency_ns: need 0 <= min <= max");
-    if (!(c.readGBps >= 0) || !(c.writeGBps >= 0))
-      bad(at + "read_gbps/write_gbps: must be >= 0 (0 = unlimited)");
+    for (const auto& [key, lo, hi] : {std::tuple{"read_latency_ns", c.readLatencyMinNs, c.readLatencyMaxNs},
+                                      std::tuple{"write_latency_ns", c.writeLatencyMinNs, c.writeLatencyMaxNs}}) {
+      inRange(at + key, lo, kLatencyRange, lo == hi ? "" : "min ");
+      inRange(at + key, hi, kLatencyRange, lo == hi ? "" : "max ");
+      if (!(hi >= lo)) bad(at + key + ": need min <= max, got " + num(lo) + " > " + num(hi));
+    }
+    bandwidthInRange(at + "read_gbps", c.readGBps);
+    bandwidthInRange(at + "write_gbps", c.writeGBps);
   }
-  if (all.size() > 16) bad("channels: at most 16");
-  if (maxReads == 0 || maxWrites == 0) bad("max_reads/max_writes: must be >= 1");
-  if (!(csrWriteNs >= 0) || !(pollNs >= 0) || !(transactionOverheadNs >= 0))
-    bad("csr_write_ns/poll_ns/transaction_overhead_ns: must be >= 0");
+  for (const auto& [key, n] : {std::pair{"max_reads", maxReads}, std::pair{"max_writes", maxWrites}})
+    if (n < 1 || n > kMaxOutstanding)
+      bad(std::string(key) + ": " + std::to_string(n) + " is outside the sane range 1.." + std::to_string(kMaxOutstanding));
+  inRange("csr_write_ns", csrWriteNs, kCsrPollRange);
+  inRange("poll_ns", pollNs, kCsrPollRange);
+  inRange("transaction_overhead_ns", transactionOverheadNs, kOverheadRange);
 }
 
 namespace {
@@ -102,8 +133,9 @@ double bandwidth(const nlohmann::json& v, const std::string& path) {
   return g;
 }
 unsigned count(const nlohmann::json& v, const std::string& path) {
-  if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 1 << 20)
-    throw std::invalid_argument(path + ": expected a positive integer, got " + util::echoJson(v));
+  if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > kMaxOutstanding)
+    throw std::invalid_argument(path + ": expected an integer in 1.." + std::to_string(kMaxOutstanding) + ", got " +
+                                util::echoJson(v));
   return v.get<unsigned>();
 }
 
