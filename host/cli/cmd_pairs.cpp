@@ -32,6 +32,7 @@ int runPairs(const PairsOptions& o) {
       driver::AfuPortOptions port;
       port.traceFile = o.trace;
       port.clockMHz = req.link.clockMHz;
+      port.wallLimitS = o.wallLimit;
       backend = std::make_unique<RtlBackend>(req.afuDir, req.link, d, port);
     } else {
       backend = makeBackend(req);

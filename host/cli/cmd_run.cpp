@@ -85,6 +85,8 @@ int runScene(const RunOptions& o) {
     req.driver.skipIdle = !o.noSkip;
     req.port.traceFile = o.trace;
     req.port.clockMHz = sc.link.clockMHz;
+    if (o.wallLimit) req.port.wallLimitS = *o.wallLimit;
+    else if (sc.wallLimitS) req.port.wallLimitS = *sc.wallLimitS;
     if (!o.trace.empty() && !rtl) throw std::invalid_argument("--trace needs --backend rtl");
     auto backend = makeBackend(req);  // rtl without an AFU throws AfuUnavailable here
     auto* rtlBackend = dynamic_cast<RtlBackend*>(backend.get());

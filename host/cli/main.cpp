@@ -33,6 +33,11 @@ int main(int argc, char** argv) {
                 "time ODE's collider and the simd batch this many times a step and keep the fastest")
       ->check(CLI::Range(1, 1000));
   r->add_option("--positions", run.positions, "write the spheres' final positions to this CSV file");
+  // The wall-clock watchdog of an AFU run (the simulated-cycle one stays): seconds.
+  const auto wallRange = CLI::Range(1e-3, collide::driver::kMaxWallLimitS);
+  r->add_option_function<double>("--wall-limit", [&](double s) { run.wallLimit = s; },
+                                 "rtl: wall-clock seconds an AFU run may take (default 600), overrides the scene's")
+      ->check(wallRange);
 
   PairsOptions pairs;
   auto* p = app.add_subcommand("pairs", "vector mode: collide the pairs of a CSV file");
@@ -46,6 +51,9 @@ int main(int argc, char** argv) {
   p->add_flag("--dense", pairs.dense, "rtl: dense mode (a record per pair)");
   p->add_option("--trace", pairs.trace, "rtl: write a waveform of the AFU (.fst or .vcd, as built)");
   p->add_flag("--no-skip", pairs.noSkip, "rtl: evaluate every cycle instead of jumping idle waits");
+  p->add_option("--wall-limit", pairs.wallLimit, "rtl: wall-clock seconds an AFU run may take")
+      ->capture_default_str()
+      ->check(wallRange);
   p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2), - for stdin")->required();
   p->add_option("--out", pairs.out, "output CSV, - for stdout")->required();
 

@@ -12,6 +12,7 @@
 #include "collide/backend.hpp"
 #include "driver/afu_driver.hpp"
 #include "driver/afu_factory.hpp"
+#include "driver/wall_watchdog.hpp"
 #include "link/link_params.hpp"
 
 namespace collide {
@@ -38,7 +39,7 @@ class RtlBackend final : public CollisionBackend {
              driver::DriverOptions options = {}, const driver::AfuPortOptions& portOptions = {});
   // For tests and other models: any AfuPort, owned by the backend.
   RtlBackend(std::unique_ptr<driver::AfuPort> port, const link::LinkParams& link,
-             const driver::DriverOptions& options);
+             const driver::DriverOptions& options, double wallLimitS = driver::kDefaultWallLimitS);
 
   std::string name() const override { return "rtl"; }
   LinkFormat format() const override { return driver_->options().format; }
@@ -52,7 +53,8 @@ class RtlBackend final : public CollisionBackend {
  private:
   void runOne(const SphereTable& spheres, const PairList& pairs, ContactSet& out);
 
-  std::unique_ptr<driver::AfuPort> port_;
+  // Every port runs behind a wall-clock watchdog, armed at each run (driver/wall_watchdog.hpp).
+  std::unique_ptr<driver::WallClockWatchdog> port_;
   std::unique_ptr<driver::AfuDriver> driver_;
   driver::RunResult last_;
   RtlBatchStats batch_;

@@ -47,6 +47,8 @@ struct Scene {
   std::string backend = "ode";         // ode | simd | rtl
   std::filesystem::path afuDir;        // rtl: generated/<preset>
   link::LinkParams link = link::LinkParams::ideal();
+  // rtl: wall-clock limit of one AFU run (unset: driver::kDefaultWallLimitS).
+  std::optional<double> wallLimitS;
 };
 
 // Throws SceneError ("scene.<key path>: <what is wrong>").

@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "driver/wall_watchdog.hpp"
 #include "link/link_presets.hpp"
 #include "scene/diamond.hpp"
 #include "scene/random_cloud.hpp"
@@ -151,7 +152,8 @@ void readLink(const JsonNode& n, Scene& s) {
 
 Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) {
   const JsonNode root(j, "scene");
-  root.allowOnly({"name", "steps", "dt", "backend", "afu", "link", "world", "effects", "contact", "bodies"});
+  root.allowOnly({"name", "steps", "dt", "backend", "afu", "link", "wall_limit_s", "world", "effects", "contact",
+                  "bodies"});
   Scene s;
   if (auto v = root.find("name")) s.name = v->string();
   s.steps = root.at("steps").positiveInt();
@@ -177,6 +179,10 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   if (auto v = root.find("contact")) readContact(*v, s);
   if (auto v = root.find("world")) readWorld(*v, s);
   if (auto v = root.find("link")) readLink(*v, s);
+  if (auto v = root.find("wall_limit_s")) {
+    s.wallLimitS = v->positive();
+    if (*s.wallLimitS > driver::kMaxWallLimitS) v->expected("a number of seconds in (0, 1e6]");
+  }
   return s;
 }
 
