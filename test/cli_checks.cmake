@@ -266,6 +266,41 @@ elseif(CHECK STREQUAL "link_absurd")
     expect_rc(1)
     expect_match("${err}" "scene.link.${want}")
   endforeach()
+elseif(CHECK STREQUAL "input_mistakes")
+  # Careless inputs get messages that say what is wrong.
+  file(MAKE_DIRECTORY ${WORK}/adir)
+  execute_process(COMMAND ${COLLIDE} pairs --backend simd --in ${WORK}/adir --out ${WORK}/out.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "adir: is a directory, expected a file")
+  # A byte-order mark before the header (spreadsheets write one) is accepted.
+  string(ASCII 239 187 191 bom)
+  file(WRITE ${WORK}/bom.csv "${bom}${pairs}")
+  execute_process(COMMAND ${COLLIDE} pairs --backend simd --in ${WORK}/bom.csv --out ${WORK}/out.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  # --steps: a readable bound, and a huge value refused, not clamped to 2^63-1.
+  foreach(steps 0 99999999999999999999999 1000000001 1e9 -3)
+    execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/small.json --steps ${steps}
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(rc EQUAL 0)
+      message(FATAL_ERROR "--steps ${steps} accepted:\n${out}")
+    endif()
+    expect_match("${err}" "--steps: expected an integer in 1..1000000000, got '?${steps}'?")
+  endforeach()
+  execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/small.json --steps 1000000000x
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_match("${err}" "--steps: expected an integer")
+  # An unknown subcommand is named.
+  execute_process(COMMAND ${COLLIDE} frobnicate RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "unknown subcommand 'frobnicate' \\(expected run, pairs or info\\)")
+  # Manifest errors name the file, a wrong type included.
+  file(MAKE_DIRECTORY ${WORK}/afu)
+  file(WRITE ${WORK}/afu/manifest.json "{\"link\": {\"format\": 32}}")
+  execute_process(COMMAND ${COLLIDE} info --afu ${WORK}/afu RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "afu/manifest.json: link.format: expected a string, got 32")
 else()
   message(FATAL_ERROR "unknown CHECK ${CHECK}")
 endif()

@@ -91,12 +91,13 @@ TEST(JsonLimits, AHugeValueIsEchoedClipped) {
 }
 
 TEST(JsonLimits, AHugeCsvFieldIsEchoedClipped) {
-  std::istringstream in("x1,y1,z1,r1,x2,y2,z2,r2\n" + std::string(5'000'000, 'z') + ",0,0,1,0,0,0,1\n");
+  // Below the 64 KiB line limit (a longer line is refused before its fields are read).
+  std::istringstream in("x1,y1,z1,r1,x2,y2,z2,r2\n" + std::string(60'000, 'z') + ",0,0,1,0,0,0,1\n");
   SphereTable s;
   PairList p;
   const std::string e = errorOf([&] { cli::readPairsCsv(in, "in.csv", LinkFormat::Binary32, s, p); });
   EXPECT_EQ(e.rfind("in.csv:2: x1: not a number: 'zzz", 0), 0u) << e.substr(0, 200);
-  EXPECT_NE(e.find("... (5000000 bytes)'"), std::string::npos) << e.substr(0, 200);
+  EXPECT_NE(e.find("... (60000 bytes)'"), std::string::npos) << e.substr(0, 200);
   EXPECT_LT(e.size(), 200u);
 }
 

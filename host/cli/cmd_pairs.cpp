@@ -10,6 +10,7 @@
 #include "collide/rtl_backend.hpp"
 #include "driver/afu_factory.hpp"
 #include "link/link_presets.hpp"
+#include "util/input_file.hpp"
 
 namespace collide::cli {
 
@@ -45,8 +46,7 @@ int runPairs(const PairsOptions& o) {
     if (o.in == "-") {
       readPairsCsv(std::cin, "<stdin>", backend->format(), spheres, pairs);
     } else {
-      std::ifstream in(o.in);
-      if (!in) throw std::runtime_error(o.in + ": cannot open");
+      std::ifstream in = util::openInput(o.in);  // a directory says so
       readPairsCsv(in, o.in, backend->format(), spheres, pairs);
     }
 

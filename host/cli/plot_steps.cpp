@@ -9,6 +9,7 @@
 #include <png.h>
 
 #include "cli/output_file.hpp"
+#include "util/input_file.hpp"
 
 #include <algorithm>
 #include <array>
@@ -121,8 +122,7 @@ Series load(const std::string& spec) {
   s.log = kind == "time";
   s.label = spec.substr(colon + 1, eq - colon - 1);
   const std::string file = spec.substr(eq + 1, last - eq - 1), column = spec.substr(last + 1);
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file + ": cannot open");
+  std::ifstream in = collide::util::openInput(file);  // a directory says so
   std::string line;
   std::getline(in, line);
   std::vector<std::string> head;

@@ -157,6 +157,7 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   Scene s;
   if (auto v = root.find("name")) s.name = v->string();
   s.steps = root.at("steps").positiveInt();
+  if (s.steps > kMaxSteps) root.at("steps").expected("an integer in 1..1000000000");
   s.dt = root.at("dt").positive();
   if (auto v = root.find("backend")) {
     s.backend = v->string();
