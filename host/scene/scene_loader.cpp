@@ -4,6 +4,7 @@
 
 #include "driver/wall_watchdog.hpp"
 #include "link/link_presets.hpp"
+#include "ode/ode_limits.hpp"
 #include "scene/diamond.hpp"
 #include "scene/random_cloud.hpp"
 #include "util/input_file.hpp"
@@ -26,14 +27,27 @@ void addDiamond(const JsonNode& n, Scene& s) {
   for (const auto& c : diamondCentres(p)) s.spheres.push_back({c, p.radius, mass, {}});
 }
 
+// A centre ODE's broad phase can place, a radius ODE accepts (ode/ode_limits.hpp).
+Vec3 position(const JsonNode& n) {
+  const Vec3 v = n.vec3();
+  for (double c : v)
+    if (!ode::saneCoordinate(c)) n.expected("[x, y, z] within +-1e6 m (docs/host.md, \"What reaches ODE\")");
+  return v;
+}
+double radius(const JsonNode& n) {
+  const double r = n.positive();
+  if (!ode::saneRadius(r)) n.expected("a radius in (0, 1e6] m");
+  return r;
+}
+
 void addSpheres(const JsonNode& n, Scene& s) {
   const std::size_t count = n.arraySize();
   for (std::size_t k = 0; k < count; ++k) {
     const JsonNode e = n[k];
     e.allowOnly({"pos", "r", "mass", "vel"});
     SphereBody b;
-    b.pos = e.at("pos").vec3();
-    b.radius = e.at("r").positive();
+    b.pos = position(e.at("pos"));
+    b.radius = radius(e.at("r"));
     if (auto m = e.find("mass")) b.mass = m->positive();
     if (auto v = e.find("vel")) b.vel = v->vec3();
     s.spheres.push_back(b);
@@ -46,18 +60,18 @@ void addCloud(const JsonNode& n, Scene& s) {
   p.count = n.at("count").positiveInt();
   if (p.count > kMaxSpheres) n.at("count").expected("at most " + std::to_string(kMaxSpheres));
   p.seed = n.at("seed").seed();
-  p.min = n.at("min").vec3();
-  p.max = n.at("max").vec3();
+  p.min = position(n.at("min"));
+  p.max = position(n.at("max"));
   for (int c = 0; c < 3; ++c)
     if (!(p.max[c] >= p.min[c])) n.at("max").fail("must be >= min in every coordinate");
   const JsonNode r = n.at("radius");
   if (r.json().is_array()) {
     if (r.arraySize() != 2) r.expected("a radius or [rMin, rMax]");
-    p.rMin = r[0].positive();
-    p.rMax = r[1].positive();
+    p.rMin = radius(r[0]);
+    p.rMax = radius(r[1]);
     if (p.rMax < p.rMin) r.fail("rMax < rMin");
   } else {
-    p.rMin = p.rMax = r.positive();
+    p.rMin = p.rMax = radius(r);
   }
   const double mass = n.find("mass") ? n.at("mass").positive() : 1.0;
   for (const auto& c : randomCloud(p)) s.spheres.push_back({c.centre, c.radius, mass, {}});
