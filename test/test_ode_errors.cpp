@@ -57,6 +57,18 @@ TEST(OdeErrors, ASceneSphereFarAwayNamesTheKeyPath) {
             std::string::npos);
 }
 
+TEST(OdeErrors, MassesStepsAndSpacingsOdeCannotTakeAreRefused) {
+  // A mass of 1e300 kg or a step of 1e-300 s ended in ODE's quaternion assertion.
+  const auto err = [](const std::string& dt, const std::string& bodies) {
+    return errorOf([&] { parse(R"({"steps": 1, "dt": )" + dt + R"(, "bodies": )" + bodies + "}"); });
+  };
+  EXPECT_EQ(err("0.01", R"({"spheres": [{"pos": [0, 0, 0], "r": 0.5, "mass": 1e300}]})"),
+            "scene.bodies.spheres[0].mass: expected a mass in [1e-9, 1e9] kg, got 1e+300");
+  EXPECT_EQ(err("1e-300", R"({"diamond": {"hMax": 2}})"), "scene.dt: expected a time step in [1e-9, 10] s, got 1e-300");
+  EXPECT_EQ(err("0.01", R"({"diamond": {"hMax": 2, "dSph": 1e9}})"),
+            "scene.bodies.diamond.dSph: expected a spacing that keeps the diamond within +-1e6 m, got 1000000000.0");
+}
+
 TEST(OdeErrors, ABodyFlungAwayMidRunIsAReportedEvent) {
   const auto sc = parse(R"({"steps": 50, "dt": 0.01, "bodies": {"spheres": [
       {"pos": [0, 0, 0], "r": 0.5, "vel": [1e12, 0, 0]}, {"pos": [3, 0, 0], "r": 0.5}]}})");

@@ -21,10 +21,13 @@ std::string format(const char* msg, va_list ap) {
 [[noreturn]] void raise(const char* kind, int num, const char* msg, va_list ap) {
   const std::string what = std::string("ODE ") + kind + " " + std::to_string(num) + ": " + format(msg, ap) +
                            " (an input reached ODE unchecked: please report it with the input)";
+  static std::string first;  // the error being unwound, if it was ODE's
   if (std::uncaught_exceptions() > 0) {  // already unwinding: a second exception would terminate
-    std::fprintf(stderr, "collide: %s\n", what.c_str());
+    if (!first.empty()) std::fprintf(stderr, "collide: %s\n", first.c_str());
+    std::fprintf(stderr, "collide: then, while cleaning up: %s\n", what.c_str());
     std::_Exit(1);
   }
+  first = what;
   throw OdeError(what);
 }
 

@@ -11,6 +11,12 @@ namespace collide::ode {
 inline constexpr double kMaxCoordinateM = 1e6;  // |x|, |y|, |z| of a centre
 inline constexpr double kMaxRadiusM = 1e6;      // radius in (0, kMaxRadiusM]
 
+// A mass of 1e300 kg or a step of 1e-300 s ends in ODE's quaternion normalisation
+// assertion ("bSafeNormalize4Fault", odemath.h) within a step; these ranges are wide guards
+// against such typos, not limits of the model.
+inline constexpr double kMinMassKg = 1e-9, kMaxMassKg = 1e9;
+inline constexpr double kMinDtS = 1e-9, kMaxDtS = 10;
+
 inline bool saneCoordinate(double v) { return v >= -kMaxCoordinateM && v <= kMaxCoordinateM; }  // false for NaN
 inline bool saneRadius(double r) { return r > 0 && r <= kMaxRadiusM; }
 

@@ -16,17 +16,6 @@ namespace {
 
 constexpr long long kMaxSpheres = 1'000'000;  // a guard against typos, not a model limit
 
-void addDiamond(const JsonNode& n, Scene& s) {
-  n.allowOnly({"hMax", "dSph", "mass"});
-  DiamondParams p;
-  const long long h = n.at("hMax").positiveInt();
-  if (h > 100) n.at("hMax").expected("an integer in 1..100");
-  p.hMax = static_cast<int>(h);
-  if (auto d = n.find("dSph")) p.dSph = d->nonNegative();
-  const double mass = n.find("mass") ? n.at("mass").positive() : 1.0;
-  for (const auto& c : diamondCentres(p)) s.spheres.push_back({c, p.radius, mass, {}});
-}
-
 // A centre ODE's broad phase can place, a radius ODE accepts (ode/ode_limits.hpp).
 Vec3 position(const JsonNode& n) {
   const Vec3 v = n.vec3();
@@ -34,10 +23,30 @@ Vec3 position(const JsonNode& n) {
     if (!ode::saneCoordinate(c)) n.expected("[x, y, z] within +-1e6 m (docs/host.md, \"What reaches ODE\")");
   return v;
 }
+double massOf(const JsonNode& n) {
+  const double m = n.positive();
+  if (!(m >= ode::kMinMassKg && m <= ode::kMaxMassKg)) n.expected("a mass in [1e-9, 1e9] kg");
+  return m;
+}
 double radius(const JsonNode& n) {
   const double r = n.positive();
   if (!ode::saneRadius(r)) n.expected("a radius in (0, 1e6] m");
   return r;
+}
+
+void addDiamond(const JsonNode& n, Scene& s) {
+  n.allowOnly({"hMax", "dSph", "mass"});
+  DiamondParams p;
+  const long long h = n.at("hMax").positiveInt();
+  if (h > 100) n.at("hMax").expected("an integer in 1..100");
+  p.hMax = static_cast<int>(h);
+  if (auto d = n.find("dSph")) p.dSph = d->nonNegative();
+  const double mass = n.find("mass") ? massOf(n.at("mass")) : 1.0;
+  for (const auto& c : diamondCentres(p)) {
+    if (!ode::saneCoordinate(c[0]) || !ode::saneCoordinate(c[1]) || !ode::saneCoordinate(c[2]))
+      n.at("dSph").expected("a spacing that keeps the diamond within +-1e6 m");
+    s.spheres.push_back({c, p.radius, mass, {}});
+  }
 }
 
 void addSpheres(const JsonNode& n, Scene& s) {
@@ -48,7 +57,7 @@ void addSpheres(const JsonNode& n, Scene& s) {
     SphereBody b;
     b.pos = position(e.at("pos"));
     b.radius = radius(e.at("r"));
-    if (auto m = e.find("mass")) b.mass = m->positive();
+    if (auto m = e.find("mass")) b.mass = massOf(*m);
     if (auto v = e.find("vel")) b.vel = v->vec3();
     s.spheres.push_back(b);
   }
@@ -73,7 +82,7 @@ void addCloud(const JsonNode& n, Scene& s) {
   } else {
     p.rMin = p.rMax = radius(r);
   }
-  const double mass = n.find("mass") ? n.at("mass").positive() : 1.0;
+  const double mass = n.find("mass") ? massOf(n.at("mass")) : 1.0;
   for (const auto& c : randomCloud(p)) s.spheres.push_back({c.centre, c.radius, mass, {}});
 }
 
@@ -173,6 +182,7 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   s.steps = root.at("steps").positiveInt();
   if (s.steps > kMaxSteps) root.at("steps").expected("an integer in 1..1000000000");
   s.dt = root.at("dt").positive();
+  if (!(s.dt >= ode::kMinDtS && s.dt <= ode::kMaxDtS)) root.at("dt").expected("a time step in [1e-9, 10] s");
   if (auto v = root.find("backend")) {
     s.backend = v->string();
     if (s.backend != "ode" && s.backend != "simd" && s.backend != "rtl") v->expected("\"ode\", \"simd\" or \"rtl\"");
