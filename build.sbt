@@ -1,4 +1,4 @@
-// Scala 2.13.15 / Chisel 6.7.0 / chiseltest 6.0.0: the combination pinned in shared/NOTES.md.
+// Scala 2.13.15 / Chisel 6.7.0 / chiseltest 6.0.0 (docs/conventions.md, "Tools"):
 // chiseltest is frozen at 6.0.0, so Chisel stays on 6.x.
 ThisBuild / scalaVersion := "2.13.15"
 ThisBuild / version      := "0.1.0"

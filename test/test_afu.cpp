@@ -142,8 +142,8 @@ TEST(AfuDiamond, RtlMatchesOdeUpToGrazingPairs) {
             << " m after " << r.size() << " steps\n";
 }
 
-// IEEE binary32 with RNE and correctly rounded sqrt and divide computes the ARCHITECTURE.md
-// formula exactly as the simd kernel does: same contacts, same trajectory, bit for bit.
+// IEEE binary32 with RNE and correctly rounded sqrt and divide computes ODE's dCollideSpheres
+// formula (docs/scpu.md, "Semantics") exactly as the simd kernel does: same contacts, same trajectory, bit for bit.
 TEST(AfuDiamond, Binary32RtlIsTheSimdColliderExactly) {
   if (builtIn().format != LinkFormat::Binary32) GTEST_SKIP() << "not a binary32 preset";
   if (builtIn().raw.value(nlohmann::json::json_pointer("/scpu/format/name"), std::string("fp32")) != "fp32")

@@ -1,4 +1,4 @@
-// The paper's diamond generator: sphere count and positions per ARCHITECTURE.md.
+// The paper's diamond generator: sphere count and positions per docs/host.md, "Diamond geometry".
 #include <gtest/gtest.h>
 
 #include <cmath>

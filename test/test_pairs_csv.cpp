@@ -78,3 +78,21 @@ TEST(PairsCsv, WritesHexFloatsInTheLinkFormat) {
   EXPECT_EQ(hexFloat(1.0 + 0x1p-10, LinkFormat::Binary16), "0x1.004p+0");
   EXPECT_EQ(hexFloat(0.1, LinkFormat::Binary64), "0x1.999999999999ap-4");
 }
+
+TEST(PairsCsv, AByteOrderMarkBeforeTheHeaderIsAccepted) {
+  std::istringstream in("\xEF\xBB\xBF" + kHeader + "0,0,0,1,0,0,0,2\n");
+  SphereTable s;
+  PairList p;
+  readPairsCsv(in, "in.csv", LinkFormat::Binary32, s, p);
+  EXPECT_EQ(p.size(), 1u);
+  // Elsewhere an invisible byte is named as such, not shown as an identical header.
+  EXPECT_EQ(parseError("x1,y1,z1,r1,x2,y2,z2,r2\xC2\xA0\n"),
+            "in.csv:1: expected the header 'x1,y1,z1,r1,x2,y2,z2,r2', got 'x1,y1,z1,r1,x2,y2,z2,r2\xC2\xA0' "
+            "(it holds control or non-ASCII bytes)");
+}
+
+TEST(PairsCsv, AnOverlongLineIsAnErrorNotAnAllocation) {
+  const std::string e = parseError(kHeader + std::string(10'000'000, '1'));  // no newline
+  EXPECT_EQ(e.rfind("in.csv:2: line longer than 65536 bytes (a row is 8 numbers): '1111", 0), 0u) << e.substr(0, 200);
+  EXPECT_LT(e.size(), 200u);
+}

@@ -1,5 +1,5 @@
 // The simd kernel against a plain scalar binary32 dCollideSpheres, bit for bit, on random
-// pairs and on the hard cases of NOTES.md.
+// pairs and on the hard cases of docs/scpu.md ("Hard cases").
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -32,7 +32,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-# The sbt launcher is not a Debian package (shared/NOTES.md): fetch it from Maven Central
+# The sbt launcher is not a Debian package (docs/conventions.md, "Tools"): fetch it from Maven Central
 # with Maven, then check its checksum against the one Maven Central publishes beside it.
 sbt_version=1.10.7
 jar="$here/.cache/sbt-launch-$sbt_version.jar"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Area proxy for one design: Yosys 0.23 `synth_intel_alm -family cyclonev` (shared/NOTES.md:
-# Cyclone V's 27x27 DSPs stand in for the paper's Stratix V). Prints one JSON object with
+# Area proxy for one design: Yosys 0.23 `synth_intel_alm -family cyclonev` (Cyclone V's
+# variable-precision DSPs stand in for the paper's Stratix V; bench/README.md says how). Prints one JSON object with
 # ALMs (LUT cells), DSP blocks, RAM bits (M10K) and flip-flops.
 # usage: bench/area/yosys_area.sh FILE.sv TOP [LOG]
 set -euo pipefail

@@ -3,12 +3,14 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "cli/output_file.hpp"
 #include "cli/pairs_csv.hpp"
 #include "collide/backend_factory.hpp"
 #include "collide/contact_flags.hpp"
 #include "collide/rtl_backend.hpp"
 #include "driver/afu_factory.hpp"
 #include "link/link_presets.hpp"
+#include "util/input_file.hpp"
 
 namespace collide::cli {
 
@@ -31,18 +33,20 @@ int runPairs(const PairsOptions& o) {
       driver::AfuPortOptions port;
       port.traceFile = o.trace;
       port.clockMHz = req.link.clockMHz;
+      port.wallLimitS = o.wallLimit;
       backend = std::make_unique<RtlBackend>(req.afuDir, req.link, d, port);
     } else {
       backend = makeBackend(req);
     }
 
+    // Opened first, so that a bad path fails before the work; replaced only when complete.
+    OutputFile out(o.out, OutputFile::Dash::IsStdout);
     SphereTable spheres;
     PairList pairs;
     if (o.in == "-") {
       readPairsCsv(std::cin, "<stdin>", backend->format(), spheres, pairs);
     } else {
-      std::ifstream in(o.in);
-      if (!in) throw std::runtime_error(o.in + ": cannot open");
+      std::ifstream in = util::openInput(o.in);  // a directory says so
       readPairsCsv(in, o.in, backend->format(), spheres, pairs);
     }
 
@@ -50,14 +54,8 @@ int runPairs(const PairsOptions& o) {
     backend->collide(spheres, pairs, contacts);
     if (req.name != "rtl") setCpuRecordFlags(spheres, pairs, contacts.format, contacts);
 
-    if (o.out == "-") {
-      writeContactsCsv(std::cout, contacts);
-    } else {
-      std::ofstream out(o.out);
-      if (!out) throw std::runtime_error(o.out + ": cannot write");
-      writeContactsCsv(out, contacts);
-      if (!out) throw std::runtime_error(o.out + ": write failed");
-    }
+    writeContactsCsv(out.stream(), contacts);
+    out.commit();
     std::cerr << "collide pairs: " << pairs.size() << " pairs, " << contacts.hits() << " contacts, backend "
               << backend->name() << " (" << toString(contacts.format) << ")";
     if (auto* rtl = dynamic_cast<RtlBackend*>(backend.get())) {

@@ -2,13 +2,14 @@
 #include <cstdio>
 #include <limits>
 #include <chrono>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/output_file.hpp"
 #include "cli/run_report.hpp"
 #include "collide/backend_factory.hpp"
 #include "collide/ode_backend.hpp"
@@ -84,6 +85,8 @@ int runScene(const RunOptions& o) {
     req.driver.skipIdle = !o.noSkip;
     req.port.traceFile = o.trace;
     req.port.clockMHz = sc.link.clockMHz;
+    if (o.wallLimit) req.port.wallLimitS = *o.wallLimit;
+    else if (sc.wallLimitS) req.port.wallLimitS = *sc.wallLimitS;
     if (!o.trace.empty() && !rtl) throw std::invalid_argument("--trace needs --backend rtl");
     auto backend = makeBackend(req);  // rtl without an AFU throws AfuUnavailable here
     auto* rtlBackend = dynamic_cast<RtlBackend*>(backend.get());
@@ -111,10 +114,12 @@ int runScene(const RunOptions& o) {
       for (std::size_t k = 0; k < p.size(); ++k) stepMismatch += odeOut.hit[k] != simdOut.hit[k];
     });
 
-    std::ofstream csv;
-    if (!o.out.empty()) {
-      csv.open(o.out);
-      if (!csv) throw std::runtime_error(o.out + ": cannot write");
+    // Every output is opened before the run, so a bad path fails at once; each goes to a
+    // temporary file that replaces the named one only when complete (OutputFile).
+    auto open = [](const std::string& f) -> std::unique_ptr<OutputFile> { return f.empty() ? nullptr : std::make_unique<OutputFile>(f); };
+    const auto csvFile = open(o.out), posFile = open(o.positions), summaryFile = open(o.summary);
+    if (csvFile) {
+      std::ostream& csv = csvFile->stream();
       csv << "step,pairs,contacts,other_contacts,backend_ns,ode_ns,simd_ns,hit_mismatches";
       if (rtl) csv << ",afu_runs,afu_modelled_ns,afu_cycles,afu_load,afu_compute,afu_wait_rd,afu_wait_wr";
       csv << '\n';
@@ -136,7 +141,8 @@ int runScene(const RunOptions& o) {
         if (rtlBackend) std::cout << ", AFU " << std::fixed << std::setprecision(0) << rtlBackend->lastBatch().stats.modelledNs << " ns modelled";
         std::cout << "\n";
       }
-      if (csv.is_open()) {
+      if (csvFile) {
+        std::ostream& csv = csvFile->stream();
         csv << st.step << ',' << st.pairsTested << ',' << st.contacts << ',' << st.otherContacts << ','
             << st.backendNs << ',' << stepOdeNs << ',' << stepSimdNs << ',' << stepMismatch;
         if (rtlBackend) {
@@ -148,6 +154,7 @@ int runScene(const RunOptions& o) {
         csv << '\n';
       }
     }
+    if (csvFile) csvFile->commit();
 
     std::cout << "pairs tested : " << tot.pairs << " sphere/sphere candidates from the broad phase\n"
               << "contacts     : " << tot.contacts << " sphere/sphere";
@@ -166,9 +173,8 @@ int runScene(const RunOptions& o) {
       std::cout << "  (the backend that drove the simulation)\n";
     }
 
-    if (!o.positions.empty()) {  // binary64 as ODE holds them, %a so nothing is lost
-      std::ofstream pos(o.positions);
-      if (!pos) throw std::runtime_error(o.positions + ": cannot write");
+    if (posFile) {  // binary64 as ODE holds them, %a so nothing is lost
+      std::ostream& pos = posFile->stream();
       pos << "sphere,x,y,z\n";
       const auto& w = sim.world();
       char buf[128];
@@ -178,9 +184,10 @@ int runScene(const RunOptions& o) {
                       static_cast<double>(q[2]));
         pos << buf;
       }
+      posFile->commit();
     }
 
-    if (!o.summary.empty()) {
+    if (summaryFile) {
       nlohmann::json j;
       j["scene"] = sc.name;
       j["spheres"] = sc.spheres.size();
@@ -212,9 +219,8 @@ int runScene(const RunOptions& o) {
                     {"cycles_stepped", afu.stats.cyclesStepped},
                     {"cycles_skipped", afu.stats.cyclesSkipped}};
       }
-      std::ofstream js(o.summary);
-      if (!js) throw std::runtime_error(o.summary + ": cannot write");
-      js << j.dump(2) << "\n";
+      summaryFile->stream() << j.dump(2) << "\n";
+      summaryFile->commit();
     }
     return 0;
   } catch (const driver::AfuUnavailable& e) {

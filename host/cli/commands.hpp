@@ -4,6 +4,8 @@
 #include <optional>
 #include <string>
 
+#include "driver/wall_watchdog.hpp"
+
 namespace collide::cli {
 
 struct RunOptions {
@@ -18,6 +20,7 @@ struct RunOptions {
   std::string summary;                 // totals as JSON
   int cpuRepeat = 1;                   // time ODE and simd this many times a step, keep the least
   std::string positions;               // final sphere positions as CSV
+  std::optional<double> wallLimit;     // rtl: wall-clock seconds an AFU run may take; overrides the scene's
 };
 
 struct PairsOptions {
@@ -28,6 +31,7 @@ struct PairsOptions {
   bool dense = false;   // rtl: dense mode
   std::string trace;    // rtl: waveform file (.fst / .vcd)
   bool noSkip = false;  // rtl: evaluate every cycle
+  double wallLimit = driver::kDefaultWallLimitS;  // rtl: wall-clock seconds an AFU run may take
 };
 
 struct InfoOptions {

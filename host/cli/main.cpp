@@ -5,9 +5,37 @@
 
 #include "cli/commands.hpp"
 #include "link/link_presets.hpp"
+#include "scene/scene.hpp"
+#include "util/echo.hpp"
+
+namespace {
+
+// A whole number in 1..scene::kMaxSteps, or a message that says so; never clamped.
+long long parseSteps(const std::string& text) {
+  const std::string want = "--steps: expected an integer in 1.." + std::to_string(collide::scene::kMaxSteps) + ", got ";
+  if (text.empty() || text.size() > 19 || text.find_first_not_of("0123456789") != std::string::npos)
+    throw CLI::ValidationError(want + "'" + collide::util::clip(text) + "'");
+  const long long n = std::stoll(text);  // at most 19 digits: no overflow
+  if (n < 1 || n > collide::scene::kMaxSteps) throw CLI::ValidationError(want + text);
+  return n;
+}
+
+// CLI11 reads an unknown subcommand as a stray argument and says "A subcommand is
+// required"; name it instead.
+bool unknownSubcommand(int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  const std::string s = argv[1];
+  if (s == "run" || s == "pairs" || s == "info") return false;
+  std::cerr << "collide: unknown subcommand '" << collide::util::clip(s) << "' (expected run, pairs or info)\n"
+            << "Run with --help for more information.\n";
+  return true;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace collide::cli;
+  if (unknownSubcommand(argc, argv)) return 1;
   CLI::App app{"collide: ODE host for the sphere-collision accelerator"};
   app.require_subcommand(1);
   // Built from the registry, so a new preset needs no edit here; the error lists them.
@@ -19,8 +47,10 @@ int main(int argc, char** argv) {
   r->add_option_function<std::string>("--backend", [&](const std::string& b) { run.backend = b; },
                                       "override the scene's backend")
       ->check(CLI::IsMember({"ode", "simd", "rtl"}));
-  r->add_option_function<long long>("--steps", [&](long long n) { run.steps = n; }, "override the scene's steps")
-      ->check(CLI::PositiveNumber);
+  // Read as text: CLI11 saturates an integer that overflows, and its range check prints
+  // the bound of a double (309 digits).
+  r->add_option_function<std::string>("--steps", [&](const std::string& n) { run.steps = parseSteps(n); },
+                                      "override the scene's steps (1..1000000000)");
   r->add_option("--out", run.out, "write per-step statistics to this CSV file");
   r->add_flag("--per-step", run.perStep, "print one line per step");
   r->add_option_function<std::string>("--link", [&](const std::string& l) { run.link = l; },
@@ -33,6 +63,11 @@ int main(int argc, char** argv) {
                 "time ODE's collider and the simd batch this many times a step and keep the fastest")
       ->check(CLI::Range(1, 1000));
   r->add_option("--positions", run.positions, "write the spheres' final positions to this CSV file");
+  // The wall-clock watchdog of an AFU run (the simulated-cycle one stays): seconds.
+  const auto wallRange = CLI::Range(1e-3, collide::driver::kMaxWallLimitS);
+  r->add_option_function<double>("--wall-limit", [&](double s) { run.wallLimit = s; },
+                                 "rtl: wall-clock seconds an AFU run may take (default 600), overrides the scene's")
+      ->check(wallRange);
 
   PairsOptions pairs;
   auto* p = app.add_subcommand("pairs", "vector mode: collide the pairs of a CSV file");
@@ -46,6 +81,9 @@ int main(int argc, char** argv) {
   p->add_flag("--dense", pairs.dense, "rtl: dense mode (a record per pair)");
   p->add_option("--trace", pairs.trace, "rtl: write a waveform of the AFU (.fst or .vcd, as built)");
   p->add_flag("--no-skip", pairs.noSkip, "rtl: evaluate every cycle instead of jumping idle waits");
+  p->add_option("--wall-limit", pairs.wallLimit, "rtl: wall-clock seconds an AFU run may take")
+      ->capture_default_str()
+      ->check(wallRange);
   p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2), - for stdin")->required();
   p->add_option("--out", pairs.out, "output CSV, - for stdout")->required();
 

@@ -1,17 +1,22 @@
 #include "cli/pairs_csv.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <stdexcept>
 #include <vector>
+
+#include "util/echo.hpp"
 
 namespace collide::cli {
 
 namespace {
 
 constexpr const char* kInHeader = "x1,y1,z1,r1,x2,y2,z2,r2";
+constexpr std::size_t kMaxLineBytes = 1 << 16;  // a row of 8 hex floats is about 200
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r");
@@ -33,14 +38,35 @@ std::vector<std::string> split(const std::string& s) {
 // One field as a value of `format`; false with `why` set if it is not a whole number.
 bool parseField(const std::string& f, LinkFormat format, double& v, std::string& why) {
   if (f.empty()) { why = "empty field"; return false; }
-  if (!format::parseInto(f.c_str(), numberFormat(format), v)) { why = "not a number: '" + f + "'"; return false; }
+  if (!format::parseInto(f.c_str(), numberFormat(format), v)) { why = "not a number: '" + util::clip(f) + "'"; return false; }
   // Underflow (a subnormal or zero) is a valid input; overflow of a finite literal is not.
   const bool literalInf = f.find_first_of("iI") != std::string::npos;
   if (std::isinf(v) && !literalInf) {
-    why = "'" + f + "' overflows " + toString(format);
+    why = "'" + util::clip(f) + "' overflows " + toString(format);
     return false;
   }
   return true;
+}
+
+// std::getline, but a line longer than kMaxLineBytes is an error, not a string of any size
+// (a 2 GB file without a newline cost about 5x its size in memory). False at the end.
+bool readLine(std::istream& in, std::string& line, const std::function<void(const std::string&)>& tooLong) {
+  line.clear();
+  std::streambuf* sb = in.rdbuf();
+  bool any = false;
+  for (;;) {
+    const int c = sb->sbumpc();
+    if (c == std::char_traits<char>::eof()) {
+      in.setstate(std::ios::eofbit);
+      return any;
+    }
+    any = true;
+    if (c == '\n') return true;
+    if (line.size() >= kMaxLineBytes)
+      tooLong("line longer than " + std::to_string(kMaxLineBytes) + " bytes (a row is 8 numbers): '" +
+              util::clip(line) + "'");
+    line.push_back(static_cast<char>(c));
+  }
 }
 
 }  // namespace
@@ -54,12 +80,19 @@ void readPairsCsv(std::istream& in, const std::string& name, LinkFormat format, 
   std::size_t line = 0;
   bool header = false;
   static const char* names[8] = {"x1", "y1", "z1", "r1", "x2", "y2", "z2", "r2"};
-  while (std::getline(in, raw)) {
+  while (readLine(in, raw, [&](const std::string& why) { fail(line + 1, why); })) {
     ++line;
+    // A UTF-8 byte-order mark (spreadsheets write one) is not part of the header.
+    if (line == 1 && raw.compare(0, 3, "\xEF\xBB\xBF") == 0) raw.erase(0, 3);
     const std::string s = trim(raw);
     if (s.empty()) continue;  // blank lines carry no pair
     if (!header) {
-      if (s != kInHeader) fail(line, "expected the header '" + std::string(kInHeader) + "', got '" + s + "'");
+      if (s != kInHeader) {
+        // A header that prints like the expected one differs in bytes one cannot see.
+        const bool hidden = std::any_of(s.begin(), s.end(), [](char c) { return static_cast<unsigned char>(c) >= 0x80 || static_cast<unsigned char>(c) < 0x20; });
+        fail(line, "expected the header '" + std::string(kInHeader) + "', got '" + util::clip(s) + "'" +
+                       (hidden ? " (it holds control or non-ASCII bytes)" : ""));
+      }
       header = true;
       continue;
     }

@@ -8,6 +8,9 @@
 // Rows whose value is <= 0 are left out of the log panel.
 #include <png.h>
 
+#include "cli/output_file.hpp"
+#include "util/input_file.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -73,17 +76,20 @@ class Image {
   }
   static int textWidth(const std::string& s, int scale = 2) { return static_cast<int>(s.size()) * 4 * scale; }
 
-  bool writePng(const std::string& file) const {
-    FILE* f = std::fopen(file.c_str(), "wb");
-    if (!f) return false;
+  // Encoded through OutputFile (temporary file, every write checked, renamed into place).
+  void writePng(const std::string& file) const {
+    collide::cli::OutputFile out(file);
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!png || !info || setjmp(png_jmpbuf(png))) {
       png_destroy_write_struct(&png, &info);
-      std::fclose(f);
-      return false;
+      throw std::runtime_error(file + ": cannot encode the PNG");
     }
-    png_init_io(png, f);
+    auto write = [](png_structp p, png_bytep data, png_size_t n) {
+      static_cast<std::ostream*>(png_get_io_ptr(p))->write(reinterpret_cast<const char*>(data),
+                                                          static_cast<std::streamsize>(n));
+    };
+    png_set_write_fn(png, &out.stream(), write, [](png_structp) {});
     png_set_IHDR(png, info, static_cast<png_uint_32>(w_), static_cast<png_uint_32>(h_), 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
@@ -91,7 +97,7 @@ class Image {
       png_write_row(png, reinterpret_cast<png_const_bytep>(&px_[static_cast<std::size_t>(y) * w_]));
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    return std::fclose(f) == 0;
+    out.commit();
   }
 
  private:
@@ -116,8 +122,7 @@ Series load(const std::string& spec) {
   s.log = kind == "time";
   s.label = spec.substr(colon + 1, eq - colon - 1);
   const std::string file = spec.substr(eq + 1, last - eq - 1), column = spec.substr(last + 1);
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file + ": cannot open");
+  std::ifstream in = collide::util::openInput(file);  // a directory says so
   std::string line;
   std::getline(in, line);
   std::vector<std::string> head;
@@ -231,7 +236,7 @@ int main(int argc, char** argv) {
       img.text(lx + 24, ly, s.label, ink);
       ly += 16;
     }
-    if (!img.writePng(argv[1])) throw std::runtime_error(std::string(argv[1]) + ": cannot write the PNG");
+    img.writePng(argv[1]);
     std::cout << "collide-plot: wrote " << argv[1] << "\n";
     return 0;
   } catch (const std::exception& e) {

@@ -3,8 +3,9 @@
 # collide_verilate(<target> SOURCES <sv>... TOP <module> PREFIX <class> [TRACE OFF|VCD|FST] [ARGS ...])
 #   Adds the Verilated model V<prefix> to <target>. Verilator reruns only when a source
 #   (or the command) changes; the C++ is compiled with COLLIDE_VERILATOR_OPT_FAST on the
-#   per-cycle code and -O0 on the construction/trace code (NOTES.md: -O2 everywhere makes
-#   builds of big models take minutes), split in chunks so both cores compile at once.
+#   per-cycle code and -O0 on the construction/trace code (-O2 everywhere makes builds of
+#   big models take many minutes; docs/host.md, "The Verilator harness", has the measured
+#   times), split in chunks so both cores compile at once.
 #
 # collide_add_afu_library(<target> <preset> <trace>)
 #   Defines <target>, the library that implements driver/afu_factory.hpp:

@@ -1,5 +1,7 @@
 #include "collide/rtl_backend.hpp"
 
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -17,16 +19,31 @@ driver::DriverOptions fromManifest(const std::filesystem::path& dir, driver::Dri
 
 RtlBackend::RtlBackend(const std::filesystem::path& afuDir, const link::LinkParams& link,
                        driver::DriverOptions options, const driver::AfuPortOptions& portOptions)
-    : port_(driver::makeAfuPort(afuDir, portOptions)) {  // throws AfuUnavailable first
+    : port_(std::make_unique<driver::WallClockWatchdog>(driver::makeAfuPort(afuDir, portOptions),  // throws AfuUnavailable first
+                                                        portOptions.wallLimitS)) {
   driver_ = std::make_unique<driver::AfuDriver>(*port_, link, fromManifest(afuDir, options));
 }
 
 RtlBackend::RtlBackend(std::unique_ptr<driver::AfuPort> port, const link::LinkParams& link,
-                       const driver::DriverOptions& options)
-    : port_(std::move(port)), driver_(std::make_unique<driver::AfuDriver>(*port_, link, options)) {}
+                       const driver::DriverOptions& options, double wallLimitS)
+    : port_(std::make_unique<driver::WallClockWatchdog>(std::move(port), wallLimitS)),
+      driver_(std::make_unique<driver::AfuDriver>(*port_, link, options)) {}
+
+void requireAtLeastLinkBound(const driver::RunStats& r, const std::string& linkName) {
+  // Both are sums of a few doubles: allow their rounding, nothing more.
+  if (r.modelledNs >= r.linkBoundNs * (1 - 1e-12)) return;
+  std::ostringstream m;
+  m << std::setprecision(17) << "internal error: modelled run time " << r.modelledNs << " ns is below its link bound "
+    << r.linkBoundNs << " ns (link " << linkName << ", " << r.readLines << " lines read, " << r.writeLines
+    << " written, status after " << r.statusCycle << " cycles); the link model, driver::linkBoundNs or the "
+    << "driver's protocol is wrong";
+  throw std::logic_error(m.str());
+}
 
 void RtlBackend::runOne(const SphereTable& spheres, const PairList& pairs, ContactSet& out) {
+  port_->arm();
   last_ = driver_->run(spheres, pairs);
+  requireAtLeastLinkBound(last_.stats, driver_->link().params().name);
   out = driver_->toContactSet(last_, pairs.size());
   batch_.add(last_.status, last_.stats);
 }

@@ -6,11 +6,13 @@
 #include <filesystem>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "collide/backend.hpp"
 #include "driver/afu_driver.hpp"
 #include "driver/afu_factory.hpp"
+#include "driver/wall_watchdog.hpp"
 #include "link/link_params.hpp"
 
 namespace collide {
@@ -26,13 +28,18 @@ struct RtlBatchStats {
   void add(const RtlBatchStats& b) { add(b.counters, b.stats, b.runs); }
 };
 
+// The link model can never finish a run sooner than driver::linkBoundNs allows; a modelled
+// time below it means the model, the bound or the driver's protocol is broken, and every
+// time reported from then on would be wrong. Throws std::logic_error ("internal error").
+void requireAtLeastLinkBound(const driver::RunStats& run, const std::string& linkName);
+
 class RtlBackend final : public CollisionBackend {
  public:
   RtlBackend(const std::filesystem::path& afuDir, const link::LinkParams& link,
              driver::DriverOptions options = {}, const driver::AfuPortOptions& portOptions = {});
   // For tests and other models: any AfuPort, owned by the backend.
   RtlBackend(std::unique_ptr<driver::AfuPort> port, const link::LinkParams& link,
-             const driver::DriverOptions& options);
+             const driver::DriverOptions& options, double wallLimitS = driver::kDefaultWallLimitS);
 
   std::string name() const override { return "rtl"; }
   LinkFormat format() const override { return driver_->options().format; }
@@ -46,7 +53,8 @@ class RtlBackend final : public CollisionBackend {
  private:
   void runOne(const SphereTable& spheres, const PairList& pairs, ContactSet& out);
 
-  std::unique_ptr<driver::AfuPort> port_;
+  // Every port runs behind a wall-clock watchdog, armed at each run (driver/wall_watchdog.hpp).
+  std::unique_ptr<driver::WallClockWatchdog> port_;
   std::unique_ptr<driver::AfuDriver> driver_;
   driver::RunResult last_;
   RtlBatchStats batch_;

@@ -4,7 +4,7 @@
 
 namespace collide {
 
-// Reference semantics (ARCHITECTURE.md, = ODE 0.16 dCollideSpheres):
+// Reference semantics (ODE 0.16 dCollideSpheres, ode/src/collision_util.cpp; docs/scpu.md, "Semantics"):
 //   d = sqrt(dx*dx + dy*dy + dz*dz), (dx,dy,dz) = p1 - p2, summed left to right
 //   d > r1 + r2: no contact   (so a NaN d IS a contact, as in ODE)
 //   d <= 0: pos p1, normal (1,0,0), depth r1 + r2

@@ -1,5 +1,5 @@
 #pragma once
-// ODE's dCollideSpheres in binary32 over structure-of-arrays (ARCHITECTURE.md), written
+// ODE's dCollideSpheres in binary32 over structure-of-arrays (docs/scpu.md, "Semantics"), written
 // branch-free so that GCC vectorizes it. Compiled with -ffp-contract=off: every operation
 // is one correctly rounded binary32 RNE operation, in the reference order.
 #include <cstddef>

@@ -113,7 +113,7 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
   for (;;) {
     if (link_.cycle() >= deadline) {
       std::ostringstream m;
-      m << "AFU hung: no status line after " << opt_.watchdogCycles << " cycles (watchdog); "
+      m << "AFU hung: no status line after " << opt_.watchdogCycles << " cycles (simulated-cycle watchdog); "
         << link_.readsOutstanding() << " reads and " << link_.writesOutstanding()
         << " writes outstanding, " << link_.stats().readResponses << " read and "
         << link_.stats().writeResponses << " write responses delivered, AFU "

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "driver/afu_port.hpp"
+#include "driver/wall_watchdog.hpp"
 
 namespace collide::driver {
 
@@ -20,6 +21,9 @@ struct AfuPortOptions {
   std::filesystem::path traceFile;
   // Simulated clock for the trace's time axis (the link model's clock).
   double clockMHz = 200.0;
+  // Wall-clock limit of one AFU run, in seconds. Not the port's own business: the rtl
+  // backend wraps the port in a WallClockWatchdog with it.
+  double wallLimitS = kDefaultWallLimitS;
 };
 
 // The preset compiled into this binary, or "" if none.

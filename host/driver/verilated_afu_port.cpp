@@ -8,6 +8,8 @@
 
 #include COLLIDE_AFU_VTOP_HEADER
 #include "driver/verilated_afu_port.hpp"
+#include "util/input_file.hpp"
+#include "util/json_input.hpp"
 
 #ifndef COLLIDE_AFU_PRESET
 #error "COLLIDE_AFU_PRESET must name the Verilated preset"
@@ -28,15 +30,15 @@ void requireSameAfu(const std::filesystem::path& afuDir) {
   const std::string built = std::string(COLLIDE_AFU_DIR) + " (preset " + COLLIDE_AFU_PRESET + ")";
   if (afuDir.empty()) return;  // the built-in one
   const auto file = afuDir / "manifest.json";
-  std::ifstream in(file);
-  if (!in)
+  if (!std::filesystem::exists(file))
     throw AfuUnavailable("no AFU available for " + afuDir.string() + ": no manifest.json there; this collide was built with " + built);
   nlohmann::json asked, have;
   try {
-    asked = nlohmann::json::parse(in);
-    have = nlohmann::json::parse(collideBuiltInManifest());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw AfuUnavailable(file.string() + ": not valid JSON: " + e.what());
+    std::ifstream in = util::openInput(file);
+    asked = util::parseJson(in, file.string(), "manifest");  // bounded depth: compared below
+    have = util::parseJson(collideBuiltInManifest(), "the built-in AFU's manifest", "manifest");
+  } catch (const std::runtime_error& e) {
+    throw AfuUnavailable(e.what());
   }
   if (asked != have)
     throw AfuUnavailable("no AFU available for " + afuDir.string() + ": its manifest.json differs from the AFU this collide was built with, " +

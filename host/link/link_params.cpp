@@ -2,9 +2,13 @@
 
 #include <cmath>
 #include <set>
+#include <sstream>
+#include <tuple>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
+
+#include "util/echo.hpp"
 
 namespace collide::link {
 
@@ -45,17 +49,42 @@ double aggregate(const std::vector<ChannelParams>& all, double ChannelParams::*g
 double LinkParams::aggregateReadGBps() const { return aggregate(channels(), &ChannelParams::readGBps); }
 double LinkParams::aggregateWriteGBps() const { return aggregate(channels(), &ChannelParams::writeGBps); }
 
+namespace {
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+std::string rangeText(const ParamRange& r) { return num(r.lo) + ".." + num(r.hi) + " " + r.unit; }
+// !(in range) rather than (out of range), so that NaN is refused too.
+void inRange(const std::string& key, double v, const ParamRange& r, const char* which = "") {
+  if (!(v >= r.lo && v <= r.hi))
+    throw std::invalid_argument(key + ": " + which + num(v) + " " + r.unit + " is outside the sane range " +
+                                rangeText(r));
+}
+void bandwidthInRange(const std::string& key, double v) {
+  if (v == 0) return;  // unlimited
+  if (!(v >= kBandwidthRange.lo && v <= kBandwidthRange.hi))
+    throw std::invalid_argument(key + ": " + num(v) + " GB/s is outside the sane range 0 (unlimited) or " +
+                                rangeText(kBandwidthRange));
+}
+}  // namespace
+
 std::uint64_t LinkParams::nsToCycles(double ns) const {
   const double c = std::round(ns / cycleNs());
+  // validate() keeps every time below 2^40 cycles; past that the cast would be undefined.
+  if (!(c < 0x1p62)) throw std::logic_error("LinkParams::nsToCycles: " + num(ns) + " ns is not a cycle count (unvalidated link)");
   return c < 1.0 ? 1 : static_cast<std::uint64_t>(c);
 }
 
 void LinkParams::validate() const {
   auto bad = [](const std::string& what) { throw std::invalid_argument(what); };
-  if (!(clockMHz > 0)) bad("clock_mhz: must be > 0");
+  inRange("clock_mhz", clockMHz, kClockRange);
   if (lineBytes != 64) bad("line_bytes: the AFU contract fixes 64");
   // Channel 0's errors keep the flat key names a scene uses for it.
   const auto all = channels();
+  if (all.size() > kMaxChannels)
+    bad("channels: " + std::to_string(all.size()) + " channels, at most " + std::to_string(kMaxChannels));
   std::set<std::string> names;
   for (std::size_t k = 0; k < all.size(); ++k) {
     const ChannelParams& c = all[k];
@@ -64,22 +93,26 @@ void LinkParams::validate() const {
     const std::string nameAt = "channels[" + std::to_string(k) + "].name";
     if (c.name.empty()) bad(nameAt + ": must not be empty");
     if (!names.insert(c.name).second) bad(nameAt + ": \"" + c.name + "\" names two channels");
-    if (!(c.readLatencyMinNs >= 0) || !(c.readLatencyMaxNs >= c.readLatencyMinNs))
-      bad(at + "read_latency_ns: need 0 <= min <= max");
-    if (!(c.writeLatencyMinNs >= 0) || !(c.writeLatencyMaxNs >= c.writeLatencyMinNs))
-      bad(at + "write_latency_ns: need 0 <= min <= max");
-    if (!(c.readGBps >= 0) || !(c.writeGBps >= 0))
-      bad(at + "read_gbps/write_gbps: must be >= 0 (0 = unlimited)");
+    for (const auto& [key, lo, hi] : {std::tuple{"read_latency_ns", c.readLatencyMinNs, c.readLatencyMaxNs},
+                                      std::tuple{"write_latency_ns", c.writeLatencyMinNs, c.writeLatencyMaxNs}}) {
+      inRange(at + key, lo, kLatencyRange, lo == hi ? "" : "min ");
+      inRange(at + key, hi, kLatencyRange, lo == hi ? "" : "max ");
+      if (!(hi >= lo)) bad(at + key + ": need min <= max, got " + num(lo) + " > " + num(hi));
+    }
+    bandwidthInRange(at + "read_gbps", c.readGBps);
+    bandwidthInRange(at + "write_gbps", c.writeGBps);
   }
-  if (all.size() > 16) bad("channels: at most 16");
-  if (maxReads == 0 || maxWrites == 0) bad("max_reads/max_writes: must be >= 1");
-  if (!(csrWriteNs >= 0) || !(pollNs >= 0) || !(transactionOverheadNs >= 0))
-    bad("csr_write_ns/poll_ns/transaction_overhead_ns: must be >= 0");
+  for (const auto& [key, n] : {std::pair{"max_reads", maxReads}, std::pair{"max_writes", maxWrites}})
+    if (n < 1 || n > kMaxOutstanding)
+      bad(std::string(key) + ": " + std::to_string(n) + " is outside the sane range 1.." + std::to_string(kMaxOutstanding));
+  inRange("csr_write_ns", csrWriteNs, kCsrPollRange);
+  inRange("poll_ns", pollNs, kCsrPollRange);
+  inRange("transaction_overhead_ns", transactionOverheadNs, kOverheadRange);
 }
 
 namespace {
 double number(const nlohmann::json& v, const std::string& path) {
-  if (!v.is_number()) throw std::invalid_argument(path + ": expected a number, got " + v.dump());
+  if (!v.is_number()) throw std::invalid_argument(path + ": expected a number, got " + util::echoJson(v));
   return v.get<double>();
 }
 void range(const nlohmann::json& v, const std::string& path, double& lo, double& hi) {
@@ -89,19 +122,20 @@ void range(const nlohmann::json& v, const std::string& path, double& lo, double&
     lo = v[0].get<double>();
     hi = v[1].get<double>();
   } else {
-    throw std::invalid_argument(path + ": expected a number or [min, max], got " + v.dump());
+    throw std::invalid_argument(path + ": expected a number or [min, max], got " + util::echoJson(v));
   }
   if (!(lo >= 0) || !(hi >= lo))
-    throw std::invalid_argument(path + ": expected 0 <= min <= max, got " + v.dump());
+    throw std::invalid_argument(path + ": expected 0 <= min <= max, got " + util::echoJson(v));
 }
 double bandwidth(const nlohmann::json& v, const std::string& path) {
   const double g = number(v, path);
-  if (!(g >= 0)) throw std::invalid_argument(path + ": expected >= 0 GB/s (0 = unlimited), got " + v.dump());
+  if (!(g >= 0)) throw std::invalid_argument(path + ": expected >= 0 GB/s (0 = unlimited), got " + util::echoJson(v));
   return g;
 }
 unsigned count(const nlohmann::json& v, const std::string& path) {
-  if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 1 << 20)
-    throw std::invalid_argument(path + ": expected a positive integer, got " + v.dump());
+  if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > kMaxOutstanding)
+    throw std::invalid_argument(path + ": expected an integer in 1.." + std::to_string(kMaxOutstanding) + ", got " +
+                                util::echoJson(v));
   return v.get<unsigned>();
 }
 
@@ -120,16 +154,16 @@ bool channelKey(const std::string& key, const nlohmann::json& v, const std::stri
 // preset would be hard to read.
 std::vector<ChannelParams> channelList(const nlohmann::json& v, const std::string& path) {
   if (!v.is_array() || v.empty())
-    throw std::invalid_argument(path + ": expected a non-empty array of channels, got " + v.dump());
+    throw std::invalid_argument(path + ": expected a non-empty array of channels, got " + util::echoJson(v));
   std::vector<ChannelParams> all;
   for (std::size_t k = 0; k < v.size(); ++k) {
     const std::string at = path + "[" + std::to_string(k) + "]";
     const nlohmann::json& e = v[k];
-    if (!e.is_object()) throw std::invalid_argument(at + ": expected an object, got " + e.dump());
+    if (!e.is_object()) throw std::invalid_argument(at + ": expected an object, got " + util::echoJson(e));
     ChannelParams c;
     for (const auto& [key, x] : e.items()) {
       if (key == "name") {
-        if (!x.is_string()) throw std::invalid_argument(at + ".name: expected a string, got " + x.dump());
+        if (!x.is_string()) throw std::invalid_argument(at + ".name: expected a string, got " + util::echoJson(x));
         c.name = x.get<std::string>();
       } else if (!channelKey(key, x, at + "." + key, c)) {
         throw std::invalid_argument(at + "." + key +
@@ -146,7 +180,7 @@ std::vector<ChannelParams> channelList(const nlohmann::json& v, const std::strin
 }  // namespace
 
 LinkParams linkParamsFromJson(const nlohmann::json& j, const std::string& path, LinkParams p) {
-  if (!j.is_object()) throw std::invalid_argument(path + ": expected an object, got " + j.dump());
+  if (!j.is_object()) throw std::invalid_argument(path + ": expected an object, got " + util::echoJson(j));
   // "channels" replaces the list; a flat channel key next to it would edit channel 0 of
   // which list? Refuse rather than guess.
   const bool listed = j.contains("channels");
@@ -163,10 +197,10 @@ LinkParams linkParamsFromJson(const nlohmann::json& j, const std::string& path, 
     else if (key == "max_reads") p.maxReads = count(v, at);
     else if (key == "max_writes") p.maxWrites = count(v, at);
     else if (key == "reorder") {
-      if (!v.is_boolean()) throw std::invalid_argument(at + ": expected true or false, got " + v.dump());
+      if (!v.is_boolean()) throw std::invalid_argument(at + ": expected true or false, got " + util::echoJson(v));
       p.reorder = v.get<bool>();
     } else if (key == "seed") {
-      if (!v.is_number_unsigned()) throw std::invalid_argument(at + ": expected an unsigned integer, got " + v.dump());
+      if (!v.is_number_unsigned()) throw std::invalid_argument(at + ": expected an unsigned integer, got " + util::echoJson(v));
       p.seed = v.get<std::uint64_t>();
     } else if (key == "csr_write_ns") p.csrWriteNs = number(v, at);
     else if (key == "poll_ns") p.pollNs = number(v, at);

@@ -2,6 +2,7 @@
 // Parameters of the host<->AFU link model. The defaults are HARP v1 (Xeon E5-2680 v2 +
 // Stratix V over QPI/CCI), each naming its source; link/link_presets.cpp holds the other
 // platforms. Treat every number as calibratable.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -9,6 +10,23 @@
 #include <nlohmann/json_fwd.hpp>
 
 namespace collide::link {
+
+// The sane range of every number, checked by LinkParams::validate() before anything is
+// converted to cycles or to the model's fixed point (docs/host.md, "Link parameter
+// ranges"). Wide enough for any platform we know of, narrow enough that no conversion can
+// overflow: 1 ms at 2 GHz is 2e9 cycles, a line at 0.001 GB/s 1.3e8 cycles (2^20 fixed
+// point: 1.3e14, far below 2^64).
+struct ParamRange {
+  double lo, hi;
+  const char* unit;
+};
+inline constexpr ParamRange kClockRange{1, 2000, "MHz"};         // FPGA interface clocks: 100-800
+inline constexpr ParamRange kLatencyRange{0, 1e6, "ns"};         // a trip: up to 1 ms
+inline constexpr ParamRange kBandwidthRange{0.001, 10000, "GB/s"};  // or 0 = unlimited
+inline constexpr ParamRange kCsrPollRange{0, 1e6, "ns"};         // csr_write_ns, poll_ns
+inline constexpr ParamRange kOverheadRange{0, 1e9, "ns"};        // a call's overhead: up to 1 s
+inline constexpr unsigned kMaxOutstanding = 1u << 20;            // max_reads, max_writes
+inline constexpr std::size_t kMaxChannels = 16;
 
 // One physical link between host memory and the FPGA (HARP v2 has a QPI link and two PCIe
 // links behind one CCI-P port). Bandwidth 0 = unlimited: only the AFU port's line a cycle.
@@ -81,7 +99,7 @@ struct LinkParams {
 
   double cycleNs() const { return 1000.0 / clockMHz; }
   std::uint64_t nsToCycles(double ns) const;  // rounded to nearest, at least 1
-  // Throws std::invalid_argument naming the bad field.
+  // Throws std::invalid_argument naming the bad field, its value and its range.
   void validate() const;
 };
 

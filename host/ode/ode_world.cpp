@@ -35,8 +35,18 @@ World::World(const scene::Scene& s)
 
 World::~World() {
   dJointGroupDestroy(contacts_);
+  // An ODE error inside dSpaceCollide (ode_errors.hpp) unwinds with the space still locked,
+  // and ODE refuses to destroy a locked space or the bodies of its geoms: then both are
+  // left to the process's end, so that the first error is the one reported.
+  if (spaceLocked_) return;
   dSpaceDestroy(space_);  // destroys the geoms it holds (cleanup mode on by default)
   dWorldDestroy(world_);  // destroys the bodies
+}
+
+void World::collideSpace(void* data, dNearCallback* callback) {
+  spaceLocked_ = true;  // stays set if an ODE error unwinds out of dSpaceCollide
+  dSpaceCollide(space_, data, callback);
+  spaceLocked_ = false;
 }
 
 long World::sphereIndex(dGeomID g) const {

@@ -24,6 +24,8 @@ class World {
   std::size_t sphereCount() const { return geoms_.size(); }
   dGeomID sphereGeom(std::size_t k) const { return geoms_[k]; }
   dBodyID sphereBody(std::size_t k) const { return bodies_[k]; }
+  // dSpaceCollide on the world's space, remembering whether it returned (~World).
+  void collideSpace(void* data, dNearCallback* callback);
   // Sphere index of a geom, or -1 for a non-sphere (the ground plane).
   long sphereIndex(dGeomID g) const;
 
@@ -37,6 +39,7 @@ class World {
   dJointGroupID contacts_ = nullptr;
   std::vector<dBodyID> bodies_;
   std::vector<dGeomID> geoms_;
+  bool spaceLocked_ = false;  // inside dSpaceCollide, or an error left it there
 };
 
 }  // namespace collide::ode

@@ -1,8 +1,12 @@
 #include "ode/simulation.hpp"
 
 #include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
 
 #include "ode/contact_joints.hpp"
+#include "ode/ode_limits.hpp"
 
 namespace collide::ode {
 
@@ -10,7 +14,28 @@ Simulation::Simulation(const scene::Scene& scene, CollisionBackend& backend)
     : scene_(scene), backend_(backend), world_(scene), surface_(surfaceFor(scene.contact)) {}
 
 void Simulation::nearCallback(void* self, dGeomID o1, dGeomID o2) {
-  static_cast<Simulation*>(self)->near(o1, o2);
+  auto* sim = static_cast<Simulation*>(self);
+  if (sim->nearError_) return;  // the rest of the broad phase is skipped
+  try {
+    sim->near(o1, o2);
+  } catch (...) {
+    sim->nearError_ = std::current_exception();
+  }
+}
+
+// A body flung beyond the sane range (ode/ode_limits.hpp) is a reported event, not ODE's
+// assertion in the next broad phase.
+void Simulation::requireSpheresInRange() const {
+  for (std::size_t k = 0; k < world_.sphereCount(); ++k) {
+    const dReal* p = dBodyGetPosition(world_.sphereBody(k));
+    if (saneCoordinate(p[0]) && saneCoordinate(p[1]) && saneCoordinate(p[2])) continue;
+    std::ostringstream m;
+    m << "step " << step_ << ": sphere " << k << " left the sane range |x|, |y|, |z| <= " << kMaxCoordinateM
+      << " m, at (" << p[0] << ", " << p[1] << ", " << p[2] << "), velocity ("
+      << dBodyGetLinearVel(world_.sphereBody(k))[0] << ", " << dBodyGetLinearVel(world_.sphereBody(k))[1] << ", "
+      << dBodyGetLinearVel(world_.sphereBody(k))[2] << ") m/s (docs/host.md, \"What reaches ODE\")";
+    throw std::runtime_error(m.str());
+  }
 }
 
 void Simulation::near(dGeomID o1, dGeomID o2) {
@@ -43,8 +68,10 @@ StepStats Simulation::step() {
   st.step = step_;
   pairs_.clear();
   otherContacts_ = 0;
+  requireSpheresInRange();
   applyEffects();
-  dSpaceCollide(world_.space(), this, &Simulation::nearCallback);
+  world_.collideSpace(this, &Simulation::nearCallback);
+  if (nearError_) std::rethrow_exception(std::exchange(nearError_, nullptr));
 
   world_.fillSphereTable(table_);
   const auto t0 = std::chrono::steady_clock::now();

@@ -5,6 +5,7 @@
 //   CPU) -> the batch through the selected backend -> contact joints -> dWorldQuickStep.
 #include <chrono>
 #include <cstdint>
+#include <exception>
 #include <functional>
 
 #include "collide/backend.hpp"
@@ -38,6 +39,7 @@ class Simulation {
   static void nearCallback(void* self, dGeomID o1, dGeomID o2);
   void near(dGeomID o1, dGeomID o2);
   void applyEffects();
+  void requireSpheresInRange() const;
 
   const scene::Scene& scene_;
   CollisionBackend& backend_;
@@ -49,6 +51,9 @@ class Simulation {
   std::size_t otherContacts_ = 0;
   long long step_ = 0;
   BatchObserver observer_;
+  // An exception in the near callback waits here: unwinding through dSpaceCollide would
+  // leave the space locked, and ODE aborts when a locked space is destroyed.
+  std::exception_ptr nearError_;
 };
 
 }  // namespace collide::ode

@@ -1,5 +1,5 @@
 #pragma once
-// The paper's diamond benchmark (ARCHITECTURE.md, from the paper and its repository):
+// The paper's diamond benchmark (Alves et al.; docs/host.md, "Diamond geometry"):
 // layers of size 1..hMax..1, layer of size n an n x n square lattice rotated 45 degrees.
 // r = 0.1; hip = sqrt((2r)^2 + (2r)^2); dbtwnball = hip - 2r + dSph; in-layer step
 // a = dbtwnball/2 + r; layer z = step*dbtwnball + 2r + 4 (step = 0 .. 2hMax-2).

@@ -3,13 +3,13 @@
 #include <cmath>
 #include <limits>
 
+#include "util/echo.hpp"
+
 namespace collide::scene {
 
 namespace {
-std::string shortDump(const nlohmann::json& j) {
-  std::string s = j.dump();
-  return s.size() > 60 ? s.substr(0, 57) + "..." : s;
-}
+// Bounded in length and in the part of j it visits (util/echo.hpp).
+std::string shortDump(const nlohmann::json& j) { return util::echoJson(j); }
 }  // namespace
 
 void JsonNode::fail(const std::string& what) const { throw SceneError(path_ + ": " + what); }

@@ -11,6 +11,10 @@
 
 namespace collide::scene {
 
+// The most steps a run may take (a scene's "steps", `collide run --steps`): a guard
+// against typos (10^9 steps of even the smallest scene take days), not a model limit.
+inline constexpr long long kMaxSteps = 1'000'000'000;
+
 struct SphereBody {
   Vec3 pos{};
   double radius = 0.1;
@@ -47,6 +51,8 @@ struct Scene {
   std::string backend = "ode";         // ode | simd | rtl
   std::filesystem::path afuDir;        // rtl: generated/<preset>
   link::LinkParams link = link::LinkParams::ideal();
+  // rtl: wall-clock limit of one AFU run (unset: driver::kDefaultWallLimitS).
+  std::optional<double> wallLimitS;
 };
 
 // Throws SceneError ("scene.<key path>: <what is wrong>").

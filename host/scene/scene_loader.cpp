@@ -2,15 +2,37 @@
 
 #include <fstream>
 
+#include "driver/wall_watchdog.hpp"
 #include "link/link_presets.hpp"
+#include "ode/ode_limits.hpp"
 #include "scene/diamond.hpp"
 #include "scene/random_cloud.hpp"
+#include "util/input_file.hpp"
+#include "util/json_input.hpp"
 
 namespace collide::scene {
 
 namespace {
 
 constexpr long long kMaxSpheres = 1'000'000;  // a guard against typos, not a model limit
+
+// A centre ODE's broad phase can place, a radius ODE accepts (ode/ode_limits.hpp).
+Vec3 position(const JsonNode& n) {
+  const Vec3 v = n.vec3();
+  for (double c : v)
+    if (!ode::saneCoordinate(c)) n.expected("[x, y, z] within +-1e6 m (docs/host.md, \"What reaches ODE\")");
+  return v;
+}
+double massOf(const JsonNode& n) {
+  const double m = n.positive();
+  if (!(m >= ode::kMinMassKg && m <= ode::kMaxMassKg)) n.expected("a mass in [1e-9, 1e9] kg");
+  return m;
+}
+double radius(const JsonNode& n) {
+  const double r = n.positive();
+  if (!ode::saneRadius(r)) n.expected("a radius in (0, 1e6] m");
+  return r;
+}
 
 void addDiamond(const JsonNode& n, Scene& s) {
   n.allowOnly({"hMax", "dSph", "mass"});
@@ -19,8 +41,12 @@ void addDiamond(const JsonNode& n, Scene& s) {
   if (h > 100) n.at("hMax").expected("an integer in 1..100");
   p.hMax = static_cast<int>(h);
   if (auto d = n.find("dSph")) p.dSph = d->nonNegative();
-  const double mass = n.find("mass") ? n.at("mass").positive() : 1.0;
-  for (const auto& c : diamondCentres(p)) s.spheres.push_back({c, p.radius, mass, {}});
+  const double mass = n.find("mass") ? massOf(n.at("mass")) : 1.0;
+  for (const auto& c : diamondCentres(p)) {
+    if (!ode::saneCoordinate(c[0]) || !ode::saneCoordinate(c[1]) || !ode::saneCoordinate(c[2]))
+      n.at("dSph").expected("a spacing that keeps the diamond within +-1e6 m");
+    s.spheres.push_back({c, p.radius, mass, {}});
+  }
 }
 
 void addSpheres(const JsonNode& n, Scene& s) {
@@ -29,9 +55,9 @@ void addSpheres(const JsonNode& n, Scene& s) {
     const JsonNode e = n[k];
     e.allowOnly({"pos", "r", "mass", "vel"});
     SphereBody b;
-    b.pos = e.at("pos").vec3();
-    b.radius = e.at("r").positive();
-    if (auto m = e.find("mass")) b.mass = m->positive();
+    b.pos = position(e.at("pos"));
+    b.radius = radius(e.at("r"));
+    if (auto m = e.find("mass")) b.mass = massOf(*m);
     if (auto v = e.find("vel")) b.vel = v->vec3();
     s.spheres.push_back(b);
   }
@@ -43,20 +69,20 @@ void addCloud(const JsonNode& n, Scene& s) {
   p.count = n.at("count").positiveInt();
   if (p.count > kMaxSpheres) n.at("count").expected("at most " + std::to_string(kMaxSpheres));
   p.seed = n.at("seed").seed();
-  p.min = n.at("min").vec3();
-  p.max = n.at("max").vec3();
+  p.min = position(n.at("min"));
+  p.max = position(n.at("max"));
   for (int c = 0; c < 3; ++c)
     if (!(p.max[c] >= p.min[c])) n.at("max").fail("must be >= min in every coordinate");
   const JsonNode r = n.at("radius");
   if (r.json().is_array()) {
     if (r.arraySize() != 2) r.expected("a radius or [rMin, rMax]");
-    p.rMin = r[0].positive();
-    p.rMax = r[1].positive();
+    p.rMin = radius(r[0]);
+    p.rMax = radius(r[1]);
     if (p.rMax < p.rMin) r.fail("rMax < rMin");
   } else {
-    p.rMin = p.rMax = r.positive();
+    p.rMin = p.rMax = radius(r);
   }
-  const double mass = n.find("mass") ? n.at("mass").positive() : 1.0;
+  const double mass = n.find("mass") ? massOf(n.at("mass")) : 1.0;
   for (const auto& c : randomCloud(p)) s.spheres.push_back({c.centre, c.radius, mass, {}});
 }
 
@@ -149,11 +175,14 @@ void readLink(const JsonNode& n, Scene& s) {
 
 Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) {
   const JsonNode root(j, "scene");
-  root.allowOnly({"name", "steps", "dt", "backend", "afu", "link", "world", "effects", "contact", "bodies"});
+  root.allowOnly({"name", "steps", "dt", "backend", "afu", "link", "wall_limit_s", "world", "effects", "contact",
+                  "bodies"});
   Scene s;
   if (auto v = root.find("name")) s.name = v->string();
   s.steps = root.at("steps").positiveInt();
+  if (s.steps > kMaxSteps) root.at("steps").expected("an integer in 1..1000000000");
   s.dt = root.at("dt").positive();
+  if (!(s.dt >= ode::kMinDtS && s.dt <= ode::kMaxDtS)) root.at("dt").expected("a time step in [1e-9, 10] s");
   if (auto v = root.find("backend")) {
     s.backend = v->string();
     if (s.backend != "ode" && s.backend != "simd" && s.backend != "rtl") v->expected("\"ode\", \"simd\" or \"rtl\"");
@@ -175,17 +204,22 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   if (auto v = root.find("contact")) readContact(*v, s);
   if (auto v = root.find("world")) readWorld(*v, s);
   if (auto v = root.find("link")) readLink(*v, s);
+  if (auto v = root.find("wall_limit_s")) {
+    s.wallLimitS = v->positive();
+    if (*s.wallLimitS > driver::kMaxWallLimitS) v->expected("a number of seconds in (0, 1e6]");
+  }
   return s;
 }
 
 Scene loadScene(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw SceneError(file.string() + ": cannot open");
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw SceneError(file.string() + ": not valid JSON: " + e.what());
+    std::ifstream in = util::openInput(file);
+    j = util::parseJson(in, file.string(), "scene");
+  } catch (const util::InputError& e) {
+    throw SceneError(e.what());
+  } catch (const util::JsonInputError& e) {
+    throw SceneError(e.what());
   }
   Scene s = parseScene(j, file.parent_path());
   if (s.name.empty()) s.name = file.stem().string();

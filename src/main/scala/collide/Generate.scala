@@ -89,8 +89,9 @@ object Generate {
   }
 
   val firtoolOpts: Array[String] = Array(
-    // Yosys 0.23 reads this (shared NOTES.md); no randomization or source locators, so the
-    // output depends on the configuration only.
+    // Yosys 0.23 reads this: its read_verilog takes a subset of SystemVerilog, without local
+    // variables in always blocks or packed arrays (docs/conventions.md, "Tools"); no
+    // randomization or source locators, so the output depends on the configuration only.
     "--lowering-options=disallowLocalVariables,disallowPackedArrays,noAlwaysComb",
     "--disable-all-randomization", "--strip-debug-info")
 

@@ -5,7 +5,7 @@ import chisel3.util._
 import collide.fp._
 
 /** inv = rsqrt(d2); d = d2 * inv; w = inv, u = (dx, dy, dz). d2 = 0 and d2 = inf take d = d2
-  * (sqrt's exact answers) instead of 0 * inf = NaN (shared NOTES.md); then the rsqrt's and the
+  * (sqrt's exact answers) instead of 0 * inf = NaN (IEEE 754's invalid operation; docs/scpu.md); then the rsqrt's and the
   * multiply's flags do not count. d's flags: sum of squares, and unless guarded rsqrt and the
   * multiply; w's flags: rsqrt.
   */

@@ -10,8 +10,8 @@ object DistanceMethod {
   /** ODE's own order: d = sqrt(d2); inv = 1/d; n = (dx,dy,dz) * inv. */
   case object SqrtThenRecip extends DistanceMethod { val name = "sqrt-recip" }
   /** inv = rsqrt(d2); d = d2 * inv; n = (dx,dy,dz) * inv. One root operator on the critical
-    * path instead of two. d2 = 0 and d2 = inf are guarded (d = d2), since 0 * inf would be NaN
-    * (shared NOTES.md).
+    * path instead of two. d2 = 0 and d2 = inf are guarded (d = d2), since rsqrt(0) = inf and
+    * rsqrt(inf) = 0 make d2 * inv a 0 * inf, which IEEE 754 defines as invalid (NaN); docs/scpu.md.
     */
   case object Rsqrt extends DistanceMethod { val name = "rsqrt" }
   /** Scale (dx,dy,dz) by 2^-E, E the exponent of the largest |component|, so the scaled sum of

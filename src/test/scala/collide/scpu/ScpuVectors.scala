@@ -131,7 +131,7 @@ final class ScpuVectors(cfg: ScpuConfig) {
   def rawLink(rng: Random): ScpuPair =
     ScpuPair.fromFields(Seq.fill(8)(collide.testutil.FpPatterns.operand(lf, rng)))
 
-  /** The hard cases of shared NOTES.md and more, with a label each. */
+  /** The hard cases of docs/scpu.md ("Hard cases") and more, with a label each. */
   def hardCases: Seq[(String, ScpuPair)] = {
     val one = c(1.0); val zero = BigInt(0)
     val g = Seq.newBuilder[(String, ScpuPair)]
