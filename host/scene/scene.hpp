@@ -32,6 +32,8 @@ struct ContactModel {     // ODE dSurfaceParameters; unset fields leave their mo
   double mu = 0.0;        // 0 = frictionless; infinity allowed
   std::optional<double> bounce, bounceVel;
   std::optional<double> softCfm;
+  bool coulomb = false;   // friction force <= mu x normal force (ODE's dContactApprox1, the friction
+                          // pyramid); otherwise ODE's default: mu is a fixed force limit in newtons
 };
 
 struct Scene {

@@ -110,7 +110,7 @@ void readEffects(const JsonNode& n, Scene& s) {
 }
 
 void readContact(const JsonNode& n, Scene& s) {
-  n.allowOnly({"mu", "bounce", "bounce_vel", "soft_cfm"});
+  n.allowOnly({"mu", "bounce", "bounce_vel", "soft_cfm", "friction"});
   if (auto v = n.find("mu")) s.contact.mu = v->nonNegativeOrInfinity();
   if (auto v = n.find("bounce")) {
     s.contact.bounce = v->nonNegative();
@@ -118,6 +118,11 @@ void readContact(const JsonNode& n, Scene& s) {
   }
   if (auto v = n.find("bounce_vel")) s.contact.bounceVel = v->nonNegative();
   if (auto v = n.find("soft_cfm")) s.contact.softCfm = v->nonNegative();
+  if (auto v = n.find("friction")) {
+    const std::string f = v->string();
+    if (f != "coulomb" && f != "force_limit") v->expected("\"coulomb\" or \"force_limit\"");
+    s.contact.coulomb = f == "coulomb";
+  }
   if (s.contact.bounceVel && !s.contact.bounce) n.at("bounce_vel").fail("needs bounce");
 }
 
