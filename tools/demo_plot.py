@@ -2,10 +2,10 @@
 the scene's final state as a 3D scatter of the sphere centres.
 
     tools/pyenv tools/demo_plot.py OUT.png --title TITLE --cpu ode.csv
-        [--afu "LABEL=rtl_qpi.csv" ...] [--positions final.csv]
+        [--cpu-label "ode run"] [--afu "LABEL=rtl_qpi.csv" ...] [--positions final.csv]
 
 --cpu       a `collide run --out` CSV: its ode_ns and simd_ns columns (ODE's collider and the
-            simd batch, measured on the run's pairs) and its contacts
+            simd batch, measured on the run's pairs) and its contacts; --cpu-label names that run
 --afu       a `collide run --backend rtl --out` CSV: its afu_modelled_ns and contacts, labelled
 --positions a `collide run --positions` CSV (sphere,x,y,z; C99 hex floats or decimal)
 
@@ -58,12 +58,16 @@ def labelled(spec):
     return label, path
 
 
+def afu_colour(k):  # the same colour for an AFU run in both panels
+    return f"C{2 + k % 3}"
+
+
 def plot_times(ax, cpu, afus):
     us = lambda v: [x / 1e3 if x > 0 else float("nan") for x in v]  # log axis: leave out zeros
-    ax.plot(cpu["step"], us(cpu["ode_ns"]), lw=1.4, label="ODE collider, binary64 (CPU, measured)")
-    ax.plot(cpu["step"], us(cpu["simd_ns"]), lw=1.4, label="simd batch, binary32 (CPU, measured)")
-    for label, a in afus:
-        ax.plot(a["step"], us(a["afu_modelled_ns"]), lw=1.4, label=f"AFU, {label} (modelled)")
+    ax.plot(cpu["step"], us(cpu["ode_ns"]), lw=1.4, color="C0", label="ODE collider, binary64 (CPU, measured)")
+    ax.plot(cpu["step"], us(cpu["simd_ns"]), lw=1.4, color="C1", label="simd batch, binary32 (CPU, measured)")
+    for k, (label, a) in enumerate(afus):
+        ax.plot(a["step"], us(a["afu_modelled_ns"]), lw=1.4, color=afu_colour(k), label=f"AFU, {label} (modelled)")
     ax.set_yscale("log")
     ax.set_xlabel("step")
     ax.set_ylabel("narrow phase time per step (µs)")
@@ -72,13 +76,14 @@ def plot_times(ax, cpu, afus):
     ax.legend(fontsize=9)
 
 
-def plot_contacts(ax, cpu, afus):
-    ax.plot(cpu["step"], cpu["contacts"], lw=1.6, label="sphere/sphere contacts (ode run)")
-    for label, a in afus:
-        ax.plot(a["step"], a["contacts"], lw=1.2, ls="--", label=f"sphere/sphere contacts (rtl, {label})")
+def plot_contacts(ax, cpu, cpu_label, afus):
+    ax.plot(cpu["step"], cpu["contacts"], lw=1.6, color="C0", label=f"sphere/sphere contacts ({cpu_label})")
+    for k, (label, a) in enumerate(afus):  # the rtl runs follow their own (binary32) trajectories
+        ax.plot(a["step"], a["contacts"], lw=1.2, ls=("--", ":")[k % 2], color=afu_colour(k),
+                label=f"sphere/sphere contacts (rtl, {label})")
     if any(cpu["other_contacts"]):
-        ax.plot(cpu["step"], cpu["other_contacts"], lw=1.2, label="sphere/plane contacts (on the CPU)")
-    ax.plot(cpu["step"], cpu["pairs"], lw=1, color="gray", alpha=.7, label="pairs tested (ode run)")
+        ax.plot(cpu["step"], cpu["other_contacts"], lw=1.2, color="C5", label="sphere/plane contacts (on the CPU)")
+    ax.plot(cpu["step"], cpu["pairs"], lw=1, color="gray", alpha=.7, label=f"pairs tested ({cpu_label})")
     ax.set_ylim(bottom=0)
     ax.set_xlabel("step")
     ax.set_ylabel("per step")
@@ -104,6 +109,7 @@ def main(argv=None):
     p.add_argument("out", help="the PNG to write")
     p.add_argument("--title", default="collide run")
     p.add_argument("--cpu", required=True, help="a collide run --out CSV (ode_ns, simd_ns, contacts)")
+    p.add_argument("--cpu-label", default="ode run", help="what the --cpu run was (legend)")
     p.add_argument("--afu", action="append", default=[], help="LABEL=FILE: an rtl run's --out CSV")
     p.add_argument("--positions", help="a collide run --positions CSV")
     a = p.parse_args(argv)
@@ -118,11 +124,11 @@ def main(argv=None):
 
     plt.rcParams.update({"font.size": 11, "axes.titlesize": 13, "axes.labelsize": 11})
     fig = plt.figure(figsize=(19, 6) if pos else (13, 5.5))
-    n = 3 if pos else 2
-    plot_times(fig.add_subplot(1, n, 1), cpu, afus)
-    plot_contacts(fig.add_subplot(1, n, 2), cpu, afus)
+    grid = fig.add_gridspec(1, 3 if pos else 2, width_ratios=[1, 1, 1.15][:3 if pos else 2])
+    plot_times(fig.add_subplot(grid[0]), cpu, afus)
+    plot_contacts(fig.add_subplot(grid[1]), cpu, a.cpu_label, afus)
     if pos:
-        plot_positions(fig.add_subplot(1, n, 3, projection="3d"), pos, a.positions)
+        plot_positions(fig.add_subplot(grid[2], projection="3d"), pos, a.positions)
     fig.suptitle(a.title, fontsize=15)
     fig.tight_layout()
     try:

@@ -49,7 +49,7 @@ class DemoPlot(unittest.TestCase):
 
     def test_without_afu_or_positions_still_draws(self):
         out = self.d / "cpu.png"
-        rc, err = self.run_plot(out, "--cpu", self.d / "ode.csv")
+        rc, err = self.run_plot(out, "--cpu", self.d / "ode.csv", "--cpu-label", "simd run")
         self.assertEqual(rc, 0, err)
         self.assertGreater(out.stat().st_size, 0)
 
