@@ -13,6 +13,7 @@ A bad input exits 1 with "demo_plot: FILE: what is wrong".
 """
 import argparse
 import csv
+import os
 import sys
 from pathlib import Path
 
@@ -131,12 +132,19 @@ def main(argv=None):
         plot_positions(fig.add_subplot(grid[2], projection="3d"), pos, a.positions)
     fig.suptitle(a.title, fontsize=15)
     fig.tight_layout()
+    # Into a temporary file beside OUT that replaces it only when complete, as the host's own
+    # outputs do: a failed write leaves the previous picture, never half a PNG.
+    out = Path(a.out)
+    tmp = out.with_name(f".{out.name}.{os.getpid()}.tmp")
     try:
-        fig.savefig(a.out, dpi=110)
+        fig.savefig(tmp, dpi=110, format="png")
+        os.replace(tmp, out)
     except OSError as e:
+        tmp.unlink(missing_ok=True)
         print(f"demo_plot: {a.out}: cannot write: {e.strerror}", file=sys.stderr)
         return 1
-    plt.close(fig)
+    finally:
+        plt.close(fig)
     return 0
 
 

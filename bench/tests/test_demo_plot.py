@@ -46,6 +46,14 @@ class DemoPlot(unittest.TestCase):
         data = out.read_bytes()
         self.assertEqual(data[:8], b"\x89PNG\r\n\x1a\n")
         self.assertGreater(len(data), 10_000)
+        self.assertEqual(sorted(p.name for p in self.d.iterdir() if p.name.startswith(".")), [])  # no temporary left
+
+    def test_an_unwritable_out_says_so_and_keeps_nothing_half_written(self):
+        out = self.d / "no-such-dir" / "demo.png"
+        rc, err = self.run_plot(out, "--cpu", self.d / "ode.csv")
+        self.assertEqual(rc, 1)
+        self.assertIn(f"demo_plot: {out}: cannot write", err)
+        self.assertFalse(out.exists())
 
     def test_without_afu_or_positions_still_draws(self):
         out = self.d / "cpu.png"
