@@ -47,6 +47,18 @@ elseif(CHECK STREQUAL "run_small")
   if(NOT n EQUAL 21)
     message(FATAL_ERROR "steps.csv has ${n} rows, expected header + 20")
   endif()
+elseif(CHECK STREQUAL "run_lasting_scenes")
+  # Every lasting-contact scene loads and runs a few steps on both CPU backends, in contact.
+  foreach(scene diamond_settle pile_box)
+    foreach(backend simd ode)
+      execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/${scene}.json --backend ${backend} --steps 3
+                      RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+      expect_rc(0)
+      expect_match("${out}" "backend ${backend}, link not simulated")
+      expect_match("${out}" "contacts     : [1-9][0-9][0-9][0-9]+ sphere/sphere")
+    endforeach()
+  endforeach()
+  expect_match("${out}" "sphere/sphere \\(\\+[1-9][0-9]* sphere/plane on the CPU\\)")  # pile_box's box
 elseif(CHECK STREQUAL "run_rtl_unavailable")
   execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/small.json --backend rtl
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

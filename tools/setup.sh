@@ -11,13 +11,12 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 #   yosys            - area estimates (synth_intel_alm) for the design-space sweeps
 #   nlohmann-json3-dev, libcli11-dev - JSON and command-line parsing in the host
 #   libgtest-dev     - the host's unit tests (ctest)
-#   libpng-dev       - the demo's picture
 #   cmake, ninja-build, g++, pkg-config - the host build
 #   default-jdk-headless, maven - the JVM for sbt, and Maven to fetch the sbt launcher
-#   python3-venv     - the benchmark plots' pinned Python environment
+#   python3-venv     - the pinned Python environment of the demo's picture and the sweeps' plots
 #   ccache           - bench/sweep builds one host per AFU configuration: the host's own
 #                      sources compile once, not once per configuration
-packages=(verilator libode-dev yosys nlohmann-json3-dev libcli11-dev libgtest-dev libpng-dev
+packages=(verilator libode-dev yosys nlohmann-json3-dev libcli11-dev libgtest-dev
           cmake ninja-build g++ pkg-config default-jdk-headless maven python3-venv ccache)
 
 missing=()

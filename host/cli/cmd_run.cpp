@@ -158,7 +158,7 @@ int runScene(const RunOptions& o) {
 
     std::cout << "pairs tested : " << tot.pairs << " sphere/sphere candidates from the broad phase\n"
               << "contacts     : " << tot.contacts << " sphere/sphere";
-    if (sc.groundZ) std::cout << " (+" << tot.otherContacts << " sphere/plane on the CPU)";
+    if (sc.groundZ || !sc.planes.empty()) std::cout << " (+" << tot.otherContacts << " sphere/plane on the CPU)";
     std::cout << "\nODE collider : ";
     printTiming(std::cout, tot.odeNs, tot.pairs, tot.contacts);
     std::cout << "  (dCollide on the world's dSphere geoms, binary64)\nsimd batch   : ";

@@ -16,6 +16,7 @@ dSurfaceParameters surfaceFor(const scene::ContactModel& m) {
     s.mode |= dContactSoftCFM;
     s.soft_cfm = *m.softCfm;
   }
+  if (m.coulomb) s.mode |= dContactApprox1;  // Coulomb's law: the limit scales with the normal force
   return s;
 }
 

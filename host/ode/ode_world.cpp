@@ -12,6 +12,8 @@ World::World(const scene::Scene& s)
   if (s.worldCfm) dWorldSetCFM(world_, *s.worldCfm);
   if (s.worldErp) dWorldSetERP(world_, *s.worldErp);
   if (s.quickStepIterations) dWorldSetQuickStepNumIterations(world_, *s.quickStepIterations);
+  if (s.maxCorrectingVel) dWorldSetContactMaxCorrectingVel(world_, *s.maxCorrectingVel);
+  if (s.surfaceLayer) dWorldSetContactSurfaceLayer(world_, *s.surfaceLayer);
 
   bodies_.reserve(s.spheres.size());
   geoms_.reserve(s.spheres.size());
@@ -30,7 +32,9 @@ World::World(const scene::Scene& s)
     bodies_.push_back(b);
     geoms_.push_back(g);
   }
-  if (s.groundZ) dCreatePlane(space_, 0, 0, 1, *s.groundZ);  // data stays null: not a sphere
+  // Planes have null data: not spheres, so their pairs stay on the CPU (dCollide).
+  if (s.groundZ) dCreatePlane(space_, 0, 0, 1, *s.groundZ);
+  for (const auto& p : s.planes) dCreatePlane(space_, p.normal[0], p.normal[1], p.normal[2], p.offset);
 }
 
 World::~World() {

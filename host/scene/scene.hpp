@@ -27,10 +27,17 @@ struct Attractor {        // a constant-magnitude force on every sphere toward `
   double force = 0.0;     // newtons
 };
 
+struct Plane {            // the half-space normal . p >= offset is free space (ODE's dCreatePlane)
+  Vec3 normal{0, 0, 1};   // unit length (normalized by the loader)
+  double offset = 0.0;
+};
+
 struct ContactModel {     // ODE dSurfaceParameters; unset fields leave their mode bit off
   double mu = 0.0;        // 0 = frictionless; infinity allowed
   std::optional<double> bounce, bounceVel;
   std::optional<double> softCfm;
+  bool coulomb = false;   // friction force <= mu x normal force (ODE's dContactApprox1, the friction
+                          // pyramid); otherwise ODE's default: mu is a fixed force limit in newtons
 };
 
 struct Scene {
@@ -40,10 +47,13 @@ struct Scene {
   std::optional<Vec3> gravity;
   std::optional<Attractor> attractor;
   std::optional<double> groundZ;       // plane z = groundZ, normal +z
+  std::vector<Plane> planes;           // more static planes (a box's floor and walls)
   ContactModel contact;
   // World
   std::optional<double> worldCfm, worldErp;
   std::optional<int> quickStepIterations;
+  std::optional<double> maxCorrectingVel;   // m/s: caps how fast ERP pushes overlaps apart
+  std::optional<double> surfaceLayer;       // m: depth allowed to rest without correction
   // Stepping
   long long steps = 1;
   double dt = 0.01;

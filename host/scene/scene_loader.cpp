@@ -1,5 +1,6 @@
 #include "scene/scene.hpp"
 
+#include <cmath>
 #include <fstream>
 
 #include "driver/wall_watchdog.hpp"
@@ -94,8 +95,25 @@ Vec3 centroid(const Scene& s) {
   return c;
 }
 
+// [{"normal": [a, b, c], "offset": d}, ...]: static planes a x + b y + c z = d, free space
+// on the normal's side (a box is a floor and four walls facing inward).
+void readPlanes(const JsonNode& n, Scene& s) {
+  const std::size_t count = n.arraySize();
+  for (std::size_t k = 0; k < count; ++k) {
+    const JsonNode e = n[k];
+    e.allowOnly({"normal", "offset"});
+    Plane p;
+    p.normal = e.at("normal").vec3();
+    const double len = std::sqrt(p.normal[0] * p.normal[0] + p.normal[1] * p.normal[1] + p.normal[2] * p.normal[2]);
+    if (!(len > 0)) e.at("normal").fail("must not be the zero vector");
+    for (int c = 0; c < 3; ++c) p.normal[c] /= len;
+    p.offset = e.at("offset").number() / len;  // the same plane, with a unit normal
+    s.planes.push_back(p);
+  }
+}
+
 void readEffects(const JsonNode& n, Scene& s) {
-  n.allowOnly({"gravity", "attractor", "ground"});
+  n.allowOnly({"gravity", "attractor", "ground", "planes"});
   if (auto g = n.find("gravity")) s.gravity = g->vec3();
   if (auto a = n.find("attractor")) {
     a->allowOnly({"point", "force"});
@@ -114,10 +132,11 @@ void readEffects(const JsonNode& n, Scene& s) {
     g->allowOnly({"z"});
     s.groundZ = g->at("z").number();
   }
+  if (auto ps = n.find("planes")) readPlanes(*ps, s);
 }
 
 void readContact(const JsonNode& n, Scene& s) {
-  n.allowOnly({"mu", "bounce", "bounce_vel", "soft_cfm"});
+  n.allowOnly({"mu", "bounce", "bounce_vel", "soft_cfm", "friction"});
   if (auto v = n.find("mu")) s.contact.mu = v->nonNegativeOrInfinity();
   if (auto v = n.find("bounce")) {
     s.contact.bounce = v->nonNegative();
@@ -125,11 +144,16 @@ void readContact(const JsonNode& n, Scene& s) {
   }
   if (auto v = n.find("bounce_vel")) s.contact.bounceVel = v->nonNegative();
   if (auto v = n.find("soft_cfm")) s.contact.softCfm = v->nonNegative();
+  if (auto v = n.find("friction")) {
+    const std::string f = v->string();
+    if (f != "coulomb" && f != "force_limit") v->expected("\"coulomb\" or \"force_limit\"");
+    s.contact.coulomb = f == "coulomb";
+  }
   if (s.contact.bounceVel && !s.contact.bounce) n.at("bounce_vel").fail("needs bounce");
 }
 
 void readWorld(const JsonNode& n, Scene& s) {
-  n.allowOnly({"cfm", "erp", "quickstep_iterations"});
+  n.allowOnly({"cfm", "erp", "quickstep_iterations", "contact_max_correcting_vel", "contact_surface_layer"});
   if (auto v = n.find("cfm")) s.worldCfm = v->nonNegative();
   if (auto v = n.find("erp")) {
     s.worldErp = v->nonNegative();
@@ -140,6 +164,8 @@ void readWorld(const JsonNode& n, Scene& s) {
     if (it > 100000) v->expected("an integer in 1..100000");
     s.quickStepIterations = static_cast<int>(it);
   }
+  if (auto v = n.find("contact_max_correcting_vel")) s.maxCorrectingVel = v->nonNegative();
+  if (auto v = n.find("contact_surface_layer")) s.surfaceLayer = v->nonNegative();
 }
 
 // "link": NAME or {"type": NAME, ...overrides}; NAME is any link preset or alias.
@@ -171,14 +197,25 @@ void readLink(const JsonNode& n, Scene& s) {
   }
 }
 
+// "about": prose for the reader, why the parameters are what they are (JSON has no
+// comments): a string or an array of strings (one a line). Checked, not kept.
+void readAbout(const JsonNode& n) {
+  if (!n.json().is_array()) {
+    n.string();
+    return;
+  }
+  for (std::size_t k = 0; k < n.arraySize(); ++k) n[k].string();
+}
+
 }  // namespace
 
 Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) {
   const JsonNode root(j, "scene");
-  root.allowOnly({"name", "steps", "dt", "backend", "afu", "link", "wall_limit_s", "world", "effects", "contact",
-                  "bodies"});
+  root.allowOnly({"name", "about", "steps", "dt", "backend", "afu", "link", "wall_limit_s", "world", "effects",
+                  "contact", "bodies"});
   Scene s;
   if (auto v = root.find("name")) s.name = v->string();
+  if (auto v = root.find("about")) readAbout(*v);
   s.steps = root.at("steps").positiveInt();
   if (s.steps > kMaxSteps) root.at("steps").expected("an integer in 1..1000000000");
   s.dt = root.at("dt").positive();
