@@ -50,7 +50,7 @@ inline constexpr std::uint32_t REC_KIND_SHIFT = 1u;  // bits 1..2: KIND_*
 inline constexpr std::uint32_t REC_KIND_MASK = 3u;  // mask of the kind after the shift
 inline constexpr std::uint32_t REC_NONFINITE = 8u;  // a NaN or infinity among the pair's inputs
 inline constexpr std::uint32_t REC_ARITH = 16u;  // the arithmetic raised overflow or invalid
-inline constexpr std::uint32_t REC_HOST_RANGE = 32u;  // set by the host: an input did not fit the link format
+inline constexpr std::uint32_t REC_HOST_RANGE = 32u;  // set by the host: an input did not fit the link format or is outside the range every backend takes
 
 // record kinds (flags bits 1..2)
 inline constexpr std::uint32_t KIND_SEPARATED = 0u;  // no contact

@@ -47,7 +47,7 @@ localparam int unsigned AFU_REC_KIND_SHIFT = 1;  // bits 1..2: KIND_*
 localparam int unsigned AFU_REC_KIND_MASK = 3;  // mask of the kind after the shift
 localparam int unsigned AFU_REC_NONFINITE = 8;  // a NaN or infinity among the pair's inputs
 localparam int unsigned AFU_REC_ARITH = 16;  // the arithmetic raised overflow or invalid
-localparam int unsigned AFU_REC_HOST_RANGE = 32;  // set by the host: an input did not fit the link format
+localparam int unsigned AFU_REC_HOST_RANGE = 32;  // set by the host: an input did not fit the link format or is outside the range every backend takes
 
 // record kinds (flags bits 1..2)
 localparam int unsigned AFU_KIND_SEPARATED = 0;  // no contact

@@ -17,6 +17,9 @@
 #include "driver/afu_driver.hpp"
 #include "driver/afu_factory.hpp"
 #include "driver/manifest.hpp"
+#include "collide/contact_flags.hpp"
+#include "collide/input_policy.hpp"
+#include "support/bad_pairs.hpp"
 #include "support/golden_vectors.hpp"
 #include "support/lockstep.hpp"
 #include "support/random_batch.hpp"
@@ -158,3 +161,24 @@ TEST(AfuDiamond, Binary32RtlIsTheSimdColliderExactly) {
   }
 }
 
+
+// The bad-pair policy (collide/input_policy.hpp) gives the AFU's results the decision and
+// flags the CPU backends give: an infinite radius, which the SCPU calls a contact with NaN
+// fields, is no contact here too, and every pair sent is still accounted for.
+TEST(Afu, BadPairsGetTheDecisionAndFlagsOfTheCpuBackends) {
+  if (builtIn().format != LinkFormat::Binary32) GTEST_SKIP() << "the cases are binary32 values";
+  const auto b = test::badPairs();
+  RtlBackend rtl(std::filesystem::path{}, link::LinkParams::ideal(), options());
+  SimdBackend simd;
+  ContactSet cr, cs;
+  rtl.collide(b.spheres, b.pairs, cr);
+  applyInputPolicy(b.spheres, b.pairs, cr);
+  simd.collide(b.spheres, b.pairs, cs);
+  setCpuRecordFlags(b.spheres, b.pairs, cs.format, cs);
+  applyInputPolicy(b.spheres, b.pairs, cs);
+  ASSERT_EQ(cr.size(), b.pairs.size());
+  for (std::size_t k = 0; k < b.pairs.size(); ++k) {
+    EXPECT_EQ(cr.hit[k], cs.hit[k]) << "pair " << k << ": " << b.what[k];
+    EXPECT_EQ(cr.flags[k], cs.flags[k]) << "pair " << k << ": " << b.what[k];
+  }
+}

@@ -12689,30 +12689,30 @@ module ContactCollector_n16_default(
   end // always @(*)
   wire        active_0 = io_groups_valid & sp == 5'h0 & (|io_groups_bits_cnt);
   wire        active_1 = io_groups_valid & sp < 5'h2 & (|(io_groups_bits_cnt[4:1]));
-  wire        _header_bits_T_26 = io_groups_bits_cnt > 5'h2;
-  wire        active_2 = io_groups_valid & sp < 5'h3 & _header_bits_T_26;
+  wire        _header_bits_T_4 = io_groups_bits_cnt > 5'h2;
+  wire        active_2 = io_groups_valid & sp < 5'h3 & _header_bits_T_4;
   wire        active_3 = io_groups_valid & sp < 5'h4 & (|(io_groups_bits_cnt[4:2]));
-  wire        _header_bits_T_22 = io_groups_bits_cnt > 5'h4;
-  wire        active_4 = io_groups_valid & sp < 5'h5 & _header_bits_T_22;
-  wire        _header_bits_T_20 = io_groups_bits_cnt > 5'h5;
-  wire        active_5 = io_groups_valid & sp < 5'h6 & _header_bits_T_20;
-  wire        _header_bits_T_18 = io_groups_bits_cnt > 5'h6;
-  wire        active_6 = io_groups_valid & sp < 5'h7 & _header_bits_T_18;
+  wire        _header_bits_T_8 = io_groups_bits_cnt > 5'h4;
+  wire        active_4 = io_groups_valid & sp < 5'h5 & _header_bits_T_8;
+  wire        _header_bits_T_10 = io_groups_bits_cnt > 5'h5;
+  wire        active_5 = io_groups_valid & sp < 5'h6 & _header_bits_T_10;
+  wire        _header_bits_T_12 = io_groups_bits_cnt > 5'h6;
+  wire        active_6 = io_groups_valid & sp < 5'h7 & _header_bits_T_12;
   wire        active_7 = io_groups_valid & sp < 5'h8 & (|(io_groups_bits_cnt[4:3]));
-  wire        _header_bits_T_14 = io_groups_bits_cnt > 5'h8;
-  wire        active_8 = io_groups_valid & sp < 5'h9 & _header_bits_T_14;
-  wire        _header_bits_T_12 = io_groups_bits_cnt > 5'h9;
-  wire        active_9 = io_groups_valid & sp < 5'hA & _header_bits_T_12;
-  wire        _header_bits_T_10 = io_groups_bits_cnt > 5'hA;
-  wire        active_10 = io_groups_valid & sp < 5'hB & _header_bits_T_10;
-  wire        _header_bits_T_8 = io_groups_bits_cnt > 5'hB;
-  wire        active_11 = io_groups_valid & sp < 5'hC & _header_bits_T_8;
-  wire        _header_bits_T_6 = io_groups_bits_cnt > 5'hC;
-  wire        active_12 = io_groups_valid & sp < 5'hD & _header_bits_T_6;
-  wire        _header_bits_T_4 = io_groups_bits_cnt > 5'hD;
-  wire        active_13 = io_groups_valid & sp < 5'hE & _header_bits_T_4;
-  wire        _header_bits_T_2 = io_groups_bits_cnt > 5'hE;
-  wire        active_14 = io_groups_valid & sp < 5'hF & _header_bits_T_2;
+  wire        _header_bits_T_16 = io_groups_bits_cnt > 5'h8;
+  wire        active_8 = io_groups_valid & sp < 5'h9 & _header_bits_T_16;
+  wire        _header_bits_T_18 = io_groups_bits_cnt > 5'h9;
+  wire        active_9 = io_groups_valid & sp < 5'hA & _header_bits_T_18;
+  wire        _header_bits_T_20 = io_groups_bits_cnt > 5'hA;
+  wire        active_10 = io_groups_valid & sp < 5'hB & _header_bits_T_20;
+  wire        _header_bits_T_22 = io_groups_bits_cnt > 5'hB;
+  wire        active_11 = io_groups_valid & sp < 5'hC & _header_bits_T_22;
+  wire        _header_bits_T_24 = io_groups_bits_cnt > 5'hC;
+  wire        active_12 = io_groups_valid & sp < 5'hD & _header_bits_T_24;
+  wire        _header_bits_T_26 = io_groups_bits_cnt > 5'hD;
+  wire        active_13 = io_groups_valid & sp < 5'hE & _header_bits_T_26;
+  wire        _header_bits_T_28 = io_groups_bits_cnt > 5'hE;
+  wire        active_14 = io_groups_valid & sp < 5'hF & _header_bits_T_28;
   wire        active_15 = io_groups_valid & ~(sp[4]) & io_groups_bits_cnt[4];
   wire        hit_0 = ~(io_groups_bits_invalid[0]) & casez_tmp;
   wire        hit_1 = ~(io_groups_bits_invalid[1]) & casez_tmp_6;
@@ -13279,19 +13279,19 @@ module ContactCollector_n16_default(
     hdrFire
       ? {32'h0,
          io_groups_bits_cnt[4] & hit_15,
-         _header_bits_T_2 & hit_14,
-         _header_bits_T_4 & hit_13,
-         _header_bits_T_6 & hit_12,
-         _header_bits_T_8 & hit_11,
-         _header_bits_T_10 & hit_10,
-         _header_bits_T_12 & hit_9,
-         _header_bits_T_14 & hit_8,
+         _header_bits_T_28 & hit_14,
+         _header_bits_T_26 & hit_13,
+         _header_bits_T_24 & hit_12,
+         _header_bits_T_22 & hit_11,
+         _header_bits_T_20 & hit_10,
+         _header_bits_T_18 & hit_9,
+         _header_bits_T_16 & hit_8,
          (|(io_groups_bits_cnt[4:3])) & hit_7,
-         _header_bits_T_18 & hit_6,
-         _header_bits_T_20 & hit_5,
-         _header_bits_T_22 & hit_4,
+         _header_bits_T_12 & hit_6,
+         _header_bits_T_10 & hit_5,
+         _header_bits_T_8 & hit_4,
          (|(io_groups_bits_cnt[4:2])) & hit_3,
-         _header_bits_T_26 & hit_2,
+         _header_bits_T_4 & hit_2,
          (|(io_groups_bits_cnt[4:1])) & hit_1,
          (|io_groups_bits_cnt) & hit_0,
          io_groups_bits_first}

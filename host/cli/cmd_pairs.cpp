@@ -7,6 +7,7 @@
 #include "cli/pairs_csv.hpp"
 #include "collide/backend_factory.hpp"
 #include "collide/contact_flags.hpp"
+#include "collide/input_policy.hpp"
 #include "collide/rtl_backend.hpp"
 #include "driver/afu_factory.hpp"
 #include "link/link_presets.hpp"
@@ -53,6 +54,7 @@ int runPairs(const PairsOptions& o) {
     ContactSet contacts;
     backend->collide(spheres, pairs, contacts);
     if (req.name != "rtl") setCpuRecordFlags(spheres, pairs, contacts.format, contacts);
+    applyInputPolicy(spheres, pairs, contacts);  // bad pairs: one decision on every backend
 
     writeContactsCsv(out.stream(), contacts);
     out.commit();

@@ -1,10 +1,6 @@
 #include "collide/ode_backend.hpp"
 
-#include <sstream>
-#include <stdexcept>
-#include <string>
-
-#include "ode/ode_limits.hpp"
+#include "collide/input_policy.hpp"
 
 namespace collide {
 
@@ -15,42 +11,16 @@ OdeBackend::~OdeBackend() {
   dGeomDestroy(scratch2_);
 }
 
-namespace {
-std::string num(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-// Vector mode hands the table's values to ODE, which aborts on a bad radius and whose
-// results beyond the sane range mean nothing: refused first, naming the pair and the
-// column (x1..r2, as in `collide pairs` input).
-void requireSane(const SphereTable& s, const PairList& pairs) {
-  for (std::size_t k = 0; k < pairs.size(); ++k) {
-    for (int side = 0; side < 2; ++side) {
-      const std::uint32_t a = side == 0 ? pairs.i[k] : pairs.j[k];
-      const std::string n = std::to_string(side + 1);
-      auto bad = [&](const std::string& col, double v, const std::string& range) {
-        throw std::invalid_argument("ode: pair " + std::to_string(k) + ": " + col + n + " = " + num(v) +
-                                    " is outside the sane range " + range + " (docs/host.md, \"What reaches ODE\")");
-      };
-      if (!ode::saneRadius(s.r[a])) bad("r", s.r[a], "(0, " + num(ode::kMaxRadiusM) + "] m");
-      const double c[3] = {s.x[a], s.y[a], s.z[a]};
-      for (int d = 0; d < 3; ++d)
-        if (!ode::saneCoordinate(c[d]))
-          bad(std::string(1, "xyz"[d]), c[d], "[-" + num(ode::kMaxCoordinateM) + ", " + num(ode::kMaxCoordinateM) + "] m");
-    }
-  }
-}
-}  // namespace
-
 void OdeBackend::collide(const SphereTable& s, const PairList& pairs, ContactSet& out) {
   const std::size_t n = pairs.size();
   const bool world = !s.geom.empty();
-  if (!world) requireSane(s, pairs);  // a world's spheres were checked by the scene and each step
   out.resize(n);
   out.format = LinkFormat::Binary64;
   for (std::size_t k = 0; k < n; ++k) {
     const auto a = pairs.i[k], b = pairs.j[k];
+    // A pair ODE cannot take (input_policy.hpp) never reaches it: no contact here, flagged
+    // by applyInputPolicy. A world's spheres were checked by the scene and at every step.
+    if (!world && classifyPair(s, a, b) != PairInput::Ok) continue;
     dGeomID g1 = scratch1_, g2 = scratch2_;
     if (world) {
       g1 = s.geom[a];

@@ -96,14 +96,14 @@ object RecordFlags {
   val KIND_MASK  = 3
   val NONFINITE  = 1 << 3
   val ARITH      = 1 << 4  // the SCPU's arithmetic raised overflow or invalid
-  val HOST_RANGE = 1 << 5  // host only: an input overflowed the link format or a radius rounded to 0
+  val HOST_RANGE = 1 << 5  // host only: an input overflowed the link format, a radius rounded to 0, or a value outside the sane range (docs/host.md, "Bad pairs")
   val entries: Seq[ContractEntry] = Seq(
     ContractEntry("HIT", HIT, "the pair is a contact"),
     ContractEntry("KIND_SHIFT", KIND_SHIFT, "bits 1..2: KIND_*"),
     ContractEntry("KIND_MASK", KIND_MASK, "mask of the kind after the shift"),
     ContractEntry("NONFINITE", NONFINITE, "a NaN or infinity among the pair's inputs"),
     ContractEntry("ARITH", ARITH, "the arithmetic raised overflow or invalid"),
-    ContractEntry("HOST_RANGE", HOST_RANGE, "set by the host: an input did not fit the link format"))
+    ContractEntry("HOST_RANGE", HOST_RANGE, "set by the host: an input did not fit the link format or is outside the range every backend takes"))
   val all: Seq[(String, Int)] = entries.map(e => e.name -> e.value.toInt)
   /** The kinds (collide.scpu.ContactKind). */
   val kinds: Seq[ContractEntry] = Seq(

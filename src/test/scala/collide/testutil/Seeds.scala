@@ -2,12 +2,15 @@ package collide.testutil
 
 /** Seeds for randomized specs: printed, and settable with -Dseed=N (or env SEED) so any
   * failure can be replayed: `SEED=1234 tools/sbt "testOnly collide.fp.FpAddSpec"` (or -Dseed, which build.sbt forwards
-  * to the forked test JVM).
+  * to the forked test JVM). Without one, each spec's seed is a hash of its name, mixed with
+  * env COLLIDE_RUN_SEED when set: CI draws a new run seed every time (tools/test prints it),
+  * so every run tries new cases and a failure still names the seed that replays it.
   */
 object Seeds {
   def seed(specName: String): Long = {
+    val run = sys.env.get("COLLIDE_RUN_SEED").filter(_.nonEmpty).map(_.trim.toLong).getOrElse(0L)
     val s = sys.props.get("seed").orElse(sys.env.get("SEED")).map(_.toLong)
-      .getOrElse(scala.util.hashing.MurmurHash3.stringHash(specName).toLong & 0xffffffffL)
+      .getOrElse((scala.util.hashing.MurmurHash3.stringHash(specName).toLong ^ run) & 0xffffffffL)
     println(s"[$specName] seed = $s (set with -Dseed=$s)")
     s
   }

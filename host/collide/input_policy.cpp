@@ -1,0 +1,37 @@
+#include "collide/input_policy.hpp"
+
+#include <cmath>
+
+#include "afu_contract.hpp"
+#include "ode/ode_limits.hpp"
+
+namespace collide {
+
+PairInput classifyPair(const SphereTable& s, std::uint32_t i, std::uint32_t j) {
+  const double v[8] = {s.x[i], s.y[i], s.z[i], s.r[i], s.x[j], s.y[j], s.z[j], s.r[j]};
+  for (double x : v)
+    if (!std::isfinite(x)) return PairInput::NonFinite;
+  for (int side = 0; side < 2; ++side) {
+    const double* c = v + 4 * side;
+    if (!ode::saneRadius(c[3]) || !ode::saneCoordinate(c[0]) || !ode::saneCoordinate(c[1]) ||
+        !ode::saneCoordinate(c[2]))
+      return PairInput::OutOfRange;
+  }
+  return PairInput::Ok;
+}
+
+void applyInputPolicy(const SphereTable& s, const PairList& pairs, ContactSet& out) {
+  out.flags.resize(pairs.size(), 0);
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const PairInput p = classifyPair(s, pairs.i[k], pairs.j[k]);
+    if (p == PairInput::Ok) continue;
+    out.hit[k] = 0;
+    out.px[k] = out.py[k] = out.pz[k] = out.nx[k] = out.ny[k] = out.nz[k] = out.depth[k] = 0;
+    // The host's own range flag (the link format) survives; the backend's others do not.
+    const std::uint8_t keep = out.flags[k] & contract::REC_HOST_RANGE;
+    out.flags[k] = static_cast<std::uint8_t>(
+        keep | (p == PairInput::NonFinite ? contract::REC_NONFINITE : contract::REC_HOST_RANGE));
+  }
+}
+
+}  // namespace collide
