@@ -16,15 +16,17 @@ class AfuSpec extends AnyFlatSpec with ChiselScalatestTester {
   val annos = Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1"))) ++
     (if (sys.props.contains("vcd")) Seq(WriteVcdAnnotation) else Nil)
 
-  def endToEnd(cfg: AfuConfig, worlds: Int, maxPairs: Int = 120): Unit = {
+  def endToEnd(cfg: AfuConfig, worlds: Int, maxPairs: Int = 120,
+               behaviours: Seq[LinkBehaviour] = Seq(LinkBehaviour.hostile, LinkBehaviour.harp, LinkBehaviour.ideal),
+               minPairs: Int = 0): Long = {
     val rnd = Seeds.rng(s"AfuSpec-${cfg.id}")
-    val behaviours = Seq(LinkBehaviour.hostile, LinkBehaviour.harp, LinkBehaviour.ideal)
+    var total = 0L
     test(new Afu(cfg)).withAnnotations(annos) { dut =>
       dut.clock.setTimeout(0)
       var pairsRun = 0L; var hits = 0L
       for (i <- 0 until worlds) {
         val b = behaviours(i % behaviours.size)
-        val world = AfuWorlds.random(rnd, cfg, rnd.nextInt(maxPairs + 1),
+        val world = AfuWorlds.random(rnd, cfg, minPairs + rnd.nextInt(maxPairs - minPairs + 1),
           dense = i % 2 == 1, specials = i % 3 == 2)
         val capped = if (i % 5 == 4) world.copy(capacity = Some(rnd.nextInt(world.pairs.size / 4 + 2).toLong)) else world
         val mem = new HostMemoryModel(dut.io, dut.clock, b, rnd.nextLong(), cfg.maxReadsOutstanding, cfg.maxWritesOutstanding)
@@ -35,7 +37,9 @@ class AfuSpec extends AnyFlatSpec with ChiselScalatestTester {
         pairsRun += capped.pairs.size; hits += r.status.get.found
       }
       println(s"[AfuSpec] ${cfg.id} (${cfg.scpu.linkFormat.name} link, ${cfg.recordLayout.name} records): $worlds worlds, $pairsRun pairs, $hits contacts, all equal to ScpuModel")
+      total = pairsRun
     }
+    total
   }
 
   it should "equal ScpuModel with one fp32 SCPU (derived records)" in {
@@ -61,5 +65,12 @@ class AfuSpec extends AnyFlatSpec with ChiselScalatestTester {
   }
   it should "equal ScpuModel with two fp64 SCPUs (binary64 link)" taggedAs Slow in {
     endToEnd(AfuConfig.fp64.copy(scpus = 2, maxSpheres = 256), Seeds.cases(6))
+  }
+  it should "account for every one of 100,000 pairs exactly once over a hostile link (soak)" taggedAs Slow in {
+    // Reordered, back-pressured, latencies of 1..60 cycles; compact and dense, capacities cut
+    // short, NaNs and bad indices: AfuRun.check accounts for every pair of every world.
+    val n = endToEnd(AfuConfig.default.copy(scpus = 4, maxSpheres = 512), Seeds.cases(25), maxPairs = 4400,
+      behaviours = Seq(LinkBehaviour.hostile), minPairs = 4000)
+    assert(n >= 100000L * Seeds.cases(25) / 25, s"only $n pairs")
   }
 }
