@@ -214,3 +214,29 @@ TEST(LinkParams, JsonOverridesAndErrorsNameTheKey) {
     EXPECT_STREQ(e.what(), "scene.link.read_latency_ns: expected 0 <= min <= max, got [300,200]");
   }
 }
+
+TEST(LinkModel, ReadyDropsAreRandomButReplayableAndTakeNothingThatIsNotReady) {
+  HostMemory mem;
+  mem.allocate(4);
+  LinkParams p = LinkParams::ideal();
+  p.readyDrop = 0.4;
+  p.seed = test::testSeed(7);
+  auto run = [&] {
+    LinkModel link(p, mem);
+    std::vector<int> ready;
+    for (int c = 0; c < 4000; ++c) {
+      const auto o = link.outputs();
+      ready.push_back(o.rdReqReady + 2 * o.wrReqReady);
+      link.tick(AfuToLink{});
+    }
+    return ready;
+  };
+  const auto a = run(), b = run();
+  EXPECT_EQ(a, b) << "the same seed must drop the same cycles";
+  const double rd = std::count_if(a.begin(), a.end(), [](int r) { return r & 1; }) / 4000.0;
+  const double wr = std::count_if(a.begin(), a.end(), [](int r) { return r & 2; }) / 4000.0;
+  EXPECT_NEAR(rd, 0.6, 0.05);
+  EXPECT_NEAR(wr, 0.6, 0.05);
+  p.readyDrop = 0.95;
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+}

@@ -110,11 +110,25 @@ std::uint64_t LinkModel::earliest(const std::vector<Pending>& q, bool read) cons
   return t == kNever ? kNever : std::max(t, cycle_);
 }
 
+namespace {
+// A uniform draw in [0, 1) from (seed, cycle, port) alone (splitmix64), so outputs() stays a
+// pure function of the state and a skipped stretch needs no draws.
+double dropDraw(std::uint64_t seed, std::uint64_t cycle, unsigned port) {
+  std::uint64_t z = seed ^ (cycle * 2 + port) * 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53;
+}
+}  // namespace
+
 LinkToAfu LinkModel::outputs() const {
   LinkToAfu o;
   const std::uint64_t nowFx = cycle_ << kFx;
-  o.rdReqReady = reads_.size() < params_.maxReads;
-  o.wrReqReady = writes_.size() < params_.maxWrites &&
+  const bool dropRd = params_.readyDrop > 0 && dropDraw(params_.seed, cycle_, 0) < params_.readyDrop;
+  const bool dropWr = params_.readyDrop > 0 && dropDraw(params_.seed, cycle_, 1) < params_.readyDrop;
+  o.rdReqReady = !dropRd && reads_.size() < params_.maxReads;
+  o.wrReqReady = !dropWr && writes_.size() < params_.maxWrites &&
                  std::any_of(chans_.begin(), chans_.end(), [&](const Channel& c) { return c.wrPortFreeFx <= nowFx; });
   if (int k = pick(reads_, cycle_, true); k >= 0)
     o.rdResp = ReadResp{reads_[k].tag, mem_.line(reads_[k].addr)};  // data as of delivery

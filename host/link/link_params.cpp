@@ -106,6 +106,7 @@ void LinkParams::validate() const {
     if (n < 1 || n > kMaxOutstanding)
       bad(std::string(key) + ": " + std::to_string(n) + " is outside the sane range 1.." + std::to_string(kMaxOutstanding));
   inRange("csr_write_ns", csrWriteNs, kCsrPollRange);
+  inRange("ready_drop", readyDrop, kReadyDropRange);
   inRange("poll_ns", pollNs, kCsrPollRange);
   inRange("transaction_overhead_ns", transactionOverheadNs, kOverheadRange);
 }
@@ -202,7 +203,8 @@ LinkParams linkParamsFromJson(const nlohmann::json& j, const std::string& path, 
     } else if (key == "seed") {
       if (!v.is_number_unsigned()) throw std::invalid_argument(at + ": expected an unsigned integer, got " + util::echoJson(v));
       p.seed = v.get<std::uint64_t>();
-    } else if (key == "csr_write_ns") p.csrWriteNs = number(v, at);
+    } else if (key == "ready_drop") p.readyDrop = number(v, at);
+    else if (key == "csr_write_ns") p.csrWriteNs = number(v, at);
     else if (key == "poll_ns") p.pollNs = number(v, at);
     else if (key == "transaction_overhead_ns") p.transactionOverheadNs = number(v, at);
     else throw std::invalid_argument(at + ": unknown key");

@@ -25,6 +25,7 @@ inline constexpr ParamRange kLatencyRange{0, 1e6, "ns"};         // a trip: up t
 inline constexpr ParamRange kBandwidthRange{0.001, 10000, "GB/s"};  // or 0 = unlimited
 inline constexpr ParamRange kCsrPollRange{0, 1e6, "ns"};         // csr_write_ns, poll_ns
 inline constexpr ParamRange kOverheadRange{0, 1e9, "ns"};        // a call's overhead: up to 1 s
+inline constexpr ParamRange kReadyDropRange{0, 0.9, ""};          // a fraction of cycles
 inline constexpr unsigned kMaxOutstanding = 1u << 20;            // max_reads, max_writes
 inline constexpr std::size_t kMaxChannels = 16;
 
@@ -67,6 +68,10 @@ struct LinkParams {
   // CCI may return responses out of order. Off: responses in request order.
   bool reorder = true;
   std::uint64_t seed = 1;  // the latency/reordering RNG
+  // Test only (no platform has it): the fraction of cycles in which the link drops a request
+  // port's ready at random (each port, each cycle, drawn from seed and cycle), to test that
+  // the AFU survives back-pressure. 0 on every preset.
+  double readyDrop = 0.0;
   // Host MMIO CSR write, issue to arrival at the AFU. No published figure: assumed about
   // one QPI traversal, half the 200-290 ns round trip.
   double csrWriteNs = 125.0;
