@@ -17,7 +17,6 @@
 #include "driver/afu_driver.hpp"
 #include "driver/afu_factory.hpp"
 #include "driver/manifest.hpp"
-#include "collide/contact_flags.hpp"
 #include "collide/input_policy.hpp"
 #include "support/bad_pairs.hpp"
 #include "support/golden_vectors.hpp"
@@ -171,11 +170,8 @@ TEST(Afu, BadPairsGetTheDecisionAndFlagsOfTheCpuBackends) {
   RtlBackend rtl(std::filesystem::path{}, link::LinkParams::ideal(), options());
   SimdBackend simd;
   ContactSet cr, cs;
-  rtl.collide(b.spheres, b.pairs, cr);
-  applyInputPolicy(b.spheres, b.pairs, cr);
-  simd.collide(b.spheres, b.pairs, cs);
-  setCpuRecordFlags(b.spheres, b.pairs, cs.format, cs);
-  applyInputPolicy(b.spheres, b.pairs, cs);
+  collidePairs(rtl, b.spheres, b.pairs, cr);
+  collidePairs(simd, b.spheres, b.pairs, cs);
   ASSERT_EQ(cr.size(), b.pairs.size());
   for (std::size_t k = 0; k < b.pairs.size(); ++k) {
     EXPECT_EQ(cr.hit[k], cs.hit[k]) << "pair " << k << ": " << b.what[k];

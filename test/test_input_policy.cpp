@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "afu_contract.hpp"
-#include "collide/contact_flags.hpp"
 #include "collide/input_policy.hpp"
 #include "collide/ode_backend.hpp"
 #include "collide/simd_backend.hpp"
@@ -26,12 +25,8 @@ TEST(InputPolicy, SimdAndOdeGiveTheSameDecisionAndFlagsOnBadPairs) {
   SimdBackend simd;
   OdeBackend ode;
   ContactSet cs, co;
-  simd.collide(b.spheres, b.pairs, cs);
-  setCpuRecordFlags(b.spheres, b.pairs, cs.format, cs);
-  applyInputPolicy(b.spheres, b.pairs, cs);
-  ode.collide(b.spheres, b.pairs, co);  // no abort, no exception
-  setCpuRecordFlags(b.spheres, b.pairs, co.format, co);
-  applyInputPolicy(b.spheres, b.pairs, co);
+  collidePairs(simd, b.spheres, b.pairs, cs);
+  collidePairs(ode, b.spheres, b.pairs, co);  // no abort, no exception
   for (std::size_t k = 0; k < b.pairs.size(); ++k) {
     EXPECT_EQ(cs.hit[k], co.hit[k]) << "pair " << k << ": " << b.what[k];
     EXPECT_EQ(cs.flags[k], co.flags[k]) << "pair " << k << ": " << b.what[k];

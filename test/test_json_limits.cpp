@@ -14,6 +14,8 @@
 #include "util/echo.hpp"
 #include "util/json_input.hpp"
 
+#include "support/error_of.hpp"
+
 using namespace collide;
 namespace fs = std::filesystem;
 
@@ -33,15 +35,7 @@ fs::path writeTemp(const std::string& name, const std::string& text) {
   std::ofstream(dir / name) << text;
   return dir / name;
 }
-template <typename F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using test::errorOf;
 const std::string kOk = R"("steps": 1, "dt": 0.01, )";
 }  // namespace
 

@@ -11,18 +11,12 @@
 #include "ode/simulation.hpp"
 #include "scene/scene.hpp"
 
+#include "support/error_of.hpp"
+
 using namespace collide;
 
 namespace {
-template <typename F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using test::errorOf;
 // Vector mode: one pair (0, 0, 0, r1) against (x2, 0, 0, 1); whether ODE was reached is seen
 // by the absence of an error (or an abort) and by the result.
 std::string vectorError(double r1, double x2, int* hit = nullptr) {

@@ -6,7 +6,6 @@
 #include "cli/output_file.hpp"
 #include "cli/pairs_csv.hpp"
 #include "collide/backend_factory.hpp"
-#include "collide/contact_flags.hpp"
 #include "collide/input_policy.hpp"
 #include "collide/rtl_backend.hpp"
 #include "driver/afu_factory.hpp"
@@ -52,9 +51,7 @@ int runPairs(const PairsOptions& o) {
     }
 
     ContactSet contacts;
-    backend->collide(spheres, pairs, contacts);
-    if (req.name != "rtl") setCpuRecordFlags(spheres, pairs, contacts.format, contacts);
-    applyInputPolicy(spheres, pairs, contacts);  // bad pairs: one decision on every backend
+    collidePairs(*backend, spheres, pairs, contacts);  // flags, and one decision on bad pairs
 
     writeContactsCsv(out.stream(), contacts);
     out.commit();

@@ -16,6 +16,9 @@ class CollisionBackend {
   virtual LinkFormat format() const = 0;
   // out.size() == pairs.size() afterwards; entry k is pair k (dense, in pair order).
   virtual void collide(const SphereTable& spheres, const PairList& pairs, ContactSet& out) = 0;
+  // Whether collide() fills out.flags itself (the AFU's record flags); else
+  // setCpuRecordFlags computes them where they are wanted (contact_flags.hpp).
+  virtual bool setsRecordFlags() const { return false; }
 };
 
 }  // namespace collide

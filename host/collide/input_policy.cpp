@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "afu_contract.hpp"
+#include "collide/contact_flags.hpp"
 #include "ode/ode_limits.hpp"
 
 namespace collide {
@@ -32,6 +33,12 @@ void applyInputPolicy(const SphereTable& s, const PairList& pairs, ContactSet& o
     out.flags[k] = static_cast<std::uint8_t>(
         keep | (p == PairInput::NonFinite ? contract::REC_NONFINITE : contract::REC_HOST_RANGE));
   }
+}
+
+void collidePairs(CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out) {
+  backend.collide(s, pairs, out);
+  if (!backend.setsRecordFlags()) setCpuRecordFlags(s, pairs, out.format, out);
+  applyInputPolicy(s, pairs, out);
 }
 
 }  // namespace collide

@@ -11,6 +11,7 @@
 // A rejected pair's fields are zero and its kind separated; ODE never sees it.
 #include <cstdint>
 
+#include "collide/backend.hpp"
 #include "collide/batch.hpp"
 #include "collide/contact_set.hpp"
 
@@ -23,5 +24,9 @@ PairInput classifyPair(const SphereTable& s, std::uint32_t i, std::uint32_t j);
 // Rewrites every rejected pair of `out` (which the backend filled) to no contact with its
 // flag; keeps the flags the backend set on the others. out.flags is sized to the pairs.
 void applyInputPolicy(const SphereTable& s, const PairList& pairs, ContactSet& out);
+
+// What `collide pairs` does with any backend: its results, the record flags (the CPU
+// backends' computed as the AFU computes them), then the policy above.
+void collidePairs(CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out);
 
 }  // namespace collide

@@ -44,6 +44,7 @@ class RtlBackend final : public CollisionBackend {
   std::string name() const override { return "rtl"; }
   LinkFormat format() const override { return driver_->options().format; }
   void collide(const SphereTable& spheres, const PairList& pairs, ContactSet& out) override;
+  bool setsRecordFlags() const override { return true; }
 
   // The last AFU run (of the last batch) and the last batch as a whole.
   const driver::RunResult& lastRun() const { return last_; }

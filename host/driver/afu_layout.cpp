@@ -151,25 +151,25 @@ void writeContact(HostMemory& m, std::uint64_t base, std::size_t n, const Buffer
 
 namespace {
 static_assert(c::HEADER_BITS <= 64, "a mask header's bits fit a u64");
-// A header's bits, u64 little-endian from its slot's first byte; `beyond` whether any bit
-// of the slot past them is set.
-std::uint64_t headerBits(const Line& l, std::size_t off, const BufferLayout& lay, bool& beyond) {
+// The header in slot n, and whether any bit of its slot past the header's bits is set.
+MaskHeader headerAt(const HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& lay, bool& beyond) {
+  const Line& l = m.line(base + lay.recordLine(n, false));
+  const std::size_t off = std::size_t{lay.recordSlot(n, false)} * lay.recordBytes();
   std::uint64_t v = 0;
   const unsigned bytes = (c::HEADER_BITS + 7) / 8;
   for (unsigned b = 0; b < bytes; ++b) v |= std::uint64_t{l[off + b]} << (8 * b);
   beyond = (v >> c::HEADER_BITS) != 0;
   for (unsigned b = bytes; b < lay.recordBytes(); ++b) beyond = beyond || l[off + b] != 0;
-  return v & ((std::uint64_t{1} << c::HEADER_BITS) - 1);
+  MaskHeader h;
+  h.first = static_cast<std::uint32_t>((v >> c::HEADER_PAIR_SHIFT) & ((std::uint64_t{1} << c::HEADER_PAIR_BITS) - 1));
+  h.mask = static_cast<std::uint32_t>((v >> c::HEADER_MASK_SHIFT) & ((std::uint64_t{1} << c::HEADER_MASK_BITS) - 1));
+  return h;
 }
 }  // namespace
 
 MaskHeader readMaskHeader(const HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& lay) {
   bool beyond = false;
-  const std::uint64_t v = headerBits(m.line(base + lay.recordLine(n, false)), std::size_t{lay.recordSlot(n, false)} * lay.recordBytes(), lay, beyond);
-  MaskHeader h;
-  h.first = static_cast<std::uint32_t>((v >> c::HEADER_PAIR_SHIFT) & ((std::uint64_t{1} << c::HEADER_PAIR_BITS) - 1));
-  h.mask = static_cast<std::uint32_t>((v >> c::HEADER_MASK_SHIFT) & ((std::uint64_t{1} << c::HEADER_MASK_BITS) - 1));
-  return h;
+  return headerAt(m, base, n, lay, beyond);
 }
 
 void writeMaskHeader(HostMemory& m, std::uint64_t base, std::size_t n, const BufferLayout& lay, const MaskHeader& h) {
@@ -189,8 +189,7 @@ DecodedRecords readRecords(const HostMemory& m, std::uint64_t base, std::size_t 
   }
   for (std::size_t slot = 0; slot < written;) {
     bool beyond = false;
-    headerBits(m.line(base + lay.recordLine(slot, false)), std::size_t{lay.recordSlot(slot, false)} * lay.recordBytes(), lay, beyond);
-    const MaskHeader h = readMaskHeader(m, base, slot, lay);
+    const MaskHeader h = headerAt(m, base, slot, lay, beyond);
     const auto where = "contact slot " + std::to_string(slot) + ": mask header (first pair " + std::to_string(h.first) + ")";
     if (beyond) throw std::runtime_error(where + " has bits set past its mask");
     if (h.mask == 0) throw std::runtime_error(where + " has an empty mask");

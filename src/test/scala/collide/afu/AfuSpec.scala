@@ -20,10 +20,9 @@ class AfuSpec extends AnyFlatSpec with ChiselScalatestTester {
                behaviours: Seq[LinkBehaviour] = Seq(LinkBehaviour.hostile, LinkBehaviour.harp, LinkBehaviour.ideal),
                minPairs: Int = 0): Long = {
     val rnd = Seeds.rng(s"AfuSpec-${cfg.id}")
-    var total = 0L
+    var pairsRun = 0L; var hits = 0L
     test(new Afu(cfg)).withAnnotations(annos) { dut =>
       dut.clock.setTimeout(0)
-      var pairsRun = 0L; var hits = 0L
       for (i <- 0 until worlds) {
         val b = behaviours(i % behaviours.size)
         val world = AfuWorlds.random(rnd, cfg, minPairs + rnd.nextInt(maxPairs - minPairs + 1),
@@ -37,9 +36,8 @@ class AfuSpec extends AnyFlatSpec with ChiselScalatestTester {
         pairsRun += capped.pairs.size; hits += r.status.get.found
       }
       println(s"[AfuSpec] ${cfg.id} (${cfg.scpu.linkFormat.name} link, ${cfg.recordLayout.name} records): $worlds worlds, $pairsRun pairs, $hits contacts, all equal to ScpuModel")
-      total = pairsRun
     }
-    total
+    pairsRun
   }
 
   it should "equal ScpuModel with one fp32 SCPU (derived records)" in {
