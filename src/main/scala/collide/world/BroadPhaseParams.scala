@@ -1,0 +1,56 @@
+package collide.world
+
+/** What the world-mode broad phase supports (docs/afu.md, "World mode: the broad phase").
+  *
+  * The broad phase sorts spheres into a uniform grid of cubic cells of edge 2^k and pairs
+  * spheres in neighbouring cells; a few "large" spheres, too big for the chosen cell, are
+  * paired with every sphere instead. Everything here is exact integer arithmetic on the
+  * SCPU's own (converted) values, so it is conservative by construction: see
+  * [[collide.world.model.BroadPhaseModel]].
+  *
+  * @param largeMax   spheres the large list holds: k is chosen so that at most this many
+  *                   spheres are large (each costs a pass over the table)
+  * @param cellBits   signed width of one cell coordinate; k grows until every sphere's cell
+  *                   fits with a one-cell guard on each side (so a neighbour never wraps)
+  * @param bucketsLog2 cells hash into 2^bucketsLog2 buckets (a counting sort fills them);
+  *                   collisions cost scanning time, never a wrong or duplicate pair
+  * @param marginNum  the cell must be at least 2r * marginNum / marginDen for every small
+  * @param marginDen  sphere: 9/8 covers every SCPU configuration's hit band (4 ulps, 3% in
+  *                   bf16) plus the absolute-error allowance, see BroadPhaseModel
+  * @param cellOverError the cell is at least 2^cellOverError times the SCPU's absolute error
+  *                   bound (squares that underflow: about sqrt(2^minExp) of the compute format)
+  * @param filterFracBits the box filter's fixed point: 2^-filterFracBits of a cell
+  * @param chunk      spheres of one cell a candidate generator holds at once (its
+  *                   comparators); a fuller cell is visited once per chunk
+  */
+final case class BroadPhaseParams(
+    largeMax: Int = 16,
+    cellBits: Int = 20,
+    bucketsLog2: Int = 17,
+    marginNum: Int = 9,
+    marginDen: Int = 8,
+    cellOverError: Int = 5,
+    filterFracBits: Int = 8,
+    chunk: Int = 16
+) {
+  require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
+  require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
+  require(bucketsLog2 >= 0 && bucketsLog2 <= 24, s"bucketsLog2 must be 0..24, got $bucketsLog2")
+  require(marginDen > 0 && marginNum >= marginDen, s"margin $marginNum/$marginDen must be >= 1")
+  require(cellOverError >= 5, s"cellOverError must be >= 5 (the margin's proof needs 1/32), got $cellOverError")
+  require(filterFracBits >= 0 && filterFracBits <= 24, s"filterFracBits must be 0..24, got $filterFracBits")
+  require(chunk >= 1 && chunk <= 256, s"chunk must be 1..256, got $chunk")
+
+  val buckets: Int = 1 << bucketsLog2
+  /** Largest cell coordinate magnitude allowed, leaving one cell of guard to the wrap. */
+  val cellLimit: Long = (1L << (cellBits - 1)) - 2
+}
+
+object BroadPhaseParams {
+  val default: BroadPhaseParams = BroadPhaseParams()
+  /** Four buckets and one-sphere chunks: every cell collides with others in the hash and
+    * every cell is visited once per sphere, to test that nothing breaks. */
+  val tinyTable: BroadPhaseParams = default.copy(bucketsLog2 = 2, chunk = 1)
+  /** No large list: one huge sphere makes the cell huge (the all-pairs worst case). */
+  val noLarge: BroadPhaseParams = default.copy(largeMax = 0)
+}

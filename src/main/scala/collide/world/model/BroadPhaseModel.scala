@@ -1,0 +1,300 @@
+package collide.world.model
+
+import collide.fp.model.{Decoded, SoftFloat}
+import collide.scpu.ScpuConfig
+import collide.scpu.model.{ScpuModel, ScpuPair}
+import collide.world.BroadPhaseParams
+
+/** One sphere of a world as the link carries it: link-format bit patterns. */
+final case class WorldSphere(x: BigInt, y: BigInt, z: BigInt, r: BigInt) {
+  def fields: Seq[BigInt] = Seq(x, y, z, r)
+}
+
+/** What the broad phase made of one sphere. */
+sealed trait SphereClass
+object SphereClass {
+  /** A field is NaN or infinite on the link or once converted to the compute format (a
+    * binary32 SCPU reading binary64 1e39): never paired, and reported (docs/afu.md). */
+  case object Excluded extends SphereClass
+  /** Too big for the cell (or not placeable in it): paired with every other sphere. */
+  case object Large extends SphereClass
+  /** In the grid, at integer cell (cx, cy, cz) = floor(coordinate / 2^k). */
+  final case class Small(cx: Long, cy: Long, cz: Long) extends SphereClass
+}
+
+/** Work counts of the reference traversal: what a cycle model of the hardware needs. */
+final case class BroadPhaseStats(
+    spheres: Int, excluded: Int, large: Int, k: Int, buckets: Int,
+    cells: Int,         // occupied cells
+    lookups: Long,      // bucket reads: 14 per cell chunk (its cell and 13 half-shell neighbours)
+    scanned: Long,      // bucket entries streamed past a chunk while visiting those cells
+    gridPairs: Long,    // pairs of neighbouring small spheres (before the box filter)
+    gridCandidates: Long, largeCandidates: Long, // after the box filter: what the SCPUs get
+    cellWork: IndexedSeq[Long] // cycles of one lane on each occupied cell, in bucket order
+) {
+  def candidates: Long = gridCandidates + largeCandidates
+}
+
+final case class BroadPhaseResult(k: Int, classes: IndexedSeq[SphereClass],
+                                  candidates: IndexedSeq[(Int, Int)], stats: BroadPhaseStats)
+
+/** A cycle estimate for the planned hardware: counting sort at `sortRate` spheres a cycle,
+  * a prefix sum over the buckets 8 a cycle, occupied cells dealt round-robin to `lanes`
+  * candidate generators (each with its own copy of the sorted table), the large list
+  * streamed past the table, and the SCPUs taking `scpus` candidates a cycle. A model to size
+  * the design, not a measurement of RTL that does not exist yet. */
+final case class BroadPhaseCycles(count: Long, prefix: Long, scatter: Long, generate: Long, large: Long,
+                                  narrow: Long) {
+  /** Passes run one after the other; candidate generation and the SCPUs overlap. */
+  def total: Long = count + prefix + scatter + math.max(generate + large, narrow)
+}
+
+/** Golden model of the world-mode broad phase (docs/afu.md, "World mode: the broad phase").
+  *
+  * Why it never misses a pair the SCPU calls a hit: it works on the SCPU's own converted
+  * inputs; every small sphere satisfies 2^k >= 2r * m (m = 9/8), and the SCPU's hit
+  * decision is exact but for a band of 4 ulps u (docs/scpu.md) and an absolute error below
+  * 2^errorExp from underflowing squares, which the cell exceeds 32 times; so a hit between
+  * two small spheres has |dx| <= (1 + 4u) 2^k / m + 2^k / 32 <= 2^k (for u <= 2^-7, bf16)
+  * on every axis, and their cells, floor(x / 2^k) computed exactly, differ by at most one. Large spheres are paired with everything. A box filter in exact
+  * fixed point (boxKey) then drops pairs farther apart than m (ra + rb) on some axis,
+  * which no hit is. Why each pair comes out once: a same-cell pair is emitted from its
+  * lower index; a neighbour pair from the cell whose offset to the other is in the half
+  * shell (exactly one of o, -o is), and a bucket entry is used only if its stored cell is
+  * the visited cell, so hash collisions cost time, never a duplicate.
+  */
+class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhaseParams.default) {
+  import BroadPhaseModel._
+
+  private val scpu = ScpuModel(cfg)
+  private val p = cfg.params
+  private val lp = cfg.linkParams
+
+  /** The SCPU's view of a sphere: its fields converted to the compute format. */
+  def converted(s: WorldSphere): Seq[BigInt] = s.fields.map(scpu.convertIn(_).bits)
+
+  def excluded(s: WorldSphere): Boolean =
+    s.fields.exists(b => !isFinite(SoftFloat.decode(lp, b))) || converted(s).exists(b => !isFinite(SoftFloat.decode(p, b)))
+
+  /** The smallest k with 2^k >= 2r * margin for a converted, finite r; Int.MinValue for
+    * r <= 0 (fits any cell). */
+  def need(rBits: BigInt): Int = SoftFloat.decode(p, rBits) match {
+    case Decoded.Finite(false, sig, e) => e + ceilLog2(2 * bp.marginNum * sig, bp.marginDen)
+    case Decoded.Finite(true, _, _) | Decoded.Zero(_) => Int.MinValue
+    case d => throw new IllegalArgumentException(s"need: radius $d is not finite (an excluded sphere)")
+  }
+
+  /** floor(v / 2^k), exactly; None for a non-finite v. */
+  def cell(bits: BigInt, k: Int): Option[Long] = SoftFloat.decode(p, bits) match {
+    case Decoded.Zero(_) => Some(0L)
+    case Decoded.Finite(neg, sig, e) =>
+      val sh = e - k
+      val (mag, exact) = if (sh >= 0) (sig << sh, true) else (sig >> -sh, (sig & ((BigInt(1) << -sh) - 1)) == 0)
+      val f = if (!neg) mag else if (exact) -mag else -(mag + 1)
+      Some(f.toLong)
+    case _ => None
+  }
+
+  /** T with |v| < 2^T; Int.MinValue for zero (no constraint), None if not finite. */
+  private def topExp(bits: BigInt): Option[Int] = SoftFloat.decode(p, bits) match {
+    case Decoded.Zero(_)             => Some(Int.MinValue)
+    case Decoded.Finite(_, sig, e)   => Some(e + sig.bitLength)
+    case _                           => None
+  }
+
+  /** The cell exponent: as small as the large list, the cell-coordinate width and the
+    * subnormal floor allow. At most largeMax spheres then need a bigger cell. */
+  def chooseK(spheres: IndexedSeq[Seq[BigInt]]): Int = {
+    val needs = spheres.map(c => need(c(3))).sorted(Ordering[Int].reverse)
+    // Fewer spheres than the large list holds: all in the grid, sized for the biggest.
+    val kSmall = if (needs.length > bp.largeMax) needs(bp.largeMax) else needs.headOption.getOrElse(Int.MinValue)
+    val tops = spheres.flatMap(_.take(3).flatMap(topExp))
+    val kCoord = if (tops.isEmpty) Int.MinValue else tops.max.toLong - bp.cellBits + 2
+    val kFloor = errorExp + bp.cellOverError
+    math.max(math.max(kSmall.toLong, kCoord), kFloor.toLong).toInt
+  }
+
+  def classify(c: Seq[BigInt], k: Int): SphereClass = {
+    if (need(c(3)) > k) SphereClass.Large
+    else {
+      val Seq(cx, cy, cz) = c.take(3).map(v => cell(v, k).get)
+      require(Seq(cx, cy, cz).forall(v => math.abs(v) <= bp.cellLimit), s"cell ($cx,$cy,$cz) outside the guard at k=$k")
+      SphereClass.Small(cx, cy, cz)
+    }
+  }
+
+  def bucket(cx: Long, cy: Long, cz: Long): Int =
+    (((cx * HashX) ^ (cy * HashY) ^ (cz * HashZ)) & (bp.buckets - 1).toLong).toInt
+
+  /** Buckets used for n spheres: at least 2n (load factor <= 1/2), at most the table. */
+  def bucketsFor(n: Int): Int = {
+    var b = 1
+    while (b < 2 * n && b < bp.buckets) b <<= 1
+    b
+  }
+
+  /** The box filter's fixed-point view of a sphere at cell exponent k: floor(v * 2^(F-k))
+    * for the coordinates and ceil(r * margin * 2^(F-k)) for the radius, all exact. A pair
+    * passes iff |qa - qb| <= qr_a + qr_b + boxSlack(k) on every axis: every SCPU hit has
+    * |va - vb| <= margin (ra + rb) + 2^errorExp, and floors of two reals less than an
+    * integer T + 1 apart differ by at most T, so no hit is filtered out. */
+  def boxKey(c: Seq[BigInt], k: Int): (BigInt, BigInt, BigInt, BigInt) = {
+    val sh = bp.filterFracBits - k
+    def scaled(bits: BigInt): (BigInt, BigInt, Boolean) = SoftFloat.decode(p, bits) match { // (mag num, den, negative)
+      case Decoded.Finite(neg, sig, e) =>
+        val t = e + sh
+        if (t >= 0) (sig << t, BigInt(1), neg) else (sig, BigInt(1) << -t, neg)
+      case _ => (BigInt(0), BigInt(1), false)
+    }
+    def floorQ(bits: BigInt) = { val (n, d, neg) = scaled(bits); if (!neg) n / d else -((n + d - 1) / d) }
+    val (rn, rd, rneg) = scaled(c(3))
+    val qr = if (rneg) BigInt(0) else (rn * bp.marginNum + rd * bp.marginDen - 1) / (rd * bp.marginDen)
+    (floorQ(c(0)), floorQ(c(1)), floorQ(c(2)), qr)
+  }
+
+  /** log2 of a bound on the SCPU's absolute error in d: squares that underflow or flush
+    * lose at most 3 * 2^minExp of d^2, so at most sqrt(3 * 2^minExp) < 2^errorExp of d. */
+  val errorExp: Int = Math.floorDiv(p.format.minExp, 2) + 1 + 1
+
+  /** The box filter's slack in fixed-point units at cell exponent k: 1 for the floors, plus
+    * the absolute error 2^errorExp rounded up to whole units. */
+  def boxSlack(k: Int): BigInt = {
+    val e = errorExp + bp.filterFracBits - k
+    1 + (if (e >= 0) BigInt(1) << e else BigInt(1))
+  }
+
+  private def boxPass(a: (BigInt, BigInt, BigInt, BigInt), b: (BigInt, BigInt, BigInt, BigInt), slack: BigInt): Boolean = {
+    val t = a._4 + b._4 + slack
+    (a._1 - b._1).abs <= t && (a._2 - b._2).abs <= t && (a._3 - b._3).abs <= t
+  }
+
+  /** The reference traversal. Counting sort of the small spheres into buckets by cell; then
+    * cell by cell (in bucket order), the cell's spheres, in chunks of `chunk`, are held
+    * while its own cell and its 13 half-shell neighbours stream past; neighbour pairs that
+    * pass the box filter are candidates. Then each large sphere meets every other sphere. */
+  def run(world: IndexedSeq[WorldSphere]): BroadPhaseResult = {
+    val n = world.length
+    val conv = world.map(converted)
+    val isExcluded = world.map(excluded)
+    val eligible = world.indices.filterNot(isExcluded)
+    val k = chooseK(eligible.map(conv))
+    val classes: IndexedSeq[SphereClass] = world.indices.map(i => if (isExcluded(i)) SphereClass.Excluded else classify(conv(i), k))
+    val box = world.indices.map(i => if (isExcluded(i)) null else boxKey(conv(i), k))
+    val slack = boxSlack(k)
+    val smalls = world.indices.flatMap(i => classes(i) match { case s: SphereClass.Small => Some(i -> s); case _ => None })
+    val nb = bucketsFor(smalls.length)
+    def bucketOf(c: SphereClass.Small) = bucket(c.cx, c.cy, c.cz) & (nb - 1)
+
+    // Counting sort: count, exclusive prefix sum, scatter in index order (stable).
+    val count = new Array[Int](nb)
+    smalls.foreach { case (_, c) => count(bucketOf(c)) += 1 }
+    val start = count.scanLeft(0)(_ + _)
+    val fill = start.clone()
+    val entries = new Array[Int](smalls.length)
+    smalls.foreach { case (i, c) => val b = bucketOf(c); entries(fill(b)) = i; fill(b) += 1 }
+    def cellOf(i: Int) = classes(i).asInstanceOf[SphereClass.Small]
+
+    val out = IndexedSeq.newBuilder[(Int, Int)]
+    var lookups, scanned, gridPairs, grid = 0L
+    val work = IndexedSeq.newBuilder[Long]
+    var cells = 0
+    for (b <- 0 until nb) {
+      // The occupied cells of this bucket, each with its spheres in index order.
+      val members = (start(b) until start(b + 1)).map(entries)
+      for ((cell, own) <- members.groupBy(cellOf).toSeq.sortBy(_._2.head)) {
+        cells += 1
+        var w = 0L
+        for (chunk <- own.grouped(bp.chunk)) {
+          w += chunk.length // loading the chunk
+          for (o <- Visits) {
+            val nc = SphereClass.Small(cell.cx + o._1, cell.cy + o._2, cell.cz + o._3)
+            val ob = bucketOf(nc)
+            val len = start(ob + 1) - start(ob)
+            lookups += 1; scanned += len; w += math.max(1, len)
+            for (e <- start(ob) until start(ob + 1); j = entries(e) if cellOf(j) == nc; i <- chunk
+                 if o != Own || j > i) {
+              gridPairs += 1
+              if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
+            }
+          }
+        }
+        work += w
+      }
+    }
+    val larges = world.indices.filter(classes(_) == SphereClass.Large)
+    var largePairs = 0L
+    for (l <- larges; j <- eligible if j != l && (classes(j) != SphereClass.Large || j > l) && boxPass(box(l), box(j), slack)) {
+      out += ((math.min(l, j), math.max(l, j))); largePairs += 1
+    }
+    val stats = BroadPhaseStats(n, n - eligible.length, larges.length, k, nb, cells, lookups, scanned, gridPairs, grid,
+      largePairs, work.result())
+    BroadPhaseResult(k, classes, out.result(), stats)
+  }
+
+  /** The candidate set by its definition, all pairs checked (tests compare run() with it). */
+  def candidatesByDefinition(r: BroadPhaseResult, world: IndexedSeq[WorldSphere]): Set[(Int, Int)] = {
+    def near(a: SphereClass, b: SphereClass): Boolean = (a, b) match {
+      case (SphereClass.Excluded, _) | (_, SphereClass.Excluded) => false
+      case (SphereClass.Large, _) | (_, SphereClass.Large)       => true
+      case (a: SphereClass.Small, b: SphereClass.Small) =>
+        math.abs(a.cx - b.cx) <= 1 && math.abs(a.cy - b.cy) <= 1 && math.abs(a.cz - b.cz) <= 1
+    }
+    val n = r.classes.length
+    val box = world.map(s => boxKey(converted(s), r.k))
+    val slack = boxSlack(r.k)
+    (for (i <- 0 until n; j <- i + 1 until n if near(r.classes(i), r.classes(j)) && boxPass(box(i), box(j), slack)) yield (i, j)).toSet
+  }
+
+  /** The SCPU's hit decision for spheres i and j (what the broad phase must not miss). */
+  def scpuHit(world: IndexedSeq[WorldSphere], i: Int, j: Int): Boolean = {
+    val a = world(i); val b = world(j)
+    scpu.collide(ScpuPair(a.x, a.y, a.z, a.r, b.x, b.y, b.z, b.r, 0)).hit
+  }
+
+  def cycles(r: BroadPhaseResult, lanes: Int, scpus: Int, sortRate: Int = 1): BroadPhaseCycles = {
+    require(lanes >= 1 && scpus >= 1 && sortRate >= 1)
+    val st = r.stats
+    val small = (st.spheres - st.excluded - st.large).toLong
+    val perLane = Array.fill(lanes)(0L)
+    st.cellWork.zipWithIndex.foreach { case (w, c) => perLane(c % lanes) += w }
+    val eligible = (st.spheres - st.excluded).toLong
+    def div(a: Long, b: Long) = (a + b - 1) / b
+    BroadPhaseCycles(
+      count = div(st.spheres, sortRate),
+      prefix = div(st.buckets, 8),
+      scatter = div(small, sortRate),
+      generate = perLane.max,
+      large = div(st.large * eligible, lanes),
+      narrow = div(st.candidates, scpus))
+  }
+}
+
+object BroadPhaseModel {
+  // Teschner et al.'s spatial-hash primes; only their low bits matter to the bucket index.
+  val HashX = 73856093L
+  val HashY = 19349663L
+  val HashZ = 83492791L
+
+  val Own: (Int, Int, Int) = (0, 0, 0)
+  /** The 13 neighbour offsets o with o > 0 in lexicographic order: of o and -o exactly one. */
+  val HalfShell: Seq[(Int, Int, Int)] = for {
+    dx <- -1 to 1; dy <- -1 to 1; dz <- -1 to 1
+    if dx > 0 || (dx == 0 && dy > 0) || (dx == 0 && dy == 0 && dz > 0)
+  } yield (dx, dy, dz)
+  val Visits: Seq[(Int, Int, Int)] = Own +: HalfShell
+
+  private def isFinite(d: Decoded): Boolean = d match {
+    case Decoded.Zero(_) | Decoded.Finite(_, _, _) => true
+    case _                                         => false
+  }
+
+  /** The smallest integer t with 2^t * b >= a (a, b > 0). */
+  def ceilLog2(a: BigInt, b: BigInt): Int = {
+    require(a > 0 && b > 0)
+    def atLeast(t: Int) = if (t >= 0) (b << t) >= a else b >= (a << -t)
+    var t = a.bitLength - b.bitLength
+    while (!atLeast(t)) t += 1
+    while (atLeast(t - 1)) t -= 1
+    t
+  }
+}

@@ -1,0 +1,135 @@
+package collide.world
+
+import java.math.{BigDecimal => JBigDecimal, RoundingMode => JRoundingMode}
+import org.scalatest.flatspec.AnyFlatSpec
+import collide.fp.FloatFormat
+import collide.scpu.ScpuConfig
+import collide.scpu.model.ScpuModel
+import collide.testutil.Seeds
+import collide.world.BroadPhaseWorlds._
+import collide.world.model._
+
+class BroadPhaseModelSpec extends AnyFlatSpec {
+  behavior of "BroadPhaseModel"
+
+  private val presets = Seq(ScpuConfig.fp32, ScpuConfig.fp32RsqrtDr, ScpuConfig.fp32Nr, ScpuConfig.fp32Robust,
+    ScpuConfig.fp64, ScpuConfig.fp24, ScpuConfig.fp16, ScpuConfig.bf16)
+
+  /** The hard cases and random clouds, small enough to check every pair with the SCPU model. */
+  private def worlds(name: String): Seq[(String, Seq[S])] = {
+    val rng = Seeds.rng(s"BroadPhaseModelSpec-$name")
+    Seq(
+      "an empty world" -> Seq.empty,
+      "one sphere" -> Seq(S(1, 2, 3, 0.5)),
+      "a uniform cloud" -> uniform(rng, 120),
+      "a clustered cloud" -> clustered(rng, 100),
+      "radii over 1:1000" -> mixedRadii(rng, 90),
+      "huge spheres among small ones" -> huge(rng, 80, 3),
+      "all spheres at one point" -> onePoint(24),
+      "zero radii and underflowing separations" -> tinySeparations,
+      "spheres on cell faces" -> cellBoundaries(rng),
+      "negative coordinates" -> uniform(rng, 80, origin = -1000.0),
+      "near misses across cell faces" -> nearMisses(rng, 40, math.pow(2, -10))
+    )
+  }
+
+  private def checkWorld(model: BroadPhaseModel, label: String, w: IndexedSeq[WorldSphere]): BroadPhaseResult = {
+    val r = model.run(w)
+    val c = r.candidates
+    assert(c.distinct.length == c.length, s"$label: a pair came out twice")
+    assert(c.forall { case (i, j) => i < j }, s"$label: a pair with i >= j")
+    val set = c.toSet
+    assert(set == model.candidatesByDefinition(r, w), s"$label: the traversal differs from the candidate set's definition")
+    val eligible = w.indices.filter(r.classes(_) != SphereClass.Excluded)
+    for (a <- eligible.indices; b <- a + 1 until eligible.length) {
+      val (i, j) = (eligible(a), eligible(b))
+      if (model.scpuHit(w, i, j))
+        assert(set((i, j)), s"$label (${model.cfg.name}, k=${r.k}): the SCPU calls ($i,$j) a hit but the broad phase " +
+          s"missed it: ${w(i)} ${w(j)} classes ${r.classes(i)} ${r.classes(j)}")
+    }
+    assert(r.stats.large <= model.bp.largeMax, s"$label: ${r.stats.large} large spheres > largeMax")
+    r
+  }
+
+  for (cfg <- presets) {
+    it should s"find every pair the ${cfg.name} SCPU calls a hit, each once, in every hard case and random cloud" in {
+      val model = new BroadPhaseModel(cfg)
+      for ((label, w) <- worlds(cfg.name)) checkWorld(model, label, bits(cfg.linkFormat, w))
+    }
+  }
+
+  it should "give the same candidates when every cell collides with others in a four-bucket table" in {
+    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.tinyTable)
+    for ((label, w) <- worlds("tiny-table")) checkWorld(model, label, bits(FloatFormat.fp32, w))
+  }
+
+  it should "stay exact with no large list, one huge sphere making the cell huge" in {
+    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.noLarge)
+    val r = checkWorld(model, "huge, no large list", bits(FloatFormat.fp32, huge(Seeds.rng("BroadPhaseModelSpec-noLarge"), 60, 1)))
+    assert(r.stats.large == 0 && r.k >= 5, s"k = ${r.k}: the huge sphere should have set the cell")
+  }
+
+  it should "choose a larger cell when more spheres are huge than the large list holds" in {
+    val rng = Seeds.rng("BroadPhaseModelSpec-overfull")
+    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.default.copy(largeMax = 2))
+    val r = checkWorld(model, "five huge, largeMax 2", bits(FloatFormat.fp32, huge(rng, 60, 5)))
+    assert(r.stats.large == 2, s"${r.stats.large} large: the two biggest should be large, the rest in the grid")
+  }
+
+  it should "exclude spheres with a NaN or infinite field and pair the rest" in {
+    val f = FloatFormat.fp32
+    val nan = BigInt(java.lang.Float.floatToRawIntBits(Float.NaN).toLong & 0xffffffffL)
+    val w = bits(f, Seq(S(0, 0, 0, 0.5), S(0.5, 0, 0, 0.5), S(0.2, 0, 0, 0.5)))
+    val world = w.updated(2, w(2).copy(y = nan)) :+ w(0).copy(r = f.infinity(false))
+    val model = new BroadPhaseModel(ScpuConfig.fp32)
+    val r = model.run(world)
+    assert(r.classes(2) == SphereClass.Excluded && r.classes(3) == SphereClass.Excluded)
+    assert(r.candidates == Seq((0, 1)))
+    // Finite on the binary32 link, infinite once rounded to fp24: excluded too.
+    val fp24 = new BroadPhaseModel(ScpuConfig.fp24)
+    val edge = w :+ w(0).copy(x = f.maxFinite(false))
+    assert(fp24.run(edge).classes(3) == SphereClass.Excluded)
+  }
+
+  it should "make a 2^k cell at least 2r * 9/8: k = 1 for radius 0.5, 0 for 0.4375, 1 for binary32's 0.44444445" in {
+    val model = new BroadPhaseModel(ScpuConfig.fp32)
+    def k(r: Double) = model.run(bits(FloatFormat.fp32, Seq(S(0, 0, 0, r), S(3, 0, 0, r)))).k
+    assert(k(0.5) == 1)    // 1.125 -> 2
+    assert(k(0.4375) == 0) // 0.984375 -> 1
+    assert(k(4.0 / 9) == 1) // binary32's 4/9 is 0.44444445 > 4/9: 1.0000000 + -> 2
+    assert(k(0.1) == -2)   // the diamond's radius: 0.225 -> 0.25
+  }
+
+  it should "compute floor(v / 2^k) exactly, negatives and subnormals included" in {
+    val rng = Seeds.rng("BroadPhaseModelSpec-floor")
+    for (cfg <- Seq(ScpuConfig.fp32, ScpuConfig.fp64); _ <- 0 until Seeds.cases(4000)) {
+      val model = new BroadPhaseModel(cfg)
+      val v = rng.nextInt(4) match {
+        case 0 => (rng.nextDouble() - 0.5) * 1e6
+        case 1 => (rng.nextInt(2001) - 1000).toDouble // on a face
+        case 2 => (rng.nextDouble() - 0.5) * 1e-40
+        case _ => math.nextUp((rng.nextInt(201) - 100).toDouble)
+      }
+      val k = rng.nextInt(60) - 30
+      val vb = ScpuModel.fromDouble(cfg.format, v)
+      val exact = new JBigDecimal(ScpuModel.toDouble(cfg.format, vb))
+      val scaled = if (k >= 0) exact.divide(new JBigDecimal(BigInt(2).pow(k).bigInteger)) else exact.multiply(new JBigDecimal(BigInt(2).pow(-k).bigInteger))
+      val want = scaled.setScale(0, JRoundingMode.FLOOR).longValueExact()
+      assert(model.cell(vb, k).contains(want), s"${cfg.name}: floor($v / 2^$k)")
+    }
+  }
+
+  it should "grow its work about linearly with spheres at fixed density (sub-quadratic)" in {
+    val rng = Seeds.rng("BroadPhaseModelSpec-scale")
+    val model = new BroadPhaseModel(ScpuConfig.fp32)
+    def perSphere(n: Int) = {
+      val r = model.run(bits(FloatFormat.fp32, uniform(rng, n)))
+      val cy = model.cycles(r, lanes = 1, scpus = 16)
+      (r.stats.scanned.toDouble / n, r.stats.candidates.toDouble / n, cy.generate.toDouble / n)
+    }
+    val (s1, c1, g1) = perSphere(1000); val (s2, c2, g2) = perSphere(8000)
+    println(f"[BroadPhaseModelSpec] per sphere at 1000 / 8000: scanned $s1%.2f / $s2%.2f, candidates $c1%.2f / $c2%.2f, lane cycles $g1%.2f / $g2%.2f")
+    // All pairs would multiply each by 8; a grid keeps them within rounding of constant.
+    assert(s2 / s1 < 1.5 && c2 / c1 < 1.5 && g2 / g1 < 1.5)
+  }
+}
