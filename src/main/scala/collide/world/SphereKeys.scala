@@ -1,0 +1,105 @@
+package collide.world
+
+import chisel3._
+import chisel3.util._
+import collide.fp.{FpParams, Pipeline, RawFloat}
+
+/** The broad phase's integer view of one sphere, in exact arithmetic (no rounding anywhere):
+  * its cell floor(v / 2^k) per axis, the box filter's fixed point floor(v * 2^(F-k)) and
+  * ceil(r * margin * 2^(F-k)), and the cell exponent the sphere itself needs. The golden
+  * model is BroadPhaseModel (cell, boxKey, need); docs/afu.md, "World mode".
+  */
+class SphereKeysIO(p: FpParams, bp: BroadPhaseParams) extends Bundle {
+  val kWidth = SphereKeys.kWidth(p)
+  val qWidth = SphereKeys.qWidth(bp)
+  val in = Input(new Bundle {
+    val valid = Bool()
+    val sphere = Vec(4, UInt(p.width.W)) // x, y, z, r in the compute format (converted)
+    val k = SInt(kWidth.W)
+  })
+  val out = Output(new Bundle {
+    val valid = Bool()
+    val cell = Vec(3, SInt(bp.cellBits.W))
+    /** Some |cell| exceeds cellLimit: k was chosen too small for this sphere (an error). */
+    val cellOverflow = Bool()
+    val q = Vec(3, SInt(qWidth.W))
+    /** Saturated at its maximum: a huge radius passes the box filter against anything. */
+    val qr = UInt(qWidth.W)
+    val need = SInt(kWidth.W)
+    /** r <= 0: the sphere fits any cell (need is then don't-care). */
+    val needNone = Bool()
+    /** A field is NaN or infinite: the sphere is excluded. */
+    val nonFinite = Bool()
+  })
+}
+
+class SphereKeys(p: FpParams, bp: BroadPhaseParams, latency: Int = 1) extends Module {
+  require(latency >= 0 && latency <= 2, s"SphereKeys latency must be 0..2, got $latency")
+  require(isPow2(bp.marginDen), s"margin denominator ${bp.marginDen} must be a power of two in hardware")
+  override def desiredName = s"SphereKeys_${p.name}_c${bp.cellBits}_f${bp.filterFracBits}_m${bp.marginNum}d${bp.marginDen}_l$latency"
+  val io = IO(new SphereKeysIO(p, bp))
+  private val f = p.format
+  private val raw = io.in.sphere.map(b => RawFloat(p, b))
+  private val k = io.in.k
+
+  /** floor(v * 2^-s) of a finite raw value, as SInt(w), and whether it overflowed w bits. */
+  private def floorScaled(v: RawFloat, s: SInt, w: Int): (SInt, Bool) = {
+    val t = (v.sExp -& f.fracBits.S) -& s // v = sig * 2^t
+    val left = t >= 0.S
+    val lAmt = Mux(t > (w + 1).S, (w + 1).U, t.asUInt)(log2Ceil(w + 2) - 1, 0)
+    val rNeg = (0.S -& t).asUInt
+    val rAmt = Mux(rNeg > (f.sigBits + 1).U, (f.sigBits + 1).U, rNeg)(log2Ceil(f.sigBits + 2) - 1, 0)
+    val shiftedL = (v.sig << lAmt)(f.sigBits + w + 1, 0)
+    val shiftedR = v.sig >> rAmt
+    val sticky = (v.sig & ((1.U << rAmt) - 1.U)(f.sigBits - 1, 0)).orR
+    val mag = Mux(left, shiftedL, shiftedR.pad(f.sigBits + w + 2))
+    val up = !left && sticky && v.sign // floor of a negative inexact value rounds away from zero
+    val m = mag +& up.asUInt
+    val over = m >= (BigInt(1) << (w - 1)).U
+    val sv = Mux(v.sign, (0.S -& m.zext), m.zext)
+    (Mux(v.isZero, 0.S(w.W), sv(w - 1, 0).asSInt), !v.isZero && over)
+  }
+
+  private val nonFinite = raw.map(r => r.isNaN || r.isInf).reduce(_ || _)
+  private val cellsAndOver = raw.take(3).map(floorScaled(_, k, bp.cellBits))
+  private val limit = bp.cellLimit
+  private val cellOverflow = cellsAndOver.map { case (c, o) => o || c > limit.S || c < (-limit).S }.reduce(_ || _)
+  private val qs = raw.take(3).map(floorScaled(_, k -& bp.filterFracBits.S, SphereKeys.qWidth(bp)))
+
+  // qr = ceil(r * num / den * 2^(F-k)), saturated; 0 for r <= 0.
+  private val r = raw(3)
+  private val numBits = log2Ceil(bp.marginNum + 1)
+  private val rNum = r.sig * bp.marginNum.U(numBits.W) // exact: sig * num
+  private val tq = (r.sExp -& (f.fracBits + log2Ceil(bp.marginDen)).S) -& (k -& bp.filterFracBits.S)
+  private val qW = SphereKeys.qWidth(bp)
+  private val rw = f.sigBits + numBits
+  private val qrL = Mux(tq > qW.S, qW.U, tq.asUInt)(log2Ceil(qW + 1) - 1, 0)
+  private val qrRneg = (0.S -& tq).asUInt
+  private val qrR = Mux(qrRneg > (rw + 1).U, (rw + 1).U, qrRneg)(log2Ceil(rw + 2) - 1, 0)
+  private val qrLeft = (rNum << qrL)
+  private val qrRight = (rNum >> qrR) +& (rNum & ((1.U << qrR) - 1.U)(rw - 1, 0)).orR.asUInt
+  private val qrWide = Mux(tq >= 0.S, qrLeft, qrRight.pad(qrLeft.getWidth))
+  private val qrMax = ((BigInt(1) << qW) - 1).U
+  private val qr = Mux(r.isZero || r.sign, 0.U, Mux(qrWide > qrMax, qrMax, qrWide(qW - 1, 0)))
+
+  // need = the least k with 2^k >= 2 r num / den: exponent of 2 sig num, ceiling, rebased.
+  private val x = (rNum << 1) - 1.U
+  private val need = (r.sExp -& f.fracBits.S) +& (Log2(x) +& 1.U).zext -& log2Ceil(bp.marginDen).S
+
+  private val en = true.B
+  io.out.valid := Pipeline.valid(io.in.valid, latency, en)
+  io.out.cell := Pipeline(VecInit(cellsAndOver.map(_._1)), latency, en)
+  io.out.cellOverflow := Pipeline(cellOverflow, latency, en)
+  io.out.q := Pipeline(VecInit(qs.map(_._1)), latency, en)
+  io.out.qr := Pipeline(qr, latency, en)
+  io.out.need := Pipeline(need.asTypeOf(SInt(SphereKeys.kWidth(p).W)), latency, en)
+  io.out.needNone := Pipeline(r.isZero || r.sign, latency, en)
+  io.out.nonFinite := Pipeline(nonFinite, latency, en)
+}
+
+object SphereKeys {
+  /** Wide enough for any k the broad phase picks: an exponent of the format, plus slack. */
+  def kWidth(p: FpParams): Int = p.format.rawExpWidth + 3
+  /** A coordinate in box-filter units: a cell coordinate with filterFracBits more bits. */
+  def qWidth(bp: BroadPhaseParams): Int = bp.cellBits + bp.filterFracBits + 1
+}

@@ -1,0 +1,100 @@
+package collide.world
+
+import chisel3._
+import chiseltest._
+import org.scalatest.flatspec.AnyFlatSpec
+import collide.fp.FloatFormat
+import collide.fp.model.{Decoded, SoftFloat}
+import collide.scpu.ScpuConfig
+import collide.scpu.model.ScpuModel
+import collide.testutil.{FpPatterns, Seeds}
+import collide.world.model.BroadPhaseModel
+
+class SphereKeysSpec extends AnyFlatSpec with ChiselScalatestTester {
+  behavior of "SphereKeys"
+
+  private val configs = Seq(ScpuConfig.fp32, ScpuConfig.fp32.copy(name = "fp32-ftz", subnormals = false),
+    ScpuConfig.fp16, ScpuConfig.bf16, ScpuConfig.fp64)
+
+  private def finite(cfg: ScpuConfig, b: BigInt) = SoftFloat.decode(cfg.params, b) match {
+    case Decoded.NaN(_) | Decoded.Inf(_) => false
+    case _                               => true
+  }
+
+  /** Values around cell faces and the pattern generator's corners (subnormals, extremes). */
+  private def values(cfg: ScpuConfig, rng: scala.util.Random, n: Int): Seq[BigInt] = {
+    val f = cfg.format
+    val faces = Seq.fill(n / 4) {
+      val v = (rng.nextInt(41) - 20) * math.pow(2, rng.nextInt(9) - 4)
+      val b = ScpuModel.fromDouble(f, v)
+      rng.nextInt(3) match { case 0 => b; case 1 => (b + 1).min(f.signBit * 2 - 1); case _ => (b - 1).max(0) }
+    }
+    FpPatterns.specials(f) ++ faces ++ FpPatterns.operands(f, rng, n)
+  }
+
+  /** A k that puts v's cell in range most of the time, and sometimes one that overflows it. */
+  private def kFor(cfg: ScpuConfig, bp: BroadPhaseParams, rng: scala.util.Random, v: BigInt): Int =
+    SoftFloat.decode(cfg.params, v) match {
+      case Decoded.Finite(_, sig, e) =>
+        val top = e + sig.bitLength
+        top - bp.cellBits + 2 + (if (rng.nextInt(8) == 0) -(1 + rng.nextInt(4)) else rng.nextInt(30))
+      case _ => rng.nextInt(40) - 20
+    }
+
+  for (cfg <- configs) {
+    it should s"give the golden model's cells, box keys and needs for ${cfg.name} values, faces and corners" in {
+      val bp = BroadPhaseParams.default
+      val model = new BroadPhaseModel(cfg, bp)
+      val rng = Seeds.rng(s"SphereKeysSpec-${cfg.name}")
+      val f = cfg.format
+      val vs = values(cfg, rng, Seeds.cases(600)).toIndexedSeq
+      val qw = SphereKeys.qWidth(bp)
+      val qrMax = (BigInt(1) << qw) - 1
+      var inRange, overflowed, needs = 0
+      test(new SphereKeys(cfg.params, bp, latency = 1)) { dut =>
+        for ((x, idx) <- vs.zipWithIndex) {
+          val y = vs(rng.nextInt(vs.length)); val z = vs(rng.nextInt(vs.length)); val r = vs(rng.nextInt(vs.length))
+          val sphere = Seq(x, y, z, r)
+          val k = sphere.take(3).map(kFor(cfg, bp, rng, _)).max
+          val label = s"${cfg.name} case $idx: sphere ${sphere.map(b => "0x" + b.toString(16)).mkString(",")} k=$k"
+          sphere.zipWithIndex.foreach { case (b, i) => dut.io.in.sphere(i).poke(b.U) }
+          dut.io.in.k.poke(k.S); dut.io.in.valid.poke(true.B)
+          dut.clock.step()
+          assert(dut.io.out.valid.peek().litToBoolean, label)
+          val nonFinite = !sphere.forall(finite(cfg, _))
+          assert(dut.io.out.nonFinite.peek().litToBoolean == nonFinite, s"$label: nonFinite")
+          if (!nonFinite) {
+            val cells = sphere.take(3).map(model.cell(_, k).get)
+            val over = cells.exists(c => math.abs(c) > bp.cellLimit)
+            assert(dut.io.out.cellOverflow.peek().litToBoolean == over, s"$label: cellOverflow (model cells $cells)")
+            if (over) overflowed += 1
+            if (!over) {
+              inRange += 1
+              cells.zipWithIndex.foreach { case (c, i) => assert(dut.io.out.cell(i).peek().litValue == c, s"$label: cell $i") }
+              val (qx, qy, qz, qr) = model.boxKey(sphere, k)
+              Seq(qx, qy, qz).zipWithIndex.foreach { case (q, i) => assert(dut.io.out.q(i).peek().litValue == q, s"$label: q $i") }
+              assert(dut.io.out.qr.peek().litValue == qr.min(qrMax), s"$label: qr")
+            }
+            val rPositive = SoftFloat.decode(cfg.params, r) match { case Decoded.Finite(false, _, _) => true; case _ => false }
+            assert(dut.io.out.needNone.peek().litToBoolean == !rPositive, s"$label: needNone")
+            if (rPositive) { needs += 1; assert(dut.io.out.need.peek().litValue == model.need(r), s"$label: need") }
+          }
+        }
+      }
+      println(s"[SphereKeysSpec ${cfg.name}] ${vs.length} spheres: $inRange cells and box keys compared, $overflowed overflows, $needs needs")
+      assert(inRange > vs.length / 3 && overflowed > 0 && needs > vs.length / 6, "the cases should cover all three outcomes")
+    }
+  }
+
+  it should "hold its outputs a cycle later when built with latency 1 and pass them through with latency 0" in {
+    val bp = BroadPhaseParams.default
+    val f = FloatFormat.fp32
+    def bits(v: Double) = ScpuModel.fromDouble(f, v)
+    test(new SphereKeys(ScpuConfig.fp32.params, bp, latency = 0)) { dut =>
+      Seq(-2.5, 0.0, 3.0, 0.5).zipWithIndex.foreach { case (v, i) => dut.io.in.sphere(i).poke(bits(v).U) }
+      dut.io.in.k.poke(0.S)
+      assert(dut.io.out.cell.map(_.peek().litValue) == Seq(-3, 0, 3)) // floor(-2.5) = -3, same cycle
+      assert(dut.io.out.need.peek().litValue == 1)                  // 2 * 0.5 * 9/8 = 1.125 -> 2
+    }
+  }
+}
