@@ -68,3 +68,22 @@ TEST(Simulation, DiamondBackendsSeeTheSamePairs) {
   // double may classify a few differently; overlapping inter-layer pairs agree.
   EXPECT_NEAR(static_cast<double>(sa.contacts), static_cast<double>(sb.contacts), 0.5 * sa.contacts);
 }
+
+TEST(Simulation, EveryStepSaysWhereItsTimeWent) {
+  const auto s = parse(R"({"steps": 30, "dt": 0.01, "effects": {"gravity": [0, 0, -9.81], "ground": {"z": 0}},
+      "bodies": {"random_cloud": {"count": 200, "seed": 7, "min": [-1, -1, 0.1], "max": [1, 1, 1], "radius": [0.05, 0.1]}}})");
+  SimdBackend b;
+  ode::Simulation sim(s, b);
+  std::size_t plane = 0, contacts = 0;
+  for (int k = 0; k < 30; ++k) {
+    const auto st = sim.step();
+    plane += st.otherContacts;
+    contacts += st.contacts;
+    // Every stage was timed, and the stages lie inside the step.
+    EXPECT_GT(st.broadNs, 0) << k;
+    EXPECT_GT(st.solverNs, 0) << k;
+    EXPECT_GE(st.stepNs, st.broadNs + st.otherNarrowNs + st.backendNs + st.jointsNs + st.solverNs) << k;
+  }
+  EXPECT_GT(plane, 0u) << "the ground's contacts went through the timed sphere/plane stage";
+  EXPECT_GT(contacts, 0u);
+}

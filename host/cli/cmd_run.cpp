@@ -30,6 +30,24 @@ void printTiming(std::ostream& os, std::int64_t ns, std::uint64_t pairs, std::ui
   else os << "- ns/collision";
 }
 
+void printTimeSplit(std::ostream& os, const RunTotals& t, double narrowNs, const std::string& narrowWhat,
+                    long long steps) {
+  const double total = static_cast<double>(t.stepNs - t.backendNs) + narrowNs;
+  const double other = total - static_cast<double>(t.broadNs + t.otherNarrowNs + t.jointsNs + t.solverNs) - narrowNs;
+  os << "time split   : " << std::fixed << std::setprecision(3) << total / 1e6 << " ms in " << steps << " steps ("
+     << std::setprecision(1) << (steps ? total / 1e3 / static_cast<double>(steps) : 0.0) << " us a step)\n";
+  auto line = [&](const char* what, double ns, const std::string& note) {
+    os << "  " << std::left << std::setw(24) << what << std::right << std::setw(12) << std::setprecision(3) << ns / 1e6
+       << " ms  " << std::setw(5) << std::setprecision(1) << (total > 0 ? 100.0 * ns / total : 0.0) << " %" << note << "\n";
+  };
+  line("broad phase", static_cast<double>(t.broadNs), "  (dSpaceCollide, ODE's hash space)");
+  line("narrow, sphere/sphere", narrowNs, "  (" + narrowWhat + ")");
+  line("narrow, sphere/plane", static_cast<double>(t.otherNarrowNs), "  (dCollide on the CPU)");
+  line("contact joints", static_cast<double>(t.jointsNs), "");
+  line("solver", static_cast<double>(t.solverNs), "  (dWorldQuickStep)");
+  line("other", other, "  (effects, range checks, the sphere table)");
+}
+
 namespace {
 
 // The fastest of `repeat` timings: the least disturbed by a shared, noisy machine.
@@ -122,7 +140,7 @@ int runScene(const RunOptions& o) {
       std::ostream& csv = csvFile->stream();
       csv << "step,pairs,contacts,other_contacts,backend_ns,ode_ns,simd_ns,hit_mismatches";
       if (rtl) csv << ",afu_runs,afu_modelled_ns,afu_cycles,afu_load,afu_compute,afu_wait_rd,afu_wait_wr";
-      csv << '\n';
+      csv << ",broad_ns,plane_narrow_ns,joints_ns,solver_ns,step_ns\n";
     }
     for (long long s = 0; s < sc.steps; ++s) {
       const auto st = sim.step();
@@ -133,6 +151,11 @@ int runScene(const RunOptions& o) {
       tot.odeNs += stepOdeNs;
       tot.simdNs += stepSimdNs;
       tot.hitMismatches += stepMismatch;
+      tot.broadNs += st.broadNs;
+      tot.otherNarrowNs += st.otherNarrowNs;
+      tot.jointsNs += st.jointsNs;
+      tot.solverNs += st.solverNs;
+      tot.stepNs += st.stepNs;
       if (rtlBackend) { afu.add(rtlBackend->lastBatch()); afu.cycleNs = sc.link.cycleNs(); }
       if (o.perStep) {
         std::cout << "step " << st.step << ": " << st.pairsTested << " pairs, " << st.contacts << " contacts"
@@ -151,7 +174,8 @@ int runScene(const RunOptions& o) {
               << b.counters.cyclesTotal << ',' << b.counters.cyclesLoading << ',' << b.counters.cyclesComputing
               << ',' << b.counters.cyclesWaitRead << ',' << b.counters.cyclesWaitWrite;
         }
-        csv << '\n';
+        csv << ',' << st.broadNs << ',' << st.otherNarrowNs << ',' << st.jointsNs << ',' << st.solverNs << ','
+            << st.stepNs << '\n';
       }
     }
     if (csvFile) csvFile->commit();
@@ -167,10 +191,14 @@ int runScene(const RunOptions& o) {
               << "simd vs ode  : " << tot.hitMismatches << " pairs disagree on hit\n";
     if (rtl) {
       printAfu(std::cout, afu, tot.pairs, tot.contacts, sc.link.name, tot.backendNs);
+      printTimeSplit(std::cout, tot, afu.stats.modelledNs,
+                     "the AFU, modelled, link " + sc.link.name + "; in place of the co-simulation's wall time", sc.steps);
     } else {
       std::cout << "backend " << backend->name() << "  : ";
       printTiming(std::cout, tot.backendNs, tot.pairs, tot.contacts);
       std::cout << "  (the backend that drove the simulation)\n";
+      printTimeSplit(std::cout, tot, static_cast<double>(tot.backendNs), "backend " + backend->name() + ", measured",
+                     sc.steps);
     }
 
     if (posFile) {  // binary64 as ODE holds them, %a so nothing is lost
@@ -200,6 +228,12 @@ int runScene(const RunOptions& o) {
       j["backend_wall_ns"] = tot.backendNs;
       j["simd_ode_hit_mismatches"] = tot.hitMismatches;
       j["cpu_repeat"] = o.cpuRepeat;
+      // Where the steps' wall time went; narrow_ns is the backend's wall time (rtl: the
+      // co-simulation's), narrow_modelled_ns the AFU's modelled time.
+      j["time_split"] = {{"broad_ns", tot.broadNs},         {"narrow_ns", tot.backendNs},
+                         {"plane_narrow_ns", tot.otherNarrowNs}, {"joints_ns", tot.jointsNs},
+                         {"solver_ns", tot.solverNs},       {"step_ns", tot.stepNs}};
+      if (rtl) j["time_split"]["narrow_modelled_ns"] = afu.stats.modelledNs;
       if (rtl) {
         j["afu"] = {{"preset", driver::builtInAfuPreset()},
                     {"link", sc.link.name},

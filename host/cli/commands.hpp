@@ -34,6 +34,17 @@ struct PairsOptions {
   double wallLimit = driver::kDefaultWallLimitS;  // rtl: wall-clock seconds an AFU run may take
 };
 
+struct SpheresOptions {
+  std::string backend = "simd";  // simd (our grid + binary32 kernel) | ode (an ODE space + dCollide)
+  std::string space;             // ode: hash | sap ("" = the default, kDefaultOdeSpace)
+  std::string afu;               // world mode on the AFU: not built yet (refused)
+  std::string in, out;           // "-" = stdin/stdout
+  int repeat = 1;                // run the whole collision this many times, report the fastest of each phase
+  std::string summary;           // counts and times as JSON
+};
+// The faster of ODE's two spaces on bench/world's clouds (bench/results/world).
+inline constexpr const char* kDefaultOdeSpace = "sap";
+
 struct InfoOptions {
   std::string afu;     // print this generated AFU's manifest...
   bool links = false;  // ...or list the link presets
@@ -42,5 +53,6 @@ struct InfoOptions {
 int runScene(const RunOptions& o);
 int runPairs(const PairsOptions& o);
 int runInfo(const InfoOptions& o);
+int runSpheres(const SpheresOptions& o);
 
 }  // namespace collide::cli

@@ -25,8 +25,8 @@ long long parseSteps(const std::string& text) {
 bool unknownSubcommand(int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') return false;
   const std::string s = argv[1];
-  if (s == "run" || s == "pairs" || s == "info") return false;
-  std::cerr << "collide: unknown subcommand '" << collide::util::clip(s) << "' (expected run, pairs or info)\n"
+  if (s == "run" || s == "pairs" || s == "spheres" || s == "info") return false;
+  std::cerr << "collide: unknown subcommand '" << collide::util::clip(s) << "' (expected run, pairs, spheres or info)\n"
             << "Run with --help for more information.\n";
   return true;
 }
@@ -87,6 +87,22 @@ int main(int argc, char** argv) {
   p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2), - for stdin")->required();
   p->add_option("--out", pairs.out, "output CSV, - for stdout")->required();
 
+  SpheresOptions spheres;
+  auto* w = app.add_subcommand("spheres", "world mode: every contact among the spheres of a CSV file");
+  w->add_option("--backend", spheres.backend,
+                "simd: our grid + the binary32 kernel; ode: an ODE space + dCollide (binary64); rtl: not built yet")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"simd", "ode", "rtl"}));
+  w->add_option("--space", spheres.space, std::string("ode: hash or sap (default ") + kDefaultOdeSpace + ")")
+      ->check(CLI::IsMember({"hash", "sap"}));
+  w->add_option("--afu", spheres.afu, "world mode on a generated AFU: not built yet");
+  w->add_option("--in", spheres.in, "input CSV (x,y,z,r), - for stdin")->required();
+  w->add_option("--out", spheres.out, "output CSV (i,j,px,py,pz,nx,ny,nz,depth,flags), - for stdout")->required();
+  w->add_option("--repeat", spheres.repeat, "collide this many times, report the fastest broad and narrow phase")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  w->add_option("--summary", spheres.summary, "write counts and times to this JSON file");
+
   InfoOptions info;
   auto* i = app.add_subcommand("info", "print a generated AFU's manifest, or the link presets");
   i->add_option("--afu", info.afu, "generated AFU folder: print its manifest");
@@ -94,6 +110,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (r->parsed()) return runScene(run);
+  if (w->parsed()) return runSpheres(spheres);
   if (p->parsed()) {
     if (pairs.afu.empty() && pairs.backend.empty()) {
       std::cerr << "collide pairs: give --afu DIR (rtl) or --backend simd|ode\n";

@@ -4,17 +4,13 @@
 // the record flags byte (docs/afu-interface.md) in decimal.
 #include <istream>
 #include <ostream>
-#include <stdexcept>
 #include <string>
 
+#include "cli/number_csv.hpp"
 #include "collide/batch.hpp"
 #include "collide/contact_set.hpp"
 
 namespace collide::cli {
-
-struct CsvError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // Pair k becomes spheres 2k (sphere 1) and 2k+1 (sphere 2). Values are parsed straight
 // into the link format with one correct rounding (format::parseInto), and a value that
@@ -24,8 +20,5 @@ void readPairsCsv(std::istream& in, const std::string& name, LinkFormat format,
                   SphereTable& spheres, PairList& pairs);
 
 void writeContactsCsv(std::ostream& out, const ContactSet& contacts);
-
-// %a of v, printed as a value of `format` (v must be exact in it).
-std::string hexFloat(double v, LinkFormat format);
 
 }  // namespace collide::cli

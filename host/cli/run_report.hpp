@@ -2,6 +2,7 @@
 // Totals of a scene run and the per-pair / per-collision CPU times reported by `run`.
 #include <cstdint>
 #include <ostream>
+#include <string>
 
 #include "collide/rtl_backend.hpp"
 
@@ -11,7 +12,17 @@ struct RunTotals {
   std::uint64_t pairs = 0, contacts = 0, otherContacts = 0;
   std::int64_t backendNs = 0, odeNs = 0, simdNs = 0;
   std::uint64_t hitMismatches = 0;  // pairs where ode and simd disagree on hit
+  // The steps' time split (ode::StepStats): broad phase, sphere/plane narrow phase, contact
+  // joints, solver, and the whole steps (the sphere/sphere narrow phase is backendNs).
+  std::int64_t broadNs = 0, otherNarrowNs = 0, jointsNs = 0, solverNs = 0, stepNs = 0;
 };
+
+// Where a run's step time went, one line per stage with its share. `narrowNs` is the
+// sphere/sphere narrow phase as the run should count it: the backend's wall time on the CPU
+// backends, the modelled AFU time on rtl (its co-simulation's wall time is no real cost), so
+// the total is the steps' wall time with the backend's wall replaced by narrowNs.
+void printTimeSplit(std::ostream& os, const RunTotals& t, double narrowNs, const std::string& narrowWhat,
+                    long long steps);
 
 // The rtl backend's modelled AFU time over a run (sums over every AFU call), split as the
 // paper's Figures 5-7: the status line's cycle counters, and what lies outside them.

@@ -8,17 +8,19 @@
 
 namespace collide {
 
-PairInput classifyPair(const SphereTable& s, std::uint32_t i, std::uint32_t j) {
-  const double v[8] = {s.x[i], s.y[i], s.z[i], s.r[i], s.x[j], s.y[j], s.z[j], s.r[j]};
+PairInput classifySphere(const SphereTable& s, std::uint32_t i) {
+  const double v[4] = {s.x[i], s.y[i], s.z[i], s.r[i]};
   for (double x : v)
     if (!std::isfinite(x)) return PairInput::NonFinite;
-  for (int side = 0; side < 2; ++side) {
-    const double* c = v + 4 * side;
-    if (!ode::saneRadius(c[3]) || !ode::saneCoordinate(c[0]) || !ode::saneCoordinate(c[1]) ||
-        !ode::saneCoordinate(c[2]))
-      return PairInput::OutOfRange;
-  }
+  if (!ode::saneRadius(v[3]) || !ode::saneCoordinate(v[0]) || !ode::saneCoordinate(v[1]) || !ode::saneCoordinate(v[2]))
+    return PairInput::OutOfRange;
   return PairInput::Ok;
+}
+
+PairInput classifyPair(const SphereTable& s, std::uint32_t i, std::uint32_t j) {
+  const PairInput a = classifySphere(s, i), b = classifySphere(s, j);
+  if (a == PairInput::NonFinite || b == PairInput::NonFinite) return PairInput::NonFinite;
+  return a == PairInput::Ok ? b : a;
 }
 
 void applyInputPolicy(const SphereTable& s, const PairList& pairs, ContactSet& out) {
@@ -37,6 +39,10 @@ void applyInputPolicy(const SphereTable& s, const PairList& pairs, ContactSet& o
 
 void collidePairs(CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out) {
   backend.collide(s, pairs, out);
+  finishPairs(backend, s, pairs, out);
+}
+
+void finishPairs(const CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out) {
   if (!backend.setsRecordFlags()) setCpuRecordFlags(s, pairs, out.format, out);
   applyInputPolicy(s, pairs, out);
 }

@@ -19,6 +19,8 @@ namespace collide {
 
 enum class PairInput { Ok, NonFinite, OutOfRange };
 
+// One sphere's four values; a pair is NonFinite if either sphere is, else OutOfRange if either is.
+PairInput classifySphere(const SphereTable& s, std::uint32_t i);
 PairInput classifyPair(const SphereTable& s, std::uint32_t i, std::uint32_t j);
 
 // Rewrites every rejected pair of `out` (which the backend filled) to no contact with its
@@ -28,5 +30,7 @@ void applyInputPolicy(const SphereTable& s, const PairList& pairs, ContactSet& o
 // What `collide pairs` does with any backend: its results, the record flags (the CPU
 // backends' computed as the AFU computes them), then the policy above.
 void collidePairs(CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out);
+// The part after backend.collide (for callers that time the backend alone): flags, policy.
+void finishPairs(const CollisionBackend& backend, const SphereTable& s, const PairList& pairs, ContactSet& out);
 
 }  // namespace collide

@@ -44,11 +44,9 @@ void Simulation::near(dGeomID o1, dGeomID o2) {
     pairs_.push(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
     return;
   }
-  // Anything else (sphere/plane) stays on the CPU through ODE's own colliders.
-  dContactGeom cg[4];
-  const int n = dCollide(o1, o2, 4, cg, sizeof(dContactGeom));
-  for (int k = 0; k < n; ++k) addContactJoint(world_.world(), world_.contacts(), surface_, cg[k]);
-  otherContacts_ += static_cast<std::size_t>(n);
+  // Anything else (sphere/plane) stays on the CPU through ODE's own colliders, after the
+  // broad phase, so that the two are timed apart.
+  otherPairs_.emplace_back(o1, o2);
 }
 
 void Simulation::applyEffects() {
@@ -63,22 +61,46 @@ void Simulation::applyEffects() {
   }
 }
 
+namespace {
+using Clock = std::chrono::steady_clock;
+std::int64_t nsBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count();
+}
+}  // namespace
+
 StepStats Simulation::step() {
   StepStats st;
   st.step = step_;
+  const auto start = Clock::now();
   pairs_.clear();
-  otherContacts_ = 0;
+  otherPairs_.clear();
+  otherContacts_.clear();
   requireSpheresInRange();
   applyEffects();
+  auto t0 = Clock::now();
   world_.collideSpace(this, &Simulation::nearCallback);
   if (nearError_) std::rethrow_exception(std::exchange(nearError_, nullptr));
+  auto t1 = Clock::now();
+  st.broadNs = nsBetween(t0, t1);
+
+  for (const auto& [o1, o2] : otherPairs_) {
+    dContactGeom cg[4];
+    const int n = dCollide(o1, o2, 4, cg, sizeof(dContactGeom));
+    otherContacts_.insert(otherContacts_.end(), cg, cg + n);
+  }
+  t0 = Clock::now();
+  st.otherNarrowNs = nsBetween(t1, t0);
 
   world_.fillSphereTable(table_);
-  const auto t0 = std::chrono::steady_clock::now();
+  t0 = Clock::now();
   backend_.collide(table_, pairs_, results_);
-  st.backendNs = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
+  t1 = Clock::now();
+  st.backendNs = nsBetween(t0, t1);
   if (observer_) observer_(table_, pairs_, results_);
+  const auto afterObserver = Clock::now();
 
+  // Sphere/plane joints first: the order ODE found them in before the batch existed.
+  for (const auto& g : otherContacts_) addContactJoint(world_.world(), world_.contacts(), surface_, g);
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     if (!results_.hit[k]) continue;
     dContactGeom g{};
@@ -92,10 +114,15 @@ StepStats Simulation::step() {
     ++st.contacts;
   }
   st.pairsTested = pairs_.size();
-  st.otherContacts = otherContacts_;
+  st.otherContacts = otherContacts_.size();
+  t0 = Clock::now();
+  st.jointsNs = nsBetween(afterObserver, t0);
 
   dWorldQuickStep(world_.world(), scene_.dt);
   dJointGroupEmpty(world_.contacts());
+  const auto end = Clock::now();
+  st.solverNs = nsBetween(t0, end);
+  st.stepNs = nsBetween(start, end) - nsBetween(t1, afterObserver);
   ++step_;
   return st;
 }

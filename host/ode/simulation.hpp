@@ -1,12 +1,15 @@
 #pragma once
 // One scene's simulation loop:
 //   forces (declared effects) -> dSpaceCollide (broad phase; the near callback gathers
-//   sphere/sphere candidate pairs into a batch, other pairs go through dCollide on the
-//   CPU) -> the batch through the selected backend -> contact joints -> dWorldQuickStep.
+//   sphere/sphere candidate pairs into a batch and the other pairs into a list) -> dCollide on
+//   the other pairs (sphere/plane, CPU) -> the batch through the selected backend -> contact
+//   joints (sphere/plane first, as ODE found them) -> dWorldQuickStep. Each stage is timed.
 #include <chrono>
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <utility>
+#include <vector>
 
 #include "collide/backend.hpp"
 #include "ode/ode_world.hpp"
@@ -19,7 +22,13 @@ struct StepStats {
   std::size_t pairsTested = 0;    // sphere/sphere candidates sent to the backend
   std::size_t contacts = 0;       // of those, hits (one contact joint each)
   std::size_t otherContacts = 0;  // sphere/plane contacts found on the CPU
-  std::int64_t backendNs = 0;     // wall time of the backend call
+  std::int64_t backendNs = 0;     // wall time of the backend call (the sphere/sphere narrow phase)
+  // Where the step's wall time went (the observer's own work excluded):
+  std::int64_t broadNs = 0;       // dSpaceCollide (with the near callback, which only records pairs)
+  std::int64_t otherNarrowNs = 0; // dCollide on the sphere/plane pairs
+  std::int64_t jointsNs = 0;      // creating the contact joints
+  std::int64_t solverNs = 0;      // dWorldQuickStep and emptying the contact group
+  std::int64_t stepNs = 0;        // the whole step
 };
 
 class Simulation {
@@ -47,8 +56,9 @@ class Simulation {
   dSurfaceParameters surface_;
   SphereTable table_;
   PairList pairs_;
+  std::vector<std::pair<dGeomID, dGeomID>> otherPairs_;  // not sphere/sphere: ODE collides them
+  std::vector<dContactGeom> otherContacts_;
   ContactSet results_;
-  std::size_t otherContacts_ = 0;
   long long step_ = 0;
   BatchObserver observer_;
   // An exception in the near callback waits here: unwinding through dSpaceCollide would

@@ -1,0 +1,47 @@
+#pragma once
+// ODE's own broad phase for world mode: the spheres as dSphere geoms in a hash space
+// (dHashSpace, ODE's default levels) or a sweep-and-prune space (dSweepAndPruneSpace, axes
+// x, y, z), and dSpaceCollide. The near callback only records the pair; the narrow phase
+// (dCollide on the same geoms, OdeBackend) runs after it, so the two are timed apart.
+#include <exception>
+#include <string>
+#include <vector>
+
+#include <ode/ode.h>
+
+#include "ode/ode_library.hpp"
+#include "world/broad_phase.hpp"
+
+namespace collide::world {
+
+enum class OdeSpaceKind { Hash, SweepAndPrune };
+const char* toString(OdeSpaceKind k);  // "hash", "sap"
+
+class OdeSpaceBroadPhase final : public BroadPhase {
+ public:
+  explicit OdeSpaceBroadPhase(OdeSpaceKind kind);
+  ~OdeSpaceBroadPhase() override;
+  OdeSpaceBroadPhase(const OdeSpaceBroadPhase&) = delete;
+  OdeSpaceBroadPhase& operator=(const OdeSpaceBroadPhase&) = delete;
+
+  std::string name() const override { return std::string("ode ") + toString(kind_); }
+  // Creates a geom per member the first time (a table of another size starts over), else
+  // moves them to the table's values, which marks them dirty as a simulation step would.
+  void prepare(SphereTable& s, const std::vector<std::uint32_t>& members) override;
+  void findPairs(const SphereTable& s, const std::vector<std::uint32_t>& members, PairList& out) override;
+
+ private:
+  static void nearCallback(void* self, dGeomID o1, dGeomID o2);
+  void clearGeoms();
+
+  ode::Library lib_;
+  OdeSpaceKind kind_;
+  dSpaceID space_ = nullptr;
+  std::vector<dGeomID> geoms_;  // by sphere index; nullptr for spheres not in the space
+  PairList* out_ = nullptr;     // the near callback's destination during findPairs
+  // An exception in the callback (out of memory) waits here: unwinding through dSpaceCollide
+  // would leave the space locked, and ODE aborts when a locked space is destroyed.
+  std::exception_ptr error_;
+};
+
+}  // namespace collide::world

@@ -1,0 +1,91 @@
+#include "world/world_collider.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+
+#include "afu_contract.hpp"
+#include "collide/input_policy.hpp"
+
+namespace collide::world {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+std::int64_t nsSince(Clock::time_point t0) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count();
+}
+
+void appendHit(const ContactSet& c, std::size_t k, ContactSet& out) {
+  out.hit.push_back(1);
+  out.px.push_back(c.px[k]); out.py.push_back(c.py[k]); out.pz.push_back(c.pz[k]);
+  out.nx.push_back(c.nx[k]); out.ny.push_back(c.ny[k]); out.nz.push_back(c.nz[k]);
+  out.depth.push_back(c.depth[k]);
+  if (c.flags.size() == c.size()) out.flags.push_back(c.flags[k]);  // a backend's own (rtl), or the policy's
+}
+}  // namespace
+
+void WorldCollider::collide(SphereTable& s, WorldContacts& out, WorldTiming& time) {
+  out = WorldContacts{};
+  out.contacts.format = narrow_.format();
+  time = WorldTiming{};
+  members_.clear();
+  for (std::uint32_t k = 0; k < s.size(); ++k) {
+    const PairInput p = classifySphere(s, k);
+    if (p == PairInput::Ok) {
+      members_.push_back(k);
+      continue;
+    }
+    out.badSpheres.push_back(k);
+    out.badFlags.push_back(p == PairInput::NonFinite ? contract::REC_NONFINITE : contract::REC_HOST_RANGE);
+  }
+  broad_.prepare(s, members_);
+
+  auto t0 = Clock::now();
+  candidates_.clear();
+  broad_.findPairs(s, members_, candidates_);
+  time.broadNs = nsSince(t0);
+  out.candidates = candidates_.size();
+
+  // The narrow phase chunk by chunk, keeping the hits. Only hits are output, so the record
+  // flags and the bad-pair policy (the `collide pairs` path) run on them alone; every member
+  // is a good sphere, so the policy rejects none, but it is the one rule either way.
+  ContactSet found;
+  found.format = narrow_.format();
+  PairList foundPairs;
+  for (std::size_t a = 0; a < candidates_.size(); a += kChunkPairs) {
+    const std::size_t b = std::min(candidates_.size(), a + kChunkPairs);
+    t0 = Clock::now();
+    chunk_.i.assign(candidates_.i.begin() + a, candidates_.i.begin() + b);
+    chunk_.j.assign(candidates_.j.begin() + a, candidates_.j.begin() + b);
+    time.finishNs += nsSince(t0);
+    t0 = Clock::now();
+    narrow_.collide(s, chunk_, chunkOut_);
+    time.narrowNs += nsSince(t0);
+    t0 = Clock::now();
+    for (std::size_t k = 0; k < chunk_.size(); ++k) {
+      if (!chunkOut_.hit[k]) continue;
+      foundPairs.push(chunk_.i[k], chunk_.j[k]);
+      appendHit(chunkOut_, k, found);
+    }
+    time.finishNs += nsSince(t0);
+  }
+  t0 = Clock::now();
+  finishPairs(narrow_, s, foundPairs, found);
+  time.finishNs += nsSince(t0);
+
+  // Sorted by (i, j): a permutation, then a gather.
+  t0 = Clock::now();
+  std::vector<std::uint32_t> order(foundPairs.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return foundPairs.i[a] != foundPairs.i[b] ? foundPairs.i[a] < foundPairs.i[b] : foundPairs.j[a] < foundPairs.j[b];
+  });
+  for (auto k : order) {
+    if (!found.hit[k]) continue;  // the policy rejected it
+    out.pairs.push(foundPairs.i[k], foundPairs.j[k]);
+    appendHit(found, k, out.contacts);
+  }
+  time.finishNs += nsSince(t0);
+}
+
+}  // namespace collide::world

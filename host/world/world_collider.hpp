@@ -1,0 +1,48 @@
+#pragma once
+// World mode on the CPU: every contact of a sphere table, found by a broad phase and
+// computed by a backend's narrow phase (CollisionBackend::collide, then its record flags and
+// the bad-pair policy: the `collide pairs` path, collide/input_policy.hpp).
+// A sphere the policy rejects (non-finite, or outside ODE's range) never enters the broad
+// phase: it is listed once in badSpheres with its flag, so nothing is dropped silently.
+#include <cstdint>
+#include <vector>
+
+#include "collide/backend.hpp"
+#include "collide/batch.hpp"
+#include "collide/contact_set.hpp"
+#include "world/broad_phase.hpp"
+
+namespace collide::world {
+
+struct WorldContacts {
+  PairList pairs;        // the contacts' spheres, i < j, sorted by (i, j)
+  ContactSet contacts;   // entry k belongs to pairs k (all hits), with its record flags
+  std::vector<std::uint32_t> badSpheres;  // ascending
+  std::vector<std::uint8_t> badFlags;     // REC_NONFINITE or REC_HOST_RANGE, beside them
+  std::size_t candidates = 0;             // pairs the broad phase found
+};
+
+struct WorldTiming {
+  std::int64_t broadNs = 0;   // BroadPhase::findPairs
+  std::int64_t narrowNs = 0;  // CollisionBackend::collide on the candidates
+  std::int64_t finishNs = 0;  // flags, bad-pair policy, keeping the hits, sorting by (i, j)
+};
+
+class WorldCollider {
+ public:
+  // Candidates go to the narrow phase this many at a time (the scratch stays in L2).
+  static constexpr std::size_t kChunkPairs = 16384;
+
+  WorldCollider(BroadPhase& broad, CollisionBackend& narrow) : broad_(broad), narrow_(narrow) {}
+  // s may be modified by the broad phase's prepare (its geoms).
+  void collide(SphereTable& s, WorldContacts& out, WorldTiming& time);
+
+ private:
+  BroadPhase& broad_;
+  CollisionBackend& narrow_;
+  std::vector<std::uint32_t> members_;
+  PairList candidates_, chunk_;
+  ContactSet chunkOut_;
+};
+
+}  // namespace collide::world
