@@ -42,6 +42,15 @@ final case class BroadPhaseParams(
   require(chunk >= 1 && chunk <= 256, s"chunk must be 1..256, got $chunk")
 
   val buckets: Int = 1 << bucketsLog2
+
+  /** log2 of a bound on an SCPU's absolute error in d in compute format p: squares that
+    * underflow or flush lose at most 3 * 2^minExp of d^2, so at most sqrt(3 * 2^minExp) <
+    * 2^errorExp of d. */
+  def errorExp(p: collide.fp.FpParams): Int = Math.floorDiv(p.format.minExp, 2) + 2
+  /** The smallest cell exponent: the cell is 2^cellOverError times that error. */
+  def kFloor(p: collide.fp.FpParams): Int = errorExp(p) + cellOverError
+  /** k >= top - kCoordOffset keeps every cell coordinate of values below 2^top in range. */
+  val kCoordOffset: Int = cellBits - 2
   /** Largest cell coordinate magnitude allowed, leaving one cell of guard to the wrap. */
   val cellLimit: Long = (1L << (cellBits - 1)) - 2
 }

@@ -30,6 +30,10 @@ class SphereKeysIO(p: FpParams, bp: BroadPhaseParams) extends Bundle {
     val needNone = Bool()
     /** A field is NaN or infinite: the sphere is excluded. */
     val nonFinite = Bool()
+    /** The least T with |x|, |y|, |z| < 2^T (what bounds k from below); don't-care if topNone. */
+    val top = SInt(kWidth.W)
+    /** All three coordinates are zero. */
+    val topNone = Bool()
   })
 }
 
@@ -86,6 +90,12 @@ class SphereKeys(p: FpParams, bp: BroadPhaseParams, latency: Int = 1) extends Mo
   private val x = (rNum << 1) - 1.U
   private val need = (r.sExp -& f.fracBits.S) +& (Log2(x) +& 1.U).zext -& log2Ceil(bp.marginDen).S
 
+  // top: |v| < 2^(sExp + 1) for a normalized raw value.
+  private val coordTops = raw.take(3).map(c => (c.isZero, c.sExp +& 1.S))
+  private val (topNone, top) = coordTops.reduce { (a, b) =>
+    (a._1 && b._1, Mux(a._1, b._2, Mux(b._1, a._2, Mux(a._2 > b._2, a._2, b._2))))
+  }
+
   private val en = true.B
   io.out.valid := Pipeline.valid(io.in.valid, latency, en)
   io.out.cell := Pipeline(VecInit(cellsAndOver.map(_._1)), latency, en)
@@ -95,6 +105,8 @@ class SphereKeys(p: FpParams, bp: BroadPhaseParams, latency: Int = 1) extends Mo
   io.out.need := Pipeline(need.asTypeOf(SInt(SphereKeys.kWidth(p).W)), latency, en)
   io.out.needNone := Pipeline(r.isZero || r.sign, latency, en)
   io.out.nonFinite := Pipeline(nonFinite, latency, en)
+  io.out.top := Pipeline(top.asTypeOf(SInt(SphereKeys.kWidth(p).W)), latency, en)
+  io.out.topNone := Pipeline(topNone, latency, en)
 }
 
 object SphereKeys {

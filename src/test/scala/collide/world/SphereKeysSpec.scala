@@ -42,7 +42,7 @@ class SphereKeysSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
 
   for (cfg <- configs) {
-    it should s"give the golden model's cells, box keys and needs for ${cfg.name} values, faces and corners" in {
+    it should s"give the golden model's cells, box keys, needs and tops for ${cfg.name} values, faces and corners" in {
       val bp = BroadPhaseParams.default
       val model = new BroadPhaseModel(cfg, bp)
       val rng = Seeds.rng(s"SphereKeysSpec-${cfg.name}")
@@ -75,6 +75,9 @@ class SphereKeysSpec extends AnyFlatSpec with ChiselScalatestTester {
               Seq(qx, qy, qz).zipWithIndex.foreach { case (q, i) => assert(dut.io.out.q(i).peek().litValue == q, s"$label: q $i") }
               assert(dut.io.out.qr.peek().litValue == qr.min(qrMax), s"$label: qr")
             }
+            val tops = sphere.take(3).flatMap(model.topExp).filter(_ != Int.MinValue)
+            assert(dut.io.out.topNone.peek().litToBoolean == tops.isEmpty, s"$label: topNone")
+            if (tops.nonEmpty) assert(dut.io.out.top.peek().litValue == tops.max, s"$label: top")
             val rPositive = SoftFloat.decode(cfg.params, r) match { case Decoded.Finite(false, _, _) => true; case _ => false }
             assert(dut.io.out.needNone.peek().litToBoolean == !rPositive, s"$label: needNone")
             if (rPositive) { needs += 1; assert(dut.io.out.need.peek().litValue == model.need(r), s"$label: need") }

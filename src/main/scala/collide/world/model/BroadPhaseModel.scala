@@ -96,7 +96,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
   }
 
   /** T with |v| < 2^T; Int.MinValue for zero (no constraint), None if not finite. */
-  private def topExp(bits: BigInt): Option[Int] = SoftFloat.decode(p, bits) match {
+  def topExp(bits: BigInt): Option[Int] = SoftFloat.decode(p, bits) match {
     case Decoded.Zero(_)             => Some(Int.MinValue)
     case Decoded.Finite(_, sig, e)   => Some(e + sig.bitLength)
     case _                           => None
@@ -109,8 +109,8 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     // Fewer spheres than the large list holds: all in the grid, sized for the biggest.
     val kSmall = if (needs.length > bp.largeMax) needs(bp.largeMax) else needs.headOption.getOrElse(Int.MinValue)
     val tops = spheres.flatMap(_.take(3).flatMap(topExp))
-    val kCoord = if (tops.isEmpty) Int.MinValue else tops.max.toLong - bp.cellBits + 2
-    val kFloor = errorExp + bp.cellOverError
+    val kCoord = if (tops.isEmpty) Int.MinValue else tops.max.toLong - bp.kCoordOffset
+    val kFloor = bp.kFloor(p)
     math.max(math.max(kSmall.toLong, kCoord), kFloor.toLong).toInt
   }
 
@@ -152,9 +152,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     (floorQ(c(0)), floorQ(c(1)), floorQ(c(2)), qr)
   }
 
-  /** log2 of a bound on the SCPU's absolute error in d: squares that underflow or flush
-    * lose at most 3 * 2^minExp of d^2, so at most sqrt(3 * 2^minExp) < 2^errorExp of d. */
-  val errorExp: Int = Math.floorDiv(p.format.minExp, 2) + 1 + 1
+  val errorExp: Int = bp.errorExp(p)
 
   /** The box filter's slack in fixed-point units at cell exponent k: 1 for the floors, plus
     * the absolute error 2^errorExp rounded up to whole units. */
@@ -185,13 +183,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     val nb = bucketsFor(smalls.length)
     def bucketOf(c: SphereClass.Small) = bucket(c.cx, c.cy, c.cz) & (nb - 1)
 
-    // Counting sort: count, exclusive prefix sum, scatter in index order (stable).
-    val count = new Array[Int](nb)
-    smalls.foreach { case (_, c) => count(bucketOf(c)) += 1 }
-    val start = count.scanLeft(0)(_ + _)
-    val fill = start.clone()
-    val entries = new Array[Int](smalls.length)
-    smalls.foreach { case (i, c) => val b = bucketOf(c); entries(fill(b)) = i; fill(b) += 1 }
+    val (start, entries) = countingSort(smalls.map { case (i, c) => i -> bucketOf(c) }, nb)
     def cellOf(i: Int) = classes(i).asInstanceOf[SphereClass.Small]
 
     val out = IndexedSeq.newBuilder[(Int, Int)]
@@ -286,6 +278,19 @@ object BroadPhaseModel {
   private def isFinite(d: Decoded): Boolean = d match {
     case Decoded.Zero(_) | Decoded.Finite(_, _, _) => true
     case _                                         => false
+  }
+
+  /** Counting sort of (item, bucket) pairs into `buckets` buckets: count, exclusive prefix
+    * sum, scatter in input order (stable). Returns start (buckets + 1 entries: bucket b is
+    * entries(start(b) until start(b + 1))) and the sorted items. BucketSort's golden model. */
+  def countingSort(items: Seq[(Int, Int)], buckets: Int): (Array[Int], Array[Int]) = {
+    val count = new Array[Int](buckets)
+    items.foreach { case (_, b) => count(b) += 1 }
+    val start = count.scanLeft(0)(_ + _)
+    val fill = start.clone()
+    val entries = new Array[Int](items.length)
+    items.foreach { case (i, b) => entries(fill(b)) = i; fill(b) += 1 }
+    (start, entries)
   }
 
   /** The smallest integer t with 2^t * b >= a (a, b > 0). */
