@@ -161,7 +161,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     1 + (if (e >= 0) BigInt(1) << e else BigInt(1))
   }
 
-  private def boxPass(a: (BigInt, BigInt, BigInt, BigInt), b: (BigInt, BigInt, BigInt, BigInt), slack: BigInt): Boolean = {
+  def boxPass(a: (BigInt, BigInt, BigInt, BigInt), b: (BigInt, BigInt, BigInt, BigInt), slack: BigInt): Boolean = {
     val t = a._4 + b._4 + slack
     (a._1 - b._1).abs <= t && (a._2 - b._2).abs <= t && (a._3 - b._3).abs <= t
   }
