@@ -16,8 +16,11 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 #   python3-venv     - the pinned Python environment of the demo's picture and the sweeps' plots
 #   ccache           - bench/sweep builds one host per AFU configuration: the host's own
 #                      sources compile once, not once per configuration
+#   slurm-wlm, munge - bench/sweep's Slurm executor (sbatch, squeue, scancel) and the
+#                      one-node cluster its tests start (slurmctld, slurmd, munged)
 packages=(verilator libode-dev yosys nlohmann-json3-dev libcli11-dev libgtest-dev
-          cmake ninja-build g++ pkg-config default-jdk-headless maven python3-venv ccache)
+          cmake ninja-build g++ pkg-config default-jdk-headless maven python3-venv ccache
+          slurm-wlm munge)
 
 missing=()
 for p in "${packages[@]}"; do
