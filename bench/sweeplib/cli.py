@@ -42,7 +42,7 @@ def parser():
     r.add_argument("--configs", help="only these of the sweep's configurations (comma-separated ids, e.g. n1_fp32,n2_fp32)")
     r.add_argument("--executor", choices=("local", "slurm"), default="local",
                    help="local: on this machine (default); slurm: sbatch job arrays")
-    r.add_argument("--jobs", type=int, default=os.cpu_count() or 1,
+    r.add_argument("--jobs", type=int, default=len(os.sched_getaffinity(0)),  # the cores this process may use
                    help="local: steps run at once (default: the core count, %(default)s here)")
     s = r.add_argument_group("slurm (with --executor slurm; bench/README.md, \"On a Slurm cluster\")")
     s.add_argument("--partition", help="sbatch --partition (default: the cluster's default partition)")
@@ -85,6 +85,8 @@ def machine_note(sw, cmd, secs, rows, a) -> str:
             f"- date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, "
             f"{secs:.0f} s for the steps not already cached\n- executor: {how}\n"
             + "".join(f"- node {n} (the `node` column; its rows' timings): {machine.node_line(n)}\n" for n in nodes)
+            + ("- rows with no node: their runs were cached before the sweeps recorded nodes\n"
+               if any(not r.get("node") for r in rows) else "")
             + f"- commit: {machine.commit()}\n")
 
 

@@ -87,6 +87,7 @@ class Driver:
         self.log_dir = runner.logs / "slurm"
         self.submitted = []   # task ids this run submitted (tests check resumption by it)
         self.followed = set()  # job ids this run follows: cancelled on Ctrl-C
+        self.sbatch_seconds = 0.0  # time spent submitting (bench/results/executors)
 
     def check_storage(self):
         if not self.opts.storage_is_shared:
@@ -120,10 +121,13 @@ exec {ROOT / 'tools' / 'pyenv'} {ROOT / 'bench' / 'sweeplib' / 'worker.py'} {pla
             args = [f"--array=0-{len(group) - 1}", f"--job-name=sweep-{self.runner.sweep.name}-{stage}",
                     f"--output={self.log_dir}/{stage}-%A_%a.log", f"--chdir={ROOT}"]
             args += [f"--dependency=afterany:{':'.join(after)}"] if after else []
+            t0 = time.time()
             job = slurmctl.sbatch(script, args + self.opts.sbatch(kind, size))
+            self.sbatch_seconds += time.time() - t0
             self.followed.add(job)
             for i, t in enumerate(group):
-                self.jobs.map[t.id] = {"job": job, "index": i, "log": str(self.log_dir / f"{stage}-{job}_{i}.log")}
+                self.jobs.map[t.id] = {"job": job, "index": i, "log": str(self.log_dir / f"{stage}-{job}_{i}.log"),
+                                       "submitted": time.time()}
                 self.submitted.append(t.id)
             self.jobs.save()
 

@@ -40,7 +40,8 @@ class Cluster:
             raise RuntimeError(WHY_ROOT)
         for tool in ("munged", "mungekey", "slurmctld", "slurmd", "sbatch", "squeue"):
             if not shutil.which(tool):
-                raise RuntimeError(f"{tool} is not installed: run tools/setup.sh (it installs slurm-wlm and munge)")
+                raise RuntimeError(f"{tool} is not installed: `apt-get install slurm-wlm munge` (tools/setup.sh does "
+                                   f"it where no other Slurm's commands are on PATH)")
         self.dir = Path(tempfile.mkdtemp(prefix="collide-slurm-"))
         try:
             self._start()

@@ -7,6 +7,7 @@ sets it. As anyone but root they fail, saying why (slurmd must run as root). Eac
 in its own work folder (runs, records, jobs, logs), so the scene runs are redone each time."""
 import dataclasses
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -18,14 +19,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sweeplib"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import build  # noqa: E402
-import local  # noqa: E402
 import slurm  # noqa: E402
 import slurm_cluster  # noqa: E402
 import slurmctl  # noqa: E402
 import status  # noqa: E402
 import sweep  # noqa: E402
+from paths import BUILD, EXEC  # noqa: E402
 from sweeps import SWEEPS  # noqa: E402
-from tasks import Records  # noqa: E402
 
 SMOKE = os.environ.get("COLLIDE_SWEEP_SMOKE") == "1"
 CLUSTER = None
@@ -68,22 +68,29 @@ def active(job_ids) -> list:
 @unittest.skipUnless(SMOKE, "end to end (a one-node Slurm cluster, the smoke sweep's builds): "
                             "set COLLIDE_SWEEP_SMOKE=1, as tools/test does")
 class SlurmExecutor(unittest.TestCase):
-    def test_the_smoke_sweep_through_slurm_gives_the_local_executors_rows_apart_from_timings(self):
+    def test_the_smoke_sweep_through_slurm_gives_the_local_executors_csv_apart_from_timings(self):
+        import cli
         with tempfile.TemporaryDirectory() as d:
-            here = smoke(Path(d) / "local")
-            self.assertEqual(local.run(here.tasks(), Records(here.exec / "records"), 2, "local"), {})
-            want = here.collect()
+            self.assertEqual(cli.main(["run", "smoke", "--out", f"{d}/local"]), 0)  # cached after SmokeSweep
+            # The Slurm run redoes the runs and the build (a no-op for Ninja); the Verilog stays cached.
+            shutil.rmtree(BUILD / "runs" / "smoke")
+            shutil.rmtree(EXEC / "smoke")
             rebuild_through_slurm()
-            there = smoke(Path(d) / "slurm")
-            drv, bad = through_slurm(there)
-            self.assertEqual(bad, {})
+            seen = []
+            self.assertEqual(cli.main(["run", "smoke", "--executor", "slurm", "--poll", "0.3", "--out", f"{d}/slurm"],
+                                      on_poll=seen.append), 0)
+            drv = seen[0]
             self.assertEqual(sorted(drv.submitted), ["build/n2_fp32", "run/n2_fp32/diamond_h2_s1/ideal",
                                                      "run/n2_fp32/diamond_h2_s3/ideal", "run/n2_fp32/diamond_h2_s3/ode"])
-            got = there.collect()
+            want, got = (sweep.read_csv(Path(d) / ex / "smoke.csv") for ex in ("local", "slurm"))
             drop = lambda rows: [{k: v for k, v in r.items() if k not in sweep.TIMING_COLUMNS} for r in rows]
             self.assertEqual(drop(got), drop(want))
-            self.assertEqual(set(want[0]), set(got[0]))
-            self.assertEqual(got[0]["node"], slurm_cluster.socket.gethostname().split(".")[0])
+            self.assertEqual(list(got[0]), list(want[0]))
+            host = slurm_cluster.socket.gethostname().split(".")[0]
+            self.assertEqual(got[0]["node"], host)
+            note = (Path(d) / "slurm" / "MACHINE.md").read_text()
+            self.assertIn("- executor: slurm\n", note)
+            self.assertIn(f"- node {host} (the `node` column; its rows' timings): ", note)
             for tid in drv.submitted:  # one log per task, saying what ran
                 self.assertIn(f"worker: {tid} done", Path(drv.jobs.map[tid]["log"]).read_text())
 
