@@ -74,8 +74,8 @@ def _log_tail(path: Path, n=3) -> str:
     try:
         lines = [l for l in path.read_text(errors="replace").splitlines() if l.strip()]
     except OSError:
-        return f"its log {path} is not here (is build/ on storage the nodes share?)"
-    return " | ".join(lines[-n:]) if lines else "its log is empty"
+        return f"it left no log {path} (it never started, or build/ is not on storage the nodes share)"
+    return "its log ends: " + " | ".join(lines[-n:]) if lines else "its log is empty"
 
 
 class Driver:
@@ -171,7 +171,7 @@ exec {ROOT / 'tools' / 'pyenv'} {ROOT / 'bench' / 'sweeplib' / 'worker.py'} {pla
                     continue
                 if not final:  # left the queue (or ended) without a final record
                     first = ended_at.setdefault(tid, time.time())
-                    if state in ("COMPLETED", "") and time.time() - first < RECORD_GRACE_S:
+                    if state == "COMPLETED" and time.time() - first < RECORD_GRACE_S:
                         continue
                     rec = self.vanished(tid, state, reason, rec)
                 if rec["state"] != "done":
@@ -187,8 +187,9 @@ exec {ROOT / 'tools' / 'pyenv'} {ROOT / 'bench' / 'sweeplib' / 'worker.py'} {pla
         """The record of a task that ended without writing its own: killed by Slurm (time
         limit, memory, node failure, cancelled), or its worker could not start."""
         key, log = self.jobs.key(tid), Path(self.jobs.map[tid]["log"])
-        why = f"Slurm says {state} ({reason})" if state else (
-            f"sacct says {slurmctl.accounting(key)}" if slurmctl.accounting(key) else "it left the queue")
+        acct = "" if state else slurmctl.accounting(key)
+        why = f"Slurm says {state} ({reason})" if state else f"sacct says {acct}" if acct else \
+            "it left the queue without a final state (cancelled before it started?)"
         rec = dict(state="failed", node=(rec or {}).get("node", ""),
                    error=f"job {key} ended without a record of its result: {why}; {_log_tail(log)}")
         self.records.write(tid, **rec)

@@ -113,6 +113,25 @@ class SlurmExecutor(unittest.TestCase):
             self.assertIn(f"failed      {broken}: ", text)
             self.assertIn(f"(log: {rec['log']})", text)
 
+    def test_a_task_that_slurm_ends_is_reported_with_slurms_reason(self):
+        with tempfile.TemporaryDirectory() as d:
+            r = smoke(Path(d))
+            ode = "run/n2_fp32/diamond_h2_s3/ode"
+            acted = []
+
+            def cancel_one(drv):  # the run array is held: cancel one of its tasks, release the others
+                if not acted:
+                    j = drv.jobs.map[ode]
+                    subprocess.run(["scancel", f"{j['job']}_{j['index']}"], check=True, capture_output=True)
+                    subprocess.run(["scontrol", "release", j["job"]], check=True, capture_output=True)
+                    acted.append(True)
+
+            _, bad = through_slurm(r, on_poll=cancel_one, sbatch_args=["--hold"])
+            self.assertEqual(sorted(bad), [ode])
+            # squeue shows a pending array task it cancelled as CANCELLED, or no longer at all
+            self.assertRegex(bad[ode]["error"], r"ended without a record of its result: (Slurm says CANCELLED|"
+                                                r"it left the queue without a final state).*it left no log .*never started")
+
     def test_an_interrupted_sweep_cancels_its_jobs_and_resumes_without_redoing_what_finished(self):
         with tempfile.TemporaryDirectory() as d:
             r = smoke(Path(d))
