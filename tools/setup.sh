@@ -16,8 +16,15 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 #   python3-venv     - the pinned Python environment of the demo's picture and the sweeps' plots
 #   ccache           - bench/sweep builds one host per AFU configuration: the host's own
 #                      sources compile once, not once per configuration
+#   slurm-wlm, munge - bench/sweep's Slurm executor (sbatch, squeue, scancel) and the
+#                      one-node cluster its tests start (slurmctld, slurmd, munged); not
+#                      where Slurm's commands are already on PATH (a cluster's own Slurm,
+#                      often from a module, which Debian's would shadow or clash with)
 packages=(verilator libode-dev yosys nlohmann-json3-dev libcli11-dev libgtest-dev
           cmake ninja-build g++ pkg-config default-jdk-headless maven python3-venv ccache)
+if ! command -v sbatch >/dev/null 2>&1 || dpkg-query -W -f='${Status}' slurm-wlm 2>/dev/null | grep -q "install ok installed"; then
+  packages+=(slurm-wlm munge)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -11,10 +11,14 @@ from paths import BUILD, ROOT, rtl_hash, tree_hash, write_atomic
 PAIRS, SEED = 10000, 20261122
 
 
+def cache_file(specs) -> Path:
+    key = f"{rtl_hash()}-{tree_hash('src/test/scala/collide/scpu')}-{hashlib.sha1(','.join(specs).encode()).hexdigest()[:8]}"
+    return BUILD / "accuracy" / f"{key}.csv"
+
+
 def measure(specs, log: Path) -> dict:
     """spec -> the report's row (a dict of strings), in the order given."""
-    key = f"{rtl_hash()}-{tree_hash('src/test/scala/collide/scpu')}-{hashlib.sha1(','.join(specs).encode()).hexdigest()[:8]}"
-    out = BUILD / "accuracy" / f"{key}.csv"
+    out = cache_file(specs)
     if not out.exists():
         tmp = out.with_suffix(".part")
         tmp.parent.mkdir(parents=True, exist_ok=True)

@@ -29,14 +29,23 @@ def subtree(text: str, top: str):
     return pre, [blocks[n] for n in sorted(seen)]
 
 
-def synth(sv: Path, top: str, log_dir: Path, config_id: str) -> dict:
-    """Area of `top` and what it instantiates. Cached by that Verilog with the configuration's
-    id (which every module name carries) taken out, so an SCPU shared by several
-    configurations (same spec, other SCPU counts) is synthesized once."""
-    pre, mods = subtree(sv.read_text(), top)
+def _cache(text: str, top: str, config_id: str):
+    """(preamble, modules, cache file): the cache is keyed by the block's Verilog with the
+    configuration's id (which every module name carries) taken out."""
+    pre, mods = subtree(text, top)
     generic_top = top.replace(config_id, "ID")
     key = hashlib.sha1(("".join(mods).replace(config_id, "ID") + generic_top).encode()).hexdigest()[:16]
-    cached = CACHE / f"{generic_top}-{key}.json"
+    return pre, mods, CACHE / f"{generic_top}-{key}.json"
+
+
+def is_cached(sv: Path, top: str, config_id: str) -> bool:
+    return _cache(sv.read_text(), top, config_id)[2].exists()
+
+
+def synth(sv: Path, top: str, log_dir: Path, config_id: str) -> dict:
+    """Area of `top` and what it instantiates. Cached (see _cache), so an SCPU shared by several
+    configurations (same spec, other SCPU counts) is synthesized once."""
+    pre, mods, cached = _cache(sv.read_text(), top, config_id)
     if cached.exists():
         return json.loads(cached.read_text())
     log_dir.mkdir(parents=True, exist_ok=True)

@@ -1,11 +1,13 @@
 """Where things live, and the content hash that keys every cached step."""
 import hashlib
 import os
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 BUILD = ROOT / "build" / "sweep"          # caches: generated RTL, host builds, run results
 RESULTS = ROOT / "bench" / "results"      # committed: CSV, plots, machine description
+EXEC = BUILD / "exec"                     # per sweep: the executors' plan, task records, Slurm jobs
 
 
 def tree_hash(*parts: str) -> str:
@@ -31,7 +33,11 @@ def host_hash() -> str:
 
 
 def write_atomic(path: Path, text: str) -> None:
+    """Readers see the old file or the new one, never half of it. The temporary name is unique,
+    so steps running in parallel (or on several nodes) may write the same file."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(path.suffix + ".tmp")
-    tmp.write_text(text)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name + ".", suffix=".tmp")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    os.chmod(tmp, 0o644)
     os.replace(tmp, path)

@@ -6,7 +6,7 @@ simulated for a number of steps; a link is one of the host's link presets (`coll
 --links`). Every (configuration, scene, link) is one CSV row.
 """
 import csv
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 import re
 
@@ -49,6 +49,15 @@ class Sweep:
     accuracy: bool = False     # the golden model's error against double, per SCPU spec
     drift_steps: int = 0       # > 0: diamond hMax 10 drift from ODE (double) after this many steps
     cpu_repeat: int = 20       # ODE / simd timings: fastest of this many a step
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+    @staticmethod
+    def from_dict(d: dict) -> "Sweep":
+        """The inverse of to_dict: how a Slurm task learns the sweep it belongs to."""
+        return Sweep(**(d | {"configs": tuple(Config(**c) for c in d["configs"]),
+                             "scenes": tuple(Scene(**s) for s in d["scenes"]), "links": tuple(d["links"])}))
 
 
 SCPU_COUNTS = (1, 2, 4, 8, 16, 32)
