@@ -126,6 +126,7 @@ int runScene(const RunOptions& o) {
 
     ode::Simulation sim(sc, *backend);
     sim.setBatchObserver([&](const SphereTable& t, const PairList& p, const ContactSet&) {
+      const OdeGeomBinding geoms(&ode, sim.world().sphereGeoms());  // ODE's collider on the world's own geoms
       stepOdeNs = timeNs(o.cpuRepeat, [&] { ode.collide(t, p, odeOut); });
       stepSimdNs = timeNs(o.cpuRepeat, [&] { simd.collide(t, p, simdOut); });
       stepMismatch = 0;

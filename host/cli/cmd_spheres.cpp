@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -45,9 +46,12 @@ Pipeline makePipeline(const SpheresOptions& o) {
     p.narrow = std::make_unique<SimdBackend>();
   } else if (o.backend == "ode") {
     const std::string space = o.space.empty() ? kDefaultOdeSpace : o.space;
-    p.broad = std::make_unique<world::OdeSpaceBroadPhase>(space == "hash" ? world::OdeSpaceKind::Hash
-                                                                          : world::OdeSpaceKind::SweepAndPrune);
-    p.narrow = std::make_unique<OdeBackend>();
+    auto broad = std::make_unique<world::OdeSpaceBroadPhase>(space == "hash" ? world::OdeSpaceKind::Hash
+                                                                             : world::OdeSpaceKind::SweepAndPrune);
+    auto narrow = std::make_unique<OdeBackend>();
+    narrow->useGeoms(&broad->geoms());  // dCollide on the space's own geoms; narrow is destroyed first
+    p.broad = std::move(broad);
+    p.narrow = std::move(narrow);
   } else {
     throw std::invalid_argument("unknown backend '" + o.backend + "' (expected simd or ode)");
   }
