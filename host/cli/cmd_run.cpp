@@ -102,7 +102,6 @@ int runScene(const RunOptions& o) {
     BackendRequest req{sc.backend, sc.afuDir, sc.link, {}, {}};
     req.driver.skipIdle = !o.noSkip;
     req.port.traceFile = o.trace;
-    req.port.clockMHz = sc.link.clockMHz;
     if (o.wallLimit) req.port.wallLimitS = *o.wallLimit;
     else if (sc.wallLimitS) req.port.wallLimitS = *sc.wallLimitS;
     if (!o.trace.empty() && !rtl) throw std::invalid_argument("--trace needs --backend rtl");

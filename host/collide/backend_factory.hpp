@@ -16,7 +16,7 @@ struct BackendRequest {
   std::filesystem::path afuDir;      // rtl only
   link::LinkParams link = link::presetParams(link::kDefaultPreset);  // rtl only
   driver::DriverOptions driver;      // rtl only (format and maxSpheres come from the manifest)
-  driver::AfuPortOptions port;       // rtl only: trace file
+  driver::AfuPortOptions port;       // rtl only: trace file, wall-clock limit (its clock is link's)
 };
 
 // Throws std::invalid_argument for an unknown name, driver::AfuUnavailable for rtl
