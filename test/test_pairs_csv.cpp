@@ -1,6 +1,7 @@
 // Vector-mode CSV: decimal and hex input, link-format output, errors with line numbers.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 #include "cli/pairs_csv.hpp"

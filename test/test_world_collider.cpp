@@ -52,6 +52,10 @@ Contacts asMap(const WorldContacts& w) {
 }
 
 Contacts worldContacts(BroadPhase& broad, CollisionBackend& narrow, SphereTable t, WorldContacts* keep = nullptr) {
+  // An ODE space with the ode narrow phase: dCollide on the space's own geoms, as `collide spheres`.
+  auto* space = dynamic_cast<OdeSpaceBroadPhase*>(&broad);
+  std::vector<dGeomID> none;
+  const OdeGeomBinding geoms(space ? dynamic_cast<OdeBackend*>(&narrow) : nullptr, space ? space->geoms() : none);
   WorldCollider wc(broad, narrow);
   WorldContacts w;
   WorldTiming time;
@@ -220,6 +224,7 @@ TEST(WorldCollider, RepeatedRunsOnOneColliderGiveTheSameContacts) {
   GridBroadPhase grid;
   OdeBackend ode;
   SimdBackend simd;
+  ode.useGeoms(&hash.geoms());  // as `collide spheres --backend ode`
   WorldCollider a(hash, ode), b(grid, simd);
   WorldContacts w1, w2, w3, w4;
   WorldTiming time;

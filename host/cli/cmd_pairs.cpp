@@ -21,23 +21,16 @@ int runPairs(const PairsOptions& o) {
       req.name = "rtl";
       req.afuDir = o.afu;
       req.link = link::presetParams(o.link);
+      req.driver.dense = o.dense;
+      req.driver.skipIdle = !o.noSkip;
+      req.port.traceFile = o.trace;
+      req.port.wallLimitS = o.wallLimit;
     } else {
       req.name = o.backend;
       if (!o.trace.empty()) throw std::invalid_argument("--trace needs --afu DIR");
     }
-    std::unique_ptr<CollisionBackend> backend;
-    if (req.name == "rtl") {
-      driver::DriverOptions d;
-      d.dense = o.dense;
-      d.skipIdle = !o.noSkip;
-      driver::AfuPortOptions port;
-      port.traceFile = o.trace;
-      port.clockMHz = req.link.clockMHz;
-      port.wallLimitS = o.wallLimit;
-      backend = std::make_unique<RtlBackend>(req.afuDir, req.link, d, port);
-    } else {
-      backend = makeBackend(req);
-    }
+    // The one construction path of `run` and `spheres`' backends too.
+    std::unique_ptr<CollisionBackend> backend = makeBackend(req);  // rtl without an AFU: AfuUnavailable
 
     // Opened first, so that a bad path fails before the work; replaced only when complete.
     OutputFile out(o.out, OutputFile::Dash::IsStdout);

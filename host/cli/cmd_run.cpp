@@ -102,7 +102,6 @@ int runScene(const RunOptions& o) {
     BackendRequest req{sc.backend, sc.afuDir, sc.link, {}, {}};
     req.driver.skipIdle = !o.noSkip;
     req.port.traceFile = o.trace;
-    req.port.clockMHz = sc.link.clockMHz;
     if (o.wallLimit) req.port.wallLimitS = *o.wallLimit;
     else if (sc.wallLimitS) req.port.wallLimitS = *sc.wallLimitS;
     if (!o.trace.empty() && !rtl) throw std::invalid_argument("--trace needs --backend rtl");
@@ -126,6 +125,7 @@ int runScene(const RunOptions& o) {
 
     ode::Simulation sim(sc, *backend);
     sim.setBatchObserver([&](const SphereTable& t, const PairList& p, const ContactSet&) {
+      const OdeGeomBinding geoms(&ode, sim.world().sphereGeoms());  // ODE's collider on the world's own geoms
       stepOdeNs = timeNs(o.cpuRepeat, [&] { ode.collide(t, p, odeOut); });
       stepSimdNs = timeNs(o.cpuRepeat, [&] { simd.collide(t, p, simdOut); });
       stepMismatch = 0;

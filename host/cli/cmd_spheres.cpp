@@ -12,8 +12,8 @@
 #include "cli/commands.hpp"
 #include "cli/output_file.hpp"
 #include "cli/spheres_csv.hpp"
+#include "collide/backend_factory.hpp"
 #include "collide/ode_backend.hpp"
-#include "collide/simd_backend.hpp"
 #include "util/input_file.hpp"
 #include "world/grid_broad_phase.hpp"
 #include "world/ode_space_broad_phase.hpp"
@@ -42,15 +42,20 @@ Pipeline makePipeline(const SpheresOptions& o) {
     if (!o.space.empty())
       throw std::invalid_argument("--space " + o.space + " applies to --backend ode (simd has its own grid)");
     p.broad = std::make_unique<world::GridBroadPhase>();
-    p.narrow = std::make_unique<SimdBackend>();
   } else if (o.backend == "ode") {
     const std::string space = o.space.empty() ? kDefaultOdeSpace : o.space;
     p.broad = std::make_unique<world::OdeSpaceBroadPhase>(space == "hash" ? world::OdeSpaceKind::Hash
                                                                           : world::OdeSpaceKind::SweepAndPrune);
-    p.narrow = std::make_unique<OdeBackend>();
   } else {
     throw std::invalid_argument("unknown backend '" + o.backend + "' (expected simd or ode)");
   }
+  BackendRequest req;  // the construction path of `run` and `pairs` too
+  req.name = o.backend;
+  p.narrow = makeBackend(req);
+  // An ODE space with the ode narrow phase: dCollide on the space's own geoms (narrow is
+  // destroyed first, so it never holds them dangling).
+  auto* space = dynamic_cast<world::OdeSpaceBroadPhase*>(p.broad.get());
+  if (auto* ode = dynamic_cast<OdeBackend*>(p.narrow.get()); ode && space) ode->useGeoms(&space->geoms());
   return p;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "driver/wall_watchdog.hpp"
+#include "link/link_presets.hpp"
 
 namespace collide::cli {
 
@@ -26,7 +27,7 @@ struct RunOptions {
 struct PairsOptions {
   std::string afu;      // rtl with the AFU in this generated/<preset> folder
   std::string backend;  // simd | ode (until the AFU exists)
-  std::string link = "ideal";  // rtl only: a link preset name
+  std::string link = link::kDefaultPreset;  // rtl only: a link preset name
   std::string in, out;  // "-" = stdin/stdout
   bool dense = false;   // rtl: dense mode
   std::string trace;    // rtl: waveform file (.fst / .vcd)

@@ -7,16 +7,16 @@
 #include "collide/backend.hpp"
 #include "driver/afu_driver.hpp"
 #include "driver/afu_factory.hpp"
-#include "link/link_params.hpp"
+#include "link/link_presets.hpp"
 
 namespace collide {
 
 struct BackendRequest {
   std::string name;                  // ode | simd | rtl
   std::filesystem::path afuDir;      // rtl only
-  link::LinkParams link = link::LinkParams::qpi();  // rtl only
+  link::LinkParams link = link::presetParams(link::kDefaultPreset);  // rtl only
   driver::DriverOptions driver;      // rtl only (format and maxSpheres come from the manifest)
-  driver::AfuPortOptions port;       // rtl only: trace file
+  driver::AfuPortOptions port;       // rtl only: trace file, wall-clock limit (its clock is link's)
 };
 
 // Throws std::invalid_argument for an unknown name, driver::AfuUnavailable for rtl

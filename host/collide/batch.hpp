@@ -5,20 +5,17 @@
 #include <cstdint>
 #include <vector>
 
-#include <ode/ode.h>
-
 #include "format/link_format.hpp"
 
 namespace collide {
 
 struct SphereTable {
+  // Plain numbers only: the layers below the backends (driver, link, format, world grid)
+  // need no ODE. The ode backend gets a world's geoms from the ODE side (OdeBackend::useGeoms).
   std::vector<double> x, y, z, r;
-  // ODE geoms of the spheres, when they live in an ODE world (else empty). The ode
-  // backend collides these real geoms; vector mode leaves it empty.
-  std::vector<dGeomID> geom;
 
   std::size_t size() const { return x.size(); }
-  void clear() { x.clear(); y.clear(); z.clear(); r.clear(); geom.clear(); }
+  void clear() { x.clear(); y.clear(); z.clear(); r.clear(); }
   void push(double px, double py, double pz, double pr) {
     x.push_back(px); y.push_back(py); z.push_back(pz); r.push_back(pr);
   }

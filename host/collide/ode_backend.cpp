@@ -1,5 +1,7 @@
 #include "collide/ode_backend.hpp"
 
+#include <stdexcept>
+
 #include "collide/input_policy.hpp"
 
 namespace collide {
@@ -13,7 +15,8 @@ OdeBackend::~OdeBackend() {
 
 void OdeBackend::collide(const SphereTable& s, const PairList& pairs, ContactSet& out) {
   const std::size_t n = pairs.size();
-  const bool world = !s.geom.empty();
+  const bool world = geoms_ && !geoms_->empty();
+  if (world && geoms_->size() != s.size()) throw std::logic_error("OdeBackend: bound geoms do not match the sphere table");
   out.resize(n);
   out.format = LinkFormat::Binary64;
   for (std::size_t k = 0; k < n; ++k) {
@@ -23,8 +26,8 @@ void OdeBackend::collide(const SphereTable& s, const PairList& pairs, ContactSet
     if (!world && classifyPair(s, a, b) != PairInput::Ok) continue;
     dGeomID g1 = scratch1_, g2 = scratch2_;
     if (world) {
-      g1 = s.geom[a];
-      g2 = s.geom[b];
+      g1 = (*geoms_)[a];
+      g2 = (*geoms_)[b];
     } else {
       dGeomSphereSetRadius(g1, s.r[a]);
       dGeomSetPosition(g1, s.x[a], s.y[a], s.z[a]);

@@ -8,6 +8,7 @@
 
 #include "driver/afu_port.hpp"
 #include "driver/wall_watchdog.hpp"
+#include "link/link_params.hpp"
 
 namespace collide::driver {
 
@@ -19,8 +20,9 @@ struct AfuPortOptions {
   // Waveform of the whole run: .fst or .vcd, as the model was Verilated
   // (-DCOLLIDE_AFU_TRACE=FST|VCD); empty = no trace.
   std::filesystem::path traceFile;
-  // Simulated clock for the trace's time axis (the link model's clock).
-  double clockMHz = 200.0;
+  // Simulated clock for the trace's time axis: the link model's clock (callers pass
+  // LinkParams::clockMHz; the default is the link's own).
+  double clockMHz = link::kDefaultClockMHz;
   // Wall-clock limit of one AFU run, in seconds. Not the port's own business: the rtl
   // backend wraps the port in a WallClockWatchdog with it.
   double wallLimitS = kDefaultWallLimitS;

@@ -8,9 +8,12 @@
 #include <cstring>
 #include <vector>
 
+#include "afu_contract.hpp"
+
 namespace collide::link {
 
-constexpr std::size_t kLineBytes = 64;
+// The generated AFU contract is the truth: the AFU moves lines of this size.
+constexpr std::size_t kLineBytes = contract::LINE_BYTES;
 using Line = std::array<std::uint8_t, kLineBytes>;
 
 struct Buffer {

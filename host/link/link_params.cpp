@@ -80,7 +80,7 @@ std::uint64_t LinkParams::nsToCycles(double ns) const {
 void LinkParams::validate() const {
   auto bad = [](const std::string& what) { throw std::invalid_argument(what); };
   inRange("clock_mhz", clockMHz, kClockRange);
-  if (lineBytes != 64) bad("line_bytes: the AFU contract fixes 64");
+  if (lineBytes != kLineBytes) bad("line_bytes: the AFU contract fixes " + std::to_string(kLineBytes));
   // Channel 0's errors keep the flat key names a scene uses for it.
   const auto all = channels();
   if (all.size() > kMaxChannels)

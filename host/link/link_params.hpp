@@ -9,7 +9,16 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "link/host_memory.hpp"
+
 namespace collide::link {
+
+// The AFU clock when nothing sets one: the one place for it (LinkParams and the AFU port's
+// trace axis start here; a link preset or scene may change it). Stratix V AFU clock 200 MHz
+// (Alves et al., "Designing a Collision Detection Accelerator on a Heterogeneous CPU-FPGA
+// Platform", Table II): the CCI interface clock. The manifest's clockMHz is the generator's
+// nominal figure, which the host does not read: the link decides the simulated clock.
+inline constexpr double kDefaultClockMHz = 200.0;
 
 // The sane range of every number, checked by LinkParams::validate() before anything is
 // converted to cycles or to the model's fixed point (docs/host.md, "Link parameter
@@ -40,11 +49,9 @@ struct ChannelParams {
 
 struct LinkParams {
   std::string name = "qpi";
-  // Stratix V AFU clock 200 MHz (Alves et al., "Designing a Collision Detection
-  // Accelerator on a Heterogeneous CPU-FPGA Platform", Table II): the CCI interface clock.
-  double clockMHz = 200.0;
-  // CCI moves 64-byte cache lines. Fixed by the AFU contract.
-  unsigned lineBytes = 64;
+  double clockMHz = kDefaultClockMHz;  // HARP v1's, above
+  // CCI moves 64-byte cache lines. Fixed by the AFU contract (kLineBytes).
+  unsigned lineBytes = kLineBytes;
 
   // ---- Channel 0, the only one unless moreChannels is set. These flat fields stay the
   // first channel so that every scene and test written before channels existed means the

@@ -17,6 +17,10 @@ struct LinkPreset {
   LinkParams params;
 };
 
+// The link of an rtl run that names none (no scene "link", no --link), for every command:
+// preloaded data, so modelled time is the AFU's own unless a link is asked for.
+inline constexpr const char* kDefaultPreset = "ideal";
+
 // Every preset, in a fixed order (ideal first, then by generation).
 const std::vector<LinkPreset>& presets();
 // Names and aliases, in registry order: the accepted spellings.

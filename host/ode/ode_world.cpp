@@ -63,7 +63,6 @@ void World::fillSphereTable(SphereTable& t) const {
     const dReal* p = dBodyGetPosition(bodies_[k]);
     t.push(p[0], p[1], p[2], dGeomSphereGetRadius(geoms_[k]));
   }
-  t.geom = geoms_;
 }
 
 }  // namespace collide::ode

@@ -23,13 +23,14 @@ class World {
   dJointGroupID contacts() const { return contacts_; }
   std::size_t sphereCount() const { return geoms_.size(); }
   dGeomID sphereGeom(std::size_t k) const { return geoms_[k]; }
+  const std::vector<dGeomID>& sphereGeoms() const { return geoms_; }  // by sphere index, fixed for the world's life
   dBodyID sphereBody(std::size_t k) const { return bodies_[k]; }
   // dSpaceCollide on the world's space, remembering whether it returned (~World).
   void collideSpace(void* data, dNearCallback* callback);
   // Sphere index of a geom, or -1 for a non-sphere (the ground plane).
   long sphereIndex(dGeomID g) const;
 
-  // Refreshes `table` with the spheres' current centres and radii, and their geoms.
+  // Refreshes `table` with the spheres' current centres and radii (their geoms: sphereGeoms).
   void fillSphereTable(SphereTable& table) const;
 
  private:

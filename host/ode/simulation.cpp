@@ -11,7 +11,11 @@
 namespace collide::ode {
 
 Simulation::Simulation(const scene::Scene& scene, CollisionBackend& backend)
-    : scene_(scene), backend_(backend), world_(scene), surface_(surfaceFor(scene.contact)) {}
+    : scene_(scene),
+      backend_(backend),
+      odeBackend_(dynamic_cast<OdeBackend*>(&backend)),
+      world_(scene),
+      surface_(surfaceFor(scene.contact)) {}
 
 void Simulation::nearCallback(void* self, dGeomID o1, dGeomID o2) {
   auto* sim = static_cast<Simulation*>(self);
@@ -92,9 +96,12 @@ StepStats Simulation::step() {
   st.otherNarrowNs = nsBetween(t1, t0);
 
   world_.fillSphereTable(table_);
-  t0 = Clock::now();
-  backend_.collide(table_, pairs_, results_);
-  t1 = Clock::now();
+  {
+    const OdeGeomBinding geoms(odeBackend_, world_.sphereGeoms());  // bound for this step's call only
+    t0 = Clock::now();
+    backend_.collide(table_, pairs_, results_);
+    t1 = Clock::now();
+  }
   st.backendNs = nsBetween(t0, t1);
   if (observer_) observer_(table_, pairs_, results_);
   const auto afterObserver = Clock::now();

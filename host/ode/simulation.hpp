@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "collide/backend.hpp"
+#include "collide/ode_backend.hpp"
 #include "ode/ode_world.hpp"
 #include "scene/scene.hpp"
 
@@ -52,6 +53,7 @@ class Simulation {
 
   const scene::Scene& scene_;
   CollisionBackend& backend_;
+  OdeBackend* odeBackend_;  // backend_ if it is the ode one: it collides the world's own geoms
   World world_;
   dSurfaceParameters surface_;
   SphereTable table_;

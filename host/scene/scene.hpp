@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "link/link_params.hpp"
+#include "link/link_presets.hpp"
 #include "scene/json_reader.hpp"
 
 namespace collide::scene {
@@ -60,7 +61,7 @@ struct Scene {
   // Collision
   std::string backend = "ode";         // ode | simd | rtl
   std::filesystem::path afuDir;        // rtl: generated/<preset>
-  link::LinkParams link = link::LinkParams::ideal();
+  link::LinkParams link = link::presetParams(link::kDefaultPreset);
   // rtl: wall-clock limit of one AFU run (unset: driver::kDefaultWallLimitS).
   std::optional<double> wallLimitS;
 };

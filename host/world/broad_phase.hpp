@@ -15,8 +15,8 @@ class BroadPhase {
   virtual ~BroadPhase() = default;
   virtual std::string name() const = 0;
   // Untimed set-up before findPairs on this table: an ODE space creates or moves its geoms
-  // (and sets s.geom, so the ode narrow phase collides them); the grid needs none.
-  virtual void prepare(SphereTable& s, const std::vector<std::uint32_t>& members) = 0;
+  // (OdeSpaceBroadPhase::geoms, which the ode narrow phase may be bound to); the grid needs none.
+  virtual void prepare(const SphereTable& s, const std::vector<std::uint32_t>& members) = 0;
   // Appends the candidates among `members` (the spheres that may be collided) to `out`.
   virtual void findPairs(const SphereTable& s, const std::vector<std::uint32_t>& members, PairList& out) = 0;
 };

@@ -57,7 +57,7 @@ class GridBroadPhase final : public BroadPhase {
   }
 
   std::string name() const override { return "grid"; }
-  void prepare(SphereTable&, const std::vector<std::uint32_t>&) override {}
+  void prepare(const SphereTable&, const std::vector<std::uint32_t>&) override {}
   // Candidate pairs among `members` (indices into s, each once), appended to `out` as
   // (min, max). Buffers are kept between calls.
   void findPairs(const SphereTable& s, const std::vector<std::uint32_t>& members, PairList& out) override;

@@ -26,7 +26,7 @@ void OdeSpaceBroadPhase::clearGeoms() {
   geoms_.clear();
 }
 
-void OdeSpaceBroadPhase::prepare(SphereTable& s, const std::vector<std::uint32_t>& members) {
+void OdeSpaceBroadPhase::prepare(const SphereTable& s, const std::vector<std::uint32_t>& members) {
   const bool fresh = geoms_.size() != s.size() ||
                      std::any_of(members.begin(), members.end(), [&](std::uint32_t m) { return !geoms_[m]; });
   if (fresh) {
@@ -42,7 +42,6 @@ void OdeSpaceBroadPhase::prepare(SphereTable& s, const std::vector<std::uint32_t
     dGeomSphereSetRadius(geoms_[m], s.r[m]);
     dGeomSetPosition(geoms_[m], s.x[m], s.y[m], s.z[m]);
   }
-  s.geom = geoms_;
 }
 
 void OdeSpaceBroadPhase::nearCallback(void* self, dGeomID o1, dGeomID o2) {
@@ -58,7 +57,7 @@ void OdeSpaceBroadPhase::nearCallback(void* self, dGeomID o1, dGeomID o2) {
 }
 
 void OdeSpaceBroadPhase::findPairs(const SphereTable& s, const std::vector<std::uint32_t>& members, PairList& out) {
-  if (s.geom.size() != s.size() || geoms_.size() != s.size())
+  if (geoms_.size() != s.size())
     throw std::logic_error("OdeSpaceBroadPhase::findPairs before prepare on this table");
   (void)members;  // the space holds exactly the members prepare() was given
   out_ = &out;

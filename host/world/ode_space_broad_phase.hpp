@@ -27,8 +27,11 @@ class OdeSpaceBroadPhase final : public BroadPhase {
   std::string name() const override { return std::string("ode ") + toString(kind_); }
   // Creates a geom per member the first time (a table of another size starts over), else
   // moves them to the table's values, which marks them dirty as a simulation step would.
-  void prepare(SphereTable& s, const std::vector<std::uint32_t>& members) override;
+  void prepare(const SphereTable& s, const std::vector<std::uint32_t>& members) override;
   void findPairs(const SphereTable& s, const std::vector<std::uint32_t>& members, PairList& out) override;
+  // The geoms by sphere index (null for spheres not in the space), for OdeBackend::useGeoms:
+  // the same object for the phase's life, its contents set by prepare.
+  const std::vector<dGeomID>& geoms() const { return geoms_; }
 
  private:
   static void nearCallback(void* self, dGeomID o1, dGeomID o2);

@@ -24,7 +24,7 @@ void appendHit(const ContactSet& c, std::size_t k, ContactSet& out) {
 }
 }  // namespace
 
-void WorldCollider::collide(SphereTable& s, WorldContacts& out, WorldTiming& time) {
+void WorldCollider::collide(const SphereTable& s, WorldContacts& out, WorldTiming& time) {
   out = WorldContacts{};
   out.contacts.format = narrow_.format();
   time = WorldTiming{};

@@ -34,8 +34,7 @@ class WorldCollider {
   static constexpr std::size_t kChunkPairs = 16384;
 
   WorldCollider(BroadPhase& broad, CollisionBackend& narrow) : broad_(broad), narrow_(narrow) {}
-  // s may be modified by the broad phase's prepare (its geoms).
-  void collide(SphereTable& s, WorldContacts& out, WorldTiming& time);
+  void collide(const SphereTable& s, WorldContacts& out, WorldTiming& time);
 
  private:
   BroadPhase& broad_;
