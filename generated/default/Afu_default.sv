@@ -12689,30 +12689,19 @@ module ContactCollector_n16_default(
   end // always @(*)
   wire        active_0 = io_groups_valid & sp == 5'h0 & (|io_groups_bits_cnt);
   wire        active_1 = io_groups_valid & sp < 5'h2 & (|(io_groups_bits_cnt[4:1]));
-  wire        _header_bits_T_4 = io_groups_bits_cnt > 5'h2;
-  wire        active_2 = io_groups_valid & sp < 5'h3 & _header_bits_T_4;
+  wire        active_2 = io_groups_valid & sp < 5'h3 & io_groups_bits_cnt > 5'h2;
   wire        active_3 = io_groups_valid & sp < 5'h4 & (|(io_groups_bits_cnt[4:2]));
-  wire        _header_bits_T_8 = io_groups_bits_cnt > 5'h4;
-  wire        active_4 = io_groups_valid & sp < 5'h5 & _header_bits_T_8;
-  wire        _header_bits_T_10 = io_groups_bits_cnt > 5'h5;
-  wire        active_5 = io_groups_valid & sp < 5'h6 & _header_bits_T_10;
-  wire        _header_bits_T_12 = io_groups_bits_cnt > 5'h6;
-  wire        active_6 = io_groups_valid & sp < 5'h7 & _header_bits_T_12;
+  wire        active_4 = io_groups_valid & sp < 5'h5 & io_groups_bits_cnt > 5'h4;
+  wire        active_5 = io_groups_valid & sp < 5'h6 & io_groups_bits_cnt > 5'h5;
+  wire        active_6 = io_groups_valid & sp < 5'h7 & io_groups_bits_cnt > 5'h6;
   wire        active_7 = io_groups_valid & sp < 5'h8 & (|(io_groups_bits_cnt[4:3]));
-  wire        _header_bits_T_16 = io_groups_bits_cnt > 5'h8;
-  wire        active_8 = io_groups_valid & sp < 5'h9 & _header_bits_T_16;
-  wire        _header_bits_T_18 = io_groups_bits_cnt > 5'h9;
-  wire        active_9 = io_groups_valid & sp < 5'hA & _header_bits_T_18;
-  wire        _header_bits_T_20 = io_groups_bits_cnt > 5'hA;
-  wire        active_10 = io_groups_valid & sp < 5'hB & _header_bits_T_20;
-  wire        _header_bits_T_22 = io_groups_bits_cnt > 5'hB;
-  wire        active_11 = io_groups_valid & sp < 5'hC & _header_bits_T_22;
-  wire        _header_bits_T_24 = io_groups_bits_cnt > 5'hC;
-  wire        active_12 = io_groups_valid & sp < 5'hD & _header_bits_T_24;
-  wire        _header_bits_T_26 = io_groups_bits_cnt > 5'hD;
-  wire        active_13 = io_groups_valid & sp < 5'hE & _header_bits_T_26;
-  wire        _header_bits_T_28 = io_groups_bits_cnt > 5'hE;
-  wire        active_14 = io_groups_valid & sp < 5'hF & _header_bits_T_28;
+  wire        active_8 = io_groups_valid & sp < 5'h9 & io_groups_bits_cnt > 5'h8;
+  wire        active_9 = io_groups_valid & sp < 5'hA & io_groups_bits_cnt > 5'h9;
+  wire        active_10 = io_groups_valid & sp < 5'hB & io_groups_bits_cnt > 5'hA;
+  wire        active_11 = io_groups_valid & sp < 5'hC & io_groups_bits_cnt > 5'hB;
+  wire        active_12 = io_groups_valid & sp < 5'hD & io_groups_bits_cnt > 5'hC;
+  wire        active_13 = io_groups_valid & sp < 5'hE & io_groups_bits_cnt > 5'hD;
+  wire        active_14 = io_groups_valid & sp < 5'hF & io_groups_bits_cnt > 5'hE;
   wire        active_15 = io_groups_valid & ~(sp[4]) & io_groups_bits_cnt[4];
   wire        hit_0 = ~(io_groups_bits_invalid[0]) & casez_tmp;
   wire        hit_1 = ~(io_groups_bits_invalid[1]) & casez_tmp_6;
@@ -12756,13 +12745,28 @@ module ContactCollector_n16_default(
     & (~active_10 | casez_tmp_121) & (~active_11 | casez_tmp_122)
     & (~active_12 | casez_tmp_123) & (~active_13 | casez_tmp_124)
     & (~active_14 | casez_tmp_125) & (~active_15 | casez_tmp_126);
+  wire        _header_bits_T = active_0 & hit_0;
+  wire        _header_bits_T_1 = active_1 & hit_1;
+  wire        _header_bits_T_2 = active_2 & hit_2;
+  wire        _header_bits_T_3 = active_3 & hit_3;
+  wire        _header_bits_T_4 = active_4 & hit_4;
+  wire        _header_bits_T_5 = active_5 & hit_5;
+  wire        _header_bits_T_6 = active_6 & hit_6;
+  wire        _header_bits_T_7 = active_7 & hit_7;
+  wire        _header_bits_T_8 = active_8 & hit_8;
+  wire        _header_bits_T_9 = active_9 & hit_9;
+  wire        _header_bits_T_10 = active_10 & hit_10;
+  wire        _header_bits_T_11 = active_11 & hit_11;
+  wire        _header_bits_T_12 = active_12 & hit_12;
+  wire        _header_bits_T_13 = active_13 & hit_13;
+  wire        _header_bits_T_14 = active_14 & hit_14;
+  wire        _header_bits_T_15 = active_15 & hit_15;
   wire        needHdr =
     ~io_dense & ~hdrSent
-    & (active_0 & hit_0 | active_1 & hit_1 | active_2 & hit_2 | active_3 & hit_3
-       | active_4 & hit_4 | active_5 & hit_5 | active_6 & hit_6 | active_7 & hit_7
-       | active_8 & hit_8 | active_9 & hit_9 | active_10 & hit_10 | active_11 & hit_11
-       | active_12 & hit_12 | active_13 & hit_13 | active_14 & hit_14 | active_15
-       & hit_15);
+    & (_header_bits_T | _header_bits_T_1 | _header_bits_T_2 | _header_bits_T_3
+       | _header_bits_T_4 | _header_bits_T_5 | _header_bits_T_6 | _header_bits_T_7
+       | _header_bits_T_8 | _header_bits_T_9 | _header_bits_T_10 | _header_bits_T_11
+       | _header_bits_T_12 | _header_bits_T_13 | _header_bits_T_14 | _header_bits_T_15);
   wire        hdrFire = needHdr & allValid & (|io_room);
   wire        okPrefix_0 = ~active_0 | casez_tmp_111;
   wire        okPrefix_1 = okPrefix_0 & (~active_1 | casez_tmp_112);
@@ -13278,22 +13282,22 @@ module ContactCollector_n16_default(
   assign io_recs_0_bits =
     hdrFire
       ? {32'h0,
-         io_groups_bits_cnt[4] & hit_15,
-         _header_bits_T_28 & hit_14,
-         _header_bits_T_26 & hit_13,
-         _header_bits_T_24 & hit_12,
-         _header_bits_T_22 & hit_11,
-         _header_bits_T_20 & hit_10,
-         _header_bits_T_18 & hit_9,
-         _header_bits_T_16 & hit_8,
-         (|(io_groups_bits_cnt[4:3])) & hit_7,
-         _header_bits_T_12 & hit_6,
-         _header_bits_T_10 & hit_5,
-         _header_bits_T_8 & hit_4,
-         (|(io_groups_bits_cnt[4:2])) & hit_3,
-         _header_bits_T_4 & hit_2,
-         (|(io_groups_bits_cnt[4:1])) & hit_1,
-         (|io_groups_bits_cnt) & hit_0,
+         _header_bits_T_15,
+         _header_bits_T_14,
+         _header_bits_T_13,
+         _header_bits_T_12,
+         _header_bits_T_11,
+         _header_bits_T_10,
+         _header_bits_T_9,
+         _header_bits_T_8,
+         _header_bits_T_7,
+         _header_bits_T_6,
+         _header_bits_T_5,
+         _header_bits_T_4,
+         _header_bits_T_3,
+         _header_bits_T_2,
+         _header_bits_T_1,
+         _header_bits_T,
          io_groups_bits_first}
       : (sel_0 ? records_0_bits : 72'h0) | (sel_1 ? records_1_bits : 72'h0)
         | (sel_2 ? records_2_bits : 72'h0) | (sel_3 ? records_3_bits : 72'h0)

@@ -157,7 +157,11 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
     r.records = std::move(d.records);
     headers = d.headers;
   } catch (const std::runtime_error& e) {
-    throw AfuError(std::string("AFU run: ") + e.what(), r.status);
+    throw AfuError(std::string("AFU run: ") + e.what() + " (" + std::to_string(n) + " pairs sent, " +
+                       std::to_string(r.status.pairsProcessed) + " processed, " + std::to_string(r.status.contactsFound) +
+                       " contacts, " + std::to_string(r.status.recordsWritten) + " records written, capacity " +
+                       std::to_string(capacity) + ")",
+                   r.status);
   }
   check(r, n, capacity, headers);
   if (lay.derived()) {

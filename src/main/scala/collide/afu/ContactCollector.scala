@@ -94,7 +94,10 @@ class ContactCollector(p: PucParams) extends Module {
   }
   val records = VecInit.tabulate(L)(recordOf)
   val header  = Wire(new ContactRecord(p.layout))
-  header.bits := ContactRecord.header(p.layout, g.first, VecInit.tabulate(L)(k => k.U < g.cnt && hit(k)).asUInt)
+  // Only positions not yet consumed: an SCPU whose result was taken already shows its next
+  // result (another group's), and every consumed position of this group was a miss (a hit
+  // holds the whole group until its header goes).
+  header.bits := ContactRecord.header(p.layout, g.first, VecInit.tabulate(L)(k => active(k) && hit(k)).asUInt)
   header.pair := g.first
   val nTaken  = PopCount(take)
   val nRecs   = PopCount((0 until L).map(k => take(k) && want(k))) +& hdrFire.asUInt
