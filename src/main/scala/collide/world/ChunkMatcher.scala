@@ -52,7 +52,8 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int) extends M
   io.overflow := over
   when(io.clear) { used := 0.U; over := false.B }
     .elsewhen(io.load.valid) {
-      when(used === chunk.U) { over := true.B }.otherwise { members(used) := io.load.bits; used := used + 1.U }
+      when(used === chunk.U) { over := true.B }
+        .otherwise { members(used(math.max(1, log2Ceil(chunk)) - 1, 0)) := io.load.bits; used := used + 1.U }
     }
 
   private def boxPass(a: WorldKey, b: WorldKey): Bool = {
