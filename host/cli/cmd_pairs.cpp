@@ -2,6 +2,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/output_file.hpp"
 #include "cli/pairs_csv.hpp"
@@ -15,7 +16,7 @@
 namespace collide::cli {
 
 int runPairs(const PairsOptions& o) {
-  try {
+  return reportErrors("collide pairs", [&]() -> int {
     BackendRequest req;
     if (!o.afu.empty()) {
       req.name = "rtl";
@@ -57,13 +58,7 @@ int runPairs(const PairsOptions& o) {
     }
     std::cerr << "\n";
     return 0;
-  } catch (const driver::AfuUnavailable& e) {
-    std::cerr << "collide pairs: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "collide pairs: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 }  // namespace collide::cli

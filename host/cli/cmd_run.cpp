@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/output_file.hpp"
 #include "cli/run_report.hpp"
@@ -92,7 +93,7 @@ void printAfu(std::ostream& os, const AfuTotals& a, std::uint64_t pairs, std::ui
 }  // namespace
 
 int runScene(const RunOptions& o) {
-  try {
+  return reportErrors("collide run", [&]() -> int {
     scene::Scene sc = scene::loadScene(o.scene);
     if (o.backend) sc.backend = *o.backend;
     if (o.steps) sc.steps = *o.steps;
@@ -257,13 +258,7 @@ int runScene(const RunOptions& o) {
       summaryFile->commit();
     }
     return 0;
-  } catch (const driver::AfuUnavailable& e) {
-    std::cerr << "collide run: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "collide run: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 }  // namespace collide::cli

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/output_file.hpp"
 #include "cli/spheres_csv.hpp"
@@ -23,11 +24,6 @@ namespace collide::cli {
 
 namespace {
 
-// Thrown for what this build cannot do at all (exit 2, as an rtl request without an AFU).
-struct Unavailable : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 struct Pipeline {
   std::unique_ptr<world::BroadPhase> broad;
   std::unique_ptr<CollisionBackend> narrow;
@@ -35,7 +31,7 @@ struct Pipeline {
 
 Pipeline makePipeline(const SpheresOptions& o) {
   if (!o.afu.empty() || o.backend == "rtl")
-    throw Unavailable("world mode is not built yet: the AFU's on-chip broad phase does not exist (issue 11); "
+    throw driver::AfuUnavailable("world mode is not built yet: the AFU's on-chip broad phase does not exist (issue 11); "
                       "use --backend simd or --backend ode");
   Pipeline p;
   if (o.backend == "simd") {
@@ -64,7 +60,7 @@ double us(std::int64_t ns) { return static_cast<double>(ns) / 1e3; }
 }  // namespace
 
 int runSpheres(const SpheresOptions& o) {
-  try {
+  return reportErrors("collide spheres", [&]() -> int {
     Pipeline p = makePipeline(o);
     // Opened first, so that a bad path fails before the work; replaced only when complete.
     OutputFile out(o.out, OutputFile::Dash::IsStdout);
@@ -119,13 +115,7 @@ int runSpheres(const SpheresOptions& o) {
       summary->commit();
     }
     return 0;
-  } catch (const Unavailable& e) {
-    std::cerr << "collide spheres: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "collide spheres: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 }  // namespace collide::cli

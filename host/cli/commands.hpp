@@ -1,6 +1,7 @@
 #pragma once
 // The `collide` subcommands. Each returns the process exit code:
-// 0 ok, 1 error (message on stderr), 2 the rtl backend has no AFU in this build.
+// 0 ok, 1 error (message on stderr), 2 what this build cannot do: an AFU it lacks, world mode
+// on the AFU (command_errors.hpp maps them).
 #include <optional>
 #include <string>
 

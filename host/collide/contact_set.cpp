@@ -21,4 +21,20 @@ void ContactSet::resizeForOverwrite(std::size_t n) {
   for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &depth}) v->resize(n);
 }
 
+void ContactSet::setEntry(std::size_t to, const ContactSet& src, std::size_t k) {
+  hit[to] = src.hit[k];
+  if (src.flags.size() == src.size()) flags[to] = src.flags[k];
+  px[to] = src.px[k]; py[to] = src.py[k]; pz[to] = src.pz[k];
+  nx[to] = src.nx[k]; ny[to] = src.ny[k]; nz[to] = src.nz[k];
+  depth[to] = src.depth[k];
+}
+
+void ContactSet::appendEntry(const ContactSet& src, std::size_t k) {
+  const std::size_t to = size();
+  hit.push_back(0);
+  if (src.flags.size() == src.size()) flags.push_back(0);
+  for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &depth}) v->push_back(0.0);
+  setEntry(to, src, k);
+}
+
 }  // namespace collide

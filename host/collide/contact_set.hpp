@@ -23,6 +23,10 @@ struct ContactSet {
   void resize(std::size_t n);  // and zero everything
   // Size n without clearing the entries kept: for a writer that sets every entry.
   void resizeForOverwrite(std::size_t n);
+  // Entry k of src into entry `to` (which exists) / onto the end. Flags are copied when src
+  // has them (a backend that sets none leaves them empty).
+  void setEntry(std::size_t to, const ContactSet& src, std::size_t k);
+  void appendEntry(const ContactSet& src, std::size_t k);
 };
 
 }  // namespace collide

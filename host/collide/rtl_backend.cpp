@@ -95,12 +95,7 @@ void RtlBackend::collide(const SphereTable& spheres, const PairList& pairs, Cont
     if (chunkPairs_.size() == 0) return;
     runOne(chunkSpheres_, chunkPairs_, chunkOut_);
     for (std::size_t k = 0; k < chunkOrigin_.size(); ++k) {
-      const std::size_t o = chunkOrigin_[k];
-      out.hit[o] = chunkOut_.hit[k];
-      out.flags[o] = chunkOut_.flags[k];
-      out.px[o] = chunkOut_.px[k]; out.py[o] = chunkOut_.py[k]; out.pz[o] = chunkOut_.pz[k];
-      out.nx[o] = chunkOut_.nx[k]; out.ny[o] = chunkOut_.ny[k]; out.nz[o] = chunkOut_.nz[k];
-      out.depth[o] = chunkOut_.depth[k];
+      out.setEntry(chunkOrigin_[k], chunkOut_, k);
     }
     for (auto g : used) local_[g] = -1;
     used.clear();

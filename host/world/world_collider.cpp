@@ -14,14 +14,6 @@ using Clock = std::chrono::steady_clock;
 std::int64_t nsSince(Clock::time_point t0) {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count();
 }
-
-void appendHit(const ContactSet& c, std::size_t k, ContactSet& out) {
-  out.hit.push_back(1);
-  out.px.push_back(c.px[k]); out.py.push_back(c.py[k]); out.pz.push_back(c.pz[k]);
-  out.nx.push_back(c.nx[k]); out.ny.push_back(c.ny[k]); out.nz.push_back(c.nz[k]);
-  out.depth.push_back(c.depth[k]);
-  if (c.flags.size() == c.size()) out.flags.push_back(c.flags[k]);  // a backend's own (rtl), or the policy's
-}
 }  // namespace
 
 void WorldCollider::collide(const SphereTable& s, WorldContacts& out, WorldTiming& time) {
@@ -65,7 +57,7 @@ void WorldCollider::collide(const SphereTable& s, WorldContacts& out, WorldTimin
     for (std::size_t k = 0; k < chunk_.size(); ++k) {
       if (!chunkOut_.hit[k]) continue;
       foundPairs.push(chunk_.i[k], chunk_.j[k]);
-      appendHit(chunkOut_, k, found);
+      found.appendEntry(chunkOut_, k);  // flags: a backend's own (rtl), else none yet
     }
     time.finishNs += nsSince(t0);
   }
@@ -83,7 +75,7 @@ void WorldCollider::collide(const SphereTable& s, WorldContacts& out, WorldTimin
   for (auto k : order) {
     if (!found.hit[k]) continue;  // the policy rejected it
     out.pairs.push(foundPairs.i[k], foundPairs.j[k]);
-    appendHit(found, k, out.contacts);
+    out.contacts.appendEntry(found, k);  // flags: the policy's
   }
   time.finishNs += nsSince(t0);
 }
