@@ -73,8 +73,10 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
   /** The SCPU's view of a sphere: its fields converted to the compute format. */
   def converted(s: WorldSphere): Seq[BigInt] = s.fields.map(scpu.convertIn(_).bits)
 
-  def excluded(s: WorldSphere): Boolean =
-    s.fields.exists(b => !isFinite(SoftFloat.decode(lp, b))) || converted(s).exists(b => !isFinite(SoftFloat.decode(p, b)))
+  def excluded(s: WorldSphere): Boolean = excluded(s, converted(s))
+  /** The same, given the sphere's converted fields (so run() converts each sphere once). */
+  def excluded(s: WorldSphere, conv: Seq[BigInt]): Boolean =
+    s.fields.exists(b => !isFinite(SoftFloat.decode(lp, b))) || conv.exists(b => !isFinite(SoftFloat.decode(p, b)))
 
   /** The smallest k with 2^k >= 2r * margin for a converted, finite r; Int.MinValue for
     * r <= 0 (fits any cell). */
@@ -173,7 +175,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
   def run(world: IndexedSeq[WorldSphere]): BroadPhaseResult = {
     val n = world.length
     val conv = world.map(converted)
-    val isExcluded = world.map(excluded)
+    val isExcluded = world.indices.map(i => excluded(world(i), conv(i)))
     val eligible = world.indices.filterNot(isExcluded)
     val k = chooseK(eligible.map(conv))
     val classes: IndexedSeq[SphereClass] = world.indices.map(i => if (isExcluded(i)) SphereClass.Excluded else classify(conv(i), k))
