@@ -61,8 +61,8 @@ void GridBroadPhase::consider(const Entry& a, const Entry& b, std::size_t& cellP
   out.push(std::min(a.index, b.index), std::max(a.index, b.index));
 }
 
-GridBroadPhase::Entry GridBroadPhase::entryOf(const SphereTable& s, std::uint32_t i) {
-  return Entry{{0, 0, 0}, i, s.x[i], s.y[i], s.z[i], reachOf(s.r[i])};
+GridBroadPhase::Entry GridBroadPhase::entryOf(const SphereTable& s, std::uint32_t i, const Cell& cell) {
+  return Entry{cell, i, s.x[i], s.y[i], s.z[i], reachOf(s.r[i])};
 }
 
 
@@ -92,8 +92,7 @@ void GridBroadPhase::findPairs(const SphereTable& s, const std::vector<std::uint
   cursor_.assign(start_.begin(), start_.end() - 1);
   sorted_.resize(n);
   for (std::size_t e = 0; e < n; ++e) {
-    const auto i = small_[e];
-    sorted_[cursor_[bucket_[e]]++] = Entry{cell_[e], i, s.x[i], s.y[i], s.z[i], reachOf(s.r[i])};
+    sorted_[cursor_[bucket_[e]]++] = entryOf(s, small_[e], cell_[e]);
   }
 
   // Each small sphere: its own cell (higher indices only), then the forward half shell. The

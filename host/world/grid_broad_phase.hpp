@@ -73,7 +73,7 @@ class GridBroadPhase final : public BroadPhase {
     double x, y, z, reach;
   };
   static std::uint32_t hashOf(const Cell& c, std::uint32_t shift);  // bucket: the top bits
-  static Entry entryOf(const SphereTable& s, std::uint32_t i);
+  static Entry entryOf(const SphereTable& s, std::uint32_t i, const Cell& cell = {0, 0, 0});
   static void consider(const Entry& a, const Entry& b, std::size_t& cellPairs, PairList& out);
 
   GridShape shape_;
