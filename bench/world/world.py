@@ -4,6 +4,7 @@ backend (our grid + the binary32 kernel); broad and narrow phase timed apart, fa
 
     tools/pyenv bench/world/world.py [--collide build/host/collide] [--repeat 5]
                                      [--sizes 670,2000,...] [--out bench/results/world]
+                                     [--dump-clouds DIR]
 
 Writes OUT/world.csv (one row per cloud, size and backend), OUT/world.png (log-log: time of
 broad + narrow phase against spheres, one panel per cloud) and OUT/MACHINE.md (the command
@@ -156,7 +157,16 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--out", default=str(ROOT / "bench/results/world"))
     ap.add_argument("--report-only", action="store_true", help="redraw the plot and README from OUT/world.csv")
+    ap.add_argument("--dump-clouds", metavar="DIR",
+                    help="only write each cloud to DIR/<cloud>-<spheres>.csv (for the RTL cycle report) and stop")
     a = ap.parse_args(argv)
+    if a.dump_clouds:
+        d = Path(a.dump_clouds)
+        d.mkdir(parents=True, exist_ok=True)
+        for kind in CLOUDS:
+            for n in map(int, a.sizes.split(",")):
+                write_cloud(d / f"{kind}-{n}.csv", cloud(kind, n, a.seed))
+        return 0
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     if a.report_only:

@@ -14,6 +14,10 @@ import chisel3.util._
   * the read issued in the same cycle, so repeated buckets need no stall. Contract: scatter
   * exactly the items counted (the caller checks counted === scattered); a bucket at or above
   * the used range is refused and latched in badBucket, never written.
+  *
+  * Each entry carries a mark bit for the candidate generator (which entries of a bucket it
+  * has put in a chunk already): scatter writes it clear, so a new world needs no clearing
+  * pass, and `mark` sets it (rewriting the item it was given). Never mark while scattering.
   */
 class BucketSortIO(maxItems: Int, bucketsLog2: Int) extends Bundle {
   val itemW = log2Ceil(maxItems)
@@ -36,7 +40,12 @@ class BucketSortIO(maxItems: Int, bucketsLog2: Int) extends Bundle {
   val entry = new Bundle {
     val addr = Input(UInt(itemW.W))
     val item = Output(UInt(itemW.W)) // the cycle after
+    val mark = Output(Bool())
   }
+  val mark = Flipped(Valid(new Bundle {
+    val addr = UInt(itemW.W)
+    val item = UInt(itemW.W)
+  }))
   val counted = Output(UInt(countW.W))
   val scattered = Output(UInt(countW.W))
   val badBucket = Output(Bool())
@@ -52,7 +61,7 @@ class BucketSort(maxItems: Int, bucketsLog2: Int) extends Module {
   // Read-first, as block RAM returns old data on a same-cycle write: the forwarding below
   // is then what makes back-to-back repeats right, in simulation as on the FPGA.
   private val counts = SyncReadMem(buckets, UInt(countW.W), SyncReadMem.ReadFirst)
-  private val entries = SyncReadMem(maxItems, UInt(io.itemW.W))
+  private val entries = SyncReadMem(maxItems, UInt((io.itemW + 1).W)) // mark ## item
 
   private object S extends ChiselEnum { val idle, clearing, summing = Value }
   private val state = RegInit(S.idle)
@@ -84,8 +93,13 @@ class BucketSort(maxItems: Int, bucketsLog2: Int) extends Module {
   when(s1) {
     counts.write(s1b, next)
     fwdB := s1b; fwdV := next
-    when(s1scatter) { entries.write(old(io.itemW - 1, 0), s1item); scattered := scattered + 1.U }
+    when(s1scatter) { scattered := scattered + 1.U }
       .otherwise { counted := counted + 1.U }
+  }
+  private val scatterWrite = s1 && s1scatter
+  when(scatterWrite || io.mark.valid) {
+    entries.write(Mux(scatterWrite, old(io.itemW - 1, 0), io.mark.bits.addr),
+      Mux(scatterWrite, 0.U(1.W) ## s1item, 1.U(1.W) ## io.mark.bits.item))
   }
 
   // --- clear and prefix: one bucket a cycle ---------------------------------------------
@@ -119,5 +133,7 @@ class BucketSort(maxItems: Int, bucketsLog2: Int) extends Module {
   private val lbZero = RegNext(lb === 0.U)
   io.lookup.end := endRd
   io.lookup.begin := Mux(lbZero, 0.U, beginRd)
-  io.entry.item := entries.read(io.entry.addr)
+  private val entryRd = entries.read(io.entry.addr)
+  io.entry.item := entryRd(io.itemW - 1, 0)
+  io.entry.mark := entryRd(io.itemW)
 }

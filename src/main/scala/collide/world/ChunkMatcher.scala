@@ -3,23 +3,12 @@ package collide.world
 import chisel3._
 import chisel3.util._
 
-/** One sphere as the candidate generator sees it: its index and SphereKeys' keys. */
-class WorldKey(val itemW: Int, val cellBits: Int, val qWidth: Int) extends Bundle {
-  val index = UInt(itemW.W)
-  val cell = Vec(3, SInt(cellBits.W))
-  val q = Vec(3, SInt(qWidth.W))
-  val qr = UInt(qWidth.W)
-}
-
-class WorldPair(val itemW: Int) extends Bundle {
-  val i = UInt(itemW.W) // i < j
-  val j = UInt(itemW.W)
-}
-
 /** The heart of the cell-major candidate generator (docs/afu.md, "World mode"): holds a
   * chunk of up to `chunk` spheres of one cell and compares each sphere streamed past (the
-  * entries of a visited bucket) with all of them in one cycle: same visited cell, j > i on
-  * the own cell, and the exact box filter |qa - qb| <= qra + qrb + slack on every axis. Hits
+  * entries of a visited bucket, each a WorldProbe) with all of them in one cycle: in the
+  * probe's visited cell, j > i if the probe says own, and the exact box filter
+  * |qa - qb| <= qra + qrb + slack on every axis. Visits may follow each other back to back
+  * (the visit travels with each probe). Hits
   * leave one pair a cycle, (min, max), chunk members in slot order; the stream stalls
   * (in.ready low) while a streamed sphere has more than one hit left, and out is valid/ready.
   */
@@ -29,12 +18,9 @@ class ChunkMatcherIO(p: WorldKey, chunk: Int) extends Bundle {
   /** Adds a member to the chunk (at most `chunk` after a clear; more is refused: overflow). */
   val load = Flipped(Valid(p.cloneType))
   val overflow = Output(Bool())
-  /** The visit: the cell whose entries stream past, whether it is the chunk's own cell, and
-    * the box filter's slack at this world's k. Held while the visit streams. */
-  val visitCell = Input(Vec(3, SInt(p.cellBits.W)))
-  val own = Input(Bool())
+  /** The box filter's slack at this world's k. */
   val slack = Input(UInt(p.qWidth.W))
-  val in = Flipped(Decoupled(p.cloneType))
+  val in = Flipped(Decoupled(new WorldProbe(p.itemW, p.cellBits, p.qWidth)))
   val out = Decoupled(new WorldPair(p.itemW))
   /** Nothing in flight: every hit of the accepted entries has left. */
   val idle = Output(Bool())
@@ -64,10 +50,11 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int) extends M
     }.reduce(_ && _)
   }
 
-  private val e = io.in.bits
-  private val inCell = e.cell.zip(io.visitCell).map { case (a, b) => a === b }.reduce(_ && _)
+  private val probe = io.in.bits
+  private val e = probe.key
+  private val inCell = probe.anyCell || e.cell.zip(probe.cell).map { case (a, b) => a === b }.reduce(_ && _)
   private val hitsNow = VecInit((0 until chunk).map { m =>
-    m.U < used && inCell && (!io.own || e.index > members(m).index) && boxPass(members(m), e)
+    m.U < used && inCell && (!probe.own || e.index > members(m).index) && boxPass(members(m), e)
   }).asUInt
 
   // The entry being drained and the hits it still owes.

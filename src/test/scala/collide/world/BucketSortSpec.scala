@@ -50,10 +50,24 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
     for (a <- entries.indices) {
       dut.io.entry.addr.poke(a.U); dut.clock.step()
       assert(dut.io.entry.item.peek().litValue == entries(a), s"$label: entry $a")
+      // The previous world marked some of these positions: the scatter cleared them.
+      assert(!dut.io.entry.mark.peek().litToBoolean, s"$label: entry $a is marked after the scatter")
+    }
+    // Mark about half the entries (as the candidate generator does), then read them back.
+    val marked = entries.indices.filter(_ => rng.nextBoolean()).toSet
+    for (a <- marked) {
+      dut.io.mark.valid.poke(true.B); dut.io.mark.bits.addr.poke(a.U); dut.io.mark.bits.item.poke(entries(a).U)
+      dut.clock.step()
+    }
+    dut.io.mark.valid.poke(false.B)
+    for (a <- entries.indices) {
+      dut.io.entry.addr.poke(a.U); dut.clock.step()
+      assert(dut.io.entry.item.peek().litValue == entries(a) && dut.io.entry.mark.peek().litToBoolean == marked(a),
+        s"$label: entry $a after marking")
     }
   }
 
-  it should "sort like the golden model: repeated buckets back to back, gaps, empty and full worlds, one after another" in {
+  it should "sort like the golden model: repeated buckets back to back, gaps, empty and full worlds, one after another, each scatter clearing the marks of the last" in {
     val rng = Seeds.rng("BucketSortSpec")
     test(new BucketSort(maxItems, bucketsLog2)) { dut =>
       dut.clock.setTimeout(0)

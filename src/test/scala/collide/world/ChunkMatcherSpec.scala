@@ -11,7 +11,7 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
   behavior of "ChunkMatcher"
 
   private val itemW = 10; private val cellBits = 8; private val qWidth = 17; private val chunk = 8
-  final case class K(index: Int, cell: Seq[Int], q: Seq[Int], qr: Int)
+  import ChunkMatcherSpec._
 
   private val model = new BroadPhaseModel(ScpuConfig.fp32)
 
@@ -27,9 +27,14 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
     k.q.zipWithIndex.foreach { case (q, i) => b.q(i).poke(q.S) }; b.qr.poke(k.qr.U)
   }
 
+  private def pokeProbe(b: WorldProbe, p: P): Unit = {
+    poke(b.key, p.k); p.visit.zipWithIndex.foreach { case (c, i) => b.cell(i).poke(c.S) }
+    b.anyCell.poke(p.anyCell.B); b.own.poke(p.own.B)
+  }
+
   private def tuple(k: K) = (BigInt(k.q(0)), BigInt(k.q(1)), BigInt(k.q(2)), BigInt(k.qr))
 
-  it should "emit every member-entry pair in the visited cell that passes the box filter, once, in order, under back-pressure" in {
+  it should "emit every member-entry pair in each probe's visited cell that passes the box filter, once, in order, under back-pressure" in {
     val rng = Seeds.rng("ChunkMatcherSpec")
     test(new ChunkMatcher(itemW, cellBits, qWidth, chunk)) { dut =>
       dut.clock.setTimeout(0)
@@ -37,25 +42,26 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
       for (round <- 0 until Seeds.cases(40)) {
         val indices = rng.shuffle((0 until 1 << itemW).toList).take(chunk + 30)
         val members = indices.take(1 + rng.nextInt(chunk)).map(key(rng, _))
-        val entries = indices.drop(chunk).take(rng.nextInt(30)).map(key(rng, _)) ++ members.take(rng.nextInt(2)) // itself, on own visits
-        val own = rng.nextBoolean()
-        val visit = Seq(rng.nextInt(2), 3, -2)
+        // Visits change from probe to probe (back to back in the generator); a member itself
+        // comes by on own visits.
+        val entries = (indices.drop(chunk).take(rng.nextInt(30)).map(key(rng, _)) ++ members.take(rng.nextInt(2)))
+          .map(k => P(k, Seq(rng.nextInt(2), 3, -2), rng.nextInt(8) == 0, rng.nextBoolean()))
         val slack = rng.nextInt(4)
-        val want = for (e <- entries; m <- members
-                        if e.cell == visit && (!own || e.index > m.index) && model.boxPass(tuple(m), tuple(e), BigInt(slack)))
+        val want = for (p <- entries; e = p.k; m <- members
+                        if (p.anyCell || e.cell == p.visit) && (!p.own || e.index > m.index) &&
+                           model.boxPass(tuple(m), tuple(e), BigInt(slack)))
           yield (math.min(m.index, e.index), math.max(m.index, e.index))
         dut.io.clear.poke(true.B); dut.clock.step(); dut.io.clear.poke(false.B)
         for (m <- members) { dut.io.load.valid.poke(true.B); poke(dut.io.load.bits, m); dut.clock.step() }
         dut.io.load.valid.poke(false.B)
-        visit.zipWithIndex.foreach { case (c, i) => dut.io.visitCell(i).poke(c.S) }
-        dut.io.own.poke(own.B); dut.io.slack.poke(slack.U)
+        dut.io.slack.poke(slack.U)
         val got = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
         var pendingIn = entries
         var cycles = 0
         while (pendingIn.nonEmpty || !dut.io.idle.peek().litToBoolean) {
           val offer = pendingIn.nonEmpty && rng.nextInt(4) != 0
           dut.io.in.valid.poke(offer.B)
-          if (offer) poke(dut.io.in.bits, pendingIn.head)
+          if (offer) pokeProbe(dut.io.in.bits, pendingIn.head)
           dut.io.out.ready.poke((rng.nextInt(3) != 0).B)
           if (dut.io.out.valid.peek().litToBoolean && dut.io.out.ready.peek().litToBoolean)
             got += ((dut.io.out.bits.i.peek().litValue.toInt, dut.io.out.bits.j.peek().litValue.toInt))
@@ -64,7 +70,7 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
           assert(cycles < 10000, s"round $round: stuck")
         }
         dut.io.in.valid.poke(false.B)
-        assert(got.toSeq == want, s"round $round (own=$own, slack=$slack, ${members.length} members, ${entries.length} entries)")
+        assert(got.toSeq == want, s"round $round (slack=$slack, ${members.length} members, ${entries.length} entries)")
         assert(!dut.io.overflow.peek().litToBoolean)
         total += want.length
       }
@@ -83,4 +89,10 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
       assert(!dut.io.overflow.peek().litToBoolean)
     }
   }
+}
+
+object ChunkMatcherSpec {
+  final case class K(index: Int, cell: Seq[Int], q: Seq[Int], qr: Int)
+  /** A streamed sphere and its visit: the cell it must be in (unless anyCell), own. */
+  final case class P(k: K, visit: Seq[Int], anyCell: Boolean, own: Boolean)
 }

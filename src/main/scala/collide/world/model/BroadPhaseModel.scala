@@ -182,7 +182,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     val box = world.indices.map(i => if (isExcluded(i)) null else boxKey(conv(i), k))
     val slack = boxSlack(k)
     val smalls = world.indices.flatMap(i => classes(i) match { case s: SphereClass.Small => Some(i -> s); case _ => None })
-    val nb = bucketsFor(smalls.length)
+    val nb = bucketsFor(n) // the hardware knows n before it knows which spheres are small
     def bucketOf(c: SphereClass.Small) = bucket(c.cx, c.cy, c.cz) & (nb - 1)
 
     val (start, entries) = countingSort(smalls.map { case (i, c) => i -> bucketOf(c) }, nb)

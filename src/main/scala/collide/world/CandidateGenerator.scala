@@ -1,0 +1,233 @@
+package collide.world
+
+import chisel3._
+import chisel3.util._
+import collide.world.model.BroadPhaseModel
+
+/** The candidate generator of the world-mode broad phase (docs/afu.md, "World mode"), one
+  * lane. Over a table sorted by BucketSort it walks the buckets in order; in each occupied
+  * bucket it takes the cells in order of their first entry, a chunk of up to `chunk` spheres
+  * at a time (a scan of the bucket loads the first unmarked entry's cell and marks what it
+  * loads); it then streams the chunk's own cell and its 13 half-shell neighbours (a bucket
+  * lookup each, pipelined back to back) past the ChunkMatcher. Last, the large pass: chunks
+  * of the large list meet every non-excluded sphere. The pair stream is exactly
+  * BroadPhaseModel.run's candidates: the grid part in the same order, the large part as a set.
+  */
+class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, largeSlots: Int)
+    extends Bundle {
+  val start = Input(Bool())
+  val usedLog2 = Input(UInt(log2Ceil(bucketsLog2 + 1).W))
+  val num = Input(UInt(countW.W)) // spheres in the world (the large pass streams them all)
+  val slack = Input(UInt(qWidth.W))
+  val larges = Input(Vec(largeSlots, new WorldKey(itemW, cellBits, qWidth)))
+  val largeCount = Input(UInt(log2Ceil(largeSlots + 1).W))
+  val lookup = new Bundle {
+    val bucket = Output(UInt(bucketsLog2.W))
+    val begin = Input(UInt(countW.W)) // the cycle after
+    val end = Input(UInt(countW.W))
+  }
+  val entry = new Bundle {
+    val addr = Output(UInt(itemW.W))
+    val item = Input(UInt(itemW.W)) // the cycle after
+    val mark = Input(Bool())
+  }
+  val mark = Valid(new Bundle { val addr = UInt(itemW.W); val item = UInt(itemW.W) })
+  val keyAddr = Output(UInt(itemW.W))
+  val keyData = Input(new KeyRecord(cellBits, qWidth)) // the cycle after
+  val pairs = Decoupled(new WorldPair(itemW))
+  val busy = Output(Bool())
+  val inLargePass = Output(Bool())
+  val stats = Output(new Bundle {
+    val cells = UInt(32.W)   // occupied cells visited
+    val chunks = UInt(32.W)  // chunks (a cell of more than `chunk` spheres has several)
+    val scanned = UInt(32.W) // entries read by the chunk scans
+    val probes = UInt(32.W)  // entries streamed past chunks (the 14 visits and the large pass)
+  })
+}
+
+class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
+                         largeSlots: Int) extends Module {
+  override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L$largeSlots"
+  val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots))
+
+  private val visitT = new WorldVisit(cellBits)
+  private val stream = Module(new KeyStream(visitT, itemW, countW, cellBits, qWidth))
+  private val matcher = Module(new ChunkMatcher(itemW, cellBits, qWidth, chunk))
+  io.entry.addr := stream.io.entryAddr
+  stream.io.entryItem := io.entry.item
+  stream.io.entryMark := io.entry.mark
+  io.keyAddr := stream.io.keyAddr
+  stream.io.keyData := io.keyData
+  matcher.io.slack := io.slack
+  io.pairs <> matcher.io.out
+
+  private object S extends ChiselEnum { val idle, walk, scan, visit, largeLoad, largeStream = Value }
+  private val state = RegInit(S.idle)
+  io.busy := state =/= S.idle
+  io.inLargePass := state === S.largeLoad || state === S.largeStream
+
+  private def key(index: UInt, r: KeyRecord): WorldKey = {
+    val k = Wire(new WorldKey(itemW, cellBits, qWidth))
+    k.index := index; k.cell := r.cell; k.q := r.q; k.qr := r.qr
+    k
+  }
+
+  // Defaults: nothing requested, loaded, marked or matched.
+  stream.io.req.valid := false.B
+  stream.io.req.bits := DontCare
+  stream.io.out.ready := false.B
+  matcher.io.clear := false.B
+  matcher.io.load.valid := false.B
+  matcher.io.load.bits := DontCare
+  matcher.io.in.valid := false.B
+  matcher.io.in.bits := DontCare
+  io.mark.valid := false.B
+  io.mark.bits.addr := stream.io.out.bits.pos(itemW - 1, 0)
+  io.mark.bits.item := stream.io.out.bits.item
+  io.lookup.bucket := 0.U
+
+  private val used = (1.U((bucketsLog2 + 1).W) << io.usedLog2)(bucketsLog2, 0)
+  private val cells, chunks, scanned, probes = RegInit(0.U(32.W))
+  io.stats.cells := cells; io.stats.chunks := chunks; io.stats.scanned := scanned; io.stats.probes := probes
+
+  // --- bucket walk: a lookup a cycle; an occupied bucket stops it --------------------------
+  private val bIssue = Reg(UInt((bucketsLog2 + 1).W))
+  private val walkPend = RegInit(false.B)
+  private val walkB = Reg(UInt((bucketsLog2 + 1).W))
+  // --- the chunk: its cell, where its scan starts, what the scan found ----------------------
+  private val p = Reg(UInt(countW.W))
+  private val bEnd = Reg(UInt(countW.W))
+  private val curCell = Reg(Vec(3, SInt(cellBits.W)))
+  private val haveCell = Reg(Bool())
+  private val loaded = Reg(UInt(log2Ceil(chunk + 1).W))
+  private val moreOfCell = Reg(Bool())
+  private val nextSet = Reg(Bool())
+  private val nextLeader = Reg(UInt(countW.W))
+  private val sent = Reg(Bool())
+  // --- visits: 14 lookups, each becoming a stream range ------------------------------------
+  private val visits = BroadPhaseModel.Visits
+  private val offsets = VecInit(visits.map { case (a, b, c) => VecInit(Seq(a, b, c).map(_.S(cellBits.W))) })
+  private val vIssue = Reg(UInt(log2Ceil(visits.length + 1).W))
+  private val lkPend = RegInit(false.B)
+  private val lkVisit = Reg(visitT)
+  private val lkq = Module(new Queue(new StreamRange(visitT, countW), 2))
+  lkq.io.enq.valid := false.B
+  lkq.io.enq.bits := DontCare
+  lkq.io.deq.ready := false.B
+  // --- large pass ------------------------------------------------------------------------
+  private val li = Reg(UInt(log2Ceil(largeSlots + chunk + 1).W))
+  private val lj = Reg(UInt(log2Ceil(chunk + 1).W))
+
+  private def startScan(): Unit = { state := S.scan; sent := false.B; matcher.io.clear := true.B }
+  private def startLargePass(): Unit = {
+    li := 0.U; lj := 0.U; matcher.io.clear := true.B
+    state := Mux(io.largeCount === 0.U, S.idle, S.largeLoad)
+  }
+
+  switch(state) {
+    is(S.idle) {
+      when(io.start) {
+        state := S.walk; bIssue := 0.U; walkPend := false.B
+        cells := 0.U; chunks := 0.U; scanned := 0.U; probes := 0.U
+      }
+    }
+    is(S.walk) {
+      val issueOk = bIssue < used
+      io.lookup.bucket := bIssue(math.max(1, bucketsLog2) - 1, 0)
+      walkPend := issueOk; walkB := bIssue
+      when(issueOk) { bIssue := bIssue + 1.U }
+      when(walkPend && io.lookup.begin =/= io.lookup.end) {
+        p := io.lookup.begin; bEnd := io.lookup.end; haveCell := false.B
+        bIssue := walkB + 1.U; walkPend := false.B
+        startScan()
+      }.elsewhen(!walkPend && !issueOk) {
+        startLargePass()
+      }
+    }
+    is(S.scan) {
+      stream.io.req.valid := !sent
+      stream.io.req.bits.begin := p; stream.io.req.bits.end := bEnd
+      stream.io.req.bits.direct := false.B; stream.io.req.bits.tag := DontCare
+      when(stream.io.req.fire) {
+        sent := true.B; nextSet := false.B; moreOfCell := false.B; loaded := 0.U
+        chunks := chunks + 1.U
+        when(!haveCell) { cells := cells + 1.U }
+      }
+      stream.io.out.ready := true.B
+      val it = stream.io.out.bits
+      when(stream.io.out.fire) {
+        scanned := scanned + 1.U
+        val same = it.rec.cell.asUInt === curCell.asUInt
+        val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
+        when(take) {
+          matcher.io.load.valid := true.B; matcher.io.load.bits := key(it.item, it.rec)
+          io.mark.valid := true.B
+          loaded := loaded + 1.U
+          when(!haveCell) { curCell := it.rec.cell; haveCell := true.B }
+        }
+        when(!it.mark && haveCell && same && loaded === chunk.U) { moreOfCell := true.B }
+        when(!it.mark && haveCell && !same && !nextSet) { nextLeader := it.pos; nextSet := true.B }
+      }
+      when(sent && stream.io.idle) {
+        state := S.visit; vIssue := 0.U; lkPend := false.B
+      }
+    }
+    is(S.visit) {
+      val nc = VecInit((0 until 3).map(a => curCell(a) + offsets(vIssue)(a)))
+      val canIssue = vIssue =/= visits.length.U && (lkq.io.count +& lkPend.asUInt) < 2.U
+      io.lookup.bucket := CellHash(nc, bucketsLog2, io.usedLog2)
+      lkPend := canIssue
+      lkVisit.cell := nc; lkVisit.own := vIssue === 0.U
+      when(canIssue) { vIssue := vIssue + 1.U }
+      lkq.io.enq.valid := lkPend
+      lkq.io.enq.bits.begin := io.lookup.begin; lkq.io.enq.bits.end := io.lookup.end
+      lkq.io.enq.bits.direct := false.B; lkq.io.enq.bits.tag := lkVisit
+      stream.io.req <> lkq.io.deq
+      val it = stream.io.out.bits
+      matcher.io.in.valid := stream.io.out.valid
+      matcher.io.in.bits.key := key(it.item, it.rec)
+      matcher.io.in.bits.cell := it.tag.cell; matcher.io.in.bits.own := it.tag.own
+      matcher.io.in.bits.anyCell := false.B
+      stream.io.out.ready := matcher.io.in.ready
+      when(stream.io.out.fire) { probes := probes + 1.U }
+      when(vIssue === visits.length.U && !lkPend && !lkq.io.deq.valid && stream.io.idle && matcher.io.idle) {
+        when(moreOfCell) {
+          startScan()
+        }.elsewhen(nextSet) {
+          p := nextLeader; haveCell := false.B; startScan()
+        }.otherwise {
+          state := S.walk; walkPend := false.B // bIssue is already the next bucket
+        }
+      }
+    }
+    is(S.largeLoad) {
+      val idx = li +& lj
+      when(lj =/= chunk.U && idx < io.largeCount) {
+        matcher.io.load.valid := true.B
+        matcher.io.load.bits := io.larges(idx(math.max(1, log2Ceil(largeSlots)) - 1, 0))
+        lj := lj + 1.U
+      }.otherwise {
+        state := S.largeStream; sent := false.B
+      }
+    }
+    is(S.largeStream) {
+      stream.io.req.valid := !sent
+      stream.io.req.bits.begin := 0.U; stream.io.req.bits.end := io.num
+      stream.io.req.bits.direct := true.B; stream.io.req.bits.tag := DontCare
+      when(stream.io.req.fire) { sent := true.B }
+      val it = stream.io.out.bits
+      matcher.io.in.valid := stream.io.out.valid && !it.rec.excluded
+      matcher.io.in.bits.key := key(it.item, it.rec)
+      matcher.io.in.bits.cell := DontCare
+      matcher.io.in.bits.anyCell := true.B
+      matcher.io.in.bits.own := it.rec.large // two large spheres meet once: from the lower
+      stream.io.out.ready := matcher.io.in.ready || it.rec.excluded
+      when(stream.io.out.fire && !it.rec.excluded) { probes := probes + 1.U }
+      when(sent && stream.io.idle && matcher.io.idle) {
+        val nextLi = li +& chunk.U
+        li := nextLi; lj := 0.U; matcher.io.clear := true.B
+        state := Mux(nextLi < io.largeCount, S.largeLoad, S.idle)
+      }
+    }
+  }
+}

@@ -1,0 +1,87 @@
+package collide.world
+
+import chisel3._
+import chisel3.util._
+
+/** A range of the sorted table (or of sphere indices) to stream, and what travels with it. */
+class StreamRange[T <: Data](tagType: T, countW: Int) extends Bundle {
+  val begin = UInt(countW.W)
+  val end = UInt(countW.W)
+  /** Positions are sphere indices (the large pass, the scatter): no entry read. */
+  val direct = Bool()
+  val tag = tagType.cloneType
+}
+
+class StreamItem[T <: Data](tagType: T, itemW: Int, countW: Int, cellBits: Int, qWidth: Int) extends Bundle {
+  val pos = UInt(countW.W)  // position in the sorted table (direct: the index)
+  val item = UInt(itemW.W)  // the sphere index
+  val mark = Bool()         // the entry's mark bit (false when direct)
+  val rec = new KeyRecord(cellBits, qWidth)
+  val tag = tagType.cloneType
+}
+
+/** A position in flight between KeyStream's two reads. */
+class StreamStage[T <: Data](tagType: T, countW: Int) extends Bundle {
+  val pos = UInt(countW.W)
+  val direct = Bool()
+  val tag = tagType.cloneType
+}
+
+/** Streams ranges of the broad phase's sorted table: for each position the entry (sphere
+  * index and mark) from BucketSort, then that sphere's key record, one position a cycle
+  * through two one-cycle RAM reads. Ranges follow each other without a gap (an empty range
+  * costs its accepting cycle). The reads never stall: a position is read only when the
+  * output queue has room for everything in flight, so `out` may apply back-pressure.
+  */
+class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidth: Int, depth: Int = 4) extends Module {
+  require(depth >= 3, "the queue must cover the two reads in flight plus one")
+  val io = IO(new Bundle {
+    val req = Flipped(Decoupled(new StreamRange(tag, countW)))
+    val entryAddr = Output(UInt(itemW.W))
+    val entryItem = Input(UInt(itemW.W)) // a cycle after entryAddr
+    val entryMark = Input(Bool())
+    val keyAddr = Output(UInt(itemW.W))
+    val keyData = Input(new KeyRecord(cellBits, qWidth)) // a cycle after keyAddr
+    val out = Decoupled(new StreamItem(tag, itemW, countW, cellBits, qWidth))
+    /** No range held, nothing in flight or queued. */
+    val idle = Output(Bool())
+  })
+
+  private val cur = Reg(new StreamRange(tag, countW))
+  private val busy = RegInit(false.B)
+  private val q = Module(new Queue(new StreamItem(tag, itemW, countW, cellBits, qWidth), depth))
+
+  private val s1v = RegInit(false.B); private val s1 = Reg(new StreamStage(tag, countW))
+  private val s2v = RegInit(false.B); private val s2 = Reg(new StreamStage(tag, countW))
+  private val s2item = Reg(UInt(itemW.W)); private val s2mark = Reg(Bool())
+
+  private val room = q.io.count +& s1v.asUInt +& s2v.asUInt < depth.U
+  private val issue = busy && room
+  private val last = issue && cur.begin + 1.U === cur.end
+  io.req.ready := !busy || last
+  when(issue) { cur.begin := cur.begin + 1.U }
+  when(last) { busy := false.B }
+  when(io.req.fire) {
+    cur := io.req.bits
+    busy := io.req.bits.begin =/= io.req.bits.end
+  }
+
+  io.entryAddr := cur.begin(itemW - 1, 0)
+  s1v := issue
+  when(issue) { s1.pos := cur.begin; s1.direct := cur.direct; s1.tag := cur.tag }
+
+  private val item = Mux(s1.direct, s1.pos(itemW - 1, 0), io.entryItem)
+  io.keyAddr := item
+  s2v := s1v
+  when(s1v) { s2 := s1; s2item := item; s2mark := !s1.direct && io.entryMark }
+
+  q.io.enq.valid := s2v
+  q.io.enq.bits.pos := s2.pos
+  q.io.enq.bits.item := s2item
+  q.io.enq.bits.mark := s2mark
+  q.io.enq.bits.rec := io.keyData
+  q.io.enq.bits.tag := s2.tag
+  assert(!s2v || q.io.enq.ready, "KeyStream: a read came back with no room (credit accounting)")
+  io.out <> q.io.deq
+  io.idle := !busy && !s1v && !s2v && !q.io.deq.valid
+}

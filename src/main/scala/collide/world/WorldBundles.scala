@@ -1,0 +1,43 @@
+package collide.world
+
+import chisel3._
+
+/** One sphere as the candidate generator sees it: its index and SphereKeys' keys. */
+class WorldKey(val itemW: Int, val cellBits: Int, val qWidth: Int) extends Bundle {
+  val index = UInt(itemW.W)
+  val cell = Vec(3, SInt(cellBits.W))
+  val q = Vec(3, SInt(qWidth.W))
+  val qr = UInt(qWidth.W)
+}
+
+/** A sphere streamed past the chunk, with what decides whether it pairs with a member: the
+  * visited cell it must be in (unless anyCell, the large-sphere pass) and whether it must
+  * have the larger index (own: the chunk's own cell, or a large sphere meeting large ones). */
+class WorldProbe(val itemW: Int, val cellBits: Int, val qWidth: Int) extends Bundle {
+  val key = new WorldKey(itemW, cellBits, qWidth)
+  val cell = Vec(3, SInt(cellBits.W))
+  val anyCell = Bool()
+  val own = Bool()
+}
+
+class WorldPair(val itemW: Int) extends Bundle {
+  val i = UInt(itemW.W) // i < j
+  val j = UInt(itemW.W)
+}
+
+/** What the broad phase keeps of each sphere between its passes (the key table, one entry
+  * per sphere index): SphereKeys' keys at this world's k and its class. */
+class KeyRecord(val cellBits: Int, val qWidth: Int) extends Bundle {
+  val cell = Vec(3, SInt(cellBits.W))
+  val q = Vec(3, SInt(qWidth.W))
+  val qr = UInt(qWidth.W)
+  val large = Bool()    // paired with every sphere by the large pass
+  val excluded = Bool() // a non-finite field: never paired
+}
+
+/** A candidate generator's visit: the cell whose entries stream past the chunk, and whether
+  * it is the chunk's own cell. */
+class WorldVisit(val cellBits: Int) extends Bundle {
+  val cell = Vec(3, SInt(cellBits.W))
+  val own = Bool()
+}

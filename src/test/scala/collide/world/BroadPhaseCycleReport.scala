@@ -1,0 +1,96 @@
+package collide.world
+
+import java.nio.file.{Files, Paths}
+import scala.jdk.CollectionConverters._
+import chisel3._
+import chiseltest.RawTester
+import chiseltest._
+import chiseltest.simulator.{VerilatorBackendAnnotation, VerilatorCFlags}
+import collide.fp.FloatFormat
+import collide.scpu.ScpuConfig
+import collide.world.BroadPhaseWorlds._
+import collide.world.model._
+
+/** Cycles of the broad phase's RTL (one candidate-generator lane) on Verilator, pass by
+  * pass, for uniform and clustered clouds of growing size (and uniform ones with four huge
+  * spheres, for the large pass), beside the golden model's work
+  * counts and its cycle estimate. bench/world/fit_cycles.py fits the linear model to it.
+  *
+  *   sbt "Test/runMain collide.world.BroadPhaseCycleReport [--sizes 500,1000,...] [--max 16384]
+  *        [--spheres FILE.csv ...] [--out FILE.csv]"
+  *
+  * --spheres adds a world from a `collide spheres` input file (header x,y,z,r; decimal or hex
+  * floats, binary32 values), e.g. bench/world/world.py --dump-clouds DIR: the very spheres
+  * the CPU backends were timed on. Its row is named after the file.
+  *
+  * The pair stream is always ready (the SCPUs' side is measured by the AFU's own reports),
+  * and every world's pairs are checked against the model's as the spec does.
+  */
+object BroadPhaseCycleReport {
+  def readSpheres(file: String): (String, Seq[S]) = {
+    val lines = Files.readAllLines(Paths.get(file)).asScala.toSeq
+    require(lines.headOption.map(_.trim).contains("x,y,z,r"), s"$file: the header must be x,y,z,r")
+    val spheres = lines.tail.zipWithIndex.filter(_._1.trim.nonEmpty).map { case (l, i) =>
+      val f = l.split(',').map(_.trim)
+      require(f.length == 4, s"$file line ${i + 2}: expected 4 fields, got ${f.length}")
+      def num(v: String) = try java.lang.Double.parseDouble(v) catch {
+        case _: NumberFormatException => throw new IllegalArgumentException(s"$file line ${i + 2}: '$v' is not a number")
+      }
+      S(num(f(0)), num(f(1)), num(f(2)), num(f(3)))
+    }
+    (Paths.get(file).getFileName.toString.stripSuffix(".csv"), spheres)
+  }
+
+  def main(args: Array[String]): Unit = {
+    var sizes = Seq(500, 1000, 2000, 4000, 8000, 16000); var maxSpheres = 16384; var out: Option[String] = None
+    var files = Seq.empty[String]
+    args.sliding(2, 2).foreach {
+      case Array("--sizes", v) => sizes = v.split(',').map(_.trim.toInt).toSeq
+      case Array("--max", v)   => maxSpheres = v.toInt
+      case Array("--out", v)   => out = Some(v)
+      case Array("--spheres", v) => files :+= v
+      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --out)")
+    }
+    require(sizes.forall(n => n >= 1 && n <= maxSpheres), s"--sizes must be 1..--max ($maxSpheres)")
+    val cfg = ScpuConfig.fp32
+    val model = new BroadPhaseModel(cfg)
+    val rng = new scala.util.Random(1)
+    // "huge": the uniform cloud plus four spheres of radius 20 to 1280, the large pass's work.
+    val worlds = sizes.flatMap(n => Seq(s"uniform" -> uniform(rng, n), s"clustered" -> clustered(rng, n, clusters = 1 + n / 200),
+      s"huge" -> huge(rng, n - 4, 4))) ++ files.map(readSpheres)
+    require(worlds.forall(_._2.length <= maxSpheres), s"a world has more than --max ($maxSpheres) spheres")
+    val header = "world,spheres,buckets,cells,chunks,scanned,probes,candidates,large," +
+      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total"
+    val rows = scala.collection.mutable.ArrayBuffer(header)
+    RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
+      dut.clock.setTimeout(0)
+      for ((name, ws) <- worlds) {
+        val world = bits(FloatFormat.fp32, ws)
+        val want = model.run(world)
+        val table = world.map(model.converted)
+        dut.io.num.poke(table.length.U)
+        dut.io.pairs.ready.poke(true.B)
+        dut.io.start.poke(true.B); dut.clock.step(); dut.io.start.poke(false.B)
+        val pairs = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
+        while (dut.io.busy.peek().litToBoolean) {
+          val addr = dut.io.sphere.addr.peek().litValue.toInt
+          if (dut.io.pairs.valid.peek().litToBoolean)
+            pairs += ((dut.io.pairs.bits.i.peek().litValue.toInt, dut.io.pairs.bits.j.peek().litValue.toInt))
+          dut.clock.step()
+          val d = if (addr < table.length) table(addr) else Seq.fill(4)(BigInt(0))
+          d.zipWithIndex.foreach { case (b, f) => dut.io.sphere.data(f).poke(b.U) }
+        }
+        require(pairs.sorted == want.candidates.sorted, s"$name ${ws.length}: the RTL's pairs differ from the model's")
+        val s = dut.io.status
+        def v(d: UInt) = d.peek().litValue
+        val c = model.cycles(want, lanes = 1, scpus = 16)
+        val row = Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
+          v(s.large), v(s.cycLoad), v(s.cycClassify), v(s.cycPrefix), v(s.cycScatter), v(s.cycGrid), v(s.cycLarge), v(s.cycTotal),
+          c.generate, c.count + c.prefix + c.scatter + c.generate + c.large).mkString(",")
+        println(row)
+        rows += row
+      }
+    }
+    out.foreach { f => Files.createDirectories(Paths.get(f).toAbsolutePath.getParent); Files.write(Paths.get(f), (rows.mkString("\n") + "\n").getBytes) }
+  }
+}

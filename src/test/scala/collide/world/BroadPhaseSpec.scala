@@ -1,0 +1,161 @@
+package collide.world
+
+import chisel3._
+import chiseltest._
+import chiseltest.simulator.VerilatorBackendAnnotation
+import chiseltest.internal.CachingAnnotation
+import org.scalatest.flatspec.AnyFlatSpec
+import collide.fp.FloatFormat
+import collide.scpu.ScpuConfig
+import collide.testutil.Seeds
+import collide.world.BroadPhaseWorlds._
+import collide.world.model._
+
+/** The broad phase's RTL against its golden model, world by world: the same candidate
+  * pairs (the grid's in the model's order, the large pass's as a set), the same k and
+  * classes, under random back-pressure on the pair stream. */
+class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
+  behavior of "BroadPhase"
+
+  private val maxSpheres = 256
+  // Treadle runs this design at a few hundred cycles a second; Verilator, built once per
+  // configuration and cached while the design is unchanged, at tens of thousands.
+  private val annos = Seq(VerilatorBackendAnnotation, CachingAnnotation)
+
+  case class Run(pairs: Seq[(Int, Int)], status: Map[String, BigInt], cycles: Long)
+
+  /** Serves the sphere table (one cycle of read latency) and takes the pairs, ready with
+    * probability `readyOdds`. */
+  private def run(dut: BroadPhase, table: IndexedSeq[Seq[BigInt]], rng: scala.util.Random, readyOdds: Double): Run = {
+    dut.io.num.poke(table.length.U)
+    dut.io.start.poke(true.B); dut.clock.step(); dut.io.start.poke(false.B)
+    val pairs = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
+    var cycles = 1L
+    while (dut.io.busy.peek().litToBoolean) {
+      val addr = dut.io.sphere.addr.peek().litValue.toInt
+      val ready = rng.nextDouble() < readyOdds
+      dut.io.pairs.ready.poke(ready.B)
+      if (ready && dut.io.pairs.valid.peek().litToBoolean)
+        pairs += ((dut.io.pairs.bits.i.peek().litValue.toInt, dut.io.pairs.bits.j.peek().litValue.toInt))
+      dut.clock.step(); cycles += 1
+      val data = if (addr < table.length) table(addr) else Seq.fill(4)(BigInt(0))
+      data.zipWithIndex.foreach { case (b, f) => dut.io.sphere.data(f).poke(b.U) }
+      if (cycles > 100000L + 40L * table.length * table.length) {
+        val s = dut.io.status
+        fail(s"the broad phase never finished: ${table.length} spheres, cycles load ${s.cycLoad.peek().litValue} " +
+          s"classify ${s.cycClassify.peek().litValue} prefix ${s.cycPrefix.peek().litValue} scatter ${s.cycScatter.peek().litValue} " +
+          s"grid ${s.cycGrid.peek().litValue} large ${s.cycLarge.peek().litValue}, ${pairs.length} pairs out")
+      }
+    }
+    val s = dut.io.status
+    val fields = Seq("excluded" -> s.excluded, "large" -> s.large, "small" -> s.small, "candidates" -> s.candidates,
+      "cells" -> s.cells, "chunks" -> s.chunks, "cycTotal" -> s.cycTotal, "cycGrid" -> s.cycGrid, "cycLarge" -> s.cycLarge)
+      .map { case (n, d) => n -> d.peek().litValue }.toMap
+    val flags = Seq("tooMany" -> s.tooMany, "cellOverflow" -> s.cellOverflow, "largeOverflow" -> s.largeOverflow,
+      "badBucket" -> s.badBucket, "sortMismatch" -> s.sortMismatch).map { case (n, b) => n -> (if (b.peek().litToBoolean) BigInt(1) else BigInt(0)) }
+    Run(pairs.toSeq, fields ++ flags + ("k" -> s.k.peek().litValue), cycles)
+  }
+
+  private def check(dut: BroadPhase, model: BroadPhaseModel, label: String, world: IndexedSeq[WorldSphere],
+                    rng: scala.util.Random, readyOdds: Double): Run = {
+    val want = model.run(world)
+    val got = run(dut, world.map(model.converted), rng, readyOdds)
+    val where = s"$label (${model.cfg.name}, ${world.length} spheres, k=${want.k})"
+    Seq("tooMany", "cellOverflow", "largeOverflow", "badBucket", "sortMismatch").foreach { f =>
+      assert(got.status(f) == 0, s"$where: $f raised")
+    }
+    assert(got.status("k") == want.k, s"$where: k = ${got.status("k")}")
+    val st = want.stats
+    assert(got.status("excluded") == st.excluded && got.status("large") == st.large &&
+      got.status("small") == st.spheres - st.excluded - st.large, s"$where: classes ${got.status}")
+    val grid = st.gridCandidates.toInt
+    val (gotGrid, gotLarge) = got.pairs.splitAt(grid)
+    val firstDiff = gotGrid.zip(want.candidates.take(grid)).indexWhere { case (a, b) => a != b }
+    val gridSame = firstDiff < 0 && gotGrid.length == grid // (not inline: assert would print both lists)
+    assert(gridSame,
+      s"$where: grid pair ${if (firstDiff < 0) gotGrid.length else firstDiff} differs (want ${grid} grid pairs)")
+    val largeSame = gotLarge.sorted == want.candidates.drop(grid).sorted
+    assert(largeSame, s"$where: the large pass's ${gotLarge.length} pairs differ from the model's ${want.candidates.length - grid}")
+    assert(got.status("candidates") == want.candidates.length && got.status("cells") == st.cells,
+      s"$where: counters ${got.status}")
+    got
+  }
+
+  private def worlds(rng: scala.util.Random): Seq[(String, Seq[S])] = Seq(
+    "an empty world" -> Seq.empty,
+    "one sphere" -> Seq(S(1, 2, 3, 0.5)),
+    "a uniform cloud" -> uniform(rng, 120),
+    "a clustered cloud" -> clustered(rng, 100),
+    "radii over 1:1000" -> mixedRadii(rng, 90),
+    "huge spheres among small ones" -> huge(rng, 80, 3),
+    "all spheres at one point" -> onePoint(40),
+    "zero radii and underflowing separations" -> tinySeparations,
+    "spheres on cell faces" -> cellBoundaries(rng),
+    "negative coordinates" -> uniform(rng, 80, origin = -1000.0),
+    "near misses across cell faces" -> nearMisses(rng, 40, math.pow(2, -10))
+  )
+
+  it should "find exactly the golden model's candidates in every hard case and random cloud, under back-pressure" in {
+    val rng = Seeds.rng("BroadPhaseSpec")
+    val model = new BroadPhaseModel(ScpuConfig.fp32)
+    test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
+      dut.clock.setTimeout(0)
+      for ((label, w) <- worlds(rng)) {
+        val r = check(dut, model, label, bits(FloatFormat.fp32, w), rng, readyOdds = 0.7)
+        println(f"[BroadPhaseSpec] $label%-40s ${w.length}%4d spheres ${r.status("candidates")}%5s pairs ${r.cycles}%7d cycles")
+      }
+    }
+  }
+
+  it should "stay exact with a four-bucket table and one-sphere chunks (every cell shares a bucket, every chunk rescans)" in {
+    val rng = Seeds.rng("BroadPhaseSpec-tiny")
+    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.tinyTable)
+    test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
+      dut.clock.setTimeout(0)
+      for ((label, w) <- worlds(rng).filter(_._2.length <= 100)) check(dut, model, label, bits(FloatFormat.fp32, w), rng, 0.5)
+    }
+  }
+
+  it should "stay exact with no large list and with a large list too small for the huge spheres" in {
+    val rng = Seeds.rng("BroadPhaseSpec-large")
+    for ((bp, label) <- Seq(BroadPhaseParams.noLarge -> "no large list", BroadPhaseParams.default.copy(largeMax = 2, chunk = 4) -> "largeMax 2")) {
+      val model = new BroadPhaseModel(ScpuConfig.fp32, bp)
+      test(new BroadPhase(ScpuConfig.fp32.params, bp, maxSpheres)).withAnnotations(annos) { dut =>
+        dut.clock.setTimeout(0)
+        check(dut, model, s"$label: five huge", bits(FloatFormat.fp32, huge(rng, 60, 5)), rng, 0.8)
+        check(dut, model, s"$label: radii over 1:1000", bits(FloatFormat.fp32, mixedRadii(rng, 70)), rng, 0.8)
+      }
+    }
+  }
+
+  for (cfg <- Seq(ScpuConfig.fp16, ScpuConfig.bf16, ScpuConfig.fp64)) {
+    it should s"match the golden model in ${cfg.name}, whose floor and margins differ" in {
+      val rng = Seeds.rng(s"BroadPhaseSpec-${cfg.name}")
+      val model = new BroadPhaseModel(cfg)
+      test(new BroadPhase(cfg.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
+        dut.clock.setTimeout(0)
+        for ((label, w) <- worlds(rng).filter(w => Set("a uniform cloud", "radii over 1:1000", "zero radii and underflowing separations",
+               "huge spheres among small ones", "near misses across cell faces")(w._1)))
+          check(dut, model, label, bits(cfg.linkFormat, w), rng, 0.9)
+      }
+    }
+  }
+
+  it should "exclude non-finite spheres, fill the table to maxSpheres, and refuse more than maxSpheres" in {
+    val rng = Seeds.rng("BroadPhaseSpec-edges")
+    val model = new BroadPhaseModel(ScpuConfig.fp32)
+    val f = FloatFormat.fp32
+    test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
+      dut.clock.setTimeout(0)
+      val w = bits(f, uniform(rng, 30))
+      val nan = BigInt(java.lang.Float.floatToRawIntBits(Float.NaN).toLong & 0xffffffffL)
+      val bad = w.updated(3, w(3).copy(y = nan)).updated(7, w(7).copy(r = f.infinity(false)))
+      val r = check(dut, model, "two non-finite spheres", bad, rng, 1.0)
+      assert(r.status("excluded") == 2)
+      check(dut, model, "maxSpheres spheres", bits(f, uniform(rng, maxSpheres)), rng, 1.0)
+      val over = run(dut, Seq.fill(maxSpheres + 1)(Seq.fill(4)(BigInt(0))).toIndexedSeq, rng, 1.0)
+      assert(over.status("tooMany") == 1 && over.pairs.isEmpty, "more than maxSpheres must be refused")
+      check(dut, model, "a world after the refusal", bits(f, uniform(rng, 20)), rng, 1.0)
+    }
+  }
+}
