@@ -9,7 +9,8 @@ import collide.world.model.BroadPhaseModel
   * bucket it takes the cells in order of their first entry, a chunk of up to `chunk` spheres
   * at a time (a scan of the bucket loads the first unmarked entry's cell and marks what it
   * loads); it then streams the chunk's own cell and its 13 half-shell neighbours (a bucket
-  * lookup each, pipelined back to back) past the ChunkMatcher. Last, the large pass: chunks
+  * lookup each, issued while the scan still runs) past the ChunkMatcher, and the next chunk's
+  * scan follows the last visit without waiting for it to drain. Last, the large pass: chunks
   * of the large list meet every non-excluded sphere. The pair stream is exactly
   * BroadPhaseModel.run's candidates: the grid part in the same order, the large part as a set.
   */
@@ -61,7 +62,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   matcher.io.slack := io.slack
   io.pairs <> matcher.io.out
 
-  private object S extends ChiselEnum { val idle, walk, scan, visit, largeLoad, largeStream = Value }
+  private object S extends ChiselEnum { val idle, walk, chunk, largeLoad, largeStream = Value }
   private val state = RegInit(S.idle)
   io.busy := state =/= S.idle
   io.inLargePass := state === S.largeLoad || state === S.largeStream
@@ -103,14 +104,19 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val moreOfCell = Reg(Bool())
   private val nextSet = Reg(Bool())
   private val nextLeader = Reg(UInt(countW.W))
+  private val nextCell = Reg(Vec(3, SInt(cellBits.W)))
   private val sent = Reg(Bool())
+  private val scanLeft = Reg(UInt(countW.W))
+  private val needClear = Reg(Bool())
   // --- visits: 14 lookups, each becoming a stream range ------------------------------------
   private val visits = BroadPhaseModel.Visits
   private val offsets = VecInit(visits.map { case (a, b, c) => VecInit(Seq(a, b, c).map(_.S(cellBits.W))) })
   private val vIssue = Reg(UInt(log2Ceil(visits.length + 1).W))
   private val lkPend = RegInit(false.B)
   private val lkVisit = Reg(visitT)
-  private val lkq = Module(new Queue(new StreamRange(visitT, countW), 2))
+  // Three ranges: one for the stream to take each cycle while a lookup is in flight and
+  // another is issued (visits of one entry or none follow each other at a cycle each).
+  private val lkq = Module(new Queue(new StreamRange(visitT, countW), 3))
   lkq.io.enq.valid := false.B
   lkq.io.enq.bits := DontCare
   lkq.io.deq.ready := false.B
@@ -118,7 +124,10 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val li = Reg(UInt(log2Ceil(largeSlots + chunk + 1).W))
   private val lj = Reg(UInt(log2Ceil(chunk + 1).W))
 
-  private def startScan(): Unit = { state := S.scan; sent := false.B; matcher.io.clear := true.B }
+  private def startChunk(): Unit = {
+    state := S.chunk; sent := false.B; vIssue := 0.U; lkPend := false.B; needClear := false.B
+    matcher.io.clear := true.B
+  }
   private def startLargePass(): Unit = {
     li := 0.U; lj := 0.U; matcher.io.clear := true.B
     state := Mux(io.largeCount === 0.U, S.idle, S.largeLoad)
@@ -138,64 +147,75 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       when(issueOk) { bIssue := bIssue + 1.U }
       when(walkPend && io.lookup.begin =/= io.lookup.end) {
         p := io.lookup.begin; bEnd := io.lookup.end; haveCell := false.B
-        bIssue := walkB + 1.U; walkPend := false.B
-        startScan()
+        bIssue := walkB + 1.U; walkPend := false.B; cells := cells + 1.U
+        startChunk()
       }.elsewhen(!walkPend && !issueOk) {
         startLargePass()
       }
     }
-    is(S.scan) {
+    is(S.chunk) {
+      // The scan's range first, then the 14 visits' ranges, all through the one stream: the
+      // visits' lookups start as soon as the chunk's cell is known, while the scan runs.
       stream.io.req.valid := !sent
       stream.io.req.bits.begin := p; stream.io.req.bits.end := bEnd
-      stream.io.req.bits.direct := false.B; stream.io.req.bits.tag := DontCare
-      when(stream.io.req.fire) {
-        sent := true.B; nextSet := false.B; moreOfCell := false.B; loaded := 0.U
+      stream.io.req.bits.direct := false.B
+      stream.io.req.bits.tag := 0.U.asTypeOf(visitT)
+      stream.io.req.bits.tag.scan := true.B
+      when(sent) { stream.io.req <> lkq.io.deq }
+      when(stream.io.req.fire && !sent) {
+        sent := true.B; nextSet := false.B; moreOfCell := false.B; loaded := 0.U; scanLeft := bEnd - p
         chunks := chunks + 1.U
-        when(!haveCell) { cells := cells + 1.U }
       }
-      stream.io.out.ready := true.B
-      val it = stream.io.out.bits
-      when(stream.io.out.fire) {
-        scanned := scanned + 1.U
-        val same = it.rec.cell.asUInt === curCell.asUInt
-        val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
-        when(take) {
-          matcher.io.load.valid := true.B; matcher.io.load.bits := key(it.item, it.rec)
-          io.mark.valid := true.B
-          loaded := loaded + 1.U
-          when(!haveCell) { curCell := it.rec.cell; haveCell := true.B }
-        }
-        when(!it.mark && haveCell && same && loaded === chunk.U) { moreOfCell := true.B }
-        when(!it.mark && haveCell && !same && !nextSet) { nextLeader := it.pos; nextSet := true.B }
-      }
-      when(sent && stream.io.idle) {
-        state := S.visit; vIssue := 0.U; lkPend := false.B
-      }
-    }
-    is(S.visit) {
+
       val nc = VecInit((0 until 3).map(a => curCell(a) + offsets(vIssue)(a)))
-      val canIssue = vIssue =/= visits.length.U && (lkq.io.count +& lkPend.asUInt) < 2.U
+      val canIssue = haveCell && vIssue =/= visits.length.U && (lkq.io.count +& lkPend.asUInt) < 3.U
       io.lookup.bucket := CellHash(nc, bucketsLog2, io.usedLog2)
       lkPend := canIssue
-      lkVisit.cell := nc; lkVisit.own := vIssue === 0.U
+      lkVisit.cell := nc; lkVisit.own := vIssue === 0.U; lkVisit.scan := false.B
       when(canIssue) { vIssue := vIssue + 1.U }
       lkq.io.enq.valid := lkPend
       lkq.io.enq.bits.begin := io.lookup.begin; lkq.io.enq.bits.end := io.lookup.end
       lkq.io.enq.bits.direct := false.B; lkq.io.enq.bits.tag := lkVisit
-      stream.io.req <> lkq.io.deq
+
       val it = stream.io.out.bits
-      matcher.io.in.valid := stream.io.out.valid
-      matcher.io.in.bits.key := key(it.item, it.rec)
-      matcher.io.in.bits.cell := it.tag.cell; matcher.io.in.bits.own := it.tag.own
-      matcher.io.in.bits.anyCell := false.B
-      stream.io.out.ready := matcher.io.in.ready
-      when(stream.io.out.fire) { probes := probes + 1.U }
-      when(vIssue === visits.length.U && !lkPend && !lkq.io.deq.valid && stream.io.idle && matcher.io.idle) {
-        when(moreOfCell) {
-          startScan()
-        }.elsewhen(nextSet) {
-          p := nextLeader; haveCell := false.B; startScan()
-        }.otherwise {
+      when(it.tag.scan) {
+        // A chunk's first scan entry waits until the last chunk's hits have all left (they
+        // read its members), then clears the matcher, loading in the same cycle.
+        stream.io.out.ready := !needClear || matcher.io.idle
+        when(stream.io.out.fire) {
+          scanned := scanned + 1.U
+          scanLeft := scanLeft - 1.U
+          when(needClear) { matcher.io.clear := true.B; needClear := false.B }
+          val same = it.rec.cell.asUInt === curCell.asUInt
+          val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
+          when(take) {
+            matcher.io.load.valid := true.B; matcher.io.load.bits := key(it.item, it.rec)
+            io.mark.valid := true.B
+            loaded := loaded + 1.U
+            when(!haveCell) { curCell := it.rec.cell; haveCell := true.B }
+          }
+          when(!it.mark && haveCell && same && loaded === chunk.U) { moreOfCell := true.B }
+          when(!it.mark && haveCell && !same && !nextSet) { nextLeader := it.pos; nextCell := it.rec.cell; nextSet := true.B }
+        }
+      }.otherwise {
+        matcher.io.in.valid := stream.io.out.valid
+        matcher.io.in.bits.key := key(it.item, it.rec)
+        matcher.io.in.bits.cell := it.tag.cell; matcher.io.in.bits.own := it.tag.own
+        matcher.io.in.bits.anyCell := false.B
+        stream.io.out.ready := matcher.io.in.ready
+        when(stream.io.out.fire) { probes := probes + 1.U }
+      }
+
+      // Every range handed to the stream and the scan's entries all seen: the next chunk of
+      // this bucket can start its scan behind the visits still streaming.
+      val visitsIssued = vIssue === visits.length.U && !lkPend && !lkq.io.deq.valid
+      val scanDone = sent && scanLeft === 0.U
+      when(visitsIssued && scanDone) {
+        when(moreOfCell || nextSet) {
+          sent := false.B; vIssue := 0.U; needClear := true.B
+          // The next cell is known already: its visits' lookups need not wait for its scan.
+          when(!moreOfCell) { p := nextLeader; curCell := nextCell; haveCell := true.B; cells := cells + 1.U }
+        }.elsewhen(stream.io.idle && matcher.io.idle) {
           state := S.walk; walkPend := false.B // bIssue is already the next bucket
         }
       }

@@ -13,7 +13,7 @@ import chisel3.util._
   * (in.ready low) while a streamed sphere has more than one hit left, and out is valid/ready.
   */
 class ChunkMatcherIO(p: WorldKey, chunk: Int) extends Bundle {
-  /** Empties the chunk (between cells). */
+  /** Empties the chunk (between cells); with a load in the same cycle, that is the first member. */
   val clear = Input(Bool())
   /** Adds a member to the chunk (at most `chunk` after a clear; more is refused: overflow). */
   val load = Flipped(Valid(p.cloneType))
@@ -36,11 +36,15 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int) extends M
   private val used = RegInit(0.U(log2Ceil(chunk + 1).W))
   private val over = RegInit(false.B)
   io.overflow := over
-  when(io.clear) { used := 0.U; over := false.B }
-    .elsewhen(io.load.valid) {
-      when(used === chunk.U) { over := true.B }
-        .otherwise { members(used(math.max(1, log2Ceil(chunk)) - 1, 0)) := io.load.bits; used := used + 1.U }
-    }
+  private val slotW = math.max(1, log2Ceil(chunk))
+  // A clear and a load in one cycle start the new chunk with that member.
+  when(io.clear) {
+    used := io.load.valid.asUInt; over := false.B
+    when(io.load.valid) { members(0) := io.load.bits }
+  }.elsewhen(io.load.valid) {
+    when(used === chunk.U) { over := true.B }
+      .otherwise { members(used(slotW - 1, 0)) := io.load.bits; used := used + 1.U }
+  }
 
   private def boxPass(a: WorldKey, b: WorldKey): Bool = {
     val bound = a.qr +& b.qr +& io.slack

@@ -35,9 +35,10 @@ class KeyRecord(val cellBits: Int, val qWidth: Int) extends Bundle {
   val excluded = Bool() // a non-finite field: never paired
 }
 
-/** A candidate generator's visit: the cell whose entries stream past the chunk, and whether
-  * it is the chunk's own cell. */
+/** What travels with a candidate generator's stream range: a chunk scan, or a visit (the
+  * cell whose entries stream past the chunk, and whether it is the chunk's own cell). */
 class WorldVisit(val cellBits: Int) extends Bundle {
+  val scan = Bool()
   val cell = Vec(3, SInt(cellBits.W))
   val own = Bool()
 }
