@@ -28,12 +28,14 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
 
 /** The world-mode broad phase (docs/afu.md, "World mode: the broad phase"): given the
   * number of spheres, it reads the sphere table (compute-format x, y, z, r at `sphere.addr`,
-  * data the cycle after) twice and emits every candidate pair (i < j) once on `pairs`,
-  * exactly BroadPhaseModel.run's candidates. Passes: (1) read every sphere: SphereKeys' need
-  * and top into CellExponent, while BucketSort clears its counters; (2) read every sphere
-  * again: keys at the chosen k into the key table, small spheres counted into their bucket,
-  * large ones into the large list; (3) the prefix sum; (4) the scatter, from the key table;
-  * (5) the CandidateGenerator. One sphere a cycle in each pass. The golden model is
+  * data the cycle after) and emits every candidate pair (i < j) once on `pairs`, exactly
+  * BroadPhaseModel.run's candidates. Passes: (1) read every sphere: SphereKeys' need and top
+  * into CellExponent, while BucketSort clears its counters; (2) read every sphere again, keys
+  * at the chosen k: small spheres counted into their bucket, large ones into the large list;
+  * (3) the prefix sum; (4) the scatter, reading the spheres a third time; (5) the
+  * CandidateGenerator, whose key records SphereKeys recomputes from the sphere table (no
+  * key table: the table the AFU holds anyway is the only per-sphere RAM besides the sort's).
+  * One sphere a cycle in each pass. The golden model is
   * BroadPhaseModel; the spec BroadPhaseSpec compares them pair for pair.
   */
 class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int) extends Bundle {
@@ -66,8 +68,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val keys = Module(new SphereKeys(p, bp, keysLatency))
   private val cellExp = Module(new CellExponent(p, bp))
   private val sort = Module(new BucketSort(maxSpheres, tableLog2))
-  private val gen = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots))
-  private val keyTable = SyncReadMem(maxSpheres, new KeyRecord(bp.cellBits, qWidth))
+  private val gen = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
+    keyLatency = 1 + keysLatency))
   private val larges = Reg(Vec(largeSlots, new WorldKey(itemW, bp.cellBits, qWidth)))
 
   private object S extends ChiselEnum { val idle, load, classify, prefix, scatter, generate = Value }
@@ -89,14 +91,15 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     Mux(t > tableLog2.U, tableLog2.U, t)
   }
 
-  // --- passes 1 and 2: read the sphere table, one sphere a cycle, through SphereKeys --------
-  private val reading = (state === S.load || state === S.classify) && i < num
-  io.sphere.addr := i(itemW - 1, 0)
+  // --- passes 1, 2 and 4: read the sphere table, one sphere a cycle, through SphereKeys -----
+  // (in pass 5 the generator reads it, for its key records)
+  private val reading = (state === S.load || state === S.classify || state === S.scatter) && i < num
+  io.sphere.addr := Mux(state === S.generate, gen.io.keyAddr, i(itemW - 1, 0))
   private val rdValid = RegNext(reading, false.B)
   private val rdIndex = RegNext(i(itemW - 1, 0))
   keys.io.in.valid := rdValid
   keys.io.in.sphere := io.sphere.data
-  keys.io.in.k := Mux(state === S.classify, cellExp.io.k, 0.S) // need and top do not depend on k
+  keys.io.in.k := Mux(state === S.load, 0.S, cellExp.io.k) // need and top do not depend on k
   private val kIndex = Pipeline(rdIndex, keysLatency, true.B)
   private val ko = keys.io.out
   inflight := inflight + reading.asUInt - ko.valid.asUInt
@@ -113,8 +116,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val classified = ko.valid && state === S.classify
   private val rec = Wire(new KeyRecord(bp.cellBits, qWidth))
   rec.cell := ko.cell; rec.q := ko.q; rec.qr := ko.qr; rec.large := isLarge; rec.excluded := ko.nonFinite
+  gen.io.keyData := rec
   when(classified) {
-    keyTable.write(kIndex, rec)
     when(ko.nonFinite) { st.excluded := st.excluded + 1.U }
     when(isSmall) {
       st.small := st.small + 1.U
@@ -122,7 +125,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
     when(isLarge) {
       when(largeCount < bp.largeMax.U) {
-        larges(largeCount(math.max(1, log2Ceil(largeSlots)) - 1, 0)) := {
+        larges(VecIndex(largeCount, largeSlots)) := {
           val w = Wire(new WorldKey(itemW, bp.cellBits, qWidth))
           w.index := kIndex; w.cell := ko.cell; w.q := ko.q; w.qr := ko.qr; w
         }
@@ -132,20 +135,14 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
   }
 
-  // --- pass 4: the scatter reads the key table (the generator reads it afterwards) -----------
-  private val scatterRead = state === S.scatter && i < num
-  private val keyRd = keyTable.read(Mux(state === S.scatter, i(itemW - 1, 0), gen.io.keyAddr))
-  private val scValid = RegNext(scatterRead, false.B)
-  private val scIndex = RegNext(i(itemW - 1, 0))
-  gen.io.keyData := keyRd
-
   sort.io.usedLog2 := usedLog2
   sort.io.clear := io.start && state === S.idle
   sort.io.prefix := state === S.prefix && !sent
-  sort.io.in.valid := (classified && isSmall) || (scValid && !keyRd.large && !keyRd.excluded)
+  private val scattered = ko.valid && state === S.scatter
+  sort.io.in.valid := (classified || scattered) && isSmall
   sort.io.in.bits.scatter := state === S.scatter
-  sort.io.in.bits.bucket := Mux(state === S.scatter, CellHash(keyRd.cell, tableLog2, usedLog2), CellHash(ko.cell, tableLog2, usedLog2))
-  sort.io.in.bits.item := Mux(state === S.scatter, scIndex, kIndex)
+  sort.io.in.bits.bucket := CellHash(ko.cell, tableLog2, usedLog2)
+  sort.io.in.bits.item := kIndex
   assert(!sort.io.in.valid || sort.io.in.ready, "BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)")
   sort.io.lookup.bucket := gen.io.lookup.bucket
   gen.io.lookup.begin := sort.io.lookup.begin; gen.io.lookup.end := sort.io.lookup.end
@@ -195,9 +192,11 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
     is(S.scatter) {
       st.cycScatter := st.cycScatter + 1.U
-      when(scatterRead) { i := i + 1.U }
+      when(reading) { i := i + 1.U }
       // The last scatter write lands the cycle after its request: one cycle of margin.
-      when(i === num && !scValid && !RegNext(sort.io.in.fire, false.B)) { state := S.generate; sent := false.B }
+      when(i === num && inflight === 0.U && !ko.valid && !RegNext(sort.io.in.fire, false.B)) {
+        state := S.generate; sent := false.B
+      }
     }
     is(S.generate) {
       sent := true.B

@@ -34,7 +34,7 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
   }
   val mark = Valid(new Bundle { val addr = UInt(itemW.W); val item = UInt(itemW.W) })
   val keyAddr = Output(UInt(itemW.W))
-  val keyData = Input(new KeyRecord(cellBits, qWidth)) // the cycle after
+  val keyData = Input(new KeyRecord(cellBits, qWidth)) // keyLatency cycles after keyAddr
   val pairs = Decoupled(new WorldPair(itemW))
   val busy = Output(Bool())
   val inLargePass = Output(Bool())
@@ -47,12 +47,12 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
 }
 
 class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
-                         largeSlots: Int) extends Module {
-  override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L$largeSlots"
+                         largeSlots: Int, keyLatency: Int = 1) extends Module {
+  override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r$keyLatency"
   val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots))
 
   private val visitT = new WorldVisit(cellBits)
-  private val stream = Module(new KeyStream(visitT, itemW, countW, cellBits, qWidth))
+  private val stream = Module(new KeyStream(visitT, itemW, countW, cellBits, qWidth, keyLatency))
   private val matcher = Module(new ChunkMatcher(itemW, cellBits, qWidth, chunk))
   io.entry.addr := stream.io.entryAddr
   stream.io.entryItem := io.entry.item
@@ -224,7 +224,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       val idx = li +& lj
       when(lj =/= chunk.U && idx < io.largeCount) {
         matcher.io.load.valid := true.B
-        matcher.io.load.bits := io.larges(idx(math.max(1, log2Ceil(largeSlots)) - 1, 0))
+        matcher.io.load.bits := io.larges(VecIndex(idx, largeSlots))
         lj := lj + 1.U
       }.otherwise {
         state := S.largeStream; sent := false.B

@@ -36,14 +36,13 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int) extends M
   private val used = RegInit(0.U(log2Ceil(chunk + 1).W))
   private val over = RegInit(false.B)
   io.overflow := over
-  private val slotW = math.max(1, log2Ceil(chunk))
   // A clear and a load in one cycle start the new chunk with that member.
   when(io.clear) {
     used := io.load.valid.asUInt; over := false.B
     when(io.load.valid) { members(0) := io.load.bits }
   }.elsewhen(io.load.valid) {
     when(used === chunk.U) { over := true.B }
-      .otherwise { members(used(slotW - 1, 0)) := io.load.bits; used := used + 1.U }
+      .otherwise { members(VecIndex(used, chunk)) := io.load.bits; used := used + 1.U }
   }
 
   private def boxPass(a: WorldKey, b: WorldKey): Bool = {
@@ -67,7 +66,7 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int) extends M
   private val slot = PriorityEncoder(pending)
   private val lastHit = PopCount(pending) <= 1.U
   io.out.valid := pending.orR
-  private val m = members(slot)
+  private val m = members(VecIndex(slot, chunk))
   io.out.bits.i := Mux(m.index < entry.index, m.index, entry.index)
   io.out.bits.j := Mux(m.index < entry.index, entry.index, m.index)
   io.in.ready := !pending.orR || (lastHit && io.out.ready)

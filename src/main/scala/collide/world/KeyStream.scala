@@ -27,21 +27,32 @@ class StreamStage[T <: Data](tagType: T, countW: Int) extends Bundle {
   val tag = tagType.cloneType
 }
 
+/** A position past its entry read, waiting for its key record. */
+class StreamKeyStage[T <: Data](tagType: T, itemW: Int, countW: Int) extends Bundle {
+  val pos = UInt(countW.W)
+  val tag = tagType.cloneType
+  val item = UInt(itemW.W)
+  val mark = Bool()
+}
+
 /** Streams ranges of the broad phase's sorted table: for each position the entry (sphere
-  * index and mark) from BucketSort, then that sphere's key record, one position a cycle
-  * through two one-cycle RAM reads. Ranges follow each other without a gap (an empty range
+  * index and mark) from BucketSort, a cycle later, then that sphere's key record,
+  * `keyLatency` cycles after its address (the broad phase recomputes it from the sphere
+  * table), one position a cycle. Ranges follow each other without a gap (an empty range
   * costs its accepting cycle). The reads never stall: a position is read only when the
   * output queue has room for everything in flight, so `out` may apply back-pressure.
   */
-class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidth: Int, depth: Int = 4) extends Module {
-  require(depth >= 3, "the queue must cover the two reads in flight plus one")
+class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidth: Int, keyLatency: Int = 1)
+    extends Module {
+  require(keyLatency >= 1, s"keyLatency must be >= 1, got $keyLatency")
+  private val depth = keyLatency + 3 // everything in flight, plus one: full rate when out is ready
   val io = IO(new Bundle {
     val req = Flipped(Decoupled(new StreamRange(tag, countW)))
     val entryAddr = Output(UInt(itemW.W))
     val entryItem = Input(UInt(itemW.W)) // a cycle after entryAddr
     val entryMark = Input(Bool())
     val keyAddr = Output(UInt(itemW.W))
-    val keyData = Input(new KeyRecord(cellBits, qWidth)) // a cycle after keyAddr
+    val keyData = Input(new KeyRecord(cellBits, qWidth)) // keyLatency cycles after keyAddr
     val out = Decoupled(new StreamItem(tag, itemW, countW, cellBits, qWidth))
     /** No range held, nothing in flight or queued. */
     val idle = Output(Bool())
@@ -52,10 +63,11 @@ class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidt
   private val q = Module(new Queue(new StreamItem(tag, itemW, countW, cellBits, qWidth), depth))
 
   private val s1v = RegInit(false.B); private val s1 = Reg(new StreamStage(tag, countW))
-  private val s2v = RegInit(false.B); private val s2 = Reg(new StreamStage(tag, countW))
-  private val s2item = Reg(UInt(itemW.W)); private val s2mark = Reg(Bool())
+  private val kv = Seq.fill(keyLatency)(RegInit(false.B))
+  private val ks = Seq.fill(keyLatency)(Reg(new StreamKeyStage(tag, itemW, countW)))
 
-  private val room = q.io.count +& s1v.asUInt +& s2v.asUInt < depth.U
+  private val inFlight = (s1v +: kv).map(_.asUInt).reduce(_ +& _)
+  private val room = q.io.count +& inFlight < depth.U
   private val issue = busy && room
   private val last = issue && cur.begin + 1.U === cur.end
   io.req.ready := !busy || last
@@ -72,16 +84,19 @@ class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidt
 
   private val item = Mux(s1.direct, s1.pos(itemW - 1, 0), io.entryItem)
   io.keyAddr := item
-  s2v := s1v
-  when(s1v) { s2 := s1; s2item := item; s2mark := !s1.direct && io.entryMark }
+  kv.head := s1v
+  when(s1v) {
+    ks.head.pos := s1.pos; ks.head.tag := s1.tag; ks.head.item := item; ks.head.mark := !s1.direct && io.entryMark
+  }
+  for (i <- 1 until keyLatency) { kv(i) := kv(i - 1); ks(i) := ks(i - 1) }
 
-  q.io.enq.valid := s2v
-  q.io.enq.bits.pos := s2.pos
-  q.io.enq.bits.item := s2item
-  q.io.enq.bits.mark := s2mark
+  q.io.enq.valid := kv.last
+  q.io.enq.bits.pos := ks.last.pos
+  q.io.enq.bits.item := ks.last.item
+  q.io.enq.bits.mark := ks.last.mark
   q.io.enq.bits.rec := io.keyData
-  q.io.enq.bits.tag := s2.tag
-  assert(!s2v || q.io.enq.ready, "KeyStream: a read came back with no room (credit accounting)")
+  q.io.enq.bits.tag := ks.last.tag
+  assert(!kv.last || q.io.enq.ready, "KeyStream: a read came back with no room (credit accounting)")
   io.out <> q.io.deq
-  io.idle := !busy && !s1v && !s2v && !q.io.deq.valid
+  io.idle := !busy && !s1v && !kv.reduce(_ || _) && !q.io.deq.valid
 }

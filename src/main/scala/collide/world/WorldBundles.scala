@@ -1,6 +1,12 @@
 package collide.world
 
 import chisel3._
+import chisel3.util.log2Ceil
+
+/** An index into a Vec of n entries, cut to the Vec's index width (none for n = 1). */
+object VecIndex {
+  def apply(i: UInt, n: Int): UInt = if (n <= 1) 0.U else i(log2Ceil(n) - 1, 0)
+}
 
 /** One sphere as the candidate generator sees it: its index and SphereKeys' keys. */
 class WorldKey(val itemW: Int, val cellBits: Int, val qWidth: Int) extends Bundle {
@@ -25,8 +31,8 @@ class WorldPair(val itemW: Int) extends Bundle {
   val j = UInt(itemW.W)
 }
 
-/** What the broad phase keeps of each sphere between its passes (the key table, one entry
-  * per sphere index): SphereKeys' keys at this world's k and its class. */
+/** A sphere's key record: SphereKeys' keys at this world's k and its class, as the
+  * candidate generator reads it (recomputed from the sphere table, not stored). */
 class KeyRecord(val cellBits: Int, val qWidth: Int) extends Bundle {
   val cell = Vec(3, SInt(cellBits.W))
   val q = Vec(3, SInt(qWidth.W))

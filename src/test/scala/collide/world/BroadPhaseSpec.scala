@@ -7,7 +7,7 @@ import chiseltest.internal.CachingAnnotation
 import org.scalatest.flatspec.AnyFlatSpec
 import collide.fp.FloatFormat
 import collide.scpu.ScpuConfig
-import collide.testutil.Seeds
+import collide.testutil.{Seeds, Slow}
 import collide.world.BroadPhaseWorlds._
 import collide.world.model._
 
@@ -128,8 +128,10 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
+  // fp16 in every run; bf16 and fp64 (their keys are covered by SphereKeysSpec) with SLOW=1.
   for (cfg <- Seq(ScpuConfig.fp16, ScpuConfig.bf16, ScpuConfig.fp64)) {
-    it should s"match the golden model in ${cfg.name}, whose floor and margins differ" in {
+    val name = s"match the golden model in ${cfg.name}, whose floor and margins differ"
+    def body(): Unit = {
       val rng = Seeds.rng(s"BroadPhaseSpec-${cfg.name}")
       val model = new BroadPhaseModel(cfg)
       test(new BroadPhase(cfg.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
@@ -139,6 +141,7 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
           check(dut, model, label, bits(cfg.linkFormat, w), rng, 0.9)
       }
     }
+    if (cfg == ScpuConfig.fp16) it should name in body() else it should name taggedAs (Slow) in body()
   }
 
   it should "exclude non-finite spheres, fill the table to maxSpheres, and refuse more than maxSpheres" in {
