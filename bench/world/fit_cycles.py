@@ -83,9 +83,10 @@ def main(argv=None):
     coef2, worst2 = fit(rows, "total", terms)
     lines += ["## Against the work the RTL does", "",
               f"total cycles = {formula(coef2, terms)} (worst residual {worst2:.1f} %).", "",
-              "What the design predicts for each term: spheres 3 (two table reads and the scatter, one a cycle);",
-              "buckets 3 (the clear, which the first read overlaps, the prefix sum and the walk, one bucket a",
-              "cycle); probes 1 (a sphere streamed past a chunk a cycle); chunks: a fixed cost per chunk (the",
+              "What the design predicts for each term: spheres 3 (three reads of the table, one sphere a cycle);",
+              "buckets 2/8 or more (the prefix sum and the walk a word of 8 buckets a cycle; the clear overlaps",
+              "the first read; an occupied bucket costs the walk more); probes 1 (a sphere streamed past a chunk",
+              "a cycle); chunks: a fixed cost per chunk (the",
               "scan's entries, pipeline fill, the drain before the next bucket); candidates: a probe with h hits",
               "holds the stream for h cycles (one pair a cycle leaves the matcher). The fitted terms are",
               "correlated (chunks with buckets, candidates with probes), so read them together, not one by one.", ""]

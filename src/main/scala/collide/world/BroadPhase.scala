@@ -58,7 +58,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   val tableLog2: Int = math.min(bp.bucketsLog2, log2Ceil(2 * maxSpheres))
   private val largeSlots = math.max(1, bp.largeMax)
   override def desiredName =
-    s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}"
+    s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}_w${bp.wordLog2}"
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres))
   private val itemW = io.itemW
   private val countW = io.countW
@@ -67,9 +67,9 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
 
   private val keys = Module(new SphereKeys(p, bp, keysLatency))
   private val cellExp = Module(new CellExponent(p, bp))
-  private val sort = Module(new BucketSort(maxSpheres, tableLog2))
+  private val sort = Module(new BucketSort(maxSpheres, tableLog2, bp.wordLog2))
   private val gen = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
-    keyLatency = 1 + keysLatency))
+    keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2)))
   private val larges = Reg(Vec(largeSlots, new WorldKey(itemW, bp.cellBits, qWidth)))
 
   private object S extends ChiselEnum { val idle, load, classify, prefix, scatter, generate = Value }
@@ -146,6 +146,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   assert(!sort.io.in.valid || sort.io.in.ready, "BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)")
   sort.io.lookup.bucket := gen.io.lookup.bucket
   gen.io.lookup.begin := sort.io.lookup.begin; gen.io.lookup.end := sort.io.lookup.end
+  gen.io.lookup.word := sort.io.lookup.word
   sort.io.entry.addr := gen.io.entry.addr
   gen.io.entry.item := sort.io.entry.item; gen.io.entry.mark := sort.io.entry.mark
   sort.io.mark := gen.io.mark

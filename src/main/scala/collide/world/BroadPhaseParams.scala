@@ -22,6 +22,8 @@ package collide.world
   * @param filterFracBits the box filter's fixed point: 2^-filterFracBits of a cell
   * @param chunk      spheres of one cell a candidate generator holds at once (its
   *                   comparators); a fuller cell is visited once per chunk
+  * @param wordLog2   the sort's counters sit 2^wordLog2 to a RAM word: clear, prefix sum
+  *                   and the generator's walk over the buckets take a word a cycle
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -31,7 +33,8 @@ final case class BroadPhaseParams(
     marginDen: Int = 8,
     cellOverError: Int = 5,
     filterFracBits: Int = 8,
-    chunk: Int = 16
+    chunk: Int = 16,
+    wordLog2: Int = 3
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -40,6 +43,7 @@ final case class BroadPhaseParams(
   require(cellOverError >= 5, s"cellOverError must be >= 5 (the margin's proof needs 1/32), got $cellOverError")
   require(filterFracBits >= 0 && filterFracBits <= 24, s"filterFracBits must be 0..24, got $filterFracBits")
   require(chunk >= 1 && chunk <= 256, s"chunk must be 1..256, got $chunk")
+  require(wordLog2 >= 0 && wordLog2 <= 5, s"wordLog2 must be 0..5, got $wordLog2")
 
   val buckets: Int = 1 << bucketsLog2
 
@@ -59,7 +63,7 @@ object BroadPhaseParams {
   val default: BroadPhaseParams = BroadPhaseParams()
   /** Four buckets and one-sphere chunks: every cell collides with others in the hash and
     * every cell is visited once per sphere, to test that nothing breaks. */
-  val tinyTable: BroadPhaseParams = default.copy(bucketsLog2 = 2, chunk = 1)
+  val tinyTable: BroadPhaseParams = default.copy(bucketsLog2 = 2, chunk = 1, wordLog2 = 0)
   /** No large list: one huge sphere makes the cell huge (the all-pairs worst case). */
   val noLarge: BroadPhaseParams = default.copy(largeMax = 0)
 }

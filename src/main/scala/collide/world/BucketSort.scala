@@ -5,9 +5,10 @@ import chisel3.util._
 
 /** The broad phase's counting sort of sphere indices by bucket, in on-chip RAM, one item a
   * cycle (BroadPhaseModel.countingSort is its golden model). A world is sorted in four
-  * passes the caller sequences: `clear` (one bucket a cycle), `count` every item, `prefix`
-  * (one bucket a cycle: each count becomes its bucket's start), `scatter` every item again in
-  * the same order. Then bucket b holds entries [end(b-1), end(b)) (end(-1) = 0), which
+  * passes the caller sequences: `clear`, `count` every item, `prefix` (each count becomes its
+  * bucket's start), `scatter` every item again in the same order. The counters are kept in
+  * words of 2^wordLog2 buckets, so clear and prefix take a word a cycle (8 buckets by
+  * default), while count and scatter read-modify-write one counter of a word a cycle. Then bucket b holds entries [end(b-1), end(b)) (end(-1) = 0), which
   * `lookup` and `entry` read with one cycle of latency.
   *
   * Count and scatter are read-modify-writes of one counter a cycle; a write is forwarded to
@@ -19,7 +20,7 @@ import chisel3.util._
   * has put in a chunk already): scatter writes it clear, so a new world needs no clearing
   * pass, and `mark` sets it (rewriting the item it was given). Never mark while scattering.
   */
-class BucketSortIO(maxItems: Int, bucketsLog2: Int) extends Bundle {
+class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int) extends Bundle {
   val itemW = log2Ceil(maxItems)
   val countW = log2Ceil(maxItems + 1)
   /** log2 of the buckets in use this world (<= bucketsLog2): what clear and prefix walk. */
@@ -36,6 +37,9 @@ class BucketSortIO(maxItems: Int, bucketsLog2: Int) extends Bundle {
     val bucket = Input(UInt(bucketsLog2.W))
     val begin = Output(UInt(countW.W)) // the cycle after
     val end = Output(UInt(countW.W))
+    /** The ends of every bucket in `bucket`'s word (for a walk that skips empty buckets a
+      * word a cycle); with `bucket` the word's first, `begin` is the first one's begin. */
+    val word = Output(Vec(perWord, UInt(countW.W)))
   }
   val entry = new Bundle {
     val addr = Input(UInt(itemW.W))
@@ -51,48 +55,58 @@ class BucketSortIO(maxItems: Int, bucketsLog2: Int) extends Bundle {
   val badBucket = Output(Bool())
 }
 
-class BucketSort(maxItems: Int, bucketsLog2: Int) extends Module {
+class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3) extends Module {
   require(maxItems >= 2 && bucketsLog2 >= 1 && bucketsLog2 <= 24)
-  override def desiredName = s"BucketSort_n${maxItems}_b$bucketsLog2"
-  val io = IO(new BucketSortIO(maxItems, bucketsLog2))
-  private val buckets = 1 << bucketsLog2
+  require(wordLog2 >= 0 && wordLog2 <= 5, s"wordLog2 must be 0..5, got $wordLog2")
+  private val wl = math.min(wordLog2, bucketsLog2)
+  override def desiredName = s"BucketSort_n${maxItems}_b${bucketsLog2}_w$wl"
+  private val perWord = 1 << wl
+  val io = IO(new BucketSortIO(maxItems, bucketsLog2, perWord))
+  private val wordsLog2 = bucketsLog2 - wl
   private val countW = io.countW
+  private def wordOf(b: UInt): UInt = if (wordsLog2 == 0) 0.U else (b >> wl)(wordsLog2 - 1, 0)
+  private def laneOf(b: UInt): UInt = if (wl == 0) 0.U else b(wl - 1, 0)
 
   // Read-first, as block RAM returns old data on a same-cycle write: the forwarding below
   // is then what makes back-to-back repeats right, in simulation as on the FPGA.
-  private val counts = SyncReadMem(buckets, UInt(countW.W), SyncReadMem.ReadFirst)
+  private val counts = SyncReadMem(1 << wordsLog2, Vec(perWord, UInt(countW.W)), SyncReadMem.ReadFirst)
   private val entries = SyncReadMem(maxItems, UInt((io.itemW + 1).W)) // mark ## item
 
   private object S extends ChiselEnum { val idle, clearing, summing = Value }
   private val state = RegInit(S.idle)
-  private val walk = Reg(UInt((bucketsLog2 + 1).W))
+  private val walk = Reg(UInt((wordsLog2 + 1).W)) // the word clear and prefix are at
   private val used = (1.U((bucketsLog2 + 1).W) << io.usedLog2)(bucketsLog2, 0)
+  // Words holding used buckets (at least one: a world of one bucket still has a word).
+  private val usedWords = {
+    val w = used >> wl
+    Mux(w === 0.U, 1.U, w)
+  }
   private val counted = RegInit(0.U(countW.W))
   private val scattered = RegInit(0.U(countW.W))
   private val bad = RegInit(false.B)
   io.busy := state =/= S.idle
   io.counted := counted; io.scattered := scattered; io.badBucket := bad
 
-  // --- count / scatter: a two-stage read-modify-write -------------------------------------
+  // --- count / scatter: a two-stage read-modify-write of one counter ----------------------
   private val inRange = io.in.bits.bucket < used
   io.in.ready := state === S.idle && !io.clear && !io.prefix
   private val fire = io.in.fire && inRange
   when(io.in.fire && !inRange) { bad := true.B }
-  private val rd = counts.read(io.in.bits.bucket, fire)
+  private val rd = counts.read(wordOf(io.in.bits.bucket), fire)
   private val s1 = RegNext(fire, false.B)
   private val s1b = RegEnable(io.in.bits.bucket, fire)
   private val s1scatter = RegEnable(io.in.bits.scatter, fire)
   private val s1item = RegEnable(io.in.bits.item, fire)
-  // The write of the previous cycle, for the read that was issued alongside it.
+  // The word written the cycle before, for the read that was issued alongside it.
   private val fwdValid = RegInit(false.B)
-  private val fwdB = Reg(UInt(bucketsLog2.W))
-  private val fwdV = Reg(UInt(countW.W))
-  private val old = Mux(fwdValid && fwdB === s1b, fwdV, rd)
-  private val next = old + 1.U
+  private val fwdW = Reg(UInt(math.max(1, wordsLog2).W))
+  private val fwdV = Reg(Vec(perWord, UInt(countW.W)))
+  private val oldWord = Mux(fwdValid && fwdW === wordOf(s1b), fwdV, rd)
+  private val old = oldWord(laneOf(s1b))
+  private val newWord = VecInit((0 until perWord).map(l => Mux(laneOf(s1b) === l.U, old + 1.U, oldWord(l))))
   fwdValid := s1
   when(s1) {
-    counts.write(s1b, next)
-    fwdB := s1b; fwdV := next
+    fwdW := wordOf(s1b); fwdV := newWord
     when(s1scatter) { scattered := scattered + 1.U }
       .otherwise { counted := counted + 1.U }
   }
@@ -102,37 +116,46 @@ class BucketSort(maxItems: Int, bucketsLog2: Int) extends Module {
       Mux(scatterWrite, 0.U(1.W) ## s1item, 1.U(1.W) ## io.mark.bits.item))
   }
 
-  // --- clear and prefix: one bucket a cycle ---------------------------------------------
+  // --- clear and prefix: one word a cycle --------------------------------------------------
   private val sum = Reg(UInt(countW.W))
-  private val sumRd = counts.read(walk(bucketsLog2 - 1, 0), state === S.summing && walk < used)
-  private val sumS1 = RegNext(state === S.summing && walk < used, false.B)
-  private val sumB = RegNext(walk(bucketsLog2 - 1, 0))
+  private val walkW = if (wordsLog2 == 0) 0.U else walk(wordsLog2 - 1, 0)
+  private val sumRead = state === S.summing && walk < usedWords
+  private val sumRd = counts.read(walkW, sumRead)
+  private val sumS1 = RegNext(sumRead, false.B)
+  private val sumW = RegNext(walkW)
+  private val sumLast = RegNext(walk + 1.U === usedWords)
+  // Exclusive prefix within the word, on top of the running sum.
+  private val starts = VecInit(sumRd.scanLeft(sum)(_ + _).take(perWord))
   when(io.clear && state === S.idle) {
     state := S.clearing; walk := 0.U; counted := 0.U; scattered := 0.U; bad := false.B
   }.elsewhen(io.prefix && state === S.idle) {
     state := S.summing; walk := 0.U; sum := 0.U
   }
+  private val write = WireDefault(s1)
+  private val writeW = WireDefault(wordOf(s1b))
+  private val writeV = WireDefault(newWord)
   when(state === S.clearing) {
-    counts.write(walk(bucketsLog2 - 1, 0), 0.U)
+    write := true.B; writeW := walkW; writeV := VecInit(Seq.fill(perWord)(0.U(countW.W)))
     walk := walk + 1.U
-    when(walk + 1.U === used) { state := S.idle }
+    when(walk + 1.U === usedWords) { state := S.idle }
   }
-  when(state === S.summing) {
-    when(walk < used) { walk := walk + 1.U }
-  }
+  when(state === S.summing && walk < usedWords) { walk := walk + 1.U }
   when(sumS1) {
-    counts.write(sumB, sum) // exclusive: the start of this bucket
-    sum := sum + sumRd
-    when(sumB +& 1.U === used) { state := S.idle }
+    write := true.B; writeW := sumW; writeV := starts
+    sum := sumRd.reduce(_ + _) + sum
+    when(sumLast) { state := S.idle }
   }
+  when(write) { counts.write(writeW, writeV) }
 
   // --- reads for the candidate generators -------------------------------------------------
   private val lb = io.lookup.bucket
-  private val endRd = counts.read(lb)
-  private val beginRd = counts.read(lb - 1.U)
+  private val prev = lb - 1.U
+  private val endRd = counts.read(wordOf(lb))
+  private val beginRd = counts.read(wordOf(prev))
   private val lbZero = RegNext(lb === 0.U)
-  io.lookup.end := endRd
-  io.lookup.begin := Mux(lbZero, 0.U, beginRd)
+  io.lookup.end := endRd(RegNext(laneOf(lb)))
+  io.lookup.word := endRd
+  io.lookup.begin := Mux(lbZero, 0.U, beginRd(RegNext(laneOf(prev))))
   private val entryRd = entries.read(io.entry.addr)
   io.entry.item := entryRd(io.itemW - 1, 0)
   io.entry.mark := entryRd(io.itemW)

@@ -14,8 +14,8 @@ import collide.world.model.BroadPhaseModel
   * of the large list meet every non-excluded sphere. The pair stream is exactly
   * BroadPhaseModel.run's candidates: the grid part in the same order, the large part as a set.
   */
-class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, largeSlots: Int)
-    extends Bundle {
+class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, largeSlots: Int,
+                           perWord: Int) extends Bundle {
   val start = Input(Bool())
   val usedLog2 = Input(UInt(log2Ceil(bucketsLog2 + 1).W))
   val num = Input(UInt(countW.W)) // spheres in the world (the large pass streams them all)
@@ -26,6 +26,7 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
     val bucket = Output(UInt(bucketsLog2.W))
     val begin = Input(UInt(countW.W)) // the cycle after
     val end = Input(UInt(countW.W))
+    val word = Input(Vec(perWord, UInt(countW.W))) // BucketSort's: the ends of bucket's word
   }
   val entry = new Bundle {
     val addr = Output(UInt(itemW.W))
@@ -47,9 +48,11 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
 }
 
 class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
-                         largeSlots: Int, keyLatency: Int = 1) extends Module {
-  override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r$keyLatency"
-  val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots))
+                         largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0) extends Module {
+  require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
+  private val perWord = 1 << wordLog2
+  override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2"
+  val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord))
 
   private val visitT = new WorldVisit(cellBits)
   private val stream = Module(new KeyStream(visitT, itemW, countW, cellBits, qWidth, keyLatency))
@@ -141,13 +144,21 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       }
     }
     is(S.walk) {
+      // A word of buckets a cycle: the lookup of bIssue returns the ends of its whole word,
+      // and the first occupied bucket at or after bIssue starts a chunk; none, the next word.
       val issueOk = bIssue < used
       io.lookup.bucket := bIssue(math.max(1, bucketsLog2) - 1, 0)
       walkPend := issueOk; walkB := bIssue
-      when(issueOk) { bIssue := bIssue + 1.U }
-      when(walkPend && io.lookup.begin =/= io.lookup.end) {
-        p := io.lookup.begin; bEnd := io.lookup.end; haveCell := false.B
-        bIssue := walkB + 1.U; walkPend := false.B; cells := cells + 1.U
+      when(issueOk) { bIssue := ((bIssue >> wordLog2) + 1.U) << wordLog2 }
+      val base = (walkB >> wordLog2) << wordLog2
+      val from = if (wordLog2 == 0) 0.U else walkB(wordLog2 - 1, 0)
+      val ends = io.lookup.word
+      val begins = io.lookup.begin +: ends.init // lane 0's begin is right when walkB is lane 0
+      val occupied = VecInit((0 until perWord).map(l => l.U >= from && base + l.U < used && ends(l) =/= begins(l)))
+      val lane = PriorityEncoder(occupied.asUInt)
+      when(walkPend && occupied.asUInt.orR) {
+        p := VecInit(begins)(lane); bEnd := ends(lane); haveCell := false.B
+        bIssue := base + lane + 1.U; walkPend := false.B; cells := cells + 1.U
         startChunk()
       }.elsewhen(!walkPend && !issueOk) {
         startLargePass()

@@ -67,9 +67,12 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  it should "sort like the golden model: repeated buckets back to back, gaps, empty and full worlds, one after another, each scatter clearing the marks of the last" in {
-    val rng = Seeds.rng("BucketSortSpec")
-    test(new BucketSort(maxItems, bucketsLog2)) { dut =>
+  // Counters one to a word (wordLog2 0) and eight to a word (the default: clear and prefix
+  // a word a cycle).
+  for (wordLog2 <- Seq(3, 0))
+  it should s"sort like the golden model with ${1 << wordLog2} counters a word: repeated buckets back to back, gaps, empty and full worlds, one after another, each scatter clearing the marks of the last" in {
+    val rng = Seeds.rng(s"BucketSortSpec-w$wordLog2")
+    test(new BucketSort(maxItems, bucketsLog2, wordLog2)) { dut =>
       dut.clock.setTimeout(0)
       val worlds = Seq(
         ("empty", Seq.empty[Int], 3),
