@@ -79,7 +79,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val num = Reg(UInt(countW.W))
   private val usedLog2 = Reg(UInt(log2Ceil(tableLog2 + 1).W))
   private val i = Reg(UInt(countW.W))         // the next sphere (or key) to read
-  private val inflight = RegInit(0.U(3.W))    // sphere reads not yet through SphereKeys
+  private val inflight = RegInit(0.U(3.W))    // sphere reads not yet out of SphereKeys (0: ko.valid is low)
   private val sent = Reg(Bool())
   private val st = RegInit(0.U.asTypeOf(new BroadPhaseStatus(kWidth, countW)))
   private val largeCount = RegInit(0.U(log2Ceil(largeSlots + 1).W))
@@ -125,10 +125,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
     when(isLarge) {
       when(largeCount < bp.largeMax.U) {
-        larges(VecIndex(largeCount, largeSlots)) := {
-          val w = Wire(new WorldKey(itemW, bp.cellBits, qWidth))
-          w.index := kIndex; w.cell := ko.cell; w.q := ko.q; w.qr := ko.qr; w
-        }
+        larges(VecIndex(largeCount, largeSlots)) := WorldKey(itemW, kIndex, rec)
         largeCount := largeCount + 1.U
         st.large := st.large + 1.U
       }.otherwise { st.largeOverflow := true.B }
@@ -179,12 +176,12 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     is(S.load) {
       st.cycLoad := st.cycLoad + 1.U
       when(reading) { i := i + 1.U }
-      when(i === num && inflight === 0.U && !ko.valid && !sort.io.busy) { state := S.classify; i := 0.U }
+      when(i === num && inflight === 0.U && !sort.io.busy) { state := S.classify; i := 0.U }
     }
     is(S.classify) {
       st.cycClassify := st.cycClassify + 1.U
       when(reading) { i := i + 1.U }
-      when(i === num && inflight === 0.U && !ko.valid) { state := S.prefix; sent := false.B }
+      when(i === num && inflight === 0.U) { state := S.prefix; sent := false.B }
     }
     is(S.prefix) {
       st.cycPrefix := st.cycPrefix + 1.U
@@ -195,7 +192,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       st.cycScatter := st.cycScatter + 1.U
       when(reading) { i := i + 1.U }
       // The last scatter write lands the cycle after its request: one cycle of margin.
-      when(i === num && inflight === 0.U && !ko.valid && !RegNext(sort.io.in.fire, false.B)) {
+      when(i === num && inflight === 0.U && !RegNext(sort.io.in.fire, false.B)) {
         state := S.generate; sent := false.B
       }
     }

@@ -70,12 +70,6 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   io.busy := state =/= S.idle
   io.inLargePass := state === S.largeLoad || state === S.largeStream
 
-  private def key(index: UInt, r: KeyRecord): WorldKey = {
-    val k = Wire(new WorldKey(itemW, cellBits, qWidth))
-    k.index := index; k.cell := r.cell; k.q := r.q; k.qr := r.qr
-    k
-  }
-
   // Defaults: nothing requested, loaded, marked or matched.
   stream.io.req.valid := false.B
   stream.io.req.bits := DontCare
@@ -94,7 +88,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val cells, chunks, scanned, probes = RegInit(0.U(32.W))
   io.stats.cells := cells; io.stats.chunks := chunks; io.stats.scanned := scanned; io.stats.probes := probes
 
-  // --- bucket walk: a lookup a cycle; an occupied bucket stops it --------------------------
+  // --- bucket walk: a word of buckets a cycle; an occupied bucket stops it -----------------
   private val bIssue = Reg(UInt((bucketsLog2 + 1).W))
   private val walkPend = RegInit(false.B)
   private val walkB = Reg(UInt((bucketsLog2 + 1).W))
@@ -200,7 +194,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
           val same = it.rec.cell.asUInt === curCell.asUInt
           val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
           when(take) {
-            matcher.io.load.valid := true.B; matcher.io.load.bits := key(it.item, it.rec)
+            matcher.io.load.valid := true.B; matcher.io.load.bits := WorldKey(itemW, it.item, it.rec)
             io.mark.valid := true.B
             loaded := loaded + 1.U
             when(!haveCell) { curCell := it.rec.cell; haveCell := true.B }
@@ -210,7 +204,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         }
       }.otherwise {
         matcher.io.in.valid := stream.io.out.valid
-        matcher.io.in.bits.key := key(it.item, it.rec)
+        matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
         matcher.io.in.bits.cell := it.tag.cell; matcher.io.in.bits.own := it.tag.own
         matcher.io.in.bits.anyCell := false.B
         stream.io.out.ready := matcher.io.in.ready
@@ -248,7 +242,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       when(stream.io.req.fire) { sent := true.B }
       val it = stream.io.out.bits
       matcher.io.in.valid := stream.io.out.valid && !it.rec.excluded
-      matcher.io.in.bits.key := key(it.item, it.rec)
+      matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
       matcher.io.in.bits.cell := DontCare
       matcher.io.in.bits.anyCell := true.B
       matcher.io.in.bits.own := it.rec.large // two large spheres meet once: from the lower

@@ -16,6 +16,15 @@ class WorldKey(val itemW: Int, val cellBits: Int, val qWidth: Int) extends Bundl
   val qr = UInt(qWidth.W)
 }
 
+object WorldKey {
+  /** The key of sphere `index` (itemW bits) from its record. */
+  def apply(itemW: Int, index: UInt, r: KeyRecord): WorldKey = {
+    val k = Wire(new WorldKey(itemW, r.cellBits, r.qWidth))
+    k.index := index; k.cell := r.cell; k.q := r.q; k.qr := r.qr
+    k
+  }
+}
+
 /** A sphere streamed past the chunk, with what decides whether it pairs with a member: the
   * visited cell it must be in (unless anyCell, the large-sphere pass) and whether it must
   * have the larger index (own: the chunk's own cell, or a large sphere meeting large ones). */
