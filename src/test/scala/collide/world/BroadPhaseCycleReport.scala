@@ -3,7 +3,6 @@ package collide.world
 import java.nio.file.{Files, Paths}
 import scala.jdk.CollectionConverters._
 import chisel3._
-import chiseltest.RawTester
 import chiseltest._
 import chiseltest.simulator.{VerilatorBackendAnnotation, VerilatorCFlags}
 import collide.fp.FloatFormat
@@ -68,17 +67,8 @@ object BroadPhaseCycleReport {
         val world = bits(FloatFormat.fp32, ws)
         val want = model.run(world)
         val table = world.map(model.converted)
-        dut.io.num.poke(table.length.U)
-        dut.io.pairs.ready.poke(true.B)
-        dut.io.start.poke(true.B); dut.clock.step(); dut.io.start.poke(false.B)
-        val pairs = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
-        while (dut.io.busy.peek().litToBoolean) {
-          val addr = dut.io.sphere.addr.peek().litValue.toInt
-          if (dut.io.pairs.valid.peek().litToBoolean)
-            pairs += ((dut.io.pairs.bits.i.peek().litValue.toInt, dut.io.pairs.bits.j.peek().litValue.toInt))
-          dut.clock.step()
-          val d = if (addr < table.length) table(addr) else Seq.fill(4)(BigInt(0))
-          d.zipWithIndex.foreach { case (b, f) => dut.io.sphere.data(f).poke(b.U) }
+        val (pairs, _) = BroadPhaseDriver.run(dut, table, () => true, Long.MaxValue) { _ =>
+          throw new IllegalStateException(s"$name ${ws.length}: the broad phase never finished")
         }
         require(pairs.sorted == want.candidates.sorted, s"$name ${ws.length}: the RTL's pairs differ from the model's")
         val s = dut.io.status

@@ -16,22 +16,8 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
     ScpuConfig.fp64, ScpuConfig.fp24, ScpuConfig.fp16, ScpuConfig.bf16)
 
   /** The hard cases and random clouds, small enough to check every pair with the SCPU model. */
-  private def worlds(name: String): Seq[(String, Seq[S])] = {
-    val rng = Seeds.rng(s"BroadPhaseModelSpec-$name")
-    Seq(
-      "an empty world" -> Seq.empty,
-      "one sphere" -> Seq(S(1, 2, 3, 0.5)),
-      "a uniform cloud" -> uniform(rng, 120),
-      "a clustered cloud" -> clustered(rng, 100),
-      "radii over 1:1000" -> mixedRadii(rng, 90),
-      "huge spheres among small ones" -> huge(rng, 80, 3),
-      "all spheres at one point" -> onePoint(24),
-      "zero radii and underflowing separations" -> tinySeparations,
-      "spheres on cell faces" -> cellBoundaries(rng),
-      "negative coordinates" -> uniform(rng, 80, origin = -1000.0),
-      "near misses across cell faces" -> nearMisses(rng, 40, math.pow(2, -10))
-    )
-  }
+  private def worlds(name: String): Seq[(String, Seq[S])] =
+    hardCases(Seeds.rng(s"BroadPhaseModelSpec-$name"), onePointSpheres = 24)
 
   private def checkWorld(model: BroadPhaseModel, label: String, w: IndexedSeq[WorldSphere]): BroadPhaseResult = {
     val r = model.run(w)

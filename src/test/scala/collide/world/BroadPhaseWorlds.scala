@@ -68,4 +68,20 @@ object BroadPhaseWorlds {
     val x = (rng.nextInt(9) - 4).toDouble - ux * d / 2; val y = rng.nextDouble() * 4 - 2; val z = rng.nextDouble() * 4 - 2
     Seq(S(x, y, z, r1), S(x + ux * d, y + uy * d, z + uz * d, r2))
   }.flatten
+
+  /** The hard cases of docs/afu.md's world-mode section and random clouds, small enough for
+    * every-pair checks: what the model's spec and the RTL's spec both run. */
+  def hardCases(rng: Random, onePointSpheres: Int): Seq[(String, Seq[S])] = Seq(
+    "an empty world" -> Seq.empty,
+    "one sphere" -> Seq(S(1, 2, 3, 0.5)),
+    "a uniform cloud" -> uniform(rng, 120),
+    "a clustered cloud" -> clustered(rng, 100),
+    "radii over 1:1000" -> mixedRadii(rng, 90),
+    "huge spheres among small ones" -> huge(rng, 80, 3),
+    "all spheres at one point" -> onePoint(onePointSpheres),
+    "zero radii and underflowing separations" -> tinySeparations,
+    "spheres on cell faces" -> cellBoundaries(rng),
+    "negative coordinates" -> uniform(rng, 80, origin = -1000.0),
+    "near misses across cell faces" -> nearMisses(rng, 40, math.pow(2, -10))
+  )
 }
