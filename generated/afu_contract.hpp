@@ -15,11 +15,12 @@ inline constexpr std::uint32_t CSR_NUM_PAIRS = 4u;  // pairs in the list (< 2^PA
 inline constexpr std::uint32_t CSR_CONTACT_BASE = 5u;  // line address of the contact buffer
 inline constexpr std::uint32_t CSR_CONTACT_CAPACITY = 6u;  // contact records the buffer holds
 inline constexpr std::uint32_t CSR_STATUS_ADDR = 7u;  // line address of the status line
-inline constexpr std::uint32_t CSR_MODE = 8u;  // bit 0: dense records
+inline constexpr std::uint32_t CSR_MODE = 8u;  // bit 0: dense records; bit 1: world mode (AFUs built with a broad phase)
 
 // CSR values
 inline constexpr std::uint32_t CTRL_START = 1u;  // CTRL value that starts a run
 inline constexpr std::uint32_t MODE_DENSE = 1u;  // MODE bit: a record for every pair, in pair order
+inline constexpr std::uint32_t MODE_WORLD = 2u;  // MODE bit: world mode, the AFU finds the pairs itself
 
 // status line: byte offsets of its u32 fields
 inline constexpr std::uint32_t STATUS_DONE = 0u;  // 1 when the run is over
@@ -34,6 +35,9 @@ inline constexpr std::uint32_t STATUS_CYCLES_LOAD = 36u;  // cycles loading the 
 inline constexpr std::uint32_t STATUS_CYCLES_COMPUTE = 40u;  // cycles in which a group of pairs was dispatched
 inline constexpr std::uint32_t STATUS_CYCLES_WAIT_RD = 44u;  // cycles waiting on read responses
 inline constexpr std::uint32_t STATUS_CYCLES_WAIT_WR = 48u;  // cycles waiting on write responses or back-pressure
+inline constexpr std::uint32_t STATUS_CYCLES_BROAD = 52u;  // world mode: cycles the broad phase ran (0 in pair mode)
+inline constexpr std::uint32_t STATUS_WORLD_CELL_EXP = 56u;  // world mode: the grid's cell edge 2^k, k as a signed i32
+inline constexpr std::uint32_t STATUS_WORLD_LARGE = 60u;  // world mode: spheres too large for the cell, paired with every sphere
 inline constexpr std::uint32_t STATUS_FIELDS = 16u;  // u32 fields in the line
 
 // status line error flag bits
@@ -42,7 +46,8 @@ inline constexpr std::uint32_t ERR_TOO_MANY_SPHERES = 2u;  // NUM_SPHERES above 
 inline constexpr std::uint32_t ERR_CAPACITY = 4u;  // contact buffer too small
 inline constexpr std::uint32_t ERR_NONFINITE = 8u;  // non-finite input seen
 inline constexpr std::uint32_t ERR_BAD_CONFIG = 16u;  // bad configuration
-inline constexpr std::uint32_t ERR_COUNT = 5u;  // error flag bits defined (bits 0..COUNT-1)
+inline constexpr std::uint32_t ERR_WORLD_CHECK = 32u;  // the broad phase's internal check failed (a bug: contacts may be missing)
+inline constexpr std::uint32_t ERR_COUNT = 6u;  // error flag bits defined (bits 0..COUNT-1)
 
 // record flag bits (the top byte of a record's tag word)
 inline constexpr std::uint32_t REC_HIT = 1u;  // the pair is a contact
@@ -62,6 +67,7 @@ inline constexpr std::uint32_t KIND_INVALID = 3u;  // a sphere index out of rang
 inline constexpr std::uint32_t TAG_PAIR_BITS = 24u;  // bits 0..23: the pair index
 inline constexpr std::uint32_t TAG_FLAGS_SHIFT = 24u;  // bits 24..31: REC_* flags
 inline constexpr std::uint32_t TAG_BYTES = 4u;  // bytes of the tag word
+inline constexpr std::uint32_t TAG_WORLD_INDEX_BITS = 12u;  // world mode: the pair field is sphere i (bits 0..11) and j (bits 12..23)
 
 // record layouts (manifest buffers.records.layout)
 inline constexpr std::uint32_t LAYOUT_FULL = 0u;  // value fields: px, py, pz, nx, ny, nz, depth; then the tag word
@@ -90,6 +96,7 @@ inline constexpr const char* kErrorText[ERR_COUNT] = {
     "contact buffer too small",
     "non-finite input seen",
     "bad configuration",
+    "the broad phase's internal check failed (a bug: contacts may be missing)",
 };
 
 // value fields of each layout, in record order

@@ -12,11 +12,12 @@ localparam int unsigned AFU_CSR_NUM_PAIRS = 4;  // pairs in the list (< 2^PAIR_I
 localparam int unsigned AFU_CSR_CONTACT_BASE = 5;  // line address of the contact buffer
 localparam int unsigned AFU_CSR_CONTACT_CAPACITY = 6;  // contact records the buffer holds
 localparam int unsigned AFU_CSR_STATUS_ADDR = 7;  // line address of the status line
-localparam int unsigned AFU_CSR_MODE = 8;  // bit 0: dense records
+localparam int unsigned AFU_CSR_MODE = 8;  // bit 0: dense records; bit 1: world mode (AFUs built with a broad phase)
 
 // CSR values
 localparam int unsigned AFU_CTRL_START = 1;  // CTRL value that starts a run
 localparam int unsigned AFU_MODE_DENSE = 1;  // MODE bit: a record for every pair, in pair order
+localparam int unsigned AFU_MODE_WORLD = 2;  // MODE bit: world mode, the AFU finds the pairs itself
 
 // status line: byte offsets of its u32 fields
 localparam int unsigned AFU_STATUS_DONE = 0;  // 1 when the run is over
@@ -31,6 +32,9 @@ localparam int unsigned AFU_STATUS_CYCLES_LOAD = 36;  // cycles loading the sphe
 localparam int unsigned AFU_STATUS_CYCLES_COMPUTE = 40;  // cycles in which a group of pairs was dispatched
 localparam int unsigned AFU_STATUS_CYCLES_WAIT_RD = 44;  // cycles waiting on read responses
 localparam int unsigned AFU_STATUS_CYCLES_WAIT_WR = 48;  // cycles waiting on write responses or back-pressure
+localparam int unsigned AFU_STATUS_CYCLES_BROAD = 52;  // world mode: cycles the broad phase ran (0 in pair mode)
+localparam int unsigned AFU_STATUS_WORLD_CELL_EXP = 56;  // world mode: the grid's cell edge 2^k, k as a signed i32
+localparam int unsigned AFU_STATUS_WORLD_LARGE = 60;  // world mode: spheres too large for the cell, paired with every sphere
 localparam int unsigned AFU_STATUS_FIELDS = 16;  // u32 fields in the line
 
 // status line error flag bits
@@ -39,7 +43,8 @@ localparam int unsigned AFU_ERR_TOO_MANY_SPHERES = 2;  // NUM_SPHERES above the 
 localparam int unsigned AFU_ERR_CAPACITY = 4;  // contact buffer too small
 localparam int unsigned AFU_ERR_NONFINITE = 8;  // non-finite input seen
 localparam int unsigned AFU_ERR_BAD_CONFIG = 16;  // bad configuration
-localparam int unsigned AFU_ERR_COUNT = 5;  // error flag bits defined (bits 0..COUNT-1)
+localparam int unsigned AFU_ERR_WORLD_CHECK = 32;  // the broad phase's internal check failed (a bug: contacts may be missing)
+localparam int unsigned AFU_ERR_COUNT = 6;  // error flag bits defined (bits 0..COUNT-1)
 
 // record flag bits (the top byte of a record's tag word)
 localparam int unsigned AFU_REC_HIT = 1;  // the pair is a contact
@@ -59,6 +64,7 @@ localparam int unsigned AFU_KIND_INVALID = 3;  // a sphere index out of range
 localparam int unsigned AFU_TAG_PAIR_BITS = 24;  // bits 0..23: the pair index
 localparam int unsigned AFU_TAG_FLAGS_SHIFT = 24;  // bits 24..31: REC_* flags
 localparam int unsigned AFU_TAG_BYTES = 4;  // bytes of the tag word
+localparam int unsigned AFU_TAG_WORLD_INDEX_BITS = 12;  // world mode: the pair field is sphere i (bits 0..11) and j (bits 12..23)
 
 // record layouts (manifest buffers.records.layout)
 localparam int unsigned AFU_LAYOUT_FULL = 0;  // value fields: px, py, pz, nx, ny, nz, depth; then the tag word

@@ -402,7 +402,7 @@ elseif(CHECK STREQUAL "spheres_simd_ode")
     message(FATAL_ERROR "ode hash and sap differ:\n${hash}\n${sap}")
   endif()
 elseif(CHECK STREQUAL "spheres_bad_input")
-  # Bad files name the file, the line and the problem; the AFU's world mode says it is not built.
+  # Bad files name the file, the line and the problem; an AFU without world mode (or none) says so.
   foreach(case "x,y,z\n;in.csv:1: expected the header 'x,y,z,r', got 'x,y,z'"
                "x,y,z,r\n0,0,0,1\n1,2,3\n;in.csv:3: expected 4 fields, got 3"
                "x,y,z,r\n0,0,0,1\n1,2,abc,1\n;in.csv:3: z: not a number: 'abc'"
@@ -428,7 +428,7 @@ elseif(CHECK STREQUAL "spheres_bad_input")
     execute_process(COMMAND ${COLLIDE} spheres ${args} --in ${WORK}/in.csv --out ${WORK}/out.csv
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     expect_rc(2)
-    expect_match("${err}" "world mode is not built yet")
+    expect_match("${err}" "no world mode|no AFU available")
   endforeach()
   execute_process(COMMAND ${COLLIDE} spheres --backend simd --space hash --in ${WORK}/in.csv --out ${WORK}/out.csv
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -440,6 +440,31 @@ elseif(CHECK STREQUAL "spheres_bad_input")
     expect_rc(1)
     expect_match("${err}" "/dev/full: write failed: No space left on device")
   endif()
+elseif(CHECK STREQUAL "spheres_afu_world")
+  # World mode on the AFU: the same contacts, flags and bad-sphere rows as the CPU grid with
+  # the binary32 kernel, byte for byte, over two links; the summary names the AFU's run.
+  set(in ${REPO}/test/scenes/world_mix.csv)
+  execute_process(COMMAND ${COLLIDE} spheres --backend simd --in ${in} --out ${WORK}/simd.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  foreach(link ideal qpi)
+    execute_process(COMMAND ${COLLIDE} spheres --afu ${AFU_DIR} --link ${link} --in ${in} --out ${WORK}/afu_${link}.csv
+                            --summary ${WORK}/afu_${link}.json
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(0)
+    expect_match("${err}" "on the AFU \\(world mode")
+    file(READ ${WORK}/simd.csv want)
+    file(READ ${WORK}/afu_${link}.csv got)
+    if(NOT got STREQUAL want)
+      message(FATAL_ERROR "spheres --afu (${link}) differs from --backend simd; see ${WORK}")
+    endif()
+    file(READ ${WORK}/afu_${link}.json summary)
+    string(JSON contacts GET "${summary}" contacts)
+    string(JSON cycles GET "${summary}" afu cycles_broad)
+    if(contacts LESS 500 OR cycles EQUAL 0)
+      message(FATAL_ERROR "summary: ${contacts} contacts, ${cycles} broad-phase cycles:\n${summary}")
+    endif()
+  endforeach()
 else()
   message(FATAL_ERROR "unknown CHECK ${CHECK}")
 endif()

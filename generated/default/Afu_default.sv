@@ -5731,7 +5731,7 @@ module PairDispatcher_n16_default(
     & (~inGroup_8 | credit_8) & (~inGroup_9 | credit_9) & (~inGroup_10 | credit_10)
     & (~inGroup_11 | credit_11) & (~inGroup_12 | credit_12) & (~inGroup_13 | credit_13)
     & (~inGroup_14 | credit_14) & (~inGroup_15 | credit_15);
-  wire [23:0]  _tagNext_15_T_1 = {cur_line, 4'h0} + {19'h0, ptr};
+  wire [23:0]  _tagNext_15_T_2 = {cur_line, 4'h0} + {19'h0, ptr};
   reg  [23:0]  tagNext_0;
   reg  [23:0]  tagNext_1;
   reg  [23:0]  tagNext_2;
@@ -6952,97 +6952,97 @@ module PairDispatcher_n16_default(
     always @(posedge clock) begin
       if (~reset & ~(~inflight_0 | _queues_0_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_1 | _queues_1_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_2 | _queues_2_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_3 | _queues_3_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_4 | _queues_4_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_5 | _queues_5_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_6 | _queues_6_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_7 | _queues_7_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_8 | _queues_8_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_9 | _queues_9_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_10 | _queues_10_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_11 | _queues_11_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_12 | _queues_12_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_13 | _queues_13_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_14 | _queues_14_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_15 | _queues_15_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:105 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -7058,37 +7058,37 @@ module PairDispatcher_n16_default(
       cur_data <= io_pairs_bits_data;
     end
     if (io_ren_0_0)
-      tagNext_0 <= _tagNext_15_T_1 + {20'h0, posOf_0[3:0]};
+      tagNext_0 <= _tagNext_15_T_2 + {20'h0, posOf_0[3:0]};
     if (io_ren_1_0)
-      tagNext_1 <= _tagNext_15_T_1 + {20'h0, posOf_1[3:0]};
+      tagNext_1 <= _tagNext_15_T_2 + {20'h0, posOf_1[3:0]};
     if (io_ren_2_0)
-      tagNext_2 <= _tagNext_15_T_1 + {20'h0, posOf_2[3:0]};
+      tagNext_2 <= _tagNext_15_T_2 + {20'h0, posOf_2[3:0]};
     if (io_ren_3_0)
-      tagNext_3 <= _tagNext_15_T_1 + {20'h0, posOf_3[3:0]};
+      tagNext_3 <= _tagNext_15_T_2 + {20'h0, posOf_3[3:0]};
     if (io_ren_4_0)
-      tagNext_4 <= _tagNext_15_T_1 + {20'h0, posOf_4[3:0]};
+      tagNext_4 <= _tagNext_15_T_2 + {20'h0, posOf_4[3:0]};
     if (io_ren_5_0)
-      tagNext_5 <= _tagNext_15_T_1 + {20'h0, posOf_5[3:0]};
+      tagNext_5 <= _tagNext_15_T_2 + {20'h0, posOf_5[3:0]};
     if (io_ren_6_0)
-      tagNext_6 <= _tagNext_15_T_1 + {20'h0, posOf_6[3:0]};
+      tagNext_6 <= _tagNext_15_T_2 + {20'h0, posOf_6[3:0]};
     if (io_ren_7_0)
-      tagNext_7 <= _tagNext_15_T_1 + {20'h0, posOf_7[3:0]};
+      tagNext_7 <= _tagNext_15_T_2 + {20'h0, posOf_7[3:0]};
     if (io_ren_8_0)
-      tagNext_8 <= _tagNext_15_T_1 + {20'h0, posOf_8[3:0]};
+      tagNext_8 <= _tagNext_15_T_2 + {20'h0, posOf_8[3:0]};
     if (io_ren_9_0)
-      tagNext_9 <= _tagNext_15_T_1 + {20'h0, posOf_9[3:0]};
+      tagNext_9 <= _tagNext_15_T_2 + {20'h0, posOf_9[3:0]};
     if (io_ren_10_0)
-      tagNext_10 <= _tagNext_15_T_1 + {20'h0, posOf_10[3:0]};
+      tagNext_10 <= _tagNext_15_T_2 + {20'h0, posOf_10[3:0]};
     if (io_ren_11_0)
-      tagNext_11 <= _tagNext_15_T_1 + {20'h0, posOf_11[3:0]};
+      tagNext_11 <= _tagNext_15_T_2 + {20'h0, posOf_11[3:0]};
     if (io_ren_12_0)
-      tagNext_12 <= _tagNext_15_T_1 + {20'h0, posOf_12[3:0]};
+      tagNext_12 <= _tagNext_15_T_2 + {20'h0, posOf_12[3:0]};
     if (io_ren_13_0)
-      tagNext_13 <= _tagNext_15_T_1 + {20'h0, posOf_13[3:0]};
+      tagNext_13 <= _tagNext_15_T_2 + {20'h0, posOf_13[3:0]};
     if (io_ren_14_0)
-      tagNext_14 <= _tagNext_15_T_1 + {20'h0, posOf_14[3:0]};
+      tagNext_14 <= _tagNext_15_T_2 + {20'h0, posOf_14[3:0]};
     if (io_ren_15_0)
-      tagNext_15 <= _tagNext_15_T_1 + {20'h0, posOf_15[3:0]};
+      tagNext_15 <= _tagNext_15_T_2 + {20'h0, posOf_15[3:0]};
     if (reset) begin
       curValid <= 1'h0;
       ptr <= 5'h0;
@@ -7659,7 +7659,7 @@ module PairDispatcher_n16_default(
        & (|(cnt[4:1])),
      ({1'h0, casez_tmp} >= io_numSpheres | {1'h0, casez_tmp_15} >= io_numSpheres)
        & (|cnt)};
-  assign io_groups_bits_first = _tagNext_15_T_1;
+  assign io_groups_bits_first = _tagNext_15_T_2;
   assign io_fired = fire;
   assign io_idle = ~curValid;
 endmodule
@@ -15416,7 +15416,7 @@ module Puc_default(
   reg  [63:0]  run_6;
   reg  [63:0]  run_7;
   reg  [63:0]  run_8;
-  reg  [4:0]   errors;
+  reg  [5:0]   errors;
   reg  [31:0]  processed;
   reg  [31:0]  found;
   reg  [31:0]  headers;
@@ -15428,12 +15428,12 @@ module Puc_default(
   reg  [31:0]  cycWaitRd;
   reg  [31:0]  cycWaitWr;
   wire         _GEN = state == 3'h1;
-  wire         _badConfig_T_13 = run_7 == 64'h0;
+  wire         _badConfig_T_9 = run_7 == 64'h0;
   wire         badConfig =
-    (|(run_4[63:24])) | (|run_4) & run_3 == 64'h0 | (|run_2) & run_1 == 64'h0 | (|run_6)
-    & run_5 == 64'h0 | _badConfig_T_13;
+    ~(run_8[1]) & ((|(run_4[63:24])) | (|run_4) & run_3 == 64'h0) | run_8[1] | (|run_2)
+    & run_1 == 64'h0 | (|run_6) & run_5 == 64'h0 | _badConfig_T_9;
   wire         tooMany = run_2 > 64'h400;
-  wire         _GEN_0 = badConfig & _badConfig_T_13;
+  wire         _GEN_0 = badConfig & _badConfig_T_9;
   wire         _GEN_1 = badConfig | tooMany;
   wire         engineStart = _GEN & ~_GEN_0 & ~_GEN_1;
   wire         _running_T = state == 3'h2;
@@ -15468,7 +15468,7 @@ module Puc_default(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:204 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:255 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -15526,7 +15526,7 @@ module Puc_default(
       csr_7 <= 64'h0;
       csr_8 <= 64'h0;
       state <= 3'h0;
-      errors <= 5'h0;
+      errors <= 6'h0;
       processed <= 32'h0;
       found <= 32'h0;
       headers <= 32'h0;
@@ -15569,7 +15569,7 @@ module Puc_default(
       else if (_GEN_8)
         state <= 3'h1;
       if (_GEN) begin
-        errors <= {badConfig, 2'h0, tooMany, 1'h0};
+        errors <= {1'h0, badConfig, 2'h0, tooMany, 1'h0};
         processed <= 32'h0;
         found <= 32'h0;
         headers <= 32'h0;
@@ -16444,8 +16444,8 @@ module Puc_default(
         (|_GEN_2) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
         found,
         processed,
-        27'h0,
-        errors[4],
+        26'h0,
+        errors[5:4],
         _GEN_3[3],
         _GEN_4[2:1],
         _GEN_4[0] | firstBad != 32'hFFFFFFFF,

@@ -16,6 +16,8 @@
 #include "collide/backend_factory.hpp"
 #include "collide/ode_backend.hpp"
 #include "util/input_file.hpp"
+#include "link/link_presets.hpp"
+#include "world/afu_world.hpp"
 #include "world/grid_broad_phase.hpp"
 #include "world/ode_space_broad_phase.hpp"
 #include "world/world_collider.hpp"
@@ -30,9 +32,6 @@ struct Pipeline {
 };
 
 Pipeline makePipeline(const SpheresOptions& o) {
-  if (!o.afu.empty() || o.backend == "rtl")
-    throw driver::AfuUnavailable("world mode is not built yet: the AFU's on-chip broad phase does not exist (issue 11); "
-                      "use --backend simd or --backend ode");
   Pipeline p;
   if (o.backend == "simd") {
     if (!o.space.empty())
@@ -57,21 +56,80 @@ Pipeline makePipeline(const SpheresOptions& o) {
 
 double us(std::int64_t ns) { return static_cast<double>(ns) / 1e3; }
 
+void readSpheres(const SpheresOptions& o, LinkFormat format, SphereTable& spheres) {
+  if (o.in == "-") {
+    readSpheresCsv(std::cin, "<stdin>", format, spheres);
+  } else {
+    std::ifstream in = util::openInput(o.in);  // a directory says so
+    readSpheresCsv(in, o.in, format, spheres);
+  }
+}
+
+// World mode on the AFU: one run (its cycles do not vary), timed by the link model.
+int runSpheresAfu(const SpheresOptions& o) {
+  if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode (the AFU has its own grid)");
+  const link::LinkParams lp = link::presetParams(o.link);
+  driver::AfuPortOptions po;
+  po.clockMHz = lp.clockMHz;
+  world::AfuWorld afu(o.afu, lp, po);
+  OutputFile out(o.out, OutputFile::Dash::IsStdout);
+  std::unique_ptr<OutputFile> summary = o.summary.empty() ? nullptr : std::make_unique<OutputFile>(o.summary);
+  SphereTable spheres;
+  readSpheres(o, afu.driver().options().format, spheres);
+  world::WorldContacts w;
+  afu.collide(spheres, w);
+  writeWorldContactsCsv(out.stream(), w);
+  out.commit();
+
+  const auto& r = afu.lastRun();
+  const auto& s = r.run.status;
+  const double cyc = afu.cycleNs();
+  const double broadNs = s.cyclesBroad * cyc, totalNs = r.run.stats.modelledNs;
+  const auto k = static_cast<std::int32_t>(s.worldCellExp);
+  std::cerr << "collide spheres: " << spheres.size() << " spheres (" << w.badSpheres.size() << " bad), " << w.candidates
+            << " candidate pairs, " << w.pairs.size() << " contacts, on the AFU (world mode, cells 2^" << k << ", "
+            << s.worldLarge << " large; " << toString(w.contacts.format) << ", link " << lp.name << ")\n"
+            << std::fixed << std::setprecision(1) << "  modelled time " << totalNs / 1e3 << " us (link bound "
+            << r.run.stats.linkBoundNs / 1e3 << " us; " << r.run.stats.readLines << " lines read, " << r.run.stats.writeLines
+            << " written" << (r.attempts > 1 ? ", 2 runs: the first contact buffer was too small" : "") << "): broad phase "
+            << broadNs / 1e3 << " us (" << s.cyclesBroad << " cycles; the SCPUs compute during its last pass), the rest "
+            << (totalNs - broadNs) / 1e3 << " us (table load, drain, status, call overhead)\n";
+  if (summary) {
+    nlohmann::json j = {{"spheres", spheres.size()},       {"bad_spheres", w.badSpheres.size()},
+                        {"candidates", w.candidates},      {"contacts", w.pairs.size()},
+                        {"backend", "rtl"},                {"broad_phase", "afu"},
+                        {"format", toString(w.contacts.format)}, {"repeat", 1},
+                        {"broad_ns", broadNs},             {"narrow_ns", totalNs - broadNs},
+                        {"finish_ns", 0}};
+    j["afu"] = {{"link", lp.name},
+                {"modelled_ns", totalNs},
+                {"link_bound_ns", r.run.stats.linkBoundNs},
+                {"runs", r.attempts},
+                {"read_lines", r.run.stats.readLines},
+                {"write_lines", r.run.stats.writeLines},
+                {"cycles_total", s.cyclesTotal},
+                {"cycles_load", s.cyclesLoading},
+                {"cycles_broad", s.cyclesBroad},
+                {"cycles_compute", s.cyclesComputing},
+                {"cell_exp", k},
+                {"large", s.worldLarge}};
+    summary->stream() << j.dump(2) << "\n";
+    summary->commit();
+  }
+  return 0;
+}
+
 }  // namespace
 
 int runSpheres(const SpheresOptions& o) {
   return reportErrors("collide spheres", [&]() -> int {
+    if (!o.afu.empty() || o.backend == "rtl") return runSpheresAfu(o);
     Pipeline p = makePipeline(o);
     // Opened first, so that a bad path fails before the work; replaced only when complete.
     OutputFile out(o.out, OutputFile::Dash::IsStdout);
     std::unique_ptr<OutputFile> summary = o.summary.empty() ? nullptr : std::make_unique<OutputFile>(o.summary);
     SphereTable spheres;
-    if (o.in == "-") {
-      readSpheresCsv(std::cin, "<stdin>", p.narrow->format(), spheres);
-    } else {
-      std::ifstream in = util::openInput(o.in);  // a directory says so
-      readSpheresCsv(in, o.in, p.narrow->format(), spheres);
-    }
+    readSpheres(o, p.narrow->format(), spheres);
 
     // The fastest of `repeat` runs, phase by phase (the least disturbed on a shared machine);
     // every run gives the same contacts.

@@ -39,7 +39,8 @@ struct PairsOptions {
 struct SpheresOptions {
   std::string backend = "simd";  // simd (our grid + binary32 kernel) | ode (an ODE space + dCollide)
   std::string space;             // ode: hash | sap ("" = the default, kDefaultOdeSpace)
-  std::string afu;               // world mode on the AFU: not built yet (refused)
+  std::string afu;               // world mode on this generated AFU (manifest afu.world); "" with backend rtl: the built-in one
+  std::string link = link::kDefaultPreset;  // rtl: a link preset name
   std::string in, out;           // "-" = stdin/stdout
   int repeat = 1;                // run the whole collision this many times, report the fastest of each phase
   std::string summary;           // counts and times as JSON

@@ -90,12 +90,14 @@ int main(int argc, char** argv) {
   SpheresOptions spheres;
   auto* w = app.add_subcommand("spheres", "world mode: every contact among the spheres of a CSV file");
   w->add_option("--backend", spheres.backend,
-                "simd: our grid + the binary32 kernel; ode: an ODE space + dCollide (binary64); rtl: not built yet")
+                "simd: our grid + the binary32 kernel; ode: an ODE space + dCollide (binary64); rtl: the built-in AFU's world mode")
       ->capture_default_str()
       ->check(CLI::IsMember({"simd", "ode", "rtl"}));
   w->add_option("--space", spheres.space, std::string("ode: hash or sap (default ") + kDefaultOdeSpace + ")")
       ->check(CLI::IsMember({"hash", "sap"}));
-  w->add_option("--afu", spheres.afu, "world mode on a generated AFU: not built yet");
+  w->add_option("--afu", spheres.afu, "world mode on a generated AFU (the world preset): its broad phase and SCPUs");
+  w->add_option("--link", spheres.link, "rtl: link preset (collide info --links)")->capture_default_str()
+      ->check(CLI::IsMember(linkNames));
   w->add_option("--in", spheres.in, "input CSV (x,y,z,r), - for stdin")->required();
   w->add_option("--out", spheres.out, "output CSV (i,j,px,py,pz,nx,ny,nz,depth,flags), - for stdout")->required();
   w->add_option("--repeat", spheres.repeat, "collide this many times, report the fastest broad and narrow phase")

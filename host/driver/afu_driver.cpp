@@ -20,6 +20,7 @@ DriverOptions withManifest(DriverOptions o, const Manifest& m) {
   o.records = m.records;
   o.arith = m.arith;
   o.maxSpheres = m.maxSpheres;
+  o.world = m.world;
   return o;
 }
 
@@ -68,6 +69,64 @@ double modelledRunNs(const link::LinkParams& lp, std::uint64_t statusCycle) {
   return lp.transactionOverheadNs + seenNs;
 }
 
+// Configure, then start (docs/afu-interface.md CSR table), and clock AFU and link until the
+// status line says done; fills r.stats and r.status.
+void AfuDriver::execute(const RunCsrs& c, RunResult& r) {
+  const std::uint64_t t0 = link_.cycle();
+  const std::uint64_t reads0 = link_.stats().readsAccepted, writes0 = link_.stats().writesAccepted;
+  using namespace contract;
+  link_.hostWriteCsr(CSR_SPHERE_BASE, c.sphereBase);
+  link_.hostWriteCsr(CSR_NUM_SPHERES, c.numSpheres);
+  link_.hostWriteCsr(CSR_PAIR_BASE, c.pairBase);
+  link_.hostWriteCsr(CSR_NUM_PAIRS, c.numPairs);
+  link_.hostWriteCsr(CSR_CONTACT_BASE, c.contactBase);
+  link_.hostWriteCsr(CSR_CONTACT_CAPACITY, c.capacity);
+  link_.hostWriteCsr(CSR_STATUS_ADDR, c.statusAddr);
+  link_.hostWriteCsr(CSR_MODE, c.mode);
+  link_.hostWriteCsr(CSR_CTRL, CTRL_START);
+
+  const std::uint64_t deadline = t0 + opt_.watchdogCycles;
+  for (;;) {
+    if (link_.cycle() >= deadline) {
+      std::ostringstream m;
+      m << "AFU hung: no status line after " << opt_.watchdogCycles << " cycles (simulated-cycle watchdog); "
+        << link_.readsOutstanding() << " reads and " << link_.writesOutstanding()
+        << " writes outstanding, " << link_.stats().readResponses << " read and "
+        << link_.stats().writeResponses << " write responses delivered, AFU "
+        << (port_.idle() ? "idle-waiting" : "busy");
+      throw AfuError(m.str(), readStatus(mem_, c.statusAddr));
+    }
+    const link::LinkToAfu in = link_.outputs();
+    if (opt_.skipIdle && !in.anyEvent() && port_.idle()) {
+      // Nothing reaches the AFU before the link's next event: jump there in one step.
+      const std::uint64_t to = std::min(link_.nextEventCycle(), deadline);
+      if (to > link_.cycle()) {
+        port_.skipIdleCycles(to - link_.cycle());
+        r.stats.cyclesSkipped += to - link_.cycle();
+        link_.skipTo(to);
+        continue;
+      }
+    }
+    port_.setInputs(in);
+    const link::AfuToLink out = port_.evalOutputs();
+    port_.clockEdge();
+    link_.tick(out);
+    ++r.stats.cyclesStepped;
+    // Only a write response changes host memory; the status line is the AFU's last write.
+    if (in.wrResp && mem_.load<std::uint32_t>(c.statusAddr, STATUS_DONE) != 0) break;
+  }
+
+  // Modelled host time: statusCycle counts to the end of the cycle whose write response
+  // committed the done flag.
+  const auto& lp = link_.params();
+  r.stats.statusCycle = link_.cycle() - t0;
+  r.stats.modelledNs = modelledRunNs(lp, r.stats.statusCycle);
+  r.stats.readLines = link_.stats().readsAccepted - reads0;
+  r.stats.writeLines = link_.stats().writesAccepted - writes0;
+  r.stats.linkBoundNs = linkBoundNs(lp, r.stats.readLines, r.stats.writeLines);
+  r.status = readStatus(mem_, c.statusAddr);
+}
+
 RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
   const std::size_t n = pairs.size();
   if (spheres.size() > opt_.maxSpheres)
@@ -89,67 +148,13 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
   const auto outOfRange = writeSphereTable(mem_, sph.base, spheres, opt_.format);
   writePairList(mem_, pl.base, pairs);
 
-  // Configure, then start (docs/afu-interface.md CSR table).
-  const std::uint64_t t0 = link_.cycle();
-  const std::uint64_t reads0 = link_.stats().readsAccepted, writes0 = link_.stats().writesAccepted;
-  using namespace contract;
-  link_.hostWriteCsr(CSR_SPHERE_BASE, sph.base);
-  link_.hostWriteCsr(CSR_NUM_SPHERES, spheres.size());
-  link_.hostWriteCsr(CSR_PAIR_BASE, pl.base);
-  link_.hostWriteCsr(CSR_NUM_PAIRS, n);
-  link_.hostWriteCsr(CSR_CONTACT_BASE, ct.base);
-  link_.hostWriteCsr(CSR_CONTACT_CAPACITY, capacity);
-  link_.hostWriteCsr(CSR_STATUS_ADDR, st.base);
-  link_.hostWriteCsr(CSR_MODE, opt_.dense ? MODE_DENSE : 0);
-  link_.hostWriteCsr(CSR_CTRL, CTRL_START);
-
   RunResult r;
   // Scan the pairs only when a sphere did not fit: the usual call pays nothing per pair.
   if (std::find(outOfRange.begin(), outOfRange.end(), std::uint8_t{1}) != outOfRange.end())
     for (std::size_t k = 0; k < n; ++k)
       if ((pairs.i[k] < outOfRange.size() && outOfRange[pairs.i[k]]) || (pairs.j[k] < outOfRange.size() && outOfRange[pairs.j[k]]))
         r.rangePairs.push_back(static_cast<std::uint32_t>(k));
-  const std::uint64_t deadline = t0 + opt_.watchdogCycles;
-  for (;;) {
-    if (link_.cycle() >= deadline) {
-      std::ostringstream m;
-      m << "AFU hung: no status line after " << opt_.watchdogCycles << " cycles (simulated-cycle watchdog); "
-        << link_.readsOutstanding() << " reads and " << link_.writesOutstanding()
-        << " writes outstanding, " << link_.stats().readResponses << " read and "
-        << link_.stats().writeResponses << " write responses delivered, AFU "
-        << (port_.idle() ? "idle-waiting" : "busy");
-      throw AfuError(m.str(), readStatus(mem_, st.base));
-    }
-    const link::LinkToAfu in = link_.outputs();
-    if (opt_.skipIdle && !in.anyEvent() && port_.idle()) {
-      // Nothing reaches the AFU before the link's next event: jump there in one step.
-      const std::uint64_t to = std::min(link_.nextEventCycle(), deadline);
-      if (to > link_.cycle()) {
-        port_.skipIdleCycles(to - link_.cycle());
-        r.stats.cyclesSkipped += to - link_.cycle();
-        link_.skipTo(to);
-        continue;
-      }
-    }
-    port_.setInputs(in);
-    const link::AfuToLink out = port_.evalOutputs();
-    port_.clockEdge();
-    link_.tick(out);
-    ++r.stats.cyclesStepped;
-    // Only a write response changes host memory; the status line is the AFU's last write.
-    if (in.wrResp && mem_.load<std::uint32_t>(st.base, STATUS_DONE) != 0) break;
-  }
-
-  // Modelled host time: statusCycle counts to the end of the cycle whose write response
-  // committed the done flag.
-  const auto& lp = link_.params();
-  r.stats.statusCycle = link_.cycle() - t0;
-  r.stats.modelledNs = modelledRunNs(lp, r.stats.statusCycle);
-  r.stats.readLines = link_.stats().readsAccepted - reads0;
-  r.stats.writeLines = link_.stats().writesAccepted - writes0;
-  r.stats.linkBoundNs = linkBoundNs(lp, r.stats.readLines, r.stats.writeLines);
-
-  r.status = readStatus(mem_, st.base);
+  execute(RunCsrs{sph.base, spheres.size(), pl.base, n, ct.base, capacity, st.base, opt_.dense ? contract::MODE_DENSE : 0u}, r);
   const std::size_t written = std::min<std::size_t>(r.status.recordsWritten, capacity);
   std::size_t headers = 0;
   try {
@@ -164,17 +169,92 @@ RunResult AfuDriver::run(const SphereTable& spheres, const PairList& pairs) {
                    r.status);
   }
   check(r, n, capacity, headers);
-  if (lay.derived()) {
-    // Rebuild pos, normal and depth from d, w and the spheres as the link carried them.
-    for (auto& rec : r.records) {
-      double s1[4], s2[4], v[7];
-      linkSphere(spheres, pairs.i[rec.pair], opt_.format, s1);
-      linkSphere(spheres, pairs.j[rec.pair], opt_.format, s2);
-      rebuildContact(opt_.arith, s1, s2, rec.d, rec.w, rec.flags, v);
-      rec.px = v[0]; rec.py = v[1]; rec.pz = v[2]; rec.nx = v[3]; rec.ny = v[4]; rec.nz = v[5]; rec.depth = v[6];
-    }
-  }
+  rebuildDerived(spheres, r, &pairs);
   return r;
+}
+
+// Rebuild pos, normal and depth from d, w and the spheres as the link carried them; a
+// record's spheres are pair list entries, or (pairs null, world mode) its pair field.
+void AfuDriver::rebuildDerived(const SphereTable& spheres, RunResult& r, const PairList* pairs) const {
+  if (!layout().derived()) return;
+  for (auto& rec : r.records) {
+    double s1[4], s2[4], v[7];
+    linkSphere(spheres, pairs ? pairs->i[rec.pair] : worldPairI(rec.pair), opt_.format, s1);
+    linkSphere(spheres, pairs ? pairs->j[rec.pair] : worldPairJ(rec.pair), opt_.format, s2);
+    rebuildContact(opt_.arith, s1, s2, rec.d, rec.w, rec.flags, v);
+    rec.px = v[0]; rec.py = v[1]; rec.pz = v[2]; rec.nx = v[3]; rec.ny = v[4]; rec.nz = v[5]; rec.depth = v[6];
+  }
+}
+
+WorldRunResult AfuDriver::runWorld(const SphereTable& spheres, std::size_t capacityHint) {
+  if (!opt_.world)
+    throw std::invalid_argument("rtl: this AFU has no world mode (its manifest has no afu.world; generate the world preset)");
+  if (spheres.size() > opt_.maxSpheres)
+    throw std::invalid_argument("rtl world mode: " + std::to_string(spheres.size()) + " spheres, the AFU holds " +
+                                std::to_string(opt_.maxSpheres));
+  if (link_.readsOutstanding() || link_.writesOutstanding())
+    throw std::logic_error("AfuDriver::runWorld: the link still has requests in flight from the last run");
+  const BufferLayout lay = layout();
+  std::size_t capacity = capacityHint ? capacityHint : std::max<std::size_t>(64, 8 * spheres.size());
+  WorldRunResult w;
+  RunStats total;
+  for (;;) {
+    mem_.releaseAll();
+    const auto sph = mem_.allocate(std::max<std::uint64_t>(1, sphereLines(spheres.size(), opt_.format)));
+    const auto ct = mem_.allocate(std::max<std::uint64_t>(1, contactLines(capacity, lay, false)));
+    const auto st = mem_.allocate(1);
+    const auto outOfRange = writeSphereTable(mem_, sph.base, spheres, opt_.format);
+    w.run = RunResult{};
+    ++w.attempts;
+    execute(RunCsrs{sph.base, spheres.size(), 0, 0, ct.base, capacity, st.base, contract::MODE_WORLD}, w.run);
+    total.cyclesStepped += w.run.stats.cyclesStepped; total.cyclesSkipped += w.run.stats.cyclesSkipped;
+    total.statusCycle += w.run.stats.statusCycle; total.modelledNs += w.run.stats.modelledNs;
+    total.readLines += w.run.stats.readLines; total.writeLines += w.run.stats.writeLines;
+    total.linkBoundNs += w.run.stats.linkBoundNs;
+    const StatusLine& s = w.run.status;
+    if ((s.errors & contract::ERR_CAPACITY) && s.contactsFound > capacity && w.attempts == 1) {
+      capacity = s.contactsFound;  // every contact counted: room for all of them, once more
+      continue;
+    }
+    const std::size_t written = std::min<std::size_t>(s.recordsWritten, capacity);
+    w.run.records = readRecords(mem_, ct.base, written, lay, false, 0).records;
+    checkWorld(w.run, spheres.size(), capacity);
+    w.rangeSpheres.clear();
+    for (std::uint32_t k = 0; k < outOfRange.size(); ++k)
+      if (outOfRange[k]) w.rangeSpheres.push_back(k);
+    for (auto& rec : w.run.records)
+      if (outOfRange[worldPairI(rec.pair)] || outOfRange[worldPairJ(rec.pair)]) rec.flags |= contract::REC_HOST_RANGE;
+    rebuildDerived(spheres, w.run, nullptr);
+    w.run.stats = total;
+    return w;
+  }
+}
+
+// A world run's records: hits only, each pair once, i < j within the table, as many as
+// the AFU counted; anything else is an AFU bug.
+void AfuDriver::checkWorld(const RunResult& r, std::size_t spheres, std::size_t capacity) const {
+  const StatusLine& s = r.status;
+  auto fail = [&](const std::string& m) { throw AfuError("AFU world run: " + m, s); };
+  if (opt_.throwOnErrorFlags && (s.errors & ~std::uint32_t{contract::ERR_NONFINITE}))
+    fail("error flags 0x" + [&] { std::ostringstream o; o << std::hex << s.errors; return o.str(); }() + " (" +
+         describeErrors(s.errors) + ")");
+  if (s.recordsWritten > capacity)
+    fail("records written " + std::to_string(s.recordsWritten) + " > capacity " + std::to_string(capacity));
+  if (!(s.errors & contract::ERR_CAPACITY) && s.recordsWritten != s.contactsFound)
+    fail("contacts found " + std::to_string(s.contactsFound) + " != records written " + std::to_string(s.recordsWritten));
+  if (s.pairsProcessed < s.contactsFound)
+    fail("candidates " + std::to_string(s.pairsProcessed) + " < contacts " + std::to_string(s.contactsFound));
+  std::vector<std::uint32_t> seen;
+  seen.reserve(r.records.size());
+  for (const auto& c : r.records) {
+    const auto i = worldPairI(c.pair), j = worldPairJ(c.pair);
+    if (!(i < j && j < spheres))
+      fail("record names spheres (" + std::to_string(i) + ", " + std::to_string(j) + ") of " + std::to_string(spheres));
+    if (!c.hit()) fail("record for (" + std::to_string(i) + ", " + std::to_string(j) + ") without the hit flag");
+    seen.push_back(c.pair);
+  }
+  std::sort(seen.begin(), seen.end());
+  if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) fail("two records for one pair of spheres");
 }
 
 // Every pair sent must be accounted for, and the records must be consistent with the

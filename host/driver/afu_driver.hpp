@@ -30,6 +30,7 @@ struct DriverOptions {
   ComputeArith arith;                        // the SCPU's arithmetic, to rebuild derived records
   bool dense = false;                        // MODE bit 0
   std::uint32_t maxSpheres = 65536;          // the manifest's afu.maxSpheres
+  bool world = false;                        // the manifest's afu.world: runWorld is possible
   // Cycles from the first CSR write to the status line before the run is declared hung.
   std::uint64_t watchdogCycles = 50'000'000;
   bool skipIdle = true;                      // jump the clock while the AFU idle-waits
@@ -74,6 +75,25 @@ struct RunResult {
   RunStats stats;
 };
 
+// World mode (runWorld): the last run's result, its records naming their spheres (i < j,
+// worldPairI/J of the pair field), in buffer order; stats summed over the runs it took.
+struct WorldRunResult {
+  RunResult run;
+  // Runs it took: 1, or 2 when the first contact buffer was too small (the AFU counts every
+  // contact even past the buffer's end, so the second run has room for all of them).
+  std::size_t attempts = 0;
+  // Spheres whose link-format values overflowed to infinity or whose radius rounded to zero
+  // (the broad phase pairs no non-finite sphere; contacts of the others carry REC_HOST_RANGE).
+  std::vector<std::uint32_t> rangeSpheres;
+};
+
+// The CSR values of one run (docs/afu-interface.md).
+struct RunCsrs {
+  std::uint64_t sphereBase = 0, numSpheres = 0, pairBase = 0, numPairs = 0, contactBase = 0, capacity = 0,
+                statusAddr = 0;
+  std::uint32_t mode = 0;
+};
+
 std::string describeErrors(std::uint32_t flags);
 
 class AfuDriver {
@@ -81,6 +101,10 @@ class AfuDriver {
   AfuDriver(AfuPort& port, const link::LinkParams& link, const DriverOptions& options);
 
   RunResult run(const SphereTable& spheres, const PairList& pairs);
+  // World mode: only the sphere table goes to the AFU; its broad phase finds the pairs.
+  // `capacityHint`: contact records the first buffer holds (0: 8 per sphere, at least 64).
+  // Throws std::invalid_argument if the AFU has no world mode or the table is too big.
+  WorldRunResult runWorld(const SphereTable& spheres, std::size_t capacityHint = 0);
 
   // Dense per-pair view of a run's records (pair k -> entry k), in the link format, with the
   // record flags (and REC_HOST_RANGE on the run's rangePairs, whether or not they hit).
@@ -92,6 +116,9 @@ class AfuDriver {
 
  private:
   void check(const RunResult& r, std::size_t pairs, std::size_t capacity, std::size_t headers) const;
+  void checkWorld(const RunResult& r, std::size_t spheres, std::size_t capacity) const;
+  void execute(const RunCsrs& csrs, RunResult& r);
+  void rebuildDerived(const SphereTable& spheres, RunResult& r, const PairList* pairs) const;
 
   AfuPort& port_;
   DriverOptions opt_;

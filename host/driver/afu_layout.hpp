@@ -59,7 +59,15 @@ struct StatusLine {
                 recordsWritten = 0, nonFinitePairs = 0, firstBadPair = contract::NO_BAD_PAIR;
   std::uint32_t cyclesTotal = 0, cyclesLoading = 0, cyclesComputing = 0,
                 cyclesWaitRead = 0, cyclesWaitWrite = 0;
+  // World mode: the broad phase's cycles, its cell exponent k (a signed i32: cells of 2^k)
+  // and the spheres too large for the cell (0 in pair mode).
+  std::uint32_t cyclesBroad = 0, worldCellExp = 0, worldLarge = 0;
 };
+
+// World mode: a record's pair field names its spheres, i in the low TAG_WORLD_INDEX_BITS
+// bits and j above them.
+inline std::uint32_t worldPairI(std::uint32_t pair) { return pair & ((1u << contract::TAG_WORLD_INDEX_BITS) - 1); }
+inline std::uint32_t worldPairJ(std::uint32_t pair) { return pair >> contract::TAG_WORLD_INDEX_BITS; }
 
 std::uint64_t sphereLines(std::size_t spheres, LinkFormat f);
 std::uint64_t pairLines(std::size_t pairs);

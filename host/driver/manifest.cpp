@@ -80,6 +80,11 @@ Manifest fromJson(nlohmann::json raw, const std::string& file) {
   const auto ms = at("/afu/maxSpheres", 65536LL);
   if (ms < 1 || ms > 65536) bad("afu.maxSpheres: expected 1..65536, got " + std::to_string(ms));
   m.maxSpheres = static_cast<std::uint32_t>(ms);
+  m.world = at("/afu/world", false);
+  if (m.world && (m.records == contract::LAYOUT_FULL_MASKED || m.records == contract::LAYOUT_DERIVED_MASKED))
+    bad("afu.world: world mode needs an indexed record layout, the manifest says " + layout);
+  if (m.world && ms > (1LL << contract::TAG_WORLD_INDEX_BITS))
+    bad("afu.world: world mode holds at most " + std::to_string(1u << contract::TAG_WORLD_INDEX_BITS) + " spheres, afu.maxSpheres is " + std::to_string(ms));
   return m;
 }
 }  // namespace

@@ -19,6 +19,7 @@ struct Manifest {
   std::uint32_t records = 0;   // contract::LAYOUT_*
   ComputeArith arith;          // what rebuilds derived records
   std::uint32_t maxSpheres = 65536;
+  bool world = false;          // afu.world: world mode (MODE_WORLD) is built
 };
 
 // Throws std::runtime_error naming the file: missing, unreadable, bad JSON, bad field.

@@ -16,20 +16,38 @@ std::int64_t nsSince(Clock::time_point t0) {
 }
 }  // namespace
 
-void WorldCollider::collide(const SphereTable& s, WorldContacts& out, WorldTiming& time) {
-  out = WorldContacts{};
-  out.contacts.format = narrow_.format();
-  time = WorldTiming{};
-  members_.clear();
+void splitSpheres(const SphereTable& s, WorldContacts& out, std::vector<std::uint32_t>& members) {
+  members.clear();
   for (std::uint32_t k = 0; k < s.size(); ++k) {
     const PairInput p = classifySphere(s, k);
     if (p == PairInput::Ok) {
-      members_.push_back(k);
+      members.push_back(k);
       continue;
     }
     out.badSpheres.push_back(k);
     out.badFlags.push_back(p == PairInput::NonFinite ? contract::REC_NONFINITE : contract::REC_HOST_RANGE);
   }
+}
+
+void keepSortedHits(const PairList& pairs, const ContactSet& found, WorldContacts& out) {
+  // A permutation, then a gather.
+  std::vector<std::uint32_t> order(pairs.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return pairs.i[a] != pairs.i[b] ? pairs.i[a] < pairs.i[b] : pairs.j[a] < pairs.j[b];
+  });
+  for (auto k : order) {
+    if (!found.hit[k]) continue;  // the policy rejected it
+    out.pairs.push(pairs.i[k], pairs.j[k]);
+    out.contacts.appendEntry(found, k);  // flags: the policy's
+  }
+}
+
+void WorldCollider::collide(const SphereTable& s, WorldContacts& out, WorldTiming& time) {
+  out = WorldContacts{};
+  out.contacts.format = narrow_.format();
+  time = WorldTiming{};
+  splitSpheres(s, out, members_);
   broad_.prepare(s, members_);
 
   auto t0 = Clock::now();
@@ -65,18 +83,9 @@ void WorldCollider::collide(const SphereTable& s, WorldContacts& out, WorldTimin
   finishPairs(narrow_, s, foundPairs, found);
   time.finishNs += nsSince(t0);
 
-  // Sorted by (i, j): a permutation, then a gather.
+  // Sorted by (i, j).
   t0 = Clock::now();
-  std::vector<std::uint32_t> order(foundPairs.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return foundPairs.i[a] != foundPairs.i[b] ? foundPairs.i[a] < foundPairs.i[b] : foundPairs.j[a] < foundPairs.j[b];
-  });
-  for (auto k : order) {
-    if (!found.hit[k]) continue;  // the policy rejected it
-    out.pairs.push(foundPairs.i[k], foundPairs.j[k]);
-    out.contacts.appendEntry(found, k);  // flags: the policy's
-  }
+  keepSortedHits(foundPairs, found, out);
   time.finishNs += nsSince(t0);
 }
 

@@ -28,6 +28,12 @@ struct WorldTiming {
   std::int64_t finishNs = 0;  // flags, bad-pair policy, keeping the hits, sorting by (i, j)
 };
 
+// The spheres the input policy takes (`members`, ascending) and the rest, listed with their
+// flag in out.badSpheres/badFlags. Every world-mode path starts here.
+void splitSpheres(const SphereTable& s, WorldContacts& out, std::vector<std::uint32_t>& members);
+// The hits of `found` (entry k belongs to pairs k) into out.pairs/out.contacts, sorted by (i, j).
+void keepSortedHits(const PairList& pairs, const ContactSet& found, WorldContacts& out);
+
 class WorldCollider {
  public:
   // Candidates go to the narrow phase this many at a time (the scratch stays in L2).

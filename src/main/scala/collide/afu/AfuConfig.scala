@@ -18,7 +18,10 @@ import collide.scpu.ScpuConfig
   * @param denseByDefault       reset value of MODE bit 0 (false: compact records)
   * @param records              contact record layout; None = the best one offered for the SCPU
   *                             (AfuConfig.bestLayout: derived where the host can rebuild contacts
-  *                             exactly, else full; masked where that fits more a line)
+  *                             exactly, else full; masked where that fits more a line, except
+  *                             with world mode, whose records name their spheres)
+  * @param world                build world mode (MODE bit 1): an on-chip broad phase with these
+  *                             parameters finds the pairs; None = pair lists only
   */
 final case class AfuConfig(
     name: String = "default",
@@ -30,7 +33,8 @@ final case class AfuConfig(
     tagBits: Int = 6,
     ramPorts: SphereRamPorts = SphereRamPorts.Replicated,
     denseByDefault: Boolean = false,
-    records: Option[RecordLayout] = None) {
+    records: Option[RecordLayout] = None,
+    world: Option[collide.world.BroadPhaseParams] = None) {
   require(name.nonEmpty && name.forall(c => c.isLetterOrDigit || c == '-' || c == '_'),
     s"AfuConfig name '$name': must be non-empty letters, digits, '-' or '_'")
   require(scpus >= 1 && scpus <= 64, s"AfuConfig $name: scpus must be 1..64, got $scpus")
@@ -45,8 +49,15 @@ final case class AfuConfig(
 
   for (r <- records; why <- r.refusal(scpu))
     require(false, s"AfuConfig $name: record layout ${r.name} is not offered for SCPU ${scpu.name}: $why")
+  for (_ <- world) {
+    require(!scpu.converts, s"AfuConfig $name: world mode reads the sphere table in the compute format, " +
+      s"but SCPU ${scpu.name} converts its ${scpu.linkFormat.name} link values (or flushes subnormals)")
+    require(maxSpheres <= (1 << RecordTag.WORLD_INDEX_BITS),
+      s"AfuConfig $name: world mode holds at most ${1 << RecordTag.WORLD_INDEX_BITS} spheres (a record's pair field names i and j), got $maxSpheres")
+    require(records.forall(!_.masked), s"AfuConfig $name: world mode needs an indexed record layout, not ${records.get.name}")
+  }
   /** The record layout in effect (bestLayout unless asked for). */
-  val recordLayout: RecordLayout = records.getOrElse(AfuConfig.bestLayout(scpu))
+  val recordLayout: RecordLayout = records.getOrElse(AfuConfig.bestLayout(scpu, world.isDefined))
 
   val linkWidth: Int = scpu.linkWidth
   val layout: BufferLayout = BufferLayout(linkWidth, recordLayout)
@@ -55,14 +66,16 @@ final case class AfuConfig(
   /** A name from every parameter, for configurations that are not a preset. */
   def derivedName: String =
     s"n${scpus}_${scpu.id}_s${maxSpheres}_r${maxReadsOutstanding}_w${maxWritesOutstanding}_t${tagBits}_${ramPorts.name}" +
-      (if (recordLayout != AfuConfig.bestLayout(scpu)) s"_${recordLayout.name}" else "") + (if (denseByDefault) "_dense" else "")
+      (if (recordLayout != AfuConfig.bestLayout(scpu, world.isDefined)) s"_${recordLayout.name}" else "") +
+      (if (denseByDefault) "_dense" else "") + world.map(_ => "_world").getOrElse("")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
 
   lazy val puc: PucParams = PucParams(
     scpus = scpus, linkWidth = linkWidth, scpuTagBits = scpu.tagBits, scpuLatency = scpu.latency,
     maxSpheres = maxSpheres, maxReads = maxReadsOutstanding, maxWrites = maxWritesOutstanding,
-    tagBits = tagBits, ramPorts = ramPorts, denseByDefault = denseByDefault, records = recordLayout, name = "_" + id)
+    tagBits = tagBits, ramPorts = ramPorts, denseByDefault = denseByDefault, records = recordLayout,
+    world = world.map(bp => PucWorld(bp, scpu.params)), name = "_" + id)
 
   /** Pairs per cycle the dispatcher can reach (a group never spans two pair lines). */
   def peakPairsPerCycle: Double = {
@@ -75,7 +88,8 @@ final case class AfuConfig(
   def describe: String =
     s"$id: $scpus x SCPU ${scpu.describe}; maxSpheres $maxSpheres, reads $maxReadsOutstanding, writes $maxWritesOutstanding, " +
       s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, link ${scpu.linkFormat.name}, ${recordLayout.name} records " +
-      s"(${layout.recordBytes} B, ${layout.recordsPerLine} a line), ${if (denseByDefault) "dense" else "compact"} by default"
+      s"(${layout.recordBytes} B, ${layout.recordsPerLine} a line), ${if (denseByDefault) "dense" else "compact"} by default" +
+      world.map(_ => ", world mode built").getOrElse("")
 }
 
 object AfuConfig {
@@ -83,12 +97,13 @@ object AfuConfig {
     * the host rebuild contacts exactly, else full; masked when that puts more records in a
     * line than the indexed form (16- and 32-bit fields; at 64 bits both hold the same and the
     * headers would be extra). bench/results/masked measures it: fp32 derived-masked writes
-    * 567 lines for the diamond at hMax 10 where derived writes 720. */
-  def bestLayout(scpu: ScpuConfig): RecordLayout = {
+    * 567 lines for the diamond at hMax 10 where derived writes 720. World mode takes the
+    * indexed one: its records must name the spheres, which no mask header can. */
+  def bestLayout(scpu: ScpuConfig, world: Boolean = false): RecordLayout = {
     val (indexed, masked) =
       if (RecordLayout.Derived.refusal(scpu).isEmpty) (RecordLayout.Derived, RecordLayout.DerivedMasked)
       else (RecordLayout.Full, RecordLayout.FullMasked)
-    if (BufferLayout(scpu.linkWidth, masked).recordsPerLine > BufferLayout(scpu.linkWidth, indexed).recordsPerLine) masked
+    if (!world && BufferLayout(scpu.linkWidth, masked).recordsPerLine > BufferLayout(scpu.linkWidth, indexed).recordsPerLine) masked
     else indexed
   }
 
@@ -103,7 +118,9 @@ object AfuConfig {
   val fp64Full: AfuConfig = fp64.copy(name = "fp64-full", records = Some(RecordLayout.Full))
   val fp32Nr: AfuConfig  = default.copy(name = "fp32-nr", scpu = ScpuConfig.fp32Nr)
   val big: AfuConfig     = default.copy(name = "big", maxSpheres = 4096)
+  /** World mode: 16 fp32 SCPUs fed by the on-chip broad phase, up to 4096 spheres. */
+  val world: AfuConfig   = big.copy(name = "world", world = Some(collide.world.BroadPhaseParams.default))
 
-  val all: Seq[AfuConfig] = Seq(default, paper, small, fp16, fp16Full, fp16x4, fp64, fp64Full, fp32Nr, big)
+  val all: Seq[AfuConfig] = Seq(default, paper, small, fp16, fp16Full, fp16x4, fp64, fp64Full, fp32Nr, big, world)
   val presets: Map[String, AfuConfig] = all.map(c => c.name -> c).toMap
 }

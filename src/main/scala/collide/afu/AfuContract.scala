@@ -17,7 +17,8 @@ object AfuContract {
   private def groups: Seq[(String, String, Seq[ContractEntry])] = Seq(
     ("CSR_", "CSR indices (64-bit host writes)", Csr.entries),
     ("", "CSR values", Seq(ContractEntry("CTRL_START", Csr.CTRL_START, "CTRL value that starts a run"),
-      ContractEntry("MODE_DENSE", Csr.MODE_DENSE, "MODE bit: a record for every pair, in pair order"))),
+      ContractEntry("MODE_DENSE", Csr.MODE_DENSE, "MODE bit: a record for every pair, in pair order"),
+      ContractEntry("MODE_WORLD", Csr.MODE_WORLD, "MODE bit: world mode, the AFU finds the pairs itself"))),
     ("STATUS_", "status line: byte offsets of its u32 fields", StatusLine.entries ++ Seq(
       ContractEntry("FIELDS", StatusLine.fields, "u32 fields in the line"))),
     ("ERR_", "status line error flag bits", ErrorFlags.entries ++ Seq(
@@ -27,7 +28,8 @@ object AfuContract {
     ("", "record tag word (a u32 after the record's value fields)", Seq(
       ContractEntry("TAG_PAIR_BITS", RecordTag.PAIR_BITS, "bits 0..23: the pair index"),
       ContractEntry("TAG_FLAGS_SHIFT", RecordTag.FLAGS_SHIFT, "bits 24..31: REC_* flags"),
-      ContractEntry("TAG_BYTES", RecordTag.BYTES, "bytes of the tag word"))),
+      ContractEntry("TAG_BYTES", RecordTag.BYTES, "bytes of the tag word"),
+      ContractEntry("TAG_WORLD_INDEX_BITS", RecordTag.WORLD_INDEX_BITS, "world mode: the pair field is sphere i (bits 0..11) and j (bits 12..23)"))),
     ("LAYOUT_", "record layouts (manifest buffers.records.layout)", RecordLayout.all.map(l =>
       ContractEntry(constName(l), l.code, s"value fields: ${l.fields.mkString(", ")}; " +
         (if (l.masked) "then the flags byte; compact: a mask header before each group's hits" else "then the tag word")))),

@@ -30,11 +30,13 @@ object Csr {
     ContractEntry("CONTACT_BASE", CONTACT_BASE, "line address of the contact buffer"),
     ContractEntry("CONTACT_CAPACITY", CONTACT_CAPACITY, "contact records the buffer holds"),
     ContractEntry("STATUS_ADDR", STATUS_ADDR, "line address of the status line"),
-    ContractEntry("MODE", MODE, "bit 0: dense records"))
+    ContractEntry("MODE", MODE, "bit 0: dense records; bit 1: world mode (AFUs built with a broad phase)"))
   val all: Seq[(String, Int)] = entries.map(e => e.name -> e.value.toInt)
-  /** CTRL value that starts a run; MODE bit 0 selects dense records. */
+  /** CTRL value that starts a run; MODE bit 0 selects dense records, bit 1 world mode (the
+    * AFU's broad phase makes the pairs from the sphere table; PAIR_BASE and NUM_PAIRS unused). */
   val CTRL_START = 1
   val MODE_DENSE = 1
+  val MODE_WORLD = 2
 }
 
 /** Byte offsets of the status line's u32 fields. */
@@ -51,6 +53,9 @@ object StatusLine {
   val CYCLES_COMPUTE  = 40
   val CYCLES_WAIT_RD  = 44
   val CYCLES_WAIT_WR  = 48
+  val CYCLES_BROAD    = 52
+  val WORLD_CELL_EXP  = 56
+  val WORLD_LARGE     = 60
   val entries: Seq[ContractEntry] = Seq(
     ContractEntry("DONE", DONE, "1 when the run is over"),
     ContractEntry("ERROR_FLAGS", ERROR_FLAGS, "ERR_* bits"),
@@ -63,7 +68,10 @@ object StatusLine {
     ContractEntry("CYCLES_LOAD", CYCLES_LOAD, "cycles loading the sphere table"),
     ContractEntry("CYCLES_COMPUTE", CYCLES_COMPUTE, "cycles in which a group of pairs was dispatched"),
     ContractEntry("CYCLES_WAIT_RD", CYCLES_WAIT_RD, "cycles waiting on read responses"),
-    ContractEntry("CYCLES_WAIT_WR", CYCLES_WAIT_WR, "cycles waiting on write responses or back-pressure"))
+    ContractEntry("CYCLES_WAIT_WR", CYCLES_WAIT_WR, "cycles waiting on write responses or back-pressure"),
+    ContractEntry("CYCLES_BROAD", CYCLES_BROAD, "world mode: cycles the broad phase ran (0 in pair mode)"),
+    ContractEntry("WORLD_CELL_EXP", WORLD_CELL_EXP, "world mode: the grid's cell edge 2^k, k as a signed i32"),
+    ContractEntry("WORLD_LARGE", WORLD_LARGE, "world mode: spheres too large for the cell, paired with every sphere"))
   val all: Seq[(String, Int)] = entries.map(e => e.name -> e.value.toInt)
   /** The u32 fields in offset order (the decoders iterate these, never literal offsets). */
   val fields: Int = 16
@@ -77,12 +85,14 @@ object ErrorFlags {
   val CAPACITY         = 1 << 2
   val NONFINITE        = 1 << 3
   val BAD_CONFIG       = 1 << 4
+  val WORLD_CHECK      = 1 << 5
   val entries: Seq[ContractEntry] = Seq(
     ContractEntry("INDEX_RANGE", INDEX_RANGE, "sphere index out of range"),
     ContractEntry("TOO_MANY_SPHERES", TOO_MANY_SPHERES, "NUM_SPHERES above the on-chip table"),
     ContractEntry("CAPACITY", CAPACITY, "contact buffer too small"),
     ContractEntry("NONFINITE", NONFINITE, "non-finite input seen"),
-    ContractEntry("BAD_CONFIG", BAD_CONFIG, "bad configuration"))
+    ContractEntry("BAD_CONFIG", BAD_CONFIG, "bad configuration"),
+    ContractEntry("WORLD_CHECK", WORLD_CHECK, "the broad phase's internal check failed (a bug: contacts may be missing)"))
   val width: Int = entries.size
   require(entries.map(_.value).zipWithIndex.forall { case (v, i) => v == (1L << i) }, "error flags must be bits 0..n-1")
   val all: Seq[(String, Int)] = entries.map(e => e.name -> e.value.toInt)
@@ -115,6 +125,9 @@ object RecordFlags {
 /** The record tag word: a u32 after a record's value fields. */
 object RecordTag {
   val PAIR_BITS   = 24 // bits 0..23: the pair index
+  /** World mode: the pair field holds sphere i in bits 0..11 and j in bits 12..23 (i < j),
+    * so world-mode AFUs hold at most 2^12 spheres. */
+  val WORLD_INDEX_BITS = 12
   val FLAGS_SHIFT = 24 // bits 24..31: RecordFlags
   val BYTES       = 4
 }

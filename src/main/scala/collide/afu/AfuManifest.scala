@@ -24,6 +24,13 @@ object AfuManifest {
         "pairLatency" -> cfg.pairLatency, "pairBufferLines" -> p.pairBufferLines,
         "groupsInFlight" -> p.groupsInFlight, "scpuQueueDepth" -> p.scpuQueueDepth,
         "writeQueueLines" -> p.writeQueueLines,
+        "world" -> cfg.world.isDefined,
+        "broadPhase" -> cfg.world.map { bp =>
+          ujson.Obj("largeMax" -> bp.largeMax, "cellBits" -> bp.cellBits, "bucketsLog2" -> bp.bucketsLog2,
+            "margin" -> s"${bp.marginNum}/${bp.marginDen}", "cellOverError" -> bp.cellOverError,
+            "filterFracBits" -> bp.filterFracBits, "chunk" -> bp.chunk, "wordLog2" -> bp.wordLog2,
+            "recordPair" -> s"i | j << ${RecordTag.WORLD_INDEX_BITS}")
+        }.getOrElse(ujson.Null),
         "ram" -> ujson.Obj("copies" -> p.ramCopies, "bitsPerCopy" -> p.ramBitsPerCopy.toDouble,
           "sphereTableBits" -> p.ramBits.toDouble, "pairBufferBits" -> p.pairBufferBits.toDouble)),
       "scpu" -> scpuJson(s),
@@ -44,7 +51,7 @@ object AfuManifest {
           "recordBits" -> lay.recordBits, "recordBytes" -> lay.recordBytes, "recordsPerLine" -> lay.recordsPerLine,
           "groupPairs" -> p.lanes)),
       "csr" -> ujson.Obj.from(Csr.all.map { case (k, v) => k -> ujson.Num(v) }),
-      "csrValues" -> ujson.Obj("CTRL_START" -> Csr.CTRL_START, "MODE_DENSE" -> Csr.MODE_DENSE),
+      "csrValues" -> ujson.Obj("CTRL_START" -> Csr.CTRL_START, "MODE_DENSE" -> Csr.MODE_DENSE, "MODE_WORLD" -> Csr.MODE_WORLD),
       "status" -> ujson.Obj.from(StatusLine.all.map { case (k, v) => k -> ujson.Num(v) }),
       "statusNoBadPair" -> StatusLine.NO_BAD_PAIR.toDouble,
       "errorFlags" -> ujson.Obj.from(ErrorFlags.all.map { case (k, v) => k -> ujson.Num(v) }))

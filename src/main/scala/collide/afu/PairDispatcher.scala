@@ -21,6 +21,8 @@ class GroupInfo(p: PucParams) extends Bundle {
   * fires when every SCPU it needs has room in its input queue, so a full line goes out per
   * cycle at N = 16 and N pairs per cycle for N dividing 16. SCPUs are used round robin, so
   * N > 16 spreads the work over all units. Nothing is dispatched before `go` (table loaded).
+  * In world mode (`world`) a pair's tag, which becomes its record's pair field, names its
+  * spheres (i | j << 12, RecordTag.WORLD_INDEX_BITS) instead of its place in the list.
   */
 class PairDispatcher(p: PucParams) extends Module {
   override def desiredName = s"PairDispatcher_n${p.scpus}${p.name}"
@@ -40,6 +42,7 @@ class PairDispatcher(p: PucParams) extends Module {
     val groups     = Decoupled(new GroupInfo(p))
     val fired      = Output(Bool())  // a group went out this cycle (the "computing" counter)
     val idle       = Output(Bool())  // no line held
+    val world      = Input(Bool())
   })
 
   val cur      = Reg(new PairLine(p.pairLineBits))
@@ -96,7 +99,9 @@ class PairDispatcher(p: PucParams) extends Module {
     io.raddr(s)(0) := posI(kk)(idxBits - 1, 0)
     io.raddr(s)(1) := posJ(kk)(idxBits - 1, 0)
     inflight(s)    := io.ren(s)
-    when(io.ren(s)) { tagNext(s) := lineFirst + ptr + kk }
+    val wb = RecordTag.WORLD_INDEX_BITS
+    val worldTag = if (p.world.isDefined) Cat(posJ(kk)(wb - 1, 0), posI(kk)(wb - 1, 0)) else 0.U
+    when(io.ren(s)) { tagNext(s) := Mux(io.world && p.world.isDefined.B, worldTag, lineFirst + ptr + kk) }
     val q = queues(s).io.enq
     q.valid := inflight(s)
     q.bits.x1 := io.rdata(s)(0).x; q.bits.y1 := io.rdata(s)(0).y; q.bits.z1 := io.rdata(s)(0).z; q.bits.r1 := io.rdata(s)(0).r

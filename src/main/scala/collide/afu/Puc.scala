@@ -7,7 +7,9 @@ import collide.scpu.{ScpuIn, ScpuOut}
 /** The PUC: everything of the AFU but the SCPUs. CSRs, the run's state machine, the read
   * engine (sphere table then pair lines, reordered responses), the on-chip sphere table,
   * the dispatcher (a pair line's 16 pairs over N SCPUs), the collector and packer (records,
-  * compact or dense), the write engine and the status line. docs/afu.md describes it.
+  * compact or dense), the write engine and the status line. With world mode built (MODE
+  * bit 1), the broad phase reads the loaded table and its candidates replace the pair lines
+  * (WorldPairLines); docs/afu.md describes both.
   */
 class Puc(p: PucParams) extends Module {
   override def desiredName = s"Puc${p.name}"
@@ -41,6 +43,8 @@ class Puc(p: PucParams) extends Module {
   val contactBase = run(Csr.CONTACT_BASE); val capacity = run(Csr.CONTACT_CAPACITY)
   val statusAddr = run(Csr.STATUS_ADDR); val dense = run(Csr.MODE)(0)
   val numPairs = numPairs64(lay.pairIndexBits - 1, 0)
+  val worldBit = run(Csr.MODE)(1)
+  val world = worldBit && p.world.isDefined.B
 
   // ---- counters of the status line
   val errors     = RegInit(0.U(ErrorFlags.width.W))
@@ -60,8 +64,10 @@ class Puc(p: PucParams) extends Module {
 
   val engineStart = WireDefault(false.B)
   when(state === sCheck) {
-    val badConfig = numPairs64 >= lay.maxPairs.U ||
-      (numPairs64 =/= 0.U && pairBase === 0.U) || (numSpheres =/= 0.U && sphereBase === 0.U) ||
+    // World mode ignores PAIR_BASE and NUM_PAIRS; it is refused where it is not built, and dense.
+    val badPairs = !worldBit && (numPairs64 >= lay.maxPairs.U || (numPairs64 =/= 0.U && pairBase === 0.U))
+    val badWorld = worldBit && (!p.world.isDefined.B || dense)
+    val badConfig = badPairs || badWorld || (numSpheres =/= 0.U && sphereBase === 0.U) ||
       (capacity =/= 0.U && contactBase === 0.U) || statusAddr === 0.U
     val tooMany = numSpheres > p.maxSpheres.U
     errors := Mux(badConfig, ErrorFlags.BAD_CONFIG.U, 0.U) | Mux(tooMany, ErrorFlags.TOO_MANY_SPHERES.U, 0.U)
@@ -91,16 +97,56 @@ class Puc(p: PucParams) extends Module {
   rd.io.sphereBase  := sphereBase
   rd.io.sphereLines := ((numSpheres +& (lay.spheresPerLine - 1).U) >> log2Ceil(lay.spheresPerLine))(p.sphereLineBits, 0)
   rd.io.pairBase    := pairBase
-  rd.io.pairLines   := ((numPairs +& (lay.pairsPerLine - 1).U) >> log2Ceil(lay.pairsPerLine))(p.pairLineBits, 0)
+  rd.io.pairLines   := Mux(world, 0.U, ((numPairs +& (lay.pairsPerLine - 1).U) >> log2Ceil(lay.pairsPerLine))(p.pairLineBits, 0))
   io.link.rdReq <> rd.io.rdReq
   rd.io.rdResp := io.link.rdResp
   ram.io.write := rd.io.sphereWrite
 
   val loaded = rd.io.loaded && running
+
+  // ---- world mode: the broad phase starts once the table is loaded; its candidates, in
+  // lines, take the pair lines' place at the dispatcher.
+  val bpStarted = RegInit(false.B)
+  val bpStart = world && loaded && !bpStarted
+  when(bpStart) { bpStarted := true.B }
+  when(state === sCheck) { bpStarted := false.B }
+  val worldLine    = Wire(Decoupled(new PairLine(p.pairLineBits)))
+  val worldEmitted = WireDefault(0.U((lay.pairIndexBits + 1).W)) // candidates handed to the dispatcher
+  val worldDone    = WireDefault(false.B) // the broad phase is over and every candidate handed on
+  val cycBroad = WireDefault(0.U(32.W)); val cellExp = WireDefault(0.U(32.W))
+  val largeSpheres = WireDefault(0.U(32.W)); val worldCheck = WireDefault(false.B)
+  p.world match {
+    case Some(w) =>
+      val bp = Module(new collide.world.BroadPhase(w.fp, w.bp, p.maxSpheres))
+      bp.io.start := bpStart
+      bp.io.num   := numSpheres(bp.io.countW - 1, 0) // <= maxSpheres: checked at sCheck
+      val port = ram.io.world.get
+      port.addr := bp.io.sphere.addr
+      bp.io.sphere.data := VecInit(port.data.x, port.data.y, port.data.z, port.data.r)
+      val lines = Module(new WorldPairLines(p, bp.io.itemW))
+      lines.io.start := engineStart
+      lines.io.in <> bp.io.pairs
+      val bpDone = bpStarted && !bp.io.busy
+      lines.io.done := bpDone
+      worldLine <> lines.io.out
+      worldEmitted := lines.io.emitted
+      worldDone := bpDone && lines.io.idle
+      val st = bp.io.status
+      cycBroad := st.cycTotal; cellExp := st.k.pad(32).asUInt; largeSpheres := st.large.pad(32)
+      worldCheck := st.tooMany || st.cellOverflow || st.largeOverflow || st.badBucket || st.sortMismatch
+    case None =>
+      worldLine.valid := false.B; worldLine.bits := DontCare
+  }
+  val worldActive = world && (bpStart || (bpStarted && !worldDone))
+
   disp.io.go         := loaded
-  disp.io.numPairs   := numPairs
+  disp.io.numPairs   := Mux(world, worldEmitted(lay.pairIndexBits - 1, 0), numPairs)
   disp.io.numSpheres := numSpheres(16, 0)
-  disp.io.pairs <> rd.io.pairs
+  disp.io.world      := world
+  disp.io.pairs.valid := Mux(world, worldLine.valid, rd.io.pairs.valid)
+  disp.io.pairs.bits  := Mux(world, worldLine.bits, rd.io.pairs.bits)
+  rd.io.pairs.ready   := !world && disp.io.pairs.ready
+  worldLine.ready     := world && disp.io.pairs.ready
   ram.io.raddr := disp.io.raddr
   ram.io.ren   := disp.io.ren
   disp.io.rdata := ram.io.rdata
@@ -155,7 +201,8 @@ class Puc(p: PucParams) extends Module {
     cycTotal := 1.U; cycLoad := 0.U; cycCompute := 0.U; cycWaitRd := 0.U; cycWaitWr := 0.U
   }
 
-  val runDone   = processed === numPairs && rd.io.outstanding === 0.U && rd.io.loaded
+  val runDone   = Mux(world, worldDone && processed === worldEmitted, processed === numPairs) &&
+    rd.io.outstanding === 0.U && rd.io.loaded
   val drainDone = pack.io.idle && !wr.io.lines.valid && wr.io.outstanding === 0.U
   when(state === sRun && runDone) { state := sDrain }
   when(state === sDrain && drainDone) { state := sStatus }
@@ -166,7 +213,8 @@ class Puc(p: PucParams) extends Module {
   val nothingRun   = (errors & (ErrorFlags.TOO_MANY_SPHERES | ErrorFlags.BAD_CONFIG).U).orR
   val capErr       = totalRecords > capacity && !nothingRun
   val errFlags     = errors | Mux(nonFinite =/= 0.U, ErrorFlags.NONFINITE.U, 0.U) | Mux(capErr, ErrorFlags.CAPACITY.U, 0.U) |
-    Mux(firstBad =/= StatusLine.NO_BAD_PAIR.U, ErrorFlags.INDEX_RANGE.U, 0.U)
+    Mux(firstBad =/= StatusLine.NO_BAD_PAIR.U, ErrorFlags.INDEX_RANGE.U, 0.U) |
+    Mux(world && worldCheck && !nothingRun, ErrorFlags.WORLD_CHECK.U, 0.U)
   val words = WireInit(VecInit(Seq.fill(StatusLine.fields)(0.U(32.W))))
   words(StatusLine.DONE / 4)            := 1.U
   words(StatusLine.ERROR_FLAGS / 4)     := errFlags
@@ -180,6 +228,9 @@ class Puc(p: PucParams) extends Module {
   words(StatusLine.CYCLES_COMPUTE / 4)  := cycCompute
   words(StatusLine.CYCLES_WAIT_RD / 4)  := cycWaitRd
   words(StatusLine.CYCLES_WAIT_WR / 4)  := cycWaitWr
+  words(StatusLine.CYCLES_BROAD / 4)    := Mux(world && !nothingRun, cycBroad, 0.U)
+  words(StatusLine.WORLD_CELL_EXP / 4)  := Mux(world && !nothingRun, cellExp, 0.U)
+  words(StatusLine.WORLD_LARGE / 4)     := Mux(world && !nothingRun, largeSpheres, 0.U)
   wr.io.status.valid     := state === sStatus
   wr.io.status.bits.addr := statusAddr
   wr.io.status.bits.data := words.asUInt
@@ -193,7 +244,7 @@ class Puc(p: PucParams) extends Module {
   // collector hold nothing valid and no record reaches the packer), and the state machine
   // waits on a response (sRun, sDrain: packer empty; sStatus: no free write tag; sStatusWait).
   val noRequest = !io.link.rdReq.valid && !io.link.wrReq.valid
-  val quietRun  = !disp.io.fired && !rd.io.pairs.fire && pairsInFlight === 0.U
+  val quietRun  = !disp.io.fired && !rd.io.pairs.fire && pairsInFlight === 0.U && !worldActive
   io.idle := noRequest && MuxLookup(state, false.B)(Seq(
     sIdle       -> true.B,
     sRun        -> (quietRun && !runDone),

@@ -14,6 +14,10 @@ object SphereRamPorts {
   }
 }
 
+/** World mode's part of the PUC: the broad phase's parameters and the compute format it
+  * reads the sphere table in (world mode needs the link format to be the compute format). */
+final case class PucWorld(bp: collide.world.BroadPhaseParams, fp: collide.fp.FpParams)
+
 /** What the PUC (everything of the AFU but the SCPUs) needs to know. Derived from AfuConfig;
   * kept apart so the memory side does not depend on the floating-point configuration.
   *
@@ -28,6 +32,7 @@ object SphereRamPorts {
   * @param ramPorts     sphere table read-port strategy
   * @param denseByDefault reset value of MODE bit 0
   * @param records      what a contact record carries (RecordLayout)
+  * @param world        the broad phase, when world mode is built (MODE bit 1)
   * @param name         suffix of every module name, so two configurations never collide
   */
 final case class PucParams(
@@ -42,6 +47,7 @@ final case class PucParams(
     ramPorts: SphereRamPorts = SphereRamPorts.Replicated,
     denseByDefault: Boolean = false,
     records: RecordLayout = RecordLayout.Full,
+    world: Option[PucWorld] = None,
     name: String = "") {
   require(scpus >= 1 && scpus <= 64, s"scpus must be 1..64, got $scpus")
   require(linkWidth == 16 || linkWidth == 32 || linkWidth == 64, s"linkWidth must be 16, 32 or 64, got $linkWidth")
@@ -50,6 +56,10 @@ final case class PucParams(
   require(maxReads >= 2 && maxReads <= (1 << tagBits), s"maxReads must be 2..2^tagBits (${1 << tagBits}), got $maxReads")
   require(maxWrites >= 2 && maxWrites <= (1 << tagBits), s"maxWrites must be 2..2^tagBits (${1 << tagBits}), got $maxWrites")
   val layout: BufferLayout = BufferLayout(linkWidth, records)
+  require(world.isEmpty || maxSpheres <= (1 << RecordTag.WORLD_INDEX_BITS),
+    s"world mode: maxSpheres must be at most ${1 << RecordTag.WORLD_INDEX_BITS} (a record's pair field holds i and j), got $maxSpheres")
+  require(world.isEmpty || !layout.masked, s"world mode needs an indexed record layout (a record names its spheres), got ${records.name}")
+  require(world.forall(_.fp.width == linkWidth), "world mode: the broad phase reads the table in the link format, which must be the compute format")
   require(maxSpheres >= 64 && maxSpheres % layout.spheresPerLine == 0 && maxSpheres <= 65536,
     s"maxSpheres must be a multiple of ${layout.spheresPerLine} (spheres a line) in 64..65536, got $maxSpheres")
 
@@ -69,7 +79,9 @@ final case class PucParams(
   val writeQueueLines: Int = 8
   val sphereLineBits: Int = chisel3.util.log2Ceil(maxSpheres / layout.spheresPerLine)
   val pairLineBits: Int = layout.pairIndexBits - chisel3.util.log2Ceil(layout.pairsPerLine)
-  val ramCopies: Int = ramPorts match { case SphereRamPorts.Replicated => scpus }
+  /** One copy per SCPU, and in world mode one more for the broad phase's reads (it reads the
+    * table while the SCPUs compute the candidates it found earlier). */
+  val ramCopies: Int = ramPorts match { case SphereRamPorts.Replicated => scpus + world.size }
   /** Sphere table bits on chip, all copies. */
   val ramBitsPerCopy: Long = maxSpheres.toLong * 4 * linkWidth
   val ramBits: Long = ramBitsPerCopy * ramCopies

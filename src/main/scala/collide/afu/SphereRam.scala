@@ -12,6 +12,7 @@ class Sphere(w: Int) extends Bundle {
   * loading, read two spheres a cycle per SCPU while computing, one cycle after the address.
   * Replicated: one copy per SCPU, each a line-wide RAM (spheresPerLine spheres a word) with
   * one write and two read ports; the sphere within the line is selected after the read.
+  * World mode adds one more copy with one read port, always enabled, for the broad phase.
   */
 class SphereRam(p: PucParams) extends Module {
   override def desiredName = s"SphereRam_s${p.maxSpheres}_c${p.ramCopies}${p.name}"
@@ -24,6 +25,11 @@ class SphereRam(p: PucParams) extends Module {
     val raddr = Input(Vec(p.scpus, Vec(2, UInt(idxBits.W))))
     val ren   = Input(Vec(p.scpus, Bool()))
     val rdata = Output(Vec(p.scpus, Vec(2, new Sphere(p.linkWidth))))
+    /** World mode: the broad phase's read, data the next cycle. */
+    val world = p.world.map(_ => new Bundle {
+      val addr = Input(UInt(idxBits.W))
+      val data = Output(new Sphere(p.linkWidth))
+    })
   })
   private def unpack(line: UInt, k: UInt): Sphere = {
     val spheres = VecInit.tabulate(spl) { s =>
@@ -47,6 +53,12 @@ class SphereRam(p: PucParams) extends Module {
           val sel = RegEnable(a(log2Ceil(spl) - 1, 0), io.ren(c))
           io.rdata(c)(port) := unpack(word, sel)
         }
+      }
+      for (w <- io.world) {
+        val mem = SyncReadMem(depth, UInt(Link.lineBits.W))
+        when(io.write.valid) { mem.write(io.write.bits.line(log2Ceil(depth).max(1) - 1, 0), io.write.bits.data) }
+        val word = if (depth == 1) mem.read(0.U) else mem.read(w.addr(idxBits - 1, log2Ceil(spl)))
+        w.data := unpack(word, RegNext(w.addr(log2Ceil(spl) - 1, 0)))
       }
   }
 }

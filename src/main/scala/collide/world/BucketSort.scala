@@ -69,7 +69,11 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3) extends Mod
 
   // Read-first, as block RAM returns old data on a same-cycle write: the forwarding below
   // is then what makes back-to-back repeats right, in simulation as on the FPGA.
-  private val counts = SyncReadMem(1 << wordsLog2, Vec(perWord, UInt(countW.W)), SyncReadMem.ReadFirst)
+  // A word is a flat UInt (counter l in bits l*countW up): the generator's Verilog has no
+  // packed arrays, and a Mux of whole Vecs would need them.
+  private val counts = SyncReadMem(1 << wordsLog2, UInt((perWord * countW).W), SyncReadMem.ReadFirst)
+  private def lanes(w: UInt): Vec[UInt] = VecInit.tabulate(perWord)(l => w((l + 1) * countW - 1, l * countW))
+  private def flat(v: Seq[UInt]): UInt = Cat(v.reverse)
   private val entries = SyncReadMem(maxItems, UInt((io.itemW + 1).W)) // mark ## item
 
   private object S extends ChiselEnum { val idle, clearing, summing = Value }
@@ -100,10 +104,10 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3) extends Mod
   // The word written the cycle before, for the read that was issued alongside it.
   private val fwdValid = RegInit(false.B)
   private val fwdW = Reg(UInt(math.max(1, wordsLog2).W))
-  private val fwdV = Reg(Vec(perWord, UInt(countW.W)))
-  private val oldWord = Mux(fwdValid && fwdW === wordOf(s1b), fwdV, rd)
+  private val fwdV = Reg(UInt((perWord * countW).W))
+  private val oldWord = lanes(Mux(fwdValid && fwdW === wordOf(s1b), fwdV, rd))
   private val old = oldWord(laneOf(s1b))
-  private val newWord = VecInit((0 until perWord).map(l => Mux(laneOf(s1b) === l.U, old + 1.U, oldWord(l))))
+  private val newWord = flat((0 until perWord).map(l => Mux(laneOf(s1b) === l.U, old + 1.U, oldWord(l))))
   fwdValid := s1
   when(s1) {
     fwdW := wordOf(s1b); fwdV := newWord
@@ -120,7 +124,7 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3) extends Mod
   private val sum = Reg(UInt(countW.W))
   private val walkW = if (wordsLog2 == 0) 0.U else walk(wordsLog2 - 1, 0)
   private val sumRead = state === S.summing && walk < usedWords
-  private val sumRd = counts.read(walkW, sumRead)
+  private val sumRd = lanes(counts.read(walkW, sumRead))
   private val sumS1 = RegNext(sumRead, false.B)
   private val sumW = RegNext(walkW)
   private val sumLast = RegNext(walk + 1.U === usedWords)
@@ -135,13 +139,13 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3) extends Mod
   private val writeW = WireDefault(wordOf(s1b))
   private val writeV = WireDefault(newWord)
   when(state === S.clearing) {
-    write := true.B; writeW := walkW; writeV := VecInit(Seq.fill(perWord)(0.U(countW.W)))
+    write := true.B; writeW := walkW; writeV := 0.U
     walk := walk + 1.U
     when(walk + 1.U === usedWords) { state := S.idle }
   }
   when(state === S.summing && walk < usedWords) { walk := walk + 1.U }
   when(sumS1) {
-    write := true.B; writeW := sumW; writeV := starts
+    write := true.B; writeW := sumW; writeV := flat(starts)
     sum := sumRd.reduce(_ + _) + sum
     when(sumLast) { state := S.idle }
   }
@@ -150,8 +154,8 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3) extends Mod
   // --- reads for the candidate generators -------------------------------------------------
   private val lb = io.lookup.bucket
   private val prev = lb - 1.U
-  private val endRd = counts.read(wordOf(lb))
-  private val beginRd = counts.read(wordOf(prev))
+  private val endRd = lanes(counts.read(wordOf(lb)))
+  private val beginRd = lanes(counts.read(wordOf(prev)))
   private val lbZero = RegNext(lb === 0.U)
   io.lookup.end := endRd(RegNext(laneOf(lb)))
   io.lookup.word := endRd

@@ -133,6 +133,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
       go(base, ErrorFlags.BAD_CONFIG, Map(Csr.PAIR_BASE -> 0))
       go(base, ErrorFlags.BAD_CONFIG, Map(Csr.NUM_PAIRS -> (BigInt(1) << 24)))
       go(base, ErrorFlags.BAD_CONFIG, Map(Csr.CONTACT_BASE -> 0))
+      go(base, ErrorFlags.BAD_CONFIG, Map(Csr.MODE -> Csr.MODE_WORLD)) // world mode is not built here
       // no status address: nothing can be reported, nothing is written, the next run works
       val silent = AfuRun.run(mem(), base, maxCycles = 300, csrOverride = Map(Csr.STATUS_ADDR -> 0))
       assert(silent.writes.isEmpty && silent.status.isEmpty)

@@ -1,0 +1,42 @@
+#pragma once
+// World mode on the AFU (docs/host.md, "collide spheres"): the spheres the input policy
+// takes go to the AFU as one table; its on-chip broad phase finds the candidate pairs, its
+// SCPUs the contacts, and each record names its two spheres. The result is the CPU world
+// collider's: the same bad-sphere list, contacts sorted by (i, j), the policy's flags.
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "driver/afu_driver.hpp"
+#include "driver/afu_factory.hpp"
+#include "driver/wall_watchdog.hpp"
+#include "link/link_params.hpp"
+#include "world/world_collider.hpp"
+
+namespace collide::world {
+
+class AfuWorld {
+ public:
+  // The AFU of `afuDir` (empty: the one built in); throws driver::AfuUnavailable when this
+  // build has none or its manifest has no world mode.
+  AfuWorld(const std::filesystem::path& afuDir, const link::LinkParams& link,
+           const driver::AfuPortOptions& portOptions = {});
+  // Any port (tests), with the driver options its manifest would give.
+  AfuWorld(std::unique_ptr<driver::AfuPort> port, const link::LinkParams& link, const driver::DriverOptions& options,
+           double wallLimitS = driver::kDefaultWallLimitS);
+
+  void collide(const SphereTable& s, WorldContacts& out);
+  const driver::WorldRunResult& lastRun() const { return last_; }
+  const driver::AfuDriver& driver() const { return *driver_; }
+  // Cycle period of the link model, to turn the status line's cycles into time.
+  double cycleNs() const { return driver_->link().params().cycleNs(); }
+
+ private:
+  std::unique_ptr<driver::WallClockWatchdog> port_;
+  std::unique_ptr<driver::AfuDriver> driver_;
+  driver::WorldRunResult last_;
+  std::vector<std::uint32_t> members_;
+  SphereTable table_;
+};
+
+}  // namespace collide::world

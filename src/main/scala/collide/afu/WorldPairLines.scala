@@ -1,0 +1,54 @@
+package collide.afu
+
+import chisel3._
+import chisel3.util._
+import collide.world.WorldPair
+
+/** World mode: packs the broad phase's candidate pairs, one a cycle, into pair lines for the
+  * dispatcher, exactly as the host lays out a pair list (u16 i, u16 j; pair k of line l is
+  * candidate 16 l + k). A line leaves when full, or part-full once `done` says no candidate
+  * will follow. `emitted` counts the candidates in lines handed out; the dispatcher takes it
+  * as the run's pair count, so a line's pairs are min(16, emitted - its first), which is the
+  * line's own count (a part-full line is the last). Unused slots are zero.
+  */
+class WorldPairLines(p: PucParams, itemW: Int) extends Module {
+  override def desiredName = s"WorldPairLines_i${itemW}${p.name}"
+  private val ppl = p.layout.pairsPerLine
+  val io = IO(new Bundle {
+    val start   = Input(Bool()) // a new run: counters to zero (nothing may be held)
+    val in      = Flipped(Decoupled(new WorldPair(itemW)))
+    val done    = Input(Bool())
+    val out     = Decoupled(new PairLine(p.pairLineBits))
+    val emitted = Output(UInt((p.layout.pairIndexBits + 1).W))
+    val idle    = Output(Bool()) // nothing held, nothing waiting to leave
+  })
+
+  private val slots   = Reg(Vec(ppl, UInt(32.W)))
+  private val cnt     = RegInit(0.U(log2Ceil(ppl + 1).W))
+  private val line    = RegInit(0.U(p.pairLineBits.W))
+  private val emitted = RegInit(0.U((p.layout.pairIndexBits + 1).W))
+  private val q = Module(new Queue(new PairLine(p.pairLineBits), 2) {
+    override def desiredName = s"WorldLineQueue${p.name}"
+  })
+
+  private val full = cnt === ppl.U
+  q.io.enq.valid     := full || (io.done && cnt =/= 0.U && !io.in.valid)
+  q.io.enq.bits.line := line
+  q.io.enq.bits.data := VecInit.tabulate(ppl)(k => Mux(k.U < cnt, slots(k), 0.U)).asUInt
+  io.out <> q.io.deq
+
+  // A full line must leave before the next pair lands; the leaving line frees slot 0.
+  io.in.ready := !full || q.io.enq.ready
+  private val at = Mux(q.io.enq.fire, 0.U, cnt)
+  when(io.in.fire) { slots(VecIndex(at)) := Cat(io.in.bits.j.pad(16), io.in.bits.i.pad(16)) }
+  when(q.io.enq.fire) {
+    line := line + 1.U; emitted := emitted + cnt
+    cnt := io.in.fire.asUInt
+  }.elsewhen(io.in.fire) { cnt := cnt + 1.U }
+  when(io.start) { line := 0.U; emitted := 0.U; cnt := 0.U }
+
+  io.emitted := emitted
+  io.idle    := cnt === 0.U && !q.io.deq.valid
+
+  private object VecIndex { def apply(i: UInt): UInt = i(log2Ceil(ppl) - 1, 0) }
+}
