@@ -1,0 +1,110 @@
+// World mode on the world preset's AFU (generated/world, Verilated into this test): the
+// driver's runWorld and world::AfuWorld against the CPU grid + simd kernel, bit for bit;
+// a contact buffer too small (the retry gets every contact); the empty world; refusals.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <stdexcept>
+
+#include "collide/simd_backend.hpp"
+#include "driver/afu_driver.hpp"
+#include "driver/afu_factory.hpp"
+#include "driver/manifest.hpp"
+#include "link/link_presets.hpp"
+#include "support/random_world.hpp"
+#include "support/test_seed.hpp"
+#include "world/afu_world.hpp"
+#include "world/grid_broad_phase.hpp"
+
+using namespace collide;
+
+namespace {
+
+driver::DriverOptions worldOptions() {
+  return driver::withManifest(driver::DriverOptions{},
+                              driver::parseManifest(driver::builtInAfuManifest(), "the built-in AFU's manifest"));
+}
+
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Every contact, its spheres, values and flags identical; the bad-sphere lists too.
+void expectSame(const world::WorldContacts& a, const world::WorldContacts& b, const std::string& what) {
+  ASSERT_EQ(a.pairs.size(), b.pairs.size()) << what;
+  EXPECT_EQ(a.badSpheres, b.badSpheres) << what;
+  EXPECT_EQ(a.badFlags, b.badFlags) << what;
+  for (std::size_t k = 0; k < a.pairs.size(); ++k) {
+    ASSERT_TRUE(a.pairs.i[k] == b.pairs.i[k] && a.pairs.j[k] == b.pairs.j[k]) << what << ": contact " << k;
+    const auto& x = a.contacts; const auto& y = b.contacts;
+    EXPECT_TRUE(sameBits(x.px[k], y.px[k]) && sameBits(x.py[k], y.py[k]) && sameBits(x.pz[k], y.pz[k]) &&
+                sameBits(x.nx[k], y.nx[k]) && sameBits(x.ny[k], y.ny[k]) && sameBits(x.nz[k], y.nz[k]) &&
+                sameBits(x.depth[k], y.depth[k]) && x.flags[k] == y.flags[k])
+        << what << ": contact (" << a.pairs.i[k] << ", " << a.pairs.j[k] << ")";
+  }
+}
+
+world::WorldContacts onCpu(const SphereTable& t) {
+  world::GridBroadPhase grid;
+  SimdBackend simd;
+  world::WorldCollider c(grid, simd);
+  world::WorldContacts w;
+  world::WorldTiming time;
+  c.collide(t, w, time);
+  return w;
+}
+
+}  // namespace
+
+TEST(AfuWorld, FindsTheCpuGridsContactsBitForBitOnRandomWorlds) {
+  const auto seed = test::testSeed(1301);
+  world::AfuWorld afu("", link::presetParams("qpi"));
+  for (bool mixed : {false, true}) {
+    test::WorldShape s;
+    s.spheres = 1000;
+    s.extent = 6;
+    if (mixed) { s.logRadii = true; s.rMin = 0.002; s.rMax = 2; }
+    const auto t = test::randomWorld(seed + mixed, s);
+    world::WorldContacts got;
+    afu.collide(t, got);
+    const auto want = onCpu(t);
+    EXPECT_GT(want.pairs.size(), 300u);
+    expectSame(got, want, mixed ? "radii over 1:1000" : "uniform radii");
+    if (!mixed) EXPECT_EQ(afu.lastRun().attempts, 1u);  // a few contacts a sphere: the first buffer holds them
+    EXPECT_GE(afu.lastRun().run.status.pairsProcessed, got.pairs.size());
+  }
+}
+
+TEST(AfuWorld, RunsAgainWithRoomForEveryContactWhenTheBufferIsTooSmall) {
+  const auto seed = test::testSeed(1302);
+  test::WorldShape s;
+  s.spheres = 400;
+  s.extent = 3;  // dense: several contacts a sphere
+  const auto t = test::randomWorld(seed, s);
+  driver::WallClockWatchdog port(driver::makeAfuPort("", {}), driver::kDefaultWallLimitS);
+  driver::AfuDriver d(port, link::presetParams("ideal"), worldOptions());
+  port.arm();
+  const auto full = d.runWorld(t);
+  ASSERT_EQ(full.attempts, 1u);
+  ASSERT_GT(full.run.records.size(), 100u);
+  port.arm();
+  const auto cut = d.runWorld(t, 10);  // room for 10 of them
+  EXPECT_EQ(cut.attempts, 2u);
+  ASSERT_EQ(cut.run.records.size(), full.run.records.size());
+  EXPECT_EQ(cut.run.status.contactsFound, full.run.status.contactsFound);
+  // Both runs' time is counted.
+  EXPECT_GT(cut.run.stats.modelledNs, full.run.stats.modelledNs);
+}
+
+TEST(AfuWorld, HandlesTheEmptyWorldAndOneSphereAndRefusesTooManySpheres) {
+  world::AfuWorld afu("", link::presetParams("ideal"));
+  world::WorldContacts w;
+  afu.collide(SphereTable{}, w);
+  EXPECT_EQ(w.pairs.size(), 0u);
+  EXPECT_EQ(afu.lastRun().run.status.pairsProcessed, 0u);
+  SphereTable one;
+  one.push(1, 2, 3, 0.5);
+  afu.collide(one, w);
+  EXPECT_EQ(w.pairs.size(), 0u);
+  SphereTable many;
+  for (std::uint32_t k = 0; k <= afu.driver().options().maxSpheres; ++k) many.push(k, 0, 0, 0.25);
+  EXPECT_THROW(afu.collide(many, w), std::invalid_argument);
+}
