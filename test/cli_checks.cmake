@@ -440,6 +440,29 @@ elseif(CHECK STREQUAL "spheres_bad_input")
     expect_rc(1)
     expect_match("${err}" "/dev/full: write failed: No space left on device")
   endif()
+elseif(CHECK STREQUAL "run_world_offload")
+  # A scene offloading the whole collision: the CPU grid with simd runs it; ode is refused.
+  execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/pile_box_world.json --steps 2 --summary ${WORK}/s.json
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  expect_match("${out}" "offload world: simd")
+  expect_match("${out}" "broad phase .*grid \\+ binary32 kernel\\)'s broad phase, measured")
+  file(READ ${WORK}/s.json summary)
+  string(JSON offload GET "${summary}" offload)
+  if(NOT offload STREQUAL "world")
+    message(FATAL_ERROR "summary offload: ${offload}")
+  endif()
+  execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/pile_box_world.json --steps 2 --backend ode
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "collision.offload \"world\" needs backend simd or rtl, not ode")
+elseif(CHECK STREQUAL "afu_run_world")
+  # The same scene on the AFU's world mode: one step, its modelled time split.
+  execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/pile_box_world.json --backend rtl --steps 1
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  expect_match("${out}" "contacts     : 2217 sphere/sphere")
+  expect_match("${out}" "  broad phase +[0-9.]+ us +[0-9.]+ % +\\(world mode")
 elseif(CHECK STREQUAL "spheres_afu_world")
   # World mode on the AFU: the same contacts, flags and bad-sphere rows as the CPU grid with
   # the binary32 kernel, byte for byte, over two links; the summary names the AFU's run.

@@ -57,6 +57,14 @@ TEST(SceneErrors, InlineFaults) {
             "scene.bodies.random_cloud.max: must be >= min in every coordinate");
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "link": "pcie", "bodies": {"diamond": {"hMax": 2}}})"),
             "scene.link: expected \"ideal\", \"qpi\", \"harp1\", \"harp2\", \"pac\" or \"cxl\", got \"pcie\"");
+  EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "collision": {"offload": "everything"}, "bodies": {"diamond": {"hMax": 2}}})"),
+            "scene.collision.offload: expected \"pairs\" or \"world\", got \"everything\"");
+  EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "collision": {"offload": "world"}, "bodies": {"diamond": {"hMax": 2}}})"),
+            "scene.collision.offload: expected \"pairs\" with backend ode (\"world\" needs backend simd or rtl: ODE's own "
+            "space is the pairs path), got \"world\"");
+  EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "collision": {"ofload": "world"}, "bodies": {"diamond": {"hMax": 2}}})")
+                .rfind("scene.collision.ofload: unknown key", 0),
+            0u);
 }
 
 TEST(Scenes, ExampleScenesLoadAsDeclared) {

@@ -5,6 +5,7 @@
 #include "collide/simd_backend.hpp"
 #include "ode/simulation.hpp"
 #include "scene/scene.hpp"
+#include "world/cpu_world.hpp"
 
 using namespace collide;
 
@@ -67,6 +68,26 @@ TEST(Simulation, DiamondBackendsSeeTheSamePairs) {
   // Touching in-layer neighbours sit exactly at d = 2r in exact arithmetic, so float and
   // double may classify a few differently; overlapping inter-layer pairs agree.
   EXPECT_NEAR(static_cast<double>(sa.contacts), static_cast<double>(sb.contacts), 0.5 * sa.contacts);
+}
+
+TEST(Simulation, OffloadingTheWorldFindsThePairPathsContactsAndPlanes) {
+  // The same start through ODE's space + simd pairs and through the world engine (our grid
+  // + simd): every contact of the first step, sphere/sphere and sphere/plane, in both.
+  const auto s = parse(R"({"steps": 3, "dt": 0.01, "backend": "simd", "collision": {"offload": "world"},
+      "effects": {"gravity": [0, 0, -9.81], "planes": [{"normal": [0, 0, 1], "offset": 0}, {"normal": [1, 0, 0], "offset": -1}]},
+      "bodies": {"random_cloud": {"count": 400, "seed": 3, "min": [-1, -1, 0.02], "max": [1, 1, 1.2], "radius": [0.04, 0.08]}}})");
+  ASSERT_TRUE(s.offload == scene::Scene::Offload::World);
+  SimdBackend simd;
+  world::CpuWorld engine;
+  ode::Simulation pairs(s, simd), whole(s, engine);
+  const auto a = pairs.step(), b = whole.step();
+  EXPECT_GT(a.contacts, 100u);
+  EXPECT_EQ(a.contacts, b.contacts);
+  EXPECT_GT(a.otherContacts, 0u);
+  EXPECT_EQ(a.otherContacts, b.otherContacts);
+  EXPECT_GE(b.pairsTested, b.contacts);  // the engine's candidates
+  EXPECT_GT(b.worldBroadNs, 0);
+  for (int k = 0; k < 2; ++k) EXPECT_GT(whole.step().contacts, 0u);
 }
 
 TEST(Simulation, EveryStepSaysWhereItsTimeWent) {

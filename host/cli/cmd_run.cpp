@@ -20,6 +20,8 @@
 #include "link/link_presets.hpp"
 #include "ode/simulation.hpp"
 #include "scene/scene.hpp"
+#include "world/afu_world.hpp"
+#include "world/cpu_world.hpp"
 
 namespace collide::cli {
 
@@ -32,16 +34,17 @@ void printTiming(std::ostream& os, std::int64_t ns, std::uint64_t pairs, std::ui
 }
 
 void printTimeSplit(std::ostream& os, const RunTotals& t, double narrowNs, const std::string& narrowWhat,
-                    long long steps) {
-  const double total = static_cast<double>(t.stepNs - t.backendNs) + narrowNs;
-  const double other = total - static_cast<double>(t.broadNs + t.otherNarrowNs + t.jointsNs + t.solverNs) - narrowNs;
+                    long long steps, double engineBroadNs, const std::string& broadWhat) {
+  const double total = static_cast<double>(t.stepNs - t.backendNs) + narrowNs + engineBroadNs;
+  const double broad = static_cast<double>(t.broadNs) + engineBroadNs;
+  const double other = total - broad - static_cast<double>(t.otherNarrowNs + t.jointsNs + t.solverNs) - narrowNs;
   os << "time split   : " << std::fixed << std::setprecision(3) << total / 1e6 << " ms in " << steps << " steps ("
      << std::setprecision(1) << (steps ? total / 1e3 / static_cast<double>(steps) : 0.0) << " us a step)\n";
   auto line = [&](const char* what, double ns, const std::string& note) {
     os << "  " << std::left << std::setw(24) << what << std::right << std::setw(12) << std::setprecision(3) << ns / 1e6
        << " ms  " << std::setw(5) << std::setprecision(1) << (total > 0 ? 100.0 * ns / total : 0.0) << " %" << note << "\n";
   };
-  line("broad phase", static_cast<double>(t.broadNs), "  (dSpaceCollide, ODE's hash space)");
+  line("broad phase", broad, "  (" + broadWhat + ")");
   line("narrow, sphere/sphere", narrowNs, "  (" + narrowWhat + ")");
   line("narrow, sphere/plane", static_cast<double>(t.otherNarrowNs), "  (dCollide on the CPU)");
   line("contact joints", static_cast<double>(t.jointsNs), "");
@@ -81,7 +84,9 @@ void printAfu(std::ostream& os, const AfuTotals& a, std::uint64_t pairs, std::ui
   line("computing", a.counters.cyclesComputing * c, "  (cycles in which an SCPU took a pair)");
   line("waiting on reads", a.counters.cyclesWaitRead * c, "  (may overlap loading)");
   line("waiting on writes", a.counters.cyclesWaitWrite * c, "");
-  line("other AFU cycles", a.otherNs(), "  (total minus the four above; negative if they overlap)");
+  if (a.counters.cyclesBroad)
+    line("broad phase", a.counters.cyclesBroad * c, "  (world mode; the SCPUs compute during its last pass)");
+  line("other AFU cycles", a.otherNs(), "  (total minus the lines above; negative if they overlap)");
   line("overhead", a.overheadNs(), "  (per run: transaction, CSR writes, status write, polling)");
   os << "  link bound " << std::setw(18) << std::setprecision(3) << a.stats.linkBoundNs / 1e3 << " us  ("
      << a.stats.readLines << " lines read, " << a.stats.writeLines << " written; modelled/bound "
@@ -106,11 +111,28 @@ int runScene(const RunOptions& o) {
     if (o.wallLimit) req.port.wallLimitS = *o.wallLimit;
     else if (sc.wallLimitS) req.port.wallLimitS = *sc.wallLimitS;
     if (!o.trace.empty() && !rtl) throw std::invalid_argument("--trace needs --backend rtl");
-    auto backend = makeBackend(req);  // rtl without an AFU throws AfuUnavailable here
+    // Offload "world": an engine does the whole sphere/sphere collision; no pair backend.
+    const bool worldOffload = sc.offload == scene::Scene::Offload::World;
+    if (worldOffload && sc.backend == "ode")
+      throw std::invalid_argument("scene " + sc.name + ": collision.offload \"world\" needs backend simd or rtl, not ode "
+                                  "(ODE's own space is the pairs path)");
+    std::unique_ptr<CollisionBackend> backend;
+    std::unique_ptr<world::WorldEngine> engine;
+    world::AfuWorld* afuWorld = nullptr;
+    if (!worldOffload) {
+      backend = makeBackend(req);  // rtl without an AFU throws AfuUnavailable here
+    } else if (rtl) {
+      auto a = std::make_unique<world::AfuWorld>(sc.afuDir, sc.link, req.port);
+      afuWorld = a.get();
+      engine = std::move(a);
+    } else {
+      engine = std::make_unique<world::CpuWorld>();
+    }
     auto* rtlBackend = dynamic_cast<RtlBackend*>(backend.get());
+    const std::string backendName = backend ? backend->name() : sc.backend + " (offload world: " + engine->name() + ")";
 
     std::cout << "scene " << sc.name << ": " << sc.spheres.size() << " spheres, " << sc.steps
-              << " steps, dt " << sc.dt << ", backend " << backend->name() << ", link "
+              << " steps, dt " << sc.dt << ", backend " << backendName << ", link "
               << (rtl ? sc.link.name : std::string("not simulated (CPU backend)"));
     if (rtl) std::cout << ", AFU " << (driver::builtInAfuPreset().empty() ? "?" : driver::builtInAfuPreset());
     std::cout << "\n";
@@ -124,7 +146,8 @@ int runScene(const RunOptions& o) {
     std::int64_t stepOdeNs = 0, stepSimdNs = 0;
     std::uint64_t stepMismatch = 0;
 
-    ode::Simulation sim(sc, *backend);
+    auto simPtr = backend ? std::make_unique<ode::Simulation>(sc, *backend) : std::make_unique<ode::Simulation>(sc, *engine);
+    ode::Simulation& sim = *simPtr;
     sim.setBatchObserver([&](const SphereTable& t, const PairList& p, const ContactSet&) {
       const OdeGeomBinding geoms(&ode, sim.world().sphereGeoms());  // ODE's collider on the world's own geoms
       stepOdeNs = timeNs(o.cpuRepeat, [&] { ode.collide(t, p, odeOut); });
@@ -157,20 +180,29 @@ int runScene(const RunOptions& o) {
       tot.jointsNs += st.jointsNs;
       tot.solverNs += st.solverNs;
       tot.stepNs += st.stepNs;
-      if (rtlBackend) { afu.add(rtlBackend->lastBatch()); afu.cycleNs = sc.link.cycleNs(); }
+      tot.worldBroadNs += st.worldBroadNs;
+      tot.worldNarrowNs += st.worldNarrowNs;
+      // This step's AFU calls: the rtl backend's batch, or the world engine's run.
+      RtlBatchStats stepAfu;
+      if (rtlBackend) stepAfu = rtlBackend->lastBatch();
+      if (afuWorld) stepAfu.add(afuWorld->lastRun().run.status, afuWorld->lastRun().run.stats, afuWorld->lastRun().attempts);
+      if (rtl) { afu.add(stepAfu); afu.cycleNs = sc.link.cycleNs(); }
       if (o.perStep) {
         std::cout << "step " << st.step << ": " << st.pairsTested << " pairs, " << st.contacts << " contacts"
                   << (st.otherContacts ? " (+" + std::to_string(st.otherContacts) + " plane)" : "")
-                  << ", ode " << stepOdeNs << " ns, simd " << stepSimdNs << " ns";
-        if (rtlBackend) std::cout << ", AFU " << std::fixed << std::setprecision(0) << rtlBackend->lastBatch().stats.modelledNs << " ns modelled";
+                  ;
+        if (!engine) std::cout << ", ode " << stepOdeNs << " ns, simd " << stepSimdNs << " ns";
+        if (rtl) std::cout << ", AFU " << std::fixed << std::setprecision(0) << stepAfu.stats.modelledNs << " ns modelled";
+        if (engine) std::cout << ", world engine: broad " << st.worldBroadNs << " ns, rest " << st.worldNarrowNs << " ns"
+                              << (engine->modelled() ? " modelled" : " measured");
         std::cout << "\n";
       }
       if (csvFile) {
         std::ostream& csv = csvFile->stream();
         csv << st.step << ',' << st.pairsTested << ',' << st.contacts << ',' << st.otherContacts << ','
             << st.backendNs << ',' << stepOdeNs << ',' << stepSimdNs << ',' << stepMismatch;
-        if (rtlBackend) {
-          const auto& b = rtlBackend->lastBatch();
+        if (rtl) {
+          const auto& b = stepAfu;
           csv << ',' << b.runs << ',' << std::fixed << std::setprecision(1) << b.stats.modelledNs << ','
               << b.counters.cyclesTotal << ',' << b.counters.cyclesLoading << ',' << b.counters.cyclesComputing
               << ',' << b.counters.cyclesWaitRead << ',' << b.counters.cyclesWaitWrite;
@@ -181,16 +213,27 @@ int runScene(const RunOptions& o) {
     }
     if (csvFile) csvFile->commit();
 
-    std::cout << "pairs tested : " << tot.pairs << " sphere/sphere candidates from the broad phase\n"
+    std::cout << "pairs tested : " << tot.pairs << " sphere/sphere candidates from the broad phase"
+              << (engine ? " (the world engine's own)" : "") << "\n"
               << "contacts     : " << tot.contacts << " sphere/sphere";
     if (sc.groundZ || !sc.planes.empty()) std::cout << " (+" << tot.otherContacts << " sphere/plane on the CPU)";
-    std::cout << "\nODE collider : ";
-    printTiming(std::cout, tot.odeNs, tot.pairs, tot.contacts);
-    std::cout << "  (dCollide on the world's dSphere geoms, binary64)\nsimd batch   : ";
-    printTiming(std::cout, tot.simdNs, tot.pairs, tot.contacts);
-    std::cout << "  (gather + binary32 SoA kernel)\n"
-              << "simd vs ode  : " << tot.hitMismatches << " pairs disagree on hit\n";
-    if (rtl) {
+    std::cout << "\n";
+    if (!engine) {  // the observer's comparison runs on the pairs path only
+      std::cout << "ODE collider : ";
+      printTiming(std::cout, tot.odeNs, tot.pairs, tot.contacts);
+      std::cout << "  (dCollide on the world's dSphere geoms, binary64)\nsimd batch   : ";
+      printTiming(std::cout, tot.simdNs, tot.pairs, tot.contacts);
+      std::cout << "  (gather + binary32 SoA kernel)\n"
+                << "simd vs ode  : " << tot.hitMismatches << " pairs disagree on hit\n";
+    }
+    if (engine) {
+      // The engine's own account: the broad phase apart, the rest as the narrow phase.
+      const std::string how = engine->modelled() ? "modelled, link " + sc.link.name : std::string("measured");
+      if (afuWorld) printAfu(std::cout, afu, tot.pairs, tot.contacts, sc.link.name, tot.backendNs);
+      printTimeSplit(std::cout, tot, static_cast<double>(tot.worldNarrowNs), engine->name() + ", " + how, sc.steps,
+                     static_cast<double>(tot.worldBroadNs),
+                     engine->name() + "'s broad phase, " + how + "; planes: every sphere, on the CPU");
+    } else if (rtl) {
       printAfu(std::cout, afu, tot.pairs, tot.contacts, sc.link.name, tot.backendNs);
       printTimeSplit(std::cout, tot, afu.stats.modelledNs,
                      "the AFU, modelled, link " + sc.link.name + "; in place of the co-simulation's wall time", sc.steps);
@@ -221,7 +264,8 @@ int runScene(const RunOptions& o) {
       j["scene"] = sc.name;
       j["spheres"] = sc.spheres.size();
       j["steps"] = sc.steps;
-      j["backend"] = backend->name();
+      j["backend"] = backend ? backend->name() : sc.backend;
+      j["offload"] = engine ? "world" : "pairs";
       j["pairs"] = tot.pairs;
       j["contacts"] = tot.contacts;
       j["ode_ns"] = tot.odeNs;
@@ -235,6 +279,10 @@ int runScene(const RunOptions& o) {
                          {"plane_narrow_ns", tot.otherNarrowNs}, {"joints_ns", tot.jointsNs},
                          {"solver_ns", tot.solverNs},       {"step_ns", tot.stepNs}};
       if (rtl) j["time_split"]["narrow_modelled_ns"] = afu.stats.modelledNs;
+      if (engine) {  // the engine's own account (modelled on the AFU), beside its wall time above
+        j["time_split"]["world_broad_ns"] = tot.worldBroadNs;
+        j["time_split"]["world_narrow_ns"] = tot.worldNarrowNs;
+      }
       if (rtl) {
         j["afu"] = {{"preset", driver::builtInAfuPreset()},
                     {"link", sc.link.name},

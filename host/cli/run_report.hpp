@@ -15,24 +15,30 @@ struct RunTotals {
   // The steps' time split (ode::StepStats): broad phase, sphere/plane narrow phase, contact
   // joints, solver, and the whole steps (the sphere/sphere narrow phase is backendNs).
   std::int64_t broadNs = 0, otherNarrowNs = 0, jointsNs = 0, solverNs = 0, stepNs = 0;
+  // Offload "world": the engine's own broad / rest split (ode::StepStats::worldBroadNs...).
+  std::int64_t worldBroadNs = 0, worldNarrowNs = 0;
 };
 
 // Where a run's step time went, one line per stage with its share. `narrowNs` is the
 // sphere/sphere narrow phase as the run should count it: the backend's wall time on the CPU
 // backends, the modelled AFU time on rtl (its co-simulation's wall time is no real cost), so
 // the total is the steps' wall time with the backend's wall replaced by narrowNs.
+// A world engine (offload "world") does the broad phase inside that call: `engineBroadNs` is
+// its own account of it (measured, or modelled on the AFU), added to the broad-phase line.
 void printTimeSplit(std::ostream& os, const RunTotals& t, double narrowNs, const std::string& narrowWhat,
-                    long long steps);
+                    long long steps, double engineBroadNs = 0,
+                    const std::string& broadWhat = "dSpaceCollide, ODE's hash space");
 
 // The rtl backend's modelled AFU time over a run (sums over every AFU call), split as the
 // paper's Figures 5-7: the status line's cycle counters, and what lies outside them.
 struct AfuTotals : RtlBatchStats {
   double cycleNs = 5.0;
-  // AFU cycles that none of the four counters claims (they may overlap: then negative).
+  // AFU cycles that none of the counters claims (they may overlap: then negative; world mode's
+  // broad phase overlaps the SCPUs' computing in its last pass).
   double otherNs() const {
     const auto& c = counters;
-    return (static_cast<double>(c.cyclesTotal) -
-            static_cast<double>(c.cyclesLoading + c.cyclesComputing + c.cyclesWaitRead + c.cyclesWaitWrite)) * cycleNs;
+    return (static_cast<double>(c.cyclesTotal) - static_cast<double>(c.cyclesLoading + c.cyclesComputing + c.cyclesWaitRead +
+                                                                     c.cyclesWaitWrite + c.cyclesBroad)) * cycleNs;
   }
   // Modelled time outside the AFU's own cycle count.
   double overheadNs() const { return stats.modelledNs - static_cast<double>(counters.cyclesTotal) * cycleNs; }

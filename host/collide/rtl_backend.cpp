@@ -62,6 +62,7 @@ void RtlBatchStats::add(const driver::StatusLine& s, const driver::RunStats& r, 
   c.cyclesComputing += s.cyclesComputing;
   c.cyclesWaitRead += s.cyclesWaitRead;
   c.cyclesWaitWrite += s.cyclesWaitWrite;
+  c.cyclesBroad += s.cyclesBroad;
   stats.cyclesStepped += r.cyclesStepped;
   stats.cyclesSkipped += r.cyclesSkipped;
   stats.statusCycle += r.statusCycle;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "ode/contact_joints.hpp"
@@ -12,10 +13,13 @@ namespace collide::ode {
 
 Simulation::Simulation(const scene::Scene& scene, CollisionBackend& backend)
     : scene_(scene),
-      backend_(backend),
+      backend_(&backend),
       odeBackend_(dynamic_cast<OdeBackend*>(&backend)),
       world_(scene),
       surface_(surfaceFor(scene.contact)) {}
+
+Simulation::Simulation(const scene::Scene& scene, world::WorldEngine& engine)
+    : scene_(scene), engine_(&engine), world_(scene), surface_(surfaceFor(scene.contact)) {}
 
 void Simulation::nearCallback(void* self, dGeomID o1, dGeomID o2) {
   auto* sim = static_cast<Simulation*>(self);
@@ -72,6 +76,40 @@ std::int64_t nsBetween(Clock::time_point a, Clock::time_point b) {
 }
 }  // namespace
 
+// The world path's collision: planes against every sphere on the CPU, then the engine.
+void Simulation::collideWorld(StepStats& st) {
+  auto t0 = Clock::now();
+  const int n = dSpaceGetNumGeoms(world_.space());
+  for (int g = 0; g < n; ++g) {
+    dGeomID geom = dSpaceGetGeom(world_.space(), g);
+    if (world_.sphereIndex(geom) >= 0) continue;
+    for (std::size_t k = 0; k < world_.sphereCount(); ++k) otherPairs_.emplace_back(world_.sphereGeom(k), geom);
+  }
+  auto t1 = Clock::now();
+  st.broadNs = nsBetween(t0, t1);
+  for (const auto& [o1, o2] : otherPairs_) {
+    dContactGeom cg[4];
+    const int c = dCollide(o1, o2, 4, cg, sizeof(dContactGeom));
+    otherContacts_.insert(otherContacts_.end(), cg, cg + c);
+  }
+  t0 = Clock::now();
+  st.otherNarrowNs = nsBetween(t1, t0);
+  world_.fillSphereTable(table_);
+  t0 = Clock::now();
+  engine_->collide(table_, worldOut_, worldTime_);
+  t1 = Clock::now();
+  st.backendNs = nsBetween(t0, t1);
+  st.worldBroadNs = worldTime_.broadNs;
+  st.worldNarrowNs = worldTime_.narrowNs + worldTime_.finishNs;
+  // Every sphere passed requireSpheresInRange, so the engine's input policy rejects none.
+  if (!worldOut_.badSpheres.empty())
+    throw std::logic_error("internal error: the world engine rejected sphere " + std::to_string(worldOut_.badSpheres[0]) +
+                           " after the range check passed it");
+  pairs_ = worldOut_.pairs;
+  results_ = worldOut_.contacts;
+  st.pairsTested = worldOut_.candidates;
+}
+
 StepStats Simulation::step() {
   StepStats st;
   st.step = step_;
@@ -81,29 +119,35 @@ StepStats Simulation::step() {
   otherContacts_.clear();
   requireSpheresInRange();
   applyEffects();
-  auto t0 = Clock::now();
-  world_.collideSpace(this, &Simulation::nearCallback);
-  if (nearError_) std::rethrow_exception(std::exchange(nearError_, nullptr));
-  auto t1 = Clock::now();
-  st.broadNs = nsBetween(t0, t1);
-
-  for (const auto& [o1, o2] : otherPairs_) {
-    dContactGeom cg[4];
-    const int n = dCollide(o1, o2, 4, cg, sizeof(dContactGeom));
-    otherContacts_.insert(otherContacts_.end(), cg, cg + n);
-  }
-  t0 = Clock::now();
-  st.otherNarrowNs = nsBetween(t1, t0);
-
-  world_.fillSphereTable(table_);
-  {
-    const OdeGeomBinding geoms(odeBackend_, world_.sphereGeoms());  // bound for this step's call only
-    t0 = Clock::now();
-    backend_.collide(table_, pairs_, results_);
+  auto t0 = Clock::now(), t1 = t0;
+  if (engine_) {
+    collideWorld(st);
     t1 = Clock::now();
+  } else {
+    world_.collideSpace(this, &Simulation::nearCallback);
+    if (nearError_) std::rethrow_exception(std::exchange(nearError_, nullptr));
+    t1 = Clock::now();
+    st.broadNs = nsBetween(t0, t1);
+
+    for (const auto& [o1, o2] : otherPairs_) {
+      dContactGeom cg[4];
+      const int n = dCollide(o1, o2, 4, cg, sizeof(dContactGeom));
+      otherContacts_.insert(otherContacts_.end(), cg, cg + n);
+    }
+    t0 = Clock::now();
+    st.otherNarrowNs = nsBetween(t1, t0);
+
+    world_.fillSphereTable(table_);
+    {
+      const OdeGeomBinding geoms(odeBackend_, world_.sphereGeoms());  // bound for this step's call only
+      t0 = Clock::now();
+      backend_->collide(table_, pairs_, results_);
+      t1 = Clock::now();
+    }
+    st.backendNs = nsBetween(t0, t1);
+    if (observer_) observer_(table_, pairs_, results_);
+    st.pairsTested = pairs_.size();
   }
-  st.backendNs = nsBetween(t0, t1);
-  if (observer_) observer_(table_, pairs_, results_);
   const auto afterObserver = Clock::now();
 
   // Sphere/plane joints first: the order ODE found them in before the batch existed.
@@ -120,7 +164,6 @@ StepStats Simulation::step() {
     addContactJoint(world_.world(), world_.contacts(), surface_, g);
     ++st.contacts;
   }
-  st.pairsTested = pairs_.size();
   st.otherContacts = otherContacts_.size();
   t0 = Clock::now();
   st.jointsNs = nsBetween(afterObserver, t0);

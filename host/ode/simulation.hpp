@@ -4,6 +4,9 @@
 //   sphere/sphere candidate pairs into a batch and the other pairs into a list) -> dCollide on
 //   the other pairs (sphere/plane, CPU) -> the batch through the selected backend -> contact
 //   joints (sphere/plane first, as ODE found them) -> dWorldQuickStep. Each stage is timed.
+// With a world engine (a scene's "collision": {"offload": "world"}) ODE's space is not
+// asked: every plane meets every sphere (dCollide on the CPU), and the engine does the whole
+// sphere/sphere collision, broad phase included.
 #include <chrono>
 #include <cstdint>
 #include <exception>
@@ -15,6 +18,7 @@
 #include "collide/ode_backend.hpp"
 #include "ode/ode_world.hpp"
 #include "scene/scene.hpp"
+#include "world/world_engine.hpp"
 
 namespace collide::ode {
 
@@ -30,6 +34,9 @@ struct StepStats {
   std::int64_t jointsNs = 0;      // creating the contact joints
   std::int64_t solverNs = 0;      // dWorldQuickStep and emptying the contact group
   std::int64_t stepNs = 0;        // the whole step
+  // World engine only: its own account of the sphere/sphere collision (backendNs is its wall
+  // time): the broad phase and the rest, measured on the CPU, modelled on the AFU.
+  std::int64_t worldBroadNs = 0, worldNarrowNs = 0;
 };
 
 class Simulation {
@@ -39,6 +46,8 @@ class Simulation {
   using BatchObserver = std::function<void(const SphereTable&, const PairList&, const ContactSet&)>;
 
   Simulation(const scene::Scene& scene, CollisionBackend& backend);
+  // The whole sphere/sphere collision by `engine` (no batch observer is called).
+  Simulation(const scene::Scene& scene, world::WorldEngine& engine);
 
   StepStats step();
   void setBatchObserver(BatchObserver f) { observer_ = std::move(f); }
@@ -50,10 +59,12 @@ class Simulation {
   void near(dGeomID o1, dGeomID o2);
   void applyEffects();
   void requireSpheresInRange() const;
+  void collideWorld(StepStats& st);
 
   const scene::Scene& scene_;
-  CollisionBackend& backend_;
-  OdeBackend* odeBackend_;  // backend_ if it is the ode one: it collides the world's own geoms
+  CollisionBackend* backend_ = nullptr;  // the pairs path...
+  world::WorldEngine* engine_ = nullptr; // ...or the world path
+  OdeBackend* odeBackend_ = nullptr;     // backend_ if it is the ode one: it collides the world's own geoms
   World world_;
   dSurfaceParameters surface_;
   SphereTable table_;
@@ -61,6 +72,8 @@ class Simulation {
   std::vector<std::pair<dGeomID, dGeomID>> otherPairs_;  // not sphere/sphere: ODE collides them
   std::vector<dContactGeom> otherContacts_;
   ContactSet results_;
+  world::WorldContacts worldOut_;
+  world::WorldTiming worldTime_;
   long long step_ = 0;
   BatchObserver observer_;
   // An exception in the near callback waits here: unwinding through dSpaceCollide would

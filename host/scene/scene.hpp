@@ -60,6 +60,11 @@ struct Scene {
   double dt = 0.01;
   // Collision
   std::string backend = "ode";         // ode | simd | rtl
+  // What the backend is given: the broad phase's candidate pairs (ODE's space finds them), or
+  // the whole sphere/sphere collision of the world (its own broad phase: our CPU grid with
+  // simd, the AFU's world mode with rtl). Planes stay with ODE either way.
+  enum class Offload { Pairs, World };
+  Offload offload = Offload::Pairs;
   std::filesystem::path afuDir;        // rtl: generated/<preset>
   link::LinkParams link = link::presetParams(link::kDefaultPreset);
   // rtl: wall-clock limit of one AFU run (unset: driver::kDefaultWallLimitS).

@@ -212,7 +212,7 @@ void readAbout(const JsonNode& n) {
 Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) {
   const JsonNode root(j, "scene");
   root.allowOnly({"name", "about", "steps", "dt", "backend", "afu", "link", "wall_limit_s", "world", "effects",
-                  "contact", "bodies"});
+                  "contact", "bodies", "collision"});
   Scene s;
   if (auto v = root.find("name")) s.name = v->string();
   if (auto v = root.find("about")) readAbout(*v);
@@ -227,6 +227,17 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   if (auto v = root.find("afu")) {
     s.afuDir = v->string();
     if (s.afuDir.is_relative() && !baseDir.empty()) s.afuDir = baseDir / s.afuDir;
+  }
+  if (auto c = root.find("collision")) {
+    c->allowOnly({"offload"});
+    if (auto v = c->find("offload")) {
+      const std::string o = v->string();
+      if (o == "pairs") s.offload = Scene::Offload::Pairs;
+      else if (o == "world") s.offload = Scene::Offload::World;
+      else v->expected("\"pairs\" or \"world\"");
+      if (s.offload == Scene::Offload::World && s.backend == "ode")
+        v->expected("\"pairs\" with backend ode (\"world\" needs backend simd or rtl: ODE's own space is the pairs path)");
+    }
   }
 
   const JsonNode bodies = root.at("bodies");

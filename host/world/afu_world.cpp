@@ -74,4 +74,12 @@ void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
   keepSortedHits(pairs, found, out);
 }
 
+void AfuWorld::collide(const SphereTable& s, WorldContacts& out, WorldTiming& time) {
+  collide(s, out);
+  const double broad = last_.run.status.cyclesBroad * cycleNs();
+  time = WorldTiming{};
+  time.broadNs = static_cast<std::int64_t>(broad + 0.5);
+  time.narrowNs = static_cast<std::int64_t>(last_.run.stats.modelledNs - broad + 0.5);
+}
+
 }  // namespace collide::world

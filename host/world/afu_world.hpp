@@ -12,10 +12,11 @@
 #include "driver/wall_watchdog.hpp"
 #include "link/link_params.hpp"
 #include "world/world_collider.hpp"
+#include "world/world_engine.hpp"
 
 namespace collide::world {
 
-class AfuWorld {
+class AfuWorld final : public WorldEngine {
  public:
   // The AFU of `afuDir` (empty: the one built in); throws driver::AfuUnavailable when this
   // build has none or its manifest has no world mode.
@@ -26,6 +27,10 @@ class AfuWorld {
            double wallLimitS = driver::kDefaultWallLimitS);
 
   void collide(const SphereTable& s, WorldContacts& out);
+  // WorldEngine: time modelled, broadNs the broad phase's cycles, narrowNs the rest of the call.
+  std::string name() const override { return "rtl (the AFU's world mode)"; }
+  void collide(const SphereTable& s, WorldContacts& out, WorldTiming& time) override;
+  bool modelled() const override { return true; }
   const driver::WorldRunResult& lastRun() const { return last_; }
   const driver::AfuDriver& driver() const { return *driver_; }
   // Cycle period of the link model, to turn the status line's cycles into time.
