@@ -94,7 +94,7 @@ TEST(AfuWorld, RunsAgainWithRoomForEveryContactWhenTheBufferIsTooSmall) {
   EXPECT_GT(cut.run.stats.modelledNs, full.run.stats.modelledNs);
 }
 
-TEST(AfuWorld, HandlesTheEmptyWorldAndOneSphereAndRefusesTooManySpheres) {
+TEST(AfuWorld, HandlesTheEmptyWorldAndOneSphere) {
   world::AfuWorld afu("", link::presetParams("ideal"));
   world::WorldContacts w;
   afu.collide(SphereTable{}, w);
@@ -104,7 +104,40 @@ TEST(AfuWorld, HandlesTheEmptyWorldAndOneSphereAndRefusesTooManySpheres) {
   one.push(1, 2, 3, 0.5);
   afu.collide(one, w);
   EXPECT_EQ(w.pairs.size(), 0u);
-  SphereTable many;
-  for (std::uint32_t k = 0; k <= afu.driver().options().maxSpheres; ++k) many.push(k, 0, 0, 0.25);
-  EXPECT_THROW(afu.collide(many, w), std::invalid_argument);
+}
+
+TEST(AfuWorld, CutsAWorldLargerThanARunIntoSlabsAndFindsEveryContactOnce) {
+  // Runs of at most 300 spheres: 1,200 spheres take several slabs, with ghosts; huge spheres
+  // reach into many slabs. Every contact once, bit for bit the CPU grid's.
+  const auto seed = test::testSeed(1303);
+  world::AfuWorld afu("", link::presetParams("qpi"));
+  afu.setMaxRunSpheres(300);
+  for (bool mixed : {false, true}) {
+    test::WorldShape s;
+    s.spheres = 1200;
+    s.extent = 8;
+    if (mixed) { s.logRadii = true; s.rMin = 0.01; s.rMax = 1.5; }
+    auto t = test::randomWorld(seed + mixed, s);
+    if (mixed) t.push(0, 0, 0, 3.0);  // spans a third of the world along x
+    world::WorldContacts got;
+    afu.collide(t, got);
+    EXPECT_GE(afu.lastSlabs(), 5u) << (mixed ? "mixed" : "uniform");
+    const auto want = onCpu(t);
+    EXPECT_GT(want.pairs.size(), 300u);
+    expectSame(got, want, mixed ? "slabs, radii over 1:150 and a huge sphere" : "slabs, uniform radii");
+  }
+}
+
+TEST(AfuWorld, RefusesAWorldThatNoCutFitsAndSaysWhy) {
+  world::AfuWorld afu("", link::presetParams("ideal"));
+  afu.setMaxRunSpheres(100);
+  SphereTable t;
+  for (int k = 0; k < 150; ++k) t.push(1.0, 0.01 * k, 0, 0.5);  // 150 spheres at one x, all touching
+  world::WorldContacts w;
+  try {
+    afu.collide(t, w);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("exceed the 100 spheres an AFU run holds"), std::string::npos) << e.what();
+  }
 }

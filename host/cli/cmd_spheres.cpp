@@ -65,7 +65,7 @@ void readSpheres(const SpheresOptions& o, LinkFormat format, SphereTable& sphere
   }
 }
 
-// World mode on the AFU: one run (its cycles do not vary), timed by the link model.
+// World mode on the AFU: one run a slab (its cycles do not vary), timed by the link model.
 int runSpheresAfu(const SpheresOptions& o) {
   if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode (the AFU has its own grid)");
   const link::LinkParams lp = link::presetParams(o.link);
@@ -91,7 +91,8 @@ int runSpheresAfu(const SpheresOptions& o) {
             << s.worldLarge << " large; " << toString(w.contacts.format) << ", link " << lp.name << ")\n"
             << std::fixed << std::setprecision(1) << "  modelled time " << totalNs / 1e3 << " us (link bound "
             << r.run.stats.linkBoundNs / 1e3 << " us; " << r.run.stats.readLines << " lines read, " << r.run.stats.writeLines
-            << " written" << (r.attempts > 1 ? ", 2 runs: the first contact buffer was too small" : "") << "): broad phase "
+            << " written; " << afu.lastSlabs() << (afu.lastSlabs() == 1 ? " slab, " : " slabs along x, ") << r.attempts
+            << (r.attempts == 1 ? " run" : " runs") << "): broad phase "
             << broadNs / 1e3 << " us (" << s.cyclesBroad << " cycles; the SCPUs compute during its last pass), the rest "
             << (totalNs - broadNs) / 1e3 << " us (table load, drain, status, call overhead)\n";
   if (summary) {
@@ -105,6 +106,7 @@ int runSpheresAfu(const SpheresOptions& o) {
                 {"modelled_ns", totalNs},
                 {"link_bound_ns", r.run.stats.linkBoundNs},
                 {"runs", r.attempts},
+                {"slabs", afu.lastSlabs()},
                 {"read_lines", r.run.stats.readLines},
                 {"write_lines", r.run.stats.writeLines},
                 {"cycles_total", s.cyclesTotal},

@@ -50,26 +50,8 @@ void RtlBackend::runOne(const SphereTable& spheres, const PairList& pairs, Conta
 
 void RtlBatchStats::add(const driver::StatusLine& s, const driver::RunStats& r, std::size_t n) {
   runs += n;
-  auto& c = counters;
-  c.done += s.done;
-  c.errors |= s.errors;
-  c.pairsProcessed += s.pairsProcessed;
-  c.contactsFound += s.contactsFound;
-  c.recordsWritten += s.recordsWritten;
-  c.nonFinitePairs += s.nonFinitePairs;
-  c.cyclesTotal += s.cyclesTotal;
-  c.cyclesLoading += s.cyclesLoading;
-  c.cyclesComputing += s.cyclesComputing;
-  c.cyclesWaitRead += s.cyclesWaitRead;
-  c.cyclesWaitWrite += s.cyclesWaitWrite;
-  c.cyclesBroad += s.cyclesBroad;
-  stats.cyclesStepped += r.cyclesStepped;
-  stats.cyclesSkipped += r.cyclesSkipped;
-  stats.statusCycle += r.statusCycle;
-  stats.modelledNs += r.modelledNs;
-  stats.readLines += r.readLines;
-  stats.writeLines += r.writeLines;
-  stats.linkBoundNs += r.linkBoundNs;
+  driver::accumulate(counters, s);
+  driver::accumulate(stats, r);
 }
 
 void RtlBackend::collide(const SphereTable& spheres, const PairList& pairs, ContactSet& out) {

@@ -15,6 +15,33 @@ std::string describeErrors(std::uint32_t f) {
   return s.empty() ? "none" : s;
 }
 
+void accumulate(StatusLine& into, const StatusLine& s) {
+  into.done += s.done;
+  into.errors |= s.errors;
+  into.pairsProcessed += s.pairsProcessed;
+  into.contactsFound += s.contactsFound;
+  into.recordsWritten += s.recordsWritten;
+  into.nonFinitePairs += s.nonFinitePairs;
+  into.cyclesTotal += s.cyclesTotal;
+  into.cyclesLoading += s.cyclesLoading;
+  into.cyclesComputing += s.cyclesComputing;
+  into.cyclesWaitRead += s.cyclesWaitRead;
+  into.cyclesWaitWrite += s.cyclesWaitWrite;
+  into.cyclesBroad += s.cyclesBroad;
+  into.worldCellExp = s.worldCellExp;
+  into.worldLarge += s.worldLarge;
+}
+
+void accumulate(RunStats& into, const RunStats& r) {
+  into.cyclesStepped += r.cyclesStepped;
+  into.cyclesSkipped += r.cyclesSkipped;
+  into.statusCycle += r.statusCycle;
+  into.modelledNs += r.modelledNs;
+  into.readLines += r.readLines;
+  into.writeLines += r.writeLines;
+  into.linkBoundNs += r.linkBoundNs;
+}
+
 DriverOptions withManifest(DriverOptions o, const Manifest& m) {
   o.format = m.format;
   o.records = m.records;
@@ -207,10 +234,7 @@ WorldRunResult AfuDriver::runWorld(const SphereTable& spheres, std::size_t capac
     w.run = RunResult{};
     ++w.attempts;
     execute(RunCsrs{sph.base, spheres.size(), 0, 0, ct.base, capacity, st.base, contract::MODE_WORLD}, w.run);
-    total.cyclesStepped += w.run.stats.cyclesStepped; total.cyclesSkipped += w.run.stats.cyclesSkipped;
-    total.statusCycle += w.run.stats.statusCycle; total.modelledNs += w.run.stats.modelledNs;
-    total.readLines += w.run.stats.readLines; total.writeLines += w.run.stats.writeLines;
-    total.linkBoundNs += w.run.stats.linkBoundNs;
+    accumulate(total, w.run.stats);
     const StatusLine& s = w.run.status;
     if ((s.errors & contract::ERR_CAPACITY) && s.contactsFound > capacity && w.attempts == 1) {
       capacity = s.contactsFound;  // every contact counted: room for all of them, once more

@@ -51,6 +51,11 @@ struct RunStats {
   double linkBoundNs = 0;
 };
 
+// Sums over several runs: every counter and statistic added (done counts the runs, errors
+// OR-ed; the world cell exponent is the last run's).
+void accumulate(StatusLine& into, const StatusLine& s);
+void accumulate(RunStats& into, const RunStats& r);
+
 // Lower bound the link model implies for a run that reads `readLines` and writes
 // `writeLines` lines: the per-call costs it charges (transaction overhead, one CSR
 // arrival, one poll), the shortest read and write round trips of the fastest channel (the

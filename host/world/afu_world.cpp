@@ -7,6 +7,7 @@
 #include "collide/input_policy.hpp"
 #include "collide/rtl_backend.hpp"
 #include "driver/manifest.hpp"
+#include "world/slab_split.hpp"
 
 namespace collide::world {
 
@@ -36,36 +37,75 @@ AfuWorld::AfuWorld(std::unique_ptr<driver::AfuPort> port, const link::LinkParams
 
 void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
   out = WorldContacts{};
-  out.contacts.format = driver_->options().format;
+  const LinkFormat fmt = driver_->options().format;
+  out.contacts.format = fmt;
   splitSpheres(s, out, members_);
-  table_.clear();
-  for (auto k : members_) table_.push(s.x[k], s.y[k], s.z[k], s.r[k]);
 
-  port_->arm();
-  last_ = driver_->runWorld(table_);
-  requireAtLeastLinkBound(last_.run.stats, driver_->link().params().name);
-  out.candidates = last_.run.status.pairsProcessed;
+  // One run, or slabs along x by the values the AFU sees.
+  const std::size_t cap = maxRun_ ? std::min<std::size_t>(maxRun_, driver_->options().maxSpheres)
+                                  : driver_->options().maxSpheres;
+  std::vector<Slab> slabs;
+  if (members_.size() <= cap) {
+    Slab all;
+    for (std::uint32_t k = 0; k < members_.size(); ++k) { all.spheres.push_back(k); all.owned.push_back(1); }
+    all.ownedCount = members_.size();
+    slabs.push_back(std::move(all));
+  } else {
+    std::vector<double> x(members_.size()), r(members_.size());
+    for (std::size_t k = 0; k < members_.size(); ++k) {
+      double q[4];
+      driver::linkSphere(s, members_[k], fmt, q);
+      x[k] = q[0];
+      r[k] = q[3];
+    }
+    slabs = splitIntoSlabs(x, r, cap);
+  }
 
-  // Records name table rows: back to the caller's indices (members_ ascending keeps i < j).
+  last_ = driver::WorldRunResult{};
+  slabs_ = slabs.size();
   PairList pairs;
   ContactSet found;
-  found.format = out.contacts.format;
-  found.resize(last_.run.records.size());
-  for (std::size_t k = 0; k < last_.run.records.size(); ++k) {
-    const auto& rec = last_.run.records[k];
-    pairs.push(members_[driver::worldPairI(rec.pair)], members_[driver::worldPairJ(rec.pair)]);
-    found.hit[k] = 1;
-    found.px[k] = rec.px; found.py[k] = rec.py; found.pz[k] = rec.pz;
-    found.nx[k] = rec.nx; found.ny[k] = rec.ny; found.nz[k] = rec.nz;
-    found.depth[k] = rec.depth;
-    found.flags[k] = rec.flags;
+  found.format = fmt;
+  std::vector<std::uint32_t> range;
+  for (const Slab& slab : slabs) {
+    table_.clear();
+    for (auto p : slab.spheres) {
+      const auto k = members_[p];
+      table_.push(s.x[k], s.y[k], s.z[k], s.r[k]);
+    }
+    port_->arm();
+    const driver::WorldRunResult r = driver_->runWorld(table_);
+    requireAtLeastLinkBound(r.run.stats, driver_->link().params().name);
+    driver::accumulate(last_.run.status, r.run.status);
+    driver::accumulate(last_.run.stats, r.run.stats);
+    last_.attempts += r.attempts;
+    // Records name table rows; a run's table is ascending in the caller's indices, so i < j
+    // stays i < j. A pair is this run's when one of its spheres is owned here.
+    for (const auto& rec : r.run.records) {
+      const auto li = driver::worldPairI(rec.pair), lj = driver::worldPairJ(rec.pair);
+      if (!slab.owned[li] && !slab.owned[lj]) continue;
+      const std::size_t k = pairs.size();
+      pairs.push(members_[slab.spheres[li]], members_[slab.spheres[lj]]);
+      found.resizeForOverwrite(k + 1);
+      found.hit[k] = 1;
+      found.px[k] = rec.px; found.py[k] = rec.py; found.pz[k] = rec.pz;
+      found.nx[k] = rec.nx; found.ny[k] = rec.ny; found.nz[k] = rec.nz;
+      found.depth[k] = rec.depth;
+      found.flags[k] = rec.flags;
+    }
+    for (auto k : r.rangeSpheres) range.push_back(members_[slab.spheres[k]]);
   }
+  out.candidates = last_.run.status.pairsProcessed;
   // A sphere whose link value overflowed is non-finite to the AFU, which pairs it with
-  // nothing: it is listed as bad, like a sphere the policy rejects.
-  if (!last_.rangeSpheres.empty()) {
+  // nothing: it is listed as bad (once, though several runs held it), like a sphere the
+  // policy rejects.
+  if (!range.empty()) {
+    std::sort(range.begin(), range.end());
+    range.erase(std::unique(range.begin(), range.end()), range.end());
+    last_.rangeSpheres = range;
     std::vector<std::pair<std::uint32_t, std::uint8_t>> bad;
     for (std::size_t k = 0; k < out.badSpheres.size(); ++k) bad.emplace_back(out.badSpheres[k], out.badFlags[k]);
-    for (auto k : last_.rangeSpheres) bad.emplace_back(members_[k], contract::REC_HOST_RANGE);
+    for (auto k : range) bad.emplace_back(k, contract::REC_HOST_RANGE);
     std::sort(bad.begin(), bad.end());
     out.badSpheres.clear(); out.badFlags.clear();
     for (const auto& [k, f] : bad) { out.badSpheres.push_back(k); out.badFlags.push_back(f); }

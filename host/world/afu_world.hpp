@@ -3,6 +3,8 @@
 // takes go to the AFU as one table; its on-chip broad phase finds the candidate pairs, its
 // SCPUs the contacts, and each record names its two spheres. The result is the CPU world
 // collider's: the same bad-sphere list, contacts sorted by (i, j), the policy's flags.
+// A world larger than the AFU's table is cut into slabs along x (world/slab_split.hpp), one
+// AFU run each, every pair found in exactly one of them.
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -31,7 +33,13 @@ class AfuWorld final : public WorldEngine {
   std::string name() const override { return "rtl (the AFU's world mode)"; }
   void collide(const SphereTable& s, WorldContacts& out, WorldTiming& time) override;
   bool modelled() const override { return true; }
+  // The last call: status counters and statistics summed over its runs (candidates and
+  // contacts of ghost pairs included), attempts summed; records are not kept.
   const driver::WorldRunResult& lastRun() const { return last_; }
+  // AFU runs (slabs) the last call took.
+  std::size_t lastSlabs() const { return slabs_; }
+  // Spheres a run may hold (0: the AFU's afu.maxSpheres); smaller values cut worlds sooner.
+  void setMaxRunSpheres(std::size_t n) { maxRun_ = n; }
   const driver::AfuDriver& driver() const { return *driver_; }
   // Cycle period of the link model, to turn the status line's cycles into time.
   double cycleNs() const { return driver_->link().params().cycleNs(); }
@@ -40,6 +48,7 @@ class AfuWorld final : public WorldEngine {
   std::unique_ptr<driver::WallClockWatchdog> port_;
   std::unique_ptr<driver::AfuDriver> driver_;
   driver::WorldRunResult last_;
+  std::size_t slabs_ = 0, maxRun_ = 0;
   std::vector<std::uint32_t> members_;
   SphereTable table_;
 };

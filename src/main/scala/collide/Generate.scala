@@ -26,6 +26,7 @@ object Generate {
       folder: Option[String] = None,
       split: Boolean = false,
       noVerilog: Boolean = false,
+      world: Option[Boolean] = None,
       listPresets: Boolean = false)
 
   private val builder = scopt.OParser.builder[Opts]
@@ -52,6 +53,8 @@ object Generate {
         .text(s"contact record layout: ${RecordLayout.all.map(_.name).mkString(" | ")} (default: derived where the host can rebuild it exactly, else full)"),
       opt[Boolean]("dense-default").valueName("true|false").action((v, o) => o.copy(dense = Some(v)))
         .text("MODE's reset value selects dense records"),
+      opt[Boolean]("world").valueName("true|false").action((v, o) => o.copy(world = Some(v)))
+        .text("build world mode (MODE bit 1: the on-chip broad phase, default parameters; at most 4096 spheres)"),
       opt[String]("out").valueName("DIR").action((v, o) => o.copy(out = v)).text("parent folder (default generated)"),
       opt[String]("folder").valueName("NAME").action((v, o) => o.copy(folder = Some(v)))
         .text("output folder name (default: the preset's name, or a name derived from every parameter)"),
@@ -85,7 +88,9 @@ object Generate {
       c8 <- opt("--ram-ports", o.ramPorts)((c, v) => SphereRamPorts.parse(v).flatMap(r => step("--ram-ports", c.copy(ramPorts = r))))(c7)
       c9 <- opt("--dense-default", o.dense)((c, v) => step("--dense-default", c.copy(denseByDefault = v)))(c8)
       c10 <- opt("--records", o.records)((c, v) => RecordLayout.parse(v).flatMap(r => step("--records", c.copy(records = Some(r)))))(c9)
-    } yield c10
+      c11 <- opt("--world", o.world)((c, v) => step("--world",
+        c.copy(world = if (v) Some(c.world.getOrElse(collide.world.BroadPhaseParams.default)) else None)))(c10)
+    } yield c11
   }
 
   val firtoolOpts: Array[String] = Array(

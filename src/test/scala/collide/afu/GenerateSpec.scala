@@ -20,6 +20,11 @@ class GenerateSpec extends AnyFlatSpec {
     assert(d.id != c.id && d.puc.name != c.puc.name, "two configurations must not share module names")
     assert(cfg("--format", "e6m12").toOption.get.scpu.format == collide.fp.FloatFormat(6, 12))
     assert(cfg("--scpu", "fp32:rm=rtz").toOption.get.scpu.rounding == collide.fp.RoundingMode.RTZ)
+    val w = cfg("--scpus", "4", "--world", "true").toOption.get
+    assert(w.world.contains(collide.world.BroadPhaseParams.default) && w.recordLayout == RecordLayout.Derived && w.id.endsWith("_world"),
+      s"world mode on: ${w.id}, ${w.recordLayout.name} records (a world record names its spheres: indexed)")
+    assert(cfg("--preset", "world").contains(AfuConfig.world))
+    assert(cfg("--preset", "world", "--world", "false").toOption.get.world.isEmpty)
   }
 
   it should "refuse a configuration that cannot be built, naming the flag and the problem" in {
@@ -37,6 +42,10 @@ class GenerateSpec extends AnyFlatSpec {
     err("--format", "e20m5")("--format", "exponent")
     err("--scpu", "fp32:tag=8")("--scpu", "tagBits")
     err("--ram-ports", "banked")("--ram-ports", "not implemented")
+    err("--world", "true", "--max-spheres", "8192")("--world", "4096")
+    err("--preset", "world", "--max-spheres", "8192")("--max-spheres", "4096")
+    err("--world", "true", "--records", "derived-masked")("--world", "indexed")
+    err("--world", "true", "--format", "fp24")("--world", "converts")
   }
 
   it should "pick the link format from the compute format, or the one asked for" in {

@@ -1,0 +1,67 @@
+#include "world/slab_split.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <string>
+
+namespace collide::world {
+
+std::vector<Slab> splitIntoSlabs(const std::vector<double>& x, const std::vector<double>& r, std::size_t cap) {
+  const std::size_t n = x.size();
+  if (cap == 0) throw std::invalid_argument("splitIntoSlabs: a run must hold at least one sphere");
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return x[a] < x[b]; });
+  double rMax = 0;
+  for (double v : r) rMax = std::max(rMax, v);
+  const double farReach = kSlabReach * rMax + kSlabSlack;  // the most a later sphere reaches back
+  auto rightEdge = [&](std::uint32_t k) { return x[k] + kSlabReach * r[k] + kSlabSlack; };
+  auto leftEdge = [&](std::uint32_t k) { return x[k] - kSlabReach * r[k]; };
+
+  // Spheres of a run owning order[a, a + o): those, and every later one whose left edge
+  // reaches the farthest right edge among them. The ghosts are listed into `ghosts`.
+  std::vector<std::uint32_t> ghosts;
+  auto runSize = [&](std::size_t a, std::size_t o, bool list) {
+    double reach = -std::numeric_limits<double>::infinity();
+    for (std::size_t p = a; p < a + o; ++p) reach = std::max(reach, rightEdge(order[p]));
+    std::size_t g = 0;
+    if (list) ghosts.clear();
+    for (std::size_t p = a + o; p < n && x[order[p]] - farReach <= reach; ++p)
+      if (leftEdge(order[p]) <= reach) {
+        ++g;
+        if (list) ghosts.push_back(order[p]);
+      }
+    return o + g;
+  };
+
+  std::vector<Slab> slabs;
+  for (std::size_t a = 0; a < n;) {
+    std::size_t o = std::min(cap, n - a);
+    if (runSize(a, o, false) > cap) {
+      if (runSize(a, 1, false) > cap)
+        throw std::runtime_error("world mode: sphere " + std::to_string(order[a]) + " and the " +
+                                 std::to_string(runSize(a, 1, false) - 1) + " spheres that may touch it along x exceed the " +
+                                 std::to_string(cap) + " spheres an AFU run holds; this world cannot be cut into runs");
+      std::size_t lo = 1, hi = o;  // runSize(lo) fits, runSize(hi) does not; it grows with o
+      while (hi - lo > 1) {
+        const std::size_t mid = lo + (hi - lo) / 2;
+        (runSize(a, mid, false) <= cap ? lo : hi) = mid;
+      }
+      o = lo;
+    }
+    runSize(a, o, true);
+    Slab s;
+    std::vector<std::pair<std::uint32_t, std::uint8_t>> all;
+    for (std::size_t p = a; p < a + o; ++p) all.emplace_back(order[p], 1);
+    for (auto g : ghosts) all.emplace_back(g, 0);
+    std::sort(all.begin(), all.end());
+    for (const auto& [k, own] : all) { s.spheres.push_back(k); s.owned.push_back(own); }
+    s.ownedCount = o;
+    slabs.push_back(std::move(s));
+    a += o;
+  }
+  return slabs;
+}
+
+}  // namespace collide::world
