@@ -457,12 +457,26 @@ elseif(CHECK STREQUAL "run_world_offload")
   expect_rc(1)
   expect_match("${err}" "collision.offload \"world\" needs backend simd or rtl, not ode")
 elseif(CHECK STREQUAL "afu_run_world")
-  # The same scene on the AFU's world mode: one step, its modelled time split.
+  # The same scene on the AFU's world mode: one step, its modelled time split; evaluating
+  # every cycle (--no-skip) gives the same AFU time to the picosecond: skipping is exact.
   execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/pile_box_world.json --backend rtl --steps 1
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   expect_rc(0)
   expect_match("${out}" "contacts     : 2217 sphere/sphere")
   expect_match("${out}" "  broad phase +[0-9.]+ us +[0-9.]+ % +\\(world mode")
+  string(REGEX MATCH "AFU \\(modelled[^\n]*" skipped "${out}")
+  string(REGEX MATCH "[0-9]+ skipped exactly" nskipped "${out}")
+  if(nskipped STREQUAL "0 skipped exactly")
+    message(FATAL_ERROR "no idle cycle was skipped, so the comparison below tests nothing:\n${out}")
+  endif()
+  execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/pile_box_world.json --backend rtl --steps 1 --no-skip
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  string(REGEX MATCH "AFU \\(modelled[^\n]*" stepped "${out}")
+  expect_match("${out}" " 0 skipped exactly")
+  if(NOT skipped STREQUAL stepped OR skipped STREQUAL "")
+    message(FATAL_ERROR "skipping changed the AFU's time:\n  skipped: ${skipped}\n  stepped: ${stepped}")
+  endif()
 elseif(CHECK STREQUAL "spheres_afu_world")
   # World mode on the AFU: the same contacts, flags and bad-sphere rows as the CPU grid with
   # the binary32 kernel, byte for byte, over two links; the summary names the AFU's run.

@@ -122,7 +122,9 @@ int runScene(const RunOptions& o) {
     if (!worldOffload) {
       backend = makeBackend(req);  // rtl without an AFU throws AfuUnavailable here
     } else if (rtl) {
-      auto a = std::make_unique<world::AfuWorld>(sc.afuDir, sc.link, req.port);
+      driver::AfuPortOptions port = req.port;  // --trace, --wall-limit; the trace's clock is the link's
+      port.clockMHz = sc.link.clockMHz;
+      auto a = std::make_unique<world::AfuWorld>(sc.afuDir, sc.link, port, req.driver);  // --no-skip
       afuWorld = a.get();
       engine = std::move(a);
     } else {

@@ -12,22 +12,22 @@
 namespace collide::world {
 
 namespace {
-driver::DriverOptions fromManifest(const std::filesystem::path& dir) {
+driver::DriverOptions fromManifest(const std::filesystem::path& dir, const driver::DriverOptions& base) {
   const auto m = dir.empty() ? driver::parseManifest(driver::builtInAfuManifest(), "the built-in AFU's manifest")
                              : driver::loadManifest(dir);
   if (!m.world)
     throw driver::AfuUnavailable("AFU " + (dir.empty() ? std::string("built in") : dir.string()) +
                                 ": no world mode (manifest afu.world is not true; generate the world preset: "
                                 "tools/sbt \"run --preset world\")");
-  return driver::withManifest(driver::DriverOptions{}, m);
+  return driver::withManifest(base, m);
 }
 }  // namespace
 
 AfuWorld::AfuWorld(const std::filesystem::path& afuDir, const link::LinkParams& link,
-                   const driver::AfuPortOptions& portOptions)
+                   const driver::AfuPortOptions& portOptions, const driver::DriverOptions& base)
     : port_(std::make_unique<driver::WallClockWatchdog>(driver::makeAfuPort(afuDir, portOptions),  // AfuUnavailable first
                                                         portOptions.wallLimitS)) {
-  driver_ = std::make_unique<driver::AfuDriver>(*port_, link, fromManifest(afuDir));
+  driver_ = std::make_unique<driver::AfuDriver>(*port_, link, fromManifest(afuDir, base));
 }
 
 AfuWorld::AfuWorld(std::unique_ptr<driver::AfuPort> port, const link::LinkParams& link,

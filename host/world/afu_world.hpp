@@ -21,9 +21,10 @@ namespace collide::world {
 class AfuWorld final : public WorldEngine {
  public:
   // The AFU of `afuDir` (empty: the one built in); throws driver::AfuUnavailable when this
-  // build has none or its manifest has no world mode.
+  // build has none or its manifest has no world mode. `base`: the driver options the
+  // manifest does not fix (skipIdle, watchdog).
   AfuWorld(const std::filesystem::path& afuDir, const link::LinkParams& link,
-           const driver::AfuPortOptions& portOptions = {});
+           const driver::AfuPortOptions& portOptions = {}, const driver::DriverOptions& base = {});
   // Any port (tests), with the driver options its manifest would give.
   AfuWorld(std::unique_ptr<driver::AfuPort> port, const link::LinkParams& link, const driver::DriverOptions& options,
            double wallLimitS = driver::kDefaultWallLimitS);

@@ -89,7 +89,7 @@ final case class AfuConfig(
     s"$id: $scpus x SCPU ${scpu.describe}; maxSpheres $maxSpheres, reads $maxReadsOutstanding, writes $maxWritesOutstanding, " +
       s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, link ${scpu.linkFormat.name}, ${recordLayout.name} records " +
       s"(${layout.recordBytes} B, ${layout.recordsPerLine} a line), ${if (denseByDefault) "dense" else "compact"} by default" +
-      world.map(_ => ", world mode built").getOrElse("")
+      world.map(bp => s", world mode built (broad phase RAM ${bp.ramBits(maxSpheres)} bits)").getOrElse("")
 }
 
 object AfuConfig {

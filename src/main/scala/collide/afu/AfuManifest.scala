@@ -32,7 +32,8 @@ object AfuManifest {
             "recordPair" -> s"i | j << ${RecordTag.WORLD_INDEX_BITS}")
         }.getOrElse(ujson.Null),
         "ram" -> ujson.Obj("copies" -> p.ramCopies, "bitsPerCopy" -> p.ramBitsPerCopy.toDouble,
-          "sphereTableBits" -> p.ramBits.toDouble, "pairBufferBits" -> p.pairBufferBits.toDouble)),
+          "sphereTableBits" -> p.ramBits.toDouble, "pairBufferBits" -> p.pairBufferBits.toDouble,
+          "broadPhaseBits" -> ujson.Num(cfg.world.map(_.ramBits(cfg.maxSpheres).toDouble).getOrElse(0.0)))),
       "scpu" -> scpuJson(s),
       "link" -> ujson.Obj(
         "format" -> AfuContract.linkName(cfg.scpu.linkFormat), "width" -> cfg.linkWidth,

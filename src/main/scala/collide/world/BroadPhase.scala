@@ -55,7 +55,7 @@ class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int) extends B
 class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency: Int = 1) extends Module {
   require(maxSpheres >= 2 && maxSpheres <= (1 << 24), s"maxSpheres must be 2..2^24, got $maxSpheres")
   /** Buckets the table holds: the model's cap, and no more than 2 maxSpheres can use. */
-  val tableLog2: Int = math.min(bp.bucketsLog2, log2Ceil(2 * maxSpheres))
+  val tableLog2: Int = bp.tableLog2(maxSpheres)
   private val largeSlots = math.max(1, bp.largeMax)
   override def desiredName =
     s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}_w${bp.wordLog2}"

@@ -47,6 +47,17 @@ final case class BroadPhaseParams(
 
   val buckets: Int = 1 << bucketsLog2
 
+  /** Buckets the sort's table holds for a table of `maxSpheres`: the cap, and no more than
+    * 2 maxSpheres can use. */
+  def tableLog2(maxSpheres: Int): Int = math.min(bucketsLog2, chisel3.util.log2Ceil(2 * maxSpheres))
+  /** RAM bits of the broad phase for `maxSpheres`: the sort's counters (one per bucket) and its
+    * entries (a sphere index and a mark each). The sphere table it reads is the AFU's. */
+  def ramBits(maxSpheres: Int): Long = {
+    val countW = chisel3.util.log2Ceil(maxSpheres + 1)
+    val itemW = chisel3.util.log2Ceil(maxSpheres)
+    (1L << tableLog2(maxSpheres)) * countW + maxSpheres.toLong * (itemW + 1)
+  }
+
   /** log2 of a bound on an SCPU's absolute error in d in compute format p: squares that
     * underflow or flush lose at most 3 * 2^minExp of d^2, so at most sqrt(3 * 2^minExp) <
     * 2^errorExp of d. */

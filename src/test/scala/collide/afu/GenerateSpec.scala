@@ -25,6 +25,10 @@ class GenerateSpec extends AnyFlatSpec {
       s"world mode on: ${w.id}, ${w.recordLayout.name} records (a world record names its spheres: indexed)")
     assert(cfg("--preset", "world").contains(AfuConfig.world))
     assert(cfg("--preset", "world", "--world", "false").toOption.get.world.isEmpty)
+    // 2^13 buckets of 13-bit counters and 4096 entries of a 12-bit index and a mark
+    assert(collide.world.BroadPhaseParams.default.ramBits(4096) == 8192L * 13 + 4096L * 13)
+    assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 159744.0)
+    assert(AfuConfig.world.puc.ramCopies == 17, "sixteen SCPU copies and the broad phase's")
   }
 
   it should "refuse a configuration that cannot be built, naming the flag and the problem" in {
