@@ -458,7 +458,7 @@ elseif(CHECK STREQUAL "run_world_offload")
   expect_match("${err}" "collision.offload \"world\" needs backend simd or rtl, not ode")
 elseif(CHECK STREQUAL "afu_run_world")
   # The same scene on the AFU's world mode: one step, its modelled time split; evaluating
-  # every cycle (--no-skip) gives the same AFU time to the picosecond: skipping is exact.
+  # every cycle (--no-skip) prints the same AFU line (time to the nanosecond, per-collision costs): skipping is exact.
   execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/pile_box_world.json --backend rtl --steps 1
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   expect_rc(0)
