@@ -36,7 +36,7 @@ constexpr double kDiamondPosTol = 0.005;
 
 namespace {
 
-Manifest builtIn() { return parseManifest(builtInAfuManifest(), "the built-in AFU's manifest"); }
+Manifest builtIn() { return afuManifest(""); }
 
 DriverOptions options(bool dense = false) {
   DriverOptions o;

@@ -21,8 +21,7 @@ using namespace collide;
 namespace {
 
 driver::DriverOptions worldOptions() {
-  return driver::withManifest(driver::DriverOptions{},
-                              driver::parseManifest(driver::builtInAfuManifest(), "the built-in AFU's manifest"));
+  return driver::withManifest(driver::DriverOptions{}, driver::afuManifest(""));
 }
 
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }

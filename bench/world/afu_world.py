@@ -17,7 +17,6 @@ test build makes from generated/world (or a host built with -DCOLLIDE_AFU_PRESET
 import argparse
 import csv
 import json
-import os
 import subprocess
 import sys
 import tempfile
@@ -89,15 +88,9 @@ def main(argv=None):
                     print(f"{kind:9} {n:5} {link:6} {s['contacts']:6} contacts  afu {f['modelled_ns'] / 1e3:8.1f} us"
                           f" (bound {f['link_bound_ns'] / 1e3:6.1f}, broad {f['cycles_broad']} cycles)  ode sap "
                           f"{ode / 1e3:8.1f} us  grid {grid / 1e3:7.1f} us", flush=True)
-    with open(out / "world-afu.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    cmd = "tools/pyenv bench/world/afu_world.py " + " ".join(argv if argv is not None else sys.argv[1:])
-    machine_md = (f"## How and where\n\nCommand: `{cmd.strip()}` (build/host built Release by tools/test, whose "
-                  f"test build makes collide_world: the CLI with generated/world's AFU Verilated in).\n\n"
-                  f"Machine: {start}; end: load average {os.getloadavg()[0]:.2f}.\n")
-    (out / "MACHINE.md").write_text(machine_md)
+    machine_md = world.write_results(out, "world-afu.csv", rows, "bench/world/afu_world.py", argv,
+                                     "build/host built Release by tools/test, whose test build makes collide_world: "
+                                     "the CLI with generated/world's AFU Verilated in", start)
     report(rows, out, machine_md)
     return 0
 

@@ -149,6 +149,20 @@ def machine():
     return f"{os.cpu_count()} CPUs ({model}), {platform.system()} {platform.release()}, load average {load[0]:.2f} at start"
 
 
+def write_results(out, csv_name, rows, script, argv, build, start):
+    """OUT/<csv_name> (the rows) and OUT/MACHINE.md (the command, how collide was built, the
+    machine at start and end); returns MACHINE.md's text."""
+    with open(out / csv_name, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    cmd = f"tools/pyenv {script} " + " ".join(argv if argv is not None else sys.argv[1:])
+    machine_md = (f"## How and where\n\nCommand: `{cmd.strip()}` ({build}).\n\n"
+                  f"Machine: {start}; end: load average {os.getloadavg()[0]:.2f}.\n")
+    (out / "MACHINE.md").write_text(machine_md)
+    return machine_md
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--collide", default=str(ROOT / "build/host/collide"))
@@ -196,16 +210,10 @@ def main(argv=None):
                     rows.append(row)
                     print(f"{kind:9} {n:6} {row['config']:9} {row['candidates']:8} candidates {row['contacts']:6} contacts"
                           f"  broad {s['broad_ns'] / 1e3:10.1f} us  narrow {s['narrow_ns'] / 1e3:9.1f} us", flush=True)
-    with open(out / "world.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    machine_md = write_results(out, "world.csv", rows, "bench/world/world.py", argv,
+                               "collide built Release, `cmake -S host -B build/host -G Ninja -DCMAKE_BUILD_TYPE=Release`",
+                               start)
     plot(rows, out / "world.png")
-    cmd = "tools/pyenv bench/world/world.py " + " ".join(argv if argv is not None else sys.argv[1:])
-    machine_md = (f"## How and where\n\nCommand: `{cmd.strip()}` (collide built Release, "
-                  f"`cmake -S host -B build/host -G Ninja -DCMAKE_BUILD_TYPE=Release`).\n\n"
-                  f"Machine: {start}; end: load average {os.getloadavg()[0]:.2f}.\n")
-    (out / "MACHINE.md").write_text(machine_md)
     report(rows, out, machine_md)
     return 0
 

@@ -5,23 +5,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "driver/manifest.hpp"
 
 namespace collide {
-
-namespace {
-driver::DriverOptions fromManifest(const std::filesystem::path& dir, driver::DriverOptions o) {
-  const auto m = dir.empty() ? driver::parseManifest(driver::builtInAfuManifest(), "the built-in AFU's manifest")
-                             : driver::loadManifest(dir);
-  return driver::withManifest(o, m);
-}
-}  // namespace
 
 RtlBackend::RtlBackend(const std::filesystem::path& afuDir, const link::LinkParams& link,
                        driver::DriverOptions options, const driver::AfuPortOptions& portOptions)
     : port_(std::make_unique<driver::WallClockWatchdog>(driver::makeAfuPort(afuDir, portOptions),  // throws AfuUnavailable first
                                                         portOptions.wallLimitS)) {
-  driver_ = std::make_unique<driver::AfuDriver>(*port_, link, fromManifest(afuDir, options));
+  driver_ = std::make_unique<driver::AfuDriver>(*port_, link, driver::withManifest(options, driver::afuManifest(afuDir)));
 }
 
 RtlBackend::RtlBackend(std::unique_ptr<driver::AfuPort> port, const link::LinkParams& link,

@@ -243,7 +243,6 @@ WorldRunResult AfuDriver::runWorld(const SphereTable& spheres, std::size_t capac
     const std::size_t written = std::min<std::size_t>(s.recordsWritten, capacity);
     w.run.records = readRecords(mem_, ct.base, written, lay, false, 0).records;
     checkWorld(w.run, spheres.size(), capacity);
-    w.rangeSpheres.clear();
     for (std::uint32_t k = 0; k < outOfRange.size(); ++k)
       if (outOfRange[k]) w.rangeSpheres.push_back(k);
     for (auto& rec : w.run.records)

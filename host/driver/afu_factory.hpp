@@ -7,6 +7,7 @@
 #include <string>
 
 #include "driver/afu_port.hpp"
+#include "driver/manifest.hpp"
 #include "driver/wall_watchdog.hpp"
 #include "link/link_params.hpp"
 
@@ -33,6 +34,11 @@ std::string builtInAfuPreset();
 // The manifest.json text of the AFU compiled into this binary, or "" if none (what an
 // empty AFU folder means: the built-in one).
 std::string builtInAfuManifest();
+// The manifest of the AFU in `afuDir`, or (empty) of the one built in; errors as
+// loadManifest / parseManifest.
+inline Manifest afuManifest(const std::filesystem::path& afuDir) {
+  return afuDir.empty() ? parseManifest(builtInAfuManifest(), "the built-in AFU's manifest") : loadManifest(afuDir);
+}
 
 // An AFU for the generated configuration in `afuDir` (empty: the built-in one). Throws
 // AfuUnavailable if this build has no Verilated AFU or if `afuDir`'s manifest differs from

@@ -76,37 +76,26 @@ std::int64_t nsBetween(Clock::time_point a, Clock::time_point b) {
 }
 }  // namespace
 
-// The world path's collision: planes against every sphere on the CPU, then the engine.
-void Simulation::collideWorld(StepStats& st) {
-  auto t0 = Clock::now();
+// The world path's broad phase for planes: ODE's space is not asked, every plane meets
+// every sphere (the engine finds the sphere/sphere pairs itself).
+void Simulation::pairPlanesWithSpheres() {
   const int n = dSpaceGetNumGeoms(world_.space());
   for (int g = 0; g < n; ++g) {
     dGeomID geom = dSpaceGetGeom(world_.space(), g);
     if (world_.sphereIndex(geom) >= 0) continue;
     for (std::size_t k = 0; k < world_.sphereCount(); ++k) otherPairs_.emplace_back(world_.sphereGeom(k), geom);
   }
-  auto t1 = Clock::now();
-  st.broadNs = nsBetween(t0, t1);
-  for (const auto& [o1, o2] : otherPairs_) {
-    dContactGeom cg[4];
-    const int c = dCollide(o1, o2, 4, cg, sizeof(dContactGeom));
-    otherContacts_.insert(otherContacts_.end(), cg, cg + c);
-  }
-  t0 = Clock::now();
-  st.otherNarrowNs = nsBetween(t1, t0);
-  world_.fillSphereTable(table_);
-  t0 = Clock::now();
+}
+
+// The world path's sphere/sphere collision: the engine on the sphere table.
+void Simulation::collideWorld(StepStats& st) {
   engine_->collide(table_, worldOut_, worldTime_);
-  t1 = Clock::now();
-  st.backendNs = nsBetween(t0, t1);
   st.worldBroadNs = worldTime_.broadNs;
   st.worldNarrowNs = worldTime_.narrowNs + worldTime_.finishNs;
   // Every sphere passed requireSpheresInRange, so the engine's input policy rejects none.
   if (!worldOut_.badSpheres.empty())
     throw std::logic_error("internal error: the world engine rejected sphere " + std::to_string(worldOut_.badSpheres[0]) +
                            " after the range check passed it");
-  pairs_ = worldOut_.pairs;
-  results_ = worldOut_.contacts;
   st.pairsTested = worldOut_.candidates;
 }
 
@@ -119,47 +108,53 @@ StepStats Simulation::step() {
   otherContacts_.clear();
   requireSpheresInRange();
   applyEffects();
-  auto t0 = Clock::now(), t1 = t0;
+  auto t0 = Clock::now();
   if (engine_) {
-    collideWorld(st);
-    t1 = Clock::now();
+    pairPlanesWithSpheres();
   } else {
     world_.collideSpace(this, &Simulation::nearCallback);
     if (nearError_) std::rethrow_exception(std::exchange(nearError_, nullptr));
-    t1 = Clock::now();
-    st.broadNs = nsBetween(t0, t1);
+  }
+  auto t1 = Clock::now();
+  st.broadNs = nsBetween(t0, t1);
 
-    for (const auto& [o1, o2] : otherPairs_) {
-      dContactGeom cg[4];
-      const int n = dCollide(o1, o2, 4, cg, sizeof(dContactGeom));
-      otherContacts_.insert(otherContacts_.end(), cg, cg + n);
-    }
+  for (const auto& [o1, o2] : otherPairs_) {
+    dContactGeom cg[4];
+    const int n = dCollide(o1, o2, 4, cg, sizeof(dContactGeom));
+    otherContacts_.insert(otherContacts_.end(), cg, cg + n);
+  }
+  t0 = Clock::now();
+  st.otherNarrowNs = nsBetween(t1, t0);
+
+  world_.fillSphereTable(table_);
+  if (engine_) {
     t0 = Clock::now();
-    st.otherNarrowNs = nsBetween(t1, t0);
-
-    world_.fillSphereTable(table_);
-    {
-      const OdeGeomBinding geoms(odeBackend_, world_.sphereGeoms());  // bound for this step's call only
-      t0 = Clock::now();
-      backend_->collide(table_, pairs_, results_);
-      t1 = Clock::now();
-    }
-    st.backendNs = nsBetween(t0, t1);
-    if (observer_) observer_(table_, pairs_, results_);
+    collideWorld(st);
+    t1 = Clock::now();
+  } else {
+    const OdeGeomBinding geoms(odeBackend_, world_.sphereGeoms());  // bound for this step's call only
+    t0 = Clock::now();
+    backend_->collide(table_, pairs_, results_);
+    t1 = Clock::now();
     st.pairsTested = pairs_.size();
   }
+  st.backendNs = nsBetween(t0, t1);
+  if (observer_ && !engine_) observer_(table_, pairs_, results_);
   const auto afterObserver = Clock::now();
 
+  // The sphere/sphere contacts: the backend's on the batch, or the engine's (all hits).
+  const PairList& pairs = engine_ ? worldOut_.pairs : pairs_;
+  const ContactSet& results = engine_ ? worldOut_.contacts : results_;
   // Sphere/plane joints first: the order ODE found them in before the batch existed.
   for (const auto& g : otherContacts_) addContactJoint(world_.world(), world_.contacts(), surface_, g);
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    if (!results_.hit[k]) continue;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (!results.hit[k]) continue;
     dContactGeom g{};
-    g.pos[0] = results_.px[k]; g.pos[1] = results_.py[k]; g.pos[2] = results_.pz[k];
-    g.normal[0] = results_.nx[k]; g.normal[1] = results_.ny[k]; g.normal[2] = results_.nz[k];
-    g.depth = results_.depth[k];
-    g.g1 = world_.sphereGeom(pairs_.i[k]);
-    g.g2 = world_.sphereGeom(pairs_.j[k]);
+    g.pos[0] = results.px[k]; g.pos[1] = results.py[k]; g.pos[2] = results.pz[k];
+    g.normal[0] = results.nx[k]; g.normal[1] = results.ny[k]; g.normal[2] = results.nz[k];
+    g.depth = results.depth[k];
+    g.g1 = world_.sphereGeom(pairs.i[k]);
+    g.g2 = world_.sphereGeom(pairs.j[k]);
     g.side1 = g.side2 = -1;
     addContactJoint(world_.world(), world_.contacts(), surface_, g);
     ++st.contacts;

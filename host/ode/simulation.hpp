@@ -59,6 +59,7 @@ class Simulation {
   void near(dGeomID o1, dGeomID o2);
   void applyEffects();
   void requireSpheresInRange() const;
+  void pairPlanesWithSpheres();
   void collideWorld(StepStats& st);
 
   const scene::Scene& scene_;

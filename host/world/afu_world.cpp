@@ -6,15 +6,13 @@
 
 #include "collide/input_policy.hpp"
 #include "collide/rtl_backend.hpp"
-#include "driver/manifest.hpp"
 #include "world/slab_split.hpp"
 
 namespace collide::world {
 
 namespace {
 driver::DriverOptions fromManifest(const std::filesystem::path& dir, const driver::DriverOptions& base) {
-  const auto m = dir.empty() ? driver::parseManifest(driver::builtInAfuManifest(), "the built-in AFU's manifest")
-                             : driver::loadManifest(dir);
+  const auto m = driver::afuManifest(dir);
   if (!m.world)
     throw driver::AfuUnavailable("AFU " + (dir.empty() ? std::string("built in") : dir.string()) +
                                 ": no world mode (manifest afu.world is not true; generate the world preset: "
