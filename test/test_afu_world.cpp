@@ -106,11 +106,13 @@ TEST(AfuWorld, HandlesTheEmptyWorldAndOneSphere) {
 }
 
 TEST(AfuWorld, CutsAWorldLargerThanARunIntoSlabsAndFindsEveryContactOnce) {
-  // Runs of at most 300 spheres: 1,200 spheres take several slabs, with ghosts; huge spheres
-  // reach into many slabs. Every contact once, bit for bit the CPU grid's.
+  // Runs of at most 400 spheres: 1,200 spheres take several slabs, with ghosts; huge spheres
+  // reach into many slabs. Every contact once, bit for bit the CPU grid's. (The huge sphere
+  // and the spheres that may touch it along x are about a quarter of the 1,200, 311 for run
+  // seed 471615362: runs of 300 were refused, correctly, for such seeds.)
   const auto seed = test::testSeed(1303);
   world::AfuWorld afu("", link::presetParams("qpi"));
-  afu.setMaxRunSpheres(300);
+  afu.setMaxRunSpheres(400);
   for (bool mixed : {false, true}) {
     test::WorldShape s;
     s.spheres = 1200;
@@ -120,7 +122,7 @@ TEST(AfuWorld, CutsAWorldLargerThanARunIntoSlabsAndFindsEveryContactOnce) {
     if (mixed) t.push(0, 0, 0, 3.0);  // spans a third of the world along x
     world::WorldContacts got;
     afu.collide(t, got);
-    EXPECT_GE(afu.lastSlabs(), 5u) << (mixed ? "mixed" : "uniform");
+    EXPECT_GE(afu.lastSlabs(), 3u) << (mixed ? "mixed" : "uniform");
     const auto want = onCpu(t);
     EXPECT_GT(want.pairs.size(), 300u);
     expectSame(got, want, mixed ? "slabs, radii over 1:150 and a huge sphere" : "slabs, uniform radii");
