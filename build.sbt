@@ -6,6 +6,19 @@ ThisBuild / organization := "io.github.collide"
 
 val chiselVersion = "6.7.0"
 
+// Seconds each heavy spec took in CI (2 cores): the weights of the two test groups below.
+val suiteSeconds = Map(
+  "PucSpec" -> 330, "AfuSpec" -> 175, "ScpuSpec" -> 110, "AfuWorldSpec" -> 110, "BroadPhaseSpec" -> 75,
+  "NewtonRaphsonErrorSpec" -> 45, "FpRsqrtSpec" -> 40, "GeneratedFreshSpec" -> 35, "FpSqrtSpec" -> 30,
+  "FpRecipSpec" -> 30, "FpAddSpec" -> 25, "ScpuModelSpec" -> 25, "FpConvertSpec" -> 22,
+  "NewtonRaphsonCoreSpec" -> 20, "FpMulSpec" -> 18, "FpCompareSpec" -> 14)
+
+// sbt's default allows one forked test group at a time; the two groups below run together.
+Global / concurrentRestrictions := Seq(
+  Tags.limitAll(java.lang.Runtime.getRuntime.availableProcessors.max(2)),
+  Tags.limit(Tags.ForkedTestGroup, 2),
+  Tags.exclusiveGroup(Tags.Clean))
+
 lazy val root = (project in file("."))
   .settings(
     name := "collide-accel",
@@ -19,8 +32,23 @@ lazy val root = (project in file("."))
     ),
     addCompilerPlugin("org.chipsalliance" % "chisel-plugin" % chiselVersion cross CrossVersion.full),
     scalacOptions ++= Seq("-language:reflectiveCalls", "-deprecation", "-feature", "-Xcheckinit", "-Ymacro-annotations"),
-    Test / parallelExecution := false,
     Test / fork := true,
+    // Two forked JVMs run the specs at once, so on a 2-core machine one simulates while the
+    // other builds its Verilator model. Suites go to the lighter group, heaviest first, by
+    // about how many seconds each took in CI (suiteSeconds; unlisted ones count 10). Within a
+    // JVM, suites run one at a time.
+    Test / testGrouping := {
+      val opts = ForkOptions().withRunJVMOptions((Test / javaOptions).value.toVector)
+      def weight(t: TestDefinition) = suiteSeconds.getOrElse(t.name.split('.').last, 10)
+      val groups = Array.fill(2)(Vector.empty[TestDefinition]); val load = Array.fill(2)(0)
+      for (t <- (Test / definedTests).value.sortBy(t => (-weight(t), t.name))) {
+        val g = if (load(0) <= load(1)) 0 else 1
+        groups(g) :+= t; load(g) += weight(t)
+      }
+      groups.toSeq.zipWithIndex.collect { case (ts, i) if ts.nonEmpty => Tests.Group(s"specs-$i", ts, Tests.SubProcess(opts)) }
+    },
+    Test / parallelExecution := true,
+    Test / testForkedParallel := false,
     Test / javaOptions ++= Seq("-Xss8m", "-Xmx6g"),
     // Tests run in a forked JVM: forward the replay knobs (collide.testutil.Seeds).
     Test / javaOptions ++= Seq("seed", "scale").flatMap(k => sys.props.get(k).map(v => s"-D$k=$v")),

@@ -33,6 +33,12 @@ def states(runner, tasks) -> dict:
         job = q.get(jobs.key(t.id)) if t.id in jobs.map else None
         if t.done():
             out[t.id] = ("done", rec.get("node", ""))
+        elif rec.get("state") in ("failed", "skipped"):
+            # A final record wins over the queue, as in the executor's follow(): submitting
+            # clears a task's record, so this one is the job's own, written as its worker ended
+            # (the job can stay listed as running for a moment after).
+            log = jobs.map.get(t.id, {}).get("log")
+            out[t.id] = (rec["state"], rec["error"] + (f" (log: {log})" if log else ""))
         elif job and job[0] in slurmctl.ACTIVE:
             where = f"job {jobs.key(t.id)}" + (f" on {job[2]}" if job[2] else f" ({job[1]})")
             out[t.id] = ("queued" if job[0] == "PENDING" else "running", where)
@@ -40,9 +46,6 @@ def states(runner, tasks) -> dict:
             local = rec.get("node") == node() and t.id not in jobs.map
             out[t.id] = ("running", f"on {node()}, pid {rec['pid']}") if local and _alive(rec.get("pid")) else \
                 ("interrupted", f"started on {rec.get('node')}, ended without a result")
-        elif rec.get("state") in ("failed", "skipped"):
-            log = jobs.map.get(t.id, {}).get("log")
-            out[t.id] = (rec["state"], rec["error"] + (f" (log: {log})" if log else ""))
         else:
             out[t.id] = ("to do", "")
     return out

@@ -209,6 +209,8 @@ def row(sw, cfg, m, scene, link, s, areas, acc, drift, where=""):
         "rtl_wall_ns": s["backend_wall_ns"], "rtl_wall_over_ode": per(s["backend_wall_ns"], s["ode_ns"]),
         "cycles_stepped": a["cycles_stepped"], "cycles_skipped": a["cycles_skipped"],
         "ram_bits": m["afu"]["ram"]["sphereTableBits"] + m["afu"]["ram"]["pairBufferBits"],
+        "ram_ports": cfg.ram or "replicated", "sphere_table_bits": m["afu"]["ram"]["sphereTableBits"],
+        "sphere_table_m20k": m["afu"]["ram"].get("sphereTableM20k", ""), "ram_banks": m["afu"]["ram"].get("banks", 1),
     }
     r |= areas
     r |= {f"acc_{k}": v for k, v in acc.items() if k not in ("preset", "latency")}

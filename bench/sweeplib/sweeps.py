@@ -18,13 +18,16 @@ class Config:
     scpus: int
     spec: str  # ScpuConfig.parse: preset[:key=value]*
     records: str = ""  # full | derived | full-masked | derived-masked; "" = the generator's default
+    ram: str = ""      # sphere table: banked | banked:B; "" = replicated (a copy per SCPU)
 
     @property
     def id(self) -> str:
-        return f"n{self.scpus}_" + re.sub(r"[^A-Za-z0-9-]+", "_", self.spec) + (f"_{self.records}" if self.records else "")
+        return (f"n{self.scpus}_" + re.sub(r"[^A-Za-z0-9-]+", "_", self.spec) + (f"_{self.records}" if self.records else "")
+                + (f"_{re.sub(r'[^A-Za-z0-9]+', '', self.ram)}" if self.ram else ""))
 
     def generator_args(self) -> str:
-        return f"--scpus {self.scpus} --scpu {self.spec}" + (f" --records {self.records}" if self.records else "")
+        return (f"--scpus {self.scpus} --scpu {self.spec}" + (f" --records {self.records}" if self.records else "")
+                + (f" --ram-ports {self.ram}" if self.ram else ""))
 
 
 @dataclass(frozen=True)
@@ -135,6 +138,10 @@ SWEEPS = {s.name: s for s in (
           "SCPU count that fits, diamond hMax 10, every link preset",
           configs=isoarea_configs(Path(__file__).resolve().parents[1] / "results"), scenes=(Scene(10),),
           links=LINK_PRESETS, area=False, cpu_repeat=3),
+    Sweep("banked", "the sphere table in banks (one copy, two read ports a bank) against a copy per SCPU: "
+          "fp32 at 4, 8 and 16 SCPUs, diamond hMax 10 and 13, HARP v1 and ideal links",
+          configs=tuple(Config(n, "fp32", "", ram) for n in (4, 8, 16) for ram in ("", "banked")),
+          scenes=(Scene(10), Scene(13)), cpu_repeat=3),
     Sweep("smoke", "a quick check of the tool itself: 2 fp32 SCPUs, diamond hMax 2, ideal link",
           configs=(Config(2, "fp32"),), scenes=(Scene(2),), links=("ideal",), area=False,
           accuracy=False, drift_steps=3, cpu_repeat=3),

@@ -52,6 +52,19 @@ class ConfigIds(unittest.TestCase):
         r = sweep.row(SWEEPS["links"], Config(16, "fp32"), MANIFEST, Scene(10), "pac", summary(), {}, {}, {})
         self.assertEqual((r["link_format"], r["records"], r["record_bytes"], r["link"]), ("binary32", "derived", 12, "pac"))
 
+    def test_a_banked_sphere_table_is_passed_on_and_named_only_when_asked_for(self):
+        self.assertEqual(Config(16, "fp32", "", "banked").generator_args(), "--scpus 16 --scpu fp32 --ram-ports banked")
+        self.assertEqual(Config(16, "fp32", "", "banked:64").id, "n16_fp32_banked64")
+        self.assertNotEqual(Config(16, "fp32", "", "banked").id, Config(16, "fp32").id)
+        rep = sweep.row(SWEEPS["banked"], Config(4, "fp32"), MANIFEST, Scene(10), "qpi", summary(), {}, {}, {})
+        bank = sweep.row(SWEEPS["banked"], Config(4, "fp32", "", "banked"), MANIFEST, Scene(10), "qpi",
+                         summary(modelled=34210.0), {}, {}, {})
+        self.assertEqual((rep["ram_ports"], bank["ram_ports"]), ("replicated", "banked"))
+        # the banked row beside its replicated twin, with the time ratio
+        t = report.banked_table([rep, bank])
+        self.assertEqual(len(t.splitlines()), 3, t)
+        self.assertIn("| 31.10 / 34.21 | 1.100 |", t)
+
 
 class IsoArea(unittest.TestCase):
     PUCS = [{"scpus": "1", "puc_luts": "1000", "puc_arith": "0", "puc_ff": "0"},

@@ -4442,7 +4442,7 @@ module PairDispatcher_n16_default(
   wire [24:0]  left = {1'h0, io_numPairs} - {1'h0, cur_line, 4'h0};
   wire [4:0]   lineCount = left > 25'h10 ? 5'h10 : left[4:0];
   wire [4:0]   _rem_T = lineCount - ptr;
-  wire [4:0]   cnt = _rem_T > 5'h10 ? 5'h10 : _rem_T;
+  wire [4:0]   lineCnt = _rem_T > 5'h10 ? 5'h10 : _rem_T;
   wire [3:0]   slot_1 = ptr[3:0] + 4'h1;
   wire [3:0]   slot_2 = ptr[3:0] + 4'h2;
   wire [3:0]   slot_3 = ptr[3:0] + 4'h3;
@@ -5675,22 +5675,22 @@ module PairDispatcher_n16_default(
   wire [4:0]   posOf_14 = _posOf_d_T_14[4] ? _posOf_d_T_14 - 5'h10 : _posOf_d_T_14;
   wire [4:0]   _posOf_d_T_15 = 5'h1F - _GEN;
   wire [4:0]   posOf_15 = _posOf_d_T_15[4] ? _posOf_d_T_15 - 5'h10 : _posOf_d_T_15;
-  wire         inGroup_0 = posOf_0 < cnt;
-  wire         inGroup_1 = posOf_1 < cnt;
-  wire         inGroup_2 = posOf_2 < cnt;
-  wire         inGroup_3 = posOf_3 < cnt;
-  wire         inGroup_4 = posOf_4 < cnt;
-  wire         inGroup_5 = posOf_5 < cnt;
-  wire         inGroup_6 = posOf_6 < cnt;
-  wire         inGroup_7 = posOf_7 < cnt;
-  wire         inGroup_8 = posOf_8 < cnt;
-  wire         inGroup_9 = posOf_9 < cnt;
-  wire         inGroup_10 = posOf_10 < cnt;
-  wire         inGroup_11 = posOf_11 < cnt;
-  wire         inGroup_12 = posOf_12 < cnt;
-  wire         inGroup_13 = posOf_13 < cnt;
-  wire         inGroup_14 = posOf_14 < cnt;
-  wire         inGroup_15 = posOf_15 < cnt;
+  wire         inGroup_0 = posOf_0 < lineCnt;
+  wire         inGroup_1 = posOf_1 < lineCnt;
+  wire         inGroup_2 = posOf_2 < lineCnt;
+  wire         inGroup_3 = posOf_3 < lineCnt;
+  wire         inGroup_4 = posOf_4 < lineCnt;
+  wire         inGroup_5 = posOf_5 < lineCnt;
+  wire         inGroup_6 = posOf_6 < lineCnt;
+  wire         inGroup_7 = posOf_7 < lineCnt;
+  wire         inGroup_8 = posOf_8 < lineCnt;
+  wire         inGroup_9 = posOf_9 < lineCnt;
+  wire         inGroup_10 = posOf_10 < lineCnt;
+  wire         inGroup_11 = posOf_11 < lineCnt;
+  wire         inGroup_12 = posOf_12 < lineCnt;
+  wire         inGroup_13 = posOf_13 < lineCnt;
+  wire         inGroup_14 = posOf_14 < lineCnt;
+  wire         inGroup_15 = posOf_15 < lineCnt;
   reg          inflight_0;
   reg          inflight_1;
   reg          inflight_2;
@@ -5723,7 +5723,7 @@ module PairDispatcher_n16_default(
   wire         credit_13 = {1'h0, _queues_13_io_count} + {2'h0, inflight_13} < 3'h3;
   wire         credit_14 = {1'h0, _queues_14_io_count} + {2'h0, inflight_14} < 3'h3;
   wire         credit_15 = {1'h0, _queues_15_io_count} + {2'h0, inflight_15} < 3'h3;
-  wire         haveGroup = io_go & curValid & (|cnt);
+  wire         haveGroup = io_go & curValid & (|lineCnt);
   wire         fire =
     haveGroup & io_groups_ready & (~inGroup_0 | credit_0) & (~inGroup_1 | credit_1)
     & (~inGroup_2 | credit_2) & (~inGroup_3 | credit_3) & (~inGroup_4 | credit_4)
@@ -6952,103 +6952,103 @@ module PairDispatcher_n16_default(
     always @(posedge clock) begin
       if (~reset & ~(~inflight_0 | _queues_0_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_1 | _queues_1_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_2 | _queues_2_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_3 | _queues_3_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_4 | _queues_4_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_5 | _queues_5_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_6 | _queues_6_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_7 | _queues_7_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_8 | _queues_8_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_9 | _queues_9_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_10 | _queues_10_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_11 | _queues_11_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_12 | _queues_12_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_13 | _queues_13_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_14 | _queues_14_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_15 | _queues_15_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:110 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:126 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [4:0]   _ptr_T = ptr + cnt;
+  wire [4:0]   _ptr_T = ptr + lineCnt;
   wire         lineDone = fire & _ptr_T == lineCount;
   wire         io_pairs_ready_0 = ~curValid | lineDone;
   wire         _GEN_0 = io_pairs_ready_0 & io_pairs_valid;
@@ -7117,7 +7117,7 @@ module PairDispatcher_n16_default(
       else if (fire)
         ptr <= _ptr_T;
       if (fire)
-        base <= base + cnt[3:0];
+        base <= base + lineCnt[3:0];
       inflight_0 <= io_ren_0_0;
       inflight_1 <= io_ren_1_0;
       inflight_2 <= io_ren_2_0;
@@ -7625,40 +7625,40 @@ module PairDispatcher_n16_default(
     & (~inGroup_11 | credit_11) & (~inGroup_12 | credit_12) & (~inGroup_13 | credit_13)
     & (~inGroup_14 | credit_14) & (~inGroup_15 | credit_15);
   assign io_groups_bits_base = base;
-  assign io_groups_bits_cnt = cnt;
+  assign io_groups_bits_cnt = lineCnt;
   assign io_groups_bits_invalid =
     {({1'h0, casez_tmp_14} >= io_numSpheres | {1'h0, casez_tmp_30} >= io_numSpheres)
-       & cnt[4],
+       & lineCnt[4],
      ({1'h0, casez_tmp_13} >= io_numSpheres | {1'h0, casez_tmp_29} >= io_numSpheres)
-       & cnt > 5'hE,
+       & lineCnt > 5'hE,
      ({1'h0, casez_tmp_12} >= io_numSpheres | {1'h0, casez_tmp_28} >= io_numSpheres)
-       & cnt > 5'hD,
+       & lineCnt > 5'hD,
      ({1'h0, casez_tmp_11} >= io_numSpheres | {1'h0, casez_tmp_27} >= io_numSpheres)
-       & cnt > 5'hC,
+       & lineCnt > 5'hC,
      ({1'h0, casez_tmp_10} >= io_numSpheres | {1'h0, casez_tmp_26} >= io_numSpheres)
-       & cnt > 5'hB,
+       & lineCnt > 5'hB,
      ({1'h0, casez_tmp_9} >= io_numSpheres | {1'h0, casez_tmp_25} >= io_numSpheres)
-       & cnt > 5'hA,
+       & lineCnt > 5'hA,
      ({1'h0, casez_tmp_8} >= io_numSpheres | {1'h0, casez_tmp_24} >= io_numSpheres)
-       & cnt > 5'h9,
+       & lineCnt > 5'h9,
      ({1'h0, casez_tmp_7} >= io_numSpheres | {1'h0, casez_tmp_23} >= io_numSpheres)
-       & cnt > 5'h8,
+       & lineCnt > 5'h8,
      ({1'h0, casez_tmp_6} >= io_numSpheres | {1'h0, casez_tmp_22} >= io_numSpheres)
-       & (|(cnt[4:3])),
+       & (|(lineCnt[4:3])),
      ({1'h0, casez_tmp_5} >= io_numSpheres | {1'h0, casez_tmp_21} >= io_numSpheres)
-       & cnt > 5'h6,
+       & lineCnt > 5'h6,
      ({1'h0, casez_tmp_4} >= io_numSpheres | {1'h0, casez_tmp_20} >= io_numSpheres)
-       & cnt > 5'h5,
+       & lineCnt > 5'h5,
      ({1'h0, casez_tmp_3} >= io_numSpheres | {1'h0, casez_tmp_19} >= io_numSpheres)
-       & cnt > 5'h4,
+       & lineCnt > 5'h4,
      ({1'h0, casez_tmp_2} >= io_numSpheres | {1'h0, casez_tmp_18} >= io_numSpheres)
-       & (|(cnt[4:2])),
+       & (|(lineCnt[4:2])),
      ({1'h0, casez_tmp_1} >= io_numSpheres | {1'h0, casez_tmp_17} >= io_numSpheres)
-       & cnt > 5'h2,
+       & lineCnt > 5'h2,
      ({1'h0, casez_tmp_0} >= io_numSpheres | {1'h0, casez_tmp_16} >= io_numSpheres)
-       & (|(cnt[4:1])),
+       & (|(lineCnt[4:1])),
      ({1'h0, casez_tmp} >= io_numSpheres | {1'h0, casez_tmp_15} >= io_numSpheres)
-       & (|cnt)};
+       & (|lineCnt)};
   assign io_groups_bits_first = _tagNext_15_T_2;
   assign io_fired = fire;
   assign io_idle = ~curValid;
@@ -15468,7 +15468,7 @@ module Puc_default(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:255 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:256 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end

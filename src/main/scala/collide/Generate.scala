@@ -48,7 +48,7 @@ object Generate {
       opt[Int]("max-writes").valueName("N").action((v, o) => o.copy(maxWrites = Some(v))).text("writes in flight at most"),
       opt[Int]("tag-bits").valueName("N").action((v, o) => o.copy(tagBits = Some(v))).text("link tag width"),
       opt[String]("ram-ports").valueName("S").action((v, o) => o.copy(ramPorts = Some(v)))
-        .text("sphere table read ports: replicated"),
+        .text("sphere table read ports: replicated (a copy per SCPU) | banked (one copy, 2 x min(N, 16) banks) | banked:B (B banks)"),
       opt[String]("records").valueName("L").action((v, o) => o.copy(records = Some(v)))
         .text(s"contact record layout: ${RecordLayout.all.map(_.name).mkString(" | ")} (default: derived where the host can rebuild it exactly, else full)"),
       opt[Boolean]("dense-default").valueName("true|false").action((v, o) => o.copy(dense = Some(v)))

@@ -14,7 +14,8 @@ import collide.scpu.ScpuConfig
   * @param maxReadsOutstanding  read requests in flight at most (SPL's 6-bit tags: 64)
   * @param maxWritesOutstanding write requests in flight at most (64)
   * @param tagBits              link tag width (HARP v1 / SPL: 6, docs/afu-interface.md)
-  * @param ramPorts             sphere table read-port strategy
+  * @param ramPorts             sphere table read ports: a copy per SCPU (replicated) or one copy
+  *                             in banks, two read ports each (banked; conflicts cost cycles)
   * @param denseByDefault       reset value of MODE bit 0 (false: compact records)
   * @param records              contact record layout; None = the best one offered for the SCPU
   *                             (AfuConfig.bestLayout: derived where the host can rebuild contacts
@@ -61,6 +62,9 @@ final case class AfuConfig(
 
   val linkWidth: Int = scpu.linkWidth
   val layout: BufferLayout = BufferLayout(linkWidth, recordLayout)
+  for (SphereRamPorts.Banked(Some(b)) <- Some(ramPorts))
+    require(b >= layout.spheresPerLine && b <= maxSpheres / 2, s"AfuConfig $name: banked sphere RAM: $b banks; at least the " +
+      s"${layout.spheresPerLine} spheres of a line (a line write meets each bank once) and at most maxSpheres / 2 (${maxSpheres / 2})")
   /** Whether this is exactly the named preset. */
   def isPreset: Boolean = AfuConfig.presets.get(name).contains(this)
   /** A name from every parameter, for configurations that are not a preset. */

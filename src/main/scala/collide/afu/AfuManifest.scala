@@ -31,7 +31,8 @@ object AfuManifest {
             "filterFracBits" -> bp.filterFracBits, "chunk" -> bp.chunk, "wordLog2" -> bp.wordLog2,
             "recordPair" -> s"i | j << ${RecordTag.WORLD_INDEX_BITS}")
         }.getOrElse(ujson.Null),
-        "ram" -> ujson.Obj("copies" -> p.ramCopies, "bitsPerCopy" -> p.ramBitsPerCopy.toDouble,
+        "ram" -> ujson.Obj("copies" -> p.ramCopies, "banks" -> p.banks, "bitsPerCopy" -> p.ramBitsPerCopy.toDouble,
+          "sphereTableM20k" -> p.ramM20k.toDouble,
           "sphereTableBits" -> p.ramBits.toDouble, "pairBufferBits" -> p.pairBufferBits.toDouble,
           "broadPhaseBits" -> ujson.Num(cfg.world.map(_.ramBits(cfg.maxSpheres).toDouble).getOrElse(0.0)))),
       "scpu" -> scpuJson(s),

@@ -38,6 +38,7 @@ class PairDispatcher(p: PucParams) extends Module {
     val raddr      = Output(Vec(n, Vec(2, UInt(idxBits.W))))
     val ren        = Output(Vec(n, Bool()))
     val rdata      = Input(Vec(n, Vec(2, new Sphere(p.linkWidth))))
+    val rport      = if (p.ramPorts != SphereRamPorts.Replicated) Some(Output(Vec(n, Vec(2, UInt(1.W))))) else None
     val scpu       = Vec(n, Decoupled(new ScpuIn(p.linkWidth, p.scpuTagBits)))
     val groups     = Decoupled(new GroupInfo(p))
     val fired      = Output(Bool())  // a group went out this cycle (the "computing" counter)
@@ -54,7 +55,7 @@ class PairDispatcher(p: PucParams) extends Module {
   val left      = io.numPairs.pad(p.layout.pairIndexBits + 1) - lineFirst
   val lineCount = Mux(left > ppl.U, ppl.U, left(log2Ceil(ppl + 1) - 1, 0))
   val rem       = lineCount - ptr
-  val cnt       = Mux(rem > p.lanes.U, p.lanes.U, rem)(log2Ceil(p.lanes + 1) - 1, 0)
+  val lineCnt   = Mux(rem > p.lanes.U, p.lanes.U, rem)(log2Ceil(p.lanes + 1) - 1, 0)
 
   val pi = VecInit.tabulate(ppl)(k => cur.data(32 * k + 15, 32 * k))
   val pj = VecInit.tabulate(ppl)(k => cur.data(32 * k + 31, 32 * k + 16))
@@ -62,6 +63,20 @@ class PairDispatcher(p: PucParams) extends Module {
   val slot = VecInit.tabulate(p.lanes)(k => (ptr +& k.U)(log2Ceil(ppl) - 1, 0))
   val posI = VecInit.tabulate(p.lanes)(k => pi(slot(k)))
   val posJ = VecInit.tabulate(p.lanes)(k => pj(slot(k)))
+
+  // Banked sphere table: read r (position r / 2, sphere i or j) takes port rank(r) of its bank,
+  // its rank among the earlier reads of that bank; the group ends before the first position
+  // that would give a bank a third read (position 0 always fits, so every cycle makes progress).
+  val (cnt, rank) = p.ramPorts match {
+    case SphereRamPorts.Replicated => (lineCnt, None)
+    case _: SphereRamPorts.Banked =>
+      val bankBits = log2Ceil(p.banks)
+      val bank = (0 until p.lanes).flatMap(k => Seq(posI(k), posJ(k))).map(a => if (bankBits == 0) 0.U else a(bankBits - 1, 0))
+      val rk = bank.indices.map(r => if (r == 0) 0.U(1.W) else PopCount((0 until r).map(q => bank(q) === bank(r))))
+      val fits = (0 until p.lanes).map(k => rk(2 * k) < 2.U && rk(2 * k + 1) < 2.U)
+      val fitLen = PriorityEncoder(fits.map(!_) :+ true.B)
+      (Mux(fitLen < lineCnt, fitLen, lineCnt)(log2Ceil(p.lanes + 1) - 1, 0), Some(VecInit(rk.map(_(0)))))
+  }
   val posBad = VecInit.tabulate(p.lanes)(k => posI(k) >= io.numSpheres || posJ(k) >= io.numSpheres)
 
   // Per SCPU: its position in the group, if any.
@@ -98,6 +113,7 @@ class PairDispatcher(p: PucParams) extends Module {
     io.ren(s)      := fire && inGroup(s)
     io.raddr(s)(0) := posI(kk)(idxBits - 1, 0)
     io.raddr(s)(1) := posJ(kk)(idxBits - 1, 0)
+    for (r <- rank; port <- 0 until 2) io.rport.get(s)(port) := r(Cat(kk, port.U(1.W)))
     inflight(s)    := io.ren(s)
     val wb = RecordTag.WORLD_INDEX_BITS
     val worldTag = if (p.world.isDefined) Cat(posJ(kk)(wb - 1, 0), posI(kk)(wb - 1, 0)) else 0.U

@@ -149,6 +149,7 @@ class Puc(p: PucParams) extends Module {
   worldLine.ready     := world && disp.io.pairs.ready
   ram.io.raddr := disp.io.raddr
   ram.io.ren   := disp.io.ren
+  for (a <- ram.io.rport; b <- disp.io.rport) a := b
   disp.io.rdata := ram.io.rdata
   io.scpuIn <> disp.io.scpu
   groups.io.enq <> disp.io.groups

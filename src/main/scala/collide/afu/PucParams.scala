@@ -7,10 +7,23 @@ object SphereRamPorts {
     * (spheres i and j). Loading and computing never touch the table at the same time, so a
     * true-dual-port block RAM (e.g. Stratix V M20K) implements each copy. */
   case object Replicated extends SphereRamPorts { val name = "rep" }
+  /** One copy of the table cut into `banks` RAMs one sphere wide, sphere s in bank s mod banks,
+    * each with two read ports (again a true-dual-port block RAM). A dispatch group is cut where
+    * a bank would see a third read in a cycle, so conflicts cost time, never a pair.
+    * None: 2 x min(scpus, 16) banks (one per read of a full group), at least a line's spheres. */
+  final case class Banked(banks: Option[Int] = None) extends SphereRamPorts {
+    require(banks.forall(b => b >= 1 && b <= 256 && Integer.bitCount(b) == 1), s"banks must be a power of two in 1..256, got ${banks.get}")
+    val name: String = banks.fold("bank")(b => s"bank$b")
+  }
 
   def parse(s: String): Either[String, SphereRamPorts] = s.trim.toLowerCase match {
     case "rep" | "replicated" => Right(Replicated)
-    case other => Left(s"sphere RAM ports '$other': expected 'replicated' (banked tables are not implemented)")
+    case "bank" | "banked" => Right(Banked())
+    case b if b.startsWith("banked:") || b.startsWith("bank:") =>
+      val v = b.dropWhile(_ != ':').drop(1)
+      v.toIntOption.filter(n => n >= 1 && n <= 256 && Integer.bitCount(n) == 1)
+        .toRight(s"sphere RAM ports '$s': banks must be a power of two in 1..256, got '$v'").map(n => Banked(Some(n)))
+    case other => Left(s"sphere RAM ports '$other': expected 'replicated', 'banked' or 'banked:B' (B banks, a power of two)")
   }
 }
 
@@ -81,9 +94,29 @@ final case class PucParams(
   val pairLineBits: Int = layout.pairIndexBits - chisel3.util.log2Ceil(layout.pairsPerLine)
   /** One copy per SCPU, and in world mode one more for the broad phase's reads (it reads the
     * table while the SCPUs compute the candidates it found earlier). */
-  val ramCopies: Int = ramPorts match { case SphereRamPorts.Replicated => scpus + world.size }
+  val ramCopies: Int = ramPorts match {
+    case SphereRamPorts.Replicated => scpus + world.size
+    case _: SphereRamPorts.Banked  => 1 + world.size
+  }
+  /** Banks of the SCPUs' copy (1 when replicated: each copy is one line-wide RAM). */
+  val banks: Int = ramPorts match {
+    case SphereRamPorts.Replicated => 1
+    case SphereRamPorts.Banked(b) => b.getOrElse(math.max(1 << chisel3.util.log2Ceil(2 * lanes), layout.spheresPerLine))
+  }
+  require(ramPorts == SphereRamPorts.Replicated || (banks >= layout.spheresPerLine && banks <= maxSpheres / 2),
+    s"banked sphere RAM: $banks banks; at least the ${layout.spheresPerLine} spheres of a line (a line write meets each bank " +
+      s"once) and at most maxSpheres / 2 (${maxSpheres / 2})")
   /** Sphere table bits on chip, all copies. */
   val ramBitsPerCopy: Long = maxSpheres.toLong * 4 * linkWidth
   val ramBits: Long = ramBitsPerCopy * ramCopies
+  /** Stratix V M20K blocks of the sphere table, all copies (M20k: an estimate). The SCPUs'
+    * copies need two read ports; the broad phase's copy one. */
+  val ramM20k: Long = {
+    val scpuCopies = ramPorts match {
+      case SphereRamPorts.Replicated => scpus * M20k.blocks(maxSpheres / layout.spheresPerLine, Link.lineBits, twoPorts = true)
+      case _: SphereRamPorts.Banked  => banks * M20k.blocks(maxSpheres / banks, 4 * linkWidth, twoPorts = true)
+    }
+    scpuCopies + world.size * M20k.blocks(maxSpheres / layout.spheresPerLine, Link.lineBits, twoPorts = false)
+  }
   val pairBufferBits: Long = pairBufferLines.toLong * (Link.lineBits + pairLineBits)
 }

@@ -12,10 +12,17 @@ class Sphere(w: Int) extends Bundle {
   * loading, read two spheres a cycle per SCPU while computing, one cycle after the address.
   * Replicated: one copy per SCPU, each a line-wide RAM (spheresPerLine spheres a word) with
   * one write and two read ports; the sphere within the line is selected after the read.
-  * World mode adds one more copy with one read port, always enabled, for the broad phase.
+  * Banked: one copy in `banks` RAMs a sphere wide (sphere s in bank s mod banks, row
+  * s / banks), each with one write and two read ports; a line write meets spheresPerLine
+  * banks once each. The reader names the port of every read (`rport`: 0 for the first read of
+  * a bank in the cycle, 1 for the second) and never sends a bank a third (PairDispatcher cuts
+  * its groups so); each read's data is routed back from its bank and port.
+  * World mode adds one more line-wide copy with one read port, always enabled, for the broad phase.
   */
 class SphereRam(p: PucParams) extends Module {
-  override def desiredName = s"SphereRam_s${p.maxSpheres}_c${p.ramCopies}${p.name}"
+  override def desiredName =
+    s"SphereRam_s${p.maxSpheres}_c${p.ramCopies}" + (if (p.banks > 1) s"_b${p.banks}" else "") + p.name
+  private val banked = p.ramPorts.isInstanceOf[SphereRamPorts.Banked]
   private val spl   = p.layout.spheresPerLine
   private val depth = p.maxSpheres / spl
   private val idxBits = log2Ceil(p.maxSpheres)
@@ -25,23 +32,23 @@ class SphereRam(p: PucParams) extends Module {
     val raddr = Input(Vec(p.scpus, Vec(2, UInt(idxBits.W))))
     val ren   = Input(Vec(p.scpus, Bool()))
     val rdata = Output(Vec(p.scpus, Vec(2, new Sphere(p.linkWidth))))
+    /** Banked: each read's port at its bank (at most two reads a bank a cycle). */
+    val rport = if (banked) Some(Input(Vec(p.scpus, Vec(2, UInt(1.W))))) else None
     /** World mode: the broad phase's read, data the next cycle. */
     val world = p.world.map(_ => new Bundle {
       val addr = Input(UInt(idxBits.W))
       val data = Output(new Sphere(p.linkWidth))
     })
   })
-  private def unpack(line: UInt, k: UInt): Sphere = {
-    val spheres = VecInit.tabulate(spl) { s =>
-      val sp = Wire(new Sphere(p.linkWidth))
-      val w = p.linkWidth
-      val b = s * 4 * w
-      sp.x := line(b + w - 1, b); sp.y := line(b + 2 * w - 1, b + w)
-      sp.z := line(b + 3 * w - 1, b + 2 * w); sp.r := line(b + 4 * w - 1, b + 3 * w)
-      sp
-    }
-    spheres(k)
+  /** The sphere at bit `b` of a RAM word. */
+  private def sphereAt(word: UInt, b: Int): Sphere = {
+    val sp = Wire(new Sphere(p.linkWidth))
+    val w = p.linkWidth
+    sp.x := word(b + w - 1, b); sp.y := word(b + 2 * w - 1, b + w)
+    sp.z := word(b + 3 * w - 1, b + 2 * w); sp.r := word(b + 4 * w - 1, b + 3 * w)
+    sp
   }
+  private def unpack(line: UInt, k: UInt): Sphere = VecInit.tabulate(spl)(s => sphereAt(line, s * 4 * p.linkWidth))(k)
   p.ramPorts match {
     case SphereRamPorts.Replicated =>
       for (c <- 0 until p.scpus) {
@@ -54,11 +61,42 @@ class SphereRam(p: PucParams) extends Module {
           io.rdata(c)(port) := unpack(word, sel)
         }
       }
-      for (w <- io.world) {
-        val mem = SyncReadMem(depth, UInt(Link.lineBits.W))
-        when(io.write.valid) { mem.write(io.write.bits.line(log2Ceil(depth).max(1) - 1, 0), io.write.bits.data) }
-        val word = if (depth == 1) mem.read(0.U) else mem.read(w.addr(idxBits - 1, log2Ceil(spl)))
-        w.data := unpack(word, RegNext(w.addr(log2Ceil(spl) - 1, 0)))
+    case _: SphereRamPorts.Banked =>
+      val nb = p.banks
+      val bankBits = log2Ceil(nb)
+      val rows = p.maxSpheres / nb
+      val sphereBits = 4 * p.linkWidth
+      val groupBits = log2Ceil(nb / spl) // lines that fill every bank once
+      val banks = Seq.fill(nb)(SyncReadMem(rows, UInt(sphereBits.W)))
+      val line = io.write.bits.line
+      for ((mem, b) <- banks.zipWithIndex) {
+        // Line l holds spheres l*spl + k: bank b takes sphere k = b mod spl of the lines with
+        // l mod (nb / spl) = b / spl, at row l / (nb / spl).
+        val k = b % spl
+        val hit = if (groupBits == 0) true.B else line(groupBits - 1, 0) === (b / spl).U
+        val row = if (rows == 1) 0.U else (line >> groupBits).asUInt(log2Ceil(rows) - 1, 0)
+        when(io.write.valid && hit) { mem.write(row, io.write.bits.data(sphereBits * (k + 1) - 1, sphereBits * k)) }
       }
+      val reads = for (c <- 0 until p.scpus; port <- 0 until 2) yield (c, port)
+      def bankOf(a: UInt): UInt = if (nb == 1) 0.U else a(bankBits - 1, 0)
+      def rowOf(a: UInt): UInt = if (rows == 1) 0.U else a(idxBits - 1, bankBits)
+      val out = for ((mem, b) <- banks.zipWithIndex) yield Seq.tabulate(2) { q =>
+        val sel = reads.map { case (c, port) =>
+          io.ren(c) && bankOf(io.raddr(c)(port)) === b.U && io.rport.get(c)(port) === q.U
+        }
+        assert(PopCount(sel) <= 1.U, s"SphereRam: two reads on bank $b port $q in one cycle")
+        mem.read(Mux1H(sel, reads.map { case (c, port) => rowOf(io.raddr(c)(port)) }), sel.reduce(_ || _))
+      }
+      val words = VecInit(out.flatten) // bank b port q at 2b + q
+      for ((c, port) <- reads) {
+        val at = RegEnable(Cat(bankOf(io.raddr(c)(port)), io.rport.get(c)(port)), io.ren(c))
+        io.rdata(c)(port) := sphereAt(words(at), 0)
+      }
+  }
+  for (w <- io.world) {
+    val mem = SyncReadMem(depth, UInt(Link.lineBits.W))
+    when(io.write.valid) { mem.write(io.write.bits.line(log2Ceil(depth).max(1) - 1, 0), io.write.bits.data) }
+    val word = if (depth == 1) mem.read(0.U) else mem.read(w.addr(idxBits - 1, log2Ceil(spl)))
+    w.data := unpack(word, RegNext(w.addr(log2Ceil(spl) - 1, 0)))
   }
 }

@@ -116,6 +116,10 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     endToEnd(small, "fp32")
   }
 
+  it should "find the same contacts, and the pair mode's, with the sphere table in four banks (four fp32 SCPUs, eight reads a cycle)" in {
+    endToEnd(small.copy(scpus = 4, ramPorts = SphereRamPorts.Banked(Some(4))), "fp32-banked")
+  }
+
   it should "stop at the contact buffer's capacity, refuse dense world runs, and hold maxSpheres spheres" in {
     val rng = Seeds.rng("AfuWorldSpec-edges")
     test(new Afu(small)).withAnnotations(annos) { dut =>

@@ -45,11 +45,33 @@ class GenerateSpec extends AnyFlatSpec {
     err("--preset", "nope")("--preset", "unknown")
     err("--format", "e20m5")("--format", "exponent")
     err("--scpu", "fp32:tag=8")("--scpu", "tagBits")
-    err("--ram-ports", "banked")("--ram-ports", "not implemented")
+    err("--ram-ports", "crossbar")("--ram-ports", "crossbar", "banked")
+    err("--ram-ports", "banked:3")("--ram-ports", "power of two")
+    err("--ram-ports", "banked:2")("--ram-ports", "4 spheres of a line")
+    err("--ram-ports", "banked:4", "--format", "fp16")("--ram-ports", "8 spheres of a line")
     err("--world", "true", "--max-spheres", "8192")("--world", "4096")
     err("--preset", "world", "--max-spheres", "8192")("--max-spheres", "4096")
     err("--world", "true", "--records", "derived-masked")("--world", "indexed")
     err("--world", "true", "--format", "fp24")("--world", "converts")
+  }
+
+  it should "bank the sphere table instead of copying it per SCPU, and say what each costs in RAM" in {
+    val rep = AfuConfig.default.copy(maxSpheres = 65536)
+    val bank = cfg("--max-spheres", "65536", "--ram-ports", "banked").toOption.get
+    assert(bank.ramPorts == SphereRamPorts.Banked() && bank.id == "n16_fp32_s65536_r64_w64_t6_bank")
+    assert(bank.puc.banks == 32 && bank.puc.ramCopies == 1 && rep.puc.ramCopies == 16)
+    assert(bank.puc.ramBits == 65536L * 128 && rep.puc.ramBits == 16 * 65536L * 128)
+    // 64k fp32 spheres: 32 banks of 2K x 128 bits, 13 M20Ks each (2K x 10 mode), fit a
+    // 5SGXEA7's 2,560 blocks; sixteen line-wide copies (16K x 512) take 412 each and do not.
+    assert(bank.puc.ramM20k == 32 * 13 && rep.puc.ramM20k == 16 * 412)
+    assert(bank.puc.ramM20k < M20k.deviceBlocks && rep.puc.ramM20k > M20k.deviceBlocks)
+    val m = AfuManifest.json(bank, "")("afu")("ram")
+    assert(m("banks").num == 32 && m("copies").num == 1 && m("sphereTableM20k").num == 416)
+    // Fewer SCPUs, fewer banks (two reads a pair, two ports a bank): 4 SCPUs, 8 banks.
+    assert(cfg("--scpus", "4", "--ram-ports", "banked").toOption.get.puc.banks == 8)
+    assert(cfg("--scpus", "1", "--format", "fp16", "--ram-ports", "banked").toOption.get.puc.banks == 8, "a line's 8 spheres")
+    assert(cfg("--ram-ports", "banked:64").toOption.get.puc.banks == 64)
+    assert(cfg("--preset", "world", "--ram-ports", "banked").toOption.get.puc.ramCopies == 2, "the SCPUs' copy and the broad phase's")
   }
 
   it should "pick the link format from the compute format, or the one asked for" in {

@@ -11,9 +11,10 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
   behavior of "Puc"
 
   def params(n: Int, w: Int, maxSpheres: Int = 256, reads: Int = 16, writes: Int = 8,
-             records: RecordLayout = RecordLayout.Full) =
+             records: RecordLayout = RecordLayout.Full, ram: SphereRamPorts = SphereRamPorts.Replicated) =
     PucParams(scpus = n, linkWidth = w, scpuTagBits = 24, scpuLatency = 3, maxSpheres = maxSpheres,
-      maxReads = reads, maxWrites = writes, tagBits = 6, records = records, name = s"_t${n}_w${w}_${records.name}")
+      maxReads = reads, maxWrites = writes, tagBits = 6, records = records, ramPorts = ram,
+      name = s"_t${n}_w${w}_${records.name}" + (if (ram == SphereRamPorts.Replicated) "" else s"_${ram.name}"))
 
   def randomWorld(rnd: scala.util.Random, lay: BufferLayout, maxSpheres: Int, dense: Boolean, bad: Boolean, lanes: Int): World = {
     val w = lay.linkWidth
@@ -32,9 +33,9 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
     StubScpu.model(world.lay, world.spheres(world.pairs(k)._1), world.spheres(world.pairs(k)._2), k)
 
   def soak(n: Int, w: Int, worlds: Int, beh: Seq[LinkBehaviour], anno: Seq[firrtl2.annotations.Annotation] = Seq(),
-           records: RecordLayout = RecordLayout.Full): Unit = {
-    val p = params(n, w, records = records)
-    val rnd = Seeds.rng(s"PucSpec-n$n-w$w-${records.name}")
+           records: RecordLayout = RecordLayout.Full, ram: SphereRamPorts = SphereRamPorts.Replicated): Unit = {
+    val p = params(n, w, records = records, ram = ram)
+    val rnd = Seeds.rng(s"PucSpec-n$n-w$w-${records.name}" + (if (ram == SphereRamPorts.Replicated) "" else s"-${ram.name}"))
     test(new PucHarness(p, 3)).withAnnotations(anno) { dut =>
       dut.clock.setTimeout(0)
       for (i <- 0 until worlds) {
@@ -167,5 +168,44 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
   }
 
   it should "dispatch a line a cycle with sixteen SCPUs on an ideal link" in { rate(16) }
+
+  // Banked sphere table: every pair accounted for under bank conflicts; 4 banks for 4 SCPUs
+  // (eight reads a cycle into eight ports) conflict most.
+  for ((n, w, ram) <- Seq((4, 32, SphereRamPorts.Banked(Some(4))), (3, 64, SphereRamPorts.Banked()),
+                          (2, 16, SphereRamPorts.Banked()))) {
+    val p = params(n, w, ram = ram)
+    it should s"account for every pair with $n SCPUs reading a table in ${p.banks} banks ($w-bit link fields)" in {
+      soak(n, w, Seeds.cases(10), Seq(LinkBehaviour.hostile, LinkBehaviour.ideal), verilator, ram = ram)
+    }
+  }
+
+  it should "cut a group only where a bank of the table would get a third read in a cycle" in {
+    val p = params(16, 32, reads = 64, writes = 64, ram = SphereRamPorts.Banked())
+    assert(p.banks == 32 && p.ramCopies == 1)
+    val rnd = Seeds.rng("PucSpec-banked-rate")
+    test(new PucHarness(p, 3)).withAnnotations(verilator) { dut =>
+      dut.clock.setTimeout(0)
+      val spheres = (0 until 256).map(_ => Seq.fill(4)(BigInt(32, rnd.self)))
+      val lines = 120
+      def run(name: String, pair: Int => (Int, Int)): Long = {
+        val w = World(p.layout, spheres, (0 until 16 * lines).map(pair), dense = true)
+        val r = AfuRun.run(new HostMemoryModel(dut.io, dut.clock, LinkBehaviour.ideal, rnd.nextLong(), 64, 64), w)
+        val errs = AfuRun.check(w, stubExpect(w), r)
+        assert(errs.isEmpty, s"$name: " + errs.mkString("; "))
+        val st = r.status.get
+        println(s"[PucSpec] banked, $name: ${w.pairs.size} pairs in ${st.cycCompute} compute cycles")
+        st.cycCompute
+      }
+      // The 32 reads of a line on 32 banks; or sphere k twice for pair k (two reads, two ports):
+      // a line a cycle. One sphere everywhere: one pair a cycle.
+      assert(run("32 banks once", k => (2 * k % 256, (2 * k + 1) % 256)) == lines)
+      assert(run("a bank twice", k => (k % 16 + 32 * (k / 16 % 8), k % 16 + 32 * (k / 16 % 8))) == lines)
+      assert(run("one sphere", _ => (7, 7)) == 16 * lines)
+      // Bank 0 in every pair (sphere i), the other reads on odd banks: two pairs a cycle.
+      assert(run("bank 0 every other read", k => (32 * (k % 8), 1 + 2 * (k % 15))) == 8 * lines)
+      val random = run("random", _ => (rnd.nextInt(256), rnd.nextInt(256)))
+      assert(random > lines && random < 16 * lines)
+    }
+  }
   it should "spread the work over all of 20 SCPUs" taggedAs (collide.testutil.Slow) in { rate(20) }
 }
