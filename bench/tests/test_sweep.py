@@ -65,6 +65,13 @@ class ConfigIds(unittest.TestCase):
         self.assertEqual(len(t.splitlines()), 3, t)
         self.assertIn("| 31.10 / 34.21 | 1.100 |", t)
 
+    def test_the_ram_table_sets_each_count_beside_its_banked_twin_and_says_what_does_not_fit(self):
+        row = lambda n, ports, banks, bits, m20k, fits: {"max_spheres": "65536", "scpus": str(n), "ram_ports": ports,
+            "copies": "1", "banks": str(banks), "sphere_table_bits": str(bits), "m20k": str(m20k),
+            "m20k_pct_5sgxea7": f"{100 * m20k / 2560:.1f}", "fits": fits}
+        t = report.ram_table([row(16, "replicated", 1, 16 * 2**23, 6592, "false"), row(16, "banked", 32, 2**23, 416, "true")])
+        self.assertIn("| 65536 | 16 | 128.00 | 6592 (257.5 %), does not fit | 32 | 8.00 | 416 (16.2 %) |", t)
+
 
 class IsoArea(unittest.TestCase):
     PUCS = [{"scpus": "1", "puc_luts": "1000", "puc_arith": "0", "puc_ff": "0"},
