@@ -1,4 +1,5 @@
 """Markdown tables per sweep, generated from its CSV (numbers are never typed by hand)."""
+import csv
 from pathlib import Path
 
 from plots import PAPER_AFU_NS_PER_COLLISION, PAPER_ODE_NS_PER_COLLISION, f, sel

@@ -1,5 +1,6 @@
 """Tests of bench/sweep's own logic (no builds): ids, derived figures, drift, caching, CSV
 and plots. Run: tools/.cache/bench-venv/bin/python -m unittest discover -s bench/tests -v"""
+import csv
 import json
 import os
 import sys
@@ -71,6 +72,15 @@ class ConfigIds(unittest.TestCase):
             "m20k_pct_5sgxea7": f"{100 * m20k / 2560:.1f}", "fits": fits}
         t = report.ram_table([row(16, "replicated", 1, 16 * 2**23, 6592, "false"), row(16, "banked", 32, 2**23, 416, "true")])
         self.assertIn("| 65536 | 16 | 128.00 | 6592 (257.5 %), does not fit | 32 | 8.00 | 416 (16.2 %) |", t)
+        with tempfile.TemporaryDirectory() as d:  # the sweep's tables read ram.csv beside its CSV
+            rows = [row(16, "replicated", 1, 16 * 2**23, 6592, "false"), row(16, "banked", 32, 2**23, 416, "true")]
+            with open(Path(d) / "ram.csv", "w", newline="") as fh:
+                w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+                w.writeheader()
+                w.writerows(rows)
+            rep = sweep.row(SWEEPS["banked"], Config(16, "fp32"), MANIFEST, Scene(10), "qpi", summary(), {}, {}, {})
+            md = report.write("banked", [rep], Path(d)).read_text()
+            self.assertIn("6592 (257.5 %), does not fit", md)
 
 
 class IsoArea(unittest.TestCase):
