@@ -62,9 +62,8 @@ final case class AfuConfig(
 
   val linkWidth: Int = scpu.linkWidth
   val layout: BufferLayout = BufferLayout(linkWidth, recordLayout)
-  for (SphereRamPorts.Banked(Some(b)) <- Some(ramPorts))
-    require(b >= layout.spheresPerLine && b <= maxSpheres / 2, s"AfuConfig $name: banked sphere RAM: $b banks; at least the " +
-      s"${layout.spheresPerLine} spheres of a line (a line write meets each bank once) and at most maxSpheres / 2 (${maxSpheres / 2})")
+  for (SphereRamPorts.Banked(Some(b)) <- Some(ramPorts); why <- SphereRamPorts.bankRefusal(b, layout.spheresPerLine, maxSpheres))
+    require(false, s"AfuConfig $name: $why")
   /** Whether this is exactly the named preset. */
   def isPreset: Boolean = AfuConfig.presets.get(name).contains(this)
   /** A name from every parameter, for configurations that are not a preset. */

@@ -38,7 +38,7 @@ class PairDispatcher(p: PucParams) extends Module {
     val raddr      = Output(Vec(n, Vec(2, UInt(idxBits.W))))
     val ren        = Output(Vec(n, Bool()))
     val rdata      = Input(Vec(n, Vec(2, new Sphere(p.linkWidth))))
-    val rport      = if (p.ramPorts != SphereRamPorts.Replicated) Some(Output(Vec(n, Vec(2, UInt(1.W))))) else None
+    val rport      = if (p.banked) Some(Output(Vec(n, Vec(2, UInt(1.W))))) else None
     val scpu       = Vec(n, Decoupled(new ScpuIn(p.linkWidth, p.scpuTagBits)))
     val groups     = Decoupled(new GroupInfo(p))
     val fired      = Output(Bool())  // a group went out this cycle (the "computing" counter)
@@ -70,8 +70,7 @@ class PairDispatcher(p: PucParams) extends Module {
   val (cnt, rank) = p.ramPorts match {
     case SphereRamPorts.Replicated => (lineCnt, None)
     case _: SphereRamPorts.Banked =>
-      val bankBits = log2Ceil(p.banks)
-      val bank = (0 until p.lanes).flatMap(k => Seq(posI(k), posJ(k))).map(a => if (bankBits == 0) 0.U else a(bankBits - 1, 0))
+      val bank = (0 until p.lanes).flatMap(k => Seq(posI(k), posJ(k))).map(SphereRam.bankOf(p, _))
       val rk = bank.indices.map(r => if (r == 0) 0.U(1.W) else PopCount((0 until r).map(q => bank(q) === bank(r))))
       val fits = (0 until p.lanes).map(k => rk(2 * k) < 2.U && rk(2 * k + 1) < 2.U)
       val fitLen = PriorityEncoder(fits.map(!_) :+ true.B)

@@ -12,16 +12,24 @@ object SphereRamPorts {
     * a bank would see a third read in a cycle, so conflicts cost time, never a pair.
     * None: 2 x min(scpus, 16) banks (one per read of a full group), at least a line's spheres. */
   final case class Banked(banks: Option[Int] = None) extends SphereRamPorts {
-    require(banks.forall(b => b >= 1 && b <= 256 && Integer.bitCount(b) == 1), s"banks must be a power of two in 1..256, got ${banks.get}")
+    require(banks.forall(validBanks), s"banks must be a power of two in 1..256, got ${banks.get}")
     val name: String = banks.fold("bank")(b => s"bank$b")
   }
+
+  /** Bank counts a table can be cut into. */
+  def validBanks(n: Int): Boolean = n >= 1 && n <= 256 && Integer.bitCount(n) == 1
+  /** Why `banks` banks cannot hold a table of `maxSpheres` spheres written `spheresPerLine` a line. */
+  def bankRefusal(banks: Int, spheresPerLine: Int, maxSpheres: Int): Option[String] =
+    if (banks >= spheresPerLine && banks <= maxSpheres / 2) None
+    else Some(s"banked sphere RAM: $banks banks; at least the $spheresPerLine spheres of a line (a line write meets each bank " +
+      s"once) and at most maxSpheres / 2 (${maxSpheres / 2})")
 
   def parse(s: String): Either[String, SphereRamPorts] = s.trim.toLowerCase match {
     case "rep" | "replicated" => Right(Replicated)
     case "bank" | "banked" => Right(Banked())
     case b if b.startsWith("banked:") || b.startsWith("bank:") =>
       val v = b.dropWhile(_ != ':').drop(1)
-      v.toIntOption.filter(n => n >= 1 && n <= 256 && Integer.bitCount(n) == 1)
+      v.toIntOption.filter(validBanks)
         .toRight(s"sphere RAM ports '$s': banks must be a power of two in 1..256, got '$v'").map(n => Banked(Some(n)))
     case other => Left(s"sphere RAM ports '$other': expected 'replicated', 'banked' or 'banked:B' (B banks, a power of two)")
   }
@@ -103,9 +111,9 @@ final case class PucParams(
     case SphereRamPorts.Replicated => 1
     case SphereRamPorts.Banked(b) => b.getOrElse(math.max(1 << chisel3.util.log2Ceil(2 * lanes), layout.spheresPerLine))
   }
-  require(ramPorts == SphereRamPorts.Replicated || (banks >= layout.spheresPerLine && banks <= maxSpheres / 2),
-    s"banked sphere RAM: $banks banks; at least the ${layout.spheresPerLine} spheres of a line (a line write meets each bank " +
-      s"once) and at most maxSpheres / 2 (${maxSpheres / 2})")
+  /** Whether the SCPUs read one banked copy (PairDispatcher names each read's port). */
+  val banked: Boolean = ramPorts != SphereRamPorts.Replicated
+  for (why <- if (banked) SphereRamPorts.bankRefusal(banks, layout.spheresPerLine, maxSpheres) else None) require(false, why)
   /** Sphere table bits on chip, all copies. */
   val ramBitsPerCopy: Long = maxSpheres.toLong * 4 * linkWidth
   val ramBits: Long = ramBitsPerCopy * ramCopies

@@ -22,7 +22,6 @@ class Sphere(w: Int) extends Bundle {
 class SphereRam(p: PucParams) extends Module {
   override def desiredName =
     s"SphereRam_s${p.maxSpheres}_c${p.ramCopies}" + (if (p.banks > 1) s"_b${p.banks}" else "") + p.name
-  private val banked = p.ramPorts.isInstanceOf[SphereRamPorts.Banked]
   private val spl   = p.layout.spheresPerLine
   private val depth = p.maxSpheres / spl
   private val idxBits = log2Ceil(p.maxSpheres)
@@ -33,7 +32,7 @@ class SphereRam(p: PucParams) extends Module {
     val ren   = Input(Vec(p.scpus, Bool()))
     val rdata = Output(Vec(p.scpus, Vec(2, new Sphere(p.linkWidth))))
     /** Banked: each read's port at its bank (at most two reads a bank a cycle). */
-    val rport = if (banked) Some(Input(Vec(p.scpus, Vec(2, UInt(1.W))))) else None
+    val rport = if (p.banked) Some(Input(Vec(p.scpus, Vec(2, UInt(1.W))))) else None
     /** World mode: the broad phase's read, data the next cycle. */
     val world = p.world.map(_ => new Bundle {
       val addr = Input(UInt(idxBits.W))
@@ -78,7 +77,7 @@ class SphereRam(p: PucParams) extends Module {
         when(io.write.valid && hit) { mem.write(row, io.write.bits.data(sphereBits * (k + 1) - 1, sphereBits * k)) }
       }
       val reads = for (c <- 0 until p.scpus; port <- 0 until 2) yield (c, port)
-      def bankOf(a: UInt): UInt = if (nb == 1) 0.U else a(bankBits - 1, 0)
+      def bankOf(a: UInt): UInt = SphereRam.bankOf(p, a)
       def rowOf(a: UInt): UInt = if (rows == 1) 0.U else a(idxBits - 1, bankBits)
       val out = for ((mem, b) <- banks.zipWithIndex) yield Seq.tabulate(2) { q =>
         val sel = reads.map { case (c, port) =>
@@ -99,4 +98,10 @@ class SphereRam(p: PucParams) extends Module {
     val word = if (depth == 1) mem.read(0.U) else mem.read(w.addr(idxBits - 1, log2Ceil(spl)))
     w.data := unpack(word, RegNext(w.addr(log2Ceil(spl) - 1, 0)))
   }
+}
+
+object SphereRam {
+  /** The bank of sphere `a` in a banked table: a mod banks (PairDispatcher counts its reads
+    * per bank with the same map). */
+  def bankOf(p: PucParams, a: UInt): UInt = if (p.banks == 1) 0.U else a(log2Ceil(p.banks) - 1, 0)
 }
