@@ -7053,97 +7053,97 @@ module PairDispatcher_n16_world(
     always @(posedge clock) begin
       if (~reset & ~(~inflight_0 | _queues_0_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_1 | _queues_1_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_2 | _queues_2_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_3 | _queues_3_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_4 | _queues_4_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_5 | _queues_5_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_6 | _queues_6_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_7 | _queues_7_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_8 | _queues_8_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_9 | _queues_9_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_10 | _queues_10_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_11 | _queues_11_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_12 | _queues_12_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_13 | _queues_13_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_14 | _queues_14_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_15 | _queues_15_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:125 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end

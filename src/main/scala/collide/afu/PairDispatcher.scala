@@ -64,17 +64,36 @@ class PairDispatcher(p: PucParams) extends Module {
   val posI = VecInit.tabulate(p.lanes)(k => pi(slot(k)))
   val posJ = VecInit.tabulate(p.lanes)(k => pj(slot(k)))
 
-  // Banked sphere table: read r (position r / 2, sphere i or j) takes port rank(r) of its bank,
-  // its rank among the earlier reads of that bank; the group ends before the first position
-  // that would give a bank a third read (position 0 always fits, so every cycle makes progress).
+  // Banked sphere table: reads of one sphere share a port. Read r takes the port of its sphere
+  // in its bank: 0 for the bank's first sphere in the group, 1 for its second. The group ends
+  // before the first position that would give a bank a third sphere (position 0 always fits,
+  // so every cycle makes progress). A list that names one sphere in consecutive pairs, as
+  // ODE's do, so costs that sphere one read.
   val (cnt, rank) = p.ramPorts match {
     case SphereRamPorts.Replicated => (lineCnt, None)
     case _: SphereRamPorts.Banked =>
-      val bank = (0 until p.lanes).flatMap(k => Seq(posI(k), posJ(k))).map(SphereRam.bankOf(p, _))
-      val rk = bank.indices.map(r => if (r == 0) 0.U(1.W) else PopCount((0 until r).map(q => bank(q) === bank(r))))
-      val fits = (0 until p.lanes).map(k => rk(2 * k) < 2.U && rk(2 * k + 1) < 2.U)
+      val addr = (0 until p.lanes).flatMap(k => Seq(posI(k), posJ(k))).map(_(idxBits - 1, 0))
+      val bank = addr.map(SphereRam.bankOf(p, _))
+      val reads = addr.indices
+      // For q < r: same(r)(q), read q is of r's sphere; sameBank(r)(q); seen(r)(q), a read at or
+      // before q is of r's sphere.
+      val same = reads.map(r => (0 until r).map(q => addr(q) === addr(r)))
+      val sameBank = reads.map(r => (0 until r).map(q => bank(q) === bank(r)))
+      val seen = reads.map(r => same(r).scanLeft(false.B)(_ || _).tail)
+      // First read of its sphere in the group.
+      val leader = reads.map(r => if (r == 0) true.B else !seen(r)(r - 1))
+      // A sphere gets port 1 when another sphere of its bank came before its first read:
+      // some q < r of its bank with no read of r's sphere at or before q.
+      val port = reads.map { r =>
+        if (r == 0) false.B else (0 until r).map(q => sameBank(r)(q) && !seen(r)(q)).reduce(_ || _)
+      }
+      // A bank's third sphere: a first read with two earlier first reads of its bank.
+      val third = reads.map { r =>
+        if (r < 2) false.B else leader(r) && PopCount((0 until r).map(q => leader(q) && sameBank(r)(q))) >= 2.U
+      }
+      val fits = (0 until p.lanes).map(k => !third(2 * k) && !third(2 * k + 1))
       val fitLen = PriorityEncoder(fits.map(!_) :+ true.B)
-      (Mux(fitLen < lineCnt, fitLen, lineCnt)(log2Ceil(p.lanes + 1) - 1, 0), Some(VecInit(rk.map(_(0)))))
+      (Mux(fitLen < lineCnt, fitLen, lineCnt)(log2Ceil(p.lanes + 1) - 1, 0), Some(VecInit(port)))
   }
   val posBad = VecInit.tabulate(p.lanes)(k => posI(k) >= io.numSpheres || posJ(k) >= io.numSpheres)
 
@@ -112,7 +131,7 @@ class PairDispatcher(p: PucParams) extends Module {
     io.ren(s)      := fire && inGroup(s)
     io.raddr(s)(0) := posI(kk)(idxBits - 1, 0)
     io.raddr(s)(1) := posJ(kk)(idxBits - 1, 0)
-    for (r <- rank; port <- 0 until 2) io.rport.get(s)(port) := r(Cat(kk, port.U(1.W)))
+    for (r <- rank; port <- 0 until 2) io.rport.get(s)(port) := r(Cat(kk, port.U(1.W))).asUInt
     inflight(s)    := io.ren(s)
     val wb = RecordTag.WORLD_INDEX_BITS
     val worldTag = if (p.world.isDefined) Cat(posJ(kk)(wb - 1, 0), posI(kk)(wb - 1, 0)) else 0.U

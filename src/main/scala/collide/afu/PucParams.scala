@@ -8,8 +8,9 @@ object SphereRamPorts {
     * true-dual-port block RAM (e.g. Stratix V M20K) implements each copy. */
   case object Replicated extends SphereRamPorts { val name = "rep" }
   /** One copy of the table cut into `banks` RAMs one sphere wide, sphere s in bank s mod banks,
-    * each with two read ports (again a true-dual-port block RAM). A dispatch group is cut where
-    * a bank would see a third read in a cycle, so conflicts cost time, never a pair.
+    * each with two read ports (again a true-dual-port block RAM). Reads of one sphere share a
+    * port; a dispatch group is cut where a bank would see a third sphere in a cycle, so
+    * conflicts cost time, never a pair.
     * None: 2 x min(scpus, 16) banks (one per read of a full group), at least a line's spheres. */
   final case class Banked(banks: Option[Int] = None) extends SphereRamPorts {
     require(banks.forall(validBanks), s"banks must be a power of two in 1..256, got ${banks.get}")

@@ -14,9 +14,10 @@ class Sphere(w: Int) extends Bundle {
   * one write and two read ports; the sphere within the line is selected after the read.
   * Banked: one copy in `banks` RAMs a sphere wide (sphere s in bank s mod banks, row
   * s / banks), each with one write and two read ports; a line write meets spheresPerLine
-  * banks once each. The reader names the port of every read (`rport`: 0 for the first read of
-  * a bank in the cycle, 1 for the second) and never sends a bank a third (PairDispatcher cuts
-  * its groups so); each read's data is routed back from its bank and port.
+  * banks once each. The reader names the port of every read (`rport`: 0 for the first sphere
+  * of a bank in the cycle, 1 for the second; reads of one sphere share its port) and never
+  * sends a bank a third sphere (PairDispatcher cuts its groups so); each read's data is routed
+  * back from its bank and port.
   * World mode adds one more line-wide copy with one read port, always enabled, for the broad phase.
   */
 class SphereRam(p: PucParams) extends Module {
@@ -31,7 +32,7 @@ class SphereRam(p: PucParams) extends Module {
     val raddr = Input(Vec(p.scpus, Vec(2, UInt(idxBits.W))))
     val ren   = Input(Vec(p.scpus, Bool()))
     val rdata = Output(Vec(p.scpus, Vec(2, new Sphere(p.linkWidth))))
-    /** Banked: each read's port at its bank (at most two reads a bank a cycle). */
+    /** Banked: each read's port at its bank (at most two spheres a bank a cycle). */
     val rport = if (p.banked) Some(Input(Vec(p.scpus, Vec(2, UInt(1.W))))) else None
     /** World mode: the broad phase's read, data the next cycle. */
     val world = p.world.map(_ => new Bundle {
@@ -83,8 +84,11 @@ class SphereRam(p: PucParams) extends Module {
         val sel = reads.map { case (c, port) =>
           io.ren(c) && bankOf(io.raddr(c)(port)) === b.U && io.rport.get(c)(port) === q.U
         }
-        assert(PopCount(sel) <= 1.U, s"SphereRam: two reads on bank $b port $q in one cycle")
-        mem.read(Mux1H(sel, reads.map { case (c, port) => rowOf(io.raddr(c)(port)) }), sel.reduce(_ || _))
+        val row = Mux1H(sel, reads.map { case (c, port) => rowOf(io.raddr(c)(port)) })
+        // Reads share a port only when they read one sphere (Mux1H then ORs equal rows).
+        for ((s, (c, port)) <- sel.zip(reads))
+          assert(!s || rowOf(io.raddr(c)(port)) === row, s"SphereRam: two rows on bank $b port $q in one cycle")
+        mem.read(row, sel.reduce(_ || _))
       }
       val words = VecInit(out.flatten) // bank b port q at 2b + q
       for ((c, port) <- reads) {

@@ -179,7 +179,7 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  it should "cut a group only where a bank of the table would get a third read in a cycle" in {
+  it should "cut a group only where a bank of the table would get a third sphere in a cycle" in {
     val p = params(16, 32, reads = 64, writes = 64, ram = SphereRamPorts.Banked())
     assert(p.banks == 32 && p.ramCopies == 1)
     val rnd = Seeds.rng("PucSpec-banked-rate")
@@ -196,13 +196,17 @@ class PucSpec extends AnyFlatSpec with ChiselScalatestTester {
         println(s"[PucSpec] banked, $name: ${w.pairs.size} pairs in ${st.cycCompute} compute cycles")
         st.cycCompute
       }
-      // The 32 reads of a line on 32 banks; or sphere k twice for pair k (two reads, two ports):
-      // a line a cycle. One sphere everywhere: one pair a cycle.
+      // The 32 reads of a line on 32 banks; two spheres of one bank in pair k: a line a cycle.
       assert(run("32 banks once", k => (2 * k % 256, (2 * k + 1) % 256)) == lines)
-      assert(run("a bank twice", k => (k % 16 + 32 * (k / 16 % 8), k % 16 + 32 * (k / 16 % 8))) == lines)
-      assert(run("one sphere", _ => (7, 7)) == 16 * lines)
-      // Bank 0 in every pair (sphere i), the other reads on odd banks: two pairs a cycle.
-      assert(run("bank 0 every other read", k => (32 * (k % 8), 1 + 2 * (k % 15))) == 8 * lines)
+      assert(run("a bank's two spheres", k => (k % 16, k % 16 + 32 * (1 + k / 16 % 7))) == lines)
+      // Reads of one sphere share its port: one sphere everywhere, one sphere in every pair of
+      // a line (as in ODE's lists), two spheres of bank 0 taking turns: a line a cycle.
+      assert(run("one sphere", _ => (7, 7)) == lines)
+      assert(run("one sphere a line", k => (32 * (k / 16 % 8), 1 + 2 * (k % 16))) == lines)
+      assert(run("two spheres of a bank in turn", k => (32 * (k % 2), 1 + 2 * (k % 15))) == lines)
+      // Bank 0 gets a new sphere in every pair (sphere i), the other reads on odd banks: the
+      // third sphere ends the group, two pairs a cycle.
+      assert(run("bank 0 a new sphere a pair", k => (32 * (k % 8), 1 + 2 * (k % 15))) == 8 * lines)
       val random = run("random", _ => (rnd.nextInt(256), rnd.nextInt(256)))
       assert(random > lines && random < 16 * lines)
     }
