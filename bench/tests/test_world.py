@@ -11,6 +11,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "world"))
 
 import world  # noqa: E402
+import afu_world  # noqa: E402
 
 
 class WorldClouds(unittest.TestCase):
@@ -29,6 +30,18 @@ class WorldClouds(unittest.TestCase):
         self.assertGreater(contacts, 0.6 * 1500)  # the walls cost some
         self.assertLess(contacts, 1.2 * 1500)
 
+    def test_the_diamond_is_the_largest_of_the_papers_diamonds_that_fits(self):
+        for n, h in ((1, 1), (5, 1), (6, 2), (670, 10), (669, 9), (65536, 46)):
+            self.assertEqual(world.diamond_hmax(n), h, n)
+        spheres = world.cloud("diamond", 700, 1)
+        self.assertEqual(len(spheres), 10 * (2 * 10 ** 2 + 1) // 3)
+        self.assertEqual([world.f32(v) for s in spheres for v in s], [v for s in spheres for v in s])
+        # Layer 1 (2 x 2 spheres, after the one-sphere apex): in-layer neighbours touch, d = 2r.
+        layer = spheres[1:5]
+        self.assertEqual(len({s[2] for s in layer}), 1)
+        self.assertAlmostEqual(math.dist(layer[0][:3], layer[1][:3]), 0.2, places=6)
+        self.assertEqual(spheres[0][:3], [0.0, 0.0, world.f32(4.2)])
+
     def test_the_csv_holds_exact_hex_floats(self):
         with tempfile.TemporaryDirectory() as d:
             p = Path(d) / "s.csv"
@@ -37,6 +50,31 @@ class WorldClouds(unittest.TestCase):
             lines = p.read_text().splitlines()
             self.assertEqual(lines[0], "x,y,z,r")
             self.assertEqual([[float.fromhex(v) for v in l.split(",")] for l in lines[1:]], spheres)
+
+
+if __name__ == "__main__":
+    unittest.main()
+
+
+class AfuWorldReport(unittest.TestCase):
+    def row(self, cloud, spheres, link):
+        r = dict.fromkeys(["candidates", "contacts", "afu_ns", "link_bound_ns", "afu_over_bound", "runs", "slabs",
+                           "cycles_broad", "ode_sap_ns", "simd_grid_ns", "ode_over_afu", "grid_over_afu"], 2.0)
+        return r | {"cloud": cloud, "spheres": float(spheres), "link": link, "contacts": 3.0 * spheres}
+
+    def test_a_refused_world_is_listed_under_its_cloud_and_the_diamond_gets_its_section(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = Path(d)
+            (out / "refused.txt").write_text("diamond, 64,906 spheres (hMax 46), qpi: this world cannot be cut into runs\n")
+            rows = [self.row("uniform", 670, "qpi"), self.row("diamond", 670, "qpi")]
+            afu_world.report(rows, out, "## How and where\n")
+            text = (out / "README.md").read_text()
+            self.assertIn("## diamond (the paper's diamond", text)
+            self.assertIn("- diamond, 64,906 spheres (hMax 46), qpi: this world cannot be cut into runs", text)
+            self.assertNotIn("## clustered", text)  # no rows, no section
+            self.assertIn("The diamond (close-packed: 3.0-3.0 contacts a sphere)", text)
+            # The refusal sits in the diamond's section, not under uniform.
+            self.assertLess(text.index("## diamond"), text.index("cannot be cut"))
 
 
 if __name__ == "__main__":

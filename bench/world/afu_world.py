@@ -7,7 +7,12 @@ the host cuts the world into slabs along x, one AFU run each (docs/host.md).
     tools/pyenv bench/world/afu_world.py [--collide build/host/test/collide_world]
                                          [--afu generated/world] [--links qpi,ideal]
                                          [--sizes 670,2000,4096,10000,65536] [--repeat 5]
+                                         [--clouds uniform,clustered,mixed,diamond]
                                          [--out bench/results/world-afu]
+
+"diamond" is the paper's diamond at step 0, the largest with at most the size's spheres (hMax 10,
+14, 18, 24, 46 for the default sizes: 670, 1,834, 3,894, 9,224, 64,906 spheres). Rows of clouds not named in --clouds are kept from an
+earlier OUT/world-afu.csv, so one cloud can be re-run alone.
 
 The AFU's times are modelled (the link model's clock and costs, docs/host.md), the CPU's are
 wall clock (fastest of --repeat). Writes OUT/world-afu.csv, OUT/README.md and OUT/MACHINE.md.
@@ -27,12 +32,21 @@ import world  # noqa: E402  (the clouds, the machine line)
 
 ROOT = Path(__file__).resolve().parents[2]
 SIZES = [670, 2000, 4096, 10000, 65536]
+CLOUDS = world.CLOUDS + ["diamond"]
 
 
-def run(cmd):
+REFUSED = "cannot be cut into runs"  # collide's refusal of a world no run of the table holds
+
+
+def run(cmd, refusable=False):
+    """Runs collide; returns its refusal (stderr) when `refusable` and it refused the world as
+    too dense to cut into runs, stops on any other failure."""
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
+        if refusable and REFUSED in p.stderr:
+            return p.stderr.strip()
         sys.exit(f"afu_world: {' '.join(map(str, cmd))} failed ({p.returncode}):\n{p.stderr}")
+    return None
 
 
 def main(argv=None):
@@ -43,32 +57,48 @@ def main(argv=None):
     ap.add_argument("--sizes", default=",".join(map(str, SIZES)))
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--clouds", default=",".join(CLOUDS))
+    ap.add_argument("--built", default="", help="where --collide was built, for MACHINE.md (e.g. a clean clone at a commit)")
     ap.add_argument("--out", default=str(ROOT / "bench/results/world-afu"))
     ap.add_argument("--report-only", action="store_true", help="rewrite README.md from OUT/world-afu.csv")
     a = ap.parse_args(argv)
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
+    clouds = a.clouds.split(",")
+    for kind in clouds:
+        if kind not in CLOUDS:
+            ap.error(f"--clouds: unknown cloud {kind!r} (known: {', '.join(CLOUDS)})")
+    earlier = out / "world-afu.csv"
     if a.report_only:
-        rows = [{k: (v if k in ("cloud", "link") else float(v)) for k, v in r.items()}
-                for r in csv.DictReader(open(out / "world-afu.csv", newline=""))]
-        report(rows, out, (out / "MACHINE.md").read_text())
+        report(read_rows(earlier), out, (out / "MACHINE.md").read_text())
         return 0
     start = world.machine()
-    rows = []
+    # Kept rows are written back as read (their text), and parsed for the report.
+    kept_text = [r for r in csv.DictReader(open(earlier, newline="")) if r["cloud"] not in clouds] if earlier.exists() else []
+    kept = [parse(r) for r in kept_text]
+    earlier_machine = (out / "MACHINE.md").read_text() if kept else ""
+    rows, refused = [], []
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
-        for kind in world.CLOUDS:
-            for n in map(int, a.sizes.split(",")):
+        for kind in clouds:
+            for size in map(int, a.sizes.split(",")):
                 path = work / "spheres.csv"
-                world.write_cloud(path, world.cloud(kind, n, a.seed))
+                spheres = world.cloud(kind, size, a.seed)
+                n = len(spheres)  # the diamond's: at most the size asked for
+                world.write_cloud(path, spheres)
                 cpu = {}
                 for backend, space in (("ode", "sap"), ("simd", None)):
                     s = world.run(a.collide, path, backend, space, a.repeat, work)
                     cpu[backend] = s
                 for link in a.links.split(","):
                     summary = work / "afu.json"
-                    run([a.collide, "spheres", "--afu", a.afu, "--link", link, "--in", path, "--out",
-                         work / "afu.csv", "--summary", summary])
+                    refusal = run([a.collide, "spheres", "--afu", a.afu, "--link", link, "--in", path, "--out",
+                                   work / "afu.csv", "--summary", summary], refusable=True)
+                    if refusal:
+                        what = f"{n:,} spheres (hMax {world.diamond_hmax(size)})" if kind == "diamond" else f"{n:,} spheres"
+                        refused.append(f"{kind}, {what}, {link}: {refusal}")
+                        print(f"{kind:9} {n:5} {link:6} refused: {refusal}", flush=True)
+                        continue
                     s = json.loads(summary.read_text())
                     if (work / "afu.csv").read_text() != (work / "contacts.csv").read_text():
                         sys.exit(f"afu_world: {kind} {n}: the AFU's contacts differ from simd's")
@@ -88,11 +118,34 @@ def main(argv=None):
                     print(f"{kind:9} {n:5} {link:6} {s['contacts']:6} contacts  afu {f['modelled_ns'] / 1e3:8.1f} us"
                           f" (bound {f['link_bound_ns'] / 1e3:6.1f}, broad {f['cycles_broad']} cycles)  ode sap "
                           f"{ode / 1e3:8.1f} us  grid {grid / 1e3:7.1f} us", flush=True)
-    machine_md = world.write_results(out, "world-afu.csv", rows, "bench/world/afu_world.py", argv,
-                                     "build/host built Release by tools/test, whose test build makes collide_world: "
-                                     "the CLI with generated/world's AFU Verilated in", start)
+    order = lambda r: CLOUDS.index(r["cloud"])
+    rows, text_rows = sorted(kept + rows, key=order), sorted(kept_text + rows, key=order)
+    earlier_refused = (out / "refused.txt").read_text().splitlines() if (out / "refused.txt").exists() else []
+    refused = [l for l in earlier_refused if l.split(",")[0] not in clouds] + refused
+    (out / "refused.txt").write_text("".join(l + "\n" for l in refused))
+    machine_md = world.write_results(out, "world-afu.csv", text_rows, "bench/world/afu_world.py", argv,
+                                     f"{a.collide}: collide_world, which tools/test's Release build makes: "
+                                     "the CLI with generated/world's AFU Verilated in"
+                                     + (f"; {a.built}" if a.built else ""), start)
+    if kept:  # the kept rows' command and machine stay beside this run's
+        old = earlier_machine.replace("## How and where", "## How and where: " + ", ".join(sorted({r["cloud"] for r in kept})), 1)
+        machine_md = old.rstrip() + "\n\n" + machine_md.replace("## How and where", "## How and where: " + ", ".join(clouds), 1)
+        (out / "MACHINE.md").write_text(machine_md)
     report(rows, out, machine_md)
     return 0
+
+
+def refused_lines(out):
+    p = out / "refused.txt"
+    return p.read_text().splitlines() if p.exists() else []
+
+
+def parse(row):
+    return {k: (v if k in ("cloud", "link") else float(v)) for k, v in row.items()}
+
+
+def read_rows(path):
+    return [parse(r) for r in csv.DictReader(open(path, newline=""))]
 
 
 def report(rows, out, machine_md):
@@ -104,8 +157,8 @@ def report(rows, out, machine_md):
              "both wall clock, fastest of N, on the same spheres in the same run (bench/world/afu_world.py).",
              "The AFU's contacts equal simd's byte for byte in every row (the script stops otherwise).",
              "Every number: [world-afu.csv](world-afu.csv).", ""]
-    for kind in world.CLOUDS:
-        lines += [f"## {kind}", "",
+    for kind in [c for c in CLOUDS if any(r["cloud"] == c for r in rows)]:
+        lines += [f"## {kind}" + (" (the paper's diamond at step 0, the largest with at most the row's size)" if kind == "diamond" else ""), "",
                   "| spheres | contacts | link | AFU runs | AFU (us) | link bound (us) | AFU / bound | broad-phase cycles | ODE sap (us) | ODE / AFU | grid (us) | grid / AFU |",
                   "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
         for r in rows:
@@ -115,11 +168,21 @@ def report(rows, out, machine_md):
                          f"{r['link_bound_ns'] / 1e3:,.1f} | {r['afu_over_bound']:.1f}x | {int(r['cycles_broad']):,} | "
                          f"{r['ode_sap_ns'] / 1e3:,.1f} | {r['ode_over_afu']:.2f}x | {r['simd_grid_ns'] / 1e3:,.1f} | "
                          f"{r['grid_over_afu']:.2f}x |")
+        refusals = [l for l in refused_lines(out) if l.startswith(kind + ",")]
+        if refusals:
+            lines += ["Refused by `collide spheres` (no cut of the world into runs of the AFU's table holds it; nothing", "was computed, nothing is missing from the rows above):", ""]
+            lines += [f"- {l}" for l in refusals]
         lines.append("")
     rng = lambda k, sel=lambda r: True: (min(r[k] for r in rows if sel(r)), max(r[k] for r in rows if sel(r)))
     qpi = lambda r: r["link"] == "qpi"
     per = [r["cycles_broad"] / r["spheres"] for r in rows]
     one = [r["cycles_broad"] / r["spheres"] for r in rows if int(r["slabs"]) == 1] or per
+    dia = [r for r in rows if r["cloud"] == "diamond" and qpi(r)]
+    diamond_note = ([f"- The diamond (close-packed: {min(r['contacts'] / r['spheres'] for r in dia):.1f}-"
+                     f"{max(r['contacts'] / r['spheres'] for r in dia):.1f} contacts a sphere) is nearer its QPI bound, "
+                     f"{min(r['afu_over_bound'] for r in dia):.1f}-{max(r['afu_over_bound'] for r in dia):.1f}x, since its "
+                     "contact writes are a larger part of the bound; there ODE's sweep-and-prune beats our CPU grid, "
+                     "whose power-of-two cells hold many of its close-packed spheres."] if dia else [])
     lines += ["## What it shows", "",
               f"- The AFU's world mode is {rng('ode_over_afu')[0]:.1f}-{rng('ode_over_afu')[1]:.1f}x faster than ODE's "
               f"sweep-and-prune space + dCollide and {rng('grid_over_afu')[0]:.1f}-{rng('grid_over_afu')[1]:.1f}x faster "
@@ -130,9 +193,12 @@ def report(rows, out, machine_md):
               "  its one candidate lane and one-sphere-a-cycle passes),",
               "  while the link brings four spheres a line and a line a cycle. Closing that gap needs several",
               "  candidate lanes and passes that take more than one sphere a cycle (docs/afu.md, \"World mode\").",
+              ] + diamond_note + [
               "- Above 4,096 spheres (the world preset's table; a record names i and j in 12 bits each) every",
               "  slab is a run of its own, with the per-call costs each time and its ghosts read twice; one run",
-              "  of a whole 64k world needs wider record tags and banked sphere RAM (not built).", "", machine_md]
+              "  of a whole 64k world needs wider record tags (not built; banked sphere RAM, which makes its",
+              "  table affordable, is). A world with more than 4,096 spheres within reach of one x slice, such",
+              "  as the 64,906-sphere diamond, cannot be cut into slabs at all and is refused.", "", machine_md]
     (out / "README.md").write_text("\n".join(lines) + "\n")
 
 

@@ -21,6 +21,7 @@ import math
 import os
 import platform
 import random
+import shlex
 import struct
 import subprocess
 import sys
@@ -41,8 +42,33 @@ def f32(v):
     return struct.unpack("f", struct.pack("f", v))[0]
 
 
+def diamond_hmax(n):
+    """The hMax of the largest of the paper's diamonds with at most n spheres."""
+    h = 1
+    while (h + 1) * (2 * (h + 1) ** 2 + 1) // 3 <= n:
+        h += 1
+    return h
+
+
+def diamond(h, radius=0.1):
+    """The paper's diamond at step 0 (host/scene/diamond.cpp, dSph = 0): layers of n x n
+    spheres whose in-layer neighbours touch, n = 1 .. hMax .. 1; binary64 like the host,
+    then rounded once to binary32."""
+    db = math.sqrt(2 * (2 * radius) ** 2) - 2 * radius
+    a = db / 2 + radius
+    out = []
+    for step in range(2 * h - 1):
+        n = step + 1 if step < h else 2 * h - 1 - step
+        z = step * db + 2 * radius + 4
+        out += [[f32((u - v) * a), f32((u + v - (n - 1)) * a), f32(z), f32(radius)] for u in range(n) for v in range(n)]
+    return out
+
+
 def cloud(kind, n, seed):
-    """n spheres (x, y, z, r) of the named cloud."""
+    """n spheres (x, y, z, r) of the named cloud ("diamond": the largest diamond of at most n,
+    no randomness)."""
+    if kind == "diamond":
+        return diamond(diamond_hmax(n))
     rng = random.Random(f"{kind}-{n}-{seed}")
     side = (n / DENSITY) ** (1 / 3)
     out = []
@@ -156,7 +182,7 @@ def write_results(out, csv_name, rows, script, argv, build, start):
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    cmd = f"tools/pyenv {script} " + " ".join(argv if argv is not None else sys.argv[1:])
+    cmd = f"tools/pyenv {script} " + shlex.join(argv if argv is not None else sys.argv[1:])
     machine_md = (f"## How and where\n\nCommand: `{cmd.strip()}` ({build}).\n\n"
                   f"Machine: {start}; end: load average {os.getloadavg()[0]:.2f}.\n")
     (out / "MACHINE.md").write_text(machine_md)
