@@ -52,10 +52,6 @@ class WorldClouds(unittest.TestCase):
             self.assertEqual([[float.fromhex(v) for v in l.split(",")] for l in lines[1:]], spheres)
 
 
-if __name__ == "__main__":
-    unittest.main()
-
-
 class AfuWorldReport(unittest.TestCase):
     def row(self, cloud, spheres, link):
         r = dict.fromkeys(["candidates", "contacts", "afu_ns", "link_bound_ns", "afu_over_bound", "runs", "slabs",
