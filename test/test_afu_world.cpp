@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <random>
 #include <stdexcept>
 
 #include "collide/simd_backend.hpp"
@@ -127,6 +128,26 @@ TEST(AfuWorld, CutsAWorldLargerThanARunIntoSlabsAndFindsEveryContactOnce) {
     EXPECT_GT(want.pairs.size(), 300u);
     expectSame(got, want, mixed ? "slabs, radii over 1:150 and a huge sphere" : "slabs, uniform radii");
   }
+}
+
+TEST(AfuWorld, CutsAWorldTooThickForSlabsIntoBoxesAndFindsEveryContactOnce) {
+  // A wall of 8 x 30 x 3 touching spheres (0.9 apart, radius 0.5; jittered): a sphere and
+  // those within reach along x are about 180 of them, so runs of 150 cannot be slabs; boxes
+  // along x and y hold them. Every contact once, bit for bit the CPU grid's.
+  std::mt19937_64 rng(test::testSeed(1307));
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  SphereTable t;
+  for (int a = 0; a < 8; ++a)
+    for (int b = 0; b < 30; ++b)
+      for (int c = 0; c < 3; ++c) t.push(0.9 * a + jitter(rng), 0.9 * b + jitter(rng), 0.9 * c + jitter(rng), 0.5);
+  world::AfuWorld afu("", link::presetParams("qpi"));
+  afu.setMaxRunSpheres(150);
+  world::WorldContacts got;
+  afu.collide(t, got);
+  EXPECT_GE(afu.lastSlabs(), 5u);
+  const auto want = onCpu(t);
+  EXPECT_GT(want.pairs.size(), 1000u);
+  expectSame(got, want, "boxes along x and y");
 }
 
 TEST(AfuWorld, RefusesAWorldThatNoCutFitsAndSaysWhy) {

@@ -2,7 +2,8 @@
 broad phase and 16 fp32 SCPUs, Verilated, behind the link model) on the clouds of world.py,
 beside ODE's sweep-and-prune space + dCollide and the simd backend (our grid + the binary32
 kernel) measured on the same spheres in the same run. Above the world preset's 4,096 spheres
-the host cuts the world into slabs along x, one AFU run each (docs/host.md).
+the host cuts the world into slabs along x (boxes along x and y where slabs do not fit), one AFU
+run each (docs/host.md).
 
     tools/pyenv bench/world/afu_world.py [--collide build/host/test/collide_world]
                                          [--afu generated/world] [--links qpi,ideal]
@@ -152,8 +153,9 @@ def report(rows, out, machine_md):
     lines = ["# World mode on the AFU against ODE and the CPU grid", "",
              "`collide spheres --afu generated/world` (the on-chip broad phase, one candidate lane, and 16 fp32",
              "SCPUs; time modelled by the link model; above 4,096 spheres the host cuts the world into slabs",
-             "along x, one AFU run each, all runs' time summed) beside `--backend ode --space sap` (ODE 0.16's",
-             "sweep-and-prune space + dCollide, binary64) and `--backend simd` (our grid + the binary32 kernel),",
+             "along x, or boxes along x and y, one AFU run each, all runs' time summed) beside `--backend ode",
+             "--space sap` (ODE 0.16's sweep-and-prune space + dCollide, binary64) and `--backend simd` (our",
+             "grid + the binary32 kernel),",
              "both wall clock, fastest of N, on the same spheres in the same run (bench/world/afu_world.py).",
              "The AFU's contacts equal simd's byte for byte in every row (the script stops otherwise).",
              "Every number: [world-afu.csv](world-afu.csv).", ""]
@@ -195,10 +197,11 @@ def report(rows, out, machine_md):
               "  candidate lanes and passes that take more than one sphere a cycle (docs/afu.md, \"World mode\").",
               ] + diamond_note + [
               "- Above 4,096 spheres (the world preset's table; a record names i and j in 12 bits each) every",
-              "  slab is a run of its own, with the per-call costs each time and its ghosts read twice; one run",
-              "  of a whole 64k world needs wider record tags (not built; banked sphere RAM, which makes its",
-              "  table affordable, is). A world with more than 4,096 spheres within reach of one x slice, such",
-              "  as the 64,906-sphere diamond, cannot be cut into slabs at all and is refused.", "", machine_md]
+              "  slab along x is a run of its own, with the per-call costs each time and its ghosts read twice;",
+              "  where slabs cannot hold a world (more than 4,096 spheres within reach of one x slice, as in the",
+              "  64,906-sphere diamond) the host cuts boxes along x and y instead (docs/host.md). One run of a",
+              "  whole 64k world needs wider record tags (not built; banked sphere RAM, which makes its table",
+              "  affordable, is).", "", machine_md]
     (out / "README.md").write_text("\n".join(lines) + "\n")
 
 

@@ -91,7 +91,7 @@ int runSpheresAfu(const SpheresOptions& o) {
             << s.worldLarge << " large; " << toString(w.contacts.format) << ", link " << lp.name << ")\n"
             << std::fixed << std::setprecision(1) << "  modelled time " << totalNs / 1e3 << " us (link bound "
             << r.run.stats.linkBoundNs / 1e3 << " us; " << r.run.stats.readLines << " lines read, " << r.run.stats.writeLines
-            << " written; " << afu.lastSlabs() << (afu.lastSlabs() == 1 ? " slab, " : " slabs along x, ") << r.attempts
+            << " written; " << afu.lastSlabs() << (afu.lastSlabs() == 1 ? " slab, " : " slabs or boxes, ") << r.attempts
             << (r.attempts == 1 ? " run" : " runs") << "): broad phase "
             << broadNs / 1e3 << " us (" << s.cyclesBroad << " cycles; the SCPUs compute during its last pass), the rest "
             << (totalNs - broadNs) / 1e3 << " us (table load, drain, status, call overhead)\n";

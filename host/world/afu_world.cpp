@@ -39,24 +39,25 @@ void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
   out.contacts.format = fmt;
   splitSpheres(s, out, members_);
 
-  // One run, or slabs along x by the values the AFU sees.
+  // One run, or slabs along x (boxes along x and y where slabs do not fit) by the values the AFU sees.
   const std::size_t cap = maxRun_ ? std::min<std::size_t>(maxRun_, driver_->options().maxSpheres)
                                   : driver_->options().maxSpheres;
   std::vector<Slab> slabs;
   if (members_.size() <= cap) {
     Slab all;
-    for (std::uint32_t k = 0; k < members_.size(); ++k) { all.spheres.push_back(k); all.owned.push_back(1); }
+    for (std::uint32_t k = 0; k < members_.size(); ++k) { all.spheres.push_back(k); all.owned.push_back(kOwnedBoth); }
     all.ownedCount = members_.size();
     slabs.push_back(std::move(all));
   } else {
-    std::vector<double> x(members_.size()), r(members_.size());
+    std::vector<double> x(members_.size()), y(members_.size()), r(members_.size());
     for (std::size_t k = 0; k < members_.size(); ++k) {
       double q[4];
       driver::linkSphere(s, members_[k], fmt, q);
       x[k] = q[0];
+      y[k] = q[1];
       r[k] = q[3];
     }
-    slabs = splitIntoSlabs(x, r, cap);
+    slabs = splitIntoBoxes(x, y, r, cap);
   }
 
   last_ = driver::WorldRunResult{};
@@ -81,7 +82,7 @@ void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
     // stays i < j. A pair is this run's when one of its spheres is owned here.
     for (const auto& rec : r.run.records) {
       const auto li = driver::worldPairI(rec.pair), lj = driver::worldPairJ(rec.pair);
-      if (!slab.owned[li] && !slab.owned[lj]) continue;
+      if (!keepsPair(slab, li, lj)) continue;
       const std::size_t k = pairs.size();
       pairs.push(members_[slab.spheres[li]], members_[slab.spheres[lj]]);
       found.resizeForOverwrite(k + 1);

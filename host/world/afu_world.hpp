@@ -3,8 +3,8 @@
 // takes go to the AFU as one table; its on-chip broad phase finds the candidate pairs, its
 // SCPUs the contacts, and each record names its two spheres. The result is the CPU world
 // collider's: the same bad-sphere list, contacts sorted by (i, j), the policy's flags.
-// A world larger than the AFU's table is cut into slabs along x (world/slab_split.hpp), one
-// AFU run each, every pair found in exactly one of them.
+// A world larger than the AFU's table is cut into slabs along x, or boxes along x and y
+// (world/slab_split.hpp), one AFU run each, every pair found in exactly one of them.
 #include <filesystem>
 #include <memory>
 #include <vector>

@@ -56,12 +56,55 @@ std::vector<Slab> splitIntoSlabs(const std::vector<double>& x, const std::vector
     for (std::size_t p = a; p < a + o; ++p) all.emplace_back(order[p], 1);
     for (auto g : ghosts) all.emplace_back(g, 0);
     std::sort(all.begin(), all.end());
-    for (const auto& [k, own] : all) { s.spheres.push_back(k); s.owned.push_back(own); }
+    for (const auto& [k, own] : all) { s.spheres.push_back(k); s.owned.push_back(own ? kOwnedBoth : 0); }
     s.ownedCount = o;
     slabs.push_back(std::move(s));
     a += o;
   }
   return slabs;
+}
+
+std::vector<Slab> splitIntoBoxes(const std::vector<double>& x, const std::vector<double>& y,
+                                 const std::vector<double>& r, std::size_t cap) {
+  try {
+    return splitIntoSlabs(x, r, cap);
+  } catch (const std::runtime_error&) {
+    if (x.size() <= cap) throw;
+  }
+  // The narrowest slabs along x that fit: a run of all spheres always does.
+  std::vector<Slab> slabs;
+  for (std::size_t wide = 2 * cap;; wide = std::min(2 * wide, x.size())) {
+    try {
+      slabs = splitIntoSlabs(x, r, wide);
+      break;
+    } catch (const std::runtime_error&) {
+      if (wide >= x.size()) throw;
+    }
+  }
+  std::vector<Slab> boxes;
+  for (const Slab& slab : slabs) {
+    std::vector<double> sy, sr;
+    for (auto p : slab.spheres) { sy.push_back(y[p]); sr.push_back(r[p]); }
+    std::vector<Slab> strips;
+    try {
+      strips = splitIntoSlabs(sy, sr, cap);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(std::string(e.what()) + ", nor into boxes along x and y (slabs of " +
+                               std::to_string(slab.spheres.size()) + " spheres along x, cut along y)");
+    }
+    for (const Slab& strip : strips) {
+      Slab b;
+      for (std::size_t k = 0; k < strip.spheres.size(); ++k) {
+        const auto q = strip.spheres[k];  // a position in the slab, so ascending stays ascending
+        b.spheres.push_back(slab.spheres[q]);
+        const std::uint8_t own = static_cast<std::uint8_t>((slab.owned[q] ? kOwnedX : 0) | (strip.owned[k] ? kOwnedY : 0));
+        b.owned.push_back(own);
+        b.ownedCount += own == kOwnedBoth;
+      }
+      boxes.push_back(std::move(b));
+    }
+  }
+  return boxes;
 }
 
 }  // namespace collide::world

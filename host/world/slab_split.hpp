@@ -1,6 +1,6 @@
 #pragma once
-// A world with more spheres than one AFU run holds, cut into slabs along x (docs/host.md,
-// "collide spheres"). Each slab owns a run of spheres in x order and also carries, as
+// A world with more spheres than one AFU run holds, cut into slabs along x, or into boxes
+// along x and y where slabs cannot hold it (docs/host.md, "collide spheres"). Each slab owns a run of spheres in x order and also carries, as
 // ghosts, every later sphere that could touch one of them; a run holds at most `cap` spheres.
 // A pair is then found in exactly one run, the one of its first-owned sphere: keep a run's
 // pair when at least one of its spheres is owned there (ghosts come only from later slabs, so
@@ -13,9 +13,16 @@ namespace collide::world {
 
 struct Slab {
   std::vector<std::uint32_t> spheres;  // positions into the input, ascending (so i < j stays i < j)
-  std::vector<std::uint8_t> owned;     // beside them: 1 owned, 0 a ghost
-  std::size_t ownedCount = 0;
+  // Beside them, ownership bits: kOwnedX (owned by its slab along x), kOwnedY (owned by its
+  // strip along y). A run keeps a pair when the two spheres' bits together are kOwnedBoth; a
+  // slab cut along x alone marks its owned spheres kOwnedBoth and its ghosts 0.
+  std::vector<std::uint8_t> owned;
+  std::size_t ownedCount = 0;  // spheres marked kOwnedBoth
 };
+inline constexpr std::uint8_t kOwnedX = 1, kOwnedY = 2, kOwnedBoth = kOwnedX | kOwnedY;
+
+// Whether a run keeps the pair of its spheres at positions a and b.
+inline bool keepsPair(const Slab& s, std::size_t a, std::size_t b) { return (s.owned[a] | s.owned[b]) == kOwnedBoth; }
 
 // Two spheres touch only if |xi - xj| <= (ri + rj) * kSlabReach + kSlabSlack: the broad
 // phase's own margin (9/8 of the sum of radii, far above any SCPU's rounding) and an absolute
@@ -27,5 +34,13 @@ inline constexpr double kSlabSlack = 1e-15;
 // Throws std::runtime_error when even one sphere and the spheres that may touch it exceed
 // `cap` (too many within reach of one another along x).
 std::vector<Slab> splitIntoSlabs(const std::vector<double>& x, const std::vector<double>& r, std::size_t cap);
+
+// Slabs along x when they fit; otherwise boxes: slabs along x of more than `cap` spheres (the
+// fewest that fit, doubling), each cut along y into strips of at most `cap` with the same rule
+// (a strip's ghosts come from its slab's later strips). A pair is then kept in exactly one
+// box: the slab that owns one of its spheres along x, and in it the strip that owns one along
+// y. Throws std::runtime_error, naming the sphere, when even that does not fit.
+std::vector<Slab> splitIntoBoxes(const std::vector<double>& x, const std::vector<double>& y,
+                                 const std::vector<double>& r, std::size_t cap);
 
 }  // namespace collide::world
