@@ -72,6 +72,12 @@ class AfuWorldReport(unittest.TestCase):
             # The refusal sits in the diamond's section, not under uniform.
             self.assertLess(text.index("## diamond"), text.index("cannot be cut"))
 
+    def test_re_running_one_cloud_keeps_the_other_clouds_machine_section(self):
+        text = "## How and where\n\nCommand: all\n\n## How and where: diamond\n\nCommand: old diamond\n"
+        kept = afu_world.kept_sections(text, ["uniform"], ["diamond"])
+        self.assertEqual(kept, "## How and where: uniform\n\nCommand: all")
+        self.assertIn("old diamond", afu_world.kept_sections(text, ["uniform", "diamond"], ["mixed"]))
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -23,6 +23,7 @@ test build makes from generated/world (or a host built with -DCOLLIDE_AFU_PRESET
 import argparse
 import csv
 import json
+import re
 import subprocess
 import sys
 import tempfile
@@ -123,17 +124,34 @@ def main(argv=None):
     rows, text_rows = sorted(kept + rows, key=order), sorted(kept_text + rows, key=order)
     earlier_refused = (out / "refused.txt").read_text().splitlines() if (out / "refused.txt").exists() else []
     refused = [l for l in earlier_refused if l.split(",")[0] not in clouds] + refused
-    (out / "refused.txt").write_text("".join(l + "\n" for l in refused))
+    if refused:
+        (out / "refused.txt").write_text("".join(l + "\n" for l in refused))
+    else:
+        (out / "refused.txt").unlink(missing_ok=True)
     machine_md = world.write_results(out, "world-afu.csv", text_rows, "bench/world/afu_world.py", argv,
                                      f"{a.collide}: collide_world, which tools/test's Release build makes: "
                                      "the CLI with generated/world's AFU Verilated in"
                                      + (f"; {a.built}" if a.built else ""), start)
     if kept:  # the kept rows' command and machine stay beside this run's
-        old = earlier_machine.replace("## How and where", "## How and where: " + ", ".join(sorted({r["cloud"] for r in kept})), 1)
-        machine_md = old.rstrip() + "\n\n" + machine_md.replace("## How and where", "## How and where: " + ", ".join(clouds), 1)
+        old = kept_sections(earlier_machine, sorted({r["cloud"] for r in kept}), clouds)
+        machine_md = old + "\n\n" + machine_md.replace("## How and where", "## How and where: " + ", ".join(clouds), 1)
         (out / "MACHINE.md").write_text(machine_md)
     report(rows, out, machine_md)
     return 0
+
+
+def kept_sections(text, kept_clouds, rerun):
+    """MACHINE.md's sections for the rows kept: an unlabelled one (a run of every cloud) is
+    labelled with the kept clouds; a labelled one stays unless it names a cloud re-run now."""
+    parts = re.split(r"^(?=## How and where)", text, flags=re.M)
+    out = []
+    for p in (p for p in parts if p.strip()):
+        head = p.splitlines()[0]
+        if head.strip() == "## How and where":
+            out.append(p.replace("## How and where", "## How and where: " + ", ".join(kept_clouds), 1))
+        elif not set(head.split(":", 1)[1].replace(" ", "").split(",")) & set(rerun):
+            out.append(p)
+    return "\n".join(x.rstrip() + "\n" for x in out).rstrip()
 
 
 def refused_lines(out):
@@ -183,8 +201,9 @@ def report(rows, out, machine_md):
     diamond_note = ([f"- The diamond (close-packed: {min(r['contacts'] / r['spheres'] for r in dia):.1f}-"
                      f"{max(r['contacts'] / r['spheres'] for r in dia):.1f} contacts a sphere) is nearer its QPI bound, "
                      f"{min(r['afu_over_bound'] for r in dia):.1f}-{max(r['afu_over_bound'] for r in dia):.1f}x, since its "
-                     "contact writes are a larger part of the bound; there ODE's sweep-and-prune beats our CPU grid, "
-                     "whose power-of-two cells hold many of its close-packed spheres."] if dia else [])
+                     "contact writes are a larger part of the bound. ODE's sweep-and-prune beats our CPU grid on it up to "
+                     f"{max([int(r['spheres']) for r in dia if r['ode_sap_ns'] < r['simd_grid_ns']] or [0]):,} spheres "
+                     "(the grid's power-of-two cells hold many of its close-packed spheres) and loses above."] if dia else [])
     lines += ["## What it shows", "",
               f"- The AFU's world mode is {rng('ode_over_afu')[0]:.1f}-{rng('ode_over_afu')[1]:.1f}x faster than ODE's "
               f"sweep-and-prune space + dCollide and {rng('grid_over_afu')[0]:.1f}-{rng('grid_over_afu')[1]:.1f}x faster "
