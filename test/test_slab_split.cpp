@@ -77,14 +77,18 @@ TEST(SlabSplit, CutsAWallTooThickForSlabsIntoBoxesAndKeepsEveryContactOnce) {
 }
 
 TEST(SlabSplit, RefusesAWorldNoBoxHoldsAndNamesTheSphere) {
+  // 300 spheres far apart (along x and y), then 150 in one place: the refusal names
+  // the dense group's first sphere along y by its index in the world (300), not in its slab.
   World w;
-  for (int k = 0; k < 150; ++k) w.push(1.0, 0.01 * k, 0, 0.5);  // 150 spheres in one place
+  for (int k = 0; k < 300; ++k) w.push(-1000.0 - 10 * k, 10.0 * k, 0, 0.5);
+  for (int k = 0; k < 150; ++k) w.push(1.0, 0.01 * k, 0, 0.5);
   try {
     splitIntoBoxes(w.x, w.y, w.r, 100);
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
     const std::string m = e.what();
-    EXPECT_NE(m.find("sphere 0 and the"), std::string::npos) << m;
+    EXPECT_NE(m.find("sphere 300 and the"), std::string::npos) << m;
+    EXPECT_NE(m.find("touch it along y"), std::string::npos) << m;
     EXPECT_NE(m.find("nor into boxes along x and y"), std::string::npos) << m;
   }
 }

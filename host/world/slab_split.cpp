@@ -7,7 +7,12 @@
 
 namespace collide::world {
 
-std::vector<Slab> splitIntoSlabs(const std::vector<double>& x, const std::vector<double>& r, std::size_t cap) {
+namespace {
+
+// The greedy cut along one axis; a refusal names the sphere as `names` (the caller's indices
+// of the positions cut) and the axis.
+std::vector<Slab> cut(const std::vector<double>& x, const std::vector<double>& r, std::size_t cap,
+                      const std::vector<std::uint32_t>* names, const char* axis) {
   const std::size_t n = x.size();
   if (cap == 0) throw std::invalid_argument("splitIntoSlabs: a run must hold at least one sphere");
   std::vector<std::uint32_t> order(n);
@@ -40,9 +45,10 @@ std::vector<Slab> splitIntoSlabs(const std::vector<double>& x, const std::vector
     std::size_t o = std::min(cap, n - a);
     if (runSize(a, o, false) > cap) {
       if (runSize(a, 1, false) > cap)
-        throw std::runtime_error("world mode: sphere " + std::to_string(order[a]) + " and the " +
-                                 std::to_string(runSize(a, 1, false) - 1) + " spheres that may touch it along x exceed the " +
-                                 std::to_string(cap) + " spheres an AFU run holds; this world cannot be cut into runs");
+        throw std::runtime_error("world mode: sphere " + std::to_string(names ? (*names)[order[a]] : order[a]) +
+                                 " and the " + std::to_string(runSize(a, 1, false) - 1) + " spheres that may touch it along " +
+                                 axis + " exceed the " + std::to_string(cap) +
+                                 " spheres an AFU run holds; this world cannot be cut into runs");
       std::size_t lo = 1, hi = o;  // runSize(lo) fits, runSize(hi) does not; it grows with o
       while (hi - lo > 1) {
         const std::size_t mid = lo + (hi - lo) / 2;
@@ -62,6 +68,12 @@ std::vector<Slab> splitIntoSlabs(const std::vector<double>& x, const std::vector
     a += o;
   }
   return slabs;
+}
+
+}  // namespace
+
+std::vector<Slab> splitIntoSlabs(const std::vector<double>& x, const std::vector<double>& r, std::size_t cap) {
+  return cut(x, r, cap, nullptr, "x");
 }
 
 std::vector<Slab> splitIntoBoxes(const std::vector<double>& x, const std::vector<double>& y,
@@ -87,9 +99,9 @@ std::vector<Slab> splitIntoBoxes(const std::vector<double>& x, const std::vector
     for (auto p : slab.spheres) { sy.push_back(y[p]); sr.push_back(r[p]); }
     std::vector<Slab> strips;
     try {
-      strips = splitIntoSlabs(sy, sr, cap);
+      strips = cut(sy, sr, cap, &slab.spheres, "y");
     } catch (const std::runtime_error& e) {
-      throw std::runtime_error(std::string(e.what()) + ", nor into boxes along x and y (slabs of " +
+      throw std::runtime_error(std::string(e.what()) + " along x, nor into boxes along x and y (a slab of " +
                                std::to_string(slab.spheres.size()) + " spheres along x, cut along y)");
     }
     for (const Slab& strip : strips) {
