@@ -122,8 +122,7 @@ def main(argv=None):
                           f"{ode / 1e3:8.1f} us  grid {grid / 1e3:7.1f} us", flush=True)
     order = lambda r: CLOUDS.index(r["cloud"])
     rows, text_rows = sorted(kept + rows, key=order), sorted(kept_text + rows, key=order)
-    earlier_refused = (out / "refused.txt").read_text().splitlines() if (out / "refused.txt").exists() else []
-    refused = [l for l in earlier_refused if l.split(",")[0] not in clouds] + refused
+    refused = [l for l in refused_lines(out) if l.split(",")[0] not in clouds] + refused
     if refused:
         (out / "refused.txt").write_text("".join(l + "\n" for l in refused))
     else:

@@ -79,7 +79,7 @@ void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
     driver::accumulate(last_.run.stats, r.run.stats);
     last_.attempts += r.attempts;
     // Records name table rows; a run's table is ascending in the caller's indices, so i < j
-    // stays i < j. A pair is this run's when one of its spheres is owned here.
+    // stays i < j. A pair is this run's when keepsPair says so (owned here along x and y).
     for (const auto& rec : r.run.records) {
       const auto li = driver::worldPairI(rec.pair), lj = driver::worldPairJ(rec.pair);
       if (!keepsPair(slab, li, lj)) continue;

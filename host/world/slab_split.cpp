@@ -80,8 +80,7 @@ std::vector<Slab> splitIntoBoxes(const std::vector<double>& x, const std::vector
                                  const std::vector<double>& r, std::size_t cap) {
   try {
     return splitIntoSlabs(x, r, cap);
-  } catch (const std::runtime_error&) {
-    if (x.size() <= cap) throw;
+  } catch (const std::runtime_error&) {  // some sphere's x slice is too full: boxes
   }
   // The narrowest slabs along x that fit: a run of all spheres always does.
   std::vector<Slab> slabs;

@@ -1,7 +1,8 @@
 #pragma once
 // A world with more spheres than one AFU run holds, cut into slabs along x, or into boxes
-// along x and y where slabs cannot hold it (docs/host.md, "collide spheres"). Each slab owns a run of spheres in x order and also carries, as
-// ghosts, every later sphere that could touch one of them; a run holds at most `cap` spheres.
+// along x and y where slabs cannot hold it (docs/host.md, "collide spheres"). Each slab owns a
+// run of spheres in x order and also carries, as ghosts, every later sphere that could touch
+// one of them; a run holds at most `cap` spheres.
 // A pair is then found in exactly one run, the one of its first-owned sphere: keep a run's
 // pair when at least one of its spheres is owned there (ghosts come only from later slabs, so
 // a ghost-ghost pair belongs to a later run and a pair is never owned twice).

@@ -69,7 +69,7 @@ class PairDispatcher(p: PucParams) extends Module {
   // before the first position that would give a bank a third sphere (position 0 always fits,
   // so every cycle makes progress). A list that names one sphere in consecutive pairs, as
   // ODE's do, so costs that sphere one read.
-  val (cnt, rank) = p.ramPorts match {
+  val (cnt, ports) = p.ramPorts match {
     case SphereRamPorts.Replicated => (lineCnt, None)
     case _: SphereRamPorts.Banked =>
       val addr = (0 until p.lanes).flatMap(k => Seq(posI(k), posJ(k))).map(_(idxBits - 1, 0))
@@ -131,7 +131,7 @@ class PairDispatcher(p: PucParams) extends Module {
     io.ren(s)      := fire && inGroup(s)
     io.raddr(s)(0) := posI(kk)(idxBits - 1, 0)
     io.raddr(s)(1) := posJ(kk)(idxBits - 1, 0)
-    for (r <- rank; port <- 0 until 2) io.rport.get(s)(port) := r(Cat(kk, port.U(1.W))).asUInt
+    for (pt <- ports; port <- 0 until 2) io.rport.get(s)(port) := pt(Cat(kk, port.U(1.W))).asUInt
     inflight(s)    := io.ren(s)
     val wb = RecordTag.WORLD_INDEX_BITS
     val worldTag = if (p.world.isDefined) Cat(posJ(kk)(wb - 1, 0), posI(kk)(wb - 1, 0)) else 0.U
