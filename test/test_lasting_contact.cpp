@@ -8,8 +8,8 @@
 #include <string>
 
 #include "collide/simd_backend.hpp"
-#include "ode/simulation.hpp"
 #include "scene/scene.hpp"
+#include "simulation/simulation.hpp"
 
 using namespace collide;
 
@@ -27,7 +27,7 @@ std::string errorOf(const std::string& json) {
 std::size_t fewestContacts(const char* file, int steps) {
   const scene::Scene s = scene::loadScene(std::string(COLLIDE_REPO_SCENES) + "/" + file);
   SimdBackend b;
-  ode::Simulation sim(s, b);
+  sim::Simulation sim(s, b);
   std::size_t fewest = SIZE_MAX;
   for (int k = 0; k < steps; ++k) fewest = std::min(fewest, sim.step().contacts);
   return fewest;
@@ -75,7 +75,7 @@ TEST(LastingContact, PlanesHoldSpheresOnTheCpu) {
       "effects": {"planes": [{"normal": [-1, 0, 0], "offset": -1}]}, "contact": {"mu": 0},
       "bodies": {"spheres": [{"pos": [0, 0, 0], "r": 0.1, "vel": [1, 0, 0]}]}})"));
   SimdBackend b;
-  ode::Simulation sim(s, b);
+  sim::Simulation sim(s, b);
   std::size_t plane = 0, pairs = 0;
   for (int k = 0; k < 200; ++k) {
     const auto st = sim.step();

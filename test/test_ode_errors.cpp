@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <string>
 
+#include "batch/sane_ranges.hpp"
 #include "collide/ode_backend.hpp"
 #include "ode/ode_errors.hpp"
 #include "ode/ode_world.hpp"
-#include "ode/simulation.hpp"
 #include "scene/scene.hpp"
+#include "simulation/simulation.hpp"
 
 #include "support/error_of.hpp"
 
@@ -46,6 +48,24 @@ TEST(OdeErrors, BadRadiiAndPositionsNeverReachOdeInVectorMode) {
   EXPECT_EQ(hit, 1);
 }
 
+TEST(OdeErrors, MoreSpheresThanOdesHashSpaceHoldsAreRefusedBeforeOde) {
+  // A cloud of 140,000 spheres ended in ODE's assertion in dSpaceCollide: its hash space's
+  // tested-pairs matrix (n x ceil(n/8) bytes) passes the int range from 131,072 spheres on.
+  auto cloud = [](long long n, const std::string& collision) {
+    return R"({"steps": 1, "dt": 0.01, "backend": "simd", )" + collision + R"("bodies": {"random_cloud": {"count": )" +
+           std::to_string(n) + R"(, "seed": 1, "min": [0, 0, 0], "max": [100, 100, 100], "radius": 0.1}}})";
+  };
+  const std::string e = errorOf([&] { parse(cloud(limits::kMaxHashSpaceSpheres + 1, "")); });
+  EXPECT_EQ(e.rfind("scene.bodies: 131072 spheres, more than ODE's hash space holds (131071", 0), 0u) << e;
+  EXPECT_NE(e.find(R"("space": "sap")"), std::string::npos) << e;
+  // The largest world the hash space holds, sweep and prune, and world mode are accepted.
+  EXPECT_EQ(errorOf([&] { parse(cloud(limits::kMaxHashSpaceSpheres, "")); }), "(no error)");
+  EXPECT_EQ(errorOf([&] { parse(cloud(limits::kMaxHashSpaceSpheres + 1, R"("collision": {"space": "sap"}, )")); }),
+            "(no error)");
+  EXPECT_EQ(errorOf([&] { parse(cloud(limits::kMaxHashSpaceSpheres + 1, R"("collision": {"offload": "world"}, )")); }),
+            "(no error)");
+}
+
 TEST(OdeErrors, ASceneSphereFarAwayNamesTheKeyPath) {
   const std::string e = errorOf([] {
     parse(R"({"steps": 1, "dt": 0.01, "bodies": {"spheres": [{"pos": [0, 0, 0], "r": 0.1}, {"pos": [1e9, 0, 0], "r": 0.1}]}})");
@@ -74,7 +94,7 @@ TEST(OdeErrors, ABodyFlungAwayMidRunIsAReportedEvent) {
   const auto sc = parse(R"({"steps": 50, "dt": 0.01, "bodies": {"spheres": [
       {"pos": [0, 0, 0], "r": 0.5, "vel": [1e12, 0, 0]}, {"pos": [3, 0, 0], "r": 0.5}]}})");
   OdeBackend ode;
-  ode::Simulation sim(sc, ode);
+  sim::Simulation sim(sc, ode);
   const std::string e = errorOf([&] {
     for (int s = 0; s < 50; ++s) sim.step();
   });

@@ -8,10 +8,13 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "afu_contract.hpp"
+#include "batch/sane_ranges.hpp"
 #include "cli/spheres_csv.hpp"
 #include "collide/input_policy.hpp"
 #include "collide/ode_backend.hpp"
@@ -237,4 +240,27 @@ TEST(WorldCollider, RepeatedRunsOnOneColliderGiveTheSameContacts) {
   EXPECT_TRUE(asMap(w3) == asMap(w4));
   EXPECT_EQ(w1.candidates, w2.candidates);
   EXPECT_GT(time.broadNs, 0);
+}
+
+TEST(WorldCollider, AnOdeHashSpaceRefusesMoreSpheresThanItHoldsAndSweepAndPruneTakesThem) {
+  // 131,072 spheres made ODE's hash space assert (its tested-pairs matrix passes the int
+  // range); the refusal comes before any geom is made and says what to use instead.
+  SphereTable t;
+  const auto n = static_cast<std::uint32_t>(limits::kMaxHashSpaceSpheres + 1);
+  std::vector<std::uint32_t> members(n);
+  for (std::uint32_t k = 0; k < n; ++k) {
+    t.push(k % 512, (k / 512) % 512, k / (512 * 512), 0.1);
+    members[k] = k;
+  }
+  OdeSpaceBroadPhase hash(OdeSpaceKind::Hash), sap(OdeSpaceKind::SweepAndPrune);
+  try {
+    hash.prepare(t, members);
+    ADD_FAILURE() << "no refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("131072 spheres, more than ODE's hash space holds (131071", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("use --space sap"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(hash.geoms().empty());
+  sap.prepare(t, members);
+  EXPECT_EQ(sap.geoms().size(), t.size());
 }

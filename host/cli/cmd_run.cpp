@@ -18,8 +18,8 @@
 #include "collide/simd_backend.hpp"
 #include "driver/afu_factory.hpp"
 #include "link/link_presets.hpp"
-#include "ode/simulation.hpp"
 #include "scene/scene.hpp"
+#include "simulation/simulation.hpp"
 #include "world/afu_world.hpp"
 #include "world/cpu_world.hpp"
 
@@ -148,8 +148,8 @@ int runScene(const RunOptions& o) {
     std::int64_t stepOdeNs = 0, stepSimdNs = 0;
     std::uint64_t stepMismatch = 0;
 
-    auto simPtr = backend ? std::make_unique<ode::Simulation>(sc, *backend) : std::make_unique<ode::Simulation>(sc, *engine);
-    ode::Simulation& sim = *simPtr;
+    auto simPtr = backend ? std::make_unique<sim::Simulation>(sc, *backend) : std::make_unique<sim::Simulation>(sc, *engine);
+    sim::Simulation& sim = *simPtr;
     sim.setBatchObserver([&](const SphereTable& t, const PairList& p, const ContactSet&) {
       const OdeGeomBinding geoms(&ode, sim.world().sphereGeoms());  // ODE's collider on the world's own geoms
       stepOdeNs = timeNs(o.cpuRepeat, [&] { ode.collide(t, p, odeOut); });
@@ -228,6 +228,8 @@ int runScene(const RunOptions& o) {
       std::cout << "  (gather + binary32 SoA kernel)\n"
                 << "simd vs ode  : " << tot.hitMismatches << " pairs disagree on hit\n";
     }
+    const std::string odeBroad = std::string("dSpaceCollide, ODE's ") +
+                                 (sc.space == scene::Scene::Space::Sap ? "sweep-and-prune space" : "hash space");
     if (engine) {
       // The engine's own account: the broad phase apart, the rest as the narrow phase.
       const std::string how = engine->modelled() ? "modelled, link " + sc.link.name : std::string("measured");
@@ -238,13 +240,14 @@ int runScene(const RunOptions& o) {
     } else if (rtl) {
       printAfu(std::cout, afu, tot.pairs, tot.contacts, sc.link.name, tot.backendNs);
       printTimeSplit(std::cout, tot, afu.stats.modelledNs,
-                     "the AFU, modelled, link " + sc.link.name + "; in place of the co-simulation's wall time", sc.steps);
+                     "the AFU, modelled, link " + sc.link.name + "; in place of the co-simulation's wall time", sc.steps,
+                     0, odeBroad);
     } else {
       std::cout << "backend " << backend->name() << "  : ";
       printTiming(std::cout, tot.backendNs, tot.pairs, tot.contacts);
       std::cout << "  (the backend that drove the simulation)\n";
       printTimeSplit(std::cout, tot, static_cast<double>(tot.backendNs), "backend " + backend->name() + ", measured",
-                     sc.steps);
+                     sc.steps, 0, odeBroad);
     }
 
     if (posFile) {  // binary64 as ODE holds them, %a so nothing is lost

@@ -6,9 +6,9 @@
 #include <ostream>
 #include <string>
 
+#include "batch/batch.hpp"
+#include "batch/contact_set.hpp"
 #include "cli/number_csv.hpp"
-#include "collide/batch.hpp"
-#include "collide/contact_set.hpp"
 
 namespace collide::cli {
 

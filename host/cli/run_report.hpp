@@ -12,10 +12,10 @@ struct RunTotals {
   std::uint64_t pairs = 0, contacts = 0, otherContacts = 0;
   std::int64_t backendNs = 0, odeNs = 0, simdNs = 0;
   std::uint64_t hitMismatches = 0;  // pairs where ode and simd disagree on hit
-  // The steps' time split (ode::StepStats): broad phase, sphere/plane narrow phase, contact
+  // The steps' time split (sim::StepStats): broad phase, sphere/plane narrow phase, contact
   // joints, solver, and the whole steps (the sphere/sphere narrow phase is backendNs).
   std::int64_t broadNs = 0, otherNarrowNs = 0, jointsNs = 0, solverNs = 0, stepNs = 0;
-  // Offload "world": the engine's own broad / rest split (ode::StepStats::worldBroadNs...).
+  // Offload "world": the engine's own broad / rest split (sim::StepStats::worldBroadNs...).
   std::int64_t worldBroadNs = 0, worldNarrowNs = 0;
 };
 
@@ -26,8 +26,7 @@ struct RunTotals {
 // A world engine (offload "world") does the broad phase inside that call: `engineBroadNs` is
 // its own account of it (measured, or modelled on the AFU), added to the broad-phase line.
 void printTimeSplit(std::ostream& os, const RunTotals& t, double narrowNs, const std::string& narrowWhat,
-                    long long steps, double engineBroadNs = 0,
-                    const std::string& broadWhat = "dSpaceCollide, ODE's hash space");
+                    long long steps, double engineBroadNs, const std::string& broadWhat);
 
 // The rtl backend's modelled AFU time over a run (sums over every AFU call), split as the
 // paper's Figures 5-7: the status line's cycle counters, and what lies outside them.

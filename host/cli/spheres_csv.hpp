@@ -9,8 +9,8 @@
 #include <ostream>
 #include <string>
 
+#include "batch/batch.hpp"
 #include "cli/number_csv.hpp"
-#include "collide/batch.hpp"
 #include "world/world_collider.hpp"
 
 namespace collide::cli {

@@ -95,7 +95,9 @@ namespace collide::driver {
 const char* collideBuiltInManifest() { return R\"collide_manifest(@COLLIDE_MANIFEST_TEXT@)collide_manifest\"; }
 }
 ")
-  add_library(${target} STATIC "${COLLIDE_HOST_DIR}/driver/verilated_afu_port.cpp" "${manifest_cpp}")
+  # OBJECT: the seam's objects go into the executable itself, so makeAfuPort() is there for
+  # every layer that calls it, whatever the order of the static layers on the link line.
+  add_library(${target} OBJECT "${COLLIDE_HOST_DIR}/driver/verilated_afu_port.cpp" "${manifest_cpp}")
   target_include_directories(${target} PRIVATE "${COLLIDE_HOST_DIR}")
   target_link_libraries(${target} PUBLIC collide_core)
   target_compile_definitions(${target} PRIVATE
@@ -107,7 +109,7 @@ endfunction()
 
 function(collide_add_afu_library target preset trace)
   if(NOT TARGET collide_no_afu)  # also what tests link when they bring their own AfuPort
-    add_library(collide_no_afu STATIC "${COLLIDE_HOST_DIR}/driver/no_afu.cpp")
+    add_library(collide_no_afu OBJECT "${COLLIDE_HOST_DIR}/driver/no_afu.cpp")
     target_include_directories(collide_no_afu PRIVATE "${COLLIDE_HOST_DIR}")
     target_link_libraries(collide_no_afu PUBLIC collide_core)
   endif()
@@ -117,7 +119,6 @@ function(collide_add_afu_library target preset trace)
   elseif(NOT preset STREQUAL "")
     collide_add_afu_library_from_dir(${target} "${COLLIDE_REPO_ROOT}/generated/${preset}" "${preset}" ${trace})
   else()
-    add_library(${target} INTERFACE)
-    target_link_libraries(${target} INTERFACE collide_no_afu)
+    add_library(${target} ALIAS collide_no_afu)
   endif()
 endfunction()

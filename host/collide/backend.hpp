@@ -3,8 +3,8 @@
 #include <memory>
 #include <string>
 
-#include "collide/batch.hpp"
-#include "collide/contact_set.hpp"
+#include "batch/batch.hpp"
+#include "batch/contact_set.hpp"
 
 namespace collide {
 

@@ -3,8 +3,8 @@
 // computed the way the AFU computes them: hit, the kind (coincident when d = 0, which in
 // the backend's own format means d^2 = (dx*dx + dy*dy) + dz*dz = 0) and non-finite input.
 // The CPU backends do not observe the arithmetic's exceptions, so REC_ARITH stays clear.
-#include "collide/batch.hpp"
-#include "collide/contact_set.hpp"
+#include "batch/batch.hpp"
+#include "batch/contact_set.hpp"
 
 namespace collide {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "afu_contract.hpp"
+#include "batch/sane_ranges.hpp"
 #include "collide/contact_flags.hpp"
-#include "ode/ode_limits.hpp"
 
 namespace collide {
 
@@ -12,7 +12,7 @@ PairInput classifySphere(const SphereTable& s, std::uint32_t i) {
   const double v[4] = {s.x[i], s.y[i], s.z[i], s.r[i]};
   for (double x : v)
     if (!std::isfinite(x)) return PairInput::NonFinite;
-  if (!ode::saneRadius(v[3]) || !ode::saneCoordinate(v[0]) || !ode::saneCoordinate(v[1]) || !ode::saneCoordinate(v[2]))
+  if (!limits::saneRadius(v[3]) || !limits::saneCoordinate(v[0]) || !limits::saneCoordinate(v[1]) || !limits::saneCoordinate(v[2]))
     return PairInput::OutOfRange;
   return PairInput::Ok;
 }

@@ -6,14 +6,14 @@
 // A pair is judged on its eight inputs as the backend received them (the table's values):
 //  - non-finite: a NaN or an infinity among them -> no contact, REC_NONFINITE;
 //  - out of range: a radius not in (0, 1e6] m or a centre coordinate beyond +-1e6 m (the range
-//    ODE takes, ode/ode_limits.hpp) -> no contact, REC_HOST_RANGE;
+//    ODE takes, batch/sane_ranges.hpp) -> no contact, REC_HOST_RANGE;
 //  - else the backend's own result and flags.
 // A rejected pair's fields are zero and its kind separated; ODE never sees it.
 #include <cstdint>
 
+#include "batch/batch.hpp"
+#include "batch/contact_set.hpp"
 #include "collide/backend.hpp"
-#include "collide/batch.hpp"
-#include "collide/contact_set.hpp"
 
 namespace collide {
 

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "collide/batch.hpp"
-#include "collide/contact_set.hpp"
+#include "batch/batch.hpp"
+#include "batch/contact_set.hpp"
 #include "driver/afu_layout.hpp"
 #include "driver/afu_port.hpp"
 #include "driver/contact_rebuild.hpp"

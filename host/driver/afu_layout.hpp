@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "afu_contract.hpp"
-#include "collide/batch.hpp"
+#include "batch/batch.hpp"
 #include "link/host_memory.hpp"
 
 namespace collide::driver {

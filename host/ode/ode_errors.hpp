@@ -4,7 +4,7 @@
 // user a core dump and an empty output file. Our handlers turn errors and failed
 // assertions into an OdeError exception with ODE's message, and print ODE's warnings.
 //
-// Inputs are validated before they reach ODE (ode/ode_limits.hpp); these handlers are for
+// Inputs are validated before they reach ODE (batch/sane_ranges.hpp); these handlers are for
 // what still slips through. An ODE error raised while another exception is already
 // unwinding (ODE objects destroyed in a state ODE refuses) cannot be thrown: the message is
 // printed and the process exits with status 1 instead of aborting.

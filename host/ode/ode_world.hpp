@@ -5,7 +5,7 @@
 
 #include <ode/ode.h>
 
-#include "collide/batch.hpp"
+#include "batch/batch.hpp"
 #include "ode/ode_library.hpp"
 #include "scene/scene.hpp"
 

@@ -65,6 +65,10 @@ struct Scene {
   // simd, the AFU's world mode with rtl). Planes stay with ODE either way.
   enum class Offload { Pairs, World };
   Offload offload = Offload::Pairs;
+  // ODE's broad phase on the pairs path: its hash space (ODE's default, up to
+  // limits::kMaxHashSpaceSpheres spheres) or sweep and prune (any count).
+  enum class Space { Hash, Sap };
+  Space space = Space::Hash;
   std::filesystem::path afuDir;        // rtl: generated/<preset>
   link::LinkParams link = link::presetParams(link::kDefaultPreset);
   // rtl: wall-clock limit of one AFU run (unset: driver::kDefaultWallLimitS).

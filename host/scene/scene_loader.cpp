@@ -2,10 +2,11 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
+#include "batch/sane_ranges.hpp"
 #include "driver/wall_watchdog.hpp"
 #include "link/link_presets.hpp"
-#include "ode/ode_limits.hpp"
 #include "scene/diamond.hpp"
 #include "scene/random_cloud.hpp"
 #include "util/input_file.hpp"
@@ -17,21 +18,21 @@ namespace {
 
 constexpr long long kMaxSpheres = 1'000'000;  // a guard against typos, not a model limit
 
-// A centre ODE's broad phase can place, a radius ODE accepts (ode/ode_limits.hpp).
+// A centre ODE's broad phase can place, a radius ODE accepts (batch/sane_ranges.hpp).
 Vec3 position(const JsonNode& n) {
   const Vec3 v = n.vec3();
   for (double c : v)
-    if (!ode::saneCoordinate(c)) n.expected("[x, y, z] within +-1e6 m (docs/host.md, \"What reaches ODE\")");
+    if (!limits::saneCoordinate(c)) n.expected("[x, y, z] within +-1e6 m (docs/host.md, \"What reaches ODE\")");
   return v;
 }
 double massOf(const JsonNode& n) {
   const double m = n.positive();
-  if (!(m >= ode::kMinMassKg && m <= ode::kMaxMassKg)) n.expected("a mass in [1e-9, 1e9] kg");
+  if (!(m >= limits::kMinMassKg && m <= limits::kMaxMassKg)) n.expected("a mass in [1e-9, 1e9] kg");
   return m;
 }
 double radius(const JsonNode& n) {
   const double r = n.positive();
-  if (!ode::saneRadius(r)) n.expected("a radius in (0, 1e6] m");
+  if (!limits::saneRadius(r)) n.expected("a radius in (0, 1e6] m");
   return r;
 }
 
@@ -44,7 +45,7 @@ void addDiamond(const JsonNode& n, Scene& s) {
   if (auto d = n.find("dSph")) p.dSph = d->nonNegative();
   const double mass = n.find("mass") ? massOf(n.at("mass")) : 1.0;
   for (const auto& c : diamondCentres(p)) {
-    if (!ode::saneCoordinate(c[0]) || !ode::saneCoordinate(c[1]) || !ode::saneCoordinate(c[2]))
+    if (!limits::saneCoordinate(c[0]) || !limits::saneCoordinate(c[1]) || !limits::saneCoordinate(c[2]))
       n.at("dSph").expected("a spacing that keeps the diamond within +-1e6 m");
     s.spheres.push_back({c, p.radius, mass, {}});
   }
@@ -219,7 +220,7 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   s.steps = root.at("steps").positiveInt();
   if (s.steps > kMaxSteps) root.at("steps").expected("an integer in 1..1000000000");
   s.dt = root.at("dt").positive();
-  if (!(s.dt >= ode::kMinDtS && s.dt <= ode::kMaxDtS)) root.at("dt").expected("a time step in [1e-9, 10] s");
+  if (!(s.dt >= limits::kMinDtS && s.dt <= limits::kMaxDtS)) root.at("dt").expected("a time step in [1e-9, 10] s");
   if (auto v = root.find("backend")) {
     s.backend = v->string();
     if (s.backend != "ode" && s.backend != "simd" && s.backend != "rtl") v->expected("\"ode\", \"simd\" or \"rtl\"");
@@ -229,7 +230,7 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
     if (s.afuDir.is_relative() && !baseDir.empty()) s.afuDir = baseDir / s.afuDir;
   }
   if (auto c = root.find("collision")) {
-    c->allowOnly({"offload"});
+    c->allowOnly({"offload", "space"});
     if (auto v = c->find("offload")) {
       const std::string o = v->string();
       if (o == "pairs") s.offload = Scene::Offload::Pairs;
@@ -237,6 +238,12 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
       else v->expected("\"pairs\" or \"world\"");
       if (s.offload == Scene::Offload::World && s.backend == "ode")
         v->expected("\"pairs\" with backend ode (\"world\" needs backend simd or rtl: ODE's own space is the pairs path)");
+    }
+    if (auto v = c->find("space")) {
+      const std::string sp = v->string();
+      if (sp == "hash") s.space = Scene::Space::Hash;
+      else if (sp == "sap") s.space = Scene::Space::Sap;
+      else v->expected("\"hash\" (ODE's hash space) or \"sap\" (sweep and prune)");
     }
   }
 
@@ -247,6 +254,15 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   if (auto c = bodies.find("random_cloud")) addCloud(*c, s);
   if (s.spheres.empty()) bodies.fail("no spheres (declare diamond, spheres or random_cloud)");
   if (static_cast<long long>(s.spheres.size()) > kMaxSpheres) bodies.fail("more than 1000000 spheres");
+  const auto n = static_cast<long long>(s.spheres.size());
+  if (s.offload == Scene::Offload::Pairs && s.space == Scene::Space::Hash && n > limits::kMaxHashSpaceSpheres) {
+    std::ostringstream m;
+    m << n << " spheres, more than ODE's hash space holds (" << limits::kMaxHashSpaceSpheres
+      << ": its tested-pairs matrix of n x ceil(n/8) bytes, " << limits::hashSpaceTestedBytes(n) / (1 << 20)
+      << " MiB here, passes ODE's int range); declare \"collision\": {\"space\": \"sap\"} (sweep and prune), or "
+         "{\"offload\": \"world\"} with backend simd or rtl";
+    bodies.fail(m.str());
+  }
 
   if (auto v = root.find("effects")) readEffects(*v, s);  // after bodies: "centroid"
   if (auto v = root.find("contact")) readContact(*v, s);

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "collide/batch.hpp"
+#include "batch/batch.hpp"
 
 namespace collide::world {
 

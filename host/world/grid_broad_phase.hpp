@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "collide/batch.hpp"
+#include "batch/batch.hpp"
 #include "world/broad_phase.hpp"
 
 namespace collide::world {
@@ -40,7 +40,7 @@ struct GridShape {
 class GridBroadPhase final : public BroadPhase {
  public:
   static constexpr std::size_t kMaxLarge = 16;
-  // 2^-10 m: with |c| <= 1e6 m (ode/ode_limits.hpp) every cell index fits an int32
+  // 2^-10 m: with |c| <= 1e6 m (batch/sane_ranges.hpp) every cell index fits an int32
   // (1e6 * 2^10 < 2^31), and it covers the absolute error of an underflowing distance.
   static constexpr int kMinCellExp = -10;
 

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <utility>
+
+#include "batch/sane_ranges.hpp"
 
 namespace collide::world {
 
@@ -27,6 +30,11 @@ void OdeSpaceBroadPhase::clearGeoms() {
 }
 
 void OdeSpaceBroadPhase::prepare(const SphereTable& s, const std::vector<std::uint32_t>& members) {
+  const auto n = static_cast<long long>(members.size());
+  if (kind_ == OdeSpaceKind::Hash && n > limits::kMaxHashSpaceSpheres)
+    throw std::invalid_argument(std::to_string(n) + " spheres, more than ODE's hash space holds (" +
+                                std::to_string(limits::kMaxHashSpaceSpheres) +
+                                ": its tested-pairs matrix of n x ceil(n/8) bytes passes ODE's int range): use --space sap");
   const bool fresh = geoms_.size() != s.size() ||
                      std::any_of(members.begin(), members.end(), [&](std::uint32_t m) { return !geoms_[m]; });
   if (fresh) {

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "batch/batch.hpp"
+#include "batch/contact_set.hpp"
 #include "collide/backend.hpp"
-#include "collide/batch.hpp"
-#include "collide/contact_set.hpp"
 #include "world/broad_phase.hpp"
 
 namespace collide::world {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "collide/batch.hpp"
+#include "batch/batch.hpp"
 #include "collide/input_policy.hpp"
 
 namespace collide::test {

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "collide/batch.hpp"
+#include "batch/batch.hpp"
 #include "format/number_format.hpp"
 
 namespace collide::test {

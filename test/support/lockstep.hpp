@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "collide/backend.hpp"
-#include "ode/simulation.hpp"
 #include "scene/scene.hpp"
+#include "simulation/simulation.hpp"
 
 namespace collide::test {
 
@@ -45,7 +45,7 @@ inline std::vector<LockstepStep> lockstep(const scene::Scene& sc, CollisionBacke
         if (c.hit[k]) s.hits.insert(std::minmax(p.i[k], p.j[k]));
     };
   };
-  ode::Simulation simA(sc, a), simB(sc, b);
+  sim::Simulation simA(sc, a), simB(sc, b);
   simA.setBatchObserver(observe(sa));
   simB.setBatchObserver(observe(sb));
   std::vector<LockstepStep> out;

@@ -10,7 +10,7 @@
 #include <map>
 #include <vector>
 
-#include "collide/batch.hpp"
+#include "batch/batch.hpp"
 #include "driver/afu_layout.hpp"
 #include "driver/afu_port.hpp"
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <random>
 
-#include "collide/batch.hpp"
+#include "batch/batch.hpp"
 
 namespace collide::test {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <random>
 
-#include "collide/batch.hpp"
+#include "batch/batch.hpp"
 
 namespace collide::test {
 

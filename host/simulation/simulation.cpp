@@ -1,4 +1,4 @@
-#include "ode/simulation.hpp"
+#include "simulation/simulation.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -6,20 +6,20 @@
 #include <string>
 #include <utility>
 
+#include "batch/sane_ranges.hpp"
 #include "ode/contact_joints.hpp"
-#include "ode/ode_limits.hpp"
 
-namespace collide::ode {
+namespace collide::sim {
 
 Simulation::Simulation(const scene::Scene& scene, CollisionBackend& backend)
     : scene_(scene),
       backend_(&backend),
       odeBackend_(dynamic_cast<OdeBackend*>(&backend)),
       world_(scene),
-      surface_(surfaceFor(scene.contact)) {}
+      surface_(ode::surfaceFor(scene.contact)) {}
 
 Simulation::Simulation(const scene::Scene& scene, world::WorldEngine& engine)
-    : scene_(scene), engine_(&engine), world_(scene), surface_(surfaceFor(scene.contact)) {}
+    : scene_(scene), engine_(&engine), world_(scene), surface_(ode::surfaceFor(scene.contact)) {}
 
 void Simulation::nearCallback(void* self, dGeomID o1, dGeomID o2) {
   auto* sim = static_cast<Simulation*>(self);
@@ -31,14 +31,14 @@ void Simulation::nearCallback(void* self, dGeomID o1, dGeomID o2) {
   }
 }
 
-// A body flung beyond the sane range (ode/ode_limits.hpp) is a reported event, not ODE's
+// A body flung beyond the sane range (batch/sane_ranges.hpp) is a reported event, not ODE's
 // assertion in the next broad phase.
 void Simulation::requireSpheresInRange() const {
   for (std::size_t k = 0; k < world_.sphereCount(); ++k) {
     const dReal* p = dBodyGetPosition(world_.sphereBody(k));
-    if (saneCoordinate(p[0]) && saneCoordinate(p[1]) && saneCoordinate(p[2])) continue;
+    if (limits::saneCoordinate(p[0]) && limits::saneCoordinate(p[1]) && limits::saneCoordinate(p[2])) continue;
     std::ostringstream m;
-    m << "step " << step_ << ": sphere " << k << " left the sane range |x|, |y|, |z| <= " << kMaxCoordinateM
+    m << "step " << step_ << ": sphere " << k << " left the sane range |x|, |y|, |z| <= " << limits::kMaxCoordinateM
       << " m, at (" << p[0] << ", " << p[1] << ", " << p[2] << "), velocity ("
       << dBodyGetLinearVel(world_.sphereBody(k))[0] << ", " << dBodyGetLinearVel(world_.sphereBody(k))[1] << ", "
       << dBodyGetLinearVel(world_.sphereBody(k))[2] << ") m/s (docs/host.md, \"What reaches ODE\")";
@@ -146,7 +146,7 @@ StepStats Simulation::step() {
   const PairList& pairs = engine_ ? worldOut_.pairs : pairs_;
   const ContactSet& results = engine_ ? worldOut_.contacts : results_;
   // Sphere/plane joints first: the order ODE found them in before the batch existed.
-  for (const auto& g : otherContacts_) addContactJoint(world_.world(), world_.contacts(), surface_, g);
+  for (const auto& g : otherContacts_) ode::addContactJoint(world_.world(), world_.contacts(), surface_, g);
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     if (!results.hit[k]) continue;
     dContactGeom g{};
@@ -156,7 +156,7 @@ StepStats Simulation::step() {
     g.g1 = world_.sphereGeom(pairs.i[k]);
     g.g2 = world_.sphereGeom(pairs.j[k]);
     g.side1 = g.side2 = -1;
-    addContactJoint(world_.world(), world_.contacts(), surface_, g);
+    ode::addContactJoint(world_.world(), world_.contacts(), surface_, g);
     ++st.contacts;
   }
   st.otherContacts = otherContacts_.size();
@@ -172,4 +172,4 @@ StepStats Simulation::step() {
   return st;
 }
 
-}  // namespace collide::ode
+}  // namespace collide::sim

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "collide/batch.hpp"
+#include "batch/batch.hpp"
 
 namespace collide {
 

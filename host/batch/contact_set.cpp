@@ -1,4 +1,4 @@
-#include "collide/contact_set.hpp"
+#include "batch/contact_set.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -20,7 +20,7 @@
 #include "scene/scene.hpp"
 #include "world/world_engine.hpp"
 
-namespace collide::ode {
+namespace collide::sim {
 
 struct StepStats {
   long long step = 0;
@@ -51,7 +51,7 @@ class Simulation {
 
   StepStats step();
   void setBatchObserver(BatchObserver f) { observer_ = std::move(f); }
-  const World& world() const { return world_; }
+  const ode::World& world() const { return world_; }
   long long stepsDone() const { return step_; }
 
  private:
@@ -66,7 +66,7 @@ class Simulation {
   CollisionBackend* backend_ = nullptr;  // the pairs path...
   world::WorldEngine* engine_ = nullptr; // ...or the world path
   OdeBackend* odeBackend_ = nullptr;     // backend_ if it is the ode one: it collides the world's own geoms
-  World world_;
+  ode::World world_;
   dSurfaceParameters surface_;
   SphereTable table_;
   PairList pairs_;
@@ -82,4 +82,4 @@ class Simulation {
   std::exception_ptr nearError_;
 };
 
-}  // namespace collide::ode
+}  // namespace collide::sim

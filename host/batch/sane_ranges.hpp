@@ -1,0 +1,34 @@
+#pragma once
+// The sane range of a sphere and of a scene's numbers: what every backend accepts and what
+// we let reach ODE (docs/host.md, "What reaches ODE"). Plain numbers, so the layers below
+// ODE (batch, scene, the CPU backends) check them without it.
+//
+// Coordinates: ODE's hash space files every geom's box under integer cell coordinates, cells
+// at least 2^-3 m wide (dHashSpaceSetLevels' default minimum level -3), and asserts when a
+// coordinate's cell index leaves the int range ("aabbBound >= dMinIntExact && aabbBound <
+// dMaxIntExact", collision_space.cpp): beyond about 2^31 x 0.125 m = 2.7e8 m. 1e6 m keeps two
+// orders of magnitude from that, and from binary32 links, whose spacing at 1e6 is 0.0625 m. dGeomSphereSetRadius refuses a negative or NaN radius.
+namespace collide::limits {
+
+inline constexpr double kMaxCoordinateM = 1e6;  // |x|, |y|, |z| of a centre
+inline constexpr double kMaxRadiusM = 1e6;      // radius in (0, kMaxRadiusM]
+
+// A mass of 1e300 kg or a step of 1e-300 s ends in ODE's quaternion normalisation
+// assertion ("bSafeNormalize4Fault", odemath.h) within a step; these ranges are wide guards
+// against such typos, not limits of the model.
+inline constexpr double kMinMassKg = 1e-9, kMaxMassKg = 1e9;
+inline constexpr double kMinDtS = 1e-9, kMaxDtS = 10;
+
+// ODE 0.16's hash space marks tested pairs in an n x ceil(n/8) byte matrix whose size is an
+// int (dxHashSpace::collide, collision_space.cpp): from 131,072 spheres on it overflows and ODE
+// asserts. Larger worlds go to sweep and prune ("collision": {"space": "sap"}) or world mode.
+inline constexpr long long kMaxHashSpaceSpheres = 131'071;
+inline constexpr long long hashSpaceTestedBytes(long long n) { return n * ((n + 7) >> 3); }
+static_assert(hashSpaceTestedBytes(kMaxHashSpaceSpheres) <= 2'147'483'647LL &&
+                  hashSpaceTestedBytes(kMaxHashSpaceSpheres + 1) > 2'147'483'647LL,
+              "kMaxHashSpaceSpheres is the largest n whose tested-pairs matrix fits an int");
+
+inline bool saneCoordinate(double v) { return v >= -kMaxCoordinateM && v <= kMaxCoordinateM; }  // false for NaN
+inline bool saneRadius(double r) { return r > 0 && r <= kMaxRadiusM; }
+
+}  // namespace collide::limits
