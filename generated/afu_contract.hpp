@@ -30,6 +30,7 @@ inline constexpr std::uint32_t STATUS_CONTACTS_FOUND = 12u;  // hits (may exceed
 inline constexpr std::uint32_t STATUS_RECORDS_WRITTEN = 16u;  // contact records written
 inline constexpr std::uint32_t STATUS_NONFINITE_PAIRS = 20u;  // pairs with a NaN or infinite input
 inline constexpr std::uint32_t STATUS_FIRST_BAD_PAIR = 24u;  // lowest pair with an index out of range, or NO_BAD_PAIR
+inline constexpr std::uint32_t STATUS_FLAGGED_MISSES = 28u;  // misses with NONFINITE or ARITH set; pair mode writes a record for each, compact too
 inline constexpr std::uint32_t STATUS_CYCLES_TOTAL = 32u;  // cycles from start to the status write
 inline constexpr std::uint32_t STATUS_CYCLES_LOAD = 36u;  // cycles loading the sphere table
 inline constexpr std::uint32_t STATUS_CYCLES_COMPUTE = 40u;  // cycles in which a group of pairs was dispatched
@@ -78,8 +79,8 @@ inline constexpr std::uint32_t LAYOUT_DERIVED_MASKED = 3u;  // value fields: d, 
 // mask header (masked layouts, compact mode): a slot before each group's hits
 inline constexpr std::uint32_t HEADER_PAIR_SHIFT = 0u;  // bits 0..23: the group's first pair index
 inline constexpr std::uint32_t HEADER_PAIR_BITS = 24u;  // width of the first pair index
-inline constexpr std::uint32_t HEADER_MASK_SHIFT = 24u;  // bits 24..39: bit k set when pair first + k is a hit
-inline constexpr std::uint32_t HEADER_MASK_BITS = 16u;  // width of the hit mask (a group has at most 16 pairs)
+inline constexpr std::uint32_t HEADER_MASK_SHIFT = 24u;  // bits 24..39: bit k set when pair first + k has a record (a hit or a flagged miss)
+inline constexpr std::uint32_t HEADER_MASK_BITS = 16u;  // width of the record mask (a group has at most 16 pairs)
 inline constexpr std::uint32_t HEADER_BITS = 40u;  // bits of a header (the rest of its slot is zero)
 
 // lines and pairs

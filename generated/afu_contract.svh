@@ -27,6 +27,7 @@ localparam int unsigned AFU_STATUS_CONTACTS_FOUND = 12;  // hits (may exceed the
 localparam int unsigned AFU_STATUS_RECORDS_WRITTEN = 16;  // contact records written
 localparam int unsigned AFU_STATUS_NONFINITE_PAIRS = 20;  // pairs with a NaN or infinite input
 localparam int unsigned AFU_STATUS_FIRST_BAD_PAIR = 24;  // lowest pair with an index out of range, or NO_BAD_PAIR
+localparam int unsigned AFU_STATUS_FLAGGED_MISSES = 28;  // misses with NONFINITE or ARITH set; pair mode writes a record for each, compact too
 localparam int unsigned AFU_STATUS_CYCLES_TOTAL = 32;  // cycles from start to the status write
 localparam int unsigned AFU_STATUS_CYCLES_LOAD = 36;  // cycles loading the sphere table
 localparam int unsigned AFU_STATUS_CYCLES_COMPUTE = 40;  // cycles in which a group of pairs was dispatched
@@ -75,8 +76,8 @@ localparam int unsigned AFU_LAYOUT_DERIVED_MASKED = 3;  // value fields: d, w; t
 // mask header (masked layouts, compact mode): a slot before each group's hits
 localparam int unsigned AFU_HEADER_PAIR_SHIFT = 0;  // bits 0..23: the group's first pair index
 localparam int unsigned AFU_HEADER_PAIR_BITS = 24;  // width of the first pair index
-localparam int unsigned AFU_HEADER_MASK_SHIFT = 24;  // bits 24..39: bit k set when pair first + k is a hit
-localparam int unsigned AFU_HEADER_MASK_BITS = 16;  // width of the hit mask (a group has at most 16 pairs)
+localparam int unsigned AFU_HEADER_MASK_SHIFT = 24;  // bits 24..39: bit k set when pair first + k has a record (a hit or a flagged miss)
+localparam int unsigned AFU_HEADER_MASK_BITS = 16;  // width of the record mask (a group has at most 16 pairs)
 localparam int unsigned AFU_HEADER_BITS = 40;  // bits of a header (the rest of its slot is zero)
 
 // lines and pairs

@@ -22,7 +22,7 @@ TEST(Contract, AStatusLineBuiltFromTheHeadersOffsetsDecodesFieldByField) {
   const std::uint32_t offs[] = {contract::STATUS_DONE, contract::STATUS_ERROR_FLAGS, contract::STATUS_PAIRS_PROCESSED,
                                 contract::STATUS_CONTACTS_FOUND, contract::STATUS_RECORDS_WRITTEN,
                                 contract::STATUS_NONFINITE_PAIRS, contract::STATUS_FIRST_BAD_PAIR,
-                                contract::STATUS_CYCLES_TOTAL, contract::STATUS_CYCLES_LOAD,
+                                contract::STATUS_FLAGGED_MISSES, contract::STATUS_CYCLES_TOTAL, contract::STATUS_CYCLES_LOAD,
                                 contract::STATUS_CYCLES_COMPUTE, contract::STATUS_CYCLES_WAIT_RD,
                                 contract::STATUS_CYCLES_WAIT_WR};
   for (std::uint32_t k = 0; k < std::size(offs); ++k) put<std::uint32_t>(l, offs[k], 1000 + k);
@@ -31,7 +31,7 @@ TEST(Contract, AStatusLineBuiltFromTheHeadersOffsetsDecodesFieldByField) {
   m.line(a.base) = l;
   const StatusLine s = readStatus(m, a.base);
   const std::uint32_t got[] = {s.done, s.errors, s.pairsProcessed, s.contactsFound, s.recordsWritten,
-                               s.nonFinitePairs, s.firstBadPair, s.cyclesTotal, s.cyclesLoading,
+                               s.nonFinitePairs, s.firstBadPair, s.flaggedMisses, s.cyclesTotal, s.cyclesLoading,
                                s.cyclesComputing, s.cyclesWaitRead, s.cyclesWaitWrite};
   for (std::uint32_t k = 0; k < std::size(offs); ++k) EXPECT_EQ(got[k], 1000 + k) << "status field at byte " << offs[k];
   EXPECT_EQ(encodeStatus(s), l);

@@ -234,7 +234,11 @@ TEST(Driver, PairsWithInputsOutsideTheLinkFormatAreFlaggedNotDropped) {
     }
     EXPECT_TRUE(r.contacts.hit[0] && r.contacts.hit[4]);
     EXPECT_FALSE(r.contacts.hit[1]);  // the AFU saw an infinity: no contact, but flagged
-    if (dense) EXPECT_TRUE(r.contacts.flags[1] & contract::REC_NONFINITE);  // compact mode has no record for a miss
+    // A flagged miss is a record in compact mode too, so its flag reaches the user either way.
+    // Pairs 1 and 3 hold sphere 1's infinity.
+    for (std::size_t k : {1, 3}) EXPECT_TRUE(r.contacts.flags[k] & contract::REC_NONFINITE) << k << " dense " << dense;
+    EXPECT_EQ(r.result.status.flaggedMisses, 2u) << "dense " << dense;
+    if (!dense) EXPECT_EQ(r.result.records.size(), r.contacts.hits() + 2);
   }
   // The same on the wire's own widths: writeSphereTable says which spheres did not fit.
   link::HostMemory m;

@@ -7916,6 +7916,7 @@ module ContactCollector_n16_default(
   output [4:0]  io_nPairs,
                 io_nHits,
                 io_nNonFinite,
+                io_nFlagged,
   output        io_nHeaders
 );
 
@@ -12719,22 +12720,86 @@ module ContactCollector_n16_default(
   wire        hit_13 = ~(io_groups_bits_invalid[13]) & casez_tmp_90;
   wire        hit_14 = ~(io_groups_bits_invalid[14]) & casez_tmp_97;
   wire        hit_15 = ~(io_groups_bits_invalid[15]) & casez_tmp_104;
-  wire        want_0 = active_0 & (io_dense | hit_0);
-  wire        want_1 = active_1 & (io_dense | hit_1);
-  wire        want_2 = active_2 & (io_dense | hit_2);
-  wire        want_3 = active_3 & (io_dense | hit_3);
-  wire        want_4 = active_4 & (io_dense | hit_4);
-  wire        want_5 = active_5 & (io_dense | hit_5);
-  wire        want_6 = active_6 & (io_dense | hit_6);
-  wire        want_7 = active_7 & (io_dense | hit_7);
-  wire        want_8 = active_8 & (io_dense | hit_8);
-  wire        want_9 = active_9 & (io_dense | hit_9);
-  wire        want_10 = active_10 & (io_dense | hit_10);
-  wire        want_11 = active_11 & (io_dense | hit_11);
-  wire        want_12 = active_12 & (io_dense | hit_12);
-  wire        want_13 = active_13 & (io_dense | hit_13);
-  wire        want_14 = active_14 & (io_dense | hit_14);
-  wire        want_15 = active_15 & (io_dense | hit_15);
+  wire [1:0]  _GEN = {casez_tmp_4[4], casez_tmp_4[2]};
+  wire        flagged_0 =
+    ~(io_groups_bits_invalid[0]) & ~casez_tmp & (casez_tmp_3 | (|_GEN));
+  wire [1:0]  _GEN_0 = {casez_tmp_11[4], casez_tmp_11[2]};
+  wire        flagged_1 =
+    ~(io_groups_bits_invalid[1]) & ~casez_tmp_6 & (casez_tmp_10 | (|_GEN_0));
+  wire [1:0]  _GEN_1 = {casez_tmp_18[4], casez_tmp_18[2]};
+  wire        flagged_2 =
+    ~(io_groups_bits_invalid[2]) & ~casez_tmp_13 & (casez_tmp_17 | (|_GEN_1));
+  wire [1:0]  _GEN_2 = {casez_tmp_25[4], casez_tmp_25[2]};
+  wire        flagged_3 =
+    ~(io_groups_bits_invalid[3]) & ~casez_tmp_20 & (casez_tmp_24 | (|_GEN_2));
+  wire [1:0]  _GEN_3 = {casez_tmp_32[4], casez_tmp_32[2]};
+  wire        flagged_4 =
+    ~(io_groups_bits_invalid[4]) & ~casez_tmp_27 & (casez_tmp_31 | (|_GEN_3));
+  wire [1:0]  _GEN_4 = {casez_tmp_39[4], casez_tmp_39[2]};
+  wire        flagged_5 =
+    ~(io_groups_bits_invalid[5]) & ~casez_tmp_34 & (casez_tmp_38 | (|_GEN_4));
+  wire [1:0]  _GEN_5 = {casez_tmp_46[4], casez_tmp_46[2]};
+  wire        flagged_6 =
+    ~(io_groups_bits_invalid[6]) & ~casez_tmp_41 & (casez_tmp_45 | (|_GEN_5));
+  wire [1:0]  _GEN_6 = {casez_tmp_53[4], casez_tmp_53[2]};
+  wire        flagged_7 =
+    ~(io_groups_bits_invalid[7]) & ~casez_tmp_48 & (casez_tmp_52 | (|_GEN_6));
+  wire [1:0]  _GEN_7 = {casez_tmp_60[4], casez_tmp_60[2]};
+  wire        flagged_8 =
+    ~(io_groups_bits_invalid[8]) & ~casez_tmp_55 & (casez_tmp_59 | (|_GEN_7));
+  wire [1:0]  _GEN_8 = {casez_tmp_67[4], casez_tmp_67[2]};
+  wire        flagged_9 =
+    ~(io_groups_bits_invalid[9]) & ~casez_tmp_62 & (casez_tmp_66 | (|_GEN_8));
+  wire [1:0]  _GEN_9 = {casez_tmp_74[4], casez_tmp_74[2]};
+  wire        flagged_10 =
+    ~(io_groups_bits_invalid[10]) & ~casez_tmp_69 & (casez_tmp_73 | (|_GEN_9));
+  wire [1:0]  _GEN_10 = {casez_tmp_81[4], casez_tmp_81[2]};
+  wire        flagged_11 =
+    ~(io_groups_bits_invalid[11]) & ~casez_tmp_76 & (casez_tmp_80 | (|_GEN_10));
+  wire [1:0]  _GEN_11 = {casez_tmp_88[4], casez_tmp_88[2]};
+  wire        flagged_12 =
+    ~(io_groups_bits_invalid[12]) & ~casez_tmp_83 & (casez_tmp_87 | (|_GEN_11));
+  wire [1:0]  _GEN_12 = {casez_tmp_95[4], casez_tmp_95[2]};
+  wire        flagged_13 =
+    ~(io_groups_bits_invalid[13]) & ~casez_tmp_90 & (casez_tmp_94 | (|_GEN_12));
+  wire [1:0]  _GEN_13 = {casez_tmp_102[4], casez_tmp_102[2]};
+  wire        flagged_14 =
+    ~(io_groups_bits_invalid[14]) & ~casez_tmp_97 & (casez_tmp_101 | (|_GEN_13));
+  wire [1:0]  _GEN_14 = {casez_tmp_109[4], casez_tmp_109[2]};
+  wire        flagged_15 =
+    ~(io_groups_bits_invalid[15]) & ~casez_tmp_104 & (casez_tmp_108 | (|_GEN_14));
+  wire        record_0 = hit_0 | flagged_0;
+  wire        record_1 = hit_1 | flagged_1;
+  wire        record_2 = hit_2 | flagged_2;
+  wire        record_3 = hit_3 | flagged_3;
+  wire        record_4 = hit_4 | flagged_4;
+  wire        record_5 = hit_5 | flagged_5;
+  wire        record_6 = hit_6 | flagged_6;
+  wire        record_7 = hit_7 | flagged_7;
+  wire        record_8 = hit_8 | flagged_8;
+  wire        record_9 = hit_9 | flagged_9;
+  wire        record_10 = hit_10 | flagged_10;
+  wire        record_11 = hit_11 | flagged_11;
+  wire        record_12 = hit_12 | flagged_12;
+  wire        record_13 = hit_13 | flagged_13;
+  wire        record_14 = hit_14 | flagged_14;
+  wire        record_15 = hit_15 | flagged_15;
+  wire        want_0 = active_0 & (io_dense | record_0);
+  wire        want_1 = active_1 & (io_dense | record_1);
+  wire        want_2 = active_2 & (io_dense | record_2);
+  wire        want_3 = active_3 & (io_dense | record_3);
+  wire        want_4 = active_4 & (io_dense | record_4);
+  wire        want_5 = active_5 & (io_dense | record_5);
+  wire        want_6 = active_6 & (io_dense | record_6);
+  wire        want_7 = active_7 & (io_dense | record_7);
+  wire        want_8 = active_8 & (io_dense | record_8);
+  wire        want_9 = active_9 & (io_dense | record_9);
+  wire        want_10 = active_10 & (io_dense | record_10);
+  wire        want_11 = active_11 & (io_dense | record_11);
+  wire        want_12 = active_12 & (io_dense | record_12);
+  wire        want_13 = active_13 & (io_dense | record_13);
+  wire        want_14 = active_14 & (io_dense | record_14);
+  wire        want_15 = active_15 & (io_dense | record_15);
   reg         hdrSent;
   wire        allValid =
     (~active_0 | casez_tmp_111) & (~active_1 | casez_tmp_112)
@@ -12745,22 +12810,22 @@ module ContactCollector_n16_default(
     & (~active_10 | casez_tmp_121) & (~active_11 | casez_tmp_122)
     & (~active_12 | casez_tmp_123) & (~active_13 | casez_tmp_124)
     & (~active_14 | casez_tmp_125) & (~active_15 | casez_tmp_126);
-  wire        _header_bits_T = active_0 & hit_0;
-  wire        _header_bits_T_1 = active_1 & hit_1;
-  wire        _header_bits_T_2 = active_2 & hit_2;
-  wire        _header_bits_T_3 = active_3 & hit_3;
-  wire        _header_bits_T_4 = active_4 & hit_4;
-  wire        _header_bits_T_5 = active_5 & hit_5;
-  wire        _header_bits_T_6 = active_6 & hit_6;
-  wire        _header_bits_T_7 = active_7 & hit_7;
-  wire        _header_bits_T_8 = active_8 & hit_8;
-  wire        _header_bits_T_9 = active_9 & hit_9;
-  wire        _header_bits_T_10 = active_10 & hit_10;
-  wire        _header_bits_T_11 = active_11 & hit_11;
-  wire        _header_bits_T_12 = active_12 & hit_12;
-  wire        _header_bits_T_13 = active_13 & hit_13;
-  wire        _header_bits_T_14 = active_14 & hit_14;
-  wire        _header_bits_T_15 = active_15 & hit_15;
+  wire        _header_bits_T = active_0 & record_0;
+  wire        _header_bits_T_1 = active_1 & record_1;
+  wire        _header_bits_T_2 = active_2 & record_2;
+  wire        _header_bits_T_3 = active_3 & record_3;
+  wire        _header_bits_T_4 = active_4 & record_4;
+  wire        _header_bits_T_5 = active_5 & record_5;
+  wire        _header_bits_T_6 = active_6 & record_6;
+  wire        _header_bits_T_7 = active_7 & record_7;
+  wire        _header_bits_T_8 = active_8 & record_8;
+  wire        _header_bits_T_9 = active_9 & record_9;
+  wire        _header_bits_T_10 = active_10 & record_10;
+  wire        _header_bits_T_11 = active_11 & record_11;
+  wire        _header_bits_T_12 = active_12 & record_12;
+  wire        _header_bits_T_13 = active_13 & record_13;
+  wire        _header_bits_T_14 = active_14 & record_14;
+  wire        _header_bits_T_15 = active_15 & record_15;
   wire        needHdr =
     ~io_dense & ~hdrSent
     & (_header_bits_T | _header_bits_T_1 | _header_bits_T_2 | _header_bits_T_3
@@ -12797,82 +12862,70 @@ module ContactCollector_n16_default(
   wire [4:0]  wantCount_12 = wantCount_11 + {4'h0, want_12};
   wire [4:0]  wantCount_13 = wantCount_12 + {4'h0, want_13};
   wire [4:0]  wantCount_14 = wantCount_13 + {4'h0, want_14};
-  wire [5:0]  _GEN = {5'h0, needHdr};
-  wire [5:0]  _sel_T_289 = {5'h0, want_0} + _GEN;
-  wire [5:0]  _GEN_0 = {3'h0, io_room};
+  wire [5:0]  _GEN_15 = {5'h0, needHdr};
+  wire [5:0]  _sel_T_289 = {5'h0, want_0} + _GEN_15;
+  wire [5:0]  _GEN_16 = {3'h0, io_room};
   wire        take_0 =
-    active_0 & okPrefix_0 & (~needHdr | allValid) & _sel_T_289 <= _GEN_0;
-  wire [5:0]  _sel_T_292 = {1'h0, wantCount_1} + _GEN;
+    active_0 & okPrefix_0 & (~needHdr | allValid) & _sel_T_289 <= _GEN_16;
+  wire [5:0]  _sel_T_292 = {1'h0, wantCount_1} + _GEN_15;
   wire        take_1 =
-    active_1 & okPrefix_1 & (~needHdr | allValid) & _sel_T_292 <= _GEN_0;
-  wire [5:0]  _sel_T_295 = {1'h0, wantCount_2} + _GEN;
+    active_1 & okPrefix_1 & (~needHdr | allValid) & _sel_T_292 <= _GEN_16;
+  wire [5:0]  _sel_T_295 = {1'h0, wantCount_2} + _GEN_15;
   wire        take_2 =
-    active_2 & okPrefix_2 & (~needHdr | allValid) & _sel_T_295 <= _GEN_0;
-  wire [5:0]  _sel_T_298 = {1'h0, wantCount_3} + _GEN;
+    active_2 & okPrefix_2 & (~needHdr | allValid) & _sel_T_295 <= _GEN_16;
+  wire [5:0]  _sel_T_298 = {1'h0, wantCount_3} + _GEN_15;
   wire        take_3 =
-    active_3 & okPrefix_3 & (~needHdr | allValid) & _sel_T_298 <= _GEN_0;
-  wire [5:0]  _sel_T_301 = {1'h0, wantCount_4} + _GEN;
+    active_3 & okPrefix_3 & (~needHdr | allValid) & _sel_T_298 <= _GEN_16;
+  wire [5:0]  _sel_T_301 = {1'h0, wantCount_4} + _GEN_15;
   wire        take_4 =
-    active_4 & okPrefix_4 & (~needHdr | allValid) & _sel_T_301 <= _GEN_0;
-  wire [5:0]  _sel_T_304 = {1'h0, wantCount_5} + _GEN;
+    active_4 & okPrefix_4 & (~needHdr | allValid) & _sel_T_301 <= _GEN_16;
+  wire [5:0]  _sel_T_304 = {1'h0, wantCount_5} + _GEN_15;
   wire        take_5 =
-    active_5 & okPrefix_5 & (~needHdr | allValid) & _sel_T_304 <= _GEN_0;
-  wire [5:0]  _sel_T_307 = {1'h0, wantCount_6} + _GEN;
+    active_5 & okPrefix_5 & (~needHdr | allValid) & _sel_T_304 <= _GEN_16;
+  wire [5:0]  _sel_T_307 = {1'h0, wantCount_6} + _GEN_15;
   wire        take_6 =
-    active_6 & okPrefix_6 & (~needHdr | allValid) & _sel_T_307 <= _GEN_0;
-  wire [5:0]  _sel_T_310 = {1'h0, wantCount_7} + _GEN;
+    active_6 & okPrefix_6 & (~needHdr | allValid) & _sel_T_307 <= _GEN_16;
+  wire [5:0]  _sel_T_310 = {1'h0, wantCount_7} + _GEN_15;
   wire        take_7 =
-    active_7 & okPrefix_7 & (~needHdr | allValid) & _sel_T_310 <= _GEN_0;
-  wire [5:0]  _sel_T_313 = {1'h0, wantCount_8} + _GEN;
+    active_7 & okPrefix_7 & (~needHdr | allValid) & _sel_T_310 <= _GEN_16;
+  wire [5:0]  _sel_T_313 = {1'h0, wantCount_8} + _GEN_15;
   wire        take_8 =
-    active_8 & okPrefix_8 & (~needHdr | allValid) & _sel_T_313 <= _GEN_0;
-  wire [5:0]  _sel_T_316 = {1'h0, wantCount_9} + _GEN;
+    active_8 & okPrefix_8 & (~needHdr | allValid) & _sel_T_313 <= _GEN_16;
+  wire [5:0]  _sel_T_316 = {1'h0, wantCount_9} + _GEN_15;
   wire        take_9 =
-    active_9 & okPrefix_9 & (~needHdr | allValid) & _sel_T_316 <= _GEN_0;
-  wire [5:0]  _sel_T_319 = {1'h0, wantCount_10} + _GEN;
+    active_9 & okPrefix_9 & (~needHdr | allValid) & _sel_T_316 <= _GEN_16;
+  wire [5:0]  _sel_T_319 = {1'h0, wantCount_10} + _GEN_15;
   wire        take_10 =
-    active_10 & okPrefix_10 & (~needHdr | allValid) & _sel_T_319 <= _GEN_0;
-  wire [5:0]  _sel_T_322 = {1'h0, wantCount_11} + _GEN;
+    active_10 & okPrefix_10 & (~needHdr | allValid) & _sel_T_319 <= _GEN_16;
+  wire [5:0]  _sel_T_322 = {1'h0, wantCount_11} + _GEN_15;
   wire        take_11 =
-    active_11 & okPrefix_11 & (~needHdr | allValid) & _sel_T_322 <= _GEN_0;
-  wire [5:0]  _sel_T_325 = {1'h0, wantCount_12} + _GEN;
+    active_11 & okPrefix_11 & (~needHdr | allValid) & _sel_T_322 <= _GEN_16;
+  wire [5:0]  _sel_T_325 = {1'h0, wantCount_12} + _GEN_15;
   wire        take_12 =
-    active_12 & okPrefix_12 & (~needHdr | allValid) & _sel_T_325 <= _GEN_0;
-  wire [5:0]  _sel_T_328 = {1'h0, wantCount_13} + _GEN;
+    active_12 & okPrefix_12 & (~needHdr | allValid) & _sel_T_325 <= _GEN_16;
+  wire [5:0]  _sel_T_328 = {1'h0, wantCount_13} + _GEN_15;
   wire        take_13 =
-    active_13 & okPrefix_13 & (~needHdr | allValid) & _sel_T_328 <= _GEN_0;
-  wire [5:0]  _sel_T_331 = {1'h0, wantCount_14} + _GEN;
+    active_13 & okPrefix_13 & (~needHdr | allValid) & _sel_T_328 <= _GEN_16;
+  wire [5:0]  _sel_T_331 = {1'h0, wantCount_14} + _GEN_15;
   wire        take_14 =
-    active_14 & okPrefix_14 & (~needHdr | allValid) & _sel_T_331 <= _GEN_0;
-  wire [5:0]  _sel_T_334 = {1'h0, wantCount_14 + {4'h0, want_15}} + _GEN;
+    active_14 & okPrefix_14 & (~needHdr | allValid) & _sel_T_331 <= _GEN_16;
+  wire [5:0]  _sel_T_334 = {1'h0, wantCount_14 + {4'h0, want_15}} + _GEN_15;
   wire        take_15 =
     active_15 & okPrefix_14 & (~active_15 | casez_tmp_126) & (~needHdr | allValid)
-    & _sel_T_334 <= _GEN_0;
+    & _sel_T_334 <= _GEN_16;
   wire [71:0] records_0_bits =
     io_groups_bits_invalid[0]
       ? 72'h60000000000000000
-      : {3'h0,
-         |{casez_tmp_4[4], casez_tmp_4[2]},
-         casez_tmp_3,
-         casez_tmp_0,
-         casez_tmp,
-         casez_tmp_2,
-         casez_tmp_1};
+      : {3'h0, |_GEN, casez_tmp_3, casez_tmp_0, casez_tmp, casez_tmp_2, casez_tmp_1};
   wire [71:0] records_1_bits =
     io_groups_bits_invalid[1]
       ? 72'h60000000000000000
-      : {3'h0,
-         |{casez_tmp_11[4], casez_tmp_11[2]},
-         casez_tmp_10,
-         casez_tmp_7,
-         casez_tmp_6,
-         casez_tmp_9,
-         casez_tmp_8};
+      : {3'h0, |_GEN_0, casez_tmp_10, casez_tmp_7, casez_tmp_6, casez_tmp_9, casez_tmp_8};
   wire [71:0] records_2_bits =
     io_groups_bits_invalid[2]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_18[4], casez_tmp_18[2]},
+         |_GEN_1,
          casez_tmp_17,
          casez_tmp_14,
          casez_tmp_13,
@@ -12882,7 +12935,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[3]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_25[4], casez_tmp_25[2]},
+         |_GEN_2,
          casez_tmp_24,
          casez_tmp_21,
          casez_tmp_20,
@@ -12892,7 +12945,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[4]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_32[4], casez_tmp_32[2]},
+         |_GEN_3,
          casez_tmp_31,
          casez_tmp_28,
          casez_tmp_27,
@@ -12902,7 +12955,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[5]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_39[4], casez_tmp_39[2]},
+         |_GEN_4,
          casez_tmp_38,
          casez_tmp_35,
          casez_tmp_34,
@@ -12912,7 +12965,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[6]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_46[4], casez_tmp_46[2]},
+         |_GEN_5,
          casez_tmp_45,
          casez_tmp_42,
          casez_tmp_41,
@@ -12922,7 +12975,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[7]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_53[4], casez_tmp_53[2]},
+         |_GEN_6,
          casez_tmp_52,
          casez_tmp_49,
          casez_tmp_48,
@@ -12932,7 +12985,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[8]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_60[4], casez_tmp_60[2]},
+         |_GEN_7,
          casez_tmp_59,
          casez_tmp_56,
          casez_tmp_55,
@@ -12942,7 +12995,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[9]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_67[4], casez_tmp_67[2]},
+         |_GEN_8,
          casez_tmp_66,
          casez_tmp_63,
          casez_tmp_62,
@@ -12952,7 +13005,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[10]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_74[4], casez_tmp_74[2]},
+         |_GEN_9,
          casez_tmp_73,
          casez_tmp_70,
          casez_tmp_69,
@@ -12962,7 +13015,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[11]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_81[4], casez_tmp_81[2]},
+         |_GEN_10,
          casez_tmp_80,
          casez_tmp_77,
          casez_tmp_76,
@@ -12972,7 +13025,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[12]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_88[4], casez_tmp_88[2]},
+         |_GEN_11,
          casez_tmp_87,
          casez_tmp_84,
          casez_tmp_83,
@@ -12982,7 +13035,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[13]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_95[4], casez_tmp_95[2]},
+         |_GEN_12,
          casez_tmp_94,
          casez_tmp_91,
          casez_tmp_90,
@@ -12992,7 +13045,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[14]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_102[4], casez_tmp_102[2]},
+         |_GEN_13,
          casez_tmp_101,
          casez_tmp_98,
          casez_tmp_97,
@@ -13002,7 +13055,7 @@ module ContactCollector_n16_default(
     io_groups_bits_invalid[15]
       ? 72'h60000000000000000
       : {3'h0,
-         |{casez_tmp_109[4], casez_tmp_109[2]},
+         |_GEN_14,
          casez_tmp_108,
          casez_tmp_105,
          casez_tmp_104,
@@ -13152,18 +13205,18 @@ module ContactCollector_n16_default(
   wire        sel_15_6 = _sel_T_333 & _sel_T_334 == 6'h7;
   wire [4:0]  _spNext_T = sp + nTaken;
   wire        io_groups_ready_0 = io_groups_valid & _spNext_T == io_groups_bits_cnt;
-  wire        _GEN_1 = io_groups_ready_0 & io_groups_valid;
+  wire        _GEN_17 = io_groups_ready_0 & io_groups_valid;
   always @(posedge clock) begin
     if (reset) begin
       sp <= 5'h0;
       hdrSent <= 1'h0;
     end
     else begin
-      if (_GEN_1)
+      if (_GEN_17)
         sp <= 5'h0;
       else
         sp <= _spNext_T;
-      hdrSent <= ~_GEN_1 & (hdrFire | hdrSent);
+      hdrSent <= ~_GEN_17 & (hdrFire | hdrSent);
     end
   end // always @(posedge)
   assign io_groups_ready = io_groups_ready_0;
@@ -13482,6 +13535,21 @@ module ContactCollector_n16_default(
               + {1'h0,
                  {1'h0, take_14 & ~(io_groups_bits_invalid[14]) & casez_tmp_101}
                    + {1'h0, take_15 & ~(io_groups_bits_invalid[15]) & casez_tmp_108}}}};
+  assign io_nFlagged =
+    {1'h0,
+     {1'h0,
+      {1'h0, {1'h0, take_0 & flagged_0} + {1'h0, take_1 & flagged_1}}
+        + {1'h0, {1'h0, take_2 & flagged_2} + {1'h0, take_3 & flagged_3}}}
+       + {1'h0,
+          {1'h0, {1'h0, take_4 & flagged_4} + {1'h0, take_5 & flagged_5}}
+            + {1'h0, {1'h0, take_6 & flagged_6} + {1'h0, take_7 & flagged_7}}}}
+    + {1'h0,
+       {1'h0,
+        {1'h0, {1'h0, take_8 & flagged_8} + {1'h0, take_9 & flagged_9}}
+          + {1'h0, {1'h0, take_10 & flagged_10} + {1'h0, take_11 & flagged_11}}}
+         + {1'h0,
+            {1'h0, {1'h0, take_12 & flagged_12} + {1'h0, take_13 & flagged_13}}
+              + {1'h0, {1'h0, take_14 & flagged_14} + {1'h0, take_15 & flagged_15}}}};
   assign io_nHeaders = hdrFire;
 endmodule
 
@@ -15198,6 +15266,7 @@ module Puc_default(
   wire [4:0]   _coll_io_nPairs;
   wire [4:0]   _coll_io_nHits;
   wire [4:0]   _coll_io_nNonFinite;
+  wire [4:0]   _coll_io_nFlagged;
   wire         _coll_io_nHeaders;
   wire         _groups_io_enq_ready;
   wire         _groups_io_deq_valid;
@@ -15421,6 +15490,7 @@ module Puc_default(
   reg  [31:0]  found;
   reg  [31:0]  headers;
   reg  [31:0]  nonFinite;
+  reg  [31:0]  flaggedMiss;
   reg  [31:0]  firstBad;
   reg  [31:0]  cycTotal;
   reg  [31:0]  cycLoad;
@@ -15447,7 +15517,9 @@ module Puc_default(
     processed == {8'h0, run_4[23:0]} & ~(|_rd_io_outstanding) & _rd_io_loaded;
   wire         drainDone = _pack_io_idle & ~_pack_io_lines_valid & ~(|_wr_io_outstanding);
   wire [63:0]  totalRecords =
-    run_8[0] ? {40'h0, run_4[23:0]} : {31'h0, {1'h0, headers} + {1'h0, found}};
+    run_8[0]
+      ? {40'h0, run_4[23:0]}
+      : {32'h0, headers} + {31'h0, {1'h0, flaggedMiss} + {1'h0, found}};
   wire         _capErr_T = totalRecords > run_6;
   wire [1:0]   _GEN_2 = {errors[4], errors[1]};
   wire [3:0]   _GEN_3 = errors[3:0] | {|nonFinite, 3'h0};
@@ -15468,7 +15540,7 @@ module Puc_default(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:256 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:262 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -15531,6 +15603,7 @@ module Puc_default(
       found <= 32'h0;
       headers <= 32'h0;
       nonFinite <= 32'h0;
+      flaggedMiss <= 32'h0;
       firstBad <= 32'hFFFFFFFF;
       cycTotal <= 32'h0;
       cycLoad <= 32'h0;
@@ -15574,6 +15647,7 @@ module Puc_default(
         found <= 32'h0;
         headers <= 32'h0;
         nonFinite <= 32'h0;
+        flaggedMiss <= 32'h0;
         firstBad <= 32'hFFFFFFFF;
         cycLoad <= 32'h0;
         cycCompute <= 32'h0;
@@ -15585,6 +15659,7 @@ module Puc_default(
         found <= found + {27'h0, _coll_io_nHits};
         headers <= headers + {31'h0, _coll_io_nHeaders};
         nonFinite <= nonFinite + {27'h0, _coll_io_nNonFinite};
+        flaggedMiss <= flaggedMiss + {27'h0, _coll_io_nFlagged};
         if (_groups_io_enq_ready & _disp_io_groups_valid & (|_disp_io_groups_bits_invalid)
             & _GEN_5 < firstBad)
           firstBad <= _GEN_5;
@@ -16388,6 +16463,7 @@ module Puc_default(
     .io_nPairs                 (_coll_io_nPairs),
     .io_nHits                  (_coll_io_nHits),
     .io_nNonFinite             (_coll_io_nNonFinite),
+    .io_nFlagged               (_coll_io_nFlagged),
     .io_nHeaders               (_coll_io_nHeaders)
   );
   ContactPacker_w32_derivedmasked_r7_default pack (
@@ -16438,7 +16514,7 @@ module Puc_default(
         cycCompute,
         cycLoad,
         cycTotal,
-        32'h0,
+        flaggedMiss,
         firstBad,
         nonFinite,
         (|_GEN_2) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],

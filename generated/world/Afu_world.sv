@@ -7894,6 +7894,7 @@ module ContactCollector_n16_world(
   input         clock,
                 reset,
                 io_dense,
+                io_keepFlagged,
   output        io_groups_ready,
   input         io_groups_valid,
   input  [3:0]  io_groups_bits_base,
@@ -8057,7 +8058,8 @@ module ContactCollector_n16_world(
   output [2:0]  io_nRecs,
   output [4:0]  io_nPairs,
                 io_nHits,
-                io_nNonFinite
+                io_nNonFinite,
+                io_nFlagged
 );
 
   reg  [4:0]  sp;
@@ -12860,22 +12862,70 @@ module ContactCollector_n16_world(
   wire        hit_13 = ~(io_groups_bits_invalid[13]) & casez_tmp_90;
   wire        hit_14 = ~(io_groups_bits_invalid[14]) & casez_tmp_97;
   wire        hit_15 = ~(io_groups_bits_invalid[15]) & casez_tmp_104;
-  wire        want_0 = active_0 & (io_dense | hit_0);
-  wire        want_1 = active_1 & (io_dense | hit_1);
-  wire        want_2 = active_2 & (io_dense | hit_2);
-  wire        want_3 = active_3 & (io_dense | hit_3);
-  wire        want_4 = active_4 & (io_dense | hit_4);
-  wire        want_5 = active_5 & (io_dense | hit_5);
-  wire        want_6 = active_6 & (io_dense | hit_6);
-  wire        want_7 = active_7 & (io_dense | hit_7);
-  wire        want_8 = active_8 & (io_dense | hit_8);
-  wire        want_9 = active_9 & (io_dense | hit_9);
-  wire        want_10 = active_10 & (io_dense | hit_10);
-  wire        want_11 = active_11 & (io_dense | hit_11);
-  wire        want_12 = active_12 & (io_dense | hit_12);
-  wire        want_13 = active_13 & (io_dense | hit_13);
-  wire        want_14 = active_14 & (io_dense | hit_14);
-  wire        want_15 = active_15 & (io_dense | hit_15);
+  wire [1:0]  _GEN = {casez_tmp_4[4], casez_tmp_4[2]};
+  wire        flagged_0 =
+    ~(io_groups_bits_invalid[0]) & ~casez_tmp & (casez_tmp_3 | (|_GEN));
+  wire [1:0]  _GEN_0 = {casez_tmp_11[4], casez_tmp_11[2]};
+  wire        flagged_1 =
+    ~(io_groups_bits_invalid[1]) & ~casez_tmp_6 & (casez_tmp_10 | (|_GEN_0));
+  wire [1:0]  _GEN_1 = {casez_tmp_18[4], casez_tmp_18[2]};
+  wire        flagged_2 =
+    ~(io_groups_bits_invalid[2]) & ~casez_tmp_13 & (casez_tmp_17 | (|_GEN_1));
+  wire [1:0]  _GEN_2 = {casez_tmp_25[4], casez_tmp_25[2]};
+  wire        flagged_3 =
+    ~(io_groups_bits_invalid[3]) & ~casez_tmp_20 & (casez_tmp_24 | (|_GEN_2));
+  wire [1:0]  _GEN_3 = {casez_tmp_32[4], casez_tmp_32[2]};
+  wire        flagged_4 =
+    ~(io_groups_bits_invalid[4]) & ~casez_tmp_27 & (casez_tmp_31 | (|_GEN_3));
+  wire [1:0]  _GEN_4 = {casez_tmp_39[4], casez_tmp_39[2]};
+  wire        flagged_5 =
+    ~(io_groups_bits_invalid[5]) & ~casez_tmp_34 & (casez_tmp_38 | (|_GEN_4));
+  wire [1:0]  _GEN_5 = {casez_tmp_46[4], casez_tmp_46[2]};
+  wire        flagged_6 =
+    ~(io_groups_bits_invalid[6]) & ~casez_tmp_41 & (casez_tmp_45 | (|_GEN_5));
+  wire [1:0]  _GEN_6 = {casez_tmp_53[4], casez_tmp_53[2]};
+  wire        flagged_7 =
+    ~(io_groups_bits_invalid[7]) & ~casez_tmp_48 & (casez_tmp_52 | (|_GEN_6));
+  wire [1:0]  _GEN_7 = {casez_tmp_60[4], casez_tmp_60[2]};
+  wire        flagged_8 =
+    ~(io_groups_bits_invalid[8]) & ~casez_tmp_55 & (casez_tmp_59 | (|_GEN_7));
+  wire [1:0]  _GEN_8 = {casez_tmp_67[4], casez_tmp_67[2]};
+  wire        flagged_9 =
+    ~(io_groups_bits_invalid[9]) & ~casez_tmp_62 & (casez_tmp_66 | (|_GEN_8));
+  wire [1:0]  _GEN_9 = {casez_tmp_74[4], casez_tmp_74[2]};
+  wire        flagged_10 =
+    ~(io_groups_bits_invalid[10]) & ~casez_tmp_69 & (casez_tmp_73 | (|_GEN_9));
+  wire [1:0]  _GEN_10 = {casez_tmp_81[4], casez_tmp_81[2]};
+  wire        flagged_11 =
+    ~(io_groups_bits_invalid[11]) & ~casez_tmp_76 & (casez_tmp_80 | (|_GEN_10));
+  wire [1:0]  _GEN_11 = {casez_tmp_88[4], casez_tmp_88[2]};
+  wire        flagged_12 =
+    ~(io_groups_bits_invalid[12]) & ~casez_tmp_83 & (casez_tmp_87 | (|_GEN_11));
+  wire [1:0]  _GEN_12 = {casez_tmp_95[4], casez_tmp_95[2]};
+  wire        flagged_13 =
+    ~(io_groups_bits_invalid[13]) & ~casez_tmp_90 & (casez_tmp_94 | (|_GEN_12));
+  wire [1:0]  _GEN_13 = {casez_tmp_102[4], casez_tmp_102[2]};
+  wire        flagged_14 =
+    ~(io_groups_bits_invalid[14]) & ~casez_tmp_97 & (casez_tmp_101 | (|_GEN_13));
+  wire [1:0]  _GEN_14 = {casez_tmp_109[4], casez_tmp_109[2]};
+  wire        flagged_15 =
+    ~(io_groups_bits_invalid[15]) & ~casez_tmp_104 & (casez_tmp_108 | (|_GEN_14));
+  wire        want_0 = active_0 & (io_dense | hit_0 | io_keepFlagged & flagged_0);
+  wire        want_1 = active_1 & (io_dense | hit_1 | io_keepFlagged & flagged_1);
+  wire        want_2 = active_2 & (io_dense | hit_2 | io_keepFlagged & flagged_2);
+  wire        want_3 = active_3 & (io_dense | hit_3 | io_keepFlagged & flagged_3);
+  wire        want_4 = active_4 & (io_dense | hit_4 | io_keepFlagged & flagged_4);
+  wire        want_5 = active_5 & (io_dense | hit_5 | io_keepFlagged & flagged_5);
+  wire        want_6 = active_6 & (io_dense | hit_6 | io_keepFlagged & flagged_6);
+  wire        want_7 = active_7 & (io_dense | hit_7 | io_keepFlagged & flagged_7);
+  wire        want_8 = active_8 & (io_dense | hit_8 | io_keepFlagged & flagged_8);
+  wire        want_9 = active_9 & (io_dense | hit_9 | io_keepFlagged & flagged_9);
+  wire        want_10 = active_10 & (io_dense | hit_10 | io_keepFlagged & flagged_10);
+  wire        want_11 = active_11 & (io_dense | hit_11 | io_keepFlagged & flagged_11);
+  wire        want_12 = active_12 & (io_dense | hit_12 | io_keepFlagged & flagged_12);
+  wire        want_13 = active_13 & (io_dense | hit_13 | io_keepFlagged & flagged_13);
+  wire        want_14 = active_14 & (io_dense | hit_14 | io_keepFlagged & flagged_14);
+  wire        want_15 = active_15 & (io_dense | hit_15 | io_keepFlagged & flagged_15);
   wire        okPrefix_0 = ~active_0 | casez_tmp_111;
   wire        okPrefix_1 = okPrefix_0 & (~active_1 | casez_tmp_112);
   wire        okPrefix_2 = okPrefix_1 & (~active_2 | casez_tmp_113);
@@ -12906,29 +12956,30 @@ module ContactCollector_n16_world(
   wire [4:0]  wantCount_13 = wantCount_12 + {4'h0, want_13};
   wire [4:0]  wantCount_14 = wantCount_13 + {4'h0, want_14};
   wire [4:0]  wantCount_15 = wantCount_14 + {4'h0, want_15};
-  wire [5:0]  _GEN = {3'h0, io_room};
-  wire        take_0 = active_0 & okPrefix_0 & {5'h0, want_0} <= _GEN;
-  wire        take_1 = active_1 & okPrefix_1 & {1'h0, wantCount_1} <= _GEN;
-  wire        take_2 = active_2 & okPrefix_2 & {1'h0, wantCount_2} <= _GEN;
-  wire        take_3 = active_3 & okPrefix_3 & {1'h0, wantCount_3} <= _GEN;
-  wire        take_4 = active_4 & okPrefix_4 & {1'h0, wantCount_4} <= _GEN;
-  wire        take_5 = active_5 & okPrefix_5 & {1'h0, wantCount_5} <= _GEN;
-  wire        take_6 = active_6 & okPrefix_6 & {1'h0, wantCount_6} <= _GEN;
-  wire        take_7 = active_7 & okPrefix_7 & {1'h0, wantCount_7} <= _GEN;
-  wire        take_8 = active_8 & okPrefix_8 & {1'h0, wantCount_8} <= _GEN;
-  wire        take_9 = active_9 & okPrefix_9 & {1'h0, wantCount_9} <= _GEN;
-  wire        take_10 = active_10 & okPrefix_10 & {1'h0, wantCount_10} <= _GEN;
-  wire        take_11 = active_11 & okPrefix_11 & {1'h0, wantCount_11} <= _GEN;
-  wire        take_12 = active_12 & okPrefix_12 & {1'h0, wantCount_12} <= _GEN;
-  wire        take_13 = active_13 & okPrefix_13 & {1'h0, wantCount_13} <= _GEN;
-  wire        take_14 = active_14 & okPrefix_14 & {1'h0, wantCount_14} <= _GEN;
+  wire [5:0]  _GEN_15 = {3'h0, io_room};
+  wire        take_0 = active_0 & okPrefix_0 & {5'h0, want_0} <= _GEN_15;
+  wire        take_1 = active_1 & okPrefix_1 & {1'h0, wantCount_1} <= _GEN_15;
+  wire        take_2 = active_2 & okPrefix_2 & {1'h0, wantCount_2} <= _GEN_15;
+  wire        take_3 = active_3 & okPrefix_3 & {1'h0, wantCount_3} <= _GEN_15;
+  wire        take_4 = active_4 & okPrefix_4 & {1'h0, wantCount_4} <= _GEN_15;
+  wire        take_5 = active_5 & okPrefix_5 & {1'h0, wantCount_5} <= _GEN_15;
+  wire        take_6 = active_6 & okPrefix_6 & {1'h0, wantCount_6} <= _GEN_15;
+  wire        take_7 = active_7 & okPrefix_7 & {1'h0, wantCount_7} <= _GEN_15;
+  wire        take_8 = active_8 & okPrefix_8 & {1'h0, wantCount_8} <= _GEN_15;
+  wire        take_9 = active_9 & okPrefix_9 & {1'h0, wantCount_9} <= _GEN_15;
+  wire        take_10 = active_10 & okPrefix_10 & {1'h0, wantCount_10} <= _GEN_15;
+  wire        take_11 = active_11 & okPrefix_11 & {1'h0, wantCount_11} <= _GEN_15;
+  wire        take_12 = active_12 & okPrefix_12 & {1'h0, wantCount_12} <= _GEN_15;
+  wire        take_13 = active_13 & okPrefix_13 & {1'h0, wantCount_13} <= _GEN_15;
+  wire        take_14 = active_14 & okPrefix_14 & {1'h0, wantCount_14} <= _GEN_15;
   wire        take_15 =
-    active_15 & okPrefix_14 & (~active_15 | casez_tmp_126) & {1'h0, wantCount_15} <= _GEN;
+    active_15 & okPrefix_14 & (~active_15 | casez_tmp_126)
+    & {1'h0, wantCount_15} <= _GEN_15;
   wire [95:0] records_1_bits =
     io_groups_bits_invalid[1]
       ? {8'h6, casez_tmp_12, 64'h0}
       : {3'h0,
-         |{casez_tmp_11[4], casez_tmp_11[2]},
+         |_GEN_0,
          casez_tmp_10,
          casez_tmp_7,
          casez_tmp_6,
@@ -12939,7 +12990,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[2]
       ? {8'h6, casez_tmp_19, 64'h0}
       : {3'h0,
-         |{casez_tmp_18[4], casez_tmp_18[2]},
+         |_GEN_1,
          casez_tmp_17,
          casez_tmp_14,
          casez_tmp_13,
@@ -12950,7 +13001,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[3]
       ? {8'h6, casez_tmp_26, 64'h0}
       : {3'h0,
-         |{casez_tmp_25[4], casez_tmp_25[2]},
+         |_GEN_2,
          casez_tmp_24,
          casez_tmp_21,
          casez_tmp_20,
@@ -12961,7 +13012,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[4]
       ? {8'h6, casez_tmp_33, 64'h0}
       : {3'h0,
-         |{casez_tmp_32[4], casez_tmp_32[2]},
+         |_GEN_3,
          casez_tmp_31,
          casez_tmp_28,
          casez_tmp_27,
@@ -12972,7 +13023,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[5]
       ? {8'h6, casez_tmp_40, 64'h0}
       : {3'h0,
-         |{casez_tmp_39[4], casez_tmp_39[2]},
+         |_GEN_4,
          casez_tmp_38,
          casez_tmp_35,
          casez_tmp_34,
@@ -12983,7 +13034,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[6]
       ? {8'h6, casez_tmp_47, 64'h0}
       : {3'h0,
-         |{casez_tmp_46[4], casez_tmp_46[2]},
+         |_GEN_5,
          casez_tmp_45,
          casez_tmp_42,
          casez_tmp_41,
@@ -12994,7 +13045,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[7]
       ? {8'h6, casez_tmp_54, 64'h0}
       : {3'h0,
-         |{casez_tmp_53[4], casez_tmp_53[2]},
+         |_GEN_6,
          casez_tmp_52,
          casez_tmp_49,
          casez_tmp_48,
@@ -13005,7 +13056,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[8]
       ? {8'h6, casez_tmp_61, 64'h0}
       : {3'h0,
-         |{casez_tmp_60[4], casez_tmp_60[2]},
+         |_GEN_7,
          casez_tmp_59,
          casez_tmp_56,
          casez_tmp_55,
@@ -13016,7 +13067,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[9]
       ? {8'h6, casez_tmp_68, 64'h0}
       : {3'h0,
-         |{casez_tmp_67[4], casez_tmp_67[2]},
+         |_GEN_8,
          casez_tmp_66,
          casez_tmp_63,
          casez_tmp_62,
@@ -13027,7 +13078,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[10]
       ? {8'h6, casez_tmp_75, 64'h0}
       : {3'h0,
-         |{casez_tmp_74[4], casez_tmp_74[2]},
+         |_GEN_9,
          casez_tmp_73,
          casez_tmp_70,
          casez_tmp_69,
@@ -13038,7 +13089,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[11]
       ? {8'h6, casez_tmp_82, 64'h0}
       : {3'h0,
-         |{casez_tmp_81[4], casez_tmp_81[2]},
+         |_GEN_10,
          casez_tmp_80,
          casez_tmp_77,
          casez_tmp_76,
@@ -13049,7 +13100,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[12]
       ? {8'h6, casez_tmp_89, 64'h0}
       : {3'h0,
-         |{casez_tmp_88[4], casez_tmp_88[2]},
+         |_GEN_11,
          casez_tmp_87,
          casez_tmp_84,
          casez_tmp_83,
@@ -13060,7 +13111,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[13]
       ? {8'h6, casez_tmp_96, 64'h0}
       : {3'h0,
-         |{casez_tmp_95[4], casez_tmp_95[2]},
+         |_GEN_12,
          casez_tmp_94,
          casez_tmp_91,
          casez_tmp_90,
@@ -13071,7 +13122,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[14]
       ? {8'h6, casez_tmp_103, 64'h0}
       : {3'h0,
-         |{casez_tmp_102[4], casez_tmp_102[2]},
+         |_GEN_13,
          casez_tmp_101,
          casez_tmp_98,
          casez_tmp_97,
@@ -13082,7 +13133,7 @@ module ContactCollector_n16_world(
     io_groups_bits_invalid[15]
       ? {8'h6, casez_tmp_110, 64'h0}
       : {3'h0,
-         |{casez_tmp_109[4], casez_tmp_109[2]},
+         |_GEN_14,
          casez_tmp_108,
          casez_tmp_105,
          casez_tmp_104,
@@ -13323,7 +13374,7 @@ module ContactCollector_n16_world(
        ? (io_groups_bits_invalid[0]
             ? {8'h6, casez_tmp_5, 64'h0}
             : {3'h0,
-               |{casez_tmp_4[4], casez_tmp_4[2]},
+               |_GEN,
                casez_tmp_3,
                casez_tmp_0,
                casez_tmp,
@@ -13475,6 +13526,21 @@ module ContactCollector_n16_world(
               + {1'h0,
                  {1'h0, take_14 & ~(io_groups_bits_invalid[14]) & casez_tmp_101}
                    + {1'h0, take_15 & ~(io_groups_bits_invalid[15]) & casez_tmp_108}}}};
+  assign io_nFlagged =
+    {1'h0,
+     {1'h0,
+      {1'h0, {1'h0, take_0 & flagged_0} + {1'h0, take_1 & flagged_1}}
+        + {1'h0, {1'h0, take_2 & flagged_2} + {1'h0, take_3 & flagged_3}}}
+       + {1'h0,
+          {1'h0, {1'h0, take_4 & flagged_4} + {1'h0, take_5 & flagged_5}}
+            + {1'h0, {1'h0, take_6 & flagged_6} + {1'h0, take_7 & flagged_7}}}}
+    + {1'h0,
+       {1'h0,
+        {1'h0, {1'h0, take_8 & flagged_8} + {1'h0, take_9 & flagged_9}}
+          + {1'h0, {1'h0, take_10 & flagged_10} + {1'h0, take_11 & flagged_11}}}
+         + {1'h0,
+            {1'h0, {1'h0, take_12 & flagged_12} + {1'h0, take_13 & flagged_13}}
+              + {1'h0, {1'h0, take_14 & flagged_14} + {1'h0, take_15 & flagged_15}}}};
 endmodule
 
 // VCS coverage exclude_file
@@ -18944,6 +19010,7 @@ module Puc_world(
   wire [4:0]   _coll_io_nPairs;
   wire [4:0]   _coll_io_nHits;
   wire [4:0]   _coll_io_nNonFinite;
+  wire [4:0]   _coll_io_nFlagged;
   wire         _groups_io_enq_ready;
   wire         _groups_io_deq_valid;
   wire [3:0]   _groups_io_deq_bits_base;
@@ -19168,6 +19235,7 @@ module Puc_world(
   reg  [31:0]  processed;
   reg  [31:0]  found;
   reg  [31:0]  nonFinite;
+  reg  [31:0]  flaggedMiss;
   reg  [31:0]  firstBad;
   reg  [31:0]  cycTotal;
   reg  [31:0]  cycLoad;
@@ -19200,7 +19268,10 @@ module Puc_world(
        ? worldDone & processed == {7'h0, _lines_io_emitted}
        : processed == {8'h0, run_4[23:0]}) & ~(|_rd_io_outstanding) & _rd_io_loaded;
   wire         drainDone = _pack_io_idle & ~_pack_io_lines_valid & ~(|_wr_io_outstanding);
-  wire [63:0]  totalRecords = run_8[0] ? {40'h0, run_4[23:0]} : {32'h0, found};
+  wire [63:0]  totalRecords =
+    run_8[0]
+      ? {40'h0, run_4[23:0]}
+      : {32'h0, found} + (run_8[1] ? 64'h0 : {32'h0, flaggedMiss});
   wire         _capErr_T = totalRecords > run_6;
   wire [1:0]   _GEN_2 = {errors[4], errors[1]};
   wire [3:0]   _GEN_3 = errors[3:0] | {|nonFinite, 3'h0};
@@ -19221,7 +19292,7 @@ module Puc_world(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:256 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:262 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -19283,6 +19354,7 @@ module Puc_world(
       processed <= 32'h0;
       found <= 32'h0;
       nonFinite <= 32'h0;
+      flaggedMiss <= 32'h0;
       firstBad <= 32'hFFFFFFFF;
       cycTotal <= 32'h0;
       cycLoad <= 32'h0;
@@ -19326,6 +19398,7 @@ module Puc_world(
         processed <= 32'h0;
         found <= 32'h0;
         nonFinite <= 32'h0;
+        flaggedMiss <= 32'h0;
         firstBad <= 32'hFFFFFFFF;
         cycLoad <= 32'h0;
         cycCompute <= 32'h0;
@@ -19336,6 +19409,7 @@ module Puc_world(
         processed <= processed + {27'h0, _coll_io_nPairs};
         found <= found + {27'h0, _coll_io_nHits};
         nonFinite <= nonFinite + {27'h0, _coll_io_nNonFinite};
+        flaggedMiss <= flaggedMiss + {27'h0, _coll_io_nFlagged};
         if (_groups_io_enq_ready & _disp_io_groups_valid & (|_disp_io_groups_bits_invalid)
             & _GEN_5 < firstBad)
           firstBad <= _GEN_5;
@@ -19976,6 +20050,7 @@ module Puc_world(
     .clock                     (clock),
     .reset                     (reset),
     .io_dense                  (run_8[0]),
+    .io_keepFlagged            (~(run_8[1])),
     .io_groups_ready           (_coll_io_groups_ready),
     .io_groups_valid           (_groups_io_deq_valid),
     .io_groups_bits_base       (_groups_io_deq_bits_base),
@@ -20139,7 +20214,8 @@ module Puc_world(
     .io_nRecs                  (_coll_io_nRecs),
     .io_nPairs                 (_coll_io_nPairs),
     .io_nHits                  (_coll_io_nHits),
-    .io_nNonFinite             (_coll_io_nNonFinite)
+    .io_nNonFinite             (_coll_io_nNonFinite),
+    .io_nFlagged               (_coll_io_nFlagged)
   );
   ContactPacker_w32_derived_r5_world pack (
     .clock              (clock),
@@ -20187,7 +20263,7 @@ module Puc_world(
         cycCompute,
         cycLoad,
         cycTotal,
-        32'h0,
+        flaggedMiss,
         firstBad,
         nonFinite,
         (|_GEN_2) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],

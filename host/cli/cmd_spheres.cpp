@@ -95,9 +95,14 @@ int runSpheresAfu(const SpheresOptions& o) {
             << (r.attempts == 1 ? " run" : " runs") << "): broad phase "
             << broadNs / 1e3 << " us (" << s.cyclesBroad << " cycles; the SCPUs compute during its last pass), the rest "
             << (totalNs - broadNs) / 1e3 << " us (table load, drain, status, call overhead)\n";
+  if (w.flaggedMisses)
+    std::cerr << "collide spheres: warning: " << w.flaggedMisses
+              << " candidate pairs raised overflow or invalid in the AFU's arithmetic and are no contact (world mode "
+                 "writes contacts only; `collide pairs --afu` on them gives each one's flags)\n";
   if (summary) {
     nlohmann::json j = {{"spheres", spheres.size()},       {"bad_spheres", w.badSpheres.size()},
                         {"candidates", w.candidates},      {"contacts", w.pairs.size()},
+                        {"flagged_misses", w.flaggedMisses},
                         {"backend", "rtl"},                {"broad_phase", "afu"},
                         {"format", toString(w.contacts.format)}, {"repeat", 1},
                         {"broad_ns", broadNs},             {"narrow_ns", totalNs - broadNs},

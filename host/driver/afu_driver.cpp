@@ -22,6 +22,7 @@ void accumulate(StatusLine& into, const StatusLine& s) {
   into.contactsFound += s.contactsFound;
   into.recordsWritten += s.recordsWritten;
   into.nonFinitePairs += s.nonFinitePairs;
+  into.flaggedMisses += s.flaggedMisses;
   into.cyclesTotal += s.cyclesTotal;
   into.cyclesLoading += s.cyclesLoading;
   into.cyclesComputing += s.cyclesComputing;
@@ -300,16 +301,28 @@ void AfuDriver::check(const RunResult& r, std::size_t n, std::size_t capacity, s
     for (std::size_t k = 0; k < r.records.size(); ++k)
       if (r.records[k].pair != k) fail("dense record " + std::to_string(k) + " names pair " + std::to_string(r.records[k].pair));
   } else {
+    // Compact: the hits, and the misses the AFU flagged (so that no flag is lost with its miss).
     std::vector<bool> seen(n, false);
+    std::size_t flagged = 0;
     for (const auto& c : r.records) {
       if (c.pair >= n) fail("record names pair " + std::to_string(c.pair) + " of " + std::to_string(n));
       if (seen[c.pair]) fail("two records for pair " + std::to_string(c.pair));
-      if (!c.hit()) fail("compact record for pair " + std::to_string(c.pair) + " without the hit flag");
+      if (!c.hit()) {
+        if (!(c.flags & (contract::REC_NONFINITE | contract::REC_ARITH)))
+          fail("compact record for pair " + std::to_string(c.pair) + " without the hit flag or an error flag");
+        ++flagged;
+      }
       seen[c.pair] = true;
     }
-    if (!(s.errors & contract::ERR_CAPACITY) && s.recordsWritten != s.contactsFound + headers)
-      fail("contacts found " + std::to_string(s.contactsFound) + (headers ? " + mask headers " + std::to_string(headers) : "") +
-           " != records written " + std::to_string(s.recordsWritten));
+    if (!(s.errors & contract::ERR_CAPACITY)) {
+      if (s.recordsWritten != s.contactsFound + s.flaggedMisses + headers)
+        fail("contacts found " + std::to_string(s.contactsFound) + " + flagged misses " + std::to_string(s.flaggedMisses) +
+             (headers ? " + mask headers " + std::to_string(headers) : "") + " != records written " +
+             std::to_string(s.recordsWritten));
+      if (flagged != s.flaggedMisses)
+        fail(std::to_string(flagged) + " flagged misses among the records, the status line counts " +
+             std::to_string(s.flaggedMisses));
+    }
   }
 }
 

@@ -213,6 +213,7 @@ void eachStatusField(S& s, F&& f) {
   f(c::STATUS_DONE, s.done); f(c::STATUS_ERROR_FLAGS, s.errors); f(c::STATUS_PAIRS_PROCESSED, s.pairsProcessed);
   f(c::STATUS_CONTACTS_FOUND, s.contactsFound); f(c::STATUS_RECORDS_WRITTEN, s.recordsWritten);
   f(c::STATUS_NONFINITE_PAIRS, s.nonFinitePairs); f(c::STATUS_FIRST_BAD_PAIR, s.firstBadPair);
+  f(c::STATUS_FLAGGED_MISSES, s.flaggedMisses);
   f(c::STATUS_CYCLES_TOTAL, s.cyclesTotal); f(c::STATUS_CYCLES_LOAD, s.cyclesLoading);
   f(c::STATUS_CYCLES_COMPUTE, s.cyclesComputing); f(c::STATUS_CYCLES_WAIT_RD, s.cyclesWaitRead);
   f(c::STATUS_CYCLES_WAIT_WR, s.cyclesWaitWrite); f(c::STATUS_CYCLES_BROAD, s.cyclesBroad);

@@ -47,8 +47,8 @@ struct ContactRecord {
   std::uint8_t recordCase() const { return (flags >> contract::REC_KIND_SHIFT) & contract::REC_KIND_MASK; }
 };
 
-// A masked layout's compact slot before a group's hits: bit k of `mask` set when pair
-// first + k is a hit.
+// A masked layout's compact slot before a group's records: bit k of `mask` set when pair
+// first + k has a record (a hit, or in pair mode a miss with NONFINITE or ARITH).
 struct MaskHeader {
   std::uint32_t first = 0;
   std::uint32_t mask = 0;
@@ -57,6 +57,7 @@ struct MaskHeader {
 struct StatusLine {
   std::uint32_t done = 0, errors = 0, pairsProcessed = 0, contactsFound = 0,
                 recordsWritten = 0, nonFinitePairs = 0, firstBadPair = contract::NO_BAD_PAIR;
+  std::uint32_t flaggedMisses = 0;  // misses with NONFINITE or ARITH: pair mode writes them in compact mode too
   std::uint32_t cyclesTotal = 0, cyclesLoading = 0, cyclesComputing = 0,
                 cyclesWaitRead = 0, cyclesWaitWrite = 0;
   // World mode: the broad phase's cycles, its cell exponent k (a signed i32: cells of 2^k)

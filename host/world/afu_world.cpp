@@ -95,6 +95,7 @@ void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
     for (auto k : r.rangeSpheres) range.push_back(members_[slab.spheres[k]]);
   }
   out.candidates = last_.run.status.pairsProcessed;
+  out.flaggedMisses = last_.run.status.flaggedMisses;
   // A sphere whose link value overflowed is non-finite to the AFU, which pairs it with
   // nothing: it is listed as bad (once, though several runs held it), like a sphere the
   // policy rejects.

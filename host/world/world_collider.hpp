@@ -20,6 +20,10 @@ struct WorldContacts {
   std::vector<std::uint32_t> badSpheres;  // ascending
   std::vector<std::uint8_t> badFlags;     // REC_NONFINITE or REC_HOST_RANGE, beside them
   std::size_t candidates = 0;             // pairs the broad phase found
+  // AFU world mode only: candidates the arithmetic flagged (overflow, invalid) that are no
+  // contact. The AFU writes contacts only in world mode, so they are counted, not listed
+  // (summed over runs: a pair two runs both hold counts twice).
+  std::size_t flaggedMisses = 0;
 };
 
 struct WorldTiming {

@@ -173,6 +173,9 @@ void ModelAfu::computePairLine(std::uint64_t line, const link::Line& data) {
     }
     r.pair = static_cast<std::uint32_t>(k);
     if (r.hit()) ++st_.contactsFound;
+    // A miss with an error flag is a compact record too (as the AFU in pair mode).
+    const bool flaggedMiss = !r.hit() && (r.flags & (contract::REC_NONFINITE | contract::REC_ARITH));
+    if (flaggedMiss) ++st_.flaggedMisses;
     if (csr_[contract::CSR_MODE] & contract::MODE_DENSE) {  // dense: record k is pair k
       if (k >= csr_[contract::CSR_CONTACT_CAPACITY]) { st_.errors |= contract::ERR_CAPACITY; continue; }
       const std::uint64_t cl = lay_.recordLine(k, true);
@@ -185,7 +188,7 @@ void ModelAfu::computePairLine(std::uint64_t line, const link::Line& data) {
         wq_.emplace_back(csr_[contract::CSR_CONTACT_BASE] + cl, l);
         denseLines_.erase(cl);
       }
-    } else if (r.hit()) {
+    } else if (r.hit() || flaggedMiss) {
       queueContact(r);
     }
   }

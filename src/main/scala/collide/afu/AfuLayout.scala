@@ -48,6 +48,7 @@ object StatusLine {
   val RECORDS_WRITTEN = 16
   val NONFINITE_PAIRS = 20
   val FIRST_BAD_PAIR  = 24
+  val FLAGGED_MISSES  = 28
   val CYCLES_TOTAL    = 32
   val CYCLES_LOAD     = 36
   val CYCLES_COMPUTE  = 40
@@ -64,6 +65,7 @@ object StatusLine {
     ContractEntry("RECORDS_WRITTEN", RECORDS_WRITTEN, "contact records written"),
     ContractEntry("NONFINITE_PAIRS", NONFINITE_PAIRS, "pairs with a NaN or infinite input"),
     ContractEntry("FIRST_BAD_PAIR", FIRST_BAD_PAIR, "lowest pair with an index out of range, or NO_BAD_PAIR"),
+    ContractEntry("FLAGGED_MISSES", FLAGGED_MISSES, "misses with NONFINITE or ARITH set; pair mode writes a record for each, compact too"),
     ContractEntry("CYCLES_TOTAL", CYCLES_TOTAL, "cycles from start to the status write"),
     ContractEntry("CYCLES_LOAD", CYCLES_LOAD, "cycles loading the sphere table"),
     ContractEntry("CYCLES_COMPUTE", CYCLES_COMPUTE, "cycles in which a group of pairs was dispatched"),
@@ -200,8 +202,8 @@ object MaskHeader {
   val entries: Seq[ContractEntry] = Seq(
     ContractEntry("PAIR_SHIFT", PAIR_SHIFT, "bits 0..23: the group's first pair index"),
     ContractEntry("PAIR_BITS", PAIR_BITS, "width of the first pair index"),
-    ContractEntry("MASK_SHIFT", MASK_SHIFT, "bits 24..39: bit k set when pair first + k is a hit"),
-    ContractEntry("MASK_BITS", MASK_BITS, "width of the hit mask (a group has at most 16 pairs)"),
+    ContractEntry("MASK_SHIFT", MASK_SHIFT, "bits 24..39: bit k set when pair first + k has a record (a hit or a flagged miss)"),
+    ContractEntry("MASK_BITS", MASK_BITS, "width of the record mask (a group has at most 16 pairs)"),
     ContractEntry("BITS", BITS, "bits of a header (the rest of its slot is zero)"))
 }
 

@@ -20,11 +20,13 @@ object ContactRecord {
 }
 
 /** Takes the SCPUs' results back group by group, in dispatch order, and turns them into
-  * records: every result in dense mode, hits only in compact mode. It passes the packer at
+  * records: every result in dense mode; in compact mode the hits and, with `keepFlagged` (pair
+  * mode), the misses the arithmetic or a non-finite input flagged, so that no flag is lost
+  * with its miss (docs/afu-interface.md, Contacts). It passes the packer at
   * most as many records a cycle as the packer has room for (`room`), and consumes every
   * result up to the last record taken (plus the misses after it in compact mode), so a line
   * of 16 pairs with at most two hits leaves in one cycle. Counts every pair it consumes.
-  * Masked layouts in compact mode: a group with a hit waits until all its results are there,
+  * Masked layouts in compact mode: a group with a record waits until all its results are there,
   * then its mask header goes first (in the slot before its first record, `nHeaders`).
   */
 class ContactCollector(p: PucParams) extends Module {
@@ -34,6 +36,7 @@ class ContactCollector(p: PucParams) extends Module {
   private val R = p.layout.recordsPerLine
   val io = IO(new Bundle {
     val dense  = Input(Bool())
+    val keepFlagged = Input(Bool())
     val groups = Flipped(Decoupled(new GroupInfo(p)))
     val scpu   = Vec(n, Flipped(Decoupled(new ScpuOut(p.linkWidth, p.scpuTagBits))))
     val room   = Input(UInt(log2Ceil(R + 1).W))
@@ -43,6 +46,7 @@ class ContactCollector(p: PucParams) extends Module {
     val nPairs     = Output(UInt(log2Ceil(L + 1).W))
     val nHits      = Output(UInt(log2Ceil(L + 1).W))
     val nNonFinite = Output(UInt(log2Ceil(L + 1).W))
+    val nFlagged   = Output(UInt(log2Ceil(L + 1).W)) // flagged misses (written in pair mode)
     val nHeaders   = Output(Bool())
   })
 
@@ -58,14 +62,17 @@ class ContactCollector(p: PucParams) extends Module {
   val active  = VecInit.tabulate(L)(k => io.groups.valid && k.U >= sp && k.U < g.cnt)
   val inv     = VecInit.tabulate(L)(k => g.invalid(k))
   val hit     = VecInit.tabulate(L)(k => !inv(k) && outAt(k).hit)
-  val want    = VecInit.tabulate(L)(k => active(k) && (io.dense || hit(k)))
+  private def arithOf(o: ScpuOut) = (o.flags & (collide.fp.FpFlags.Overflow | collide.fp.FpFlags.Invalid).U).orR
+  val flagged = VecInit.tabulate(L)(k => !inv(k) && !outAt(k).hit && (outAt(k).nonFinite || arithOf(outAt(k))))
+  val record  = VecInit.tabulate(L)(k => hit(k) || (io.keepFlagged && flagged(k))) // compact mode's records
+  val want    = VecInit.tabulate(L)(k => active(k) && (io.dense || record(k)))
 
   // Masked compact: the header needs the whole group's hits, so nothing of a group with a
   // hit is taken before every result is there, and the header takes the first free slot.
   val hdrMode  = p.layout.masked.B && !io.dense
   val hdrSent  = RegInit(false.B)
   val allValid = (0 until L).map(k => !active(k) || validAt(k)).reduce(_ && _)
-  val needHdr  = hdrMode && !hdrSent && (0 until L).map(k => active(k) && hit(k)).reduce(_ || _)
+  val needHdr  = hdrMode && !hdrSent && (0 until L).map(k => active(k) && record(k)).reduce(_ || _)
   val hdrFire  = needHdr && allValid && io.room =/= 0.U
   val off      = needHdr.asUInt
 
@@ -80,7 +87,7 @@ class ContactCollector(p: PucParams) extends Module {
   private def recordOf(k: Int): ContactRecord = {
     val o = outAt(k)
     val r = Wire(new ContactRecord(p.layout))
-    val arith = (o.flags & (collide.fp.FpFlags.Overflow | collide.fp.FpFlags.Invalid).U).orR
+    val arith = arithOf(o)
     val fields: Map[String, UInt] = Map("px" -> o.px, "py" -> o.py, "pz" -> o.pz, "nx" -> o.nx, "ny" -> o.ny,
       "nz" -> o.nz, "depth" -> o.depth, "d" -> o.d, "w" -> o.nw)
     val pair = o.tag(RecordTag.PAIR_BITS - 1, 0)
@@ -95,9 +102,9 @@ class ContactCollector(p: PucParams) extends Module {
   val records = VecInit.tabulate(L)(recordOf)
   val header  = Wire(new ContactRecord(p.layout))
   // Only positions not yet consumed: an SCPU whose result was taken already shows its next
-  // result (another group's), and every consumed position of this group was a miss (a hit
-  // holds the whole group until its header goes).
-  header.bits := ContactRecord.header(p.layout, g.first, VecInit.tabulate(L)(k => active(k) && hit(k)).asUInt)
+  // result (another group's), and every consumed position of this group had no record (a
+  // record holds the whole group until its header goes).
+  header.bits := ContactRecord.header(p.layout, g.first, VecInit.tabulate(L)(k => active(k) && record(k)).asUInt)
   header.pair := g.first
   val nTaken  = PopCount(take)
   val nRecs   = PopCount((0 until L).map(k => take(k) && want(k))) +& hdrFire.asUInt
@@ -109,6 +116,7 @@ class ContactCollector(p: PucParams) extends Module {
   io.nPairs     := nTaken
   io.nHits      := PopCount((0 until L).map(k => take(k) && hit(k)))
   io.nNonFinite := PopCount((0 until L).map(k => take(k) && !inv(k) && outAt(k).nonFinite))
+  io.nFlagged   := PopCount((0 until L).map(k => take(k) && flagged(k)))
   io.nHeaders   := hdrFire
 
   val spNext = sp + nTaken

@@ -52,6 +52,7 @@ class Puc(p: PucParams) extends Module {
   val found      = RegInit(0.U(32.W))
   val headers    = RegInit(0.U(32.W))   // masked compact: mask headers handed to the packer
   val nonFinite  = RegInit(0.U(32.W))
+  val flaggedMiss = RegInit(0.U(32.W))  // misses with NONFINITE or ARITH (pair mode: records too)
   val firstBad   = RegInit(StatusLine.NO_BAD_PAIR.U(32.W))
   val cycTotal   = RegInit(0.U(32.W))
   val cycLoad    = RegInit(0.U(32.W))
@@ -155,6 +156,7 @@ class Puc(p: PucParams) extends Module {
   groups.io.enq <> disp.io.groups
 
   coll.io.dense := dense
+  coll.io.keepFlagged := !world // world mode writes contacts only (docs/afu.md, world mode)
   coll.io.groups <> groups.io.deq
   coll.io.scpu <> io.scpuOut
   coll.io.room := pack.io.room
@@ -182,6 +184,7 @@ class Puc(p: PucParams) extends Module {
   found     := found + coll.io.nHits
   headers   := headers + coll.io.nHeaders
   nonFinite := nonFinite + coll.io.nNonFinite
+  flaggedMiss := flaggedMiss + coll.io.nFlagged
   when(running) {
     cycTotal := cycTotal + tick
     when(!loaded) { cycLoad := cycLoad + tick }
@@ -198,7 +201,8 @@ class Puc(p: PucParams) extends Module {
   pairsInFlight := pairsInFlight + Mux(disp.io.fired, groups.io.enq.bits.cnt, 0.U) - coll.io.nPairs
 
   when(state === sCheck) { // a new run: after the counting above, so these win
-    processed := 0.U; found := 0.U; headers := 0.U; nonFinite := 0.U; firstBad := StatusLine.NO_BAD_PAIR.U
+    processed := 0.U; found := 0.U; headers := 0.U; nonFinite := 0.U; flaggedMiss := 0.U
+    firstBad := StatusLine.NO_BAD_PAIR.U
     cycTotal := 1.U; cycLoad := 0.U; cycCompute := 0.U; cycWaitRd := 0.U; cycWaitWr := 0.U
   }
 
@@ -209,7 +213,8 @@ class Puc(p: PucParams) extends Module {
   when(state === sDrain && drainDone) { state := sStatus }
 
   // ---- the status line
-  val totalRecords = Mux(dense, numPairs.pad(64), found.pad(64) + headers.pad(64)) // slots, headers included
+  val compactRecs  = found.pad(64) + Mux(world, 0.U, flaggedMiss.pad(64)) // world mode writes hits only
+  val totalRecords = Mux(dense, numPairs.pad(64), compactRecs + headers.pad(64)) // slots, headers included
   val written      = Mux(totalRecords > capacity, capacity, totalRecords)(31, 0)
   val nothingRun   = (errors & (ErrorFlags.TOO_MANY_SPHERES | ErrorFlags.BAD_CONFIG).U).orR
   val capErr       = totalRecords > capacity && !nothingRun
@@ -224,6 +229,7 @@ class Puc(p: PucParams) extends Module {
   words(StatusLine.RECORDS_WRITTEN / 4) := Mux(nothingRun, 0.U, written)
   words(StatusLine.NONFINITE_PAIRS / 4) := nonFinite
   words(StatusLine.FIRST_BAD_PAIR / 4)  := firstBad
+  words(StatusLine.FLAGGED_MISSES / 4)  := flaggedMiss
   words(StatusLine.CYCLES_TOTAL / 4)    := cycTotal
   words(StatusLine.CYCLES_LOAD / 4)     := cycLoad
   words(StatusLine.CYCLES_COMPUTE / 4)  := cycCompute

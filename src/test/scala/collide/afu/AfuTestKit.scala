@@ -7,6 +7,10 @@ import chiseltest._
   * nx, ny, nz, depth; derived: d, w), the pair index and the record flags. */
 final case class AfuRecord(fields: Seq[BigInt], pair: Int, flags: Int) {
   def hit: Boolean = (flags & 1) != 0
+  /** A miss the arithmetic or a non-finite input flagged: pair mode writes it in compact mode too. */
+  def flaggedMiss: Boolean = !hit && (flags & (RecordFlags.NONFINITE | RecordFlags.ARITH)) != 0
+  /** What compact mode writes in pair mode. */
+  def written: Boolean = hit || flaggedMiss
   override def toString: String =
     f"rec(pair=$pair flags=0x$flags%02x ${fields.map(f => f"0x$f%x").mkString(",")})"
 }
@@ -52,11 +56,12 @@ final case class Status(words: IndexedSeq[Long]) {
   def done = f(StatusLine.DONE); def errors = f(StatusLine.ERROR_FLAGS)
   def processed = f(StatusLine.PAIRS_PROCESSED); def found = f(StatusLine.CONTACTS_FOUND)
   def written = f(StatusLine.RECORDS_WRITTEN); def nonFinite = f(StatusLine.NONFINITE_PAIRS)
-  def firstBad = f(StatusLine.FIRST_BAD_PAIR); def cycles = f(StatusLine.CYCLES_TOTAL)
+  def firstBad = f(StatusLine.FIRST_BAD_PAIR); def flaggedMisses = f(StatusLine.FLAGGED_MISSES)
+  def cycles = f(StatusLine.CYCLES_TOTAL)
   def cycLoad = f(StatusLine.CYCLES_LOAD); def cycCompute = f(StatusLine.CYCLES_COMPUTE)
   def cycWaitRd = f(StatusLine.CYCLES_WAIT_RD); def cycWaitWr = f(StatusLine.CYCLES_WAIT_WR)
   override def toString = s"Status(done=$done err=0x${errors.toHexString} processed=$processed found=$found " +
-    s"written=$written nonFinite=$nonFinite firstBad=$firstBad cycles=$cycles load=$cycLoad compute=$cycCompute " +
+    s"written=$written nonFinite=$nonFinite firstBad=$firstBad flaggedMisses=$flaggedMisses cycles=$cycles load=$cycLoad compute=$cycCompute " +
     s"waitRd=$cycWaitRd waitWr=$cycWaitWr)"
 }
 object Status {
@@ -115,9 +120,10 @@ object AfuRun {
     val n = world.pairs.size
     val exp = (0 until n).map(k => if (world.bad(k)) AfuRecord.invalid(lay, k) else expect(k))
     val hits = exp.filter(_.hit)
+    val recorded = exp.filter(_.written) // compact mode's records: hits and flagged misses
     val cap = world.capacity.getOrElse(lay.compactSlotsFor(n.toLong) + 3)
-    // masked compact: a header before the hits of each group with one
-    val hitGroups = world.groups.filter(_.exists(k => exp(k).hit))
+    // masked compact: a header before the records of each group with one
+    val hitGroups = world.groups.filter(_.exists(k => exp(k).written))
     val masked = lay.masked && !world.dense
     r.status match {
       case None => fail(s"no status line written in ${r.cycles} cycles"); return errs.toSeq
@@ -134,7 +140,7 @@ object AfuRun {
             fail(s"write outside the buffers: line 0x${e.addr.toString(16)}")
         val lines = r.writes.filter(_.addr != r.statusAddr)
         if (lines.map(_.addr).distinct.size != lines.size) fail("a contact line written twice")
-        val total = if (world.dense) n.toLong else hits.size.toLong + (if (masked) hitGroups.size else 0)
+        val total = if (world.dense) n.toLong else recorded.size.toLong + (if (masked) hitGroups.size else 0)
         val written = math.min(total, cap)
         val nonFin = exp.count(e => (e.flags & RecordFlags.NONFINITE) != 0)
         val firstBad = (0 until n).find(world.bad).map(_.toLong).getOrElse(StatusLine.NO_BAD_PAIR)
@@ -152,6 +158,7 @@ object AfuRun {
         if (st.found != hits.size) fail(s"contacts found ${st.found}, expected ${hits.size}")
         if (st.written != written) fail(s"records written ${st.written}, expected $written")
         if (st.nonFinite != nonFin) fail(s"non-finite pairs ${st.nonFinite}, expected $nonFin")
+        if (st.flaggedMisses != exp.count(_.flaggedMiss)) fail(s"flagged misses ${st.flaggedMisses}, expected ${exp.count(_.flaggedMiss)}")
         if (st.firstBad != firstBad) fail(s"first bad pair ${st.firstBad}, expected $firstBad")
         def place(rn: Long): (Long, Int) =
           if (world.dense) (lay.denseLine(rn), lay.denseSlot(rn)) else (rn / R, (rn % R).toInt)
@@ -177,7 +184,7 @@ object AfuRun {
               rn = written
             } else {
               seen += first
-              val want = byFirst(first).filter(k => exp(k).hit)
+              val want = byFirst(first).filter(k => exp(k).written)
               val wantMask = want.map(k => 1 << (k - first)).sum
               if (mask != wantMask) fail(s"slot $rn: mask 0x${mask.toHexString}, expected 0x${wantMask.toHexString}")
               rn += 1
@@ -200,7 +207,7 @@ object AfuRun {
           for (rec <- recs) {
             if (rec.pair >= n || exp(rec.pair) != rec) { if (errs.size < 20) fail(s"compact record $rec, expected ${if (rec.pair < n) exp(rec.pair) else "none"}") }
           }
-          if (written == total && pairsSeen.toSet != hits.map(_.pair).toSet) fail("the set of hit pairs differs")
+          if (written == total && pairsSeen.toSet != recorded.map(_.pair).toSet) fail("the set of recorded pairs (hits, flagged misses) differs")
         }
     }
     errs.toSeq
