@@ -42,6 +42,9 @@ elseif(CHECK STREQUAL "run_small")
   expect_match("${out}" "pairs tested : [1-9]")
   expect_match("${out}" "ODE collider : [0-9.]+ ms total, [0-9.]+ ns/pair")
   expect_match("${out}" "simd batch   : [0-9.]+ ms total")
+  # The binary64 kernel beside it: ODE's arithmetic, so it never disagrees with ODE on a hit.
+  expect_match("${out}" "simd64 batch : [0-9.]+ ms total")
+  expect_match("${out}" "pairs disagree on hit \\(simd64: 0\\)")
   # Where the steps' time went, stage by stage (docs/host.md, "Where a step's time goes").
   expect_match("${out}" "time split   : [0-9.]+ ms in 20 steps")
   foreach(stage "broad phase" "narrow, sphere/sphere" "narrow, sphere/plane" "contact joints" "solver" "other")
@@ -55,9 +58,9 @@ elseif(CHECK STREQUAL "run_small")
     message(FATAL_ERROR "steps.csv has ${n} rows, expected header + 20")
   endif()
 elseif(CHECK STREQUAL "run_lasting_scenes")
-  # Every lasting-contact scene loads and runs a few steps on both CPU backends, in contact.
+  # Every lasting-contact scene loads and runs a few steps on every CPU backend, in contact.
   foreach(scene diamond_settle pile_box)
-    foreach(backend simd ode)
+    foreach(backend simd simd64 ode)
       execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/${scene}.json --backend ${backend} --steps 3
                       RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
       expect_rc(0)

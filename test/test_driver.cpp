@@ -238,7 +238,9 @@ TEST(Driver, PairsWithInputsOutsideTheLinkFormatAreFlaggedNotDropped) {
     // Pairs 1 and 3 hold sphere 1's infinity.
     for (std::size_t k : {1, 3}) EXPECT_TRUE(r.contacts.flags[k] & contract::REC_NONFINITE) << k << " dense " << dense;
     EXPECT_EQ(r.result.status.flaggedMisses, 2u) << "dense " << dense;
-    if (!dense) EXPECT_EQ(r.result.records.size(), r.contacts.hits() + 2);
+    if (!dense) {
+      EXPECT_EQ(r.result.records.size(), r.contacts.hits() + 2);
+    }
   }
   // The same on the wire's own widths: writeSphereTable says which spheres did not fit.
   link::HostMemory m;

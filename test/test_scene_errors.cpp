@@ -45,7 +45,7 @@ TEST(SceneErrors, InlineFaults) {
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "bodies": {"diamond": {"hMax": 2.5}}})"),
             "scene.bodies.diamond.hMax: expected a positive integer, got 2.5");
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "backend": "gpu", "bodies": {"diamond": {"hMax": 2}}})"),
-            "scene.backend: expected \"ode\", \"simd\" or \"rtl\", got \"gpu\"");
+            "scene.backend: expected \"ode\", \"simd\", \"simd64\" or \"rtl\", got \"gpu\"");
   EXPECT_EQ(errorOf(std::string("{") + kOk +
                     R"(, "contact": {"mu": -1}, "bodies": {"diamond": {"hMax": 2}}})"),
             "scene.contact.mu: expected a number >= 0 or \"infinity\", got -1");
@@ -62,6 +62,9 @@ TEST(SceneErrors, InlineFaults) {
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "collision": {"offload": "world"}, "bodies": {"diamond": {"hMax": 2}}})"),
             "scene.collision.offload: expected \"pairs\" with backend ode (\"world\" needs backend simd or rtl: ODE's own "
             "space is the pairs path), got \"world\"");
+  EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "backend": "simd64", "collision": {"offload": "world"}, "bodies": {"diamond": {"hMax": 2}}})")
+                .rfind("scene.collision.offload: expected \"pairs\" with backend simd64", 0),
+            0u);
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "collision": {"ofload": "world"}, "bodies": {"diamond": {"hMax": 2}}})")
                 .rfind("scene.collision.ofload: unknown key", 0),
             0u);

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
+#include <stdexcept>
 
 #include "collide/ode_backend.hpp"
 #include "collide/simd_backend.hpp"
@@ -71,4 +73,40 @@ TEST(SimdVsOde, AgreeWithinFloatTolerance) {
   EXPECT_TRUE(a.hit[g] && b.hit[g]);
   EXPECT_EQ(a.depth[g], 0.0);
   EXPECT_EQ(b.depth[g], 0.0);
+}
+
+TEST(SimdVsOde, Simd64IsOdesOwnArithmeticBitForBit) {
+  // The binary64 kernel does ODE's dCollideSpheres operations in ODE's order, so on every pair,
+  // grazing ones included, it gives ODE's contacts to the bit.
+  std::mt19937_64 rng(test::testSeed(53));
+  std::uniform_real_distribution<double> pos(-1.0, 1.0), rad(0.05, 0.6);
+  SphereTable t;
+  PairList p;
+  for (int k = 0; k < 20000; ++k) {
+    t.push(pos(rng), pos(rng), pos(rng), rad(rng));
+    t.push(pos(rng), pos(rng), pos(rng), rad(rng));
+    p.push(2 * k, 2 * k + 1);
+  }
+  t.push(0.25, 0.5, 0.75, 0.5); t.push(0.25, 0.5, 0.75, 0.25); p.push(40000, 40001);  // coincident
+  t.push(3, 4, 0, 2); t.push(0, 0, 0, 3); p.push(40002, 40003);                       // grazing
+  t.push(3, 4, 0, 2 - 0x1.0p-50); t.push(0, 0, 0, 3); p.push(40004, 40005);           // an ulp apart
+  ContactSet a, b;
+  OdeBackend().collide(t, p, a);
+  SimdBackend simd64(LinkFormat::Binary64);
+  EXPECT_EQ(simd64.name(), "simd64");
+  simd64.collide(t, p, b);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(b.format, LinkFormat::Binary64);
+  auto same = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  std::size_t hits = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    ASSERT_EQ(a.hit[k], b.hit[k]) << "pair " << k;
+    hits += a.hit[k];
+    const double* ca[7] = {&a.px[k], &a.py[k], &a.pz[k], &a.nx[k], &a.ny[k], &a.nz[k], &a.depth[k]};
+    const double* cb[7] = {&b.px[k], &b.py[k], &b.pz[k], &b.nx[k], &b.ny[k], &b.nz[k], &b.depth[k]};
+    for (int c = 0; c < 7; ++c) ASSERT_TRUE(same(*ca[c], *cb[c])) << "pair " << k << " field " << c;
+  }
+  EXPECT_GT(hits, 1000u);
+  EXPECT_TRUE(b.hit[20001] && !b.hit[20002]);
+  EXPECT_THROW(SimdBackend(LinkFormat::Binary16), std::invalid_argument);
 }

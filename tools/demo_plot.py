@@ -37,6 +37,14 @@ def number(text, where):
         raise InputError(f"{where}: not a number: {text!r}") from None
 
 
+def has_column(path, name):
+    try:
+        with open(path, newline="") as f:
+            return name in next(csv.reader(f), [])
+    except OSError:
+        return False  # columns() says why
+
+
 def columns(path, wanted):
     """The named columns of a CSV as lists of floats; an error names the file and the column."""
     try:
@@ -67,6 +75,9 @@ def plot_times(ax, cpu, afus):
     us = lambda v: [x / 1e3 if x > 0 else float("nan") for x in v]  # log axis: leave out zeros
     ax.plot(cpu["step"], us(cpu["ode_ns"]), lw=1.4, color="C0", label="ODE collider, binary64 (CPU, measured)")
     ax.plot(cpu["step"], us(cpu["simd_ns"]), lw=1.4, color="C1", label="simd batch, binary32 (CPU, measured)")
+    if "simd64_ns" in cpu:  # written by collide since the binary64 kernel; older CSVs lack it
+        ax.plot(cpu["step"], us(cpu["simd64_ns"]), lw=1.2, ls="--", color="C1",
+                label="simd batch, binary64 (CPU, measured)")
     for k, (label, a) in enumerate(afus):
         ax.plot(a["step"], us(a["afu_modelled_ns"]), lw=1.4, color=afu_colour(k), label=f"AFU, {label} (modelled)")
     ax.set_yscale("log")
@@ -115,7 +126,8 @@ def main(argv=None):
     p.add_argument("--positions", help="a collide run --positions CSV")
     a = p.parse_args(argv)
     try:
-        cpu = columns(a.cpu, ["step", "pairs", "contacts", "other_contacts", "ode_ns", "simd_ns"])
+        wanted = ["step", "pairs", "contacts", "other_contacts", "ode_ns", "simd_ns"]
+        cpu = columns(a.cpu, wanted + (["simd64_ns"] if has_column(a.cpu, "simd64_ns") else []))
         afus = [(label, columns(path, ["step", "contacts", "afu_modelled_ns"]))
                 for label, path in map(labelled, a.afu)]
         pos = columns(a.positions, ["x", "y", "z"]) if a.positions else None

@@ -12,7 +12,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
 
 import demo_plot  # noqa: E402
 
-CPU_HEADER = "step,pairs,contacts,other_contacts,backend_ns,ode_ns,simd_ns,hit_mismatches\n"
+CPU_HEADER = "step,pairs,contacts,other_contacts,backend_ns,ode_ns,simd_ns,simd64_ns,hit_mismatches\n"
 RTL_HEADER = CPU_HEADER.rstrip("\n") + ",afu_runs,afu_modelled_ns,afu_cycles,afu_load,afu_compute,afu_wait_rd,afu_wait_wr\n"
 
 
@@ -22,9 +22,9 @@ class DemoPlot(unittest.TestCase):
         self.d = Path(self.dir.name)
         steps = range(6)
         (self.d / "ode.csv").write_text(CPU_HEADER + "".join(
-            f"{s},{5000 - s},{3000 + s},{s},{90000},{80000 + s},{20000 + s},0\n" for s in steps))
+            f"{s},{5000 - s},{3000 + s},{s},{90000},{80000 + s},{20000 + s},{24000 + s},0\n" for s in steps))
         (self.d / "rtl.csv").write_text(RTL_HEADER + "".join(
-            f"{s},{5000 - s},{3000 + s},0,1,1,1,0,1,{25000.5 + s},4000,300,400,300,2000\n" for s in steps))
+            f"{s},{5000 - s},{3000 + s},0,1,1,1,1,0,1,{25000.5 + s},4000,300,400,300,2000\n" for s in steps))
         # %a as collide writes it, and plain decimals
         (self.d / "pos.csv").write_text("sphere,x,y,z\n0,0x1p-1,-0x1.8p+0,0x1p+2\n1,0.25,0.5,4.5\n2,0x0p+0,0x0p+0,0x1.2p+2\n")
 

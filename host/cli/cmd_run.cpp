@@ -113,9 +113,9 @@ int runScene(const RunOptions& o) {
     if (!o.trace.empty() && !rtl) throw std::invalid_argument("--trace needs --backend rtl");
     // Offload "world": an engine does the whole sphere/sphere collision; no pair backend.
     const bool worldOffload = sc.offload == scene::Scene::Offload::World;
-    if (worldOffload && sc.backend == "ode")
-      throw std::invalid_argument("scene " + sc.name + ": collision.offload \"world\" needs backend simd or rtl, not ode "
-                                  "(ODE's own space is the pairs path)");
+    if (worldOffload && sc.backend != "simd" && sc.backend != "rtl")
+      throw std::invalid_argument("scene " + sc.name + ": collision.offload \"world\" needs backend simd or rtl, not " +
+                                  sc.backend + " (the world engines are our grid with the binary32 kernel and the AFU)");
     std::unique_ptr<CollisionBackend> backend;
     std::unique_ptr<world::WorldEngine> engine;
     world::AfuWorld* afuWorld = nullptr;
@@ -139,14 +139,15 @@ int runScene(const RunOptions& o) {
     if (rtl) std::cout << ", AFU " << (driver::builtInAfuPreset().empty() ? "?" : driver::builtInAfuPreset());
     std::cout << "\n";
 
-    // The same pairs through ODE's collider and the simd batch, timed each step.
+    // The same pairs through ODE's collider and the simd batch in binary32 and binary64, timed
+    // each step: the CPU's price of precision beside the AFU's.
     OdeBackend ode;
-    SimdBackend simd;
-    ContactSet odeOut, simdOut;
+    SimdBackend simd, simd64(LinkFormat::Binary64);
+    ContactSet odeOut, simdOut, simd64Out;
     RunTotals tot;
     AfuTotals afu;
-    std::int64_t stepOdeNs = 0, stepSimdNs = 0;
-    std::uint64_t stepMismatch = 0;
+    std::int64_t stepOdeNs = 0, stepSimdNs = 0, stepSimd64Ns = 0;
+    std::uint64_t stepMismatch = 0, stepMismatch64 = 0;
 
     auto simPtr = backend ? std::make_unique<sim::Simulation>(sc, *backend) : std::make_unique<sim::Simulation>(sc, *engine);
     sim::Simulation& sim = *simPtr;
@@ -154,8 +155,13 @@ int runScene(const RunOptions& o) {
       const OdeGeomBinding geoms(&ode, sim.world().sphereGeoms());  // ODE's collider on the world's own geoms
       stepOdeNs = timeNs(o.cpuRepeat, [&] { ode.collide(t, p, odeOut); });
       stepSimdNs = timeNs(o.cpuRepeat, [&] { simd.collide(t, p, simdOut); });
+      stepSimd64Ns = timeNs(o.cpuRepeat, [&] { simd64.collide(t, p, simd64Out); });
       stepMismatch = 0;
-      for (std::size_t k = 0; k < p.size(); ++k) stepMismatch += odeOut.hit[k] != simdOut.hit[k];
+      stepMismatch64 = 0;
+      for (std::size_t k = 0; k < p.size(); ++k) {
+        stepMismatch += odeOut.hit[k] != simdOut.hit[k];
+        stepMismatch64 += odeOut.hit[k] != simd64Out.hit[k];  // 0: the same arithmetic as ODE's
+      }
     });
 
     // Every output is opened before the run, so a bad path fails at once; each goes to a
@@ -164,7 +170,7 @@ int runScene(const RunOptions& o) {
     const auto csvFile = open(o.out), posFile = open(o.positions), summaryFile = open(o.summary);
     if (csvFile) {
       std::ostream& csv = csvFile->stream();
-      csv << "step,pairs,contacts,other_contacts,backend_ns,ode_ns,simd_ns,hit_mismatches";
+      csv << "step,pairs,contacts,other_contacts,backend_ns,ode_ns,simd_ns,simd64_ns,hit_mismatches";
       if (rtl) csv << ",afu_runs,afu_modelled_ns,afu_cycles,afu_load,afu_compute,afu_wait_rd,afu_wait_wr";
       csv << ",broad_ns,plane_narrow_ns,joints_ns,solver_ns,step_ns\n";
     }
@@ -176,7 +182,9 @@ int runScene(const RunOptions& o) {
       tot.backendNs += st.backendNs;
       tot.odeNs += stepOdeNs;
       tot.simdNs += stepSimdNs;
+      tot.simd64Ns += stepSimd64Ns;
       tot.hitMismatches += stepMismatch;
+      tot.hit64Mismatches += stepMismatch64;
       tot.broadNs += st.broadNs;
       tot.otherNarrowNs += st.otherNarrowNs;
       tot.jointsNs += st.jointsNs;
@@ -193,7 +201,7 @@ int runScene(const RunOptions& o) {
         std::cout << "step " << st.step << ": " << st.pairsTested << " pairs, " << st.contacts << " contacts"
                   << (st.otherContacts ? " (+" + std::to_string(st.otherContacts) + " plane)" : "")
                   ;
-        if (!engine) std::cout << ", ode " << stepOdeNs << " ns, simd " << stepSimdNs << " ns";
+        if (!engine) std::cout << ", ode " << stepOdeNs << " ns, simd " << stepSimdNs << " ns, simd64 " << stepSimd64Ns << " ns";
         if (rtl) std::cout << ", AFU " << std::fixed << std::setprecision(0) << stepAfu.stats.modelledNs << " ns modelled";
         if (engine) std::cout << ", world engine: broad " << st.worldBroadNs << " ns, rest " << st.worldNarrowNs << " ns"
                               << (engine->modelled() ? " modelled" : " measured");
@@ -202,7 +210,7 @@ int runScene(const RunOptions& o) {
       if (csvFile) {
         std::ostream& csv = csvFile->stream();
         csv << st.step << ',' << st.pairsTested << ',' << st.contacts << ',' << st.otherContacts << ','
-            << st.backendNs << ',' << stepOdeNs << ',' << stepSimdNs << ',' << stepMismatch;
+            << st.backendNs << ',' << stepOdeNs << ',' << stepSimdNs << ',' << stepSimd64Ns << ',' << stepMismatch;
         if (rtl) {
           const auto& b = stepAfu;
           csv << ',' << b.runs << ',' << std::fixed << std::setprecision(1) << b.stats.modelledNs << ','
@@ -225,8 +233,11 @@ int runScene(const RunOptions& o) {
       printTiming(std::cout, tot.odeNs, tot.pairs, tot.contacts);
       std::cout << "  (dCollide on the world's dSphere geoms, binary64)\nsimd batch   : ";
       printTiming(std::cout, tot.simdNs, tot.pairs, tot.contacts);
-      std::cout << "  (gather + binary32 SoA kernel)\n"
-                << "simd vs ode  : " << tot.hitMismatches << " pairs disagree on hit\n";
+      std::cout << "  (gather + binary32 SoA kernel)\nsimd64 batch : ";
+      printTiming(std::cout, tot.simd64Ns, tot.pairs, tot.contacts);
+      std::cout << "  (gather + binary64 SoA kernel: ODE's arithmetic, vectorized)\n"
+                << "simd vs ode  : " << tot.hitMismatches << " pairs disagree on hit (simd64: " << tot.hit64Mismatches
+                << ")\n";
     }
     const std::string odeBroad = std::string("dSpaceCollide, ODE's ") +
                                  (sc.space == scene::Scene::Space::Sap ? "sweep-and-prune space" : "hash space");
@@ -275,8 +286,10 @@ int runScene(const RunOptions& o) {
       j["contacts"] = tot.contacts;
       j["ode_ns"] = tot.odeNs;
       j["simd_ns"] = tot.simdNs;
+      j["simd64_ns"] = tot.simd64Ns;
       j["backend_wall_ns"] = tot.backendNs;
       j["simd_ode_hit_mismatches"] = tot.hitMismatches;
+      j["simd64_ode_hit_mismatches"] = tot.hit64Mismatches;
       j["cpu_repeat"] = o.cpuRepeat;
       // Where the steps' wall time went; narrow_ns is the backend's wall time (rtl: the
       // co-simulation's), narrow_modelled_ns the AFU's modelled time.

@@ -10,8 +10,9 @@ namespace collide::cli {
 
 struct RunTotals {
   std::uint64_t pairs = 0, contacts = 0, otherContacts = 0;
-  std::int64_t backendNs = 0, odeNs = 0, simdNs = 0;
-  std::uint64_t hitMismatches = 0;  // pairs where ode and simd disagree on hit
+  std::int64_t backendNs = 0, odeNs = 0, simdNs = 0, simd64Ns = 0;
+  std::uint64_t hitMismatches = 0;    // pairs where ode and simd disagree on hit
+  std::uint64_t hit64Mismatches = 0;  // the same for simd64 (0 unless its arithmetic left ODE's)
   // The steps' time split (sim::StepStats): broad phase, sphere/plane narrow phase, contact
   // joints, solver, and the whole steps (the sphere/sphere narrow phase is backendNs).
   std::int64_t broadNs = 0, otherNarrowNs = 0, jointsNs = 0, solverNs = 0, stepNs = 0;

@@ -11,13 +11,14 @@ namespace collide {
 std::unique_ptr<CollisionBackend> makeBackend(const BackendRequest& r) {
   if (r.name == "ode") return std::make_unique<OdeBackend>();
   if (r.name == "simd") return std::make_unique<SimdBackend>();
+  if (r.name == "simd64") return std::make_unique<SimdBackend>(LinkFormat::Binary64);
   if (r.name == "rtl") {
     // The trace's time axis is the link model's clock, whatever the caller left in port.
     driver::AfuPortOptions port = r.port;
     port.clockMHz = r.link.clockMHz;
     return std::make_unique<RtlBackend>(r.afuDir, r.link, r.driver, port);
   }
-  throw std::invalid_argument("unknown backend '" + r.name + "' (expected ode, simd or rtl)");
+  throw std::invalid_argument("unknown backend '" + r.name + "' (expected ode, simd, simd64 or rtl)");
 }
 
 }  // namespace collide

@@ -1,5 +1,5 @@
 #pragma once
-// Backend by name: "ode", "simd" or "rtl" (rtl needs an AFU folder and a link).
+// Backend by name: "ode", "simd", "simd64" or "rtl" (rtl needs an AFU folder and a link).
 #include <filesystem>
 #include <memory>
 #include <string>

@@ -13,12 +13,55 @@ namespace collide {
 // Both branches are computed and selected, which is what lets the loop vectorize;
 // the division by d = 0 on the coincident path is computed and discarded.
 namespace {
-// restrict-qualified *parameters*: GCC honours restrict there (not on local copies), which
-// spares the vectorizer ~90 run-time alias checks it would otherwise give up on.
-// target_clones: one copy per ISA, picked at load time (AVX-512: 16 pairs an instruction).
-// Every copy is the same IEEE binary32 arithmetic (no contraction, sqrt and division
-// correctly rounded in each ISA), so the results are bit-identical across them.
-// Not inlined: restrict on a caller's local arrays is lost, and the vectorizer gives up.
+// The loop, for binary32 and binary64 alike. Always inlined into the two kernels below, whose
+// restrict-qualified *parameters* it takes: GCC honours restrict there (not on local copies),
+// which spares the vectorizer ~90 run-time alias checks it would otherwise give up on.
+template <typename T>
+__attribute__((always_inline)) inline void body(std::size_t n, const T* __restrict x1, const T* __restrict y1,
+                                                const T* __restrict z1, const T* __restrict r1, const T* __restrict x2,
+                                                const T* __restrict y2, const T* __restrict z2, const T* __restrict r2,
+                                                T* __restrict px, T* __restrict py, T* __restrict pz, T* __restrict nx,
+                                                T* __restrict ny, T* __restrict nz, T* __restrict depth,
+                                                std::uint8_t* __restrict hit) {
+  const T zero = 0, one = 1, half = 0.5;
+  for (std::size_t k = 0; k < n; ++k) {
+    const T dx = x1[k] - x2[k];
+    const T dy = y1[k] - y2[k];
+    const T dz = z1[k] - z2[k];
+    const T d = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const T rsum = r1[k] + r2[k];
+    const bool h = !(d > rsum);
+    const bool coincident = d <= zero;
+    const T inv = one / d;
+    const T ex = dx * inv, ey = dy * inv, ez = dz * inv;
+    const T kk = half * (r2[k] - r1[k] - d);
+    const T cx = x1[k] + ex * kk, cy = y1[k] + ey * kk, cz = z1[k] + ez * kk;
+    const T dep = rsum - d;
+
+    const T sx = coincident ? x1[k] : cx;
+    const T sy = coincident ? y1[k] : cy;
+    const T sz = coincident ? z1[k] : cz;
+    const T tx = coincident ? one : ex;
+    const T ty = coincident ? zero : ey;
+    const T tz = coincident ? zero : ez;
+    const T sd = coincident ? rsum : dep;
+
+    px[k] = h ? sx : zero;
+    py[k] = h ? sy : zero;
+    pz[k] = h ? sz : zero;
+    nx[k] = h ? tx : zero;
+    ny[k] = h ? ty : zero;
+    nz[k] = h ? tz : zero;
+    depth[k] = h ? sd : zero;
+    hit[k] = h ? 1 : 0;
+  }
+}
+
+// target_clones: one copy per ISA, picked at load time (AVX-512: 16 binary32 or 8 binary64
+// pairs an instruction). Every copy is the same IEEE arithmetic (no contraction, sqrt and
+// division correctly rounded in each ISA), so the results are bit-identical across them.
+// Not inlined into their callers: restrict on a caller's local arrays is lost, and the
+// vectorizer gives up.
 __attribute__((noinline, target_clones("avx512f", "avx2", "default")))
 void kernel(std::size_t n, const float* __restrict x1, const float* __restrict y1,
             const float* __restrict z1, const float* __restrict r1, const float* __restrict x2,
@@ -26,37 +69,17 @@ void kernel(std::size_t n, const float* __restrict x1, const float* __restrict y
             float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict nx,
             float* __restrict ny, float* __restrict nz, float* __restrict depth,
             std::uint8_t* __restrict hit) {
-  for (std::size_t k = 0; k < n; ++k) {
-    const float dx = x1[k] - x2[k];
-    const float dy = y1[k] - y2[k];
-    const float dz = z1[k] - z2[k];
-    const float d = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const float rsum = r1[k] + r2[k];
-    const bool h = !(d > rsum);
-    const bool coincident = d <= 0.0f;
-    const float inv = 1.0f / d;
-    const float ex = dx * inv, ey = dy * inv, ez = dz * inv;
-    const float kk = 0.5f * (r2[k] - r1[k] - d);
-    const float cx = x1[k] + ex * kk, cy = y1[k] + ey * kk, cz = z1[k] + ez * kk;
-    const float dep = rsum - d;
+  body(n, x1, y1, z1, r1, x2, y2, z2, r2, px, py, pz, nx, ny, nz, depth, hit);
+}
 
-    const float sx = coincident ? x1[k] : cx;
-    const float sy = coincident ? y1[k] : cy;
-    const float sz = coincident ? z1[k] : cz;
-    const float tx = coincident ? 1.0f : ex;
-    const float ty = coincident ? 0.0f : ey;
-    const float tz = coincident ? 0.0f : ez;
-    const float sd = coincident ? rsum : dep;
-
-    px[k] = h ? sx : 0.0f;
-    py[k] = h ? sy : 0.0f;
-    pz[k] = h ? sz : 0.0f;
-    nx[k] = h ? tx : 0.0f;
-    ny[k] = h ? ty : 0.0f;
-    nz[k] = h ? tz : 0.0f;
-    depth[k] = h ? sd : 0.0f;
-    hit[k] = h ? 1 : 0;
-  }
+__attribute__((noinline, target_clones("avx512f", "avx2", "default")))
+void kernel(std::size_t n, const double* __restrict x1, const double* __restrict y1,
+            const double* __restrict z1, const double* __restrict r1, const double* __restrict x2,
+            const double* __restrict y2, const double* __restrict z2, const double* __restrict r2,
+            double* __restrict px, double* __restrict py, double* __restrict pz, double* __restrict nx,
+            double* __restrict ny, double* __restrict nz, double* __restrict depth,
+            std::uint8_t* __restrict hit) {
+  body(n, x1, y1, z1, r1, x2, y2, z2, r2, px, py, pz, nx, ny, nz, depth, hit);
 }
 
 constexpr std::size_t kBlock = 256;  // pairs a gather/kernel/widen round: ~15 kB of scratch
@@ -91,6 +114,29 @@ void gatherCollideF32(std::size_t n, const SpheresF64& s, const std::uint32_t* i
     }
     for (std::size_t k = 0; k < m; ++k) out.hit[b0 + k] = hit[k];
   }
+}
+
+// The binary64 twin: the gather copies (no rounding), the kernel writes the outputs in place.
+__attribute__((target_clones("avx512f", "avx2", "default")))
+void gatherCollideF64(std::size_t n, const SpheresF64& s, const std::uint32_t* i, const std::uint32_t* j,
+                      const ContactsF64& out) {
+  alignas(64) double in[8][kBlock];
+  for (std::size_t b0 = 0; b0 < n; b0 += kBlock) {
+    const std::size_t m = n - b0 < kBlock ? n - b0 : kBlock;
+    const std::uint32_t* bi = i + b0;
+    const std::uint32_t* bj = j + b0;
+    for (std::size_t k = 0; k < m; ++k) {
+      in[0][k] = s.x[bi[k]]; in[1][k] = s.y[bi[k]]; in[2][k] = s.z[bi[k]]; in[3][k] = s.r[bi[k]];
+      in[4][k] = s.x[bj[k]]; in[5][k] = s.y[bj[k]]; in[6][k] = s.z[bj[k]]; in[7][k] = s.r[bj[k]];
+    }
+    kernel(m, in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7], out.px + b0, out.py + b0, out.pz + b0,
+           out.nx + b0, out.ny + b0, out.nz + b0, out.depth + b0, out.hit + b0);
+  }
+}
+
+void collideSpheresF64(std::size_t n, const PairsF64& in, const ContactsF64& out) {
+  kernel(n, in.x1, in.y1, in.z1, in.r1, in.x2, in.y2, in.z2, in.r2, out.px, out.py, out.pz, out.nx,
+         out.ny, out.nz, out.depth, out.hit);
 }
 
 void collideSpheresF32(std::size_t n, const PairsF32& in, const ContactsF32& out) {

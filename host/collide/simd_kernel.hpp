@@ -1,7 +1,7 @@
 #pragma once
-// ODE's dCollideSpheres in binary32 over structure-of-arrays (docs/scpu.md, "Semantics"), written
-// branch-free so that GCC vectorizes it. Compiled with -ffp-contract=off: every operation
-// is one correctly rounded binary32 RNE operation, in the reference order.
+// ODE's dCollideSpheres in binary32 or binary64 over structure-of-arrays (docs/scpu.md,
+// "Semantics"), written branch-free so that GCC vectorizes it. Compiled with -ffp-contract=off:
+// every operation is one correctly rounded RNE operation of the format, in the reference order.
 #include <cstddef>
 #include <cstdint>
 
@@ -28,6 +28,15 @@ struct ContactsF64 {  // outputs, n entries each; zero where hit == 0
   std::uint8_t* hit;
 };
 void gatherCollideF32(std::size_t n, const SpheresF64& s, const std::uint32_t* i, const std::uint32_t* j,
+                      const ContactsF64& out);
+
+// The same in binary64 throughout (the spheres as they are; the simd64 backend): what ODE's
+// own dCollideSpheres computes, vectorized.
+struct PairsF64 {  // inputs, n entries each
+  const double *x1, *y1, *z1, *r1, *x2, *y2, *z2, *r2;
+};
+void collideSpheresF64(std::size_t n, const PairsF64& in, const ContactsF64& out);
+void gatherCollideF64(std::size_t n, const SpheresF64& s, const std::uint32_t* i, const std::uint32_t* j,
                       const ContactsF64& out);
 
 }  // namespace collide

@@ -223,7 +223,8 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   if (!(s.dt >= limits::kMinDtS && s.dt <= limits::kMaxDtS)) root.at("dt").expected("a time step in [1e-9, 10] s");
   if (auto v = root.find("backend")) {
     s.backend = v->string();
-    if (s.backend != "ode" && s.backend != "simd" && s.backend != "rtl") v->expected("\"ode\", \"simd\" or \"rtl\"");
+    if (s.backend != "ode" && s.backend != "simd" && s.backend != "simd64" && s.backend != "rtl")
+      v->expected("\"ode\", \"simd\", \"simd64\" or \"rtl\"");
   }
   if (auto v = root.find("afu")) {
     s.afuDir = v->string();
@@ -238,6 +239,9 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
       else v->expected("\"pairs\" or \"world\"");
       if (s.offload == Scene::Offload::World && s.backend == "ode")
         v->expected("\"pairs\" with backend ode (\"world\" needs backend simd or rtl: ODE's own space is the pairs path)");
+      if (s.offload == Scene::Offload::World && s.backend == "simd64")
+        v->expected("\"pairs\" with backend simd64 (\"world\" needs backend simd or rtl: the CPU's world engine is our "
+                    "grid with the binary32 kernel)");
     }
     if (auto v = c->find("space")) {
       const std::string sp = v->string();
