@@ -21,6 +21,8 @@
 
 set(COLLIDE_VERILATOR_OPT_FAST "-O1" CACHE STRING
     "C++ optimisation of the Verilated per-cycle code (-O1 builds a big AFU far quicker than -O2/-O3)")
+set(COLLIDE_VERILATOR_THREADS "1" CACHE STRING
+    "Threads of the Verilated model (Verilator --threads; bench/verilator measures what more buys)")
 
 function(collide_find_verilator)
   if(NOT COMMAND verilate)
@@ -41,7 +43,11 @@ function(collide_verilate target)
     message(FATAL_ERROR "collide_verilate: TRACE must be OFF, VCD or FST, got '${CV_TRACE}'")
   endif()
   # -w: the generated C++ is not ours to warn about (the project builds with -Wall -Wextra).
-  verilate(${target} SOURCES ${CV_SOURCES} TOP_MODULE ${CV_TOP} PREFIX ${CV_PREFIX} ${trace_kw}
+  set(threads_kw "")
+  if(NOT COLLIDE_VERILATOR_THREADS STREQUAL "1")
+    set(threads_kw THREADS ${COLLIDE_VERILATOR_THREADS})
+  endif()
+  verilate(${target} SOURCES ${CV_SOURCES} TOP_MODULE ${CV_TOP} PREFIX ${CV_PREFIX} ${trace_kw} ${threads_kw}
            VERILATOR_ARGS -Wno-fatal -Wno-lint -Wno-style --x-assign fast --x-initial fast
                           --output-split 20000 --output-split-cfuncs 20000 -I${COLLIDE_REPO_ROOT}/generated ${CV_ARGS}
            OPT_FAST ${COLLIDE_VERILATOR_OPT_FAST} -w

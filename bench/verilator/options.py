@@ -1,0 +1,125 @@
+"""Verilator build options against co-simulation speed, on the default AFU (16 fp32 SCPUs).
+
+For each option set it configures a fresh host build (build/verilator-opts/<id>, the AFU of
+generated/default Verilated into `collide`, no tests, no ccache, so every build compiles
+everything), times the build, then runs the paper's diamond over the HARP v1 link with every
+cycle evaluated (`--no-skip`, so the model's speed is what is timed) and reports wall time per
+simulated cycle (the rtl backend's wall time over the cycles it stepped; fastest of --runs).
+
+    tools/pyenv bench/verilator/options.py [--sets O1,O2,O1-t2,O2-t2] [--steps 10] [--runs 3]
+                                           [--out bench/results/verilator]
+
+Writes OUT/verilator.csv, OUT/README.md and OUT/MACHINE.md. Two builds never run at once.
+"""
+import argparse
+import csv
+import json
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
+import machine  # noqa: E402
+
+# id -> (what it is, CMake cache settings). O1 with one thread is the project's default.
+SETS = {
+    "O1": ("-O1 per-cycle code, 1 thread (the default)", {"COLLIDE_VERILATOR_OPT_FAST": "-O1"}),
+    "O2": ("-O2 per-cycle code, 1 thread", {"COLLIDE_VERILATOR_OPT_FAST": "-O2"}),
+    "O3": ("-O3 per-cycle code, 1 thread", {"COLLIDE_VERILATOR_OPT_FAST": "-O3"}),
+    "O1-t2": ("-O1, Verilator --threads 2", {"COLLIDE_VERILATOR_OPT_FAST": "-O1", "COLLIDE_VERILATOR_THREADS": "2"}),
+    "O2-t2": ("-O2, Verilator --threads 2", {"COLLIDE_VERILATOR_OPT_FAST": "-O2", "COLLIDE_VERILATOR_THREADS": "2"}),
+}
+SCENE = ROOT / "scenes" / "diamond.json"
+
+
+def build(set_id: str, work: Path) -> float:
+    d = work / set_id
+    shutil.rmtree(d, ignore_errors=True)
+    args = ["cmake", "-S", str(ROOT / "host"), "-B", str(d), "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+            "-DCOLLIDE_AFU_PRESET=default", "-DCOLLIDE_AFU_DIR=", "-DCOLLIDE_BUILD_TESTS=OFF"]
+    args += [f"-D{k}={v}" for k, v in SETS[set_id][1].items()]
+    log = work / f"{set_id}.log"
+    with open(log, "w") as out:
+        if subprocess.run(args, stdout=out, stderr=subprocess.STDOUT).returncode != 0:
+            raise RuntimeError(f"{set_id}: cmake failed; see {log}")
+        t0 = time.monotonic()
+        if subprocess.run(["cmake", "--build", str(d), "--target", "collide", "-j2"], stdout=out,
+                          stderr=subprocess.STDOUT).returncode != 0:
+            raise RuntimeError(f"{set_id}: build failed; see {log}")
+        return time.monotonic() - t0
+
+
+def per_cycle(summary: dict) -> tuple:
+    """(wall ns per stepped cycle, cycles stepped) of one `collide run --summary` file."""
+    stepped = summary["afu"]["cycles_stepped"]
+    if stepped <= 0:
+        raise ValueError("the run stepped no cycles")
+    return summary["backend_wall_ns"] / stepped, stepped
+
+
+def run(set_id: str, work: Path, steps: int, runs: int) -> tuple:
+    best = None
+    for _ in range(runs):
+        with tempfile.TemporaryDirectory() as t:
+            s = Path(t) / "s.json"
+            r = subprocess.run([str(work / set_id / "collide"), "run", str(SCENE), "--backend", "rtl", "--link", "qpi",
+                                "--steps", str(steps), "--no-skip", "--summary", str(s)], capture_output=True, text=True)
+            if r.returncode != 0:
+                raise RuntimeError(f"{set_id}: collide run failed:\n{r.stderr}")
+            ns, stepped = per_cycle(json.loads(s.read_text()))
+        best = (ns, stepped) if best is None or ns < best[0] else best
+    return best
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--sets", default="O1,O2,O3,O1-t2,O2-t2")
+    ap.add_argument("--steps", type=int, default=10)
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--out", type=Path, default=ROOT / "bench" / "results" / "verilator")
+    a = ap.parse_args(argv)
+    sets = [s for s in a.sets.split(",") if s]
+    for s in sets:
+        if s not in SETS:
+            ap.error(f"--sets: unknown set {s!r} (known: {', '.join(SETS)})")
+    work = ROOT / "build" / "verilator-opts"
+    work.mkdir(parents=True, exist_ok=True)
+    start = time.time()
+    rows = []
+    for s in sets:
+        print(f"verilator: {s}: building", flush=True)
+        secs = build(s, work)
+        ns, stepped = run(s, work, a.steps, a.runs)
+        rows.append({"set": s, "what": SETS[s][0], "build_s": round(secs, 1), "us_per_cycle": round(ns / 1e3, 2),
+                     "cycles_stepped": stepped})
+        print(f"verilator: {s}: build {secs:.0f} s, {ns / 1e3:.2f} us a cycle", flush=True)
+    a.out.mkdir(parents=True, exist_ok=True)
+    with open(a.out / "verilator.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]), lineterminator="\n")
+        w.writeheader()
+        w.writerows(rows)
+    base = next((r for r in rows if r["set"] == "O1"), rows[0])
+    lines = ["# Verilator options: build time against co-simulation speed", "",
+             f"The default AFU (generated/default, 16 fp32 SCPUs) Verilated into `collide` with each option set, "
+             f"built from scratch (host sources included, no ccache; `-j2`), then the paper's diamond over HARP v1 "
+             f"for {a.steps} steps with every cycle evaluated (`--no-skip`), fastest of {a.runs} runs. "
+             "Command: `tools/pyenv bench/verilator/options.py`; machine and commit in [MACHINE.md](MACHINE.md).", "",
+             f"| set | what | build (s) | us a cycle | speed vs {base['set']} |", "|---|---|---:|---:|---:|"]
+    for r in rows:
+        lines.append(f"| {r['set']} | {r['what']} | {r['build_s']:.0f} | {r['us_per_cycle']:.2f} | "
+                     f"{base['us_per_cycle'] / r['us_per_cycle']:.2f}x |")
+    lines.append("")
+    (a.out / "README.md").write_text("\n".join(lines))
+    (a.out / "MACHINE.md").write_text(
+        f"# Machine\n\n- command: `tools/pyenv bench/verilator/options.py {' '.join(argv or sys.argv[1:])}`\n"
+        f"- date: {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {time.time() - start:.0f} s\n"
+        f"- commit: {machine.commit()}\n- machine: {machine.describe()}\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
