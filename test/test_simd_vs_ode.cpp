@@ -14,19 +14,26 @@
 
 using namespace collide;
 
-TEST(SimdVsOde, AgreeWithinFloatTolerance) {
-  std::mt19937_64 rng(test::testSeed(51));
+namespace {
+// 20,000 random pairs of two spheres each (pair k: spheres 2k, 2k + 1), then an exactly
+// coincident pair (20000) and an exactly grazing one (20001), both representable in float.
+void randomPairs(std::uint64_t seed, SphereTable& t, PairList& p) {
+  std::mt19937_64 rng(test::testSeed(seed));
   std::uniform_real_distribution<double> pos(-1.0, 1.0), rad(0.05, 0.6);
-  SphereTable t;
-  PairList p;
   for (int k = 0; k < 20000; ++k) {
     t.push(pos(rng), pos(rng), pos(rng), rad(rng));
     t.push(pos(rng), pos(rng), pos(rng), rad(rng));
     p.push(2 * k, 2 * k + 1);
   }
-  // Plus exact coincident and exact grazing pairs (representable in float).
   t.push(0.25, 0.5, 0.75, 0.5); t.push(0.25, 0.5, 0.75, 0.25); p.push(40000, 40001);
   t.push(3, 4, 0, 2); t.push(0, 0, 0, 3); p.push(40002, 40003);
+}
+}  // namespace
+
+TEST(SimdVsOde, AgreeWithinFloatTolerance) {
+  SphereTable t;
+  PairList p;
+  randomPairs(51, t, p);
 
   ContactSet a, b;
   OdeBackend().collide(t, p, a);
@@ -78,18 +85,10 @@ TEST(SimdVsOde, AgreeWithinFloatTolerance) {
 TEST(SimdVsOde, Simd64IsOdesOwnArithmeticBitForBit) {
   // The binary64 kernel does ODE's dCollideSpheres operations in ODE's order, so on every pair,
   // grazing ones included, it gives ODE's contacts to the bit.
-  std::mt19937_64 rng(test::testSeed(53));
-  std::uniform_real_distribution<double> pos(-1.0, 1.0), rad(0.05, 0.6);
   SphereTable t;
   PairList p;
-  for (int k = 0; k < 20000; ++k) {
-    t.push(pos(rng), pos(rng), pos(rng), rad(rng));
-    t.push(pos(rng), pos(rng), pos(rng), rad(rng));
-    p.push(2 * k, 2 * k + 1);
-  }
-  t.push(0.25, 0.5, 0.75, 0.5); t.push(0.25, 0.5, 0.75, 0.25); p.push(40000, 40001);  // coincident
-  t.push(3, 4, 0, 2); t.push(0, 0, 0, 3); p.push(40002, 40003);                       // grazing
-  t.push(3, 4, 0, 2 - 0x1.0p-50); t.push(0, 0, 0, 3); p.push(40004, 40005);           // an ulp apart
+  randomPairs(53, t, p);
+  t.push(3, 4, 0, 2 - 0x1.0p-50); t.push(0, 0, 0, 3); p.push(40004, 40005);  // an ulp apart
   ContactSet a, b;
   OdeBackend().collide(t, p, a);
   SimdBackend simd64(LinkFormat::Binary64);

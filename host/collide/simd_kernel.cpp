@@ -61,7 +61,8 @@ __attribute__((always_inline)) inline void body(std::size_t n, const T* __restri
 // pairs an instruction). Every copy is the same IEEE arithmetic (no contraction, sqrt and
 // division correctly rounded in each ISA), so the results are bit-identical across them.
 // Not inlined into their callers: restrict on a caller's local arrays is lost, and the
-// vectorizer gives up.
+// vectorizer gives up. Two plain overloads, not a template: Clang's target_clones takes no
+// function templates (llvm-project issue 116501), so the loop is a template and these are not.
 __attribute__((noinline, target_clones("avx512f", "avx2", "default")))
 void kernel(std::size_t n, const float* __restrict x1, const float* __restrict y1,
             const float* __restrict z1, const float* __restrict r1, const float* __restrict x2,
