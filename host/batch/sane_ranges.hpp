@@ -1,4 +1,6 @@
 #pragma once
+#include <string>
+
 // The sane range of a sphere and of a scene's numbers: what every backend accepts and what
 // we let reach ODE (docs/host.md, "What reaches ODE"). Plain numbers, so the layers below
 // ODE (batch, scene, the CPU backends) check them without it.
@@ -7,7 +9,8 @@
 // at least 2^-3 m wide (dHashSpaceSetLevels' default minimum level -3), and asserts when a
 // coordinate's cell index leaves the int range ("aabbBound >= dMinIntExact && aabbBound <
 // dMaxIntExact", collision_space.cpp): beyond about 2^31 x 0.125 m = 2.7e8 m. 1e6 m keeps two
-// orders of magnitude from that, and from binary32 links, whose spacing at 1e6 is 0.0625 m. dGeomSphereSetRadius refuses a negative or NaN radius.
+// orders of magnitude from that, and from binary32 links, whose spacing at 1e6 is 0.0625 m.
+// Radii: dGeomSphereSetRadius refuses a negative or NaN radius.
 namespace collide::limits {
 
 inline constexpr double kMaxCoordinateM = 1e6;  // |x|, |y|, |z| of a centre
@@ -19,6 +22,11 @@ inline constexpr double kMaxRadiusM = 1e6;      // radius in (0, kMaxRadiusM]
 inline constexpr double kMinMassKg = 1e-9, kMaxMassKg = 1e9;
 inline constexpr double kMinDtS = 1e-9, kMaxDtS = 10;
 
+// ODE's broad phase: its hash space (ODE's default) or sweep and prune (axes x, y, z), for a
+// scene's pairs path and for `collide spheres --backend ode` alike (ode::createSpace).
+enum class OdeSpaceKind { Hash, SweepAndPrune };
+inline const char* toString(OdeSpaceKind k) { return k == OdeSpaceKind::Hash ? "hash" : "sap"; }
+
 // ODE 0.16's hash space marks tested pairs in an n x ceil(n/8) byte matrix whose size is an
 // int (dxHashSpace::collide, collision_space.cpp): from 131,072 spheres on it overflows and ODE
 // asserts. Larger worlds go to sweep and prune ("collision": {"space": "sap"}) or world mode.
@@ -27,6 +35,12 @@ inline constexpr long long hashSpaceTestedBytes(long long n) { return n * ((n + 
 static_assert(hashSpaceTestedBytes(kMaxHashSpaceSpheres) <= 2'147'483'647LL &&
                   hashSpaceTestedBytes(kMaxHashSpaceSpheres + 1) > 2'147'483'647LL,
               "kMaxHashSpaceSpheres is the largest n whose tested-pairs matrix fits an int");
+// Why n spheres do not fit the hash space; each caller adds its own way out.
+inline std::string hashSpaceRefusal(long long n) {
+  return std::to_string(n) + " spheres, more than ODE's hash space holds (" + std::to_string(kMaxHashSpaceSpheres) +
+         ": its tested-pairs matrix of n x ceil(n/8) bytes, " + std::to_string(hashSpaceTestedBytes(n) / (1 << 20)) +
+         " MiB here, passes ODE's int range)";
+}
 
 inline bool saneCoordinate(double v) { return v >= -kMaxCoordinateM && v <= kMaxCoordinateM; }  // false for NaN
 inline bool saneRadius(double r) { return r > 0 && r <= kMaxRadiusM; }

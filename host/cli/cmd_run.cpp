@@ -240,7 +240,7 @@ int runScene(const RunOptions& o) {
                 << ")\n";
     }
     const std::string odeBroad = std::string("dSpaceCollide, ODE's ") +
-                                 (sc.space == scene::Scene::Space::Sap ? "sweep-and-prune space" : "hash space");
+                                 (sc.space == limits::OdeSpaceKind::SweepAndPrune ? "sweep-and-prune space" : "hash space");
     if (engine) {
       // The engine's own account: the broad phase apart, the rest as the narrow phase.
       const std::string how = engine->modelled() ? "modelled, link " + sc.link.name : std::string("measured");

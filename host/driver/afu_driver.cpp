@@ -307,11 +307,8 @@ void AfuDriver::check(const RunResult& r, std::size_t n, std::size_t capacity, s
     for (const auto& c : r.records) {
       if (c.pair >= n) fail("record names pair " + std::to_string(c.pair) + " of " + std::to_string(n));
       if (seen[c.pair]) fail("two records for pair " + std::to_string(c.pair));
-      if (!c.hit()) {
-        if (!(c.flags & (contract::REC_NONFINITE | contract::REC_ARITH)))
-          fail("compact record for pair " + std::to_string(c.pair) + " without the hit flag or an error flag");
-        ++flagged;
-      }
+      if (c.flaggedMiss()) ++flagged;
+      else if (!c.hit()) fail("compact record for pair " + std::to_string(c.pair) + " without the hit flag or an error flag");
       seen[c.pair] = true;
     }
     if (!(s.errors & contract::ERR_CAPACITY)) {

@@ -44,6 +44,9 @@ struct ContactRecord {
   std::uint32_t pair = 0;
   std::uint8_t flags = 0;
   bool hit() const { return flags & contract::REC_HIT; }
+  // A miss with a non-finite input or an arithmetic fault: in pair mode a record in compact
+  // mode too, so that its flag reaches the user (docs/afu-interface.md).
+  bool flaggedMiss() const { return !hit() && (flags & (contract::REC_NONFINITE | contract::REC_ARITH)); }
   std::uint8_t recordCase() const { return (flags >> contract::REC_KIND_SHIFT) & contract::REC_KIND_MASK; }
 };
 

@@ -4,12 +4,13 @@
 
 namespace collide::ode {
 
+dSpaceID createSpace(limits::OdeSpaceKind kind) {
+  return kind == limits::OdeSpaceKind::SweepAndPrune ? dSweepAndPruneSpaceCreate(nullptr, dSAP_AXES_XYZ)
+                                                     : dHashSpaceCreate(nullptr);
+}
+
 World::World(const scene::Scene& s)
-    : world_(dWorldCreate()),
-      // Sweep and prune on all three axes: ODE's own default axis order for it.
-      space_(s.space == scene::Scene::Space::Sap ? dSweepAndPruneSpaceCreate(nullptr, dSAP_AXES_XYZ)
-                                                 : dHashSpaceCreate(nullptr)),
-      contacts_(dJointGroupCreate(0)) {
+    : world_(dWorldCreate()), space_(createSpace(s.space)), contacts_(dJointGroupCreate(0)) {
   // Only what the scene declares: ODE's defaults otherwise (gravity 0 by default).
   if (s.gravity) dWorldSetGravity(world_, (*s.gravity)[0], (*s.gravity)[1], (*s.gravity)[2]);
   else dWorldSetGravity(world_, 0, 0, 0);

@@ -6,10 +6,14 @@
 #include <ode/ode.h>
 
 #include "batch/batch.hpp"
+#include "batch/sane_ranges.hpp"
 #include "ode/ode_library.hpp"
 #include "scene/scene.hpp"
 
 namespace collide::ode {
+
+// An empty space of that kind (sweep and prune on axes x, y, z, ODE's own default order).
+dSpaceID createSpace(limits::OdeSpaceKind kind);
 
 class World {
  public:

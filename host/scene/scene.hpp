@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "batch/sane_ranges.hpp"
 #include "link/link_params.hpp"
 #include "link/link_presets.hpp"
 #include "scene/json_reader.hpp"
@@ -67,8 +68,7 @@ struct Scene {
   Offload offload = Offload::Pairs;
   // ODE's broad phase on the pairs path: its hash space (ODE's default, up to
   // limits::kMaxHashSpaceSpheres spheres) or sweep and prune (any count).
-  enum class Space { Hash, Sap };
-  Space space = Space::Hash;
+  limits::OdeSpaceKind space = limits::OdeSpaceKind::Hash;
   std::filesystem::path afuDir;        // rtl: generated/<preset>
   link::LinkParams link = link::presetParams(link::kDefaultPreset);
   // rtl: wall-clock limit of one AFU run (unset: driver::kDefaultWallLimitS).

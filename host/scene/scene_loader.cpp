@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <sstream>
 
 #include "batch/sane_ranges.hpp"
 #include "driver/wall_watchdog.hpp"
@@ -245,8 +244,8 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
     }
     if (auto v = c->find("space")) {
       const std::string sp = v->string();
-      if (sp == "hash") s.space = Scene::Space::Hash;
-      else if (sp == "sap") s.space = Scene::Space::Sap;
+      if (sp == "hash") s.space = limits::OdeSpaceKind::Hash;
+      else if (sp == "sap") s.space = limits::OdeSpaceKind::SweepAndPrune;
       else v->expected("\"hash\" (ODE's hash space) or \"sap\" (sweep and prune)");
     }
   }
@@ -259,14 +258,10 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   if (s.spheres.empty()) bodies.fail("no spheres (declare diamond, spheres or random_cloud)");
   if (static_cast<long long>(s.spheres.size()) > kMaxSpheres) bodies.fail("more than 1000000 spheres");
   const auto n = static_cast<long long>(s.spheres.size());
-  if (s.offload == Scene::Offload::Pairs && s.space == Scene::Space::Hash && n > limits::kMaxHashSpaceSpheres) {
-    std::ostringstream m;
-    m << n << " spheres, more than ODE's hash space holds (" << limits::kMaxHashSpaceSpheres
-      << ": its tested-pairs matrix of n x ceil(n/8) bytes, " << limits::hashSpaceTestedBytes(n) / (1 << 20)
-      << " MiB here, passes ODE's int range); declare \"collision\": {\"space\": \"sap\"} (sweep and prune), or "
-         "{\"offload\": \"world\"} with backend simd or rtl";
-    bodies.fail(m.str());
-  }
+  if (s.offload == Scene::Offload::Pairs && s.space == limits::OdeSpaceKind::Hash && n > limits::kMaxHashSpaceSpheres)
+    bodies.fail(limits::hashSpaceRefusal(n) +
+                "; declare \"collision\": {\"space\": \"sap\"} (sweep and prune), or {\"offload\": \"world\"} with "
+                "backend simd or rtl");
 
   if (auto v = root.find("effects")) readEffects(*v, s);  // after bodies: "centroid"
   if (auto v = root.find("contact")) readContact(*v, s);

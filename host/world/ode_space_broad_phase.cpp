@@ -7,14 +7,13 @@
 #include <utility>
 
 #include "batch/sane_ranges.hpp"
+#include "ode/ode_world.hpp"
 
 namespace collide::world {
 
-const char* toString(OdeSpaceKind k) { return k == OdeSpaceKind::Hash ? "hash" : "sap"; }
-
 OdeSpaceBroadPhase::OdeSpaceBroadPhase(OdeSpaceKind kind)
     : kind_(kind),
-      space_(kind == OdeSpaceKind::Hash ? dHashSpaceCreate(nullptr) : dSweepAndPruneSpaceCreate(nullptr, dSAP_AXES_XYZ)) {
+      space_(ode::createSpace(kind)) {
   dSpaceSetCleanup(space_, 0);  // the geoms are ours (clearGeoms)
 }
 
@@ -32,9 +31,7 @@ void OdeSpaceBroadPhase::clearGeoms() {
 void OdeSpaceBroadPhase::prepare(const SphereTable& s, const std::vector<std::uint32_t>& members) {
   const auto n = static_cast<long long>(members.size());
   if (kind_ == OdeSpaceKind::Hash && n > limits::kMaxHashSpaceSpheres)
-    throw std::invalid_argument(std::to_string(n) + " spheres, more than ODE's hash space holds (" +
-                                std::to_string(limits::kMaxHashSpaceSpheres) +
-                                ": its tested-pairs matrix of n x ceil(n/8) bytes passes ODE's int range): use --space sap");
+    throw std::invalid_argument(limits::hashSpaceRefusal(n) + ": use --space sap");
   const bool fresh = geoms_.size() != s.size() ||
                      std::any_of(members.begin(), members.end(), [&](std::uint32_t m) { return !geoms_[m]; });
   if (fresh) {

@@ -9,13 +9,13 @@
 
 #include <ode/ode.h>
 
+#include "batch/sane_ranges.hpp"
 #include "ode/ode_library.hpp"
 #include "world/broad_phase.hpp"
 
 namespace collide::world {
 
-enum class OdeSpaceKind { Hash, SweepAndPrune };
-const char* toString(OdeSpaceKind k);  // "hash", "sap"
+using limits::OdeSpaceKind;
 
 class OdeSpaceBroadPhase final : public BroadPhase {
  public:

@@ -174,7 +174,7 @@ void ModelAfu::computePairLine(std::uint64_t line, const link::Line& data) {
     r.pair = static_cast<std::uint32_t>(k);
     if (r.hit()) ++st_.contactsFound;
     // A miss with an error flag is a compact record too (as the AFU in pair mode).
-    const bool flaggedMiss = !r.hit() && (r.flags & (contract::REC_NONFINITE | contract::REC_ARITH));
+    const bool flaggedMiss = r.flaggedMiss();
     if (flaggedMiss) ++st_.flaggedMisses;
     if (csr_[contract::CSR_MODE] & contract::MODE_DENSE) {  // dense: record k is pair k
       if (k >= csr_[contract::CSR_CONTACT_CAPACITY]) { st_.errors |= contract::ERR_CAPACITY; continue; }

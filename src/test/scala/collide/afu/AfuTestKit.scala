@@ -123,7 +123,7 @@ object AfuRun {
     val recorded = exp.filter(_.written) // compact mode's records: hits and flagged misses
     val cap = world.capacity.getOrElse(lay.compactSlotsFor(n.toLong) + 3)
     // masked compact: a header before the records of each group with one
-    val hitGroups = world.groups.filter(_.exists(k => exp(k).written))
+    val recordGroups = world.groups.filter(_.exists(k => exp(k).written))
     val masked = lay.masked && !world.dense
     r.status match {
       case None => fail(s"no status line written in ${r.cycles} cycles"); return errs.toSeq
@@ -140,7 +140,7 @@ object AfuRun {
             fail(s"write outside the buffers: line 0x${e.addr.toString(16)}")
         val lines = r.writes.filter(_.addr != r.statusAddr)
         if (lines.map(_.addr).distinct.size != lines.size) fail("a contact line written twice")
-        val total = if (world.dense) n.toLong else recorded.size.toLong + (if (masked) hitGroups.size else 0)
+        val total = if (world.dense) n.toLong else recorded.size.toLong + (if (masked) recordGroups.size else 0)
         val written = math.min(total, cap)
         val nonFin = exp.count(e => (e.flags & RecordFlags.NONFINITE) != 0)
         val firstBad = (0 until n).find(world.bad).map(_.toLong).getOrElse(StatusLine.NO_BAD_PAIR)
@@ -171,7 +171,7 @@ object AfuRun {
         } else {
           // header, its hits, the next header...: groups in the order pair lines arrived (any),
           // each once; the buffer may end inside a group
-          val byFirst = hitGroups.map(g => g.head -> g).toMap
+          val byFirst = recordGroups.map(g => g.head -> g).toMap
           val seen = scala.collection.mutable.Set[Int]()
           val out = scala.collection.mutable.ArrayBuffer[AfuRecord]()
           var rn = 0L
@@ -180,7 +180,7 @@ object AfuRun {
             val (first, mask) = AfuRecord.header(line, slot, lay)
             val rest = AfuRecord.word(line, slot * lay.recordBits, lay.recordBits) >> MaskHeader.BITS
             if (!byFirst.contains(first) || seen(first) || rest != 0) {
-              fail(s"slot $rn: header (first $first, mask 0x${mask.toHexString}) names no group with a hit, or one seen before")
+              fail(s"slot $rn: header (first $first, mask 0x${mask.toHexString}) names no group with a record, or one seen before")
               rn = written
             } else {
               seen += first
