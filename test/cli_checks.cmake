@@ -29,6 +29,30 @@ if(CHECK STREQUAL "pairs_simd" OR CHECK STREQUAL "pairs_ode")
   if(NOT got STREQUAL want)
     message(FATAL_ERROR "contacts.csv differs:\n--- got\n${got}--- want\n${want}")
   endif()
+elseif(CHECK STREQUAL "model_backend")
+  # model:<preset>: an AFU preset's SCPU on the CPU. model:fp32 is binary32 with correctly
+  # rounded roots, as simd: the same output byte for byte.
+  file(WRITE ${WORK}/in.csv "${pairs}")
+  foreach(backend simd model:fp32)
+    execute_process(COMMAND ${COLLIDE} pairs --backend ${backend} --in ${WORK}/in.csv --out ${WORK}/out-${backend}.csv
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    expect_rc(0)
+  endforeach()
+  file(READ ${WORK}/out-simd.csv want)
+  file(READ ${WORK}/out-model:fp32.csv got)
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "model:fp32 differs from simd:\n--- got\n${got}--- want\n${want}")
+  endif()
+  execute_process(COMMAND ${COLLIDE} pairs --backend model:fp32-nr --in ${WORK}/in.csv --out ${WORK}/out.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(105)  # CLI11's ValidationError
+  expect_match("${err}" "SCPU preset 'fp32-nr' is not emulated on the CPU: its roots are Newton-Raphson")
+  # A scene in lasting contact, in binary16, with the physics line.
+  execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/rest_stack.json --backend model:fp16 --steps 3
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  expect_match("${out}" "backend model:fp16, link not simulated")
+  expect_match("${out}" "physics      : kinetic energy at most [0-9.e+-]+ J \\(last step [0-9.e+-]+ J\\), deepest contact [0-9.]+ mm, 0 spheres through a plane")
 elseif(CHECK STREQUAL "pairs_bad_line")
   file(WRITE ${WORK}/in.csv "x1,y1,z1,r1,x2,y2,z2,r2\n0,0,0,1,0,0,0,2\n1,2,3\n")
   execute_process(COMMAND ${COLLIDE} pairs --backend simd --in ${WORK}/in.csv --out ${WORK}/out.csv
@@ -51,7 +75,7 @@ elseif(CHECK STREQUAL "run_small")
     expect_match("${out}" "\n  ${stage} +-?[0-9.]+ ms +-?[0-9.]+ %")
   endforeach()
   file(STRINGS ${WORK}/steps.csv header LIMIT_COUNT 1)
-  expect_match("${header}" ",hit_mismatches,broad_ns,plane_narrow_ns,joints_ns,solver_ns,step_ns$")
+  expect_match("${header}" ",hit_mismatches,broad_ns,plane_narrow_ns,joints_ns,solver_ns,step_ns,kinetic_j,max_depth_m,escaped$")
   file(STRINGS ${WORK}/steps.csv rows)
   list(LENGTH rows n)
   if(NOT n EQUAL 21)

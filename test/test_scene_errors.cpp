@@ -45,7 +45,7 @@ TEST(SceneErrors, InlineFaults) {
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "bodies": {"diamond": {"hMax": 2.5}}})"),
             "scene.bodies.diamond.hMax: expected a positive integer, got 2.5");
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "backend": "gpu", "bodies": {"diamond": {"hMax": 2}}})"),
-            "scene.backend: expected \"ode\", \"simd\", \"simd64\" or \"rtl\", got \"gpu\"");
+            "scene.backend: expected \"ode\", \"simd\", \"simd64\", \"rtl\" or \"model:<preset>\", got \"gpu\"");
   EXPECT_EQ(errorOf(std::string("{") + kOk +
                     R"(, "contact": {"mu": -1}, "bodies": {"diamond": {"hMax": 2}}})"),
             "scene.contact.mu: expected a number >= 0 or \"infinity\", got -1");

@@ -172,7 +172,7 @@ int runScene(const RunOptions& o) {
       std::ostream& csv = csvFile->stream();
       csv << "step,pairs,contacts,other_contacts,backend_ns,ode_ns,simd_ns,simd64_ns,hit_mismatches";
       if (rtl) csv << ",afu_runs,afu_modelled_ns,afu_cycles,afu_load,afu_compute,afu_wait_rd,afu_wait_wr";
-      csv << ",broad_ns,plane_narrow_ns,joints_ns,solver_ns,step_ns\n";
+      csv << ",broad_ns,plane_narrow_ns,joints_ns,solver_ns,step_ns,kinetic_j,max_depth_m,escaped\n";
     }
     for (long long s = 0; s < sc.steps; ++s) {
       const auto st = sim.step();
@@ -192,6 +192,10 @@ int runScene(const RunOptions& o) {
       tot.stepNs += st.stepNs;
       tot.worldBroadNs += st.worldBroadNs;
       tot.worldNarrowNs += st.worldNarrowNs;
+      tot.maxKineticJ = std::max(tot.maxKineticJ, st.kineticJ);
+      tot.lastKineticJ = st.kineticJ;
+      tot.maxDepthM = std::max(tot.maxDepthM, st.maxDepthM);
+      tot.maxEscaped = std::max(tot.maxEscaped, st.escaped);
       // This step's AFU calls: the rtl backend's batch, or the world engine's run.
       RtlBatchStats stepAfu;
       if (rtlBackend) stepAfu = rtlBackend->lastBatch();
@@ -218,7 +222,8 @@ int runScene(const RunOptions& o) {
               << ',' << b.counters.cyclesWaitRead << ',' << b.counters.cyclesWaitWrite;
         }
         csv << ',' << st.broadNs << ',' << st.otherNarrowNs << ',' << st.jointsNs << ',' << st.solverNs << ','
-            << st.stepNs << '\n';
+            << st.stepNs << ',' << std::defaultfloat << std::setprecision(9) << st.kineticJ << ',' << st.maxDepthM << ','
+            << st.escaped << '\n';
       }
     }
     if (csvFile) csvFile->commit();
@@ -228,6 +233,9 @@ int runScene(const RunOptions& o) {
               << "contacts     : " << tot.contacts << " sphere/sphere";
     if (sc.groundZ || !sc.planes.empty()) std::cout << " (+" << tot.otherContacts << " sphere/plane on the CPU)";
     std::cout << "\n";
+    std::cout << "physics      : kinetic energy at most " << std::defaultfloat << std::setprecision(4) << tot.maxKineticJ
+              << " J (last step " << tot.lastKineticJ << " J), deepest contact " << tot.maxDepthM * 1e3 << " mm, "
+              << tot.maxEscaped << " spheres through a plane at most\n";
     if (!engine) {  // the observer's comparison runs on the pairs path only
       std::cout << "ODE collider : ";
       printTiming(std::cout, tot.odeNs, tot.pairs, tot.contacts);
@@ -291,6 +299,8 @@ int runScene(const RunOptions& o) {
       j["simd_ode_hit_mismatches"] = tot.hitMismatches;
       j["simd64_ode_hit_mismatches"] = tot.hit64Mismatches;
       j["cpu_repeat"] = o.cpuRepeat;
+      j["physics"] = {{"max_kinetic_j", tot.maxKineticJ}, {"last_kinetic_j", tot.lastKineticJ},
+                      {"max_depth_m", tot.maxDepthM}, {"max_escaped", tot.maxEscaped}};
       // Where the steps' wall time went; narrow_ns is the backend's wall time (rtl: the
       // co-simulation's), narrow_modelled_ns the AFU's modelled time.
       j["time_split"] = {{"broad_ns", tot.broadNs},         {"narrow_ns", tot.backendNs},

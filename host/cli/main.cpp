@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
+#include "collide/backend_factory.hpp"
 #include "link/link_presets.hpp"
 #include "scene/scene.hpp"
 #include "util/echo.hpp"
@@ -46,7 +47,7 @@ int main(int argc, char** argv) {
   r->add_option("scene", run.scene, "scene file (JSON)")->required()->check(CLI::ExistingFile);
   r->add_option_function<std::string>("--backend", [&](const std::string& b) { run.backend = b; },
                                       "override the scene's backend")
-      ->check(CLI::IsMember({"ode", "simd", "simd64", "rtl"}));
+      ->check(CLI::Validator([](std::string& b) { return collide::backendNameError(b); }, "BACKEND", "backend"));
   // Read as text: CLI11 saturates an integer that overflows, and its range check prints
   // the bound of a double (309 digits).
   r->add_option_function<std::string>("--steps", [&](const std::string& n) { run.steps = parseSteps(n); },
@@ -73,8 +74,11 @@ int main(int argc, char** argv) {
   auto* p = app.add_subcommand("pairs", "vector mode: collide the pairs of a CSV file");
   auto* afu = p->add_option("--afu", pairs.afu, "generated AFU folder (rtl backend)");
   p->add_option("--backend", pairs.backend,
-                "CPU backend instead of an AFU (simd: binary32, simd64: the same kernel in binary64, ode: binary64)")
-      ->check(CLI::IsMember({"simd", "simd64", "ode"}))
+                "CPU backend instead of an AFU (simd: binary32, simd64: the same kernel in binary64, ode: binary64, "
+                "model:<preset>: an AFU preset's SCPU on the CPU, bit for bit)")
+      ->check(CLI::Validator([](std::string& b) {
+        return b == "rtl" ? "backend rtl: give --afu DIR instead" : collide::backendNameError(b);
+      }, "BACKEND", "backend"))
       ->excludes(afu);
   p->add_option("--link", pairs.link, "rtl: link preset (collide info --links)")
       ->capture_default_str()

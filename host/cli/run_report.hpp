@@ -18,6 +18,10 @@ struct RunTotals {
   std::int64_t broadNs = 0, otherNarrowNs = 0, jointsNs = 0, solverNs = 0, stepNs = 0;
   // Offload "world": the engine's own broad / rest split (sim::StepStats::worldBroadNs...).
   std::int64_t worldBroadNs = 0, worldNarrowNs = 0;
+  // The physics (sim::StepStats): the largest kinetic energy, deepest contact and escaped count
+  // over the steps, and the last step's kinetic energy.
+  double maxKineticJ = 0, lastKineticJ = 0, maxDepthM = 0;
+  std::size_t maxEscaped = 0;
 };
 
 // Where a run's step time went, one line per stage with its share. `narrowNs` is the

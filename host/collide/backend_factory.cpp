@@ -2,11 +2,25 @@
 
 #include <stdexcept>
 
+#include "collide/model_backend.hpp"
 #include "collide/ode_backend.hpp"
 #include "collide/rtl_backend.hpp"
 #include "collide/simd_backend.hpp"
 
 namespace collide {
+
+std::string backendNameError(const std::string& name) {
+  if (name == "ode" || name == "simd" || name == "simd64" || name == "rtl") return "";
+  if (name.rfind(kModelBackendPrefix, 0) == 0) {
+    try {
+      scpu::emulatedPreset(name.substr(6));
+      return "";
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+  }
+  return "unknown backend '" + name + "' (expected " + kBackendNames + ")";
+}
 
 std::unique_ptr<CollisionBackend> makeBackend(const BackendRequest& r) {
   if (r.name == "ode") return std::make_unique<OdeBackend>();
@@ -18,7 +32,8 @@ std::unique_ptr<CollisionBackend> makeBackend(const BackendRequest& r) {
     port.clockMHz = r.link.clockMHz;
     return std::make_unique<RtlBackend>(r.afuDir, r.link, r.driver, port);
   }
-  throw std::invalid_argument("unknown backend '" + r.name + "' (expected ode, simd, simd64 or rtl)");
+  if (r.name.rfind(kModelBackendPrefix, 0) == 0) return std::make_unique<ModelBackend>(r.name.substr(6));
+  throw std::invalid_argument("unknown backend '" + r.name + "' (expected " + kBackendNames + ")");
 }
 
 }  // namespace collide

@@ -9,18 +9,12 @@
 // layout elsewhere, and so does the manifest reader.
 #include <cstdint>
 
-#include "format/number_format.hpp"
+#include "scpu/scpu_arith.hpp"
 
 namespace collide::driver {
 
-// How the SCPU turns p1 - p2 into d and the normal's factor (the manifest's scpu.distance).
-enum class DistanceMethod { SqrtThenRecip, Rsqrt, Robust };
-
-struct ComputeArith {
-  format::NumberFormat compute = format::kBinary32;  // the SCPU's format
-  format::NumberFormat link = format::kBinary32;     // the link's fields
-  DistanceMethod distance = DistanceMethod::SqrtThenRecip;
-};
+using scpu::ComputeArith;
+using scpu::DistanceMethod;
 
 // s1, s2: x, y, z, r of spheres i and j as the link carries them. d, w: the record's values
 // (link format). flags: the record's flags byte. out: px, py, pz, nx, ny, nz, depth in the

@@ -2,12 +2,15 @@
 
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 
 #include "batch/sane_ranges.hpp"
 #include "driver/wall_watchdog.hpp"
 #include "link/link_presets.hpp"
 #include "scene/diamond.hpp"
 #include "scene/random_cloud.hpp"
+#include "scene/stacked_pile.hpp"
+#include "scpu/scpu_model.hpp"
 #include "util/input_file.hpp"
 #include "util/json_input.hpp"
 
@@ -85,6 +88,35 @@ void addCloud(const JsonNode& n, Scene& s) {
   }
   const double mass = n.find("mass") ? massOf(n.at("mass")) : 1.0;
   for (const auto& c : randomCloud(p)) s.spheres.push_back({c.centre, c.radius, mass, {}});
+}
+
+// {"shape": "block" | "pyramid", "base": [nx, ny], "layers": L, "radius": r, "mass": m,
+//  "corner": [x, y, z]} (scene/stacked_pile.hpp)
+void addStackedPile(const JsonNode& n, Scene& s) {
+  n.allowOnly({"shape", "base", "layers", "radius", "mass", "corner"});
+  StackedPileParams p;
+  if (auto v = n.find("shape")) {
+    const std::string sh = v->string();
+    if (sh == "block") p.shape = StackedPileParams::Shape::Block;
+    else if (sh == "pyramid") p.shape = StackedPileParams::Shape::Pyramid;
+    else v->expected("\"block\" or \"pyramid\"");
+  }
+  const JsonNode base = n.at("base");
+  if (!base.json().is_array() || base.arraySize() != 2) base.expected("[nx, ny]");
+  const long long nx = base[0].positiveInt(), ny = base[1].positiveInt(), layers = n.at("layers").positiveInt();
+  if (nx > kMaxSpheres || ny > kMaxSpheres || layers > kMaxSpheres || nx * ny * layers > kMaxSpheres)
+    n.fail("more than " + std::to_string(kMaxSpheres) + " spheres");
+  p.nx = static_cast<int>(nx);
+  p.ny = static_cast<int>(ny);
+  p.layers = static_cast<int>(layers);
+  p.radius = radius(n.at("radius"));
+  if (auto c = n.find("corner")) p.corner = position(*c);
+  const double mass = n.find("mass") ? massOf(n.at("mass")) : 1.0;
+  for (const auto& c : stackedPileCentres(p)) {
+    if (!limits::saneCoordinate(c[0]) || !limits::saneCoordinate(c[1]) || !limits::saneCoordinate(c[2]))
+      n.fail("a sphere's centre lies beyond +-1e6 m");
+    s.spheres.push_back({c, p.radius, mass, {}});
+  }
 }
 
 Vec3 centroid(const Scene& s) {
@@ -222,8 +254,15 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   if (!(s.dt >= limits::kMinDtS && s.dt <= limits::kMaxDtS)) root.at("dt").expected("a time step in [1e-9, 10] s");
   if (auto v = root.find("backend")) {
     s.backend = v->string();
-    if (s.backend != "ode" && s.backend != "simd" && s.backend != "simd64" && s.backend != "rtl")
-      v->expected("\"ode\", \"simd\", \"simd64\" or \"rtl\"");
+    if (s.backend.rfind("model:", 0) == 0) {
+      try {
+        scpu::emulatedPreset(s.backend.substr(6));
+      } catch (const std::invalid_argument& e) {
+        v->expected(std::string("\"model:<preset>\" with an emulated preset: ") + e.what());
+      }
+    } else if (s.backend != "ode" && s.backend != "simd" && s.backend != "simd64" && s.backend != "rtl") {
+      v->expected("\"ode\", \"simd\", \"simd64\", \"rtl\" or \"model:<preset>\"");
+    }
   }
   if (auto v = root.find("afu")) {
     s.afuDir = v->string();
@@ -251,10 +290,11 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   }
 
   const JsonNode bodies = root.at("bodies");
-  bodies.allowOnly({"diamond", "spheres", "random_cloud"});
+  bodies.allowOnly({"diamond", "spheres", "random_cloud", "stacked_pile"});
   if (auto d = bodies.find("diamond")) addDiamond(*d, s);
   if (auto l = bodies.find("spheres")) addSpheres(*l, s);
   if (auto c = bodies.find("random_cloud")) addCloud(*c, s);
+  if (auto p = bodies.find("stacked_pile")) addStackedPile(*p, s);
   if (s.spheres.empty()) bodies.fail("no spheres (declare diamond, spheres or random_cloud)");
   if (static_cast<long long>(s.spheres.size()) > kMaxSpheres) bodies.fail("more than 1000000 spheres");
   const auto n = static_cast<long long>(s.spheres.size());

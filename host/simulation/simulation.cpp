@@ -1,5 +1,6 @@
 #include "simulation/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -158,7 +159,9 @@ StepStats Simulation::step() {
     g.side1 = g.side2 = -1;
     ode::addContactJoint(world_.world(), world_.contacts(), surface_, g);
     ++st.contacts;
+    st.maxDepthM = std::max(st.maxDepthM, g.depth);
   }
+  for (const auto& g : otherContacts_) st.maxDepthM = std::max(st.maxDepthM, g.depth);
   st.otherContacts = otherContacts_.size();
   t0 = Clock::now();
   st.jointsNs = nsBetween(afterObserver, t0);
@@ -168,8 +171,27 @@ StepStats Simulation::step() {
   const auto end = Clock::now();
   st.solverNs = nsBetween(t0, end);
   st.stepNs = nsBetween(start, end) - nsBetween(t1, afterObserver);
+  measureState(st);
   ++step_;
   return st;
+}
+
+void Simulation::measureState(StepStats& st) const {
+  for (std::size_t k = 0; k < world_.sphereCount(); ++k) {
+    const dBodyID b = world_.sphereBody(k);
+    dMass m;
+    dBodyGetMass(b, &m);
+    const dReal* v = dBodyGetLinearVel(b);
+    const dReal* w = dBodyGetAngularVel(b);
+    // A sphere's inertia is isotropic: I[0] (row 0, column 0) is its moment about any axis.
+    st.kineticJ += 0.5 * m.mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
+                   0.5 * m.I[0] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    const dReal* p = dBodyGetPosition(b);
+    bool out = scene_.groundZ && p[2] < *scene_.groundZ;
+    for (const auto& pl : scene_.planes)
+      out = out || pl.normal[0] * p[0] + pl.normal[1] * p[1] + pl.normal[2] * p[2] < pl.offset;
+    st.escaped += out;
+  }
 }
 
 }  // namespace collide::sim

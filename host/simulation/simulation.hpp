@@ -37,6 +37,11 @@ struct StepStats {
   // World engine only: its own account of the sphere/sphere collision (backendNs is its wall
   // time): the broad phase and the rest, measured on the CPU, modelled on the AFU.
   std::int64_t worldBroadNs = 0, worldNarrowNs = 0;
+  // The physics after the step, for stability studies (bench/stability): whether a scene at
+  // rest stays at rest in a given arithmetic.
+  double kineticJ = 0;        // translational + rotational kinetic energy of the spheres
+  double maxDepthM = 0;       // the deepest contact this step (sphere/sphere hits and sphere/plane)
+  std::size_t escaped = 0;    // spheres whose centre lies beyond a declared plane (through a wall)
 };
 
 class Simulation {
@@ -61,6 +66,7 @@ class Simulation {
   void requireSpheresInRange() const;
   void pairPlanesWithSpheres();
   void collideWorld(StepStats& st);
+  void measureState(StepStats& st) const;
 
   const scene::Scene& scene_;
   CollisionBackend* backend_ = nullptr;  // the pairs path...
