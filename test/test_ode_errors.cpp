@@ -14,6 +14,7 @@
 #include "simulation/simulation.hpp"
 
 #include "support/error_of.hpp"
+#include "util/system_memory.hpp"
 
 using namespace collide;
 
@@ -116,4 +117,20 @@ TEST(OdeErrors, WhatOdeStillRejectsIsAnExceptionNotAnAbort) {
     w.collideSpace(nullptr, [](void*, dGeomID o1, dGeomID) { dGeomSphereSetRadius(o1, -1); });
   });
   EXPECT_EQ(inside.rfind("ODE assertion 2: Bad argument(s)", 0), 0u) << inside;
+}
+
+TEST(OdeErrors, ASceneLargerThanTheMachinesMemoryIsRefusedBeforeOde) {
+  using limits::OdeSpaceKind;
+  const unsigned long long gib = 1ULL << 30;
+  // A million spheres in sweep and prune: about 1.5 GiB; fits 24 GiB, not 1 GiB.
+  EXPECT_EQ(limits::memoryRefusal(1'000'000, OdeSpaceKind::SweepAndPrune, 24 * gib), "");
+  const auto why = limits::memoryRefusal(1'000'000, OdeSpaceKind::SweepAndPrune, gib);
+  EXPECT_NE(why.find("1000000 spheres need about 1560 MiB"), std::string::npos) << why;
+  EXPECT_NE(why.find("more than the 1024 MiB this machine has available"), std::string::npos) << why;
+  // The hash space's tested-pairs matrix is quadratic: 100,000 spheres need 1.2 GiB more.
+  EXPECT_EQ(limits::memoryRefusal(100'000, OdeSpaceKind::SweepAndPrune, gib), "");
+  const auto hash = limits::memoryRefusal(100'000, OdeSpaceKind::Hash, gib);
+  EXPECT_NE(hash.find("and 1192 MiB for the hash space's tested-pairs matrix"), std::string::npos) << hash;
+  // This machine's own number is read (Linux).
+  EXPECT_TRUE(util::availableMemoryBytes().has_value());
 }

@@ -42,6 +42,29 @@ inline std::string hashSpaceRefusal(long long n) {
          " MiB here, passes ODE's int range)";
 }
 
+// What `collide run` needs for a scene of n spheres (bench/results/scale, peak RSS of runs from
+// 1,000 to 1,000,000 spheres): about kRunBaseBytes for the program and its libraries, then
+// kRunBytesPerSphere a sphere (ODE's body, geom and space entries, the batches, the broad
+// phase's pairs), and with the hash space its tested-pairs matrix on top. An estimate with some
+// room, used to refuse a scene up front instead of letting the kernel kill the run half-way.
+inline constexpr long long kRunBaseBytes = 96LL << 20;
+inline constexpr long long kRunBytesPerSphere = 1536;
+inline long long runBytes(long long n, OdeSpaceKind space) {
+  return kRunBaseBytes + n * kRunBytesPerSphere + (space == OdeSpaceKind::Hash ? hashSpaceTestedBytes(n) : 0);
+}
+// Empty if a run of n spheres fits in `available` bytes, else why not.
+inline std::string memoryRefusal(long long n, OdeSpaceKind space, unsigned long long available) {
+  const long long need = runBytes(n, space);
+  if (need <= 0 || static_cast<unsigned long long>(need) <= available) return "";
+  auto mib = [](unsigned long long b) { return std::to_string(b >> 20) + " MiB"; };
+  return std::to_string(n) + " spheres need about " + mib(static_cast<unsigned long long>(need)) + " (" +
+         std::to_string(kRunBytesPerSphere) + " bytes a sphere" +
+         (space == OdeSpaceKind::Hash ? " and " + mib(static_cast<unsigned long long>(hashSpaceTestedBytes(n))) +
+                                            " for the hash space's tested-pairs matrix"
+                                      : std::string()) +
+         "), more than the " + mib(available) + " this machine has available";
+}
+
 inline bool saneCoordinate(double v) { return v >= -kMaxCoordinateM && v <= kMaxCoordinateM; }  // false for NaN
 inline bool saneRadius(double r) { return r > 0 && r <= kMaxRadiusM; }
 

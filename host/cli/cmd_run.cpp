@@ -20,6 +20,7 @@
 #include "link/link_presets.hpp"
 #include "scene/scene.hpp"
 #include "simulation/simulation.hpp"
+#include "util/system_memory.hpp"
 #include "world/afu_world.hpp"
 #include "world/cpu_world.hpp"
 
@@ -104,6 +105,15 @@ int runScene(const RunOptions& o) {
     if (o.steps) sc.steps = *o.steps;
     if (o.link) sc.link = link::presetParams(*o.link);
     const bool rtl = sc.backend == "rtl";
+    // A scene that cannot fit is refused before ODE allocates it (bench/results/scale).
+    if (const auto avail = util::availableMemoryBytes()) {
+      const bool hash = sc.offload == scene::Scene::Offload::Pairs && sc.space == limits::OdeSpaceKind::Hash;
+      const auto why = limits::memoryRefusal(static_cast<long long>(sc.spheres.size()),
+                                             hash ? limits::OdeSpaceKind::Hash : limits::OdeSpaceKind::SweepAndPrune, *avail);
+      if (!why.empty())
+        throw std::invalid_argument("scene " + sc.name + ": " + why + "; run it on a larger machine" +
+                                    (hash ? ", or declare \"collision\": {\"space\": \"sap\"}" : ""));
+    }
 
     BackendRequest req{sc.backend, sc.afuDir, sc.link, {}, {}};
     req.driver.skipIdle = !o.noSkip;
