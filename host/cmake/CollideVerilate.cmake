@@ -103,7 +103,9 @@ const char* collideBuiltInManifest() { return R\"collide_manifest(@COLLIDE_MANIF
 ")
   # OBJECT: the seam's objects go into the executable itself, so makeAfuPort() is there for
   # every layer that calls it, whatever the order of the static layers on the link line.
-  add_library(${target} OBJECT "${COLLIDE_HOST_DIR}/driver/verilated_afu_port.cpp" "${manifest_cpp}")
+  # scpu_model_dpi.cpp: the C++ SCPU behind a model AFU's SCPUs (--scpu-impl model); unused otherwise.
+  add_library(${target} OBJECT "${COLLIDE_HOST_DIR}/driver/verilated_afu_port.cpp"
+                               "${COLLIDE_HOST_DIR}/driver/scpu_model_dpi.cpp" "${manifest_cpp}")
   target_include_directories(${target} PRIVATE "${COLLIDE_HOST_DIR}")
   target_link_libraries(${target} PUBLIC collide_core)
   target_compile_definitions(${target} PRIVATE

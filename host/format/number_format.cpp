@@ -24,6 +24,9 @@ double roundTo(double x, const NumberFormat& f, bool sticky) {
   if (std::isnan(x)) return std::numeric_limits<double>::quiet_NaN();
   if (std::isinf(x) || x == 0) return x;
   if (f.isBinary64() && !sticky) return x;
+  // binary32: the hardware conversion is this rounding (RNE in the default mode, subnormals
+  // kept, overflow to infinity), and far cheaper than the general path below.
+  if (f.expBits == 8 && f.sigBits == 24 && !sticky) return static_cast<double>(static_cast<float>(x));
   // Quantum of x's binade in f (subnormals share the smallest normal binade's quantum).
   const int e = std::max(std::ilogb(x), f.minExp());
   const int q = e - (f.sigBits - 1);

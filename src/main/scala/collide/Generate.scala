@@ -3,7 +3,7 @@ package collide
 import java.io.File
 import java.nio.file.{Files, Paths, StandardCopyOption}
 import collide.afu._
-import collide.scpu.ScpuConfig
+import collide.scpu.{ScpuConfig, ScpuImpl, ScpuModelUnit}
 
 /** The generator CLI: `sbt "run --preset default"`, `sbt "run --scpus 4 --format fp16"`,
   * `sbt "run --help"`. Writes generated/<preset-or-derived-name>/ with the SystemVerilog and
@@ -27,6 +27,7 @@ object Generate {
       split: Boolean = false,
       noVerilog: Boolean = false,
       world: Option[Boolean] = None,
+      scpuImpl: Option[String] = None,
       listPresets: Boolean = false)
 
   private val builder = scopt.OParser.builder[Opts]
@@ -55,6 +56,9 @@ object Generate {
         .text("MODE's reset value selects dense records"),
       opt[Boolean]("world").valueName("true|false").action((v, o) => o.copy(world = Some(v)))
         .text("build world mode (MODE bit 1: the on-chip broad phase, default parameters; at most 4096 spheres)"),
+      opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
+        .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
+          "(same cycles and records, a far faster co-simulation; not synthesizable)"),
       opt[String]("out").valueName("DIR").action((v, o) => o.copy(out = v)).text("parent folder (default generated)"),
       opt[String]("folder").valueName("NAME").action((v, o) => o.copy(folder = Some(v)))
         .text("output folder name (default: the preset's name, or a name derived from every parameter)"),
@@ -90,7 +94,8 @@ object Generate {
       c10 <- opt("--records", o.records)((c, v) => RecordLayout.parse(v).flatMap(r => step("--records", c.copy(records = Some(r)))))(c9)
       c11 <- opt("--world", o.world)((c, v) => step("--world",
         c.copy(world = if (v) Some(c.world.getOrElse(collide.world.BroadPhaseParams.default)) else None)))(c10)
-    } yield c11
+      c12 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c11)
+    } yield c12
   }
 
   val firtoolOpts: Array[String] = Array(
@@ -113,15 +118,30 @@ object Generate {
       val rename = foreignModules(texts.map(_._2), cfg.id)
       for ((name, text) <- texts) {
         val target = new File(dir, uniquify(name, rename))
-        Files.write(target.toPath, uniquify(text, rename).getBytes("UTF-8"))
+        writeIfChanged(target, uniquify(text, rename))
+        written += target
+      }
+      // The simulation-only SCPU's Verilog, beside the AFU's (a black box to firtool, which drops
+      // inline black-box text when it writes one file).
+      if (cfg.scpuImpl == ScpuImpl.Model) {
+        val name = ScpuModelUnit.moduleName(cfg.id)
+        val target = new File(dir, s"$name.sv")
+        writeIfChanged(target, ScpuModelUnit.verilog(cfg.scpu, name))
         written += target
       }
       def rm(f: File): Unit = { Option(f.listFiles()).foreach(_.foreach(rm)); f.delete() }
       rm(tmp)
     }
     val manifest = new File(dir, "manifest.json")
-    Files.write(manifest.toPath, (ujson.write(AfuManifest.json(cfg, command), indent = 2) + "\n").getBytes("UTF-8"))
+    writeIfChanged(manifest, ujson.write(AfuManifest.json(cfg, command), indent = 2) + "\n")
     (written :+ manifest).toSeq ++ writeContract(dir.getAbsoluteFile.getParentFile)
+  }
+
+  /** Writes `text` unless the file already holds it: an unchanged Verilog file keeps its time
+    * stamp, so builds that depend on it (Verilator) do not run again. */
+  def writeIfChanged(f: File, text: String): Unit = {
+    val bytes = text.getBytes("UTF-8")
+    if (!(f.isFile && java.util.Arrays.equals(Files.readAllBytes(f.toPath), bytes))) Files.write(f.toPath, bytes)
   }
 
   /** The configuration-independent contract headers, in `parent` (generated/). */
@@ -129,7 +149,7 @@ object Generate {
     parent.mkdirs()
     Seq(AfuContract.cppFile -> AfuContract.cpp, AfuContract.svFile -> AfuContract.sv).map { case (n, text) =>
       val f = new File(parent, n)
-      Files.write(f.toPath, text.getBytes("UTF-8"))
+      writeIfChanged(f, text)
       f
     }
   }

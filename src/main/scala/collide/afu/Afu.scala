@@ -1,7 +1,7 @@
 package collide.afu
 
 import chisel3._
-import collide.scpu.Scpu
+import collide.scpu.{Scpu, ScpuImpl, ScpuModelUnit}
 
 /** The AFU's ports: the link channels (io_rdReq_valid, io_rdReq_bits_addr, ...) plus the
   * simulation-side idle/skip pair and a busy flag (docs/afu-interface.md, "Idle and skipping").
@@ -30,9 +30,19 @@ class Afu(val cfg: AfuConfig) extends Module {
   val io = IO(new AfuIO(cfg.tagBits))
   val puc = Module(new Puc(cfg.puc))
   io.attach(puc)
-  val units = Seq.fill(cfg.scpus)(Module(new Scpu(cfg.scpu)))
-  for ((u, s) <- units.zipWithIndex) {
-    u.io.in <> puc.io.scpuIn(s)
-    puc.io.scpuOut(s) <> u.io.out
+  if (cfg.scpuImpl == ScpuImpl.Rtl) {
+    val units = Seq.fill(cfg.scpus)(Module(new Scpu(cfg.scpu)))
+    for ((u, s) <- units.zipWithIndex) {
+      u.io.in <> puc.io.scpuIn(s)
+      puc.io.scpuOut(s) <> u.io.out
+    }
+  } else {  // simulation only: the C++ model behind the SCPU's pipeline (ScpuModelUnit)
+    val models = Seq.fill(cfg.scpus)(Module(new ScpuModelUnit(cfg.scpu, ScpuModelUnit.moduleName(cfg.id))))
+    for ((u, s) <- models.zipWithIndex) {
+      u.io.clock := clock
+      u.io.reset := reset
+      u.io.in <> puc.io.scpuIn(s)
+      puc.io.scpuOut(s) <> u.io.out
+    }
   }
 }

@@ -1,6 +1,6 @@
 package collide.afu
 
-import collide.scpu.ScpuConfig
+import collide.scpu.{ScpuConfig, ScpuImpl}
 
 /** One AFU configuration: the SCPUs it holds and the PUC around them. Every field has a
   * default; the default is the `default` preset (16 fp32 correctly rounded SCPUs).
@@ -23,6 +23,9 @@ import collide.scpu.ScpuConfig
   *                             with world mode, whose records name their spheres)
   * @param world                build world mode (MODE bit 1): an on-chip broad phase with these
   *                             parameters finds the pairs; None = pair lists only
+  * @param scpuImpl             how the SCPUs are built: RTL, or (simulation only) the C++ SCPU
+  *                             model behind a pipeline of the SCPU's latency (ScpuModelUnit): the
+  *                             same cycles and records, a far cheaper co-simulation
   */
 final case class AfuConfig(
     name: String = "default",
@@ -35,7 +38,8 @@ final case class AfuConfig(
     ramPorts: SphereRamPorts = SphereRamPorts.Replicated,
     denseByDefault: Boolean = false,
     records: Option[RecordLayout] = None,
-    world: Option[collide.world.BroadPhaseParams] = None) {
+    world: Option[collide.world.BroadPhaseParams] = None,
+    scpuImpl: ScpuImpl = ScpuImpl.Rtl) {
   require(name.nonEmpty && name.forall(c => c.isLetterOrDigit || c == '-' || c == '_'),
     s"AfuConfig name '$name': must be non-empty letters, digits, '-' or '_'")
   require(scpus >= 1 && scpus <= 64, s"AfuConfig $name: scpus must be 1..64, got $scpus")
@@ -48,6 +52,8 @@ final case class AfuConfig(
   require(maxSpheres >= 64 && maxSpheres <= 65536 && Integer.bitCount(maxSpheres) == 1,
     s"AfuConfig $name: maxSpheres must be a power of two in 64..65536 (pair indices are 16-bit), got $maxSpheres")
 
+  for (why <- Some(scpuImpl).filter(_ == ScpuImpl.Model).flatMap(_ => ScpuImpl.modelRefusal(scpu)))
+    require(false, s"AfuConfig $name: SCPU ${scpu.name} cannot be simulated by the C++ model: $why")
   for (r <- records; why <- r.refusal(scpu))
     require(false, s"AfuConfig $name: record layout ${r.name} is not offered for SCPU ${scpu.name}: $why")
   for (_ <- world) {
@@ -70,7 +76,8 @@ final case class AfuConfig(
   def derivedName: String =
     s"n${scpus}_${scpu.id}_s${maxSpheres}_r${maxReadsOutstanding}_w${maxWritesOutstanding}_t${tagBits}_${ramPorts.name}" +
       (if (recordLayout != AfuConfig.bestLayout(scpu, world.isDefined)) s"_${recordLayout.name}" else "") +
-      (if (denseByDefault) "_dense" else "") + world.map(_ => "_world").getOrElse("")
+      (if (denseByDefault) "_dense" else "") + world.map(_ => "_world").getOrElse("") +
+      (if (scpuImpl == ScpuImpl.Model) "_model" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
 
@@ -92,7 +99,8 @@ final case class AfuConfig(
     s"$id: $scpus x SCPU ${scpu.describe}; maxSpheres $maxSpheres, reads $maxReadsOutstanding, writes $maxWritesOutstanding, " +
       s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, link ${scpu.linkFormat.name}, ${recordLayout.name} records " +
       s"(${layout.recordBytes} B, ${layout.recordsPerLine} a line), ${if (denseByDefault) "dense" else "compact"} by default" +
-      world.map(bp => s", world mode built (broad phase RAM ${bp.ramBits(maxSpheres)} bits)").getOrElse("")
+      world.map(bp => s", world mode built (broad phase RAM ${bp.ramBits(maxSpheres)} bits)").getOrElse("") +
+      (if (scpuImpl == ScpuImpl.Model) ", SCPUs simulated by the C++ model (not synthesizable)" else "")
 }
 
 object AfuConfig {
@@ -124,6 +132,10 @@ object AfuConfig {
   /** World mode: 16 fp32 SCPUs fed by the on-chip broad phase, up to 4096 spheres. */
   val world: AfuConfig   = big.copy(name = "world", world = Some(collide.world.BroadPhaseParams.default))
 
-  val all: Seq[AfuConfig] = Seq(default, paper, small, fp16, fp16Full, fp16x4, fp64, fp64Full, fp32Nr, big, world)
+  /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind
+    * their pipelines (same cycles, same records; docs/afu.md, "A faster co-simulation"). */
+  val cosim: AfuConfig = default.copy(name = "cosim", scpuImpl = ScpuImpl.Model)
+
+  val all: Seq[AfuConfig] = Seq(default, cosim, paper, small, fp16, fp16Full, fp16x4, fp64, fp64Full, fp32Nr, big, world)
   val presets: Map[String, AfuConfig] = all.map(c => c.name -> c).toMap
 }

@@ -35,7 +35,7 @@ object AfuManifest {
           "sphereTableM20k" -> p.ramM20k.toDouble,
           "sphereTableBits" -> p.ramBits.toDouble, "pairBufferBits" -> p.pairBufferBits.toDouble,
           "broadPhaseBits" -> ujson.Num(cfg.world.map(_.ramBits(cfg.maxSpheres).toDouble).getOrElse(0.0)))),
-      "scpu" -> scpuJson(s),
+      "scpu" -> { val o = scpuJson(s); o("impl") = cfg.scpuImpl.name; o },
       "link" -> ujson.Obj(
         "format" -> AfuContract.linkName(cfg.scpu.linkFormat), "width" -> cfg.linkWidth,
         "expBits" -> cfg.scpu.linkFormat.expBits, "sigBits" -> cfg.scpu.linkFormat.sigBits,

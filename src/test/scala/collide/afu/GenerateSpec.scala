@@ -55,6 +55,33 @@ class GenerateSpec extends AnyFlatSpec {
     err("--world", "true", "--format", "fp24")("--world", "converts")
   }
 
+  it should "build the SCPUs as the C++ model for co-simulation only where the model reproduces them, saying why not elsewhere" in {
+    val m = cfg("--scpu-impl", "model").toOption.get
+    assert(m.scpuImpl == collide.scpu.ScpuImpl.Model && m.id.endsWith("_model") && m.id != AfuConfig.default.id,
+      s"a model AFU's modules must not share the RTL one's names: ${m.id}")
+    assert(cfg("--preset", "cosim").contains(AfuConfig.cosim))
+    assert(AfuManifest.json(AfuConfig.cosim, "")("scpu")("impl").str == "model")
+    assert(AfuManifest.json(AfuConfig.default, "")("scpu")("impl").str == "rtl")
+    for (f <- Seq("fp16", "bf16", "fp24", "fp64")) assert(cfg("--scpu-impl", "model", "--format", f).isRight, f)
+    assert(cfg("--scpu-impl", "model", "--scpu", "fp32-robust").isRight)
+    def err(args: String*)(words: String*) = {
+      val e = cfg(args: _*)
+      assert(e.isLeft, s"$args should fail")
+      val msg = e.swap.toOption.get
+      assert(msg.startsWith("--scpu-impl") && words.forall(msg.contains), s"'$msg' should name --scpu-impl and say ${words.mkString(", ")}")
+    }
+    err("--scpu-impl", "c++")("rtl or model")
+    err("--scpu-impl", "model", "--scpu", "fp32-nr")("not correctly rounded")
+    err("--scpu-impl", "model", "--scpu", "fp32-rsqrt-dr")("rsqrt")
+    err("--scpu-impl", "model", "--scpu", "fp32:rm=rtz")("RTZ")
+    err("--scpu-impl", "model", "--scpu", "fp32:subnormals=false")("flushes")
+    err("--scpu-impl", "model", "--format", "e11m40")("2p + 2")
+    // Its Verilog: the pipeline of the SCPU's latency around the DPI-C import
+    val v = collide.scpu.ScpuModelUnit.verilog(collide.scpu.ScpuConfig.fp32, "ScpuModel_x")
+    assert(v.contains("module ScpuModel_x(") && v.contains("import \"DPI-C\" function void collide_scpu_model(") &&
+      v.contains(s"reg valid_q [0:${collide.scpu.ScpuConfig.fp32.latency - 1}];"), v.take(400))
+  }
+
   it should "bank the sphere table instead of copying it per SCPU, and say what each costs in RAM" in {
     val rep = AfuConfig.default.copy(maxSpheres = 65536)
     val bank = cfg("--max-spheres", "65536", "--ram-ports", "banked").toOption.get
