@@ -1,5 +1,6 @@
 // The generated AFU compiled into this build (COLLIDE_AFU_PRESET / COLLIDE_AFU_DIR),
-// Verilated, through the driver and link model. Registered only when a preset is built.
+// Verilated, through the driver and link model. Registered only when a preset is built; also
+// compiled against the cosim preset (collide_afu_cosim_tests), whose SCPUs are the C++ model.
 //   - golden vectors from the Scala golden model (test/vectors/...), bit for bit;
 //   - idle-cycle skipping: identical results and modelled time to stepping every cycle;
 //   - the diamond: rtl against ode (contact sets up to grazing pairs, positions within a
@@ -51,7 +52,8 @@ bool sameValue(double a, double b) {
 
 std::string vectorsFile() {
   const std::string preset = builtInAfuPreset();
-  const std::string name = preset == "default" ? "fp32_default.csv" : preset + ".csv";
+  // cosim is the default AFU with its SCPUs as the C++ model: the same SCPU, the same vectors.
+  const std::string name = preset == "default" || preset == "cosim" ? "fp32_default.csv" : preset + ".csv";
   return std::string(COLLIDE_TEST_VECTORS) + "/" + name;
 }
 
