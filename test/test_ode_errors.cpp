@@ -122,10 +122,10 @@ TEST(OdeErrors, WhatOdeStillRejectsIsAnExceptionNotAnAbort) {
 TEST(OdeErrors, ASceneLargerThanTheMachinesMemoryIsRefusedBeforeOde) {
   using limits::OdeSpaceKind;
   const unsigned long long gib = 1ULL << 30;
-  // A million spheres in sweep and prune: about 1.5 GiB; fits 24 GiB, not 1 GiB.
+  // A million spheres in sweep and prune: at least about 2.9 GiB; fits 24 GiB, not 1 GiB.
   EXPECT_EQ(limits::memoryRefusal(1'000'000, OdeSpaceKind::SweepAndPrune, 24 * gib), "");
   const auto why = limits::memoryRefusal(1'000'000, OdeSpaceKind::SweepAndPrune, gib);
-  EXPECT_NE(why.find("1000000 spheres need about 1560 MiB"), std::string::npos) << why;
+  EXPECT_NE(why.find("1000000 spheres need at least about 2993 MiB (3072 bytes a sphere)"), std::string::npos) << why;
   EXPECT_NE(why.find("more than the 1024 MiB this machine has available"), std::string::npos) << why;
   // The hash space's tested-pairs matrix is quadratic: 100,000 spheres need 1.2 GiB more.
   EXPECT_EQ(limits::memoryRefusal(100'000, OdeSpaceKind::SweepAndPrune, gib), "");

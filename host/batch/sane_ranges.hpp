@@ -42,13 +42,16 @@ inline std::string hashSpaceRefusal(long long n) {
          " MiB here, passes ODE's int range)";
 }
 
-// What `collide run` needs for a scene of n spheres (bench/results/scale, peak RSS of runs from
-// 1,000 to 1,000,000 spheres): about kRunBaseBytes for the program and its libraries, then
-// kRunBytesPerSphere a sphere (ODE's body, geom and space entries, the batches, the broad
-// phase's pairs), and with the hash space its tested-pairs matrix on top. An estimate with some
-// room, used to refuse a scene up front instead of letting the kernel kill the run half-way.
-inline constexpr long long kRunBaseBytes = 96LL << 20;
-inline constexpr long long kRunBytesPerSphere = 1536;
+// What `collide run` needs at least for a scene of n spheres (bench/results/scale, peak RSS of
+// runs from 1,000 to 1,000,000 spheres): about 62 MiB for the program and its libraries, then
+// per sphere its ODE body, geom and space entries, and the step's pairs, contacts and joints:
+// 3.3-3.9 KiB a sphere in the poured piles (about 1.7 contacts a sphere a step) from 64,000
+// spheres up, more in close-packed scenes (the diamond at hMax 46, 5.7 contacts a sphere: 10
+// KiB); and with the hash space its tested-pairs matrix on top. kRunBytesPerSphere is below
+// every measurement, so a scene refused up front would certainly not have fitted, instead of
+// being killed by the kernel half-way.
+inline constexpr long long kRunBaseBytes = 64LL << 20;
+inline constexpr long long kRunBytesPerSphere = 3072;
 inline long long runBytes(long long n, OdeSpaceKind space) {
   return kRunBaseBytes + n * kRunBytesPerSphere + (space == OdeSpaceKind::Hash ? hashSpaceTestedBytes(n) : 0);
 }
@@ -57,7 +60,7 @@ inline std::string memoryRefusal(long long n, OdeSpaceKind space, unsigned long 
   const long long need = runBytes(n, space);
   if (need <= 0 || static_cast<unsigned long long>(need) <= available) return "";
   auto mib = [](unsigned long long b) { return std::to_string(b >> 20) + " MiB"; };
-  return std::to_string(n) + " spheres need about " + mib(static_cast<unsigned long long>(need)) + " (" +
+  return std::to_string(n) + " spheres need at least about " + mib(static_cast<unsigned long long>(need)) + " (" +
          std::to_string(kRunBytesPerSphere) + " bytes a sphere" +
          (space == OdeSpaceKind::Hash ? " and " + mib(static_cast<unsigned long long>(hashSpaceTestedBytes(n))) +
                                             " for the hash space's tested-pairs matrix"
