@@ -65,6 +65,13 @@ TEST(SceneErrors, InlineFaults) {
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "backend": "simd64", "collision": {"offload": "world"}, "bodies": {"diamond": {"hMax": 2}}})")
                 .rfind("scene.collision.offload: expected \"pairs\" with backend simd64", 0),
             0u);
+  EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "backend": "model:fp16", "collision": {"offload": "world"}, "bodies": {"diamond": {"hMax": 2}}})")
+                .rfind("scene.collision.offload: expected \"pairs\" with backend model:fp16", 0),
+            0u);
+  EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "backend": "model:fp32-nr", "bodies": {"diamond": {"hMax": 2}}})")
+                .rfind("scene.backend: expected \"model:<preset>\" with an emulated preset: SCPU preset 'fp32-nr' is not "
+                       "emulated on the CPU: its roots are Newton-Raphson", 0),
+            0u);
   EXPECT_EQ(errorOf(std::string("{") + kOk + R"(, "collision": {"ofload": "world"}, "bodies": {"diamond": {"hMax": 2}}})")
                 .rfind("scene.collision.ofload: unknown key", 0),
             0u);

@@ -118,3 +118,15 @@ TEST(ScpuModelCpp, ValuesOutsideTheLinkFormatAreFlaggedNotDropped) {
   EXPECT_NE(out.flags[1] & contract::REC_HOST_RANGE, 0u);
   EXPECT_NE(out.flags[2] & contract::REC_HOST_RANGE, 0u);
 }
+
+TEST(ScpuModelCpp, APairNamingASphereOutsideTheTableIsAnErrorNamingIt) {
+  SphereTable s;
+  s.push(0, 0, 0, 1);
+  s.push(1, 0, 0, 1);
+  PairList p;
+  p.push(0, 1);
+  p.push(1, 2);
+  ModelBackend b("fp32");
+  ContactSet out;
+  EXPECT_EQ(test::errorOf([&] { b.collide(s, p, out); }), "backend model:fp32: pair 1 names sphere 2 of a table of 2");
+}

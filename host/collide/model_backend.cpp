@@ -1,6 +1,9 @@
 #include "collide/model_backend.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "afu_contract.hpp"
 
@@ -23,6 +26,11 @@ void ModelBackend::collide(const SphereTable& s, const PairList& pairs, ContactS
     }
     if (v[3] > 0 && linkTable_[4 * k + 3] == 0) outOfRange_[k] = 1;
   }
+  for (std::size_t k = 0; k < pairs.size(); ++k)  // before anything is computed: no result half-written
+    if (pairs.i[k] >= s.size() || pairs.j[k] >= s.size())
+      throw std::out_of_range("backend " + name() + ": pair " + std::to_string(k) + " names sphere " +
+                              std::to_string(std::max(pairs.i[k], pairs.j[k])) + " of a table of " +
+                              std::to_string(s.size()));
   out.resize(pairs.size());
   out.format = preset_.link;
   out.flags.assign(pairs.size(), 0);

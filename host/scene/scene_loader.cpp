@@ -277,9 +277,9 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
       else v->expected("\"pairs\" or \"world\"");
       if (s.offload == Scene::Offload::World && s.backend == "ode")
         v->expected("\"pairs\" with backend ode (\"world\" needs backend simd or rtl: ODE's own space is the pairs path)");
-      if (s.offload == Scene::Offload::World && s.backend == "simd64")
-        v->expected("\"pairs\" with backend simd64 (\"world\" needs backend simd or rtl: the CPU's world engine is our "
-                    "grid with the binary32 kernel)");
+      if (s.offload == Scene::Offload::World && (s.backend == "simd64" || s.backend.rfind("model:", 0) == 0))
+        v->expected("\"pairs\" with backend " + s.backend + " (\"world\" needs backend simd or rtl: the CPU's world "
+                    "engine is our grid with the binary32 kernel)");
     }
     if (auto v = c->find("space")) {
       const std::string sp = v->string();
