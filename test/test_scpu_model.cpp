@@ -93,8 +93,11 @@ TEST(ScpuModelCpp, PresetsItCannotReproduceAreRefusedWithTheReason) {
   EXPECT_EQ(backendNameError("model:fp16"), "");
   EXPECT_NE(backendNameError("model:fp32-nr").find("Newton-Raphson"), std::string::npos);
   EXPECT_NE(backendNameError("modle:fp16").find("model:<preset>"), std::string::npos);
-  EXPECT_THROW(makeBackend({"model:fp12"}), std::invalid_argument);
-  EXPECT_EQ(makeBackend({"model:bf16"})->name(), "model:bf16");
+  BackendRequest request;
+  request.name = "model:fp12";
+  EXPECT_THROW(makeBackend(request), std::invalid_argument);
+  request.name = "model:bf16";
+  EXPECT_EQ(makeBackend(request)->name(), "model:bf16");
 }
 
 TEST(ScpuModelCpp, ValuesOutsideTheLinkFormatAreFlaggedNotDropped) {

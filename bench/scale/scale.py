@@ -35,8 +35,9 @@ matplotlib.use("Agg")  # files only
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench" / "world"))
+sys.path[:0] = [str(ROOT / "bench" / "world"), str(ROOT / "bench" / "sweeplib")]
 from world import machine, write_results  # noqa: E402
+from machine import commit  # noqa: E402
 
 PILE_SIZES = (1000, 4000, 16000, 64000, 256000, 1000000)
 DIAMOND_HMAX = (14, 24, 46, 100)
@@ -171,7 +172,8 @@ def main(argv=None):
                               f"{r['ns'] / max(1, r['pairs']):8.2f} ns/pair  {rss / 2**20:7.0f} MiB  {wall:6.1f} s",
                               flush=True)
         write_results(out, "scale.csv", rows, "bench/scale/scale.py", argv,
-                      f"collide: `{a.collide}`, a Release build of this checkout with the default AFU Verilated", start)
+                      f"collide: `{a.collide}`, a Release build of this checkout (commit {commit()}) with the default "
+                      "AFU Verilated", start)
     plot(rows, out)
     report(rows, out, (out / "MACHINE.md").read_text())
     return 0

@@ -26,8 +26,9 @@ matplotlib.use("Agg")  # files only
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "bench" / "world"))
+sys.path[:0] = [str(ROOT / "bench" / "world"), str(ROOT / "bench" / "sweeplib")]
 from world import machine, write_results  # noqa: E402
+from machine import commit  # noqa: E402
 
 SCENES = ("rest_pile", "rest_stack")
 # The arithmetic presets of the issue's list on the CPU model, and the CPU backends beside them.
@@ -36,11 +37,6 @@ BACKENDS = ("ode", "simd64", "simd", "model:fp64", "model:fp32", "model:fp32-rob
 KEEP = ("step", "contacts", "other_contacts", "kinetic_j", "max_depth_m", "escaped")
 # The settling window: the first SETTLE steps are the pile taking up its own weight.
 SETTLE = 200
-
-
-def commit():
-    r = subprocess.run(["git", "-C", str(ROOT), "describe", "--always", "--dirty"], capture_output=True, text=True)
-    return r.stdout.strip() or "?"
 
 
 def run(collide, scene, backend, steps, work):

@@ -11,9 +11,9 @@ namespace collide {
 
 std::string backendNameError(const std::string& name) {
   if (name == "ode" || name == "simd" || name == "simd64" || name == "rtl") return "";
-  if (name.rfind(kModelBackendPrefix, 0) == 0) {
+  if (const auto preset = scpu::modelBackendPreset(name)) {
     try {
-      scpu::emulatedPreset(name.substr(6));
+      scpu::emulatedPreset(*preset);
       return "";
     } catch (const std::invalid_argument& e) {
       return e.what();
@@ -32,7 +32,7 @@ std::unique_ptr<CollisionBackend> makeBackend(const BackendRequest& r) {
     port.clockMHz = r.link.clockMHz;
     return std::make_unique<RtlBackend>(r.afuDir, r.link, r.driver, port);
   }
-  if (r.name.rfind(kModelBackendPrefix, 0) == 0) return std::make_unique<ModelBackend>(r.name.substr(6));
+  if (const auto preset = scpu::modelBackendPreset(r.name)) return std::make_unique<ModelBackend>(*preset);
   throw std::invalid_argument("unknown backend '" + r.name + "' (expected " + kBackendNames + ")");
 }
 

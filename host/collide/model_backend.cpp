@@ -1,31 +1,21 @@
 #include "collide/model_backend.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "afu_contract.hpp"
+#include "driver/afu_layout.hpp"
 
 namespace collide {
 
 ModelBackend::ModelBackend(const std::string& preset) : preset_(scpu::emulatedPreset(preset)) {}
 
 void ModelBackend::collide(const SphereTable& s, const PairList& pairs, ContactSet& out) {
-  // The table as the link carries it, and the spheres the driver would flag (afu_layout's
-  // writeSphereTable: a finite value that became infinite, a positive radius that became 0).
-  const auto lf = numberFormat(preset_.link);
+  // The table as the link carries it, and the spheres the driver would flag.
   linkTable_.resize(4 * s.size());
-  outOfRange_.assign(s.size(), 0);
-  for (std::size_t k = 0; k < s.size(); ++k) {
-    const double v[4] = {s.x[k], s.y[k], s.z[k], s.r[k]};
-    for (int c = 0; c < 4; ++c) {
-      const double q = format::roundTo(v[c], lf);
-      linkTable_[4 * k + c] = q;
-      if (std::isfinite(v[c]) && !std::isfinite(q)) outOfRange_[k] = 1;
-    }
-    if (v[3] > 0 && linkTable_[4 * k + 3] == 0) outOfRange_[k] = 1;
-  }
+  outOfRange_.resize(s.size());
+  for (std::size_t k = 0; k < s.size(); ++k) outOfRange_[k] = driver::linkSphere(s, k, preset_.link, &linkTable_[4 * k]);
   for (std::size_t k = 0; k < pairs.size(); ++k)  // before anything is computed: no result half-written
     if (pairs.i[k] >= s.size() || pairs.j[k] >= s.size())
       throw std::out_of_range("backend " + name() + ": pair " + std::to_string(k) + " names sphere " +

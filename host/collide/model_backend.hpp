@@ -13,13 +13,11 @@
 
 namespace collide {
 
-inline constexpr const char* kModelBackendPrefix = "model:";
-
 class ModelBackend final : public CollisionBackend {
  public:
   // preset: an emulated preset's name; throws std::invalid_argument otherwise.
   explicit ModelBackend(const std::string& preset);
-  std::string name() const override { return kModelBackendPrefix + preset_.name; }
+  std::string name() const override { return scpu::kModelBackendPrefix + preset_.name; }
   LinkFormat format() const override { return preset_.link; }
   void collide(const SphereTable& spheres, const PairList& pairs, ContactSet& out) override;
   bool setsRecordFlags() const override { return true; }

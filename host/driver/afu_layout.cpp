@@ -70,10 +70,15 @@ std::uint64_t contactLines(std::size_t r, const BufferLayout& l, bool dense) {
   return r == 0 ? 0 : l.recordLine(r - 1, dense) + 1;
 }
 
-void linkSphere(const SphereTable& s, std::size_t k, LinkFormat f, double out[4]) {
+bool linkSphere(const SphereTable& s, std::size_t k, LinkFormat f, double out[4]) {
   const auto nf = numberFormat(f);
   const double v[4] = {s.x[k], s.y[k], s.z[k], s.r[k]};
-  for (int i = 0; i < 4; ++i) out[i] = format::roundTo(v[i], nf);
+  bool outside = false;
+  for (int i = 0; i < 4; ++i) {
+    out[i] = format::roundTo(v[i], nf);
+    outside = outside || (std::isfinite(v[i]) && !std::isfinite(out[i]));
+  }
+  return outside || (v[3] > 0 && out[3] == 0);
 }
 
 std::vector<std::uint8_t> writeSphereTable(HostMemory& m, std::uint64_t base, const SphereTable& s, LinkFormat f) {
@@ -83,14 +88,9 @@ std::vector<std::uint8_t> writeSphereTable(HostMemory& m, std::uint64_t base, co
   for (std::size_t k = 0; k < s.size(); ++k) {
     Line& l = m.line(base + k / per);
     const std::size_t off = (k % per) * lay.sphereBytes();
-    const double v[4] = {s.x[k], s.y[k], s.z[k], s.r[k]};
     double q[4];
-    linkSphere(s, k, f, q);
-    for (int i = 0; i < 4; ++i) {
-      putField(l, off + fb * i, f, q[i]);
-      if (std::isfinite(v[i]) && !std::isfinite(q[i])) outOfRange[k] = 1;
-    }
-    if (v[3] > 0 && q[3] == 0) outOfRange[k] = 1;
+    outOfRange[k] = linkSphere(s, k, f, q);
+    for (int i = 0; i < 4; ++i) putField(l, off + fb * i, f, q[i]);
   }
   return outOfRange;
 }

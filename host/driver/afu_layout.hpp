@@ -83,8 +83,10 @@ std::uint64_t contactLines(std::size_t records, const BufferLayout& l, bool dens
 // that became zero (the caller flags its pairs, contract::REC_HOST_RANGE).
 std::vector<std::uint8_t> writeSphereTable(link::HostMemory& m, std::uint64_t base, const SphereTable& s,
                                            LinkFormat f);
-// Sphere k of the table as the link carries it (x, y, z, r).
-void linkSphere(const SphereTable& s, std::size_t k, LinkFormat f, double out[4]);
+// Sphere k of the table as the link carries it (x, y, z, r). Returns whether a value did not
+// fit: a finite value that became infinite, or a positive radius that became zero (its pairs
+// get contract::REC_HOST_RANGE).
+bool linkSphere(const SphereTable& s, std::size_t k, LinkFormat f, double out[4]);
 void writePairList(link::HostMemory& m, std::uint64_t base, const PairList& p);
 // Slot n of a contact buffer. A masked record has no pair index: `pair` is what the caller
 // knows of it (dense: n, which is the default).

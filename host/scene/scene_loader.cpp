@@ -254,9 +254,9 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
   if (!(s.dt >= limits::kMinDtS && s.dt <= limits::kMaxDtS)) root.at("dt").expected("a time step in [1e-9, 10] s");
   if (auto v = root.find("backend")) {
     s.backend = v->string();
-    if (s.backend.rfind("model:", 0) == 0) {
+    if (const auto preset = scpu::modelBackendPreset(s.backend)) {
       try {
-        scpu::emulatedPreset(s.backend.substr(6));
+        scpu::emulatedPreset(*preset);
       } catch (const std::invalid_argument& e) {
         v->expected(std::string("\"model:<preset>\" with an emulated preset: ") + e.what());
       }
@@ -277,7 +277,7 @@ Scene parseScene(const nlohmann::json& j, const std::filesystem::path& baseDir) 
       else v->expected("\"pairs\" or \"world\"");
       if (s.offload == Scene::Offload::World && s.backend == "ode")
         v->expected("\"pairs\" with backend ode (\"world\" needs backend simd or rtl: ODE's own space is the pairs path)");
-      if (s.offload == Scene::Offload::World && (s.backend == "simd64" || s.backend.rfind("model:", 0) == 0))
+      if (s.offload == Scene::Offload::World && (s.backend == "simd64" || scpu::modelBackendPreset(s.backend)))
         v->expected("\"pairs\" with backend " + s.backend + " (\"world\" needs backend simd or rtl: the CPU's world "
                     "engine is our grid with the binary32 kernel)");
     }

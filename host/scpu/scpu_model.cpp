@@ -28,6 +28,12 @@ const std::vector<EmulatedPreset>& emulatedPresets() {
   return all;
 }
 
+std::optional<std::string> modelBackendPreset(const std::string& backendName) {
+  const std::string prefix = kModelBackendPrefix;
+  if (backendName.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+  return backendName.substr(prefix.size());
+}
+
 const EmulatedPreset& emulatedPreset(const std::string& name) {
   for (const auto& p : emulatedPresets())
     if (p.name == name) return p;

@@ -6,6 +6,7 @@
 // in those formats at CPU speed (`--backend model:fp16`), e.g. for long-horizon stability,
 // without a Verilated AFU; the rtl backend covers every configuration.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,12 @@ struct EmulatedPreset {
   ComputeArith arith;
   LinkFormat link;
 };
+
+// A backend (scenes, `collide --backend`) computing with this model is named "model:<preset>".
+inline constexpr const char* kModelBackendPrefix = "model:";
+// The preset a backend name asks this model for ("model:fp16" -> "fp16"), or nothing when the
+// name is not a model backend's.
+std::optional<std::string> modelBackendPreset(const std::string& backendName);
 
 // The presets this model reproduces: fp32, fp32-robust, fp24, fp16, fp16-robust, bf16, fp64.
 const std::vector<EmulatedPreset>& emulatedPresets();
