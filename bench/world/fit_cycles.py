@@ -66,7 +66,7 @@ def main(argv=None):
     ap.add_argument("--clock-mhz", type=float, default=200.0)
     a = ap.parse_args(argv)
     d = Path(a.dir)
-    rows = load(d / "cycles.csv")
+    rows = [r for r in load(d / "cycles.csv") if r.get("lanes", 1) == 1]  # one lane: bench/world/lanes.py has the rest
     generated = [r for r in rows if r["world"] in ("uniform", "clustered", "huge")]
     lines = ["# World mode: the broad phase's RTL cycles (one candidate-generator lane)", "",
              "Measured on Verilator by `collide.world.BroadPhaseCycleReport` (every world's pairs checked",

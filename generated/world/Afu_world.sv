@@ -1582,33 +1582,7 @@ module mem_1024x512_world(
   assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 512'bx;
 endmodule
 
-// VCS coverage exclude_file
-module mem_16_1024x512_world(
-  input  [9:0]   R0_addr,
-  input          R0_en,
-                 R0_clk,
-  output [511:0] R0_data,
-  input  [9:0]   W0_addr,
-  input          W0_en,
-                 W0_clk,
-  input  [511:0] W0_data
-);
-
-  reg [511:0] Memory[0:1023];
-  reg         _R0_en_d0;
-  reg [9:0]   _R0_addr_d0;
-  always @(posedge R0_clk) begin
-    _R0_en_d0 <= R0_en;
-    _R0_addr_d0 <= R0_addr;
-  end // always @(posedge)
-  always @(posedge W0_clk) begin
-    if (W0_en & 1'h1)
-      Memory[W0_addr] <= W0_data;
-  end // always @(posedge)
-  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 512'bx;
-endmodule
-
-module SphereRam_s4096_c17_world(
+module SphereRam_s4096_c24_world(
   input          clock,
                  io_write_valid,
   input  [9:0]   io_write_bits_line,
@@ -1789,14 +1763,104 @@ module SphereRam_s4096_c17_world(
                  io_rdata_15_1_y,
                  io_rdata_15_1_z,
                  io_rdata_15_1_r,
-  input  [11:0]  io_world_addr,
-  output [31:0]  io_world_data_x,
-                 io_world_data_y,
-                 io_world_data_z,
-                 io_world_data_r
+  input  [11:0]  io_world_0_addr,
+  output [31:0]  io_world_0_data_x,
+                 io_world_0_data_y,
+                 io_world_0_data_z,
+                 io_world_0_data_r,
+  input  [11:0]  io_world_1_addr,
+  output [31:0]  io_world_1_data_x,
+                 io_world_1_data_y,
+                 io_world_1_data_z,
+                 io_world_1_data_r,
+  input  [11:0]  io_world_2_addr,
+  output [31:0]  io_world_2_data_x,
+                 io_world_2_data_y,
+                 io_world_2_data_z,
+                 io_world_2_data_r,
+  input  [11:0]  io_world_3_addr,
+  output [31:0]  io_world_3_data_x,
+                 io_world_3_data_y,
+                 io_world_3_data_z,
+                 io_world_3_data_r,
+  input  [11:0]  io_world_4_addr,
+  output [31:0]  io_world_4_data_x,
+                 io_world_4_data_y,
+                 io_world_4_data_z,
+                 io_world_4_data_r,
+  input  [11:0]  io_world_5_addr,
+  output [31:0]  io_world_5_data_x,
+                 io_world_5_data_y,
+                 io_world_5_data_z,
+                 io_world_5_data_r,
+  input  [11:0]  io_world_6_addr,
+  output [31:0]  io_world_6_data_x,
+                 io_world_6_data_y,
+                 io_world_6_data_z,
+                 io_world_6_data_r,
+  input  [11:0]  io_world_7_addr,
+  output [31:0]  io_world_7_data_x,
+                 io_world_7_data_y,
+                 io_world_7_data_z,
+                 io_world_7_data_r,
+  input  [11:0]  io_world_8_addr,
+  output [31:0]  io_world_8_data_x,
+                 io_world_8_data_y,
+                 io_world_8_data_z,
+                 io_world_8_data_r,
+  input  [11:0]  io_world_9_addr,
+  output [31:0]  io_world_9_data_x,
+                 io_world_9_data_y,
+                 io_world_9_data_z,
+                 io_world_9_data_r,
+  input  [11:0]  io_world_10_addr,
+  output [31:0]  io_world_10_data_x,
+                 io_world_10_data_y,
+                 io_world_10_data_z,
+                 io_world_10_data_r,
+  input  [11:0]  io_world_11_addr,
+  output [31:0]  io_world_11_data_x,
+                 io_world_11_data_y,
+                 io_world_11_data_z,
+                 io_world_11_data_r,
+  input  [11:0]  io_world_12_addr,
+  output [31:0]  io_world_12_data_x,
+                 io_world_12_data_y,
+                 io_world_12_data_z,
+                 io_world_12_data_r,
+  input  [11:0]  io_world_13_addr,
+  output [31:0]  io_world_13_data_x,
+                 io_world_13_data_y,
+                 io_world_13_data_z,
+                 io_world_13_data_r,
+  input  [11:0]  io_world_14_addr,
+  output [31:0]  io_world_14_data_x,
+                 io_world_14_data_y,
+                 io_world_14_data_z,
+                 io_world_14_data_r,
+  input  [11:0]  io_world_15_addr,
+  output [31:0]  io_world_15_data_x,
+                 io_world_15_data_y,
+                 io_world_15_data_z,
+                 io_world_15_data_r
 );
 
+  wire [511:0] _mem_23_ext_R0_data;
+  wire [511:0] _mem_23_ext_R1_data;
+  wire [511:0] _mem_22_ext_R0_data;
+  wire [511:0] _mem_22_ext_R1_data;
+  wire [511:0] _mem_21_ext_R0_data;
+  wire [511:0] _mem_21_ext_R1_data;
+  wire [511:0] _mem_20_ext_R0_data;
+  wire [511:0] _mem_20_ext_R1_data;
+  wire [511:0] _mem_19_ext_R0_data;
+  wire [511:0] _mem_19_ext_R1_data;
+  wire [511:0] _mem_18_ext_R0_data;
+  wire [511:0] _mem_18_ext_R1_data;
+  wire [511:0] _mem_17_ext_R0_data;
+  wire [511:0] _mem_17_ext_R1_data;
   wire [511:0] _mem_16_ext_R0_data;
+  wire [511:0] _mem_16_ext_R1_data;
   wire [511:0] _mem_15_ext_R0_data;
   wire [511:0] _mem_15_ext_R1_data;
   wire [511:0] _mem_14_ext_R0_data;
@@ -3525,57 +3589,852 @@ module SphereRam_s4096_c17_world(
         casez_tmp_126 = _mem_15_ext_R0_data[511:480];
     endcase
   end // always @(*)
-  reg  [1:0]   io_world_data_REG;
+  reg  [1:0]   io_world_0_data_REG;
   reg  [31:0]  casez_tmp_127;
   always @(*) begin
-    casez (io_world_data_REG)
+    casez (io_world_0_data_REG)
       2'b00:
-        casez_tmp_127 = _mem_16_ext_R0_data[31:0];
+        casez_tmp_127 = _mem_16_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_127 = _mem_16_ext_R0_data[159:128];
+        casez_tmp_127 = _mem_16_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_127 = _mem_16_ext_R0_data[287:256];
+        casez_tmp_127 = _mem_16_ext_R1_data[287:256];
       default:
-        casez_tmp_127 = _mem_16_ext_R0_data[415:384];
+        casez_tmp_127 = _mem_16_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_128;
   always @(*) begin
-    casez (io_world_data_REG)
+    casez (io_world_0_data_REG)
       2'b00:
-        casez_tmp_128 = _mem_16_ext_R0_data[63:32];
+        casez_tmp_128 = _mem_16_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_128 = _mem_16_ext_R0_data[191:160];
+        casez_tmp_128 = _mem_16_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_128 = _mem_16_ext_R0_data[319:288];
+        casez_tmp_128 = _mem_16_ext_R1_data[319:288];
       default:
-        casez_tmp_128 = _mem_16_ext_R0_data[447:416];
+        casez_tmp_128 = _mem_16_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_129;
   always @(*) begin
-    casez (io_world_data_REG)
+    casez (io_world_0_data_REG)
       2'b00:
-        casez_tmp_129 = _mem_16_ext_R0_data[95:64];
+        casez_tmp_129 = _mem_16_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_129 = _mem_16_ext_R0_data[223:192];
+        casez_tmp_129 = _mem_16_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_129 = _mem_16_ext_R0_data[351:320];
+        casez_tmp_129 = _mem_16_ext_R1_data[351:320];
       default:
-        casez_tmp_129 = _mem_16_ext_R0_data[479:448];
+        casez_tmp_129 = _mem_16_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_130;
   always @(*) begin
-    casez (io_world_data_REG)
+    casez (io_world_0_data_REG)
       2'b00:
-        casez_tmp_130 = _mem_16_ext_R0_data[127:96];
+        casez_tmp_130 = _mem_16_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_130 = _mem_16_ext_R0_data[255:224];
+        casez_tmp_130 = _mem_16_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_130 = _mem_16_ext_R0_data[383:352];
+        casez_tmp_130 = _mem_16_ext_R1_data[383:352];
       default:
-        casez_tmp_130 = _mem_16_ext_R0_data[511:480];
+        casez_tmp_130 = _mem_16_ext_R1_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_1_data_REG;
+  reg  [31:0]  casez_tmp_131;
+  always @(*) begin
+    casez (io_world_1_data_REG)
+      2'b00:
+        casez_tmp_131 = _mem_16_ext_R0_data[31:0];
+      2'b01:
+        casez_tmp_131 = _mem_16_ext_R0_data[159:128];
+      2'b10:
+        casez_tmp_131 = _mem_16_ext_R0_data[287:256];
+      default:
+        casez_tmp_131 = _mem_16_ext_R0_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_132;
+  always @(*) begin
+    casez (io_world_1_data_REG)
+      2'b00:
+        casez_tmp_132 = _mem_16_ext_R0_data[63:32];
+      2'b01:
+        casez_tmp_132 = _mem_16_ext_R0_data[191:160];
+      2'b10:
+        casez_tmp_132 = _mem_16_ext_R0_data[319:288];
+      default:
+        casez_tmp_132 = _mem_16_ext_R0_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_133;
+  always @(*) begin
+    casez (io_world_1_data_REG)
+      2'b00:
+        casez_tmp_133 = _mem_16_ext_R0_data[95:64];
+      2'b01:
+        casez_tmp_133 = _mem_16_ext_R0_data[223:192];
+      2'b10:
+        casez_tmp_133 = _mem_16_ext_R0_data[351:320];
+      default:
+        casez_tmp_133 = _mem_16_ext_R0_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_134;
+  always @(*) begin
+    casez (io_world_1_data_REG)
+      2'b00:
+        casez_tmp_134 = _mem_16_ext_R0_data[127:96];
+      2'b01:
+        casez_tmp_134 = _mem_16_ext_R0_data[255:224];
+      2'b10:
+        casez_tmp_134 = _mem_16_ext_R0_data[383:352];
+      default:
+        casez_tmp_134 = _mem_16_ext_R0_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_2_data_REG;
+  reg  [31:0]  casez_tmp_135;
+  always @(*) begin
+    casez (io_world_2_data_REG)
+      2'b00:
+        casez_tmp_135 = _mem_17_ext_R1_data[31:0];
+      2'b01:
+        casez_tmp_135 = _mem_17_ext_R1_data[159:128];
+      2'b10:
+        casez_tmp_135 = _mem_17_ext_R1_data[287:256];
+      default:
+        casez_tmp_135 = _mem_17_ext_R1_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_136;
+  always @(*) begin
+    casez (io_world_2_data_REG)
+      2'b00:
+        casez_tmp_136 = _mem_17_ext_R1_data[63:32];
+      2'b01:
+        casez_tmp_136 = _mem_17_ext_R1_data[191:160];
+      2'b10:
+        casez_tmp_136 = _mem_17_ext_R1_data[319:288];
+      default:
+        casez_tmp_136 = _mem_17_ext_R1_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_137;
+  always @(*) begin
+    casez (io_world_2_data_REG)
+      2'b00:
+        casez_tmp_137 = _mem_17_ext_R1_data[95:64];
+      2'b01:
+        casez_tmp_137 = _mem_17_ext_R1_data[223:192];
+      2'b10:
+        casez_tmp_137 = _mem_17_ext_R1_data[351:320];
+      default:
+        casez_tmp_137 = _mem_17_ext_R1_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_138;
+  always @(*) begin
+    casez (io_world_2_data_REG)
+      2'b00:
+        casez_tmp_138 = _mem_17_ext_R1_data[127:96];
+      2'b01:
+        casez_tmp_138 = _mem_17_ext_R1_data[255:224];
+      2'b10:
+        casez_tmp_138 = _mem_17_ext_R1_data[383:352];
+      default:
+        casez_tmp_138 = _mem_17_ext_R1_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_3_data_REG;
+  reg  [31:0]  casez_tmp_139;
+  always @(*) begin
+    casez (io_world_3_data_REG)
+      2'b00:
+        casez_tmp_139 = _mem_17_ext_R0_data[31:0];
+      2'b01:
+        casez_tmp_139 = _mem_17_ext_R0_data[159:128];
+      2'b10:
+        casez_tmp_139 = _mem_17_ext_R0_data[287:256];
+      default:
+        casez_tmp_139 = _mem_17_ext_R0_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_140;
+  always @(*) begin
+    casez (io_world_3_data_REG)
+      2'b00:
+        casez_tmp_140 = _mem_17_ext_R0_data[63:32];
+      2'b01:
+        casez_tmp_140 = _mem_17_ext_R0_data[191:160];
+      2'b10:
+        casez_tmp_140 = _mem_17_ext_R0_data[319:288];
+      default:
+        casez_tmp_140 = _mem_17_ext_R0_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_141;
+  always @(*) begin
+    casez (io_world_3_data_REG)
+      2'b00:
+        casez_tmp_141 = _mem_17_ext_R0_data[95:64];
+      2'b01:
+        casez_tmp_141 = _mem_17_ext_R0_data[223:192];
+      2'b10:
+        casez_tmp_141 = _mem_17_ext_R0_data[351:320];
+      default:
+        casez_tmp_141 = _mem_17_ext_R0_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_142;
+  always @(*) begin
+    casez (io_world_3_data_REG)
+      2'b00:
+        casez_tmp_142 = _mem_17_ext_R0_data[127:96];
+      2'b01:
+        casez_tmp_142 = _mem_17_ext_R0_data[255:224];
+      2'b10:
+        casez_tmp_142 = _mem_17_ext_R0_data[383:352];
+      default:
+        casez_tmp_142 = _mem_17_ext_R0_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_4_data_REG;
+  reg  [31:0]  casez_tmp_143;
+  always @(*) begin
+    casez (io_world_4_data_REG)
+      2'b00:
+        casez_tmp_143 = _mem_18_ext_R1_data[31:0];
+      2'b01:
+        casez_tmp_143 = _mem_18_ext_R1_data[159:128];
+      2'b10:
+        casez_tmp_143 = _mem_18_ext_R1_data[287:256];
+      default:
+        casez_tmp_143 = _mem_18_ext_R1_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_144;
+  always @(*) begin
+    casez (io_world_4_data_REG)
+      2'b00:
+        casez_tmp_144 = _mem_18_ext_R1_data[63:32];
+      2'b01:
+        casez_tmp_144 = _mem_18_ext_R1_data[191:160];
+      2'b10:
+        casez_tmp_144 = _mem_18_ext_R1_data[319:288];
+      default:
+        casez_tmp_144 = _mem_18_ext_R1_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_145;
+  always @(*) begin
+    casez (io_world_4_data_REG)
+      2'b00:
+        casez_tmp_145 = _mem_18_ext_R1_data[95:64];
+      2'b01:
+        casez_tmp_145 = _mem_18_ext_R1_data[223:192];
+      2'b10:
+        casez_tmp_145 = _mem_18_ext_R1_data[351:320];
+      default:
+        casez_tmp_145 = _mem_18_ext_R1_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_146;
+  always @(*) begin
+    casez (io_world_4_data_REG)
+      2'b00:
+        casez_tmp_146 = _mem_18_ext_R1_data[127:96];
+      2'b01:
+        casez_tmp_146 = _mem_18_ext_R1_data[255:224];
+      2'b10:
+        casez_tmp_146 = _mem_18_ext_R1_data[383:352];
+      default:
+        casez_tmp_146 = _mem_18_ext_R1_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_5_data_REG;
+  reg  [31:0]  casez_tmp_147;
+  always @(*) begin
+    casez (io_world_5_data_REG)
+      2'b00:
+        casez_tmp_147 = _mem_18_ext_R0_data[31:0];
+      2'b01:
+        casez_tmp_147 = _mem_18_ext_R0_data[159:128];
+      2'b10:
+        casez_tmp_147 = _mem_18_ext_R0_data[287:256];
+      default:
+        casez_tmp_147 = _mem_18_ext_R0_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_148;
+  always @(*) begin
+    casez (io_world_5_data_REG)
+      2'b00:
+        casez_tmp_148 = _mem_18_ext_R0_data[63:32];
+      2'b01:
+        casez_tmp_148 = _mem_18_ext_R0_data[191:160];
+      2'b10:
+        casez_tmp_148 = _mem_18_ext_R0_data[319:288];
+      default:
+        casez_tmp_148 = _mem_18_ext_R0_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_149;
+  always @(*) begin
+    casez (io_world_5_data_REG)
+      2'b00:
+        casez_tmp_149 = _mem_18_ext_R0_data[95:64];
+      2'b01:
+        casez_tmp_149 = _mem_18_ext_R0_data[223:192];
+      2'b10:
+        casez_tmp_149 = _mem_18_ext_R0_data[351:320];
+      default:
+        casez_tmp_149 = _mem_18_ext_R0_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_150;
+  always @(*) begin
+    casez (io_world_5_data_REG)
+      2'b00:
+        casez_tmp_150 = _mem_18_ext_R0_data[127:96];
+      2'b01:
+        casez_tmp_150 = _mem_18_ext_R0_data[255:224];
+      2'b10:
+        casez_tmp_150 = _mem_18_ext_R0_data[383:352];
+      default:
+        casez_tmp_150 = _mem_18_ext_R0_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_6_data_REG;
+  reg  [31:0]  casez_tmp_151;
+  always @(*) begin
+    casez (io_world_6_data_REG)
+      2'b00:
+        casez_tmp_151 = _mem_19_ext_R1_data[31:0];
+      2'b01:
+        casez_tmp_151 = _mem_19_ext_R1_data[159:128];
+      2'b10:
+        casez_tmp_151 = _mem_19_ext_R1_data[287:256];
+      default:
+        casez_tmp_151 = _mem_19_ext_R1_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_152;
+  always @(*) begin
+    casez (io_world_6_data_REG)
+      2'b00:
+        casez_tmp_152 = _mem_19_ext_R1_data[63:32];
+      2'b01:
+        casez_tmp_152 = _mem_19_ext_R1_data[191:160];
+      2'b10:
+        casez_tmp_152 = _mem_19_ext_R1_data[319:288];
+      default:
+        casez_tmp_152 = _mem_19_ext_R1_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_153;
+  always @(*) begin
+    casez (io_world_6_data_REG)
+      2'b00:
+        casez_tmp_153 = _mem_19_ext_R1_data[95:64];
+      2'b01:
+        casez_tmp_153 = _mem_19_ext_R1_data[223:192];
+      2'b10:
+        casez_tmp_153 = _mem_19_ext_R1_data[351:320];
+      default:
+        casez_tmp_153 = _mem_19_ext_R1_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_154;
+  always @(*) begin
+    casez (io_world_6_data_REG)
+      2'b00:
+        casez_tmp_154 = _mem_19_ext_R1_data[127:96];
+      2'b01:
+        casez_tmp_154 = _mem_19_ext_R1_data[255:224];
+      2'b10:
+        casez_tmp_154 = _mem_19_ext_R1_data[383:352];
+      default:
+        casez_tmp_154 = _mem_19_ext_R1_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_7_data_REG;
+  reg  [31:0]  casez_tmp_155;
+  always @(*) begin
+    casez (io_world_7_data_REG)
+      2'b00:
+        casez_tmp_155 = _mem_19_ext_R0_data[31:0];
+      2'b01:
+        casez_tmp_155 = _mem_19_ext_R0_data[159:128];
+      2'b10:
+        casez_tmp_155 = _mem_19_ext_R0_data[287:256];
+      default:
+        casez_tmp_155 = _mem_19_ext_R0_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_156;
+  always @(*) begin
+    casez (io_world_7_data_REG)
+      2'b00:
+        casez_tmp_156 = _mem_19_ext_R0_data[63:32];
+      2'b01:
+        casez_tmp_156 = _mem_19_ext_R0_data[191:160];
+      2'b10:
+        casez_tmp_156 = _mem_19_ext_R0_data[319:288];
+      default:
+        casez_tmp_156 = _mem_19_ext_R0_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_157;
+  always @(*) begin
+    casez (io_world_7_data_REG)
+      2'b00:
+        casez_tmp_157 = _mem_19_ext_R0_data[95:64];
+      2'b01:
+        casez_tmp_157 = _mem_19_ext_R0_data[223:192];
+      2'b10:
+        casez_tmp_157 = _mem_19_ext_R0_data[351:320];
+      default:
+        casez_tmp_157 = _mem_19_ext_R0_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_158;
+  always @(*) begin
+    casez (io_world_7_data_REG)
+      2'b00:
+        casez_tmp_158 = _mem_19_ext_R0_data[127:96];
+      2'b01:
+        casez_tmp_158 = _mem_19_ext_R0_data[255:224];
+      2'b10:
+        casez_tmp_158 = _mem_19_ext_R0_data[383:352];
+      default:
+        casez_tmp_158 = _mem_19_ext_R0_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_8_data_REG;
+  reg  [31:0]  casez_tmp_159;
+  always @(*) begin
+    casez (io_world_8_data_REG)
+      2'b00:
+        casez_tmp_159 = _mem_20_ext_R1_data[31:0];
+      2'b01:
+        casez_tmp_159 = _mem_20_ext_R1_data[159:128];
+      2'b10:
+        casez_tmp_159 = _mem_20_ext_R1_data[287:256];
+      default:
+        casez_tmp_159 = _mem_20_ext_R1_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_160;
+  always @(*) begin
+    casez (io_world_8_data_REG)
+      2'b00:
+        casez_tmp_160 = _mem_20_ext_R1_data[63:32];
+      2'b01:
+        casez_tmp_160 = _mem_20_ext_R1_data[191:160];
+      2'b10:
+        casez_tmp_160 = _mem_20_ext_R1_data[319:288];
+      default:
+        casez_tmp_160 = _mem_20_ext_R1_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_161;
+  always @(*) begin
+    casez (io_world_8_data_REG)
+      2'b00:
+        casez_tmp_161 = _mem_20_ext_R1_data[95:64];
+      2'b01:
+        casez_tmp_161 = _mem_20_ext_R1_data[223:192];
+      2'b10:
+        casez_tmp_161 = _mem_20_ext_R1_data[351:320];
+      default:
+        casez_tmp_161 = _mem_20_ext_R1_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_162;
+  always @(*) begin
+    casez (io_world_8_data_REG)
+      2'b00:
+        casez_tmp_162 = _mem_20_ext_R1_data[127:96];
+      2'b01:
+        casez_tmp_162 = _mem_20_ext_R1_data[255:224];
+      2'b10:
+        casez_tmp_162 = _mem_20_ext_R1_data[383:352];
+      default:
+        casez_tmp_162 = _mem_20_ext_R1_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_9_data_REG;
+  reg  [31:0]  casez_tmp_163;
+  always @(*) begin
+    casez (io_world_9_data_REG)
+      2'b00:
+        casez_tmp_163 = _mem_20_ext_R0_data[31:0];
+      2'b01:
+        casez_tmp_163 = _mem_20_ext_R0_data[159:128];
+      2'b10:
+        casez_tmp_163 = _mem_20_ext_R0_data[287:256];
+      default:
+        casez_tmp_163 = _mem_20_ext_R0_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_164;
+  always @(*) begin
+    casez (io_world_9_data_REG)
+      2'b00:
+        casez_tmp_164 = _mem_20_ext_R0_data[63:32];
+      2'b01:
+        casez_tmp_164 = _mem_20_ext_R0_data[191:160];
+      2'b10:
+        casez_tmp_164 = _mem_20_ext_R0_data[319:288];
+      default:
+        casez_tmp_164 = _mem_20_ext_R0_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_165;
+  always @(*) begin
+    casez (io_world_9_data_REG)
+      2'b00:
+        casez_tmp_165 = _mem_20_ext_R0_data[95:64];
+      2'b01:
+        casez_tmp_165 = _mem_20_ext_R0_data[223:192];
+      2'b10:
+        casez_tmp_165 = _mem_20_ext_R0_data[351:320];
+      default:
+        casez_tmp_165 = _mem_20_ext_R0_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_166;
+  always @(*) begin
+    casez (io_world_9_data_REG)
+      2'b00:
+        casez_tmp_166 = _mem_20_ext_R0_data[127:96];
+      2'b01:
+        casez_tmp_166 = _mem_20_ext_R0_data[255:224];
+      2'b10:
+        casez_tmp_166 = _mem_20_ext_R0_data[383:352];
+      default:
+        casez_tmp_166 = _mem_20_ext_R0_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_10_data_REG;
+  reg  [31:0]  casez_tmp_167;
+  always @(*) begin
+    casez (io_world_10_data_REG)
+      2'b00:
+        casez_tmp_167 = _mem_21_ext_R1_data[31:0];
+      2'b01:
+        casez_tmp_167 = _mem_21_ext_R1_data[159:128];
+      2'b10:
+        casez_tmp_167 = _mem_21_ext_R1_data[287:256];
+      default:
+        casez_tmp_167 = _mem_21_ext_R1_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_168;
+  always @(*) begin
+    casez (io_world_10_data_REG)
+      2'b00:
+        casez_tmp_168 = _mem_21_ext_R1_data[63:32];
+      2'b01:
+        casez_tmp_168 = _mem_21_ext_R1_data[191:160];
+      2'b10:
+        casez_tmp_168 = _mem_21_ext_R1_data[319:288];
+      default:
+        casez_tmp_168 = _mem_21_ext_R1_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_169;
+  always @(*) begin
+    casez (io_world_10_data_REG)
+      2'b00:
+        casez_tmp_169 = _mem_21_ext_R1_data[95:64];
+      2'b01:
+        casez_tmp_169 = _mem_21_ext_R1_data[223:192];
+      2'b10:
+        casez_tmp_169 = _mem_21_ext_R1_data[351:320];
+      default:
+        casez_tmp_169 = _mem_21_ext_R1_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_170;
+  always @(*) begin
+    casez (io_world_10_data_REG)
+      2'b00:
+        casez_tmp_170 = _mem_21_ext_R1_data[127:96];
+      2'b01:
+        casez_tmp_170 = _mem_21_ext_R1_data[255:224];
+      2'b10:
+        casez_tmp_170 = _mem_21_ext_R1_data[383:352];
+      default:
+        casez_tmp_170 = _mem_21_ext_R1_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_11_data_REG;
+  reg  [31:0]  casez_tmp_171;
+  always @(*) begin
+    casez (io_world_11_data_REG)
+      2'b00:
+        casez_tmp_171 = _mem_21_ext_R0_data[31:0];
+      2'b01:
+        casez_tmp_171 = _mem_21_ext_R0_data[159:128];
+      2'b10:
+        casez_tmp_171 = _mem_21_ext_R0_data[287:256];
+      default:
+        casez_tmp_171 = _mem_21_ext_R0_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_172;
+  always @(*) begin
+    casez (io_world_11_data_REG)
+      2'b00:
+        casez_tmp_172 = _mem_21_ext_R0_data[63:32];
+      2'b01:
+        casez_tmp_172 = _mem_21_ext_R0_data[191:160];
+      2'b10:
+        casez_tmp_172 = _mem_21_ext_R0_data[319:288];
+      default:
+        casez_tmp_172 = _mem_21_ext_R0_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_173;
+  always @(*) begin
+    casez (io_world_11_data_REG)
+      2'b00:
+        casez_tmp_173 = _mem_21_ext_R0_data[95:64];
+      2'b01:
+        casez_tmp_173 = _mem_21_ext_R0_data[223:192];
+      2'b10:
+        casez_tmp_173 = _mem_21_ext_R0_data[351:320];
+      default:
+        casez_tmp_173 = _mem_21_ext_R0_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_174;
+  always @(*) begin
+    casez (io_world_11_data_REG)
+      2'b00:
+        casez_tmp_174 = _mem_21_ext_R0_data[127:96];
+      2'b01:
+        casez_tmp_174 = _mem_21_ext_R0_data[255:224];
+      2'b10:
+        casez_tmp_174 = _mem_21_ext_R0_data[383:352];
+      default:
+        casez_tmp_174 = _mem_21_ext_R0_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_12_data_REG;
+  reg  [31:0]  casez_tmp_175;
+  always @(*) begin
+    casez (io_world_12_data_REG)
+      2'b00:
+        casez_tmp_175 = _mem_22_ext_R1_data[31:0];
+      2'b01:
+        casez_tmp_175 = _mem_22_ext_R1_data[159:128];
+      2'b10:
+        casez_tmp_175 = _mem_22_ext_R1_data[287:256];
+      default:
+        casez_tmp_175 = _mem_22_ext_R1_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_176;
+  always @(*) begin
+    casez (io_world_12_data_REG)
+      2'b00:
+        casez_tmp_176 = _mem_22_ext_R1_data[63:32];
+      2'b01:
+        casez_tmp_176 = _mem_22_ext_R1_data[191:160];
+      2'b10:
+        casez_tmp_176 = _mem_22_ext_R1_data[319:288];
+      default:
+        casez_tmp_176 = _mem_22_ext_R1_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_177;
+  always @(*) begin
+    casez (io_world_12_data_REG)
+      2'b00:
+        casez_tmp_177 = _mem_22_ext_R1_data[95:64];
+      2'b01:
+        casez_tmp_177 = _mem_22_ext_R1_data[223:192];
+      2'b10:
+        casez_tmp_177 = _mem_22_ext_R1_data[351:320];
+      default:
+        casez_tmp_177 = _mem_22_ext_R1_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_178;
+  always @(*) begin
+    casez (io_world_12_data_REG)
+      2'b00:
+        casez_tmp_178 = _mem_22_ext_R1_data[127:96];
+      2'b01:
+        casez_tmp_178 = _mem_22_ext_R1_data[255:224];
+      2'b10:
+        casez_tmp_178 = _mem_22_ext_R1_data[383:352];
+      default:
+        casez_tmp_178 = _mem_22_ext_R1_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_13_data_REG;
+  reg  [31:0]  casez_tmp_179;
+  always @(*) begin
+    casez (io_world_13_data_REG)
+      2'b00:
+        casez_tmp_179 = _mem_22_ext_R0_data[31:0];
+      2'b01:
+        casez_tmp_179 = _mem_22_ext_R0_data[159:128];
+      2'b10:
+        casez_tmp_179 = _mem_22_ext_R0_data[287:256];
+      default:
+        casez_tmp_179 = _mem_22_ext_R0_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_180;
+  always @(*) begin
+    casez (io_world_13_data_REG)
+      2'b00:
+        casez_tmp_180 = _mem_22_ext_R0_data[63:32];
+      2'b01:
+        casez_tmp_180 = _mem_22_ext_R0_data[191:160];
+      2'b10:
+        casez_tmp_180 = _mem_22_ext_R0_data[319:288];
+      default:
+        casez_tmp_180 = _mem_22_ext_R0_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_181;
+  always @(*) begin
+    casez (io_world_13_data_REG)
+      2'b00:
+        casez_tmp_181 = _mem_22_ext_R0_data[95:64];
+      2'b01:
+        casez_tmp_181 = _mem_22_ext_R0_data[223:192];
+      2'b10:
+        casez_tmp_181 = _mem_22_ext_R0_data[351:320];
+      default:
+        casez_tmp_181 = _mem_22_ext_R0_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_182;
+  always @(*) begin
+    casez (io_world_13_data_REG)
+      2'b00:
+        casez_tmp_182 = _mem_22_ext_R0_data[127:96];
+      2'b01:
+        casez_tmp_182 = _mem_22_ext_R0_data[255:224];
+      2'b10:
+        casez_tmp_182 = _mem_22_ext_R0_data[383:352];
+      default:
+        casez_tmp_182 = _mem_22_ext_R0_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_14_data_REG;
+  reg  [31:0]  casez_tmp_183;
+  always @(*) begin
+    casez (io_world_14_data_REG)
+      2'b00:
+        casez_tmp_183 = _mem_23_ext_R1_data[31:0];
+      2'b01:
+        casez_tmp_183 = _mem_23_ext_R1_data[159:128];
+      2'b10:
+        casez_tmp_183 = _mem_23_ext_R1_data[287:256];
+      default:
+        casez_tmp_183 = _mem_23_ext_R1_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_184;
+  always @(*) begin
+    casez (io_world_14_data_REG)
+      2'b00:
+        casez_tmp_184 = _mem_23_ext_R1_data[63:32];
+      2'b01:
+        casez_tmp_184 = _mem_23_ext_R1_data[191:160];
+      2'b10:
+        casez_tmp_184 = _mem_23_ext_R1_data[319:288];
+      default:
+        casez_tmp_184 = _mem_23_ext_R1_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_185;
+  always @(*) begin
+    casez (io_world_14_data_REG)
+      2'b00:
+        casez_tmp_185 = _mem_23_ext_R1_data[95:64];
+      2'b01:
+        casez_tmp_185 = _mem_23_ext_R1_data[223:192];
+      2'b10:
+        casez_tmp_185 = _mem_23_ext_R1_data[351:320];
+      default:
+        casez_tmp_185 = _mem_23_ext_R1_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_186;
+  always @(*) begin
+    casez (io_world_14_data_REG)
+      2'b00:
+        casez_tmp_186 = _mem_23_ext_R1_data[127:96];
+      2'b01:
+        casez_tmp_186 = _mem_23_ext_R1_data[255:224];
+      2'b10:
+        casez_tmp_186 = _mem_23_ext_R1_data[383:352];
+      default:
+        casez_tmp_186 = _mem_23_ext_R1_data[511:480];
+    endcase
+  end // always @(*)
+  reg  [1:0]   io_world_15_data_REG;
+  reg  [31:0]  casez_tmp_187;
+  always @(*) begin
+    casez (io_world_15_data_REG)
+      2'b00:
+        casez_tmp_187 = _mem_23_ext_R0_data[31:0];
+      2'b01:
+        casez_tmp_187 = _mem_23_ext_R0_data[159:128];
+      2'b10:
+        casez_tmp_187 = _mem_23_ext_R0_data[287:256];
+      default:
+        casez_tmp_187 = _mem_23_ext_R0_data[415:384];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_188;
+  always @(*) begin
+    casez (io_world_15_data_REG)
+      2'b00:
+        casez_tmp_188 = _mem_23_ext_R0_data[63:32];
+      2'b01:
+        casez_tmp_188 = _mem_23_ext_R0_data[191:160];
+      2'b10:
+        casez_tmp_188 = _mem_23_ext_R0_data[319:288];
+      default:
+        casez_tmp_188 = _mem_23_ext_R0_data[447:416];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_189;
+  always @(*) begin
+    casez (io_world_15_data_REG)
+      2'b00:
+        casez_tmp_189 = _mem_23_ext_R0_data[95:64];
+      2'b01:
+        casez_tmp_189 = _mem_23_ext_R0_data[223:192];
+      2'b10:
+        casez_tmp_189 = _mem_23_ext_R0_data[351:320];
+      default:
+        casez_tmp_189 = _mem_23_ext_R0_data[479:448];
+    endcase
+  end // always @(*)
+  reg  [31:0]  casez_tmp_190;
+  always @(*) begin
+    casez (io_world_15_data_REG)
+      2'b00:
+        casez_tmp_190 = _mem_23_ext_R0_data[127:96];
+      2'b01:
+        casez_tmp_190 = _mem_23_ext_R0_data[255:224];
+      2'b10:
+        casez_tmp_190 = _mem_23_ext_R0_data[383:352];
+      default:
+        casez_tmp_190 = _mem_23_ext_R0_data[511:480];
     endcase
   end // always @(*)
   always @(posedge clock) begin
@@ -3643,7 +4502,22 @@ module SphereRam_s4096_c17_world(
       sel_30 <= io_raddr_15_0[1:0];
       sel_31 <= io_raddr_15_1[1:0];
     end
-    io_world_data_REG <= io_world_addr[1:0];
+    io_world_0_data_REG <= io_world_0_addr[1:0];
+    io_world_1_data_REG <= io_world_1_addr[1:0];
+    io_world_2_data_REG <= io_world_2_addr[1:0];
+    io_world_3_data_REG <= io_world_3_addr[1:0];
+    io_world_4_data_REG <= io_world_4_addr[1:0];
+    io_world_5_data_REG <= io_world_5_addr[1:0];
+    io_world_6_data_REG <= io_world_6_addr[1:0];
+    io_world_7_data_REG <= io_world_7_addr[1:0];
+    io_world_8_data_REG <= io_world_8_addr[1:0];
+    io_world_9_data_REG <= io_world_9_addr[1:0];
+    io_world_10_data_REG <= io_world_10_addr[1:0];
+    io_world_11_data_REG <= io_world_11_addr[1:0];
+    io_world_12_data_REG <= io_world_12_addr[1:0];
+    io_world_13_data_REG <= io_world_13_addr[1:0];
+    io_world_14_data_REG <= io_world_14_addr[1:0];
+    io_world_15_data_REG <= io_world_15_addr[1:0];
   end // always @(posedge)
   mem_1024x512_world mem_ext (
     .R0_addr (io_raddr_0_1[11:2]),
@@ -3869,11 +4743,113 @@ module SphereRam_s4096_c17_world(
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_16_1024x512_world mem_16_ext (
-    .R0_addr (io_world_addr[11:2]),
+  mem_1024x512_world mem_16_ext (
+    .R0_addr (io_world_1_addr[11:2]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_mem_16_ext_R0_data),
+    .R1_addr (io_world_0_addr[11:2]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_mem_16_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (io_write_valid),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mem_1024x512_world mem_17_ext (
+    .R0_addr (io_world_3_addr[11:2]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_mem_17_ext_R0_data),
+    .R1_addr (io_world_2_addr[11:2]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_mem_17_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (io_write_valid),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mem_1024x512_world mem_18_ext (
+    .R0_addr (io_world_5_addr[11:2]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_mem_18_ext_R0_data),
+    .R1_addr (io_world_4_addr[11:2]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_mem_18_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (io_write_valid),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mem_1024x512_world mem_19_ext (
+    .R0_addr (io_world_7_addr[11:2]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_mem_19_ext_R0_data),
+    .R1_addr (io_world_6_addr[11:2]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_mem_19_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (io_write_valid),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mem_1024x512_world mem_20_ext (
+    .R0_addr (io_world_9_addr[11:2]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_mem_20_ext_R0_data),
+    .R1_addr (io_world_8_addr[11:2]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_mem_20_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (io_write_valid),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mem_1024x512_world mem_21_ext (
+    .R0_addr (io_world_11_addr[11:2]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_mem_21_ext_R0_data),
+    .R1_addr (io_world_10_addr[11:2]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_mem_21_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (io_write_valid),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mem_1024x512_world mem_22_ext (
+    .R0_addr (io_world_13_addr[11:2]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_mem_22_ext_R0_data),
+    .R1_addr (io_world_12_addr[11:2]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_mem_22_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (io_write_valid),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mem_1024x512_world mem_23_ext (
+    .R0_addr (io_world_15_addr[11:2]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_mem_23_ext_R0_data),
+    .R1_addr (io_world_14_addr[11:2]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_mem_23_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
@@ -4007,10 +4983,70 @@ module SphereRam_s4096_c17_world(
   assign io_rdata_15_1_y = casez_tmp_124;
   assign io_rdata_15_1_z = casez_tmp_125;
   assign io_rdata_15_1_r = casez_tmp_126;
-  assign io_world_data_x = casez_tmp_127;
-  assign io_world_data_y = casez_tmp_128;
-  assign io_world_data_z = casez_tmp_129;
-  assign io_world_data_r = casez_tmp_130;
+  assign io_world_0_data_x = casez_tmp_127;
+  assign io_world_0_data_y = casez_tmp_128;
+  assign io_world_0_data_z = casez_tmp_129;
+  assign io_world_0_data_r = casez_tmp_130;
+  assign io_world_1_data_x = casez_tmp_131;
+  assign io_world_1_data_y = casez_tmp_132;
+  assign io_world_1_data_z = casez_tmp_133;
+  assign io_world_1_data_r = casez_tmp_134;
+  assign io_world_2_data_x = casez_tmp_135;
+  assign io_world_2_data_y = casez_tmp_136;
+  assign io_world_2_data_z = casez_tmp_137;
+  assign io_world_2_data_r = casez_tmp_138;
+  assign io_world_3_data_x = casez_tmp_139;
+  assign io_world_3_data_y = casez_tmp_140;
+  assign io_world_3_data_z = casez_tmp_141;
+  assign io_world_3_data_r = casez_tmp_142;
+  assign io_world_4_data_x = casez_tmp_143;
+  assign io_world_4_data_y = casez_tmp_144;
+  assign io_world_4_data_z = casez_tmp_145;
+  assign io_world_4_data_r = casez_tmp_146;
+  assign io_world_5_data_x = casez_tmp_147;
+  assign io_world_5_data_y = casez_tmp_148;
+  assign io_world_5_data_z = casez_tmp_149;
+  assign io_world_5_data_r = casez_tmp_150;
+  assign io_world_6_data_x = casez_tmp_151;
+  assign io_world_6_data_y = casez_tmp_152;
+  assign io_world_6_data_z = casez_tmp_153;
+  assign io_world_6_data_r = casez_tmp_154;
+  assign io_world_7_data_x = casez_tmp_155;
+  assign io_world_7_data_y = casez_tmp_156;
+  assign io_world_7_data_z = casez_tmp_157;
+  assign io_world_7_data_r = casez_tmp_158;
+  assign io_world_8_data_x = casez_tmp_159;
+  assign io_world_8_data_y = casez_tmp_160;
+  assign io_world_8_data_z = casez_tmp_161;
+  assign io_world_8_data_r = casez_tmp_162;
+  assign io_world_9_data_x = casez_tmp_163;
+  assign io_world_9_data_y = casez_tmp_164;
+  assign io_world_9_data_z = casez_tmp_165;
+  assign io_world_9_data_r = casez_tmp_166;
+  assign io_world_10_data_x = casez_tmp_167;
+  assign io_world_10_data_y = casez_tmp_168;
+  assign io_world_10_data_z = casez_tmp_169;
+  assign io_world_10_data_r = casez_tmp_170;
+  assign io_world_11_data_x = casez_tmp_171;
+  assign io_world_11_data_y = casez_tmp_172;
+  assign io_world_11_data_z = casez_tmp_173;
+  assign io_world_11_data_r = casez_tmp_174;
+  assign io_world_12_data_x = casez_tmp_175;
+  assign io_world_12_data_y = casez_tmp_176;
+  assign io_world_12_data_z = casez_tmp_177;
+  assign io_world_12_data_r = casez_tmp_178;
+  assign io_world_13_data_x = casez_tmp_179;
+  assign io_world_13_data_y = casez_tmp_180;
+  assign io_world_13_data_z = casez_tmp_181;
+  assign io_world_13_data_r = casez_tmp_182;
+  assign io_world_14_data_x = casez_tmp_183;
+  assign io_world_14_data_y = casez_tmp_184;
+  assign io_world_14_data_z = casez_tmp_185;
+  assign io_world_14_data_r = casez_tmp_186;
+  assign io_world_15_data_x = casez_tmp_187;
+  assign io_world_15_data_y = casez_tmp_188;
+  assign io_world_15_data_z = casez_tmp_189;
+  assign io_world_15_data_r = casez_tmp_190;
 endmodule
 
 // VCS coverage exclude_file
@@ -16869,12 +17905,12 @@ module Queue3_StreamRange_world(
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 2'h1 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_world(
+module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world(
   input         clock,
                 reset,
                 io_start,
-  input  [3:0]  io_usedLog2,
-  input  [12:0] io_num,
+  input  [3:0]  io_lane,
+                io_usedLog2,
   input  [28:0] io_slack,
   input  [11:0] io_larges_0_index,
   input  [28:0] io_larges_0_q_0,
@@ -16957,6 +17993,8 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_world(
                 io_larges_15_q_2,
                 io_larges_15_qr,
   input  [4:0]  io_largeCount,
+  input  [12:0] io_largeFrom,
+                io_largeTo,
   output [12:0] io_lookup_bucket,
   input  [12:0] io_lookup_begin,
                 io_lookup_end,
@@ -17501,7 +18539,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_world(
       if (_GEN_3)
         state <= 3'h2;
       else if (_GEN_4)
-        state <= {1'h0, io_largeCount == 5'h0 ? 2'h0 : 2'h3};
+        state <= {1'h0, io_largeCount == 5'h0 | io_largeFrom >= io_largeTo ? 2'h0 : 2'h3};
       walkPend <= ~_GEN_3 & issueOk;
       lkPend <= ~_GEN_3 & lkPend;
     end
@@ -17523,16 +18561,16 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_world(
     end
     if (_GEN_0) begin
       if (io_start)
-        bIssue <= 14'h0;
+        bIssue <= {7'h0, io_lane, 3'h0};
     end
     else if (_GEN_1) begin
       if (_GEN_3) begin
-        bIssue <= _GEN_2 + {11'h0, lane} + 14'h1;
+        bIssue <= (&lane) ? _GEN_2 + 14'h80 : _GEN_2 + {11'h0, lane} + 14'h1;
         p <= casez_tmp;
         vIssue <= 4'h0;
       end
       else if (issueOk)
-        bIssue <= {bIssue[13:3] + 11'h1, 3'h0};
+        bIssue <= {bIssue[13:3] + 11'h10, 3'h0};
       haveCell <= ~_GEN_3 & haveCell;
       sent <= ~_GEN_3 & sent;
       needClear <= ~_GEN_3 & needClear;
@@ -17634,8 +18672,10 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_world(
     .reset                    (reset),
     .io_req_ready             (_stream_io_req_ready),
     .io_req_valid             (_GEN_15),
-    .io_req_bits_begin        (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin : p) : 13'h0),
-    .io_req_bits_end          (_GEN_5 ? (sent ? _lkq_io_deq_bits_end : bEnd) : io_num),
+    .io_req_bits_begin
+      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin : p) : io_largeFrom),
+    .io_req_bits_end
+      (_GEN_5 ? (sent ? _lkq_io_deq_bits_end : bEnd) : io_largeTo),
     .io_req_bits_direct       (~_GEN_5 | sent & _lkq_io_deq_bits_direct),
     .io_req_bits_tag_scan     (_GEN_5 & (~sent | _lkq_io_deq_bits_tag_scan)),
     .io_req_bits_tag_cell_0   (_GEN_6 ? _lkq_io_deq_bits_tag_cell_0 : 20'h0),
@@ -17756,20 +18796,155 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_world(
   assign io_busy = |state;
 endmodule
 
-module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
+module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
   input         clock,
                 reset,
                 io_start,
   input  [12:0] io_num,
-  output [11:0] io_sphere_addr,
-  input  [31:0] io_sphere_data_0,
-                io_sphere_data_1,
-                io_sphere_data_2,
-                io_sphere_data_3,
-  input         io_pairs_ready,
-  output        io_pairs_valid,
-  output [11:0] io_pairs_bits_i,
-                io_pairs_bits_j,
+  output [11:0] io_sphere_0_addr,
+  input  [31:0] io_sphere_0_data_0,
+                io_sphere_0_data_1,
+                io_sphere_0_data_2,
+                io_sphere_0_data_3,
+  output [11:0] io_sphere_1_addr,
+  input  [31:0] io_sphere_1_data_0,
+                io_sphere_1_data_1,
+                io_sphere_1_data_2,
+                io_sphere_1_data_3,
+  output [11:0] io_sphere_2_addr,
+  input  [31:0] io_sphere_2_data_0,
+                io_sphere_2_data_1,
+                io_sphere_2_data_2,
+                io_sphere_2_data_3,
+  output [11:0] io_sphere_3_addr,
+  input  [31:0] io_sphere_3_data_0,
+                io_sphere_3_data_1,
+                io_sphere_3_data_2,
+                io_sphere_3_data_3,
+  output [11:0] io_sphere_4_addr,
+  input  [31:0] io_sphere_4_data_0,
+                io_sphere_4_data_1,
+                io_sphere_4_data_2,
+                io_sphere_4_data_3,
+  output [11:0] io_sphere_5_addr,
+  input  [31:0] io_sphere_5_data_0,
+                io_sphere_5_data_1,
+                io_sphere_5_data_2,
+                io_sphere_5_data_3,
+  output [11:0] io_sphere_6_addr,
+  input  [31:0] io_sphere_6_data_0,
+                io_sphere_6_data_1,
+                io_sphere_6_data_2,
+                io_sphere_6_data_3,
+  output [11:0] io_sphere_7_addr,
+  input  [31:0] io_sphere_7_data_0,
+                io_sphere_7_data_1,
+                io_sphere_7_data_2,
+                io_sphere_7_data_3,
+  output [11:0] io_sphere_8_addr,
+  input  [31:0] io_sphere_8_data_0,
+                io_sphere_8_data_1,
+                io_sphere_8_data_2,
+                io_sphere_8_data_3,
+  output [11:0] io_sphere_9_addr,
+  input  [31:0] io_sphere_9_data_0,
+                io_sphere_9_data_1,
+                io_sphere_9_data_2,
+                io_sphere_9_data_3,
+  output [11:0] io_sphere_10_addr,
+  input  [31:0] io_sphere_10_data_0,
+                io_sphere_10_data_1,
+                io_sphere_10_data_2,
+                io_sphere_10_data_3,
+  output [11:0] io_sphere_11_addr,
+  input  [31:0] io_sphere_11_data_0,
+                io_sphere_11_data_1,
+                io_sphere_11_data_2,
+                io_sphere_11_data_3,
+  output [11:0] io_sphere_12_addr,
+  input  [31:0] io_sphere_12_data_0,
+                io_sphere_12_data_1,
+                io_sphere_12_data_2,
+                io_sphere_12_data_3,
+  output [11:0] io_sphere_13_addr,
+  input  [31:0] io_sphere_13_data_0,
+                io_sphere_13_data_1,
+                io_sphere_13_data_2,
+                io_sphere_13_data_3,
+  output [11:0] io_sphere_14_addr,
+  input  [31:0] io_sphere_14_data_0,
+                io_sphere_14_data_1,
+                io_sphere_14_data_2,
+                io_sphere_14_data_3,
+  output [11:0] io_sphere_15_addr,
+  input  [31:0] io_sphere_15_data_0,
+                io_sphere_15_data_1,
+                io_sphere_15_data_2,
+                io_sphere_15_data_3,
+  input         io_pairs_0_ready,
+  output        io_pairs_0_valid,
+  output [11:0] io_pairs_0_bits_i,
+                io_pairs_0_bits_j,
+  input         io_pairs_1_ready,
+  output        io_pairs_1_valid,
+  output [11:0] io_pairs_1_bits_i,
+                io_pairs_1_bits_j,
+  input         io_pairs_2_ready,
+  output        io_pairs_2_valid,
+  output [11:0] io_pairs_2_bits_i,
+                io_pairs_2_bits_j,
+  input         io_pairs_3_ready,
+  output        io_pairs_3_valid,
+  output [11:0] io_pairs_3_bits_i,
+                io_pairs_3_bits_j,
+  input         io_pairs_4_ready,
+  output        io_pairs_4_valid,
+  output [11:0] io_pairs_4_bits_i,
+                io_pairs_4_bits_j,
+  input         io_pairs_5_ready,
+  output        io_pairs_5_valid,
+  output [11:0] io_pairs_5_bits_i,
+                io_pairs_5_bits_j,
+  input         io_pairs_6_ready,
+  output        io_pairs_6_valid,
+  output [11:0] io_pairs_6_bits_i,
+                io_pairs_6_bits_j,
+  input         io_pairs_7_ready,
+  output        io_pairs_7_valid,
+  output [11:0] io_pairs_7_bits_i,
+                io_pairs_7_bits_j,
+  input         io_pairs_8_ready,
+  output        io_pairs_8_valid,
+  output [11:0] io_pairs_8_bits_i,
+                io_pairs_8_bits_j,
+  input         io_pairs_9_ready,
+  output        io_pairs_9_valid,
+  output [11:0] io_pairs_9_bits_i,
+                io_pairs_9_bits_j,
+  input         io_pairs_10_ready,
+  output        io_pairs_10_valid,
+  output [11:0] io_pairs_10_bits_i,
+                io_pairs_10_bits_j,
+  input         io_pairs_11_ready,
+  output        io_pairs_11_valid,
+  output [11:0] io_pairs_11_bits_i,
+                io_pairs_11_bits_j,
+  input         io_pairs_12_ready,
+  output        io_pairs_12_valid,
+  output [11:0] io_pairs_12_bits_i,
+                io_pairs_12_bits_j,
+  input         io_pairs_13_ready,
+  output        io_pairs_13_valid,
+  output [11:0] io_pairs_13_bits_i,
+                io_pairs_13_bits_j,
+  input         io_pairs_14_ready,
+  output        io_pairs_14_valid,
+  output [11:0] io_pairs_14_bits_i,
+                io_pairs_14_bits_j,
+  input         io_pairs_15_ready,
+  output        io_pairs_15_valid,
+  output [11:0] io_pairs_15_bits_i,
+                io_pairs_15_bits_j,
   output        io_busy,
   output [12:0] io_status_k,
                 io_status_large,
@@ -17781,30 +18956,465 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
                 io_status_sortMismatch
 );
 
-  wire [12:0] _gen_io_lookup_bucket;
-  wire [11:0] _gen_io_entry_addr;
-  wire        _gen_io_mark_valid;
-  wire [11:0] _gen_io_mark_bits_addr;
-  wire [11:0] _gen_io_mark_bits_item;
-  wire [11:0] _gen_io_keyAddr;
-  wire        _gen_io_busy;
-  wire        _sort_io_busy;
-  wire        _sort_io_in_ready;
-  wire [12:0] _sort_io_lookup_begin;
-  wire [12:0] _sort_io_lookup_end;
-  wire [12:0] _sort_io_lookup_word_0;
-  wire [12:0] _sort_io_lookup_word_1;
-  wire [12:0] _sort_io_lookup_word_2;
-  wire [12:0] _sort_io_lookup_word_3;
-  wire [12:0] _sort_io_lookup_word_4;
-  wire [12:0] _sort_io_lookup_word_5;
-  wire [12:0] _sort_io_lookup_word_6;
-  wire [12:0] _sort_io_lookup_word_7;
-  wire [11:0] _sort_io_entry_item;
-  wire        _sort_io_entry_mark;
-  wire [12:0] _sort_io_counted;
-  wire [12:0] _sort_io_scattered;
-  wire        _sort_io_badBucket;
+  wire [19:0] _laneKeys_14_io_out_cell_0;
+  wire [19:0] _laneKeys_14_io_out_cell_1;
+  wire [19:0] _laneKeys_14_io_out_cell_2;
+  wire [28:0] _laneKeys_14_io_out_q_0;
+  wire [28:0] _laneKeys_14_io_out_q_1;
+  wire [28:0] _laneKeys_14_io_out_q_2;
+  wire [28:0] _laneKeys_14_io_out_qr;
+  wire [12:0] _laneKeys_14_io_out_need;
+  wire        _laneKeys_14_io_out_needNone;
+  wire        _laneKeys_14_io_out_nonFinite;
+  wire [19:0] _laneKeys_13_io_out_cell_0;
+  wire [19:0] _laneKeys_13_io_out_cell_1;
+  wire [19:0] _laneKeys_13_io_out_cell_2;
+  wire [28:0] _laneKeys_13_io_out_q_0;
+  wire [28:0] _laneKeys_13_io_out_q_1;
+  wire [28:0] _laneKeys_13_io_out_q_2;
+  wire [28:0] _laneKeys_13_io_out_qr;
+  wire [12:0] _laneKeys_13_io_out_need;
+  wire        _laneKeys_13_io_out_needNone;
+  wire        _laneKeys_13_io_out_nonFinite;
+  wire [19:0] _laneKeys_12_io_out_cell_0;
+  wire [19:0] _laneKeys_12_io_out_cell_1;
+  wire [19:0] _laneKeys_12_io_out_cell_2;
+  wire [28:0] _laneKeys_12_io_out_q_0;
+  wire [28:0] _laneKeys_12_io_out_q_1;
+  wire [28:0] _laneKeys_12_io_out_q_2;
+  wire [28:0] _laneKeys_12_io_out_qr;
+  wire [12:0] _laneKeys_12_io_out_need;
+  wire        _laneKeys_12_io_out_needNone;
+  wire        _laneKeys_12_io_out_nonFinite;
+  wire [19:0] _laneKeys_11_io_out_cell_0;
+  wire [19:0] _laneKeys_11_io_out_cell_1;
+  wire [19:0] _laneKeys_11_io_out_cell_2;
+  wire [28:0] _laneKeys_11_io_out_q_0;
+  wire [28:0] _laneKeys_11_io_out_q_1;
+  wire [28:0] _laneKeys_11_io_out_q_2;
+  wire [28:0] _laneKeys_11_io_out_qr;
+  wire [12:0] _laneKeys_11_io_out_need;
+  wire        _laneKeys_11_io_out_needNone;
+  wire        _laneKeys_11_io_out_nonFinite;
+  wire [19:0] _laneKeys_10_io_out_cell_0;
+  wire [19:0] _laneKeys_10_io_out_cell_1;
+  wire [19:0] _laneKeys_10_io_out_cell_2;
+  wire [28:0] _laneKeys_10_io_out_q_0;
+  wire [28:0] _laneKeys_10_io_out_q_1;
+  wire [28:0] _laneKeys_10_io_out_q_2;
+  wire [28:0] _laneKeys_10_io_out_qr;
+  wire [12:0] _laneKeys_10_io_out_need;
+  wire        _laneKeys_10_io_out_needNone;
+  wire        _laneKeys_10_io_out_nonFinite;
+  wire [19:0] _laneKeys_9_io_out_cell_0;
+  wire [19:0] _laneKeys_9_io_out_cell_1;
+  wire [19:0] _laneKeys_9_io_out_cell_2;
+  wire [28:0] _laneKeys_9_io_out_q_0;
+  wire [28:0] _laneKeys_9_io_out_q_1;
+  wire [28:0] _laneKeys_9_io_out_q_2;
+  wire [28:0] _laneKeys_9_io_out_qr;
+  wire [12:0] _laneKeys_9_io_out_need;
+  wire        _laneKeys_9_io_out_needNone;
+  wire        _laneKeys_9_io_out_nonFinite;
+  wire [19:0] _laneKeys_8_io_out_cell_0;
+  wire [19:0] _laneKeys_8_io_out_cell_1;
+  wire [19:0] _laneKeys_8_io_out_cell_2;
+  wire [28:0] _laneKeys_8_io_out_q_0;
+  wire [28:0] _laneKeys_8_io_out_q_1;
+  wire [28:0] _laneKeys_8_io_out_q_2;
+  wire [28:0] _laneKeys_8_io_out_qr;
+  wire [12:0] _laneKeys_8_io_out_need;
+  wire        _laneKeys_8_io_out_needNone;
+  wire        _laneKeys_8_io_out_nonFinite;
+  wire [19:0] _laneKeys_7_io_out_cell_0;
+  wire [19:0] _laneKeys_7_io_out_cell_1;
+  wire [19:0] _laneKeys_7_io_out_cell_2;
+  wire [28:0] _laneKeys_7_io_out_q_0;
+  wire [28:0] _laneKeys_7_io_out_q_1;
+  wire [28:0] _laneKeys_7_io_out_q_2;
+  wire [28:0] _laneKeys_7_io_out_qr;
+  wire [12:0] _laneKeys_7_io_out_need;
+  wire        _laneKeys_7_io_out_needNone;
+  wire        _laneKeys_7_io_out_nonFinite;
+  wire [19:0] _laneKeys_6_io_out_cell_0;
+  wire [19:0] _laneKeys_6_io_out_cell_1;
+  wire [19:0] _laneKeys_6_io_out_cell_2;
+  wire [28:0] _laneKeys_6_io_out_q_0;
+  wire [28:0] _laneKeys_6_io_out_q_1;
+  wire [28:0] _laneKeys_6_io_out_q_2;
+  wire [28:0] _laneKeys_6_io_out_qr;
+  wire [12:0] _laneKeys_6_io_out_need;
+  wire        _laneKeys_6_io_out_needNone;
+  wire        _laneKeys_6_io_out_nonFinite;
+  wire [19:0] _laneKeys_5_io_out_cell_0;
+  wire [19:0] _laneKeys_5_io_out_cell_1;
+  wire [19:0] _laneKeys_5_io_out_cell_2;
+  wire [28:0] _laneKeys_5_io_out_q_0;
+  wire [28:0] _laneKeys_5_io_out_q_1;
+  wire [28:0] _laneKeys_5_io_out_q_2;
+  wire [28:0] _laneKeys_5_io_out_qr;
+  wire [12:0] _laneKeys_5_io_out_need;
+  wire        _laneKeys_5_io_out_needNone;
+  wire        _laneKeys_5_io_out_nonFinite;
+  wire [19:0] _laneKeys_4_io_out_cell_0;
+  wire [19:0] _laneKeys_4_io_out_cell_1;
+  wire [19:0] _laneKeys_4_io_out_cell_2;
+  wire [28:0] _laneKeys_4_io_out_q_0;
+  wire [28:0] _laneKeys_4_io_out_q_1;
+  wire [28:0] _laneKeys_4_io_out_q_2;
+  wire [28:0] _laneKeys_4_io_out_qr;
+  wire [12:0] _laneKeys_4_io_out_need;
+  wire        _laneKeys_4_io_out_needNone;
+  wire        _laneKeys_4_io_out_nonFinite;
+  wire [19:0] _laneKeys_3_io_out_cell_0;
+  wire [19:0] _laneKeys_3_io_out_cell_1;
+  wire [19:0] _laneKeys_3_io_out_cell_2;
+  wire [28:0] _laneKeys_3_io_out_q_0;
+  wire [28:0] _laneKeys_3_io_out_q_1;
+  wire [28:0] _laneKeys_3_io_out_q_2;
+  wire [28:0] _laneKeys_3_io_out_qr;
+  wire [12:0] _laneKeys_3_io_out_need;
+  wire        _laneKeys_3_io_out_needNone;
+  wire        _laneKeys_3_io_out_nonFinite;
+  wire [19:0] _laneKeys_2_io_out_cell_0;
+  wire [19:0] _laneKeys_2_io_out_cell_1;
+  wire [19:0] _laneKeys_2_io_out_cell_2;
+  wire [28:0] _laneKeys_2_io_out_q_0;
+  wire [28:0] _laneKeys_2_io_out_q_1;
+  wire [28:0] _laneKeys_2_io_out_q_2;
+  wire [28:0] _laneKeys_2_io_out_qr;
+  wire [12:0] _laneKeys_2_io_out_need;
+  wire        _laneKeys_2_io_out_needNone;
+  wire        _laneKeys_2_io_out_nonFinite;
+  wire [19:0] _laneKeys_1_io_out_cell_0;
+  wire [19:0] _laneKeys_1_io_out_cell_1;
+  wire [19:0] _laneKeys_1_io_out_cell_2;
+  wire [28:0] _laneKeys_1_io_out_q_0;
+  wire [28:0] _laneKeys_1_io_out_q_1;
+  wire [28:0] _laneKeys_1_io_out_q_2;
+  wire [28:0] _laneKeys_1_io_out_qr;
+  wire [12:0] _laneKeys_1_io_out_need;
+  wire        _laneKeys_1_io_out_needNone;
+  wire        _laneKeys_1_io_out_nonFinite;
+  wire [19:0] _laneKeys_0_io_out_cell_0;
+  wire [19:0] _laneKeys_0_io_out_cell_1;
+  wire [19:0] _laneKeys_0_io_out_cell_2;
+  wire [28:0] _laneKeys_0_io_out_q_0;
+  wire [28:0] _laneKeys_0_io_out_q_1;
+  wire [28:0] _laneKeys_0_io_out_q_2;
+  wire [28:0] _laneKeys_0_io_out_qr;
+  wire [12:0] _laneKeys_0_io_out_need;
+  wire        _laneKeys_0_io_out_needNone;
+  wire        _laneKeys_0_io_out_nonFinite;
+  wire [12:0] _gens_15_io_lookup_bucket;
+  wire [11:0] _gens_15_io_entry_addr;
+  wire        _gens_15_io_mark_valid;
+  wire [11:0] _gens_15_io_mark_bits_addr;
+  wire [11:0] _gens_15_io_mark_bits_item;
+  wire        _gens_15_io_busy;
+  wire [12:0] _gens_14_io_lookup_bucket;
+  wire [11:0] _gens_14_io_entry_addr;
+  wire        _gens_14_io_mark_valid;
+  wire [11:0] _gens_14_io_mark_bits_addr;
+  wire [11:0] _gens_14_io_mark_bits_item;
+  wire        _gens_14_io_busy;
+  wire [12:0] _gens_13_io_lookup_bucket;
+  wire [11:0] _gens_13_io_entry_addr;
+  wire        _gens_13_io_mark_valid;
+  wire [11:0] _gens_13_io_mark_bits_addr;
+  wire [11:0] _gens_13_io_mark_bits_item;
+  wire        _gens_13_io_busy;
+  wire [12:0] _gens_12_io_lookup_bucket;
+  wire [11:0] _gens_12_io_entry_addr;
+  wire        _gens_12_io_mark_valid;
+  wire [11:0] _gens_12_io_mark_bits_addr;
+  wire [11:0] _gens_12_io_mark_bits_item;
+  wire        _gens_12_io_busy;
+  wire [12:0] _gens_11_io_lookup_bucket;
+  wire [11:0] _gens_11_io_entry_addr;
+  wire        _gens_11_io_mark_valid;
+  wire [11:0] _gens_11_io_mark_bits_addr;
+  wire [11:0] _gens_11_io_mark_bits_item;
+  wire        _gens_11_io_busy;
+  wire [12:0] _gens_10_io_lookup_bucket;
+  wire [11:0] _gens_10_io_entry_addr;
+  wire        _gens_10_io_mark_valid;
+  wire [11:0] _gens_10_io_mark_bits_addr;
+  wire [11:0] _gens_10_io_mark_bits_item;
+  wire        _gens_10_io_busy;
+  wire [12:0] _gens_9_io_lookup_bucket;
+  wire [11:0] _gens_9_io_entry_addr;
+  wire        _gens_9_io_mark_valid;
+  wire [11:0] _gens_9_io_mark_bits_addr;
+  wire [11:0] _gens_9_io_mark_bits_item;
+  wire        _gens_9_io_busy;
+  wire [12:0] _gens_8_io_lookup_bucket;
+  wire [11:0] _gens_8_io_entry_addr;
+  wire        _gens_8_io_mark_valid;
+  wire [11:0] _gens_8_io_mark_bits_addr;
+  wire [11:0] _gens_8_io_mark_bits_item;
+  wire        _gens_8_io_busy;
+  wire [12:0] _gens_7_io_lookup_bucket;
+  wire [11:0] _gens_7_io_entry_addr;
+  wire        _gens_7_io_mark_valid;
+  wire [11:0] _gens_7_io_mark_bits_addr;
+  wire [11:0] _gens_7_io_mark_bits_item;
+  wire        _gens_7_io_busy;
+  wire [12:0] _gens_6_io_lookup_bucket;
+  wire [11:0] _gens_6_io_entry_addr;
+  wire        _gens_6_io_mark_valid;
+  wire [11:0] _gens_6_io_mark_bits_addr;
+  wire [11:0] _gens_6_io_mark_bits_item;
+  wire        _gens_6_io_busy;
+  wire [12:0] _gens_5_io_lookup_bucket;
+  wire [11:0] _gens_5_io_entry_addr;
+  wire        _gens_5_io_mark_valid;
+  wire [11:0] _gens_5_io_mark_bits_addr;
+  wire [11:0] _gens_5_io_mark_bits_item;
+  wire        _gens_5_io_busy;
+  wire [12:0] _gens_4_io_lookup_bucket;
+  wire [11:0] _gens_4_io_entry_addr;
+  wire        _gens_4_io_mark_valid;
+  wire [11:0] _gens_4_io_mark_bits_addr;
+  wire [11:0] _gens_4_io_mark_bits_item;
+  wire        _gens_4_io_busy;
+  wire [12:0] _gens_3_io_lookup_bucket;
+  wire [11:0] _gens_3_io_entry_addr;
+  wire        _gens_3_io_mark_valid;
+  wire [11:0] _gens_3_io_mark_bits_addr;
+  wire [11:0] _gens_3_io_mark_bits_item;
+  wire        _gens_3_io_busy;
+  wire [12:0] _gens_2_io_lookup_bucket;
+  wire [11:0] _gens_2_io_entry_addr;
+  wire        _gens_2_io_mark_valid;
+  wire [11:0] _gens_2_io_mark_bits_addr;
+  wire [11:0] _gens_2_io_mark_bits_item;
+  wire        _gens_2_io_busy;
+  wire [12:0] _gens_1_io_lookup_bucket;
+  wire [11:0] _gens_1_io_entry_addr;
+  wire        _gens_1_io_mark_valid;
+  wire [11:0] _gens_1_io_mark_bits_addr;
+  wire [11:0] _gens_1_io_mark_bits_item;
+  wire        _gens_1_io_busy;
+  wire [12:0] _gens_0_io_lookup_bucket;
+  wire [11:0] _gens_0_io_entry_addr;
+  wire        _gens_0_io_mark_valid;
+  wire [11:0] _gens_0_io_mark_bits_addr;
+  wire [11:0] _gens_0_io_mark_bits_item;
+  wire [11:0] _gens_0_io_keyAddr;
+  wire        _gens_0_io_busy;
+  wire        _sorts_15_io_in_ready;
+  wire [12:0] _sorts_15_io_lookup_begin;
+  wire [12:0] _sorts_15_io_lookup_end;
+  wire [12:0] _sorts_15_io_lookup_word_0;
+  wire [12:0] _sorts_15_io_lookup_word_1;
+  wire [12:0] _sorts_15_io_lookup_word_2;
+  wire [12:0] _sorts_15_io_lookup_word_3;
+  wire [12:0] _sorts_15_io_lookup_word_4;
+  wire [12:0] _sorts_15_io_lookup_word_5;
+  wire [12:0] _sorts_15_io_lookup_word_6;
+  wire [12:0] _sorts_15_io_lookup_word_7;
+  wire [11:0] _sorts_15_io_entry_item;
+  wire        _sorts_15_io_entry_mark;
+  wire        _sorts_14_io_in_ready;
+  wire [12:0] _sorts_14_io_lookup_begin;
+  wire [12:0] _sorts_14_io_lookup_end;
+  wire [12:0] _sorts_14_io_lookup_word_0;
+  wire [12:0] _sorts_14_io_lookup_word_1;
+  wire [12:0] _sorts_14_io_lookup_word_2;
+  wire [12:0] _sorts_14_io_lookup_word_3;
+  wire [12:0] _sorts_14_io_lookup_word_4;
+  wire [12:0] _sorts_14_io_lookup_word_5;
+  wire [12:0] _sorts_14_io_lookup_word_6;
+  wire [12:0] _sorts_14_io_lookup_word_7;
+  wire [11:0] _sorts_14_io_entry_item;
+  wire        _sorts_14_io_entry_mark;
+  wire        _sorts_13_io_in_ready;
+  wire [12:0] _sorts_13_io_lookup_begin;
+  wire [12:0] _sorts_13_io_lookup_end;
+  wire [12:0] _sorts_13_io_lookup_word_0;
+  wire [12:0] _sorts_13_io_lookup_word_1;
+  wire [12:0] _sorts_13_io_lookup_word_2;
+  wire [12:0] _sorts_13_io_lookup_word_3;
+  wire [12:0] _sorts_13_io_lookup_word_4;
+  wire [12:0] _sorts_13_io_lookup_word_5;
+  wire [12:0] _sorts_13_io_lookup_word_6;
+  wire [12:0] _sorts_13_io_lookup_word_7;
+  wire [11:0] _sorts_13_io_entry_item;
+  wire        _sorts_13_io_entry_mark;
+  wire        _sorts_12_io_in_ready;
+  wire [12:0] _sorts_12_io_lookup_begin;
+  wire [12:0] _sorts_12_io_lookup_end;
+  wire [12:0] _sorts_12_io_lookup_word_0;
+  wire [12:0] _sorts_12_io_lookup_word_1;
+  wire [12:0] _sorts_12_io_lookup_word_2;
+  wire [12:0] _sorts_12_io_lookup_word_3;
+  wire [12:0] _sorts_12_io_lookup_word_4;
+  wire [12:0] _sorts_12_io_lookup_word_5;
+  wire [12:0] _sorts_12_io_lookup_word_6;
+  wire [12:0] _sorts_12_io_lookup_word_7;
+  wire [11:0] _sorts_12_io_entry_item;
+  wire        _sorts_12_io_entry_mark;
+  wire        _sorts_11_io_in_ready;
+  wire [12:0] _sorts_11_io_lookup_begin;
+  wire [12:0] _sorts_11_io_lookup_end;
+  wire [12:0] _sorts_11_io_lookup_word_0;
+  wire [12:0] _sorts_11_io_lookup_word_1;
+  wire [12:0] _sorts_11_io_lookup_word_2;
+  wire [12:0] _sorts_11_io_lookup_word_3;
+  wire [12:0] _sorts_11_io_lookup_word_4;
+  wire [12:0] _sorts_11_io_lookup_word_5;
+  wire [12:0] _sorts_11_io_lookup_word_6;
+  wire [12:0] _sorts_11_io_lookup_word_7;
+  wire [11:0] _sorts_11_io_entry_item;
+  wire        _sorts_11_io_entry_mark;
+  wire        _sorts_10_io_in_ready;
+  wire [12:0] _sorts_10_io_lookup_begin;
+  wire [12:0] _sorts_10_io_lookup_end;
+  wire [12:0] _sorts_10_io_lookup_word_0;
+  wire [12:0] _sorts_10_io_lookup_word_1;
+  wire [12:0] _sorts_10_io_lookup_word_2;
+  wire [12:0] _sorts_10_io_lookup_word_3;
+  wire [12:0] _sorts_10_io_lookup_word_4;
+  wire [12:0] _sorts_10_io_lookup_word_5;
+  wire [12:0] _sorts_10_io_lookup_word_6;
+  wire [12:0] _sorts_10_io_lookup_word_7;
+  wire [11:0] _sorts_10_io_entry_item;
+  wire        _sorts_10_io_entry_mark;
+  wire        _sorts_9_io_in_ready;
+  wire [12:0] _sorts_9_io_lookup_begin;
+  wire [12:0] _sorts_9_io_lookup_end;
+  wire [12:0] _sorts_9_io_lookup_word_0;
+  wire [12:0] _sorts_9_io_lookup_word_1;
+  wire [12:0] _sorts_9_io_lookup_word_2;
+  wire [12:0] _sorts_9_io_lookup_word_3;
+  wire [12:0] _sorts_9_io_lookup_word_4;
+  wire [12:0] _sorts_9_io_lookup_word_5;
+  wire [12:0] _sorts_9_io_lookup_word_6;
+  wire [12:0] _sorts_9_io_lookup_word_7;
+  wire [11:0] _sorts_9_io_entry_item;
+  wire        _sorts_9_io_entry_mark;
+  wire        _sorts_8_io_in_ready;
+  wire [12:0] _sorts_8_io_lookup_begin;
+  wire [12:0] _sorts_8_io_lookup_end;
+  wire [12:0] _sorts_8_io_lookup_word_0;
+  wire [12:0] _sorts_8_io_lookup_word_1;
+  wire [12:0] _sorts_8_io_lookup_word_2;
+  wire [12:0] _sorts_8_io_lookup_word_3;
+  wire [12:0] _sorts_8_io_lookup_word_4;
+  wire [12:0] _sorts_8_io_lookup_word_5;
+  wire [12:0] _sorts_8_io_lookup_word_6;
+  wire [12:0] _sorts_8_io_lookup_word_7;
+  wire [11:0] _sorts_8_io_entry_item;
+  wire        _sorts_8_io_entry_mark;
+  wire        _sorts_7_io_in_ready;
+  wire [12:0] _sorts_7_io_lookup_begin;
+  wire [12:0] _sorts_7_io_lookup_end;
+  wire [12:0] _sorts_7_io_lookup_word_0;
+  wire [12:0] _sorts_7_io_lookup_word_1;
+  wire [12:0] _sorts_7_io_lookup_word_2;
+  wire [12:0] _sorts_7_io_lookup_word_3;
+  wire [12:0] _sorts_7_io_lookup_word_4;
+  wire [12:0] _sorts_7_io_lookup_word_5;
+  wire [12:0] _sorts_7_io_lookup_word_6;
+  wire [12:0] _sorts_7_io_lookup_word_7;
+  wire [11:0] _sorts_7_io_entry_item;
+  wire        _sorts_7_io_entry_mark;
+  wire        _sorts_6_io_in_ready;
+  wire [12:0] _sorts_6_io_lookup_begin;
+  wire [12:0] _sorts_6_io_lookup_end;
+  wire [12:0] _sorts_6_io_lookup_word_0;
+  wire [12:0] _sorts_6_io_lookup_word_1;
+  wire [12:0] _sorts_6_io_lookup_word_2;
+  wire [12:0] _sorts_6_io_lookup_word_3;
+  wire [12:0] _sorts_6_io_lookup_word_4;
+  wire [12:0] _sorts_6_io_lookup_word_5;
+  wire [12:0] _sorts_6_io_lookup_word_6;
+  wire [12:0] _sorts_6_io_lookup_word_7;
+  wire [11:0] _sorts_6_io_entry_item;
+  wire        _sorts_6_io_entry_mark;
+  wire        _sorts_5_io_in_ready;
+  wire [12:0] _sorts_5_io_lookup_begin;
+  wire [12:0] _sorts_5_io_lookup_end;
+  wire [12:0] _sorts_5_io_lookup_word_0;
+  wire [12:0] _sorts_5_io_lookup_word_1;
+  wire [12:0] _sorts_5_io_lookup_word_2;
+  wire [12:0] _sorts_5_io_lookup_word_3;
+  wire [12:0] _sorts_5_io_lookup_word_4;
+  wire [12:0] _sorts_5_io_lookup_word_5;
+  wire [12:0] _sorts_5_io_lookup_word_6;
+  wire [12:0] _sorts_5_io_lookup_word_7;
+  wire [11:0] _sorts_5_io_entry_item;
+  wire        _sorts_5_io_entry_mark;
+  wire        _sorts_4_io_in_ready;
+  wire [12:0] _sorts_4_io_lookup_begin;
+  wire [12:0] _sorts_4_io_lookup_end;
+  wire [12:0] _sorts_4_io_lookup_word_0;
+  wire [12:0] _sorts_4_io_lookup_word_1;
+  wire [12:0] _sorts_4_io_lookup_word_2;
+  wire [12:0] _sorts_4_io_lookup_word_3;
+  wire [12:0] _sorts_4_io_lookup_word_4;
+  wire [12:0] _sorts_4_io_lookup_word_5;
+  wire [12:0] _sorts_4_io_lookup_word_6;
+  wire [12:0] _sorts_4_io_lookup_word_7;
+  wire [11:0] _sorts_4_io_entry_item;
+  wire        _sorts_4_io_entry_mark;
+  wire        _sorts_3_io_in_ready;
+  wire [12:0] _sorts_3_io_lookup_begin;
+  wire [12:0] _sorts_3_io_lookup_end;
+  wire [12:0] _sorts_3_io_lookup_word_0;
+  wire [12:0] _sorts_3_io_lookup_word_1;
+  wire [12:0] _sorts_3_io_lookup_word_2;
+  wire [12:0] _sorts_3_io_lookup_word_3;
+  wire [12:0] _sorts_3_io_lookup_word_4;
+  wire [12:0] _sorts_3_io_lookup_word_5;
+  wire [12:0] _sorts_3_io_lookup_word_6;
+  wire [12:0] _sorts_3_io_lookup_word_7;
+  wire [11:0] _sorts_3_io_entry_item;
+  wire        _sorts_3_io_entry_mark;
+  wire        _sorts_2_io_in_ready;
+  wire [12:0] _sorts_2_io_lookup_begin;
+  wire [12:0] _sorts_2_io_lookup_end;
+  wire [12:0] _sorts_2_io_lookup_word_0;
+  wire [12:0] _sorts_2_io_lookup_word_1;
+  wire [12:0] _sorts_2_io_lookup_word_2;
+  wire [12:0] _sorts_2_io_lookup_word_3;
+  wire [12:0] _sorts_2_io_lookup_word_4;
+  wire [12:0] _sorts_2_io_lookup_word_5;
+  wire [12:0] _sorts_2_io_lookup_word_6;
+  wire [12:0] _sorts_2_io_lookup_word_7;
+  wire [11:0] _sorts_2_io_entry_item;
+  wire        _sorts_2_io_entry_mark;
+  wire        _sorts_1_io_in_ready;
+  wire [12:0] _sorts_1_io_lookup_begin;
+  wire [12:0] _sorts_1_io_lookup_end;
+  wire [12:0] _sorts_1_io_lookup_word_0;
+  wire [12:0] _sorts_1_io_lookup_word_1;
+  wire [12:0] _sorts_1_io_lookup_word_2;
+  wire [12:0] _sorts_1_io_lookup_word_3;
+  wire [12:0] _sorts_1_io_lookup_word_4;
+  wire [12:0] _sorts_1_io_lookup_word_5;
+  wire [12:0] _sorts_1_io_lookup_word_6;
+  wire [12:0] _sorts_1_io_lookup_word_7;
+  wire [11:0] _sorts_1_io_entry_item;
+  wire        _sorts_1_io_entry_mark;
+  wire        _sorts_0_io_busy;
+  wire        _sorts_0_io_in_ready;
+  wire [12:0] _sorts_0_io_lookup_begin;
+  wire [12:0] _sorts_0_io_lookup_end;
+  wire [12:0] _sorts_0_io_lookup_word_0;
+  wire [12:0] _sorts_0_io_lookup_word_1;
+  wire [12:0] _sorts_0_io_lookup_word_2;
+  wire [12:0] _sorts_0_io_lookup_word_3;
+  wire [12:0] _sorts_0_io_lookup_word_4;
+  wire [12:0] _sorts_0_io_lookup_word_5;
+  wire [12:0] _sorts_0_io_lookup_word_6;
+  wire [12:0] _sorts_0_io_lookup_word_7;
+  wire [11:0] _sorts_0_io_entry_item;
+  wire        _sorts_0_io_entry_mark;
+  wire [12:0] _sorts_0_io_counted;
+  wire [12:0] _sorts_0_io_scattered;
+  wire        _sorts_0_io_badBucket;
   wire [12:0] _cellExp_io_k;
   wire        _keys_io_out_valid;
   wire [19:0] _keys_io_out_cell_0;
@@ -17917,31 +19527,158 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
   reg  [4:0]  largeCount;
   wire        _cellExp_io_in_valid_T = state == 3'h1;
   wire        _classified_T = state == 3'h2;
-  wire        _sort_io_in_bits_scatter_T = state == 3'h4;
-  wire        _gen_io_start_T = state == 3'h5;
+  wire        _sorts_15_io_in_bits_scatter_T = state == 3'h4;
+  wire        _gens_15_io_start_T = state == 3'h5;
   reg         rdValid;
   reg  [11:0] rdIndex;
   reg  [11:0] kIndex;
+  wire        _rec_r_large_T_3 = $signed(_keys_io_out_need) > $signed(_cellExp_io_k);
   wire        isLarge =
-    ~_keys_io_out_nonFinite & ~_keys_io_out_needNone
-    & $signed(_keys_io_out_need) > $signed(_cellExp_io_k);
+    ~_keys_io_out_nonFinite & ~_keys_io_out_needNone & _rec_r_large_T_3;
   wire        isSmall = ~_keys_io_out_nonFinite & ~isLarge;
   wire        classified = _keys_io_out_valid & _classified_T;
-  wire        _sort_io_in_valid_T_1 =
-    (classified | _keys_io_out_valid & _sort_io_in_bits_scatter_T) & isSmall;
-  wire [28:0] _sort_io_in_bits_bucket_mask_T = 29'h1 << usedLog2;
+  wire [13:0] slack_e = 14'h3FCB - {_cellExp_io_k[12], _cellExp_io_k};
+  wire [31:0] _slack_T_3 = 32'h1 << slack_e[4:0];
+  wire [28:0] slack =
+    $signed(slack_e) < 14'sh0
+      ? 29'h2
+      : $signed(slack_e) > 14'sh1B ? 29'h1FFFFFFF : _slack_T_3[28:0] + 29'h1;
+  wire        _sorts_15_io_prefix_T = state == 3'h3;
+  wire        _sorts_15_io_in_valid_T =
+    classified | _keys_io_out_valid & _sorts_15_io_in_bits_scatter_T;
+  wire        _sorts_0_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [28:0] _sorts_15_io_in_bits_bucket_mask_T = 29'h1 << usedLog2;
+  wire [12:0] _GEN = {4'h0, num[12:4]};
+  wire        _sorts_1_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [12:0] _GEN_0 = {3'h0, num[12:3]};
+  wire        _sorts_2_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
+  wire        _sorts_3_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [27:0] _GEN_1 = {15'h0, num};
+  wire [12:0] _GEN_2 = {2'h0, num[12:2]};
+  wire        _sorts_4_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [27:0] _gens_5_io_largeFrom_T = _GEN_1 * 28'h5000;
+  wire        _sorts_5_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [27:0] _gens_6_io_largeFrom_T = _GEN_1 * 28'h6000;
+  wire        _sorts_6_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [27:0] _gens_7_io_largeFrom_T = _GEN_1 * 28'h7000;
+  wire        _sorts_7_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [28:0] _GEN_3 = {16'h0, num};
+  wire        _sorts_8_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [28:0] _gens_9_io_largeFrom_T = _GEN_3 * 29'h9000;
+  wire        _sorts_9_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [28:0] _gens_10_io_largeFrom_T = _GEN_3 * 29'hA000;
+  wire        _sorts_10_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [28:0] _gens_11_io_largeFrom_T = _GEN_3 * 29'hB000;
+  wire        _sorts_11_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [28:0] _gens_12_io_largeFrom_T = _GEN_3 * 29'hC000;
+  wire        _sorts_12_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [28:0] _gens_13_io_largeFrom_T = _GEN_3 * 29'hD000;
+  wire        _sorts_13_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [28:0] _gens_14_io_largeFrom_T = _GEN_3 * 29'hE000;
+  wire        _sorts_14_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire [28:0] _gens_15_io_largeFrom_T = _GEN_3 * 29'hF000;
+  wire        _sorts_15_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
   `ifndef SYNTHESIS
     always @(posedge clock) begin
-      if (~reset & ~(~_sort_io_in_valid_T_1 | _sort_io_in_ready)) begin
+      if (~reset & ~(~_sorts_0_io_in_valid_T_1 | _sorts_0_io_in_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:143 assert(!sort.io.in.valid || sort.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_1_io_in_valid_T_1 | _sorts_1_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_2_io_in_valid_T_1 | _sorts_2_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_3_io_in_valid_T_1 | _sorts_3_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_4_io_in_valid_T_1 | _sorts_4_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_5_io_in_valid_T_1 | _sorts_5_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_6_io_in_valid_T_1 | _sorts_6_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_7_io_in_valid_T_1 | _sorts_7_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_8_io_in_valid_T_1 | _sorts_8_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_9_io_in_valid_T_1 | _sorts_9_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_10_io_in_valid_T_1 | _sorts_10_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_11_io_in_valid_T_1 | _sorts_11_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_12_io_in_valid_T_1 | _sorts_12_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_13_io_in_valid_T_1 | _sorts_13_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_14_io_in_valid_T_1 | _sorts_14_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_15_io_in_valid_T_1 | _sorts_15_io_in_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [13:0] gen_io_slack_e = 14'h3FCB - {_cellExp_io_k[12], _cellExp_io_k};
-  wire [31:0] _gen_io_slack_T_3 = 32'h1 << gen_io_slack_e[4:0];
   reg         REG;
   wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
   wire [5:0]  usedLog2_t =
@@ -17975,18 +19712,23 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
                              : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1;
   wire        z_tooMany = io_num > 13'h1000;
   wire        reading =
-    (_cellExp_io_in_valid_T | _classified_T | _sort_io_in_bits_scatter_T) & i < num;
-  wire        _GEN = ~(|state) & io_start;
-  wire        _GEN_0 = state == 3'h1;
-  wire        _GEN_1 = i == num & inflight == 3'h0;
-  wire        _GEN_2 = _GEN_1 & ~_sort_io_busy;
-  wire        _GEN_3 = state == 3'h2;
-  wire        _GEN_4 = state == 3'h3;
-  wire        _GEN_5 = sent & ~_sort_io_busy;
-  wire        _GEN_6 = state == 3'h4;
-  wire        _GEN_7 = _GEN_1 & ~REG;
-  wire        _GEN_8 = state == 3'h5;
-  wire        _GEN_9 = _GEN_8 & sent & ~_gen_io_busy;
+    (_cellExp_io_in_valid_T | _classified_T | _sorts_15_io_in_bits_scatter_T) & i < num;
+  wire        _GEN_4 = ~(|state) & io_start;
+  wire        _GEN_5 = state == 3'h1;
+  wire        _GEN_6 = i == num & inflight == 3'h0;
+  wire        _GEN_7 = _GEN_6 & ~_sorts_0_io_busy;
+  wire        _GEN_8 = state == 3'h2;
+  wire        _GEN_9 = state == 3'h3;
+  wire        _GEN_10 = sent & ~_sorts_0_io_busy;
+  wire        _GEN_11 = state == 3'h4;
+  wire        _GEN_12 = _GEN_6 & ~REG;
+  wire        _GEN_13 = state == 3'h5;
+  wire        _GEN_14 =
+    _GEN_13 & sent
+    & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
+        | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
+        | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
+        | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
   always @(posedge clock) begin
     if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h0) begin
       larges_0_index <= kIndex;
@@ -18100,35 +19842,35 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
       larges_15_q_2 <= _keys_io_out_q_2;
       larges_15_qr <= _keys_io_out_qr;
     end
-    if (_GEN) begin
+    if (_GEN_4) begin
       num <= io_num;
       usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
     end
     if (|state) begin
-      if (_GEN_0) begin
-        if (_GEN_2)
+      if (_GEN_5) begin
+        if (_GEN_7)
           i <= 13'h0;
         else if (reading)
           i <= i + 13'h1;
       end
-      else if (_GEN_3) begin
+      else if (_GEN_8) begin
         if (reading)
           i <= i + 13'h1;
       end
-      else if (_GEN_4) begin
-        if (_GEN_5)
+      else if (_GEN_9) begin
+        if (_GEN_10)
           i <= 13'h0;
       end
-      else if (_GEN_6 & reading)
+      else if (_GEN_11 & reading)
         i <= i + 13'h1;
     end
     else if (io_start)
       i <= 13'h0;
-    if (~(~(|state) | _GEN_0)) begin
-      if (_GEN_3)
-        sent <= ~_GEN_1 & sent;
+    if (~(~(|state) | _GEN_5)) begin
+      if (_GEN_8)
+        sent <= ~_GEN_6 & sent;
       else
-        sent <= _GEN_4 | (_GEN_6 ? ~_GEN_7 & sent : _GEN_8 | sent);
+        sent <= _GEN_9 | (_GEN_11 ? ~_GEN_12 & sent : _GEN_13 | sent);
     end
     rdIndex <= i[11:0];
     kIndex <= rdIndex;
@@ -18149,30 +19891,30 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
     end
     else begin
       if (|state) begin
-        if (_GEN_0) begin
-          if (_GEN_2)
+        if (_GEN_5) begin
+          if (_GEN_7)
             state <= 3'h2;
         end
-        else if (_GEN_3) begin
-          if (_GEN_1)
+        else if (_GEN_8) begin
+          if (_GEN_6)
             state <= 3'h3;
         end
-        else if (_GEN_4) begin
-          if (_GEN_5)
+        else if (_GEN_9) begin
+          if (_GEN_10)
             state <= 3'h4;
         end
-        else if (_GEN_6) begin
-          if (_GEN_7)
+        else if (_GEN_11) begin
+          if (_GEN_12)
             state <= 3'h5;
         end
-        else if (_GEN_9)
+        else if (_GEN_14)
           state <= 3'h0;
-        if (_GEN_0 | _GEN_3 | _GEN_4 | _GEN_6 | ~_GEN_9) begin
+        if (_GEN_5 | _GEN_8 | _GEN_9 | _GEN_11 | ~_GEN_14) begin
         end
         else begin
           st_k <= _cellExp_io_k;
-          st_badBucket <= _sort_io_badBucket;
-          st_sortMismatch <= _sort_io_counted != _sort_io_scattered;
+          st_badBucket <= _sorts_0_io_badBucket;
+          st_sortMismatch <= _sorts_0_io_counted != _sorts_0_io_scattered;
         end
       end
       else begin
@@ -18186,7 +19928,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
         st_sortMismatch <= ~io_start & st_sortMismatch;
       end
       inflight <= inflight + {2'h0, reading} - {2'h0, _keys_io_out_valid};
-      if (_GEN) begin
+      if (_GEN_4) begin
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
         st_tooMany <= z_tooMany;
@@ -18201,21 +19943,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
           st_cycTotal <= st_cycTotal + 32'h1;
       end
       st_cellOverflow <=
-        ~_GEN & (classified & isSmall & _keys_io_out_cellOverflow | st_cellOverflow);
+        ~_GEN_4 & (classified & isSmall & _keys_io_out_cellOverflow | st_cellOverflow);
       st_largeOverflow <=
-        ~_GEN & (classified & isLarge & largeCount[4] | st_largeOverflow);
+        ~_GEN_4 & (classified & isLarge & largeCount[4] | st_largeOverflow);
       rdValid <= reading;
-      REG <= _sort_io_in_ready & _sort_io_in_valid_T_1;
+      REG <= _sorts_0_io_in_ready & _sorts_0_io_in_valid_T_1;
     end
   end // always @(posedge)
   SphereKeys_fp32_c20_f8_m9d8_l1_world keys (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (rdValid),
-    .io_in_sphere_0      (io_sphere_data_0),
-    .io_in_sphere_1      (io_sphere_data_1),
-    .io_in_sphere_2      (io_sphere_data_2),
-    .io_in_sphere_3      (io_sphere_data_3),
+    .io_in_sphere_0      (io_sphere_0_data_0),
+    .io_in_sphere_1      (io_sphere_0_data_1),
+    .io_in_sphere_2      (io_sphere_0_data_2),
+    .io_in_sphere_3      (io_sphere_0_data_3),
     .io_in_k             (_cellExp_io_in_valid_T ? 13'h0 : _cellExp_io_k),
     .io_out_valid        (_keys_io_out_valid),
     .io_out_cell_0       (_keys_io_out_cell_0),
@@ -18244,54 +19986,589 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
     .io_in_nonFinite (_keys_io_out_nonFinite),
     .io_k            (_cellExp_io_k)
   );
-  BucketSort_n4096_b13_w3_world sort (
+  BucketSort_n4096_b13_w3_world sorts_0 (
     .clock              (clock),
     .reset              (reset),
     .io_usedLog2        (usedLog2),
     .io_clear           (io_start & ~(|state)),
-    .io_prefix          (state == 3'h3 & ~sent),
-    .io_busy            (_sort_io_busy),
-    .io_in_ready        (_sort_io_in_ready),
-    .io_in_valid        (_sort_io_in_valid_T_1),
-    .io_in_bits_scatter (_sort_io_in_bits_scatter_T),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (_sorts_0_io_busy),
+    .io_in_ready        (_sorts_0_io_in_ready),
+    .io_in_valid        (_sorts_0_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
     .io_in_bits_bucket
       ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sort_io_in_bits_bucket_mask_T[12:0]
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
        - 13'h1),
     .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gen_io_lookup_bucket),
-    .io_lookup_begin    (_sort_io_lookup_begin),
-    .io_lookup_end      (_sort_io_lookup_end),
-    .io_lookup_word_0   (_sort_io_lookup_word_0),
-    .io_lookup_word_1   (_sort_io_lookup_word_1),
-    .io_lookup_word_2   (_sort_io_lookup_word_2),
-    .io_lookup_word_3   (_sort_io_lookup_word_3),
-    .io_lookup_word_4   (_sort_io_lookup_word_4),
-    .io_lookup_word_5   (_sort_io_lookup_word_5),
-    .io_lookup_word_6   (_sort_io_lookup_word_6),
-    .io_lookup_word_7   (_sort_io_lookup_word_7),
-    .io_entry_addr      (_gen_io_entry_addr),
-    .io_entry_item      (_sort_io_entry_item),
-    .io_entry_mark      (_sort_io_entry_mark),
-    .io_mark_valid      (_gen_io_mark_valid),
-    .io_mark_bits_addr  (_gen_io_mark_bits_addr),
-    .io_mark_bits_item  (_gen_io_mark_bits_item),
-    .io_counted         (_sort_io_counted),
-    .io_scattered       (_sort_io_scattered),
-    .io_badBucket       (_sort_io_badBucket)
+    .io_lookup_bucket   (_gens_0_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_0_io_lookup_begin),
+    .io_lookup_end      (_sorts_0_io_lookup_end),
+    .io_lookup_word_0   (_sorts_0_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_0_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_0_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_0_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_0_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_0_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_0_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_0_io_lookup_word_7),
+    .io_entry_addr      (_gens_0_io_entry_addr),
+    .io_entry_item      (_sorts_0_io_entry_item),
+    .io_entry_mark      (_sorts_0_io_entry_mark),
+    .io_mark_valid      (_gens_0_io_mark_valid),
+    .io_mark_bits_addr  (_gens_0_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_0_io_mark_bits_item),
+    .io_counted         (_sorts_0_io_counted),
+    .io_scattered       (_sorts_0_io_scattered),
+    .io_badBucket       (_sorts_0_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_world gen (
+  BucketSort_n4096_b13_w3_world sorts_1 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_1_io_in_ready),
+    .io_in_valid        (_sorts_1_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_1_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_1_io_lookup_begin),
+    .io_lookup_end      (_sorts_1_io_lookup_end),
+    .io_lookup_word_0   (_sorts_1_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_1_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_1_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_1_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_1_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_1_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_1_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_1_io_lookup_word_7),
+    .io_entry_addr      (_gens_1_io_entry_addr),
+    .io_entry_item      (_sorts_1_io_entry_item),
+    .io_entry_mark      (_sorts_1_io_entry_mark),
+    .io_mark_valid      (_gens_1_io_mark_valid),
+    .io_mark_bits_addr  (_gens_1_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_1_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_2 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_2_io_in_ready),
+    .io_in_valid        (_sorts_2_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_2_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_2_io_lookup_begin),
+    .io_lookup_end      (_sorts_2_io_lookup_end),
+    .io_lookup_word_0   (_sorts_2_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_2_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_2_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_2_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_2_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_2_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_2_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_2_io_lookup_word_7),
+    .io_entry_addr      (_gens_2_io_entry_addr),
+    .io_entry_item      (_sorts_2_io_entry_item),
+    .io_entry_mark      (_sorts_2_io_entry_mark),
+    .io_mark_valid      (_gens_2_io_mark_valid),
+    .io_mark_bits_addr  (_gens_2_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_2_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_3 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_3_io_in_ready),
+    .io_in_valid        (_sorts_3_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_3_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_3_io_lookup_begin),
+    .io_lookup_end      (_sorts_3_io_lookup_end),
+    .io_lookup_word_0   (_sorts_3_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_3_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_3_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_3_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_3_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_3_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_3_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_3_io_lookup_word_7),
+    .io_entry_addr      (_gens_3_io_entry_addr),
+    .io_entry_item      (_sorts_3_io_entry_item),
+    .io_entry_mark      (_sorts_3_io_entry_mark),
+    .io_mark_valid      (_gens_3_io_mark_valid),
+    .io_mark_bits_addr  (_gens_3_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_3_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_4 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_4_io_in_ready),
+    .io_in_valid        (_sorts_4_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_4_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_4_io_lookup_begin),
+    .io_lookup_end      (_sorts_4_io_lookup_end),
+    .io_lookup_word_0   (_sorts_4_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_4_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_4_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_4_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_4_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_4_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_4_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_4_io_lookup_word_7),
+    .io_entry_addr      (_gens_4_io_entry_addr),
+    .io_entry_item      (_sorts_4_io_entry_item),
+    .io_entry_mark      (_sorts_4_io_entry_mark),
+    .io_mark_valid      (_gens_4_io_mark_valid),
+    .io_mark_bits_addr  (_gens_4_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_4_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_5 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_5_io_in_ready),
+    .io_in_valid        (_sorts_5_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_5_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_5_io_lookup_begin),
+    .io_lookup_end      (_sorts_5_io_lookup_end),
+    .io_lookup_word_0   (_sorts_5_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_5_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_5_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_5_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_5_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_5_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_5_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_5_io_lookup_word_7),
+    .io_entry_addr      (_gens_5_io_entry_addr),
+    .io_entry_item      (_sorts_5_io_entry_item),
+    .io_entry_mark      (_sorts_5_io_entry_mark),
+    .io_mark_valid      (_gens_5_io_mark_valid),
+    .io_mark_bits_addr  (_gens_5_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_5_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_6 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_6_io_in_ready),
+    .io_in_valid        (_sorts_6_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_6_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_6_io_lookup_begin),
+    .io_lookup_end      (_sorts_6_io_lookup_end),
+    .io_lookup_word_0   (_sorts_6_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_6_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_6_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_6_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_6_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_6_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_6_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_6_io_lookup_word_7),
+    .io_entry_addr      (_gens_6_io_entry_addr),
+    .io_entry_item      (_sorts_6_io_entry_item),
+    .io_entry_mark      (_sorts_6_io_entry_mark),
+    .io_mark_valid      (_gens_6_io_mark_valid),
+    .io_mark_bits_addr  (_gens_6_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_6_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_7 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_7_io_in_ready),
+    .io_in_valid        (_sorts_7_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_7_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_7_io_lookup_begin),
+    .io_lookup_end      (_sorts_7_io_lookup_end),
+    .io_lookup_word_0   (_sorts_7_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_7_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_7_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_7_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_7_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_7_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_7_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_7_io_lookup_word_7),
+    .io_entry_addr      (_gens_7_io_entry_addr),
+    .io_entry_item      (_sorts_7_io_entry_item),
+    .io_entry_mark      (_sorts_7_io_entry_mark),
+    .io_mark_valid      (_gens_7_io_mark_valid),
+    .io_mark_bits_addr  (_gens_7_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_7_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_8 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_8_io_in_ready),
+    .io_in_valid        (_sorts_8_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_8_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_8_io_lookup_begin),
+    .io_lookup_end      (_sorts_8_io_lookup_end),
+    .io_lookup_word_0   (_sorts_8_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_8_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_8_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_8_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_8_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_8_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_8_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_8_io_lookup_word_7),
+    .io_entry_addr      (_gens_8_io_entry_addr),
+    .io_entry_item      (_sorts_8_io_entry_item),
+    .io_entry_mark      (_sorts_8_io_entry_mark),
+    .io_mark_valid      (_gens_8_io_mark_valid),
+    .io_mark_bits_addr  (_gens_8_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_8_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_9 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_9_io_in_ready),
+    .io_in_valid        (_sorts_9_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_9_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_9_io_lookup_begin),
+    .io_lookup_end      (_sorts_9_io_lookup_end),
+    .io_lookup_word_0   (_sorts_9_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_9_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_9_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_9_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_9_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_9_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_9_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_9_io_lookup_word_7),
+    .io_entry_addr      (_gens_9_io_entry_addr),
+    .io_entry_item      (_sorts_9_io_entry_item),
+    .io_entry_mark      (_sorts_9_io_entry_mark),
+    .io_mark_valid      (_gens_9_io_mark_valid),
+    .io_mark_bits_addr  (_gens_9_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_9_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_10 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_10_io_in_ready),
+    .io_in_valid        (_sorts_10_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_10_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_10_io_lookup_begin),
+    .io_lookup_end      (_sorts_10_io_lookup_end),
+    .io_lookup_word_0   (_sorts_10_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_10_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_10_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_10_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_10_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_10_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_10_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_10_io_lookup_word_7),
+    .io_entry_addr      (_gens_10_io_entry_addr),
+    .io_entry_item      (_sorts_10_io_entry_item),
+    .io_entry_mark      (_sorts_10_io_entry_mark),
+    .io_mark_valid      (_gens_10_io_mark_valid),
+    .io_mark_bits_addr  (_gens_10_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_10_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_11 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_11_io_in_ready),
+    .io_in_valid        (_sorts_11_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_11_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_11_io_lookup_begin),
+    .io_lookup_end      (_sorts_11_io_lookup_end),
+    .io_lookup_word_0   (_sorts_11_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_11_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_11_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_11_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_11_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_11_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_11_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_11_io_lookup_word_7),
+    .io_entry_addr      (_gens_11_io_entry_addr),
+    .io_entry_item      (_sorts_11_io_entry_item),
+    .io_entry_mark      (_sorts_11_io_entry_mark),
+    .io_mark_valid      (_gens_11_io_mark_valid),
+    .io_mark_bits_addr  (_gens_11_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_11_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_12 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_12_io_in_ready),
+    .io_in_valid        (_sorts_12_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_12_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_12_io_lookup_begin),
+    .io_lookup_end      (_sorts_12_io_lookup_end),
+    .io_lookup_word_0   (_sorts_12_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_12_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_12_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_12_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_12_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_12_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_12_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_12_io_lookup_word_7),
+    .io_entry_addr      (_gens_12_io_entry_addr),
+    .io_entry_item      (_sorts_12_io_entry_item),
+    .io_entry_mark      (_sorts_12_io_entry_mark),
+    .io_mark_valid      (_gens_12_io_mark_valid),
+    .io_mark_bits_addr  (_gens_12_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_12_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_13 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_13_io_in_ready),
+    .io_in_valid        (_sorts_13_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_13_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_13_io_lookup_begin),
+    .io_lookup_end      (_sorts_13_io_lookup_end),
+    .io_lookup_word_0   (_sorts_13_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_13_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_13_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_13_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_13_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_13_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_13_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_13_io_lookup_word_7),
+    .io_entry_addr      (_gens_13_io_entry_addr),
+    .io_entry_item      (_sorts_13_io_entry_item),
+    .io_entry_mark      (_sorts_13_io_entry_mark),
+    .io_mark_valid      (_gens_13_io_mark_valid),
+    .io_mark_bits_addr  (_gens_13_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_13_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_14 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_14_io_in_ready),
+    .io_in_valid        (_sorts_14_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_14_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_14_io_lookup_begin),
+    .io_lookup_end      (_sorts_14_io_lookup_end),
+    .io_lookup_word_0   (_sorts_14_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_14_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_14_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_14_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_14_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_14_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_14_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_14_io_lookup_word_7),
+    .io_entry_addr      (_gens_14_io_entry_addr),
+    .io_entry_item      (_sorts_14_io_entry_item),
+    .io_entry_mark      (_sorts_14_io_entry_mark),
+    .io_mark_valid      (_gens_14_io_mark_valid),
+    .io_mark_bits_addr  (_gens_14_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_14_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  BucketSort_n4096_b13_w3_world sorts_15 (
+    .clock              (clock),
+    .reset              (reset),
+    .io_usedLog2        (usedLog2),
+    .io_clear           (io_start & ~(|state)),
+    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
+    .io_busy            (/* unused */),
+    .io_in_ready        (_sorts_15_io_in_ready),
+    .io_in_valid        (_sorts_15_io_in_valid_T_1),
+    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
+    .io_in_bits_bucket
+      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
+        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_bits_item    (kIndex),
+    .io_lookup_bucket   (_gens_15_io_lookup_bucket),
+    .io_lookup_begin    (_sorts_15_io_lookup_begin),
+    .io_lookup_end      (_sorts_15_io_lookup_end),
+    .io_lookup_word_0   (_sorts_15_io_lookup_word_0),
+    .io_lookup_word_1   (_sorts_15_io_lookup_word_1),
+    .io_lookup_word_2   (_sorts_15_io_lookup_word_2),
+    .io_lookup_word_3   (_sorts_15_io_lookup_word_3),
+    .io_lookup_word_4   (_sorts_15_io_lookup_word_4),
+    .io_lookup_word_5   (_sorts_15_io_lookup_word_5),
+    .io_lookup_word_6   (_sorts_15_io_lookup_word_6),
+    .io_lookup_word_7   (_sorts_15_io_lookup_word_7),
+    .io_entry_addr      (_gens_15_io_entry_addr),
+    .io_entry_item      (_sorts_15_io_entry_item),
+    .io_entry_mark      (_sorts_15_io_entry_mark),
+    .io_mark_valid      (_gens_15_io_mark_valid),
+    .io_mark_bits_addr  (_gens_15_io_mark_bits_addr),
+    .io_mark_bits_item  (_gens_15_io_mark_bits_item),
+    .io_counted         (/* unused */),
+    .io_scattered       (/* unused */),
+    .io_badBucket       (/* unused */)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_0 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gen_io_start_T & ~sent),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'h0),
     .io_usedLog2         (usedLog2),
-    .io_num              (num),
-    .io_slack
-      ($signed(gen_io_slack_e) < 14'sh0
-         ? 29'h2
-         : $signed(gen_io_slack_e) > 14'sh1B
-             ? 29'h1FFFFFFF
-             : _gen_io_slack_T_3[28:0] + 29'h1),
+    .io_slack            (slack),
     .io_larges_0_index   (larges_0_index),
     .io_larges_0_q_0     (larges_0_q_0),
     .io_larges_0_q_1     (larges_0_q_1),
@@ -18373,24 +20650,26 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
     .io_larges_15_q_2    (larges_15_q_2),
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
-    .io_lookup_bucket    (_gen_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_begin),
-    .io_lookup_end       (_sort_io_lookup_end),
-    .io_lookup_word_0    (_sort_io_lookup_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_word_7),
-    .io_entry_addr       (_gen_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_item),
-    .io_entry_mark       (_sort_io_entry_mark),
-    .io_mark_valid       (_gen_io_mark_valid),
-    .io_mark_bits_addr   (_gen_io_mark_bits_addr),
-    .io_mark_bits_item   (_gen_io_mark_bits_item),
-    .io_keyAddr          (_gen_io_keyAddr),
+    .io_largeFrom        (13'h0),
+    .io_largeTo          (_GEN),
+    .io_lookup_bucket    (_gens_0_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_0_io_lookup_begin),
+    .io_lookup_end       (_sorts_0_io_lookup_end),
+    .io_lookup_word_0    (_sorts_0_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_0_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_0_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_0_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_0_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_0_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_0_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_0_io_lookup_word_7),
+    .io_entry_addr       (_gens_0_io_entry_addr),
+    .io_entry_item       (_sorts_0_io_entry_item),
+    .io_entry_mark       (_sorts_0_io_entry_mark),
+    .io_mark_valid       (_gens_0_io_mark_valid),
+    .io_mark_bits_addr   (_gens_0_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_0_io_mark_bits_item),
+    .io_keyAddr          (_gens_0_io_keyAddr),
     .io_keyData_cell_0   (_keys_io_out_cell_0),
     .io_keyData_cell_1   (_keys_io_out_cell_1),
     .io_keyData_cell_2   (_keys_io_out_cell_2),
@@ -18398,15 +20677,2251 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world(
     .io_keyData_q_1      (_keys_io_out_q_1),
     .io_keyData_q_2      (_keys_io_out_q_2),
     .io_keyData_qr       (_keys_io_out_qr),
-    .io_keyData_large    (isLarge),
+    .io_keyData_large
+      (~_keys_io_out_nonFinite & ~_keys_io_out_needNone & _rec_r_large_T_3),
     .io_keyData_excluded (_keys_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_ready),
-    .io_pairs_valid      (io_pairs_valid),
-    .io_pairs_bits_i     (io_pairs_bits_i),
-    .io_pairs_bits_j     (io_pairs_bits_j),
-    .io_busy             (_gen_io_busy)
+    .io_pairs_ready      (io_pairs_0_ready),
+    .io_pairs_valid      (io_pairs_0_valid),
+    .io_pairs_bits_i     (io_pairs_0_bits_i),
+    .io_pairs_bits_j     (io_pairs_0_bits_j),
+    .io_busy             (_gens_0_io_busy)
   );
-  assign io_sphere_addr = _gen_io_start_T ? _gen_io_keyAddr : i[11:0];
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_1 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'h1),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        (_GEN),
+    .io_largeTo          (_GEN_0),
+    .io_lookup_bucket    (_gens_1_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_1_io_lookup_begin),
+    .io_lookup_end       (_sorts_1_io_lookup_end),
+    .io_lookup_word_0    (_sorts_1_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_1_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_1_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_1_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_1_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_1_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_1_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_1_io_lookup_word_7),
+    .io_entry_addr       (_gens_1_io_entry_addr),
+    .io_entry_item       (_sorts_1_io_entry_item),
+    .io_entry_mark       (_sorts_1_io_entry_mark),
+    .io_mark_valid       (_gens_1_io_mark_valid),
+    .io_mark_bits_addr   (_gens_1_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_1_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_1_addr),
+    .io_keyData_cell_0   (_laneKeys_0_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_0_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_0_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_0_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_0_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_0_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_0_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
+       & $signed(_laneKeys_0_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_0_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_1_ready),
+    .io_pairs_valid      (io_pairs_1_valid),
+    .io_pairs_bits_i     (io_pairs_1_bits_i),
+    .io_pairs_bits_j     (io_pairs_1_bits_j),
+    .io_busy             (_gens_1_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_2 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'h2),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        (_GEN_0),
+    .io_largeTo          ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
+    .io_lookup_bucket    (_gens_2_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_2_io_lookup_begin),
+    .io_lookup_end       (_sorts_2_io_lookup_end),
+    .io_lookup_word_0    (_sorts_2_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_2_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_2_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_2_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_2_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_2_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_2_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_2_io_lookup_word_7),
+    .io_entry_addr       (_gens_2_io_entry_addr),
+    .io_entry_item       (_sorts_2_io_entry_item),
+    .io_entry_mark       (_sorts_2_io_entry_mark),
+    .io_mark_valid       (_gens_2_io_mark_valid),
+    .io_mark_bits_addr   (_gens_2_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_2_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_2_addr),
+    .io_keyData_cell_0   (_laneKeys_1_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_1_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_1_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_1_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_1_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_1_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_1_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
+       & $signed(_laneKeys_1_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_1_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_2_ready),
+    .io_pairs_valid      (io_pairs_2_valid),
+    .io_pairs_bits_i     (io_pairs_2_bits_i),
+    .io_pairs_bits_j     (io_pairs_2_bits_j),
+    .io_busy             (_gens_2_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_3 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'h3),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
+    .io_largeTo          (_GEN_2),
+    .io_lookup_bucket    (_gens_3_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_3_io_lookup_begin),
+    .io_lookup_end       (_sorts_3_io_lookup_end),
+    .io_lookup_word_0    (_sorts_3_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_3_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_3_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_3_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_3_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_3_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_3_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_3_io_lookup_word_7),
+    .io_entry_addr       (_gens_3_io_entry_addr),
+    .io_entry_item       (_sorts_3_io_entry_item),
+    .io_entry_mark       (_sorts_3_io_entry_mark),
+    .io_mark_valid       (_gens_3_io_mark_valid),
+    .io_mark_bits_addr   (_gens_3_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_3_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_3_addr),
+    .io_keyData_cell_0   (_laneKeys_2_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_2_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_2_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_2_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_2_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_2_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_2_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
+       & $signed(_laneKeys_2_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_2_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_3_ready),
+    .io_pairs_valid      (io_pairs_3_valid),
+    .io_pairs_bits_i     (io_pairs_3_bits_i),
+    .io_pairs_bits_j     (io_pairs_3_bits_j),
+    .io_busy             (_gens_3_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_4 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'h4),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        (_GEN_2),
+    .io_largeTo          ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
+    .io_lookup_bucket    (_gens_4_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_4_io_lookup_begin),
+    .io_lookup_end       (_sorts_4_io_lookup_end),
+    .io_lookup_word_0    (_sorts_4_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_4_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_4_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_4_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_4_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_4_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_4_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_4_io_lookup_word_7),
+    .io_entry_addr       (_gens_4_io_entry_addr),
+    .io_entry_item       (_sorts_4_io_entry_item),
+    .io_entry_mark       (_sorts_4_io_entry_mark),
+    .io_mark_valid       (_gens_4_io_mark_valid),
+    .io_mark_bits_addr   (_gens_4_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_4_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_4_addr),
+    .io_keyData_cell_0   (_laneKeys_3_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_3_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_3_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_3_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_3_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_3_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_3_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
+       & $signed(_laneKeys_3_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_3_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_4_ready),
+    .io_pairs_valid      (io_pairs_4_valid),
+    .io_pairs_bits_i     (io_pairs_4_bits_i),
+    .io_pairs_bits_j     (io_pairs_4_bits_j),
+    .io_busy             (_gens_4_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_5 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'h5),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
+    .io_largeTo          ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
+    .io_lookup_bucket    (_gens_5_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_5_io_lookup_begin),
+    .io_lookup_end       (_sorts_5_io_lookup_end),
+    .io_lookup_word_0    (_sorts_5_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_5_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_5_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_5_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_5_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_5_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_5_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_5_io_lookup_word_7),
+    .io_entry_addr       (_gens_5_io_entry_addr),
+    .io_entry_item       (_sorts_5_io_entry_item),
+    .io_entry_mark       (_sorts_5_io_entry_mark),
+    .io_mark_valid       (_gens_5_io_mark_valid),
+    .io_mark_bits_addr   (_gens_5_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_5_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_5_addr),
+    .io_keyData_cell_0   (_laneKeys_4_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_4_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_4_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_4_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_4_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_4_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_4_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
+       & $signed(_laneKeys_4_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_4_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_5_ready),
+    .io_pairs_valid      (io_pairs_5_valid),
+    .io_pairs_bits_i     (io_pairs_5_bits_i),
+    .io_pairs_bits_j     (io_pairs_5_bits_j),
+    .io_busy             (_gens_5_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_6 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'h6),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
+    .io_largeTo          ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
+    .io_lookup_bucket    (_gens_6_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_6_io_lookup_begin),
+    .io_lookup_end       (_sorts_6_io_lookup_end),
+    .io_lookup_word_0    (_sorts_6_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_6_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_6_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_6_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_6_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_6_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_6_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_6_io_lookup_word_7),
+    .io_entry_addr       (_gens_6_io_entry_addr),
+    .io_entry_item       (_sorts_6_io_entry_item),
+    .io_entry_mark       (_sorts_6_io_entry_mark),
+    .io_mark_valid       (_gens_6_io_mark_valid),
+    .io_mark_bits_addr   (_gens_6_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_6_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_6_addr),
+    .io_keyData_cell_0   (_laneKeys_5_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_5_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_5_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_5_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_5_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_5_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_5_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
+       & $signed(_laneKeys_5_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_5_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_6_ready),
+    .io_pairs_valid      (io_pairs_6_valid),
+    .io_pairs_bits_i     (io_pairs_6_bits_i),
+    .io_pairs_bits_j     (io_pairs_6_bits_j),
+    .io_busy             (_gens_6_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_7 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'h7),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
+    .io_largeTo          ({1'h0, num[12:1]}),
+    .io_lookup_bucket    (_gens_7_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_7_io_lookup_begin),
+    .io_lookup_end       (_sorts_7_io_lookup_end),
+    .io_lookup_word_0    (_sorts_7_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_7_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_7_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_7_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_7_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_7_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_7_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_7_io_lookup_word_7),
+    .io_entry_addr       (_gens_7_io_entry_addr),
+    .io_entry_item       (_sorts_7_io_entry_item),
+    .io_entry_mark       (_sorts_7_io_entry_mark),
+    .io_mark_valid       (_gens_7_io_mark_valid),
+    .io_mark_bits_addr   (_gens_7_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_7_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_7_addr),
+    .io_keyData_cell_0   (_laneKeys_6_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_6_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_6_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_6_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_6_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_6_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_6_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
+       & $signed(_laneKeys_6_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_6_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_7_ready),
+    .io_pairs_valid      (io_pairs_7_valid),
+    .io_pairs_bits_i     (io_pairs_7_bits_i),
+    .io_pairs_bits_j     (io_pairs_7_bits_j),
+    .io_busy             (_gens_7_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_8 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'h8),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        ({1'h0, num[12:1]}),
+    .io_largeTo          (_gens_9_io_largeFrom_T[28:16]),
+    .io_lookup_bucket    (_gens_8_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_8_io_lookup_begin),
+    .io_lookup_end       (_sorts_8_io_lookup_end),
+    .io_lookup_word_0    (_sorts_8_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_8_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_8_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_8_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_8_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_8_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_8_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_8_io_lookup_word_7),
+    .io_entry_addr       (_gens_8_io_entry_addr),
+    .io_entry_item       (_sorts_8_io_entry_item),
+    .io_entry_mark       (_sorts_8_io_entry_mark),
+    .io_mark_valid       (_gens_8_io_mark_valid),
+    .io_mark_bits_addr   (_gens_8_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_8_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_8_addr),
+    .io_keyData_cell_0   (_laneKeys_7_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_7_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_7_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_7_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_7_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_7_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_7_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
+       & $signed(_laneKeys_7_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_7_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_8_ready),
+    .io_pairs_valid      (io_pairs_8_valid),
+    .io_pairs_bits_i     (io_pairs_8_bits_i),
+    .io_pairs_bits_j     (io_pairs_8_bits_j),
+    .io_busy             (_gens_8_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_9 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'h9),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        (_gens_9_io_largeFrom_T[28:16]),
+    .io_largeTo          (_gens_10_io_largeFrom_T[28:16]),
+    .io_lookup_bucket    (_gens_9_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_9_io_lookup_begin),
+    .io_lookup_end       (_sorts_9_io_lookup_end),
+    .io_lookup_word_0    (_sorts_9_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_9_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_9_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_9_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_9_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_9_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_9_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_9_io_lookup_word_7),
+    .io_entry_addr       (_gens_9_io_entry_addr),
+    .io_entry_item       (_sorts_9_io_entry_item),
+    .io_entry_mark       (_sorts_9_io_entry_mark),
+    .io_mark_valid       (_gens_9_io_mark_valid),
+    .io_mark_bits_addr   (_gens_9_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_9_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_9_addr),
+    .io_keyData_cell_0   (_laneKeys_8_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_8_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_8_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_8_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_8_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_8_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_8_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_8_io_out_nonFinite & ~_laneKeys_8_io_out_needNone
+       & $signed(_laneKeys_8_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_8_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_9_ready),
+    .io_pairs_valid      (io_pairs_9_valid),
+    .io_pairs_bits_i     (io_pairs_9_bits_i),
+    .io_pairs_bits_j     (io_pairs_9_bits_j),
+    .io_busy             (_gens_9_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_10 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'hA),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        (_gens_10_io_largeFrom_T[28:16]),
+    .io_largeTo          (_gens_11_io_largeFrom_T[28:16]),
+    .io_lookup_bucket    (_gens_10_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_10_io_lookup_begin),
+    .io_lookup_end       (_sorts_10_io_lookup_end),
+    .io_lookup_word_0    (_sorts_10_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_10_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_10_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_10_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_10_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_10_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_10_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_10_io_lookup_word_7),
+    .io_entry_addr       (_gens_10_io_entry_addr),
+    .io_entry_item       (_sorts_10_io_entry_item),
+    .io_entry_mark       (_sorts_10_io_entry_mark),
+    .io_mark_valid       (_gens_10_io_mark_valid),
+    .io_mark_bits_addr   (_gens_10_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_10_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_10_addr),
+    .io_keyData_cell_0   (_laneKeys_9_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_9_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_9_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_9_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_9_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_9_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_9_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_9_io_out_nonFinite & ~_laneKeys_9_io_out_needNone
+       & $signed(_laneKeys_9_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_9_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_10_ready),
+    .io_pairs_valid      (io_pairs_10_valid),
+    .io_pairs_bits_i     (io_pairs_10_bits_i),
+    .io_pairs_bits_j     (io_pairs_10_bits_j),
+    .io_busy             (_gens_10_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_11 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'hB),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        (_gens_11_io_largeFrom_T[28:16]),
+    .io_largeTo          (_gens_12_io_largeFrom_T[28:16]),
+    .io_lookup_bucket    (_gens_11_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_11_io_lookup_begin),
+    .io_lookup_end       (_sorts_11_io_lookup_end),
+    .io_lookup_word_0    (_sorts_11_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_11_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_11_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_11_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_11_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_11_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_11_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_11_io_lookup_word_7),
+    .io_entry_addr       (_gens_11_io_entry_addr),
+    .io_entry_item       (_sorts_11_io_entry_item),
+    .io_entry_mark       (_sorts_11_io_entry_mark),
+    .io_mark_valid       (_gens_11_io_mark_valid),
+    .io_mark_bits_addr   (_gens_11_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_11_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_11_addr),
+    .io_keyData_cell_0   (_laneKeys_10_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_10_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_10_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_10_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_10_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_10_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_10_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_10_io_out_nonFinite & ~_laneKeys_10_io_out_needNone
+       & $signed(_laneKeys_10_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_10_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_11_ready),
+    .io_pairs_valid      (io_pairs_11_valid),
+    .io_pairs_bits_i     (io_pairs_11_bits_i),
+    .io_pairs_bits_j     (io_pairs_11_bits_j),
+    .io_busy             (_gens_11_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_12 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'hC),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        (_gens_12_io_largeFrom_T[28:16]),
+    .io_largeTo          (_gens_13_io_largeFrom_T[28:16]),
+    .io_lookup_bucket    (_gens_12_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_12_io_lookup_begin),
+    .io_lookup_end       (_sorts_12_io_lookup_end),
+    .io_lookup_word_0    (_sorts_12_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_12_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_12_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_12_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_12_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_12_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_12_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_12_io_lookup_word_7),
+    .io_entry_addr       (_gens_12_io_entry_addr),
+    .io_entry_item       (_sorts_12_io_entry_item),
+    .io_entry_mark       (_sorts_12_io_entry_mark),
+    .io_mark_valid       (_gens_12_io_mark_valid),
+    .io_mark_bits_addr   (_gens_12_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_12_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_12_addr),
+    .io_keyData_cell_0   (_laneKeys_11_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_11_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_11_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_11_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_11_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_11_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_11_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_11_io_out_nonFinite & ~_laneKeys_11_io_out_needNone
+       & $signed(_laneKeys_11_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_11_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_12_ready),
+    .io_pairs_valid      (io_pairs_12_valid),
+    .io_pairs_bits_i     (io_pairs_12_bits_i),
+    .io_pairs_bits_j     (io_pairs_12_bits_j),
+    .io_busy             (_gens_12_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_13 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'hD),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        (_gens_13_io_largeFrom_T[28:16]),
+    .io_largeTo          (_gens_14_io_largeFrom_T[28:16]),
+    .io_lookup_bucket    (_gens_13_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_13_io_lookup_begin),
+    .io_lookup_end       (_sorts_13_io_lookup_end),
+    .io_lookup_word_0    (_sorts_13_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_13_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_13_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_13_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_13_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_13_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_13_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_13_io_lookup_word_7),
+    .io_entry_addr       (_gens_13_io_entry_addr),
+    .io_entry_item       (_sorts_13_io_entry_item),
+    .io_entry_mark       (_sorts_13_io_entry_mark),
+    .io_mark_valid       (_gens_13_io_mark_valid),
+    .io_mark_bits_addr   (_gens_13_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_13_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_13_addr),
+    .io_keyData_cell_0   (_laneKeys_12_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_12_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_12_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_12_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_12_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_12_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_12_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_12_io_out_nonFinite & ~_laneKeys_12_io_out_needNone
+       & $signed(_laneKeys_12_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_12_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_13_ready),
+    .io_pairs_valid      (io_pairs_13_valid),
+    .io_pairs_bits_i     (io_pairs_13_bits_i),
+    .io_pairs_bits_j     (io_pairs_13_bits_j),
+    .io_busy             (_gens_13_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_14 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'hE),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        (_gens_14_io_largeFrom_T[28:16]),
+    .io_largeTo          (_gens_15_io_largeFrom_T[28:16]),
+    .io_lookup_bucket    (_gens_14_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_14_io_lookup_begin),
+    .io_lookup_end       (_sorts_14_io_lookup_end),
+    .io_lookup_word_0    (_sorts_14_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_14_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_14_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_14_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_14_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_14_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_14_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_14_io_lookup_word_7),
+    .io_entry_addr       (_gens_14_io_entry_addr),
+    .io_entry_item       (_sorts_14_io_entry_item),
+    .io_entry_mark       (_sorts_14_io_entry_mark),
+    .io_mark_valid       (_gens_14_io_mark_valid),
+    .io_mark_bits_addr   (_gens_14_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_14_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_14_addr),
+    .io_keyData_cell_0   (_laneKeys_13_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_13_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_13_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_13_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_13_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_13_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_13_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_13_io_out_nonFinite & ~_laneKeys_13_io_out_needNone
+       & $signed(_laneKeys_13_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_13_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_14_ready),
+    .io_pairs_valid      (io_pairs_14_valid),
+    .io_pairs_bits_i     (io_pairs_14_bits_i),
+    .io_pairs_bits_j     (io_pairs_14_bits_j),
+    .io_busy             (_gens_14_io_busy)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_15 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_lane             (4'hF),
+    .io_usedLog2         (usedLog2),
+    .io_slack            (slack),
+    .io_larges_0_index   (larges_0_index),
+    .io_larges_0_q_0     (larges_0_q_0),
+    .io_larges_0_q_1     (larges_0_q_1),
+    .io_larges_0_q_2     (larges_0_q_2),
+    .io_larges_0_qr      (larges_0_qr),
+    .io_larges_1_index   (larges_1_index),
+    .io_larges_1_q_0     (larges_1_q_0),
+    .io_larges_1_q_1     (larges_1_q_1),
+    .io_larges_1_q_2     (larges_1_q_2),
+    .io_larges_1_qr      (larges_1_qr),
+    .io_larges_2_index   (larges_2_index),
+    .io_larges_2_q_0     (larges_2_q_0),
+    .io_larges_2_q_1     (larges_2_q_1),
+    .io_larges_2_q_2     (larges_2_q_2),
+    .io_larges_2_qr      (larges_2_qr),
+    .io_larges_3_index   (larges_3_index),
+    .io_larges_3_q_0     (larges_3_q_0),
+    .io_larges_3_q_1     (larges_3_q_1),
+    .io_larges_3_q_2     (larges_3_q_2),
+    .io_larges_3_qr      (larges_3_qr),
+    .io_larges_4_index   (larges_4_index),
+    .io_larges_4_q_0     (larges_4_q_0),
+    .io_larges_4_q_1     (larges_4_q_1),
+    .io_larges_4_q_2     (larges_4_q_2),
+    .io_larges_4_qr      (larges_4_qr),
+    .io_larges_5_index   (larges_5_index),
+    .io_larges_5_q_0     (larges_5_q_0),
+    .io_larges_5_q_1     (larges_5_q_1),
+    .io_larges_5_q_2     (larges_5_q_2),
+    .io_larges_5_qr      (larges_5_qr),
+    .io_larges_6_index   (larges_6_index),
+    .io_larges_6_q_0     (larges_6_q_0),
+    .io_larges_6_q_1     (larges_6_q_1),
+    .io_larges_6_q_2     (larges_6_q_2),
+    .io_larges_6_qr      (larges_6_qr),
+    .io_larges_7_index   (larges_7_index),
+    .io_larges_7_q_0     (larges_7_q_0),
+    .io_larges_7_q_1     (larges_7_q_1),
+    .io_larges_7_q_2     (larges_7_q_2),
+    .io_larges_7_qr      (larges_7_qr),
+    .io_larges_8_index   (larges_8_index),
+    .io_larges_8_q_0     (larges_8_q_0),
+    .io_larges_8_q_1     (larges_8_q_1),
+    .io_larges_8_q_2     (larges_8_q_2),
+    .io_larges_8_qr      (larges_8_qr),
+    .io_larges_9_index   (larges_9_index),
+    .io_larges_9_q_0     (larges_9_q_0),
+    .io_larges_9_q_1     (larges_9_q_1),
+    .io_larges_9_q_2     (larges_9_q_2),
+    .io_larges_9_qr      (larges_9_qr),
+    .io_larges_10_index  (larges_10_index),
+    .io_larges_10_q_0    (larges_10_q_0),
+    .io_larges_10_q_1    (larges_10_q_1),
+    .io_larges_10_q_2    (larges_10_q_2),
+    .io_larges_10_qr     (larges_10_qr),
+    .io_larges_11_index  (larges_11_index),
+    .io_larges_11_q_0    (larges_11_q_0),
+    .io_larges_11_q_1    (larges_11_q_1),
+    .io_larges_11_q_2    (larges_11_q_2),
+    .io_larges_11_qr     (larges_11_qr),
+    .io_larges_12_index  (larges_12_index),
+    .io_larges_12_q_0    (larges_12_q_0),
+    .io_larges_12_q_1    (larges_12_q_1),
+    .io_larges_12_q_2    (larges_12_q_2),
+    .io_larges_12_qr     (larges_12_qr),
+    .io_larges_13_index  (larges_13_index),
+    .io_larges_13_q_0    (larges_13_q_0),
+    .io_larges_13_q_1    (larges_13_q_1),
+    .io_larges_13_q_2    (larges_13_q_2),
+    .io_larges_13_qr     (larges_13_qr),
+    .io_larges_14_index  (larges_14_index),
+    .io_larges_14_q_0    (larges_14_q_0),
+    .io_larges_14_q_1    (larges_14_q_1),
+    .io_larges_14_q_2    (larges_14_q_2),
+    .io_larges_14_qr     (larges_14_qr),
+    .io_larges_15_index  (larges_15_index),
+    .io_larges_15_q_0    (larges_15_q_0),
+    .io_larges_15_q_1    (larges_15_q_1),
+    .io_larges_15_q_2    (larges_15_q_2),
+    .io_larges_15_qr     (larges_15_qr),
+    .io_largeCount       (largeCount),
+    .io_largeFrom        (_gens_15_io_largeFrom_T[28:16]),
+    .io_largeTo          (num),
+    .io_lookup_bucket    (_gens_15_io_lookup_bucket),
+    .io_lookup_begin     (_sorts_15_io_lookup_begin),
+    .io_lookup_end       (_sorts_15_io_lookup_end),
+    .io_lookup_word_0    (_sorts_15_io_lookup_word_0),
+    .io_lookup_word_1    (_sorts_15_io_lookup_word_1),
+    .io_lookup_word_2    (_sorts_15_io_lookup_word_2),
+    .io_lookup_word_3    (_sorts_15_io_lookup_word_3),
+    .io_lookup_word_4    (_sorts_15_io_lookup_word_4),
+    .io_lookup_word_5    (_sorts_15_io_lookup_word_5),
+    .io_lookup_word_6    (_sorts_15_io_lookup_word_6),
+    .io_lookup_word_7    (_sorts_15_io_lookup_word_7),
+    .io_entry_addr       (_gens_15_io_entry_addr),
+    .io_entry_item       (_sorts_15_io_entry_item),
+    .io_entry_mark       (_sorts_15_io_entry_mark),
+    .io_mark_valid       (_gens_15_io_mark_valid),
+    .io_mark_bits_addr   (_gens_15_io_mark_bits_addr),
+    .io_mark_bits_item   (_gens_15_io_mark_bits_item),
+    .io_keyAddr          (io_sphere_15_addr),
+    .io_keyData_cell_0   (_laneKeys_14_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_14_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_14_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_14_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_14_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_14_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_14_io_out_qr),
+    .io_keyData_large
+      (~_laneKeys_14_io_out_nonFinite & ~_laneKeys_14_io_out_needNone
+       & $signed(_laneKeys_14_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_14_io_out_nonFinite),
+    .io_pairs_ready      (io_pairs_15_ready),
+    .io_pairs_valid      (io_pairs_15_valid),
+    .io_pairs_bits_i     (io_pairs_15_bits_i),
+    .io_pairs_bits_j     (io_pairs_15_bits_j),
+    .io_busy             (_gens_15_io_busy)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_0 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_1_data_0),
+    .io_in_sphere_1      (io_sphere_1_data_1),
+    .io_in_sphere_2      (io_sphere_1_data_2),
+    .io_in_sphere_3      (io_sphere_1_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_0_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_0_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_0_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_0_io_out_q_0),
+    .io_out_q_1          (_laneKeys_0_io_out_q_1),
+    .io_out_q_2          (_laneKeys_0_io_out_q_2),
+    .io_out_qr           (_laneKeys_0_io_out_qr),
+    .io_out_need         (_laneKeys_0_io_out_need),
+    .io_out_needNone     (_laneKeys_0_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_0_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_1 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_2_data_0),
+    .io_in_sphere_1      (io_sphere_2_data_1),
+    .io_in_sphere_2      (io_sphere_2_data_2),
+    .io_in_sphere_3      (io_sphere_2_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_1_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_1_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_1_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_1_io_out_q_0),
+    .io_out_q_1          (_laneKeys_1_io_out_q_1),
+    .io_out_q_2          (_laneKeys_1_io_out_q_2),
+    .io_out_qr           (_laneKeys_1_io_out_qr),
+    .io_out_need         (_laneKeys_1_io_out_need),
+    .io_out_needNone     (_laneKeys_1_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_1_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_2 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_3_data_0),
+    .io_in_sphere_1      (io_sphere_3_data_1),
+    .io_in_sphere_2      (io_sphere_3_data_2),
+    .io_in_sphere_3      (io_sphere_3_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_2_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_2_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_2_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_2_io_out_q_0),
+    .io_out_q_1          (_laneKeys_2_io_out_q_1),
+    .io_out_q_2          (_laneKeys_2_io_out_q_2),
+    .io_out_qr           (_laneKeys_2_io_out_qr),
+    .io_out_need         (_laneKeys_2_io_out_need),
+    .io_out_needNone     (_laneKeys_2_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_2_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_3 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_4_data_0),
+    .io_in_sphere_1      (io_sphere_4_data_1),
+    .io_in_sphere_2      (io_sphere_4_data_2),
+    .io_in_sphere_3      (io_sphere_4_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_3_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_3_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_3_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_3_io_out_q_0),
+    .io_out_q_1          (_laneKeys_3_io_out_q_1),
+    .io_out_q_2          (_laneKeys_3_io_out_q_2),
+    .io_out_qr           (_laneKeys_3_io_out_qr),
+    .io_out_need         (_laneKeys_3_io_out_need),
+    .io_out_needNone     (_laneKeys_3_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_3_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_4 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_5_data_0),
+    .io_in_sphere_1      (io_sphere_5_data_1),
+    .io_in_sphere_2      (io_sphere_5_data_2),
+    .io_in_sphere_3      (io_sphere_5_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_4_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_4_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_4_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_4_io_out_q_0),
+    .io_out_q_1          (_laneKeys_4_io_out_q_1),
+    .io_out_q_2          (_laneKeys_4_io_out_q_2),
+    .io_out_qr           (_laneKeys_4_io_out_qr),
+    .io_out_need         (_laneKeys_4_io_out_need),
+    .io_out_needNone     (_laneKeys_4_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_4_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_5 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_6_data_0),
+    .io_in_sphere_1      (io_sphere_6_data_1),
+    .io_in_sphere_2      (io_sphere_6_data_2),
+    .io_in_sphere_3      (io_sphere_6_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_5_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_5_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_5_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_5_io_out_q_0),
+    .io_out_q_1          (_laneKeys_5_io_out_q_1),
+    .io_out_q_2          (_laneKeys_5_io_out_q_2),
+    .io_out_qr           (_laneKeys_5_io_out_qr),
+    .io_out_need         (_laneKeys_5_io_out_need),
+    .io_out_needNone     (_laneKeys_5_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_5_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_6 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_7_data_0),
+    .io_in_sphere_1      (io_sphere_7_data_1),
+    .io_in_sphere_2      (io_sphere_7_data_2),
+    .io_in_sphere_3      (io_sphere_7_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_6_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_6_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_6_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_6_io_out_q_0),
+    .io_out_q_1          (_laneKeys_6_io_out_q_1),
+    .io_out_q_2          (_laneKeys_6_io_out_q_2),
+    .io_out_qr           (_laneKeys_6_io_out_qr),
+    .io_out_need         (_laneKeys_6_io_out_need),
+    .io_out_needNone     (_laneKeys_6_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_6_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_7 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_8_data_0),
+    .io_in_sphere_1      (io_sphere_8_data_1),
+    .io_in_sphere_2      (io_sphere_8_data_2),
+    .io_in_sphere_3      (io_sphere_8_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_7_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_7_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_7_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_7_io_out_q_0),
+    .io_out_q_1          (_laneKeys_7_io_out_q_1),
+    .io_out_q_2          (_laneKeys_7_io_out_q_2),
+    .io_out_qr           (_laneKeys_7_io_out_qr),
+    .io_out_need         (_laneKeys_7_io_out_need),
+    .io_out_needNone     (_laneKeys_7_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_7_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_8 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_9_data_0),
+    .io_in_sphere_1      (io_sphere_9_data_1),
+    .io_in_sphere_2      (io_sphere_9_data_2),
+    .io_in_sphere_3      (io_sphere_9_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_8_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_8_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_8_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_8_io_out_q_0),
+    .io_out_q_1          (_laneKeys_8_io_out_q_1),
+    .io_out_q_2          (_laneKeys_8_io_out_q_2),
+    .io_out_qr           (_laneKeys_8_io_out_qr),
+    .io_out_need         (_laneKeys_8_io_out_need),
+    .io_out_needNone     (_laneKeys_8_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_8_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_9 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_10_data_0),
+    .io_in_sphere_1      (io_sphere_10_data_1),
+    .io_in_sphere_2      (io_sphere_10_data_2),
+    .io_in_sphere_3      (io_sphere_10_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_9_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_9_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_9_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_9_io_out_q_0),
+    .io_out_q_1          (_laneKeys_9_io_out_q_1),
+    .io_out_q_2          (_laneKeys_9_io_out_q_2),
+    .io_out_qr           (_laneKeys_9_io_out_qr),
+    .io_out_need         (_laneKeys_9_io_out_need),
+    .io_out_needNone     (_laneKeys_9_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_9_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_10 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_11_data_0),
+    .io_in_sphere_1      (io_sphere_11_data_1),
+    .io_in_sphere_2      (io_sphere_11_data_2),
+    .io_in_sphere_3      (io_sphere_11_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_10_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_10_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_10_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_10_io_out_q_0),
+    .io_out_q_1          (_laneKeys_10_io_out_q_1),
+    .io_out_q_2          (_laneKeys_10_io_out_q_2),
+    .io_out_qr           (_laneKeys_10_io_out_qr),
+    .io_out_need         (_laneKeys_10_io_out_need),
+    .io_out_needNone     (_laneKeys_10_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_10_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_11 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_12_data_0),
+    .io_in_sphere_1      (io_sphere_12_data_1),
+    .io_in_sphere_2      (io_sphere_12_data_2),
+    .io_in_sphere_3      (io_sphere_12_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_11_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_11_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_11_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_11_io_out_q_0),
+    .io_out_q_1          (_laneKeys_11_io_out_q_1),
+    .io_out_q_2          (_laneKeys_11_io_out_q_2),
+    .io_out_qr           (_laneKeys_11_io_out_qr),
+    .io_out_need         (_laneKeys_11_io_out_need),
+    .io_out_needNone     (_laneKeys_11_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_11_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_12 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_13_data_0),
+    .io_in_sphere_1      (io_sphere_13_data_1),
+    .io_in_sphere_2      (io_sphere_13_data_2),
+    .io_in_sphere_3      (io_sphere_13_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_12_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_12_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_12_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_12_io_out_q_0),
+    .io_out_q_1          (_laneKeys_12_io_out_q_1),
+    .io_out_q_2          (_laneKeys_12_io_out_q_2),
+    .io_out_qr           (_laneKeys_12_io_out_qr),
+    .io_out_need         (_laneKeys_12_io_out_need),
+    .io_out_needNone     (_laneKeys_12_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_12_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_13 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_14_data_0),
+    .io_in_sphere_1      (io_sphere_14_data_1),
+    .io_in_sphere_2      (io_sphere_14_data_2),
+    .io_in_sphere_3      (io_sphere_14_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_13_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_13_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_13_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_13_io_out_q_0),
+    .io_out_q_1          (_laneKeys_13_io_out_q_1),
+    .io_out_q_2          (_laneKeys_13_io_out_q_2),
+    .io_out_qr           (_laneKeys_13_io_out_qr),
+    .io_out_need         (_laneKeys_13_io_out_need),
+    .io_out_needNone     (_laneKeys_13_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_13_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_14 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_15_data_0),
+    .io_in_sphere_1      (io_sphere_15_data_1),
+    .io_in_sphere_2      (io_sphere_15_data_2),
+    .io_in_sphere_3      (io_sphere_15_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_14_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_14_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_14_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_14_io_out_q_0),
+    .io_out_q_1          (_laneKeys_14_io_out_q_1),
+    .io_out_q_2          (_laneKeys_14_io_out_q_2),
+    .io_out_qr           (_laneKeys_14_io_out_qr),
+    .io_out_need         (_laneKeys_14_io_out_need),
+    .io_out_needNone     (_laneKeys_14_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_14_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  assign io_sphere_0_addr = _gens_15_io_start_T ? _gens_0_io_keyAddr : i[11:0];
   assign io_busy = |state;
   assign io_status_k = st_k;
   assign io_status_large = st_large;
@@ -18491,14 +23006,74 @@ module WorldLineQueue_world(
   assign io_deq_bits_data = _ram_ext_R0_data[531:20];
 endmodule
 
-module WorldPairLines_i12_world(
+module WorldPairLines_i12_l16_world(
   input          clock,
                  reset,
                  io_start,
-  output         io_in_ready,
-  input          io_in_valid,
-  input  [11:0]  io_in_bits_i,
-                 io_in_bits_j,
+  output         io_in_0_ready,
+  input          io_in_0_valid,
+  input  [11:0]  io_in_0_bits_i,
+                 io_in_0_bits_j,
+  output         io_in_1_ready,
+  input          io_in_1_valid,
+  input  [11:0]  io_in_1_bits_i,
+                 io_in_1_bits_j,
+  output         io_in_2_ready,
+  input          io_in_2_valid,
+  input  [11:0]  io_in_2_bits_i,
+                 io_in_2_bits_j,
+  output         io_in_3_ready,
+  input          io_in_3_valid,
+  input  [11:0]  io_in_3_bits_i,
+                 io_in_3_bits_j,
+  output         io_in_4_ready,
+  input          io_in_4_valid,
+  input  [11:0]  io_in_4_bits_i,
+                 io_in_4_bits_j,
+  output         io_in_5_ready,
+  input          io_in_5_valid,
+  input  [11:0]  io_in_5_bits_i,
+                 io_in_5_bits_j,
+  output         io_in_6_ready,
+  input          io_in_6_valid,
+  input  [11:0]  io_in_6_bits_i,
+                 io_in_6_bits_j,
+  output         io_in_7_ready,
+  input          io_in_7_valid,
+  input  [11:0]  io_in_7_bits_i,
+                 io_in_7_bits_j,
+  output         io_in_8_ready,
+  input          io_in_8_valid,
+  input  [11:0]  io_in_8_bits_i,
+                 io_in_8_bits_j,
+  output         io_in_9_ready,
+  input          io_in_9_valid,
+  input  [11:0]  io_in_9_bits_i,
+                 io_in_9_bits_j,
+  output         io_in_10_ready,
+  input          io_in_10_valid,
+  input  [11:0]  io_in_10_bits_i,
+                 io_in_10_bits_j,
+  output         io_in_11_ready,
+  input          io_in_11_valid,
+  input  [11:0]  io_in_11_bits_i,
+                 io_in_11_bits_j,
+  output         io_in_12_ready,
+  input          io_in_12_valid,
+  input  [11:0]  io_in_12_bits_i,
+                 io_in_12_bits_j,
+  output         io_in_13_ready,
+  input          io_in_13_valid,
+  input  [11:0]  io_in_13_bits_i,
+                 io_in_13_bits_j,
+  output         io_in_14_ready,
+  input          io_in_14_valid,
+  input  [11:0]  io_in_14_bits_i,
+                 io_in_14_bits_j,
+  output         io_in_15_ready,
+  input          io_in_15_valid,
+  input  [11:0]  io_in_15_bits_i,
+                 io_in_15_bits_j,
   input          io_done,
                  io_out_ready,
   output         io_out_valid,
@@ -18530,44 +23105,665 @@ module WorldPairLines_i12_world(
   reg  [19:0] line;
   reg  [24:0] emitted;
   wire        full = cnt == 5'h10;
-  wire        _q_io_enq_valid_T_4 = full | io_done & (|cnt) & ~io_in_valid;
-  wire        io_in_ready_0 = ~full | _q_io_enq_ready;
-  wire        _at_T = _q_io_enq_ready & _q_io_enq_valid_T_4;
-  wire [3:0]  at = _at_T ? 4'h0 : cnt[3:0];
-  wire        _cnt_T = io_in_ready_0 & io_in_valid;
-  wire [31:0] _slots_T_2 = {4'h0, io_in_bits_j, 4'h0, io_in_bits_i};
+  wire        _q_io_enq_valid_T_4 =
+    full | io_done & (|cnt)
+    & ~(io_in_0_valid | io_in_1_valid | io_in_2_valid | io_in_3_valid | io_in_4_valid
+        | io_in_5_valid | io_in_6_valid | io_in_7_valid | io_in_8_valid | io_in_9_valid
+        | io_in_10_valid | io_in_11_valid | io_in_12_valid | io_in_13_valid
+        | io_in_14_valid | io_in_15_valid);
+  wire        open = ~full | _q_io_enq_ready;
+  wire        _base_T = _q_io_enq_ready & _q_io_enq_valid_T_4;
+  wire [4:0]  base = _base_T ? 5'h0 : cnt;
+  wire [4:0]  _room_T = 5'h10 - base;
+  wire [1:0]  _GEN = {1'h0, io_in_0_valid};
+  wire [1:0]  _GEN_0 = {1'h0, io_in_1_valid};
+  wire [1:0]  before_2 = _GEN + _GEN_0;
+  wire [1:0]  _GEN_1 = {1'h0, io_in_2_valid};
+  wire [1:0]  _before_T_170 = _GEN_0 + _GEN_1;
+  wire [1:0]  _before_T_3 = _GEN + _before_T_170;
+  wire [1:0]  _GEN_2 = {1'h0, io_in_3_valid};
+  wire [2:0]  _GEN_3 = {1'h0, before_2};
+  wire [2:0]  _GEN_4 = {1'h0, _GEN_1 + _GEN_2};
+  wire [2:0]  before_4 = _GEN_3 + _GEN_4;
+  wire [1:0]  _GEN_5 = {1'h0, io_in_4_valid};
+  wire [1:0]  _before_T_174 = _GEN_2 + _GEN_5;
+  wire [2:0]  _GEN_6 = {1'h0, _before_T_174};
+  wire [2:0]  before_5 = _GEN_3 + {1'h0, _GEN_1 + _before_T_174};
+  wire [1:0]  _GEN_7 = {1'h0, io_in_5_valid};
+  wire [1:0]  _before_T_126 = _GEN_5 + _GEN_7;
+  wire [2:0]  _GEN_8 = {1'h0, _before_T_126};
+  wire [2:0]  before_6 = {1'h0, _GEN + _before_T_170} + {1'h0, _GEN_2 + _before_T_126};
+  wire [1:0]  _GEN_9 = {1'h0, io_in_6_valid};
+  wire [2:0]  _GEN_10 = {1'h0, _GEN_7 + _GEN_9};
+  wire [2:0]  _before_T_35 = {1'h0, _GEN + _before_T_170} + _GEN_6 + _GEN_10;
+  wire [1:0]  _GEN_11 = {1'h0, io_in_7_valid};
+  wire [1:0]  _before_T_90 = _GEN_9 + _GEN_11;
+  wire [3:0]  before_8 = {1'h0, _GEN_3 + _GEN_4} + {1'h0, _GEN_8 + {1'h0, _before_T_90}};
+  wire [1:0]  _GEN_12 = {1'h0, io_in_8_valid};
+  wire [1:0]  _before_T_182 = _GEN_11 + _GEN_12;
+  wire [3:0]  before_9 =
+    {1'h0, _GEN_3 + _GEN_4} + {1'h0, _GEN_8 + {1'h0, _GEN_9 + _before_T_182}};
+  wire [1:0]  _GEN_13 = {1'h0, io_in_9_valid};
+  wire [1:0]  _before_T_157 = _GEN_12 + _GEN_13;
+  wire [3:0]  before_10 =
+    {1'h0, _GEN_3 + {1'h0, _GEN_1 + _before_T_174}}
+    + {1'h0, _GEN_10 + {1'h0, _GEN_11 + _before_T_157}};
+  wire [1:0]  _GEN_14 = {1'h0, io_in_10_valid};
+  wire [1:0]  _before_T_184 = _GEN_13 + _GEN_14;
+  wire [2:0]  _GEN_15 = {1'h0, _before_T_184};
+  wire [3:0]  before_11 =
+    {1'h0, _GEN_3 + {1'h0, _GEN_1 + _before_T_174}}
+    + {1'h0, {1'h0, _GEN_7 + _before_T_90} + {1'h0, _GEN_12 + _before_T_184}};
+  wire [1:0]  _GEN_16 = {1'h0, io_in_11_valid};
+  wire [1:0]  _before_T_161 = _GEN_14 + _GEN_16;
+  wire [3:0]  before_12 =
+    {1'h0, {1'h0, _GEN + _before_T_170} + {1'h0, _GEN_2 + _before_T_126}}
+    + {1'h0, {1'h0, _GEN_9 + _before_T_182} + {1'h0, _GEN_13 + _before_T_161}};
+  wire [1:0]  _GEN_17 = {1'h0, io_in_12_valid};
+  wire [2:0]  _GEN_18 = {1'h0, _GEN_16 + _GEN_17};
+  wire [3:0]  before_13 =
+    {1'h0, {1'h0, _GEN + _before_T_170} + {1'h0, _GEN_2 + _before_T_126}}
+    + {1'h0, {1'h0, _GEN_9 + _before_T_182} + _GEN_15 + _GEN_18};
+  wire [1:0]  _GEN_19 = {1'h0, io_in_13_valid};
+  wire [3:0]  before_14 =
+    {1'h0, {1'h0, _GEN + _before_T_170} + _GEN_6 + _GEN_10}
+    + {1'h0,
+       {1'h0, _GEN_11 + _before_T_157} + {1'h0, _before_T_161}
+         + {1'h0, _GEN_17 + _GEN_19}};
+  wire [3:0]  _before_T_195 =
+    {1'h0, {1'h0, _GEN + _before_T_170} + _GEN_6 + _GEN_10}
+    + {1'h0, {1'h0, _before_T_182} + _GEN_15}
+    + {1'h0, _GEN_18 + {1'h0, _GEN_19 + {1'h0, io_in_14_valid}}};
+  wire        io_in_0_ready_0 = open & (|_room_T);
+  wire        io_in_1_ready_0 = open & {4'h0, io_in_0_valid} < _room_T;
+  wire        io_in_2_ready_0 = open & {3'h0, before_2} < _room_T;
+  wire        io_in_3_ready_0 = open & {3'h0, _before_T_3} < _room_T;
+  wire        io_in_4_ready_0 = open & {2'h0, before_4} < _room_T;
+  wire        io_in_5_ready_0 = open & {2'h0, before_5} < _room_T;
+  wire        io_in_6_ready_0 = open & {2'h0, before_6} < _room_T;
+  wire        io_in_7_ready_0 = open & {2'h0, _before_T_35} < _room_T;
+  wire        io_in_8_ready_0 = open & {1'h0, before_8} < _room_T;
+  wire        io_in_9_ready_0 = open & {1'h0, before_9} < _room_T;
+  wire        io_in_10_ready_0 = open & {1'h0, before_10} < _room_T;
+  wire        io_in_11_ready_0 = open & {1'h0, before_11} < _room_T;
+  wire        io_in_12_ready_0 = open & {1'h0, before_12} < _room_T;
+  wire        io_in_13_ready_0 = open & {1'h0, before_13} < _room_T;
+  wire        io_in_14_ready_0 = open & {1'h0, before_14} < _room_T;
+  wire        io_in_15_ready_0 = open & {1'h0, _before_T_195} < _room_T;
+  wire        _taken_T = io_in_0_ready_0 & io_in_0_valid;
+  wire [31:0] _slots_T_2 = {4'h0, io_in_0_bits_j, 4'h0, io_in_0_bits_i};
+  wire        _taken_T_1 = io_in_1_ready_0 & io_in_1_valid;
+  wire [3:0]  _GEN_20 = base[3:0] + {3'h0, io_in_0_valid};
+  wire [31:0] _slots_T_5 = {4'h0, io_in_1_bits_j, 4'h0, io_in_1_bits_i};
+  wire        _taken_T_2 = io_in_2_ready_0 & io_in_2_valid;
+  wire [3:0]  _GEN_21 = base[3:0] + {2'h0, before_2};
+  wire [31:0] _slots_T_8 = {4'h0, io_in_2_bits_j, 4'h0, io_in_2_bits_i};
+  wire        _taken_T_3 = io_in_3_ready_0 & io_in_3_valid;
+  wire [3:0]  _GEN_22 = base[3:0] + {2'h0, _before_T_3};
+  wire [31:0] _slots_T_11 = {4'h0, io_in_3_bits_j, 4'h0, io_in_3_bits_i};
+  wire        _taken_T_4 = io_in_4_ready_0 & io_in_4_valid;
+  wire [3:0]  _GEN_23 = base[3:0] + {1'h0, before_4};
+  wire [31:0] _slots_T_14 = {4'h0, io_in_4_bits_j, 4'h0, io_in_4_bits_i};
+  wire        _taken_T_5 = io_in_5_ready_0 & io_in_5_valid;
+  wire [3:0]  _GEN_24 = base[3:0] + {1'h0, before_5};
+  wire [31:0] _slots_T_17 = {4'h0, io_in_5_bits_j, 4'h0, io_in_5_bits_i};
+  wire        _taken_T_6 = io_in_6_ready_0 & io_in_6_valid;
+  wire [3:0]  _GEN_25 = base[3:0] + {1'h0, before_6};
+  wire [31:0] _slots_T_20 = {4'h0, io_in_6_bits_j, 4'h0, io_in_6_bits_i};
+  wire        _taken_T_7 = io_in_7_ready_0 & io_in_7_valid;
+  wire [3:0]  _GEN_26 = base[3:0] + {1'h0, _before_T_35};
+  wire [31:0] _slots_T_23 = {4'h0, io_in_7_bits_j, 4'h0, io_in_7_bits_i};
+  wire        _taken_T_8 = io_in_8_ready_0 & io_in_8_valid;
+  wire [3:0]  _GEN_27 = base[3:0] + before_8;
+  wire [31:0] _slots_T_26 = {4'h0, io_in_8_bits_j, 4'h0, io_in_8_bits_i};
+  wire        _taken_T_9 = io_in_9_ready_0 & io_in_9_valid;
+  wire [3:0]  _GEN_28 = base[3:0] + before_9;
+  wire [31:0] _slots_T_29 = {4'h0, io_in_9_bits_j, 4'h0, io_in_9_bits_i};
+  wire        _taken_T_10 = io_in_10_ready_0 & io_in_10_valid;
+  wire [3:0]  _GEN_29 = base[3:0] + before_10;
+  wire [31:0] _slots_T_32 = {4'h0, io_in_10_bits_j, 4'h0, io_in_10_bits_i};
+  wire        _taken_T_11 = io_in_11_ready_0 & io_in_11_valid;
+  wire [3:0]  _GEN_30 = base[3:0] + before_11;
+  wire [31:0] _slots_T_35 = {4'h0, io_in_11_bits_j, 4'h0, io_in_11_bits_i};
+  wire        _taken_T_12 = io_in_12_ready_0 & io_in_12_valid;
+  wire [3:0]  _GEN_31 = base[3:0] + before_12;
+  wire [31:0] _slots_T_38 = {4'h0, io_in_12_bits_j, 4'h0, io_in_12_bits_i};
+  wire        _taken_T_13 = io_in_13_ready_0 & io_in_13_valid;
+  wire [3:0]  _GEN_32 = base[3:0] + before_13;
+  wire [31:0] _slots_T_41 = {4'h0, io_in_13_bits_j, 4'h0, io_in_13_bits_i};
+  wire        _taken_T_14 = io_in_14_ready_0 & io_in_14_valid;
+  wire [3:0]  _GEN_33 = base[3:0] + before_14;
+  wire [31:0] _slots_T_44 = {4'h0, io_in_14_bits_j, 4'h0, io_in_14_bits_i};
+  wire        _taken_T_15 = io_in_15_ready_0 & io_in_15_valid;
+  wire [3:0]  _GEN_34 = base[3:0] + _before_T_195;
+  wire [31:0] _slots_T_47 = {4'h0, io_in_15_bits_j, 4'h0, io_in_15_bits_i};
+  wire [4:0]  taken =
+    {1'h0,
+     {1'h0,
+      {1'h0, {1'h0, _taken_T} + {1'h0, _taken_T_1}}
+        + {1'h0, {1'h0, _taken_T_2} + {1'h0, _taken_T_3}}}
+       + {1'h0,
+          {1'h0, {1'h0, _taken_T_4} + {1'h0, _taken_T_5}}
+            + {1'h0, {1'h0, _taken_T_6} + {1'h0, _taken_T_7}}}}
+    + {1'h0,
+       {1'h0,
+        {1'h0, {1'h0, _taken_T_8} + {1'h0, _taken_T_9}}
+          + {1'h0, {1'h0, _taken_T_10} + {1'h0, _taken_T_11}}}
+         + {1'h0,
+            {1'h0, {1'h0, _taken_T_12} + {1'h0, _taken_T_13}}
+              + {1'h0, {1'h0, _taken_T_14} + {1'h0, _taken_T_15}}}};
   always @(posedge clock) begin
-    if (_cnt_T & at == 4'h0)
+    if (_taken_T_15 & _GEN_34 == 4'h0)
+      slots_0 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'h0)
+      slots_0 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'h0)
+      slots_0 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'h0)
+      slots_0 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'h0)
+      slots_0 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'h0)
+      slots_0 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'h0)
+      slots_0 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'h0)
+      slots_0 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'h0)
+      slots_0 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'h0)
+      slots_0 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'h0)
+      slots_0 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'h0)
+      slots_0 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'h0)
+      slots_0 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'h0)
+      slots_0 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'h0)
+      slots_0 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'h0)
       slots_0 <= _slots_T_2;
-    if (_cnt_T & at == 4'h1)
+    if (_taken_T_15 & _GEN_34 == 4'h1)
+      slots_1 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'h1)
+      slots_1 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'h1)
+      slots_1 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'h1)
+      slots_1 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'h1)
+      slots_1 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'h1)
+      slots_1 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'h1)
+      slots_1 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'h1)
+      slots_1 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'h1)
+      slots_1 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'h1)
+      slots_1 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'h1)
+      slots_1 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'h1)
+      slots_1 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'h1)
+      slots_1 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'h1)
+      slots_1 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'h1)
+      slots_1 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'h1)
       slots_1 <= _slots_T_2;
-    if (_cnt_T & at == 4'h2)
+    if (_taken_T_15 & _GEN_34 == 4'h2)
+      slots_2 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'h2)
+      slots_2 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'h2)
+      slots_2 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'h2)
+      slots_2 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'h2)
+      slots_2 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'h2)
+      slots_2 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'h2)
+      slots_2 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'h2)
+      slots_2 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'h2)
+      slots_2 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'h2)
+      slots_2 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'h2)
+      slots_2 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'h2)
+      slots_2 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'h2)
+      slots_2 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'h2)
+      slots_2 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'h2)
+      slots_2 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'h2)
       slots_2 <= _slots_T_2;
-    if (_cnt_T & at == 4'h3)
+    if (_taken_T_15 & _GEN_34 == 4'h3)
+      slots_3 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'h3)
+      slots_3 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'h3)
+      slots_3 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'h3)
+      slots_3 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'h3)
+      slots_3 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'h3)
+      slots_3 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'h3)
+      slots_3 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'h3)
+      slots_3 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'h3)
+      slots_3 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'h3)
+      slots_3 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'h3)
+      slots_3 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'h3)
+      slots_3 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'h3)
+      slots_3 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'h3)
+      slots_3 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'h3)
+      slots_3 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'h3)
       slots_3 <= _slots_T_2;
-    if (_cnt_T & at == 4'h4)
+    if (_taken_T_15 & _GEN_34 == 4'h4)
+      slots_4 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'h4)
+      slots_4 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'h4)
+      slots_4 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'h4)
+      slots_4 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'h4)
+      slots_4 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'h4)
+      slots_4 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'h4)
+      slots_4 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'h4)
+      slots_4 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'h4)
+      slots_4 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'h4)
+      slots_4 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'h4)
+      slots_4 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'h4)
+      slots_4 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'h4)
+      slots_4 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'h4)
+      slots_4 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'h4)
+      slots_4 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'h4)
       slots_4 <= _slots_T_2;
-    if (_cnt_T & at == 4'h5)
+    if (_taken_T_15 & _GEN_34 == 4'h5)
+      slots_5 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'h5)
+      slots_5 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'h5)
+      slots_5 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'h5)
+      slots_5 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'h5)
+      slots_5 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'h5)
+      slots_5 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'h5)
+      slots_5 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'h5)
+      slots_5 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'h5)
+      slots_5 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'h5)
+      slots_5 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'h5)
+      slots_5 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'h5)
+      slots_5 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'h5)
+      slots_5 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'h5)
+      slots_5 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'h5)
+      slots_5 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'h5)
       slots_5 <= _slots_T_2;
-    if (_cnt_T & at == 4'h6)
+    if (_taken_T_15 & _GEN_34 == 4'h6)
+      slots_6 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'h6)
+      slots_6 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'h6)
+      slots_6 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'h6)
+      slots_6 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'h6)
+      slots_6 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'h6)
+      slots_6 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'h6)
+      slots_6 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'h6)
+      slots_6 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'h6)
+      slots_6 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'h6)
+      slots_6 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'h6)
+      slots_6 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'h6)
+      slots_6 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'h6)
+      slots_6 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'h6)
+      slots_6 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'h6)
+      slots_6 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'h6)
       slots_6 <= _slots_T_2;
-    if (_cnt_T & at == 4'h7)
+    if (_taken_T_15 & _GEN_34 == 4'h7)
+      slots_7 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'h7)
+      slots_7 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'h7)
+      slots_7 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'h7)
+      slots_7 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'h7)
+      slots_7 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'h7)
+      slots_7 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'h7)
+      slots_7 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'h7)
+      slots_7 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'h7)
+      slots_7 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'h7)
+      slots_7 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'h7)
+      slots_7 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'h7)
+      slots_7 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'h7)
+      slots_7 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'h7)
+      slots_7 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'h7)
+      slots_7 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'h7)
       slots_7 <= _slots_T_2;
-    if (_cnt_T & at == 4'h8)
+    if (_taken_T_15 & _GEN_34 == 4'h8)
+      slots_8 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'h8)
+      slots_8 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'h8)
+      slots_8 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'h8)
+      slots_8 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'h8)
+      slots_8 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'h8)
+      slots_8 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'h8)
+      slots_8 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'h8)
+      slots_8 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'h8)
+      slots_8 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'h8)
+      slots_8 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'h8)
+      slots_8 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'h8)
+      slots_8 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'h8)
+      slots_8 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'h8)
+      slots_8 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'h8)
+      slots_8 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'h8)
       slots_8 <= _slots_T_2;
-    if (_cnt_T & at == 4'h9)
+    if (_taken_T_15 & _GEN_34 == 4'h9)
+      slots_9 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'h9)
+      slots_9 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'h9)
+      slots_9 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'h9)
+      slots_9 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'h9)
+      slots_9 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'h9)
+      slots_9 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'h9)
+      slots_9 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'h9)
+      slots_9 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'h9)
+      slots_9 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'h9)
+      slots_9 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'h9)
+      slots_9 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'h9)
+      slots_9 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'h9)
+      slots_9 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'h9)
+      slots_9 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'h9)
+      slots_9 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'h9)
       slots_9 <= _slots_T_2;
-    if (_cnt_T & at == 4'hA)
+    if (_taken_T_15 & _GEN_34 == 4'hA)
+      slots_10 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'hA)
+      slots_10 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'hA)
+      slots_10 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'hA)
+      slots_10 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'hA)
+      slots_10 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'hA)
+      slots_10 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'hA)
+      slots_10 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'hA)
+      slots_10 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'hA)
+      slots_10 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'hA)
+      slots_10 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'hA)
+      slots_10 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'hA)
+      slots_10 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'hA)
+      slots_10 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'hA)
+      slots_10 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'hA)
+      slots_10 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'hA)
       slots_10 <= _slots_T_2;
-    if (_cnt_T & at == 4'hB)
+    if (_taken_T_15 & _GEN_34 == 4'hB)
+      slots_11 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'hB)
+      slots_11 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'hB)
+      slots_11 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'hB)
+      slots_11 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'hB)
+      slots_11 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'hB)
+      slots_11 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'hB)
+      slots_11 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'hB)
+      slots_11 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'hB)
+      slots_11 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'hB)
+      slots_11 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'hB)
+      slots_11 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'hB)
+      slots_11 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'hB)
+      slots_11 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'hB)
+      slots_11 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'hB)
+      slots_11 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'hB)
       slots_11 <= _slots_T_2;
-    if (_cnt_T & at == 4'hC)
+    if (_taken_T_15 & _GEN_34 == 4'hC)
+      slots_12 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'hC)
+      slots_12 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'hC)
+      slots_12 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'hC)
+      slots_12 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'hC)
+      slots_12 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'hC)
+      slots_12 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'hC)
+      slots_12 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'hC)
+      slots_12 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'hC)
+      slots_12 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'hC)
+      slots_12 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'hC)
+      slots_12 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'hC)
+      slots_12 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'hC)
+      slots_12 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'hC)
+      slots_12 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'hC)
+      slots_12 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'hC)
       slots_12 <= _slots_T_2;
-    if (_cnt_T & at == 4'hD)
+    if (_taken_T_15 & _GEN_34 == 4'hD)
+      slots_13 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'hD)
+      slots_13 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'hD)
+      slots_13 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'hD)
+      slots_13 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'hD)
+      slots_13 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'hD)
+      slots_13 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'hD)
+      slots_13 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'hD)
+      slots_13 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'hD)
+      slots_13 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'hD)
+      slots_13 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'hD)
+      slots_13 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'hD)
+      slots_13 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'hD)
+      slots_13 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'hD)
+      slots_13 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'hD)
+      slots_13 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'hD)
       slots_13 <= _slots_T_2;
-    if (_cnt_T & at == 4'hE)
+    if (_taken_T_15 & _GEN_34 == 4'hE)
+      slots_14 <= _slots_T_47;
+    else if (_taken_T_14 & _GEN_33 == 4'hE)
+      slots_14 <= _slots_T_44;
+    else if (_taken_T_13 & _GEN_32 == 4'hE)
+      slots_14 <= _slots_T_41;
+    else if (_taken_T_12 & _GEN_31 == 4'hE)
+      slots_14 <= _slots_T_38;
+    else if (_taken_T_11 & _GEN_30 == 4'hE)
+      slots_14 <= _slots_T_35;
+    else if (_taken_T_10 & _GEN_29 == 4'hE)
+      slots_14 <= _slots_T_32;
+    else if (_taken_T_9 & _GEN_28 == 4'hE)
+      slots_14 <= _slots_T_29;
+    else if (_taken_T_8 & _GEN_27 == 4'hE)
+      slots_14 <= _slots_T_26;
+    else if (_taken_T_7 & _GEN_26 == 4'hE)
+      slots_14 <= _slots_T_23;
+    else if (_taken_T_6 & _GEN_25 == 4'hE)
+      slots_14 <= _slots_T_20;
+    else if (_taken_T_5 & _GEN_24 == 4'hE)
+      slots_14 <= _slots_T_17;
+    else if (_taken_T_4 & _GEN_23 == 4'hE)
+      slots_14 <= _slots_T_14;
+    else if (_taken_T_3 & _GEN_22 == 4'hE)
+      slots_14 <= _slots_T_11;
+    else if (_taken_T_2 & _GEN_21 == 4'hE)
+      slots_14 <= _slots_T_8;
+    else if (_taken_T_1 & _GEN_20 == 4'hE)
+      slots_14 <= _slots_T_5;
+    else if (_taken_T & base[3:0] == 4'hE)
       slots_14 <= _slots_T_2;
-    if (_cnt_T & (&at))
+    if (_taken_T_15 & (&_GEN_34))
+      slots_15 <= _slots_T_47;
+    else if (_taken_T_14 & (&_GEN_33))
+      slots_15 <= _slots_T_44;
+    else if (_taken_T_13 & (&_GEN_32))
+      slots_15 <= _slots_T_41;
+    else if (_taken_T_12 & (&_GEN_31))
+      slots_15 <= _slots_T_38;
+    else if (_taken_T_11 & (&_GEN_30))
+      slots_15 <= _slots_T_35;
+    else if (_taken_T_10 & (&_GEN_29))
+      slots_15 <= _slots_T_32;
+    else if (_taken_T_9 & (&_GEN_28))
+      slots_15 <= _slots_T_29;
+    else if (_taken_T_8 & (&_GEN_27))
+      slots_15 <= _slots_T_26;
+    else if (_taken_T_7 & (&_GEN_26))
+      slots_15 <= _slots_T_23;
+    else if (_taken_T_6 & (&_GEN_25))
+      slots_15 <= _slots_T_20;
+    else if (_taken_T_5 & (&_GEN_24))
+      slots_15 <= _slots_T_17;
+    else if (_taken_T_4 & (&_GEN_23))
+      slots_15 <= _slots_T_14;
+    else if (_taken_T_3 & (&_GEN_22))
+      slots_15 <= _slots_T_11;
+    else if (_taken_T_2 & (&_GEN_21))
+      slots_15 <= _slots_T_8;
+    else if (_taken_T_1 & (&_GEN_20))
+      slots_15 <= _slots_T_5;
+    else if (_taken_T & (&(base[3:0])))
       slots_15 <= _slots_T_2;
     if (reset) begin
       cnt <= 5'h0;
@@ -18579,13 +23775,13 @@ module WorldPairLines_i12_world(
       line <= 20'h0;
       emitted <= 25'h0;
     end
-    else if (_at_T) begin
-      cnt <= {4'h0, _cnt_T};
+    else if (_base_T) begin
+      cnt <= taken;
       line <= line + 20'h1;
       emitted <= emitted + {20'h0, cnt};
     end
-    else if (_cnt_T)
-      cnt <= cnt + 5'h1;
+    else if (|taken)
+      cnt <= cnt + taken;
   end // always @(posedge)
   WorldLineQueue_world q (
     .clock            (clock),
@@ -18615,7 +23811,22 @@ module WorldPairLines_i12_world(
     .io_deq_bits_line (io_out_bits_line),
     .io_deq_bits_data (io_out_bits_data)
   );
-  assign io_in_ready = io_in_ready_0;
+  assign io_in_0_ready = io_in_0_ready_0;
+  assign io_in_1_ready = io_in_1_ready_0;
+  assign io_in_2_ready = io_in_2_ready_0;
+  assign io_in_3_ready = io_in_3_ready_0;
+  assign io_in_4_ready = io_in_4_ready_0;
+  assign io_in_5_ready = io_in_5_ready_0;
+  assign io_in_6_ready = io_in_6_ready_0;
+  assign io_in_7_ready = io_in_7_ready_0;
+  assign io_in_8_ready = io_in_8_ready_0;
+  assign io_in_9_ready = io_in_9_ready_0;
+  assign io_in_10_ready = io_in_10_ready_0;
+  assign io_in_11_ready = io_in_11_ready_0;
+  assign io_in_12_ready = io_in_12_ready_0;
+  assign io_in_13_ready = io_in_13_ready_0;
+  assign io_in_14_ready = io_in_14_ready_0;
+  assign io_in_15_ready = io_in_15_ready_0;
   assign io_out_valid = _q_io_deq_valid;
   assign io_emitted = emitted;
   assign io_idle = cnt == 5'h0 & ~_q_io_deq_valid;
@@ -18966,16 +24177,91 @@ module Puc_world(
   input  [31:0]  io_skipCycles
 );
 
-  wire         _lines_io_in_ready;
+  wire         _lines_io_in_0_ready;
+  wire         _lines_io_in_1_ready;
+  wire         _lines_io_in_2_ready;
+  wire         _lines_io_in_3_ready;
+  wire         _lines_io_in_4_ready;
+  wire         _lines_io_in_5_ready;
+  wire         _lines_io_in_6_ready;
+  wire         _lines_io_in_7_ready;
+  wire         _lines_io_in_8_ready;
+  wire         _lines_io_in_9_ready;
+  wire         _lines_io_in_10_ready;
+  wire         _lines_io_in_11_ready;
+  wire         _lines_io_in_12_ready;
+  wire         _lines_io_in_13_ready;
+  wire         _lines_io_in_14_ready;
+  wire         _lines_io_in_15_ready;
   wire         _lines_io_out_valid;
   wire [19:0]  _lines_io_out_bits_line;
   wire [511:0] _lines_io_out_bits_data;
   wire [24:0]  _lines_io_emitted;
   wire         _lines_io_idle;
-  wire [11:0]  _bp_io_sphere_addr;
-  wire         _bp_io_pairs_valid;
-  wire [11:0]  _bp_io_pairs_bits_i;
-  wire [11:0]  _bp_io_pairs_bits_j;
+  wire [11:0]  _bp_io_sphere_0_addr;
+  wire [11:0]  _bp_io_sphere_1_addr;
+  wire [11:0]  _bp_io_sphere_2_addr;
+  wire [11:0]  _bp_io_sphere_3_addr;
+  wire [11:0]  _bp_io_sphere_4_addr;
+  wire [11:0]  _bp_io_sphere_5_addr;
+  wire [11:0]  _bp_io_sphere_6_addr;
+  wire [11:0]  _bp_io_sphere_7_addr;
+  wire [11:0]  _bp_io_sphere_8_addr;
+  wire [11:0]  _bp_io_sphere_9_addr;
+  wire [11:0]  _bp_io_sphere_10_addr;
+  wire [11:0]  _bp_io_sphere_11_addr;
+  wire [11:0]  _bp_io_sphere_12_addr;
+  wire [11:0]  _bp_io_sphere_13_addr;
+  wire [11:0]  _bp_io_sphere_14_addr;
+  wire [11:0]  _bp_io_sphere_15_addr;
+  wire         _bp_io_pairs_0_valid;
+  wire [11:0]  _bp_io_pairs_0_bits_i;
+  wire [11:0]  _bp_io_pairs_0_bits_j;
+  wire         _bp_io_pairs_1_valid;
+  wire [11:0]  _bp_io_pairs_1_bits_i;
+  wire [11:0]  _bp_io_pairs_1_bits_j;
+  wire         _bp_io_pairs_2_valid;
+  wire [11:0]  _bp_io_pairs_2_bits_i;
+  wire [11:0]  _bp_io_pairs_2_bits_j;
+  wire         _bp_io_pairs_3_valid;
+  wire [11:0]  _bp_io_pairs_3_bits_i;
+  wire [11:0]  _bp_io_pairs_3_bits_j;
+  wire         _bp_io_pairs_4_valid;
+  wire [11:0]  _bp_io_pairs_4_bits_i;
+  wire [11:0]  _bp_io_pairs_4_bits_j;
+  wire         _bp_io_pairs_5_valid;
+  wire [11:0]  _bp_io_pairs_5_bits_i;
+  wire [11:0]  _bp_io_pairs_5_bits_j;
+  wire         _bp_io_pairs_6_valid;
+  wire [11:0]  _bp_io_pairs_6_bits_i;
+  wire [11:0]  _bp_io_pairs_6_bits_j;
+  wire         _bp_io_pairs_7_valid;
+  wire [11:0]  _bp_io_pairs_7_bits_i;
+  wire [11:0]  _bp_io_pairs_7_bits_j;
+  wire         _bp_io_pairs_8_valid;
+  wire [11:0]  _bp_io_pairs_8_bits_i;
+  wire [11:0]  _bp_io_pairs_8_bits_j;
+  wire         _bp_io_pairs_9_valid;
+  wire [11:0]  _bp_io_pairs_9_bits_i;
+  wire [11:0]  _bp_io_pairs_9_bits_j;
+  wire         _bp_io_pairs_10_valid;
+  wire [11:0]  _bp_io_pairs_10_bits_i;
+  wire [11:0]  _bp_io_pairs_10_bits_j;
+  wire         _bp_io_pairs_11_valid;
+  wire [11:0]  _bp_io_pairs_11_bits_i;
+  wire [11:0]  _bp_io_pairs_11_bits_j;
+  wire         _bp_io_pairs_12_valid;
+  wire [11:0]  _bp_io_pairs_12_bits_i;
+  wire [11:0]  _bp_io_pairs_12_bits_j;
+  wire         _bp_io_pairs_13_valid;
+  wire [11:0]  _bp_io_pairs_13_bits_i;
+  wire [11:0]  _bp_io_pairs_13_bits_j;
+  wire         _bp_io_pairs_14_valid;
+  wire [11:0]  _bp_io_pairs_14_bits_i;
+  wire [11:0]  _bp_io_pairs_14_bits_j;
+  wire         _bp_io_pairs_15_valid;
+  wire [11:0]  _bp_io_pairs_15_bits_i;
+  wire [11:0]  _bp_io_pairs_15_bits_j;
   wire         _bp_io_busy;
   wire [12:0]  _bp_io_status_k;
   wire [12:0]  _bp_io_status_large;
@@ -19200,10 +24486,70 @@ module Puc_world(
   wire [31:0]  _ram_io_rdata_15_1_y;
   wire [31:0]  _ram_io_rdata_15_1_z;
   wire [31:0]  _ram_io_rdata_15_1_r;
-  wire [31:0]  _ram_io_world_data_x;
-  wire [31:0]  _ram_io_world_data_y;
-  wire [31:0]  _ram_io_world_data_z;
-  wire [31:0]  _ram_io_world_data_r;
+  wire [31:0]  _ram_io_world_0_data_x;
+  wire [31:0]  _ram_io_world_0_data_y;
+  wire [31:0]  _ram_io_world_0_data_z;
+  wire [31:0]  _ram_io_world_0_data_r;
+  wire [31:0]  _ram_io_world_1_data_x;
+  wire [31:0]  _ram_io_world_1_data_y;
+  wire [31:0]  _ram_io_world_1_data_z;
+  wire [31:0]  _ram_io_world_1_data_r;
+  wire [31:0]  _ram_io_world_2_data_x;
+  wire [31:0]  _ram_io_world_2_data_y;
+  wire [31:0]  _ram_io_world_2_data_z;
+  wire [31:0]  _ram_io_world_2_data_r;
+  wire [31:0]  _ram_io_world_3_data_x;
+  wire [31:0]  _ram_io_world_3_data_y;
+  wire [31:0]  _ram_io_world_3_data_z;
+  wire [31:0]  _ram_io_world_3_data_r;
+  wire [31:0]  _ram_io_world_4_data_x;
+  wire [31:0]  _ram_io_world_4_data_y;
+  wire [31:0]  _ram_io_world_4_data_z;
+  wire [31:0]  _ram_io_world_4_data_r;
+  wire [31:0]  _ram_io_world_5_data_x;
+  wire [31:0]  _ram_io_world_5_data_y;
+  wire [31:0]  _ram_io_world_5_data_z;
+  wire [31:0]  _ram_io_world_5_data_r;
+  wire [31:0]  _ram_io_world_6_data_x;
+  wire [31:0]  _ram_io_world_6_data_y;
+  wire [31:0]  _ram_io_world_6_data_z;
+  wire [31:0]  _ram_io_world_6_data_r;
+  wire [31:0]  _ram_io_world_7_data_x;
+  wire [31:0]  _ram_io_world_7_data_y;
+  wire [31:0]  _ram_io_world_7_data_z;
+  wire [31:0]  _ram_io_world_7_data_r;
+  wire [31:0]  _ram_io_world_8_data_x;
+  wire [31:0]  _ram_io_world_8_data_y;
+  wire [31:0]  _ram_io_world_8_data_z;
+  wire [31:0]  _ram_io_world_8_data_r;
+  wire [31:0]  _ram_io_world_9_data_x;
+  wire [31:0]  _ram_io_world_9_data_y;
+  wire [31:0]  _ram_io_world_9_data_z;
+  wire [31:0]  _ram_io_world_9_data_r;
+  wire [31:0]  _ram_io_world_10_data_x;
+  wire [31:0]  _ram_io_world_10_data_y;
+  wire [31:0]  _ram_io_world_10_data_z;
+  wire [31:0]  _ram_io_world_10_data_r;
+  wire [31:0]  _ram_io_world_11_data_x;
+  wire [31:0]  _ram_io_world_11_data_y;
+  wire [31:0]  _ram_io_world_11_data_z;
+  wire [31:0]  _ram_io_world_11_data_r;
+  wire [31:0]  _ram_io_world_12_data_x;
+  wire [31:0]  _ram_io_world_12_data_y;
+  wire [31:0]  _ram_io_world_12_data_z;
+  wire [31:0]  _ram_io_world_12_data_r;
+  wire [31:0]  _ram_io_world_13_data_x;
+  wire [31:0]  _ram_io_world_13_data_y;
+  wire [31:0]  _ram_io_world_13_data_z;
+  wire [31:0]  _ram_io_world_13_data_r;
+  wire [31:0]  _ram_io_world_14_data_x;
+  wire [31:0]  _ram_io_world_14_data_y;
+  wire [31:0]  _ram_io_world_14_data_z;
+  wire [31:0]  _ram_io_world_14_data_r;
+  wire [31:0]  _ram_io_world_15_data_x;
+  wire [31:0]  _ram_io_world_15_data_y;
+  wire [31:0]  _ram_io_world_15_data_z;
+  wire [31:0]  _ram_io_world_15_data_r;
   wire         _rd_io_rdReq_valid;
   wire         _rd_io_sphereWrite_valid;
   wire [9:0]   _rd_io_sphereWrite_bits_line;
@@ -19292,7 +24638,7 @@ module Puc_world(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:262 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:263 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -19472,7 +24818,7 @@ module Puc_world(
     .io_outstanding           (_rd_io_outstanding),
     .io_pairBufferEmpty       (_rd_io_pairBufferEmpty)
   );
-  SphereRam_s4096_c17_world ram (
+  SphereRam_s4096_c24_world ram (
     .clock              (clock),
     .io_write_valid     (_rd_io_sphereWrite_valid),
     .io_write_bits_line (_rd_io_sphereWrite_bits_line),
@@ -19653,11 +24999,86 @@ module Puc_world(
     .io_rdata_15_1_y    (_ram_io_rdata_15_1_y),
     .io_rdata_15_1_z    (_ram_io_rdata_15_1_z),
     .io_rdata_15_1_r    (_ram_io_rdata_15_1_r),
-    .io_world_addr      (_bp_io_sphere_addr),
-    .io_world_data_x    (_ram_io_world_data_x),
-    .io_world_data_y    (_ram_io_world_data_y),
-    .io_world_data_z    (_ram_io_world_data_z),
-    .io_world_data_r    (_ram_io_world_data_r)
+    .io_world_0_addr    (_bp_io_sphere_0_addr),
+    .io_world_0_data_x  (_ram_io_world_0_data_x),
+    .io_world_0_data_y  (_ram_io_world_0_data_y),
+    .io_world_0_data_z  (_ram_io_world_0_data_z),
+    .io_world_0_data_r  (_ram_io_world_0_data_r),
+    .io_world_1_addr    (_bp_io_sphere_1_addr),
+    .io_world_1_data_x  (_ram_io_world_1_data_x),
+    .io_world_1_data_y  (_ram_io_world_1_data_y),
+    .io_world_1_data_z  (_ram_io_world_1_data_z),
+    .io_world_1_data_r  (_ram_io_world_1_data_r),
+    .io_world_2_addr    (_bp_io_sphere_2_addr),
+    .io_world_2_data_x  (_ram_io_world_2_data_x),
+    .io_world_2_data_y  (_ram_io_world_2_data_y),
+    .io_world_2_data_z  (_ram_io_world_2_data_z),
+    .io_world_2_data_r  (_ram_io_world_2_data_r),
+    .io_world_3_addr    (_bp_io_sphere_3_addr),
+    .io_world_3_data_x  (_ram_io_world_3_data_x),
+    .io_world_3_data_y  (_ram_io_world_3_data_y),
+    .io_world_3_data_z  (_ram_io_world_3_data_z),
+    .io_world_3_data_r  (_ram_io_world_3_data_r),
+    .io_world_4_addr    (_bp_io_sphere_4_addr),
+    .io_world_4_data_x  (_ram_io_world_4_data_x),
+    .io_world_4_data_y  (_ram_io_world_4_data_y),
+    .io_world_4_data_z  (_ram_io_world_4_data_z),
+    .io_world_4_data_r  (_ram_io_world_4_data_r),
+    .io_world_5_addr    (_bp_io_sphere_5_addr),
+    .io_world_5_data_x  (_ram_io_world_5_data_x),
+    .io_world_5_data_y  (_ram_io_world_5_data_y),
+    .io_world_5_data_z  (_ram_io_world_5_data_z),
+    .io_world_5_data_r  (_ram_io_world_5_data_r),
+    .io_world_6_addr    (_bp_io_sphere_6_addr),
+    .io_world_6_data_x  (_ram_io_world_6_data_x),
+    .io_world_6_data_y  (_ram_io_world_6_data_y),
+    .io_world_6_data_z  (_ram_io_world_6_data_z),
+    .io_world_6_data_r  (_ram_io_world_6_data_r),
+    .io_world_7_addr    (_bp_io_sphere_7_addr),
+    .io_world_7_data_x  (_ram_io_world_7_data_x),
+    .io_world_7_data_y  (_ram_io_world_7_data_y),
+    .io_world_7_data_z  (_ram_io_world_7_data_z),
+    .io_world_7_data_r  (_ram_io_world_7_data_r),
+    .io_world_8_addr    (_bp_io_sphere_8_addr),
+    .io_world_8_data_x  (_ram_io_world_8_data_x),
+    .io_world_8_data_y  (_ram_io_world_8_data_y),
+    .io_world_8_data_z  (_ram_io_world_8_data_z),
+    .io_world_8_data_r  (_ram_io_world_8_data_r),
+    .io_world_9_addr    (_bp_io_sphere_9_addr),
+    .io_world_9_data_x  (_ram_io_world_9_data_x),
+    .io_world_9_data_y  (_ram_io_world_9_data_y),
+    .io_world_9_data_z  (_ram_io_world_9_data_z),
+    .io_world_9_data_r  (_ram_io_world_9_data_r),
+    .io_world_10_addr   (_bp_io_sphere_10_addr),
+    .io_world_10_data_x (_ram_io_world_10_data_x),
+    .io_world_10_data_y (_ram_io_world_10_data_y),
+    .io_world_10_data_z (_ram_io_world_10_data_z),
+    .io_world_10_data_r (_ram_io_world_10_data_r),
+    .io_world_11_addr   (_bp_io_sphere_11_addr),
+    .io_world_11_data_x (_ram_io_world_11_data_x),
+    .io_world_11_data_y (_ram_io_world_11_data_y),
+    .io_world_11_data_z (_ram_io_world_11_data_z),
+    .io_world_11_data_r (_ram_io_world_11_data_r),
+    .io_world_12_addr   (_bp_io_sphere_12_addr),
+    .io_world_12_data_x (_ram_io_world_12_data_x),
+    .io_world_12_data_y (_ram_io_world_12_data_y),
+    .io_world_12_data_z (_ram_io_world_12_data_z),
+    .io_world_12_data_r (_ram_io_world_12_data_r),
+    .io_world_13_addr   (_bp_io_sphere_13_addr),
+    .io_world_13_data_x (_ram_io_world_13_data_x),
+    .io_world_13_data_y (_ram_io_world_13_data_y),
+    .io_world_13_data_z (_ram_io_world_13_data_z),
+    .io_world_13_data_r (_ram_io_world_13_data_r),
+    .io_world_14_addr   (_bp_io_sphere_14_addr),
+    .io_world_14_data_x (_ram_io_world_14_data_x),
+    .io_world_14_data_y (_ram_io_world_14_data_y),
+    .io_world_14_data_z (_ram_io_world_14_data_z),
+    .io_world_14_data_r (_ram_io_world_14_data_r),
+    .io_world_15_addr   (_bp_io_sphere_15_addr),
+    .io_world_15_data_x (_ram_io_world_15_data_x),
+    .io_world_15_data_y (_ram_io_world_15_data_y),
+    .io_world_15_data_z (_ram_io_world_15_data_z),
+    .io_world_15_data_r (_ram_io_world_15_data_r)
   );
   PairDispatcher_n16_world disp (
     .clock                  (clock),
@@ -20289,20 +25710,155 @@ module Puc_world(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
-  BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_world bp (
+  BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world bp (
     .clock                   (clock),
     .reset                   (reset),
     .io_start                (bpStart),
     .io_num                  (run_2[12:0]),
-    .io_sphere_addr          (_bp_io_sphere_addr),
-    .io_sphere_data_0        (_ram_io_world_data_x),
-    .io_sphere_data_1        (_ram_io_world_data_y),
-    .io_sphere_data_2        (_ram_io_world_data_z),
-    .io_sphere_data_3        (_ram_io_world_data_r),
-    .io_pairs_ready          (_lines_io_in_ready),
-    .io_pairs_valid          (_bp_io_pairs_valid),
-    .io_pairs_bits_i         (_bp_io_pairs_bits_i),
-    .io_pairs_bits_j         (_bp_io_pairs_bits_j),
+    .io_sphere_0_addr        (_bp_io_sphere_0_addr),
+    .io_sphere_0_data_0      (_ram_io_world_0_data_x),
+    .io_sphere_0_data_1      (_ram_io_world_0_data_y),
+    .io_sphere_0_data_2      (_ram_io_world_0_data_z),
+    .io_sphere_0_data_3      (_ram_io_world_0_data_r),
+    .io_sphere_1_addr        (_bp_io_sphere_1_addr),
+    .io_sphere_1_data_0      (_ram_io_world_1_data_x),
+    .io_sphere_1_data_1      (_ram_io_world_1_data_y),
+    .io_sphere_1_data_2      (_ram_io_world_1_data_z),
+    .io_sphere_1_data_3      (_ram_io_world_1_data_r),
+    .io_sphere_2_addr        (_bp_io_sphere_2_addr),
+    .io_sphere_2_data_0      (_ram_io_world_2_data_x),
+    .io_sphere_2_data_1      (_ram_io_world_2_data_y),
+    .io_sphere_2_data_2      (_ram_io_world_2_data_z),
+    .io_sphere_2_data_3      (_ram_io_world_2_data_r),
+    .io_sphere_3_addr        (_bp_io_sphere_3_addr),
+    .io_sphere_3_data_0      (_ram_io_world_3_data_x),
+    .io_sphere_3_data_1      (_ram_io_world_3_data_y),
+    .io_sphere_3_data_2      (_ram_io_world_3_data_z),
+    .io_sphere_3_data_3      (_ram_io_world_3_data_r),
+    .io_sphere_4_addr        (_bp_io_sphere_4_addr),
+    .io_sphere_4_data_0      (_ram_io_world_4_data_x),
+    .io_sphere_4_data_1      (_ram_io_world_4_data_y),
+    .io_sphere_4_data_2      (_ram_io_world_4_data_z),
+    .io_sphere_4_data_3      (_ram_io_world_4_data_r),
+    .io_sphere_5_addr        (_bp_io_sphere_5_addr),
+    .io_sphere_5_data_0      (_ram_io_world_5_data_x),
+    .io_sphere_5_data_1      (_ram_io_world_5_data_y),
+    .io_sphere_5_data_2      (_ram_io_world_5_data_z),
+    .io_sphere_5_data_3      (_ram_io_world_5_data_r),
+    .io_sphere_6_addr        (_bp_io_sphere_6_addr),
+    .io_sphere_6_data_0      (_ram_io_world_6_data_x),
+    .io_sphere_6_data_1      (_ram_io_world_6_data_y),
+    .io_sphere_6_data_2      (_ram_io_world_6_data_z),
+    .io_sphere_6_data_3      (_ram_io_world_6_data_r),
+    .io_sphere_7_addr        (_bp_io_sphere_7_addr),
+    .io_sphere_7_data_0      (_ram_io_world_7_data_x),
+    .io_sphere_7_data_1      (_ram_io_world_7_data_y),
+    .io_sphere_7_data_2      (_ram_io_world_7_data_z),
+    .io_sphere_7_data_3      (_ram_io_world_7_data_r),
+    .io_sphere_8_addr        (_bp_io_sphere_8_addr),
+    .io_sphere_8_data_0      (_ram_io_world_8_data_x),
+    .io_sphere_8_data_1      (_ram_io_world_8_data_y),
+    .io_sphere_8_data_2      (_ram_io_world_8_data_z),
+    .io_sphere_8_data_3      (_ram_io_world_8_data_r),
+    .io_sphere_9_addr        (_bp_io_sphere_9_addr),
+    .io_sphere_9_data_0      (_ram_io_world_9_data_x),
+    .io_sphere_9_data_1      (_ram_io_world_9_data_y),
+    .io_sphere_9_data_2      (_ram_io_world_9_data_z),
+    .io_sphere_9_data_3      (_ram_io_world_9_data_r),
+    .io_sphere_10_addr       (_bp_io_sphere_10_addr),
+    .io_sphere_10_data_0     (_ram_io_world_10_data_x),
+    .io_sphere_10_data_1     (_ram_io_world_10_data_y),
+    .io_sphere_10_data_2     (_ram_io_world_10_data_z),
+    .io_sphere_10_data_3     (_ram_io_world_10_data_r),
+    .io_sphere_11_addr       (_bp_io_sphere_11_addr),
+    .io_sphere_11_data_0     (_ram_io_world_11_data_x),
+    .io_sphere_11_data_1     (_ram_io_world_11_data_y),
+    .io_sphere_11_data_2     (_ram_io_world_11_data_z),
+    .io_sphere_11_data_3     (_ram_io_world_11_data_r),
+    .io_sphere_12_addr       (_bp_io_sphere_12_addr),
+    .io_sphere_12_data_0     (_ram_io_world_12_data_x),
+    .io_sphere_12_data_1     (_ram_io_world_12_data_y),
+    .io_sphere_12_data_2     (_ram_io_world_12_data_z),
+    .io_sphere_12_data_3     (_ram_io_world_12_data_r),
+    .io_sphere_13_addr       (_bp_io_sphere_13_addr),
+    .io_sphere_13_data_0     (_ram_io_world_13_data_x),
+    .io_sphere_13_data_1     (_ram_io_world_13_data_y),
+    .io_sphere_13_data_2     (_ram_io_world_13_data_z),
+    .io_sphere_13_data_3     (_ram_io_world_13_data_r),
+    .io_sphere_14_addr       (_bp_io_sphere_14_addr),
+    .io_sphere_14_data_0     (_ram_io_world_14_data_x),
+    .io_sphere_14_data_1     (_ram_io_world_14_data_y),
+    .io_sphere_14_data_2     (_ram_io_world_14_data_z),
+    .io_sphere_14_data_3     (_ram_io_world_14_data_r),
+    .io_sphere_15_addr       (_bp_io_sphere_15_addr),
+    .io_sphere_15_data_0     (_ram_io_world_15_data_x),
+    .io_sphere_15_data_1     (_ram_io_world_15_data_y),
+    .io_sphere_15_data_2     (_ram_io_world_15_data_z),
+    .io_sphere_15_data_3     (_ram_io_world_15_data_r),
+    .io_pairs_0_ready        (_lines_io_in_0_ready),
+    .io_pairs_0_valid        (_bp_io_pairs_0_valid),
+    .io_pairs_0_bits_i       (_bp_io_pairs_0_bits_i),
+    .io_pairs_0_bits_j       (_bp_io_pairs_0_bits_j),
+    .io_pairs_1_ready        (_lines_io_in_1_ready),
+    .io_pairs_1_valid        (_bp_io_pairs_1_valid),
+    .io_pairs_1_bits_i       (_bp_io_pairs_1_bits_i),
+    .io_pairs_1_bits_j       (_bp_io_pairs_1_bits_j),
+    .io_pairs_2_ready        (_lines_io_in_2_ready),
+    .io_pairs_2_valid        (_bp_io_pairs_2_valid),
+    .io_pairs_2_bits_i       (_bp_io_pairs_2_bits_i),
+    .io_pairs_2_bits_j       (_bp_io_pairs_2_bits_j),
+    .io_pairs_3_ready        (_lines_io_in_3_ready),
+    .io_pairs_3_valid        (_bp_io_pairs_3_valid),
+    .io_pairs_3_bits_i       (_bp_io_pairs_3_bits_i),
+    .io_pairs_3_bits_j       (_bp_io_pairs_3_bits_j),
+    .io_pairs_4_ready        (_lines_io_in_4_ready),
+    .io_pairs_4_valid        (_bp_io_pairs_4_valid),
+    .io_pairs_4_bits_i       (_bp_io_pairs_4_bits_i),
+    .io_pairs_4_bits_j       (_bp_io_pairs_4_bits_j),
+    .io_pairs_5_ready        (_lines_io_in_5_ready),
+    .io_pairs_5_valid        (_bp_io_pairs_5_valid),
+    .io_pairs_5_bits_i       (_bp_io_pairs_5_bits_i),
+    .io_pairs_5_bits_j       (_bp_io_pairs_5_bits_j),
+    .io_pairs_6_ready        (_lines_io_in_6_ready),
+    .io_pairs_6_valid        (_bp_io_pairs_6_valid),
+    .io_pairs_6_bits_i       (_bp_io_pairs_6_bits_i),
+    .io_pairs_6_bits_j       (_bp_io_pairs_6_bits_j),
+    .io_pairs_7_ready        (_lines_io_in_7_ready),
+    .io_pairs_7_valid        (_bp_io_pairs_7_valid),
+    .io_pairs_7_bits_i       (_bp_io_pairs_7_bits_i),
+    .io_pairs_7_bits_j       (_bp_io_pairs_7_bits_j),
+    .io_pairs_8_ready        (_lines_io_in_8_ready),
+    .io_pairs_8_valid        (_bp_io_pairs_8_valid),
+    .io_pairs_8_bits_i       (_bp_io_pairs_8_bits_i),
+    .io_pairs_8_bits_j       (_bp_io_pairs_8_bits_j),
+    .io_pairs_9_ready        (_lines_io_in_9_ready),
+    .io_pairs_9_valid        (_bp_io_pairs_9_valid),
+    .io_pairs_9_bits_i       (_bp_io_pairs_9_bits_i),
+    .io_pairs_9_bits_j       (_bp_io_pairs_9_bits_j),
+    .io_pairs_10_ready       (_lines_io_in_10_ready),
+    .io_pairs_10_valid       (_bp_io_pairs_10_valid),
+    .io_pairs_10_bits_i      (_bp_io_pairs_10_bits_i),
+    .io_pairs_10_bits_j      (_bp_io_pairs_10_bits_j),
+    .io_pairs_11_ready       (_lines_io_in_11_ready),
+    .io_pairs_11_valid       (_bp_io_pairs_11_valid),
+    .io_pairs_11_bits_i      (_bp_io_pairs_11_bits_i),
+    .io_pairs_11_bits_j      (_bp_io_pairs_11_bits_j),
+    .io_pairs_12_ready       (_lines_io_in_12_ready),
+    .io_pairs_12_valid       (_bp_io_pairs_12_valid),
+    .io_pairs_12_bits_i      (_bp_io_pairs_12_bits_i),
+    .io_pairs_12_bits_j      (_bp_io_pairs_12_bits_j),
+    .io_pairs_13_ready       (_lines_io_in_13_ready),
+    .io_pairs_13_valid       (_bp_io_pairs_13_valid),
+    .io_pairs_13_bits_i      (_bp_io_pairs_13_bits_i),
+    .io_pairs_13_bits_j      (_bp_io_pairs_13_bits_j),
+    .io_pairs_14_ready       (_lines_io_in_14_ready),
+    .io_pairs_14_valid       (_bp_io_pairs_14_valid),
+    .io_pairs_14_bits_i      (_bp_io_pairs_14_bits_i),
+    .io_pairs_14_bits_j      (_bp_io_pairs_14_bits_j),
+    .io_pairs_15_ready       (_lines_io_in_15_ready),
+    .io_pairs_15_valid       (_bp_io_pairs_15_valid),
+    .io_pairs_15_bits_i      (_bp_io_pairs_15_bits_i),
+    .io_pairs_15_bits_j      (_bp_io_pairs_15_bits_j),
     .io_busy                 (_bp_io_busy),
     .io_status_k             (_bp_io_status_k),
     .io_status_large         (_bp_io_status_large),
@@ -20313,14 +25869,74 @@ module Puc_world(
     .io_status_badBucket     (_bp_io_status_badBucket),
     .io_status_sortMismatch  (_bp_io_status_sortMismatch)
   );
-  WorldPairLines_i12_world lines (
+  WorldPairLines_i12_l16_world lines (
     .clock            (clock),
     .reset            (reset),
     .io_start         (engineStart),
-    .io_in_ready      (_lines_io_in_ready),
-    .io_in_valid      (_bp_io_pairs_valid),
-    .io_in_bits_i     (_bp_io_pairs_bits_i),
-    .io_in_bits_j     (_bp_io_pairs_bits_j),
+    .io_in_0_ready    (_lines_io_in_0_ready),
+    .io_in_0_valid    (_bp_io_pairs_0_valid),
+    .io_in_0_bits_i   (_bp_io_pairs_0_bits_i),
+    .io_in_0_bits_j   (_bp_io_pairs_0_bits_j),
+    .io_in_1_ready    (_lines_io_in_1_ready),
+    .io_in_1_valid    (_bp_io_pairs_1_valid),
+    .io_in_1_bits_i   (_bp_io_pairs_1_bits_i),
+    .io_in_1_bits_j   (_bp_io_pairs_1_bits_j),
+    .io_in_2_ready    (_lines_io_in_2_ready),
+    .io_in_2_valid    (_bp_io_pairs_2_valid),
+    .io_in_2_bits_i   (_bp_io_pairs_2_bits_i),
+    .io_in_2_bits_j   (_bp_io_pairs_2_bits_j),
+    .io_in_3_ready    (_lines_io_in_3_ready),
+    .io_in_3_valid    (_bp_io_pairs_3_valid),
+    .io_in_3_bits_i   (_bp_io_pairs_3_bits_i),
+    .io_in_3_bits_j   (_bp_io_pairs_3_bits_j),
+    .io_in_4_ready    (_lines_io_in_4_ready),
+    .io_in_4_valid    (_bp_io_pairs_4_valid),
+    .io_in_4_bits_i   (_bp_io_pairs_4_bits_i),
+    .io_in_4_bits_j   (_bp_io_pairs_4_bits_j),
+    .io_in_5_ready    (_lines_io_in_5_ready),
+    .io_in_5_valid    (_bp_io_pairs_5_valid),
+    .io_in_5_bits_i   (_bp_io_pairs_5_bits_i),
+    .io_in_5_bits_j   (_bp_io_pairs_5_bits_j),
+    .io_in_6_ready    (_lines_io_in_6_ready),
+    .io_in_6_valid    (_bp_io_pairs_6_valid),
+    .io_in_6_bits_i   (_bp_io_pairs_6_bits_i),
+    .io_in_6_bits_j   (_bp_io_pairs_6_bits_j),
+    .io_in_7_ready    (_lines_io_in_7_ready),
+    .io_in_7_valid    (_bp_io_pairs_7_valid),
+    .io_in_7_bits_i   (_bp_io_pairs_7_bits_i),
+    .io_in_7_bits_j   (_bp_io_pairs_7_bits_j),
+    .io_in_8_ready    (_lines_io_in_8_ready),
+    .io_in_8_valid    (_bp_io_pairs_8_valid),
+    .io_in_8_bits_i   (_bp_io_pairs_8_bits_i),
+    .io_in_8_bits_j   (_bp_io_pairs_8_bits_j),
+    .io_in_9_ready    (_lines_io_in_9_ready),
+    .io_in_9_valid    (_bp_io_pairs_9_valid),
+    .io_in_9_bits_i   (_bp_io_pairs_9_bits_i),
+    .io_in_9_bits_j   (_bp_io_pairs_9_bits_j),
+    .io_in_10_ready   (_lines_io_in_10_ready),
+    .io_in_10_valid   (_bp_io_pairs_10_valid),
+    .io_in_10_bits_i  (_bp_io_pairs_10_bits_i),
+    .io_in_10_bits_j  (_bp_io_pairs_10_bits_j),
+    .io_in_11_ready   (_lines_io_in_11_ready),
+    .io_in_11_valid   (_bp_io_pairs_11_valid),
+    .io_in_11_bits_i  (_bp_io_pairs_11_bits_i),
+    .io_in_11_bits_j  (_bp_io_pairs_11_bits_j),
+    .io_in_12_ready   (_lines_io_in_12_ready),
+    .io_in_12_valid   (_bp_io_pairs_12_valid),
+    .io_in_12_bits_i  (_bp_io_pairs_12_bits_i),
+    .io_in_12_bits_j  (_bp_io_pairs_12_bits_j),
+    .io_in_13_ready   (_lines_io_in_13_ready),
+    .io_in_13_valid   (_bp_io_pairs_13_valid),
+    .io_in_13_bits_i  (_bp_io_pairs_13_bits_i),
+    .io_in_13_bits_j  (_bp_io_pairs_13_bits_j),
+    .io_in_14_ready   (_lines_io_in_14_ready),
+    .io_in_14_valid   (_bp_io_pairs_14_valid),
+    .io_in_14_bits_i  (_bp_io_pairs_14_bits_i),
+    .io_in_14_bits_j  (_bp_io_pairs_14_bits_j),
+    .io_in_15_ready   (_lines_io_in_15_ready),
+    .io_in_15_valid   (_bp_io_pairs_15_valid),
+    .io_in_15_bits_i  (_bp_io_pairs_15_bits_i),
+    .io_in_15_bits_j  (_bp_io_pairs_15_bits_j),
     .io_done          (bpDone),
     .io_out_ready     (run_8[1] & _disp_io_pairs_ready),
     .io_out_valid     (_lines_io_out_valid),

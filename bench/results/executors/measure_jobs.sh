@@ -5,14 +5,16 @@
 # (CCACHE_DISABLE) so that the second run does not compile from the first one's cache. sbt's
 # compiled generator stays warm: compile it once before (sbt compile).
 # Usage (from a checkout nothing else edits or builds in):
-#   bench/results/executors/measure_jobs.sh OUT_DIR [CONFIGS]   (CONFIGS e.g. n1_fp32,n2_fp32)
+#   bench/results/executors/measure_jobs.sh OUT_DIR [CONFIGS] [JOBS]
+# CONFIGS e.g. n1_fp32,n2_fp32 (empty: all); JOBS the --jobs values to run, default "1 2".
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../../.."
-out="${1:?usage: measure_jobs.sh OUT_DIR [CONFIGS]}"
+out="${1:?usage: measure_jobs.sh OUT_DIR [CONFIGS] [JOBS]}"
 configs="${2:-}"
+job_counts="${3:-1 2}"
 mkdir -p "$out"
 export CCACHE_DISABLE=1
-for jobs in 1 2; do
+for jobs in $job_counts; do
   if [[ -n "$configs" ]]; then
     for c in ${configs//,/ }; do rm -rf "build/sweep/gen/$c" "build/sweep/host/$c"; done
   else

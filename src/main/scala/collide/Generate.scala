@@ -27,6 +27,7 @@ object Generate {
       split: Boolean = false,
       noVerilog: Boolean = false,
       world: Option[Boolean] = None,
+      worldLanes: Option[Int] = None,
       scpuImpl: Option[String] = None,
       listPresets: Boolean = false)
 
@@ -56,6 +57,9 @@ object Generate {
         .text("MODE's reset value selects dense records"),
       opt[Boolean]("world").valueName("true|false").action((v, o) => o.copy(world = Some(v)))
         .text("build world mode (MODE bit 1: the on-chip broad phase, default parameters; at most 4096 spheres)"),
+      opt[Int]("world-lanes").valueName("L").action((v, o) => o.copy(worldLanes = Some(v)))
+        .text("the broad phase's candidate generators, 1..16 (world mode only; each adds a copy of its sort RAM, " +
+          "and every two a copy of the sphere table)"),
       opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
         .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
           "(same cycles and records, a far faster co-simulation; not synthesizable)"),
@@ -94,8 +98,12 @@ object Generate {
       c10 <- opt("--records", o.records)((c, v) => RecordLayout.parse(v).flatMap(r => step("--records", c.copy(records = Some(r)))))(c9)
       c11 <- opt("--world", o.world)((c, v) => step("--world",
         c.copy(world = if (v) Some(c.world.getOrElse(collide.world.BroadPhaseParams.default)) else None)))(c10)
-      c12 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c11)
-    } yield c12
+      c12 <- opt("--world-lanes", o.worldLanes)((c, v) => c.world match {
+        case Some(bp) => step("--world-lanes", c.copy(world = Some(bp.copy(lanes = v))))
+        case None => Left("--world-lanes: world mode is not built (add --world true or --preset world)")
+      })(c11)
+      c13 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c12)
+    } yield c13
   }
 
   val firtoolOpts: Array[String] = Array(

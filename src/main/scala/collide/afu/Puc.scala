@@ -121,10 +121,11 @@ class Puc(p: PucParams) extends Module {
       val bp = Module(new collide.world.BroadPhase(w.fp, w.bp, p.maxSpheres))
       bp.io.start := bpStart
       bp.io.num   := numSpheres(bp.io.countW - 1, 0) // <= maxSpheres: checked at sCheck
-      val port = ram.io.world.get
-      port.addr := bp.io.sphere.addr
-      bp.io.sphere.data := VecInit(port.data.x, port.data.y, port.data.z, port.data.r)
-      val lines = Module(new WorldPairLines(p, bp.io.itemW))
+      for ((port, lane) <- ram.io.world.get.zip(bp.io.sphere)) {
+        port.addr := lane.addr
+        lane.data := VecInit(port.data.x, port.data.y, port.data.z, port.data.r)
+      }
+      val lines = Module(new WorldPairLines(p, bp.io.itemW, w.bp.lanes))
       lines.io.start := engineStart
       lines.io.in <> bp.io.pairs
       val bpDone = bpStarted && !bp.io.busy

@@ -101,11 +101,13 @@ final case class PucParams(
   val writeQueueLines: Int = 8
   val sphereLineBits: Int = chisel3.util.log2Ceil(maxSpheres / layout.spheresPerLine)
   val pairLineBits: Int = layout.pairIndexBits - chisel3.util.log2Ceil(layout.pairsPerLine)
-  /** One copy per SCPU, and in world mode one more for the broad phase's reads (it reads the
-    * table while the SCPUs compute the candidates it found earlier). */
+  /** Copies the broad phase reads in world mode (it reads the table while the SCPUs compute
+    * the candidates it found earlier): one per two lanes. */
+  val worldCopies: Int = world.map(_.bp.sphereCopies).getOrElse(0)
+  /** One copy per SCPU (or one banked copy), and the broad phase's. */
   val ramCopies: Int = ramPorts match {
-    case SphereRamPorts.Replicated => scpus + world.size
-    case _: SphereRamPorts.Banked  => 1 + world.size
+    case SphereRamPorts.Replicated => scpus + worldCopies
+    case _: SphereRamPorts.Banked  => 1 + worldCopies
   }
   /** Banks of the SCPUs' copy (1 when replicated: each copy is one line-wide RAM). */
   val banks: Int = ramPorts match {
@@ -119,13 +121,15 @@ final case class PucParams(
   val ramBitsPerCopy: Long = maxSpheres.toLong * 4 * linkWidth
   val ramBits: Long = ramBitsPerCopy * ramCopies
   /** Stratix V M20K blocks of the sphere table, all copies (M20k: an estimate). The SCPUs'
-    * copies need two read ports; the broad phase's copy one. */
+    * copies need two read ports; the broad phase's one per lane, two lanes a copy. */
   val ramM20k: Long = {
     val scpuCopies = ramPorts match {
       case SphereRamPorts.Replicated => scpus * M20k.blocks(maxSpheres / layout.spheresPerLine, Link.lineBits, twoPorts = true)
       case _: SphereRamPorts.Banked  => banks * M20k.blocks(maxSpheres / banks, 4 * linkWidth, twoPorts = true)
     }
-    scpuCopies + world.size * M20k.blocks(maxSpheres / layout.spheresPerLine, Link.lineBits, twoPorts = false)
+    val worldLanes = world.map(_.bp.lanes).getOrElse(0)
+    scpuCopies + (worldLanes / 2) * M20k.blocks(maxSpheres / layout.spheresPerLine, Link.lineBits, twoPorts = true) +
+      (worldLanes % 2) * M20k.blocks(maxSpheres / layout.spheresPerLine, Link.lineBits, twoPorts = false)
   }
   val pairBufferBits: Long = pairBufferLines.toLong * (Link.lineBits + pairLineBits)
 }

@@ -18,7 +18,8 @@ class Sphere(w: Int) extends Bundle {
   * of a bank in the cycle, 1 for the second; reads of one sphere share its port) and never
   * sends a bank a third sphere (PairDispatcher cuts its groups so); each read's data is routed
   * back from its bank and port.
-  * World mode adds one more line-wide copy with one read port, always enabled, for the broad phase.
+  * World mode adds line-wide copies for the broad phase's lanes, two lanes a copy (a block RAM's
+  * two read ports; one port when a lane is left over), always enabled.
   */
 class SphereRam(p: PucParams) extends Module {
   override def desiredName =
@@ -34,11 +35,11 @@ class SphereRam(p: PucParams) extends Module {
     val rdata = Output(Vec(p.scpus, Vec(2, new Sphere(p.linkWidth))))
     /** Banked: each read's port at its bank (at most two spheres a bank a cycle). */
     val rport = if (p.banked) Some(Input(Vec(p.scpus, Vec(2, UInt(1.W))))) else None
-    /** World mode: the broad phase's read, data the next cycle. */
-    val world = p.world.map(_ => new Bundle {
+    /** World mode: each broad-phase lane's read, data the next cycle. */
+    val world = p.world.map(w => Vec(w.bp.lanes, new Bundle {
       val addr = Input(UInt(idxBits.W))
       val data = Output(new Sphere(p.linkWidth))
-    })
+    }))
   })
   /** The sphere at bit `b` of a RAM word. */
   private def sphereAt(word: UInt, b: Int): Sphere = {
@@ -96,11 +97,13 @@ class SphereRam(p: PucParams) extends Module {
         io.rdata(c)(port) := sphereAt(words(at), 0)
       }
   }
-  for (w <- io.world) {
+  for (lanes <- io.world; pair <- lanes.grouped(2)) {
     val mem = SyncReadMem(depth, UInt(Link.lineBits.W))
     when(io.write.valid) { mem.write(io.write.bits.line(log2Ceil(depth).max(1) - 1, 0), io.write.bits.data) }
-    val word = if (depth == 1) mem.read(0.U) else mem.read(w.addr(idxBits - 1, log2Ceil(spl)))
-    w.data := unpack(word, RegNext(w.addr(log2Ceil(spl) - 1, 0)))
+    for (w <- pair) {
+      val word = if (depth == 1) mem.read(0.U) else mem.read(w.addr(idxBits - 1, log2Ceil(spl)))
+      w.data := unpack(word, RegNext(w.addr(log2Ceil(spl) - 1, 0)))
+    }
   }
 }
 

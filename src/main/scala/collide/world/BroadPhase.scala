@@ -35,7 +35,9 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   * (3) the prefix sum; (4) the scatter, reading the spheres a third time; (5) the
   * CandidateGenerator, whose key records SphereKeys recomputes from the sphere table (no
   * key table: the table the AFU holds anyway is the only per-sphere RAM besides the sort's).
-  * One sphere a cycle in each pass. The golden model is
+  * One sphere a cycle in each pass. With `bp.lanes` candidate generators, lane l reads the
+  * table through port l of `sphere` (port 0 also serves the passes) and emits its pairs on
+  * port l of `pairs`; together they are the candidates. The golden model is
   * BroadPhaseModel; the spec BroadPhaseSpec compares them pair for pair.
   */
 class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int) extends Bundle {
@@ -43,11 +45,11 @@ class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int) extends B
   val countW = log2Ceil(maxSpheres + 1)
   val start = Input(Bool())
   val num = Input(UInt(countW.W))
-  val sphere = new Bundle {
+  val sphere = Vec(bp.lanes, new Bundle {
     val addr = Output(UInt(itemW.W))
     val data = Input(Vec(4, UInt(p.width.W))) // the cycle after
-  }
-  val pairs = Decoupled(new WorldPair(itemW))
+  })
+  val pairs = Vec(bp.lanes, Decoupled(new WorldPair(itemW)))
   val busy = Output(Bool())
   val status = Output(new BroadPhaseStatus(SphereKeys.kWidth(p), countW))
 }
@@ -58,7 +60,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   val tableLog2: Int = bp.tableLog2(maxSpheres)
   private val largeSlots = math.max(1, bp.largeMax)
   override def desiredName =
-    s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}_w${bp.wordLog2}"
+    s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}_w${bp.wordLog2}" +
+      (if (bp.lanes > 1) s"_l${bp.lanes}" else "")
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres))
   private val itemW = io.itemW
   private val countW = io.countW
@@ -67,9 +70,17 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
 
   private val keys = Module(new SphereKeys(p, bp, keysLatency))
   private val cellExp = Module(new CellExponent(p, bp))
-  private val sort = Module(new BucketSort(maxSpheres, tableLog2, bp.wordLog2))
-  private val gen = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
-    keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2)))
+  // One sort per lane: the passes write every copy alike; each lane looks up and marks its own.
+  private val sorts = Seq.fill(bp.lanes)(Module(new BucketSort(maxSpheres, tableLog2, bp.wordLog2)))
+  private val sort = sorts.head
+  private val gens = Seq.tabulate(bp.lanes) { l =>
+    val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
+      keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes))
+    g.io.lane.foreach(_ := l.U)
+    g
+  }
+  /** Lanes 1 and up recompute their key records with SphereKeys of their own. */
+  private val laneKeys = Seq.fill(bp.lanes - 1)(Module(new SphereKeys(p, bp, keysLatency)))
   private val larges = Reg(Vec(largeSlots, new WorldKey(itemW, bp.cellBits, qWidth)))
 
   private object S extends ChiselEnum { val idle, load, classify, prefix, scatter, generate = Value }
@@ -94,11 +105,11 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   // --- passes 1, 2 and 4: read the sphere table, one sphere a cycle, through SphereKeys -----
   // (in pass 5 the generator reads it, for its key records)
   private val reading = (state === S.load || state === S.classify || state === S.scatter) && i < num
-  io.sphere.addr := Mux(state === S.generate, gen.io.keyAddr, i(itemW - 1, 0))
+  io.sphere.head.addr := Mux(state === S.generate, gens.head.io.keyAddr, i(itemW - 1, 0))
   private val rdValid = RegNext(reading, false.B)
   private val rdIndex = RegNext(i(itemW - 1, 0))
   keys.io.in.valid := rdValid
-  keys.io.in.sphere := io.sphere.data
+  keys.io.in.sphere := io.sphere.head.data
   keys.io.in.k := Mux(state === S.load, 0.S, cellExp.io.k) // need and top do not depend on k
   private val kIndex = Pipeline(rdIndex, keysLatency, true.B)
   private val ko = keys.io.out
@@ -111,12 +122,24 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   cellExp.io.in.nonFinite := ko.nonFinite
 
   private val k = cellExp.io.k
-  private val isLarge = !ko.nonFinite && !ko.needNone && ko.need > k
+  private def large(o: SphereKeys): Bool = !o.io.out.nonFinite && !o.io.out.needNone && o.io.out.need > k
+  private def record(o: SphereKeys): KeyRecord = {
+    val r = Wire(new KeyRecord(bp.cellBits, qWidth))
+    r.cell := o.io.out.cell; r.q := o.io.out.q; r.qr := o.io.out.qr; r.large := large(o); r.excluded := o.io.out.nonFinite
+    r
+  }
+  private val isLarge = large(keys)
   private val isSmall = !ko.nonFinite && !isLarge
   private val classified = ko.valid && state === S.classify
-  private val rec = Wire(new KeyRecord(bp.cellBits, qWidth))
-  rec.cell := ko.cell; rec.q := ko.q; rec.qr := ko.qr; rec.large := isLarge; rec.excluded := ko.nonFinite
-  gen.io.keyData := rec
+  private val rec = record(keys)
+  gens.head.io.keyData := rec
+  for ((lk, l) <- laneKeys.zip(1 until bp.lanes)) {
+    io.sphere(l).addr := gens(l).io.keyAddr
+    lk.io.in.valid := false.B // only its keys are used, never its valid
+    lk.io.in.sphere := io.sphere(l).data
+    lk.io.in.k := k
+    gens(l).io.keyData := record(lk)
+  }
   when(classified) {
     when(ko.nonFinite) { st.excluded := st.excluded + 1.U }
     when(isSmall) {
@@ -132,35 +155,47 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
   }
 
-  sort.io.usedLog2 := usedLog2
-  sort.io.clear := io.start && state === S.idle
-  sort.io.prefix := state === S.prefix && !sent
   private val scattered = ko.valid && state === S.scatter
-  sort.io.in.valid := (classified || scattered) && isSmall
-  sort.io.in.bits.scatter := state === S.scatter
-  sort.io.in.bits.bucket := CellHash(ko.cell, tableLog2, usedLog2)
-  sort.io.in.bits.item := kIndex
-  assert(!sort.io.in.valid || sort.io.in.ready, "BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)")
-  sort.io.lookup.bucket := gen.io.lookup.bucket
-  gen.io.lookup.begin := sort.io.lookup.begin; gen.io.lookup.end := sort.io.lookup.end
-  gen.io.lookup.word := sort.io.lookup.word
-  sort.io.entry.addr := gen.io.entry.addr
-  gen.io.entry.item := sort.io.entry.item; gen.io.entry.mark := sort.io.entry.mark
-  sort.io.mark := gen.io.mark
-
-  gen.io.start := state === S.generate && !sent
-  gen.io.usedLog2 := usedLog2
-  gen.io.num := num
-  gen.io.slack := {
+  private val slack = {
     // BroadPhaseModel.boxSlack: 1 + max(1, 2^(errorExp + F - k)), saturated to the width.
     val e = bp.errorExp(p).S +& bp.filterFracBits.S -& k
     val big = e >= (qWidth - 1).S
     Mux(e < 0.S, 2.U, Mux(big, ((BigInt(1) << qWidth) - 1).U, 1.U +& (1.U << e.asUInt(log2Ceil(qWidth) - 1, 0))))
   }
-  gen.io.larges := larges
-  gen.io.largeCount := largeCount
-  io.pairs <> gen.io.pairs
-  when(io.pairs.fire) { st.candidates := st.candidates + 1.U }
+  for (((srt, gen), l) <- sorts.zip(gens).zipWithIndex) {
+    srt.io.usedLog2 := usedLog2
+    srt.io.clear := io.start && state === S.idle
+    srt.io.prefix := state === S.prefix && !sent
+    srt.io.in.valid := (classified || scattered) && isSmall
+    srt.io.in.bits.scatter := state === S.scatter
+    srt.io.in.bits.bucket := CellHash(ko.cell, tableLog2, usedLog2)
+    srt.io.in.bits.item := kIndex
+    assert(!srt.io.in.valid || srt.io.in.ready, "BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)")
+    srt.io.lookup.bucket := gen.io.lookup.bucket
+    gen.io.lookup.begin := srt.io.lookup.begin; gen.io.lookup.end := srt.io.lookup.end
+    gen.io.lookup.word := srt.io.lookup.word
+    srt.io.entry.addr := gen.io.entry.addr
+    gen.io.entry.item := srt.io.entry.item; gen.io.entry.mark := srt.io.entry.mark
+    srt.io.mark := gen.io.mark
+
+    gen.io.start := state === S.generate && !sent
+    gen.io.usedLog2 := usedLog2
+    gen.io.num := num
+    gen.io.slack := slack
+    gen.io.larges := larges
+    gen.io.largeCount := largeCount
+    // Lane l streams spheres [num c_l >> 16, num c_(l+1) >> 16) past the large list, c_l =
+    // floor(l 2^16 / lanes): the slices tile the table exactly, even to a sphere or so.
+    def cut(m: Int): UInt = if (m == 0) 0.U else if (m == bp.lanes) num else ((num * ((m.toLong << 16) / bp.lanes).U) >> 16).pad(countW)(countW - 1, 0)
+    gen.io.largeFrom := cut(l)
+    gen.io.largeTo := cut(l + 1)
+    io.pairs(l) <> gen.io.pairs
+  }
+  st.candidates := st.candidates + PopCount(io.pairs.map(_.fire))
+  private def laneSum(f: CandidateGenerator => UInt): UInt = gens.map(f).reduce(_ +& _)(31, 0)
+  private val gensBusy = gens.map(_.io.busy).reduce(_ || _)
+  // A cycle of the large pass: some lane in it and none still in the grid.
+  private val largeOnly = gens.map(g => !g.io.busy || g.io.inLargePass).reduce(_ && _)
 
   // --- sequencing ----------------------------------------------------------------------------
   when(state =/= S.idle) { st.cycTotal := st.cycTotal + 1.U }
@@ -198,12 +233,12 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
     is(S.generate) {
       sent := true.B
-      when(gen.io.inLargePass) { st.cycLarge := st.cycLarge + 1.U }.otherwise { st.cycGrid := st.cycGrid + 1.U }
-      when(sent && !gen.io.busy) {
+      when(largeOnly) { st.cycLarge := st.cycLarge + 1.U }.otherwise { st.cycGrid := st.cycGrid + 1.U }
+      when(sent && !gensBusy) {
         state := S.idle
         st.k := k
-        st.cells := gen.io.stats.cells; st.chunks := gen.io.stats.chunks
-        st.scanned := gen.io.stats.scanned; st.probes := gen.io.stats.probes
+        st.cells := laneSum(_.io.stats.cells); st.chunks := laneSum(_.io.stats.chunks)
+        st.scanned := laneSum(_.io.stats.scanned); st.probes := laneSum(_.io.stats.probes)
         st.badBucket := sort.io.badBucket
         st.sortMismatch := sort.io.counted =/= sort.io.scattered
       }

@@ -24,6 +24,10 @@ package collide.world
   *                   comparators); a fuller cell is visited once per chunk
   * @param wordLog2   the sort's counters sit 2^wordLog2 to a RAM word: clear, prefix sum
   *                   and the generator's walk over the buckets take a word a cycle
+  * @param lanes      candidate generators working at once: lane l walks the counter words
+  *                   w = l mod lanes and takes the large list's chunks l, l + lanes, ...;
+  *                   each lane has its own copy of the sort's RAM (it marks its own buckets'
+  *                   entries) and its own read port on the sphere table
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -34,7 +38,8 @@ final case class BroadPhaseParams(
     cellOverError: Int = 5,
     filterFracBits: Int = 8,
     chunk: Int = 16,
-    wordLog2: Int = 3
+    wordLog2: Int = 3,
+    lanes: Int = 1
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -44,6 +49,7 @@ final case class BroadPhaseParams(
   require(filterFracBits >= 0 && filterFracBits <= 24, s"filterFracBits must be 0..24, got $filterFracBits")
   require(chunk >= 1 && chunk <= 256, s"chunk must be 1..256, got $chunk")
   require(wordLog2 >= 0 && wordLog2 <= 5, s"wordLog2 must be 0..5, got $wordLog2")
+  require(lanes >= 1 && lanes <= 16, s"lanes must be 1..16 (a pair line holds 16 candidates a cycle), got $lanes")
 
   val buckets: Int = 1 << bucketsLog2
 
@@ -51,12 +57,15 @@ final case class BroadPhaseParams(
     * 2 maxSpheres can use. */
   def tableLog2(maxSpheres: Int): Int = math.min(bucketsLog2, chisel3.util.log2Ceil(2 * maxSpheres))
   /** RAM bits of the broad phase for `maxSpheres`: the sort's counters (one per bucket) and its
-    * entries (a sphere index and a mark each). The sphere table it reads is the AFU's. */
+    * entries (a sphere index and a mark each), once per lane. The sphere table it reads is the
+    * AFU's (which holds ceil(lanes / 2) more copies for it: two lanes share a copy's two ports). */
   def ramBits(maxSpheres: Int): Long = {
     val countW = chisel3.util.log2Ceil(maxSpheres + 1)
     val itemW = chisel3.util.log2Ceil(maxSpheres)
-    (1L << tableLog2(maxSpheres)) * countW + maxSpheres.toLong * (itemW + 1)
+    lanes * ((1L << tableLog2(maxSpheres)) * countW + maxSpheres.toLong * (itemW + 1))
   }
+  /** Copies of the sphere table the lanes read: two lanes a copy (a block RAM's two ports). */
+  val sphereCopies: Int = (lanes + 1) / 2
 
   /** log2 of a bound on an SCPU's absolute error in d in compute format p: squares that
     * underflow or flush lose at most 3 * 2^minExp of d^2, so at most sqrt(3 * 2^minExp) <
@@ -77,4 +86,6 @@ object BroadPhaseParams {
   val tinyTable: BroadPhaseParams = default.copy(bucketsLog2 = 2, chunk = 1, wordLog2 = 0)
   /** No large list: one huge sphere makes the cell huge (the all-pairs worst case). */
   val noLarge: BroadPhaseParams = default.copy(largeMax = 0)
+  /** Four candidate generators. */
+  val fourLanes: BroadPhaseParams = default.copy(lanes = 4)
 }

@@ -5,23 +5,33 @@ import chisel3.util._
 import collide.world.model.BroadPhaseModel
 
 /** The candidate generator of the world-mode broad phase (docs/afu.md, "World mode"), one
-  * lane. Over a table sorted by BucketSort it walks the buckets in order; in each occupied
+  * lane of `lanes`. Over a table sorted by BucketSort it walks its share of the buckets in
+  * order (lane l the counter words l, l + lanes, ...; buckets are cells' hashes, so the shares
+  * are even on average, and a bucket is never split, so a lane marks only its own entries);
+  * in each occupied
   * bucket it takes the cells in order of their first entry, a chunk of up to `chunk` spheres
   * at a time (a scan of the bucket loads the first unmarked entry's cell and marks what it
   * loads); it then streams the chunk's own cell and its 13 half-shell neighbours (a bucket
   * lookup each, issued while the scan still runs) past the ChunkMatcher, and the next chunk's
   * scan follows the last visit without waiting for it to drain. Last, the large pass: chunks
-  * of the large list meet every non-excluded sphere. The pair stream is exactly
-  * BroadPhaseModel.run's candidates: the grid part in the same order, the large part as a set.
+  * of the large list meet every non-excluded sphere of this lane's slice of the table
+  * [largeFrom, largeTo) (the slices of all lanes cover the table once). With
+  * one lane the pair stream is exactly BroadPhaseModel.run's candidates, the grid part in
+  * the same order, the large part as a set; the lanes' streams together are that set.
   */
 class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, largeSlots: Int,
-                           perWord: Int) extends Bundle {
+                           perWord: Int, lanes: Int) extends Bundle {
   val start = Input(Bool())
+  /** This lane's number, 0 until lanes (none with one lane). */
+  val lane = if (lanes > 1) Some(Input(UInt(log2Ceil(lanes).W))) else None
   val usedLog2 = Input(UInt(log2Ceil(bucketsLog2 + 1).W))
   val num = Input(UInt(countW.W)) // spheres in the world (the large pass streams them all)
   val slack = Input(UInt(qWidth.W))
   val larges = Input(Vec(largeSlots, new WorldKey(itemW, cellBits, qWidth)))
   val largeCount = Input(UInt(log2Ceil(largeSlots + 1).W))
+  /** The spheres this lane streams past the large list: [largeFrom, largeTo). */
+  val largeFrom = Input(UInt(countW.W))
+  val largeTo = Input(UInt(countW.W))
   val lookup = new Bundle {
     val bucket = Output(UInt(bucketsLog2.W))
     val begin = Input(UInt(countW.W)) // the cycle after
@@ -48,11 +58,14 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
 }
 
 class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
-                         largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0) extends Module {
+                         largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1) extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
+  require(lanes >= 1, s"lanes must be >= 1, got $lanes")
   private val perWord = 1 << wordLog2
-  override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2"
-  val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord))
+  override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2" +
+    (if (lanes > 1) s"_l$lanes" else "")
+  val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes))
+  private val laneNo: UInt = io.lane.getOrElse(0.U)
 
   private val visitT = new WorldVisit(cellBits)
   private val stream = Module(new KeyStream(visitT, itemW, countW, cellBits, qWidth, keyLatency))
@@ -89,7 +102,8 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   io.stats.cells := cells; io.stats.chunks := chunks; io.stats.scanned := scanned; io.stats.probes := probes
 
   // --- bucket walk: a word of buckets a cycle; an occupied bucket stops it -----------------
-  private val bIssue = Reg(UInt((bucketsLog2 + 1).W))
+  // Wide enough for a step of `lanes` words past the last one.
+  private val bIssue = Reg(UInt(log2Ceil((1 << bucketsLog2) + lanes * perWord + 1).W))
   private val walkPend = RegInit(false.B)
   private val walkB = Reg(UInt((bucketsLog2 + 1).W))
   // --- the chunk: its cell, where its scan starts, what the scan found ----------------------
@@ -127,23 +141,24 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   }
   private def startLargePass(): Unit = {
     li := 0.U; lj := 0.U; matcher.io.clear := true.B
-    state := Mux(io.largeCount === 0.U, S.idle, S.largeLoad)
+    state := Mux(io.largeCount === 0.U || io.largeFrom >= io.largeTo, S.idle, S.largeLoad)
   }
 
   switch(state) {
     is(S.idle) {
       when(io.start) {
-        state := S.walk; bIssue := 0.U; walkPend := false.B
+        state := S.walk; bIssue := laneNo << wordLog2; walkPend := false.B
         cells := 0.U; chunks := 0.U; scanned := 0.U; probes := 0.U
       }
     }
     is(S.walk) {
       // A word of buckets a cycle: the lookup of bIssue returns the ends of its whole word,
-      // and the first occupied bucket at or after bIssue starts a chunk; none, the next word.
+      // and the first occupied bucket at or after bIssue starts a chunk; none, this lane's
+      // next word.
       val issueOk = bIssue < used
       io.lookup.bucket := bIssue(math.max(1, bucketsLog2) - 1, 0)
       walkPend := issueOk; walkB := bIssue
-      when(issueOk) { bIssue := ((bIssue >> wordLog2) + 1.U) << wordLog2 }
+      when(issueOk) { bIssue := ((bIssue >> wordLog2) + lanes.U) << wordLog2 }
       val base = (walkB >> wordLog2) << wordLog2
       val from = if (wordLog2 == 0) 0.U else walkB(wordLog2 - 1, 0)
       val ends = io.lookup.word
@@ -152,7 +167,9 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       val lane = PriorityEncoder(occupied.asUInt)
       when(walkPend && occupied.asUInt.orR) {
         p := VecInit(begins)(lane); bEnd := ends(lane); haveCell := false.B
-        bIssue := base + lane + 1.U; walkPend := false.B; cells := cells + 1.U
+        // On past it in this word, or at the word's end on to this lane's next word.
+        bIssue := Mux(lane === (perWord - 1).U, base + (lanes * perWord).U, base + lane + 1.U)
+        walkPend := false.B; cells := cells + 1.U
         startChunk()
       }.elsewhen(!walkPend && !issueOk) {
         startLargePass()
@@ -237,7 +254,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     }
     is(S.largeStream) {
       stream.io.req.valid := !sent
-      stream.io.req.bits.begin := 0.U; stream.io.req.bits.end := io.num
+      stream.io.req.bits.begin := io.largeFrom; stream.io.req.bits.end := io.largeTo
       stream.io.req.bits.direct := true.B; stream.io.req.bits.tag := DontCare
       when(stream.io.req.fire) { sent := true.B }
       val it = stream.io.out.bits

@@ -120,6 +120,10 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     endToEnd(small.copy(scpus = 4, ramPorts = SphereRamPorts.Banked(Some(4))), "fp32-banked")
   }
 
+  it should "find the same contacts with three broad-phase lanes (four fp32 SCPUs; one sphere copy shared by two lanes, one for the third)" in {
+    endToEnd(small.copy(scpus = 4, world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 3))), "fp32-lanes")
+  }
+
   it should "stop at the contact buffer's capacity, refuse dense world runs, and hold maxSpheres spheres" in {
     val rng = Seeds.rng("AfuWorldSpec-edges")
     test(new Afu(small)).withAnnotations(annos) { dut =>

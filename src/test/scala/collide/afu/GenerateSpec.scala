@@ -27,8 +27,15 @@ class GenerateSpec extends AnyFlatSpec {
     assert(cfg("--preset", "world", "--world", "false").toOption.get.world.isEmpty)
     // 2^13 buckets of 13-bit counters and 4096 entries of a 12-bit index and a mark
     assert(collide.world.BroadPhaseParams.default.ramBits(4096) == 8192L * 13 + 4096L * 13)
-    assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 159744.0)
-    assert(AfuConfig.world.puc.ramCopies == 17, "sixteen SCPU copies and the broad phase's")
+    // The world preset's 16 lanes: a sort RAM each, a sphere copy per two lanes.
+    assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 16 * 159744.0)
+    assert(AfuConfig.world.puc.ramCopies == 16 + 8, "sixteen SCPU copies and the broad phase's eight")
+    // Lanes: a sort RAM each, a sphere copy per two; a name of their own.
+    val l5 = cfg("--preset", "world", "--world-lanes", "5").toOption.get
+    assert(l5.world.get.lanes == 5 && l5.id.endsWith("_world5") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
+    assert(l5.world.get.ramBits(4096) == 5 * 159744L)
+    assert(cfg("--preset", "world", "--world-lanes", "16").toOption.get.isPreset)
+    assert(cfg("--preset", "world", "--world-lanes", "1").toOption.get.id.endsWith("_world"), "one lane: no lane count in the name")
   }
 
   it should "refuse a configuration that cannot be built, naming the flag and the problem" in {
@@ -53,6 +60,8 @@ class GenerateSpec extends AnyFlatSpec {
     err("--preset", "world", "--max-spheres", "8192")("--max-spheres", "4096")
     err("--world", "true", "--records", "derived-masked")("--world", "indexed")
     err("--world", "true", "--format", "fp24")("--world", "converts")
+    err("--world-lanes", "4")("--world-lanes", "not built")
+    err("--preset", "world", "--world-lanes", "17")("--world-lanes", "1..16")
   }
 
   it should "build the SCPUs as the C++ model for co-simulation only where the model reproduces them, saying why not elsewhere" in {
@@ -98,7 +107,7 @@ class GenerateSpec extends AnyFlatSpec {
     assert(cfg("--scpus", "4", "--ram-ports", "banked").toOption.get.puc.banks == 8)
     assert(cfg("--scpus", "1", "--format", "fp16", "--ram-ports", "banked").toOption.get.puc.banks == 8, "a line's 8 spheres")
     assert(cfg("--ram-ports", "banked:64").toOption.get.puc.banks == 64)
-    assert(cfg("--preset", "world", "--ram-ports", "banked").toOption.get.puc.ramCopies == 2, "the SCPUs' copy and the broad phase's")
+    assert(cfg("--preset", "world", "--ram-ports", "banked").toOption.get.puc.ramCopies == 1 + 8, "the SCPUs' copy and the broad phase's eight (16 lanes)")
   }
 
   it should "pick the link format from the compute format, or the one asked for" in {

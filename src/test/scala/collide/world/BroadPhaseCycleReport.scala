@@ -10,13 +10,14 @@ import collide.scpu.ScpuConfig
 import collide.world.BroadPhaseWorlds._
 import collide.world.model._
 
-/** Cycles of the broad phase's RTL (one candidate-generator lane) on Verilator, pass by
-  * pass, for uniform and clustered clouds of growing size (and uniform ones with four huge
-  * spheres, for the large pass), beside the golden model's work
-  * counts and its cycle estimate. bench/world/fit_cycles.py fits the linear model to it.
+/** Cycles of the broad phase's RTL on Verilator, pass by pass, for uniform and clustered
+  * clouds of growing size (and uniform ones with four huge spheres, for the large pass),
+  * beside the golden model's work counts and its cycle estimate, for each number of
+  * candidate-generator lanes asked for (default one). bench/world/fit_cycles.py fits the
+  * linear model to the one-lane rows; bench/world/lanes.py reports the lanes.
   *
   *   sbt "Test/runMain collide.world.BroadPhaseCycleReport [--sizes 500,1000,...] [--max 16384]
-  *        [--spheres FILE.csv ...] [--out FILE.csv]"
+  *        [--spheres FILE.csv ...] [--lanes 1,4,16] [--out FILE.csv]"
   *
   * --spheres adds a world from a `collide spheres` input file (header x,y,z,r; decimal or hex
   * floats, binary32 values), e.g. bench/world/world.py --dump-clouds DIR: the very spheres
@@ -43,42 +44,47 @@ object BroadPhaseCycleReport {
   def main(args: Array[String]): Unit = {
     var sizes = Seq(500, 1000, 2000, 4000, 8000, 16000); var maxSpheres = 16384; var out: Option[String] = None
     var files = Seq.empty[String]
+    var lanes = Seq(1)
     args.sliding(2, 2).foreach {
       case Array("--sizes", v) => sizes = v.split(',').map(_.trim.toInt).toSeq
       case Array("--max", v)   => maxSpheres = v.toInt
       case Array("--out", v)   => out = Some(v)
       case Array("--spheres", v) => files :+= v
-      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --out)")
+      case Array("--lanes", v) => lanes = v.split(',').map(_.trim.toInt).toSeq
+      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --out)")
     }
     require(sizes.forall(n => n >= 1 && n <= maxSpheres), s"--sizes must be 1..--max ($maxSpheres)")
+    require(lanes.nonEmpty && lanes.forall(l => l >= 1 && l <= 16), s"--lanes must be 1..16, got ${lanes.mkString(",")}")
     val cfg = ScpuConfig.fp32
-    val model = new BroadPhaseModel(cfg)
     val rng = new scala.util.Random(1)
     // "huge": the uniform cloud plus four spheres of radius 20 to 1280, the large pass's work.
     val worlds = sizes.flatMap(n => Seq(s"uniform" -> uniform(rng, n), s"clustered" -> clustered(rng, n, clusters = 1 + n / 200),
       s"huge" -> huge(rng, n - 4, 4))) ++ files.map(readSpheres)
     require(worlds.forall(_._2.length <= maxSpheres), s"a world has more than --max ($maxSpheres) spheres")
     val header = "world,spheres,buckets,cells,chunks,scanned,probes,candidates,large," +
-      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total"
+      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes"
     val rows = scala.collection.mutable.ArrayBuffer(header)
-    RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
-      dut.clock.setTimeout(0)
-      for ((name, ws) <- worlds) {
-        val world = bits(FloatFormat.fp32, ws)
-        val want = model.run(world)
-        val table = world.map(model.converted)
-        val (pairs, _) = BroadPhaseDriver.run(dut, table, () => true, Long.MaxValue) { _ =>
-          throw new IllegalStateException(s"$name ${ws.length}: the broad phase never finished")
+    for (l <- lanes) {
+      val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l))
+      RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
+        dut.clock.setTimeout(0)
+        for ((name, ws) <- worlds) {
+          val world = bits(FloatFormat.fp32, ws)
+          val want = model.run(world)
+          val table = world.map(model.converted)
+          val (pairs, _) = BroadPhaseDriver.run(dut, table, () => true, Long.MaxValue) { _ =>
+            throw new IllegalStateException(s"$name ${ws.length}: the broad phase never finished")
+          }
+          require(pairs.sorted == want.candidates.sorted, s"$name ${ws.length}: the RTL's pairs differ from the model's")
+          val s = dut.io.status
+          def v(d: UInt) = d.peek().litValue
+          val c = model.cycles(want, lanes = l, scpus = 16)
+          val row = Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
+            v(s.large), v(s.cycLoad), v(s.cycClassify), v(s.cycPrefix), v(s.cycScatter), v(s.cycGrid), v(s.cycLarge), v(s.cycTotal),
+            c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l).mkString(",")
+          println(row)
+          rows += row
         }
-        require(pairs.sorted == want.candidates.sorted, s"$name ${ws.length}: the RTL's pairs differ from the model's")
-        val s = dut.io.status
-        def v(d: UInt) = d.peek().litValue
-        val c = model.cycles(want, lanes = 1, scpus = 16)
-        val row = Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
-          v(s.large), v(s.cycLoad), v(s.cycClassify), v(s.cycPrefix), v(s.cycScatter), v(s.cycGrid), v(s.cycLarge), v(s.cycTotal),
-          c.generate, c.count + c.prefix + c.scatter + c.generate + c.large).mkString(",")
-        println(row)
-        rows += row
       }
     }
     out.foreach { f => Files.createDirectories(Paths.get(f).toAbsolutePath.getParent); Files.write(Paths.get(f), (rows.mkString("\n") + "\n").getBytes) }

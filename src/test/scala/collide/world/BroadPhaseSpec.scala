@@ -12,8 +12,9 @@ import collide.world.BroadPhaseWorlds._
 import collide.world.model._
 
 /** The broad phase's RTL against its golden model, world by world: the same candidate
-  * pairs (the grid's in the model's order, the large pass's as a set), the same k and
-  * classes, under random back-pressure on the pair stream. */
+  * pairs (with one lane the grid's in the model's order and the large pass's as a set; with
+  * several lanes all of them as a set, each pair once), the same k and classes, under random
+  * back-pressure on every lane's pair stream. */
 class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
   behavior of "BroadPhase"
 
@@ -55,14 +56,23 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     val st = want.stats
     assert(got.status("excluded") == st.excluded && got.status("large") == st.large &&
       got.status("small") == st.spheres - st.excluded - st.large, s"$where: classes ${got.status}")
-    val grid = st.gridCandidates.toInt
-    val (gotGrid, gotLarge) = got.pairs.splitAt(grid)
-    val firstDiff = gotGrid.zip(want.candidates.take(grid)).indexWhere { case (a, b) => a != b }
-    val gridSame = firstDiff < 0 && gotGrid.length == grid // (not inline: assert would print both lists)
-    assert(gridSame,
-      s"$where: grid pair ${if (firstDiff < 0) gotGrid.length else firstDiff} differs (want ${grid} grid pairs)")
-    val largeSame = gotLarge.sorted == want.candidates.drop(grid).sorted
-    assert(largeSame, s"$where: the large pass's ${gotLarge.length} pairs differ from the model's ${want.candidates.length - grid}")
+    if (model.bp.lanes == 1) {
+      val grid = st.gridCandidates.toInt
+      val (gotGrid, gotLarge) = got.pairs.splitAt(grid)
+      val firstDiff = gotGrid.zip(want.candidates.take(grid)).indexWhere { case (a, b) => a != b }
+      val gridSame = firstDiff < 0 && gotGrid.length == grid // (not inline: assert would print both lists)
+      assert(gridSame,
+        s"$where: grid pair ${if (firstDiff < 0) gotGrid.length else firstDiff} differs (want ${grid} grid pairs)")
+      val largeSame = gotLarge.sorted == want.candidates.drop(grid).sorted
+      assert(largeSame, s"$where: the large pass's ${gotLarge.length} pairs differ from the model's ${want.candidates.length - grid}")
+    } else {
+      // Lanes interleave: the same multiset (so a doubled or lost pair fails), named by its first difference.
+      val (g, w) = (got.pairs.sorted, want.candidates.sorted)
+      val firstDiff = g.zip(w).indexWhere { case (a, b) => a != b }
+      val same = g == w
+      assert(same, s"$where: ${g.length} pairs against the model's ${w.length}" +
+        (if (firstDiff >= 0) s", first difference ${g(firstDiff)} against ${w(firstDiff)}" else ""))
+    }
     assert(got.status("candidates") == want.candidates.length && got.status("cells") == st.cells,
       s"$where: counters ${got.status}")
     got
@@ -89,6 +99,34 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
       dut.clock.setTimeout(0)
       for ((label, w) <- worlds(rng).filter(_._2.length <= 100)) check(dut, model, label, bits(FloatFormat.fp32, w), rng, 0.5)
+    }
+  }
+
+  it should "find the same candidates with several lanes, each pair once, in every hard case and random cloud" in {
+    val rng = Seeds.rng("BroadPhaseSpec-lanes")
+    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.fourLanes)
+    test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
+      dut.clock.setTimeout(0)
+      for ((label, w) <- worlds(rng)) {
+        val r = check(dut, model, label, bits(FloatFormat.fp32, w), rng, readyOdds = 0.7)
+        println(f"[BroadPhaseSpec] four lanes: $label%-28s ${w.length}%4d spheres ${r.status("candidates")}%5s pairs ${r.cycles}%7d cycles")
+      }
+    }
+  }
+
+  it should "stay exact with three lanes over a four-bucket table, and with the table cut into four slices for the large pass" in {
+    val rng = Seeds.rng("BroadPhaseSpec-lanes-odd")
+    val tiny = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.tinyTable.copy(lanes = 3))
+    test(new BroadPhase(ScpuConfig.fp32.params, tiny.bp, maxSpheres)).withAnnotations(annos) { dut =>
+      dut.clock.setTimeout(0)
+      for ((label, w) <- worlds(rng).filter(_._2.length <= 100)) check(dut, tiny, label, bits(FloatFormat.fp32, w), rng, 0.5)
+    }
+    // Ten huge spheres in chunks of two: each lane streams its quarter of the table past all five chunks.
+    val larges = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.default.copy(largeMax = 12, chunk = 2, lanes = 4))
+    test(new BroadPhase(ScpuConfig.fp32.params, larges.bp, maxSpheres)).withAnnotations(annos) { dut =>
+      dut.clock.setTimeout(0)
+      val r = check(dut, larges, "ten huge", bits(FloatFormat.fp32, huge(rng, 60, 10)), rng, 0.8)
+      assert(r.status("large") == 10, s"ten huge: ${r.status("large")} large spheres")
     }
   }
 
