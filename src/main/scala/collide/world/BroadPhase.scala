@@ -180,12 +180,12 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
 
     gen.io.start := state === S.generate && !sent
     gen.io.usedLog2 := usedLog2
-    gen.io.num := num
     gen.io.slack := slack
     gen.io.larges := larges
     gen.io.largeCount := largeCount
     // Lane l streams spheres [num c_l >> 16, num c_(l+1) >> 16) past the large list, c_l =
-    // floor(l 2^16 / lanes): the slices tile the table exactly, even to a sphere or so.
+    // floor(l 2^16 / lanes): the slices tile the table, each bound within num / 2^16 + 1 of
+    // num l / lanes (a multiply by a constant, where an exact cut would need a divider).
     def cut(m: Int): UInt = if (m == 0) 0.U else if (m == bp.lanes) num else ((num * ((m.toLong << 16) / bp.lanes).U) >> 16).pad(countW)(countW - 1, 0)
     gen.io.largeFrom := cut(l)
     gen.io.largeTo := cut(l + 1)

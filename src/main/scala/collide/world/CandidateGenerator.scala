@@ -25,7 +25,6 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
   /** This lane's number, 0 until lanes (none with one lane). */
   val lane = if (lanes > 1) Some(Input(UInt(log2Ceil(lanes).W))) else None
   val usedLog2 = Input(UInt(log2Ceil(bucketsLog2 + 1).W))
-  val num = Input(UInt(countW.W)) // spheres in the world (the large pass streams them all)
   val slack = Input(UInt(qWidth.W))
   val larges = Input(Vec(largeSlots, new WorldKey(itemW, cellBits, qWidth)))
   val largeCount = Input(UInt(log2Ceil(largeSlots + 1).W))
