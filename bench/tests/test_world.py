@@ -12,6 +12,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "world"))
 
 import world  # noqa: E402
 import afu_world  # noqa: E402
+import lanes  # noqa: E402
 
 
 class WorldClouds(unittest.TestCase):
@@ -63,8 +64,10 @@ class AfuWorldReport(unittest.TestCase):
             out = Path(d)
             (out / "refused.txt").write_text("diamond, 64,906 spheres (hMax 46), qpi: this world cannot be cut into runs\n")
             rows = [self.row("uniform", 670, "qpi"), self.row("diamond", 670, "qpi")]
-            afu_world.report(rows, out, "## How and where\n")
+            afu_world.report(rows, out, "## How and where\n", lanes=16)
             text = (out / "README.md").read_text()
+            self.assertIn("16 candidate lanes", text)
+            self.assertIn("within 2x only for uniform 670, diamond 670", text)  # both rows are 2.0x
             self.assertIn("## diamond (the paper's diamond", text)
             self.assertIn("- diamond, 64,906 spheres (hMax 46), qpi: this world cannot be cut into runs", text)
             self.assertNotIn("## clustered", text)  # no rows, no section
@@ -77,6 +80,29 @@ class AfuWorldReport(unittest.TestCase):
         kept = afu_world.kept_sections(text, ["uniform"], ["diamond"])
         self.assertEqual(kept, "## How and where: uniform\n\nCommand: all")
         self.assertIn("old diamond", afu_world.kept_sections(text, ["uniform", "diamond"], ["mixed"]))
+
+
+class LanesReport(unittest.TestCase):
+    HEADER = ("world,spheres,buckets,cells,chunks,scanned,probes,candidates,large,load,classify,prefix,scatter,"
+              "grid,large_pass,total,model_generate,model_total,lanes")
+
+    def test_the_table_gives_each_worlds_speed_up_candidates_a_cycle_and_the_passes_share(self):
+        rows = ["w,100,256,1,1,1,1,400,0,100,100,32,100,1668,0,2000,0,0,1",
+                "w,100,256,1,1,1,1,400,0,100,100,32,100,168,0,500,0,0,4"]
+        with tempfile.TemporaryDirectory() as d:
+            path = Path(d) / "c.csv"
+            path.write_text("\n".join([self.HEADER] + rows) + "\n")
+            text = lanes.table(lanes.load(path), 200.0)
+            # 2000 / 500 = 4x at 4 lanes; grid 1668 / 168; 400 / 500 candidates a cycle; passes 332 / 500
+            self.assertIn("| w | 100 | 400 | 2,000 | 500 | 4.00x (4) | 9.9x | 0.80 | 66 % | 2 |", text)
+
+    def test_a_csv_without_lanes_is_refused_by_name(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = Path(d) / "old.csv"
+            path.write_text("world,spheres\nw,1\n")
+            with self.assertRaises(SystemExit) as e:
+                lanes.load(path)
+            self.assertIn("old.csv", str(e.exception))
 
 
 if __name__ == "__main__":
