@@ -81,16 +81,21 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
   // 40 spheres at one point: three chunks of one cell, so the rescan runs twice.
   private def worlds(rng: scala.util.Random): Seq[(String, Seq[S])] = hardCases(rng, onePointSpheres = 40)
 
-  it should "find exactly the golden model's candidates in every hard case and random cloud, under back-pressure" in {
-    val rng = Seeds.rng("BroadPhaseSpec")
-    val model = new BroadPhaseModel(ScpuConfig.fp32)
+  /** Every hard case and random cloud through one BroadPhase of `bp`, fp32, printing each world's cycles. */
+  private def everyHardCase(seedName: String, bp: BroadPhaseParams, tag: String): Unit = {
+    val rng = Seeds.rng(seedName)
+    val model = new BroadPhaseModel(ScpuConfig.fp32, bp)
     test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
       dut.clock.setTimeout(0)
       for ((label, w) <- worlds(rng)) {
         val r = check(dut, model, label, bits(FloatFormat.fp32, w), rng, readyOdds = 0.7)
-        println(f"[BroadPhaseSpec] $label%-40s ${w.length}%4d spheres ${r.status("candidates")}%5s pairs ${r.cycles}%7d cycles")
+        println(f"[BroadPhaseSpec] $tag$label%-40s ${w.length}%4d spheres ${r.status("candidates")}%5s pairs ${r.cycles}%7d cycles")
       }
     }
+  }
+
+  it should "find exactly the golden model's candidates in every hard case and random cloud, under back-pressure" in {
+    everyHardCase("BroadPhaseSpec", BroadPhaseParams.default, "")
   }
 
   it should "stay exact with a four-bucket table and one-sphere chunks (every cell shares a bucket, every chunk rescans)" in {
@@ -103,15 +108,7 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
   }
 
   it should "find the same candidates with several lanes, each pair once, in every hard case and random cloud" in {
-    val rng = Seeds.rng("BroadPhaseSpec-lanes")
-    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.fourLanes)
-    test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
-      dut.clock.setTimeout(0)
-      for ((label, w) <- worlds(rng)) {
-        val r = check(dut, model, label, bits(FloatFormat.fp32, w), rng, readyOdds = 0.7)
-        println(f"[BroadPhaseSpec] four lanes: $label%-28s ${w.length}%4d spheres ${r.status("candidates")}%5s pairs ${r.cycles}%7d cycles")
-      }
-    }
+    everyHardCase("BroadPhaseSpec-lanes", BroadPhaseParams.fourLanes, "four lanes: ")
   }
 
   it should "stay exact with three lanes over a four-bucket table, and with the table cut into four slices for the large pass" in {
