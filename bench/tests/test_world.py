@@ -2,6 +2,7 @@
 a binary32 value written exactly, about one contact a sphere in the uniform cloud.
 Run with the suite: tools/pyenv -m unittest discover -s bench/tests -v"""
 import itertools
+import json
 import math
 import sys
 import tempfile
@@ -13,6 +14,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "world"))
 import world  # noqa: E402
 import afu_world  # noqa: E402
 import lanes  # noqa: E402
+import lanes_area  # noqa: E402
 
 
 class WorldClouds(unittest.TestCase):
@@ -103,6 +105,29 @@ class LanesReport(unittest.TestCase):
             with self.assertRaises(SystemExit) as e:
                 lanes.load(path)
             self.assertIn("old.csv", str(e.exception))
+
+
+class LanesArea(unittest.TestCase):
+    def folder(self, d, broad_phase, modules):
+        f = Path(d) / "cfg"
+        f.mkdir()
+        afu = {"ram": {"broadPhaseBits": 123.0}} | ({"broadPhase": broad_phase} if broad_phase else {})
+        (f / "manifest.json").write_text(json.dumps({"id": "cfg", "afu": afu}))
+        (f / "Afu_cfg.sv").write_text("".join(f"module {m}(\n);\nendmodule\n" for m in modules))
+        return f
+
+    def test_it_finds_the_lane_count_and_the_broad_phase_module(self):
+        with tempfile.TemporaryDirectory() as d:
+            f = self.folder(d, {"lanes": 4}, ["Afu_cfg", "BroadPhase_fp32_l4_cfg", "BucketSort_cfg"])
+            self.assertEqual(lanes_area.broad_phase(f)[0:2], (4, "cfg"))
+            self.assertEqual(lanes_area.broad_phase(f)[3:], ("BroadPhase_fp32_l4_cfg", 123.0))
+
+    def test_a_folder_without_world_mode_is_refused_by_name(self):
+        with tempfile.TemporaryDirectory() as d:
+            f = self.folder(d, None, ["Afu_cfg"])
+            with self.assertRaises(SystemExit) as e:
+                lanes_area.broad_phase(f)
+            self.assertIn("not a world-mode AFU", str(e.exception))
 
 
 if __name__ == "__main__":

@@ -6,7 +6,8 @@ world's pairs checked against the golden model) per world and lane count.
                                      [--machine TEXT]
 
 Writes OUT/cycles.csv (a copy of the input), OUT/README.md (cycles, speed-up over one lane,
-candidates a cycle, where the cycles go) and OUT/lanes.png (speed-up against lanes, log2 axes).
+candidates a cycle, where the cycles go; and the area, when OUT/area.csv from
+bench/world/lanes_area.py is there) and OUT/lanes.png (speed-up against lanes, log2 axes).
 matplotlib draws the plot.
 """
 import argparse
@@ -57,6 +58,24 @@ def table(rows, clock_mhz):
     return "\n".join(out)
 
 
+def area_table(path):
+    """The broad phase's Yosys area per lane count (lanes_area.py's CSV), or [] without one."""
+    if not path.exists():
+        return []
+    rows = sorted(csv.DictReader(open(path, newline="")), key=lambda r: int(r["lanes"]))
+    one = next((r for r in rows if r["lanes"] == "1"), None)
+    out = ["## Area (Yosys 0.23, the Cyclone V proxy; the BroadPhase module alone)", "",
+           "From [area.csv](area.csv) (`tools/pyenv bench/world/lanes_area.py ...`). The sphere-table copies the",
+           "lanes read are the SphereRam's (two lanes a copy of 0.5 Mbit at 4,096 spheres), not counted here.", "",
+           "| lanes | LUT cells | arithmetic cells | flip-flops | M10K blocks | sort RAM bits | LUT cells / one lane's |",
+           "|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in rows:
+        ratio = f"{int(r['luts']) / int(one['luts']):.1f}x" if one else ""
+        out.append(f"| {r['lanes']} | {int(r['luts']):,} | {int(r['arith']):,} | {int(r['ff']):,} | {int(r['m10k']):,} | "
+                   f"{int(r['ram_bits']):,} | {ratio} |")
+    return out + [""]
+
+
 def plot(rows, out):
     import matplotlib
     matplotlib.use("Agg")
@@ -99,7 +118,7 @@ def main(argv=None):
             "[cycles.csv](cycles.csv); the plot: [lanes.png](lanes.png). Passes' share: the table's three",
             "reads and the prefix sum, one sphere (or eight buckets) a cycle whatever the lanes. The grid: the",
             "candidate generation itself, which the lanes share.", "",
-            table(rows, a.clock_mhz), ""]
+            table(rows, a.clock_mhz), ""] + area_table(out / "area.csv")
     if a.machine:
         text += ["## How and where", "", a.machine, ""]
     (out / "README.md").write_text("\n".join(text))
