@@ -25,7 +25,8 @@ package collide.world
   * @param wordLog2   the sort's counters sit 2^wordLog2 to a RAM word: clear, prefix sum
   *                   and the generator's walk over the buckets take a word a cycle
   * @param lanes      candidate generators working at once: lane l walks the counter words
-  *                   w = l mod lanes and takes the large list's chunks l, l + lanes, ...;
+  *                   w = l mod lanes and streams its lanes-th slice of the table past the
+  *                   whole large list;
   *                   each lane has its own copy of the sort's RAM (it marks its own buckets'
   *                   entries) and its own read port on the sphere table
   */
