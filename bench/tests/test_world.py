@@ -98,6 +98,18 @@ class LanesReport(unittest.TestCase):
             # 2000 / 500 = 4x at 4 lanes; grid 1668 / 168; 400 / 500 candidates a cycle; passes 332 / 500
             self.assertIn("| w | 100 | 400 | 2,000 | 500 | 4.00x (4) | 9.9x | 0.80 | 66 % | 2 |", text)
 
+    def test_sort_ports_get_columns_of_their_own_and_the_best_is_named_by_both(self):
+        rows = ["w,100,256,1,1,1,1,400,0,100,100,32,100,1668,0,2000,0,0,1,1",
+                "w,100,256,1,1,1,1,400,0,100,100,32,100,168,0,500,0,0,4,1",
+                "w,100,256,1,1,1,1,400,0,50,50,32,50,168,0,350,0,0,4,2"]
+        with tempfile.TemporaryDirectory() as d:
+            path = Path(d) / "c.csv"
+            path.write_text("\n".join([self.HEADER + ",sort_ports"] + rows) + "\n")
+            text = lanes.table(lanes.load(path), 200.0)
+            self.assertIn("| 1 lane | 4 lanes | 4 lanes, 2 ports |", text)
+            # 2000 / 350 = 5.71x; passes 182 / 350
+            self.assertIn("| w | 100 | 400 | 2,000 | 500 | 350 | 5.71x (4, 2 ports) | 9.9x | 1.14 | 52 % | 2 |", text)
+
     def test_a_csv_without_lanes_is_refused_by_name(self):
         with tempfile.TemporaryDirectory() as d:
             path = Path(d) / "old.csv"

@@ -1,6 +1,7 @@
-"""What several candidate-generator lanes buy the world-mode broad phase: measured RTL cycles
-(`sbt "Test/runMain collide.world.BroadPhaseCycleReport --lanes 1,2,4,8,16 ..."`, every
-world's pairs checked against the golden model) per world and lane count.
+"""What several candidate-generator lanes, and the sort's second port, buy the world-mode broad
+phase: measured RTL cycles (`sbt "Test/runMain collide.world.BroadPhaseCycleReport --lanes
+1,2,4,8,16 --sort-ports 1,2 ..."`, every world's pairs checked against the golden model) per
+world and configuration (lanes, sort ports; a CSV without sort_ports has one port).
 
     tools/pyenv bench/world/lanes.py --csv CYCLES.csv [--out bench/results/world-lanes] [--clock-mhz 200]
                                      [--machine TEXT]
@@ -27,7 +28,23 @@ def load(path):
         for k, v in r.items():
             if k != "world":
                 r[k] = int(v)
+        r.setdefault("sort_ports", 1)
     return rows
+
+
+def config(r):
+    """(sort ports, lanes): one port first, so the one-lane, one-port run is the baseline."""
+    return (r["sort_ports"], r["lanes"])
+
+
+def label(c):
+    ports, lanes = c
+    return f"{lanes} lane{'s' if lanes > 1 else ''}" + (f", {ports} ports" if ports > 1 else "")
+
+
+def best_label(c):
+    ports, lanes = c
+    return f"{lanes}" + (f", {ports} ports" if ports > 1 else "")
 
 
 def worlds(rows):
@@ -40,19 +57,19 @@ def worlds(rows):
 
 
 def table(rows, clock_mhz):
-    lanes = sorted({r["lanes"] for r in rows})
-    by = {(r["world"], r["spheres"], r["lanes"]): r for r in rows}
-    out = ["| world | spheres | candidates | " + " | ".join(f"{l} lane{'s' if l > 1 else ''}" for l in lanes) +
+    configs = sorted({config(r) for r in rows})
+    by = {(r["world"], r["spheres"], config(r)): r for r in rows}
+    out = ["| world | spheres | candidates | " + " | ".join(label(c) for c in configs) +
            f" | best: speed-up | its grid's speed-up | candidates a cycle | passes' share | us at {clock_mhz:.0f} MHz |",
-           "|---|---:|---:|" + "---:|" * len(lanes) + "---:|---:|---:|---:|---:|"]
+           "|---|---:|---:|" + "---:|" * len(configs) + "---:|---:|---:|---:|---:|"]
     for w, n in worlds(rows):
-        rs = [by.get((w, n, l)) for l in lanes]
+        rs = [by.get((w, n, c)) for c in configs]
         if rs[0] is None or any(r is None for r in rs):
             continue
         best = min(rs, key=lambda r: r["total"])
         passes = best["load"] + best["classify"] + best["prefix"] + best["scatter"]
         out.append(f"| {w} | {n:,} | {rs[0]['candidates']:,} | " + " | ".join(f"{r['total']:,}" for r in rs) +
-                   f" | {rs[0]['total'] / best['total']:.2f}x ({best['lanes']}) | {rs[0]['grid'] / best['grid']:.1f}x"
+                   f" | {rs[0]['total'] / best['total']:.2f}x ({best_label(config(best))}) | {rs[0]['grid'] / best['grid']:.1f}x"
                    f" | {best['candidates'] / best['total']:.2f}"
                    f" | {100 * passes / best['total']:.0f} % | {best['total'] / clock_mhz:,.0f} |")
     return "\n".join(out)
@@ -81,18 +98,21 @@ def plot(rows, out):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
-    for w, n in worlds(rows):
-        rs = sorted((r for r in rows if (r["world"], r["spheres"]) == (w, n)), key=lambda r: r["lanes"])
-        one = next((r for r in rs if r["lanes"] == 1), None)
+    for i, (w, n) in enumerate(worlds(rows)):
+        mine = [r for r in rows if (r["world"], r["spheres"]) == (w, n)]
+        one = next((r for r in mine if config(r) == (1, 1)), None)
         if one is None or n < 5000:
             continue
-        ax.plot([r["lanes"] for r in rs], [one["total"] / r["total"] for r in rs], "o-", label=f"{w} {n:,}")
+        for ports in sorted({r["sort_ports"] for r in mine}):
+            rs = sorted((r for r in mine if r["sort_ports"] == ports), key=lambda r: r["lanes"])
+            ax.plot([r["lanes"] for r in rs], [one["total"] / r["total"] for r in rs], "o-" if ports == 1 else "s--",
+                    color=f"C{i % 10}", label=f"{w} {n:,}" + (f", {ports} sort ports" if ports > 1 else ""))
     ls = sorted({r["lanes"] for r in rows})
     ax.plot(ls, ls, ":", color="grey", label="linear")
     ax.set_xscale("log", base=2)
     ax.set_yscale("log", base=2)
     ax.set_xlabel("candidate-generator lanes")
-    ax.set_ylabel("speed-up over one lane (RTL cycles, measured)")
+    ax.set_ylabel("speed-up over one lane, one port (RTL cycles)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
     fig.tight_layout()
@@ -112,12 +132,13 @@ def main(argv=None):
     if Path(a.csv).resolve() != (out / "cycles.csv").resolve():
         shutil.copyfile(a.csv, out / "cycles.csv")
     plot(rows, out / "lanes.png")
-    text = ["# World mode: candidate-generator lanes (RTL cycles)", "",
-            "Cycles of the whole broad phase (all passes) on Verilator for each number of lanes; every run's",
-            "pairs equal the golden model's. Cycle counts do not depend on the machine. Every number:",
-            "[cycles.csv](cycles.csv); the plot: [lanes.png](lanes.png). Passes' share: the table's three",
-            "reads and the prefix sum, one sphere (or eight buckets) a cycle whatever the lanes. The grid: the",
-            "candidate generation itself, which the lanes share.", "",
+    text = ["# World mode: candidate-generator lanes and sort ports (RTL cycles)", "",
+            "Cycles of the whole broad phase (all passes) on Verilator for each number of lanes and of the",
+            "sort's ports; every run's pairs equal the golden model's. Cycle counts do not depend on the",
+            "machine. Every number: [cycles.csv](cycles.csv); the plot: [lanes.png](lanes.png). Passes' share:",
+            "the table's three reads (one sphere a cycle per sort port) and the prefix sum (eight buckets a",
+            "cycle). The grid: the candidate generation itself, which the lanes share. Speed-up: over one",
+            "lane and one port.", "",
             table(rows, a.clock_mhz), ""] + area_table(out / "area.csv")
     if a.machine:
         text += ["## How and where", "", a.machine, ""]

@@ -15798,492 +15798,22 @@ module WriteEngine_w64_world(
   assign io_blocked = any & ~(io_wrReq_ready & io_wrReq_valid_0);
 endmodule
 
-module SphereKeys_fp32_c20_f8_m9d8_l1_world(
-  input         clock,
-                reset,
-                io_in_valid,
-  input  [31:0] io_in_sphere_0,
-                io_in_sphere_1,
-                io_in_sphere_2,
-                io_in_sphere_3,
-  input  [12:0] io_in_k,
-  output        io_out_valid,
-  output [19:0] io_out_cell_0,
-                io_out_cell_1,
-                io_out_cell_2,
-  output        io_out_cellOverflow,
-  output [28:0] io_out_q_0,
-                io_out_q_1,
-                io_out_q_2,
-                io_out_qr,
-  output [12:0] io_out_need,
-  output        io_out_needNone,
-                io_out_nonFinite,
-  output [12:0] io_out_top,
-  output        io_out_topNone
-);
-
-  reg         io_out_valid_r;
-  reg  [19:0] r_0;
-  reg  [19:0] r_1;
-  reg  [19:0] r_2;
-  reg         io_out_cellOverflow_r;
-  reg  [28:0] r_1_0;
-  reg  [28:0] r_1_1;
-  reg  [28:0] r_1_2;
-  reg  [28:0] io_out_qr_r;
-  reg  [12:0] io_out_need_r;
-  reg         io_out_needNone_r;
-  reg         io_out_nonFinite_r;
-  reg  [12:0] io_out_top_r;
-  reg         io_out_topNone_r;
-  wire        raw_expZero = io_in_sphere_0[30:23] == 8'h0;
-  wire        raw_0_isZero = raw_expZero & ~(|(io_in_sphere_0[22:0]));
-  wire [3:0]  _GEN =
-    {{io_in_sphere_0[5:4], io_in_sphere_0[7]} & 3'h5, 1'h0}
-    | {io_in_sphere_0[7:6], io_in_sphere_0[9:8]} & 4'h5;
-  wire [4:0]  raw_lz =
-    io_in_sphere_0[22]
-      ? 5'h0
-      : io_in_sphere_0[21]
-          ? 5'h1
-          : io_in_sphere_0[20]
-              ? 5'h2
-              : io_in_sphere_0[19]
-                  ? 5'h3
-                  : io_in_sphere_0[18]
-                      ? 5'h4
-                      : io_in_sphere_0[17]
-                          ? 5'h5
-                          : io_in_sphere_0[16]
-                              ? 5'h6
-                              : io_in_sphere_0[15]
-                                  ? 5'h7
-                                  : io_in_sphere_0[14]
-                                      ? 5'h8
-                                      : io_in_sphere_0[13]
-                                          ? 5'h9
-                                          : io_in_sphere_0[12]
-                                              ? 5'hA
-                                              : io_in_sphere_0[11]
-                                                  ? 5'hB
-                                                  : io_in_sphere_0[10]
-                                                      ? 5'hC
-                                                      : io_in_sphere_0[9]
-                                                          ? 5'hD
-                                                          : _GEN[0]
-                                                              ? 5'hE
-                                                              : _GEN[1]
-                                                                  ? 5'hF
-                                                                  : _GEN[2]
-                                                                      ? 5'h10
-                                                                      : _GEN[3]
-                                                                          ? 5'h11
-                                                                          : io_in_sphere_0[4]
-                                                                              ? 5'h12
-                                                                              : io_in_sphere_0[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_sphere_0[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_sphere_0[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_sphere_0[22:0]} << {1'h0, raw_lz} + 6'h1;
-  wire [23:0] raw_0_sig =
-    raw_expZero ? _raw_subSig_T_1[23:0] : {1'h1, io_in_sphere_0[22:0]};
-  wire [8:0]  _raw_out_sExp_T_1 = {1'h0, io_in_sphere_0[30:23]} - 9'h7F;
-  wire [9:0]  raw_0_sExp =
-    raw_expZero ? 10'h381 - {5'h0, raw_lz} : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
-  wire        raw_expZero_1 = io_in_sphere_1[30:23] == 8'h0;
-  wire        raw_1_isZero = raw_expZero_1 & ~(|(io_in_sphere_1[22:0]));
-  wire [3:0]  _GEN_0 =
-    {{io_in_sphere_1[5:4], io_in_sphere_1[7]} & 3'h5, 1'h0}
-    | {io_in_sphere_1[7:6], io_in_sphere_1[9:8]} & 4'h5;
-  wire [4:0]  raw_lz_1 =
-    io_in_sphere_1[22]
-      ? 5'h0
-      : io_in_sphere_1[21]
-          ? 5'h1
-          : io_in_sphere_1[20]
-              ? 5'h2
-              : io_in_sphere_1[19]
-                  ? 5'h3
-                  : io_in_sphere_1[18]
-                      ? 5'h4
-                      : io_in_sphere_1[17]
-                          ? 5'h5
-                          : io_in_sphere_1[16]
-                              ? 5'h6
-                              : io_in_sphere_1[15]
-                                  ? 5'h7
-                                  : io_in_sphere_1[14]
-                                      ? 5'h8
-                                      : io_in_sphere_1[13]
-                                          ? 5'h9
-                                          : io_in_sphere_1[12]
-                                              ? 5'hA
-                                              : io_in_sphere_1[11]
-                                                  ? 5'hB
-                                                  : io_in_sphere_1[10]
-                                                      ? 5'hC
-                                                      : io_in_sphere_1[9]
-                                                          ? 5'hD
-                                                          : _GEN_0[0]
-                                                              ? 5'hE
-                                                              : _GEN_0[1]
-                                                                  ? 5'hF
-                                                                  : _GEN_0[2]
-                                                                      ? 5'h10
-                                                                      : _GEN_0[3]
-                                                                          ? 5'h11
-                                                                          : io_in_sphere_1[4]
-                                                                              ? 5'h12
-                                                                              : io_in_sphere_1[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_sphere_1[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_sphere_1[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [85:0] _raw_subSig_T_3 = {63'h0, io_in_sphere_1[22:0]} << {1'h0, raw_lz_1} + 6'h1;
-  wire [23:0] raw_1_sig =
-    raw_expZero_1 ? _raw_subSig_T_3[23:0] : {1'h1, io_in_sphere_1[22:0]};
-  wire [8:0]  _raw_out_sExp_T_6 = {1'h0, io_in_sphere_1[30:23]} - 9'h7F;
-  wire [9:0]  raw_1_sExp =
-    raw_expZero_1
-      ? 10'h381 - {5'h0, raw_lz_1}
-      : {_raw_out_sExp_T_6[8], _raw_out_sExp_T_6};
-  wire        raw_expZero_2 = io_in_sphere_2[30:23] == 8'h0;
-  wire        raw_2_isZero = raw_expZero_2 & ~(|(io_in_sphere_2[22:0]));
-  wire [3:0]  _GEN_1 =
-    {{io_in_sphere_2[5:4], io_in_sphere_2[7]} & 3'h5, 1'h0}
-    | {io_in_sphere_2[7:6], io_in_sphere_2[9:8]} & 4'h5;
-  wire [4:0]  raw_lz_2 =
-    io_in_sphere_2[22]
-      ? 5'h0
-      : io_in_sphere_2[21]
-          ? 5'h1
-          : io_in_sphere_2[20]
-              ? 5'h2
-              : io_in_sphere_2[19]
-                  ? 5'h3
-                  : io_in_sphere_2[18]
-                      ? 5'h4
-                      : io_in_sphere_2[17]
-                          ? 5'h5
-                          : io_in_sphere_2[16]
-                              ? 5'h6
-                              : io_in_sphere_2[15]
-                                  ? 5'h7
-                                  : io_in_sphere_2[14]
-                                      ? 5'h8
-                                      : io_in_sphere_2[13]
-                                          ? 5'h9
-                                          : io_in_sphere_2[12]
-                                              ? 5'hA
-                                              : io_in_sphere_2[11]
-                                                  ? 5'hB
-                                                  : io_in_sphere_2[10]
-                                                      ? 5'hC
-                                                      : io_in_sphere_2[9]
-                                                          ? 5'hD
-                                                          : _GEN_1[0]
-                                                              ? 5'hE
-                                                              : _GEN_1[1]
-                                                                  ? 5'hF
-                                                                  : _GEN_1[2]
-                                                                      ? 5'h10
-                                                                      : _GEN_1[3]
-                                                                          ? 5'h11
-                                                                          : io_in_sphere_2[4]
-                                                                              ? 5'h12
-                                                                              : io_in_sphere_2[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_sphere_2[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_sphere_2[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [85:0] _raw_subSig_T_5 = {63'h0, io_in_sphere_2[22:0]} << {1'h0, raw_lz_2} + 6'h1;
-  wire [23:0] raw_2_sig =
-    raw_expZero_2 ? _raw_subSig_T_5[23:0] : {1'h1, io_in_sphere_2[22:0]};
-  wire [8:0]  _raw_out_sExp_T_11 = {1'h0, io_in_sphere_2[30:23]} - 9'h7F;
-  wire [9:0]  raw_2_sExp =
-    raw_expZero_2
-      ? 10'h381 - {5'h0, raw_lz_2}
-      : {_raw_out_sExp_T_11[8], _raw_out_sExp_T_11};
-  wire        raw_expZero_3 = io_in_sphere_3[30:23] == 8'h0;
-  wire [3:0]  _GEN_2 =
-    {{io_in_sphere_3[5:4], io_in_sphere_3[7]} & 3'h5, 1'h0}
-    | {io_in_sphere_3[7:6], io_in_sphere_3[9:8]} & 4'h5;
-  wire [4:0]  raw_lz_3 =
-    io_in_sphere_3[22]
-      ? 5'h0
-      : io_in_sphere_3[21]
-          ? 5'h1
-          : io_in_sphere_3[20]
-              ? 5'h2
-              : io_in_sphere_3[19]
-                  ? 5'h3
-                  : io_in_sphere_3[18]
-                      ? 5'h4
-                      : io_in_sphere_3[17]
-                          ? 5'h5
-                          : io_in_sphere_3[16]
-                              ? 5'h6
-                              : io_in_sphere_3[15]
-                                  ? 5'h7
-                                  : io_in_sphere_3[14]
-                                      ? 5'h8
-                                      : io_in_sphere_3[13]
-                                          ? 5'h9
-                                          : io_in_sphere_3[12]
-                                              ? 5'hA
-                                              : io_in_sphere_3[11]
-                                                  ? 5'hB
-                                                  : io_in_sphere_3[10]
-                                                      ? 5'hC
-                                                      : io_in_sphere_3[9]
-                                                          ? 5'hD
-                                                          : _GEN_2[0]
-                                                              ? 5'hE
-                                                              : _GEN_2[1]
-                                                                  ? 5'hF
-                                                                  : _GEN_2[2]
-                                                                      ? 5'h10
-                                                                      : _GEN_2[3]
-                                                                          ? 5'h11
-                                                                          : io_in_sphere_3[4]
-                                                                              ? 5'h12
-                                                                              : io_in_sphere_3[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_sphere_3[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_sphere_3[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [8:0]  _raw_out_sExp_T_16 = {1'h0, io_in_sphere_3[30:23]} - 9'h7F;
-  wire [9:0]  raw_3_sExp =
-    raw_expZero_3
-      ? 10'h381 - {5'h0, raw_lz_3}
-      : {_raw_out_sExp_T_16[8], _raw_out_sExp_T_16};
-  wire [10:0] _GEN_3 = {raw_0_sExp[9], raw_0_sExp};
-  wire [10:0] _qs_t_T = _GEN_3 - 11'h17;
-  wire [13:0] _GEN_4 = {io_in_k[12], io_in_k};
-  wire [13:0] cellsAndOver_t = {{3{_qs_t_T[10]}}, _qs_t_T} - _GEN_4;
-  wire        cellsAndOver_left = $signed(cellsAndOver_t) > -14'sh1;
-  wire [14:0] _cellsAndOver_rNeg_T = 15'h0 - {cellsAndOver_t[13], cellsAndOver_t};
-  wire [4:0]  _cellsAndOver_rAmt_T_1 =
-    _cellsAndOver_rNeg_T > 15'h19 ? 5'h19 : _cellsAndOver_rNeg_T[4:0];
-  wire [54:0] _GEN_5 = {31'h0, raw_0_sig};
-  wire [31:0] _cellsAndOver_sticky_T = 32'h1 << _cellsAndOver_rAmt_T_1;
-  wire [54:0] _cellsAndOver_shiftedL_T =
-    _GEN_5 << ($signed(cellsAndOver_t) > 14'sh15 ? 5'h15 : cellsAndOver_t[4:0]);
-  wire [46:0] cellsAndOver_m =
-    {1'h0,
-     cellsAndOver_left
-       ? _cellsAndOver_shiftedL_T[45:0]
-       : {22'h0, raw_0_sig >> _cellsAndOver_rAmt_T_1}}
-    + {46'h0,
-       ~cellsAndOver_left & (|(raw_0_sig & _cellsAndOver_sticky_T[23:0] - 24'h1))
-         & io_in_sphere_0[31]};
-  wire [19:0] cellsAndOver_0_1 =
-    raw_0_isZero
-      ? 20'h0
-      : io_in_sphere_0[31] ? 20'h0 - cellsAndOver_m[19:0] : cellsAndOver_m[19:0];
-  wire [10:0] _GEN_6 = {raw_1_sExp[9], raw_1_sExp};
-  wire [10:0] _qs_t_T_1 = _GEN_6 - 11'h17;
-  wire [13:0] cellsAndOver_t_1 = {{3{_qs_t_T_1[10]}}, _qs_t_T_1} - _GEN_4;
-  wire        cellsAndOver_left_1 = $signed(cellsAndOver_t_1) > -14'sh1;
-  wire [14:0] _cellsAndOver_rNeg_T_1 = 15'h0 - {cellsAndOver_t_1[13], cellsAndOver_t_1};
-  wire [4:0]  _cellsAndOver_rAmt_T_3 =
-    _cellsAndOver_rNeg_T_1 > 15'h19 ? 5'h19 : _cellsAndOver_rNeg_T_1[4:0];
-  wire [54:0] _GEN_7 = {31'h0, raw_1_sig};
-  wire [31:0] _cellsAndOver_sticky_T_5 = 32'h1 << _cellsAndOver_rAmt_T_3;
-  wire [54:0] _cellsAndOver_shiftedL_T_1 =
-    _GEN_7 << ($signed(cellsAndOver_t_1) > 14'sh15 ? 5'h15 : cellsAndOver_t_1[4:0]);
-  wire [46:0] cellsAndOver_m_1 =
-    {1'h0,
-     cellsAndOver_left_1
-       ? _cellsAndOver_shiftedL_T_1[45:0]
-       : {22'h0, raw_1_sig >> _cellsAndOver_rAmt_T_3}}
-    + {46'h0,
-       ~cellsAndOver_left_1 & (|(raw_1_sig & _cellsAndOver_sticky_T_5[23:0] - 24'h1))
-         & io_in_sphere_1[31]};
-  wire [19:0] cellsAndOver_1_1 =
-    raw_1_isZero
-      ? 20'h0
-      : io_in_sphere_1[31] ? 20'h0 - cellsAndOver_m_1[19:0] : cellsAndOver_m_1[19:0];
-  wire [10:0] _GEN_8 = {raw_2_sExp[9], raw_2_sExp};
-  wire [10:0] _qs_t_T_2 = _GEN_8 - 11'h17;
-  wire [13:0] cellsAndOver_t_2 = {{3{_qs_t_T_2[10]}}, _qs_t_T_2} - _GEN_4;
-  wire        cellsAndOver_left_2 = $signed(cellsAndOver_t_2) > -14'sh1;
-  wire [14:0] _cellsAndOver_rNeg_T_2 = 15'h0 - {cellsAndOver_t_2[13], cellsAndOver_t_2};
-  wire [4:0]  _cellsAndOver_rAmt_T_5 =
-    _cellsAndOver_rNeg_T_2 > 15'h19 ? 5'h19 : _cellsAndOver_rNeg_T_2[4:0];
-  wire [54:0] _GEN_9 = {31'h0, raw_2_sig};
-  wire [31:0] _cellsAndOver_sticky_T_10 = 32'h1 << _cellsAndOver_rAmt_T_5;
-  wire [54:0] _cellsAndOver_shiftedL_T_2 =
-    _GEN_9 << ($signed(cellsAndOver_t_2) > 14'sh15 ? 5'h15 : cellsAndOver_t_2[4:0]);
-  wire [46:0] cellsAndOver_m_2 =
-    {1'h0,
-     cellsAndOver_left_2
-       ? _cellsAndOver_shiftedL_T_2[45:0]
-       : {22'h0, raw_2_sig >> _cellsAndOver_rAmt_T_5}}
-    + {46'h0,
-       ~cellsAndOver_left_2 & (|(raw_2_sig & _cellsAndOver_sticky_T_10[23:0] - 24'h1))
-         & io_in_sphere_2[31]};
-  wire [19:0] cellsAndOver_2_1 =
-    raw_2_isZero
-      ? 20'h0
-      : io_in_sphere_2[31] ? 20'h0 - cellsAndOver_m_2[19:0] : cellsAndOver_m_2[19:0];
-  wire [13:0] _tq_T_1 = _GEN_4 - 14'h8;
-  wire [14:0] _GEN_10 = {_tq_T_1[13], _tq_T_1};
-  wire [14:0] qs_t = {{4{_qs_t_T[10]}}, _qs_t_T} - _GEN_10;
-  wire        qs_left = $signed(qs_t) > -15'sh1;
-  wire [15:0] _qs_rNeg_T = 16'h0 - {qs_t[14], qs_t};
-  wire [4:0]  _qs_rAmt_T_1 = _qs_rNeg_T > 16'h19 ? 5'h19 : _qs_rNeg_T[4:0];
-  wire [31:0] _qs_sticky_T = 32'h1 << _qs_rAmt_T_1;
-  wire [54:0] qs_shiftedL = _GEN_5 << ($signed(qs_t) > 15'sh1E ? 5'h1E : qs_t[4:0]);
-  wire [28:0] qs_m =
-    (qs_left ? qs_shiftedL[28:0] : {5'h0, raw_0_sig >> _qs_rAmt_T_1})
-    + {28'h0,
-       ~qs_left & (|(raw_0_sig & _qs_sticky_T[23:0] - 24'h1)) & io_in_sphere_0[31]};
-  wire [14:0] qs_t_1 = {{4{_qs_t_T_1[10]}}, _qs_t_T_1} - _GEN_10;
-  wire        qs_left_1 = $signed(qs_t_1) > -15'sh1;
-  wire [15:0] _qs_rNeg_T_1 = 16'h0 - {qs_t_1[14], qs_t_1};
-  wire [4:0]  _qs_rAmt_T_3 = _qs_rNeg_T_1 > 16'h19 ? 5'h19 : _qs_rNeg_T_1[4:0];
-  wire [31:0] _qs_sticky_T_5 = 32'h1 << _qs_rAmt_T_3;
-  wire [54:0] qs_shiftedL_1 = _GEN_7 << ($signed(qs_t_1) > 15'sh1E ? 5'h1E : qs_t_1[4:0]);
-  wire [28:0] qs_m_1 =
-    (qs_left_1 ? qs_shiftedL_1[28:0] : {5'h0, raw_1_sig >> _qs_rAmt_T_3})
-    + {28'h0,
-       ~qs_left_1 & (|(raw_1_sig & _qs_sticky_T_5[23:0] - 24'h1)) & io_in_sphere_1[31]};
-  wire [14:0] qs_t_2 = {{4{_qs_t_T_2[10]}}, _qs_t_T_2} - _GEN_10;
-  wire        qs_left_2 = $signed(qs_t_2) > -15'sh1;
-  wire [15:0] _qs_rNeg_T_2 = 16'h0 - {qs_t_2[14], qs_t_2};
-  wire [4:0]  _qs_rAmt_T_5 = _qs_rNeg_T_2 > 16'h19 ? 5'h19 : _qs_rNeg_T_2[4:0];
-  wire [31:0] _qs_sticky_T_10 = 32'h1 << _qs_rAmt_T_5;
-  wire [54:0] qs_shiftedL_2 = _GEN_9 << ($signed(qs_t_2) > 15'sh1E ? 5'h1E : qs_t_2[4:0]);
-  wire [28:0] qs_m_2 =
-    (qs_left_2 ? qs_shiftedL_2[28:0] : {5'h0, raw_2_sig >> _qs_rAmt_T_5})
-    + {28'h0,
-       ~qs_left_2 & (|(raw_2_sig & _qs_sticky_T_10[23:0] - 24'h1)) & io_in_sphere_2[31]};
-  wire [85:0] _raw_subSig_T_7 = {63'h0, io_in_sphere_3[22:0]} << {1'h0, raw_lz_3} + 6'h1;
-  wire [27:0] rNum =
-    {4'h0, raw_expZero_3 ? _raw_subSig_T_7[23:0] : {1'h1, io_in_sphere_3[22:0]}} * 28'h9;
-  wire [10:0] _GEN_11 = {raw_3_sExp[9], raw_3_sExp};
-  wire [10:0] _tq_T = _GEN_11 - 11'h1A;
-  wire [14:0] tq = {{4{_tq_T[10]}}, _tq_T} - _GEN_10;
-  wire [15:0] _qrRneg_T = 16'h0 - {tq[14], tq};
-  wire [4:0]  _qrR_T_1 = _qrRneg_T > 16'h1D ? 5'h1D : _qrRneg_T[4:0];
-  wire [31:0] _qrRight_T_1 = 32'h1 << _qrR_T_1;
-  wire [58:0] qrWide =
-    $signed(tq) > -15'sh1
-      ? {31'h0, rNum} << ($signed(tq) > 15'sh1D ? 5'h1D : tq[4:0])
-      : {30'h0, {1'h0, rNum >> _qrR_T_1} + {28'h0, |(rNum & _qrRight_T_1[27:0] - 28'h1)}};
-  wire        _io_out_needNone_T =
-    raw_expZero_3 & ~(|(io_in_sphere_3[22:0])) | io_in_sphere_3[31];
-  wire [28:0] _x_T_1 = {rNum, 1'h0} - 29'h1;
-  wire [10:0] _need_T = _GEN_11 - 11'h17;
-  wire [11:0] _need_T_52 =
-    {_need_T[10], _need_T}
-    + {6'h0,
-       {1'h0,
-        |(_x_T_1[28:16]),
-        (|(_x_T_1[28:16]))
-          ? {|(_x_T_1[28:24]),
-             (|(_x_T_1[28:24]))
-               ? {_x_T_1[28],
-                  _x_T_1[28]
-                    ? 2'h0
-                    : _x_T_1[27] ? 2'h3 : _x_T_1[26] ? 2'h2 : {1'h0, _x_T_1[25]}}
-               : {|(_x_T_1[23:20]),
-                  (|(_x_T_1[23:20]))
-                    ? (_x_T_1[23] ? 2'h3 : _x_T_1[22] ? 2'h2 : {1'h0, _x_T_1[21]})
-                    : _x_T_1[19] ? 2'h3 : _x_T_1[18] ? 2'h2 : {1'h0, _x_T_1[17]}}}
-          : {|(_x_T_1[15:8]),
-             (|(_x_T_1[15:8]))
-               ? {|(_x_T_1[15:12]),
-                  (|(_x_T_1[15:12]))
-                    ? (_x_T_1[15] ? 2'h3 : _x_T_1[14] ? 2'h2 : {1'h0, _x_T_1[13]})
-                    : _x_T_1[11] ? 2'h3 : _x_T_1[10] ? 2'h2 : {1'h0, _x_T_1[9]}}
-               : {|(_x_T_1[7:4]),
-                  (|(_x_T_1[7:4]))
-                    ? (_x_T_1[7] ? 2'h3 : _x_T_1[6] ? 2'h2 : {1'h0, _x_T_1[5]})
-                    : _x_T_1[3] ? 2'h3 : _x_T_1[2] ? 2'h2 : {1'h0, _x_T_1[1]}}}} + 6'h1};
-  wire [10:0] coordTops_0_2 = _GEN_3 + 11'h1;
-  wire [10:0] coordTops_1_2 = _GEN_6 + 11'h1;
-  wire [10:0] coordTops_2_2 = _GEN_8 + 11'h1;
-  wire        _GEN_12 = raw_0_isZero & raw_1_isZero;
-  wire [10:0] _GEN_13 =
-    raw_0_isZero | ~(raw_1_isZero | $signed(coordTops_0_2) > $signed(coordTops_1_2))
-      ? coordTops_1_2
-      : coordTops_0_2;
-  wire [10:0] top =
-    _GEN_12 | ~(raw_2_isZero | $signed(_GEN_13) > $signed(coordTops_2_2))
-      ? coordTops_2_2
-      : _GEN_13;
-  always @(posedge clock) begin
-    if (reset)
-      io_out_valid_r <= 1'h0;
-    else
-      io_out_valid_r <= io_in_valid;
-    r_0 <= cellsAndOver_0_1;
-    r_1 <= cellsAndOver_1_1;
-    r_2 <= cellsAndOver_2_1;
-    io_out_cellOverflow_r <=
-      ~raw_0_isZero & (|(cellsAndOver_m[46:19])) | cellsAndOver_0_1 == 20'h7FFFF
-      | $signed(cellsAndOver_0_1) < -20'sh7FFFE | ~raw_1_isZero
-      & (|(cellsAndOver_m_1[46:19])) | cellsAndOver_1_1 == 20'h7FFFF
-      | $signed(cellsAndOver_1_1) < -20'sh7FFFE | ~raw_2_isZero
-      & (|(cellsAndOver_m_2[46:19])) | cellsAndOver_2_1 == 20'h7FFFF
-      | $signed(cellsAndOver_2_1) < -20'sh7FFFE;
-    r_1_0 <= raw_0_isZero ? 29'h0 : io_in_sphere_0[31] ? 29'h0 - qs_m : qs_m;
-    r_1_1 <= raw_1_isZero ? 29'h0 : io_in_sphere_1[31] ? 29'h0 - qs_m_1 : qs_m_1;
-    r_1_2 <= raw_2_isZero ? 29'h0 : io_in_sphere_2[31] ? 29'h0 - qs_m_2 : qs_m_2;
-    io_out_qr_r <=
-      _io_out_needNone_T ? 29'h0 : (|(qrWide[58:29])) ? 29'h1FFFFFFF : qrWide[28:0];
-    io_out_need_r <= {_need_T_52[11], _need_T_52} - 13'h3;
-    io_out_needNone_r <= _io_out_needNone_T;
-    io_out_nonFinite_r <=
-      (&(io_in_sphere_0[30:23])) & (|(io_in_sphere_0[22:0])) | (&(io_in_sphere_0[30:23]))
-      & ~(|(io_in_sphere_0[22:0])) | (&(io_in_sphere_1[30:23]))
-      & (|(io_in_sphere_1[22:0])) | (&(io_in_sphere_1[30:23]))
-      & ~(|(io_in_sphere_1[22:0])) | (&(io_in_sphere_2[30:23]))
-      & (|(io_in_sphere_2[22:0])) | (&(io_in_sphere_2[30:23]))
-      & ~(|(io_in_sphere_2[22:0])) | (&(io_in_sphere_3[30:23]))
-      & (|(io_in_sphere_3[22:0])) | (&(io_in_sphere_3[30:23]))
-      & ~(|(io_in_sphere_3[22:0]));
-    io_out_top_r <= {{2{top[10]}}, top};
-    io_out_topNone_r <= _GEN_12 & raw_2_isZero;
-  end // always @(posedge)
-  assign io_out_valid = io_out_valid_r;
-  assign io_out_cell_0 = r_0;
-  assign io_out_cell_1 = r_1;
-  assign io_out_cell_2 = r_2;
-  assign io_out_cellOverflow = io_out_cellOverflow_r;
-  assign io_out_q_0 = r_1_0;
-  assign io_out_q_1 = r_1_1;
-  assign io_out_q_2 = r_1_2;
-  assign io_out_qr = io_out_qr_r;
-  assign io_out_need = io_out_need_r;
-  assign io_out_needNone = io_out_needNone_r;
-  assign io_out_nonFinite = io_out_nonFinite_r;
-  assign io_out_top = io_out_top_r;
-  assign io_out_topNone = io_out_topNone_r;
-endmodule
-
-module CellExponent_fp32_L16_c20_world(
+module CellExponent_fp32_L16_c20_p2_world(
   input         clock,
                 reset,
                 io_clear,
-                io_in_valid,
-  input  [12:0] io_in_need,
-  input         io_in_needNone,
-  input  [12:0] io_in_top,
-  input         io_in_topNone,
-                io_in_nonFinite,
+                io_in_0_valid,
+  input  [12:0] io_in_0_need,
+  input         io_in_0_needNone,
+  input  [12:0] io_in_0_top,
+  input         io_in_0_topNone,
+                io_in_0_nonFinite,
+                io_in_1_valid,
+  input  [12:0] io_in_1_need,
+  input         io_in_1_needNone,
+  input  [12:0] io_in_1_top,
+  input         io_in_1_topNone,
+                io_in_1_nonFinite,
   output [12:0] io_k
 );
 
@@ -16311,24 +15841,112 @@ module CellExponent_fp32_L16_c20_world(
   wire [13:0] kCoord = anyTop ? {topMax[12], topMax} - 14'h12 : 14'h3000;
   wire [13:0] _GEN = {kSmall[12], kSmall};
   wire [13:0] _io_k_T_1 = $signed(_GEN) > $signed(kCoord) ? _GEN : kCoord;
-  wire [12:0] need = io_in_needNone ? 13'h1000 : io_in_need;
-  wire        beats_0 = $signed(need) > $signed(kept_0);
-  wire        beats_1 = $signed(need) > $signed(kept_1);
-  wire        beats_2 = $signed(need) > $signed(kept_2);
-  wire        beats_3 = $signed(need) > $signed(kept_3);
-  wire        beats_4 = $signed(need) > $signed(kept_4);
-  wire        beats_5 = $signed(need) > $signed(kept_5);
-  wire        beats_6 = $signed(need) > $signed(kept_6);
-  wire        beats_7 = $signed(need) > $signed(kept_7);
-  wire        beats_8 = $signed(need) > $signed(kept_8);
-  wire        beats_9 = $signed(need) > $signed(kept_9);
-  wire        beats_10 = $signed(need) > $signed(kept_10);
-  wire        beats_11 = $signed(need) > $signed(kept_11);
-  wire        beats_12 = $signed(need) > $signed(kept_12);
-  wire        beats_13 = $signed(need) > $signed(kept_13);
-  wire        beats_14 = $signed(need) > $signed(kept_14);
-  wire        beats_15 = $signed(need) > $signed(kept_15);
-  wire        take = io_in_valid & ~io_in_nonFinite;
+  wire [12:0] after_need = io_in_0_needNone ? 13'h1000 : io_in_0_need;
+  wire        after_ins_beats_0 = $signed(after_need) > $signed(kept_0);
+  wire        after_ins_beats_1 = $signed(after_need) > $signed(kept_1);
+  wire        after_ins_beats_2 = $signed(after_need) > $signed(kept_2);
+  wire        after_ins_beats_3 = $signed(after_need) > $signed(kept_3);
+  wire        after_ins_beats_4 = $signed(after_need) > $signed(kept_4);
+  wire        after_ins_beats_5 = $signed(after_need) > $signed(kept_5);
+  wire        after_ins_beats_6 = $signed(after_need) > $signed(kept_6);
+  wire        after_ins_beats_7 = $signed(after_need) > $signed(kept_7);
+  wire        after_ins_beats_8 = $signed(after_need) > $signed(kept_8);
+  wire        after_ins_beats_9 = $signed(after_need) > $signed(kept_9);
+  wire        after_ins_beats_10 = $signed(after_need) > $signed(kept_10);
+  wire        after_ins_beats_11 = $signed(after_need) > $signed(kept_11);
+  wire        after_ins_beats_12 = $signed(after_need) > $signed(kept_12);
+  wire        after_ins_beats_13 = $signed(after_need) > $signed(kept_13);
+  wire        after_ins_beats_14 = $signed(after_need) > $signed(kept_14);
+  wire        after_ins_beats_15 = $signed(after_need) > $signed(kept_15);
+  wire        after_ins_beats_16 = $signed(after_need) > $signed(kept_16);
+  wire [12:0] after_need_1 = io_in_1_needNone ? 13'h1000 : io_in_1_need;
+  wire        after_take = io_in_0_valid & ~io_in_0_nonFinite;
+  wire        after_hasTop = after_take & ~io_in_0_topNone;
+  wire        _after_T_25 = anyTop | after_hasTop;
+  wire        after_take_1 = io_in_1_valid & ~io_in_1_nonFinite;
+  wire        after_hasTop_1 = after_take_1 & ~io_in_1_topNone;
+  wire        _GEN_0 = after_take & after_ins_beats_0;
+  wire [12:0] _after_T = _GEN_0 ? after_need : kept_0;
+  wire [5:0]  _after_T_19 = {1'h0, used} + {5'h0, after_take};
+  wire        _GEN_1 = ~after_hasTop | anyTop & $signed(topMax) > $signed(io_in_0_top);
+  wire        after_ins_beats_0_1 = $signed(after_need_1) > $signed(_after_T);
+  wire [6:0]  _after_T_45 =
+    {1'h0, _after_T_19 > 6'h11 ? 6'h11 : _after_T_19} + {6'h0, after_take_1};
+  wire [12:0] _after_T_1 =
+    after_take
+      ? (after_ins_beats_0 ? kept_0 : after_ins_beats_1 ? after_need : kept_1)
+      : kept_1;
+  wire [12:0] _after_T_2 =
+    after_take
+      ? (after_ins_beats_1 ? kept_1 : after_ins_beats_2 ? after_need : kept_2)
+      : kept_2;
+  wire [12:0] _after_T_3 =
+    after_take
+      ? (after_ins_beats_2 ? kept_2 : after_ins_beats_3 ? after_need : kept_3)
+      : kept_3;
+  wire [12:0] _after_T_4 =
+    after_take
+      ? (after_ins_beats_3 ? kept_3 : after_ins_beats_4 ? after_need : kept_4)
+      : kept_4;
+  wire [12:0] _after_T_5 =
+    after_take
+      ? (after_ins_beats_4 ? kept_4 : after_ins_beats_5 ? after_need : kept_5)
+      : kept_5;
+  wire [12:0] _after_T_6 =
+    after_take
+      ? (after_ins_beats_5 ? kept_5 : after_ins_beats_6 ? after_need : kept_6)
+      : kept_6;
+  wire [12:0] _after_T_7 =
+    after_take
+      ? (after_ins_beats_6 ? kept_6 : after_ins_beats_7 ? after_need : kept_7)
+      : kept_7;
+  wire [12:0] _after_T_8 =
+    after_take
+      ? (after_ins_beats_7 ? kept_7 : after_ins_beats_8 ? after_need : kept_8)
+      : kept_8;
+  wire [12:0] _after_T_9 =
+    after_take
+      ? (after_ins_beats_8 ? kept_8 : after_ins_beats_9 ? after_need : kept_9)
+      : kept_9;
+  wire [12:0] _after_T_10 =
+    after_take
+      ? (after_ins_beats_9 ? kept_9 : after_ins_beats_10 ? after_need : kept_10)
+      : kept_10;
+  wire [12:0] _after_T_11 =
+    after_take
+      ? (after_ins_beats_10 ? kept_10 : after_ins_beats_11 ? after_need : kept_11)
+      : kept_11;
+  wire [12:0] _after_T_12 =
+    after_take
+      ? (after_ins_beats_11 ? kept_11 : after_ins_beats_12 ? after_need : kept_12)
+      : kept_12;
+  wire [12:0] _after_T_13 =
+    after_take
+      ? (after_ins_beats_12 ? kept_12 : after_ins_beats_13 ? after_need : kept_13)
+      : kept_13;
+  wire [12:0] _after_T_14 =
+    after_take
+      ? (after_ins_beats_13 ? kept_13 : after_ins_beats_14 ? after_need : kept_14)
+      : kept_14;
+  wire [12:0] _after_T_15 =
+    after_take
+      ? (after_ins_beats_14 ? kept_14 : after_ins_beats_15 ? after_need : kept_15)
+      : kept_15;
+  wire        after_ins_beats_1_1 = $signed(after_need_1) > $signed(_after_T_1);
+  wire        after_ins_beats_2_1 = $signed(after_need_1) > $signed(_after_T_2);
+  wire        after_ins_beats_3_1 = $signed(after_need_1) > $signed(_after_T_3);
+  wire        after_ins_beats_4_1 = $signed(after_need_1) > $signed(_after_T_4);
+  wire        after_ins_beats_5_1 = $signed(after_need_1) > $signed(_after_T_5);
+  wire        after_ins_beats_6_1 = $signed(after_need_1) > $signed(_after_T_6);
+  wire        after_ins_beats_7_1 = $signed(after_need_1) > $signed(_after_T_7);
+  wire        after_ins_beats_8_1 = $signed(after_need_1) > $signed(_after_T_8);
+  wire        after_ins_beats_9_1 = $signed(after_need_1) > $signed(_after_T_9);
+  wire        after_ins_beats_10_1 = $signed(after_need_1) > $signed(_after_T_10);
+  wire        after_ins_beats_11_1 = $signed(after_need_1) > $signed(_after_T_11);
+  wire        after_ins_beats_12_1 = $signed(after_need_1) > $signed(_after_T_12);
+  wire        after_ins_beats_13_1 = $signed(after_need_1) > $signed(_after_T_13);
+  wire        after_ins_beats_14_1 = $signed(after_need_1) > $signed(_after_T_14);
+  wire        after_ins_beats_15_1 = $signed(after_need_1) > $signed(_after_T_15);
   always @(posedge clock) begin
     if (reset) begin
       kept_0 <= 13'h1000;
@@ -16375,89 +15993,263 @@ module CellExponent_fp32_L16_c20_world(
         topMax <= 13'h1000;
       end
       else begin
-        if (take & beats_0)
-          kept_0 <= need;
-        if (take) begin
-          if (beats_0)
-            kept_1 <= kept_0;
-          else if (beats_1)
-            kept_1 <= need;
-          if (beats_1)
-            kept_2 <= kept_1;
-          else if (beats_2)
-            kept_2 <= need;
-          if (beats_2)
-            kept_3 <= kept_2;
-          else if (beats_3)
-            kept_3 <= need;
-          if (beats_3)
-            kept_4 <= kept_3;
-          else if (beats_4)
-            kept_4 <= need;
-          if (beats_4)
-            kept_5 <= kept_4;
-          else if (beats_5)
-            kept_5 <= need;
-          if (beats_5)
-            kept_6 <= kept_5;
-          else if (beats_6)
-            kept_6 <= need;
-          if (beats_6)
-            kept_7 <= kept_6;
-          else if (beats_7)
-            kept_7 <= need;
-          if (beats_7)
-            kept_8 <= kept_7;
-          else if (beats_8)
-            kept_8 <= need;
-          if (beats_8)
-            kept_9 <= kept_8;
-          else if (beats_9)
-            kept_9 <= need;
-          if (beats_9)
-            kept_10 <= kept_9;
-          else if (beats_10)
-            kept_10 <= need;
-          if (beats_10)
-            kept_11 <= kept_10;
-          else if (beats_11)
-            kept_11 <= need;
-          if (beats_11)
-            kept_12 <= kept_11;
-          else if (beats_12)
-            kept_12 <= need;
-          if (beats_12)
-            kept_13 <= kept_12;
-          else if (beats_13)
-            kept_13 <= need;
-          if (beats_13)
-            kept_14 <= kept_13;
-          else if (beats_14)
-            kept_14 <= need;
-          if (beats_14)
-            kept_15 <= kept_14;
-          else if (beats_15)
-            kept_15 <= need;
-          if (beats_15)
-            kept_16 <= kept_15;
-          else if ($signed(need) > $signed(kept_16))
-            kept_16 <= need;
+        if (after_take_1 & after_ins_beats_0_1)
+          kept_0 <= after_need_1;
+        else if (_GEN_0)
+          kept_0 <= after_need;
+        if (after_take_1) begin
+          if (after_ins_beats_0_1)
+            kept_1 <= _after_T;
+          else if (after_ins_beats_1_1)
+            kept_1 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_0)
+              kept_1 <= kept_0;
+            else if (after_ins_beats_1)
+              kept_1 <= after_need;
+          end
+          if (after_ins_beats_1_1)
+            kept_2 <= _after_T_1;
+          else if (after_ins_beats_2_1)
+            kept_2 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_1)
+              kept_2 <= kept_1;
+            else if (after_ins_beats_2)
+              kept_2 <= after_need;
+          end
+          if (after_ins_beats_2_1)
+            kept_3 <= _after_T_2;
+          else if (after_ins_beats_3_1)
+            kept_3 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_2)
+              kept_3 <= kept_2;
+            else if (after_ins_beats_3)
+              kept_3 <= after_need;
+          end
+          if (after_ins_beats_3_1)
+            kept_4 <= _after_T_3;
+          else if (after_ins_beats_4_1)
+            kept_4 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_3)
+              kept_4 <= kept_3;
+            else if (after_ins_beats_4)
+              kept_4 <= after_need;
+          end
+          if (after_ins_beats_4_1)
+            kept_5 <= _after_T_4;
+          else if (after_ins_beats_5_1)
+            kept_5 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_4)
+              kept_5 <= kept_4;
+            else if (after_ins_beats_5)
+              kept_5 <= after_need;
+          end
+          if (after_ins_beats_5_1)
+            kept_6 <= _after_T_5;
+          else if (after_ins_beats_6_1)
+            kept_6 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_5)
+              kept_6 <= kept_5;
+            else if (after_ins_beats_6)
+              kept_6 <= after_need;
+          end
+          if (after_ins_beats_6_1)
+            kept_7 <= _after_T_6;
+          else if (after_ins_beats_7_1)
+            kept_7 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_6)
+              kept_7 <= kept_6;
+            else if (after_ins_beats_7)
+              kept_7 <= after_need;
+          end
+          if (after_ins_beats_7_1)
+            kept_8 <= _after_T_7;
+          else if (after_ins_beats_8_1)
+            kept_8 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_7)
+              kept_8 <= kept_7;
+            else if (after_ins_beats_8)
+              kept_8 <= after_need;
+          end
+          if (after_ins_beats_8_1)
+            kept_9 <= _after_T_8;
+          else if (after_ins_beats_9_1)
+            kept_9 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_8)
+              kept_9 <= kept_8;
+            else if (after_ins_beats_9)
+              kept_9 <= after_need;
+          end
+          if (after_ins_beats_9_1)
+            kept_10 <= _after_T_9;
+          else if (after_ins_beats_10_1)
+            kept_10 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_9)
+              kept_10 <= kept_9;
+            else if (after_ins_beats_10)
+              kept_10 <= after_need;
+          end
+          if (after_ins_beats_10_1)
+            kept_11 <= _after_T_10;
+          else if (after_ins_beats_11_1)
+            kept_11 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_10)
+              kept_11 <= kept_10;
+            else if (after_ins_beats_11)
+              kept_11 <= after_need;
+          end
+          if (after_ins_beats_11_1)
+            kept_12 <= _after_T_11;
+          else if (after_ins_beats_12_1)
+            kept_12 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_11)
+              kept_12 <= kept_11;
+            else if (after_ins_beats_12)
+              kept_12 <= after_need;
+          end
+          if (after_ins_beats_12_1)
+            kept_13 <= _after_T_12;
+          else if (after_ins_beats_13_1)
+            kept_13 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_12)
+              kept_13 <= kept_12;
+            else if (after_ins_beats_13)
+              kept_13 <= after_need;
+          end
+          if (after_ins_beats_13_1)
+            kept_14 <= _after_T_13;
+          else if (after_ins_beats_14_1)
+            kept_14 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_13)
+              kept_14 <= kept_13;
+            else if (after_ins_beats_14)
+              kept_14 <= after_need;
+          end
+          if (after_ins_beats_14_1)
+            kept_15 <= _after_T_14;
+          else if (after_ins_beats_15_1)
+            kept_15 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_14)
+              kept_15 <= kept_14;
+            else if (after_ins_beats_15)
+              kept_15 <= after_need;
+          end
+          if (after_ins_beats_15_1)
+            kept_16 <= _after_T_15;
+          else if ($signed(after_need_1) > $signed(after_take
+                                                     ? (after_ins_beats_15
+                                                          ? kept_15
+                                                          : after_ins_beats_16
+                                                              ? after_need
+                                                              : kept_16)
+                                                     : kept_16))
+            kept_16 <= after_need_1;
+          else if (after_take) begin
+            if (after_ins_beats_15)
+              kept_16 <= kept_15;
+            else if (after_ins_beats_16)
+              kept_16 <= after_need;
+          end
         end
-        if (~take | used == 5'h11) begin
+        else if (after_take) begin
+          if (after_ins_beats_0)
+            kept_1 <= kept_0;
+          else if (after_ins_beats_1)
+            kept_1 <= after_need;
+          if (after_ins_beats_1)
+            kept_2 <= kept_1;
+          else if (after_ins_beats_2)
+            kept_2 <= after_need;
+          if (after_ins_beats_2)
+            kept_3 <= kept_2;
+          else if (after_ins_beats_3)
+            kept_3 <= after_need;
+          if (after_ins_beats_3)
+            kept_4 <= kept_3;
+          else if (after_ins_beats_4)
+            kept_4 <= after_need;
+          if (after_ins_beats_4)
+            kept_5 <= kept_4;
+          else if (after_ins_beats_5)
+            kept_5 <= after_need;
+          if (after_ins_beats_5)
+            kept_6 <= kept_5;
+          else if (after_ins_beats_6)
+            kept_6 <= after_need;
+          if (after_ins_beats_6)
+            kept_7 <= kept_6;
+          else if (after_ins_beats_7)
+            kept_7 <= after_need;
+          if (after_ins_beats_7)
+            kept_8 <= kept_7;
+          else if (after_ins_beats_8)
+            kept_8 <= after_need;
+          if (after_ins_beats_8)
+            kept_9 <= kept_8;
+          else if (after_ins_beats_9)
+            kept_9 <= after_need;
+          if (after_ins_beats_9)
+            kept_10 <= kept_9;
+          else if (after_ins_beats_10)
+            kept_10 <= after_need;
+          if (after_ins_beats_10)
+            kept_11 <= kept_10;
+          else if (after_ins_beats_11)
+            kept_11 <= after_need;
+          if (after_ins_beats_11)
+            kept_12 <= kept_11;
+          else if (after_ins_beats_12)
+            kept_12 <= after_need;
+          if (after_ins_beats_12)
+            kept_13 <= kept_12;
+          else if (after_ins_beats_13)
+            kept_13 <= after_need;
+          if (after_ins_beats_13)
+            kept_14 <= kept_13;
+          else if (after_ins_beats_14)
+            kept_14 <= after_need;
+          if (after_ins_beats_14)
+            kept_15 <= kept_14;
+          else if (after_ins_beats_15)
+            kept_15 <= after_need;
+          if (after_ins_beats_15)
+            kept_16 <= kept_15;
+          else if (after_ins_beats_16)
+            kept_16 <= after_need;
+        end
+        used <= _after_T_45 > 7'h11 ? 5'h11 : _after_T_45[4:0];
+        if (~after_hasTop_1 | _after_T_25
+            & $signed(_GEN_1 ? topMax : io_in_0_top) > $signed(io_in_1_top)) begin
+          if (_GEN_1) begin
+          end
+          else
+            topMax <= io_in_0_top;
         end
         else
-          used <= used + 5'h1;
-        if (take & ~io_in_topNone & (~anyTop | $signed(io_in_top) > $signed(topMax)))
-          topMax <= io_in_top;
+          topMax <= io_in_1_top;
       end
-      anyTop <= ~io_clear & (take & ~io_in_topNone | anyTop);
+      anyTop <= ~io_clear & (_after_T_25 | after_hasTop_1);
     end
   end // always @(posedge)
   assign io_k = $signed(_io_k_T_1) > -14'sh38 ? _io_k_T_1[12:0] : 13'h1FC8;
 endmodule
 
 // VCS coverage exclude_file
-module counts_1024x104_world(
+module tables_0_1024x104_world(
   input  [9:0]   R0_addr,
   input          R0_en,
                  R0_clk,
@@ -16516,6 +16308,43 @@ module counts_1024x104_world(
 endmodule
 
 // VCS coverage exclude_file
+module mem_1024x104_world(
+  input  [9:0]   R0_addr,
+  input          R0_en,
+                 R0_clk,
+  output [103:0] R0_data,
+  input  [9:0]   R1_addr,
+  input          R1_en,
+                 R1_clk,
+  output [103:0] R1_data,
+  input  [9:0]   W0_addr,
+  input          W0_en,
+                 W0_clk,
+  input  [103:0] W0_data
+);
+
+  reg [103:0] Memory[0:1023];
+  reg         _R0_en_d0;
+  reg [9:0]   _R0_addr_d0;
+  always @(posedge R0_clk) begin
+    _R0_en_d0 <= R0_en;
+    _R0_addr_d0 <= R0_addr;
+  end // always @(posedge)
+  reg         _R1_en_d0;
+  reg [9:0]   _R1_addr_d0;
+  always @(posedge R1_clk) begin
+    _R1_en_d0 <= R1_en;
+    _R1_addr_d0 <= R1_addr;
+  end // always @(posedge)
+  always @(posedge W0_clk) begin
+    if (W0_en & 1'h1)
+      Memory[W0_addr] <= W0_data;
+  end // always @(posedge)
+  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 104'bx;
+  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 104'bx;
+endmodule
+
+// VCS coverage exclude_file
 module entries_4096x13_world(
   input  [11:0] R0_addr,
   input         R0_en,
@@ -16524,7 +16353,11 @@ module entries_4096x13_world(
   input  [11:0] W0_addr,
   input         W0_en,
                 W0_clk,
-  input  [12:0] W0_data
+  input  [12:0] W0_data,
+  input  [11:0] W1_addr,
+  input         W1_en,
+                W1_clk,
+  input  [12:0] W1_data
 );
 
   reg [12:0] Memory[0:4095];
@@ -16537,49 +16370,374 @@ module entries_4096x13_world(
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
+    if (W1_en & 1'h1)
+      Memory[W1_addr] <= W1_data;
   end // always @(posedge)
   assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 13'bx;
 endmodule
 
-module BucketSort_n4096_b13_w3_world(
+module BucketSort_n4096_b13_w3_c16_p2_world(
   input         clock,
                 reset,
   input  [3:0]  io_usedLog2,
   input         io_clear,
                 io_prefix,
   output        io_busy,
-                io_in_ready,
-  input         io_in_valid,
-                io_in_bits_scatter,
-  input  [12:0] io_in_bits_bucket,
-  input  [11:0] io_in_bits_item,
-  input  [12:0] io_lookup_bucket,
-  output [12:0] io_lookup_begin,
-                io_lookup_end,
-                io_lookup_word_0,
-                io_lookup_word_1,
-                io_lookup_word_2,
-                io_lookup_word_3,
-                io_lookup_word_4,
-                io_lookup_word_5,
-                io_lookup_word_6,
-                io_lookup_word_7,
-  input  [11:0] io_entry_addr,
-  output [11:0] io_entry_item,
-  output        io_entry_mark,
-  input         io_mark_valid,
-  input  [11:0] io_mark_bits_addr,
-                io_mark_bits_item,
+                io_in_0_ready,
+  input         io_in_0_valid,
+                io_in_0_bits_scatter,
+  input  [12:0] io_in_0_bits_bucket,
+  input  [11:0] io_in_0_bits_item,
+  output        io_in_1_ready,
+  input         io_in_1_valid,
+                io_in_1_bits_scatter,
+  input  [12:0] io_in_1_bits_bucket,
+  input  [11:0] io_in_1_bits_item,
+  input  [12:0] io_lookup_0_bucket,
+  output [12:0] io_lookup_0_begin,
+                io_lookup_0_end,
+                io_lookup_0_word_0,
+                io_lookup_0_word_1,
+                io_lookup_0_word_2,
+                io_lookup_0_word_3,
+                io_lookup_0_word_4,
+                io_lookup_0_word_5,
+                io_lookup_0_word_6,
+                io_lookup_0_word_7,
+  input  [12:0] io_lookup_1_bucket,
+  output [12:0] io_lookup_1_begin,
+                io_lookup_1_end,
+                io_lookup_1_word_0,
+                io_lookup_1_word_1,
+                io_lookup_1_word_2,
+                io_lookup_1_word_3,
+                io_lookup_1_word_4,
+                io_lookup_1_word_5,
+                io_lookup_1_word_6,
+                io_lookup_1_word_7,
+  input  [12:0] io_lookup_2_bucket,
+  output [12:0] io_lookup_2_begin,
+                io_lookup_2_end,
+                io_lookup_2_word_0,
+                io_lookup_2_word_1,
+                io_lookup_2_word_2,
+                io_lookup_2_word_3,
+                io_lookup_2_word_4,
+                io_lookup_2_word_5,
+                io_lookup_2_word_6,
+                io_lookup_2_word_7,
+  input  [12:0] io_lookup_3_bucket,
+  output [12:0] io_lookup_3_begin,
+                io_lookup_3_end,
+                io_lookup_3_word_0,
+                io_lookup_3_word_1,
+                io_lookup_3_word_2,
+                io_lookup_3_word_3,
+                io_lookup_3_word_4,
+                io_lookup_3_word_5,
+                io_lookup_3_word_6,
+                io_lookup_3_word_7,
+  input  [12:0] io_lookup_4_bucket,
+  output [12:0] io_lookup_4_begin,
+                io_lookup_4_end,
+                io_lookup_4_word_0,
+                io_lookup_4_word_1,
+                io_lookup_4_word_2,
+                io_lookup_4_word_3,
+                io_lookup_4_word_4,
+                io_lookup_4_word_5,
+                io_lookup_4_word_6,
+                io_lookup_4_word_7,
+  input  [12:0] io_lookup_5_bucket,
+  output [12:0] io_lookup_5_begin,
+                io_lookup_5_end,
+                io_lookup_5_word_0,
+                io_lookup_5_word_1,
+                io_lookup_5_word_2,
+                io_lookup_5_word_3,
+                io_lookup_5_word_4,
+                io_lookup_5_word_5,
+                io_lookup_5_word_6,
+                io_lookup_5_word_7,
+  input  [12:0] io_lookup_6_bucket,
+  output [12:0] io_lookup_6_begin,
+                io_lookup_6_end,
+                io_lookup_6_word_0,
+                io_lookup_6_word_1,
+                io_lookup_6_word_2,
+                io_lookup_6_word_3,
+                io_lookup_6_word_4,
+                io_lookup_6_word_5,
+                io_lookup_6_word_6,
+                io_lookup_6_word_7,
+  input  [12:0] io_lookup_7_bucket,
+  output [12:0] io_lookup_7_begin,
+                io_lookup_7_end,
+                io_lookup_7_word_0,
+                io_lookup_7_word_1,
+                io_lookup_7_word_2,
+                io_lookup_7_word_3,
+                io_lookup_7_word_4,
+                io_lookup_7_word_5,
+                io_lookup_7_word_6,
+                io_lookup_7_word_7,
+  input  [12:0] io_lookup_8_bucket,
+  output [12:0] io_lookup_8_begin,
+                io_lookup_8_end,
+                io_lookup_8_word_0,
+                io_lookup_8_word_1,
+                io_lookup_8_word_2,
+                io_lookup_8_word_3,
+                io_lookup_8_word_4,
+                io_lookup_8_word_5,
+                io_lookup_8_word_6,
+                io_lookup_8_word_7,
+  input  [12:0] io_lookup_9_bucket,
+  output [12:0] io_lookup_9_begin,
+                io_lookup_9_end,
+                io_lookup_9_word_0,
+                io_lookup_9_word_1,
+                io_lookup_9_word_2,
+                io_lookup_9_word_3,
+                io_lookup_9_word_4,
+                io_lookup_9_word_5,
+                io_lookup_9_word_6,
+                io_lookup_9_word_7,
+  input  [12:0] io_lookup_10_bucket,
+  output [12:0] io_lookup_10_begin,
+                io_lookup_10_end,
+                io_lookup_10_word_0,
+                io_lookup_10_word_1,
+                io_lookup_10_word_2,
+                io_lookup_10_word_3,
+                io_lookup_10_word_4,
+                io_lookup_10_word_5,
+                io_lookup_10_word_6,
+                io_lookup_10_word_7,
+  input  [12:0] io_lookup_11_bucket,
+  output [12:0] io_lookup_11_begin,
+                io_lookup_11_end,
+                io_lookup_11_word_0,
+                io_lookup_11_word_1,
+                io_lookup_11_word_2,
+                io_lookup_11_word_3,
+                io_lookup_11_word_4,
+                io_lookup_11_word_5,
+                io_lookup_11_word_6,
+                io_lookup_11_word_7,
+  input  [12:0] io_lookup_12_bucket,
+  output [12:0] io_lookup_12_begin,
+                io_lookup_12_end,
+                io_lookup_12_word_0,
+                io_lookup_12_word_1,
+                io_lookup_12_word_2,
+                io_lookup_12_word_3,
+                io_lookup_12_word_4,
+                io_lookup_12_word_5,
+                io_lookup_12_word_6,
+                io_lookup_12_word_7,
+  input  [12:0] io_lookup_13_bucket,
+  output [12:0] io_lookup_13_begin,
+                io_lookup_13_end,
+                io_lookup_13_word_0,
+                io_lookup_13_word_1,
+                io_lookup_13_word_2,
+                io_lookup_13_word_3,
+                io_lookup_13_word_4,
+                io_lookup_13_word_5,
+                io_lookup_13_word_6,
+                io_lookup_13_word_7,
+  input  [12:0] io_lookup_14_bucket,
+  output [12:0] io_lookup_14_begin,
+                io_lookup_14_end,
+                io_lookup_14_word_0,
+                io_lookup_14_word_1,
+                io_lookup_14_word_2,
+                io_lookup_14_word_3,
+                io_lookup_14_word_4,
+                io_lookup_14_word_5,
+                io_lookup_14_word_6,
+                io_lookup_14_word_7,
+  input  [12:0] io_lookup_15_bucket,
+  output [12:0] io_lookup_15_begin,
+                io_lookup_15_end,
+                io_lookup_15_word_0,
+                io_lookup_15_word_1,
+                io_lookup_15_word_2,
+                io_lookup_15_word_3,
+                io_lookup_15_word_4,
+                io_lookup_15_word_5,
+                io_lookup_15_word_6,
+                io_lookup_15_word_7,
+  input  [11:0] io_entry_0_addr,
+  output [11:0] io_entry_0_item,
+  output        io_entry_0_mark,
+  input  [11:0] io_entry_1_addr,
+  output [11:0] io_entry_1_item,
+  output        io_entry_1_mark,
+  input  [11:0] io_entry_2_addr,
+  output [11:0] io_entry_2_item,
+  output        io_entry_2_mark,
+  input  [11:0] io_entry_3_addr,
+  output [11:0] io_entry_3_item,
+  output        io_entry_3_mark,
+  input  [11:0] io_entry_4_addr,
+  output [11:0] io_entry_4_item,
+  output        io_entry_4_mark,
+  input  [11:0] io_entry_5_addr,
+  output [11:0] io_entry_5_item,
+  output        io_entry_5_mark,
+  input  [11:0] io_entry_6_addr,
+  output [11:0] io_entry_6_item,
+  output        io_entry_6_mark,
+  input  [11:0] io_entry_7_addr,
+  output [11:0] io_entry_7_item,
+  output        io_entry_7_mark,
+  input  [11:0] io_entry_8_addr,
+  output [11:0] io_entry_8_item,
+  output        io_entry_8_mark,
+  input  [11:0] io_entry_9_addr,
+  output [11:0] io_entry_9_item,
+  output        io_entry_9_mark,
+  input  [11:0] io_entry_10_addr,
+  output [11:0] io_entry_10_item,
+  output        io_entry_10_mark,
+  input  [11:0] io_entry_11_addr,
+  output [11:0] io_entry_11_item,
+  output        io_entry_11_mark,
+  input  [11:0] io_entry_12_addr,
+  output [11:0] io_entry_12_item,
+  output        io_entry_12_mark,
+  input  [11:0] io_entry_13_addr,
+  output [11:0] io_entry_13_item,
+  output        io_entry_13_mark,
+  input  [11:0] io_entry_14_addr,
+  output [11:0] io_entry_14_item,
+  output        io_entry_14_mark,
+  input  [11:0] io_entry_15_addr,
+  output [11:0] io_entry_15_item,
+  output        io_entry_15_mark,
+  input         io_mark_0_valid,
+  input  [11:0] io_mark_0_bits_addr,
+                io_mark_0_bits_item,
+  input         io_mark_1_valid,
+  input  [11:0] io_mark_1_bits_addr,
+                io_mark_1_bits_item,
+  input         io_mark_2_valid,
+  input  [11:0] io_mark_2_bits_addr,
+                io_mark_2_bits_item,
+  input         io_mark_3_valid,
+  input  [11:0] io_mark_3_bits_addr,
+                io_mark_3_bits_item,
+  input         io_mark_4_valid,
+  input  [11:0] io_mark_4_bits_addr,
+                io_mark_4_bits_item,
+  input         io_mark_5_valid,
+  input  [11:0] io_mark_5_bits_addr,
+                io_mark_5_bits_item,
+  input         io_mark_6_valid,
+  input  [11:0] io_mark_6_bits_addr,
+                io_mark_6_bits_item,
+  input         io_mark_7_valid,
+  input  [11:0] io_mark_7_bits_addr,
+                io_mark_7_bits_item,
+  input         io_mark_8_valid,
+  input  [11:0] io_mark_8_bits_addr,
+                io_mark_8_bits_item,
+  input         io_mark_9_valid,
+  input  [11:0] io_mark_9_bits_addr,
+                io_mark_9_bits_item,
+  input         io_mark_10_valid,
+  input  [11:0] io_mark_10_bits_addr,
+                io_mark_10_bits_item,
+  input         io_mark_11_valid,
+  input  [11:0] io_mark_11_bits_addr,
+                io_mark_11_bits_item,
+  input         io_mark_12_valid,
+  input  [11:0] io_mark_12_bits_addr,
+                io_mark_12_bits_item,
+  input         io_mark_13_valid,
+  input  [11:0] io_mark_13_bits_addr,
+                io_mark_13_bits_item,
+  input         io_mark_14_valid,
+  input  [11:0] io_mark_14_bits_addr,
+                io_mark_14_bits_item,
+  input         io_mark_15_valid,
+  input  [11:0] io_mark_15_bits_addr,
+                io_mark_15_bits_item,
   output [12:0] io_counted,
                 io_scattered,
   output        io_badBucket
 );
 
-  wire [12:0]  _entries_ext_R0_data;
-  wire [103:0] _counts_ext_R0_data;
-  wire [103:0] _counts_ext_R1_data;
-  wire [103:0] _counts_ext_R2_data;
-  wire [103:0] _counts_ext_R3_data;
+  wire [12:0]  oldWord_1_7;
+  wire [12:0]  oldWord_1_6;
+  wire [12:0]  oldWord_1_5;
+  wire [12:0]  oldWord_1_4;
+  wire [12:0]  oldWord_1_3;
+  wire [12:0]  oldWord_1_2;
+  wire [12:0]  oldWord_1_1;
+  wire [12:0]  oldWord_1_0;
+  wire [12:0]  oldWord_7;
+  wire [12:0]  oldWord_6;
+  wire [12:0]  oldWord_5;
+  wire [12:0]  oldWord_4;
+  wire [12:0]  oldWord_3;
+  wire [12:0]  oldWord_2;
+  wire [12:0]  oldWord_1;
+  wire [12:0]  oldWord_0;
+  wire [12:0]  _entries_15_ext_R0_data;
+  wire [12:0]  _entries_14_ext_R0_data;
+  wire [12:0]  _entries_13_ext_R0_data;
+  wire [12:0]  _entries_12_ext_R0_data;
+  wire [12:0]  _entries_11_ext_R0_data;
+  wire [12:0]  _entries_10_ext_R0_data;
+  wire [12:0]  _entries_9_ext_R0_data;
+  wire [12:0]  _entries_8_ext_R0_data;
+  wire [12:0]  _entries_7_ext_R0_data;
+  wire [12:0]  _entries_6_ext_R0_data;
+  wire [12:0]  _entries_5_ext_R0_data;
+  wire [12:0]  _entries_4_ext_R0_data;
+  wire [12:0]  _entries_3_ext_R0_data;
+  wire [12:0]  _entries_2_ext_R0_data;
+  wire [12:0]  _entries_1_ext_R0_data;
+  wire [12:0]  _entries_0_ext_R0_data;
+  wire [103:0] _cursors_0_ext_R0_data;
+  wire [103:0] _cursors_0_ext_R1_data;
+  wire [103:0] _tables_15_ext_R0_data;
+  wire [103:0] _tables_15_ext_R1_data;
+  wire [103:0] _tables_14_ext_R0_data;
+  wire [103:0] _tables_14_ext_R1_data;
+  wire [103:0] _tables_13_ext_R0_data;
+  wire [103:0] _tables_13_ext_R1_data;
+  wire [103:0] _tables_12_ext_R0_data;
+  wire [103:0] _tables_12_ext_R1_data;
+  wire [103:0] _tables_11_ext_R0_data;
+  wire [103:0] _tables_11_ext_R1_data;
+  wire [103:0] _tables_10_ext_R0_data;
+  wire [103:0] _tables_10_ext_R1_data;
+  wire [103:0] _tables_9_ext_R0_data;
+  wire [103:0] _tables_9_ext_R1_data;
+  wire [103:0] _tables_8_ext_R0_data;
+  wire [103:0] _tables_8_ext_R1_data;
+  wire [103:0] _tables_7_ext_R0_data;
+  wire [103:0] _tables_7_ext_R1_data;
+  wire [103:0] _tables_6_ext_R0_data;
+  wire [103:0] _tables_6_ext_R1_data;
+  wire [103:0] _tables_5_ext_R0_data;
+  wire [103:0] _tables_5_ext_R1_data;
+  wire [103:0] _tables_4_ext_R0_data;
+  wire [103:0] _tables_4_ext_R1_data;
+  wire [103:0] _tables_3_ext_R0_data;
+  wire [103:0] _tables_3_ext_R1_data;
+  wire [103:0] _tables_2_ext_R0_data;
+  wire [103:0] _tables_2_ext_R1_data;
+  wire [103:0] _tables_1_ext_R0_data;
+  wire [103:0] _tables_1_ext_R1_data;
+  wire [103:0] _tables_0_ext_R0_data;
+  wire [103:0] _tables_0_ext_R1_data;
+  wire [103:0] _tables_0_ext_R2_data;
+  wire [103:0] _tables_0_ext_R3_data;
   reg  [1:0]   state;
   reg  [10:0]  walk;
   wire [28:0]  _used_T = 29'h1 << io_usedLog2;
@@ -16587,51 +16745,6 @@ module BucketSort_n4096_b13_w3_world(
   reg  [12:0]  counted;
   reg  [12:0]  scattered;
   reg          bad;
-  wire         inRange = {1'h0, io_in_bits_bucket} < _used_T[13:0];
-  wire         _io_in_ready_T = state == 2'h0;
-  wire         io_in_ready_0 = _io_in_ready_T & ~io_clear & ~io_prefix;
-  wire         _fire_T = io_in_ready_0 & io_in_valid;
-  wire         fire = _fire_T & inRange;
-  reg          s1;
-  reg  [12:0]  s1b;
-  reg          s1scatter;
-  reg  [11:0]  s1item;
-  reg          fwdValid;
-  reg  [9:0]   fwdW;
-  reg  [103:0] fwdV;
-  wire [103:0] _oldWord_T_4 = fwdValid & fwdW == s1b[12:3] ? fwdV : _counts_ext_R1_data;
-  reg  [12:0]  casez_tmp;
-  always @(*) begin
-    casez (s1b[2:0])
-      3'b000:
-        casez_tmp = _oldWord_T_4[12:0];
-      3'b001:
-        casez_tmp = _oldWord_T_4[25:13];
-      3'b010:
-        casez_tmp = _oldWord_T_4[38:26];
-      3'b011:
-        casez_tmp = _oldWord_T_4[51:39];
-      3'b100:
-        casez_tmp = _oldWord_T_4[64:52];
-      3'b101:
-        casez_tmp = _oldWord_T_4[77:65];
-      3'b110:
-        casez_tmp = _oldWord_T_4[90:78];
-      default:
-        casez_tmp = _oldWord_T_4[103:91];
-    endcase
-  end // always @(*)
-  wire [12:0]  _newWord_T_37 = casez_tmp + 13'h1;
-  wire [103:0] newWord =
-    {(&(s1b[2:0])) ? _newWord_T_37 : _oldWord_T_4[103:91],
-     s1b[2:0] == 3'h6 ? _newWord_T_37 : _oldWord_T_4[90:78],
-     s1b[2:0] == 3'h5 ? _newWord_T_37 : _oldWord_T_4[77:65],
-     s1b[2:0] == 3'h4 ? _newWord_T_37 : _oldWord_T_4[64:52],
-     s1b[2:0] == 3'h3 ? _newWord_T_37 : _oldWord_T_4[51:39],
-     s1b[2:0] == 3'h2 ? _newWord_T_37 : _oldWord_T_4[38:26],
-     s1b[2:0] == 3'h1 ? _newWord_T_37 : _oldWord_T_4[25:13],
-     s1b[2:0] == 3'h0 ? _newWord_T_37 : _oldWord_T_4[12:0]};
-  wire         scatterWrite = s1 & s1scatter;
   reg  [12:0]  sum;
   wire         _sumRead_T = state == 2'h2;
   wire         _sumRead_T_1 = walk < usedWords;
@@ -16639,181 +16752,1673 @@ module BucketSort_n4096_b13_w3_world(
   reg          sumS1;
   reg  [9:0]   sumW;
   reg          sumLast;
-  wire [12:0]  starts_1 = sum + _counts_ext_R0_data[12:0];
-  wire [12:0]  starts_2 = starts_1 + _counts_ext_R0_data[25:13];
-  wire [12:0]  starts_3 = starts_2 + _counts_ext_R0_data[38:26];
-  wire [12:0]  starts_4 = starts_3 + _counts_ext_R0_data[51:39];
-  wire [12:0]  starts_5 = starts_4 + _counts_ext_R0_data[64:52];
-  wire [12:0]  starts_6 = starts_5 + _counts_ext_R0_data[77:65];
+  wire [12:0]  totals_0 = _cursors_0_ext_R0_data[12:0] + _tables_0_ext_R0_data[12:0];
+  wire [12:0]  totals_1 = _cursors_0_ext_R0_data[25:13] + _tables_0_ext_R0_data[25:13];
+  wire [12:0]  totals_2 = _cursors_0_ext_R0_data[38:26] + _tables_0_ext_R0_data[38:26];
+  wire [12:0]  totals_3 = _cursors_0_ext_R0_data[51:39] + _tables_0_ext_R0_data[51:39];
+  wire [12:0]  totals_4 = _cursors_0_ext_R0_data[64:52] + _tables_0_ext_R0_data[64:52];
+  wire [12:0]  totals_5 = _cursors_0_ext_R0_data[77:65] + _tables_0_ext_R0_data[77:65];
+  wire [12:0]  totals_6 = _cursors_0_ext_R0_data[90:78] + _tables_0_ext_R0_data[90:78];
+  wire [12:0]  totals_7 = _cursors_0_ext_R0_data[103:91] + _tables_0_ext_R0_data[103:91];
+  wire [12:0]  starts_1 = sum + totals_0;
+  wire [12:0]  starts_2 = starts_1 + totals_1;
+  wire [12:0]  starts_3 = starts_2 + totals_2;
+  wire [12:0]  starts_4 = starts_3 + totals_3;
+  wire [12:0]  starts_5 = starts_4 + totals_4;
+  wire [12:0]  starts_6 = starts_5 + totals_5;
+  wire [12:0]  starts_7 = starts_6 + totals_6;
+  wire         _io_in_1_ready_T = state == 2'h0;
   wire         _GEN = state == 2'h1;
-  wire [12:0]  _prev_T = io_lookup_bucket - 13'h1;
-  reg          lbZero;
-  reg  [2:0]   io_lookup_end_REG;
-  reg  [12:0]  casez_tmp_0;
+  wire [103:0] ends =
+    {starts_7 + totals_7,
+     starts_6 + totals_6,
+     starts_5 + totals_5,
+     starts_4 + totals_4,
+     starts_3 + totals_3,
+     starts_2 + totals_2,
+     starts_1 + totals_1,
+     sum + totals_0};
+  wire         io_in_0_ready_0 = _io_in_1_ready_T & ~io_clear & ~io_prefix;
+  wire         io_in_1_ready_0 = _io_in_1_ready_T & ~io_clear & ~io_prefix;
+  wire         inRange = {1'h0, io_in_0_bits_bucket} < _used_T[13:0];
+  wire         _fire_T = io_in_0_ready_0 & io_in_0_valid;
+  wire         fire = _fire_T & inRange;
+  reg          s1;
+  reg  [12:0]  s1b;
+  reg          s1scatter;
+  reg  [11:0]  s1item;
+  reg          fwdValid;
+  reg  [9:0]   fwdW;
+  reg  [12:0]  casez_tmp;
   always @(*) begin
-    casez (io_lookup_end_REG)
+    casez (s1b[2:0])
       3'b000:
-        casez_tmp_0 = _counts_ext_R2_data[12:0];
+        casez_tmp = oldWord_0;
       3'b001:
-        casez_tmp_0 = _counts_ext_R2_data[25:13];
+        casez_tmp = oldWord_1;
       3'b010:
-        casez_tmp_0 = _counts_ext_R2_data[38:26];
+        casez_tmp = oldWord_2;
       3'b011:
-        casez_tmp_0 = _counts_ext_R2_data[51:39];
+        casez_tmp = oldWord_3;
       3'b100:
-        casez_tmp_0 = _counts_ext_R2_data[64:52];
+        casez_tmp = oldWord_4;
       3'b101:
-        casez_tmp_0 = _counts_ext_R2_data[77:65];
+        casez_tmp = oldWord_5;
       3'b110:
-        casez_tmp_0 = _counts_ext_R2_data[90:78];
+        casez_tmp = oldWord_6;
       default:
-        casez_tmp_0 = _counts_ext_R2_data[103:91];
+        casez_tmp = oldWord_7;
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_begin_REG;
+  wire [12:0]  _newWord_T_37 = casez_tmp + 13'h1;
+  wire [103:0] newWord =
+    {(&(s1b[2:0])) ? _newWord_T_37 : oldWord_7,
+     s1b[2:0] == 3'h6 ? _newWord_T_37 : oldWord_6,
+     s1b[2:0] == 3'h5 ? _newWord_T_37 : oldWord_5,
+     s1b[2:0] == 3'h4 ? _newWord_T_37 : oldWord_4,
+     s1b[2:0] == 3'h3 ? _newWord_T_37 : oldWord_3,
+     s1b[2:0] == 3'h2 ? _newWord_T_37 : oldWord_2,
+     s1b[2:0] == 3'h1 ? _newWord_T_37 : oldWord_1,
+     s1b[2:0] == 3'h0 ? _newWord_T_37 : oldWord_0};
+  reg  [103:0] fwdV;
+  wire [103:0] _GEN_0 = fwdValid & fwdW == s1b[12:3] ? fwdV : _cursors_0_ext_R1_data;
+  assign oldWord_0 = _GEN_0[12:0];
+  assign oldWord_1 = _GEN_0[25:13];
+  assign oldWord_2 = _GEN_0[38:26];
+  assign oldWord_3 = _GEN_0[51:39];
+  assign oldWord_4 = _GEN_0[64:52];
+  assign oldWord_5 = _GEN_0[77:65];
+  assign oldWord_6 = _GEN_0[90:78];
+  assign oldWord_7 = _GEN_0[103:91];
+  wire         scatterFires_0 = s1 & s1scatter;
+  wire         _GEN_1 = sumS1 | _GEN;
+  wire         inRange_1 = {1'h0, io_in_1_bits_bucket} < _used_T[13:0];
+  wire         _fire_T_1 = io_in_1_ready_0 & io_in_1_valid;
+  wire         fire_1 = _fire_T_1 & inRange_1;
+  reg          s1_1;
+  reg  [12:0]  s1b_1;
+  reg          s1scatter_1;
+  reg  [11:0]  s1item_1;
+  reg          fwdValid_1;
+  reg  [9:0]   fwdW_1;
+  reg  [12:0]  casez_tmp_0;
+  always @(*) begin
+    casez (s1b_1[2:0])
+      3'b000:
+        casez_tmp_0 = oldWord_1_0;
+      3'b001:
+        casez_tmp_0 = oldWord_1_1;
+      3'b010:
+        casez_tmp_0 = oldWord_1_2;
+      3'b011:
+        casez_tmp_0 = oldWord_1_3;
+      3'b100:
+        casez_tmp_0 = oldWord_1_4;
+      3'b101:
+        casez_tmp_0 = oldWord_1_5;
+      3'b110:
+        casez_tmp_0 = oldWord_1_6;
+      default:
+        casez_tmp_0 = oldWord_1_7;
+    endcase
+  end // always @(*)
+  wire [12:0]  _newWord_T_77 = casez_tmp_0 + 13'h1;
+  wire [103:0] newWord_1 =
+    {(&(s1b_1[2:0])) ? _newWord_T_77 : oldWord_1_7,
+     s1b_1[2:0] == 3'h6 ? _newWord_T_77 : oldWord_1_6,
+     s1b_1[2:0] == 3'h5 ? _newWord_T_77 : oldWord_1_5,
+     s1b_1[2:0] == 3'h4 ? _newWord_T_77 : oldWord_1_4,
+     s1b_1[2:0] == 3'h3 ? _newWord_T_77 : oldWord_1_3,
+     s1b_1[2:0] == 3'h2 ? _newWord_T_77 : oldWord_1_2,
+     s1b_1[2:0] == 3'h1 ? _newWord_T_77 : oldWord_1_1,
+     s1b_1[2:0] == 3'h0 ? _newWord_T_77 : oldWord_1_0};
+  reg  [103:0] fwdV_1;
+  wire [103:0] _GEN_2 =
+    fwdValid_1 & fwdW_1 == s1b_1[12:3] ? fwdV_1 : _tables_0_ext_R1_data;
+  assign oldWord_1_0 = _GEN_2[12:0];
+  assign oldWord_1_1 = _GEN_2[25:13];
+  assign oldWord_1_2 = _GEN_2[38:26];
+  assign oldWord_1_3 = _GEN_2[51:39];
+  assign oldWord_1_4 = _GEN_2[64:52];
+  assign oldWord_1_5 = _GEN_2[77:65];
+  assign oldWord_1_6 = _GEN_2[90:78];
+  assign oldWord_1_7 = _GEN_2[103:91];
+  wire         scatterFires_1 = s1_1 & s1scatter_1;
+  wire [12:0]  _prev_T = io_lookup_0_bucket - 13'h1;
+  reg          lbZero;
+  reg  [2:0]   io_lookup_0_end_REG;
   reg  [12:0]  casez_tmp_1;
   always @(*) begin
-    casez (io_lookup_begin_REG)
+    casez (io_lookup_0_end_REG)
       3'b000:
-        casez_tmp_1 = _counts_ext_R3_data[12:0];
+        casez_tmp_1 = _tables_0_ext_R2_data[12:0];
       3'b001:
-        casez_tmp_1 = _counts_ext_R3_data[25:13];
+        casez_tmp_1 = _tables_0_ext_R2_data[25:13];
       3'b010:
-        casez_tmp_1 = _counts_ext_R3_data[38:26];
+        casez_tmp_1 = _tables_0_ext_R2_data[38:26];
       3'b011:
-        casez_tmp_1 = _counts_ext_R3_data[51:39];
+        casez_tmp_1 = _tables_0_ext_R2_data[51:39];
       3'b100:
-        casez_tmp_1 = _counts_ext_R3_data[64:52];
+        casez_tmp_1 = _tables_0_ext_R2_data[64:52];
       3'b101:
-        casez_tmp_1 = _counts_ext_R3_data[77:65];
+        casez_tmp_1 = _tables_0_ext_R2_data[77:65];
       3'b110:
-        casez_tmp_1 = _counts_ext_R3_data[90:78];
+        casez_tmp_1 = _tables_0_ext_R2_data[90:78];
       default:
-        casez_tmp_1 = _counts_ext_R3_data[103:91];
+        casez_tmp_1 = _tables_0_ext_R2_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_0_begin_REG;
+  reg  [12:0]  casez_tmp_2;
+  always @(*) begin
+    casez (io_lookup_0_begin_REG)
+      3'b000:
+        casez_tmp_2 = _tables_0_ext_R3_data[12:0];
+      3'b001:
+        casez_tmp_2 = _tables_0_ext_R3_data[25:13];
+      3'b010:
+        casez_tmp_2 = _tables_0_ext_R3_data[38:26];
+      3'b011:
+        casez_tmp_2 = _tables_0_ext_R3_data[51:39];
+      3'b100:
+        casez_tmp_2 = _tables_0_ext_R3_data[64:52];
+      3'b101:
+        casez_tmp_2 = _tables_0_ext_R3_data[77:65];
+      3'b110:
+        casez_tmp_2 = _tables_0_ext_R3_data[90:78];
+      default:
+        casez_tmp_2 = _tables_0_ext_R3_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _GEN_3 = {1'h0, s1item};
+  wire [12:0]  _GEN_4 = {1'h0, s1item_1};
+  wire [12:0]  _prev_T_1 = io_lookup_1_bucket - 13'h1;
+  reg          lbZero_1;
+  reg  [2:0]   io_lookup_1_end_REG;
+  reg  [12:0]  casez_tmp_3;
+  always @(*) begin
+    casez (io_lookup_1_end_REG)
+      3'b000:
+        casez_tmp_3 = _tables_1_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_3 = _tables_1_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_3 = _tables_1_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_3 = _tables_1_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_3 = _tables_1_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_3 = _tables_1_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_3 = _tables_1_ext_R0_data[90:78];
+      default:
+        casez_tmp_3 = _tables_1_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_1_begin_REG;
+  reg  [12:0]  casez_tmp_4;
+  always @(*) begin
+    casez (io_lookup_1_begin_REG)
+      3'b000:
+        casez_tmp_4 = _tables_1_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_4 = _tables_1_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_4 = _tables_1_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_4 = _tables_1_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_4 = _tables_1_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_4 = _tables_1_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_4 = _tables_1_ext_R1_data[90:78];
+      default:
+        casez_tmp_4 = _tables_1_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_2 = io_lookup_2_bucket - 13'h1;
+  reg          lbZero_2;
+  reg  [2:0]   io_lookup_2_end_REG;
+  reg  [12:0]  casez_tmp_5;
+  always @(*) begin
+    casez (io_lookup_2_end_REG)
+      3'b000:
+        casez_tmp_5 = _tables_2_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_5 = _tables_2_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_5 = _tables_2_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_5 = _tables_2_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_5 = _tables_2_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_5 = _tables_2_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_5 = _tables_2_ext_R0_data[90:78];
+      default:
+        casez_tmp_5 = _tables_2_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_2_begin_REG;
+  reg  [12:0]  casez_tmp_6;
+  always @(*) begin
+    casez (io_lookup_2_begin_REG)
+      3'b000:
+        casez_tmp_6 = _tables_2_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_6 = _tables_2_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_6 = _tables_2_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_6 = _tables_2_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_6 = _tables_2_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_6 = _tables_2_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_6 = _tables_2_ext_R1_data[90:78];
+      default:
+        casez_tmp_6 = _tables_2_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_3 = io_lookup_3_bucket - 13'h1;
+  reg          lbZero_3;
+  reg  [2:0]   io_lookup_3_end_REG;
+  reg  [12:0]  casez_tmp_7;
+  always @(*) begin
+    casez (io_lookup_3_end_REG)
+      3'b000:
+        casez_tmp_7 = _tables_3_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_7 = _tables_3_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_7 = _tables_3_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_7 = _tables_3_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_7 = _tables_3_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_7 = _tables_3_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_7 = _tables_3_ext_R0_data[90:78];
+      default:
+        casez_tmp_7 = _tables_3_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_3_begin_REG;
+  reg  [12:0]  casez_tmp_8;
+  always @(*) begin
+    casez (io_lookup_3_begin_REG)
+      3'b000:
+        casez_tmp_8 = _tables_3_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_8 = _tables_3_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_8 = _tables_3_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_8 = _tables_3_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_8 = _tables_3_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_8 = _tables_3_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_8 = _tables_3_ext_R1_data[90:78];
+      default:
+        casez_tmp_8 = _tables_3_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_4 = io_lookup_4_bucket - 13'h1;
+  reg          lbZero_4;
+  reg  [2:0]   io_lookup_4_end_REG;
+  reg  [12:0]  casez_tmp_9;
+  always @(*) begin
+    casez (io_lookup_4_end_REG)
+      3'b000:
+        casez_tmp_9 = _tables_4_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_9 = _tables_4_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_9 = _tables_4_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_9 = _tables_4_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_9 = _tables_4_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_9 = _tables_4_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_9 = _tables_4_ext_R0_data[90:78];
+      default:
+        casez_tmp_9 = _tables_4_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_4_begin_REG;
+  reg  [12:0]  casez_tmp_10;
+  always @(*) begin
+    casez (io_lookup_4_begin_REG)
+      3'b000:
+        casez_tmp_10 = _tables_4_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_10 = _tables_4_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_10 = _tables_4_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_10 = _tables_4_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_10 = _tables_4_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_10 = _tables_4_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_10 = _tables_4_ext_R1_data[90:78];
+      default:
+        casez_tmp_10 = _tables_4_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_5 = io_lookup_5_bucket - 13'h1;
+  reg          lbZero_5;
+  reg  [2:0]   io_lookup_5_end_REG;
+  reg  [12:0]  casez_tmp_11;
+  always @(*) begin
+    casez (io_lookup_5_end_REG)
+      3'b000:
+        casez_tmp_11 = _tables_5_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_11 = _tables_5_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_11 = _tables_5_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_11 = _tables_5_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_11 = _tables_5_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_11 = _tables_5_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_11 = _tables_5_ext_R0_data[90:78];
+      default:
+        casez_tmp_11 = _tables_5_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_5_begin_REG;
+  reg  [12:0]  casez_tmp_12;
+  always @(*) begin
+    casez (io_lookup_5_begin_REG)
+      3'b000:
+        casez_tmp_12 = _tables_5_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_12 = _tables_5_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_12 = _tables_5_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_12 = _tables_5_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_12 = _tables_5_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_12 = _tables_5_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_12 = _tables_5_ext_R1_data[90:78];
+      default:
+        casez_tmp_12 = _tables_5_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_6 = io_lookup_6_bucket - 13'h1;
+  reg          lbZero_6;
+  reg  [2:0]   io_lookup_6_end_REG;
+  reg  [12:0]  casez_tmp_13;
+  always @(*) begin
+    casez (io_lookup_6_end_REG)
+      3'b000:
+        casez_tmp_13 = _tables_6_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_13 = _tables_6_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_13 = _tables_6_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_13 = _tables_6_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_13 = _tables_6_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_13 = _tables_6_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_13 = _tables_6_ext_R0_data[90:78];
+      default:
+        casez_tmp_13 = _tables_6_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_6_begin_REG;
+  reg  [12:0]  casez_tmp_14;
+  always @(*) begin
+    casez (io_lookup_6_begin_REG)
+      3'b000:
+        casez_tmp_14 = _tables_6_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_14 = _tables_6_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_14 = _tables_6_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_14 = _tables_6_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_14 = _tables_6_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_14 = _tables_6_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_14 = _tables_6_ext_R1_data[90:78];
+      default:
+        casez_tmp_14 = _tables_6_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_7 = io_lookup_7_bucket - 13'h1;
+  reg          lbZero_7;
+  reg  [2:0]   io_lookup_7_end_REG;
+  reg  [12:0]  casez_tmp_15;
+  always @(*) begin
+    casez (io_lookup_7_end_REG)
+      3'b000:
+        casez_tmp_15 = _tables_7_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_15 = _tables_7_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_15 = _tables_7_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_15 = _tables_7_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_15 = _tables_7_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_15 = _tables_7_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_15 = _tables_7_ext_R0_data[90:78];
+      default:
+        casez_tmp_15 = _tables_7_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_7_begin_REG;
+  reg  [12:0]  casez_tmp_16;
+  always @(*) begin
+    casez (io_lookup_7_begin_REG)
+      3'b000:
+        casez_tmp_16 = _tables_7_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_16 = _tables_7_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_16 = _tables_7_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_16 = _tables_7_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_16 = _tables_7_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_16 = _tables_7_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_16 = _tables_7_ext_R1_data[90:78];
+      default:
+        casez_tmp_16 = _tables_7_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_8 = io_lookup_8_bucket - 13'h1;
+  reg          lbZero_8;
+  reg  [2:0]   io_lookup_8_end_REG;
+  reg  [12:0]  casez_tmp_17;
+  always @(*) begin
+    casez (io_lookup_8_end_REG)
+      3'b000:
+        casez_tmp_17 = _tables_8_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_17 = _tables_8_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_17 = _tables_8_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_17 = _tables_8_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_17 = _tables_8_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_17 = _tables_8_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_17 = _tables_8_ext_R0_data[90:78];
+      default:
+        casez_tmp_17 = _tables_8_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_8_begin_REG;
+  reg  [12:0]  casez_tmp_18;
+  always @(*) begin
+    casez (io_lookup_8_begin_REG)
+      3'b000:
+        casez_tmp_18 = _tables_8_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_18 = _tables_8_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_18 = _tables_8_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_18 = _tables_8_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_18 = _tables_8_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_18 = _tables_8_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_18 = _tables_8_ext_R1_data[90:78];
+      default:
+        casez_tmp_18 = _tables_8_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_9 = io_lookup_9_bucket - 13'h1;
+  reg          lbZero_9;
+  reg  [2:0]   io_lookup_9_end_REG;
+  reg  [12:0]  casez_tmp_19;
+  always @(*) begin
+    casez (io_lookup_9_end_REG)
+      3'b000:
+        casez_tmp_19 = _tables_9_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_19 = _tables_9_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_19 = _tables_9_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_19 = _tables_9_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_19 = _tables_9_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_19 = _tables_9_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_19 = _tables_9_ext_R0_data[90:78];
+      default:
+        casez_tmp_19 = _tables_9_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_9_begin_REG;
+  reg  [12:0]  casez_tmp_20;
+  always @(*) begin
+    casez (io_lookup_9_begin_REG)
+      3'b000:
+        casez_tmp_20 = _tables_9_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_20 = _tables_9_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_20 = _tables_9_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_20 = _tables_9_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_20 = _tables_9_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_20 = _tables_9_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_20 = _tables_9_ext_R1_data[90:78];
+      default:
+        casez_tmp_20 = _tables_9_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_10 = io_lookup_10_bucket - 13'h1;
+  reg          lbZero_10;
+  reg  [2:0]   io_lookup_10_end_REG;
+  reg  [12:0]  casez_tmp_21;
+  always @(*) begin
+    casez (io_lookup_10_end_REG)
+      3'b000:
+        casez_tmp_21 = _tables_10_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_21 = _tables_10_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_21 = _tables_10_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_21 = _tables_10_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_21 = _tables_10_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_21 = _tables_10_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_21 = _tables_10_ext_R0_data[90:78];
+      default:
+        casez_tmp_21 = _tables_10_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_10_begin_REG;
+  reg  [12:0]  casez_tmp_22;
+  always @(*) begin
+    casez (io_lookup_10_begin_REG)
+      3'b000:
+        casez_tmp_22 = _tables_10_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_22 = _tables_10_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_22 = _tables_10_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_22 = _tables_10_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_22 = _tables_10_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_22 = _tables_10_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_22 = _tables_10_ext_R1_data[90:78];
+      default:
+        casez_tmp_22 = _tables_10_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_11 = io_lookup_11_bucket - 13'h1;
+  reg          lbZero_11;
+  reg  [2:0]   io_lookup_11_end_REG;
+  reg  [12:0]  casez_tmp_23;
+  always @(*) begin
+    casez (io_lookup_11_end_REG)
+      3'b000:
+        casez_tmp_23 = _tables_11_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_23 = _tables_11_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_23 = _tables_11_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_23 = _tables_11_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_23 = _tables_11_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_23 = _tables_11_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_23 = _tables_11_ext_R0_data[90:78];
+      default:
+        casez_tmp_23 = _tables_11_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_11_begin_REG;
+  reg  [12:0]  casez_tmp_24;
+  always @(*) begin
+    casez (io_lookup_11_begin_REG)
+      3'b000:
+        casez_tmp_24 = _tables_11_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_24 = _tables_11_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_24 = _tables_11_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_24 = _tables_11_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_24 = _tables_11_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_24 = _tables_11_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_24 = _tables_11_ext_R1_data[90:78];
+      default:
+        casez_tmp_24 = _tables_11_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_12 = io_lookup_12_bucket - 13'h1;
+  reg          lbZero_12;
+  reg  [2:0]   io_lookup_12_end_REG;
+  reg  [12:0]  casez_tmp_25;
+  always @(*) begin
+    casez (io_lookup_12_end_REG)
+      3'b000:
+        casez_tmp_25 = _tables_12_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_25 = _tables_12_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_25 = _tables_12_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_25 = _tables_12_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_25 = _tables_12_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_25 = _tables_12_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_25 = _tables_12_ext_R0_data[90:78];
+      default:
+        casez_tmp_25 = _tables_12_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_12_begin_REG;
+  reg  [12:0]  casez_tmp_26;
+  always @(*) begin
+    casez (io_lookup_12_begin_REG)
+      3'b000:
+        casez_tmp_26 = _tables_12_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_26 = _tables_12_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_26 = _tables_12_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_26 = _tables_12_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_26 = _tables_12_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_26 = _tables_12_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_26 = _tables_12_ext_R1_data[90:78];
+      default:
+        casez_tmp_26 = _tables_12_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_13 = io_lookup_13_bucket - 13'h1;
+  reg          lbZero_13;
+  reg  [2:0]   io_lookup_13_end_REG;
+  reg  [12:0]  casez_tmp_27;
+  always @(*) begin
+    casez (io_lookup_13_end_REG)
+      3'b000:
+        casez_tmp_27 = _tables_13_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_27 = _tables_13_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_27 = _tables_13_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_27 = _tables_13_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_27 = _tables_13_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_27 = _tables_13_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_27 = _tables_13_ext_R0_data[90:78];
+      default:
+        casez_tmp_27 = _tables_13_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_13_begin_REG;
+  reg  [12:0]  casez_tmp_28;
+  always @(*) begin
+    casez (io_lookup_13_begin_REG)
+      3'b000:
+        casez_tmp_28 = _tables_13_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_28 = _tables_13_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_28 = _tables_13_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_28 = _tables_13_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_28 = _tables_13_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_28 = _tables_13_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_28 = _tables_13_ext_R1_data[90:78];
+      default:
+        casez_tmp_28 = _tables_13_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_14 = io_lookup_14_bucket - 13'h1;
+  reg          lbZero_14;
+  reg  [2:0]   io_lookup_14_end_REG;
+  reg  [12:0]  casez_tmp_29;
+  always @(*) begin
+    casez (io_lookup_14_end_REG)
+      3'b000:
+        casez_tmp_29 = _tables_14_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_29 = _tables_14_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_29 = _tables_14_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_29 = _tables_14_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_29 = _tables_14_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_29 = _tables_14_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_29 = _tables_14_ext_R0_data[90:78];
+      default:
+        casez_tmp_29 = _tables_14_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_14_begin_REG;
+  reg  [12:0]  casez_tmp_30;
+  always @(*) begin
+    casez (io_lookup_14_begin_REG)
+      3'b000:
+        casez_tmp_30 = _tables_14_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_30 = _tables_14_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_30 = _tables_14_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_30 = _tables_14_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_30 = _tables_14_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_30 = _tables_14_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_30 = _tables_14_ext_R1_data[90:78];
+      default:
+        casez_tmp_30 = _tables_14_ext_R1_data[103:91];
+    endcase
+  end // always @(*)
+  wire [12:0]  _prev_T_15 = io_lookup_15_bucket - 13'h1;
+  reg          lbZero_15;
+  reg  [2:0]   io_lookup_15_end_REG;
+  reg  [12:0]  casez_tmp_31;
+  always @(*) begin
+    casez (io_lookup_15_end_REG)
+      3'b000:
+        casez_tmp_31 = _tables_15_ext_R0_data[12:0];
+      3'b001:
+        casez_tmp_31 = _tables_15_ext_R0_data[25:13];
+      3'b010:
+        casez_tmp_31 = _tables_15_ext_R0_data[38:26];
+      3'b011:
+        casez_tmp_31 = _tables_15_ext_R0_data[51:39];
+      3'b100:
+        casez_tmp_31 = _tables_15_ext_R0_data[64:52];
+      3'b101:
+        casez_tmp_31 = _tables_15_ext_R0_data[77:65];
+      3'b110:
+        casez_tmp_31 = _tables_15_ext_R0_data[90:78];
+      default:
+        casez_tmp_31 = _tables_15_ext_R0_data[103:91];
+    endcase
+  end // always @(*)
+  reg  [2:0]   io_lookup_15_begin_REG;
+  reg  [12:0]  casez_tmp_32;
+  always @(*) begin
+    casez (io_lookup_15_begin_REG)
+      3'b000:
+        casez_tmp_32 = _tables_15_ext_R1_data[12:0];
+      3'b001:
+        casez_tmp_32 = _tables_15_ext_R1_data[25:13];
+      3'b010:
+        casez_tmp_32 = _tables_15_ext_R1_data[38:26];
+      3'b011:
+        casez_tmp_32 = _tables_15_ext_R1_data[51:39];
+      3'b100:
+        casez_tmp_32 = _tables_15_ext_R1_data[64:52];
+      3'b101:
+        casez_tmp_32 = _tables_15_ext_R1_data[77:65];
+      3'b110:
+        casez_tmp_32 = _tables_15_ext_R1_data[90:78];
+      default:
+        casez_tmp_32 = _tables_15_ext_R1_data[103:91];
     endcase
   end // always @(*)
   wire [10:0]  _walk_T_2 = walk + 11'h1;
-  wire         _GEN_0 = io_clear & _io_in_ready_T;
-  wire         _GEN_1 = io_prefix & _io_in_ready_T;
+  wire         _GEN_5 = io_clear & _io_in_1_ready_T;
+  wire         _GEN_6 = io_prefix & _io_in_1_ready_T;
   always @(posedge clock) begin
     if (reset) begin
       state <= 2'h0;
       counted <= 13'h0;
       scattered <= 13'h0;
       bad <= 1'h0;
+      sumS1 <= 1'h0;
       s1 <= 1'h0;
       fwdValid <= 1'h0;
-      sumS1 <= 1'h0;
+      s1_1 <= 1'h0;
+      fwdValid_1 <= 1'h0;
     end
     else begin
       if (sumS1 & sumLast | _GEN & _walk_T_2 == usedWords)
         state <= 2'h0;
-      else if (_GEN_0)
+      else if (_GEN_5)
         state <= 2'h1;
-      else if (_GEN_1)
+      else if (_GEN_6)
         state <= 2'h2;
-      if (_GEN_0) begin
+      if (_GEN_5) begin
         counted <= 13'h0;
         scattered <= 13'h0;
       end
       else begin
-        if (~s1 | s1scatter) begin
-        end
-        else
-          counted <= counted + 13'h1;
-        if (s1 & s1scatter)
-          scattered <= scattered + 13'h1;
+        counted <=
+          counted + {11'h0, {1'h0, s1 & ~s1scatter} + {1'h0, s1_1 & ~s1scatter_1}};
+        scattered <= scattered + {11'h0, {1'h0, scatterFires_0} + {1'h0, scatterFires_1}};
       end
-      bad <= ~_GEN_0 & (_fire_T & ~inRange | bad);
+      bad <= _fire_T_1 & ~inRange_1 | _fire_T & ~inRange | ~_GEN_5 & bad;
+      sumS1 <= sumRead;
       s1 <= fire;
       fwdValid <= s1;
-      sumS1 <= sumRead;
+      s1_1 <= fire_1;
+      fwdValid_1 <= s1_1;
     end
     if (_sumRead_T & _sumRead_T_1 | _GEN)
       walk <= _walk_T_2;
-    else if (_GEN_0 | _GEN_1)
+    else if (_GEN_5 | _GEN_6)
       walk <= 11'h0;
-    if (fire) begin
-      s1b <= io_in_bits_bucket;
-      s1scatter <= io_in_bits_scatter;
-      s1item <= io_in_bits_item;
-    end
-    if (s1) begin
-      fwdW <= s1b[12:3];
-      fwdV <= newWord;
-    end
     if (sumS1)
       sum <=
-        _counts_ext_R0_data[12:0] + _counts_ext_R0_data[25:13]
-        + _counts_ext_R0_data[38:26] + _counts_ext_R0_data[51:39]
-        + _counts_ext_R0_data[64:52] + _counts_ext_R0_data[77:65]
-        + _counts_ext_R0_data[90:78] + _counts_ext_R0_data[103:91] + sum;
-    else if (_GEN_0 | ~_GEN_1) begin
+        totals_0 + totals_1 + totals_2 + totals_3 + totals_4 + totals_5 + totals_6
+        + totals_7 + sum;
+    else if (_GEN_5 | ~_GEN_6) begin
     end
     else
       sum <= 13'h0;
     sumW <= walk[9:0];
     sumLast <= _walk_T_2 == usedWords;
-    lbZero <= io_lookup_bucket == 13'h0;
-    io_lookup_end_REG <= io_lookup_bucket[2:0];
-    io_lookup_begin_REG <= _prev_T[2:0];
+    if (fire) begin
+      s1b <= io_in_0_bits_bucket;
+      s1scatter <= io_in_0_bits_scatter;
+      s1item <= io_in_0_bits_item;
+    end
+    if (s1) begin
+      fwdW <= s1b[12:3];
+      fwdV <= newWord;
+    end
+    if (fire_1) begin
+      s1b_1 <= io_in_1_bits_bucket;
+      s1scatter_1 <= io_in_1_bits_scatter;
+      s1item_1 <= io_in_1_bits_item;
+    end
+    if (s1_1) begin
+      fwdW_1 <= s1b_1[12:3];
+      fwdV_1 <= newWord_1;
+    end
+    lbZero <= io_lookup_0_bucket == 13'h0;
+    io_lookup_0_end_REG <= io_lookup_0_bucket[2:0];
+    io_lookup_0_begin_REG <= _prev_T[2:0];
+    lbZero_1 <= io_lookup_1_bucket == 13'h0;
+    io_lookup_1_end_REG <= io_lookup_1_bucket[2:0];
+    io_lookup_1_begin_REG <= _prev_T_1[2:0];
+    lbZero_2 <= io_lookup_2_bucket == 13'h0;
+    io_lookup_2_end_REG <= io_lookup_2_bucket[2:0];
+    io_lookup_2_begin_REG <= _prev_T_2[2:0];
+    lbZero_3 <= io_lookup_3_bucket == 13'h0;
+    io_lookup_3_end_REG <= io_lookup_3_bucket[2:0];
+    io_lookup_3_begin_REG <= _prev_T_3[2:0];
+    lbZero_4 <= io_lookup_4_bucket == 13'h0;
+    io_lookup_4_end_REG <= io_lookup_4_bucket[2:0];
+    io_lookup_4_begin_REG <= _prev_T_4[2:0];
+    lbZero_5 <= io_lookup_5_bucket == 13'h0;
+    io_lookup_5_end_REG <= io_lookup_5_bucket[2:0];
+    io_lookup_5_begin_REG <= _prev_T_5[2:0];
+    lbZero_6 <= io_lookup_6_bucket == 13'h0;
+    io_lookup_6_end_REG <= io_lookup_6_bucket[2:0];
+    io_lookup_6_begin_REG <= _prev_T_6[2:0];
+    lbZero_7 <= io_lookup_7_bucket == 13'h0;
+    io_lookup_7_end_REG <= io_lookup_7_bucket[2:0];
+    io_lookup_7_begin_REG <= _prev_T_7[2:0];
+    lbZero_8 <= io_lookup_8_bucket == 13'h0;
+    io_lookup_8_end_REG <= io_lookup_8_bucket[2:0];
+    io_lookup_8_begin_REG <= _prev_T_8[2:0];
+    lbZero_9 <= io_lookup_9_bucket == 13'h0;
+    io_lookup_9_end_REG <= io_lookup_9_bucket[2:0];
+    io_lookup_9_begin_REG <= _prev_T_9[2:0];
+    lbZero_10 <= io_lookup_10_bucket == 13'h0;
+    io_lookup_10_end_REG <= io_lookup_10_bucket[2:0];
+    io_lookup_10_begin_REG <= _prev_T_10[2:0];
+    lbZero_11 <= io_lookup_11_bucket == 13'h0;
+    io_lookup_11_end_REG <= io_lookup_11_bucket[2:0];
+    io_lookup_11_begin_REG <= _prev_T_11[2:0];
+    lbZero_12 <= io_lookup_12_bucket == 13'h0;
+    io_lookup_12_end_REG <= io_lookup_12_bucket[2:0];
+    io_lookup_12_begin_REG <= _prev_T_12[2:0];
+    lbZero_13 <= io_lookup_13_bucket == 13'h0;
+    io_lookup_13_end_REG <= io_lookup_13_bucket[2:0];
+    io_lookup_13_begin_REG <= _prev_T_13[2:0];
+    lbZero_14 <= io_lookup_14_bucket == 13'h0;
+    io_lookup_14_end_REG <= io_lookup_14_bucket[2:0];
+    io_lookup_14_begin_REG <= _prev_T_14[2:0];
+    lbZero_15 <= io_lookup_15_bucket == 13'h0;
+    io_lookup_15_end_REG <= io_lookup_15_bucket[2:0];
+    io_lookup_15_begin_REG <= _prev_T_15[2:0];
   end // always @(posedge)
-  counts_1024x104_world counts_ext (
+  tables_0_1024x104_world tables_0_ext (
     .R0_addr (walk[9:0]),
     .R0_en   (sumRead),
     .R0_clk  (clock),
-    .R0_data (_counts_ext_R0_data),
-    .R1_addr (io_in_bits_bucket[12:3]),
-    .R1_en   (fire),
+    .R0_data (_tables_0_ext_R0_data),
+    .R1_addr (io_in_1_bits_bucket[12:3]),
+    .R1_en   (fire_1),
     .R1_clk  (clock),
-    .R1_data (_counts_ext_R1_data),
-    .R2_addr (io_lookup_bucket[12:3]),
+    .R1_data (_tables_0_ext_R1_data),
+    .R2_addr (io_lookup_0_bucket[12:3]),
     .R2_en   (1'h1),
     .R2_clk  (clock),
-    .R2_data (_counts_ext_R2_data),
+    .R2_data (_tables_0_ext_R2_data),
     .R3_addr (_prev_T[12:3]),
     .R3_en   (1'h1),
     .R3_clk  (clock),
-    .R3_data (_counts_ext_R3_data),
-    .W0_addr (sumS1 ? sumW : _GEN ? walk[9:0] : s1b[12:3]),
-    .W0_en   (sumS1 | _GEN | s1),
+    .R3_data (_tables_0_ext_R3_data),
+    .W0_addr (sumS1 ? sumW : _GEN ? walk[9:0] : s1b_1[12:3]),
+    .W0_en   (_GEN_1 | s1_1),
     .W0_clk  (clock),
     .W0_data
       (sumS1
-         ? {starts_6 + _counts_ext_R0_data[90:78],
-            starts_6,
-            starts_5,
-            starts_4,
-            starts_3,
-            starts_2,
-            starts_1,
-            sum}
-         : _GEN ? 104'h0 : newWord)
+         ? {starts_7 + _cursors_0_ext_R0_data[103:91],
+            starts_6 + _cursors_0_ext_R0_data[90:78],
+            starts_5 + _cursors_0_ext_R0_data[77:65],
+            starts_4 + _cursors_0_ext_R0_data[64:52],
+            starts_3 + _cursors_0_ext_R0_data[51:39],
+            starts_2 + _cursors_0_ext_R0_data[38:26],
+            starts_1 + _cursors_0_ext_R0_data[25:13],
+            sum + _cursors_0_ext_R0_data[12:0]}
+         : _GEN ? 104'h0 : newWord_1)
   );
-  entries_4096x13_world entries_ext (
-    .R0_addr (io_entry_addr),
+  mem_1024x104_world tables_1_ext (
+    .R0_addr (io_lookup_1_bucket[12:3]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
-    .R0_data (_entries_ext_R0_data),
-    .W0_addr (scatterWrite ? casez_tmp[11:0] : io_mark_bits_addr),
-    .W0_en   (scatterWrite | io_mark_valid),
+    .R0_data (_tables_1_ext_R0_data),
+    .R1_addr (_prev_T_1[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_1_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
     .W0_clk  (clock),
-    .W0_data (scatterWrite ? {1'h0, s1item} : {1'h1, io_mark_bits_item})
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_2_ext (
+    .R0_addr (io_lookup_2_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_2_ext_R0_data),
+    .R1_addr (_prev_T_2[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_2_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_3_ext (
+    .R0_addr (io_lookup_3_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_3_ext_R0_data),
+    .R1_addr (_prev_T_3[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_3_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_4_ext (
+    .R0_addr (io_lookup_4_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_4_ext_R0_data),
+    .R1_addr (_prev_T_4[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_4_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_5_ext (
+    .R0_addr (io_lookup_5_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_5_ext_R0_data),
+    .R1_addr (_prev_T_5[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_5_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_6_ext (
+    .R0_addr (io_lookup_6_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_6_ext_R0_data),
+    .R1_addr (_prev_T_6[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_6_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_7_ext (
+    .R0_addr (io_lookup_7_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_7_ext_R0_data),
+    .R1_addr (_prev_T_7[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_7_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_8_ext (
+    .R0_addr (io_lookup_8_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_8_ext_R0_data),
+    .R1_addr (_prev_T_8[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_8_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_9_ext (
+    .R0_addr (io_lookup_9_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_9_ext_R0_data),
+    .R1_addr (_prev_T_9[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_9_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_10_ext (
+    .R0_addr (io_lookup_10_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_10_ext_R0_data),
+    .R1_addr (_prev_T_10[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_10_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_11_ext (
+    .R0_addr (io_lookup_11_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_11_ext_R0_data),
+    .R1_addr (_prev_T_11[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_11_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_12_ext (
+    .R0_addr (io_lookup_12_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_12_ext_R0_data),
+    .R1_addr (_prev_T_12[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_12_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_13_ext (
+    .R0_addr (io_lookup_13_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_13_ext_R0_data),
+    .R1_addr (_prev_T_13[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_13_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_14_ext (
+    .R0_addr (io_lookup_14_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_14_ext_R0_data),
+    .R1_addr (_prev_T_14[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_14_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world tables_15_ext (
+    .R0_addr (io_lookup_15_bucket[12:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_tables_15_ext_R0_data),
+    .R1_addr (_prev_T_15[12:3]),
+    .R1_en   (1'h1),
+    .R1_clk  (clock),
+    .R1_data (_tables_15_ext_R1_data),
+    .W0_addr (sumW),
+    .W0_en   (sumS1),
+    .W0_clk  (clock),
+    .W0_data (ends)
+  );
+  mem_1024x104_world cursors_0_ext (
+    .R0_addr (walk[9:0]),
+    .R0_en   (sumRead),
+    .R0_clk  (clock),
+    .R0_data (_cursors_0_ext_R0_data),
+    .R1_addr (io_in_0_bits_bucket[12:3]),
+    .R1_en   (fire),
+    .R1_clk  (clock),
+    .R1_data (_cursors_0_ext_R1_data),
+    .W0_addr (sumS1 ? sumW : _GEN ? walk[9:0] : s1b[12:3]),
+    .W0_en   (_GEN_1 | s1),
+    .W0_clk  (clock),
+    .W0_data
+      (sumS1
+         ? {starts_7, starts_6, starts_5, starts_4, starts_3, starts_2, starts_1, sum}
+         : _GEN ? 104'h0 : newWord)
+  );
+  entries_4096x13_world entries_0_ext (
+    .R0_addr (io_entry_0_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_0_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_0_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_0_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_0_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_1_ext (
+    .R0_addr (io_entry_1_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_1_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_1_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_1_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_1_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_2_ext (
+    .R0_addr (io_entry_2_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_2_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_2_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_2_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_2_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_3_ext (
+    .R0_addr (io_entry_3_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_3_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_3_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_3_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_3_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_4_ext (
+    .R0_addr (io_entry_4_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_4_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_4_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_4_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_4_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_5_ext (
+    .R0_addr (io_entry_5_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_5_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_5_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_5_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_5_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_6_ext (
+    .R0_addr (io_entry_6_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_6_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_6_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_6_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_6_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_7_ext (
+    .R0_addr (io_entry_7_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_7_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_7_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_7_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_7_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_8_ext (
+    .R0_addr (io_entry_8_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_8_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_8_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_8_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_8_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_9_ext (
+    .R0_addr (io_entry_9_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_9_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_9_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_9_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_9_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_10_ext (
+    .R0_addr (io_entry_10_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_10_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_10_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_10_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_10_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_11_ext (
+    .R0_addr (io_entry_11_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_11_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_11_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_11_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_11_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_12_ext (
+    .R0_addr (io_entry_12_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_12_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_12_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_12_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_12_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_13_ext (
+    .R0_addr (io_entry_13_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_13_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_13_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_13_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_13_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_14_ext (
+    .R0_addr (io_entry_14_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_14_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_14_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_14_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_14_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
+  );
+  entries_4096x13_world entries_15_ext (
+    .R0_addr (io_entry_15_addr),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_entries_15_ext_R0_data),
+    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_15_bits_addr),
+    .W0_en   (scatterFires_1 | io_mark_15_valid),
+    .W0_clk  (clock),
+    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_15_bits_item}),
+    .W1_addr (casez_tmp[11:0]),
+    .W1_en   (scatterFires_0),
+    .W1_clk  (clock),
+    .W1_data (_GEN_3)
   );
   assign io_busy = |state;
-  assign io_in_ready = io_in_ready_0;
-  assign io_lookup_begin = lbZero ? 13'h0 : casez_tmp_1;
-  assign io_lookup_end = casez_tmp_0;
-  assign io_lookup_word_0 = _counts_ext_R2_data[12:0];
-  assign io_lookup_word_1 = _counts_ext_R2_data[25:13];
-  assign io_lookup_word_2 = _counts_ext_R2_data[38:26];
-  assign io_lookup_word_3 = _counts_ext_R2_data[51:39];
-  assign io_lookup_word_4 = _counts_ext_R2_data[64:52];
-  assign io_lookup_word_5 = _counts_ext_R2_data[77:65];
-  assign io_lookup_word_6 = _counts_ext_R2_data[90:78];
-  assign io_lookup_word_7 = _counts_ext_R2_data[103:91];
-  assign io_entry_item = _entries_ext_R0_data[11:0];
-  assign io_entry_mark = _entries_ext_R0_data[12];
+  assign io_in_0_ready = io_in_0_ready_0;
+  assign io_in_1_ready = io_in_1_ready_0;
+  assign io_lookup_0_begin = lbZero ? 13'h0 : casez_tmp_2;
+  assign io_lookup_0_end = casez_tmp_1;
+  assign io_lookup_0_word_0 = _tables_0_ext_R2_data[12:0];
+  assign io_lookup_0_word_1 = _tables_0_ext_R2_data[25:13];
+  assign io_lookup_0_word_2 = _tables_0_ext_R2_data[38:26];
+  assign io_lookup_0_word_3 = _tables_0_ext_R2_data[51:39];
+  assign io_lookup_0_word_4 = _tables_0_ext_R2_data[64:52];
+  assign io_lookup_0_word_5 = _tables_0_ext_R2_data[77:65];
+  assign io_lookup_0_word_6 = _tables_0_ext_R2_data[90:78];
+  assign io_lookup_0_word_7 = _tables_0_ext_R2_data[103:91];
+  assign io_lookup_1_begin = lbZero_1 ? 13'h0 : casez_tmp_4;
+  assign io_lookup_1_end = casez_tmp_3;
+  assign io_lookup_1_word_0 = _tables_1_ext_R0_data[12:0];
+  assign io_lookup_1_word_1 = _tables_1_ext_R0_data[25:13];
+  assign io_lookup_1_word_2 = _tables_1_ext_R0_data[38:26];
+  assign io_lookup_1_word_3 = _tables_1_ext_R0_data[51:39];
+  assign io_lookup_1_word_4 = _tables_1_ext_R0_data[64:52];
+  assign io_lookup_1_word_5 = _tables_1_ext_R0_data[77:65];
+  assign io_lookup_1_word_6 = _tables_1_ext_R0_data[90:78];
+  assign io_lookup_1_word_7 = _tables_1_ext_R0_data[103:91];
+  assign io_lookup_2_begin = lbZero_2 ? 13'h0 : casez_tmp_6;
+  assign io_lookup_2_end = casez_tmp_5;
+  assign io_lookup_2_word_0 = _tables_2_ext_R0_data[12:0];
+  assign io_lookup_2_word_1 = _tables_2_ext_R0_data[25:13];
+  assign io_lookup_2_word_2 = _tables_2_ext_R0_data[38:26];
+  assign io_lookup_2_word_3 = _tables_2_ext_R0_data[51:39];
+  assign io_lookup_2_word_4 = _tables_2_ext_R0_data[64:52];
+  assign io_lookup_2_word_5 = _tables_2_ext_R0_data[77:65];
+  assign io_lookup_2_word_6 = _tables_2_ext_R0_data[90:78];
+  assign io_lookup_2_word_7 = _tables_2_ext_R0_data[103:91];
+  assign io_lookup_3_begin = lbZero_3 ? 13'h0 : casez_tmp_8;
+  assign io_lookup_3_end = casez_tmp_7;
+  assign io_lookup_3_word_0 = _tables_3_ext_R0_data[12:0];
+  assign io_lookup_3_word_1 = _tables_3_ext_R0_data[25:13];
+  assign io_lookup_3_word_2 = _tables_3_ext_R0_data[38:26];
+  assign io_lookup_3_word_3 = _tables_3_ext_R0_data[51:39];
+  assign io_lookup_3_word_4 = _tables_3_ext_R0_data[64:52];
+  assign io_lookup_3_word_5 = _tables_3_ext_R0_data[77:65];
+  assign io_lookup_3_word_6 = _tables_3_ext_R0_data[90:78];
+  assign io_lookup_3_word_7 = _tables_3_ext_R0_data[103:91];
+  assign io_lookup_4_begin = lbZero_4 ? 13'h0 : casez_tmp_10;
+  assign io_lookup_4_end = casez_tmp_9;
+  assign io_lookup_4_word_0 = _tables_4_ext_R0_data[12:0];
+  assign io_lookup_4_word_1 = _tables_4_ext_R0_data[25:13];
+  assign io_lookup_4_word_2 = _tables_4_ext_R0_data[38:26];
+  assign io_lookup_4_word_3 = _tables_4_ext_R0_data[51:39];
+  assign io_lookup_4_word_4 = _tables_4_ext_R0_data[64:52];
+  assign io_lookup_4_word_5 = _tables_4_ext_R0_data[77:65];
+  assign io_lookup_4_word_6 = _tables_4_ext_R0_data[90:78];
+  assign io_lookup_4_word_7 = _tables_4_ext_R0_data[103:91];
+  assign io_lookup_5_begin = lbZero_5 ? 13'h0 : casez_tmp_12;
+  assign io_lookup_5_end = casez_tmp_11;
+  assign io_lookup_5_word_0 = _tables_5_ext_R0_data[12:0];
+  assign io_lookup_5_word_1 = _tables_5_ext_R0_data[25:13];
+  assign io_lookup_5_word_2 = _tables_5_ext_R0_data[38:26];
+  assign io_lookup_5_word_3 = _tables_5_ext_R0_data[51:39];
+  assign io_lookup_5_word_4 = _tables_5_ext_R0_data[64:52];
+  assign io_lookup_5_word_5 = _tables_5_ext_R0_data[77:65];
+  assign io_lookup_5_word_6 = _tables_5_ext_R0_data[90:78];
+  assign io_lookup_5_word_7 = _tables_5_ext_R0_data[103:91];
+  assign io_lookup_6_begin = lbZero_6 ? 13'h0 : casez_tmp_14;
+  assign io_lookup_6_end = casez_tmp_13;
+  assign io_lookup_6_word_0 = _tables_6_ext_R0_data[12:0];
+  assign io_lookup_6_word_1 = _tables_6_ext_R0_data[25:13];
+  assign io_lookup_6_word_2 = _tables_6_ext_R0_data[38:26];
+  assign io_lookup_6_word_3 = _tables_6_ext_R0_data[51:39];
+  assign io_lookup_6_word_4 = _tables_6_ext_R0_data[64:52];
+  assign io_lookup_6_word_5 = _tables_6_ext_R0_data[77:65];
+  assign io_lookup_6_word_6 = _tables_6_ext_R0_data[90:78];
+  assign io_lookup_6_word_7 = _tables_6_ext_R0_data[103:91];
+  assign io_lookup_7_begin = lbZero_7 ? 13'h0 : casez_tmp_16;
+  assign io_lookup_7_end = casez_tmp_15;
+  assign io_lookup_7_word_0 = _tables_7_ext_R0_data[12:0];
+  assign io_lookup_7_word_1 = _tables_7_ext_R0_data[25:13];
+  assign io_lookup_7_word_2 = _tables_7_ext_R0_data[38:26];
+  assign io_lookup_7_word_3 = _tables_7_ext_R0_data[51:39];
+  assign io_lookup_7_word_4 = _tables_7_ext_R0_data[64:52];
+  assign io_lookup_7_word_5 = _tables_7_ext_R0_data[77:65];
+  assign io_lookup_7_word_6 = _tables_7_ext_R0_data[90:78];
+  assign io_lookup_7_word_7 = _tables_7_ext_R0_data[103:91];
+  assign io_lookup_8_begin = lbZero_8 ? 13'h0 : casez_tmp_18;
+  assign io_lookup_8_end = casez_tmp_17;
+  assign io_lookup_8_word_0 = _tables_8_ext_R0_data[12:0];
+  assign io_lookup_8_word_1 = _tables_8_ext_R0_data[25:13];
+  assign io_lookup_8_word_2 = _tables_8_ext_R0_data[38:26];
+  assign io_lookup_8_word_3 = _tables_8_ext_R0_data[51:39];
+  assign io_lookup_8_word_4 = _tables_8_ext_R0_data[64:52];
+  assign io_lookup_8_word_5 = _tables_8_ext_R0_data[77:65];
+  assign io_lookup_8_word_6 = _tables_8_ext_R0_data[90:78];
+  assign io_lookup_8_word_7 = _tables_8_ext_R0_data[103:91];
+  assign io_lookup_9_begin = lbZero_9 ? 13'h0 : casez_tmp_20;
+  assign io_lookup_9_end = casez_tmp_19;
+  assign io_lookup_9_word_0 = _tables_9_ext_R0_data[12:0];
+  assign io_lookup_9_word_1 = _tables_9_ext_R0_data[25:13];
+  assign io_lookup_9_word_2 = _tables_9_ext_R0_data[38:26];
+  assign io_lookup_9_word_3 = _tables_9_ext_R0_data[51:39];
+  assign io_lookup_9_word_4 = _tables_9_ext_R0_data[64:52];
+  assign io_lookup_9_word_5 = _tables_9_ext_R0_data[77:65];
+  assign io_lookup_9_word_6 = _tables_9_ext_R0_data[90:78];
+  assign io_lookup_9_word_7 = _tables_9_ext_R0_data[103:91];
+  assign io_lookup_10_begin = lbZero_10 ? 13'h0 : casez_tmp_22;
+  assign io_lookup_10_end = casez_tmp_21;
+  assign io_lookup_10_word_0 = _tables_10_ext_R0_data[12:0];
+  assign io_lookup_10_word_1 = _tables_10_ext_R0_data[25:13];
+  assign io_lookup_10_word_2 = _tables_10_ext_R0_data[38:26];
+  assign io_lookup_10_word_3 = _tables_10_ext_R0_data[51:39];
+  assign io_lookup_10_word_4 = _tables_10_ext_R0_data[64:52];
+  assign io_lookup_10_word_5 = _tables_10_ext_R0_data[77:65];
+  assign io_lookup_10_word_6 = _tables_10_ext_R0_data[90:78];
+  assign io_lookup_10_word_7 = _tables_10_ext_R0_data[103:91];
+  assign io_lookup_11_begin = lbZero_11 ? 13'h0 : casez_tmp_24;
+  assign io_lookup_11_end = casez_tmp_23;
+  assign io_lookup_11_word_0 = _tables_11_ext_R0_data[12:0];
+  assign io_lookup_11_word_1 = _tables_11_ext_R0_data[25:13];
+  assign io_lookup_11_word_2 = _tables_11_ext_R0_data[38:26];
+  assign io_lookup_11_word_3 = _tables_11_ext_R0_data[51:39];
+  assign io_lookup_11_word_4 = _tables_11_ext_R0_data[64:52];
+  assign io_lookup_11_word_5 = _tables_11_ext_R0_data[77:65];
+  assign io_lookup_11_word_6 = _tables_11_ext_R0_data[90:78];
+  assign io_lookup_11_word_7 = _tables_11_ext_R0_data[103:91];
+  assign io_lookup_12_begin = lbZero_12 ? 13'h0 : casez_tmp_26;
+  assign io_lookup_12_end = casez_tmp_25;
+  assign io_lookup_12_word_0 = _tables_12_ext_R0_data[12:0];
+  assign io_lookup_12_word_1 = _tables_12_ext_R0_data[25:13];
+  assign io_lookup_12_word_2 = _tables_12_ext_R0_data[38:26];
+  assign io_lookup_12_word_3 = _tables_12_ext_R0_data[51:39];
+  assign io_lookup_12_word_4 = _tables_12_ext_R0_data[64:52];
+  assign io_lookup_12_word_5 = _tables_12_ext_R0_data[77:65];
+  assign io_lookup_12_word_6 = _tables_12_ext_R0_data[90:78];
+  assign io_lookup_12_word_7 = _tables_12_ext_R0_data[103:91];
+  assign io_lookup_13_begin = lbZero_13 ? 13'h0 : casez_tmp_28;
+  assign io_lookup_13_end = casez_tmp_27;
+  assign io_lookup_13_word_0 = _tables_13_ext_R0_data[12:0];
+  assign io_lookup_13_word_1 = _tables_13_ext_R0_data[25:13];
+  assign io_lookup_13_word_2 = _tables_13_ext_R0_data[38:26];
+  assign io_lookup_13_word_3 = _tables_13_ext_R0_data[51:39];
+  assign io_lookup_13_word_4 = _tables_13_ext_R0_data[64:52];
+  assign io_lookup_13_word_5 = _tables_13_ext_R0_data[77:65];
+  assign io_lookup_13_word_6 = _tables_13_ext_R0_data[90:78];
+  assign io_lookup_13_word_7 = _tables_13_ext_R0_data[103:91];
+  assign io_lookup_14_begin = lbZero_14 ? 13'h0 : casez_tmp_30;
+  assign io_lookup_14_end = casez_tmp_29;
+  assign io_lookup_14_word_0 = _tables_14_ext_R0_data[12:0];
+  assign io_lookup_14_word_1 = _tables_14_ext_R0_data[25:13];
+  assign io_lookup_14_word_2 = _tables_14_ext_R0_data[38:26];
+  assign io_lookup_14_word_3 = _tables_14_ext_R0_data[51:39];
+  assign io_lookup_14_word_4 = _tables_14_ext_R0_data[64:52];
+  assign io_lookup_14_word_5 = _tables_14_ext_R0_data[77:65];
+  assign io_lookup_14_word_6 = _tables_14_ext_R0_data[90:78];
+  assign io_lookup_14_word_7 = _tables_14_ext_R0_data[103:91];
+  assign io_lookup_15_begin = lbZero_15 ? 13'h0 : casez_tmp_32;
+  assign io_lookup_15_end = casez_tmp_31;
+  assign io_lookup_15_word_0 = _tables_15_ext_R0_data[12:0];
+  assign io_lookup_15_word_1 = _tables_15_ext_R0_data[25:13];
+  assign io_lookup_15_word_2 = _tables_15_ext_R0_data[38:26];
+  assign io_lookup_15_word_3 = _tables_15_ext_R0_data[51:39];
+  assign io_lookup_15_word_4 = _tables_15_ext_R0_data[64:52];
+  assign io_lookup_15_word_5 = _tables_15_ext_R0_data[77:65];
+  assign io_lookup_15_word_6 = _tables_15_ext_R0_data[90:78];
+  assign io_lookup_15_word_7 = _tables_15_ext_R0_data[103:91];
+  assign io_entry_0_item = _entries_0_ext_R0_data[11:0];
+  assign io_entry_0_mark = _entries_0_ext_R0_data[12];
+  assign io_entry_1_item = _entries_1_ext_R0_data[11:0];
+  assign io_entry_1_mark = _entries_1_ext_R0_data[12];
+  assign io_entry_2_item = _entries_2_ext_R0_data[11:0];
+  assign io_entry_2_mark = _entries_2_ext_R0_data[12];
+  assign io_entry_3_item = _entries_3_ext_R0_data[11:0];
+  assign io_entry_3_mark = _entries_3_ext_R0_data[12];
+  assign io_entry_4_item = _entries_4_ext_R0_data[11:0];
+  assign io_entry_4_mark = _entries_4_ext_R0_data[12];
+  assign io_entry_5_item = _entries_5_ext_R0_data[11:0];
+  assign io_entry_5_mark = _entries_5_ext_R0_data[12];
+  assign io_entry_6_item = _entries_6_ext_R0_data[11:0];
+  assign io_entry_6_mark = _entries_6_ext_R0_data[12];
+  assign io_entry_7_item = _entries_7_ext_R0_data[11:0];
+  assign io_entry_7_mark = _entries_7_ext_R0_data[12];
+  assign io_entry_8_item = _entries_8_ext_R0_data[11:0];
+  assign io_entry_8_mark = _entries_8_ext_R0_data[12];
+  assign io_entry_9_item = _entries_9_ext_R0_data[11:0];
+  assign io_entry_9_mark = _entries_9_ext_R0_data[12];
+  assign io_entry_10_item = _entries_10_ext_R0_data[11:0];
+  assign io_entry_10_mark = _entries_10_ext_R0_data[12];
+  assign io_entry_11_item = _entries_11_ext_R0_data[11:0];
+  assign io_entry_11_mark = _entries_11_ext_R0_data[12];
+  assign io_entry_12_item = _entries_12_ext_R0_data[11:0];
+  assign io_entry_12_mark = _entries_12_ext_R0_data[12];
+  assign io_entry_13_item = _entries_13_ext_R0_data[11:0];
+  assign io_entry_13_mark = _entries_13_ext_R0_data[12];
+  assign io_entry_14_item = _entries_14_ext_R0_data[11:0];
+  assign io_entry_14_mark = _entries_14_ext_R0_data[12];
+  assign io_entry_15_item = _entries_15_ext_R0_data[11:0];
+  assign io_entry_15_mark = _entries_15_ext_R0_data[12];
   assign io_counted = counted;
   assign io_scattered = scattered;
   assign io_badBucket = bad;
@@ -18796,7 +20401,483 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world(
   assign io_busy = |state;
 endmodule
 
-module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
+module SphereKeys_fp32_c20_f8_m9d8_l1_world(
+  input         clock,
+                reset,
+                io_in_valid,
+  input  [31:0] io_in_sphere_0,
+                io_in_sphere_1,
+                io_in_sphere_2,
+                io_in_sphere_3,
+  input  [12:0] io_in_k,
+  output        io_out_valid,
+  output [19:0] io_out_cell_0,
+                io_out_cell_1,
+                io_out_cell_2,
+  output        io_out_cellOverflow,
+  output [28:0] io_out_q_0,
+                io_out_q_1,
+                io_out_q_2,
+                io_out_qr,
+  output [12:0] io_out_need,
+  output        io_out_needNone,
+                io_out_nonFinite,
+  output [12:0] io_out_top,
+  output        io_out_topNone
+);
+
+  reg         io_out_valid_r;
+  reg  [19:0] r_0;
+  reg  [19:0] r_1;
+  reg  [19:0] r_2;
+  reg         io_out_cellOverflow_r;
+  reg  [28:0] r_1_0;
+  reg  [28:0] r_1_1;
+  reg  [28:0] r_1_2;
+  reg  [28:0] io_out_qr_r;
+  reg  [12:0] io_out_need_r;
+  reg         io_out_needNone_r;
+  reg         io_out_nonFinite_r;
+  reg  [12:0] io_out_top_r;
+  reg         io_out_topNone_r;
+  wire        raw_expZero = io_in_sphere_0[30:23] == 8'h0;
+  wire        raw_0_isZero = raw_expZero & ~(|(io_in_sphere_0[22:0]));
+  wire [3:0]  _GEN =
+    {{io_in_sphere_0[5:4], io_in_sphere_0[7]} & 3'h5, 1'h0}
+    | {io_in_sphere_0[7:6], io_in_sphere_0[9:8]} & 4'h5;
+  wire [4:0]  raw_lz =
+    io_in_sphere_0[22]
+      ? 5'h0
+      : io_in_sphere_0[21]
+          ? 5'h1
+          : io_in_sphere_0[20]
+              ? 5'h2
+              : io_in_sphere_0[19]
+                  ? 5'h3
+                  : io_in_sphere_0[18]
+                      ? 5'h4
+                      : io_in_sphere_0[17]
+                          ? 5'h5
+                          : io_in_sphere_0[16]
+                              ? 5'h6
+                              : io_in_sphere_0[15]
+                                  ? 5'h7
+                                  : io_in_sphere_0[14]
+                                      ? 5'h8
+                                      : io_in_sphere_0[13]
+                                          ? 5'h9
+                                          : io_in_sphere_0[12]
+                                              ? 5'hA
+                                              : io_in_sphere_0[11]
+                                                  ? 5'hB
+                                                  : io_in_sphere_0[10]
+                                                      ? 5'hC
+                                                      : io_in_sphere_0[9]
+                                                          ? 5'hD
+                                                          : _GEN[0]
+                                                              ? 5'hE
+                                                              : _GEN[1]
+                                                                  ? 5'hF
+                                                                  : _GEN[2]
+                                                                      ? 5'h10
+                                                                      : _GEN[3]
+                                                                          ? 5'h11
+                                                                          : io_in_sphere_0[4]
+                                                                              ? 5'h12
+                                                                              : io_in_sphere_0[3]
+                                                                                  ? 5'h13
+                                                                                  : io_in_sphere_0[2]
+                                                                                      ? 5'h14
+                                                                                      : io_in_sphere_0[1]
+                                                                                          ? 5'h15
+                                                                                          : 5'h16;
+  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_sphere_0[22:0]} << {1'h0, raw_lz} + 6'h1;
+  wire [23:0] raw_0_sig =
+    raw_expZero ? _raw_subSig_T_1[23:0] : {1'h1, io_in_sphere_0[22:0]};
+  wire [8:0]  _raw_out_sExp_T_1 = {1'h0, io_in_sphere_0[30:23]} - 9'h7F;
+  wire [9:0]  raw_0_sExp =
+    raw_expZero ? 10'h381 - {5'h0, raw_lz} : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
+  wire        raw_expZero_1 = io_in_sphere_1[30:23] == 8'h0;
+  wire        raw_1_isZero = raw_expZero_1 & ~(|(io_in_sphere_1[22:0]));
+  wire [3:0]  _GEN_0 =
+    {{io_in_sphere_1[5:4], io_in_sphere_1[7]} & 3'h5, 1'h0}
+    | {io_in_sphere_1[7:6], io_in_sphere_1[9:8]} & 4'h5;
+  wire [4:0]  raw_lz_1 =
+    io_in_sphere_1[22]
+      ? 5'h0
+      : io_in_sphere_1[21]
+          ? 5'h1
+          : io_in_sphere_1[20]
+              ? 5'h2
+              : io_in_sphere_1[19]
+                  ? 5'h3
+                  : io_in_sphere_1[18]
+                      ? 5'h4
+                      : io_in_sphere_1[17]
+                          ? 5'h5
+                          : io_in_sphere_1[16]
+                              ? 5'h6
+                              : io_in_sphere_1[15]
+                                  ? 5'h7
+                                  : io_in_sphere_1[14]
+                                      ? 5'h8
+                                      : io_in_sphere_1[13]
+                                          ? 5'h9
+                                          : io_in_sphere_1[12]
+                                              ? 5'hA
+                                              : io_in_sphere_1[11]
+                                                  ? 5'hB
+                                                  : io_in_sphere_1[10]
+                                                      ? 5'hC
+                                                      : io_in_sphere_1[9]
+                                                          ? 5'hD
+                                                          : _GEN_0[0]
+                                                              ? 5'hE
+                                                              : _GEN_0[1]
+                                                                  ? 5'hF
+                                                                  : _GEN_0[2]
+                                                                      ? 5'h10
+                                                                      : _GEN_0[3]
+                                                                          ? 5'h11
+                                                                          : io_in_sphere_1[4]
+                                                                              ? 5'h12
+                                                                              : io_in_sphere_1[3]
+                                                                                  ? 5'h13
+                                                                                  : io_in_sphere_1[2]
+                                                                                      ? 5'h14
+                                                                                      : io_in_sphere_1[1]
+                                                                                          ? 5'h15
+                                                                                          : 5'h16;
+  wire [85:0] _raw_subSig_T_3 = {63'h0, io_in_sphere_1[22:0]} << {1'h0, raw_lz_1} + 6'h1;
+  wire [23:0] raw_1_sig =
+    raw_expZero_1 ? _raw_subSig_T_3[23:0] : {1'h1, io_in_sphere_1[22:0]};
+  wire [8:0]  _raw_out_sExp_T_6 = {1'h0, io_in_sphere_1[30:23]} - 9'h7F;
+  wire [9:0]  raw_1_sExp =
+    raw_expZero_1
+      ? 10'h381 - {5'h0, raw_lz_1}
+      : {_raw_out_sExp_T_6[8], _raw_out_sExp_T_6};
+  wire        raw_expZero_2 = io_in_sphere_2[30:23] == 8'h0;
+  wire        raw_2_isZero = raw_expZero_2 & ~(|(io_in_sphere_2[22:0]));
+  wire [3:0]  _GEN_1 =
+    {{io_in_sphere_2[5:4], io_in_sphere_2[7]} & 3'h5, 1'h0}
+    | {io_in_sphere_2[7:6], io_in_sphere_2[9:8]} & 4'h5;
+  wire [4:0]  raw_lz_2 =
+    io_in_sphere_2[22]
+      ? 5'h0
+      : io_in_sphere_2[21]
+          ? 5'h1
+          : io_in_sphere_2[20]
+              ? 5'h2
+              : io_in_sphere_2[19]
+                  ? 5'h3
+                  : io_in_sphere_2[18]
+                      ? 5'h4
+                      : io_in_sphere_2[17]
+                          ? 5'h5
+                          : io_in_sphere_2[16]
+                              ? 5'h6
+                              : io_in_sphere_2[15]
+                                  ? 5'h7
+                                  : io_in_sphere_2[14]
+                                      ? 5'h8
+                                      : io_in_sphere_2[13]
+                                          ? 5'h9
+                                          : io_in_sphere_2[12]
+                                              ? 5'hA
+                                              : io_in_sphere_2[11]
+                                                  ? 5'hB
+                                                  : io_in_sphere_2[10]
+                                                      ? 5'hC
+                                                      : io_in_sphere_2[9]
+                                                          ? 5'hD
+                                                          : _GEN_1[0]
+                                                              ? 5'hE
+                                                              : _GEN_1[1]
+                                                                  ? 5'hF
+                                                                  : _GEN_1[2]
+                                                                      ? 5'h10
+                                                                      : _GEN_1[3]
+                                                                          ? 5'h11
+                                                                          : io_in_sphere_2[4]
+                                                                              ? 5'h12
+                                                                              : io_in_sphere_2[3]
+                                                                                  ? 5'h13
+                                                                                  : io_in_sphere_2[2]
+                                                                                      ? 5'h14
+                                                                                      : io_in_sphere_2[1]
+                                                                                          ? 5'h15
+                                                                                          : 5'h16;
+  wire [85:0] _raw_subSig_T_5 = {63'h0, io_in_sphere_2[22:0]} << {1'h0, raw_lz_2} + 6'h1;
+  wire [23:0] raw_2_sig =
+    raw_expZero_2 ? _raw_subSig_T_5[23:0] : {1'h1, io_in_sphere_2[22:0]};
+  wire [8:0]  _raw_out_sExp_T_11 = {1'h0, io_in_sphere_2[30:23]} - 9'h7F;
+  wire [9:0]  raw_2_sExp =
+    raw_expZero_2
+      ? 10'h381 - {5'h0, raw_lz_2}
+      : {_raw_out_sExp_T_11[8], _raw_out_sExp_T_11};
+  wire        raw_expZero_3 = io_in_sphere_3[30:23] == 8'h0;
+  wire [3:0]  _GEN_2 =
+    {{io_in_sphere_3[5:4], io_in_sphere_3[7]} & 3'h5, 1'h0}
+    | {io_in_sphere_3[7:6], io_in_sphere_3[9:8]} & 4'h5;
+  wire [4:0]  raw_lz_3 =
+    io_in_sphere_3[22]
+      ? 5'h0
+      : io_in_sphere_3[21]
+          ? 5'h1
+          : io_in_sphere_3[20]
+              ? 5'h2
+              : io_in_sphere_3[19]
+                  ? 5'h3
+                  : io_in_sphere_3[18]
+                      ? 5'h4
+                      : io_in_sphere_3[17]
+                          ? 5'h5
+                          : io_in_sphere_3[16]
+                              ? 5'h6
+                              : io_in_sphere_3[15]
+                                  ? 5'h7
+                                  : io_in_sphere_3[14]
+                                      ? 5'h8
+                                      : io_in_sphere_3[13]
+                                          ? 5'h9
+                                          : io_in_sphere_3[12]
+                                              ? 5'hA
+                                              : io_in_sphere_3[11]
+                                                  ? 5'hB
+                                                  : io_in_sphere_3[10]
+                                                      ? 5'hC
+                                                      : io_in_sphere_3[9]
+                                                          ? 5'hD
+                                                          : _GEN_2[0]
+                                                              ? 5'hE
+                                                              : _GEN_2[1]
+                                                                  ? 5'hF
+                                                                  : _GEN_2[2]
+                                                                      ? 5'h10
+                                                                      : _GEN_2[3]
+                                                                          ? 5'h11
+                                                                          : io_in_sphere_3[4]
+                                                                              ? 5'h12
+                                                                              : io_in_sphere_3[3]
+                                                                                  ? 5'h13
+                                                                                  : io_in_sphere_3[2]
+                                                                                      ? 5'h14
+                                                                                      : io_in_sphere_3[1]
+                                                                                          ? 5'h15
+                                                                                          : 5'h16;
+  wire [8:0]  _raw_out_sExp_T_16 = {1'h0, io_in_sphere_3[30:23]} - 9'h7F;
+  wire [9:0]  raw_3_sExp =
+    raw_expZero_3
+      ? 10'h381 - {5'h0, raw_lz_3}
+      : {_raw_out_sExp_T_16[8], _raw_out_sExp_T_16};
+  wire [10:0] _GEN_3 = {raw_0_sExp[9], raw_0_sExp};
+  wire [10:0] _qs_t_T = _GEN_3 - 11'h17;
+  wire [13:0] _GEN_4 = {io_in_k[12], io_in_k};
+  wire [13:0] cellsAndOver_t = {{3{_qs_t_T[10]}}, _qs_t_T} - _GEN_4;
+  wire        cellsAndOver_left = $signed(cellsAndOver_t) > -14'sh1;
+  wire [14:0] _cellsAndOver_rNeg_T = 15'h0 - {cellsAndOver_t[13], cellsAndOver_t};
+  wire [4:0]  _cellsAndOver_rAmt_T_1 =
+    _cellsAndOver_rNeg_T > 15'h19 ? 5'h19 : _cellsAndOver_rNeg_T[4:0];
+  wire [54:0] _GEN_5 = {31'h0, raw_0_sig};
+  wire [31:0] _cellsAndOver_sticky_T = 32'h1 << _cellsAndOver_rAmt_T_1;
+  wire [54:0] _cellsAndOver_shiftedL_T =
+    _GEN_5 << ($signed(cellsAndOver_t) > 14'sh15 ? 5'h15 : cellsAndOver_t[4:0]);
+  wire [46:0] cellsAndOver_m =
+    {1'h0,
+     cellsAndOver_left
+       ? _cellsAndOver_shiftedL_T[45:0]
+       : {22'h0, raw_0_sig >> _cellsAndOver_rAmt_T_1}}
+    + {46'h0,
+       ~cellsAndOver_left & (|(raw_0_sig & _cellsAndOver_sticky_T[23:0] - 24'h1))
+         & io_in_sphere_0[31]};
+  wire [19:0] cellsAndOver_0_1 =
+    raw_0_isZero
+      ? 20'h0
+      : io_in_sphere_0[31] ? 20'h0 - cellsAndOver_m[19:0] : cellsAndOver_m[19:0];
+  wire [10:0] _GEN_6 = {raw_1_sExp[9], raw_1_sExp};
+  wire [10:0] _qs_t_T_1 = _GEN_6 - 11'h17;
+  wire [13:0] cellsAndOver_t_1 = {{3{_qs_t_T_1[10]}}, _qs_t_T_1} - _GEN_4;
+  wire        cellsAndOver_left_1 = $signed(cellsAndOver_t_1) > -14'sh1;
+  wire [14:0] _cellsAndOver_rNeg_T_1 = 15'h0 - {cellsAndOver_t_1[13], cellsAndOver_t_1};
+  wire [4:0]  _cellsAndOver_rAmt_T_3 =
+    _cellsAndOver_rNeg_T_1 > 15'h19 ? 5'h19 : _cellsAndOver_rNeg_T_1[4:0];
+  wire [54:0] _GEN_7 = {31'h0, raw_1_sig};
+  wire [31:0] _cellsAndOver_sticky_T_5 = 32'h1 << _cellsAndOver_rAmt_T_3;
+  wire [54:0] _cellsAndOver_shiftedL_T_1 =
+    _GEN_7 << ($signed(cellsAndOver_t_1) > 14'sh15 ? 5'h15 : cellsAndOver_t_1[4:0]);
+  wire [46:0] cellsAndOver_m_1 =
+    {1'h0,
+     cellsAndOver_left_1
+       ? _cellsAndOver_shiftedL_T_1[45:0]
+       : {22'h0, raw_1_sig >> _cellsAndOver_rAmt_T_3}}
+    + {46'h0,
+       ~cellsAndOver_left_1 & (|(raw_1_sig & _cellsAndOver_sticky_T_5[23:0] - 24'h1))
+         & io_in_sphere_1[31]};
+  wire [19:0] cellsAndOver_1_1 =
+    raw_1_isZero
+      ? 20'h0
+      : io_in_sphere_1[31] ? 20'h0 - cellsAndOver_m_1[19:0] : cellsAndOver_m_1[19:0];
+  wire [10:0] _GEN_8 = {raw_2_sExp[9], raw_2_sExp};
+  wire [10:0] _qs_t_T_2 = _GEN_8 - 11'h17;
+  wire [13:0] cellsAndOver_t_2 = {{3{_qs_t_T_2[10]}}, _qs_t_T_2} - _GEN_4;
+  wire        cellsAndOver_left_2 = $signed(cellsAndOver_t_2) > -14'sh1;
+  wire [14:0] _cellsAndOver_rNeg_T_2 = 15'h0 - {cellsAndOver_t_2[13], cellsAndOver_t_2};
+  wire [4:0]  _cellsAndOver_rAmt_T_5 =
+    _cellsAndOver_rNeg_T_2 > 15'h19 ? 5'h19 : _cellsAndOver_rNeg_T_2[4:0];
+  wire [54:0] _GEN_9 = {31'h0, raw_2_sig};
+  wire [31:0] _cellsAndOver_sticky_T_10 = 32'h1 << _cellsAndOver_rAmt_T_5;
+  wire [54:0] _cellsAndOver_shiftedL_T_2 =
+    _GEN_9 << ($signed(cellsAndOver_t_2) > 14'sh15 ? 5'h15 : cellsAndOver_t_2[4:0]);
+  wire [46:0] cellsAndOver_m_2 =
+    {1'h0,
+     cellsAndOver_left_2
+       ? _cellsAndOver_shiftedL_T_2[45:0]
+       : {22'h0, raw_2_sig >> _cellsAndOver_rAmt_T_5}}
+    + {46'h0,
+       ~cellsAndOver_left_2 & (|(raw_2_sig & _cellsAndOver_sticky_T_10[23:0] - 24'h1))
+         & io_in_sphere_2[31]};
+  wire [19:0] cellsAndOver_2_1 =
+    raw_2_isZero
+      ? 20'h0
+      : io_in_sphere_2[31] ? 20'h0 - cellsAndOver_m_2[19:0] : cellsAndOver_m_2[19:0];
+  wire [13:0] _tq_T_1 = _GEN_4 - 14'h8;
+  wire [14:0] _GEN_10 = {_tq_T_1[13], _tq_T_1};
+  wire [14:0] qs_t = {{4{_qs_t_T[10]}}, _qs_t_T} - _GEN_10;
+  wire        qs_left = $signed(qs_t) > -15'sh1;
+  wire [15:0] _qs_rNeg_T = 16'h0 - {qs_t[14], qs_t};
+  wire [4:0]  _qs_rAmt_T_1 = _qs_rNeg_T > 16'h19 ? 5'h19 : _qs_rNeg_T[4:0];
+  wire [31:0] _qs_sticky_T = 32'h1 << _qs_rAmt_T_1;
+  wire [54:0] qs_shiftedL = _GEN_5 << ($signed(qs_t) > 15'sh1E ? 5'h1E : qs_t[4:0]);
+  wire [28:0] qs_m =
+    (qs_left ? qs_shiftedL[28:0] : {5'h0, raw_0_sig >> _qs_rAmt_T_1})
+    + {28'h0,
+       ~qs_left & (|(raw_0_sig & _qs_sticky_T[23:0] - 24'h1)) & io_in_sphere_0[31]};
+  wire [14:0] qs_t_1 = {{4{_qs_t_T_1[10]}}, _qs_t_T_1} - _GEN_10;
+  wire        qs_left_1 = $signed(qs_t_1) > -15'sh1;
+  wire [15:0] _qs_rNeg_T_1 = 16'h0 - {qs_t_1[14], qs_t_1};
+  wire [4:0]  _qs_rAmt_T_3 = _qs_rNeg_T_1 > 16'h19 ? 5'h19 : _qs_rNeg_T_1[4:0];
+  wire [31:0] _qs_sticky_T_5 = 32'h1 << _qs_rAmt_T_3;
+  wire [54:0] qs_shiftedL_1 = _GEN_7 << ($signed(qs_t_1) > 15'sh1E ? 5'h1E : qs_t_1[4:0]);
+  wire [28:0] qs_m_1 =
+    (qs_left_1 ? qs_shiftedL_1[28:0] : {5'h0, raw_1_sig >> _qs_rAmt_T_3})
+    + {28'h0,
+       ~qs_left_1 & (|(raw_1_sig & _qs_sticky_T_5[23:0] - 24'h1)) & io_in_sphere_1[31]};
+  wire [14:0] qs_t_2 = {{4{_qs_t_T_2[10]}}, _qs_t_T_2} - _GEN_10;
+  wire        qs_left_2 = $signed(qs_t_2) > -15'sh1;
+  wire [15:0] _qs_rNeg_T_2 = 16'h0 - {qs_t_2[14], qs_t_2};
+  wire [4:0]  _qs_rAmt_T_5 = _qs_rNeg_T_2 > 16'h19 ? 5'h19 : _qs_rNeg_T_2[4:0];
+  wire [31:0] _qs_sticky_T_10 = 32'h1 << _qs_rAmt_T_5;
+  wire [54:0] qs_shiftedL_2 = _GEN_9 << ($signed(qs_t_2) > 15'sh1E ? 5'h1E : qs_t_2[4:0]);
+  wire [28:0] qs_m_2 =
+    (qs_left_2 ? qs_shiftedL_2[28:0] : {5'h0, raw_2_sig >> _qs_rAmt_T_5})
+    + {28'h0,
+       ~qs_left_2 & (|(raw_2_sig & _qs_sticky_T_10[23:0] - 24'h1)) & io_in_sphere_2[31]};
+  wire [85:0] _raw_subSig_T_7 = {63'h0, io_in_sphere_3[22:0]} << {1'h0, raw_lz_3} + 6'h1;
+  wire [27:0] rNum =
+    {4'h0, raw_expZero_3 ? _raw_subSig_T_7[23:0] : {1'h1, io_in_sphere_3[22:0]}} * 28'h9;
+  wire [10:0] _GEN_11 = {raw_3_sExp[9], raw_3_sExp};
+  wire [10:0] _tq_T = _GEN_11 - 11'h1A;
+  wire [14:0] tq = {{4{_tq_T[10]}}, _tq_T} - _GEN_10;
+  wire [15:0] _qrRneg_T = 16'h0 - {tq[14], tq};
+  wire [4:0]  _qrR_T_1 = _qrRneg_T > 16'h1D ? 5'h1D : _qrRneg_T[4:0];
+  wire [31:0] _qrRight_T_1 = 32'h1 << _qrR_T_1;
+  wire [58:0] qrWide =
+    $signed(tq) > -15'sh1
+      ? {31'h0, rNum} << ($signed(tq) > 15'sh1D ? 5'h1D : tq[4:0])
+      : {30'h0, {1'h0, rNum >> _qrR_T_1} + {28'h0, |(rNum & _qrRight_T_1[27:0] - 28'h1)}};
+  wire        _io_out_needNone_T =
+    raw_expZero_3 & ~(|(io_in_sphere_3[22:0])) | io_in_sphere_3[31];
+  wire [28:0] _x_T_1 = {rNum, 1'h0} - 29'h1;
+  wire [10:0] _need_T = _GEN_11 - 11'h17;
+  wire [11:0] _need_T_52 =
+    {_need_T[10], _need_T}
+    + {6'h0,
+       {1'h0,
+        |(_x_T_1[28:16]),
+        (|(_x_T_1[28:16]))
+          ? {|(_x_T_1[28:24]),
+             (|(_x_T_1[28:24]))
+               ? {_x_T_1[28],
+                  _x_T_1[28]
+                    ? 2'h0
+                    : _x_T_1[27] ? 2'h3 : _x_T_1[26] ? 2'h2 : {1'h0, _x_T_1[25]}}
+               : {|(_x_T_1[23:20]),
+                  (|(_x_T_1[23:20]))
+                    ? (_x_T_1[23] ? 2'h3 : _x_T_1[22] ? 2'h2 : {1'h0, _x_T_1[21]})
+                    : _x_T_1[19] ? 2'h3 : _x_T_1[18] ? 2'h2 : {1'h0, _x_T_1[17]}}}
+          : {|(_x_T_1[15:8]),
+             (|(_x_T_1[15:8]))
+               ? {|(_x_T_1[15:12]),
+                  (|(_x_T_1[15:12]))
+                    ? (_x_T_1[15] ? 2'h3 : _x_T_1[14] ? 2'h2 : {1'h0, _x_T_1[13]})
+                    : _x_T_1[11] ? 2'h3 : _x_T_1[10] ? 2'h2 : {1'h0, _x_T_1[9]}}
+               : {|(_x_T_1[7:4]),
+                  (|(_x_T_1[7:4]))
+                    ? (_x_T_1[7] ? 2'h3 : _x_T_1[6] ? 2'h2 : {1'h0, _x_T_1[5]})
+                    : _x_T_1[3] ? 2'h3 : _x_T_1[2] ? 2'h2 : {1'h0, _x_T_1[1]}}}} + 6'h1};
+  wire [10:0] coordTops_0_2 = _GEN_3 + 11'h1;
+  wire [10:0] coordTops_1_2 = _GEN_6 + 11'h1;
+  wire [10:0] coordTops_2_2 = _GEN_8 + 11'h1;
+  wire        _GEN_12 = raw_0_isZero & raw_1_isZero;
+  wire [10:0] _GEN_13 =
+    raw_0_isZero | ~(raw_1_isZero | $signed(coordTops_0_2) > $signed(coordTops_1_2))
+      ? coordTops_1_2
+      : coordTops_0_2;
+  wire [10:0] top =
+    _GEN_12 | ~(raw_2_isZero | $signed(_GEN_13) > $signed(coordTops_2_2))
+      ? coordTops_2_2
+      : _GEN_13;
+  always @(posedge clock) begin
+    if (reset)
+      io_out_valid_r <= 1'h0;
+    else
+      io_out_valid_r <= io_in_valid;
+    r_0 <= cellsAndOver_0_1;
+    r_1 <= cellsAndOver_1_1;
+    r_2 <= cellsAndOver_2_1;
+    io_out_cellOverflow_r <=
+      ~raw_0_isZero & (|(cellsAndOver_m[46:19])) | cellsAndOver_0_1 == 20'h7FFFF
+      | $signed(cellsAndOver_0_1) < -20'sh7FFFE | ~raw_1_isZero
+      & (|(cellsAndOver_m_1[46:19])) | cellsAndOver_1_1 == 20'h7FFFF
+      | $signed(cellsAndOver_1_1) < -20'sh7FFFE | ~raw_2_isZero
+      & (|(cellsAndOver_m_2[46:19])) | cellsAndOver_2_1 == 20'h7FFFF
+      | $signed(cellsAndOver_2_1) < -20'sh7FFFE;
+    r_1_0 <= raw_0_isZero ? 29'h0 : io_in_sphere_0[31] ? 29'h0 - qs_m : qs_m;
+    r_1_1 <= raw_1_isZero ? 29'h0 : io_in_sphere_1[31] ? 29'h0 - qs_m_1 : qs_m_1;
+    r_1_2 <= raw_2_isZero ? 29'h0 : io_in_sphere_2[31] ? 29'h0 - qs_m_2 : qs_m_2;
+    io_out_qr_r <=
+      _io_out_needNone_T ? 29'h0 : (|(qrWide[58:29])) ? 29'h1FFFFFFF : qrWide[28:0];
+    io_out_need_r <= {_need_T_52[11], _need_T_52} - 13'h3;
+    io_out_needNone_r <= _io_out_needNone_T;
+    io_out_nonFinite_r <=
+      (&(io_in_sphere_0[30:23])) & (|(io_in_sphere_0[22:0])) | (&(io_in_sphere_0[30:23]))
+      & ~(|(io_in_sphere_0[22:0])) | (&(io_in_sphere_1[30:23]))
+      & (|(io_in_sphere_1[22:0])) | (&(io_in_sphere_1[30:23]))
+      & ~(|(io_in_sphere_1[22:0])) | (&(io_in_sphere_2[30:23]))
+      & (|(io_in_sphere_2[22:0])) | (&(io_in_sphere_2[30:23]))
+      & ~(|(io_in_sphere_2[22:0])) | (&(io_in_sphere_3[30:23]))
+      & (|(io_in_sphere_3[22:0])) | (&(io_in_sphere_3[30:23]))
+      & ~(|(io_in_sphere_3[22:0]));
+    io_out_top_r <= {{2{top[10]}}, top};
+    io_out_topNone_r <= _GEN_12 & raw_2_isZero;
+  end // always @(posedge)
+  assign io_out_valid = io_out_valid_r;
+  assign io_out_cell_0 = r_0;
+  assign io_out_cell_1 = r_1;
+  assign io_out_cell_2 = r_2;
+  assign io_out_cellOverflow = io_out_cellOverflow_r;
+  assign io_out_q_0 = r_1_0;
+  assign io_out_q_1 = r_1_1;
+  assign io_out_q_2 = r_1_2;
+  assign io_out_qr = io_out_qr_r;
+  assign io_out_need = io_out_need_r;
+  assign io_out_needNone = io_out_needNone_r;
+  assign io_out_nonFinite = io_out_nonFinite_r;
+  assign io_out_top = io_out_top_r;
+  assign io_out_topNone = io_out_topNone_r;
+endmodule
+
+module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   input         clock,
                 reset,
                 io_start,
@@ -18956,6 +21037,16 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
                 io_status_sortMismatch
 );
 
+  wire [19:0] _laneKeys_15_io_out_cell_0;
+  wire [19:0] _laneKeys_15_io_out_cell_1;
+  wire [19:0] _laneKeys_15_io_out_cell_2;
+  wire [28:0] _laneKeys_15_io_out_q_0;
+  wire [28:0] _laneKeys_15_io_out_q_1;
+  wire [28:0] _laneKeys_15_io_out_q_2;
+  wire [28:0] _laneKeys_15_io_out_qr;
+  wire [12:0] _laneKeys_15_io_out_need;
+  wire        _laneKeys_15_io_out_needNone;
+  wire        _laneKeys_15_io_out_nonFinite;
   wire [19:0] _laneKeys_14_io_out_cell_0;
   wire [19:0] _laneKeys_14_io_out_cell_1;
   wire [19:0] _laneKeys_14_io_out_cell_2;
@@ -19086,9 +21177,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
   wire [12:0] _laneKeys_2_io_out_need;
   wire        _laneKeys_2_io_out_needNone;
   wire        _laneKeys_2_io_out_nonFinite;
+  wire        _laneKeys_1_io_out_valid;
   wire [19:0] _laneKeys_1_io_out_cell_0;
   wire [19:0] _laneKeys_1_io_out_cell_1;
   wire [19:0] _laneKeys_1_io_out_cell_2;
+  wire        _laneKeys_1_io_out_cellOverflow;
   wire [28:0] _laneKeys_1_io_out_q_0;
   wire [28:0] _laneKeys_1_io_out_q_1;
   wire [28:0] _laneKeys_1_io_out_q_2;
@@ -19096,9 +21189,13 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
   wire [12:0] _laneKeys_1_io_out_need;
   wire        _laneKeys_1_io_out_needNone;
   wire        _laneKeys_1_io_out_nonFinite;
+  wire [12:0] _laneKeys_1_io_out_top;
+  wire        _laneKeys_1_io_out_topNone;
+  wire        _laneKeys_0_io_out_valid;
   wire [19:0] _laneKeys_0_io_out_cell_0;
   wire [19:0] _laneKeys_0_io_out_cell_1;
   wire [19:0] _laneKeys_0_io_out_cell_2;
+  wire        _laneKeys_0_io_out_cellOverflow;
   wire [28:0] _laneKeys_0_io_out_q_0;
   wire [28:0] _laneKeys_0_io_out_q_1;
   wire [28:0] _laneKeys_0_io_out_q_2;
@@ -19106,6 +21203,8 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
   wire [12:0] _laneKeys_0_io_out_need;
   wire        _laneKeys_0_io_out_needNone;
   wire        _laneKeys_0_io_out_nonFinite;
+  wire [12:0] _laneKeys_0_io_out_top;
+  wire        _laneKeys_0_io_out_topNone;
   wire [12:0] _gens_15_io_lookup_bucket;
   wire [11:0] _gens_15_io_entry_addr;
   wire        _gens_15_io_mark_valid;
@@ -19195,6 +21294,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
   wire        _gens_1_io_mark_valid;
   wire [11:0] _gens_1_io_mark_bits_addr;
   wire [11:0] _gens_1_io_mark_bits_item;
+  wire [11:0] _gens_1_io_keyAddr;
   wire        _gens_1_io_busy;
   wire [12:0] _gens_0_io_lookup_bucket;
   wire [11:0] _gens_0_io_entry_addr;
@@ -19203,233 +21303,205 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
   wire [11:0] _gens_0_io_mark_bits_item;
   wire [11:0] _gens_0_io_keyAddr;
   wire        _gens_0_io_busy;
-  wire        _sorts_15_io_in_ready;
-  wire [12:0] _sorts_15_io_lookup_begin;
-  wire [12:0] _sorts_15_io_lookup_end;
-  wire [12:0] _sorts_15_io_lookup_word_0;
-  wire [12:0] _sorts_15_io_lookup_word_1;
-  wire [12:0] _sorts_15_io_lookup_word_2;
-  wire [12:0] _sorts_15_io_lookup_word_3;
-  wire [12:0] _sorts_15_io_lookup_word_4;
-  wire [12:0] _sorts_15_io_lookup_word_5;
-  wire [12:0] _sorts_15_io_lookup_word_6;
-  wire [12:0] _sorts_15_io_lookup_word_7;
-  wire [11:0] _sorts_15_io_entry_item;
-  wire        _sorts_15_io_entry_mark;
-  wire        _sorts_14_io_in_ready;
-  wire [12:0] _sorts_14_io_lookup_begin;
-  wire [12:0] _sorts_14_io_lookup_end;
-  wire [12:0] _sorts_14_io_lookup_word_0;
-  wire [12:0] _sorts_14_io_lookup_word_1;
-  wire [12:0] _sorts_14_io_lookup_word_2;
-  wire [12:0] _sorts_14_io_lookup_word_3;
-  wire [12:0] _sorts_14_io_lookup_word_4;
-  wire [12:0] _sorts_14_io_lookup_word_5;
-  wire [12:0] _sorts_14_io_lookup_word_6;
-  wire [12:0] _sorts_14_io_lookup_word_7;
-  wire [11:0] _sorts_14_io_entry_item;
-  wire        _sorts_14_io_entry_mark;
-  wire        _sorts_13_io_in_ready;
-  wire [12:0] _sorts_13_io_lookup_begin;
-  wire [12:0] _sorts_13_io_lookup_end;
-  wire [12:0] _sorts_13_io_lookup_word_0;
-  wire [12:0] _sorts_13_io_lookup_word_1;
-  wire [12:0] _sorts_13_io_lookup_word_2;
-  wire [12:0] _sorts_13_io_lookup_word_3;
-  wire [12:0] _sorts_13_io_lookup_word_4;
-  wire [12:0] _sorts_13_io_lookup_word_5;
-  wire [12:0] _sorts_13_io_lookup_word_6;
-  wire [12:0] _sorts_13_io_lookup_word_7;
-  wire [11:0] _sorts_13_io_entry_item;
-  wire        _sorts_13_io_entry_mark;
-  wire        _sorts_12_io_in_ready;
-  wire [12:0] _sorts_12_io_lookup_begin;
-  wire [12:0] _sorts_12_io_lookup_end;
-  wire [12:0] _sorts_12_io_lookup_word_0;
-  wire [12:0] _sorts_12_io_lookup_word_1;
-  wire [12:0] _sorts_12_io_lookup_word_2;
-  wire [12:0] _sorts_12_io_lookup_word_3;
-  wire [12:0] _sorts_12_io_lookup_word_4;
-  wire [12:0] _sorts_12_io_lookup_word_5;
-  wire [12:0] _sorts_12_io_lookup_word_6;
-  wire [12:0] _sorts_12_io_lookup_word_7;
-  wire [11:0] _sorts_12_io_entry_item;
-  wire        _sorts_12_io_entry_mark;
-  wire        _sorts_11_io_in_ready;
-  wire [12:0] _sorts_11_io_lookup_begin;
-  wire [12:0] _sorts_11_io_lookup_end;
-  wire [12:0] _sorts_11_io_lookup_word_0;
-  wire [12:0] _sorts_11_io_lookup_word_1;
-  wire [12:0] _sorts_11_io_lookup_word_2;
-  wire [12:0] _sorts_11_io_lookup_word_3;
-  wire [12:0] _sorts_11_io_lookup_word_4;
-  wire [12:0] _sorts_11_io_lookup_word_5;
-  wire [12:0] _sorts_11_io_lookup_word_6;
-  wire [12:0] _sorts_11_io_lookup_word_7;
-  wire [11:0] _sorts_11_io_entry_item;
-  wire        _sorts_11_io_entry_mark;
-  wire        _sorts_10_io_in_ready;
-  wire [12:0] _sorts_10_io_lookup_begin;
-  wire [12:0] _sorts_10_io_lookup_end;
-  wire [12:0] _sorts_10_io_lookup_word_0;
-  wire [12:0] _sorts_10_io_lookup_word_1;
-  wire [12:0] _sorts_10_io_lookup_word_2;
-  wire [12:0] _sorts_10_io_lookup_word_3;
-  wire [12:0] _sorts_10_io_lookup_word_4;
-  wire [12:0] _sorts_10_io_lookup_word_5;
-  wire [12:0] _sorts_10_io_lookup_word_6;
-  wire [12:0] _sorts_10_io_lookup_word_7;
-  wire [11:0] _sorts_10_io_entry_item;
-  wire        _sorts_10_io_entry_mark;
-  wire        _sorts_9_io_in_ready;
-  wire [12:0] _sorts_9_io_lookup_begin;
-  wire [12:0] _sorts_9_io_lookup_end;
-  wire [12:0] _sorts_9_io_lookup_word_0;
-  wire [12:0] _sorts_9_io_lookup_word_1;
-  wire [12:0] _sorts_9_io_lookup_word_2;
-  wire [12:0] _sorts_9_io_lookup_word_3;
-  wire [12:0] _sorts_9_io_lookup_word_4;
-  wire [12:0] _sorts_9_io_lookup_word_5;
-  wire [12:0] _sorts_9_io_lookup_word_6;
-  wire [12:0] _sorts_9_io_lookup_word_7;
-  wire [11:0] _sorts_9_io_entry_item;
-  wire        _sorts_9_io_entry_mark;
-  wire        _sorts_8_io_in_ready;
-  wire [12:0] _sorts_8_io_lookup_begin;
-  wire [12:0] _sorts_8_io_lookup_end;
-  wire [12:0] _sorts_8_io_lookup_word_0;
-  wire [12:0] _sorts_8_io_lookup_word_1;
-  wire [12:0] _sorts_8_io_lookup_word_2;
-  wire [12:0] _sorts_8_io_lookup_word_3;
-  wire [12:0] _sorts_8_io_lookup_word_4;
-  wire [12:0] _sorts_8_io_lookup_word_5;
-  wire [12:0] _sorts_8_io_lookup_word_6;
-  wire [12:0] _sorts_8_io_lookup_word_7;
-  wire [11:0] _sorts_8_io_entry_item;
-  wire        _sorts_8_io_entry_mark;
-  wire        _sorts_7_io_in_ready;
-  wire [12:0] _sorts_7_io_lookup_begin;
-  wire [12:0] _sorts_7_io_lookup_end;
-  wire [12:0] _sorts_7_io_lookup_word_0;
-  wire [12:0] _sorts_7_io_lookup_word_1;
-  wire [12:0] _sorts_7_io_lookup_word_2;
-  wire [12:0] _sorts_7_io_lookup_word_3;
-  wire [12:0] _sorts_7_io_lookup_word_4;
-  wire [12:0] _sorts_7_io_lookup_word_5;
-  wire [12:0] _sorts_7_io_lookup_word_6;
-  wire [12:0] _sorts_7_io_lookup_word_7;
-  wire [11:0] _sorts_7_io_entry_item;
-  wire        _sorts_7_io_entry_mark;
-  wire        _sorts_6_io_in_ready;
-  wire [12:0] _sorts_6_io_lookup_begin;
-  wire [12:0] _sorts_6_io_lookup_end;
-  wire [12:0] _sorts_6_io_lookup_word_0;
-  wire [12:0] _sorts_6_io_lookup_word_1;
-  wire [12:0] _sorts_6_io_lookup_word_2;
-  wire [12:0] _sorts_6_io_lookup_word_3;
-  wire [12:0] _sorts_6_io_lookup_word_4;
-  wire [12:0] _sorts_6_io_lookup_word_5;
-  wire [12:0] _sorts_6_io_lookup_word_6;
-  wire [12:0] _sorts_6_io_lookup_word_7;
-  wire [11:0] _sorts_6_io_entry_item;
-  wire        _sorts_6_io_entry_mark;
-  wire        _sorts_5_io_in_ready;
-  wire [12:0] _sorts_5_io_lookup_begin;
-  wire [12:0] _sorts_5_io_lookup_end;
-  wire [12:0] _sorts_5_io_lookup_word_0;
-  wire [12:0] _sorts_5_io_lookup_word_1;
-  wire [12:0] _sorts_5_io_lookup_word_2;
-  wire [12:0] _sorts_5_io_lookup_word_3;
-  wire [12:0] _sorts_5_io_lookup_word_4;
-  wire [12:0] _sorts_5_io_lookup_word_5;
-  wire [12:0] _sorts_5_io_lookup_word_6;
-  wire [12:0] _sorts_5_io_lookup_word_7;
-  wire [11:0] _sorts_5_io_entry_item;
-  wire        _sorts_5_io_entry_mark;
-  wire        _sorts_4_io_in_ready;
-  wire [12:0] _sorts_4_io_lookup_begin;
-  wire [12:0] _sorts_4_io_lookup_end;
-  wire [12:0] _sorts_4_io_lookup_word_0;
-  wire [12:0] _sorts_4_io_lookup_word_1;
-  wire [12:0] _sorts_4_io_lookup_word_2;
-  wire [12:0] _sorts_4_io_lookup_word_3;
-  wire [12:0] _sorts_4_io_lookup_word_4;
-  wire [12:0] _sorts_4_io_lookup_word_5;
-  wire [12:0] _sorts_4_io_lookup_word_6;
-  wire [12:0] _sorts_4_io_lookup_word_7;
-  wire [11:0] _sorts_4_io_entry_item;
-  wire        _sorts_4_io_entry_mark;
-  wire        _sorts_3_io_in_ready;
-  wire [12:0] _sorts_3_io_lookup_begin;
-  wire [12:0] _sorts_3_io_lookup_end;
-  wire [12:0] _sorts_3_io_lookup_word_0;
-  wire [12:0] _sorts_3_io_lookup_word_1;
-  wire [12:0] _sorts_3_io_lookup_word_2;
-  wire [12:0] _sorts_3_io_lookup_word_3;
-  wire [12:0] _sorts_3_io_lookup_word_4;
-  wire [12:0] _sorts_3_io_lookup_word_5;
-  wire [12:0] _sorts_3_io_lookup_word_6;
-  wire [12:0] _sorts_3_io_lookup_word_7;
-  wire [11:0] _sorts_3_io_entry_item;
-  wire        _sorts_3_io_entry_mark;
-  wire        _sorts_2_io_in_ready;
-  wire [12:0] _sorts_2_io_lookup_begin;
-  wire [12:0] _sorts_2_io_lookup_end;
-  wire [12:0] _sorts_2_io_lookup_word_0;
-  wire [12:0] _sorts_2_io_lookup_word_1;
-  wire [12:0] _sorts_2_io_lookup_word_2;
-  wire [12:0] _sorts_2_io_lookup_word_3;
-  wire [12:0] _sorts_2_io_lookup_word_4;
-  wire [12:0] _sorts_2_io_lookup_word_5;
-  wire [12:0] _sorts_2_io_lookup_word_6;
-  wire [12:0] _sorts_2_io_lookup_word_7;
-  wire [11:0] _sorts_2_io_entry_item;
-  wire        _sorts_2_io_entry_mark;
-  wire        _sorts_1_io_in_ready;
-  wire [12:0] _sorts_1_io_lookup_begin;
-  wire [12:0] _sorts_1_io_lookup_end;
-  wire [12:0] _sorts_1_io_lookup_word_0;
-  wire [12:0] _sorts_1_io_lookup_word_1;
-  wire [12:0] _sorts_1_io_lookup_word_2;
-  wire [12:0] _sorts_1_io_lookup_word_3;
-  wire [12:0] _sorts_1_io_lookup_word_4;
-  wire [12:0] _sorts_1_io_lookup_word_5;
-  wire [12:0] _sorts_1_io_lookup_word_6;
-  wire [12:0] _sorts_1_io_lookup_word_7;
-  wire [11:0] _sorts_1_io_entry_item;
-  wire        _sorts_1_io_entry_mark;
-  wire        _sorts_0_io_busy;
-  wire        _sorts_0_io_in_ready;
-  wire [12:0] _sorts_0_io_lookup_begin;
-  wire [12:0] _sorts_0_io_lookup_end;
-  wire [12:0] _sorts_0_io_lookup_word_0;
-  wire [12:0] _sorts_0_io_lookup_word_1;
-  wire [12:0] _sorts_0_io_lookup_word_2;
-  wire [12:0] _sorts_0_io_lookup_word_3;
-  wire [12:0] _sorts_0_io_lookup_word_4;
-  wire [12:0] _sorts_0_io_lookup_word_5;
-  wire [12:0] _sorts_0_io_lookup_word_6;
-  wire [12:0] _sorts_0_io_lookup_word_7;
-  wire [11:0] _sorts_0_io_entry_item;
-  wire        _sorts_0_io_entry_mark;
-  wire [12:0] _sorts_0_io_counted;
-  wire [12:0] _sorts_0_io_scattered;
-  wire        _sorts_0_io_badBucket;
+  wire        _sort_io_busy;
+  wire        _sort_io_in_0_ready;
+  wire        _sort_io_in_1_ready;
+  wire [12:0] _sort_io_lookup_0_begin;
+  wire [12:0] _sort_io_lookup_0_end;
+  wire [12:0] _sort_io_lookup_0_word_0;
+  wire [12:0] _sort_io_lookup_0_word_1;
+  wire [12:0] _sort_io_lookup_0_word_2;
+  wire [12:0] _sort_io_lookup_0_word_3;
+  wire [12:0] _sort_io_lookup_0_word_4;
+  wire [12:0] _sort_io_lookup_0_word_5;
+  wire [12:0] _sort_io_lookup_0_word_6;
+  wire [12:0] _sort_io_lookup_0_word_7;
+  wire [12:0] _sort_io_lookup_1_begin;
+  wire [12:0] _sort_io_lookup_1_end;
+  wire [12:0] _sort_io_lookup_1_word_0;
+  wire [12:0] _sort_io_lookup_1_word_1;
+  wire [12:0] _sort_io_lookup_1_word_2;
+  wire [12:0] _sort_io_lookup_1_word_3;
+  wire [12:0] _sort_io_lookup_1_word_4;
+  wire [12:0] _sort_io_lookup_1_word_5;
+  wire [12:0] _sort_io_lookup_1_word_6;
+  wire [12:0] _sort_io_lookup_1_word_7;
+  wire [12:0] _sort_io_lookup_2_begin;
+  wire [12:0] _sort_io_lookup_2_end;
+  wire [12:0] _sort_io_lookup_2_word_0;
+  wire [12:0] _sort_io_lookup_2_word_1;
+  wire [12:0] _sort_io_lookup_2_word_2;
+  wire [12:0] _sort_io_lookup_2_word_3;
+  wire [12:0] _sort_io_lookup_2_word_4;
+  wire [12:0] _sort_io_lookup_2_word_5;
+  wire [12:0] _sort_io_lookup_2_word_6;
+  wire [12:0] _sort_io_lookup_2_word_7;
+  wire [12:0] _sort_io_lookup_3_begin;
+  wire [12:0] _sort_io_lookup_3_end;
+  wire [12:0] _sort_io_lookup_3_word_0;
+  wire [12:0] _sort_io_lookup_3_word_1;
+  wire [12:0] _sort_io_lookup_3_word_2;
+  wire [12:0] _sort_io_lookup_3_word_3;
+  wire [12:0] _sort_io_lookup_3_word_4;
+  wire [12:0] _sort_io_lookup_3_word_5;
+  wire [12:0] _sort_io_lookup_3_word_6;
+  wire [12:0] _sort_io_lookup_3_word_7;
+  wire [12:0] _sort_io_lookup_4_begin;
+  wire [12:0] _sort_io_lookup_4_end;
+  wire [12:0] _sort_io_lookup_4_word_0;
+  wire [12:0] _sort_io_lookup_4_word_1;
+  wire [12:0] _sort_io_lookup_4_word_2;
+  wire [12:0] _sort_io_lookup_4_word_3;
+  wire [12:0] _sort_io_lookup_4_word_4;
+  wire [12:0] _sort_io_lookup_4_word_5;
+  wire [12:0] _sort_io_lookup_4_word_6;
+  wire [12:0] _sort_io_lookup_4_word_7;
+  wire [12:0] _sort_io_lookup_5_begin;
+  wire [12:0] _sort_io_lookup_5_end;
+  wire [12:0] _sort_io_lookup_5_word_0;
+  wire [12:0] _sort_io_lookup_5_word_1;
+  wire [12:0] _sort_io_lookup_5_word_2;
+  wire [12:0] _sort_io_lookup_5_word_3;
+  wire [12:0] _sort_io_lookup_5_word_4;
+  wire [12:0] _sort_io_lookup_5_word_5;
+  wire [12:0] _sort_io_lookup_5_word_6;
+  wire [12:0] _sort_io_lookup_5_word_7;
+  wire [12:0] _sort_io_lookup_6_begin;
+  wire [12:0] _sort_io_lookup_6_end;
+  wire [12:0] _sort_io_lookup_6_word_0;
+  wire [12:0] _sort_io_lookup_6_word_1;
+  wire [12:0] _sort_io_lookup_6_word_2;
+  wire [12:0] _sort_io_lookup_6_word_3;
+  wire [12:0] _sort_io_lookup_6_word_4;
+  wire [12:0] _sort_io_lookup_6_word_5;
+  wire [12:0] _sort_io_lookup_6_word_6;
+  wire [12:0] _sort_io_lookup_6_word_7;
+  wire [12:0] _sort_io_lookup_7_begin;
+  wire [12:0] _sort_io_lookup_7_end;
+  wire [12:0] _sort_io_lookup_7_word_0;
+  wire [12:0] _sort_io_lookup_7_word_1;
+  wire [12:0] _sort_io_lookup_7_word_2;
+  wire [12:0] _sort_io_lookup_7_word_3;
+  wire [12:0] _sort_io_lookup_7_word_4;
+  wire [12:0] _sort_io_lookup_7_word_5;
+  wire [12:0] _sort_io_lookup_7_word_6;
+  wire [12:0] _sort_io_lookup_7_word_7;
+  wire [12:0] _sort_io_lookup_8_begin;
+  wire [12:0] _sort_io_lookup_8_end;
+  wire [12:0] _sort_io_lookup_8_word_0;
+  wire [12:0] _sort_io_lookup_8_word_1;
+  wire [12:0] _sort_io_lookup_8_word_2;
+  wire [12:0] _sort_io_lookup_8_word_3;
+  wire [12:0] _sort_io_lookup_8_word_4;
+  wire [12:0] _sort_io_lookup_8_word_5;
+  wire [12:0] _sort_io_lookup_8_word_6;
+  wire [12:0] _sort_io_lookup_8_word_7;
+  wire [12:0] _sort_io_lookup_9_begin;
+  wire [12:0] _sort_io_lookup_9_end;
+  wire [12:0] _sort_io_lookup_9_word_0;
+  wire [12:0] _sort_io_lookup_9_word_1;
+  wire [12:0] _sort_io_lookup_9_word_2;
+  wire [12:0] _sort_io_lookup_9_word_3;
+  wire [12:0] _sort_io_lookup_9_word_4;
+  wire [12:0] _sort_io_lookup_9_word_5;
+  wire [12:0] _sort_io_lookup_9_word_6;
+  wire [12:0] _sort_io_lookup_9_word_7;
+  wire [12:0] _sort_io_lookup_10_begin;
+  wire [12:0] _sort_io_lookup_10_end;
+  wire [12:0] _sort_io_lookup_10_word_0;
+  wire [12:0] _sort_io_lookup_10_word_1;
+  wire [12:0] _sort_io_lookup_10_word_2;
+  wire [12:0] _sort_io_lookup_10_word_3;
+  wire [12:0] _sort_io_lookup_10_word_4;
+  wire [12:0] _sort_io_lookup_10_word_5;
+  wire [12:0] _sort_io_lookup_10_word_6;
+  wire [12:0] _sort_io_lookup_10_word_7;
+  wire [12:0] _sort_io_lookup_11_begin;
+  wire [12:0] _sort_io_lookup_11_end;
+  wire [12:0] _sort_io_lookup_11_word_0;
+  wire [12:0] _sort_io_lookup_11_word_1;
+  wire [12:0] _sort_io_lookup_11_word_2;
+  wire [12:0] _sort_io_lookup_11_word_3;
+  wire [12:0] _sort_io_lookup_11_word_4;
+  wire [12:0] _sort_io_lookup_11_word_5;
+  wire [12:0] _sort_io_lookup_11_word_6;
+  wire [12:0] _sort_io_lookup_11_word_7;
+  wire [12:0] _sort_io_lookup_12_begin;
+  wire [12:0] _sort_io_lookup_12_end;
+  wire [12:0] _sort_io_lookup_12_word_0;
+  wire [12:0] _sort_io_lookup_12_word_1;
+  wire [12:0] _sort_io_lookup_12_word_2;
+  wire [12:0] _sort_io_lookup_12_word_3;
+  wire [12:0] _sort_io_lookup_12_word_4;
+  wire [12:0] _sort_io_lookup_12_word_5;
+  wire [12:0] _sort_io_lookup_12_word_6;
+  wire [12:0] _sort_io_lookup_12_word_7;
+  wire [12:0] _sort_io_lookup_13_begin;
+  wire [12:0] _sort_io_lookup_13_end;
+  wire [12:0] _sort_io_lookup_13_word_0;
+  wire [12:0] _sort_io_lookup_13_word_1;
+  wire [12:0] _sort_io_lookup_13_word_2;
+  wire [12:0] _sort_io_lookup_13_word_3;
+  wire [12:0] _sort_io_lookup_13_word_4;
+  wire [12:0] _sort_io_lookup_13_word_5;
+  wire [12:0] _sort_io_lookup_13_word_6;
+  wire [12:0] _sort_io_lookup_13_word_7;
+  wire [12:0] _sort_io_lookup_14_begin;
+  wire [12:0] _sort_io_lookup_14_end;
+  wire [12:0] _sort_io_lookup_14_word_0;
+  wire [12:0] _sort_io_lookup_14_word_1;
+  wire [12:0] _sort_io_lookup_14_word_2;
+  wire [12:0] _sort_io_lookup_14_word_3;
+  wire [12:0] _sort_io_lookup_14_word_4;
+  wire [12:0] _sort_io_lookup_14_word_5;
+  wire [12:0] _sort_io_lookup_14_word_6;
+  wire [12:0] _sort_io_lookup_14_word_7;
+  wire [12:0] _sort_io_lookup_15_begin;
+  wire [12:0] _sort_io_lookup_15_end;
+  wire [12:0] _sort_io_lookup_15_word_0;
+  wire [12:0] _sort_io_lookup_15_word_1;
+  wire [12:0] _sort_io_lookup_15_word_2;
+  wire [12:0] _sort_io_lookup_15_word_3;
+  wire [12:0] _sort_io_lookup_15_word_4;
+  wire [12:0] _sort_io_lookup_15_word_5;
+  wire [12:0] _sort_io_lookup_15_word_6;
+  wire [12:0] _sort_io_lookup_15_word_7;
+  wire [11:0] _sort_io_entry_0_item;
+  wire        _sort_io_entry_0_mark;
+  wire [11:0] _sort_io_entry_1_item;
+  wire        _sort_io_entry_1_mark;
+  wire [11:0] _sort_io_entry_2_item;
+  wire        _sort_io_entry_2_mark;
+  wire [11:0] _sort_io_entry_3_item;
+  wire        _sort_io_entry_3_mark;
+  wire [11:0] _sort_io_entry_4_item;
+  wire        _sort_io_entry_4_mark;
+  wire [11:0] _sort_io_entry_5_item;
+  wire        _sort_io_entry_5_mark;
+  wire [11:0] _sort_io_entry_6_item;
+  wire        _sort_io_entry_6_mark;
+  wire [11:0] _sort_io_entry_7_item;
+  wire        _sort_io_entry_7_mark;
+  wire [11:0] _sort_io_entry_8_item;
+  wire        _sort_io_entry_8_mark;
+  wire [11:0] _sort_io_entry_9_item;
+  wire        _sort_io_entry_9_mark;
+  wire [11:0] _sort_io_entry_10_item;
+  wire        _sort_io_entry_10_mark;
+  wire [11:0] _sort_io_entry_11_item;
+  wire        _sort_io_entry_11_mark;
+  wire [11:0] _sort_io_entry_12_item;
+  wire        _sort_io_entry_12_mark;
+  wire [11:0] _sort_io_entry_13_item;
+  wire        _sort_io_entry_13_mark;
+  wire [11:0] _sort_io_entry_14_item;
+  wire        _sort_io_entry_14_mark;
+  wire [11:0] _sort_io_entry_15_item;
+  wire        _sort_io_entry_15_mark;
+  wire [12:0] _sort_io_counted;
+  wire [12:0] _sort_io_scattered;
+  wire        _sort_io_badBucket;
   wire [12:0] _cellExp_io_k;
-  wire        _keys_io_out_valid;
-  wire [19:0] _keys_io_out_cell_0;
-  wire [19:0] _keys_io_out_cell_1;
-  wire [19:0] _keys_io_out_cell_2;
-  wire        _keys_io_out_cellOverflow;
-  wire [28:0] _keys_io_out_q_0;
-  wire [28:0] _keys_io_out_q_1;
-  wire [28:0] _keys_io_out_q_2;
-  wire [28:0] _keys_io_out_qr;
-  wire [12:0] _keys_io_out_need;
-  wire        _keys_io_out_needNone;
-  wire        _keys_io_out_nonFinite;
-  wire [12:0] _keys_io_out_top;
-  wire        _keys_io_out_topNone;
   reg  [11:0] larges_0_index;
   reg  [28:0] larges_0_q_0;
   reg  [28:0] larges_0_q_1;
@@ -19513,8 +21585,6 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
   reg  [2:0]  state;
   reg  [12:0] num;
   reg  [3:0]  usedLog2;
-  reg  [12:0] i;
-  reg  [2:0]  inflight;
   reg         sent;
   reg  [12:0] st_k;
   reg  [12:0] st_large;
@@ -19525,161 +21595,73 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
   reg         st_badBucket;
   reg         st_sortMismatch;
   reg  [4:0]  largeCount;
-  wire        _cellExp_io_in_valid_T = state == 3'h1;
-  wire        _classified_T = state == 3'h2;
-  wire        _sorts_15_io_in_bits_scatter_T = state == 3'h4;
+  wire        _cellExp_io_in_1_valid_T = state == 3'h1;
+  wire        classifying = state == 3'h2;
+  wire        _sort_io_in_1_bits_scatter_T = state == 3'h4;
+  reg  [12:0] i_0;
+  reg  [12:0] i_1;
+  reg  [3:0]  inflight;
   wire        _gens_15_io_start_T = state == 3'h5;
-  reg         rdValid;
-  reg  [11:0] rdIndex;
-  reg  [11:0] kIndex;
-  wire        _rec_r_large_T_3 = $signed(_keys_io_out_need) > $signed(_cellExp_io_k);
-  wire        isLarge =
-    ~_keys_io_out_nonFinite & ~_keys_io_out_needNone & _rec_r_large_T_3;
-  wire        isSmall = ~_keys_io_out_nonFinite & ~isLarge;
-  wire        classified = _keys_io_out_valid & _classified_T;
+  reg         laneKeys_0_io_in_valid_REG;
+  reg  [11:0] REG;
+  reg  [11:0] r;
+  reg         laneKeys_1_io_in_valid_REG;
+  reg  [11:0] REG_1;
+  reg  [11:0] r_1;
+  wire        _sort_io_in_0_valid_T_8 =
+    $signed(_laneKeys_0_io_out_need) > $signed(_cellExp_io_k);
+  wire        _sort_io_in_1_valid_T_8 =
+    $signed(_laneKeys_1_io_out_need) > $signed(_cellExp_io_k);
   wire [13:0] slack_e = 14'h3FCB - {_cellExp_io_k[12], _cellExp_io_k};
   wire [31:0] _slack_T_3 = 32'h1 << slack_e[4:0];
   wire [28:0] slack =
     $signed(slack_e) < 14'sh0
       ? 29'h2
       : $signed(slack_e) > 14'sh1B ? 29'h1FFFFFFF : _slack_T_3[28:0] + 29'h1;
-  wire        _sorts_15_io_prefix_T = state == 3'h3;
-  wire        _sorts_15_io_in_valid_T =
-    classified | _keys_io_out_valid & _sorts_15_io_in_bits_scatter_T;
-  wire        _sorts_0_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [28:0] _sorts_15_io_in_bits_bucket_mask_T = 29'h1 << usedLog2;
-  wire [12:0] _GEN = {4'h0, num[12:4]};
-  wire        _sorts_1_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [12:0] _GEN_0 = {3'h0, num[12:3]};
-  wire        _sorts_2_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
-  wire        _sorts_3_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [27:0] _GEN_1 = {15'h0, num};
-  wire [12:0] _GEN_2 = {2'h0, num[12:2]};
-  wire        _sorts_4_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [27:0] _gens_5_io_largeFrom_T = _GEN_1 * 28'h5000;
-  wire        _sorts_5_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [27:0] _gens_6_io_largeFrom_T = _GEN_1 * 28'h6000;
-  wire        _sorts_6_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [27:0] _gens_7_io_largeFrom_T = _GEN_1 * 28'h7000;
-  wire        _sorts_7_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [28:0] _GEN_3 = {16'h0, num};
-  wire        _sorts_8_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [28:0] _gens_9_io_largeFrom_T = _GEN_3 * 29'h9000;
-  wire        _sorts_9_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [28:0] _gens_10_io_largeFrom_T = _GEN_3 * 29'hA000;
-  wire        _sorts_10_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [28:0] _gens_11_io_largeFrom_T = _GEN_3 * 29'hB000;
-  wire        _sorts_11_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [28:0] _gens_12_io_largeFrom_T = _GEN_3 * 29'hC000;
-  wire        _sorts_12_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [28:0] _gens_13_io_largeFrom_T = _GEN_3 * 29'hD000;
-  wire        _sorts_13_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [28:0] _gens_14_io_largeFrom_T = _GEN_3 * 29'hE000;
-  wire        _sorts_14_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
-  wire [28:0] _gens_15_io_largeFrom_T = _GEN_3 * 29'hF000;
-  wire        _sorts_15_io_in_valid_T_1 = _sorts_15_io_in_valid_T & isSmall;
+  wire        _sort_io_in_0_valid_T_12 =
+    _laneKeys_0_io_out_valid & (classifying | _sort_io_in_1_bits_scatter_T)
+    & ~_laneKeys_0_io_out_nonFinite
+    & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
+        & _sort_io_in_0_valid_T_8);
+  wire [28:0] _sort_io_in_1_bits_bucket_mask_T = 29'h1 << usedLog2;
+  wire        _sort_io_in_1_valid_T_12 =
+    _laneKeys_1_io_out_valid & (classifying | _sort_io_in_1_bits_scatter_T)
+    & ~_laneKeys_1_io_out_nonFinite
+    & ~(~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
+        & _sort_io_in_1_valid_T_8);
   `ifndef SYNTHESIS
     always @(posedge clock) begin
-      if (~reset & ~(~_sorts_0_io_in_valid_T_1 | _sorts_0_io_in_ready)) begin
+      if (~reset & ~(~_sort_io_in_0_valid_T_12 | _sort_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:188 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
-      if (~reset & ~(~_sorts_1_io_in_valid_T_1 | _sorts_1_io_in_ready)) begin
+      if (~reset & ~(~_sort_io_in_1_valid_T_12 | _sort_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_2_io_in_valid_T_1 | _sorts_2_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_3_io_in_valid_T_1 | _sorts_3_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_4_io_in_valid_T_1 | _sorts_4_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_5_io_in_valid_T_1 | _sorts_5_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_6_io_in_valid_T_1 | _sorts_6_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_7_io_in_valid_T_1 | _sorts_7_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_8_io_in_valid_T_1 | _sorts_8_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_9_io_in_valid_T_1 | _sorts_9_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_10_io_in_valid_T_1 | _sorts_10_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_11_io_in_valid_T_1 | _sorts_11_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_12_io_in_valid_T_1 | _sorts_12_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_13_io_in_valid_T_1 | _sorts_13_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_14_io_in_valid_T_1 | _sorts_14_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_15_io_in_valid_T_1 | _sorts_15_io_in_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:173 assert(!srt.io.in.valid || srt.io.in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:188 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  reg         REG;
+  wire [12:0] _GEN = {4'h0, num[12:4]};
+  wire [12:0] _GEN_0 = {3'h0, num[12:3]};
+  wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
+  wire [27:0] _GEN_1 = {15'h0, num};
+  wire [12:0] _GEN_2 = {2'h0, num[12:2]};
+  wire [27:0] _gens_5_io_largeFrom_T = _GEN_1 * 28'h5000;
+  wire [27:0] _gens_6_io_largeFrom_T = _GEN_1 * 28'h6000;
+  wire [27:0] _gens_7_io_largeFrom_T = _GEN_1 * 28'h7000;
+  wire [28:0] _GEN_3 = {16'h0, num};
+  wire [28:0] _gens_9_io_largeFrom_T = _GEN_3 * 29'h9000;
+  wire [28:0] _gens_10_io_largeFrom_T = _GEN_3 * 29'hA000;
+  wire [28:0] _gens_11_io_largeFrom_T = _GEN_3 * 29'hB000;
+  wire [28:0] _gens_12_io_largeFrom_T = _GEN_3 * 29'hC000;
+  wire [28:0] _gens_13_io_largeFrom_T = _GEN_3 * 29'hD000;
+  wire [28:0] _gens_14_io_largeFrom_T = _GEN_3 * 29'hE000;
+  wire [28:0] _gens_15_io_largeFrom_T = _GEN_3 * 29'hF000;
+  reg         REG_2;
   wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
   wire [5:0]  usedLog2_t =
     io_num == 13'h0
@@ -19711,172 +21693,316 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
                              ? 2'h2
                              : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1;
   wire        z_tooMany = io_num > 13'h1000;
-  wire        reading =
-    (_cellExp_io_in_valid_T | _classified_T | _sorts_15_io_in_bits_scatter_T) & i < num;
-  wire        _GEN_4 = ~(|state) & io_start;
-  wire        _GEN_5 = state == 3'h1;
-  wire        _GEN_6 = i == num & inflight == 3'h0;
-  wire        _GEN_7 = _GEN_6 & ~_sorts_0_io_busy;
-  wire        _GEN_8 = state == 3'h2;
-  wire        _GEN_9 = state == 3'h3;
-  wire        _GEN_10 = sent & ~_sorts_0_io_busy;
-  wire        _GEN_11 = state == 3'h4;
-  wire        _GEN_12 = _GEN_6 & ~REG;
-  wire        _GEN_13 = state == 3'h5;
-  wire        _GEN_14 =
-    _GEN_13 & sent
+  wire        inPass =
+    _cellExp_io_in_1_valid_T | classifying | _sort_io_in_1_bits_scatter_T;
+  wire [12:0] _GEN_4 = {1'h0, num[12:1]};
+  wire        reading_0 = inPass & i_0 < _GEN_4;
+  wire        reading_1 = inPass & i_1 < num;
+  wire        passDone = i_0 == _GEN_4 & i_1 == num & inflight == 4'h0;
+  wire        largeHere_0 =
+    classifying & _laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
+    & ~_laneKeys_0_io_out_needNone & _sort_io_in_0_valid_T_8;
+  wire        largeHere_1 =
+    classifying & _laneKeys_1_io_out_valid & ~_laneKeys_1_io_out_nonFinite
+    & ~_laneKeys_1_io_out_needNone & _sort_io_in_1_valid_T_8;
+  wire [5:0]  _GEN_5 = {1'h0, largeCount};
+  wire        _GEN_6 = _GEN_5 < 6'h10;
+  wire [5:0]  slot_1 = _GEN_5 + {5'h0, largeHere_0};
+  wire        _GEN_7 = slot_1 < 6'h10;
+  wire        _GEN_8 = ~(|state) & io_start;
+  wire        _GEN_9 = state == 3'h1;
+  wire        _GEN_10 = passDone & ~_sort_io_busy;
+  wire        _GEN_11 = state == 3'h2;
+  wire        _GEN_12 = state == 3'h3;
+  wire        _GEN_13 = sent & ~_sort_io_busy;
+  wire        _GEN_14 = state == 3'h4;
+  wire        _GEN_15 = passDone & ~REG_2;
+  wire        _GEN_16 = state == 3'h5;
+  wire        _GEN_17 =
+    _GEN_16 & sent
     & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
         | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
         | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
         | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
+  wire [5:0]  largeNew = _GEN_5 + {4'h0, {1'h0, largeHere_0} + {1'h0, largeHere_1}};
+  wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
   always @(posedge clock) begin
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h0) begin
-      larges_0_index <= kIndex;
-      larges_0_q_0 <= _keys_io_out_q_0;
-      larges_0_q_1 <= _keys_io_out_q_1;
-      larges_0_q_2 <= _keys_io_out_q_2;
-      larges_0_qr <= _keys_io_out_qr;
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h0) begin
+      larges_0_index <= r_1;
+      larges_0_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_0_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_0_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_0_qr <= _laneKeys_1_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h1) begin
-      larges_1_index <= kIndex;
-      larges_1_q_0 <= _keys_io_out_q_0;
-      larges_1_q_1 <= _keys_io_out_q_1;
-      larges_1_q_2 <= _keys_io_out_q_2;
-      larges_1_qr <= _keys_io_out_qr;
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h0) begin
+      larges_0_index <= r;
+      larges_0_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_0_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_0_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_0_qr <= _laneKeys_0_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h2) begin
-      larges_2_index <= kIndex;
-      larges_2_q_0 <= _keys_io_out_q_0;
-      larges_2_q_1 <= _keys_io_out_q_1;
-      larges_2_q_2 <= _keys_io_out_q_2;
-      larges_2_qr <= _keys_io_out_qr;
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h1) begin
+      larges_1_index <= r_1;
+      larges_1_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_1_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_1_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_1_qr <= _laneKeys_1_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h3) begin
-      larges_3_index <= kIndex;
-      larges_3_q_0 <= _keys_io_out_q_0;
-      larges_3_q_1 <= _keys_io_out_q_1;
-      larges_3_q_2 <= _keys_io_out_q_2;
-      larges_3_qr <= _keys_io_out_qr;
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h1) begin
+      larges_1_index <= r;
+      larges_1_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_1_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_1_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_1_qr <= _laneKeys_0_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h4) begin
-      larges_4_index <= kIndex;
-      larges_4_q_0 <= _keys_io_out_q_0;
-      larges_4_q_1 <= _keys_io_out_q_1;
-      larges_4_q_2 <= _keys_io_out_q_2;
-      larges_4_qr <= _keys_io_out_qr;
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h2) begin
+      larges_2_index <= r_1;
+      larges_2_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_2_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_2_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_2_qr <= _laneKeys_1_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h5) begin
-      larges_5_index <= kIndex;
-      larges_5_q_0 <= _keys_io_out_q_0;
-      larges_5_q_1 <= _keys_io_out_q_1;
-      larges_5_q_2 <= _keys_io_out_q_2;
-      larges_5_qr <= _keys_io_out_qr;
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h2) begin
+      larges_2_index <= r;
+      larges_2_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_2_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_2_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_2_qr <= _laneKeys_0_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h6) begin
-      larges_6_index <= kIndex;
-      larges_6_q_0 <= _keys_io_out_q_0;
-      larges_6_q_1 <= _keys_io_out_q_1;
-      larges_6_q_2 <= _keys_io_out_q_2;
-      larges_6_qr <= _keys_io_out_qr;
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h3) begin
+      larges_3_index <= r_1;
+      larges_3_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_3_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_3_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_3_qr <= _laneKeys_1_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h7) begin
-      larges_7_index <= kIndex;
-      larges_7_q_0 <= _keys_io_out_q_0;
-      larges_7_q_1 <= _keys_io_out_q_1;
-      larges_7_q_2 <= _keys_io_out_q_2;
-      larges_7_qr <= _keys_io_out_qr;
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h3) begin
+      larges_3_index <= r;
+      larges_3_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_3_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_3_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_3_qr <= _laneKeys_0_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h8) begin
-      larges_8_index <= kIndex;
-      larges_8_q_0 <= _keys_io_out_q_0;
-      larges_8_q_1 <= _keys_io_out_q_1;
-      larges_8_q_2 <= _keys_io_out_q_2;
-      larges_8_qr <= _keys_io_out_qr;
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h4) begin
+      larges_4_index <= r_1;
+      larges_4_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_4_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_4_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_4_qr <= _laneKeys_1_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'h9) begin
-      larges_9_index <= kIndex;
-      larges_9_q_0 <= _keys_io_out_q_0;
-      larges_9_q_1 <= _keys_io_out_q_1;
-      larges_9_q_2 <= _keys_io_out_q_2;
-      larges_9_qr <= _keys_io_out_qr;
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h4) begin
+      larges_4_index <= r;
+      larges_4_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_4_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_4_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_4_qr <= _laneKeys_0_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'hA) begin
-      larges_10_index <= kIndex;
-      larges_10_q_0 <= _keys_io_out_q_0;
-      larges_10_q_1 <= _keys_io_out_q_1;
-      larges_10_q_2 <= _keys_io_out_q_2;
-      larges_10_qr <= _keys_io_out_qr;
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h5) begin
+      larges_5_index <= r_1;
+      larges_5_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_5_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_5_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_5_qr <= _laneKeys_1_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'hB) begin
-      larges_11_index <= kIndex;
-      larges_11_q_0 <= _keys_io_out_q_0;
-      larges_11_q_1 <= _keys_io_out_q_1;
-      larges_11_q_2 <= _keys_io_out_q_2;
-      larges_11_qr <= _keys_io_out_qr;
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h5) begin
+      larges_5_index <= r;
+      larges_5_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_5_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_5_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_5_qr <= _laneKeys_0_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'hC) begin
-      larges_12_index <= kIndex;
-      larges_12_q_0 <= _keys_io_out_q_0;
-      larges_12_q_1 <= _keys_io_out_q_1;
-      larges_12_q_2 <= _keys_io_out_q_2;
-      larges_12_qr <= _keys_io_out_qr;
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h6) begin
+      larges_6_index <= r_1;
+      larges_6_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_6_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_6_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_6_qr <= _laneKeys_1_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'hD) begin
-      larges_13_index <= kIndex;
-      larges_13_q_0 <= _keys_io_out_q_0;
-      larges_13_q_1 <= _keys_io_out_q_1;
-      larges_13_q_2 <= _keys_io_out_q_2;
-      larges_13_qr <= _keys_io_out_qr;
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h6) begin
+      larges_6_index <= r;
+      larges_6_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_6_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_6_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_6_qr <= _laneKeys_0_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & largeCount[3:0] == 4'hE) begin
-      larges_14_index <= kIndex;
-      larges_14_q_0 <= _keys_io_out_q_0;
-      larges_14_q_1 <= _keys_io_out_q_1;
-      larges_14_q_2 <= _keys_io_out_q_2;
-      larges_14_qr <= _keys_io_out_qr;
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h7) begin
+      larges_7_index <= r_1;
+      larges_7_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_7_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_7_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_7_qr <= _laneKeys_1_io_out_qr;
     end
-    if (classified & isLarge & ~(largeCount[4]) & (&(largeCount[3:0]))) begin
-      larges_15_index <= kIndex;
-      larges_15_q_0 <= _keys_io_out_q_0;
-      larges_15_q_1 <= _keys_io_out_q_1;
-      larges_15_q_2 <= _keys_io_out_q_2;
-      larges_15_qr <= _keys_io_out_qr;
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h7) begin
+      larges_7_index <= r;
+      larges_7_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_7_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_7_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_7_qr <= _laneKeys_0_io_out_qr;
     end
-    if (_GEN_4) begin
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h8) begin
+      larges_8_index <= r_1;
+      larges_8_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_8_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_8_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_8_qr <= _laneKeys_1_io_out_qr;
+    end
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h8) begin
+      larges_8_index <= r;
+      larges_8_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_8_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_8_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_8_qr <= _laneKeys_0_io_out_qr;
+    end
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h9) begin
+      larges_9_index <= r_1;
+      larges_9_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_9_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_9_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_9_qr <= _laneKeys_1_io_out_qr;
+    end
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h9) begin
+      larges_9_index <= r;
+      larges_9_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_9_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_9_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_9_qr <= _laneKeys_0_io_out_qr;
+    end
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'hA) begin
+      larges_10_index <= r_1;
+      larges_10_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_10_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_10_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_10_qr <= _laneKeys_1_io_out_qr;
+    end
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'hA) begin
+      larges_10_index <= r;
+      larges_10_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_10_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_10_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_10_qr <= _laneKeys_0_io_out_qr;
+    end
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'hB) begin
+      larges_11_index <= r_1;
+      larges_11_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_11_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_11_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_11_qr <= _laneKeys_1_io_out_qr;
+    end
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'hB) begin
+      larges_11_index <= r;
+      larges_11_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_11_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_11_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_11_qr <= _laneKeys_0_io_out_qr;
+    end
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'hC) begin
+      larges_12_index <= r_1;
+      larges_12_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_12_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_12_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_12_qr <= _laneKeys_1_io_out_qr;
+    end
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'hC) begin
+      larges_12_index <= r;
+      larges_12_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_12_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_12_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_12_qr <= _laneKeys_0_io_out_qr;
+    end
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'hD) begin
+      larges_13_index <= r_1;
+      larges_13_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_13_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_13_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_13_qr <= _laneKeys_1_io_out_qr;
+    end
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'hD) begin
+      larges_13_index <= r;
+      larges_13_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_13_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_13_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_13_qr <= _laneKeys_0_io_out_qr;
+    end
+    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'hE) begin
+      larges_14_index <= r_1;
+      larges_14_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_14_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_14_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_14_qr <= _laneKeys_1_io_out_qr;
+    end
+    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'hE) begin
+      larges_14_index <= r;
+      larges_14_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_14_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_14_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_14_qr <= _laneKeys_0_io_out_qr;
+    end
+    if (largeHere_1 & _GEN_7 & (&(slot_1[3:0]))) begin
+      larges_15_index <= r_1;
+      larges_15_q_0 <= _laneKeys_1_io_out_q_0;
+      larges_15_q_1 <= _laneKeys_1_io_out_q_1;
+      larges_15_q_2 <= _laneKeys_1_io_out_q_2;
+      larges_15_qr <= _laneKeys_1_io_out_qr;
+    end
+    else if (largeHere_0 & _GEN_6 & (&(largeCount[3:0]))) begin
+      larges_15_index <= r;
+      larges_15_q_0 <= _laneKeys_0_io_out_q_0;
+      larges_15_q_1 <= _laneKeys_0_io_out_q_1;
+      larges_15_q_2 <= _laneKeys_0_io_out_q_2;
+      larges_15_qr <= _laneKeys_0_io_out_qr;
+    end
+    if (_GEN_8) begin
       num <= io_num;
       usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
     end
-    if (|state) begin
-      if (_GEN_5) begin
-        if (_GEN_7)
-          i <= 13'h0;
-        else if (reading)
-          i <= i + 13'h1;
-      end
-      else if (_GEN_8) begin
-        if (reading)
-          i <= i + 13'h1;
-      end
-      else if (_GEN_9) begin
-        if (_GEN_10)
-          i <= 13'h0;
-      end
-      else if (_GEN_11 & reading)
-        i <= i + 13'h1;
-    end
-    else if (io_start)
-      i <= 13'h0;
-    if (~(~(|state) | _GEN_5)) begin
-      if (_GEN_8)
-        sent <= ~_GEN_6 & sent;
+    if (~(~(|state) | _GEN_9)) begin
+      if (_GEN_11)
+        sent <= ~passDone & sent;
       else
-        sent <= _GEN_9 | (_GEN_11 ? ~_GEN_12 & sent : _GEN_13 | sent);
+        sent <= _GEN_12 | (_GEN_14 ? ~_GEN_15 & sent : _GEN_16 | sent);
     end
-    rdIndex <= i[11:0];
-    kIndex <= rdIndex;
+    if (|state) begin
+      if (_GEN_9) begin
+        if (_GEN_10) begin
+          i_0 <= 13'h0;
+          i_1 <= _GEN_4;
+        end
+        else begin
+          if (reading_0)
+            i_0 <= i_0 + 13'h1;
+          if (reading_1)
+            i_1 <= i_1 + 13'h1;
+        end
+      end
+      else if (_GEN_11) begin
+        if (reading_0)
+          i_0 <= i_0 + 13'h1;
+        if (reading_1)
+          i_1 <= i_1 + 13'h1;
+      end
+      else if (_GEN_12) begin
+        if (_GEN_13) begin
+          i_0 <= 13'h0;
+          i_1 <= _GEN_4;
+        end
+      end
+      else begin
+        if (_GEN_14 & reading_0)
+          i_0 <= i_0 + 13'h1;
+        if (_GEN_14 & reading_1)
+          i_1 <= i_1 + 13'h1;
+      end
+    end
+    else if (io_start) begin
+      i_0 <= 13'h0;
+      i_1 <= {1'h0, io_num[12:1]};
+    end
+    REG <= i_0[11:0];
+    r <= REG;
+    REG_1 <= i_1[11:0];
+    r_1 <= REG_1;
     if (reset) begin
       state <= 3'h0;
-      inflight <= 3'h0;
       st_k <= 13'h0;
       st_large <= 13'h0;
       st_cycTotal <= 32'h0;
@@ -19886,35 +22012,37 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
       st_badBucket <= 1'h0;
       st_sortMismatch <= 1'h0;
       largeCount <= 5'h0;
-      rdValid <= 1'h0;
-      REG <= 1'h0;
+      inflight <= 4'h0;
+      laneKeys_0_io_in_valid_REG <= 1'h0;
+      laneKeys_1_io_in_valid_REG <= 1'h0;
+      REG_2 <= 1'h0;
     end
     else begin
       if (|state) begin
-        if (_GEN_5) begin
-          if (_GEN_7)
+        if (_GEN_9) begin
+          if (_GEN_10)
             state <= 3'h2;
         end
-        else if (_GEN_8) begin
-          if (_GEN_6)
+        else if (_GEN_11) begin
+          if (passDone)
             state <= 3'h3;
         end
-        else if (_GEN_9) begin
-          if (_GEN_10)
+        else if (_GEN_12) begin
+          if (_GEN_13)
             state <= 3'h4;
         end
-        else if (_GEN_11) begin
-          if (_GEN_12)
+        else if (_GEN_14) begin
+          if (_GEN_15)
             state <= 3'h5;
         end
-        else if (_GEN_14)
+        else if (_GEN_17)
           state <= 3'h0;
-        if (_GEN_5 | _GEN_8 | _GEN_9 | _GEN_11 | ~_GEN_14) begin
+        if (_GEN_9 | _GEN_11 | _GEN_12 | _GEN_14 | ~_GEN_17) begin
         end
         else begin
           st_k <= _cellExp_io_k;
-          st_badBucket <= _sorts_0_io_badBucket;
-          st_sortMismatch <= _sorts_0_io_counted != _sorts_0_io_scattered;
+          st_badBucket <= _sort_io_badBucket;
+          st_sortMismatch <= _sort_io_counted != _sort_io_scattered;
         end
       end
       else begin
@@ -19927,640 +22055,358 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
         st_badBucket <= ~io_start & st_badBucket;
         st_sortMismatch <= ~io_start & st_sortMismatch;
       end
-      inflight <= inflight + {2'h0, reading} - {2'h0, _keys_io_out_valid};
-      if (_GEN_4) begin
+      if (_GEN_8) begin
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
         st_tooMany <= z_tooMany;
         largeCount <= 5'h0;
       end
       else begin
-        if (classified & isLarge & ~(largeCount[4])) begin
-          st_large <= st_large + 13'h1;
-          largeCount <= largeCount + 5'h1;
+        if (classifying) begin
+          st_large <= st_large + {7'h0, largeKept - _GEN_5};
+          largeCount <= largeKept[4:0];
         end
         if (|state)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
       st_cellOverflow <=
-        ~_GEN_4 & (classified & isSmall & _keys_io_out_cellOverflow | st_cellOverflow);
+        ~_GEN_8
+        & (classifying
+           & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
+              & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
+                  & _sort_io_in_0_valid_T_8) & _laneKeys_0_io_out_cellOverflow
+              | _laneKeys_1_io_out_valid & ~_laneKeys_1_io_out_nonFinite
+              & ~(~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
+                  & _sort_io_in_1_valid_T_8) & _laneKeys_1_io_out_cellOverflow)
+           | st_cellOverflow);
       st_largeOverflow <=
-        ~_GEN_4 & (classified & isLarge & largeCount[4] | st_largeOverflow);
-      rdValid <= reading;
-      REG <= _sorts_0_io_in_ready & _sorts_0_io_in_valid_T_1;
+        ~_GEN_8 & (largeHere_1 & ~_GEN_7 | largeHere_0 & ~_GEN_6 | st_largeOverflow);
+      inflight <=
+        inflight + {2'h0, {1'h0, reading_0} + {1'h0, reading_1}}
+        - {2'h0, {1'h0, _laneKeys_0_io_out_valid} + {1'h0, _laneKeys_1_io_out_valid}};
+      laneKeys_0_io_in_valid_REG <= reading_0;
+      laneKeys_1_io_in_valid_REG <= reading_1;
+      REG_2 <=
+        _sort_io_in_0_ready & _sort_io_in_0_valid_T_12 | _sort_io_in_1_ready
+        & _sort_io_in_1_valid_T_12;
     end
   end // always @(posedge)
-  SphereKeys_fp32_c20_f8_m9d8_l1_world keys (
-    .clock               (clock),
-    .reset               (reset),
-    .io_in_valid         (rdValid),
-    .io_in_sphere_0      (io_sphere_0_data_0),
-    .io_in_sphere_1      (io_sphere_0_data_1),
-    .io_in_sphere_2      (io_sphere_0_data_2),
-    .io_in_sphere_3      (io_sphere_0_data_3),
-    .io_in_k             (_cellExp_io_in_valid_T ? 13'h0 : _cellExp_io_k),
-    .io_out_valid        (_keys_io_out_valid),
-    .io_out_cell_0       (_keys_io_out_cell_0),
-    .io_out_cell_1       (_keys_io_out_cell_1),
-    .io_out_cell_2       (_keys_io_out_cell_2),
-    .io_out_cellOverflow (_keys_io_out_cellOverflow),
-    .io_out_q_0          (_keys_io_out_q_0),
-    .io_out_q_1          (_keys_io_out_q_1),
-    .io_out_q_2          (_keys_io_out_q_2),
-    .io_out_qr           (_keys_io_out_qr),
-    .io_out_need         (_keys_io_out_need),
-    .io_out_needNone     (_keys_io_out_needNone),
-    .io_out_nonFinite    (_keys_io_out_nonFinite),
-    .io_out_top          (_keys_io_out_top),
-    .io_out_topNone      (_keys_io_out_topNone)
+  CellExponent_fp32_L16_c20_p2_world cellExp (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_0_io_out_valid & _cellExp_io_in_1_valid_T),
+    .io_in_0_need      (_laneKeys_0_io_out_need),
+    .io_in_0_needNone  (_laneKeys_0_io_out_needNone),
+    .io_in_0_top       (_laneKeys_0_io_out_top),
+    .io_in_0_topNone   (_laneKeys_0_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_0_io_out_nonFinite),
+    .io_in_1_valid     (_laneKeys_1_io_out_valid & _cellExp_io_in_1_valid_T),
+    .io_in_1_need      (_laneKeys_1_io_out_need),
+    .io_in_1_needNone  (_laneKeys_1_io_out_needNone),
+    .io_in_1_top       (_laneKeys_1_io_out_top),
+    .io_in_1_topNone   (_laneKeys_1_io_out_topNone),
+    .io_in_1_nonFinite (_laneKeys_1_io_out_nonFinite),
+    .io_k              (_cellExp_io_k)
   );
-  CellExponent_fp32_L16_c20_world cellExp (
-    .clock           (clock),
-    .reset           (reset),
-    .io_clear        (io_start & ~(|state)),
-    .io_in_valid     (_keys_io_out_valid & _cellExp_io_in_valid_T),
-    .io_in_need      (_keys_io_out_need),
-    .io_in_needNone  (_keys_io_out_needNone),
-    .io_in_top       (_keys_io_out_top),
-    .io_in_topNone   (_keys_io_out_topNone),
-    .io_in_nonFinite (_keys_io_out_nonFinite),
-    .io_k            (_cellExp_io_k)
-  );
-  BucketSort_n4096_b13_w3_world sorts_0 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (_sorts_0_io_busy),
-    .io_in_ready        (_sorts_0_io_in_ready),
-    .io_in_valid        (_sorts_0_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_0_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_0_io_lookup_begin),
-    .io_lookup_end      (_sorts_0_io_lookup_end),
-    .io_lookup_word_0   (_sorts_0_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_0_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_0_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_0_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_0_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_0_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_0_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_0_io_lookup_word_7),
-    .io_entry_addr      (_gens_0_io_entry_addr),
-    .io_entry_item      (_sorts_0_io_entry_item),
-    .io_entry_mark      (_sorts_0_io_entry_mark),
-    .io_mark_valid      (_gens_0_io_mark_valid),
-    .io_mark_bits_addr  (_gens_0_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_0_io_mark_bits_item),
-    .io_counted         (_sorts_0_io_counted),
-    .io_scattered       (_sorts_0_io_scattered),
-    .io_badBucket       (_sorts_0_io_badBucket)
-  );
-  BucketSort_n4096_b13_w3_world sorts_1 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_1_io_in_ready),
-    .io_in_valid        (_sorts_1_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_1_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_1_io_lookup_begin),
-    .io_lookup_end      (_sorts_1_io_lookup_end),
-    .io_lookup_word_0   (_sorts_1_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_1_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_1_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_1_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_1_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_1_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_1_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_1_io_lookup_word_7),
-    .io_entry_addr      (_gens_1_io_entry_addr),
-    .io_entry_item      (_sorts_1_io_entry_item),
-    .io_entry_mark      (_sorts_1_io_entry_mark),
-    .io_mark_valid      (_gens_1_io_mark_valid),
-    .io_mark_bits_addr  (_gens_1_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_1_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_2 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_2_io_in_ready),
-    .io_in_valid        (_sorts_2_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_2_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_2_io_lookup_begin),
-    .io_lookup_end      (_sorts_2_io_lookup_end),
-    .io_lookup_word_0   (_sorts_2_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_2_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_2_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_2_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_2_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_2_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_2_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_2_io_lookup_word_7),
-    .io_entry_addr      (_gens_2_io_entry_addr),
-    .io_entry_item      (_sorts_2_io_entry_item),
-    .io_entry_mark      (_sorts_2_io_entry_mark),
-    .io_mark_valid      (_gens_2_io_mark_valid),
-    .io_mark_bits_addr  (_gens_2_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_2_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_3 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_3_io_in_ready),
-    .io_in_valid        (_sorts_3_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_3_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_3_io_lookup_begin),
-    .io_lookup_end      (_sorts_3_io_lookup_end),
-    .io_lookup_word_0   (_sorts_3_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_3_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_3_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_3_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_3_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_3_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_3_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_3_io_lookup_word_7),
-    .io_entry_addr      (_gens_3_io_entry_addr),
-    .io_entry_item      (_sorts_3_io_entry_item),
-    .io_entry_mark      (_sorts_3_io_entry_mark),
-    .io_mark_valid      (_gens_3_io_mark_valid),
-    .io_mark_bits_addr  (_gens_3_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_3_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_4 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_4_io_in_ready),
-    .io_in_valid        (_sorts_4_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_4_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_4_io_lookup_begin),
-    .io_lookup_end      (_sorts_4_io_lookup_end),
-    .io_lookup_word_0   (_sorts_4_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_4_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_4_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_4_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_4_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_4_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_4_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_4_io_lookup_word_7),
-    .io_entry_addr      (_gens_4_io_entry_addr),
-    .io_entry_item      (_sorts_4_io_entry_item),
-    .io_entry_mark      (_sorts_4_io_entry_mark),
-    .io_mark_valid      (_gens_4_io_mark_valid),
-    .io_mark_bits_addr  (_gens_4_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_4_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_5 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_5_io_in_ready),
-    .io_in_valid        (_sorts_5_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_5_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_5_io_lookup_begin),
-    .io_lookup_end      (_sorts_5_io_lookup_end),
-    .io_lookup_word_0   (_sorts_5_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_5_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_5_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_5_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_5_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_5_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_5_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_5_io_lookup_word_7),
-    .io_entry_addr      (_gens_5_io_entry_addr),
-    .io_entry_item      (_sorts_5_io_entry_item),
-    .io_entry_mark      (_sorts_5_io_entry_mark),
-    .io_mark_valid      (_gens_5_io_mark_valid),
-    .io_mark_bits_addr  (_gens_5_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_5_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_6 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_6_io_in_ready),
-    .io_in_valid        (_sorts_6_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_6_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_6_io_lookup_begin),
-    .io_lookup_end      (_sorts_6_io_lookup_end),
-    .io_lookup_word_0   (_sorts_6_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_6_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_6_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_6_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_6_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_6_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_6_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_6_io_lookup_word_7),
-    .io_entry_addr      (_gens_6_io_entry_addr),
-    .io_entry_item      (_sorts_6_io_entry_item),
-    .io_entry_mark      (_sorts_6_io_entry_mark),
-    .io_mark_valid      (_gens_6_io_mark_valid),
-    .io_mark_bits_addr  (_gens_6_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_6_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_7 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_7_io_in_ready),
-    .io_in_valid        (_sorts_7_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_7_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_7_io_lookup_begin),
-    .io_lookup_end      (_sorts_7_io_lookup_end),
-    .io_lookup_word_0   (_sorts_7_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_7_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_7_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_7_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_7_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_7_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_7_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_7_io_lookup_word_7),
-    .io_entry_addr      (_gens_7_io_entry_addr),
-    .io_entry_item      (_sorts_7_io_entry_item),
-    .io_entry_mark      (_sorts_7_io_entry_mark),
-    .io_mark_valid      (_gens_7_io_mark_valid),
-    .io_mark_bits_addr  (_gens_7_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_7_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_8 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_8_io_in_ready),
-    .io_in_valid        (_sorts_8_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_8_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_8_io_lookup_begin),
-    .io_lookup_end      (_sorts_8_io_lookup_end),
-    .io_lookup_word_0   (_sorts_8_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_8_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_8_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_8_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_8_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_8_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_8_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_8_io_lookup_word_7),
-    .io_entry_addr      (_gens_8_io_entry_addr),
-    .io_entry_item      (_sorts_8_io_entry_item),
-    .io_entry_mark      (_sorts_8_io_entry_mark),
-    .io_mark_valid      (_gens_8_io_mark_valid),
-    .io_mark_bits_addr  (_gens_8_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_8_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_9 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_9_io_in_ready),
-    .io_in_valid        (_sorts_9_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_9_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_9_io_lookup_begin),
-    .io_lookup_end      (_sorts_9_io_lookup_end),
-    .io_lookup_word_0   (_sorts_9_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_9_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_9_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_9_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_9_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_9_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_9_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_9_io_lookup_word_7),
-    .io_entry_addr      (_gens_9_io_entry_addr),
-    .io_entry_item      (_sorts_9_io_entry_item),
-    .io_entry_mark      (_sorts_9_io_entry_mark),
-    .io_mark_valid      (_gens_9_io_mark_valid),
-    .io_mark_bits_addr  (_gens_9_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_9_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_10 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_10_io_in_ready),
-    .io_in_valid        (_sorts_10_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_10_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_10_io_lookup_begin),
-    .io_lookup_end      (_sorts_10_io_lookup_end),
-    .io_lookup_word_0   (_sorts_10_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_10_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_10_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_10_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_10_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_10_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_10_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_10_io_lookup_word_7),
-    .io_entry_addr      (_gens_10_io_entry_addr),
-    .io_entry_item      (_sorts_10_io_entry_item),
-    .io_entry_mark      (_sorts_10_io_entry_mark),
-    .io_mark_valid      (_gens_10_io_mark_valid),
-    .io_mark_bits_addr  (_gens_10_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_10_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_11 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_11_io_in_ready),
-    .io_in_valid        (_sorts_11_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_11_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_11_io_lookup_begin),
-    .io_lookup_end      (_sorts_11_io_lookup_end),
-    .io_lookup_word_0   (_sorts_11_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_11_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_11_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_11_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_11_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_11_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_11_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_11_io_lookup_word_7),
-    .io_entry_addr      (_gens_11_io_entry_addr),
-    .io_entry_item      (_sorts_11_io_entry_item),
-    .io_entry_mark      (_sorts_11_io_entry_mark),
-    .io_mark_valid      (_gens_11_io_mark_valid),
-    .io_mark_bits_addr  (_gens_11_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_11_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_12 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_12_io_in_ready),
-    .io_in_valid        (_sorts_12_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_12_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_12_io_lookup_begin),
-    .io_lookup_end      (_sorts_12_io_lookup_end),
-    .io_lookup_word_0   (_sorts_12_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_12_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_12_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_12_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_12_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_12_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_12_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_12_io_lookup_word_7),
-    .io_entry_addr      (_gens_12_io_entry_addr),
-    .io_entry_item      (_sorts_12_io_entry_item),
-    .io_entry_mark      (_sorts_12_io_entry_mark),
-    .io_mark_valid      (_gens_12_io_mark_valid),
-    .io_mark_bits_addr  (_gens_12_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_12_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_13 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_13_io_in_ready),
-    .io_in_valid        (_sorts_13_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_13_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_13_io_lookup_begin),
-    .io_lookup_end      (_sorts_13_io_lookup_end),
-    .io_lookup_word_0   (_sorts_13_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_13_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_13_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_13_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_13_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_13_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_13_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_13_io_lookup_word_7),
-    .io_entry_addr      (_gens_13_io_entry_addr),
-    .io_entry_item      (_sorts_13_io_entry_item),
-    .io_entry_mark      (_sorts_13_io_entry_mark),
-    .io_mark_valid      (_gens_13_io_mark_valid),
-    .io_mark_bits_addr  (_gens_13_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_13_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_14 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_14_io_in_ready),
-    .io_in_valid        (_sorts_14_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_14_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_14_io_lookup_begin),
-    .io_lookup_end      (_sorts_14_io_lookup_end),
-    .io_lookup_word_0   (_sorts_14_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_14_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_14_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_14_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_14_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_14_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_14_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_14_io_lookup_word_7),
-    .io_entry_addr      (_gens_14_io_entry_addr),
-    .io_entry_item      (_sorts_14_io_entry_item),
-    .io_entry_mark      (_sorts_14_io_entry_mark),
-    .io_mark_valid      (_gens_14_io_mark_valid),
-    .io_mark_bits_addr  (_gens_14_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_14_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
-  );
-  BucketSort_n4096_b13_w3_world sorts_15 (
-    .clock              (clock),
-    .reset              (reset),
-    .io_usedLog2        (usedLog2),
-    .io_clear           (io_start & ~(|state)),
-    .io_prefix          (_sorts_15_io_prefix_T & ~sent),
-    .io_busy            (/* unused */),
-    .io_in_ready        (_sorts_15_io_in_ready),
-    .io_in_valid        (_sorts_15_io_in_valid_T_1),
-    .io_in_bits_scatter (_sorts_15_io_in_bits_scatter_T),
-    .io_in_bits_bucket
-      ((_keys_io_out_cell_0[12:0] * 13'h145D ^ _keys_io_out_cell_1[12:0] * 13'h9F
-        ^ _keys_io_out_cell_2[12:0] * 13'h1FB7) & _sorts_15_io_in_bits_bucket_mask_T[12:0]
-       - 13'h1),
-    .io_in_bits_item    (kIndex),
-    .io_lookup_bucket   (_gens_15_io_lookup_bucket),
-    .io_lookup_begin    (_sorts_15_io_lookup_begin),
-    .io_lookup_end      (_sorts_15_io_lookup_end),
-    .io_lookup_word_0   (_sorts_15_io_lookup_word_0),
-    .io_lookup_word_1   (_sorts_15_io_lookup_word_1),
-    .io_lookup_word_2   (_sorts_15_io_lookup_word_2),
-    .io_lookup_word_3   (_sorts_15_io_lookup_word_3),
-    .io_lookup_word_4   (_sorts_15_io_lookup_word_4),
-    .io_lookup_word_5   (_sorts_15_io_lookup_word_5),
-    .io_lookup_word_6   (_sorts_15_io_lookup_word_6),
-    .io_lookup_word_7   (_sorts_15_io_lookup_word_7),
-    .io_entry_addr      (_gens_15_io_entry_addr),
-    .io_entry_item      (_sorts_15_io_entry_item),
-    .io_entry_mark      (_sorts_15_io_entry_mark),
-    .io_mark_valid      (_gens_15_io_mark_valid),
-    .io_mark_bits_addr  (_gens_15_io_mark_bits_addr),
-    .io_mark_bits_item  (_gens_15_io_mark_bits_item),
-    .io_counted         (/* unused */),
-    .io_scattered       (/* unused */),
-    .io_badBucket       (/* unused */)
+  BucketSort_n4096_b13_w3_c16_p2_world sort (
+    .clock                (clock),
+    .reset                (reset),
+    .io_usedLog2          (usedLog2),
+    .io_clear             (io_start & ~(|state)),
+    .io_prefix            (state == 3'h3 & ~sent),
+    .io_busy              (_sort_io_busy),
+    .io_in_0_ready        (_sort_io_in_0_ready),
+    .io_in_0_valid        (_sort_io_in_0_valid_T_12),
+    .io_in_0_bits_scatter (_sort_io_in_1_bits_scatter_T),
+    .io_in_0_bits_bucket
+      ((_laneKeys_0_io_out_cell_0[12:0] * 13'h145D ^ _laneKeys_0_io_out_cell_1[12:0]
+        * 13'h9F ^ _laneKeys_0_io_out_cell_2[12:0] * 13'h1FB7)
+       & _sort_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
+    .io_in_0_bits_item    (r),
+    .io_in_1_ready        (_sort_io_in_1_ready),
+    .io_in_1_valid        (_sort_io_in_1_valid_T_12),
+    .io_in_1_bits_scatter (_sort_io_in_1_bits_scatter_T),
+    .io_in_1_bits_bucket
+      ((_laneKeys_1_io_out_cell_0[12:0] * 13'h145D ^ _laneKeys_1_io_out_cell_1[12:0]
+        * 13'h9F ^ _laneKeys_1_io_out_cell_2[12:0] * 13'h1FB7)
+       & _sort_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
+    .io_in_1_bits_item    (r_1),
+    .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
+    .io_lookup_0_begin    (_sort_io_lookup_0_begin),
+    .io_lookup_0_end      (_sort_io_lookup_0_end),
+    .io_lookup_0_word_0   (_sort_io_lookup_0_word_0),
+    .io_lookup_0_word_1   (_sort_io_lookup_0_word_1),
+    .io_lookup_0_word_2   (_sort_io_lookup_0_word_2),
+    .io_lookup_0_word_3   (_sort_io_lookup_0_word_3),
+    .io_lookup_0_word_4   (_sort_io_lookup_0_word_4),
+    .io_lookup_0_word_5   (_sort_io_lookup_0_word_5),
+    .io_lookup_0_word_6   (_sort_io_lookup_0_word_6),
+    .io_lookup_0_word_7   (_sort_io_lookup_0_word_7),
+    .io_lookup_1_bucket   (_gens_1_io_lookup_bucket),
+    .io_lookup_1_begin    (_sort_io_lookup_1_begin),
+    .io_lookup_1_end      (_sort_io_lookup_1_end),
+    .io_lookup_1_word_0   (_sort_io_lookup_1_word_0),
+    .io_lookup_1_word_1   (_sort_io_lookup_1_word_1),
+    .io_lookup_1_word_2   (_sort_io_lookup_1_word_2),
+    .io_lookup_1_word_3   (_sort_io_lookup_1_word_3),
+    .io_lookup_1_word_4   (_sort_io_lookup_1_word_4),
+    .io_lookup_1_word_5   (_sort_io_lookup_1_word_5),
+    .io_lookup_1_word_6   (_sort_io_lookup_1_word_6),
+    .io_lookup_1_word_7   (_sort_io_lookup_1_word_7),
+    .io_lookup_2_bucket   (_gens_2_io_lookup_bucket),
+    .io_lookup_2_begin    (_sort_io_lookup_2_begin),
+    .io_lookup_2_end      (_sort_io_lookup_2_end),
+    .io_lookup_2_word_0   (_sort_io_lookup_2_word_0),
+    .io_lookup_2_word_1   (_sort_io_lookup_2_word_1),
+    .io_lookup_2_word_2   (_sort_io_lookup_2_word_2),
+    .io_lookup_2_word_3   (_sort_io_lookup_2_word_3),
+    .io_lookup_2_word_4   (_sort_io_lookup_2_word_4),
+    .io_lookup_2_word_5   (_sort_io_lookup_2_word_5),
+    .io_lookup_2_word_6   (_sort_io_lookup_2_word_6),
+    .io_lookup_2_word_7   (_sort_io_lookup_2_word_7),
+    .io_lookup_3_bucket   (_gens_3_io_lookup_bucket),
+    .io_lookup_3_begin    (_sort_io_lookup_3_begin),
+    .io_lookup_3_end      (_sort_io_lookup_3_end),
+    .io_lookup_3_word_0   (_sort_io_lookup_3_word_0),
+    .io_lookup_3_word_1   (_sort_io_lookup_3_word_1),
+    .io_lookup_3_word_2   (_sort_io_lookup_3_word_2),
+    .io_lookup_3_word_3   (_sort_io_lookup_3_word_3),
+    .io_lookup_3_word_4   (_sort_io_lookup_3_word_4),
+    .io_lookup_3_word_5   (_sort_io_lookup_3_word_5),
+    .io_lookup_3_word_6   (_sort_io_lookup_3_word_6),
+    .io_lookup_3_word_7   (_sort_io_lookup_3_word_7),
+    .io_lookup_4_bucket   (_gens_4_io_lookup_bucket),
+    .io_lookup_4_begin    (_sort_io_lookup_4_begin),
+    .io_lookup_4_end      (_sort_io_lookup_4_end),
+    .io_lookup_4_word_0   (_sort_io_lookup_4_word_0),
+    .io_lookup_4_word_1   (_sort_io_lookup_4_word_1),
+    .io_lookup_4_word_2   (_sort_io_lookup_4_word_2),
+    .io_lookup_4_word_3   (_sort_io_lookup_4_word_3),
+    .io_lookup_4_word_4   (_sort_io_lookup_4_word_4),
+    .io_lookup_4_word_5   (_sort_io_lookup_4_word_5),
+    .io_lookup_4_word_6   (_sort_io_lookup_4_word_6),
+    .io_lookup_4_word_7   (_sort_io_lookup_4_word_7),
+    .io_lookup_5_bucket   (_gens_5_io_lookup_bucket),
+    .io_lookup_5_begin    (_sort_io_lookup_5_begin),
+    .io_lookup_5_end      (_sort_io_lookup_5_end),
+    .io_lookup_5_word_0   (_sort_io_lookup_5_word_0),
+    .io_lookup_5_word_1   (_sort_io_lookup_5_word_1),
+    .io_lookup_5_word_2   (_sort_io_lookup_5_word_2),
+    .io_lookup_5_word_3   (_sort_io_lookup_5_word_3),
+    .io_lookup_5_word_4   (_sort_io_lookup_5_word_4),
+    .io_lookup_5_word_5   (_sort_io_lookup_5_word_5),
+    .io_lookup_5_word_6   (_sort_io_lookup_5_word_6),
+    .io_lookup_5_word_7   (_sort_io_lookup_5_word_7),
+    .io_lookup_6_bucket   (_gens_6_io_lookup_bucket),
+    .io_lookup_6_begin    (_sort_io_lookup_6_begin),
+    .io_lookup_6_end      (_sort_io_lookup_6_end),
+    .io_lookup_6_word_0   (_sort_io_lookup_6_word_0),
+    .io_lookup_6_word_1   (_sort_io_lookup_6_word_1),
+    .io_lookup_6_word_2   (_sort_io_lookup_6_word_2),
+    .io_lookup_6_word_3   (_sort_io_lookup_6_word_3),
+    .io_lookup_6_word_4   (_sort_io_lookup_6_word_4),
+    .io_lookup_6_word_5   (_sort_io_lookup_6_word_5),
+    .io_lookup_6_word_6   (_sort_io_lookup_6_word_6),
+    .io_lookup_6_word_7   (_sort_io_lookup_6_word_7),
+    .io_lookup_7_bucket   (_gens_7_io_lookup_bucket),
+    .io_lookup_7_begin    (_sort_io_lookup_7_begin),
+    .io_lookup_7_end      (_sort_io_lookup_7_end),
+    .io_lookup_7_word_0   (_sort_io_lookup_7_word_0),
+    .io_lookup_7_word_1   (_sort_io_lookup_7_word_1),
+    .io_lookup_7_word_2   (_sort_io_lookup_7_word_2),
+    .io_lookup_7_word_3   (_sort_io_lookup_7_word_3),
+    .io_lookup_7_word_4   (_sort_io_lookup_7_word_4),
+    .io_lookup_7_word_5   (_sort_io_lookup_7_word_5),
+    .io_lookup_7_word_6   (_sort_io_lookup_7_word_6),
+    .io_lookup_7_word_7   (_sort_io_lookup_7_word_7),
+    .io_lookup_8_bucket   (_gens_8_io_lookup_bucket),
+    .io_lookup_8_begin    (_sort_io_lookup_8_begin),
+    .io_lookup_8_end      (_sort_io_lookup_8_end),
+    .io_lookup_8_word_0   (_sort_io_lookup_8_word_0),
+    .io_lookup_8_word_1   (_sort_io_lookup_8_word_1),
+    .io_lookup_8_word_2   (_sort_io_lookup_8_word_2),
+    .io_lookup_8_word_3   (_sort_io_lookup_8_word_3),
+    .io_lookup_8_word_4   (_sort_io_lookup_8_word_4),
+    .io_lookup_8_word_5   (_sort_io_lookup_8_word_5),
+    .io_lookup_8_word_6   (_sort_io_lookup_8_word_6),
+    .io_lookup_8_word_7   (_sort_io_lookup_8_word_7),
+    .io_lookup_9_bucket   (_gens_9_io_lookup_bucket),
+    .io_lookup_9_begin    (_sort_io_lookup_9_begin),
+    .io_lookup_9_end      (_sort_io_lookup_9_end),
+    .io_lookup_9_word_0   (_sort_io_lookup_9_word_0),
+    .io_lookup_9_word_1   (_sort_io_lookup_9_word_1),
+    .io_lookup_9_word_2   (_sort_io_lookup_9_word_2),
+    .io_lookup_9_word_3   (_sort_io_lookup_9_word_3),
+    .io_lookup_9_word_4   (_sort_io_lookup_9_word_4),
+    .io_lookup_9_word_5   (_sort_io_lookup_9_word_5),
+    .io_lookup_9_word_6   (_sort_io_lookup_9_word_6),
+    .io_lookup_9_word_7   (_sort_io_lookup_9_word_7),
+    .io_lookup_10_bucket  (_gens_10_io_lookup_bucket),
+    .io_lookup_10_begin   (_sort_io_lookup_10_begin),
+    .io_lookup_10_end     (_sort_io_lookup_10_end),
+    .io_lookup_10_word_0  (_sort_io_lookup_10_word_0),
+    .io_lookup_10_word_1  (_sort_io_lookup_10_word_1),
+    .io_lookup_10_word_2  (_sort_io_lookup_10_word_2),
+    .io_lookup_10_word_3  (_sort_io_lookup_10_word_3),
+    .io_lookup_10_word_4  (_sort_io_lookup_10_word_4),
+    .io_lookup_10_word_5  (_sort_io_lookup_10_word_5),
+    .io_lookup_10_word_6  (_sort_io_lookup_10_word_6),
+    .io_lookup_10_word_7  (_sort_io_lookup_10_word_7),
+    .io_lookup_11_bucket  (_gens_11_io_lookup_bucket),
+    .io_lookup_11_begin   (_sort_io_lookup_11_begin),
+    .io_lookup_11_end     (_sort_io_lookup_11_end),
+    .io_lookup_11_word_0  (_sort_io_lookup_11_word_0),
+    .io_lookup_11_word_1  (_sort_io_lookup_11_word_1),
+    .io_lookup_11_word_2  (_sort_io_lookup_11_word_2),
+    .io_lookup_11_word_3  (_sort_io_lookup_11_word_3),
+    .io_lookup_11_word_4  (_sort_io_lookup_11_word_4),
+    .io_lookup_11_word_5  (_sort_io_lookup_11_word_5),
+    .io_lookup_11_word_6  (_sort_io_lookup_11_word_6),
+    .io_lookup_11_word_7  (_sort_io_lookup_11_word_7),
+    .io_lookup_12_bucket  (_gens_12_io_lookup_bucket),
+    .io_lookup_12_begin   (_sort_io_lookup_12_begin),
+    .io_lookup_12_end     (_sort_io_lookup_12_end),
+    .io_lookup_12_word_0  (_sort_io_lookup_12_word_0),
+    .io_lookup_12_word_1  (_sort_io_lookup_12_word_1),
+    .io_lookup_12_word_2  (_sort_io_lookup_12_word_2),
+    .io_lookup_12_word_3  (_sort_io_lookup_12_word_3),
+    .io_lookup_12_word_4  (_sort_io_lookup_12_word_4),
+    .io_lookup_12_word_5  (_sort_io_lookup_12_word_5),
+    .io_lookup_12_word_6  (_sort_io_lookup_12_word_6),
+    .io_lookup_12_word_7  (_sort_io_lookup_12_word_7),
+    .io_lookup_13_bucket  (_gens_13_io_lookup_bucket),
+    .io_lookup_13_begin   (_sort_io_lookup_13_begin),
+    .io_lookup_13_end     (_sort_io_lookup_13_end),
+    .io_lookup_13_word_0  (_sort_io_lookup_13_word_0),
+    .io_lookup_13_word_1  (_sort_io_lookup_13_word_1),
+    .io_lookup_13_word_2  (_sort_io_lookup_13_word_2),
+    .io_lookup_13_word_3  (_sort_io_lookup_13_word_3),
+    .io_lookup_13_word_4  (_sort_io_lookup_13_word_4),
+    .io_lookup_13_word_5  (_sort_io_lookup_13_word_5),
+    .io_lookup_13_word_6  (_sort_io_lookup_13_word_6),
+    .io_lookup_13_word_7  (_sort_io_lookup_13_word_7),
+    .io_lookup_14_bucket  (_gens_14_io_lookup_bucket),
+    .io_lookup_14_begin   (_sort_io_lookup_14_begin),
+    .io_lookup_14_end     (_sort_io_lookup_14_end),
+    .io_lookup_14_word_0  (_sort_io_lookup_14_word_0),
+    .io_lookup_14_word_1  (_sort_io_lookup_14_word_1),
+    .io_lookup_14_word_2  (_sort_io_lookup_14_word_2),
+    .io_lookup_14_word_3  (_sort_io_lookup_14_word_3),
+    .io_lookup_14_word_4  (_sort_io_lookup_14_word_4),
+    .io_lookup_14_word_5  (_sort_io_lookup_14_word_5),
+    .io_lookup_14_word_6  (_sort_io_lookup_14_word_6),
+    .io_lookup_14_word_7  (_sort_io_lookup_14_word_7),
+    .io_lookup_15_bucket  (_gens_15_io_lookup_bucket),
+    .io_lookup_15_begin   (_sort_io_lookup_15_begin),
+    .io_lookup_15_end     (_sort_io_lookup_15_end),
+    .io_lookup_15_word_0  (_sort_io_lookup_15_word_0),
+    .io_lookup_15_word_1  (_sort_io_lookup_15_word_1),
+    .io_lookup_15_word_2  (_sort_io_lookup_15_word_2),
+    .io_lookup_15_word_3  (_sort_io_lookup_15_word_3),
+    .io_lookup_15_word_4  (_sort_io_lookup_15_word_4),
+    .io_lookup_15_word_5  (_sort_io_lookup_15_word_5),
+    .io_lookup_15_word_6  (_sort_io_lookup_15_word_6),
+    .io_lookup_15_word_7  (_sort_io_lookup_15_word_7),
+    .io_entry_0_addr      (_gens_0_io_entry_addr),
+    .io_entry_0_item      (_sort_io_entry_0_item),
+    .io_entry_0_mark      (_sort_io_entry_0_mark),
+    .io_entry_1_addr      (_gens_1_io_entry_addr),
+    .io_entry_1_item      (_sort_io_entry_1_item),
+    .io_entry_1_mark      (_sort_io_entry_1_mark),
+    .io_entry_2_addr      (_gens_2_io_entry_addr),
+    .io_entry_2_item      (_sort_io_entry_2_item),
+    .io_entry_2_mark      (_sort_io_entry_2_mark),
+    .io_entry_3_addr      (_gens_3_io_entry_addr),
+    .io_entry_3_item      (_sort_io_entry_3_item),
+    .io_entry_3_mark      (_sort_io_entry_3_mark),
+    .io_entry_4_addr      (_gens_4_io_entry_addr),
+    .io_entry_4_item      (_sort_io_entry_4_item),
+    .io_entry_4_mark      (_sort_io_entry_4_mark),
+    .io_entry_5_addr      (_gens_5_io_entry_addr),
+    .io_entry_5_item      (_sort_io_entry_5_item),
+    .io_entry_5_mark      (_sort_io_entry_5_mark),
+    .io_entry_6_addr      (_gens_6_io_entry_addr),
+    .io_entry_6_item      (_sort_io_entry_6_item),
+    .io_entry_6_mark      (_sort_io_entry_6_mark),
+    .io_entry_7_addr      (_gens_7_io_entry_addr),
+    .io_entry_7_item      (_sort_io_entry_7_item),
+    .io_entry_7_mark      (_sort_io_entry_7_mark),
+    .io_entry_8_addr      (_gens_8_io_entry_addr),
+    .io_entry_8_item      (_sort_io_entry_8_item),
+    .io_entry_8_mark      (_sort_io_entry_8_mark),
+    .io_entry_9_addr      (_gens_9_io_entry_addr),
+    .io_entry_9_item      (_sort_io_entry_9_item),
+    .io_entry_9_mark      (_sort_io_entry_9_mark),
+    .io_entry_10_addr     (_gens_10_io_entry_addr),
+    .io_entry_10_item     (_sort_io_entry_10_item),
+    .io_entry_10_mark     (_sort_io_entry_10_mark),
+    .io_entry_11_addr     (_gens_11_io_entry_addr),
+    .io_entry_11_item     (_sort_io_entry_11_item),
+    .io_entry_11_mark     (_sort_io_entry_11_mark),
+    .io_entry_12_addr     (_gens_12_io_entry_addr),
+    .io_entry_12_item     (_sort_io_entry_12_item),
+    .io_entry_12_mark     (_sort_io_entry_12_mark),
+    .io_entry_13_addr     (_gens_13_io_entry_addr),
+    .io_entry_13_item     (_sort_io_entry_13_item),
+    .io_entry_13_mark     (_sort_io_entry_13_mark),
+    .io_entry_14_addr     (_gens_14_io_entry_addr),
+    .io_entry_14_item     (_sort_io_entry_14_item),
+    .io_entry_14_mark     (_sort_io_entry_14_mark),
+    .io_entry_15_addr     (_gens_15_io_entry_addr),
+    .io_entry_15_item     (_sort_io_entry_15_item),
+    .io_entry_15_mark     (_sort_io_entry_15_mark),
+    .io_mark_0_valid      (_gens_0_io_mark_valid),
+    .io_mark_0_bits_addr  (_gens_0_io_mark_bits_addr),
+    .io_mark_0_bits_item  (_gens_0_io_mark_bits_item),
+    .io_mark_1_valid      (_gens_1_io_mark_valid),
+    .io_mark_1_bits_addr  (_gens_1_io_mark_bits_addr),
+    .io_mark_1_bits_item  (_gens_1_io_mark_bits_item),
+    .io_mark_2_valid      (_gens_2_io_mark_valid),
+    .io_mark_2_bits_addr  (_gens_2_io_mark_bits_addr),
+    .io_mark_2_bits_item  (_gens_2_io_mark_bits_item),
+    .io_mark_3_valid      (_gens_3_io_mark_valid),
+    .io_mark_3_bits_addr  (_gens_3_io_mark_bits_addr),
+    .io_mark_3_bits_item  (_gens_3_io_mark_bits_item),
+    .io_mark_4_valid      (_gens_4_io_mark_valid),
+    .io_mark_4_bits_addr  (_gens_4_io_mark_bits_addr),
+    .io_mark_4_bits_item  (_gens_4_io_mark_bits_item),
+    .io_mark_5_valid      (_gens_5_io_mark_valid),
+    .io_mark_5_bits_addr  (_gens_5_io_mark_bits_addr),
+    .io_mark_5_bits_item  (_gens_5_io_mark_bits_item),
+    .io_mark_6_valid      (_gens_6_io_mark_valid),
+    .io_mark_6_bits_addr  (_gens_6_io_mark_bits_addr),
+    .io_mark_6_bits_item  (_gens_6_io_mark_bits_item),
+    .io_mark_7_valid      (_gens_7_io_mark_valid),
+    .io_mark_7_bits_addr  (_gens_7_io_mark_bits_addr),
+    .io_mark_7_bits_item  (_gens_7_io_mark_bits_item),
+    .io_mark_8_valid      (_gens_8_io_mark_valid),
+    .io_mark_8_bits_addr  (_gens_8_io_mark_bits_addr),
+    .io_mark_8_bits_item  (_gens_8_io_mark_bits_item),
+    .io_mark_9_valid      (_gens_9_io_mark_valid),
+    .io_mark_9_bits_addr  (_gens_9_io_mark_bits_addr),
+    .io_mark_9_bits_item  (_gens_9_io_mark_bits_item),
+    .io_mark_10_valid     (_gens_10_io_mark_valid),
+    .io_mark_10_bits_addr (_gens_10_io_mark_bits_addr),
+    .io_mark_10_bits_item (_gens_10_io_mark_bits_item),
+    .io_mark_11_valid     (_gens_11_io_mark_valid),
+    .io_mark_11_bits_addr (_gens_11_io_mark_bits_addr),
+    .io_mark_11_bits_item (_gens_11_io_mark_bits_item),
+    .io_mark_12_valid     (_gens_12_io_mark_valid),
+    .io_mark_12_bits_addr (_gens_12_io_mark_bits_addr),
+    .io_mark_12_bits_item (_gens_12_io_mark_bits_item),
+    .io_mark_13_valid     (_gens_13_io_mark_valid),
+    .io_mark_13_bits_addr (_gens_13_io_mark_bits_addr),
+    .io_mark_13_bits_item (_gens_13_io_mark_bits_item),
+    .io_mark_14_valid     (_gens_14_io_mark_valid),
+    .io_mark_14_bits_addr (_gens_14_io_mark_bits_addr),
+    .io_mark_14_bits_item (_gens_14_io_mark_bits_item),
+    .io_mark_15_valid     (_gens_15_io_mark_valid),
+    .io_mark_15_bits_addr (_gens_15_io_mark_bits_addr),
+    .io_mark_15_bits_item (_gens_15_io_mark_bits_item),
+    .io_counted           (_sort_io_counted),
+    .io_scattered         (_sort_io_scattered),
+    .io_badBucket         (_sort_io_badBucket)
   );
   CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_0 (
     .clock               (clock),
@@ -20653,33 +22499,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (13'h0),
     .io_largeTo          (_GEN),
     .io_lookup_bucket    (_gens_0_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_0_io_lookup_begin),
-    .io_lookup_end       (_sorts_0_io_lookup_end),
-    .io_lookup_word_0    (_sorts_0_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_0_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_0_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_0_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_0_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_0_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_0_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_0_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_0_begin),
+    .io_lookup_end       (_sort_io_lookup_0_end),
+    .io_lookup_word_0    (_sort_io_lookup_0_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_0_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_0_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_0_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_0_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_0_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_0_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_0_word_7),
     .io_entry_addr       (_gens_0_io_entry_addr),
-    .io_entry_item       (_sorts_0_io_entry_item),
-    .io_entry_mark       (_sorts_0_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_0_item),
+    .io_entry_mark       (_sort_io_entry_0_mark),
     .io_mark_valid       (_gens_0_io_mark_valid),
     .io_mark_bits_addr   (_gens_0_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_0_io_mark_bits_item),
     .io_keyAddr          (_gens_0_io_keyAddr),
-    .io_keyData_cell_0   (_keys_io_out_cell_0),
-    .io_keyData_cell_1   (_keys_io_out_cell_1),
-    .io_keyData_cell_2   (_keys_io_out_cell_2),
-    .io_keyData_q_0      (_keys_io_out_q_0),
-    .io_keyData_q_1      (_keys_io_out_q_1),
-    .io_keyData_q_2      (_keys_io_out_q_2),
-    .io_keyData_qr       (_keys_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_0_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_0_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_0_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_0_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_0_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_0_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_0_io_out_qr),
     .io_keyData_large
-      (~_keys_io_out_nonFinite & ~_keys_io_out_needNone & _rec_r_large_T_3),
-    .io_keyData_excluded (_keys_io_out_nonFinite),
+      (~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
+       & _sort_io_in_0_valid_T_8),
+    .io_keyData_excluded (_laneKeys_0_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_0_ready),
     .io_pairs_valid      (io_pairs_0_valid),
     .io_pairs_bits_i     (io_pairs_0_bits_i),
@@ -20777,34 +22624,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (_GEN),
     .io_largeTo          (_GEN_0),
     .io_lookup_bucket    (_gens_1_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_1_io_lookup_begin),
-    .io_lookup_end       (_sorts_1_io_lookup_end),
-    .io_lookup_word_0    (_sorts_1_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_1_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_1_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_1_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_1_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_1_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_1_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_1_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_1_begin),
+    .io_lookup_end       (_sort_io_lookup_1_end),
+    .io_lookup_word_0    (_sort_io_lookup_1_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_1_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_1_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_1_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_1_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_1_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_1_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_1_word_7),
     .io_entry_addr       (_gens_1_io_entry_addr),
-    .io_entry_item       (_sorts_1_io_entry_item),
-    .io_entry_mark       (_sorts_1_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_1_item),
+    .io_entry_mark       (_sort_io_entry_1_mark),
     .io_mark_valid       (_gens_1_io_mark_valid),
     .io_mark_bits_addr   (_gens_1_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_1_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_1_addr),
-    .io_keyData_cell_0   (_laneKeys_0_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_0_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_0_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_0_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_0_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_0_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_0_io_out_qr),
+    .io_keyAddr          (_gens_1_io_keyAddr),
+    .io_keyData_cell_0   (_laneKeys_1_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_1_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_1_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_1_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_1_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_1_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_1_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
-       & $signed(_laneKeys_0_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_0_io_out_nonFinite),
+      (~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
+       & _sort_io_in_1_valid_T_8),
+    .io_keyData_excluded (_laneKeys_1_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_1_ready),
     .io_pairs_valid      (io_pairs_1_valid),
     .io_pairs_bits_i     (io_pairs_1_bits_i),
@@ -20902,34 +22749,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (_GEN_0),
     .io_largeTo          ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
     .io_lookup_bucket    (_gens_2_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_2_io_lookup_begin),
-    .io_lookup_end       (_sorts_2_io_lookup_end),
-    .io_lookup_word_0    (_sorts_2_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_2_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_2_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_2_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_2_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_2_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_2_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_2_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_2_begin),
+    .io_lookup_end       (_sort_io_lookup_2_end),
+    .io_lookup_word_0    (_sort_io_lookup_2_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_2_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_2_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_2_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_2_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_2_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_2_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_2_word_7),
     .io_entry_addr       (_gens_2_io_entry_addr),
-    .io_entry_item       (_sorts_2_io_entry_item),
-    .io_entry_mark       (_sorts_2_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_2_item),
+    .io_entry_mark       (_sort_io_entry_2_mark),
     .io_mark_valid       (_gens_2_io_mark_valid),
     .io_mark_bits_addr   (_gens_2_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_2_io_mark_bits_item),
     .io_keyAddr          (io_sphere_2_addr),
-    .io_keyData_cell_0   (_laneKeys_1_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_1_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_1_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_1_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_1_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_1_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_1_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_2_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_2_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_2_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_2_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_2_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_2_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_2_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
-       & $signed(_laneKeys_1_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_1_io_out_nonFinite),
+      (~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
+       & $signed(_laneKeys_2_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_2_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_2_ready),
     .io_pairs_valid      (io_pairs_2_valid),
     .io_pairs_bits_i     (io_pairs_2_bits_i),
@@ -21027,34 +22874,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
     .io_largeTo          (_GEN_2),
     .io_lookup_bucket    (_gens_3_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_3_io_lookup_begin),
-    .io_lookup_end       (_sorts_3_io_lookup_end),
-    .io_lookup_word_0    (_sorts_3_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_3_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_3_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_3_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_3_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_3_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_3_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_3_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_3_begin),
+    .io_lookup_end       (_sort_io_lookup_3_end),
+    .io_lookup_word_0    (_sort_io_lookup_3_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_3_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_3_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_3_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_3_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_3_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_3_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_3_word_7),
     .io_entry_addr       (_gens_3_io_entry_addr),
-    .io_entry_item       (_sorts_3_io_entry_item),
-    .io_entry_mark       (_sorts_3_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_3_item),
+    .io_entry_mark       (_sort_io_entry_3_mark),
     .io_mark_valid       (_gens_3_io_mark_valid),
     .io_mark_bits_addr   (_gens_3_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_3_io_mark_bits_item),
     .io_keyAddr          (io_sphere_3_addr),
-    .io_keyData_cell_0   (_laneKeys_2_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_2_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_2_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_2_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_2_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_2_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_2_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_3_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_3_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_3_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_3_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_3_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_3_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_3_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
-       & $signed(_laneKeys_2_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_2_io_out_nonFinite),
+      (~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
+       & $signed(_laneKeys_3_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_3_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_3_ready),
     .io_pairs_valid      (io_pairs_3_valid),
     .io_pairs_bits_i     (io_pairs_3_bits_i),
@@ -21152,34 +22999,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (_GEN_2),
     .io_largeTo          ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
     .io_lookup_bucket    (_gens_4_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_4_io_lookup_begin),
-    .io_lookup_end       (_sorts_4_io_lookup_end),
-    .io_lookup_word_0    (_sorts_4_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_4_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_4_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_4_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_4_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_4_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_4_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_4_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_4_begin),
+    .io_lookup_end       (_sort_io_lookup_4_end),
+    .io_lookup_word_0    (_sort_io_lookup_4_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_4_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_4_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_4_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_4_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_4_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_4_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_4_word_7),
     .io_entry_addr       (_gens_4_io_entry_addr),
-    .io_entry_item       (_sorts_4_io_entry_item),
-    .io_entry_mark       (_sorts_4_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_4_item),
+    .io_entry_mark       (_sort_io_entry_4_mark),
     .io_mark_valid       (_gens_4_io_mark_valid),
     .io_mark_bits_addr   (_gens_4_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_4_io_mark_bits_item),
     .io_keyAddr          (io_sphere_4_addr),
-    .io_keyData_cell_0   (_laneKeys_3_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_3_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_3_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_3_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_3_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_3_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_3_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_4_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_4_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_4_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_4_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_4_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_4_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_4_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
-       & $signed(_laneKeys_3_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_3_io_out_nonFinite),
+      (~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
+       & $signed(_laneKeys_4_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_4_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_4_ready),
     .io_pairs_valid      (io_pairs_4_valid),
     .io_pairs_bits_i     (io_pairs_4_bits_i),
@@ -21277,34 +23124,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
     .io_largeTo          ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
     .io_lookup_bucket    (_gens_5_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_5_io_lookup_begin),
-    .io_lookup_end       (_sorts_5_io_lookup_end),
-    .io_lookup_word_0    (_sorts_5_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_5_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_5_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_5_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_5_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_5_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_5_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_5_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_5_begin),
+    .io_lookup_end       (_sort_io_lookup_5_end),
+    .io_lookup_word_0    (_sort_io_lookup_5_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_5_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_5_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_5_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_5_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_5_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_5_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_5_word_7),
     .io_entry_addr       (_gens_5_io_entry_addr),
-    .io_entry_item       (_sorts_5_io_entry_item),
-    .io_entry_mark       (_sorts_5_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_5_item),
+    .io_entry_mark       (_sort_io_entry_5_mark),
     .io_mark_valid       (_gens_5_io_mark_valid),
     .io_mark_bits_addr   (_gens_5_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_5_io_mark_bits_item),
     .io_keyAddr          (io_sphere_5_addr),
-    .io_keyData_cell_0   (_laneKeys_4_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_4_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_4_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_4_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_4_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_4_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_4_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_5_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_5_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_5_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_5_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_5_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_5_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_5_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
-       & $signed(_laneKeys_4_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_4_io_out_nonFinite),
+      (~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
+       & $signed(_laneKeys_5_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_5_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_5_ready),
     .io_pairs_valid      (io_pairs_5_valid),
     .io_pairs_bits_i     (io_pairs_5_bits_i),
@@ -21402,34 +23249,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
     .io_largeTo          ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
     .io_lookup_bucket    (_gens_6_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_6_io_lookup_begin),
-    .io_lookup_end       (_sorts_6_io_lookup_end),
-    .io_lookup_word_0    (_sorts_6_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_6_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_6_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_6_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_6_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_6_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_6_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_6_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_6_begin),
+    .io_lookup_end       (_sort_io_lookup_6_end),
+    .io_lookup_word_0    (_sort_io_lookup_6_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_6_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_6_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_6_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_6_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_6_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_6_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_6_word_7),
     .io_entry_addr       (_gens_6_io_entry_addr),
-    .io_entry_item       (_sorts_6_io_entry_item),
-    .io_entry_mark       (_sorts_6_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_6_item),
+    .io_entry_mark       (_sort_io_entry_6_mark),
     .io_mark_valid       (_gens_6_io_mark_valid),
     .io_mark_bits_addr   (_gens_6_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_6_io_mark_bits_item),
     .io_keyAddr          (io_sphere_6_addr),
-    .io_keyData_cell_0   (_laneKeys_5_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_5_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_5_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_5_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_5_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_5_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_5_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_6_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_6_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_6_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_6_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_6_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_6_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_6_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
-       & $signed(_laneKeys_5_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_5_io_out_nonFinite),
+      (~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
+       & $signed(_laneKeys_6_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_6_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_6_ready),
     .io_pairs_valid      (io_pairs_6_valid),
     .io_pairs_bits_i     (io_pairs_6_bits_i),
@@ -21527,34 +23374,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
     .io_largeTo          ({1'h0, num[12:1]}),
     .io_lookup_bucket    (_gens_7_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_7_io_lookup_begin),
-    .io_lookup_end       (_sorts_7_io_lookup_end),
-    .io_lookup_word_0    (_sorts_7_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_7_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_7_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_7_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_7_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_7_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_7_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_7_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_7_begin),
+    .io_lookup_end       (_sort_io_lookup_7_end),
+    .io_lookup_word_0    (_sort_io_lookup_7_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_7_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_7_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_7_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_7_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_7_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_7_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_7_word_7),
     .io_entry_addr       (_gens_7_io_entry_addr),
-    .io_entry_item       (_sorts_7_io_entry_item),
-    .io_entry_mark       (_sorts_7_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_7_item),
+    .io_entry_mark       (_sort_io_entry_7_mark),
     .io_mark_valid       (_gens_7_io_mark_valid),
     .io_mark_bits_addr   (_gens_7_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_7_io_mark_bits_item),
     .io_keyAddr          (io_sphere_7_addr),
-    .io_keyData_cell_0   (_laneKeys_6_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_6_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_6_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_6_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_6_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_6_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_6_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_7_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_7_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_7_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_7_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_7_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_7_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_7_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
-       & $signed(_laneKeys_6_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_6_io_out_nonFinite),
+      (~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
+       & $signed(_laneKeys_7_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_7_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_7_ready),
     .io_pairs_valid      (io_pairs_7_valid),
     .io_pairs_bits_i     (io_pairs_7_bits_i),
@@ -21652,34 +23499,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        ({1'h0, num[12:1]}),
     .io_largeTo          (_gens_9_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_8_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_8_io_lookup_begin),
-    .io_lookup_end       (_sorts_8_io_lookup_end),
-    .io_lookup_word_0    (_sorts_8_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_8_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_8_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_8_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_8_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_8_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_8_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_8_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_8_begin),
+    .io_lookup_end       (_sort_io_lookup_8_end),
+    .io_lookup_word_0    (_sort_io_lookup_8_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_8_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_8_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_8_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_8_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_8_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_8_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_8_word_7),
     .io_entry_addr       (_gens_8_io_entry_addr),
-    .io_entry_item       (_sorts_8_io_entry_item),
-    .io_entry_mark       (_sorts_8_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_8_item),
+    .io_entry_mark       (_sort_io_entry_8_mark),
     .io_mark_valid       (_gens_8_io_mark_valid),
     .io_mark_bits_addr   (_gens_8_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_8_io_mark_bits_item),
     .io_keyAddr          (io_sphere_8_addr),
-    .io_keyData_cell_0   (_laneKeys_7_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_7_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_7_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_7_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_7_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_7_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_7_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_8_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_8_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_8_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_8_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_8_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_8_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_8_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
-       & $signed(_laneKeys_7_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_7_io_out_nonFinite),
+      (~_laneKeys_8_io_out_nonFinite & ~_laneKeys_8_io_out_needNone
+       & $signed(_laneKeys_8_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_8_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_8_ready),
     .io_pairs_valid      (io_pairs_8_valid),
     .io_pairs_bits_i     (io_pairs_8_bits_i),
@@ -21777,34 +23624,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (_gens_9_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_10_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_9_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_9_io_lookup_begin),
-    .io_lookup_end       (_sorts_9_io_lookup_end),
-    .io_lookup_word_0    (_sorts_9_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_9_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_9_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_9_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_9_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_9_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_9_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_9_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_9_begin),
+    .io_lookup_end       (_sort_io_lookup_9_end),
+    .io_lookup_word_0    (_sort_io_lookup_9_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_9_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_9_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_9_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_9_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_9_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_9_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_9_word_7),
     .io_entry_addr       (_gens_9_io_entry_addr),
-    .io_entry_item       (_sorts_9_io_entry_item),
-    .io_entry_mark       (_sorts_9_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_9_item),
+    .io_entry_mark       (_sort_io_entry_9_mark),
     .io_mark_valid       (_gens_9_io_mark_valid),
     .io_mark_bits_addr   (_gens_9_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_9_io_mark_bits_item),
     .io_keyAddr          (io_sphere_9_addr),
-    .io_keyData_cell_0   (_laneKeys_8_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_8_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_8_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_8_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_8_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_8_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_8_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_9_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_9_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_9_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_9_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_9_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_9_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_9_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_8_io_out_nonFinite & ~_laneKeys_8_io_out_needNone
-       & $signed(_laneKeys_8_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_8_io_out_nonFinite),
+      (~_laneKeys_9_io_out_nonFinite & ~_laneKeys_9_io_out_needNone
+       & $signed(_laneKeys_9_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_9_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_9_ready),
     .io_pairs_valid      (io_pairs_9_valid),
     .io_pairs_bits_i     (io_pairs_9_bits_i),
@@ -21902,34 +23749,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (_gens_10_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_11_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_10_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_10_io_lookup_begin),
-    .io_lookup_end       (_sorts_10_io_lookup_end),
-    .io_lookup_word_0    (_sorts_10_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_10_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_10_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_10_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_10_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_10_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_10_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_10_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_10_begin),
+    .io_lookup_end       (_sort_io_lookup_10_end),
+    .io_lookup_word_0    (_sort_io_lookup_10_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_10_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_10_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_10_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_10_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_10_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_10_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_10_word_7),
     .io_entry_addr       (_gens_10_io_entry_addr),
-    .io_entry_item       (_sorts_10_io_entry_item),
-    .io_entry_mark       (_sorts_10_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_10_item),
+    .io_entry_mark       (_sort_io_entry_10_mark),
     .io_mark_valid       (_gens_10_io_mark_valid),
     .io_mark_bits_addr   (_gens_10_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_10_io_mark_bits_item),
     .io_keyAddr          (io_sphere_10_addr),
-    .io_keyData_cell_0   (_laneKeys_9_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_9_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_9_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_9_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_9_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_9_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_9_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_10_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_10_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_10_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_10_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_10_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_10_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_10_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_9_io_out_nonFinite & ~_laneKeys_9_io_out_needNone
-       & $signed(_laneKeys_9_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_9_io_out_nonFinite),
+      (~_laneKeys_10_io_out_nonFinite & ~_laneKeys_10_io_out_needNone
+       & $signed(_laneKeys_10_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_10_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_10_ready),
     .io_pairs_valid      (io_pairs_10_valid),
     .io_pairs_bits_i     (io_pairs_10_bits_i),
@@ -22027,34 +23874,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (_gens_11_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_12_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_11_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_11_io_lookup_begin),
-    .io_lookup_end       (_sorts_11_io_lookup_end),
-    .io_lookup_word_0    (_sorts_11_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_11_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_11_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_11_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_11_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_11_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_11_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_11_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_11_begin),
+    .io_lookup_end       (_sort_io_lookup_11_end),
+    .io_lookup_word_0    (_sort_io_lookup_11_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_11_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_11_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_11_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_11_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_11_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_11_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_11_word_7),
     .io_entry_addr       (_gens_11_io_entry_addr),
-    .io_entry_item       (_sorts_11_io_entry_item),
-    .io_entry_mark       (_sorts_11_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_11_item),
+    .io_entry_mark       (_sort_io_entry_11_mark),
     .io_mark_valid       (_gens_11_io_mark_valid),
     .io_mark_bits_addr   (_gens_11_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_11_io_mark_bits_item),
     .io_keyAddr          (io_sphere_11_addr),
-    .io_keyData_cell_0   (_laneKeys_10_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_10_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_10_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_10_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_10_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_10_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_10_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_11_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_11_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_11_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_11_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_11_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_11_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_11_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_10_io_out_nonFinite & ~_laneKeys_10_io_out_needNone
-       & $signed(_laneKeys_10_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_10_io_out_nonFinite),
+      (~_laneKeys_11_io_out_nonFinite & ~_laneKeys_11_io_out_needNone
+       & $signed(_laneKeys_11_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_11_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_11_ready),
     .io_pairs_valid      (io_pairs_11_valid),
     .io_pairs_bits_i     (io_pairs_11_bits_i),
@@ -22152,34 +23999,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (_gens_12_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_13_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_12_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_12_io_lookup_begin),
-    .io_lookup_end       (_sorts_12_io_lookup_end),
-    .io_lookup_word_0    (_sorts_12_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_12_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_12_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_12_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_12_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_12_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_12_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_12_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_12_begin),
+    .io_lookup_end       (_sort_io_lookup_12_end),
+    .io_lookup_word_0    (_sort_io_lookup_12_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_12_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_12_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_12_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_12_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_12_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_12_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_12_word_7),
     .io_entry_addr       (_gens_12_io_entry_addr),
-    .io_entry_item       (_sorts_12_io_entry_item),
-    .io_entry_mark       (_sorts_12_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_12_item),
+    .io_entry_mark       (_sort_io_entry_12_mark),
     .io_mark_valid       (_gens_12_io_mark_valid),
     .io_mark_bits_addr   (_gens_12_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_12_io_mark_bits_item),
     .io_keyAddr          (io_sphere_12_addr),
-    .io_keyData_cell_0   (_laneKeys_11_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_11_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_11_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_11_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_11_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_11_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_11_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_12_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_12_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_12_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_12_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_12_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_12_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_12_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_11_io_out_nonFinite & ~_laneKeys_11_io_out_needNone
-       & $signed(_laneKeys_11_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_11_io_out_nonFinite),
+      (~_laneKeys_12_io_out_nonFinite & ~_laneKeys_12_io_out_needNone
+       & $signed(_laneKeys_12_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_12_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_12_ready),
     .io_pairs_valid      (io_pairs_12_valid),
     .io_pairs_bits_i     (io_pairs_12_bits_i),
@@ -22277,34 +24124,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (_gens_13_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_14_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_13_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_13_io_lookup_begin),
-    .io_lookup_end       (_sorts_13_io_lookup_end),
-    .io_lookup_word_0    (_sorts_13_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_13_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_13_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_13_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_13_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_13_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_13_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_13_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_13_begin),
+    .io_lookup_end       (_sort_io_lookup_13_end),
+    .io_lookup_word_0    (_sort_io_lookup_13_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_13_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_13_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_13_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_13_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_13_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_13_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_13_word_7),
     .io_entry_addr       (_gens_13_io_entry_addr),
-    .io_entry_item       (_sorts_13_io_entry_item),
-    .io_entry_mark       (_sorts_13_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_13_item),
+    .io_entry_mark       (_sort_io_entry_13_mark),
     .io_mark_valid       (_gens_13_io_mark_valid),
     .io_mark_bits_addr   (_gens_13_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_13_io_mark_bits_item),
     .io_keyAddr          (io_sphere_13_addr),
-    .io_keyData_cell_0   (_laneKeys_12_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_12_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_12_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_12_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_12_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_12_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_12_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_13_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_13_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_13_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_13_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_13_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_13_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_13_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_12_io_out_nonFinite & ~_laneKeys_12_io_out_needNone
-       & $signed(_laneKeys_12_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_12_io_out_nonFinite),
+      (~_laneKeys_13_io_out_nonFinite & ~_laneKeys_13_io_out_needNone
+       & $signed(_laneKeys_13_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_13_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_13_ready),
     .io_pairs_valid      (io_pairs_13_valid),
     .io_pairs_bits_i     (io_pairs_13_bits_i),
@@ -22402,34 +24249,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (_gens_14_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_15_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_14_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_14_io_lookup_begin),
-    .io_lookup_end       (_sorts_14_io_lookup_end),
-    .io_lookup_word_0    (_sorts_14_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_14_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_14_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_14_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_14_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_14_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_14_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_14_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_14_begin),
+    .io_lookup_end       (_sort_io_lookup_14_end),
+    .io_lookup_word_0    (_sort_io_lookup_14_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_14_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_14_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_14_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_14_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_14_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_14_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_14_word_7),
     .io_entry_addr       (_gens_14_io_entry_addr),
-    .io_entry_item       (_sorts_14_io_entry_item),
-    .io_entry_mark       (_sorts_14_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_14_item),
+    .io_entry_mark       (_sort_io_entry_14_mark),
     .io_mark_valid       (_gens_14_io_mark_valid),
     .io_mark_bits_addr   (_gens_14_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_14_io_mark_bits_item),
     .io_keyAddr          (io_sphere_14_addr),
-    .io_keyData_cell_0   (_laneKeys_13_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_13_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_13_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_13_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_13_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_13_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_13_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_14_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_14_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_14_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_14_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_14_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_14_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_14_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_13_io_out_nonFinite & ~_laneKeys_13_io_out_needNone
-       & $signed(_laneKeys_13_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_13_io_out_nonFinite),
+      (~_laneKeys_14_io_out_nonFinite & ~_laneKeys_14_io_out_needNone
+       & $signed(_laneKeys_14_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_14_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_14_ready),
     .io_pairs_valid      (io_pairs_14_valid),
     .io_pairs_bits_i     (io_pairs_14_bits_i),
@@ -22527,34 +24374,34 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_largeFrom        (_gens_15_io_largeFrom_T[28:16]),
     .io_largeTo          (num),
     .io_lookup_bucket    (_gens_15_io_lookup_bucket),
-    .io_lookup_begin     (_sorts_15_io_lookup_begin),
-    .io_lookup_end       (_sorts_15_io_lookup_end),
-    .io_lookup_word_0    (_sorts_15_io_lookup_word_0),
-    .io_lookup_word_1    (_sorts_15_io_lookup_word_1),
-    .io_lookup_word_2    (_sorts_15_io_lookup_word_2),
-    .io_lookup_word_3    (_sorts_15_io_lookup_word_3),
-    .io_lookup_word_4    (_sorts_15_io_lookup_word_4),
-    .io_lookup_word_5    (_sorts_15_io_lookup_word_5),
-    .io_lookup_word_6    (_sorts_15_io_lookup_word_6),
-    .io_lookup_word_7    (_sorts_15_io_lookup_word_7),
+    .io_lookup_begin     (_sort_io_lookup_15_begin),
+    .io_lookup_end       (_sort_io_lookup_15_end),
+    .io_lookup_word_0    (_sort_io_lookup_15_word_0),
+    .io_lookup_word_1    (_sort_io_lookup_15_word_1),
+    .io_lookup_word_2    (_sort_io_lookup_15_word_2),
+    .io_lookup_word_3    (_sort_io_lookup_15_word_3),
+    .io_lookup_word_4    (_sort_io_lookup_15_word_4),
+    .io_lookup_word_5    (_sort_io_lookup_15_word_5),
+    .io_lookup_word_6    (_sort_io_lookup_15_word_6),
+    .io_lookup_word_7    (_sort_io_lookup_15_word_7),
     .io_entry_addr       (_gens_15_io_entry_addr),
-    .io_entry_item       (_sorts_15_io_entry_item),
-    .io_entry_mark       (_sorts_15_io_entry_mark),
+    .io_entry_item       (_sort_io_entry_15_item),
+    .io_entry_mark       (_sort_io_entry_15_mark),
     .io_mark_valid       (_gens_15_io_mark_valid),
     .io_mark_bits_addr   (_gens_15_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_15_io_mark_bits_item),
     .io_keyAddr          (io_sphere_15_addr),
-    .io_keyData_cell_0   (_laneKeys_14_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_14_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_14_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_14_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_14_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_14_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_14_io_out_qr),
+    .io_keyData_cell_0   (_laneKeys_15_io_out_cell_0),
+    .io_keyData_cell_1   (_laneKeys_15_io_out_cell_1),
+    .io_keyData_cell_2   (_laneKeys_15_io_out_cell_2),
+    .io_keyData_q_0      (_laneKeys_15_io_out_q_0),
+    .io_keyData_q_1      (_laneKeys_15_io_out_q_1),
+    .io_keyData_q_2      (_laneKeys_15_io_out_q_2),
+    .io_keyData_qr       (_laneKeys_15_io_out_qr),
     .io_keyData_large
-      (~_laneKeys_14_io_out_nonFinite & ~_laneKeys_14_io_out_needNone
-       & $signed(_laneKeys_14_io_out_need) > $signed(_cellExp_io_k)),
-    .io_keyData_excluded (_laneKeys_14_io_out_nonFinite),
+      (~_laneKeys_15_io_out_nonFinite & ~_laneKeys_15_io_out_needNone
+       & $signed(_laneKeys_15_io_out_need) > $signed(_cellExp_io_k)),
+    .io_keyData_excluded (_laneKeys_15_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_15_ready),
     .io_pairs_valid      (io_pairs_15_valid),
     .io_pairs_bits_i     (io_pairs_15_bits_i),
@@ -22564,17 +24411,17 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_0 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_1_data_0),
-    .io_in_sphere_1      (io_sphere_1_data_1),
-    .io_in_sphere_2      (io_sphere_1_data_2),
-    .io_in_sphere_3      (io_sphere_1_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_valid         (laneKeys_0_io_in_valid_REG),
+    .io_in_sphere_0      (io_sphere_0_data_0),
+    .io_in_sphere_1      (io_sphere_0_data_1),
+    .io_in_sphere_2      (io_sphere_0_data_2),
+    .io_in_sphere_3      (io_sphere_0_data_3),
+    .io_in_k             (_cellExp_io_in_1_valid_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_0_io_out_valid),
     .io_out_cell_0       (_laneKeys_0_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_0_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_0_io_out_cell_2),
-    .io_out_cellOverflow (/* unused */),
+    .io_out_cellOverflow (_laneKeys_0_io_out_cellOverflow),
     .io_out_q_0          (_laneKeys_0_io_out_q_0),
     .io_out_q_1          (_laneKeys_0_io_out_q_1),
     .io_out_q_2          (_laneKeys_0_io_out_q_2),
@@ -22582,23 +24429,23 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_out_need         (_laneKeys_0_io_out_need),
     .io_out_needNone     (_laneKeys_0_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_0_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_0_io_out_top),
+    .io_out_topNone      (_laneKeys_0_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_1 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_2_data_0),
-    .io_in_sphere_1      (io_sphere_2_data_1),
-    .io_in_sphere_2      (io_sphere_2_data_2),
-    .io_in_sphere_3      (io_sphere_2_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_valid         (laneKeys_1_io_in_valid_REG),
+    .io_in_sphere_0      (io_sphere_1_data_0),
+    .io_in_sphere_1      (io_sphere_1_data_1),
+    .io_in_sphere_2      (io_sphere_1_data_2),
+    .io_in_sphere_3      (io_sphere_1_data_3),
+    .io_in_k             (_cellExp_io_in_1_valid_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_1_io_out_valid),
     .io_out_cell_0       (_laneKeys_1_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_1_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_1_io_out_cell_2),
-    .io_out_cellOverflow (/* unused */),
+    .io_out_cellOverflow (_laneKeys_1_io_out_cellOverflow),
     .io_out_q_0          (_laneKeys_1_io_out_q_0),
     .io_out_q_1          (_laneKeys_1_io_out_q_1),
     .io_out_q_2          (_laneKeys_1_io_out_q_2),
@@ -22606,17 +24453,17 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_out_need         (_laneKeys_1_io_out_need),
     .io_out_needNone     (_laneKeys_1_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_1_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_1_io_out_top),
+    .io_out_topNone      (_laneKeys_1_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_2 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_3_data_0),
-    .io_in_sphere_1      (io_sphere_3_data_1),
-    .io_in_sphere_2      (io_sphere_3_data_2),
-    .io_in_sphere_3      (io_sphere_3_data_3),
+    .io_in_sphere_0      (io_sphere_2_data_0),
+    .io_in_sphere_1      (io_sphere_2_data_1),
+    .io_in_sphere_2      (io_sphere_2_data_2),
+    .io_in_sphere_3      (io_sphere_2_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_2_io_out_cell_0),
@@ -22637,10 +24484,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_4_data_0),
-    .io_in_sphere_1      (io_sphere_4_data_1),
-    .io_in_sphere_2      (io_sphere_4_data_2),
-    .io_in_sphere_3      (io_sphere_4_data_3),
+    .io_in_sphere_0      (io_sphere_3_data_0),
+    .io_in_sphere_1      (io_sphere_3_data_1),
+    .io_in_sphere_2      (io_sphere_3_data_2),
+    .io_in_sphere_3      (io_sphere_3_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_3_io_out_cell_0),
@@ -22661,10 +24508,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_5_data_0),
-    .io_in_sphere_1      (io_sphere_5_data_1),
-    .io_in_sphere_2      (io_sphere_5_data_2),
-    .io_in_sphere_3      (io_sphere_5_data_3),
+    .io_in_sphere_0      (io_sphere_4_data_0),
+    .io_in_sphere_1      (io_sphere_4_data_1),
+    .io_in_sphere_2      (io_sphere_4_data_2),
+    .io_in_sphere_3      (io_sphere_4_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_4_io_out_cell_0),
@@ -22685,10 +24532,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_6_data_0),
-    .io_in_sphere_1      (io_sphere_6_data_1),
-    .io_in_sphere_2      (io_sphere_6_data_2),
-    .io_in_sphere_3      (io_sphere_6_data_3),
+    .io_in_sphere_0      (io_sphere_5_data_0),
+    .io_in_sphere_1      (io_sphere_5_data_1),
+    .io_in_sphere_2      (io_sphere_5_data_2),
+    .io_in_sphere_3      (io_sphere_5_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_5_io_out_cell_0),
@@ -22709,10 +24556,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_7_data_0),
-    .io_in_sphere_1      (io_sphere_7_data_1),
-    .io_in_sphere_2      (io_sphere_7_data_2),
-    .io_in_sphere_3      (io_sphere_7_data_3),
+    .io_in_sphere_0      (io_sphere_6_data_0),
+    .io_in_sphere_1      (io_sphere_6_data_1),
+    .io_in_sphere_2      (io_sphere_6_data_2),
+    .io_in_sphere_3      (io_sphere_6_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_6_io_out_cell_0),
@@ -22733,10 +24580,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_8_data_0),
-    .io_in_sphere_1      (io_sphere_8_data_1),
-    .io_in_sphere_2      (io_sphere_8_data_2),
-    .io_in_sphere_3      (io_sphere_8_data_3),
+    .io_in_sphere_0      (io_sphere_7_data_0),
+    .io_in_sphere_1      (io_sphere_7_data_1),
+    .io_in_sphere_2      (io_sphere_7_data_2),
+    .io_in_sphere_3      (io_sphere_7_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_7_io_out_cell_0),
@@ -22757,10 +24604,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_9_data_0),
-    .io_in_sphere_1      (io_sphere_9_data_1),
-    .io_in_sphere_2      (io_sphere_9_data_2),
-    .io_in_sphere_3      (io_sphere_9_data_3),
+    .io_in_sphere_0      (io_sphere_8_data_0),
+    .io_in_sphere_1      (io_sphere_8_data_1),
+    .io_in_sphere_2      (io_sphere_8_data_2),
+    .io_in_sphere_3      (io_sphere_8_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_8_io_out_cell_0),
@@ -22781,10 +24628,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_10_data_0),
-    .io_in_sphere_1      (io_sphere_10_data_1),
-    .io_in_sphere_2      (io_sphere_10_data_2),
-    .io_in_sphere_3      (io_sphere_10_data_3),
+    .io_in_sphere_0      (io_sphere_9_data_0),
+    .io_in_sphere_1      (io_sphere_9_data_1),
+    .io_in_sphere_2      (io_sphere_9_data_2),
+    .io_in_sphere_3      (io_sphere_9_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_9_io_out_cell_0),
@@ -22805,10 +24652,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_11_data_0),
-    .io_in_sphere_1      (io_sphere_11_data_1),
-    .io_in_sphere_2      (io_sphere_11_data_2),
-    .io_in_sphere_3      (io_sphere_11_data_3),
+    .io_in_sphere_0      (io_sphere_10_data_0),
+    .io_in_sphere_1      (io_sphere_10_data_1),
+    .io_in_sphere_2      (io_sphere_10_data_2),
+    .io_in_sphere_3      (io_sphere_10_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_10_io_out_cell_0),
@@ -22829,10 +24676,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_12_data_0),
-    .io_in_sphere_1      (io_sphere_12_data_1),
-    .io_in_sphere_2      (io_sphere_12_data_2),
-    .io_in_sphere_3      (io_sphere_12_data_3),
+    .io_in_sphere_0      (io_sphere_11_data_0),
+    .io_in_sphere_1      (io_sphere_11_data_1),
+    .io_in_sphere_2      (io_sphere_11_data_2),
+    .io_in_sphere_3      (io_sphere_11_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_11_io_out_cell_0),
@@ -22853,10 +24700,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_13_data_0),
-    .io_in_sphere_1      (io_sphere_13_data_1),
-    .io_in_sphere_2      (io_sphere_13_data_2),
-    .io_in_sphere_3      (io_sphere_13_data_3),
+    .io_in_sphere_0      (io_sphere_12_data_0),
+    .io_in_sphere_1      (io_sphere_12_data_1),
+    .io_in_sphere_2      (io_sphere_12_data_2),
+    .io_in_sphere_3      (io_sphere_12_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_12_io_out_cell_0),
@@ -22877,10 +24724,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_14_data_0),
-    .io_in_sphere_1      (io_sphere_14_data_1),
-    .io_in_sphere_2      (io_sphere_14_data_2),
-    .io_in_sphere_3      (io_sphere_14_data_3),
+    .io_in_sphere_0      (io_sphere_13_data_0),
+    .io_in_sphere_1      (io_sphere_13_data_1),
+    .io_in_sphere_2      (io_sphere_13_data_2),
+    .io_in_sphere_3      (io_sphere_13_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_13_io_out_cell_0),
@@ -22901,10 +24748,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (1'h0),
-    .io_in_sphere_0      (io_sphere_15_data_0),
-    .io_in_sphere_1      (io_sphere_15_data_1),
-    .io_in_sphere_2      (io_sphere_15_data_2),
-    .io_in_sphere_3      (io_sphere_15_data_3),
+    .io_in_sphere_0      (io_sphere_14_data_0),
+    .io_in_sphere_1      (io_sphere_14_data_1),
+    .io_in_sphere_2      (io_sphere_14_data_2),
+    .io_in_sphere_3      (io_sphere_14_data_3),
     .io_in_k             (_cellExp_io_k),
     .io_out_valid        (/* unused */),
     .io_out_cell_0       (_laneKeys_14_io_out_cell_0),
@@ -22921,7 +24768,32 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world(
     .io_out_top          (/* unused */),
     .io_out_topNone      (/* unused */)
   );
-  assign io_sphere_0_addr = _gens_15_io_start_T ? _gens_0_io_keyAddr : i[11:0];
+  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_15 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h0),
+    .io_in_sphere_0      (io_sphere_15_data_0),
+    .io_in_sphere_1      (io_sphere_15_data_1),
+    .io_in_sphere_2      (io_sphere_15_data_2),
+    .io_in_sphere_3      (io_sphere_15_data_3),
+    .io_in_k             (_cellExp_io_k),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_laneKeys_15_io_out_cell_0),
+    .io_out_cell_1       (_laneKeys_15_io_out_cell_1),
+    .io_out_cell_2       (_laneKeys_15_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (_laneKeys_15_io_out_q_0),
+    .io_out_q_1          (_laneKeys_15_io_out_q_1),
+    .io_out_q_2          (_laneKeys_15_io_out_q_2),
+    .io_out_qr           (_laneKeys_15_io_out_qr),
+    .io_out_need         (_laneKeys_15_io_out_need),
+    .io_out_needNone     (_laneKeys_15_io_out_needNone),
+    .io_out_nonFinite    (_laneKeys_15_io_out_nonFinite),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  assign io_sphere_0_addr = _gens_15_io_start_T ? _gens_0_io_keyAddr : i_0[11:0];
+  assign io_sphere_1_addr = _gens_15_io_start_T ? _gens_1_io_keyAddr : i_1[11:0];
   assign io_busy = |state;
   assign io_status_k = st_k;
   assign io_status_large = st_large;
@@ -25710,7 +27582,7 @@ module Puc_world(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
-  BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_world bp (
+  BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world bp (
     .clock                   (clock),
     .reset                   (reset),
     .io_start                (bpStart),

@@ -28,6 +28,7 @@ object Generate {
       noVerilog: Boolean = false,
       world: Option[Boolean] = None,
       worldLanes: Option[Int] = None,
+      worldSortPorts: Option[Int] = None,
       scpuImpl: Option[String] = None,
       listPresets: Boolean = false)
 
@@ -59,7 +60,10 @@ object Generate {
         .text("build world mode (MODE bit 1: the on-chip broad phase, default parameters; at most 4096 spheres)"),
       opt[Int]("world-lanes").valueName("L").action((v, o) => o.copy(worldLanes = Some(v)))
         .text("the broad phase's candidate generators, 1..16 (world mode only; each adds a copy of its sort RAM, " +
-          "and every two a copy of the sphere table)"),
+          "and every two a copy of the sphere table; the sort's ports follow down to L)"),
+      opt[Int]("world-sort-ports").valueName("P").action((v, o) => o.copy(worldSortPorts = Some(v)))
+        .text("spheres a cycle in the broad phase's sort passes, 1 or 2, at most the lanes (world mode only; " +
+          "2 adds a table of counters)"),
       opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
         .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
           "(same cycles and records, a far faster co-simulation; not synthesizable)"),
@@ -99,11 +103,15 @@ object Generate {
       c11 <- opt("--world", o.world)((c, v) => step("--world",
         c.copy(world = if (v) Some(c.world.getOrElse(collide.world.BroadPhaseParams.default)) else None)))(c10)
       c12 <- opt("--world-lanes", o.worldLanes)((c, v) => c.world match {
-        case Some(bp) => step("--world-lanes", c.copy(world = Some(bp.copy(lanes = v))))
+        case Some(bp) => step("--world-lanes", c.copy(world = Some(bp.copy(lanes = v, sortPorts = math.max(1, math.min(bp.sortPorts, v))))))
         case None => Left("--world-lanes: world mode is not built (add --world true or --preset world)")
       })(c11)
-      c13 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c12)
-    } yield c13
+      c13 <- opt("--world-sort-ports", o.worldSortPorts)((c, v) => c.world match {
+        case Some(bp) => step("--world-sort-ports", c.copy(world = Some(bp.copy(sortPorts = v))))
+        case None => Left("--world-sort-ports: world mode is not built (add --world true or --preset world)")
+      })(c12)
+      c14 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c13)
+    } yield c14
   }
 
   val firtoolOpts: Array[String] = Array(

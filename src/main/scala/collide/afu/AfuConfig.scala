@@ -76,7 +76,7 @@ final case class AfuConfig(
   def derivedName: String =
     s"n${scpus}_${scpu.id}_s${maxSpheres}_r${maxReadsOutstanding}_w${maxWritesOutstanding}_t${tagBits}_${ramPorts.name}" +
       (if (recordLayout != AfuConfig.bestLayout(scpu, world.isDefined)) s"_${recordLayout.name}" else "") +
-      (if (denseByDefault) "_dense" else "") + world.map(bp => "_world" + (if (bp.lanes > 1) bp.lanes.toString else "")).getOrElse("") +
+      (if (denseByDefault) "_dense" else "") + world.map(bp => "_world" + (if (bp.lanes > 1) bp.lanes.toString else "") + (if (bp.sortPorts > 1) s"p${bp.sortPorts}" else "")).getOrElse("") +
       (if (scpuImpl == ScpuImpl.Model) "_model" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
@@ -99,7 +99,7 @@ final case class AfuConfig(
     s"$id: $scpus x SCPU ${scpu.describe}; maxSpheres $maxSpheres, reads $maxReadsOutstanding, writes $maxWritesOutstanding, " +
       s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, link ${scpu.linkFormat.name}, ${recordLayout.name} records " +
       s"(${layout.recordBytes} B, ${layout.recordsPerLine} a line), ${if (denseByDefault) "dense" else "compact"} by default" +
-      world.map(bp => s", world mode built (${bp.lanes} candidate lane${if (bp.lanes > 1) "s" else ""}, broad phase RAM ${bp.ramBits(maxSpheres)} bits)").getOrElse("") +
+      world.map(bp => s", world mode built (${bp.lanes} candidate lane${if (bp.lanes > 1) "s" else ""}, ${bp.sortPorts} sort port${if (bp.sortPorts > 1) "s" else ""}, broad phase RAM ${bp.ramBits(maxSpheres)} bits)").getOrElse("") +
       (if (scpuImpl == ScpuImpl.Model) ", SCPUs simulated by the C++ model (not synthesizable)" else "")
 }
 
@@ -129,9 +129,9 @@ object AfuConfig {
   val fp64Full: AfuConfig = fp64.copy(name = "fp64-full", records = Some(RecordLayout.Full))
   val fp32Nr: AfuConfig  = default.copy(name = "fp32-nr", scpu = ScpuConfig.fp32Nr)
   val big: AfuConfig     = default.copy(name = "big", maxSpheres = 4096)
-  /** World mode: 16 fp32 SCPUs fed by the on-chip broad phase's 16 candidate lanes, up to 4096
-    * spheres (bench/results/world-lanes: beyond 8 lanes the sort's passes take most cycles). */
-  val world: AfuConfig   = big.copy(name = "world", world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16)))
+  /** World mode: 16 fp32 SCPUs fed by the on-chip broad phase's 16 candidate lanes, its sort's
+    * passes two spheres a cycle, up to 4096 spheres (bench/results/world-lanes). */
+  val world: AfuConfig   = big.copy(name = "world", world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 2)))
 
   /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind
     * their pipelines (same cycles, same records; docs/afu.md, "A faster co-simulation"). */

@@ -35,9 +35,11 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   * (3) the prefix sum; (4) the scatter, reading the spheres a third time; (5) the
   * CandidateGenerator, whose key records SphereKeys recomputes from the sphere table (no
   * key table: the table the AFU holds anyway is the only per-sphere RAM besides the sort's).
-  * One sphere a cycle in each pass. With `bp.lanes` candidate generators, lane l reads the
-  * table through port l of `sphere` (port 0 also serves the passes) and emits its pairs on
-  * port l of `pairs`; together they are the candidates. The golden model is
+  * `bp.sortPorts` spheres a cycle in each of passes 1, 2 and 4: with two, the first half of
+  * the table goes through port 0 of `sphere` and the second through port 1, each with a
+  * SphereKeys and a port of the sort of its own. With `bp.lanes` candidate generators, lane
+  * l reads the table through port l of `sphere` and emits its pairs on port l of `pairs`;
+  * together they are the candidates. The golden model is
   * BroadPhaseModel; the spec BroadPhaseSpec compares them pair for pair.
   */
 class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int) extends Bundle {
@@ -61,26 +63,26 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val largeSlots = math.max(1, bp.largeMax)
   override def desiredName =
     s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}_w${bp.wordLog2}" +
-      (if (bp.lanes > 1) s"_l${bp.lanes}" else "")
+      (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "")
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres))
   private val itemW = io.itemW
   private val countW = io.countW
   private val qWidth = SphereKeys.qWidth(bp)
   private val kWidth = SphereKeys.kWidth(p)
 
-  private val keys = Module(new SphereKeys(p, bp, keysLatency))
-  private val cellExp = Module(new CellExponent(p, bp))
-  // One sort per lane: the passes write every copy alike; each lane looks up and marks its own.
-  private val sorts = Seq.fill(bp.lanes)(Module(new BucketSort(maxSpheres, tableLog2, bp.wordLog2)))
-  private val sort = sorts.head
+  private val ports = bp.sortPorts
+  private val cellExp = Module(new CellExponent(p, bp, ports))
+  // One copy of the sorted table per lane: each lane looks up and marks its own.
+  private val sort = Module(new BucketSort(maxSpheres, tableLog2, bp.wordLog2, bp.lanes, ports))
   private val gens = Seq.tabulate(bp.lanes) { l =>
     val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
       keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes))
     g.io.lane.foreach(_ := l.U)
     g
   }
-  /** Lanes 1 and up recompute their key records with SphereKeys of their own. */
-  private val laneKeys = Seq.fill(bp.lanes - 1)(Module(new SphereKeys(p, bp, keysLatency)))
+  /** Each lane recomputes its key records with a SphereKeys of its own; port p of the passes
+    * uses lane p's. */
+  private val laneKeys = Seq.fill(bp.lanes)(Module(new SphereKeys(p, bp, keysLatency)))
   private val larges = Reg(Vec(largeSlots, new WorldKey(itemW, bp.cellBits, qWidth)))
 
   private object S extends ChiselEnum { val idle, load, classify, prefix, scatter, generate = Value }
@@ -89,8 +91,6 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
 
   private val num = Reg(UInt(countW.W))
   private val usedLog2 = Reg(UInt(log2Ceil(tableLog2 + 1).W))
-  private val i = Reg(UInt(countW.W))         // the next sphere (or key) to read
-  private val inflight = RegInit(0.U(3.W))    // sphere reads not yet out of SphereKeys (0: ko.valid is low)
   private val sent = Reg(Bool())
   private val st = RegInit(0.U.asTypeOf(new BroadPhaseStatus(kWidth, countW)))
   private val largeCount = RegInit(0.U(log2Ceil(largeSlots + 1).W))
@@ -102,25 +102,16 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     Mux(t > tableLog2.U, tableLog2.U, t)
   }
 
-  // --- passes 1, 2 and 4: read the sphere table, one sphere a cycle, through SphereKeys -----
-  // (in pass 5 the generator reads it, for its key records)
-  private val reading = (state === S.load || state === S.classify || state === S.scatter) && i < num
-  io.sphere.head.addr := Mux(state === S.generate, gens.head.io.keyAddr, i(itemW - 1, 0))
-  private val rdValid = RegNext(reading, false.B)
-  private val rdIndex = RegNext(i(itemW - 1, 0))
-  keys.io.in.valid := rdValid
-  keys.io.in.sphere := io.sphere.head.data
-  keys.io.in.k := Mux(state === S.load, 0.S, cellExp.io.k) // need and top do not depend on k
-  private val kIndex = Pipeline(rdIndex, keysLatency, true.B)
-  private val ko = keys.io.out
-  inflight := inflight + reading.asUInt - ko.valid.asUInt
-
-  cellExp.io.clear := io.start && state === S.idle
-  cellExp.io.in.valid := ko.valid && state === S.load
-  cellExp.io.in.need := ko.need; cellExp.io.in.needNone := ko.needNone
-  cellExp.io.in.top := ko.top; cellExp.io.in.topNone := ko.topNone
-  cellExp.io.in.nonFinite := ko.nonFinite
-
+  // --- passes 1, 2 and 4: read the sphere table through SphereKeys, `ports` spheres a cycle ---
+  // Port p reads spheres [from(p), to(p)): the whole table with one port, halves with two.
+  // (In pass 5 the generators read it, for their key records.)
+  private def from(port: Int): UInt = if (port == 0) 0.U else num >> 1
+  private def to(port: Int): UInt = if (port == ports - 1) num else num >> 1
+  private val inPass = state === S.load || state === S.classify || state === S.scatter
+  private val i = Reg(Vec(ports, UInt(countW.W))) // the next sphere each port reads
+  private val reading = VecInit.tabulate(ports)(q => inPass && i(q) < to(q))
+  private val inflight = RegInit(0.U(4.W)) // sphere reads not yet out of SphereKeys (0: none valid)
+  private val passDone = (0 until ports).map(q => i(q) === to(q)).reduce(_ && _) && inflight === 0.U
   private val k = cellExp.io.k
   private def large(o: SphereKeys): Bool = !o.io.out.nonFinite && !o.io.out.needNone && o.io.out.need > k
   private def record(o: SphereKeys): KeyRecord = {
@@ -128,55 +119,82 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     r.cell := o.io.out.cell; r.q := o.io.out.q; r.qr := o.io.out.qr; r.large := large(o); r.excluded := o.io.out.nonFinite
     r
   }
-  private val isLarge = large(keys)
-  private val isSmall = !ko.nonFinite && !isLarge
-  private val classified = ko.valid && state === S.classify
-  private val rec = record(keys)
-  gens.head.io.keyData := rec
-  for ((lk, l) <- laneKeys.zip(1 until bp.lanes)) {
-    io.sphere(l).addr := gens(l).io.keyAddr
-    lk.io.in.valid := false.B // only its keys are used, never its valid
-    lk.io.in.sphere := io.sphere(l).data
-    lk.io.in.k := k
-    gens(l).io.keyData := record(lk)
+  /** What port q's SphereKeys gives this cycle, and for which sphere. */
+  private case class Keyed(o: SphereKeys, valid: Bool, index: UInt) {
+    def out = o.io.out
+    def isLarge: Bool = large(o)
+    def isSmall: Bool = !out.nonFinite && !isLarge
   }
-  when(classified) {
-    when(ko.nonFinite) { st.excluded := st.excluded + 1.U }
-    when(isSmall) {
-      st.small := st.small + 1.U
-      when(ko.cellOverflow) { st.cellOverflow := true.B }
-    }
-    when(isLarge) {
-      when(largeCount < bp.largeMax.U) {
-        larges(VecIndex(largeCount, largeSlots)) := WorldKey(itemW, kIndex, rec)
-        largeCount := largeCount + 1.U
-        st.large := st.large + 1.U
-      }.otherwise { st.largeOverflow := true.B }
-    }
+  private val keyed = (0 until ports).map { q =>
+    val lk = laneKeys(q)
+    io.sphere(q).addr := Mux(state === S.generate, gens(q).io.keyAddr, i(q)(itemW - 1, 0))
+    lk.io.in.valid := RegNext(reading(q), false.B)
+    lk.io.in.sphere := io.sphere(q).data
+    lk.io.in.k := Mux(state === S.load, 0.S, k) // need and top do not depend on k
+    Keyed(lk, lk.io.out.valid, Pipeline(RegNext(i(q)(itemW - 1, 0)), keysLatency, true.B))
+  }
+  inflight := inflight + PopCount(reading) - PopCount(keyed.map(_.valid))
+  for (l <- ports until bp.lanes) {
+    io.sphere(l).addr := gens(l).io.keyAddr
+    laneKeys(l).io.in.valid := false.B // only its keys are used, never its valid
+    laneKeys(l).io.in.sphere := io.sphere(l).data
+    laneKeys(l).io.in.k := k
+  }
+  for ((g, lk) <- gens.zip(laneKeys)) g.io.keyData := record(lk)
+
+  cellExp.io.clear := io.start && state === S.idle
+  for ((ce, kd) <- cellExp.io.in.zip(keyed)) {
+    ce.valid := kd.valid && state === S.load
+    ce.need := kd.out.need; ce.needNone := kd.out.needNone
+    ce.top := kd.out.top; ce.topNone := kd.out.topNone
+    ce.nonFinite := kd.out.nonFinite
   }
 
-  private val scattered = ko.valid && state === S.scatter
+  private val classifying = state === S.classify
+  private def countOf(f: Keyed => Bool): UInt = PopCount(keyed.map(kd => kd.valid && f(kd)))
+  when(classifying) {
+    st.excluded := st.excluded + countOf(_.out.nonFinite)
+    st.small := st.small + countOf(_.isSmall)
+    when(keyed.map(kd => kd.valid && kd.isSmall && kd.out.cellOverflow).reduce(_ || _)) { st.cellOverflow := true.B }
+  }
+  // Large spheres join the list in port order (the list's order does not matter: two large
+  // spheres meet once, from the lower index).
+  private val largeHere = keyed.map(kd => classifying && kd.valid && kd.isLarge)
+  for ((kd, q) <- keyed.zipWithIndex) {
+    val slot = largeCount +& PopCount(largeHere.take(q))
+    when(largeHere(q)) {
+      when(slot < bp.largeMax.U) { larges(VecIndex(slot, largeSlots)) := WorldKey(itemW, kd.index, record(kd.o)) }
+        .otherwise { st.largeOverflow := true.B }
+    }
+  }
+  private val largeNew = largeCount +& PopCount(largeHere)
+  private val largeKept = Mux(largeNew > bp.largeMax.U, bp.largeMax.U, largeNew)
+  when(classifying) { st.large := st.large + (largeKept - largeCount); largeCount := largeKept }
+
   private val slack = {
     // BroadPhaseModel.boxSlack: 1 + max(1, 2^(errorExp + F - k)), saturated to the width.
     val e = bp.errorExp(p).S +& bp.filterFracBits.S -& k
     val big = e >= (qWidth - 1).S
     Mux(e < 0.S, 2.U, Mux(big, ((BigInt(1) << qWidth) - 1).U, 1.U +& (1.U << e.asUInt(log2Ceil(qWidth) - 1, 0))))
   }
-  for (((srt, gen), l) <- sorts.zip(gens).zipWithIndex) {
-    srt.io.usedLog2 := usedLog2
-    srt.io.clear := io.start && state === S.idle
-    srt.io.prefix := state === S.prefix && !sent
-    srt.io.in.valid := (classified || scattered) && isSmall
-    srt.io.in.bits.scatter := state === S.scatter
-    srt.io.in.bits.bucket := CellHash(ko.cell, tableLog2, usedLog2)
-    srt.io.in.bits.item := kIndex
-    assert(!srt.io.in.valid || srt.io.in.ready, "BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)")
-    srt.io.lookup.bucket := gen.io.lookup.bucket
-    gen.io.lookup.begin := srt.io.lookup.begin; gen.io.lookup.end := srt.io.lookup.end
-    gen.io.lookup.word := srt.io.lookup.word
-    srt.io.entry.addr := gen.io.entry.addr
-    gen.io.entry.item := srt.io.entry.item; gen.io.entry.mark := srt.io.entry.mark
-    srt.io.mark := gen.io.mark
+  sort.io.usedLog2 := usedLog2
+  sort.io.clear := io.start && state === S.idle
+  sort.io.prefix := state === S.prefix && !sent
+  for ((in, kd) <- sort.io.in.zip(keyed)) {
+    in.valid := kd.valid && (state === S.classify || state === S.scatter) && kd.isSmall
+    in.bits.scatter := state === S.scatter
+    in.bits.bucket := CellHash(kd.out.cell, tableLog2, usedLog2)
+    in.bits.item := kd.index
+    assert(!in.valid || in.ready, "BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)")
+  }
+  for ((gen, l) <- gens.zipWithIndex) {
+    val lk = sort.io.lookup(l)
+    lk.bucket := gen.io.lookup.bucket
+    gen.io.lookup.begin := lk.begin; gen.io.lookup.end := lk.end
+    gen.io.lookup.word := lk.word
+    sort.io.entry(l).addr := gen.io.entry.addr
+    gen.io.entry.item := sort.io.entry(l).item; gen.io.entry.mark := sort.io.entry(l).mark
+    sort.io.mark(l) := gen.io.mark
 
     gen.io.start := state === S.generate && !sent
     gen.io.usedLog2 := usedLog2
@@ -198,36 +216,39 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val largeOnly = gens.map(g => !g.io.busy || g.io.inLargePass).reduce(_ && _)
 
   // --- sequencing ----------------------------------------------------------------------------
+  private def advance(): Unit = for (q <- 0 until ports) when(reading(q)) { i(q) := i(q) + 1.U }
+  private def restart(): Unit = for (q <- 0 until ports) i(q) := from(q)
   when(state =/= S.idle) { st.cycTotal := st.cycTotal + 1.U }
   switch(state) {
     is(S.idle) {
       when(io.start) {
         val z = WireDefault(0.U.asTypeOf(st))
-        num := io.num; usedLog2 := bucketsLog2For(io.num); i := 0.U; largeCount := 0.U
+        num := io.num; usedLog2 := bucketsLog2For(io.num); largeCount := 0.U
+        for (q <- 0 until ports) i(q) := (if (q == 0) 0.U else io.num >> 1)
         when(io.num > maxSpheres.U) { z.tooMany := true.B; st := z }
           .otherwise { st := z; state := S.load }
       }
     }
     is(S.load) {
       st.cycLoad := st.cycLoad + 1.U
-      when(reading) { i := i + 1.U }
-      when(i === num && inflight === 0.U && !sort.io.busy) { state := S.classify; i := 0.U }
+      advance()
+      when(passDone && !sort.io.busy) { state := S.classify; restart() }
     }
     is(S.classify) {
       st.cycClassify := st.cycClassify + 1.U
-      when(reading) { i := i + 1.U }
-      when(i === num && inflight === 0.U) { state := S.prefix; sent := false.B }
+      advance()
+      when(passDone) { state := S.prefix; sent := false.B }
     }
     is(S.prefix) {
       st.cycPrefix := st.cycPrefix + 1.U
       sent := true.B
-      when(sent && !sort.io.busy) { state := S.scatter; i := 0.U }
+      when(sent && !sort.io.busy) { state := S.scatter; restart() }
     }
     is(S.scatter) {
       st.cycScatter := st.cycScatter + 1.U
-      when(reading) { i := i + 1.U }
+      advance()
       // The last scatter write lands the cycle after its request: one cycle of margin.
-      when(i === num && inflight === 0.U && !RegNext(sort.io.in.fire, false.B)) {
+      when(passDone && !RegNext(sort.io.in.map(_.fire).reduce(_ || _), false.B)) {
         state := S.generate; sent := false.B
       }
     }

@@ -29,6 +29,10 @@ package collide.world
   *                   whole large list;
   *                   each lane has its own copy of the sort's RAM (it marks its own buckets'
   *                   entries) and its own read port on the sphere table
+  * @param sortPorts  spheres a cycle in the sort's passes (1 or 2, at most `lanes`): with 2,
+  *                   the passes read the table through lanes 0 and 1's ports, each port
+  *                   taking half of it, counting and scattering through a port of its own
+  *                   (the entries' second block-RAM port; one more table of counters)
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -40,7 +44,8 @@ final case class BroadPhaseParams(
     filterFracBits: Int = 8,
     chunk: Int = 16,
     wordLog2: Int = 3,
-    lanes: Int = 1
+    lanes: Int = 1,
+    sortPorts: Int = 1
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -52,18 +57,23 @@ final case class BroadPhaseParams(
   require(wordLog2 >= 0 && wordLog2 <= 5, s"wordLog2 must be 0..5, got $wordLog2")
   require(lanes >= 1 && lanes <= 16, s"lanes must be 1..16 (a pair line holds 16 candidates a cycle), got $lanes")
 
+  require(sortPorts == 1 || sortPorts == 2, s"sortPorts must be 1 or 2 (a block RAM's two ports), got $sortPorts")
+  require(sortPorts <= lanes, s"sortPorts ($sortPorts) must be at most lanes ($lanes): port p reads the table through lane p's port")
+
   val buckets: Int = 1 << bucketsLog2
 
   /** Buckets the sort's table holds for a table of `maxSpheres`: the cap, and no more than
     * 2 maxSpheres can use. */
   def tableLog2(maxSpheres: Int): Int = math.min(bucketsLog2, chisel3.util.log2Ceil(2 * maxSpheres))
   /** RAM bits of the broad phase for `maxSpheres`: the sort's counters (one per bucket) and its
-    * entries (a sphere index and a mark each), once per lane. The sphere table it reads is the
-    * AFU's (which holds ceil(lanes / 2) more copies for it: two lanes share a copy's two ports). */
+    * entries (a sphere index and a mark each), once per lane, and a table of counters more
+    * per sort port past the first. The sphere table it reads is the AFU's (which holds
+    * ceil(lanes / 2) more copies for it: two lanes share a copy's two ports). */
   def ramBits(maxSpheres: Int): Long = {
     val countW = chisel3.util.log2Ceil(maxSpheres + 1)
     val itemW = chisel3.util.log2Ceil(maxSpheres)
-    lanes * ((1L << tableLog2(maxSpheres)) * countW + maxSpheres.toLong * (itemW + 1))
+    val counters = (1L << tableLog2(maxSpheres)) * countW
+    (lanes + sortPorts - 1) * counters + lanes * maxSpheres.toLong * (itemW + 1)
   }
   /** Copies of the sphere table the lanes read: two lanes a copy (a block RAM's two ports). */
   val sphereCopies: Int = (lanes + 1) / 2
@@ -89,4 +99,6 @@ object BroadPhaseParams {
   val noLarge: BroadPhaseParams = default.copy(largeMax = 0)
   /** Four candidate generators. */
   val fourLanes: BroadPhaseParams = default.copy(lanes = 4)
+  /** Four candidate generators, the sort's passes two spheres a cycle. */
+  val fourLanesTwoPorts: BroadPhaseParams = fourLanes.copy(sortPorts = 2)
 }

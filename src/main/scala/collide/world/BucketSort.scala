@@ -3,24 +3,37 @@ package collide.world
 import chisel3._
 import chisel3.util._
 
-/** The broad phase's counting sort of sphere indices by bucket, in on-chip RAM, one item a
-  * cycle (BroadPhaseModel.countingSort is its golden model). A world is sorted in four
-  * passes the caller sequences: `clear`, `count` every item, `prefix` (each count becomes its
-  * bucket's start), `scatter` every item again in the same order. The counters are kept in
-  * words of 2^wordLog2 buckets, so clear and prefix take a word a cycle (8 buckets by
-  * default), while count and scatter read-modify-write one counter of a word a cycle. Then bucket b holds entries [end(b-1), end(b)) (end(-1) = 0), which
-  * `lookup` and `entry` read with one cycle of latency.
+/** The broad phase's counting sort of sphere indices by bucket, in on-chip RAM
+  * (BroadPhaseModel.countingSort is its golden model), `ports` items a cycle, kept in
+  * `copies` identical copies the candidate generators read one each. A world is sorted in
+  * four passes the caller sequences: `clear`, `count` every item, `prefix` (each count
+  * becomes its bucket's start), `scatter` every item again. Port p counts and scatters the
+  * p-th contiguous part of the items, in the same order both times, so the entries come out
+  * in the order of the items, as one port would leave them. Then bucket b holds entries
+  * [end(b-1), end(b)) (end(-1) = 0) in every copy, which `lookup(c)` and `entry(c)` read with
+  * one cycle of latency.
   *
-  * Count and scatter are read-modify-writes of one counter a cycle; a write is forwarded to
-  * the read issued in the same cycle, so repeated buckets need no stall. Contract: scatter
-  * exactly the items counted (the caller checks counted === scattered); a bucket at or above
-  * the used range is refused and latched in badBucket, never written.
+  * Counters are kept in words of 2^wordLog2 buckets, so clear and prefix take a word a
+  * cycle (8 buckets by default). Port p owns a table of counters, its cursors: count and
+  * scatter read-modify-write one counter of it a cycle (a write is forwarded to the read
+  * issued in the same cycle, so repeated buckets need no stall). The prefix sum reads every
+  * port's count of a word and writes port p's cursor the bucket's start plus the counts of
+  * ports before p, so each port scatters into its own share of the bucket. The last port's
+  * table is copy 0's, whose cursors end at end(b); copies 1 and up are written end(b) by the
+  * prefix sum and never counted in. So `ports` = 2 costs one table more than 1.
   *
-  * Each entry carries a mark bit for the candidate generator (which entries of a bucket it
-  * has put in a chunk already): scatter writes it clear, so a new world needs no clearing
-  * pass, and `mark` sets it (rewriting the item it was given). Never mark while scattering.
+  * Entries: each copy's table of sphere indices takes both ports' scatter writes in a cycle
+  * (a true dual-port block RAM; with one port, its second port is idle then). Each entry
+  * carries a mark bit for the candidate generator (which entries of a bucket it has put in a
+  * chunk already): scatter writes it clear, so a new world needs no clearing pass, and
+  * `mark(c)` sets it in copy c (rewriting the item it was given). Never mark while
+  * scattering: generation reads one port and marks through the other.
+  *
+  * Contract: scatter exactly the items counted, through the same port (the caller checks
+  * counted === scattered); a bucket at or above the used range is refused and latched in
+  * badBucket, never written.
   */
-class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int) extends Bundle {
+class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int, copies: Int, ports: Int) extends Bundle {
   val itemW = log2Ceil(maxItems)
   val countW = log2Ceil(maxItems + 1)
   /** log2 of the buckets in use this world (<= bucketsLog2): what clear and prefix walk. */
@@ -28,53 +41,61 @@ class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int) extends Bu
   val clear = Input(Bool())  // pulse: start clearing
   val prefix = Input(Bool()) // pulse: start the prefix sum
   val busy = Output(Bool())  // clearing or summing; in is not ready meanwhile
-  val in = Flipped(Decoupled(new Bundle {
+  val in = Vec(ports, Flipped(Decoupled(new Bundle {
     val scatter = Bool() // false: count this item's bucket; true: place the item
     val bucket = UInt(bucketsLog2.W)
     val item = UInt(itemW.W)
-  }))
-  val lookup = new Bundle {
+  })))
+  val lookup = Vec(copies, new Bundle {
     val bucket = Input(UInt(bucketsLog2.W))
     val begin = Output(UInt(countW.W)) // the cycle after
     val end = Output(UInt(countW.W))
     /** The ends of every bucket in `bucket`'s word (for a walk that skips empty buckets a
       * word a cycle); with `bucket` the word's first, `begin` is the first one's begin. */
     val word = Output(Vec(perWord, UInt(countW.W)))
-  }
-  val entry = new Bundle {
+  })
+  val entry = Vec(copies, new Bundle {
     val addr = Input(UInt(itemW.W))
     val item = Output(UInt(itemW.W)) // the cycle after
     val mark = Output(Bool())
-  }
-  val mark = Flipped(Valid(new Bundle {
+  })
+  val mark = Vec(copies, Flipped(Valid(new Bundle {
     val addr = UInt(itemW.W)
     val item = UInt(itemW.W)
-  }))
+  })))
   val counted = Output(UInt(countW.W))
   val scattered = Output(UInt(countW.W))
   val badBucket = Output(Bool())
 }
 
-class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3) extends Module {
+class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int = 1, ports: Int = 1) extends Module {
   require(maxItems >= 2 && bucketsLog2 >= 1 && bucketsLog2 <= 24)
   require(wordLog2 >= 0 && wordLog2 <= 5, s"wordLog2 must be 0..5, got $wordLog2")
+  require(copies >= 1 && copies <= 16, s"copies must be 1..16, got $copies")
+  require(ports == 1 || ports == 2, s"ports must be 1 or 2 (a block RAM's two write ports), got $ports")
   private val wl = math.min(wordLog2, bucketsLog2)
-  override def desiredName = s"BucketSort_n${maxItems}_b${bucketsLog2}_w$wl"
+  override def desiredName = s"BucketSort_n${maxItems}_b${bucketsLog2}_w$wl" +
+    (if (copies > 1) s"_c$copies" else "") + (if (ports > 1) s"_p$ports" else "")
   private val perWord = 1 << wl
-  val io = IO(new BucketSortIO(maxItems, bucketsLog2, perWord))
+  val io = IO(new BucketSortIO(maxItems, bucketsLog2, perWord, copies, ports))
   private val wordsLog2 = bucketsLog2 - wl
   private val countW = io.countW
+  private val itemW = io.itemW
   private def wordOf(b: UInt): UInt = if (wordsLog2 == 0) 0.U else (b >> wl)(wordsLog2 - 1, 0)
   private def laneOf(b: UInt): UInt = if (wl == 0) 0.U else b(wl - 1, 0)
+  private def lanes(w: UInt): Vec[UInt] = VecInit.tabulate(perWord)(l => w((l + 1) * countW - 1, l * countW))
+  private def flat(v: Seq[UInt]): UInt = Cat(v.reverse)
 
   // Read-first, as block RAM returns old data on a same-cycle write: the forwarding below
   // is then what makes back-to-back repeats right, in simulation as on the FPGA.
   // A word is a flat UInt (counter l in bits l*countW up): the generator's Verilog has no
   // packed arrays, and a Mux of whole Vecs would need them.
-  private val counts = SyncReadMem(1 << wordsLog2, UInt((perWord * countW).W), SyncReadMem.ReadFirst)
-  private def lanes(w: UInt): Vec[UInt] = VecInit.tabulate(perWord)(l => w((l + 1) * countW - 1, l * countW))
-  private def flat(v: Seq[UInt]): UInt = Cat(v.reverse)
-  private val entries = SyncReadMem(maxItems, UInt((io.itemW + 1).W)) // mark ## item
+  private def counterTable() = SyncReadMem(1 << wordsLog2, UInt((perWord * countW).W), SyncReadMem.ReadFirst)
+  /** The lookup tables, one per copy; tables(0) is also the last port's cursors. */
+  private val tables = Seq.fill(copies)(counterTable())
+  /** Each port's cursors: a table of its own, but for the last port, copy 0's. */
+  private val cursors = Seq.fill(ports - 1)(counterTable()) :+ tables.head
+  private val entries = Seq.fill(copies)(SyncReadMem(maxItems, UInt((itemW + 1).W))) // mark ## item
 
   private object S extends ChiselEnum { val idle, clearing, summing = Value }
   private val state = RegInit(S.idle)
@@ -90,77 +111,99 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3) extends Mod
   private val bad = RegInit(false.B)
   io.busy := state =/= S.idle
   io.counted := counted; io.scattered := scattered; io.badBucket := bad
-
-  // --- count / scatter: a two-stage read-modify-write of one counter ----------------------
-  private val inRange = io.in.bits.bucket < used
-  io.in.ready := state === S.idle && !io.clear && !io.prefix
-  private val fire = io.in.fire && inRange
-  when(io.in.fire && !inRange) { bad := true.B }
-  private val rd = counts.read(wordOf(io.in.bits.bucket), fire)
-  private val s1 = RegNext(fire, false.B)
-  private val s1b = RegEnable(io.in.bits.bucket, fire)
-  private val s1scatter = RegEnable(io.in.bits.scatter, fire)
-  private val s1item = RegEnable(io.in.bits.item, fire)
-  // The word written the cycle before, for the read that was issued alongside it.
-  private val fwdValid = RegInit(false.B)
-  private val fwdW = Reg(UInt(math.max(1, wordsLog2).W))
-  private val fwdV = Reg(UInt((perWord * countW).W))
-  private val oldWord = lanes(Mux(fwdValid && fwdW === wordOf(s1b), fwdV, rd))
-  private val old = oldWord(laneOf(s1b))
-  private val newWord = flat((0 until perWord).map(l => Mux(laneOf(s1b) === l.U, old + 1.U, oldWord(l))))
-  fwdValid := s1
-  when(s1) {
-    fwdW := wordOf(s1b); fwdV := newWord
-    when(s1scatter) { scattered := scattered + 1.U }
-      .otherwise { counted := counted + 1.U }
-  }
-  private val scatterWrite = s1 && s1scatter
-  when(scatterWrite || io.mark.valid) {
-    entries.write(Mux(scatterWrite, old(io.itemW - 1, 0), io.mark.bits.addr),
-      Mux(scatterWrite, 0.U(1.W) ## s1item, 1.U(1.W) ## io.mark.bits.item))
-  }
+  private val walkW = if (wordsLog2 == 0) 0.U else walk(wordsLog2 - 1, 0)
 
   // --- clear and prefix: one word a cycle --------------------------------------------------
   private val sum = Reg(UInt(countW.W))
-  private val walkW = if (wordsLog2 == 0) 0.U else walk(wordsLog2 - 1, 0)
   private val sumRead = state === S.summing && walk < usedWords
-  private val sumRd = lanes(counts.read(walkW, sumRead))
+  private val sumRd = cursors.map(t => lanes(t.read(walkW, sumRead)))
   private val sumS1 = RegNext(sumRead, false.B)
   private val sumW = RegNext(walkW)
   private val sumLast = RegNext(walk + 1.U === usedWords)
-  // Exclusive prefix within the word, on top of the running sum.
-  private val starts = VecInit(sumRd.scanLeft(sum)(_ + _).take(perWord))
+  // Per bucket of the word: every port's count, their total, and the exclusive prefix of the
+  // totals on top of the running sum (the bucket's start).
+  private val totals = VecInit.tabulate(perWord)(j => sumRd.map(_(j)).reduce(_ + _))
+  private val starts = VecInit(totals.scanLeft(sum)(_ + _).take(perWord))
+  /** Port p's cursor for bucket j: its start plus the counts of the ports before p. */
+  private def portStart(p: Int, j: Int): UInt = sumRd.take(p).map(_(j)).foldLeft(starts(j))(_ + _)
+  private val countFires = Wire(Vec(ports, Bool()))
+  private val scatterFires = Wire(Vec(ports, Bool()))
+  counted := counted + PopCount(countFires) // (a clear, below, wins)
+  scattered := scattered + PopCount(scatterFires)
   when(io.clear && state === S.idle) {
     state := S.clearing; walk := 0.U; counted := 0.U; scattered := 0.U; bad := false.B
   }.elsewhen(io.prefix && state === S.idle) {
     state := S.summing; walk := 0.U; sum := 0.U
   }
-  private val write = WireDefault(s1)
-  private val writeW = WireDefault(wordOf(s1b))
-  private val writeV = WireDefault(newWord)
   when(state === S.clearing) {
-    write := true.B; writeW := walkW; writeV := 0.U
     walk := walk + 1.U
     when(walk + 1.U === usedWords) { state := S.idle }
   }
   when(state === S.summing && walk < usedWords) { walk := walk + 1.U }
   when(sumS1) {
-    write := true.B; writeW := sumW; writeV := flat(starts)
-    sum := sumRd.reduce(_ + _) + sum
+    sum := totals.reduce(_ + _) + sum
     when(sumLast) { state := S.idle }
   }
-  when(write) { counts.write(writeW, writeV) }
+  // Copies 1 and up hold the ends from the prefix sum on; nothing else writes them.
+  private val ends = flat((0 until perWord).map(j => starts(j) + totals(j)))
+  for (t <- tables.tail) when(sumS1) { t.write(sumW, ends) }
 
-  // --- reads for the candidate generators -------------------------------------------------
-  private val lb = io.lookup.bucket
-  private val prev = lb - 1.U
-  private val endRd = lanes(counts.read(wordOf(lb)))
-  private val beginRd = lanes(counts.read(wordOf(prev)))
-  private val lbZero = RegNext(lb === 0.U)
-  io.lookup.end := endRd(RegNext(laneOf(lb)))
-  io.lookup.word := endRd
-  io.lookup.begin := Mux(lbZero, 0.U, beginRd(RegNext(laneOf(prev))))
-  private val entryRd = entries.read(io.entry.addr)
-  io.entry.item := entryRd(io.itemW - 1, 0)
-  io.entry.mark := entryRd(io.itemW)
+  // --- count / scatter: a two-stage read-modify-write of one counter per port --------------
+  io.in.foreach(_.ready := state === S.idle && !io.clear && !io.prefix)
+  private val place = Wire(Vec(ports, Valid(new Bundle { val pos = UInt(itemW.W); val item = UInt(itemW.W) })))
+  for ((t, p) <- cursors.zipWithIndex) {
+    val in = io.in(p)
+    val inRange = in.bits.bucket < used
+    val fire = in.fire && inRange
+    when(in.fire && !inRange) { bad := true.B }
+    val rd = t.read(wordOf(in.bits.bucket), fire)
+    val s1 = RegNext(fire, false.B)
+    val s1b = RegEnable(in.bits.bucket, fire)
+    val s1scatter = RegEnable(in.bits.scatter, fire)
+    val s1item = RegEnable(in.bits.item, fire)
+    // The word written the cycle before, for the read that was issued alongside it.
+    val fwdValid = RegNext(s1, false.B)
+    val fwdW = RegEnable(wordOf(s1b), s1)
+    val oldWord = Wire(Vec(perWord, UInt(countW.W)))
+    val old = oldWord(laneOf(s1b))
+    val newWord = flat((0 until perWord).map(l => Mux(laneOf(s1b) === l.U, old + 1.U, oldWord(l))))
+    val fwdV = RegEnable(newWord, s1)
+    oldWord := lanes(Mux(fwdValid && fwdW === wordOf(s1b), fwdV, rd))
+    countFires(p) := s1 && !s1scatter
+    scatterFires(p) := s1 && s1scatter
+    place(p).valid := s1 && s1scatter
+    place(p).bits.pos := old(itemW - 1, 0)
+    place(p).bits.item := s1item
+    // One write port: the read-modify-write, else clear, else the prefix sum's cursor.
+    val write = WireDefault(s1)
+    val writeW = WireDefault(wordOf(s1b))
+    val writeV = WireDefault(newWord)
+    when(state === S.clearing) { write := true.B; writeW := walkW; writeV := 0.U }
+    when(sumS1) { write := true.B; writeW := sumW; writeV := flat((0 until perWord).map(j => portStart(p, j))) }
+    when(write) { t.write(writeW, writeV) }
+  }
+
+  // --- each copy: lookups, entries and marks -----------------------------------------------
+  for (c <- 0 until copies) {
+    val lk = io.lookup(c)
+    val prev = lk.bucket - 1.U
+    val endRd = lanes(tables(c).read(wordOf(lk.bucket)))
+    val beginRd = lanes(tables(c).read(wordOf(prev)))
+    val lbZero = RegNext(lk.bucket === 0.U)
+    lk.end := endRd(RegNext(laneOf(lk.bucket)))
+    lk.word := endRd
+    lk.begin := Mux(lbZero, 0.U, beginRd(RegNext(laneOf(prev))))
+    val e = entries(c)
+    // Port A: the first port's placement; port B: the second's, or a mark (never both).
+    when(place(0).valid) { e.write(place(0).bits.pos, 0.U(1.W) ## place(0).bits.item) }
+    val m = io.mark(c)
+    val bPlace = if (ports > 1) place(1).valid else false.B
+    when(bPlace || m.valid) {
+      e.write(Mux(bPlace, place.last.bits.pos, m.bits.addr),
+        Mux(bPlace, 0.U(1.W) ## place.last.bits.item, 1.U(1.W) ## m.bits.item))
+    }
+    val entryRd = e.read(io.entry(c).addr)
+    io.entry(c).item := entryRd(itemW - 1, 0)
+    io.entry(c).mark := entryRd(itemW)
+  }
 }

@@ -27,15 +27,19 @@ class GenerateSpec extends AnyFlatSpec {
     assert(cfg("--preset", "world", "--world", "false").toOption.get.world.isEmpty)
     // 2^13 buckets of 13-bit counters and 4096 entries of a 12-bit index and a mark
     assert(collide.world.BroadPhaseParams.default.ramBits(4096) == 8192L * 13 + 4096L * 13)
-    // The world preset's 16 lanes: a sort RAM each, a sphere copy per two lanes.
-    assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 16 * 159744.0)
+    // The world preset's 16 lanes: a sort RAM each, a sphere copy per two lanes; its second
+    // sort port a table of 8192 counters more.
+    assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 16 * 159744.0 + 8192 * 13)
     assert(AfuConfig.world.puc.ramCopies == 16 + 8, "sixteen SCPU copies and the broad phase's eight")
     // Lanes: a sort RAM each, a sphere copy per two; a name of their own.
     val l5 = cfg("--preset", "world", "--world-lanes", "5").toOption.get
-    assert(l5.world.get.lanes == 5 && l5.id.endsWith("_world5") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
-    assert(l5.world.get.ramBits(4096) == 5 * 159744L)
+    assert(l5.world.get.lanes == 5 && l5.id.endsWith("_world5p2") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
+    assert(l5.world.get.ramBits(4096) == 5 * 159744L + 8192 * 13)
+    val p1 = cfg("--preset", "world", "--world-lanes", "5", "--world-sort-ports", "1").toOption.get
+    assert(p1.world.get.sortPorts == 1 && p1.id.endsWith("_world5") && p1.world.get.ramBits(4096) == 5 * 159744L, p1.id)
     assert(cfg("--preset", "world", "--world-lanes", "16").toOption.get.isPreset)
-    assert(cfg("--preset", "world", "--world-lanes", "1").toOption.get.id.endsWith("_world"), "one lane: no lane count in the name")
+    assert(cfg("--preset", "world", "--world-lanes", "1").toOption.get.id.endsWith("_world"),
+      "one lane: no lane count in the name, and the sort's ports follow the lanes down to one")
   }
 
   it should "refuse a configuration that cannot be built, naming the flag and the problem" in {
@@ -62,6 +66,9 @@ class GenerateSpec extends AnyFlatSpec {
     err("--world", "true", "--format", "fp24")("--world", "converts")
     err("--world-lanes", "4")("--world-lanes", "not built")
     err("--preset", "world", "--world-lanes", "17")("--world-lanes", "1..16")
+    err("--world-sort-ports", "2")("--world-sort-ports", "not built")
+    err("--preset", "world", "--world-sort-ports", "3")("--world-sort-ports", "1 or 2")
+    err("--world", "true", "--world-sort-ports", "2")("--world-sort-ports", "at most lanes")
   }
 
   it should "build the SCPUs as the C++ model for co-simulation only where the model reproduces them, saying why not elsewhere" in {

@@ -13,11 +13,12 @@ import collide.world.model._
 /** Cycles of the broad phase's RTL on Verilator, pass by pass, for uniform and clustered
   * clouds of growing size (and uniform ones with four huge spheres, for the large pass),
   * beside the golden model's work counts and its cycle estimate, for each number of
-  * candidate-generator lanes asked for (default one). bench/world/fit_cycles.py fits the
-  * linear model to the one-lane rows; bench/world/lanes.py reports the lanes.
+  * candidate-generator lanes and sort ports asked for (default one of each; a port count above
+  * the lanes is skipped). bench/world/fit_cycles.py fits the linear model to the one-lane
+  * rows; bench/world/lanes.py reports the lanes and ports.
   *
   *   sbt "Test/runMain collide.world.BroadPhaseCycleReport [--sizes 500,1000,...] [--max 16384]
-  *        [--spheres FILE.csv ...] [--lanes 1,4,16] [--out FILE.csv]"
+  *        [--spheres FILE.csv ...] [--lanes 1,4,16] [--sort-ports 1,2] [--out FILE.csv]"
   *
   * --spheres adds a world from a `collide spheres` input file (header x,y,z,r; decimal or hex
   * floats, binary32 values), e.g. bench/world/world.py --dump-clouds DIR: the very spheres
@@ -45,16 +46,19 @@ object BroadPhaseCycleReport {
     var sizes = Seq(500, 1000, 2000, 4000, 8000, 16000); var maxSpheres = 16384; var out: Option[String] = None
     var files = Seq.empty[String]
     var lanes = Seq(1)
+    var ports = Seq(1)
     args.sliding(2, 2).foreach {
       case Array("--sizes", v) => sizes = v.split(',').map(_.trim.toInt).toSeq
       case Array("--max", v)   => maxSpheres = v.toInt
       case Array("--out", v)   => out = Some(v)
       case Array("--spheres", v) => files :+= v
       case Array("--lanes", v) => lanes = v.split(',').map(_.trim.toInt).toSeq
-      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --out)")
+      case Array("--sort-ports", v) => ports = v.split(',').map(_.trim.toInt).toSeq
+      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --out)")
     }
     require(sizes.forall(n => n >= 1 && n <= maxSpheres), s"--sizes must be 1..--max ($maxSpheres)")
     require(lanes.nonEmpty && lanes.forall(l => l >= 1 && l <= 16), s"--lanes must be 1..16, got ${lanes.mkString(",")}")
+    require(ports.nonEmpty && ports.forall(q => q == 1 || q == 2), s"--sort-ports must be 1 or 2, got ${ports.mkString(",")}")
     val cfg = ScpuConfig.fp32
     val rng = new scala.util.Random(1)
     // "huge": the uniform cloud plus four spheres of radius 20 to 1280, the large pass's work.
@@ -62,10 +66,10 @@ object BroadPhaseCycleReport {
       s"huge" -> huge(rng, n - 4, 4))) ++ files.map(readSpheres)
     require(worlds.forall(_._2.length <= maxSpheres), s"a world has more than --max ($maxSpheres) spheres")
     val header = "world,spheres,buckets,cells,chunks,scanned,probes,candidates,large," +
-      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes"
+      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports"
     val rows = scala.collection.mutable.ArrayBuffer(header)
-    for (l <- lanes) {
-      val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l))
+    for (l <- lanes; q <- ports if q <= l) {
+      val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l, sortPorts = q))
       RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
         dut.clock.setTimeout(0)
         for ((name, ws) <- worlds) {
@@ -78,10 +82,10 @@ object BroadPhaseCycleReport {
           require(pairs.sorted == want.candidates.sorted, s"$name ${ws.length}: the RTL's pairs differ from the model's")
           val s = dut.io.status
           def v(d: UInt) = d.peek().litValue
-          val c = model.cycles(want, lanes = l, scpus = 16)
+          val c = model.cycles(want, lanes = l, scpus = 16, sortRate = q)
           val row = Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
             v(s.large), v(s.cycLoad), v(s.cycClassify), v(s.cycPrefix), v(s.cycScatter), v(s.cycGrid), v(s.cycLarge), v(s.cycTotal),
-            c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l).mkString(",")
+            c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l, q).mkString(",")
           println(row)
           rows += row
         }

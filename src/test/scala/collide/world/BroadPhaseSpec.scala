@@ -111,6 +111,10 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     everyHardCase("BroadPhaseSpec-lanes", BroadPhaseParams.fourLanes, "four lanes: ")
   }
 
+  it should "find the same candidates with the sort's passes two spheres a cycle, each port half the table, in every hard case and random cloud" in {
+    everyHardCase("BroadPhaseSpec-ports", BroadPhaseParams.fourLanesTwoPorts, "two sort ports: ")
+  }
+
   it should "stay exact with three lanes over a four-bucket table, and with the table cut into four slices for the large pass" in {
     val rng = Seeds.rng("BroadPhaseSpec-lanes-odd")
     val tiny = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.tinyTable.copy(lanes = 3))
@@ -118,11 +122,13 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
       dut.clock.setTimeout(0)
       for ((label, w) <- worlds(rng).filter(_._2.length <= 100)) check(dut, tiny, label, bits(FloatFormat.fp32, w), rng, 0.5)
     }
-    // Ten huge spheres in chunks of two: each lane streams its quarter of the table past all five chunks.
-    val larges = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.default.copy(largeMax = 12, chunk = 2, lanes = 4))
+    // Ten huge spheres in chunks of two: each lane streams its quarter of the table past all five
+    // chunks; two sort ports, so two large spheres often join the list in one cycle.
+    val larges = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.default.copy(largeMax = 12, chunk = 2, lanes = 4, sortPorts = 2))
     test(new BroadPhase(ScpuConfig.fp32.params, larges.bp, maxSpheres)).withAnnotations(annos) { dut =>
       dut.clock.setTimeout(0)
-      val r = check(dut, larges, "ten huge", bits(FloatFormat.fp32, huge(rng, 60, 10)), rng, 0.8)
+      // Shuffled, so that both halves of the table hold huge spheres.
+      val r = check(dut, larges, "ten huge", bits(FloatFormat.fp32, rng.shuffle(huge(rng, 60, 10))), rng, 0.8)
       assert(r.status("large") == 10, s"ten huge: ${r.status("large")} large spheres")
     }
   }

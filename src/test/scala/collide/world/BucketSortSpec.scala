@@ -21,16 +21,25 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
     sig.poke(true.B); dut.clock.step(); sig.poke(false.B); dut.clock.step(); waitIdle(dut)
   }
 
-  /** Streams the items, with idle cycles between some of them. */
+  /** Streams the items, port p taking the p-th part of them (halves with two ports, as the
+    * broad phase splits the table), each port with idle cycles of its own between items. */
   private def stream(dut: BucketSort, rng: scala.util.Random, items: Seq[(Int, Int)], scatter: Boolean): Unit = {
-    for ((item, b) <- items) {
-      while (rng.nextInt(4) == 0) { dut.io.in.valid.poke(false.B); dut.clock.step() }
-      dut.io.in.valid.poke(true.B)
-      dut.io.in.bits.scatter.poke(scatter.B); dut.io.in.bits.bucket.poke(b.U); dut.io.in.bits.item.poke(item.U)
-      assert(dut.io.in.ready.peek().litToBoolean, "not ready while idle")
+    val ports = dut.io.in.length
+    val half = items.length / 2
+    val parts = if (ports == 1) Array(items) else Array(items.take(half), items.drop(half))
+    while (parts.exists(_.nonEmpty)) {
+      for ((in, p) <- dut.io.in.zipWithIndex) {
+        val go = parts(p).nonEmpty && rng.nextInt(4) != 0
+        in.valid.poke(go.B)
+        if (go) {
+          val (item, b) = parts(p).head; parts(p) = parts(p).tail
+          in.bits.scatter.poke(scatter.B); in.bits.bucket.poke(b.U); in.bits.item.poke(item.U)
+          assert(in.ready.peek().litToBoolean, "not ready while idle")
+        }
+      }
       dut.clock.step()
     }
-    dut.io.in.valid.poke(false.B); dut.clock.step()
+    dut.io.in.foreach(_.valid.poke(false.B)); dut.clock.step()
   }
 
   private def sortWorld(dut: BucketSort, rng: scala.util.Random, label: String, items: Seq[(Int, Int)], usedLog2: Int): Unit = {
@@ -42,37 +51,46 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
     assert(dut.io.counted.peek().litValue == items.length && dut.io.scattered.peek().litValue == items.length, label)
     assert(!dut.io.badBucket.peek().litToBoolean, label)
     val (start, entries) = BroadPhaseModel.countingSort(items, 1 << usedLog2)
+    val copies = dut.io.lookup.indices
     for (b <- 0 until (1 << usedLog2)) {
-      dut.io.lookup.bucket.poke(b.U); dut.clock.step()
-      assert(dut.io.lookup.begin.peek().litValue == start(b) && dut.io.lookup.end.peek().litValue == start(b + 1),
-        s"$label: bucket $b is [${dut.io.lookup.begin.peek().litValue}, ${dut.io.lookup.end.peek().litValue}), want [${start(b)}, ${start(b + 1)})")
+      dut.io.lookup.foreach(_.bucket.poke(b.U)); dut.clock.step()
+      for (c <- copies; lk = dut.io.lookup(c))
+        assert(lk.begin.peek().litValue == start(b) && lk.end.peek().litValue == start(b + 1),
+          s"$label: copy $c's bucket $b is [${lk.begin.peek().litValue}, ${lk.end.peek().litValue}), want [${start(b)}, ${start(b + 1)})")
     }
     for (a <- entries.indices) {
-      dut.io.entry.addr.poke(a.U); dut.clock.step()
-      assert(dut.io.entry.item.peek().litValue == entries(a), s"$label: entry $a")
-      // The previous world marked some of these positions: the scatter cleared them.
-      assert(!dut.io.entry.mark.peek().litToBoolean, s"$label: entry $a is marked after the scatter")
+      dut.io.entry.foreach(_.addr.poke(a.U)); dut.clock.step()
+      for (c <- copies) {
+        assert(dut.io.entry(c).item.peek().litValue == entries(a), s"$label: copy $c's entry $a")
+        // The previous world marked some of these positions: the scatter cleared them.
+        assert(!dut.io.entry(c).mark.peek().litToBoolean, s"$label: copy $c's entry $a is marked after the scatter")
+      }
     }
-    // Mark about half the entries (as the candidate generator does), then read them back.
-    val marked = entries.indices.filter(_ => rng.nextBoolean()).toSet
-    for (a <- marked) {
-      dut.io.mark.valid.poke(true.B); dut.io.mark.bits.addr.poke(a.U); dut.io.mark.bits.item.poke(entries(a).U)
+    // Mark about half the entries of each copy, each its own (as the candidate generators
+    // do), then read them back.
+    val marked = copies.map(_ => entries.indices.filter(_ => rng.nextBoolean()).toSet)
+    for (a <- entries.indices) {
+      for (c <- copies; m = dut.io.mark(c)) {
+        m.valid.poke(marked(c)(a).B); m.bits.addr.poke(a.U); m.bits.item.poke(entries(a).U)
+      }
       dut.clock.step()
     }
-    dut.io.mark.valid.poke(false.B)
+    dut.io.mark.foreach(_.valid.poke(false.B))
     for (a <- entries.indices) {
-      dut.io.entry.addr.poke(a.U); dut.clock.step()
-      assert(dut.io.entry.item.peek().litValue == entries(a) && dut.io.entry.mark.peek().litToBoolean == marked(a),
-        s"$label: entry $a after marking")
+      dut.io.entry.foreach(_.addr.poke(a.U)); dut.clock.step()
+      for (c <- copies)
+        assert(dut.io.entry(c).item.peek().litValue == entries(a) && dut.io.entry(c).mark.peek().litToBoolean == marked(c)(a),
+          s"$label: copy $c's entry $a after marking")
     }
   }
 
-  // Counters one to a word (wordLog2 0) and eight to a word (the default: clear and prefix
-  // a word a cycle).
-  for (wordLog2 <- Seq(3, 0))
-  it should s"sort like the golden model with ${1 << wordLog2} counters a word: repeated buckets back to back, gaps, empty and full worlds, one after another, each scatter clearing the marks of the last" in {
-    val rng = Seeds.rng(s"BucketSortSpec-w$wordLog2")
-    test(new BucketSort(maxItems, bucketsLog2, wordLog2)) { dut =>
+  // Counters one to a word (wordLog2 0) and eight to a word (the default: clear and prefix a
+  // word a cycle); one port and one copy, and two ports (each scattering into its own share
+  // of every bucket) with several copies.
+  for ((wordLog2, copies, ports) <- Seq((3, 1, 1), (0, 1, 1), (3, 3, 2), (0, 2, 2)))
+  it should s"sort like the golden model with ${1 << wordLog2} counters a word, $copies copies and $ports ports: repeated buckets back to back, gaps, empty and full worlds, one after another, each scatter clearing the marks of the last" in {
+    val rng = Seeds.rng(s"BucketSortSpec-w$wordLog2-c$copies-p$ports")
+    test(new BucketSort(maxItems, bucketsLog2, wordLog2, copies, ports)) { dut =>
       dut.clock.setTimeout(0)
       val worlds = Seq(
         ("empty", Seq.empty[Int], 3),
