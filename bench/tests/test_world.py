@@ -66,9 +66,9 @@ class AfuWorldReport(unittest.TestCase):
             out = Path(d)
             (out / "refused.txt").write_text("diamond, 64,906 spheres (hMax 46), qpi: this world cannot be cut into runs\n")
             rows = [self.row("uniform", 670, "qpi"), self.row("diamond", 670, "qpi")]
-            afu_world.report(rows, out, "## How and where\n", lanes=16)
+            afu_world.report(rows, out, "## How and where\n", lanes=16, ports=2)
             text = (out / "README.md").read_text()
-            self.assertIn("16 candidate lanes", text)
+            self.assertIn("16 candidate lanes and its sort's passes 2 spheres a cycle", text)
             self.assertIn("within 2x only for uniform 670, diamond 670", text)  # both rows are 2.0x
             self.assertIn("## diamond (the paper's diamond", text)
             self.assertIn("- diamond, 64,906 spheres (hMax 46), qpi: this world cannot be cut into runs", text)

@@ -72,7 +72,7 @@ def main(argv=None):
             ap.error(f"--clouds: unknown cloud {kind!r} (known: {', '.join(CLOUDS)})")
     earlier = out / "world-afu.csv"
     if a.report_only:
-        report(read_rows(earlier), out, (out / "MACHINE.md").read_text(), lanes_of(a.afu))
+        report(read_rows(earlier), out, (out / "MACHINE.md").read_text(), *lanes_of(a.afu))
         return 0
     start = world.machine()
     # Kept rows are written back as read (their text), and parsed for the report.
@@ -135,7 +135,7 @@ def main(argv=None):
         old = kept_sections(earlier_machine, sorted({r["cloud"] for r in kept}), clouds)
         machine_md = old + "\n\n" + machine_md.replace("## How and where", "## How and where: " + ", ".join(clouds), 1)
         (out / "MACHINE.md").write_text(machine_md)
-    report(rows, out, machine_md, lanes_of(a.afu))
+    report(rows, out, machine_md, *lanes_of(a.afu))
     return 0
 
 
@@ -167,15 +167,17 @@ def read_rows(path):
 
 
 def lanes_of(afu):
-    """The broad phase's candidate lanes, from the AFU's manifest (1 before lanes were built)."""
+    """The broad phase's candidate lanes and sort ports, from the AFU's manifest (1 before each
+    was built)."""
     bp = json.loads((Path(afu) / "manifest.json").read_text())["afu"].get("broadPhase") or {}
-    return int(bp.get("lanes", 1))
+    return int(bp.get("lanes", 1)), int(bp.get("sortPorts", 1))
 
 
-def report(rows, out, machine_md, lanes):
+def report(rows, out, machine_md, lanes, ports=1):
     plural = "s" if lanes > 1 else ""
+    spheres_a_cycle = f"{ports} sphere{'s' if ports > 1 else ''} a cycle"
     lines = ["# World mode on the AFU against ODE and the CPU grid", "",
-             f"`collide spheres --afu generated/world` (the on-chip broad phase, {lanes} candidate lane{plural}, and 16 fp32",
+             f"`collide spheres --afu generated/world` (the on-chip broad phase, {lanes} candidate lane{plural} and its sort's passes {spheres_a_cycle}, and 16 fp32",
              "SCPUs; time modelled by the link model; above 4,096 spheres the host cuts the world into slabs",
              "along x, or boxes along x and y, one AFU run each, all runs' time summed) beside `--backend ode",
              "--space sap` (ODE 0.16's sweep-and-prune space + dCollide, binary64) and `--backend simd` (our",
@@ -220,9 +222,10 @@ def report(rows, out, machine_md, lanes):
                             if any(qpi(r) and r["afu_over_bound"] <= 2.0 for r in rows) else ", never within 2x") +
               ": the broad phase takes "
               f"{min(per):.1f}-{max(per):.1f} cycles a sphere of the world (one run: {min(one):.1f}-{max(one):.1f}; slabs re-read their ghosts;",
-              f"  its {lanes} candidate lane{plural} and its sort's passes of one sphere a cycle),",
-              "  while the link brings four spheres a line and a line a cycle. Closing that gap needs passes that",
-              "  take more than one sphere a cycle (docs/afu.md, \"World mode\", \"Lanes\").",
+              f"  its {lanes} candidate lane{plural} and its sort's passes of {spheres_a_cycle}),",
+              "  while the link brings four spheres a line and a line a cycle. Closing that gap needs fewer passes over",
+              "  the table, or passes of more spheres a cycle than block RAM's two ports give (docs/afu.md, \"World",
+              "  mode\", \"Lanes and sort ports\").",
               ] + diamond_note + [
               "- Above 4,096 spheres (the world preset's table; a record names i and j in 12 bits each) every",
               "  slab along x is a run of its own, with the per-call costs each time and its ghosts read twice;",

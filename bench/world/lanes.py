@@ -21,7 +21,8 @@ PASSES = ("load", "classify", "prefix", "scatter", "grid", "large_pass")
 
 
 def load(path):
-    rows = list(csv.DictReader(open(path, newline="")))
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
     if not rows or "lanes" not in rows[0]:
         raise SystemExit(f"{path}: no 'lanes' column; write it with BroadPhaseCycleReport --lanes")
     for r in rows:
@@ -29,22 +30,28 @@ def load(path):
             if k != "world":
                 r[k] = int(v)
         r.setdefault("sort_ports", 1)
+        r.setdefault("word_log2", 3)
     return rows
 
 
 def config(r):
-    """(sort ports, lanes): one port first, so the one-lane, one-port run is the baseline."""
-    return (r["sort_ports"], r["lanes"])
+    """(sort ports, counters a word, lanes): one port and eight counters a word first, so the
+    one-lane, one-port run is the baseline."""
+    return (r["sort_ports"], r["word_log2"], r["lanes"])
+
+
+def extras(c):
+    ports, word_log2, _ = c
+    return (f", {ports} ports" if ports > 1 else "") + (f", {1 << word_log2} a word" if word_log2 != 3 else "")
 
 
 def label(c):
-    ports, lanes = c
-    return f"{lanes} lane{'s' if lanes > 1 else ''}" + (f", {ports} ports" if ports > 1 else "")
+    lanes = c[2]
+    return f"{lanes} lane{'s' if lanes > 1 else ''}" + extras(c)
 
 
 def best_label(c):
-    ports, lanes = c
-    return f"{lanes}" + (f", {ports} ports" if ports > 1 else "")
+    return f"{c[2]}" + extras(c)
 
 
 def worlds(rows):
@@ -100,13 +107,14 @@ def plot(rows, out):
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     for i, (w, n) in enumerate(worlds(rows)):
         mine = [r for r in rows if (r["world"], r["spheres"]) == (w, n)]
-        one = next((r for r in mine if config(r) == (1, 1)), None)
+        one = next((r for r in mine if config(r) == (1, 3, 1)), None)
         if one is None or n < 5000:
             continue
-        for ports in sorted({r["sort_ports"] for r in mine}):
-            rs = sorted((r for r in mine if r["sort_ports"] == ports), key=lambda r: r["lanes"])
-            ax.plot([r["lanes"] for r in rs], [one["total"] / r["total"] for r in rs], "o-" if ports == 1 else "s--",
-                    color=f"C{i % 10}", label=f"{w} {n:,}" + (f", {ports} sort ports" if ports > 1 else ""))
+        for ports, word_log2 in sorted({config(r)[:2] for r in mine}):
+            rs = sorted((r for r in mine if config(r)[:2] == (ports, word_log2)), key=lambda r: r["lanes"])
+            ax.plot([r["lanes"] for r in rs], [one["total"] / r["total"] for r in rs],
+                    "o-" if ports == 1 else ("s--" if word_log2 == 3 else "D"), color=f"C{i % 10}",
+                    label=f"{w} {n:,}" + extras((ports, word_log2, 0)))
     ls = sorted({r["lanes"] for r in rows})
     ax.plot(ls, ls, ":", color="grey", label="linear")
     ax.set_xscale("log", base=2)

@@ -35,9 +35,11 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   * (3) the prefix sum; (4) the scatter, reading the spheres a third time; (5) the
   * CandidateGenerator, whose key records SphereKeys recomputes from the sphere table (no
   * key table: the table the AFU holds anyway is the only per-sphere RAM besides the sort's).
-  * `bp.sortPorts` spheres a cycle in each of passes 1, 2 and 4: with two, the first half of
-  * the table goes through port 0 of `sphere` and the second through port 1, each with a
-  * SphereKeys and a port of the sort of its own. With `bp.lanes` candidate generators, lane
+  * With lanes, pass 1 reads the table through every lane's port and SphereKeys, lane l its
+  * slice into a CellExponent of its own, and a merge (two kept needs a cycle) gives the one
+  * that chooses k what they kept. `bp.sortPorts` spheres a cycle in passes 2 and 4: with two,
+  * the first half of the table goes through port 0 of `sphere` and the second through port 1,
+  * each with lane 0's or lane 1's SphereKeys and a port of the sort of its own. With `bp.lanes` candidate generators, lane
   * l reads the table through port l of `sphere` and emits its pairs on port l of `pairs`;
   * together they are the candidates. The golden model is
   * BroadPhaseModel; the spec BroadPhaseSpec compares them pair for pair.
@@ -71,7 +73,11 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val kWidth = SphereKeys.kWidth(p)
 
   private val ports = bp.sortPorts
-  private val cellExp = Module(new CellExponent(p, bp, ports))
+  /** With lanes, the load pass reads through every lane, each into a CellExponent of its own,
+    * and a merge feeds what they kept into `cellExp`, two values a cycle. */
+  private val wideLoad = bp.lanes > 1
+  private val laneExps = if (wideLoad) Seq.fill(bp.lanes)(Module(new CellExponent(p, bp))) else Nil
+  private val cellExp = Module(new CellExponent(p, bp, if (wideLoad) 2 else 1))
   // One copy of the sorted table per lane: each lane looks up and marks its own.
   private val sort = Module(new BucketSort(maxSpheres, tableLog2, bp.wordLog2, bp.lanes, ports))
   private val gens = Seq.tabulate(bp.lanes) { l =>
@@ -85,7 +91,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val laneKeys = Seq.fill(bp.lanes)(Module(new SphereKeys(p, bp, keysLatency)))
   private val larges = Reg(Vec(largeSlots, new WorldKey(itemW, bp.cellBits, qWidth)))
 
-  private object S extends ChiselEnum { val idle, load, classify, prefix, scatter, generate = Value }
+  private object S extends ChiselEnum { val idle, load, merge, classify, prefix, scatter, generate = Value }
   private val state = RegInit(S.idle)
   io.busy := state =/= S.idle
 
@@ -102,16 +108,25 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     Mux(t > tableLog2.U, tableLog2.U, t)
   }
 
-  // --- passes 1, 2 and 4: read the sphere table through SphereKeys, `ports` spheres a cycle ---
-  // Port p reads spheres [from(p), to(p)): the whole table with one port, halves with two.
-  // (In pass 5 the generators read it, for their key records.)
+  // Lane l's slice of the table, [cut(l), cut(l + 1)), c_l = floor(l 2^16 / lanes): the slices
+  // tile the table, each bound within num / 2^16 + 1 of num l / lanes (a multiply by a
+  // constant, where an exact cut would need a divider). The load pass and the large pass use them.
+  private def cut(m: Int): UInt =
+    if (m == 0) 0.U else if (m == bp.lanes) num else ((num * ((m.toLong << 16) / bp.lanes).U) >> 16).pad(countW)(countW - 1, 0)
+
+  // --- passes 1, 2 and 4: read the sphere table through SphereKeys --------------------------
+  // The load pass: lane l reads its slice (with one lane, the whole table). Classify and
+  // scatter: port p reads [from(p), to(p)): the whole table with one port, halves with two,
+  // through lane p's sphere port and SphereKeys. (In pass 5 the generators read it, for
+  // their key records.)
   private def from(port: Int): UInt = if (port == 0) 0.U else num >> 1
   private def to(port: Int): UInt = if (port == ports - 1) num else num >> 1
+  private def hi(l: Int): UInt = Mux(state === S.load, cut(l + 1), if (l < ports) to(l) else 0.U)
   private val inPass = state === S.load || state === S.classify || state === S.scatter
-  private val i = Reg(Vec(ports, UInt(countW.W))) // the next sphere each port reads
-  private val reading = VecInit.tabulate(ports)(q => inPass && i(q) < to(q))
-  private val inflight = RegInit(0.U(4.W)) // sphere reads not yet out of SphereKeys (0: none valid)
-  private val passDone = (0 until ports).map(q => i(q) === to(q)).reduce(_ && _) && inflight === 0.U
+  private val i = Reg(Vec(bp.lanes, UInt(countW.W))) // the next sphere each lane reads
+  private val reading = VecInit.tabulate(bp.lanes)(l => inPass && i(l) < hi(l))
+  private val inflight = RegInit(0.U(log2Ceil(bp.lanes * (keysLatency + 2) + 1).W)) // reads not yet out of SphereKeys
+  private val passDone = !reading.asUInt.orR && inflight === 0.U
   private val k = cellExp.io.k
   private def large(o: SphereKeys): Bool = !o.io.out.nonFinite && !o.io.out.needNone && o.io.out.need > k
   private def record(o: SphereKeys): KeyRecord = {
@@ -125,29 +140,46 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     def isLarge: Bool = large(o)
     def isSmall: Bool = !out.nonFinite && !isLarge
   }
-  private val keyed = (0 until ports).map { q =>
-    val lk = laneKeys(q)
-    io.sphere(q).addr := Mux(state === S.generate, gens(q).io.keyAddr, i(q)(itemW - 1, 0))
-    lk.io.in.valid := RegNext(reading(q), false.B)
-    lk.io.in.sphere := io.sphere(q).data
+  for ((lk, l) <- laneKeys.zipWithIndex) {
+    io.sphere(l).addr := Mux(state === S.generate, gens(l).io.keyAddr, i(l)(itemW - 1, 0))
+    lk.io.in.valid := RegNext(reading(l), false.B)
+    lk.io.in.sphere := io.sphere(l).data
     lk.io.in.k := Mux(state === S.load, 0.S, k) // need and top do not depend on k
-    Keyed(lk, lk.io.out.valid, Pipeline(RegNext(i(q)(itemW - 1, 0)), keysLatency, true.B))
   }
-  inflight := inflight + PopCount(reading) - PopCount(keyed.map(_.valid))
-  for (l <- ports until bp.lanes) {
-    io.sphere(l).addr := gens(l).io.keyAddr
-    laneKeys(l).io.in.valid := false.B // only its keys are used, never its valid
-    laneKeys(l).io.in.sphere := io.sphere(l).data
-    laneKeys(l).io.in.k := k
+  private val keyed = (0 until ports).map { q =>
+    Keyed(laneKeys(q), laneKeys(q).io.out.valid, Pipeline(RegNext(i(q)(itemW - 1, 0)), keysLatency, true.B))
   }
+  inflight := inflight + PopCount(reading) - PopCount(laneKeys.map(_.io.out.valid))
   for ((g, lk) <- gens.zip(laneKeys)) g.io.keyData := record(lk)
 
+  private def feed(ce: CellExponentIn, valid: Bool, o: SphereKeys): Unit = {
+    ce.valid := valid
+    ce.need := o.io.out.need; ce.needNone := o.io.out.needNone
+    ce.top := o.io.out.top; ce.topNone := o.io.out.topNone
+    ce.nonFinite := o.io.out.nonFinite
+  }
   cellExp.io.clear := io.start && state === S.idle
-  for ((ce, kd) <- cellExp.io.in.zip(keyed)) {
-    ce.valid := kd.valid && state === S.load
-    ce.need := kd.out.need; ce.needNone := kd.out.needNone
-    ce.top := kd.out.top; ce.topNone := kd.out.topNone
-    ce.nonFinite := kd.out.nonFinite
+  private val mergeSlots = bp.largeMax + 1
+  private val mergeItems = bp.lanes * mergeSlots
+  private val m = Reg(UInt(log2Ceil(mergeItems + 2).W)) // the merge's next item: lane m / slots, slot m % slots
+  if (!wideLoad) feed(cellExp.io.in.head, laneKeys.head.io.out.valid && state === S.load, laneKeys.head)
+  else {
+    for ((e, lk) <- laneExps.zip(laneKeys)) {
+      e.io.clear := io.start && state === S.idle
+      feed(e.io.in.head, lk.io.out.valid && state === S.load, lk)
+    }
+    // Every lane's filled slots, each with the lane's top (the largest of them is the top).
+    val needs = VecInit(laneExps.flatMap(e => e.io.kept))
+    val filled = VecInit(laneExps.flatMap(e => (0 until mergeSlots).map(j => j.U < e.io.used)))
+    val tops = VecInit(laneExps.flatMap(e => Seq.fill(mergeSlots)(e.io.top)))
+    for ((ce, d) <- cellExp.io.in.zipWithIndex) {
+      val at = m +& d.U
+      val idx = at(log2Ceil(mergeItems) - 1, 0)
+      ce.valid := state === S.merge && at < mergeItems.U && filled(idx)
+      ce.need := needs(idx); ce.needNone := false.B // an empty need is minK, as the lane kept it
+      ce.top := tops(idx); ce.topNone := !VecInit(laneExps.flatMap(e => Seq.fill(mergeSlots)(e.io.anyTop)))(idx)
+      ce.nonFinite := false.B
+    }
   }
 
   private val classifying = state === S.classify
@@ -201,10 +233,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     gen.io.slack := slack
     gen.io.larges := larges
     gen.io.largeCount := largeCount
-    // Lane l streams spheres [num c_l >> 16, num c_(l+1) >> 16) past the large list, c_l =
-    // floor(l 2^16 / lanes): the slices tile the table, each bound within num / 2^16 + 1 of
-    // num l / lanes (a multiply by a constant, where an exact cut would need a divider).
-    def cut(m: Int): UInt = if (m == 0) 0.U else if (m == bp.lanes) num else ((num * ((m.toLong << 16) / bp.lanes).U) >> 16).pad(countW)(countW - 1, 0)
+    // Lane l streams its slice of the table past the large list.
     gen.io.largeFrom := cut(l)
     gen.io.largeTo := cut(l + 1)
     io.pairs(l) <> gen.io.pairs
@@ -216,15 +245,18 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val largeOnly = gens.map(g => !g.io.busy || g.io.inLargePass).reduce(_ && _)
 
   // --- sequencing ----------------------------------------------------------------------------
-  private def advance(): Unit = for (q <- 0 until ports) when(reading(q)) { i(q) := i(q) + 1.U }
-  private def restart(): Unit = for (q <- 0 until ports) i(q) := from(q)
+  private def advance(): Unit = for (l <- 0 until bp.lanes) when(reading(l)) { i(l) := i(l) + 1.U }
+  /** Classify and scatter: the ports' halves; other lanes read nothing. */
+  private def restart(): Unit = for (l <- 0 until bp.lanes) i(l) := (if (l < ports) from(l) else 0.U)
   when(state =/= S.idle) { st.cycTotal := st.cycTotal + 1.U }
   switch(state) {
     is(S.idle) {
       when(io.start) {
         val z = WireDefault(0.U.asTypeOf(st))
         num := io.num; usedLog2 := bucketsLog2For(io.num); largeCount := 0.U
-        for (q <- 0 until ports) i(q) := (if (q == 0) 0.U else io.num >> 1)
+        // The load pass's slices, from io.num (num is not written yet).
+        for (l <- 0 until bp.lanes)
+          i(l) := (if (l == 0) 0.U else ((io.num * ((l.toLong << 16) / bp.lanes).U) >> 16).pad(countW)(countW - 1, 0))
         when(io.num > maxSpheres.U) { z.tooMany := true.B; st := z }
           .otherwise { st := z; state := S.load }
       }
@@ -232,7 +264,14 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     is(S.load) {
       st.cycLoad := st.cycLoad + 1.U
       advance()
-      when(passDone && !sort.io.busy) { state := S.classify; restart() }
+      when(passDone && !sort.io.busy) {
+        if (wideLoad) { state := S.merge; m := 0.U } else { state := S.classify; restart() }
+      }
+    }
+    is(S.merge) {
+      st.cycLoad := st.cycLoad + 1.U
+      m := m + 2.U
+      when(m + 2.U >= mergeItems.U) { state := S.classify; restart() } // the last values land this cycle
     }
     is(S.classify) {
       st.cycClassify := st.cycClassify + 1.U

@@ -99,6 +99,6 @@ object BroadPhaseParams {
   val noLarge: BroadPhaseParams = default.copy(largeMax = 0)
   /** Four candidate generators. */
   val fourLanes: BroadPhaseParams = default.copy(lanes = 4)
-  /** Four candidate generators, the sort's passes two spheres a cycle. */
-  val fourLanesTwoPorts: BroadPhaseParams = fourLanes.copy(sortPorts = 2)
+  /** Four candidate generators, the sort's passes two spheres a cycle, 16 counters a word. */
+  val fourLanesTwoPorts: BroadPhaseParams = fourLanes.copy(sortPorts = 2, wordLog2 = 4)
 }

@@ -10,26 +10,35 @@ import collide.fp.FpParams
   * always at hand; and the largest coordinate exponent. k = max(that need, top - kCoordOffset,
   * kFloor), as BroadPhaseModel.chooseK. Excluded spheres (nonFinite) are not counted.
   */
-class CellExponentIO(p: FpParams, ports: Int) extends Bundle {
+/** One sphere's need and top for CellExponent. */
+class CellExponentIn(kWidth: Int) extends Bundle {
+  val valid = Bool()
+  val need = SInt(kWidth.W)
+  val needNone = Bool()
+  val top = SInt(kWidth.W)
+  val topNone = Bool()
+  val nonFinite = Bool()
+}
+
+class CellExponentIO(p: FpParams, ports: Int, slots: Int) extends Bundle {
   val kWidth = SphereKeys.kWidth(p)
   /** Starts a new world: forget every sphere. */
   val clear = Input(Bool())
-  val in = Input(Vec(ports, new Bundle {
-    val valid = Bool()
-    val need = SInt(kWidth.W)
-    val needNone = Bool()
-    val top = SInt(kWidth.W)
-    val topNone = Bool()
-    val nonFinite = Bool()
-  }))
+  val in = Input(Vec(ports, new CellExponentIn(kWidth)))
   /** k for the spheres seen so far (valid the cycle after the last one). */
   val k = Output(SInt(kWidth.W))
+  /** What it keeps, for merging several of these into one (BroadPhase's load pass with lanes):
+    * the kept needs, largest first, the first `used` of them filled; the largest top, if any. */
+  val kept = Output(Vec(slots, SInt(kWidth.W)))
+  val used = Output(UInt(log2Ceil(slots + 1).W))
+  val top = Output(SInt(kWidth.W))
+  val anyTop = Output(Bool())
 }
 
 class CellExponent(p: FpParams, bp: BroadPhaseParams, ports: Int = 1) extends Module {
   require(ports >= 1 && ports <= 2, s"ports must be 1 or 2, got $ports")
   override def desiredName = s"CellExponent_${p.name}_L${bp.largeMax}_c${bp.cellBits}" + (if (ports > 1) s"_p$ports" else "")
-  val io = IO(new CellExponentIO(p, ports))
+  val io = IO(new CellExponentIO(p, ports, bp.largeMax + 1))
   private val w = io.kWidth
   private val minK = (-(BigInt(1) << (w - 1))).S(w.W) // stands for "fits any cell" (r <= 0)
   private val slots = bp.largeMax + 1
@@ -74,4 +83,5 @@ class CellExponent(p: FpParams, bp: BroadPhaseParams, ports: Int = 1) extends Mo
   private val kCoord = Mux(anyTop, topMax -& bp.kCoordOffset.S, minK)
   private val kFloor = bp.kFloor(p).S(w.W)
   io.k := maxS(maxS(kSmall, kCoord), kFloor).asTypeOf(SInt(w.W))
+  io.kept := kept; io.used := used; io.top := topMax; io.anyTop := anyTop
 }

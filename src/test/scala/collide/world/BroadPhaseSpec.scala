@@ -111,7 +111,7 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     everyHardCase("BroadPhaseSpec-lanes", BroadPhaseParams.fourLanes, "four lanes: ")
   }
 
-  it should "find the same candidates with the sort's passes two spheres a cycle, each port half the table, in every hard case and random cloud" in {
+  it should "find the same candidates with the sort's passes two spheres a cycle, each port half the table, and 16 counters a word, in every hard case and random cloud" in {
     everyHardCase("BroadPhaseSpec-ports", BroadPhaseParams.fourLanesTwoPorts, "two sort ports: ")
   }
 
@@ -133,9 +133,11 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  it should "stay exact with no large list and with a large list too small for the huge spheres" in {
+  it should "stay exact with no large list and with a large list too small for the huge spheres, with one lane and with three (k from the lanes' merged needs)" in {
     val rng = Seeds.rng("BroadPhaseSpec-large")
-    for ((bp, label) <- Seq(BroadPhaseParams.noLarge -> "no large list", BroadPhaseParams.default.copy(largeMax = 2, chunk = 4) -> "largeMax 2")) {
+    for ((bp, label) <- Seq(BroadPhaseParams.noLarge -> "no large list", BroadPhaseParams.default.copy(largeMax = 2, chunk = 4) -> "largeMax 2",
+                            BroadPhaseParams.noLarge.copy(lanes = 3) -> "no large list, three lanes",
+                            BroadPhaseParams.default.copy(largeMax = 2, chunk = 4, lanes = 3, sortPorts = 2) -> "largeMax 2, three lanes")) {
       val model = new BroadPhaseModel(ScpuConfig.fp32, bp)
       test(new BroadPhase(ScpuConfig.fp32.params, bp, maxSpheres)).withAnnotations(annos) { dut =>
         dut.clock.setTimeout(0)

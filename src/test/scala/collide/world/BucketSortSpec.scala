@@ -87,7 +87,7 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
   // Counters one to a word (wordLog2 0) and eight to a word (the default: clear and prefix a
   // word a cycle); one port and one copy, and two ports (each scattering into its own share
   // of every bucket) with several copies.
-  for ((wordLog2, copies, ports) <- Seq((3, 1, 1), (0, 1, 1), (3, 3, 2), (0, 2, 2)))
+  for ((wordLog2, copies, ports) <- Seq((3, 1, 1), (0, 1, 1), (3, 3, 2), (0, 2, 2), (4, 2, 2)))
   it should s"sort like the golden model with ${1 << wordLog2} counters a word, $copies copies and $ports ports: repeated buckets back to back, gaps, empty and full worlds, one after another, each scatter clearing the marks of the last" in {
     val rng = Seeds.rng(s"BucketSortSpec-w$wordLog2-c$copies-p$ports")
     test(new BucketSort(maxItems, bucketsLog2, wordLog2, copies, ports)) { dut =>

@@ -39,7 +39,7 @@ final case class BroadPhaseResult(k: Int, classes: IndexedSeq[SphereClass],
                                   candidates: IndexedSeq[(Int, Int)], stats: BroadPhaseStats)
 
 /** A cycle estimate for the planned hardware: counting sort at `sortRate` spheres a cycle,
-  * a prefix sum over the buckets 8 a cycle, occupied cells dealt round-robin to `lanes`
+  * a prefix sum over the buckets a counter word (2^wordLog2) a cycle, occupied cells dealt round-robin to `lanes`
   * candidate generators (each with its own copy of the sorted table), the large list
   * streamed past the table, and the SCPUs taking `scpus` candidates a cycle. A model to size
   * the design, not a measurement of RTL that does not exist yet. */
@@ -255,7 +255,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     def div(a: Long, b: Long) = (a + b - 1) / b
     BroadPhaseCycles(
       count = div(st.spheres, sortRate),
-      prefix = div(st.buckets, 8),
+      prefix = div(st.buckets, 1L << bp.wordLog2),
       scatter = div(small, sortRate),
       generate = perLane.max,
       large = div(st.large * eligible, lanes),
