@@ -15798,7 +15798,7 @@ module WriteEngine_w64_world(
   assign io_blocked = any & ~(io_wrReq_ready & io_wrReq_valid_0);
 endmodule
 
-module CellExponent_fp32_L16_c20_p2_world(
+module CellExponent_fp32_L16_c20_world(
   input         clock,
                 reset,
                 io_clear,
@@ -15808,13 +15808,26 @@ module CellExponent_fp32_L16_c20_p2_world(
   input  [12:0] io_in_0_top,
   input         io_in_0_topNone,
                 io_in_0_nonFinite,
-                io_in_1_valid,
-  input  [12:0] io_in_1_need,
-  input         io_in_1_needNone,
-  input  [12:0] io_in_1_top,
-  input         io_in_1_topNone,
-                io_in_1_nonFinite,
-  output [12:0] io_k
+  output [12:0] io_kept_0,
+                io_kept_1,
+                io_kept_2,
+                io_kept_3,
+                io_kept_4,
+                io_kept_5,
+                io_kept_6,
+                io_kept_7,
+                io_kept_8,
+                io_kept_9,
+                io_kept_10,
+                io_kept_11,
+                io_kept_12,
+                io_kept_13,
+                io_kept_14,
+                io_kept_15,
+                io_kept_16,
+  output [4:0]  io_used,
+  output [12:0] io_top,
+  output        io_anyTop
 );
 
   reg  [12:0] kept_0;
@@ -15837,10 +15850,6 @@ module CellExponent_fp32_L16_c20_p2_world(
   reg  [4:0]  used;
   reg  [12:0] topMax;
   reg         anyTop;
-  wire [12:0] kSmall = used == 5'h11 ? kept_16 : kept_0;
-  wire [13:0] kCoord = anyTop ? {topMax[12], topMax} - 14'h12 : 14'h3000;
-  wire [13:0] _GEN = {kSmall[12], kSmall};
-  wire [13:0] _io_k_T_1 = $signed(_GEN) > $signed(kCoord) ? _GEN : kCoord;
   wire [12:0] after_need = io_in_0_needNone ? 13'h1000 : io_in_0_need;
   wire        after_ins_beats_0 = $signed(after_need) > $signed(kept_0);
   wire        after_ins_beats_1 = $signed(after_need) > $signed(kept_1);
@@ -15858,95 +15867,9 @@ module CellExponent_fp32_L16_c20_p2_world(
   wire        after_ins_beats_13 = $signed(after_need) > $signed(kept_13);
   wire        after_ins_beats_14 = $signed(after_need) > $signed(kept_14);
   wire        after_ins_beats_15 = $signed(after_need) > $signed(kept_15);
-  wire        after_ins_beats_16 = $signed(after_need) > $signed(kept_16);
-  wire [12:0] after_need_1 = io_in_1_needNone ? 13'h1000 : io_in_1_need;
   wire        after_take = io_in_0_valid & ~io_in_0_nonFinite;
   wire        after_hasTop = after_take & ~io_in_0_topNone;
-  wire        _after_T_25 = anyTop | after_hasTop;
-  wire        after_take_1 = io_in_1_valid & ~io_in_1_nonFinite;
-  wire        after_hasTop_1 = after_take_1 & ~io_in_1_topNone;
-  wire        _GEN_0 = after_take & after_ins_beats_0;
-  wire [12:0] _after_T = _GEN_0 ? after_need : kept_0;
   wire [5:0]  _after_T_19 = {1'h0, used} + {5'h0, after_take};
-  wire        _GEN_1 = ~after_hasTop | anyTop & $signed(topMax) > $signed(io_in_0_top);
-  wire        after_ins_beats_0_1 = $signed(after_need_1) > $signed(_after_T);
-  wire [6:0]  _after_T_45 =
-    {1'h0, _after_T_19 > 6'h11 ? 6'h11 : _after_T_19} + {6'h0, after_take_1};
-  wire [12:0] _after_T_1 =
-    after_take
-      ? (after_ins_beats_0 ? kept_0 : after_ins_beats_1 ? after_need : kept_1)
-      : kept_1;
-  wire [12:0] _after_T_2 =
-    after_take
-      ? (after_ins_beats_1 ? kept_1 : after_ins_beats_2 ? after_need : kept_2)
-      : kept_2;
-  wire [12:0] _after_T_3 =
-    after_take
-      ? (after_ins_beats_2 ? kept_2 : after_ins_beats_3 ? after_need : kept_3)
-      : kept_3;
-  wire [12:0] _after_T_4 =
-    after_take
-      ? (after_ins_beats_3 ? kept_3 : after_ins_beats_4 ? after_need : kept_4)
-      : kept_4;
-  wire [12:0] _after_T_5 =
-    after_take
-      ? (after_ins_beats_4 ? kept_4 : after_ins_beats_5 ? after_need : kept_5)
-      : kept_5;
-  wire [12:0] _after_T_6 =
-    after_take
-      ? (after_ins_beats_5 ? kept_5 : after_ins_beats_6 ? after_need : kept_6)
-      : kept_6;
-  wire [12:0] _after_T_7 =
-    after_take
-      ? (after_ins_beats_6 ? kept_6 : after_ins_beats_7 ? after_need : kept_7)
-      : kept_7;
-  wire [12:0] _after_T_8 =
-    after_take
-      ? (after_ins_beats_7 ? kept_7 : after_ins_beats_8 ? after_need : kept_8)
-      : kept_8;
-  wire [12:0] _after_T_9 =
-    after_take
-      ? (after_ins_beats_8 ? kept_8 : after_ins_beats_9 ? after_need : kept_9)
-      : kept_9;
-  wire [12:0] _after_T_10 =
-    after_take
-      ? (after_ins_beats_9 ? kept_9 : after_ins_beats_10 ? after_need : kept_10)
-      : kept_10;
-  wire [12:0] _after_T_11 =
-    after_take
-      ? (after_ins_beats_10 ? kept_10 : after_ins_beats_11 ? after_need : kept_11)
-      : kept_11;
-  wire [12:0] _after_T_12 =
-    after_take
-      ? (after_ins_beats_11 ? kept_11 : after_ins_beats_12 ? after_need : kept_12)
-      : kept_12;
-  wire [12:0] _after_T_13 =
-    after_take
-      ? (after_ins_beats_12 ? kept_12 : after_ins_beats_13 ? after_need : kept_13)
-      : kept_13;
-  wire [12:0] _after_T_14 =
-    after_take
-      ? (after_ins_beats_13 ? kept_13 : after_ins_beats_14 ? after_need : kept_14)
-      : kept_14;
-  wire [12:0] _after_T_15 =
-    after_take
-      ? (after_ins_beats_14 ? kept_14 : after_ins_beats_15 ? after_need : kept_15)
-      : kept_15;
-  wire        after_ins_beats_1_1 = $signed(after_need_1) > $signed(_after_T_1);
-  wire        after_ins_beats_2_1 = $signed(after_need_1) > $signed(_after_T_2);
-  wire        after_ins_beats_3_1 = $signed(after_need_1) > $signed(_after_T_3);
-  wire        after_ins_beats_4_1 = $signed(after_need_1) > $signed(_after_T_4);
-  wire        after_ins_beats_5_1 = $signed(after_need_1) > $signed(_after_T_5);
-  wire        after_ins_beats_6_1 = $signed(after_need_1) > $signed(_after_T_6);
-  wire        after_ins_beats_7_1 = $signed(after_need_1) > $signed(_after_T_7);
-  wire        after_ins_beats_8_1 = $signed(after_need_1) > $signed(_after_T_8);
-  wire        after_ins_beats_9_1 = $signed(after_need_1) > $signed(_after_T_9);
-  wire        after_ins_beats_10_1 = $signed(after_need_1) > $signed(_after_T_10);
-  wire        after_ins_beats_11_1 = $signed(after_need_1) > $signed(_after_T_11);
-  wire        after_ins_beats_12_1 = $signed(after_need_1) > $signed(_after_T_12);
-  wire        after_ins_beats_13_1 = $signed(after_need_1) > $signed(_after_T_13);
-  wire        after_ins_beats_14_1 = $signed(after_need_1) > $signed(_after_T_14);
-  wire        after_ins_beats_15_1 = $signed(after_need_1) > $signed(_after_T_15);
   always @(posedge clock) begin
     if (reset) begin
       kept_0 <= 13'h1000;
@@ -15993,179 +15916,9 @@ module CellExponent_fp32_L16_c20_p2_world(
         topMax <= 13'h1000;
       end
       else begin
-        if (after_take_1 & after_ins_beats_0_1)
-          kept_0 <= after_need_1;
-        else if (_GEN_0)
+        if (after_take & after_ins_beats_0)
           kept_0 <= after_need;
-        if (after_take_1) begin
-          if (after_ins_beats_0_1)
-            kept_1 <= _after_T;
-          else if (after_ins_beats_1_1)
-            kept_1 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_0)
-              kept_1 <= kept_0;
-            else if (after_ins_beats_1)
-              kept_1 <= after_need;
-          end
-          if (after_ins_beats_1_1)
-            kept_2 <= _after_T_1;
-          else if (after_ins_beats_2_1)
-            kept_2 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_1)
-              kept_2 <= kept_1;
-            else if (after_ins_beats_2)
-              kept_2 <= after_need;
-          end
-          if (after_ins_beats_2_1)
-            kept_3 <= _after_T_2;
-          else if (after_ins_beats_3_1)
-            kept_3 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_2)
-              kept_3 <= kept_2;
-            else if (after_ins_beats_3)
-              kept_3 <= after_need;
-          end
-          if (after_ins_beats_3_1)
-            kept_4 <= _after_T_3;
-          else if (after_ins_beats_4_1)
-            kept_4 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_3)
-              kept_4 <= kept_3;
-            else if (after_ins_beats_4)
-              kept_4 <= after_need;
-          end
-          if (after_ins_beats_4_1)
-            kept_5 <= _after_T_4;
-          else if (after_ins_beats_5_1)
-            kept_5 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_4)
-              kept_5 <= kept_4;
-            else if (after_ins_beats_5)
-              kept_5 <= after_need;
-          end
-          if (after_ins_beats_5_1)
-            kept_6 <= _after_T_5;
-          else if (after_ins_beats_6_1)
-            kept_6 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_5)
-              kept_6 <= kept_5;
-            else if (after_ins_beats_6)
-              kept_6 <= after_need;
-          end
-          if (after_ins_beats_6_1)
-            kept_7 <= _after_T_6;
-          else if (after_ins_beats_7_1)
-            kept_7 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_6)
-              kept_7 <= kept_6;
-            else if (after_ins_beats_7)
-              kept_7 <= after_need;
-          end
-          if (after_ins_beats_7_1)
-            kept_8 <= _after_T_7;
-          else if (after_ins_beats_8_1)
-            kept_8 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_7)
-              kept_8 <= kept_7;
-            else if (after_ins_beats_8)
-              kept_8 <= after_need;
-          end
-          if (after_ins_beats_8_1)
-            kept_9 <= _after_T_8;
-          else if (after_ins_beats_9_1)
-            kept_9 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_8)
-              kept_9 <= kept_8;
-            else if (after_ins_beats_9)
-              kept_9 <= after_need;
-          end
-          if (after_ins_beats_9_1)
-            kept_10 <= _after_T_9;
-          else if (after_ins_beats_10_1)
-            kept_10 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_9)
-              kept_10 <= kept_9;
-            else if (after_ins_beats_10)
-              kept_10 <= after_need;
-          end
-          if (after_ins_beats_10_1)
-            kept_11 <= _after_T_10;
-          else if (after_ins_beats_11_1)
-            kept_11 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_10)
-              kept_11 <= kept_10;
-            else if (after_ins_beats_11)
-              kept_11 <= after_need;
-          end
-          if (after_ins_beats_11_1)
-            kept_12 <= _after_T_11;
-          else if (after_ins_beats_12_1)
-            kept_12 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_11)
-              kept_12 <= kept_11;
-            else if (after_ins_beats_12)
-              kept_12 <= after_need;
-          end
-          if (after_ins_beats_12_1)
-            kept_13 <= _after_T_12;
-          else if (after_ins_beats_13_1)
-            kept_13 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_12)
-              kept_13 <= kept_12;
-            else if (after_ins_beats_13)
-              kept_13 <= after_need;
-          end
-          if (after_ins_beats_13_1)
-            kept_14 <= _after_T_13;
-          else if (after_ins_beats_14_1)
-            kept_14 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_13)
-              kept_14 <= kept_13;
-            else if (after_ins_beats_14)
-              kept_14 <= after_need;
-          end
-          if (after_ins_beats_14_1)
-            kept_15 <= _after_T_14;
-          else if (after_ins_beats_15_1)
-            kept_15 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_14)
-              kept_15 <= kept_14;
-            else if (after_ins_beats_15)
-              kept_15 <= after_need;
-          end
-          if (after_ins_beats_15_1)
-            kept_16 <= _after_T_15;
-          else if ($signed(after_need_1) > $signed(after_take
-                                                     ? (after_ins_beats_15
-                                                          ? kept_15
-                                                          : after_ins_beats_16
-                                                              ? after_need
-                                                              : kept_16)
-                                                     : kept_16))
-            kept_16 <= after_need_1;
-          else if (after_take) begin
-            if (after_ins_beats_15)
-              kept_16 <= kept_15;
-            else if (after_ins_beats_16)
-              kept_16 <= after_need;
-          end
-        end
-        else if (after_take) begin
+        if (after_take) begin
           if (after_ins_beats_0)
             kept_1 <= kept_0;
           else if (after_ins_beats_1)
@@ -16228,8 +15981,464 @@ module CellExponent_fp32_L16_c20_p2_world(
             kept_15 <= after_need;
           if (after_ins_beats_15)
             kept_16 <= kept_15;
-          else if (after_ins_beats_16)
+          else if ($signed(after_need) > $signed(kept_16))
             kept_16 <= after_need;
+        end
+        used <= _after_T_19 > 6'h11 ? 5'h11 : _after_T_19[4:0];
+        if (~after_hasTop | anyTop & $signed(topMax) > $signed(io_in_0_top)) begin
+        end
+        else
+          topMax <= io_in_0_top;
+      end
+      anyTop <= ~io_clear & (anyTop | after_hasTop);
+    end
+  end // always @(posedge)
+  assign io_kept_0 = kept_0;
+  assign io_kept_1 = kept_1;
+  assign io_kept_2 = kept_2;
+  assign io_kept_3 = kept_3;
+  assign io_kept_4 = kept_4;
+  assign io_kept_5 = kept_5;
+  assign io_kept_6 = kept_6;
+  assign io_kept_7 = kept_7;
+  assign io_kept_8 = kept_8;
+  assign io_kept_9 = kept_9;
+  assign io_kept_10 = kept_10;
+  assign io_kept_11 = kept_11;
+  assign io_kept_12 = kept_12;
+  assign io_kept_13 = kept_13;
+  assign io_kept_14 = kept_14;
+  assign io_kept_15 = kept_15;
+  assign io_kept_16 = kept_16;
+  assign io_used = used;
+  assign io_top = topMax;
+  assign io_anyTop = anyTop;
+endmodule
+
+module CellExponent_fp32_L16_c20_p2_world(
+  input         clock,
+                reset,
+                io_clear,
+                io_in_0_valid,
+  input  [12:0] io_in_0_need,
+                io_in_0_top,
+  input         io_in_0_topNone,
+                io_in_1_valid,
+  input  [12:0] io_in_1_need,
+                io_in_1_top,
+  input         io_in_1_topNone,
+  output [12:0] io_k
+);
+
+  reg  [12:0] kept_0;
+  reg  [12:0] kept_1;
+  reg  [12:0] kept_2;
+  reg  [12:0] kept_3;
+  reg  [12:0] kept_4;
+  reg  [12:0] kept_5;
+  reg  [12:0] kept_6;
+  reg  [12:0] kept_7;
+  reg  [12:0] kept_8;
+  reg  [12:0] kept_9;
+  reg  [12:0] kept_10;
+  reg  [12:0] kept_11;
+  reg  [12:0] kept_12;
+  reg  [12:0] kept_13;
+  reg  [12:0] kept_14;
+  reg  [12:0] kept_15;
+  reg  [12:0] kept_16;
+  reg  [4:0]  used;
+  reg  [12:0] topMax;
+  reg         anyTop;
+  wire [12:0] kSmall = used == 5'h11 ? kept_16 : kept_0;
+  wire [13:0] kCoord = anyTop ? {topMax[12], topMax} - 14'h12 : 14'h3000;
+  wire [13:0] _GEN = {kSmall[12], kSmall};
+  wire [13:0] _io_k_T_1 = $signed(_GEN) > $signed(kCoord) ? _GEN : kCoord;
+  wire        after_ins_beats_0 = $signed(io_in_0_need) > $signed(kept_0);
+  wire        after_ins_beats_1 = $signed(io_in_0_need) > $signed(kept_1);
+  wire        after_ins_beats_2 = $signed(io_in_0_need) > $signed(kept_2);
+  wire        after_ins_beats_3 = $signed(io_in_0_need) > $signed(kept_3);
+  wire        after_ins_beats_4 = $signed(io_in_0_need) > $signed(kept_4);
+  wire        after_ins_beats_5 = $signed(io_in_0_need) > $signed(kept_5);
+  wire        after_ins_beats_6 = $signed(io_in_0_need) > $signed(kept_6);
+  wire        after_ins_beats_7 = $signed(io_in_0_need) > $signed(kept_7);
+  wire        after_ins_beats_8 = $signed(io_in_0_need) > $signed(kept_8);
+  wire        after_ins_beats_9 = $signed(io_in_0_need) > $signed(kept_9);
+  wire        after_ins_beats_10 = $signed(io_in_0_need) > $signed(kept_10);
+  wire        after_ins_beats_11 = $signed(io_in_0_need) > $signed(kept_11);
+  wire        after_ins_beats_12 = $signed(io_in_0_need) > $signed(kept_12);
+  wire        after_ins_beats_13 = $signed(io_in_0_need) > $signed(kept_13);
+  wire        after_ins_beats_14 = $signed(io_in_0_need) > $signed(kept_14);
+  wire        after_ins_beats_15 = $signed(io_in_0_need) > $signed(kept_15);
+  wire        after_ins_beats_16 = $signed(io_in_0_need) > $signed(kept_16);
+  wire        _GEN_0 = io_in_0_valid & after_ins_beats_0;
+  wire [12:0] _after_T = _GEN_0 ? io_in_0_need : kept_0;
+  wire [5:0]  _after_T_19 = {1'h0, used} + {5'h0, io_in_0_valid};
+  wire        after_ins_beats_0_1 = $signed(io_in_1_need) > $signed(_after_T);
+  wire [6:0]  _after_T_45 =
+    {1'h0, _after_T_19 > 6'h11 ? 6'h11 : _after_T_19} + {6'h0, io_in_1_valid};
+  wire [12:0] _after_T_1 =
+    io_in_0_valid
+      ? (after_ins_beats_0 ? kept_0 : after_ins_beats_1 ? io_in_0_need : kept_1)
+      : kept_1;
+  wire [12:0] _after_T_2 =
+    io_in_0_valid
+      ? (after_ins_beats_1 ? kept_1 : after_ins_beats_2 ? io_in_0_need : kept_2)
+      : kept_2;
+  wire [12:0] _after_T_3 =
+    io_in_0_valid
+      ? (after_ins_beats_2 ? kept_2 : after_ins_beats_3 ? io_in_0_need : kept_3)
+      : kept_3;
+  wire [12:0] _after_T_4 =
+    io_in_0_valid
+      ? (after_ins_beats_3 ? kept_3 : after_ins_beats_4 ? io_in_0_need : kept_4)
+      : kept_4;
+  wire [12:0] _after_T_5 =
+    io_in_0_valid
+      ? (after_ins_beats_4 ? kept_4 : after_ins_beats_5 ? io_in_0_need : kept_5)
+      : kept_5;
+  wire [12:0] _after_T_6 =
+    io_in_0_valid
+      ? (after_ins_beats_5 ? kept_5 : after_ins_beats_6 ? io_in_0_need : kept_6)
+      : kept_6;
+  wire [12:0] _after_T_7 =
+    io_in_0_valid
+      ? (after_ins_beats_6 ? kept_6 : after_ins_beats_7 ? io_in_0_need : kept_7)
+      : kept_7;
+  wire [12:0] _after_T_8 =
+    io_in_0_valid
+      ? (after_ins_beats_7 ? kept_7 : after_ins_beats_8 ? io_in_0_need : kept_8)
+      : kept_8;
+  wire [12:0] _after_T_9 =
+    io_in_0_valid
+      ? (after_ins_beats_8 ? kept_8 : after_ins_beats_9 ? io_in_0_need : kept_9)
+      : kept_9;
+  wire [12:0] _after_T_10 =
+    io_in_0_valid
+      ? (after_ins_beats_9 ? kept_9 : after_ins_beats_10 ? io_in_0_need : kept_10)
+      : kept_10;
+  wire [12:0] _after_T_11 =
+    io_in_0_valid
+      ? (after_ins_beats_10 ? kept_10 : after_ins_beats_11 ? io_in_0_need : kept_11)
+      : kept_11;
+  wire [12:0] _after_T_12 =
+    io_in_0_valid
+      ? (after_ins_beats_11 ? kept_11 : after_ins_beats_12 ? io_in_0_need : kept_12)
+      : kept_12;
+  wire [12:0] _after_T_13 =
+    io_in_0_valid
+      ? (after_ins_beats_12 ? kept_12 : after_ins_beats_13 ? io_in_0_need : kept_13)
+      : kept_13;
+  wire [12:0] _after_T_14 =
+    io_in_0_valid
+      ? (after_ins_beats_13 ? kept_13 : after_ins_beats_14 ? io_in_0_need : kept_14)
+      : kept_14;
+  wire [12:0] _after_T_15 =
+    io_in_0_valid
+      ? (after_ins_beats_14 ? kept_14 : after_ins_beats_15 ? io_in_0_need : kept_15)
+      : kept_15;
+  wire        after_ins_beats_1_1 = $signed(io_in_1_need) > $signed(_after_T_1);
+  wire        after_ins_beats_2_1 = $signed(io_in_1_need) > $signed(_after_T_2);
+  wire        after_ins_beats_3_1 = $signed(io_in_1_need) > $signed(_after_T_3);
+  wire        after_ins_beats_4_1 = $signed(io_in_1_need) > $signed(_after_T_4);
+  wire        after_ins_beats_5_1 = $signed(io_in_1_need) > $signed(_after_T_5);
+  wire        after_ins_beats_6_1 = $signed(io_in_1_need) > $signed(_after_T_6);
+  wire        after_ins_beats_7_1 = $signed(io_in_1_need) > $signed(_after_T_7);
+  wire        after_ins_beats_8_1 = $signed(io_in_1_need) > $signed(_after_T_8);
+  wire        after_ins_beats_9_1 = $signed(io_in_1_need) > $signed(_after_T_9);
+  wire        after_ins_beats_10_1 = $signed(io_in_1_need) > $signed(_after_T_10);
+  wire        after_ins_beats_11_1 = $signed(io_in_1_need) > $signed(_after_T_11);
+  wire        after_ins_beats_12_1 = $signed(io_in_1_need) > $signed(_after_T_12);
+  wire        after_ins_beats_13_1 = $signed(io_in_1_need) > $signed(_after_T_13);
+  wire        after_ins_beats_14_1 = $signed(io_in_1_need) > $signed(_after_T_14);
+  wire        after_ins_beats_15_1 = $signed(io_in_1_need) > $signed(_after_T_15);
+  wire        after_hasTop = io_in_0_valid & ~io_in_0_topNone;
+  wire        _after_T_25 = anyTop | after_hasTop;
+  wire        after_hasTop_1 = io_in_1_valid & ~io_in_1_topNone;
+  wire        _GEN_1 = ~after_hasTop | anyTop & $signed(topMax) > $signed(io_in_0_top);
+  always @(posedge clock) begin
+    if (reset) begin
+      kept_0 <= 13'h1000;
+      kept_1 <= 13'h1000;
+      kept_2 <= 13'h1000;
+      kept_3 <= 13'h1000;
+      kept_4 <= 13'h1000;
+      kept_5 <= 13'h1000;
+      kept_6 <= 13'h1000;
+      kept_7 <= 13'h1000;
+      kept_8 <= 13'h1000;
+      kept_9 <= 13'h1000;
+      kept_10 <= 13'h1000;
+      kept_11 <= 13'h1000;
+      kept_12 <= 13'h1000;
+      kept_13 <= 13'h1000;
+      kept_14 <= 13'h1000;
+      kept_15 <= 13'h1000;
+      kept_16 <= 13'h1000;
+      used <= 5'h0;
+      topMax <= 13'h1000;
+      anyTop <= 1'h0;
+    end
+    else begin
+      if (io_clear) begin
+        kept_0 <= 13'h1000;
+        kept_1 <= 13'h1000;
+        kept_2 <= 13'h1000;
+        kept_3 <= 13'h1000;
+        kept_4 <= 13'h1000;
+        kept_5 <= 13'h1000;
+        kept_6 <= 13'h1000;
+        kept_7 <= 13'h1000;
+        kept_8 <= 13'h1000;
+        kept_9 <= 13'h1000;
+        kept_10 <= 13'h1000;
+        kept_11 <= 13'h1000;
+        kept_12 <= 13'h1000;
+        kept_13 <= 13'h1000;
+        kept_14 <= 13'h1000;
+        kept_15 <= 13'h1000;
+        kept_16 <= 13'h1000;
+        used <= 5'h0;
+        topMax <= 13'h1000;
+      end
+      else begin
+        if (io_in_1_valid & after_ins_beats_0_1)
+          kept_0 <= io_in_1_need;
+        else if (_GEN_0)
+          kept_0 <= io_in_0_need;
+        if (io_in_1_valid) begin
+          if (after_ins_beats_0_1)
+            kept_1 <= _after_T;
+          else if (after_ins_beats_1_1)
+            kept_1 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_0)
+              kept_1 <= kept_0;
+            else if (after_ins_beats_1)
+              kept_1 <= io_in_0_need;
+          end
+          if (after_ins_beats_1_1)
+            kept_2 <= _after_T_1;
+          else if (after_ins_beats_2_1)
+            kept_2 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_1)
+              kept_2 <= kept_1;
+            else if (after_ins_beats_2)
+              kept_2 <= io_in_0_need;
+          end
+          if (after_ins_beats_2_1)
+            kept_3 <= _after_T_2;
+          else if (after_ins_beats_3_1)
+            kept_3 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_2)
+              kept_3 <= kept_2;
+            else if (after_ins_beats_3)
+              kept_3 <= io_in_0_need;
+          end
+          if (after_ins_beats_3_1)
+            kept_4 <= _after_T_3;
+          else if (after_ins_beats_4_1)
+            kept_4 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_3)
+              kept_4 <= kept_3;
+            else if (after_ins_beats_4)
+              kept_4 <= io_in_0_need;
+          end
+          if (after_ins_beats_4_1)
+            kept_5 <= _after_T_4;
+          else if (after_ins_beats_5_1)
+            kept_5 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_4)
+              kept_5 <= kept_4;
+            else if (after_ins_beats_5)
+              kept_5 <= io_in_0_need;
+          end
+          if (after_ins_beats_5_1)
+            kept_6 <= _after_T_5;
+          else if (after_ins_beats_6_1)
+            kept_6 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_5)
+              kept_6 <= kept_5;
+            else if (after_ins_beats_6)
+              kept_6 <= io_in_0_need;
+          end
+          if (after_ins_beats_6_1)
+            kept_7 <= _after_T_6;
+          else if (after_ins_beats_7_1)
+            kept_7 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_6)
+              kept_7 <= kept_6;
+            else if (after_ins_beats_7)
+              kept_7 <= io_in_0_need;
+          end
+          if (after_ins_beats_7_1)
+            kept_8 <= _after_T_7;
+          else if (after_ins_beats_8_1)
+            kept_8 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_7)
+              kept_8 <= kept_7;
+            else if (after_ins_beats_8)
+              kept_8 <= io_in_0_need;
+          end
+          if (after_ins_beats_8_1)
+            kept_9 <= _after_T_8;
+          else if (after_ins_beats_9_1)
+            kept_9 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_8)
+              kept_9 <= kept_8;
+            else if (after_ins_beats_9)
+              kept_9 <= io_in_0_need;
+          end
+          if (after_ins_beats_9_1)
+            kept_10 <= _after_T_9;
+          else if (after_ins_beats_10_1)
+            kept_10 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_9)
+              kept_10 <= kept_9;
+            else if (after_ins_beats_10)
+              kept_10 <= io_in_0_need;
+          end
+          if (after_ins_beats_10_1)
+            kept_11 <= _after_T_10;
+          else if (after_ins_beats_11_1)
+            kept_11 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_10)
+              kept_11 <= kept_10;
+            else if (after_ins_beats_11)
+              kept_11 <= io_in_0_need;
+          end
+          if (after_ins_beats_11_1)
+            kept_12 <= _after_T_11;
+          else if (after_ins_beats_12_1)
+            kept_12 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_11)
+              kept_12 <= kept_11;
+            else if (after_ins_beats_12)
+              kept_12 <= io_in_0_need;
+          end
+          if (after_ins_beats_12_1)
+            kept_13 <= _after_T_12;
+          else if (after_ins_beats_13_1)
+            kept_13 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_12)
+              kept_13 <= kept_12;
+            else if (after_ins_beats_13)
+              kept_13 <= io_in_0_need;
+          end
+          if (after_ins_beats_13_1)
+            kept_14 <= _after_T_13;
+          else if (after_ins_beats_14_1)
+            kept_14 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_13)
+              kept_14 <= kept_13;
+            else if (after_ins_beats_14)
+              kept_14 <= io_in_0_need;
+          end
+          if (after_ins_beats_14_1)
+            kept_15 <= _after_T_14;
+          else if (after_ins_beats_15_1)
+            kept_15 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_14)
+              kept_15 <= kept_14;
+            else if (after_ins_beats_15)
+              kept_15 <= io_in_0_need;
+          end
+          if (after_ins_beats_15_1)
+            kept_16 <= _after_T_15;
+          else if ($signed(io_in_1_need) > $signed(io_in_0_valid
+                                                     ? (after_ins_beats_15
+                                                          ? kept_15
+                                                          : after_ins_beats_16
+                                                              ? io_in_0_need
+                                                              : kept_16)
+                                                     : kept_16))
+            kept_16 <= io_in_1_need;
+          else if (io_in_0_valid) begin
+            if (after_ins_beats_15)
+              kept_16 <= kept_15;
+            else if (after_ins_beats_16)
+              kept_16 <= io_in_0_need;
+          end
+        end
+        else if (io_in_0_valid) begin
+          if (after_ins_beats_0)
+            kept_1 <= kept_0;
+          else if (after_ins_beats_1)
+            kept_1 <= io_in_0_need;
+          if (after_ins_beats_1)
+            kept_2 <= kept_1;
+          else if (after_ins_beats_2)
+            kept_2 <= io_in_0_need;
+          if (after_ins_beats_2)
+            kept_3 <= kept_2;
+          else if (after_ins_beats_3)
+            kept_3 <= io_in_0_need;
+          if (after_ins_beats_3)
+            kept_4 <= kept_3;
+          else if (after_ins_beats_4)
+            kept_4 <= io_in_0_need;
+          if (after_ins_beats_4)
+            kept_5 <= kept_4;
+          else if (after_ins_beats_5)
+            kept_5 <= io_in_0_need;
+          if (after_ins_beats_5)
+            kept_6 <= kept_5;
+          else if (after_ins_beats_6)
+            kept_6 <= io_in_0_need;
+          if (after_ins_beats_6)
+            kept_7 <= kept_6;
+          else if (after_ins_beats_7)
+            kept_7 <= io_in_0_need;
+          if (after_ins_beats_7)
+            kept_8 <= kept_7;
+          else if (after_ins_beats_8)
+            kept_8 <= io_in_0_need;
+          if (after_ins_beats_8)
+            kept_9 <= kept_8;
+          else if (after_ins_beats_9)
+            kept_9 <= io_in_0_need;
+          if (after_ins_beats_9)
+            kept_10 <= kept_9;
+          else if (after_ins_beats_10)
+            kept_10 <= io_in_0_need;
+          if (after_ins_beats_10)
+            kept_11 <= kept_10;
+          else if (after_ins_beats_11)
+            kept_11 <= io_in_0_need;
+          if (after_ins_beats_11)
+            kept_12 <= kept_11;
+          else if (after_ins_beats_12)
+            kept_12 <= io_in_0_need;
+          if (after_ins_beats_12)
+            kept_13 <= kept_12;
+          else if (after_ins_beats_13)
+            kept_13 <= io_in_0_need;
+          if (after_ins_beats_13)
+            kept_14 <= kept_13;
+          else if (after_ins_beats_14)
+            kept_14 <= io_in_0_need;
+          if (after_ins_beats_14)
+            kept_15 <= kept_14;
+          else if (after_ins_beats_15)
+            kept_15 <= io_in_0_need;
+          if (after_ins_beats_15)
+            kept_16 <= kept_15;
+          else if (after_ins_beats_16)
+            kept_16 <= io_in_0_need;
         end
         used <= _after_T_45 > 7'h11 ? 5'h11 : _after_T_45[4:0];
         if (~after_hasTop_1 | _after_T_25
@@ -16249,50 +16458,50 @@ module CellExponent_fp32_L16_c20_p2_world(
 endmodule
 
 // VCS coverage exclude_file
-module tables_0_1024x104_world(
-  input  [9:0]   R0_addr,
+module tables_0_512x208_world(
+  input  [8:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [103:0] R0_data,
-  input  [9:0]   R1_addr,
+  output [207:0] R0_data,
+  input  [8:0]   R1_addr,
   input          R1_en,
                  R1_clk,
-  output [103:0] R1_data,
-  input  [9:0]   R2_addr,
+  output [207:0] R1_data,
+  input  [8:0]   R2_addr,
   input          R2_en,
                  R2_clk,
-  output [103:0] R2_data,
-  input  [9:0]   R3_addr,
+  output [207:0] R2_data,
+  input  [8:0]   R3_addr,
   input          R3_en,
                  R3_clk,
-  output [103:0] R3_data,
-  input  [9:0]   W0_addr,
+  output [207:0] R3_data,
+  input  [8:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [103:0] W0_data
+  input  [207:0] W0_data
 );
 
-  reg [103:0] Memory[0:1023];
+  reg [207:0] Memory[0:511];
   reg         _R0_en_d0;
-  reg [9:0]   _R0_addr_d0;
+  reg [8:0]   _R0_addr_d0;
   always @(posedge R0_clk) begin
     _R0_en_d0 <= R0_en;
     _R0_addr_d0 <= R0_addr;
   end // always @(posedge)
   reg         _R1_en_d0;
-  reg [9:0]   _R1_addr_d0;
+  reg [8:0]   _R1_addr_d0;
   always @(posedge R1_clk) begin
     _R1_en_d0 <= R1_en;
     _R1_addr_d0 <= R1_addr;
   end // always @(posedge)
   reg         _R2_en_d0;
-  reg [9:0]   _R2_addr_d0;
+  reg [8:0]   _R2_addr_d0;
   always @(posedge R2_clk) begin
     _R2_en_d0 <= R2_en;
     _R2_addr_d0 <= R2_addr;
   end // always @(posedge)
   reg         _R3_en_d0;
-  reg [9:0]   _R3_addr_d0;
+  reg [8:0]   _R3_addr_d0;
   always @(posedge R3_clk) begin
     _R3_en_d0 <= R3_en;
     _R3_addr_d0 <= R3_addr;
@@ -16301,37 +16510,37 @@ module tables_0_1024x104_world(
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 104'bx;
-  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 104'bx;
-  assign R2_data = _R2_en_d0 ? Memory[_R2_addr_d0] : 104'bx;
-  assign R3_data = _R3_en_d0 ? Memory[_R3_addr_d0] : 104'bx;
+  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 208'bx;
+  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 208'bx;
+  assign R2_data = _R2_en_d0 ? Memory[_R2_addr_d0] : 208'bx;
+  assign R3_data = _R3_en_d0 ? Memory[_R3_addr_d0] : 208'bx;
 endmodule
 
 // VCS coverage exclude_file
-module mem_1024x104_world(
-  input  [9:0]   R0_addr,
+module mem_512x208_world(
+  input  [8:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [103:0] R0_data,
-  input  [9:0]   R1_addr,
+  output [207:0] R0_data,
+  input  [8:0]   R1_addr,
   input          R1_en,
                  R1_clk,
-  output [103:0] R1_data,
-  input  [9:0]   W0_addr,
+  output [207:0] R1_data,
+  input  [8:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [103:0] W0_data
+  input  [207:0] W0_data
 );
 
-  reg [103:0] Memory[0:1023];
+  reg [207:0] Memory[0:511];
   reg         _R0_en_d0;
-  reg [9:0]   _R0_addr_d0;
+  reg [8:0]   _R0_addr_d0;
   always @(posedge R0_clk) begin
     _R0_en_d0 <= R0_en;
     _R0_addr_d0 <= R0_addr;
   end // always @(posedge)
   reg         _R1_en_d0;
-  reg [9:0]   _R1_addr_d0;
+  reg [8:0]   _R1_addr_d0;
   always @(posedge R1_clk) begin
     _R1_en_d0 <= R1_en;
     _R1_addr_d0 <= R1_addr;
@@ -16340,8 +16549,8 @@ module mem_1024x104_world(
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 104'bx;
-  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 104'bx;
+  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 208'bx;
+  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 208'bx;
 endmodule
 
 // VCS coverage exclude_file
@@ -16376,7 +16585,7 @@ module entries_4096x13_world(
   assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 13'bx;
 endmodule
 
-module BucketSort_n4096_b13_w3_c16_p2_world(
+module BucketSort_n4096_b13_w4_c16_p2_world(
   input         clock,
                 reset,
   input  [3:0]  io_usedLog2,
@@ -16404,6 +16613,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_0_word_5,
                 io_lookup_0_word_6,
                 io_lookup_0_word_7,
+                io_lookup_0_word_8,
+                io_lookup_0_word_9,
+                io_lookup_0_word_10,
+                io_lookup_0_word_11,
+                io_lookup_0_word_12,
+                io_lookup_0_word_13,
+                io_lookup_0_word_14,
+                io_lookup_0_word_15,
   input  [12:0] io_lookup_1_bucket,
   output [12:0] io_lookup_1_begin,
                 io_lookup_1_end,
@@ -16415,6 +16632,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_1_word_5,
                 io_lookup_1_word_6,
                 io_lookup_1_word_7,
+                io_lookup_1_word_8,
+                io_lookup_1_word_9,
+                io_lookup_1_word_10,
+                io_lookup_1_word_11,
+                io_lookup_1_word_12,
+                io_lookup_1_word_13,
+                io_lookup_1_word_14,
+                io_lookup_1_word_15,
   input  [12:0] io_lookup_2_bucket,
   output [12:0] io_lookup_2_begin,
                 io_lookup_2_end,
@@ -16426,6 +16651,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_2_word_5,
                 io_lookup_2_word_6,
                 io_lookup_2_word_7,
+                io_lookup_2_word_8,
+                io_lookup_2_word_9,
+                io_lookup_2_word_10,
+                io_lookup_2_word_11,
+                io_lookup_2_word_12,
+                io_lookup_2_word_13,
+                io_lookup_2_word_14,
+                io_lookup_2_word_15,
   input  [12:0] io_lookup_3_bucket,
   output [12:0] io_lookup_3_begin,
                 io_lookup_3_end,
@@ -16437,6 +16670,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_3_word_5,
                 io_lookup_3_word_6,
                 io_lookup_3_word_7,
+                io_lookup_3_word_8,
+                io_lookup_3_word_9,
+                io_lookup_3_word_10,
+                io_lookup_3_word_11,
+                io_lookup_3_word_12,
+                io_lookup_3_word_13,
+                io_lookup_3_word_14,
+                io_lookup_3_word_15,
   input  [12:0] io_lookup_4_bucket,
   output [12:0] io_lookup_4_begin,
                 io_lookup_4_end,
@@ -16448,6 +16689,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_4_word_5,
                 io_lookup_4_word_6,
                 io_lookup_4_word_7,
+                io_lookup_4_word_8,
+                io_lookup_4_word_9,
+                io_lookup_4_word_10,
+                io_lookup_4_word_11,
+                io_lookup_4_word_12,
+                io_lookup_4_word_13,
+                io_lookup_4_word_14,
+                io_lookup_4_word_15,
   input  [12:0] io_lookup_5_bucket,
   output [12:0] io_lookup_5_begin,
                 io_lookup_5_end,
@@ -16459,6 +16708,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_5_word_5,
                 io_lookup_5_word_6,
                 io_lookup_5_word_7,
+                io_lookup_5_word_8,
+                io_lookup_5_word_9,
+                io_lookup_5_word_10,
+                io_lookup_5_word_11,
+                io_lookup_5_word_12,
+                io_lookup_5_word_13,
+                io_lookup_5_word_14,
+                io_lookup_5_word_15,
   input  [12:0] io_lookup_6_bucket,
   output [12:0] io_lookup_6_begin,
                 io_lookup_6_end,
@@ -16470,6 +16727,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_6_word_5,
                 io_lookup_6_word_6,
                 io_lookup_6_word_7,
+                io_lookup_6_word_8,
+                io_lookup_6_word_9,
+                io_lookup_6_word_10,
+                io_lookup_6_word_11,
+                io_lookup_6_word_12,
+                io_lookup_6_word_13,
+                io_lookup_6_word_14,
+                io_lookup_6_word_15,
   input  [12:0] io_lookup_7_bucket,
   output [12:0] io_lookup_7_begin,
                 io_lookup_7_end,
@@ -16481,6 +16746,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_7_word_5,
                 io_lookup_7_word_6,
                 io_lookup_7_word_7,
+                io_lookup_7_word_8,
+                io_lookup_7_word_9,
+                io_lookup_7_word_10,
+                io_lookup_7_word_11,
+                io_lookup_7_word_12,
+                io_lookup_7_word_13,
+                io_lookup_7_word_14,
+                io_lookup_7_word_15,
   input  [12:0] io_lookup_8_bucket,
   output [12:0] io_lookup_8_begin,
                 io_lookup_8_end,
@@ -16492,6 +16765,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_8_word_5,
                 io_lookup_8_word_6,
                 io_lookup_8_word_7,
+                io_lookup_8_word_8,
+                io_lookup_8_word_9,
+                io_lookup_8_word_10,
+                io_lookup_8_word_11,
+                io_lookup_8_word_12,
+                io_lookup_8_word_13,
+                io_lookup_8_word_14,
+                io_lookup_8_word_15,
   input  [12:0] io_lookup_9_bucket,
   output [12:0] io_lookup_9_begin,
                 io_lookup_9_end,
@@ -16503,6 +16784,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_9_word_5,
                 io_lookup_9_word_6,
                 io_lookup_9_word_7,
+                io_lookup_9_word_8,
+                io_lookup_9_word_9,
+                io_lookup_9_word_10,
+                io_lookup_9_word_11,
+                io_lookup_9_word_12,
+                io_lookup_9_word_13,
+                io_lookup_9_word_14,
+                io_lookup_9_word_15,
   input  [12:0] io_lookup_10_bucket,
   output [12:0] io_lookup_10_begin,
                 io_lookup_10_end,
@@ -16514,6 +16803,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_10_word_5,
                 io_lookup_10_word_6,
                 io_lookup_10_word_7,
+                io_lookup_10_word_8,
+                io_lookup_10_word_9,
+                io_lookup_10_word_10,
+                io_lookup_10_word_11,
+                io_lookup_10_word_12,
+                io_lookup_10_word_13,
+                io_lookup_10_word_14,
+                io_lookup_10_word_15,
   input  [12:0] io_lookup_11_bucket,
   output [12:0] io_lookup_11_begin,
                 io_lookup_11_end,
@@ -16525,6 +16822,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_11_word_5,
                 io_lookup_11_word_6,
                 io_lookup_11_word_7,
+                io_lookup_11_word_8,
+                io_lookup_11_word_9,
+                io_lookup_11_word_10,
+                io_lookup_11_word_11,
+                io_lookup_11_word_12,
+                io_lookup_11_word_13,
+                io_lookup_11_word_14,
+                io_lookup_11_word_15,
   input  [12:0] io_lookup_12_bucket,
   output [12:0] io_lookup_12_begin,
                 io_lookup_12_end,
@@ -16536,6 +16841,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_12_word_5,
                 io_lookup_12_word_6,
                 io_lookup_12_word_7,
+                io_lookup_12_word_8,
+                io_lookup_12_word_9,
+                io_lookup_12_word_10,
+                io_lookup_12_word_11,
+                io_lookup_12_word_12,
+                io_lookup_12_word_13,
+                io_lookup_12_word_14,
+                io_lookup_12_word_15,
   input  [12:0] io_lookup_13_bucket,
   output [12:0] io_lookup_13_begin,
                 io_lookup_13_end,
@@ -16547,6 +16860,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_13_word_5,
                 io_lookup_13_word_6,
                 io_lookup_13_word_7,
+                io_lookup_13_word_8,
+                io_lookup_13_word_9,
+                io_lookup_13_word_10,
+                io_lookup_13_word_11,
+                io_lookup_13_word_12,
+                io_lookup_13_word_13,
+                io_lookup_13_word_14,
+                io_lookup_13_word_15,
   input  [12:0] io_lookup_14_bucket,
   output [12:0] io_lookup_14_begin,
                 io_lookup_14_end,
@@ -16558,6 +16879,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_14_word_5,
                 io_lookup_14_word_6,
                 io_lookup_14_word_7,
+                io_lookup_14_word_8,
+                io_lookup_14_word_9,
+                io_lookup_14_word_10,
+                io_lookup_14_word_11,
+                io_lookup_14_word_12,
+                io_lookup_14_word_13,
+                io_lookup_14_word_14,
+                io_lookup_14_word_15,
   input  [12:0] io_lookup_15_bucket,
   output [12:0] io_lookup_15_begin,
                 io_lookup_15_end,
@@ -16569,6 +16898,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
                 io_lookup_15_word_5,
                 io_lookup_15_word_6,
                 io_lookup_15_word_7,
+                io_lookup_15_word_8,
+                io_lookup_15_word_9,
+                io_lookup_15_word_10,
+                io_lookup_15_word_11,
+                io_lookup_15_word_12,
+                io_lookup_15_word_13,
+                io_lookup_15_word_14,
+                io_lookup_15_word_15,
   input  [11:0] io_entry_0_addr,
   output [11:0] io_entry_0_item,
   output        io_entry_0_mark,
@@ -16670,6 +17007,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   output        io_badBucket
 );
 
+  wire [12:0]  oldWord_1_15;
+  wire [12:0]  oldWord_1_14;
+  wire [12:0]  oldWord_1_13;
+  wire [12:0]  oldWord_1_12;
+  wire [12:0]  oldWord_1_11;
+  wire [12:0]  oldWord_1_10;
+  wire [12:0]  oldWord_1_9;
+  wire [12:0]  oldWord_1_8;
   wire [12:0]  oldWord_1_7;
   wire [12:0]  oldWord_1_6;
   wire [12:0]  oldWord_1_5;
@@ -16678,6 +17023,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   wire [12:0]  oldWord_1_2;
   wire [12:0]  oldWord_1_1;
   wire [12:0]  oldWord_1_0;
+  wire [12:0]  oldWord_15;
+  wire [12:0]  oldWord_14;
+  wire [12:0]  oldWord_13;
+  wire [12:0]  oldWord_12;
+  wire [12:0]  oldWord_11;
+  wire [12:0]  oldWord_10;
+  wire [12:0]  oldWord_9;
+  wire [12:0]  oldWord_8;
   wire [12:0]  oldWord_7;
   wire [12:0]  oldWord_6;
   wire [12:0]  oldWord_5;
@@ -16702,46 +17055,46 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   wire [12:0]  _entries_2_ext_R0_data;
   wire [12:0]  _entries_1_ext_R0_data;
   wire [12:0]  _entries_0_ext_R0_data;
-  wire [103:0] _cursors_0_ext_R0_data;
-  wire [103:0] _cursors_0_ext_R1_data;
-  wire [103:0] _tables_15_ext_R0_data;
-  wire [103:0] _tables_15_ext_R1_data;
-  wire [103:0] _tables_14_ext_R0_data;
-  wire [103:0] _tables_14_ext_R1_data;
-  wire [103:0] _tables_13_ext_R0_data;
-  wire [103:0] _tables_13_ext_R1_data;
-  wire [103:0] _tables_12_ext_R0_data;
-  wire [103:0] _tables_12_ext_R1_data;
-  wire [103:0] _tables_11_ext_R0_data;
-  wire [103:0] _tables_11_ext_R1_data;
-  wire [103:0] _tables_10_ext_R0_data;
-  wire [103:0] _tables_10_ext_R1_data;
-  wire [103:0] _tables_9_ext_R0_data;
-  wire [103:0] _tables_9_ext_R1_data;
-  wire [103:0] _tables_8_ext_R0_data;
-  wire [103:0] _tables_8_ext_R1_data;
-  wire [103:0] _tables_7_ext_R0_data;
-  wire [103:0] _tables_7_ext_R1_data;
-  wire [103:0] _tables_6_ext_R0_data;
-  wire [103:0] _tables_6_ext_R1_data;
-  wire [103:0] _tables_5_ext_R0_data;
-  wire [103:0] _tables_5_ext_R1_data;
-  wire [103:0] _tables_4_ext_R0_data;
-  wire [103:0] _tables_4_ext_R1_data;
-  wire [103:0] _tables_3_ext_R0_data;
-  wire [103:0] _tables_3_ext_R1_data;
-  wire [103:0] _tables_2_ext_R0_data;
-  wire [103:0] _tables_2_ext_R1_data;
-  wire [103:0] _tables_1_ext_R0_data;
-  wire [103:0] _tables_1_ext_R1_data;
-  wire [103:0] _tables_0_ext_R0_data;
-  wire [103:0] _tables_0_ext_R1_data;
-  wire [103:0] _tables_0_ext_R2_data;
-  wire [103:0] _tables_0_ext_R3_data;
+  wire [207:0] _cursors_0_ext_R0_data;
+  wire [207:0] _cursors_0_ext_R1_data;
+  wire [207:0] _tables_15_ext_R0_data;
+  wire [207:0] _tables_15_ext_R1_data;
+  wire [207:0] _tables_14_ext_R0_data;
+  wire [207:0] _tables_14_ext_R1_data;
+  wire [207:0] _tables_13_ext_R0_data;
+  wire [207:0] _tables_13_ext_R1_data;
+  wire [207:0] _tables_12_ext_R0_data;
+  wire [207:0] _tables_12_ext_R1_data;
+  wire [207:0] _tables_11_ext_R0_data;
+  wire [207:0] _tables_11_ext_R1_data;
+  wire [207:0] _tables_10_ext_R0_data;
+  wire [207:0] _tables_10_ext_R1_data;
+  wire [207:0] _tables_9_ext_R0_data;
+  wire [207:0] _tables_9_ext_R1_data;
+  wire [207:0] _tables_8_ext_R0_data;
+  wire [207:0] _tables_8_ext_R1_data;
+  wire [207:0] _tables_7_ext_R0_data;
+  wire [207:0] _tables_7_ext_R1_data;
+  wire [207:0] _tables_6_ext_R0_data;
+  wire [207:0] _tables_6_ext_R1_data;
+  wire [207:0] _tables_5_ext_R0_data;
+  wire [207:0] _tables_5_ext_R1_data;
+  wire [207:0] _tables_4_ext_R0_data;
+  wire [207:0] _tables_4_ext_R1_data;
+  wire [207:0] _tables_3_ext_R0_data;
+  wire [207:0] _tables_3_ext_R1_data;
+  wire [207:0] _tables_2_ext_R0_data;
+  wire [207:0] _tables_2_ext_R1_data;
+  wire [207:0] _tables_1_ext_R0_data;
+  wire [207:0] _tables_1_ext_R1_data;
+  wire [207:0] _tables_0_ext_R0_data;
+  wire [207:0] _tables_0_ext_R1_data;
+  wire [207:0] _tables_0_ext_R2_data;
+  wire [207:0] _tables_0_ext_R3_data;
   reg  [1:0]   state;
-  reg  [10:0]  walk;
+  reg  [9:0]   walk;
   wire [28:0]  _used_T = 29'h1 << io_usedLog2;
-  wire [10:0]  usedWords = _used_T[13:3] == 11'h0 ? 11'h1 : _used_T[13:3];
+  wire [9:0]   usedWords = _used_T[13:4] == 10'h0 ? 10'h1 : _used_T[13:4];
   reg  [12:0]  counted;
   reg  [12:0]  scattered;
   reg          bad;
@@ -16750,7 +17103,7 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   wire         _sumRead_T_1 = walk < usedWords;
   wire         sumRead = _sumRead_T & _sumRead_T_1;
   reg          sumS1;
-  reg  [9:0]   sumW;
+  reg  [8:0]   sumW;
   reg          sumLast;
   wire [12:0]  totals_0 = _cursors_0_ext_R0_data[12:0] + _tables_0_ext_R0_data[12:0];
   wire [12:0]  totals_1 = _cursors_0_ext_R0_data[25:13] + _tables_0_ext_R0_data[25:13];
@@ -16760,6 +17113,22 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   wire [12:0]  totals_5 = _cursors_0_ext_R0_data[77:65] + _tables_0_ext_R0_data[77:65];
   wire [12:0]  totals_6 = _cursors_0_ext_R0_data[90:78] + _tables_0_ext_R0_data[90:78];
   wire [12:0]  totals_7 = _cursors_0_ext_R0_data[103:91] + _tables_0_ext_R0_data[103:91];
+  wire [12:0]  totals_8 =
+    _cursors_0_ext_R0_data[116:104] + _tables_0_ext_R0_data[116:104];
+  wire [12:0]  totals_9 =
+    _cursors_0_ext_R0_data[129:117] + _tables_0_ext_R0_data[129:117];
+  wire [12:0]  totals_10 =
+    _cursors_0_ext_R0_data[142:130] + _tables_0_ext_R0_data[142:130];
+  wire [12:0]  totals_11 =
+    _cursors_0_ext_R0_data[155:143] + _tables_0_ext_R0_data[155:143];
+  wire [12:0]  totals_12 =
+    _cursors_0_ext_R0_data[168:156] + _tables_0_ext_R0_data[168:156];
+  wire [12:0]  totals_13 =
+    _cursors_0_ext_R0_data[181:169] + _tables_0_ext_R0_data[181:169];
+  wire [12:0]  totals_14 =
+    _cursors_0_ext_R0_data[194:182] + _tables_0_ext_R0_data[194:182];
+  wire [12:0]  totals_15 =
+    _cursors_0_ext_R0_data[207:195] + _tables_0_ext_R0_data[207:195];
   wire [12:0]  starts_1 = sum + totals_0;
   wire [12:0]  starts_2 = starts_1 + totals_1;
   wire [12:0]  starts_3 = starts_2 + totals_2;
@@ -16767,10 +17136,26 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   wire [12:0]  starts_5 = starts_4 + totals_4;
   wire [12:0]  starts_6 = starts_5 + totals_5;
   wire [12:0]  starts_7 = starts_6 + totals_6;
+  wire [12:0]  starts_8 = starts_7 + totals_7;
+  wire [12:0]  starts_9 = starts_8 + totals_8;
+  wire [12:0]  starts_10 = starts_9 + totals_9;
+  wire [12:0]  starts_11 = starts_10 + totals_10;
+  wire [12:0]  starts_12 = starts_11 + totals_11;
+  wire [12:0]  starts_13 = starts_12 + totals_12;
+  wire [12:0]  starts_14 = starts_13 + totals_13;
+  wire [12:0]  starts_15 = starts_14 + totals_14;
   wire         _io_in_1_ready_T = state == 2'h0;
   wire         _GEN = state == 2'h1;
-  wire [103:0] ends =
-    {starts_7 + totals_7,
+  wire [207:0] ends =
+    {starts_15 + totals_15,
+     starts_14 + totals_14,
+     starts_13 + totals_13,
+     starts_12 + totals_12,
+     starts_11 + totals_11,
+     starts_10 + totals_10,
+     starts_9 + totals_9,
+     starts_8 + totals_8,
+     starts_7 + totals_7,
      starts_6 + totals_6,
      starts_5 + totals_5,
      starts_4 + totals_4,
@@ -16788,40 +17173,64 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   reg          s1scatter;
   reg  [11:0]  s1item;
   reg          fwdValid;
-  reg  [9:0]   fwdW;
+  reg  [8:0]   fwdW;
   reg  [12:0]  casez_tmp;
   always @(*) begin
-    casez (s1b[2:0])
-      3'b000:
+    casez (s1b[3:0])
+      4'b0000:
         casez_tmp = oldWord_0;
-      3'b001:
+      4'b0001:
         casez_tmp = oldWord_1;
-      3'b010:
+      4'b0010:
         casez_tmp = oldWord_2;
-      3'b011:
+      4'b0011:
         casez_tmp = oldWord_3;
-      3'b100:
+      4'b0100:
         casez_tmp = oldWord_4;
-      3'b101:
+      4'b0101:
         casez_tmp = oldWord_5;
-      3'b110:
+      4'b0110:
         casez_tmp = oldWord_6;
-      default:
+      4'b0111:
         casez_tmp = oldWord_7;
+      4'b1000:
+        casez_tmp = oldWord_8;
+      4'b1001:
+        casez_tmp = oldWord_9;
+      4'b1010:
+        casez_tmp = oldWord_10;
+      4'b1011:
+        casez_tmp = oldWord_11;
+      4'b1100:
+        casez_tmp = oldWord_12;
+      4'b1101:
+        casez_tmp = oldWord_13;
+      4'b1110:
+        casez_tmp = oldWord_14;
+      default:
+        casez_tmp = oldWord_15;
     endcase
   end // always @(*)
-  wire [12:0]  _newWord_T_37 = casez_tmp + 13'h1;
-  wire [103:0] newWord =
-    {(&(s1b[2:0])) ? _newWord_T_37 : oldWord_7,
-     s1b[2:0] == 3'h6 ? _newWord_T_37 : oldWord_6,
-     s1b[2:0] == 3'h5 ? _newWord_T_37 : oldWord_5,
-     s1b[2:0] == 3'h4 ? _newWord_T_37 : oldWord_4,
-     s1b[2:0] == 3'h3 ? _newWord_T_37 : oldWord_3,
-     s1b[2:0] == 3'h2 ? _newWord_T_37 : oldWord_2,
-     s1b[2:0] == 3'h1 ? _newWord_T_37 : oldWord_1,
-     s1b[2:0] == 3'h0 ? _newWord_T_37 : oldWord_0};
-  reg  [103:0] fwdV;
-  wire [103:0] _GEN_0 = fwdValid & fwdW == s1b[12:3] ? fwdV : _cursors_0_ext_R1_data;
+  wire [12:0]  _newWord_T_77 = casez_tmp + 13'h1;
+  wire [207:0] newWord =
+    {(&(s1b[3:0])) ? _newWord_T_77 : oldWord_15,
+     s1b[3:0] == 4'hE ? _newWord_T_77 : oldWord_14,
+     s1b[3:0] == 4'hD ? _newWord_T_77 : oldWord_13,
+     s1b[3:0] == 4'hC ? _newWord_T_77 : oldWord_12,
+     s1b[3:0] == 4'hB ? _newWord_T_77 : oldWord_11,
+     s1b[3:0] == 4'hA ? _newWord_T_77 : oldWord_10,
+     s1b[3:0] == 4'h9 ? _newWord_T_77 : oldWord_9,
+     s1b[3:0] == 4'h8 ? _newWord_T_77 : oldWord_8,
+     s1b[3:0] == 4'h7 ? _newWord_T_77 : oldWord_7,
+     s1b[3:0] == 4'h6 ? _newWord_T_77 : oldWord_6,
+     s1b[3:0] == 4'h5 ? _newWord_T_77 : oldWord_5,
+     s1b[3:0] == 4'h4 ? _newWord_T_77 : oldWord_4,
+     s1b[3:0] == 4'h3 ? _newWord_T_77 : oldWord_3,
+     s1b[3:0] == 4'h2 ? _newWord_T_77 : oldWord_2,
+     s1b[3:0] == 4'h1 ? _newWord_T_77 : oldWord_1,
+     s1b[3:0] == 4'h0 ? _newWord_T_77 : oldWord_0};
+  reg  [207:0] fwdV;
+  wire [207:0] _GEN_0 = fwdValid & fwdW == s1b[12:4] ? fwdV : _cursors_0_ext_R1_data;
   assign oldWord_0 = _GEN_0[12:0];
   assign oldWord_1 = _GEN_0[25:13];
   assign oldWord_2 = _GEN_0[38:26];
@@ -16830,6 +17239,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign oldWord_5 = _GEN_0[77:65];
   assign oldWord_6 = _GEN_0[90:78];
   assign oldWord_7 = _GEN_0[103:91];
+  assign oldWord_8 = _GEN_0[116:104];
+  assign oldWord_9 = _GEN_0[129:117];
+  assign oldWord_10 = _GEN_0[142:130];
+  assign oldWord_11 = _GEN_0[155:143];
+  assign oldWord_12 = _GEN_0[168:156];
+  assign oldWord_13 = _GEN_0[181:169];
+  assign oldWord_14 = _GEN_0[194:182];
+  assign oldWord_15 = _GEN_0[207:195];
   wire         scatterFires_0 = s1 & s1scatter;
   wire         _GEN_1 = sumS1 | _GEN;
   wire         inRange_1 = {1'h0, io_in_1_bits_bucket} < _used_T[13:0];
@@ -16840,41 +17257,65 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   reg          s1scatter_1;
   reg  [11:0]  s1item_1;
   reg          fwdValid_1;
-  reg  [9:0]   fwdW_1;
+  reg  [8:0]   fwdW_1;
   reg  [12:0]  casez_tmp_0;
   always @(*) begin
-    casez (s1b_1[2:0])
-      3'b000:
+    casez (s1b_1[3:0])
+      4'b0000:
         casez_tmp_0 = oldWord_1_0;
-      3'b001:
+      4'b0001:
         casez_tmp_0 = oldWord_1_1;
-      3'b010:
+      4'b0010:
         casez_tmp_0 = oldWord_1_2;
-      3'b011:
+      4'b0011:
         casez_tmp_0 = oldWord_1_3;
-      3'b100:
+      4'b0100:
         casez_tmp_0 = oldWord_1_4;
-      3'b101:
+      4'b0101:
         casez_tmp_0 = oldWord_1_5;
-      3'b110:
+      4'b0110:
         casez_tmp_0 = oldWord_1_6;
-      default:
+      4'b0111:
         casez_tmp_0 = oldWord_1_7;
+      4'b1000:
+        casez_tmp_0 = oldWord_1_8;
+      4'b1001:
+        casez_tmp_0 = oldWord_1_9;
+      4'b1010:
+        casez_tmp_0 = oldWord_1_10;
+      4'b1011:
+        casez_tmp_0 = oldWord_1_11;
+      4'b1100:
+        casez_tmp_0 = oldWord_1_12;
+      4'b1101:
+        casez_tmp_0 = oldWord_1_13;
+      4'b1110:
+        casez_tmp_0 = oldWord_1_14;
+      default:
+        casez_tmp_0 = oldWord_1_15;
     endcase
   end // always @(*)
-  wire [12:0]  _newWord_T_77 = casez_tmp_0 + 13'h1;
-  wire [103:0] newWord_1 =
-    {(&(s1b_1[2:0])) ? _newWord_T_77 : oldWord_1_7,
-     s1b_1[2:0] == 3'h6 ? _newWord_T_77 : oldWord_1_6,
-     s1b_1[2:0] == 3'h5 ? _newWord_T_77 : oldWord_1_5,
-     s1b_1[2:0] == 3'h4 ? _newWord_T_77 : oldWord_1_4,
-     s1b_1[2:0] == 3'h3 ? _newWord_T_77 : oldWord_1_3,
-     s1b_1[2:0] == 3'h2 ? _newWord_T_77 : oldWord_1_2,
-     s1b_1[2:0] == 3'h1 ? _newWord_T_77 : oldWord_1_1,
-     s1b_1[2:0] == 3'h0 ? _newWord_T_77 : oldWord_1_0};
-  reg  [103:0] fwdV_1;
-  wire [103:0] _GEN_2 =
-    fwdValid_1 & fwdW_1 == s1b_1[12:3] ? fwdV_1 : _tables_0_ext_R1_data;
+  wire [12:0]  _newWord_T_157 = casez_tmp_0 + 13'h1;
+  wire [207:0] newWord_1 =
+    {(&(s1b_1[3:0])) ? _newWord_T_157 : oldWord_1_15,
+     s1b_1[3:0] == 4'hE ? _newWord_T_157 : oldWord_1_14,
+     s1b_1[3:0] == 4'hD ? _newWord_T_157 : oldWord_1_13,
+     s1b_1[3:0] == 4'hC ? _newWord_T_157 : oldWord_1_12,
+     s1b_1[3:0] == 4'hB ? _newWord_T_157 : oldWord_1_11,
+     s1b_1[3:0] == 4'hA ? _newWord_T_157 : oldWord_1_10,
+     s1b_1[3:0] == 4'h9 ? _newWord_T_157 : oldWord_1_9,
+     s1b_1[3:0] == 4'h8 ? _newWord_T_157 : oldWord_1_8,
+     s1b_1[3:0] == 4'h7 ? _newWord_T_157 : oldWord_1_7,
+     s1b_1[3:0] == 4'h6 ? _newWord_T_157 : oldWord_1_6,
+     s1b_1[3:0] == 4'h5 ? _newWord_T_157 : oldWord_1_5,
+     s1b_1[3:0] == 4'h4 ? _newWord_T_157 : oldWord_1_4,
+     s1b_1[3:0] == 4'h3 ? _newWord_T_157 : oldWord_1_3,
+     s1b_1[3:0] == 4'h2 ? _newWord_T_157 : oldWord_1_2,
+     s1b_1[3:0] == 4'h1 ? _newWord_T_157 : oldWord_1_1,
+     s1b_1[3:0] == 4'h0 ? _newWord_T_157 : oldWord_1_0};
+  reg  [207:0] fwdV_1;
+  wire [207:0] _GEN_2 =
+    fwdValid_1 & fwdW_1 == s1b_1[12:4] ? fwdV_1 : _tables_0_ext_R1_data;
   assign oldWord_1_0 = _GEN_2[12:0];
   assign oldWord_1_1 = _GEN_2[25:13];
   assign oldWord_1_2 = _GEN_2[38:26];
@@ -16883,746 +17324,1266 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign oldWord_1_5 = _GEN_2[77:65];
   assign oldWord_1_6 = _GEN_2[90:78];
   assign oldWord_1_7 = _GEN_2[103:91];
+  assign oldWord_1_8 = _GEN_2[116:104];
+  assign oldWord_1_9 = _GEN_2[129:117];
+  assign oldWord_1_10 = _GEN_2[142:130];
+  assign oldWord_1_11 = _GEN_2[155:143];
+  assign oldWord_1_12 = _GEN_2[168:156];
+  assign oldWord_1_13 = _GEN_2[181:169];
+  assign oldWord_1_14 = _GEN_2[194:182];
+  assign oldWord_1_15 = _GEN_2[207:195];
   wire         scatterFires_1 = s1_1 & s1scatter_1;
   wire [12:0]  _prev_T = io_lookup_0_bucket - 13'h1;
   reg          lbZero;
-  reg  [2:0]   io_lookup_0_end_REG;
+  reg  [3:0]   io_lookup_0_end_REG;
   reg  [12:0]  casez_tmp_1;
   always @(*) begin
     casez (io_lookup_0_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_1 = _tables_0_ext_R2_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_1 = _tables_0_ext_R2_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_1 = _tables_0_ext_R2_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_1 = _tables_0_ext_R2_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_1 = _tables_0_ext_R2_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_1 = _tables_0_ext_R2_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_1 = _tables_0_ext_R2_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_1 = _tables_0_ext_R2_data[103:91];
+      4'b1000:
+        casez_tmp_1 = _tables_0_ext_R2_data[116:104];
+      4'b1001:
+        casez_tmp_1 = _tables_0_ext_R2_data[129:117];
+      4'b1010:
+        casez_tmp_1 = _tables_0_ext_R2_data[142:130];
+      4'b1011:
+        casez_tmp_1 = _tables_0_ext_R2_data[155:143];
+      4'b1100:
+        casez_tmp_1 = _tables_0_ext_R2_data[168:156];
+      4'b1101:
+        casez_tmp_1 = _tables_0_ext_R2_data[181:169];
+      4'b1110:
+        casez_tmp_1 = _tables_0_ext_R2_data[194:182];
+      default:
+        casez_tmp_1 = _tables_0_ext_R2_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_0_begin_REG;
+  reg  [3:0]   io_lookup_0_begin_REG;
   reg  [12:0]  casez_tmp_2;
   always @(*) begin
     casez (io_lookup_0_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_2 = _tables_0_ext_R3_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_2 = _tables_0_ext_R3_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_2 = _tables_0_ext_R3_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_2 = _tables_0_ext_R3_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_2 = _tables_0_ext_R3_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_2 = _tables_0_ext_R3_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_2 = _tables_0_ext_R3_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_2 = _tables_0_ext_R3_data[103:91];
+      4'b1000:
+        casez_tmp_2 = _tables_0_ext_R3_data[116:104];
+      4'b1001:
+        casez_tmp_2 = _tables_0_ext_R3_data[129:117];
+      4'b1010:
+        casez_tmp_2 = _tables_0_ext_R3_data[142:130];
+      4'b1011:
+        casez_tmp_2 = _tables_0_ext_R3_data[155:143];
+      4'b1100:
+        casez_tmp_2 = _tables_0_ext_R3_data[168:156];
+      4'b1101:
+        casez_tmp_2 = _tables_0_ext_R3_data[181:169];
+      4'b1110:
+        casez_tmp_2 = _tables_0_ext_R3_data[194:182];
+      default:
+        casez_tmp_2 = _tables_0_ext_R3_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _GEN_3 = {1'h0, s1item};
   wire [12:0]  _GEN_4 = {1'h0, s1item_1};
   wire [12:0]  _prev_T_1 = io_lookup_1_bucket - 13'h1;
   reg          lbZero_1;
-  reg  [2:0]   io_lookup_1_end_REG;
+  reg  [3:0]   io_lookup_1_end_REG;
   reg  [12:0]  casez_tmp_3;
   always @(*) begin
     casez (io_lookup_1_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_3 = _tables_1_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_3 = _tables_1_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_3 = _tables_1_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_3 = _tables_1_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_3 = _tables_1_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_3 = _tables_1_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_3 = _tables_1_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_3 = _tables_1_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_3 = _tables_1_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_3 = _tables_1_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_3 = _tables_1_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_3 = _tables_1_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_3 = _tables_1_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_3 = _tables_1_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_3 = _tables_1_ext_R0_data[194:182];
+      default:
+        casez_tmp_3 = _tables_1_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_1_begin_REG;
+  reg  [3:0]   io_lookup_1_begin_REG;
   reg  [12:0]  casez_tmp_4;
   always @(*) begin
     casez (io_lookup_1_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_4 = _tables_1_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_4 = _tables_1_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_4 = _tables_1_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_4 = _tables_1_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_4 = _tables_1_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_4 = _tables_1_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_4 = _tables_1_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_4 = _tables_1_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_4 = _tables_1_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_4 = _tables_1_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_4 = _tables_1_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_4 = _tables_1_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_4 = _tables_1_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_4 = _tables_1_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_4 = _tables_1_ext_R1_data[194:182];
+      default:
+        casez_tmp_4 = _tables_1_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_2 = io_lookup_2_bucket - 13'h1;
   reg          lbZero_2;
-  reg  [2:0]   io_lookup_2_end_REG;
+  reg  [3:0]   io_lookup_2_end_REG;
   reg  [12:0]  casez_tmp_5;
   always @(*) begin
     casez (io_lookup_2_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_5 = _tables_2_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_5 = _tables_2_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_5 = _tables_2_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_5 = _tables_2_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_5 = _tables_2_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_5 = _tables_2_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_5 = _tables_2_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_5 = _tables_2_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_5 = _tables_2_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_5 = _tables_2_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_5 = _tables_2_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_5 = _tables_2_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_5 = _tables_2_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_5 = _tables_2_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_5 = _tables_2_ext_R0_data[194:182];
+      default:
+        casez_tmp_5 = _tables_2_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_2_begin_REG;
+  reg  [3:0]   io_lookup_2_begin_REG;
   reg  [12:0]  casez_tmp_6;
   always @(*) begin
     casez (io_lookup_2_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_6 = _tables_2_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_6 = _tables_2_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_6 = _tables_2_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_6 = _tables_2_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_6 = _tables_2_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_6 = _tables_2_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_6 = _tables_2_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_6 = _tables_2_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_6 = _tables_2_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_6 = _tables_2_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_6 = _tables_2_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_6 = _tables_2_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_6 = _tables_2_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_6 = _tables_2_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_6 = _tables_2_ext_R1_data[194:182];
+      default:
+        casez_tmp_6 = _tables_2_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_3 = io_lookup_3_bucket - 13'h1;
   reg          lbZero_3;
-  reg  [2:0]   io_lookup_3_end_REG;
+  reg  [3:0]   io_lookup_3_end_REG;
   reg  [12:0]  casez_tmp_7;
   always @(*) begin
     casez (io_lookup_3_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_7 = _tables_3_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_7 = _tables_3_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_7 = _tables_3_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_7 = _tables_3_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_7 = _tables_3_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_7 = _tables_3_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_7 = _tables_3_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_7 = _tables_3_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_7 = _tables_3_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_7 = _tables_3_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_7 = _tables_3_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_7 = _tables_3_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_7 = _tables_3_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_7 = _tables_3_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_7 = _tables_3_ext_R0_data[194:182];
+      default:
+        casez_tmp_7 = _tables_3_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_3_begin_REG;
+  reg  [3:0]   io_lookup_3_begin_REG;
   reg  [12:0]  casez_tmp_8;
   always @(*) begin
     casez (io_lookup_3_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_8 = _tables_3_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_8 = _tables_3_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_8 = _tables_3_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_8 = _tables_3_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_8 = _tables_3_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_8 = _tables_3_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_8 = _tables_3_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_8 = _tables_3_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_8 = _tables_3_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_8 = _tables_3_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_8 = _tables_3_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_8 = _tables_3_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_8 = _tables_3_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_8 = _tables_3_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_8 = _tables_3_ext_R1_data[194:182];
+      default:
+        casez_tmp_8 = _tables_3_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_4 = io_lookup_4_bucket - 13'h1;
   reg          lbZero_4;
-  reg  [2:0]   io_lookup_4_end_REG;
+  reg  [3:0]   io_lookup_4_end_REG;
   reg  [12:0]  casez_tmp_9;
   always @(*) begin
     casez (io_lookup_4_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_9 = _tables_4_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_9 = _tables_4_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_9 = _tables_4_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_9 = _tables_4_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_9 = _tables_4_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_9 = _tables_4_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_9 = _tables_4_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_9 = _tables_4_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_9 = _tables_4_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_9 = _tables_4_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_9 = _tables_4_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_9 = _tables_4_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_9 = _tables_4_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_9 = _tables_4_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_9 = _tables_4_ext_R0_data[194:182];
+      default:
+        casez_tmp_9 = _tables_4_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_4_begin_REG;
+  reg  [3:0]   io_lookup_4_begin_REG;
   reg  [12:0]  casez_tmp_10;
   always @(*) begin
     casez (io_lookup_4_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_10 = _tables_4_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_10 = _tables_4_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_10 = _tables_4_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_10 = _tables_4_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_10 = _tables_4_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_10 = _tables_4_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_10 = _tables_4_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_10 = _tables_4_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_10 = _tables_4_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_10 = _tables_4_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_10 = _tables_4_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_10 = _tables_4_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_10 = _tables_4_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_10 = _tables_4_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_10 = _tables_4_ext_R1_data[194:182];
+      default:
+        casez_tmp_10 = _tables_4_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_5 = io_lookup_5_bucket - 13'h1;
   reg          lbZero_5;
-  reg  [2:0]   io_lookup_5_end_REG;
+  reg  [3:0]   io_lookup_5_end_REG;
   reg  [12:0]  casez_tmp_11;
   always @(*) begin
     casez (io_lookup_5_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_11 = _tables_5_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_11 = _tables_5_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_11 = _tables_5_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_11 = _tables_5_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_11 = _tables_5_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_11 = _tables_5_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_11 = _tables_5_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_11 = _tables_5_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_11 = _tables_5_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_11 = _tables_5_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_11 = _tables_5_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_11 = _tables_5_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_11 = _tables_5_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_11 = _tables_5_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_11 = _tables_5_ext_R0_data[194:182];
+      default:
+        casez_tmp_11 = _tables_5_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_5_begin_REG;
+  reg  [3:0]   io_lookup_5_begin_REG;
   reg  [12:0]  casez_tmp_12;
   always @(*) begin
     casez (io_lookup_5_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_12 = _tables_5_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_12 = _tables_5_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_12 = _tables_5_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_12 = _tables_5_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_12 = _tables_5_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_12 = _tables_5_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_12 = _tables_5_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_12 = _tables_5_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_12 = _tables_5_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_12 = _tables_5_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_12 = _tables_5_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_12 = _tables_5_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_12 = _tables_5_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_12 = _tables_5_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_12 = _tables_5_ext_R1_data[194:182];
+      default:
+        casez_tmp_12 = _tables_5_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_6 = io_lookup_6_bucket - 13'h1;
   reg          lbZero_6;
-  reg  [2:0]   io_lookup_6_end_REG;
+  reg  [3:0]   io_lookup_6_end_REG;
   reg  [12:0]  casez_tmp_13;
   always @(*) begin
     casez (io_lookup_6_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_13 = _tables_6_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_13 = _tables_6_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_13 = _tables_6_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_13 = _tables_6_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_13 = _tables_6_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_13 = _tables_6_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_13 = _tables_6_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_13 = _tables_6_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_13 = _tables_6_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_13 = _tables_6_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_13 = _tables_6_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_13 = _tables_6_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_13 = _tables_6_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_13 = _tables_6_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_13 = _tables_6_ext_R0_data[194:182];
+      default:
+        casez_tmp_13 = _tables_6_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_6_begin_REG;
+  reg  [3:0]   io_lookup_6_begin_REG;
   reg  [12:0]  casez_tmp_14;
   always @(*) begin
     casez (io_lookup_6_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_14 = _tables_6_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_14 = _tables_6_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_14 = _tables_6_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_14 = _tables_6_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_14 = _tables_6_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_14 = _tables_6_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_14 = _tables_6_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_14 = _tables_6_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_14 = _tables_6_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_14 = _tables_6_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_14 = _tables_6_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_14 = _tables_6_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_14 = _tables_6_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_14 = _tables_6_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_14 = _tables_6_ext_R1_data[194:182];
+      default:
+        casez_tmp_14 = _tables_6_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_7 = io_lookup_7_bucket - 13'h1;
   reg          lbZero_7;
-  reg  [2:0]   io_lookup_7_end_REG;
+  reg  [3:0]   io_lookup_7_end_REG;
   reg  [12:0]  casez_tmp_15;
   always @(*) begin
     casez (io_lookup_7_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_15 = _tables_7_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_15 = _tables_7_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_15 = _tables_7_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_15 = _tables_7_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_15 = _tables_7_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_15 = _tables_7_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_15 = _tables_7_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_15 = _tables_7_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_15 = _tables_7_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_15 = _tables_7_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_15 = _tables_7_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_15 = _tables_7_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_15 = _tables_7_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_15 = _tables_7_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_15 = _tables_7_ext_R0_data[194:182];
+      default:
+        casez_tmp_15 = _tables_7_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_7_begin_REG;
+  reg  [3:0]   io_lookup_7_begin_REG;
   reg  [12:0]  casez_tmp_16;
   always @(*) begin
     casez (io_lookup_7_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_16 = _tables_7_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_16 = _tables_7_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_16 = _tables_7_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_16 = _tables_7_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_16 = _tables_7_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_16 = _tables_7_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_16 = _tables_7_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_16 = _tables_7_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_16 = _tables_7_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_16 = _tables_7_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_16 = _tables_7_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_16 = _tables_7_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_16 = _tables_7_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_16 = _tables_7_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_16 = _tables_7_ext_R1_data[194:182];
+      default:
+        casez_tmp_16 = _tables_7_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_8 = io_lookup_8_bucket - 13'h1;
   reg          lbZero_8;
-  reg  [2:0]   io_lookup_8_end_REG;
+  reg  [3:0]   io_lookup_8_end_REG;
   reg  [12:0]  casez_tmp_17;
   always @(*) begin
     casez (io_lookup_8_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_17 = _tables_8_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_17 = _tables_8_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_17 = _tables_8_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_17 = _tables_8_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_17 = _tables_8_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_17 = _tables_8_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_17 = _tables_8_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_17 = _tables_8_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_17 = _tables_8_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_17 = _tables_8_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_17 = _tables_8_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_17 = _tables_8_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_17 = _tables_8_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_17 = _tables_8_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_17 = _tables_8_ext_R0_data[194:182];
+      default:
+        casez_tmp_17 = _tables_8_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_8_begin_REG;
+  reg  [3:0]   io_lookup_8_begin_REG;
   reg  [12:0]  casez_tmp_18;
   always @(*) begin
     casez (io_lookup_8_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_18 = _tables_8_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_18 = _tables_8_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_18 = _tables_8_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_18 = _tables_8_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_18 = _tables_8_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_18 = _tables_8_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_18 = _tables_8_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_18 = _tables_8_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_18 = _tables_8_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_18 = _tables_8_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_18 = _tables_8_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_18 = _tables_8_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_18 = _tables_8_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_18 = _tables_8_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_18 = _tables_8_ext_R1_data[194:182];
+      default:
+        casez_tmp_18 = _tables_8_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_9 = io_lookup_9_bucket - 13'h1;
   reg          lbZero_9;
-  reg  [2:0]   io_lookup_9_end_REG;
+  reg  [3:0]   io_lookup_9_end_REG;
   reg  [12:0]  casez_tmp_19;
   always @(*) begin
     casez (io_lookup_9_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_19 = _tables_9_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_19 = _tables_9_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_19 = _tables_9_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_19 = _tables_9_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_19 = _tables_9_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_19 = _tables_9_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_19 = _tables_9_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_19 = _tables_9_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_19 = _tables_9_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_19 = _tables_9_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_19 = _tables_9_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_19 = _tables_9_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_19 = _tables_9_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_19 = _tables_9_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_19 = _tables_9_ext_R0_data[194:182];
+      default:
+        casez_tmp_19 = _tables_9_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_9_begin_REG;
+  reg  [3:0]   io_lookup_9_begin_REG;
   reg  [12:0]  casez_tmp_20;
   always @(*) begin
     casez (io_lookup_9_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_20 = _tables_9_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_20 = _tables_9_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_20 = _tables_9_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_20 = _tables_9_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_20 = _tables_9_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_20 = _tables_9_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_20 = _tables_9_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_20 = _tables_9_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_20 = _tables_9_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_20 = _tables_9_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_20 = _tables_9_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_20 = _tables_9_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_20 = _tables_9_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_20 = _tables_9_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_20 = _tables_9_ext_R1_data[194:182];
+      default:
+        casez_tmp_20 = _tables_9_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_10 = io_lookup_10_bucket - 13'h1;
   reg          lbZero_10;
-  reg  [2:0]   io_lookup_10_end_REG;
+  reg  [3:0]   io_lookup_10_end_REG;
   reg  [12:0]  casez_tmp_21;
   always @(*) begin
     casez (io_lookup_10_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_21 = _tables_10_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_21 = _tables_10_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_21 = _tables_10_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_21 = _tables_10_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_21 = _tables_10_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_21 = _tables_10_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_21 = _tables_10_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_21 = _tables_10_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_21 = _tables_10_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_21 = _tables_10_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_21 = _tables_10_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_21 = _tables_10_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_21 = _tables_10_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_21 = _tables_10_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_21 = _tables_10_ext_R0_data[194:182];
+      default:
+        casez_tmp_21 = _tables_10_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_10_begin_REG;
+  reg  [3:0]   io_lookup_10_begin_REG;
   reg  [12:0]  casez_tmp_22;
   always @(*) begin
     casez (io_lookup_10_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_22 = _tables_10_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_22 = _tables_10_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_22 = _tables_10_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_22 = _tables_10_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_22 = _tables_10_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_22 = _tables_10_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_22 = _tables_10_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_22 = _tables_10_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_22 = _tables_10_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_22 = _tables_10_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_22 = _tables_10_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_22 = _tables_10_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_22 = _tables_10_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_22 = _tables_10_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_22 = _tables_10_ext_R1_data[194:182];
+      default:
+        casez_tmp_22 = _tables_10_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_11 = io_lookup_11_bucket - 13'h1;
   reg          lbZero_11;
-  reg  [2:0]   io_lookup_11_end_REG;
+  reg  [3:0]   io_lookup_11_end_REG;
   reg  [12:0]  casez_tmp_23;
   always @(*) begin
     casez (io_lookup_11_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_23 = _tables_11_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_23 = _tables_11_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_23 = _tables_11_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_23 = _tables_11_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_23 = _tables_11_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_23 = _tables_11_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_23 = _tables_11_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_23 = _tables_11_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_23 = _tables_11_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_23 = _tables_11_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_23 = _tables_11_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_23 = _tables_11_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_23 = _tables_11_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_23 = _tables_11_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_23 = _tables_11_ext_R0_data[194:182];
+      default:
+        casez_tmp_23 = _tables_11_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_11_begin_REG;
+  reg  [3:0]   io_lookup_11_begin_REG;
   reg  [12:0]  casez_tmp_24;
   always @(*) begin
     casez (io_lookup_11_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_24 = _tables_11_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_24 = _tables_11_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_24 = _tables_11_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_24 = _tables_11_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_24 = _tables_11_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_24 = _tables_11_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_24 = _tables_11_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_24 = _tables_11_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_24 = _tables_11_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_24 = _tables_11_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_24 = _tables_11_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_24 = _tables_11_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_24 = _tables_11_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_24 = _tables_11_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_24 = _tables_11_ext_R1_data[194:182];
+      default:
+        casez_tmp_24 = _tables_11_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_12 = io_lookup_12_bucket - 13'h1;
   reg          lbZero_12;
-  reg  [2:0]   io_lookup_12_end_REG;
+  reg  [3:0]   io_lookup_12_end_REG;
   reg  [12:0]  casez_tmp_25;
   always @(*) begin
     casez (io_lookup_12_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_25 = _tables_12_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_25 = _tables_12_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_25 = _tables_12_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_25 = _tables_12_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_25 = _tables_12_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_25 = _tables_12_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_25 = _tables_12_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_25 = _tables_12_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_25 = _tables_12_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_25 = _tables_12_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_25 = _tables_12_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_25 = _tables_12_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_25 = _tables_12_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_25 = _tables_12_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_25 = _tables_12_ext_R0_data[194:182];
+      default:
+        casez_tmp_25 = _tables_12_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_12_begin_REG;
+  reg  [3:0]   io_lookup_12_begin_REG;
   reg  [12:0]  casez_tmp_26;
   always @(*) begin
     casez (io_lookup_12_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_26 = _tables_12_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_26 = _tables_12_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_26 = _tables_12_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_26 = _tables_12_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_26 = _tables_12_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_26 = _tables_12_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_26 = _tables_12_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_26 = _tables_12_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_26 = _tables_12_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_26 = _tables_12_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_26 = _tables_12_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_26 = _tables_12_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_26 = _tables_12_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_26 = _tables_12_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_26 = _tables_12_ext_R1_data[194:182];
+      default:
+        casez_tmp_26 = _tables_12_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_13 = io_lookup_13_bucket - 13'h1;
   reg          lbZero_13;
-  reg  [2:0]   io_lookup_13_end_REG;
+  reg  [3:0]   io_lookup_13_end_REG;
   reg  [12:0]  casez_tmp_27;
   always @(*) begin
     casez (io_lookup_13_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_27 = _tables_13_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_27 = _tables_13_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_27 = _tables_13_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_27 = _tables_13_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_27 = _tables_13_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_27 = _tables_13_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_27 = _tables_13_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_27 = _tables_13_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_27 = _tables_13_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_27 = _tables_13_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_27 = _tables_13_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_27 = _tables_13_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_27 = _tables_13_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_27 = _tables_13_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_27 = _tables_13_ext_R0_data[194:182];
+      default:
+        casez_tmp_27 = _tables_13_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_13_begin_REG;
+  reg  [3:0]   io_lookup_13_begin_REG;
   reg  [12:0]  casez_tmp_28;
   always @(*) begin
     casez (io_lookup_13_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_28 = _tables_13_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_28 = _tables_13_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_28 = _tables_13_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_28 = _tables_13_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_28 = _tables_13_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_28 = _tables_13_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_28 = _tables_13_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_28 = _tables_13_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_28 = _tables_13_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_28 = _tables_13_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_28 = _tables_13_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_28 = _tables_13_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_28 = _tables_13_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_28 = _tables_13_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_28 = _tables_13_ext_R1_data[194:182];
+      default:
+        casez_tmp_28 = _tables_13_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_14 = io_lookup_14_bucket - 13'h1;
   reg          lbZero_14;
-  reg  [2:0]   io_lookup_14_end_REG;
+  reg  [3:0]   io_lookup_14_end_REG;
   reg  [12:0]  casez_tmp_29;
   always @(*) begin
     casez (io_lookup_14_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_29 = _tables_14_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_29 = _tables_14_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_29 = _tables_14_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_29 = _tables_14_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_29 = _tables_14_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_29 = _tables_14_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_29 = _tables_14_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_29 = _tables_14_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_29 = _tables_14_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_29 = _tables_14_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_29 = _tables_14_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_29 = _tables_14_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_29 = _tables_14_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_29 = _tables_14_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_29 = _tables_14_ext_R0_data[194:182];
+      default:
+        casez_tmp_29 = _tables_14_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_14_begin_REG;
+  reg  [3:0]   io_lookup_14_begin_REG;
   reg  [12:0]  casez_tmp_30;
   always @(*) begin
     casez (io_lookup_14_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_30 = _tables_14_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_30 = _tables_14_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_30 = _tables_14_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_30 = _tables_14_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_30 = _tables_14_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_30 = _tables_14_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_30 = _tables_14_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_30 = _tables_14_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_30 = _tables_14_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_30 = _tables_14_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_30 = _tables_14_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_30 = _tables_14_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_30 = _tables_14_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_30 = _tables_14_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_30 = _tables_14_ext_R1_data[194:182];
+      default:
+        casez_tmp_30 = _tables_14_ext_R1_data[207:195];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_15 = io_lookup_15_bucket - 13'h1;
   reg          lbZero_15;
-  reg  [2:0]   io_lookup_15_end_REG;
+  reg  [3:0]   io_lookup_15_end_REG;
   reg  [12:0]  casez_tmp_31;
   always @(*) begin
     casez (io_lookup_15_end_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_31 = _tables_15_ext_R0_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_31 = _tables_15_ext_R0_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_31 = _tables_15_ext_R0_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_31 = _tables_15_ext_R0_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_31 = _tables_15_ext_R0_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_31 = _tables_15_ext_R0_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_31 = _tables_15_ext_R0_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_31 = _tables_15_ext_R0_data[103:91];
+      4'b1000:
+        casez_tmp_31 = _tables_15_ext_R0_data[116:104];
+      4'b1001:
+        casez_tmp_31 = _tables_15_ext_R0_data[129:117];
+      4'b1010:
+        casez_tmp_31 = _tables_15_ext_R0_data[142:130];
+      4'b1011:
+        casez_tmp_31 = _tables_15_ext_R0_data[155:143];
+      4'b1100:
+        casez_tmp_31 = _tables_15_ext_R0_data[168:156];
+      4'b1101:
+        casez_tmp_31 = _tables_15_ext_R0_data[181:169];
+      4'b1110:
+        casez_tmp_31 = _tables_15_ext_R0_data[194:182];
+      default:
+        casez_tmp_31 = _tables_15_ext_R0_data[207:195];
     endcase
   end // always @(*)
-  reg  [2:0]   io_lookup_15_begin_REG;
+  reg  [3:0]   io_lookup_15_begin_REG;
   reg  [12:0]  casez_tmp_32;
   always @(*) begin
     casez (io_lookup_15_begin_REG)
-      3'b000:
+      4'b0000:
         casez_tmp_32 = _tables_15_ext_R1_data[12:0];
-      3'b001:
+      4'b0001:
         casez_tmp_32 = _tables_15_ext_R1_data[25:13];
-      3'b010:
+      4'b0010:
         casez_tmp_32 = _tables_15_ext_R1_data[38:26];
-      3'b011:
+      4'b0011:
         casez_tmp_32 = _tables_15_ext_R1_data[51:39];
-      3'b100:
+      4'b0100:
         casez_tmp_32 = _tables_15_ext_R1_data[64:52];
-      3'b101:
+      4'b0101:
         casez_tmp_32 = _tables_15_ext_R1_data[77:65];
-      3'b110:
+      4'b0110:
         casez_tmp_32 = _tables_15_ext_R1_data[90:78];
-      default:
+      4'b0111:
         casez_tmp_32 = _tables_15_ext_R1_data[103:91];
+      4'b1000:
+        casez_tmp_32 = _tables_15_ext_R1_data[116:104];
+      4'b1001:
+        casez_tmp_32 = _tables_15_ext_R1_data[129:117];
+      4'b1010:
+        casez_tmp_32 = _tables_15_ext_R1_data[142:130];
+      4'b1011:
+        casez_tmp_32 = _tables_15_ext_R1_data[155:143];
+      4'b1100:
+        casez_tmp_32 = _tables_15_ext_R1_data[168:156];
+      4'b1101:
+        casez_tmp_32 = _tables_15_ext_R1_data[181:169];
+      4'b1110:
+        casez_tmp_32 = _tables_15_ext_R1_data[194:182];
+      default:
+        casez_tmp_32 = _tables_15_ext_R1_data[207:195];
     endcase
   end // always @(*)
-  wire [10:0]  _walk_T_2 = walk + 11'h1;
+  wire [9:0]   _walk_T_2 = walk + 10'h1;
   wire         _GEN_5 = io_clear & _io_in_1_ready_T;
   wire         _GEN_6 = io_prefix & _io_in_1_ready_T;
   always @(posedge clock) begin
@@ -17663,16 +18624,17 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     if (_sumRead_T & _sumRead_T_1 | _GEN)
       walk <= _walk_T_2;
     else if (_GEN_5 | _GEN_6)
-      walk <= 11'h0;
+      walk <= 10'h0;
     if (sumS1)
       sum <=
         totals_0 + totals_1 + totals_2 + totals_3 + totals_4 + totals_5 + totals_6
-        + totals_7 + sum;
+        + totals_7 + totals_8 + totals_9 + totals_10 + totals_11 + totals_12 + totals_13
+        + totals_14 + totals_15 + sum;
     else if (_GEN_5 | ~_GEN_6) begin
     end
     else
       sum <= 13'h0;
-    sumW <= walk[9:0];
+    sumW <= walk[8:0];
     sumLast <= _walk_T_2 == usedWords;
     if (fire) begin
       s1b <= io_in_0_bits_bucket;
@@ -17680,7 +18642,7 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
       s1item <= io_in_0_bits_item;
     end
     if (s1) begin
-      fwdW <= s1b[12:3];
+      fwdW <= s1b[12:4];
       fwdV <= newWord;
     end
     if (fire_1) begin
@@ -17689,81 +18651,89 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
       s1item_1 <= io_in_1_bits_item;
     end
     if (s1_1) begin
-      fwdW_1 <= s1b_1[12:3];
+      fwdW_1 <= s1b_1[12:4];
       fwdV_1 <= newWord_1;
     end
     lbZero <= io_lookup_0_bucket == 13'h0;
-    io_lookup_0_end_REG <= io_lookup_0_bucket[2:0];
-    io_lookup_0_begin_REG <= _prev_T[2:0];
+    io_lookup_0_end_REG <= io_lookup_0_bucket[3:0];
+    io_lookup_0_begin_REG <= _prev_T[3:0];
     lbZero_1 <= io_lookup_1_bucket == 13'h0;
-    io_lookup_1_end_REG <= io_lookup_1_bucket[2:0];
-    io_lookup_1_begin_REG <= _prev_T_1[2:0];
+    io_lookup_1_end_REG <= io_lookup_1_bucket[3:0];
+    io_lookup_1_begin_REG <= _prev_T_1[3:0];
     lbZero_2 <= io_lookup_2_bucket == 13'h0;
-    io_lookup_2_end_REG <= io_lookup_2_bucket[2:0];
-    io_lookup_2_begin_REG <= _prev_T_2[2:0];
+    io_lookup_2_end_REG <= io_lookup_2_bucket[3:0];
+    io_lookup_2_begin_REG <= _prev_T_2[3:0];
     lbZero_3 <= io_lookup_3_bucket == 13'h0;
-    io_lookup_3_end_REG <= io_lookup_3_bucket[2:0];
-    io_lookup_3_begin_REG <= _prev_T_3[2:0];
+    io_lookup_3_end_REG <= io_lookup_3_bucket[3:0];
+    io_lookup_3_begin_REG <= _prev_T_3[3:0];
     lbZero_4 <= io_lookup_4_bucket == 13'h0;
-    io_lookup_4_end_REG <= io_lookup_4_bucket[2:0];
-    io_lookup_4_begin_REG <= _prev_T_4[2:0];
+    io_lookup_4_end_REG <= io_lookup_4_bucket[3:0];
+    io_lookup_4_begin_REG <= _prev_T_4[3:0];
     lbZero_5 <= io_lookup_5_bucket == 13'h0;
-    io_lookup_5_end_REG <= io_lookup_5_bucket[2:0];
-    io_lookup_5_begin_REG <= _prev_T_5[2:0];
+    io_lookup_5_end_REG <= io_lookup_5_bucket[3:0];
+    io_lookup_5_begin_REG <= _prev_T_5[3:0];
     lbZero_6 <= io_lookup_6_bucket == 13'h0;
-    io_lookup_6_end_REG <= io_lookup_6_bucket[2:0];
-    io_lookup_6_begin_REG <= _prev_T_6[2:0];
+    io_lookup_6_end_REG <= io_lookup_6_bucket[3:0];
+    io_lookup_6_begin_REG <= _prev_T_6[3:0];
     lbZero_7 <= io_lookup_7_bucket == 13'h0;
-    io_lookup_7_end_REG <= io_lookup_7_bucket[2:0];
-    io_lookup_7_begin_REG <= _prev_T_7[2:0];
+    io_lookup_7_end_REG <= io_lookup_7_bucket[3:0];
+    io_lookup_7_begin_REG <= _prev_T_7[3:0];
     lbZero_8 <= io_lookup_8_bucket == 13'h0;
-    io_lookup_8_end_REG <= io_lookup_8_bucket[2:0];
-    io_lookup_8_begin_REG <= _prev_T_8[2:0];
+    io_lookup_8_end_REG <= io_lookup_8_bucket[3:0];
+    io_lookup_8_begin_REG <= _prev_T_8[3:0];
     lbZero_9 <= io_lookup_9_bucket == 13'h0;
-    io_lookup_9_end_REG <= io_lookup_9_bucket[2:0];
-    io_lookup_9_begin_REG <= _prev_T_9[2:0];
+    io_lookup_9_end_REG <= io_lookup_9_bucket[3:0];
+    io_lookup_9_begin_REG <= _prev_T_9[3:0];
     lbZero_10 <= io_lookup_10_bucket == 13'h0;
-    io_lookup_10_end_REG <= io_lookup_10_bucket[2:0];
-    io_lookup_10_begin_REG <= _prev_T_10[2:0];
+    io_lookup_10_end_REG <= io_lookup_10_bucket[3:0];
+    io_lookup_10_begin_REG <= _prev_T_10[3:0];
     lbZero_11 <= io_lookup_11_bucket == 13'h0;
-    io_lookup_11_end_REG <= io_lookup_11_bucket[2:0];
-    io_lookup_11_begin_REG <= _prev_T_11[2:0];
+    io_lookup_11_end_REG <= io_lookup_11_bucket[3:0];
+    io_lookup_11_begin_REG <= _prev_T_11[3:0];
     lbZero_12 <= io_lookup_12_bucket == 13'h0;
-    io_lookup_12_end_REG <= io_lookup_12_bucket[2:0];
-    io_lookup_12_begin_REG <= _prev_T_12[2:0];
+    io_lookup_12_end_REG <= io_lookup_12_bucket[3:0];
+    io_lookup_12_begin_REG <= _prev_T_12[3:0];
     lbZero_13 <= io_lookup_13_bucket == 13'h0;
-    io_lookup_13_end_REG <= io_lookup_13_bucket[2:0];
-    io_lookup_13_begin_REG <= _prev_T_13[2:0];
+    io_lookup_13_end_REG <= io_lookup_13_bucket[3:0];
+    io_lookup_13_begin_REG <= _prev_T_13[3:0];
     lbZero_14 <= io_lookup_14_bucket == 13'h0;
-    io_lookup_14_end_REG <= io_lookup_14_bucket[2:0];
-    io_lookup_14_begin_REG <= _prev_T_14[2:0];
+    io_lookup_14_end_REG <= io_lookup_14_bucket[3:0];
+    io_lookup_14_begin_REG <= _prev_T_14[3:0];
     lbZero_15 <= io_lookup_15_bucket == 13'h0;
-    io_lookup_15_end_REG <= io_lookup_15_bucket[2:0];
-    io_lookup_15_begin_REG <= _prev_T_15[2:0];
+    io_lookup_15_end_REG <= io_lookup_15_bucket[3:0];
+    io_lookup_15_begin_REG <= _prev_T_15[3:0];
   end // always @(posedge)
-  tables_0_1024x104_world tables_0_ext (
-    .R0_addr (walk[9:0]),
+  tables_0_512x208_world tables_0_ext (
+    .R0_addr (walk[8:0]),
     .R0_en   (sumRead),
     .R0_clk  (clock),
     .R0_data (_tables_0_ext_R0_data),
-    .R1_addr (io_in_1_bits_bucket[12:3]),
+    .R1_addr (io_in_1_bits_bucket[12:4]),
     .R1_en   (fire_1),
     .R1_clk  (clock),
     .R1_data (_tables_0_ext_R1_data),
-    .R2_addr (io_lookup_0_bucket[12:3]),
+    .R2_addr (io_lookup_0_bucket[12:4]),
     .R2_en   (1'h1),
     .R2_clk  (clock),
     .R2_data (_tables_0_ext_R2_data),
-    .R3_addr (_prev_T[12:3]),
+    .R3_addr (_prev_T[12:4]),
     .R3_en   (1'h1),
     .R3_clk  (clock),
     .R3_data (_tables_0_ext_R3_data),
-    .W0_addr (sumS1 ? sumW : _GEN ? walk[9:0] : s1b_1[12:3]),
+    .W0_addr (sumS1 ? sumW : _GEN ? walk[8:0] : s1b_1[12:4]),
     .W0_en   (_GEN_1 | s1_1),
     .W0_clk  (clock),
     .W0_data
       (sumS1
-         ? {starts_7 + _cursors_0_ext_R0_data[103:91],
+         ? {starts_15 + _cursors_0_ext_R0_data[207:195],
+            starts_14 + _cursors_0_ext_R0_data[194:182],
+            starts_13 + _cursors_0_ext_R0_data[181:169],
+            starts_12 + _cursors_0_ext_R0_data[168:156],
+            starts_11 + _cursors_0_ext_R0_data[155:143],
+            starts_10 + _cursors_0_ext_R0_data[142:130],
+            starts_9 + _cursors_0_ext_R0_data[129:117],
+            starts_8 + _cursors_0_ext_R0_data[116:104],
+            starts_7 + _cursors_0_ext_R0_data[103:91],
             starts_6 + _cursors_0_ext_R0_data[90:78],
             starts_5 + _cursors_0_ext_R0_data[77:65],
             starts_4 + _cursors_0_ext_R0_data[64:52],
@@ -17771,14 +18741,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
             starts_2 + _cursors_0_ext_R0_data[38:26],
             starts_1 + _cursors_0_ext_R0_data[25:13],
             sum + _cursors_0_ext_R0_data[12:0]}
-         : _GEN ? 104'h0 : newWord_1)
+         : _GEN ? 208'h0 : newWord_1)
   );
-  mem_1024x104_world tables_1_ext (
-    .R0_addr (io_lookup_1_bucket[12:3]),
+  mem_512x208_world tables_1_ext (
+    .R0_addr (io_lookup_1_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_1_ext_R0_data),
-    .R1_addr (_prev_T_1[12:3]),
+    .R1_addr (_prev_T_1[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_1_ext_R1_data),
@@ -17787,12 +18757,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_2_ext (
-    .R0_addr (io_lookup_2_bucket[12:3]),
+  mem_512x208_world tables_2_ext (
+    .R0_addr (io_lookup_2_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_2_ext_R0_data),
-    .R1_addr (_prev_T_2[12:3]),
+    .R1_addr (_prev_T_2[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_2_ext_R1_data),
@@ -17801,12 +18771,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_3_ext (
-    .R0_addr (io_lookup_3_bucket[12:3]),
+  mem_512x208_world tables_3_ext (
+    .R0_addr (io_lookup_3_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_3_ext_R0_data),
-    .R1_addr (_prev_T_3[12:3]),
+    .R1_addr (_prev_T_3[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_3_ext_R1_data),
@@ -17815,12 +18785,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_4_ext (
-    .R0_addr (io_lookup_4_bucket[12:3]),
+  mem_512x208_world tables_4_ext (
+    .R0_addr (io_lookup_4_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_4_ext_R0_data),
-    .R1_addr (_prev_T_4[12:3]),
+    .R1_addr (_prev_T_4[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_4_ext_R1_data),
@@ -17829,12 +18799,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_5_ext (
-    .R0_addr (io_lookup_5_bucket[12:3]),
+  mem_512x208_world tables_5_ext (
+    .R0_addr (io_lookup_5_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_5_ext_R0_data),
-    .R1_addr (_prev_T_5[12:3]),
+    .R1_addr (_prev_T_5[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_5_ext_R1_data),
@@ -17843,12 +18813,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_6_ext (
-    .R0_addr (io_lookup_6_bucket[12:3]),
+  mem_512x208_world tables_6_ext (
+    .R0_addr (io_lookup_6_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_6_ext_R0_data),
-    .R1_addr (_prev_T_6[12:3]),
+    .R1_addr (_prev_T_6[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_6_ext_R1_data),
@@ -17857,12 +18827,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_7_ext (
-    .R0_addr (io_lookup_7_bucket[12:3]),
+  mem_512x208_world tables_7_ext (
+    .R0_addr (io_lookup_7_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_7_ext_R0_data),
-    .R1_addr (_prev_T_7[12:3]),
+    .R1_addr (_prev_T_7[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_7_ext_R1_data),
@@ -17871,12 +18841,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_8_ext (
-    .R0_addr (io_lookup_8_bucket[12:3]),
+  mem_512x208_world tables_8_ext (
+    .R0_addr (io_lookup_8_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_8_ext_R0_data),
-    .R1_addr (_prev_T_8[12:3]),
+    .R1_addr (_prev_T_8[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_8_ext_R1_data),
@@ -17885,12 +18855,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_9_ext (
-    .R0_addr (io_lookup_9_bucket[12:3]),
+  mem_512x208_world tables_9_ext (
+    .R0_addr (io_lookup_9_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_9_ext_R0_data),
-    .R1_addr (_prev_T_9[12:3]),
+    .R1_addr (_prev_T_9[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_9_ext_R1_data),
@@ -17899,12 +18869,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_10_ext (
-    .R0_addr (io_lookup_10_bucket[12:3]),
+  mem_512x208_world tables_10_ext (
+    .R0_addr (io_lookup_10_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_10_ext_R0_data),
-    .R1_addr (_prev_T_10[12:3]),
+    .R1_addr (_prev_T_10[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_10_ext_R1_data),
@@ -17913,12 +18883,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_11_ext (
-    .R0_addr (io_lookup_11_bucket[12:3]),
+  mem_512x208_world tables_11_ext (
+    .R0_addr (io_lookup_11_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_11_ext_R0_data),
-    .R1_addr (_prev_T_11[12:3]),
+    .R1_addr (_prev_T_11[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_11_ext_R1_data),
@@ -17927,12 +18897,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_12_ext (
-    .R0_addr (io_lookup_12_bucket[12:3]),
+  mem_512x208_world tables_12_ext (
+    .R0_addr (io_lookup_12_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_12_ext_R0_data),
-    .R1_addr (_prev_T_12[12:3]),
+    .R1_addr (_prev_T_12[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_12_ext_R1_data),
@@ -17941,12 +18911,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_13_ext (
-    .R0_addr (io_lookup_13_bucket[12:3]),
+  mem_512x208_world tables_13_ext (
+    .R0_addr (io_lookup_13_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_13_ext_R0_data),
-    .R1_addr (_prev_T_13[12:3]),
+    .R1_addr (_prev_T_13[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_13_ext_R1_data),
@@ -17955,12 +18925,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_14_ext (
-    .R0_addr (io_lookup_14_bucket[12:3]),
+  mem_512x208_world tables_14_ext (
+    .R0_addr (io_lookup_14_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_14_ext_R0_data),
-    .R1_addr (_prev_T_14[12:3]),
+    .R1_addr (_prev_T_14[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_14_ext_R1_data),
@@ -17969,12 +18939,12 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world tables_15_ext (
-    .R0_addr (io_lookup_15_bucket[12:3]),
+  mem_512x208_world tables_15_ext (
+    .R0_addr (io_lookup_15_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_15_ext_R0_data),
-    .R1_addr (_prev_T_15[12:3]),
+    .R1_addr (_prev_T_15[12:4]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_15_ext_R1_data),
@@ -17983,22 +18953,37 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_1024x104_world cursors_0_ext (
-    .R0_addr (walk[9:0]),
+  mem_512x208_world cursors_0_ext (
+    .R0_addr (walk[8:0]),
     .R0_en   (sumRead),
     .R0_clk  (clock),
     .R0_data (_cursors_0_ext_R0_data),
-    .R1_addr (io_in_0_bits_bucket[12:3]),
+    .R1_addr (io_in_0_bits_bucket[12:4]),
     .R1_en   (fire),
     .R1_clk  (clock),
     .R1_data (_cursors_0_ext_R1_data),
-    .W0_addr (sumS1 ? sumW : _GEN ? walk[9:0] : s1b[12:3]),
+    .W0_addr (sumS1 ? sumW : _GEN ? walk[8:0] : s1b[12:4]),
     .W0_en   (_GEN_1 | s1),
     .W0_clk  (clock),
     .W0_data
       (sumS1
-         ? {starts_7, starts_6, starts_5, starts_4, starts_3, starts_2, starts_1, sum}
-         : _GEN ? 104'h0 : newWord)
+         ? {starts_15,
+            starts_14,
+            starts_13,
+            starts_12,
+            starts_11,
+            starts_10,
+            starts_9,
+            starts_8,
+            starts_7,
+            starts_6,
+            starts_5,
+            starts_4,
+            starts_3,
+            starts_2,
+            starts_1,
+            sum}
+         : _GEN ? 208'h0 : newWord)
   );
   entries_4096x13_world entries_0_ext (
     .R0_addr (io_entry_0_addr),
@@ -18237,6 +19222,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_0_word_5 = _tables_0_ext_R2_data[77:65];
   assign io_lookup_0_word_6 = _tables_0_ext_R2_data[90:78];
   assign io_lookup_0_word_7 = _tables_0_ext_R2_data[103:91];
+  assign io_lookup_0_word_8 = _tables_0_ext_R2_data[116:104];
+  assign io_lookup_0_word_9 = _tables_0_ext_R2_data[129:117];
+  assign io_lookup_0_word_10 = _tables_0_ext_R2_data[142:130];
+  assign io_lookup_0_word_11 = _tables_0_ext_R2_data[155:143];
+  assign io_lookup_0_word_12 = _tables_0_ext_R2_data[168:156];
+  assign io_lookup_0_word_13 = _tables_0_ext_R2_data[181:169];
+  assign io_lookup_0_word_14 = _tables_0_ext_R2_data[194:182];
+  assign io_lookup_0_word_15 = _tables_0_ext_R2_data[207:195];
   assign io_lookup_1_begin = lbZero_1 ? 13'h0 : casez_tmp_4;
   assign io_lookup_1_end = casez_tmp_3;
   assign io_lookup_1_word_0 = _tables_1_ext_R0_data[12:0];
@@ -18247,6 +19240,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_1_word_5 = _tables_1_ext_R0_data[77:65];
   assign io_lookup_1_word_6 = _tables_1_ext_R0_data[90:78];
   assign io_lookup_1_word_7 = _tables_1_ext_R0_data[103:91];
+  assign io_lookup_1_word_8 = _tables_1_ext_R0_data[116:104];
+  assign io_lookup_1_word_9 = _tables_1_ext_R0_data[129:117];
+  assign io_lookup_1_word_10 = _tables_1_ext_R0_data[142:130];
+  assign io_lookup_1_word_11 = _tables_1_ext_R0_data[155:143];
+  assign io_lookup_1_word_12 = _tables_1_ext_R0_data[168:156];
+  assign io_lookup_1_word_13 = _tables_1_ext_R0_data[181:169];
+  assign io_lookup_1_word_14 = _tables_1_ext_R0_data[194:182];
+  assign io_lookup_1_word_15 = _tables_1_ext_R0_data[207:195];
   assign io_lookup_2_begin = lbZero_2 ? 13'h0 : casez_tmp_6;
   assign io_lookup_2_end = casez_tmp_5;
   assign io_lookup_2_word_0 = _tables_2_ext_R0_data[12:0];
@@ -18257,6 +19258,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_2_word_5 = _tables_2_ext_R0_data[77:65];
   assign io_lookup_2_word_6 = _tables_2_ext_R0_data[90:78];
   assign io_lookup_2_word_7 = _tables_2_ext_R0_data[103:91];
+  assign io_lookup_2_word_8 = _tables_2_ext_R0_data[116:104];
+  assign io_lookup_2_word_9 = _tables_2_ext_R0_data[129:117];
+  assign io_lookup_2_word_10 = _tables_2_ext_R0_data[142:130];
+  assign io_lookup_2_word_11 = _tables_2_ext_R0_data[155:143];
+  assign io_lookup_2_word_12 = _tables_2_ext_R0_data[168:156];
+  assign io_lookup_2_word_13 = _tables_2_ext_R0_data[181:169];
+  assign io_lookup_2_word_14 = _tables_2_ext_R0_data[194:182];
+  assign io_lookup_2_word_15 = _tables_2_ext_R0_data[207:195];
   assign io_lookup_3_begin = lbZero_3 ? 13'h0 : casez_tmp_8;
   assign io_lookup_3_end = casez_tmp_7;
   assign io_lookup_3_word_0 = _tables_3_ext_R0_data[12:0];
@@ -18267,6 +19276,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_3_word_5 = _tables_3_ext_R0_data[77:65];
   assign io_lookup_3_word_6 = _tables_3_ext_R0_data[90:78];
   assign io_lookup_3_word_7 = _tables_3_ext_R0_data[103:91];
+  assign io_lookup_3_word_8 = _tables_3_ext_R0_data[116:104];
+  assign io_lookup_3_word_9 = _tables_3_ext_R0_data[129:117];
+  assign io_lookup_3_word_10 = _tables_3_ext_R0_data[142:130];
+  assign io_lookup_3_word_11 = _tables_3_ext_R0_data[155:143];
+  assign io_lookup_3_word_12 = _tables_3_ext_R0_data[168:156];
+  assign io_lookup_3_word_13 = _tables_3_ext_R0_data[181:169];
+  assign io_lookup_3_word_14 = _tables_3_ext_R0_data[194:182];
+  assign io_lookup_3_word_15 = _tables_3_ext_R0_data[207:195];
   assign io_lookup_4_begin = lbZero_4 ? 13'h0 : casez_tmp_10;
   assign io_lookup_4_end = casez_tmp_9;
   assign io_lookup_4_word_0 = _tables_4_ext_R0_data[12:0];
@@ -18277,6 +19294,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_4_word_5 = _tables_4_ext_R0_data[77:65];
   assign io_lookup_4_word_6 = _tables_4_ext_R0_data[90:78];
   assign io_lookup_4_word_7 = _tables_4_ext_R0_data[103:91];
+  assign io_lookup_4_word_8 = _tables_4_ext_R0_data[116:104];
+  assign io_lookup_4_word_9 = _tables_4_ext_R0_data[129:117];
+  assign io_lookup_4_word_10 = _tables_4_ext_R0_data[142:130];
+  assign io_lookup_4_word_11 = _tables_4_ext_R0_data[155:143];
+  assign io_lookup_4_word_12 = _tables_4_ext_R0_data[168:156];
+  assign io_lookup_4_word_13 = _tables_4_ext_R0_data[181:169];
+  assign io_lookup_4_word_14 = _tables_4_ext_R0_data[194:182];
+  assign io_lookup_4_word_15 = _tables_4_ext_R0_data[207:195];
   assign io_lookup_5_begin = lbZero_5 ? 13'h0 : casez_tmp_12;
   assign io_lookup_5_end = casez_tmp_11;
   assign io_lookup_5_word_0 = _tables_5_ext_R0_data[12:0];
@@ -18287,6 +19312,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_5_word_5 = _tables_5_ext_R0_data[77:65];
   assign io_lookup_5_word_6 = _tables_5_ext_R0_data[90:78];
   assign io_lookup_5_word_7 = _tables_5_ext_R0_data[103:91];
+  assign io_lookup_5_word_8 = _tables_5_ext_R0_data[116:104];
+  assign io_lookup_5_word_9 = _tables_5_ext_R0_data[129:117];
+  assign io_lookup_5_word_10 = _tables_5_ext_R0_data[142:130];
+  assign io_lookup_5_word_11 = _tables_5_ext_R0_data[155:143];
+  assign io_lookup_5_word_12 = _tables_5_ext_R0_data[168:156];
+  assign io_lookup_5_word_13 = _tables_5_ext_R0_data[181:169];
+  assign io_lookup_5_word_14 = _tables_5_ext_R0_data[194:182];
+  assign io_lookup_5_word_15 = _tables_5_ext_R0_data[207:195];
   assign io_lookup_6_begin = lbZero_6 ? 13'h0 : casez_tmp_14;
   assign io_lookup_6_end = casez_tmp_13;
   assign io_lookup_6_word_0 = _tables_6_ext_R0_data[12:0];
@@ -18297,6 +19330,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_6_word_5 = _tables_6_ext_R0_data[77:65];
   assign io_lookup_6_word_6 = _tables_6_ext_R0_data[90:78];
   assign io_lookup_6_word_7 = _tables_6_ext_R0_data[103:91];
+  assign io_lookup_6_word_8 = _tables_6_ext_R0_data[116:104];
+  assign io_lookup_6_word_9 = _tables_6_ext_R0_data[129:117];
+  assign io_lookup_6_word_10 = _tables_6_ext_R0_data[142:130];
+  assign io_lookup_6_word_11 = _tables_6_ext_R0_data[155:143];
+  assign io_lookup_6_word_12 = _tables_6_ext_R0_data[168:156];
+  assign io_lookup_6_word_13 = _tables_6_ext_R0_data[181:169];
+  assign io_lookup_6_word_14 = _tables_6_ext_R0_data[194:182];
+  assign io_lookup_6_word_15 = _tables_6_ext_R0_data[207:195];
   assign io_lookup_7_begin = lbZero_7 ? 13'h0 : casez_tmp_16;
   assign io_lookup_7_end = casez_tmp_15;
   assign io_lookup_7_word_0 = _tables_7_ext_R0_data[12:0];
@@ -18307,6 +19348,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_7_word_5 = _tables_7_ext_R0_data[77:65];
   assign io_lookup_7_word_6 = _tables_7_ext_R0_data[90:78];
   assign io_lookup_7_word_7 = _tables_7_ext_R0_data[103:91];
+  assign io_lookup_7_word_8 = _tables_7_ext_R0_data[116:104];
+  assign io_lookup_7_word_9 = _tables_7_ext_R0_data[129:117];
+  assign io_lookup_7_word_10 = _tables_7_ext_R0_data[142:130];
+  assign io_lookup_7_word_11 = _tables_7_ext_R0_data[155:143];
+  assign io_lookup_7_word_12 = _tables_7_ext_R0_data[168:156];
+  assign io_lookup_7_word_13 = _tables_7_ext_R0_data[181:169];
+  assign io_lookup_7_word_14 = _tables_7_ext_R0_data[194:182];
+  assign io_lookup_7_word_15 = _tables_7_ext_R0_data[207:195];
   assign io_lookup_8_begin = lbZero_8 ? 13'h0 : casez_tmp_18;
   assign io_lookup_8_end = casez_tmp_17;
   assign io_lookup_8_word_0 = _tables_8_ext_R0_data[12:0];
@@ -18317,6 +19366,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_8_word_5 = _tables_8_ext_R0_data[77:65];
   assign io_lookup_8_word_6 = _tables_8_ext_R0_data[90:78];
   assign io_lookup_8_word_7 = _tables_8_ext_R0_data[103:91];
+  assign io_lookup_8_word_8 = _tables_8_ext_R0_data[116:104];
+  assign io_lookup_8_word_9 = _tables_8_ext_R0_data[129:117];
+  assign io_lookup_8_word_10 = _tables_8_ext_R0_data[142:130];
+  assign io_lookup_8_word_11 = _tables_8_ext_R0_data[155:143];
+  assign io_lookup_8_word_12 = _tables_8_ext_R0_data[168:156];
+  assign io_lookup_8_word_13 = _tables_8_ext_R0_data[181:169];
+  assign io_lookup_8_word_14 = _tables_8_ext_R0_data[194:182];
+  assign io_lookup_8_word_15 = _tables_8_ext_R0_data[207:195];
   assign io_lookup_9_begin = lbZero_9 ? 13'h0 : casez_tmp_20;
   assign io_lookup_9_end = casez_tmp_19;
   assign io_lookup_9_word_0 = _tables_9_ext_R0_data[12:0];
@@ -18327,6 +19384,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_9_word_5 = _tables_9_ext_R0_data[77:65];
   assign io_lookup_9_word_6 = _tables_9_ext_R0_data[90:78];
   assign io_lookup_9_word_7 = _tables_9_ext_R0_data[103:91];
+  assign io_lookup_9_word_8 = _tables_9_ext_R0_data[116:104];
+  assign io_lookup_9_word_9 = _tables_9_ext_R0_data[129:117];
+  assign io_lookup_9_word_10 = _tables_9_ext_R0_data[142:130];
+  assign io_lookup_9_word_11 = _tables_9_ext_R0_data[155:143];
+  assign io_lookup_9_word_12 = _tables_9_ext_R0_data[168:156];
+  assign io_lookup_9_word_13 = _tables_9_ext_R0_data[181:169];
+  assign io_lookup_9_word_14 = _tables_9_ext_R0_data[194:182];
+  assign io_lookup_9_word_15 = _tables_9_ext_R0_data[207:195];
   assign io_lookup_10_begin = lbZero_10 ? 13'h0 : casez_tmp_22;
   assign io_lookup_10_end = casez_tmp_21;
   assign io_lookup_10_word_0 = _tables_10_ext_R0_data[12:0];
@@ -18337,6 +19402,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_10_word_5 = _tables_10_ext_R0_data[77:65];
   assign io_lookup_10_word_6 = _tables_10_ext_R0_data[90:78];
   assign io_lookup_10_word_7 = _tables_10_ext_R0_data[103:91];
+  assign io_lookup_10_word_8 = _tables_10_ext_R0_data[116:104];
+  assign io_lookup_10_word_9 = _tables_10_ext_R0_data[129:117];
+  assign io_lookup_10_word_10 = _tables_10_ext_R0_data[142:130];
+  assign io_lookup_10_word_11 = _tables_10_ext_R0_data[155:143];
+  assign io_lookup_10_word_12 = _tables_10_ext_R0_data[168:156];
+  assign io_lookup_10_word_13 = _tables_10_ext_R0_data[181:169];
+  assign io_lookup_10_word_14 = _tables_10_ext_R0_data[194:182];
+  assign io_lookup_10_word_15 = _tables_10_ext_R0_data[207:195];
   assign io_lookup_11_begin = lbZero_11 ? 13'h0 : casez_tmp_24;
   assign io_lookup_11_end = casez_tmp_23;
   assign io_lookup_11_word_0 = _tables_11_ext_R0_data[12:0];
@@ -18347,6 +19420,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_11_word_5 = _tables_11_ext_R0_data[77:65];
   assign io_lookup_11_word_6 = _tables_11_ext_R0_data[90:78];
   assign io_lookup_11_word_7 = _tables_11_ext_R0_data[103:91];
+  assign io_lookup_11_word_8 = _tables_11_ext_R0_data[116:104];
+  assign io_lookup_11_word_9 = _tables_11_ext_R0_data[129:117];
+  assign io_lookup_11_word_10 = _tables_11_ext_R0_data[142:130];
+  assign io_lookup_11_word_11 = _tables_11_ext_R0_data[155:143];
+  assign io_lookup_11_word_12 = _tables_11_ext_R0_data[168:156];
+  assign io_lookup_11_word_13 = _tables_11_ext_R0_data[181:169];
+  assign io_lookup_11_word_14 = _tables_11_ext_R0_data[194:182];
+  assign io_lookup_11_word_15 = _tables_11_ext_R0_data[207:195];
   assign io_lookup_12_begin = lbZero_12 ? 13'h0 : casez_tmp_26;
   assign io_lookup_12_end = casez_tmp_25;
   assign io_lookup_12_word_0 = _tables_12_ext_R0_data[12:0];
@@ -18357,6 +19438,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_12_word_5 = _tables_12_ext_R0_data[77:65];
   assign io_lookup_12_word_6 = _tables_12_ext_R0_data[90:78];
   assign io_lookup_12_word_7 = _tables_12_ext_R0_data[103:91];
+  assign io_lookup_12_word_8 = _tables_12_ext_R0_data[116:104];
+  assign io_lookup_12_word_9 = _tables_12_ext_R0_data[129:117];
+  assign io_lookup_12_word_10 = _tables_12_ext_R0_data[142:130];
+  assign io_lookup_12_word_11 = _tables_12_ext_R0_data[155:143];
+  assign io_lookup_12_word_12 = _tables_12_ext_R0_data[168:156];
+  assign io_lookup_12_word_13 = _tables_12_ext_R0_data[181:169];
+  assign io_lookup_12_word_14 = _tables_12_ext_R0_data[194:182];
+  assign io_lookup_12_word_15 = _tables_12_ext_R0_data[207:195];
   assign io_lookup_13_begin = lbZero_13 ? 13'h0 : casez_tmp_28;
   assign io_lookup_13_end = casez_tmp_27;
   assign io_lookup_13_word_0 = _tables_13_ext_R0_data[12:0];
@@ -18367,6 +19456,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_13_word_5 = _tables_13_ext_R0_data[77:65];
   assign io_lookup_13_word_6 = _tables_13_ext_R0_data[90:78];
   assign io_lookup_13_word_7 = _tables_13_ext_R0_data[103:91];
+  assign io_lookup_13_word_8 = _tables_13_ext_R0_data[116:104];
+  assign io_lookup_13_word_9 = _tables_13_ext_R0_data[129:117];
+  assign io_lookup_13_word_10 = _tables_13_ext_R0_data[142:130];
+  assign io_lookup_13_word_11 = _tables_13_ext_R0_data[155:143];
+  assign io_lookup_13_word_12 = _tables_13_ext_R0_data[168:156];
+  assign io_lookup_13_word_13 = _tables_13_ext_R0_data[181:169];
+  assign io_lookup_13_word_14 = _tables_13_ext_R0_data[194:182];
+  assign io_lookup_13_word_15 = _tables_13_ext_R0_data[207:195];
   assign io_lookup_14_begin = lbZero_14 ? 13'h0 : casez_tmp_30;
   assign io_lookup_14_end = casez_tmp_29;
   assign io_lookup_14_word_0 = _tables_14_ext_R0_data[12:0];
@@ -18377,6 +19474,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_14_word_5 = _tables_14_ext_R0_data[77:65];
   assign io_lookup_14_word_6 = _tables_14_ext_R0_data[90:78];
   assign io_lookup_14_word_7 = _tables_14_ext_R0_data[103:91];
+  assign io_lookup_14_word_8 = _tables_14_ext_R0_data[116:104];
+  assign io_lookup_14_word_9 = _tables_14_ext_R0_data[129:117];
+  assign io_lookup_14_word_10 = _tables_14_ext_R0_data[142:130];
+  assign io_lookup_14_word_11 = _tables_14_ext_R0_data[155:143];
+  assign io_lookup_14_word_12 = _tables_14_ext_R0_data[168:156];
+  assign io_lookup_14_word_13 = _tables_14_ext_R0_data[181:169];
+  assign io_lookup_14_word_14 = _tables_14_ext_R0_data[194:182];
+  assign io_lookup_14_word_15 = _tables_14_ext_R0_data[207:195];
   assign io_lookup_15_begin = lbZero_15 ? 13'h0 : casez_tmp_32;
   assign io_lookup_15_end = casez_tmp_31;
   assign io_lookup_15_word_0 = _tables_15_ext_R0_data[12:0];
@@ -18387,6 +19492,14 @@ module BucketSort_n4096_b13_w3_c16_p2_world(
   assign io_lookup_15_word_5 = _tables_15_ext_R0_data[77:65];
   assign io_lookup_15_word_6 = _tables_15_ext_R0_data[90:78];
   assign io_lookup_15_word_7 = _tables_15_ext_R0_data[103:91];
+  assign io_lookup_15_word_8 = _tables_15_ext_R0_data[116:104];
+  assign io_lookup_15_word_9 = _tables_15_ext_R0_data[129:117];
+  assign io_lookup_15_word_10 = _tables_15_ext_R0_data[142:130];
+  assign io_lookup_15_word_11 = _tables_15_ext_R0_data[155:143];
+  assign io_lookup_15_word_12 = _tables_15_ext_R0_data[168:156];
+  assign io_lookup_15_word_13 = _tables_15_ext_R0_data[181:169];
+  assign io_lookup_15_word_14 = _tables_15_ext_R0_data[194:182];
+  assign io_lookup_15_word_15 = _tables_15_ext_R0_data[207:195];
   assign io_entry_0_item = _entries_0_ext_R0_data[11:0];
   assign io_entry_0_mark = _entries_0_ext_R0_data[12];
   assign io_entry_1_item = _entries_1_ext_R0_data[11:0];
@@ -19510,7 +20623,7 @@ module Queue3_StreamRange_world(
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 2'h1 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world(
+module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
   input         clock,
                 reset,
                 io_start,
@@ -19611,6 +20724,14 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world(
                 io_lookup_word_5,
                 io_lookup_word_6,
                 io_lookup_word_7,
+                io_lookup_word_8,
+                io_lookup_word_9,
+                io_lookup_word_10,
+                io_lookup_word_11,
+                io_lookup_word_12,
+                io_lookup_word_13,
+                io_lookup_word_14,
+                io_lookup_word_15,
   output [11:0] io_entry_addr,
   input  [11:0] io_entry_item,
   input         io_entry_mark,
@@ -19701,41 +20822,93 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world(
   wire        _GEN_1 = state == 3'h1;
   wire        issueOk = bIssue < _io_lookup_bucket_mask_T[13:0];
   wire        occupied_0 =
-    walkB[2:0] == 3'h0 & {walkB[13:3], 3'h0} < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] == 4'h0 & {walkB[13:4], 4'h0} < _io_lookup_bucket_mask_T[13:0]
     & io_lookup_word_0 != io_lookup_begin;
-  wire [13:0] _GEN_2 = {walkB[13:3], 3'h0};
+  wire [13:0] _GEN_2 = {walkB[13:4], 4'h0};
   wire        occupied_1 =
-    walkB[2:0] < 3'h2 & _GEN_2 + 14'h1 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h2 & _GEN_2 + 14'h1 < _io_lookup_bucket_mask_T[13:0]
     & io_lookup_word_1 != io_lookup_word_0;
   wire        occupied_2 =
-    walkB[2:0] < 3'h3 & _GEN_2 + 14'h2 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h3 & _GEN_2 + 14'h2 < _io_lookup_bucket_mask_T[13:0]
     & io_lookup_word_2 != io_lookup_word_1;
   wire        occupied_3 =
-    ~(walkB[2]) & _GEN_2 + 14'h3 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h4 & _GEN_2 + 14'h3 < _io_lookup_bucket_mask_T[13:0]
     & io_lookup_word_3 != io_lookup_word_2;
   wire        occupied_4 =
-    walkB[2:0] < 3'h5 & _GEN_2 + 14'h4 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h5 & _GEN_2 + 14'h4 < _io_lookup_bucket_mask_T[13:0]
     & io_lookup_word_4 != io_lookup_word_3;
   wire        occupied_5 =
-    walkB[2:1] != 2'h3 & _GEN_2 + 14'h5 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h6 & _GEN_2 + 14'h5 < _io_lookup_bucket_mask_T[13:0]
     & io_lookup_word_5 != io_lookup_word_4;
   wire        occupied_6 =
-    walkB[2:0] != 3'h7 & _GEN_2 + 14'h6 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h7 & _GEN_2 + 14'h6 < _io_lookup_bucket_mask_T[13:0]
     & io_lookup_word_6 != io_lookup_word_5;
-  wire [2:0]  lane =
+  wire        occupied_7 =
+    ~(walkB[3]) & _GEN_2 + 14'h7 < _io_lookup_bucket_mask_T[13:0]
+    & io_lookup_word_7 != io_lookup_word_6;
+  wire        occupied_8 =
+    walkB[3:0] < 4'h9 & _GEN_2 + 14'h8 < _io_lookup_bucket_mask_T[13:0]
+    & io_lookup_word_8 != io_lookup_word_7;
+  wire        occupied_9 =
+    walkB[3:0] < 4'hA & _GEN_2 + 14'h9 < _io_lookup_bucket_mask_T[13:0]
+    & io_lookup_word_9 != io_lookup_word_8;
+  wire        occupied_10 =
+    walkB[3:0] < 4'hB & _GEN_2 + 14'hA < _io_lookup_bucket_mask_T[13:0]
+    & io_lookup_word_10 != io_lookup_word_9;
+  wire        occupied_11 =
+    walkB[3:2] != 2'h3 & _GEN_2 + 14'hB < _io_lookup_bucket_mask_T[13:0]
+    & io_lookup_word_11 != io_lookup_word_10;
+  wire        occupied_12 =
+    walkB[3:0] < 4'hD & _GEN_2 + 14'hC < _io_lookup_bucket_mask_T[13:0]
+    & io_lookup_word_12 != io_lookup_word_11;
+  wire        occupied_13 =
+    walkB[3:1] != 3'h7 & _GEN_2 + 14'hD < _io_lookup_bucket_mask_T[13:0]
+    & io_lookup_word_13 != io_lookup_word_12;
+  wire        occupied_14 =
+    walkB[3:0] != 4'hF & _GEN_2 + 14'hE < _io_lookup_bucket_mask_T[13:0]
+    & io_lookup_word_14 != io_lookup_word_13;
+  wire [3:0]  lane =
     occupied_0
-      ? 3'h0
+      ? 4'h0
       : occupied_1
-          ? 3'h1
+          ? 4'h1
           : occupied_2
-              ? 3'h2
+              ? 4'h2
               : occupied_3
-                  ? 3'h3
-                  : occupied_4 ? 3'h4 : occupied_5 ? 3'h5 : {2'h3, ~occupied_6};
+                  ? 4'h3
+                  : occupied_4
+                      ? 4'h4
+                      : occupied_5
+                          ? 4'h5
+                          : occupied_6
+                              ? 4'h6
+                              : occupied_7
+                                  ? 4'h7
+                                  : occupied_8
+                                      ? 4'h8
+                                      : occupied_9
+                                          ? 4'h9
+                                          : occupied_10
+                                              ? 4'hA
+                                              : occupied_11
+                                                  ? 4'hB
+                                                  : occupied_12
+                                                      ? 4'hC
+                                                      : occupied_13
+                                                          ? 4'hD
+                                                          : {3'h7, ~occupied_14};
   wire        _GEN_3 =
     walkPend
-    & (|{_GEN_2 + 14'h7 < _io_lookup_bucket_mask_T[13:0]
-           & io_lookup_word_7 != io_lookup_word_6,
+    & (|{_GEN_2 + 14'hF < _io_lookup_bucket_mask_T[13:0]
+           & io_lookup_word_15 != io_lookup_word_14,
+         occupied_14,
+         occupied_13,
+         occupied_12,
+         occupied_11,
+         occupied_10,
+         occupied_9,
+         occupied_8,
+         occupied_7,
          occupied_6,
          occupied_5,
          occupied_4,
@@ -19746,43 +20919,75 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world(
   reg  [12:0] casez_tmp;
   always @(*) begin
     casez (lane)
-      3'b000:
+      4'b0000:
         casez_tmp = io_lookup_begin;
-      3'b001:
+      4'b0001:
         casez_tmp = io_lookup_word_0;
-      3'b010:
+      4'b0010:
         casez_tmp = io_lookup_word_1;
-      3'b011:
+      4'b0011:
         casez_tmp = io_lookup_word_2;
-      3'b100:
+      4'b0100:
         casez_tmp = io_lookup_word_3;
-      3'b101:
+      4'b0101:
         casez_tmp = io_lookup_word_4;
-      3'b110:
+      4'b0110:
         casez_tmp = io_lookup_word_5;
-      default:
+      4'b0111:
         casez_tmp = io_lookup_word_6;
+      4'b1000:
+        casez_tmp = io_lookup_word_7;
+      4'b1001:
+        casez_tmp = io_lookup_word_8;
+      4'b1010:
+        casez_tmp = io_lookup_word_9;
+      4'b1011:
+        casez_tmp = io_lookup_word_10;
+      4'b1100:
+        casez_tmp = io_lookup_word_11;
+      4'b1101:
+        casez_tmp = io_lookup_word_12;
+      4'b1110:
+        casez_tmp = io_lookup_word_13;
+      default:
+        casez_tmp = io_lookup_word_14;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_0;
   always @(*) begin
     casez (lane)
-      3'b000:
+      4'b0000:
         casez_tmp_0 = io_lookup_word_0;
-      3'b001:
+      4'b0001:
         casez_tmp_0 = io_lookup_word_1;
-      3'b010:
+      4'b0010:
         casez_tmp_0 = io_lookup_word_2;
-      3'b011:
+      4'b0011:
         casez_tmp_0 = io_lookup_word_3;
-      3'b100:
+      4'b0100:
         casez_tmp_0 = io_lookup_word_4;
-      3'b101:
+      4'b0101:
         casez_tmp_0 = io_lookup_word_5;
-      3'b110:
+      4'b0110:
         casez_tmp_0 = io_lookup_word_6;
-      default:
+      4'b0111:
         casez_tmp_0 = io_lookup_word_7;
+      4'b1000:
+        casez_tmp_0 = io_lookup_word_8;
+      4'b1001:
+        casez_tmp_0 = io_lookup_word_9;
+      4'b1010:
+        casez_tmp_0 = io_lookup_word_10;
+      4'b1011:
+        casez_tmp_0 = io_lookup_word_11;
+      4'b1100:
+        casez_tmp_0 = io_lookup_word_12;
+      4'b1101:
+        casez_tmp_0 = io_lookup_word_13;
+      4'b1110:
+        casez_tmp_0 = io_lookup_word_14;
+      default:
+        casez_tmp_0 = io_lookup_word_15;
     endcase
   end // always @(*)
   wire        _GEN_4 = ~walkPend & ~issueOk;
@@ -20166,16 +21371,16 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world(
     end
     if (_GEN_0) begin
       if (io_start)
-        bIssue <= {7'h0, io_lane, 3'h0};
+        bIssue <= {6'h0, io_lane, 4'h0};
     end
     else if (_GEN_1) begin
       if (_GEN_3) begin
-        bIssue <= (&lane) ? _GEN_2 + 14'h80 : _GEN_2 + {11'h0, lane} + 14'h1;
+        bIssue <= (&lane) ? _GEN_2 + 14'h100 : _GEN_2 + {10'h0, lane} + 14'h1;
         p <= casez_tmp;
         vIssue <= 4'h0;
       end
       else if (issueOk)
-        bIssue <= {bIssue[13:3] + 11'h10, 3'h0};
+        bIssue <= {bIssue[13:4] + 10'h10, 4'h0};
       haveCell <= ~_GEN_3 & haveCell;
       sent <= ~_GEN_3 & sent;
       needClear <= ~_GEN_3 & needClear;
@@ -20877,7 +22082,7 @@ module SphereKeys_fp32_c20_f8_m9d8_l1_world(
   assign io_out_topNone = io_out_topNone_r;
 endmodule
 
-module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
+module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   input         clock,
                 reset,
                 io_start,
@@ -21037,6 +22242,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
                 io_status_sortMismatch
 );
 
+  wire        _laneKeys_15_io_out_valid;
   wire [19:0] _laneKeys_15_io_out_cell_0;
   wire [19:0] _laneKeys_15_io_out_cell_1;
   wire [19:0] _laneKeys_15_io_out_cell_2;
@@ -21047,6 +22253,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_15_io_out_need;
   wire        _laneKeys_15_io_out_needNone;
   wire        _laneKeys_15_io_out_nonFinite;
+  wire [12:0] _laneKeys_15_io_out_top;
+  wire        _laneKeys_15_io_out_topNone;
+  wire        _laneKeys_14_io_out_valid;
   wire [19:0] _laneKeys_14_io_out_cell_0;
   wire [19:0] _laneKeys_14_io_out_cell_1;
   wire [19:0] _laneKeys_14_io_out_cell_2;
@@ -21057,6 +22266,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_14_io_out_need;
   wire        _laneKeys_14_io_out_needNone;
   wire        _laneKeys_14_io_out_nonFinite;
+  wire [12:0] _laneKeys_14_io_out_top;
+  wire        _laneKeys_14_io_out_topNone;
+  wire        _laneKeys_13_io_out_valid;
   wire [19:0] _laneKeys_13_io_out_cell_0;
   wire [19:0] _laneKeys_13_io_out_cell_1;
   wire [19:0] _laneKeys_13_io_out_cell_2;
@@ -21067,6 +22279,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_13_io_out_need;
   wire        _laneKeys_13_io_out_needNone;
   wire        _laneKeys_13_io_out_nonFinite;
+  wire [12:0] _laneKeys_13_io_out_top;
+  wire        _laneKeys_13_io_out_topNone;
+  wire        _laneKeys_12_io_out_valid;
   wire [19:0] _laneKeys_12_io_out_cell_0;
   wire [19:0] _laneKeys_12_io_out_cell_1;
   wire [19:0] _laneKeys_12_io_out_cell_2;
@@ -21077,6 +22292,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_12_io_out_need;
   wire        _laneKeys_12_io_out_needNone;
   wire        _laneKeys_12_io_out_nonFinite;
+  wire [12:0] _laneKeys_12_io_out_top;
+  wire        _laneKeys_12_io_out_topNone;
+  wire        _laneKeys_11_io_out_valid;
   wire [19:0] _laneKeys_11_io_out_cell_0;
   wire [19:0] _laneKeys_11_io_out_cell_1;
   wire [19:0] _laneKeys_11_io_out_cell_2;
@@ -21087,6 +22305,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_11_io_out_need;
   wire        _laneKeys_11_io_out_needNone;
   wire        _laneKeys_11_io_out_nonFinite;
+  wire [12:0] _laneKeys_11_io_out_top;
+  wire        _laneKeys_11_io_out_topNone;
+  wire        _laneKeys_10_io_out_valid;
   wire [19:0] _laneKeys_10_io_out_cell_0;
   wire [19:0] _laneKeys_10_io_out_cell_1;
   wire [19:0] _laneKeys_10_io_out_cell_2;
@@ -21097,6 +22318,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_10_io_out_need;
   wire        _laneKeys_10_io_out_needNone;
   wire        _laneKeys_10_io_out_nonFinite;
+  wire [12:0] _laneKeys_10_io_out_top;
+  wire        _laneKeys_10_io_out_topNone;
+  wire        _laneKeys_9_io_out_valid;
   wire [19:0] _laneKeys_9_io_out_cell_0;
   wire [19:0] _laneKeys_9_io_out_cell_1;
   wire [19:0] _laneKeys_9_io_out_cell_2;
@@ -21107,6 +22331,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_9_io_out_need;
   wire        _laneKeys_9_io_out_needNone;
   wire        _laneKeys_9_io_out_nonFinite;
+  wire [12:0] _laneKeys_9_io_out_top;
+  wire        _laneKeys_9_io_out_topNone;
+  wire        _laneKeys_8_io_out_valid;
   wire [19:0] _laneKeys_8_io_out_cell_0;
   wire [19:0] _laneKeys_8_io_out_cell_1;
   wire [19:0] _laneKeys_8_io_out_cell_2;
@@ -21117,6 +22344,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_8_io_out_need;
   wire        _laneKeys_8_io_out_needNone;
   wire        _laneKeys_8_io_out_nonFinite;
+  wire [12:0] _laneKeys_8_io_out_top;
+  wire        _laneKeys_8_io_out_topNone;
+  wire        _laneKeys_7_io_out_valid;
   wire [19:0] _laneKeys_7_io_out_cell_0;
   wire [19:0] _laneKeys_7_io_out_cell_1;
   wire [19:0] _laneKeys_7_io_out_cell_2;
@@ -21127,6 +22357,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_7_io_out_need;
   wire        _laneKeys_7_io_out_needNone;
   wire        _laneKeys_7_io_out_nonFinite;
+  wire [12:0] _laneKeys_7_io_out_top;
+  wire        _laneKeys_7_io_out_topNone;
+  wire        _laneKeys_6_io_out_valid;
   wire [19:0] _laneKeys_6_io_out_cell_0;
   wire [19:0] _laneKeys_6_io_out_cell_1;
   wire [19:0] _laneKeys_6_io_out_cell_2;
@@ -21137,6 +22370,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_6_io_out_need;
   wire        _laneKeys_6_io_out_needNone;
   wire        _laneKeys_6_io_out_nonFinite;
+  wire [12:0] _laneKeys_6_io_out_top;
+  wire        _laneKeys_6_io_out_topNone;
+  wire        _laneKeys_5_io_out_valid;
   wire [19:0] _laneKeys_5_io_out_cell_0;
   wire [19:0] _laneKeys_5_io_out_cell_1;
   wire [19:0] _laneKeys_5_io_out_cell_2;
@@ -21147,6 +22383,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_5_io_out_need;
   wire        _laneKeys_5_io_out_needNone;
   wire        _laneKeys_5_io_out_nonFinite;
+  wire [12:0] _laneKeys_5_io_out_top;
+  wire        _laneKeys_5_io_out_topNone;
+  wire        _laneKeys_4_io_out_valid;
   wire [19:0] _laneKeys_4_io_out_cell_0;
   wire [19:0] _laneKeys_4_io_out_cell_1;
   wire [19:0] _laneKeys_4_io_out_cell_2;
@@ -21157,6 +22396,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_4_io_out_need;
   wire        _laneKeys_4_io_out_needNone;
   wire        _laneKeys_4_io_out_nonFinite;
+  wire [12:0] _laneKeys_4_io_out_top;
+  wire        _laneKeys_4_io_out_topNone;
+  wire        _laneKeys_3_io_out_valid;
   wire [19:0] _laneKeys_3_io_out_cell_0;
   wire [19:0] _laneKeys_3_io_out_cell_1;
   wire [19:0] _laneKeys_3_io_out_cell_2;
@@ -21167,6 +22409,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_3_io_out_need;
   wire        _laneKeys_3_io_out_needNone;
   wire        _laneKeys_3_io_out_nonFinite;
+  wire [12:0] _laneKeys_3_io_out_top;
+  wire        _laneKeys_3_io_out_topNone;
+  wire        _laneKeys_2_io_out_valid;
   wire [19:0] _laneKeys_2_io_out_cell_0;
   wire [19:0] _laneKeys_2_io_out_cell_1;
   wire [19:0] _laneKeys_2_io_out_cell_2;
@@ -21177,6 +22422,8 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _laneKeys_2_io_out_need;
   wire        _laneKeys_2_io_out_needNone;
   wire        _laneKeys_2_io_out_nonFinite;
+  wire [12:0] _laneKeys_2_io_out_top;
+  wire        _laneKeys_2_io_out_topNone;
   wire        _laneKeys_1_io_out_valid;
   wire [19:0] _laneKeys_1_io_out_cell_0;
   wire [19:0] _laneKeys_1_io_out_cell_1;
@@ -21210,84 +22457,98 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire        _gens_15_io_mark_valid;
   wire [11:0] _gens_15_io_mark_bits_addr;
   wire [11:0] _gens_15_io_mark_bits_item;
+  wire [11:0] _gens_15_io_keyAddr;
   wire        _gens_15_io_busy;
   wire [12:0] _gens_14_io_lookup_bucket;
   wire [11:0] _gens_14_io_entry_addr;
   wire        _gens_14_io_mark_valid;
   wire [11:0] _gens_14_io_mark_bits_addr;
   wire [11:0] _gens_14_io_mark_bits_item;
+  wire [11:0] _gens_14_io_keyAddr;
   wire        _gens_14_io_busy;
   wire [12:0] _gens_13_io_lookup_bucket;
   wire [11:0] _gens_13_io_entry_addr;
   wire        _gens_13_io_mark_valid;
   wire [11:0] _gens_13_io_mark_bits_addr;
   wire [11:0] _gens_13_io_mark_bits_item;
+  wire [11:0] _gens_13_io_keyAddr;
   wire        _gens_13_io_busy;
   wire [12:0] _gens_12_io_lookup_bucket;
   wire [11:0] _gens_12_io_entry_addr;
   wire        _gens_12_io_mark_valid;
   wire [11:0] _gens_12_io_mark_bits_addr;
   wire [11:0] _gens_12_io_mark_bits_item;
+  wire [11:0] _gens_12_io_keyAddr;
   wire        _gens_12_io_busy;
   wire [12:0] _gens_11_io_lookup_bucket;
   wire [11:0] _gens_11_io_entry_addr;
   wire        _gens_11_io_mark_valid;
   wire [11:0] _gens_11_io_mark_bits_addr;
   wire [11:0] _gens_11_io_mark_bits_item;
+  wire [11:0] _gens_11_io_keyAddr;
   wire        _gens_11_io_busy;
   wire [12:0] _gens_10_io_lookup_bucket;
   wire [11:0] _gens_10_io_entry_addr;
   wire        _gens_10_io_mark_valid;
   wire [11:0] _gens_10_io_mark_bits_addr;
   wire [11:0] _gens_10_io_mark_bits_item;
+  wire [11:0] _gens_10_io_keyAddr;
   wire        _gens_10_io_busy;
   wire [12:0] _gens_9_io_lookup_bucket;
   wire [11:0] _gens_9_io_entry_addr;
   wire        _gens_9_io_mark_valid;
   wire [11:0] _gens_9_io_mark_bits_addr;
   wire [11:0] _gens_9_io_mark_bits_item;
+  wire [11:0] _gens_9_io_keyAddr;
   wire        _gens_9_io_busy;
   wire [12:0] _gens_8_io_lookup_bucket;
   wire [11:0] _gens_8_io_entry_addr;
   wire        _gens_8_io_mark_valid;
   wire [11:0] _gens_8_io_mark_bits_addr;
   wire [11:0] _gens_8_io_mark_bits_item;
+  wire [11:0] _gens_8_io_keyAddr;
   wire        _gens_8_io_busy;
   wire [12:0] _gens_7_io_lookup_bucket;
   wire [11:0] _gens_7_io_entry_addr;
   wire        _gens_7_io_mark_valid;
   wire [11:0] _gens_7_io_mark_bits_addr;
   wire [11:0] _gens_7_io_mark_bits_item;
+  wire [11:0] _gens_7_io_keyAddr;
   wire        _gens_7_io_busy;
   wire [12:0] _gens_6_io_lookup_bucket;
   wire [11:0] _gens_6_io_entry_addr;
   wire        _gens_6_io_mark_valid;
   wire [11:0] _gens_6_io_mark_bits_addr;
   wire [11:0] _gens_6_io_mark_bits_item;
+  wire [11:0] _gens_6_io_keyAddr;
   wire        _gens_6_io_busy;
   wire [12:0] _gens_5_io_lookup_bucket;
   wire [11:0] _gens_5_io_entry_addr;
   wire        _gens_5_io_mark_valid;
   wire [11:0] _gens_5_io_mark_bits_addr;
   wire [11:0] _gens_5_io_mark_bits_item;
+  wire [11:0] _gens_5_io_keyAddr;
   wire        _gens_5_io_busy;
   wire [12:0] _gens_4_io_lookup_bucket;
   wire [11:0] _gens_4_io_entry_addr;
   wire        _gens_4_io_mark_valid;
   wire [11:0] _gens_4_io_mark_bits_addr;
   wire [11:0] _gens_4_io_mark_bits_item;
+  wire [11:0] _gens_4_io_keyAddr;
   wire        _gens_4_io_busy;
   wire [12:0] _gens_3_io_lookup_bucket;
   wire [11:0] _gens_3_io_entry_addr;
   wire        _gens_3_io_mark_valid;
   wire [11:0] _gens_3_io_mark_bits_addr;
   wire [11:0] _gens_3_io_mark_bits_item;
+  wire [11:0] _gens_3_io_keyAddr;
   wire        _gens_3_io_busy;
   wire [12:0] _gens_2_io_lookup_bucket;
   wire [11:0] _gens_2_io_entry_addr;
   wire        _gens_2_io_mark_valid;
   wire [11:0] _gens_2_io_mark_bits_addr;
   wire [11:0] _gens_2_io_mark_bits_item;
+  wire [11:0] _gens_2_io_keyAddr;
   wire        _gens_2_io_busy;
   wire [12:0] _gens_1_io_lookup_bucket;
   wire [11:0] _gens_1_io_entry_addr;
@@ -21316,6 +22577,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_0_word_5;
   wire [12:0] _sort_io_lookup_0_word_6;
   wire [12:0] _sort_io_lookup_0_word_7;
+  wire [12:0] _sort_io_lookup_0_word_8;
+  wire [12:0] _sort_io_lookup_0_word_9;
+  wire [12:0] _sort_io_lookup_0_word_10;
+  wire [12:0] _sort_io_lookup_0_word_11;
+  wire [12:0] _sort_io_lookup_0_word_12;
+  wire [12:0] _sort_io_lookup_0_word_13;
+  wire [12:0] _sort_io_lookup_0_word_14;
+  wire [12:0] _sort_io_lookup_0_word_15;
   wire [12:0] _sort_io_lookup_1_begin;
   wire [12:0] _sort_io_lookup_1_end;
   wire [12:0] _sort_io_lookup_1_word_0;
@@ -21326,6 +22595,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_1_word_5;
   wire [12:0] _sort_io_lookup_1_word_6;
   wire [12:0] _sort_io_lookup_1_word_7;
+  wire [12:0] _sort_io_lookup_1_word_8;
+  wire [12:0] _sort_io_lookup_1_word_9;
+  wire [12:0] _sort_io_lookup_1_word_10;
+  wire [12:0] _sort_io_lookup_1_word_11;
+  wire [12:0] _sort_io_lookup_1_word_12;
+  wire [12:0] _sort_io_lookup_1_word_13;
+  wire [12:0] _sort_io_lookup_1_word_14;
+  wire [12:0] _sort_io_lookup_1_word_15;
   wire [12:0] _sort_io_lookup_2_begin;
   wire [12:0] _sort_io_lookup_2_end;
   wire [12:0] _sort_io_lookup_2_word_0;
@@ -21336,6 +22613,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_2_word_5;
   wire [12:0] _sort_io_lookup_2_word_6;
   wire [12:0] _sort_io_lookup_2_word_7;
+  wire [12:0] _sort_io_lookup_2_word_8;
+  wire [12:0] _sort_io_lookup_2_word_9;
+  wire [12:0] _sort_io_lookup_2_word_10;
+  wire [12:0] _sort_io_lookup_2_word_11;
+  wire [12:0] _sort_io_lookup_2_word_12;
+  wire [12:0] _sort_io_lookup_2_word_13;
+  wire [12:0] _sort_io_lookup_2_word_14;
+  wire [12:0] _sort_io_lookup_2_word_15;
   wire [12:0] _sort_io_lookup_3_begin;
   wire [12:0] _sort_io_lookup_3_end;
   wire [12:0] _sort_io_lookup_3_word_0;
@@ -21346,6 +22631,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_3_word_5;
   wire [12:0] _sort_io_lookup_3_word_6;
   wire [12:0] _sort_io_lookup_3_word_7;
+  wire [12:0] _sort_io_lookup_3_word_8;
+  wire [12:0] _sort_io_lookup_3_word_9;
+  wire [12:0] _sort_io_lookup_3_word_10;
+  wire [12:0] _sort_io_lookup_3_word_11;
+  wire [12:0] _sort_io_lookup_3_word_12;
+  wire [12:0] _sort_io_lookup_3_word_13;
+  wire [12:0] _sort_io_lookup_3_word_14;
+  wire [12:0] _sort_io_lookup_3_word_15;
   wire [12:0] _sort_io_lookup_4_begin;
   wire [12:0] _sort_io_lookup_4_end;
   wire [12:0] _sort_io_lookup_4_word_0;
@@ -21356,6 +22649,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_4_word_5;
   wire [12:0] _sort_io_lookup_4_word_6;
   wire [12:0] _sort_io_lookup_4_word_7;
+  wire [12:0] _sort_io_lookup_4_word_8;
+  wire [12:0] _sort_io_lookup_4_word_9;
+  wire [12:0] _sort_io_lookup_4_word_10;
+  wire [12:0] _sort_io_lookup_4_word_11;
+  wire [12:0] _sort_io_lookup_4_word_12;
+  wire [12:0] _sort_io_lookup_4_word_13;
+  wire [12:0] _sort_io_lookup_4_word_14;
+  wire [12:0] _sort_io_lookup_4_word_15;
   wire [12:0] _sort_io_lookup_5_begin;
   wire [12:0] _sort_io_lookup_5_end;
   wire [12:0] _sort_io_lookup_5_word_0;
@@ -21366,6 +22667,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_5_word_5;
   wire [12:0] _sort_io_lookup_5_word_6;
   wire [12:0] _sort_io_lookup_5_word_7;
+  wire [12:0] _sort_io_lookup_5_word_8;
+  wire [12:0] _sort_io_lookup_5_word_9;
+  wire [12:0] _sort_io_lookup_5_word_10;
+  wire [12:0] _sort_io_lookup_5_word_11;
+  wire [12:0] _sort_io_lookup_5_word_12;
+  wire [12:0] _sort_io_lookup_5_word_13;
+  wire [12:0] _sort_io_lookup_5_word_14;
+  wire [12:0] _sort_io_lookup_5_word_15;
   wire [12:0] _sort_io_lookup_6_begin;
   wire [12:0] _sort_io_lookup_6_end;
   wire [12:0] _sort_io_lookup_6_word_0;
@@ -21376,6 +22685,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_6_word_5;
   wire [12:0] _sort_io_lookup_6_word_6;
   wire [12:0] _sort_io_lookup_6_word_7;
+  wire [12:0] _sort_io_lookup_6_word_8;
+  wire [12:0] _sort_io_lookup_6_word_9;
+  wire [12:0] _sort_io_lookup_6_word_10;
+  wire [12:0] _sort_io_lookup_6_word_11;
+  wire [12:0] _sort_io_lookup_6_word_12;
+  wire [12:0] _sort_io_lookup_6_word_13;
+  wire [12:0] _sort_io_lookup_6_word_14;
+  wire [12:0] _sort_io_lookup_6_word_15;
   wire [12:0] _sort_io_lookup_7_begin;
   wire [12:0] _sort_io_lookup_7_end;
   wire [12:0] _sort_io_lookup_7_word_0;
@@ -21386,6 +22703,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_7_word_5;
   wire [12:0] _sort_io_lookup_7_word_6;
   wire [12:0] _sort_io_lookup_7_word_7;
+  wire [12:0] _sort_io_lookup_7_word_8;
+  wire [12:0] _sort_io_lookup_7_word_9;
+  wire [12:0] _sort_io_lookup_7_word_10;
+  wire [12:0] _sort_io_lookup_7_word_11;
+  wire [12:0] _sort_io_lookup_7_word_12;
+  wire [12:0] _sort_io_lookup_7_word_13;
+  wire [12:0] _sort_io_lookup_7_word_14;
+  wire [12:0] _sort_io_lookup_7_word_15;
   wire [12:0] _sort_io_lookup_8_begin;
   wire [12:0] _sort_io_lookup_8_end;
   wire [12:0] _sort_io_lookup_8_word_0;
@@ -21396,6 +22721,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_8_word_5;
   wire [12:0] _sort_io_lookup_8_word_6;
   wire [12:0] _sort_io_lookup_8_word_7;
+  wire [12:0] _sort_io_lookup_8_word_8;
+  wire [12:0] _sort_io_lookup_8_word_9;
+  wire [12:0] _sort_io_lookup_8_word_10;
+  wire [12:0] _sort_io_lookup_8_word_11;
+  wire [12:0] _sort_io_lookup_8_word_12;
+  wire [12:0] _sort_io_lookup_8_word_13;
+  wire [12:0] _sort_io_lookup_8_word_14;
+  wire [12:0] _sort_io_lookup_8_word_15;
   wire [12:0] _sort_io_lookup_9_begin;
   wire [12:0] _sort_io_lookup_9_end;
   wire [12:0] _sort_io_lookup_9_word_0;
@@ -21406,6 +22739,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_9_word_5;
   wire [12:0] _sort_io_lookup_9_word_6;
   wire [12:0] _sort_io_lookup_9_word_7;
+  wire [12:0] _sort_io_lookup_9_word_8;
+  wire [12:0] _sort_io_lookup_9_word_9;
+  wire [12:0] _sort_io_lookup_9_word_10;
+  wire [12:0] _sort_io_lookup_9_word_11;
+  wire [12:0] _sort_io_lookup_9_word_12;
+  wire [12:0] _sort_io_lookup_9_word_13;
+  wire [12:0] _sort_io_lookup_9_word_14;
+  wire [12:0] _sort_io_lookup_9_word_15;
   wire [12:0] _sort_io_lookup_10_begin;
   wire [12:0] _sort_io_lookup_10_end;
   wire [12:0] _sort_io_lookup_10_word_0;
@@ -21416,6 +22757,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_10_word_5;
   wire [12:0] _sort_io_lookup_10_word_6;
   wire [12:0] _sort_io_lookup_10_word_7;
+  wire [12:0] _sort_io_lookup_10_word_8;
+  wire [12:0] _sort_io_lookup_10_word_9;
+  wire [12:0] _sort_io_lookup_10_word_10;
+  wire [12:0] _sort_io_lookup_10_word_11;
+  wire [12:0] _sort_io_lookup_10_word_12;
+  wire [12:0] _sort_io_lookup_10_word_13;
+  wire [12:0] _sort_io_lookup_10_word_14;
+  wire [12:0] _sort_io_lookup_10_word_15;
   wire [12:0] _sort_io_lookup_11_begin;
   wire [12:0] _sort_io_lookup_11_end;
   wire [12:0] _sort_io_lookup_11_word_0;
@@ -21426,6 +22775,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_11_word_5;
   wire [12:0] _sort_io_lookup_11_word_6;
   wire [12:0] _sort_io_lookup_11_word_7;
+  wire [12:0] _sort_io_lookup_11_word_8;
+  wire [12:0] _sort_io_lookup_11_word_9;
+  wire [12:0] _sort_io_lookup_11_word_10;
+  wire [12:0] _sort_io_lookup_11_word_11;
+  wire [12:0] _sort_io_lookup_11_word_12;
+  wire [12:0] _sort_io_lookup_11_word_13;
+  wire [12:0] _sort_io_lookup_11_word_14;
+  wire [12:0] _sort_io_lookup_11_word_15;
   wire [12:0] _sort_io_lookup_12_begin;
   wire [12:0] _sort_io_lookup_12_end;
   wire [12:0] _sort_io_lookup_12_word_0;
@@ -21436,6 +22793,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_12_word_5;
   wire [12:0] _sort_io_lookup_12_word_6;
   wire [12:0] _sort_io_lookup_12_word_7;
+  wire [12:0] _sort_io_lookup_12_word_8;
+  wire [12:0] _sort_io_lookup_12_word_9;
+  wire [12:0] _sort_io_lookup_12_word_10;
+  wire [12:0] _sort_io_lookup_12_word_11;
+  wire [12:0] _sort_io_lookup_12_word_12;
+  wire [12:0] _sort_io_lookup_12_word_13;
+  wire [12:0] _sort_io_lookup_12_word_14;
+  wire [12:0] _sort_io_lookup_12_word_15;
   wire [12:0] _sort_io_lookup_13_begin;
   wire [12:0] _sort_io_lookup_13_end;
   wire [12:0] _sort_io_lookup_13_word_0;
@@ -21446,6 +22811,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_13_word_5;
   wire [12:0] _sort_io_lookup_13_word_6;
   wire [12:0] _sort_io_lookup_13_word_7;
+  wire [12:0] _sort_io_lookup_13_word_8;
+  wire [12:0] _sort_io_lookup_13_word_9;
+  wire [12:0] _sort_io_lookup_13_word_10;
+  wire [12:0] _sort_io_lookup_13_word_11;
+  wire [12:0] _sort_io_lookup_13_word_12;
+  wire [12:0] _sort_io_lookup_13_word_13;
+  wire [12:0] _sort_io_lookup_13_word_14;
+  wire [12:0] _sort_io_lookup_13_word_15;
   wire [12:0] _sort_io_lookup_14_begin;
   wire [12:0] _sort_io_lookup_14_end;
   wire [12:0] _sort_io_lookup_14_word_0;
@@ -21456,6 +22829,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_14_word_5;
   wire [12:0] _sort_io_lookup_14_word_6;
   wire [12:0] _sort_io_lookup_14_word_7;
+  wire [12:0] _sort_io_lookup_14_word_8;
+  wire [12:0] _sort_io_lookup_14_word_9;
+  wire [12:0] _sort_io_lookup_14_word_10;
+  wire [12:0] _sort_io_lookup_14_word_11;
+  wire [12:0] _sort_io_lookup_14_word_12;
+  wire [12:0] _sort_io_lookup_14_word_13;
+  wire [12:0] _sort_io_lookup_14_word_14;
+  wire [12:0] _sort_io_lookup_14_word_15;
   wire [12:0] _sort_io_lookup_15_begin;
   wire [12:0] _sort_io_lookup_15_end;
   wire [12:0] _sort_io_lookup_15_word_0;
@@ -21466,6 +22847,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_lookup_15_word_5;
   wire [12:0] _sort_io_lookup_15_word_6;
   wire [12:0] _sort_io_lookup_15_word_7;
+  wire [12:0] _sort_io_lookup_15_word_8;
+  wire [12:0] _sort_io_lookup_15_word_9;
+  wire [12:0] _sort_io_lookup_15_word_10;
+  wire [12:0] _sort_io_lookup_15_word_11;
+  wire [12:0] _sort_io_lookup_15_word_12;
+  wire [12:0] _sort_io_lookup_15_word_13;
+  wire [12:0] _sort_io_lookup_15_word_14;
+  wire [12:0] _sort_io_lookup_15_word_15;
   wire [11:0] _sort_io_entry_0_item;
   wire        _sort_io_entry_0_mark;
   wire [11:0] _sort_io_entry_1_item;
@@ -21502,6 +22891,326 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   wire [12:0] _sort_io_scattered;
   wire        _sort_io_badBucket;
   wire [12:0] _cellExp_io_k;
+  wire [12:0] _laneExps_15_io_kept_0;
+  wire [12:0] _laneExps_15_io_kept_1;
+  wire [12:0] _laneExps_15_io_kept_2;
+  wire [12:0] _laneExps_15_io_kept_3;
+  wire [12:0] _laneExps_15_io_kept_4;
+  wire [12:0] _laneExps_15_io_kept_5;
+  wire [12:0] _laneExps_15_io_kept_6;
+  wire [12:0] _laneExps_15_io_kept_7;
+  wire [12:0] _laneExps_15_io_kept_8;
+  wire [12:0] _laneExps_15_io_kept_9;
+  wire [12:0] _laneExps_15_io_kept_10;
+  wire [12:0] _laneExps_15_io_kept_11;
+  wire [12:0] _laneExps_15_io_kept_12;
+  wire [12:0] _laneExps_15_io_kept_13;
+  wire [12:0] _laneExps_15_io_kept_14;
+  wire [12:0] _laneExps_15_io_kept_15;
+  wire [12:0] _laneExps_15_io_kept_16;
+  wire [4:0]  _laneExps_15_io_used;
+  wire [12:0] _laneExps_15_io_top;
+  wire        _laneExps_15_io_anyTop;
+  wire [12:0] _laneExps_14_io_kept_0;
+  wire [12:0] _laneExps_14_io_kept_1;
+  wire [12:0] _laneExps_14_io_kept_2;
+  wire [12:0] _laneExps_14_io_kept_3;
+  wire [12:0] _laneExps_14_io_kept_4;
+  wire [12:0] _laneExps_14_io_kept_5;
+  wire [12:0] _laneExps_14_io_kept_6;
+  wire [12:0] _laneExps_14_io_kept_7;
+  wire [12:0] _laneExps_14_io_kept_8;
+  wire [12:0] _laneExps_14_io_kept_9;
+  wire [12:0] _laneExps_14_io_kept_10;
+  wire [12:0] _laneExps_14_io_kept_11;
+  wire [12:0] _laneExps_14_io_kept_12;
+  wire [12:0] _laneExps_14_io_kept_13;
+  wire [12:0] _laneExps_14_io_kept_14;
+  wire [12:0] _laneExps_14_io_kept_15;
+  wire [12:0] _laneExps_14_io_kept_16;
+  wire [4:0]  _laneExps_14_io_used;
+  wire [12:0] _laneExps_14_io_top;
+  wire        _laneExps_14_io_anyTop;
+  wire [12:0] _laneExps_13_io_kept_0;
+  wire [12:0] _laneExps_13_io_kept_1;
+  wire [12:0] _laneExps_13_io_kept_2;
+  wire [12:0] _laneExps_13_io_kept_3;
+  wire [12:0] _laneExps_13_io_kept_4;
+  wire [12:0] _laneExps_13_io_kept_5;
+  wire [12:0] _laneExps_13_io_kept_6;
+  wire [12:0] _laneExps_13_io_kept_7;
+  wire [12:0] _laneExps_13_io_kept_8;
+  wire [12:0] _laneExps_13_io_kept_9;
+  wire [12:0] _laneExps_13_io_kept_10;
+  wire [12:0] _laneExps_13_io_kept_11;
+  wire [12:0] _laneExps_13_io_kept_12;
+  wire [12:0] _laneExps_13_io_kept_13;
+  wire [12:0] _laneExps_13_io_kept_14;
+  wire [12:0] _laneExps_13_io_kept_15;
+  wire [12:0] _laneExps_13_io_kept_16;
+  wire [4:0]  _laneExps_13_io_used;
+  wire [12:0] _laneExps_13_io_top;
+  wire        _laneExps_13_io_anyTop;
+  wire [12:0] _laneExps_12_io_kept_0;
+  wire [12:0] _laneExps_12_io_kept_1;
+  wire [12:0] _laneExps_12_io_kept_2;
+  wire [12:0] _laneExps_12_io_kept_3;
+  wire [12:0] _laneExps_12_io_kept_4;
+  wire [12:0] _laneExps_12_io_kept_5;
+  wire [12:0] _laneExps_12_io_kept_6;
+  wire [12:0] _laneExps_12_io_kept_7;
+  wire [12:0] _laneExps_12_io_kept_8;
+  wire [12:0] _laneExps_12_io_kept_9;
+  wire [12:0] _laneExps_12_io_kept_10;
+  wire [12:0] _laneExps_12_io_kept_11;
+  wire [12:0] _laneExps_12_io_kept_12;
+  wire [12:0] _laneExps_12_io_kept_13;
+  wire [12:0] _laneExps_12_io_kept_14;
+  wire [12:0] _laneExps_12_io_kept_15;
+  wire [12:0] _laneExps_12_io_kept_16;
+  wire [4:0]  _laneExps_12_io_used;
+  wire [12:0] _laneExps_12_io_top;
+  wire        _laneExps_12_io_anyTop;
+  wire [12:0] _laneExps_11_io_kept_0;
+  wire [12:0] _laneExps_11_io_kept_1;
+  wire [12:0] _laneExps_11_io_kept_2;
+  wire [12:0] _laneExps_11_io_kept_3;
+  wire [12:0] _laneExps_11_io_kept_4;
+  wire [12:0] _laneExps_11_io_kept_5;
+  wire [12:0] _laneExps_11_io_kept_6;
+  wire [12:0] _laneExps_11_io_kept_7;
+  wire [12:0] _laneExps_11_io_kept_8;
+  wire [12:0] _laneExps_11_io_kept_9;
+  wire [12:0] _laneExps_11_io_kept_10;
+  wire [12:0] _laneExps_11_io_kept_11;
+  wire [12:0] _laneExps_11_io_kept_12;
+  wire [12:0] _laneExps_11_io_kept_13;
+  wire [12:0] _laneExps_11_io_kept_14;
+  wire [12:0] _laneExps_11_io_kept_15;
+  wire [12:0] _laneExps_11_io_kept_16;
+  wire [4:0]  _laneExps_11_io_used;
+  wire [12:0] _laneExps_11_io_top;
+  wire        _laneExps_11_io_anyTop;
+  wire [12:0] _laneExps_10_io_kept_0;
+  wire [12:0] _laneExps_10_io_kept_1;
+  wire [12:0] _laneExps_10_io_kept_2;
+  wire [12:0] _laneExps_10_io_kept_3;
+  wire [12:0] _laneExps_10_io_kept_4;
+  wire [12:0] _laneExps_10_io_kept_5;
+  wire [12:0] _laneExps_10_io_kept_6;
+  wire [12:0] _laneExps_10_io_kept_7;
+  wire [12:0] _laneExps_10_io_kept_8;
+  wire [12:0] _laneExps_10_io_kept_9;
+  wire [12:0] _laneExps_10_io_kept_10;
+  wire [12:0] _laneExps_10_io_kept_11;
+  wire [12:0] _laneExps_10_io_kept_12;
+  wire [12:0] _laneExps_10_io_kept_13;
+  wire [12:0] _laneExps_10_io_kept_14;
+  wire [12:0] _laneExps_10_io_kept_15;
+  wire [12:0] _laneExps_10_io_kept_16;
+  wire [4:0]  _laneExps_10_io_used;
+  wire [12:0] _laneExps_10_io_top;
+  wire        _laneExps_10_io_anyTop;
+  wire [12:0] _laneExps_9_io_kept_0;
+  wire [12:0] _laneExps_9_io_kept_1;
+  wire [12:0] _laneExps_9_io_kept_2;
+  wire [12:0] _laneExps_9_io_kept_3;
+  wire [12:0] _laneExps_9_io_kept_4;
+  wire [12:0] _laneExps_9_io_kept_5;
+  wire [12:0] _laneExps_9_io_kept_6;
+  wire [12:0] _laneExps_9_io_kept_7;
+  wire [12:0] _laneExps_9_io_kept_8;
+  wire [12:0] _laneExps_9_io_kept_9;
+  wire [12:0] _laneExps_9_io_kept_10;
+  wire [12:0] _laneExps_9_io_kept_11;
+  wire [12:0] _laneExps_9_io_kept_12;
+  wire [12:0] _laneExps_9_io_kept_13;
+  wire [12:0] _laneExps_9_io_kept_14;
+  wire [12:0] _laneExps_9_io_kept_15;
+  wire [12:0] _laneExps_9_io_kept_16;
+  wire [4:0]  _laneExps_9_io_used;
+  wire [12:0] _laneExps_9_io_top;
+  wire        _laneExps_9_io_anyTop;
+  wire [12:0] _laneExps_8_io_kept_0;
+  wire [12:0] _laneExps_8_io_kept_1;
+  wire [12:0] _laneExps_8_io_kept_2;
+  wire [12:0] _laneExps_8_io_kept_3;
+  wire [12:0] _laneExps_8_io_kept_4;
+  wire [12:0] _laneExps_8_io_kept_5;
+  wire [12:0] _laneExps_8_io_kept_6;
+  wire [12:0] _laneExps_8_io_kept_7;
+  wire [12:0] _laneExps_8_io_kept_8;
+  wire [12:0] _laneExps_8_io_kept_9;
+  wire [12:0] _laneExps_8_io_kept_10;
+  wire [12:0] _laneExps_8_io_kept_11;
+  wire [12:0] _laneExps_8_io_kept_12;
+  wire [12:0] _laneExps_8_io_kept_13;
+  wire [12:0] _laneExps_8_io_kept_14;
+  wire [12:0] _laneExps_8_io_kept_15;
+  wire [12:0] _laneExps_8_io_kept_16;
+  wire [4:0]  _laneExps_8_io_used;
+  wire [12:0] _laneExps_8_io_top;
+  wire        _laneExps_8_io_anyTop;
+  wire [12:0] _laneExps_7_io_kept_0;
+  wire [12:0] _laneExps_7_io_kept_1;
+  wire [12:0] _laneExps_7_io_kept_2;
+  wire [12:0] _laneExps_7_io_kept_3;
+  wire [12:0] _laneExps_7_io_kept_4;
+  wire [12:0] _laneExps_7_io_kept_5;
+  wire [12:0] _laneExps_7_io_kept_6;
+  wire [12:0] _laneExps_7_io_kept_7;
+  wire [12:0] _laneExps_7_io_kept_8;
+  wire [12:0] _laneExps_7_io_kept_9;
+  wire [12:0] _laneExps_7_io_kept_10;
+  wire [12:0] _laneExps_7_io_kept_11;
+  wire [12:0] _laneExps_7_io_kept_12;
+  wire [12:0] _laneExps_7_io_kept_13;
+  wire [12:0] _laneExps_7_io_kept_14;
+  wire [12:0] _laneExps_7_io_kept_15;
+  wire [12:0] _laneExps_7_io_kept_16;
+  wire [4:0]  _laneExps_7_io_used;
+  wire [12:0] _laneExps_7_io_top;
+  wire        _laneExps_7_io_anyTop;
+  wire [12:0] _laneExps_6_io_kept_0;
+  wire [12:0] _laneExps_6_io_kept_1;
+  wire [12:0] _laneExps_6_io_kept_2;
+  wire [12:0] _laneExps_6_io_kept_3;
+  wire [12:0] _laneExps_6_io_kept_4;
+  wire [12:0] _laneExps_6_io_kept_5;
+  wire [12:0] _laneExps_6_io_kept_6;
+  wire [12:0] _laneExps_6_io_kept_7;
+  wire [12:0] _laneExps_6_io_kept_8;
+  wire [12:0] _laneExps_6_io_kept_9;
+  wire [12:0] _laneExps_6_io_kept_10;
+  wire [12:0] _laneExps_6_io_kept_11;
+  wire [12:0] _laneExps_6_io_kept_12;
+  wire [12:0] _laneExps_6_io_kept_13;
+  wire [12:0] _laneExps_6_io_kept_14;
+  wire [12:0] _laneExps_6_io_kept_15;
+  wire [12:0] _laneExps_6_io_kept_16;
+  wire [4:0]  _laneExps_6_io_used;
+  wire [12:0] _laneExps_6_io_top;
+  wire        _laneExps_6_io_anyTop;
+  wire [12:0] _laneExps_5_io_kept_0;
+  wire [12:0] _laneExps_5_io_kept_1;
+  wire [12:0] _laneExps_5_io_kept_2;
+  wire [12:0] _laneExps_5_io_kept_3;
+  wire [12:0] _laneExps_5_io_kept_4;
+  wire [12:0] _laneExps_5_io_kept_5;
+  wire [12:0] _laneExps_5_io_kept_6;
+  wire [12:0] _laneExps_5_io_kept_7;
+  wire [12:0] _laneExps_5_io_kept_8;
+  wire [12:0] _laneExps_5_io_kept_9;
+  wire [12:0] _laneExps_5_io_kept_10;
+  wire [12:0] _laneExps_5_io_kept_11;
+  wire [12:0] _laneExps_5_io_kept_12;
+  wire [12:0] _laneExps_5_io_kept_13;
+  wire [12:0] _laneExps_5_io_kept_14;
+  wire [12:0] _laneExps_5_io_kept_15;
+  wire [12:0] _laneExps_5_io_kept_16;
+  wire [4:0]  _laneExps_5_io_used;
+  wire [12:0] _laneExps_5_io_top;
+  wire        _laneExps_5_io_anyTop;
+  wire [12:0] _laneExps_4_io_kept_0;
+  wire [12:0] _laneExps_4_io_kept_1;
+  wire [12:0] _laneExps_4_io_kept_2;
+  wire [12:0] _laneExps_4_io_kept_3;
+  wire [12:0] _laneExps_4_io_kept_4;
+  wire [12:0] _laneExps_4_io_kept_5;
+  wire [12:0] _laneExps_4_io_kept_6;
+  wire [12:0] _laneExps_4_io_kept_7;
+  wire [12:0] _laneExps_4_io_kept_8;
+  wire [12:0] _laneExps_4_io_kept_9;
+  wire [12:0] _laneExps_4_io_kept_10;
+  wire [12:0] _laneExps_4_io_kept_11;
+  wire [12:0] _laneExps_4_io_kept_12;
+  wire [12:0] _laneExps_4_io_kept_13;
+  wire [12:0] _laneExps_4_io_kept_14;
+  wire [12:0] _laneExps_4_io_kept_15;
+  wire [12:0] _laneExps_4_io_kept_16;
+  wire [4:0]  _laneExps_4_io_used;
+  wire [12:0] _laneExps_4_io_top;
+  wire        _laneExps_4_io_anyTop;
+  wire [12:0] _laneExps_3_io_kept_0;
+  wire [12:0] _laneExps_3_io_kept_1;
+  wire [12:0] _laneExps_3_io_kept_2;
+  wire [12:0] _laneExps_3_io_kept_3;
+  wire [12:0] _laneExps_3_io_kept_4;
+  wire [12:0] _laneExps_3_io_kept_5;
+  wire [12:0] _laneExps_3_io_kept_6;
+  wire [12:0] _laneExps_3_io_kept_7;
+  wire [12:0] _laneExps_3_io_kept_8;
+  wire [12:0] _laneExps_3_io_kept_9;
+  wire [12:0] _laneExps_3_io_kept_10;
+  wire [12:0] _laneExps_3_io_kept_11;
+  wire [12:0] _laneExps_3_io_kept_12;
+  wire [12:0] _laneExps_3_io_kept_13;
+  wire [12:0] _laneExps_3_io_kept_14;
+  wire [12:0] _laneExps_3_io_kept_15;
+  wire [12:0] _laneExps_3_io_kept_16;
+  wire [4:0]  _laneExps_3_io_used;
+  wire [12:0] _laneExps_3_io_top;
+  wire        _laneExps_3_io_anyTop;
+  wire [12:0] _laneExps_2_io_kept_0;
+  wire [12:0] _laneExps_2_io_kept_1;
+  wire [12:0] _laneExps_2_io_kept_2;
+  wire [12:0] _laneExps_2_io_kept_3;
+  wire [12:0] _laneExps_2_io_kept_4;
+  wire [12:0] _laneExps_2_io_kept_5;
+  wire [12:0] _laneExps_2_io_kept_6;
+  wire [12:0] _laneExps_2_io_kept_7;
+  wire [12:0] _laneExps_2_io_kept_8;
+  wire [12:0] _laneExps_2_io_kept_9;
+  wire [12:0] _laneExps_2_io_kept_10;
+  wire [12:0] _laneExps_2_io_kept_11;
+  wire [12:0] _laneExps_2_io_kept_12;
+  wire [12:0] _laneExps_2_io_kept_13;
+  wire [12:0] _laneExps_2_io_kept_14;
+  wire [12:0] _laneExps_2_io_kept_15;
+  wire [12:0] _laneExps_2_io_kept_16;
+  wire [4:0]  _laneExps_2_io_used;
+  wire [12:0] _laneExps_2_io_top;
+  wire        _laneExps_2_io_anyTop;
+  wire [12:0] _laneExps_1_io_kept_0;
+  wire [12:0] _laneExps_1_io_kept_1;
+  wire [12:0] _laneExps_1_io_kept_2;
+  wire [12:0] _laneExps_1_io_kept_3;
+  wire [12:0] _laneExps_1_io_kept_4;
+  wire [12:0] _laneExps_1_io_kept_5;
+  wire [12:0] _laneExps_1_io_kept_6;
+  wire [12:0] _laneExps_1_io_kept_7;
+  wire [12:0] _laneExps_1_io_kept_8;
+  wire [12:0] _laneExps_1_io_kept_9;
+  wire [12:0] _laneExps_1_io_kept_10;
+  wire [12:0] _laneExps_1_io_kept_11;
+  wire [12:0] _laneExps_1_io_kept_12;
+  wire [12:0] _laneExps_1_io_kept_13;
+  wire [12:0] _laneExps_1_io_kept_14;
+  wire [12:0] _laneExps_1_io_kept_15;
+  wire [12:0] _laneExps_1_io_kept_16;
+  wire [4:0]  _laneExps_1_io_used;
+  wire [12:0] _laneExps_1_io_top;
+  wire        _laneExps_1_io_anyTop;
+  wire [12:0] _laneExps_0_io_kept_0;
+  wire [12:0] _laneExps_0_io_kept_1;
+  wire [12:0] _laneExps_0_io_kept_2;
+  wire [12:0] _laneExps_0_io_kept_3;
+  wire [12:0] _laneExps_0_io_kept_4;
+  wire [12:0] _laneExps_0_io_kept_5;
+  wire [12:0] _laneExps_0_io_kept_6;
+  wire [12:0] _laneExps_0_io_kept_7;
+  wire [12:0] _laneExps_0_io_kept_8;
+  wire [12:0] _laneExps_0_io_kept_9;
+  wire [12:0] _laneExps_0_io_kept_10;
+  wire [12:0] _laneExps_0_io_kept_11;
+  wire [12:0] _laneExps_0_io_kept_12;
+  wire [12:0] _laneExps_0_io_kept_13;
+  wire [12:0] _laneExps_0_io_kept_14;
+  wire [12:0] _laneExps_0_io_kept_15;
+  wire [12:0] _laneExps_0_io_kept_16;
+  wire [4:0]  _laneExps_0_io_used;
+  wire [12:0] _laneExps_0_io_top;
+  wire        _laneExps_0_io_anyTop;
   reg  [11:0] larges_0_index;
   reg  [28:0] larges_0_q_0;
   reg  [28:0] larges_0_q_1;
@@ -21595,23 +23304,8547 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   reg         st_badBucket;
   reg         st_sortMismatch;
   reg  [4:0]  largeCount;
-  wire        _cellExp_io_in_1_valid_T = state == 3'h1;
-  wire        classifying = state == 3'h2;
-  wire        _sort_io_in_1_bits_scatter_T = state == 3'h4;
+  wire        _laneKeys_15_io_in_k_T = state == 3'h1;
+  wire        classifying = state == 3'h3;
+  wire        _sort_io_in_1_bits_scatter_T = state == 3'h5;
+  wire        inPass =
+    _laneKeys_15_io_in_k_T | classifying | _sort_io_in_1_bits_scatter_T;
   reg  [12:0] i_0;
   reg  [12:0] i_1;
-  reg  [3:0]  inflight;
-  wire        _gens_15_io_start_T = state == 3'h5;
+  reg  [12:0] i_2;
+  reg  [12:0] i_3;
+  reg  [12:0] i_4;
+  reg  [12:0] i_5;
+  reg  [12:0] i_6;
+  reg  [12:0] i_7;
+  reg  [12:0] i_8;
+  reg  [12:0] i_9;
+  reg  [12:0] i_10;
+  reg  [12:0] i_11;
+  reg  [12:0] i_12;
+  reg  [12:0] i_13;
+  reg  [12:0] i_14;
+  reg  [12:0] i_15;
+  wire [12:0] _GEN = {4'h0, num[12:4]};
+  wire [12:0] _GEN_0 = {1'h0, num[12:1]};
+  wire        reading_0 = inPass & i_0 < (_laneKeys_15_io_in_k_T ? _GEN : _GEN_0);
+  wire [12:0] _GEN_1 = {3'h0, num[12:3]};
+  wire        reading_1 = inPass & i_1 < (_laneKeys_15_io_in_k_T ? _GEN_1 : num);
+  wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
+  wire        reading_2 =
+    inPass
+    & i_2 < (_laneKeys_15_io_in_k_T ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : 13'h0);
+  wire [27:0] _GEN_2 = {15'h0, num};
+  wire [12:0] _GEN_3 = {2'h0, num[12:2]};
+  wire        reading_3 = inPass & i_3 < (_laneKeys_15_io_in_k_T ? _GEN_3 : 13'h0);
+  wire [27:0] _gens_5_io_largeFrom_T = _GEN_2 * 28'h5000;
+  wire        reading_4 =
+    inPass
+    & i_4 < (_laneKeys_15_io_in_k_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : 13'h0);
+  wire [27:0] _gens_6_io_largeFrom_T = _GEN_2 * 28'h6000;
+  wire        reading_5 =
+    inPass
+    & i_5 < (_laneKeys_15_io_in_k_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : 13'h0);
+  wire [27:0] _gens_7_io_largeFrom_T = _GEN_2 * 28'h7000;
+  wire        reading_6 =
+    inPass
+    & i_6 < (_laneKeys_15_io_in_k_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : 13'h0);
+  wire [28:0] _GEN_4 = {16'h0, num};
+  wire        reading_7 =
+    inPass & i_7 < (_laneKeys_15_io_in_k_T ? {1'h0, num[12:1]} : 13'h0);
+  wire [28:0] _gens_9_io_largeFrom_T = _GEN_4 * 29'h9000;
+  wire        reading_8 =
+    inPass & i_8 < (_laneKeys_15_io_in_k_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
+  wire [28:0] _gens_10_io_largeFrom_T = _GEN_4 * 29'hA000;
+  wire        reading_9 =
+    inPass & i_9 < (_laneKeys_15_io_in_k_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
+  wire [28:0] _gens_11_io_largeFrom_T = _GEN_4 * 29'hB000;
+  wire        reading_10 =
+    inPass & i_10 < (_laneKeys_15_io_in_k_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
+  wire [28:0] _gens_12_io_largeFrom_T = _GEN_4 * 29'hC000;
+  wire        reading_11 =
+    inPass & i_11 < (_laneKeys_15_io_in_k_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
+  wire [28:0] _gens_13_io_largeFrom_T = _GEN_4 * 29'hD000;
+  wire        reading_12 =
+    inPass & i_12 < (_laneKeys_15_io_in_k_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
+  wire [28:0] _gens_14_io_largeFrom_T = _GEN_4 * 29'hE000;
+  wire        reading_13 =
+    inPass & i_13 < (_laneKeys_15_io_in_k_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
+  wire [28:0] _gens_15_io_largeFrom_T = _GEN_4 * 29'hF000;
+  wire        reading_14 =
+    inPass & i_14 < (_laneKeys_15_io_in_k_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_15 = inPass & i_15 < (_laneKeys_15_io_in_k_T ? num : 13'h0);
+  reg  [5:0]  inflight;
+  wire        passDone =
+    {reading_15,
+     reading_14,
+     reading_13,
+     reading_12,
+     reading_11,
+     reading_10,
+     reading_9,
+     reading_8,
+     reading_7,
+     reading_6,
+     reading_5,
+     reading_4,
+     reading_3,
+     reading_2,
+     reading_1,
+     reading_0} == 16'h0 & inflight == 6'h0;
+  wire        _gens_15_io_start_T = state == 3'h6;
   reg         laneKeys_0_io_in_valid_REG;
+  reg         laneKeys_1_io_in_valid_REG;
+  reg         laneKeys_2_io_in_valid_REG;
+  reg         laneKeys_3_io_in_valid_REG;
+  reg         laneKeys_4_io_in_valid_REG;
+  reg         laneKeys_5_io_in_valid_REG;
+  reg         laneKeys_6_io_in_valid_REG;
+  reg         laneKeys_7_io_in_valid_REG;
+  reg         laneKeys_8_io_in_valid_REG;
+  reg         laneKeys_9_io_in_valid_REG;
+  reg         laneKeys_10_io_in_valid_REG;
+  reg         laneKeys_11_io_in_valid_REG;
+  reg         laneKeys_12_io_in_valid_REG;
+  reg         laneKeys_13_io_in_valid_REG;
+  reg         laneKeys_14_io_in_valid_REG;
+  reg         laneKeys_15_io_in_valid_REG;
   reg  [11:0] REG;
   reg  [11:0] r;
-  reg         laneKeys_1_io_in_valid_REG;
   reg  [11:0] REG_1;
   reg  [11:0] r_1;
   wire        _sort_io_in_0_valid_T_8 =
     $signed(_laneKeys_0_io_out_need) > $signed(_cellExp_io_k);
   wire        _sort_io_in_1_valid_T_8 =
     $signed(_laneKeys_1_io_out_need) > $signed(_cellExp_io_k);
+  reg  [8:0]  m;
+  wire        filled_2 = _laneExps_0_io_used > 5'h2;
+  wire        filled_4 = _laneExps_0_io_used > 5'h4;
+  wire        filled_5 = _laneExps_0_io_used > 5'h5;
+  wire        filled_6 = _laneExps_0_io_used > 5'h6;
+  wire        filled_8 = _laneExps_0_io_used > 5'h8;
+  wire        filled_9 = _laneExps_0_io_used > 5'h9;
+  wire        filled_10 = _laneExps_0_io_used > 5'hA;
+  wire        filled_11 = _laneExps_0_io_used > 5'hB;
+  wire        filled_12 = _laneExps_0_io_used > 5'hC;
+  wire        filled_13 = _laneExps_0_io_used > 5'hD;
+  wire        filled_14 = _laneExps_0_io_used > 5'hE;
+  wire        filled_16 = _laneExps_0_io_used > 5'h10;
+  wire        filled_19 = _laneExps_1_io_used > 5'h2;
+  wire        filled_21 = _laneExps_1_io_used > 5'h4;
+  wire        filled_22 = _laneExps_1_io_used > 5'h5;
+  wire        filled_23 = _laneExps_1_io_used > 5'h6;
+  wire        filled_25 = _laneExps_1_io_used > 5'h8;
+  wire        filled_26 = _laneExps_1_io_used > 5'h9;
+  wire        filled_27 = _laneExps_1_io_used > 5'hA;
+  wire        filled_28 = _laneExps_1_io_used > 5'hB;
+  wire        filled_29 = _laneExps_1_io_used > 5'hC;
+  wire        filled_30 = _laneExps_1_io_used > 5'hD;
+  wire        filled_31 = _laneExps_1_io_used > 5'hE;
+  wire        filled_33 = _laneExps_1_io_used > 5'h10;
+  wire        filled_36 = _laneExps_2_io_used > 5'h2;
+  wire        filled_38 = _laneExps_2_io_used > 5'h4;
+  wire        filled_39 = _laneExps_2_io_used > 5'h5;
+  wire        filled_40 = _laneExps_2_io_used > 5'h6;
+  wire        filled_42 = _laneExps_2_io_used > 5'h8;
+  wire        filled_43 = _laneExps_2_io_used > 5'h9;
+  wire        filled_44 = _laneExps_2_io_used > 5'hA;
+  wire        filled_45 = _laneExps_2_io_used > 5'hB;
+  wire        filled_46 = _laneExps_2_io_used > 5'hC;
+  wire        filled_47 = _laneExps_2_io_used > 5'hD;
+  wire        filled_48 = _laneExps_2_io_used > 5'hE;
+  wire        filled_50 = _laneExps_2_io_used > 5'h10;
+  wire        filled_53 = _laneExps_3_io_used > 5'h2;
+  wire        filled_55 = _laneExps_3_io_used > 5'h4;
+  wire        filled_56 = _laneExps_3_io_used > 5'h5;
+  wire        filled_57 = _laneExps_3_io_used > 5'h6;
+  wire        filled_59 = _laneExps_3_io_used > 5'h8;
+  wire        filled_60 = _laneExps_3_io_used > 5'h9;
+  wire        filled_61 = _laneExps_3_io_used > 5'hA;
+  wire        filled_62 = _laneExps_3_io_used > 5'hB;
+  wire        filled_63 = _laneExps_3_io_used > 5'hC;
+  wire        filled_64 = _laneExps_3_io_used > 5'hD;
+  wire        filled_65 = _laneExps_3_io_used > 5'hE;
+  wire        filled_67 = _laneExps_3_io_used > 5'h10;
+  wire        filled_70 = _laneExps_4_io_used > 5'h2;
+  wire        filled_72 = _laneExps_4_io_used > 5'h4;
+  wire        filled_73 = _laneExps_4_io_used > 5'h5;
+  wire        filled_74 = _laneExps_4_io_used > 5'h6;
+  wire        filled_76 = _laneExps_4_io_used > 5'h8;
+  wire        filled_77 = _laneExps_4_io_used > 5'h9;
+  wire        filled_78 = _laneExps_4_io_used > 5'hA;
+  wire        filled_79 = _laneExps_4_io_used > 5'hB;
+  wire        filled_80 = _laneExps_4_io_used > 5'hC;
+  wire        filled_81 = _laneExps_4_io_used > 5'hD;
+  wire        filled_82 = _laneExps_4_io_used > 5'hE;
+  wire        filled_84 = _laneExps_4_io_used > 5'h10;
+  wire        filled_87 = _laneExps_5_io_used > 5'h2;
+  wire        filled_89 = _laneExps_5_io_used > 5'h4;
+  wire        filled_90 = _laneExps_5_io_used > 5'h5;
+  wire        filled_91 = _laneExps_5_io_used > 5'h6;
+  wire        filled_93 = _laneExps_5_io_used > 5'h8;
+  wire        filled_94 = _laneExps_5_io_used > 5'h9;
+  wire        filled_95 = _laneExps_5_io_used > 5'hA;
+  wire        filled_96 = _laneExps_5_io_used > 5'hB;
+  wire        filled_97 = _laneExps_5_io_used > 5'hC;
+  wire        filled_98 = _laneExps_5_io_used > 5'hD;
+  wire        filled_99 = _laneExps_5_io_used > 5'hE;
+  wire        filled_101 = _laneExps_5_io_used > 5'h10;
+  wire        filled_104 = _laneExps_6_io_used > 5'h2;
+  wire        filled_106 = _laneExps_6_io_used > 5'h4;
+  wire        filled_107 = _laneExps_6_io_used > 5'h5;
+  wire        filled_108 = _laneExps_6_io_used > 5'h6;
+  wire        filled_110 = _laneExps_6_io_used > 5'h8;
+  wire        filled_111 = _laneExps_6_io_used > 5'h9;
+  wire        filled_112 = _laneExps_6_io_used > 5'hA;
+  wire        filled_113 = _laneExps_6_io_used > 5'hB;
+  wire        filled_114 = _laneExps_6_io_used > 5'hC;
+  wire        filled_115 = _laneExps_6_io_used > 5'hD;
+  wire        filled_116 = _laneExps_6_io_used > 5'hE;
+  wire        filled_118 = _laneExps_6_io_used > 5'h10;
+  wire        filled_121 = _laneExps_7_io_used > 5'h2;
+  wire        filled_123 = _laneExps_7_io_used > 5'h4;
+  wire        filled_124 = _laneExps_7_io_used > 5'h5;
+  wire        filled_125 = _laneExps_7_io_used > 5'h6;
+  wire        filled_127 = _laneExps_7_io_used > 5'h8;
+  wire        filled_128 = _laneExps_7_io_used > 5'h9;
+  wire        filled_129 = _laneExps_7_io_used > 5'hA;
+  wire        filled_130 = _laneExps_7_io_used > 5'hB;
+  wire        filled_131 = _laneExps_7_io_used > 5'hC;
+  wire        filled_132 = _laneExps_7_io_used > 5'hD;
+  wire        filled_133 = _laneExps_7_io_used > 5'hE;
+  wire        filled_135 = _laneExps_7_io_used > 5'h10;
+  wire        filled_138 = _laneExps_8_io_used > 5'h2;
+  wire        filled_140 = _laneExps_8_io_used > 5'h4;
+  wire        filled_141 = _laneExps_8_io_used > 5'h5;
+  wire        filled_142 = _laneExps_8_io_used > 5'h6;
+  wire        filled_144 = _laneExps_8_io_used > 5'h8;
+  wire        filled_145 = _laneExps_8_io_used > 5'h9;
+  wire        filled_146 = _laneExps_8_io_used > 5'hA;
+  wire        filled_147 = _laneExps_8_io_used > 5'hB;
+  wire        filled_148 = _laneExps_8_io_used > 5'hC;
+  wire        filled_149 = _laneExps_8_io_used > 5'hD;
+  wire        filled_150 = _laneExps_8_io_used > 5'hE;
+  wire        filled_152 = _laneExps_8_io_used > 5'h10;
+  wire        filled_155 = _laneExps_9_io_used > 5'h2;
+  wire        filled_157 = _laneExps_9_io_used > 5'h4;
+  wire        filled_158 = _laneExps_9_io_used > 5'h5;
+  wire        filled_159 = _laneExps_9_io_used > 5'h6;
+  wire        filled_161 = _laneExps_9_io_used > 5'h8;
+  wire        filled_162 = _laneExps_9_io_used > 5'h9;
+  wire        filled_163 = _laneExps_9_io_used > 5'hA;
+  wire        filled_164 = _laneExps_9_io_used > 5'hB;
+  wire        filled_165 = _laneExps_9_io_used > 5'hC;
+  wire        filled_166 = _laneExps_9_io_used > 5'hD;
+  wire        filled_167 = _laneExps_9_io_used > 5'hE;
+  wire        filled_169 = _laneExps_9_io_used > 5'h10;
+  wire        filled_172 = _laneExps_10_io_used > 5'h2;
+  wire        filled_174 = _laneExps_10_io_used > 5'h4;
+  wire        filled_175 = _laneExps_10_io_used > 5'h5;
+  wire        filled_176 = _laneExps_10_io_used > 5'h6;
+  wire        filled_178 = _laneExps_10_io_used > 5'h8;
+  wire        filled_179 = _laneExps_10_io_used > 5'h9;
+  wire        filled_180 = _laneExps_10_io_used > 5'hA;
+  wire        filled_181 = _laneExps_10_io_used > 5'hB;
+  wire        filled_182 = _laneExps_10_io_used > 5'hC;
+  wire        filled_183 = _laneExps_10_io_used > 5'hD;
+  wire        filled_184 = _laneExps_10_io_used > 5'hE;
+  wire        filled_186 = _laneExps_10_io_used > 5'h10;
+  wire        filled_189 = _laneExps_11_io_used > 5'h2;
+  wire        filled_191 = _laneExps_11_io_used > 5'h4;
+  wire        filled_192 = _laneExps_11_io_used > 5'h5;
+  wire        filled_193 = _laneExps_11_io_used > 5'h6;
+  wire        filled_195 = _laneExps_11_io_used > 5'h8;
+  wire        filled_196 = _laneExps_11_io_used > 5'h9;
+  wire        filled_197 = _laneExps_11_io_used > 5'hA;
+  wire        filled_198 = _laneExps_11_io_used > 5'hB;
+  wire        filled_199 = _laneExps_11_io_used > 5'hC;
+  wire        filled_200 = _laneExps_11_io_used > 5'hD;
+  wire        filled_201 = _laneExps_11_io_used > 5'hE;
+  wire        filled_203 = _laneExps_11_io_used > 5'h10;
+  wire        filled_206 = _laneExps_12_io_used > 5'h2;
+  wire        filled_208 = _laneExps_12_io_used > 5'h4;
+  wire        filled_209 = _laneExps_12_io_used > 5'h5;
+  wire        filled_210 = _laneExps_12_io_used > 5'h6;
+  wire        filled_212 = _laneExps_12_io_used > 5'h8;
+  wire        filled_213 = _laneExps_12_io_used > 5'h9;
+  wire        filled_214 = _laneExps_12_io_used > 5'hA;
+  wire        filled_215 = _laneExps_12_io_used > 5'hB;
+  wire        filled_216 = _laneExps_12_io_used > 5'hC;
+  wire        filled_217 = _laneExps_12_io_used > 5'hD;
+  wire        filled_218 = _laneExps_12_io_used > 5'hE;
+  wire        filled_220 = _laneExps_12_io_used > 5'h10;
+  wire        filled_223 = _laneExps_13_io_used > 5'h2;
+  wire        filled_225 = _laneExps_13_io_used > 5'h4;
+  wire        filled_226 = _laneExps_13_io_used > 5'h5;
+  wire        filled_227 = _laneExps_13_io_used > 5'h6;
+  wire        filled_229 = _laneExps_13_io_used > 5'h8;
+  wire        filled_230 = _laneExps_13_io_used > 5'h9;
+  wire        filled_231 = _laneExps_13_io_used > 5'hA;
+  wire        filled_232 = _laneExps_13_io_used > 5'hB;
+  wire        filled_233 = _laneExps_13_io_used > 5'hC;
+  wire        filled_234 = _laneExps_13_io_used > 5'hD;
+  wire        filled_235 = _laneExps_13_io_used > 5'hE;
+  wire        filled_237 = _laneExps_13_io_used > 5'h10;
+  wire        filled_240 = _laneExps_14_io_used > 5'h2;
+  wire        filled_242 = _laneExps_14_io_used > 5'h4;
+  wire        filled_243 = _laneExps_14_io_used > 5'h5;
+  wire        filled_244 = _laneExps_14_io_used > 5'h6;
+  wire        filled_246 = _laneExps_14_io_used > 5'h8;
+  wire        filled_247 = _laneExps_14_io_used > 5'h9;
+  wire        filled_248 = _laneExps_14_io_used > 5'hA;
+  wire        filled_249 = _laneExps_14_io_used > 5'hB;
+  wire        filled_250 = _laneExps_14_io_used > 5'hC;
+  wire        filled_251 = _laneExps_14_io_used > 5'hD;
+  wire        filled_252 = _laneExps_14_io_used > 5'hE;
+  wire        filled_254 = _laneExps_14_io_used > 5'h10;
+  wire        filled_257 = _laneExps_15_io_used > 5'h2;
+  wire        filled_259 = _laneExps_15_io_used > 5'h4;
+  wire        filled_260 = _laneExps_15_io_used > 5'h5;
+  wire        filled_261 = _laneExps_15_io_used > 5'h6;
+  wire        filled_263 = _laneExps_15_io_used > 5'h8;
+  wire        filled_264 = _laneExps_15_io_used > 5'h9;
+  wire        filled_265 = _laneExps_15_io_used > 5'hA;
+  wire        filled_266 = _laneExps_15_io_used > 5'hB;
+  wire        filled_267 = _laneExps_15_io_used > 5'hC;
+  wire        filled_268 = _laneExps_15_io_used > 5'hD;
+  wire        filled_269 = _laneExps_15_io_used > 5'hE;
+  wire        filled_271 = _laneExps_15_io_used > 5'h10;
+  wire [9:0]  _GEN_5 = {1'h0, m};
+  wire        _cellExp_io_in_1_valid_T = state == 3'h2;
+  reg         casez_tmp;
+  always @(*) begin
+    casez (m)
+      9'b000000000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b000000001:
+        casez_tmp = |(_laneExps_0_io_used[4:1]);
+      9'b000000010:
+        casez_tmp = filled_2;
+      9'b000000011:
+        casez_tmp = |(_laneExps_0_io_used[4:2]);
+      9'b000000100:
+        casez_tmp = filled_4;
+      9'b000000101:
+        casez_tmp = filled_5;
+      9'b000000110:
+        casez_tmp = filled_6;
+      9'b000000111:
+        casez_tmp = |(_laneExps_0_io_used[4:3]);
+      9'b000001000:
+        casez_tmp = filled_8;
+      9'b000001001:
+        casez_tmp = filled_9;
+      9'b000001010:
+        casez_tmp = filled_10;
+      9'b000001011:
+        casez_tmp = filled_11;
+      9'b000001100:
+        casez_tmp = filled_12;
+      9'b000001101:
+        casez_tmp = filled_13;
+      9'b000001110:
+        casez_tmp = filled_14;
+      9'b000001111:
+        casez_tmp = _laneExps_0_io_used[4];
+      9'b000010000:
+        casez_tmp = filled_16;
+      9'b000010001:
+        casez_tmp = |_laneExps_1_io_used;
+      9'b000010010:
+        casez_tmp = |(_laneExps_1_io_used[4:1]);
+      9'b000010011:
+        casez_tmp = filled_19;
+      9'b000010100:
+        casez_tmp = |(_laneExps_1_io_used[4:2]);
+      9'b000010101:
+        casez_tmp = filled_21;
+      9'b000010110:
+        casez_tmp = filled_22;
+      9'b000010111:
+        casez_tmp = filled_23;
+      9'b000011000:
+        casez_tmp = |(_laneExps_1_io_used[4:3]);
+      9'b000011001:
+        casez_tmp = filled_25;
+      9'b000011010:
+        casez_tmp = filled_26;
+      9'b000011011:
+        casez_tmp = filled_27;
+      9'b000011100:
+        casez_tmp = filled_28;
+      9'b000011101:
+        casez_tmp = filled_29;
+      9'b000011110:
+        casez_tmp = filled_30;
+      9'b000011111:
+        casez_tmp = filled_31;
+      9'b000100000:
+        casez_tmp = _laneExps_1_io_used[4];
+      9'b000100001:
+        casez_tmp = filled_33;
+      9'b000100010:
+        casez_tmp = |_laneExps_2_io_used;
+      9'b000100011:
+        casez_tmp = |(_laneExps_2_io_used[4:1]);
+      9'b000100100:
+        casez_tmp = filled_36;
+      9'b000100101:
+        casez_tmp = |(_laneExps_2_io_used[4:2]);
+      9'b000100110:
+        casez_tmp = filled_38;
+      9'b000100111:
+        casez_tmp = filled_39;
+      9'b000101000:
+        casez_tmp = filled_40;
+      9'b000101001:
+        casez_tmp = |(_laneExps_2_io_used[4:3]);
+      9'b000101010:
+        casez_tmp = filled_42;
+      9'b000101011:
+        casez_tmp = filled_43;
+      9'b000101100:
+        casez_tmp = filled_44;
+      9'b000101101:
+        casez_tmp = filled_45;
+      9'b000101110:
+        casez_tmp = filled_46;
+      9'b000101111:
+        casez_tmp = filled_47;
+      9'b000110000:
+        casez_tmp = filled_48;
+      9'b000110001:
+        casez_tmp = _laneExps_2_io_used[4];
+      9'b000110010:
+        casez_tmp = filled_50;
+      9'b000110011:
+        casez_tmp = |_laneExps_3_io_used;
+      9'b000110100:
+        casez_tmp = |(_laneExps_3_io_used[4:1]);
+      9'b000110101:
+        casez_tmp = filled_53;
+      9'b000110110:
+        casez_tmp = |(_laneExps_3_io_used[4:2]);
+      9'b000110111:
+        casez_tmp = filled_55;
+      9'b000111000:
+        casez_tmp = filled_56;
+      9'b000111001:
+        casez_tmp = filled_57;
+      9'b000111010:
+        casez_tmp = |(_laneExps_3_io_used[4:3]);
+      9'b000111011:
+        casez_tmp = filled_59;
+      9'b000111100:
+        casez_tmp = filled_60;
+      9'b000111101:
+        casez_tmp = filled_61;
+      9'b000111110:
+        casez_tmp = filled_62;
+      9'b000111111:
+        casez_tmp = filled_63;
+      9'b001000000:
+        casez_tmp = filled_64;
+      9'b001000001:
+        casez_tmp = filled_65;
+      9'b001000010:
+        casez_tmp = _laneExps_3_io_used[4];
+      9'b001000011:
+        casez_tmp = filled_67;
+      9'b001000100:
+        casez_tmp = |_laneExps_4_io_used;
+      9'b001000101:
+        casez_tmp = |(_laneExps_4_io_used[4:1]);
+      9'b001000110:
+        casez_tmp = filled_70;
+      9'b001000111:
+        casez_tmp = |(_laneExps_4_io_used[4:2]);
+      9'b001001000:
+        casez_tmp = filled_72;
+      9'b001001001:
+        casez_tmp = filled_73;
+      9'b001001010:
+        casez_tmp = filled_74;
+      9'b001001011:
+        casez_tmp = |(_laneExps_4_io_used[4:3]);
+      9'b001001100:
+        casez_tmp = filled_76;
+      9'b001001101:
+        casez_tmp = filled_77;
+      9'b001001110:
+        casez_tmp = filled_78;
+      9'b001001111:
+        casez_tmp = filled_79;
+      9'b001010000:
+        casez_tmp = filled_80;
+      9'b001010001:
+        casez_tmp = filled_81;
+      9'b001010010:
+        casez_tmp = filled_82;
+      9'b001010011:
+        casez_tmp = _laneExps_4_io_used[4];
+      9'b001010100:
+        casez_tmp = filled_84;
+      9'b001010101:
+        casez_tmp = |_laneExps_5_io_used;
+      9'b001010110:
+        casez_tmp = |(_laneExps_5_io_used[4:1]);
+      9'b001010111:
+        casez_tmp = filled_87;
+      9'b001011000:
+        casez_tmp = |(_laneExps_5_io_used[4:2]);
+      9'b001011001:
+        casez_tmp = filled_89;
+      9'b001011010:
+        casez_tmp = filled_90;
+      9'b001011011:
+        casez_tmp = filled_91;
+      9'b001011100:
+        casez_tmp = |(_laneExps_5_io_used[4:3]);
+      9'b001011101:
+        casez_tmp = filled_93;
+      9'b001011110:
+        casez_tmp = filled_94;
+      9'b001011111:
+        casez_tmp = filled_95;
+      9'b001100000:
+        casez_tmp = filled_96;
+      9'b001100001:
+        casez_tmp = filled_97;
+      9'b001100010:
+        casez_tmp = filled_98;
+      9'b001100011:
+        casez_tmp = filled_99;
+      9'b001100100:
+        casez_tmp = _laneExps_5_io_used[4];
+      9'b001100101:
+        casez_tmp = filled_101;
+      9'b001100110:
+        casez_tmp = |_laneExps_6_io_used;
+      9'b001100111:
+        casez_tmp = |(_laneExps_6_io_used[4:1]);
+      9'b001101000:
+        casez_tmp = filled_104;
+      9'b001101001:
+        casez_tmp = |(_laneExps_6_io_used[4:2]);
+      9'b001101010:
+        casez_tmp = filled_106;
+      9'b001101011:
+        casez_tmp = filled_107;
+      9'b001101100:
+        casez_tmp = filled_108;
+      9'b001101101:
+        casez_tmp = |(_laneExps_6_io_used[4:3]);
+      9'b001101110:
+        casez_tmp = filled_110;
+      9'b001101111:
+        casez_tmp = filled_111;
+      9'b001110000:
+        casez_tmp = filled_112;
+      9'b001110001:
+        casez_tmp = filled_113;
+      9'b001110010:
+        casez_tmp = filled_114;
+      9'b001110011:
+        casez_tmp = filled_115;
+      9'b001110100:
+        casez_tmp = filled_116;
+      9'b001110101:
+        casez_tmp = _laneExps_6_io_used[4];
+      9'b001110110:
+        casez_tmp = filled_118;
+      9'b001110111:
+        casez_tmp = |_laneExps_7_io_used;
+      9'b001111000:
+        casez_tmp = |(_laneExps_7_io_used[4:1]);
+      9'b001111001:
+        casez_tmp = filled_121;
+      9'b001111010:
+        casez_tmp = |(_laneExps_7_io_used[4:2]);
+      9'b001111011:
+        casez_tmp = filled_123;
+      9'b001111100:
+        casez_tmp = filled_124;
+      9'b001111101:
+        casez_tmp = filled_125;
+      9'b001111110:
+        casez_tmp = |(_laneExps_7_io_used[4:3]);
+      9'b001111111:
+        casez_tmp = filled_127;
+      9'b010000000:
+        casez_tmp = filled_128;
+      9'b010000001:
+        casez_tmp = filled_129;
+      9'b010000010:
+        casez_tmp = filled_130;
+      9'b010000011:
+        casez_tmp = filled_131;
+      9'b010000100:
+        casez_tmp = filled_132;
+      9'b010000101:
+        casez_tmp = filled_133;
+      9'b010000110:
+        casez_tmp = _laneExps_7_io_used[4];
+      9'b010000111:
+        casez_tmp = filled_135;
+      9'b010001000:
+        casez_tmp = |_laneExps_8_io_used;
+      9'b010001001:
+        casez_tmp = |(_laneExps_8_io_used[4:1]);
+      9'b010001010:
+        casez_tmp = filled_138;
+      9'b010001011:
+        casez_tmp = |(_laneExps_8_io_used[4:2]);
+      9'b010001100:
+        casez_tmp = filled_140;
+      9'b010001101:
+        casez_tmp = filled_141;
+      9'b010001110:
+        casez_tmp = filled_142;
+      9'b010001111:
+        casez_tmp = |(_laneExps_8_io_used[4:3]);
+      9'b010010000:
+        casez_tmp = filled_144;
+      9'b010010001:
+        casez_tmp = filled_145;
+      9'b010010010:
+        casez_tmp = filled_146;
+      9'b010010011:
+        casez_tmp = filled_147;
+      9'b010010100:
+        casez_tmp = filled_148;
+      9'b010010101:
+        casez_tmp = filled_149;
+      9'b010010110:
+        casez_tmp = filled_150;
+      9'b010010111:
+        casez_tmp = _laneExps_8_io_used[4];
+      9'b010011000:
+        casez_tmp = filled_152;
+      9'b010011001:
+        casez_tmp = |_laneExps_9_io_used;
+      9'b010011010:
+        casez_tmp = |(_laneExps_9_io_used[4:1]);
+      9'b010011011:
+        casez_tmp = filled_155;
+      9'b010011100:
+        casez_tmp = |(_laneExps_9_io_used[4:2]);
+      9'b010011101:
+        casez_tmp = filled_157;
+      9'b010011110:
+        casez_tmp = filled_158;
+      9'b010011111:
+        casez_tmp = filled_159;
+      9'b010100000:
+        casez_tmp = |(_laneExps_9_io_used[4:3]);
+      9'b010100001:
+        casez_tmp = filled_161;
+      9'b010100010:
+        casez_tmp = filled_162;
+      9'b010100011:
+        casez_tmp = filled_163;
+      9'b010100100:
+        casez_tmp = filled_164;
+      9'b010100101:
+        casez_tmp = filled_165;
+      9'b010100110:
+        casez_tmp = filled_166;
+      9'b010100111:
+        casez_tmp = filled_167;
+      9'b010101000:
+        casez_tmp = _laneExps_9_io_used[4];
+      9'b010101001:
+        casez_tmp = filled_169;
+      9'b010101010:
+        casez_tmp = |_laneExps_10_io_used;
+      9'b010101011:
+        casez_tmp = |(_laneExps_10_io_used[4:1]);
+      9'b010101100:
+        casez_tmp = filled_172;
+      9'b010101101:
+        casez_tmp = |(_laneExps_10_io_used[4:2]);
+      9'b010101110:
+        casez_tmp = filled_174;
+      9'b010101111:
+        casez_tmp = filled_175;
+      9'b010110000:
+        casez_tmp = filled_176;
+      9'b010110001:
+        casez_tmp = |(_laneExps_10_io_used[4:3]);
+      9'b010110010:
+        casez_tmp = filled_178;
+      9'b010110011:
+        casez_tmp = filled_179;
+      9'b010110100:
+        casez_tmp = filled_180;
+      9'b010110101:
+        casez_tmp = filled_181;
+      9'b010110110:
+        casez_tmp = filled_182;
+      9'b010110111:
+        casez_tmp = filled_183;
+      9'b010111000:
+        casez_tmp = filled_184;
+      9'b010111001:
+        casez_tmp = _laneExps_10_io_used[4];
+      9'b010111010:
+        casez_tmp = filled_186;
+      9'b010111011:
+        casez_tmp = |_laneExps_11_io_used;
+      9'b010111100:
+        casez_tmp = |(_laneExps_11_io_used[4:1]);
+      9'b010111101:
+        casez_tmp = filled_189;
+      9'b010111110:
+        casez_tmp = |(_laneExps_11_io_used[4:2]);
+      9'b010111111:
+        casez_tmp = filled_191;
+      9'b011000000:
+        casez_tmp = filled_192;
+      9'b011000001:
+        casez_tmp = filled_193;
+      9'b011000010:
+        casez_tmp = |(_laneExps_11_io_used[4:3]);
+      9'b011000011:
+        casez_tmp = filled_195;
+      9'b011000100:
+        casez_tmp = filled_196;
+      9'b011000101:
+        casez_tmp = filled_197;
+      9'b011000110:
+        casez_tmp = filled_198;
+      9'b011000111:
+        casez_tmp = filled_199;
+      9'b011001000:
+        casez_tmp = filled_200;
+      9'b011001001:
+        casez_tmp = filled_201;
+      9'b011001010:
+        casez_tmp = _laneExps_11_io_used[4];
+      9'b011001011:
+        casez_tmp = filled_203;
+      9'b011001100:
+        casez_tmp = |_laneExps_12_io_used;
+      9'b011001101:
+        casez_tmp = |(_laneExps_12_io_used[4:1]);
+      9'b011001110:
+        casez_tmp = filled_206;
+      9'b011001111:
+        casez_tmp = |(_laneExps_12_io_used[4:2]);
+      9'b011010000:
+        casez_tmp = filled_208;
+      9'b011010001:
+        casez_tmp = filled_209;
+      9'b011010010:
+        casez_tmp = filled_210;
+      9'b011010011:
+        casez_tmp = |(_laneExps_12_io_used[4:3]);
+      9'b011010100:
+        casez_tmp = filled_212;
+      9'b011010101:
+        casez_tmp = filled_213;
+      9'b011010110:
+        casez_tmp = filled_214;
+      9'b011010111:
+        casez_tmp = filled_215;
+      9'b011011000:
+        casez_tmp = filled_216;
+      9'b011011001:
+        casez_tmp = filled_217;
+      9'b011011010:
+        casez_tmp = filled_218;
+      9'b011011011:
+        casez_tmp = _laneExps_12_io_used[4];
+      9'b011011100:
+        casez_tmp = filled_220;
+      9'b011011101:
+        casez_tmp = |_laneExps_13_io_used;
+      9'b011011110:
+        casez_tmp = |(_laneExps_13_io_used[4:1]);
+      9'b011011111:
+        casez_tmp = filled_223;
+      9'b011100000:
+        casez_tmp = |(_laneExps_13_io_used[4:2]);
+      9'b011100001:
+        casez_tmp = filled_225;
+      9'b011100010:
+        casez_tmp = filled_226;
+      9'b011100011:
+        casez_tmp = filled_227;
+      9'b011100100:
+        casez_tmp = |(_laneExps_13_io_used[4:3]);
+      9'b011100101:
+        casez_tmp = filled_229;
+      9'b011100110:
+        casez_tmp = filled_230;
+      9'b011100111:
+        casez_tmp = filled_231;
+      9'b011101000:
+        casez_tmp = filled_232;
+      9'b011101001:
+        casez_tmp = filled_233;
+      9'b011101010:
+        casez_tmp = filled_234;
+      9'b011101011:
+        casez_tmp = filled_235;
+      9'b011101100:
+        casez_tmp = _laneExps_13_io_used[4];
+      9'b011101101:
+        casez_tmp = filled_237;
+      9'b011101110:
+        casez_tmp = |_laneExps_14_io_used;
+      9'b011101111:
+        casez_tmp = |(_laneExps_14_io_used[4:1]);
+      9'b011110000:
+        casez_tmp = filled_240;
+      9'b011110001:
+        casez_tmp = |(_laneExps_14_io_used[4:2]);
+      9'b011110010:
+        casez_tmp = filled_242;
+      9'b011110011:
+        casez_tmp = filled_243;
+      9'b011110100:
+        casez_tmp = filled_244;
+      9'b011110101:
+        casez_tmp = |(_laneExps_14_io_used[4:3]);
+      9'b011110110:
+        casez_tmp = filled_246;
+      9'b011110111:
+        casez_tmp = filled_247;
+      9'b011111000:
+        casez_tmp = filled_248;
+      9'b011111001:
+        casez_tmp = filled_249;
+      9'b011111010:
+        casez_tmp = filled_250;
+      9'b011111011:
+        casez_tmp = filled_251;
+      9'b011111100:
+        casez_tmp = filled_252;
+      9'b011111101:
+        casez_tmp = _laneExps_14_io_used[4];
+      9'b011111110:
+        casez_tmp = filled_254;
+      9'b011111111:
+        casez_tmp = |_laneExps_15_io_used;
+      9'b100000000:
+        casez_tmp = |(_laneExps_15_io_used[4:1]);
+      9'b100000001:
+        casez_tmp = filled_257;
+      9'b100000010:
+        casez_tmp = |(_laneExps_15_io_used[4:2]);
+      9'b100000011:
+        casez_tmp = filled_259;
+      9'b100000100:
+        casez_tmp = filled_260;
+      9'b100000101:
+        casez_tmp = filled_261;
+      9'b100000110:
+        casez_tmp = |(_laneExps_15_io_used[4:3]);
+      9'b100000111:
+        casez_tmp = filled_263;
+      9'b100001000:
+        casez_tmp = filled_264;
+      9'b100001001:
+        casez_tmp = filled_265;
+      9'b100001010:
+        casez_tmp = filled_266;
+      9'b100001011:
+        casez_tmp = filled_267;
+      9'b100001100:
+        casez_tmp = filled_268;
+      9'b100001101:
+        casez_tmp = filled_269;
+      9'b100001110:
+        casez_tmp = _laneExps_15_io_used[4];
+      9'b100001111:
+        casez_tmp = filled_271;
+      9'b100010000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100010001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100010010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100010011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100010100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100010101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100010110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100010111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100011000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100011001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100011010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100011011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100011100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100011101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100011110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100011111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100100000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100100001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100100010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100100011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100100100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100100101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100100110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100100111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100101000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100101001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100101010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100101011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100101100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100101101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100101110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100101111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100110000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100110001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100110010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100110011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100110100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100110101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100110110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100110111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100111000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100111001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100111010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100111011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100111100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100111101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100111110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b100111111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101000000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101000001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101000010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101000011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101000100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101000101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101000110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101000111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101001000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101001001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101001010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101001011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101001100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101001101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101001110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101001111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101010000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101010001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101010010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101010011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101010100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101010101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101010110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101010111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101011000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101011001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101011010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101011011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101011100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101011101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101011110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101011111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101100000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101100001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101100010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101100011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101100100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101100101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101100110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101100111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101101000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101101001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101101010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101101011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101101100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101101101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101101110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101101111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101110000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101110001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101110010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101110011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101110100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101110101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101110110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101110111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101111000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101111001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101111010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101111011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101111100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101111101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101111110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b101111111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110000000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110000001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110000010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110000011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110000100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110000101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110000110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110000111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110001000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110001001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110001010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110001011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110001100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110001101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110001110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110001111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110010000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110010001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110010010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110010011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110010100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110010101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110010110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110010111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110011000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110011001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110011010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110011011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110011100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110011101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110011110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110011111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110100000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110100001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110100010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110100011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110100100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110100101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110100110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110100111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110101000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110101001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110101010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110101011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110101100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110101101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110101110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110101111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110110000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110110001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110110010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110110011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110110100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110110101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110110110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110110111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110111000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110111001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110111010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110111011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110111100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110111101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110111110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b110111111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111000000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111000001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111000010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111000011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111000100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111000101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111000110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111000111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111001000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111001001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111001010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111001011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111001100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111001101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111001110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111001111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111010000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111010001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111010010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111010011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111010100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111010101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111010110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111010111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111011000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111011001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111011010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111011011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111011100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111011101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111011110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111011111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111100000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111100001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111100010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111100011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111100100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111100101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111100110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111100111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111101000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111101001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111101010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111101011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111101100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111101101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111101110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111101111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111110000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111110001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111110010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111110011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111110100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111110101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111110110:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111110111:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111111000:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111111001:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111111010:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111111011:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111111100:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111111101:
+        casez_tmp = |_laneExps_0_io_used;
+      9'b111111110:
+        casez_tmp = |_laneExps_0_io_used;
+      default:
+        casez_tmp = |_laneExps_0_io_used;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_0;
+  always @(*) begin
+    casez (m)
+      9'b000000000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b000000001:
+        casez_tmp_0 = _laneExps_0_io_kept_1;
+      9'b000000010:
+        casez_tmp_0 = _laneExps_0_io_kept_2;
+      9'b000000011:
+        casez_tmp_0 = _laneExps_0_io_kept_3;
+      9'b000000100:
+        casez_tmp_0 = _laneExps_0_io_kept_4;
+      9'b000000101:
+        casez_tmp_0 = _laneExps_0_io_kept_5;
+      9'b000000110:
+        casez_tmp_0 = _laneExps_0_io_kept_6;
+      9'b000000111:
+        casez_tmp_0 = _laneExps_0_io_kept_7;
+      9'b000001000:
+        casez_tmp_0 = _laneExps_0_io_kept_8;
+      9'b000001001:
+        casez_tmp_0 = _laneExps_0_io_kept_9;
+      9'b000001010:
+        casez_tmp_0 = _laneExps_0_io_kept_10;
+      9'b000001011:
+        casez_tmp_0 = _laneExps_0_io_kept_11;
+      9'b000001100:
+        casez_tmp_0 = _laneExps_0_io_kept_12;
+      9'b000001101:
+        casez_tmp_0 = _laneExps_0_io_kept_13;
+      9'b000001110:
+        casez_tmp_0 = _laneExps_0_io_kept_14;
+      9'b000001111:
+        casez_tmp_0 = _laneExps_0_io_kept_15;
+      9'b000010000:
+        casez_tmp_0 = _laneExps_0_io_kept_16;
+      9'b000010001:
+        casez_tmp_0 = _laneExps_1_io_kept_0;
+      9'b000010010:
+        casez_tmp_0 = _laneExps_1_io_kept_1;
+      9'b000010011:
+        casez_tmp_0 = _laneExps_1_io_kept_2;
+      9'b000010100:
+        casez_tmp_0 = _laneExps_1_io_kept_3;
+      9'b000010101:
+        casez_tmp_0 = _laneExps_1_io_kept_4;
+      9'b000010110:
+        casez_tmp_0 = _laneExps_1_io_kept_5;
+      9'b000010111:
+        casez_tmp_0 = _laneExps_1_io_kept_6;
+      9'b000011000:
+        casez_tmp_0 = _laneExps_1_io_kept_7;
+      9'b000011001:
+        casez_tmp_0 = _laneExps_1_io_kept_8;
+      9'b000011010:
+        casez_tmp_0 = _laneExps_1_io_kept_9;
+      9'b000011011:
+        casez_tmp_0 = _laneExps_1_io_kept_10;
+      9'b000011100:
+        casez_tmp_0 = _laneExps_1_io_kept_11;
+      9'b000011101:
+        casez_tmp_0 = _laneExps_1_io_kept_12;
+      9'b000011110:
+        casez_tmp_0 = _laneExps_1_io_kept_13;
+      9'b000011111:
+        casez_tmp_0 = _laneExps_1_io_kept_14;
+      9'b000100000:
+        casez_tmp_0 = _laneExps_1_io_kept_15;
+      9'b000100001:
+        casez_tmp_0 = _laneExps_1_io_kept_16;
+      9'b000100010:
+        casez_tmp_0 = _laneExps_2_io_kept_0;
+      9'b000100011:
+        casez_tmp_0 = _laneExps_2_io_kept_1;
+      9'b000100100:
+        casez_tmp_0 = _laneExps_2_io_kept_2;
+      9'b000100101:
+        casez_tmp_0 = _laneExps_2_io_kept_3;
+      9'b000100110:
+        casez_tmp_0 = _laneExps_2_io_kept_4;
+      9'b000100111:
+        casez_tmp_0 = _laneExps_2_io_kept_5;
+      9'b000101000:
+        casez_tmp_0 = _laneExps_2_io_kept_6;
+      9'b000101001:
+        casez_tmp_0 = _laneExps_2_io_kept_7;
+      9'b000101010:
+        casez_tmp_0 = _laneExps_2_io_kept_8;
+      9'b000101011:
+        casez_tmp_0 = _laneExps_2_io_kept_9;
+      9'b000101100:
+        casez_tmp_0 = _laneExps_2_io_kept_10;
+      9'b000101101:
+        casez_tmp_0 = _laneExps_2_io_kept_11;
+      9'b000101110:
+        casez_tmp_0 = _laneExps_2_io_kept_12;
+      9'b000101111:
+        casez_tmp_0 = _laneExps_2_io_kept_13;
+      9'b000110000:
+        casez_tmp_0 = _laneExps_2_io_kept_14;
+      9'b000110001:
+        casez_tmp_0 = _laneExps_2_io_kept_15;
+      9'b000110010:
+        casez_tmp_0 = _laneExps_2_io_kept_16;
+      9'b000110011:
+        casez_tmp_0 = _laneExps_3_io_kept_0;
+      9'b000110100:
+        casez_tmp_0 = _laneExps_3_io_kept_1;
+      9'b000110101:
+        casez_tmp_0 = _laneExps_3_io_kept_2;
+      9'b000110110:
+        casez_tmp_0 = _laneExps_3_io_kept_3;
+      9'b000110111:
+        casez_tmp_0 = _laneExps_3_io_kept_4;
+      9'b000111000:
+        casez_tmp_0 = _laneExps_3_io_kept_5;
+      9'b000111001:
+        casez_tmp_0 = _laneExps_3_io_kept_6;
+      9'b000111010:
+        casez_tmp_0 = _laneExps_3_io_kept_7;
+      9'b000111011:
+        casez_tmp_0 = _laneExps_3_io_kept_8;
+      9'b000111100:
+        casez_tmp_0 = _laneExps_3_io_kept_9;
+      9'b000111101:
+        casez_tmp_0 = _laneExps_3_io_kept_10;
+      9'b000111110:
+        casez_tmp_0 = _laneExps_3_io_kept_11;
+      9'b000111111:
+        casez_tmp_0 = _laneExps_3_io_kept_12;
+      9'b001000000:
+        casez_tmp_0 = _laneExps_3_io_kept_13;
+      9'b001000001:
+        casez_tmp_0 = _laneExps_3_io_kept_14;
+      9'b001000010:
+        casez_tmp_0 = _laneExps_3_io_kept_15;
+      9'b001000011:
+        casez_tmp_0 = _laneExps_3_io_kept_16;
+      9'b001000100:
+        casez_tmp_0 = _laneExps_4_io_kept_0;
+      9'b001000101:
+        casez_tmp_0 = _laneExps_4_io_kept_1;
+      9'b001000110:
+        casez_tmp_0 = _laneExps_4_io_kept_2;
+      9'b001000111:
+        casez_tmp_0 = _laneExps_4_io_kept_3;
+      9'b001001000:
+        casez_tmp_0 = _laneExps_4_io_kept_4;
+      9'b001001001:
+        casez_tmp_0 = _laneExps_4_io_kept_5;
+      9'b001001010:
+        casez_tmp_0 = _laneExps_4_io_kept_6;
+      9'b001001011:
+        casez_tmp_0 = _laneExps_4_io_kept_7;
+      9'b001001100:
+        casez_tmp_0 = _laneExps_4_io_kept_8;
+      9'b001001101:
+        casez_tmp_0 = _laneExps_4_io_kept_9;
+      9'b001001110:
+        casez_tmp_0 = _laneExps_4_io_kept_10;
+      9'b001001111:
+        casez_tmp_0 = _laneExps_4_io_kept_11;
+      9'b001010000:
+        casez_tmp_0 = _laneExps_4_io_kept_12;
+      9'b001010001:
+        casez_tmp_0 = _laneExps_4_io_kept_13;
+      9'b001010010:
+        casez_tmp_0 = _laneExps_4_io_kept_14;
+      9'b001010011:
+        casez_tmp_0 = _laneExps_4_io_kept_15;
+      9'b001010100:
+        casez_tmp_0 = _laneExps_4_io_kept_16;
+      9'b001010101:
+        casez_tmp_0 = _laneExps_5_io_kept_0;
+      9'b001010110:
+        casez_tmp_0 = _laneExps_5_io_kept_1;
+      9'b001010111:
+        casez_tmp_0 = _laneExps_5_io_kept_2;
+      9'b001011000:
+        casez_tmp_0 = _laneExps_5_io_kept_3;
+      9'b001011001:
+        casez_tmp_0 = _laneExps_5_io_kept_4;
+      9'b001011010:
+        casez_tmp_0 = _laneExps_5_io_kept_5;
+      9'b001011011:
+        casez_tmp_0 = _laneExps_5_io_kept_6;
+      9'b001011100:
+        casez_tmp_0 = _laneExps_5_io_kept_7;
+      9'b001011101:
+        casez_tmp_0 = _laneExps_5_io_kept_8;
+      9'b001011110:
+        casez_tmp_0 = _laneExps_5_io_kept_9;
+      9'b001011111:
+        casez_tmp_0 = _laneExps_5_io_kept_10;
+      9'b001100000:
+        casez_tmp_0 = _laneExps_5_io_kept_11;
+      9'b001100001:
+        casez_tmp_0 = _laneExps_5_io_kept_12;
+      9'b001100010:
+        casez_tmp_0 = _laneExps_5_io_kept_13;
+      9'b001100011:
+        casez_tmp_0 = _laneExps_5_io_kept_14;
+      9'b001100100:
+        casez_tmp_0 = _laneExps_5_io_kept_15;
+      9'b001100101:
+        casez_tmp_0 = _laneExps_5_io_kept_16;
+      9'b001100110:
+        casez_tmp_0 = _laneExps_6_io_kept_0;
+      9'b001100111:
+        casez_tmp_0 = _laneExps_6_io_kept_1;
+      9'b001101000:
+        casez_tmp_0 = _laneExps_6_io_kept_2;
+      9'b001101001:
+        casez_tmp_0 = _laneExps_6_io_kept_3;
+      9'b001101010:
+        casez_tmp_0 = _laneExps_6_io_kept_4;
+      9'b001101011:
+        casez_tmp_0 = _laneExps_6_io_kept_5;
+      9'b001101100:
+        casez_tmp_0 = _laneExps_6_io_kept_6;
+      9'b001101101:
+        casez_tmp_0 = _laneExps_6_io_kept_7;
+      9'b001101110:
+        casez_tmp_0 = _laneExps_6_io_kept_8;
+      9'b001101111:
+        casez_tmp_0 = _laneExps_6_io_kept_9;
+      9'b001110000:
+        casez_tmp_0 = _laneExps_6_io_kept_10;
+      9'b001110001:
+        casez_tmp_0 = _laneExps_6_io_kept_11;
+      9'b001110010:
+        casez_tmp_0 = _laneExps_6_io_kept_12;
+      9'b001110011:
+        casez_tmp_0 = _laneExps_6_io_kept_13;
+      9'b001110100:
+        casez_tmp_0 = _laneExps_6_io_kept_14;
+      9'b001110101:
+        casez_tmp_0 = _laneExps_6_io_kept_15;
+      9'b001110110:
+        casez_tmp_0 = _laneExps_6_io_kept_16;
+      9'b001110111:
+        casez_tmp_0 = _laneExps_7_io_kept_0;
+      9'b001111000:
+        casez_tmp_0 = _laneExps_7_io_kept_1;
+      9'b001111001:
+        casez_tmp_0 = _laneExps_7_io_kept_2;
+      9'b001111010:
+        casez_tmp_0 = _laneExps_7_io_kept_3;
+      9'b001111011:
+        casez_tmp_0 = _laneExps_7_io_kept_4;
+      9'b001111100:
+        casez_tmp_0 = _laneExps_7_io_kept_5;
+      9'b001111101:
+        casez_tmp_0 = _laneExps_7_io_kept_6;
+      9'b001111110:
+        casez_tmp_0 = _laneExps_7_io_kept_7;
+      9'b001111111:
+        casez_tmp_0 = _laneExps_7_io_kept_8;
+      9'b010000000:
+        casez_tmp_0 = _laneExps_7_io_kept_9;
+      9'b010000001:
+        casez_tmp_0 = _laneExps_7_io_kept_10;
+      9'b010000010:
+        casez_tmp_0 = _laneExps_7_io_kept_11;
+      9'b010000011:
+        casez_tmp_0 = _laneExps_7_io_kept_12;
+      9'b010000100:
+        casez_tmp_0 = _laneExps_7_io_kept_13;
+      9'b010000101:
+        casez_tmp_0 = _laneExps_7_io_kept_14;
+      9'b010000110:
+        casez_tmp_0 = _laneExps_7_io_kept_15;
+      9'b010000111:
+        casez_tmp_0 = _laneExps_7_io_kept_16;
+      9'b010001000:
+        casez_tmp_0 = _laneExps_8_io_kept_0;
+      9'b010001001:
+        casez_tmp_0 = _laneExps_8_io_kept_1;
+      9'b010001010:
+        casez_tmp_0 = _laneExps_8_io_kept_2;
+      9'b010001011:
+        casez_tmp_0 = _laneExps_8_io_kept_3;
+      9'b010001100:
+        casez_tmp_0 = _laneExps_8_io_kept_4;
+      9'b010001101:
+        casez_tmp_0 = _laneExps_8_io_kept_5;
+      9'b010001110:
+        casez_tmp_0 = _laneExps_8_io_kept_6;
+      9'b010001111:
+        casez_tmp_0 = _laneExps_8_io_kept_7;
+      9'b010010000:
+        casez_tmp_0 = _laneExps_8_io_kept_8;
+      9'b010010001:
+        casez_tmp_0 = _laneExps_8_io_kept_9;
+      9'b010010010:
+        casez_tmp_0 = _laneExps_8_io_kept_10;
+      9'b010010011:
+        casez_tmp_0 = _laneExps_8_io_kept_11;
+      9'b010010100:
+        casez_tmp_0 = _laneExps_8_io_kept_12;
+      9'b010010101:
+        casez_tmp_0 = _laneExps_8_io_kept_13;
+      9'b010010110:
+        casez_tmp_0 = _laneExps_8_io_kept_14;
+      9'b010010111:
+        casez_tmp_0 = _laneExps_8_io_kept_15;
+      9'b010011000:
+        casez_tmp_0 = _laneExps_8_io_kept_16;
+      9'b010011001:
+        casez_tmp_0 = _laneExps_9_io_kept_0;
+      9'b010011010:
+        casez_tmp_0 = _laneExps_9_io_kept_1;
+      9'b010011011:
+        casez_tmp_0 = _laneExps_9_io_kept_2;
+      9'b010011100:
+        casez_tmp_0 = _laneExps_9_io_kept_3;
+      9'b010011101:
+        casez_tmp_0 = _laneExps_9_io_kept_4;
+      9'b010011110:
+        casez_tmp_0 = _laneExps_9_io_kept_5;
+      9'b010011111:
+        casez_tmp_0 = _laneExps_9_io_kept_6;
+      9'b010100000:
+        casez_tmp_0 = _laneExps_9_io_kept_7;
+      9'b010100001:
+        casez_tmp_0 = _laneExps_9_io_kept_8;
+      9'b010100010:
+        casez_tmp_0 = _laneExps_9_io_kept_9;
+      9'b010100011:
+        casez_tmp_0 = _laneExps_9_io_kept_10;
+      9'b010100100:
+        casez_tmp_0 = _laneExps_9_io_kept_11;
+      9'b010100101:
+        casez_tmp_0 = _laneExps_9_io_kept_12;
+      9'b010100110:
+        casez_tmp_0 = _laneExps_9_io_kept_13;
+      9'b010100111:
+        casez_tmp_0 = _laneExps_9_io_kept_14;
+      9'b010101000:
+        casez_tmp_0 = _laneExps_9_io_kept_15;
+      9'b010101001:
+        casez_tmp_0 = _laneExps_9_io_kept_16;
+      9'b010101010:
+        casez_tmp_0 = _laneExps_10_io_kept_0;
+      9'b010101011:
+        casez_tmp_0 = _laneExps_10_io_kept_1;
+      9'b010101100:
+        casez_tmp_0 = _laneExps_10_io_kept_2;
+      9'b010101101:
+        casez_tmp_0 = _laneExps_10_io_kept_3;
+      9'b010101110:
+        casez_tmp_0 = _laneExps_10_io_kept_4;
+      9'b010101111:
+        casez_tmp_0 = _laneExps_10_io_kept_5;
+      9'b010110000:
+        casez_tmp_0 = _laneExps_10_io_kept_6;
+      9'b010110001:
+        casez_tmp_0 = _laneExps_10_io_kept_7;
+      9'b010110010:
+        casez_tmp_0 = _laneExps_10_io_kept_8;
+      9'b010110011:
+        casez_tmp_0 = _laneExps_10_io_kept_9;
+      9'b010110100:
+        casez_tmp_0 = _laneExps_10_io_kept_10;
+      9'b010110101:
+        casez_tmp_0 = _laneExps_10_io_kept_11;
+      9'b010110110:
+        casez_tmp_0 = _laneExps_10_io_kept_12;
+      9'b010110111:
+        casez_tmp_0 = _laneExps_10_io_kept_13;
+      9'b010111000:
+        casez_tmp_0 = _laneExps_10_io_kept_14;
+      9'b010111001:
+        casez_tmp_0 = _laneExps_10_io_kept_15;
+      9'b010111010:
+        casez_tmp_0 = _laneExps_10_io_kept_16;
+      9'b010111011:
+        casez_tmp_0 = _laneExps_11_io_kept_0;
+      9'b010111100:
+        casez_tmp_0 = _laneExps_11_io_kept_1;
+      9'b010111101:
+        casez_tmp_0 = _laneExps_11_io_kept_2;
+      9'b010111110:
+        casez_tmp_0 = _laneExps_11_io_kept_3;
+      9'b010111111:
+        casez_tmp_0 = _laneExps_11_io_kept_4;
+      9'b011000000:
+        casez_tmp_0 = _laneExps_11_io_kept_5;
+      9'b011000001:
+        casez_tmp_0 = _laneExps_11_io_kept_6;
+      9'b011000010:
+        casez_tmp_0 = _laneExps_11_io_kept_7;
+      9'b011000011:
+        casez_tmp_0 = _laneExps_11_io_kept_8;
+      9'b011000100:
+        casez_tmp_0 = _laneExps_11_io_kept_9;
+      9'b011000101:
+        casez_tmp_0 = _laneExps_11_io_kept_10;
+      9'b011000110:
+        casez_tmp_0 = _laneExps_11_io_kept_11;
+      9'b011000111:
+        casez_tmp_0 = _laneExps_11_io_kept_12;
+      9'b011001000:
+        casez_tmp_0 = _laneExps_11_io_kept_13;
+      9'b011001001:
+        casez_tmp_0 = _laneExps_11_io_kept_14;
+      9'b011001010:
+        casez_tmp_0 = _laneExps_11_io_kept_15;
+      9'b011001011:
+        casez_tmp_0 = _laneExps_11_io_kept_16;
+      9'b011001100:
+        casez_tmp_0 = _laneExps_12_io_kept_0;
+      9'b011001101:
+        casez_tmp_0 = _laneExps_12_io_kept_1;
+      9'b011001110:
+        casez_tmp_0 = _laneExps_12_io_kept_2;
+      9'b011001111:
+        casez_tmp_0 = _laneExps_12_io_kept_3;
+      9'b011010000:
+        casez_tmp_0 = _laneExps_12_io_kept_4;
+      9'b011010001:
+        casez_tmp_0 = _laneExps_12_io_kept_5;
+      9'b011010010:
+        casez_tmp_0 = _laneExps_12_io_kept_6;
+      9'b011010011:
+        casez_tmp_0 = _laneExps_12_io_kept_7;
+      9'b011010100:
+        casez_tmp_0 = _laneExps_12_io_kept_8;
+      9'b011010101:
+        casez_tmp_0 = _laneExps_12_io_kept_9;
+      9'b011010110:
+        casez_tmp_0 = _laneExps_12_io_kept_10;
+      9'b011010111:
+        casez_tmp_0 = _laneExps_12_io_kept_11;
+      9'b011011000:
+        casez_tmp_0 = _laneExps_12_io_kept_12;
+      9'b011011001:
+        casez_tmp_0 = _laneExps_12_io_kept_13;
+      9'b011011010:
+        casez_tmp_0 = _laneExps_12_io_kept_14;
+      9'b011011011:
+        casez_tmp_0 = _laneExps_12_io_kept_15;
+      9'b011011100:
+        casez_tmp_0 = _laneExps_12_io_kept_16;
+      9'b011011101:
+        casez_tmp_0 = _laneExps_13_io_kept_0;
+      9'b011011110:
+        casez_tmp_0 = _laneExps_13_io_kept_1;
+      9'b011011111:
+        casez_tmp_0 = _laneExps_13_io_kept_2;
+      9'b011100000:
+        casez_tmp_0 = _laneExps_13_io_kept_3;
+      9'b011100001:
+        casez_tmp_0 = _laneExps_13_io_kept_4;
+      9'b011100010:
+        casez_tmp_0 = _laneExps_13_io_kept_5;
+      9'b011100011:
+        casez_tmp_0 = _laneExps_13_io_kept_6;
+      9'b011100100:
+        casez_tmp_0 = _laneExps_13_io_kept_7;
+      9'b011100101:
+        casez_tmp_0 = _laneExps_13_io_kept_8;
+      9'b011100110:
+        casez_tmp_0 = _laneExps_13_io_kept_9;
+      9'b011100111:
+        casez_tmp_0 = _laneExps_13_io_kept_10;
+      9'b011101000:
+        casez_tmp_0 = _laneExps_13_io_kept_11;
+      9'b011101001:
+        casez_tmp_0 = _laneExps_13_io_kept_12;
+      9'b011101010:
+        casez_tmp_0 = _laneExps_13_io_kept_13;
+      9'b011101011:
+        casez_tmp_0 = _laneExps_13_io_kept_14;
+      9'b011101100:
+        casez_tmp_0 = _laneExps_13_io_kept_15;
+      9'b011101101:
+        casez_tmp_0 = _laneExps_13_io_kept_16;
+      9'b011101110:
+        casez_tmp_0 = _laneExps_14_io_kept_0;
+      9'b011101111:
+        casez_tmp_0 = _laneExps_14_io_kept_1;
+      9'b011110000:
+        casez_tmp_0 = _laneExps_14_io_kept_2;
+      9'b011110001:
+        casez_tmp_0 = _laneExps_14_io_kept_3;
+      9'b011110010:
+        casez_tmp_0 = _laneExps_14_io_kept_4;
+      9'b011110011:
+        casez_tmp_0 = _laneExps_14_io_kept_5;
+      9'b011110100:
+        casez_tmp_0 = _laneExps_14_io_kept_6;
+      9'b011110101:
+        casez_tmp_0 = _laneExps_14_io_kept_7;
+      9'b011110110:
+        casez_tmp_0 = _laneExps_14_io_kept_8;
+      9'b011110111:
+        casez_tmp_0 = _laneExps_14_io_kept_9;
+      9'b011111000:
+        casez_tmp_0 = _laneExps_14_io_kept_10;
+      9'b011111001:
+        casez_tmp_0 = _laneExps_14_io_kept_11;
+      9'b011111010:
+        casez_tmp_0 = _laneExps_14_io_kept_12;
+      9'b011111011:
+        casez_tmp_0 = _laneExps_14_io_kept_13;
+      9'b011111100:
+        casez_tmp_0 = _laneExps_14_io_kept_14;
+      9'b011111101:
+        casez_tmp_0 = _laneExps_14_io_kept_15;
+      9'b011111110:
+        casez_tmp_0 = _laneExps_14_io_kept_16;
+      9'b011111111:
+        casez_tmp_0 = _laneExps_15_io_kept_0;
+      9'b100000000:
+        casez_tmp_0 = _laneExps_15_io_kept_1;
+      9'b100000001:
+        casez_tmp_0 = _laneExps_15_io_kept_2;
+      9'b100000010:
+        casez_tmp_0 = _laneExps_15_io_kept_3;
+      9'b100000011:
+        casez_tmp_0 = _laneExps_15_io_kept_4;
+      9'b100000100:
+        casez_tmp_0 = _laneExps_15_io_kept_5;
+      9'b100000101:
+        casez_tmp_0 = _laneExps_15_io_kept_6;
+      9'b100000110:
+        casez_tmp_0 = _laneExps_15_io_kept_7;
+      9'b100000111:
+        casez_tmp_0 = _laneExps_15_io_kept_8;
+      9'b100001000:
+        casez_tmp_0 = _laneExps_15_io_kept_9;
+      9'b100001001:
+        casez_tmp_0 = _laneExps_15_io_kept_10;
+      9'b100001010:
+        casez_tmp_0 = _laneExps_15_io_kept_11;
+      9'b100001011:
+        casez_tmp_0 = _laneExps_15_io_kept_12;
+      9'b100001100:
+        casez_tmp_0 = _laneExps_15_io_kept_13;
+      9'b100001101:
+        casez_tmp_0 = _laneExps_15_io_kept_14;
+      9'b100001110:
+        casez_tmp_0 = _laneExps_15_io_kept_15;
+      9'b100001111:
+        casez_tmp_0 = _laneExps_15_io_kept_16;
+      9'b100010000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100010001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100010010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100010011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100010100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100010101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100010110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100010111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100011000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100011001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100011010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100011011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100011100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100011101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100011110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100011111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100100000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100100001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100100010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100100011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100100100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100100101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100100110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100100111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100101000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100101001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100101010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100101011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100101100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100101101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100101110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100101111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100110000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100110001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100110010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100110011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100110100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100110101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100110110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100110111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100111000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100111001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100111010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100111011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100111100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100111101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100111110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b100111111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101000000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101000001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101000010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101000011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101000100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101000101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101000110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101000111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101001000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101001001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101001010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101001011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101001100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101001101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101001110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101001111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101010000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101010001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101010010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101010011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101010100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101010101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101010110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101010111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101011000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101011001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101011010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101011011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101011100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101011101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101011110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101011111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101100000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101100001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101100010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101100011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101100100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101100101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101100110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101100111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101101000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101101001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101101010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101101011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101101100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101101101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101101110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101101111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101110000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101110001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101110010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101110011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101110100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101110101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101110110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101110111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101111000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101111001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101111010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101111011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101111100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101111101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101111110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b101111111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110000000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110000001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110000010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110000011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110000100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110000101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110000110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110000111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110001000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110001001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110001010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110001011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110001100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110001101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110001110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110001111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110010000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110010001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110010010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110010011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110010100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110010101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110010110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110010111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110011000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110011001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110011010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110011011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110011100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110011101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110011110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110011111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110100000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110100001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110100010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110100011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110100100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110100101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110100110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110100111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110101000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110101001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110101010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110101011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110101100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110101101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110101110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110101111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110110000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110110001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110110010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110110011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110110100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110110101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110110110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110110111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110111000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110111001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110111010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110111011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110111100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110111101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110111110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b110111111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111000000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111000001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111000010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111000011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111000100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111000101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111000110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111000111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111001000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111001001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111001010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111001011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111001100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111001101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111001110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111001111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111010000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111010001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111010010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111010011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111010100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111010101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111010110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111010111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111011000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111011001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111011010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111011011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111011100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111011101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111011110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111011111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111100000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111100001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111100010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111100011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111100100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111100101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111100110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111100111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111101000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111101001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111101010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111101011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111101100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111101101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111101110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111101111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111110000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111110001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111110010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111110011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111110100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111110101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111110110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111110111:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111111000:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111111001:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111111010:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111111011:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111111100:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111111101:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      9'b111111110:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+      default:
+        casez_tmp_0 = _laneExps_0_io_kept_0;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_1;
+  always @(*) begin
+    casez (m)
+      9'b000000000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000000001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000000010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000000011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000000100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000000101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000000110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000000111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000001000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000001001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000001010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000001011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000001100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000001101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000001110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000001111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000010000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b000010001:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000010010:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000010011:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000010100:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000010101:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000010110:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000010111:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000011000:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000011001:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000011010:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000011011:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000011100:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000011101:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000011110:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000011111:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000100000:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000100001:
+        casez_tmp_1 = _laneExps_1_io_top;
+      9'b000100010:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000100011:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000100100:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000100101:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000100110:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000100111:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000101000:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000101001:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000101010:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000101011:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000101100:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000101101:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000101110:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000101111:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000110000:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000110001:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000110010:
+        casez_tmp_1 = _laneExps_2_io_top;
+      9'b000110011:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000110100:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000110101:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000110110:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000110111:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000111000:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000111001:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000111010:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000111011:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000111100:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000111101:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000111110:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b000111111:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b001000000:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b001000001:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b001000010:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b001000011:
+        casez_tmp_1 = _laneExps_3_io_top;
+      9'b001000100:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001000101:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001000110:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001000111:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001001000:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001001001:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001001010:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001001011:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001001100:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001001101:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001001110:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001001111:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001010000:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001010001:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001010010:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001010011:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001010100:
+        casez_tmp_1 = _laneExps_4_io_top;
+      9'b001010101:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001010110:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001010111:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001011000:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001011001:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001011010:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001011011:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001011100:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001011101:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001011110:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001011111:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001100000:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001100001:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001100010:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001100011:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001100100:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001100101:
+        casez_tmp_1 = _laneExps_5_io_top;
+      9'b001100110:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001100111:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001101000:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001101001:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001101010:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001101011:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001101100:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001101101:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001101110:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001101111:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001110000:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001110001:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001110010:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001110011:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001110100:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001110101:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001110110:
+        casez_tmp_1 = _laneExps_6_io_top;
+      9'b001110111:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b001111000:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b001111001:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b001111010:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b001111011:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b001111100:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b001111101:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b001111110:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b001111111:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b010000000:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b010000001:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b010000010:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b010000011:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b010000100:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b010000101:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b010000110:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b010000111:
+        casez_tmp_1 = _laneExps_7_io_top;
+      9'b010001000:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010001001:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010001010:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010001011:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010001100:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010001101:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010001110:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010001111:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010010000:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010010001:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010010010:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010010011:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010010100:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010010101:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010010110:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010010111:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010011000:
+        casez_tmp_1 = _laneExps_8_io_top;
+      9'b010011001:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010011010:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010011011:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010011100:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010011101:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010011110:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010011111:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010100000:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010100001:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010100010:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010100011:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010100100:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010100101:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010100110:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010100111:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010101000:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010101001:
+        casez_tmp_1 = _laneExps_9_io_top;
+      9'b010101010:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010101011:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010101100:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010101101:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010101110:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010101111:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010110000:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010110001:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010110010:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010110011:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010110100:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010110101:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010110110:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010110111:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010111000:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010111001:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010111010:
+        casez_tmp_1 = _laneExps_10_io_top;
+      9'b010111011:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b010111100:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b010111101:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b010111110:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b010111111:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011000000:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011000001:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011000010:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011000011:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011000100:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011000101:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011000110:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011000111:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011001000:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011001001:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011001010:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011001011:
+        casez_tmp_1 = _laneExps_11_io_top;
+      9'b011001100:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011001101:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011001110:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011001111:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011010000:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011010001:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011010010:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011010011:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011010100:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011010101:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011010110:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011010111:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011011000:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011011001:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011011010:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011011011:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011011100:
+        casez_tmp_1 = _laneExps_12_io_top;
+      9'b011011101:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011011110:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011011111:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011100000:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011100001:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011100010:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011100011:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011100100:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011100101:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011100110:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011100111:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011101000:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011101001:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011101010:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011101011:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011101100:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011101101:
+        casez_tmp_1 = _laneExps_13_io_top;
+      9'b011101110:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011101111:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011110000:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011110001:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011110010:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011110011:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011110100:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011110101:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011110110:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011110111:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011111000:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011111001:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011111010:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011111011:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011111100:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011111101:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011111110:
+        casez_tmp_1 = _laneExps_14_io_top;
+      9'b011111111:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100000000:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100000001:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100000010:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100000011:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100000100:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100000101:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100000110:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100000111:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100001000:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100001001:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100001010:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100001011:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100001100:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100001101:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100001110:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100001111:
+        casez_tmp_1 = _laneExps_15_io_top;
+      9'b100010000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100010001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100010010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100010011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100010100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100010101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100010110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100010111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100011000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100011001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100011010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100011011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100011100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100011101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100011110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100011111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100100000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100100001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100100010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100100011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100100100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100100101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100100110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100100111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100101000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100101001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100101010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100101011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100101100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100101101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100101110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100101111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100110000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100110001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100110010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100110011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100110100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100110101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100110110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100110111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100111000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100111001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100111010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100111011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100111100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100111101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100111110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b100111111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101000000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101000001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101000010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101000011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101000100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101000101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101000110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101000111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101001000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101001001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101001010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101001011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101001100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101001101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101001110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101001111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101010000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101010001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101010010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101010011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101010100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101010101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101010110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101010111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101011000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101011001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101011010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101011011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101011100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101011101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101011110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101011111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101100000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101100001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101100010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101100011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101100100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101100101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101100110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101100111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101101000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101101001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101101010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101101011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101101100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101101101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101101110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101101111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101110000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101110001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101110010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101110011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101110100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101110101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101110110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101110111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101111000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101111001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101111010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101111011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101111100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101111101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101111110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b101111111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110000000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110000001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110000010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110000011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110000100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110000101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110000110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110000111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110001000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110001001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110001010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110001011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110001100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110001101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110001110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110001111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110010000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110010001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110010010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110010011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110010100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110010101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110010110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110010111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110011000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110011001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110011010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110011011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110011100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110011101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110011110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110011111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110100000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110100001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110100010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110100011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110100100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110100101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110100110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110100111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110101000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110101001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110101010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110101011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110101100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110101101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110101110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110101111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110110000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110110001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110110010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110110011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110110100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110110101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110110110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110110111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110111000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110111001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110111010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110111011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110111100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110111101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110111110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b110111111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111000000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111000001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111000010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111000011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111000100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111000101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111000110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111000111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111001000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111001001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111001010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111001011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111001100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111001101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111001110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111001111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111010000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111010001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111010010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111010011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111010100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111010101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111010110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111010111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111011000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111011001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111011010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111011011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111011100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111011101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111011110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111011111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111100000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111100001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111100010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111100011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111100100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111100101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111100110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111100111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111101000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111101001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111101010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111101011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111101100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111101101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111101110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111101111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111110000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111110001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111110010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111110011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111110100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111110101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111110110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111110111:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111111000:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111111001:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111111010:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111111011:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111111100:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111111101:
+        casez_tmp_1 = _laneExps_0_io_top;
+      9'b111111110:
+        casez_tmp_1 = _laneExps_0_io_top;
+      default:
+        casez_tmp_1 = _laneExps_0_io_top;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_2;
+  always @(*) begin
+    casez (m)
+      9'b000000000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000000001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000000010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000000011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000000100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000000101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000000110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000000111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000001000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000001001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000001010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000001011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000001100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000001101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000001110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000001111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000010000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b000010001:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000010010:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000010011:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000010100:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000010101:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000010110:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000010111:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000011000:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000011001:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000011010:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000011011:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000011100:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000011101:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000011110:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000011111:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000100000:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000100001:
+        casez_tmp_2 = _laneExps_1_io_anyTop;
+      9'b000100010:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000100011:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000100100:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000100101:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000100110:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000100111:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000101000:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000101001:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000101010:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000101011:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000101100:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000101101:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000101110:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000101111:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000110000:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000110001:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000110010:
+        casez_tmp_2 = _laneExps_2_io_anyTop;
+      9'b000110011:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000110100:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000110101:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000110110:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000110111:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000111000:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000111001:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000111010:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000111011:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000111100:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000111101:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000111110:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b000111111:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b001000000:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b001000001:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b001000010:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b001000011:
+        casez_tmp_2 = _laneExps_3_io_anyTop;
+      9'b001000100:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001000101:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001000110:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001000111:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001001000:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001001001:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001001010:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001001011:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001001100:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001001101:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001001110:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001001111:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001010000:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001010001:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001010010:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001010011:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001010100:
+        casez_tmp_2 = _laneExps_4_io_anyTop;
+      9'b001010101:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001010110:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001010111:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001011000:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001011001:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001011010:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001011011:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001011100:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001011101:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001011110:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001011111:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001100000:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001100001:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001100010:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001100011:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001100100:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001100101:
+        casez_tmp_2 = _laneExps_5_io_anyTop;
+      9'b001100110:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001100111:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001101000:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001101001:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001101010:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001101011:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001101100:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001101101:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001101110:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001101111:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001110000:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001110001:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001110010:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001110011:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001110100:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001110101:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001110110:
+        casez_tmp_2 = _laneExps_6_io_anyTop;
+      9'b001110111:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b001111000:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b001111001:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b001111010:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b001111011:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b001111100:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b001111101:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b001111110:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b001111111:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b010000000:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b010000001:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b010000010:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b010000011:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b010000100:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b010000101:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b010000110:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b010000111:
+        casez_tmp_2 = _laneExps_7_io_anyTop;
+      9'b010001000:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010001001:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010001010:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010001011:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010001100:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010001101:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010001110:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010001111:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010010000:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010010001:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010010010:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010010011:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010010100:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010010101:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010010110:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010010111:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010011000:
+        casez_tmp_2 = _laneExps_8_io_anyTop;
+      9'b010011001:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010011010:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010011011:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010011100:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010011101:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010011110:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010011111:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010100000:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010100001:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010100010:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010100011:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010100100:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010100101:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010100110:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010100111:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010101000:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010101001:
+        casez_tmp_2 = _laneExps_9_io_anyTop;
+      9'b010101010:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010101011:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010101100:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010101101:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010101110:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010101111:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010110000:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010110001:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010110010:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010110011:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010110100:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010110101:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010110110:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010110111:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010111000:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010111001:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010111010:
+        casez_tmp_2 = _laneExps_10_io_anyTop;
+      9'b010111011:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b010111100:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b010111101:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b010111110:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b010111111:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011000000:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011000001:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011000010:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011000011:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011000100:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011000101:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011000110:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011000111:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011001000:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011001001:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011001010:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011001011:
+        casez_tmp_2 = _laneExps_11_io_anyTop;
+      9'b011001100:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011001101:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011001110:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011001111:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011010000:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011010001:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011010010:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011010011:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011010100:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011010101:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011010110:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011010111:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011011000:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011011001:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011011010:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011011011:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011011100:
+        casez_tmp_2 = _laneExps_12_io_anyTop;
+      9'b011011101:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011011110:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011011111:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011100000:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011100001:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011100010:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011100011:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011100100:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011100101:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011100110:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011100111:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011101000:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011101001:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011101010:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011101011:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011101100:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011101101:
+        casez_tmp_2 = _laneExps_13_io_anyTop;
+      9'b011101110:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011101111:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011110000:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011110001:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011110010:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011110011:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011110100:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011110101:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011110110:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011110111:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011111000:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011111001:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011111010:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011111011:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011111100:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011111101:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011111110:
+        casez_tmp_2 = _laneExps_14_io_anyTop;
+      9'b011111111:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100000000:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100000001:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100000010:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100000011:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100000100:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100000101:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100000110:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100000111:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100001000:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100001001:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100001010:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100001011:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100001100:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100001101:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100001110:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100001111:
+        casez_tmp_2 = _laneExps_15_io_anyTop;
+      9'b100010000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100010001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100010010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100010011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100010100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100010101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100010110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100010111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100011000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100011001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100011010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100011011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100011100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100011101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100011110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100011111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100100000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100100001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100100010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100100011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100100100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100100101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100100110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100100111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100101000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100101001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100101010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100101011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100101100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100101101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100101110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100101111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100110000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100110001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100110010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100110011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100110100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100110101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100110110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100110111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100111000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100111001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100111010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100111011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100111100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100111101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100111110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b100111111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101000000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101000001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101000010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101000011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101000100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101000101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101000110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101000111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101001000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101001001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101001010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101001011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101001100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101001101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101001110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101001111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101010000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101010001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101010010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101010011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101010100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101010101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101010110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101010111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101011000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101011001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101011010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101011011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101011100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101011101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101011110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101011111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101100000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101100001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101100010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101100011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101100100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101100101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101100110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101100111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101101000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101101001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101101010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101101011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101101100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101101101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101101110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101101111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101110000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101110001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101110010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101110011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101110100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101110101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101110110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101110111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101111000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101111001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101111010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101111011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101111100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101111101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101111110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b101111111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110000000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110000001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110000010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110000011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110000100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110000101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110000110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110000111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110001000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110001001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110001010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110001011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110001100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110001101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110001110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110001111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110010000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110010001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110010010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110010011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110010100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110010101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110010110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110010111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110011000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110011001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110011010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110011011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110011100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110011101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110011110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110011111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110100000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110100001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110100010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110100011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110100100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110100101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110100110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110100111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110101000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110101001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110101010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110101011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110101100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110101101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110101110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110101111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110110000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110110001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110110010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110110011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110110100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110110101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110110110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110110111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110111000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110111001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110111010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110111011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110111100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110111101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110111110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b110111111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111000000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111000001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111000010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111000011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111000100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111000101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111000110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111000111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111001000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111001001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111001010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111001011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111001100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111001101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111001110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111001111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111010000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111010001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111010010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111010011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111010100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111010101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111010110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111010111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111011000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111011001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111011010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111011011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111011100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111011101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111011110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111011111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111100000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111100001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111100010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111100011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111100100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111100101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111100110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111100111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111101000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111101001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111101010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111101011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111101100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111101101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111101110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111101111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111110000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111110001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111110010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111110011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111110100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111110101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111110110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111110111:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111111000:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111111001:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111111010:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111111011:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111111100:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111111101:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      9'b111111110:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+      default:
+        casez_tmp_2 = _laneExps_0_io_anyTop;
+    endcase
+  end // always @(*)
+  wire [9:0]  at_1 = _GEN_5 + 10'h1;
+  reg         casez_tmp_3;
+  always @(*) begin
+    casez (at_1[8:0])
+      9'b000000000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b000000001:
+        casez_tmp_3 = |(_laneExps_0_io_used[4:1]);
+      9'b000000010:
+        casez_tmp_3 = filled_2;
+      9'b000000011:
+        casez_tmp_3 = |(_laneExps_0_io_used[4:2]);
+      9'b000000100:
+        casez_tmp_3 = filled_4;
+      9'b000000101:
+        casez_tmp_3 = filled_5;
+      9'b000000110:
+        casez_tmp_3 = filled_6;
+      9'b000000111:
+        casez_tmp_3 = |(_laneExps_0_io_used[4:3]);
+      9'b000001000:
+        casez_tmp_3 = filled_8;
+      9'b000001001:
+        casez_tmp_3 = filled_9;
+      9'b000001010:
+        casez_tmp_3 = filled_10;
+      9'b000001011:
+        casez_tmp_3 = filled_11;
+      9'b000001100:
+        casez_tmp_3 = filled_12;
+      9'b000001101:
+        casez_tmp_3 = filled_13;
+      9'b000001110:
+        casez_tmp_3 = filled_14;
+      9'b000001111:
+        casez_tmp_3 = _laneExps_0_io_used[4];
+      9'b000010000:
+        casez_tmp_3 = filled_16;
+      9'b000010001:
+        casez_tmp_3 = |_laneExps_1_io_used;
+      9'b000010010:
+        casez_tmp_3 = |(_laneExps_1_io_used[4:1]);
+      9'b000010011:
+        casez_tmp_3 = filled_19;
+      9'b000010100:
+        casez_tmp_3 = |(_laneExps_1_io_used[4:2]);
+      9'b000010101:
+        casez_tmp_3 = filled_21;
+      9'b000010110:
+        casez_tmp_3 = filled_22;
+      9'b000010111:
+        casez_tmp_3 = filled_23;
+      9'b000011000:
+        casez_tmp_3 = |(_laneExps_1_io_used[4:3]);
+      9'b000011001:
+        casez_tmp_3 = filled_25;
+      9'b000011010:
+        casez_tmp_3 = filled_26;
+      9'b000011011:
+        casez_tmp_3 = filled_27;
+      9'b000011100:
+        casez_tmp_3 = filled_28;
+      9'b000011101:
+        casez_tmp_3 = filled_29;
+      9'b000011110:
+        casez_tmp_3 = filled_30;
+      9'b000011111:
+        casez_tmp_3 = filled_31;
+      9'b000100000:
+        casez_tmp_3 = _laneExps_1_io_used[4];
+      9'b000100001:
+        casez_tmp_3 = filled_33;
+      9'b000100010:
+        casez_tmp_3 = |_laneExps_2_io_used;
+      9'b000100011:
+        casez_tmp_3 = |(_laneExps_2_io_used[4:1]);
+      9'b000100100:
+        casez_tmp_3 = filled_36;
+      9'b000100101:
+        casez_tmp_3 = |(_laneExps_2_io_used[4:2]);
+      9'b000100110:
+        casez_tmp_3 = filled_38;
+      9'b000100111:
+        casez_tmp_3 = filled_39;
+      9'b000101000:
+        casez_tmp_3 = filled_40;
+      9'b000101001:
+        casez_tmp_3 = |(_laneExps_2_io_used[4:3]);
+      9'b000101010:
+        casez_tmp_3 = filled_42;
+      9'b000101011:
+        casez_tmp_3 = filled_43;
+      9'b000101100:
+        casez_tmp_3 = filled_44;
+      9'b000101101:
+        casez_tmp_3 = filled_45;
+      9'b000101110:
+        casez_tmp_3 = filled_46;
+      9'b000101111:
+        casez_tmp_3 = filled_47;
+      9'b000110000:
+        casez_tmp_3 = filled_48;
+      9'b000110001:
+        casez_tmp_3 = _laneExps_2_io_used[4];
+      9'b000110010:
+        casez_tmp_3 = filled_50;
+      9'b000110011:
+        casez_tmp_3 = |_laneExps_3_io_used;
+      9'b000110100:
+        casez_tmp_3 = |(_laneExps_3_io_used[4:1]);
+      9'b000110101:
+        casez_tmp_3 = filled_53;
+      9'b000110110:
+        casez_tmp_3 = |(_laneExps_3_io_used[4:2]);
+      9'b000110111:
+        casez_tmp_3 = filled_55;
+      9'b000111000:
+        casez_tmp_3 = filled_56;
+      9'b000111001:
+        casez_tmp_3 = filled_57;
+      9'b000111010:
+        casez_tmp_3 = |(_laneExps_3_io_used[4:3]);
+      9'b000111011:
+        casez_tmp_3 = filled_59;
+      9'b000111100:
+        casez_tmp_3 = filled_60;
+      9'b000111101:
+        casez_tmp_3 = filled_61;
+      9'b000111110:
+        casez_tmp_3 = filled_62;
+      9'b000111111:
+        casez_tmp_3 = filled_63;
+      9'b001000000:
+        casez_tmp_3 = filled_64;
+      9'b001000001:
+        casez_tmp_3 = filled_65;
+      9'b001000010:
+        casez_tmp_3 = _laneExps_3_io_used[4];
+      9'b001000011:
+        casez_tmp_3 = filled_67;
+      9'b001000100:
+        casez_tmp_3 = |_laneExps_4_io_used;
+      9'b001000101:
+        casez_tmp_3 = |(_laneExps_4_io_used[4:1]);
+      9'b001000110:
+        casez_tmp_3 = filled_70;
+      9'b001000111:
+        casez_tmp_3 = |(_laneExps_4_io_used[4:2]);
+      9'b001001000:
+        casez_tmp_3 = filled_72;
+      9'b001001001:
+        casez_tmp_3 = filled_73;
+      9'b001001010:
+        casez_tmp_3 = filled_74;
+      9'b001001011:
+        casez_tmp_3 = |(_laneExps_4_io_used[4:3]);
+      9'b001001100:
+        casez_tmp_3 = filled_76;
+      9'b001001101:
+        casez_tmp_3 = filled_77;
+      9'b001001110:
+        casez_tmp_3 = filled_78;
+      9'b001001111:
+        casez_tmp_3 = filled_79;
+      9'b001010000:
+        casez_tmp_3 = filled_80;
+      9'b001010001:
+        casez_tmp_3 = filled_81;
+      9'b001010010:
+        casez_tmp_3 = filled_82;
+      9'b001010011:
+        casez_tmp_3 = _laneExps_4_io_used[4];
+      9'b001010100:
+        casez_tmp_3 = filled_84;
+      9'b001010101:
+        casez_tmp_3 = |_laneExps_5_io_used;
+      9'b001010110:
+        casez_tmp_3 = |(_laneExps_5_io_used[4:1]);
+      9'b001010111:
+        casez_tmp_3 = filled_87;
+      9'b001011000:
+        casez_tmp_3 = |(_laneExps_5_io_used[4:2]);
+      9'b001011001:
+        casez_tmp_3 = filled_89;
+      9'b001011010:
+        casez_tmp_3 = filled_90;
+      9'b001011011:
+        casez_tmp_3 = filled_91;
+      9'b001011100:
+        casez_tmp_3 = |(_laneExps_5_io_used[4:3]);
+      9'b001011101:
+        casez_tmp_3 = filled_93;
+      9'b001011110:
+        casez_tmp_3 = filled_94;
+      9'b001011111:
+        casez_tmp_3 = filled_95;
+      9'b001100000:
+        casez_tmp_3 = filled_96;
+      9'b001100001:
+        casez_tmp_3 = filled_97;
+      9'b001100010:
+        casez_tmp_3 = filled_98;
+      9'b001100011:
+        casez_tmp_3 = filled_99;
+      9'b001100100:
+        casez_tmp_3 = _laneExps_5_io_used[4];
+      9'b001100101:
+        casez_tmp_3 = filled_101;
+      9'b001100110:
+        casez_tmp_3 = |_laneExps_6_io_used;
+      9'b001100111:
+        casez_tmp_3 = |(_laneExps_6_io_used[4:1]);
+      9'b001101000:
+        casez_tmp_3 = filled_104;
+      9'b001101001:
+        casez_tmp_3 = |(_laneExps_6_io_used[4:2]);
+      9'b001101010:
+        casez_tmp_3 = filled_106;
+      9'b001101011:
+        casez_tmp_3 = filled_107;
+      9'b001101100:
+        casez_tmp_3 = filled_108;
+      9'b001101101:
+        casez_tmp_3 = |(_laneExps_6_io_used[4:3]);
+      9'b001101110:
+        casez_tmp_3 = filled_110;
+      9'b001101111:
+        casez_tmp_3 = filled_111;
+      9'b001110000:
+        casez_tmp_3 = filled_112;
+      9'b001110001:
+        casez_tmp_3 = filled_113;
+      9'b001110010:
+        casez_tmp_3 = filled_114;
+      9'b001110011:
+        casez_tmp_3 = filled_115;
+      9'b001110100:
+        casez_tmp_3 = filled_116;
+      9'b001110101:
+        casez_tmp_3 = _laneExps_6_io_used[4];
+      9'b001110110:
+        casez_tmp_3 = filled_118;
+      9'b001110111:
+        casez_tmp_3 = |_laneExps_7_io_used;
+      9'b001111000:
+        casez_tmp_3 = |(_laneExps_7_io_used[4:1]);
+      9'b001111001:
+        casez_tmp_3 = filled_121;
+      9'b001111010:
+        casez_tmp_3 = |(_laneExps_7_io_used[4:2]);
+      9'b001111011:
+        casez_tmp_3 = filled_123;
+      9'b001111100:
+        casez_tmp_3 = filled_124;
+      9'b001111101:
+        casez_tmp_3 = filled_125;
+      9'b001111110:
+        casez_tmp_3 = |(_laneExps_7_io_used[4:3]);
+      9'b001111111:
+        casez_tmp_3 = filled_127;
+      9'b010000000:
+        casez_tmp_3 = filled_128;
+      9'b010000001:
+        casez_tmp_3 = filled_129;
+      9'b010000010:
+        casez_tmp_3 = filled_130;
+      9'b010000011:
+        casez_tmp_3 = filled_131;
+      9'b010000100:
+        casez_tmp_3 = filled_132;
+      9'b010000101:
+        casez_tmp_3 = filled_133;
+      9'b010000110:
+        casez_tmp_3 = _laneExps_7_io_used[4];
+      9'b010000111:
+        casez_tmp_3 = filled_135;
+      9'b010001000:
+        casez_tmp_3 = |_laneExps_8_io_used;
+      9'b010001001:
+        casez_tmp_3 = |(_laneExps_8_io_used[4:1]);
+      9'b010001010:
+        casez_tmp_3 = filled_138;
+      9'b010001011:
+        casez_tmp_3 = |(_laneExps_8_io_used[4:2]);
+      9'b010001100:
+        casez_tmp_3 = filled_140;
+      9'b010001101:
+        casez_tmp_3 = filled_141;
+      9'b010001110:
+        casez_tmp_3 = filled_142;
+      9'b010001111:
+        casez_tmp_3 = |(_laneExps_8_io_used[4:3]);
+      9'b010010000:
+        casez_tmp_3 = filled_144;
+      9'b010010001:
+        casez_tmp_3 = filled_145;
+      9'b010010010:
+        casez_tmp_3 = filled_146;
+      9'b010010011:
+        casez_tmp_3 = filled_147;
+      9'b010010100:
+        casez_tmp_3 = filled_148;
+      9'b010010101:
+        casez_tmp_3 = filled_149;
+      9'b010010110:
+        casez_tmp_3 = filled_150;
+      9'b010010111:
+        casez_tmp_3 = _laneExps_8_io_used[4];
+      9'b010011000:
+        casez_tmp_3 = filled_152;
+      9'b010011001:
+        casez_tmp_3 = |_laneExps_9_io_used;
+      9'b010011010:
+        casez_tmp_3 = |(_laneExps_9_io_used[4:1]);
+      9'b010011011:
+        casez_tmp_3 = filled_155;
+      9'b010011100:
+        casez_tmp_3 = |(_laneExps_9_io_used[4:2]);
+      9'b010011101:
+        casez_tmp_3 = filled_157;
+      9'b010011110:
+        casez_tmp_3 = filled_158;
+      9'b010011111:
+        casez_tmp_3 = filled_159;
+      9'b010100000:
+        casez_tmp_3 = |(_laneExps_9_io_used[4:3]);
+      9'b010100001:
+        casez_tmp_3 = filled_161;
+      9'b010100010:
+        casez_tmp_3 = filled_162;
+      9'b010100011:
+        casez_tmp_3 = filled_163;
+      9'b010100100:
+        casez_tmp_3 = filled_164;
+      9'b010100101:
+        casez_tmp_3 = filled_165;
+      9'b010100110:
+        casez_tmp_3 = filled_166;
+      9'b010100111:
+        casez_tmp_3 = filled_167;
+      9'b010101000:
+        casez_tmp_3 = _laneExps_9_io_used[4];
+      9'b010101001:
+        casez_tmp_3 = filled_169;
+      9'b010101010:
+        casez_tmp_3 = |_laneExps_10_io_used;
+      9'b010101011:
+        casez_tmp_3 = |(_laneExps_10_io_used[4:1]);
+      9'b010101100:
+        casez_tmp_3 = filled_172;
+      9'b010101101:
+        casez_tmp_3 = |(_laneExps_10_io_used[4:2]);
+      9'b010101110:
+        casez_tmp_3 = filled_174;
+      9'b010101111:
+        casez_tmp_3 = filled_175;
+      9'b010110000:
+        casez_tmp_3 = filled_176;
+      9'b010110001:
+        casez_tmp_3 = |(_laneExps_10_io_used[4:3]);
+      9'b010110010:
+        casez_tmp_3 = filled_178;
+      9'b010110011:
+        casez_tmp_3 = filled_179;
+      9'b010110100:
+        casez_tmp_3 = filled_180;
+      9'b010110101:
+        casez_tmp_3 = filled_181;
+      9'b010110110:
+        casez_tmp_3 = filled_182;
+      9'b010110111:
+        casez_tmp_3 = filled_183;
+      9'b010111000:
+        casez_tmp_3 = filled_184;
+      9'b010111001:
+        casez_tmp_3 = _laneExps_10_io_used[4];
+      9'b010111010:
+        casez_tmp_3 = filled_186;
+      9'b010111011:
+        casez_tmp_3 = |_laneExps_11_io_used;
+      9'b010111100:
+        casez_tmp_3 = |(_laneExps_11_io_used[4:1]);
+      9'b010111101:
+        casez_tmp_3 = filled_189;
+      9'b010111110:
+        casez_tmp_3 = |(_laneExps_11_io_used[4:2]);
+      9'b010111111:
+        casez_tmp_3 = filled_191;
+      9'b011000000:
+        casez_tmp_3 = filled_192;
+      9'b011000001:
+        casez_tmp_3 = filled_193;
+      9'b011000010:
+        casez_tmp_3 = |(_laneExps_11_io_used[4:3]);
+      9'b011000011:
+        casez_tmp_3 = filled_195;
+      9'b011000100:
+        casez_tmp_3 = filled_196;
+      9'b011000101:
+        casez_tmp_3 = filled_197;
+      9'b011000110:
+        casez_tmp_3 = filled_198;
+      9'b011000111:
+        casez_tmp_3 = filled_199;
+      9'b011001000:
+        casez_tmp_3 = filled_200;
+      9'b011001001:
+        casez_tmp_3 = filled_201;
+      9'b011001010:
+        casez_tmp_3 = _laneExps_11_io_used[4];
+      9'b011001011:
+        casez_tmp_3 = filled_203;
+      9'b011001100:
+        casez_tmp_3 = |_laneExps_12_io_used;
+      9'b011001101:
+        casez_tmp_3 = |(_laneExps_12_io_used[4:1]);
+      9'b011001110:
+        casez_tmp_3 = filled_206;
+      9'b011001111:
+        casez_tmp_3 = |(_laneExps_12_io_used[4:2]);
+      9'b011010000:
+        casez_tmp_3 = filled_208;
+      9'b011010001:
+        casez_tmp_3 = filled_209;
+      9'b011010010:
+        casez_tmp_3 = filled_210;
+      9'b011010011:
+        casez_tmp_3 = |(_laneExps_12_io_used[4:3]);
+      9'b011010100:
+        casez_tmp_3 = filled_212;
+      9'b011010101:
+        casez_tmp_3 = filled_213;
+      9'b011010110:
+        casez_tmp_3 = filled_214;
+      9'b011010111:
+        casez_tmp_3 = filled_215;
+      9'b011011000:
+        casez_tmp_3 = filled_216;
+      9'b011011001:
+        casez_tmp_3 = filled_217;
+      9'b011011010:
+        casez_tmp_3 = filled_218;
+      9'b011011011:
+        casez_tmp_3 = _laneExps_12_io_used[4];
+      9'b011011100:
+        casez_tmp_3 = filled_220;
+      9'b011011101:
+        casez_tmp_3 = |_laneExps_13_io_used;
+      9'b011011110:
+        casez_tmp_3 = |(_laneExps_13_io_used[4:1]);
+      9'b011011111:
+        casez_tmp_3 = filled_223;
+      9'b011100000:
+        casez_tmp_3 = |(_laneExps_13_io_used[4:2]);
+      9'b011100001:
+        casez_tmp_3 = filled_225;
+      9'b011100010:
+        casez_tmp_3 = filled_226;
+      9'b011100011:
+        casez_tmp_3 = filled_227;
+      9'b011100100:
+        casez_tmp_3 = |(_laneExps_13_io_used[4:3]);
+      9'b011100101:
+        casez_tmp_3 = filled_229;
+      9'b011100110:
+        casez_tmp_3 = filled_230;
+      9'b011100111:
+        casez_tmp_3 = filled_231;
+      9'b011101000:
+        casez_tmp_3 = filled_232;
+      9'b011101001:
+        casez_tmp_3 = filled_233;
+      9'b011101010:
+        casez_tmp_3 = filled_234;
+      9'b011101011:
+        casez_tmp_3 = filled_235;
+      9'b011101100:
+        casez_tmp_3 = _laneExps_13_io_used[4];
+      9'b011101101:
+        casez_tmp_3 = filled_237;
+      9'b011101110:
+        casez_tmp_3 = |_laneExps_14_io_used;
+      9'b011101111:
+        casez_tmp_3 = |(_laneExps_14_io_used[4:1]);
+      9'b011110000:
+        casez_tmp_3 = filled_240;
+      9'b011110001:
+        casez_tmp_3 = |(_laneExps_14_io_used[4:2]);
+      9'b011110010:
+        casez_tmp_3 = filled_242;
+      9'b011110011:
+        casez_tmp_3 = filled_243;
+      9'b011110100:
+        casez_tmp_3 = filled_244;
+      9'b011110101:
+        casez_tmp_3 = |(_laneExps_14_io_used[4:3]);
+      9'b011110110:
+        casez_tmp_3 = filled_246;
+      9'b011110111:
+        casez_tmp_3 = filled_247;
+      9'b011111000:
+        casez_tmp_3 = filled_248;
+      9'b011111001:
+        casez_tmp_3 = filled_249;
+      9'b011111010:
+        casez_tmp_3 = filled_250;
+      9'b011111011:
+        casez_tmp_3 = filled_251;
+      9'b011111100:
+        casez_tmp_3 = filled_252;
+      9'b011111101:
+        casez_tmp_3 = _laneExps_14_io_used[4];
+      9'b011111110:
+        casez_tmp_3 = filled_254;
+      9'b011111111:
+        casez_tmp_3 = |_laneExps_15_io_used;
+      9'b100000000:
+        casez_tmp_3 = |(_laneExps_15_io_used[4:1]);
+      9'b100000001:
+        casez_tmp_3 = filled_257;
+      9'b100000010:
+        casez_tmp_3 = |(_laneExps_15_io_used[4:2]);
+      9'b100000011:
+        casez_tmp_3 = filled_259;
+      9'b100000100:
+        casez_tmp_3 = filled_260;
+      9'b100000101:
+        casez_tmp_3 = filled_261;
+      9'b100000110:
+        casez_tmp_3 = |(_laneExps_15_io_used[4:3]);
+      9'b100000111:
+        casez_tmp_3 = filled_263;
+      9'b100001000:
+        casez_tmp_3 = filled_264;
+      9'b100001001:
+        casez_tmp_3 = filled_265;
+      9'b100001010:
+        casez_tmp_3 = filled_266;
+      9'b100001011:
+        casez_tmp_3 = filled_267;
+      9'b100001100:
+        casez_tmp_3 = filled_268;
+      9'b100001101:
+        casez_tmp_3 = filled_269;
+      9'b100001110:
+        casez_tmp_3 = _laneExps_15_io_used[4];
+      9'b100001111:
+        casez_tmp_3 = filled_271;
+      9'b100010000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100010001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100010010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100010011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100010100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100010101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100010110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100010111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100011000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100011001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100011010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100011011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100011100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100011101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100011110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100011111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100100000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100100001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100100010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100100011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100100100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100100101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100100110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100100111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100101000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100101001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100101010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100101011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100101100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100101101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100101110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100101111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100110000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100110001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100110010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100110011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100110100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100110101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100110110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100110111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100111000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100111001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100111010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100111011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100111100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100111101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100111110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b100111111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101000000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101000001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101000010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101000011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101000100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101000101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101000110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101000111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101001000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101001001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101001010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101001011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101001100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101001101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101001110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101001111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101010000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101010001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101010010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101010011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101010100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101010101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101010110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101010111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101011000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101011001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101011010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101011011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101011100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101011101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101011110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101011111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101100000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101100001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101100010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101100011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101100100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101100101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101100110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101100111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101101000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101101001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101101010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101101011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101101100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101101101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101101110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101101111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101110000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101110001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101110010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101110011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101110100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101110101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101110110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101110111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101111000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101111001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101111010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101111011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101111100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101111101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101111110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b101111111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110000000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110000001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110000010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110000011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110000100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110000101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110000110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110000111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110001000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110001001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110001010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110001011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110001100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110001101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110001110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110001111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110010000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110010001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110010010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110010011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110010100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110010101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110010110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110010111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110011000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110011001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110011010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110011011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110011100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110011101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110011110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110011111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110100000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110100001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110100010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110100011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110100100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110100101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110100110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110100111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110101000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110101001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110101010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110101011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110101100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110101101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110101110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110101111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110110000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110110001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110110010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110110011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110110100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110110101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110110110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110110111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110111000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110111001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110111010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110111011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110111100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110111101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110111110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b110111111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111000000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111000001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111000010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111000011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111000100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111000101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111000110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111000111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111001000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111001001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111001010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111001011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111001100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111001101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111001110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111001111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111010000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111010001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111010010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111010011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111010100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111010101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111010110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111010111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111011000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111011001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111011010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111011011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111011100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111011101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111011110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111011111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111100000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111100001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111100010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111100011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111100100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111100101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111100110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111100111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111101000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111101001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111101010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111101011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111101100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111101101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111101110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111101111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111110000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111110001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111110010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111110011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111110100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111110101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111110110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111110111:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111111000:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111111001:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111111010:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111111011:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111111100:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111111101:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      9'b111111110:
+        casez_tmp_3 = |_laneExps_0_io_used;
+      default:
+        casez_tmp_3 = |_laneExps_0_io_used;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_4;
+  always @(*) begin
+    casez (at_1[8:0])
+      9'b000000000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b000000001:
+        casez_tmp_4 = _laneExps_0_io_kept_1;
+      9'b000000010:
+        casez_tmp_4 = _laneExps_0_io_kept_2;
+      9'b000000011:
+        casez_tmp_4 = _laneExps_0_io_kept_3;
+      9'b000000100:
+        casez_tmp_4 = _laneExps_0_io_kept_4;
+      9'b000000101:
+        casez_tmp_4 = _laneExps_0_io_kept_5;
+      9'b000000110:
+        casez_tmp_4 = _laneExps_0_io_kept_6;
+      9'b000000111:
+        casez_tmp_4 = _laneExps_0_io_kept_7;
+      9'b000001000:
+        casez_tmp_4 = _laneExps_0_io_kept_8;
+      9'b000001001:
+        casez_tmp_4 = _laneExps_0_io_kept_9;
+      9'b000001010:
+        casez_tmp_4 = _laneExps_0_io_kept_10;
+      9'b000001011:
+        casez_tmp_4 = _laneExps_0_io_kept_11;
+      9'b000001100:
+        casez_tmp_4 = _laneExps_0_io_kept_12;
+      9'b000001101:
+        casez_tmp_4 = _laneExps_0_io_kept_13;
+      9'b000001110:
+        casez_tmp_4 = _laneExps_0_io_kept_14;
+      9'b000001111:
+        casez_tmp_4 = _laneExps_0_io_kept_15;
+      9'b000010000:
+        casez_tmp_4 = _laneExps_0_io_kept_16;
+      9'b000010001:
+        casez_tmp_4 = _laneExps_1_io_kept_0;
+      9'b000010010:
+        casez_tmp_4 = _laneExps_1_io_kept_1;
+      9'b000010011:
+        casez_tmp_4 = _laneExps_1_io_kept_2;
+      9'b000010100:
+        casez_tmp_4 = _laneExps_1_io_kept_3;
+      9'b000010101:
+        casez_tmp_4 = _laneExps_1_io_kept_4;
+      9'b000010110:
+        casez_tmp_4 = _laneExps_1_io_kept_5;
+      9'b000010111:
+        casez_tmp_4 = _laneExps_1_io_kept_6;
+      9'b000011000:
+        casez_tmp_4 = _laneExps_1_io_kept_7;
+      9'b000011001:
+        casez_tmp_4 = _laneExps_1_io_kept_8;
+      9'b000011010:
+        casez_tmp_4 = _laneExps_1_io_kept_9;
+      9'b000011011:
+        casez_tmp_4 = _laneExps_1_io_kept_10;
+      9'b000011100:
+        casez_tmp_4 = _laneExps_1_io_kept_11;
+      9'b000011101:
+        casez_tmp_4 = _laneExps_1_io_kept_12;
+      9'b000011110:
+        casez_tmp_4 = _laneExps_1_io_kept_13;
+      9'b000011111:
+        casez_tmp_4 = _laneExps_1_io_kept_14;
+      9'b000100000:
+        casez_tmp_4 = _laneExps_1_io_kept_15;
+      9'b000100001:
+        casez_tmp_4 = _laneExps_1_io_kept_16;
+      9'b000100010:
+        casez_tmp_4 = _laneExps_2_io_kept_0;
+      9'b000100011:
+        casez_tmp_4 = _laneExps_2_io_kept_1;
+      9'b000100100:
+        casez_tmp_4 = _laneExps_2_io_kept_2;
+      9'b000100101:
+        casez_tmp_4 = _laneExps_2_io_kept_3;
+      9'b000100110:
+        casez_tmp_4 = _laneExps_2_io_kept_4;
+      9'b000100111:
+        casez_tmp_4 = _laneExps_2_io_kept_5;
+      9'b000101000:
+        casez_tmp_4 = _laneExps_2_io_kept_6;
+      9'b000101001:
+        casez_tmp_4 = _laneExps_2_io_kept_7;
+      9'b000101010:
+        casez_tmp_4 = _laneExps_2_io_kept_8;
+      9'b000101011:
+        casez_tmp_4 = _laneExps_2_io_kept_9;
+      9'b000101100:
+        casez_tmp_4 = _laneExps_2_io_kept_10;
+      9'b000101101:
+        casez_tmp_4 = _laneExps_2_io_kept_11;
+      9'b000101110:
+        casez_tmp_4 = _laneExps_2_io_kept_12;
+      9'b000101111:
+        casez_tmp_4 = _laneExps_2_io_kept_13;
+      9'b000110000:
+        casez_tmp_4 = _laneExps_2_io_kept_14;
+      9'b000110001:
+        casez_tmp_4 = _laneExps_2_io_kept_15;
+      9'b000110010:
+        casez_tmp_4 = _laneExps_2_io_kept_16;
+      9'b000110011:
+        casez_tmp_4 = _laneExps_3_io_kept_0;
+      9'b000110100:
+        casez_tmp_4 = _laneExps_3_io_kept_1;
+      9'b000110101:
+        casez_tmp_4 = _laneExps_3_io_kept_2;
+      9'b000110110:
+        casez_tmp_4 = _laneExps_3_io_kept_3;
+      9'b000110111:
+        casez_tmp_4 = _laneExps_3_io_kept_4;
+      9'b000111000:
+        casez_tmp_4 = _laneExps_3_io_kept_5;
+      9'b000111001:
+        casez_tmp_4 = _laneExps_3_io_kept_6;
+      9'b000111010:
+        casez_tmp_4 = _laneExps_3_io_kept_7;
+      9'b000111011:
+        casez_tmp_4 = _laneExps_3_io_kept_8;
+      9'b000111100:
+        casez_tmp_4 = _laneExps_3_io_kept_9;
+      9'b000111101:
+        casez_tmp_4 = _laneExps_3_io_kept_10;
+      9'b000111110:
+        casez_tmp_4 = _laneExps_3_io_kept_11;
+      9'b000111111:
+        casez_tmp_4 = _laneExps_3_io_kept_12;
+      9'b001000000:
+        casez_tmp_4 = _laneExps_3_io_kept_13;
+      9'b001000001:
+        casez_tmp_4 = _laneExps_3_io_kept_14;
+      9'b001000010:
+        casez_tmp_4 = _laneExps_3_io_kept_15;
+      9'b001000011:
+        casez_tmp_4 = _laneExps_3_io_kept_16;
+      9'b001000100:
+        casez_tmp_4 = _laneExps_4_io_kept_0;
+      9'b001000101:
+        casez_tmp_4 = _laneExps_4_io_kept_1;
+      9'b001000110:
+        casez_tmp_4 = _laneExps_4_io_kept_2;
+      9'b001000111:
+        casez_tmp_4 = _laneExps_4_io_kept_3;
+      9'b001001000:
+        casez_tmp_4 = _laneExps_4_io_kept_4;
+      9'b001001001:
+        casez_tmp_4 = _laneExps_4_io_kept_5;
+      9'b001001010:
+        casez_tmp_4 = _laneExps_4_io_kept_6;
+      9'b001001011:
+        casez_tmp_4 = _laneExps_4_io_kept_7;
+      9'b001001100:
+        casez_tmp_4 = _laneExps_4_io_kept_8;
+      9'b001001101:
+        casez_tmp_4 = _laneExps_4_io_kept_9;
+      9'b001001110:
+        casez_tmp_4 = _laneExps_4_io_kept_10;
+      9'b001001111:
+        casez_tmp_4 = _laneExps_4_io_kept_11;
+      9'b001010000:
+        casez_tmp_4 = _laneExps_4_io_kept_12;
+      9'b001010001:
+        casez_tmp_4 = _laneExps_4_io_kept_13;
+      9'b001010010:
+        casez_tmp_4 = _laneExps_4_io_kept_14;
+      9'b001010011:
+        casez_tmp_4 = _laneExps_4_io_kept_15;
+      9'b001010100:
+        casez_tmp_4 = _laneExps_4_io_kept_16;
+      9'b001010101:
+        casez_tmp_4 = _laneExps_5_io_kept_0;
+      9'b001010110:
+        casez_tmp_4 = _laneExps_5_io_kept_1;
+      9'b001010111:
+        casez_tmp_4 = _laneExps_5_io_kept_2;
+      9'b001011000:
+        casez_tmp_4 = _laneExps_5_io_kept_3;
+      9'b001011001:
+        casez_tmp_4 = _laneExps_5_io_kept_4;
+      9'b001011010:
+        casez_tmp_4 = _laneExps_5_io_kept_5;
+      9'b001011011:
+        casez_tmp_4 = _laneExps_5_io_kept_6;
+      9'b001011100:
+        casez_tmp_4 = _laneExps_5_io_kept_7;
+      9'b001011101:
+        casez_tmp_4 = _laneExps_5_io_kept_8;
+      9'b001011110:
+        casez_tmp_4 = _laneExps_5_io_kept_9;
+      9'b001011111:
+        casez_tmp_4 = _laneExps_5_io_kept_10;
+      9'b001100000:
+        casez_tmp_4 = _laneExps_5_io_kept_11;
+      9'b001100001:
+        casez_tmp_4 = _laneExps_5_io_kept_12;
+      9'b001100010:
+        casez_tmp_4 = _laneExps_5_io_kept_13;
+      9'b001100011:
+        casez_tmp_4 = _laneExps_5_io_kept_14;
+      9'b001100100:
+        casez_tmp_4 = _laneExps_5_io_kept_15;
+      9'b001100101:
+        casez_tmp_4 = _laneExps_5_io_kept_16;
+      9'b001100110:
+        casez_tmp_4 = _laneExps_6_io_kept_0;
+      9'b001100111:
+        casez_tmp_4 = _laneExps_6_io_kept_1;
+      9'b001101000:
+        casez_tmp_4 = _laneExps_6_io_kept_2;
+      9'b001101001:
+        casez_tmp_4 = _laneExps_6_io_kept_3;
+      9'b001101010:
+        casez_tmp_4 = _laneExps_6_io_kept_4;
+      9'b001101011:
+        casez_tmp_4 = _laneExps_6_io_kept_5;
+      9'b001101100:
+        casez_tmp_4 = _laneExps_6_io_kept_6;
+      9'b001101101:
+        casez_tmp_4 = _laneExps_6_io_kept_7;
+      9'b001101110:
+        casez_tmp_4 = _laneExps_6_io_kept_8;
+      9'b001101111:
+        casez_tmp_4 = _laneExps_6_io_kept_9;
+      9'b001110000:
+        casez_tmp_4 = _laneExps_6_io_kept_10;
+      9'b001110001:
+        casez_tmp_4 = _laneExps_6_io_kept_11;
+      9'b001110010:
+        casez_tmp_4 = _laneExps_6_io_kept_12;
+      9'b001110011:
+        casez_tmp_4 = _laneExps_6_io_kept_13;
+      9'b001110100:
+        casez_tmp_4 = _laneExps_6_io_kept_14;
+      9'b001110101:
+        casez_tmp_4 = _laneExps_6_io_kept_15;
+      9'b001110110:
+        casez_tmp_4 = _laneExps_6_io_kept_16;
+      9'b001110111:
+        casez_tmp_4 = _laneExps_7_io_kept_0;
+      9'b001111000:
+        casez_tmp_4 = _laneExps_7_io_kept_1;
+      9'b001111001:
+        casez_tmp_4 = _laneExps_7_io_kept_2;
+      9'b001111010:
+        casez_tmp_4 = _laneExps_7_io_kept_3;
+      9'b001111011:
+        casez_tmp_4 = _laneExps_7_io_kept_4;
+      9'b001111100:
+        casez_tmp_4 = _laneExps_7_io_kept_5;
+      9'b001111101:
+        casez_tmp_4 = _laneExps_7_io_kept_6;
+      9'b001111110:
+        casez_tmp_4 = _laneExps_7_io_kept_7;
+      9'b001111111:
+        casez_tmp_4 = _laneExps_7_io_kept_8;
+      9'b010000000:
+        casez_tmp_4 = _laneExps_7_io_kept_9;
+      9'b010000001:
+        casez_tmp_4 = _laneExps_7_io_kept_10;
+      9'b010000010:
+        casez_tmp_4 = _laneExps_7_io_kept_11;
+      9'b010000011:
+        casez_tmp_4 = _laneExps_7_io_kept_12;
+      9'b010000100:
+        casez_tmp_4 = _laneExps_7_io_kept_13;
+      9'b010000101:
+        casez_tmp_4 = _laneExps_7_io_kept_14;
+      9'b010000110:
+        casez_tmp_4 = _laneExps_7_io_kept_15;
+      9'b010000111:
+        casez_tmp_4 = _laneExps_7_io_kept_16;
+      9'b010001000:
+        casez_tmp_4 = _laneExps_8_io_kept_0;
+      9'b010001001:
+        casez_tmp_4 = _laneExps_8_io_kept_1;
+      9'b010001010:
+        casez_tmp_4 = _laneExps_8_io_kept_2;
+      9'b010001011:
+        casez_tmp_4 = _laneExps_8_io_kept_3;
+      9'b010001100:
+        casez_tmp_4 = _laneExps_8_io_kept_4;
+      9'b010001101:
+        casez_tmp_4 = _laneExps_8_io_kept_5;
+      9'b010001110:
+        casez_tmp_4 = _laneExps_8_io_kept_6;
+      9'b010001111:
+        casez_tmp_4 = _laneExps_8_io_kept_7;
+      9'b010010000:
+        casez_tmp_4 = _laneExps_8_io_kept_8;
+      9'b010010001:
+        casez_tmp_4 = _laneExps_8_io_kept_9;
+      9'b010010010:
+        casez_tmp_4 = _laneExps_8_io_kept_10;
+      9'b010010011:
+        casez_tmp_4 = _laneExps_8_io_kept_11;
+      9'b010010100:
+        casez_tmp_4 = _laneExps_8_io_kept_12;
+      9'b010010101:
+        casez_tmp_4 = _laneExps_8_io_kept_13;
+      9'b010010110:
+        casez_tmp_4 = _laneExps_8_io_kept_14;
+      9'b010010111:
+        casez_tmp_4 = _laneExps_8_io_kept_15;
+      9'b010011000:
+        casez_tmp_4 = _laneExps_8_io_kept_16;
+      9'b010011001:
+        casez_tmp_4 = _laneExps_9_io_kept_0;
+      9'b010011010:
+        casez_tmp_4 = _laneExps_9_io_kept_1;
+      9'b010011011:
+        casez_tmp_4 = _laneExps_9_io_kept_2;
+      9'b010011100:
+        casez_tmp_4 = _laneExps_9_io_kept_3;
+      9'b010011101:
+        casez_tmp_4 = _laneExps_9_io_kept_4;
+      9'b010011110:
+        casez_tmp_4 = _laneExps_9_io_kept_5;
+      9'b010011111:
+        casez_tmp_4 = _laneExps_9_io_kept_6;
+      9'b010100000:
+        casez_tmp_4 = _laneExps_9_io_kept_7;
+      9'b010100001:
+        casez_tmp_4 = _laneExps_9_io_kept_8;
+      9'b010100010:
+        casez_tmp_4 = _laneExps_9_io_kept_9;
+      9'b010100011:
+        casez_tmp_4 = _laneExps_9_io_kept_10;
+      9'b010100100:
+        casez_tmp_4 = _laneExps_9_io_kept_11;
+      9'b010100101:
+        casez_tmp_4 = _laneExps_9_io_kept_12;
+      9'b010100110:
+        casez_tmp_4 = _laneExps_9_io_kept_13;
+      9'b010100111:
+        casez_tmp_4 = _laneExps_9_io_kept_14;
+      9'b010101000:
+        casez_tmp_4 = _laneExps_9_io_kept_15;
+      9'b010101001:
+        casez_tmp_4 = _laneExps_9_io_kept_16;
+      9'b010101010:
+        casez_tmp_4 = _laneExps_10_io_kept_0;
+      9'b010101011:
+        casez_tmp_4 = _laneExps_10_io_kept_1;
+      9'b010101100:
+        casez_tmp_4 = _laneExps_10_io_kept_2;
+      9'b010101101:
+        casez_tmp_4 = _laneExps_10_io_kept_3;
+      9'b010101110:
+        casez_tmp_4 = _laneExps_10_io_kept_4;
+      9'b010101111:
+        casez_tmp_4 = _laneExps_10_io_kept_5;
+      9'b010110000:
+        casez_tmp_4 = _laneExps_10_io_kept_6;
+      9'b010110001:
+        casez_tmp_4 = _laneExps_10_io_kept_7;
+      9'b010110010:
+        casez_tmp_4 = _laneExps_10_io_kept_8;
+      9'b010110011:
+        casez_tmp_4 = _laneExps_10_io_kept_9;
+      9'b010110100:
+        casez_tmp_4 = _laneExps_10_io_kept_10;
+      9'b010110101:
+        casez_tmp_4 = _laneExps_10_io_kept_11;
+      9'b010110110:
+        casez_tmp_4 = _laneExps_10_io_kept_12;
+      9'b010110111:
+        casez_tmp_4 = _laneExps_10_io_kept_13;
+      9'b010111000:
+        casez_tmp_4 = _laneExps_10_io_kept_14;
+      9'b010111001:
+        casez_tmp_4 = _laneExps_10_io_kept_15;
+      9'b010111010:
+        casez_tmp_4 = _laneExps_10_io_kept_16;
+      9'b010111011:
+        casez_tmp_4 = _laneExps_11_io_kept_0;
+      9'b010111100:
+        casez_tmp_4 = _laneExps_11_io_kept_1;
+      9'b010111101:
+        casez_tmp_4 = _laneExps_11_io_kept_2;
+      9'b010111110:
+        casez_tmp_4 = _laneExps_11_io_kept_3;
+      9'b010111111:
+        casez_tmp_4 = _laneExps_11_io_kept_4;
+      9'b011000000:
+        casez_tmp_4 = _laneExps_11_io_kept_5;
+      9'b011000001:
+        casez_tmp_4 = _laneExps_11_io_kept_6;
+      9'b011000010:
+        casez_tmp_4 = _laneExps_11_io_kept_7;
+      9'b011000011:
+        casez_tmp_4 = _laneExps_11_io_kept_8;
+      9'b011000100:
+        casez_tmp_4 = _laneExps_11_io_kept_9;
+      9'b011000101:
+        casez_tmp_4 = _laneExps_11_io_kept_10;
+      9'b011000110:
+        casez_tmp_4 = _laneExps_11_io_kept_11;
+      9'b011000111:
+        casez_tmp_4 = _laneExps_11_io_kept_12;
+      9'b011001000:
+        casez_tmp_4 = _laneExps_11_io_kept_13;
+      9'b011001001:
+        casez_tmp_4 = _laneExps_11_io_kept_14;
+      9'b011001010:
+        casez_tmp_4 = _laneExps_11_io_kept_15;
+      9'b011001011:
+        casez_tmp_4 = _laneExps_11_io_kept_16;
+      9'b011001100:
+        casez_tmp_4 = _laneExps_12_io_kept_0;
+      9'b011001101:
+        casez_tmp_4 = _laneExps_12_io_kept_1;
+      9'b011001110:
+        casez_tmp_4 = _laneExps_12_io_kept_2;
+      9'b011001111:
+        casez_tmp_4 = _laneExps_12_io_kept_3;
+      9'b011010000:
+        casez_tmp_4 = _laneExps_12_io_kept_4;
+      9'b011010001:
+        casez_tmp_4 = _laneExps_12_io_kept_5;
+      9'b011010010:
+        casez_tmp_4 = _laneExps_12_io_kept_6;
+      9'b011010011:
+        casez_tmp_4 = _laneExps_12_io_kept_7;
+      9'b011010100:
+        casez_tmp_4 = _laneExps_12_io_kept_8;
+      9'b011010101:
+        casez_tmp_4 = _laneExps_12_io_kept_9;
+      9'b011010110:
+        casez_tmp_4 = _laneExps_12_io_kept_10;
+      9'b011010111:
+        casez_tmp_4 = _laneExps_12_io_kept_11;
+      9'b011011000:
+        casez_tmp_4 = _laneExps_12_io_kept_12;
+      9'b011011001:
+        casez_tmp_4 = _laneExps_12_io_kept_13;
+      9'b011011010:
+        casez_tmp_4 = _laneExps_12_io_kept_14;
+      9'b011011011:
+        casez_tmp_4 = _laneExps_12_io_kept_15;
+      9'b011011100:
+        casez_tmp_4 = _laneExps_12_io_kept_16;
+      9'b011011101:
+        casez_tmp_4 = _laneExps_13_io_kept_0;
+      9'b011011110:
+        casez_tmp_4 = _laneExps_13_io_kept_1;
+      9'b011011111:
+        casez_tmp_4 = _laneExps_13_io_kept_2;
+      9'b011100000:
+        casez_tmp_4 = _laneExps_13_io_kept_3;
+      9'b011100001:
+        casez_tmp_4 = _laneExps_13_io_kept_4;
+      9'b011100010:
+        casez_tmp_4 = _laneExps_13_io_kept_5;
+      9'b011100011:
+        casez_tmp_4 = _laneExps_13_io_kept_6;
+      9'b011100100:
+        casez_tmp_4 = _laneExps_13_io_kept_7;
+      9'b011100101:
+        casez_tmp_4 = _laneExps_13_io_kept_8;
+      9'b011100110:
+        casez_tmp_4 = _laneExps_13_io_kept_9;
+      9'b011100111:
+        casez_tmp_4 = _laneExps_13_io_kept_10;
+      9'b011101000:
+        casez_tmp_4 = _laneExps_13_io_kept_11;
+      9'b011101001:
+        casez_tmp_4 = _laneExps_13_io_kept_12;
+      9'b011101010:
+        casez_tmp_4 = _laneExps_13_io_kept_13;
+      9'b011101011:
+        casez_tmp_4 = _laneExps_13_io_kept_14;
+      9'b011101100:
+        casez_tmp_4 = _laneExps_13_io_kept_15;
+      9'b011101101:
+        casez_tmp_4 = _laneExps_13_io_kept_16;
+      9'b011101110:
+        casez_tmp_4 = _laneExps_14_io_kept_0;
+      9'b011101111:
+        casez_tmp_4 = _laneExps_14_io_kept_1;
+      9'b011110000:
+        casez_tmp_4 = _laneExps_14_io_kept_2;
+      9'b011110001:
+        casez_tmp_4 = _laneExps_14_io_kept_3;
+      9'b011110010:
+        casez_tmp_4 = _laneExps_14_io_kept_4;
+      9'b011110011:
+        casez_tmp_4 = _laneExps_14_io_kept_5;
+      9'b011110100:
+        casez_tmp_4 = _laneExps_14_io_kept_6;
+      9'b011110101:
+        casez_tmp_4 = _laneExps_14_io_kept_7;
+      9'b011110110:
+        casez_tmp_4 = _laneExps_14_io_kept_8;
+      9'b011110111:
+        casez_tmp_4 = _laneExps_14_io_kept_9;
+      9'b011111000:
+        casez_tmp_4 = _laneExps_14_io_kept_10;
+      9'b011111001:
+        casez_tmp_4 = _laneExps_14_io_kept_11;
+      9'b011111010:
+        casez_tmp_4 = _laneExps_14_io_kept_12;
+      9'b011111011:
+        casez_tmp_4 = _laneExps_14_io_kept_13;
+      9'b011111100:
+        casez_tmp_4 = _laneExps_14_io_kept_14;
+      9'b011111101:
+        casez_tmp_4 = _laneExps_14_io_kept_15;
+      9'b011111110:
+        casez_tmp_4 = _laneExps_14_io_kept_16;
+      9'b011111111:
+        casez_tmp_4 = _laneExps_15_io_kept_0;
+      9'b100000000:
+        casez_tmp_4 = _laneExps_15_io_kept_1;
+      9'b100000001:
+        casez_tmp_4 = _laneExps_15_io_kept_2;
+      9'b100000010:
+        casez_tmp_4 = _laneExps_15_io_kept_3;
+      9'b100000011:
+        casez_tmp_4 = _laneExps_15_io_kept_4;
+      9'b100000100:
+        casez_tmp_4 = _laneExps_15_io_kept_5;
+      9'b100000101:
+        casez_tmp_4 = _laneExps_15_io_kept_6;
+      9'b100000110:
+        casez_tmp_4 = _laneExps_15_io_kept_7;
+      9'b100000111:
+        casez_tmp_4 = _laneExps_15_io_kept_8;
+      9'b100001000:
+        casez_tmp_4 = _laneExps_15_io_kept_9;
+      9'b100001001:
+        casez_tmp_4 = _laneExps_15_io_kept_10;
+      9'b100001010:
+        casez_tmp_4 = _laneExps_15_io_kept_11;
+      9'b100001011:
+        casez_tmp_4 = _laneExps_15_io_kept_12;
+      9'b100001100:
+        casez_tmp_4 = _laneExps_15_io_kept_13;
+      9'b100001101:
+        casez_tmp_4 = _laneExps_15_io_kept_14;
+      9'b100001110:
+        casez_tmp_4 = _laneExps_15_io_kept_15;
+      9'b100001111:
+        casez_tmp_4 = _laneExps_15_io_kept_16;
+      9'b100010000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100010001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100010010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100010011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100010100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100010101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100010110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100010111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100011000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100011001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100011010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100011011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100011100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100011101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100011110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100011111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100100000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100100001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100100010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100100011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100100100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100100101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100100110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100100111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100101000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100101001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100101010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100101011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100101100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100101101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100101110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100101111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100110000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100110001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100110010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100110011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100110100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100110101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100110110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100110111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100111000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100111001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100111010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100111011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100111100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100111101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100111110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b100111111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101000000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101000001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101000010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101000011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101000100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101000101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101000110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101000111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101001000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101001001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101001010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101001011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101001100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101001101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101001110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101001111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101010000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101010001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101010010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101010011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101010100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101010101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101010110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101010111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101011000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101011001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101011010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101011011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101011100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101011101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101011110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101011111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101100000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101100001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101100010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101100011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101100100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101100101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101100110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101100111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101101000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101101001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101101010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101101011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101101100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101101101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101101110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101101111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101110000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101110001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101110010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101110011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101110100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101110101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101110110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101110111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101111000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101111001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101111010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101111011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101111100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101111101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101111110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b101111111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110000000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110000001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110000010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110000011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110000100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110000101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110000110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110000111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110001000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110001001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110001010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110001011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110001100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110001101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110001110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110001111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110010000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110010001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110010010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110010011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110010100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110010101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110010110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110010111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110011000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110011001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110011010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110011011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110011100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110011101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110011110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110011111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110100000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110100001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110100010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110100011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110100100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110100101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110100110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110100111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110101000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110101001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110101010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110101011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110101100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110101101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110101110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110101111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110110000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110110001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110110010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110110011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110110100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110110101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110110110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110110111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110111000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110111001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110111010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110111011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110111100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110111101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110111110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b110111111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111000000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111000001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111000010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111000011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111000100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111000101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111000110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111000111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111001000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111001001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111001010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111001011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111001100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111001101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111001110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111001111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111010000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111010001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111010010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111010011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111010100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111010101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111010110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111010111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111011000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111011001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111011010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111011011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111011100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111011101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111011110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111011111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111100000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111100001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111100010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111100011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111100100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111100101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111100110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111100111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111101000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111101001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111101010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111101011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111101100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111101101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111101110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111101111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111110000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111110001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111110010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111110011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111110100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111110101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111110110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111110111:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111111000:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111111001:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111111010:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111111011:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111111100:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111111101:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      9'b111111110:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+      default:
+        casez_tmp_4 = _laneExps_0_io_kept_0;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_5;
+  always @(*) begin
+    casez (at_1[8:0])
+      9'b000000000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000000001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000000010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000000011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000000100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000000101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000000110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000000111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000001000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000001001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000001010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000001011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000001100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000001101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000001110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000001111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000010000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b000010001:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000010010:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000010011:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000010100:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000010101:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000010110:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000010111:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000011000:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000011001:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000011010:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000011011:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000011100:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000011101:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000011110:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000011111:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000100000:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000100001:
+        casez_tmp_5 = _laneExps_1_io_top;
+      9'b000100010:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000100011:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000100100:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000100101:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000100110:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000100111:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000101000:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000101001:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000101010:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000101011:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000101100:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000101101:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000101110:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000101111:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000110000:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000110001:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000110010:
+        casez_tmp_5 = _laneExps_2_io_top;
+      9'b000110011:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000110100:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000110101:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000110110:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000110111:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000111000:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000111001:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000111010:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000111011:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000111100:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000111101:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000111110:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b000111111:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b001000000:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b001000001:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b001000010:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b001000011:
+        casez_tmp_5 = _laneExps_3_io_top;
+      9'b001000100:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001000101:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001000110:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001000111:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001001000:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001001001:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001001010:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001001011:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001001100:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001001101:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001001110:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001001111:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001010000:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001010001:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001010010:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001010011:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001010100:
+        casez_tmp_5 = _laneExps_4_io_top;
+      9'b001010101:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001010110:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001010111:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001011000:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001011001:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001011010:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001011011:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001011100:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001011101:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001011110:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001011111:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001100000:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001100001:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001100010:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001100011:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001100100:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001100101:
+        casez_tmp_5 = _laneExps_5_io_top;
+      9'b001100110:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001100111:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001101000:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001101001:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001101010:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001101011:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001101100:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001101101:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001101110:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001101111:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001110000:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001110001:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001110010:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001110011:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001110100:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001110101:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001110110:
+        casez_tmp_5 = _laneExps_6_io_top;
+      9'b001110111:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b001111000:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b001111001:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b001111010:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b001111011:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b001111100:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b001111101:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b001111110:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b001111111:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b010000000:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b010000001:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b010000010:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b010000011:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b010000100:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b010000101:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b010000110:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b010000111:
+        casez_tmp_5 = _laneExps_7_io_top;
+      9'b010001000:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010001001:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010001010:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010001011:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010001100:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010001101:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010001110:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010001111:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010010000:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010010001:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010010010:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010010011:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010010100:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010010101:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010010110:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010010111:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010011000:
+        casez_tmp_5 = _laneExps_8_io_top;
+      9'b010011001:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010011010:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010011011:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010011100:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010011101:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010011110:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010011111:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010100000:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010100001:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010100010:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010100011:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010100100:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010100101:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010100110:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010100111:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010101000:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010101001:
+        casez_tmp_5 = _laneExps_9_io_top;
+      9'b010101010:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010101011:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010101100:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010101101:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010101110:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010101111:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010110000:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010110001:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010110010:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010110011:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010110100:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010110101:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010110110:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010110111:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010111000:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010111001:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010111010:
+        casez_tmp_5 = _laneExps_10_io_top;
+      9'b010111011:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b010111100:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b010111101:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b010111110:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b010111111:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011000000:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011000001:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011000010:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011000011:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011000100:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011000101:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011000110:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011000111:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011001000:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011001001:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011001010:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011001011:
+        casez_tmp_5 = _laneExps_11_io_top;
+      9'b011001100:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011001101:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011001110:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011001111:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011010000:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011010001:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011010010:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011010011:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011010100:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011010101:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011010110:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011010111:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011011000:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011011001:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011011010:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011011011:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011011100:
+        casez_tmp_5 = _laneExps_12_io_top;
+      9'b011011101:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011011110:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011011111:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011100000:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011100001:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011100010:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011100011:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011100100:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011100101:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011100110:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011100111:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011101000:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011101001:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011101010:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011101011:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011101100:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011101101:
+        casez_tmp_5 = _laneExps_13_io_top;
+      9'b011101110:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011101111:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011110000:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011110001:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011110010:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011110011:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011110100:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011110101:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011110110:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011110111:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011111000:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011111001:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011111010:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011111011:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011111100:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011111101:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011111110:
+        casez_tmp_5 = _laneExps_14_io_top;
+      9'b011111111:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100000000:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100000001:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100000010:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100000011:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100000100:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100000101:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100000110:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100000111:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100001000:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100001001:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100001010:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100001011:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100001100:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100001101:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100001110:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100001111:
+        casez_tmp_5 = _laneExps_15_io_top;
+      9'b100010000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100010001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100010010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100010011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100010100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100010101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100010110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100010111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100011000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100011001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100011010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100011011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100011100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100011101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100011110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100011111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100100000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100100001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100100010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100100011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100100100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100100101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100100110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100100111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100101000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100101001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100101010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100101011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100101100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100101101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100101110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100101111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100110000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100110001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100110010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100110011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100110100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100110101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100110110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100110111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100111000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100111001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100111010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100111011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100111100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100111101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100111110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b100111111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101000000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101000001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101000010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101000011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101000100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101000101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101000110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101000111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101001000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101001001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101001010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101001011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101001100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101001101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101001110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101001111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101010000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101010001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101010010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101010011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101010100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101010101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101010110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101010111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101011000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101011001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101011010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101011011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101011100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101011101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101011110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101011111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101100000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101100001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101100010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101100011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101100100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101100101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101100110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101100111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101101000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101101001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101101010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101101011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101101100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101101101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101101110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101101111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101110000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101110001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101110010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101110011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101110100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101110101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101110110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101110111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101111000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101111001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101111010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101111011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101111100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101111101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101111110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b101111111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110000000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110000001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110000010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110000011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110000100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110000101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110000110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110000111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110001000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110001001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110001010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110001011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110001100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110001101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110001110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110001111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110010000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110010001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110010010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110010011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110010100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110010101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110010110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110010111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110011000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110011001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110011010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110011011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110011100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110011101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110011110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110011111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110100000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110100001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110100010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110100011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110100100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110100101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110100110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110100111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110101000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110101001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110101010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110101011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110101100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110101101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110101110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110101111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110110000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110110001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110110010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110110011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110110100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110110101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110110110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110110111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110111000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110111001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110111010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110111011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110111100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110111101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110111110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b110111111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111000000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111000001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111000010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111000011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111000100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111000101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111000110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111000111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111001000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111001001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111001010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111001011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111001100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111001101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111001110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111001111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111010000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111010001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111010010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111010011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111010100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111010101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111010110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111010111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111011000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111011001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111011010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111011011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111011100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111011101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111011110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111011111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111100000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111100001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111100010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111100011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111100100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111100101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111100110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111100111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111101000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111101001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111101010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111101011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111101100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111101101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111101110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111101111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111110000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111110001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111110010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111110011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111110100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111110101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111110110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111110111:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111111000:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111111001:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111111010:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111111011:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111111100:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111111101:
+        casez_tmp_5 = _laneExps_0_io_top;
+      9'b111111110:
+        casez_tmp_5 = _laneExps_0_io_top;
+      default:
+        casez_tmp_5 = _laneExps_0_io_top;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_6;
+  always @(*) begin
+    casez (at_1[8:0])
+      9'b000000000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000000001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000000010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000000011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000000100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000000101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000000110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000000111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000001000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000001001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000001010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000001011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000001100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000001101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000001110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000001111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000010000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b000010001:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000010010:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000010011:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000010100:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000010101:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000010110:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000010111:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000011000:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000011001:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000011010:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000011011:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000011100:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000011101:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000011110:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000011111:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000100000:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000100001:
+        casez_tmp_6 = _laneExps_1_io_anyTop;
+      9'b000100010:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000100011:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000100100:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000100101:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000100110:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000100111:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000101000:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000101001:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000101010:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000101011:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000101100:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000101101:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000101110:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000101111:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000110000:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000110001:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000110010:
+        casez_tmp_6 = _laneExps_2_io_anyTop;
+      9'b000110011:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000110100:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000110101:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000110110:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000110111:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000111000:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000111001:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000111010:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000111011:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000111100:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000111101:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000111110:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b000111111:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b001000000:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b001000001:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b001000010:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b001000011:
+        casez_tmp_6 = _laneExps_3_io_anyTop;
+      9'b001000100:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001000101:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001000110:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001000111:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001001000:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001001001:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001001010:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001001011:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001001100:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001001101:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001001110:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001001111:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001010000:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001010001:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001010010:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001010011:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001010100:
+        casez_tmp_6 = _laneExps_4_io_anyTop;
+      9'b001010101:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001010110:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001010111:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001011000:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001011001:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001011010:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001011011:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001011100:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001011101:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001011110:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001011111:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001100000:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001100001:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001100010:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001100011:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001100100:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001100101:
+        casez_tmp_6 = _laneExps_5_io_anyTop;
+      9'b001100110:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001100111:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001101000:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001101001:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001101010:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001101011:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001101100:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001101101:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001101110:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001101111:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001110000:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001110001:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001110010:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001110011:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001110100:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001110101:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001110110:
+        casez_tmp_6 = _laneExps_6_io_anyTop;
+      9'b001110111:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b001111000:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b001111001:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b001111010:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b001111011:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b001111100:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b001111101:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b001111110:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b001111111:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b010000000:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b010000001:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b010000010:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b010000011:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b010000100:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b010000101:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b010000110:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b010000111:
+        casez_tmp_6 = _laneExps_7_io_anyTop;
+      9'b010001000:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010001001:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010001010:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010001011:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010001100:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010001101:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010001110:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010001111:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010010000:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010010001:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010010010:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010010011:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010010100:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010010101:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010010110:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010010111:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010011000:
+        casez_tmp_6 = _laneExps_8_io_anyTop;
+      9'b010011001:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010011010:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010011011:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010011100:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010011101:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010011110:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010011111:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010100000:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010100001:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010100010:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010100011:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010100100:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010100101:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010100110:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010100111:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010101000:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010101001:
+        casez_tmp_6 = _laneExps_9_io_anyTop;
+      9'b010101010:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010101011:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010101100:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010101101:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010101110:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010101111:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010110000:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010110001:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010110010:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010110011:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010110100:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010110101:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010110110:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010110111:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010111000:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010111001:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010111010:
+        casez_tmp_6 = _laneExps_10_io_anyTop;
+      9'b010111011:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b010111100:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b010111101:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b010111110:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b010111111:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011000000:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011000001:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011000010:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011000011:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011000100:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011000101:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011000110:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011000111:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011001000:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011001001:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011001010:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011001011:
+        casez_tmp_6 = _laneExps_11_io_anyTop;
+      9'b011001100:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011001101:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011001110:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011001111:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011010000:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011010001:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011010010:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011010011:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011010100:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011010101:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011010110:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011010111:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011011000:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011011001:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011011010:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011011011:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011011100:
+        casez_tmp_6 = _laneExps_12_io_anyTop;
+      9'b011011101:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011011110:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011011111:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011100000:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011100001:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011100010:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011100011:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011100100:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011100101:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011100110:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011100111:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011101000:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011101001:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011101010:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011101011:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011101100:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011101101:
+        casez_tmp_6 = _laneExps_13_io_anyTop;
+      9'b011101110:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011101111:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011110000:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011110001:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011110010:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011110011:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011110100:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011110101:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011110110:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011110111:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011111000:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011111001:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011111010:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011111011:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011111100:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011111101:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011111110:
+        casez_tmp_6 = _laneExps_14_io_anyTop;
+      9'b011111111:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100000000:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100000001:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100000010:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100000011:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100000100:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100000101:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100000110:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100000111:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100001000:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100001001:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100001010:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100001011:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100001100:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100001101:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100001110:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100001111:
+        casez_tmp_6 = _laneExps_15_io_anyTop;
+      9'b100010000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100010001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100010010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100010011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100010100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100010101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100010110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100010111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100011000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100011001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100011010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100011011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100011100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100011101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100011110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100011111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100100000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100100001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100100010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100100011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100100100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100100101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100100110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100100111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100101000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100101001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100101010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100101011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100101100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100101101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100101110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100101111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100110000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100110001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100110010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100110011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100110100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100110101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100110110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100110111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100111000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100111001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100111010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100111011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100111100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100111101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100111110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b100111111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101000000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101000001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101000010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101000011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101000100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101000101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101000110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101000111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101001000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101001001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101001010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101001011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101001100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101001101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101001110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101001111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101010000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101010001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101010010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101010011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101010100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101010101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101010110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101010111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101011000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101011001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101011010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101011011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101011100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101011101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101011110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101011111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101100000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101100001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101100010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101100011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101100100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101100101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101100110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101100111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101101000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101101001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101101010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101101011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101101100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101101101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101101110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101101111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101110000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101110001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101110010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101110011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101110100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101110101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101110110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101110111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101111000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101111001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101111010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101111011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101111100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101111101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101111110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b101111111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110000000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110000001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110000010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110000011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110000100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110000101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110000110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110000111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110001000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110001001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110001010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110001011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110001100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110001101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110001110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110001111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110010000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110010001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110010010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110010011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110010100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110010101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110010110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110010111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110011000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110011001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110011010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110011011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110011100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110011101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110011110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110011111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110100000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110100001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110100010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110100011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110100100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110100101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110100110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110100111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110101000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110101001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110101010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110101011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110101100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110101101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110101110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110101111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110110000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110110001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110110010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110110011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110110100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110110101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110110110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110110111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110111000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110111001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110111010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110111011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110111100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110111101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110111110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b110111111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111000000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111000001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111000010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111000011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111000100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111000101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111000110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111000111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111001000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111001001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111001010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111001011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111001100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111001101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111001110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111001111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111010000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111010001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111010010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111010011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111010100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111010101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111010110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111010111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111011000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111011001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111011010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111011011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111011100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111011101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111011110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111011111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111100000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111100001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111100010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111100011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111100100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111100101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111100110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111100111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111101000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111101001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111101010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111101011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111101100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111101101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111101110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111101111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111110000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111110001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111110010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111110011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111110100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111110101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111110110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111110111:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111111000:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111111001:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111111010:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111111011:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111111100:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111111101:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      9'b111111110:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+      default:
+        casez_tmp_6 = _laneExps_0_io_anyTop;
+    endcase
+  end // always @(*)
   wire [13:0] slack_e = 14'h3FCB - {_cellExp_io_k[12], _cellExp_io_k};
   wire [31:0] _slack_T_3 = 32'h1 << slack_e[4:0];
   wire [28:0] slack =
@@ -21633,35 +31866,53 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sort_io_in_0_valid_T_12 | _sort_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:188 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:220 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sort_io_in_1_valid_T_12 | _sort_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:188 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:220 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [12:0] _GEN = {4'h0, num[12:4]};
-  wire [12:0] _GEN_0 = {3'h0, num[12:3]};
-  wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
-  wire [27:0] _GEN_1 = {15'h0, num};
-  wire [12:0] _GEN_2 = {2'h0, num[12:2]};
-  wire [27:0] _gens_5_io_largeFrom_T = _GEN_1 * 28'h5000;
-  wire [27:0] _gens_6_io_largeFrom_T = _GEN_1 * 28'h6000;
-  wire [27:0] _gens_7_io_largeFrom_T = _GEN_1 * 28'h7000;
-  wire [28:0] _GEN_3 = {16'h0, num};
-  wire [28:0] _gens_9_io_largeFrom_T = _GEN_3 * 29'h9000;
-  wire [28:0] _gens_10_io_largeFrom_T = _GEN_3 * 29'hA000;
-  wire [28:0] _gens_11_io_largeFrom_T = _GEN_3 * 29'hB000;
-  wire [28:0] _gens_12_io_largeFrom_T = _GEN_3 * 29'hC000;
-  wire [28:0] _gens_13_io_largeFrom_T = _GEN_3 * 29'hD000;
-  wire [28:0] _gens_14_io_largeFrom_T = _GEN_3 * 29'hE000;
-  wire [28:0] _gens_15_io_largeFrom_T = _GEN_3 * 29'hF000;
+  wire        _GEN_6 = passDone & ~_sort_io_busy;
+  wire [8:0]  _m_T = m + 9'h2;
+  wire        _GEN_7 = _m_T > 9'h10F;
+  wire        _GEN_8 = sent & ~_sort_io_busy;
   reg         REG_2;
+  wire        _GEN_9 = passDone & ~REG_2;
+  wire        _GEN_10 = state == 3'h6;
+  wire        _GEN_11 =
+    _GEN_10 & sent
+    & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
+        | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
+        | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
+        | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
+  reg  [2:0]  casez_tmp_7;
+  wire [2:0]  _GEN_12 = _GEN_11 ? 3'h0 : state;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_7 = _GEN_12;
+      3'b001:
+        casez_tmp_7 = _GEN_6 ? 3'h2 : state;
+      3'b010:
+        casez_tmp_7 = _GEN_7 ? 3'h3 : state;
+      3'b011:
+        casez_tmp_7 = passDone ? 3'h4 : state;
+      3'b100:
+        casez_tmp_7 = _GEN_8 ? 3'h5 : state;
+      3'b101:
+        casez_tmp_7 = _GEN_9 ? 3'h6 : state;
+      3'b110:
+        casez_tmp_7 = _GEN_12;
+      default:
+        casez_tmp_7 = _GEN_12;
+    endcase
+  end // always @(*)
   wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
   wire [5:0]  usedLog2_t =
     io_num == 13'h0
@@ -21692,310 +31943,437 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
                          : _usedLog2_ceilLog2_T_1[2]
                              ? 2'h2
                              : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1;
+  wire [27:0] _GEN_13 = {15'h0, io_num};
+  wire [28:0] _GEN_14 = {16'h0, io_num};
+  wire [26:0] _i_3_T = {14'h0, io_num} * 27'h3000;
+  wire [27:0] _i_5_T = _GEN_13 * 28'h5000;
+  wire [27:0] _i_6_T = _GEN_13 * 28'h6000;
+  wire [27:0] _i_7_T = _GEN_13 * 28'h7000;
+  wire [28:0] _i_9_T = _GEN_14 * 29'h9000;
+  wire [28:0] _i_10_T = _GEN_14 * 29'hA000;
+  wire [28:0] _i_11_T = _GEN_14 * 29'hB000;
+  wire [28:0] _i_12_T = _GEN_14 * 29'hC000;
+  wire [28:0] _i_13_T = _GEN_14 * 29'hD000;
+  wire [28:0] _i_14_T = _GEN_14 * 29'hE000;
+  wire [28:0] _i_15_T = _GEN_14 * 29'hF000;
   wire        z_tooMany = io_num > 13'h1000;
-  wire        inPass =
-    _cellExp_io_in_1_valid_T | classifying | _sort_io_in_1_bits_scatter_T;
-  wire [12:0] _GEN_4 = {1'h0, num[12:1]};
-  wire        reading_0 = inPass & i_0 < _GEN_4;
-  wire        reading_1 = inPass & i_1 < num;
-  wire        passDone = i_0 == _GEN_4 & i_1 == num & inflight == 4'h0;
   wire        largeHere_0 =
     classifying & _laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
     & ~_laneKeys_0_io_out_needNone & _sort_io_in_0_valid_T_8;
   wire        largeHere_1 =
     classifying & _laneKeys_1_io_out_valid & ~_laneKeys_1_io_out_nonFinite
     & ~_laneKeys_1_io_out_needNone & _sort_io_in_1_valid_T_8;
-  wire [5:0]  _GEN_5 = {1'h0, largeCount};
-  wire        _GEN_6 = _GEN_5 < 6'h10;
-  wire [5:0]  slot_1 = _GEN_5 + {5'h0, largeHere_0};
-  wire        _GEN_7 = slot_1 < 6'h10;
-  wire        _GEN_8 = ~(|state) & io_start;
-  wire        _GEN_9 = state == 3'h1;
-  wire        _GEN_10 = passDone & ~_sort_io_busy;
-  wire        _GEN_11 = state == 3'h2;
-  wire        _GEN_12 = state == 3'h3;
-  wire        _GEN_13 = sent & ~_sort_io_busy;
-  wire        _GEN_14 = state == 3'h4;
-  wire        _GEN_15 = passDone & ~REG_2;
-  wire        _GEN_16 = state == 3'h5;
-  wire        _GEN_17 =
-    _GEN_16 & sent
-    & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
-        | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
-        | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
-        | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
-  wire [5:0]  largeNew = _GEN_5 + {4'h0, {1'h0, largeHere_0} + {1'h0, largeHere_1}};
+  wire [5:0]  _GEN_15 = {1'h0, largeCount};
+  wire        _GEN_16 = _GEN_15 < 6'h10;
+  wire [5:0]  slot_1 = _GEN_15 + {5'h0, largeHere_0};
+  wire        _GEN_17 = slot_1 < 6'h10;
+  wire        _GEN_18 = ~(|state) & io_start;
+  wire        _GEN_19 = state == 3'h1;
+  wire        _GEN_20 = state == 3'h2;
+  wire        _GEN_21 = state == 3'h3;
+  wire        _GEN_22 = state == 3'h4;
+  wire        _GEN_23 = state == 3'h5;
+  wire [5:0]  largeNew = _GEN_15 + {4'h0, {1'h0, largeHere_0} + {1'h0, largeHere_1}};
   wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
   always @(posedge clock) begin
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h0) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h0) begin
       larges_0_index <= r_1;
       larges_0_q_0 <= _laneKeys_1_io_out_q_0;
       larges_0_q_1 <= _laneKeys_1_io_out_q_1;
       larges_0_q_2 <= _laneKeys_1_io_out_q_2;
       larges_0_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h0) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h0) begin
       larges_0_index <= r;
       larges_0_q_0 <= _laneKeys_0_io_out_q_0;
       larges_0_q_1 <= _laneKeys_0_io_out_q_1;
       larges_0_q_2 <= _laneKeys_0_io_out_q_2;
       larges_0_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h1) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h1) begin
       larges_1_index <= r_1;
       larges_1_q_0 <= _laneKeys_1_io_out_q_0;
       larges_1_q_1 <= _laneKeys_1_io_out_q_1;
       larges_1_q_2 <= _laneKeys_1_io_out_q_2;
       larges_1_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h1) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h1) begin
       larges_1_index <= r;
       larges_1_q_0 <= _laneKeys_0_io_out_q_0;
       larges_1_q_1 <= _laneKeys_0_io_out_q_1;
       larges_1_q_2 <= _laneKeys_0_io_out_q_2;
       larges_1_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h2) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h2) begin
       larges_2_index <= r_1;
       larges_2_q_0 <= _laneKeys_1_io_out_q_0;
       larges_2_q_1 <= _laneKeys_1_io_out_q_1;
       larges_2_q_2 <= _laneKeys_1_io_out_q_2;
       larges_2_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h2) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h2) begin
       larges_2_index <= r;
       larges_2_q_0 <= _laneKeys_0_io_out_q_0;
       larges_2_q_1 <= _laneKeys_0_io_out_q_1;
       larges_2_q_2 <= _laneKeys_0_io_out_q_2;
       larges_2_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h3) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h3) begin
       larges_3_index <= r_1;
       larges_3_q_0 <= _laneKeys_1_io_out_q_0;
       larges_3_q_1 <= _laneKeys_1_io_out_q_1;
       larges_3_q_2 <= _laneKeys_1_io_out_q_2;
       larges_3_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h3) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h3) begin
       larges_3_index <= r;
       larges_3_q_0 <= _laneKeys_0_io_out_q_0;
       larges_3_q_1 <= _laneKeys_0_io_out_q_1;
       larges_3_q_2 <= _laneKeys_0_io_out_q_2;
       larges_3_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h4) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h4) begin
       larges_4_index <= r_1;
       larges_4_q_0 <= _laneKeys_1_io_out_q_0;
       larges_4_q_1 <= _laneKeys_1_io_out_q_1;
       larges_4_q_2 <= _laneKeys_1_io_out_q_2;
       larges_4_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h4) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h4) begin
       larges_4_index <= r;
       larges_4_q_0 <= _laneKeys_0_io_out_q_0;
       larges_4_q_1 <= _laneKeys_0_io_out_q_1;
       larges_4_q_2 <= _laneKeys_0_io_out_q_2;
       larges_4_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h5) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h5) begin
       larges_5_index <= r_1;
       larges_5_q_0 <= _laneKeys_1_io_out_q_0;
       larges_5_q_1 <= _laneKeys_1_io_out_q_1;
       larges_5_q_2 <= _laneKeys_1_io_out_q_2;
       larges_5_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h5) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h5) begin
       larges_5_index <= r;
       larges_5_q_0 <= _laneKeys_0_io_out_q_0;
       larges_5_q_1 <= _laneKeys_0_io_out_q_1;
       larges_5_q_2 <= _laneKeys_0_io_out_q_2;
       larges_5_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h6) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h6) begin
       larges_6_index <= r_1;
       larges_6_q_0 <= _laneKeys_1_io_out_q_0;
       larges_6_q_1 <= _laneKeys_1_io_out_q_1;
       larges_6_q_2 <= _laneKeys_1_io_out_q_2;
       larges_6_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h6) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h6) begin
       larges_6_index <= r;
       larges_6_q_0 <= _laneKeys_0_io_out_q_0;
       larges_6_q_1 <= _laneKeys_0_io_out_q_1;
       larges_6_q_2 <= _laneKeys_0_io_out_q_2;
       larges_6_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h7) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h7) begin
       larges_7_index <= r_1;
       larges_7_q_0 <= _laneKeys_1_io_out_q_0;
       larges_7_q_1 <= _laneKeys_1_io_out_q_1;
       larges_7_q_2 <= _laneKeys_1_io_out_q_2;
       larges_7_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h7) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h7) begin
       larges_7_index <= r;
       larges_7_q_0 <= _laneKeys_0_io_out_q_0;
       larges_7_q_1 <= _laneKeys_0_io_out_q_1;
       larges_7_q_2 <= _laneKeys_0_io_out_q_2;
       larges_7_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h8) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h8) begin
       larges_8_index <= r_1;
       larges_8_q_0 <= _laneKeys_1_io_out_q_0;
       larges_8_q_1 <= _laneKeys_1_io_out_q_1;
       larges_8_q_2 <= _laneKeys_1_io_out_q_2;
       larges_8_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h8) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h8) begin
       larges_8_index <= r;
       larges_8_q_0 <= _laneKeys_0_io_out_q_0;
       larges_8_q_1 <= _laneKeys_0_io_out_q_1;
       larges_8_q_2 <= _laneKeys_0_io_out_q_2;
       larges_8_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'h9) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h9) begin
       larges_9_index <= r_1;
       larges_9_q_0 <= _laneKeys_1_io_out_q_0;
       larges_9_q_1 <= _laneKeys_1_io_out_q_1;
       larges_9_q_2 <= _laneKeys_1_io_out_q_2;
       larges_9_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'h9) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h9) begin
       larges_9_index <= r;
       larges_9_q_0 <= _laneKeys_0_io_out_q_0;
       larges_9_q_1 <= _laneKeys_0_io_out_q_1;
       larges_9_q_2 <= _laneKeys_0_io_out_q_2;
       larges_9_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'hA) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'hA) begin
       larges_10_index <= r_1;
       larges_10_q_0 <= _laneKeys_1_io_out_q_0;
       larges_10_q_1 <= _laneKeys_1_io_out_q_1;
       larges_10_q_2 <= _laneKeys_1_io_out_q_2;
       larges_10_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'hA) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'hA) begin
       larges_10_index <= r;
       larges_10_q_0 <= _laneKeys_0_io_out_q_0;
       larges_10_q_1 <= _laneKeys_0_io_out_q_1;
       larges_10_q_2 <= _laneKeys_0_io_out_q_2;
       larges_10_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'hB) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'hB) begin
       larges_11_index <= r_1;
       larges_11_q_0 <= _laneKeys_1_io_out_q_0;
       larges_11_q_1 <= _laneKeys_1_io_out_q_1;
       larges_11_q_2 <= _laneKeys_1_io_out_q_2;
       larges_11_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'hB) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'hB) begin
       larges_11_index <= r;
       larges_11_q_0 <= _laneKeys_0_io_out_q_0;
       larges_11_q_1 <= _laneKeys_0_io_out_q_1;
       larges_11_q_2 <= _laneKeys_0_io_out_q_2;
       larges_11_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'hC) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'hC) begin
       larges_12_index <= r_1;
       larges_12_q_0 <= _laneKeys_1_io_out_q_0;
       larges_12_q_1 <= _laneKeys_1_io_out_q_1;
       larges_12_q_2 <= _laneKeys_1_io_out_q_2;
       larges_12_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'hC) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'hC) begin
       larges_12_index <= r;
       larges_12_q_0 <= _laneKeys_0_io_out_q_0;
       larges_12_q_1 <= _laneKeys_0_io_out_q_1;
       larges_12_q_2 <= _laneKeys_0_io_out_q_2;
       larges_12_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'hD) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'hD) begin
       larges_13_index <= r_1;
       larges_13_q_0 <= _laneKeys_1_io_out_q_0;
       larges_13_q_1 <= _laneKeys_1_io_out_q_1;
       larges_13_q_2 <= _laneKeys_1_io_out_q_2;
       larges_13_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'hD) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'hD) begin
       larges_13_index <= r;
       larges_13_q_0 <= _laneKeys_0_io_out_q_0;
       larges_13_q_1 <= _laneKeys_0_io_out_q_1;
       larges_13_q_2 <= _laneKeys_0_io_out_q_2;
       larges_13_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & slot_1[3:0] == 4'hE) begin
+    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'hE) begin
       larges_14_index <= r_1;
       larges_14_q_0 <= _laneKeys_1_io_out_q_0;
       larges_14_q_1 <= _laneKeys_1_io_out_q_1;
       larges_14_q_2 <= _laneKeys_1_io_out_q_2;
       larges_14_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & largeCount[3:0] == 4'hE) begin
+    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'hE) begin
       larges_14_index <= r;
       larges_14_q_0 <= _laneKeys_0_io_out_q_0;
       larges_14_q_1 <= _laneKeys_0_io_out_q_1;
       larges_14_q_2 <= _laneKeys_0_io_out_q_2;
       larges_14_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_7 & (&(slot_1[3:0]))) begin
+    if (largeHere_1 & _GEN_17 & (&(slot_1[3:0]))) begin
       larges_15_index <= r_1;
       larges_15_q_0 <= _laneKeys_1_io_out_q_0;
       larges_15_q_1 <= _laneKeys_1_io_out_q_1;
       larges_15_q_2 <= _laneKeys_1_io_out_q_2;
       larges_15_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_6 & (&(largeCount[3:0]))) begin
+    else if (largeHere_0 & _GEN_16 & (&(largeCount[3:0]))) begin
       larges_15_index <= r;
       larges_15_q_0 <= _laneKeys_0_io_out_q_0;
       larges_15_q_1 <= _laneKeys_0_io_out_q_1;
       larges_15_q_2 <= _laneKeys_0_io_out_q_2;
       larges_15_qr <= _laneKeys_0_io_out_qr;
     end
-    if (_GEN_8) begin
+    if (_GEN_18) begin
       num <= io_num;
       usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
     end
-    if (~(~(|state) | _GEN_9)) begin
-      if (_GEN_11)
+    if (~(~(|state) | _GEN_19 | _GEN_20)) begin
+      if (_GEN_21)
         sent <= ~passDone & sent;
       else
-        sent <= _GEN_12 | (_GEN_14 ? ~_GEN_15 & sent : _GEN_16 | sent);
+        sent <= _GEN_22 | (_GEN_23 ? ~_GEN_9 & sent : _GEN_10 | sent);
     end
     if (|state) begin
-      if (_GEN_9) begin
-        if (_GEN_10) begin
-          i_0 <= 13'h0;
-          i_1 <= _GEN_4;
-        end
-        else begin
-          if (reading_0)
-            i_0 <= i_0 + 13'h1;
-          if (reading_1)
-            i_1 <= i_1 + 13'h1;
-        end
-      end
-      else if (_GEN_11) begin
+      if (_GEN_19) begin
         if (reading_0)
           i_0 <= i_0 + 13'h1;
         if (reading_1)
           i_1 <= i_1 + 13'h1;
+        if (reading_2)
+          i_2 <= i_2 + 13'h1;
+        if (reading_3)
+          i_3 <= i_3 + 13'h1;
+        if (reading_4)
+          i_4 <= i_4 + 13'h1;
+        if (reading_5)
+          i_5 <= i_5 + 13'h1;
+        if (reading_6)
+          i_6 <= i_6 + 13'h1;
+        if (reading_7)
+          i_7 <= i_7 + 13'h1;
+        if (reading_8)
+          i_8 <= i_8 + 13'h1;
+        if (reading_9)
+          i_9 <= i_9 + 13'h1;
+        if (reading_10)
+          i_10 <= i_10 + 13'h1;
+        if (reading_11)
+          i_11 <= i_11 + 13'h1;
+        if (reading_12)
+          i_12 <= i_12 + 13'h1;
+        if (reading_13)
+          i_13 <= i_13 + 13'h1;
+        if (reading_14)
+          i_14 <= i_14 + 13'h1;
+        if (reading_15)
+          i_15 <= i_15 + 13'h1;
+        if (_GEN_6)
+          m <= 9'h0;
       end
-      else if (_GEN_12) begin
-        if (_GEN_13) begin
+      else if (_GEN_20) begin
+        if (_GEN_7) begin
           i_0 <= 13'h0;
-          i_1 <= _GEN_4;
+          i_1 <= _GEN_0;
+          i_2 <= 13'h0;
+          i_3 <= 13'h0;
+          i_4 <= 13'h0;
+          i_5 <= 13'h0;
+          i_6 <= 13'h0;
+          i_7 <= 13'h0;
+          i_8 <= 13'h0;
+          i_9 <= 13'h0;
+          i_10 <= 13'h0;
+          i_11 <= 13'h0;
+          i_12 <= 13'h0;
+          i_13 <= 13'h0;
+          i_14 <= 13'h0;
+          i_15 <= 13'h0;
+        end
+        m <= _m_T;
+      end
+      else if (_GEN_21) begin
+        if (reading_0)
+          i_0 <= i_0 + 13'h1;
+        if (reading_1)
+          i_1 <= i_1 + 13'h1;
+        if (reading_2)
+          i_2 <= i_2 + 13'h1;
+        if (reading_3)
+          i_3 <= i_3 + 13'h1;
+        if (reading_4)
+          i_4 <= i_4 + 13'h1;
+        if (reading_5)
+          i_5 <= i_5 + 13'h1;
+        if (reading_6)
+          i_6 <= i_6 + 13'h1;
+        if (reading_7)
+          i_7 <= i_7 + 13'h1;
+        if (reading_8)
+          i_8 <= i_8 + 13'h1;
+        if (reading_9)
+          i_9 <= i_9 + 13'h1;
+        if (reading_10)
+          i_10 <= i_10 + 13'h1;
+        if (reading_11)
+          i_11 <= i_11 + 13'h1;
+        if (reading_12)
+          i_12 <= i_12 + 13'h1;
+        if (reading_13)
+          i_13 <= i_13 + 13'h1;
+        if (reading_14)
+          i_14 <= i_14 + 13'h1;
+        if (reading_15)
+          i_15 <= i_15 + 13'h1;
+      end
+      else if (_GEN_22) begin
+        if (_GEN_8) begin
+          i_0 <= 13'h0;
+          i_1 <= _GEN_0;
+          i_2 <= 13'h0;
+          i_3 <= 13'h0;
+          i_4 <= 13'h0;
+          i_5 <= 13'h0;
+          i_6 <= 13'h0;
+          i_7 <= 13'h0;
+          i_8 <= 13'h0;
+          i_9 <= 13'h0;
+          i_10 <= 13'h0;
+          i_11 <= 13'h0;
+          i_12 <= 13'h0;
+          i_13 <= 13'h0;
+          i_14 <= 13'h0;
+          i_15 <= 13'h0;
         end
       end
       else begin
-        if (_GEN_14 & reading_0)
+        if (_GEN_23 & reading_0)
           i_0 <= i_0 + 13'h1;
-        if (_GEN_14 & reading_1)
+        if (_GEN_23 & reading_1)
           i_1 <= i_1 + 13'h1;
+        if (_GEN_23 & reading_2)
+          i_2 <= i_2 + 13'h1;
+        if (_GEN_23 & reading_3)
+          i_3 <= i_3 + 13'h1;
+        if (_GEN_23 & reading_4)
+          i_4 <= i_4 + 13'h1;
+        if (_GEN_23 & reading_5)
+          i_5 <= i_5 + 13'h1;
+        if (_GEN_23 & reading_6)
+          i_6 <= i_6 + 13'h1;
+        if (_GEN_23 & reading_7)
+          i_7 <= i_7 + 13'h1;
+        if (_GEN_23 & reading_8)
+          i_8 <= i_8 + 13'h1;
+        if (_GEN_23 & reading_9)
+          i_9 <= i_9 + 13'h1;
+        if (_GEN_23 & reading_10)
+          i_10 <= i_10 + 13'h1;
+        if (_GEN_23 & reading_11)
+          i_11 <= i_11 + 13'h1;
+        if (_GEN_23 & reading_12)
+          i_12 <= i_12 + 13'h1;
+        if (_GEN_23 & reading_13)
+          i_13 <= i_13 + 13'h1;
+        if (_GEN_23 & reading_14)
+          i_14 <= i_14 + 13'h1;
+        if (_GEN_23 & reading_15)
+          i_15 <= i_15 + 13'h1;
       end
     end
     else if (io_start) begin
       i_0 <= 13'h0;
-      i_1 <= {1'h0, io_num[12:1]};
+      i_1 <= {4'h0, io_num[12:4]};
+      i_2 <= {3'h0, io_num[12:3]};
+      i_3 <= {2'h0, _i_3_T[26:16]};
+      i_4 <= {2'h0, io_num[12:2]};
+      i_5 <= {1'h0, _i_5_T[27:16]};
+      i_6 <= {1'h0, _i_6_T[27:16]};
+      i_7 <= {1'h0, _i_7_T[27:16]};
+      i_8 <= {1'h0, io_num[12:1]};
+      i_9 <= _i_9_T[28:16];
+      i_10 <= _i_10_T[28:16];
+      i_11 <= _i_11_T[28:16];
+      i_12 <= _i_12_T[28:16];
+      i_13 <= _i_13_T[28:16];
+      i_14 <= _i_14_T[28:16];
+      i_15 <= _i_15_T[28:16];
     end
     REG <= i_0[11:0];
     r <= REG;
@@ -22012,32 +32390,29 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
       st_badBucket <= 1'h0;
       st_sortMismatch <= 1'h0;
       largeCount <= 5'h0;
-      inflight <= 4'h0;
+      inflight <= 6'h0;
       laneKeys_0_io_in_valid_REG <= 1'h0;
       laneKeys_1_io_in_valid_REG <= 1'h0;
+      laneKeys_2_io_in_valid_REG <= 1'h0;
+      laneKeys_3_io_in_valid_REG <= 1'h0;
+      laneKeys_4_io_in_valid_REG <= 1'h0;
+      laneKeys_5_io_in_valid_REG <= 1'h0;
+      laneKeys_6_io_in_valid_REG <= 1'h0;
+      laneKeys_7_io_in_valid_REG <= 1'h0;
+      laneKeys_8_io_in_valid_REG <= 1'h0;
+      laneKeys_9_io_in_valid_REG <= 1'h0;
+      laneKeys_10_io_in_valid_REG <= 1'h0;
+      laneKeys_11_io_in_valid_REG <= 1'h0;
+      laneKeys_12_io_in_valid_REG <= 1'h0;
+      laneKeys_13_io_in_valid_REG <= 1'h0;
+      laneKeys_14_io_in_valid_REG <= 1'h0;
+      laneKeys_15_io_in_valid_REG <= 1'h0;
       REG_2 <= 1'h0;
     end
     else begin
       if (|state) begin
-        if (_GEN_9) begin
-          if (_GEN_10)
-            state <= 3'h2;
-        end
-        else if (_GEN_11) begin
-          if (passDone)
-            state <= 3'h3;
-        end
-        else if (_GEN_12) begin
-          if (_GEN_13)
-            state <= 3'h4;
-        end
-        else if (_GEN_14) begin
-          if (_GEN_15)
-            state <= 3'h5;
-        end
-        else if (_GEN_17)
-          state <= 3'h0;
-        if (_GEN_9 | _GEN_11 | _GEN_12 | _GEN_14 | ~_GEN_17) begin
+        state <= casez_tmp_7;
+        if (_GEN_19 | _GEN_20 | _GEN_21 | _GEN_22 | _GEN_23 | ~_GEN_11) begin
         end
         else begin
           st_k <= _cellExp_io_k;
@@ -22055,7 +32430,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
         st_badBucket <= ~io_start & st_badBucket;
         st_sortMismatch <= ~io_start & st_sortMismatch;
       end
-      if (_GEN_8) begin
+      if (_GEN_18) begin
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
         st_tooMany <= z_tooMany;
@@ -22063,14 +32438,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
       end
       else begin
         if (classifying) begin
-          st_large <= st_large + {7'h0, largeKept - _GEN_5};
+          st_large <= st_large + {7'h0, largeKept - _GEN_15};
           largeCount <= largeKept[4:0];
         end
         if (|state)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
       st_cellOverflow <=
-        ~_GEN_8
+        ~_GEN_18
         & (classifying
            & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
               & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
@@ -22080,41 +32455,587 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
                   & _sort_io_in_1_valid_T_8) & _laneKeys_1_io_out_cellOverflow)
            | st_cellOverflow);
       st_largeOverflow <=
-        ~_GEN_8 & (largeHere_1 & ~_GEN_7 | largeHere_0 & ~_GEN_6 | st_largeOverflow);
+        ~_GEN_18 & (largeHere_1 & ~_GEN_17 | largeHere_0 & ~_GEN_16 | st_largeOverflow);
       inflight <=
-        inflight + {2'h0, {1'h0, reading_0} + {1'h0, reading_1}}
-        - {2'h0, {1'h0, _laneKeys_0_io_out_valid} + {1'h0, _laneKeys_1_io_out_valid}};
+        inflight
+        + {1'h0,
+           {1'h0,
+            {1'h0,
+             {1'h0, {1'h0, reading_0} + {1'h0, reading_1}}
+               + {1'h0, {1'h0, reading_2} + {1'h0, reading_3}}}
+              + {1'h0,
+                 {1'h0, {1'h0, reading_4} + {1'h0, reading_5}}
+                   + {1'h0, {1'h0, reading_6} + {1'h0, reading_7}}}}
+             + {1'h0,
+                {1'h0,
+                 {1'h0, {1'h0, reading_8} + {1'h0, reading_9}}
+                   + {1'h0, {1'h0, reading_10} + {1'h0, reading_11}}}
+                  + {1'h0,
+                     {1'h0, {1'h0, reading_12} + {1'h0, reading_13}}
+                       + {1'h0, {1'h0, reading_14} + {1'h0, reading_15}}}}}
+        - {1'h0,
+           {1'h0,
+            {1'h0,
+             {1'h0, {1'h0, _laneKeys_0_io_out_valid} + {1'h0, _laneKeys_1_io_out_valid}}
+               + {1'h0,
+                  {1'h0, _laneKeys_2_io_out_valid} + {1'h0, _laneKeys_3_io_out_valid}}}
+              + {1'h0,
+                 {1'h0,
+                  {1'h0, _laneKeys_4_io_out_valid} + {1'h0, _laneKeys_5_io_out_valid}}
+                   + {1'h0,
+                      {1'h0, _laneKeys_6_io_out_valid}
+                        + {1'h0, _laneKeys_7_io_out_valid}}}}
+             + {1'h0,
+                {1'h0,
+                 {1'h0,
+                  {1'h0, _laneKeys_8_io_out_valid} + {1'h0, _laneKeys_9_io_out_valid}}
+                   + {1'h0,
+                      {1'h0, _laneKeys_10_io_out_valid}
+                        + {1'h0, _laneKeys_11_io_out_valid}}}
+                  + {1'h0,
+                     {1'h0,
+                      {1'h0, _laneKeys_12_io_out_valid}
+                        + {1'h0, _laneKeys_13_io_out_valid}}
+                       + {1'h0,
+                          {1'h0, _laneKeys_14_io_out_valid}
+                            + {1'h0, _laneKeys_15_io_out_valid}}}}};
       laneKeys_0_io_in_valid_REG <= reading_0;
       laneKeys_1_io_in_valid_REG <= reading_1;
+      laneKeys_2_io_in_valid_REG <= reading_2;
+      laneKeys_3_io_in_valid_REG <= reading_3;
+      laneKeys_4_io_in_valid_REG <= reading_4;
+      laneKeys_5_io_in_valid_REG <= reading_5;
+      laneKeys_6_io_in_valid_REG <= reading_6;
+      laneKeys_7_io_in_valid_REG <= reading_7;
+      laneKeys_8_io_in_valid_REG <= reading_8;
+      laneKeys_9_io_in_valid_REG <= reading_9;
+      laneKeys_10_io_in_valid_REG <= reading_10;
+      laneKeys_11_io_in_valid_REG <= reading_11;
+      laneKeys_12_io_in_valid_REG <= reading_12;
+      laneKeys_13_io_in_valid_REG <= reading_13;
+      laneKeys_14_io_in_valid_REG <= reading_14;
+      laneKeys_15_io_in_valid_REG <= reading_15;
       REG_2 <=
         _sort_io_in_0_ready & _sort_io_in_0_valid_T_12 | _sort_io_in_1_ready
         & _sort_io_in_1_valid_T_12;
     end
   end // always @(posedge)
-  CellExponent_fp32_L16_c20_p2_world cellExp (
+  CellExponent_fp32_L16_c20_world laneExps_0 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (io_start & ~(|state)),
-    .io_in_0_valid     (_laneKeys_0_io_out_valid & _cellExp_io_in_1_valid_T),
+    .io_in_0_valid     (_laneKeys_0_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_0_io_out_need),
     .io_in_0_needNone  (_laneKeys_0_io_out_needNone),
     .io_in_0_top       (_laneKeys_0_io_out_top),
     .io_in_0_topNone   (_laneKeys_0_io_out_topNone),
     .io_in_0_nonFinite (_laneKeys_0_io_out_nonFinite),
-    .io_in_1_valid     (_laneKeys_1_io_out_valid & _cellExp_io_in_1_valid_T),
-    .io_in_1_need      (_laneKeys_1_io_out_need),
-    .io_in_1_needNone  (_laneKeys_1_io_out_needNone),
-    .io_in_1_top       (_laneKeys_1_io_out_top),
-    .io_in_1_topNone   (_laneKeys_1_io_out_topNone),
-    .io_in_1_nonFinite (_laneKeys_1_io_out_nonFinite),
-    .io_k              (_cellExp_io_k)
+    .io_kept_0         (_laneExps_0_io_kept_0),
+    .io_kept_1         (_laneExps_0_io_kept_1),
+    .io_kept_2         (_laneExps_0_io_kept_2),
+    .io_kept_3         (_laneExps_0_io_kept_3),
+    .io_kept_4         (_laneExps_0_io_kept_4),
+    .io_kept_5         (_laneExps_0_io_kept_5),
+    .io_kept_6         (_laneExps_0_io_kept_6),
+    .io_kept_7         (_laneExps_0_io_kept_7),
+    .io_kept_8         (_laneExps_0_io_kept_8),
+    .io_kept_9         (_laneExps_0_io_kept_9),
+    .io_kept_10        (_laneExps_0_io_kept_10),
+    .io_kept_11        (_laneExps_0_io_kept_11),
+    .io_kept_12        (_laneExps_0_io_kept_12),
+    .io_kept_13        (_laneExps_0_io_kept_13),
+    .io_kept_14        (_laneExps_0_io_kept_14),
+    .io_kept_15        (_laneExps_0_io_kept_15),
+    .io_kept_16        (_laneExps_0_io_kept_16),
+    .io_used           (_laneExps_0_io_used),
+    .io_top            (_laneExps_0_io_top),
+    .io_anyTop         (_laneExps_0_io_anyTop)
   );
-  BucketSort_n4096_b13_w3_c16_p2_world sort (
+  CellExponent_fp32_L16_c20_world laneExps_1 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_1_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_1_io_out_need),
+    .io_in_0_needNone  (_laneKeys_1_io_out_needNone),
+    .io_in_0_top       (_laneKeys_1_io_out_top),
+    .io_in_0_topNone   (_laneKeys_1_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_1_io_out_nonFinite),
+    .io_kept_0         (_laneExps_1_io_kept_0),
+    .io_kept_1         (_laneExps_1_io_kept_1),
+    .io_kept_2         (_laneExps_1_io_kept_2),
+    .io_kept_3         (_laneExps_1_io_kept_3),
+    .io_kept_4         (_laneExps_1_io_kept_4),
+    .io_kept_5         (_laneExps_1_io_kept_5),
+    .io_kept_6         (_laneExps_1_io_kept_6),
+    .io_kept_7         (_laneExps_1_io_kept_7),
+    .io_kept_8         (_laneExps_1_io_kept_8),
+    .io_kept_9         (_laneExps_1_io_kept_9),
+    .io_kept_10        (_laneExps_1_io_kept_10),
+    .io_kept_11        (_laneExps_1_io_kept_11),
+    .io_kept_12        (_laneExps_1_io_kept_12),
+    .io_kept_13        (_laneExps_1_io_kept_13),
+    .io_kept_14        (_laneExps_1_io_kept_14),
+    .io_kept_15        (_laneExps_1_io_kept_15),
+    .io_kept_16        (_laneExps_1_io_kept_16),
+    .io_used           (_laneExps_1_io_used),
+    .io_top            (_laneExps_1_io_top),
+    .io_anyTop         (_laneExps_1_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_2 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_2_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_2_io_out_need),
+    .io_in_0_needNone  (_laneKeys_2_io_out_needNone),
+    .io_in_0_top       (_laneKeys_2_io_out_top),
+    .io_in_0_topNone   (_laneKeys_2_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_2_io_out_nonFinite),
+    .io_kept_0         (_laneExps_2_io_kept_0),
+    .io_kept_1         (_laneExps_2_io_kept_1),
+    .io_kept_2         (_laneExps_2_io_kept_2),
+    .io_kept_3         (_laneExps_2_io_kept_3),
+    .io_kept_4         (_laneExps_2_io_kept_4),
+    .io_kept_5         (_laneExps_2_io_kept_5),
+    .io_kept_6         (_laneExps_2_io_kept_6),
+    .io_kept_7         (_laneExps_2_io_kept_7),
+    .io_kept_8         (_laneExps_2_io_kept_8),
+    .io_kept_9         (_laneExps_2_io_kept_9),
+    .io_kept_10        (_laneExps_2_io_kept_10),
+    .io_kept_11        (_laneExps_2_io_kept_11),
+    .io_kept_12        (_laneExps_2_io_kept_12),
+    .io_kept_13        (_laneExps_2_io_kept_13),
+    .io_kept_14        (_laneExps_2_io_kept_14),
+    .io_kept_15        (_laneExps_2_io_kept_15),
+    .io_kept_16        (_laneExps_2_io_kept_16),
+    .io_used           (_laneExps_2_io_used),
+    .io_top            (_laneExps_2_io_top),
+    .io_anyTop         (_laneExps_2_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_3 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_3_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_3_io_out_need),
+    .io_in_0_needNone  (_laneKeys_3_io_out_needNone),
+    .io_in_0_top       (_laneKeys_3_io_out_top),
+    .io_in_0_topNone   (_laneKeys_3_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_3_io_out_nonFinite),
+    .io_kept_0         (_laneExps_3_io_kept_0),
+    .io_kept_1         (_laneExps_3_io_kept_1),
+    .io_kept_2         (_laneExps_3_io_kept_2),
+    .io_kept_3         (_laneExps_3_io_kept_3),
+    .io_kept_4         (_laneExps_3_io_kept_4),
+    .io_kept_5         (_laneExps_3_io_kept_5),
+    .io_kept_6         (_laneExps_3_io_kept_6),
+    .io_kept_7         (_laneExps_3_io_kept_7),
+    .io_kept_8         (_laneExps_3_io_kept_8),
+    .io_kept_9         (_laneExps_3_io_kept_9),
+    .io_kept_10        (_laneExps_3_io_kept_10),
+    .io_kept_11        (_laneExps_3_io_kept_11),
+    .io_kept_12        (_laneExps_3_io_kept_12),
+    .io_kept_13        (_laneExps_3_io_kept_13),
+    .io_kept_14        (_laneExps_3_io_kept_14),
+    .io_kept_15        (_laneExps_3_io_kept_15),
+    .io_kept_16        (_laneExps_3_io_kept_16),
+    .io_used           (_laneExps_3_io_used),
+    .io_top            (_laneExps_3_io_top),
+    .io_anyTop         (_laneExps_3_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_4 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_4_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_4_io_out_need),
+    .io_in_0_needNone  (_laneKeys_4_io_out_needNone),
+    .io_in_0_top       (_laneKeys_4_io_out_top),
+    .io_in_0_topNone   (_laneKeys_4_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_4_io_out_nonFinite),
+    .io_kept_0         (_laneExps_4_io_kept_0),
+    .io_kept_1         (_laneExps_4_io_kept_1),
+    .io_kept_2         (_laneExps_4_io_kept_2),
+    .io_kept_3         (_laneExps_4_io_kept_3),
+    .io_kept_4         (_laneExps_4_io_kept_4),
+    .io_kept_5         (_laneExps_4_io_kept_5),
+    .io_kept_6         (_laneExps_4_io_kept_6),
+    .io_kept_7         (_laneExps_4_io_kept_7),
+    .io_kept_8         (_laneExps_4_io_kept_8),
+    .io_kept_9         (_laneExps_4_io_kept_9),
+    .io_kept_10        (_laneExps_4_io_kept_10),
+    .io_kept_11        (_laneExps_4_io_kept_11),
+    .io_kept_12        (_laneExps_4_io_kept_12),
+    .io_kept_13        (_laneExps_4_io_kept_13),
+    .io_kept_14        (_laneExps_4_io_kept_14),
+    .io_kept_15        (_laneExps_4_io_kept_15),
+    .io_kept_16        (_laneExps_4_io_kept_16),
+    .io_used           (_laneExps_4_io_used),
+    .io_top            (_laneExps_4_io_top),
+    .io_anyTop         (_laneExps_4_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_5 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_5_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_5_io_out_need),
+    .io_in_0_needNone  (_laneKeys_5_io_out_needNone),
+    .io_in_0_top       (_laneKeys_5_io_out_top),
+    .io_in_0_topNone   (_laneKeys_5_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_5_io_out_nonFinite),
+    .io_kept_0         (_laneExps_5_io_kept_0),
+    .io_kept_1         (_laneExps_5_io_kept_1),
+    .io_kept_2         (_laneExps_5_io_kept_2),
+    .io_kept_3         (_laneExps_5_io_kept_3),
+    .io_kept_4         (_laneExps_5_io_kept_4),
+    .io_kept_5         (_laneExps_5_io_kept_5),
+    .io_kept_6         (_laneExps_5_io_kept_6),
+    .io_kept_7         (_laneExps_5_io_kept_7),
+    .io_kept_8         (_laneExps_5_io_kept_8),
+    .io_kept_9         (_laneExps_5_io_kept_9),
+    .io_kept_10        (_laneExps_5_io_kept_10),
+    .io_kept_11        (_laneExps_5_io_kept_11),
+    .io_kept_12        (_laneExps_5_io_kept_12),
+    .io_kept_13        (_laneExps_5_io_kept_13),
+    .io_kept_14        (_laneExps_5_io_kept_14),
+    .io_kept_15        (_laneExps_5_io_kept_15),
+    .io_kept_16        (_laneExps_5_io_kept_16),
+    .io_used           (_laneExps_5_io_used),
+    .io_top            (_laneExps_5_io_top),
+    .io_anyTop         (_laneExps_5_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_6 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_6_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_6_io_out_need),
+    .io_in_0_needNone  (_laneKeys_6_io_out_needNone),
+    .io_in_0_top       (_laneKeys_6_io_out_top),
+    .io_in_0_topNone   (_laneKeys_6_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_6_io_out_nonFinite),
+    .io_kept_0         (_laneExps_6_io_kept_0),
+    .io_kept_1         (_laneExps_6_io_kept_1),
+    .io_kept_2         (_laneExps_6_io_kept_2),
+    .io_kept_3         (_laneExps_6_io_kept_3),
+    .io_kept_4         (_laneExps_6_io_kept_4),
+    .io_kept_5         (_laneExps_6_io_kept_5),
+    .io_kept_6         (_laneExps_6_io_kept_6),
+    .io_kept_7         (_laneExps_6_io_kept_7),
+    .io_kept_8         (_laneExps_6_io_kept_8),
+    .io_kept_9         (_laneExps_6_io_kept_9),
+    .io_kept_10        (_laneExps_6_io_kept_10),
+    .io_kept_11        (_laneExps_6_io_kept_11),
+    .io_kept_12        (_laneExps_6_io_kept_12),
+    .io_kept_13        (_laneExps_6_io_kept_13),
+    .io_kept_14        (_laneExps_6_io_kept_14),
+    .io_kept_15        (_laneExps_6_io_kept_15),
+    .io_kept_16        (_laneExps_6_io_kept_16),
+    .io_used           (_laneExps_6_io_used),
+    .io_top            (_laneExps_6_io_top),
+    .io_anyTop         (_laneExps_6_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_7 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_7_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_7_io_out_need),
+    .io_in_0_needNone  (_laneKeys_7_io_out_needNone),
+    .io_in_0_top       (_laneKeys_7_io_out_top),
+    .io_in_0_topNone   (_laneKeys_7_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_7_io_out_nonFinite),
+    .io_kept_0         (_laneExps_7_io_kept_0),
+    .io_kept_1         (_laneExps_7_io_kept_1),
+    .io_kept_2         (_laneExps_7_io_kept_2),
+    .io_kept_3         (_laneExps_7_io_kept_3),
+    .io_kept_4         (_laneExps_7_io_kept_4),
+    .io_kept_5         (_laneExps_7_io_kept_5),
+    .io_kept_6         (_laneExps_7_io_kept_6),
+    .io_kept_7         (_laneExps_7_io_kept_7),
+    .io_kept_8         (_laneExps_7_io_kept_8),
+    .io_kept_9         (_laneExps_7_io_kept_9),
+    .io_kept_10        (_laneExps_7_io_kept_10),
+    .io_kept_11        (_laneExps_7_io_kept_11),
+    .io_kept_12        (_laneExps_7_io_kept_12),
+    .io_kept_13        (_laneExps_7_io_kept_13),
+    .io_kept_14        (_laneExps_7_io_kept_14),
+    .io_kept_15        (_laneExps_7_io_kept_15),
+    .io_kept_16        (_laneExps_7_io_kept_16),
+    .io_used           (_laneExps_7_io_used),
+    .io_top            (_laneExps_7_io_top),
+    .io_anyTop         (_laneExps_7_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_8 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_8_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_8_io_out_need),
+    .io_in_0_needNone  (_laneKeys_8_io_out_needNone),
+    .io_in_0_top       (_laneKeys_8_io_out_top),
+    .io_in_0_topNone   (_laneKeys_8_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_8_io_out_nonFinite),
+    .io_kept_0         (_laneExps_8_io_kept_0),
+    .io_kept_1         (_laneExps_8_io_kept_1),
+    .io_kept_2         (_laneExps_8_io_kept_2),
+    .io_kept_3         (_laneExps_8_io_kept_3),
+    .io_kept_4         (_laneExps_8_io_kept_4),
+    .io_kept_5         (_laneExps_8_io_kept_5),
+    .io_kept_6         (_laneExps_8_io_kept_6),
+    .io_kept_7         (_laneExps_8_io_kept_7),
+    .io_kept_8         (_laneExps_8_io_kept_8),
+    .io_kept_9         (_laneExps_8_io_kept_9),
+    .io_kept_10        (_laneExps_8_io_kept_10),
+    .io_kept_11        (_laneExps_8_io_kept_11),
+    .io_kept_12        (_laneExps_8_io_kept_12),
+    .io_kept_13        (_laneExps_8_io_kept_13),
+    .io_kept_14        (_laneExps_8_io_kept_14),
+    .io_kept_15        (_laneExps_8_io_kept_15),
+    .io_kept_16        (_laneExps_8_io_kept_16),
+    .io_used           (_laneExps_8_io_used),
+    .io_top            (_laneExps_8_io_top),
+    .io_anyTop         (_laneExps_8_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_9 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_9_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_9_io_out_need),
+    .io_in_0_needNone  (_laneKeys_9_io_out_needNone),
+    .io_in_0_top       (_laneKeys_9_io_out_top),
+    .io_in_0_topNone   (_laneKeys_9_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_9_io_out_nonFinite),
+    .io_kept_0         (_laneExps_9_io_kept_0),
+    .io_kept_1         (_laneExps_9_io_kept_1),
+    .io_kept_2         (_laneExps_9_io_kept_2),
+    .io_kept_3         (_laneExps_9_io_kept_3),
+    .io_kept_4         (_laneExps_9_io_kept_4),
+    .io_kept_5         (_laneExps_9_io_kept_5),
+    .io_kept_6         (_laneExps_9_io_kept_6),
+    .io_kept_7         (_laneExps_9_io_kept_7),
+    .io_kept_8         (_laneExps_9_io_kept_8),
+    .io_kept_9         (_laneExps_9_io_kept_9),
+    .io_kept_10        (_laneExps_9_io_kept_10),
+    .io_kept_11        (_laneExps_9_io_kept_11),
+    .io_kept_12        (_laneExps_9_io_kept_12),
+    .io_kept_13        (_laneExps_9_io_kept_13),
+    .io_kept_14        (_laneExps_9_io_kept_14),
+    .io_kept_15        (_laneExps_9_io_kept_15),
+    .io_kept_16        (_laneExps_9_io_kept_16),
+    .io_used           (_laneExps_9_io_used),
+    .io_top            (_laneExps_9_io_top),
+    .io_anyTop         (_laneExps_9_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_10 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_10_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_10_io_out_need),
+    .io_in_0_needNone  (_laneKeys_10_io_out_needNone),
+    .io_in_0_top       (_laneKeys_10_io_out_top),
+    .io_in_0_topNone   (_laneKeys_10_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_10_io_out_nonFinite),
+    .io_kept_0         (_laneExps_10_io_kept_0),
+    .io_kept_1         (_laneExps_10_io_kept_1),
+    .io_kept_2         (_laneExps_10_io_kept_2),
+    .io_kept_3         (_laneExps_10_io_kept_3),
+    .io_kept_4         (_laneExps_10_io_kept_4),
+    .io_kept_5         (_laneExps_10_io_kept_5),
+    .io_kept_6         (_laneExps_10_io_kept_6),
+    .io_kept_7         (_laneExps_10_io_kept_7),
+    .io_kept_8         (_laneExps_10_io_kept_8),
+    .io_kept_9         (_laneExps_10_io_kept_9),
+    .io_kept_10        (_laneExps_10_io_kept_10),
+    .io_kept_11        (_laneExps_10_io_kept_11),
+    .io_kept_12        (_laneExps_10_io_kept_12),
+    .io_kept_13        (_laneExps_10_io_kept_13),
+    .io_kept_14        (_laneExps_10_io_kept_14),
+    .io_kept_15        (_laneExps_10_io_kept_15),
+    .io_kept_16        (_laneExps_10_io_kept_16),
+    .io_used           (_laneExps_10_io_used),
+    .io_top            (_laneExps_10_io_top),
+    .io_anyTop         (_laneExps_10_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_11 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_11_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_11_io_out_need),
+    .io_in_0_needNone  (_laneKeys_11_io_out_needNone),
+    .io_in_0_top       (_laneKeys_11_io_out_top),
+    .io_in_0_topNone   (_laneKeys_11_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_11_io_out_nonFinite),
+    .io_kept_0         (_laneExps_11_io_kept_0),
+    .io_kept_1         (_laneExps_11_io_kept_1),
+    .io_kept_2         (_laneExps_11_io_kept_2),
+    .io_kept_3         (_laneExps_11_io_kept_3),
+    .io_kept_4         (_laneExps_11_io_kept_4),
+    .io_kept_5         (_laneExps_11_io_kept_5),
+    .io_kept_6         (_laneExps_11_io_kept_6),
+    .io_kept_7         (_laneExps_11_io_kept_7),
+    .io_kept_8         (_laneExps_11_io_kept_8),
+    .io_kept_9         (_laneExps_11_io_kept_9),
+    .io_kept_10        (_laneExps_11_io_kept_10),
+    .io_kept_11        (_laneExps_11_io_kept_11),
+    .io_kept_12        (_laneExps_11_io_kept_12),
+    .io_kept_13        (_laneExps_11_io_kept_13),
+    .io_kept_14        (_laneExps_11_io_kept_14),
+    .io_kept_15        (_laneExps_11_io_kept_15),
+    .io_kept_16        (_laneExps_11_io_kept_16),
+    .io_used           (_laneExps_11_io_used),
+    .io_top            (_laneExps_11_io_top),
+    .io_anyTop         (_laneExps_11_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_12 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_12_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_12_io_out_need),
+    .io_in_0_needNone  (_laneKeys_12_io_out_needNone),
+    .io_in_0_top       (_laneKeys_12_io_out_top),
+    .io_in_0_topNone   (_laneKeys_12_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_12_io_out_nonFinite),
+    .io_kept_0         (_laneExps_12_io_kept_0),
+    .io_kept_1         (_laneExps_12_io_kept_1),
+    .io_kept_2         (_laneExps_12_io_kept_2),
+    .io_kept_3         (_laneExps_12_io_kept_3),
+    .io_kept_4         (_laneExps_12_io_kept_4),
+    .io_kept_5         (_laneExps_12_io_kept_5),
+    .io_kept_6         (_laneExps_12_io_kept_6),
+    .io_kept_7         (_laneExps_12_io_kept_7),
+    .io_kept_8         (_laneExps_12_io_kept_8),
+    .io_kept_9         (_laneExps_12_io_kept_9),
+    .io_kept_10        (_laneExps_12_io_kept_10),
+    .io_kept_11        (_laneExps_12_io_kept_11),
+    .io_kept_12        (_laneExps_12_io_kept_12),
+    .io_kept_13        (_laneExps_12_io_kept_13),
+    .io_kept_14        (_laneExps_12_io_kept_14),
+    .io_kept_15        (_laneExps_12_io_kept_15),
+    .io_kept_16        (_laneExps_12_io_kept_16),
+    .io_used           (_laneExps_12_io_used),
+    .io_top            (_laneExps_12_io_top),
+    .io_anyTop         (_laneExps_12_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_13 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_13_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_13_io_out_need),
+    .io_in_0_needNone  (_laneKeys_13_io_out_needNone),
+    .io_in_0_top       (_laneKeys_13_io_out_top),
+    .io_in_0_topNone   (_laneKeys_13_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_13_io_out_nonFinite),
+    .io_kept_0         (_laneExps_13_io_kept_0),
+    .io_kept_1         (_laneExps_13_io_kept_1),
+    .io_kept_2         (_laneExps_13_io_kept_2),
+    .io_kept_3         (_laneExps_13_io_kept_3),
+    .io_kept_4         (_laneExps_13_io_kept_4),
+    .io_kept_5         (_laneExps_13_io_kept_5),
+    .io_kept_6         (_laneExps_13_io_kept_6),
+    .io_kept_7         (_laneExps_13_io_kept_7),
+    .io_kept_8         (_laneExps_13_io_kept_8),
+    .io_kept_9         (_laneExps_13_io_kept_9),
+    .io_kept_10        (_laneExps_13_io_kept_10),
+    .io_kept_11        (_laneExps_13_io_kept_11),
+    .io_kept_12        (_laneExps_13_io_kept_12),
+    .io_kept_13        (_laneExps_13_io_kept_13),
+    .io_kept_14        (_laneExps_13_io_kept_14),
+    .io_kept_15        (_laneExps_13_io_kept_15),
+    .io_kept_16        (_laneExps_13_io_kept_16),
+    .io_used           (_laneExps_13_io_used),
+    .io_top            (_laneExps_13_io_top),
+    .io_anyTop         (_laneExps_13_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_14 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_14_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_14_io_out_need),
+    .io_in_0_needNone  (_laneKeys_14_io_out_needNone),
+    .io_in_0_top       (_laneKeys_14_io_out_top),
+    .io_in_0_topNone   (_laneKeys_14_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_14_io_out_nonFinite),
+    .io_kept_0         (_laneExps_14_io_kept_0),
+    .io_kept_1         (_laneExps_14_io_kept_1),
+    .io_kept_2         (_laneExps_14_io_kept_2),
+    .io_kept_3         (_laneExps_14_io_kept_3),
+    .io_kept_4         (_laneExps_14_io_kept_4),
+    .io_kept_5         (_laneExps_14_io_kept_5),
+    .io_kept_6         (_laneExps_14_io_kept_6),
+    .io_kept_7         (_laneExps_14_io_kept_7),
+    .io_kept_8         (_laneExps_14_io_kept_8),
+    .io_kept_9         (_laneExps_14_io_kept_9),
+    .io_kept_10        (_laneExps_14_io_kept_10),
+    .io_kept_11        (_laneExps_14_io_kept_11),
+    .io_kept_12        (_laneExps_14_io_kept_12),
+    .io_kept_13        (_laneExps_14_io_kept_13),
+    .io_kept_14        (_laneExps_14_io_kept_14),
+    .io_kept_15        (_laneExps_14_io_kept_15),
+    .io_kept_16        (_laneExps_14_io_kept_16),
+    .io_used           (_laneExps_14_io_used),
+    .io_top            (_laneExps_14_io_top),
+    .io_anyTop         (_laneExps_14_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_world laneExps_15 (
+    .clock             (clock),
+    .reset             (reset),
+    .io_clear          (io_start & ~(|state)),
+    .io_in_0_valid     (_laneKeys_15_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_need      (_laneKeys_15_io_out_need),
+    .io_in_0_needNone  (_laneKeys_15_io_out_needNone),
+    .io_in_0_top       (_laneKeys_15_io_out_top),
+    .io_in_0_topNone   (_laneKeys_15_io_out_topNone),
+    .io_in_0_nonFinite (_laneKeys_15_io_out_nonFinite),
+    .io_kept_0         (_laneExps_15_io_kept_0),
+    .io_kept_1         (_laneExps_15_io_kept_1),
+    .io_kept_2         (_laneExps_15_io_kept_2),
+    .io_kept_3         (_laneExps_15_io_kept_3),
+    .io_kept_4         (_laneExps_15_io_kept_4),
+    .io_kept_5         (_laneExps_15_io_kept_5),
+    .io_kept_6         (_laneExps_15_io_kept_6),
+    .io_kept_7         (_laneExps_15_io_kept_7),
+    .io_kept_8         (_laneExps_15_io_kept_8),
+    .io_kept_9         (_laneExps_15_io_kept_9),
+    .io_kept_10        (_laneExps_15_io_kept_10),
+    .io_kept_11        (_laneExps_15_io_kept_11),
+    .io_kept_12        (_laneExps_15_io_kept_12),
+    .io_kept_13        (_laneExps_15_io_kept_13),
+    .io_kept_14        (_laneExps_15_io_kept_14),
+    .io_kept_15        (_laneExps_15_io_kept_15),
+    .io_kept_16        (_laneExps_15_io_kept_16),
+    .io_used           (_laneExps_15_io_used),
+    .io_top            (_laneExps_15_io_top),
+    .io_anyTop         (_laneExps_15_io_anyTop)
+  );
+  CellExponent_fp32_L16_c20_p2_world cellExp (
+    .clock           (clock),
+    .reset           (reset),
+    .io_clear        (io_start & ~(|state)),
+    .io_in_0_valid   (_cellExp_io_in_1_valid_T & _GEN_5 < 10'h110 & casez_tmp),
+    .io_in_0_need    (casez_tmp_0),
+    .io_in_0_top     (casez_tmp_1),
+    .io_in_0_topNone (~casez_tmp_2),
+    .io_in_1_valid   (_cellExp_io_in_1_valid_T & at_1 < 10'h110 & casez_tmp_3),
+    .io_in_1_need    (casez_tmp_4),
+    .io_in_1_top     (casez_tmp_5),
+    .io_in_1_topNone (~casez_tmp_6),
+    .io_k            (_cellExp_io_k)
+  );
+  BucketSort_n4096_b13_w4_c16_p2_world sort (
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
     .io_clear             (io_start & ~(|state)),
-    .io_prefix            (state == 3'h3 & ~sent),
+    .io_prefix            (state == 3'h4 & ~sent),
     .io_busy              (_sort_io_busy),
     .io_in_0_ready        (_sort_io_in_0_ready),
     .io_in_0_valid        (_sort_io_in_0_valid_T_12),
@@ -22143,6 +33064,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_0_word_5   (_sort_io_lookup_0_word_5),
     .io_lookup_0_word_6   (_sort_io_lookup_0_word_6),
     .io_lookup_0_word_7   (_sort_io_lookup_0_word_7),
+    .io_lookup_0_word_8   (_sort_io_lookup_0_word_8),
+    .io_lookup_0_word_9   (_sort_io_lookup_0_word_9),
+    .io_lookup_0_word_10  (_sort_io_lookup_0_word_10),
+    .io_lookup_0_word_11  (_sort_io_lookup_0_word_11),
+    .io_lookup_0_word_12  (_sort_io_lookup_0_word_12),
+    .io_lookup_0_word_13  (_sort_io_lookup_0_word_13),
+    .io_lookup_0_word_14  (_sort_io_lookup_0_word_14),
+    .io_lookup_0_word_15  (_sort_io_lookup_0_word_15),
     .io_lookup_1_bucket   (_gens_1_io_lookup_bucket),
     .io_lookup_1_begin    (_sort_io_lookup_1_begin),
     .io_lookup_1_end      (_sort_io_lookup_1_end),
@@ -22154,6 +33083,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_1_word_5   (_sort_io_lookup_1_word_5),
     .io_lookup_1_word_6   (_sort_io_lookup_1_word_6),
     .io_lookup_1_word_7   (_sort_io_lookup_1_word_7),
+    .io_lookup_1_word_8   (_sort_io_lookup_1_word_8),
+    .io_lookup_1_word_9   (_sort_io_lookup_1_word_9),
+    .io_lookup_1_word_10  (_sort_io_lookup_1_word_10),
+    .io_lookup_1_word_11  (_sort_io_lookup_1_word_11),
+    .io_lookup_1_word_12  (_sort_io_lookup_1_word_12),
+    .io_lookup_1_word_13  (_sort_io_lookup_1_word_13),
+    .io_lookup_1_word_14  (_sort_io_lookup_1_word_14),
+    .io_lookup_1_word_15  (_sort_io_lookup_1_word_15),
     .io_lookup_2_bucket   (_gens_2_io_lookup_bucket),
     .io_lookup_2_begin    (_sort_io_lookup_2_begin),
     .io_lookup_2_end      (_sort_io_lookup_2_end),
@@ -22165,6 +33102,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_2_word_5   (_sort_io_lookup_2_word_5),
     .io_lookup_2_word_6   (_sort_io_lookup_2_word_6),
     .io_lookup_2_word_7   (_sort_io_lookup_2_word_7),
+    .io_lookup_2_word_8   (_sort_io_lookup_2_word_8),
+    .io_lookup_2_word_9   (_sort_io_lookup_2_word_9),
+    .io_lookup_2_word_10  (_sort_io_lookup_2_word_10),
+    .io_lookup_2_word_11  (_sort_io_lookup_2_word_11),
+    .io_lookup_2_word_12  (_sort_io_lookup_2_word_12),
+    .io_lookup_2_word_13  (_sort_io_lookup_2_word_13),
+    .io_lookup_2_word_14  (_sort_io_lookup_2_word_14),
+    .io_lookup_2_word_15  (_sort_io_lookup_2_word_15),
     .io_lookup_3_bucket   (_gens_3_io_lookup_bucket),
     .io_lookup_3_begin    (_sort_io_lookup_3_begin),
     .io_lookup_3_end      (_sort_io_lookup_3_end),
@@ -22176,6 +33121,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_3_word_5   (_sort_io_lookup_3_word_5),
     .io_lookup_3_word_6   (_sort_io_lookup_3_word_6),
     .io_lookup_3_word_7   (_sort_io_lookup_3_word_7),
+    .io_lookup_3_word_8   (_sort_io_lookup_3_word_8),
+    .io_lookup_3_word_9   (_sort_io_lookup_3_word_9),
+    .io_lookup_3_word_10  (_sort_io_lookup_3_word_10),
+    .io_lookup_3_word_11  (_sort_io_lookup_3_word_11),
+    .io_lookup_3_word_12  (_sort_io_lookup_3_word_12),
+    .io_lookup_3_word_13  (_sort_io_lookup_3_word_13),
+    .io_lookup_3_word_14  (_sort_io_lookup_3_word_14),
+    .io_lookup_3_word_15  (_sort_io_lookup_3_word_15),
     .io_lookup_4_bucket   (_gens_4_io_lookup_bucket),
     .io_lookup_4_begin    (_sort_io_lookup_4_begin),
     .io_lookup_4_end      (_sort_io_lookup_4_end),
@@ -22187,6 +33140,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_4_word_5   (_sort_io_lookup_4_word_5),
     .io_lookup_4_word_6   (_sort_io_lookup_4_word_6),
     .io_lookup_4_word_7   (_sort_io_lookup_4_word_7),
+    .io_lookup_4_word_8   (_sort_io_lookup_4_word_8),
+    .io_lookup_4_word_9   (_sort_io_lookup_4_word_9),
+    .io_lookup_4_word_10  (_sort_io_lookup_4_word_10),
+    .io_lookup_4_word_11  (_sort_io_lookup_4_word_11),
+    .io_lookup_4_word_12  (_sort_io_lookup_4_word_12),
+    .io_lookup_4_word_13  (_sort_io_lookup_4_word_13),
+    .io_lookup_4_word_14  (_sort_io_lookup_4_word_14),
+    .io_lookup_4_word_15  (_sort_io_lookup_4_word_15),
     .io_lookup_5_bucket   (_gens_5_io_lookup_bucket),
     .io_lookup_5_begin    (_sort_io_lookup_5_begin),
     .io_lookup_5_end      (_sort_io_lookup_5_end),
@@ -22198,6 +33159,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_5_word_5   (_sort_io_lookup_5_word_5),
     .io_lookup_5_word_6   (_sort_io_lookup_5_word_6),
     .io_lookup_5_word_7   (_sort_io_lookup_5_word_7),
+    .io_lookup_5_word_8   (_sort_io_lookup_5_word_8),
+    .io_lookup_5_word_9   (_sort_io_lookup_5_word_9),
+    .io_lookup_5_word_10  (_sort_io_lookup_5_word_10),
+    .io_lookup_5_word_11  (_sort_io_lookup_5_word_11),
+    .io_lookup_5_word_12  (_sort_io_lookup_5_word_12),
+    .io_lookup_5_word_13  (_sort_io_lookup_5_word_13),
+    .io_lookup_5_word_14  (_sort_io_lookup_5_word_14),
+    .io_lookup_5_word_15  (_sort_io_lookup_5_word_15),
     .io_lookup_6_bucket   (_gens_6_io_lookup_bucket),
     .io_lookup_6_begin    (_sort_io_lookup_6_begin),
     .io_lookup_6_end      (_sort_io_lookup_6_end),
@@ -22209,6 +33178,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_6_word_5   (_sort_io_lookup_6_word_5),
     .io_lookup_6_word_6   (_sort_io_lookup_6_word_6),
     .io_lookup_6_word_7   (_sort_io_lookup_6_word_7),
+    .io_lookup_6_word_8   (_sort_io_lookup_6_word_8),
+    .io_lookup_6_word_9   (_sort_io_lookup_6_word_9),
+    .io_lookup_6_word_10  (_sort_io_lookup_6_word_10),
+    .io_lookup_6_word_11  (_sort_io_lookup_6_word_11),
+    .io_lookup_6_word_12  (_sort_io_lookup_6_word_12),
+    .io_lookup_6_word_13  (_sort_io_lookup_6_word_13),
+    .io_lookup_6_word_14  (_sort_io_lookup_6_word_14),
+    .io_lookup_6_word_15  (_sort_io_lookup_6_word_15),
     .io_lookup_7_bucket   (_gens_7_io_lookup_bucket),
     .io_lookup_7_begin    (_sort_io_lookup_7_begin),
     .io_lookup_7_end      (_sort_io_lookup_7_end),
@@ -22220,6 +33197,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_7_word_5   (_sort_io_lookup_7_word_5),
     .io_lookup_7_word_6   (_sort_io_lookup_7_word_6),
     .io_lookup_7_word_7   (_sort_io_lookup_7_word_7),
+    .io_lookup_7_word_8   (_sort_io_lookup_7_word_8),
+    .io_lookup_7_word_9   (_sort_io_lookup_7_word_9),
+    .io_lookup_7_word_10  (_sort_io_lookup_7_word_10),
+    .io_lookup_7_word_11  (_sort_io_lookup_7_word_11),
+    .io_lookup_7_word_12  (_sort_io_lookup_7_word_12),
+    .io_lookup_7_word_13  (_sort_io_lookup_7_word_13),
+    .io_lookup_7_word_14  (_sort_io_lookup_7_word_14),
+    .io_lookup_7_word_15  (_sort_io_lookup_7_word_15),
     .io_lookup_8_bucket   (_gens_8_io_lookup_bucket),
     .io_lookup_8_begin    (_sort_io_lookup_8_begin),
     .io_lookup_8_end      (_sort_io_lookup_8_end),
@@ -22231,6 +33216,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_8_word_5   (_sort_io_lookup_8_word_5),
     .io_lookup_8_word_6   (_sort_io_lookup_8_word_6),
     .io_lookup_8_word_7   (_sort_io_lookup_8_word_7),
+    .io_lookup_8_word_8   (_sort_io_lookup_8_word_8),
+    .io_lookup_8_word_9   (_sort_io_lookup_8_word_9),
+    .io_lookup_8_word_10  (_sort_io_lookup_8_word_10),
+    .io_lookup_8_word_11  (_sort_io_lookup_8_word_11),
+    .io_lookup_8_word_12  (_sort_io_lookup_8_word_12),
+    .io_lookup_8_word_13  (_sort_io_lookup_8_word_13),
+    .io_lookup_8_word_14  (_sort_io_lookup_8_word_14),
+    .io_lookup_8_word_15  (_sort_io_lookup_8_word_15),
     .io_lookup_9_bucket   (_gens_9_io_lookup_bucket),
     .io_lookup_9_begin    (_sort_io_lookup_9_begin),
     .io_lookup_9_end      (_sort_io_lookup_9_end),
@@ -22242,6 +33235,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_9_word_5   (_sort_io_lookup_9_word_5),
     .io_lookup_9_word_6   (_sort_io_lookup_9_word_6),
     .io_lookup_9_word_7   (_sort_io_lookup_9_word_7),
+    .io_lookup_9_word_8   (_sort_io_lookup_9_word_8),
+    .io_lookup_9_word_9   (_sort_io_lookup_9_word_9),
+    .io_lookup_9_word_10  (_sort_io_lookup_9_word_10),
+    .io_lookup_9_word_11  (_sort_io_lookup_9_word_11),
+    .io_lookup_9_word_12  (_sort_io_lookup_9_word_12),
+    .io_lookup_9_word_13  (_sort_io_lookup_9_word_13),
+    .io_lookup_9_word_14  (_sort_io_lookup_9_word_14),
+    .io_lookup_9_word_15  (_sort_io_lookup_9_word_15),
     .io_lookup_10_bucket  (_gens_10_io_lookup_bucket),
     .io_lookup_10_begin   (_sort_io_lookup_10_begin),
     .io_lookup_10_end     (_sort_io_lookup_10_end),
@@ -22253,6 +33254,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_10_word_5  (_sort_io_lookup_10_word_5),
     .io_lookup_10_word_6  (_sort_io_lookup_10_word_6),
     .io_lookup_10_word_7  (_sort_io_lookup_10_word_7),
+    .io_lookup_10_word_8  (_sort_io_lookup_10_word_8),
+    .io_lookup_10_word_9  (_sort_io_lookup_10_word_9),
+    .io_lookup_10_word_10 (_sort_io_lookup_10_word_10),
+    .io_lookup_10_word_11 (_sort_io_lookup_10_word_11),
+    .io_lookup_10_word_12 (_sort_io_lookup_10_word_12),
+    .io_lookup_10_word_13 (_sort_io_lookup_10_word_13),
+    .io_lookup_10_word_14 (_sort_io_lookup_10_word_14),
+    .io_lookup_10_word_15 (_sort_io_lookup_10_word_15),
     .io_lookup_11_bucket  (_gens_11_io_lookup_bucket),
     .io_lookup_11_begin   (_sort_io_lookup_11_begin),
     .io_lookup_11_end     (_sort_io_lookup_11_end),
@@ -22264,6 +33273,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_11_word_5  (_sort_io_lookup_11_word_5),
     .io_lookup_11_word_6  (_sort_io_lookup_11_word_6),
     .io_lookup_11_word_7  (_sort_io_lookup_11_word_7),
+    .io_lookup_11_word_8  (_sort_io_lookup_11_word_8),
+    .io_lookup_11_word_9  (_sort_io_lookup_11_word_9),
+    .io_lookup_11_word_10 (_sort_io_lookup_11_word_10),
+    .io_lookup_11_word_11 (_sort_io_lookup_11_word_11),
+    .io_lookup_11_word_12 (_sort_io_lookup_11_word_12),
+    .io_lookup_11_word_13 (_sort_io_lookup_11_word_13),
+    .io_lookup_11_word_14 (_sort_io_lookup_11_word_14),
+    .io_lookup_11_word_15 (_sort_io_lookup_11_word_15),
     .io_lookup_12_bucket  (_gens_12_io_lookup_bucket),
     .io_lookup_12_begin   (_sort_io_lookup_12_begin),
     .io_lookup_12_end     (_sort_io_lookup_12_end),
@@ -22275,6 +33292,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_12_word_5  (_sort_io_lookup_12_word_5),
     .io_lookup_12_word_6  (_sort_io_lookup_12_word_6),
     .io_lookup_12_word_7  (_sort_io_lookup_12_word_7),
+    .io_lookup_12_word_8  (_sort_io_lookup_12_word_8),
+    .io_lookup_12_word_9  (_sort_io_lookup_12_word_9),
+    .io_lookup_12_word_10 (_sort_io_lookup_12_word_10),
+    .io_lookup_12_word_11 (_sort_io_lookup_12_word_11),
+    .io_lookup_12_word_12 (_sort_io_lookup_12_word_12),
+    .io_lookup_12_word_13 (_sort_io_lookup_12_word_13),
+    .io_lookup_12_word_14 (_sort_io_lookup_12_word_14),
+    .io_lookup_12_word_15 (_sort_io_lookup_12_word_15),
     .io_lookup_13_bucket  (_gens_13_io_lookup_bucket),
     .io_lookup_13_begin   (_sort_io_lookup_13_begin),
     .io_lookup_13_end     (_sort_io_lookup_13_end),
@@ -22286,6 +33311,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_13_word_5  (_sort_io_lookup_13_word_5),
     .io_lookup_13_word_6  (_sort_io_lookup_13_word_6),
     .io_lookup_13_word_7  (_sort_io_lookup_13_word_7),
+    .io_lookup_13_word_8  (_sort_io_lookup_13_word_8),
+    .io_lookup_13_word_9  (_sort_io_lookup_13_word_9),
+    .io_lookup_13_word_10 (_sort_io_lookup_13_word_10),
+    .io_lookup_13_word_11 (_sort_io_lookup_13_word_11),
+    .io_lookup_13_word_12 (_sort_io_lookup_13_word_12),
+    .io_lookup_13_word_13 (_sort_io_lookup_13_word_13),
+    .io_lookup_13_word_14 (_sort_io_lookup_13_word_14),
+    .io_lookup_13_word_15 (_sort_io_lookup_13_word_15),
     .io_lookup_14_bucket  (_gens_14_io_lookup_bucket),
     .io_lookup_14_begin   (_sort_io_lookup_14_begin),
     .io_lookup_14_end     (_sort_io_lookup_14_end),
@@ -22297,6 +33330,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_14_word_5  (_sort_io_lookup_14_word_5),
     .io_lookup_14_word_6  (_sort_io_lookup_14_word_6),
     .io_lookup_14_word_7  (_sort_io_lookup_14_word_7),
+    .io_lookup_14_word_8  (_sort_io_lookup_14_word_8),
+    .io_lookup_14_word_9  (_sort_io_lookup_14_word_9),
+    .io_lookup_14_word_10 (_sort_io_lookup_14_word_10),
+    .io_lookup_14_word_11 (_sort_io_lookup_14_word_11),
+    .io_lookup_14_word_12 (_sort_io_lookup_14_word_12),
+    .io_lookup_14_word_13 (_sort_io_lookup_14_word_13),
+    .io_lookup_14_word_14 (_sort_io_lookup_14_word_14),
+    .io_lookup_14_word_15 (_sort_io_lookup_14_word_15),
     .io_lookup_15_bucket  (_gens_15_io_lookup_bucket),
     .io_lookup_15_begin   (_sort_io_lookup_15_begin),
     .io_lookup_15_end     (_sort_io_lookup_15_end),
@@ -22308,6 +33349,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_15_word_5  (_sort_io_lookup_15_word_5),
     .io_lookup_15_word_6  (_sort_io_lookup_15_word_6),
     .io_lookup_15_word_7  (_sort_io_lookup_15_word_7),
+    .io_lookup_15_word_8  (_sort_io_lookup_15_word_8),
+    .io_lookup_15_word_9  (_sort_io_lookup_15_word_9),
+    .io_lookup_15_word_10 (_sort_io_lookup_15_word_10),
+    .io_lookup_15_word_11 (_sort_io_lookup_15_word_11),
+    .io_lookup_15_word_12 (_sort_io_lookup_15_word_12),
+    .io_lookup_15_word_13 (_sort_io_lookup_15_word_13),
+    .io_lookup_15_word_14 (_sort_io_lookup_15_word_14),
+    .io_lookup_15_word_15 (_sort_io_lookup_15_word_15),
     .io_entry_0_addr      (_gens_0_io_entry_addr),
     .io_entry_0_item      (_sort_io_entry_0_item),
     .io_entry_0_mark      (_sort_io_entry_0_mark),
@@ -22408,7 +33457,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_scattered         (_sort_io_scattered),
     .io_badBucket         (_sort_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_0 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_0 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -22509,6 +33558,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_0_word_5),
     .io_lookup_word_6    (_sort_io_lookup_0_word_6),
     .io_lookup_word_7    (_sort_io_lookup_0_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_0_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_0_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_0_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_0_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_0_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_0_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_0_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_0_word_15),
     .io_entry_addr       (_gens_0_io_entry_addr),
     .io_entry_item       (_sort_io_entry_0_item),
     .io_entry_mark       (_sort_io_entry_0_mark),
@@ -22533,7 +33590,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_0_bits_j),
     .io_busy             (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_1 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_1 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -22622,7 +33679,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
     .io_largeFrom        (_GEN),
-    .io_largeTo          (_GEN_0),
+    .io_largeTo          (_GEN_1),
     .io_lookup_bucket    (_gens_1_io_lookup_bucket),
     .io_lookup_begin     (_sort_io_lookup_1_begin),
     .io_lookup_end       (_sort_io_lookup_1_end),
@@ -22634,6 +33691,14 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_1_word_5),
     .io_lookup_word_6    (_sort_io_lookup_1_word_6),
     .io_lookup_word_7    (_sort_io_lookup_1_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_1_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_1_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_1_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_1_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_1_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_1_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_1_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_1_word_15),
     .io_entry_addr       (_gens_1_io_entry_addr),
     .io_entry_item       (_sort_io_entry_1_item),
     .io_entry_mark       (_sort_io_entry_1_mark),
@@ -22658,7 +33723,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_1_bits_j),
     .io_busy             (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_2 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_2 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -22746,7 +33811,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_larges_15_q_2    (larges_15_q_2),
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
-    .io_largeFrom        (_GEN_0),
+    .io_largeFrom        (_GEN_1),
     .io_largeTo          ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
     .io_lookup_bucket    (_gens_2_io_lookup_bucket),
     .io_lookup_begin     (_sort_io_lookup_2_begin),
@@ -22759,13 +33824,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_2_word_5),
     .io_lookup_word_6    (_sort_io_lookup_2_word_6),
     .io_lookup_word_7    (_sort_io_lookup_2_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_2_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_2_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_2_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_2_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_2_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_2_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_2_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_2_word_15),
     .io_entry_addr       (_gens_2_io_entry_addr),
     .io_entry_item       (_sort_io_entry_2_item),
     .io_entry_mark       (_sort_io_entry_2_mark),
     .io_mark_valid       (_gens_2_io_mark_valid),
     .io_mark_bits_addr   (_gens_2_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_2_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_2_addr),
+    .io_keyAddr          (_gens_2_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_2_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_2_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_2_io_out_cell_2),
@@ -22783,7 +33856,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_2_bits_j),
     .io_busy             (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_3 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_3 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -22872,7 +33945,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
     .io_largeFrom        ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
-    .io_largeTo          (_GEN_2),
+    .io_largeTo          (_GEN_3),
     .io_lookup_bucket    (_gens_3_io_lookup_bucket),
     .io_lookup_begin     (_sort_io_lookup_3_begin),
     .io_lookup_end       (_sort_io_lookup_3_end),
@@ -22884,13 +33957,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_3_word_5),
     .io_lookup_word_6    (_sort_io_lookup_3_word_6),
     .io_lookup_word_7    (_sort_io_lookup_3_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_3_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_3_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_3_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_3_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_3_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_3_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_3_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_3_word_15),
     .io_entry_addr       (_gens_3_io_entry_addr),
     .io_entry_item       (_sort_io_entry_3_item),
     .io_entry_mark       (_sort_io_entry_3_mark),
     .io_mark_valid       (_gens_3_io_mark_valid),
     .io_mark_bits_addr   (_gens_3_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_3_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_3_addr),
+    .io_keyAddr          (_gens_3_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_3_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_3_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_3_io_out_cell_2),
@@ -22908,7 +33989,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_3_bits_j),
     .io_busy             (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_4 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_4 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -22996,7 +34077,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_larges_15_q_2    (larges_15_q_2),
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
-    .io_largeFrom        (_GEN_2),
+    .io_largeFrom        (_GEN_3),
     .io_largeTo          ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
     .io_lookup_bucket    (_gens_4_io_lookup_bucket),
     .io_lookup_begin     (_sort_io_lookup_4_begin),
@@ -23009,13 +34090,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_4_word_5),
     .io_lookup_word_6    (_sort_io_lookup_4_word_6),
     .io_lookup_word_7    (_sort_io_lookup_4_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_4_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_4_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_4_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_4_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_4_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_4_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_4_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_4_word_15),
     .io_entry_addr       (_gens_4_io_entry_addr),
     .io_entry_item       (_sort_io_entry_4_item),
     .io_entry_mark       (_sort_io_entry_4_mark),
     .io_mark_valid       (_gens_4_io_mark_valid),
     .io_mark_bits_addr   (_gens_4_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_4_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_4_addr),
+    .io_keyAddr          (_gens_4_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_4_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_4_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_4_io_out_cell_2),
@@ -23033,7 +34122,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_4_bits_j),
     .io_busy             (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_5 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_5 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -23134,13 +34223,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_5_word_5),
     .io_lookup_word_6    (_sort_io_lookup_5_word_6),
     .io_lookup_word_7    (_sort_io_lookup_5_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_5_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_5_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_5_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_5_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_5_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_5_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_5_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_5_word_15),
     .io_entry_addr       (_gens_5_io_entry_addr),
     .io_entry_item       (_sort_io_entry_5_item),
     .io_entry_mark       (_sort_io_entry_5_mark),
     .io_mark_valid       (_gens_5_io_mark_valid),
     .io_mark_bits_addr   (_gens_5_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_5_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_5_addr),
+    .io_keyAddr          (_gens_5_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_5_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_5_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_5_io_out_cell_2),
@@ -23158,7 +34255,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_5_bits_j),
     .io_busy             (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_6 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_6 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -23259,13 +34356,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_6_word_5),
     .io_lookup_word_6    (_sort_io_lookup_6_word_6),
     .io_lookup_word_7    (_sort_io_lookup_6_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_6_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_6_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_6_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_6_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_6_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_6_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_6_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_6_word_15),
     .io_entry_addr       (_gens_6_io_entry_addr),
     .io_entry_item       (_sort_io_entry_6_item),
     .io_entry_mark       (_sort_io_entry_6_mark),
     .io_mark_valid       (_gens_6_io_mark_valid),
     .io_mark_bits_addr   (_gens_6_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_6_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_6_addr),
+    .io_keyAddr          (_gens_6_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_6_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_6_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_6_io_out_cell_2),
@@ -23283,7 +34388,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_6_bits_j),
     .io_busy             (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_7 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_7 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -23384,13 +34489,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_7_word_5),
     .io_lookup_word_6    (_sort_io_lookup_7_word_6),
     .io_lookup_word_7    (_sort_io_lookup_7_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_7_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_7_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_7_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_7_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_7_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_7_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_7_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_7_word_15),
     .io_entry_addr       (_gens_7_io_entry_addr),
     .io_entry_item       (_sort_io_entry_7_item),
     .io_entry_mark       (_sort_io_entry_7_mark),
     .io_mark_valid       (_gens_7_io_mark_valid),
     .io_mark_bits_addr   (_gens_7_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_7_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_7_addr),
+    .io_keyAddr          (_gens_7_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_7_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_7_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_7_io_out_cell_2),
@@ -23408,7 +34521,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_7_bits_j),
     .io_busy             (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_8 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_8 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -23509,13 +34622,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_8_word_5),
     .io_lookup_word_6    (_sort_io_lookup_8_word_6),
     .io_lookup_word_7    (_sort_io_lookup_8_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_8_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_8_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_8_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_8_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_8_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_8_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_8_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_8_word_15),
     .io_entry_addr       (_gens_8_io_entry_addr),
     .io_entry_item       (_sort_io_entry_8_item),
     .io_entry_mark       (_sort_io_entry_8_mark),
     .io_mark_valid       (_gens_8_io_mark_valid),
     .io_mark_bits_addr   (_gens_8_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_8_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_8_addr),
+    .io_keyAddr          (_gens_8_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_8_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_8_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_8_io_out_cell_2),
@@ -23533,7 +34654,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_8_bits_j),
     .io_busy             (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_9 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_9 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -23634,13 +34755,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_9_word_5),
     .io_lookup_word_6    (_sort_io_lookup_9_word_6),
     .io_lookup_word_7    (_sort_io_lookup_9_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_9_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_9_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_9_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_9_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_9_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_9_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_9_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_9_word_15),
     .io_entry_addr       (_gens_9_io_entry_addr),
     .io_entry_item       (_sort_io_entry_9_item),
     .io_entry_mark       (_sort_io_entry_9_mark),
     .io_mark_valid       (_gens_9_io_mark_valid),
     .io_mark_bits_addr   (_gens_9_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_9_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_9_addr),
+    .io_keyAddr          (_gens_9_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_9_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_9_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_9_io_out_cell_2),
@@ -23658,7 +34787,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_9_bits_j),
     .io_busy             (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_10 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_10 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -23759,13 +34888,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_10_word_5),
     .io_lookup_word_6    (_sort_io_lookup_10_word_6),
     .io_lookup_word_7    (_sort_io_lookup_10_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_10_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_10_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_10_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_10_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_10_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_10_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_10_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_10_word_15),
     .io_entry_addr       (_gens_10_io_entry_addr),
     .io_entry_item       (_sort_io_entry_10_item),
     .io_entry_mark       (_sort_io_entry_10_mark),
     .io_mark_valid       (_gens_10_io_mark_valid),
     .io_mark_bits_addr   (_gens_10_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_10_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_10_addr),
+    .io_keyAddr          (_gens_10_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_10_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_10_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_10_io_out_cell_2),
@@ -23783,7 +34920,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_10_bits_j),
     .io_busy             (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_11 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_11 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -23884,13 +35021,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_11_word_5),
     .io_lookup_word_6    (_sort_io_lookup_11_word_6),
     .io_lookup_word_7    (_sort_io_lookup_11_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_11_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_11_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_11_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_11_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_11_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_11_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_11_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_11_word_15),
     .io_entry_addr       (_gens_11_io_entry_addr),
     .io_entry_item       (_sort_io_entry_11_item),
     .io_entry_mark       (_sort_io_entry_11_mark),
     .io_mark_valid       (_gens_11_io_mark_valid),
     .io_mark_bits_addr   (_gens_11_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_11_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_11_addr),
+    .io_keyAddr          (_gens_11_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_11_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_11_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_11_io_out_cell_2),
@@ -23908,7 +35053,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_11_bits_j),
     .io_busy             (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_12 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_12 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -24009,13 +35154,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_12_word_5),
     .io_lookup_word_6    (_sort_io_lookup_12_word_6),
     .io_lookup_word_7    (_sort_io_lookup_12_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_12_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_12_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_12_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_12_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_12_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_12_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_12_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_12_word_15),
     .io_entry_addr       (_gens_12_io_entry_addr),
     .io_entry_item       (_sort_io_entry_12_item),
     .io_entry_mark       (_sort_io_entry_12_mark),
     .io_mark_valid       (_gens_12_io_mark_valid),
     .io_mark_bits_addr   (_gens_12_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_12_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_12_addr),
+    .io_keyAddr          (_gens_12_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_12_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_12_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_12_io_out_cell_2),
@@ -24033,7 +35186,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_12_bits_j),
     .io_busy             (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_13 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_13 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -24134,13 +35287,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_13_word_5),
     .io_lookup_word_6    (_sort_io_lookup_13_word_6),
     .io_lookup_word_7    (_sort_io_lookup_13_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_13_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_13_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_13_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_13_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_13_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_13_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_13_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_13_word_15),
     .io_entry_addr       (_gens_13_io_entry_addr),
     .io_entry_item       (_sort_io_entry_13_item),
     .io_entry_mark       (_sort_io_entry_13_mark),
     .io_mark_valid       (_gens_13_io_mark_valid),
     .io_mark_bits_addr   (_gens_13_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_13_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_13_addr),
+    .io_keyAddr          (_gens_13_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_13_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_13_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_13_io_out_cell_2),
@@ -24158,7 +35319,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_13_bits_j),
     .io_busy             (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_14 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_14 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -24259,13 +35420,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_14_word_5),
     .io_lookup_word_6    (_sort_io_lookup_14_word_6),
     .io_lookup_word_7    (_sort_io_lookup_14_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_14_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_14_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_14_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_14_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_14_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_14_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_14_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_14_word_15),
     .io_entry_addr       (_gens_14_io_entry_addr),
     .io_entry_item       (_sort_io_entry_14_item),
     .io_entry_mark       (_sort_io_entry_14_mark),
     .io_mark_valid       (_gens_14_io_mark_valid),
     .io_mark_bits_addr   (_gens_14_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_14_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_14_addr),
+    .io_keyAddr          (_gens_14_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_14_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_14_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_14_io_out_cell_2),
@@ -24283,7 +35452,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_14_bits_j),
     .io_busy             (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w3_l16_world gens_15 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_15 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -24384,13 +35553,21 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_lookup_word_5    (_sort_io_lookup_15_word_5),
     .io_lookup_word_6    (_sort_io_lookup_15_word_6),
     .io_lookup_word_7    (_sort_io_lookup_15_word_7),
+    .io_lookup_word_8    (_sort_io_lookup_15_word_8),
+    .io_lookup_word_9    (_sort_io_lookup_15_word_9),
+    .io_lookup_word_10   (_sort_io_lookup_15_word_10),
+    .io_lookup_word_11   (_sort_io_lookup_15_word_11),
+    .io_lookup_word_12   (_sort_io_lookup_15_word_12),
+    .io_lookup_word_13   (_sort_io_lookup_15_word_13),
+    .io_lookup_word_14   (_sort_io_lookup_15_word_14),
+    .io_lookup_word_15   (_sort_io_lookup_15_word_15),
     .io_entry_addr       (_gens_15_io_entry_addr),
     .io_entry_item       (_sort_io_entry_15_item),
     .io_entry_mark       (_sort_io_entry_15_mark),
     .io_mark_valid       (_gens_15_io_mark_valid),
     .io_mark_bits_addr   (_gens_15_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_15_io_mark_bits_item),
-    .io_keyAddr          (io_sphere_15_addr),
+    .io_keyAddr          (_gens_15_io_keyAddr),
     .io_keyData_cell_0   (_laneKeys_15_io_out_cell_0),
     .io_keyData_cell_1   (_laneKeys_15_io_out_cell_1),
     .io_keyData_cell_2   (_laneKeys_15_io_out_cell_2),
@@ -24416,7 +35593,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_in_sphere_1      (io_sphere_0_data_1),
     .io_in_sphere_2      (io_sphere_0_data_2),
     .io_in_sphere_3      (io_sphere_0_data_3),
-    .io_in_k             (_cellExp_io_in_1_valid_T ? 13'h0 : _cellExp_io_k),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
     .io_out_valid        (_laneKeys_0_io_out_valid),
     .io_out_cell_0       (_laneKeys_0_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_0_io_out_cell_1),
@@ -24440,7 +35617,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_in_sphere_1      (io_sphere_1_data_1),
     .io_in_sphere_2      (io_sphere_1_data_2),
     .io_in_sphere_3      (io_sphere_1_data_3),
-    .io_in_k             (_cellExp_io_in_1_valid_T ? 13'h0 : _cellExp_io_k),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
     .io_out_valid        (_laneKeys_1_io_out_valid),
     .io_out_cell_0       (_laneKeys_1_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_1_io_out_cell_1),
@@ -24459,13 +35636,13 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_2 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_2_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_2_data_0),
     .io_in_sphere_1      (io_sphere_2_data_1),
     .io_in_sphere_2      (io_sphere_2_data_2),
     .io_in_sphere_3      (io_sphere_2_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_2_io_out_valid),
     .io_out_cell_0       (_laneKeys_2_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_2_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_2_io_out_cell_2),
@@ -24477,19 +35654,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_2_io_out_need),
     .io_out_needNone     (_laneKeys_2_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_2_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_2_io_out_top),
+    .io_out_topNone      (_laneKeys_2_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_3 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_3_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_3_data_0),
     .io_in_sphere_1      (io_sphere_3_data_1),
     .io_in_sphere_2      (io_sphere_3_data_2),
     .io_in_sphere_3      (io_sphere_3_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_3_io_out_valid),
     .io_out_cell_0       (_laneKeys_3_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_3_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_3_io_out_cell_2),
@@ -24501,19 +35678,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_3_io_out_need),
     .io_out_needNone     (_laneKeys_3_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_3_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_3_io_out_top),
+    .io_out_topNone      (_laneKeys_3_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_4 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_4_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_4_data_0),
     .io_in_sphere_1      (io_sphere_4_data_1),
     .io_in_sphere_2      (io_sphere_4_data_2),
     .io_in_sphere_3      (io_sphere_4_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_4_io_out_valid),
     .io_out_cell_0       (_laneKeys_4_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_4_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_4_io_out_cell_2),
@@ -24525,19 +35702,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_4_io_out_need),
     .io_out_needNone     (_laneKeys_4_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_4_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_4_io_out_top),
+    .io_out_topNone      (_laneKeys_4_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_5 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_5_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_5_data_0),
     .io_in_sphere_1      (io_sphere_5_data_1),
     .io_in_sphere_2      (io_sphere_5_data_2),
     .io_in_sphere_3      (io_sphere_5_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_5_io_out_valid),
     .io_out_cell_0       (_laneKeys_5_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_5_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_5_io_out_cell_2),
@@ -24549,19 +35726,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_5_io_out_need),
     .io_out_needNone     (_laneKeys_5_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_5_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_5_io_out_top),
+    .io_out_topNone      (_laneKeys_5_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_6 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_6_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_6_data_0),
     .io_in_sphere_1      (io_sphere_6_data_1),
     .io_in_sphere_2      (io_sphere_6_data_2),
     .io_in_sphere_3      (io_sphere_6_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_6_io_out_valid),
     .io_out_cell_0       (_laneKeys_6_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_6_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_6_io_out_cell_2),
@@ -24573,19 +35750,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_6_io_out_need),
     .io_out_needNone     (_laneKeys_6_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_6_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_6_io_out_top),
+    .io_out_topNone      (_laneKeys_6_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_7 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_7_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_7_data_0),
     .io_in_sphere_1      (io_sphere_7_data_1),
     .io_in_sphere_2      (io_sphere_7_data_2),
     .io_in_sphere_3      (io_sphere_7_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_7_io_out_valid),
     .io_out_cell_0       (_laneKeys_7_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_7_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_7_io_out_cell_2),
@@ -24597,19 +35774,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_7_io_out_need),
     .io_out_needNone     (_laneKeys_7_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_7_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_7_io_out_top),
+    .io_out_topNone      (_laneKeys_7_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_8 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_8_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_8_data_0),
     .io_in_sphere_1      (io_sphere_8_data_1),
     .io_in_sphere_2      (io_sphere_8_data_2),
     .io_in_sphere_3      (io_sphere_8_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_8_io_out_valid),
     .io_out_cell_0       (_laneKeys_8_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_8_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_8_io_out_cell_2),
@@ -24621,19 +35798,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_8_io_out_need),
     .io_out_needNone     (_laneKeys_8_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_8_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_8_io_out_top),
+    .io_out_topNone      (_laneKeys_8_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_9 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_9_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_9_data_0),
     .io_in_sphere_1      (io_sphere_9_data_1),
     .io_in_sphere_2      (io_sphere_9_data_2),
     .io_in_sphere_3      (io_sphere_9_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_9_io_out_valid),
     .io_out_cell_0       (_laneKeys_9_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_9_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_9_io_out_cell_2),
@@ -24645,19 +35822,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_9_io_out_need),
     .io_out_needNone     (_laneKeys_9_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_9_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_9_io_out_top),
+    .io_out_topNone      (_laneKeys_9_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_10 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_10_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_10_data_0),
     .io_in_sphere_1      (io_sphere_10_data_1),
     .io_in_sphere_2      (io_sphere_10_data_2),
     .io_in_sphere_3      (io_sphere_10_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_10_io_out_valid),
     .io_out_cell_0       (_laneKeys_10_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_10_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_10_io_out_cell_2),
@@ -24669,19 +35846,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_10_io_out_need),
     .io_out_needNone     (_laneKeys_10_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_10_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_10_io_out_top),
+    .io_out_topNone      (_laneKeys_10_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_11 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_11_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_11_data_0),
     .io_in_sphere_1      (io_sphere_11_data_1),
     .io_in_sphere_2      (io_sphere_11_data_2),
     .io_in_sphere_3      (io_sphere_11_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_11_io_out_valid),
     .io_out_cell_0       (_laneKeys_11_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_11_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_11_io_out_cell_2),
@@ -24693,19 +35870,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_11_io_out_need),
     .io_out_needNone     (_laneKeys_11_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_11_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_11_io_out_top),
+    .io_out_topNone      (_laneKeys_11_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_12 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_12_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_12_data_0),
     .io_in_sphere_1      (io_sphere_12_data_1),
     .io_in_sphere_2      (io_sphere_12_data_2),
     .io_in_sphere_3      (io_sphere_12_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_12_io_out_valid),
     .io_out_cell_0       (_laneKeys_12_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_12_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_12_io_out_cell_2),
@@ -24717,19 +35894,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_12_io_out_need),
     .io_out_needNone     (_laneKeys_12_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_12_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_12_io_out_top),
+    .io_out_topNone      (_laneKeys_12_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_13 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_13_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_13_data_0),
     .io_in_sphere_1      (io_sphere_13_data_1),
     .io_in_sphere_2      (io_sphere_13_data_2),
     .io_in_sphere_3      (io_sphere_13_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_13_io_out_valid),
     .io_out_cell_0       (_laneKeys_13_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_13_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_13_io_out_cell_2),
@@ -24741,19 +35918,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_13_io_out_need),
     .io_out_needNone     (_laneKeys_13_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_13_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_13_io_out_top),
+    .io_out_topNone      (_laneKeys_13_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_14 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_14_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_14_data_0),
     .io_in_sphere_1      (io_sphere_14_data_1),
     .io_in_sphere_2      (io_sphere_14_data_2),
     .io_in_sphere_3      (io_sphere_14_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_14_io_out_valid),
     .io_out_cell_0       (_laneKeys_14_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_14_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_14_io_out_cell_2),
@@ -24765,19 +35942,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_14_io_out_need),
     .io_out_needNone     (_laneKeys_14_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_14_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_14_io_out_top),
+    .io_out_topNone      (_laneKeys_14_io_out_topNone)
   );
   SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_15 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (1'h0),
+    .io_in_valid         (laneKeys_15_io_in_valid_REG),
     .io_in_sphere_0      (io_sphere_15_data_0),
     .io_in_sphere_1      (io_sphere_15_data_1),
     .io_in_sphere_2      (io_sphere_15_data_2),
     .io_in_sphere_3      (io_sphere_15_data_3),
-    .io_in_k             (_cellExp_io_k),
-    .io_out_valid        (/* unused */),
+    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_out_valid        (_laneKeys_15_io_out_valid),
     .io_out_cell_0       (_laneKeys_15_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_15_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_15_io_out_cell_2),
@@ -24789,11 +35966,25 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world(
     .io_out_need         (_laneKeys_15_io_out_need),
     .io_out_needNone     (_laneKeys_15_io_out_needNone),
     .io_out_nonFinite    (_laneKeys_15_io_out_nonFinite),
-    .io_out_top          (/* unused */),
-    .io_out_topNone      (/* unused */)
+    .io_out_top          (_laneKeys_15_io_out_top),
+    .io_out_topNone      (_laneKeys_15_io_out_topNone)
   );
   assign io_sphere_0_addr = _gens_15_io_start_T ? _gens_0_io_keyAddr : i_0[11:0];
   assign io_sphere_1_addr = _gens_15_io_start_T ? _gens_1_io_keyAddr : i_1[11:0];
+  assign io_sphere_2_addr = _gens_15_io_start_T ? _gens_2_io_keyAddr : i_2[11:0];
+  assign io_sphere_3_addr = _gens_15_io_start_T ? _gens_3_io_keyAddr : i_3[11:0];
+  assign io_sphere_4_addr = _gens_15_io_start_T ? _gens_4_io_keyAddr : i_4[11:0];
+  assign io_sphere_5_addr = _gens_15_io_start_T ? _gens_5_io_keyAddr : i_5[11:0];
+  assign io_sphere_6_addr = _gens_15_io_start_T ? _gens_6_io_keyAddr : i_6[11:0];
+  assign io_sphere_7_addr = _gens_15_io_start_T ? _gens_7_io_keyAddr : i_7[11:0];
+  assign io_sphere_8_addr = _gens_15_io_start_T ? _gens_8_io_keyAddr : i_8[11:0];
+  assign io_sphere_9_addr = _gens_15_io_start_T ? _gens_9_io_keyAddr : i_9[11:0];
+  assign io_sphere_10_addr = _gens_15_io_start_T ? _gens_10_io_keyAddr : i_10[11:0];
+  assign io_sphere_11_addr = _gens_15_io_start_T ? _gens_11_io_keyAddr : i_11[11:0];
+  assign io_sphere_12_addr = _gens_15_io_start_T ? _gens_12_io_keyAddr : i_12[11:0];
+  assign io_sphere_13_addr = _gens_15_io_start_T ? _gens_13_io_keyAddr : i_13[11:0];
+  assign io_sphere_14_addr = _gens_15_io_start_T ? _gens_14_io_keyAddr : i_14[11:0];
+  assign io_sphere_15_addr = _gens_15_io_start_T ? _gens_15_io_keyAddr : i_15[11:0];
   assign io_busy = |state;
   assign io_status_k = st_k;
   assign io_status_large = st_large;
@@ -27582,7 +38773,7 @@ module Puc_world(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
-  BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w3_l16_p2_world bp (
+  BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world bp (
     .clock                   (clock),
     .reset                   (reset),
     .io_start                (bpStart),

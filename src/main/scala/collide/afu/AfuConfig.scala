@@ -76,7 +76,8 @@ final case class AfuConfig(
   def derivedName: String =
     s"n${scpus}_${scpu.id}_s${maxSpheres}_r${maxReadsOutstanding}_w${maxWritesOutstanding}_t${tagBits}_${ramPorts.name}" +
       (if (recordLayout != AfuConfig.bestLayout(scpu, world.isDefined)) s"_${recordLayout.name}" else "") +
-      (if (denseByDefault) "_dense" else "") + world.map(bp => "_world" + (if (bp.lanes > 1) bp.lanes.toString else "") + (if (bp.sortPorts > 1) s"p${bp.sortPorts}" else "")).getOrElse("") +
+      (if (denseByDefault) "_dense" else "") + world.map(bp => "_world" + (if (bp.lanes > 1) bp.lanes.toString else "") + (if (bp.sortPorts > 1) s"p${bp.sortPorts}" else "") +
+        (if (bp.wordLog2 != collide.world.BroadPhaseParams.default.wordLog2) s"w${bp.wordLog2}" else "")).getOrElse("") +
       (if (scpuImpl == ScpuImpl.Model) "_model" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
@@ -130,8 +131,9 @@ object AfuConfig {
   val fp32Nr: AfuConfig  = default.copy(name = "fp32-nr", scpu = ScpuConfig.fp32Nr)
   val big: AfuConfig     = default.copy(name = "big", maxSpheres = 4096)
   /** World mode: 16 fp32 SCPUs fed by the on-chip broad phase's 16 candidate lanes, its sort's
-    * passes two spheres a cycle, up to 4096 spheres (bench/results/world-lanes). */
-  val world: AfuConfig   = big.copy(name = "world", world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 2)))
+    * passes two spheres a cycle, 16 counters a word, up to 4096 spheres (bench/results/world-lanes). */
+  val world: AfuConfig   = big.copy(name = "world",
+    world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 2, wordLog2 = 4)))
 
   /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind
     * their pipelines (same cycles, same records; docs/afu.md, "A faster co-simulation"). */

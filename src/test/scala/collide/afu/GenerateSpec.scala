@@ -33,12 +33,14 @@ class GenerateSpec extends AnyFlatSpec {
     assert(AfuConfig.world.puc.ramCopies == 16 + 8, "sixteen SCPU copies and the broad phase's eight")
     // Lanes: a sort RAM each, a sphere copy per two; a name of their own.
     val l5 = cfg("--preset", "world", "--world-lanes", "5").toOption.get
-    assert(l5.world.get.lanes == 5 && l5.id.endsWith("_world5p2") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
+    assert(l5.world.get.lanes == 5 && l5.id.endsWith("_world5p2w4") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
     assert(l5.world.get.ramBits(4096) == 5 * 159744L + 8192 * 13)
     val p1 = cfg("--preset", "world", "--world-lanes", "5", "--world-sort-ports", "1").toOption.get
-    assert(p1.world.get.sortPorts == 1 && p1.id.endsWith("_world5") && p1.world.get.ramBits(4096) == 5 * 159744L, p1.id)
+    assert(p1.world.get.sortPorts == 1 && p1.id.endsWith("_world5w4") && p1.world.get.ramBits(4096) == 5 * 159744L, p1.id)
+    assert(cfg("--world", "true", "--world-lanes", "5", "--world-sort-ports", "2").toOption.get.id.endsWith("_world5p2"),
+      "eight counters a word (the default): no word size in the name")
     assert(cfg("--preset", "world", "--world-lanes", "16").toOption.get.isPreset)
-    assert(cfg("--preset", "world", "--world-lanes", "1").toOption.get.id.endsWith("_world"),
+    assert(cfg("--preset", "world", "--world-lanes", "1").toOption.get.id.endsWith("_worldw4"),
       "one lane: no lane count in the name, and the sort's ports follow the lanes down to one")
   }
 
