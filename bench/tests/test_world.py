@@ -130,9 +130,24 @@ class LanesArea(unittest.TestCase):
 
     def test_it_finds_the_lane_count_and_the_broad_phase_module(self):
         with tempfile.TemporaryDirectory() as d:
-            f = self.folder(d, {"lanes": 4}, ["Afu_cfg", "BroadPhase_fp32_l4_cfg", "BucketSort_cfg"])
+            f = self.folder(d, {"lanes": 4, "sortPorts": 2, "wordLog2": 4}, ["Afu_cfg", "BroadPhase_fp32_l4_cfg", "BucketSort_cfg"])
             self.assertEqual(lanes_area.broad_phase(f)[0:2], (4, "cfg"))
-            self.assertEqual(lanes_area.broad_phase(f)[3:], ("BroadPhase_fp32_l4_cfg", 123.0))
+            self.assertEqual(lanes_area.broad_phase(f)[3:], ("BroadPhase_fp32_l4_cfg", 123.0, 2, 16))
+
+    def test_a_manifest_from_before_sort_ports_means_one_port_and_eight_a_word(self):
+        with tempfile.TemporaryDirectory() as d:
+            f = self.folder(d, {"lanes": 2}, ["Afu_cfg", "BroadPhase_fp32_l2_cfg"])
+            self.assertEqual(lanes_area.broad_phase(f)[5:], (1, 8))
+
+    def test_the_area_table_compares_each_row_with_the_one_lane_row_of_its_own_rtl(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = Path(d) / "area.csv"
+            path.write_text("lanes,sort_ports,per_word,module,luts,arith,dsp,ff,m10k,ram_bits,commit\n"
+                            "1,1,8,a,100,1,0,1,1,1,old\n4,1,8,b,300,1,0,1,1,1,old\n"
+                            "1,1,16,c,200,1,0,1,1,1,new\n4,2,16,d,1000,1,0,1,1,1,new\n")
+            text = "\n".join(lanes.area_table(path))
+            self.assertIn("| 4 | 1 | 8 | 300 | 1 | 1 | 1 | 1 | 3.0x | old |", text)
+            self.assertIn("| 4 | 2 | 16 | 1,000 | 1 | 1 | 1 | 1 | 5.0x | new |", text)
 
     def test_a_folder_without_world_mode_is_refused_by_name(self):
         with tempfile.TemporaryDirectory() as d:

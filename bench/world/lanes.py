@@ -83,20 +83,28 @@ def table(rows, clock_mhz):
 
 
 def area_table(path):
-    """The broad phase's Yosys area per lane count (lanes_area.py's CSV), or [] without one."""
+    """The broad phase's Yosys area per configuration (lanes_area.py's CSV), or [] without one."""
     if not path.exists():
         return []
-    rows = sorted(csv.DictReader(open(path, newline="")), key=lambda r: int(r["lanes"]))
-    one = next((r for r in rows if r["lanes"] == "1"), None)
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        r.setdefault("sort_ports", "1")
+        r.setdefault("per_word", "8")
+        r.setdefault("commit", "")
+    # Ratios against the one-lane row of the same RTL (commit).
+    ones = {r["commit"]: r for r in rows if r["lanes"] == "1"}
     out = ["## Area (Yosys 0.23, the Cyclone V proxy; the BroadPhase module alone)", "",
            "From [area.csv](area.csv) (`tools/pyenv bench/world/lanes_area.py ...`). The sphere-table copies the",
-           "lanes read are the SphereRam's (two lanes a copy of 0.5 Mbit at 4,096 spheres), not counted here.", "",
-           "| lanes | LUT cells | arithmetic cells | flip-flops | M10K blocks | sort RAM bits | LUT cells / one lane's |",
-           "|---:|---:|---:|---:|---:|---:|---:|"]
+           "lanes read are the SphereRam's (two lanes a copy of 0.5 Mbit at 4,096 spheres), not counted here.",
+           "Each row's RTL is its commit's; the ratio is to the one-lane row of the same commit.", "",
+           "| lanes | sort ports | counters a word | LUT cells | arithmetic cells | flip-flops | M10K blocks | sort RAM bits | LUT cells / one lane's | RTL |",
+           "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
     for r in rows:
+        one = ones.get(r["commit"])
         ratio = f"{int(r['luts']) / int(one['luts']):.1f}x" if one else ""
-        out.append(f"| {r['lanes']} | {int(r['luts']):,} | {int(r['arith']):,} | {int(r['ff']):,} | {int(r['m10k']):,} | "
-                   f"{int(r['ram_bits']):,} | {ratio} |")
+        out.append(f"| {r['lanes']} | {r['sort_ports']} | {r['per_word']} | {int(r['luts']):,} | {int(r['arith']):,} | "
+                   f"{int(r['ff']):,} | {int(r['m10k']):,} | {int(r['ram_bits']):,} | {ratio} | {r['commit']} |")
     return out + [""]
 
 
