@@ -16555,34 +16555,34 @@ endmodule
 
 // VCS coverage exclude_file
 module entries_4096x13_world(
-  input  [11:0] R0_addr,
-  input         R0_en,
-                R0_clk,
-  output [12:0] R0_data,
+  input  [11:0] RW0_addr,
+  input         RW0_en,
+                RW0_clk,
+                RW0_wmode,
+  input  [12:0] RW0_wdata,
+  output [12:0] RW0_rdata,
   input  [11:0] W0_addr,
   input         W0_en,
                 W0_clk,
-  input  [12:0] W0_data,
-  input  [11:0] W1_addr,
-  input         W1_en,
-                W1_clk,
-  input  [12:0] W1_data
+  input  [12:0] W0_data
 );
 
   reg [12:0] Memory[0:4095];
-  reg        _R0_en_d0;
-  reg [11:0] _R0_addr_d0;
-  always @(posedge R0_clk) begin
-    _R0_en_d0 <= R0_en;
-    _R0_addr_d0 <= R0_addr;
+  reg [11:0] _RW0_raddr_d0;
+  reg        _RW0_ren_d0;
+  reg        _RW0_rmode_d0;
+  always @(posedge RW0_clk) begin
+    _RW0_raddr_d0 <= RW0_addr;
+    _RW0_ren_d0 <= RW0_en;
+    _RW0_rmode_d0 <= RW0_wmode;
+    if (RW0_en & RW0_wmode & 1'h1)
+      Memory[RW0_addr] <= RW0_wdata;
   end // always @(posedge)
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
-    if (W1_en & 1'h1)
-      Memory[W1_addr] <= W1_data;
   end // always @(posedge)
-  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 13'bx;
+  assign RW0_rdata = _RW0_ren_d0 & ~_RW0_rmode_d0 ? Memory[_RW0_raddr_d0] : 13'bx;
 endmodule
 
 module BucketSort_n4096_b13_w4_c16_p2_world(
@@ -17039,22 +17039,22 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
   wire [12:0]  oldWord_2;
   wire [12:0]  oldWord_1;
   wire [12:0]  oldWord_0;
-  wire [12:0]  _entries_15_ext_R0_data;
-  wire [12:0]  _entries_14_ext_R0_data;
-  wire [12:0]  _entries_13_ext_R0_data;
-  wire [12:0]  _entries_12_ext_R0_data;
-  wire [12:0]  _entries_11_ext_R0_data;
-  wire [12:0]  _entries_10_ext_R0_data;
-  wire [12:0]  _entries_9_ext_R0_data;
-  wire [12:0]  _entries_8_ext_R0_data;
-  wire [12:0]  _entries_7_ext_R0_data;
-  wire [12:0]  _entries_6_ext_R0_data;
-  wire [12:0]  _entries_5_ext_R0_data;
-  wire [12:0]  _entries_4_ext_R0_data;
-  wire [12:0]  _entries_3_ext_R0_data;
-  wire [12:0]  _entries_2_ext_R0_data;
-  wire [12:0]  _entries_1_ext_R0_data;
-  wire [12:0]  _entries_0_ext_R0_data;
+  wire [12:0]  _entries_15_ext_RW0_rdata;
+  wire [12:0]  _entries_14_ext_RW0_rdata;
+  wire [12:0]  _entries_13_ext_RW0_rdata;
+  wire [12:0]  _entries_12_ext_RW0_rdata;
+  wire [12:0]  _entries_11_ext_RW0_rdata;
+  wire [12:0]  _entries_10_ext_RW0_rdata;
+  wire [12:0]  _entries_9_ext_RW0_rdata;
+  wire [12:0]  _entries_8_ext_RW0_rdata;
+  wire [12:0]  _entries_7_ext_RW0_rdata;
+  wire [12:0]  _entries_6_ext_RW0_rdata;
+  wire [12:0]  _entries_5_ext_RW0_rdata;
+  wire [12:0]  _entries_4_ext_RW0_rdata;
+  wire [12:0]  _entries_3_ext_RW0_rdata;
+  wire [12:0]  _entries_2_ext_RW0_rdata;
+  wire [12:0]  _entries_1_ext_RW0_rdata;
+  wire [12:0]  _entries_0_ext_RW0_rdata;
   wire [207:0] _cursors_0_ext_R0_data;
   wire [207:0] _cursors_0_ext_R1_data;
   wire [207:0] _tables_15_ext_R0_data;
@@ -17411,8 +17411,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
         casez_tmp_2 = _tables_0_ext_R3_data[207:195];
     endcase
   end // always @(*)
-  wire [12:0]  _GEN_3 = {1'h0, s1item};
-  wire [12:0]  _GEN_4 = {1'h0, s1item_1};
+  wire [12:0]  _entryRd_T_111 = {1'h0, s1item};
   wire [12:0]  _prev_T_1 = io_lookup_1_bucket - 13'h1;
   reg          lbZero_1;
   reg  [3:0]   io_lookup_1_end_REG;
@@ -18584,8 +18583,8 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     endcase
   end // always @(*)
   wire [9:0]   _walk_T_2 = walk + 10'h1;
-  wire         _GEN_5 = io_clear & _io_in_1_ready_T;
-  wire         _GEN_6 = io_prefix & _io_in_1_ready_T;
+  wire         _GEN_3 = io_clear & _io_in_1_ready_T;
+  wire         _GEN_4 = io_prefix & _io_in_1_ready_T;
   always @(posedge clock) begin
     if (reset) begin
       state <= 2'h0;
@@ -18601,11 +18600,11 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     else begin
       if (sumS1 & sumLast | _GEN & _walk_T_2 == usedWords)
         state <= 2'h0;
-      else if (_GEN_5)
+      else if (_GEN_3)
         state <= 2'h1;
-      else if (_GEN_6)
+      else if (_GEN_4)
         state <= 2'h2;
-      if (_GEN_5) begin
+      if (_GEN_3) begin
         counted <= 13'h0;
         scattered <= 13'h0;
       end
@@ -18614,7 +18613,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
           counted + {11'h0, {1'h0, s1 & ~s1scatter} + {1'h0, s1_1 & ~s1scatter_1}};
         scattered <= scattered + {11'h0, {1'h0, scatterFires_0} + {1'h0, scatterFires_1}};
       end
-      bad <= _fire_T_1 & ~inRange_1 | _fire_T & ~inRange | ~_GEN_5 & bad;
+      bad <= _fire_T_1 & ~inRange_1 | _fire_T & ~inRange | ~_GEN_3 & bad;
       sumS1 <= sumRead;
       s1 <= fire;
       fwdValid <= s1;
@@ -18623,14 +18622,14 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     end
     if (_sumRead_T & _sumRead_T_1 | _GEN)
       walk <= _walk_T_2;
-    else if (_GEN_5 | _GEN_6)
+    else if (_GEN_3 | _GEN_4)
       walk <= 10'h0;
     if (sumS1)
       sum <=
         totals_0 + totals_1 + totals_2 + totals_3 + totals_4 + totals_5 + totals_6
         + totals_7 + totals_8 + totals_9 + totals_10 + totals_11 + totals_12 + totals_13
         + totals_14 + totals_15 + sum;
-    else if (_GEN_5 | ~_GEN_6) begin
+    else if (_GEN_3 | ~_GEN_4) begin
     end
     else
       sum <= 13'h0;
@@ -18986,228 +18985,196 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
          : _GEN ? 208'h0 : newWord)
   );
   entries_4096x13_world entries_0_ext (
-    .R0_addr (io_entry_0_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_0_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_0_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_0_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_0_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_0_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_0_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_0_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_0_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_0_bits_item})
   );
   entries_4096x13_world entries_1_ext (
-    .R0_addr (io_entry_1_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_1_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_1_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_1_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_1_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_1_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_1_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_1_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_1_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_1_bits_item})
   );
   entries_4096x13_world entries_2_ext (
-    .R0_addr (io_entry_2_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_2_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_2_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_2_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_2_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_2_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_2_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_2_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_2_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_2_bits_item})
   );
   entries_4096x13_world entries_3_ext (
-    .R0_addr (io_entry_3_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_3_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_3_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_3_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_3_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_3_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_3_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_3_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_3_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_3_bits_item})
   );
   entries_4096x13_world entries_4_ext (
-    .R0_addr (io_entry_4_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_4_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_4_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_4_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_4_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_4_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_4_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_4_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_4_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_4_bits_item})
   );
   entries_4096x13_world entries_5_ext (
-    .R0_addr (io_entry_5_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_5_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_5_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_5_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_5_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_5_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_5_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_5_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_5_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_5_bits_item})
   );
   entries_4096x13_world entries_6_ext (
-    .R0_addr (io_entry_6_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_6_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_6_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_6_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_6_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_6_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_6_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_6_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_6_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_6_bits_item})
   );
   entries_4096x13_world entries_7_ext (
-    .R0_addr (io_entry_7_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_7_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_7_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_7_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_7_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_7_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_7_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_7_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_7_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_7_bits_item})
   );
   entries_4096x13_world entries_8_ext (
-    .R0_addr (io_entry_8_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_8_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_8_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_8_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_8_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_8_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_8_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_8_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_8_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_8_bits_item})
   );
   entries_4096x13_world entries_9_ext (
-    .R0_addr (io_entry_9_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_9_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_9_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_9_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_9_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_9_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_9_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_9_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_9_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_9_bits_item})
   );
   entries_4096x13_world entries_10_ext (
-    .R0_addr (io_entry_10_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_10_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_10_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_10_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_10_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_10_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_10_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_10_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_10_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_10_bits_item})
   );
   entries_4096x13_world entries_11_ext (
-    .R0_addr (io_entry_11_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_11_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_11_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_11_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_11_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_11_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_11_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_11_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_11_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_11_bits_item})
   );
   entries_4096x13_world entries_12_ext (
-    .R0_addr (io_entry_12_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_12_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_12_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_12_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_12_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_12_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_12_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_12_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_12_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_12_bits_item})
   );
   entries_4096x13_world entries_13_ext (
-    .R0_addr (io_entry_13_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_13_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_13_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_13_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_13_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_13_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_13_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_13_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_13_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_13_bits_item})
   );
   entries_4096x13_world entries_14_ext (
-    .R0_addr (io_entry_14_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_14_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_14_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_14_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_14_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_14_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_14_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_14_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_14_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_14_bits_item})
   );
   entries_4096x13_world entries_15_ext (
-    .R0_addr (io_entry_15_addr),
-    .R0_en   (1'h1),
-    .R0_clk  (clock),
-    .R0_data (_entries_15_ext_R0_data),
-    .W0_addr (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_15_bits_addr),
-    .W0_en   (scatterFires_1 | io_mark_15_valid),
-    .W0_clk  (clock),
-    .W0_data (scatterFires_1 ? _GEN_4 : {1'h1, io_mark_15_bits_item}),
-    .W1_addr (casez_tmp[11:0]),
-    .W1_en   (scatterFires_0),
-    .W1_clk  (clock),
-    .W1_data (_GEN_3)
+    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_15_addr),
+    .RW0_en    (1'h1),
+    .RW0_clk   (clock),
+    .RW0_wmode (scatterFires_0),
+    .RW0_wdata (_entryRd_T_111),
+    .RW0_rdata (_entries_15_ext_RW0_rdata),
+    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_15_bits_addr),
+    .W0_en     (scatterFires_1 | io_mark_15_valid),
+    .W0_clk    (clock),
+    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_15_bits_item})
   );
   assign io_busy = |state;
   assign io_in_0_ready = io_in_0_ready_0;
@@ -19500,38 +19467,38 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
   assign io_lookup_15_word_13 = _tables_15_ext_R0_data[181:169];
   assign io_lookup_15_word_14 = _tables_15_ext_R0_data[194:182];
   assign io_lookup_15_word_15 = _tables_15_ext_R0_data[207:195];
-  assign io_entry_0_item = _entries_0_ext_R0_data[11:0];
-  assign io_entry_0_mark = _entries_0_ext_R0_data[12];
-  assign io_entry_1_item = _entries_1_ext_R0_data[11:0];
-  assign io_entry_1_mark = _entries_1_ext_R0_data[12];
-  assign io_entry_2_item = _entries_2_ext_R0_data[11:0];
-  assign io_entry_2_mark = _entries_2_ext_R0_data[12];
-  assign io_entry_3_item = _entries_3_ext_R0_data[11:0];
-  assign io_entry_3_mark = _entries_3_ext_R0_data[12];
-  assign io_entry_4_item = _entries_4_ext_R0_data[11:0];
-  assign io_entry_4_mark = _entries_4_ext_R0_data[12];
-  assign io_entry_5_item = _entries_5_ext_R0_data[11:0];
-  assign io_entry_5_mark = _entries_5_ext_R0_data[12];
-  assign io_entry_6_item = _entries_6_ext_R0_data[11:0];
-  assign io_entry_6_mark = _entries_6_ext_R0_data[12];
-  assign io_entry_7_item = _entries_7_ext_R0_data[11:0];
-  assign io_entry_7_mark = _entries_7_ext_R0_data[12];
-  assign io_entry_8_item = _entries_8_ext_R0_data[11:0];
-  assign io_entry_8_mark = _entries_8_ext_R0_data[12];
-  assign io_entry_9_item = _entries_9_ext_R0_data[11:0];
-  assign io_entry_9_mark = _entries_9_ext_R0_data[12];
-  assign io_entry_10_item = _entries_10_ext_R0_data[11:0];
-  assign io_entry_10_mark = _entries_10_ext_R0_data[12];
-  assign io_entry_11_item = _entries_11_ext_R0_data[11:0];
-  assign io_entry_11_mark = _entries_11_ext_R0_data[12];
-  assign io_entry_12_item = _entries_12_ext_R0_data[11:0];
-  assign io_entry_12_mark = _entries_12_ext_R0_data[12];
-  assign io_entry_13_item = _entries_13_ext_R0_data[11:0];
-  assign io_entry_13_mark = _entries_13_ext_R0_data[12];
-  assign io_entry_14_item = _entries_14_ext_R0_data[11:0];
-  assign io_entry_14_mark = _entries_14_ext_R0_data[12];
-  assign io_entry_15_item = _entries_15_ext_R0_data[11:0];
-  assign io_entry_15_mark = _entries_15_ext_R0_data[12];
+  assign io_entry_0_item = _entries_0_ext_RW0_rdata[11:0];
+  assign io_entry_0_mark = _entries_0_ext_RW0_rdata[12];
+  assign io_entry_1_item = _entries_1_ext_RW0_rdata[11:0];
+  assign io_entry_1_mark = _entries_1_ext_RW0_rdata[12];
+  assign io_entry_2_item = _entries_2_ext_RW0_rdata[11:0];
+  assign io_entry_2_mark = _entries_2_ext_RW0_rdata[12];
+  assign io_entry_3_item = _entries_3_ext_RW0_rdata[11:0];
+  assign io_entry_3_mark = _entries_3_ext_RW0_rdata[12];
+  assign io_entry_4_item = _entries_4_ext_RW0_rdata[11:0];
+  assign io_entry_4_mark = _entries_4_ext_RW0_rdata[12];
+  assign io_entry_5_item = _entries_5_ext_RW0_rdata[11:0];
+  assign io_entry_5_mark = _entries_5_ext_RW0_rdata[12];
+  assign io_entry_6_item = _entries_6_ext_RW0_rdata[11:0];
+  assign io_entry_6_mark = _entries_6_ext_RW0_rdata[12];
+  assign io_entry_7_item = _entries_7_ext_RW0_rdata[11:0];
+  assign io_entry_7_mark = _entries_7_ext_RW0_rdata[12];
+  assign io_entry_8_item = _entries_8_ext_RW0_rdata[11:0];
+  assign io_entry_8_mark = _entries_8_ext_RW0_rdata[12];
+  assign io_entry_9_item = _entries_9_ext_RW0_rdata[11:0];
+  assign io_entry_9_mark = _entries_9_ext_RW0_rdata[12];
+  assign io_entry_10_item = _entries_10_ext_RW0_rdata[11:0];
+  assign io_entry_10_mark = _entries_10_ext_RW0_rdata[12];
+  assign io_entry_11_item = _entries_11_ext_RW0_rdata[11:0];
+  assign io_entry_11_mark = _entries_11_ext_RW0_rdata[12];
+  assign io_entry_12_item = _entries_12_ext_RW0_rdata[11:0];
+  assign io_entry_12_mark = _entries_12_ext_RW0_rdata[12];
+  assign io_entry_13_item = _entries_13_ext_RW0_rdata[11:0];
+  assign io_entry_13_mark = _entries_13_ext_RW0_rdata[12];
+  assign io_entry_14_item = _entries_14_ext_RW0_rdata[11:0];
+  assign io_entry_14_mark = _entries_14_ext_RW0_rdata[12];
+  assign io_entry_15_item = _entries_15_ext_RW0_rdata[11:0];
+  assign io_entry_15_mark = _entries_15_ext_RW0_rdata[12];
   assign io_counted = counted;
   assign io_scattered = scattered;
   assign io_badBucket = bad;

@@ -23,7 +23,10 @@ import chisel3.util._
   * prefix sum and never counted in. So `ports` = 2 costs one table more than 1.
   *
   * Entries: each copy's table of sphere indices takes both ports' scatter writes in a cycle
-  * (a true dual-port block RAM; with one port, its second port is idle then). Each entry
+  * (a true dual-port block RAM, one port of it also reading; with one sort port, a simple
+  * dual-port one: a write port shared by placements and marks, and a read port). Yosys 0.23's
+  * Cyclone V library has simple dual-port block RAM only, so its area proxy maps the
+  * two-port entries to flip-flops (docs/afu.md). Each entry
   * carries a mark bit for the candidate generator (which entries of a bucket it has put in a
   * chunk already): scatter writes it clear, so a new world needs no clearing pass, and
   * `mark(c)` sets it in copy c (rewriting the item it was given). Never mark while
@@ -150,7 +153,8 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
 
   // --- count / scatter: a two-stage read-modify-write of one counter per port --------------
   io.in.foreach(_.ready := state === S.idle && !io.clear && !io.prefix)
-  private val place = Wire(Vec(ports, Valid(new Bundle { val pos = UInt(itemW.W); val item = UInt(itemW.W) })))
+  private class Place extends Bundle { val pos = UInt(itemW.W); val item = UInt(itemW.W) }
+  private val place = Wire(Vec(ports, Valid(new Place)))
   for ((t, p) <- cursors.zipWithIndex) {
     val in = io.in(p)
     val inRange = in.bits.bucket < used
@@ -194,15 +198,22 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
     lk.word := endRd
     lk.begin := Mux(lbZero, 0.U, beginRd(RegNext(laneOf(prev))))
     val e = entries(c)
-    // Port A: the first port's placement; port B: the second's, or a mark (never both).
-    when(place(0).valid) { e.write(place(0).bits.pos, 0.U(1.W) ## place(0).bits.item) }
     val m = io.mark(c)
-    val bPlace = if (ports > 1) place(1).valid else false.B
-    when(bPlace || m.valid) {
-      e.write(Mux(bPlace, place.last.bits.pos, m.bits.addr),
-        Mux(bPlace, 0.U(1.W) ## place.last.bits.item, 1.U(1.W) ## m.bits.item))
+    def placed(q: Valid[Place]): UInt = 0.U(1.W) ## q.bits.item
+    val entryRd = if (ports == 1) {
+      // A simple dual-port RAM: one write port (a placement, or a mark: never both), one read.
+      when(place(0).valid || m.valid) {
+        e.write(Mux(place(0).valid, place(0).bits.pos, m.bits.addr), Mux(place(0).valid, placed(place(0)), 1.U(1.W) ## m.bits.item))
+      }
+      e.read(io.entry(c).addr)
+    } else {
+      // A true dual-port RAM: port A places the first port's items or reads an entry; port B
+      // places the second port's, or marks (never both: marks come after the scatter).
+      when(place(1).valid || m.valid) {
+        e.write(Mux(place(1).valid, place(1).bits.pos, m.bits.addr), Mux(place(1).valid, placed(place(1)), 1.U(1.W) ## m.bits.item))
+      }
+      e.readWrite(Mux(place(0).valid, place(0).bits.pos, io.entry(c).addr), placed(place(0)), true.B, place(0).valid)
     }
-    val entryRd = e.read(io.entry(c).addr)
     io.entry(c).item := entryRd(itemW - 1, 0)
     io.entry(c).mark := entryRd(itemW)
   }
