@@ -82,9 +82,10 @@ def table(rows, clock_mhz):
     return "\n".join(out)
 
 
-def area_table(path):
-    """The broad phase's Yosys area per configuration (lanes_area.py's CSV), or [] without one."""
-    if not path.exists():
+def read_area(path):
+    """The rows of lanes_area.py's CSV ([] without one); an old one without the newer columns
+    gets their defaults (one sort port, eight counters a word, no commit)."""
+    if not Path(path).exists():
         return []
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
@@ -92,6 +93,14 @@ def area_table(path):
         r.setdefault("sort_ports", "1")
         r.setdefault("per_word", "8")
         r.setdefault("commit", "")
+    return rows
+
+
+def area_table(path):
+    """The broad phase's Yosys area per configuration (lanes_area.py's CSV), or [] without one."""
+    if not path.exists():
+        return []
+    rows = read_area(path)
     # Ratios against the one-lane row of the same RTL (commit).
     ones = {r["commit"]: r for r in rows if r["lanes"] == "1"}
     out = ["## Area (Yosys 0.23, the Cyclone V proxy; the BroadPhase module alone)", "",

@@ -23,6 +23,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
 import area  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from lanes import read_area  # noqa: E402  (the area CSV, as the lanes report reads it)
 
 
 def broad_phase(folder: Path):
@@ -43,19 +45,6 @@ def broad_phase(folder: Path):
             int(bp.get("sortPorts", 1)), 1 << int(bp.get("wordLog2", 3)))
 
 
-def earlier(path: Path):
-    """The rows already in an area CSV (an old one without the newer columns gets their defaults)."""
-    if not path.exists():
-        return []
-    with open(path, newline="") as fh:
-        rows = list(csv.DictReader(fh))
-    for r in rows:
-        r.setdefault("sort_ports", "1")
-        r.setdefault("per_word", "8")
-        r.setdefault("commit", "")
-    return rows
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("folders", nargs="+", help="generated world-mode AFU folders")
@@ -70,7 +59,7 @@ def main(argv=None):
                      **{k: res[k] for k in area.FIELDS}, "ram_bits": int(bits), "commit": commit})
         print(rows[-1], flush=True)
     new = {r["module"] for r in rows}
-    rows = [r for r in earlier(Path(a.out)) if r["module"] not in new] + rows
+    rows = [r for r in read_area(Path(a.out)) if r["module"] not in new] + rows
     rows.sort(key=lambda r: (r["commit"] == commit, int(r["lanes"]), int(r["sort_ports"])))
     with open(a.out, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=["lanes", "sort_ports", "per_word", "module", *area.FIELDS, "ram_bits", "commit"])
