@@ -17247,7 +17247,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
   assign oldWord_13 = _GEN_0[181:169];
   assign oldWord_14 = _GEN_0[194:182];
   assign oldWord_15 = _GEN_0[207:195];
-  wire         scatterFires_0 = s1 & s1scatter;
+  wire         place_0_valid = s1 & s1scatter;
   wire         _GEN_1 = sumS1 | _GEN;
   wire         inRange_1 = {1'h0, io_in_1_bits_bucket} < _used_T[13:0];
   wire         _fire_T_1 = io_in_1_ready_0 & io_in_1_valid;
@@ -17332,7 +17332,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
   assign oldWord_1_13 = _GEN_2[181:169];
   assign oldWord_1_14 = _GEN_2[194:182];
   assign oldWord_1_15 = _GEN_2[207:195];
-  wire         scatterFires_1 = s1_1 & s1scatter_1;
+  wire         place_1_valid = s1_1 & s1scatter_1;
   wire [12:0]  _prev_T = io_lookup_0_bucket - 13'h1;
   reg          lbZero;
   reg  [3:0]   io_lookup_0_end_REG;
@@ -17411,7 +17411,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
         casez_tmp_2 = _tables_0_ext_R3_data[207:195];
     endcase
   end // always @(*)
-  wire [12:0]  _entryRd_T_111 = {1'h0, s1item};
+  wire [12:0]  _entryRd_T_31 = {1'h0, s1item};
   wire [12:0]  _prev_T_1 = io_lookup_1_bucket - 13'h1;
   reg          lbZero_1;
   reg  [3:0]   io_lookup_1_end_REG;
@@ -18611,7 +18611,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
       else begin
         counted <=
           counted + {11'h0, {1'h0, s1 & ~s1scatter} + {1'h0, s1_1 & ~s1scatter_1}};
-        scattered <= scattered + {11'h0, {1'h0, scatterFires_0} + {1'h0, scatterFires_1}};
+        scattered <= scattered + {11'h0, {1'h0, place_0_valid} + {1'h0, place_1_valid}};
       end
       bad <= _fire_T_1 & ~inRange_1 | _fire_T & ~inRange | ~_GEN_3 & bad;
       sumS1 <= sumRead;
@@ -18985,196 +18985,196 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
          : _GEN ? 208'h0 : newWord)
   );
   entries_4096x13_world entries_0_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_0_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_0_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_0_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_0_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_0_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_0_bits_addr),
+    .W0_en     (place_1_valid | io_mark_0_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_0_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_0_bits_item})
   );
   entries_4096x13_world entries_1_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_1_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_1_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_1_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_1_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_1_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_1_bits_addr),
+    .W0_en     (place_1_valid | io_mark_1_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_1_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_1_bits_item})
   );
   entries_4096x13_world entries_2_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_2_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_2_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_2_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_2_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_2_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_2_bits_addr),
+    .W0_en     (place_1_valid | io_mark_2_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_2_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_2_bits_item})
   );
   entries_4096x13_world entries_3_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_3_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_3_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_3_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_3_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_3_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_3_bits_addr),
+    .W0_en     (place_1_valid | io_mark_3_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_3_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_3_bits_item})
   );
   entries_4096x13_world entries_4_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_4_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_4_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_4_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_4_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_4_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_4_bits_addr),
+    .W0_en     (place_1_valid | io_mark_4_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_4_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_4_bits_item})
   );
   entries_4096x13_world entries_5_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_5_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_5_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_5_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_5_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_5_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_5_bits_addr),
+    .W0_en     (place_1_valid | io_mark_5_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_5_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_5_bits_item})
   );
   entries_4096x13_world entries_6_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_6_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_6_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_6_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_6_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_6_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_6_bits_addr),
+    .W0_en     (place_1_valid | io_mark_6_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_6_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_6_bits_item})
   );
   entries_4096x13_world entries_7_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_7_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_7_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_7_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_7_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_7_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_7_bits_addr),
+    .W0_en     (place_1_valid | io_mark_7_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_7_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_7_bits_item})
   );
   entries_4096x13_world entries_8_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_8_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_8_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_8_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_8_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_8_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_8_bits_addr),
+    .W0_en     (place_1_valid | io_mark_8_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_8_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_8_bits_item})
   );
   entries_4096x13_world entries_9_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_9_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_9_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_9_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_9_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_9_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_9_bits_addr),
+    .W0_en     (place_1_valid | io_mark_9_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_9_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_9_bits_item})
   );
   entries_4096x13_world entries_10_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_10_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_10_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_10_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_10_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_10_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_10_bits_addr),
+    .W0_en     (place_1_valid | io_mark_10_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_10_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_10_bits_item})
   );
   entries_4096x13_world entries_11_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_11_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_11_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_11_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_11_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_11_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_11_bits_addr),
+    .W0_en     (place_1_valid | io_mark_11_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_11_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_11_bits_item})
   );
   entries_4096x13_world entries_12_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_12_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_12_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_12_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_12_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_12_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_12_bits_addr),
+    .W0_en     (place_1_valid | io_mark_12_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_12_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_12_bits_item})
   );
   entries_4096x13_world entries_13_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_13_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_13_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_13_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_13_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_13_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_13_bits_addr),
+    .W0_en     (place_1_valid | io_mark_13_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_13_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_13_bits_item})
   );
   entries_4096x13_world entries_14_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_14_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_14_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_14_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_14_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_14_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_14_bits_addr),
+    .W0_en     (place_1_valid | io_mark_14_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_14_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_14_bits_item})
   );
   entries_4096x13_world entries_15_ext (
-    .RW0_addr  (scatterFires_0 ? casez_tmp[11:0] : io_entry_15_addr),
+    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_15_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
-    .RW0_wmode (scatterFires_0),
-    .RW0_wdata (_entryRd_T_111),
+    .RW0_wmode (place_0_valid),
+    .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_15_ext_RW0_rdata),
-    .W0_addr   (scatterFires_1 ? casez_tmp_0[11:0] : io_mark_15_bits_addr),
-    .W0_en     (scatterFires_1 | io_mark_15_valid),
+    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_15_bits_addr),
+    .W0_en     (place_1_valid | io_mark_15_valid),
     .W0_clk    (clock),
-    .W0_data   (scatterFires_1 ? {1'h0, s1item_1} : {1'h1, io_mark_15_bits_item})
+    .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_15_bits_item})
   );
   assign io_busy = |state;
   assign io_in_0_ready = io_in_0_ready_0;
@@ -23259,6 +23259,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   reg  [28:0] larges_15_q_2;
   reg  [28:0] larges_15_qr;
   reg  [2:0]  state;
+  wire        starting = io_start & ~(|state);
   reg  [12:0] num;
   reg  [3:0]  usedLog2;
   reg         sent;
@@ -31833,13 +31834,13 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sort_io_in_0_valid_T_12 | _sort_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:220 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:225 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sort_io_in_1_valid_T_12 | _sort_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:220 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:225 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -32490,7 +32491,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_0 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_0_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_0_io_out_need),
     .io_in_0_needNone  (_laneKeys_0_io_out_needNone),
@@ -32521,7 +32522,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_1 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_1_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_1_io_out_need),
     .io_in_0_needNone  (_laneKeys_1_io_out_needNone),
@@ -32552,7 +32553,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_2 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_2_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_2_io_out_need),
     .io_in_0_needNone  (_laneKeys_2_io_out_needNone),
@@ -32583,7 +32584,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_3 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_3_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_3_io_out_need),
     .io_in_0_needNone  (_laneKeys_3_io_out_needNone),
@@ -32614,7 +32615,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_4 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_4_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_4_io_out_need),
     .io_in_0_needNone  (_laneKeys_4_io_out_needNone),
@@ -32645,7 +32646,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_5 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_5_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_5_io_out_need),
     .io_in_0_needNone  (_laneKeys_5_io_out_needNone),
@@ -32676,7 +32677,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_6 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_6_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_6_io_out_need),
     .io_in_0_needNone  (_laneKeys_6_io_out_needNone),
@@ -32707,7 +32708,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_7 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_7_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_7_io_out_need),
     .io_in_0_needNone  (_laneKeys_7_io_out_needNone),
@@ -32738,7 +32739,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_8 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_8_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_8_io_out_need),
     .io_in_0_needNone  (_laneKeys_8_io_out_needNone),
@@ -32769,7 +32770,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_9 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_9_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_9_io_out_need),
     .io_in_0_needNone  (_laneKeys_9_io_out_needNone),
@@ -32800,7 +32801,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_10 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_10_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_10_io_out_need),
     .io_in_0_needNone  (_laneKeys_10_io_out_needNone),
@@ -32831,7 +32832,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_11 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_11_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_11_io_out_need),
     .io_in_0_needNone  (_laneKeys_11_io_out_needNone),
@@ -32862,7 +32863,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_12 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_12_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_12_io_out_need),
     .io_in_0_needNone  (_laneKeys_12_io_out_needNone),
@@ -32893,7 +32894,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_13 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_13_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_13_io_out_need),
     .io_in_0_needNone  (_laneKeys_13_io_out_needNone),
@@ -32924,7 +32925,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_14 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_14_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_14_io_out_need),
     .io_in_0_needNone  (_laneKeys_14_io_out_needNone),
@@ -32955,7 +32956,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_world laneExps_15 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (io_start & ~(|state)),
+    .io_clear          (starting),
     .io_in_0_valid     (_laneKeys_15_io_out_valid & _laneKeys_15_io_in_k_T),
     .io_in_0_need      (_laneKeys_15_io_out_need),
     .io_in_0_needNone  (_laneKeys_15_io_out_needNone),
@@ -32986,7 +32987,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   CellExponent_fp32_L16_c20_p2_world cellExp (
     .clock           (clock),
     .reset           (reset),
-    .io_clear        (io_start & ~(|state)),
+    .io_clear        (starting),
     .io_in_0_valid   (_cellExp_io_in_1_valid_T & _GEN_5 < 10'h110 & casez_tmp),
     .io_in_0_need    (casez_tmp_0),
     .io_in_0_top     (casez_tmp_1),
@@ -33001,7 +33002,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
-    .io_clear             (io_start & ~(|state)),
+    .io_clear             (starting),
     .io_prefix            (state == 3'h4 & ~sent),
     .io_busy              (_sort_io_busy),
     .io_in_0_ready        (_sort_io_in_0_ready),

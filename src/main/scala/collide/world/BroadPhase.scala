@@ -94,6 +94,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private object S extends ChiselEnum { val idle, load, merge, classify, prefix, scatter, generate = Value }
   private val state = RegInit(S.idle)
   io.busy := state =/= S.idle
+  /** A new world starts: every block forgets the last one. */
+  private val starting = io.start && state === S.idle
 
   private val num = Reg(UInt(countW.W))
   private val usedLog2 = Reg(UInt(log2Ceil(tableLog2 + 1).W))
@@ -111,8 +113,9 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   // Lane l's slice of the table, [cut(l), cut(l + 1)), c_l = floor(l 2^16 / lanes): the slices
   // tile the table, each bound within num / 2^16 + 1 of num l / lanes (a multiply by a
   // constant, where an exact cut would need a divider). The load pass and the large pass use them.
-  private def cut(m: Int): UInt =
-    if (m == 0) 0.U else if (m == bp.lanes) num else ((num * ((m.toLong << 16) / bp.lanes).U) >> 16).pad(countW)(countW - 1, 0)
+  private def cutOf(n: UInt, m: Int): UInt =
+    if (m == 0) 0.U else if (m == bp.lanes) n else ((n * ((m.toLong << 16) / bp.lanes).U) >> 16).pad(countW)(countW - 1, 0)
+  private def cut(m: Int): UInt = cutOf(num, m)
 
   // --- passes 1, 2 and 4: read the sphere table through SphereKeys --------------------------
   // The load pass: lane l reads its slice (with one lane, the whole table). Classify and
@@ -135,8 +138,9 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     r
   }
   /** What port q's SphereKeys gives this cycle, and for which sphere. */
-  private case class Keyed(o: SphereKeys, valid: Bool, index: UInt) {
+  private case class Keyed(o: SphereKeys, index: UInt) {
     def out = o.io.out
+    def valid: Bool = out.valid
     def isLarge: Bool = large(o)
     def isSmall: Bool = !out.nonFinite && !isLarge
   }
@@ -147,7 +151,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     lk.io.in.k := Mux(state === S.load, 0.S, k) // need and top do not depend on k
   }
   private val keyed = (0 until ports).map { q =>
-    Keyed(laneKeys(q), laneKeys(q).io.out.valid, Pipeline(RegNext(i(q)(itemW - 1, 0)), keysLatency, true.B))
+    Keyed(laneKeys(q), Pipeline(RegNext(i(q)(itemW - 1, 0)), keysLatency, true.B))
   }
   inflight := inflight + PopCount(reading) - PopCount(laneKeys.map(_.io.out.valid))
   for ((g, lk) <- gens.zip(laneKeys)) g.io.keyData := record(lk)
@@ -158,26 +162,27 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     ce.top := o.io.out.top; ce.topNone := o.io.out.topNone
     ce.nonFinite := o.io.out.nonFinite
   }
-  cellExp.io.clear := io.start && state === S.idle
+  cellExp.io.clear := starting
   private val mergeSlots = bp.largeMax + 1
   private val mergeItems = bp.lanes * mergeSlots
   private val m = Reg(UInt(log2Ceil(mergeItems + 2).W)) // the merge's next item: lane m / slots, slot m % slots
   if (!wideLoad) feed(cellExp.io.in.head, laneKeys.head.io.out.valid && state === S.load, laneKeys.head)
   else {
     for ((e, lk) <- laneExps.zip(laneKeys)) {
-      e.io.clear := io.start && state === S.idle
+      e.io.clear := starting
       feed(e.io.in.head, lk.io.out.valid && state === S.load, lk)
     }
     // Every lane's filled slots, each with the lane's top (the largest of them is the top).
     val needs = VecInit(laneExps.flatMap(e => e.io.kept))
     val filled = VecInit(laneExps.flatMap(e => (0 until mergeSlots).map(j => j.U < e.io.used)))
     val tops = VecInit(laneExps.flatMap(e => Seq.fill(mergeSlots)(e.io.top)))
+    val anyTops = VecInit(laneExps.flatMap(e => Seq.fill(mergeSlots)(e.io.anyTop)))
     for ((ce, d) <- cellExp.io.in.zipWithIndex) {
       val at = m +& d.U
       val idx = at(log2Ceil(mergeItems) - 1, 0)
       ce.valid := state === S.merge && at < mergeItems.U && filled(idx)
       ce.need := needs(idx); ce.needNone := false.B // an empty need is minK, as the lane kept it
-      ce.top := tops(idx); ce.topNone := !VecInit(laneExps.flatMap(e => Seq.fill(mergeSlots)(e.io.anyTop)))(idx)
+      ce.top := tops(idx); ce.topNone := !anyTops(idx)
       ce.nonFinite := false.B
     }
   }
@@ -210,7 +215,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     Mux(e < 0.S, 2.U, Mux(big, ((BigInt(1) << qWidth) - 1).U, 1.U +& (1.U << e.asUInt(log2Ceil(qWidth) - 1, 0))))
   }
   sort.io.usedLog2 := usedLog2
-  sort.io.clear := io.start && state === S.idle
+  sort.io.clear := starting
   sort.io.prefix := state === S.prefix && !sent
   for ((in, kd) <- sort.io.in.zip(keyed)) {
     in.valid := kd.valid && (state === S.classify || state === S.scatter) && kd.isSmall
@@ -255,8 +260,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
         val z = WireDefault(0.U.asTypeOf(st))
         num := io.num; usedLog2 := bucketsLog2For(io.num); largeCount := 0.U
         // The load pass's slices, from io.num (num is not written yet).
-        for (l <- 0 until bp.lanes)
-          i(l) := (if (l == 0) 0.U else ((io.num * ((l.toLong << 16) / bp.lanes).U) >> 16).pad(countW)(countW - 1, 0))
+        for (l <- 0 until bp.lanes) i(l) := cutOf(io.num, l)
         when(io.num > maxSpheres.U) { z.tooMany := true.B; st := z }
           .otherwise { st := z; state := S.load }
       }

@@ -129,10 +129,12 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
   private val starts = VecInit(totals.scanLeft(sum)(_ + _).take(perWord))
   /** Port p's cursor for bucket j: its start plus the counts of the ports before p. */
   private def portStart(p: Int, j: Int): UInt = sumRd.take(p).map(_(j)).foldLeft(starts(j))(_ + _)
+  private class Place extends Bundle { val pos = UInt(itemW.W); val item = UInt(itemW.W) }
+  /** Each port's scatter placement this cycle (the read-modify-write's second stage). */
+  private val place = Wire(Vec(ports, Valid(new Place)))
   private val countFires = Wire(Vec(ports, Bool()))
-  private val scatterFires = Wire(Vec(ports, Bool()))
   counted := counted + PopCount(countFires) // (a clear, below, wins)
-  scattered := scattered + PopCount(scatterFires)
+  scattered := scattered + PopCount(place.map(_.valid))
   when(io.clear && state === S.idle) {
     state := S.clearing; walk := 0.U; counted := 0.U; scattered := 0.U; bad := false.B
   }.elsewhen(io.prefix && state === S.idle) {
@@ -153,8 +155,6 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
 
   // --- count / scatter: a two-stage read-modify-write of one counter per port --------------
   io.in.foreach(_.ready := state === S.idle && !io.clear && !io.prefix)
-  private class Place extends Bundle { val pos = UInt(itemW.W); val item = UInt(itemW.W) }
-  private val place = Wire(Vec(ports, Valid(new Place)))
   for ((t, p) <- cursors.zipWithIndex) {
     val in = io.in(p)
     val inRange = in.bits.bucket < used
@@ -174,7 +174,6 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
     val fwdV = RegEnable(newWord, s1)
     oldWord := lanes(Mux(fwdValid && fwdW === wordOf(s1b), fwdV, rd))
     countFires(p) := s1 && !s1scatter
-    scatterFires(p) := s1 && s1scatter
     place(p).valid := s1 && s1scatter
     place(p).bits.pos := old(itemW - 1, 0)
     place(p).bits.item := s1item
@@ -199,21 +198,16 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
     lk.begin := Mux(lbZero, 0.U, beginRd(RegNext(laneOf(prev))))
     val e = entries(c)
     val m = io.mark(c)
-    def placed(q: Valid[Place]): UInt = 0.U(1.W) ## q.bits.item
-    val entryRd = if (ports == 1) {
-      // A simple dual-port RAM: one write port (a placement, or a mark: never both), one read.
-      when(place(0).valid || m.valid) {
-        e.write(Mux(place(0).valid, place(0).bits.pos, m.bits.addr), Mux(place(0).valid, placed(place(0)), 1.U(1.W) ## m.bits.item))
-      }
-      e.read(io.entry(c).addr)
-    } else {
-      // A true dual-port RAM: port A places the first port's items or reads an entry; port B
-      // places the second port's, or marks (never both: marks come after the scatter).
-      when(place(1).valid || m.valid) {
-        e.write(Mux(place(1).valid, place(1).bits.pos, m.bits.addr), Mux(place(1).valid, placed(place(1)), 1.U(1.W) ## m.bits.item))
-      }
-      e.readWrite(Mux(place(0).valid, place(0).bits.pos, io.entry(c).addr), placed(place(0)), true.B, place(0).valid)
+    // The write port: the last sort port's placements, or marks (never both: marks come after
+    // the scatter). With one sort port that and a read port make a simple dual-port RAM; with
+    // two, the other port of a true dual-port RAM places the first port's items or reads.
+    val last = place.last
+    when(last.valid || m.valid) {
+      e.write(Mux(last.valid, last.bits.pos, m.bits.addr), Mux(last.valid, 0.U(1.W), 1.U(1.W)) ## Mux(last.valid, last.bits.item, m.bits.item))
     }
+    val entryRd =
+      if (ports == 1) e.read(io.entry(c).addr)
+      else e.readWrite(Mux(place.head.valid, place.head.bits.pos, io.entry(c).addr), 0.U(1.W) ## place.head.bits.item, true.B, place.head.valid)
     io.entry(c).item := entryRd(itemW - 1, 0)
     io.entry(c).mark := entryRd(itemW)
   }
