@@ -16458,30 +16458,30 @@ module CellExponent_fp32_L16_c20_p2_world(
 endmodule
 
 // VCS coverage exclude_file
-module tables_0_512x208_world(
+module tables_0_512x192_world(
   input  [8:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [207:0] R0_data,
+  output [191:0] R0_data,
   input  [8:0]   R1_addr,
   input          R1_en,
                  R1_clk,
-  output [207:0] R1_data,
+  output [191:0] R1_data,
   input  [8:0]   R2_addr,
   input          R2_en,
                  R2_clk,
-  output [207:0] R2_data,
+  output [191:0] R2_data,
   input  [8:0]   R3_addr,
   input          R3_en,
                  R3_clk,
-  output [207:0] R3_data,
+  output [191:0] R3_data,
   input  [8:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [207:0] W0_data
+  input  [191:0] W0_data
 );
 
-  reg [207:0] Memory[0:511];
+  reg [191:0] Memory[0:511];
   reg         _R0_en_d0;
   reg [8:0]   _R0_addr_d0;
   always @(posedge R0_clk) begin
@@ -16510,29 +16510,29 @@ module tables_0_512x208_world(
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 208'bx;
-  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 208'bx;
-  assign R2_data = _R2_en_d0 ? Memory[_R2_addr_d0] : 208'bx;
-  assign R3_data = _R3_en_d0 ? Memory[_R3_addr_d0] : 208'bx;
+  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 192'bx;
+  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 192'bx;
+  assign R2_data = _R2_en_d0 ? Memory[_R2_addr_d0] : 192'bx;
+  assign R3_data = _R3_en_d0 ? Memory[_R3_addr_d0] : 192'bx;
 endmodule
 
 // VCS coverage exclude_file
-module mem_512x208_world(
+module mem_512x192_world(
   input  [8:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [207:0] R0_data,
+  output [191:0] R0_data,
   input  [8:0]   R1_addr,
   input          R1_en,
                  R1_clk,
-  output [207:0] R1_data,
+  output [191:0] R1_data,
   input  [8:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [207:0] W0_data
+  input  [191:0] W0_data
 );
 
-  reg [207:0] Memory[0:511];
+  reg [191:0] Memory[0:511];
   reg         _R0_en_d0;
   reg [8:0]   _R0_addr_d0;
   always @(posedge R0_clk) begin
@@ -16549,26 +16549,26 @@ module mem_512x208_world(
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 208'bx;
-  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 208'bx;
+  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 192'bx;
+  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 192'bx;
 endmodule
 
 // VCS coverage exclude_file
-module entries_4096x13_world(
-  input  [11:0] RW0_addr,
+module entries_2048x13_world(
+  input  [10:0] RW0_addr,
   input         RW0_en,
                 RW0_clk,
                 RW0_wmode,
   input  [12:0] RW0_wdata,
   output [12:0] RW0_rdata,
-  input  [11:0] W0_addr,
+  input  [10:0] W0_addr,
   input         W0_en,
                 W0_clk,
   input  [12:0] W0_data
 );
 
-  reg [12:0] Memory[0:4095];
-  reg [11:0] _RW0_raddr_d0;
+  reg [12:0] Memory[0:2047];
+  reg [10:0] _RW0_raddr_d0;
   reg        _RW0_ren_d0;
   reg        _RW0_rmode_d0;
   always @(posedge RW0_clk) begin
@@ -16585,7 +16585,7 @@ module entries_4096x13_world(
   assign RW0_rdata = _RW0_ren_d0 & ~_RW0_rmode_d0 ? Memory[_RW0_raddr_d0] : 13'bx;
 endmodule
 
-module BucketSort_n4096_b13_w4_c16_p2_world(
+module BucketSort_n2048_b13_w4_c16_p2_i12_world(
   input         clock,
                 reset,
   input  [3:0]  io_usedLog2,
@@ -16603,7 +16603,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
   input  [12:0] io_in_1_bits_bucket,
   input  [11:0] io_in_1_bits_item,
   input  [12:0] io_lookup_0_bucket,
-  output [12:0] io_lookup_0_begin,
+  output [11:0] io_lookup_0_begin,
                 io_lookup_0_end,
                 io_lookup_0_word_0,
                 io_lookup_0_word_1,
@@ -16622,7 +16622,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_0_word_14,
                 io_lookup_0_word_15,
   input  [12:0] io_lookup_1_bucket,
-  output [12:0] io_lookup_1_begin,
+  output [11:0] io_lookup_1_begin,
                 io_lookup_1_end,
                 io_lookup_1_word_0,
                 io_lookup_1_word_1,
@@ -16641,7 +16641,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_1_word_14,
                 io_lookup_1_word_15,
   input  [12:0] io_lookup_2_bucket,
-  output [12:0] io_lookup_2_begin,
+  output [11:0] io_lookup_2_begin,
                 io_lookup_2_end,
                 io_lookup_2_word_0,
                 io_lookup_2_word_1,
@@ -16660,7 +16660,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_2_word_14,
                 io_lookup_2_word_15,
   input  [12:0] io_lookup_3_bucket,
-  output [12:0] io_lookup_3_begin,
+  output [11:0] io_lookup_3_begin,
                 io_lookup_3_end,
                 io_lookup_3_word_0,
                 io_lookup_3_word_1,
@@ -16679,7 +16679,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_3_word_14,
                 io_lookup_3_word_15,
   input  [12:0] io_lookup_4_bucket,
-  output [12:0] io_lookup_4_begin,
+  output [11:0] io_lookup_4_begin,
                 io_lookup_4_end,
                 io_lookup_4_word_0,
                 io_lookup_4_word_1,
@@ -16698,7 +16698,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_4_word_14,
                 io_lookup_4_word_15,
   input  [12:0] io_lookup_5_bucket,
-  output [12:0] io_lookup_5_begin,
+  output [11:0] io_lookup_5_begin,
                 io_lookup_5_end,
                 io_lookup_5_word_0,
                 io_lookup_5_word_1,
@@ -16717,7 +16717,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_5_word_14,
                 io_lookup_5_word_15,
   input  [12:0] io_lookup_6_bucket,
-  output [12:0] io_lookup_6_begin,
+  output [11:0] io_lookup_6_begin,
                 io_lookup_6_end,
                 io_lookup_6_word_0,
                 io_lookup_6_word_1,
@@ -16736,7 +16736,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_6_word_14,
                 io_lookup_6_word_15,
   input  [12:0] io_lookup_7_bucket,
-  output [12:0] io_lookup_7_begin,
+  output [11:0] io_lookup_7_begin,
                 io_lookup_7_end,
                 io_lookup_7_word_0,
                 io_lookup_7_word_1,
@@ -16755,7 +16755,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_7_word_14,
                 io_lookup_7_word_15,
   input  [12:0] io_lookup_8_bucket,
-  output [12:0] io_lookup_8_begin,
+  output [11:0] io_lookup_8_begin,
                 io_lookup_8_end,
                 io_lookup_8_word_0,
                 io_lookup_8_word_1,
@@ -16774,7 +16774,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_8_word_14,
                 io_lookup_8_word_15,
   input  [12:0] io_lookup_9_bucket,
-  output [12:0] io_lookup_9_begin,
+  output [11:0] io_lookup_9_begin,
                 io_lookup_9_end,
                 io_lookup_9_word_0,
                 io_lookup_9_word_1,
@@ -16793,7 +16793,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_9_word_14,
                 io_lookup_9_word_15,
   input  [12:0] io_lookup_10_bucket,
-  output [12:0] io_lookup_10_begin,
+  output [11:0] io_lookup_10_begin,
                 io_lookup_10_end,
                 io_lookup_10_word_0,
                 io_lookup_10_word_1,
@@ -16812,7 +16812,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_10_word_14,
                 io_lookup_10_word_15,
   input  [12:0] io_lookup_11_bucket,
-  output [12:0] io_lookup_11_begin,
+  output [11:0] io_lookup_11_begin,
                 io_lookup_11_end,
                 io_lookup_11_word_0,
                 io_lookup_11_word_1,
@@ -16831,7 +16831,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_11_word_14,
                 io_lookup_11_word_15,
   input  [12:0] io_lookup_12_bucket,
-  output [12:0] io_lookup_12_begin,
+  output [11:0] io_lookup_12_begin,
                 io_lookup_12_end,
                 io_lookup_12_word_0,
                 io_lookup_12_word_1,
@@ -16850,7 +16850,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_12_word_14,
                 io_lookup_12_word_15,
   input  [12:0] io_lookup_13_bucket,
-  output [12:0] io_lookup_13_begin,
+  output [11:0] io_lookup_13_begin,
                 io_lookup_13_end,
                 io_lookup_13_word_0,
                 io_lookup_13_word_1,
@@ -16869,7 +16869,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_13_word_14,
                 io_lookup_13_word_15,
   input  [12:0] io_lookup_14_bucket,
-  output [12:0] io_lookup_14_begin,
+  output [11:0] io_lookup_14_begin,
                 io_lookup_14_end,
                 io_lookup_14_word_0,
                 io_lookup_14_word_1,
@@ -16888,7 +16888,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_14_word_14,
                 io_lookup_14_word_15,
   input  [12:0] io_lookup_15_bucket,
-  output [12:0] io_lookup_15_begin,
+  output [11:0] io_lookup_15_begin,
                 io_lookup_15_end,
                 io_lookup_15_word_0,
                 io_lookup_15_word_1,
@@ -16906,139 +16906,139 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
                 io_lookup_15_word_13,
                 io_lookup_15_word_14,
                 io_lookup_15_word_15,
-  input  [11:0] io_entry_0_addr,
+  input  [10:0] io_entry_0_addr,
   output [11:0] io_entry_0_item,
   output        io_entry_0_mark,
-  input  [11:0] io_entry_1_addr,
+  input  [10:0] io_entry_1_addr,
   output [11:0] io_entry_1_item,
   output        io_entry_1_mark,
-  input  [11:0] io_entry_2_addr,
+  input  [10:0] io_entry_2_addr,
   output [11:0] io_entry_2_item,
   output        io_entry_2_mark,
-  input  [11:0] io_entry_3_addr,
+  input  [10:0] io_entry_3_addr,
   output [11:0] io_entry_3_item,
   output        io_entry_3_mark,
-  input  [11:0] io_entry_4_addr,
+  input  [10:0] io_entry_4_addr,
   output [11:0] io_entry_4_item,
   output        io_entry_4_mark,
-  input  [11:0] io_entry_5_addr,
+  input  [10:0] io_entry_5_addr,
   output [11:0] io_entry_5_item,
   output        io_entry_5_mark,
-  input  [11:0] io_entry_6_addr,
+  input  [10:0] io_entry_6_addr,
   output [11:0] io_entry_6_item,
   output        io_entry_6_mark,
-  input  [11:0] io_entry_7_addr,
+  input  [10:0] io_entry_7_addr,
   output [11:0] io_entry_7_item,
   output        io_entry_7_mark,
-  input  [11:0] io_entry_8_addr,
+  input  [10:0] io_entry_8_addr,
   output [11:0] io_entry_8_item,
   output        io_entry_8_mark,
-  input  [11:0] io_entry_9_addr,
+  input  [10:0] io_entry_9_addr,
   output [11:0] io_entry_9_item,
   output        io_entry_9_mark,
-  input  [11:0] io_entry_10_addr,
+  input  [10:0] io_entry_10_addr,
   output [11:0] io_entry_10_item,
   output        io_entry_10_mark,
-  input  [11:0] io_entry_11_addr,
+  input  [10:0] io_entry_11_addr,
   output [11:0] io_entry_11_item,
   output        io_entry_11_mark,
-  input  [11:0] io_entry_12_addr,
+  input  [10:0] io_entry_12_addr,
   output [11:0] io_entry_12_item,
   output        io_entry_12_mark,
-  input  [11:0] io_entry_13_addr,
+  input  [10:0] io_entry_13_addr,
   output [11:0] io_entry_13_item,
   output        io_entry_13_mark,
-  input  [11:0] io_entry_14_addr,
+  input  [10:0] io_entry_14_addr,
   output [11:0] io_entry_14_item,
   output        io_entry_14_mark,
-  input  [11:0] io_entry_15_addr,
+  input  [10:0] io_entry_15_addr,
   output [11:0] io_entry_15_item,
   output        io_entry_15_mark,
   input         io_mark_0_valid,
-  input  [11:0] io_mark_0_bits_addr,
-                io_mark_0_bits_item,
+  input  [10:0] io_mark_0_bits_addr,
+  input  [11:0] io_mark_0_bits_item,
   input         io_mark_1_valid,
-  input  [11:0] io_mark_1_bits_addr,
-                io_mark_1_bits_item,
+  input  [10:0] io_mark_1_bits_addr,
+  input  [11:0] io_mark_1_bits_item,
   input         io_mark_2_valid,
-  input  [11:0] io_mark_2_bits_addr,
-                io_mark_2_bits_item,
+  input  [10:0] io_mark_2_bits_addr,
+  input  [11:0] io_mark_2_bits_item,
   input         io_mark_3_valid,
-  input  [11:0] io_mark_3_bits_addr,
-                io_mark_3_bits_item,
+  input  [10:0] io_mark_3_bits_addr,
+  input  [11:0] io_mark_3_bits_item,
   input         io_mark_4_valid,
-  input  [11:0] io_mark_4_bits_addr,
-                io_mark_4_bits_item,
+  input  [10:0] io_mark_4_bits_addr,
+  input  [11:0] io_mark_4_bits_item,
   input         io_mark_5_valid,
-  input  [11:0] io_mark_5_bits_addr,
-                io_mark_5_bits_item,
+  input  [10:0] io_mark_5_bits_addr,
+  input  [11:0] io_mark_5_bits_item,
   input         io_mark_6_valid,
-  input  [11:0] io_mark_6_bits_addr,
-                io_mark_6_bits_item,
+  input  [10:0] io_mark_6_bits_addr,
+  input  [11:0] io_mark_6_bits_item,
   input         io_mark_7_valid,
-  input  [11:0] io_mark_7_bits_addr,
-                io_mark_7_bits_item,
+  input  [10:0] io_mark_7_bits_addr,
+  input  [11:0] io_mark_7_bits_item,
   input         io_mark_8_valid,
-  input  [11:0] io_mark_8_bits_addr,
-                io_mark_8_bits_item,
+  input  [10:0] io_mark_8_bits_addr,
+  input  [11:0] io_mark_8_bits_item,
   input         io_mark_9_valid,
-  input  [11:0] io_mark_9_bits_addr,
-                io_mark_9_bits_item,
+  input  [10:0] io_mark_9_bits_addr,
+  input  [11:0] io_mark_9_bits_item,
   input         io_mark_10_valid,
-  input  [11:0] io_mark_10_bits_addr,
-                io_mark_10_bits_item,
+  input  [10:0] io_mark_10_bits_addr,
+  input  [11:0] io_mark_10_bits_item,
   input         io_mark_11_valid,
-  input  [11:0] io_mark_11_bits_addr,
-                io_mark_11_bits_item,
+  input  [10:0] io_mark_11_bits_addr,
+  input  [11:0] io_mark_11_bits_item,
   input         io_mark_12_valid,
-  input  [11:0] io_mark_12_bits_addr,
-                io_mark_12_bits_item,
+  input  [10:0] io_mark_12_bits_addr,
+  input  [11:0] io_mark_12_bits_item,
   input         io_mark_13_valid,
-  input  [11:0] io_mark_13_bits_addr,
-                io_mark_13_bits_item,
+  input  [10:0] io_mark_13_bits_addr,
+  input  [11:0] io_mark_13_bits_item,
   input         io_mark_14_valid,
-  input  [11:0] io_mark_14_bits_addr,
-                io_mark_14_bits_item,
+  input  [10:0] io_mark_14_bits_addr,
+  input  [11:0] io_mark_14_bits_item,
   input         io_mark_15_valid,
-  input  [11:0] io_mark_15_bits_addr,
-                io_mark_15_bits_item,
-  output [12:0] io_counted,
+  input  [10:0] io_mark_15_bits_addr,
+  input  [11:0] io_mark_15_bits_item,
+  output [11:0] io_counted,
                 io_scattered,
   output        io_badBucket
 );
 
-  wire [12:0]  oldWord_1_15;
-  wire [12:0]  oldWord_1_14;
-  wire [12:0]  oldWord_1_13;
-  wire [12:0]  oldWord_1_12;
-  wire [12:0]  oldWord_1_11;
-  wire [12:0]  oldWord_1_10;
-  wire [12:0]  oldWord_1_9;
-  wire [12:0]  oldWord_1_8;
-  wire [12:0]  oldWord_1_7;
-  wire [12:0]  oldWord_1_6;
-  wire [12:0]  oldWord_1_5;
-  wire [12:0]  oldWord_1_4;
-  wire [12:0]  oldWord_1_3;
-  wire [12:0]  oldWord_1_2;
-  wire [12:0]  oldWord_1_1;
-  wire [12:0]  oldWord_1_0;
-  wire [12:0]  oldWord_15;
-  wire [12:0]  oldWord_14;
-  wire [12:0]  oldWord_13;
-  wire [12:0]  oldWord_12;
-  wire [12:0]  oldWord_11;
-  wire [12:0]  oldWord_10;
-  wire [12:0]  oldWord_9;
-  wire [12:0]  oldWord_8;
-  wire [12:0]  oldWord_7;
-  wire [12:0]  oldWord_6;
-  wire [12:0]  oldWord_5;
-  wire [12:0]  oldWord_4;
-  wire [12:0]  oldWord_3;
-  wire [12:0]  oldWord_2;
-  wire [12:0]  oldWord_1;
-  wire [12:0]  oldWord_0;
+  wire [11:0]  oldWord_1_15;
+  wire [11:0]  oldWord_1_14;
+  wire [11:0]  oldWord_1_13;
+  wire [11:0]  oldWord_1_12;
+  wire [11:0]  oldWord_1_11;
+  wire [11:0]  oldWord_1_10;
+  wire [11:0]  oldWord_1_9;
+  wire [11:0]  oldWord_1_8;
+  wire [11:0]  oldWord_1_7;
+  wire [11:0]  oldWord_1_6;
+  wire [11:0]  oldWord_1_5;
+  wire [11:0]  oldWord_1_4;
+  wire [11:0]  oldWord_1_3;
+  wire [11:0]  oldWord_1_2;
+  wire [11:0]  oldWord_1_1;
+  wire [11:0]  oldWord_1_0;
+  wire [11:0]  oldWord_15;
+  wire [11:0]  oldWord_14;
+  wire [11:0]  oldWord_13;
+  wire [11:0]  oldWord_12;
+  wire [11:0]  oldWord_11;
+  wire [11:0]  oldWord_10;
+  wire [11:0]  oldWord_9;
+  wire [11:0]  oldWord_8;
+  wire [11:0]  oldWord_7;
+  wire [11:0]  oldWord_6;
+  wire [11:0]  oldWord_5;
+  wire [11:0]  oldWord_4;
+  wire [11:0]  oldWord_3;
+  wire [11:0]  oldWord_2;
+  wire [11:0]  oldWord_1;
+  wire [11:0]  oldWord_0;
   wire [12:0]  _entries_15_ext_RW0_rdata;
   wire [12:0]  _entries_14_ext_RW0_rdata;
   wire [12:0]  _entries_13_ext_RW0_rdata;
@@ -17055,98 +17055,97 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
   wire [12:0]  _entries_2_ext_RW0_rdata;
   wire [12:0]  _entries_1_ext_RW0_rdata;
   wire [12:0]  _entries_0_ext_RW0_rdata;
-  wire [207:0] _cursors_0_ext_R0_data;
-  wire [207:0] _cursors_0_ext_R1_data;
-  wire [207:0] _tables_15_ext_R0_data;
-  wire [207:0] _tables_15_ext_R1_data;
-  wire [207:0] _tables_14_ext_R0_data;
-  wire [207:0] _tables_14_ext_R1_data;
-  wire [207:0] _tables_13_ext_R0_data;
-  wire [207:0] _tables_13_ext_R1_data;
-  wire [207:0] _tables_12_ext_R0_data;
-  wire [207:0] _tables_12_ext_R1_data;
-  wire [207:0] _tables_11_ext_R0_data;
-  wire [207:0] _tables_11_ext_R1_data;
-  wire [207:0] _tables_10_ext_R0_data;
-  wire [207:0] _tables_10_ext_R1_data;
-  wire [207:0] _tables_9_ext_R0_data;
-  wire [207:0] _tables_9_ext_R1_data;
-  wire [207:0] _tables_8_ext_R0_data;
-  wire [207:0] _tables_8_ext_R1_data;
-  wire [207:0] _tables_7_ext_R0_data;
-  wire [207:0] _tables_7_ext_R1_data;
-  wire [207:0] _tables_6_ext_R0_data;
-  wire [207:0] _tables_6_ext_R1_data;
-  wire [207:0] _tables_5_ext_R0_data;
-  wire [207:0] _tables_5_ext_R1_data;
-  wire [207:0] _tables_4_ext_R0_data;
-  wire [207:0] _tables_4_ext_R1_data;
-  wire [207:0] _tables_3_ext_R0_data;
-  wire [207:0] _tables_3_ext_R1_data;
-  wire [207:0] _tables_2_ext_R0_data;
-  wire [207:0] _tables_2_ext_R1_data;
-  wire [207:0] _tables_1_ext_R0_data;
-  wire [207:0] _tables_1_ext_R1_data;
-  wire [207:0] _tables_0_ext_R0_data;
-  wire [207:0] _tables_0_ext_R1_data;
-  wire [207:0] _tables_0_ext_R2_data;
-  wire [207:0] _tables_0_ext_R3_data;
+  wire [191:0] _cursors_0_ext_R0_data;
+  wire [191:0] _cursors_0_ext_R1_data;
+  wire [191:0] _tables_15_ext_R0_data;
+  wire [191:0] _tables_15_ext_R1_data;
+  wire [191:0] _tables_14_ext_R0_data;
+  wire [191:0] _tables_14_ext_R1_data;
+  wire [191:0] _tables_13_ext_R0_data;
+  wire [191:0] _tables_13_ext_R1_data;
+  wire [191:0] _tables_12_ext_R0_data;
+  wire [191:0] _tables_12_ext_R1_data;
+  wire [191:0] _tables_11_ext_R0_data;
+  wire [191:0] _tables_11_ext_R1_data;
+  wire [191:0] _tables_10_ext_R0_data;
+  wire [191:0] _tables_10_ext_R1_data;
+  wire [191:0] _tables_9_ext_R0_data;
+  wire [191:0] _tables_9_ext_R1_data;
+  wire [191:0] _tables_8_ext_R0_data;
+  wire [191:0] _tables_8_ext_R1_data;
+  wire [191:0] _tables_7_ext_R0_data;
+  wire [191:0] _tables_7_ext_R1_data;
+  wire [191:0] _tables_6_ext_R0_data;
+  wire [191:0] _tables_6_ext_R1_data;
+  wire [191:0] _tables_5_ext_R0_data;
+  wire [191:0] _tables_5_ext_R1_data;
+  wire [191:0] _tables_4_ext_R0_data;
+  wire [191:0] _tables_4_ext_R1_data;
+  wire [191:0] _tables_3_ext_R0_data;
+  wire [191:0] _tables_3_ext_R1_data;
+  wire [191:0] _tables_2_ext_R0_data;
+  wire [191:0] _tables_2_ext_R1_data;
+  wire [191:0] _tables_1_ext_R0_data;
+  wire [191:0] _tables_1_ext_R1_data;
+  wire [191:0] _tables_0_ext_R0_data;
+  wire [191:0] _tables_0_ext_R1_data;
+  wire [191:0] _tables_0_ext_R2_data;
+  wire [191:0] _tables_0_ext_R3_data;
   reg  [1:0]   state;
   reg  [9:0]   walk;
   wire [28:0]  _used_T = 29'h1 << io_usedLog2;
   wire [9:0]   usedWords = _used_T[13:4] == 10'h0 ? 10'h1 : _used_T[13:4];
-  reg  [12:0]  counted;
-  reg  [12:0]  scattered;
+  reg  [11:0]  counted;
+  reg  [11:0]  scattered;
   reg          bad;
-  reg  [12:0]  sum;
+  reg  [11:0]  sum;
   wire         _sumRead_T = state == 2'h2;
   wire         _sumRead_T_1 = walk < usedWords;
   wire         sumRead = _sumRead_T & _sumRead_T_1;
   reg          sumS1;
   reg  [8:0]   sumW;
   reg          sumLast;
-  wire [12:0]  totals_0 = _cursors_0_ext_R0_data[12:0] + _tables_0_ext_R0_data[12:0];
-  wire [12:0]  totals_1 = _cursors_0_ext_R0_data[25:13] + _tables_0_ext_R0_data[25:13];
-  wire [12:0]  totals_2 = _cursors_0_ext_R0_data[38:26] + _tables_0_ext_R0_data[38:26];
-  wire [12:0]  totals_3 = _cursors_0_ext_R0_data[51:39] + _tables_0_ext_R0_data[51:39];
-  wire [12:0]  totals_4 = _cursors_0_ext_R0_data[64:52] + _tables_0_ext_R0_data[64:52];
-  wire [12:0]  totals_5 = _cursors_0_ext_R0_data[77:65] + _tables_0_ext_R0_data[77:65];
-  wire [12:0]  totals_6 = _cursors_0_ext_R0_data[90:78] + _tables_0_ext_R0_data[90:78];
-  wire [12:0]  totals_7 = _cursors_0_ext_R0_data[103:91] + _tables_0_ext_R0_data[103:91];
-  wire [12:0]  totals_8 =
-    _cursors_0_ext_R0_data[116:104] + _tables_0_ext_R0_data[116:104];
-  wire [12:0]  totals_9 =
-    _cursors_0_ext_R0_data[129:117] + _tables_0_ext_R0_data[129:117];
-  wire [12:0]  totals_10 =
-    _cursors_0_ext_R0_data[142:130] + _tables_0_ext_R0_data[142:130];
-  wire [12:0]  totals_11 =
-    _cursors_0_ext_R0_data[155:143] + _tables_0_ext_R0_data[155:143];
-  wire [12:0]  totals_12 =
-    _cursors_0_ext_R0_data[168:156] + _tables_0_ext_R0_data[168:156];
-  wire [12:0]  totals_13 =
-    _cursors_0_ext_R0_data[181:169] + _tables_0_ext_R0_data[181:169];
-  wire [12:0]  totals_14 =
-    _cursors_0_ext_R0_data[194:182] + _tables_0_ext_R0_data[194:182];
-  wire [12:0]  totals_15 =
-    _cursors_0_ext_R0_data[207:195] + _tables_0_ext_R0_data[207:195];
-  wire [12:0]  starts_1 = sum + totals_0;
-  wire [12:0]  starts_2 = starts_1 + totals_1;
-  wire [12:0]  starts_3 = starts_2 + totals_2;
-  wire [12:0]  starts_4 = starts_3 + totals_3;
-  wire [12:0]  starts_5 = starts_4 + totals_4;
-  wire [12:0]  starts_6 = starts_5 + totals_5;
-  wire [12:0]  starts_7 = starts_6 + totals_6;
-  wire [12:0]  starts_8 = starts_7 + totals_7;
-  wire [12:0]  starts_9 = starts_8 + totals_8;
-  wire [12:0]  starts_10 = starts_9 + totals_9;
-  wire [12:0]  starts_11 = starts_10 + totals_10;
-  wire [12:0]  starts_12 = starts_11 + totals_11;
-  wire [12:0]  starts_13 = starts_12 + totals_12;
-  wire [12:0]  starts_14 = starts_13 + totals_13;
-  wire [12:0]  starts_15 = starts_14 + totals_14;
+  wire [11:0]  totals_0 = _cursors_0_ext_R0_data[11:0] + _tables_0_ext_R0_data[11:0];
+  wire [11:0]  totals_1 = _cursors_0_ext_R0_data[23:12] + _tables_0_ext_R0_data[23:12];
+  wire [11:0]  totals_2 = _cursors_0_ext_R0_data[35:24] + _tables_0_ext_R0_data[35:24];
+  wire [11:0]  totals_3 = _cursors_0_ext_R0_data[47:36] + _tables_0_ext_R0_data[47:36];
+  wire [11:0]  totals_4 = _cursors_0_ext_R0_data[59:48] + _tables_0_ext_R0_data[59:48];
+  wire [11:0]  totals_5 = _cursors_0_ext_R0_data[71:60] + _tables_0_ext_R0_data[71:60];
+  wire [11:0]  totals_6 = _cursors_0_ext_R0_data[83:72] + _tables_0_ext_R0_data[83:72];
+  wire [11:0]  totals_7 = _cursors_0_ext_R0_data[95:84] + _tables_0_ext_R0_data[95:84];
+  wire [11:0]  totals_8 = _cursors_0_ext_R0_data[107:96] + _tables_0_ext_R0_data[107:96];
+  wire [11:0]  totals_9 =
+    _cursors_0_ext_R0_data[119:108] + _tables_0_ext_R0_data[119:108];
+  wire [11:0]  totals_10 =
+    _cursors_0_ext_R0_data[131:120] + _tables_0_ext_R0_data[131:120];
+  wire [11:0]  totals_11 =
+    _cursors_0_ext_R0_data[143:132] + _tables_0_ext_R0_data[143:132];
+  wire [11:0]  totals_12 =
+    _cursors_0_ext_R0_data[155:144] + _tables_0_ext_R0_data[155:144];
+  wire [11:0]  totals_13 =
+    _cursors_0_ext_R0_data[167:156] + _tables_0_ext_R0_data[167:156];
+  wire [11:0]  totals_14 =
+    _cursors_0_ext_R0_data[179:168] + _tables_0_ext_R0_data[179:168];
+  wire [11:0]  totals_15 =
+    _cursors_0_ext_R0_data[191:180] + _tables_0_ext_R0_data[191:180];
+  wire [11:0]  starts_1 = sum + totals_0;
+  wire [11:0]  starts_2 = starts_1 + totals_1;
+  wire [11:0]  starts_3 = starts_2 + totals_2;
+  wire [11:0]  starts_4 = starts_3 + totals_3;
+  wire [11:0]  starts_5 = starts_4 + totals_4;
+  wire [11:0]  starts_6 = starts_5 + totals_5;
+  wire [11:0]  starts_7 = starts_6 + totals_6;
+  wire [11:0]  starts_8 = starts_7 + totals_7;
+  wire [11:0]  starts_9 = starts_8 + totals_8;
+  wire [11:0]  starts_10 = starts_9 + totals_9;
+  wire [11:0]  starts_11 = starts_10 + totals_10;
+  wire [11:0]  starts_12 = starts_11 + totals_11;
+  wire [11:0]  starts_13 = starts_12 + totals_12;
+  wire [11:0]  starts_14 = starts_13 + totals_13;
+  wire [11:0]  starts_15 = starts_14 + totals_14;
   wire         _io_in_1_ready_T = state == 2'h0;
   wire         _GEN = state == 2'h1;
-  wire [207:0] ends =
+  wire [191:0] ends =
     {starts_15 + totals_15,
      starts_14 + totals_14,
      starts_13 + totals_13,
@@ -17174,7 +17173,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
   reg  [11:0]  s1item;
   reg          fwdValid;
   reg  [8:0]   fwdW;
-  reg  [12:0]  casez_tmp;
+  reg  [11:0]  casez_tmp;
   always @(*) begin
     casez (s1b[3:0])
       4'b0000:
@@ -17211,8 +17210,8 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
         casez_tmp = oldWord_15;
     endcase
   end // always @(*)
-  wire [12:0]  _newWord_T_77 = casez_tmp + 13'h1;
-  wire [207:0] newWord =
+  wire [11:0]  _newWord_T_77 = casez_tmp + 12'h1;
+  wire [191:0] newWord =
     {(&(s1b[3:0])) ? _newWord_T_77 : oldWord_15,
      s1b[3:0] == 4'hE ? _newWord_T_77 : oldWord_14,
      s1b[3:0] == 4'hD ? _newWord_T_77 : oldWord_13,
@@ -17229,24 +17228,24 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
      s1b[3:0] == 4'h2 ? _newWord_T_77 : oldWord_2,
      s1b[3:0] == 4'h1 ? _newWord_T_77 : oldWord_1,
      s1b[3:0] == 4'h0 ? _newWord_T_77 : oldWord_0};
-  reg  [207:0] fwdV;
-  wire [207:0] _GEN_0 = fwdValid & fwdW == s1b[12:4] ? fwdV : _cursors_0_ext_R1_data;
-  assign oldWord_0 = _GEN_0[12:0];
-  assign oldWord_1 = _GEN_0[25:13];
-  assign oldWord_2 = _GEN_0[38:26];
-  assign oldWord_3 = _GEN_0[51:39];
-  assign oldWord_4 = _GEN_0[64:52];
-  assign oldWord_5 = _GEN_0[77:65];
-  assign oldWord_6 = _GEN_0[90:78];
-  assign oldWord_7 = _GEN_0[103:91];
-  assign oldWord_8 = _GEN_0[116:104];
-  assign oldWord_9 = _GEN_0[129:117];
-  assign oldWord_10 = _GEN_0[142:130];
-  assign oldWord_11 = _GEN_0[155:143];
-  assign oldWord_12 = _GEN_0[168:156];
-  assign oldWord_13 = _GEN_0[181:169];
-  assign oldWord_14 = _GEN_0[194:182];
-  assign oldWord_15 = _GEN_0[207:195];
+  reg  [191:0] fwdV;
+  wire [191:0] _GEN_0 = fwdValid & fwdW == s1b[12:4] ? fwdV : _cursors_0_ext_R1_data;
+  assign oldWord_0 = _GEN_0[11:0];
+  assign oldWord_1 = _GEN_0[23:12];
+  assign oldWord_2 = _GEN_0[35:24];
+  assign oldWord_3 = _GEN_0[47:36];
+  assign oldWord_4 = _GEN_0[59:48];
+  assign oldWord_5 = _GEN_0[71:60];
+  assign oldWord_6 = _GEN_0[83:72];
+  assign oldWord_7 = _GEN_0[95:84];
+  assign oldWord_8 = _GEN_0[107:96];
+  assign oldWord_9 = _GEN_0[119:108];
+  assign oldWord_10 = _GEN_0[131:120];
+  assign oldWord_11 = _GEN_0[143:132];
+  assign oldWord_12 = _GEN_0[155:144];
+  assign oldWord_13 = _GEN_0[167:156];
+  assign oldWord_14 = _GEN_0[179:168];
+  assign oldWord_15 = _GEN_0[191:180];
   wire         place_0_valid = s1 & s1scatter;
   wire         _GEN_1 = sumS1 | _GEN;
   wire         inRange_1 = {1'h0, io_in_1_bits_bucket} < _used_T[13:0];
@@ -17258,7 +17257,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
   reg  [11:0]  s1item_1;
   reg          fwdValid_1;
   reg  [8:0]   fwdW_1;
-  reg  [12:0]  casez_tmp_0;
+  reg  [11:0]  casez_tmp_0;
   always @(*) begin
     casez (s1b_1[3:0])
       4'b0000:
@@ -17295,8 +17294,8 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
         casez_tmp_0 = oldWord_1_15;
     endcase
   end // always @(*)
-  wire [12:0]  _newWord_T_157 = casez_tmp_0 + 13'h1;
-  wire [207:0] newWord_1 =
+  wire [11:0]  _newWord_T_157 = casez_tmp_0 + 12'h1;
+  wire [191:0] newWord_1 =
     {(&(s1b_1[3:0])) ? _newWord_T_157 : oldWord_1_15,
      s1b_1[3:0] == 4'hE ? _newWord_T_157 : oldWord_1_14,
      s1b_1[3:0] == 4'hD ? _newWord_T_157 : oldWord_1_13,
@@ -17313,1273 +17312,1273 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
      s1b_1[3:0] == 4'h2 ? _newWord_T_157 : oldWord_1_2,
      s1b_1[3:0] == 4'h1 ? _newWord_T_157 : oldWord_1_1,
      s1b_1[3:0] == 4'h0 ? _newWord_T_157 : oldWord_1_0};
-  reg  [207:0] fwdV_1;
-  wire [207:0] _GEN_2 =
+  reg  [191:0] fwdV_1;
+  wire [191:0] _GEN_2 =
     fwdValid_1 & fwdW_1 == s1b_1[12:4] ? fwdV_1 : _tables_0_ext_R1_data;
-  assign oldWord_1_0 = _GEN_2[12:0];
-  assign oldWord_1_1 = _GEN_2[25:13];
-  assign oldWord_1_2 = _GEN_2[38:26];
-  assign oldWord_1_3 = _GEN_2[51:39];
-  assign oldWord_1_4 = _GEN_2[64:52];
-  assign oldWord_1_5 = _GEN_2[77:65];
-  assign oldWord_1_6 = _GEN_2[90:78];
-  assign oldWord_1_7 = _GEN_2[103:91];
-  assign oldWord_1_8 = _GEN_2[116:104];
-  assign oldWord_1_9 = _GEN_2[129:117];
-  assign oldWord_1_10 = _GEN_2[142:130];
-  assign oldWord_1_11 = _GEN_2[155:143];
-  assign oldWord_1_12 = _GEN_2[168:156];
-  assign oldWord_1_13 = _GEN_2[181:169];
-  assign oldWord_1_14 = _GEN_2[194:182];
-  assign oldWord_1_15 = _GEN_2[207:195];
+  assign oldWord_1_0 = _GEN_2[11:0];
+  assign oldWord_1_1 = _GEN_2[23:12];
+  assign oldWord_1_2 = _GEN_2[35:24];
+  assign oldWord_1_3 = _GEN_2[47:36];
+  assign oldWord_1_4 = _GEN_2[59:48];
+  assign oldWord_1_5 = _GEN_2[71:60];
+  assign oldWord_1_6 = _GEN_2[83:72];
+  assign oldWord_1_7 = _GEN_2[95:84];
+  assign oldWord_1_8 = _GEN_2[107:96];
+  assign oldWord_1_9 = _GEN_2[119:108];
+  assign oldWord_1_10 = _GEN_2[131:120];
+  assign oldWord_1_11 = _GEN_2[143:132];
+  assign oldWord_1_12 = _GEN_2[155:144];
+  assign oldWord_1_13 = _GEN_2[167:156];
+  assign oldWord_1_14 = _GEN_2[179:168];
+  assign oldWord_1_15 = _GEN_2[191:180];
   wire         place_1_valid = s1_1 & s1scatter_1;
   wire [12:0]  _prev_T = io_lookup_0_bucket - 13'h1;
   reg          lbZero;
   reg  [3:0]   io_lookup_0_end_REG;
-  reg  [12:0]  casez_tmp_1;
+  reg  [11:0]  casez_tmp_1;
   always @(*) begin
     casez (io_lookup_0_end_REG)
       4'b0000:
-        casez_tmp_1 = _tables_0_ext_R2_data[12:0];
+        casez_tmp_1 = _tables_0_ext_R2_data[11:0];
       4'b0001:
-        casez_tmp_1 = _tables_0_ext_R2_data[25:13];
+        casez_tmp_1 = _tables_0_ext_R2_data[23:12];
       4'b0010:
-        casez_tmp_1 = _tables_0_ext_R2_data[38:26];
+        casez_tmp_1 = _tables_0_ext_R2_data[35:24];
       4'b0011:
-        casez_tmp_1 = _tables_0_ext_R2_data[51:39];
+        casez_tmp_1 = _tables_0_ext_R2_data[47:36];
       4'b0100:
-        casez_tmp_1 = _tables_0_ext_R2_data[64:52];
+        casez_tmp_1 = _tables_0_ext_R2_data[59:48];
       4'b0101:
-        casez_tmp_1 = _tables_0_ext_R2_data[77:65];
+        casez_tmp_1 = _tables_0_ext_R2_data[71:60];
       4'b0110:
-        casez_tmp_1 = _tables_0_ext_R2_data[90:78];
+        casez_tmp_1 = _tables_0_ext_R2_data[83:72];
       4'b0111:
-        casez_tmp_1 = _tables_0_ext_R2_data[103:91];
+        casez_tmp_1 = _tables_0_ext_R2_data[95:84];
       4'b1000:
-        casez_tmp_1 = _tables_0_ext_R2_data[116:104];
+        casez_tmp_1 = _tables_0_ext_R2_data[107:96];
       4'b1001:
-        casez_tmp_1 = _tables_0_ext_R2_data[129:117];
+        casez_tmp_1 = _tables_0_ext_R2_data[119:108];
       4'b1010:
-        casez_tmp_1 = _tables_0_ext_R2_data[142:130];
+        casez_tmp_1 = _tables_0_ext_R2_data[131:120];
       4'b1011:
-        casez_tmp_1 = _tables_0_ext_R2_data[155:143];
+        casez_tmp_1 = _tables_0_ext_R2_data[143:132];
       4'b1100:
-        casez_tmp_1 = _tables_0_ext_R2_data[168:156];
+        casez_tmp_1 = _tables_0_ext_R2_data[155:144];
       4'b1101:
-        casez_tmp_1 = _tables_0_ext_R2_data[181:169];
+        casez_tmp_1 = _tables_0_ext_R2_data[167:156];
       4'b1110:
-        casez_tmp_1 = _tables_0_ext_R2_data[194:182];
+        casez_tmp_1 = _tables_0_ext_R2_data[179:168];
       default:
-        casez_tmp_1 = _tables_0_ext_R2_data[207:195];
+        casez_tmp_1 = _tables_0_ext_R2_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_0_begin_REG;
-  reg  [12:0]  casez_tmp_2;
+  reg  [11:0]  casez_tmp_2;
   always @(*) begin
     casez (io_lookup_0_begin_REG)
       4'b0000:
-        casez_tmp_2 = _tables_0_ext_R3_data[12:0];
+        casez_tmp_2 = _tables_0_ext_R3_data[11:0];
       4'b0001:
-        casez_tmp_2 = _tables_0_ext_R3_data[25:13];
+        casez_tmp_2 = _tables_0_ext_R3_data[23:12];
       4'b0010:
-        casez_tmp_2 = _tables_0_ext_R3_data[38:26];
+        casez_tmp_2 = _tables_0_ext_R3_data[35:24];
       4'b0011:
-        casez_tmp_2 = _tables_0_ext_R3_data[51:39];
+        casez_tmp_2 = _tables_0_ext_R3_data[47:36];
       4'b0100:
-        casez_tmp_2 = _tables_0_ext_R3_data[64:52];
+        casez_tmp_2 = _tables_0_ext_R3_data[59:48];
       4'b0101:
-        casez_tmp_2 = _tables_0_ext_R3_data[77:65];
+        casez_tmp_2 = _tables_0_ext_R3_data[71:60];
       4'b0110:
-        casez_tmp_2 = _tables_0_ext_R3_data[90:78];
+        casez_tmp_2 = _tables_0_ext_R3_data[83:72];
       4'b0111:
-        casez_tmp_2 = _tables_0_ext_R3_data[103:91];
+        casez_tmp_2 = _tables_0_ext_R3_data[95:84];
       4'b1000:
-        casez_tmp_2 = _tables_0_ext_R3_data[116:104];
+        casez_tmp_2 = _tables_0_ext_R3_data[107:96];
       4'b1001:
-        casez_tmp_2 = _tables_0_ext_R3_data[129:117];
+        casez_tmp_2 = _tables_0_ext_R3_data[119:108];
       4'b1010:
-        casez_tmp_2 = _tables_0_ext_R3_data[142:130];
+        casez_tmp_2 = _tables_0_ext_R3_data[131:120];
       4'b1011:
-        casez_tmp_2 = _tables_0_ext_R3_data[155:143];
+        casez_tmp_2 = _tables_0_ext_R3_data[143:132];
       4'b1100:
-        casez_tmp_2 = _tables_0_ext_R3_data[168:156];
+        casez_tmp_2 = _tables_0_ext_R3_data[155:144];
       4'b1101:
-        casez_tmp_2 = _tables_0_ext_R3_data[181:169];
+        casez_tmp_2 = _tables_0_ext_R3_data[167:156];
       4'b1110:
-        casez_tmp_2 = _tables_0_ext_R3_data[194:182];
+        casez_tmp_2 = _tables_0_ext_R3_data[179:168];
       default:
-        casez_tmp_2 = _tables_0_ext_R3_data[207:195];
+        casez_tmp_2 = _tables_0_ext_R3_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _entryRd_T_31 = {1'h0, s1item};
   wire [12:0]  _prev_T_1 = io_lookup_1_bucket - 13'h1;
   reg          lbZero_1;
   reg  [3:0]   io_lookup_1_end_REG;
-  reg  [12:0]  casez_tmp_3;
+  reg  [11:0]  casez_tmp_3;
   always @(*) begin
     casez (io_lookup_1_end_REG)
       4'b0000:
-        casez_tmp_3 = _tables_1_ext_R0_data[12:0];
+        casez_tmp_3 = _tables_1_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_3 = _tables_1_ext_R0_data[25:13];
+        casez_tmp_3 = _tables_1_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_3 = _tables_1_ext_R0_data[38:26];
+        casez_tmp_3 = _tables_1_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_3 = _tables_1_ext_R0_data[51:39];
+        casez_tmp_3 = _tables_1_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_3 = _tables_1_ext_R0_data[64:52];
+        casez_tmp_3 = _tables_1_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_3 = _tables_1_ext_R0_data[77:65];
+        casez_tmp_3 = _tables_1_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_3 = _tables_1_ext_R0_data[90:78];
+        casez_tmp_3 = _tables_1_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_3 = _tables_1_ext_R0_data[103:91];
+        casez_tmp_3 = _tables_1_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_3 = _tables_1_ext_R0_data[116:104];
+        casez_tmp_3 = _tables_1_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_3 = _tables_1_ext_R0_data[129:117];
+        casez_tmp_3 = _tables_1_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_3 = _tables_1_ext_R0_data[142:130];
+        casez_tmp_3 = _tables_1_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_3 = _tables_1_ext_R0_data[155:143];
+        casez_tmp_3 = _tables_1_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_3 = _tables_1_ext_R0_data[168:156];
+        casez_tmp_3 = _tables_1_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_3 = _tables_1_ext_R0_data[181:169];
+        casez_tmp_3 = _tables_1_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_3 = _tables_1_ext_R0_data[194:182];
+        casez_tmp_3 = _tables_1_ext_R0_data[179:168];
       default:
-        casez_tmp_3 = _tables_1_ext_R0_data[207:195];
+        casez_tmp_3 = _tables_1_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_1_begin_REG;
-  reg  [12:0]  casez_tmp_4;
+  reg  [11:0]  casez_tmp_4;
   always @(*) begin
     casez (io_lookup_1_begin_REG)
       4'b0000:
-        casez_tmp_4 = _tables_1_ext_R1_data[12:0];
+        casez_tmp_4 = _tables_1_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_4 = _tables_1_ext_R1_data[25:13];
+        casez_tmp_4 = _tables_1_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_4 = _tables_1_ext_R1_data[38:26];
+        casez_tmp_4 = _tables_1_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_4 = _tables_1_ext_R1_data[51:39];
+        casez_tmp_4 = _tables_1_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_4 = _tables_1_ext_R1_data[64:52];
+        casez_tmp_4 = _tables_1_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_4 = _tables_1_ext_R1_data[77:65];
+        casez_tmp_4 = _tables_1_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_4 = _tables_1_ext_R1_data[90:78];
+        casez_tmp_4 = _tables_1_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_4 = _tables_1_ext_R1_data[103:91];
+        casez_tmp_4 = _tables_1_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_4 = _tables_1_ext_R1_data[116:104];
+        casez_tmp_4 = _tables_1_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_4 = _tables_1_ext_R1_data[129:117];
+        casez_tmp_4 = _tables_1_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_4 = _tables_1_ext_R1_data[142:130];
+        casez_tmp_4 = _tables_1_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_4 = _tables_1_ext_R1_data[155:143];
+        casez_tmp_4 = _tables_1_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_4 = _tables_1_ext_R1_data[168:156];
+        casez_tmp_4 = _tables_1_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_4 = _tables_1_ext_R1_data[181:169];
+        casez_tmp_4 = _tables_1_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_4 = _tables_1_ext_R1_data[194:182];
+        casez_tmp_4 = _tables_1_ext_R1_data[179:168];
       default:
-        casez_tmp_4 = _tables_1_ext_R1_data[207:195];
+        casez_tmp_4 = _tables_1_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_2 = io_lookup_2_bucket - 13'h1;
   reg          lbZero_2;
   reg  [3:0]   io_lookup_2_end_REG;
-  reg  [12:0]  casez_tmp_5;
+  reg  [11:0]  casez_tmp_5;
   always @(*) begin
     casez (io_lookup_2_end_REG)
       4'b0000:
-        casez_tmp_5 = _tables_2_ext_R0_data[12:0];
+        casez_tmp_5 = _tables_2_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_5 = _tables_2_ext_R0_data[25:13];
+        casez_tmp_5 = _tables_2_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_5 = _tables_2_ext_R0_data[38:26];
+        casez_tmp_5 = _tables_2_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_5 = _tables_2_ext_R0_data[51:39];
+        casez_tmp_5 = _tables_2_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_5 = _tables_2_ext_R0_data[64:52];
+        casez_tmp_5 = _tables_2_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_5 = _tables_2_ext_R0_data[77:65];
+        casez_tmp_5 = _tables_2_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_5 = _tables_2_ext_R0_data[90:78];
+        casez_tmp_5 = _tables_2_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_5 = _tables_2_ext_R0_data[103:91];
+        casez_tmp_5 = _tables_2_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_5 = _tables_2_ext_R0_data[116:104];
+        casez_tmp_5 = _tables_2_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_5 = _tables_2_ext_R0_data[129:117];
+        casez_tmp_5 = _tables_2_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_5 = _tables_2_ext_R0_data[142:130];
+        casez_tmp_5 = _tables_2_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_5 = _tables_2_ext_R0_data[155:143];
+        casez_tmp_5 = _tables_2_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_5 = _tables_2_ext_R0_data[168:156];
+        casez_tmp_5 = _tables_2_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_5 = _tables_2_ext_R0_data[181:169];
+        casez_tmp_5 = _tables_2_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_5 = _tables_2_ext_R0_data[194:182];
+        casez_tmp_5 = _tables_2_ext_R0_data[179:168];
       default:
-        casez_tmp_5 = _tables_2_ext_R0_data[207:195];
+        casez_tmp_5 = _tables_2_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_2_begin_REG;
-  reg  [12:0]  casez_tmp_6;
+  reg  [11:0]  casez_tmp_6;
   always @(*) begin
     casez (io_lookup_2_begin_REG)
       4'b0000:
-        casez_tmp_6 = _tables_2_ext_R1_data[12:0];
+        casez_tmp_6 = _tables_2_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_6 = _tables_2_ext_R1_data[25:13];
+        casez_tmp_6 = _tables_2_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_6 = _tables_2_ext_R1_data[38:26];
+        casez_tmp_6 = _tables_2_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_6 = _tables_2_ext_R1_data[51:39];
+        casez_tmp_6 = _tables_2_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_6 = _tables_2_ext_R1_data[64:52];
+        casez_tmp_6 = _tables_2_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_6 = _tables_2_ext_R1_data[77:65];
+        casez_tmp_6 = _tables_2_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_6 = _tables_2_ext_R1_data[90:78];
+        casez_tmp_6 = _tables_2_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_6 = _tables_2_ext_R1_data[103:91];
+        casez_tmp_6 = _tables_2_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_6 = _tables_2_ext_R1_data[116:104];
+        casez_tmp_6 = _tables_2_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_6 = _tables_2_ext_R1_data[129:117];
+        casez_tmp_6 = _tables_2_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_6 = _tables_2_ext_R1_data[142:130];
+        casez_tmp_6 = _tables_2_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_6 = _tables_2_ext_R1_data[155:143];
+        casez_tmp_6 = _tables_2_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_6 = _tables_2_ext_R1_data[168:156];
+        casez_tmp_6 = _tables_2_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_6 = _tables_2_ext_R1_data[181:169];
+        casez_tmp_6 = _tables_2_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_6 = _tables_2_ext_R1_data[194:182];
+        casez_tmp_6 = _tables_2_ext_R1_data[179:168];
       default:
-        casez_tmp_6 = _tables_2_ext_R1_data[207:195];
+        casez_tmp_6 = _tables_2_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_3 = io_lookup_3_bucket - 13'h1;
   reg          lbZero_3;
   reg  [3:0]   io_lookup_3_end_REG;
-  reg  [12:0]  casez_tmp_7;
+  reg  [11:0]  casez_tmp_7;
   always @(*) begin
     casez (io_lookup_3_end_REG)
       4'b0000:
-        casez_tmp_7 = _tables_3_ext_R0_data[12:0];
+        casez_tmp_7 = _tables_3_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_7 = _tables_3_ext_R0_data[25:13];
+        casez_tmp_7 = _tables_3_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_7 = _tables_3_ext_R0_data[38:26];
+        casez_tmp_7 = _tables_3_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_7 = _tables_3_ext_R0_data[51:39];
+        casez_tmp_7 = _tables_3_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_7 = _tables_3_ext_R0_data[64:52];
+        casez_tmp_7 = _tables_3_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_7 = _tables_3_ext_R0_data[77:65];
+        casez_tmp_7 = _tables_3_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_7 = _tables_3_ext_R0_data[90:78];
+        casez_tmp_7 = _tables_3_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_7 = _tables_3_ext_R0_data[103:91];
+        casez_tmp_7 = _tables_3_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_7 = _tables_3_ext_R0_data[116:104];
+        casez_tmp_7 = _tables_3_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_7 = _tables_3_ext_R0_data[129:117];
+        casez_tmp_7 = _tables_3_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_7 = _tables_3_ext_R0_data[142:130];
+        casez_tmp_7 = _tables_3_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_7 = _tables_3_ext_R0_data[155:143];
+        casez_tmp_7 = _tables_3_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_7 = _tables_3_ext_R0_data[168:156];
+        casez_tmp_7 = _tables_3_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_7 = _tables_3_ext_R0_data[181:169];
+        casez_tmp_7 = _tables_3_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_7 = _tables_3_ext_R0_data[194:182];
+        casez_tmp_7 = _tables_3_ext_R0_data[179:168];
       default:
-        casez_tmp_7 = _tables_3_ext_R0_data[207:195];
+        casez_tmp_7 = _tables_3_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_3_begin_REG;
-  reg  [12:0]  casez_tmp_8;
+  reg  [11:0]  casez_tmp_8;
   always @(*) begin
     casez (io_lookup_3_begin_REG)
       4'b0000:
-        casez_tmp_8 = _tables_3_ext_R1_data[12:0];
+        casez_tmp_8 = _tables_3_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_8 = _tables_3_ext_R1_data[25:13];
+        casez_tmp_8 = _tables_3_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_8 = _tables_3_ext_R1_data[38:26];
+        casez_tmp_8 = _tables_3_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_8 = _tables_3_ext_R1_data[51:39];
+        casez_tmp_8 = _tables_3_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_8 = _tables_3_ext_R1_data[64:52];
+        casez_tmp_8 = _tables_3_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_8 = _tables_3_ext_R1_data[77:65];
+        casez_tmp_8 = _tables_3_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_8 = _tables_3_ext_R1_data[90:78];
+        casez_tmp_8 = _tables_3_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_8 = _tables_3_ext_R1_data[103:91];
+        casez_tmp_8 = _tables_3_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_8 = _tables_3_ext_R1_data[116:104];
+        casez_tmp_8 = _tables_3_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_8 = _tables_3_ext_R1_data[129:117];
+        casez_tmp_8 = _tables_3_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_8 = _tables_3_ext_R1_data[142:130];
+        casez_tmp_8 = _tables_3_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_8 = _tables_3_ext_R1_data[155:143];
+        casez_tmp_8 = _tables_3_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_8 = _tables_3_ext_R1_data[168:156];
+        casez_tmp_8 = _tables_3_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_8 = _tables_3_ext_R1_data[181:169];
+        casez_tmp_8 = _tables_3_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_8 = _tables_3_ext_R1_data[194:182];
+        casez_tmp_8 = _tables_3_ext_R1_data[179:168];
       default:
-        casez_tmp_8 = _tables_3_ext_R1_data[207:195];
+        casez_tmp_8 = _tables_3_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_4 = io_lookup_4_bucket - 13'h1;
   reg          lbZero_4;
   reg  [3:0]   io_lookup_4_end_REG;
-  reg  [12:0]  casez_tmp_9;
+  reg  [11:0]  casez_tmp_9;
   always @(*) begin
     casez (io_lookup_4_end_REG)
       4'b0000:
-        casez_tmp_9 = _tables_4_ext_R0_data[12:0];
+        casez_tmp_9 = _tables_4_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_9 = _tables_4_ext_R0_data[25:13];
+        casez_tmp_9 = _tables_4_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_9 = _tables_4_ext_R0_data[38:26];
+        casez_tmp_9 = _tables_4_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_9 = _tables_4_ext_R0_data[51:39];
+        casez_tmp_9 = _tables_4_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_9 = _tables_4_ext_R0_data[64:52];
+        casez_tmp_9 = _tables_4_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_9 = _tables_4_ext_R0_data[77:65];
+        casez_tmp_9 = _tables_4_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_9 = _tables_4_ext_R0_data[90:78];
+        casez_tmp_9 = _tables_4_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_9 = _tables_4_ext_R0_data[103:91];
+        casez_tmp_9 = _tables_4_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_9 = _tables_4_ext_R0_data[116:104];
+        casez_tmp_9 = _tables_4_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_9 = _tables_4_ext_R0_data[129:117];
+        casez_tmp_9 = _tables_4_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_9 = _tables_4_ext_R0_data[142:130];
+        casez_tmp_9 = _tables_4_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_9 = _tables_4_ext_R0_data[155:143];
+        casez_tmp_9 = _tables_4_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_9 = _tables_4_ext_R0_data[168:156];
+        casez_tmp_9 = _tables_4_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_9 = _tables_4_ext_R0_data[181:169];
+        casez_tmp_9 = _tables_4_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_9 = _tables_4_ext_R0_data[194:182];
+        casez_tmp_9 = _tables_4_ext_R0_data[179:168];
       default:
-        casez_tmp_9 = _tables_4_ext_R0_data[207:195];
+        casez_tmp_9 = _tables_4_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_4_begin_REG;
-  reg  [12:0]  casez_tmp_10;
+  reg  [11:0]  casez_tmp_10;
   always @(*) begin
     casez (io_lookup_4_begin_REG)
       4'b0000:
-        casez_tmp_10 = _tables_4_ext_R1_data[12:0];
+        casez_tmp_10 = _tables_4_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_10 = _tables_4_ext_R1_data[25:13];
+        casez_tmp_10 = _tables_4_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_10 = _tables_4_ext_R1_data[38:26];
+        casez_tmp_10 = _tables_4_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_10 = _tables_4_ext_R1_data[51:39];
+        casez_tmp_10 = _tables_4_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_10 = _tables_4_ext_R1_data[64:52];
+        casez_tmp_10 = _tables_4_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_10 = _tables_4_ext_R1_data[77:65];
+        casez_tmp_10 = _tables_4_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_10 = _tables_4_ext_R1_data[90:78];
+        casez_tmp_10 = _tables_4_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_10 = _tables_4_ext_R1_data[103:91];
+        casez_tmp_10 = _tables_4_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_10 = _tables_4_ext_R1_data[116:104];
+        casez_tmp_10 = _tables_4_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_10 = _tables_4_ext_R1_data[129:117];
+        casez_tmp_10 = _tables_4_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_10 = _tables_4_ext_R1_data[142:130];
+        casez_tmp_10 = _tables_4_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_10 = _tables_4_ext_R1_data[155:143];
+        casez_tmp_10 = _tables_4_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_10 = _tables_4_ext_R1_data[168:156];
+        casez_tmp_10 = _tables_4_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_10 = _tables_4_ext_R1_data[181:169];
+        casez_tmp_10 = _tables_4_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_10 = _tables_4_ext_R1_data[194:182];
+        casez_tmp_10 = _tables_4_ext_R1_data[179:168];
       default:
-        casez_tmp_10 = _tables_4_ext_R1_data[207:195];
+        casez_tmp_10 = _tables_4_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_5 = io_lookup_5_bucket - 13'h1;
   reg          lbZero_5;
   reg  [3:0]   io_lookup_5_end_REG;
-  reg  [12:0]  casez_tmp_11;
+  reg  [11:0]  casez_tmp_11;
   always @(*) begin
     casez (io_lookup_5_end_REG)
       4'b0000:
-        casez_tmp_11 = _tables_5_ext_R0_data[12:0];
+        casez_tmp_11 = _tables_5_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_11 = _tables_5_ext_R0_data[25:13];
+        casez_tmp_11 = _tables_5_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_11 = _tables_5_ext_R0_data[38:26];
+        casez_tmp_11 = _tables_5_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_11 = _tables_5_ext_R0_data[51:39];
+        casez_tmp_11 = _tables_5_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_11 = _tables_5_ext_R0_data[64:52];
+        casez_tmp_11 = _tables_5_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_11 = _tables_5_ext_R0_data[77:65];
+        casez_tmp_11 = _tables_5_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_11 = _tables_5_ext_R0_data[90:78];
+        casez_tmp_11 = _tables_5_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_11 = _tables_5_ext_R0_data[103:91];
+        casez_tmp_11 = _tables_5_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_11 = _tables_5_ext_R0_data[116:104];
+        casez_tmp_11 = _tables_5_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_11 = _tables_5_ext_R0_data[129:117];
+        casez_tmp_11 = _tables_5_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_11 = _tables_5_ext_R0_data[142:130];
+        casez_tmp_11 = _tables_5_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_11 = _tables_5_ext_R0_data[155:143];
+        casez_tmp_11 = _tables_5_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_11 = _tables_5_ext_R0_data[168:156];
+        casez_tmp_11 = _tables_5_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_11 = _tables_5_ext_R0_data[181:169];
+        casez_tmp_11 = _tables_5_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_11 = _tables_5_ext_R0_data[194:182];
+        casez_tmp_11 = _tables_5_ext_R0_data[179:168];
       default:
-        casez_tmp_11 = _tables_5_ext_R0_data[207:195];
+        casez_tmp_11 = _tables_5_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_5_begin_REG;
-  reg  [12:0]  casez_tmp_12;
+  reg  [11:0]  casez_tmp_12;
   always @(*) begin
     casez (io_lookup_5_begin_REG)
       4'b0000:
-        casez_tmp_12 = _tables_5_ext_R1_data[12:0];
+        casez_tmp_12 = _tables_5_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_12 = _tables_5_ext_R1_data[25:13];
+        casez_tmp_12 = _tables_5_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_12 = _tables_5_ext_R1_data[38:26];
+        casez_tmp_12 = _tables_5_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_12 = _tables_5_ext_R1_data[51:39];
+        casez_tmp_12 = _tables_5_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_12 = _tables_5_ext_R1_data[64:52];
+        casez_tmp_12 = _tables_5_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_12 = _tables_5_ext_R1_data[77:65];
+        casez_tmp_12 = _tables_5_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_12 = _tables_5_ext_R1_data[90:78];
+        casez_tmp_12 = _tables_5_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_12 = _tables_5_ext_R1_data[103:91];
+        casez_tmp_12 = _tables_5_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_12 = _tables_5_ext_R1_data[116:104];
+        casez_tmp_12 = _tables_5_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_12 = _tables_5_ext_R1_data[129:117];
+        casez_tmp_12 = _tables_5_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_12 = _tables_5_ext_R1_data[142:130];
+        casez_tmp_12 = _tables_5_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_12 = _tables_5_ext_R1_data[155:143];
+        casez_tmp_12 = _tables_5_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_12 = _tables_5_ext_R1_data[168:156];
+        casez_tmp_12 = _tables_5_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_12 = _tables_5_ext_R1_data[181:169];
+        casez_tmp_12 = _tables_5_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_12 = _tables_5_ext_R1_data[194:182];
+        casez_tmp_12 = _tables_5_ext_R1_data[179:168];
       default:
-        casez_tmp_12 = _tables_5_ext_R1_data[207:195];
+        casez_tmp_12 = _tables_5_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_6 = io_lookup_6_bucket - 13'h1;
   reg          lbZero_6;
   reg  [3:0]   io_lookup_6_end_REG;
-  reg  [12:0]  casez_tmp_13;
+  reg  [11:0]  casez_tmp_13;
   always @(*) begin
     casez (io_lookup_6_end_REG)
       4'b0000:
-        casez_tmp_13 = _tables_6_ext_R0_data[12:0];
+        casez_tmp_13 = _tables_6_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_13 = _tables_6_ext_R0_data[25:13];
+        casez_tmp_13 = _tables_6_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_13 = _tables_6_ext_R0_data[38:26];
+        casez_tmp_13 = _tables_6_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_13 = _tables_6_ext_R0_data[51:39];
+        casez_tmp_13 = _tables_6_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_13 = _tables_6_ext_R0_data[64:52];
+        casez_tmp_13 = _tables_6_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_13 = _tables_6_ext_R0_data[77:65];
+        casez_tmp_13 = _tables_6_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_13 = _tables_6_ext_R0_data[90:78];
+        casez_tmp_13 = _tables_6_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_13 = _tables_6_ext_R0_data[103:91];
+        casez_tmp_13 = _tables_6_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_13 = _tables_6_ext_R0_data[116:104];
+        casez_tmp_13 = _tables_6_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_13 = _tables_6_ext_R0_data[129:117];
+        casez_tmp_13 = _tables_6_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_13 = _tables_6_ext_R0_data[142:130];
+        casez_tmp_13 = _tables_6_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_13 = _tables_6_ext_R0_data[155:143];
+        casez_tmp_13 = _tables_6_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_13 = _tables_6_ext_R0_data[168:156];
+        casez_tmp_13 = _tables_6_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_13 = _tables_6_ext_R0_data[181:169];
+        casez_tmp_13 = _tables_6_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_13 = _tables_6_ext_R0_data[194:182];
+        casez_tmp_13 = _tables_6_ext_R0_data[179:168];
       default:
-        casez_tmp_13 = _tables_6_ext_R0_data[207:195];
+        casez_tmp_13 = _tables_6_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_6_begin_REG;
-  reg  [12:0]  casez_tmp_14;
+  reg  [11:0]  casez_tmp_14;
   always @(*) begin
     casez (io_lookup_6_begin_REG)
       4'b0000:
-        casez_tmp_14 = _tables_6_ext_R1_data[12:0];
+        casez_tmp_14 = _tables_6_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_14 = _tables_6_ext_R1_data[25:13];
+        casez_tmp_14 = _tables_6_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_14 = _tables_6_ext_R1_data[38:26];
+        casez_tmp_14 = _tables_6_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_14 = _tables_6_ext_R1_data[51:39];
+        casez_tmp_14 = _tables_6_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_14 = _tables_6_ext_R1_data[64:52];
+        casez_tmp_14 = _tables_6_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_14 = _tables_6_ext_R1_data[77:65];
+        casez_tmp_14 = _tables_6_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_14 = _tables_6_ext_R1_data[90:78];
+        casez_tmp_14 = _tables_6_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_14 = _tables_6_ext_R1_data[103:91];
+        casez_tmp_14 = _tables_6_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_14 = _tables_6_ext_R1_data[116:104];
+        casez_tmp_14 = _tables_6_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_14 = _tables_6_ext_R1_data[129:117];
+        casez_tmp_14 = _tables_6_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_14 = _tables_6_ext_R1_data[142:130];
+        casez_tmp_14 = _tables_6_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_14 = _tables_6_ext_R1_data[155:143];
+        casez_tmp_14 = _tables_6_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_14 = _tables_6_ext_R1_data[168:156];
+        casez_tmp_14 = _tables_6_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_14 = _tables_6_ext_R1_data[181:169];
+        casez_tmp_14 = _tables_6_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_14 = _tables_6_ext_R1_data[194:182];
+        casez_tmp_14 = _tables_6_ext_R1_data[179:168];
       default:
-        casez_tmp_14 = _tables_6_ext_R1_data[207:195];
+        casez_tmp_14 = _tables_6_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_7 = io_lookup_7_bucket - 13'h1;
   reg          lbZero_7;
   reg  [3:0]   io_lookup_7_end_REG;
-  reg  [12:0]  casez_tmp_15;
+  reg  [11:0]  casez_tmp_15;
   always @(*) begin
     casez (io_lookup_7_end_REG)
       4'b0000:
-        casez_tmp_15 = _tables_7_ext_R0_data[12:0];
+        casez_tmp_15 = _tables_7_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_15 = _tables_7_ext_R0_data[25:13];
+        casez_tmp_15 = _tables_7_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_15 = _tables_7_ext_R0_data[38:26];
+        casez_tmp_15 = _tables_7_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_15 = _tables_7_ext_R0_data[51:39];
+        casez_tmp_15 = _tables_7_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_15 = _tables_7_ext_R0_data[64:52];
+        casez_tmp_15 = _tables_7_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_15 = _tables_7_ext_R0_data[77:65];
+        casez_tmp_15 = _tables_7_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_15 = _tables_7_ext_R0_data[90:78];
+        casez_tmp_15 = _tables_7_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_15 = _tables_7_ext_R0_data[103:91];
+        casez_tmp_15 = _tables_7_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_15 = _tables_7_ext_R0_data[116:104];
+        casez_tmp_15 = _tables_7_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_15 = _tables_7_ext_R0_data[129:117];
+        casez_tmp_15 = _tables_7_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_15 = _tables_7_ext_R0_data[142:130];
+        casez_tmp_15 = _tables_7_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_15 = _tables_7_ext_R0_data[155:143];
+        casez_tmp_15 = _tables_7_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_15 = _tables_7_ext_R0_data[168:156];
+        casez_tmp_15 = _tables_7_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_15 = _tables_7_ext_R0_data[181:169];
+        casez_tmp_15 = _tables_7_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_15 = _tables_7_ext_R0_data[194:182];
+        casez_tmp_15 = _tables_7_ext_R0_data[179:168];
       default:
-        casez_tmp_15 = _tables_7_ext_R0_data[207:195];
+        casez_tmp_15 = _tables_7_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_7_begin_REG;
-  reg  [12:0]  casez_tmp_16;
+  reg  [11:0]  casez_tmp_16;
   always @(*) begin
     casez (io_lookup_7_begin_REG)
       4'b0000:
-        casez_tmp_16 = _tables_7_ext_R1_data[12:0];
+        casez_tmp_16 = _tables_7_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_16 = _tables_7_ext_R1_data[25:13];
+        casez_tmp_16 = _tables_7_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_16 = _tables_7_ext_R1_data[38:26];
+        casez_tmp_16 = _tables_7_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_16 = _tables_7_ext_R1_data[51:39];
+        casez_tmp_16 = _tables_7_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_16 = _tables_7_ext_R1_data[64:52];
+        casez_tmp_16 = _tables_7_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_16 = _tables_7_ext_R1_data[77:65];
+        casez_tmp_16 = _tables_7_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_16 = _tables_7_ext_R1_data[90:78];
+        casez_tmp_16 = _tables_7_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_16 = _tables_7_ext_R1_data[103:91];
+        casez_tmp_16 = _tables_7_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_16 = _tables_7_ext_R1_data[116:104];
+        casez_tmp_16 = _tables_7_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_16 = _tables_7_ext_R1_data[129:117];
+        casez_tmp_16 = _tables_7_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_16 = _tables_7_ext_R1_data[142:130];
+        casez_tmp_16 = _tables_7_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_16 = _tables_7_ext_R1_data[155:143];
+        casez_tmp_16 = _tables_7_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_16 = _tables_7_ext_R1_data[168:156];
+        casez_tmp_16 = _tables_7_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_16 = _tables_7_ext_R1_data[181:169];
+        casez_tmp_16 = _tables_7_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_16 = _tables_7_ext_R1_data[194:182];
+        casez_tmp_16 = _tables_7_ext_R1_data[179:168];
       default:
-        casez_tmp_16 = _tables_7_ext_R1_data[207:195];
+        casez_tmp_16 = _tables_7_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_8 = io_lookup_8_bucket - 13'h1;
   reg          lbZero_8;
   reg  [3:0]   io_lookup_8_end_REG;
-  reg  [12:0]  casez_tmp_17;
+  reg  [11:0]  casez_tmp_17;
   always @(*) begin
     casez (io_lookup_8_end_REG)
       4'b0000:
-        casez_tmp_17 = _tables_8_ext_R0_data[12:0];
+        casez_tmp_17 = _tables_8_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_17 = _tables_8_ext_R0_data[25:13];
+        casez_tmp_17 = _tables_8_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_17 = _tables_8_ext_R0_data[38:26];
+        casez_tmp_17 = _tables_8_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_17 = _tables_8_ext_R0_data[51:39];
+        casez_tmp_17 = _tables_8_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_17 = _tables_8_ext_R0_data[64:52];
+        casez_tmp_17 = _tables_8_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_17 = _tables_8_ext_R0_data[77:65];
+        casez_tmp_17 = _tables_8_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_17 = _tables_8_ext_R0_data[90:78];
+        casez_tmp_17 = _tables_8_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_17 = _tables_8_ext_R0_data[103:91];
+        casez_tmp_17 = _tables_8_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_17 = _tables_8_ext_R0_data[116:104];
+        casez_tmp_17 = _tables_8_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_17 = _tables_8_ext_R0_data[129:117];
+        casez_tmp_17 = _tables_8_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_17 = _tables_8_ext_R0_data[142:130];
+        casez_tmp_17 = _tables_8_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_17 = _tables_8_ext_R0_data[155:143];
+        casez_tmp_17 = _tables_8_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_17 = _tables_8_ext_R0_data[168:156];
+        casez_tmp_17 = _tables_8_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_17 = _tables_8_ext_R0_data[181:169];
+        casez_tmp_17 = _tables_8_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_17 = _tables_8_ext_R0_data[194:182];
+        casez_tmp_17 = _tables_8_ext_R0_data[179:168];
       default:
-        casez_tmp_17 = _tables_8_ext_R0_data[207:195];
+        casez_tmp_17 = _tables_8_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_8_begin_REG;
-  reg  [12:0]  casez_tmp_18;
+  reg  [11:0]  casez_tmp_18;
   always @(*) begin
     casez (io_lookup_8_begin_REG)
       4'b0000:
-        casez_tmp_18 = _tables_8_ext_R1_data[12:0];
+        casez_tmp_18 = _tables_8_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_18 = _tables_8_ext_R1_data[25:13];
+        casez_tmp_18 = _tables_8_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_18 = _tables_8_ext_R1_data[38:26];
+        casez_tmp_18 = _tables_8_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_18 = _tables_8_ext_R1_data[51:39];
+        casez_tmp_18 = _tables_8_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_18 = _tables_8_ext_R1_data[64:52];
+        casez_tmp_18 = _tables_8_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_18 = _tables_8_ext_R1_data[77:65];
+        casez_tmp_18 = _tables_8_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_18 = _tables_8_ext_R1_data[90:78];
+        casez_tmp_18 = _tables_8_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_18 = _tables_8_ext_R1_data[103:91];
+        casez_tmp_18 = _tables_8_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_18 = _tables_8_ext_R1_data[116:104];
+        casez_tmp_18 = _tables_8_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_18 = _tables_8_ext_R1_data[129:117];
+        casez_tmp_18 = _tables_8_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_18 = _tables_8_ext_R1_data[142:130];
+        casez_tmp_18 = _tables_8_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_18 = _tables_8_ext_R1_data[155:143];
+        casez_tmp_18 = _tables_8_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_18 = _tables_8_ext_R1_data[168:156];
+        casez_tmp_18 = _tables_8_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_18 = _tables_8_ext_R1_data[181:169];
+        casez_tmp_18 = _tables_8_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_18 = _tables_8_ext_R1_data[194:182];
+        casez_tmp_18 = _tables_8_ext_R1_data[179:168];
       default:
-        casez_tmp_18 = _tables_8_ext_R1_data[207:195];
+        casez_tmp_18 = _tables_8_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_9 = io_lookup_9_bucket - 13'h1;
   reg          lbZero_9;
   reg  [3:0]   io_lookup_9_end_REG;
-  reg  [12:0]  casez_tmp_19;
+  reg  [11:0]  casez_tmp_19;
   always @(*) begin
     casez (io_lookup_9_end_REG)
       4'b0000:
-        casez_tmp_19 = _tables_9_ext_R0_data[12:0];
+        casez_tmp_19 = _tables_9_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_19 = _tables_9_ext_R0_data[25:13];
+        casez_tmp_19 = _tables_9_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_19 = _tables_9_ext_R0_data[38:26];
+        casez_tmp_19 = _tables_9_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_19 = _tables_9_ext_R0_data[51:39];
+        casez_tmp_19 = _tables_9_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_19 = _tables_9_ext_R0_data[64:52];
+        casez_tmp_19 = _tables_9_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_19 = _tables_9_ext_R0_data[77:65];
+        casez_tmp_19 = _tables_9_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_19 = _tables_9_ext_R0_data[90:78];
+        casez_tmp_19 = _tables_9_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_19 = _tables_9_ext_R0_data[103:91];
+        casez_tmp_19 = _tables_9_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_19 = _tables_9_ext_R0_data[116:104];
+        casez_tmp_19 = _tables_9_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_19 = _tables_9_ext_R0_data[129:117];
+        casez_tmp_19 = _tables_9_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_19 = _tables_9_ext_R0_data[142:130];
+        casez_tmp_19 = _tables_9_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_19 = _tables_9_ext_R0_data[155:143];
+        casez_tmp_19 = _tables_9_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_19 = _tables_9_ext_R0_data[168:156];
+        casez_tmp_19 = _tables_9_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_19 = _tables_9_ext_R0_data[181:169];
+        casez_tmp_19 = _tables_9_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_19 = _tables_9_ext_R0_data[194:182];
+        casez_tmp_19 = _tables_9_ext_R0_data[179:168];
       default:
-        casez_tmp_19 = _tables_9_ext_R0_data[207:195];
+        casez_tmp_19 = _tables_9_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_9_begin_REG;
-  reg  [12:0]  casez_tmp_20;
+  reg  [11:0]  casez_tmp_20;
   always @(*) begin
     casez (io_lookup_9_begin_REG)
       4'b0000:
-        casez_tmp_20 = _tables_9_ext_R1_data[12:0];
+        casez_tmp_20 = _tables_9_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_20 = _tables_9_ext_R1_data[25:13];
+        casez_tmp_20 = _tables_9_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_20 = _tables_9_ext_R1_data[38:26];
+        casez_tmp_20 = _tables_9_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_20 = _tables_9_ext_R1_data[51:39];
+        casez_tmp_20 = _tables_9_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_20 = _tables_9_ext_R1_data[64:52];
+        casez_tmp_20 = _tables_9_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_20 = _tables_9_ext_R1_data[77:65];
+        casez_tmp_20 = _tables_9_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_20 = _tables_9_ext_R1_data[90:78];
+        casez_tmp_20 = _tables_9_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_20 = _tables_9_ext_R1_data[103:91];
+        casez_tmp_20 = _tables_9_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_20 = _tables_9_ext_R1_data[116:104];
+        casez_tmp_20 = _tables_9_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_20 = _tables_9_ext_R1_data[129:117];
+        casez_tmp_20 = _tables_9_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_20 = _tables_9_ext_R1_data[142:130];
+        casez_tmp_20 = _tables_9_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_20 = _tables_9_ext_R1_data[155:143];
+        casez_tmp_20 = _tables_9_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_20 = _tables_9_ext_R1_data[168:156];
+        casez_tmp_20 = _tables_9_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_20 = _tables_9_ext_R1_data[181:169];
+        casez_tmp_20 = _tables_9_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_20 = _tables_9_ext_R1_data[194:182];
+        casez_tmp_20 = _tables_9_ext_R1_data[179:168];
       default:
-        casez_tmp_20 = _tables_9_ext_R1_data[207:195];
+        casez_tmp_20 = _tables_9_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_10 = io_lookup_10_bucket - 13'h1;
   reg          lbZero_10;
   reg  [3:0]   io_lookup_10_end_REG;
-  reg  [12:0]  casez_tmp_21;
+  reg  [11:0]  casez_tmp_21;
   always @(*) begin
     casez (io_lookup_10_end_REG)
       4'b0000:
-        casez_tmp_21 = _tables_10_ext_R0_data[12:0];
+        casez_tmp_21 = _tables_10_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_21 = _tables_10_ext_R0_data[25:13];
+        casez_tmp_21 = _tables_10_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_21 = _tables_10_ext_R0_data[38:26];
+        casez_tmp_21 = _tables_10_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_21 = _tables_10_ext_R0_data[51:39];
+        casez_tmp_21 = _tables_10_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_21 = _tables_10_ext_R0_data[64:52];
+        casez_tmp_21 = _tables_10_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_21 = _tables_10_ext_R0_data[77:65];
+        casez_tmp_21 = _tables_10_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_21 = _tables_10_ext_R0_data[90:78];
+        casez_tmp_21 = _tables_10_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_21 = _tables_10_ext_R0_data[103:91];
+        casez_tmp_21 = _tables_10_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_21 = _tables_10_ext_R0_data[116:104];
+        casez_tmp_21 = _tables_10_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_21 = _tables_10_ext_R0_data[129:117];
+        casez_tmp_21 = _tables_10_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_21 = _tables_10_ext_R0_data[142:130];
+        casez_tmp_21 = _tables_10_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_21 = _tables_10_ext_R0_data[155:143];
+        casez_tmp_21 = _tables_10_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_21 = _tables_10_ext_R0_data[168:156];
+        casez_tmp_21 = _tables_10_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_21 = _tables_10_ext_R0_data[181:169];
+        casez_tmp_21 = _tables_10_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_21 = _tables_10_ext_R0_data[194:182];
+        casez_tmp_21 = _tables_10_ext_R0_data[179:168];
       default:
-        casez_tmp_21 = _tables_10_ext_R0_data[207:195];
+        casez_tmp_21 = _tables_10_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_10_begin_REG;
-  reg  [12:0]  casez_tmp_22;
+  reg  [11:0]  casez_tmp_22;
   always @(*) begin
     casez (io_lookup_10_begin_REG)
       4'b0000:
-        casez_tmp_22 = _tables_10_ext_R1_data[12:0];
+        casez_tmp_22 = _tables_10_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_22 = _tables_10_ext_R1_data[25:13];
+        casez_tmp_22 = _tables_10_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_22 = _tables_10_ext_R1_data[38:26];
+        casez_tmp_22 = _tables_10_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_22 = _tables_10_ext_R1_data[51:39];
+        casez_tmp_22 = _tables_10_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_22 = _tables_10_ext_R1_data[64:52];
+        casez_tmp_22 = _tables_10_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_22 = _tables_10_ext_R1_data[77:65];
+        casez_tmp_22 = _tables_10_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_22 = _tables_10_ext_R1_data[90:78];
+        casez_tmp_22 = _tables_10_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_22 = _tables_10_ext_R1_data[103:91];
+        casez_tmp_22 = _tables_10_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_22 = _tables_10_ext_R1_data[116:104];
+        casez_tmp_22 = _tables_10_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_22 = _tables_10_ext_R1_data[129:117];
+        casez_tmp_22 = _tables_10_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_22 = _tables_10_ext_R1_data[142:130];
+        casez_tmp_22 = _tables_10_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_22 = _tables_10_ext_R1_data[155:143];
+        casez_tmp_22 = _tables_10_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_22 = _tables_10_ext_R1_data[168:156];
+        casez_tmp_22 = _tables_10_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_22 = _tables_10_ext_R1_data[181:169];
+        casez_tmp_22 = _tables_10_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_22 = _tables_10_ext_R1_data[194:182];
+        casez_tmp_22 = _tables_10_ext_R1_data[179:168];
       default:
-        casez_tmp_22 = _tables_10_ext_R1_data[207:195];
+        casez_tmp_22 = _tables_10_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_11 = io_lookup_11_bucket - 13'h1;
   reg          lbZero_11;
   reg  [3:0]   io_lookup_11_end_REG;
-  reg  [12:0]  casez_tmp_23;
+  reg  [11:0]  casez_tmp_23;
   always @(*) begin
     casez (io_lookup_11_end_REG)
       4'b0000:
-        casez_tmp_23 = _tables_11_ext_R0_data[12:0];
+        casez_tmp_23 = _tables_11_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_23 = _tables_11_ext_R0_data[25:13];
+        casez_tmp_23 = _tables_11_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_23 = _tables_11_ext_R0_data[38:26];
+        casez_tmp_23 = _tables_11_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_23 = _tables_11_ext_R0_data[51:39];
+        casez_tmp_23 = _tables_11_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_23 = _tables_11_ext_R0_data[64:52];
+        casez_tmp_23 = _tables_11_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_23 = _tables_11_ext_R0_data[77:65];
+        casez_tmp_23 = _tables_11_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_23 = _tables_11_ext_R0_data[90:78];
+        casez_tmp_23 = _tables_11_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_23 = _tables_11_ext_R0_data[103:91];
+        casez_tmp_23 = _tables_11_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_23 = _tables_11_ext_R0_data[116:104];
+        casez_tmp_23 = _tables_11_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_23 = _tables_11_ext_R0_data[129:117];
+        casez_tmp_23 = _tables_11_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_23 = _tables_11_ext_R0_data[142:130];
+        casez_tmp_23 = _tables_11_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_23 = _tables_11_ext_R0_data[155:143];
+        casez_tmp_23 = _tables_11_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_23 = _tables_11_ext_R0_data[168:156];
+        casez_tmp_23 = _tables_11_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_23 = _tables_11_ext_R0_data[181:169];
+        casez_tmp_23 = _tables_11_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_23 = _tables_11_ext_R0_data[194:182];
+        casez_tmp_23 = _tables_11_ext_R0_data[179:168];
       default:
-        casez_tmp_23 = _tables_11_ext_R0_data[207:195];
+        casez_tmp_23 = _tables_11_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_11_begin_REG;
-  reg  [12:0]  casez_tmp_24;
+  reg  [11:0]  casez_tmp_24;
   always @(*) begin
     casez (io_lookup_11_begin_REG)
       4'b0000:
-        casez_tmp_24 = _tables_11_ext_R1_data[12:0];
+        casez_tmp_24 = _tables_11_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_24 = _tables_11_ext_R1_data[25:13];
+        casez_tmp_24 = _tables_11_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_24 = _tables_11_ext_R1_data[38:26];
+        casez_tmp_24 = _tables_11_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_24 = _tables_11_ext_R1_data[51:39];
+        casez_tmp_24 = _tables_11_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_24 = _tables_11_ext_R1_data[64:52];
+        casez_tmp_24 = _tables_11_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_24 = _tables_11_ext_R1_data[77:65];
+        casez_tmp_24 = _tables_11_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_24 = _tables_11_ext_R1_data[90:78];
+        casez_tmp_24 = _tables_11_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_24 = _tables_11_ext_R1_data[103:91];
+        casez_tmp_24 = _tables_11_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_24 = _tables_11_ext_R1_data[116:104];
+        casez_tmp_24 = _tables_11_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_24 = _tables_11_ext_R1_data[129:117];
+        casez_tmp_24 = _tables_11_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_24 = _tables_11_ext_R1_data[142:130];
+        casez_tmp_24 = _tables_11_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_24 = _tables_11_ext_R1_data[155:143];
+        casez_tmp_24 = _tables_11_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_24 = _tables_11_ext_R1_data[168:156];
+        casez_tmp_24 = _tables_11_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_24 = _tables_11_ext_R1_data[181:169];
+        casez_tmp_24 = _tables_11_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_24 = _tables_11_ext_R1_data[194:182];
+        casez_tmp_24 = _tables_11_ext_R1_data[179:168];
       default:
-        casez_tmp_24 = _tables_11_ext_R1_data[207:195];
+        casez_tmp_24 = _tables_11_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_12 = io_lookup_12_bucket - 13'h1;
   reg          lbZero_12;
   reg  [3:0]   io_lookup_12_end_REG;
-  reg  [12:0]  casez_tmp_25;
+  reg  [11:0]  casez_tmp_25;
   always @(*) begin
     casez (io_lookup_12_end_REG)
       4'b0000:
-        casez_tmp_25 = _tables_12_ext_R0_data[12:0];
+        casez_tmp_25 = _tables_12_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_25 = _tables_12_ext_R0_data[25:13];
+        casez_tmp_25 = _tables_12_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_25 = _tables_12_ext_R0_data[38:26];
+        casez_tmp_25 = _tables_12_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_25 = _tables_12_ext_R0_data[51:39];
+        casez_tmp_25 = _tables_12_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_25 = _tables_12_ext_R0_data[64:52];
+        casez_tmp_25 = _tables_12_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_25 = _tables_12_ext_R0_data[77:65];
+        casez_tmp_25 = _tables_12_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_25 = _tables_12_ext_R0_data[90:78];
+        casez_tmp_25 = _tables_12_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_25 = _tables_12_ext_R0_data[103:91];
+        casez_tmp_25 = _tables_12_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_25 = _tables_12_ext_R0_data[116:104];
+        casez_tmp_25 = _tables_12_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_25 = _tables_12_ext_R0_data[129:117];
+        casez_tmp_25 = _tables_12_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_25 = _tables_12_ext_R0_data[142:130];
+        casez_tmp_25 = _tables_12_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_25 = _tables_12_ext_R0_data[155:143];
+        casez_tmp_25 = _tables_12_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_25 = _tables_12_ext_R0_data[168:156];
+        casez_tmp_25 = _tables_12_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_25 = _tables_12_ext_R0_data[181:169];
+        casez_tmp_25 = _tables_12_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_25 = _tables_12_ext_R0_data[194:182];
+        casez_tmp_25 = _tables_12_ext_R0_data[179:168];
       default:
-        casez_tmp_25 = _tables_12_ext_R0_data[207:195];
+        casez_tmp_25 = _tables_12_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_12_begin_REG;
-  reg  [12:0]  casez_tmp_26;
+  reg  [11:0]  casez_tmp_26;
   always @(*) begin
     casez (io_lookup_12_begin_REG)
       4'b0000:
-        casez_tmp_26 = _tables_12_ext_R1_data[12:0];
+        casez_tmp_26 = _tables_12_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_26 = _tables_12_ext_R1_data[25:13];
+        casez_tmp_26 = _tables_12_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_26 = _tables_12_ext_R1_data[38:26];
+        casez_tmp_26 = _tables_12_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_26 = _tables_12_ext_R1_data[51:39];
+        casez_tmp_26 = _tables_12_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_26 = _tables_12_ext_R1_data[64:52];
+        casez_tmp_26 = _tables_12_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_26 = _tables_12_ext_R1_data[77:65];
+        casez_tmp_26 = _tables_12_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_26 = _tables_12_ext_R1_data[90:78];
+        casez_tmp_26 = _tables_12_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_26 = _tables_12_ext_R1_data[103:91];
+        casez_tmp_26 = _tables_12_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_26 = _tables_12_ext_R1_data[116:104];
+        casez_tmp_26 = _tables_12_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_26 = _tables_12_ext_R1_data[129:117];
+        casez_tmp_26 = _tables_12_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_26 = _tables_12_ext_R1_data[142:130];
+        casez_tmp_26 = _tables_12_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_26 = _tables_12_ext_R1_data[155:143];
+        casez_tmp_26 = _tables_12_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_26 = _tables_12_ext_R1_data[168:156];
+        casez_tmp_26 = _tables_12_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_26 = _tables_12_ext_R1_data[181:169];
+        casez_tmp_26 = _tables_12_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_26 = _tables_12_ext_R1_data[194:182];
+        casez_tmp_26 = _tables_12_ext_R1_data[179:168];
       default:
-        casez_tmp_26 = _tables_12_ext_R1_data[207:195];
+        casez_tmp_26 = _tables_12_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_13 = io_lookup_13_bucket - 13'h1;
   reg          lbZero_13;
   reg  [3:0]   io_lookup_13_end_REG;
-  reg  [12:0]  casez_tmp_27;
+  reg  [11:0]  casez_tmp_27;
   always @(*) begin
     casez (io_lookup_13_end_REG)
       4'b0000:
-        casez_tmp_27 = _tables_13_ext_R0_data[12:0];
+        casez_tmp_27 = _tables_13_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_27 = _tables_13_ext_R0_data[25:13];
+        casez_tmp_27 = _tables_13_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_27 = _tables_13_ext_R0_data[38:26];
+        casez_tmp_27 = _tables_13_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_27 = _tables_13_ext_R0_data[51:39];
+        casez_tmp_27 = _tables_13_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_27 = _tables_13_ext_R0_data[64:52];
+        casez_tmp_27 = _tables_13_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_27 = _tables_13_ext_R0_data[77:65];
+        casez_tmp_27 = _tables_13_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_27 = _tables_13_ext_R0_data[90:78];
+        casez_tmp_27 = _tables_13_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_27 = _tables_13_ext_R0_data[103:91];
+        casez_tmp_27 = _tables_13_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_27 = _tables_13_ext_R0_data[116:104];
+        casez_tmp_27 = _tables_13_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_27 = _tables_13_ext_R0_data[129:117];
+        casez_tmp_27 = _tables_13_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_27 = _tables_13_ext_R0_data[142:130];
+        casez_tmp_27 = _tables_13_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_27 = _tables_13_ext_R0_data[155:143];
+        casez_tmp_27 = _tables_13_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_27 = _tables_13_ext_R0_data[168:156];
+        casez_tmp_27 = _tables_13_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_27 = _tables_13_ext_R0_data[181:169];
+        casez_tmp_27 = _tables_13_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_27 = _tables_13_ext_R0_data[194:182];
+        casez_tmp_27 = _tables_13_ext_R0_data[179:168];
       default:
-        casez_tmp_27 = _tables_13_ext_R0_data[207:195];
+        casez_tmp_27 = _tables_13_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_13_begin_REG;
-  reg  [12:0]  casez_tmp_28;
+  reg  [11:0]  casez_tmp_28;
   always @(*) begin
     casez (io_lookup_13_begin_REG)
       4'b0000:
-        casez_tmp_28 = _tables_13_ext_R1_data[12:0];
+        casez_tmp_28 = _tables_13_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_28 = _tables_13_ext_R1_data[25:13];
+        casez_tmp_28 = _tables_13_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_28 = _tables_13_ext_R1_data[38:26];
+        casez_tmp_28 = _tables_13_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_28 = _tables_13_ext_R1_data[51:39];
+        casez_tmp_28 = _tables_13_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_28 = _tables_13_ext_R1_data[64:52];
+        casez_tmp_28 = _tables_13_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_28 = _tables_13_ext_R1_data[77:65];
+        casez_tmp_28 = _tables_13_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_28 = _tables_13_ext_R1_data[90:78];
+        casez_tmp_28 = _tables_13_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_28 = _tables_13_ext_R1_data[103:91];
+        casez_tmp_28 = _tables_13_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_28 = _tables_13_ext_R1_data[116:104];
+        casez_tmp_28 = _tables_13_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_28 = _tables_13_ext_R1_data[129:117];
+        casez_tmp_28 = _tables_13_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_28 = _tables_13_ext_R1_data[142:130];
+        casez_tmp_28 = _tables_13_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_28 = _tables_13_ext_R1_data[155:143];
+        casez_tmp_28 = _tables_13_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_28 = _tables_13_ext_R1_data[168:156];
+        casez_tmp_28 = _tables_13_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_28 = _tables_13_ext_R1_data[181:169];
+        casez_tmp_28 = _tables_13_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_28 = _tables_13_ext_R1_data[194:182];
+        casez_tmp_28 = _tables_13_ext_R1_data[179:168];
       default:
-        casez_tmp_28 = _tables_13_ext_R1_data[207:195];
+        casez_tmp_28 = _tables_13_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_14 = io_lookup_14_bucket - 13'h1;
   reg          lbZero_14;
   reg  [3:0]   io_lookup_14_end_REG;
-  reg  [12:0]  casez_tmp_29;
+  reg  [11:0]  casez_tmp_29;
   always @(*) begin
     casez (io_lookup_14_end_REG)
       4'b0000:
-        casez_tmp_29 = _tables_14_ext_R0_data[12:0];
+        casez_tmp_29 = _tables_14_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_29 = _tables_14_ext_R0_data[25:13];
+        casez_tmp_29 = _tables_14_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_29 = _tables_14_ext_R0_data[38:26];
+        casez_tmp_29 = _tables_14_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_29 = _tables_14_ext_R0_data[51:39];
+        casez_tmp_29 = _tables_14_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_29 = _tables_14_ext_R0_data[64:52];
+        casez_tmp_29 = _tables_14_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_29 = _tables_14_ext_R0_data[77:65];
+        casez_tmp_29 = _tables_14_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_29 = _tables_14_ext_R0_data[90:78];
+        casez_tmp_29 = _tables_14_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_29 = _tables_14_ext_R0_data[103:91];
+        casez_tmp_29 = _tables_14_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_29 = _tables_14_ext_R0_data[116:104];
+        casez_tmp_29 = _tables_14_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_29 = _tables_14_ext_R0_data[129:117];
+        casez_tmp_29 = _tables_14_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_29 = _tables_14_ext_R0_data[142:130];
+        casez_tmp_29 = _tables_14_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_29 = _tables_14_ext_R0_data[155:143];
+        casez_tmp_29 = _tables_14_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_29 = _tables_14_ext_R0_data[168:156];
+        casez_tmp_29 = _tables_14_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_29 = _tables_14_ext_R0_data[181:169];
+        casez_tmp_29 = _tables_14_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_29 = _tables_14_ext_R0_data[194:182];
+        casez_tmp_29 = _tables_14_ext_R0_data[179:168];
       default:
-        casez_tmp_29 = _tables_14_ext_R0_data[207:195];
+        casez_tmp_29 = _tables_14_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_14_begin_REG;
-  reg  [12:0]  casez_tmp_30;
+  reg  [11:0]  casez_tmp_30;
   always @(*) begin
     casez (io_lookup_14_begin_REG)
       4'b0000:
-        casez_tmp_30 = _tables_14_ext_R1_data[12:0];
+        casez_tmp_30 = _tables_14_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_30 = _tables_14_ext_R1_data[25:13];
+        casez_tmp_30 = _tables_14_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_30 = _tables_14_ext_R1_data[38:26];
+        casez_tmp_30 = _tables_14_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_30 = _tables_14_ext_R1_data[51:39];
+        casez_tmp_30 = _tables_14_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_30 = _tables_14_ext_R1_data[64:52];
+        casez_tmp_30 = _tables_14_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_30 = _tables_14_ext_R1_data[77:65];
+        casez_tmp_30 = _tables_14_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_30 = _tables_14_ext_R1_data[90:78];
+        casez_tmp_30 = _tables_14_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_30 = _tables_14_ext_R1_data[103:91];
+        casez_tmp_30 = _tables_14_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_30 = _tables_14_ext_R1_data[116:104];
+        casez_tmp_30 = _tables_14_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_30 = _tables_14_ext_R1_data[129:117];
+        casez_tmp_30 = _tables_14_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_30 = _tables_14_ext_R1_data[142:130];
+        casez_tmp_30 = _tables_14_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_30 = _tables_14_ext_R1_data[155:143];
+        casez_tmp_30 = _tables_14_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_30 = _tables_14_ext_R1_data[168:156];
+        casez_tmp_30 = _tables_14_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_30 = _tables_14_ext_R1_data[181:169];
+        casez_tmp_30 = _tables_14_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_30 = _tables_14_ext_R1_data[194:182];
+        casez_tmp_30 = _tables_14_ext_R1_data[179:168];
       default:
-        casez_tmp_30 = _tables_14_ext_R1_data[207:195];
+        casez_tmp_30 = _tables_14_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_15 = io_lookup_15_bucket - 13'h1;
   reg          lbZero_15;
   reg  [3:0]   io_lookup_15_end_REG;
-  reg  [12:0]  casez_tmp_31;
+  reg  [11:0]  casez_tmp_31;
   always @(*) begin
     casez (io_lookup_15_end_REG)
       4'b0000:
-        casez_tmp_31 = _tables_15_ext_R0_data[12:0];
+        casez_tmp_31 = _tables_15_ext_R0_data[11:0];
       4'b0001:
-        casez_tmp_31 = _tables_15_ext_R0_data[25:13];
+        casez_tmp_31 = _tables_15_ext_R0_data[23:12];
       4'b0010:
-        casez_tmp_31 = _tables_15_ext_R0_data[38:26];
+        casez_tmp_31 = _tables_15_ext_R0_data[35:24];
       4'b0011:
-        casez_tmp_31 = _tables_15_ext_R0_data[51:39];
+        casez_tmp_31 = _tables_15_ext_R0_data[47:36];
       4'b0100:
-        casez_tmp_31 = _tables_15_ext_R0_data[64:52];
+        casez_tmp_31 = _tables_15_ext_R0_data[59:48];
       4'b0101:
-        casez_tmp_31 = _tables_15_ext_R0_data[77:65];
+        casez_tmp_31 = _tables_15_ext_R0_data[71:60];
       4'b0110:
-        casez_tmp_31 = _tables_15_ext_R0_data[90:78];
+        casez_tmp_31 = _tables_15_ext_R0_data[83:72];
       4'b0111:
-        casez_tmp_31 = _tables_15_ext_R0_data[103:91];
+        casez_tmp_31 = _tables_15_ext_R0_data[95:84];
       4'b1000:
-        casez_tmp_31 = _tables_15_ext_R0_data[116:104];
+        casez_tmp_31 = _tables_15_ext_R0_data[107:96];
       4'b1001:
-        casez_tmp_31 = _tables_15_ext_R0_data[129:117];
+        casez_tmp_31 = _tables_15_ext_R0_data[119:108];
       4'b1010:
-        casez_tmp_31 = _tables_15_ext_R0_data[142:130];
+        casez_tmp_31 = _tables_15_ext_R0_data[131:120];
       4'b1011:
-        casez_tmp_31 = _tables_15_ext_R0_data[155:143];
+        casez_tmp_31 = _tables_15_ext_R0_data[143:132];
       4'b1100:
-        casez_tmp_31 = _tables_15_ext_R0_data[168:156];
+        casez_tmp_31 = _tables_15_ext_R0_data[155:144];
       4'b1101:
-        casez_tmp_31 = _tables_15_ext_R0_data[181:169];
+        casez_tmp_31 = _tables_15_ext_R0_data[167:156];
       4'b1110:
-        casez_tmp_31 = _tables_15_ext_R0_data[194:182];
+        casez_tmp_31 = _tables_15_ext_R0_data[179:168];
       default:
-        casez_tmp_31 = _tables_15_ext_R0_data[207:195];
+        casez_tmp_31 = _tables_15_ext_R0_data[191:180];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_15_begin_REG;
-  reg  [12:0]  casez_tmp_32;
+  reg  [11:0]  casez_tmp_32;
   always @(*) begin
     casez (io_lookup_15_begin_REG)
       4'b0000:
-        casez_tmp_32 = _tables_15_ext_R1_data[12:0];
+        casez_tmp_32 = _tables_15_ext_R1_data[11:0];
       4'b0001:
-        casez_tmp_32 = _tables_15_ext_R1_data[25:13];
+        casez_tmp_32 = _tables_15_ext_R1_data[23:12];
       4'b0010:
-        casez_tmp_32 = _tables_15_ext_R1_data[38:26];
+        casez_tmp_32 = _tables_15_ext_R1_data[35:24];
       4'b0011:
-        casez_tmp_32 = _tables_15_ext_R1_data[51:39];
+        casez_tmp_32 = _tables_15_ext_R1_data[47:36];
       4'b0100:
-        casez_tmp_32 = _tables_15_ext_R1_data[64:52];
+        casez_tmp_32 = _tables_15_ext_R1_data[59:48];
       4'b0101:
-        casez_tmp_32 = _tables_15_ext_R1_data[77:65];
+        casez_tmp_32 = _tables_15_ext_R1_data[71:60];
       4'b0110:
-        casez_tmp_32 = _tables_15_ext_R1_data[90:78];
+        casez_tmp_32 = _tables_15_ext_R1_data[83:72];
       4'b0111:
-        casez_tmp_32 = _tables_15_ext_R1_data[103:91];
+        casez_tmp_32 = _tables_15_ext_R1_data[95:84];
       4'b1000:
-        casez_tmp_32 = _tables_15_ext_R1_data[116:104];
+        casez_tmp_32 = _tables_15_ext_R1_data[107:96];
       4'b1001:
-        casez_tmp_32 = _tables_15_ext_R1_data[129:117];
+        casez_tmp_32 = _tables_15_ext_R1_data[119:108];
       4'b1010:
-        casez_tmp_32 = _tables_15_ext_R1_data[142:130];
+        casez_tmp_32 = _tables_15_ext_R1_data[131:120];
       4'b1011:
-        casez_tmp_32 = _tables_15_ext_R1_data[155:143];
+        casez_tmp_32 = _tables_15_ext_R1_data[143:132];
       4'b1100:
-        casez_tmp_32 = _tables_15_ext_R1_data[168:156];
+        casez_tmp_32 = _tables_15_ext_R1_data[155:144];
       4'b1101:
-        casez_tmp_32 = _tables_15_ext_R1_data[181:169];
+        casez_tmp_32 = _tables_15_ext_R1_data[167:156];
       4'b1110:
-        casez_tmp_32 = _tables_15_ext_R1_data[194:182];
+        casez_tmp_32 = _tables_15_ext_R1_data[179:168];
       default:
-        casez_tmp_32 = _tables_15_ext_R1_data[207:195];
+        casez_tmp_32 = _tables_15_ext_R1_data[191:180];
     endcase
   end // always @(*)
   wire [9:0]   _walk_T_2 = walk + 10'h1;
@@ -18588,8 +18587,8 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
   always @(posedge clock) begin
     if (reset) begin
       state <= 2'h0;
-      counted <= 13'h0;
-      scattered <= 13'h0;
+      counted <= 12'h0;
+      scattered <= 12'h0;
       bad <= 1'h0;
       sumS1 <= 1'h0;
       s1 <= 1'h0;
@@ -18605,13 +18604,13 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
       else if (_GEN_4)
         state <= 2'h2;
       if (_GEN_3) begin
-        counted <= 13'h0;
-        scattered <= 13'h0;
+        counted <= 12'h0;
+        scattered <= 12'h0;
       end
       else begin
         counted <=
-          counted + {11'h0, {1'h0, s1 & ~s1scatter} + {1'h0, s1_1 & ~s1scatter_1}};
-        scattered <= scattered + {11'h0, {1'h0, place_0_valid} + {1'h0, place_1_valid}};
+          counted + {10'h0, {1'h0, s1 & ~s1scatter} + {1'h0, s1_1 & ~s1scatter_1}};
+        scattered <= scattered + {10'h0, {1'h0, place_0_valid} + {1'h0, place_1_valid}};
       end
       bad <= _fire_T_1 & ~inRange_1 | _fire_T & ~inRange | ~_GEN_3 & bad;
       sumS1 <= sumRead;
@@ -18632,7 +18631,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     else if (_GEN_3 | ~_GEN_4) begin
     end
     else
-      sum <= 13'h0;
+      sum <= 12'h0;
     sumW <= walk[8:0];
     sumLast <= _walk_T_2 == usedWords;
     if (fire) begin
@@ -18702,7 +18701,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     io_lookup_15_end_REG <= io_lookup_15_bucket[3:0];
     io_lookup_15_begin_REG <= _prev_T_15[3:0];
   end // always @(posedge)
-  tables_0_512x208_world tables_0_ext (
+  tables_0_512x192_world tables_0_ext (
     .R0_addr (walk[8:0]),
     .R0_en   (sumRead),
     .R0_clk  (clock),
@@ -18724,25 +18723,25 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data
       (sumS1
-         ? {starts_15 + _cursors_0_ext_R0_data[207:195],
-            starts_14 + _cursors_0_ext_R0_data[194:182],
-            starts_13 + _cursors_0_ext_R0_data[181:169],
-            starts_12 + _cursors_0_ext_R0_data[168:156],
-            starts_11 + _cursors_0_ext_R0_data[155:143],
-            starts_10 + _cursors_0_ext_R0_data[142:130],
-            starts_9 + _cursors_0_ext_R0_data[129:117],
-            starts_8 + _cursors_0_ext_R0_data[116:104],
-            starts_7 + _cursors_0_ext_R0_data[103:91],
-            starts_6 + _cursors_0_ext_R0_data[90:78],
-            starts_5 + _cursors_0_ext_R0_data[77:65],
-            starts_4 + _cursors_0_ext_R0_data[64:52],
-            starts_3 + _cursors_0_ext_R0_data[51:39],
-            starts_2 + _cursors_0_ext_R0_data[38:26],
-            starts_1 + _cursors_0_ext_R0_data[25:13],
-            sum + _cursors_0_ext_R0_data[12:0]}
-         : _GEN ? 208'h0 : newWord_1)
+         ? {starts_15 + _cursors_0_ext_R0_data[191:180],
+            starts_14 + _cursors_0_ext_R0_data[179:168],
+            starts_13 + _cursors_0_ext_R0_data[167:156],
+            starts_12 + _cursors_0_ext_R0_data[155:144],
+            starts_11 + _cursors_0_ext_R0_data[143:132],
+            starts_10 + _cursors_0_ext_R0_data[131:120],
+            starts_9 + _cursors_0_ext_R0_data[119:108],
+            starts_8 + _cursors_0_ext_R0_data[107:96],
+            starts_7 + _cursors_0_ext_R0_data[95:84],
+            starts_6 + _cursors_0_ext_R0_data[83:72],
+            starts_5 + _cursors_0_ext_R0_data[71:60],
+            starts_4 + _cursors_0_ext_R0_data[59:48],
+            starts_3 + _cursors_0_ext_R0_data[47:36],
+            starts_2 + _cursors_0_ext_R0_data[35:24],
+            starts_1 + _cursors_0_ext_R0_data[23:12],
+            sum + _cursors_0_ext_R0_data[11:0]}
+         : _GEN ? 192'h0 : newWord_1)
   );
-  mem_512x208_world tables_1_ext (
+  mem_512x192_world tables_1_ext (
     .R0_addr (io_lookup_1_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18756,7 +18755,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_2_ext (
+  mem_512x192_world tables_2_ext (
     .R0_addr (io_lookup_2_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18770,7 +18769,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_3_ext (
+  mem_512x192_world tables_3_ext (
     .R0_addr (io_lookup_3_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18784,7 +18783,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_4_ext (
+  mem_512x192_world tables_4_ext (
     .R0_addr (io_lookup_4_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18798,7 +18797,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_5_ext (
+  mem_512x192_world tables_5_ext (
     .R0_addr (io_lookup_5_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18812,7 +18811,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_6_ext (
+  mem_512x192_world tables_6_ext (
     .R0_addr (io_lookup_6_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18826,7 +18825,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_7_ext (
+  mem_512x192_world tables_7_ext (
     .R0_addr (io_lookup_7_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18840,7 +18839,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_8_ext (
+  mem_512x192_world tables_8_ext (
     .R0_addr (io_lookup_8_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18854,7 +18853,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_9_ext (
+  mem_512x192_world tables_9_ext (
     .R0_addr (io_lookup_9_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18868,7 +18867,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_10_ext (
+  mem_512x192_world tables_10_ext (
     .R0_addr (io_lookup_10_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18882,7 +18881,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_11_ext (
+  mem_512x192_world tables_11_ext (
     .R0_addr (io_lookup_11_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18896,7 +18895,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_12_ext (
+  mem_512x192_world tables_12_ext (
     .R0_addr (io_lookup_12_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18910,7 +18909,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_13_ext (
+  mem_512x192_world tables_13_ext (
     .R0_addr (io_lookup_13_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18924,7 +18923,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_14_ext (
+  mem_512x192_world tables_14_ext (
     .R0_addr (io_lookup_14_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18938,7 +18937,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world tables_15_ext (
+  mem_512x192_world tables_15_ext (
     .R0_addr (io_lookup_15_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18952,7 +18951,7 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x208_world cursors_0_ext (
+  mem_512x192_world cursors_0_ext (
     .R0_addr (walk[8:0]),
     .R0_en   (sumRead),
     .R0_clk  (clock),
@@ -18982,196 +18981,196 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
             starts_2,
             starts_1,
             sum}
-         : _GEN ? 208'h0 : newWord)
+         : _GEN ? 192'h0 : newWord)
   );
-  entries_4096x13_world entries_0_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_0_addr),
+  entries_2048x13_world entries_0_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_0_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_0_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_0_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_0_bits_addr),
     .W0_en     (place_1_valid | io_mark_0_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_0_bits_item})
   );
-  entries_4096x13_world entries_1_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_1_addr),
+  entries_2048x13_world entries_1_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_1_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_1_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_1_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_1_bits_addr),
     .W0_en     (place_1_valid | io_mark_1_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_1_bits_item})
   );
-  entries_4096x13_world entries_2_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_2_addr),
+  entries_2048x13_world entries_2_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_2_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_2_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_2_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_2_bits_addr),
     .W0_en     (place_1_valid | io_mark_2_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_2_bits_item})
   );
-  entries_4096x13_world entries_3_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_3_addr),
+  entries_2048x13_world entries_3_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_3_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_3_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_3_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_3_bits_addr),
     .W0_en     (place_1_valid | io_mark_3_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_3_bits_item})
   );
-  entries_4096x13_world entries_4_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_4_addr),
+  entries_2048x13_world entries_4_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_4_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_4_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_4_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_4_bits_addr),
     .W0_en     (place_1_valid | io_mark_4_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_4_bits_item})
   );
-  entries_4096x13_world entries_5_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_5_addr),
+  entries_2048x13_world entries_5_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_5_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_5_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_5_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_5_bits_addr),
     .W0_en     (place_1_valid | io_mark_5_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_5_bits_item})
   );
-  entries_4096x13_world entries_6_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_6_addr),
+  entries_2048x13_world entries_6_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_6_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_6_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_6_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_6_bits_addr),
     .W0_en     (place_1_valid | io_mark_6_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_6_bits_item})
   );
-  entries_4096x13_world entries_7_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_7_addr),
+  entries_2048x13_world entries_7_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_7_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_7_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_7_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_7_bits_addr),
     .W0_en     (place_1_valid | io_mark_7_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_7_bits_item})
   );
-  entries_4096x13_world entries_8_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_8_addr),
+  entries_2048x13_world entries_8_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_8_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_8_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_8_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_8_bits_addr),
     .W0_en     (place_1_valid | io_mark_8_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_8_bits_item})
   );
-  entries_4096x13_world entries_9_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_9_addr),
+  entries_2048x13_world entries_9_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_9_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_9_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_9_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_9_bits_addr),
     .W0_en     (place_1_valid | io_mark_9_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_9_bits_item})
   );
-  entries_4096x13_world entries_10_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_10_addr),
+  entries_2048x13_world entries_10_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_10_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_10_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_10_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_10_bits_addr),
     .W0_en     (place_1_valid | io_mark_10_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_10_bits_item})
   );
-  entries_4096x13_world entries_11_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_11_addr),
+  entries_2048x13_world entries_11_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_11_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_11_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_11_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_11_bits_addr),
     .W0_en     (place_1_valid | io_mark_11_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_11_bits_item})
   );
-  entries_4096x13_world entries_12_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_12_addr),
+  entries_2048x13_world entries_12_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_12_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_12_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_12_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_12_bits_addr),
     .W0_en     (place_1_valid | io_mark_12_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_12_bits_item})
   );
-  entries_4096x13_world entries_13_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_13_addr),
+  entries_2048x13_world entries_13_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_13_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_13_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_13_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_13_bits_addr),
     .W0_en     (place_1_valid | io_mark_13_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_13_bits_item})
   );
-  entries_4096x13_world entries_14_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_14_addr),
+  entries_2048x13_world entries_14_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_14_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_14_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_14_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_14_bits_addr),
     .W0_en     (place_1_valid | io_mark_14_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_14_bits_item})
   );
-  entries_4096x13_world entries_15_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[11:0] : io_entry_15_addr),
+  entries_2048x13_world entries_15_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_15_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_15_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[11:0] : io_mark_15_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_15_bits_addr),
     .W0_en     (place_1_valid | io_mark_15_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_15_bits_item})
@@ -19179,294 +19178,294 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
   assign io_busy = |state;
   assign io_in_0_ready = io_in_0_ready_0;
   assign io_in_1_ready = io_in_1_ready_0;
-  assign io_lookup_0_begin = lbZero ? 13'h0 : casez_tmp_2;
+  assign io_lookup_0_begin = lbZero ? 12'h0 : casez_tmp_2;
   assign io_lookup_0_end = casez_tmp_1;
-  assign io_lookup_0_word_0 = _tables_0_ext_R2_data[12:0];
-  assign io_lookup_0_word_1 = _tables_0_ext_R2_data[25:13];
-  assign io_lookup_0_word_2 = _tables_0_ext_R2_data[38:26];
-  assign io_lookup_0_word_3 = _tables_0_ext_R2_data[51:39];
-  assign io_lookup_0_word_4 = _tables_0_ext_R2_data[64:52];
-  assign io_lookup_0_word_5 = _tables_0_ext_R2_data[77:65];
-  assign io_lookup_0_word_6 = _tables_0_ext_R2_data[90:78];
-  assign io_lookup_0_word_7 = _tables_0_ext_R2_data[103:91];
-  assign io_lookup_0_word_8 = _tables_0_ext_R2_data[116:104];
-  assign io_lookup_0_word_9 = _tables_0_ext_R2_data[129:117];
-  assign io_lookup_0_word_10 = _tables_0_ext_R2_data[142:130];
-  assign io_lookup_0_word_11 = _tables_0_ext_R2_data[155:143];
-  assign io_lookup_0_word_12 = _tables_0_ext_R2_data[168:156];
-  assign io_lookup_0_word_13 = _tables_0_ext_R2_data[181:169];
-  assign io_lookup_0_word_14 = _tables_0_ext_R2_data[194:182];
-  assign io_lookup_0_word_15 = _tables_0_ext_R2_data[207:195];
-  assign io_lookup_1_begin = lbZero_1 ? 13'h0 : casez_tmp_4;
+  assign io_lookup_0_word_0 = _tables_0_ext_R2_data[11:0];
+  assign io_lookup_0_word_1 = _tables_0_ext_R2_data[23:12];
+  assign io_lookup_0_word_2 = _tables_0_ext_R2_data[35:24];
+  assign io_lookup_0_word_3 = _tables_0_ext_R2_data[47:36];
+  assign io_lookup_0_word_4 = _tables_0_ext_R2_data[59:48];
+  assign io_lookup_0_word_5 = _tables_0_ext_R2_data[71:60];
+  assign io_lookup_0_word_6 = _tables_0_ext_R2_data[83:72];
+  assign io_lookup_0_word_7 = _tables_0_ext_R2_data[95:84];
+  assign io_lookup_0_word_8 = _tables_0_ext_R2_data[107:96];
+  assign io_lookup_0_word_9 = _tables_0_ext_R2_data[119:108];
+  assign io_lookup_0_word_10 = _tables_0_ext_R2_data[131:120];
+  assign io_lookup_0_word_11 = _tables_0_ext_R2_data[143:132];
+  assign io_lookup_0_word_12 = _tables_0_ext_R2_data[155:144];
+  assign io_lookup_0_word_13 = _tables_0_ext_R2_data[167:156];
+  assign io_lookup_0_word_14 = _tables_0_ext_R2_data[179:168];
+  assign io_lookup_0_word_15 = _tables_0_ext_R2_data[191:180];
+  assign io_lookup_1_begin = lbZero_1 ? 12'h0 : casez_tmp_4;
   assign io_lookup_1_end = casez_tmp_3;
-  assign io_lookup_1_word_0 = _tables_1_ext_R0_data[12:0];
-  assign io_lookup_1_word_1 = _tables_1_ext_R0_data[25:13];
-  assign io_lookup_1_word_2 = _tables_1_ext_R0_data[38:26];
-  assign io_lookup_1_word_3 = _tables_1_ext_R0_data[51:39];
-  assign io_lookup_1_word_4 = _tables_1_ext_R0_data[64:52];
-  assign io_lookup_1_word_5 = _tables_1_ext_R0_data[77:65];
-  assign io_lookup_1_word_6 = _tables_1_ext_R0_data[90:78];
-  assign io_lookup_1_word_7 = _tables_1_ext_R0_data[103:91];
-  assign io_lookup_1_word_8 = _tables_1_ext_R0_data[116:104];
-  assign io_lookup_1_word_9 = _tables_1_ext_R0_data[129:117];
-  assign io_lookup_1_word_10 = _tables_1_ext_R0_data[142:130];
-  assign io_lookup_1_word_11 = _tables_1_ext_R0_data[155:143];
-  assign io_lookup_1_word_12 = _tables_1_ext_R0_data[168:156];
-  assign io_lookup_1_word_13 = _tables_1_ext_R0_data[181:169];
-  assign io_lookup_1_word_14 = _tables_1_ext_R0_data[194:182];
-  assign io_lookup_1_word_15 = _tables_1_ext_R0_data[207:195];
-  assign io_lookup_2_begin = lbZero_2 ? 13'h0 : casez_tmp_6;
+  assign io_lookup_1_word_0 = _tables_1_ext_R0_data[11:0];
+  assign io_lookup_1_word_1 = _tables_1_ext_R0_data[23:12];
+  assign io_lookup_1_word_2 = _tables_1_ext_R0_data[35:24];
+  assign io_lookup_1_word_3 = _tables_1_ext_R0_data[47:36];
+  assign io_lookup_1_word_4 = _tables_1_ext_R0_data[59:48];
+  assign io_lookup_1_word_5 = _tables_1_ext_R0_data[71:60];
+  assign io_lookup_1_word_6 = _tables_1_ext_R0_data[83:72];
+  assign io_lookup_1_word_7 = _tables_1_ext_R0_data[95:84];
+  assign io_lookup_1_word_8 = _tables_1_ext_R0_data[107:96];
+  assign io_lookup_1_word_9 = _tables_1_ext_R0_data[119:108];
+  assign io_lookup_1_word_10 = _tables_1_ext_R0_data[131:120];
+  assign io_lookup_1_word_11 = _tables_1_ext_R0_data[143:132];
+  assign io_lookup_1_word_12 = _tables_1_ext_R0_data[155:144];
+  assign io_lookup_1_word_13 = _tables_1_ext_R0_data[167:156];
+  assign io_lookup_1_word_14 = _tables_1_ext_R0_data[179:168];
+  assign io_lookup_1_word_15 = _tables_1_ext_R0_data[191:180];
+  assign io_lookup_2_begin = lbZero_2 ? 12'h0 : casez_tmp_6;
   assign io_lookup_2_end = casez_tmp_5;
-  assign io_lookup_2_word_0 = _tables_2_ext_R0_data[12:0];
-  assign io_lookup_2_word_1 = _tables_2_ext_R0_data[25:13];
-  assign io_lookup_2_word_2 = _tables_2_ext_R0_data[38:26];
-  assign io_lookup_2_word_3 = _tables_2_ext_R0_data[51:39];
-  assign io_lookup_2_word_4 = _tables_2_ext_R0_data[64:52];
-  assign io_lookup_2_word_5 = _tables_2_ext_R0_data[77:65];
-  assign io_lookup_2_word_6 = _tables_2_ext_R0_data[90:78];
-  assign io_lookup_2_word_7 = _tables_2_ext_R0_data[103:91];
-  assign io_lookup_2_word_8 = _tables_2_ext_R0_data[116:104];
-  assign io_lookup_2_word_9 = _tables_2_ext_R0_data[129:117];
-  assign io_lookup_2_word_10 = _tables_2_ext_R0_data[142:130];
-  assign io_lookup_2_word_11 = _tables_2_ext_R0_data[155:143];
-  assign io_lookup_2_word_12 = _tables_2_ext_R0_data[168:156];
-  assign io_lookup_2_word_13 = _tables_2_ext_R0_data[181:169];
-  assign io_lookup_2_word_14 = _tables_2_ext_R0_data[194:182];
-  assign io_lookup_2_word_15 = _tables_2_ext_R0_data[207:195];
-  assign io_lookup_3_begin = lbZero_3 ? 13'h0 : casez_tmp_8;
+  assign io_lookup_2_word_0 = _tables_2_ext_R0_data[11:0];
+  assign io_lookup_2_word_1 = _tables_2_ext_R0_data[23:12];
+  assign io_lookup_2_word_2 = _tables_2_ext_R0_data[35:24];
+  assign io_lookup_2_word_3 = _tables_2_ext_R0_data[47:36];
+  assign io_lookup_2_word_4 = _tables_2_ext_R0_data[59:48];
+  assign io_lookup_2_word_5 = _tables_2_ext_R0_data[71:60];
+  assign io_lookup_2_word_6 = _tables_2_ext_R0_data[83:72];
+  assign io_lookup_2_word_7 = _tables_2_ext_R0_data[95:84];
+  assign io_lookup_2_word_8 = _tables_2_ext_R0_data[107:96];
+  assign io_lookup_2_word_9 = _tables_2_ext_R0_data[119:108];
+  assign io_lookup_2_word_10 = _tables_2_ext_R0_data[131:120];
+  assign io_lookup_2_word_11 = _tables_2_ext_R0_data[143:132];
+  assign io_lookup_2_word_12 = _tables_2_ext_R0_data[155:144];
+  assign io_lookup_2_word_13 = _tables_2_ext_R0_data[167:156];
+  assign io_lookup_2_word_14 = _tables_2_ext_R0_data[179:168];
+  assign io_lookup_2_word_15 = _tables_2_ext_R0_data[191:180];
+  assign io_lookup_3_begin = lbZero_3 ? 12'h0 : casez_tmp_8;
   assign io_lookup_3_end = casez_tmp_7;
-  assign io_lookup_3_word_0 = _tables_3_ext_R0_data[12:0];
-  assign io_lookup_3_word_1 = _tables_3_ext_R0_data[25:13];
-  assign io_lookup_3_word_2 = _tables_3_ext_R0_data[38:26];
-  assign io_lookup_3_word_3 = _tables_3_ext_R0_data[51:39];
-  assign io_lookup_3_word_4 = _tables_3_ext_R0_data[64:52];
-  assign io_lookup_3_word_5 = _tables_3_ext_R0_data[77:65];
-  assign io_lookup_3_word_6 = _tables_3_ext_R0_data[90:78];
-  assign io_lookup_3_word_7 = _tables_3_ext_R0_data[103:91];
-  assign io_lookup_3_word_8 = _tables_3_ext_R0_data[116:104];
-  assign io_lookup_3_word_9 = _tables_3_ext_R0_data[129:117];
-  assign io_lookup_3_word_10 = _tables_3_ext_R0_data[142:130];
-  assign io_lookup_3_word_11 = _tables_3_ext_R0_data[155:143];
-  assign io_lookup_3_word_12 = _tables_3_ext_R0_data[168:156];
-  assign io_lookup_3_word_13 = _tables_3_ext_R0_data[181:169];
-  assign io_lookup_3_word_14 = _tables_3_ext_R0_data[194:182];
-  assign io_lookup_3_word_15 = _tables_3_ext_R0_data[207:195];
-  assign io_lookup_4_begin = lbZero_4 ? 13'h0 : casez_tmp_10;
+  assign io_lookup_3_word_0 = _tables_3_ext_R0_data[11:0];
+  assign io_lookup_3_word_1 = _tables_3_ext_R0_data[23:12];
+  assign io_lookup_3_word_2 = _tables_3_ext_R0_data[35:24];
+  assign io_lookup_3_word_3 = _tables_3_ext_R0_data[47:36];
+  assign io_lookup_3_word_4 = _tables_3_ext_R0_data[59:48];
+  assign io_lookup_3_word_5 = _tables_3_ext_R0_data[71:60];
+  assign io_lookup_3_word_6 = _tables_3_ext_R0_data[83:72];
+  assign io_lookup_3_word_7 = _tables_3_ext_R0_data[95:84];
+  assign io_lookup_3_word_8 = _tables_3_ext_R0_data[107:96];
+  assign io_lookup_3_word_9 = _tables_3_ext_R0_data[119:108];
+  assign io_lookup_3_word_10 = _tables_3_ext_R0_data[131:120];
+  assign io_lookup_3_word_11 = _tables_3_ext_R0_data[143:132];
+  assign io_lookup_3_word_12 = _tables_3_ext_R0_data[155:144];
+  assign io_lookup_3_word_13 = _tables_3_ext_R0_data[167:156];
+  assign io_lookup_3_word_14 = _tables_3_ext_R0_data[179:168];
+  assign io_lookup_3_word_15 = _tables_3_ext_R0_data[191:180];
+  assign io_lookup_4_begin = lbZero_4 ? 12'h0 : casez_tmp_10;
   assign io_lookup_4_end = casez_tmp_9;
-  assign io_lookup_4_word_0 = _tables_4_ext_R0_data[12:0];
-  assign io_lookup_4_word_1 = _tables_4_ext_R0_data[25:13];
-  assign io_lookup_4_word_2 = _tables_4_ext_R0_data[38:26];
-  assign io_lookup_4_word_3 = _tables_4_ext_R0_data[51:39];
-  assign io_lookup_4_word_4 = _tables_4_ext_R0_data[64:52];
-  assign io_lookup_4_word_5 = _tables_4_ext_R0_data[77:65];
-  assign io_lookup_4_word_6 = _tables_4_ext_R0_data[90:78];
-  assign io_lookup_4_word_7 = _tables_4_ext_R0_data[103:91];
-  assign io_lookup_4_word_8 = _tables_4_ext_R0_data[116:104];
-  assign io_lookup_4_word_9 = _tables_4_ext_R0_data[129:117];
-  assign io_lookup_4_word_10 = _tables_4_ext_R0_data[142:130];
-  assign io_lookup_4_word_11 = _tables_4_ext_R0_data[155:143];
-  assign io_lookup_4_word_12 = _tables_4_ext_R0_data[168:156];
-  assign io_lookup_4_word_13 = _tables_4_ext_R0_data[181:169];
-  assign io_lookup_4_word_14 = _tables_4_ext_R0_data[194:182];
-  assign io_lookup_4_word_15 = _tables_4_ext_R0_data[207:195];
-  assign io_lookup_5_begin = lbZero_5 ? 13'h0 : casez_tmp_12;
+  assign io_lookup_4_word_0 = _tables_4_ext_R0_data[11:0];
+  assign io_lookup_4_word_1 = _tables_4_ext_R0_data[23:12];
+  assign io_lookup_4_word_2 = _tables_4_ext_R0_data[35:24];
+  assign io_lookup_4_word_3 = _tables_4_ext_R0_data[47:36];
+  assign io_lookup_4_word_4 = _tables_4_ext_R0_data[59:48];
+  assign io_lookup_4_word_5 = _tables_4_ext_R0_data[71:60];
+  assign io_lookup_4_word_6 = _tables_4_ext_R0_data[83:72];
+  assign io_lookup_4_word_7 = _tables_4_ext_R0_data[95:84];
+  assign io_lookup_4_word_8 = _tables_4_ext_R0_data[107:96];
+  assign io_lookup_4_word_9 = _tables_4_ext_R0_data[119:108];
+  assign io_lookup_4_word_10 = _tables_4_ext_R0_data[131:120];
+  assign io_lookup_4_word_11 = _tables_4_ext_R0_data[143:132];
+  assign io_lookup_4_word_12 = _tables_4_ext_R0_data[155:144];
+  assign io_lookup_4_word_13 = _tables_4_ext_R0_data[167:156];
+  assign io_lookup_4_word_14 = _tables_4_ext_R0_data[179:168];
+  assign io_lookup_4_word_15 = _tables_4_ext_R0_data[191:180];
+  assign io_lookup_5_begin = lbZero_5 ? 12'h0 : casez_tmp_12;
   assign io_lookup_5_end = casez_tmp_11;
-  assign io_lookup_5_word_0 = _tables_5_ext_R0_data[12:0];
-  assign io_lookup_5_word_1 = _tables_5_ext_R0_data[25:13];
-  assign io_lookup_5_word_2 = _tables_5_ext_R0_data[38:26];
-  assign io_lookup_5_word_3 = _tables_5_ext_R0_data[51:39];
-  assign io_lookup_5_word_4 = _tables_5_ext_R0_data[64:52];
-  assign io_lookup_5_word_5 = _tables_5_ext_R0_data[77:65];
-  assign io_lookup_5_word_6 = _tables_5_ext_R0_data[90:78];
-  assign io_lookup_5_word_7 = _tables_5_ext_R0_data[103:91];
-  assign io_lookup_5_word_8 = _tables_5_ext_R0_data[116:104];
-  assign io_lookup_5_word_9 = _tables_5_ext_R0_data[129:117];
-  assign io_lookup_5_word_10 = _tables_5_ext_R0_data[142:130];
-  assign io_lookup_5_word_11 = _tables_5_ext_R0_data[155:143];
-  assign io_lookup_5_word_12 = _tables_5_ext_R0_data[168:156];
-  assign io_lookup_5_word_13 = _tables_5_ext_R0_data[181:169];
-  assign io_lookup_5_word_14 = _tables_5_ext_R0_data[194:182];
-  assign io_lookup_5_word_15 = _tables_5_ext_R0_data[207:195];
-  assign io_lookup_6_begin = lbZero_6 ? 13'h0 : casez_tmp_14;
+  assign io_lookup_5_word_0 = _tables_5_ext_R0_data[11:0];
+  assign io_lookup_5_word_1 = _tables_5_ext_R0_data[23:12];
+  assign io_lookup_5_word_2 = _tables_5_ext_R0_data[35:24];
+  assign io_lookup_5_word_3 = _tables_5_ext_R0_data[47:36];
+  assign io_lookup_5_word_4 = _tables_5_ext_R0_data[59:48];
+  assign io_lookup_5_word_5 = _tables_5_ext_R0_data[71:60];
+  assign io_lookup_5_word_6 = _tables_5_ext_R0_data[83:72];
+  assign io_lookup_5_word_7 = _tables_5_ext_R0_data[95:84];
+  assign io_lookup_5_word_8 = _tables_5_ext_R0_data[107:96];
+  assign io_lookup_5_word_9 = _tables_5_ext_R0_data[119:108];
+  assign io_lookup_5_word_10 = _tables_5_ext_R0_data[131:120];
+  assign io_lookup_5_word_11 = _tables_5_ext_R0_data[143:132];
+  assign io_lookup_5_word_12 = _tables_5_ext_R0_data[155:144];
+  assign io_lookup_5_word_13 = _tables_5_ext_R0_data[167:156];
+  assign io_lookup_5_word_14 = _tables_5_ext_R0_data[179:168];
+  assign io_lookup_5_word_15 = _tables_5_ext_R0_data[191:180];
+  assign io_lookup_6_begin = lbZero_6 ? 12'h0 : casez_tmp_14;
   assign io_lookup_6_end = casez_tmp_13;
-  assign io_lookup_6_word_0 = _tables_6_ext_R0_data[12:0];
-  assign io_lookup_6_word_1 = _tables_6_ext_R0_data[25:13];
-  assign io_lookup_6_word_2 = _tables_6_ext_R0_data[38:26];
-  assign io_lookup_6_word_3 = _tables_6_ext_R0_data[51:39];
-  assign io_lookup_6_word_4 = _tables_6_ext_R0_data[64:52];
-  assign io_lookup_6_word_5 = _tables_6_ext_R0_data[77:65];
-  assign io_lookup_6_word_6 = _tables_6_ext_R0_data[90:78];
-  assign io_lookup_6_word_7 = _tables_6_ext_R0_data[103:91];
-  assign io_lookup_6_word_8 = _tables_6_ext_R0_data[116:104];
-  assign io_lookup_6_word_9 = _tables_6_ext_R0_data[129:117];
-  assign io_lookup_6_word_10 = _tables_6_ext_R0_data[142:130];
-  assign io_lookup_6_word_11 = _tables_6_ext_R0_data[155:143];
-  assign io_lookup_6_word_12 = _tables_6_ext_R0_data[168:156];
-  assign io_lookup_6_word_13 = _tables_6_ext_R0_data[181:169];
-  assign io_lookup_6_word_14 = _tables_6_ext_R0_data[194:182];
-  assign io_lookup_6_word_15 = _tables_6_ext_R0_data[207:195];
-  assign io_lookup_7_begin = lbZero_7 ? 13'h0 : casez_tmp_16;
+  assign io_lookup_6_word_0 = _tables_6_ext_R0_data[11:0];
+  assign io_lookup_6_word_1 = _tables_6_ext_R0_data[23:12];
+  assign io_lookup_6_word_2 = _tables_6_ext_R0_data[35:24];
+  assign io_lookup_6_word_3 = _tables_6_ext_R0_data[47:36];
+  assign io_lookup_6_word_4 = _tables_6_ext_R0_data[59:48];
+  assign io_lookup_6_word_5 = _tables_6_ext_R0_data[71:60];
+  assign io_lookup_6_word_6 = _tables_6_ext_R0_data[83:72];
+  assign io_lookup_6_word_7 = _tables_6_ext_R0_data[95:84];
+  assign io_lookup_6_word_8 = _tables_6_ext_R0_data[107:96];
+  assign io_lookup_6_word_9 = _tables_6_ext_R0_data[119:108];
+  assign io_lookup_6_word_10 = _tables_6_ext_R0_data[131:120];
+  assign io_lookup_6_word_11 = _tables_6_ext_R0_data[143:132];
+  assign io_lookup_6_word_12 = _tables_6_ext_R0_data[155:144];
+  assign io_lookup_6_word_13 = _tables_6_ext_R0_data[167:156];
+  assign io_lookup_6_word_14 = _tables_6_ext_R0_data[179:168];
+  assign io_lookup_6_word_15 = _tables_6_ext_R0_data[191:180];
+  assign io_lookup_7_begin = lbZero_7 ? 12'h0 : casez_tmp_16;
   assign io_lookup_7_end = casez_tmp_15;
-  assign io_lookup_7_word_0 = _tables_7_ext_R0_data[12:0];
-  assign io_lookup_7_word_1 = _tables_7_ext_R0_data[25:13];
-  assign io_lookup_7_word_2 = _tables_7_ext_R0_data[38:26];
-  assign io_lookup_7_word_3 = _tables_7_ext_R0_data[51:39];
-  assign io_lookup_7_word_4 = _tables_7_ext_R0_data[64:52];
-  assign io_lookup_7_word_5 = _tables_7_ext_R0_data[77:65];
-  assign io_lookup_7_word_6 = _tables_7_ext_R0_data[90:78];
-  assign io_lookup_7_word_7 = _tables_7_ext_R0_data[103:91];
-  assign io_lookup_7_word_8 = _tables_7_ext_R0_data[116:104];
-  assign io_lookup_7_word_9 = _tables_7_ext_R0_data[129:117];
-  assign io_lookup_7_word_10 = _tables_7_ext_R0_data[142:130];
-  assign io_lookup_7_word_11 = _tables_7_ext_R0_data[155:143];
-  assign io_lookup_7_word_12 = _tables_7_ext_R0_data[168:156];
-  assign io_lookup_7_word_13 = _tables_7_ext_R0_data[181:169];
-  assign io_lookup_7_word_14 = _tables_7_ext_R0_data[194:182];
-  assign io_lookup_7_word_15 = _tables_7_ext_R0_data[207:195];
-  assign io_lookup_8_begin = lbZero_8 ? 13'h0 : casez_tmp_18;
+  assign io_lookup_7_word_0 = _tables_7_ext_R0_data[11:0];
+  assign io_lookup_7_word_1 = _tables_7_ext_R0_data[23:12];
+  assign io_lookup_7_word_2 = _tables_7_ext_R0_data[35:24];
+  assign io_lookup_7_word_3 = _tables_7_ext_R0_data[47:36];
+  assign io_lookup_7_word_4 = _tables_7_ext_R0_data[59:48];
+  assign io_lookup_7_word_5 = _tables_7_ext_R0_data[71:60];
+  assign io_lookup_7_word_6 = _tables_7_ext_R0_data[83:72];
+  assign io_lookup_7_word_7 = _tables_7_ext_R0_data[95:84];
+  assign io_lookup_7_word_8 = _tables_7_ext_R0_data[107:96];
+  assign io_lookup_7_word_9 = _tables_7_ext_R0_data[119:108];
+  assign io_lookup_7_word_10 = _tables_7_ext_R0_data[131:120];
+  assign io_lookup_7_word_11 = _tables_7_ext_R0_data[143:132];
+  assign io_lookup_7_word_12 = _tables_7_ext_R0_data[155:144];
+  assign io_lookup_7_word_13 = _tables_7_ext_R0_data[167:156];
+  assign io_lookup_7_word_14 = _tables_7_ext_R0_data[179:168];
+  assign io_lookup_7_word_15 = _tables_7_ext_R0_data[191:180];
+  assign io_lookup_8_begin = lbZero_8 ? 12'h0 : casez_tmp_18;
   assign io_lookup_8_end = casez_tmp_17;
-  assign io_lookup_8_word_0 = _tables_8_ext_R0_data[12:0];
-  assign io_lookup_8_word_1 = _tables_8_ext_R0_data[25:13];
-  assign io_lookup_8_word_2 = _tables_8_ext_R0_data[38:26];
-  assign io_lookup_8_word_3 = _tables_8_ext_R0_data[51:39];
-  assign io_lookup_8_word_4 = _tables_8_ext_R0_data[64:52];
-  assign io_lookup_8_word_5 = _tables_8_ext_R0_data[77:65];
-  assign io_lookup_8_word_6 = _tables_8_ext_R0_data[90:78];
-  assign io_lookup_8_word_7 = _tables_8_ext_R0_data[103:91];
-  assign io_lookup_8_word_8 = _tables_8_ext_R0_data[116:104];
-  assign io_lookup_8_word_9 = _tables_8_ext_R0_data[129:117];
-  assign io_lookup_8_word_10 = _tables_8_ext_R0_data[142:130];
-  assign io_lookup_8_word_11 = _tables_8_ext_R0_data[155:143];
-  assign io_lookup_8_word_12 = _tables_8_ext_R0_data[168:156];
-  assign io_lookup_8_word_13 = _tables_8_ext_R0_data[181:169];
-  assign io_lookup_8_word_14 = _tables_8_ext_R0_data[194:182];
-  assign io_lookup_8_word_15 = _tables_8_ext_R0_data[207:195];
-  assign io_lookup_9_begin = lbZero_9 ? 13'h0 : casez_tmp_20;
+  assign io_lookup_8_word_0 = _tables_8_ext_R0_data[11:0];
+  assign io_lookup_8_word_1 = _tables_8_ext_R0_data[23:12];
+  assign io_lookup_8_word_2 = _tables_8_ext_R0_data[35:24];
+  assign io_lookup_8_word_3 = _tables_8_ext_R0_data[47:36];
+  assign io_lookup_8_word_4 = _tables_8_ext_R0_data[59:48];
+  assign io_lookup_8_word_5 = _tables_8_ext_R0_data[71:60];
+  assign io_lookup_8_word_6 = _tables_8_ext_R0_data[83:72];
+  assign io_lookup_8_word_7 = _tables_8_ext_R0_data[95:84];
+  assign io_lookup_8_word_8 = _tables_8_ext_R0_data[107:96];
+  assign io_lookup_8_word_9 = _tables_8_ext_R0_data[119:108];
+  assign io_lookup_8_word_10 = _tables_8_ext_R0_data[131:120];
+  assign io_lookup_8_word_11 = _tables_8_ext_R0_data[143:132];
+  assign io_lookup_8_word_12 = _tables_8_ext_R0_data[155:144];
+  assign io_lookup_8_word_13 = _tables_8_ext_R0_data[167:156];
+  assign io_lookup_8_word_14 = _tables_8_ext_R0_data[179:168];
+  assign io_lookup_8_word_15 = _tables_8_ext_R0_data[191:180];
+  assign io_lookup_9_begin = lbZero_9 ? 12'h0 : casez_tmp_20;
   assign io_lookup_9_end = casez_tmp_19;
-  assign io_lookup_9_word_0 = _tables_9_ext_R0_data[12:0];
-  assign io_lookup_9_word_1 = _tables_9_ext_R0_data[25:13];
-  assign io_lookup_9_word_2 = _tables_9_ext_R0_data[38:26];
-  assign io_lookup_9_word_3 = _tables_9_ext_R0_data[51:39];
-  assign io_lookup_9_word_4 = _tables_9_ext_R0_data[64:52];
-  assign io_lookup_9_word_5 = _tables_9_ext_R0_data[77:65];
-  assign io_lookup_9_word_6 = _tables_9_ext_R0_data[90:78];
-  assign io_lookup_9_word_7 = _tables_9_ext_R0_data[103:91];
-  assign io_lookup_9_word_8 = _tables_9_ext_R0_data[116:104];
-  assign io_lookup_9_word_9 = _tables_9_ext_R0_data[129:117];
-  assign io_lookup_9_word_10 = _tables_9_ext_R0_data[142:130];
-  assign io_lookup_9_word_11 = _tables_9_ext_R0_data[155:143];
-  assign io_lookup_9_word_12 = _tables_9_ext_R0_data[168:156];
-  assign io_lookup_9_word_13 = _tables_9_ext_R0_data[181:169];
-  assign io_lookup_9_word_14 = _tables_9_ext_R0_data[194:182];
-  assign io_lookup_9_word_15 = _tables_9_ext_R0_data[207:195];
-  assign io_lookup_10_begin = lbZero_10 ? 13'h0 : casez_tmp_22;
+  assign io_lookup_9_word_0 = _tables_9_ext_R0_data[11:0];
+  assign io_lookup_9_word_1 = _tables_9_ext_R0_data[23:12];
+  assign io_lookup_9_word_2 = _tables_9_ext_R0_data[35:24];
+  assign io_lookup_9_word_3 = _tables_9_ext_R0_data[47:36];
+  assign io_lookup_9_word_4 = _tables_9_ext_R0_data[59:48];
+  assign io_lookup_9_word_5 = _tables_9_ext_R0_data[71:60];
+  assign io_lookup_9_word_6 = _tables_9_ext_R0_data[83:72];
+  assign io_lookup_9_word_7 = _tables_9_ext_R0_data[95:84];
+  assign io_lookup_9_word_8 = _tables_9_ext_R0_data[107:96];
+  assign io_lookup_9_word_9 = _tables_9_ext_R0_data[119:108];
+  assign io_lookup_9_word_10 = _tables_9_ext_R0_data[131:120];
+  assign io_lookup_9_word_11 = _tables_9_ext_R0_data[143:132];
+  assign io_lookup_9_word_12 = _tables_9_ext_R0_data[155:144];
+  assign io_lookup_9_word_13 = _tables_9_ext_R0_data[167:156];
+  assign io_lookup_9_word_14 = _tables_9_ext_R0_data[179:168];
+  assign io_lookup_9_word_15 = _tables_9_ext_R0_data[191:180];
+  assign io_lookup_10_begin = lbZero_10 ? 12'h0 : casez_tmp_22;
   assign io_lookup_10_end = casez_tmp_21;
-  assign io_lookup_10_word_0 = _tables_10_ext_R0_data[12:0];
-  assign io_lookup_10_word_1 = _tables_10_ext_R0_data[25:13];
-  assign io_lookup_10_word_2 = _tables_10_ext_R0_data[38:26];
-  assign io_lookup_10_word_3 = _tables_10_ext_R0_data[51:39];
-  assign io_lookup_10_word_4 = _tables_10_ext_R0_data[64:52];
-  assign io_lookup_10_word_5 = _tables_10_ext_R0_data[77:65];
-  assign io_lookup_10_word_6 = _tables_10_ext_R0_data[90:78];
-  assign io_lookup_10_word_7 = _tables_10_ext_R0_data[103:91];
-  assign io_lookup_10_word_8 = _tables_10_ext_R0_data[116:104];
-  assign io_lookup_10_word_9 = _tables_10_ext_R0_data[129:117];
-  assign io_lookup_10_word_10 = _tables_10_ext_R0_data[142:130];
-  assign io_lookup_10_word_11 = _tables_10_ext_R0_data[155:143];
-  assign io_lookup_10_word_12 = _tables_10_ext_R0_data[168:156];
-  assign io_lookup_10_word_13 = _tables_10_ext_R0_data[181:169];
-  assign io_lookup_10_word_14 = _tables_10_ext_R0_data[194:182];
-  assign io_lookup_10_word_15 = _tables_10_ext_R0_data[207:195];
-  assign io_lookup_11_begin = lbZero_11 ? 13'h0 : casez_tmp_24;
+  assign io_lookup_10_word_0 = _tables_10_ext_R0_data[11:0];
+  assign io_lookup_10_word_1 = _tables_10_ext_R0_data[23:12];
+  assign io_lookup_10_word_2 = _tables_10_ext_R0_data[35:24];
+  assign io_lookup_10_word_3 = _tables_10_ext_R0_data[47:36];
+  assign io_lookup_10_word_4 = _tables_10_ext_R0_data[59:48];
+  assign io_lookup_10_word_5 = _tables_10_ext_R0_data[71:60];
+  assign io_lookup_10_word_6 = _tables_10_ext_R0_data[83:72];
+  assign io_lookup_10_word_7 = _tables_10_ext_R0_data[95:84];
+  assign io_lookup_10_word_8 = _tables_10_ext_R0_data[107:96];
+  assign io_lookup_10_word_9 = _tables_10_ext_R0_data[119:108];
+  assign io_lookup_10_word_10 = _tables_10_ext_R0_data[131:120];
+  assign io_lookup_10_word_11 = _tables_10_ext_R0_data[143:132];
+  assign io_lookup_10_word_12 = _tables_10_ext_R0_data[155:144];
+  assign io_lookup_10_word_13 = _tables_10_ext_R0_data[167:156];
+  assign io_lookup_10_word_14 = _tables_10_ext_R0_data[179:168];
+  assign io_lookup_10_word_15 = _tables_10_ext_R0_data[191:180];
+  assign io_lookup_11_begin = lbZero_11 ? 12'h0 : casez_tmp_24;
   assign io_lookup_11_end = casez_tmp_23;
-  assign io_lookup_11_word_0 = _tables_11_ext_R0_data[12:0];
-  assign io_lookup_11_word_1 = _tables_11_ext_R0_data[25:13];
-  assign io_lookup_11_word_2 = _tables_11_ext_R0_data[38:26];
-  assign io_lookup_11_word_3 = _tables_11_ext_R0_data[51:39];
-  assign io_lookup_11_word_4 = _tables_11_ext_R0_data[64:52];
-  assign io_lookup_11_word_5 = _tables_11_ext_R0_data[77:65];
-  assign io_lookup_11_word_6 = _tables_11_ext_R0_data[90:78];
-  assign io_lookup_11_word_7 = _tables_11_ext_R0_data[103:91];
-  assign io_lookup_11_word_8 = _tables_11_ext_R0_data[116:104];
-  assign io_lookup_11_word_9 = _tables_11_ext_R0_data[129:117];
-  assign io_lookup_11_word_10 = _tables_11_ext_R0_data[142:130];
-  assign io_lookup_11_word_11 = _tables_11_ext_R0_data[155:143];
-  assign io_lookup_11_word_12 = _tables_11_ext_R0_data[168:156];
-  assign io_lookup_11_word_13 = _tables_11_ext_R0_data[181:169];
-  assign io_lookup_11_word_14 = _tables_11_ext_R0_data[194:182];
-  assign io_lookup_11_word_15 = _tables_11_ext_R0_data[207:195];
-  assign io_lookup_12_begin = lbZero_12 ? 13'h0 : casez_tmp_26;
+  assign io_lookup_11_word_0 = _tables_11_ext_R0_data[11:0];
+  assign io_lookup_11_word_1 = _tables_11_ext_R0_data[23:12];
+  assign io_lookup_11_word_2 = _tables_11_ext_R0_data[35:24];
+  assign io_lookup_11_word_3 = _tables_11_ext_R0_data[47:36];
+  assign io_lookup_11_word_4 = _tables_11_ext_R0_data[59:48];
+  assign io_lookup_11_word_5 = _tables_11_ext_R0_data[71:60];
+  assign io_lookup_11_word_6 = _tables_11_ext_R0_data[83:72];
+  assign io_lookup_11_word_7 = _tables_11_ext_R0_data[95:84];
+  assign io_lookup_11_word_8 = _tables_11_ext_R0_data[107:96];
+  assign io_lookup_11_word_9 = _tables_11_ext_R0_data[119:108];
+  assign io_lookup_11_word_10 = _tables_11_ext_R0_data[131:120];
+  assign io_lookup_11_word_11 = _tables_11_ext_R0_data[143:132];
+  assign io_lookup_11_word_12 = _tables_11_ext_R0_data[155:144];
+  assign io_lookup_11_word_13 = _tables_11_ext_R0_data[167:156];
+  assign io_lookup_11_word_14 = _tables_11_ext_R0_data[179:168];
+  assign io_lookup_11_word_15 = _tables_11_ext_R0_data[191:180];
+  assign io_lookup_12_begin = lbZero_12 ? 12'h0 : casez_tmp_26;
   assign io_lookup_12_end = casez_tmp_25;
-  assign io_lookup_12_word_0 = _tables_12_ext_R0_data[12:0];
-  assign io_lookup_12_word_1 = _tables_12_ext_R0_data[25:13];
-  assign io_lookup_12_word_2 = _tables_12_ext_R0_data[38:26];
-  assign io_lookup_12_word_3 = _tables_12_ext_R0_data[51:39];
-  assign io_lookup_12_word_4 = _tables_12_ext_R0_data[64:52];
-  assign io_lookup_12_word_5 = _tables_12_ext_R0_data[77:65];
-  assign io_lookup_12_word_6 = _tables_12_ext_R0_data[90:78];
-  assign io_lookup_12_word_7 = _tables_12_ext_R0_data[103:91];
-  assign io_lookup_12_word_8 = _tables_12_ext_R0_data[116:104];
-  assign io_lookup_12_word_9 = _tables_12_ext_R0_data[129:117];
-  assign io_lookup_12_word_10 = _tables_12_ext_R0_data[142:130];
-  assign io_lookup_12_word_11 = _tables_12_ext_R0_data[155:143];
-  assign io_lookup_12_word_12 = _tables_12_ext_R0_data[168:156];
-  assign io_lookup_12_word_13 = _tables_12_ext_R0_data[181:169];
-  assign io_lookup_12_word_14 = _tables_12_ext_R0_data[194:182];
-  assign io_lookup_12_word_15 = _tables_12_ext_R0_data[207:195];
-  assign io_lookup_13_begin = lbZero_13 ? 13'h0 : casez_tmp_28;
+  assign io_lookup_12_word_0 = _tables_12_ext_R0_data[11:0];
+  assign io_lookup_12_word_1 = _tables_12_ext_R0_data[23:12];
+  assign io_lookup_12_word_2 = _tables_12_ext_R0_data[35:24];
+  assign io_lookup_12_word_3 = _tables_12_ext_R0_data[47:36];
+  assign io_lookup_12_word_4 = _tables_12_ext_R0_data[59:48];
+  assign io_lookup_12_word_5 = _tables_12_ext_R0_data[71:60];
+  assign io_lookup_12_word_6 = _tables_12_ext_R0_data[83:72];
+  assign io_lookup_12_word_7 = _tables_12_ext_R0_data[95:84];
+  assign io_lookup_12_word_8 = _tables_12_ext_R0_data[107:96];
+  assign io_lookup_12_word_9 = _tables_12_ext_R0_data[119:108];
+  assign io_lookup_12_word_10 = _tables_12_ext_R0_data[131:120];
+  assign io_lookup_12_word_11 = _tables_12_ext_R0_data[143:132];
+  assign io_lookup_12_word_12 = _tables_12_ext_R0_data[155:144];
+  assign io_lookup_12_word_13 = _tables_12_ext_R0_data[167:156];
+  assign io_lookup_12_word_14 = _tables_12_ext_R0_data[179:168];
+  assign io_lookup_12_word_15 = _tables_12_ext_R0_data[191:180];
+  assign io_lookup_13_begin = lbZero_13 ? 12'h0 : casez_tmp_28;
   assign io_lookup_13_end = casez_tmp_27;
-  assign io_lookup_13_word_0 = _tables_13_ext_R0_data[12:0];
-  assign io_lookup_13_word_1 = _tables_13_ext_R0_data[25:13];
-  assign io_lookup_13_word_2 = _tables_13_ext_R0_data[38:26];
-  assign io_lookup_13_word_3 = _tables_13_ext_R0_data[51:39];
-  assign io_lookup_13_word_4 = _tables_13_ext_R0_data[64:52];
-  assign io_lookup_13_word_5 = _tables_13_ext_R0_data[77:65];
-  assign io_lookup_13_word_6 = _tables_13_ext_R0_data[90:78];
-  assign io_lookup_13_word_7 = _tables_13_ext_R0_data[103:91];
-  assign io_lookup_13_word_8 = _tables_13_ext_R0_data[116:104];
-  assign io_lookup_13_word_9 = _tables_13_ext_R0_data[129:117];
-  assign io_lookup_13_word_10 = _tables_13_ext_R0_data[142:130];
-  assign io_lookup_13_word_11 = _tables_13_ext_R0_data[155:143];
-  assign io_lookup_13_word_12 = _tables_13_ext_R0_data[168:156];
-  assign io_lookup_13_word_13 = _tables_13_ext_R0_data[181:169];
-  assign io_lookup_13_word_14 = _tables_13_ext_R0_data[194:182];
-  assign io_lookup_13_word_15 = _tables_13_ext_R0_data[207:195];
-  assign io_lookup_14_begin = lbZero_14 ? 13'h0 : casez_tmp_30;
+  assign io_lookup_13_word_0 = _tables_13_ext_R0_data[11:0];
+  assign io_lookup_13_word_1 = _tables_13_ext_R0_data[23:12];
+  assign io_lookup_13_word_2 = _tables_13_ext_R0_data[35:24];
+  assign io_lookup_13_word_3 = _tables_13_ext_R0_data[47:36];
+  assign io_lookup_13_word_4 = _tables_13_ext_R0_data[59:48];
+  assign io_lookup_13_word_5 = _tables_13_ext_R0_data[71:60];
+  assign io_lookup_13_word_6 = _tables_13_ext_R0_data[83:72];
+  assign io_lookup_13_word_7 = _tables_13_ext_R0_data[95:84];
+  assign io_lookup_13_word_8 = _tables_13_ext_R0_data[107:96];
+  assign io_lookup_13_word_9 = _tables_13_ext_R0_data[119:108];
+  assign io_lookup_13_word_10 = _tables_13_ext_R0_data[131:120];
+  assign io_lookup_13_word_11 = _tables_13_ext_R0_data[143:132];
+  assign io_lookup_13_word_12 = _tables_13_ext_R0_data[155:144];
+  assign io_lookup_13_word_13 = _tables_13_ext_R0_data[167:156];
+  assign io_lookup_13_word_14 = _tables_13_ext_R0_data[179:168];
+  assign io_lookup_13_word_15 = _tables_13_ext_R0_data[191:180];
+  assign io_lookup_14_begin = lbZero_14 ? 12'h0 : casez_tmp_30;
   assign io_lookup_14_end = casez_tmp_29;
-  assign io_lookup_14_word_0 = _tables_14_ext_R0_data[12:0];
-  assign io_lookup_14_word_1 = _tables_14_ext_R0_data[25:13];
-  assign io_lookup_14_word_2 = _tables_14_ext_R0_data[38:26];
-  assign io_lookup_14_word_3 = _tables_14_ext_R0_data[51:39];
-  assign io_lookup_14_word_4 = _tables_14_ext_R0_data[64:52];
-  assign io_lookup_14_word_5 = _tables_14_ext_R0_data[77:65];
-  assign io_lookup_14_word_6 = _tables_14_ext_R0_data[90:78];
-  assign io_lookup_14_word_7 = _tables_14_ext_R0_data[103:91];
-  assign io_lookup_14_word_8 = _tables_14_ext_R0_data[116:104];
-  assign io_lookup_14_word_9 = _tables_14_ext_R0_data[129:117];
-  assign io_lookup_14_word_10 = _tables_14_ext_R0_data[142:130];
-  assign io_lookup_14_word_11 = _tables_14_ext_R0_data[155:143];
-  assign io_lookup_14_word_12 = _tables_14_ext_R0_data[168:156];
-  assign io_lookup_14_word_13 = _tables_14_ext_R0_data[181:169];
-  assign io_lookup_14_word_14 = _tables_14_ext_R0_data[194:182];
-  assign io_lookup_14_word_15 = _tables_14_ext_R0_data[207:195];
-  assign io_lookup_15_begin = lbZero_15 ? 13'h0 : casez_tmp_32;
+  assign io_lookup_14_word_0 = _tables_14_ext_R0_data[11:0];
+  assign io_lookup_14_word_1 = _tables_14_ext_R0_data[23:12];
+  assign io_lookup_14_word_2 = _tables_14_ext_R0_data[35:24];
+  assign io_lookup_14_word_3 = _tables_14_ext_R0_data[47:36];
+  assign io_lookup_14_word_4 = _tables_14_ext_R0_data[59:48];
+  assign io_lookup_14_word_5 = _tables_14_ext_R0_data[71:60];
+  assign io_lookup_14_word_6 = _tables_14_ext_R0_data[83:72];
+  assign io_lookup_14_word_7 = _tables_14_ext_R0_data[95:84];
+  assign io_lookup_14_word_8 = _tables_14_ext_R0_data[107:96];
+  assign io_lookup_14_word_9 = _tables_14_ext_R0_data[119:108];
+  assign io_lookup_14_word_10 = _tables_14_ext_R0_data[131:120];
+  assign io_lookup_14_word_11 = _tables_14_ext_R0_data[143:132];
+  assign io_lookup_14_word_12 = _tables_14_ext_R0_data[155:144];
+  assign io_lookup_14_word_13 = _tables_14_ext_R0_data[167:156];
+  assign io_lookup_14_word_14 = _tables_14_ext_R0_data[179:168];
+  assign io_lookup_14_word_15 = _tables_14_ext_R0_data[191:180];
+  assign io_lookup_15_begin = lbZero_15 ? 12'h0 : casez_tmp_32;
   assign io_lookup_15_end = casez_tmp_31;
-  assign io_lookup_15_word_0 = _tables_15_ext_R0_data[12:0];
-  assign io_lookup_15_word_1 = _tables_15_ext_R0_data[25:13];
-  assign io_lookup_15_word_2 = _tables_15_ext_R0_data[38:26];
-  assign io_lookup_15_word_3 = _tables_15_ext_R0_data[51:39];
-  assign io_lookup_15_word_4 = _tables_15_ext_R0_data[64:52];
-  assign io_lookup_15_word_5 = _tables_15_ext_R0_data[77:65];
-  assign io_lookup_15_word_6 = _tables_15_ext_R0_data[90:78];
-  assign io_lookup_15_word_7 = _tables_15_ext_R0_data[103:91];
-  assign io_lookup_15_word_8 = _tables_15_ext_R0_data[116:104];
-  assign io_lookup_15_word_9 = _tables_15_ext_R0_data[129:117];
-  assign io_lookup_15_word_10 = _tables_15_ext_R0_data[142:130];
-  assign io_lookup_15_word_11 = _tables_15_ext_R0_data[155:143];
-  assign io_lookup_15_word_12 = _tables_15_ext_R0_data[168:156];
-  assign io_lookup_15_word_13 = _tables_15_ext_R0_data[181:169];
-  assign io_lookup_15_word_14 = _tables_15_ext_R0_data[194:182];
-  assign io_lookup_15_word_15 = _tables_15_ext_R0_data[207:195];
+  assign io_lookup_15_word_0 = _tables_15_ext_R0_data[11:0];
+  assign io_lookup_15_word_1 = _tables_15_ext_R0_data[23:12];
+  assign io_lookup_15_word_2 = _tables_15_ext_R0_data[35:24];
+  assign io_lookup_15_word_3 = _tables_15_ext_R0_data[47:36];
+  assign io_lookup_15_word_4 = _tables_15_ext_R0_data[59:48];
+  assign io_lookup_15_word_5 = _tables_15_ext_R0_data[71:60];
+  assign io_lookup_15_word_6 = _tables_15_ext_R0_data[83:72];
+  assign io_lookup_15_word_7 = _tables_15_ext_R0_data[95:84];
+  assign io_lookup_15_word_8 = _tables_15_ext_R0_data[107:96];
+  assign io_lookup_15_word_9 = _tables_15_ext_R0_data[119:108];
+  assign io_lookup_15_word_10 = _tables_15_ext_R0_data[131:120];
+  assign io_lookup_15_word_11 = _tables_15_ext_R0_data[143:132];
+  assign io_lookup_15_word_12 = _tables_15_ext_R0_data[155:144];
+  assign io_lookup_15_word_13 = _tables_15_ext_R0_data[167:156];
+  assign io_lookup_15_word_14 = _tables_15_ext_R0_data[179:168];
+  assign io_lookup_15_word_15 = _tables_15_ext_R0_data[191:180];
   assign io_entry_0_item = _entries_0_ext_RW0_rdata[11:0];
   assign io_entry_0_mark = _entries_0_ext_RW0_rdata[12];
   assign io_entry_1_item = _entries_1_ext_RW0_rdata[11:0];
@@ -19505,23 +19504,23 @@ module BucketSort_n4096_b13_w4_c16_p2_world(
 endmodule
 
 // VCS coverage exclude_file
-module ram_5x266_world(
+module ram_5x267_world(
   input  [2:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [265:0] R0_data,
+  output [266:0] R0_data,
   input  [2:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [265:0] W0_data
+  input  [266:0] W0_data
 );
 
-  reg [265:0] Memory[0:4];
+  reg [266:0] Memory[0:4];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = R0_en ? Memory[R0_addr] : 266'bx;
+  assign R0_data = R0_en ? Memory[R0_addr] : 267'bx;
 endmodule
 
 module Queue5_StreamItem_world(
@@ -19529,6 +19528,7 @@ module Queue5_StreamItem_world(
                 reset,
   output        io_enq_ready,
   input         io_enq_valid,
+                io_enq_bits_group,
   input  [12:0] io_enq_bits_pos,
   input  [11:0] io_enq_bits_item,
   input         io_enq_bits_mark,
@@ -19548,6 +19548,7 @@ module Queue5_StreamItem_world(
   input         io_enq_bits_tag_own,
                 io_deq_ready,
   output        io_deq_valid,
+                io_deq_bits_group,
   output [12:0] io_deq_bits_pos,
   output [11:0] io_deq_bits_item,
   output        io_deq_bits_mark,
@@ -19568,7 +19569,7 @@ module Queue5_StreamItem_world(
   output [2:0]  io_count
 );
 
-  wire [265:0] _ram_ext_R0_data;
+  wire [266:0] _ram_ext_R0_data;
   reg  [2:0]   enq_ptr_value;
   reg  [2:0]   deq_ptr_value;
   reg          maybe_full;
@@ -19601,7 +19602,7 @@ module Queue5_StreamItem_world(
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_5x266_world ram_ext (
+  ram_5x267_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -19626,27 +19627,29 @@ module Queue5_StreamItem_world(
         io_enq_bits_rec_cell_0,
         io_enq_bits_mark,
         io_enq_bits_item,
-        io_enq_bits_pos})
+        io_enq_bits_pos,
+        io_enq_bits_group})
   );
   assign io_enq_ready = ~full;
   assign io_deq_valid = ~empty;
-  assign io_deq_bits_pos = _ram_ext_R0_data[12:0];
-  assign io_deq_bits_item = _ram_ext_R0_data[24:13];
-  assign io_deq_bits_mark = _ram_ext_R0_data[25];
-  assign io_deq_bits_rec_cell_0 = _ram_ext_R0_data[45:26];
-  assign io_deq_bits_rec_cell_1 = _ram_ext_R0_data[65:46];
-  assign io_deq_bits_rec_cell_2 = _ram_ext_R0_data[85:66];
-  assign io_deq_bits_rec_q_0 = _ram_ext_R0_data[114:86];
-  assign io_deq_bits_rec_q_1 = _ram_ext_R0_data[143:115];
-  assign io_deq_bits_rec_q_2 = _ram_ext_R0_data[172:144];
-  assign io_deq_bits_rec_qr = _ram_ext_R0_data[201:173];
-  assign io_deq_bits_rec_large = _ram_ext_R0_data[202];
-  assign io_deq_bits_rec_excluded = _ram_ext_R0_data[203];
-  assign io_deq_bits_tag_scan = _ram_ext_R0_data[204];
-  assign io_deq_bits_tag_cell_0 = _ram_ext_R0_data[224:205];
-  assign io_deq_bits_tag_cell_1 = _ram_ext_R0_data[244:225];
-  assign io_deq_bits_tag_cell_2 = _ram_ext_R0_data[264:245];
-  assign io_deq_bits_tag_own = _ram_ext_R0_data[265];
+  assign io_deq_bits_group = _ram_ext_R0_data[0];
+  assign io_deq_bits_pos = _ram_ext_R0_data[13:1];
+  assign io_deq_bits_item = _ram_ext_R0_data[25:14];
+  assign io_deq_bits_mark = _ram_ext_R0_data[26];
+  assign io_deq_bits_rec_cell_0 = _ram_ext_R0_data[46:27];
+  assign io_deq_bits_rec_cell_1 = _ram_ext_R0_data[66:47];
+  assign io_deq_bits_rec_cell_2 = _ram_ext_R0_data[86:67];
+  assign io_deq_bits_rec_q_0 = _ram_ext_R0_data[115:87];
+  assign io_deq_bits_rec_q_1 = _ram_ext_R0_data[144:116];
+  assign io_deq_bits_rec_q_2 = _ram_ext_R0_data[173:145];
+  assign io_deq_bits_rec_qr = _ram_ext_R0_data[202:174];
+  assign io_deq_bits_rec_large = _ram_ext_R0_data[203];
+  assign io_deq_bits_rec_excluded = _ram_ext_R0_data[204];
+  assign io_deq_bits_tag_scan = _ram_ext_R0_data[205];
+  assign io_deq_bits_tag_cell_0 = _ram_ext_R0_data[225:206];
+  assign io_deq_bits_tag_cell_1 = _ram_ext_R0_data[245:226];
+  assign io_deq_bits_tag_cell_2 = _ram_ext_R0_data[265:246];
+  assign io_deq_bits_tag_own = _ram_ext_R0_data[266];
   assign io_count =
     ptr_match
       ? (maybe_full ? 3'h5 : 3'h0)
@@ -19658,8 +19661,10 @@ module KeyStream_world(
                 reset,
   output        io_req_ready,
   input         io_req_valid,
-  input  [12:0] io_req_bits_begin,
-                io_req_bits_end,
+  input  [12:0] io_req_bits_begin_0,
+                io_req_bits_begin_1,
+                io_req_bits_end_0,
+                io_req_bits_end_1,
   input         io_req_bits_direct,
                 io_req_bits_tag_scan,
   input  [19:0] io_req_bits_tag_cell_0,
@@ -19667,6 +19672,7 @@ module KeyStream_world(
                 io_req_bits_tag_cell_2,
   input         io_req_bits_tag_own,
   output [11:0] io_entryAddr,
+  output        io_entryGroup,
   input  [11:0] io_entryItem,
   input         io_entryMark,
   output [11:0] io_keyAddr,
@@ -19681,6 +19687,7 @@ module KeyStream_world(
                 io_keyData_excluded,
                 io_out_ready,
   output        io_out_valid,
+                io_out_bits_group,
   output [12:0] io_out_bits_pos,
   output [11:0] io_out_bits_item,
   output        io_out_bits_mark,
@@ -19704,8 +19711,10 @@ module KeyStream_world(
   wire        _q_io_enq_ready;
   wire        _q_io_deq_valid;
   wire [2:0]  _q_io_count;
-  reg  [12:0] cur_begin;
-  reg  [12:0] cur_end;
+  reg  [12:0] cur_begin_0;
+  reg  [12:0] cur_begin_1;
+  reg  [12:0] cur_end_0;
+  reg  [12:0] cur_end_1;
   reg         cur_direct;
   reg         cur_tag_scan;
   reg  [19:0] cur_tag_cell_0;
@@ -19714,6 +19723,7 @@ module KeyStream_world(
   reg         cur_tag_own;
   reg         busy;
   reg         s1v;
+  reg         s1_group;
   reg  [12:0] s1_pos;
   reg         s1_direct;
   reg         s1_tag_scan;
@@ -19723,6 +19733,7 @@ module KeyStream_world(
   reg         s1_tag_own;
   reg         kv_0;
   reg         kv_1;
+  reg         ks_0_group;
   reg  [12:0] ks_0_pos;
   reg         ks_0_tag_scan;
   reg  [19:0] ks_0_tag_cell_0;
@@ -19731,6 +19742,7 @@ module KeyStream_world(
   reg         ks_0_tag_own;
   reg  [11:0] ks_0_item;
   reg         ks_0_mark;
+  reg         ks_1_group;
   reg  [12:0] ks_1_pos;
   reg         ks_1_tag_scan;
   reg  [19:0] ks_1_tag_cell_0;
@@ -19742,25 +19754,33 @@ module KeyStream_world(
   wire        issue =
     busy & {1'h0, _q_io_count}
     + {1'h0, {1'h0, {1'h0, s1v} + {1'h0, kv_0}} + {2'h0, kv_1}} < 4'h5;
-  wire [12:0] _cur_begin_T = cur_begin + 13'h1;
-  wire        last = issue & _cur_begin_T == cur_end;
+  wire        left_0 = cur_begin_0 != cur_end_0;
+  wire [12:0] _GEN = left_0 ? cur_begin_0 : cur_begin_1;
+  wire [12:0] _cur_begin_T = _GEN + 13'h1;
+  wire        last =
+    issue
+    & ~(left_0
+          ? _cur_begin_T != cur_end_0 | cur_begin_1 != cur_end_1
+          : _cur_begin_T != cur_end_1);
   wire        io_req_ready_0 = ~busy | last;
   wire [11:0] item = s1_direct ? s1_pos[11:0] : io_entryItem;
   `ifndef SYNTHESIS
     always @(posedge clock) begin
       if (~reset & ~(~kv_1 | _q_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: KeyStream_world: a read came back with no room (credit accounting)\n    at KeyStream_world.scala:99 assert(!kv.last || q.io.enq.ready, \"KeyStream_world: a read came back with no room (credit accounting)\")\n");
+          $error("Assertion failed: KeyStream_world: a read came back with no room (credit accounting)\n    at KeyStream_world.scala:117 assert(!kv.last || q.io.enq.ready, \"KeyStream_world: a read came back with no room (credit accounting)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire        _GEN = io_req_ready_0 & io_req_valid;
+  wire        _GEN_0 = io_req_ready_0 & io_req_valid;
   always @(posedge clock) begin
-    if (_GEN) begin
-      cur_begin <= io_req_bits_begin;
-      cur_end <= io_req_bits_end;
+    if (_GEN_0) begin
+      cur_begin_0 <= io_req_bits_begin_0;
+      cur_begin_1 <= io_req_bits_begin_1;
+      cur_end_0 <= io_req_bits_end_0;
+      cur_end_1 <= io_req_bits_end_1;
       cur_direct <= io_req_bits_direct;
       cur_tag_scan <= io_req_bits_tag_scan;
       cur_tag_cell_0 <= io_req_bits_tag_cell_0;
@@ -19768,10 +19788,15 @@ module KeyStream_world(
       cur_tag_cell_2 <= io_req_bits_tag_cell_2;
       cur_tag_own <= io_req_bits_tag_own;
     end
-    else if (issue)
-      cur_begin <= _cur_begin_T;
+    else begin
+      if (issue & left_0)
+        cur_begin_0 <= _cur_begin_T;
+      if (issue & ~left_0)
+        cur_begin_1 <= _cur_begin_T;
+    end
     if (issue) begin
-      s1_pos <= cur_begin;
+      s1_group <= ~left_0;
+      s1_pos <= _GEN;
       s1_direct <= cur_direct;
       s1_tag_scan <= cur_tag_scan;
       s1_tag_cell_0 <= cur_tag_cell_0;
@@ -19780,6 +19805,7 @@ module KeyStream_world(
       s1_tag_own <= cur_tag_own;
     end
     if (s1v) begin
+      ks_0_group <= s1_group;
       ks_0_pos <= s1_pos;
       ks_0_tag_scan <= s1_tag_scan;
       ks_0_tag_cell_0 <= s1_tag_cell_0;
@@ -19789,6 +19815,7 @@ module KeyStream_world(
       ks_0_item <= item;
       ks_0_mark <= ~s1_direct & io_entryMark;
     end
+    ks_1_group <= ks_0_group;
     ks_1_pos <= ks_0_pos;
     ks_1_tag_scan <= ks_0_tag_scan;
     ks_1_tag_cell_0 <= ks_0_tag_cell_0;
@@ -19804,8 +19831,10 @@ module KeyStream_world(
       kv_1 <= 1'h0;
     end
     else begin
-      if (_GEN)
-        busy <= io_req_bits_begin != io_req_bits_end;
+      if (_GEN_0)
+        busy <=
+          io_req_bits_begin_0 != io_req_bits_end_0
+          | io_req_bits_begin_1 != io_req_bits_end_1;
       else
         busy <= ~last & busy;
       s1v <= issue;
@@ -19818,6 +19847,7 @@ module KeyStream_world(
     .reset                    (reset),
     .io_enq_ready             (_q_io_enq_ready),
     .io_enq_valid             (kv_1),
+    .io_enq_bits_group        (ks_1_group),
     .io_enq_bits_pos          (ks_1_pos),
     .io_enq_bits_item         (ks_1_item),
     .io_enq_bits_mark         (ks_1_mark),
@@ -19837,6 +19867,7 @@ module KeyStream_world(
     .io_enq_bits_tag_own      (ks_1_tag_own),
     .io_deq_ready             (io_out_ready),
     .io_deq_valid             (_q_io_deq_valid),
+    .io_deq_bits_group        (io_out_bits_group),
     .io_deq_bits_pos          (io_out_bits_pos),
     .io_deq_bits_item         (io_out_bits_item),
     .io_deq_bits_mark         (io_out_bits_mark),
@@ -19857,7 +19888,8 @@ module KeyStream_world(
     .io_count                 (_q_io_count)
   );
   assign io_req_ready = io_req_ready_0;
-  assign io_entryAddr = cur_begin[11:0];
+  assign io_entryAddr = _GEN[11:0];
+  assign io_entryGroup = ~left_0;
   assign io_keyAddr = item;
   assign io_out_valid = _q_io_deq_valid;
   assign io_idle = ~busy & ~s1v & ~(kv_0 | kv_1) & ~_q_io_deq_valid;
@@ -20480,31 +20512,33 @@ module ChunkMatcher_i12_c20_q29_k16_world(
 endmodule
 
 // VCS coverage exclude_file
-module ram_3x89_world(
-  input  [1:0]  R0_addr,
-  input         R0_en,
-                R0_clk,
-  output [88:0] R0_data,
-  input  [1:0]  W0_addr,
-  input         W0_en,
-                W0_clk,
-  input  [88:0] W0_data
+module ram_3x115_world(
+  input  [1:0]   R0_addr,
+  input          R0_en,
+                 R0_clk,
+  output [114:0] R0_data,
+  input  [1:0]   W0_addr,
+  input          W0_en,
+                 W0_clk,
+  input  [114:0] W0_data
 );
 
-  reg [88:0] Memory[0:2];
+  reg [114:0] Memory[0:2];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = R0_en ? Memory[R0_addr] : 89'bx;
+  assign R0_data = R0_en ? Memory[R0_addr] : 115'bx;
 endmodule
 
 module Queue3_StreamRange_world(
   input         clock,
                 reset,
                 io_enq_valid,
-  input  [12:0] io_enq_bits_begin,
-                io_enq_bits_end,
+  input  [12:0] io_enq_bits_begin_0,
+                io_enq_bits_begin_1,
+                io_enq_bits_end_0,
+                io_enq_bits_end_1,
   input         io_enq_bits_tag_scan,
   input  [19:0] io_enq_bits_tag_cell_0,
                 io_enq_bits_tag_cell_1,
@@ -20512,8 +20546,10 @@ module Queue3_StreamRange_world(
   input         io_enq_bits_tag_own,
                 io_deq_ready,
   output        io_deq_valid,
-  output [12:0] io_deq_bits_begin,
-                io_deq_bits_end,
+  output [12:0] io_deq_bits_begin_0,
+                io_deq_bits_begin_1,
+                io_deq_bits_end_0,
+                io_deq_bits_end_1,
   output        io_deq_bits_direct,
                 io_deq_bits_tag_scan,
   output [19:0] io_deq_bits_tag_cell_0,
@@ -20523,17 +20559,17 @@ module Queue3_StreamRange_world(
   output [1:0]  io_count
 );
 
-  wire        io_enq_ready;
-  wire [88:0] _ram_ext_R0_data;
-  reg  [1:0]  enq_ptr_value;
-  reg  [1:0]  deq_ptr_value;
-  reg         maybe_full;
-  wire        ptr_match = enq_ptr_value == deq_ptr_value;
-  wire        empty = ptr_match & ~maybe_full;
-  wire        do_enq = io_enq_ready & io_enq_valid;
+  wire         io_enq_ready;
+  wire [114:0] _ram_ext_R0_data;
+  reg  [1:0]   enq_ptr_value;
+  reg  [1:0]   deq_ptr_value;
+  reg          maybe_full;
+  wire         ptr_match = enq_ptr_value == deq_ptr_value;
+  wire         empty = ptr_match & ~maybe_full;
+  wire         do_enq = io_enq_ready & io_enq_valid;
   assign io_enq_ready = ~(ptr_match & maybe_full);
-  wire [1:0]  _ptr_diff_T = enq_ptr_value - deq_ptr_value;
-  wire        do_deq = io_deq_ready & ~empty;
+  wire [1:0]   _ptr_diff_T = enq_ptr_value - deq_ptr_value;
+  wire         do_deq = io_deq_ready & ~empty;
   always @(posedge clock) begin
     if (reset) begin
       enq_ptr_value <= 2'h0;
@@ -20557,7 +20593,7 @@ module Queue3_StreamRange_world(
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_3x89_world ram_ext (
+  ram_3x115_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -20572,25 +20608,29 @@ module Queue3_StreamRange_world(
         io_enq_bits_tag_cell_0,
         io_enq_bits_tag_scan,
         1'h0,
-        io_enq_bits_end,
-        io_enq_bits_begin})
+        io_enq_bits_end_1,
+        io_enq_bits_end_0,
+        io_enq_bits_begin_1,
+        io_enq_bits_begin_0})
   );
   assign io_deq_valid = ~empty;
-  assign io_deq_bits_begin = _ram_ext_R0_data[12:0];
-  assign io_deq_bits_end = _ram_ext_R0_data[25:13];
-  assign io_deq_bits_direct = _ram_ext_R0_data[26];
-  assign io_deq_bits_tag_scan = _ram_ext_R0_data[27];
-  assign io_deq_bits_tag_cell_0 = _ram_ext_R0_data[47:28];
-  assign io_deq_bits_tag_cell_1 = _ram_ext_R0_data[67:48];
-  assign io_deq_bits_tag_cell_2 = _ram_ext_R0_data[87:68];
-  assign io_deq_bits_tag_own = _ram_ext_R0_data[88];
+  assign io_deq_bits_begin_0 = _ram_ext_R0_data[12:0];
+  assign io_deq_bits_begin_1 = _ram_ext_R0_data[25:13];
+  assign io_deq_bits_end_0 = _ram_ext_R0_data[38:26];
+  assign io_deq_bits_end_1 = _ram_ext_R0_data[51:39];
+  assign io_deq_bits_direct = _ram_ext_R0_data[52];
+  assign io_deq_bits_tag_scan = _ram_ext_R0_data[53];
+  assign io_deq_bits_tag_cell_0 = _ram_ext_R0_data[73:54];
+  assign io_deq_bits_tag_cell_1 = _ram_ext_R0_data[93:74];
+  assign io_deq_bits_tag_cell_2 = _ram_ext_R0_data[113:94];
+  assign io_deq_bits_tag_own = _ram_ext_R0_data[114];
   assign io_count =
     ptr_match
       ? {2{maybe_full}}
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 2'h1 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
+module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   input         clock,
                 reset,
                 io_start,
@@ -20681,28 +20721,48 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
   input  [12:0] io_largeFrom,
                 io_largeTo,
   output [12:0] io_lookup_bucket,
-  input  [12:0] io_lookup_begin,
-                io_lookup_end,
-                io_lookup_word_0,
-                io_lookup_word_1,
-                io_lookup_word_2,
-                io_lookup_word_3,
-                io_lookup_word_4,
-                io_lookup_word_5,
-                io_lookup_word_6,
-                io_lookup_word_7,
-                io_lookup_word_8,
-                io_lookup_word_9,
-                io_lookup_word_10,
-                io_lookup_word_11,
-                io_lookup_word_12,
-                io_lookup_word_13,
-                io_lookup_word_14,
-                io_lookup_word_15,
+  input  [12:0] io_lookup_begin_0,
+                io_lookup_begin_1,
+                io_lookup_end_0,
+                io_lookup_end_1,
+                io_lookup_word_0_0,
+                io_lookup_word_0_1,
+                io_lookup_word_0_2,
+                io_lookup_word_0_3,
+                io_lookup_word_0_4,
+                io_lookup_word_0_5,
+                io_lookup_word_0_6,
+                io_lookup_word_0_7,
+                io_lookup_word_0_8,
+                io_lookup_word_0_9,
+                io_lookup_word_0_10,
+                io_lookup_word_0_11,
+                io_lookup_word_0_12,
+                io_lookup_word_0_13,
+                io_lookup_word_0_14,
+                io_lookup_word_0_15,
+                io_lookup_word_1_0,
+                io_lookup_word_1_1,
+                io_lookup_word_1_2,
+                io_lookup_word_1_3,
+                io_lookup_word_1_4,
+                io_lookup_word_1_5,
+                io_lookup_word_1_6,
+                io_lookup_word_1_7,
+                io_lookup_word_1_8,
+                io_lookup_word_1_9,
+                io_lookup_word_1_10,
+                io_lookup_word_1_11,
+                io_lookup_word_1_12,
+                io_lookup_word_1_13,
+                io_lookup_word_1_14,
+                io_lookup_word_1_15,
   output [11:0] io_entry_addr,
+  output        io_entry_group,
   input  [11:0] io_entry_item,
   input         io_entry_mark,
   output        io_mark_valid,
+                io_mark_bits_group,
   output [11:0] io_mark_bits_addr,
                 io_mark_bits_item,
                 io_keyAddr,
@@ -20724,8 +20784,10 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
 
   wire        _GEN;
   wire        _lkq_io_deq_valid;
-  wire [12:0] _lkq_io_deq_bits_begin;
-  wire [12:0] _lkq_io_deq_bits_end;
+  wire [12:0] _lkq_io_deq_bits_begin_0;
+  wire [12:0] _lkq_io_deq_bits_begin_1;
+  wire [12:0] _lkq_io_deq_bits_end_0;
+  wire [12:0] _lkq_io_deq_bits_end_1;
   wire        _lkq_io_deq_bits_direct;
   wire        _lkq_io_deq_bits_tag_scan;
   wire [19:0] _lkq_io_deq_bits_tag_cell_0;
@@ -20737,6 +20799,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
   wire        _matcher_io_idle;
   wire        _stream_io_req_ready;
   wire        _stream_io_out_valid;
+  wire        _stream_io_out_bits_group;
   wire [12:0] _stream_io_out_bits_pos;
   wire [11:0] _stream_io_out_bits_item;
   wire        _stream_io_out_bits_mark;
@@ -20760,8 +20823,10 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
   reg  [13:0] bIssue;
   reg         walkPend;
   reg  [13:0] walkB;
-  reg  [12:0] p;
-  reg  [12:0] bEnd;
+  reg  [12:0] p_0;
+  reg  [12:0] p_1;
+  reg  [12:0] bEnd_0;
+  reg  [12:0] bEnd_1;
   reg  [19:0] curCell_0;
   reg  [19:0] curCell_1;
   reg  [19:0] curCell_2;
@@ -20770,6 +20835,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
   reg         moreOfCell;
   reg         nextSet;
   reg  [12:0] nextLeader;
+  reg         nextGroup;
   reg  [19:0] nextCell_0;
   reg  [19:0] nextCell_1;
   reg  [19:0] nextCell_2;
@@ -20790,50 +20856,64 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
   wire        issueOk = bIssue < _io_lookup_bucket_mask_T[13:0];
   wire        occupied_0 =
     walkB[3:0] == 4'h0 & {walkB[13:4], 4'h0} < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_0 != io_lookup_begin;
+    & (io_lookup_word_0_0 != io_lookup_begin_0 | io_lookup_word_1_0 != io_lookup_begin_1);
   wire [13:0] _GEN_2 = {walkB[13:4], 4'h0};
   wire        occupied_1 =
     walkB[3:0] < 4'h2 & _GEN_2 + 14'h1 < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_1 != io_lookup_word_0;
+    & (io_lookup_word_0_1 != io_lookup_word_0_0
+       | io_lookup_word_1_1 != io_lookup_word_1_0);
   wire        occupied_2 =
     walkB[3:0] < 4'h3 & _GEN_2 + 14'h2 < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_2 != io_lookup_word_1;
+    & (io_lookup_word_0_2 != io_lookup_word_0_1
+       | io_lookup_word_1_2 != io_lookup_word_1_1);
   wire        occupied_3 =
     walkB[3:0] < 4'h4 & _GEN_2 + 14'h3 < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_3 != io_lookup_word_2;
+    & (io_lookup_word_0_3 != io_lookup_word_0_2
+       | io_lookup_word_1_3 != io_lookup_word_1_2);
   wire        occupied_4 =
     walkB[3:0] < 4'h5 & _GEN_2 + 14'h4 < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_4 != io_lookup_word_3;
+    & (io_lookup_word_0_4 != io_lookup_word_0_3
+       | io_lookup_word_1_4 != io_lookup_word_1_3);
   wire        occupied_5 =
     walkB[3:0] < 4'h6 & _GEN_2 + 14'h5 < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_5 != io_lookup_word_4;
+    & (io_lookup_word_0_5 != io_lookup_word_0_4
+       | io_lookup_word_1_5 != io_lookup_word_1_4);
   wire        occupied_6 =
     walkB[3:0] < 4'h7 & _GEN_2 + 14'h6 < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_6 != io_lookup_word_5;
+    & (io_lookup_word_0_6 != io_lookup_word_0_5
+       | io_lookup_word_1_6 != io_lookup_word_1_5);
   wire        occupied_7 =
     ~(walkB[3]) & _GEN_2 + 14'h7 < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_7 != io_lookup_word_6;
+    & (io_lookup_word_0_7 != io_lookup_word_0_6
+       | io_lookup_word_1_7 != io_lookup_word_1_6);
   wire        occupied_8 =
     walkB[3:0] < 4'h9 & _GEN_2 + 14'h8 < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_8 != io_lookup_word_7;
+    & (io_lookup_word_0_8 != io_lookup_word_0_7
+       | io_lookup_word_1_8 != io_lookup_word_1_7);
   wire        occupied_9 =
     walkB[3:0] < 4'hA & _GEN_2 + 14'h9 < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_9 != io_lookup_word_8;
+    & (io_lookup_word_0_9 != io_lookup_word_0_8
+       | io_lookup_word_1_9 != io_lookup_word_1_8);
   wire        occupied_10 =
     walkB[3:0] < 4'hB & _GEN_2 + 14'hA < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_10 != io_lookup_word_9;
+    & (io_lookup_word_0_10 != io_lookup_word_0_9
+       | io_lookup_word_1_10 != io_lookup_word_1_9);
   wire        occupied_11 =
     walkB[3:2] != 2'h3 & _GEN_2 + 14'hB < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_11 != io_lookup_word_10;
+    & (io_lookup_word_0_11 != io_lookup_word_0_10
+       | io_lookup_word_1_11 != io_lookup_word_1_10);
   wire        occupied_12 =
     walkB[3:0] < 4'hD & _GEN_2 + 14'hC < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_12 != io_lookup_word_11;
+    & (io_lookup_word_0_12 != io_lookup_word_0_11
+       | io_lookup_word_1_12 != io_lookup_word_1_11);
   wire        occupied_13 =
     walkB[3:1] != 3'h7 & _GEN_2 + 14'hD < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_13 != io_lookup_word_12;
+    & (io_lookup_word_0_13 != io_lookup_word_0_12
+       | io_lookup_word_1_13 != io_lookup_word_1_12);
   wire        occupied_14 =
     walkB[3:0] != 4'hF & _GEN_2 + 14'hE < _io_lookup_bucket_mask_T[13:0]
-    & io_lookup_word_14 != io_lookup_word_13;
+    & (io_lookup_word_0_14 != io_lookup_word_0_13
+       | io_lookup_word_1_14 != io_lookup_word_1_13);
   wire [3:0]  lane =
     occupied_0
       ? 4'h0
@@ -20867,7 +20947,8 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
   wire        _GEN_3 =
     walkPend
     & (|{_GEN_2 + 14'hF < _io_lookup_bucket_mask_T[13:0]
-           & io_lookup_word_15 != io_lookup_word_14,
+           & (io_lookup_word_0_15 != io_lookup_word_0_14
+              | io_lookup_word_1_15 != io_lookup_word_1_14),
          occupied_14,
          occupied_13,
          occupied_12,
@@ -20887,183 +20968,183 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
   always @(*) begin
     casez (lane)
       4'b0000:
-        casez_tmp = io_lookup_begin;
+        casez_tmp = io_lookup_begin_0;
       4'b0001:
-        casez_tmp = io_lookup_word_0;
+        casez_tmp = io_lookup_word_0_0;
       4'b0010:
-        casez_tmp = io_lookup_word_1;
+        casez_tmp = io_lookup_word_0_1;
       4'b0011:
-        casez_tmp = io_lookup_word_2;
+        casez_tmp = io_lookup_word_0_2;
       4'b0100:
-        casez_tmp = io_lookup_word_3;
+        casez_tmp = io_lookup_word_0_3;
       4'b0101:
-        casez_tmp = io_lookup_word_4;
+        casez_tmp = io_lookup_word_0_4;
       4'b0110:
-        casez_tmp = io_lookup_word_5;
+        casez_tmp = io_lookup_word_0_5;
       4'b0111:
-        casez_tmp = io_lookup_word_6;
+        casez_tmp = io_lookup_word_0_6;
       4'b1000:
-        casez_tmp = io_lookup_word_7;
+        casez_tmp = io_lookup_word_0_7;
       4'b1001:
-        casez_tmp = io_lookup_word_8;
+        casez_tmp = io_lookup_word_0_8;
       4'b1010:
-        casez_tmp = io_lookup_word_9;
+        casez_tmp = io_lookup_word_0_9;
       4'b1011:
-        casez_tmp = io_lookup_word_10;
+        casez_tmp = io_lookup_word_0_10;
       4'b1100:
-        casez_tmp = io_lookup_word_11;
+        casez_tmp = io_lookup_word_0_11;
       4'b1101:
-        casez_tmp = io_lookup_word_12;
+        casez_tmp = io_lookup_word_0_12;
       4'b1110:
-        casez_tmp = io_lookup_word_13;
+        casez_tmp = io_lookup_word_0_13;
       default:
-        casez_tmp = io_lookup_word_14;
+        casez_tmp = io_lookup_word_0_14;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_0;
   always @(*) begin
     casez (lane)
       4'b0000:
-        casez_tmp_0 = io_lookup_word_0;
+        casez_tmp_0 = io_lookup_word_0_0;
       4'b0001:
-        casez_tmp_0 = io_lookup_word_1;
+        casez_tmp_0 = io_lookup_word_0_1;
       4'b0010:
-        casez_tmp_0 = io_lookup_word_2;
+        casez_tmp_0 = io_lookup_word_0_2;
       4'b0011:
-        casez_tmp_0 = io_lookup_word_3;
+        casez_tmp_0 = io_lookup_word_0_3;
       4'b0100:
-        casez_tmp_0 = io_lookup_word_4;
+        casez_tmp_0 = io_lookup_word_0_4;
       4'b0101:
-        casez_tmp_0 = io_lookup_word_5;
+        casez_tmp_0 = io_lookup_word_0_5;
       4'b0110:
-        casez_tmp_0 = io_lookup_word_6;
+        casez_tmp_0 = io_lookup_word_0_6;
       4'b0111:
-        casez_tmp_0 = io_lookup_word_7;
+        casez_tmp_0 = io_lookup_word_0_7;
       4'b1000:
-        casez_tmp_0 = io_lookup_word_8;
+        casez_tmp_0 = io_lookup_word_0_8;
       4'b1001:
-        casez_tmp_0 = io_lookup_word_9;
+        casez_tmp_0 = io_lookup_word_0_9;
       4'b1010:
-        casez_tmp_0 = io_lookup_word_10;
+        casez_tmp_0 = io_lookup_word_0_10;
       4'b1011:
-        casez_tmp_0 = io_lookup_word_11;
+        casez_tmp_0 = io_lookup_word_0_11;
       4'b1100:
-        casez_tmp_0 = io_lookup_word_12;
+        casez_tmp_0 = io_lookup_word_0_12;
       4'b1101:
-        casez_tmp_0 = io_lookup_word_13;
+        casez_tmp_0 = io_lookup_word_0_13;
       4'b1110:
-        casez_tmp_0 = io_lookup_word_14;
+        casez_tmp_0 = io_lookup_word_0_14;
       default:
-        casez_tmp_0 = io_lookup_word_15;
+        casez_tmp_0 = io_lookup_word_0_15;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_1;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_1 = io_lookup_begin_1;
+      4'b0001:
+        casez_tmp_1 = io_lookup_word_1_0;
+      4'b0010:
+        casez_tmp_1 = io_lookup_word_1_1;
+      4'b0011:
+        casez_tmp_1 = io_lookup_word_1_2;
+      4'b0100:
+        casez_tmp_1 = io_lookup_word_1_3;
+      4'b0101:
+        casez_tmp_1 = io_lookup_word_1_4;
+      4'b0110:
+        casez_tmp_1 = io_lookup_word_1_5;
+      4'b0111:
+        casez_tmp_1 = io_lookup_word_1_6;
+      4'b1000:
+        casez_tmp_1 = io_lookup_word_1_7;
+      4'b1001:
+        casez_tmp_1 = io_lookup_word_1_8;
+      4'b1010:
+        casez_tmp_1 = io_lookup_word_1_9;
+      4'b1011:
+        casez_tmp_1 = io_lookup_word_1_10;
+      4'b1100:
+        casez_tmp_1 = io_lookup_word_1_11;
+      4'b1101:
+        casez_tmp_1 = io_lookup_word_1_12;
+      4'b1110:
+        casez_tmp_1 = io_lookup_word_1_13;
+      default:
+        casez_tmp_1 = io_lookup_word_1_14;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_2;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_2 = io_lookup_word_1_0;
+      4'b0001:
+        casez_tmp_2 = io_lookup_word_1_1;
+      4'b0010:
+        casez_tmp_2 = io_lookup_word_1_2;
+      4'b0011:
+        casez_tmp_2 = io_lookup_word_1_3;
+      4'b0100:
+        casez_tmp_2 = io_lookup_word_1_4;
+      4'b0101:
+        casez_tmp_2 = io_lookup_word_1_5;
+      4'b0110:
+        casez_tmp_2 = io_lookup_word_1_6;
+      4'b0111:
+        casez_tmp_2 = io_lookup_word_1_7;
+      4'b1000:
+        casez_tmp_2 = io_lookup_word_1_8;
+      4'b1001:
+        casez_tmp_2 = io_lookup_word_1_9;
+      4'b1010:
+        casez_tmp_2 = io_lookup_word_1_10;
+      4'b1011:
+        casez_tmp_2 = io_lookup_word_1_11;
+      4'b1100:
+        casez_tmp_2 = io_lookup_word_1_12;
+      4'b1101:
+        casez_tmp_2 = io_lookup_word_1_13;
+      4'b1110:
+        casez_tmp_2 = io_lookup_word_1_14;
+      default:
+        casez_tmp_2 = io_lookup_word_1_15;
     endcase
   end // always @(*)
   wire        _GEN_4 = ~walkPend & ~issueOk;
   wire        _GEN_5 = state == 3'h2;
   wire        _GEN_6 = _GEN_5 & sent;
   wire        _GEN_7 = _GEN_0 | _GEN_1;
-  reg  [19:0] casez_tmp_1;
-  always @(*) begin
-    casez (vIssue)
-      4'b0000:
-        casez_tmp_1 = 20'h0;
-      4'b0001:
-        casez_tmp_1 = 20'h0;
-      4'b0010:
-        casez_tmp_1 = 20'h0;
-      4'b0011:
-        casez_tmp_1 = 20'h0;
-      4'b0100:
-        casez_tmp_1 = 20'h0;
-      4'b0101:
-        casez_tmp_1 = 20'h1;
-      4'b0110:
-        casez_tmp_1 = 20'h1;
-      4'b0111:
-        casez_tmp_1 = 20'h1;
-      4'b1000:
-        casez_tmp_1 = 20'h1;
-      4'b1001:
-        casez_tmp_1 = 20'h1;
-      4'b1010:
-        casez_tmp_1 = 20'h1;
-      4'b1011:
-        casez_tmp_1 = 20'h1;
-      4'b1100:
-        casez_tmp_1 = 20'h1;
-      4'b1101:
-        casez_tmp_1 = 20'h1;
-      4'b1110:
-        casez_tmp_1 = 20'h0;
-      default:
-        casez_tmp_1 = 20'h0;
-    endcase
-  end // always @(*)
-  reg  [19:0] casez_tmp_2;
-  always @(*) begin
-    casez (vIssue)
-      4'b0000:
-        casez_tmp_2 = 20'h0;
-      4'b0001:
-        casez_tmp_2 = 20'h0;
-      4'b0010:
-        casez_tmp_2 = 20'h1;
-      4'b0011:
-        casez_tmp_2 = 20'h1;
-      4'b0100:
-        casez_tmp_2 = 20'h1;
-      4'b0101:
-        casez_tmp_2 = 20'hFFFFF;
-      4'b0110:
-        casez_tmp_2 = 20'hFFFFF;
-      4'b0111:
-        casez_tmp_2 = 20'hFFFFF;
-      4'b1000:
-        casez_tmp_2 = 20'h0;
-      4'b1001:
-        casez_tmp_2 = 20'h0;
-      4'b1010:
-        casez_tmp_2 = 20'h0;
-      4'b1011:
-        casez_tmp_2 = 20'h1;
-      4'b1100:
-        casez_tmp_2 = 20'h1;
-      4'b1101:
-        casez_tmp_2 = 20'h1;
-      4'b1110:
-        casez_tmp_2 = 20'h0;
-      default:
-        casez_tmp_2 = 20'h0;
-    endcase
-  end // always @(*)
   reg  [19:0] casez_tmp_3;
   always @(*) begin
     casez (vIssue)
       4'b0000:
         casez_tmp_3 = 20'h0;
       4'b0001:
-        casez_tmp_3 = 20'h1;
+        casez_tmp_3 = 20'h0;
       4'b0010:
-        casez_tmp_3 = 20'hFFFFF;
+        casez_tmp_3 = 20'h0;
       4'b0011:
         casez_tmp_3 = 20'h0;
       4'b0100:
-        casez_tmp_3 = 20'h1;
-      4'b0101:
-        casez_tmp_3 = 20'hFFFFF;
-      4'b0110:
         casez_tmp_3 = 20'h0;
+      4'b0101:
+        casez_tmp_3 = 20'h1;
+      4'b0110:
+        casez_tmp_3 = 20'h1;
       4'b0111:
         casez_tmp_3 = 20'h1;
       4'b1000:
-        casez_tmp_3 = 20'hFFFFF;
+        casez_tmp_3 = 20'h1;
       4'b1001:
-        casez_tmp_3 = 20'h0;
+        casez_tmp_3 = 20'h1;
       4'b1010:
         casez_tmp_3 = 20'h1;
       4'b1011:
-        casez_tmp_3 = 20'hFFFFF;
+        casez_tmp_3 = 20'h1;
       4'b1100:
-        casez_tmp_3 = 20'h0;
+        casez_tmp_3 = 20'h1;
       4'b1101:
         casez_tmp_3 = 20'h1;
       4'b1110:
@@ -21072,9 +21153,83 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
         casez_tmp_3 = 20'h0;
     endcase
   end // always @(*)
-  wire [19:0] nc_0 = curCell_0 + casez_tmp_1;
-  wire [19:0] nc_1 = curCell_1 + casez_tmp_2;
-  wire [19:0] nc_2 = curCell_2 + casez_tmp_3;
+  reg  [19:0] casez_tmp_4;
+  always @(*) begin
+    casez (vIssue)
+      4'b0000:
+        casez_tmp_4 = 20'h0;
+      4'b0001:
+        casez_tmp_4 = 20'h0;
+      4'b0010:
+        casez_tmp_4 = 20'h1;
+      4'b0011:
+        casez_tmp_4 = 20'h1;
+      4'b0100:
+        casez_tmp_4 = 20'h1;
+      4'b0101:
+        casez_tmp_4 = 20'hFFFFF;
+      4'b0110:
+        casez_tmp_4 = 20'hFFFFF;
+      4'b0111:
+        casez_tmp_4 = 20'hFFFFF;
+      4'b1000:
+        casez_tmp_4 = 20'h0;
+      4'b1001:
+        casez_tmp_4 = 20'h0;
+      4'b1010:
+        casez_tmp_4 = 20'h0;
+      4'b1011:
+        casez_tmp_4 = 20'h1;
+      4'b1100:
+        casez_tmp_4 = 20'h1;
+      4'b1101:
+        casez_tmp_4 = 20'h1;
+      4'b1110:
+        casez_tmp_4 = 20'h0;
+      default:
+        casez_tmp_4 = 20'h0;
+    endcase
+  end // always @(*)
+  reg  [19:0] casez_tmp_5;
+  always @(*) begin
+    casez (vIssue)
+      4'b0000:
+        casez_tmp_5 = 20'h0;
+      4'b0001:
+        casez_tmp_5 = 20'h1;
+      4'b0010:
+        casez_tmp_5 = 20'hFFFFF;
+      4'b0011:
+        casez_tmp_5 = 20'h0;
+      4'b0100:
+        casez_tmp_5 = 20'h1;
+      4'b0101:
+        casez_tmp_5 = 20'hFFFFF;
+      4'b0110:
+        casez_tmp_5 = 20'h0;
+      4'b0111:
+        casez_tmp_5 = 20'h1;
+      4'b1000:
+        casez_tmp_5 = 20'hFFFFF;
+      4'b1001:
+        casez_tmp_5 = 20'h0;
+      4'b1010:
+        casez_tmp_5 = 20'h1;
+      4'b1011:
+        casez_tmp_5 = 20'hFFFFF;
+      4'b1100:
+        casez_tmp_5 = 20'h0;
+      4'b1101:
+        casez_tmp_5 = 20'h1;
+      4'b1110:
+        casez_tmp_5 = 20'h0;
+      default:
+        casez_tmp_5 = 20'h0;
+    endcase
+  end // always @(*)
+  wire [19:0] nc_0 = curCell_0 + casez_tmp_3;
+  wire [19:0] nc_1 = curCell_1 + casez_tmp_4;
+  wire [19:0] nc_2 = curCell_2 + casez_tmp_5;
   wire        _GEN_8 = _GEN & _stream_io_out_valid;
   wire        _GEN_9 = _stream_io_out_bits_tag_scan & _GEN_8;
   wire        same =
@@ -21087,189 +21242,189 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
   wire [6:0]  idx = _GEN_11 + {2'h0, lj};
   wire [6:0]  _GEN_12 = {2'h0, io_largeCount};
   wire        _GEN_13 = lj != 5'h10 & idx < _GEN_12;
-  reg  [11:0] casez_tmp_4;
+  reg  [11:0] casez_tmp_6;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_4 = io_larges_0_index;
+        casez_tmp_6 = io_larges_0_index;
       4'b0001:
-        casez_tmp_4 = io_larges_1_index;
+        casez_tmp_6 = io_larges_1_index;
       4'b0010:
-        casez_tmp_4 = io_larges_2_index;
+        casez_tmp_6 = io_larges_2_index;
       4'b0011:
-        casez_tmp_4 = io_larges_3_index;
+        casez_tmp_6 = io_larges_3_index;
       4'b0100:
-        casez_tmp_4 = io_larges_4_index;
+        casez_tmp_6 = io_larges_4_index;
       4'b0101:
-        casez_tmp_4 = io_larges_5_index;
+        casez_tmp_6 = io_larges_5_index;
       4'b0110:
-        casez_tmp_4 = io_larges_6_index;
+        casez_tmp_6 = io_larges_6_index;
       4'b0111:
-        casez_tmp_4 = io_larges_7_index;
+        casez_tmp_6 = io_larges_7_index;
       4'b1000:
-        casez_tmp_4 = io_larges_8_index;
+        casez_tmp_6 = io_larges_8_index;
       4'b1001:
-        casez_tmp_4 = io_larges_9_index;
+        casez_tmp_6 = io_larges_9_index;
       4'b1010:
-        casez_tmp_4 = io_larges_10_index;
+        casez_tmp_6 = io_larges_10_index;
       4'b1011:
-        casez_tmp_4 = io_larges_11_index;
+        casez_tmp_6 = io_larges_11_index;
       4'b1100:
-        casez_tmp_4 = io_larges_12_index;
+        casez_tmp_6 = io_larges_12_index;
       4'b1101:
-        casez_tmp_4 = io_larges_13_index;
+        casez_tmp_6 = io_larges_13_index;
       4'b1110:
-        casez_tmp_4 = io_larges_14_index;
+        casez_tmp_6 = io_larges_14_index;
       default:
-        casez_tmp_4 = io_larges_15_index;
-    endcase
-  end // always @(*)
-  reg  [28:0] casez_tmp_5;
-  always @(*) begin
-    casez (idx[3:0])
-      4'b0000:
-        casez_tmp_5 = io_larges_0_q_0;
-      4'b0001:
-        casez_tmp_5 = io_larges_1_q_0;
-      4'b0010:
-        casez_tmp_5 = io_larges_2_q_0;
-      4'b0011:
-        casez_tmp_5 = io_larges_3_q_0;
-      4'b0100:
-        casez_tmp_5 = io_larges_4_q_0;
-      4'b0101:
-        casez_tmp_5 = io_larges_5_q_0;
-      4'b0110:
-        casez_tmp_5 = io_larges_6_q_0;
-      4'b0111:
-        casez_tmp_5 = io_larges_7_q_0;
-      4'b1000:
-        casez_tmp_5 = io_larges_8_q_0;
-      4'b1001:
-        casez_tmp_5 = io_larges_9_q_0;
-      4'b1010:
-        casez_tmp_5 = io_larges_10_q_0;
-      4'b1011:
-        casez_tmp_5 = io_larges_11_q_0;
-      4'b1100:
-        casez_tmp_5 = io_larges_12_q_0;
-      4'b1101:
-        casez_tmp_5 = io_larges_13_q_0;
-      4'b1110:
-        casez_tmp_5 = io_larges_14_q_0;
-      default:
-        casez_tmp_5 = io_larges_15_q_0;
-    endcase
-  end // always @(*)
-  reg  [28:0] casez_tmp_6;
-  always @(*) begin
-    casez (idx[3:0])
-      4'b0000:
-        casez_tmp_6 = io_larges_0_q_1;
-      4'b0001:
-        casez_tmp_6 = io_larges_1_q_1;
-      4'b0010:
-        casez_tmp_6 = io_larges_2_q_1;
-      4'b0011:
-        casez_tmp_6 = io_larges_3_q_1;
-      4'b0100:
-        casez_tmp_6 = io_larges_4_q_1;
-      4'b0101:
-        casez_tmp_6 = io_larges_5_q_1;
-      4'b0110:
-        casez_tmp_6 = io_larges_6_q_1;
-      4'b0111:
-        casez_tmp_6 = io_larges_7_q_1;
-      4'b1000:
-        casez_tmp_6 = io_larges_8_q_1;
-      4'b1001:
-        casez_tmp_6 = io_larges_9_q_1;
-      4'b1010:
-        casez_tmp_6 = io_larges_10_q_1;
-      4'b1011:
-        casez_tmp_6 = io_larges_11_q_1;
-      4'b1100:
-        casez_tmp_6 = io_larges_12_q_1;
-      4'b1101:
-        casez_tmp_6 = io_larges_13_q_1;
-      4'b1110:
-        casez_tmp_6 = io_larges_14_q_1;
-      default:
-        casez_tmp_6 = io_larges_15_q_1;
+        casez_tmp_6 = io_larges_15_index;
     endcase
   end // always @(*)
   reg  [28:0] casez_tmp_7;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_7 = io_larges_0_q_2;
+        casez_tmp_7 = io_larges_0_q_0;
       4'b0001:
-        casez_tmp_7 = io_larges_1_q_2;
+        casez_tmp_7 = io_larges_1_q_0;
       4'b0010:
-        casez_tmp_7 = io_larges_2_q_2;
+        casez_tmp_7 = io_larges_2_q_0;
       4'b0011:
-        casez_tmp_7 = io_larges_3_q_2;
+        casez_tmp_7 = io_larges_3_q_0;
       4'b0100:
-        casez_tmp_7 = io_larges_4_q_2;
+        casez_tmp_7 = io_larges_4_q_0;
       4'b0101:
-        casez_tmp_7 = io_larges_5_q_2;
+        casez_tmp_7 = io_larges_5_q_0;
       4'b0110:
-        casez_tmp_7 = io_larges_6_q_2;
+        casez_tmp_7 = io_larges_6_q_0;
       4'b0111:
-        casez_tmp_7 = io_larges_7_q_2;
+        casez_tmp_7 = io_larges_7_q_0;
       4'b1000:
-        casez_tmp_7 = io_larges_8_q_2;
+        casez_tmp_7 = io_larges_8_q_0;
       4'b1001:
-        casez_tmp_7 = io_larges_9_q_2;
+        casez_tmp_7 = io_larges_9_q_0;
       4'b1010:
-        casez_tmp_7 = io_larges_10_q_2;
+        casez_tmp_7 = io_larges_10_q_0;
       4'b1011:
-        casez_tmp_7 = io_larges_11_q_2;
+        casez_tmp_7 = io_larges_11_q_0;
       4'b1100:
-        casez_tmp_7 = io_larges_12_q_2;
+        casez_tmp_7 = io_larges_12_q_0;
       4'b1101:
-        casez_tmp_7 = io_larges_13_q_2;
+        casez_tmp_7 = io_larges_13_q_0;
       4'b1110:
-        casez_tmp_7 = io_larges_14_q_2;
+        casez_tmp_7 = io_larges_14_q_0;
       default:
-        casez_tmp_7 = io_larges_15_q_2;
+        casez_tmp_7 = io_larges_15_q_0;
     endcase
   end // always @(*)
   reg  [28:0] casez_tmp_8;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_8 = io_larges_0_qr;
+        casez_tmp_8 = io_larges_0_q_1;
       4'b0001:
-        casez_tmp_8 = io_larges_1_qr;
+        casez_tmp_8 = io_larges_1_q_1;
       4'b0010:
-        casez_tmp_8 = io_larges_2_qr;
+        casez_tmp_8 = io_larges_2_q_1;
       4'b0011:
-        casez_tmp_8 = io_larges_3_qr;
+        casez_tmp_8 = io_larges_3_q_1;
       4'b0100:
-        casez_tmp_8 = io_larges_4_qr;
+        casez_tmp_8 = io_larges_4_q_1;
       4'b0101:
-        casez_tmp_8 = io_larges_5_qr;
+        casez_tmp_8 = io_larges_5_q_1;
       4'b0110:
-        casez_tmp_8 = io_larges_6_qr;
+        casez_tmp_8 = io_larges_6_q_1;
       4'b0111:
-        casez_tmp_8 = io_larges_7_qr;
+        casez_tmp_8 = io_larges_7_q_1;
       4'b1000:
-        casez_tmp_8 = io_larges_8_qr;
+        casez_tmp_8 = io_larges_8_q_1;
       4'b1001:
-        casez_tmp_8 = io_larges_9_qr;
+        casez_tmp_8 = io_larges_9_q_1;
       4'b1010:
-        casez_tmp_8 = io_larges_10_qr;
+        casez_tmp_8 = io_larges_10_q_1;
       4'b1011:
-        casez_tmp_8 = io_larges_11_qr;
+        casez_tmp_8 = io_larges_11_q_1;
       4'b1100:
-        casez_tmp_8 = io_larges_12_qr;
+        casez_tmp_8 = io_larges_12_q_1;
       4'b1101:
-        casez_tmp_8 = io_larges_13_qr;
+        casez_tmp_8 = io_larges_13_q_1;
       4'b1110:
-        casez_tmp_8 = io_larges_14_qr;
+        casez_tmp_8 = io_larges_14_q_1;
       default:
-        casez_tmp_8 = io_larges_15_qr;
+        casez_tmp_8 = io_larges_15_q_1;
+    endcase
+  end // always @(*)
+  reg  [28:0] casez_tmp_9;
+  always @(*) begin
+    casez (idx[3:0])
+      4'b0000:
+        casez_tmp_9 = io_larges_0_q_2;
+      4'b0001:
+        casez_tmp_9 = io_larges_1_q_2;
+      4'b0010:
+        casez_tmp_9 = io_larges_2_q_2;
+      4'b0011:
+        casez_tmp_9 = io_larges_3_q_2;
+      4'b0100:
+        casez_tmp_9 = io_larges_4_q_2;
+      4'b0101:
+        casez_tmp_9 = io_larges_5_q_2;
+      4'b0110:
+        casez_tmp_9 = io_larges_6_q_2;
+      4'b0111:
+        casez_tmp_9 = io_larges_7_q_2;
+      4'b1000:
+        casez_tmp_9 = io_larges_8_q_2;
+      4'b1001:
+        casez_tmp_9 = io_larges_9_q_2;
+      4'b1010:
+        casez_tmp_9 = io_larges_10_q_2;
+      4'b1011:
+        casez_tmp_9 = io_larges_11_q_2;
+      4'b1100:
+        casez_tmp_9 = io_larges_12_q_2;
+      4'b1101:
+        casez_tmp_9 = io_larges_13_q_2;
+      4'b1110:
+        casez_tmp_9 = io_larges_14_q_2;
+      default:
+        casez_tmp_9 = io_larges_15_q_2;
+    endcase
+  end // always @(*)
+  reg  [28:0] casez_tmp_10;
+  always @(*) begin
+    casez (idx[3:0])
+      4'b0000:
+        casez_tmp_10 = io_larges_0_qr;
+      4'b0001:
+        casez_tmp_10 = io_larges_1_qr;
+      4'b0010:
+        casez_tmp_10 = io_larges_2_qr;
+      4'b0011:
+        casez_tmp_10 = io_larges_3_qr;
+      4'b0100:
+        casez_tmp_10 = io_larges_4_qr;
+      4'b0101:
+        casez_tmp_10 = io_larges_5_qr;
+      4'b0110:
+        casez_tmp_10 = io_larges_6_qr;
+      4'b0111:
+        casez_tmp_10 = io_larges_7_qr;
+      4'b1000:
+        casez_tmp_10 = io_larges_8_qr;
+      4'b1001:
+        casez_tmp_10 = io_larges_9_qr;
+      4'b1010:
+        casez_tmp_10 = io_larges_10_qr;
+      4'b1011:
+        casez_tmp_10 = io_larges_11_qr;
+      4'b1100:
+        casez_tmp_10 = io_larges_12_qr;
+      4'b1101:
+        casez_tmp_10 = io_larges_13_qr;
+      4'b1110:
+        casez_tmp_10 = io_larges_14_qr;
+      default:
+        casez_tmp_10 = io_larges_15_qr;
     endcase
   end // always @(*)
   wire        _GEN_14 = state == 3'h4;
@@ -21300,7 +21455,8 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
   wire        _GEN_26 = _GEN_24 & _GEN_25 & ~moreOfCell;
   wire [6:0]  nextLi = _GEN_11 + 7'h10;
   wire        _GEN_27 = _GEN_14 & _GEN_16;
-  wire        _GEN_28 = _GEN_24 & _GEN_25;
+  wire        _GEN_28 = _GEN_5 & _GEN_26;
+  wire        _GEN_29 = _GEN_24 & _GEN_25;
   always @(posedge clock) begin
     if (reset) begin
       state <= 3'h0;
@@ -21343,7 +21499,8 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
     else if (_GEN_1) begin
       if (_GEN_3) begin
         bIssue <= (&lane) ? _GEN_2 + 14'h100 : _GEN_2 + {10'h0, lane} + 14'h1;
-        p <= casez_tmp;
+        p_0 <= casez_tmp;
+        p_1 <= casez_tmp_1;
         vIssue <= 4'h0;
       end
       else if (issueOk)
@@ -21359,10 +21516,12 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
       end
     end
     else begin
-      if (_GEN_5 & _GEN_26)
-        p <= nextLeader;
+      if (_GEN_28)
+        p_0 <= nextGroup ? bEnd_0 : nextLeader;
+      if (_GEN_28 & nextGroup)
+        p_1 <= nextLeader;
       if (_GEN_5) begin
-        if (_GEN_28) begin
+        if (_GEN_29) begin
           haveCell <= ~moreOfCell | _GEN_21 | haveCell;
           vIssue <= 4'h0;
         end
@@ -21371,9 +21530,9 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
           if (canIssue)
             vIssue <= vIssue + 4'h1;
         end
-        sent <= ~_GEN_28 & (_GEN_19 | sent);
+        sent <= ~_GEN_29 & (_GEN_19 | sent);
         needClear <=
-          _GEN_28 | ~(_stream_io_out_bits_tag_scan & _GEN_8 & needClear) & needClear;
+          _GEN_29 | ~(_stream_io_out_bits_tag_scan & _GEN_8 & needClear) & needClear;
       end
       else if (_GEN_10) begin
         sent <= _GEN_13 & sent;
@@ -21396,8 +21555,10 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
       walkB <= bIssue;
     if (_GEN_0 | ~(_GEN_1 & _GEN_3)) begin
     end
-    else
-      bEnd <= casez_tmp_0;
+    else begin
+      bEnd_0 <= casez_tmp_0;
+      bEnd_1 <= casez_tmp_2;
+    end
     if (_GEN_20) begin
     end
     else begin
@@ -21424,6 +21585,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
     end
     else begin
       nextLeader <= _stream_io_out_bits_pos;
+      nextGroup <= _stream_io_out_bits_group;
       nextCell_0 <= _stream_io_out_bits_rec_cell_0;
       nextCell_1 <= _stream_io_out_bits_rec_cell_1;
       nextCell_2 <= _stream_io_out_bits_rec_cell_2;
@@ -21433,7 +21595,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
     else if (_GEN_9)
       scanLeft <= scanLeft - 13'h1;
     else if (_GEN_19)
-      scanLeft <= bEnd - p;
+      scanLeft <= bEnd_0 - p_0 + bEnd_1 - p_1;
     lkVisit_scan <= _GEN_20 & lkVisit_scan;
     if (_GEN_20) begin
     end
@@ -21449,10 +21611,12 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
     .reset                    (reset),
     .io_req_ready             (_stream_io_req_ready),
     .io_req_valid             (_GEN_15),
-    .io_req_bits_begin
-      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin : p) : io_largeFrom),
-    .io_req_bits_end
-      (_GEN_5 ? (sent ? _lkq_io_deq_bits_end : bEnd) : io_largeTo),
+    .io_req_bits_begin_0
+      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_0 : p_0) : io_largeFrom),
+    .io_req_bits_begin_1      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_1 : p_1) : 13'h0),
+    .io_req_bits_end_0
+      (_GEN_5 ? (sent ? _lkq_io_deq_bits_end_0 : bEnd_0) : io_largeTo),
+    .io_req_bits_end_1        (_GEN_5 ? (sent ? _lkq_io_deq_bits_end_1 : bEnd_1) : 13'h0),
     .io_req_bits_direct       (~_GEN_5 | sent & _lkq_io_deq_bits_direct),
     .io_req_bits_tag_scan     (_GEN_5 & (~sent | _lkq_io_deq_bits_tag_scan)),
     .io_req_bits_tag_cell_0   (_GEN_6 ? _lkq_io_deq_bits_tag_cell_0 : 20'h0),
@@ -21460,6 +21624,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
     .io_req_bits_tag_cell_2   (_GEN_6 ? _lkq_io_deq_bits_tag_cell_2 : 20'h0),
     .io_req_bits_tag_own      (_GEN_6 & _lkq_io_deq_bits_tag_own),
     .io_entryAddr             (io_entry_addr),
+    .io_entryGroup            (io_entry_group),
     .io_entryItem             (io_entry_item),
     .io_entryMark             (io_entry_mark),
     .io_keyAddr               (io_keyAddr),
@@ -21474,6 +21639,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
     .io_keyData_excluded      (io_keyData_excluded),
     .io_out_ready             (_GEN),
     .io_out_valid             (_stream_io_out_valid),
+    .io_out_bits_group        (_stream_io_out_bits_group),
     .io_out_bits_pos          (_stream_io_out_bits_pos),
     .io_out_bits_item         (_stream_io_out_bits_item),
     .io_out_bits_mark         (_stream_io_out_bits_mark),
@@ -21502,11 +21668,11 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
             ? _GEN_3 | _GEN_4
             : _GEN_5 ? _GEN_9 & needClear : ~_GEN_10 & _GEN_14 & _GEN_16)),
     .io_load_valid         (~_GEN_7 & (_GEN_5 ? _GEN_9 & take : _GEN_10 & _GEN_13)),
-    .io_load_bits_index    (_GEN_5 ? _stream_io_out_bits_item : casez_tmp_4),
-    .io_load_bits_q_0      (_GEN_5 ? _stream_io_out_bits_rec_q_0 : casez_tmp_5),
-    .io_load_bits_q_1      (_GEN_5 ? _stream_io_out_bits_rec_q_1 : casez_tmp_6),
-    .io_load_bits_q_2      (_GEN_5 ? _stream_io_out_bits_rec_q_2 : casez_tmp_7),
-    .io_load_bits_qr       (_GEN_5 ? _stream_io_out_bits_rec_qr : casez_tmp_8),
+    .io_load_bits_index    (_GEN_5 ? _stream_io_out_bits_item : casez_tmp_6),
+    .io_load_bits_q_0      (_GEN_5 ? _stream_io_out_bits_rec_q_0 : casez_tmp_7),
+    .io_load_bits_q_1      (_GEN_5 ? _stream_io_out_bits_rec_q_1 : casez_tmp_8),
+    .io_load_bits_q_2      (_GEN_5 ? _stream_io_out_bits_rec_q_2 : casez_tmp_9),
+    .io_load_bits_qr       (_GEN_5 ? _stream_io_out_bits_rec_qr : casez_tmp_10),
     .io_slack              (io_slack),
     .io_in_ready           (_matcher_io_in_ready),
     .io_in_valid
@@ -21539,8 +21705,10 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
     .clock                  (clock),
     .reset                  (reset),
     .io_enq_valid           (~_GEN_7 & _GEN_5 & lkPend),
-    .io_enq_bits_begin      (io_lookup_begin),
-    .io_enq_bits_end        (io_lookup_end),
+    .io_enq_bits_begin_0    (io_lookup_begin_0),
+    .io_enq_bits_begin_1    (io_lookup_begin_1),
+    .io_enq_bits_end_0      (io_lookup_end_0),
+    .io_enq_bits_end_1      (io_lookup_end_1),
     .io_enq_bits_tag_scan   (lkVisit_scan),
     .io_enq_bits_tag_cell_0 (lkVisit_cell_0),
     .io_enq_bits_tag_cell_1 (lkVisit_cell_1),
@@ -21548,8 +21716,10 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
     .io_enq_bits_tag_own    (lkVisit_own),
     .io_deq_ready           (~_GEN_7 & _GEN_6 & _stream_io_req_ready),
     .io_deq_valid           (_lkq_io_deq_valid),
-    .io_deq_bits_begin      (_lkq_io_deq_bits_begin),
-    .io_deq_bits_end        (_lkq_io_deq_bits_end),
+    .io_deq_bits_begin_0    (_lkq_io_deq_bits_begin_0),
+    .io_deq_bits_begin_1    (_lkq_io_deq_bits_begin_1),
+    .io_deq_bits_end_0      (_lkq_io_deq_bits_end_0),
+    .io_deq_bits_end_1      (_lkq_io_deq_bits_end_1),
     .io_deq_bits_direct     (_lkq_io_deq_bits_direct),
     .io_deq_bits_tag_scan   (_lkq_io_deq_bits_tag_scan),
     .io_deq_bits_tag_cell_0 (_lkq_io_deq_bits_tag_cell_0),
@@ -21568,6 +21738,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world(
                 & _io_lookup_bucket_mask_T[12:0] - 13'h1
               : 13'h0;
   assign io_mark_valid = ~_GEN_7 & _GEN_5 & _GEN_9 & take;
+  assign io_mark_bits_group = _stream_io_out_bits_group;
   assign io_mark_bits_addr = _stream_io_out_bits_pos[11:0];
   assign io_mark_bits_item = _stream_io_out_bits_item;
   assign io_busy = |state;
@@ -22049,7 +22220,7 @@ module SphereKeys_fp32_c20_f8_m9d8_l1_world(
   assign io_out_topNone = io_out_topNone_r;
 endmodule
 
-module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
+module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   input         clock,
                 reset,
                 io_start,
@@ -22369,6 +22540,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   wire [19:0] _laneKeys_3_io_out_cell_0;
   wire [19:0] _laneKeys_3_io_out_cell_1;
   wire [19:0] _laneKeys_3_io_out_cell_2;
+  wire        _laneKeys_3_io_out_cellOverflow;
   wire [28:0] _laneKeys_3_io_out_q_0;
   wire [28:0] _laneKeys_3_io_out_q_1;
   wire [28:0] _laneKeys_3_io_out_q_2;
@@ -22382,6 +22554,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   wire [19:0] _laneKeys_2_io_out_cell_0;
   wire [19:0] _laneKeys_2_io_out_cell_1;
   wire [19:0] _laneKeys_2_io_out_cell_2;
+  wire        _laneKeys_2_io_out_cellOverflow;
   wire [28:0] _laneKeys_2_io_out_q_0;
   wire [28:0] _laneKeys_2_io_out_q_1;
   wire [28:0] _laneKeys_2_io_out_q_2;
@@ -22421,442 +22594,800 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   wire        _laneKeys_0_io_out_topNone;
   wire [12:0] _gens_15_io_lookup_bucket;
   wire [11:0] _gens_15_io_entry_addr;
+  wire        _gens_15_io_entry_group;
   wire        _gens_15_io_mark_valid;
+  wire        _gens_15_io_mark_bits_group;
   wire [11:0] _gens_15_io_mark_bits_addr;
   wire [11:0] _gens_15_io_mark_bits_item;
   wire [11:0] _gens_15_io_keyAddr;
   wire        _gens_15_io_busy;
   wire [12:0] _gens_14_io_lookup_bucket;
   wire [11:0] _gens_14_io_entry_addr;
+  wire        _gens_14_io_entry_group;
   wire        _gens_14_io_mark_valid;
+  wire        _gens_14_io_mark_bits_group;
   wire [11:0] _gens_14_io_mark_bits_addr;
   wire [11:0] _gens_14_io_mark_bits_item;
   wire [11:0] _gens_14_io_keyAddr;
   wire        _gens_14_io_busy;
   wire [12:0] _gens_13_io_lookup_bucket;
   wire [11:0] _gens_13_io_entry_addr;
+  wire        _gens_13_io_entry_group;
   wire        _gens_13_io_mark_valid;
+  wire        _gens_13_io_mark_bits_group;
   wire [11:0] _gens_13_io_mark_bits_addr;
   wire [11:0] _gens_13_io_mark_bits_item;
   wire [11:0] _gens_13_io_keyAddr;
   wire        _gens_13_io_busy;
   wire [12:0] _gens_12_io_lookup_bucket;
   wire [11:0] _gens_12_io_entry_addr;
+  wire        _gens_12_io_entry_group;
   wire        _gens_12_io_mark_valid;
+  wire        _gens_12_io_mark_bits_group;
   wire [11:0] _gens_12_io_mark_bits_addr;
   wire [11:0] _gens_12_io_mark_bits_item;
   wire [11:0] _gens_12_io_keyAddr;
   wire        _gens_12_io_busy;
   wire [12:0] _gens_11_io_lookup_bucket;
   wire [11:0] _gens_11_io_entry_addr;
+  wire        _gens_11_io_entry_group;
   wire        _gens_11_io_mark_valid;
+  wire        _gens_11_io_mark_bits_group;
   wire [11:0] _gens_11_io_mark_bits_addr;
   wire [11:0] _gens_11_io_mark_bits_item;
   wire [11:0] _gens_11_io_keyAddr;
   wire        _gens_11_io_busy;
   wire [12:0] _gens_10_io_lookup_bucket;
   wire [11:0] _gens_10_io_entry_addr;
+  wire        _gens_10_io_entry_group;
   wire        _gens_10_io_mark_valid;
+  wire        _gens_10_io_mark_bits_group;
   wire [11:0] _gens_10_io_mark_bits_addr;
   wire [11:0] _gens_10_io_mark_bits_item;
   wire [11:0] _gens_10_io_keyAddr;
   wire        _gens_10_io_busy;
   wire [12:0] _gens_9_io_lookup_bucket;
   wire [11:0] _gens_9_io_entry_addr;
+  wire        _gens_9_io_entry_group;
   wire        _gens_9_io_mark_valid;
+  wire        _gens_9_io_mark_bits_group;
   wire [11:0] _gens_9_io_mark_bits_addr;
   wire [11:0] _gens_9_io_mark_bits_item;
   wire [11:0] _gens_9_io_keyAddr;
   wire        _gens_9_io_busy;
   wire [12:0] _gens_8_io_lookup_bucket;
   wire [11:0] _gens_8_io_entry_addr;
+  wire        _gens_8_io_entry_group;
   wire        _gens_8_io_mark_valid;
+  wire        _gens_8_io_mark_bits_group;
   wire [11:0] _gens_8_io_mark_bits_addr;
   wire [11:0] _gens_8_io_mark_bits_item;
   wire [11:0] _gens_8_io_keyAddr;
   wire        _gens_8_io_busy;
   wire [12:0] _gens_7_io_lookup_bucket;
   wire [11:0] _gens_7_io_entry_addr;
+  wire        _gens_7_io_entry_group;
   wire        _gens_7_io_mark_valid;
+  wire        _gens_7_io_mark_bits_group;
   wire [11:0] _gens_7_io_mark_bits_addr;
   wire [11:0] _gens_7_io_mark_bits_item;
   wire [11:0] _gens_7_io_keyAddr;
   wire        _gens_7_io_busy;
   wire [12:0] _gens_6_io_lookup_bucket;
   wire [11:0] _gens_6_io_entry_addr;
+  wire        _gens_6_io_entry_group;
   wire        _gens_6_io_mark_valid;
+  wire        _gens_6_io_mark_bits_group;
   wire [11:0] _gens_6_io_mark_bits_addr;
   wire [11:0] _gens_6_io_mark_bits_item;
   wire [11:0] _gens_6_io_keyAddr;
   wire        _gens_6_io_busy;
   wire [12:0] _gens_5_io_lookup_bucket;
   wire [11:0] _gens_5_io_entry_addr;
+  wire        _gens_5_io_entry_group;
   wire        _gens_5_io_mark_valid;
+  wire        _gens_5_io_mark_bits_group;
   wire [11:0] _gens_5_io_mark_bits_addr;
   wire [11:0] _gens_5_io_mark_bits_item;
   wire [11:0] _gens_5_io_keyAddr;
   wire        _gens_5_io_busy;
   wire [12:0] _gens_4_io_lookup_bucket;
   wire [11:0] _gens_4_io_entry_addr;
+  wire        _gens_4_io_entry_group;
   wire        _gens_4_io_mark_valid;
+  wire        _gens_4_io_mark_bits_group;
   wire [11:0] _gens_4_io_mark_bits_addr;
   wire [11:0] _gens_4_io_mark_bits_item;
   wire [11:0] _gens_4_io_keyAddr;
   wire        _gens_4_io_busy;
   wire [12:0] _gens_3_io_lookup_bucket;
   wire [11:0] _gens_3_io_entry_addr;
+  wire        _gens_3_io_entry_group;
   wire        _gens_3_io_mark_valid;
+  wire        _gens_3_io_mark_bits_group;
   wire [11:0] _gens_3_io_mark_bits_addr;
   wire [11:0] _gens_3_io_mark_bits_item;
   wire [11:0] _gens_3_io_keyAddr;
   wire        _gens_3_io_busy;
   wire [12:0] _gens_2_io_lookup_bucket;
   wire [11:0] _gens_2_io_entry_addr;
+  wire        _gens_2_io_entry_group;
   wire        _gens_2_io_mark_valid;
+  wire        _gens_2_io_mark_bits_group;
   wire [11:0] _gens_2_io_mark_bits_addr;
   wire [11:0] _gens_2_io_mark_bits_item;
   wire [11:0] _gens_2_io_keyAddr;
   wire        _gens_2_io_busy;
   wire [12:0] _gens_1_io_lookup_bucket;
   wire [11:0] _gens_1_io_entry_addr;
+  wire        _gens_1_io_entry_group;
   wire        _gens_1_io_mark_valid;
+  wire        _gens_1_io_mark_bits_group;
   wire [11:0] _gens_1_io_mark_bits_addr;
   wire [11:0] _gens_1_io_mark_bits_item;
   wire [11:0] _gens_1_io_keyAddr;
   wire        _gens_1_io_busy;
   wire [12:0] _gens_0_io_lookup_bucket;
   wire [11:0] _gens_0_io_entry_addr;
+  wire        _gens_0_io_entry_group;
   wire        _gens_0_io_mark_valid;
+  wire        _gens_0_io_mark_bits_group;
   wire [11:0] _gens_0_io_mark_bits_addr;
   wire [11:0] _gens_0_io_mark_bits_item;
   wire [11:0] _gens_0_io_keyAddr;
   wire        _gens_0_io_busy;
-  wire        _sort_io_busy;
-  wire        _sort_io_in_0_ready;
-  wire        _sort_io_in_1_ready;
-  wire [12:0] _sort_io_lookup_0_begin;
-  wire [12:0] _sort_io_lookup_0_end;
-  wire [12:0] _sort_io_lookup_0_word_0;
-  wire [12:0] _sort_io_lookup_0_word_1;
-  wire [12:0] _sort_io_lookup_0_word_2;
-  wire [12:0] _sort_io_lookup_0_word_3;
-  wire [12:0] _sort_io_lookup_0_word_4;
-  wire [12:0] _sort_io_lookup_0_word_5;
-  wire [12:0] _sort_io_lookup_0_word_6;
-  wire [12:0] _sort_io_lookup_0_word_7;
-  wire [12:0] _sort_io_lookup_0_word_8;
-  wire [12:0] _sort_io_lookup_0_word_9;
-  wire [12:0] _sort_io_lookup_0_word_10;
-  wire [12:0] _sort_io_lookup_0_word_11;
-  wire [12:0] _sort_io_lookup_0_word_12;
-  wire [12:0] _sort_io_lookup_0_word_13;
-  wire [12:0] _sort_io_lookup_0_word_14;
-  wire [12:0] _sort_io_lookup_0_word_15;
-  wire [12:0] _sort_io_lookup_1_begin;
-  wire [12:0] _sort_io_lookup_1_end;
-  wire [12:0] _sort_io_lookup_1_word_0;
-  wire [12:0] _sort_io_lookup_1_word_1;
-  wire [12:0] _sort_io_lookup_1_word_2;
-  wire [12:0] _sort_io_lookup_1_word_3;
-  wire [12:0] _sort_io_lookup_1_word_4;
-  wire [12:0] _sort_io_lookup_1_word_5;
-  wire [12:0] _sort_io_lookup_1_word_6;
-  wire [12:0] _sort_io_lookup_1_word_7;
-  wire [12:0] _sort_io_lookup_1_word_8;
-  wire [12:0] _sort_io_lookup_1_word_9;
-  wire [12:0] _sort_io_lookup_1_word_10;
-  wire [12:0] _sort_io_lookup_1_word_11;
-  wire [12:0] _sort_io_lookup_1_word_12;
-  wire [12:0] _sort_io_lookup_1_word_13;
-  wire [12:0] _sort_io_lookup_1_word_14;
-  wire [12:0] _sort_io_lookup_1_word_15;
-  wire [12:0] _sort_io_lookup_2_begin;
-  wire [12:0] _sort_io_lookup_2_end;
-  wire [12:0] _sort_io_lookup_2_word_0;
-  wire [12:0] _sort_io_lookup_2_word_1;
-  wire [12:0] _sort_io_lookup_2_word_2;
-  wire [12:0] _sort_io_lookup_2_word_3;
-  wire [12:0] _sort_io_lookup_2_word_4;
-  wire [12:0] _sort_io_lookup_2_word_5;
-  wire [12:0] _sort_io_lookup_2_word_6;
-  wire [12:0] _sort_io_lookup_2_word_7;
-  wire [12:0] _sort_io_lookup_2_word_8;
-  wire [12:0] _sort_io_lookup_2_word_9;
-  wire [12:0] _sort_io_lookup_2_word_10;
-  wire [12:0] _sort_io_lookup_2_word_11;
-  wire [12:0] _sort_io_lookup_2_word_12;
-  wire [12:0] _sort_io_lookup_2_word_13;
-  wire [12:0] _sort_io_lookup_2_word_14;
-  wire [12:0] _sort_io_lookup_2_word_15;
-  wire [12:0] _sort_io_lookup_3_begin;
-  wire [12:0] _sort_io_lookup_3_end;
-  wire [12:0] _sort_io_lookup_3_word_0;
-  wire [12:0] _sort_io_lookup_3_word_1;
-  wire [12:0] _sort_io_lookup_3_word_2;
-  wire [12:0] _sort_io_lookup_3_word_3;
-  wire [12:0] _sort_io_lookup_3_word_4;
-  wire [12:0] _sort_io_lookup_3_word_5;
-  wire [12:0] _sort_io_lookup_3_word_6;
-  wire [12:0] _sort_io_lookup_3_word_7;
-  wire [12:0] _sort_io_lookup_3_word_8;
-  wire [12:0] _sort_io_lookup_3_word_9;
-  wire [12:0] _sort_io_lookup_3_word_10;
-  wire [12:0] _sort_io_lookup_3_word_11;
-  wire [12:0] _sort_io_lookup_3_word_12;
-  wire [12:0] _sort_io_lookup_3_word_13;
-  wire [12:0] _sort_io_lookup_3_word_14;
-  wire [12:0] _sort_io_lookup_3_word_15;
-  wire [12:0] _sort_io_lookup_4_begin;
-  wire [12:0] _sort_io_lookup_4_end;
-  wire [12:0] _sort_io_lookup_4_word_0;
-  wire [12:0] _sort_io_lookup_4_word_1;
-  wire [12:0] _sort_io_lookup_4_word_2;
-  wire [12:0] _sort_io_lookup_4_word_3;
-  wire [12:0] _sort_io_lookup_4_word_4;
-  wire [12:0] _sort_io_lookup_4_word_5;
-  wire [12:0] _sort_io_lookup_4_word_6;
-  wire [12:0] _sort_io_lookup_4_word_7;
-  wire [12:0] _sort_io_lookup_4_word_8;
-  wire [12:0] _sort_io_lookup_4_word_9;
-  wire [12:0] _sort_io_lookup_4_word_10;
-  wire [12:0] _sort_io_lookup_4_word_11;
-  wire [12:0] _sort_io_lookup_4_word_12;
-  wire [12:0] _sort_io_lookup_4_word_13;
-  wire [12:0] _sort_io_lookup_4_word_14;
-  wire [12:0] _sort_io_lookup_4_word_15;
-  wire [12:0] _sort_io_lookup_5_begin;
-  wire [12:0] _sort_io_lookup_5_end;
-  wire [12:0] _sort_io_lookup_5_word_0;
-  wire [12:0] _sort_io_lookup_5_word_1;
-  wire [12:0] _sort_io_lookup_5_word_2;
-  wire [12:0] _sort_io_lookup_5_word_3;
-  wire [12:0] _sort_io_lookup_5_word_4;
-  wire [12:0] _sort_io_lookup_5_word_5;
-  wire [12:0] _sort_io_lookup_5_word_6;
-  wire [12:0] _sort_io_lookup_5_word_7;
-  wire [12:0] _sort_io_lookup_5_word_8;
-  wire [12:0] _sort_io_lookup_5_word_9;
-  wire [12:0] _sort_io_lookup_5_word_10;
-  wire [12:0] _sort_io_lookup_5_word_11;
-  wire [12:0] _sort_io_lookup_5_word_12;
-  wire [12:0] _sort_io_lookup_5_word_13;
-  wire [12:0] _sort_io_lookup_5_word_14;
-  wire [12:0] _sort_io_lookup_5_word_15;
-  wire [12:0] _sort_io_lookup_6_begin;
-  wire [12:0] _sort_io_lookup_6_end;
-  wire [12:0] _sort_io_lookup_6_word_0;
-  wire [12:0] _sort_io_lookup_6_word_1;
-  wire [12:0] _sort_io_lookup_6_word_2;
-  wire [12:0] _sort_io_lookup_6_word_3;
-  wire [12:0] _sort_io_lookup_6_word_4;
-  wire [12:0] _sort_io_lookup_6_word_5;
-  wire [12:0] _sort_io_lookup_6_word_6;
-  wire [12:0] _sort_io_lookup_6_word_7;
-  wire [12:0] _sort_io_lookup_6_word_8;
-  wire [12:0] _sort_io_lookup_6_word_9;
-  wire [12:0] _sort_io_lookup_6_word_10;
-  wire [12:0] _sort_io_lookup_6_word_11;
-  wire [12:0] _sort_io_lookup_6_word_12;
-  wire [12:0] _sort_io_lookup_6_word_13;
-  wire [12:0] _sort_io_lookup_6_word_14;
-  wire [12:0] _sort_io_lookup_6_word_15;
-  wire [12:0] _sort_io_lookup_7_begin;
-  wire [12:0] _sort_io_lookup_7_end;
-  wire [12:0] _sort_io_lookup_7_word_0;
-  wire [12:0] _sort_io_lookup_7_word_1;
-  wire [12:0] _sort_io_lookup_7_word_2;
-  wire [12:0] _sort_io_lookup_7_word_3;
-  wire [12:0] _sort_io_lookup_7_word_4;
-  wire [12:0] _sort_io_lookup_7_word_5;
-  wire [12:0] _sort_io_lookup_7_word_6;
-  wire [12:0] _sort_io_lookup_7_word_7;
-  wire [12:0] _sort_io_lookup_7_word_8;
-  wire [12:0] _sort_io_lookup_7_word_9;
-  wire [12:0] _sort_io_lookup_7_word_10;
-  wire [12:0] _sort_io_lookup_7_word_11;
-  wire [12:0] _sort_io_lookup_7_word_12;
-  wire [12:0] _sort_io_lookup_7_word_13;
-  wire [12:0] _sort_io_lookup_7_word_14;
-  wire [12:0] _sort_io_lookup_7_word_15;
-  wire [12:0] _sort_io_lookup_8_begin;
-  wire [12:0] _sort_io_lookup_8_end;
-  wire [12:0] _sort_io_lookup_8_word_0;
-  wire [12:0] _sort_io_lookup_8_word_1;
-  wire [12:0] _sort_io_lookup_8_word_2;
-  wire [12:0] _sort_io_lookup_8_word_3;
-  wire [12:0] _sort_io_lookup_8_word_4;
-  wire [12:0] _sort_io_lookup_8_word_5;
-  wire [12:0] _sort_io_lookup_8_word_6;
-  wire [12:0] _sort_io_lookup_8_word_7;
-  wire [12:0] _sort_io_lookup_8_word_8;
-  wire [12:0] _sort_io_lookup_8_word_9;
-  wire [12:0] _sort_io_lookup_8_word_10;
-  wire [12:0] _sort_io_lookup_8_word_11;
-  wire [12:0] _sort_io_lookup_8_word_12;
-  wire [12:0] _sort_io_lookup_8_word_13;
-  wire [12:0] _sort_io_lookup_8_word_14;
-  wire [12:0] _sort_io_lookup_8_word_15;
-  wire [12:0] _sort_io_lookup_9_begin;
-  wire [12:0] _sort_io_lookup_9_end;
-  wire [12:0] _sort_io_lookup_9_word_0;
-  wire [12:0] _sort_io_lookup_9_word_1;
-  wire [12:0] _sort_io_lookup_9_word_2;
-  wire [12:0] _sort_io_lookup_9_word_3;
-  wire [12:0] _sort_io_lookup_9_word_4;
-  wire [12:0] _sort_io_lookup_9_word_5;
-  wire [12:0] _sort_io_lookup_9_word_6;
-  wire [12:0] _sort_io_lookup_9_word_7;
-  wire [12:0] _sort_io_lookup_9_word_8;
-  wire [12:0] _sort_io_lookup_9_word_9;
-  wire [12:0] _sort_io_lookup_9_word_10;
-  wire [12:0] _sort_io_lookup_9_word_11;
-  wire [12:0] _sort_io_lookup_9_word_12;
-  wire [12:0] _sort_io_lookup_9_word_13;
-  wire [12:0] _sort_io_lookup_9_word_14;
-  wire [12:0] _sort_io_lookup_9_word_15;
-  wire [12:0] _sort_io_lookup_10_begin;
-  wire [12:0] _sort_io_lookup_10_end;
-  wire [12:0] _sort_io_lookup_10_word_0;
-  wire [12:0] _sort_io_lookup_10_word_1;
-  wire [12:0] _sort_io_lookup_10_word_2;
-  wire [12:0] _sort_io_lookup_10_word_3;
-  wire [12:0] _sort_io_lookup_10_word_4;
-  wire [12:0] _sort_io_lookup_10_word_5;
-  wire [12:0] _sort_io_lookup_10_word_6;
-  wire [12:0] _sort_io_lookup_10_word_7;
-  wire [12:0] _sort_io_lookup_10_word_8;
-  wire [12:0] _sort_io_lookup_10_word_9;
-  wire [12:0] _sort_io_lookup_10_word_10;
-  wire [12:0] _sort_io_lookup_10_word_11;
-  wire [12:0] _sort_io_lookup_10_word_12;
-  wire [12:0] _sort_io_lookup_10_word_13;
-  wire [12:0] _sort_io_lookup_10_word_14;
-  wire [12:0] _sort_io_lookup_10_word_15;
-  wire [12:0] _sort_io_lookup_11_begin;
-  wire [12:0] _sort_io_lookup_11_end;
-  wire [12:0] _sort_io_lookup_11_word_0;
-  wire [12:0] _sort_io_lookup_11_word_1;
-  wire [12:0] _sort_io_lookup_11_word_2;
-  wire [12:0] _sort_io_lookup_11_word_3;
-  wire [12:0] _sort_io_lookup_11_word_4;
-  wire [12:0] _sort_io_lookup_11_word_5;
-  wire [12:0] _sort_io_lookup_11_word_6;
-  wire [12:0] _sort_io_lookup_11_word_7;
-  wire [12:0] _sort_io_lookup_11_word_8;
-  wire [12:0] _sort_io_lookup_11_word_9;
-  wire [12:0] _sort_io_lookup_11_word_10;
-  wire [12:0] _sort_io_lookup_11_word_11;
-  wire [12:0] _sort_io_lookup_11_word_12;
-  wire [12:0] _sort_io_lookup_11_word_13;
-  wire [12:0] _sort_io_lookup_11_word_14;
-  wire [12:0] _sort_io_lookup_11_word_15;
-  wire [12:0] _sort_io_lookup_12_begin;
-  wire [12:0] _sort_io_lookup_12_end;
-  wire [12:0] _sort_io_lookup_12_word_0;
-  wire [12:0] _sort_io_lookup_12_word_1;
-  wire [12:0] _sort_io_lookup_12_word_2;
-  wire [12:0] _sort_io_lookup_12_word_3;
-  wire [12:0] _sort_io_lookup_12_word_4;
-  wire [12:0] _sort_io_lookup_12_word_5;
-  wire [12:0] _sort_io_lookup_12_word_6;
-  wire [12:0] _sort_io_lookup_12_word_7;
-  wire [12:0] _sort_io_lookup_12_word_8;
-  wire [12:0] _sort_io_lookup_12_word_9;
-  wire [12:0] _sort_io_lookup_12_word_10;
-  wire [12:0] _sort_io_lookup_12_word_11;
-  wire [12:0] _sort_io_lookup_12_word_12;
-  wire [12:0] _sort_io_lookup_12_word_13;
-  wire [12:0] _sort_io_lookup_12_word_14;
-  wire [12:0] _sort_io_lookup_12_word_15;
-  wire [12:0] _sort_io_lookup_13_begin;
-  wire [12:0] _sort_io_lookup_13_end;
-  wire [12:0] _sort_io_lookup_13_word_0;
-  wire [12:0] _sort_io_lookup_13_word_1;
-  wire [12:0] _sort_io_lookup_13_word_2;
-  wire [12:0] _sort_io_lookup_13_word_3;
-  wire [12:0] _sort_io_lookup_13_word_4;
-  wire [12:0] _sort_io_lookup_13_word_5;
-  wire [12:0] _sort_io_lookup_13_word_6;
-  wire [12:0] _sort_io_lookup_13_word_7;
-  wire [12:0] _sort_io_lookup_13_word_8;
-  wire [12:0] _sort_io_lookup_13_word_9;
-  wire [12:0] _sort_io_lookup_13_word_10;
-  wire [12:0] _sort_io_lookup_13_word_11;
-  wire [12:0] _sort_io_lookup_13_word_12;
-  wire [12:0] _sort_io_lookup_13_word_13;
-  wire [12:0] _sort_io_lookup_13_word_14;
-  wire [12:0] _sort_io_lookup_13_word_15;
-  wire [12:0] _sort_io_lookup_14_begin;
-  wire [12:0] _sort_io_lookup_14_end;
-  wire [12:0] _sort_io_lookup_14_word_0;
-  wire [12:0] _sort_io_lookup_14_word_1;
-  wire [12:0] _sort_io_lookup_14_word_2;
-  wire [12:0] _sort_io_lookup_14_word_3;
-  wire [12:0] _sort_io_lookup_14_word_4;
-  wire [12:0] _sort_io_lookup_14_word_5;
-  wire [12:0] _sort_io_lookup_14_word_6;
-  wire [12:0] _sort_io_lookup_14_word_7;
-  wire [12:0] _sort_io_lookup_14_word_8;
-  wire [12:0] _sort_io_lookup_14_word_9;
-  wire [12:0] _sort_io_lookup_14_word_10;
-  wire [12:0] _sort_io_lookup_14_word_11;
-  wire [12:0] _sort_io_lookup_14_word_12;
-  wire [12:0] _sort_io_lookup_14_word_13;
-  wire [12:0] _sort_io_lookup_14_word_14;
-  wire [12:0] _sort_io_lookup_14_word_15;
-  wire [12:0] _sort_io_lookup_15_begin;
-  wire [12:0] _sort_io_lookup_15_end;
-  wire [12:0] _sort_io_lookup_15_word_0;
-  wire [12:0] _sort_io_lookup_15_word_1;
-  wire [12:0] _sort_io_lookup_15_word_2;
-  wire [12:0] _sort_io_lookup_15_word_3;
-  wire [12:0] _sort_io_lookup_15_word_4;
-  wire [12:0] _sort_io_lookup_15_word_5;
-  wire [12:0] _sort_io_lookup_15_word_6;
-  wire [12:0] _sort_io_lookup_15_word_7;
-  wire [12:0] _sort_io_lookup_15_word_8;
-  wire [12:0] _sort_io_lookup_15_word_9;
-  wire [12:0] _sort_io_lookup_15_word_10;
-  wire [12:0] _sort_io_lookup_15_word_11;
-  wire [12:0] _sort_io_lookup_15_word_12;
-  wire [12:0] _sort_io_lookup_15_word_13;
-  wire [12:0] _sort_io_lookup_15_word_14;
-  wire [12:0] _sort_io_lookup_15_word_15;
-  wire [11:0] _sort_io_entry_0_item;
-  wire        _sort_io_entry_0_mark;
-  wire [11:0] _sort_io_entry_1_item;
-  wire        _sort_io_entry_1_mark;
-  wire [11:0] _sort_io_entry_2_item;
-  wire        _sort_io_entry_2_mark;
-  wire [11:0] _sort_io_entry_3_item;
-  wire        _sort_io_entry_3_mark;
-  wire [11:0] _sort_io_entry_4_item;
-  wire        _sort_io_entry_4_mark;
-  wire [11:0] _sort_io_entry_5_item;
-  wire        _sort_io_entry_5_mark;
-  wire [11:0] _sort_io_entry_6_item;
-  wire        _sort_io_entry_6_mark;
-  wire [11:0] _sort_io_entry_7_item;
-  wire        _sort_io_entry_7_mark;
-  wire [11:0] _sort_io_entry_8_item;
-  wire        _sort_io_entry_8_mark;
-  wire [11:0] _sort_io_entry_9_item;
-  wire        _sort_io_entry_9_mark;
-  wire [11:0] _sort_io_entry_10_item;
-  wire        _sort_io_entry_10_mark;
-  wire [11:0] _sort_io_entry_11_item;
-  wire        _sort_io_entry_11_mark;
-  wire [11:0] _sort_io_entry_12_item;
-  wire        _sort_io_entry_12_mark;
-  wire [11:0] _sort_io_entry_13_item;
-  wire        _sort_io_entry_13_mark;
-  wire [11:0] _sort_io_entry_14_item;
-  wire        _sort_io_entry_14_mark;
-  wire [11:0] _sort_io_entry_15_item;
-  wire        _sort_io_entry_15_mark;
-  wire [12:0] _sort_io_counted;
-  wire [12:0] _sort_io_scattered;
-  wire        _sort_io_badBucket;
+  wire        _sorts_1_io_busy;
+  wire        _sorts_1_io_in_0_ready;
+  wire        _sorts_1_io_in_1_ready;
+  wire [11:0] _sorts_1_io_lookup_0_begin;
+  wire [11:0] _sorts_1_io_lookup_0_end;
+  wire [11:0] _sorts_1_io_lookup_0_word_0;
+  wire [11:0] _sorts_1_io_lookup_0_word_1;
+  wire [11:0] _sorts_1_io_lookup_0_word_2;
+  wire [11:0] _sorts_1_io_lookup_0_word_3;
+  wire [11:0] _sorts_1_io_lookup_0_word_4;
+  wire [11:0] _sorts_1_io_lookup_0_word_5;
+  wire [11:0] _sorts_1_io_lookup_0_word_6;
+  wire [11:0] _sorts_1_io_lookup_0_word_7;
+  wire [11:0] _sorts_1_io_lookup_0_word_8;
+  wire [11:0] _sorts_1_io_lookup_0_word_9;
+  wire [11:0] _sorts_1_io_lookup_0_word_10;
+  wire [11:0] _sorts_1_io_lookup_0_word_11;
+  wire [11:0] _sorts_1_io_lookup_0_word_12;
+  wire [11:0] _sorts_1_io_lookup_0_word_13;
+  wire [11:0] _sorts_1_io_lookup_0_word_14;
+  wire [11:0] _sorts_1_io_lookup_0_word_15;
+  wire [11:0] _sorts_1_io_lookup_1_begin;
+  wire [11:0] _sorts_1_io_lookup_1_end;
+  wire [11:0] _sorts_1_io_lookup_1_word_0;
+  wire [11:0] _sorts_1_io_lookup_1_word_1;
+  wire [11:0] _sorts_1_io_lookup_1_word_2;
+  wire [11:0] _sorts_1_io_lookup_1_word_3;
+  wire [11:0] _sorts_1_io_lookup_1_word_4;
+  wire [11:0] _sorts_1_io_lookup_1_word_5;
+  wire [11:0] _sorts_1_io_lookup_1_word_6;
+  wire [11:0] _sorts_1_io_lookup_1_word_7;
+  wire [11:0] _sorts_1_io_lookup_1_word_8;
+  wire [11:0] _sorts_1_io_lookup_1_word_9;
+  wire [11:0] _sorts_1_io_lookup_1_word_10;
+  wire [11:0] _sorts_1_io_lookup_1_word_11;
+  wire [11:0] _sorts_1_io_lookup_1_word_12;
+  wire [11:0] _sorts_1_io_lookup_1_word_13;
+  wire [11:0] _sorts_1_io_lookup_1_word_14;
+  wire [11:0] _sorts_1_io_lookup_1_word_15;
+  wire [11:0] _sorts_1_io_lookup_2_begin;
+  wire [11:0] _sorts_1_io_lookup_2_end;
+  wire [11:0] _sorts_1_io_lookup_2_word_0;
+  wire [11:0] _sorts_1_io_lookup_2_word_1;
+  wire [11:0] _sorts_1_io_lookup_2_word_2;
+  wire [11:0] _sorts_1_io_lookup_2_word_3;
+  wire [11:0] _sorts_1_io_lookup_2_word_4;
+  wire [11:0] _sorts_1_io_lookup_2_word_5;
+  wire [11:0] _sorts_1_io_lookup_2_word_6;
+  wire [11:0] _sorts_1_io_lookup_2_word_7;
+  wire [11:0] _sorts_1_io_lookup_2_word_8;
+  wire [11:0] _sorts_1_io_lookup_2_word_9;
+  wire [11:0] _sorts_1_io_lookup_2_word_10;
+  wire [11:0] _sorts_1_io_lookup_2_word_11;
+  wire [11:0] _sorts_1_io_lookup_2_word_12;
+  wire [11:0] _sorts_1_io_lookup_2_word_13;
+  wire [11:0] _sorts_1_io_lookup_2_word_14;
+  wire [11:0] _sorts_1_io_lookup_2_word_15;
+  wire [11:0] _sorts_1_io_lookup_3_begin;
+  wire [11:0] _sorts_1_io_lookup_3_end;
+  wire [11:0] _sorts_1_io_lookup_3_word_0;
+  wire [11:0] _sorts_1_io_lookup_3_word_1;
+  wire [11:0] _sorts_1_io_lookup_3_word_2;
+  wire [11:0] _sorts_1_io_lookup_3_word_3;
+  wire [11:0] _sorts_1_io_lookup_3_word_4;
+  wire [11:0] _sorts_1_io_lookup_3_word_5;
+  wire [11:0] _sorts_1_io_lookup_3_word_6;
+  wire [11:0] _sorts_1_io_lookup_3_word_7;
+  wire [11:0] _sorts_1_io_lookup_3_word_8;
+  wire [11:0] _sorts_1_io_lookup_3_word_9;
+  wire [11:0] _sorts_1_io_lookup_3_word_10;
+  wire [11:0] _sorts_1_io_lookup_3_word_11;
+  wire [11:0] _sorts_1_io_lookup_3_word_12;
+  wire [11:0] _sorts_1_io_lookup_3_word_13;
+  wire [11:0] _sorts_1_io_lookup_3_word_14;
+  wire [11:0] _sorts_1_io_lookup_3_word_15;
+  wire [11:0] _sorts_1_io_lookup_4_begin;
+  wire [11:0] _sorts_1_io_lookup_4_end;
+  wire [11:0] _sorts_1_io_lookup_4_word_0;
+  wire [11:0] _sorts_1_io_lookup_4_word_1;
+  wire [11:0] _sorts_1_io_lookup_4_word_2;
+  wire [11:0] _sorts_1_io_lookup_4_word_3;
+  wire [11:0] _sorts_1_io_lookup_4_word_4;
+  wire [11:0] _sorts_1_io_lookup_4_word_5;
+  wire [11:0] _sorts_1_io_lookup_4_word_6;
+  wire [11:0] _sorts_1_io_lookup_4_word_7;
+  wire [11:0] _sorts_1_io_lookup_4_word_8;
+  wire [11:0] _sorts_1_io_lookup_4_word_9;
+  wire [11:0] _sorts_1_io_lookup_4_word_10;
+  wire [11:0] _sorts_1_io_lookup_4_word_11;
+  wire [11:0] _sorts_1_io_lookup_4_word_12;
+  wire [11:0] _sorts_1_io_lookup_4_word_13;
+  wire [11:0] _sorts_1_io_lookup_4_word_14;
+  wire [11:0] _sorts_1_io_lookup_4_word_15;
+  wire [11:0] _sorts_1_io_lookup_5_begin;
+  wire [11:0] _sorts_1_io_lookup_5_end;
+  wire [11:0] _sorts_1_io_lookup_5_word_0;
+  wire [11:0] _sorts_1_io_lookup_5_word_1;
+  wire [11:0] _sorts_1_io_lookup_5_word_2;
+  wire [11:0] _sorts_1_io_lookup_5_word_3;
+  wire [11:0] _sorts_1_io_lookup_5_word_4;
+  wire [11:0] _sorts_1_io_lookup_5_word_5;
+  wire [11:0] _sorts_1_io_lookup_5_word_6;
+  wire [11:0] _sorts_1_io_lookup_5_word_7;
+  wire [11:0] _sorts_1_io_lookup_5_word_8;
+  wire [11:0] _sorts_1_io_lookup_5_word_9;
+  wire [11:0] _sorts_1_io_lookup_5_word_10;
+  wire [11:0] _sorts_1_io_lookup_5_word_11;
+  wire [11:0] _sorts_1_io_lookup_5_word_12;
+  wire [11:0] _sorts_1_io_lookup_5_word_13;
+  wire [11:0] _sorts_1_io_lookup_5_word_14;
+  wire [11:0] _sorts_1_io_lookup_5_word_15;
+  wire [11:0] _sorts_1_io_lookup_6_begin;
+  wire [11:0] _sorts_1_io_lookup_6_end;
+  wire [11:0] _sorts_1_io_lookup_6_word_0;
+  wire [11:0] _sorts_1_io_lookup_6_word_1;
+  wire [11:0] _sorts_1_io_lookup_6_word_2;
+  wire [11:0] _sorts_1_io_lookup_6_word_3;
+  wire [11:0] _sorts_1_io_lookup_6_word_4;
+  wire [11:0] _sorts_1_io_lookup_6_word_5;
+  wire [11:0] _sorts_1_io_lookup_6_word_6;
+  wire [11:0] _sorts_1_io_lookup_6_word_7;
+  wire [11:0] _sorts_1_io_lookup_6_word_8;
+  wire [11:0] _sorts_1_io_lookup_6_word_9;
+  wire [11:0] _sorts_1_io_lookup_6_word_10;
+  wire [11:0] _sorts_1_io_lookup_6_word_11;
+  wire [11:0] _sorts_1_io_lookup_6_word_12;
+  wire [11:0] _sorts_1_io_lookup_6_word_13;
+  wire [11:0] _sorts_1_io_lookup_6_word_14;
+  wire [11:0] _sorts_1_io_lookup_6_word_15;
+  wire [11:0] _sorts_1_io_lookup_7_begin;
+  wire [11:0] _sorts_1_io_lookup_7_end;
+  wire [11:0] _sorts_1_io_lookup_7_word_0;
+  wire [11:0] _sorts_1_io_lookup_7_word_1;
+  wire [11:0] _sorts_1_io_lookup_7_word_2;
+  wire [11:0] _sorts_1_io_lookup_7_word_3;
+  wire [11:0] _sorts_1_io_lookup_7_word_4;
+  wire [11:0] _sorts_1_io_lookup_7_word_5;
+  wire [11:0] _sorts_1_io_lookup_7_word_6;
+  wire [11:0] _sorts_1_io_lookup_7_word_7;
+  wire [11:0] _sorts_1_io_lookup_7_word_8;
+  wire [11:0] _sorts_1_io_lookup_7_word_9;
+  wire [11:0] _sorts_1_io_lookup_7_word_10;
+  wire [11:0] _sorts_1_io_lookup_7_word_11;
+  wire [11:0] _sorts_1_io_lookup_7_word_12;
+  wire [11:0] _sorts_1_io_lookup_7_word_13;
+  wire [11:0] _sorts_1_io_lookup_7_word_14;
+  wire [11:0] _sorts_1_io_lookup_7_word_15;
+  wire [11:0] _sorts_1_io_lookup_8_begin;
+  wire [11:0] _sorts_1_io_lookup_8_end;
+  wire [11:0] _sorts_1_io_lookup_8_word_0;
+  wire [11:0] _sorts_1_io_lookup_8_word_1;
+  wire [11:0] _sorts_1_io_lookup_8_word_2;
+  wire [11:0] _sorts_1_io_lookup_8_word_3;
+  wire [11:0] _sorts_1_io_lookup_8_word_4;
+  wire [11:0] _sorts_1_io_lookup_8_word_5;
+  wire [11:0] _sorts_1_io_lookup_8_word_6;
+  wire [11:0] _sorts_1_io_lookup_8_word_7;
+  wire [11:0] _sorts_1_io_lookup_8_word_8;
+  wire [11:0] _sorts_1_io_lookup_8_word_9;
+  wire [11:0] _sorts_1_io_lookup_8_word_10;
+  wire [11:0] _sorts_1_io_lookup_8_word_11;
+  wire [11:0] _sorts_1_io_lookup_8_word_12;
+  wire [11:0] _sorts_1_io_lookup_8_word_13;
+  wire [11:0] _sorts_1_io_lookup_8_word_14;
+  wire [11:0] _sorts_1_io_lookup_8_word_15;
+  wire [11:0] _sorts_1_io_lookup_9_begin;
+  wire [11:0] _sorts_1_io_lookup_9_end;
+  wire [11:0] _sorts_1_io_lookup_9_word_0;
+  wire [11:0] _sorts_1_io_lookup_9_word_1;
+  wire [11:0] _sorts_1_io_lookup_9_word_2;
+  wire [11:0] _sorts_1_io_lookup_9_word_3;
+  wire [11:0] _sorts_1_io_lookup_9_word_4;
+  wire [11:0] _sorts_1_io_lookup_9_word_5;
+  wire [11:0] _sorts_1_io_lookup_9_word_6;
+  wire [11:0] _sorts_1_io_lookup_9_word_7;
+  wire [11:0] _sorts_1_io_lookup_9_word_8;
+  wire [11:0] _sorts_1_io_lookup_9_word_9;
+  wire [11:0] _sorts_1_io_lookup_9_word_10;
+  wire [11:0] _sorts_1_io_lookup_9_word_11;
+  wire [11:0] _sorts_1_io_lookup_9_word_12;
+  wire [11:0] _sorts_1_io_lookup_9_word_13;
+  wire [11:0] _sorts_1_io_lookup_9_word_14;
+  wire [11:0] _sorts_1_io_lookup_9_word_15;
+  wire [11:0] _sorts_1_io_lookup_10_begin;
+  wire [11:0] _sorts_1_io_lookup_10_end;
+  wire [11:0] _sorts_1_io_lookup_10_word_0;
+  wire [11:0] _sorts_1_io_lookup_10_word_1;
+  wire [11:0] _sorts_1_io_lookup_10_word_2;
+  wire [11:0] _sorts_1_io_lookup_10_word_3;
+  wire [11:0] _sorts_1_io_lookup_10_word_4;
+  wire [11:0] _sorts_1_io_lookup_10_word_5;
+  wire [11:0] _sorts_1_io_lookup_10_word_6;
+  wire [11:0] _sorts_1_io_lookup_10_word_7;
+  wire [11:0] _sorts_1_io_lookup_10_word_8;
+  wire [11:0] _sorts_1_io_lookup_10_word_9;
+  wire [11:0] _sorts_1_io_lookup_10_word_10;
+  wire [11:0] _sorts_1_io_lookup_10_word_11;
+  wire [11:0] _sorts_1_io_lookup_10_word_12;
+  wire [11:0] _sorts_1_io_lookup_10_word_13;
+  wire [11:0] _sorts_1_io_lookup_10_word_14;
+  wire [11:0] _sorts_1_io_lookup_10_word_15;
+  wire [11:0] _sorts_1_io_lookup_11_begin;
+  wire [11:0] _sorts_1_io_lookup_11_end;
+  wire [11:0] _sorts_1_io_lookup_11_word_0;
+  wire [11:0] _sorts_1_io_lookup_11_word_1;
+  wire [11:0] _sorts_1_io_lookup_11_word_2;
+  wire [11:0] _sorts_1_io_lookup_11_word_3;
+  wire [11:0] _sorts_1_io_lookup_11_word_4;
+  wire [11:0] _sorts_1_io_lookup_11_word_5;
+  wire [11:0] _sorts_1_io_lookup_11_word_6;
+  wire [11:0] _sorts_1_io_lookup_11_word_7;
+  wire [11:0] _sorts_1_io_lookup_11_word_8;
+  wire [11:0] _sorts_1_io_lookup_11_word_9;
+  wire [11:0] _sorts_1_io_lookup_11_word_10;
+  wire [11:0] _sorts_1_io_lookup_11_word_11;
+  wire [11:0] _sorts_1_io_lookup_11_word_12;
+  wire [11:0] _sorts_1_io_lookup_11_word_13;
+  wire [11:0] _sorts_1_io_lookup_11_word_14;
+  wire [11:0] _sorts_1_io_lookup_11_word_15;
+  wire [11:0] _sorts_1_io_lookup_12_begin;
+  wire [11:0] _sorts_1_io_lookup_12_end;
+  wire [11:0] _sorts_1_io_lookup_12_word_0;
+  wire [11:0] _sorts_1_io_lookup_12_word_1;
+  wire [11:0] _sorts_1_io_lookup_12_word_2;
+  wire [11:0] _sorts_1_io_lookup_12_word_3;
+  wire [11:0] _sorts_1_io_lookup_12_word_4;
+  wire [11:0] _sorts_1_io_lookup_12_word_5;
+  wire [11:0] _sorts_1_io_lookup_12_word_6;
+  wire [11:0] _sorts_1_io_lookup_12_word_7;
+  wire [11:0] _sorts_1_io_lookup_12_word_8;
+  wire [11:0] _sorts_1_io_lookup_12_word_9;
+  wire [11:0] _sorts_1_io_lookup_12_word_10;
+  wire [11:0] _sorts_1_io_lookup_12_word_11;
+  wire [11:0] _sorts_1_io_lookup_12_word_12;
+  wire [11:0] _sorts_1_io_lookup_12_word_13;
+  wire [11:0] _sorts_1_io_lookup_12_word_14;
+  wire [11:0] _sorts_1_io_lookup_12_word_15;
+  wire [11:0] _sorts_1_io_lookup_13_begin;
+  wire [11:0] _sorts_1_io_lookup_13_end;
+  wire [11:0] _sorts_1_io_lookup_13_word_0;
+  wire [11:0] _sorts_1_io_lookup_13_word_1;
+  wire [11:0] _sorts_1_io_lookup_13_word_2;
+  wire [11:0] _sorts_1_io_lookup_13_word_3;
+  wire [11:0] _sorts_1_io_lookup_13_word_4;
+  wire [11:0] _sorts_1_io_lookup_13_word_5;
+  wire [11:0] _sorts_1_io_lookup_13_word_6;
+  wire [11:0] _sorts_1_io_lookup_13_word_7;
+  wire [11:0] _sorts_1_io_lookup_13_word_8;
+  wire [11:0] _sorts_1_io_lookup_13_word_9;
+  wire [11:0] _sorts_1_io_lookup_13_word_10;
+  wire [11:0] _sorts_1_io_lookup_13_word_11;
+  wire [11:0] _sorts_1_io_lookup_13_word_12;
+  wire [11:0] _sorts_1_io_lookup_13_word_13;
+  wire [11:0] _sorts_1_io_lookup_13_word_14;
+  wire [11:0] _sorts_1_io_lookup_13_word_15;
+  wire [11:0] _sorts_1_io_lookup_14_begin;
+  wire [11:0] _sorts_1_io_lookup_14_end;
+  wire [11:0] _sorts_1_io_lookup_14_word_0;
+  wire [11:0] _sorts_1_io_lookup_14_word_1;
+  wire [11:0] _sorts_1_io_lookup_14_word_2;
+  wire [11:0] _sorts_1_io_lookup_14_word_3;
+  wire [11:0] _sorts_1_io_lookup_14_word_4;
+  wire [11:0] _sorts_1_io_lookup_14_word_5;
+  wire [11:0] _sorts_1_io_lookup_14_word_6;
+  wire [11:0] _sorts_1_io_lookup_14_word_7;
+  wire [11:0] _sorts_1_io_lookup_14_word_8;
+  wire [11:0] _sorts_1_io_lookup_14_word_9;
+  wire [11:0] _sorts_1_io_lookup_14_word_10;
+  wire [11:0] _sorts_1_io_lookup_14_word_11;
+  wire [11:0] _sorts_1_io_lookup_14_word_12;
+  wire [11:0] _sorts_1_io_lookup_14_word_13;
+  wire [11:0] _sorts_1_io_lookup_14_word_14;
+  wire [11:0] _sorts_1_io_lookup_14_word_15;
+  wire [11:0] _sorts_1_io_lookup_15_begin;
+  wire [11:0] _sorts_1_io_lookup_15_end;
+  wire [11:0] _sorts_1_io_lookup_15_word_0;
+  wire [11:0] _sorts_1_io_lookup_15_word_1;
+  wire [11:0] _sorts_1_io_lookup_15_word_2;
+  wire [11:0] _sorts_1_io_lookup_15_word_3;
+  wire [11:0] _sorts_1_io_lookup_15_word_4;
+  wire [11:0] _sorts_1_io_lookup_15_word_5;
+  wire [11:0] _sorts_1_io_lookup_15_word_6;
+  wire [11:0] _sorts_1_io_lookup_15_word_7;
+  wire [11:0] _sorts_1_io_lookup_15_word_8;
+  wire [11:0] _sorts_1_io_lookup_15_word_9;
+  wire [11:0] _sorts_1_io_lookup_15_word_10;
+  wire [11:0] _sorts_1_io_lookup_15_word_11;
+  wire [11:0] _sorts_1_io_lookup_15_word_12;
+  wire [11:0] _sorts_1_io_lookup_15_word_13;
+  wire [11:0] _sorts_1_io_lookup_15_word_14;
+  wire [11:0] _sorts_1_io_lookup_15_word_15;
+  wire [11:0] _sorts_1_io_entry_0_item;
+  wire        _sorts_1_io_entry_0_mark;
+  wire [11:0] _sorts_1_io_entry_1_item;
+  wire        _sorts_1_io_entry_1_mark;
+  wire [11:0] _sorts_1_io_entry_2_item;
+  wire        _sorts_1_io_entry_2_mark;
+  wire [11:0] _sorts_1_io_entry_3_item;
+  wire        _sorts_1_io_entry_3_mark;
+  wire [11:0] _sorts_1_io_entry_4_item;
+  wire        _sorts_1_io_entry_4_mark;
+  wire [11:0] _sorts_1_io_entry_5_item;
+  wire        _sorts_1_io_entry_5_mark;
+  wire [11:0] _sorts_1_io_entry_6_item;
+  wire        _sorts_1_io_entry_6_mark;
+  wire [11:0] _sorts_1_io_entry_7_item;
+  wire        _sorts_1_io_entry_7_mark;
+  wire [11:0] _sorts_1_io_entry_8_item;
+  wire        _sorts_1_io_entry_8_mark;
+  wire [11:0] _sorts_1_io_entry_9_item;
+  wire        _sorts_1_io_entry_9_mark;
+  wire [11:0] _sorts_1_io_entry_10_item;
+  wire        _sorts_1_io_entry_10_mark;
+  wire [11:0] _sorts_1_io_entry_11_item;
+  wire        _sorts_1_io_entry_11_mark;
+  wire [11:0] _sorts_1_io_entry_12_item;
+  wire        _sorts_1_io_entry_12_mark;
+  wire [11:0] _sorts_1_io_entry_13_item;
+  wire        _sorts_1_io_entry_13_mark;
+  wire [11:0] _sorts_1_io_entry_14_item;
+  wire        _sorts_1_io_entry_14_mark;
+  wire [11:0] _sorts_1_io_entry_15_item;
+  wire        _sorts_1_io_entry_15_mark;
+  wire [11:0] _sorts_1_io_counted;
+  wire [11:0] _sorts_1_io_scattered;
+  wire        _sorts_1_io_badBucket;
+  wire        _sorts_0_io_busy;
+  wire        _sorts_0_io_in_0_ready;
+  wire        _sorts_0_io_in_1_ready;
+  wire [11:0] _sorts_0_io_lookup_0_begin;
+  wire [11:0] _sorts_0_io_lookup_0_end;
+  wire [11:0] _sorts_0_io_lookup_0_word_0;
+  wire [11:0] _sorts_0_io_lookup_0_word_1;
+  wire [11:0] _sorts_0_io_lookup_0_word_2;
+  wire [11:0] _sorts_0_io_lookup_0_word_3;
+  wire [11:0] _sorts_0_io_lookup_0_word_4;
+  wire [11:0] _sorts_0_io_lookup_0_word_5;
+  wire [11:0] _sorts_0_io_lookup_0_word_6;
+  wire [11:0] _sorts_0_io_lookup_0_word_7;
+  wire [11:0] _sorts_0_io_lookup_0_word_8;
+  wire [11:0] _sorts_0_io_lookup_0_word_9;
+  wire [11:0] _sorts_0_io_lookup_0_word_10;
+  wire [11:0] _sorts_0_io_lookup_0_word_11;
+  wire [11:0] _sorts_0_io_lookup_0_word_12;
+  wire [11:0] _sorts_0_io_lookup_0_word_13;
+  wire [11:0] _sorts_0_io_lookup_0_word_14;
+  wire [11:0] _sorts_0_io_lookup_0_word_15;
+  wire [11:0] _sorts_0_io_lookup_1_begin;
+  wire [11:0] _sorts_0_io_lookup_1_end;
+  wire [11:0] _sorts_0_io_lookup_1_word_0;
+  wire [11:0] _sorts_0_io_lookup_1_word_1;
+  wire [11:0] _sorts_0_io_lookup_1_word_2;
+  wire [11:0] _sorts_0_io_lookup_1_word_3;
+  wire [11:0] _sorts_0_io_lookup_1_word_4;
+  wire [11:0] _sorts_0_io_lookup_1_word_5;
+  wire [11:0] _sorts_0_io_lookup_1_word_6;
+  wire [11:0] _sorts_0_io_lookup_1_word_7;
+  wire [11:0] _sorts_0_io_lookup_1_word_8;
+  wire [11:0] _sorts_0_io_lookup_1_word_9;
+  wire [11:0] _sorts_0_io_lookup_1_word_10;
+  wire [11:0] _sorts_0_io_lookup_1_word_11;
+  wire [11:0] _sorts_0_io_lookup_1_word_12;
+  wire [11:0] _sorts_0_io_lookup_1_word_13;
+  wire [11:0] _sorts_0_io_lookup_1_word_14;
+  wire [11:0] _sorts_0_io_lookup_1_word_15;
+  wire [11:0] _sorts_0_io_lookup_2_begin;
+  wire [11:0] _sorts_0_io_lookup_2_end;
+  wire [11:0] _sorts_0_io_lookup_2_word_0;
+  wire [11:0] _sorts_0_io_lookup_2_word_1;
+  wire [11:0] _sorts_0_io_lookup_2_word_2;
+  wire [11:0] _sorts_0_io_lookup_2_word_3;
+  wire [11:0] _sorts_0_io_lookup_2_word_4;
+  wire [11:0] _sorts_0_io_lookup_2_word_5;
+  wire [11:0] _sorts_0_io_lookup_2_word_6;
+  wire [11:0] _sorts_0_io_lookup_2_word_7;
+  wire [11:0] _sorts_0_io_lookup_2_word_8;
+  wire [11:0] _sorts_0_io_lookup_2_word_9;
+  wire [11:0] _sorts_0_io_lookup_2_word_10;
+  wire [11:0] _sorts_0_io_lookup_2_word_11;
+  wire [11:0] _sorts_0_io_lookup_2_word_12;
+  wire [11:0] _sorts_0_io_lookup_2_word_13;
+  wire [11:0] _sorts_0_io_lookup_2_word_14;
+  wire [11:0] _sorts_0_io_lookup_2_word_15;
+  wire [11:0] _sorts_0_io_lookup_3_begin;
+  wire [11:0] _sorts_0_io_lookup_3_end;
+  wire [11:0] _sorts_0_io_lookup_3_word_0;
+  wire [11:0] _sorts_0_io_lookup_3_word_1;
+  wire [11:0] _sorts_0_io_lookup_3_word_2;
+  wire [11:0] _sorts_0_io_lookup_3_word_3;
+  wire [11:0] _sorts_0_io_lookup_3_word_4;
+  wire [11:0] _sorts_0_io_lookup_3_word_5;
+  wire [11:0] _sorts_0_io_lookup_3_word_6;
+  wire [11:0] _sorts_0_io_lookup_3_word_7;
+  wire [11:0] _sorts_0_io_lookup_3_word_8;
+  wire [11:0] _sorts_0_io_lookup_3_word_9;
+  wire [11:0] _sorts_0_io_lookup_3_word_10;
+  wire [11:0] _sorts_0_io_lookup_3_word_11;
+  wire [11:0] _sorts_0_io_lookup_3_word_12;
+  wire [11:0] _sorts_0_io_lookup_3_word_13;
+  wire [11:0] _sorts_0_io_lookup_3_word_14;
+  wire [11:0] _sorts_0_io_lookup_3_word_15;
+  wire [11:0] _sorts_0_io_lookup_4_begin;
+  wire [11:0] _sorts_0_io_lookup_4_end;
+  wire [11:0] _sorts_0_io_lookup_4_word_0;
+  wire [11:0] _sorts_0_io_lookup_4_word_1;
+  wire [11:0] _sorts_0_io_lookup_4_word_2;
+  wire [11:0] _sorts_0_io_lookup_4_word_3;
+  wire [11:0] _sorts_0_io_lookup_4_word_4;
+  wire [11:0] _sorts_0_io_lookup_4_word_5;
+  wire [11:0] _sorts_0_io_lookup_4_word_6;
+  wire [11:0] _sorts_0_io_lookup_4_word_7;
+  wire [11:0] _sorts_0_io_lookup_4_word_8;
+  wire [11:0] _sorts_0_io_lookup_4_word_9;
+  wire [11:0] _sorts_0_io_lookup_4_word_10;
+  wire [11:0] _sorts_0_io_lookup_4_word_11;
+  wire [11:0] _sorts_0_io_lookup_4_word_12;
+  wire [11:0] _sorts_0_io_lookup_4_word_13;
+  wire [11:0] _sorts_0_io_lookup_4_word_14;
+  wire [11:0] _sorts_0_io_lookup_4_word_15;
+  wire [11:0] _sorts_0_io_lookup_5_begin;
+  wire [11:0] _sorts_0_io_lookup_5_end;
+  wire [11:0] _sorts_0_io_lookup_5_word_0;
+  wire [11:0] _sorts_0_io_lookup_5_word_1;
+  wire [11:0] _sorts_0_io_lookup_5_word_2;
+  wire [11:0] _sorts_0_io_lookup_5_word_3;
+  wire [11:0] _sorts_0_io_lookup_5_word_4;
+  wire [11:0] _sorts_0_io_lookup_5_word_5;
+  wire [11:0] _sorts_0_io_lookup_5_word_6;
+  wire [11:0] _sorts_0_io_lookup_5_word_7;
+  wire [11:0] _sorts_0_io_lookup_5_word_8;
+  wire [11:0] _sorts_0_io_lookup_5_word_9;
+  wire [11:0] _sorts_0_io_lookup_5_word_10;
+  wire [11:0] _sorts_0_io_lookup_5_word_11;
+  wire [11:0] _sorts_0_io_lookup_5_word_12;
+  wire [11:0] _sorts_0_io_lookup_5_word_13;
+  wire [11:0] _sorts_0_io_lookup_5_word_14;
+  wire [11:0] _sorts_0_io_lookup_5_word_15;
+  wire [11:0] _sorts_0_io_lookup_6_begin;
+  wire [11:0] _sorts_0_io_lookup_6_end;
+  wire [11:0] _sorts_0_io_lookup_6_word_0;
+  wire [11:0] _sorts_0_io_lookup_6_word_1;
+  wire [11:0] _sorts_0_io_lookup_6_word_2;
+  wire [11:0] _sorts_0_io_lookup_6_word_3;
+  wire [11:0] _sorts_0_io_lookup_6_word_4;
+  wire [11:0] _sorts_0_io_lookup_6_word_5;
+  wire [11:0] _sorts_0_io_lookup_6_word_6;
+  wire [11:0] _sorts_0_io_lookup_6_word_7;
+  wire [11:0] _sorts_0_io_lookup_6_word_8;
+  wire [11:0] _sorts_0_io_lookup_6_word_9;
+  wire [11:0] _sorts_0_io_lookup_6_word_10;
+  wire [11:0] _sorts_0_io_lookup_6_word_11;
+  wire [11:0] _sorts_0_io_lookup_6_word_12;
+  wire [11:0] _sorts_0_io_lookup_6_word_13;
+  wire [11:0] _sorts_0_io_lookup_6_word_14;
+  wire [11:0] _sorts_0_io_lookup_6_word_15;
+  wire [11:0] _sorts_0_io_lookup_7_begin;
+  wire [11:0] _sorts_0_io_lookup_7_end;
+  wire [11:0] _sorts_0_io_lookup_7_word_0;
+  wire [11:0] _sorts_0_io_lookup_7_word_1;
+  wire [11:0] _sorts_0_io_lookup_7_word_2;
+  wire [11:0] _sorts_0_io_lookup_7_word_3;
+  wire [11:0] _sorts_0_io_lookup_7_word_4;
+  wire [11:0] _sorts_0_io_lookup_7_word_5;
+  wire [11:0] _sorts_0_io_lookup_7_word_6;
+  wire [11:0] _sorts_0_io_lookup_7_word_7;
+  wire [11:0] _sorts_0_io_lookup_7_word_8;
+  wire [11:0] _sorts_0_io_lookup_7_word_9;
+  wire [11:0] _sorts_0_io_lookup_7_word_10;
+  wire [11:0] _sorts_0_io_lookup_7_word_11;
+  wire [11:0] _sorts_0_io_lookup_7_word_12;
+  wire [11:0] _sorts_0_io_lookup_7_word_13;
+  wire [11:0] _sorts_0_io_lookup_7_word_14;
+  wire [11:0] _sorts_0_io_lookup_7_word_15;
+  wire [11:0] _sorts_0_io_lookup_8_begin;
+  wire [11:0] _sorts_0_io_lookup_8_end;
+  wire [11:0] _sorts_0_io_lookup_8_word_0;
+  wire [11:0] _sorts_0_io_lookup_8_word_1;
+  wire [11:0] _sorts_0_io_lookup_8_word_2;
+  wire [11:0] _sorts_0_io_lookup_8_word_3;
+  wire [11:0] _sorts_0_io_lookup_8_word_4;
+  wire [11:0] _sorts_0_io_lookup_8_word_5;
+  wire [11:0] _sorts_0_io_lookup_8_word_6;
+  wire [11:0] _sorts_0_io_lookup_8_word_7;
+  wire [11:0] _sorts_0_io_lookup_8_word_8;
+  wire [11:0] _sorts_0_io_lookup_8_word_9;
+  wire [11:0] _sorts_0_io_lookup_8_word_10;
+  wire [11:0] _sorts_0_io_lookup_8_word_11;
+  wire [11:0] _sorts_0_io_lookup_8_word_12;
+  wire [11:0] _sorts_0_io_lookup_8_word_13;
+  wire [11:0] _sorts_0_io_lookup_8_word_14;
+  wire [11:0] _sorts_0_io_lookup_8_word_15;
+  wire [11:0] _sorts_0_io_lookup_9_begin;
+  wire [11:0] _sorts_0_io_lookup_9_end;
+  wire [11:0] _sorts_0_io_lookup_9_word_0;
+  wire [11:0] _sorts_0_io_lookup_9_word_1;
+  wire [11:0] _sorts_0_io_lookup_9_word_2;
+  wire [11:0] _sorts_0_io_lookup_9_word_3;
+  wire [11:0] _sorts_0_io_lookup_9_word_4;
+  wire [11:0] _sorts_0_io_lookup_9_word_5;
+  wire [11:0] _sorts_0_io_lookup_9_word_6;
+  wire [11:0] _sorts_0_io_lookup_9_word_7;
+  wire [11:0] _sorts_0_io_lookup_9_word_8;
+  wire [11:0] _sorts_0_io_lookup_9_word_9;
+  wire [11:0] _sorts_0_io_lookup_9_word_10;
+  wire [11:0] _sorts_0_io_lookup_9_word_11;
+  wire [11:0] _sorts_0_io_lookup_9_word_12;
+  wire [11:0] _sorts_0_io_lookup_9_word_13;
+  wire [11:0] _sorts_0_io_lookup_9_word_14;
+  wire [11:0] _sorts_0_io_lookup_9_word_15;
+  wire [11:0] _sorts_0_io_lookup_10_begin;
+  wire [11:0] _sorts_0_io_lookup_10_end;
+  wire [11:0] _sorts_0_io_lookup_10_word_0;
+  wire [11:0] _sorts_0_io_lookup_10_word_1;
+  wire [11:0] _sorts_0_io_lookup_10_word_2;
+  wire [11:0] _sorts_0_io_lookup_10_word_3;
+  wire [11:0] _sorts_0_io_lookup_10_word_4;
+  wire [11:0] _sorts_0_io_lookup_10_word_5;
+  wire [11:0] _sorts_0_io_lookup_10_word_6;
+  wire [11:0] _sorts_0_io_lookup_10_word_7;
+  wire [11:0] _sorts_0_io_lookup_10_word_8;
+  wire [11:0] _sorts_0_io_lookup_10_word_9;
+  wire [11:0] _sorts_0_io_lookup_10_word_10;
+  wire [11:0] _sorts_0_io_lookup_10_word_11;
+  wire [11:0] _sorts_0_io_lookup_10_word_12;
+  wire [11:0] _sorts_0_io_lookup_10_word_13;
+  wire [11:0] _sorts_0_io_lookup_10_word_14;
+  wire [11:0] _sorts_0_io_lookup_10_word_15;
+  wire [11:0] _sorts_0_io_lookup_11_begin;
+  wire [11:0] _sorts_0_io_lookup_11_end;
+  wire [11:0] _sorts_0_io_lookup_11_word_0;
+  wire [11:0] _sorts_0_io_lookup_11_word_1;
+  wire [11:0] _sorts_0_io_lookup_11_word_2;
+  wire [11:0] _sorts_0_io_lookup_11_word_3;
+  wire [11:0] _sorts_0_io_lookup_11_word_4;
+  wire [11:0] _sorts_0_io_lookup_11_word_5;
+  wire [11:0] _sorts_0_io_lookup_11_word_6;
+  wire [11:0] _sorts_0_io_lookup_11_word_7;
+  wire [11:0] _sorts_0_io_lookup_11_word_8;
+  wire [11:0] _sorts_0_io_lookup_11_word_9;
+  wire [11:0] _sorts_0_io_lookup_11_word_10;
+  wire [11:0] _sorts_0_io_lookup_11_word_11;
+  wire [11:0] _sorts_0_io_lookup_11_word_12;
+  wire [11:0] _sorts_0_io_lookup_11_word_13;
+  wire [11:0] _sorts_0_io_lookup_11_word_14;
+  wire [11:0] _sorts_0_io_lookup_11_word_15;
+  wire [11:0] _sorts_0_io_lookup_12_begin;
+  wire [11:0] _sorts_0_io_lookup_12_end;
+  wire [11:0] _sorts_0_io_lookup_12_word_0;
+  wire [11:0] _sorts_0_io_lookup_12_word_1;
+  wire [11:0] _sorts_0_io_lookup_12_word_2;
+  wire [11:0] _sorts_0_io_lookup_12_word_3;
+  wire [11:0] _sorts_0_io_lookup_12_word_4;
+  wire [11:0] _sorts_0_io_lookup_12_word_5;
+  wire [11:0] _sorts_0_io_lookup_12_word_6;
+  wire [11:0] _sorts_0_io_lookup_12_word_7;
+  wire [11:0] _sorts_0_io_lookup_12_word_8;
+  wire [11:0] _sorts_0_io_lookup_12_word_9;
+  wire [11:0] _sorts_0_io_lookup_12_word_10;
+  wire [11:0] _sorts_0_io_lookup_12_word_11;
+  wire [11:0] _sorts_0_io_lookup_12_word_12;
+  wire [11:0] _sorts_0_io_lookup_12_word_13;
+  wire [11:0] _sorts_0_io_lookup_12_word_14;
+  wire [11:0] _sorts_0_io_lookup_12_word_15;
+  wire [11:0] _sorts_0_io_lookup_13_begin;
+  wire [11:0] _sorts_0_io_lookup_13_end;
+  wire [11:0] _sorts_0_io_lookup_13_word_0;
+  wire [11:0] _sorts_0_io_lookup_13_word_1;
+  wire [11:0] _sorts_0_io_lookup_13_word_2;
+  wire [11:0] _sorts_0_io_lookup_13_word_3;
+  wire [11:0] _sorts_0_io_lookup_13_word_4;
+  wire [11:0] _sorts_0_io_lookup_13_word_5;
+  wire [11:0] _sorts_0_io_lookup_13_word_6;
+  wire [11:0] _sorts_0_io_lookup_13_word_7;
+  wire [11:0] _sorts_0_io_lookup_13_word_8;
+  wire [11:0] _sorts_0_io_lookup_13_word_9;
+  wire [11:0] _sorts_0_io_lookup_13_word_10;
+  wire [11:0] _sorts_0_io_lookup_13_word_11;
+  wire [11:0] _sorts_0_io_lookup_13_word_12;
+  wire [11:0] _sorts_0_io_lookup_13_word_13;
+  wire [11:0] _sorts_0_io_lookup_13_word_14;
+  wire [11:0] _sorts_0_io_lookup_13_word_15;
+  wire [11:0] _sorts_0_io_lookup_14_begin;
+  wire [11:0] _sorts_0_io_lookup_14_end;
+  wire [11:0] _sorts_0_io_lookup_14_word_0;
+  wire [11:0] _sorts_0_io_lookup_14_word_1;
+  wire [11:0] _sorts_0_io_lookup_14_word_2;
+  wire [11:0] _sorts_0_io_lookup_14_word_3;
+  wire [11:0] _sorts_0_io_lookup_14_word_4;
+  wire [11:0] _sorts_0_io_lookup_14_word_5;
+  wire [11:0] _sorts_0_io_lookup_14_word_6;
+  wire [11:0] _sorts_0_io_lookup_14_word_7;
+  wire [11:0] _sorts_0_io_lookup_14_word_8;
+  wire [11:0] _sorts_0_io_lookup_14_word_9;
+  wire [11:0] _sorts_0_io_lookup_14_word_10;
+  wire [11:0] _sorts_0_io_lookup_14_word_11;
+  wire [11:0] _sorts_0_io_lookup_14_word_12;
+  wire [11:0] _sorts_0_io_lookup_14_word_13;
+  wire [11:0] _sorts_0_io_lookup_14_word_14;
+  wire [11:0] _sorts_0_io_lookup_14_word_15;
+  wire [11:0] _sorts_0_io_lookup_15_begin;
+  wire [11:0] _sorts_0_io_lookup_15_end;
+  wire [11:0] _sorts_0_io_lookup_15_word_0;
+  wire [11:0] _sorts_0_io_lookup_15_word_1;
+  wire [11:0] _sorts_0_io_lookup_15_word_2;
+  wire [11:0] _sorts_0_io_lookup_15_word_3;
+  wire [11:0] _sorts_0_io_lookup_15_word_4;
+  wire [11:0] _sorts_0_io_lookup_15_word_5;
+  wire [11:0] _sorts_0_io_lookup_15_word_6;
+  wire [11:0] _sorts_0_io_lookup_15_word_7;
+  wire [11:0] _sorts_0_io_lookup_15_word_8;
+  wire [11:0] _sorts_0_io_lookup_15_word_9;
+  wire [11:0] _sorts_0_io_lookup_15_word_10;
+  wire [11:0] _sorts_0_io_lookup_15_word_11;
+  wire [11:0] _sorts_0_io_lookup_15_word_12;
+  wire [11:0] _sorts_0_io_lookup_15_word_13;
+  wire [11:0] _sorts_0_io_lookup_15_word_14;
+  wire [11:0] _sorts_0_io_lookup_15_word_15;
+  wire [11:0] _sorts_0_io_entry_0_item;
+  wire        _sorts_0_io_entry_0_mark;
+  wire [11:0] _sorts_0_io_entry_1_item;
+  wire        _sorts_0_io_entry_1_mark;
+  wire [11:0] _sorts_0_io_entry_2_item;
+  wire        _sorts_0_io_entry_2_mark;
+  wire [11:0] _sorts_0_io_entry_3_item;
+  wire        _sorts_0_io_entry_3_mark;
+  wire [11:0] _sorts_0_io_entry_4_item;
+  wire        _sorts_0_io_entry_4_mark;
+  wire [11:0] _sorts_0_io_entry_5_item;
+  wire        _sorts_0_io_entry_5_mark;
+  wire [11:0] _sorts_0_io_entry_6_item;
+  wire        _sorts_0_io_entry_6_mark;
+  wire [11:0] _sorts_0_io_entry_7_item;
+  wire        _sorts_0_io_entry_7_mark;
+  wire [11:0] _sorts_0_io_entry_8_item;
+  wire        _sorts_0_io_entry_8_mark;
+  wire [11:0] _sorts_0_io_entry_9_item;
+  wire        _sorts_0_io_entry_9_mark;
+  wire [11:0] _sorts_0_io_entry_10_item;
+  wire        _sorts_0_io_entry_10_mark;
+  wire [11:0] _sorts_0_io_entry_11_item;
+  wire        _sorts_0_io_entry_11_mark;
+  wire [11:0] _sorts_0_io_entry_12_item;
+  wire        _sorts_0_io_entry_12_mark;
+  wire [11:0] _sorts_0_io_entry_13_item;
+  wire        _sorts_0_io_entry_13_mark;
+  wire [11:0] _sorts_0_io_entry_14_item;
+  wire        _sorts_0_io_entry_14_mark;
+  wire [11:0] _sorts_0_io_entry_15_item;
+  wire        _sorts_0_io_entry_15_mark;
+  wire [11:0] _sorts_0_io_counted;
+  wire [11:0] _sorts_0_io_scattered;
+  wire        _sorts_0_io_badBucket;
   wire [12:0] _cellExp_io_k;
   wire [12:0] _laneExps_15_io_kept_0;
   wire [12:0] _laneExps_15_io_kept_1;
@@ -23178,6 +23709,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   wire [4:0]  _laneExps_0_io_used;
   wire [12:0] _laneExps_0_io_top;
   wire        _laneExps_0_io_anyTop;
+  wire        sortBusy = _sorts_0_io_busy | _sorts_1_io_busy;
   reg  [11:0] larges_0_index;
   reg  [28:0] larges_0_q_0;
   reg  [28:0] larges_0_q_1;
@@ -23274,9 +23806,9 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   reg  [4:0]  largeCount;
   wire        _laneKeys_15_io_in_k_T = state == 3'h1;
   wire        classifying = state == 3'h3;
-  wire        _sort_io_in_1_bits_scatter_T = state == 3'h5;
+  wire        _sorts_1_io_in_1_bits_scatter_T = state == 3'h5;
   wire        inPass =
-    _laneKeys_15_io_in_k_T | classifying | _sort_io_in_1_bits_scatter_T;
+    _laneKeys_15_io_in_k_T | classifying | _sorts_1_io_in_1_bits_scatter_T;
   reg  [12:0] i_0;
   reg  [12:0] i_1;
   reg  [12:0] i_2;
@@ -23294,17 +23826,20 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   reg  [12:0] i_14;
   reg  [12:0] i_15;
   wire [12:0] _GEN = {4'h0, num[12:4]};
-  wire [12:0] _GEN_0 = {1'h0, num[12:1]};
+  wire [12:0] _GEN_0 = {2'h0, num[12:2]};
   wire        reading_0 = inPass & i_0 < (_laneKeys_15_io_in_k_T ? _GEN : _GEN_0);
   wire [12:0] _GEN_1 = {3'h0, num[12:3]};
-  wire        reading_1 = inPass & i_1 < (_laneKeys_15_io_in_k_T ? _GEN_1 : num);
+  wire        reading_1 =
+    inPass & i_1 < (_laneKeys_15_io_in_k_T ? _GEN_1 : {1'h0, num[12:1]});
   wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
+  wire [14:0] _i_3_T_11 = {2'h0, num} * 15'h3;
   wire        reading_2 =
     inPass
-    & i_2 < (_laneKeys_15_io_in_k_T ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : 13'h0);
+    & i_2 < (_laneKeys_15_io_in_k_T
+               ? {2'h0, _gens_3_io_largeFrom_T[26:16]}
+               : _i_3_T_11[14:2]);
   wire [27:0] _GEN_2 = {15'h0, num};
-  wire [12:0] _GEN_3 = {2'h0, num[12:2]};
-  wire        reading_3 = inPass & i_3 < (_laneKeys_15_io_in_k_T ? _GEN_3 : 13'h0);
+  wire        reading_3 = inPass & i_3 < (_laneKeys_15_io_in_k_T ? _GEN_0 : num);
   wire [27:0] _gens_5_io_largeFrom_T = _GEN_2 * 28'h5000;
   wire        reading_4 =
     inPass
@@ -23317,28 +23852,28 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   wire        reading_6 =
     inPass
     & i_6 < (_laneKeys_15_io_in_k_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : 13'h0);
-  wire [28:0] _GEN_4 = {16'h0, num};
+  wire [28:0] _GEN_3 = {16'h0, num};
   wire        reading_7 =
     inPass & i_7 < (_laneKeys_15_io_in_k_T ? {1'h0, num[12:1]} : 13'h0);
-  wire [28:0] _gens_9_io_largeFrom_T = _GEN_4 * 29'h9000;
+  wire [28:0] _gens_9_io_largeFrom_T = _GEN_3 * 29'h9000;
   wire        reading_8 =
     inPass & i_8 < (_laneKeys_15_io_in_k_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_10_io_largeFrom_T = _GEN_4 * 29'hA000;
+  wire [28:0] _gens_10_io_largeFrom_T = _GEN_3 * 29'hA000;
   wire        reading_9 =
     inPass & i_9 < (_laneKeys_15_io_in_k_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_11_io_largeFrom_T = _GEN_4 * 29'hB000;
+  wire [28:0] _gens_11_io_largeFrom_T = _GEN_3 * 29'hB000;
   wire        reading_10 =
     inPass & i_10 < (_laneKeys_15_io_in_k_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_12_io_largeFrom_T = _GEN_4 * 29'hC000;
+  wire [28:0] _gens_12_io_largeFrom_T = _GEN_3 * 29'hC000;
   wire        reading_11 =
     inPass & i_11 < (_laneKeys_15_io_in_k_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_13_io_largeFrom_T = _GEN_4 * 29'hD000;
+  wire [28:0] _gens_13_io_largeFrom_T = _GEN_3 * 29'hD000;
   wire        reading_12 =
     inPass & i_12 < (_laneKeys_15_io_in_k_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_14_io_largeFrom_T = _GEN_4 * 29'hE000;
+  wire [28:0] _gens_14_io_largeFrom_T = _GEN_3 * 29'hE000;
   wire        reading_13 =
     inPass & i_13 < (_laneKeys_15_io_in_k_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_15_io_largeFrom_T = _GEN_4 * 29'hF000;
+  wire [28:0] _gens_15_io_largeFrom_T = _GEN_3 * 29'hF000;
   wire        reading_14 =
     inPass & i_14 < (_laneKeys_15_io_in_k_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
   wire        reading_15 = inPass & i_15 < (_laneKeys_15_io_in_k_T ? num : 13'h0);
@@ -23381,10 +23916,18 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   reg  [11:0] r;
   reg  [11:0] REG_1;
   reg  [11:0] r_1;
-  wire        _sort_io_in_0_valid_T_8 =
+  reg  [11:0] REG_2;
+  reg  [11:0] r_2;
+  reg  [11:0] REG_3;
+  reg  [11:0] r_3;
+  wire        _sorts_0_io_in_0_valid_T_8 =
     $signed(_laneKeys_0_io_out_need) > $signed(_cellExp_io_k);
-  wire        _sort_io_in_1_valid_T_8 =
+  wire        _sorts_0_io_in_1_valid_T_8 =
     $signed(_laneKeys_1_io_out_need) > $signed(_cellExp_io_k);
+  wire        _sorts_1_io_in_0_valid_T_8 =
+    $signed(_laneKeys_2_io_out_need) > $signed(_cellExp_io_k);
+  wire        _sorts_1_io_in_1_valid_T_8 =
+    $signed(_laneKeys_3_io_out_need) > $signed(_cellExp_io_k);
   reg  [8:0]  m;
   wire        filled_2 = _laneExps_0_io_used > 5'h2;
   wire        filled_4 = _laneExps_0_io_used > 5'h4;
@@ -23578,7 +24121,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
   wire        filled_268 = _laneExps_15_io_used > 5'hD;
   wire        filled_269 = _laneExps_15_io_used > 5'hE;
   wire        filled_271 = _laneExps_15_io_used > 5'h10;
-  wire [9:0]  _GEN_5 = {1'h0, m};
+  wire [9:0]  _GEN_4 = {1'h0, m};
   wire        _cellExp_io_in_1_valid_T = state == 3'h2;
   reg         casez_tmp;
   always @(*) begin
@@ -27696,7 +28239,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
         casez_tmp_2 = _laneExps_0_io_anyTop;
     endcase
   end // always @(*)
-  wire [9:0]  at_1 = _GEN_5 + 10'h1;
+  wire [9:0]  at_1 = _GEN_4 + 10'h1;
   reg         casez_tmp_3;
   always @(*) begin
     casez (at_1[8:0])
@@ -31819,66 +32362,105 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     $signed(slack_e) < 14'sh0
       ? 29'h2
       : $signed(slack_e) > 14'sh1B ? 29'h1FFFFFFF : _slack_T_3[28:0] + 29'h1;
-  wire        _sort_io_in_0_valid_T_12 =
-    _laneKeys_0_io_out_valid & (classifying | _sort_io_in_1_bits_scatter_T)
+  wire        _sorts_1_io_prefix_T = state == 3'h4;
+  wire        _sorts_0_io_in_0_valid_T_12 =
+    _laneKeys_0_io_out_valid & (classifying | _sorts_1_io_in_1_bits_scatter_T)
     & ~_laneKeys_0_io_out_nonFinite
     & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
-        & _sort_io_in_0_valid_T_8);
-  wire [28:0] _sort_io_in_1_bits_bucket_mask_T = 29'h1 << usedLog2;
-  wire        _sort_io_in_1_valid_T_12 =
-    _laneKeys_1_io_out_valid & (classifying | _sort_io_in_1_bits_scatter_T)
+        & _sorts_0_io_in_0_valid_T_8);
+  wire [28:0] _sorts_1_io_in_1_bits_bucket_mask_T = 29'h1 << usedLog2;
+  wire        _sorts_0_io_in_1_valid_T_12 =
+    _laneKeys_1_io_out_valid & (classifying | _sorts_1_io_in_1_bits_scatter_T)
     & ~_laneKeys_1_io_out_nonFinite
     & ~(~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
-        & _sort_io_in_1_valid_T_8);
+        & _sorts_0_io_in_1_valid_T_8);
+  wire        _sorts_1_io_in_0_valid_T_12 =
+    _laneKeys_2_io_out_valid & (classifying | _sorts_1_io_in_1_bits_scatter_T)
+    & ~_laneKeys_2_io_out_nonFinite
+    & ~(~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
+        & _sorts_1_io_in_0_valid_T_8);
+  wire        _sorts_1_io_in_1_valid_T_12 =
+    _laneKeys_3_io_out_valid & (classifying | _sorts_1_io_in_1_bits_scatter_T)
+    & ~_laneKeys_3_io_out_nonFinite
+    & ~(~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
+        & _sorts_1_io_in_1_valid_T_8);
   `ifndef SYNTHESIS
     always @(posedge clock) begin
-      if (~reset & ~(~_sort_io_in_0_valid_T_12 | _sort_io_in_0_ready)) begin
+      if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:225 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:237 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
-      if (~reset & ~(~_sort_io_in_1_valid_T_12 | _sort_io_in_1_ready)) begin
+      if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:225 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:237 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:237 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:237 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire        _GEN_6 = passDone & ~_sort_io_busy;
+  reg         entryGroup;
+  reg         entryGroup_1;
+  reg         entryGroup_2;
+  reg         entryGroup_3;
+  reg         entryGroup_4;
+  reg         entryGroup_5;
+  reg         entryGroup_6;
+  reg         entryGroup_7;
+  reg         entryGroup_8;
+  reg         entryGroup_9;
+  reg         entryGroup_10;
+  reg         entryGroup_11;
+  reg         entryGroup_12;
+  reg         entryGroup_13;
+  reg         entryGroup_14;
+  reg         entryGroup_15;
+  wire        _GEN_5 = passDone & ~sortBusy;
   wire [8:0]  _m_T = m + 9'h2;
-  wire        _GEN_7 = _m_T > 9'h10F;
-  wire        _GEN_8 = sent & ~_sort_io_busy;
-  reg         REG_2;
-  wire        _GEN_9 = passDone & ~REG_2;
-  wire        _GEN_10 = state == 3'h6;
-  wire        _GEN_11 =
-    _GEN_10 & sent
+  wire        _GEN_6 = _m_T > 9'h10F;
+  wire        _GEN_7 = sent & ~sortBusy;
+  reg         REG_4;
+  wire        _GEN_8 = passDone & ~REG_4;
+  wire        _GEN_9 = state == 3'h6;
+  wire        _GEN_10 =
+    _GEN_9 & sent
     & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
         | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
         | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
         | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
   reg  [2:0]  casez_tmp_7;
-  wire [2:0]  _GEN_12 = _GEN_11 ? 3'h0 : state;
+  wire [2:0]  _GEN_11 = _GEN_10 ? 3'h0 : state;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_7 = _GEN_12;
+        casez_tmp_7 = _GEN_11;
       3'b001:
-        casez_tmp_7 = _GEN_6 ? 3'h2 : state;
+        casez_tmp_7 = _GEN_5 ? 3'h2 : state;
       3'b010:
-        casez_tmp_7 = _GEN_7 ? 3'h3 : state;
+        casez_tmp_7 = _GEN_6 ? 3'h3 : state;
       3'b011:
         casez_tmp_7 = passDone ? 3'h4 : state;
       3'b100:
-        casez_tmp_7 = _GEN_8 ? 3'h5 : state;
+        casez_tmp_7 = _GEN_7 ? 3'h5 : state;
       3'b101:
-        casez_tmp_7 = _GEN_9 ? 3'h6 : state;
+        casez_tmp_7 = _GEN_8 ? 3'h6 : state;
       3'b110:
-        casez_tmp_7 = _GEN_12;
+        casez_tmp_7 = _GEN_11;
       default:
-        casez_tmp_7 = _GEN_12;
+        casez_tmp_7 = _GEN_11;
     endcase
   end // always @(*)
   wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
@@ -31911,275 +32493,514 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
                          : _usedLog2_ceilLog2_T_1[2]
                              ? 2'h2
                              : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1;
-  wire [27:0] _GEN_13 = {15'h0, io_num};
-  wire [28:0] _GEN_14 = {16'h0, io_num};
+  wire [27:0] _GEN_12 = {15'h0, io_num};
+  wire [28:0] _GEN_13 = {16'h0, io_num};
   wire [26:0] _i_3_T = {14'h0, io_num} * 27'h3000;
-  wire [27:0] _i_5_T = _GEN_13 * 28'h5000;
-  wire [27:0] _i_6_T = _GEN_13 * 28'h6000;
-  wire [27:0] _i_7_T = _GEN_13 * 28'h7000;
-  wire [28:0] _i_9_T = _GEN_14 * 29'h9000;
-  wire [28:0] _i_10_T = _GEN_14 * 29'hA000;
-  wire [28:0] _i_11_T = _GEN_14 * 29'hB000;
-  wire [28:0] _i_12_T = _GEN_14 * 29'hC000;
-  wire [28:0] _i_13_T = _GEN_14 * 29'hD000;
-  wire [28:0] _i_14_T = _GEN_14 * 29'hE000;
-  wire [28:0] _i_15_T = _GEN_14 * 29'hF000;
+  wire [27:0] _i_5_T = _GEN_12 * 28'h5000;
+  wire [27:0] _i_6_T = _GEN_12 * 28'h6000;
+  wire [27:0] _i_7_T = _GEN_12 * 28'h7000;
+  wire [28:0] _i_9_T = _GEN_13 * 29'h9000;
+  wire [28:0] _i_10_T = _GEN_13 * 29'hA000;
+  wire [28:0] _i_11_T = _GEN_13 * 29'hB000;
+  wire [28:0] _i_12_T = _GEN_13 * 29'hC000;
+  wire [28:0] _i_13_T = _GEN_13 * 29'hD000;
+  wire [28:0] _i_14_T = _GEN_13 * 29'hE000;
+  wire [28:0] _i_15_T = _GEN_13 * 29'hF000;
   wire        z_tooMany = io_num > 13'h1000;
   wire        largeHere_0 =
     classifying & _laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
-    & ~_laneKeys_0_io_out_needNone & _sort_io_in_0_valid_T_8;
+    & ~_laneKeys_0_io_out_needNone & _sorts_0_io_in_0_valid_T_8;
   wire        largeHere_1 =
     classifying & _laneKeys_1_io_out_valid & ~_laneKeys_1_io_out_nonFinite
-    & ~_laneKeys_1_io_out_needNone & _sort_io_in_1_valid_T_8;
-  wire [5:0]  _GEN_15 = {1'h0, largeCount};
-  wire        _GEN_16 = _GEN_15 < 6'h10;
-  wire [5:0]  slot_1 = _GEN_15 + {5'h0, largeHere_0};
-  wire        _GEN_17 = slot_1 < 6'h10;
-  wire        _GEN_18 = ~(|state) & io_start;
-  wire        _GEN_19 = state == 3'h1;
-  wire        _GEN_20 = state == 3'h2;
-  wire        _GEN_21 = state == 3'h3;
-  wire        _GEN_22 = state == 3'h4;
-  wire        _GEN_23 = state == 3'h5;
-  wire [5:0]  largeNew = _GEN_15 + {4'h0, {1'h0, largeHere_0} + {1'h0, largeHere_1}};
+    & ~_laneKeys_1_io_out_needNone & _sorts_0_io_in_1_valid_T_8;
+  wire        largeHere_2 =
+    classifying & _laneKeys_2_io_out_valid & ~_laneKeys_2_io_out_nonFinite
+    & ~_laneKeys_2_io_out_needNone & _sorts_1_io_in_0_valid_T_8;
+  wire        largeHere_3 =
+    classifying & _laneKeys_3_io_out_valid & ~_laneKeys_3_io_out_nonFinite
+    & ~_laneKeys_3_io_out_needNone & _sorts_1_io_in_1_valid_T_8;
+  wire [5:0]  _GEN_14 = {1'h0, largeCount};
+  wire        _GEN_15 = _GEN_14 < 6'h10;
+  wire [5:0]  slot_1 = _GEN_14 + {5'h0, largeHere_0};
+  wire        _GEN_16 = slot_1 < 6'h10;
+  wire [1:0]  _GEN_17 = {1'h0, largeHere_0};
+  wire [1:0]  _GEN_18 = {1'h0, largeHere_1};
+  wire [1:0]  _largeNew_T_1 = _GEN_17 + _GEN_18;
+  wire [5:0]  slot_2 = _GEN_14 + {4'h0, _largeNew_T_1};
+  wire        _GEN_19 = slot_2 < 6'h10;
+  wire [1:0]  _GEN_20 = {1'h0, largeHere_2};
+  wire [5:0]  slot_3 = _GEN_14 + {4'h0, _GEN_17 + _GEN_18 + _GEN_20};
+  wire        _GEN_21 = slot_3 < 6'h10;
+  wire        _GEN_22 = ~(|state) & io_start;
+  wire        _GEN_23 = state == 3'h1;
+  wire        _GEN_24 = state == 3'h2;
+  wire        _GEN_25 = state == 3'h3;
+  wire        _GEN_26 = state == 3'h4;
+  wire        _GEN_27 = state == 3'h5;
+  wire [5:0]  largeNew =
+    _GEN_14 + {3'h0, {1'h0, _largeNew_T_1} + {1'h0, _GEN_20 + {1'h0, largeHere_3}}};
   wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
   always @(posedge clock) begin
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h0) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h0) begin
+      larges_0_index <= r_3;
+      larges_0_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_0_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_0_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_0_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h0) begin
+      larges_0_index <= r_2;
+      larges_0_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_0_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_0_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_0_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h0) begin
       larges_0_index <= r_1;
       larges_0_q_0 <= _laneKeys_1_io_out_q_0;
       larges_0_q_1 <= _laneKeys_1_io_out_q_1;
       larges_0_q_2 <= _laneKeys_1_io_out_q_2;
       larges_0_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h0) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h0) begin
       larges_0_index <= r;
       larges_0_q_0 <= _laneKeys_0_io_out_q_0;
       larges_0_q_1 <= _laneKeys_0_io_out_q_1;
       larges_0_q_2 <= _laneKeys_0_io_out_q_2;
       larges_0_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h1) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h1) begin
+      larges_1_index <= r_3;
+      larges_1_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_1_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_1_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_1_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h1) begin
+      larges_1_index <= r_2;
+      larges_1_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_1_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_1_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_1_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h1) begin
       larges_1_index <= r_1;
       larges_1_q_0 <= _laneKeys_1_io_out_q_0;
       larges_1_q_1 <= _laneKeys_1_io_out_q_1;
       larges_1_q_2 <= _laneKeys_1_io_out_q_2;
       larges_1_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h1) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h1) begin
       larges_1_index <= r;
       larges_1_q_0 <= _laneKeys_0_io_out_q_0;
       larges_1_q_1 <= _laneKeys_0_io_out_q_1;
       larges_1_q_2 <= _laneKeys_0_io_out_q_2;
       larges_1_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h2) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h2) begin
+      larges_2_index <= r_3;
+      larges_2_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_2_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_2_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_2_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h2) begin
+      larges_2_index <= r_2;
+      larges_2_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_2_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_2_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_2_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h2) begin
       larges_2_index <= r_1;
       larges_2_q_0 <= _laneKeys_1_io_out_q_0;
       larges_2_q_1 <= _laneKeys_1_io_out_q_1;
       larges_2_q_2 <= _laneKeys_1_io_out_q_2;
       larges_2_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h2) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h2) begin
       larges_2_index <= r;
       larges_2_q_0 <= _laneKeys_0_io_out_q_0;
       larges_2_q_1 <= _laneKeys_0_io_out_q_1;
       larges_2_q_2 <= _laneKeys_0_io_out_q_2;
       larges_2_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h3) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h3) begin
+      larges_3_index <= r_3;
+      larges_3_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_3_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_3_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_3_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h3) begin
+      larges_3_index <= r_2;
+      larges_3_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_3_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_3_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_3_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h3) begin
       larges_3_index <= r_1;
       larges_3_q_0 <= _laneKeys_1_io_out_q_0;
       larges_3_q_1 <= _laneKeys_1_io_out_q_1;
       larges_3_q_2 <= _laneKeys_1_io_out_q_2;
       larges_3_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h3) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h3) begin
       larges_3_index <= r;
       larges_3_q_0 <= _laneKeys_0_io_out_q_0;
       larges_3_q_1 <= _laneKeys_0_io_out_q_1;
       larges_3_q_2 <= _laneKeys_0_io_out_q_2;
       larges_3_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h4) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h4) begin
+      larges_4_index <= r_3;
+      larges_4_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_4_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_4_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_4_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h4) begin
+      larges_4_index <= r_2;
+      larges_4_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_4_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_4_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_4_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h4) begin
       larges_4_index <= r_1;
       larges_4_q_0 <= _laneKeys_1_io_out_q_0;
       larges_4_q_1 <= _laneKeys_1_io_out_q_1;
       larges_4_q_2 <= _laneKeys_1_io_out_q_2;
       larges_4_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h4) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h4) begin
       larges_4_index <= r;
       larges_4_q_0 <= _laneKeys_0_io_out_q_0;
       larges_4_q_1 <= _laneKeys_0_io_out_q_1;
       larges_4_q_2 <= _laneKeys_0_io_out_q_2;
       larges_4_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h5) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h5) begin
+      larges_5_index <= r_3;
+      larges_5_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_5_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_5_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_5_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h5) begin
+      larges_5_index <= r_2;
+      larges_5_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_5_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_5_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_5_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h5) begin
       larges_5_index <= r_1;
       larges_5_q_0 <= _laneKeys_1_io_out_q_0;
       larges_5_q_1 <= _laneKeys_1_io_out_q_1;
       larges_5_q_2 <= _laneKeys_1_io_out_q_2;
       larges_5_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h5) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h5) begin
       larges_5_index <= r;
       larges_5_q_0 <= _laneKeys_0_io_out_q_0;
       larges_5_q_1 <= _laneKeys_0_io_out_q_1;
       larges_5_q_2 <= _laneKeys_0_io_out_q_2;
       larges_5_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h6) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h6) begin
+      larges_6_index <= r_3;
+      larges_6_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_6_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_6_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_6_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h6) begin
+      larges_6_index <= r_2;
+      larges_6_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_6_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_6_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_6_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h6) begin
       larges_6_index <= r_1;
       larges_6_q_0 <= _laneKeys_1_io_out_q_0;
       larges_6_q_1 <= _laneKeys_1_io_out_q_1;
       larges_6_q_2 <= _laneKeys_1_io_out_q_2;
       larges_6_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h6) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h6) begin
       larges_6_index <= r;
       larges_6_q_0 <= _laneKeys_0_io_out_q_0;
       larges_6_q_1 <= _laneKeys_0_io_out_q_1;
       larges_6_q_2 <= _laneKeys_0_io_out_q_2;
       larges_6_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h7) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h7) begin
+      larges_7_index <= r_3;
+      larges_7_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_7_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_7_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_7_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h7) begin
+      larges_7_index <= r_2;
+      larges_7_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_7_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_7_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_7_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h7) begin
       larges_7_index <= r_1;
       larges_7_q_0 <= _laneKeys_1_io_out_q_0;
       larges_7_q_1 <= _laneKeys_1_io_out_q_1;
       larges_7_q_2 <= _laneKeys_1_io_out_q_2;
       larges_7_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h7) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h7) begin
       larges_7_index <= r;
       larges_7_q_0 <= _laneKeys_0_io_out_q_0;
       larges_7_q_1 <= _laneKeys_0_io_out_q_1;
       larges_7_q_2 <= _laneKeys_0_io_out_q_2;
       larges_7_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h8) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h8) begin
+      larges_8_index <= r_3;
+      larges_8_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_8_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_8_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_8_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h8) begin
+      larges_8_index <= r_2;
+      larges_8_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_8_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_8_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_8_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h8) begin
       larges_8_index <= r_1;
       larges_8_q_0 <= _laneKeys_1_io_out_q_0;
       larges_8_q_1 <= _laneKeys_1_io_out_q_1;
       larges_8_q_2 <= _laneKeys_1_io_out_q_2;
       larges_8_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h8) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h8) begin
       larges_8_index <= r;
       larges_8_q_0 <= _laneKeys_0_io_out_q_0;
       larges_8_q_1 <= _laneKeys_0_io_out_q_1;
       larges_8_q_2 <= _laneKeys_0_io_out_q_2;
       larges_8_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'h9) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h9) begin
+      larges_9_index <= r_3;
+      larges_9_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_9_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_9_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_9_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h9) begin
+      larges_9_index <= r_2;
+      larges_9_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_9_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_9_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_9_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h9) begin
       larges_9_index <= r_1;
       larges_9_q_0 <= _laneKeys_1_io_out_q_0;
       larges_9_q_1 <= _laneKeys_1_io_out_q_1;
       larges_9_q_2 <= _laneKeys_1_io_out_q_2;
       larges_9_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'h9) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h9) begin
       larges_9_index <= r;
       larges_9_q_0 <= _laneKeys_0_io_out_q_0;
       larges_9_q_1 <= _laneKeys_0_io_out_q_1;
       larges_9_q_2 <= _laneKeys_0_io_out_q_2;
       larges_9_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'hA) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'hA) begin
+      larges_10_index <= r_3;
+      larges_10_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_10_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_10_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_10_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'hA) begin
+      larges_10_index <= r_2;
+      larges_10_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_10_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_10_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_10_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'hA) begin
       larges_10_index <= r_1;
       larges_10_q_0 <= _laneKeys_1_io_out_q_0;
       larges_10_q_1 <= _laneKeys_1_io_out_q_1;
       larges_10_q_2 <= _laneKeys_1_io_out_q_2;
       larges_10_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'hA) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'hA) begin
       larges_10_index <= r;
       larges_10_q_0 <= _laneKeys_0_io_out_q_0;
       larges_10_q_1 <= _laneKeys_0_io_out_q_1;
       larges_10_q_2 <= _laneKeys_0_io_out_q_2;
       larges_10_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'hB) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'hB) begin
+      larges_11_index <= r_3;
+      larges_11_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_11_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_11_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_11_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'hB) begin
+      larges_11_index <= r_2;
+      larges_11_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_11_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_11_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_11_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'hB) begin
       larges_11_index <= r_1;
       larges_11_q_0 <= _laneKeys_1_io_out_q_0;
       larges_11_q_1 <= _laneKeys_1_io_out_q_1;
       larges_11_q_2 <= _laneKeys_1_io_out_q_2;
       larges_11_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'hB) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'hB) begin
       larges_11_index <= r;
       larges_11_q_0 <= _laneKeys_0_io_out_q_0;
       larges_11_q_1 <= _laneKeys_0_io_out_q_1;
       larges_11_q_2 <= _laneKeys_0_io_out_q_2;
       larges_11_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'hC) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'hC) begin
+      larges_12_index <= r_3;
+      larges_12_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_12_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_12_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_12_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'hC) begin
+      larges_12_index <= r_2;
+      larges_12_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_12_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_12_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_12_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'hC) begin
       larges_12_index <= r_1;
       larges_12_q_0 <= _laneKeys_1_io_out_q_0;
       larges_12_q_1 <= _laneKeys_1_io_out_q_1;
       larges_12_q_2 <= _laneKeys_1_io_out_q_2;
       larges_12_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'hC) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'hC) begin
       larges_12_index <= r;
       larges_12_q_0 <= _laneKeys_0_io_out_q_0;
       larges_12_q_1 <= _laneKeys_0_io_out_q_1;
       larges_12_q_2 <= _laneKeys_0_io_out_q_2;
       larges_12_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'hD) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'hD) begin
+      larges_13_index <= r_3;
+      larges_13_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_13_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_13_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_13_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'hD) begin
+      larges_13_index <= r_2;
+      larges_13_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_13_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_13_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_13_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'hD) begin
       larges_13_index <= r_1;
       larges_13_q_0 <= _laneKeys_1_io_out_q_0;
       larges_13_q_1 <= _laneKeys_1_io_out_q_1;
       larges_13_q_2 <= _laneKeys_1_io_out_q_2;
       larges_13_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'hD) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'hD) begin
       larges_13_index <= r;
       larges_13_q_0 <= _laneKeys_0_io_out_q_0;
       larges_13_q_1 <= _laneKeys_0_io_out_q_1;
       larges_13_q_2 <= _laneKeys_0_io_out_q_2;
       larges_13_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & slot_1[3:0] == 4'hE) begin
+    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'hE) begin
+      larges_14_index <= r_3;
+      larges_14_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_14_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_14_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_14_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'hE) begin
+      larges_14_index <= r_2;
+      larges_14_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_14_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_14_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_14_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'hE) begin
       larges_14_index <= r_1;
       larges_14_q_0 <= _laneKeys_1_io_out_q_0;
       larges_14_q_1 <= _laneKeys_1_io_out_q_1;
       larges_14_q_2 <= _laneKeys_1_io_out_q_2;
       larges_14_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & largeCount[3:0] == 4'hE) begin
+    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'hE) begin
       larges_14_index <= r;
       larges_14_q_0 <= _laneKeys_0_io_out_q_0;
       larges_14_q_1 <= _laneKeys_0_io_out_q_1;
       larges_14_q_2 <= _laneKeys_0_io_out_q_2;
       larges_14_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_1 & _GEN_17 & (&(slot_1[3:0]))) begin
+    if (largeHere_3 & _GEN_21 & (&(slot_3[3:0]))) begin
+      larges_15_index <= r_3;
+      larges_15_q_0 <= _laneKeys_3_io_out_q_0;
+      larges_15_q_1 <= _laneKeys_3_io_out_q_1;
+      larges_15_q_2 <= _laneKeys_3_io_out_q_2;
+      larges_15_qr <= _laneKeys_3_io_out_qr;
+    end
+    else if (largeHere_2 & _GEN_19 & (&(slot_2[3:0]))) begin
+      larges_15_index <= r_2;
+      larges_15_q_0 <= _laneKeys_2_io_out_q_0;
+      larges_15_q_1 <= _laneKeys_2_io_out_q_1;
+      larges_15_q_2 <= _laneKeys_2_io_out_q_2;
+      larges_15_qr <= _laneKeys_2_io_out_qr;
+    end
+    else if (largeHere_1 & _GEN_16 & (&(slot_1[3:0]))) begin
       larges_15_index <= r_1;
       larges_15_q_0 <= _laneKeys_1_io_out_q_0;
       larges_15_q_1 <= _laneKeys_1_io_out_q_1;
       larges_15_q_2 <= _laneKeys_1_io_out_q_2;
       larges_15_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_16 & (&(largeCount[3:0]))) begin
+    else if (largeHere_0 & _GEN_15 & (&(largeCount[3:0]))) begin
       larges_15_index <= r;
       larges_15_q_0 <= _laneKeys_0_io_out_q_0;
       larges_15_q_1 <= _laneKeys_0_io_out_q_1;
       larges_15_q_2 <= _laneKeys_0_io_out_q_2;
       larges_15_qr <= _laneKeys_0_io_out_qr;
     end
-    if (_GEN_18) begin
+    if (_GEN_22) begin
       num <= io_num;
       usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
     end
-    if (~(~(|state) | _GEN_19 | _GEN_20)) begin
-      if (_GEN_21)
+    if (~(~(|state) | _GEN_23 | _GEN_24)) begin
+      if (_GEN_25)
         sent <= ~passDone & sent;
       else
-        sent <= _GEN_22 | (_GEN_23 ? ~_GEN_9 & sent : _GEN_10 | sent);
+        sent <= _GEN_26 | (_GEN_27 ? ~_GEN_8 & sent : _GEN_9 | sent);
     end
     if (|state) begin
-      if (_GEN_19) begin
+      if (_GEN_23) begin
         if (reading_0)
           i_0 <= i_0 + 13'h1;
         if (reading_1)
@@ -32212,15 +33033,15 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
           i_14 <= i_14 + 13'h1;
         if (reading_15)
           i_15 <= i_15 + 13'h1;
-        if (_GEN_6)
+        if (_GEN_5)
           m <= 9'h0;
       end
-      else if (_GEN_20) begin
-        if (_GEN_7) begin
+      else if (_GEN_24) begin
+        if (_GEN_6) begin
           i_0 <= 13'h0;
           i_1 <= _GEN_0;
-          i_2 <= 13'h0;
-          i_3 <= 13'h0;
+          i_2 <= {1'h0, num[12:1]};
+          i_3 <= _i_3_T_11[14:2];
           i_4 <= 13'h0;
           i_5 <= 13'h0;
           i_6 <= 13'h0;
@@ -32236,7 +33057,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
         end
         m <= _m_T;
       end
-      else if (_GEN_21) begin
+      else if (_GEN_25) begin
         if (reading_0)
           i_0 <= i_0 + 13'h1;
         if (reading_1)
@@ -32270,12 +33091,12 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
         if (reading_15)
           i_15 <= i_15 + 13'h1;
       end
-      else if (_GEN_22) begin
-        if (_GEN_8) begin
+      else if (_GEN_26) begin
+        if (_GEN_7) begin
           i_0 <= 13'h0;
           i_1 <= _GEN_0;
-          i_2 <= 13'h0;
-          i_3 <= 13'h0;
+          i_2 <= {1'h0, num[12:1]};
+          i_3 <= _i_3_T_11[14:2];
           i_4 <= 13'h0;
           i_5 <= 13'h0;
           i_6 <= 13'h0;
@@ -32291,37 +33112,37 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
         end
       end
       else begin
-        if (_GEN_23 & reading_0)
+        if (_GEN_27 & reading_0)
           i_0 <= i_0 + 13'h1;
-        if (_GEN_23 & reading_1)
+        if (_GEN_27 & reading_1)
           i_1 <= i_1 + 13'h1;
-        if (_GEN_23 & reading_2)
+        if (_GEN_27 & reading_2)
           i_2 <= i_2 + 13'h1;
-        if (_GEN_23 & reading_3)
+        if (_GEN_27 & reading_3)
           i_3 <= i_3 + 13'h1;
-        if (_GEN_23 & reading_4)
+        if (_GEN_27 & reading_4)
           i_4 <= i_4 + 13'h1;
-        if (_GEN_23 & reading_5)
+        if (_GEN_27 & reading_5)
           i_5 <= i_5 + 13'h1;
-        if (_GEN_23 & reading_6)
+        if (_GEN_27 & reading_6)
           i_6 <= i_6 + 13'h1;
-        if (_GEN_23 & reading_7)
+        if (_GEN_27 & reading_7)
           i_7 <= i_7 + 13'h1;
-        if (_GEN_23 & reading_8)
+        if (_GEN_27 & reading_8)
           i_8 <= i_8 + 13'h1;
-        if (_GEN_23 & reading_9)
+        if (_GEN_27 & reading_9)
           i_9 <= i_9 + 13'h1;
-        if (_GEN_23 & reading_10)
+        if (_GEN_27 & reading_10)
           i_10 <= i_10 + 13'h1;
-        if (_GEN_23 & reading_11)
+        if (_GEN_27 & reading_11)
           i_11 <= i_11 + 13'h1;
-        if (_GEN_23 & reading_12)
+        if (_GEN_27 & reading_12)
           i_12 <= i_12 + 13'h1;
-        if (_GEN_23 & reading_13)
+        if (_GEN_27 & reading_13)
           i_13 <= i_13 + 13'h1;
-        if (_GEN_23 & reading_14)
+        if (_GEN_27 & reading_14)
           i_14 <= i_14 + 13'h1;
-        if (_GEN_23 & reading_15)
+        if (_GEN_27 & reading_15)
           i_15 <= i_15 + 13'h1;
       end
     end
@@ -32347,6 +33168,26 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     r <= REG;
     REG_1 <= i_1[11:0];
     r_1 <= REG_1;
+    REG_2 <= i_2[11:0];
+    r_2 <= REG_2;
+    REG_3 <= i_3[11:0];
+    r_3 <= REG_3;
+    entryGroup <= _gens_0_io_entry_group;
+    entryGroup_1 <= _gens_1_io_entry_group;
+    entryGroup_2 <= _gens_2_io_entry_group;
+    entryGroup_3 <= _gens_3_io_entry_group;
+    entryGroup_4 <= _gens_4_io_entry_group;
+    entryGroup_5 <= _gens_5_io_entry_group;
+    entryGroup_6 <= _gens_6_io_entry_group;
+    entryGroup_7 <= _gens_7_io_entry_group;
+    entryGroup_8 <= _gens_8_io_entry_group;
+    entryGroup_9 <= _gens_9_io_entry_group;
+    entryGroup_10 <= _gens_10_io_entry_group;
+    entryGroup_11 <= _gens_11_io_entry_group;
+    entryGroup_12 <= _gens_12_io_entry_group;
+    entryGroup_13 <= _gens_13_io_entry_group;
+    entryGroup_14 <= _gens_14_io_entry_group;
+    entryGroup_15 <= _gens_15_io_entry_group;
     if (reset) begin
       state <= 3'h0;
       st_k <= 13'h0;
@@ -32375,17 +33216,19 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
       laneKeys_13_io_in_valid_REG <= 1'h0;
       laneKeys_14_io_in_valid_REG <= 1'h0;
       laneKeys_15_io_in_valid_REG <= 1'h0;
-      REG_2 <= 1'h0;
+      REG_4 <= 1'h0;
     end
     else begin
       if (|state) begin
         state <= casez_tmp_7;
-        if (_GEN_19 | _GEN_20 | _GEN_21 | _GEN_22 | _GEN_23 | ~_GEN_11) begin
+        if (_GEN_23 | _GEN_24 | _GEN_25 | _GEN_26 | _GEN_27 | ~_GEN_10) begin
         end
         else begin
           st_k <= _cellExp_io_k;
-          st_badBucket <= _sort_io_badBucket;
-          st_sortMismatch <= _sort_io_counted != _sort_io_scattered;
+          st_badBucket <= _sorts_0_io_badBucket | _sorts_1_io_badBucket;
+          st_sortMismatch <=
+            _sorts_0_io_counted != _sorts_0_io_scattered
+            | _sorts_1_io_counted != _sorts_1_io_scattered;
         end
       end
       else begin
@@ -32398,7 +33241,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
         st_badBucket <= ~io_start & st_badBucket;
         st_sortMismatch <= ~io_start & st_sortMismatch;
       end
-      if (_GEN_18) begin
+      if (_GEN_22) begin
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
         st_tooMany <= z_tooMany;
@@ -32406,24 +33249,32 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
       end
       else begin
         if (classifying) begin
-          st_large <= st_large + {7'h0, largeKept - _GEN_15};
+          st_large <= st_large + {7'h0, largeKept - _GEN_14};
           largeCount <= largeKept[4:0];
         end
         if (|state)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
       st_cellOverflow <=
-        ~_GEN_18
+        ~_GEN_22
         & (classifying
            & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
               & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
-                  & _sort_io_in_0_valid_T_8) & _laneKeys_0_io_out_cellOverflow
+                  & _sorts_0_io_in_0_valid_T_8) & _laneKeys_0_io_out_cellOverflow
               | _laneKeys_1_io_out_valid & ~_laneKeys_1_io_out_nonFinite
               & ~(~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
-                  & _sort_io_in_1_valid_T_8) & _laneKeys_1_io_out_cellOverflow)
+                  & _sorts_0_io_in_1_valid_T_8) & _laneKeys_1_io_out_cellOverflow
+              | _laneKeys_2_io_out_valid & ~_laneKeys_2_io_out_nonFinite
+              & ~(~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
+                  & _sorts_1_io_in_0_valid_T_8) & _laneKeys_2_io_out_cellOverflow
+              | _laneKeys_3_io_out_valid & ~_laneKeys_3_io_out_nonFinite
+              & ~(~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
+                  & _sorts_1_io_in_1_valid_T_8) & _laneKeys_3_io_out_cellOverflow)
            | st_cellOverflow);
       st_largeOverflow <=
-        ~_GEN_18 & (largeHere_1 & ~_GEN_17 | largeHere_0 & ~_GEN_16 | st_largeOverflow);
+        ~_GEN_22
+        & (largeHere_3 & ~_GEN_21 | largeHere_2 & ~_GEN_19 | largeHere_1 & ~_GEN_16
+           | largeHere_0 & ~_GEN_15 | st_largeOverflow);
       inflight <=
         inflight
         + {1'h0,
@@ -32483,9 +33334,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
       laneKeys_13_io_in_valid_REG <= reading_13;
       laneKeys_14_io_in_valid_REG <= reading_14;
       laneKeys_15_io_in_valid_REG <= reading_15;
-      REG_2 <=
-        _sort_io_in_0_ready & _sort_io_in_0_valid_T_12 | _sort_io_in_1_ready
-        & _sort_io_in_1_valid_T_12;
+      REG_4 <=
+        _sorts_0_io_in_0_ready & _sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_1_ready
+        & _sorts_0_io_in_1_valid_T_12 | _sorts_1_io_in_0_ready
+        & _sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_1_ready
+        & _sorts_1_io_in_1_valid_T_12;
     end
   end // always @(posedge)
   CellExponent_fp32_L16_c20_world laneExps_0 (
@@ -32988,7 +33841,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .clock           (clock),
     .reset           (reset),
     .io_clear        (starting),
-    .io_in_0_valid   (_cellExp_io_in_1_valid_T & _GEN_5 < 10'h110 & casez_tmp),
+    .io_in_0_valid   (_cellExp_io_in_1_valid_T & _GEN_4 < 10'h110 & casez_tmp),
     .io_in_0_need    (casez_tmp_0),
     .io_in_0_top     (casez_tmp_1),
     .io_in_0_topNone (~casez_tmp_2),
@@ -32998,434 +33851,861 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_in_1_topNone (~casez_tmp_6),
     .io_k            (_cellExp_io_k)
   );
-  BucketSort_n4096_b13_w4_c16_p2_world sort (
+  BucketSort_n2048_b13_w4_c16_p2_i12_world sorts_0 (
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
     .io_clear             (starting),
-    .io_prefix            (state == 3'h4 & ~sent),
-    .io_busy              (_sort_io_busy),
-    .io_in_0_ready        (_sort_io_in_0_ready),
-    .io_in_0_valid        (_sort_io_in_0_valid_T_12),
-    .io_in_0_bits_scatter (_sort_io_in_1_bits_scatter_T),
+    .io_prefix            (_sorts_1_io_prefix_T & ~sent),
+    .io_busy              (_sorts_0_io_busy),
+    .io_in_0_ready        (_sorts_0_io_in_0_ready),
+    .io_in_0_valid        (_sorts_0_io_in_0_valid_T_12),
+    .io_in_0_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
       ((_laneKeys_0_io_out_cell_0[12:0] * 13'h145D ^ _laneKeys_0_io_out_cell_1[12:0]
         * 13'h9F ^ _laneKeys_0_io_out_cell_2[12:0] * 13'h1FB7)
-       & _sort_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
+       & _sorts_1_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
     .io_in_0_bits_item    (r),
-    .io_in_1_ready        (_sort_io_in_1_ready),
-    .io_in_1_valid        (_sort_io_in_1_valid_T_12),
-    .io_in_1_bits_scatter (_sort_io_in_1_bits_scatter_T),
+    .io_in_1_ready        (_sorts_0_io_in_1_ready),
+    .io_in_1_valid        (_sorts_0_io_in_1_valid_T_12),
+    .io_in_1_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
       ((_laneKeys_1_io_out_cell_0[12:0] * 13'h145D ^ _laneKeys_1_io_out_cell_1[12:0]
         * 13'h9F ^ _laneKeys_1_io_out_cell_2[12:0] * 13'h1FB7)
-       & _sort_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
+       & _sorts_1_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
     .io_in_1_bits_item    (r_1),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
-    .io_lookup_0_begin    (_sort_io_lookup_0_begin),
-    .io_lookup_0_end      (_sort_io_lookup_0_end),
-    .io_lookup_0_word_0   (_sort_io_lookup_0_word_0),
-    .io_lookup_0_word_1   (_sort_io_lookup_0_word_1),
-    .io_lookup_0_word_2   (_sort_io_lookup_0_word_2),
-    .io_lookup_0_word_3   (_sort_io_lookup_0_word_3),
-    .io_lookup_0_word_4   (_sort_io_lookup_0_word_4),
-    .io_lookup_0_word_5   (_sort_io_lookup_0_word_5),
-    .io_lookup_0_word_6   (_sort_io_lookup_0_word_6),
-    .io_lookup_0_word_7   (_sort_io_lookup_0_word_7),
-    .io_lookup_0_word_8   (_sort_io_lookup_0_word_8),
-    .io_lookup_0_word_9   (_sort_io_lookup_0_word_9),
-    .io_lookup_0_word_10  (_sort_io_lookup_0_word_10),
-    .io_lookup_0_word_11  (_sort_io_lookup_0_word_11),
-    .io_lookup_0_word_12  (_sort_io_lookup_0_word_12),
-    .io_lookup_0_word_13  (_sort_io_lookup_0_word_13),
-    .io_lookup_0_word_14  (_sort_io_lookup_0_word_14),
-    .io_lookup_0_word_15  (_sort_io_lookup_0_word_15),
+    .io_lookup_0_begin    (_sorts_0_io_lookup_0_begin),
+    .io_lookup_0_end      (_sorts_0_io_lookup_0_end),
+    .io_lookup_0_word_0   (_sorts_0_io_lookup_0_word_0),
+    .io_lookup_0_word_1   (_sorts_0_io_lookup_0_word_1),
+    .io_lookup_0_word_2   (_sorts_0_io_lookup_0_word_2),
+    .io_lookup_0_word_3   (_sorts_0_io_lookup_0_word_3),
+    .io_lookup_0_word_4   (_sorts_0_io_lookup_0_word_4),
+    .io_lookup_0_word_5   (_sorts_0_io_lookup_0_word_5),
+    .io_lookup_0_word_6   (_sorts_0_io_lookup_0_word_6),
+    .io_lookup_0_word_7   (_sorts_0_io_lookup_0_word_7),
+    .io_lookup_0_word_8   (_sorts_0_io_lookup_0_word_8),
+    .io_lookup_0_word_9   (_sorts_0_io_lookup_0_word_9),
+    .io_lookup_0_word_10  (_sorts_0_io_lookup_0_word_10),
+    .io_lookup_0_word_11  (_sorts_0_io_lookup_0_word_11),
+    .io_lookup_0_word_12  (_sorts_0_io_lookup_0_word_12),
+    .io_lookup_0_word_13  (_sorts_0_io_lookup_0_word_13),
+    .io_lookup_0_word_14  (_sorts_0_io_lookup_0_word_14),
+    .io_lookup_0_word_15  (_sorts_0_io_lookup_0_word_15),
     .io_lookup_1_bucket   (_gens_1_io_lookup_bucket),
-    .io_lookup_1_begin    (_sort_io_lookup_1_begin),
-    .io_lookup_1_end      (_sort_io_lookup_1_end),
-    .io_lookup_1_word_0   (_sort_io_lookup_1_word_0),
-    .io_lookup_1_word_1   (_sort_io_lookup_1_word_1),
-    .io_lookup_1_word_2   (_sort_io_lookup_1_word_2),
-    .io_lookup_1_word_3   (_sort_io_lookup_1_word_3),
-    .io_lookup_1_word_4   (_sort_io_lookup_1_word_4),
-    .io_lookup_1_word_5   (_sort_io_lookup_1_word_5),
-    .io_lookup_1_word_6   (_sort_io_lookup_1_word_6),
-    .io_lookup_1_word_7   (_sort_io_lookup_1_word_7),
-    .io_lookup_1_word_8   (_sort_io_lookup_1_word_8),
-    .io_lookup_1_word_9   (_sort_io_lookup_1_word_9),
-    .io_lookup_1_word_10  (_sort_io_lookup_1_word_10),
-    .io_lookup_1_word_11  (_sort_io_lookup_1_word_11),
-    .io_lookup_1_word_12  (_sort_io_lookup_1_word_12),
-    .io_lookup_1_word_13  (_sort_io_lookup_1_word_13),
-    .io_lookup_1_word_14  (_sort_io_lookup_1_word_14),
-    .io_lookup_1_word_15  (_sort_io_lookup_1_word_15),
+    .io_lookup_1_begin    (_sorts_0_io_lookup_1_begin),
+    .io_lookup_1_end      (_sorts_0_io_lookup_1_end),
+    .io_lookup_1_word_0   (_sorts_0_io_lookup_1_word_0),
+    .io_lookup_1_word_1   (_sorts_0_io_lookup_1_word_1),
+    .io_lookup_1_word_2   (_sorts_0_io_lookup_1_word_2),
+    .io_lookup_1_word_3   (_sorts_0_io_lookup_1_word_3),
+    .io_lookup_1_word_4   (_sorts_0_io_lookup_1_word_4),
+    .io_lookup_1_word_5   (_sorts_0_io_lookup_1_word_5),
+    .io_lookup_1_word_6   (_sorts_0_io_lookup_1_word_6),
+    .io_lookup_1_word_7   (_sorts_0_io_lookup_1_word_7),
+    .io_lookup_1_word_8   (_sorts_0_io_lookup_1_word_8),
+    .io_lookup_1_word_9   (_sorts_0_io_lookup_1_word_9),
+    .io_lookup_1_word_10  (_sorts_0_io_lookup_1_word_10),
+    .io_lookup_1_word_11  (_sorts_0_io_lookup_1_word_11),
+    .io_lookup_1_word_12  (_sorts_0_io_lookup_1_word_12),
+    .io_lookup_1_word_13  (_sorts_0_io_lookup_1_word_13),
+    .io_lookup_1_word_14  (_sorts_0_io_lookup_1_word_14),
+    .io_lookup_1_word_15  (_sorts_0_io_lookup_1_word_15),
     .io_lookup_2_bucket   (_gens_2_io_lookup_bucket),
-    .io_lookup_2_begin    (_sort_io_lookup_2_begin),
-    .io_lookup_2_end      (_sort_io_lookup_2_end),
-    .io_lookup_2_word_0   (_sort_io_lookup_2_word_0),
-    .io_lookup_2_word_1   (_sort_io_lookup_2_word_1),
-    .io_lookup_2_word_2   (_sort_io_lookup_2_word_2),
-    .io_lookup_2_word_3   (_sort_io_lookup_2_word_3),
-    .io_lookup_2_word_4   (_sort_io_lookup_2_word_4),
-    .io_lookup_2_word_5   (_sort_io_lookup_2_word_5),
-    .io_lookup_2_word_6   (_sort_io_lookup_2_word_6),
-    .io_lookup_2_word_7   (_sort_io_lookup_2_word_7),
-    .io_lookup_2_word_8   (_sort_io_lookup_2_word_8),
-    .io_lookup_2_word_9   (_sort_io_lookup_2_word_9),
-    .io_lookup_2_word_10  (_sort_io_lookup_2_word_10),
-    .io_lookup_2_word_11  (_sort_io_lookup_2_word_11),
-    .io_lookup_2_word_12  (_sort_io_lookup_2_word_12),
-    .io_lookup_2_word_13  (_sort_io_lookup_2_word_13),
-    .io_lookup_2_word_14  (_sort_io_lookup_2_word_14),
-    .io_lookup_2_word_15  (_sort_io_lookup_2_word_15),
+    .io_lookup_2_begin    (_sorts_0_io_lookup_2_begin),
+    .io_lookup_2_end      (_sorts_0_io_lookup_2_end),
+    .io_lookup_2_word_0   (_sorts_0_io_lookup_2_word_0),
+    .io_lookup_2_word_1   (_sorts_0_io_lookup_2_word_1),
+    .io_lookup_2_word_2   (_sorts_0_io_lookup_2_word_2),
+    .io_lookup_2_word_3   (_sorts_0_io_lookup_2_word_3),
+    .io_lookup_2_word_4   (_sorts_0_io_lookup_2_word_4),
+    .io_lookup_2_word_5   (_sorts_0_io_lookup_2_word_5),
+    .io_lookup_2_word_6   (_sorts_0_io_lookup_2_word_6),
+    .io_lookup_2_word_7   (_sorts_0_io_lookup_2_word_7),
+    .io_lookup_2_word_8   (_sorts_0_io_lookup_2_word_8),
+    .io_lookup_2_word_9   (_sorts_0_io_lookup_2_word_9),
+    .io_lookup_2_word_10  (_sorts_0_io_lookup_2_word_10),
+    .io_lookup_2_word_11  (_sorts_0_io_lookup_2_word_11),
+    .io_lookup_2_word_12  (_sorts_0_io_lookup_2_word_12),
+    .io_lookup_2_word_13  (_sorts_0_io_lookup_2_word_13),
+    .io_lookup_2_word_14  (_sorts_0_io_lookup_2_word_14),
+    .io_lookup_2_word_15  (_sorts_0_io_lookup_2_word_15),
     .io_lookup_3_bucket   (_gens_3_io_lookup_bucket),
-    .io_lookup_3_begin    (_sort_io_lookup_3_begin),
-    .io_lookup_3_end      (_sort_io_lookup_3_end),
-    .io_lookup_3_word_0   (_sort_io_lookup_3_word_0),
-    .io_lookup_3_word_1   (_sort_io_lookup_3_word_1),
-    .io_lookup_3_word_2   (_sort_io_lookup_3_word_2),
-    .io_lookup_3_word_3   (_sort_io_lookup_3_word_3),
-    .io_lookup_3_word_4   (_sort_io_lookup_3_word_4),
-    .io_lookup_3_word_5   (_sort_io_lookup_3_word_5),
-    .io_lookup_3_word_6   (_sort_io_lookup_3_word_6),
-    .io_lookup_3_word_7   (_sort_io_lookup_3_word_7),
-    .io_lookup_3_word_8   (_sort_io_lookup_3_word_8),
-    .io_lookup_3_word_9   (_sort_io_lookup_3_word_9),
-    .io_lookup_3_word_10  (_sort_io_lookup_3_word_10),
-    .io_lookup_3_word_11  (_sort_io_lookup_3_word_11),
-    .io_lookup_3_word_12  (_sort_io_lookup_3_word_12),
-    .io_lookup_3_word_13  (_sort_io_lookup_3_word_13),
-    .io_lookup_3_word_14  (_sort_io_lookup_3_word_14),
-    .io_lookup_3_word_15  (_sort_io_lookup_3_word_15),
+    .io_lookup_3_begin    (_sorts_0_io_lookup_3_begin),
+    .io_lookup_3_end      (_sorts_0_io_lookup_3_end),
+    .io_lookup_3_word_0   (_sorts_0_io_lookup_3_word_0),
+    .io_lookup_3_word_1   (_sorts_0_io_lookup_3_word_1),
+    .io_lookup_3_word_2   (_sorts_0_io_lookup_3_word_2),
+    .io_lookup_3_word_3   (_sorts_0_io_lookup_3_word_3),
+    .io_lookup_3_word_4   (_sorts_0_io_lookup_3_word_4),
+    .io_lookup_3_word_5   (_sorts_0_io_lookup_3_word_5),
+    .io_lookup_3_word_6   (_sorts_0_io_lookup_3_word_6),
+    .io_lookup_3_word_7   (_sorts_0_io_lookup_3_word_7),
+    .io_lookup_3_word_8   (_sorts_0_io_lookup_3_word_8),
+    .io_lookup_3_word_9   (_sorts_0_io_lookup_3_word_9),
+    .io_lookup_3_word_10  (_sorts_0_io_lookup_3_word_10),
+    .io_lookup_3_word_11  (_sorts_0_io_lookup_3_word_11),
+    .io_lookup_3_word_12  (_sorts_0_io_lookup_3_word_12),
+    .io_lookup_3_word_13  (_sorts_0_io_lookup_3_word_13),
+    .io_lookup_3_word_14  (_sorts_0_io_lookup_3_word_14),
+    .io_lookup_3_word_15  (_sorts_0_io_lookup_3_word_15),
     .io_lookup_4_bucket   (_gens_4_io_lookup_bucket),
-    .io_lookup_4_begin    (_sort_io_lookup_4_begin),
-    .io_lookup_4_end      (_sort_io_lookup_4_end),
-    .io_lookup_4_word_0   (_sort_io_lookup_4_word_0),
-    .io_lookup_4_word_1   (_sort_io_lookup_4_word_1),
-    .io_lookup_4_word_2   (_sort_io_lookup_4_word_2),
-    .io_lookup_4_word_3   (_sort_io_lookup_4_word_3),
-    .io_lookup_4_word_4   (_sort_io_lookup_4_word_4),
-    .io_lookup_4_word_5   (_sort_io_lookup_4_word_5),
-    .io_lookup_4_word_6   (_sort_io_lookup_4_word_6),
-    .io_lookup_4_word_7   (_sort_io_lookup_4_word_7),
-    .io_lookup_4_word_8   (_sort_io_lookup_4_word_8),
-    .io_lookup_4_word_9   (_sort_io_lookup_4_word_9),
-    .io_lookup_4_word_10  (_sort_io_lookup_4_word_10),
-    .io_lookup_4_word_11  (_sort_io_lookup_4_word_11),
-    .io_lookup_4_word_12  (_sort_io_lookup_4_word_12),
-    .io_lookup_4_word_13  (_sort_io_lookup_4_word_13),
-    .io_lookup_4_word_14  (_sort_io_lookup_4_word_14),
-    .io_lookup_4_word_15  (_sort_io_lookup_4_word_15),
+    .io_lookup_4_begin    (_sorts_0_io_lookup_4_begin),
+    .io_lookup_4_end      (_sorts_0_io_lookup_4_end),
+    .io_lookup_4_word_0   (_sorts_0_io_lookup_4_word_0),
+    .io_lookup_4_word_1   (_sorts_0_io_lookup_4_word_1),
+    .io_lookup_4_word_2   (_sorts_0_io_lookup_4_word_2),
+    .io_lookup_4_word_3   (_sorts_0_io_lookup_4_word_3),
+    .io_lookup_4_word_4   (_sorts_0_io_lookup_4_word_4),
+    .io_lookup_4_word_5   (_sorts_0_io_lookup_4_word_5),
+    .io_lookup_4_word_6   (_sorts_0_io_lookup_4_word_6),
+    .io_lookup_4_word_7   (_sorts_0_io_lookup_4_word_7),
+    .io_lookup_4_word_8   (_sorts_0_io_lookup_4_word_8),
+    .io_lookup_4_word_9   (_sorts_0_io_lookup_4_word_9),
+    .io_lookup_4_word_10  (_sorts_0_io_lookup_4_word_10),
+    .io_lookup_4_word_11  (_sorts_0_io_lookup_4_word_11),
+    .io_lookup_4_word_12  (_sorts_0_io_lookup_4_word_12),
+    .io_lookup_4_word_13  (_sorts_0_io_lookup_4_word_13),
+    .io_lookup_4_word_14  (_sorts_0_io_lookup_4_word_14),
+    .io_lookup_4_word_15  (_sorts_0_io_lookup_4_word_15),
     .io_lookup_5_bucket   (_gens_5_io_lookup_bucket),
-    .io_lookup_5_begin    (_sort_io_lookup_5_begin),
-    .io_lookup_5_end      (_sort_io_lookup_5_end),
-    .io_lookup_5_word_0   (_sort_io_lookup_5_word_0),
-    .io_lookup_5_word_1   (_sort_io_lookup_5_word_1),
-    .io_lookup_5_word_2   (_sort_io_lookup_5_word_2),
-    .io_lookup_5_word_3   (_sort_io_lookup_5_word_3),
-    .io_lookup_5_word_4   (_sort_io_lookup_5_word_4),
-    .io_lookup_5_word_5   (_sort_io_lookup_5_word_5),
-    .io_lookup_5_word_6   (_sort_io_lookup_5_word_6),
-    .io_lookup_5_word_7   (_sort_io_lookup_5_word_7),
-    .io_lookup_5_word_8   (_sort_io_lookup_5_word_8),
-    .io_lookup_5_word_9   (_sort_io_lookup_5_word_9),
-    .io_lookup_5_word_10  (_sort_io_lookup_5_word_10),
-    .io_lookup_5_word_11  (_sort_io_lookup_5_word_11),
-    .io_lookup_5_word_12  (_sort_io_lookup_5_word_12),
-    .io_lookup_5_word_13  (_sort_io_lookup_5_word_13),
-    .io_lookup_5_word_14  (_sort_io_lookup_5_word_14),
-    .io_lookup_5_word_15  (_sort_io_lookup_5_word_15),
+    .io_lookup_5_begin    (_sorts_0_io_lookup_5_begin),
+    .io_lookup_5_end      (_sorts_0_io_lookup_5_end),
+    .io_lookup_5_word_0   (_sorts_0_io_lookup_5_word_0),
+    .io_lookup_5_word_1   (_sorts_0_io_lookup_5_word_1),
+    .io_lookup_5_word_2   (_sorts_0_io_lookup_5_word_2),
+    .io_lookup_5_word_3   (_sorts_0_io_lookup_5_word_3),
+    .io_lookup_5_word_4   (_sorts_0_io_lookup_5_word_4),
+    .io_lookup_5_word_5   (_sorts_0_io_lookup_5_word_5),
+    .io_lookup_5_word_6   (_sorts_0_io_lookup_5_word_6),
+    .io_lookup_5_word_7   (_sorts_0_io_lookup_5_word_7),
+    .io_lookup_5_word_8   (_sorts_0_io_lookup_5_word_8),
+    .io_lookup_5_word_9   (_sorts_0_io_lookup_5_word_9),
+    .io_lookup_5_word_10  (_sorts_0_io_lookup_5_word_10),
+    .io_lookup_5_word_11  (_sorts_0_io_lookup_5_word_11),
+    .io_lookup_5_word_12  (_sorts_0_io_lookup_5_word_12),
+    .io_lookup_5_word_13  (_sorts_0_io_lookup_5_word_13),
+    .io_lookup_5_word_14  (_sorts_0_io_lookup_5_word_14),
+    .io_lookup_5_word_15  (_sorts_0_io_lookup_5_word_15),
     .io_lookup_6_bucket   (_gens_6_io_lookup_bucket),
-    .io_lookup_6_begin    (_sort_io_lookup_6_begin),
-    .io_lookup_6_end      (_sort_io_lookup_6_end),
-    .io_lookup_6_word_0   (_sort_io_lookup_6_word_0),
-    .io_lookup_6_word_1   (_sort_io_lookup_6_word_1),
-    .io_lookup_6_word_2   (_sort_io_lookup_6_word_2),
-    .io_lookup_6_word_3   (_sort_io_lookup_6_word_3),
-    .io_lookup_6_word_4   (_sort_io_lookup_6_word_4),
-    .io_lookup_6_word_5   (_sort_io_lookup_6_word_5),
-    .io_lookup_6_word_6   (_sort_io_lookup_6_word_6),
-    .io_lookup_6_word_7   (_sort_io_lookup_6_word_7),
-    .io_lookup_6_word_8   (_sort_io_lookup_6_word_8),
-    .io_lookup_6_word_9   (_sort_io_lookup_6_word_9),
-    .io_lookup_6_word_10  (_sort_io_lookup_6_word_10),
-    .io_lookup_6_word_11  (_sort_io_lookup_6_word_11),
-    .io_lookup_6_word_12  (_sort_io_lookup_6_word_12),
-    .io_lookup_6_word_13  (_sort_io_lookup_6_word_13),
-    .io_lookup_6_word_14  (_sort_io_lookup_6_word_14),
-    .io_lookup_6_word_15  (_sort_io_lookup_6_word_15),
+    .io_lookup_6_begin    (_sorts_0_io_lookup_6_begin),
+    .io_lookup_6_end      (_sorts_0_io_lookup_6_end),
+    .io_lookup_6_word_0   (_sorts_0_io_lookup_6_word_0),
+    .io_lookup_6_word_1   (_sorts_0_io_lookup_6_word_1),
+    .io_lookup_6_word_2   (_sorts_0_io_lookup_6_word_2),
+    .io_lookup_6_word_3   (_sorts_0_io_lookup_6_word_3),
+    .io_lookup_6_word_4   (_sorts_0_io_lookup_6_word_4),
+    .io_lookup_6_word_5   (_sorts_0_io_lookup_6_word_5),
+    .io_lookup_6_word_6   (_sorts_0_io_lookup_6_word_6),
+    .io_lookup_6_word_7   (_sorts_0_io_lookup_6_word_7),
+    .io_lookup_6_word_8   (_sorts_0_io_lookup_6_word_8),
+    .io_lookup_6_word_9   (_sorts_0_io_lookup_6_word_9),
+    .io_lookup_6_word_10  (_sorts_0_io_lookup_6_word_10),
+    .io_lookup_6_word_11  (_sorts_0_io_lookup_6_word_11),
+    .io_lookup_6_word_12  (_sorts_0_io_lookup_6_word_12),
+    .io_lookup_6_word_13  (_sorts_0_io_lookup_6_word_13),
+    .io_lookup_6_word_14  (_sorts_0_io_lookup_6_word_14),
+    .io_lookup_6_word_15  (_sorts_0_io_lookup_6_word_15),
     .io_lookup_7_bucket   (_gens_7_io_lookup_bucket),
-    .io_lookup_7_begin    (_sort_io_lookup_7_begin),
-    .io_lookup_7_end      (_sort_io_lookup_7_end),
-    .io_lookup_7_word_0   (_sort_io_lookup_7_word_0),
-    .io_lookup_7_word_1   (_sort_io_lookup_7_word_1),
-    .io_lookup_7_word_2   (_sort_io_lookup_7_word_2),
-    .io_lookup_7_word_3   (_sort_io_lookup_7_word_3),
-    .io_lookup_7_word_4   (_sort_io_lookup_7_word_4),
-    .io_lookup_7_word_5   (_sort_io_lookup_7_word_5),
-    .io_lookup_7_word_6   (_sort_io_lookup_7_word_6),
-    .io_lookup_7_word_7   (_sort_io_lookup_7_word_7),
-    .io_lookup_7_word_8   (_sort_io_lookup_7_word_8),
-    .io_lookup_7_word_9   (_sort_io_lookup_7_word_9),
-    .io_lookup_7_word_10  (_sort_io_lookup_7_word_10),
-    .io_lookup_7_word_11  (_sort_io_lookup_7_word_11),
-    .io_lookup_7_word_12  (_sort_io_lookup_7_word_12),
-    .io_lookup_7_word_13  (_sort_io_lookup_7_word_13),
-    .io_lookup_7_word_14  (_sort_io_lookup_7_word_14),
-    .io_lookup_7_word_15  (_sort_io_lookup_7_word_15),
+    .io_lookup_7_begin    (_sorts_0_io_lookup_7_begin),
+    .io_lookup_7_end      (_sorts_0_io_lookup_7_end),
+    .io_lookup_7_word_0   (_sorts_0_io_lookup_7_word_0),
+    .io_lookup_7_word_1   (_sorts_0_io_lookup_7_word_1),
+    .io_lookup_7_word_2   (_sorts_0_io_lookup_7_word_2),
+    .io_lookup_7_word_3   (_sorts_0_io_lookup_7_word_3),
+    .io_lookup_7_word_4   (_sorts_0_io_lookup_7_word_4),
+    .io_lookup_7_word_5   (_sorts_0_io_lookup_7_word_5),
+    .io_lookup_7_word_6   (_sorts_0_io_lookup_7_word_6),
+    .io_lookup_7_word_7   (_sorts_0_io_lookup_7_word_7),
+    .io_lookup_7_word_8   (_sorts_0_io_lookup_7_word_8),
+    .io_lookup_7_word_9   (_sorts_0_io_lookup_7_word_9),
+    .io_lookup_7_word_10  (_sorts_0_io_lookup_7_word_10),
+    .io_lookup_7_word_11  (_sorts_0_io_lookup_7_word_11),
+    .io_lookup_7_word_12  (_sorts_0_io_lookup_7_word_12),
+    .io_lookup_7_word_13  (_sorts_0_io_lookup_7_word_13),
+    .io_lookup_7_word_14  (_sorts_0_io_lookup_7_word_14),
+    .io_lookup_7_word_15  (_sorts_0_io_lookup_7_word_15),
     .io_lookup_8_bucket   (_gens_8_io_lookup_bucket),
-    .io_lookup_8_begin    (_sort_io_lookup_8_begin),
-    .io_lookup_8_end      (_sort_io_lookup_8_end),
-    .io_lookup_8_word_0   (_sort_io_lookup_8_word_0),
-    .io_lookup_8_word_1   (_sort_io_lookup_8_word_1),
-    .io_lookup_8_word_2   (_sort_io_lookup_8_word_2),
-    .io_lookup_8_word_3   (_sort_io_lookup_8_word_3),
-    .io_lookup_8_word_4   (_sort_io_lookup_8_word_4),
-    .io_lookup_8_word_5   (_sort_io_lookup_8_word_5),
-    .io_lookup_8_word_6   (_sort_io_lookup_8_word_6),
-    .io_lookup_8_word_7   (_sort_io_lookup_8_word_7),
-    .io_lookup_8_word_8   (_sort_io_lookup_8_word_8),
-    .io_lookup_8_word_9   (_sort_io_lookup_8_word_9),
-    .io_lookup_8_word_10  (_sort_io_lookup_8_word_10),
-    .io_lookup_8_word_11  (_sort_io_lookup_8_word_11),
-    .io_lookup_8_word_12  (_sort_io_lookup_8_word_12),
-    .io_lookup_8_word_13  (_sort_io_lookup_8_word_13),
-    .io_lookup_8_word_14  (_sort_io_lookup_8_word_14),
-    .io_lookup_8_word_15  (_sort_io_lookup_8_word_15),
+    .io_lookup_8_begin    (_sorts_0_io_lookup_8_begin),
+    .io_lookup_8_end      (_sorts_0_io_lookup_8_end),
+    .io_lookup_8_word_0   (_sorts_0_io_lookup_8_word_0),
+    .io_lookup_8_word_1   (_sorts_0_io_lookup_8_word_1),
+    .io_lookup_8_word_2   (_sorts_0_io_lookup_8_word_2),
+    .io_lookup_8_word_3   (_sorts_0_io_lookup_8_word_3),
+    .io_lookup_8_word_4   (_sorts_0_io_lookup_8_word_4),
+    .io_lookup_8_word_5   (_sorts_0_io_lookup_8_word_5),
+    .io_lookup_8_word_6   (_sorts_0_io_lookup_8_word_6),
+    .io_lookup_8_word_7   (_sorts_0_io_lookup_8_word_7),
+    .io_lookup_8_word_8   (_sorts_0_io_lookup_8_word_8),
+    .io_lookup_8_word_9   (_sorts_0_io_lookup_8_word_9),
+    .io_lookup_8_word_10  (_sorts_0_io_lookup_8_word_10),
+    .io_lookup_8_word_11  (_sorts_0_io_lookup_8_word_11),
+    .io_lookup_8_word_12  (_sorts_0_io_lookup_8_word_12),
+    .io_lookup_8_word_13  (_sorts_0_io_lookup_8_word_13),
+    .io_lookup_8_word_14  (_sorts_0_io_lookup_8_word_14),
+    .io_lookup_8_word_15  (_sorts_0_io_lookup_8_word_15),
     .io_lookup_9_bucket   (_gens_9_io_lookup_bucket),
-    .io_lookup_9_begin    (_sort_io_lookup_9_begin),
-    .io_lookup_9_end      (_sort_io_lookup_9_end),
-    .io_lookup_9_word_0   (_sort_io_lookup_9_word_0),
-    .io_lookup_9_word_1   (_sort_io_lookup_9_word_1),
-    .io_lookup_9_word_2   (_sort_io_lookup_9_word_2),
-    .io_lookup_9_word_3   (_sort_io_lookup_9_word_3),
-    .io_lookup_9_word_4   (_sort_io_lookup_9_word_4),
-    .io_lookup_9_word_5   (_sort_io_lookup_9_word_5),
-    .io_lookup_9_word_6   (_sort_io_lookup_9_word_6),
-    .io_lookup_9_word_7   (_sort_io_lookup_9_word_7),
-    .io_lookup_9_word_8   (_sort_io_lookup_9_word_8),
-    .io_lookup_9_word_9   (_sort_io_lookup_9_word_9),
-    .io_lookup_9_word_10  (_sort_io_lookup_9_word_10),
-    .io_lookup_9_word_11  (_sort_io_lookup_9_word_11),
-    .io_lookup_9_word_12  (_sort_io_lookup_9_word_12),
-    .io_lookup_9_word_13  (_sort_io_lookup_9_word_13),
-    .io_lookup_9_word_14  (_sort_io_lookup_9_word_14),
-    .io_lookup_9_word_15  (_sort_io_lookup_9_word_15),
+    .io_lookup_9_begin    (_sorts_0_io_lookup_9_begin),
+    .io_lookup_9_end      (_sorts_0_io_lookup_9_end),
+    .io_lookup_9_word_0   (_sorts_0_io_lookup_9_word_0),
+    .io_lookup_9_word_1   (_sorts_0_io_lookup_9_word_1),
+    .io_lookup_9_word_2   (_sorts_0_io_lookup_9_word_2),
+    .io_lookup_9_word_3   (_sorts_0_io_lookup_9_word_3),
+    .io_lookup_9_word_4   (_sorts_0_io_lookup_9_word_4),
+    .io_lookup_9_word_5   (_sorts_0_io_lookup_9_word_5),
+    .io_lookup_9_word_6   (_sorts_0_io_lookup_9_word_6),
+    .io_lookup_9_word_7   (_sorts_0_io_lookup_9_word_7),
+    .io_lookup_9_word_8   (_sorts_0_io_lookup_9_word_8),
+    .io_lookup_9_word_9   (_sorts_0_io_lookup_9_word_9),
+    .io_lookup_9_word_10  (_sorts_0_io_lookup_9_word_10),
+    .io_lookup_9_word_11  (_sorts_0_io_lookup_9_word_11),
+    .io_lookup_9_word_12  (_sorts_0_io_lookup_9_word_12),
+    .io_lookup_9_word_13  (_sorts_0_io_lookup_9_word_13),
+    .io_lookup_9_word_14  (_sorts_0_io_lookup_9_word_14),
+    .io_lookup_9_word_15  (_sorts_0_io_lookup_9_word_15),
     .io_lookup_10_bucket  (_gens_10_io_lookup_bucket),
-    .io_lookup_10_begin   (_sort_io_lookup_10_begin),
-    .io_lookup_10_end     (_sort_io_lookup_10_end),
-    .io_lookup_10_word_0  (_sort_io_lookup_10_word_0),
-    .io_lookup_10_word_1  (_sort_io_lookup_10_word_1),
-    .io_lookup_10_word_2  (_sort_io_lookup_10_word_2),
-    .io_lookup_10_word_3  (_sort_io_lookup_10_word_3),
-    .io_lookup_10_word_4  (_sort_io_lookup_10_word_4),
-    .io_lookup_10_word_5  (_sort_io_lookup_10_word_5),
-    .io_lookup_10_word_6  (_sort_io_lookup_10_word_6),
-    .io_lookup_10_word_7  (_sort_io_lookup_10_word_7),
-    .io_lookup_10_word_8  (_sort_io_lookup_10_word_8),
-    .io_lookup_10_word_9  (_sort_io_lookup_10_word_9),
-    .io_lookup_10_word_10 (_sort_io_lookup_10_word_10),
-    .io_lookup_10_word_11 (_sort_io_lookup_10_word_11),
-    .io_lookup_10_word_12 (_sort_io_lookup_10_word_12),
-    .io_lookup_10_word_13 (_sort_io_lookup_10_word_13),
-    .io_lookup_10_word_14 (_sort_io_lookup_10_word_14),
-    .io_lookup_10_word_15 (_sort_io_lookup_10_word_15),
+    .io_lookup_10_begin   (_sorts_0_io_lookup_10_begin),
+    .io_lookup_10_end     (_sorts_0_io_lookup_10_end),
+    .io_lookup_10_word_0  (_sorts_0_io_lookup_10_word_0),
+    .io_lookup_10_word_1  (_sorts_0_io_lookup_10_word_1),
+    .io_lookup_10_word_2  (_sorts_0_io_lookup_10_word_2),
+    .io_lookup_10_word_3  (_sorts_0_io_lookup_10_word_3),
+    .io_lookup_10_word_4  (_sorts_0_io_lookup_10_word_4),
+    .io_lookup_10_word_5  (_sorts_0_io_lookup_10_word_5),
+    .io_lookup_10_word_6  (_sorts_0_io_lookup_10_word_6),
+    .io_lookup_10_word_7  (_sorts_0_io_lookup_10_word_7),
+    .io_lookup_10_word_8  (_sorts_0_io_lookup_10_word_8),
+    .io_lookup_10_word_9  (_sorts_0_io_lookup_10_word_9),
+    .io_lookup_10_word_10 (_sorts_0_io_lookup_10_word_10),
+    .io_lookup_10_word_11 (_sorts_0_io_lookup_10_word_11),
+    .io_lookup_10_word_12 (_sorts_0_io_lookup_10_word_12),
+    .io_lookup_10_word_13 (_sorts_0_io_lookup_10_word_13),
+    .io_lookup_10_word_14 (_sorts_0_io_lookup_10_word_14),
+    .io_lookup_10_word_15 (_sorts_0_io_lookup_10_word_15),
     .io_lookup_11_bucket  (_gens_11_io_lookup_bucket),
-    .io_lookup_11_begin   (_sort_io_lookup_11_begin),
-    .io_lookup_11_end     (_sort_io_lookup_11_end),
-    .io_lookup_11_word_0  (_sort_io_lookup_11_word_0),
-    .io_lookup_11_word_1  (_sort_io_lookup_11_word_1),
-    .io_lookup_11_word_2  (_sort_io_lookup_11_word_2),
-    .io_lookup_11_word_3  (_sort_io_lookup_11_word_3),
-    .io_lookup_11_word_4  (_sort_io_lookup_11_word_4),
-    .io_lookup_11_word_5  (_sort_io_lookup_11_word_5),
-    .io_lookup_11_word_6  (_sort_io_lookup_11_word_6),
-    .io_lookup_11_word_7  (_sort_io_lookup_11_word_7),
-    .io_lookup_11_word_8  (_sort_io_lookup_11_word_8),
-    .io_lookup_11_word_9  (_sort_io_lookup_11_word_9),
-    .io_lookup_11_word_10 (_sort_io_lookup_11_word_10),
-    .io_lookup_11_word_11 (_sort_io_lookup_11_word_11),
-    .io_lookup_11_word_12 (_sort_io_lookup_11_word_12),
-    .io_lookup_11_word_13 (_sort_io_lookup_11_word_13),
-    .io_lookup_11_word_14 (_sort_io_lookup_11_word_14),
-    .io_lookup_11_word_15 (_sort_io_lookup_11_word_15),
+    .io_lookup_11_begin   (_sorts_0_io_lookup_11_begin),
+    .io_lookup_11_end     (_sorts_0_io_lookup_11_end),
+    .io_lookup_11_word_0  (_sorts_0_io_lookup_11_word_0),
+    .io_lookup_11_word_1  (_sorts_0_io_lookup_11_word_1),
+    .io_lookup_11_word_2  (_sorts_0_io_lookup_11_word_2),
+    .io_lookup_11_word_3  (_sorts_0_io_lookup_11_word_3),
+    .io_lookup_11_word_4  (_sorts_0_io_lookup_11_word_4),
+    .io_lookup_11_word_5  (_sorts_0_io_lookup_11_word_5),
+    .io_lookup_11_word_6  (_sorts_0_io_lookup_11_word_6),
+    .io_lookup_11_word_7  (_sorts_0_io_lookup_11_word_7),
+    .io_lookup_11_word_8  (_sorts_0_io_lookup_11_word_8),
+    .io_lookup_11_word_9  (_sorts_0_io_lookup_11_word_9),
+    .io_lookup_11_word_10 (_sorts_0_io_lookup_11_word_10),
+    .io_lookup_11_word_11 (_sorts_0_io_lookup_11_word_11),
+    .io_lookup_11_word_12 (_sorts_0_io_lookup_11_word_12),
+    .io_lookup_11_word_13 (_sorts_0_io_lookup_11_word_13),
+    .io_lookup_11_word_14 (_sorts_0_io_lookup_11_word_14),
+    .io_lookup_11_word_15 (_sorts_0_io_lookup_11_word_15),
     .io_lookup_12_bucket  (_gens_12_io_lookup_bucket),
-    .io_lookup_12_begin   (_sort_io_lookup_12_begin),
-    .io_lookup_12_end     (_sort_io_lookup_12_end),
-    .io_lookup_12_word_0  (_sort_io_lookup_12_word_0),
-    .io_lookup_12_word_1  (_sort_io_lookup_12_word_1),
-    .io_lookup_12_word_2  (_sort_io_lookup_12_word_2),
-    .io_lookup_12_word_3  (_sort_io_lookup_12_word_3),
-    .io_lookup_12_word_4  (_sort_io_lookup_12_word_4),
-    .io_lookup_12_word_5  (_sort_io_lookup_12_word_5),
-    .io_lookup_12_word_6  (_sort_io_lookup_12_word_6),
-    .io_lookup_12_word_7  (_sort_io_lookup_12_word_7),
-    .io_lookup_12_word_8  (_sort_io_lookup_12_word_8),
-    .io_lookup_12_word_9  (_sort_io_lookup_12_word_9),
-    .io_lookup_12_word_10 (_sort_io_lookup_12_word_10),
-    .io_lookup_12_word_11 (_sort_io_lookup_12_word_11),
-    .io_lookup_12_word_12 (_sort_io_lookup_12_word_12),
-    .io_lookup_12_word_13 (_sort_io_lookup_12_word_13),
-    .io_lookup_12_word_14 (_sort_io_lookup_12_word_14),
-    .io_lookup_12_word_15 (_sort_io_lookup_12_word_15),
+    .io_lookup_12_begin   (_sorts_0_io_lookup_12_begin),
+    .io_lookup_12_end     (_sorts_0_io_lookup_12_end),
+    .io_lookup_12_word_0  (_sorts_0_io_lookup_12_word_0),
+    .io_lookup_12_word_1  (_sorts_0_io_lookup_12_word_1),
+    .io_lookup_12_word_2  (_sorts_0_io_lookup_12_word_2),
+    .io_lookup_12_word_3  (_sorts_0_io_lookup_12_word_3),
+    .io_lookup_12_word_4  (_sorts_0_io_lookup_12_word_4),
+    .io_lookup_12_word_5  (_sorts_0_io_lookup_12_word_5),
+    .io_lookup_12_word_6  (_sorts_0_io_lookup_12_word_6),
+    .io_lookup_12_word_7  (_sorts_0_io_lookup_12_word_7),
+    .io_lookup_12_word_8  (_sorts_0_io_lookup_12_word_8),
+    .io_lookup_12_word_9  (_sorts_0_io_lookup_12_word_9),
+    .io_lookup_12_word_10 (_sorts_0_io_lookup_12_word_10),
+    .io_lookup_12_word_11 (_sorts_0_io_lookup_12_word_11),
+    .io_lookup_12_word_12 (_sorts_0_io_lookup_12_word_12),
+    .io_lookup_12_word_13 (_sorts_0_io_lookup_12_word_13),
+    .io_lookup_12_word_14 (_sorts_0_io_lookup_12_word_14),
+    .io_lookup_12_word_15 (_sorts_0_io_lookup_12_word_15),
     .io_lookup_13_bucket  (_gens_13_io_lookup_bucket),
-    .io_lookup_13_begin   (_sort_io_lookup_13_begin),
-    .io_lookup_13_end     (_sort_io_lookup_13_end),
-    .io_lookup_13_word_0  (_sort_io_lookup_13_word_0),
-    .io_lookup_13_word_1  (_sort_io_lookup_13_word_1),
-    .io_lookup_13_word_2  (_sort_io_lookup_13_word_2),
-    .io_lookup_13_word_3  (_sort_io_lookup_13_word_3),
-    .io_lookup_13_word_4  (_sort_io_lookup_13_word_4),
-    .io_lookup_13_word_5  (_sort_io_lookup_13_word_5),
-    .io_lookup_13_word_6  (_sort_io_lookup_13_word_6),
-    .io_lookup_13_word_7  (_sort_io_lookup_13_word_7),
-    .io_lookup_13_word_8  (_sort_io_lookup_13_word_8),
-    .io_lookup_13_word_9  (_sort_io_lookup_13_word_9),
-    .io_lookup_13_word_10 (_sort_io_lookup_13_word_10),
-    .io_lookup_13_word_11 (_sort_io_lookup_13_word_11),
-    .io_lookup_13_word_12 (_sort_io_lookup_13_word_12),
-    .io_lookup_13_word_13 (_sort_io_lookup_13_word_13),
-    .io_lookup_13_word_14 (_sort_io_lookup_13_word_14),
-    .io_lookup_13_word_15 (_sort_io_lookup_13_word_15),
+    .io_lookup_13_begin   (_sorts_0_io_lookup_13_begin),
+    .io_lookup_13_end     (_sorts_0_io_lookup_13_end),
+    .io_lookup_13_word_0  (_sorts_0_io_lookup_13_word_0),
+    .io_lookup_13_word_1  (_sorts_0_io_lookup_13_word_1),
+    .io_lookup_13_word_2  (_sorts_0_io_lookup_13_word_2),
+    .io_lookup_13_word_3  (_sorts_0_io_lookup_13_word_3),
+    .io_lookup_13_word_4  (_sorts_0_io_lookup_13_word_4),
+    .io_lookup_13_word_5  (_sorts_0_io_lookup_13_word_5),
+    .io_lookup_13_word_6  (_sorts_0_io_lookup_13_word_6),
+    .io_lookup_13_word_7  (_sorts_0_io_lookup_13_word_7),
+    .io_lookup_13_word_8  (_sorts_0_io_lookup_13_word_8),
+    .io_lookup_13_word_9  (_sorts_0_io_lookup_13_word_9),
+    .io_lookup_13_word_10 (_sorts_0_io_lookup_13_word_10),
+    .io_lookup_13_word_11 (_sorts_0_io_lookup_13_word_11),
+    .io_lookup_13_word_12 (_sorts_0_io_lookup_13_word_12),
+    .io_lookup_13_word_13 (_sorts_0_io_lookup_13_word_13),
+    .io_lookup_13_word_14 (_sorts_0_io_lookup_13_word_14),
+    .io_lookup_13_word_15 (_sorts_0_io_lookup_13_word_15),
     .io_lookup_14_bucket  (_gens_14_io_lookup_bucket),
-    .io_lookup_14_begin   (_sort_io_lookup_14_begin),
-    .io_lookup_14_end     (_sort_io_lookup_14_end),
-    .io_lookup_14_word_0  (_sort_io_lookup_14_word_0),
-    .io_lookup_14_word_1  (_sort_io_lookup_14_word_1),
-    .io_lookup_14_word_2  (_sort_io_lookup_14_word_2),
-    .io_lookup_14_word_3  (_sort_io_lookup_14_word_3),
-    .io_lookup_14_word_4  (_sort_io_lookup_14_word_4),
-    .io_lookup_14_word_5  (_sort_io_lookup_14_word_5),
-    .io_lookup_14_word_6  (_sort_io_lookup_14_word_6),
-    .io_lookup_14_word_7  (_sort_io_lookup_14_word_7),
-    .io_lookup_14_word_8  (_sort_io_lookup_14_word_8),
-    .io_lookup_14_word_9  (_sort_io_lookup_14_word_9),
-    .io_lookup_14_word_10 (_sort_io_lookup_14_word_10),
-    .io_lookup_14_word_11 (_sort_io_lookup_14_word_11),
-    .io_lookup_14_word_12 (_sort_io_lookup_14_word_12),
-    .io_lookup_14_word_13 (_sort_io_lookup_14_word_13),
-    .io_lookup_14_word_14 (_sort_io_lookup_14_word_14),
-    .io_lookup_14_word_15 (_sort_io_lookup_14_word_15),
+    .io_lookup_14_begin   (_sorts_0_io_lookup_14_begin),
+    .io_lookup_14_end     (_sorts_0_io_lookup_14_end),
+    .io_lookup_14_word_0  (_sorts_0_io_lookup_14_word_0),
+    .io_lookup_14_word_1  (_sorts_0_io_lookup_14_word_1),
+    .io_lookup_14_word_2  (_sorts_0_io_lookup_14_word_2),
+    .io_lookup_14_word_3  (_sorts_0_io_lookup_14_word_3),
+    .io_lookup_14_word_4  (_sorts_0_io_lookup_14_word_4),
+    .io_lookup_14_word_5  (_sorts_0_io_lookup_14_word_5),
+    .io_lookup_14_word_6  (_sorts_0_io_lookup_14_word_6),
+    .io_lookup_14_word_7  (_sorts_0_io_lookup_14_word_7),
+    .io_lookup_14_word_8  (_sorts_0_io_lookup_14_word_8),
+    .io_lookup_14_word_9  (_sorts_0_io_lookup_14_word_9),
+    .io_lookup_14_word_10 (_sorts_0_io_lookup_14_word_10),
+    .io_lookup_14_word_11 (_sorts_0_io_lookup_14_word_11),
+    .io_lookup_14_word_12 (_sorts_0_io_lookup_14_word_12),
+    .io_lookup_14_word_13 (_sorts_0_io_lookup_14_word_13),
+    .io_lookup_14_word_14 (_sorts_0_io_lookup_14_word_14),
+    .io_lookup_14_word_15 (_sorts_0_io_lookup_14_word_15),
     .io_lookup_15_bucket  (_gens_15_io_lookup_bucket),
-    .io_lookup_15_begin   (_sort_io_lookup_15_begin),
-    .io_lookup_15_end     (_sort_io_lookup_15_end),
-    .io_lookup_15_word_0  (_sort_io_lookup_15_word_0),
-    .io_lookup_15_word_1  (_sort_io_lookup_15_word_1),
-    .io_lookup_15_word_2  (_sort_io_lookup_15_word_2),
-    .io_lookup_15_word_3  (_sort_io_lookup_15_word_3),
-    .io_lookup_15_word_4  (_sort_io_lookup_15_word_4),
-    .io_lookup_15_word_5  (_sort_io_lookup_15_word_5),
-    .io_lookup_15_word_6  (_sort_io_lookup_15_word_6),
-    .io_lookup_15_word_7  (_sort_io_lookup_15_word_7),
-    .io_lookup_15_word_8  (_sort_io_lookup_15_word_8),
-    .io_lookup_15_word_9  (_sort_io_lookup_15_word_9),
-    .io_lookup_15_word_10 (_sort_io_lookup_15_word_10),
-    .io_lookup_15_word_11 (_sort_io_lookup_15_word_11),
-    .io_lookup_15_word_12 (_sort_io_lookup_15_word_12),
-    .io_lookup_15_word_13 (_sort_io_lookup_15_word_13),
-    .io_lookup_15_word_14 (_sort_io_lookup_15_word_14),
-    .io_lookup_15_word_15 (_sort_io_lookup_15_word_15),
-    .io_entry_0_addr      (_gens_0_io_entry_addr),
-    .io_entry_0_item      (_sort_io_entry_0_item),
-    .io_entry_0_mark      (_sort_io_entry_0_mark),
-    .io_entry_1_addr      (_gens_1_io_entry_addr),
-    .io_entry_1_item      (_sort_io_entry_1_item),
-    .io_entry_1_mark      (_sort_io_entry_1_mark),
-    .io_entry_2_addr      (_gens_2_io_entry_addr),
-    .io_entry_2_item      (_sort_io_entry_2_item),
-    .io_entry_2_mark      (_sort_io_entry_2_mark),
-    .io_entry_3_addr      (_gens_3_io_entry_addr),
-    .io_entry_3_item      (_sort_io_entry_3_item),
-    .io_entry_3_mark      (_sort_io_entry_3_mark),
-    .io_entry_4_addr      (_gens_4_io_entry_addr),
-    .io_entry_4_item      (_sort_io_entry_4_item),
-    .io_entry_4_mark      (_sort_io_entry_4_mark),
-    .io_entry_5_addr      (_gens_5_io_entry_addr),
-    .io_entry_5_item      (_sort_io_entry_5_item),
-    .io_entry_5_mark      (_sort_io_entry_5_mark),
-    .io_entry_6_addr      (_gens_6_io_entry_addr),
-    .io_entry_6_item      (_sort_io_entry_6_item),
-    .io_entry_6_mark      (_sort_io_entry_6_mark),
-    .io_entry_7_addr      (_gens_7_io_entry_addr),
-    .io_entry_7_item      (_sort_io_entry_7_item),
-    .io_entry_7_mark      (_sort_io_entry_7_mark),
-    .io_entry_8_addr      (_gens_8_io_entry_addr),
-    .io_entry_8_item      (_sort_io_entry_8_item),
-    .io_entry_8_mark      (_sort_io_entry_8_mark),
-    .io_entry_9_addr      (_gens_9_io_entry_addr),
-    .io_entry_9_item      (_sort_io_entry_9_item),
-    .io_entry_9_mark      (_sort_io_entry_9_mark),
-    .io_entry_10_addr     (_gens_10_io_entry_addr),
-    .io_entry_10_item     (_sort_io_entry_10_item),
-    .io_entry_10_mark     (_sort_io_entry_10_mark),
-    .io_entry_11_addr     (_gens_11_io_entry_addr),
-    .io_entry_11_item     (_sort_io_entry_11_item),
-    .io_entry_11_mark     (_sort_io_entry_11_mark),
-    .io_entry_12_addr     (_gens_12_io_entry_addr),
-    .io_entry_12_item     (_sort_io_entry_12_item),
-    .io_entry_12_mark     (_sort_io_entry_12_mark),
-    .io_entry_13_addr     (_gens_13_io_entry_addr),
-    .io_entry_13_item     (_sort_io_entry_13_item),
-    .io_entry_13_mark     (_sort_io_entry_13_mark),
-    .io_entry_14_addr     (_gens_14_io_entry_addr),
-    .io_entry_14_item     (_sort_io_entry_14_item),
-    .io_entry_14_mark     (_sort_io_entry_14_mark),
-    .io_entry_15_addr     (_gens_15_io_entry_addr),
-    .io_entry_15_item     (_sort_io_entry_15_item),
-    .io_entry_15_mark     (_sort_io_entry_15_mark),
-    .io_mark_0_valid      (_gens_0_io_mark_valid),
-    .io_mark_0_bits_addr  (_gens_0_io_mark_bits_addr),
+    .io_lookup_15_begin   (_sorts_0_io_lookup_15_begin),
+    .io_lookup_15_end     (_sorts_0_io_lookup_15_end),
+    .io_lookup_15_word_0  (_sorts_0_io_lookup_15_word_0),
+    .io_lookup_15_word_1  (_sorts_0_io_lookup_15_word_1),
+    .io_lookup_15_word_2  (_sorts_0_io_lookup_15_word_2),
+    .io_lookup_15_word_3  (_sorts_0_io_lookup_15_word_3),
+    .io_lookup_15_word_4  (_sorts_0_io_lookup_15_word_4),
+    .io_lookup_15_word_5  (_sorts_0_io_lookup_15_word_5),
+    .io_lookup_15_word_6  (_sorts_0_io_lookup_15_word_6),
+    .io_lookup_15_word_7  (_sorts_0_io_lookup_15_word_7),
+    .io_lookup_15_word_8  (_sorts_0_io_lookup_15_word_8),
+    .io_lookup_15_word_9  (_sorts_0_io_lookup_15_word_9),
+    .io_lookup_15_word_10 (_sorts_0_io_lookup_15_word_10),
+    .io_lookup_15_word_11 (_sorts_0_io_lookup_15_word_11),
+    .io_lookup_15_word_12 (_sorts_0_io_lookup_15_word_12),
+    .io_lookup_15_word_13 (_sorts_0_io_lookup_15_word_13),
+    .io_lookup_15_word_14 (_sorts_0_io_lookup_15_word_14),
+    .io_lookup_15_word_15 (_sorts_0_io_lookup_15_word_15),
+    .io_entry_0_addr      (_gens_0_io_entry_addr[10:0]),
+    .io_entry_0_item      (_sorts_0_io_entry_0_item),
+    .io_entry_0_mark      (_sorts_0_io_entry_0_mark),
+    .io_entry_1_addr      (_gens_1_io_entry_addr[10:0]),
+    .io_entry_1_item      (_sorts_0_io_entry_1_item),
+    .io_entry_1_mark      (_sorts_0_io_entry_1_mark),
+    .io_entry_2_addr      (_gens_2_io_entry_addr[10:0]),
+    .io_entry_2_item      (_sorts_0_io_entry_2_item),
+    .io_entry_2_mark      (_sorts_0_io_entry_2_mark),
+    .io_entry_3_addr      (_gens_3_io_entry_addr[10:0]),
+    .io_entry_3_item      (_sorts_0_io_entry_3_item),
+    .io_entry_3_mark      (_sorts_0_io_entry_3_mark),
+    .io_entry_4_addr      (_gens_4_io_entry_addr[10:0]),
+    .io_entry_4_item      (_sorts_0_io_entry_4_item),
+    .io_entry_4_mark      (_sorts_0_io_entry_4_mark),
+    .io_entry_5_addr      (_gens_5_io_entry_addr[10:0]),
+    .io_entry_5_item      (_sorts_0_io_entry_5_item),
+    .io_entry_5_mark      (_sorts_0_io_entry_5_mark),
+    .io_entry_6_addr      (_gens_6_io_entry_addr[10:0]),
+    .io_entry_6_item      (_sorts_0_io_entry_6_item),
+    .io_entry_6_mark      (_sorts_0_io_entry_6_mark),
+    .io_entry_7_addr      (_gens_7_io_entry_addr[10:0]),
+    .io_entry_7_item      (_sorts_0_io_entry_7_item),
+    .io_entry_7_mark      (_sorts_0_io_entry_7_mark),
+    .io_entry_8_addr      (_gens_8_io_entry_addr[10:0]),
+    .io_entry_8_item      (_sorts_0_io_entry_8_item),
+    .io_entry_8_mark      (_sorts_0_io_entry_8_mark),
+    .io_entry_9_addr      (_gens_9_io_entry_addr[10:0]),
+    .io_entry_9_item      (_sorts_0_io_entry_9_item),
+    .io_entry_9_mark      (_sorts_0_io_entry_9_mark),
+    .io_entry_10_addr     (_gens_10_io_entry_addr[10:0]),
+    .io_entry_10_item     (_sorts_0_io_entry_10_item),
+    .io_entry_10_mark     (_sorts_0_io_entry_10_mark),
+    .io_entry_11_addr     (_gens_11_io_entry_addr[10:0]),
+    .io_entry_11_item     (_sorts_0_io_entry_11_item),
+    .io_entry_11_mark     (_sorts_0_io_entry_11_mark),
+    .io_entry_12_addr     (_gens_12_io_entry_addr[10:0]),
+    .io_entry_12_item     (_sorts_0_io_entry_12_item),
+    .io_entry_12_mark     (_sorts_0_io_entry_12_mark),
+    .io_entry_13_addr     (_gens_13_io_entry_addr[10:0]),
+    .io_entry_13_item     (_sorts_0_io_entry_13_item),
+    .io_entry_13_mark     (_sorts_0_io_entry_13_mark),
+    .io_entry_14_addr     (_gens_14_io_entry_addr[10:0]),
+    .io_entry_14_item     (_sorts_0_io_entry_14_item),
+    .io_entry_14_mark     (_sorts_0_io_entry_14_mark),
+    .io_entry_15_addr     (_gens_15_io_entry_addr[10:0]),
+    .io_entry_15_item     (_sorts_0_io_entry_15_item),
+    .io_entry_15_mark     (_sorts_0_io_entry_15_mark),
+    .io_mark_0_valid      (_gens_0_io_mark_valid & ~_gens_0_io_mark_bits_group),
+    .io_mark_0_bits_addr  (_gens_0_io_mark_bits_addr[10:0]),
     .io_mark_0_bits_item  (_gens_0_io_mark_bits_item),
-    .io_mark_1_valid      (_gens_1_io_mark_valid),
-    .io_mark_1_bits_addr  (_gens_1_io_mark_bits_addr),
+    .io_mark_1_valid      (_gens_1_io_mark_valid & ~_gens_1_io_mark_bits_group),
+    .io_mark_1_bits_addr  (_gens_1_io_mark_bits_addr[10:0]),
     .io_mark_1_bits_item  (_gens_1_io_mark_bits_item),
-    .io_mark_2_valid      (_gens_2_io_mark_valid),
-    .io_mark_2_bits_addr  (_gens_2_io_mark_bits_addr),
+    .io_mark_2_valid      (_gens_2_io_mark_valid & ~_gens_2_io_mark_bits_group),
+    .io_mark_2_bits_addr  (_gens_2_io_mark_bits_addr[10:0]),
     .io_mark_2_bits_item  (_gens_2_io_mark_bits_item),
-    .io_mark_3_valid      (_gens_3_io_mark_valid),
-    .io_mark_3_bits_addr  (_gens_3_io_mark_bits_addr),
+    .io_mark_3_valid      (_gens_3_io_mark_valid & ~_gens_3_io_mark_bits_group),
+    .io_mark_3_bits_addr  (_gens_3_io_mark_bits_addr[10:0]),
     .io_mark_3_bits_item  (_gens_3_io_mark_bits_item),
-    .io_mark_4_valid      (_gens_4_io_mark_valid),
-    .io_mark_4_bits_addr  (_gens_4_io_mark_bits_addr),
+    .io_mark_4_valid      (_gens_4_io_mark_valid & ~_gens_4_io_mark_bits_group),
+    .io_mark_4_bits_addr  (_gens_4_io_mark_bits_addr[10:0]),
     .io_mark_4_bits_item  (_gens_4_io_mark_bits_item),
-    .io_mark_5_valid      (_gens_5_io_mark_valid),
-    .io_mark_5_bits_addr  (_gens_5_io_mark_bits_addr),
+    .io_mark_5_valid      (_gens_5_io_mark_valid & ~_gens_5_io_mark_bits_group),
+    .io_mark_5_bits_addr  (_gens_5_io_mark_bits_addr[10:0]),
     .io_mark_5_bits_item  (_gens_5_io_mark_bits_item),
-    .io_mark_6_valid      (_gens_6_io_mark_valid),
-    .io_mark_6_bits_addr  (_gens_6_io_mark_bits_addr),
+    .io_mark_6_valid      (_gens_6_io_mark_valid & ~_gens_6_io_mark_bits_group),
+    .io_mark_6_bits_addr  (_gens_6_io_mark_bits_addr[10:0]),
     .io_mark_6_bits_item  (_gens_6_io_mark_bits_item),
-    .io_mark_7_valid      (_gens_7_io_mark_valid),
-    .io_mark_7_bits_addr  (_gens_7_io_mark_bits_addr),
+    .io_mark_7_valid      (_gens_7_io_mark_valid & ~_gens_7_io_mark_bits_group),
+    .io_mark_7_bits_addr  (_gens_7_io_mark_bits_addr[10:0]),
     .io_mark_7_bits_item  (_gens_7_io_mark_bits_item),
-    .io_mark_8_valid      (_gens_8_io_mark_valid),
-    .io_mark_8_bits_addr  (_gens_8_io_mark_bits_addr),
+    .io_mark_8_valid      (_gens_8_io_mark_valid & ~_gens_8_io_mark_bits_group),
+    .io_mark_8_bits_addr  (_gens_8_io_mark_bits_addr[10:0]),
     .io_mark_8_bits_item  (_gens_8_io_mark_bits_item),
-    .io_mark_9_valid      (_gens_9_io_mark_valid),
-    .io_mark_9_bits_addr  (_gens_9_io_mark_bits_addr),
+    .io_mark_9_valid      (_gens_9_io_mark_valid & ~_gens_9_io_mark_bits_group),
+    .io_mark_9_bits_addr  (_gens_9_io_mark_bits_addr[10:0]),
     .io_mark_9_bits_item  (_gens_9_io_mark_bits_item),
-    .io_mark_10_valid     (_gens_10_io_mark_valid),
-    .io_mark_10_bits_addr (_gens_10_io_mark_bits_addr),
+    .io_mark_10_valid     (_gens_10_io_mark_valid & ~_gens_10_io_mark_bits_group),
+    .io_mark_10_bits_addr (_gens_10_io_mark_bits_addr[10:0]),
     .io_mark_10_bits_item (_gens_10_io_mark_bits_item),
-    .io_mark_11_valid     (_gens_11_io_mark_valid),
-    .io_mark_11_bits_addr (_gens_11_io_mark_bits_addr),
+    .io_mark_11_valid     (_gens_11_io_mark_valid & ~_gens_11_io_mark_bits_group),
+    .io_mark_11_bits_addr (_gens_11_io_mark_bits_addr[10:0]),
     .io_mark_11_bits_item (_gens_11_io_mark_bits_item),
-    .io_mark_12_valid     (_gens_12_io_mark_valid),
-    .io_mark_12_bits_addr (_gens_12_io_mark_bits_addr),
+    .io_mark_12_valid     (_gens_12_io_mark_valid & ~_gens_12_io_mark_bits_group),
+    .io_mark_12_bits_addr (_gens_12_io_mark_bits_addr[10:0]),
     .io_mark_12_bits_item (_gens_12_io_mark_bits_item),
-    .io_mark_13_valid     (_gens_13_io_mark_valid),
-    .io_mark_13_bits_addr (_gens_13_io_mark_bits_addr),
+    .io_mark_13_valid     (_gens_13_io_mark_valid & ~_gens_13_io_mark_bits_group),
+    .io_mark_13_bits_addr (_gens_13_io_mark_bits_addr[10:0]),
     .io_mark_13_bits_item (_gens_13_io_mark_bits_item),
-    .io_mark_14_valid     (_gens_14_io_mark_valid),
-    .io_mark_14_bits_addr (_gens_14_io_mark_bits_addr),
+    .io_mark_14_valid     (_gens_14_io_mark_valid & ~_gens_14_io_mark_bits_group),
+    .io_mark_14_bits_addr (_gens_14_io_mark_bits_addr[10:0]),
     .io_mark_14_bits_item (_gens_14_io_mark_bits_item),
-    .io_mark_15_valid     (_gens_15_io_mark_valid),
-    .io_mark_15_bits_addr (_gens_15_io_mark_bits_addr),
+    .io_mark_15_valid     (_gens_15_io_mark_valid & ~_gens_15_io_mark_bits_group),
+    .io_mark_15_bits_addr (_gens_15_io_mark_bits_addr[10:0]),
     .io_mark_15_bits_item (_gens_15_io_mark_bits_item),
-    .io_counted           (_sort_io_counted),
-    .io_scattered         (_sort_io_scattered),
-    .io_badBucket         (_sort_io_badBucket)
+    .io_counted           (_sorts_0_io_counted),
+    .io_scattered         (_sorts_0_io_scattered),
+    .io_badBucket         (_sorts_0_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_0 (
+  BucketSort_n2048_b13_w4_c16_p2_i12_world sorts_1 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_usedLog2          (usedLog2),
+    .io_clear             (starting),
+    .io_prefix            (_sorts_1_io_prefix_T & ~sent),
+    .io_busy              (_sorts_1_io_busy),
+    .io_in_0_ready        (_sorts_1_io_in_0_ready),
+    .io_in_0_valid        (_sorts_1_io_in_0_valid_T_12),
+    .io_in_0_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
+    .io_in_0_bits_bucket
+      ((_laneKeys_2_io_out_cell_0[12:0] * 13'h145D ^ _laneKeys_2_io_out_cell_1[12:0]
+        * 13'h9F ^ _laneKeys_2_io_out_cell_2[12:0] * 13'h1FB7)
+       & _sorts_1_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
+    .io_in_0_bits_item    (r_2),
+    .io_in_1_ready        (_sorts_1_io_in_1_ready),
+    .io_in_1_valid        (_sorts_1_io_in_1_valid_T_12),
+    .io_in_1_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
+    .io_in_1_bits_bucket
+      ((_laneKeys_3_io_out_cell_0[12:0] * 13'h145D ^ _laneKeys_3_io_out_cell_1[12:0]
+        * 13'h9F ^ _laneKeys_3_io_out_cell_2[12:0] * 13'h1FB7)
+       & _sorts_1_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
+    .io_in_1_bits_item    (r_3),
+    .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
+    .io_lookup_0_begin    (_sorts_1_io_lookup_0_begin),
+    .io_lookup_0_end      (_sorts_1_io_lookup_0_end),
+    .io_lookup_0_word_0   (_sorts_1_io_lookup_0_word_0),
+    .io_lookup_0_word_1   (_sorts_1_io_lookup_0_word_1),
+    .io_lookup_0_word_2   (_sorts_1_io_lookup_0_word_2),
+    .io_lookup_0_word_3   (_sorts_1_io_lookup_0_word_3),
+    .io_lookup_0_word_4   (_sorts_1_io_lookup_0_word_4),
+    .io_lookup_0_word_5   (_sorts_1_io_lookup_0_word_5),
+    .io_lookup_0_word_6   (_sorts_1_io_lookup_0_word_6),
+    .io_lookup_0_word_7   (_sorts_1_io_lookup_0_word_7),
+    .io_lookup_0_word_8   (_sorts_1_io_lookup_0_word_8),
+    .io_lookup_0_word_9   (_sorts_1_io_lookup_0_word_9),
+    .io_lookup_0_word_10  (_sorts_1_io_lookup_0_word_10),
+    .io_lookup_0_word_11  (_sorts_1_io_lookup_0_word_11),
+    .io_lookup_0_word_12  (_sorts_1_io_lookup_0_word_12),
+    .io_lookup_0_word_13  (_sorts_1_io_lookup_0_word_13),
+    .io_lookup_0_word_14  (_sorts_1_io_lookup_0_word_14),
+    .io_lookup_0_word_15  (_sorts_1_io_lookup_0_word_15),
+    .io_lookup_1_bucket   (_gens_1_io_lookup_bucket),
+    .io_lookup_1_begin    (_sorts_1_io_lookup_1_begin),
+    .io_lookup_1_end      (_sorts_1_io_lookup_1_end),
+    .io_lookup_1_word_0   (_sorts_1_io_lookup_1_word_0),
+    .io_lookup_1_word_1   (_sorts_1_io_lookup_1_word_1),
+    .io_lookup_1_word_2   (_sorts_1_io_lookup_1_word_2),
+    .io_lookup_1_word_3   (_sorts_1_io_lookup_1_word_3),
+    .io_lookup_1_word_4   (_sorts_1_io_lookup_1_word_4),
+    .io_lookup_1_word_5   (_sorts_1_io_lookup_1_word_5),
+    .io_lookup_1_word_6   (_sorts_1_io_lookup_1_word_6),
+    .io_lookup_1_word_7   (_sorts_1_io_lookup_1_word_7),
+    .io_lookup_1_word_8   (_sorts_1_io_lookup_1_word_8),
+    .io_lookup_1_word_9   (_sorts_1_io_lookup_1_word_9),
+    .io_lookup_1_word_10  (_sorts_1_io_lookup_1_word_10),
+    .io_lookup_1_word_11  (_sorts_1_io_lookup_1_word_11),
+    .io_lookup_1_word_12  (_sorts_1_io_lookup_1_word_12),
+    .io_lookup_1_word_13  (_sorts_1_io_lookup_1_word_13),
+    .io_lookup_1_word_14  (_sorts_1_io_lookup_1_word_14),
+    .io_lookup_1_word_15  (_sorts_1_io_lookup_1_word_15),
+    .io_lookup_2_bucket   (_gens_2_io_lookup_bucket),
+    .io_lookup_2_begin    (_sorts_1_io_lookup_2_begin),
+    .io_lookup_2_end      (_sorts_1_io_lookup_2_end),
+    .io_lookup_2_word_0   (_sorts_1_io_lookup_2_word_0),
+    .io_lookup_2_word_1   (_sorts_1_io_lookup_2_word_1),
+    .io_lookup_2_word_2   (_sorts_1_io_lookup_2_word_2),
+    .io_lookup_2_word_3   (_sorts_1_io_lookup_2_word_3),
+    .io_lookup_2_word_4   (_sorts_1_io_lookup_2_word_4),
+    .io_lookup_2_word_5   (_sorts_1_io_lookup_2_word_5),
+    .io_lookup_2_word_6   (_sorts_1_io_lookup_2_word_6),
+    .io_lookup_2_word_7   (_sorts_1_io_lookup_2_word_7),
+    .io_lookup_2_word_8   (_sorts_1_io_lookup_2_word_8),
+    .io_lookup_2_word_9   (_sorts_1_io_lookup_2_word_9),
+    .io_lookup_2_word_10  (_sorts_1_io_lookup_2_word_10),
+    .io_lookup_2_word_11  (_sorts_1_io_lookup_2_word_11),
+    .io_lookup_2_word_12  (_sorts_1_io_lookup_2_word_12),
+    .io_lookup_2_word_13  (_sorts_1_io_lookup_2_word_13),
+    .io_lookup_2_word_14  (_sorts_1_io_lookup_2_word_14),
+    .io_lookup_2_word_15  (_sorts_1_io_lookup_2_word_15),
+    .io_lookup_3_bucket   (_gens_3_io_lookup_bucket),
+    .io_lookup_3_begin    (_sorts_1_io_lookup_3_begin),
+    .io_lookup_3_end      (_sorts_1_io_lookup_3_end),
+    .io_lookup_3_word_0   (_sorts_1_io_lookup_3_word_0),
+    .io_lookup_3_word_1   (_sorts_1_io_lookup_3_word_1),
+    .io_lookup_3_word_2   (_sorts_1_io_lookup_3_word_2),
+    .io_lookup_3_word_3   (_sorts_1_io_lookup_3_word_3),
+    .io_lookup_3_word_4   (_sorts_1_io_lookup_3_word_4),
+    .io_lookup_3_word_5   (_sorts_1_io_lookup_3_word_5),
+    .io_lookup_3_word_6   (_sorts_1_io_lookup_3_word_6),
+    .io_lookup_3_word_7   (_sorts_1_io_lookup_3_word_7),
+    .io_lookup_3_word_8   (_sorts_1_io_lookup_3_word_8),
+    .io_lookup_3_word_9   (_sorts_1_io_lookup_3_word_9),
+    .io_lookup_3_word_10  (_sorts_1_io_lookup_3_word_10),
+    .io_lookup_3_word_11  (_sorts_1_io_lookup_3_word_11),
+    .io_lookup_3_word_12  (_sorts_1_io_lookup_3_word_12),
+    .io_lookup_3_word_13  (_sorts_1_io_lookup_3_word_13),
+    .io_lookup_3_word_14  (_sorts_1_io_lookup_3_word_14),
+    .io_lookup_3_word_15  (_sorts_1_io_lookup_3_word_15),
+    .io_lookup_4_bucket   (_gens_4_io_lookup_bucket),
+    .io_lookup_4_begin    (_sorts_1_io_lookup_4_begin),
+    .io_lookup_4_end      (_sorts_1_io_lookup_4_end),
+    .io_lookup_4_word_0   (_sorts_1_io_lookup_4_word_0),
+    .io_lookup_4_word_1   (_sorts_1_io_lookup_4_word_1),
+    .io_lookup_4_word_2   (_sorts_1_io_lookup_4_word_2),
+    .io_lookup_4_word_3   (_sorts_1_io_lookup_4_word_3),
+    .io_lookup_4_word_4   (_sorts_1_io_lookup_4_word_4),
+    .io_lookup_4_word_5   (_sorts_1_io_lookup_4_word_5),
+    .io_lookup_4_word_6   (_sorts_1_io_lookup_4_word_6),
+    .io_lookup_4_word_7   (_sorts_1_io_lookup_4_word_7),
+    .io_lookup_4_word_8   (_sorts_1_io_lookup_4_word_8),
+    .io_lookup_4_word_9   (_sorts_1_io_lookup_4_word_9),
+    .io_lookup_4_word_10  (_sorts_1_io_lookup_4_word_10),
+    .io_lookup_4_word_11  (_sorts_1_io_lookup_4_word_11),
+    .io_lookup_4_word_12  (_sorts_1_io_lookup_4_word_12),
+    .io_lookup_4_word_13  (_sorts_1_io_lookup_4_word_13),
+    .io_lookup_4_word_14  (_sorts_1_io_lookup_4_word_14),
+    .io_lookup_4_word_15  (_sorts_1_io_lookup_4_word_15),
+    .io_lookup_5_bucket   (_gens_5_io_lookup_bucket),
+    .io_lookup_5_begin    (_sorts_1_io_lookup_5_begin),
+    .io_lookup_5_end      (_sorts_1_io_lookup_5_end),
+    .io_lookup_5_word_0   (_sorts_1_io_lookup_5_word_0),
+    .io_lookup_5_word_1   (_sorts_1_io_lookup_5_word_1),
+    .io_lookup_5_word_2   (_sorts_1_io_lookup_5_word_2),
+    .io_lookup_5_word_3   (_sorts_1_io_lookup_5_word_3),
+    .io_lookup_5_word_4   (_sorts_1_io_lookup_5_word_4),
+    .io_lookup_5_word_5   (_sorts_1_io_lookup_5_word_5),
+    .io_lookup_5_word_6   (_sorts_1_io_lookup_5_word_6),
+    .io_lookup_5_word_7   (_sorts_1_io_lookup_5_word_7),
+    .io_lookup_5_word_8   (_sorts_1_io_lookup_5_word_8),
+    .io_lookup_5_word_9   (_sorts_1_io_lookup_5_word_9),
+    .io_lookup_5_word_10  (_sorts_1_io_lookup_5_word_10),
+    .io_lookup_5_word_11  (_sorts_1_io_lookup_5_word_11),
+    .io_lookup_5_word_12  (_sorts_1_io_lookup_5_word_12),
+    .io_lookup_5_word_13  (_sorts_1_io_lookup_5_word_13),
+    .io_lookup_5_word_14  (_sorts_1_io_lookup_5_word_14),
+    .io_lookup_5_word_15  (_sorts_1_io_lookup_5_word_15),
+    .io_lookup_6_bucket   (_gens_6_io_lookup_bucket),
+    .io_lookup_6_begin    (_sorts_1_io_lookup_6_begin),
+    .io_lookup_6_end      (_sorts_1_io_lookup_6_end),
+    .io_lookup_6_word_0   (_sorts_1_io_lookup_6_word_0),
+    .io_lookup_6_word_1   (_sorts_1_io_lookup_6_word_1),
+    .io_lookup_6_word_2   (_sorts_1_io_lookup_6_word_2),
+    .io_lookup_6_word_3   (_sorts_1_io_lookup_6_word_3),
+    .io_lookup_6_word_4   (_sorts_1_io_lookup_6_word_4),
+    .io_lookup_6_word_5   (_sorts_1_io_lookup_6_word_5),
+    .io_lookup_6_word_6   (_sorts_1_io_lookup_6_word_6),
+    .io_lookup_6_word_7   (_sorts_1_io_lookup_6_word_7),
+    .io_lookup_6_word_8   (_sorts_1_io_lookup_6_word_8),
+    .io_lookup_6_word_9   (_sorts_1_io_lookup_6_word_9),
+    .io_lookup_6_word_10  (_sorts_1_io_lookup_6_word_10),
+    .io_lookup_6_word_11  (_sorts_1_io_lookup_6_word_11),
+    .io_lookup_6_word_12  (_sorts_1_io_lookup_6_word_12),
+    .io_lookup_6_word_13  (_sorts_1_io_lookup_6_word_13),
+    .io_lookup_6_word_14  (_sorts_1_io_lookup_6_word_14),
+    .io_lookup_6_word_15  (_sorts_1_io_lookup_6_word_15),
+    .io_lookup_7_bucket   (_gens_7_io_lookup_bucket),
+    .io_lookup_7_begin    (_sorts_1_io_lookup_7_begin),
+    .io_lookup_7_end      (_sorts_1_io_lookup_7_end),
+    .io_lookup_7_word_0   (_sorts_1_io_lookup_7_word_0),
+    .io_lookup_7_word_1   (_sorts_1_io_lookup_7_word_1),
+    .io_lookup_7_word_2   (_sorts_1_io_lookup_7_word_2),
+    .io_lookup_7_word_3   (_sorts_1_io_lookup_7_word_3),
+    .io_lookup_7_word_4   (_sorts_1_io_lookup_7_word_4),
+    .io_lookup_7_word_5   (_sorts_1_io_lookup_7_word_5),
+    .io_lookup_7_word_6   (_sorts_1_io_lookup_7_word_6),
+    .io_lookup_7_word_7   (_sorts_1_io_lookup_7_word_7),
+    .io_lookup_7_word_8   (_sorts_1_io_lookup_7_word_8),
+    .io_lookup_7_word_9   (_sorts_1_io_lookup_7_word_9),
+    .io_lookup_7_word_10  (_sorts_1_io_lookup_7_word_10),
+    .io_lookup_7_word_11  (_sorts_1_io_lookup_7_word_11),
+    .io_lookup_7_word_12  (_sorts_1_io_lookup_7_word_12),
+    .io_lookup_7_word_13  (_sorts_1_io_lookup_7_word_13),
+    .io_lookup_7_word_14  (_sorts_1_io_lookup_7_word_14),
+    .io_lookup_7_word_15  (_sorts_1_io_lookup_7_word_15),
+    .io_lookup_8_bucket   (_gens_8_io_lookup_bucket),
+    .io_lookup_8_begin    (_sorts_1_io_lookup_8_begin),
+    .io_lookup_8_end      (_sorts_1_io_lookup_8_end),
+    .io_lookup_8_word_0   (_sorts_1_io_lookup_8_word_0),
+    .io_lookup_8_word_1   (_sorts_1_io_lookup_8_word_1),
+    .io_lookup_8_word_2   (_sorts_1_io_lookup_8_word_2),
+    .io_lookup_8_word_3   (_sorts_1_io_lookup_8_word_3),
+    .io_lookup_8_word_4   (_sorts_1_io_lookup_8_word_4),
+    .io_lookup_8_word_5   (_sorts_1_io_lookup_8_word_5),
+    .io_lookup_8_word_6   (_sorts_1_io_lookup_8_word_6),
+    .io_lookup_8_word_7   (_sorts_1_io_lookup_8_word_7),
+    .io_lookup_8_word_8   (_sorts_1_io_lookup_8_word_8),
+    .io_lookup_8_word_9   (_sorts_1_io_lookup_8_word_9),
+    .io_lookup_8_word_10  (_sorts_1_io_lookup_8_word_10),
+    .io_lookup_8_word_11  (_sorts_1_io_lookup_8_word_11),
+    .io_lookup_8_word_12  (_sorts_1_io_lookup_8_word_12),
+    .io_lookup_8_word_13  (_sorts_1_io_lookup_8_word_13),
+    .io_lookup_8_word_14  (_sorts_1_io_lookup_8_word_14),
+    .io_lookup_8_word_15  (_sorts_1_io_lookup_8_word_15),
+    .io_lookup_9_bucket   (_gens_9_io_lookup_bucket),
+    .io_lookup_9_begin    (_sorts_1_io_lookup_9_begin),
+    .io_lookup_9_end      (_sorts_1_io_lookup_9_end),
+    .io_lookup_9_word_0   (_sorts_1_io_lookup_9_word_0),
+    .io_lookup_9_word_1   (_sorts_1_io_lookup_9_word_1),
+    .io_lookup_9_word_2   (_sorts_1_io_lookup_9_word_2),
+    .io_lookup_9_word_3   (_sorts_1_io_lookup_9_word_3),
+    .io_lookup_9_word_4   (_sorts_1_io_lookup_9_word_4),
+    .io_lookup_9_word_5   (_sorts_1_io_lookup_9_word_5),
+    .io_lookup_9_word_6   (_sorts_1_io_lookup_9_word_6),
+    .io_lookup_9_word_7   (_sorts_1_io_lookup_9_word_7),
+    .io_lookup_9_word_8   (_sorts_1_io_lookup_9_word_8),
+    .io_lookup_9_word_9   (_sorts_1_io_lookup_9_word_9),
+    .io_lookup_9_word_10  (_sorts_1_io_lookup_9_word_10),
+    .io_lookup_9_word_11  (_sorts_1_io_lookup_9_word_11),
+    .io_lookup_9_word_12  (_sorts_1_io_lookup_9_word_12),
+    .io_lookup_9_word_13  (_sorts_1_io_lookup_9_word_13),
+    .io_lookup_9_word_14  (_sorts_1_io_lookup_9_word_14),
+    .io_lookup_9_word_15  (_sorts_1_io_lookup_9_word_15),
+    .io_lookup_10_bucket  (_gens_10_io_lookup_bucket),
+    .io_lookup_10_begin   (_sorts_1_io_lookup_10_begin),
+    .io_lookup_10_end     (_sorts_1_io_lookup_10_end),
+    .io_lookup_10_word_0  (_sorts_1_io_lookup_10_word_0),
+    .io_lookup_10_word_1  (_sorts_1_io_lookup_10_word_1),
+    .io_lookup_10_word_2  (_sorts_1_io_lookup_10_word_2),
+    .io_lookup_10_word_3  (_sorts_1_io_lookup_10_word_3),
+    .io_lookup_10_word_4  (_sorts_1_io_lookup_10_word_4),
+    .io_lookup_10_word_5  (_sorts_1_io_lookup_10_word_5),
+    .io_lookup_10_word_6  (_sorts_1_io_lookup_10_word_6),
+    .io_lookup_10_word_7  (_sorts_1_io_lookup_10_word_7),
+    .io_lookup_10_word_8  (_sorts_1_io_lookup_10_word_8),
+    .io_lookup_10_word_9  (_sorts_1_io_lookup_10_word_9),
+    .io_lookup_10_word_10 (_sorts_1_io_lookup_10_word_10),
+    .io_lookup_10_word_11 (_sorts_1_io_lookup_10_word_11),
+    .io_lookup_10_word_12 (_sorts_1_io_lookup_10_word_12),
+    .io_lookup_10_word_13 (_sorts_1_io_lookup_10_word_13),
+    .io_lookup_10_word_14 (_sorts_1_io_lookup_10_word_14),
+    .io_lookup_10_word_15 (_sorts_1_io_lookup_10_word_15),
+    .io_lookup_11_bucket  (_gens_11_io_lookup_bucket),
+    .io_lookup_11_begin   (_sorts_1_io_lookup_11_begin),
+    .io_lookup_11_end     (_sorts_1_io_lookup_11_end),
+    .io_lookup_11_word_0  (_sorts_1_io_lookup_11_word_0),
+    .io_lookup_11_word_1  (_sorts_1_io_lookup_11_word_1),
+    .io_lookup_11_word_2  (_sorts_1_io_lookup_11_word_2),
+    .io_lookup_11_word_3  (_sorts_1_io_lookup_11_word_3),
+    .io_lookup_11_word_4  (_sorts_1_io_lookup_11_word_4),
+    .io_lookup_11_word_5  (_sorts_1_io_lookup_11_word_5),
+    .io_lookup_11_word_6  (_sorts_1_io_lookup_11_word_6),
+    .io_lookup_11_word_7  (_sorts_1_io_lookup_11_word_7),
+    .io_lookup_11_word_8  (_sorts_1_io_lookup_11_word_8),
+    .io_lookup_11_word_9  (_sorts_1_io_lookup_11_word_9),
+    .io_lookup_11_word_10 (_sorts_1_io_lookup_11_word_10),
+    .io_lookup_11_word_11 (_sorts_1_io_lookup_11_word_11),
+    .io_lookup_11_word_12 (_sorts_1_io_lookup_11_word_12),
+    .io_lookup_11_word_13 (_sorts_1_io_lookup_11_word_13),
+    .io_lookup_11_word_14 (_sorts_1_io_lookup_11_word_14),
+    .io_lookup_11_word_15 (_sorts_1_io_lookup_11_word_15),
+    .io_lookup_12_bucket  (_gens_12_io_lookup_bucket),
+    .io_lookup_12_begin   (_sorts_1_io_lookup_12_begin),
+    .io_lookup_12_end     (_sorts_1_io_lookup_12_end),
+    .io_lookup_12_word_0  (_sorts_1_io_lookup_12_word_0),
+    .io_lookup_12_word_1  (_sorts_1_io_lookup_12_word_1),
+    .io_lookup_12_word_2  (_sorts_1_io_lookup_12_word_2),
+    .io_lookup_12_word_3  (_sorts_1_io_lookup_12_word_3),
+    .io_lookup_12_word_4  (_sorts_1_io_lookup_12_word_4),
+    .io_lookup_12_word_5  (_sorts_1_io_lookup_12_word_5),
+    .io_lookup_12_word_6  (_sorts_1_io_lookup_12_word_6),
+    .io_lookup_12_word_7  (_sorts_1_io_lookup_12_word_7),
+    .io_lookup_12_word_8  (_sorts_1_io_lookup_12_word_8),
+    .io_lookup_12_word_9  (_sorts_1_io_lookup_12_word_9),
+    .io_lookup_12_word_10 (_sorts_1_io_lookup_12_word_10),
+    .io_lookup_12_word_11 (_sorts_1_io_lookup_12_word_11),
+    .io_lookup_12_word_12 (_sorts_1_io_lookup_12_word_12),
+    .io_lookup_12_word_13 (_sorts_1_io_lookup_12_word_13),
+    .io_lookup_12_word_14 (_sorts_1_io_lookup_12_word_14),
+    .io_lookup_12_word_15 (_sorts_1_io_lookup_12_word_15),
+    .io_lookup_13_bucket  (_gens_13_io_lookup_bucket),
+    .io_lookup_13_begin   (_sorts_1_io_lookup_13_begin),
+    .io_lookup_13_end     (_sorts_1_io_lookup_13_end),
+    .io_lookup_13_word_0  (_sorts_1_io_lookup_13_word_0),
+    .io_lookup_13_word_1  (_sorts_1_io_lookup_13_word_1),
+    .io_lookup_13_word_2  (_sorts_1_io_lookup_13_word_2),
+    .io_lookup_13_word_3  (_sorts_1_io_lookup_13_word_3),
+    .io_lookup_13_word_4  (_sorts_1_io_lookup_13_word_4),
+    .io_lookup_13_word_5  (_sorts_1_io_lookup_13_word_5),
+    .io_lookup_13_word_6  (_sorts_1_io_lookup_13_word_6),
+    .io_lookup_13_word_7  (_sorts_1_io_lookup_13_word_7),
+    .io_lookup_13_word_8  (_sorts_1_io_lookup_13_word_8),
+    .io_lookup_13_word_9  (_sorts_1_io_lookup_13_word_9),
+    .io_lookup_13_word_10 (_sorts_1_io_lookup_13_word_10),
+    .io_lookup_13_word_11 (_sorts_1_io_lookup_13_word_11),
+    .io_lookup_13_word_12 (_sorts_1_io_lookup_13_word_12),
+    .io_lookup_13_word_13 (_sorts_1_io_lookup_13_word_13),
+    .io_lookup_13_word_14 (_sorts_1_io_lookup_13_word_14),
+    .io_lookup_13_word_15 (_sorts_1_io_lookup_13_word_15),
+    .io_lookup_14_bucket  (_gens_14_io_lookup_bucket),
+    .io_lookup_14_begin   (_sorts_1_io_lookup_14_begin),
+    .io_lookup_14_end     (_sorts_1_io_lookup_14_end),
+    .io_lookup_14_word_0  (_sorts_1_io_lookup_14_word_0),
+    .io_lookup_14_word_1  (_sorts_1_io_lookup_14_word_1),
+    .io_lookup_14_word_2  (_sorts_1_io_lookup_14_word_2),
+    .io_lookup_14_word_3  (_sorts_1_io_lookup_14_word_3),
+    .io_lookup_14_word_4  (_sorts_1_io_lookup_14_word_4),
+    .io_lookup_14_word_5  (_sorts_1_io_lookup_14_word_5),
+    .io_lookup_14_word_6  (_sorts_1_io_lookup_14_word_6),
+    .io_lookup_14_word_7  (_sorts_1_io_lookup_14_word_7),
+    .io_lookup_14_word_8  (_sorts_1_io_lookup_14_word_8),
+    .io_lookup_14_word_9  (_sorts_1_io_lookup_14_word_9),
+    .io_lookup_14_word_10 (_sorts_1_io_lookup_14_word_10),
+    .io_lookup_14_word_11 (_sorts_1_io_lookup_14_word_11),
+    .io_lookup_14_word_12 (_sorts_1_io_lookup_14_word_12),
+    .io_lookup_14_word_13 (_sorts_1_io_lookup_14_word_13),
+    .io_lookup_14_word_14 (_sorts_1_io_lookup_14_word_14),
+    .io_lookup_14_word_15 (_sorts_1_io_lookup_14_word_15),
+    .io_lookup_15_bucket  (_gens_15_io_lookup_bucket),
+    .io_lookup_15_begin   (_sorts_1_io_lookup_15_begin),
+    .io_lookup_15_end     (_sorts_1_io_lookup_15_end),
+    .io_lookup_15_word_0  (_sorts_1_io_lookup_15_word_0),
+    .io_lookup_15_word_1  (_sorts_1_io_lookup_15_word_1),
+    .io_lookup_15_word_2  (_sorts_1_io_lookup_15_word_2),
+    .io_lookup_15_word_3  (_sorts_1_io_lookup_15_word_3),
+    .io_lookup_15_word_4  (_sorts_1_io_lookup_15_word_4),
+    .io_lookup_15_word_5  (_sorts_1_io_lookup_15_word_5),
+    .io_lookup_15_word_6  (_sorts_1_io_lookup_15_word_6),
+    .io_lookup_15_word_7  (_sorts_1_io_lookup_15_word_7),
+    .io_lookup_15_word_8  (_sorts_1_io_lookup_15_word_8),
+    .io_lookup_15_word_9  (_sorts_1_io_lookup_15_word_9),
+    .io_lookup_15_word_10 (_sorts_1_io_lookup_15_word_10),
+    .io_lookup_15_word_11 (_sorts_1_io_lookup_15_word_11),
+    .io_lookup_15_word_12 (_sorts_1_io_lookup_15_word_12),
+    .io_lookup_15_word_13 (_sorts_1_io_lookup_15_word_13),
+    .io_lookup_15_word_14 (_sorts_1_io_lookup_15_word_14),
+    .io_lookup_15_word_15 (_sorts_1_io_lookup_15_word_15),
+    .io_entry_0_addr      (_gens_0_io_entry_addr[10:0]),
+    .io_entry_0_item      (_sorts_1_io_entry_0_item),
+    .io_entry_0_mark      (_sorts_1_io_entry_0_mark),
+    .io_entry_1_addr      (_gens_1_io_entry_addr[10:0]),
+    .io_entry_1_item      (_sorts_1_io_entry_1_item),
+    .io_entry_1_mark      (_sorts_1_io_entry_1_mark),
+    .io_entry_2_addr      (_gens_2_io_entry_addr[10:0]),
+    .io_entry_2_item      (_sorts_1_io_entry_2_item),
+    .io_entry_2_mark      (_sorts_1_io_entry_2_mark),
+    .io_entry_3_addr      (_gens_3_io_entry_addr[10:0]),
+    .io_entry_3_item      (_sorts_1_io_entry_3_item),
+    .io_entry_3_mark      (_sorts_1_io_entry_3_mark),
+    .io_entry_4_addr      (_gens_4_io_entry_addr[10:0]),
+    .io_entry_4_item      (_sorts_1_io_entry_4_item),
+    .io_entry_4_mark      (_sorts_1_io_entry_4_mark),
+    .io_entry_5_addr      (_gens_5_io_entry_addr[10:0]),
+    .io_entry_5_item      (_sorts_1_io_entry_5_item),
+    .io_entry_5_mark      (_sorts_1_io_entry_5_mark),
+    .io_entry_6_addr      (_gens_6_io_entry_addr[10:0]),
+    .io_entry_6_item      (_sorts_1_io_entry_6_item),
+    .io_entry_6_mark      (_sorts_1_io_entry_6_mark),
+    .io_entry_7_addr      (_gens_7_io_entry_addr[10:0]),
+    .io_entry_7_item      (_sorts_1_io_entry_7_item),
+    .io_entry_7_mark      (_sorts_1_io_entry_7_mark),
+    .io_entry_8_addr      (_gens_8_io_entry_addr[10:0]),
+    .io_entry_8_item      (_sorts_1_io_entry_8_item),
+    .io_entry_8_mark      (_sorts_1_io_entry_8_mark),
+    .io_entry_9_addr      (_gens_9_io_entry_addr[10:0]),
+    .io_entry_9_item      (_sorts_1_io_entry_9_item),
+    .io_entry_9_mark      (_sorts_1_io_entry_9_mark),
+    .io_entry_10_addr     (_gens_10_io_entry_addr[10:0]),
+    .io_entry_10_item     (_sorts_1_io_entry_10_item),
+    .io_entry_10_mark     (_sorts_1_io_entry_10_mark),
+    .io_entry_11_addr     (_gens_11_io_entry_addr[10:0]),
+    .io_entry_11_item     (_sorts_1_io_entry_11_item),
+    .io_entry_11_mark     (_sorts_1_io_entry_11_mark),
+    .io_entry_12_addr     (_gens_12_io_entry_addr[10:0]),
+    .io_entry_12_item     (_sorts_1_io_entry_12_item),
+    .io_entry_12_mark     (_sorts_1_io_entry_12_mark),
+    .io_entry_13_addr     (_gens_13_io_entry_addr[10:0]),
+    .io_entry_13_item     (_sorts_1_io_entry_13_item),
+    .io_entry_13_mark     (_sorts_1_io_entry_13_mark),
+    .io_entry_14_addr     (_gens_14_io_entry_addr[10:0]),
+    .io_entry_14_item     (_sorts_1_io_entry_14_item),
+    .io_entry_14_mark     (_sorts_1_io_entry_14_mark),
+    .io_entry_15_addr     (_gens_15_io_entry_addr[10:0]),
+    .io_entry_15_item     (_sorts_1_io_entry_15_item),
+    .io_entry_15_mark     (_sorts_1_io_entry_15_mark),
+    .io_mark_0_valid      (_gens_0_io_mark_valid & _gens_0_io_mark_bits_group),
+    .io_mark_0_bits_addr  (_gens_0_io_mark_bits_addr[10:0]),
+    .io_mark_0_bits_item  (_gens_0_io_mark_bits_item),
+    .io_mark_1_valid      (_gens_1_io_mark_valid & _gens_1_io_mark_bits_group),
+    .io_mark_1_bits_addr  (_gens_1_io_mark_bits_addr[10:0]),
+    .io_mark_1_bits_item  (_gens_1_io_mark_bits_item),
+    .io_mark_2_valid      (_gens_2_io_mark_valid & _gens_2_io_mark_bits_group),
+    .io_mark_2_bits_addr  (_gens_2_io_mark_bits_addr[10:0]),
+    .io_mark_2_bits_item  (_gens_2_io_mark_bits_item),
+    .io_mark_3_valid      (_gens_3_io_mark_valid & _gens_3_io_mark_bits_group),
+    .io_mark_3_bits_addr  (_gens_3_io_mark_bits_addr[10:0]),
+    .io_mark_3_bits_item  (_gens_3_io_mark_bits_item),
+    .io_mark_4_valid      (_gens_4_io_mark_valid & _gens_4_io_mark_bits_group),
+    .io_mark_4_bits_addr  (_gens_4_io_mark_bits_addr[10:0]),
+    .io_mark_4_bits_item  (_gens_4_io_mark_bits_item),
+    .io_mark_5_valid      (_gens_5_io_mark_valid & _gens_5_io_mark_bits_group),
+    .io_mark_5_bits_addr  (_gens_5_io_mark_bits_addr[10:0]),
+    .io_mark_5_bits_item  (_gens_5_io_mark_bits_item),
+    .io_mark_6_valid      (_gens_6_io_mark_valid & _gens_6_io_mark_bits_group),
+    .io_mark_6_bits_addr  (_gens_6_io_mark_bits_addr[10:0]),
+    .io_mark_6_bits_item  (_gens_6_io_mark_bits_item),
+    .io_mark_7_valid      (_gens_7_io_mark_valid & _gens_7_io_mark_bits_group),
+    .io_mark_7_bits_addr  (_gens_7_io_mark_bits_addr[10:0]),
+    .io_mark_7_bits_item  (_gens_7_io_mark_bits_item),
+    .io_mark_8_valid      (_gens_8_io_mark_valid & _gens_8_io_mark_bits_group),
+    .io_mark_8_bits_addr  (_gens_8_io_mark_bits_addr[10:0]),
+    .io_mark_8_bits_item  (_gens_8_io_mark_bits_item),
+    .io_mark_9_valid      (_gens_9_io_mark_valid & _gens_9_io_mark_bits_group),
+    .io_mark_9_bits_addr  (_gens_9_io_mark_bits_addr[10:0]),
+    .io_mark_9_bits_item  (_gens_9_io_mark_bits_item),
+    .io_mark_10_valid     (_gens_10_io_mark_valid & _gens_10_io_mark_bits_group),
+    .io_mark_10_bits_addr (_gens_10_io_mark_bits_addr[10:0]),
+    .io_mark_10_bits_item (_gens_10_io_mark_bits_item),
+    .io_mark_11_valid     (_gens_11_io_mark_valid & _gens_11_io_mark_bits_group),
+    .io_mark_11_bits_addr (_gens_11_io_mark_bits_addr[10:0]),
+    .io_mark_11_bits_item (_gens_11_io_mark_bits_item),
+    .io_mark_12_valid     (_gens_12_io_mark_valid & _gens_12_io_mark_bits_group),
+    .io_mark_12_bits_addr (_gens_12_io_mark_bits_addr[10:0]),
+    .io_mark_12_bits_item (_gens_12_io_mark_bits_item),
+    .io_mark_13_valid     (_gens_13_io_mark_valid & _gens_13_io_mark_bits_group),
+    .io_mark_13_bits_addr (_gens_13_io_mark_bits_addr[10:0]),
+    .io_mark_13_bits_item (_gens_13_io_mark_bits_item),
+    .io_mark_14_valid     (_gens_14_io_mark_valid & _gens_14_io_mark_bits_group),
+    .io_mark_14_bits_addr (_gens_14_io_mark_bits_addr[10:0]),
+    .io_mark_14_bits_item (_gens_14_io_mark_bits_item),
+    .io_mark_15_valid     (_gens_15_io_mark_valid & _gens_15_io_mark_bits_group),
+    .io_mark_15_bits_addr (_gens_15_io_mark_bits_addr[10:0]),
+    .io_mark_15_bits_item (_gens_15_io_mark_bits_item),
+    .io_counted           (_sorts_1_io_counted),
+    .io_scattered         (_sorts_1_io_scattered),
+    .io_badBucket         (_sorts_1_io_badBucket)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_0 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -33516,28 +34796,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        (13'h0),
     .io_largeTo          (_GEN),
     .io_lookup_bucket    (_gens_0_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_0_begin),
-    .io_lookup_end       (_sort_io_lookup_0_end),
-    .io_lookup_word_0    (_sort_io_lookup_0_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_0_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_0_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_0_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_0_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_0_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_0_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_0_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_0_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_0_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_0_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_0_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_0_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_0_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_0_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_0_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_0_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_0_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_0_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_0_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_0_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_0_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_0_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_0_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_0_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_0_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_0_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_0_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_0_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_0_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_0_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_0_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_0_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_0_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_0_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_0_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_0_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_0_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_0_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_0_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_0_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_0_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_0_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_0_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_0_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_0_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_0_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_0_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_0_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_0_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_0_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_0_word_15}),
     .io_entry_addr       (_gens_0_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_0_item),
-    .io_entry_mark       (_sort_io_entry_0_mark),
+    .io_entry_group      (_gens_0_io_entry_group),
+    .io_entry_item
+      (entryGroup ? _sorts_1_io_entry_0_item : _sorts_0_io_entry_0_item),
+    .io_entry_mark
+      (entryGroup ? _sorts_1_io_entry_0_mark : _sorts_0_io_entry_0_mark),
     .io_mark_valid       (_gens_0_io_mark_valid),
+    .io_mark_bits_group  (_gens_0_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_0_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_0_io_mark_bits_item),
     .io_keyAddr          (_gens_0_io_keyAddr),
@@ -33550,7 +34852,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_keyData_qr       (_laneKeys_0_io_out_qr),
     .io_keyData_large
       (~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
-       & _sort_io_in_0_valid_T_8),
+       & _sorts_0_io_in_0_valid_T_8),
     .io_keyData_excluded (_laneKeys_0_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_0_ready),
     .io_pairs_valid      (io_pairs_0_valid),
@@ -33558,7 +34860,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_0_bits_j),
     .io_busy             (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_1 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_1 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -33649,28 +34951,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        (_GEN),
     .io_largeTo          (_GEN_1),
     .io_lookup_bucket    (_gens_1_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_1_begin),
-    .io_lookup_end       (_sort_io_lookup_1_end),
-    .io_lookup_word_0    (_sort_io_lookup_1_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_1_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_1_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_1_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_1_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_1_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_1_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_1_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_1_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_1_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_1_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_1_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_1_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_1_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_1_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_1_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_1_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_1_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_1_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_1_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_1_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_1_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_1_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_1_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_1_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_1_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_1_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_1_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_1_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_1_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_1_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_1_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_1_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_1_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_1_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_1_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_1_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_1_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_1_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_1_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_1_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_1_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_1_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_1_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_1_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_1_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_1_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_1_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_1_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_1_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_1_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_1_word_15}),
     .io_entry_addr       (_gens_1_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_1_item),
-    .io_entry_mark       (_sort_io_entry_1_mark),
+    .io_entry_group      (_gens_1_io_entry_group),
+    .io_entry_item
+      (entryGroup_1 ? _sorts_1_io_entry_1_item : _sorts_0_io_entry_1_item),
+    .io_entry_mark
+      (entryGroup_1 ? _sorts_1_io_entry_1_mark : _sorts_0_io_entry_1_mark),
     .io_mark_valid       (_gens_1_io_mark_valid),
+    .io_mark_bits_group  (_gens_1_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_1_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_1_io_mark_bits_item),
     .io_keyAddr          (_gens_1_io_keyAddr),
@@ -33683,7 +35007,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_keyData_qr       (_laneKeys_1_io_out_qr),
     .io_keyData_large
       (~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
-       & _sort_io_in_1_valid_T_8),
+       & _sorts_0_io_in_1_valid_T_8),
     .io_keyData_excluded (_laneKeys_1_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_1_ready),
     .io_pairs_valid      (io_pairs_1_valid),
@@ -33691,7 +35015,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_1_bits_j),
     .io_busy             (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_2 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_2 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -33782,28 +35106,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        (_GEN_1),
     .io_largeTo          ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
     .io_lookup_bucket    (_gens_2_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_2_begin),
-    .io_lookup_end       (_sort_io_lookup_2_end),
-    .io_lookup_word_0    (_sort_io_lookup_2_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_2_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_2_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_2_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_2_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_2_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_2_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_2_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_2_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_2_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_2_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_2_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_2_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_2_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_2_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_2_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_2_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_2_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_2_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_2_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_2_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_2_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_2_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_2_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_2_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_2_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_2_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_2_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_2_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_2_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_2_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_2_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_2_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_2_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_2_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_2_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_2_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_2_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_2_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_2_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_2_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_2_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_2_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_2_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_2_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_2_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_2_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_2_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_2_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_2_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_2_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_2_word_15}),
     .io_entry_addr       (_gens_2_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_2_item),
-    .io_entry_mark       (_sort_io_entry_2_mark),
+    .io_entry_group      (_gens_2_io_entry_group),
+    .io_entry_item
+      (entryGroup_2 ? _sorts_1_io_entry_2_item : _sorts_0_io_entry_2_item),
+    .io_entry_mark
+      (entryGroup_2 ? _sorts_1_io_entry_2_mark : _sorts_0_io_entry_2_mark),
     .io_mark_valid       (_gens_2_io_mark_valid),
+    .io_mark_bits_group  (_gens_2_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_2_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_2_io_mark_bits_item),
     .io_keyAddr          (_gens_2_io_keyAddr),
@@ -33816,7 +35162,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_keyData_qr       (_laneKeys_2_io_out_qr),
     .io_keyData_large
       (~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
-       & $signed(_laneKeys_2_io_out_need) > $signed(_cellExp_io_k)),
+       & _sorts_1_io_in_0_valid_T_8),
     .io_keyData_excluded (_laneKeys_2_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_2_ready),
     .io_pairs_valid      (io_pairs_2_valid),
@@ -33824,7 +35170,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_2_bits_j),
     .io_busy             (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_3 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_3 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -33913,30 +35259,52 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
     .io_largeFrom        ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
-    .io_largeTo          (_GEN_3),
+    .io_largeTo          (_GEN_0),
     .io_lookup_bucket    (_gens_3_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_3_begin),
-    .io_lookup_end       (_sort_io_lookup_3_end),
-    .io_lookup_word_0    (_sort_io_lookup_3_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_3_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_3_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_3_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_3_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_3_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_3_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_3_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_3_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_3_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_3_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_3_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_3_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_3_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_3_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_3_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_3_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_3_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_3_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_3_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_3_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_3_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_3_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_3_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_3_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_3_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_3_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_3_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_3_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_3_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_3_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_3_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_3_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_3_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_3_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_3_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_3_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_3_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_3_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_3_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_3_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_3_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_3_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_3_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_3_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_3_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_3_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_3_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_3_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_3_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_3_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_3_word_15}),
     .io_entry_addr       (_gens_3_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_3_item),
-    .io_entry_mark       (_sort_io_entry_3_mark),
+    .io_entry_group      (_gens_3_io_entry_group),
+    .io_entry_item
+      (entryGroup_3 ? _sorts_1_io_entry_3_item : _sorts_0_io_entry_3_item),
+    .io_entry_mark
+      (entryGroup_3 ? _sorts_1_io_entry_3_mark : _sorts_0_io_entry_3_mark),
     .io_mark_valid       (_gens_3_io_mark_valid),
+    .io_mark_bits_group  (_gens_3_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_3_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_3_io_mark_bits_item),
     .io_keyAddr          (_gens_3_io_keyAddr),
@@ -33949,7 +35317,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_keyData_qr       (_laneKeys_3_io_out_qr),
     .io_keyData_large
       (~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
-       & $signed(_laneKeys_3_io_out_need) > $signed(_cellExp_io_k)),
+       & _sorts_1_io_in_1_valid_T_8),
     .io_keyData_excluded (_laneKeys_3_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_3_ready),
     .io_pairs_valid      (io_pairs_3_valid),
@@ -33957,7 +35325,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_3_bits_j),
     .io_busy             (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_4 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_4 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -34045,31 +35413,53 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_larges_15_q_2    (larges_15_q_2),
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
-    .io_largeFrom        (_GEN_3),
+    .io_largeFrom        (_GEN_0),
     .io_largeTo          ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
     .io_lookup_bucket    (_gens_4_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_4_begin),
-    .io_lookup_end       (_sort_io_lookup_4_end),
-    .io_lookup_word_0    (_sort_io_lookup_4_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_4_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_4_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_4_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_4_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_4_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_4_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_4_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_4_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_4_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_4_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_4_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_4_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_4_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_4_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_4_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_4_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_4_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_4_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_4_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_4_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_4_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_4_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_4_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_4_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_4_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_4_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_4_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_4_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_4_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_4_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_4_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_4_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_4_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_4_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_4_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_4_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_4_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_4_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_4_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_4_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_4_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_4_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_4_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_4_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_4_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_4_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_4_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_4_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_4_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_4_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_4_word_15}),
     .io_entry_addr       (_gens_4_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_4_item),
-    .io_entry_mark       (_sort_io_entry_4_mark),
+    .io_entry_group      (_gens_4_io_entry_group),
+    .io_entry_item
+      (entryGroup_4 ? _sorts_1_io_entry_4_item : _sorts_0_io_entry_4_item),
+    .io_entry_mark
+      (entryGroup_4 ? _sorts_1_io_entry_4_mark : _sorts_0_io_entry_4_mark),
     .io_mark_valid       (_gens_4_io_mark_valid),
+    .io_mark_bits_group  (_gens_4_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_4_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_4_io_mark_bits_item),
     .io_keyAddr          (_gens_4_io_keyAddr),
@@ -34090,7 +35480,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_4_bits_j),
     .io_busy             (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_5 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_5 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -34181,28 +35571,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
     .io_largeTo          ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
     .io_lookup_bucket    (_gens_5_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_5_begin),
-    .io_lookup_end       (_sort_io_lookup_5_end),
-    .io_lookup_word_0    (_sort_io_lookup_5_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_5_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_5_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_5_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_5_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_5_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_5_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_5_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_5_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_5_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_5_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_5_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_5_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_5_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_5_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_5_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_5_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_5_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_5_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_5_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_5_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_5_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_5_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_5_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_5_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_5_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_5_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_5_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_5_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_5_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_5_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_5_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_5_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_5_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_5_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_5_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_5_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_5_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_5_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_5_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_5_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_5_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_5_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_5_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_5_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_5_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_5_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_5_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_5_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_5_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_5_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_5_word_15}),
     .io_entry_addr       (_gens_5_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_5_item),
-    .io_entry_mark       (_sort_io_entry_5_mark),
+    .io_entry_group      (_gens_5_io_entry_group),
+    .io_entry_item
+      (entryGroup_5 ? _sorts_1_io_entry_5_item : _sorts_0_io_entry_5_item),
+    .io_entry_mark
+      (entryGroup_5 ? _sorts_1_io_entry_5_mark : _sorts_0_io_entry_5_mark),
     .io_mark_valid       (_gens_5_io_mark_valid),
+    .io_mark_bits_group  (_gens_5_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_5_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_5_io_mark_bits_item),
     .io_keyAddr          (_gens_5_io_keyAddr),
@@ -34223,7 +35635,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_5_bits_j),
     .io_busy             (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_6 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_6 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -34314,28 +35726,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
     .io_largeTo          ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
     .io_lookup_bucket    (_gens_6_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_6_begin),
-    .io_lookup_end       (_sort_io_lookup_6_end),
-    .io_lookup_word_0    (_sort_io_lookup_6_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_6_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_6_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_6_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_6_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_6_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_6_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_6_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_6_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_6_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_6_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_6_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_6_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_6_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_6_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_6_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_6_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_6_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_6_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_6_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_6_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_6_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_6_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_6_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_6_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_6_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_6_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_6_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_6_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_6_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_6_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_6_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_6_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_6_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_6_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_6_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_6_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_6_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_6_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_6_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_6_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_6_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_6_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_6_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_6_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_6_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_6_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_6_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_6_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_6_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_6_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_6_word_15}),
     .io_entry_addr       (_gens_6_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_6_item),
-    .io_entry_mark       (_sort_io_entry_6_mark),
+    .io_entry_group      (_gens_6_io_entry_group),
+    .io_entry_item
+      (entryGroup_6 ? _sorts_1_io_entry_6_item : _sorts_0_io_entry_6_item),
+    .io_entry_mark
+      (entryGroup_6 ? _sorts_1_io_entry_6_mark : _sorts_0_io_entry_6_mark),
     .io_mark_valid       (_gens_6_io_mark_valid),
+    .io_mark_bits_group  (_gens_6_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_6_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_6_io_mark_bits_item),
     .io_keyAddr          (_gens_6_io_keyAddr),
@@ -34356,7 +35790,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_6_bits_j),
     .io_busy             (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_7 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_7 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -34447,28 +35881,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
     .io_largeTo          ({1'h0, num[12:1]}),
     .io_lookup_bucket    (_gens_7_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_7_begin),
-    .io_lookup_end       (_sort_io_lookup_7_end),
-    .io_lookup_word_0    (_sort_io_lookup_7_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_7_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_7_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_7_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_7_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_7_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_7_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_7_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_7_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_7_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_7_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_7_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_7_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_7_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_7_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_7_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_7_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_7_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_7_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_7_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_7_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_7_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_7_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_7_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_7_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_7_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_7_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_7_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_7_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_7_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_7_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_7_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_7_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_7_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_7_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_7_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_7_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_7_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_7_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_7_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_7_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_7_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_7_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_7_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_7_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_7_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_7_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_7_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_7_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_7_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_7_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_7_word_15}),
     .io_entry_addr       (_gens_7_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_7_item),
-    .io_entry_mark       (_sort_io_entry_7_mark),
+    .io_entry_group      (_gens_7_io_entry_group),
+    .io_entry_item
+      (entryGroup_7 ? _sorts_1_io_entry_7_item : _sorts_0_io_entry_7_item),
+    .io_entry_mark
+      (entryGroup_7 ? _sorts_1_io_entry_7_mark : _sorts_0_io_entry_7_mark),
     .io_mark_valid       (_gens_7_io_mark_valid),
+    .io_mark_bits_group  (_gens_7_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_7_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_7_io_mark_bits_item),
     .io_keyAddr          (_gens_7_io_keyAddr),
@@ -34489,7 +35945,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_7_bits_j),
     .io_busy             (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_8 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_8 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -34580,28 +36036,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        ({1'h0, num[12:1]}),
     .io_largeTo          (_gens_9_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_8_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_8_begin),
-    .io_lookup_end       (_sort_io_lookup_8_end),
-    .io_lookup_word_0    (_sort_io_lookup_8_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_8_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_8_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_8_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_8_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_8_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_8_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_8_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_8_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_8_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_8_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_8_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_8_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_8_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_8_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_8_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_8_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_8_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_8_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_8_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_8_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_8_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_8_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_8_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_8_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_8_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_8_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_8_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_8_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_8_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_8_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_8_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_8_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_8_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_8_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_8_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_8_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_8_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_8_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_8_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_8_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_8_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_8_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_8_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_8_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_8_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_8_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_8_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_8_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_8_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_8_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_8_word_15}),
     .io_entry_addr       (_gens_8_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_8_item),
-    .io_entry_mark       (_sort_io_entry_8_mark),
+    .io_entry_group      (_gens_8_io_entry_group),
+    .io_entry_item
+      (entryGroup_8 ? _sorts_1_io_entry_8_item : _sorts_0_io_entry_8_item),
+    .io_entry_mark
+      (entryGroup_8 ? _sorts_1_io_entry_8_mark : _sorts_0_io_entry_8_mark),
     .io_mark_valid       (_gens_8_io_mark_valid),
+    .io_mark_bits_group  (_gens_8_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_8_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_8_io_mark_bits_item),
     .io_keyAddr          (_gens_8_io_keyAddr),
@@ -34622,7 +36100,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_8_bits_j),
     .io_busy             (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_9 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_9 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -34713,28 +36191,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        (_gens_9_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_10_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_9_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_9_begin),
-    .io_lookup_end       (_sort_io_lookup_9_end),
-    .io_lookup_word_0    (_sort_io_lookup_9_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_9_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_9_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_9_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_9_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_9_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_9_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_9_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_9_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_9_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_9_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_9_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_9_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_9_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_9_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_9_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_9_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_9_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_9_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_9_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_9_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_9_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_9_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_9_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_9_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_9_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_9_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_9_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_9_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_9_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_9_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_9_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_9_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_9_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_9_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_9_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_9_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_9_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_9_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_9_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_9_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_9_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_9_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_9_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_9_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_9_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_9_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_9_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_9_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_9_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_9_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_9_word_15}),
     .io_entry_addr       (_gens_9_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_9_item),
-    .io_entry_mark       (_sort_io_entry_9_mark),
+    .io_entry_group      (_gens_9_io_entry_group),
+    .io_entry_item
+      (entryGroup_9 ? _sorts_1_io_entry_9_item : _sorts_0_io_entry_9_item),
+    .io_entry_mark
+      (entryGroup_9 ? _sorts_1_io_entry_9_mark : _sorts_0_io_entry_9_mark),
     .io_mark_valid       (_gens_9_io_mark_valid),
+    .io_mark_bits_group  (_gens_9_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_9_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_9_io_mark_bits_item),
     .io_keyAddr          (_gens_9_io_keyAddr),
@@ -34755,7 +36255,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_9_bits_j),
     .io_busy             (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_10 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_10 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -34846,28 +36346,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        (_gens_10_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_11_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_10_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_10_begin),
-    .io_lookup_end       (_sort_io_lookup_10_end),
-    .io_lookup_word_0    (_sort_io_lookup_10_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_10_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_10_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_10_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_10_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_10_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_10_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_10_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_10_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_10_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_10_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_10_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_10_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_10_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_10_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_10_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_10_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_10_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_10_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_10_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_10_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_10_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_10_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_10_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_10_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_10_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_10_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_10_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_10_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_10_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_10_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_10_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_10_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_10_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_10_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_10_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_10_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_10_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_10_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_10_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_10_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_10_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_10_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_10_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_10_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_10_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_10_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_10_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_10_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_10_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_10_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_10_word_15}),
     .io_entry_addr       (_gens_10_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_10_item),
-    .io_entry_mark       (_sort_io_entry_10_mark),
+    .io_entry_group      (_gens_10_io_entry_group),
+    .io_entry_item
+      (entryGroup_10 ? _sorts_1_io_entry_10_item : _sorts_0_io_entry_10_item),
+    .io_entry_mark
+      (entryGroup_10 ? _sorts_1_io_entry_10_mark : _sorts_0_io_entry_10_mark),
     .io_mark_valid       (_gens_10_io_mark_valid),
+    .io_mark_bits_group  (_gens_10_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_10_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_10_io_mark_bits_item),
     .io_keyAddr          (_gens_10_io_keyAddr),
@@ -34888,7 +36410,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_10_bits_j),
     .io_busy             (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_11 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_11 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -34979,28 +36501,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        (_gens_11_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_12_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_11_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_11_begin),
-    .io_lookup_end       (_sort_io_lookup_11_end),
-    .io_lookup_word_0    (_sort_io_lookup_11_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_11_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_11_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_11_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_11_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_11_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_11_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_11_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_11_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_11_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_11_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_11_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_11_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_11_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_11_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_11_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_11_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_11_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_11_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_11_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_11_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_11_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_11_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_11_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_11_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_11_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_11_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_11_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_11_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_11_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_11_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_11_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_11_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_11_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_11_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_11_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_11_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_11_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_11_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_11_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_11_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_11_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_11_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_11_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_11_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_11_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_11_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_11_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_11_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_11_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_11_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_11_word_15}),
     .io_entry_addr       (_gens_11_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_11_item),
-    .io_entry_mark       (_sort_io_entry_11_mark),
+    .io_entry_group      (_gens_11_io_entry_group),
+    .io_entry_item
+      (entryGroup_11 ? _sorts_1_io_entry_11_item : _sorts_0_io_entry_11_item),
+    .io_entry_mark
+      (entryGroup_11 ? _sorts_1_io_entry_11_mark : _sorts_0_io_entry_11_mark),
     .io_mark_valid       (_gens_11_io_mark_valid),
+    .io_mark_bits_group  (_gens_11_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_11_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_11_io_mark_bits_item),
     .io_keyAddr          (_gens_11_io_keyAddr),
@@ -35021,7 +36565,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_11_bits_j),
     .io_busy             (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_12 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_12 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35112,28 +36656,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        (_gens_12_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_13_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_12_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_12_begin),
-    .io_lookup_end       (_sort_io_lookup_12_end),
-    .io_lookup_word_0    (_sort_io_lookup_12_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_12_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_12_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_12_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_12_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_12_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_12_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_12_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_12_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_12_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_12_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_12_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_12_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_12_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_12_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_12_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_12_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_12_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_12_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_12_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_12_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_12_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_12_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_12_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_12_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_12_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_12_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_12_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_12_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_12_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_12_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_12_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_12_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_12_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_12_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_12_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_12_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_12_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_12_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_12_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_12_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_12_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_12_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_12_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_12_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_12_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_12_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_12_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_12_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_12_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_12_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_12_word_15}),
     .io_entry_addr       (_gens_12_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_12_item),
-    .io_entry_mark       (_sort_io_entry_12_mark),
+    .io_entry_group      (_gens_12_io_entry_group),
+    .io_entry_item
+      (entryGroup_12 ? _sorts_1_io_entry_12_item : _sorts_0_io_entry_12_item),
+    .io_entry_mark
+      (entryGroup_12 ? _sorts_1_io_entry_12_mark : _sorts_0_io_entry_12_mark),
     .io_mark_valid       (_gens_12_io_mark_valid),
+    .io_mark_bits_group  (_gens_12_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_12_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_12_io_mark_bits_item),
     .io_keyAddr          (_gens_12_io_keyAddr),
@@ -35154,7 +36720,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_12_bits_j),
     .io_busy             (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_13 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_13 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35245,28 +36811,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        (_gens_13_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_14_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_13_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_13_begin),
-    .io_lookup_end       (_sort_io_lookup_13_end),
-    .io_lookup_word_0    (_sort_io_lookup_13_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_13_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_13_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_13_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_13_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_13_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_13_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_13_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_13_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_13_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_13_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_13_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_13_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_13_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_13_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_13_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_13_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_13_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_13_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_13_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_13_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_13_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_13_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_13_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_13_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_13_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_13_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_13_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_13_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_13_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_13_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_13_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_13_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_13_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_13_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_13_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_13_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_13_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_13_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_13_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_13_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_13_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_13_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_13_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_13_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_13_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_13_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_13_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_13_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_13_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_13_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_13_word_15}),
     .io_entry_addr       (_gens_13_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_13_item),
-    .io_entry_mark       (_sort_io_entry_13_mark),
+    .io_entry_group      (_gens_13_io_entry_group),
+    .io_entry_item
+      (entryGroup_13 ? _sorts_1_io_entry_13_item : _sorts_0_io_entry_13_item),
+    .io_entry_mark
+      (entryGroup_13 ? _sorts_1_io_entry_13_mark : _sorts_0_io_entry_13_mark),
     .io_mark_valid       (_gens_13_io_mark_valid),
+    .io_mark_bits_group  (_gens_13_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_13_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_13_io_mark_bits_item),
     .io_keyAddr          (_gens_13_io_keyAddr),
@@ -35287,7 +36875,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_13_bits_j),
     .io_busy             (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_14 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_14 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35378,28 +36966,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        (_gens_14_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_15_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_14_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_14_begin),
-    .io_lookup_end       (_sort_io_lookup_14_end),
-    .io_lookup_word_0    (_sort_io_lookup_14_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_14_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_14_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_14_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_14_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_14_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_14_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_14_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_14_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_14_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_14_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_14_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_14_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_14_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_14_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_14_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_14_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_14_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_14_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_14_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_14_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_14_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_14_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_14_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_14_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_14_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_14_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_14_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_14_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_14_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_14_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_14_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_14_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_14_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_14_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_14_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_14_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_14_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_14_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_14_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_14_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_14_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_14_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_14_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_14_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_14_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_14_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_14_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_14_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_14_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_14_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_14_word_15}),
     .io_entry_addr       (_gens_14_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_14_item),
-    .io_entry_mark       (_sort_io_entry_14_mark),
+    .io_entry_group      (_gens_14_io_entry_group),
+    .io_entry_item
+      (entryGroup_14 ? _sorts_1_io_entry_14_item : _sorts_0_io_entry_14_item),
+    .io_entry_mark
+      (entryGroup_14 ? _sorts_1_io_entry_14_mark : _sorts_0_io_entry_14_mark),
     .io_mark_valid       (_gens_14_io_mark_valid),
+    .io_mark_bits_group  (_gens_14_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_14_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_14_io_mark_bits_item),
     .io_keyAddr          (_gens_14_io_keyAddr),
@@ -35420,7 +37030,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_pairs_bits_j     (io_pairs_14_bits_j),
     .io_busy             (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_world gens_15 (
+  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_15 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35511,28 +37121,50 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_largeFrom        (_gens_15_io_largeFrom_T[28:16]),
     .io_largeTo          (num),
     .io_lookup_bucket    (_gens_15_io_lookup_bucket),
-    .io_lookup_begin     (_sort_io_lookup_15_begin),
-    .io_lookup_end       (_sort_io_lookup_15_end),
-    .io_lookup_word_0    (_sort_io_lookup_15_word_0),
-    .io_lookup_word_1    (_sort_io_lookup_15_word_1),
-    .io_lookup_word_2    (_sort_io_lookup_15_word_2),
-    .io_lookup_word_3    (_sort_io_lookup_15_word_3),
-    .io_lookup_word_4    (_sort_io_lookup_15_word_4),
-    .io_lookup_word_5    (_sort_io_lookup_15_word_5),
-    .io_lookup_word_6    (_sort_io_lookup_15_word_6),
-    .io_lookup_word_7    (_sort_io_lookup_15_word_7),
-    .io_lookup_word_8    (_sort_io_lookup_15_word_8),
-    .io_lookup_word_9    (_sort_io_lookup_15_word_9),
-    .io_lookup_word_10   (_sort_io_lookup_15_word_10),
-    .io_lookup_word_11   (_sort_io_lookup_15_word_11),
-    .io_lookup_word_12   (_sort_io_lookup_15_word_12),
-    .io_lookup_word_13   (_sort_io_lookup_15_word_13),
-    .io_lookup_word_14   (_sort_io_lookup_15_word_14),
-    .io_lookup_word_15   (_sort_io_lookup_15_word_15),
+    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_15_begin}),
+    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_15_begin}),
+    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_15_end}),
+    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_15_end}),
+    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_15_word_0}),
+    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_15_word_1}),
+    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_15_word_2}),
+    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_15_word_3}),
+    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_15_word_4}),
+    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_15_word_5}),
+    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_15_word_6}),
+    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_15_word_7}),
+    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_15_word_8}),
+    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_15_word_9}),
+    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_15_word_10}),
+    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_15_word_11}),
+    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_15_word_12}),
+    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_15_word_13}),
+    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_15_word_14}),
+    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_15_word_15}),
+    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_15_word_0}),
+    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_15_word_1}),
+    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_15_word_2}),
+    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_15_word_3}),
+    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_15_word_4}),
+    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_15_word_5}),
+    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_15_word_6}),
+    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_15_word_7}),
+    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_15_word_8}),
+    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_15_word_9}),
+    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_15_word_10}),
+    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_15_word_11}),
+    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_15_word_12}),
+    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_15_word_13}),
+    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_15_word_14}),
+    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_15_word_15}),
     .io_entry_addr       (_gens_15_io_entry_addr),
-    .io_entry_item       (_sort_io_entry_15_item),
-    .io_entry_mark       (_sort_io_entry_15_mark),
+    .io_entry_group      (_gens_15_io_entry_group),
+    .io_entry_item
+      (entryGroup_15 ? _sorts_1_io_entry_15_item : _sorts_0_io_entry_15_item),
+    .io_entry_mark
+      (entryGroup_15 ? _sorts_1_io_entry_15_mark : _sorts_0_io_entry_15_mark),
     .io_mark_valid       (_gens_15_io_mark_valid),
+    .io_mark_bits_group  (_gens_15_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_15_io_mark_bits_addr),
     .io_mark_bits_item   (_gens_15_io_mark_bits_item),
     .io_keyAddr          (_gens_15_io_keyAddr),
@@ -35614,7 +37246,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_out_cell_0       (_laneKeys_2_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_2_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_2_io_out_cell_2),
-    .io_out_cellOverflow (/* unused */),
+    .io_out_cellOverflow (_laneKeys_2_io_out_cellOverflow),
     .io_out_q_0          (_laneKeys_2_io_out_q_0),
     .io_out_q_1          (_laneKeys_2_io_out_q_1),
     .io_out_q_2          (_laneKeys_2_io_out_q_2),
@@ -35638,7 +37270,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world(
     .io_out_cell_0       (_laneKeys_3_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_3_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_3_io_out_cell_2),
-    .io_out_cellOverflow (/* unused */),
+    .io_out_cellOverflow (_laneKeys_3_io_out_cellOverflow),
     .io_out_q_0          (_laneKeys_3_io_out_q_0),
     .io_out_q_1          (_laneKeys_3_io_out_q_1),
     .io_out_q_2          (_laneKeys_3_io_out_q_2),
@@ -38741,7 +40373,7 @@ module Puc_world(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
-  BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p2_world bp (
+  BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world bp (
     .clock                   (clock),
     .reset                   (reset),
     .io_start                (bpStart),

@@ -103,7 +103,8 @@ object Generate {
       c11 <- opt("--world", o.world)((c, v) => step("--world",
         c.copy(world = if (v) Some(c.world.getOrElse(collide.world.BroadPhaseParams.default)) else None)))(c10)
       c12 <- opt("--world-lanes", o.worldLanes)((c, v) => c.world match {
-        case Some(bp) => step("--world-lanes", c.copy(world = Some(bp.copy(lanes = v, sortPorts = math.max(1, math.min(bp.sortPorts, v))))))
+        case Some(bp) => step("--world-lanes", c.copy(world = Some(bp.copy(lanes = v,
+          sortPorts = Seq(4, 2, 1).find(_ <= math.min(bp.sortPorts, v)).getOrElse(1))))) // ports follow the lanes down
         case None => Left("--world-lanes: world mode is not built (add --world true or --preset world)")
       })(c11)
       c13 <- opt("--world-sort-ports", o.worldSortPorts)((c, v) => c.world match {

@@ -39,7 +39,9 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   * slice into a CellExponent of its own, and a merge (two kept needs a cycle) gives the one
   * that chooses k what they kept. `bp.sortPorts` spheres a cycle in passes 2 and 4: with two,
   * the first half of the table goes through port 0 of `sphere` and the second through port 1,
-  * each with lane 0's or lane 1's SphereKeys and a port of the sort of its own. With `bp.lanes` candidate generators, lane
+  * each with lane 0's or lane 1's SphereKeys and a port of the sort of its own; with four,
+  * quarters through lanes 0 to 3, ports 0 and 1 into one sort (group 0: the first half) and 2
+  * and 3 into another (group 1), whose buckets the generators read one after the other. With `bp.lanes` candidate generators, lane
   * l reads the table through port l of `sphere` and emits its pairs on port l of `pairs`;
   * together they are the candidates. The golden model is
   * BroadPhaseModel; the spec BroadPhaseSpec compares them pair for pair.
@@ -73,16 +75,21 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val kWidth = SphereKeys.kWidth(p)
 
   private val ports = bp.sortPorts
+  private val groups = bp.sortGroups
+  private val groupPorts = ports / groups
   /** With lanes, the load pass reads through every lane, each into a CellExponent of its own,
     * and a merge feeds what they kept into `cellExp`, two values a cycle. */
   private val wideLoad = bp.lanes > 1
   private val laneExps = if (wideLoad) Seq.fill(bp.lanes)(Module(new CellExponent(p, bp))) else Nil
   private val cellExp = Module(new CellExponent(p, bp, if (wideLoad) 2 else 1))
-  // One copy of the sorted table per lane: each lane looks up and marks its own.
-  private val sort = Module(new BucketSort(maxSpheres, tableLog2, bp.wordLog2, bp.lanes, ports))
+  // One copy of the sorted table per lane: each lane looks up and marks its own. With two
+  // groups, group g sorts the g-th half of the table, each with its own counters and entries.
+  private val sorts = Seq.fill(groups)(Module(new BucketSort(bp.groupCapacity(maxSpheres), tableLog2, bp.wordLog2, bp.lanes,
+    groupPorts, if (groups > 1) itemW else 0)))
+  private val sortBusy = sorts.map(_.io.busy).reduce(_ || _)
   private val gens = Seq.tabulate(bp.lanes) { l =>
     val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
-      keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes))
+      keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes, groups = groups))
     g.io.lane.foreach(_ := l.U)
     g
   }
@@ -119,11 +126,12 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
 
   // --- passes 1, 2 and 4: read the sphere table through SphereKeys --------------------------
   // The load pass: lane l reads its slice (with one lane, the whole table). Classify and
-  // scatter: port p reads [from(p), to(p)): the whole table with one port, halves with two,
-  // through lane p's sphere port and SphereKeys. (In pass 5 the generators read it, for
-  // their key records.)
-  private def from(port: Int): UInt = if (port == 0) 0.U else num >> 1
-  private def to(port: Int): UInt = if (port == ports - 1) num else num >> 1
+  // scatter: port q reads [from(q), to(q)) = [floor(q num / P), floor((q + 1) num / P)): the
+  // whole table with one port, halves with two, quarters with four, through lane q's sphere
+  // port and SphereKeys. (In pass 5 the generators read it, for their key records.)
+  private def from(port: Int): UInt =
+    if (port == 0) 0.U else ((num * port.U) >> log2Ceil(ports)).pad(countW)(countW - 1, 0)
+  private def to(port: Int): UInt = if (port == ports - 1) num else from(port + 1)
   private def hi(l: Int): UInt = Mux(state === S.load, cut(l + 1), if (l < ports) to(l) else 0.U)
   private val inPass = state === S.load || state === S.classify || state === S.scatter
   private val i = Reg(Vec(bp.lanes, UInt(countW.W))) // the next sphere each lane reads
@@ -214,10 +222,14 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     val big = e >= (qWidth - 1).S
     Mux(e < 0.S, 2.U, Mux(big, ((BigInt(1) << qWidth) - 1).U, 1.U +& (1.U << e.asUInt(log2Ceil(qWidth) - 1, 0))))
   }
-  sort.io.usedLog2 := usedLog2
-  sort.io.clear := starting
-  sort.io.prefix := state === S.prefix && !sent
-  for ((in, kd) <- sort.io.in.zip(keyed)) {
+  for (sort <- sorts) {
+    sort.io.usedLog2 := usedLog2
+    sort.io.clear := starting
+    sort.io.prefix := state === S.prefix && !sent
+  }
+  // Port q is port q % groupPorts of group q / groupPorts's sort.
+  private val sortIns = sorts.flatMap(_.io.in)
+  for ((in, kd) <- sortIns.zip(keyed)) {
     in.valid := kd.valid && (state === S.classify || state === S.scatter) && kd.isSmall
     in.bits.scatter := state === S.scatter
     in.bits.bucket := CellHash(kd.out.cell, tableLog2, usedLog2)
@@ -225,13 +237,22 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     assert(!in.valid || in.ready, "BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)")
   }
   for ((gen, l) <- gens.zipWithIndex) {
-    val lk = sort.io.lookup(l)
-    lk.bucket := gen.io.lookup.bucket
-    gen.io.lookup.begin := lk.begin; gen.io.lookup.end := lk.end
-    gen.io.lookup.word := lk.word
-    sort.io.entry(l).addr := gen.io.entry.addr
-    gen.io.entry.item := sort.io.entry(l).item; gen.io.entry.mark := sort.io.entry(l).mark
-    sort.io.mark(l) := gen.io.mark
+    val entryGroup = RegNext(gen.io.entry.group)
+    for ((sort, g) <- sorts.zipWithIndex) {
+      val lk = sort.io.lookup(l)
+      lk.bucket := gen.io.lookup.bucket
+      gen.io.lookup.begin(g) := lk.begin; gen.io.lookup.end(g) := lk.end
+      gen.io.lookup.word(g) := lk.word
+      // Positions in a group's table are below its capacity.
+      sort.io.entry(l).addr := gen.io.entry.addr(sort.io.posW - 1, 0)
+      sort.io.mark(l).valid := gen.io.mark.valid && gen.io.mark.bits.group === g.U
+      sort.io.mark(l).bits.addr := gen.io.mark.bits.addr(sort.io.posW - 1, 0)
+      sort.io.mark(l).bits.item := gen.io.mark.bits.item
+    }
+    // The entry read comes back from the group the stream asked (two at most).
+    val (e0, eLast) = (sorts.head.io.entry(l), sorts.last.io.entry(l))
+    gen.io.entry.item := Mux(entryGroup === (groups - 1).U, eLast.item, e0.item)
+    gen.io.entry.mark := Mux(entryGroup === (groups - 1).U, eLast.mark, e0.mark)
 
     gen.io.start := state === S.generate && !sent
     gen.io.usedLog2 := usedLog2
@@ -268,7 +289,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     is(S.load) {
       st.cycLoad := st.cycLoad + 1.U
       advance()
-      when(passDone && !sort.io.busy) {
+      when(passDone && !sortBusy) {
         if (wideLoad) { state := S.merge; m := 0.U } else { state := S.classify; restart() }
       }
     }
@@ -285,13 +306,13 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     is(S.prefix) {
       st.cycPrefix := st.cycPrefix + 1.U
       sent := true.B
-      when(sent && !sort.io.busy) { state := S.scatter; restart() }
+      when(sent && !sortBusy) { state := S.scatter; restart() }
     }
     is(S.scatter) {
       st.cycScatter := st.cycScatter + 1.U
       advance()
       // The last scatter write lands the cycle after its request: one cycle of margin.
-      when(passDone && !RegNext(sort.io.in.map(_.fire).reduce(_ || _), false.B)) {
+      when(passDone && !RegNext(sortIns.map(_.fire).reduce(_ || _), false.B)) {
         state := S.generate; sent := false.B
       }
     }
@@ -303,8 +324,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
         st.k := k
         st.cells := laneSum(_.io.stats.cells); st.chunks := laneSum(_.io.stats.chunks)
         st.scanned := laneSum(_.io.stats.scanned); st.probes := laneSum(_.io.stats.probes)
-        st.badBucket := sort.io.badBucket
-        st.sortMismatch := sort.io.counted =/= sort.io.scattered
+        st.badBucket := sorts.map(_.io.badBucket).reduce(_ || _)
+        st.sortMismatch := sorts.map(s => s.io.counted =/= s.io.scattered).reduce(_ || _)
       }
     }
   }

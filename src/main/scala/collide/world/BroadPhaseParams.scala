@@ -29,10 +29,12 @@ package collide.world
   *                   whole large list;
   *                   each lane has its own copy of the sort's RAM (it marks its own buckets'
   *                   entries) and its own read port on the sphere table
-  * @param sortPorts  spheres a cycle in the sort's passes (1 or 2, at most `lanes`): with 2,
-  *                   the passes read the table through lanes 0 and 1's ports, each port
-  *                   taking half of it, counting and scattering through a port of its own
-  *                   (the entries' second block-RAM port; one more table of counters)
+  * @param sortPorts  spheres a cycle in the sort's passes (1, 2 or 4, at most `lanes`): port
+  *                   q reads the q-th part of the table through lane q's sphere port, counting
+  *                   and scattering through a port of its own. Two ports share one sort (the
+  *                   entries' two block-RAM ports; one more table of counters); four are two
+  *                   sorts of two ports (`sortGroups`), each of half the table, whose buckets
+  *                   the generators read one after the other (a second table of counters a lane)
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -57,7 +59,8 @@ final case class BroadPhaseParams(
   require(wordLog2 >= 0 && wordLog2 <= 5, s"wordLog2 must be 0..5, got $wordLog2")
   require(lanes >= 1 && lanes <= 16, s"lanes must be 1..16 (a pair line holds 16 candidates a cycle), got $lanes")
 
-  require(sortPorts == 1 || sortPorts == 2, s"sortPorts must be 1 or 2 (a block RAM's two ports), got $sortPorts")
+  require(sortPorts == 1 || sortPorts == 2 || sortPorts == 4,
+    s"sortPorts must be 1, 2 or 4 (a block RAM's two ports, or two sorts of two), got $sortPorts")
   require(sortPorts <= lanes, s"sortPorts ($sortPorts) must be at most lanes ($lanes): port p reads the table through lane p's port")
 
   val buckets: Int = 1 << bucketsLog2
@@ -70,11 +73,17 @@ final case class BroadPhaseParams(
     * per sort port past the first. The sphere table it reads is the AFU's (which holds
     * ceil(lanes / 2) more copies for it: two lanes share a copy's two ports). */
   def ramBits(maxSpheres: Int): Long = {
-    val countW = chisel3.util.log2Ceil(maxSpheres + 1)
+    val cap = groupCapacity(maxSpheres)
+    val countW = chisel3.util.log2Ceil(cap + 1)
     val itemW = chisel3.util.log2Ceil(maxSpheres)
     val counters = (1L << tableLog2(maxSpheres)) * countW
-    (lanes + sortPorts - 1) * counters + lanes * maxSpheres.toLong * (itemW + 1)
+    sortGroups * ((lanes + sortPorts / sortGroups - 1) * counters + lanes * cap.toLong * (itemW + 1))
   }
+  /** Sorts the passes use: one, or with four ports two of two ports, group g sorting the g-th
+    * half of the table (block RAM has two ports; the generators read both groups' buckets). */
+  val sortGroups: Int = if (sortPorts == 4) 2 else 1
+  /** Entries of one group's sorted table: its half of the table, or all of it. */
+  def groupCapacity(maxSpheres: Int): Int = (maxSpheres + sortGroups - 1) / sortGroups
   /** Copies of the sphere table the lanes read: two lanes a copy (a block RAM's two ports). */
   val sphereCopies: Int = (lanes + 1) / 2
 
@@ -101,4 +110,6 @@ object BroadPhaseParams {
   val fourLanes: BroadPhaseParams = default.copy(lanes = 4)
   /** Four candidate generators, the sort's passes two spheres a cycle, 16 counters a word. */
   val fourLanesTwoPorts: BroadPhaseParams = fourLanes.copy(sortPorts = 2, wordLog2 = 4)
+  /** Four candidate generators, the sort's passes four spheres a cycle (two sorts of two ports). */
+  val fourLanesFourPorts: BroadPhaseParams = fourLanes.copy(sortPorts = 4, wordLog2 = 4)
 }

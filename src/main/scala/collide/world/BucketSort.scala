@@ -32,12 +32,17 @@ import chisel3.util._
   * `mark(c)` sets it in copy c (rewriting the item it was given). Never mark while
   * scattering: generation reads one port and marks through the other.
   *
+  * Items may be wider than positions (`itemBits`): a sort of half the table (one group of the
+  * broad phase's four sort ports) holds whole sphere indices in half as many entries.
+  *
   * Contract: scatter exactly the items counted, through the same port (the caller checks
   * counted === scattered); a bucket at or above the used range is refused and latched in
   * badBucket, never written.
   */
-class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int, copies: Int, ports: Int) extends Bundle {
-  val itemW = log2Ceil(maxItems)
+class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int, copies: Int, ports: Int, itemBits: Int) extends Bundle {
+  /** Width of an item (what an entry holds) and of a position in the entries (maxItems deep). */
+  val itemW = if (itemBits > 0) itemBits else log2Ceil(maxItems)
+  val posW = log2Ceil(maxItems)
   val countW = log2Ceil(maxItems + 1)
   /** log2 of the buckets in use this world (<= bucketsLog2): what clear and prefix walk. */
   val usedLog2 = Input(UInt(log2Ceil(bucketsLog2 + 1).W))
@@ -58,12 +63,12 @@ class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int, copies: In
     val word = Output(Vec(perWord, UInt(countW.W)))
   })
   val entry = Vec(copies, new Bundle {
-    val addr = Input(UInt(itemW.W))
+    val addr = Input(UInt(posW.W))
     val item = Output(UInt(itemW.W)) // the cycle after
     val mark = Output(Bool())
   })
   val mark = Vec(copies, Flipped(Valid(new Bundle {
-    val addr = UInt(itemW.W)
+    val addr = UInt(posW.W)
     val item = UInt(itemW.W)
   })))
   val counted = Output(UInt(countW.W))
@@ -71,19 +76,22 @@ class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int, copies: In
   val badBucket = Output(Bool())
 }
 
-class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int = 1, ports: Int = 1) extends Module {
+class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int = 1, ports: Int = 1, itemBits: Int = 0)
+    extends Module {
+  require(itemBits == 0 || itemBits >= log2Ceil(maxItems), s"itemBits $itemBits cannot name $maxItems items")
   require(maxItems >= 2 && bucketsLog2 >= 1 && bucketsLog2 <= 24)
   require(wordLog2 >= 0 && wordLog2 <= 5, s"wordLog2 must be 0..5, got $wordLog2")
   require(copies >= 1 && copies <= 16, s"copies must be 1..16, got $copies")
   require(ports == 1 || ports == 2, s"ports must be 1 or 2 (a block RAM's two write ports), got $ports")
   private val wl = math.min(wordLog2, bucketsLog2)
   override def desiredName = s"BucketSort_n${maxItems}_b${bucketsLog2}_w$wl" +
-    (if (copies > 1) s"_c$copies" else "") + (if (ports > 1) s"_p$ports" else "")
+    (if (copies > 1) s"_c$copies" else "") + (if (ports > 1) s"_p$ports" else "") + (if (itemBits > 0) s"_i$itemBits" else "")
   private val perWord = 1 << wl
-  val io = IO(new BucketSortIO(maxItems, bucketsLog2, perWord, copies, ports))
+  val io = IO(new BucketSortIO(maxItems, bucketsLog2, perWord, copies, ports, itemBits))
   private val wordsLog2 = bucketsLog2 - wl
   private val countW = io.countW
   private val itemW = io.itemW
+  private val posW = io.posW
   private def wordOf(b: UInt): UInt = if (wordsLog2 == 0) 0.U else (b >> wl)(wordsLog2 - 1, 0)
   private def laneOf(b: UInt): UInt = if (wl == 0) 0.U else b(wl - 1, 0)
   private def lanes(w: UInt): Vec[UInt] = VecInit.tabulate(perWord)(l => w((l + 1) * countW - 1, l * countW))
@@ -129,7 +137,7 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
   private val starts = VecInit(totals.scanLeft(sum)(_ + _).take(perWord))
   /** Port p's cursor for bucket j: its start plus the counts of the ports before p. */
   private def portStart(p: Int, j: Int): UInt = sumRd.take(p).map(_(j)).foldLeft(starts(j))(_ + _)
-  private class Place extends Bundle { val pos = UInt(itemW.W); val item = UInt(itemW.W) }
+  private class Place extends Bundle { val pos = UInt(posW.W); val item = UInt(itemW.W) }
   /** Each port's scatter placement this cycle (the read-modify-write's second stage). */
   private val place = Wire(Vec(ports, Valid(new Place)))
   private val countFires = Wire(Vec(ports, Bool()))
@@ -175,7 +183,7 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
     oldWord := lanes(Mux(fwdValid && fwdW === wordOf(s1b), fwdV, rd))
     countFires(p) := s1 && !s1scatter
     place(p).valid := s1 && s1scatter
-    place(p).bits.pos := old(itemW - 1, 0)
+    place(p).bits.pos := old(posW - 1, 0)
     place(p).bits.item := s1item
     // One write port: the read-modify-write, else clear, else the prefix sum's cursor.
     val write = WireDefault(s1)

@@ -15,12 +15,15 @@ import collide.world.model.BroadPhaseModel
   * lookup each, issued while the scan still runs) past the ChunkMatcher, and the next chunk's
   * scan follows the last visit without waiting for it to drain. Last, the large pass: chunks
   * of the large list meet every non-excluded sphere of this lane's slice of the table
-  * [largeFrom, largeTo) (the slices of all lanes cover the table once). With
+  * [largeFrom, largeTo) (the slices of all lanes cover the table once). With two sort
+  * `groups` (four sort ports: two sorts, each of half the table) a bucket's entries are group
+  * 0's run then group 1's, read and streamed in that order, so every bucket is still in index
+  * order and the chunks and pairs are those of one sort. With
   * one lane the pair stream is exactly BroadPhaseModel.run's candidates, the grid part in
   * the same order, the large part as a set; the lanes' streams together are that set.
   */
 class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, largeSlots: Int,
-                           perWord: Int, lanes: Int) extends Bundle {
+                           perWord: Int, lanes: Int, groups: Int) extends Bundle {
   val start = Input(Bool())
   /** This lane's number, 0 until lanes (none with one lane). */
   val lane = if (lanes > 1) Some(Input(UInt(log2Ceil(lanes).W))) else None
@@ -31,18 +34,20 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
   /** The spheres this lane streams past the large list: [largeFrom, largeTo). */
   val largeFrom = Input(UInt(countW.W))
   val largeTo = Input(UInt(countW.W))
+  /** Each group's sorted table (BroadPhaseParams.sortGroups) is looked up at once. */
   val lookup = new Bundle {
     val bucket = Output(UInt(bucketsLog2.W))
-    val begin = Input(UInt(countW.W)) // the cycle after
-    val end = Input(UInt(countW.W))
-    val word = Input(Vec(perWord, UInt(countW.W))) // BucketSort's: the ends of bucket's word
+    val begin = Input(Vec(groups, UInt(countW.W))) // the cycle after
+    val end = Input(Vec(groups, UInt(countW.W)))
+    val word = Input(Vec(groups, Vec(perWord, UInt(countW.W)))) // BucketSort's: the ends of bucket's word
   }
   val entry = new Bundle {
     val addr = Output(UInt(itemW.W))
-    val item = Input(UInt(itemW.W)) // the cycle after
+    val group = Output(UInt(1.W))
+    val item = Input(UInt(itemW.W)) // the cycle after, from group's table
     val mark = Input(Bool())
   }
-  val mark = Valid(new Bundle { val addr = UInt(itemW.W); val item = UInt(itemW.W) })
+  val mark = Valid(new Bundle { val group = UInt(1.W); val addr = UInt(itemW.W); val item = UInt(itemW.W) })
   val keyAddr = Output(UInt(itemW.W))
   val keyData = Input(new KeyRecord(cellBits, qWidth)) // keyLatency cycles after keyAddr
   val pairs = Decoupled(new WorldPair(itemW))
@@ -57,19 +62,22 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
 }
 
 class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
-                         largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1) extends Module {
+                         largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1, groups: Int = 1)
+    extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
   require(lanes >= 1, s"lanes must be >= 1, got $lanes")
+  require(groups == 1 || groups == 2, s"groups must be 1 or 2, got $groups")
   private val perWord = 1 << wordLog2
   override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2" +
-    (if (lanes > 1) s"_l$lanes" else "")
-  val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes))
+    (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "")
+  val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes, groups))
   private val laneNo: UInt = io.lane.getOrElse(0.U)
 
   private val visitT = new WorldVisit(cellBits)
-  private val stream = Module(new KeyStream(visitT, itemW, countW, cellBits, qWidth, keyLatency))
+  private val stream = Module(new KeyStream(visitT, itemW, countW, cellBits, qWidth, keyLatency, groups))
   private val matcher = Module(new ChunkMatcher(itemW, cellBits, qWidth, chunk))
   io.entry.addr := stream.io.entryAddr
+  io.entry.group := stream.io.entryGroup
   stream.io.entryItem := io.entry.item
   stream.io.entryMark := io.entry.mark
   io.keyAddr := stream.io.keyAddr
@@ -92,6 +100,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   matcher.io.in.valid := false.B
   matcher.io.in.bits := DontCare
   io.mark.valid := false.B
+  io.mark.bits.group := stream.io.out.bits.group
   io.mark.bits.addr := stream.io.out.bits.pos(itemW - 1, 0)
   io.mark.bits.item := stream.io.out.bits.item
   io.lookup.bucket := 0.U
@@ -106,14 +115,16 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val walkPend = RegInit(false.B)
   private val walkB = Reg(UInt((bucketsLog2 + 1).W))
   // --- the chunk: its cell, where its scan starts, what the scan found ----------------------
-  private val p = Reg(UInt(countW.W))
-  private val bEnd = Reg(UInt(countW.W))
+  // Per group: where the scan starts, and the bucket's end (a bucket's entries: group 0's, then 1's).
+  private val p = Reg(Vec(groups, UInt(countW.W)))
+  private val bEnd = Reg(Vec(groups, UInt(countW.W)))
   private val curCell = Reg(Vec(3, SInt(cellBits.W)))
   private val haveCell = Reg(Bool())
   private val loaded = Reg(UInt(log2Ceil(chunk + 1).W))
   private val moreOfCell = Reg(Bool())
   private val nextSet = Reg(Bool())
   private val nextLeader = Reg(UInt(countW.W))
+  private val nextGroup = Reg(UInt(1.W))
   private val nextCell = Reg(Vec(3, SInt(cellBits.W)))
   private val sent = Reg(Bool())
   private val scanLeft = Reg(UInt(countW.W))
@@ -126,7 +137,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val lkVisit = Reg(visitT)
   // Three ranges: one for the stream to take each cycle while a lookup is in flight and
   // another is issued (visits of one entry or none follow each other at a cycle each).
-  private val lkq = Module(new Queue(new StreamRange(visitT, countW), 3))
+  private val lkq = Module(new Queue(new StreamRange(visitT, countW, groups), 3))
   lkq.io.enq.valid := false.B
   lkq.io.enq.bits := DontCare
   lkq.io.deq.ready := false.B
@@ -161,11 +172,14 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       val base = (walkB >> wordLog2) << wordLog2
       val from = if (wordLog2 == 0) 0.U else walkB(wordLog2 - 1, 0)
       val ends = io.lookup.word
-      val begins = io.lookup.begin +: ends.init // lane 0's begin is right when walkB is lane 0
-      val occupied = VecInit((0 until perWord).map(l => l.U >= from && base + l.U < used && ends(l) =/= begins(l)))
+      // Lane 0's begin is right when walkB is lane 0.
+      val begins = (0 until groups).map(g => VecInit(io.lookup.begin(g) +: ends(g).init))
+      val occupied = VecInit((0 until perWord).map(l => l.U >= from && base + l.U < used &&
+        (0 until groups).map(g => ends(g)(l) =/= begins(g)(l)).reduce(_ || _)))
       val lane = PriorityEncoder(occupied.asUInt)
       when(walkPend && occupied.asUInt.orR) {
-        p := VecInit(begins)(lane); bEnd := ends(lane); haveCell := false.B
+        for (g <- 0 until groups) { p(g) := begins(g)(lane); bEnd(g) := ends(g)(lane) }
+        haveCell := false.B
         // On past it in this word, or at the word's end on to this lane's next word.
         bIssue := Mux(lane === (perWord - 1).U, base + (lanes * perWord).U, base + lane + 1.U)
         walkPend := false.B; cells := cells + 1.U
@@ -184,7 +198,8 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       stream.io.req.bits.tag.scan := true.B
       when(sent) { stream.io.req <> lkq.io.deq }
       when(stream.io.req.fire && !sent) {
-        sent := true.B; nextSet := false.B; moreOfCell := false.B; loaded := 0.U; scanLeft := bEnd - p
+        sent := true.B; nextSet := false.B; moreOfCell := false.B; loaded := 0.U
+        scanLeft := (0 until groups).map(g => bEnd(g) - p(g)).reduce(_ + _)
         chunks := chunks + 1.U
       }
 
@@ -216,7 +231,9 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
             when(!haveCell) { curCell := it.rec.cell; haveCell := true.B }
           }
           when(!it.mark && haveCell && same && loaded === chunk.U) { moreOfCell := true.B }
-          when(!it.mark && haveCell && !same && !nextSet) { nextLeader := it.pos; nextCell := it.rec.cell; nextSet := true.B }
+          when(!it.mark && haveCell && !same && !nextSet) {
+            nextLeader := it.pos; nextGroup := it.group; nextCell := it.rec.cell; nextSet := true.B
+          }
         }
       }.otherwise {
         matcher.io.in.valid := stream.io.out.valid
@@ -235,7 +252,12 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         when(moreOfCell || nextSet) {
           sent := false.B; vIssue := 0.U; needClear := true.B
           // The next cell is known already: its visits' lookups need not wait for its scan.
-          when(!moreOfCell) { p := nextLeader; curCell := nextCell; haveCell := true.B; cells := cells + 1.U }
+          when(!moreOfCell) {
+            // Scans go in group order: a leader in group 1 leaves nothing of group 0 to scan.
+            if (groups == 1) p(0) := nextLeader
+            else when(nextGroup === 0.U) { p(0) := nextLeader }.otherwise { p(0) := bEnd(0); p(1) := nextLeader }
+            curCell := nextCell; haveCell := true.B; cells := cells + 1.U
+          }
         }.elsewhen(stream.io.idle && matcher.io.idle) {
           state := S.walk; walkPend := false.B // bIssue is already the next bucket
         }
@@ -253,7 +275,8 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     }
     is(S.largeStream) {
       stream.io.req.valid := !sent
-      stream.io.req.bits.begin := io.largeFrom; stream.io.req.bits.end := io.largeTo
+      stream.io.req.bits.begin := VecInit(io.largeFrom +: Seq.fill(groups - 1)(0.U(countW.W)))
+      stream.io.req.bits.end := VecInit(io.largeTo +: Seq.fill(groups - 1)(0.U(countW.W)))
       stream.io.req.bits.direct := true.B; stream.io.req.bits.tag := DontCare
       when(stream.io.req.fire) { sent := true.B }
       val it = stream.io.out.bits

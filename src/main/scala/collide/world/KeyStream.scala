@@ -3,16 +3,19 @@ package collide.world
 import chisel3._
 import chisel3.util._
 
-/** A range of the sorted table (or of sphere indices) to stream, and what travels with it. */
-class StreamRange[T <: Data](tagType: T, countW: Int) extends Bundle {
-  val begin = UInt(countW.W)
-  val end = UInt(countW.W)
-  /** Positions are sphere indices (the large pass, the scatter): no entry read. */
+/** A range of the sorted table (or of sphere indices) to stream, and what travels with it.
+  * With `groups` sorted tables (a sort split by index, BroadPhaseParams.sortGroups), a range
+  * is one run in each, streamed in group order: a bucket's entries in index order. */
+class StreamRange[T <: Data](tagType: T, countW: Int, groups: Int = 1) extends Bundle {
+  val begin = Vec(groups, UInt(countW.W))
+  val end = Vec(groups, UInt(countW.W))
+  /** Positions are sphere indices (the large pass, the scatter): no entry read; group 0 only. */
   val direct = Bool()
   val tag = tagType.cloneType
 }
 
 class StreamItem[T <: Data](tagType: T, itemW: Int, countW: Int, cellBits: Int, qWidth: Int) extends Bundle {
+  val group = UInt(1.W)     // which sorted table (0 with one group, and when direct)
   val pos = UInt(countW.W)  // position in the sorted table (direct: the index)
   val item = UInt(itemW.W)  // the sphere index
   val mark = Bool()         // the entry's mark bit (false when direct)
@@ -22,6 +25,7 @@ class StreamItem[T <: Data](tagType: T, itemW: Int, countW: Int, cellBits: Int, 
 
 /** A position in flight between KeyStream's two reads. */
 class StreamStage[T <: Data](tagType: T, countW: Int) extends Bundle {
+  val group = UInt(1.W)
   val pos = UInt(countW.W)
   val direct = Bool()
   val tag = tagType.cloneType
@@ -29,6 +33,7 @@ class StreamStage[T <: Data](tagType: T, countW: Int) extends Bundle {
 
 /** A position past its entry read, waiting for its key record. */
 class StreamKeyStage[T <: Data](tagType: T, itemW: Int, countW: Int) extends Bundle {
+  val group = UInt(1.W)
   val pos = UInt(countW.W)
   val tag = tagType.cloneType
   val item = UInt(itemW.W)
@@ -39,16 +44,20 @@ class StreamKeyStage[T <: Data](tagType: T, itemW: Int, countW: Int) extends Bun
   * index and mark) from BucketSort, a cycle later, then that sphere's key record,
   * `keyLatency` cycles after its address (the broad phase recomputes it from the sphere
   * table), one position a cycle. Ranges follow each other without a gap (an empty range
-  * costs its accepting cycle). The reads never stall: a position is read only when the
-  * output queue has room for everything in flight, so `out` may apply back-pressure.
+  * costs its accepting cycle), and so do a range's runs in its groups' tables. The reads never
+  * stall: a position is read only when the output queue has room for everything in flight,
+  * so `out` may apply back-pressure.
   */
-class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidth: Int, keyLatency: Int = 1)
+class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidth: Int, keyLatency: Int = 1,
+                           groups: Int = 1)
     extends Module {
   require(keyLatency >= 1, s"keyLatency must be >= 1, got $keyLatency")
+  require(groups == 1 || groups == 2, s"groups must be 1 or 2, got $groups")
   private val depth = keyLatency + 3 // everything in flight, plus one: full rate when out is ready
   val io = IO(new Bundle {
-    val req = Flipped(Decoupled(new StreamRange(tag, countW)))
+    val req = Flipped(Decoupled(new StreamRange(tag, countW, groups)))
     val entryAddr = Output(UInt(itemW.W))
+    val entryGroup = Output(UInt(1.W)) // the table entryAddr is in
     val entryItem = Input(UInt(itemW.W)) // a cycle after entryAddr
     val entryMark = Input(Bool())
     val keyAddr = Output(UInt(itemW.W))
@@ -58,7 +67,7 @@ class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidt
     val idle = Output(Bool())
   })
 
-  private val cur = Reg(new StreamRange(tag, countW))
+  private val cur = Reg(new StreamRange(tag, countW, groups))
   private val busy = RegInit(false.B)
   private val q = Module(new Queue(new StreamItem(tag, itemW, countW, cellBits, qWidth), depth))
 
@@ -69,28 +78,37 @@ class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidt
   private val inFlight = (s1v +: kv).map(_.asUInt).reduce(_ +& _)
   private val room = q.io.count +& inFlight < depth.U
   private val issue = busy && room
-  private val last = issue && cur.begin + 1.U === cur.end
+  private val left = VecInit.tabulate(groups)(g => cur.begin(g) =/= cur.end(g))
+  // The group read from: the first with positions left (group 1 once group 0's run is done).
+  private val g = if (groups == 1) 0.U(1.W) else Mux(left(0), 0.U(1.W), 1.U(1.W))
+  private val at = if (groups == 1) cur.begin(0) else cur.begin(g)
+  private val moreAfter =
+    if (groups == 1) at + 1.U =/= cur.end(0)
+    else Mux(g === 0.U, at + 1.U =/= cur.end(0) || left(1), at + 1.U =/= cur.end(1))
+  private val last = issue && !moreAfter
   io.req.ready := !busy || last
-  when(issue) { cur.begin := cur.begin + 1.U }
+  when(issue) { if (groups == 1) cur.begin(0) := at + 1.U else cur.begin(g) := at + 1.U }
   when(last) { busy := false.B }
   when(io.req.fire) {
     cur := io.req.bits
-    busy := io.req.bits.begin =/= io.req.bits.end
+    busy := (0 until groups).map(q => io.req.bits.begin(q) =/= io.req.bits.end(q)).reduce(_ || _)
   }
 
-  io.entryAddr := cur.begin(itemW - 1, 0)
+  io.entryAddr := at(itemW - 1, 0)
+  io.entryGroup := g
   s1v := issue
-  when(issue) { s1.pos := cur.begin; s1.direct := cur.direct; s1.tag := cur.tag }
+  when(issue) { s1.group := g; s1.pos := at; s1.direct := cur.direct; s1.tag := cur.tag }
 
   private val item = Mux(s1.direct, s1.pos(itemW - 1, 0), io.entryItem)
   io.keyAddr := item
   kv.head := s1v
   when(s1v) {
-    ks.head.pos := s1.pos; ks.head.tag := s1.tag; ks.head.item := item; ks.head.mark := !s1.direct && io.entryMark
+    ks.head.group := s1.group; ks.head.pos := s1.pos; ks.head.tag := s1.tag; ks.head.item := item; ks.head.mark := !s1.direct && io.entryMark
   }
   for (i <- 1 until keyLatency) { kv(i) := kv(i - 1); ks(i) := ks(i - 1) }
 
   q.io.enq.valid := kv.last
+  q.io.enq.bits.group := ks.last.group
   q.io.enq.bits.pos := ks.last.pos
   q.io.enq.bits.item := ks.last.item
   q.io.enq.bits.mark := ks.last.mark

@@ -27,14 +27,20 @@ class GenerateSpec extends AnyFlatSpec {
     assert(cfg("--preset", "world", "--world", "false").toOption.get.world.isEmpty)
     // 2^13 buckets of 13-bit counters and 4096 entries of a 12-bit index and a mark
     assert(collide.world.BroadPhaseParams.default.ramBits(4096) == 8192L * 13 + 4096L * 13)
-    // The world preset's 16 lanes: a sort RAM each, a sphere copy per two lanes; its second
-    // sort port a table of 8192 counters more.
-    assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 16 * 159744.0 + 8192 * 13)
+    // The world preset's 16 lanes and four sort ports: two sorts (groups), each of half the
+    // table: per group and lane a table of 8192 12-bit counters and 2048 entries of a 12-bit
+    // index and a mark, and per group a table of counters more for its second port; a sphere
+    // copy per two lanes.
+    val group16 = (16 + 1) * 8192L * 12 + 16 * 2048L * 13
+    assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 2.0 * group16)
     assert(AfuConfig.world.puc.ramCopies == 16 + 8, "sixteen SCPU copies and the broad phase's eight")
     // Lanes: a sort RAM each, a sphere copy per two; a name of their own.
     val l5 = cfg("--preset", "world", "--world-lanes", "5").toOption.get
-    assert(l5.world.get.lanes == 5 && l5.id.endsWith("_world5p2w4") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
-    assert(l5.world.get.ramBits(4096) == 5 * 159744L + 8192 * 13)
+    assert(l5.world.get.lanes == 5 && l5.id.endsWith("_world5p4w4") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
+    assert(l5.world.get.ramBits(4096) == 2 * ((5 + 1) * 8192L * 12 + 5 * 2048L * 13))
+    // Fewer lanes than the ports: the ports follow down to the most a configuration allows.
+    val l3 = cfg("--preset", "world", "--world-lanes", "3").toOption.get
+    assert(l3.world.get.sortPorts == 2 && l3.id.endsWith("_world3p2w4") && l3.world.get.ramBits(4096) == 3 * 159744L + 8192 * 13, l3.id)
     val p1 = cfg("--preset", "world", "--world-lanes", "5", "--world-sort-ports", "1").toOption.get
     assert(p1.world.get.sortPorts == 1 && p1.id.endsWith("_world5w4") && p1.world.get.ramBits(4096) == 5 * 159744L, p1.id)
     assert(cfg("--world", "true", "--world-lanes", "5", "--world-sort-ports", "2").toOption.get.id.endsWith("_world5p2"),
@@ -69,7 +75,7 @@ class GenerateSpec extends AnyFlatSpec {
     err("--world-lanes", "4")("--world-lanes", "not built")
     err("--preset", "world", "--world-lanes", "17")("--world-lanes", "1..16")
     err("--world-sort-ports", "2")("--world-sort-ports", "not built")
-    err("--preset", "world", "--world-sort-ports", "3")("--world-sort-ports", "1 or 2")
+    err("--preset", "world", "--world-sort-ports", "3")("--world-sort-ports", "1, 2 or 4")
     err("--world", "true", "--world-sort-ports", "2")("--world-sort-ports", "at most lanes")
   }
 

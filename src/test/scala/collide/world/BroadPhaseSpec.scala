@@ -115,6 +115,10 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     everyHardCase("BroadPhaseSpec-ports", BroadPhaseParams.fourLanesTwoPorts, "two sort ports: ")
   }
 
+  it should "find the same candidates with the sort's passes four spheres a cycle (two sorts, each of half the table, read one after the other), in every hard case and random cloud" in {
+    everyHardCase("BroadPhaseSpec-four-ports", BroadPhaseParams.fourLanesFourPorts, "four sort ports: ")
+  }
+
   it should "stay exact with three lanes over a four-bucket table, and with the table cut into four slices for the large pass" in {
     val rng = Seeds.rng("BroadPhaseSpec-lanes-odd")
     val tiny = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.tinyTable.copy(lanes = 3))

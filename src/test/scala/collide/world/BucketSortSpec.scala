@@ -108,6 +108,18 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
+  it should "hold items wider than its positions, as a group of a four-port sort holds its half of a larger table" in {
+    val rng = Seeds.rng("BucketSortSpec-wide-items")
+    // Positions 0..127, items 9 bits: the second half of a 512-sphere table's indices.
+    test(new BucketSort(128, bucketsLog2, 4, 2, 2, itemBits = 9)) { dut =>
+      dut.clock.setTimeout(0)
+      for ((label, n, usedLog2) <- Seq(("full half", 128, 5), ("part", 77, bucketsLog2), ("one", 1, 2))) {
+        val items = Seq.tabulate(n)(i => (300 + i, rng.nextInt(1 << usedLog2)))
+        sortWorld(dut, rng, label, items, usedLog2)
+      }
+    }
+  }
+
   it should "refuse a bucket outside the used range and say so, without writing it" in {
     test(new BucketSort(maxItems, bucketsLog2)) { dut =>
       dut.io.usedLog2.poke(2.U)
