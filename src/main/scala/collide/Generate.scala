@@ -29,6 +29,7 @@ object Generate {
       world: Option[Boolean] = None,
       worldLanes: Option[Int] = None,
       worldSortPorts: Option[Int] = None,
+      worldBucketsPerSphere: Option[Int] = None,
       scpuImpl: Option[String] = None,
       listPresets: Boolean = false)
 
@@ -62,8 +63,11 @@ object Generate {
         .text("the broad phase's candidate generators, 1..16 (world mode only; each adds a copy of its sort RAM, " +
           "and every two a copy of the sphere table; the sort's ports follow down to L)"),
       opt[Int]("world-sort-ports").valueName("P").action((v, o) => o.copy(worldSortPorts = Some(v)))
-        .text("spheres a cycle in the broad phase's sort passes, 1 or 2, at most the lanes (world mode only; " +
-          "2 adds a table of counters)"),
+        .text("spheres a cycle in the broad phase's sort passes, 1, 2 or 4, at most the lanes (world mode only; " +
+          "2 adds a table of counters, 4 is two sorts of half the table: a second table of counters a lane)"),
+      opt[Int]("world-buckets-per-sphere").valueName("B").action((v, o) => o.copy(worldBucketsPerSphere = Some(v)))
+        .text("buckets a world uses per sphere, 1, 2 (default) or 4 (world mode only; 1 halves the sort's counters " +
+          "and its clear and prefix sum, for more cells sharing a bucket)"),
       opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
         .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
           "(same cycles and records, a far faster co-simulation; not synthesizable)"),
@@ -111,8 +115,15 @@ object Generate {
         case Some(bp) => step("--world-sort-ports", c.copy(world = Some(bp.copy(sortPorts = v))))
         case None => Left("--world-sort-ports: world mode is not built (add --world true or --preset world)")
       })(c12)
-      c14 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c13)
-    } yield c14
+      c14 <- opt("--world-buckets-per-sphere", o.worldBucketsPerSphere)((c, v) => c.world match {
+        case Some(bp) => Seq(1, 2, 4).indexOf(v) match {
+          case -1 => Left(s"--world-buckets-per-sphere: must be 1, 2 or 4, got $v")
+          case s => step("--world-buckets-per-sphere", c.copy(world = Some(bp.copy(bucketsPerSphereLog2 = s))))
+        }
+        case None => Left("--world-buckets-per-sphere: world mode is not built (add --world true or --preset world)")
+      })(c13)
+      c15 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c14)
+    } yield c15
   }
 
   val firtoolOpts: Array[String] = Array(

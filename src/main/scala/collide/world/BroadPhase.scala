@@ -67,7 +67,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val largeSlots = math.max(1, bp.largeMax)
   override def desiredName =
     s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}_w${bp.wordLog2}" +
-      (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "")
+      (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "") +
+      (if (bp.bucketsPerSphereLog2 != 1) s"_s${bp.bucketsPerSphereLog2}" else "")
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres))
   private val itemW = io.itemW
   private val countW = io.countW
@@ -110,10 +111,11 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val st = RegInit(0.U.asTypeOf(new BroadPhaseStatus(kWidth, countW)))
   private val largeCount = RegInit(0.U(log2Ceil(largeSlots + 1).W))
 
-  /** log2 of BroadPhaseModel.bucketsFor(n): the least t with 2^t >= 2n, capped at the table. */
+  /** log2 of BroadPhaseModel.bucketsFor(n): the least t with 2^t >= n 2^bucketsPerSphereLog2,
+    * capped at the table. */
   private def bucketsLog2For(n: UInt): UInt = {
     val ceilLog2 = Mux(n <= 1.U, 0.U, Log2(n - 1.U) +& 1.U)
-    val t = Mux(n === 0.U, 0.U, ceilLog2 +& 1.U)
+    val t = Mux(n === 0.U, 0.U, ceilLog2 +& bp.bucketsPerSphereLog2.U)
     Mux(t > tableLog2.U, tableLog2.U, t)
   }
 

@@ -29,6 +29,10 @@ package collide.world
   *                   whole large list;
   *                   each lane has its own copy of the sort's RAM (it marks its own buckets'
   *                   entries) and its own read port on the sphere table
+  * @param bucketsPerSphereLog2 a world of N spheres uses the least power of two of buckets at
+  *                   least N * 2^this (at most 2^bucketsLog2): 1 (2N, the default) keeps
+  *                   collisions rare; 0 (N) halves the clear, the prefix sum, the walk and the
+  *                   counters' RAM for more cells sharing a bucket (scanning time, never a pair)
   * @param sortPorts  spheres a cycle in the sort's passes (1, 2 or 4, at most `lanes`): port
   *                   q reads the q-th part of the table through lane q's sphere port, counting
   *                   and scattering through a port of its own. Two ports share one sort (the
@@ -47,7 +51,8 @@ final case class BroadPhaseParams(
     chunk: Int = 16,
     wordLog2: Int = 3,
     lanes: Int = 1,
-    sortPorts: Int = 1
+    sortPorts: Int = 1,
+    bucketsPerSphereLog2: Int = 1
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -63,11 +68,14 @@ final case class BroadPhaseParams(
     s"sortPorts must be 1, 2 or 4 (a block RAM's two ports, or two sorts of two), got $sortPorts")
   require(sortPorts <= lanes, s"sortPorts ($sortPorts) must be at most lanes ($lanes): port p reads the table through lane p's port")
 
+  require(bucketsPerSphereLog2 >= 0 && bucketsPerSphereLog2 <= 2, s"bucketsPerSphereLog2 must be 0..2, got $bucketsPerSphereLog2")
+
   val buckets: Int = 1 << bucketsLog2
 
   /** Buckets the sort's table holds for a table of `maxSpheres`: the cap, and no more than
-    * 2 maxSpheres can use. */
-  def tableLog2(maxSpheres: Int): Int = math.min(bucketsLog2, chisel3.util.log2Ceil(2 * maxSpheres))
+    * maxSpheres 2^bucketsPerSphereLog2 can use. */
+  def tableLog2(maxSpheres: Int): Int =
+    math.min(bucketsLog2, math.max(1, chisel3.util.log2Ceil(maxSpheres.toLong << bucketsPerSphereLog2)))
   /** RAM bits of the broad phase for `maxSpheres`: the sort's counters (one per bucket) and its
     * entries (a sphere index and a mark each), once per lane, and a table of counters more
     * per sort port past the first. The sphere table it reads is the AFU's (which holds

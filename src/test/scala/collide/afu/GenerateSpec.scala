@@ -41,6 +41,9 @@ class GenerateSpec extends AnyFlatSpec {
     // Fewer lanes than the ports: the ports follow down to the most a configuration allows.
     val l3 = cfg("--preset", "world", "--world-lanes", "3").toOption.get
     assert(l3.world.get.sortPorts == 2 && l3.id.endsWith("_world3p2w4") && l3.world.get.ramBits(4096) == 3 * 159744L + 8192 * 13, l3.id)
+    // One bucket a sphere: half the counters (4096 of 12 bits per group and lane) and a name of its own.
+    val b1 = cfg("--preset", "world", "--world-buckets-per-sphere", "1").toOption.get
+    assert(b1.id.endsWith("_world16p4w4s0") && b1.world.get.ramBits(4096) == 2 * ((16 + 1) * 4096L * 12 + 16 * 2048L * 13), b1.id)
     val p1 = cfg("--preset", "world", "--world-lanes", "5", "--world-sort-ports", "1").toOption.get
     assert(p1.world.get.sortPorts == 1 && p1.id.endsWith("_world5w4") && p1.world.get.ramBits(4096) == 5 * 159744L, p1.id)
     assert(cfg("--world", "true", "--world-lanes", "5", "--world-sort-ports", "2").toOption.get.id.endsWith("_world5p2"),
@@ -77,6 +80,8 @@ class GenerateSpec extends AnyFlatSpec {
     err("--world-sort-ports", "2")("--world-sort-ports", "not built")
     err("--preset", "world", "--world-sort-ports", "3")("--world-sort-ports", "1, 2 or 4")
     err("--world", "true", "--world-sort-ports", "2")("--world-sort-ports", "at most lanes")
+    err("--preset", "world", "--world-buckets-per-sphere", "3")("--world-buckets-per-sphere", "1, 2 or 4")
+    err("--world-buckets-per-sphere", "1")("--world-buckets-per-sphere", "not built")
   }
 
   it should "build the SCPUs as the C++ model for co-simulation only where the model reproduces them, saying why not elsewhere" in {

@@ -18,10 +18,12 @@ import collide.world.model._
   * rows; bench/world/lanes.py reports the lanes and ports.
   *
   *   sbt "Test/runMain collide.world.BroadPhaseCycleReport [--sizes 500,1000,...] [--max 16384]
-  *        [--spheres FILE.csv ...] [--lanes 1,4,16] [--sort-ports 1,2] [--word-log2 3] [--out FILE.csv]"
+  *        [--spheres FILE.csv ...] [--lanes 1,4,16] [--sort-ports 1,2,4] [--word-log2 3]
+  *        [--buckets-per-sphere-log2 1] [--out FILE.csv]"
   *
   * --word-log2 sets BroadPhaseParams.wordLog2 (counters a RAM word: clear, prefix and the walk
-  * take a word a cycle) for every configuration of the run.
+  * take a word a cycle) and --buckets-per-sphere-log2 BroadPhaseParams.bucketsPerSphereLog2
+  * for every configuration of the run (the buckets column says what each world used).
   *
   * --spheres adds a world from a `collide spheres` input file (header x,y,z,r; decimal or hex
   * floats, binary32 values), e.g. bench/world/world.py --dump-clouds DIR: the very spheres
@@ -51,6 +53,7 @@ object BroadPhaseCycleReport {
     var lanes = Seq(1)
     var ports = Seq(1)
     var wordLog2 = BroadPhaseParams.default.wordLog2
+    var bpsLog2 = BroadPhaseParams.default.bucketsPerSphereLog2
     args.sliding(2, 2).foreach {
       case Array("--sizes", v) => sizes = v.split(',').map(_.trim.toInt).toSeq
       case Array("--max", v)   => maxSpheres = v.toInt
@@ -59,7 +62,8 @@ object BroadPhaseCycleReport {
       case Array("--lanes", v) => lanes = v.split(',').map(_.trim.toInt).toSeq
       case Array("--sort-ports", v) => ports = v.split(',').map(_.trim.toInt).toSeq
       case Array("--word-log2", v) => wordLog2 = v.trim.toInt
-      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --out)")
+      case Array("--buckets-per-sphere-log2", v) => bpsLog2 = v.trim.toInt
+      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --out)")
     }
     require(sizes.forall(n => n >= 1 && n <= maxSpheres), s"--sizes must be 1..--max ($maxSpheres)")
     require(lanes.nonEmpty && lanes.forall(l => l >= 1 && l <= 16), s"--lanes must be 1..16, got ${lanes.mkString(",")}")
@@ -74,7 +78,8 @@ object BroadPhaseCycleReport {
       "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2"
     val rows = scala.collection.mutable.ArrayBuffer(header)
     for (l <- lanes; q <- ports if q <= l) {
-      val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l, sortPorts = q, wordLog2 = wordLog2))
+      val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l, sortPorts = q, wordLog2 = wordLog2,
+        bucketsPerSphereLog2 = bpsLog2))
       RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
         dut.clock.setTimeout(0)
         for ((name, ws) <- worlds) {

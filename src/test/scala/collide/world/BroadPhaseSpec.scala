@@ -37,7 +37,7 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
     val s = dut.io.status
     val fields = Seq("excluded" -> s.excluded, "large" -> s.large, "small" -> s.small, "candidates" -> s.candidates,
-      "cells" -> s.cells, "chunks" -> s.chunks, "cycTotal" -> s.cycTotal, "cycGrid" -> s.cycGrid, "cycLarge" -> s.cycLarge)
+      "cells" -> s.cells, "chunks" -> s.chunks, "cycTotal" -> s.cycTotal, "cycPrefix" -> s.cycPrefix, "cycGrid" -> s.cycGrid, "cycLarge" -> s.cycLarge)
       .map { case (n, d) => n -> d.peek().litValue }.toMap
     val flags = Seq("tooMany" -> s.tooMany, "cellOverflow" -> s.cellOverflow, "largeOverflow" -> s.largeOverflow,
       "badBucket" -> s.badBucket, "sortMismatch" -> s.sortMismatch).map { case (n, b) => n -> (if (b.peek().litToBoolean) BigInt(1) else BigInt(0)) }
@@ -75,6 +75,11 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
     assert(got.status("candidates") == want.candidates.length && got.status("cells") == st.cells,
       s"$where: counters ${got.status}")
+    // The prefix sum walks the buckets in use a word a cycle: the RTL used the model's count.
+    val perWord = 1 << math.min(model.bp.wordLog2, model.bp.tableLog2(maxSpheres))
+    val words = math.max(1, model.bucketsFor(world.length) / perWord)
+    assert(got.status("cycPrefix") == words + 3, s"$where: prefix sum of ${got.status("cycPrefix")} cycles, want ${words + 3} " +
+      s"(${model.bucketsFor(world.length)} buckets)")
     got
   }
 
@@ -117,6 +122,10 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   it should "find the same candidates with the sort's passes four spheres a cycle (two sorts, each of half the table, read one after the other), in every hard case and random cloud" in {
     everyHardCase("BroadPhaseSpec-four-ports", BroadPhaseParams.fourLanesFourPorts, "four sort ports: ")
+  }
+
+  it should "find the same candidates with one bucket a sphere (more cells sharing a bucket), in every hard case and random cloud" in {
+    everyHardCase("BroadPhaseSpec-one-bucket", BroadPhaseParams.fourLanesFourPorts.copy(bucketsPerSphereLog2 = 0), "one bucket a sphere: ")
   }
 
   it should "stay exact with three lanes over a four-bucket table, and with the table cut into four slices for the large pass" in {

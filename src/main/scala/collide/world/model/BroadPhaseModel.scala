@@ -128,10 +128,11 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
   def bucket(cx: Long, cy: Long, cz: Long): Int =
     (((cx * HashX) ^ (cy * HashY) ^ (cz * HashZ)) & (bp.buckets - 1).toLong).toInt
 
-  /** Buckets used for n spheres: at least 2n (load factor <= 1/2), at most the table. */
+  /** Buckets used for n spheres: at least n 2^bucketsPerSphereLog2 (2n by default: load factor
+    * <= 1/2), at most the table. */
   def bucketsFor(n: Int): Int = {
     var b = 1
-    while (b < 2 * n && b < bp.buckets) b <<= 1
+    while (b < (n.toLong << bp.bucketsPerSphereLog2) && b < bp.buckets) b <<= 1
     b
   }
 
