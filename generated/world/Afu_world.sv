@@ -21112,7 +21112,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
         casez_tmp_2 = io_lookup_word_1_15;
     endcase
   end // always @(*)
-  wire        _GEN_4 = ~walkPend & ~issueOk;
+  wire        _GEN_4 = ~walkPend & ~issueOk & _stream_io_idle & _matcher_io_idle;
   wire        _GEN_5 = state == 3'h2;
   wire        _GEN_6 = _GEN_5 & sent;
   wire        _GEN_7 = _GEN_0 | _GEN_1;
@@ -21230,18 +21230,11 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   wire [19:0] nc_0 = curCell_0 + casez_tmp_3;
   wire [19:0] nc_1 = curCell_1 + casez_tmp_4;
   wire [19:0] nc_2 = curCell_2 + casez_tmp_5;
-  wire        _GEN_8 = _GEN & _stream_io_out_valid;
-  wire        _GEN_9 = _stream_io_out_bits_tag_scan & _GEN_8;
-  wire        same =
-    {_stream_io_out_bits_rec_cell_2,
-     _stream_io_out_bits_rec_cell_1,
-     _stream_io_out_bits_rec_cell_0} == {curCell_2, curCell_1, curCell_0};
-  wire        take = ~_stream_io_out_bits_mark & (~haveCell | same & loaded != 5'h10);
-  wire        _GEN_10 = state == 3'h3;
-  wire [6:0]  _GEN_11 = {1'h0, li};
-  wire [6:0]  idx = _GEN_11 + {2'h0, lj};
-  wire [6:0]  _GEN_12 = {2'h0, io_largeCount};
-  wire        _GEN_13 = lj != 5'h10 & idx < _GEN_12;
+  wire        _GEN_8 = state == 3'h3;
+  wire [6:0]  _GEN_9 = {1'h0, li};
+  wire [6:0]  idx = _GEN_9 + {2'h0, lj};
+  wire [6:0]  _GEN_10 = {2'h0, io_largeCount};
+  wire        _GEN_11 = lj != 5'h10 & idx < _GEN_10;
   reg  [11:0] casez_tmp_6;
   always @(*) begin
     casez (idx[3:0])
@@ -21427,36 +21420,48 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
         casez_tmp_10 = io_larges_15_qr;
     endcase
   end // always @(*)
-  wire        _GEN_14 = state == 3'h4;
-  wire        _GEN_15 =
-    ~_GEN_7 & (_GEN_5 ? (sent ? _lkq_io_deq_valid : ~sent) : ~_GEN_10 & _GEN_14 & ~sent);
-  assign _GEN =
-    ~_GEN_7
-    & (_GEN_5
-         ? (_stream_io_out_bits_tag_scan
-              ? ~needClear | _matcher_io_idle
-              : _matcher_io_in_ready)
-         : ~_GEN_10 & _GEN_14
-           & (_matcher_io_in_ready | _stream_io_out_bits_rec_excluded));
+  wire        _GEN_12 = state == 3'h4;
+  wire        _GEN_13 =
+    ~_GEN_7 & (_GEN_5 ? (sent ? _lkq_io_deq_valid : ~sent) : ~_GEN_8 & _GEN_12 & ~sent);
+  wire        _GEN_14 = _GEN_5 | _GEN_8;
+  wire        _GEN_15 = _GEN_0 | _GEN_1 | _GEN_14;
   wire        _GEN_16 = sent & _stream_io_idle & _matcher_io_idle;
-  wire        _GEN_17 = _stream_io_idle & _matcher_io_idle;
-  wire        _GEN_18 = _stream_io_req_ready & _GEN_15;
-  wire        _GEN_19 = _GEN_18 & ~sent;
+  wire        _GEN_17 = _GEN_5 | _GEN_1;
+  wire        _GEN_18 = _GEN & _stream_io_out_valid;
+  wire        _GEN_19 = _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18;
+  wire        _GEN_20 = _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & needClear;
+  wire        same =
+    {_stream_io_out_bits_rec_cell_2,
+     _stream_io_out_bits_rec_cell_1,
+     _stream_io_out_bits_rec_cell_0} == {curCell_2, curCell_1, curCell_0};
+  wire        take = ~_stream_io_out_bits_mark & (~haveCell | same & loaded != 5'h10);
+  wire        _GEN_21 = _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & take;
+  wire        _GEN_22 = ~_GEN_15 & _GEN_12 & ~_stream_io_out_bits_rec_excluded;
+  wire        _GEN_23 = ~_GEN_17 | _stream_io_out_bits_tag_scan;
+  assign _GEN =
+    _GEN_17
+      ? (_stream_io_out_bits_tag_scan
+           ? ~needClear | _matcher_io_idle
+           : _matcher_io_in_ready)
+      : ~_GEN_15 & _GEN_12 & (_matcher_io_in_ready | _stream_io_out_bits_rec_excluded);
+  wire        _GEN_24 = _stream_io_req_ready & _GEN_13;
+  wire        _GEN_25 = _GEN_24 & ~sent;
+  wire        _GEN_26 = _GEN_7 | ~(_GEN_5 & _GEN_25);
   wire        canIssue =
     haveCell & vIssue != 4'hE & {1'h0, _lkq_io_count} + {2'h0, lkPend} < 3'h3;
-  wire        _GEN_20 = _GEN_7 | ~_GEN_5;
-  wire        _GEN_21 = _stream_io_out_bits_tag_scan & _GEN_8 & take & ~haveCell;
-  wire        _GEN_22 = ~_stream_io_out_bits_mark & haveCell;
-  wire        _GEN_23 =
-    _stream_io_out_bits_tag_scan & _GEN_8 & _GEN_22 & ~same & ~nextSet;
-  wire        _GEN_24 =
+  wire        _GEN_27 = _GEN_7 | ~_GEN_5;
+  wire        _GEN_28 =
     vIssue == 4'hE & ~lkPend & ~_lkq_io_deq_valid & sent & scanLeft == 13'h0;
-  wire        _GEN_25 = moreOfCell | nextSet;
-  wire        _GEN_26 = _GEN_24 & _GEN_25 & ~moreOfCell;
-  wire [6:0]  nextLi = _GEN_11 + 7'h10;
-  wire        _GEN_27 = _GEN_14 & _GEN_16;
-  wire        _GEN_28 = _GEN_5 & _GEN_26;
-  wire        _GEN_29 = _GEN_24 & _GEN_25;
+  wire        _GEN_29 = moreOfCell | nextSet;
+  wire        _GEN_30 = _GEN_28 & _GEN_29;
+  wire        _GEN_31 = _GEN_5 & _GEN_28 & _GEN_29 & ~moreOfCell;
+  wire [6:0]  nextLi = _GEN_9 + 7'h10;
+  wire        _GEN_32 = _GEN_12 & _GEN_16;
+  wire        _GEN_33 =
+    _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & take & ~haveCell;
+  wire        _GEN_34 = ~_stream_io_out_bits_mark & haveCell;
+  wire        _GEN_35 =
+    _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & _GEN_34 & ~same & ~nextSet;
   always @(posedge clock) begin
     if (reset) begin
       state <= 3'h0;
@@ -21478,19 +21483,19 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
     end
     else begin
       if (_GEN_5) begin
-        if (~_GEN_24 | _GEN_25 | ~_GEN_17) begin
+        if (~_GEN_28 | _GEN_29) begin
         end
         else
           state <= 3'h1;
         lkPend <= canIssue;
       end
-      else if (_GEN_10) begin
-        if (~_GEN_13)
+      else if (_GEN_8) begin
+        if (~_GEN_11)
           state <= 3'h4;
       end
-      else if (_GEN_27)
-        state <= {1'h0, {2{nextLi < _GEN_12}}};
-      walkPend <= (~(_GEN_5 & _GEN_24) | _GEN_25 | ~_GEN_17) & walkPend;
+      else if (_GEN_32)
+        state <= {1'h0, {2{nextLi < _GEN_10}}};
+      walkPend <= (~(_GEN_5 & _GEN_28) | _GEN_29) & walkPend;
     end
     if (_GEN_0) begin
       if (io_start)
@@ -21505,9 +21510,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
       end
       else if (issueOk)
         bIssue <= {bIssue[13:4] + 10'h10, 4'h0};
-      haveCell <= ~_GEN_3 & haveCell;
       sent <= ~_GEN_3 & sent;
-      needClear <= ~_GEN_3 & needClear;
       if (_GEN_3 | ~_GEN_4) begin
       end
       else begin
@@ -21516,35 +21519,28 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
       end
     end
     else begin
-      if (_GEN_28)
+      if (_GEN_31)
         p_0 <= nextGroup ? bEnd_0 : nextLeader;
-      if (_GEN_28 & nextGroup)
+      if (_GEN_31 & nextGroup)
         p_1 <= nextLeader;
       if (_GEN_5) begin
-        if (_GEN_29) begin
-          haveCell <= ~moreOfCell | _GEN_21 | haveCell;
+        sent <= ~_GEN_30 & (_GEN_25 | sent);
+        if (_GEN_30)
           vIssue <= 4'h0;
-        end
-        else begin
-          haveCell <= _GEN_21 | haveCell;
-          if (canIssue)
-            vIssue <= vIssue + 4'h1;
-        end
-        sent <= ~_GEN_29 & (_GEN_19 | sent);
-        needClear <=
-          _GEN_29 | ~(_stream_io_out_bits_tag_scan & _GEN_8 & needClear) & needClear;
+        else if (canIssue)
+          vIssue <= vIssue + 4'h1;
       end
-      else if (_GEN_10) begin
-        sent <= _GEN_13 & sent;
-        if (_GEN_13)
+      else if (_GEN_8) begin
+        sent <= _GEN_11 & sent;
+        if (_GEN_11)
           lj <= lj + 5'h1;
       end
       else begin
-        sent <= _GEN_14 & _GEN_18 | sent;
-        if (_GEN_27)
+        sent <= _GEN_12 & _GEN_24 | sent;
+        if (_GEN_32)
           lj <= 5'h0;
       end
-      if (_GEN_5 | _GEN_10 | ~_GEN_27) begin
+      if (_GEN_14 | ~_GEN_32) begin
       end
       else
         li <= nextLi[5:0];
@@ -21559,45 +21555,48 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
       bEnd_0 <= casez_tmp_0;
       bEnd_1 <= casez_tmp_2;
     end
-    if (_GEN_20) begin
+    if (_GEN_33) begin
+      curCell_0 <= _stream_io_out_bits_rec_cell_0;
+      curCell_1 <= _stream_io_out_bits_rec_cell_1;
+      curCell_2 <= _stream_io_out_bits_rec_cell_2;
+    end
+    else if (_GEN_7 | ~_GEN_31) begin
     end
     else begin
-      if (_GEN_26) begin
-        curCell_0 <= nextCell_0;
-        curCell_1 <= nextCell_1;
-        curCell_2 <= nextCell_2;
-      end
-      else if (_GEN_21) begin
-        curCell_0 <= _stream_io_out_bits_rec_cell_0;
-        curCell_1 <= _stream_io_out_bits_rec_cell_1;
-        curCell_2 <= _stream_io_out_bits_rec_cell_2;
-      end
-      if (_stream_io_out_bits_tag_scan & _GEN_8 & take)
-        loaded <= loaded + 5'h1;
-      else if (_GEN_19)
-        loaded <= 5'h0;
-      moreOfCell <=
-        _stream_io_out_bits_tag_scan & _GEN_8 & _GEN_22 & same & loaded == 5'h10
-        | ~_GEN_19 & moreOfCell;
-      nextSet <= _GEN_23 | ~_GEN_19 & nextSet;
+      curCell_0 <= nextCell_0;
+      curCell_1 <= nextCell_1;
+      curCell_2 <= nextCell_2;
     end
-    if (_GEN_7 | ~(_GEN_5 & _GEN_23)) begin
+    haveCell <=
+      _GEN_33 | (_GEN_0 ? haveCell : _GEN_1 ? ~_GEN_3 & haveCell : _GEN_31 | haveCell);
+    if (_GEN_21)
+      loaded <= loaded + 5'h1;
+    else if (_GEN_26) begin
     end
-    else begin
+    else
+      loaded <= 5'h0;
+    moreOfCell <=
+      _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & _GEN_34 & same & loaded == 5'h10
+      | _GEN_26 & moreOfCell;
+    nextSet <= _GEN_35 | _GEN_26 & nextSet;
+    if (_GEN_35) begin
       nextLeader <= _stream_io_out_bits_pos;
       nextGroup <= _stream_io_out_bits_group;
       nextCell_0 <= _stream_io_out_bits_rec_cell_0;
       nextCell_1 <= _stream_io_out_bits_rec_cell_1;
       nextCell_2 <= _stream_io_out_bits_rec_cell_2;
     end
-    if (_GEN_20) begin
-    end
-    else if (_GEN_9)
+    if (_GEN_19)
       scanLeft <= scanLeft - 13'h1;
-    else if (_GEN_19)
+    else if (_GEN_26) begin
+    end
+    else
       scanLeft <= bEnd_0 - p_0 + bEnd_1 - p_1;
-    lkVisit_scan <= _GEN_20 & lkVisit_scan;
-    if (_GEN_20) begin
+    needClear <=
+      ~_GEN_20
+      & (_GEN_0 ? needClear : _GEN_1 ? _GEN_3 | needClear : _GEN_5 & _GEN_30 | needClear);
+    lkVisit_scan <= _GEN_27 & lkVisit_scan;
+    if (_GEN_27) begin
     end
     else begin
       lkVisit_cell_0 <= nc_0;
@@ -21610,7 +21609,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
     .clock                    (clock),
     .reset                    (reset),
     .io_req_ready             (_stream_io_req_ready),
-    .io_req_valid             (_GEN_15),
+    .io_req_valid             (_GEN_13),
     .io_req_bits_begin_0
       (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_0 : p_0) : io_largeFrom),
     .io_req_bits_begin_1      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_1 : p_1) : 13'h0),
@@ -21663,24 +21662,19 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
     .clock                 (clock),
     .reset                 (reset),
     .io_clear
-      (~_GEN_0
-       & (_GEN_1
-            ? _GEN_3 | _GEN_4
-            : _GEN_5 ? _GEN_9 & needClear : ~_GEN_10 & _GEN_14 & _GEN_16)),
-    .io_load_valid         (~_GEN_7 & (_GEN_5 ? _GEN_9 & take : _GEN_10 & _GEN_13)),
-    .io_load_bits_index    (_GEN_5 ? _stream_io_out_bits_item : casez_tmp_6),
-    .io_load_bits_q_0      (_GEN_5 ? _stream_io_out_bits_rec_q_0 : casez_tmp_7),
-    .io_load_bits_q_1      (_GEN_5 ? _stream_io_out_bits_rec_q_1 : casez_tmp_8),
-    .io_load_bits_q_2      (_GEN_5 ? _stream_io_out_bits_rec_q_2 : casez_tmp_9),
-    .io_load_bits_qr       (_GEN_5 ? _stream_io_out_bits_rec_qr : casez_tmp_10),
+      (_GEN_20 | ~_GEN_0 & (_GEN_1 ? ~_GEN_3 & _GEN_4 : ~_GEN_14 & _GEN_12 & _GEN_16)),
+    .io_load_valid         (_GEN_21 | ~(_GEN_0 | _GEN_1 | _GEN_5) & _GEN_8 & _GEN_11),
+    .io_load_bits_index    (_GEN_21 ? _stream_io_out_bits_item : casez_tmp_6),
+    .io_load_bits_q_0      (_GEN_21 ? _stream_io_out_bits_rec_q_0 : casez_tmp_7),
+    .io_load_bits_q_1      (_GEN_21 ? _stream_io_out_bits_rec_q_1 : casez_tmp_8),
+    .io_load_bits_q_2      (_GEN_21 ? _stream_io_out_bits_rec_q_2 : casez_tmp_9),
+    .io_load_bits_qr       (_GEN_21 ? _stream_io_out_bits_rec_qr : casez_tmp_10),
     .io_slack              (io_slack),
     .io_in_ready           (_matcher_io_in_ready),
     .io_in_valid
-      (~_GEN_7
-       & (_GEN_5
-            ? ~_stream_io_out_bits_tag_scan & _stream_io_out_valid
-            : ~_GEN_10 & _GEN_14 & _stream_io_out_valid
-              & ~_stream_io_out_bits_rec_excluded)),
+      (_GEN_17
+         ? (~_stream_io_out_bits_tag_scan | _GEN_22) & _stream_io_out_valid
+         : _GEN_22 & _stream_io_out_valid),
     .io_in_bits_key_index  (_stream_io_out_bits_item),
     .io_in_bits_key_cell_0 (_stream_io_out_bits_rec_cell_0),
     .io_in_bits_key_cell_1 (_stream_io_out_bits_rec_cell_1),
@@ -21689,12 +21683,12 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
     .io_in_bits_key_q_1    (_stream_io_out_bits_rec_q_1),
     .io_in_bits_key_q_2    (_stream_io_out_bits_rec_q_2),
     .io_in_bits_key_qr     (_stream_io_out_bits_rec_qr),
-    .io_in_bits_cell_0     (_GEN_5 ? _stream_io_out_bits_tag_cell_0 : 20'h0),
-    .io_in_bits_cell_1     (_GEN_5 ? _stream_io_out_bits_tag_cell_1 : 20'h0),
-    .io_in_bits_cell_2     (_GEN_5 ? _stream_io_out_bits_tag_cell_2 : 20'h0),
-    .io_in_bits_anyCell    (~_GEN_5),
+    .io_in_bits_cell_0     (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_0),
+    .io_in_bits_cell_1     (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_1),
+    .io_in_bits_cell_2     (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_2),
+    .io_in_bits_anyCell    (_GEN_23),
     .io_in_bits_own
-      (_GEN_5 ? _stream_io_out_bits_tag_own : _stream_io_out_bits_rec_large),
+      (_GEN_23 ? _stream_io_out_bits_rec_large : _stream_io_out_bits_tag_own),
     .io_out_ready          (io_pairs_ready),
     .io_out_valid          (io_pairs_valid),
     .io_out_bits_i         (io_pairs_bits_i),
@@ -21737,7 +21731,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
               ? (nc_0[12:0] * 13'h145D ^ nc_1[12:0] * 13'h9F ^ nc_2[12:0] * 13'h1FB7)
                 & _io_lookup_bucket_mask_T[12:0] - 13'h1
               : 13'h0;
-  assign io_mark_valid = ~_GEN_7 & _GEN_5 & _GEN_9 & take;
+  assign io_mark_valid = _GEN_19 & take;
   assign io_mark_bits_group = _stream_io_out_bits_group;
   assign io_mark_bits_addr = _stream_io_out_bits_pos[11:0];
   assign io_mark_bits_item = _stream_io_out_bits_item;

@@ -13,7 +13,8 @@ import collide.world.model.BroadPhaseModel
   * at a time (a scan of the bucket loads the first unmarked entry's cell and marks what it
   * loads); it then streams the chunk's own cell and its 13 half-shell neighbours (a bucket
   * lookup each, issued while the scan still runs) past the ChunkMatcher, and the next chunk's
-  * scan follows the last visit without waiting for it to drain. Last, the large pass: chunks
+  * scan follows the last visit without waiting for it to drain; after a bucket's last chunk the
+  * walk to the next bucket overlaps its visits too. Last, the large pass: chunks
   * of the large list meet every non-excluded sphere of this lane's slice of the table
   * [largeFrom, largeTo) (the slices of all lanes cover the table once). With two sort
   * `groups` (four sort ports: two sorts, each of half the table) a bucket's entries are group
@@ -145,9 +146,10 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val li = Reg(UInt(log2Ceil(largeSlots + chunk + 1).W))
   private val lj = Reg(UInt(log2Ceil(chunk + 1).W))
 
+  /** A chunk of a new bucket: its scan is requested behind the last chunk's visits, and its
+    * first scan entry clears the matcher once their hits have left. */
   private def startChunk(): Unit = {
-    state := S.chunk; sent := false.B; vIssue := 0.U; lkPend := false.B; needClear := false.B
-    matcher.io.clear := true.B
+    state := S.chunk; sent := false.B; vIssue := 0.U; lkPend := false.B; needClear := true.B
   }
   private def startLargePass(): Unit = {
     li := 0.U; lj := 0.U; matcher.io.clear := true.B
@@ -184,8 +186,8 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         bIssue := Mux(lane === (perWord - 1).U, base + (lanes * perWord).U, base + lane + 1.U)
         walkPend := false.B; cells := cells + 1.U
         startChunk()
-      }.elsewhen(!walkPend && !issueOk) {
-        startLargePass()
+      }.elsewhen(!walkPend && !issueOk && stream.io.idle && matcher.io.idle) {
+        startLargePass() // the last chunk's visits all matched
       }
     }
     is(S.chunk) {
@@ -213,37 +215,6 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       lkq.io.enq.bits.begin := io.lookup.begin; lkq.io.enq.bits.end := io.lookup.end
       lkq.io.enq.bits.direct := false.B; lkq.io.enq.bits.tag := lkVisit
 
-      val it = stream.io.out.bits
-      when(it.tag.scan) {
-        // A chunk's first scan entry waits until the last chunk's hits have all left (they
-        // read its members), then clears the matcher, loading in the same cycle.
-        stream.io.out.ready := !needClear || matcher.io.idle
-        when(stream.io.out.fire) {
-          scanned := scanned + 1.U
-          scanLeft := scanLeft - 1.U
-          when(needClear) { matcher.io.clear := true.B; needClear := false.B }
-          val same = it.rec.cell.asUInt === curCell.asUInt
-          val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
-          when(take) {
-            matcher.io.load.valid := true.B; matcher.io.load.bits := WorldKey(itemW, it.item, it.rec)
-            io.mark.valid := true.B
-            loaded := loaded + 1.U
-            when(!haveCell) { curCell := it.rec.cell; haveCell := true.B }
-          }
-          when(!it.mark && haveCell && same && loaded === chunk.U) { moreOfCell := true.B }
-          when(!it.mark && haveCell && !same && !nextSet) {
-            nextLeader := it.pos; nextGroup := it.group; nextCell := it.rec.cell; nextSet := true.B
-          }
-        }
-      }.otherwise {
-        matcher.io.in.valid := stream.io.out.valid
-        matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
-        matcher.io.in.bits.cell := it.tag.cell; matcher.io.in.bits.own := it.tag.own
-        matcher.io.in.bits.anyCell := false.B
-        stream.io.out.ready := matcher.io.in.ready
-        when(stream.io.out.fire) { probes := probes + 1.U }
-      }
-
       // Every range handed to the stream and the scan's entries all seen: the next chunk of
       // this bucket can start its scan behind the visits still streaming.
       val visitsIssued = vIssue === visits.length.U && !lkPend && !lkq.io.deq.valid
@@ -258,7 +229,10 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
             else when(nextGroup === 0.U) { p(0) := nextLeader }.otherwise { p(0) := bEnd(0); p(1) := nextLeader }
             curCell := nextCell; haveCell := true.B; cells := cells + 1.U
           }
-        }.elsewhen(stream.io.idle && matcher.io.idle) {
+        }.otherwise {
+          // On to the next bucket while this chunk's visits still stream: the walk's lookups
+          // and the next scan's reads overlap them; its first scan entry waits for the
+          // matcher as above.
           state := S.walk; walkPend := false.B // bIssue is already the next bucket
         }
       }
@@ -292,6 +266,40 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         li := nextLi; lj := 0.U; matcher.io.clear := true.B
         state := Mux(nextLi < io.largeCount, S.largeLoad, S.idle)
       }
+    }
+  }
+  // The stream's entries in the grid: scan entries (chunk state only) load the chunk, visits'
+  // entries go past it, also while the walk looks for the next bucket.
+  when(state === S.chunk || state === S.walk) {
+    val it = stream.io.out.bits
+    when(it.tag.scan) {
+      // A chunk's first scan entry waits until the last chunk's hits have all left (they
+      // read its members), then clears the matcher, loading in the same cycle.
+      stream.io.out.ready := !needClear || matcher.io.idle
+      when(stream.io.out.fire) {
+        scanned := scanned + 1.U
+        scanLeft := scanLeft - 1.U
+        when(needClear) { matcher.io.clear := true.B; needClear := false.B }
+        val same = it.rec.cell.asUInt === curCell.asUInt
+        val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
+        when(take) {
+          matcher.io.load.valid := true.B; matcher.io.load.bits := WorldKey(itemW, it.item, it.rec)
+          io.mark.valid := true.B
+          loaded := loaded + 1.U
+          when(!haveCell) { curCell := it.rec.cell; haveCell := true.B }
+        }
+        when(!it.mark && haveCell && same && loaded === chunk.U) { moreOfCell := true.B }
+        when(!it.mark && haveCell && !same && !nextSet) {
+          nextLeader := it.pos; nextGroup := it.group; nextCell := it.rec.cell; nextSet := true.B
+        }
+      }
+    }.otherwise {
+      matcher.io.in.valid := stream.io.out.valid
+      matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
+      matcher.io.in.bits.cell := it.tag.cell; matcher.io.in.bits.own := it.tag.own
+      matcher.io.in.bits.anyCell := false.B
+      stream.io.out.ready := matcher.io.in.ready
+      when(stream.io.out.fire) { probes := probes + 1.U }
     }
   }
 }
