@@ -108,7 +108,7 @@ object Generate {
         c.copy(world = if (v) Some(c.world.getOrElse(collide.world.BroadPhaseParams.default)) else None)))(c10)
       c12 <- opt("--world-lanes", o.worldLanes)((c, v) => c.world match {
         case Some(bp) => step("--world-lanes", c.copy(world = Some(bp.copy(lanes = v,
-          sortPorts = Seq(4, 2, 1).find(_ <= math.min(bp.sortPorts, v)).getOrElse(1))))) // ports follow the lanes down
+          sortPorts = collide.world.BroadPhaseParams.sortPortChoices.filter(_ <= math.min(bp.sortPorts, v)).max)))) // ports follow the lanes down
         case None => Left("--world-lanes: world mode is not built (add --world true or --preset world)")
       })(c11)
       c13 <- opt("--world-sort-ports", o.worldSortPorts)((c, v) => c.world match {

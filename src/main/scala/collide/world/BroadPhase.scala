@@ -68,7 +68,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   override def desiredName =
     s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}_w${bp.wordLog2}" +
       (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "") +
-      (if (bp.bucketsPerSphereLog2 != 1) s"_s${bp.bucketsPerSphereLog2}" else "")
+      (if (bp.bucketsPerSphereLog2 != BroadPhaseParams.default.bucketsPerSphereLog2) s"_s${bp.bucketsPerSphereLog2}" else "")
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres))
   private val itemW = io.itemW
   private val countW = io.countW
@@ -77,7 +77,6 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
 
   private val ports = bp.sortPorts
   private val groups = bp.sortGroups
-  private val groupPorts = ports / groups
   /** With lanes, the load pass reads through every lane, each into a CellExponent of its own,
     * and a merge feeds what they kept into `cellExp`, two values a cycle. */
   private val wideLoad = bp.lanes > 1
@@ -86,7 +85,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   // One copy of the sorted table per lane: each lane looks up and marks its own. With two
   // groups, group g sorts the g-th half of the table, each with its own counters and entries.
   private val sorts = Seq.fill(groups)(Module(new BucketSort(bp.groupCapacity(maxSpheres), tableLog2, bp.wordLog2, bp.lanes,
-    groupPorts, if (groups > 1) itemW else 0)))
+    bp.portsPerSort, if (groups > 1) itemW else 0)))
   private val sortBusy = sorts.map(_.io.busy).reduce(_ || _)
   private val gens = Seq.tabulate(bp.lanes) { l =>
     val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
@@ -229,7 +228,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     sort.io.clear := starting
     sort.io.prefix := state === S.prefix && !sent
   }
-  // Port q is port q % groupPorts of group q / groupPorts's sort.
+  // Port q is port q % portsPerSort of group q / portsPerSort's sort.
   private val sortIns = sorts.flatMap(_.io.in)
   for ((in, kd) <- sortIns.zip(keyed)) {
     in.valid := kd.valid && (state === S.classify || state === S.scatter) && kd.isSmall

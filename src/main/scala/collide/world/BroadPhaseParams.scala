@@ -64,7 +64,7 @@ final case class BroadPhaseParams(
   require(wordLog2 >= 0 && wordLog2 <= 5, s"wordLog2 must be 0..5, got $wordLog2")
   require(lanes >= 1 && lanes <= 16, s"lanes must be 1..16 (a pair line holds 16 candidates a cycle), got $lanes")
 
-  require(sortPorts == 1 || sortPorts == 2 || sortPorts == 4,
+  require(BroadPhaseParams.sortPortChoices.contains(sortPorts),
     s"sortPorts must be 1, 2 or 4 (a block RAM's two ports, or two sorts of two), got $sortPorts")
   require(sortPorts <= lanes, s"sortPorts ($sortPorts) must be at most lanes ($lanes): port p reads the table through lane p's port")
 
@@ -85,11 +85,13 @@ final case class BroadPhaseParams(
     val countW = chisel3.util.log2Ceil(cap + 1)
     val itemW = chisel3.util.log2Ceil(maxSpheres)
     val counters = (1L << tableLog2(maxSpheres)) * countW
-    sortGroups * ((lanes + sortPorts / sortGroups - 1) * counters + lanes * cap.toLong * (itemW + 1))
+    sortGroups * ((lanes + portsPerSort - 1) * counters + lanes * cap.toLong * (itemW + 1))
   }
   /** Sorts the passes use: one, or with four ports two of two ports, group g sorting the g-th
     * half of the table (block RAM has two ports; the generators read both groups' buckets). */
   val sortGroups: Int = if (sortPorts == 4) 2 else 1
+  /** Ports of each of those sorts (1 or 2: a block RAM's ports). */
+  val portsPerSort: Int = sortPorts / sortGroups
   /** Entries of one group's sorted table: its half of the table, or all of it. */
   def groupCapacity(maxSpheres: Int): Int = (maxSpheres + sortGroups - 1) / sortGroups
   /** Copies of the sphere table the lanes read: two lanes a copy (a block RAM's two ports). */
@@ -108,6 +110,8 @@ final case class BroadPhaseParams(
 }
 
 object BroadPhaseParams {
+  /** The sort's port counts built (`sortPorts`), fewest first. */
+  val sortPortChoices: Seq[Int] = Seq(1, 2, 4)
   val default: BroadPhaseParams = BroadPhaseParams()
   /** Four buckets and one-sphere chunks: every cell collides with others in the hash and
     * every cell is visited once per sphere, to test that nothing breaks. */

@@ -67,7 +67,7 @@ object BroadPhaseCycleReport {
     }
     require(sizes.forall(n => n >= 1 && n <= maxSpheres), s"--sizes must be 1..--max ($maxSpheres)")
     require(lanes.nonEmpty && lanes.forall(l => l >= 1 && l <= 16), s"--lanes must be 1..16, got ${lanes.mkString(",")}")
-    require(ports.nonEmpty && ports.forall(q => q == 1 || q == 2 || q == 4), s"--sort-ports must be 1, 2 or 4, got ${ports.mkString(",")}")
+    require(ports.nonEmpty && ports.forall(BroadPhaseParams.sortPortChoices.contains), s"--sort-ports must be among ${BroadPhaseParams.sortPortChoices.mkString(",")}, got ${ports.mkString(",")}")
     val cfg = ScpuConfig.fp32
     val rng = new scala.util.Random(1)
     // "huge": the uniform cloud plus four spheres of radius 20 to 1280, the large pass's work.
