@@ -37,7 +37,7 @@ inline constexpr std::uint32_t STATUS_CYCLES_COMPUTE = 40u;  // cycles in which 
 inline constexpr std::uint32_t STATUS_CYCLES_WAIT_RD = 44u;  // cycles waiting on read responses
 inline constexpr std::uint32_t STATUS_CYCLES_WAIT_WR = 48u;  // cycles waiting on write responses or back-pressure
 inline constexpr std::uint32_t STATUS_CYCLES_BROAD = 52u;  // world mode: cycles the broad phase ran (0 in pair mode)
-inline constexpr std::uint32_t STATUS_WORLD_CELL_EXP = 56u;  // world mode: the grid's cell edge 2^k, k as a signed i32
+inline constexpr std::uint32_t STATUS_WORLD_CELL_LEVEL = 56u;  // world mode: the grid's cell level L, a signed i32: cells of edge 2^(L/2) for even L, 1.5 * 2^((L-1)/2) for odd L
 inline constexpr std::uint32_t STATUS_WORLD_LARGE = 60u;  // world mode: spheres too large for the cell, paired with every sphere
 inline constexpr std::uint32_t STATUS_FIELDS = 16u;  // u32 fields in the line
 

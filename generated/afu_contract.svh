@@ -34,7 +34,7 @@ localparam int unsigned AFU_STATUS_CYCLES_COMPUTE = 40;  // cycles in which a gr
 localparam int unsigned AFU_STATUS_CYCLES_WAIT_RD = 44;  // cycles waiting on read responses
 localparam int unsigned AFU_STATUS_CYCLES_WAIT_WR = 48;  // cycles waiting on write responses or back-pressure
 localparam int unsigned AFU_STATUS_CYCLES_BROAD = 52;  // world mode: cycles the broad phase ran (0 in pair mode)
-localparam int unsigned AFU_STATUS_WORLD_CELL_EXP = 56;  // world mode: the grid's cell edge 2^k, k as a signed i32
+localparam int unsigned AFU_STATUS_WORLD_CELL_LEVEL = 56;  // world mode: the grid's cell level L, a signed i32: cells of edge 2^(L/2) for even L, 1.5 * 2^((L-1)/2) for odd L
 localparam int unsigned AFU_STATUS_WORLD_LARGE = 60;  // world mode: spheres too large for the cell, paired with every sphere
 localparam int unsigned AFU_STATUS_FIELDS = 16;  // u32 fields in the line
 

@@ -24,7 +24,8 @@ TEST(Contract, AStatusLineBuiltFromTheHeadersOffsetsDecodesFieldByField) {
                                 contract::STATUS_NONFINITE_PAIRS, contract::STATUS_FIRST_BAD_PAIR,
                                 contract::STATUS_FLAGGED_MISSES, contract::STATUS_CYCLES_TOTAL, contract::STATUS_CYCLES_LOAD,
                                 contract::STATUS_CYCLES_COMPUTE, contract::STATUS_CYCLES_WAIT_RD,
-                                contract::STATUS_CYCLES_WAIT_WR};
+                                contract::STATUS_CYCLES_WAIT_WR, contract::STATUS_CYCLES_BROAD,
+                                contract::STATUS_WORLD_CELL_LEVEL, contract::STATUS_WORLD_LARGE};
   for (std::uint32_t k = 0; k < std::size(offs); ++k) put<std::uint32_t>(l, offs[k], 1000 + k);
   link::HostMemory m;
   const auto a = m.allocate(1);
@@ -32,9 +33,22 @@ TEST(Contract, AStatusLineBuiltFromTheHeadersOffsetsDecodesFieldByField) {
   const StatusLine s = readStatus(m, a.base);
   const std::uint32_t got[] = {s.done, s.errors, s.pairsProcessed, s.contactsFound, s.recordsWritten,
                                s.nonFinitePairs, s.firstBadPair, s.flaggedMisses, s.cyclesTotal, s.cyclesLoading,
-                               s.cyclesComputing, s.cyclesWaitRead, s.cyclesWaitWrite};
+                               s.cyclesComputing, s.cyclesWaitRead, s.cyclesWaitWrite, s.cyclesBroad,
+                               s.worldCellLevel, s.worldLarge};
   for (std::uint32_t k = 0; k < std::size(offs); ++k) EXPECT_EQ(got[k], 1000 + k) << "status field at byte " << offs[k];
   EXPECT_EQ(encodeStatus(s), l);
+}
+
+TEST(Contract, TheWorldCellLevelNamesEdgesOfTwoToTheKAndOneAndAHalfTimesThat) {
+  EXPECT_EQ(cellEdge(0), 1.0);
+  EXPECT_EQ(cellEdge(1), 1.5);
+  EXPECT_EQ(cellEdge(2), 2.0);
+  EXPECT_EQ(cellEdge(3), 3.0);
+  EXPECT_EQ(cellEdge(-1), 0.75);
+  EXPECT_EQ(cellEdge(-4), 0.25);
+  EXPECT_EQ(cellEdge(-5), 0.1875);
+  // The status word is a signed i32 in a u32.
+  EXPECT_EQ(cellEdge(static_cast<std::int32_t>(std::uint32_t{0xFFFFFFFDu})), 0.375);
 }
 
 TEST(Contract, EveryErrorBitHasItsTextAndUnknownBitsAreNamed) {

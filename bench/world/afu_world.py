@@ -113,7 +113,7 @@ def main(argv=None):
                            "slabs": f["slabs"],
                            "read_lines": f["read_lines"], "write_lines": f["write_lines"],
                            "cycles_total": f["cycles_total"], "cycles_broad": f["cycles_broad"],
-                           "cycles_load": f["cycles_load"], "cell_exp": f["cell_exp"], "large": f["large"],
+                           "cycles_load": f["cycles_load"], "cell_edge": f["cell_edge"], "large": f["large"],
                            "ode_sap_ns": ode, "simd_grid_ns": grid,
                            "ode_over_afu": ode / f["modelled_ns"], "grid_over_afu": grid / f["modelled_ns"]}
                     rows.append(row)

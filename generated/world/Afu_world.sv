@@ -15798,17 +15798,17 @@ module WriteEngine_w64_world(
   assign io_blocked = any & ~(io_wrReq_ready & io_wrReq_valid_0);
 endmodule
 
-module CellExponent_fp32_L16_c20_world(
+module CellExponent_fp32_L16_c20_e1_world(
   input         clock,
                 reset,
                 io_clear,
                 io_in_0_valid,
-  input  [12:0] io_in_0_need,
+  input  [13:0] io_in_0_need,
   input         io_in_0_needNone,
-  input  [12:0] io_in_0_top,
+  input  [13:0] io_in_0_top,
   input         io_in_0_topNone,
                 io_in_0_nonFinite,
-  output [12:0] io_kept_0,
+  output [13:0] io_kept_0,
                 io_kept_1,
                 io_kept_2,
                 io_kept_3,
@@ -15826,31 +15826,31 @@ module CellExponent_fp32_L16_c20_world(
                 io_kept_15,
                 io_kept_16,
   output [4:0]  io_used,
-  output [12:0] io_top,
+  output [13:0] io_top,
   output        io_anyTop
 );
 
-  reg  [12:0] kept_0;
-  reg  [12:0] kept_1;
-  reg  [12:0] kept_2;
-  reg  [12:0] kept_3;
-  reg  [12:0] kept_4;
-  reg  [12:0] kept_5;
-  reg  [12:0] kept_6;
-  reg  [12:0] kept_7;
-  reg  [12:0] kept_8;
-  reg  [12:0] kept_9;
-  reg  [12:0] kept_10;
-  reg  [12:0] kept_11;
-  reg  [12:0] kept_12;
-  reg  [12:0] kept_13;
-  reg  [12:0] kept_14;
-  reg  [12:0] kept_15;
-  reg  [12:0] kept_16;
+  reg  [13:0] kept_0;
+  reg  [13:0] kept_1;
+  reg  [13:0] kept_2;
+  reg  [13:0] kept_3;
+  reg  [13:0] kept_4;
+  reg  [13:0] kept_5;
+  reg  [13:0] kept_6;
+  reg  [13:0] kept_7;
+  reg  [13:0] kept_8;
+  reg  [13:0] kept_9;
+  reg  [13:0] kept_10;
+  reg  [13:0] kept_11;
+  reg  [13:0] kept_12;
+  reg  [13:0] kept_13;
+  reg  [13:0] kept_14;
+  reg  [13:0] kept_15;
+  reg  [13:0] kept_16;
   reg  [4:0]  used;
-  reg  [12:0] topMax;
+  reg  [13:0] topMax;
   reg         anyTop;
-  wire [12:0] after_need = io_in_0_needNone ? 13'h1000 : io_in_0_need;
+  wire [13:0] after_need = io_in_0_needNone ? 14'h2000 : io_in_0_need;
   wire        after_ins_beats_0 = $signed(after_need) > $signed(kept_0);
   wire        after_ins_beats_1 = $signed(after_need) > $signed(kept_1);
   wire        after_ins_beats_2 = $signed(after_need) > $signed(kept_2);
@@ -15872,48 +15872,48 @@ module CellExponent_fp32_L16_c20_world(
   wire [5:0]  _after_T_19 = {1'h0, used} + {5'h0, after_take};
   always @(posedge clock) begin
     if (reset) begin
-      kept_0 <= 13'h1000;
-      kept_1 <= 13'h1000;
-      kept_2 <= 13'h1000;
-      kept_3 <= 13'h1000;
-      kept_4 <= 13'h1000;
-      kept_5 <= 13'h1000;
-      kept_6 <= 13'h1000;
-      kept_7 <= 13'h1000;
-      kept_8 <= 13'h1000;
-      kept_9 <= 13'h1000;
-      kept_10 <= 13'h1000;
-      kept_11 <= 13'h1000;
-      kept_12 <= 13'h1000;
-      kept_13 <= 13'h1000;
-      kept_14 <= 13'h1000;
-      kept_15 <= 13'h1000;
-      kept_16 <= 13'h1000;
+      kept_0 <= 14'h2000;
+      kept_1 <= 14'h2000;
+      kept_2 <= 14'h2000;
+      kept_3 <= 14'h2000;
+      kept_4 <= 14'h2000;
+      kept_5 <= 14'h2000;
+      kept_6 <= 14'h2000;
+      kept_7 <= 14'h2000;
+      kept_8 <= 14'h2000;
+      kept_9 <= 14'h2000;
+      kept_10 <= 14'h2000;
+      kept_11 <= 14'h2000;
+      kept_12 <= 14'h2000;
+      kept_13 <= 14'h2000;
+      kept_14 <= 14'h2000;
+      kept_15 <= 14'h2000;
+      kept_16 <= 14'h2000;
       used <= 5'h0;
-      topMax <= 13'h1000;
+      topMax <= 14'h2000;
       anyTop <= 1'h0;
     end
     else begin
       if (io_clear) begin
-        kept_0 <= 13'h1000;
-        kept_1 <= 13'h1000;
-        kept_2 <= 13'h1000;
-        kept_3 <= 13'h1000;
-        kept_4 <= 13'h1000;
-        kept_5 <= 13'h1000;
-        kept_6 <= 13'h1000;
-        kept_7 <= 13'h1000;
-        kept_8 <= 13'h1000;
-        kept_9 <= 13'h1000;
-        kept_10 <= 13'h1000;
-        kept_11 <= 13'h1000;
-        kept_12 <= 13'h1000;
-        kept_13 <= 13'h1000;
-        kept_14 <= 13'h1000;
-        kept_15 <= 13'h1000;
-        kept_16 <= 13'h1000;
+        kept_0 <= 14'h2000;
+        kept_1 <= 14'h2000;
+        kept_2 <= 14'h2000;
+        kept_3 <= 14'h2000;
+        kept_4 <= 14'h2000;
+        kept_5 <= 14'h2000;
+        kept_6 <= 14'h2000;
+        kept_7 <= 14'h2000;
+        kept_8 <= 14'h2000;
+        kept_9 <= 14'h2000;
+        kept_10 <= 14'h2000;
+        kept_11 <= 14'h2000;
+        kept_12 <= 14'h2000;
+        kept_13 <= 14'h2000;
+        kept_14 <= 14'h2000;
+        kept_15 <= 14'h2000;
+        kept_16 <= 14'h2000;
         used <= 5'h0;
-        topMax <= 13'h1000;
+        topMax <= 14'h2000;
       end
       else begin
         if (after_take & after_ins_beats_0)
@@ -16015,45 +16015,45 @@ module CellExponent_fp32_L16_c20_world(
   assign io_anyTop = anyTop;
 endmodule
 
-module CellExponent_fp32_L16_c20_p2_world(
+module CellExponent_fp32_L16_c20_e1_p2_world(
   input         clock,
                 reset,
                 io_clear,
                 io_in_0_valid,
-  input  [12:0] io_in_0_need,
+  input  [13:0] io_in_0_need,
                 io_in_0_top,
   input         io_in_0_topNone,
                 io_in_1_valid,
-  input  [12:0] io_in_1_need,
+  input  [13:0] io_in_1_need,
                 io_in_1_top,
   input         io_in_1_topNone,
-  output [12:0] io_k
+  output [13:0] io_level
 );
 
-  reg  [12:0] kept_0;
-  reg  [12:0] kept_1;
-  reg  [12:0] kept_2;
-  reg  [12:0] kept_3;
-  reg  [12:0] kept_4;
-  reg  [12:0] kept_5;
-  reg  [12:0] kept_6;
-  reg  [12:0] kept_7;
-  reg  [12:0] kept_8;
-  reg  [12:0] kept_9;
-  reg  [12:0] kept_10;
-  reg  [12:0] kept_11;
-  reg  [12:0] kept_12;
-  reg  [12:0] kept_13;
-  reg  [12:0] kept_14;
-  reg  [12:0] kept_15;
-  reg  [12:0] kept_16;
+  reg  [13:0] kept_0;
+  reg  [13:0] kept_1;
+  reg  [13:0] kept_2;
+  reg  [13:0] kept_3;
+  reg  [13:0] kept_4;
+  reg  [13:0] kept_5;
+  reg  [13:0] kept_6;
+  reg  [13:0] kept_7;
+  reg  [13:0] kept_8;
+  reg  [13:0] kept_9;
+  reg  [13:0] kept_10;
+  reg  [13:0] kept_11;
+  reg  [13:0] kept_12;
+  reg  [13:0] kept_13;
+  reg  [13:0] kept_14;
+  reg  [13:0] kept_15;
+  reg  [13:0] kept_16;
   reg  [4:0]  used;
-  reg  [12:0] topMax;
+  reg  [13:0] topMax;
   reg         anyTop;
-  wire [12:0] kSmall = used == 5'h11 ? kept_16 : kept_0;
-  wire [13:0] kCoord = anyTop ? {topMax[12], topMax} - 14'h12 : 14'h3000;
-  wire [13:0] _GEN = {kSmall[12], kSmall};
-  wire [13:0] _io_k_T_1 = $signed(_GEN) > $signed(kCoord) ? _GEN : kCoord;
+  wire [13:0] kSmall = used == 5'h11 ? kept_16 : kept_0;
+  wire [15:0] kCoord = anyTop ? {topMax[13], topMax, 1'h0} - 16'h24 : 16'hE000;
+  wire [15:0] _GEN = {{2{kSmall[13]}}, kSmall};
+  wire [15:0] _io_level_T_1 = $signed(_GEN) > $signed(kCoord) ? _GEN : kCoord;
   wire        after_ins_beats_0 = $signed(io_in_0_need) > $signed(kept_0);
   wire        after_ins_beats_1 = $signed(io_in_0_need) > $signed(kept_1);
   wire        after_ins_beats_2 = $signed(io_in_0_need) > $signed(kept_2);
@@ -16072,68 +16072,68 @@ module CellExponent_fp32_L16_c20_p2_world(
   wire        after_ins_beats_15 = $signed(io_in_0_need) > $signed(kept_15);
   wire        after_ins_beats_16 = $signed(io_in_0_need) > $signed(kept_16);
   wire        _GEN_0 = io_in_0_valid & after_ins_beats_0;
-  wire [12:0] _after_T = _GEN_0 ? io_in_0_need : kept_0;
+  wire [13:0] _after_T = _GEN_0 ? io_in_0_need : kept_0;
   wire [5:0]  _after_T_19 = {1'h0, used} + {5'h0, io_in_0_valid};
   wire        after_ins_beats_0_1 = $signed(io_in_1_need) > $signed(_after_T);
   wire [6:0]  _after_T_45 =
     {1'h0, _after_T_19 > 6'h11 ? 6'h11 : _after_T_19} + {6'h0, io_in_1_valid};
-  wire [12:0] _after_T_1 =
+  wire [13:0] _after_T_1 =
     io_in_0_valid
       ? (after_ins_beats_0 ? kept_0 : after_ins_beats_1 ? io_in_0_need : kept_1)
       : kept_1;
-  wire [12:0] _after_T_2 =
+  wire [13:0] _after_T_2 =
     io_in_0_valid
       ? (after_ins_beats_1 ? kept_1 : after_ins_beats_2 ? io_in_0_need : kept_2)
       : kept_2;
-  wire [12:0] _after_T_3 =
+  wire [13:0] _after_T_3 =
     io_in_0_valid
       ? (after_ins_beats_2 ? kept_2 : after_ins_beats_3 ? io_in_0_need : kept_3)
       : kept_3;
-  wire [12:0] _after_T_4 =
+  wire [13:0] _after_T_4 =
     io_in_0_valid
       ? (after_ins_beats_3 ? kept_3 : after_ins_beats_4 ? io_in_0_need : kept_4)
       : kept_4;
-  wire [12:0] _after_T_5 =
+  wire [13:0] _after_T_5 =
     io_in_0_valid
       ? (after_ins_beats_4 ? kept_4 : after_ins_beats_5 ? io_in_0_need : kept_5)
       : kept_5;
-  wire [12:0] _after_T_6 =
+  wire [13:0] _after_T_6 =
     io_in_0_valid
       ? (after_ins_beats_5 ? kept_5 : after_ins_beats_6 ? io_in_0_need : kept_6)
       : kept_6;
-  wire [12:0] _after_T_7 =
+  wire [13:0] _after_T_7 =
     io_in_0_valid
       ? (after_ins_beats_6 ? kept_6 : after_ins_beats_7 ? io_in_0_need : kept_7)
       : kept_7;
-  wire [12:0] _after_T_8 =
+  wire [13:0] _after_T_8 =
     io_in_0_valid
       ? (after_ins_beats_7 ? kept_7 : after_ins_beats_8 ? io_in_0_need : kept_8)
       : kept_8;
-  wire [12:0] _after_T_9 =
+  wire [13:0] _after_T_9 =
     io_in_0_valid
       ? (after_ins_beats_8 ? kept_8 : after_ins_beats_9 ? io_in_0_need : kept_9)
       : kept_9;
-  wire [12:0] _after_T_10 =
+  wire [13:0] _after_T_10 =
     io_in_0_valid
       ? (after_ins_beats_9 ? kept_9 : after_ins_beats_10 ? io_in_0_need : kept_10)
       : kept_10;
-  wire [12:0] _after_T_11 =
+  wire [13:0] _after_T_11 =
     io_in_0_valid
       ? (after_ins_beats_10 ? kept_10 : after_ins_beats_11 ? io_in_0_need : kept_11)
       : kept_11;
-  wire [12:0] _after_T_12 =
+  wire [13:0] _after_T_12 =
     io_in_0_valid
       ? (after_ins_beats_11 ? kept_11 : after_ins_beats_12 ? io_in_0_need : kept_12)
       : kept_12;
-  wire [12:0] _after_T_13 =
+  wire [13:0] _after_T_13 =
     io_in_0_valid
       ? (after_ins_beats_12 ? kept_12 : after_ins_beats_13 ? io_in_0_need : kept_13)
       : kept_13;
-  wire [12:0] _after_T_14 =
+  wire [13:0] _after_T_14 =
     io_in_0_valid
       ? (after_ins_beats_13 ? kept_13 : after_ins_beats_14 ? io_in_0_need : kept_14)
       : kept_14;
-  wire [12:0] _after_T_15 =
+  wire [13:0] _after_T_15 =
     io_in_0_valid
       ? (after_ins_beats_14 ? kept_14 : after_ins_beats_15 ? io_in_0_need : kept_15)
       : kept_15;
@@ -16158,48 +16158,48 @@ module CellExponent_fp32_L16_c20_p2_world(
   wire        _GEN_1 = ~after_hasTop | anyTop & $signed(topMax) > $signed(io_in_0_top);
   always @(posedge clock) begin
     if (reset) begin
-      kept_0 <= 13'h1000;
-      kept_1 <= 13'h1000;
-      kept_2 <= 13'h1000;
-      kept_3 <= 13'h1000;
-      kept_4 <= 13'h1000;
-      kept_5 <= 13'h1000;
-      kept_6 <= 13'h1000;
-      kept_7 <= 13'h1000;
-      kept_8 <= 13'h1000;
-      kept_9 <= 13'h1000;
-      kept_10 <= 13'h1000;
-      kept_11 <= 13'h1000;
-      kept_12 <= 13'h1000;
-      kept_13 <= 13'h1000;
-      kept_14 <= 13'h1000;
-      kept_15 <= 13'h1000;
-      kept_16 <= 13'h1000;
+      kept_0 <= 14'h2000;
+      kept_1 <= 14'h2000;
+      kept_2 <= 14'h2000;
+      kept_3 <= 14'h2000;
+      kept_4 <= 14'h2000;
+      kept_5 <= 14'h2000;
+      kept_6 <= 14'h2000;
+      kept_7 <= 14'h2000;
+      kept_8 <= 14'h2000;
+      kept_9 <= 14'h2000;
+      kept_10 <= 14'h2000;
+      kept_11 <= 14'h2000;
+      kept_12 <= 14'h2000;
+      kept_13 <= 14'h2000;
+      kept_14 <= 14'h2000;
+      kept_15 <= 14'h2000;
+      kept_16 <= 14'h2000;
       used <= 5'h0;
-      topMax <= 13'h1000;
+      topMax <= 14'h2000;
       anyTop <= 1'h0;
     end
     else begin
       if (io_clear) begin
-        kept_0 <= 13'h1000;
-        kept_1 <= 13'h1000;
-        kept_2 <= 13'h1000;
-        kept_3 <= 13'h1000;
-        kept_4 <= 13'h1000;
-        kept_5 <= 13'h1000;
-        kept_6 <= 13'h1000;
-        kept_7 <= 13'h1000;
-        kept_8 <= 13'h1000;
-        kept_9 <= 13'h1000;
-        kept_10 <= 13'h1000;
-        kept_11 <= 13'h1000;
-        kept_12 <= 13'h1000;
-        kept_13 <= 13'h1000;
-        kept_14 <= 13'h1000;
-        kept_15 <= 13'h1000;
-        kept_16 <= 13'h1000;
+        kept_0 <= 14'h2000;
+        kept_1 <= 14'h2000;
+        kept_2 <= 14'h2000;
+        kept_3 <= 14'h2000;
+        kept_4 <= 14'h2000;
+        kept_5 <= 14'h2000;
+        kept_6 <= 14'h2000;
+        kept_7 <= 14'h2000;
+        kept_8 <= 14'h2000;
+        kept_9 <= 14'h2000;
+        kept_10 <= 14'h2000;
+        kept_11 <= 14'h2000;
+        kept_12 <= 14'h2000;
+        kept_13 <= 14'h2000;
+        kept_14 <= 14'h2000;
+        kept_15 <= 14'h2000;
+        kept_16 <= 14'h2000;
         used <= 5'h0;
-        topMax <= 13'h1000;
+        topMax <= 14'h2000;
       end
       else begin
         if (io_in_1_valid & after_ins_beats_0_1)
@@ -16454,7 +16454,7 @@ module CellExponent_fp32_L16_c20_p2_world(
       anyTop <= ~io_clear & (_after_T_25 | after_hasTop_1);
     end
   end // always @(posedge)
-  assign io_k = $signed(_io_k_T_1) > -14'sh38 ? _io_k_T_1[12:0] : 13'h1FC8;
+  assign io_level = $signed(_io_level_T_1) > -16'sh70 ? _io_level_T_1[13:0] : 14'h3F90;
 endmodule
 
 // VCS coverage exclude_file
@@ -21738,7 +21738,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   assign io_busy = |state;
 endmodule
 
-module SphereKeys_fp32_c20_f8_m9d8_l1_world(
+module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
   input         clock,
                 reset,
                 io_in_valid,
@@ -21746,7 +21746,7 @@ module SphereKeys_fp32_c20_f8_m9d8_l1_world(
                 io_in_sphere_1,
                 io_in_sphere_2,
                 io_in_sphere_3,
-  input  [12:0] io_in_k,
+  input  [13:0] io_in_level,
   output        io_out_valid,
   output [19:0] io_out_cell_0,
                 io_out_cell_1,
@@ -21756,10 +21756,10 @@ module SphereKeys_fp32_c20_f8_m9d8_l1_world(
                 io_out_q_1,
                 io_out_q_2,
                 io_out_qr,
-  output [12:0] io_out_need,
+  output [13:0] io_out_need,
   output        io_out_needNone,
                 io_out_nonFinite,
-  output [12:0] io_out_top,
+  output [13:0] io_out_top,
   output        io_out_topNone
 );
 
@@ -21772,10 +21772,10 @@ module SphereKeys_fp32_c20_f8_m9d8_l1_world(
   reg  [28:0] r_1_1;
   reg  [28:0] r_1_2;
   reg  [28:0] io_out_qr_r;
-  reg  [12:0] io_out_need_r;
+  reg  [13:0] io_out_need_r;
   reg         io_out_needNone_r;
   reg         io_out_nonFinite_r;
-  reg  [12:0] io_out_top_r;
+  reg  [13:0] io_out_top_r;
   reg         io_out_topNone_r;
   wire        raw_expZero = io_in_sphere_0[30:23] == 8'h0;
   wire        raw_0_isZero = raw_expZero & ~(|(io_in_sphere_0[22:0]));
@@ -22007,104 +22007,110 @@ module SphereKeys_fp32_c20_f8_m9d8_l1_world(
     raw_expZero_3
       ? 10'h381 - {5'h0, raw_lz_3}
       : {_raw_out_sExp_T_16[8], _raw_out_sExp_T_16};
+  wire [14:0] _k_T = {io_in_level[13], io_in_level} + 15'h1;
   wire [10:0] _GEN_3 = {raw_0_sExp[9], raw_0_sExp};
   wire [10:0] _qs_t_T = _GEN_3 - 11'h17;
-  wire [13:0] _GEN_4 = {io_in_k[12], io_in_k};
-  wire [13:0] cellsAndOver_t = {{3{_qs_t_T[10]}}, _qs_t_T} - _GEN_4;
-  wire        cellsAndOver_left = $signed(cellsAndOver_t) > -14'sh1;
-  wire [14:0] _cellsAndOver_rNeg_T = 15'h0 - {cellsAndOver_t[13], cellsAndOver_t};
+  wire [14:0] _GEN_4 = {_k_T[14], _k_T[14:1]};
+  wire [14:0] _GEN_5 = {{4{_qs_t_T[10]}}, _qs_t_T} - _GEN_4;
+  wire [15:0] _GEN_6 = {_GEN_5[14], _GEN_5};
+  wire        cellsAndOver_left = $signed(_GEN_6) > -16'sh1;
+  wire [16:0] _cellsAndOver_rNeg_T = 17'h0 - {{2{_GEN_5[14]}}, _GEN_5};
   wire [4:0]  _cellsAndOver_rAmt_T_1 =
-    _cellsAndOver_rNeg_T > 15'h19 ? 5'h19 : _cellsAndOver_rNeg_T[4:0];
-  wire [54:0] _GEN_5 = {31'h0, raw_0_sig};
+    _cellsAndOver_rNeg_T > 17'h19 ? 5'h19 : _cellsAndOver_rNeg_T[4:0];
+  wire [54:0] _GEN_7 = {31'h0, raw_0_sig};
   wire [31:0] _cellsAndOver_sticky_T = 32'h1 << _cellsAndOver_rAmt_T_1;
   wire [54:0] _cellsAndOver_shiftedL_T =
-    _GEN_5 << ($signed(cellsAndOver_t) > 14'sh15 ? 5'h15 : cellsAndOver_t[4:0]);
-  wire [46:0] cellsAndOver_m =
+    _GEN_7 << ($signed(_GEN_6) > 16'sh17 ? 5'h17 : _GEN_5[4:0]);
+  wire [48:0] cellsAndOver_m =
     {1'h0,
      cellsAndOver_left
-       ? _cellsAndOver_shiftedL_T[45:0]
-       : {22'h0, raw_0_sig >> _cellsAndOver_rAmt_T_1}}
-    + {46'h0,
+       ? _cellsAndOver_shiftedL_T[47:0]
+       : {24'h0, raw_0_sig >> _cellsAndOver_rAmt_T_1}}
+    + {48'h0,
        ~cellsAndOver_left & (|(raw_0_sig & _cellsAndOver_sticky_T[23:0] - 24'h1))
          & io_in_sphere_0[31]};
-  wire [19:0] cellsAndOver_0_1 =
+  wire [21:0] cellsAndOver_0_1 =
     raw_0_isZero
-      ? 20'h0
-      : io_in_sphere_0[31] ? 20'h0 - cellsAndOver_m[19:0] : cellsAndOver_m[19:0];
-  wire [10:0] _GEN_6 = {raw_1_sExp[9], raw_1_sExp};
-  wire [10:0] _qs_t_T_1 = _GEN_6 - 11'h17;
-  wire [13:0] cellsAndOver_t_1 = {{3{_qs_t_T_1[10]}}, _qs_t_T_1} - _GEN_4;
-  wire        cellsAndOver_left_1 = $signed(cellsAndOver_t_1) > -14'sh1;
-  wire [14:0] _cellsAndOver_rNeg_T_1 = 15'h0 - {cellsAndOver_t_1[13], cellsAndOver_t_1};
+      ? 22'h0
+      : io_in_sphere_0[31] ? 22'h0 - cellsAndOver_m[21:0] : cellsAndOver_m[21:0];
+  wire [10:0] _GEN_8 = {raw_1_sExp[9], raw_1_sExp};
+  wire [10:0] _qs_t_T_1 = _GEN_8 - 11'h17;
+  wire [14:0] _GEN_9 = {{4{_qs_t_T_1[10]}}, _qs_t_T_1} - _GEN_4;
+  wire [15:0] _GEN_10 = {_GEN_9[14], _GEN_9};
+  wire        cellsAndOver_left_1 = $signed(_GEN_10) > -16'sh1;
+  wire [16:0] _cellsAndOver_rNeg_T_1 = 17'h0 - {{2{_GEN_9[14]}}, _GEN_9};
   wire [4:0]  _cellsAndOver_rAmt_T_3 =
-    _cellsAndOver_rNeg_T_1 > 15'h19 ? 5'h19 : _cellsAndOver_rNeg_T_1[4:0];
-  wire [54:0] _GEN_7 = {31'h0, raw_1_sig};
+    _cellsAndOver_rNeg_T_1 > 17'h19 ? 5'h19 : _cellsAndOver_rNeg_T_1[4:0];
+  wire [54:0] _GEN_11 = {31'h0, raw_1_sig};
   wire [31:0] _cellsAndOver_sticky_T_5 = 32'h1 << _cellsAndOver_rAmt_T_3;
   wire [54:0] _cellsAndOver_shiftedL_T_1 =
-    _GEN_7 << ($signed(cellsAndOver_t_1) > 14'sh15 ? 5'h15 : cellsAndOver_t_1[4:0]);
-  wire [46:0] cellsAndOver_m_1 =
+    _GEN_11 << ($signed(_GEN_10) > 16'sh17 ? 5'h17 : _GEN_9[4:0]);
+  wire [48:0] cellsAndOver_m_1 =
     {1'h0,
      cellsAndOver_left_1
-       ? _cellsAndOver_shiftedL_T_1[45:0]
-       : {22'h0, raw_1_sig >> _cellsAndOver_rAmt_T_3}}
-    + {46'h0,
+       ? _cellsAndOver_shiftedL_T_1[47:0]
+       : {24'h0, raw_1_sig >> _cellsAndOver_rAmt_T_3}}
+    + {48'h0,
        ~cellsAndOver_left_1 & (|(raw_1_sig & _cellsAndOver_sticky_T_5[23:0] - 24'h1))
          & io_in_sphere_1[31]};
-  wire [19:0] cellsAndOver_1_1 =
+  wire [21:0] cellsAndOver_1_1 =
     raw_1_isZero
-      ? 20'h0
-      : io_in_sphere_1[31] ? 20'h0 - cellsAndOver_m_1[19:0] : cellsAndOver_m_1[19:0];
-  wire [10:0] _GEN_8 = {raw_2_sExp[9], raw_2_sExp};
-  wire [10:0] _qs_t_T_2 = _GEN_8 - 11'h17;
-  wire [13:0] cellsAndOver_t_2 = {{3{_qs_t_T_2[10]}}, _qs_t_T_2} - _GEN_4;
-  wire        cellsAndOver_left_2 = $signed(cellsAndOver_t_2) > -14'sh1;
-  wire [14:0] _cellsAndOver_rNeg_T_2 = 15'h0 - {cellsAndOver_t_2[13], cellsAndOver_t_2};
+      ? 22'h0
+      : io_in_sphere_1[31] ? 22'h0 - cellsAndOver_m_1[21:0] : cellsAndOver_m_1[21:0];
+  wire [10:0] _GEN_12 = {raw_2_sExp[9], raw_2_sExp};
+  wire [10:0] _qs_t_T_2 = _GEN_12 - 11'h17;
+  wire [14:0] _GEN_13 = {{4{_qs_t_T_2[10]}}, _qs_t_T_2} - _GEN_4;
+  wire [15:0] _GEN_14 = {_GEN_13[14], _GEN_13};
+  wire        cellsAndOver_left_2 = $signed(_GEN_14) > -16'sh1;
+  wire [16:0] _cellsAndOver_rNeg_T_2 = 17'h0 - {{2{_GEN_13[14]}}, _GEN_13};
   wire [4:0]  _cellsAndOver_rAmt_T_5 =
-    _cellsAndOver_rNeg_T_2 > 15'h19 ? 5'h19 : _cellsAndOver_rNeg_T_2[4:0];
-  wire [54:0] _GEN_9 = {31'h0, raw_2_sig};
+    _cellsAndOver_rNeg_T_2 > 17'h19 ? 5'h19 : _cellsAndOver_rNeg_T_2[4:0];
+  wire [54:0] _GEN_15 = {31'h0, raw_2_sig};
   wire [31:0] _cellsAndOver_sticky_T_10 = 32'h1 << _cellsAndOver_rAmt_T_5;
   wire [54:0] _cellsAndOver_shiftedL_T_2 =
-    _GEN_9 << ($signed(cellsAndOver_t_2) > 14'sh15 ? 5'h15 : cellsAndOver_t_2[4:0]);
-  wire [46:0] cellsAndOver_m_2 =
+    _GEN_15 << ($signed(_GEN_14) > 16'sh17 ? 5'h17 : _GEN_13[4:0]);
+  wire [48:0] cellsAndOver_m_2 =
     {1'h0,
      cellsAndOver_left_2
-       ? _cellsAndOver_shiftedL_T_2[45:0]
-       : {22'h0, raw_2_sig >> _cellsAndOver_rAmt_T_5}}
-    + {46'h0,
+       ? _cellsAndOver_shiftedL_T_2[47:0]
+       : {24'h0, raw_2_sig >> _cellsAndOver_rAmt_T_5}}
+    + {48'h0,
        ~cellsAndOver_left_2 & (|(raw_2_sig & _cellsAndOver_sticky_T_10[23:0] - 24'h1))
          & io_in_sphere_2[31]};
-  wire [19:0] cellsAndOver_2_1 =
+  wire [21:0] cellsAndOver_2_1 =
     raw_2_isZero
-      ? 20'h0
-      : io_in_sphere_2[31] ? 20'h0 - cellsAndOver_m_2[19:0] : cellsAndOver_m_2[19:0];
-  wire [13:0] _tq_T_1 = _GEN_4 - 14'h8;
-  wire [14:0] _GEN_10 = {_tq_T_1[13], _tq_T_1};
-  wire [14:0] qs_t = {{4{_qs_t_T[10]}}, _qs_t_T} - _GEN_10;
-  wire        qs_left = $signed(qs_t) > -15'sh1;
-  wire [15:0] _qs_rNeg_T = 16'h0 - {qs_t[14], qs_t};
-  wire [4:0]  _qs_rAmt_T_1 = _qs_rNeg_T > 16'h19 ? 5'h19 : _qs_rNeg_T[4:0];
+      ? 22'h0
+      : io_in_sphere_2[31] ? 22'h0 - cellsAndOver_m_2[21:0] : cellsAndOver_m_2[21:0];
+  wire [14:0] _tq_T_1 = _GEN_4 - 15'h8;
+  wire [15:0] _GEN_16 = {_tq_T_1[14], _tq_T_1};
+  wire [15:0] qs_t = {{5{_qs_t_T[10]}}, _qs_t_T} - _GEN_16;
+  wire        qs_left = $signed(qs_t) > -16'sh1;
+  wire [16:0] _qs_rNeg_T = 17'h0 - {qs_t[15], qs_t};
+  wire [4:0]  _qs_rAmt_T_1 = _qs_rNeg_T > 17'h19 ? 5'h19 : _qs_rNeg_T[4:0];
   wire [31:0] _qs_sticky_T = 32'h1 << _qs_rAmt_T_1;
-  wire [54:0] qs_shiftedL = _GEN_5 << ($signed(qs_t) > 15'sh1E ? 5'h1E : qs_t[4:0]);
+  wire [54:0] qs_shiftedL = _GEN_7 << ($signed(qs_t) > 16'sh1E ? 5'h1E : qs_t[4:0]);
   wire [28:0] qs_m =
     (qs_left ? qs_shiftedL[28:0] : {5'h0, raw_0_sig >> _qs_rAmt_T_1})
     + {28'h0,
        ~qs_left & (|(raw_0_sig & _qs_sticky_T[23:0] - 24'h1)) & io_in_sphere_0[31]};
-  wire [14:0] qs_t_1 = {{4{_qs_t_T_1[10]}}, _qs_t_T_1} - _GEN_10;
-  wire        qs_left_1 = $signed(qs_t_1) > -15'sh1;
-  wire [15:0] _qs_rNeg_T_1 = 16'h0 - {qs_t_1[14], qs_t_1};
-  wire [4:0]  _qs_rAmt_T_3 = _qs_rNeg_T_1 > 16'h19 ? 5'h19 : _qs_rNeg_T_1[4:0];
+  wire [15:0] qs_t_1 = {{5{_qs_t_T_1[10]}}, _qs_t_T_1} - _GEN_16;
+  wire        qs_left_1 = $signed(qs_t_1) > -16'sh1;
+  wire [16:0] _qs_rNeg_T_1 = 17'h0 - {qs_t_1[15], qs_t_1};
+  wire [4:0]  _qs_rAmt_T_3 = _qs_rNeg_T_1 > 17'h19 ? 5'h19 : _qs_rNeg_T_1[4:0];
   wire [31:0] _qs_sticky_T_5 = 32'h1 << _qs_rAmt_T_3;
-  wire [54:0] qs_shiftedL_1 = _GEN_7 << ($signed(qs_t_1) > 15'sh1E ? 5'h1E : qs_t_1[4:0]);
+  wire [54:0] qs_shiftedL_1 =
+    _GEN_11 << ($signed(qs_t_1) > 16'sh1E ? 5'h1E : qs_t_1[4:0]);
   wire [28:0] qs_m_1 =
     (qs_left_1 ? qs_shiftedL_1[28:0] : {5'h0, raw_1_sig >> _qs_rAmt_T_3})
     + {28'h0,
        ~qs_left_1 & (|(raw_1_sig & _qs_sticky_T_5[23:0] - 24'h1)) & io_in_sphere_1[31]};
-  wire [14:0] qs_t_2 = {{4{_qs_t_T_2[10]}}, _qs_t_T_2} - _GEN_10;
-  wire        qs_left_2 = $signed(qs_t_2) > -15'sh1;
-  wire [15:0] _qs_rNeg_T_2 = 16'h0 - {qs_t_2[14], qs_t_2};
-  wire [4:0]  _qs_rAmt_T_5 = _qs_rNeg_T_2 > 16'h19 ? 5'h19 : _qs_rNeg_T_2[4:0];
+  wire [15:0] qs_t_2 = {{5{_qs_t_T_2[10]}}, _qs_t_T_2} - _GEN_16;
+  wire        qs_left_2 = $signed(qs_t_2) > -16'sh1;
+  wire [16:0] _qs_rNeg_T_2 = 17'h0 - {qs_t_2[15], qs_t_2};
+  wire [4:0]  _qs_rAmt_T_5 = _qs_rNeg_T_2 > 17'h19 ? 5'h19 : _qs_rNeg_T_2[4:0];
   wire [31:0] _qs_sticky_T_10 = 32'h1 << _qs_rAmt_T_5;
-  wire [54:0] qs_shiftedL_2 = _GEN_9 << ($signed(qs_t_2) > 15'sh1E ? 5'h1E : qs_t_2[4:0]);
+  wire [54:0] qs_shiftedL_2 =
+    _GEN_15 << ($signed(qs_t_2) > 16'sh1E ? 5'h1E : qs_t_2[4:0]);
   wire [28:0] qs_m_2 =
     (qs_left_2 ? qs_shiftedL_2[28:0] : {5'h0, raw_2_sig >> _qs_rAmt_T_5})
     + {28'h0,
@@ -22112,22 +22118,22 @@ module SphereKeys_fp32_c20_f8_m9d8_l1_world(
   wire [85:0] _raw_subSig_T_7 = {63'h0, io_in_sphere_3[22:0]} << {1'h0, raw_lz_3} + 6'h1;
   wire [27:0] rNum =
     {4'h0, raw_expZero_3 ? _raw_subSig_T_7[23:0] : {1'h1, io_in_sphere_3[22:0]}} * 28'h9;
-  wire [10:0] _GEN_11 = {raw_3_sExp[9], raw_3_sExp};
-  wire [10:0] _tq_T = _GEN_11 - 11'h1A;
-  wire [14:0] tq = {{4{_tq_T[10]}}, _tq_T} - _GEN_10;
-  wire [15:0] _qrRneg_T = 16'h0 - {tq[14], tq};
-  wire [4:0]  _qrR_T_1 = _qrRneg_T > 16'h1D ? 5'h1D : _qrRneg_T[4:0];
+  wire [10:0] _GEN_17 = {raw_3_sExp[9], raw_3_sExp};
+  wire [10:0] _tq_T = _GEN_17 - 11'h1A;
+  wire [15:0] tq = {{5{_tq_T[10]}}, _tq_T} - _GEN_16;
+  wire [16:0] _qrRneg_T = 17'h0 - {tq[15], tq};
+  wire [4:0]  _qrR_T_1 = _qrRneg_T > 17'h1D ? 5'h1D : _qrRneg_T[4:0];
   wire [31:0] _qrRight_T_1 = 32'h1 << _qrR_T_1;
   wire [58:0] qrWide =
-    $signed(tq) > -15'sh1
-      ? {31'h0, rNum} << ($signed(tq) > 15'sh1D ? 5'h1D : tq[4:0])
+    $signed(tq) > -16'sh1
+      ? {31'h0, rNum} << ($signed(tq) > 16'sh1D ? 5'h1D : tq[4:0])
       : {30'h0, {1'h0, rNum >> _qrR_T_1} + {28'h0, |(rNum & _qrRight_T_1[27:0] - 28'h1)}};
   wire        _io_out_needNone_T =
     raw_expZero_3 & ~(|(io_in_sphere_3[22:0])) | io_in_sphere_3[31];
   wire [28:0] _x_T_1 = {rNum, 1'h0} - 29'h1;
-  wire [10:0] _need_T = _GEN_11 - 11'h17;
-  wire [11:0] _need_T_52 =
-    {_need_T[10], _need_T}
+  wire [10:0] _needK_T = _GEN_17 - 11'h17;
+  wire [11:0] _needK_T_3 =
+    {_needK_T[10], _needK_T}
     + {6'h0,
        {1'h0,
         |(_x_T_1[28:16]),
@@ -22153,38 +22159,38 @@ module SphereKeys_fp32_c20_f8_m9d8_l1_world(
                     ? (_x_T_1[7] ? 2'h3 : _x_T_1[6] ? 2'h2 : {1'h0, _x_T_1[5]})
                     : _x_T_1[3] ? 2'h3 : _x_T_1[2] ? 2'h2 : {1'h0, _x_T_1[1]}}}} + 6'h1};
   wire [10:0] coordTops_0_2 = _GEN_3 + 11'h1;
-  wire [10:0] coordTops_1_2 = _GEN_6 + 11'h1;
-  wire [10:0] coordTops_2_2 = _GEN_8 + 11'h1;
-  wire        _GEN_12 = raw_0_isZero & raw_1_isZero;
-  wire [10:0] _GEN_13 =
+  wire [10:0] coordTops_1_2 = _GEN_8 + 11'h1;
+  wire [10:0] coordTops_2_2 = _GEN_12 + 11'h1;
+  wire        _GEN_18 = raw_0_isZero & raw_1_isZero;
+  wire [10:0] _GEN_19 =
     raw_0_isZero | ~(raw_1_isZero | $signed(coordTops_0_2) > $signed(coordTops_1_2))
       ? coordTops_1_2
       : coordTops_0_2;
   wire [10:0] top =
-    _GEN_12 | ~(raw_2_isZero | $signed(_GEN_13) > $signed(coordTops_2_2))
+    _GEN_18 | ~(raw_2_isZero | $signed(_GEN_19) > $signed(coordTops_2_2))
       ? coordTops_2_2
-      : _GEN_13;
+      : _GEN_19;
   always @(posedge clock) begin
     if (reset)
       io_out_valid_r <= 1'h0;
     else
       io_out_valid_r <= io_in_valid;
-    r_0 <= cellsAndOver_0_1;
-    r_1 <= cellsAndOver_1_1;
-    r_2 <= cellsAndOver_2_1;
+    r_0 <= cellsAndOver_0_1[19:0];
+    r_1 <= cellsAndOver_1_1[19:0];
+    r_2 <= cellsAndOver_2_1[19:0];
     io_out_cellOverflow_r <=
-      ~raw_0_isZero & (|(cellsAndOver_m[46:19])) | cellsAndOver_0_1 == 20'h7FFFF
-      | $signed(cellsAndOver_0_1) < -20'sh7FFFE | ~raw_1_isZero
-      & (|(cellsAndOver_m_1[46:19])) | cellsAndOver_1_1 == 20'h7FFFF
-      | $signed(cellsAndOver_1_1) < -20'sh7FFFE | ~raw_2_isZero
-      & (|(cellsAndOver_m_2[46:19])) | cellsAndOver_2_1 == 20'h7FFFF
-      | $signed(cellsAndOver_2_1) < -20'sh7FFFE;
+      ~raw_0_isZero & (|(cellsAndOver_m[48:21])) | $signed(cellsAndOver_0_1) > 22'sh7FFFE
+      | $signed(cellsAndOver_0_1) < -22'sh7FFFE | ~raw_1_isZero
+      & (|(cellsAndOver_m_1[48:21])) | $signed(cellsAndOver_1_1) > 22'sh7FFFE
+      | $signed(cellsAndOver_1_1) < -22'sh7FFFE | ~raw_2_isZero
+      & (|(cellsAndOver_m_2[48:21])) | $signed(cellsAndOver_2_1) > 22'sh7FFFE
+      | $signed(cellsAndOver_2_1) < -22'sh7FFFE;
     r_1_0 <= raw_0_isZero ? 29'h0 : io_in_sphere_0[31] ? 29'h0 - qs_m : qs_m;
     r_1_1 <= raw_1_isZero ? 29'h0 : io_in_sphere_1[31] ? 29'h0 - qs_m_1 : qs_m_1;
     r_1_2 <= raw_2_isZero ? 29'h0 : io_in_sphere_2[31] ? 29'h0 - qs_m_2 : qs_m_2;
     io_out_qr_r <=
       _io_out_needNone_T ? 29'h0 : (|(qrWide[58:29])) ? 29'h1FFFFFFF : qrWide[28:0];
-    io_out_need_r <= {_need_T_52[11], _need_T_52} - 13'h3;
+    io_out_need_r <= {{_needK_T_3[11], _needK_T_3} - 13'h3, 1'h0};
     io_out_needNone_r <= _io_out_needNone_T;
     io_out_nonFinite_r <=
       (&(io_in_sphere_0[30:23])) & (|(io_in_sphere_0[22:0])) | (&(io_in_sphere_0[30:23]))
@@ -22195,8 +22201,8 @@ module SphereKeys_fp32_c20_f8_m9d8_l1_world(
       & ~(|(io_in_sphere_2[22:0])) | (&(io_in_sphere_3[30:23]))
       & (|(io_in_sphere_3[22:0])) | (&(io_in_sphere_3[30:23]))
       & ~(|(io_in_sphere_3[22:0]));
-    io_out_top_r <= {{2{top[10]}}, top};
-    io_out_topNone_r <= _GEN_12 & raw_2_isZero;
+    io_out_top_r <= {{3{top[10]}}, top};
+    io_out_topNone_r <= _GEN_18 & raw_2_isZero;
   end // always @(posedge)
   assign io_out_valid = io_out_valid_r;
   assign io_out_cell_0 = r_0;
@@ -22364,8 +22370,8 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   output [11:0] io_pairs_15_bits_i,
                 io_pairs_15_bits_j,
   output        io_busy,
-  output [12:0] io_status_k,
-                io_status_large,
+  output [13:0] io_status_level,
+  output [12:0] io_status_large,
   output [31:0] io_status_cycTotal,
   output        io_status_tooMany,
                 io_status_cellOverflow,
@@ -22382,10 +22388,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_15_io_out_q_1;
   wire [28:0] _laneKeys_15_io_out_q_2;
   wire [28:0] _laneKeys_15_io_out_qr;
-  wire [12:0] _laneKeys_15_io_out_need;
+  wire [13:0] _laneKeys_15_io_out_need;
   wire        _laneKeys_15_io_out_needNone;
   wire        _laneKeys_15_io_out_nonFinite;
-  wire [12:0] _laneKeys_15_io_out_top;
+  wire [13:0] _laneKeys_15_io_out_top;
   wire        _laneKeys_15_io_out_topNone;
   wire        _laneKeys_14_io_out_valid;
   wire [19:0] _laneKeys_14_io_out_cell_0;
@@ -22395,10 +22401,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_14_io_out_q_1;
   wire [28:0] _laneKeys_14_io_out_q_2;
   wire [28:0] _laneKeys_14_io_out_qr;
-  wire [12:0] _laneKeys_14_io_out_need;
+  wire [13:0] _laneKeys_14_io_out_need;
   wire        _laneKeys_14_io_out_needNone;
   wire        _laneKeys_14_io_out_nonFinite;
-  wire [12:0] _laneKeys_14_io_out_top;
+  wire [13:0] _laneKeys_14_io_out_top;
   wire        _laneKeys_14_io_out_topNone;
   wire        _laneKeys_13_io_out_valid;
   wire [19:0] _laneKeys_13_io_out_cell_0;
@@ -22408,10 +22414,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_13_io_out_q_1;
   wire [28:0] _laneKeys_13_io_out_q_2;
   wire [28:0] _laneKeys_13_io_out_qr;
-  wire [12:0] _laneKeys_13_io_out_need;
+  wire [13:0] _laneKeys_13_io_out_need;
   wire        _laneKeys_13_io_out_needNone;
   wire        _laneKeys_13_io_out_nonFinite;
-  wire [12:0] _laneKeys_13_io_out_top;
+  wire [13:0] _laneKeys_13_io_out_top;
   wire        _laneKeys_13_io_out_topNone;
   wire        _laneKeys_12_io_out_valid;
   wire [19:0] _laneKeys_12_io_out_cell_0;
@@ -22421,10 +22427,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_12_io_out_q_1;
   wire [28:0] _laneKeys_12_io_out_q_2;
   wire [28:0] _laneKeys_12_io_out_qr;
-  wire [12:0] _laneKeys_12_io_out_need;
+  wire [13:0] _laneKeys_12_io_out_need;
   wire        _laneKeys_12_io_out_needNone;
   wire        _laneKeys_12_io_out_nonFinite;
-  wire [12:0] _laneKeys_12_io_out_top;
+  wire [13:0] _laneKeys_12_io_out_top;
   wire        _laneKeys_12_io_out_topNone;
   wire        _laneKeys_11_io_out_valid;
   wire [19:0] _laneKeys_11_io_out_cell_0;
@@ -22434,10 +22440,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_11_io_out_q_1;
   wire [28:0] _laneKeys_11_io_out_q_2;
   wire [28:0] _laneKeys_11_io_out_qr;
-  wire [12:0] _laneKeys_11_io_out_need;
+  wire [13:0] _laneKeys_11_io_out_need;
   wire        _laneKeys_11_io_out_needNone;
   wire        _laneKeys_11_io_out_nonFinite;
-  wire [12:0] _laneKeys_11_io_out_top;
+  wire [13:0] _laneKeys_11_io_out_top;
   wire        _laneKeys_11_io_out_topNone;
   wire        _laneKeys_10_io_out_valid;
   wire [19:0] _laneKeys_10_io_out_cell_0;
@@ -22447,10 +22453,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_10_io_out_q_1;
   wire [28:0] _laneKeys_10_io_out_q_2;
   wire [28:0] _laneKeys_10_io_out_qr;
-  wire [12:0] _laneKeys_10_io_out_need;
+  wire [13:0] _laneKeys_10_io_out_need;
   wire        _laneKeys_10_io_out_needNone;
   wire        _laneKeys_10_io_out_nonFinite;
-  wire [12:0] _laneKeys_10_io_out_top;
+  wire [13:0] _laneKeys_10_io_out_top;
   wire        _laneKeys_10_io_out_topNone;
   wire        _laneKeys_9_io_out_valid;
   wire [19:0] _laneKeys_9_io_out_cell_0;
@@ -22460,10 +22466,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_9_io_out_q_1;
   wire [28:0] _laneKeys_9_io_out_q_2;
   wire [28:0] _laneKeys_9_io_out_qr;
-  wire [12:0] _laneKeys_9_io_out_need;
+  wire [13:0] _laneKeys_9_io_out_need;
   wire        _laneKeys_9_io_out_needNone;
   wire        _laneKeys_9_io_out_nonFinite;
-  wire [12:0] _laneKeys_9_io_out_top;
+  wire [13:0] _laneKeys_9_io_out_top;
   wire        _laneKeys_9_io_out_topNone;
   wire        _laneKeys_8_io_out_valid;
   wire [19:0] _laneKeys_8_io_out_cell_0;
@@ -22473,10 +22479,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_8_io_out_q_1;
   wire [28:0] _laneKeys_8_io_out_q_2;
   wire [28:0] _laneKeys_8_io_out_qr;
-  wire [12:0] _laneKeys_8_io_out_need;
+  wire [13:0] _laneKeys_8_io_out_need;
   wire        _laneKeys_8_io_out_needNone;
   wire        _laneKeys_8_io_out_nonFinite;
-  wire [12:0] _laneKeys_8_io_out_top;
+  wire [13:0] _laneKeys_8_io_out_top;
   wire        _laneKeys_8_io_out_topNone;
   wire        _laneKeys_7_io_out_valid;
   wire [19:0] _laneKeys_7_io_out_cell_0;
@@ -22486,10 +22492,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_7_io_out_q_1;
   wire [28:0] _laneKeys_7_io_out_q_2;
   wire [28:0] _laneKeys_7_io_out_qr;
-  wire [12:0] _laneKeys_7_io_out_need;
+  wire [13:0] _laneKeys_7_io_out_need;
   wire        _laneKeys_7_io_out_needNone;
   wire        _laneKeys_7_io_out_nonFinite;
-  wire [12:0] _laneKeys_7_io_out_top;
+  wire [13:0] _laneKeys_7_io_out_top;
   wire        _laneKeys_7_io_out_topNone;
   wire        _laneKeys_6_io_out_valid;
   wire [19:0] _laneKeys_6_io_out_cell_0;
@@ -22499,10 +22505,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_6_io_out_q_1;
   wire [28:0] _laneKeys_6_io_out_q_2;
   wire [28:0] _laneKeys_6_io_out_qr;
-  wire [12:0] _laneKeys_6_io_out_need;
+  wire [13:0] _laneKeys_6_io_out_need;
   wire        _laneKeys_6_io_out_needNone;
   wire        _laneKeys_6_io_out_nonFinite;
-  wire [12:0] _laneKeys_6_io_out_top;
+  wire [13:0] _laneKeys_6_io_out_top;
   wire        _laneKeys_6_io_out_topNone;
   wire        _laneKeys_5_io_out_valid;
   wire [19:0] _laneKeys_5_io_out_cell_0;
@@ -22512,10 +22518,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_5_io_out_q_1;
   wire [28:0] _laneKeys_5_io_out_q_2;
   wire [28:0] _laneKeys_5_io_out_qr;
-  wire [12:0] _laneKeys_5_io_out_need;
+  wire [13:0] _laneKeys_5_io_out_need;
   wire        _laneKeys_5_io_out_needNone;
   wire        _laneKeys_5_io_out_nonFinite;
-  wire [12:0] _laneKeys_5_io_out_top;
+  wire [13:0] _laneKeys_5_io_out_top;
   wire        _laneKeys_5_io_out_topNone;
   wire        _laneKeys_4_io_out_valid;
   wire [19:0] _laneKeys_4_io_out_cell_0;
@@ -22525,10 +22531,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_4_io_out_q_1;
   wire [28:0] _laneKeys_4_io_out_q_2;
   wire [28:0] _laneKeys_4_io_out_qr;
-  wire [12:0] _laneKeys_4_io_out_need;
+  wire [13:0] _laneKeys_4_io_out_need;
   wire        _laneKeys_4_io_out_needNone;
   wire        _laneKeys_4_io_out_nonFinite;
-  wire [12:0] _laneKeys_4_io_out_top;
+  wire [13:0] _laneKeys_4_io_out_top;
   wire        _laneKeys_4_io_out_topNone;
   wire        _laneKeys_3_io_out_valid;
   wire [19:0] _laneKeys_3_io_out_cell_0;
@@ -22539,10 +22545,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_3_io_out_q_1;
   wire [28:0] _laneKeys_3_io_out_q_2;
   wire [28:0] _laneKeys_3_io_out_qr;
-  wire [12:0] _laneKeys_3_io_out_need;
+  wire [13:0] _laneKeys_3_io_out_need;
   wire        _laneKeys_3_io_out_needNone;
   wire        _laneKeys_3_io_out_nonFinite;
-  wire [12:0] _laneKeys_3_io_out_top;
+  wire [13:0] _laneKeys_3_io_out_top;
   wire        _laneKeys_3_io_out_topNone;
   wire        _laneKeys_2_io_out_valid;
   wire [19:0] _laneKeys_2_io_out_cell_0;
@@ -22553,10 +22559,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_2_io_out_q_1;
   wire [28:0] _laneKeys_2_io_out_q_2;
   wire [28:0] _laneKeys_2_io_out_qr;
-  wire [12:0] _laneKeys_2_io_out_need;
+  wire [13:0] _laneKeys_2_io_out_need;
   wire        _laneKeys_2_io_out_needNone;
   wire        _laneKeys_2_io_out_nonFinite;
-  wire [12:0] _laneKeys_2_io_out_top;
+  wire [13:0] _laneKeys_2_io_out_top;
   wire        _laneKeys_2_io_out_topNone;
   wire        _laneKeys_1_io_out_valid;
   wire [19:0] _laneKeys_1_io_out_cell_0;
@@ -22567,10 +22573,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_1_io_out_q_1;
   wire [28:0] _laneKeys_1_io_out_q_2;
   wire [28:0] _laneKeys_1_io_out_qr;
-  wire [12:0] _laneKeys_1_io_out_need;
+  wire [13:0] _laneKeys_1_io_out_need;
   wire        _laneKeys_1_io_out_needNone;
   wire        _laneKeys_1_io_out_nonFinite;
-  wire [12:0] _laneKeys_1_io_out_top;
+  wire [13:0] _laneKeys_1_io_out_top;
   wire        _laneKeys_1_io_out_topNone;
   wire        _laneKeys_0_io_out_valid;
   wire [19:0] _laneKeys_0_io_out_cell_0;
@@ -22581,10 +22587,10 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [28:0] _laneKeys_0_io_out_q_1;
   wire [28:0] _laneKeys_0_io_out_q_2;
   wire [28:0] _laneKeys_0_io_out_qr;
-  wire [12:0] _laneKeys_0_io_out_need;
+  wire [13:0] _laneKeys_0_io_out_need;
   wire        _laneKeys_0_io_out_needNone;
   wire        _laneKeys_0_io_out_nonFinite;
-  wire [12:0] _laneKeys_0_io_out_top;
+  wire [13:0] _laneKeys_0_io_out_top;
   wire        _laneKeys_0_io_out_topNone;
   wire [12:0] _gens_15_io_lookup_bucket;
   wire [11:0] _gens_15_io_entry_addr;
@@ -23382,326 +23388,326 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   wire [11:0] _sorts_0_io_counted;
   wire [11:0] _sorts_0_io_scattered;
   wire        _sorts_0_io_badBucket;
-  wire [12:0] _cellExp_io_k;
-  wire [12:0] _laneExps_15_io_kept_0;
-  wire [12:0] _laneExps_15_io_kept_1;
-  wire [12:0] _laneExps_15_io_kept_2;
-  wire [12:0] _laneExps_15_io_kept_3;
-  wire [12:0] _laneExps_15_io_kept_4;
-  wire [12:0] _laneExps_15_io_kept_5;
-  wire [12:0] _laneExps_15_io_kept_6;
-  wire [12:0] _laneExps_15_io_kept_7;
-  wire [12:0] _laneExps_15_io_kept_8;
-  wire [12:0] _laneExps_15_io_kept_9;
-  wire [12:0] _laneExps_15_io_kept_10;
-  wire [12:0] _laneExps_15_io_kept_11;
-  wire [12:0] _laneExps_15_io_kept_12;
-  wire [12:0] _laneExps_15_io_kept_13;
-  wire [12:0] _laneExps_15_io_kept_14;
-  wire [12:0] _laneExps_15_io_kept_15;
-  wire [12:0] _laneExps_15_io_kept_16;
+  wire [13:0] _cellExp_io_level;
+  wire [13:0] _laneExps_15_io_kept_0;
+  wire [13:0] _laneExps_15_io_kept_1;
+  wire [13:0] _laneExps_15_io_kept_2;
+  wire [13:0] _laneExps_15_io_kept_3;
+  wire [13:0] _laneExps_15_io_kept_4;
+  wire [13:0] _laneExps_15_io_kept_5;
+  wire [13:0] _laneExps_15_io_kept_6;
+  wire [13:0] _laneExps_15_io_kept_7;
+  wire [13:0] _laneExps_15_io_kept_8;
+  wire [13:0] _laneExps_15_io_kept_9;
+  wire [13:0] _laneExps_15_io_kept_10;
+  wire [13:0] _laneExps_15_io_kept_11;
+  wire [13:0] _laneExps_15_io_kept_12;
+  wire [13:0] _laneExps_15_io_kept_13;
+  wire [13:0] _laneExps_15_io_kept_14;
+  wire [13:0] _laneExps_15_io_kept_15;
+  wire [13:0] _laneExps_15_io_kept_16;
   wire [4:0]  _laneExps_15_io_used;
-  wire [12:0] _laneExps_15_io_top;
+  wire [13:0] _laneExps_15_io_top;
   wire        _laneExps_15_io_anyTop;
-  wire [12:0] _laneExps_14_io_kept_0;
-  wire [12:0] _laneExps_14_io_kept_1;
-  wire [12:0] _laneExps_14_io_kept_2;
-  wire [12:0] _laneExps_14_io_kept_3;
-  wire [12:0] _laneExps_14_io_kept_4;
-  wire [12:0] _laneExps_14_io_kept_5;
-  wire [12:0] _laneExps_14_io_kept_6;
-  wire [12:0] _laneExps_14_io_kept_7;
-  wire [12:0] _laneExps_14_io_kept_8;
-  wire [12:0] _laneExps_14_io_kept_9;
-  wire [12:0] _laneExps_14_io_kept_10;
-  wire [12:0] _laneExps_14_io_kept_11;
-  wire [12:0] _laneExps_14_io_kept_12;
-  wire [12:0] _laneExps_14_io_kept_13;
-  wire [12:0] _laneExps_14_io_kept_14;
-  wire [12:0] _laneExps_14_io_kept_15;
-  wire [12:0] _laneExps_14_io_kept_16;
+  wire [13:0] _laneExps_14_io_kept_0;
+  wire [13:0] _laneExps_14_io_kept_1;
+  wire [13:0] _laneExps_14_io_kept_2;
+  wire [13:0] _laneExps_14_io_kept_3;
+  wire [13:0] _laneExps_14_io_kept_4;
+  wire [13:0] _laneExps_14_io_kept_5;
+  wire [13:0] _laneExps_14_io_kept_6;
+  wire [13:0] _laneExps_14_io_kept_7;
+  wire [13:0] _laneExps_14_io_kept_8;
+  wire [13:0] _laneExps_14_io_kept_9;
+  wire [13:0] _laneExps_14_io_kept_10;
+  wire [13:0] _laneExps_14_io_kept_11;
+  wire [13:0] _laneExps_14_io_kept_12;
+  wire [13:0] _laneExps_14_io_kept_13;
+  wire [13:0] _laneExps_14_io_kept_14;
+  wire [13:0] _laneExps_14_io_kept_15;
+  wire [13:0] _laneExps_14_io_kept_16;
   wire [4:0]  _laneExps_14_io_used;
-  wire [12:0] _laneExps_14_io_top;
+  wire [13:0] _laneExps_14_io_top;
   wire        _laneExps_14_io_anyTop;
-  wire [12:0] _laneExps_13_io_kept_0;
-  wire [12:0] _laneExps_13_io_kept_1;
-  wire [12:0] _laneExps_13_io_kept_2;
-  wire [12:0] _laneExps_13_io_kept_3;
-  wire [12:0] _laneExps_13_io_kept_4;
-  wire [12:0] _laneExps_13_io_kept_5;
-  wire [12:0] _laneExps_13_io_kept_6;
-  wire [12:0] _laneExps_13_io_kept_7;
-  wire [12:0] _laneExps_13_io_kept_8;
-  wire [12:0] _laneExps_13_io_kept_9;
-  wire [12:0] _laneExps_13_io_kept_10;
-  wire [12:0] _laneExps_13_io_kept_11;
-  wire [12:0] _laneExps_13_io_kept_12;
-  wire [12:0] _laneExps_13_io_kept_13;
-  wire [12:0] _laneExps_13_io_kept_14;
-  wire [12:0] _laneExps_13_io_kept_15;
-  wire [12:0] _laneExps_13_io_kept_16;
+  wire [13:0] _laneExps_13_io_kept_0;
+  wire [13:0] _laneExps_13_io_kept_1;
+  wire [13:0] _laneExps_13_io_kept_2;
+  wire [13:0] _laneExps_13_io_kept_3;
+  wire [13:0] _laneExps_13_io_kept_4;
+  wire [13:0] _laneExps_13_io_kept_5;
+  wire [13:0] _laneExps_13_io_kept_6;
+  wire [13:0] _laneExps_13_io_kept_7;
+  wire [13:0] _laneExps_13_io_kept_8;
+  wire [13:0] _laneExps_13_io_kept_9;
+  wire [13:0] _laneExps_13_io_kept_10;
+  wire [13:0] _laneExps_13_io_kept_11;
+  wire [13:0] _laneExps_13_io_kept_12;
+  wire [13:0] _laneExps_13_io_kept_13;
+  wire [13:0] _laneExps_13_io_kept_14;
+  wire [13:0] _laneExps_13_io_kept_15;
+  wire [13:0] _laneExps_13_io_kept_16;
   wire [4:0]  _laneExps_13_io_used;
-  wire [12:0] _laneExps_13_io_top;
+  wire [13:0] _laneExps_13_io_top;
   wire        _laneExps_13_io_anyTop;
-  wire [12:0] _laneExps_12_io_kept_0;
-  wire [12:0] _laneExps_12_io_kept_1;
-  wire [12:0] _laneExps_12_io_kept_2;
-  wire [12:0] _laneExps_12_io_kept_3;
-  wire [12:0] _laneExps_12_io_kept_4;
-  wire [12:0] _laneExps_12_io_kept_5;
-  wire [12:0] _laneExps_12_io_kept_6;
-  wire [12:0] _laneExps_12_io_kept_7;
-  wire [12:0] _laneExps_12_io_kept_8;
-  wire [12:0] _laneExps_12_io_kept_9;
-  wire [12:0] _laneExps_12_io_kept_10;
-  wire [12:0] _laneExps_12_io_kept_11;
-  wire [12:0] _laneExps_12_io_kept_12;
-  wire [12:0] _laneExps_12_io_kept_13;
-  wire [12:0] _laneExps_12_io_kept_14;
-  wire [12:0] _laneExps_12_io_kept_15;
-  wire [12:0] _laneExps_12_io_kept_16;
+  wire [13:0] _laneExps_12_io_kept_0;
+  wire [13:0] _laneExps_12_io_kept_1;
+  wire [13:0] _laneExps_12_io_kept_2;
+  wire [13:0] _laneExps_12_io_kept_3;
+  wire [13:0] _laneExps_12_io_kept_4;
+  wire [13:0] _laneExps_12_io_kept_5;
+  wire [13:0] _laneExps_12_io_kept_6;
+  wire [13:0] _laneExps_12_io_kept_7;
+  wire [13:0] _laneExps_12_io_kept_8;
+  wire [13:0] _laneExps_12_io_kept_9;
+  wire [13:0] _laneExps_12_io_kept_10;
+  wire [13:0] _laneExps_12_io_kept_11;
+  wire [13:0] _laneExps_12_io_kept_12;
+  wire [13:0] _laneExps_12_io_kept_13;
+  wire [13:0] _laneExps_12_io_kept_14;
+  wire [13:0] _laneExps_12_io_kept_15;
+  wire [13:0] _laneExps_12_io_kept_16;
   wire [4:0]  _laneExps_12_io_used;
-  wire [12:0] _laneExps_12_io_top;
+  wire [13:0] _laneExps_12_io_top;
   wire        _laneExps_12_io_anyTop;
-  wire [12:0] _laneExps_11_io_kept_0;
-  wire [12:0] _laneExps_11_io_kept_1;
-  wire [12:0] _laneExps_11_io_kept_2;
-  wire [12:0] _laneExps_11_io_kept_3;
-  wire [12:0] _laneExps_11_io_kept_4;
-  wire [12:0] _laneExps_11_io_kept_5;
-  wire [12:0] _laneExps_11_io_kept_6;
-  wire [12:0] _laneExps_11_io_kept_7;
-  wire [12:0] _laneExps_11_io_kept_8;
-  wire [12:0] _laneExps_11_io_kept_9;
-  wire [12:0] _laneExps_11_io_kept_10;
-  wire [12:0] _laneExps_11_io_kept_11;
-  wire [12:0] _laneExps_11_io_kept_12;
-  wire [12:0] _laneExps_11_io_kept_13;
-  wire [12:0] _laneExps_11_io_kept_14;
-  wire [12:0] _laneExps_11_io_kept_15;
-  wire [12:0] _laneExps_11_io_kept_16;
+  wire [13:0] _laneExps_11_io_kept_0;
+  wire [13:0] _laneExps_11_io_kept_1;
+  wire [13:0] _laneExps_11_io_kept_2;
+  wire [13:0] _laneExps_11_io_kept_3;
+  wire [13:0] _laneExps_11_io_kept_4;
+  wire [13:0] _laneExps_11_io_kept_5;
+  wire [13:0] _laneExps_11_io_kept_6;
+  wire [13:0] _laneExps_11_io_kept_7;
+  wire [13:0] _laneExps_11_io_kept_8;
+  wire [13:0] _laneExps_11_io_kept_9;
+  wire [13:0] _laneExps_11_io_kept_10;
+  wire [13:0] _laneExps_11_io_kept_11;
+  wire [13:0] _laneExps_11_io_kept_12;
+  wire [13:0] _laneExps_11_io_kept_13;
+  wire [13:0] _laneExps_11_io_kept_14;
+  wire [13:0] _laneExps_11_io_kept_15;
+  wire [13:0] _laneExps_11_io_kept_16;
   wire [4:0]  _laneExps_11_io_used;
-  wire [12:0] _laneExps_11_io_top;
+  wire [13:0] _laneExps_11_io_top;
   wire        _laneExps_11_io_anyTop;
-  wire [12:0] _laneExps_10_io_kept_0;
-  wire [12:0] _laneExps_10_io_kept_1;
-  wire [12:0] _laneExps_10_io_kept_2;
-  wire [12:0] _laneExps_10_io_kept_3;
-  wire [12:0] _laneExps_10_io_kept_4;
-  wire [12:0] _laneExps_10_io_kept_5;
-  wire [12:0] _laneExps_10_io_kept_6;
-  wire [12:0] _laneExps_10_io_kept_7;
-  wire [12:0] _laneExps_10_io_kept_8;
-  wire [12:0] _laneExps_10_io_kept_9;
-  wire [12:0] _laneExps_10_io_kept_10;
-  wire [12:0] _laneExps_10_io_kept_11;
-  wire [12:0] _laneExps_10_io_kept_12;
-  wire [12:0] _laneExps_10_io_kept_13;
-  wire [12:0] _laneExps_10_io_kept_14;
-  wire [12:0] _laneExps_10_io_kept_15;
-  wire [12:0] _laneExps_10_io_kept_16;
+  wire [13:0] _laneExps_10_io_kept_0;
+  wire [13:0] _laneExps_10_io_kept_1;
+  wire [13:0] _laneExps_10_io_kept_2;
+  wire [13:0] _laneExps_10_io_kept_3;
+  wire [13:0] _laneExps_10_io_kept_4;
+  wire [13:0] _laneExps_10_io_kept_5;
+  wire [13:0] _laneExps_10_io_kept_6;
+  wire [13:0] _laneExps_10_io_kept_7;
+  wire [13:0] _laneExps_10_io_kept_8;
+  wire [13:0] _laneExps_10_io_kept_9;
+  wire [13:0] _laneExps_10_io_kept_10;
+  wire [13:0] _laneExps_10_io_kept_11;
+  wire [13:0] _laneExps_10_io_kept_12;
+  wire [13:0] _laneExps_10_io_kept_13;
+  wire [13:0] _laneExps_10_io_kept_14;
+  wire [13:0] _laneExps_10_io_kept_15;
+  wire [13:0] _laneExps_10_io_kept_16;
   wire [4:0]  _laneExps_10_io_used;
-  wire [12:0] _laneExps_10_io_top;
+  wire [13:0] _laneExps_10_io_top;
   wire        _laneExps_10_io_anyTop;
-  wire [12:0] _laneExps_9_io_kept_0;
-  wire [12:0] _laneExps_9_io_kept_1;
-  wire [12:0] _laneExps_9_io_kept_2;
-  wire [12:0] _laneExps_9_io_kept_3;
-  wire [12:0] _laneExps_9_io_kept_4;
-  wire [12:0] _laneExps_9_io_kept_5;
-  wire [12:0] _laneExps_9_io_kept_6;
-  wire [12:0] _laneExps_9_io_kept_7;
-  wire [12:0] _laneExps_9_io_kept_8;
-  wire [12:0] _laneExps_9_io_kept_9;
-  wire [12:0] _laneExps_9_io_kept_10;
-  wire [12:0] _laneExps_9_io_kept_11;
-  wire [12:0] _laneExps_9_io_kept_12;
-  wire [12:0] _laneExps_9_io_kept_13;
-  wire [12:0] _laneExps_9_io_kept_14;
-  wire [12:0] _laneExps_9_io_kept_15;
-  wire [12:0] _laneExps_9_io_kept_16;
+  wire [13:0] _laneExps_9_io_kept_0;
+  wire [13:0] _laneExps_9_io_kept_1;
+  wire [13:0] _laneExps_9_io_kept_2;
+  wire [13:0] _laneExps_9_io_kept_3;
+  wire [13:0] _laneExps_9_io_kept_4;
+  wire [13:0] _laneExps_9_io_kept_5;
+  wire [13:0] _laneExps_9_io_kept_6;
+  wire [13:0] _laneExps_9_io_kept_7;
+  wire [13:0] _laneExps_9_io_kept_8;
+  wire [13:0] _laneExps_9_io_kept_9;
+  wire [13:0] _laneExps_9_io_kept_10;
+  wire [13:0] _laneExps_9_io_kept_11;
+  wire [13:0] _laneExps_9_io_kept_12;
+  wire [13:0] _laneExps_9_io_kept_13;
+  wire [13:0] _laneExps_9_io_kept_14;
+  wire [13:0] _laneExps_9_io_kept_15;
+  wire [13:0] _laneExps_9_io_kept_16;
   wire [4:0]  _laneExps_9_io_used;
-  wire [12:0] _laneExps_9_io_top;
+  wire [13:0] _laneExps_9_io_top;
   wire        _laneExps_9_io_anyTop;
-  wire [12:0] _laneExps_8_io_kept_0;
-  wire [12:0] _laneExps_8_io_kept_1;
-  wire [12:0] _laneExps_8_io_kept_2;
-  wire [12:0] _laneExps_8_io_kept_3;
-  wire [12:0] _laneExps_8_io_kept_4;
-  wire [12:0] _laneExps_8_io_kept_5;
-  wire [12:0] _laneExps_8_io_kept_6;
-  wire [12:0] _laneExps_8_io_kept_7;
-  wire [12:0] _laneExps_8_io_kept_8;
-  wire [12:0] _laneExps_8_io_kept_9;
-  wire [12:0] _laneExps_8_io_kept_10;
-  wire [12:0] _laneExps_8_io_kept_11;
-  wire [12:0] _laneExps_8_io_kept_12;
-  wire [12:0] _laneExps_8_io_kept_13;
-  wire [12:0] _laneExps_8_io_kept_14;
-  wire [12:0] _laneExps_8_io_kept_15;
-  wire [12:0] _laneExps_8_io_kept_16;
+  wire [13:0] _laneExps_8_io_kept_0;
+  wire [13:0] _laneExps_8_io_kept_1;
+  wire [13:0] _laneExps_8_io_kept_2;
+  wire [13:0] _laneExps_8_io_kept_3;
+  wire [13:0] _laneExps_8_io_kept_4;
+  wire [13:0] _laneExps_8_io_kept_5;
+  wire [13:0] _laneExps_8_io_kept_6;
+  wire [13:0] _laneExps_8_io_kept_7;
+  wire [13:0] _laneExps_8_io_kept_8;
+  wire [13:0] _laneExps_8_io_kept_9;
+  wire [13:0] _laneExps_8_io_kept_10;
+  wire [13:0] _laneExps_8_io_kept_11;
+  wire [13:0] _laneExps_8_io_kept_12;
+  wire [13:0] _laneExps_8_io_kept_13;
+  wire [13:0] _laneExps_8_io_kept_14;
+  wire [13:0] _laneExps_8_io_kept_15;
+  wire [13:0] _laneExps_8_io_kept_16;
   wire [4:0]  _laneExps_8_io_used;
-  wire [12:0] _laneExps_8_io_top;
+  wire [13:0] _laneExps_8_io_top;
   wire        _laneExps_8_io_anyTop;
-  wire [12:0] _laneExps_7_io_kept_0;
-  wire [12:0] _laneExps_7_io_kept_1;
-  wire [12:0] _laneExps_7_io_kept_2;
-  wire [12:0] _laneExps_7_io_kept_3;
-  wire [12:0] _laneExps_7_io_kept_4;
-  wire [12:0] _laneExps_7_io_kept_5;
-  wire [12:0] _laneExps_7_io_kept_6;
-  wire [12:0] _laneExps_7_io_kept_7;
-  wire [12:0] _laneExps_7_io_kept_8;
-  wire [12:0] _laneExps_7_io_kept_9;
-  wire [12:0] _laneExps_7_io_kept_10;
-  wire [12:0] _laneExps_7_io_kept_11;
-  wire [12:0] _laneExps_7_io_kept_12;
-  wire [12:0] _laneExps_7_io_kept_13;
-  wire [12:0] _laneExps_7_io_kept_14;
-  wire [12:0] _laneExps_7_io_kept_15;
-  wire [12:0] _laneExps_7_io_kept_16;
+  wire [13:0] _laneExps_7_io_kept_0;
+  wire [13:0] _laneExps_7_io_kept_1;
+  wire [13:0] _laneExps_7_io_kept_2;
+  wire [13:0] _laneExps_7_io_kept_3;
+  wire [13:0] _laneExps_7_io_kept_4;
+  wire [13:0] _laneExps_7_io_kept_5;
+  wire [13:0] _laneExps_7_io_kept_6;
+  wire [13:0] _laneExps_7_io_kept_7;
+  wire [13:0] _laneExps_7_io_kept_8;
+  wire [13:0] _laneExps_7_io_kept_9;
+  wire [13:0] _laneExps_7_io_kept_10;
+  wire [13:0] _laneExps_7_io_kept_11;
+  wire [13:0] _laneExps_7_io_kept_12;
+  wire [13:0] _laneExps_7_io_kept_13;
+  wire [13:0] _laneExps_7_io_kept_14;
+  wire [13:0] _laneExps_7_io_kept_15;
+  wire [13:0] _laneExps_7_io_kept_16;
   wire [4:0]  _laneExps_7_io_used;
-  wire [12:0] _laneExps_7_io_top;
+  wire [13:0] _laneExps_7_io_top;
   wire        _laneExps_7_io_anyTop;
-  wire [12:0] _laneExps_6_io_kept_0;
-  wire [12:0] _laneExps_6_io_kept_1;
-  wire [12:0] _laneExps_6_io_kept_2;
-  wire [12:0] _laneExps_6_io_kept_3;
-  wire [12:0] _laneExps_6_io_kept_4;
-  wire [12:0] _laneExps_6_io_kept_5;
-  wire [12:0] _laneExps_6_io_kept_6;
-  wire [12:0] _laneExps_6_io_kept_7;
-  wire [12:0] _laneExps_6_io_kept_8;
-  wire [12:0] _laneExps_6_io_kept_9;
-  wire [12:0] _laneExps_6_io_kept_10;
-  wire [12:0] _laneExps_6_io_kept_11;
-  wire [12:0] _laneExps_6_io_kept_12;
-  wire [12:0] _laneExps_6_io_kept_13;
-  wire [12:0] _laneExps_6_io_kept_14;
-  wire [12:0] _laneExps_6_io_kept_15;
-  wire [12:0] _laneExps_6_io_kept_16;
+  wire [13:0] _laneExps_6_io_kept_0;
+  wire [13:0] _laneExps_6_io_kept_1;
+  wire [13:0] _laneExps_6_io_kept_2;
+  wire [13:0] _laneExps_6_io_kept_3;
+  wire [13:0] _laneExps_6_io_kept_4;
+  wire [13:0] _laneExps_6_io_kept_5;
+  wire [13:0] _laneExps_6_io_kept_6;
+  wire [13:0] _laneExps_6_io_kept_7;
+  wire [13:0] _laneExps_6_io_kept_8;
+  wire [13:0] _laneExps_6_io_kept_9;
+  wire [13:0] _laneExps_6_io_kept_10;
+  wire [13:0] _laneExps_6_io_kept_11;
+  wire [13:0] _laneExps_6_io_kept_12;
+  wire [13:0] _laneExps_6_io_kept_13;
+  wire [13:0] _laneExps_6_io_kept_14;
+  wire [13:0] _laneExps_6_io_kept_15;
+  wire [13:0] _laneExps_6_io_kept_16;
   wire [4:0]  _laneExps_6_io_used;
-  wire [12:0] _laneExps_6_io_top;
+  wire [13:0] _laneExps_6_io_top;
   wire        _laneExps_6_io_anyTop;
-  wire [12:0] _laneExps_5_io_kept_0;
-  wire [12:0] _laneExps_5_io_kept_1;
-  wire [12:0] _laneExps_5_io_kept_2;
-  wire [12:0] _laneExps_5_io_kept_3;
-  wire [12:0] _laneExps_5_io_kept_4;
-  wire [12:0] _laneExps_5_io_kept_5;
-  wire [12:0] _laneExps_5_io_kept_6;
-  wire [12:0] _laneExps_5_io_kept_7;
-  wire [12:0] _laneExps_5_io_kept_8;
-  wire [12:0] _laneExps_5_io_kept_9;
-  wire [12:0] _laneExps_5_io_kept_10;
-  wire [12:0] _laneExps_5_io_kept_11;
-  wire [12:0] _laneExps_5_io_kept_12;
-  wire [12:0] _laneExps_5_io_kept_13;
-  wire [12:0] _laneExps_5_io_kept_14;
-  wire [12:0] _laneExps_5_io_kept_15;
-  wire [12:0] _laneExps_5_io_kept_16;
+  wire [13:0] _laneExps_5_io_kept_0;
+  wire [13:0] _laneExps_5_io_kept_1;
+  wire [13:0] _laneExps_5_io_kept_2;
+  wire [13:0] _laneExps_5_io_kept_3;
+  wire [13:0] _laneExps_5_io_kept_4;
+  wire [13:0] _laneExps_5_io_kept_5;
+  wire [13:0] _laneExps_5_io_kept_6;
+  wire [13:0] _laneExps_5_io_kept_7;
+  wire [13:0] _laneExps_5_io_kept_8;
+  wire [13:0] _laneExps_5_io_kept_9;
+  wire [13:0] _laneExps_5_io_kept_10;
+  wire [13:0] _laneExps_5_io_kept_11;
+  wire [13:0] _laneExps_5_io_kept_12;
+  wire [13:0] _laneExps_5_io_kept_13;
+  wire [13:0] _laneExps_5_io_kept_14;
+  wire [13:0] _laneExps_5_io_kept_15;
+  wire [13:0] _laneExps_5_io_kept_16;
   wire [4:0]  _laneExps_5_io_used;
-  wire [12:0] _laneExps_5_io_top;
+  wire [13:0] _laneExps_5_io_top;
   wire        _laneExps_5_io_anyTop;
-  wire [12:0] _laneExps_4_io_kept_0;
-  wire [12:0] _laneExps_4_io_kept_1;
-  wire [12:0] _laneExps_4_io_kept_2;
-  wire [12:0] _laneExps_4_io_kept_3;
-  wire [12:0] _laneExps_4_io_kept_4;
-  wire [12:0] _laneExps_4_io_kept_5;
-  wire [12:0] _laneExps_4_io_kept_6;
-  wire [12:0] _laneExps_4_io_kept_7;
-  wire [12:0] _laneExps_4_io_kept_8;
-  wire [12:0] _laneExps_4_io_kept_9;
-  wire [12:0] _laneExps_4_io_kept_10;
-  wire [12:0] _laneExps_4_io_kept_11;
-  wire [12:0] _laneExps_4_io_kept_12;
-  wire [12:0] _laneExps_4_io_kept_13;
-  wire [12:0] _laneExps_4_io_kept_14;
-  wire [12:0] _laneExps_4_io_kept_15;
-  wire [12:0] _laneExps_4_io_kept_16;
+  wire [13:0] _laneExps_4_io_kept_0;
+  wire [13:0] _laneExps_4_io_kept_1;
+  wire [13:0] _laneExps_4_io_kept_2;
+  wire [13:0] _laneExps_4_io_kept_3;
+  wire [13:0] _laneExps_4_io_kept_4;
+  wire [13:0] _laneExps_4_io_kept_5;
+  wire [13:0] _laneExps_4_io_kept_6;
+  wire [13:0] _laneExps_4_io_kept_7;
+  wire [13:0] _laneExps_4_io_kept_8;
+  wire [13:0] _laneExps_4_io_kept_9;
+  wire [13:0] _laneExps_4_io_kept_10;
+  wire [13:0] _laneExps_4_io_kept_11;
+  wire [13:0] _laneExps_4_io_kept_12;
+  wire [13:0] _laneExps_4_io_kept_13;
+  wire [13:0] _laneExps_4_io_kept_14;
+  wire [13:0] _laneExps_4_io_kept_15;
+  wire [13:0] _laneExps_4_io_kept_16;
   wire [4:0]  _laneExps_4_io_used;
-  wire [12:0] _laneExps_4_io_top;
+  wire [13:0] _laneExps_4_io_top;
   wire        _laneExps_4_io_anyTop;
-  wire [12:0] _laneExps_3_io_kept_0;
-  wire [12:0] _laneExps_3_io_kept_1;
-  wire [12:0] _laneExps_3_io_kept_2;
-  wire [12:0] _laneExps_3_io_kept_3;
-  wire [12:0] _laneExps_3_io_kept_4;
-  wire [12:0] _laneExps_3_io_kept_5;
-  wire [12:0] _laneExps_3_io_kept_6;
-  wire [12:0] _laneExps_3_io_kept_7;
-  wire [12:0] _laneExps_3_io_kept_8;
-  wire [12:0] _laneExps_3_io_kept_9;
-  wire [12:0] _laneExps_3_io_kept_10;
-  wire [12:0] _laneExps_3_io_kept_11;
-  wire [12:0] _laneExps_3_io_kept_12;
-  wire [12:0] _laneExps_3_io_kept_13;
-  wire [12:0] _laneExps_3_io_kept_14;
-  wire [12:0] _laneExps_3_io_kept_15;
-  wire [12:0] _laneExps_3_io_kept_16;
+  wire [13:0] _laneExps_3_io_kept_0;
+  wire [13:0] _laneExps_3_io_kept_1;
+  wire [13:0] _laneExps_3_io_kept_2;
+  wire [13:0] _laneExps_3_io_kept_3;
+  wire [13:0] _laneExps_3_io_kept_4;
+  wire [13:0] _laneExps_3_io_kept_5;
+  wire [13:0] _laneExps_3_io_kept_6;
+  wire [13:0] _laneExps_3_io_kept_7;
+  wire [13:0] _laneExps_3_io_kept_8;
+  wire [13:0] _laneExps_3_io_kept_9;
+  wire [13:0] _laneExps_3_io_kept_10;
+  wire [13:0] _laneExps_3_io_kept_11;
+  wire [13:0] _laneExps_3_io_kept_12;
+  wire [13:0] _laneExps_3_io_kept_13;
+  wire [13:0] _laneExps_3_io_kept_14;
+  wire [13:0] _laneExps_3_io_kept_15;
+  wire [13:0] _laneExps_3_io_kept_16;
   wire [4:0]  _laneExps_3_io_used;
-  wire [12:0] _laneExps_3_io_top;
+  wire [13:0] _laneExps_3_io_top;
   wire        _laneExps_3_io_anyTop;
-  wire [12:0] _laneExps_2_io_kept_0;
-  wire [12:0] _laneExps_2_io_kept_1;
-  wire [12:0] _laneExps_2_io_kept_2;
-  wire [12:0] _laneExps_2_io_kept_3;
-  wire [12:0] _laneExps_2_io_kept_4;
-  wire [12:0] _laneExps_2_io_kept_5;
-  wire [12:0] _laneExps_2_io_kept_6;
-  wire [12:0] _laneExps_2_io_kept_7;
-  wire [12:0] _laneExps_2_io_kept_8;
-  wire [12:0] _laneExps_2_io_kept_9;
-  wire [12:0] _laneExps_2_io_kept_10;
-  wire [12:0] _laneExps_2_io_kept_11;
-  wire [12:0] _laneExps_2_io_kept_12;
-  wire [12:0] _laneExps_2_io_kept_13;
-  wire [12:0] _laneExps_2_io_kept_14;
-  wire [12:0] _laneExps_2_io_kept_15;
-  wire [12:0] _laneExps_2_io_kept_16;
+  wire [13:0] _laneExps_2_io_kept_0;
+  wire [13:0] _laneExps_2_io_kept_1;
+  wire [13:0] _laneExps_2_io_kept_2;
+  wire [13:0] _laneExps_2_io_kept_3;
+  wire [13:0] _laneExps_2_io_kept_4;
+  wire [13:0] _laneExps_2_io_kept_5;
+  wire [13:0] _laneExps_2_io_kept_6;
+  wire [13:0] _laneExps_2_io_kept_7;
+  wire [13:0] _laneExps_2_io_kept_8;
+  wire [13:0] _laneExps_2_io_kept_9;
+  wire [13:0] _laneExps_2_io_kept_10;
+  wire [13:0] _laneExps_2_io_kept_11;
+  wire [13:0] _laneExps_2_io_kept_12;
+  wire [13:0] _laneExps_2_io_kept_13;
+  wire [13:0] _laneExps_2_io_kept_14;
+  wire [13:0] _laneExps_2_io_kept_15;
+  wire [13:0] _laneExps_2_io_kept_16;
   wire [4:0]  _laneExps_2_io_used;
-  wire [12:0] _laneExps_2_io_top;
+  wire [13:0] _laneExps_2_io_top;
   wire        _laneExps_2_io_anyTop;
-  wire [12:0] _laneExps_1_io_kept_0;
-  wire [12:0] _laneExps_1_io_kept_1;
-  wire [12:0] _laneExps_1_io_kept_2;
-  wire [12:0] _laneExps_1_io_kept_3;
-  wire [12:0] _laneExps_1_io_kept_4;
-  wire [12:0] _laneExps_1_io_kept_5;
-  wire [12:0] _laneExps_1_io_kept_6;
-  wire [12:0] _laneExps_1_io_kept_7;
-  wire [12:0] _laneExps_1_io_kept_8;
-  wire [12:0] _laneExps_1_io_kept_9;
-  wire [12:0] _laneExps_1_io_kept_10;
-  wire [12:0] _laneExps_1_io_kept_11;
-  wire [12:0] _laneExps_1_io_kept_12;
-  wire [12:0] _laneExps_1_io_kept_13;
-  wire [12:0] _laneExps_1_io_kept_14;
-  wire [12:0] _laneExps_1_io_kept_15;
-  wire [12:0] _laneExps_1_io_kept_16;
+  wire [13:0] _laneExps_1_io_kept_0;
+  wire [13:0] _laneExps_1_io_kept_1;
+  wire [13:0] _laneExps_1_io_kept_2;
+  wire [13:0] _laneExps_1_io_kept_3;
+  wire [13:0] _laneExps_1_io_kept_4;
+  wire [13:0] _laneExps_1_io_kept_5;
+  wire [13:0] _laneExps_1_io_kept_6;
+  wire [13:0] _laneExps_1_io_kept_7;
+  wire [13:0] _laneExps_1_io_kept_8;
+  wire [13:0] _laneExps_1_io_kept_9;
+  wire [13:0] _laneExps_1_io_kept_10;
+  wire [13:0] _laneExps_1_io_kept_11;
+  wire [13:0] _laneExps_1_io_kept_12;
+  wire [13:0] _laneExps_1_io_kept_13;
+  wire [13:0] _laneExps_1_io_kept_14;
+  wire [13:0] _laneExps_1_io_kept_15;
+  wire [13:0] _laneExps_1_io_kept_16;
   wire [4:0]  _laneExps_1_io_used;
-  wire [12:0] _laneExps_1_io_top;
+  wire [13:0] _laneExps_1_io_top;
   wire        _laneExps_1_io_anyTop;
-  wire [12:0] _laneExps_0_io_kept_0;
-  wire [12:0] _laneExps_0_io_kept_1;
-  wire [12:0] _laneExps_0_io_kept_2;
-  wire [12:0] _laneExps_0_io_kept_3;
-  wire [12:0] _laneExps_0_io_kept_4;
-  wire [12:0] _laneExps_0_io_kept_5;
-  wire [12:0] _laneExps_0_io_kept_6;
-  wire [12:0] _laneExps_0_io_kept_7;
-  wire [12:0] _laneExps_0_io_kept_8;
-  wire [12:0] _laneExps_0_io_kept_9;
-  wire [12:0] _laneExps_0_io_kept_10;
-  wire [12:0] _laneExps_0_io_kept_11;
-  wire [12:0] _laneExps_0_io_kept_12;
-  wire [12:0] _laneExps_0_io_kept_13;
-  wire [12:0] _laneExps_0_io_kept_14;
-  wire [12:0] _laneExps_0_io_kept_15;
-  wire [12:0] _laneExps_0_io_kept_16;
+  wire [13:0] _laneExps_0_io_kept_0;
+  wire [13:0] _laneExps_0_io_kept_1;
+  wire [13:0] _laneExps_0_io_kept_2;
+  wire [13:0] _laneExps_0_io_kept_3;
+  wire [13:0] _laneExps_0_io_kept_4;
+  wire [13:0] _laneExps_0_io_kept_5;
+  wire [13:0] _laneExps_0_io_kept_6;
+  wire [13:0] _laneExps_0_io_kept_7;
+  wire [13:0] _laneExps_0_io_kept_8;
+  wire [13:0] _laneExps_0_io_kept_9;
+  wire [13:0] _laneExps_0_io_kept_10;
+  wire [13:0] _laneExps_0_io_kept_11;
+  wire [13:0] _laneExps_0_io_kept_12;
+  wire [13:0] _laneExps_0_io_kept_13;
+  wire [13:0] _laneExps_0_io_kept_14;
+  wire [13:0] _laneExps_0_io_kept_15;
+  wire [13:0] _laneExps_0_io_kept_16;
   wire [4:0]  _laneExps_0_io_used;
-  wire [12:0] _laneExps_0_io_top;
+  wire [13:0] _laneExps_0_io_top;
   wire        _laneExps_0_io_anyTop;
   wire        sortBusy = _sorts_0_io_busy | _sorts_1_io_busy;
   reg  [11:0] larges_0_index;
@@ -23789,7 +23795,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   reg  [12:0] num;
   reg  [3:0]  usedLog2;
   reg         sent;
-  reg  [12:0] st_k;
+  reg  [13:0] st_level;
   reg  [12:0] st_large;
   reg  [31:0] st_cycTotal;
   reg         st_tooMany;
@@ -23798,11 +23804,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   reg         st_badBucket;
   reg         st_sortMismatch;
   reg  [4:0]  largeCount;
-  wire        _laneKeys_15_io_in_k_T = state == 3'h1;
+  wire        _laneKeys_15_io_in_level_T = state == 3'h1;
   wire        classifying = state == 3'h3;
   wire        _sorts_1_io_in_1_bits_scatter_T = state == 3'h5;
   wire        inPass =
-    _laneKeys_15_io_in_k_T | classifying | _sorts_1_io_in_1_bits_scatter_T;
+    _laneKeys_15_io_in_level_T | classifying | _sorts_1_io_in_1_bits_scatter_T;
   reg  [12:0] i_0;
   reg  [12:0] i_1;
   reg  [12:0] i_2;
@@ -23821,56 +23827,56 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   reg  [12:0] i_15;
   wire [12:0] _GEN = {4'h0, num[12:4]};
   wire [12:0] _GEN_0 = {2'h0, num[12:2]};
-  wire        reading_0 = inPass & i_0 < (_laneKeys_15_io_in_k_T ? _GEN : _GEN_0);
+  wire        reading_0 = inPass & i_0 < (_laneKeys_15_io_in_level_T ? _GEN : _GEN_0);
   wire [12:0] _GEN_1 = {3'h0, num[12:3]};
   wire        reading_1 =
-    inPass & i_1 < (_laneKeys_15_io_in_k_T ? _GEN_1 : {1'h0, num[12:1]});
+    inPass & i_1 < (_laneKeys_15_io_in_level_T ? _GEN_1 : {1'h0, num[12:1]});
   wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
   wire [14:0] _i_3_T_11 = {2'h0, num} * 15'h3;
   wire        reading_2 =
     inPass
-    & i_2 < (_laneKeys_15_io_in_k_T
+    & i_2 < (_laneKeys_15_io_in_level_T
                ? {2'h0, _gens_3_io_largeFrom_T[26:16]}
                : _i_3_T_11[14:2]);
   wire [27:0] _GEN_2 = {15'h0, num};
-  wire        reading_3 = inPass & i_3 < (_laneKeys_15_io_in_k_T ? _GEN_0 : num);
+  wire        reading_3 = inPass & i_3 < (_laneKeys_15_io_in_level_T ? _GEN_0 : num);
   wire [27:0] _gens_5_io_largeFrom_T = _GEN_2 * 28'h5000;
   wire        reading_4 =
     inPass
-    & i_4 < (_laneKeys_15_io_in_k_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : 13'h0);
+    & i_4 < (_laneKeys_15_io_in_level_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : 13'h0);
   wire [27:0] _gens_6_io_largeFrom_T = _GEN_2 * 28'h6000;
   wire        reading_5 =
     inPass
-    & i_5 < (_laneKeys_15_io_in_k_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : 13'h0);
+    & i_5 < (_laneKeys_15_io_in_level_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : 13'h0);
   wire [27:0] _gens_7_io_largeFrom_T = _GEN_2 * 28'h7000;
   wire        reading_6 =
     inPass
-    & i_6 < (_laneKeys_15_io_in_k_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : 13'h0);
+    & i_6 < (_laneKeys_15_io_in_level_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : 13'h0);
   wire [28:0] _GEN_3 = {16'h0, num};
   wire        reading_7 =
-    inPass & i_7 < (_laneKeys_15_io_in_k_T ? {1'h0, num[12:1]} : 13'h0);
+    inPass & i_7 < (_laneKeys_15_io_in_level_T ? {1'h0, num[12:1]} : 13'h0);
   wire [28:0] _gens_9_io_largeFrom_T = _GEN_3 * 29'h9000;
   wire        reading_8 =
-    inPass & i_8 < (_laneKeys_15_io_in_k_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_8 < (_laneKeys_15_io_in_level_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_10_io_largeFrom_T = _GEN_3 * 29'hA000;
   wire        reading_9 =
-    inPass & i_9 < (_laneKeys_15_io_in_k_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_9 < (_laneKeys_15_io_in_level_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_11_io_largeFrom_T = _GEN_3 * 29'hB000;
   wire        reading_10 =
-    inPass & i_10 < (_laneKeys_15_io_in_k_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_10 < (_laneKeys_15_io_in_level_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_12_io_largeFrom_T = _GEN_3 * 29'hC000;
   wire        reading_11 =
-    inPass & i_11 < (_laneKeys_15_io_in_k_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_11 < (_laneKeys_15_io_in_level_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_13_io_largeFrom_T = _GEN_3 * 29'hD000;
   wire        reading_12 =
-    inPass & i_12 < (_laneKeys_15_io_in_k_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_12 < (_laneKeys_15_io_in_level_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_14_io_largeFrom_T = _GEN_3 * 29'hE000;
   wire        reading_13 =
-    inPass & i_13 < (_laneKeys_15_io_in_k_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_13 < (_laneKeys_15_io_in_level_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_15_io_largeFrom_T = _GEN_3 * 29'hF000;
   wire        reading_14 =
-    inPass & i_14 < (_laneKeys_15_io_in_k_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
-  wire        reading_15 = inPass & i_15 < (_laneKeys_15_io_in_k_T ? num : 13'h0);
+    inPass & i_14 < (_laneKeys_15_io_in_level_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_15 = inPass & i_15 < (_laneKeys_15_io_in_level_T ? num : 13'h0);
   reg  [5:0]  inflight;
   wire        passDone =
     {reading_15,
@@ -23915,13 +23921,13 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   reg  [11:0] REG_3;
   reg  [11:0] r_3;
   wire        _sorts_0_io_in_0_valid_T_8 =
-    $signed(_laneKeys_0_io_out_need) > $signed(_cellExp_io_k);
+    $signed(_laneKeys_0_io_out_need) > $signed(_cellExp_io_level);
   wire        _sorts_0_io_in_1_valid_T_8 =
-    $signed(_laneKeys_1_io_out_need) > $signed(_cellExp_io_k);
+    $signed(_laneKeys_1_io_out_need) > $signed(_cellExp_io_level);
   wire        _sorts_1_io_in_0_valid_T_8 =
-    $signed(_laneKeys_2_io_out_need) > $signed(_cellExp_io_k);
+    $signed(_laneKeys_2_io_out_need) > $signed(_cellExp_io_level);
   wire        _sorts_1_io_in_1_valid_T_8 =
-    $signed(_laneKeys_3_io_out_need) > $signed(_cellExp_io_k);
+    $signed(_laneKeys_3_io_out_need) > $signed(_cellExp_io_level);
   reg  [8:0]  m;
   wire        filled_2 = _laneExps_0_io_used > 5'h2;
   wire        filled_4 = _laneExps_0_io_used > 5'h4;
@@ -25146,7 +25152,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
         casez_tmp = |_laneExps_0_io_used;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_0;
+  reg  [13:0] casez_tmp_0;
   always @(*) begin
     casez (m)
       9'b000000000:
@@ -26175,7 +26181,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
         casez_tmp_0 = _laneExps_0_io_kept_0;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_1;
+  reg  [13:0] casez_tmp_1;
   always @(*) begin
     casez (m)
       9'b000000000:
@@ -29263,7 +29269,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
         casez_tmp_3 = |_laneExps_0_io_used;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_4;
+  reg  [13:0] casez_tmp_4;
   always @(*) begin
     casez (at_1[8:0])
       9'b000000000:
@@ -30292,7 +30298,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
         casez_tmp_4 = _laneExps_0_io_kept_0;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_5;
+  reg  [13:0] casez_tmp_5;
   always @(*) begin
     casez (at_1[8:0])
       9'b000000000:
@@ -32350,12 +32356,13 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
         casez_tmp_6 = _laneExps_0_io_anyTop;
     endcase
   end // always @(*)
-  wire [13:0] slack_e = 14'h3FCB - {_cellExp_io_k[12], _cellExp_io_k};
+  wire [14:0] _slack_k_T = {_cellExp_io_level[13], _cellExp_io_level} + 15'h1;
+  wire [14:0] slack_e = 15'h7FCB - {_slack_k_T[14], _slack_k_T[14:1]};
   wire [31:0] _slack_T_3 = 32'h1 << slack_e[4:0];
   wire [28:0] slack =
-    $signed(slack_e) < 14'sh0
+    $signed(slack_e) < 15'sh0
       ? 29'h2
-      : $signed(slack_e) > 14'sh1B ? 29'h1FFFFFFF : _slack_T_3[28:0] + 29'h1;
+      : $signed(slack_e) > 15'sh1B ? 29'h1FFFFFFF : _slack_T_3[28:0] + 29'h1;
   wire        _sorts_1_io_prefix_T = state == 3'h4;
   wire        _sorts_0_io_in_0_valid_T_12 =
     _laneKeys_0_io_out_valid & (classifying | _sorts_1_io_in_1_bits_scatter_T)
@@ -32382,25 +32389,25 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:238 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:238 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:238 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:238 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -33184,7 +33191,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     entryGroup_15 <= _gens_15_io_entry_group;
     if (reset) begin
       state <= 3'h0;
-      st_k <= 13'h0;
+      st_level <= 14'h0;
       st_large <= 13'h0;
       st_cycTotal <= 32'h0;
       st_tooMany <= 1'h0;
@@ -33218,7 +33225,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
         if (_GEN_23 | _GEN_24 | _GEN_25 | _GEN_26 | _GEN_27 | ~_GEN_10) begin
         end
         else begin
-          st_k <= _cellExp_io_k;
+          st_level <= _cellExp_io_level;
           st_badBucket <= _sorts_0_io_badBucket | _sorts_1_io_badBucket;
           st_sortMismatch <=
             _sorts_0_io_counted != _sorts_0_io_scattered
@@ -33231,7 +33238,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
         else
           state <= 3'h1;
         if (io_start)
-          st_k <= 13'h0;
+          st_level <= 14'h0;
         st_badBucket <= ~io_start & st_badBucket;
         st_sortMismatch <= ~io_start & st_sortMismatch;
       end
@@ -33335,11 +33342,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
         & _sorts_1_io_in_1_valid_T_12;
     end
   end // always @(posedge)
-  CellExponent_fp32_L16_c20_world laneExps_0 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_0 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_0_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_0_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_0_io_out_need),
     .io_in_0_needNone  (_laneKeys_0_io_out_needNone),
     .io_in_0_top       (_laneKeys_0_io_out_top),
@@ -33366,11 +33373,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_0_io_top),
     .io_anyTop         (_laneExps_0_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_1 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_1 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_1_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_1_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_1_io_out_need),
     .io_in_0_needNone  (_laneKeys_1_io_out_needNone),
     .io_in_0_top       (_laneKeys_1_io_out_top),
@@ -33397,11 +33404,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_1_io_top),
     .io_anyTop         (_laneExps_1_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_2 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_2 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_2_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_2_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_2_io_out_need),
     .io_in_0_needNone  (_laneKeys_2_io_out_needNone),
     .io_in_0_top       (_laneKeys_2_io_out_top),
@@ -33428,11 +33435,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_2_io_top),
     .io_anyTop         (_laneExps_2_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_3 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_3 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_3_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_3_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_3_io_out_need),
     .io_in_0_needNone  (_laneKeys_3_io_out_needNone),
     .io_in_0_top       (_laneKeys_3_io_out_top),
@@ -33459,11 +33466,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_3_io_top),
     .io_anyTop         (_laneExps_3_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_4 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_4 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_4_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_4_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_4_io_out_need),
     .io_in_0_needNone  (_laneKeys_4_io_out_needNone),
     .io_in_0_top       (_laneKeys_4_io_out_top),
@@ -33490,11 +33497,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_4_io_top),
     .io_anyTop         (_laneExps_4_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_5 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_5 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_5_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_5_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_5_io_out_need),
     .io_in_0_needNone  (_laneKeys_5_io_out_needNone),
     .io_in_0_top       (_laneKeys_5_io_out_top),
@@ -33521,11 +33528,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_5_io_top),
     .io_anyTop         (_laneExps_5_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_6 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_6 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_6_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_6_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_6_io_out_need),
     .io_in_0_needNone  (_laneKeys_6_io_out_needNone),
     .io_in_0_top       (_laneKeys_6_io_out_top),
@@ -33552,11 +33559,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_6_io_top),
     .io_anyTop         (_laneExps_6_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_7 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_7 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_7_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_7_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_7_io_out_need),
     .io_in_0_needNone  (_laneKeys_7_io_out_needNone),
     .io_in_0_top       (_laneKeys_7_io_out_top),
@@ -33583,11 +33590,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_7_io_top),
     .io_anyTop         (_laneExps_7_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_8 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_8 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_8_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_8_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_8_io_out_need),
     .io_in_0_needNone  (_laneKeys_8_io_out_needNone),
     .io_in_0_top       (_laneKeys_8_io_out_top),
@@ -33614,11 +33621,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_8_io_top),
     .io_anyTop         (_laneExps_8_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_9 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_9 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_9_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_9_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_9_io_out_need),
     .io_in_0_needNone  (_laneKeys_9_io_out_needNone),
     .io_in_0_top       (_laneKeys_9_io_out_top),
@@ -33645,11 +33652,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_9_io_top),
     .io_anyTop         (_laneExps_9_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_10 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_10 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_10_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_10_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_10_io_out_need),
     .io_in_0_needNone  (_laneKeys_10_io_out_needNone),
     .io_in_0_top       (_laneKeys_10_io_out_top),
@@ -33676,11 +33683,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_10_io_top),
     .io_anyTop         (_laneExps_10_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_11 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_11 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_11_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_11_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_11_io_out_need),
     .io_in_0_needNone  (_laneKeys_11_io_out_needNone),
     .io_in_0_top       (_laneKeys_11_io_out_top),
@@ -33707,11 +33714,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_11_io_top),
     .io_anyTop         (_laneExps_11_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_12 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_12 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_12_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_12_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_12_io_out_need),
     .io_in_0_needNone  (_laneKeys_12_io_out_needNone),
     .io_in_0_top       (_laneKeys_12_io_out_top),
@@ -33738,11 +33745,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_12_io_top),
     .io_anyTop         (_laneExps_12_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_13 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_13 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_13_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_13_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_13_io_out_need),
     .io_in_0_needNone  (_laneKeys_13_io_out_needNone),
     .io_in_0_top       (_laneKeys_13_io_out_top),
@@ -33769,11 +33776,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_13_io_top),
     .io_anyTop         (_laneExps_13_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_14 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_14 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_14_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_14_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_14_io_out_need),
     .io_in_0_needNone  (_laneKeys_14_io_out_needNone),
     .io_in_0_top       (_laneKeys_14_io_out_top),
@@ -33800,11 +33807,11 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_14_io_top),
     .io_anyTop         (_laneExps_14_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_world laneExps_15 (
+  CellExponent_fp32_L16_c20_e1_world laneExps_15 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_15_io_out_valid & _laneKeys_15_io_in_k_T),
+    .io_in_0_valid     (_laneKeys_15_io_out_valid & _laneKeys_15_io_in_level_T),
     .io_in_0_need      (_laneKeys_15_io_out_need),
     .io_in_0_needNone  (_laneKeys_15_io_out_needNone),
     .io_in_0_top       (_laneKeys_15_io_out_top),
@@ -33831,7 +33838,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_15_io_top),
     .io_anyTop         (_laneExps_15_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_p2_world cellExp (
+  CellExponent_fp32_L16_c20_e1_p2_world cellExp (
     .clock           (clock),
     .reset           (reset),
     .io_clear        (starting),
@@ -33843,7 +33850,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_1_need    (casez_tmp_4),
     .io_in_1_top     (casez_tmp_5),
     .io_in_1_topNone (~casez_tmp_6),
-    .io_k            (_cellExp_io_k)
+    .io_level        (_cellExp_io_level)
   );
   BucketSort_n2048_b13_w4_c16_p2_i12_world sorts_0 (
     .clock                (clock),
@@ -35466,7 +35473,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_4_io_out_qr),
     .io_keyData_large
       (~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
-       & $signed(_laneKeys_4_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_4_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_4_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_4_ready),
     .io_pairs_valid      (io_pairs_4_valid),
@@ -35621,7 +35628,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_5_io_out_qr),
     .io_keyData_large
       (~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
-       & $signed(_laneKeys_5_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_5_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_5_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_5_ready),
     .io_pairs_valid      (io_pairs_5_valid),
@@ -35776,7 +35783,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_6_io_out_qr),
     .io_keyData_large
       (~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
-       & $signed(_laneKeys_6_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_6_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_6_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_6_ready),
     .io_pairs_valid      (io_pairs_6_valid),
@@ -35931,7 +35938,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_7_io_out_qr),
     .io_keyData_large
       (~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
-       & $signed(_laneKeys_7_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_7_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_7_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_7_ready),
     .io_pairs_valid      (io_pairs_7_valid),
@@ -36086,7 +36093,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_8_io_out_qr),
     .io_keyData_large
       (~_laneKeys_8_io_out_nonFinite & ~_laneKeys_8_io_out_needNone
-       & $signed(_laneKeys_8_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_8_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_8_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_8_ready),
     .io_pairs_valid      (io_pairs_8_valid),
@@ -36241,7 +36248,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_9_io_out_qr),
     .io_keyData_large
       (~_laneKeys_9_io_out_nonFinite & ~_laneKeys_9_io_out_needNone
-       & $signed(_laneKeys_9_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_9_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_9_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_9_ready),
     .io_pairs_valid      (io_pairs_9_valid),
@@ -36396,7 +36403,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_10_io_out_qr),
     .io_keyData_large
       (~_laneKeys_10_io_out_nonFinite & ~_laneKeys_10_io_out_needNone
-       & $signed(_laneKeys_10_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_10_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_10_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_10_ready),
     .io_pairs_valid      (io_pairs_10_valid),
@@ -36551,7 +36558,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_11_io_out_qr),
     .io_keyData_large
       (~_laneKeys_11_io_out_nonFinite & ~_laneKeys_11_io_out_needNone
-       & $signed(_laneKeys_11_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_11_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_11_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_11_ready),
     .io_pairs_valid      (io_pairs_11_valid),
@@ -36706,7 +36713,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_12_io_out_qr),
     .io_keyData_large
       (~_laneKeys_12_io_out_nonFinite & ~_laneKeys_12_io_out_needNone
-       & $signed(_laneKeys_12_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_12_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_12_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_12_ready),
     .io_pairs_valid      (io_pairs_12_valid),
@@ -36861,7 +36868,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_13_io_out_qr),
     .io_keyData_large
       (~_laneKeys_13_io_out_nonFinite & ~_laneKeys_13_io_out_needNone
-       & $signed(_laneKeys_13_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_13_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_13_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_13_ready),
     .io_pairs_valid      (io_pairs_13_valid),
@@ -37016,7 +37023,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_14_io_out_qr),
     .io_keyData_large
       (~_laneKeys_14_io_out_nonFinite & ~_laneKeys_14_io_out_needNone
-       & $signed(_laneKeys_14_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_14_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_14_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_14_ready),
     .io_pairs_valid      (io_pairs_14_valid),
@@ -37171,7 +37178,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_keyData_qr       (_laneKeys_15_io_out_qr),
     .io_keyData_large
       (~_laneKeys_15_io_out_nonFinite & ~_laneKeys_15_io_out_needNone
-       & $signed(_laneKeys_15_io_out_need) > $signed(_cellExp_io_k)),
+       & $signed(_laneKeys_15_io_out_need) > $signed(_cellExp_io_level)),
     .io_keyData_excluded (_laneKeys_15_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_15_ready),
     .io_pairs_valid      (io_pairs_15_valid),
@@ -37179,7 +37186,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_15_bits_j),
     .io_busy             (_gens_15_io_busy)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_0 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_0 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_0_io_in_valid_REG),
@@ -37187,7 +37194,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_0_data_1),
     .io_in_sphere_2      (io_sphere_0_data_2),
     .io_in_sphere_3      (io_sphere_0_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_0_io_out_valid),
     .io_out_cell_0       (_laneKeys_0_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_0_io_out_cell_1),
@@ -37203,7 +37210,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_0_io_out_top),
     .io_out_topNone      (_laneKeys_0_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_1 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_1 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_1_io_in_valid_REG),
@@ -37211,7 +37218,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_1_data_1),
     .io_in_sphere_2      (io_sphere_1_data_2),
     .io_in_sphere_3      (io_sphere_1_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_1_io_out_valid),
     .io_out_cell_0       (_laneKeys_1_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_1_io_out_cell_1),
@@ -37227,7 +37234,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_1_io_out_top),
     .io_out_topNone      (_laneKeys_1_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_2 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_2 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_2_io_in_valid_REG),
@@ -37235,7 +37242,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_2_data_1),
     .io_in_sphere_2      (io_sphere_2_data_2),
     .io_in_sphere_3      (io_sphere_2_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_2_io_out_valid),
     .io_out_cell_0       (_laneKeys_2_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_2_io_out_cell_1),
@@ -37251,7 +37258,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_2_io_out_top),
     .io_out_topNone      (_laneKeys_2_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_3 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_3 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_3_io_in_valid_REG),
@@ -37259,7 +37266,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_3_data_1),
     .io_in_sphere_2      (io_sphere_3_data_2),
     .io_in_sphere_3      (io_sphere_3_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_3_io_out_valid),
     .io_out_cell_0       (_laneKeys_3_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_3_io_out_cell_1),
@@ -37275,7 +37282,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_3_io_out_top),
     .io_out_topNone      (_laneKeys_3_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_4 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_4 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_4_io_in_valid_REG),
@@ -37283,7 +37290,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_4_data_1),
     .io_in_sphere_2      (io_sphere_4_data_2),
     .io_in_sphere_3      (io_sphere_4_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_4_io_out_valid),
     .io_out_cell_0       (_laneKeys_4_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_4_io_out_cell_1),
@@ -37299,7 +37306,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_4_io_out_top),
     .io_out_topNone      (_laneKeys_4_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_5 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_5 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_5_io_in_valid_REG),
@@ -37307,7 +37314,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_5_data_1),
     .io_in_sphere_2      (io_sphere_5_data_2),
     .io_in_sphere_3      (io_sphere_5_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_5_io_out_valid),
     .io_out_cell_0       (_laneKeys_5_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_5_io_out_cell_1),
@@ -37323,7 +37330,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_5_io_out_top),
     .io_out_topNone      (_laneKeys_5_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_6 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_6 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_6_io_in_valid_REG),
@@ -37331,7 +37338,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_6_data_1),
     .io_in_sphere_2      (io_sphere_6_data_2),
     .io_in_sphere_3      (io_sphere_6_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_6_io_out_valid),
     .io_out_cell_0       (_laneKeys_6_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_6_io_out_cell_1),
@@ -37347,7 +37354,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_6_io_out_top),
     .io_out_topNone      (_laneKeys_6_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_7 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_7 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_7_io_in_valid_REG),
@@ -37355,7 +37362,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_7_data_1),
     .io_in_sphere_2      (io_sphere_7_data_2),
     .io_in_sphere_3      (io_sphere_7_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_7_io_out_valid),
     .io_out_cell_0       (_laneKeys_7_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_7_io_out_cell_1),
@@ -37371,7 +37378,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_7_io_out_top),
     .io_out_topNone      (_laneKeys_7_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_8 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_8 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_8_io_in_valid_REG),
@@ -37379,7 +37386,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_8_data_1),
     .io_in_sphere_2      (io_sphere_8_data_2),
     .io_in_sphere_3      (io_sphere_8_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_8_io_out_valid),
     .io_out_cell_0       (_laneKeys_8_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_8_io_out_cell_1),
@@ -37395,7 +37402,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_8_io_out_top),
     .io_out_topNone      (_laneKeys_8_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_9 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_9 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_9_io_in_valid_REG),
@@ -37403,7 +37410,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_9_data_1),
     .io_in_sphere_2      (io_sphere_9_data_2),
     .io_in_sphere_3      (io_sphere_9_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_9_io_out_valid),
     .io_out_cell_0       (_laneKeys_9_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_9_io_out_cell_1),
@@ -37419,7 +37426,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_9_io_out_top),
     .io_out_topNone      (_laneKeys_9_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_10 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_10 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_10_io_in_valid_REG),
@@ -37427,7 +37434,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_10_data_1),
     .io_in_sphere_2      (io_sphere_10_data_2),
     .io_in_sphere_3      (io_sphere_10_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_10_io_out_valid),
     .io_out_cell_0       (_laneKeys_10_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_10_io_out_cell_1),
@@ -37443,7 +37450,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_10_io_out_top),
     .io_out_topNone      (_laneKeys_10_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_11 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_11 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_11_io_in_valid_REG),
@@ -37451,7 +37458,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_11_data_1),
     .io_in_sphere_2      (io_sphere_11_data_2),
     .io_in_sphere_3      (io_sphere_11_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_11_io_out_valid),
     .io_out_cell_0       (_laneKeys_11_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_11_io_out_cell_1),
@@ -37467,7 +37474,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_11_io_out_top),
     .io_out_topNone      (_laneKeys_11_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_12 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_12 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_12_io_in_valid_REG),
@@ -37475,7 +37482,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_12_data_1),
     .io_in_sphere_2      (io_sphere_12_data_2),
     .io_in_sphere_3      (io_sphere_12_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_12_io_out_valid),
     .io_out_cell_0       (_laneKeys_12_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_12_io_out_cell_1),
@@ -37491,7 +37498,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_12_io_out_top),
     .io_out_topNone      (_laneKeys_12_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_13 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_13 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_13_io_in_valid_REG),
@@ -37499,7 +37506,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_13_data_1),
     .io_in_sphere_2      (io_sphere_13_data_2),
     .io_in_sphere_3      (io_sphere_13_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_13_io_out_valid),
     .io_out_cell_0       (_laneKeys_13_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_13_io_out_cell_1),
@@ -37515,7 +37522,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_13_io_out_top),
     .io_out_topNone      (_laneKeys_13_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_14 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_14 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_14_io_in_valid_REG),
@@ -37523,7 +37530,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_14_data_1),
     .io_in_sphere_2      (io_sphere_14_data_2),
     .io_in_sphere_3      (io_sphere_14_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_14_io_out_valid),
     .io_out_cell_0       (_laneKeys_14_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_14_io_out_cell_1),
@@ -37539,7 +37546,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_14_io_out_top),
     .io_out_topNone      (_laneKeys_14_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_l1_world laneKeys_15 (
+  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_15 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_15_io_in_valid_REG),
@@ -37547,7 +37554,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_sphere_1      (io_sphere_15_data_1),
     .io_in_sphere_2      (io_sphere_15_data_2),
     .io_in_sphere_3      (io_sphere_15_data_3),
-    .io_in_k             (_laneKeys_15_io_in_k_T ? 13'h0 : _cellExp_io_k),
+    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_15_io_out_valid),
     .io_out_cell_0       (_laneKeys_15_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_15_io_out_cell_1),
@@ -37580,7 +37587,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
   assign io_sphere_14_addr = _gens_15_io_start_T ? _gens_14_io_keyAddr : i_14[11:0];
   assign io_sphere_15_addr = _gens_15_io_start_T ? _gens_15_io_keyAddr : i_15[11:0];
   assign io_busy = |state;
-  assign io_status_k = st_k;
+  assign io_status_level = st_level;
   assign io_status_large = st_large;
   assign io_status_cycTotal = st_cycTotal;
   assign io_status_tooMany = st_tooMany;
@@ -38920,7 +38927,7 @@ module Puc_world(
   wire [11:0]  _bp_io_pairs_15_bits_i;
   wire [11:0]  _bp_io_pairs_15_bits_j;
   wire         _bp_io_busy;
-  wire [12:0]  _bp_io_status_k;
+  wire [13:0]  _bp_io_status_level;
   wire [12:0]  _bp_io_status_large;
   wire [31:0]  _bp_io_status_cycTotal;
   wire         _bp_io_status_tooMany;
@@ -40334,7 +40341,9 @@ module Puc_world(
     .io_status_bits_addr (run_7),
     .io_status_bits_data
       ({run_8[1] & ~(|_GEN_2) ? {19'h0, _bp_io_status_large} : 32'h0,
-        run_8[1] & ~(|_GEN_2) ? {{19{_bp_io_status_k[12]}}, _bp_io_status_k} : 32'h0,
+        run_8[1] & ~(|_GEN_2)
+          ? {{18{_bp_io_status_level[13]}}, _bp_io_status_level}
+          : 32'h0,
         run_8[1] & ~(|_GEN_2) ? _bp_io_status_cycTotal : 32'h0,
         cycWaitWr,
         cycWaitRd,
@@ -40517,7 +40526,7 @@ module Puc_world(
     .io_pairs_15_bits_i      (_bp_io_pairs_15_bits_i),
     .io_pairs_15_bits_j      (_bp_io_pairs_15_bits_j),
     .io_busy                 (_bp_io_busy),
-    .io_status_k             (_bp_io_status_k),
+    .io_status_level         (_bp_io_status_level),
     .io_status_large         (_bp_io_status_large),
     .io_status_cycTotal      (_bp_io_status_cycTotal),
     .io_status_tooMany       (_bp_io_status_tooMany),

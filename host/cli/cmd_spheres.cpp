@@ -85,9 +85,9 @@ int runSpheresAfu(const SpheresOptions& o) {
   const auto& s = r.run.status;
   const double cyc = afu.cycleNs();
   const double broadNs = s.cyclesBroad * cyc, totalNs = r.run.stats.modelledNs;
-  const auto k = static_cast<std::int32_t>(s.worldCellExp);
+  const auto level = static_cast<std::int32_t>(s.worldCellLevel);
   std::cerr << "collide spheres: " << spheres.size() << " spheres (" << w.badSpheres.size() << " bad), " << w.candidates
-            << " candidate pairs, " << w.pairs.size() << " contacts, on the AFU (world mode, cells 2^" << k << ", "
+            << " candidate pairs, " << w.pairs.size() << " contacts, on the AFU (world mode, cells of edge " << driver::cellEdge(level) << ", "
             << s.worldLarge << " large; " << toString(w.contacts.format) << ", link " << lp.name << ")\n"
             << std::fixed << std::setprecision(1) << "  modelled time " << totalNs / 1e3 << " us (link bound "
             << r.run.stats.linkBoundNs / 1e3 << " us; " << r.run.stats.readLines << " lines read, " << r.run.stats.writeLines
@@ -118,7 +118,8 @@ int runSpheresAfu(const SpheresOptions& o) {
                 {"cycles_load", s.cyclesLoading},
                 {"cycles_broad", s.cyclesBroad},
                 {"cycles_compute", s.cyclesComputing},
-                {"cell_exp", k},
+                {"cell_level", level},
+                {"cell_edge", driver::cellEdge(level)},
                 {"large", s.worldLarge}};
     summary->stream() << j.dump(2) << "\n";
     summary->commit();

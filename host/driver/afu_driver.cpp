@@ -29,7 +29,7 @@ void accumulate(StatusLine& into, const StatusLine& s) {
   into.cyclesWaitRead += s.cyclesWaitRead;
   into.cyclesWaitWrite += s.cyclesWaitWrite;
   into.cyclesBroad += s.cyclesBroad;
-  into.worldCellExp = s.worldCellExp;
+  into.worldCellLevel = s.worldCellLevel;
   into.worldLarge += s.worldLarge;
 }
 

@@ -217,7 +217,7 @@ void eachStatusField(S& s, F&& f) {
   f(c::STATUS_CYCLES_TOTAL, s.cyclesTotal); f(c::STATUS_CYCLES_LOAD, s.cyclesLoading);
   f(c::STATUS_CYCLES_COMPUTE, s.cyclesComputing); f(c::STATUS_CYCLES_WAIT_RD, s.cyclesWaitRead);
   f(c::STATUS_CYCLES_WAIT_WR, s.cyclesWaitWrite); f(c::STATUS_CYCLES_BROAD, s.cyclesBroad);
-  f(c::STATUS_WORLD_CELL_EXP, s.worldCellExp); f(c::STATUS_WORLD_LARGE, s.worldLarge);
+  f(c::STATUS_WORLD_CELL_LEVEL, s.worldCellLevel); f(c::STATUS_WORLD_LARGE, s.worldLarge);
 }
 }  // namespace
 

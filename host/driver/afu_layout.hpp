@@ -2,6 +2,7 @@
 // Byte layout of the shared buffers and the status line (docs/afu-interface.md), over
 // HostMemory, shared by the driver and the test models. Every offset, bit and code comes
 // from the generated contract header (generated/afu_contract.hpp), never a literal here.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -63,10 +64,17 @@ struct StatusLine {
   std::uint32_t flaggedMisses = 0;  // misses with NONFINITE or ARITH: pair mode writes them in compact mode too
   std::uint32_t cyclesTotal = 0, cyclesLoading = 0, cyclesComputing = 0,
                 cyclesWaitRead = 0, cyclesWaitWrite = 0;
-  // World mode: the broad phase's cycles, its cell exponent k (a signed i32: cells of 2^k)
-  // and the spheres too large for the cell (0 in pair mode).
-  std::uint32_t cyclesBroad = 0, worldCellExp = 0, worldLarge = 0;
+  // World mode: the broad phase's cycles, its cell level L (a signed i32, cellEdge(L)) and
+  // the spheres too large for the cell (0 in pair mode).
+  std::uint32_t cyclesBroad = 0, worldCellLevel = 0, worldLarge = 0;
 };
+
+// The edge of the broad phase's cells at level L: 2^(L/2) for even L, 1.5 * 2^((L-1)/2) for
+// odd L (the status line's WORLD_CELL_LEVEL).
+inline double cellEdge(std::int32_t level) {
+  const std::int32_t half = level >= 0 ? level / 2 : -((1 - level) / 2);  // floor(L / 2)
+  return (level % 2 == 0 ? 1.0 : 1.5) * std::ldexp(1.0, half);
+}
 
 // World mode: a record's pair field names its spheres, i in the low TAG_WORLD_INDEX_BITS
 // bits and j above them.

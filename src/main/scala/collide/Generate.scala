@@ -30,6 +30,7 @@ object Generate {
       worldLanes: Option[Int] = None,
       worldSortPorts: Option[Int] = None,
       worldBucketsPerSphere: Option[Int] = None,
+      worldCellSteps: Option[Int] = None,
       scpuImpl: Option[String] = None,
       listPresets: Boolean = false)
 
@@ -68,6 +69,9 @@ object Generate {
       opt[Int]("world-buckets-per-sphere").valueName("B").action((v, o) => o.copy(worldBucketsPerSphere = Some(v)))
         .text("buckets a world uses per sphere, 1, 2 (default) or 4 (world mode only; 1 halves the sort's counters " +
           "and its clear and prefix sum, for more cells sharing a bucket)"),
+      opt[Int]("world-cell-steps").valueName("S").action((v, o) => o.copy(worldCellSteps = Some(v)))
+        .text("cell edges an octave in the broad phase's grid, 1 (default: powers of two) or 2 (also 1.5 * 2^k: " +
+          "cells nearer the spheres' size, faster on dense clusters, slower on sparse clouds; world mode only)"),
       opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
         .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
           "(same cycles and records, a far faster co-simulation; not synthesizable)"),
@@ -122,8 +126,12 @@ object Generate {
         }
         case None => Left("--world-buckets-per-sphere: world mode is not built (add --world true or --preset world)")
       })(c13)
-      c15 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c14)
-    } yield c15
+      c15 <- opt("--world-cell-steps", o.worldCellSteps)((c, v) => c.world match {
+        case Some(bp) => step("--world-cell-steps", c.copy(world = Some(bp.copy(cellSteps = v))))
+        case None => Left("--world-cell-steps: world mode is not built (add --world true or --preset world)")
+      })(c14)
+      c16 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c15)
+    } yield c16
   }
 
   val firtoolOpts: Array[String] = Array(

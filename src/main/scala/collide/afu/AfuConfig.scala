@@ -78,7 +78,8 @@ final case class AfuConfig(
       (if (recordLayout != AfuConfig.bestLayout(scpu, world.isDefined)) s"_${recordLayout.name}" else "") +
       (if (denseByDefault) "_dense" else "") + world.map(bp => "_world" + (if (bp.lanes > 1) bp.lanes.toString else "") + (if (bp.sortPorts > 1) s"p${bp.sortPorts}" else "") +
         (if (bp.wordLog2 != collide.world.BroadPhaseParams.default.wordLog2) s"w${bp.wordLog2}" else "") +
-        (if (bp.bucketsPerSphereLog2 != collide.world.BroadPhaseParams.default.bucketsPerSphereLog2) s"s${bp.bucketsPerSphereLog2}" else "")).getOrElse("") +
+        (if (bp.bucketsPerSphereLog2 != collide.world.BroadPhaseParams.default.bucketsPerSphereLog2) s"s${bp.bucketsPerSphereLog2}" else "") +
+        (if (bp.cellSteps != collide.world.BroadPhaseParams.default.cellSteps) s"e${bp.cellSteps}" else "")).getOrElse("") +
       (if (scpuImpl == ScpuImpl.Model) "_model" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')

@@ -55,7 +55,7 @@ object StatusLine {
   val CYCLES_WAIT_RD  = 44
   val CYCLES_WAIT_WR  = 48
   val CYCLES_BROAD    = 52
-  val WORLD_CELL_EXP  = 56
+  val WORLD_CELL_LEVEL = 56
   val WORLD_LARGE     = 60
   val entries: Seq[ContractEntry] = Seq(
     ContractEntry("DONE", DONE, "1 when the run is over"),
@@ -72,7 +72,7 @@ object StatusLine {
     ContractEntry("CYCLES_WAIT_RD", CYCLES_WAIT_RD, "cycles waiting on read responses"),
     ContractEntry("CYCLES_WAIT_WR", CYCLES_WAIT_WR, "cycles waiting on write responses or back-pressure"),
     ContractEntry("CYCLES_BROAD", CYCLES_BROAD, "world mode: cycles the broad phase ran (0 in pair mode)"),
-    ContractEntry("WORLD_CELL_EXP", WORLD_CELL_EXP, "world mode: the grid's cell edge 2^k, k as a signed i32"),
+    ContractEntry("WORLD_CELL_LEVEL", WORLD_CELL_LEVEL, "world mode: the grid's cell level L, a signed i32: cells of edge 2^(L/2) for even L, 1.5 * 2^((L-1)/2) for odd L"),
     ContractEntry("WORLD_LARGE", WORLD_LARGE, "world mode: spheres too large for the cell, paired with every sphere"))
   val all: Seq[(String, Int)] = entries.map(e => e.name -> e.value.toInt)
   /** The u32 fields in offset order (the decoders iterate these, never literal offsets). */

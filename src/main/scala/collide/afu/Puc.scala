@@ -114,7 +114,7 @@ class Puc(p: PucParams) extends Module {
   val worldLine    = Wire(Decoupled(new PairLine(p.pairLineBits)))
   val worldEmitted = WireDefault(0.U((lay.pairIndexBits + 1).W)) // candidates handed to the dispatcher
   val worldDone    = WireDefault(false.B) // the broad phase is over and every candidate handed on
-  val cycBroad = WireDefault(0.U(32.W)); val cellExp = WireDefault(0.U(32.W))
+  val cycBroad = WireDefault(0.U(32.W)); val cellLevel = WireDefault(0.U(32.W))
   val largeSpheres = WireDefault(0.U(32.W)); val worldCheck = WireDefault(false.B)
   p.world match {
     case Some(w) =>
@@ -134,7 +134,7 @@ class Puc(p: PucParams) extends Module {
       worldEmitted := lines.io.emitted
       worldDone := bpDone && lines.io.idle
       val st = bp.io.status
-      cycBroad := st.cycTotal; cellExp := st.k.pad(32).asUInt; largeSpheres := st.large.pad(32)
+      cycBroad := st.cycTotal; cellLevel := st.level.pad(32).asUInt; largeSpheres := st.large.pad(32)
       worldCheck := st.tooMany || st.cellOverflow || st.largeOverflow || st.badBucket || st.sortMismatch
     case None =>
       worldLine.valid := false.B; worldLine.bits := DontCare
@@ -237,7 +237,7 @@ class Puc(p: PucParams) extends Module {
   words(StatusLine.CYCLES_WAIT_RD / 4)  := cycWaitRd
   words(StatusLine.CYCLES_WAIT_WR / 4)  := cycWaitWr
   words(StatusLine.CYCLES_BROAD / 4)    := Mux(world && !nothingRun, cycBroad, 0.U)
-  words(StatusLine.WORLD_CELL_EXP / 4)  := Mux(world && !nothingRun, cellExp, 0.U)
+  words(StatusLine.WORLD_CELL_LEVEL / 4) := Mux(world && !nothingRun, cellLevel, 0.U)
   words(StatusLine.WORLD_LARGE / 4)     := Mux(world && !nothingRun, largeSpheres, 0.U)
   wr.io.status.valid     := state === sStatus
   wr.io.status.bits.addr := statusAddr

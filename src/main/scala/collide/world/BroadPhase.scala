@@ -6,7 +6,8 @@ import collide.fp.{FpParams, Pipeline}
 
 /** What a world's run of the broad phase found and what it cost, valid once busy falls. */
 class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
-  val k = SInt(kWidth.W)
+  /** The cell level: cells of edge 2^(L/2) for even L, 1.5 * 2^((L-1)/2) for odd L. */
+  val level = SInt(kWidth.W)
   val excluded = UInt(countW.W)
   val large = UInt(countW.W)
   val small = UInt(countW.W)
@@ -15,7 +16,7 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   val chunks = UInt(32.W)
   val scanned = UInt(32.W)
   val probes = UInt(32.W)
-  /** Cycles per pass: the first table read (k), the second (classify and count), the
+  /** Cycles per pass: the first table read (the cell level), the second (classify and count), the
     * prefix sum, the scatter, the grid's candidate generation, the large pass, all. */
   val cycLoad, cycClassify, cycPrefix, cycScatter, cycGrid, cycLarge, cycTotal = UInt(32.W)
   /** num > maxSpheres: nothing was done. */
@@ -31,13 +32,13 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   * data the cycle after) and emits every candidate pair (i < j) once on `pairs`, exactly
   * BroadPhaseModel.run's candidates. Passes: (1) read every sphere: SphereKeys' need and top
   * into CellExponent, while BucketSort clears its counters; (2) read every sphere again, keys
-  * at the chosen k: small spheres counted into their bucket, large ones into the large list;
+  * at the chosen cell level: small spheres counted into their bucket, large ones into the large list;
   * (3) the prefix sum; (4) the scatter, reading the spheres a third time; (5) the
   * CandidateGenerator, whose key records SphereKeys recomputes from the sphere table (no
   * key table: the table the AFU holds anyway is the only per-sphere RAM besides the sort's).
   * With lanes, pass 1 reads the table through every lane's port and SphereKeys, lane l its
   * slice into a CellExponent of its own, and a merge (two kept needs a cycle) gives the one
-  * that chooses k what they kept. `bp.sortPorts` spheres a cycle in passes 2 and 4: with two,
+  * that chooses the level what they kept. `bp.sortPorts` spheres a cycle in passes 2 and 4: with two,
   * the first half of the table goes through port 0 of `sphere` and the second through port 1,
   * each with lane 0's or lane 1's SphereKeys and a port of the sort of its own; with four,
   * quarters through lanes 0 to 3, ports 0 and 1 into one sort (group 0: the first half) and 2
@@ -68,7 +69,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   override def desiredName =
     s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}_w${bp.wordLog2}" +
       (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "") +
-      (if (bp.bucketsPerSphereLog2 != BroadPhaseParams.default.bucketsPerSphereLog2) s"_s${bp.bucketsPerSphereLog2}" else "")
+      (if (bp.bucketsPerSphereLog2 != BroadPhaseParams.default.bucketsPerSphereLog2) s"_s${bp.bucketsPerSphereLog2}" else "") +
+      (if (bp.cellSteps != BroadPhaseParams.default.cellSteps) s"_e${bp.cellSteps}" else "")
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres))
   private val itemW = io.itemW
   private val countW = io.countW
@@ -139,8 +141,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val reading = VecInit.tabulate(bp.lanes)(l => inPass && i(l) < hi(l))
   private val inflight = RegInit(0.U(log2Ceil(bp.lanes * (keysLatency + 2) + 1).W)) // reads not yet out of SphereKeys
   private val passDone = !reading.asUInt.orR && inflight === 0.U
-  private val k = cellExp.io.k
-  private def large(o: SphereKeys): Bool = !o.io.out.nonFinite && !o.io.out.needNone && o.io.out.need > k
+  private val level = cellExp.io.level
+  private def large(o: SphereKeys): Bool = !o.io.out.nonFinite && !o.io.out.needNone && o.io.out.need > level
   private def record(o: SphereKeys): KeyRecord = {
     val r = Wire(new KeyRecord(bp.cellBits, qWidth))
     r.cell := o.io.out.cell; r.q := o.io.out.q; r.qr := o.io.out.qr; r.large := large(o); r.excluded := o.io.out.nonFinite
@@ -157,7 +159,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     io.sphere(l).addr := Mux(state === S.generate, gens(l).io.keyAddr, i(l)(itemW - 1, 0))
     lk.io.in.valid := RegNext(reading(l), false.B)
     lk.io.in.sphere := io.sphere(l).data
-    lk.io.in.k := Mux(state === S.load, 0.S, k) // need and top do not depend on k
+    lk.io.in.level := Mux(state === S.load, 0.S, level) // need and top do not depend on the level
   }
   private val keyed = (0 until ports).map { q =>
     Keyed(laneKeys(q), Pipeline(RegNext(i(q)(itemW - 1, 0)), keysLatency, true.B))
@@ -218,7 +220,9 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   when(classifying) { st.large := st.large + (largeKept - largeCount); largeCount := largeKept }
 
   private val slack = {
-    // BroadPhaseModel.boxSlack: 1 + max(1, 2^(errorExp + F - k)), saturated to the width.
+    // BroadPhaseModel.boxSlack: 1 + max(1, 2^(errorExp + F - k)), k = ceil(level / 2),
+    // saturated to the width.
+    val k = (level +& 1.S) >> 1
     val e = bp.errorExp(p).S +& bp.filterFracBits.S -& k
     val big = e >= (qWidth - 1).S
     Mux(e < 0.S, 2.U, Mux(big, ((BigInt(1) << qWidth) - 1).U, 1.U +& (1.U << e.asUInt(log2Ceil(qWidth) - 1, 0))))
@@ -322,7 +326,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       when(largeOnly) { st.cycLarge := st.cycLarge + 1.U }.otherwise { st.cycGrid := st.cycGrid + 1.U }
       when(sent && !gensBusy) {
         state := S.idle
-        st.k := k
+        st.level := level
         st.cells := laneSum(_.io.stats.cells); st.chunks := laneSum(_.io.stats.chunks)
         st.scanned := laneSum(_.io.stats.scanned); st.probes := laneSum(_.io.stats.probes)
         st.badBucket := sorts.map(_.io.badBucket).reduce(_ || _)

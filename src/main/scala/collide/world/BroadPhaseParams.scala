@@ -39,6 +39,12 @@ package collide.world
   *                   entries' two block-RAM ports; one more table of counters); four are two
   *                   sorts of two ports (`sortGroups`), each of half the table, whose buckets
   *                   the generators read one after the other (a second table of counters a lane)
+  * @param cellSteps  cell edges an octave: 1 (the default), powers of two only (2^k, a shift
+  *                   of the coordinates); 2, also 1.5 * 2^k (a shift and an exact division by
+  *                   three), so no cell is more than 4/3 of what its spheres need instead of
+  *                   twice it (a level L: edge 2^(L/2) for even L, 1.5 * 2^((L-1)/2) for odd L).
+  *                   Smaller cells pay off where cells overfill a chunk (dense clusters), and
+  *                   cost chunks where they are sparse (docs/afu.md, "Cell steps")
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -52,7 +58,8 @@ final case class BroadPhaseParams(
     wordLog2: Int = 3,
     lanes: Int = 1,
     sortPorts: Int = 1,
-    bucketsPerSphereLog2: Int = 1
+    bucketsPerSphereLog2: Int = 1,
+    cellSteps: Int = 1
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -69,6 +76,8 @@ final case class BroadPhaseParams(
   require(sortPorts <= lanes, s"sortPorts ($sortPorts) must be at most lanes ($lanes): port p reads the table through lane p's port")
 
   require(bucketsPerSphereLog2 >= 0 && bucketsPerSphereLog2 <= 2, s"bucketsPerSphereLog2 must be 0..2, got $bucketsPerSphereLog2")
+
+  require(cellSteps == 1 || cellSteps == 2, s"cellSteps must be 1 (edges 2^k) or 2 (also 1.5 * 2^k), got $cellSteps")
 
   val buckets: Int = 1 << bucketsLog2
 
@@ -103,13 +112,23 @@ final case class BroadPhaseParams(
   def errorExp(p: collide.fp.FpParams): Int = Math.floorDiv(p.format.minExp, 2) + 2
   /** The smallest cell exponent: the cell is 2^cellOverError times that error. */
   def kFloor(p: collide.fp.FpParams): Int = errorExp(p) + cellOverError
+  /** The smallest cell level: an edge of 2^kFloor. */
+  def levelFloor(p: collide.fp.FpParams): Int = 2 * kFloor(p)
   /** k >= top - kCoordOffset keeps every cell coordinate of values below 2^top in range. */
   val kCoordOffset: Int = cellBits - 2
+  /** The same for levels: level >= 2 top - levelCoordOffset. An edge of 1.5 * 2^(k-1) (level
+    * 2k - 1) keeps |v| / edge below 2^(cellBits-1) * 2/3, inside the guard too. */
+  val levelCoordOffset: Int = 2 * kCoordOffset + (if (cellSteps == 2) 1 else 0)
   /** Largest cell coordinate magnitude allowed, leaving one cell of guard to the wrap. */
   val cellLimit: Long = (1L << (cellBits - 1)) - 2
 }
 
 object BroadPhaseParams {
+  /** The box filter's exponent of level L: ceil(L / 2), the octave the edge lies in. */
+  def filterExp(level: Int): Int = Math.floorDiv(level + 1, 2)
+  /** The exact edge of level L as a double (for reports). */
+  def edge(level: Int): Double =
+    if ((level & 1) == 0) math.scalb(1.0, level / 2) else 1.5 * math.scalb(1.0, Math.floorDiv(level - 1, 2))
   /** The sort's port counts built (`sortPorts`), fewest first. */
   val sortPortChoices: Seq[Int] = Seq(1, 2, 4)
   val default: BroadPhaseParams = BroadPhaseParams()

@@ -4,11 +4,12 @@ import chisel3._
 import chisel3.util._
 import collide.fp.FpParams
 
-/** Chooses the broad phase's cell exponent k while the sphere table streams in, `ports`
+/** Chooses the broad phase's cell level while the sphere table streams in, `ports`
   * spheres a cycle, with no pass at the end: it keeps the largeMax+1 largest needs in a sorted
   * register list (`ports` insertions a cycle, one after the other in logic), so the (largeMax+1)-th largest need, the smallest kept, is
-  * always at hand; and the largest coordinate exponent. k = max(that need, top - kCoordOffset,
-  * kFloor), as BroadPhaseModel.chooseK. Excluded spheres (nonFinite) are not counted.
+  * always at hand; and the largest coordinate exponent. The level is max(that need,
+  * 2 top - levelCoordOffset, levelFloor), as BroadPhaseModel.chooseLevel. Excluded spheres
+  * (nonFinite) are not counted.
   */
 /** One sphere's need and top for CellExponent. */
 class CellExponentIn(kWidth: Int) extends Bundle {
@@ -25,8 +26,8 @@ class CellExponentIO(p: FpParams, ports: Int, slots: Int) extends Bundle {
   /** Starts a new world: forget every sphere. */
   val clear = Input(Bool())
   val in = Input(Vec(ports, new CellExponentIn(kWidth)))
-  /** k for the spheres seen so far (valid the cycle after the last one). */
-  val k = Output(SInt(kWidth.W))
+  /** The cell level for the spheres seen so far (valid the cycle after the last one). */
+  val level = Output(SInt(kWidth.W))
   /** What it keeps, for merging several of these into one (BroadPhase's load pass with lanes):
     * the kept needs, largest first, the first `used` of them filled; the largest top, if any. */
   val kept = Output(Vec(slots, SInt(kWidth.W)))
@@ -37,7 +38,7 @@ class CellExponentIO(p: FpParams, ports: Int, slots: Int) extends Bundle {
 
 class CellExponent(p: FpParams, bp: BroadPhaseParams, ports: Int = 1) extends Module {
   require(ports >= 1 && ports <= 2, s"ports must be 1 or 2, got $ports")
-  override def desiredName = s"CellExponent_${p.name}_L${bp.largeMax}_c${bp.cellBits}" + (if (ports > 1) s"_p$ports" else "")
+  override def desiredName = s"CellExponent_${p.name}_L${bp.largeMax}_c${bp.cellBits}_e${bp.cellSteps}" + (if (ports > 1) s"_p$ports" else "")
   val io = IO(new CellExponentIO(p, ports, bp.largeMax + 1))
   private val w = io.kWidth
   private val minK = (-(BigInt(1) << (w - 1))).S(w.W) // stands for "fits any cell" (r <= 0)
@@ -80,8 +81,8 @@ class CellExponent(p: FpParams, bp: BroadPhaseParams, ports: Int = 1) extends Mo
   // Fewer spheres than slots: all in the grid, sized for the biggest (kept(0)); else the
   // smallest kept need, the (largeMax+1)-th largest.
   private val kSmall = Mux(used === slots.U, kept(slots - 1), kept(0))
-  private val kCoord = Mux(anyTop, topMax -& bp.kCoordOffset.S, minK)
-  private val kFloor = bp.kFloor(p).S(w.W)
-  io.k := maxS(maxS(kSmall, kCoord), kFloor).asTypeOf(SInt(w.W))
+  private val kCoord = Mux(anyTop, (topMax << 1) -& bp.levelCoordOffset.S, minK)
+  private val kFloor = bp.levelFloor(p).S(w.W)
+  io.level := maxS(maxS(kSmall, kCoord), kFloor).asTypeOf(SInt(w.W))
   io.kept := kept; io.used := used; io.top := topMax; io.anyTop := anyTop
 }

@@ -4,10 +4,12 @@ import chisel3._
 import chisel3.util._
 import collide.fp.{FpParams, Pipeline, RawFloat}
 
-/** The broad phase's integer view of one sphere, in exact arithmetic (no rounding anywhere):
-  * its cell floor(v / 2^k) per axis, the box filter's fixed point floor(v * 2^(F-k)) and
-  * ceil(r * margin * 2^(F-k)), and the cell exponent the sphere itself needs. The golden
-  * model is BroadPhaseModel (cell, boxKey, need); docs/afu.md, "World mode".
+/** The broad phase's integer view of one sphere at cell level L, in exact arithmetic (no
+  * rounding anywhere): its cell floor(v / edge) per axis (edge 2^k for L = 2k: a shift; or
+  * 1.5 * 2^k for L = 2k + 1: a shift to floor(v / 2^(k-1)), then a floor division by three),
+  * the box filter's fixed point floor(v * 2^(F-q)) and ceil(r * margin * 2^(F-q)) with
+  * q = ceil(L / 2), and the cell level the sphere itself needs. The golden model is
+  * BroadPhaseModel (cell, boxKey, need); docs/afu.md, "World mode".
   */
 class SphereKeysIO(p: FpParams, bp: BroadPhaseParams) extends Bundle {
   val kWidth = SphereKeys.kWidth(p)
@@ -15,7 +17,7 @@ class SphereKeysIO(p: FpParams, bp: BroadPhaseParams) extends Bundle {
   val in = Input(new Bundle {
     val valid = Bool()
     val sphere = Vec(4, UInt(p.width.W)) // x, y, z, r in the compute format (converted)
-    val k = SInt(kWidth.W)
+    val level = SInt(kWidth.W)
   })
   val out = Output(new Bundle {
     val valid = Bool()
@@ -25,6 +27,7 @@ class SphereKeysIO(p: FpParams, bp: BroadPhaseParams) extends Bundle {
     val q = Vec(3, SInt(qWidth.W))
     /** Saturated at its maximum: a huge radius passes the box filter against anything. */
     val qr = UInt(qWidth.W)
+    /** The least cell level that holds the sphere. */
     val need = SInt(kWidth.W)
     /** r <= 0: the sphere fits any cell (need is then don't-care). */
     val needNone = Bool()
@@ -40,11 +43,13 @@ class SphereKeysIO(p: FpParams, bp: BroadPhaseParams) extends Bundle {
 class SphereKeys(p: FpParams, bp: BroadPhaseParams, latency: Int = 1) extends Module {
   require(latency >= 0 && latency <= 2, s"SphereKeys latency must be 0..2, got $latency")
   require(isPow2(bp.marginDen), s"margin denominator ${bp.marginDen} must be a power of two in hardware")
-  override def desiredName = s"SphereKeys_${p.name}_c${bp.cellBits}_f${bp.filterFracBits}_m${bp.marginNum}d${bp.marginDen}_l$latency"
+  override def desiredName = s"SphereKeys_${p.name}_c${bp.cellBits}_f${bp.filterFracBits}_m${bp.marginNum}d${bp.marginDen}_e${bp.cellSteps}_l$latency"
   val io = IO(new SphereKeysIO(p, bp))
   private val f = p.format
   private val raw = io.in.sphere.map(b => RawFloat(p, b))
-  private val k = io.in.k
+  private val level = io.in.level
+  private val odd = if (bp.cellSteps == 2) level(0) else false.B // an edge of 1.5 * 2^(k-1), k = ceil(L / 2)
+  private val k = (level +& 1.S) >> 1 // the box filter's exponent: the octave the edge lies in
 
   /** floor(v * 2^-s) of a finite raw value, as SInt(w), and whether it overflowed w bits. */
   private def floorScaled(v: RawFloat, s: SInt, w: Int): (SInt, Bool) = {
@@ -65,7 +70,12 @@ class SphereKeys(p: FpParams, bp: BroadPhaseParams, latency: Int = 1) extends Mo
   }
 
   private val nonFinite = raw.map(r => r.isNaN || r.isInf).reduce(_ || _)
-  private val cellsAndOver = raw.take(3).map(floorScaled(_, k, bp.cellBits))
+  // floor(v / 2^k), or floor(v / 2^(k-2)) then floor(. / 3): 1.5 * 2^(k-1) = 3 * 2^(k-2).
+  private val wideBits = bp.cellBits + 2
+  private val cellsAndOver = raw.take(3).map { v =>
+    val (c, o) = floorScaled(v, Mux(odd, k -& 2.S, k), wideBits)
+    (if (bp.cellSteps == 2) Mux(odd, SphereKeys.floorDiv3(c), c) else c, o)
+  }
   private val limit = bp.cellLimit
   private val cellOverflow = cellsAndOver.map { case (c, o) => o || c > limit.S || c < (-limit).S }.reduce(_ || _)
   private val qs = raw.take(3).map(floorScaled(_, k -& bp.filterFracBits.S, SphereKeys.qWidth(bp)))
@@ -86,9 +96,15 @@ class SphereKeys(p: FpParams, bp: BroadPhaseParams, latency: Int = 1) extends Mo
   private val qrMax = ((BigInt(1) << qW) - 1).U
   private val qr = Mux(r.isZero || r.sign, 0.U, Mux(qrWide > qrMax, qrMax, qrWide(qW - 1, 0)))
 
-  // need = the least k with 2^k >= 2 r num / den: exponent of 2 sig num, ceiling, rebased.
+  // The least k with 2^k >= v = 2 r num / den: exponent of a = 2 sig num, ceiling, rebased
+  // (a - 1 < 2^B, B its bit length). The odd level 2k - 1 (an edge of 1.5 * 2^(k-1)) holds
+  // the sphere iff a <= 3 * 2^(B-2), i.e. iff the bit of a - 1 below its leading one is 0
+  // (a >= 18, so B >= 5).
   private val x = (rNum << 1) - 1.U
-  private val need = (r.sExp -& f.fracBits.S) +& (Log2(x) +& 1.U).zext -& log2Ceil(bp.marginDen).S
+  private val lead = Log2(x)
+  private val needK = (r.sExp -& f.fracBits.S) +& (lead +& 1.U).zext -& log2Ceil(bp.marginDen).S
+  private val oddFits = if (bp.cellSteps == 2) !(x >> (lead - 1.U))(0) else false.B
+  private val need = (needK << 1) -& oddFits.asUInt.zext
 
   // top: |v| < 2^(sExp + 1) for a normalized raw value.
   private val coordTops = raw.take(3).map(c => (c.isZero, c.sExp +& 1.S))
@@ -98,7 +114,7 @@ class SphereKeys(p: FpParams, bp: BroadPhaseParams, latency: Int = 1) extends Mo
 
   private val en = true.B
   io.out.valid := Pipeline.valid(io.in.valid, latency, en)
-  io.out.cell := Pipeline(VecInit(cellsAndOver.map(_._1)), latency, en)
+  io.out.cell := Pipeline(VecInit(cellsAndOver.map(_._1(bp.cellBits - 1, 0).asSInt)), latency, en)
   io.out.cellOverflow := Pipeline(cellOverflow, latency, en)
   io.out.q := Pipeline(VecInit(qs.map(_._1)), latency, en)
   io.out.qr := Pipeline(qr, latency, en)
@@ -110,8 +126,22 @@ class SphereKeys(p: FpParams, bp: BroadPhaseParams, latency: Int = 1) extends Mo
 }
 
 object SphereKeys {
-  /** Wide enough for any k the broad phase picks: an exponent of the format, plus slack. */
-  def kWidth(p: FpParams): Int = p.format.rawExpWidth + 3
+  /** Wide enough for any cell level the broad phase picks: twice an exponent of the format,
+    * plus slack. */
+  def kWidth(p: FpParams): Int = p.format.rawExpWidth + 4
   /** A coordinate in box-filter units: a cell coordinate with filterFracBits more bits. */
   def qWidth(bp: BroadPhaseParams): Int = bp.cellBits + bp.filterFracBits + 1
+
+  /** floor(c / 3) of a signed c, exactly: biased to u = c + 3 * 2^(w-1) >= 0 (a multiple of
+    * three more, so floor(u / 3) = floor(c / 3) + 2^(w-1)), then u / 3 as a multiply by
+    * ceil(2^(n+2) / 3) and a shift, exact for every u below 2^n (Granlund and Montgomery). */
+  def floorDiv3(c: SInt): SInt = {
+    val w = c.getWidth
+    val n = w + 1
+    val bias = (BigInt(3) << (w - 1))
+    val u = (c.pad(n + 1).asUInt +& bias.U)(n - 1, 0)
+    val m = ((BigInt(1) << (n + 2)) + 2) / 3
+    val q = (u * m.U) >> (n + 2)
+    (q.zext -& (BigInt(1) << (w - 1)).S)(w - 1, 0).asSInt
+  }
 }

@@ -60,7 +60,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     if (st.found != want.size) errs += s"contacts found ${st.found}, expected ${want.size}"
     if (st.written != written) errs += s"records written ${st.written}, expected $written"
     val words = st.words
-    if (words(StatusLine.WORLD_CELL_EXP / 4).toInt != model.k) errs += s"cell exponent ${words(StatusLine.WORLD_CELL_EXP / 4).toInt}, model ${model.k}"
+    if (words(StatusLine.WORLD_CELL_LEVEL / 4).toInt != model.level) errs += s"cell level ${words(StatusLine.WORLD_CELL_LEVEL / 4).toInt}, model ${model.level}"
     if (words(StatusLine.WORLD_LARGE / 4) != model.stats.large) errs += s"large spheres ${words(StatusLine.WORLD_LARGE / 4)}, model ${model.stats.large}"
     if (words(StatusLine.CYCLES_BROAD / 4) == 0) errs += "no broad-phase cycles counted"
     if (r.writes.last.addr != r.statusAddr) errs += "the status line is not the last write"

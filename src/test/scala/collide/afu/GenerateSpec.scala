@@ -44,6 +44,10 @@ class GenerateSpec extends AnyFlatSpec {
     // One bucket a sphere: half the counters (4096 of 12 bits per group and lane) and a name of its own.
     val b1 = cfg("--preset", "world", "--world-buckets-per-sphere", "1").toOption.get
     assert(b1.id.endsWith("_world16p4w4s0") && b1.world.get.ramBits(4096) == 2 * ((16 + 1) * 4096L * 12 + 16 * 2048L * 13), b1.id)
+    // Edges of 1.5 * 2^k too: a name of its own, the same RAM.
+    val e2 = cfg("--preset", "world", "--world-cell-steps", "2").toOption.get
+    assert(e2.world.get.cellSteps == 2 && e2.id.endsWith("_world16p4w4e2") && e2.world.get.ramBits(4096) == AfuConfig.world.world.get.ramBits(4096), e2.id)
+    assert(AfuConfig.world.world.get.cellSteps == 1, "the preset's cells are powers of two")
     val p1 = cfg("--preset", "world", "--world-lanes", "5", "--world-sort-ports", "1").toOption.get
     assert(p1.world.get.sortPorts == 1 && p1.id.endsWith("_world5w4") && p1.world.get.ramBits(4096) == 5 * 159744L, p1.id)
     assert(cfg("--world", "true", "--world-lanes", "5", "--world-sort-ports", "2").toOption.get.id.endsWith("_world5p2"),
@@ -82,6 +86,8 @@ class GenerateSpec extends AnyFlatSpec {
     err("--world", "true", "--world-sort-ports", "2")("--world-sort-ports", "at most lanes")
     err("--preset", "world", "--world-buckets-per-sphere", "3")("--world-buckets-per-sphere", "1, 2 or 4")
     err("--world-buckets-per-sphere", "1")("--world-buckets-per-sphere", "not built")
+    err("--preset", "world", "--world-cell-steps", "3")("--world-cell-steps", "1 (edges 2^k) or 2")
+    err("--world-cell-steps", "2")("--world-cell-steps", "not built")
   }
 
   it should "build the SCPUs as the C++ model for co-simulation only where the model reproduces them, saying why not elsewhere" in {

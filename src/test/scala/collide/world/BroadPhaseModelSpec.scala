@@ -30,7 +30,7 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
     for (a <- eligible.indices; b <- a + 1 until eligible.length) {
       val (i, j) = (eligible(a), eligible(b))
       if (model.scpuHit(w, i, j))
-        assert(set((i, j)), s"$label (${model.cfg.name}, k=${r.k}): the SCPU calls ($i,$j) a hit but the broad phase " +
+        assert(set((i, j)), s"$label (${model.cfg.name}, level ${r.level}): the SCPU calls ($i,$j) a hit but the broad phase " +
           s"missed it: ${w(i)} ${w(j)} classes ${r.classes(i)} ${r.classes(j)}")
     }
     assert(r.stats.large <= model.bp.largeMax, s"$label: ${r.stats.large} large spheres > largeMax")
@@ -44,6 +44,13 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
     }
   }
 
+  for (cfg <- presets) {
+    it should s"find every pair the ${cfg.name} SCPU calls a hit with cells of edge 2^k and 1.5 * 2^k (two steps an octave)" in {
+      val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(cellSteps = 2))
+      for ((label, w) <- worlds(cfg.name)) checkWorld(model, label, bits(cfg.linkFormat, w))
+    }
+  }
+
   it should "give the same candidates when every cell collides with others in a four-bucket table" in {
     val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.tinyTable)
     for ((label, w) <- worlds("tiny-table")) checkWorld(model, label, bits(FloatFormat.fp32, w))
@@ -52,7 +59,7 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
   it should "stay exact with no large list, one huge sphere making the cell huge" in {
     val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.noLarge)
     val r = checkWorld(model, "huge, no large list", bits(FloatFormat.fp32, huge(Seeds.rng("BroadPhaseModelSpec-noLarge"), 60, 1)))
-    assert(r.stats.large == 0 && r.k >= 5, s"k = ${r.k}: the huge sphere should have set the cell")
+    assert(r.stats.large == 0 && BroadPhaseParams.edge(r.level) >= 32, s"level ${r.level}: the huge sphere should have set the cell")
   }
 
   it should "choose a larger cell when more spheres are huge than the large list holds" in {
@@ -77,16 +84,30 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
     assert(fp24.run(edge).classes(3) == SphereClass.Excluded)
   }
 
-  it should "make a 2^k cell at least 2r * 9/8: k = 1 for radius 0.5, 0 for 0.4375, 1 for binary32's 0.44444445" in {
+  it should "make a cell of edge 2^k at least 2r * 9/8 with one cell step an octave: 2 for radius 0.5, 1 for 0.4375" in {
     val model = new BroadPhaseModel(ScpuConfig.fp32)
-    def k(r: Double) = model.run(bits(FloatFormat.fp32, Seq(S(0, 0, 0, r), S(3, 0, 0, r)))).k
-    assert(k(0.5) == 1)    // 1.125 -> 2
-    assert(k(0.4375) == 0) // 0.984375 -> 1
-    assert(k(4.0 / 9) == 1) // binary32's 4/9 is 0.44444445 > 4/9: 1.0000000 + -> 2
-    assert(k(0.1) == -2)   // the diamond's radius: 0.225 -> 0.25
+    def edge(r: Double) = BroadPhaseParams.edge(model.run(bits(FloatFormat.fp32, Seq(S(0, 0, 0, r), S(3, 0, 0, r)))).level)
+    assert(edge(0.5) == 2)      // 1.125 -> 2
+    assert(edge(0.4375) == 1)   // 0.984375 -> 1
+    assert(edge(4.0 / 9) == 2)  // binary32's 4/9 is 0.44444445 > 4/9: 1.0000000 + -> 2
+    assert(edge(0.3) == 1)      // 0.675 -> 1
+    assert(edge(0.1) == 0.25)   // the diamond's radius: 0.225 -> 0.25
   }
 
-  it should "compute floor(v / 2^k) exactly, negatives and subnormals included" in {
+  it should "make a cell of edge 2^k or 1.5 * 2^k at least 2r * 9/8 with two steps: 1.5 for radius 0.5, 0.75 for 0.3" in {
+    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.default.copy(cellSteps = 2))
+    def level(r: Double) = model.run(bits(FloatFormat.fp32, Seq(S(0, 0, 0, r), S(3, 0, 0, r)))).level
+    assert(level(0.5) == 1 && BroadPhaseParams.edge(1) == 1.5)   // 1.125 -> 1.5
+    assert(level(0.4375) == 0)                                    // 0.984375 -> 1
+    assert(level(4.0 / 9) == 1)                                   // 1.0000000 + -> 1.5
+    assert(level(2.0 / 3) == 2)                                   // binary32's 2/3 is 0.6666667 > 2/3: 1.5000001 -> 2
+    assert(level(0.6666666) == 1)                                 // 1.4999999 -> 1.5
+    assert(level(0.3) == -1 && BroadPhaseParams.edge(-1) == 0.75) // 0.675 -> 0.75
+    assert(level(0.1) == -4)                                      // 0.225 -> 0.25 (0.1875 is too small)
+    assert(level(0.08) == -5 && BroadPhaseParams.edge(-5) == 0.1875) // 0.18 -> 0.1875
+  }
+
+  it should "compute floor(v / edge) exactly for edges 2^k and 1.5 * 2^k, negatives and subnormals included" in {
     val rng = Seeds.rng("BroadPhaseModelSpec-floor")
     for (cfg <- Seq(ScpuConfig.fp32, ScpuConfig.fp64); _ <- 0 until Seeds.cases(4000)) {
       val model = new BroadPhaseModel(cfg)
@@ -96,12 +117,14 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
         case 2 => (rng.nextDouble() - 0.5) * 1e-40
         case _ => math.nextUp((rng.nextInt(201) - 100).toDouble)
       }
-      val k = rng.nextInt(60) - 30
+      val level = rng.nextInt(120) - 60
+      val odd = (level & 1) != 0
+      val k = if (odd) (level - 1) / 2 - 1 else level / 2 // the edge is 2^k, or 3 * 2^k
       val vb = ScpuModel.fromDouble(cfg.format, v)
       val exact = new JBigDecimal(ScpuModel.toDouble(cfg.format, vb))
       val scaled = if (k >= 0) exact.divide(new JBigDecimal(BigInt(2).pow(k).bigInteger)) else exact.multiply(new JBigDecimal(BigInt(2).pow(-k).bigInteger))
-      val want = scaled.setScale(0, JRoundingMode.FLOOR).longValueExact()
-      assert(model.cell(vb, k).contains(want), s"${cfg.name}: floor($v / 2^$k)")
+      val want = scaled.divide(JBigDecimal.valueOf(if (odd) 3 else 1), 0, JRoundingMode.FLOOR).longValueExact()
+      assert(model.cell(vb, level).contains(want), s"${cfg.name}: floor($v / ${BroadPhaseParams.edge(level)}) (level $level)")
     }
   }
 

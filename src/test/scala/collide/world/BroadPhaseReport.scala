@@ -11,7 +11,7 @@ import collide.world.model._
   * of world mode (sphere table in, contacts out). A sizing study for the hardware: every
   * count comes from the model's traversal; the cycles are BroadPhaseCycles' model.
   *
-  *   sbt "Test/runMain collide.world.BroadPhaseReport [--csv FILE:RADIUS ...] [--sizes 670,10000,65536] [--out FILE]"
+  *   sbt "Test/runMain collide.world.BroadPhaseReport [--csv FILE:RADIUS ...] [--sizes 670,10000,65536] [--cell-steps 1|2] [--out FILE]"
   *
   * --csv reads `collide run --positions` output (header sphere,x,y,z; all spheres of radius
   * RADIUS), e.g. the diamond at a larger hMax. Contacts are counted exactly in binary64 on
@@ -42,18 +42,20 @@ object BroadPhaseReport {
 
   def main(args: Array[String]): Unit = {
     var csvs = Seq.empty[String]; var sizes = Seq(670, 10000, 65536); var out: Option[String] = None
+    var cellSteps = BroadPhaseParams.default.cellSteps
     args.sliding(2, 2).foreach {
       case Array("--csv", v)   => csvs :+= v
       case Array("--sizes", v) => sizes = v.split(',').map(_.toInt).toSeq
       case Array("--out", v)   => out = Some(v)
+      case Array("--cell-steps", v) => cellSteps = v.toInt
       case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")}")
     }
     val rng = new scala.util.Random(1)
     val worlds = sizes.flatMap(n => Seq(s"uniform $n" -> uniform(rng, n), s"clustered $n" -> clustered(rng, n, clusters = 1 + n / 200))) ++
       csvs.map(readCsv)
-    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.default.copy(bucketsLog2 = 18))
+    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.default.copy(bucketsLog2 = 18, cellSteps = cellSteps))
     val sb = new StringBuilder
-    sb ++= "| world | spheres | k | large | cells | candidates/sphere | scanned/sphere | contacts | lanes | sort/cycle | count+prefix+scatter | generate | narrow | model cycles | model us | harp1 est./bound us | ideal est./bound us |\n"
+    sb ++= "| world | spheres | cell edge | large | cells | candidates/sphere | scanned/sphere | contacts | lanes | sort/cycle | count+prefix+scatter | generate | narrow | model cycles | model us | harp1 est./bound us | ideal est./bound us |\n"
     sb ++= "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
     for ((name, ws) <- worlds) {
       val w = ws.toIndexedSeq
@@ -72,7 +74,7 @@ object BroadPhaseReport {
       def cell(l: Link, computeUs: Double) = f"${estimate(l, computeUs)}%.0f / ${bound(l)}%.0f (${estimate(l, computeUs) / bound(l)}%.2fx)"
       for ((lanes, sortRate) <- Seq((1, 1), (16, 1), (16, 4))) {
         val c = model.cycles(r, lanes = lanes, scpus = 16, sortRate = sortRate)
-        sb ++= f"| $name | $n | ${r.k} | ${r.stats.large} | ${r.stats.cells} | ${r.stats.candidates.toDouble / n}%.2f | " +
+        sb ++= f"| $name | $n | ${BroadPhaseParams.edge(r.level)}%g | ${r.stats.large} | ${r.stats.cells} | ${r.stats.candidates.toDouble / n}%.2f | " +
           f"${r.stats.scanned.toDouble / n}%.1f | $contacts | $lanes | $sortRate | ${c.count + c.prefix + c.scatter} | " +
           f"${c.generate + c.large} | ${c.narrow} | ${c.total} | ${c.total / clockMHz}%.1f | ${cell(links(0), c.total / clockMHz)} | ${cell(links(1), c.total / clockMHz)} |\n"
       }

@@ -41,18 +41,18 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
       .map { case (n, d) => n -> d.peek().litValue }.toMap
     val flags = Seq("tooMany" -> s.tooMany, "cellOverflow" -> s.cellOverflow, "largeOverflow" -> s.largeOverflow,
       "badBucket" -> s.badBucket, "sortMismatch" -> s.sortMismatch).map { case (n, b) => n -> (if (b.peek().litToBoolean) BigInt(1) else BigInt(0)) }
-    Run(pairs, fields ++ flags + ("k" -> s.k.peek().litValue), cycles)
+    Run(pairs, fields ++ flags + ("level" -> s.level.peek().litValue), cycles)
   }
 
   private def check(dut: BroadPhase, model: BroadPhaseModel, label: String, world: IndexedSeq[WorldSphere],
                     rng: scala.util.Random, readyOdds: Double): Run = {
     val want = model.run(world)
     val got = run(dut, world.map(model.converted), rng, readyOdds)
-    val where = s"$label (${model.cfg.name}, ${world.length} spheres, k=${want.k})"
+    val where = s"$label (${model.cfg.name}, ${world.length} spheres, level ${want.level})"
     Seq("tooMany", "cellOverflow", "largeOverflow", "badBucket", "sortMismatch").foreach { f =>
       assert(got.status(f) == 0, s"$where: $f raised")
     }
-    assert(got.status("k") == want.k, s"$where: k = ${got.status("k")}")
+    assert(got.status("level") == want.level, s"$where: level ${got.status("level")}")
     val st = want.stats
     assert(got.status("excluded") == st.excluded && got.status("large") == st.large &&
       got.status("small") == st.spheres - st.excluded - st.large, s"$where: classes ${got.status}")
@@ -92,10 +92,16 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     val model = new BroadPhaseModel(ScpuConfig.fp32, bp)
     test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
       dut.clock.setTimeout(0)
-      for ((label, w) <- worlds(rng)) {
+      val levels = for ((label, w) <- worlds(rng)) yield {
         val r = check(dut, model, label, bits(FloatFormat.fp32, w), rng, readyOdds = 0.7)
-        println(f"[BroadPhaseSpec] $tag$label%-40s ${w.length}%4d spheres ${r.status("candidates")}%5s pairs ${r.cycles}%7d cycles")
+        println(f"[BroadPhaseSpec] $tag$label%-40s ${w.length}%4d spheres ${r.status("candidates")}%5s pairs ${r.cycles}%7d cycles, " +
+          f"cell edge ${BroadPhaseParams.edge(r.status("level").toInt)}%g")
+        r.status("level").toInt
       }
+      // Both kinds of cell must have been tried where both are built.
+      val odd = levels.count(l => (l & 1) != 0)
+      if (bp.cellSteps == 2) assert(odd > 0 && odd < levels.length, s"$tag$odd of ${levels.length} worlds had edges of 1.5 * 2^k")
+      else assert(odd == 0, s"$tag$odd worlds had edges of 1.5 * 2^k with one cell step an octave")
     }
   }
 
@@ -126,6 +132,10 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   it should "find the same candidates with one bucket a sphere (more cells sharing a bucket), in every hard case and random cloud" in {
     everyHardCase("BroadPhaseSpec-one-bucket", BroadPhaseParams.fourLanesFourPorts.copy(bucketsPerSphereLog2 = 0), "one bucket a sphere: ")
+  }
+
+  it should "find the same candidates with cells of edge 1.5 * 2^k too (two cell steps an octave), in every hard case and random cloud" in {
+    everyHardCase("BroadPhaseSpec-cell-steps", BroadPhaseParams.fourLanesFourPorts.copy(cellSteps = 2), "edges 2^k and 1.5 * 2^k: ")
   }
 
   it should "stay exact with three lanes over a four-bucket table, and with the table cut into four slices for the large pass" in {

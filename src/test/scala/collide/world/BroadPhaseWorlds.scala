@@ -49,12 +49,19 @@ object BroadPhaseWorlds {
 
   /** Radius 0.375 makes the cell edge 1 (0.84375 -> 1): a lattice of touching spheres (spacing 0.75) crossing
     * every cell face, plus spheres exactly on and one ulp either side of integer faces. */
-  def cellBoundaries(rng: Random): Seq[S] = {
-    val lattice = for (i <- -3 to 3; j <- -2 to 2) yield S(0.75 * i, 0.75 * j, 0.0, 0.375)
+  def cellBoundaries(rng: Random): Seq[S] = facesOf(rng, edge = 1.0, r = 0.375)
+
+  /** The same on the faces of cells of edge 1.5 (radius 0.5 needs 1.125: such cells with two
+    * cell steps an octave, edge 2 with one): x at multiples of 1.5 and one ulp either side. */
+  def oneAndAHalfBoundaries(rng: Random): Seq[S] = facesOf(rng, edge = 1.5, r = 0.5)
+
+  private def facesOf(rng: Random, edge: Double, r: Double): Seq[S] = {
+    val h = 0.75 * edge
+    val lattice = for (i <- -3 to 3; j <- -2 to 2) yield S(h * i, h * j, 0.0, r)
     val faces = Seq.tabulate(40) { _ =>
-      val m = (rng.nextInt(7) - 3).toDouble
+      val m = (rng.nextInt(7) - 3) * edge
       val x = rng.nextInt(3) match { case 0 => m; case 1 => math.nextUp(m); case _ => math.nextDown(m) }
-      S(x, rng.nextInt(3) - 1.0 + 0.75 * rng.nextInt(2), rng.nextDouble() * 2 - 1, 0.375)
+      S(x, (rng.nextInt(3) - 1.0) * edge + h * rng.nextInt(2), rng.nextDouble() * 2 - 1, r)
     }
     lattice ++ faces
   }
@@ -81,6 +88,7 @@ object BroadPhaseWorlds {
     "all spheres at one point" -> onePoint(onePointSpheres),
     "zero radii and underflowing separations" -> tinySeparations,
     "spheres on cell faces" -> cellBoundaries(rng),
+    "spheres on faces of 1.5-wide cells" -> oneAndAHalfBoundaries(rng),
     "negative coordinates" -> uniform(rng, 80, origin = -1000.0),
     "near misses across cell faces" -> nearMisses(rng, 40, math.pow(2, -10))
   )

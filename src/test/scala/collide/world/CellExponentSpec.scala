@@ -28,11 +28,12 @@ class CellExponentSpec extends AnyFlatSpec with ChiselScalatestTester {
     shaped ++ raw
   }
 
-  for (cfg <- Seq(ScpuConfig.fp32, ScpuConfig.fp16); bp <- Seq(BroadPhaseParams.default, BroadPhaseParams.default.copy(largeMax = 2));
+  for (cfg <- Seq(ScpuConfig.fp32, ScpuConfig.fp16);
+       bp <- Seq(BroadPhaseParams.default, BroadPhaseParams.default.copy(largeMax = 2), BroadPhaseParams.default.copy(cellSteps = 2));
        ports <- Seq(1, 2)) {
-    it should s"choose the golden model's k for ${cfg.name} worlds with largeMax ${bp.largeMax}, $ports sphere(s) a cycle" in {
+    it should s"choose the golden model's cell level for ${cfg.name} worlds with largeMax ${bp.largeMax}, ${bp.cellSteps} cell step(s) an octave, $ports sphere(s) a cycle" in {
       val model = new BroadPhaseModel(cfg, bp)
-      val rng = Seeds.rng(s"CellExponentSpec-${cfg.name}-${bp.largeMax}-p$ports")
+      val rng = Seeds.rng(s"CellExponentSpec-${cfg.name}-${bp.largeMax}-e${bp.cellSteps}-p$ports")
       val p = cfg.params
       test(new CellExponent(p, bp, ports)) { dut =>
         def idle(): Unit = dut.io.in.foreach(_.valid.poke(false.B))
@@ -61,8 +62,8 @@ class CellExponentSpec extends AnyFlatSpec with ChiselScalatestTester {
           }
           idle()
           val eligible = w.filterNot(model.excluded).map(model.converted)
-          val want = model.chooseK(eligible)
-          assert(dut.io.k.peek().litValue == want, s"${cfg.name} $label (${w.length} spheres, ${eligible.length} eligible)")
+          val want = model.chooseLevel(eligible)
+          assert(dut.io.level.peek().litValue == want, s"${cfg.name} $label (${w.length} spheres, ${eligible.length} eligible)")
         }
       }
     }

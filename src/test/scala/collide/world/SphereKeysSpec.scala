@@ -32,20 +32,24 @@ class SphereKeysSpec extends AnyFlatSpec with ChiselScalatestTester {
     FpPatterns.specials(f) ++ faces ++ FpPatterns.operands(f, rng, n)
   }
 
-  /** A k that puts v's cell in range most of the time, and sometimes one that overflows it. */
-  private def kFor(cfg: ScpuConfig, bp: BroadPhaseParams, rng: scala.util.Random, v: BigInt): Int =
-    SoftFloat.decode(cfg.params, v) match {
+  /** A cell level that puts v's cell in range most of the time, and sometimes one that
+    * overflows it; odd levels (edges of 1.5 * 2^k) only with two cell steps. */
+  private def levelFor(cfg: ScpuConfig, bp: BroadPhaseParams, rng: scala.util.Random, v: BigInt): Int = {
+    val k = SoftFloat.decode(cfg.params, v) match {
       case Decoded.Finite(_, sig, e) =>
         val top = e + sig.bitLength
         top - bp.cellBits + 2 + (if (rng.nextInt(8) == 0) -(1 + rng.nextInt(4)) else rng.nextInt(30))
       case _ => rng.nextInt(40) - 20
     }
+    2 * k - (if (bp.cellSteps == 2) rng.nextInt(2) else 0)
+  }
 
-  for (cfg <- configs) {
-    it should s"give the golden model's cells, box keys, needs and tops for ${cfg.name} values, faces and corners" in {
-      val bp = BroadPhaseParams.default
+  for (cfg <- configs; steps <- Seq(1, 2)) {
+    val edges = if (steps == 2) "edges 2^k and 1.5 * 2^k" else "edges 2^k alone"
+    it should s"give the golden model's cells, box keys, needs and tops for ${cfg.name} values, faces and corners, $edges" in {
+      val bp = BroadPhaseParams.default.copy(cellSteps = steps)
       val model = new BroadPhaseModel(cfg, bp)
-      val rng = Seeds.rng(s"SphereKeysSpec-${cfg.name}")
+      val rng = Seeds.rng(s"SphereKeysSpec-${cfg.name}-e$steps")
       val f = cfg.format
       val vs = values(cfg, rng, Seeds.cases(600)).toIndexedSeq
       val qw = SphereKeys.qWidth(bp)
@@ -55,23 +59,23 @@ class SphereKeysSpec extends AnyFlatSpec with ChiselScalatestTester {
         for ((x, idx) <- vs.zipWithIndex) {
           val y = vs(rng.nextInt(vs.length)); val z = vs(rng.nextInt(vs.length)); val r = vs(rng.nextInt(vs.length))
           val sphere = Seq(x, y, z, r)
-          val k = sphere.take(3).map(kFor(cfg, bp, rng, _)).max
-          val label = s"${cfg.name} case $idx: sphere ${sphere.map(b => "0x" + b.toString(16)).mkString(",")} k=$k"
+          val level = sphere.take(3).map(levelFor(cfg, bp, rng, _)).max
+          val label = s"${cfg.name} case $idx: sphere ${sphere.map(b => "0x" + b.toString(16)).mkString(",")} level $level"
           sphere.zipWithIndex.foreach { case (b, i) => dut.io.in.sphere(i).poke(b.U) }
-          dut.io.in.k.poke(k.S); dut.io.in.valid.poke(true.B)
+          dut.io.in.level.poke(level.S); dut.io.in.valid.poke(true.B)
           dut.clock.step()
           assert(dut.io.out.valid.peek().litToBoolean, label)
           val nonFinite = !sphere.forall(finite(cfg, _))
           assert(dut.io.out.nonFinite.peek().litToBoolean == nonFinite, s"$label: nonFinite")
           if (!nonFinite) {
-            val cells = sphere.take(3).map(model.cell(_, k).get)
+            val cells = sphere.take(3).map(model.cell(_, level).get)
             val over = cells.exists(c => math.abs(c) > bp.cellLimit)
             assert(dut.io.out.cellOverflow.peek().litToBoolean == over, s"$label: cellOverflow (model cells $cells)")
             if (over) overflowed += 1
             if (!over) {
               inRange += 1
               cells.zipWithIndex.foreach { case (c, i) => assert(dut.io.out.cell(i).peek().litValue == c, s"$label: cell $i") }
-              val (qx, qy, qz, qr) = model.boxKey(sphere, k)
+              val (qx, qy, qz, qr) = model.boxKey(sphere, level)
               Seq(qx, qy, qz).zipWithIndex.foreach { case (q, i) => assert(dut.io.out.q(i).peek().litValue == q, s"$label: q $i") }
               assert(dut.io.out.qr.peek().litValue == qr.min(qrMax), s"$label: qr")
             }
@@ -84,20 +88,35 @@ class SphereKeysSpec extends AnyFlatSpec with ChiselScalatestTester {
           }
         }
       }
-      println(s"[SphereKeysSpec ${cfg.name}] ${vs.length} spheres: $inRange cells and box keys compared, $overflowed overflows, $needs needs")
+      println(s"[SphereKeysSpec ${cfg.name} e$steps] ${vs.length} spheres: $inRange cells and box keys compared, $overflowed overflows, $needs needs")
       assert(inRange > vs.length / 3 && overflowed > 0 && needs > vs.length / 6, "the cases should cover all three outcomes")
     }
   }
 
   it should "hold its outputs a cycle later when built with latency 1 and pass them through with latency 0" in {
-    val bp = BroadPhaseParams.default
+    val bp = BroadPhaseParams.default.copy(cellSteps = 2)
     val f = FloatFormat.fp32
     def bits(v: Double) = ScpuModel.fromDouble(f, v)
     test(new SphereKeys(ScpuConfig.fp32.params, bp, latency = 0)) { dut =>
       Seq(-2.5, 0.0, 3.0, 0.5).zipWithIndex.foreach { case (v, i) => dut.io.in.sphere(i).poke(bits(v).U) }
-      dut.io.in.k.poke(0.S)
+      dut.io.in.level.poke(0.S)
       assert(dut.io.out.cell.map(_.peek().litValue) == Seq(-3, 0, 3)) // floor(-2.5) = -3, same cycle
-      assert(dut.io.out.need.peek().litValue == 1)                  // 2 * 0.5 * 9/8 = 1.125 -> 2
+      assert(dut.io.out.need.peek().litValue == 1)                  // 2 * 0.5 * 9/8 = 1.125 -> 1.5, level 1
+      dut.io.in.level.poke(1.S)                                     // edge 1.5
+      assert(dut.io.out.cell.map(_.peek().litValue) == Seq(-2, 0, 2)) // floor(-2.5 / 1.5) = -2, floor(3 / 1.5) = 2
+    }
+  }
+
+  it should "divide every signed 10-bit value by three with floor, as floorDiv3 does in the cells" in {
+    class Div3 extends Module {
+      val io = IO(new Bundle { val c = Input(SInt(10.W)); val q = Output(SInt(10.W)) })
+      io.q := SphereKeys.floorDiv3(io.c)
+    }
+    test(new Div3) { dut =>
+      for (c <- -512 until 512) {
+        dut.io.c.poke(c.S)
+        assert(dut.io.q.peek().litValue == Math.floorDiv(c, 3), s"floor($c / 3)")
+      }
     }
   }
 }

@@ -18,13 +18,13 @@ object SphereClass {
   case object Excluded extends SphereClass
   /** Too big for the cell (or not placeable in it): paired with every other sphere. */
   case object Large extends SphereClass
-  /** In the grid, at integer cell (cx, cy, cz) = floor(coordinate / 2^k). */
+  /** In the grid, at integer cell (cx, cy, cz) = floor(coordinate / edge). */
   final case class Small(cx: Long, cy: Long, cz: Long) extends SphereClass
 }
 
 /** Work counts of the reference traversal: what a cycle model of the hardware needs. */
 final case class BroadPhaseStats(
-    spheres: Int, excluded: Int, large: Int, k: Int, buckets: Int,
+    spheres: Int, excluded: Int, large: Int, level: Int, buckets: Int,
     cells: Int,         // occupied cells
     lookups: Long,      // bucket reads: 14 per cell chunk (its cell and 13 half-shell neighbours)
     scanned: Long,      // bucket entries streamed past a chunk while visiting those cells
@@ -35,7 +35,7 @@ final case class BroadPhaseStats(
   def candidates: Long = gridCandidates + largeCandidates
 }
 
-final case class BroadPhaseResult(k: Int, classes: IndexedSeq[SphereClass],
+final case class BroadPhaseResult(level: Int, classes: IndexedSeq[SphereClass],
                                   candidates: IndexedSeq[(Int, Int)], stats: BroadPhaseStats)
 
 /** A cycle estimate for the planned hardware: counting sort at `sortRate` spheres a cycle,
@@ -52,11 +52,12 @@ final case class BroadPhaseCycles(count: Long, prefix: Long, scatter: Long, gene
 /** Golden model of the world-mode broad phase (docs/afu.md, "World mode: the broad phase").
   *
   * Why it never misses a pair the SCPU calls a hit: it works on the SCPU's own converted
-  * inputs; every small sphere satisfies 2^k >= 2r * m (m = 9/8), and the SCPU's hit
-  * decision is exact but for a band of 4 ulps u (docs/scpu.md) and an absolute error below
-  * 2^errorExp from underflowing squares, which the cell exceeds 32 times; so a hit between
-  * two small spheres has |dx| <= (1 + 4u) 2^k / m + 2^k / 32 <= 2^k (for u <= 2^-7, bf16)
-  * on every axis, and their cells, floor(x / 2^k) computed exactly, differ by at most one. Large spheres are paired with everything. A box filter in exact
+  * inputs; every small sphere satisfies E >= 2r * m (m = 9/8) for the cell edge E (2^k, or
+  * 1.5 * 2^k with two cell steps an octave), and the SCPU's hit decision is exact but for a
+  * band of 4 ulps u (docs/scpu.md) and an absolute error below 2^errorExp from underflowing
+  * squares, which the cell exceeds 32 times; so a hit between two small spheres has
+  * |dx| <= (1 + 4u) E / m + E / 32 <= E (for u <= 2^-7, bf16) on every axis, and their
+  * cells, floor(x / E) computed exactly, differ by at most one. Large spheres are paired with everything. A box filter in exact
   * fixed point (boxKey) then drops pairs farther apart than m (ra + rb) on some axis,
   * which no hit is. Why each pair comes out once: a same-cell pair is emitted from its
   * lower index; a neighbour pair from the cell whose offset to the other is in the half
@@ -78,16 +79,21 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
   def excluded(s: WorldSphere, conv: Seq[BigInt]): Boolean =
     s.fields.exists(b => !isFinite(SoftFloat.decode(lp, b))) || conv.exists(b => !isFinite(SoftFloat.decode(p, b)))
 
-  /** The smallest k with 2^k >= 2r * margin for a converted, finite r; Int.MinValue for
-    * r <= 0 (fits any cell). */
+  /** The cell level a converted, finite radius needs: the smallest L whose edge (2^(L/2) for
+    * even L, 1.5 * 2^((L-1)/2) for odd L, odd ones only with two cell steps) is >= 2r * margin;
+    * Int.MinValue for r <= 0 (fits any cell). */
   def need(rBits: BigInt): Int = SoftFloat.decode(p, rBits) match {
-    case Decoded.Finite(false, sig, e) => e + ceilLog2(2 * bp.marginNum * sig, bp.marginDen)
+    case Decoded.Finite(false, sig, e) =>
+      // 2^k >= 2 r m, and 1.5 * 2^k >= 2 r m (2^k >= 4 r m / 3)
+      val even = 2 * (e + ceilLog2(2 * bp.marginNum * sig, bp.marginDen))
+      val odd = 2 * (e + ceilLog2(4 * bp.marginNum * sig, 3 * bp.marginDen)) + 1
+      if (bp.cellSteps == 2) math.min(even, odd) else even
     case Decoded.Finite(true, _, _) | Decoded.Zero(_) => Int.MinValue
     case d => throw new IllegalArgumentException(s"need: radius $d is not finite (an excluded sphere)")
   }
 
   /** floor(v / 2^k), exactly; None for a non-finite v. */
-  def cell(bits: BigInt, k: Int): Option[Long] = SoftFloat.decode(p, bits) match {
+  def floorPow2(bits: BigInt, k: Int): Option[Long] = SoftFloat.decode(p, bits) match {
     case Decoded.Zero(_) => Some(0L)
     case Decoded.Finite(neg, sig, e) =>
       val sh = e - k
@@ -97,6 +103,13 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     case _ => None
   }
 
+  /** The cell coordinate floor(v / edge(level)), exactly: a shift for an edge of 2^k; for
+    * 1.5 * 2^k = 3 * 2^(k-1), floor(floor(v / 2^(k-1)) / 3) (floors of floors are floors).
+    * None for a non-finite v. */
+  def cell(bits: BigInt, level: Int): Option[Long] =
+    if ((level & 1) == 0) floorPow2(bits, level / 2)
+    else floorPow2(bits, (level - 1) / 2 - 1).map(v => Math.floorDiv(v, 3L))
+
   /** T with |v| < 2^T; Int.MinValue for zero (no constraint), None if not finite. */
   def topExp(bits: BigInt): Option[Int] = SoftFloat.decode(p, bits) match {
     case Decoded.Zero(_)             => Some(Int.MinValue)
@@ -104,23 +117,22 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     case _                           => None
   }
 
-  /** The cell exponent: as small as the large list, the cell-coordinate width and the
+  /** The cell level: as small as the large list, the cell-coordinate width and the
     * subnormal floor allow. At most largeMax spheres then need a bigger cell. */
-  def chooseK(spheres: IndexedSeq[Seq[BigInt]]): Int = {
+  def chooseLevel(spheres: IndexedSeq[Seq[BigInt]]): Int = {
     val needs = spheres.map(c => need(c(3))).sorted(Ordering[Int].reverse)
     // Fewer spheres than the large list holds: all in the grid, sized for the biggest.
-    val kSmall = if (needs.length > bp.largeMax) needs(bp.largeMax) else needs.headOption.getOrElse(Int.MinValue)
+    val small = if (needs.length > bp.largeMax) needs(bp.largeMax) else needs.headOption.getOrElse(Int.MinValue)
     val tops = spheres.flatMap(_.take(3).flatMap(topExp))
-    val kCoord = if (tops.isEmpty) Int.MinValue else tops.max.toLong - bp.kCoordOffset
-    val kFloor = bp.kFloor(p)
-    math.max(math.max(kSmall.toLong, kCoord), kFloor.toLong).toInt
+    val coord = if (tops.isEmpty) Int.MinValue else 2 * tops.max.toLong - bp.levelCoordOffset
+    math.max(math.max(small.toLong, coord), bp.levelFloor(p).toLong).toInt
   }
 
-  def classify(c: Seq[BigInt], k: Int): SphereClass = {
-    if (need(c(3)) > k) SphereClass.Large
+  def classify(c: Seq[BigInt], level: Int): SphereClass = {
+    if (need(c(3)) > level) SphereClass.Large
     else {
-      val Seq(cx, cy, cz) = c.take(3).map(v => cell(v, k).get)
-      require(Seq(cx, cy, cz).forall(v => math.abs(v) <= bp.cellLimit), s"cell ($cx,$cy,$cz) outside the guard at k=$k")
+      val Seq(cx, cy, cz) = c.take(3).map(v => cell(v, level).get)
+      require(Seq(cx, cy, cz).forall(v => math.abs(v) <= bp.cellLimit), s"cell ($cx,$cy,$cz) outside the guard at level $level")
       SphereClass.Small(cx, cy, cz)
     }
   }
@@ -136,13 +148,14 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     b
   }
 
-  /** The box filter's fixed-point view of a sphere at cell exponent k: floor(v * 2^(F-k))
-    * for the coordinates and ceil(r * margin * 2^(F-k)) for the radius, all exact. A pair
+  /** The box filter's fixed-point view of a sphere at cell level L, k = ceil(L / 2) (the
+    * octave the edge lies in): floor(v * 2^(F-k)) for the coordinates and
+    * ceil(r * margin * 2^(F-k)) for the radius, all exact. A pair
     * passes iff |qa - qb| <= qr_a + qr_b + boxSlack(k) on every axis: every SCPU hit has
     * |va - vb| <= margin (ra + rb) + 2^errorExp, and floors of two reals less than an
     * integer T + 1 apart differ by at most T, so no hit is filtered out. */
-  def boxKey(c: Seq[BigInt], k: Int): (BigInt, BigInt, BigInt, BigInt) = {
-    val sh = bp.filterFracBits - k
+  def boxKey(c: Seq[BigInt], level: Int): (BigInt, BigInt, BigInt, BigInt) = {
+    val sh = bp.filterFracBits - BroadPhaseParams.filterExp(level)
     def scaled(bits: BigInt): (BigInt, BigInt, Boolean) = SoftFloat.decode(p, bits) match { // (mag num, den, negative)
       case Decoded.Finite(neg, sig, e) =>
         val t = e + sh
@@ -157,10 +170,10 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
 
   val errorExp: Int = bp.errorExp(p)
 
-  /** The box filter's slack in fixed-point units at cell exponent k: 1 for the floors, plus
+  /** The box filter's slack in fixed-point units at cell level L: 1 for the floors, plus
     * the absolute error 2^errorExp rounded up to whole units. */
-  def boxSlack(k: Int): BigInt = {
-    val e = errorExp + bp.filterFracBits - k
+  def boxSlack(level: Int): BigInt = {
+    val e = errorExp + bp.filterFracBits - BroadPhaseParams.filterExp(level)
     1 + (if (e >= 0) BigInt(1) << e else BigInt(1))
   }
 
@@ -178,10 +191,10 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     val conv = world.map(converted)
     val isExcluded = world.indices.map(i => excluded(world(i), conv(i)))
     val eligible = world.indices.filterNot(isExcluded)
-    val k = chooseK(eligible.map(conv))
-    val classes: IndexedSeq[SphereClass] = world.indices.map(i => if (isExcluded(i)) SphereClass.Excluded else classify(conv(i), k))
-    val box = world.indices.map(i => if (isExcluded(i)) null else boxKey(conv(i), k))
-    val slack = boxSlack(k)
+    val level = chooseLevel(eligible.map(conv))
+    val classes: IndexedSeq[SphereClass] = world.indices.map(i => if (isExcluded(i)) SphereClass.Excluded else classify(conv(i), level))
+    val box = world.indices.map(i => if (isExcluded(i)) null else boxKey(conv(i), level))
+    val slack = boxSlack(level)
     val smalls = world.indices.flatMap(i => classes(i) match { case s: SphereClass.Small => Some(i -> s); case _ => None })
     val nb = bucketsFor(n) // the hardware knows n before it knows which spheres are small
     def bucketOf(c: SphereClass.Small) = bucket(c.cx, c.cy, c.cz) & (nb - 1)
@@ -221,9 +234,9 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     for (l <- larges; j <- eligible if j != l && (classes(j) != SphereClass.Large || j > l) && boxPass(box(l), box(j), slack)) {
       out += ((math.min(l, j), math.max(l, j))); largePairs += 1
     }
-    val stats = BroadPhaseStats(n, n - eligible.length, larges.length, k, nb, cells, lookups, scanned, gridPairs, grid,
+    val stats = BroadPhaseStats(n, n - eligible.length, larges.length, level, nb, cells, lookups, scanned, gridPairs, grid,
       largePairs, work.result())
-    BroadPhaseResult(k, classes, out.result(), stats)
+    BroadPhaseResult(level, classes, out.result(), stats)
   }
 
   /** The candidate set by its definition, all pairs checked (tests compare run() with it). */
@@ -235,8 +248,8 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
         math.abs(a.cx - b.cx) <= 1 && math.abs(a.cy - b.cy) <= 1 && math.abs(a.cz - b.cz) <= 1
     }
     val n = r.classes.length
-    val box = world.map(s => boxKey(converted(s), r.k))
-    val slack = boxSlack(r.k)
+    val box = world.map(s => boxKey(converted(s), r.level))
+    val slack = boxSlack(r.level)
     (for (i <- 0 until n; j <- i + 1 until n if near(r.classes(i), r.classes(j)) && boxPass(box(i), box(j), slack)) yield (i, j)).toSet
   }
 
