@@ -63,6 +63,7 @@ class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int) extends B
 
 class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency: Int = 1) extends Module {
   require(maxSpheres >= 2 && maxSpheres <= (1 << 24), s"maxSpheres must be 2..2^24, got $maxSpheres")
+  require(!bp.coarseChunks, "BroadPhase: coarse chunks are in the golden model only (docs/afu.md, \"What would make the grid faster\")")
   /** Buckets the table holds: the model's cap, and no more than 2 maxSpheres can use. */
   val tableLog2: Int = bp.tableLog2(maxSpheres)
   private val largeSlots = math.max(1, bp.largeMax)

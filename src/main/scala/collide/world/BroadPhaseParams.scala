@@ -45,6 +45,12 @@ package collide.world
   *                   twice it (a level L: edge 2^(L/2) for even L, 1.5 * 2^((L-1)/2) for odd L).
   *                   Smaller cells pay off where cells overfill a chunk (dense clusters), and
   *                   cost chunks where they are sparse (docs/afu.md, "Cell steps")
+  * @param coarseChunks the grid's next step, in the golden model only (the RTL refuses it):
+  *                   a coarse cell of 2 x 2 x 2 cells whose spheres fit a chunk is one chunk,
+  *                   streaming the 43 cells in some member's own or half-shell neighbourhood
+  *                   past it, each member applying the half-shell rule itself; any other
+  *                   coarse cell is chunked cell by cell as without (docs/afu.md, "What would
+  *                   make the grid faster"). The same candidates, fewer probes
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -59,7 +65,8 @@ final case class BroadPhaseParams(
     lanes: Int = 1,
     sortPorts: Int = 1,
     bucketsPerSphereLog2: Int = 1,
-    cellSteps: Int = 1
+    cellSteps: Int = 1,
+    coarseChunks: Boolean = false
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")

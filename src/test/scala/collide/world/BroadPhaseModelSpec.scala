@@ -51,6 +51,38 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
     }
   }
 
+  for ((bp, what) <- Seq(BroadPhaseParams.default.copy(coarseChunks = true) -> "chunks of 16",
+                         BroadPhaseParams.default.copy(coarseChunks = true, cellSteps = 2, chunk = 32) -> "cells of 1.5 * 2^k too, chunks of 32",
+                         BroadPhaseParams.tinyTable.copy(coarseChunks = true) -> "a four-bucket table, one-sphere chunks");
+       cfg <- Seq(ScpuConfig.fp32, ScpuConfig.bf16, ScpuConfig.fp64)) {
+    it should s"find exactly today's candidates with coarse chunks ($what), every ${cfg.name} hit once, in every hard case and random cloud" in {
+      val model = new BroadPhaseModel(cfg, bp)
+      val today = new BroadPhaseModel(cfg, bp.copy(coarseChunks = false))
+      for ((label, w) <- worlds(s"coarse-${cfg.name}")) {
+        val world = bits(cfg.linkFormat, w)
+        val r = checkWorld(model, s"$label, coarse chunks", world)
+        val t = today.run(world)
+        assert(r.candidates.toSet == t.candidates.toSet, s"$label: coarse chunks give other candidates than today's")
+        assert(r.stats.cells == t.stats.cells && r.stats.gridCandidates == t.stats.gridCandidates, s"$label: ${r.stats} against ${t.stats}")
+      }
+    }
+  }
+
+  it should "stream fewer spheres past its chunks with coarse chunks on a sparse cloud, and keep today's chunks where a coarse cell overfills one" in {
+    val rng = Seeds.rng("BroadPhaseModelSpec-coarse-work")
+    val bp = BroadPhaseParams.default.copy(cellSteps = 2, chunk = 32)
+    val (coarse, today) = (new BroadPhaseModel(ScpuConfig.fp32, bp.copy(coarseChunks = true)), new BroadPhaseModel(ScpuConfig.fp32, bp))
+    val sparse = bits(FloatFormat.fp32, uniform(rng, 2000))
+    val (c, t) = (coarse.run(sparse).stats, today.run(sparse).stats)
+    println(s"[BroadPhaseModelSpec] uniform 2000: scanned ${t.scanned} -> ${c.scanned}, lookups ${t.lookups} -> ${c.lookups}, " +
+      s"generate (16 lanes) ${today.cycles(today.run(sparse), 16, 16).generate} -> ${coarse.cycles(coarse.run(sparse), 16, 16).generate}")
+    assert(c.scanned < t.scanned * 6 / 10, s"coarse chunks should stream under 60 % of today's spheres: ${c.scanned} against ${t.scanned}")
+    // 40 equal spheres at one point: a coarse cell of 40 > 32, so today's chunks, the same work.
+    val dense = bits(FloatFormat.fp32, Seq.fill(40)(S(1.5, -2.25, 3.0, 0.5)))
+    val (cd, td) = (coarse.run(dense).stats, today.run(dense).stats)
+    assert(cd.scanned == td.scanned && cd.lookups == td.lookups && cd.cellWork == td.cellWork, s"$cd against $td")
+  }
+
   it should "give the same candidates when every cell collides with others in a four-bucket table" in {
     val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.tinyTable)
     for ((label, w) <- worlds("tiny-table")) checkWorld(model, label, bits(FloatFormat.fp32, w))

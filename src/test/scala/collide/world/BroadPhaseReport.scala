@@ -11,7 +11,7 @@ import collide.world.model._
   * of world mode (sphere table in, contacts out). A sizing study for the hardware: every
   * count comes from the model's traversal; the cycles are BroadPhaseCycles' model.
   *
-  *   sbt "Test/runMain collide.world.BroadPhaseReport [--csv FILE:RADIUS ...] [--sizes 670,10000,65536] [--cell-steps 1|2] [--out FILE]"
+  *   sbt "Test/runMain collide.world.BroadPhaseReport [--csv FILE:RADIUS ...] [--sizes 670,10000,65536] [--cell-steps 1|2] [--chunk 16] [--coarse-chunks true] [--out FILE]"
   *
   * --csv reads `collide run --positions` output (header sphere,x,y,z; all spheres of radius
   * RADIUS), e.g. the diamond at a larger hMax. Contacts are counted exactly in binary64 on
@@ -43,17 +43,22 @@ object BroadPhaseReport {
   def main(args: Array[String]): Unit = {
     var csvs = Seq.empty[String]; var sizes = Seq(670, 10000, 65536); var out: Option[String] = None
     var cellSteps = BroadPhaseParams.default.cellSteps
+    var chunk = BroadPhaseParams.default.chunk
+    var coarseChunks = false
     args.sliding(2, 2).foreach {
       case Array("--csv", v)   => csvs :+= v
       case Array("--sizes", v) => sizes = v.split(',').map(_.toInt).toSeq
       case Array("--out", v)   => out = Some(v)
       case Array("--cell-steps", v) => cellSteps = v.toInt
+      case Array("--chunk", v) => chunk = v.toInt
+      case Array("--coarse-chunks", v) => coarseChunks = v.toBoolean
       case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")}")
     }
     val rng = new scala.util.Random(1)
     val worlds = sizes.flatMap(n => Seq(s"uniform $n" -> uniform(rng, n), s"clustered $n" -> clustered(rng, n, clusters = 1 + n / 200))) ++
       csvs.map(readCsv)
-    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.default.copy(bucketsLog2 = 18, cellSteps = cellSteps))
+    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.default.copy(bucketsLog2 = 18, cellSteps = cellSteps,
+      chunk = chunk, coarseChunks = coarseChunks))
     val sb = new StringBuilder
     sb ++= "| world | spheres | cell edge | large | cells | candidates/sphere | scanned/sphere | contacts | lanes | sort/cycle | count+prefix+scatter | generate | narrow | model cycles | model us | harp1 est./bound us | ideal est./bound us |\n"
     sb ++= "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"

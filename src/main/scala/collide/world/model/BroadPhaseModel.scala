@@ -206,27 +206,57 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     var lookups, scanned, gridPairs, grid = 0L
     val work = IndexedSeq.newBuilder[Long]
     var cells = 0
+    // Coarse chunks (bp.coarseChunks): each coarse cell's spheres, and those taken already.
+    def coarseOf(c: SphereClass.Small) = (Math.floorDiv(c.cx, 2L), Math.floorDiv(c.cy, 2L), Math.floorDiv(c.cz, 2L))
+    val coarse: Map[(Long, Long, Long), IndexedSeq[Int]] =
+      if (bp.coarseChunks) smalls.groupBy { case (_, c) => coarseOf(c) }.map { case (k, v) => k -> v.map(_._1).sorted } else Map.empty
+    val coarseDone = scala.collection.mutable.Set.empty[(Long, Long, Long)]
+    // Today's chunks of one cell: its own cell (j > i) and 13 half-shell neighbours.
+    def fineChunks(cell: SphereClass.Small, own: IndexedSeq[Int]): Long = {
+      var w = 0L
+      for (chunk <- own.grouped(bp.chunk)) {
+        w += chunk.length // loading the chunk
+        for (o <- Visits) {
+          val nc = SphereClass.Small(cell.cx + o._1, cell.cy + o._2, cell.cz + o._3)
+          val ob = bucketOf(nc)
+          val len = start(ob + 1) - start(ob)
+          lookups += 1; scanned += len; w += math.max(1, len)
+          for (e <- start(ob) until start(ob + 1); j = entries(e) if cellOf(j) == nc; i <- chunk
+               if o != Own || j > i) {
+            gridPairs += 1
+            if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
+          }
+        }
+      }
+      w
+    }
     for (b <- 0 until nb) {
       // The occupied cells of this bucket, each with its spheres in index order.
       val members = (start(b) until start(b + 1)).map(entries)
       for ((cell, own) <- members.groupBy(cellOf).toSeq.sortBy(_._2.head)) {
-        cells += 1
-        var w = 0L
-        for (chunk <- own.grouped(bp.chunk)) {
-          w += chunk.length // loading the chunk
-          for (o <- Visits) {
-            val nc = SphereClass.Small(cell.cx + o._1, cell.cy + o._2, cell.cz + o._3)
-            val ob = bucketOf(nc)
-            val len = start(ob + 1) - start(ob)
-            lookups += 1; scanned += len; w += math.max(1, len)
-            for (e <- start(ob) until start(ob + 1); j = entries(e) if cellOf(j) == nc; i <- chunk
-                 if o != Own || j > i) {
-              gridPairs += 1
-              if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
+        val cc = if (bp.coarseChunks) Some(coarseOf(cell)).filter(coarse(_).length <= bp.chunk) else None
+        cc match {
+          case Some(c) if coarseDone(c) => // taken with its coarse cell's chunk
+          case Some(c) =>
+            // One chunk of the coarse cell's spheres (a scan of its 8 cells' buckets), and the
+            // 43 cells within reach of some member, each member taking only what it owns.
+            coarseDone += c
+            val chunk = coarse(c)
+            cells += chunk.map(cellOf).distinct.length
+            var w = CoarseBlock.length.toLong + chunk.length
+            for (d <- CoarseVisits) {
+              val nc = SphereClass.Small(2 * c._1 + d._1, 2 * c._2 + d._2, 2 * c._3 + d._3)
+              val ob = bucketOf(nc)
+              val len = start(ob + 1) - start(ob)
+              lookups += 1; scanned += len; w += math.max(1, len)
+              for (e <- start(ob) until start(ob + 1); j = entries(e) if cellOf(j) == nc; i <- chunk if owns(cellOf(i), nc, i, j)) {
+                gridPairs += 1
+                if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
+              }
             }
-          }
+            work += w
+          case None => cells += 1; work += fineChunks(cell, own)
         }
-        work += w
       }
     }
     val larges = world.indices.filter(classes(_) == SphereClass.Large)
@@ -290,6 +320,21 @@ object BroadPhaseModel {
     if dx > 0 || (dx == 0 && dy > 0) || (dx == 0 && dy == 0 && dz > 0)
   } yield (dx, dy, dz)
   val Visits: Seq[(Int, Int, Int)] = Own +: HalfShell
+
+  /** A coarse cell's 8 cells, as offsets from twice its coordinates. */
+  val CoarseBlock: Seq[(Int, Int, Int)] = for (x <- 0 to 1; y <- 0 to 1; z <- 0 to 1) yield (x, y, z)
+  /** The cells a coarse chunk streams: every cell in the own or half-shell neighbourhood of one
+    * of its 8, as offsets from twice its coordinates, in order of first appearance (Visits by
+    * block cell): 43 of them. */
+  val CoarseVisits: Seq[(Int, Int, Int)] =
+    (for (o <- Visits; b <- CoarseBlock) yield (b._1 + o._1, b._2 + o._2, b._3 + o._3)).distinct
+  /** Whether a member i in cell `mine` takes sphere j of cell `visited`: the half-shell rule of
+    * Visits, per member (j's cell its own with j > i, or in its half shell). */
+  def owns(mine: SphereClass.Small, visited: SphereClass.Small, i: Int, j: Int): Boolean = {
+    val o = ((visited.cx - mine.cx).toInt, (visited.cy - mine.cy).toInt, (visited.cz - mine.cz).toInt)
+    if (o == Own) j > i else HalfShellSet(o)
+  }
+  private val HalfShellSet: Set[(Int, Int, Int)] = HalfShell.toSet
 
   private def isFinite(d: Decoded): Boolean = d match {
     case Decoded.Zero(_) | Decoded.Finite(_, _, _) => true
