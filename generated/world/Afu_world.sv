@@ -16050,10 +16050,10 @@ module CellExponent_fp32_L16_c20_e1_p2_world(
   reg  [4:0]  used;
   reg  [13:0] topMax;
   reg         anyTop;
-  wire [13:0] kSmall = used == 5'h11 ? kept_16 : kept_0;
-  wire [15:0] kCoord = anyTop ? {topMax[13], topMax, 1'h0} - 16'h24 : 16'hE000;
-  wire [15:0] _GEN = {{2{kSmall[13]}}, kSmall};
-  wire [15:0] _io_level_T_1 = $signed(_GEN) > $signed(kCoord) ? _GEN : kCoord;
+  wire [13:0] levelSmall = used == 5'h11 ? kept_16 : kept_0;
+  wire [15:0] levelCoord = anyTop ? {topMax[13], topMax, 1'h0} - 16'h24 : 16'hE000;
+  wire [15:0] _GEN = {{2{levelSmall[13]}}, levelSmall};
+  wire [15:0] _io_level_T_1 = $signed(_GEN) > $signed(levelCoord) ? _GEN : levelCoord;
   wire        after_ins_beats_0 = $signed(io_in_0_need) > $signed(kept_0);
   wire        after_ins_beats_1 = $signed(io_in_0_need) > $signed(kept_1);
   wire        after_ins_beats_2 = $signed(io_in_0_need) > $signed(kept_2);
@@ -32356,8 +32356,8 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
         casez_tmp_6 = _laneExps_0_io_anyTop;
     endcase
   end // always @(*)
-  wire [14:0] _slack_k_T = {_cellExp_io_level[13], _cellExp_io_level} + 15'h1;
-  wire [14:0] slack_e = 15'h7FCB - {_slack_k_T[14], _slack_k_T[14:1]};
+  wire [14:0] _slack_e_T_1 = {_cellExp_io_level[13], _cellExp_io_level} + 15'h1;
+  wire [14:0] slack_e = 15'h7FCB - {_slack_e_T_1[14], _slack_e_T_1[14:1]};
   wire [31:0] _slack_T_3 = 32'h1 << slack_e[4:0];
   wire [28:0] slack =
     $signed(slack_e) < 15'sh0
@@ -32389,25 +32389,25 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:243 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:243 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:243 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:243 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end

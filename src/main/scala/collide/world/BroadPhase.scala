@@ -223,8 +223,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val slack = {
     // BroadPhaseModel.boxSlack: 1 + max(1, 2^(errorExp + F - k)), k = ceil(level / 2),
     // saturated to the width.
-    val k = (level +& 1.S) >> 1
-    val e = bp.errorExp(p).S +& bp.filterFracBits.S -& k
+    val e = bp.errorExp(p).S +& bp.filterFracBits.S -& SphereKeys.filterExp(level)
     val big = e >= (qWidth - 1).S
     Mux(e < 0.S, 2.U, Mux(big, ((BigInt(1) << qWidth) - 1).U, 1.U +& (1.U << e.asUInt(log2Ceil(qWidth) - 1, 0))))
   }

@@ -80,9 +80,9 @@ class CellExponent(p: FpParams, bp: BroadPhaseParams, ports: Int = 1) extends Mo
 
   // Fewer spheres than slots: all in the grid, sized for the biggest (kept(0)); else the
   // smallest kept need, the (largeMax+1)-th largest.
-  private val kSmall = Mux(used === slots.U, kept(slots - 1), kept(0))
-  private val kCoord = Mux(anyTop, (topMax << 1) -& bp.levelCoordOffset.S, minK)
-  private val kFloor = bp.levelFloor(p).S(w.W)
-  io.level := maxS(maxS(kSmall, kCoord), kFloor).asTypeOf(SInt(w.W))
+  private val levelSmall = Mux(used === slots.U, kept(slots - 1), kept(0))
+  private val levelCoord = Mux(anyTop, (topMax << 1) -& bp.levelCoordOffset.S, minK)
+  private val levelFloor = bp.levelFloor(p).S(w.W)
+  io.level := maxS(maxS(levelSmall, levelCoord), levelFloor).asTypeOf(SInt(w.W))
   io.kept := kept; io.used := used; io.top := topMax; io.anyTop := anyTop
 }

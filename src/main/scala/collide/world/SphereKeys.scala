@@ -49,7 +49,7 @@ class SphereKeys(p: FpParams, bp: BroadPhaseParams, latency: Int = 1) extends Mo
   private val raw = io.in.sphere.map(b => RawFloat(p, b))
   private val level = io.in.level
   private val odd = if (bp.cellSteps == 2) level(0) else false.B // an edge of 1.5 * 2^(k-1), k = ceil(L / 2)
-  private val k = (level +& 1.S) >> 1 // the box filter's exponent: the octave the edge lies in
+  private val k = SphereKeys.filterExp(level)
 
   /** floor(v * 2^-s) of a finite raw value, as SInt(w), and whether it overflowed w bits. */
   private def floorScaled(v: RawFloat, s: SInt, w: Int): (SInt, Bool) = {
@@ -131,6 +131,10 @@ object SphereKeys {
   def kWidth(p: FpParams): Int = p.format.rawExpWidth + 4
   /** A coordinate in box-filter units: a cell coordinate with filterFracBits more bits. */
   def qWidth(bp: BroadPhaseParams): Int = bp.cellBits + bp.filterFracBits + 1
+
+  /** The box filter's exponent of cell level L, ceil(L / 2): the octave the edge lies in
+    * (BroadPhaseParams.filterExp). */
+  def filterExp(level: SInt): SInt = (level +& 1.S) >> 1
 
   /** floor(c / 3) of a signed c, exactly: biased to u = c + 3 * 2^(w-1) >= 0 (a multiple of
     * three more, so floor(u / 3) = floor(c / 3) + 2^(w-1)), then u / 3 as a multiply by

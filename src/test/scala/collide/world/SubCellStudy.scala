@@ -59,101 +59,75 @@ object SubCellStudy {
       val slack = model.boxSlack(r.level)
       type C = (Long, Long, Long)
       val fine: Map[C, IndexedSeq[Int]] = small.groupBy { case (_, c) => (c.cx, c.cy, c.cz) }.map { case (k, v) => k -> v.map(_._1).sorted }
+      val fineOf: Map[Int, SphereClass.Small] = small.toMap
       def occ(c: C) = fine.getOrElse(c, IndexedSeq.empty)
       def add(a: C, o: (Int, Int, Int)): C = (a._1 + o._1, a._2 + o._2, a._3 + o._3)
+      def half(v: Long) = Math.floorDiv(v, 2L)
+      val coarseCells = small.groupBy { case (_, c) => (half(c.cx), half(c.cy), half(c.cz)) }.map { case (k, v) => k -> v.map(_._1).sorted }
 
-      // Today: a chunk of one fine cell, its own cell (j > i) and 13 half-shell neighbours.
-      val today = {
+      /** One traversal's counts and pairs; each pair must come out once. */
+      final class Tally {
         var chunks, lookups, probes = 0L
-        val out = Set.newBuilder[(Int, Int)]
-        val work = fine.toSeq.sortBy(_._2.head).map { case (cell, own) =>
-          var w = 0L
-          for (ch <- own.grouped(chunk)) {
-            chunks += 1; w += ch.length
-            for (o <- BroadPhaseModel.Visits) {
-              val es = occ(add(cell, o)); lookups += 1; probes += es.length; w += math.max(1, es.length)
-              for (e <- es; i <- ch if (o != BroadPhaseModel.Own || e > i) && model.boxPass(box(i), box(e), slack))
-                out += ((math.min(i, e), math.max(i, e)))
-            }
-          }
-          w
+        private val out = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
+        /** Streams cell f past `members`, member i taking sphere e where `takes(i, e)` and the box
+          * filter pass; its cost, max(1, the spheres streamed). */
+        def visit(f: C, members: Seq[Int])(takes: (Int, Int) => Boolean): Long = {
+          val es = occ(f); lookups += 1; probes += es.length
+          for (e <- es; i <- members if takes(i, e) && model.boxPass(box(i), box(e), slack)) out += ((math.min(i, e), math.max(i, e)))
+          math.max(1, es.length)
         }
-        Work(chunks, lookups, probes, deal(work, lanes), out.result())
+        /** Today's chunks of one fine cell: its own cell (j > i) and 13 half-shell neighbours. */
+        def fineChunks(cell: C, members: Seq[Int]): Long =
+          members.grouped(chunk).map { ch =>
+            chunks += 1
+            ch.length + BroadPhaseModel.Visits.map(o => visit(add(cell, o), ch)((i, e) => o != BroadPhaseModel.Own || e > i)).sum
+          }.sum
+        def result(what: String, work: Seq[Long]): Work = {
+          val set = out.toSet
+          require(set.size == out.length, s"$name: the $what traversal gave ${out.length - set.size} pairs twice")
+          Work(chunks, lookups, probes, deal(work, lanes), set)
+        }
+      }
+
+      // Today: a chunk of one fine cell.
+      val today = {
+        val t = new Tally
+        t.result("today's", fine.toSeq.sortBy(_._2.head).map { case (cell, own) => t.fineChunks(cell, own) })
       }
 
       // Coarse: a chunk of one coarse cell (2 x 2 x 2 fine cells); its own 8 fine cells (j > i)
       // and, of each half-shell neighbour, the fine cells that touch it.
       val coarse = {
-        def half(v: Long) = Math.floorDiv(v, 2L)
-        val cells = small.groupBy { case (_, c) => (half(c.cx), half(c.cy), half(c.cz)) }.map { case (k, v) => k -> v.map(_._1).sorted }
+        val t = new Tally
         def layers(base: Long, o: Int): Seq[Long] = o match { case 1 => Seq(2 * base); case -1 => Seq(2 * base + 1); case _ => Seq(2 * base, 2 * base + 1) }
-        var chunks, lookups, probes = 0L
-        val out = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
-        val work = cells.toSeq.sortBy(_._2.head).map { case (cc, own) =>
-          var w = 0L
-          for (ch <- own.grouped(chunk)) {
-            chunks += 1; w += ch.length
-            for (o <- BroadPhaseModel.Visits) {
-              val n = add(cc, o)
-              for (fx <- layers(n._1, o._1); fy <- layers(n._2, o._2); fz <- layers(n._3, o._3)) {
-                val es = occ((fx, fy, fz)); lookups += 1; probes += es.length; w += math.max(1, es.length)
-                for (e <- es; i <- ch if (o != BroadPhaseModel.Own || e > i) && model.boxPass(box(i), box(e), slack))
-                  out += ((math.min(i, e), math.max(i, e)))
-              }
-            }
-          }
-          w
-        }
-        val set = out.toSet
-        require(set.size == out.length, s"$name: the coarse traversal gave ${out.length - set.size} pairs twice")
-        Work(chunks, lookups, probes, deal(work, lanes), set)
+        t.result("coarse", coarseCells.toSeq.sortBy(_._2.head).map { case (cc, own) =>
+          own.grouped(chunk).map { ch =>
+            t.chunks += 1
+            ch.length + (for (o <- BroadPhaseModel.Visits; n = add(cc, o); fx <- layers(n._1, o._1); fy <- layers(n._2, o._2); fz <- layers(n._3, o._3))
+              yield t.visit((fx, fy, fz), ch)((i, e) => o != BroadPhaseModel.Own || e > i)).sum
+          }.sum
+        })
       }
       // Hybrid: a coarse cell that fits a chunk is one chunk; every other is chunked by fine cell
-      // as today. A coarse chunk streams every fine cell in some member's own or half-shell
-      // neighbourhood (48 at most), and each member takes a probe only if the probe's fine cell
-      // is its own (and the probe's index larger) or in its own half shell: today's rule, per
-      // member, so both kinds of chunk mix with each pair found once, by its owner.
+      // as today. A coarse chunk streams the 43 fine cells in some member's own or half-shell
+      // neighbourhood (BroadPhaseModel.CoarseVisits), and each member takes a probe only if it
+      // owns it (BroadPhaseModel.owns: today's rule, per member), so both kinds of chunk mix with
+      // each pair found once, by its owner: the golden model's coarseChunks, here without hashing.
       val hybrid = {
-        def half(v: Long) = Math.floorDiv(v, 2L)
-        val cells = small.groupBy { case (_, c) => (half(c.cx), half(c.cy), half(c.cz)) }.map { case (k, v) => k -> v.map(_._1).sorted }
-        val fineOf = small.toMap.map { case (i, c) => i -> ((c.cx, c.cy, c.cz): C) }
-        var chunks, lookups, probes = 0L
-        val out = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
-        def owns(fa: C, fb: C, a: Int, b: Int): Boolean = {
-          val o = ((fb._1 - fa._1).toInt, (fb._2 - fa._2).toInt, (fb._3 - fa._3).toInt)
-          if (o == BroadPhaseModel.Own) b > a else BroadPhaseModel.HalfShell.contains(o)
-        }
-        val work = cells.toSeq.sortBy(_._2.head).flatMap { case (cc, own) =>
+        val t = new Tally
+        t.result("hybrid", coarseCells.toSeq.sortBy(_._2.head).flatMap { case (cc, own) =>
           if (own.length <= chunk) {
-            chunks += 1
-            var w = own.length.toLong
-            val block = for (x <- 0 to 1; y <- 0 to 1; z <- 0 to 1) yield (2 * cc._1 + x, 2 * cc._2 + y, 2 * cc._3 + z)
-            val stream = block.flatMap(f => BroadPhaseModel.Visits.map(o => add(f, o))).distinct
-            for (f <- stream) {
-              val es = occ(f); lookups += 1; probes += es.length; w += math.max(1, es.length)
-              for (e <- es; i <- own if owns(fineOf(i), f, i, e) && model.boxPass(box(i), box(e), slack))
-                out += ((math.min(i, e), math.max(i, e)))
-            }
-            Seq(w)
+            t.chunks += 1
+            Seq(own.length + BroadPhaseModel.CoarseVisits.map { d =>
+              val f = (2 * cc._1 + d._1, 2 * cc._2 + d._2, 2 * cc._3 + d._3)
+              val visited = SphereClass.Small(f._1, f._2, f._3)
+              t.visit(f, own)((i, e) => BroadPhaseModel.owns(fineOf(i), visited, i, e))
+            }.sum)
           } else {
             // Today's chunks for each of its fine cells, in order of their first member.
-            own.groupBy(fineOf).toSeq.sortBy(_._2.head).map { case (cell, mine) =>
-              var w = 0L
-              for (ch <- mine.grouped(chunk)) {
-                chunks += 1; w += ch.length
-                for (o <- BroadPhaseModel.Visits) {
-                  val es = occ(add(cell, o)); lookups += 1; probes += es.length; w += math.max(1, es.length)
-                  for (e <- es; i <- ch if (o != BroadPhaseModel.Own || e > i) && model.boxPass(box(i), box(e), slack))
-                    out += ((math.min(i, e), math.max(i, e)))
-                }
-              }
-              w
-            }
+            own.groupBy(i => { val c = fineOf(i); (c.cx, c.cy, c.cz) }).toSeq.sortBy(_._2.head).map { case (cell, mine) => t.fineChunks(cell, mine) }
           }
-        }
-        val set = out.toSet
-        require(set.size == out.length, s"$name: the hybrid traversal gave ${out.length - set.size} pairs twice")
-        Work(chunks, lookups, probes, deal(work, lanes), set)
+        })
       }
       require(hybrid.pairs == today.pairs, s"$name: the hybrid traversal's candidates differ from today's " +
         s"(${(today.pairs -- hybrid.pairs).size} missing, ${(hybrid.pairs -- today.pairs).size} more)")
