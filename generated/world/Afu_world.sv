@@ -15798,7 +15798,7 @@ module WriteEngine_w64_world(
   assign io_blocked = any & ~(io_wrReq_ready & io_wrReq_valid_0);
 endmodule
 
-module CellExponent_fp32_L16_c20_e1_world(
+module CellExponent_fp32_L16_c20_e2_world(
   input         clock,
                 reset,
                 io_clear,
@@ -16015,7 +16015,7 @@ module CellExponent_fp32_L16_c20_e1_world(
   assign io_anyTop = anyTop;
 endmodule
 
-module CellExponent_fp32_L16_c20_e1_p2_world(
+module CellExponent_fp32_L16_c20_e2_p2_world(
   input         clock,
                 reset,
                 io_clear,
@@ -16051,7 +16051,7 @@ module CellExponent_fp32_L16_c20_e1_p2_world(
   reg  [13:0] topMax;
   reg         anyTop;
   wire [13:0] levelSmall = used == 5'h11 ? kept_16 : kept_0;
-  wire [15:0] levelCoord = anyTop ? {topMax[13], topMax, 1'h0} - 16'h24 : 16'hE000;
+  wire [15:0] levelCoord = anyTop ? {topMax[13], topMax, 1'h0} - 16'h25 : 16'hE000;
   wire [15:0] _GEN = {{2{levelSmall[13]}}, levelSmall};
   wire [15:0] _io_level_T_1 = $signed(_GEN) > $signed(levelCoord) ? _GEN : levelCoord;
   wire        after_ins_beats_0 = $signed(io_in_0_need) > $signed(kept_0);
@@ -19504,23 +19504,23 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
 endmodule
 
 // VCS coverage exclude_file
-module ram_5x267_world(
+module ram_5x275_world(
   input  [2:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [266:0] R0_data,
+  output [274:0] R0_data,
   input  [2:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [266:0] W0_data
+  input  [274:0] W0_data
 );
 
-  reg [266:0] Memory[0:4];
+  reg [274:0] Memory[0:4];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = R0_en ? Memory[R0_addr] : 267'bx;
+  assign R0_data = R0_en ? Memory[R0_addr] : 275'bx;
 endmodule
 
 module Queue5_StreamItem_world(
@@ -19545,8 +19545,10 @@ module Queue5_StreamItem_world(
   input  [19:0] io_enq_bits_tag_cell_0,
                 io_enq_bits_tag_cell_1,
                 io_enq_bits_tag_cell_2,
-  input         io_enq_bits_tag_own,
-                io_deq_ready,
+  input  [2:0]  io_enq_bits_tag_off_0,
+                io_enq_bits_tag_off_1,
+                io_enq_bits_tag_off_2,
+  input         io_deq_ready,
   output        io_deq_valid,
                 io_deq_bits_group,
   output [12:0] io_deq_bits_pos,
@@ -19565,11 +19567,13 @@ module Queue5_StreamItem_world(
   output [19:0] io_deq_bits_tag_cell_0,
                 io_deq_bits_tag_cell_1,
                 io_deq_bits_tag_cell_2,
-  output        io_deq_bits_tag_own,
-  output [2:0]  io_count
+  output [2:0]  io_deq_bits_tag_off_0,
+                io_deq_bits_tag_off_1,
+                io_deq_bits_tag_off_2,
+                io_count
 );
 
-  wire [266:0] _ram_ext_R0_data;
+  wire [274:0] _ram_ext_R0_data;
   reg  [2:0]   enq_ptr_value;
   reg  [2:0]   deq_ptr_value;
   reg          maybe_full;
@@ -19602,7 +19606,7 @@ module Queue5_StreamItem_world(
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_5x267_world ram_ext (
+  ram_5x275_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -19611,7 +19615,9 @@ module Queue5_StreamItem_world(
     .W0_en   (do_enq),
     .W0_clk  (clock),
     .W0_data
-      ({io_enq_bits_tag_own,
+      ({io_enq_bits_tag_off_2,
+        io_enq_bits_tag_off_1,
+        io_enq_bits_tag_off_0,
         io_enq_bits_tag_cell_2,
         io_enq_bits_tag_cell_1,
         io_enq_bits_tag_cell_0,
@@ -19649,7 +19655,9 @@ module Queue5_StreamItem_world(
   assign io_deq_bits_tag_cell_0 = _ram_ext_R0_data[225:206];
   assign io_deq_bits_tag_cell_1 = _ram_ext_R0_data[245:226];
   assign io_deq_bits_tag_cell_2 = _ram_ext_R0_data[265:246];
-  assign io_deq_bits_tag_own = _ram_ext_R0_data[266];
+  assign io_deq_bits_tag_off_0 = _ram_ext_R0_data[268:266];
+  assign io_deq_bits_tag_off_1 = _ram_ext_R0_data[271:269];
+  assign io_deq_bits_tag_off_2 = _ram_ext_R0_data[274:272];
   assign io_count =
     ptr_match
       ? (maybe_full ? 3'h5 : 3'h0)
@@ -19670,7 +19678,9 @@ module KeyStream_world(
   input  [19:0] io_req_bits_tag_cell_0,
                 io_req_bits_tag_cell_1,
                 io_req_bits_tag_cell_2,
-  input         io_req_bits_tag_own,
+  input  [2:0]  io_req_bits_tag_off_0,
+                io_req_bits_tag_off_1,
+                io_req_bits_tag_off_2,
   output [11:0] io_entryAddr,
   output        io_entryGroup,
   input  [11:0] io_entryItem,
@@ -19704,8 +19714,10 @@ module KeyStream_world(
   output [19:0] io_out_bits_tag_cell_0,
                 io_out_bits_tag_cell_1,
                 io_out_bits_tag_cell_2,
-  output        io_out_bits_tag_own,
-                io_idle
+  output [2:0]  io_out_bits_tag_off_0,
+                io_out_bits_tag_off_1,
+                io_out_bits_tag_off_2,
+  output        io_idle
 );
 
   wire        _q_io_enq_ready;
@@ -19720,7 +19732,9 @@ module KeyStream_world(
   reg  [19:0] cur_tag_cell_0;
   reg  [19:0] cur_tag_cell_1;
   reg  [19:0] cur_tag_cell_2;
-  reg         cur_tag_own;
+  reg  [2:0]  cur_tag_off_0;
+  reg  [2:0]  cur_tag_off_1;
+  reg  [2:0]  cur_tag_off_2;
   reg         busy;
   reg         s1v;
   reg         s1_group;
@@ -19730,7 +19744,9 @@ module KeyStream_world(
   reg  [19:0] s1_tag_cell_0;
   reg  [19:0] s1_tag_cell_1;
   reg  [19:0] s1_tag_cell_2;
-  reg         s1_tag_own;
+  reg  [2:0]  s1_tag_off_0;
+  reg  [2:0]  s1_tag_off_1;
+  reg  [2:0]  s1_tag_off_2;
   reg         kv_0;
   reg         kv_1;
   reg         ks_0_group;
@@ -19739,7 +19755,9 @@ module KeyStream_world(
   reg  [19:0] ks_0_tag_cell_0;
   reg  [19:0] ks_0_tag_cell_1;
   reg  [19:0] ks_0_tag_cell_2;
-  reg         ks_0_tag_own;
+  reg  [2:0]  ks_0_tag_off_0;
+  reg  [2:0]  ks_0_tag_off_1;
+  reg  [2:0]  ks_0_tag_off_2;
   reg  [11:0] ks_0_item;
   reg         ks_0_mark;
   reg         ks_1_group;
@@ -19748,7 +19766,9 @@ module KeyStream_world(
   reg  [19:0] ks_1_tag_cell_0;
   reg  [19:0] ks_1_tag_cell_1;
   reg  [19:0] ks_1_tag_cell_2;
-  reg         ks_1_tag_own;
+  reg  [2:0]  ks_1_tag_off_0;
+  reg  [2:0]  ks_1_tag_off_1;
+  reg  [2:0]  ks_1_tag_off_2;
   reg  [11:0] ks_1_item;
   reg         ks_1_mark;
   wire        issue =
@@ -19786,7 +19806,9 @@ module KeyStream_world(
       cur_tag_cell_0 <= io_req_bits_tag_cell_0;
       cur_tag_cell_1 <= io_req_bits_tag_cell_1;
       cur_tag_cell_2 <= io_req_bits_tag_cell_2;
-      cur_tag_own <= io_req_bits_tag_own;
+      cur_tag_off_0 <= io_req_bits_tag_off_0;
+      cur_tag_off_1 <= io_req_bits_tag_off_1;
+      cur_tag_off_2 <= io_req_bits_tag_off_2;
     end
     else begin
       if (issue & left_0)
@@ -19802,7 +19824,9 @@ module KeyStream_world(
       s1_tag_cell_0 <= cur_tag_cell_0;
       s1_tag_cell_1 <= cur_tag_cell_1;
       s1_tag_cell_2 <= cur_tag_cell_2;
-      s1_tag_own <= cur_tag_own;
+      s1_tag_off_0 <= cur_tag_off_0;
+      s1_tag_off_1 <= cur_tag_off_1;
+      s1_tag_off_2 <= cur_tag_off_2;
     end
     if (s1v) begin
       ks_0_group <= s1_group;
@@ -19811,7 +19835,9 @@ module KeyStream_world(
       ks_0_tag_cell_0 <= s1_tag_cell_0;
       ks_0_tag_cell_1 <= s1_tag_cell_1;
       ks_0_tag_cell_2 <= s1_tag_cell_2;
-      ks_0_tag_own <= s1_tag_own;
+      ks_0_tag_off_0 <= s1_tag_off_0;
+      ks_0_tag_off_1 <= s1_tag_off_1;
+      ks_0_tag_off_2 <= s1_tag_off_2;
       ks_0_item <= item;
       ks_0_mark <= ~s1_direct & io_entryMark;
     end
@@ -19821,7 +19847,9 @@ module KeyStream_world(
     ks_1_tag_cell_0 <= ks_0_tag_cell_0;
     ks_1_tag_cell_1 <= ks_0_tag_cell_1;
     ks_1_tag_cell_2 <= ks_0_tag_cell_2;
-    ks_1_tag_own <= ks_0_tag_own;
+    ks_1_tag_off_0 <= ks_0_tag_off_0;
+    ks_1_tag_off_1 <= ks_0_tag_off_1;
+    ks_1_tag_off_2 <= ks_0_tag_off_2;
     ks_1_item <= ks_0_item;
     ks_1_mark <= ks_0_mark;
     if (reset) begin
@@ -19864,7 +19892,9 @@ module KeyStream_world(
     .io_enq_bits_tag_cell_0   (ks_1_tag_cell_0),
     .io_enq_bits_tag_cell_1   (ks_1_tag_cell_1),
     .io_enq_bits_tag_cell_2   (ks_1_tag_cell_2),
-    .io_enq_bits_tag_own      (ks_1_tag_own),
+    .io_enq_bits_tag_off_0    (ks_1_tag_off_0),
+    .io_enq_bits_tag_off_1    (ks_1_tag_off_1),
+    .io_enq_bits_tag_off_2    (ks_1_tag_off_2),
     .io_deq_ready             (io_out_ready),
     .io_deq_valid             (_q_io_deq_valid),
     .io_deq_bits_group        (io_out_bits_group),
@@ -19884,7 +19914,9 @@ module KeyStream_world(
     .io_deq_bits_tag_cell_0   (io_out_bits_tag_cell_0),
     .io_deq_bits_tag_cell_1   (io_out_bits_tag_cell_1),
     .io_deq_bits_tag_cell_2   (io_out_bits_tag_cell_2),
-    .io_deq_bits_tag_own      (io_out_bits_tag_own),
+    .io_deq_bits_tag_off_0    (io_out_bits_tag_off_0),
+    .io_deq_bits_tag_off_1    (io_out_bits_tag_off_1),
+    .io_deq_bits_tag_off_2    (io_out_bits_tag_off_2),
     .io_count                 (_q_io_count)
   );
   assign io_req_ready = io_req_ready_0;
@@ -19895,17 +19927,18 @@ module KeyStream_world(
   assign io_idle = ~busy & ~s1v & ~(kv_0 | kv_1) & ~_q_io_deq_valid;
 endmodule
 
-module ChunkMatcher_i12_c20_q29_k16_world(
+module ChunkMatcher_i12_c20_q29_k32_world(
   input         clock,
                 reset,
                 io_clear,
                 io_load_valid,
-  input  [11:0] io_load_bits_index,
-  input  [28:0] io_load_bits_q_0,
-                io_load_bits_q_1,
-                io_load_bits_q_2,
-                io_load_bits_qr,
-                io_slack,
+  input  [11:0] io_load_bits_key_index,
+  input  [28:0] io_load_bits_key_q_0,
+                io_load_bits_key_q_1,
+                io_load_bits_key_q_2,
+                io_load_bits_key_qr,
+  input  [2:0]  io_load_bits_place,
+  input  [28:0] io_slack,
   output        io_in_ready,
   input         io_in_valid,
   input  [11:0] io_in_bits_key_index,
@@ -19919,6 +19952,9 @@ module ChunkMatcher_i12_c20_q29_k16_world(
   input  [19:0] io_in_bits_cell_0,
                 io_in_bits_cell_1,
                 io_in_bits_cell_2,
+  input  [2:0]  io_in_bits_off_0,
+                io_in_bits_off_1,
+                io_in_bits_off_2,
   input         io_in_bits_anyCell,
                 io_in_bits_own,
                 io_out_ready,
@@ -19928,154 +19964,331 @@ module ChunkMatcher_i12_c20_q29_k16_world(
   output        io_idle
 );
 
-  reg  [11:0] members_0_index;
-  reg  [28:0] members_0_q_0;
-  reg  [28:0] members_0_q_1;
-  reg  [28:0] members_0_q_2;
-  reg  [28:0] members_0_qr;
-  reg  [11:0] members_1_index;
-  reg  [28:0] members_1_q_0;
-  reg  [28:0] members_1_q_1;
-  reg  [28:0] members_1_q_2;
-  reg  [28:0] members_1_qr;
-  reg  [11:0] members_2_index;
-  reg  [28:0] members_2_q_0;
-  reg  [28:0] members_2_q_1;
-  reg  [28:0] members_2_q_2;
-  reg  [28:0] members_2_qr;
-  reg  [11:0] members_3_index;
-  reg  [28:0] members_3_q_0;
-  reg  [28:0] members_3_q_1;
-  reg  [28:0] members_3_q_2;
-  reg  [28:0] members_3_qr;
-  reg  [11:0] members_4_index;
-  reg  [28:0] members_4_q_0;
-  reg  [28:0] members_4_q_1;
-  reg  [28:0] members_4_q_2;
-  reg  [28:0] members_4_qr;
-  reg  [11:0] members_5_index;
-  reg  [28:0] members_5_q_0;
-  reg  [28:0] members_5_q_1;
-  reg  [28:0] members_5_q_2;
-  reg  [28:0] members_5_qr;
-  reg  [11:0] members_6_index;
-  reg  [28:0] members_6_q_0;
-  reg  [28:0] members_6_q_1;
-  reg  [28:0] members_6_q_2;
-  reg  [28:0] members_6_qr;
-  reg  [11:0] members_7_index;
-  reg  [28:0] members_7_q_0;
-  reg  [28:0] members_7_q_1;
-  reg  [28:0] members_7_q_2;
-  reg  [28:0] members_7_qr;
-  reg  [11:0] members_8_index;
-  reg  [28:0] members_8_q_0;
-  reg  [28:0] members_8_q_1;
-  reg  [28:0] members_8_q_2;
-  reg  [28:0] members_8_qr;
-  reg  [11:0] members_9_index;
-  reg  [28:0] members_9_q_0;
-  reg  [28:0] members_9_q_1;
-  reg  [28:0] members_9_q_2;
-  reg  [28:0] members_9_qr;
-  reg  [11:0] members_10_index;
-  reg  [28:0] members_10_q_0;
-  reg  [28:0] members_10_q_1;
-  reg  [28:0] members_10_q_2;
-  reg  [28:0] members_10_qr;
-  reg  [11:0] members_11_index;
-  reg  [28:0] members_11_q_0;
-  reg  [28:0] members_11_q_1;
-  reg  [28:0] members_11_q_2;
-  reg  [28:0] members_11_qr;
-  reg  [11:0] members_12_index;
-  reg  [28:0] members_12_q_0;
-  reg  [28:0] members_12_q_1;
-  reg  [28:0] members_12_q_2;
-  reg  [28:0] members_12_qr;
-  reg  [11:0] members_13_index;
-  reg  [28:0] members_13_q_0;
-  reg  [28:0] members_13_q_1;
-  reg  [28:0] members_13_q_2;
-  reg  [28:0] members_13_qr;
-  reg  [11:0] members_14_index;
-  reg  [28:0] members_14_q_0;
-  reg  [28:0] members_14_q_1;
-  reg  [28:0] members_14_q_2;
-  reg  [28:0] members_14_qr;
-  reg  [11:0] members_15_index;
-  reg  [28:0] members_15_q_0;
-  reg  [28:0] members_15_q_1;
-  reg  [28:0] members_15_q_2;
-  reg  [28:0] members_15_qr;
-  reg  [4:0]  used;
-  reg  [15:0] pending;
+  reg  [11:0] members_0_key_index;
+  reg  [28:0] members_0_key_q_0;
+  reg  [28:0] members_0_key_q_1;
+  reg  [28:0] members_0_key_q_2;
+  reg  [28:0] members_0_key_qr;
+  reg  [2:0]  members_0_place;
+  reg  [11:0] members_1_key_index;
+  reg  [28:0] members_1_key_q_0;
+  reg  [28:0] members_1_key_q_1;
+  reg  [28:0] members_1_key_q_2;
+  reg  [28:0] members_1_key_qr;
+  reg  [2:0]  members_1_place;
+  reg  [11:0] members_2_key_index;
+  reg  [28:0] members_2_key_q_0;
+  reg  [28:0] members_2_key_q_1;
+  reg  [28:0] members_2_key_q_2;
+  reg  [28:0] members_2_key_qr;
+  reg  [2:0]  members_2_place;
+  reg  [11:0] members_3_key_index;
+  reg  [28:0] members_3_key_q_0;
+  reg  [28:0] members_3_key_q_1;
+  reg  [28:0] members_3_key_q_2;
+  reg  [28:0] members_3_key_qr;
+  reg  [2:0]  members_3_place;
+  reg  [11:0] members_4_key_index;
+  reg  [28:0] members_4_key_q_0;
+  reg  [28:0] members_4_key_q_1;
+  reg  [28:0] members_4_key_q_2;
+  reg  [28:0] members_4_key_qr;
+  reg  [2:0]  members_4_place;
+  reg  [11:0] members_5_key_index;
+  reg  [28:0] members_5_key_q_0;
+  reg  [28:0] members_5_key_q_1;
+  reg  [28:0] members_5_key_q_2;
+  reg  [28:0] members_5_key_qr;
+  reg  [2:0]  members_5_place;
+  reg  [11:0] members_6_key_index;
+  reg  [28:0] members_6_key_q_0;
+  reg  [28:0] members_6_key_q_1;
+  reg  [28:0] members_6_key_q_2;
+  reg  [28:0] members_6_key_qr;
+  reg  [2:0]  members_6_place;
+  reg  [11:0] members_7_key_index;
+  reg  [28:0] members_7_key_q_0;
+  reg  [28:0] members_7_key_q_1;
+  reg  [28:0] members_7_key_q_2;
+  reg  [28:0] members_7_key_qr;
+  reg  [2:0]  members_7_place;
+  reg  [11:0] members_8_key_index;
+  reg  [28:0] members_8_key_q_0;
+  reg  [28:0] members_8_key_q_1;
+  reg  [28:0] members_8_key_q_2;
+  reg  [28:0] members_8_key_qr;
+  reg  [2:0]  members_8_place;
+  reg  [11:0] members_9_key_index;
+  reg  [28:0] members_9_key_q_0;
+  reg  [28:0] members_9_key_q_1;
+  reg  [28:0] members_9_key_q_2;
+  reg  [28:0] members_9_key_qr;
+  reg  [2:0]  members_9_place;
+  reg  [11:0] members_10_key_index;
+  reg  [28:0] members_10_key_q_0;
+  reg  [28:0] members_10_key_q_1;
+  reg  [28:0] members_10_key_q_2;
+  reg  [28:0] members_10_key_qr;
+  reg  [2:0]  members_10_place;
+  reg  [11:0] members_11_key_index;
+  reg  [28:0] members_11_key_q_0;
+  reg  [28:0] members_11_key_q_1;
+  reg  [28:0] members_11_key_q_2;
+  reg  [28:0] members_11_key_qr;
+  reg  [2:0]  members_11_place;
+  reg  [11:0] members_12_key_index;
+  reg  [28:0] members_12_key_q_0;
+  reg  [28:0] members_12_key_q_1;
+  reg  [28:0] members_12_key_q_2;
+  reg  [28:0] members_12_key_qr;
+  reg  [2:0]  members_12_place;
+  reg  [11:0] members_13_key_index;
+  reg  [28:0] members_13_key_q_0;
+  reg  [28:0] members_13_key_q_1;
+  reg  [28:0] members_13_key_q_2;
+  reg  [28:0] members_13_key_qr;
+  reg  [2:0]  members_13_place;
+  reg  [11:0] members_14_key_index;
+  reg  [28:0] members_14_key_q_0;
+  reg  [28:0] members_14_key_q_1;
+  reg  [28:0] members_14_key_q_2;
+  reg  [28:0] members_14_key_qr;
+  reg  [2:0]  members_14_place;
+  reg  [11:0] members_15_key_index;
+  reg  [28:0] members_15_key_q_0;
+  reg  [28:0] members_15_key_q_1;
+  reg  [28:0] members_15_key_q_2;
+  reg  [28:0] members_15_key_qr;
+  reg  [2:0]  members_15_place;
+  reg  [11:0] members_16_key_index;
+  reg  [28:0] members_16_key_q_0;
+  reg  [28:0] members_16_key_q_1;
+  reg  [28:0] members_16_key_q_2;
+  reg  [28:0] members_16_key_qr;
+  reg  [2:0]  members_16_place;
+  reg  [11:0] members_17_key_index;
+  reg  [28:0] members_17_key_q_0;
+  reg  [28:0] members_17_key_q_1;
+  reg  [28:0] members_17_key_q_2;
+  reg  [28:0] members_17_key_qr;
+  reg  [2:0]  members_17_place;
+  reg  [11:0] members_18_key_index;
+  reg  [28:0] members_18_key_q_0;
+  reg  [28:0] members_18_key_q_1;
+  reg  [28:0] members_18_key_q_2;
+  reg  [28:0] members_18_key_qr;
+  reg  [2:0]  members_18_place;
+  reg  [11:0] members_19_key_index;
+  reg  [28:0] members_19_key_q_0;
+  reg  [28:0] members_19_key_q_1;
+  reg  [28:0] members_19_key_q_2;
+  reg  [28:0] members_19_key_qr;
+  reg  [2:0]  members_19_place;
+  reg  [11:0] members_20_key_index;
+  reg  [28:0] members_20_key_q_0;
+  reg  [28:0] members_20_key_q_1;
+  reg  [28:0] members_20_key_q_2;
+  reg  [28:0] members_20_key_qr;
+  reg  [2:0]  members_20_place;
+  reg  [11:0] members_21_key_index;
+  reg  [28:0] members_21_key_q_0;
+  reg  [28:0] members_21_key_q_1;
+  reg  [28:0] members_21_key_q_2;
+  reg  [28:0] members_21_key_qr;
+  reg  [2:0]  members_21_place;
+  reg  [11:0] members_22_key_index;
+  reg  [28:0] members_22_key_q_0;
+  reg  [28:0] members_22_key_q_1;
+  reg  [28:0] members_22_key_q_2;
+  reg  [28:0] members_22_key_qr;
+  reg  [2:0]  members_22_place;
+  reg  [11:0] members_23_key_index;
+  reg  [28:0] members_23_key_q_0;
+  reg  [28:0] members_23_key_q_1;
+  reg  [28:0] members_23_key_q_2;
+  reg  [28:0] members_23_key_qr;
+  reg  [2:0]  members_23_place;
+  reg  [11:0] members_24_key_index;
+  reg  [28:0] members_24_key_q_0;
+  reg  [28:0] members_24_key_q_1;
+  reg  [28:0] members_24_key_q_2;
+  reg  [28:0] members_24_key_qr;
+  reg  [2:0]  members_24_place;
+  reg  [11:0] members_25_key_index;
+  reg  [28:0] members_25_key_q_0;
+  reg  [28:0] members_25_key_q_1;
+  reg  [28:0] members_25_key_q_2;
+  reg  [28:0] members_25_key_qr;
+  reg  [2:0]  members_25_place;
+  reg  [11:0] members_26_key_index;
+  reg  [28:0] members_26_key_q_0;
+  reg  [28:0] members_26_key_q_1;
+  reg  [28:0] members_26_key_q_2;
+  reg  [28:0] members_26_key_qr;
+  reg  [2:0]  members_26_place;
+  reg  [11:0] members_27_key_index;
+  reg  [28:0] members_27_key_q_0;
+  reg  [28:0] members_27_key_q_1;
+  reg  [28:0] members_27_key_q_2;
+  reg  [28:0] members_27_key_qr;
+  reg  [2:0]  members_27_place;
+  reg  [11:0] members_28_key_index;
+  reg  [28:0] members_28_key_q_0;
+  reg  [28:0] members_28_key_q_1;
+  reg  [28:0] members_28_key_q_2;
+  reg  [28:0] members_28_key_qr;
+  reg  [2:0]  members_28_place;
+  reg  [11:0] members_29_key_index;
+  reg  [28:0] members_29_key_q_0;
+  reg  [28:0] members_29_key_q_1;
+  reg  [28:0] members_29_key_q_2;
+  reg  [28:0] members_29_key_qr;
+  reg  [2:0]  members_29_place;
+  reg  [11:0] members_30_key_index;
+  reg  [28:0] members_30_key_q_0;
+  reg  [28:0] members_30_key_q_1;
+  reg  [28:0] members_30_key_q_2;
+  reg  [28:0] members_30_key_qr;
+  reg  [2:0]  members_30_place;
+  reg  [11:0] members_31_key_index;
+  reg  [28:0] members_31_key_q_0;
+  reg  [28:0] members_31_key_q_1;
+  reg  [28:0] members_31_key_q_2;
+  reg  [28:0] members_31_key_qr;
+  reg  [2:0]  members_31_place;
+  reg  [5:0]  used;
+  reg  [31:0] pending;
   reg  [11:0] entry_index;
-  wire [3:0]  slot =
+  wire [4:0]  slot =
     pending[0]
-      ? 4'h0
+      ? 5'h0
       : pending[1]
-          ? 4'h1
+          ? 5'h1
           : pending[2]
-              ? 4'h2
+              ? 5'h2
               : pending[3]
-                  ? 4'h3
+                  ? 5'h3
                   : pending[4]
-                      ? 4'h4
+                      ? 5'h4
                       : pending[5]
-                          ? 4'h5
+                          ? 5'h5
                           : pending[6]
-                              ? 4'h6
+                              ? 5'h6
                               : pending[7]
-                                  ? 4'h7
+                                  ? 5'h7
                                   : pending[8]
-                                      ? 4'h8
+                                      ? 5'h8
                                       : pending[9]
-                                          ? 4'h9
+                                          ? 5'h9
                                           : pending[10]
-                                              ? 4'hA
+                                              ? 5'hA
                                               : pending[11]
-                                                  ? 4'hB
+                                                  ? 5'hB
                                                   : pending[12]
-                                                      ? 4'hC
+                                                      ? 5'hC
                                                       : pending[13]
-                                                          ? 4'hD
-                                                          : {3'h7, ~(pending[14])};
+                                                          ? 5'hD
+                                                          : pending[14]
+                                                              ? 5'hE
+                                                              : pending[15]
+                                                                  ? 5'hF
+                                                                  : pending[16]
+                                                                      ? 5'h10
+                                                                      : pending[17]
+                                                                          ? 5'h11
+                                                                          : pending[18]
+                                                                              ? 5'h12
+                                                                              : pending[19]
+                                                                                  ? 5'h13
+                                                                                  : pending[20]
+                                                                                      ? 5'h14
+                                                                                      : pending[21]
+                                                                                          ? 5'h15
+                                                                                          : pending[22]
+                                                                                              ? 5'h16
+                                                                                              : pending[23]
+                                                                                                  ? 5'h17
+                                                                                                  : pending[24]
+                                                                                                      ? 5'h18
+                                                                                                      : pending[25]
+                                                                                                          ? 5'h19
+                                                                                                          : pending[26]
+                                                                                                              ? 5'h1A
+                                                                                                              : pending[27]
+                                                                                                                  ? 5'h1B
+                                                                                                                  : pending[28]
+                                                                                                                      ? 5'h1C
+                                                                                                                      : pending[29]
+                                                                                                                          ? 5'h1D
+                                                                                                                          : {4'hF,
+                                                                                                                             ~(pending[30])};
   reg  [11:0] casez_tmp;
   always @(*) begin
     casez (slot)
-      4'b0000:
-        casez_tmp = members_0_index;
-      4'b0001:
-        casez_tmp = members_1_index;
-      4'b0010:
-        casez_tmp = members_2_index;
-      4'b0011:
-        casez_tmp = members_3_index;
-      4'b0100:
-        casez_tmp = members_4_index;
-      4'b0101:
-        casez_tmp = members_5_index;
-      4'b0110:
-        casez_tmp = members_6_index;
-      4'b0111:
-        casez_tmp = members_7_index;
-      4'b1000:
-        casez_tmp = members_8_index;
-      4'b1001:
-        casez_tmp = members_9_index;
-      4'b1010:
-        casez_tmp = members_10_index;
-      4'b1011:
-        casez_tmp = members_11_index;
-      4'b1100:
-        casez_tmp = members_12_index;
-      4'b1101:
-        casez_tmp = members_13_index;
-      4'b1110:
-        casez_tmp = members_14_index;
+      5'b00000:
+        casez_tmp = members_0_key_index;
+      5'b00001:
+        casez_tmp = members_1_key_index;
+      5'b00010:
+        casez_tmp = members_2_key_index;
+      5'b00011:
+        casez_tmp = members_3_key_index;
+      5'b00100:
+        casez_tmp = members_4_key_index;
+      5'b00101:
+        casez_tmp = members_5_key_index;
+      5'b00110:
+        casez_tmp = members_6_key_index;
+      5'b00111:
+        casez_tmp = members_7_key_index;
+      5'b01000:
+        casez_tmp = members_8_key_index;
+      5'b01001:
+        casez_tmp = members_9_key_index;
+      5'b01010:
+        casez_tmp = members_10_key_index;
+      5'b01011:
+        casez_tmp = members_11_key_index;
+      5'b01100:
+        casez_tmp = members_12_key_index;
+      5'b01101:
+        casez_tmp = members_13_key_index;
+      5'b01110:
+        casez_tmp = members_14_key_index;
+      5'b01111:
+        casez_tmp = members_15_key_index;
+      5'b10000:
+        casez_tmp = members_16_key_index;
+      5'b10001:
+        casez_tmp = members_17_key_index;
+      5'b10010:
+        casez_tmp = members_18_key_index;
+      5'b10011:
+        casez_tmp = members_19_key_index;
+      5'b10100:
+        casez_tmp = members_20_key_index;
+      5'b10101:
+        casez_tmp = members_21_key_index;
+      5'b10110:
+        casez_tmp = members_22_key_index;
+      5'b10111:
+        casez_tmp = members_23_key_index;
+      5'b11000:
+        casez_tmp = members_24_key_index;
+      5'b11001:
+        casez_tmp = members_25_key_index;
+      5'b11010:
+        casez_tmp = members_26_key_index;
+      5'b11011:
+        casez_tmp = members_27_key_index;
+      5'b11100:
+        casez_tmp = members_28_key_index;
+      5'b11101:
+        casez_tmp = members_29_key_index;
+      5'b11110:
+        casez_tmp = members_30_key_index;
       default:
-        casez_tmp = members_15_index;
+        casez_tmp = members_31_key_index;
     endcase
   end // always @(*)
   wire        _io_out_bits_j_T = casez_tmp < entry_index;
@@ -20083,93 +20296,810 @@ module ChunkMatcher_i12_c20_q29_k16_world(
     ~(|pending)
     | {1'h0,
        {1'h0,
-        {1'h0, {1'h0, pending[0]} + {1'h0, pending[1]}}
-          + {1'h0, {1'h0, pending[2]} + {1'h0, pending[3]}}}
+        {1'h0,
+         {1'h0, {1'h0, pending[0]} + {1'h0, pending[1]}}
+           + {1'h0, {1'h0, pending[2]} + {1'h0, pending[3]}}}
+          + {1'h0,
+             {1'h0, {1'h0, pending[4]} + {1'h0, pending[5]}}
+               + {1'h0, {1'h0, pending[6]} + {1'h0, pending[7]}}}}
          + {1'h0,
-            {1'h0, {1'h0, pending[4]} + {1'h0, pending[5]}}
-              + {1'h0, {1'h0, pending[6]} + {1'h0, pending[7]}}}}
+            {1'h0,
+             {1'h0, {1'h0, pending[8]} + {1'h0, pending[9]}}
+               + {1'h0, {1'h0, pending[10]} + {1'h0, pending[11]}}}
+              + {1'h0,
+                 {1'h0, {1'h0, pending[12]} + {1'h0, pending[13]}}
+                   + {1'h0, {1'h0, pending[14]} + {1'h0, pending[15]}}}}}
     + {1'h0,
        {1'h0,
-        {1'h0, {1'h0, pending[8]} + {1'h0, pending[9]}}
-          + {1'h0, {1'h0, pending[10]} + {1'h0, pending[11]}}}
+        {1'h0,
+         {1'h0, {1'h0, pending[16]} + {1'h0, pending[17]}}
+           + {1'h0, {1'h0, pending[18]} + {1'h0, pending[19]}}}
+          + {1'h0,
+             {1'h0, {1'h0, pending[20]} + {1'h0, pending[21]}}
+               + {1'h0, {1'h0, pending[22]} + {1'h0, pending[23]}}}}
          + {1'h0,
-            {1'h0, {1'h0, pending[12]} + {1'h0, pending[13]}}
-              + {1'h0, {1'h0, pending[14]} + {1'h0, pending[15]}}}} < 5'h2 & io_out_ready;
+            {1'h0,
+             {1'h0, {1'h0, pending[24]} + {1'h0, pending[25]}}
+               + {1'h0, {1'h0, pending[26]} + {1'h0, pending[27]}}}
+              + {1'h0,
+                 {1'h0, {1'h0, pending[28]} + {1'h0, pending[29]}}
+                   + {1'h0, {1'h0, pending[30]} + {1'h0, pending[31]}}}}} < 6'h2
+    & io_out_ready;
   wire        inCell =
-    io_in_bits_anyCell | io_in_bits_key_cell_0 == io_in_bits_cell_0
+    io_in_bits_key_cell_0 == io_in_bits_cell_0
     & io_in_bits_key_cell_1 == io_in_bits_cell_1
     & io_in_bits_key_cell_2 == io_in_bits_cell_2;
-  wire [29:0] _GEN = {1'h0, io_in_bits_key_qr};
-  wire [30:0] _GEN_0 = {2'h0, io_slack};
-  wire [30:0] hitsNow_bound = {1'h0, {1'h0, members_0_qr} + _GEN} + _GEN_0;
-  wire [29:0] _GEN_1 = {io_in_bits_key_q_0[28], io_in_bits_key_q_0};
-  wire [29:0] hitsNow_d = {members_0_q_0[28], members_0_q_0} - _GEN_1;
-  wire [29:0] _GEN_2 = {io_in_bits_key_q_1[28], io_in_bits_key_q_1};
-  wire [29:0] hitsNow_d_1 = {members_0_q_1[28], members_0_q_1} - _GEN_2;
-  wire [29:0] _GEN_3 = {io_in_bits_key_q_2[28], io_in_bits_key_q_2};
-  wire [29:0] hitsNow_d_2 = {members_0_q_2[28], members_0_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_1 = {1'h0, {1'h0, members_1_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_3 = {members_1_q_0[28], members_1_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_4 = {members_1_q_1[28], members_1_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_5 = {members_1_q_2[28], members_1_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_2 = {1'h0, {1'h0, members_2_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_6 = {members_2_q_0[28], members_2_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_7 = {members_2_q_1[28], members_2_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_8 = {members_2_q_2[28], members_2_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_3 = {1'h0, {1'h0, members_3_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_9 = {members_3_q_0[28], members_3_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_10 = {members_3_q_1[28], members_3_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_11 = {members_3_q_2[28], members_3_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_4 = {1'h0, {1'h0, members_4_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_12 = {members_4_q_0[28], members_4_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_13 = {members_4_q_1[28], members_4_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_14 = {members_4_q_2[28], members_4_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_5 = {1'h0, {1'h0, members_5_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_15 = {members_5_q_0[28], members_5_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_16 = {members_5_q_1[28], members_5_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_17 = {members_5_q_2[28], members_5_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_6 = {1'h0, {1'h0, members_6_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_18 = {members_6_q_0[28], members_6_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_19 = {members_6_q_1[28], members_6_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_20 = {members_6_q_2[28], members_6_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_7 = {1'h0, {1'h0, members_7_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_21 = {members_7_q_0[28], members_7_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_22 = {members_7_q_1[28], members_7_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_23 = {members_7_q_2[28], members_7_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_8 = {1'h0, {1'h0, members_8_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_24 = {members_8_q_0[28], members_8_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_25 = {members_8_q_1[28], members_8_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_26 = {members_8_q_2[28], members_8_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_9 = {1'h0, {1'h0, members_9_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_27 = {members_9_q_0[28], members_9_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_28 = {members_9_q_1[28], members_9_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_29 = {members_9_q_2[28], members_9_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_10 = {1'h0, {1'h0, members_10_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_30 = {members_10_q_0[28], members_10_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_31 = {members_10_q_1[28], members_10_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_32 = {members_10_q_2[28], members_10_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_11 = {1'h0, {1'h0, members_11_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_33 = {members_11_q_0[28], members_11_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_34 = {members_11_q_1[28], members_11_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_35 = {members_11_q_2[28], members_11_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_12 = {1'h0, {1'h0, members_12_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_36 = {members_12_q_0[28], members_12_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_37 = {members_12_q_1[28], members_12_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_38 = {members_12_q_2[28], members_12_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_13 = {1'h0, {1'h0, members_13_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_39 = {members_13_q_0[28], members_13_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_40 = {members_13_q_1[28], members_13_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_41 = {members_13_q_2[28], members_13_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_14 = {1'h0, {1'h0, members_14_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_42 = {members_14_q_0[28], members_14_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_43 = {members_14_q_1[28], members_14_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_44 = {members_14_q_2[28], members_14_q_2} - _GEN_3;
-  wire [30:0] hitsNow_bound_15 = {1'h0, {1'h0, members_15_qr} + _GEN} + _GEN_0;
-  wire [29:0] hitsNow_d_45 = {members_15_q_0[28], members_15_q_0} - _GEN_1;
-  wire [29:0] hitsNow_d_46 = {members_15_q_1[28], members_15_q_1} - _GEN_2;
-  wire [29:0] hitsNow_d_47 = {members_15_q_2[28], members_15_q_2} - _GEN_3;
-  wire [15:0] hitsNow =
-    {used[4] & inCell & (~io_in_bits_own | io_in_bits_key_index > members_15_index)
+  wire        hitsNow_later = io_in_bits_key_index > members_0_key_index;
+  wire [3:0]  _GEN = {io_in_bits_off_0[2], io_in_bits_off_0};
+  wire [3:0]  hitsNow_takes_rel_0 = _GEN - {3'h0, members_0_place[2]};
+  wire [3:0]  _GEN_0 = {io_in_bits_off_1[2], io_in_bits_off_1};
+  wire [3:0]  hitsNow_takes_rel_1 = _GEN_0 - {3'h0, members_0_place[1]};
+  wire [3:0]  _GEN_1 = {io_in_bits_off_2[2], io_in_bits_off_2};
+  wire [3:0]  hitsNow_takes_rel_2 = _GEN_1 - {3'h0, members_0_place[0]};
+  wire        hitsNow_takes_zero_0 = hitsNow_takes_rel_0 == 4'h0;
+  wire        hitsNow_takes_near_2 =
+    $signed(hitsNow_takes_rel_2) > -4'sh2 & $signed(hitsNow_takes_rel_2) < 4'sh2;
+  wire        _hitsNow_takes_T_2 = hitsNow_takes_zero_0 & hitsNow_takes_rel_1 == 4'h0;
+  wire [29:0] _GEN_2 = {1'h0, io_in_bits_key_qr};
+  wire [30:0] _GEN_3 = {2'h0, io_slack};
+  wire [30:0] hitsNow_bound = {1'h0, {1'h0, members_0_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] _GEN_4 = {io_in_bits_key_q_0[28], io_in_bits_key_q_0};
+  wire [29:0] hitsNow_d = {members_0_key_q_0[28], members_0_key_q_0} - _GEN_4;
+  wire [29:0] _GEN_5 = {io_in_bits_key_q_1[28], io_in_bits_key_q_1};
+  wire [29:0] hitsNow_d_1 = {members_0_key_q_1[28], members_0_key_q_1} - _GEN_5;
+  wire [29:0] _GEN_6 = {io_in_bits_key_q_2[28], io_in_bits_key_q_2};
+  wire [29:0] hitsNow_d_2 = {members_0_key_q_2[28], members_0_key_q_2} - _GEN_6;
+  wire        hitsNow_later_1 = io_in_bits_key_index > members_1_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_1 = _GEN - {3'h0, members_1_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_1 = _GEN_0 - {3'h0, members_1_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_1 = _GEN_1 - {3'h0, members_1_place[0]};
+  wire        hitsNow_takes_zero_0_1 = hitsNow_takes_rel_0_1 == 4'h0;
+  wire        hitsNow_takes_near_2_1 =
+    $signed(hitsNow_takes_rel_2_1) > -4'sh2 & $signed(hitsNow_takes_rel_2_1) < 4'sh2;
+  wire        _hitsNow_takes_T_8 = hitsNow_takes_zero_0_1 & hitsNow_takes_rel_1_1 == 4'h0;
+  wire [30:0] hitsNow_bound_1 = {1'h0, {1'h0, members_1_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_3 = {members_1_key_q_0[28], members_1_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_4 = {members_1_key_q_1[28], members_1_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_5 = {members_1_key_q_2[28], members_1_key_q_2} - _GEN_6;
+  wire        hitsNow_later_2 = io_in_bits_key_index > members_2_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_2 = _GEN - {3'h0, members_2_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_2 = _GEN_0 - {3'h0, members_2_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_2 = _GEN_1 - {3'h0, members_2_place[0]};
+  wire        hitsNow_takes_zero_0_2 = hitsNow_takes_rel_0_2 == 4'h0;
+  wire        hitsNow_takes_near_2_2 =
+    $signed(hitsNow_takes_rel_2_2) > -4'sh2 & $signed(hitsNow_takes_rel_2_2) < 4'sh2;
+  wire        _hitsNow_takes_T_14 =
+    hitsNow_takes_zero_0_2 & hitsNow_takes_rel_1_2 == 4'h0;
+  wire [30:0] hitsNow_bound_2 = {1'h0, {1'h0, members_2_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_6 = {members_2_key_q_0[28], members_2_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_7 = {members_2_key_q_1[28], members_2_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_8 = {members_2_key_q_2[28], members_2_key_q_2} - _GEN_6;
+  wire        hitsNow_later_3 = io_in_bits_key_index > members_3_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_3 = _GEN - {3'h0, members_3_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_3 = _GEN_0 - {3'h0, members_3_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_3 = _GEN_1 - {3'h0, members_3_place[0]};
+  wire        hitsNow_takes_zero_0_3 = hitsNow_takes_rel_0_3 == 4'h0;
+  wire        hitsNow_takes_near_2_3 =
+    $signed(hitsNow_takes_rel_2_3) > -4'sh2 & $signed(hitsNow_takes_rel_2_3) < 4'sh2;
+  wire        _hitsNow_takes_T_20 =
+    hitsNow_takes_zero_0_3 & hitsNow_takes_rel_1_3 == 4'h0;
+  wire [30:0] hitsNow_bound_3 = {1'h0, {1'h0, members_3_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_9 = {members_3_key_q_0[28], members_3_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_10 = {members_3_key_q_1[28], members_3_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_11 = {members_3_key_q_2[28], members_3_key_q_2} - _GEN_6;
+  wire        hitsNow_later_4 = io_in_bits_key_index > members_4_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_4 = _GEN - {3'h0, members_4_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_4 = _GEN_0 - {3'h0, members_4_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_4 = _GEN_1 - {3'h0, members_4_place[0]};
+  wire        hitsNow_takes_zero_0_4 = hitsNow_takes_rel_0_4 == 4'h0;
+  wire        hitsNow_takes_near_2_4 =
+    $signed(hitsNow_takes_rel_2_4) > -4'sh2 & $signed(hitsNow_takes_rel_2_4) < 4'sh2;
+  wire        _hitsNow_takes_T_26 =
+    hitsNow_takes_zero_0_4 & hitsNow_takes_rel_1_4 == 4'h0;
+  wire [30:0] hitsNow_bound_4 = {1'h0, {1'h0, members_4_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_12 = {members_4_key_q_0[28], members_4_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_13 = {members_4_key_q_1[28], members_4_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_14 = {members_4_key_q_2[28], members_4_key_q_2} - _GEN_6;
+  wire        hitsNow_later_5 = io_in_bits_key_index > members_5_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_5 = _GEN - {3'h0, members_5_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_5 = _GEN_0 - {3'h0, members_5_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_5 = _GEN_1 - {3'h0, members_5_place[0]};
+  wire        hitsNow_takes_zero_0_5 = hitsNow_takes_rel_0_5 == 4'h0;
+  wire        hitsNow_takes_near_2_5 =
+    $signed(hitsNow_takes_rel_2_5) > -4'sh2 & $signed(hitsNow_takes_rel_2_5) < 4'sh2;
+  wire        _hitsNow_takes_T_32 =
+    hitsNow_takes_zero_0_5 & hitsNow_takes_rel_1_5 == 4'h0;
+  wire [30:0] hitsNow_bound_5 = {1'h0, {1'h0, members_5_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_15 = {members_5_key_q_0[28], members_5_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_16 = {members_5_key_q_1[28], members_5_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_17 = {members_5_key_q_2[28], members_5_key_q_2} - _GEN_6;
+  wire        hitsNow_later_6 = io_in_bits_key_index > members_6_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_6 = _GEN - {3'h0, members_6_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_6 = _GEN_0 - {3'h0, members_6_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_6 = _GEN_1 - {3'h0, members_6_place[0]};
+  wire        hitsNow_takes_zero_0_6 = hitsNow_takes_rel_0_6 == 4'h0;
+  wire        hitsNow_takes_near_2_6 =
+    $signed(hitsNow_takes_rel_2_6) > -4'sh2 & $signed(hitsNow_takes_rel_2_6) < 4'sh2;
+  wire        _hitsNow_takes_T_38 =
+    hitsNow_takes_zero_0_6 & hitsNow_takes_rel_1_6 == 4'h0;
+  wire [30:0] hitsNow_bound_6 = {1'h0, {1'h0, members_6_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_18 = {members_6_key_q_0[28], members_6_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_19 = {members_6_key_q_1[28], members_6_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_20 = {members_6_key_q_2[28], members_6_key_q_2} - _GEN_6;
+  wire        hitsNow_later_7 = io_in_bits_key_index > members_7_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_7 = _GEN - {3'h0, members_7_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_7 = _GEN_0 - {3'h0, members_7_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_7 = _GEN_1 - {3'h0, members_7_place[0]};
+  wire        hitsNow_takes_zero_0_7 = hitsNow_takes_rel_0_7 == 4'h0;
+  wire        hitsNow_takes_near_2_7 =
+    $signed(hitsNow_takes_rel_2_7) > -4'sh2 & $signed(hitsNow_takes_rel_2_7) < 4'sh2;
+  wire        _hitsNow_takes_T_44 =
+    hitsNow_takes_zero_0_7 & hitsNow_takes_rel_1_7 == 4'h0;
+  wire [30:0] hitsNow_bound_7 = {1'h0, {1'h0, members_7_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_21 = {members_7_key_q_0[28], members_7_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_22 = {members_7_key_q_1[28], members_7_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_23 = {members_7_key_q_2[28], members_7_key_q_2} - _GEN_6;
+  wire        hitsNow_later_8 = io_in_bits_key_index > members_8_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_8 = _GEN - {3'h0, members_8_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_8 = _GEN_0 - {3'h0, members_8_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_8 = _GEN_1 - {3'h0, members_8_place[0]};
+  wire        hitsNow_takes_zero_0_8 = hitsNow_takes_rel_0_8 == 4'h0;
+  wire        hitsNow_takes_near_2_8 =
+    $signed(hitsNow_takes_rel_2_8) > -4'sh2 & $signed(hitsNow_takes_rel_2_8) < 4'sh2;
+  wire        _hitsNow_takes_T_50 =
+    hitsNow_takes_zero_0_8 & hitsNow_takes_rel_1_8 == 4'h0;
+  wire [30:0] hitsNow_bound_8 = {1'h0, {1'h0, members_8_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_24 = {members_8_key_q_0[28], members_8_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_25 = {members_8_key_q_1[28], members_8_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_26 = {members_8_key_q_2[28], members_8_key_q_2} - _GEN_6;
+  wire        hitsNow_later_9 = io_in_bits_key_index > members_9_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_9 = _GEN - {3'h0, members_9_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_9 = _GEN_0 - {3'h0, members_9_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_9 = _GEN_1 - {3'h0, members_9_place[0]};
+  wire        hitsNow_takes_zero_0_9 = hitsNow_takes_rel_0_9 == 4'h0;
+  wire        hitsNow_takes_near_2_9 =
+    $signed(hitsNow_takes_rel_2_9) > -4'sh2 & $signed(hitsNow_takes_rel_2_9) < 4'sh2;
+  wire        _hitsNow_takes_T_56 =
+    hitsNow_takes_zero_0_9 & hitsNow_takes_rel_1_9 == 4'h0;
+  wire [30:0] hitsNow_bound_9 = {1'h0, {1'h0, members_9_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_27 = {members_9_key_q_0[28], members_9_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_28 = {members_9_key_q_1[28], members_9_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_29 = {members_9_key_q_2[28], members_9_key_q_2} - _GEN_6;
+  wire        hitsNow_later_10 = io_in_bits_key_index > members_10_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_10 = _GEN - {3'h0, members_10_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_10 = _GEN_0 - {3'h0, members_10_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_10 = _GEN_1 - {3'h0, members_10_place[0]};
+  wire        hitsNow_takes_zero_0_10 = hitsNow_takes_rel_0_10 == 4'h0;
+  wire        hitsNow_takes_near_2_10 =
+    $signed(hitsNow_takes_rel_2_10) > -4'sh2 & $signed(hitsNow_takes_rel_2_10) < 4'sh2;
+  wire        _hitsNow_takes_T_62 =
+    hitsNow_takes_zero_0_10 & hitsNow_takes_rel_1_10 == 4'h0;
+  wire [30:0] hitsNow_bound_10 = {1'h0, {1'h0, members_10_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_30 = {members_10_key_q_0[28], members_10_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_31 = {members_10_key_q_1[28], members_10_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_32 = {members_10_key_q_2[28], members_10_key_q_2} - _GEN_6;
+  wire        hitsNow_later_11 = io_in_bits_key_index > members_11_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_11 = _GEN - {3'h0, members_11_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_11 = _GEN_0 - {3'h0, members_11_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_11 = _GEN_1 - {3'h0, members_11_place[0]};
+  wire        hitsNow_takes_zero_0_11 = hitsNow_takes_rel_0_11 == 4'h0;
+  wire        hitsNow_takes_near_2_11 =
+    $signed(hitsNow_takes_rel_2_11) > -4'sh2 & $signed(hitsNow_takes_rel_2_11) < 4'sh2;
+  wire        _hitsNow_takes_T_68 =
+    hitsNow_takes_zero_0_11 & hitsNow_takes_rel_1_11 == 4'h0;
+  wire [30:0] hitsNow_bound_11 = {1'h0, {1'h0, members_11_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_33 = {members_11_key_q_0[28], members_11_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_34 = {members_11_key_q_1[28], members_11_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_35 = {members_11_key_q_2[28], members_11_key_q_2} - _GEN_6;
+  wire        hitsNow_later_12 = io_in_bits_key_index > members_12_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_12 = _GEN - {3'h0, members_12_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_12 = _GEN_0 - {3'h0, members_12_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_12 = _GEN_1 - {3'h0, members_12_place[0]};
+  wire        hitsNow_takes_zero_0_12 = hitsNow_takes_rel_0_12 == 4'h0;
+  wire        hitsNow_takes_near_2_12 =
+    $signed(hitsNow_takes_rel_2_12) > -4'sh2 & $signed(hitsNow_takes_rel_2_12) < 4'sh2;
+  wire        _hitsNow_takes_T_74 =
+    hitsNow_takes_zero_0_12 & hitsNow_takes_rel_1_12 == 4'h0;
+  wire [30:0] hitsNow_bound_12 = {1'h0, {1'h0, members_12_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_36 = {members_12_key_q_0[28], members_12_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_37 = {members_12_key_q_1[28], members_12_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_38 = {members_12_key_q_2[28], members_12_key_q_2} - _GEN_6;
+  wire        hitsNow_later_13 = io_in_bits_key_index > members_13_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_13 = _GEN - {3'h0, members_13_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_13 = _GEN_0 - {3'h0, members_13_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_13 = _GEN_1 - {3'h0, members_13_place[0]};
+  wire        hitsNow_takes_zero_0_13 = hitsNow_takes_rel_0_13 == 4'h0;
+  wire        hitsNow_takes_near_2_13 =
+    $signed(hitsNow_takes_rel_2_13) > -4'sh2 & $signed(hitsNow_takes_rel_2_13) < 4'sh2;
+  wire        _hitsNow_takes_T_80 =
+    hitsNow_takes_zero_0_13 & hitsNow_takes_rel_1_13 == 4'h0;
+  wire [30:0] hitsNow_bound_13 = {1'h0, {1'h0, members_13_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_39 = {members_13_key_q_0[28], members_13_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_40 = {members_13_key_q_1[28], members_13_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_41 = {members_13_key_q_2[28], members_13_key_q_2} - _GEN_6;
+  wire        hitsNow_later_14 = io_in_bits_key_index > members_14_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_14 = _GEN - {3'h0, members_14_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_14 = _GEN_0 - {3'h0, members_14_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_14 = _GEN_1 - {3'h0, members_14_place[0]};
+  wire        hitsNow_takes_zero_0_14 = hitsNow_takes_rel_0_14 == 4'h0;
+  wire        hitsNow_takes_near_2_14 =
+    $signed(hitsNow_takes_rel_2_14) > -4'sh2 & $signed(hitsNow_takes_rel_2_14) < 4'sh2;
+  wire        _hitsNow_takes_T_86 =
+    hitsNow_takes_zero_0_14 & hitsNow_takes_rel_1_14 == 4'h0;
+  wire [30:0] hitsNow_bound_14 = {1'h0, {1'h0, members_14_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_42 = {members_14_key_q_0[28], members_14_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_43 = {members_14_key_q_1[28], members_14_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_44 = {members_14_key_q_2[28], members_14_key_q_2} - _GEN_6;
+  wire        hitsNow_later_15 = io_in_bits_key_index > members_15_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_15 = _GEN - {3'h0, members_15_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_15 = _GEN_0 - {3'h0, members_15_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_15 = _GEN_1 - {3'h0, members_15_place[0]};
+  wire        hitsNow_takes_zero_0_15 = hitsNow_takes_rel_0_15 == 4'h0;
+  wire        hitsNow_takes_near_2_15 =
+    $signed(hitsNow_takes_rel_2_15) > -4'sh2 & $signed(hitsNow_takes_rel_2_15) < 4'sh2;
+  wire        _hitsNow_takes_T_92 =
+    hitsNow_takes_zero_0_15 & hitsNow_takes_rel_1_15 == 4'h0;
+  wire [30:0] hitsNow_bound_15 = {1'h0, {1'h0, members_15_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_45 = {members_15_key_q_0[28], members_15_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_46 = {members_15_key_q_1[28], members_15_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_47 = {members_15_key_q_2[28], members_15_key_q_2} - _GEN_6;
+  wire        hitsNow_later_16 = io_in_bits_key_index > members_16_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_16 = _GEN - {3'h0, members_16_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_16 = _GEN_0 - {3'h0, members_16_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_16 = _GEN_1 - {3'h0, members_16_place[0]};
+  wire        hitsNow_takes_zero_0_16 = hitsNow_takes_rel_0_16 == 4'h0;
+  wire        hitsNow_takes_near_2_16 =
+    $signed(hitsNow_takes_rel_2_16) > -4'sh2 & $signed(hitsNow_takes_rel_2_16) < 4'sh2;
+  wire        _hitsNow_takes_T_98 =
+    hitsNow_takes_zero_0_16 & hitsNow_takes_rel_1_16 == 4'h0;
+  wire [30:0] hitsNow_bound_16 = {1'h0, {1'h0, members_16_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_48 = {members_16_key_q_0[28], members_16_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_49 = {members_16_key_q_1[28], members_16_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_50 = {members_16_key_q_2[28], members_16_key_q_2} - _GEN_6;
+  wire        hitsNow_later_17 = io_in_bits_key_index > members_17_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_17 = _GEN - {3'h0, members_17_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_17 = _GEN_0 - {3'h0, members_17_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_17 = _GEN_1 - {3'h0, members_17_place[0]};
+  wire        hitsNow_takes_zero_0_17 = hitsNow_takes_rel_0_17 == 4'h0;
+  wire        hitsNow_takes_near_2_17 =
+    $signed(hitsNow_takes_rel_2_17) > -4'sh2 & $signed(hitsNow_takes_rel_2_17) < 4'sh2;
+  wire        _hitsNow_takes_T_104 =
+    hitsNow_takes_zero_0_17 & hitsNow_takes_rel_1_17 == 4'h0;
+  wire [30:0] hitsNow_bound_17 = {1'h0, {1'h0, members_17_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_51 = {members_17_key_q_0[28], members_17_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_52 = {members_17_key_q_1[28], members_17_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_53 = {members_17_key_q_2[28], members_17_key_q_2} - _GEN_6;
+  wire        hitsNow_later_18 = io_in_bits_key_index > members_18_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_18 = _GEN - {3'h0, members_18_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_18 = _GEN_0 - {3'h0, members_18_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_18 = _GEN_1 - {3'h0, members_18_place[0]};
+  wire        hitsNow_takes_zero_0_18 = hitsNow_takes_rel_0_18 == 4'h0;
+  wire        hitsNow_takes_near_2_18 =
+    $signed(hitsNow_takes_rel_2_18) > -4'sh2 & $signed(hitsNow_takes_rel_2_18) < 4'sh2;
+  wire        _hitsNow_takes_T_110 =
+    hitsNow_takes_zero_0_18 & hitsNow_takes_rel_1_18 == 4'h0;
+  wire [30:0] hitsNow_bound_18 = {1'h0, {1'h0, members_18_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_54 = {members_18_key_q_0[28], members_18_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_55 = {members_18_key_q_1[28], members_18_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_56 = {members_18_key_q_2[28], members_18_key_q_2} - _GEN_6;
+  wire        hitsNow_later_19 = io_in_bits_key_index > members_19_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_19 = _GEN - {3'h0, members_19_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_19 = _GEN_0 - {3'h0, members_19_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_19 = _GEN_1 - {3'h0, members_19_place[0]};
+  wire        hitsNow_takes_zero_0_19 = hitsNow_takes_rel_0_19 == 4'h0;
+  wire        hitsNow_takes_near_2_19 =
+    $signed(hitsNow_takes_rel_2_19) > -4'sh2 & $signed(hitsNow_takes_rel_2_19) < 4'sh2;
+  wire        _hitsNow_takes_T_116 =
+    hitsNow_takes_zero_0_19 & hitsNow_takes_rel_1_19 == 4'h0;
+  wire [30:0] hitsNow_bound_19 = {1'h0, {1'h0, members_19_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_57 = {members_19_key_q_0[28], members_19_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_58 = {members_19_key_q_1[28], members_19_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_59 = {members_19_key_q_2[28], members_19_key_q_2} - _GEN_6;
+  wire        hitsNow_later_20 = io_in_bits_key_index > members_20_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_20 = _GEN - {3'h0, members_20_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_20 = _GEN_0 - {3'h0, members_20_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_20 = _GEN_1 - {3'h0, members_20_place[0]};
+  wire        hitsNow_takes_zero_0_20 = hitsNow_takes_rel_0_20 == 4'h0;
+  wire        hitsNow_takes_near_2_20 =
+    $signed(hitsNow_takes_rel_2_20) > -4'sh2 & $signed(hitsNow_takes_rel_2_20) < 4'sh2;
+  wire        _hitsNow_takes_T_122 =
+    hitsNow_takes_zero_0_20 & hitsNow_takes_rel_1_20 == 4'h0;
+  wire [30:0] hitsNow_bound_20 = {1'h0, {1'h0, members_20_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_60 = {members_20_key_q_0[28], members_20_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_61 = {members_20_key_q_1[28], members_20_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_62 = {members_20_key_q_2[28], members_20_key_q_2} - _GEN_6;
+  wire        hitsNow_later_21 = io_in_bits_key_index > members_21_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_21 = _GEN - {3'h0, members_21_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_21 = _GEN_0 - {3'h0, members_21_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_21 = _GEN_1 - {3'h0, members_21_place[0]};
+  wire        hitsNow_takes_zero_0_21 = hitsNow_takes_rel_0_21 == 4'h0;
+  wire        hitsNow_takes_near_2_21 =
+    $signed(hitsNow_takes_rel_2_21) > -4'sh2 & $signed(hitsNow_takes_rel_2_21) < 4'sh2;
+  wire        _hitsNow_takes_T_128 =
+    hitsNow_takes_zero_0_21 & hitsNow_takes_rel_1_21 == 4'h0;
+  wire [30:0] hitsNow_bound_21 = {1'h0, {1'h0, members_21_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_63 = {members_21_key_q_0[28], members_21_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_64 = {members_21_key_q_1[28], members_21_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_65 = {members_21_key_q_2[28], members_21_key_q_2} - _GEN_6;
+  wire        hitsNow_later_22 = io_in_bits_key_index > members_22_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_22 = _GEN - {3'h0, members_22_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_22 = _GEN_0 - {3'h0, members_22_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_22 = _GEN_1 - {3'h0, members_22_place[0]};
+  wire        hitsNow_takes_zero_0_22 = hitsNow_takes_rel_0_22 == 4'h0;
+  wire        hitsNow_takes_near_2_22 =
+    $signed(hitsNow_takes_rel_2_22) > -4'sh2 & $signed(hitsNow_takes_rel_2_22) < 4'sh2;
+  wire        _hitsNow_takes_T_134 =
+    hitsNow_takes_zero_0_22 & hitsNow_takes_rel_1_22 == 4'h0;
+  wire [30:0] hitsNow_bound_22 = {1'h0, {1'h0, members_22_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_66 = {members_22_key_q_0[28], members_22_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_67 = {members_22_key_q_1[28], members_22_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_68 = {members_22_key_q_2[28], members_22_key_q_2} - _GEN_6;
+  wire        hitsNow_later_23 = io_in_bits_key_index > members_23_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_23 = _GEN - {3'h0, members_23_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_23 = _GEN_0 - {3'h0, members_23_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_23 = _GEN_1 - {3'h0, members_23_place[0]};
+  wire        hitsNow_takes_zero_0_23 = hitsNow_takes_rel_0_23 == 4'h0;
+  wire        hitsNow_takes_near_2_23 =
+    $signed(hitsNow_takes_rel_2_23) > -4'sh2 & $signed(hitsNow_takes_rel_2_23) < 4'sh2;
+  wire        _hitsNow_takes_T_140 =
+    hitsNow_takes_zero_0_23 & hitsNow_takes_rel_1_23 == 4'h0;
+  wire [30:0] hitsNow_bound_23 = {1'h0, {1'h0, members_23_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_69 = {members_23_key_q_0[28], members_23_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_70 = {members_23_key_q_1[28], members_23_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_71 = {members_23_key_q_2[28], members_23_key_q_2} - _GEN_6;
+  wire        hitsNow_later_24 = io_in_bits_key_index > members_24_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_24 = _GEN - {3'h0, members_24_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_24 = _GEN_0 - {3'h0, members_24_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_24 = _GEN_1 - {3'h0, members_24_place[0]};
+  wire        hitsNow_takes_zero_0_24 = hitsNow_takes_rel_0_24 == 4'h0;
+  wire        hitsNow_takes_near_2_24 =
+    $signed(hitsNow_takes_rel_2_24) > -4'sh2 & $signed(hitsNow_takes_rel_2_24) < 4'sh2;
+  wire        _hitsNow_takes_T_146 =
+    hitsNow_takes_zero_0_24 & hitsNow_takes_rel_1_24 == 4'h0;
+  wire [30:0] hitsNow_bound_24 = {1'h0, {1'h0, members_24_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_72 = {members_24_key_q_0[28], members_24_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_73 = {members_24_key_q_1[28], members_24_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_74 = {members_24_key_q_2[28], members_24_key_q_2} - _GEN_6;
+  wire        hitsNow_later_25 = io_in_bits_key_index > members_25_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_25 = _GEN - {3'h0, members_25_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_25 = _GEN_0 - {3'h0, members_25_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_25 = _GEN_1 - {3'h0, members_25_place[0]};
+  wire        hitsNow_takes_zero_0_25 = hitsNow_takes_rel_0_25 == 4'h0;
+  wire        hitsNow_takes_near_2_25 =
+    $signed(hitsNow_takes_rel_2_25) > -4'sh2 & $signed(hitsNow_takes_rel_2_25) < 4'sh2;
+  wire        _hitsNow_takes_T_152 =
+    hitsNow_takes_zero_0_25 & hitsNow_takes_rel_1_25 == 4'h0;
+  wire [30:0] hitsNow_bound_25 = {1'h0, {1'h0, members_25_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_75 = {members_25_key_q_0[28], members_25_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_76 = {members_25_key_q_1[28], members_25_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_77 = {members_25_key_q_2[28], members_25_key_q_2} - _GEN_6;
+  wire        hitsNow_later_26 = io_in_bits_key_index > members_26_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_26 = _GEN - {3'h0, members_26_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_26 = _GEN_0 - {3'h0, members_26_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_26 = _GEN_1 - {3'h0, members_26_place[0]};
+  wire        hitsNow_takes_zero_0_26 = hitsNow_takes_rel_0_26 == 4'h0;
+  wire        hitsNow_takes_near_2_26 =
+    $signed(hitsNow_takes_rel_2_26) > -4'sh2 & $signed(hitsNow_takes_rel_2_26) < 4'sh2;
+  wire        _hitsNow_takes_T_158 =
+    hitsNow_takes_zero_0_26 & hitsNow_takes_rel_1_26 == 4'h0;
+  wire [30:0] hitsNow_bound_26 = {1'h0, {1'h0, members_26_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_78 = {members_26_key_q_0[28], members_26_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_79 = {members_26_key_q_1[28], members_26_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_80 = {members_26_key_q_2[28], members_26_key_q_2} - _GEN_6;
+  wire        hitsNow_later_27 = io_in_bits_key_index > members_27_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_27 = _GEN - {3'h0, members_27_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_27 = _GEN_0 - {3'h0, members_27_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_27 = _GEN_1 - {3'h0, members_27_place[0]};
+  wire        hitsNow_takes_zero_0_27 = hitsNow_takes_rel_0_27 == 4'h0;
+  wire        hitsNow_takes_near_2_27 =
+    $signed(hitsNow_takes_rel_2_27) > -4'sh2 & $signed(hitsNow_takes_rel_2_27) < 4'sh2;
+  wire        _hitsNow_takes_T_164 =
+    hitsNow_takes_zero_0_27 & hitsNow_takes_rel_1_27 == 4'h0;
+  wire [30:0] hitsNow_bound_27 = {1'h0, {1'h0, members_27_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_81 = {members_27_key_q_0[28], members_27_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_82 = {members_27_key_q_1[28], members_27_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_83 = {members_27_key_q_2[28], members_27_key_q_2} - _GEN_6;
+  wire        hitsNow_later_28 = io_in_bits_key_index > members_28_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_28 = _GEN - {3'h0, members_28_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_28 = _GEN_0 - {3'h0, members_28_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_28 = _GEN_1 - {3'h0, members_28_place[0]};
+  wire        hitsNow_takes_zero_0_28 = hitsNow_takes_rel_0_28 == 4'h0;
+  wire        hitsNow_takes_near_2_28 =
+    $signed(hitsNow_takes_rel_2_28) > -4'sh2 & $signed(hitsNow_takes_rel_2_28) < 4'sh2;
+  wire        _hitsNow_takes_T_170 =
+    hitsNow_takes_zero_0_28 & hitsNow_takes_rel_1_28 == 4'h0;
+  wire [30:0] hitsNow_bound_28 = {1'h0, {1'h0, members_28_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_84 = {members_28_key_q_0[28], members_28_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_85 = {members_28_key_q_1[28], members_28_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_86 = {members_28_key_q_2[28], members_28_key_q_2} - _GEN_6;
+  wire        hitsNow_later_29 = io_in_bits_key_index > members_29_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_29 = _GEN - {3'h0, members_29_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_29 = _GEN_0 - {3'h0, members_29_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_29 = _GEN_1 - {3'h0, members_29_place[0]};
+  wire        hitsNow_takes_zero_0_29 = hitsNow_takes_rel_0_29 == 4'h0;
+  wire        hitsNow_takes_near_2_29 =
+    $signed(hitsNow_takes_rel_2_29) > -4'sh2 & $signed(hitsNow_takes_rel_2_29) < 4'sh2;
+  wire        _hitsNow_takes_T_176 =
+    hitsNow_takes_zero_0_29 & hitsNow_takes_rel_1_29 == 4'h0;
+  wire [30:0] hitsNow_bound_29 = {1'h0, {1'h0, members_29_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_87 = {members_29_key_q_0[28], members_29_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_88 = {members_29_key_q_1[28], members_29_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_89 = {members_29_key_q_2[28], members_29_key_q_2} - _GEN_6;
+  wire        hitsNow_later_30 = io_in_bits_key_index > members_30_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_30 = _GEN - {3'h0, members_30_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_30 = _GEN_0 - {3'h0, members_30_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_30 = _GEN_1 - {3'h0, members_30_place[0]};
+  wire        hitsNow_takes_zero_0_30 = hitsNow_takes_rel_0_30 == 4'h0;
+  wire        hitsNow_takes_near_2_30 =
+    $signed(hitsNow_takes_rel_2_30) > -4'sh2 & $signed(hitsNow_takes_rel_2_30) < 4'sh2;
+  wire        _hitsNow_takes_T_182 =
+    hitsNow_takes_zero_0_30 & hitsNow_takes_rel_1_30 == 4'h0;
+  wire [30:0] hitsNow_bound_30 = {1'h0, {1'h0, members_30_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_90 = {members_30_key_q_0[28], members_30_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_91 = {members_30_key_q_1[28], members_30_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_92 = {members_30_key_q_2[28], members_30_key_q_2} - _GEN_6;
+  wire        hitsNow_later_31 = io_in_bits_key_index > members_31_key_index;
+  wire [3:0]  hitsNow_takes_rel_0_31 = _GEN - {3'h0, members_31_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_31 = _GEN_0 - {3'h0, members_31_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_31 = _GEN_1 - {3'h0, members_31_place[0]};
+  wire        hitsNow_takes_zero_0_31 = hitsNow_takes_rel_0_31 == 4'h0;
+  wire        hitsNow_takes_near_2_31 =
+    $signed(hitsNow_takes_rel_2_31) > -4'sh2 & $signed(hitsNow_takes_rel_2_31) < 4'sh2;
+  wire        _hitsNow_takes_T_188 =
+    hitsNow_takes_zero_0_31 & hitsNow_takes_rel_1_31 == 4'h0;
+  wire [30:0] hitsNow_bound_31 = {1'h0, {1'h0, members_31_key_qr} + _GEN_2} + _GEN_3;
+  wire [29:0] hitsNow_d_93 = {members_31_key_q_0[28], members_31_key_q_0} - _GEN_4;
+  wire [29:0] hitsNow_d_94 = {members_31_key_q_1[28], members_31_key_q_1} - _GEN_5;
+  wire [29:0] hitsNow_d_95 = {members_31_key_q_2[28], members_31_key_q_2} - _GEN_6;
+  wire [31:0] hitsNow =
+    {used[5]
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_31
+            : inCell
+              & (_hitsNow_takes_T_188 & hitsNow_takes_rel_2_31 == 4'h0
+                   ? hitsNow_later_31
+                   : hitsNow_takes_rel_0_31 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_31) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_31) < 4'sh2 & hitsNow_takes_near_2_31
+                     | hitsNow_takes_zero_0_31 & hitsNow_takes_rel_1_31 == 4'h1
+                     & hitsNow_takes_near_2_31 | _hitsNow_takes_T_188
+                     & hitsNow_takes_rel_2_31 == 4'h1))
+       & ($signed(hitsNow_d_93) < 30'sh0
+            ? 31'h0 - {hitsNow_d_93[29], hitsNow_d_93}
+            : {1'h0, hitsNow_d_93}) <= hitsNow_bound_31
+       & ($signed(hitsNow_d_94) < 30'sh0
+            ? 31'h0 - {hitsNow_d_94[29], hitsNow_d_94}
+            : {1'h0, hitsNow_d_94}) <= hitsNow_bound_31
+       & ($signed(hitsNow_d_95) < 30'sh0
+            ? 31'h0 - {hitsNow_d_95[29], hitsNow_d_95}
+            : {1'h0, hitsNow_d_95}) <= hitsNow_bound_31,
+     used > 6'h1E
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_30
+            : inCell
+              & (_hitsNow_takes_T_182 & hitsNow_takes_rel_2_30 == 4'h0
+                   ? hitsNow_later_30
+                   : hitsNow_takes_rel_0_30 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_30) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_30) < 4'sh2 & hitsNow_takes_near_2_30
+                     | hitsNow_takes_zero_0_30 & hitsNow_takes_rel_1_30 == 4'h1
+                     & hitsNow_takes_near_2_30 | _hitsNow_takes_T_182
+                     & hitsNow_takes_rel_2_30 == 4'h1))
+       & ($signed(hitsNow_d_90) < 30'sh0
+            ? 31'h0 - {hitsNow_d_90[29], hitsNow_d_90}
+            : {1'h0, hitsNow_d_90}) <= hitsNow_bound_30
+       & ($signed(hitsNow_d_91) < 30'sh0
+            ? 31'h0 - {hitsNow_d_91[29], hitsNow_d_91}
+            : {1'h0, hitsNow_d_91}) <= hitsNow_bound_30
+       & ($signed(hitsNow_d_92) < 30'sh0
+            ? 31'h0 - {hitsNow_d_92[29], hitsNow_d_92}
+            : {1'h0, hitsNow_d_92}) <= hitsNow_bound_30,
+     used > 6'h1D
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_29
+            : inCell
+              & (_hitsNow_takes_T_176 & hitsNow_takes_rel_2_29 == 4'h0
+                   ? hitsNow_later_29
+                   : hitsNow_takes_rel_0_29 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_29) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_29) < 4'sh2 & hitsNow_takes_near_2_29
+                     | hitsNow_takes_zero_0_29 & hitsNow_takes_rel_1_29 == 4'h1
+                     & hitsNow_takes_near_2_29 | _hitsNow_takes_T_176
+                     & hitsNow_takes_rel_2_29 == 4'h1))
+       & ($signed(hitsNow_d_87) < 30'sh0
+            ? 31'h0 - {hitsNow_d_87[29], hitsNow_d_87}
+            : {1'h0, hitsNow_d_87}) <= hitsNow_bound_29
+       & ($signed(hitsNow_d_88) < 30'sh0
+            ? 31'h0 - {hitsNow_d_88[29], hitsNow_d_88}
+            : {1'h0, hitsNow_d_88}) <= hitsNow_bound_29
+       & ($signed(hitsNow_d_89) < 30'sh0
+            ? 31'h0 - {hitsNow_d_89[29], hitsNow_d_89}
+            : {1'h0, hitsNow_d_89}) <= hitsNow_bound_29,
+     used > 6'h1C
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_28
+            : inCell
+              & (_hitsNow_takes_T_170 & hitsNow_takes_rel_2_28 == 4'h0
+                   ? hitsNow_later_28
+                   : hitsNow_takes_rel_0_28 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_28) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_28) < 4'sh2 & hitsNow_takes_near_2_28
+                     | hitsNow_takes_zero_0_28 & hitsNow_takes_rel_1_28 == 4'h1
+                     & hitsNow_takes_near_2_28 | _hitsNow_takes_T_170
+                     & hitsNow_takes_rel_2_28 == 4'h1))
+       & ($signed(hitsNow_d_84) < 30'sh0
+            ? 31'h0 - {hitsNow_d_84[29], hitsNow_d_84}
+            : {1'h0, hitsNow_d_84}) <= hitsNow_bound_28
+       & ($signed(hitsNow_d_85) < 30'sh0
+            ? 31'h0 - {hitsNow_d_85[29], hitsNow_d_85}
+            : {1'h0, hitsNow_d_85}) <= hitsNow_bound_28
+       & ($signed(hitsNow_d_86) < 30'sh0
+            ? 31'h0 - {hitsNow_d_86[29], hitsNow_d_86}
+            : {1'h0, hitsNow_d_86}) <= hitsNow_bound_28,
+     used > 6'h1B
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_27
+            : inCell
+              & (_hitsNow_takes_T_164 & hitsNow_takes_rel_2_27 == 4'h0
+                   ? hitsNow_later_27
+                   : hitsNow_takes_rel_0_27 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_27) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_27) < 4'sh2 & hitsNow_takes_near_2_27
+                     | hitsNow_takes_zero_0_27 & hitsNow_takes_rel_1_27 == 4'h1
+                     & hitsNow_takes_near_2_27 | _hitsNow_takes_T_164
+                     & hitsNow_takes_rel_2_27 == 4'h1))
+       & ($signed(hitsNow_d_81) < 30'sh0
+            ? 31'h0 - {hitsNow_d_81[29], hitsNow_d_81}
+            : {1'h0, hitsNow_d_81}) <= hitsNow_bound_27
+       & ($signed(hitsNow_d_82) < 30'sh0
+            ? 31'h0 - {hitsNow_d_82[29], hitsNow_d_82}
+            : {1'h0, hitsNow_d_82}) <= hitsNow_bound_27
+       & ($signed(hitsNow_d_83) < 30'sh0
+            ? 31'h0 - {hitsNow_d_83[29], hitsNow_d_83}
+            : {1'h0, hitsNow_d_83}) <= hitsNow_bound_27,
+     used > 6'h1A
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_26
+            : inCell
+              & (_hitsNow_takes_T_158 & hitsNow_takes_rel_2_26 == 4'h0
+                   ? hitsNow_later_26
+                   : hitsNow_takes_rel_0_26 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_26) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_26) < 4'sh2 & hitsNow_takes_near_2_26
+                     | hitsNow_takes_zero_0_26 & hitsNow_takes_rel_1_26 == 4'h1
+                     & hitsNow_takes_near_2_26 | _hitsNow_takes_T_158
+                     & hitsNow_takes_rel_2_26 == 4'h1))
+       & ($signed(hitsNow_d_78) < 30'sh0
+            ? 31'h0 - {hitsNow_d_78[29], hitsNow_d_78}
+            : {1'h0, hitsNow_d_78}) <= hitsNow_bound_26
+       & ($signed(hitsNow_d_79) < 30'sh0
+            ? 31'h0 - {hitsNow_d_79[29], hitsNow_d_79}
+            : {1'h0, hitsNow_d_79}) <= hitsNow_bound_26
+       & ($signed(hitsNow_d_80) < 30'sh0
+            ? 31'h0 - {hitsNow_d_80[29], hitsNow_d_80}
+            : {1'h0, hitsNow_d_80}) <= hitsNow_bound_26,
+     used > 6'h19
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_25
+            : inCell
+              & (_hitsNow_takes_T_152 & hitsNow_takes_rel_2_25 == 4'h0
+                   ? hitsNow_later_25
+                   : hitsNow_takes_rel_0_25 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_25) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_25) < 4'sh2 & hitsNow_takes_near_2_25
+                     | hitsNow_takes_zero_0_25 & hitsNow_takes_rel_1_25 == 4'h1
+                     & hitsNow_takes_near_2_25 | _hitsNow_takes_T_152
+                     & hitsNow_takes_rel_2_25 == 4'h1))
+       & ($signed(hitsNow_d_75) < 30'sh0
+            ? 31'h0 - {hitsNow_d_75[29], hitsNow_d_75}
+            : {1'h0, hitsNow_d_75}) <= hitsNow_bound_25
+       & ($signed(hitsNow_d_76) < 30'sh0
+            ? 31'h0 - {hitsNow_d_76[29], hitsNow_d_76}
+            : {1'h0, hitsNow_d_76}) <= hitsNow_bound_25
+       & ($signed(hitsNow_d_77) < 30'sh0
+            ? 31'h0 - {hitsNow_d_77[29], hitsNow_d_77}
+            : {1'h0, hitsNow_d_77}) <= hitsNow_bound_25,
+     used > 6'h18
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_24
+            : inCell
+              & (_hitsNow_takes_T_146 & hitsNow_takes_rel_2_24 == 4'h0
+                   ? hitsNow_later_24
+                   : hitsNow_takes_rel_0_24 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_24) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_24) < 4'sh2 & hitsNow_takes_near_2_24
+                     | hitsNow_takes_zero_0_24 & hitsNow_takes_rel_1_24 == 4'h1
+                     & hitsNow_takes_near_2_24 | _hitsNow_takes_T_146
+                     & hitsNow_takes_rel_2_24 == 4'h1))
+       & ($signed(hitsNow_d_72) < 30'sh0
+            ? 31'h0 - {hitsNow_d_72[29], hitsNow_d_72}
+            : {1'h0, hitsNow_d_72}) <= hitsNow_bound_24
+       & ($signed(hitsNow_d_73) < 30'sh0
+            ? 31'h0 - {hitsNow_d_73[29], hitsNow_d_73}
+            : {1'h0, hitsNow_d_73}) <= hitsNow_bound_24
+       & ($signed(hitsNow_d_74) < 30'sh0
+            ? 31'h0 - {hitsNow_d_74[29], hitsNow_d_74}
+            : {1'h0, hitsNow_d_74}) <= hitsNow_bound_24,
+     used > 6'h17
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_23
+            : inCell
+              & (_hitsNow_takes_T_140 & hitsNow_takes_rel_2_23 == 4'h0
+                   ? hitsNow_later_23
+                   : hitsNow_takes_rel_0_23 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_23) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_23) < 4'sh2 & hitsNow_takes_near_2_23
+                     | hitsNow_takes_zero_0_23 & hitsNow_takes_rel_1_23 == 4'h1
+                     & hitsNow_takes_near_2_23 | _hitsNow_takes_T_140
+                     & hitsNow_takes_rel_2_23 == 4'h1))
+       & ($signed(hitsNow_d_69) < 30'sh0
+            ? 31'h0 - {hitsNow_d_69[29], hitsNow_d_69}
+            : {1'h0, hitsNow_d_69}) <= hitsNow_bound_23
+       & ($signed(hitsNow_d_70) < 30'sh0
+            ? 31'h0 - {hitsNow_d_70[29], hitsNow_d_70}
+            : {1'h0, hitsNow_d_70}) <= hitsNow_bound_23
+       & ($signed(hitsNow_d_71) < 30'sh0
+            ? 31'h0 - {hitsNow_d_71[29], hitsNow_d_71}
+            : {1'h0, hitsNow_d_71}) <= hitsNow_bound_23,
+     used > 6'h16
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_22
+            : inCell
+              & (_hitsNow_takes_T_134 & hitsNow_takes_rel_2_22 == 4'h0
+                   ? hitsNow_later_22
+                   : hitsNow_takes_rel_0_22 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_22) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_22) < 4'sh2 & hitsNow_takes_near_2_22
+                     | hitsNow_takes_zero_0_22 & hitsNow_takes_rel_1_22 == 4'h1
+                     & hitsNow_takes_near_2_22 | _hitsNow_takes_T_134
+                     & hitsNow_takes_rel_2_22 == 4'h1))
+       & ($signed(hitsNow_d_66) < 30'sh0
+            ? 31'h0 - {hitsNow_d_66[29], hitsNow_d_66}
+            : {1'h0, hitsNow_d_66}) <= hitsNow_bound_22
+       & ($signed(hitsNow_d_67) < 30'sh0
+            ? 31'h0 - {hitsNow_d_67[29], hitsNow_d_67}
+            : {1'h0, hitsNow_d_67}) <= hitsNow_bound_22
+       & ($signed(hitsNow_d_68) < 30'sh0
+            ? 31'h0 - {hitsNow_d_68[29], hitsNow_d_68}
+            : {1'h0, hitsNow_d_68}) <= hitsNow_bound_22,
+     used > 6'h15
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_21
+            : inCell
+              & (_hitsNow_takes_T_128 & hitsNow_takes_rel_2_21 == 4'h0
+                   ? hitsNow_later_21
+                   : hitsNow_takes_rel_0_21 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_21) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_21) < 4'sh2 & hitsNow_takes_near_2_21
+                     | hitsNow_takes_zero_0_21 & hitsNow_takes_rel_1_21 == 4'h1
+                     & hitsNow_takes_near_2_21 | _hitsNow_takes_T_128
+                     & hitsNow_takes_rel_2_21 == 4'h1))
+       & ($signed(hitsNow_d_63) < 30'sh0
+            ? 31'h0 - {hitsNow_d_63[29], hitsNow_d_63}
+            : {1'h0, hitsNow_d_63}) <= hitsNow_bound_21
+       & ($signed(hitsNow_d_64) < 30'sh0
+            ? 31'h0 - {hitsNow_d_64[29], hitsNow_d_64}
+            : {1'h0, hitsNow_d_64}) <= hitsNow_bound_21
+       & ($signed(hitsNow_d_65) < 30'sh0
+            ? 31'h0 - {hitsNow_d_65[29], hitsNow_d_65}
+            : {1'h0, hitsNow_d_65}) <= hitsNow_bound_21,
+     used > 6'h14
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_20
+            : inCell
+              & (_hitsNow_takes_T_122 & hitsNow_takes_rel_2_20 == 4'h0
+                   ? hitsNow_later_20
+                   : hitsNow_takes_rel_0_20 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_20) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_20) < 4'sh2 & hitsNow_takes_near_2_20
+                     | hitsNow_takes_zero_0_20 & hitsNow_takes_rel_1_20 == 4'h1
+                     & hitsNow_takes_near_2_20 | _hitsNow_takes_T_122
+                     & hitsNow_takes_rel_2_20 == 4'h1))
+       & ($signed(hitsNow_d_60) < 30'sh0
+            ? 31'h0 - {hitsNow_d_60[29], hitsNow_d_60}
+            : {1'h0, hitsNow_d_60}) <= hitsNow_bound_20
+       & ($signed(hitsNow_d_61) < 30'sh0
+            ? 31'h0 - {hitsNow_d_61[29], hitsNow_d_61}
+            : {1'h0, hitsNow_d_61}) <= hitsNow_bound_20
+       & ($signed(hitsNow_d_62) < 30'sh0
+            ? 31'h0 - {hitsNow_d_62[29], hitsNow_d_62}
+            : {1'h0, hitsNow_d_62}) <= hitsNow_bound_20,
+     used > 6'h13
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_19
+            : inCell
+              & (_hitsNow_takes_T_116 & hitsNow_takes_rel_2_19 == 4'h0
+                   ? hitsNow_later_19
+                   : hitsNow_takes_rel_0_19 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_19) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_19) < 4'sh2 & hitsNow_takes_near_2_19
+                     | hitsNow_takes_zero_0_19 & hitsNow_takes_rel_1_19 == 4'h1
+                     & hitsNow_takes_near_2_19 | _hitsNow_takes_T_116
+                     & hitsNow_takes_rel_2_19 == 4'h1))
+       & ($signed(hitsNow_d_57) < 30'sh0
+            ? 31'h0 - {hitsNow_d_57[29], hitsNow_d_57}
+            : {1'h0, hitsNow_d_57}) <= hitsNow_bound_19
+       & ($signed(hitsNow_d_58) < 30'sh0
+            ? 31'h0 - {hitsNow_d_58[29], hitsNow_d_58}
+            : {1'h0, hitsNow_d_58}) <= hitsNow_bound_19
+       & ($signed(hitsNow_d_59) < 30'sh0
+            ? 31'h0 - {hitsNow_d_59[29], hitsNow_d_59}
+            : {1'h0, hitsNow_d_59}) <= hitsNow_bound_19,
+     used > 6'h12
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_18
+            : inCell
+              & (_hitsNow_takes_T_110 & hitsNow_takes_rel_2_18 == 4'h0
+                   ? hitsNow_later_18
+                   : hitsNow_takes_rel_0_18 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_18) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_18) < 4'sh2 & hitsNow_takes_near_2_18
+                     | hitsNow_takes_zero_0_18 & hitsNow_takes_rel_1_18 == 4'h1
+                     & hitsNow_takes_near_2_18 | _hitsNow_takes_T_110
+                     & hitsNow_takes_rel_2_18 == 4'h1))
+       & ($signed(hitsNow_d_54) < 30'sh0
+            ? 31'h0 - {hitsNow_d_54[29], hitsNow_d_54}
+            : {1'h0, hitsNow_d_54}) <= hitsNow_bound_18
+       & ($signed(hitsNow_d_55) < 30'sh0
+            ? 31'h0 - {hitsNow_d_55[29], hitsNow_d_55}
+            : {1'h0, hitsNow_d_55}) <= hitsNow_bound_18
+       & ($signed(hitsNow_d_56) < 30'sh0
+            ? 31'h0 - {hitsNow_d_56[29], hitsNow_d_56}
+            : {1'h0, hitsNow_d_56}) <= hitsNow_bound_18,
+     used > 6'h11
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_17
+            : inCell
+              & (_hitsNow_takes_T_104 & hitsNow_takes_rel_2_17 == 4'h0
+                   ? hitsNow_later_17
+                   : hitsNow_takes_rel_0_17 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_17) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_17) < 4'sh2 & hitsNow_takes_near_2_17
+                     | hitsNow_takes_zero_0_17 & hitsNow_takes_rel_1_17 == 4'h1
+                     & hitsNow_takes_near_2_17 | _hitsNow_takes_T_104
+                     & hitsNow_takes_rel_2_17 == 4'h1))
+       & ($signed(hitsNow_d_51) < 30'sh0
+            ? 31'h0 - {hitsNow_d_51[29], hitsNow_d_51}
+            : {1'h0, hitsNow_d_51}) <= hitsNow_bound_17
+       & ($signed(hitsNow_d_52) < 30'sh0
+            ? 31'h0 - {hitsNow_d_52[29], hitsNow_d_52}
+            : {1'h0, hitsNow_d_52}) <= hitsNow_bound_17
+       & ($signed(hitsNow_d_53) < 30'sh0
+            ? 31'h0 - {hitsNow_d_53[29], hitsNow_d_53}
+            : {1'h0, hitsNow_d_53}) <= hitsNow_bound_17,
+     used > 6'h10
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_16
+            : inCell
+              & (_hitsNow_takes_T_98 & hitsNow_takes_rel_2_16 == 4'h0
+                   ? hitsNow_later_16
+                   : hitsNow_takes_rel_0_16 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_16) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_16) < 4'sh2 & hitsNow_takes_near_2_16
+                     | hitsNow_takes_zero_0_16 & hitsNow_takes_rel_1_16 == 4'h1
+                     & hitsNow_takes_near_2_16 | _hitsNow_takes_T_98
+                     & hitsNow_takes_rel_2_16 == 4'h1))
+       & ($signed(hitsNow_d_48) < 30'sh0
+            ? 31'h0 - {hitsNow_d_48[29], hitsNow_d_48}
+            : {1'h0, hitsNow_d_48}) <= hitsNow_bound_16
+       & ($signed(hitsNow_d_49) < 30'sh0
+            ? 31'h0 - {hitsNow_d_49[29], hitsNow_d_49}
+            : {1'h0, hitsNow_d_49}) <= hitsNow_bound_16
+       & ($signed(hitsNow_d_50) < 30'sh0
+            ? 31'h0 - {hitsNow_d_50[29], hitsNow_d_50}
+            : {1'h0, hitsNow_d_50}) <= hitsNow_bound_16,
+     (|(used[5:4]))
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_15
+            : inCell
+              & (_hitsNow_takes_T_92 & hitsNow_takes_rel_2_15 == 4'h0
+                   ? hitsNow_later_15
+                   : hitsNow_takes_rel_0_15 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_15) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_15) < 4'sh2 & hitsNow_takes_near_2_15
+                     | hitsNow_takes_zero_0_15 & hitsNow_takes_rel_1_15 == 4'h1
+                     & hitsNow_takes_near_2_15 | _hitsNow_takes_T_92
+                     & hitsNow_takes_rel_2_15 == 4'h1))
        & ($signed(hitsNow_d_45) < 30'sh0
             ? 31'h0 - {hitsNow_d_45[29], hitsNow_d_45}
             : {1'h0, hitsNow_d_45}) <= hitsNow_bound_15
@@ -20179,7 +21109,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_47) < 30'sh0
             ? 31'h0 - {hitsNow_d_47[29], hitsNow_d_47}
             : {1'h0, hitsNow_d_47}) <= hitsNow_bound_15,
-     used > 5'hE & inCell & (~io_in_bits_own | io_in_bits_key_index > members_14_index)
+     used > 6'hE
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_14
+            : inCell
+              & (_hitsNow_takes_T_86 & hitsNow_takes_rel_2_14 == 4'h0
+                   ? hitsNow_later_14
+                   : hitsNow_takes_rel_0_14 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_14) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_14) < 4'sh2 & hitsNow_takes_near_2_14
+                     | hitsNow_takes_zero_0_14 & hitsNow_takes_rel_1_14 == 4'h1
+                     & hitsNow_takes_near_2_14 | _hitsNow_takes_T_86
+                     & hitsNow_takes_rel_2_14 == 4'h1))
        & ($signed(hitsNow_d_42) < 30'sh0
             ? 31'h0 - {hitsNow_d_42[29], hitsNow_d_42}
             : {1'h0, hitsNow_d_42}) <= hitsNow_bound_14
@@ -20189,7 +21130,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_44) < 30'sh0
             ? 31'h0 - {hitsNow_d_44[29], hitsNow_d_44}
             : {1'h0, hitsNow_d_44}) <= hitsNow_bound_14,
-     used > 5'hD & inCell & (~io_in_bits_own | io_in_bits_key_index > members_13_index)
+     used > 6'hD
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_13
+            : inCell
+              & (_hitsNow_takes_T_80 & hitsNow_takes_rel_2_13 == 4'h0
+                   ? hitsNow_later_13
+                   : hitsNow_takes_rel_0_13 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_13) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_13) < 4'sh2 & hitsNow_takes_near_2_13
+                     | hitsNow_takes_zero_0_13 & hitsNow_takes_rel_1_13 == 4'h1
+                     & hitsNow_takes_near_2_13 | _hitsNow_takes_T_80
+                     & hitsNow_takes_rel_2_13 == 4'h1))
        & ($signed(hitsNow_d_39) < 30'sh0
             ? 31'h0 - {hitsNow_d_39[29], hitsNow_d_39}
             : {1'h0, hitsNow_d_39}) <= hitsNow_bound_13
@@ -20199,7 +21151,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_41) < 30'sh0
             ? 31'h0 - {hitsNow_d_41[29], hitsNow_d_41}
             : {1'h0, hitsNow_d_41}) <= hitsNow_bound_13,
-     used > 5'hC & inCell & (~io_in_bits_own | io_in_bits_key_index > members_12_index)
+     used > 6'hC
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_12
+            : inCell
+              & (_hitsNow_takes_T_74 & hitsNow_takes_rel_2_12 == 4'h0
+                   ? hitsNow_later_12
+                   : hitsNow_takes_rel_0_12 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_12) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_12) < 4'sh2 & hitsNow_takes_near_2_12
+                     | hitsNow_takes_zero_0_12 & hitsNow_takes_rel_1_12 == 4'h1
+                     & hitsNow_takes_near_2_12 | _hitsNow_takes_T_74
+                     & hitsNow_takes_rel_2_12 == 4'h1))
        & ($signed(hitsNow_d_36) < 30'sh0
             ? 31'h0 - {hitsNow_d_36[29], hitsNow_d_36}
             : {1'h0, hitsNow_d_36}) <= hitsNow_bound_12
@@ -20209,7 +21172,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_38) < 30'sh0
             ? 31'h0 - {hitsNow_d_38[29], hitsNow_d_38}
             : {1'h0, hitsNow_d_38}) <= hitsNow_bound_12,
-     used > 5'hB & inCell & (~io_in_bits_own | io_in_bits_key_index > members_11_index)
+     used > 6'hB
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_11
+            : inCell
+              & (_hitsNow_takes_T_68 & hitsNow_takes_rel_2_11 == 4'h0
+                   ? hitsNow_later_11
+                   : hitsNow_takes_rel_0_11 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_11) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_11) < 4'sh2 & hitsNow_takes_near_2_11
+                     | hitsNow_takes_zero_0_11 & hitsNow_takes_rel_1_11 == 4'h1
+                     & hitsNow_takes_near_2_11 | _hitsNow_takes_T_68
+                     & hitsNow_takes_rel_2_11 == 4'h1))
        & ($signed(hitsNow_d_33) < 30'sh0
             ? 31'h0 - {hitsNow_d_33[29], hitsNow_d_33}
             : {1'h0, hitsNow_d_33}) <= hitsNow_bound_11
@@ -20219,7 +21193,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_35) < 30'sh0
             ? 31'h0 - {hitsNow_d_35[29], hitsNow_d_35}
             : {1'h0, hitsNow_d_35}) <= hitsNow_bound_11,
-     used > 5'hA & inCell & (~io_in_bits_own | io_in_bits_key_index > members_10_index)
+     used > 6'hA
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_10
+            : inCell
+              & (_hitsNow_takes_T_62 & hitsNow_takes_rel_2_10 == 4'h0
+                   ? hitsNow_later_10
+                   : hitsNow_takes_rel_0_10 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_10) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_10) < 4'sh2 & hitsNow_takes_near_2_10
+                     | hitsNow_takes_zero_0_10 & hitsNow_takes_rel_1_10 == 4'h1
+                     & hitsNow_takes_near_2_10 | _hitsNow_takes_T_62
+                     & hitsNow_takes_rel_2_10 == 4'h1))
        & ($signed(hitsNow_d_30) < 30'sh0
             ? 31'h0 - {hitsNow_d_30[29], hitsNow_d_30}
             : {1'h0, hitsNow_d_30}) <= hitsNow_bound_10
@@ -20229,7 +21214,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_32) < 30'sh0
             ? 31'h0 - {hitsNow_d_32[29], hitsNow_d_32}
             : {1'h0, hitsNow_d_32}) <= hitsNow_bound_10,
-     used > 5'h9 & inCell & (~io_in_bits_own | io_in_bits_key_index > members_9_index)
+     used > 6'h9
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_9
+            : inCell
+              & (_hitsNow_takes_T_56 & hitsNow_takes_rel_2_9 == 4'h0
+                   ? hitsNow_later_9
+                   : hitsNow_takes_rel_0_9 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_9) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_9) < 4'sh2 & hitsNow_takes_near_2_9
+                     | hitsNow_takes_zero_0_9 & hitsNow_takes_rel_1_9 == 4'h1
+                     & hitsNow_takes_near_2_9 | _hitsNow_takes_T_56
+                     & hitsNow_takes_rel_2_9 == 4'h1))
        & ($signed(hitsNow_d_27) < 30'sh0
             ? 31'h0 - {hitsNow_d_27[29], hitsNow_d_27}
             : {1'h0, hitsNow_d_27}) <= hitsNow_bound_9
@@ -20239,7 +21235,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_29) < 30'sh0
             ? 31'h0 - {hitsNow_d_29[29], hitsNow_d_29}
             : {1'h0, hitsNow_d_29}) <= hitsNow_bound_9,
-     used > 5'h8 & inCell & (~io_in_bits_own | io_in_bits_key_index > members_8_index)
+     used > 6'h8
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_8
+            : inCell
+              & (_hitsNow_takes_T_50 & hitsNow_takes_rel_2_8 == 4'h0
+                   ? hitsNow_later_8
+                   : hitsNow_takes_rel_0_8 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_8) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_8) < 4'sh2 & hitsNow_takes_near_2_8
+                     | hitsNow_takes_zero_0_8 & hitsNow_takes_rel_1_8 == 4'h1
+                     & hitsNow_takes_near_2_8 | _hitsNow_takes_T_50
+                     & hitsNow_takes_rel_2_8 == 4'h1))
        & ($signed(hitsNow_d_24) < 30'sh0
             ? 31'h0 - {hitsNow_d_24[29], hitsNow_d_24}
             : {1'h0, hitsNow_d_24}) <= hitsNow_bound_8
@@ -20249,7 +21256,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_26) < 30'sh0
             ? 31'h0 - {hitsNow_d_26[29], hitsNow_d_26}
             : {1'h0, hitsNow_d_26}) <= hitsNow_bound_8,
-     (|(used[4:3])) & inCell & (~io_in_bits_own | io_in_bits_key_index > members_7_index)
+     (|(used[5:3]))
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_7
+            : inCell
+              & (_hitsNow_takes_T_44 & hitsNow_takes_rel_2_7 == 4'h0
+                   ? hitsNow_later_7
+                   : hitsNow_takes_rel_0_7 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_7) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_7) < 4'sh2 & hitsNow_takes_near_2_7
+                     | hitsNow_takes_zero_0_7 & hitsNow_takes_rel_1_7 == 4'h1
+                     & hitsNow_takes_near_2_7 | _hitsNow_takes_T_44
+                     & hitsNow_takes_rel_2_7 == 4'h1))
        & ($signed(hitsNow_d_21) < 30'sh0
             ? 31'h0 - {hitsNow_d_21[29], hitsNow_d_21}
             : {1'h0, hitsNow_d_21}) <= hitsNow_bound_7
@@ -20259,7 +21277,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_23) < 30'sh0
             ? 31'h0 - {hitsNow_d_23[29], hitsNow_d_23}
             : {1'h0, hitsNow_d_23}) <= hitsNow_bound_7,
-     used > 5'h6 & inCell & (~io_in_bits_own | io_in_bits_key_index > members_6_index)
+     used > 6'h6
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_6
+            : inCell
+              & (_hitsNow_takes_T_38 & hitsNow_takes_rel_2_6 == 4'h0
+                   ? hitsNow_later_6
+                   : hitsNow_takes_rel_0_6 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_6) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_6) < 4'sh2 & hitsNow_takes_near_2_6
+                     | hitsNow_takes_zero_0_6 & hitsNow_takes_rel_1_6 == 4'h1
+                     & hitsNow_takes_near_2_6 | _hitsNow_takes_T_38
+                     & hitsNow_takes_rel_2_6 == 4'h1))
        & ($signed(hitsNow_d_18) < 30'sh0
             ? 31'h0 - {hitsNow_d_18[29], hitsNow_d_18}
             : {1'h0, hitsNow_d_18}) <= hitsNow_bound_6
@@ -20269,7 +21298,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_20) < 30'sh0
             ? 31'h0 - {hitsNow_d_20[29], hitsNow_d_20}
             : {1'h0, hitsNow_d_20}) <= hitsNow_bound_6,
-     used > 5'h5 & inCell & (~io_in_bits_own | io_in_bits_key_index > members_5_index)
+     used > 6'h5
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_5
+            : inCell
+              & (_hitsNow_takes_T_32 & hitsNow_takes_rel_2_5 == 4'h0
+                   ? hitsNow_later_5
+                   : hitsNow_takes_rel_0_5 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_5) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_5) < 4'sh2 & hitsNow_takes_near_2_5
+                     | hitsNow_takes_zero_0_5 & hitsNow_takes_rel_1_5 == 4'h1
+                     & hitsNow_takes_near_2_5 | _hitsNow_takes_T_32
+                     & hitsNow_takes_rel_2_5 == 4'h1))
        & ($signed(hitsNow_d_15) < 30'sh0
             ? 31'h0 - {hitsNow_d_15[29], hitsNow_d_15}
             : {1'h0, hitsNow_d_15}) <= hitsNow_bound_5
@@ -20279,7 +21319,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_17) < 30'sh0
             ? 31'h0 - {hitsNow_d_17[29], hitsNow_d_17}
             : {1'h0, hitsNow_d_17}) <= hitsNow_bound_5,
-     used > 5'h4 & inCell & (~io_in_bits_own | io_in_bits_key_index > members_4_index)
+     used > 6'h4
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_4
+            : inCell
+              & (_hitsNow_takes_T_26 & hitsNow_takes_rel_2_4 == 4'h0
+                   ? hitsNow_later_4
+                   : hitsNow_takes_rel_0_4 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_4) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_4) < 4'sh2 & hitsNow_takes_near_2_4
+                     | hitsNow_takes_zero_0_4 & hitsNow_takes_rel_1_4 == 4'h1
+                     & hitsNow_takes_near_2_4 | _hitsNow_takes_T_26
+                     & hitsNow_takes_rel_2_4 == 4'h1))
        & ($signed(hitsNow_d_12) < 30'sh0
             ? 31'h0 - {hitsNow_d_12[29], hitsNow_d_12}
             : {1'h0, hitsNow_d_12}) <= hitsNow_bound_4
@@ -20289,7 +21340,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_14) < 30'sh0
             ? 31'h0 - {hitsNow_d_14[29], hitsNow_d_14}
             : {1'h0, hitsNow_d_14}) <= hitsNow_bound_4,
-     (|(used[4:2])) & inCell & (~io_in_bits_own | io_in_bits_key_index > members_3_index)
+     (|(used[5:2]))
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_3
+            : inCell
+              & (_hitsNow_takes_T_20 & hitsNow_takes_rel_2_3 == 4'h0
+                   ? hitsNow_later_3
+                   : hitsNow_takes_rel_0_3 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_3) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_3) < 4'sh2 & hitsNow_takes_near_2_3
+                     | hitsNow_takes_zero_0_3 & hitsNow_takes_rel_1_3 == 4'h1
+                     & hitsNow_takes_near_2_3 | _hitsNow_takes_T_20
+                     & hitsNow_takes_rel_2_3 == 4'h1))
        & ($signed(hitsNow_d_9) < 30'sh0
             ? 31'h0 - {hitsNow_d_9[29], hitsNow_d_9}
             : {1'h0, hitsNow_d_9}) <= hitsNow_bound_3
@@ -20299,7 +21361,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_11) < 30'sh0
             ? 31'h0 - {hitsNow_d_11[29], hitsNow_d_11}
             : {1'h0, hitsNow_d_11}) <= hitsNow_bound_3,
-     used > 5'h2 & inCell & (~io_in_bits_own | io_in_bits_key_index > members_2_index)
+     used > 6'h2
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_2
+            : inCell
+              & (_hitsNow_takes_T_14 & hitsNow_takes_rel_2_2 == 4'h0
+                   ? hitsNow_later_2
+                   : hitsNow_takes_rel_0_2 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_2) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_2) < 4'sh2 & hitsNow_takes_near_2_2
+                     | hitsNow_takes_zero_0_2 & hitsNow_takes_rel_1_2 == 4'h1
+                     & hitsNow_takes_near_2_2 | _hitsNow_takes_T_14
+                     & hitsNow_takes_rel_2_2 == 4'h1))
        & ($signed(hitsNow_d_6) < 30'sh0
             ? 31'h0 - {hitsNow_d_6[29], hitsNow_d_6}
             : {1'h0, hitsNow_d_6}) <= hitsNow_bound_2
@@ -20309,7 +21382,18 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_8) < 30'sh0
             ? 31'h0 - {hitsNow_d_8[29], hitsNow_d_8}
             : {1'h0, hitsNow_d_8}) <= hitsNow_bound_2,
-     (|(used[4:1])) & inCell & (~io_in_bits_own | io_in_bits_key_index > members_1_index)
+     (|(used[5:1]))
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later_1
+            : inCell
+              & (_hitsNow_takes_T_8 & hitsNow_takes_rel_2_1 == 4'h0
+                   ? hitsNow_later_1
+                   : hitsNow_takes_rel_0_1 == 4'h1
+                     & $signed(hitsNow_takes_rel_1_1) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1_1) < 4'sh2 & hitsNow_takes_near_2_1
+                     | hitsNow_takes_zero_0_1 & hitsNow_takes_rel_1_1 == 4'h1
+                     & hitsNow_takes_near_2_1 | _hitsNow_takes_T_8
+                     & hitsNow_takes_rel_2_1 == 4'h1))
        & ($signed(hitsNow_d_3) < 30'sh0
             ? 31'h0 - {hitsNow_d_3[29], hitsNow_d_3}
             : {1'h0, hitsNow_d_3}) <= hitsNow_bound_1
@@ -20319,7 +21403,17 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_5) < 30'sh0
             ? 31'h0 - {hitsNow_d_5[29], hitsNow_d_5}
             : {1'h0, hitsNow_d_5}) <= hitsNow_bound_1,
-     (|used) & inCell & (~io_in_bits_own | io_in_bits_key_index > members_0_index)
+     (|used)
+       & (io_in_bits_anyCell
+            ? ~io_in_bits_own | hitsNow_later
+            : inCell
+              & (_hitsNow_takes_T_2 & hitsNow_takes_rel_2 == 4'h0
+                   ? hitsNow_later
+                   : hitsNow_takes_rel_0 == 4'h1 & $signed(hitsNow_takes_rel_1) > -4'sh2
+                     & $signed(hitsNow_takes_rel_1) < 4'sh2 & hitsNow_takes_near_2
+                     | hitsNow_takes_zero_0 & hitsNow_takes_rel_1 == 4'h1
+                     & hitsNow_takes_near_2 | _hitsNow_takes_T_2
+                     & hitsNow_takes_rel_2 == 4'h1))
        & ($signed(hitsNow_d) < 30'sh0
             ? 31'h0 - {hitsNow_d[29], hitsNow_d}
             : {1'h0, hitsNow_d}) <= hitsNow_bound
@@ -20329,179 +21423,356 @@ module ChunkMatcher_i12_c20_q29_k16_world(
        & ($signed(hitsNow_d_2) < 30'sh0
             ? 31'h0 - {hitsNow_d_2[29], hitsNow_d_2}
             : {1'h0, hitsNow_d_2}) <= hitsNow_bound};
-  wire        _GEN_4 = used == 5'h10;
+  wire        _GEN_7 = used == 6'h20;
   wire        _pending_T = io_in_ready_0 & io_in_valid;
   always @(posedge clock) begin
     if (io_clear) begin
       if (io_load_valid) begin
-        members_0_index <= io_load_bits_index;
-        members_0_q_0 <= io_load_bits_q_0;
-        members_0_q_1 <= io_load_bits_q_1;
-        members_0_q_2 <= io_load_bits_q_2;
-        members_0_qr <= io_load_bits_qr;
+        members_0_key_index <= io_load_bits_key_index;
+        members_0_key_q_0 <= io_load_bits_key_q_0;
+        members_0_key_q_1 <= io_load_bits_key_q_1;
+        members_0_key_q_2 <= io_load_bits_key_q_2;
+        members_0_key_qr <= io_load_bits_key_qr;
+        members_0_place <= io_load_bits_place;
       end
     end
-    else if (~io_load_valid | _GEN_4 | (|(used[3:0]))) begin
+    else if (~io_load_valid | _GEN_7 | (|(used[4:0]))) begin
     end
     else begin
-      members_0_index <= io_load_bits_index;
-      members_0_q_0 <= io_load_bits_q_0;
-      members_0_q_1 <= io_load_bits_q_1;
-      members_0_q_2 <= io_load_bits_q_2;
-      members_0_qr <= io_load_bits_qr;
+      members_0_key_index <= io_load_bits_key_index;
+      members_0_key_q_0 <= io_load_bits_key_q_0;
+      members_0_key_q_1 <= io_load_bits_key_q_1;
+      members_0_key_q_2 <= io_load_bits_key_q_2;
+      members_0_key_qr <= io_load_bits_key_qr;
+      members_0_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'h1) begin
-    end
-    else begin
-      members_1_index <= io_load_bits_index;
-      members_1_q_0 <= io_load_bits_q_0;
-      members_1_q_1 <= io_load_bits_q_1;
-      members_1_q_2 <= io_load_bits_q_2;
-      members_1_qr <= io_load_bits_qr;
-    end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'h2) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1) begin
     end
     else begin
-      members_2_index <= io_load_bits_index;
-      members_2_q_0 <= io_load_bits_q_0;
-      members_2_q_1 <= io_load_bits_q_1;
-      members_2_q_2 <= io_load_bits_q_2;
-      members_2_qr <= io_load_bits_qr;
+      members_1_key_index <= io_load_bits_key_index;
+      members_1_key_q_0 <= io_load_bits_key_q_0;
+      members_1_key_q_1 <= io_load_bits_key_q_1;
+      members_1_key_q_2 <= io_load_bits_key_q_2;
+      members_1_key_qr <= io_load_bits_key_qr;
+      members_1_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'h3) begin
-    end
-    else begin
-      members_3_index <= io_load_bits_index;
-      members_3_q_0 <= io_load_bits_q_0;
-      members_3_q_1 <= io_load_bits_q_1;
-      members_3_q_2 <= io_load_bits_q_2;
-      members_3_qr <= io_load_bits_qr;
-    end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'h4) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h2) begin
     end
     else begin
-      members_4_index <= io_load_bits_index;
-      members_4_q_0 <= io_load_bits_q_0;
-      members_4_q_1 <= io_load_bits_q_1;
-      members_4_q_2 <= io_load_bits_q_2;
-      members_4_qr <= io_load_bits_qr;
+      members_2_key_index <= io_load_bits_key_index;
+      members_2_key_q_0 <= io_load_bits_key_q_0;
+      members_2_key_q_1 <= io_load_bits_key_q_1;
+      members_2_key_q_2 <= io_load_bits_key_q_2;
+      members_2_key_qr <= io_load_bits_key_qr;
+      members_2_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'h5) begin
-    end
-    else begin
-      members_5_index <= io_load_bits_index;
-      members_5_q_0 <= io_load_bits_q_0;
-      members_5_q_1 <= io_load_bits_q_1;
-      members_5_q_2 <= io_load_bits_q_2;
-      members_5_qr <= io_load_bits_qr;
-    end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'h6) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h3) begin
     end
     else begin
-      members_6_index <= io_load_bits_index;
-      members_6_q_0 <= io_load_bits_q_0;
-      members_6_q_1 <= io_load_bits_q_1;
-      members_6_q_2 <= io_load_bits_q_2;
-      members_6_qr <= io_load_bits_qr;
+      members_3_key_index <= io_load_bits_key_index;
+      members_3_key_q_0 <= io_load_bits_key_q_0;
+      members_3_key_q_1 <= io_load_bits_key_q_1;
+      members_3_key_q_2 <= io_load_bits_key_q_2;
+      members_3_key_qr <= io_load_bits_key_qr;
+      members_3_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'h7) begin
-    end
-    else begin
-      members_7_index <= io_load_bits_index;
-      members_7_q_0 <= io_load_bits_q_0;
-      members_7_q_1 <= io_load_bits_q_1;
-      members_7_q_2 <= io_load_bits_q_2;
-      members_7_qr <= io_load_bits_qr;
-    end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'h8) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h4) begin
     end
     else begin
-      members_8_index <= io_load_bits_index;
-      members_8_q_0 <= io_load_bits_q_0;
-      members_8_q_1 <= io_load_bits_q_1;
-      members_8_q_2 <= io_load_bits_q_2;
-      members_8_qr <= io_load_bits_qr;
+      members_4_key_index <= io_load_bits_key_index;
+      members_4_key_q_0 <= io_load_bits_key_q_0;
+      members_4_key_q_1 <= io_load_bits_key_q_1;
+      members_4_key_q_2 <= io_load_bits_key_q_2;
+      members_4_key_qr <= io_load_bits_key_qr;
+      members_4_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'h9) begin
-    end
-    else begin
-      members_9_index <= io_load_bits_index;
-      members_9_q_0 <= io_load_bits_q_0;
-      members_9_q_1 <= io_load_bits_q_1;
-      members_9_q_2 <= io_load_bits_q_2;
-      members_9_qr <= io_load_bits_qr;
-    end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'hA) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h5) begin
     end
     else begin
-      members_10_index <= io_load_bits_index;
-      members_10_q_0 <= io_load_bits_q_0;
-      members_10_q_1 <= io_load_bits_q_1;
-      members_10_q_2 <= io_load_bits_q_2;
-      members_10_qr <= io_load_bits_qr;
+      members_5_key_index <= io_load_bits_key_index;
+      members_5_key_q_0 <= io_load_bits_key_q_0;
+      members_5_key_q_1 <= io_load_bits_key_q_1;
+      members_5_key_q_2 <= io_load_bits_key_q_2;
+      members_5_key_qr <= io_load_bits_key_qr;
+      members_5_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'hB) begin
-    end
-    else begin
-      members_11_index <= io_load_bits_index;
-      members_11_q_0 <= io_load_bits_q_0;
-      members_11_q_1 <= io_load_bits_q_1;
-      members_11_q_2 <= io_load_bits_q_2;
-      members_11_qr <= io_load_bits_qr;
-    end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'hC) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h6) begin
     end
     else begin
-      members_12_index <= io_load_bits_index;
-      members_12_q_0 <= io_load_bits_q_0;
-      members_12_q_1 <= io_load_bits_q_1;
-      members_12_q_2 <= io_load_bits_q_2;
-      members_12_qr <= io_load_bits_qr;
+      members_6_key_index <= io_load_bits_key_index;
+      members_6_key_q_0 <= io_load_bits_key_q_0;
+      members_6_key_q_1 <= io_load_bits_key_q_1;
+      members_6_key_q_2 <= io_load_bits_key_q_2;
+      members_6_key_qr <= io_load_bits_key_qr;
+      members_6_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'hD) begin
-    end
-    else begin
-      members_13_index <= io_load_bits_index;
-      members_13_q_0 <= io_load_bits_q_0;
-      members_13_q_1 <= io_load_bits_q_1;
-      members_13_q_2 <= io_load_bits_q_2;
-      members_13_qr <= io_load_bits_qr;
-    end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'hE) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h7) begin
     end
     else begin
-      members_14_index <= io_load_bits_index;
-      members_14_q_0 <= io_load_bits_q_0;
-      members_14_q_1 <= io_load_bits_q_1;
-      members_14_q_2 <= io_load_bits_q_2;
-      members_14_qr <= io_load_bits_qr;
+      members_7_key_index <= io_load_bits_key_index;
+      members_7_key_q_0 <= io_load_bits_key_q_0;
+      members_7_key_q_1 <= io_load_bits_key_q_1;
+      members_7_key_q_2 <= io_load_bits_key_q_2;
+      members_7_key_qr <= io_load_bits_key_qr;
+      members_7_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_4 | used[3:0] != 4'hF) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h8) begin
     end
     else begin
-      members_15_index <= io_load_bits_index;
-      members_15_q_0 <= io_load_bits_q_0;
-      members_15_q_1 <= io_load_bits_q_1;
-      members_15_q_2 <= io_load_bits_q_2;
-      members_15_qr <= io_load_bits_qr;
+      members_8_key_index <= io_load_bits_key_index;
+      members_8_key_q_0 <= io_load_bits_key_q_0;
+      members_8_key_q_1 <= io_load_bits_key_q_1;
+      members_8_key_q_2 <= io_load_bits_key_q_2;
+      members_8_key_qr <= io_load_bits_key_qr;
+      members_8_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h9) begin
+    end
+    else begin
+      members_9_key_index <= io_load_bits_key_index;
+      members_9_key_q_0 <= io_load_bits_key_q_0;
+      members_9_key_q_1 <= io_load_bits_key_q_1;
+      members_9_key_q_2 <= io_load_bits_key_q_2;
+      members_9_key_qr <= io_load_bits_key_qr;
+      members_9_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hA) begin
+    end
+    else begin
+      members_10_key_index <= io_load_bits_key_index;
+      members_10_key_q_0 <= io_load_bits_key_q_0;
+      members_10_key_q_1 <= io_load_bits_key_q_1;
+      members_10_key_q_2 <= io_load_bits_key_q_2;
+      members_10_key_qr <= io_load_bits_key_qr;
+      members_10_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hB) begin
+    end
+    else begin
+      members_11_key_index <= io_load_bits_key_index;
+      members_11_key_q_0 <= io_load_bits_key_q_0;
+      members_11_key_q_1 <= io_load_bits_key_q_1;
+      members_11_key_q_2 <= io_load_bits_key_q_2;
+      members_11_key_qr <= io_load_bits_key_qr;
+      members_11_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hC) begin
+    end
+    else begin
+      members_12_key_index <= io_load_bits_key_index;
+      members_12_key_q_0 <= io_load_bits_key_q_0;
+      members_12_key_q_1 <= io_load_bits_key_q_1;
+      members_12_key_q_2 <= io_load_bits_key_q_2;
+      members_12_key_qr <= io_load_bits_key_qr;
+      members_12_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hD) begin
+    end
+    else begin
+      members_13_key_index <= io_load_bits_key_index;
+      members_13_key_q_0 <= io_load_bits_key_q_0;
+      members_13_key_q_1 <= io_load_bits_key_q_1;
+      members_13_key_q_2 <= io_load_bits_key_q_2;
+      members_13_key_qr <= io_load_bits_key_qr;
+      members_13_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hE) begin
+    end
+    else begin
+      members_14_key_index <= io_load_bits_key_index;
+      members_14_key_q_0 <= io_load_bits_key_q_0;
+      members_14_key_q_1 <= io_load_bits_key_q_1;
+      members_14_key_q_2 <= io_load_bits_key_q_2;
+      members_14_key_qr <= io_load_bits_key_qr;
+      members_14_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hF) begin
+    end
+    else begin
+      members_15_key_index <= io_load_bits_key_index;
+      members_15_key_q_0 <= io_load_bits_key_q_0;
+      members_15_key_q_1 <= io_load_bits_key_q_1;
+      members_15_key_q_2 <= io_load_bits_key_q_2;
+      members_15_key_qr <= io_load_bits_key_qr;
+      members_15_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h10) begin
+    end
+    else begin
+      members_16_key_index <= io_load_bits_key_index;
+      members_16_key_q_0 <= io_load_bits_key_q_0;
+      members_16_key_q_1 <= io_load_bits_key_q_1;
+      members_16_key_q_2 <= io_load_bits_key_q_2;
+      members_16_key_qr <= io_load_bits_key_qr;
+      members_16_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h11) begin
+    end
+    else begin
+      members_17_key_index <= io_load_bits_key_index;
+      members_17_key_q_0 <= io_load_bits_key_q_0;
+      members_17_key_q_1 <= io_load_bits_key_q_1;
+      members_17_key_q_2 <= io_load_bits_key_q_2;
+      members_17_key_qr <= io_load_bits_key_qr;
+      members_17_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h12) begin
+    end
+    else begin
+      members_18_key_index <= io_load_bits_key_index;
+      members_18_key_q_0 <= io_load_bits_key_q_0;
+      members_18_key_q_1 <= io_load_bits_key_q_1;
+      members_18_key_q_2 <= io_load_bits_key_q_2;
+      members_18_key_qr <= io_load_bits_key_qr;
+      members_18_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h13) begin
+    end
+    else begin
+      members_19_key_index <= io_load_bits_key_index;
+      members_19_key_q_0 <= io_load_bits_key_q_0;
+      members_19_key_q_1 <= io_load_bits_key_q_1;
+      members_19_key_q_2 <= io_load_bits_key_q_2;
+      members_19_key_qr <= io_load_bits_key_qr;
+      members_19_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h14) begin
+    end
+    else begin
+      members_20_key_index <= io_load_bits_key_index;
+      members_20_key_q_0 <= io_load_bits_key_q_0;
+      members_20_key_q_1 <= io_load_bits_key_q_1;
+      members_20_key_q_2 <= io_load_bits_key_q_2;
+      members_20_key_qr <= io_load_bits_key_qr;
+      members_20_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h15) begin
+    end
+    else begin
+      members_21_key_index <= io_load_bits_key_index;
+      members_21_key_q_0 <= io_load_bits_key_q_0;
+      members_21_key_q_1 <= io_load_bits_key_q_1;
+      members_21_key_q_2 <= io_load_bits_key_q_2;
+      members_21_key_qr <= io_load_bits_key_qr;
+      members_21_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h16) begin
+    end
+    else begin
+      members_22_key_index <= io_load_bits_key_index;
+      members_22_key_q_0 <= io_load_bits_key_q_0;
+      members_22_key_q_1 <= io_load_bits_key_q_1;
+      members_22_key_q_2 <= io_load_bits_key_q_2;
+      members_22_key_qr <= io_load_bits_key_qr;
+      members_22_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h17) begin
+    end
+    else begin
+      members_23_key_index <= io_load_bits_key_index;
+      members_23_key_q_0 <= io_load_bits_key_q_0;
+      members_23_key_q_1 <= io_load_bits_key_q_1;
+      members_23_key_q_2 <= io_load_bits_key_q_2;
+      members_23_key_qr <= io_load_bits_key_qr;
+      members_23_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h18) begin
+    end
+    else begin
+      members_24_key_index <= io_load_bits_key_index;
+      members_24_key_q_0 <= io_load_bits_key_q_0;
+      members_24_key_q_1 <= io_load_bits_key_q_1;
+      members_24_key_q_2 <= io_load_bits_key_q_2;
+      members_24_key_qr <= io_load_bits_key_qr;
+      members_24_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h19) begin
+    end
+    else begin
+      members_25_key_index <= io_load_bits_key_index;
+      members_25_key_q_0 <= io_load_bits_key_q_0;
+      members_25_key_q_1 <= io_load_bits_key_q_1;
+      members_25_key_q_2 <= io_load_bits_key_q_2;
+      members_25_key_qr <= io_load_bits_key_qr;
+      members_25_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1A) begin
+    end
+    else begin
+      members_26_key_index <= io_load_bits_key_index;
+      members_26_key_q_0 <= io_load_bits_key_q_0;
+      members_26_key_q_1 <= io_load_bits_key_q_1;
+      members_26_key_q_2 <= io_load_bits_key_q_2;
+      members_26_key_qr <= io_load_bits_key_qr;
+      members_26_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1B) begin
+    end
+    else begin
+      members_27_key_index <= io_load_bits_key_index;
+      members_27_key_q_0 <= io_load_bits_key_q_0;
+      members_27_key_q_1 <= io_load_bits_key_q_1;
+      members_27_key_q_2 <= io_load_bits_key_q_2;
+      members_27_key_qr <= io_load_bits_key_qr;
+      members_27_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1C) begin
+    end
+    else begin
+      members_28_key_index <= io_load_bits_key_index;
+      members_28_key_q_0 <= io_load_bits_key_q_0;
+      members_28_key_q_1 <= io_load_bits_key_q_1;
+      members_28_key_q_2 <= io_load_bits_key_q_2;
+      members_28_key_qr <= io_load_bits_key_qr;
+      members_28_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1D) begin
+    end
+    else begin
+      members_29_key_index <= io_load_bits_key_index;
+      members_29_key_q_0 <= io_load_bits_key_q_0;
+      members_29_key_q_1 <= io_load_bits_key_q_1;
+      members_29_key_q_2 <= io_load_bits_key_q_2;
+      members_29_key_qr <= io_load_bits_key_qr;
+      members_29_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1E) begin
+    end
+    else begin
+      members_30_key_index <= io_load_bits_key_index;
+      members_30_key_q_0 <= io_load_bits_key_q_0;
+      members_30_key_q_1 <= io_load_bits_key_q_1;
+      members_30_key_q_2 <= io_load_bits_key_q_2;
+      members_30_key_qr <= io_load_bits_key_qr;
+      members_30_place <= io_load_bits_place;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1F) begin
+    end
+    else begin
+      members_31_key_index <= io_load_bits_key_index;
+      members_31_key_q_0 <= io_load_bits_key_q_0;
+      members_31_key_q_1 <= io_load_bits_key_q_1;
+      members_31_key_q_2 <= io_load_bits_key_q_2;
+      members_31_key_qr <= io_load_bits_key_qr;
+      members_31_place <= io_load_bits_place;
     end
     if (_pending_T)
       entry_index <= io_in_bits_key_index;
     if (reset) begin
-      used <= 5'h0;
-      pending <= 16'h0;
+      used <= 6'h0;
+      pending <= 32'h0;
     end
     else begin
       if (io_clear)
-        used <= {4'h0, io_load_valid};
-      else if (~io_load_valid | _GEN_4) begin
+        used <= {5'h0, io_load_valid};
+      else if (~io_load_valid | _GEN_7) begin
       end
       else
-        used <= used + 5'h1;
+        used <= used + 6'h1;
       if (_pending_T)
         pending <= hitsNow;
       else
-        pending <= ({16{~(io_out_ready & (|pending))}} | ~(16'h1 << slot)) & pending;
+        pending <= ({32{~(io_out_ready & (|pending))}} | ~(32'h1 << slot)) & pending;
     end
   end // always @(posedge)
   assign io_in_ready = io_in_ready_0;
@@ -20512,23 +21783,23 @@ module ChunkMatcher_i12_c20_q29_k16_world(
 endmodule
 
 // VCS coverage exclude_file
-module ram_3x115_world(
+module ram_3x123_world(
   input  [1:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [114:0] R0_data,
+  output [122:0] R0_data,
   input  [1:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [114:0] W0_data
+  input  [122:0] W0_data
 );
 
-  reg [114:0] Memory[0:2];
+  reg [122:0] Memory[0:2];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = R0_en ? Memory[R0_addr] : 115'bx;
+  assign R0_data = R0_en ? Memory[R0_addr] : 123'bx;
 endmodule
 
 module Queue3_StreamRange_world(
@@ -20543,8 +21814,10 @@ module Queue3_StreamRange_world(
   input  [19:0] io_enq_bits_tag_cell_0,
                 io_enq_bits_tag_cell_1,
                 io_enq_bits_tag_cell_2,
-  input         io_enq_bits_tag_own,
-                io_deq_ready,
+  input  [2:0]  io_enq_bits_tag_off_0,
+                io_enq_bits_tag_off_1,
+                io_enq_bits_tag_off_2,
+  input         io_deq_ready,
   output        io_deq_valid,
   output [12:0] io_deq_bits_begin_0,
                 io_deq_bits_begin_1,
@@ -20555,12 +21828,14 @@ module Queue3_StreamRange_world(
   output [19:0] io_deq_bits_tag_cell_0,
                 io_deq_bits_tag_cell_1,
                 io_deq_bits_tag_cell_2,
-  output        io_deq_bits_tag_own,
+  output [2:0]  io_deq_bits_tag_off_0,
+                io_deq_bits_tag_off_1,
+                io_deq_bits_tag_off_2,
   output [1:0]  io_count
 );
 
   wire         io_enq_ready;
-  wire [114:0] _ram_ext_R0_data;
+  wire [122:0] _ram_ext_R0_data;
   reg  [1:0]   enq_ptr_value;
   reg  [1:0]   deq_ptr_value;
   reg          maybe_full;
@@ -20593,7 +21868,7 @@ module Queue3_StreamRange_world(
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_3x115_world ram_ext (
+  ram_3x123_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -20602,7 +21877,9 @@ module Queue3_StreamRange_world(
     .W0_en   (do_enq),
     .W0_clk  (clock),
     .W0_data
-      ({io_enq_bits_tag_own,
+      ({io_enq_bits_tag_off_2,
+        io_enq_bits_tag_off_1,
+        io_enq_bits_tag_off_0,
         io_enq_bits_tag_cell_2,
         io_enq_bits_tag_cell_1,
         io_enq_bits_tag_cell_0,
@@ -20623,14 +21900,16 @@ module Queue3_StreamRange_world(
   assign io_deq_bits_tag_cell_0 = _ram_ext_R0_data[73:54];
   assign io_deq_bits_tag_cell_1 = _ram_ext_R0_data[93:74];
   assign io_deq_bits_tag_cell_2 = _ram_ext_R0_data[113:94];
-  assign io_deq_bits_tag_own = _ram_ext_R0_data[114];
+  assign io_deq_bits_tag_off_0 = _ram_ext_R0_data[116:114];
+  assign io_deq_bits_tag_off_1 = _ram_ext_R0_data[119:117];
+  assign io_deq_bits_tag_off_2 = _ram_ext_R0_data[122:120];
   assign io_count =
     ptr_match
       ? {2{maybe_full}}
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 2'h1 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
+module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
   input         clock,
                 reset,
                 io_start,
@@ -20793,7 +22072,9 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   wire [19:0] _lkq_io_deq_bits_tag_cell_0;
   wire [19:0] _lkq_io_deq_bits_tag_cell_1;
   wire [19:0] _lkq_io_deq_bits_tag_cell_2;
-  wire        _lkq_io_deq_bits_tag_own;
+  wire [2:0]  _lkq_io_deq_bits_tag_off_0;
+  wire [2:0]  _lkq_io_deq_bits_tag_off_1;
+  wire [2:0]  _lkq_io_deq_bits_tag_off_2;
   wire [1:0]  _lkq_io_count;
   wire        _matcher_io_in_ready;
   wire        _matcher_io_idle;
@@ -20816,7 +22097,9 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   wire [19:0] _stream_io_out_bits_tag_cell_0;
   wire [19:0] _stream_io_out_bits_tag_cell_1;
   wire [19:0] _stream_io_out_bits_tag_cell_2;
-  wire        _stream_io_out_bits_tag_own;
+  wire [2:0]  _stream_io_out_bits_tag_off_0;
+  wire [2:0]  _stream_io_out_bits_tag_off_1;
+  wire [2:0]  _stream_io_out_bits_tag_off_2;
   wire        _stream_io_idle;
   reg  [2:0]  state;
   wire [28:0] _io_lookup_bucket_mask_T = 29'h1 << io_usedLog2;
@@ -20830,8 +22113,9 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   reg  [19:0] curCell_0;
   reg  [19:0] curCell_1;
   reg  [19:0] curCell_2;
+  reg         coarseCh;
   reg         haveCell;
-  reg  [4:0]  loaded;
+  reg  [5:0]  loaded;
   reg         moreOfCell;
   reg         nextSet;
   reg  [12:0] nextLeader;
@@ -20842,78 +22126,116 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   reg         sent;
   reg  [12:0] scanLeft;
   reg         needClear;
-  reg  [3:0]  vIssue;
+  reg  [5:0]  vIssue;
   reg         lkPend;
   reg         lkVisit_scan;
   reg  [19:0] lkVisit_cell_0;
   reg  [19:0] lkVisit_cell_1;
   reg  [19:0] lkVisit_cell_2;
-  reg         lkVisit_own;
+  reg  [2:0]  lkVisit_off_0;
+  reg  [2:0]  lkVisit_off_1;
+  reg  [2:0]  lkVisit_off_2;
   reg  [5:0]  li;
-  reg  [4:0]  lj;
+  reg  [5:0]  lj;
   wire        _GEN_0 = state == 3'h0;
   wire        _GEN_1 = state == 3'h1;
   wire        issueOk = bIssue < _io_lookup_bucket_mask_T[13:0];
+  wire        gCoarse_0 =
+    walkB[3:0] == 4'h0 & {1'h0, io_lookup_word_0_7 - io_lookup_begin_0}
+    + {1'h0, io_lookup_word_1_7 - io_lookup_begin_1} < 14'h21;
+  wire        gCoarse_1 =
+    walkB[3:0] < 4'h9 & {1'h0, io_lookup_word_0_15 - io_lookup_word_0_7}
+    + {1'h0, io_lookup_word_1_15 - io_lookup_word_1_7} < 14'h21;
   wire        occupied_0 =
     walkB[3:0] == 4'h0 & {walkB[13:4], 4'h0} < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_0 ? {walkB[6], 1'h0} : 2'h0) == io_lane[1:0]
     & (io_lookup_word_0_0 != io_lookup_begin_0 | io_lookup_word_1_0 != io_lookup_begin_1);
   wire [13:0] _GEN_2 = {walkB[13:4], 4'h0};
+  wire [13:0] _occupied_bucket_T_1 = _GEN_2 + 14'h1;
   wire        occupied_1 =
-    walkB[3:0] < 4'h2 & _GEN_2 + 14'h1 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h2 & _occupied_bucket_T_1 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_1[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_1 != io_lookup_word_0_0
        | io_lookup_word_1_1 != io_lookup_word_1_0);
+  wire [13:0] _occupied_bucket_T_2 = _GEN_2 + 14'h2;
   wire        occupied_2 =
-    walkB[3:0] < 4'h3 & _GEN_2 + 14'h2 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h3 & _occupied_bucket_T_2 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_2[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_2 != io_lookup_word_0_1
        | io_lookup_word_1_2 != io_lookup_word_1_1);
+  wire [13:0] _occupied_bucket_T_3 = _GEN_2 + 14'h3;
   wire        occupied_3 =
-    walkB[3:0] < 4'h4 & _GEN_2 + 14'h3 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h4 & _occupied_bucket_T_3 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_3[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_3 != io_lookup_word_0_2
        | io_lookup_word_1_3 != io_lookup_word_1_2);
+  wire [13:0] _occupied_bucket_T_4 = _GEN_2 + 14'h4;
   wire        occupied_4 =
-    walkB[3:0] < 4'h5 & _GEN_2 + 14'h4 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h5 & _occupied_bucket_T_4 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_4[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_4 != io_lookup_word_0_3
        | io_lookup_word_1_4 != io_lookup_word_1_3);
+  wire [13:0] _occupied_bucket_T_5 = _GEN_2 + 14'h5;
   wire        occupied_5 =
-    walkB[3:0] < 4'h6 & _GEN_2 + 14'h5 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h6 & _occupied_bucket_T_5 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_5[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_5 != io_lookup_word_0_4
        | io_lookup_word_1_5 != io_lookup_word_1_4);
+  wire [13:0] _occupied_bucket_T_6 = _GEN_2 + 14'h6;
   wire        occupied_6 =
-    walkB[3:0] < 4'h7 & _GEN_2 + 14'h6 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h7 & _occupied_bucket_T_6 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_6[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_6 != io_lookup_word_0_5
        | io_lookup_word_1_6 != io_lookup_word_1_5);
+  wire [13:0] _occupied_bucket_T_7 = _GEN_2 + 14'h7;
   wire        occupied_7 =
-    ~(walkB[3]) & _GEN_2 + 14'h7 < _io_lookup_bucket_mask_T[13:0]
+    ~(walkB[3]) & _occupied_bucket_T_7 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_7[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_7 != io_lookup_word_0_6
        | io_lookup_word_1_7 != io_lookup_word_1_6);
+  wire [13:0] _occupied_bucket_T_8 = _GEN_2 + 14'h8;
   wire        occupied_8 =
-    walkB[3:0] < 4'h9 & _GEN_2 + 14'h8 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'h9 & _occupied_bucket_T_8 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_8[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_8 != io_lookup_word_0_7
        | io_lookup_word_1_8 != io_lookup_word_1_7);
+  wire [13:0] _occupied_bucket_T_9 = _GEN_2 + 14'h9;
   wire        occupied_9 =
-    walkB[3:0] < 4'hA & _GEN_2 + 14'h9 < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'hA & _occupied_bucket_T_9 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_9[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_9 != io_lookup_word_0_8
        | io_lookup_word_1_9 != io_lookup_word_1_8);
+  wire [13:0] _occupied_bucket_T_10 = _GEN_2 + 14'hA;
   wire        occupied_10 =
-    walkB[3:0] < 4'hB & _GEN_2 + 14'hA < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'hB & _occupied_bucket_T_10 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_10[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_10 != io_lookup_word_0_9
        | io_lookup_word_1_10 != io_lookup_word_1_9);
+  wire [13:0] _occupied_bucket_T_11 = _GEN_2 + 14'hB;
   wire        occupied_11 =
-    walkB[3:2] != 2'h3 & _GEN_2 + 14'hB < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:2] != 2'h3 & _occupied_bucket_T_11 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_11[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_11 != io_lookup_word_0_10
        | io_lookup_word_1_11 != io_lookup_word_1_10);
+  wire [13:0] _occupied_bucket_T_12 = _GEN_2 + 14'hC;
   wire        occupied_12 =
-    walkB[3:0] < 4'hD & _GEN_2 + 14'hC < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] < 4'hD & _occupied_bucket_T_12 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_12[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_12 != io_lookup_word_0_11
        | io_lookup_word_1_12 != io_lookup_word_1_11);
+  wire [13:0] _occupied_bucket_T_13 = _GEN_2 + 14'hD;
   wire        occupied_13 =
-    walkB[3:1] != 3'h7 & _GEN_2 + 14'hD < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:1] != 3'h7 & _occupied_bucket_T_13 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_13[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_13 != io_lookup_word_0_12
        | io_lookup_word_1_13 != io_lookup_word_1_12);
+  wire [13:0] _occupied_bucket_T_14 = _GEN_2 + 14'hE;
   wire        occupied_14 =
-    walkB[3:0] != 4'hF & _GEN_2 + 14'hE < _io_lookup_bucket_mask_T[13:0]
+    walkB[3:0] != 4'hF & _occupied_bucket_T_14 < _io_lookup_bucket_mask_T[13:0]
+    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_14[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_14 != io_lookup_word_0_13
        | io_lookup_word_1_14 != io_lookup_word_1_13);
+  wire [13:0] _occupied_bucket_T_15 = _GEN_2 + 14'hF;
   wire [3:0]  lane =
     occupied_0
       ? 4'h0
@@ -20944,9 +22266,12 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
                                                       : occupied_13
                                                           ? 4'hD
                                                           : {3'h7, ~occupied_14};
+  wire [3:0]  gLo = {lane[3], 3'h0};
+  wire [3:0]  gLast = {lane[3], 3'h7};
   wire        _GEN_3 =
     walkPend
-    & (|{_GEN_2 + 14'hF < _io_lookup_bucket_mask_T[13:0]
+    & (|{_occupied_bucket_T_15 < _io_lookup_bucket_mask_T[13:0]
+           & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_15[1:0]) == io_lane[1:0]
            & (io_lookup_word_0_15 != io_lookup_word_0_14
               | io_lookup_word_1_15 != io_lookup_word_1_14),
          occupied_14,
@@ -20966,7 +22291,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
          occupied_0});
   reg  [12:0] casez_tmp;
   always @(*) begin
-    casez (lane)
+    casez (gLo)
       4'b0000:
         casez_tmp = io_lookup_begin_0;
       4'b0001:
@@ -21003,7 +22328,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   end // always @(*)
   reg  [12:0] casez_tmp_0;
   always @(*) begin
-    casez (lane)
+    casez (gLast)
       4'b0000:
         casez_tmp_0 = io_lookup_word_0_0;
       4'b0001:
@@ -21040,7 +22365,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   end // always @(*)
   reg  [12:0] casez_tmp_1;
   always @(*) begin
-    casez (lane)
+    casez (gLo)
       4'b0000:
         casez_tmp_1 = io_lookup_begin_1;
       4'b0001:
@@ -21077,7 +22402,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   end // always @(*)
   reg  [12:0] casez_tmp_2;
   always @(*) begin
-    casez (lane)
+    casez (gLast)
       4'b0000:
         casez_tmp_2 = io_lookup_word_1_0;
       4'b0001:
@@ -21112,312 +22437,749 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
         casez_tmp_2 = io_lookup_word_1_15;
     endcase
   end // always @(*)
+  reg  [12:0] casez_tmp_3;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_3 = io_lookup_begin_0;
+      4'b0001:
+        casez_tmp_3 = io_lookup_word_0_0;
+      4'b0010:
+        casez_tmp_3 = io_lookup_word_0_1;
+      4'b0011:
+        casez_tmp_3 = io_lookup_word_0_2;
+      4'b0100:
+        casez_tmp_3 = io_lookup_word_0_3;
+      4'b0101:
+        casez_tmp_3 = io_lookup_word_0_4;
+      4'b0110:
+        casez_tmp_3 = io_lookup_word_0_5;
+      4'b0111:
+        casez_tmp_3 = io_lookup_word_0_6;
+      4'b1000:
+        casez_tmp_3 = io_lookup_word_0_7;
+      4'b1001:
+        casez_tmp_3 = io_lookup_word_0_8;
+      4'b1010:
+        casez_tmp_3 = io_lookup_word_0_9;
+      4'b1011:
+        casez_tmp_3 = io_lookup_word_0_10;
+      4'b1100:
+        casez_tmp_3 = io_lookup_word_0_11;
+      4'b1101:
+        casez_tmp_3 = io_lookup_word_0_12;
+      4'b1110:
+        casez_tmp_3 = io_lookup_word_0_13;
+      default:
+        casez_tmp_3 = io_lookup_word_0_14;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_4;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_4 = io_lookup_word_0_0;
+      4'b0001:
+        casez_tmp_4 = io_lookup_word_0_1;
+      4'b0010:
+        casez_tmp_4 = io_lookup_word_0_2;
+      4'b0011:
+        casez_tmp_4 = io_lookup_word_0_3;
+      4'b0100:
+        casez_tmp_4 = io_lookup_word_0_4;
+      4'b0101:
+        casez_tmp_4 = io_lookup_word_0_5;
+      4'b0110:
+        casez_tmp_4 = io_lookup_word_0_6;
+      4'b0111:
+        casez_tmp_4 = io_lookup_word_0_7;
+      4'b1000:
+        casez_tmp_4 = io_lookup_word_0_8;
+      4'b1001:
+        casez_tmp_4 = io_lookup_word_0_9;
+      4'b1010:
+        casez_tmp_4 = io_lookup_word_0_10;
+      4'b1011:
+        casez_tmp_4 = io_lookup_word_0_11;
+      4'b1100:
+        casez_tmp_4 = io_lookup_word_0_12;
+      4'b1101:
+        casez_tmp_4 = io_lookup_word_0_13;
+      4'b1110:
+        casez_tmp_4 = io_lookup_word_0_14;
+      default:
+        casez_tmp_4 = io_lookup_word_0_15;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_5;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_5 = io_lookup_begin_1;
+      4'b0001:
+        casez_tmp_5 = io_lookup_word_1_0;
+      4'b0010:
+        casez_tmp_5 = io_lookup_word_1_1;
+      4'b0011:
+        casez_tmp_5 = io_lookup_word_1_2;
+      4'b0100:
+        casez_tmp_5 = io_lookup_word_1_3;
+      4'b0101:
+        casez_tmp_5 = io_lookup_word_1_4;
+      4'b0110:
+        casez_tmp_5 = io_lookup_word_1_5;
+      4'b0111:
+        casez_tmp_5 = io_lookup_word_1_6;
+      4'b1000:
+        casez_tmp_5 = io_lookup_word_1_7;
+      4'b1001:
+        casez_tmp_5 = io_lookup_word_1_8;
+      4'b1010:
+        casez_tmp_5 = io_lookup_word_1_9;
+      4'b1011:
+        casez_tmp_5 = io_lookup_word_1_10;
+      4'b1100:
+        casez_tmp_5 = io_lookup_word_1_11;
+      4'b1101:
+        casez_tmp_5 = io_lookup_word_1_12;
+      4'b1110:
+        casez_tmp_5 = io_lookup_word_1_13;
+      default:
+        casez_tmp_5 = io_lookup_word_1_14;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_6;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_6 = io_lookup_word_1_0;
+      4'b0001:
+        casez_tmp_6 = io_lookup_word_1_1;
+      4'b0010:
+        casez_tmp_6 = io_lookup_word_1_2;
+      4'b0011:
+        casez_tmp_6 = io_lookup_word_1_3;
+      4'b0100:
+        casez_tmp_6 = io_lookup_word_1_4;
+      4'b0101:
+        casez_tmp_6 = io_lookup_word_1_5;
+      4'b0110:
+        casez_tmp_6 = io_lookup_word_1_6;
+      4'b0111:
+        casez_tmp_6 = io_lookup_word_1_7;
+      4'b1000:
+        casez_tmp_6 = io_lookup_word_1_8;
+      4'b1001:
+        casez_tmp_6 = io_lookup_word_1_9;
+      4'b1010:
+        casez_tmp_6 = io_lookup_word_1_10;
+      4'b1011:
+        casez_tmp_6 = io_lookup_word_1_11;
+      4'b1100:
+        casez_tmp_6 = io_lookup_word_1_12;
+      4'b1101:
+        casez_tmp_6 = io_lookup_word_1_13;
+      4'b1110:
+        casez_tmp_6 = io_lookup_word_1_14;
+      default:
+        casez_tmp_6 = io_lookup_word_1_15;
+    endcase
+  end // always @(*)
   wire        _GEN_4 = ~walkPend & ~issueOk & _stream_io_idle & _matcher_io_idle;
   wire        _GEN_5 = state == 3'h2;
   wire        _GEN_6 = _GEN_5 & sent;
   wire        _GEN_7 = _GEN_0 | _GEN_1;
-  reg  [19:0] casez_tmp_3;
+  wire [5:0]  _off_T_1 = coarseCh ? vIssue + 6'hE : vIssue;
+  reg  [2:0]  casez_tmp_7;
   always @(*) begin
-    casez (vIssue)
-      4'b0000:
-        casez_tmp_3 = 20'h0;
-      4'b0001:
-        casez_tmp_3 = 20'h0;
-      4'b0010:
-        casez_tmp_3 = 20'h0;
-      4'b0011:
-        casez_tmp_3 = 20'h0;
-      4'b0100:
-        casez_tmp_3 = 20'h0;
-      4'b0101:
-        casez_tmp_3 = 20'h1;
-      4'b0110:
-        casez_tmp_3 = 20'h1;
-      4'b0111:
-        casez_tmp_3 = 20'h1;
-      4'b1000:
-        casez_tmp_3 = 20'h1;
-      4'b1001:
-        casez_tmp_3 = 20'h1;
-      4'b1010:
-        casez_tmp_3 = 20'h1;
-      4'b1011:
-        casez_tmp_3 = 20'h1;
-      4'b1100:
-        casez_tmp_3 = 20'h1;
-      4'b1101:
-        casez_tmp_3 = 20'h1;
-      4'b1110:
-        casez_tmp_3 = 20'h0;
+    casez (_off_T_1)
+      6'b000000:
+        casez_tmp_7 = 3'h0;
+      6'b000001:
+        casez_tmp_7 = 3'h0;
+      6'b000010:
+        casez_tmp_7 = 3'h0;
+      6'b000011:
+        casez_tmp_7 = 3'h0;
+      6'b000100:
+        casez_tmp_7 = 3'h0;
+      6'b000101:
+        casez_tmp_7 = 3'h1;
+      6'b000110:
+        casez_tmp_7 = 3'h1;
+      6'b000111:
+        casez_tmp_7 = 3'h1;
+      6'b001000:
+        casez_tmp_7 = 3'h1;
+      6'b001001:
+        casez_tmp_7 = 3'h1;
+      6'b001010:
+        casez_tmp_7 = 3'h1;
+      6'b001011:
+        casez_tmp_7 = 3'h1;
+      6'b001100:
+        casez_tmp_7 = 3'h1;
+      6'b001101:
+        casez_tmp_7 = 3'h1;
+      6'b001110:
+        casez_tmp_7 = 3'h0;
+      6'b001111:
+        casez_tmp_7 = 3'h0;
+      6'b010000:
+        casez_tmp_7 = 3'h0;
+      6'b010001:
+        casez_tmp_7 = 3'h0;
+      6'b010010:
+        casez_tmp_7 = 3'h1;
+      6'b010011:
+        casez_tmp_7 = 3'h1;
+      6'b010100:
+        casez_tmp_7 = 3'h1;
+      6'b010101:
+        casez_tmp_7 = 3'h1;
+      6'b010110:
+        casez_tmp_7 = 3'h0;
+      6'b010111:
+        casez_tmp_7 = 3'h0;
+      6'b011000:
+        casez_tmp_7 = 3'h1;
+      6'b011001:
+        casez_tmp_7 = 3'h1;
+      6'b011010:
+        casez_tmp_7 = 3'h0;
+      6'b011011:
+        casez_tmp_7 = 3'h0;
+      6'b011100:
+        casez_tmp_7 = 3'h0;
+      6'b011101:
+        casez_tmp_7 = 3'h1;
+      6'b011110:
+        casez_tmp_7 = 3'h1;
+      6'b011111:
+        casez_tmp_7 = 3'h1;
+      6'b100000:
+        casez_tmp_7 = 3'h0;
+      6'b100001:
+        casez_tmp_7 = 3'h1;
+      6'b100010:
+        casez_tmp_7 = 3'h0;
+      6'b100011:
+        casez_tmp_7 = 3'h1;
+      6'b100100:
+        casez_tmp_7 = 3'h1;
+      6'b100101:
+        casez_tmp_7 = 3'h1;
+      6'b100110:
+        casez_tmp_7 = 3'h1;
+      6'b100111:
+        casez_tmp_7 = 3'h2;
+      6'b101000:
+        casez_tmp_7 = 3'h2;
+      6'b101001:
+        casez_tmp_7 = 3'h2;
+      6'b101010:
+        casez_tmp_7 = 3'h2;
+      6'b101011:
+        casez_tmp_7 = 3'h1;
+      6'b101100:
+        casez_tmp_7 = 3'h2;
+      6'b101101:
+        casez_tmp_7 = 3'h2;
+      6'b101110:
+        casez_tmp_7 = 3'h1;
+      6'b101111:
+        casez_tmp_7 = 3'h2;
+      6'b110000:
+        casez_tmp_7 = 3'h2;
+      6'b110001:
+        casez_tmp_7 = 3'h2;
+      6'b110010:
+        casez_tmp_7 = 3'h2;
+      6'b110011:
+        casez_tmp_7 = 3'h2;
+      6'b110100:
+        casez_tmp_7 = 3'h2;
+      6'b110101:
+        casez_tmp_7 = 3'h2;
+      6'b110110:
+        casez_tmp_7 = 3'h2;
+      6'b110111:
+        casez_tmp_7 = 3'h2;
+      6'b111000:
+        casez_tmp_7 = 3'h2;
+      6'b111001:
+        casez_tmp_7 = 3'h0;
+      6'b111010:
+        casez_tmp_7 = 3'h0;
+      6'b111011:
+        casez_tmp_7 = 3'h0;
+      6'b111100:
+        casez_tmp_7 = 3'h0;
+      6'b111101:
+        casez_tmp_7 = 3'h0;
+      6'b111110:
+        casez_tmp_7 = 3'h0;
       default:
-        casez_tmp_3 = 20'h0;
+        casez_tmp_7 = 3'h0;
     endcase
   end // always @(*)
-  reg  [19:0] casez_tmp_4;
+  reg  [2:0]  casez_tmp_8;
   always @(*) begin
-    casez (vIssue)
-      4'b0000:
-        casez_tmp_4 = 20'h0;
-      4'b0001:
-        casez_tmp_4 = 20'h0;
-      4'b0010:
-        casez_tmp_4 = 20'h1;
-      4'b0011:
-        casez_tmp_4 = 20'h1;
-      4'b0100:
-        casez_tmp_4 = 20'h1;
-      4'b0101:
-        casez_tmp_4 = 20'hFFFFF;
-      4'b0110:
-        casez_tmp_4 = 20'hFFFFF;
-      4'b0111:
-        casez_tmp_4 = 20'hFFFFF;
-      4'b1000:
-        casez_tmp_4 = 20'h0;
-      4'b1001:
-        casez_tmp_4 = 20'h0;
-      4'b1010:
-        casez_tmp_4 = 20'h0;
-      4'b1011:
-        casez_tmp_4 = 20'h1;
-      4'b1100:
-        casez_tmp_4 = 20'h1;
-      4'b1101:
-        casez_tmp_4 = 20'h1;
-      4'b1110:
-        casez_tmp_4 = 20'h0;
+    casez (_off_T_1)
+      6'b000000:
+        casez_tmp_8 = 3'h0;
+      6'b000001:
+        casez_tmp_8 = 3'h0;
+      6'b000010:
+        casez_tmp_8 = 3'h1;
+      6'b000011:
+        casez_tmp_8 = 3'h1;
+      6'b000100:
+        casez_tmp_8 = 3'h1;
+      6'b000101:
+        casez_tmp_8 = 3'h7;
+      6'b000110:
+        casez_tmp_8 = 3'h7;
+      6'b000111:
+        casez_tmp_8 = 3'h7;
+      6'b001000:
+        casez_tmp_8 = 3'h0;
+      6'b001001:
+        casez_tmp_8 = 3'h0;
+      6'b001010:
+        casez_tmp_8 = 3'h0;
+      6'b001011:
+        casez_tmp_8 = 3'h1;
+      6'b001100:
+        casez_tmp_8 = 3'h1;
+      6'b001101:
+        casez_tmp_8 = 3'h1;
+      6'b001110:
+        casez_tmp_8 = 3'h0;
+      6'b001111:
+        casez_tmp_8 = 3'h0;
+      6'b010000:
+        casez_tmp_8 = 3'h1;
+      6'b010001:
+        casez_tmp_8 = 3'h1;
+      6'b010010:
+        casez_tmp_8 = 3'h0;
+      6'b010011:
+        casez_tmp_8 = 3'h0;
+      6'b010100:
+        casez_tmp_8 = 3'h1;
+      6'b010101:
+        casez_tmp_8 = 3'h1;
+      6'b010110:
+        casez_tmp_8 = 3'h0;
+      6'b010111:
+        casez_tmp_8 = 3'h1;
+      6'b011000:
+        casez_tmp_8 = 3'h0;
+      6'b011001:
+        casez_tmp_8 = 3'h1;
+      6'b011010:
+        casez_tmp_8 = 3'h1;
+      6'b011011:
+        casez_tmp_8 = 3'h2;
+      6'b011100:
+        casez_tmp_8 = 3'h2;
+      6'b011101:
+        casez_tmp_8 = 3'h1;
+      6'b011110:
+        casez_tmp_8 = 3'h2;
+      6'b011111:
+        casez_tmp_8 = 3'h2;
+      6'b100000:
+        casez_tmp_8 = 3'h2;
+      6'b100001:
+        casez_tmp_8 = 3'h2;
+      6'b100010:
+        casez_tmp_8 = 3'h2;
+      6'b100011:
+        casez_tmp_8 = 3'h2;
+      6'b100100:
+        casez_tmp_8 = 3'h7;
+      6'b100101:
+        casez_tmp_8 = 3'h7;
+      6'b100110:
+        casez_tmp_8 = 3'h0;
+      6'b100111:
+        casez_tmp_8 = 3'h7;
+      6'b101000:
+        casez_tmp_8 = 3'h7;
+      6'b101001:
+        casez_tmp_8 = 3'h0;
+      6'b101010:
+        casez_tmp_8 = 3'h0;
+      6'b101011:
+        casez_tmp_8 = 3'h7;
+      6'b101100:
+        casez_tmp_8 = 3'h7;
+      6'b101101:
+        casez_tmp_8 = 3'h0;
+      6'b101110:
+        casez_tmp_8 = 3'h7;
+      6'b101111:
+        casez_tmp_8 = 3'h7;
+      6'b110000:
+        casez_tmp_8 = 3'h0;
+      6'b110001:
+        casez_tmp_8 = 3'h1;
+      6'b110010:
+        casez_tmp_8 = 3'h1;
+      6'b110011:
+        casez_tmp_8 = 3'h1;
+      6'b110100:
+        casez_tmp_8 = 3'h1;
+      6'b110101:
+        casez_tmp_8 = 3'h2;
+      6'b110110:
+        casez_tmp_8 = 3'h2;
+      6'b110111:
+        casez_tmp_8 = 3'h2;
+      6'b111000:
+        casez_tmp_8 = 3'h2;
+      6'b111001:
+        casez_tmp_8 = 3'h0;
+      6'b111010:
+        casez_tmp_8 = 3'h0;
+      6'b111011:
+        casez_tmp_8 = 3'h0;
+      6'b111100:
+        casez_tmp_8 = 3'h0;
+      6'b111101:
+        casez_tmp_8 = 3'h0;
+      6'b111110:
+        casez_tmp_8 = 3'h0;
       default:
-        casez_tmp_4 = 20'h0;
+        casez_tmp_8 = 3'h0;
     endcase
   end // always @(*)
-  reg  [19:0] casez_tmp_5;
+  reg  [2:0]  casez_tmp_9;
   always @(*) begin
-    casez (vIssue)
-      4'b0000:
-        casez_tmp_5 = 20'h0;
-      4'b0001:
-        casez_tmp_5 = 20'h1;
-      4'b0010:
-        casez_tmp_5 = 20'hFFFFF;
-      4'b0011:
-        casez_tmp_5 = 20'h0;
-      4'b0100:
-        casez_tmp_5 = 20'h1;
-      4'b0101:
-        casez_tmp_5 = 20'hFFFFF;
-      4'b0110:
-        casez_tmp_5 = 20'h0;
-      4'b0111:
-        casez_tmp_5 = 20'h1;
-      4'b1000:
-        casez_tmp_5 = 20'hFFFFF;
-      4'b1001:
-        casez_tmp_5 = 20'h0;
-      4'b1010:
-        casez_tmp_5 = 20'h1;
-      4'b1011:
-        casez_tmp_5 = 20'hFFFFF;
-      4'b1100:
-        casez_tmp_5 = 20'h0;
-      4'b1101:
-        casez_tmp_5 = 20'h1;
-      4'b1110:
-        casez_tmp_5 = 20'h0;
+    casez (_off_T_1)
+      6'b000000:
+        casez_tmp_9 = 3'h0;
+      6'b000001:
+        casez_tmp_9 = 3'h1;
+      6'b000010:
+        casez_tmp_9 = 3'h7;
+      6'b000011:
+        casez_tmp_9 = 3'h0;
+      6'b000100:
+        casez_tmp_9 = 3'h1;
+      6'b000101:
+        casez_tmp_9 = 3'h7;
+      6'b000110:
+        casez_tmp_9 = 3'h0;
+      6'b000111:
+        casez_tmp_9 = 3'h1;
+      6'b001000:
+        casez_tmp_9 = 3'h7;
+      6'b001001:
+        casez_tmp_9 = 3'h0;
+      6'b001010:
+        casez_tmp_9 = 3'h1;
+      6'b001011:
+        casez_tmp_9 = 3'h7;
+      6'b001100:
+        casez_tmp_9 = 3'h0;
+      6'b001101:
+        casez_tmp_9 = 3'h1;
+      6'b001110:
+        casez_tmp_9 = 3'h0;
+      6'b001111:
+        casez_tmp_9 = 3'h1;
+      6'b010000:
+        casez_tmp_9 = 3'h0;
+      6'b010001:
+        casez_tmp_9 = 3'h1;
+      6'b010010:
+        casez_tmp_9 = 3'h0;
+      6'b010011:
+        casez_tmp_9 = 3'h1;
+      6'b010100:
+        casez_tmp_9 = 3'h0;
+      6'b010101:
+        casez_tmp_9 = 3'h1;
+      6'b010110:
+        casez_tmp_9 = 3'h2;
+      6'b010111:
+        casez_tmp_9 = 3'h2;
+      6'b011000:
+        casez_tmp_9 = 3'h2;
+      6'b011001:
+        casez_tmp_9 = 3'h2;
+      6'b011010:
+        casez_tmp_9 = 3'h7;
+      6'b011011:
+        casez_tmp_9 = 3'h7;
+      6'b011100:
+        casez_tmp_9 = 3'h0;
+      6'b011101:
+        casez_tmp_9 = 3'h7;
+      6'b011110:
+        casez_tmp_9 = 3'h7;
+      6'b011111:
+        casez_tmp_9 = 3'h0;
+      6'b100000:
+        casez_tmp_9 = 3'h1;
+      6'b100001:
+        casez_tmp_9 = 3'h1;
+      6'b100010:
+        casez_tmp_9 = 3'h2;
+      6'b100011:
+        casez_tmp_9 = 3'h2;
+      6'b100100:
+        casez_tmp_9 = 3'h7;
+      6'b100101:
+        casez_tmp_9 = 3'h0;
+      6'b100110:
+        casez_tmp_9 = 3'h7;
+      6'b100111:
+        casez_tmp_9 = 3'h7;
+      6'b101000:
+        casez_tmp_9 = 3'h0;
+      6'b101001:
+        casez_tmp_9 = 3'h7;
+      6'b101010:
+        casez_tmp_9 = 3'h0;
+      6'b101011:
+        casez_tmp_9 = 3'h1;
+      6'b101100:
+        casez_tmp_9 = 3'h1;
+      6'b101101:
+        casez_tmp_9 = 3'h1;
+      6'b101110:
+        casez_tmp_9 = 3'h2;
+      6'b101111:
+        casez_tmp_9 = 3'h2;
+      6'b110000:
+        casez_tmp_9 = 3'h2;
+      6'b110001:
+        casez_tmp_9 = 3'h7;
+      6'b110010:
+        casez_tmp_9 = 3'h0;
+      6'b110011:
+        casez_tmp_9 = 3'h1;
+      6'b110100:
+        casez_tmp_9 = 3'h2;
+      6'b110101:
+        casez_tmp_9 = 3'h7;
+      6'b110110:
+        casez_tmp_9 = 3'h0;
+      6'b110111:
+        casez_tmp_9 = 3'h1;
+      6'b111000:
+        casez_tmp_9 = 3'h2;
+      6'b111001:
+        casez_tmp_9 = 3'h0;
+      6'b111010:
+        casez_tmp_9 = 3'h0;
+      6'b111011:
+        casez_tmp_9 = 3'h0;
+      6'b111100:
+        casez_tmp_9 = 3'h0;
+      6'b111101:
+        casez_tmp_9 = 3'h0;
+      6'b111110:
+        casez_tmp_9 = 3'h0;
       default:
-        casez_tmp_5 = 20'h0;
+        casez_tmp_9 = 3'h0;
     endcase
   end // always @(*)
-  wire [19:0] nc_0 = curCell_0 + casez_tmp_3;
-  wire [19:0] nc_1 = curCell_1 + casez_tmp_4;
-  wire [19:0] nc_2 = curCell_2 + casez_tmp_5;
+  wire [19:0] nc_0 = curCell_0 + {{17{casez_tmp_7[2]}}, casez_tmp_7};
+  wire [19:0] nc_1 = curCell_1 + {{17{casez_tmp_8[2]}}, casez_tmp_8};
+  wire [19:0] nc_2 = curCell_2 + {{17{casez_tmp_9[2]}}, casez_tmp_9};
   wire        _GEN_8 = state == 3'h3;
   wire [6:0]  _GEN_9 = {1'h0, li};
-  wire [6:0]  idx = _GEN_9 + {2'h0, lj};
+  wire [6:0]  idx = _GEN_9 + {1'h0, lj};
   wire [6:0]  _GEN_10 = {2'h0, io_largeCount};
-  wire        _GEN_11 = lj != 5'h10 & idx < _GEN_10;
-  reg  [11:0] casez_tmp_6;
+  wire        _GEN_11 = lj != 6'h20 & idx < _GEN_10;
+  reg  [11:0] casez_tmp_10;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_6 = io_larges_0_index;
+        casez_tmp_10 = io_larges_0_index;
       4'b0001:
-        casez_tmp_6 = io_larges_1_index;
+        casez_tmp_10 = io_larges_1_index;
       4'b0010:
-        casez_tmp_6 = io_larges_2_index;
+        casez_tmp_10 = io_larges_2_index;
       4'b0011:
-        casez_tmp_6 = io_larges_3_index;
+        casez_tmp_10 = io_larges_3_index;
       4'b0100:
-        casez_tmp_6 = io_larges_4_index;
+        casez_tmp_10 = io_larges_4_index;
       4'b0101:
-        casez_tmp_6 = io_larges_5_index;
+        casez_tmp_10 = io_larges_5_index;
       4'b0110:
-        casez_tmp_6 = io_larges_6_index;
+        casez_tmp_10 = io_larges_6_index;
       4'b0111:
-        casez_tmp_6 = io_larges_7_index;
+        casez_tmp_10 = io_larges_7_index;
       4'b1000:
-        casez_tmp_6 = io_larges_8_index;
+        casez_tmp_10 = io_larges_8_index;
       4'b1001:
-        casez_tmp_6 = io_larges_9_index;
+        casez_tmp_10 = io_larges_9_index;
       4'b1010:
-        casez_tmp_6 = io_larges_10_index;
+        casez_tmp_10 = io_larges_10_index;
       4'b1011:
-        casez_tmp_6 = io_larges_11_index;
+        casez_tmp_10 = io_larges_11_index;
       4'b1100:
-        casez_tmp_6 = io_larges_12_index;
+        casez_tmp_10 = io_larges_12_index;
       4'b1101:
-        casez_tmp_6 = io_larges_13_index;
+        casez_tmp_10 = io_larges_13_index;
       4'b1110:
-        casez_tmp_6 = io_larges_14_index;
+        casez_tmp_10 = io_larges_14_index;
       default:
-        casez_tmp_6 = io_larges_15_index;
+        casez_tmp_10 = io_larges_15_index;
     endcase
   end // always @(*)
-  reg  [28:0] casez_tmp_7;
+  reg  [28:0] casez_tmp_11;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_7 = io_larges_0_q_0;
+        casez_tmp_11 = io_larges_0_q_0;
       4'b0001:
-        casez_tmp_7 = io_larges_1_q_0;
+        casez_tmp_11 = io_larges_1_q_0;
       4'b0010:
-        casez_tmp_7 = io_larges_2_q_0;
+        casez_tmp_11 = io_larges_2_q_0;
       4'b0011:
-        casez_tmp_7 = io_larges_3_q_0;
+        casez_tmp_11 = io_larges_3_q_0;
       4'b0100:
-        casez_tmp_7 = io_larges_4_q_0;
+        casez_tmp_11 = io_larges_4_q_0;
       4'b0101:
-        casez_tmp_7 = io_larges_5_q_0;
+        casez_tmp_11 = io_larges_5_q_0;
       4'b0110:
-        casez_tmp_7 = io_larges_6_q_0;
+        casez_tmp_11 = io_larges_6_q_0;
       4'b0111:
-        casez_tmp_7 = io_larges_7_q_0;
+        casez_tmp_11 = io_larges_7_q_0;
       4'b1000:
-        casez_tmp_7 = io_larges_8_q_0;
+        casez_tmp_11 = io_larges_8_q_0;
       4'b1001:
-        casez_tmp_7 = io_larges_9_q_0;
+        casez_tmp_11 = io_larges_9_q_0;
       4'b1010:
-        casez_tmp_7 = io_larges_10_q_0;
+        casez_tmp_11 = io_larges_10_q_0;
       4'b1011:
-        casez_tmp_7 = io_larges_11_q_0;
+        casez_tmp_11 = io_larges_11_q_0;
       4'b1100:
-        casez_tmp_7 = io_larges_12_q_0;
+        casez_tmp_11 = io_larges_12_q_0;
       4'b1101:
-        casez_tmp_7 = io_larges_13_q_0;
+        casez_tmp_11 = io_larges_13_q_0;
       4'b1110:
-        casez_tmp_7 = io_larges_14_q_0;
+        casez_tmp_11 = io_larges_14_q_0;
       default:
-        casez_tmp_7 = io_larges_15_q_0;
+        casez_tmp_11 = io_larges_15_q_0;
     endcase
   end // always @(*)
-  reg  [28:0] casez_tmp_8;
+  reg  [28:0] casez_tmp_12;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_8 = io_larges_0_q_1;
+        casez_tmp_12 = io_larges_0_q_1;
       4'b0001:
-        casez_tmp_8 = io_larges_1_q_1;
+        casez_tmp_12 = io_larges_1_q_1;
       4'b0010:
-        casez_tmp_8 = io_larges_2_q_1;
+        casez_tmp_12 = io_larges_2_q_1;
       4'b0011:
-        casez_tmp_8 = io_larges_3_q_1;
+        casez_tmp_12 = io_larges_3_q_1;
       4'b0100:
-        casez_tmp_8 = io_larges_4_q_1;
+        casez_tmp_12 = io_larges_4_q_1;
       4'b0101:
-        casez_tmp_8 = io_larges_5_q_1;
+        casez_tmp_12 = io_larges_5_q_1;
       4'b0110:
-        casez_tmp_8 = io_larges_6_q_1;
+        casez_tmp_12 = io_larges_6_q_1;
       4'b0111:
-        casez_tmp_8 = io_larges_7_q_1;
+        casez_tmp_12 = io_larges_7_q_1;
       4'b1000:
-        casez_tmp_8 = io_larges_8_q_1;
+        casez_tmp_12 = io_larges_8_q_1;
       4'b1001:
-        casez_tmp_8 = io_larges_9_q_1;
+        casez_tmp_12 = io_larges_9_q_1;
       4'b1010:
-        casez_tmp_8 = io_larges_10_q_1;
+        casez_tmp_12 = io_larges_10_q_1;
       4'b1011:
-        casez_tmp_8 = io_larges_11_q_1;
+        casez_tmp_12 = io_larges_11_q_1;
       4'b1100:
-        casez_tmp_8 = io_larges_12_q_1;
+        casez_tmp_12 = io_larges_12_q_1;
       4'b1101:
-        casez_tmp_8 = io_larges_13_q_1;
+        casez_tmp_12 = io_larges_13_q_1;
       4'b1110:
-        casez_tmp_8 = io_larges_14_q_1;
+        casez_tmp_12 = io_larges_14_q_1;
       default:
-        casez_tmp_8 = io_larges_15_q_1;
+        casez_tmp_12 = io_larges_15_q_1;
     endcase
   end // always @(*)
-  reg  [28:0] casez_tmp_9;
+  reg  [28:0] casez_tmp_13;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_9 = io_larges_0_q_2;
+        casez_tmp_13 = io_larges_0_q_2;
       4'b0001:
-        casez_tmp_9 = io_larges_1_q_2;
+        casez_tmp_13 = io_larges_1_q_2;
       4'b0010:
-        casez_tmp_9 = io_larges_2_q_2;
+        casez_tmp_13 = io_larges_2_q_2;
       4'b0011:
-        casez_tmp_9 = io_larges_3_q_2;
+        casez_tmp_13 = io_larges_3_q_2;
       4'b0100:
-        casez_tmp_9 = io_larges_4_q_2;
+        casez_tmp_13 = io_larges_4_q_2;
       4'b0101:
-        casez_tmp_9 = io_larges_5_q_2;
+        casez_tmp_13 = io_larges_5_q_2;
       4'b0110:
-        casez_tmp_9 = io_larges_6_q_2;
+        casez_tmp_13 = io_larges_6_q_2;
       4'b0111:
-        casez_tmp_9 = io_larges_7_q_2;
+        casez_tmp_13 = io_larges_7_q_2;
       4'b1000:
-        casez_tmp_9 = io_larges_8_q_2;
+        casez_tmp_13 = io_larges_8_q_2;
       4'b1001:
-        casez_tmp_9 = io_larges_9_q_2;
+        casez_tmp_13 = io_larges_9_q_2;
       4'b1010:
-        casez_tmp_9 = io_larges_10_q_2;
+        casez_tmp_13 = io_larges_10_q_2;
       4'b1011:
-        casez_tmp_9 = io_larges_11_q_2;
+        casez_tmp_13 = io_larges_11_q_2;
       4'b1100:
-        casez_tmp_9 = io_larges_12_q_2;
+        casez_tmp_13 = io_larges_12_q_2;
       4'b1101:
-        casez_tmp_9 = io_larges_13_q_2;
+        casez_tmp_13 = io_larges_13_q_2;
       4'b1110:
-        casez_tmp_9 = io_larges_14_q_2;
+        casez_tmp_13 = io_larges_14_q_2;
       default:
-        casez_tmp_9 = io_larges_15_q_2;
+        casez_tmp_13 = io_larges_15_q_2;
     endcase
   end // always @(*)
-  reg  [28:0] casez_tmp_10;
+  reg  [28:0] casez_tmp_14;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_10 = io_larges_0_qr;
+        casez_tmp_14 = io_larges_0_qr;
       4'b0001:
-        casez_tmp_10 = io_larges_1_qr;
+        casez_tmp_14 = io_larges_1_qr;
       4'b0010:
-        casez_tmp_10 = io_larges_2_qr;
+        casez_tmp_14 = io_larges_2_qr;
       4'b0011:
-        casez_tmp_10 = io_larges_3_qr;
+        casez_tmp_14 = io_larges_3_qr;
       4'b0100:
-        casez_tmp_10 = io_larges_4_qr;
+        casez_tmp_14 = io_larges_4_qr;
       4'b0101:
-        casez_tmp_10 = io_larges_5_qr;
+        casez_tmp_14 = io_larges_5_qr;
       4'b0110:
-        casez_tmp_10 = io_larges_6_qr;
+        casez_tmp_14 = io_larges_6_qr;
       4'b0111:
-        casez_tmp_10 = io_larges_7_qr;
+        casez_tmp_14 = io_larges_7_qr;
       4'b1000:
-        casez_tmp_10 = io_larges_8_qr;
+        casez_tmp_14 = io_larges_8_qr;
       4'b1001:
-        casez_tmp_10 = io_larges_9_qr;
+        casez_tmp_14 = io_larges_9_qr;
       4'b1010:
-        casez_tmp_10 = io_larges_10_qr;
+        casez_tmp_14 = io_larges_10_qr;
       4'b1011:
-        casez_tmp_10 = io_larges_11_qr;
+        casez_tmp_14 = io_larges_11_qr;
       4'b1100:
-        casez_tmp_10 = io_larges_12_qr;
+        casez_tmp_14 = io_larges_12_qr;
       4'b1101:
-        casez_tmp_10 = io_larges_13_qr;
+        casez_tmp_14 = io_larges_13_qr;
       4'b1110:
-        casez_tmp_10 = io_larges_14_qr;
+        casez_tmp_14 = io_larges_14_qr;
       default:
-        casez_tmp_10 = io_larges_15_qr;
+        casez_tmp_14 = io_larges_15_qr;
     endcase
   end // always @(*)
   wire        _GEN_12 = state == 3'h4;
@@ -21430,11 +23192,20 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   wire        _GEN_18 = _GEN & _stream_io_out_valid;
   wire        _GEN_19 = _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18;
   wire        _GEN_20 = _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & needClear;
-  wire        same =
-    {_stream_io_out_bits_rec_cell_2,
-     _stream_io_out_bits_rec_cell_1,
-     _stream_io_out_bits_rec_cell_0} == {curCell_2, curCell_1, curCell_0};
-  wire        take = ~_stream_io_out_bits_mark & (~haveCell | same & loaded != 5'h10);
+  wire [19:0] base_1_0 =
+    coarseCh
+      ? {_stream_io_out_bits_rec_cell_0[19:1], 1'h0}
+      : _stream_io_out_bits_rec_cell_0;
+  wire [19:0] base_1_1 =
+    coarseCh
+      ? {_stream_io_out_bits_rec_cell_1[19:1], 1'h0}
+      : _stream_io_out_bits_rec_cell_1;
+  wire [19:0] base_1_2 =
+    coarseCh
+      ? {_stream_io_out_bits_rec_cell_2[19:1], 1'h0}
+      : _stream_io_out_bits_rec_cell_2;
+  wire        same = {base_1_2, base_1_1, base_1_0} == {curCell_2, curCell_1, curCell_0};
+  wire        take = ~_stream_io_out_bits_mark & (~haveCell | same & loaded != 6'h20);
   wire        _GEN_21 = _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & take;
   wire        _GEN_22 = ~_GEN_15 & _GEN_12 & ~_stream_io_out_bits_rec_excluded;
   wire        _GEN_23 = ~_GEN_17 | _stream_io_out_bits_tag_scan;
@@ -21444,103 +23215,117 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
            ? ~needClear | _matcher_io_idle
            : _matcher_io_in_ready)
       : ~_GEN_15 & _GEN_12 & (_matcher_io_in_ready | _stream_io_out_bits_rec_excluded);
-  wire        _GEN_24 = _stream_io_req_ready & _GEN_13;
-  wire        _GEN_25 = _GEN_24 & ~sent;
-  wire        _GEN_26 = _GEN_7 | ~(_GEN_5 & _GEN_25);
+  wire [5:0]  visitCount = coarseCh ? 6'h2B : 6'hE;
+  wire        _GEN_24 = lane[3] ? gCoarse_1 : gCoarse_0;
+  wire        _GEN_25 = _GEN_0 | ~(_GEN_1 & _GEN_3);
+  wire        _GEN_26 = _stream_io_req_ready & _GEN_13;
+  wire        _GEN_27 = _GEN_26 & ~sent;
+  wire        _GEN_28 = _GEN_7 | ~(_GEN_5 & _GEN_27);
   wire        canIssue =
-    haveCell & vIssue != 4'hE & {1'h0, _lkq_io_count} + {2'h0, lkPend} < 3'h3;
-  wire        _GEN_27 = _GEN_7 | ~_GEN_5;
-  wire        _GEN_28 =
-    vIssue == 4'hE & ~lkPend & ~_lkq_io_deq_valid & sent & scanLeft == 13'h0;
-  wire        _GEN_29 = moreOfCell | nextSet;
-  wire        _GEN_30 = _GEN_28 & _GEN_29;
-  wire        _GEN_31 = _GEN_5 & _GEN_28 & _GEN_29 & ~moreOfCell;
-  wire [6:0]  nextLi = _GEN_9 + 7'h10;
-  wire        _GEN_32 = _GEN_12 & _GEN_16;
-  wire        _GEN_33 =
-    _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & take & ~haveCell;
-  wire        _GEN_34 = ~_stream_io_out_bits_mark & haveCell;
+    haveCell & vIssue != visitCount & {1'h0, _lkq_io_count} + {2'h0, lkPend} < 3'h3;
+  wire        _GEN_29 = _GEN_7 | ~_GEN_5;
+  wire        _GEN_30 =
+    vIssue == visitCount & ~lkPend & ~_lkq_io_deq_valid & sent & scanLeft == 13'h0;
+  wire        _GEN_31 = moreOfCell | nextSet;
+  wire        _GEN_32 = _GEN_30 & _GEN_31;
+  wire        _GEN_33 = _GEN_5 & _GEN_30 & _GEN_31 & ~moreOfCell;
+  wire [6:0]  nextLi = _GEN_9 + 7'h20;
+  wire        _GEN_34 = _GEN_12 & _GEN_16;
   wire        _GEN_35 =
-    _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & _GEN_34 & ~same & ~nextSet;
+    _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & take & ~haveCell;
+  wire        _GEN_36 = ~_stream_io_out_bits_mark & haveCell;
+  wire        _GEN_37 =
+    _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & _GEN_36 & ~same & ~nextSet;
   always @(posedge clock) begin
     if (reset) begin
       state <= 3'h0;
       walkPend <= 1'h0;
+      coarseCh <= 1'h0;
       lkPend <= 1'h0;
     end
-    else if (_GEN_0) begin
-      if (io_start)
-        state <= 3'h1;
-      walkPend <= ~io_start & walkPend;
-    end
-    else if (_GEN_1) begin
-      if (_GEN_3)
-        state <= 3'h2;
-      else if (_GEN_4)
-        state <= {1'h0, io_largeCount == 5'h0 | io_largeFrom >= io_largeTo ? 2'h0 : 2'h3};
-      walkPend <= ~_GEN_3 & issueOk;
-      lkPend <= ~_GEN_3 & lkPend;
-    end
     else begin
-      if (_GEN_5) begin
-        if (~_GEN_28 | _GEN_29) begin
-        end
-        else
+      if (_GEN_0) begin
+        if (io_start)
           state <= 3'h1;
-        lkPend <= canIssue;
+        walkPend <= ~io_start & walkPend;
       end
-      else if (_GEN_8) begin
-        if (~_GEN_11)
-          state <= 3'h4;
+      else if (_GEN_1) begin
+        if (_GEN_3)
+          state <= 3'h2;
+        else if (_GEN_4)
+          state <=
+            {1'h0, io_largeCount == 5'h0 | io_largeFrom >= io_largeTo ? 2'h0 : 2'h3};
+        walkPend <= ~_GEN_3 & issueOk;
+        lkPend <= ~_GEN_3 & lkPend;
       end
-      else if (_GEN_32)
-        state <= {1'h0, {2{nextLi < _GEN_10}}};
-      walkPend <= (~(_GEN_5 & _GEN_28) | _GEN_29) & walkPend;
+      else begin
+        if (_GEN_5) begin
+          if (~_GEN_30 | _GEN_31) begin
+          end
+          else
+            state <= 3'h1;
+          lkPend <= canIssue;
+        end
+        else if (_GEN_8) begin
+          if (~_GEN_11)
+            state <= 3'h4;
+        end
+        else if (_GEN_34)
+          state <= {1'h0, {2{nextLi < _GEN_10}}};
+        walkPend <= (~(_GEN_5 & _GEN_30) | _GEN_31) & walkPend;
+      end
+      if (_GEN_25) begin
+      end
+      else
+        coarseCh <= _GEN_24;
     end
     if (_GEN_0) begin
       if (io_start)
-        bIssue <= {6'h0, io_lane, 4'h0};
+        bIssue <= {8'h0, io_lane[3:2], 4'h0};
     end
     else if (_GEN_1) begin
       if (_GEN_3) begin
-        bIssue <= (&lane) ? _GEN_2 + 14'h100 : _GEN_2 + {10'h0, lane} + 14'h1;
-        p_0 <= casez_tmp;
-        p_1 <= casez_tmp_1;
-        vIssue <= 4'h0;
+        bIssue <=
+          _GEN_24
+            ? (lane[3] ? _GEN_2 + 14'h40 : _GEN_2 + {10'h0, lane[3], 3'h7} + 14'h1)
+            : (&lane) ? _GEN_2 + 14'h40 : _GEN_2 + {10'h0, lane} + 14'h1;
+        p_0 <= _GEN_24 ? casez_tmp : casez_tmp_3;
+        p_1 <= _GEN_24 ? casez_tmp_1 : casez_tmp_5;
+        vIssue <= 6'h0;
       end
       else if (issueOk)
-        bIssue <= {bIssue[13:4] + 10'h10, 4'h0};
+        bIssue <= {bIssue[13:4] + 10'h4, 4'h0};
       sent <= ~_GEN_3 & sent;
       if (_GEN_3 | ~_GEN_4) begin
       end
       else begin
         li <= 6'h0;
-        lj <= 5'h0;
+        lj <= 6'h0;
       end
     end
     else begin
-      if (_GEN_31)
+      if (_GEN_33)
         p_0 <= nextGroup ? bEnd_0 : nextLeader;
-      if (_GEN_31 & nextGroup)
+      if (_GEN_33 & nextGroup)
         p_1 <= nextLeader;
       if (_GEN_5) begin
-        sent <= ~_GEN_30 & (_GEN_25 | sent);
-        if (_GEN_30)
-          vIssue <= 4'h0;
+        sent <= ~_GEN_32 & (_GEN_27 | sent);
+        if (_GEN_32)
+          vIssue <= 6'h0;
         else if (canIssue)
-          vIssue <= vIssue + 4'h1;
+          vIssue <= vIssue + 6'h1;
       end
       else if (_GEN_8) begin
         sent <= _GEN_11 & sent;
         if (_GEN_11)
-          lj <= lj + 5'h1;
+          lj <= lj + 6'h1;
       end
       else begin
-        sent <= _GEN_12 & _GEN_24 | sent;
-        if (_GEN_32)
-          lj <= 5'h0;
+        sent <= _GEN_12 & _GEN_26 | sent;
+        if (_GEN_34)
+          lj <= 6'h0;
       end
-      if (_GEN_14 | ~_GEN_32) begin
+      if (_GEN_14 | ~_GEN_34) begin
       end
       else
         li <= nextLi[5:0];
@@ -21549,18 +23334,18 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
     end
     else
       walkB <= bIssue;
-    if (_GEN_0 | ~(_GEN_1 & _GEN_3)) begin
+    if (_GEN_25) begin
     end
     else begin
-      bEnd_0 <= casez_tmp_0;
-      bEnd_1 <= casez_tmp_2;
+      bEnd_0 <= _GEN_24 ? casez_tmp_0 : casez_tmp_4;
+      bEnd_1 <= _GEN_24 ? casez_tmp_2 : casez_tmp_6;
     end
-    if (_GEN_33) begin
-      curCell_0 <= _stream_io_out_bits_rec_cell_0;
-      curCell_1 <= _stream_io_out_bits_rec_cell_1;
-      curCell_2 <= _stream_io_out_bits_rec_cell_2;
+    if (_GEN_35) begin
+      curCell_0 <= base_1_0;
+      curCell_1 <= base_1_1;
+      curCell_2 <= base_1_2;
     end
-    else if (_GEN_7 | ~_GEN_31) begin
+    else if (_GEN_7 | ~_GEN_33) begin
     end
     else begin
       curCell_0 <= nextCell_0;
@@ -21568,41 +23353,43 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
       curCell_2 <= nextCell_2;
     end
     haveCell <=
-      _GEN_33 | (_GEN_0 ? haveCell : _GEN_1 ? ~_GEN_3 & haveCell : _GEN_31 | haveCell);
+      _GEN_35 | (_GEN_0 ? haveCell : _GEN_1 ? ~_GEN_3 & haveCell : _GEN_33 | haveCell);
     if (_GEN_21)
-      loaded <= loaded + 5'h1;
-    else if (_GEN_26) begin
+      loaded <= loaded + 6'h1;
+    else if (_GEN_28) begin
     end
     else
-      loaded <= 5'h0;
+      loaded <= 6'h0;
     moreOfCell <=
-      _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & _GEN_34 & same & loaded == 5'h10
-      | _GEN_26 & moreOfCell;
-    nextSet <= _GEN_35 | _GEN_26 & nextSet;
-    if (_GEN_35) begin
+      _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & _GEN_36 & same & loaded == 6'h20
+      | _GEN_28 & moreOfCell;
+    nextSet <= _GEN_37 | _GEN_28 & nextSet;
+    if (_GEN_37) begin
       nextLeader <= _stream_io_out_bits_pos;
       nextGroup <= _stream_io_out_bits_group;
-      nextCell_0 <= _stream_io_out_bits_rec_cell_0;
-      nextCell_1 <= _stream_io_out_bits_rec_cell_1;
-      nextCell_2 <= _stream_io_out_bits_rec_cell_2;
+      nextCell_0 <= base_1_0;
+      nextCell_1 <= base_1_1;
+      nextCell_2 <= base_1_2;
     end
     if (_GEN_19)
       scanLeft <= scanLeft - 13'h1;
-    else if (_GEN_26) begin
+    else if (_GEN_28) begin
     end
     else
       scanLeft <= bEnd_0 - p_0 + bEnd_1 - p_1;
     needClear <=
       ~_GEN_20
-      & (_GEN_0 ? needClear : _GEN_1 ? _GEN_3 | needClear : _GEN_5 & _GEN_30 | needClear);
-    lkVisit_scan <= _GEN_27 & lkVisit_scan;
-    if (_GEN_27) begin
+      & (_GEN_0 ? needClear : _GEN_1 ? _GEN_3 | needClear : _GEN_5 & _GEN_32 | needClear);
+    lkVisit_scan <= _GEN_29 & lkVisit_scan;
+    if (_GEN_29) begin
     end
     else begin
       lkVisit_cell_0 <= nc_0;
       lkVisit_cell_1 <= nc_1;
       lkVisit_cell_2 <= nc_2;
-      lkVisit_own <= vIssue == 4'h0;
+      lkVisit_off_0 <= casez_tmp_7;
+      lkVisit_off_1 <= casez_tmp_8;
+      lkVisit_off_2 <= casez_tmp_9;
     end
   end // always @(posedge)
   KeyStream_world stream (
@@ -21621,7 +23408,9 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
     .io_req_bits_tag_cell_0   (_GEN_6 ? _lkq_io_deq_bits_tag_cell_0 : 20'h0),
     .io_req_bits_tag_cell_1   (_GEN_6 ? _lkq_io_deq_bits_tag_cell_1 : 20'h0),
     .io_req_bits_tag_cell_2   (_GEN_6 ? _lkq_io_deq_bits_tag_cell_2 : 20'h0),
-    .io_req_bits_tag_own      (_GEN_6 & _lkq_io_deq_bits_tag_own),
+    .io_req_bits_tag_off_0    (_GEN_6 ? _lkq_io_deq_bits_tag_off_0 : 3'h0),
+    .io_req_bits_tag_off_1    (_GEN_6 ? _lkq_io_deq_bits_tag_off_1 : 3'h0),
+    .io_req_bits_tag_off_2    (_GEN_6 ? _lkq_io_deq_bits_tag_off_2 : 3'h0),
     .io_entryAddr             (io_entry_addr),
     .io_entryGroup            (io_entry_group),
     .io_entryItem             (io_entry_item),
@@ -21655,45 +23444,55 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
     .io_out_bits_tag_cell_0   (_stream_io_out_bits_tag_cell_0),
     .io_out_bits_tag_cell_1   (_stream_io_out_bits_tag_cell_1),
     .io_out_bits_tag_cell_2   (_stream_io_out_bits_tag_cell_2),
-    .io_out_bits_tag_own      (_stream_io_out_bits_tag_own),
+    .io_out_bits_tag_off_0    (_stream_io_out_bits_tag_off_0),
+    .io_out_bits_tag_off_1    (_stream_io_out_bits_tag_off_1),
+    .io_out_bits_tag_off_2    (_stream_io_out_bits_tag_off_2),
     .io_idle                  (_stream_io_idle)
   );
-  ChunkMatcher_i12_c20_q29_k16_world matcher (
-    .clock                 (clock),
-    .reset                 (reset),
+  ChunkMatcher_i12_c20_q29_k32_world matcher (
+    .clock                  (clock),
+    .reset                  (reset),
     .io_clear
       (_GEN_20 | ~_GEN_0 & (_GEN_1 ? ~_GEN_3 & _GEN_4 : ~_GEN_14 & _GEN_12 & _GEN_16)),
-    .io_load_valid         (_GEN_21 | ~(_GEN_0 | _GEN_1 | _GEN_5) & _GEN_8 & _GEN_11),
-    .io_load_bits_index    (_GEN_21 ? _stream_io_out_bits_item : casez_tmp_6),
-    .io_load_bits_q_0      (_GEN_21 ? _stream_io_out_bits_rec_q_0 : casez_tmp_7),
-    .io_load_bits_q_1      (_GEN_21 ? _stream_io_out_bits_rec_q_1 : casez_tmp_8),
-    .io_load_bits_q_2      (_GEN_21 ? _stream_io_out_bits_rec_q_2 : casez_tmp_9),
-    .io_load_bits_qr       (_GEN_21 ? _stream_io_out_bits_rec_qr : casez_tmp_10),
-    .io_slack              (io_slack),
-    .io_in_ready           (_matcher_io_in_ready),
+    .io_load_valid          (_GEN_21 | ~(_GEN_0 | _GEN_1 | _GEN_5) & _GEN_8 & _GEN_11),
+    .io_load_bits_key_index (_GEN_21 ? _stream_io_out_bits_item : casez_tmp_10),
+    .io_load_bits_key_q_0   (_GEN_21 ? _stream_io_out_bits_rec_q_0 : casez_tmp_11),
+    .io_load_bits_key_q_1   (_GEN_21 ? _stream_io_out_bits_rec_q_1 : casez_tmp_12),
+    .io_load_bits_key_q_2   (_GEN_21 ? _stream_io_out_bits_rec_q_2 : casez_tmp_13),
+    .io_load_bits_key_qr    (_GEN_21 ? _stream_io_out_bits_rec_qr : casez_tmp_14),
+    .io_load_bits_place
+      (_GEN_21 & coarseCh
+         ? {_stream_io_out_bits_rec_cell_0[0],
+            _stream_io_out_bits_rec_cell_1[0],
+            _stream_io_out_bits_rec_cell_2[0]}
+         : 3'h0),
+    .io_slack               (io_slack),
+    .io_in_ready            (_matcher_io_in_ready),
     .io_in_valid
       (_GEN_17
          ? (~_stream_io_out_bits_tag_scan | _GEN_22) & _stream_io_out_valid
          : _GEN_22 & _stream_io_out_valid),
-    .io_in_bits_key_index  (_stream_io_out_bits_item),
-    .io_in_bits_key_cell_0 (_stream_io_out_bits_rec_cell_0),
-    .io_in_bits_key_cell_1 (_stream_io_out_bits_rec_cell_1),
-    .io_in_bits_key_cell_2 (_stream_io_out_bits_rec_cell_2),
-    .io_in_bits_key_q_0    (_stream_io_out_bits_rec_q_0),
-    .io_in_bits_key_q_1    (_stream_io_out_bits_rec_q_1),
-    .io_in_bits_key_q_2    (_stream_io_out_bits_rec_q_2),
-    .io_in_bits_key_qr     (_stream_io_out_bits_rec_qr),
-    .io_in_bits_cell_0     (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_0),
-    .io_in_bits_cell_1     (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_1),
-    .io_in_bits_cell_2     (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_2),
-    .io_in_bits_anyCell    (_GEN_23),
-    .io_in_bits_own
-      (_GEN_23 ? _stream_io_out_bits_rec_large : _stream_io_out_bits_tag_own),
-    .io_out_ready          (io_pairs_ready),
-    .io_out_valid          (io_pairs_valid),
-    .io_out_bits_i         (io_pairs_bits_i),
-    .io_out_bits_j         (io_pairs_bits_j),
-    .io_idle               (_matcher_io_idle)
+    .io_in_bits_key_index   (_stream_io_out_bits_item),
+    .io_in_bits_key_cell_0  (_stream_io_out_bits_rec_cell_0),
+    .io_in_bits_key_cell_1  (_stream_io_out_bits_rec_cell_1),
+    .io_in_bits_key_cell_2  (_stream_io_out_bits_rec_cell_2),
+    .io_in_bits_key_q_0     (_stream_io_out_bits_rec_q_0),
+    .io_in_bits_key_q_1     (_stream_io_out_bits_rec_q_1),
+    .io_in_bits_key_q_2     (_stream_io_out_bits_rec_q_2),
+    .io_in_bits_key_qr      (_stream_io_out_bits_rec_qr),
+    .io_in_bits_cell_0      (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_0),
+    .io_in_bits_cell_1      (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_1),
+    .io_in_bits_cell_2      (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_2),
+    .io_in_bits_off_0       (_GEN_23 ? 3'h0 : _stream_io_out_bits_tag_off_0),
+    .io_in_bits_off_1       (_GEN_23 ? 3'h0 : _stream_io_out_bits_tag_off_1),
+    .io_in_bits_off_2       (_GEN_23 ? 3'h0 : _stream_io_out_bits_tag_off_2),
+    .io_in_bits_anyCell     (_GEN_23),
+    .io_in_bits_own         (_stream_io_out_bits_rec_large),
+    .io_out_ready           (io_pairs_ready),
+    .io_out_valid           (io_pairs_valid),
+    .io_out_bits_i          (io_pairs_bits_i),
+    .io_out_bits_j          (io_pairs_bits_j),
+    .io_idle                (_matcher_io_idle)
   );
   Queue3_StreamRange_world lkq (
     .clock                  (clock),
@@ -21707,7 +23506,9 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
     .io_enq_bits_tag_cell_0 (lkVisit_cell_0),
     .io_enq_bits_tag_cell_1 (lkVisit_cell_1),
     .io_enq_bits_tag_cell_2 (lkVisit_cell_2),
-    .io_enq_bits_tag_own    (lkVisit_own),
+    .io_enq_bits_tag_off_0  (lkVisit_off_0),
+    .io_enq_bits_tag_off_1  (lkVisit_off_1),
+    .io_enq_bits_tag_off_2  (lkVisit_off_2),
     .io_deq_ready           (~_GEN_7 & _GEN_6 & _stream_io_req_ready),
     .io_deq_valid           (_lkq_io_deq_valid),
     .io_deq_bits_begin_0    (_lkq_io_deq_bits_begin_0),
@@ -21719,7 +23520,9 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
     .io_deq_bits_tag_cell_0 (_lkq_io_deq_bits_tag_cell_0),
     .io_deq_bits_tag_cell_1 (_lkq_io_deq_bits_tag_cell_1),
     .io_deq_bits_tag_cell_2 (_lkq_io_deq_bits_tag_cell_2),
-    .io_deq_bits_tag_own    (_lkq_io_deq_bits_tag_own),
+    .io_deq_bits_tag_off_0  (_lkq_io_deq_bits_tag_off_0),
+    .io_deq_bits_tag_off_1  (_lkq_io_deq_bits_tag_off_1),
+    .io_deq_bits_tag_off_2  (_lkq_io_deq_bits_tag_off_2),
     .io_count               (_lkq_io_count)
   );
   assign io_lookup_bucket =
@@ -21728,8 +23531,10 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
       : _GEN_1
           ? bIssue[12:0]
           : _GEN_5
-              ? (nc_0[12:0] * 13'h145D ^ nc_1[12:0] * 13'h9F ^ nc_2[12:0] * 13'h1FB7)
-                & _io_lookup_bucket_mask_T[12:0] - 13'h1
+              ? {nc_0[10:1] * 10'h5D ^ nc_1[10:1] * 10'h9F ^ nc_2[10:1] * 10'h3B7,
+                 nc_0[0],
+                 nc_1[0],
+                 nc_2[0]} & _io_lookup_bucket_mask_T[12:0] - 13'h1
               : 13'h0;
   assign io_mark_valid = _GEN_19 & take;
   assign io_mark_bits_group = _stream_io_out_bits_group;
@@ -21738,7 +23543,7 @@ module CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world(
   assign io_busy = |state;
 endmodule
 
-module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
+module SphereKeys_fp32_c20_f8_m9d8_e2_l1_world(
   input         clock,
                 reset,
                 io_in_valid,
@@ -22008,19 +23813,21 @@ module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
       ? 10'h381 - {5'h0, raw_lz_3}
       : {_raw_out_sExp_T_16[8], _raw_out_sExp_T_16};
   wire [14:0] _k_T = {io_in_level[13], io_in_level} + 15'h1;
-  wire [10:0] _GEN_3 = {raw_0_sExp[9], raw_0_sExp};
-  wire [10:0] _qs_t_T = _GEN_3 - 11'h17;
-  wire [14:0] _GEN_4 = {_k_T[14], _k_T[14:1]};
-  wire [14:0] _GEN_5 = {{4{_qs_t_T[10]}}, _qs_t_T} - _GEN_4;
-  wire [15:0] _GEN_6 = {_GEN_5[14], _GEN_5};
-  wire        cellsAndOver_left = $signed(_GEN_6) > -16'sh1;
-  wire [16:0] _cellsAndOver_rNeg_T = 17'h0 - {{2{_GEN_5[14]}}, _GEN_5};
+  wire [14:0] _GEN_3 = {_k_T[14], _k_T[14:1]};
+  wire [14:0] _cellsAndOver_T_18 = _GEN_3 - 15'h2;
+  wire [14:0] _cellsAndOver_T_1 = io_in_level[0] ? _cellsAndOver_T_18 : _GEN_3;
+  wire [10:0] _GEN_4 = {raw_0_sExp[9], raw_0_sExp};
+  wire [10:0] _qs_t_T = _GEN_4 - 11'h17;
+  wire [15:0] _GEN_5 = {{5{_qs_t_T[10]}}, _qs_t_T};
+  wire [15:0] cellsAndOver_t = _GEN_5 - {_cellsAndOver_T_1[14], _cellsAndOver_T_1};
+  wire        cellsAndOver_left = $signed(cellsAndOver_t) > -16'sh1;
+  wire [16:0] _cellsAndOver_rNeg_T = 17'h0 - {cellsAndOver_t[15], cellsAndOver_t};
   wire [4:0]  _cellsAndOver_rAmt_T_1 =
     _cellsAndOver_rNeg_T > 17'h19 ? 5'h19 : _cellsAndOver_rNeg_T[4:0];
-  wire [54:0] _GEN_7 = {31'h0, raw_0_sig};
+  wire [54:0] _GEN_6 = {31'h0, raw_0_sig};
   wire [31:0] _cellsAndOver_sticky_T = 32'h1 << _cellsAndOver_rAmt_T_1;
   wire [54:0] _cellsAndOver_shiftedL_T =
-    _GEN_7 << ($signed(_GEN_6) > 16'sh17 ? 5'h17 : _GEN_5[4:0]);
+    _GEN_6 << ($signed(cellsAndOver_t) > 16'sh17 ? 5'h17 : cellsAndOver_t[4:0]);
   wire [48:0] cellsAndOver_m =
     {1'h0,
      cellsAndOver_left
@@ -22029,22 +23836,27 @@ module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
     + {48'h0,
        ~cellsAndOver_left & (|(raw_0_sig & _cellsAndOver_sticky_T[23:0] - 24'h1))
          & io_in_sphere_0[31]};
-  wire [21:0] cellsAndOver_0_1 =
+  wire [21:0] cellsAndOver_c =
     raw_0_isZero
       ? 22'h0
       : io_in_sphere_0[31] ? 22'h0 - cellsAndOver_m[21:0] : cellsAndOver_m[21:0];
-  wire [10:0] _GEN_8 = {raw_1_sExp[9], raw_1_sExp};
-  wire [10:0] _qs_t_T_1 = _GEN_8 - 11'h17;
-  wire [14:0] _GEN_9 = {{4{_qs_t_T_1[10]}}, _qs_t_T_1} - _GEN_4;
-  wire [15:0] _GEN_10 = {_GEN_9[14], _GEN_9};
-  wire        cellsAndOver_left_1 = $signed(_GEN_10) > -16'sh1;
-  wire [16:0] _cellsAndOver_rNeg_T_1 = 17'h0 - {{2{_GEN_9[14]}}, _GEN_9};
+  wire [46:0] _cellsAndOver_q_T =
+    {24'h0, {cellsAndOver_c[21], cellsAndOver_c} - 23'h200000} * 47'hAAAAAB;
+  wire [21:0] cellsAndOver_0_1 =
+    io_in_level[0] ? _cellsAndOver_q_T[46:25] - 22'h200000 : cellsAndOver_c;
+  wire [14:0] _cellsAndOver_T_10 = io_in_level[0] ? _cellsAndOver_T_18 : _GEN_3;
+  wire [10:0] _GEN_7 = {raw_1_sExp[9], raw_1_sExp};
+  wire [10:0] _qs_t_T_1 = _GEN_7 - 11'h17;
+  wire [15:0] _GEN_8 = {{5{_qs_t_T_1[10]}}, _qs_t_T_1};
+  wire [15:0] cellsAndOver_t_1 = _GEN_8 - {_cellsAndOver_T_10[14], _cellsAndOver_T_10};
+  wire        cellsAndOver_left_1 = $signed(cellsAndOver_t_1) > -16'sh1;
+  wire [16:0] _cellsAndOver_rNeg_T_1 = 17'h0 - {cellsAndOver_t_1[15], cellsAndOver_t_1};
   wire [4:0]  _cellsAndOver_rAmt_T_3 =
     _cellsAndOver_rNeg_T_1 > 17'h19 ? 5'h19 : _cellsAndOver_rNeg_T_1[4:0];
-  wire [54:0] _GEN_11 = {31'h0, raw_1_sig};
+  wire [54:0] _GEN_9 = {31'h0, raw_1_sig};
   wire [31:0] _cellsAndOver_sticky_T_5 = 32'h1 << _cellsAndOver_rAmt_T_3;
   wire [54:0] _cellsAndOver_shiftedL_T_1 =
-    _GEN_11 << ($signed(_GEN_10) > 16'sh17 ? 5'h17 : _GEN_9[4:0]);
+    _GEN_9 << ($signed(cellsAndOver_t_1) > 16'sh17 ? 5'h17 : cellsAndOver_t_1[4:0]);
   wire [48:0] cellsAndOver_m_1 =
     {1'h0,
      cellsAndOver_left_1
@@ -22053,22 +23865,27 @@ module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
     + {48'h0,
        ~cellsAndOver_left_1 & (|(raw_1_sig & _cellsAndOver_sticky_T_5[23:0] - 24'h1))
          & io_in_sphere_1[31]};
-  wire [21:0] cellsAndOver_1_1 =
+  wire [21:0] cellsAndOver_c_1 =
     raw_1_isZero
       ? 22'h0
       : io_in_sphere_1[31] ? 22'h0 - cellsAndOver_m_1[21:0] : cellsAndOver_m_1[21:0];
-  wire [10:0] _GEN_12 = {raw_2_sExp[9], raw_2_sExp};
-  wire [10:0] _qs_t_T_2 = _GEN_12 - 11'h17;
-  wire [14:0] _GEN_13 = {{4{_qs_t_T_2[10]}}, _qs_t_T_2} - _GEN_4;
-  wire [15:0] _GEN_14 = {_GEN_13[14], _GEN_13};
-  wire        cellsAndOver_left_2 = $signed(_GEN_14) > -16'sh1;
-  wire [16:0] _cellsAndOver_rNeg_T_2 = 17'h0 - {{2{_GEN_13[14]}}, _GEN_13};
+  wire [46:0] _cellsAndOver_q_T_1 =
+    {24'h0, {cellsAndOver_c_1[21], cellsAndOver_c_1} - 23'h200000} * 47'hAAAAAB;
+  wire [21:0] cellsAndOver_1_1 =
+    io_in_level[0] ? _cellsAndOver_q_T_1[46:25] - 22'h200000 : cellsAndOver_c_1;
+  wire [14:0] _cellsAndOver_T_19 = io_in_level[0] ? _cellsAndOver_T_18 : _GEN_3;
+  wire [10:0] _GEN_10 = {raw_2_sExp[9], raw_2_sExp};
+  wire [10:0] _qs_t_T_2 = _GEN_10 - 11'h17;
+  wire [15:0] _GEN_11 = {{5{_qs_t_T_2[10]}}, _qs_t_T_2};
+  wire [15:0] cellsAndOver_t_2 = _GEN_11 - {_cellsAndOver_T_19[14], _cellsAndOver_T_19};
+  wire        cellsAndOver_left_2 = $signed(cellsAndOver_t_2) > -16'sh1;
+  wire [16:0] _cellsAndOver_rNeg_T_2 = 17'h0 - {cellsAndOver_t_2[15], cellsAndOver_t_2};
   wire [4:0]  _cellsAndOver_rAmt_T_5 =
     _cellsAndOver_rNeg_T_2 > 17'h19 ? 5'h19 : _cellsAndOver_rNeg_T_2[4:0];
-  wire [54:0] _GEN_15 = {31'h0, raw_2_sig};
+  wire [54:0] _GEN_12 = {31'h0, raw_2_sig};
   wire [31:0] _cellsAndOver_sticky_T_10 = 32'h1 << _cellsAndOver_rAmt_T_5;
   wire [54:0] _cellsAndOver_shiftedL_T_2 =
-    _GEN_15 << ($signed(_GEN_14) > 16'sh17 ? 5'h17 : _GEN_13[4:0]);
+    _GEN_12 << ($signed(cellsAndOver_t_2) > 16'sh17 ? 5'h17 : cellsAndOver_t_2[4:0]);
   wire [48:0] cellsAndOver_m_2 =
     {1'h0,
      cellsAndOver_left_2
@@ -22077,40 +23894,43 @@ module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
     + {48'h0,
        ~cellsAndOver_left_2 & (|(raw_2_sig & _cellsAndOver_sticky_T_10[23:0] - 24'h1))
          & io_in_sphere_2[31]};
-  wire [21:0] cellsAndOver_2_1 =
+  wire [21:0] cellsAndOver_c_2 =
     raw_2_isZero
       ? 22'h0
       : io_in_sphere_2[31] ? 22'h0 - cellsAndOver_m_2[21:0] : cellsAndOver_m_2[21:0];
-  wire [14:0] _tq_T_1 = _GEN_4 - 15'h8;
-  wire [15:0] _GEN_16 = {_tq_T_1[14], _tq_T_1};
-  wire [15:0] qs_t = {{5{_qs_t_T[10]}}, _qs_t_T} - _GEN_16;
+  wire [46:0] _cellsAndOver_q_T_2 =
+    {24'h0, {cellsAndOver_c_2[21], cellsAndOver_c_2} - 23'h200000} * 47'hAAAAAB;
+  wire [21:0] cellsAndOver_2_1 =
+    io_in_level[0] ? _cellsAndOver_q_T_2[46:25] - 22'h200000 : cellsAndOver_c_2;
+  wire [14:0] _tq_T_1 = _GEN_3 - 15'h8;
+  wire [15:0] _GEN_13 = {_tq_T_1[14], _tq_T_1};
+  wire [15:0] qs_t = _GEN_5 - _GEN_13;
   wire        qs_left = $signed(qs_t) > -16'sh1;
   wire [16:0] _qs_rNeg_T = 17'h0 - {qs_t[15], qs_t};
   wire [4:0]  _qs_rAmt_T_1 = _qs_rNeg_T > 17'h19 ? 5'h19 : _qs_rNeg_T[4:0];
   wire [31:0] _qs_sticky_T = 32'h1 << _qs_rAmt_T_1;
-  wire [54:0] qs_shiftedL = _GEN_7 << ($signed(qs_t) > 16'sh1E ? 5'h1E : qs_t[4:0]);
+  wire [54:0] qs_shiftedL = _GEN_6 << ($signed(qs_t) > 16'sh1E ? 5'h1E : qs_t[4:0]);
   wire [28:0] qs_m =
     (qs_left ? qs_shiftedL[28:0] : {5'h0, raw_0_sig >> _qs_rAmt_T_1})
     + {28'h0,
        ~qs_left & (|(raw_0_sig & _qs_sticky_T[23:0] - 24'h1)) & io_in_sphere_0[31]};
-  wire [15:0] qs_t_1 = {{5{_qs_t_T_1[10]}}, _qs_t_T_1} - _GEN_16;
+  wire [15:0] qs_t_1 = _GEN_8 - _GEN_13;
   wire        qs_left_1 = $signed(qs_t_1) > -16'sh1;
   wire [16:0] _qs_rNeg_T_1 = 17'h0 - {qs_t_1[15], qs_t_1};
   wire [4:0]  _qs_rAmt_T_3 = _qs_rNeg_T_1 > 17'h19 ? 5'h19 : _qs_rNeg_T_1[4:0];
   wire [31:0] _qs_sticky_T_5 = 32'h1 << _qs_rAmt_T_3;
-  wire [54:0] qs_shiftedL_1 =
-    _GEN_11 << ($signed(qs_t_1) > 16'sh1E ? 5'h1E : qs_t_1[4:0]);
+  wire [54:0] qs_shiftedL_1 = _GEN_9 << ($signed(qs_t_1) > 16'sh1E ? 5'h1E : qs_t_1[4:0]);
   wire [28:0] qs_m_1 =
     (qs_left_1 ? qs_shiftedL_1[28:0] : {5'h0, raw_1_sig >> _qs_rAmt_T_3})
     + {28'h0,
        ~qs_left_1 & (|(raw_1_sig & _qs_sticky_T_5[23:0] - 24'h1)) & io_in_sphere_1[31]};
-  wire [15:0] qs_t_2 = {{5{_qs_t_T_2[10]}}, _qs_t_T_2} - _GEN_16;
+  wire [15:0] qs_t_2 = _GEN_11 - _GEN_13;
   wire        qs_left_2 = $signed(qs_t_2) > -16'sh1;
   wire [16:0] _qs_rNeg_T_2 = 17'h0 - {qs_t_2[15], qs_t_2};
   wire [4:0]  _qs_rAmt_T_5 = _qs_rNeg_T_2 > 17'h19 ? 5'h19 : _qs_rNeg_T_2[4:0];
   wire [31:0] _qs_sticky_T_10 = 32'h1 << _qs_rAmt_T_5;
   wire [54:0] qs_shiftedL_2 =
-    _GEN_15 << ($signed(qs_t_2) > 16'sh1E ? 5'h1E : qs_t_2[4:0]);
+    _GEN_12 << ($signed(qs_t_2) > 16'sh1E ? 5'h1E : qs_t_2[4:0]);
   wire [28:0] qs_m_2 =
     (qs_left_2 ? qs_shiftedL_2[28:0] : {5'h0, raw_2_sig >> _qs_rAmt_T_5})
     + {28'h0,
@@ -22118,9 +23938,9 @@ module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
   wire [85:0] _raw_subSig_T_7 = {63'h0, io_in_sphere_3[22:0]} << {1'h0, raw_lz_3} + 6'h1;
   wire [27:0] rNum =
     {4'h0, raw_expZero_3 ? _raw_subSig_T_7[23:0] : {1'h1, io_in_sphere_3[22:0]}} * 28'h9;
-  wire [10:0] _GEN_17 = {raw_3_sExp[9], raw_3_sExp};
-  wire [10:0] _tq_T = _GEN_17 - 11'h1A;
-  wire [15:0] tq = {{5{_tq_T[10]}}, _tq_T} - _GEN_16;
+  wire [10:0] _GEN_14 = {raw_3_sExp[9], raw_3_sExp};
+  wire [10:0] _tq_T = _GEN_14 - 11'h1A;
+  wire [15:0] tq = {{5{_tq_T[10]}}, _tq_T} - _GEN_13;
   wire [16:0] _qrRneg_T = 17'h0 - {tq[15], tq};
   wire [4:0]  _qrR_T_1 = _qrRneg_T > 17'h1D ? 5'h1D : _qrRneg_T[4:0];
   wire [31:0] _qrRight_T_1 = 32'h1 << _qrR_T_1;
@@ -22131,45 +23951,44 @@ module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
   wire        _io_out_needNone_T =
     raw_expZero_3 & ~(|(io_in_sphere_3[22:0])) | io_in_sphere_3[31];
   wire [28:0] _x_T_1 = {rNum, 1'h0} - 29'h1;
-  wire [10:0] _needK_T = _GEN_17 - 11'h17;
+  wire [3:0]  _lead_T_47 =
+    (|(_x_T_1[28:16]))
+      ? {|(_x_T_1[28:24]),
+         (|(_x_T_1[28:24]))
+           ? {_x_T_1[28],
+              _x_T_1[28]
+                ? 2'h0
+                : _x_T_1[27] ? 2'h3 : _x_T_1[26] ? 2'h2 : {1'h0, _x_T_1[25]}}
+           : {|(_x_T_1[23:20]),
+              (|(_x_T_1[23:20]))
+                ? (_x_T_1[23] ? 2'h3 : _x_T_1[22] ? 2'h2 : {1'h0, _x_T_1[21]})
+                : _x_T_1[19] ? 2'h3 : _x_T_1[18] ? 2'h2 : {1'h0, _x_T_1[17]}}}
+      : {|(_x_T_1[15:8]),
+         (|(_x_T_1[15:8]))
+           ? {|(_x_T_1[15:12]),
+              (|(_x_T_1[15:12]))
+                ? (_x_T_1[15] ? 2'h3 : _x_T_1[14] ? 2'h2 : {1'h0, _x_T_1[13]})
+                : _x_T_1[11] ? 2'h3 : _x_T_1[10] ? 2'h2 : {1'h0, _x_T_1[9]}}
+           : {|(_x_T_1[7:4]),
+              (|(_x_T_1[7:4]))
+                ? (_x_T_1[7] ? 2'h3 : _x_T_1[6] ? 2'h2 : {1'h0, _x_T_1[5]})
+                : _x_T_1[3] ? 2'h3 : _x_T_1[2] ? 2'h2 : {1'h0, _x_T_1[1]}}};
+  wire [10:0] _needK_T = _GEN_14 - 11'h17;
   wire [11:0] _needK_T_3 =
-    {_needK_T[10], _needK_T}
-    + {6'h0,
-       {1'h0,
-        |(_x_T_1[28:16]),
-        (|(_x_T_1[28:16]))
-          ? {|(_x_T_1[28:24]),
-             (|(_x_T_1[28:24]))
-               ? {_x_T_1[28],
-                  _x_T_1[28]
-                    ? 2'h0
-                    : _x_T_1[27] ? 2'h3 : _x_T_1[26] ? 2'h2 : {1'h0, _x_T_1[25]}}
-               : {|(_x_T_1[23:20]),
-                  (|(_x_T_1[23:20]))
-                    ? (_x_T_1[23] ? 2'h3 : _x_T_1[22] ? 2'h2 : {1'h0, _x_T_1[21]})
-                    : _x_T_1[19] ? 2'h3 : _x_T_1[18] ? 2'h2 : {1'h0, _x_T_1[17]}}}
-          : {|(_x_T_1[15:8]),
-             (|(_x_T_1[15:8]))
-               ? {|(_x_T_1[15:12]),
-                  (|(_x_T_1[15:12]))
-                    ? (_x_T_1[15] ? 2'h3 : _x_T_1[14] ? 2'h2 : {1'h0, _x_T_1[13]})
-                    : _x_T_1[11] ? 2'h3 : _x_T_1[10] ? 2'h2 : {1'h0, _x_T_1[9]}}
-               : {|(_x_T_1[7:4]),
-                  (|(_x_T_1[7:4]))
-                    ? (_x_T_1[7] ? 2'h3 : _x_T_1[6] ? 2'h2 : {1'h0, _x_T_1[5]})
-                    : _x_T_1[3] ? 2'h3 : _x_T_1[2] ? 2'h2 : {1'h0, _x_T_1[1]}}}} + 6'h1};
-  wire [10:0] coordTops_0_2 = _GEN_3 + 11'h1;
-  wire [10:0] coordTops_1_2 = _GEN_8 + 11'h1;
-  wire [10:0] coordTops_2_2 = _GEN_12 + 11'h1;
-  wire        _GEN_18 = raw_0_isZero & raw_1_isZero;
-  wire [10:0] _GEN_19 =
+    {_needK_T[10], _needK_T} + {6'h0, {1'h0, |(_x_T_1[28:16]), _lead_T_47} + 6'h1};
+  wire [10:0] coordTops_0_2 = _GEN_4 + 11'h1;
+  wire [10:0] coordTops_1_2 = _GEN_7 + 11'h1;
+  wire [10:0] coordTops_2_2 = _GEN_10 + 11'h1;
+  wire        _GEN_15 = raw_0_isZero & raw_1_isZero;
+  wire [10:0] _GEN_16 =
     raw_0_isZero | ~(raw_1_isZero | $signed(coordTops_0_2) > $signed(coordTops_1_2))
       ? coordTops_1_2
       : coordTops_0_2;
   wire [10:0] top =
-    _GEN_18 | ~(raw_2_isZero | $signed(_GEN_19) > $signed(coordTops_2_2))
+    _GEN_15 | ~(raw_2_isZero | $signed(_GEN_16) > $signed(coordTops_2_2))
       ? coordTops_2_2
-      : _GEN_19;
+      : _GEN_16;
+  wire [28:0] _oddFits_T_2 = _x_T_1 >> {|(_x_T_1[28:16]), _lead_T_47} - 5'h1;
   always @(posedge clock) begin
     if (reset)
       io_out_valid_r <= 1'h0;
@@ -22190,7 +24009,8 @@ module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
     r_1_2 <= raw_2_isZero ? 29'h0 : io_in_sphere_2[31] ? 29'h0 - qs_m_2 : qs_m_2;
     io_out_qr_r <=
       _io_out_needNone_T ? 29'h0 : (|(qrWide[58:29])) ? 29'h1FFFFFFF : qrWide[28:0];
-    io_out_need_r <= {{_needK_T_3[11], _needK_T_3} - 13'h3, 1'h0};
+    io_out_need_r <=
+      {{_needK_T_3[11], _needK_T_3} - 13'h3, 1'h0} - {13'h0, ~(_oddFits_T_2[0])};
     io_out_needNone_r <= _io_out_needNone_T;
     io_out_nonFinite_r <=
       (&(io_in_sphere_0[30:23])) & (|(io_in_sphere_0[22:0])) | (&(io_in_sphere_0[30:23]))
@@ -22202,7 +24022,7 @@ module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
       & (|(io_in_sphere_3[22:0])) | (&(io_in_sphere_3[30:23]))
       & ~(|(io_in_sphere_3[22:0]));
     io_out_top_r <= {{3{top[10]}}, top};
-    io_out_topNone_r <= _GEN_18 & raw_2_isZero;
+    io_out_topNone_r <= _GEN_15 & raw_2_isZero;
   end // always @(posedge)
   assign io_out_valid = io_out_valid_r;
   assign io_out_cell_0 = r_0;
@@ -22220,7 +24040,7 @@ module SphereKeys_fp32_c20_f8_m9d8_e1_l1_world(
   assign io_out_topNone = io_out_topNone_r;
 endmodule
 
-module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
+module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   input         clock,
                 reset,
                 io_start,
@@ -33342,7 +35162,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
         & _sorts_1_io_in_1_valid_T_12;
     end
   end // always @(posedge)
-  CellExponent_fp32_L16_c20_e1_world laneExps_0 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_0 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33373,7 +35193,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_0_io_top),
     .io_anyTop         (_laneExps_0_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_1 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_1 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33404,7 +35224,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_1_io_top),
     .io_anyTop         (_laneExps_1_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_2 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_2 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33435,7 +35255,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_2_io_top),
     .io_anyTop         (_laneExps_2_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_3 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_3 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33466,7 +35286,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_3_io_top),
     .io_anyTop         (_laneExps_3_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_4 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_4 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33497,7 +35317,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_4_io_top),
     .io_anyTop         (_laneExps_4_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_5 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_5 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33528,7 +35348,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_5_io_top),
     .io_anyTop         (_laneExps_5_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_6 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_6 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33559,7 +35379,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_6_io_top),
     .io_anyTop         (_laneExps_6_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_7 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_7 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33590,7 +35410,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_7_io_top),
     .io_anyTop         (_laneExps_7_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_8 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_8 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33621,7 +35441,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_8_io_top),
     .io_anyTop         (_laneExps_8_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_9 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_9 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33652,7 +35472,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_9_io_top),
     .io_anyTop         (_laneExps_9_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_10 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_10 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33683,7 +35503,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_10_io_top),
     .io_anyTop         (_laneExps_10_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_11 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_11 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33714,7 +35534,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_11_io_top),
     .io_anyTop         (_laneExps_11_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_12 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_12 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33745,7 +35565,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_12_io_top),
     .io_anyTop         (_laneExps_12_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_13 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_13 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33776,7 +35596,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_13_io_top),
     .io_anyTop         (_laneExps_13_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_14 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_14 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33807,7 +35627,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_14_io_top),
     .io_anyTop         (_laneExps_14_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_world laneExps_15 (
+  CellExponent_fp32_L16_c20_e2_world laneExps_15 (
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
@@ -33838,7 +35658,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_top            (_laneExps_15_io_top),
     .io_anyTop         (_laneExps_15_io_anyTop)
   );
-  CellExponent_fp32_L16_c20_e1_p2_world cellExp (
+  CellExponent_fp32_L16_c20_e2_p2_world cellExp (
     .clock           (clock),
     .reset           (reset),
     .io_clear        (starting),
@@ -33863,17 +35683,23 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_0_valid        (_sorts_0_io_in_0_valid_T_12),
     .io_in_0_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
-      ((_laneKeys_0_io_out_cell_0[12:0] * 13'h145D ^ _laneKeys_0_io_out_cell_1[12:0]
-        * 13'h9F ^ _laneKeys_0_io_out_cell_2[12:0] * 13'h1FB7)
-       & _sorts_1_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
+      ({_laneKeys_0_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_0_io_out_cell_1[10:1]
+          * 10'h9F ^ _laneKeys_0_io_out_cell_2[10:1] * 10'h3B7,
+        _laneKeys_0_io_out_cell_0[0],
+        _laneKeys_0_io_out_cell_1[0],
+        _laneKeys_0_io_out_cell_2[0]} & _sorts_1_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_0_bits_item    (r),
     .io_in_1_ready        (_sorts_0_io_in_1_ready),
     .io_in_1_valid        (_sorts_0_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
-      ((_laneKeys_1_io_out_cell_0[12:0] * 13'h145D ^ _laneKeys_1_io_out_cell_1[12:0]
-        * 13'h9F ^ _laneKeys_1_io_out_cell_2[12:0] * 13'h1FB7)
-       & _sorts_1_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
+      ({_laneKeys_1_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_1_io_out_cell_1[10:1]
+          * 10'h9F ^ _laneKeys_1_io_out_cell_2[10:1] * 10'h3B7,
+        _laneKeys_1_io_out_cell_0[0],
+        _laneKeys_1_io_out_cell_1[0],
+        _laneKeys_1_io_out_cell_2[0]} & _sorts_1_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_1_bits_item    (r_1),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_0_io_lookup_0_begin),
@@ -34290,17 +36116,23 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_in_0_valid        (_sorts_1_io_in_0_valid_T_12),
     .io_in_0_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
-      ((_laneKeys_2_io_out_cell_0[12:0] * 13'h145D ^ _laneKeys_2_io_out_cell_1[12:0]
-        * 13'h9F ^ _laneKeys_2_io_out_cell_2[12:0] * 13'h1FB7)
-       & _sorts_1_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
+      ({_laneKeys_2_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_2_io_out_cell_1[10:1]
+          * 10'h9F ^ _laneKeys_2_io_out_cell_2[10:1] * 10'h3B7,
+        _laneKeys_2_io_out_cell_0[0],
+        _laneKeys_2_io_out_cell_1[0],
+        _laneKeys_2_io_out_cell_2[0]} & _sorts_1_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_0_bits_item    (r_2),
     .io_in_1_ready        (_sorts_1_io_in_1_ready),
     .io_in_1_valid        (_sorts_1_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
-      ((_laneKeys_3_io_out_cell_0[12:0] * 13'h145D ^ _laneKeys_3_io_out_cell_1[12:0]
-        * 13'h9F ^ _laneKeys_3_io_out_cell_2[12:0] * 13'h1FB7)
-       & _sorts_1_io_in_1_bits_bucket_mask_T[12:0] - 13'h1),
+      ({_laneKeys_3_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_3_io_out_cell_1[10:1]
+          * 10'h9F ^ _laneKeys_3_io_out_cell_2[10:1] * 10'h3B7,
+        _laneKeys_3_io_out_cell_0[0],
+        _laneKeys_3_io_out_cell_1[0],
+        _laneKeys_3_io_out_cell_2[0]} & _sorts_1_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_1_bits_item    (r_3),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_1_io_lookup_0_begin),
@@ -34706,7 +36538,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_scattered         (_sorts_1_io_scattered),
     .io_badBucket         (_sorts_1_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_0 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_0 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -34861,7 +36693,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_0_bits_j),
     .io_busy             (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_1 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_1 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35016,7 +36848,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_1_bits_j),
     .io_busy             (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_2 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_2 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35171,7 +37003,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_2_bits_j),
     .io_busy             (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_3 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_3 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35326,7 +37158,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_3_bits_j),
     .io_busy             (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_4 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_4 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35481,7 +37313,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_4_bits_j),
     .io_busy             (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_5 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_5 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35636,7 +37468,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_5_bits_j),
     .io_busy             (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_6 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_6 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35791,7 +37623,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_6_bits_j),
     .io_busy             (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_7 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_7 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -35946,7 +37778,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_7_bits_j),
     .io_busy             (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_8 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_8 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -36101,7 +37933,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_8_bits_j),
     .io_busy             (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_9 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_9 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -36256,7 +38088,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_9_bits_j),
     .io_busy             (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_10 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_10 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -36411,7 +38243,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_10_bits_j),
     .io_busy             (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_11 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_11 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -36566,7 +38398,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_11_bits_j),
     .io_busy             (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_12 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_12 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -36721,7 +38553,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_12_bits_j),
     .io_busy             (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_13 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_13 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -36876,7 +38708,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_13_bits_j),
     .io_busy             (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_14 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_14 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -37031,7 +38863,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_14_bits_j),
     .io_busy             (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k16_L16_r2_w4_l16_g2_world gens_15 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_15 (
     .clock               (clock),
     .reset               (reset),
     .io_start            (_gens_15_io_start_T & ~sent),
@@ -37186,7 +39018,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_pairs_bits_j     (io_pairs_15_bits_j),
     .io_busy             (_gens_15_io_busy)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_0 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_0 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_0_io_in_valid_REG),
@@ -37210,7 +39042,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_0_io_out_top),
     .io_out_topNone      (_laneKeys_0_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_1 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_1 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_1_io_in_valid_REG),
@@ -37234,7 +39066,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_1_io_out_top),
     .io_out_topNone      (_laneKeys_1_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_2 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_2 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_2_io_in_valid_REG),
@@ -37258,7 +39090,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_2_io_out_top),
     .io_out_topNone      (_laneKeys_2_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_3 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_3 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_3_io_in_valid_REG),
@@ -37282,7 +39114,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_3_io_out_top),
     .io_out_topNone      (_laneKeys_3_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_4 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_4 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_4_io_in_valid_REG),
@@ -37306,7 +39138,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_4_io_out_top),
     .io_out_topNone      (_laneKeys_4_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_5 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_5 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_5_io_in_valid_REG),
@@ -37330,7 +39162,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_5_io_out_top),
     .io_out_topNone      (_laneKeys_5_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_6 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_6 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_6_io_in_valid_REG),
@@ -37354,7 +39186,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_6_io_out_top),
     .io_out_topNone      (_laneKeys_6_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_7 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_7 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_7_io_in_valid_REG),
@@ -37378,7 +39210,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_7_io_out_top),
     .io_out_topNone      (_laneKeys_7_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_8 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_8 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_8_io_in_valid_REG),
@@ -37402,7 +39234,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_8_io_out_top),
     .io_out_topNone      (_laneKeys_8_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_9 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_9 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_9_io_in_valid_REG),
@@ -37426,7 +39258,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_9_io_out_top),
     .io_out_topNone      (_laneKeys_9_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_10 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_10 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_10_io_in_valid_REG),
@@ -37450,7 +39282,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_10_io_out_top),
     .io_out_topNone      (_laneKeys_10_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_11 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_11 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_11_io_in_valid_REG),
@@ -37474,7 +39306,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_11_io_out_top),
     .io_out_topNone      (_laneKeys_11_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_12 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_12 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_12_io_in_valid_REG),
@@ -37498,7 +39330,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_12_io_out_top),
     .io_out_topNone      (_laneKeys_12_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_13 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_13 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_13_io_in_valid_REG),
@@ -37522,7 +39354,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_13_io_out_top),
     .io_out_topNone      (_laneKeys_13_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_14 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_14 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_14_io_in_valid_REG),
@@ -37546,7 +39378,7 @@ module BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world(
     .io_out_top          (_laneKeys_14_io_out_top),
     .io_out_topNone      (_laneKeys_14_io_out_topNone)
   );
-  SphereKeys_fp32_c20_f8_m9d8_e1_l1_world laneKeys_15 (
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_15 (
     .clock               (clock),
     .reset               (reset),
     .io_in_valid         (laneKeys_15_io_in_valid_REG),
@@ -40376,7 +42208,7 @@ module Puc_world(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
-  BroadPhase_fp32_n4096_b13_L16_k16_c20_f8_w4_l16_p4_world bp (
+  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world bp (
     .clock                   (clock),
     .reset                   (reset),
     .io_start                (bpStart),

@@ -4,6 +4,7 @@ import java.io.File
 import java.nio.file.{Files, Paths, StandardCopyOption}
 import collide.afu._
 import collide.scpu.{ScpuConfig, ScpuImpl, ScpuModelUnit}
+import collide.world.BroadPhaseParams
 
 /** The generator CLI: `sbt "run --preset default"`, `sbt "run --scpus 4 --format fp16"`,
   * `sbt "run --help"`. Writes generated/<preset-or-derived-name>/ with the SystemVerilog and
@@ -31,6 +32,8 @@ object Generate {
       worldSortPorts: Option[Int] = None,
       worldBucketsPerSphere: Option[Int] = None,
       worldCellSteps: Option[Int] = None,
+      worldChunk: Option[Int] = None,
+      worldCoarseChunks: Option[Boolean] = None,
       scpuImpl: Option[String] = None,
       listPresets: Boolean = false)
 
@@ -72,6 +75,11 @@ object Generate {
       opt[Int]("world-cell-steps").valueName("S").action((v, o) => o.copy(worldCellSteps = Some(v)))
         .text("cell edges an octave in the broad phase's grid, 1 (default: powers of two) or 2 (also 1.5 * 2^k: " +
           "cells nearer the spheres' size, faster on dense clusters, slower on sparse clouds; world mode only)"),
+      opt[Int]("world-chunk").valueName("C").action((v, o) => o.copy(worldChunk = Some(v)))
+        .text("spheres a candidate generator holds at once, its comparators, 1..256 (world mode only; default 16)"),
+      opt[Boolean]("world-coarse-chunks").valueName("true|false").action((v, o) => o.copy(worldCoarseChunks = Some(v)))
+        .text("a coarse cell (2 x 2 x 2 cells) whose spheres fit a chunk is one chunk, streaming 43 cells past it " +
+          "instead of 14 a cell (world mode only; needs 8 or more counters a word)"),
       opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
         .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
           "(same cycles and records, a far faster co-simulation; not synthesizable)"),
@@ -90,6 +98,12 @@ object Generate {
       try Right(c) catch { case e: IllegalArgumentException => Left(s"$flag: ${e.getMessage.stripPrefix("requirement failed: ")}") }
     def opt[A](flag: String, v: Option[A])(f: (AfuConfig, A) => Either[String, AfuConfig])(c: AfuConfig) =
       v.fold[Either[String, AfuConfig]](Right(c))(a => f(c, a).left.map(m => if (m.startsWith(flag)) m else s"$flag: $m"))
+    /** A flag of the broad phase's: refused unless world mode is built. */
+    def world[A](flag: String, v: Option[A])(f: (BroadPhaseParams, A) => BroadPhaseParams)(c: AfuConfig) =
+      opt(flag, v)((c, a) => c.world match {
+        case Some(bp) => step(flag, c.copy(world = Some(f(bp, a))))
+        case None => Left(s"$flag: world mode is not built (add --world true or --preset world)")
+      })(c)
     for {
       base <- AfuConfig.presets.get(o.preset).toRight(
         s"--preset: unknown preset '${o.preset}' (known: ${AfuConfig.all.map(_.name).mkString(", ")})")
@@ -109,29 +123,19 @@ object Generate {
       c9 <- opt("--dense-default", o.dense)((c, v) => step("--dense-default", c.copy(denseByDefault = v)))(c8)
       c10 <- opt("--records", o.records)((c, v) => RecordLayout.parse(v).flatMap(r => step("--records", c.copy(records = Some(r)))))(c9)
       c11 <- opt("--world", o.world)((c, v) => step("--world",
-        c.copy(world = if (v) Some(c.world.getOrElse(collide.world.BroadPhaseParams.default)) else None)))(c10)
-      c12 <- opt("--world-lanes", o.worldLanes)((c, v) => c.world match {
-        case Some(bp) => step("--world-lanes", c.copy(world = Some(bp.copy(lanes = v,
-          sortPorts = collide.world.BroadPhaseParams.sortPortChoices.filter(_ <= math.min(bp.sortPorts, v)).max)))) // ports follow the lanes down
-        case None => Left("--world-lanes: world mode is not built (add --world true or --preset world)")
-      })(c11)
-      c13 <- opt("--world-sort-ports", o.worldSortPorts)((c, v) => c.world match {
-        case Some(bp) => step("--world-sort-ports", c.copy(world = Some(bp.copy(sortPorts = v))))
-        case None => Left("--world-sort-ports: world mode is not built (add --world true or --preset world)")
-      })(c12)
-      c14 <- opt("--world-buckets-per-sphere", o.worldBucketsPerSphere)((c, v) => c.world match {
-        case Some(bp) => Seq(1, 2, 4).indexOf(v) match {
-          case -1 => Left(s"--world-buckets-per-sphere: must be 1, 2 or 4, got $v")
-          case s => step("--world-buckets-per-sphere", c.copy(world = Some(bp.copy(bucketsPerSphereLog2 = s))))
-        }
-        case None => Left("--world-buckets-per-sphere: world mode is not built (add --world true or --preset world)")
-      })(c13)
-      c15 <- opt("--world-cell-steps", o.worldCellSteps)((c, v) => c.world match {
-        case Some(bp) => step("--world-cell-steps", c.copy(world = Some(bp.copy(cellSteps = v))))
-        case None => Left("--world-cell-steps: world mode is not built (add --world true or --preset world)")
-      })(c14)
-      c16 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c15)
-    } yield c16
+        c.copy(world = if (v) Some(c.world.getOrElse(BroadPhaseParams.default)) else None)))(c10)
+      c12 <- world("--world-lanes", o.worldLanes)((bp, v) => bp.copy(lanes = v,
+        sortPorts = BroadPhaseParams.sortPortChoices.filter(_ <= math.min(bp.sortPorts, v)).max))(c11) // ports follow the lanes down
+      c13 <- world("--world-sort-ports", o.worldSortPorts)((bp, v) => bp.copy(sortPorts = v))(c12)
+      c14 <- world("--world-buckets-per-sphere", o.worldBucketsPerSphere) { (bp, v) =>
+        require(Seq(1, 2, 4).contains(v), s"must be 1, 2 or 4, got $v")
+        bp.copy(bucketsPerSphereLog2 = Seq(1, 2, 4).indexOf(v))
+      }(c13)
+      c15 <- world("--world-cell-steps", o.worldCellSteps)((bp, v) => bp.copy(cellSteps = v))(c14)
+      c16 <- world("--world-chunk", o.worldChunk)((bp, v) => bp.copy(chunk = v))(c15)
+      c17 <- world("--world-coarse-chunks", o.worldCoarseChunks)((bp, v) => bp.copy(coarseChunks = v))(c16)
+      c18 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c17)
+    } yield c18
   }
 
   val firtoolOpts: Array[String] = Array(

@@ -79,7 +79,9 @@ final case class AfuConfig(
       (if (denseByDefault) "_dense" else "") + world.map(bp => "_world" + (if (bp.lanes > 1) bp.lanes.toString else "") + (if (bp.sortPorts > 1) s"p${bp.sortPorts}" else "") +
         (if (bp.wordLog2 != collide.world.BroadPhaseParams.default.wordLog2) s"w${bp.wordLog2}" else "") +
         (if (bp.bucketsPerSphereLog2 != collide.world.BroadPhaseParams.default.bucketsPerSphereLog2) s"s${bp.bucketsPerSphereLog2}" else "") +
-        (if (bp.cellSteps != collide.world.BroadPhaseParams.default.cellSteps) s"e${bp.cellSteps}" else "")).getOrElse("") +
+        (if (bp.cellSteps != collide.world.BroadPhaseParams.default.cellSteps) s"e${bp.cellSteps}" else "") +
+        (if (bp.chunk != collide.world.BroadPhaseParams.default.chunk) s"k${bp.chunk}" else "") +
+        (if (bp.coarseChunks) "x" else "")).getOrElse("") +
       (if (scpuImpl == ScpuImpl.Model) "_model" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
@@ -136,7 +138,8 @@ object AfuConfig {
     * passes four spheres a cycle (two sorts of two ports), 16 counters a word, up to 4096
     * spheres (bench/results/world-lanes). */
   val world: AfuConfig   = big.copy(name = "world",
-    world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 4, wordLog2 = 4)))
+    world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 4, wordLog2 = 4, chunk = 32,
+      cellSteps = 2, coarseChunks = true)))
 
   /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind
     * their pipelines (same cycles, same records; docs/afu.md, "A faster co-simulation"). */

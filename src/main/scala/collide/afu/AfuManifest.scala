@@ -29,7 +29,8 @@ object AfuManifest {
           ujson.Obj("largeMax" -> bp.largeMax, "cellBits" -> bp.cellBits, "bucketsLog2" -> bp.bucketsLog2,
             "margin" -> s"${bp.marginNum}/${bp.marginDen}", "cellOverError" -> bp.cellOverError,
             "filterFracBits" -> bp.filterFracBits, "chunk" -> bp.chunk, "wordLog2" -> bp.wordLog2,
-            "lanes" -> bp.lanes, "sortPorts" -> bp.sortPorts,
+            "lanes" -> bp.lanes, "sortPorts" -> bp.sortPorts, "bucketsPerSphereLog2" -> bp.bucketsPerSphereLog2,
+            "cellSteps" -> bp.cellSteps, "coarseChunks" -> bp.coarseChunks, "team" -> bp.teamSize,
             "recordPair" -> s"i | j << ${RecordTag.WORLD_INDEX_BITS}")
         }.getOrElse(ujson.Null),
         "ram" -> ujson.Obj("copies" -> p.ramCopies, "banks" -> p.banks, "bitsPerCopy" -> p.ramBitsPerCopy.toDouble,

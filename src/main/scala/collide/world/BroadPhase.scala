@@ -63,7 +63,6 @@ class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int) extends B
 
 class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency: Int = 1) extends Module {
   require(maxSpheres >= 2 && maxSpheres <= (1 << 24), s"maxSpheres must be 2..2^24, got $maxSpheres")
-  require(!bp.coarseChunks, "BroadPhase: coarse chunks are in the golden model only (docs/afu.md, \"What would make the grid faster\")")
   /** Buckets the table holds: the model's cap, and no more than 2 maxSpheres can use. */
   val tableLog2: Int = bp.tableLog2(maxSpheres)
   private val largeSlots = math.max(1, bp.largeMax)
@@ -71,7 +70,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}_w${bp.wordLog2}" +
       (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "") +
       (if (bp.bucketsPerSphereLog2 != BroadPhaseParams.default.bucketsPerSphereLog2) s"_s${bp.bucketsPerSphereLog2}" else "") +
-      (if (bp.cellSteps != BroadPhaseParams.default.cellSteps) s"_e${bp.cellSteps}" else "")
+      (if (bp.cellSteps != BroadPhaseParams.default.cellSteps) s"_e${bp.cellSteps}" else "") + (if (bp.coarseChunks) "_x" else "")
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres))
   private val itemW = io.itemW
   private val countW = io.countW
@@ -92,7 +91,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val sortBusy = sorts.map(_.io.busy).reduce(_ || _)
   private val gens = Seq.tabulate(bp.lanes) { l =>
     val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
-      keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes, groups = groups))
+      keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes, groups = groups,
+      coarse = bp.coarseChunks, team = bp.teamSize))
     g.io.lane.foreach(_ := l.U)
     g
   }
@@ -237,7 +237,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   for ((in, kd) <- sortIns.zip(keyed)) {
     in.valid := kd.valid && (state === S.classify || state === S.scatter) && kd.isSmall
     in.bits.scatter := state === S.scatter
-    in.bits.bucket := CellHash(kd.out.cell, tableLog2, usedLog2)
+    in.bits.bucket := CellHash(kd.out.cell, tableLog2, usedLog2, bp.coarseChunks)
     in.bits.item := kd.index
     assert(!in.valid || in.ready, "BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)")
   }

@@ -45,12 +45,18 @@ package collide.world
   *                   twice it (a level L: edge 2^(L/2) for even L, 1.5 * 2^((L-1)/2) for odd L).
   *                   Smaller cells pay off where cells overfill a chunk (dense clusters), and
   *                   cost chunks where they are sparse (docs/afu.md, "Cell steps")
-  * @param coarseChunks the grid's next step, in the golden model only (the RTL refuses it):
-  *                   a coarse cell of 2 x 2 x 2 cells whose spheres fit a chunk is one chunk,
-  *                   streaming the 43 cells in some member's own or half-shell neighbourhood
-  *                   past it, each member applying the half-shell rule itself; any other
-  *                   coarse cell is chunked cell by cell as without (docs/afu.md, "What would
-  *                   make the grid faster"). The same candidates, fewer probes
+  * @param coarseChunks the grid's next step: a cell's bucket is its coarse cell's hash (2 x 2 x 2
+  *                   cells) times 8 plus its place in it, so a coarse cell is a group of 8
+  *                   consecutive buckets; a group whose spheres fit a chunk is taken one coarse
+  *                   cell at a time, a chunk streaming the 43 cells in some member's own or
+  *                   half-shell neighbourhood past it, each member applying the half-shell rule
+  *                   itself; any other group is chunked cell by cell as without (docs/afu.md,
+  *                   "Coarse chunks"). The same candidates, fewer probes. Needs words of at
+  *                   least 8 counters (wordLog2 >= 3): the walk reads a group at once
+  * @param team       with coarse chunks, lanes that share a walk over the same words, each
+  *                   taking its share of their coarse groups and buckets (1: a lane takes whole
+  *                   words, so a dense coarse cell's 8 cells are one lane's work; `lanes`: every
+  *                   lane walks every word). A power of two; the teams are of `teamSize`
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -66,7 +72,8 @@ final case class BroadPhaseParams(
     sortPorts: Int = 1,
     bucketsPerSphereLog2: Int = 1,
     cellSteps: Int = 1,
-    coarseChunks: Boolean = false
+    coarseChunks: Boolean = false,
+    team: Int = 4
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -85,6 +92,12 @@ final case class BroadPhaseParams(
   require(bucketsPerSphereLog2 >= 0 && bucketsPerSphereLog2 <= 2, s"bucketsPerSphereLog2 must be 0..2, got $bucketsPerSphereLog2")
 
   require(cellSteps == 1 || cellSteps == 2, s"cellSteps must be 1 (edges 2^k) or 2 (also 1.5 * 2^k), got $cellSteps")
+  require(!coarseChunks || wordLog2 >= 3,
+    s"coarseChunks needs wordLog2 >= 3 (the walk reads a coarse cell's 8 buckets in one word), got wordLog2 $wordLog2")
+  require(team >= 1 && chisel3.util.isPow2(team), s"team must be a power of two, got $team")
+  /** Lanes a team has: with coarse chunks the largest power of two up to `team` that divides
+    * the lanes (1 for an odd lane count: whole words a lane); 1 without. */
+  val teamSize: Int = if (!coarseChunks) 1 else Iterator.iterate(team)(_ / 2).find(t => lanes % t == 0).get
 
   val buckets: Int = 1 << bucketsLog2
 
@@ -142,6 +155,8 @@ object BroadPhaseParams {
   /** Four buckets and one-sphere chunks: every cell collides with others in the hash and
     * every cell is visited once per sphere, to test that nothing breaks. */
   val tinyTable: BroadPhaseParams = default.copy(bucketsLog2 = 2, chunk = 1, wordLog2 = 0)
+  /** Coarse chunks of up to 32 spheres (the grid's next step), 8 counters a word. */
+  val coarse: BroadPhaseParams = default.copy(coarseChunks = true, chunk = 32)
   /** No large list: one huge sphere makes the cell huge (the all-pairs worst case). */
   val noLarge: BroadPhaseParams = default.copy(largeMax = 0)
   /** Four candidate generators. */

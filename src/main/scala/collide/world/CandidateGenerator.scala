@@ -19,7 +19,13 @@ import collide.world.model.BroadPhaseModel
   * [largeFrom, largeTo) (the slices of all lanes cover the table once). With two sort
   * `groups` (four sort ports: two sorts, each of half the table) a bucket's entries are group
   * 0's run then group 1's, read and streamed in that order, so every bucket is still in index
-  * order and the chunks and pairs are those of one sort. With
+  * order and the chunks and pairs are those of one sort. With `coarse`
+  * (BroadPhaseParams.coarseChunks) a coarse cell's 8 cells are a group of 8 consecutive
+  * buckets: a group whose spheres fit a chunk is scanned as one run and taken a coarse cell at
+  * a time (the scan loads the first unmarked entry's coarse cell), each chunk streaming the 43
+  * cells some member reaches (BroadPhaseModel.CoarseVisits) past the ChunkMatcher, whose
+  * members apply the half-shell rule by their place; any other group is walked bucket by
+  * bucket as without. With
   * one lane the pair stream is exactly BroadPhaseModel.run's candidates, the grid part in
   * the same order, the large part as a set; the lanes' streams together are that set.
   */
@@ -63,14 +69,32 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
 }
 
 class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
-                         largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1, groups: Int = 1)
+                         largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1, groups: Int = 1,
+                         coarse: Boolean = false, team: Int = 1)
     extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
   require(lanes >= 1, s"lanes must be >= 1, got $lanes")
   require(groups == 1 || groups == 2, s"groups must be 1 or 2, got $groups")
   private val perWord = 1 << wordLog2
+  /** Buckets of a coarse cell's group: 8, or a whole word of a table smaller than that. */
+  private val groupLog2 = math.min(3, wordLog2)
+  /** With coarse chunks, lanes work in teams of `team`: a coarse cell's 8 cells share a word,
+    * so dealing whole words would give one lane all of a dense region. Team t walks the words
+    * t, t + lanes / team, ...; its member m takes the coarse groups (by group number) and the
+    * other groups' buckets (by bucket number) that are m modulo the team. Every member reads
+    * every word of its team: the walk is `team` times as long a lane. */
+  private val teamSize = if (coarse) team else 1
+  require(isPow2(teamSize) && lanes % teamSize == 0, s"a team of $teamSize must be a power of two dividing the lanes ($lanes)")
+  private val dealByUnit = teamSize > 1
+  private val memberBits = log2Ceil(teamSize)
+  private lazy val member: UInt = if (dealByUnit) laneNo(memberBits - 1, 0) else 0.U
+  private lazy val teamNo: UInt = if (dealByUnit) (laneNo >> memberBits) else laneNo
+  /** Words from one of this lane's words to its next. */
+  private val wordStep = lanes / teamSize
+  require(!coarse || wordLog2 >= 3 || wordLog2 == bucketsLog2,
+    s"coarse chunks need words of 8 counters or one word for the table, got wordLog2 $wordLog2 of $bucketsLog2")
   override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2" +
-    (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "")
+    (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "") + (if (coarse) s"_x$team" else "")
   val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes, groups))
   private val laneNo: UInt = io.lane.getOrElse(0.U)
 
@@ -119,7 +143,9 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   // Per group: where the scan starts, and the bucket's end (a bucket's entries: group 0's, then 1's).
   private val p = Reg(Vec(groups, UInt(countW.W)))
   private val bEnd = Reg(Vec(groups, UInt(countW.W)))
+  // The chunk's base cell: its cell, or its coarse cell's first cell (low bits clear).
   private val curCell = Reg(Vec(3, SInt(cellBits.W)))
+  private val coarseCh = RegInit(false.B) // the chunk is a coarse cell's
   private val haveCell = Reg(Bool())
   private val loaded = Reg(UInt(log2Ceil(chunk + 1).W))
   private val moreOfCell = Reg(Bool())
@@ -130,10 +156,13 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val sent = Reg(Bool())
   private val scanLeft = Reg(UInt(countW.W))
   private val needClear = Reg(Bool())
-  // --- visits: 14 lookups, each becoming a stream range ------------------------------------
-  private val visits = BroadPhaseModel.Visits
-  private val offsets = VecInit(visits.map { case (a, b, c) => VecInit(Seq(a, b, c).map(_.S(cellBits.W))) })
-  private val vIssue = Reg(UInt(log2Ceil(visits.length + 1).W))
+  // --- visits: 14 lookups (43 for a coarse chunk), each becoming a stream range -------------
+  private val fineVisits = BroadPhaseModel.Visits
+  private val coarseVisits = if (coarse) BroadPhaseModel.CoarseVisits else Nil
+  // One table: the fine visits' offsets, then the coarse ones'.
+  private val offsets = VecInit((fineVisits ++ coarseVisits).map { case (a, b, c) => VecInit(Seq(a, b, c).map(_.S(3.W))) })
+  private val visitCount = Mux(coarseCh, coarseVisits.length.U, fineVisits.length.U)
+  private val vIssue = Reg(UInt(log2Ceil(math.max(fineVisits.length, coarseVisits.length) + 1).W))
   private val lkPend = RegInit(false.B)
   private val lkVisit = Reg(visitT)
   // Three ranges: one for the stream to take each cycle while a lookup is in flight and
@@ -159,31 +188,60 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   switch(state) {
     is(S.idle) {
       when(io.start) {
-        state := S.walk; bIssue := laneNo << wordLog2; walkPend := false.B
+        state := S.walk; bIssue := teamNo << wordLog2; walkPend := false.B
         cells := 0.U; chunks := 0.U; scanned := 0.U; probes := 0.U
       }
     }
     is(S.walk) {
       // A word of buckets a cycle: the lookup of bIssue returns the ends of its whole word,
-      // and the first occupied bucket at or after bIssue starts a chunk; none, this lane's
-      // next word.
+      // and the first occupied bucket of this lane's at or after bIssue starts a chunk; none,
+      // this lane's next word.
       val issueOk = bIssue < used
       io.lookup.bucket := bIssue(math.max(1, bucketsLog2) - 1, 0)
       walkPend := issueOk; walkB := bIssue
-      when(issueOk) { bIssue := ((bIssue >> wordLog2) + lanes.U) << wordLog2 }
+      when(issueOk) { bIssue := ((bIssue >> wordLog2) + wordStep.U) << wordLog2 }
       val base = (walkB >> wordLog2) << wordLog2
       val from = if (wordLog2 == 0) 0.U else walkB(wordLog2 - 1, 0)
       val ends = io.lookup.word
-      // Lane 0's begin is right when walkB is lane 0.
+      // Bucket 0's begin is right when walkB is the word's first bucket.
       val begins = (0 until groups).map(g => VecInit(io.lookup.begin(g) +: ends(g).init))
-      val occupied = VecInit((0 until perWord).map(l => l.U >= from && base + l.U < used &&
+      // With coarse chunks, each group of 8 buckets: taken whole if its spheres fit a chunk. A
+      // walk resumed inside a group (from > its first bucket) follows a bucket of it taken cell
+      // by cell: that group is not coarse (and its first begin is not in the word read).
+      val groupsInWord = perWord >> groupLog2
+      val gCoarse = VecInit((0 until groupsInWord).map { gi =>
+        val (lo, last) = (gi << groupLog2, ((gi + 1) << groupLog2) - 1)
+        val total = (0 until groups).map(g => ends(g)(last) - begins(g)(lo)).reduce(_ +& _)
+        coarse.B && from <= lo.U && total <= chunk.U
+      })
+      // In a team, a member takes the coarse groups and the other groups' buckets whose number
+      // among the team's is its own modulo the team: a group by its number in the team's walk
+      // (word number over the teams, then the group in the word), a bucket by its place in the word.
+      def mine(l: Int): Bool =
+        if (!dealByUnit) true.B
+        else {
+          val walkWord = base >> (wordLog2 + log2Ceil(wordStep))
+          val walkGroup = if (wordLog2 == groupLog2) walkWord else Cat(walkWord, (l >> groupLog2).U((wordLog2 - groupLog2).W))
+          val bucket = (base + l.U).pad(memberBits)
+          Mux(gCoarse(l >> groupLog2), walkGroup.pad(memberBits)(memberBits - 1, 0), bucket(memberBits - 1, 0)) === member
+        }
+      val occupied = VecInit((0 until perWord).map(l => l.U >= from && base + l.U < used && mine(l) &&
         (0 until groups).map(g => ends(g)(l) =/= begins(g)(l)).reduce(_ || _)))
       val lane = PriorityEncoder(occupied.asUInt)
+      val gLo = (lane >> groupLog2) << groupLog2
+      val gLast = gLo | ((1 << groupLog2) - 1).U
+      val asCoarse = gCoarse(lane >> groupLog2)
       when(walkPend && occupied.asUInt.orR) {
-        for (g <- 0 until groups) { p(g) := begins(g)(lane); bEnd(g) := ends(g)(lane) }
+        when(asCoarse) {
+          for (g <- 0 until groups) { p(g) := begins(g)(gLo); bEnd(g) := ends(g)(gLast) }
+          bIssue := Mux(gLast === (perWord - 1).U, base + (wordStep * perWord).U, base + gLast + 1.U)
+        }.otherwise {
+          for (g <- 0 until groups) { p(g) := begins(g)(lane); bEnd(g) := ends(g)(lane) }
+          // On past it in this word, or at the word's end on to this lane's next word.
+          bIssue := Mux(lane === (perWord - 1).U, base + (wordStep * perWord).U, base + lane + 1.U)
+        }
+        coarseCh := asCoarse
         haveCell := false.B
-        // On past it in this word, or at the word's end on to this lane's next word.
-        bIssue := Mux(lane === (perWord - 1).U, base + (lanes * perWord).U, base + lane + 1.U)
         walkPend := false.B; cells := cells + 1.U
         startChunk()
       }.elsewhen(!walkPend && !issueOk && stream.io.idle && matcher.io.idle) {
@@ -205,11 +263,12 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         chunks := chunks + 1.U
       }
 
-      val nc = VecInit((0 until 3).map(a => curCell(a) + offsets(vIssue)(a)))
-      val canIssue = haveCell && vIssue =/= visits.length.U && (lkq.io.count +& lkPend.asUInt) < 3.U
-      io.lookup.bucket := CellHash(nc, bucketsLog2, io.usedLog2)
+      val off = offsets(VecIndex(Mux(coarseCh, fineVisits.length.U +& vIssue, vIssue), offsets.length))
+      val nc = VecInit((0 until 3).map(a => curCell(a) + off(a)))
+      val canIssue = haveCell && vIssue =/= visitCount && (lkq.io.count +& lkPend.asUInt) < 3.U
+      io.lookup.bucket := CellHash(nc, bucketsLog2, io.usedLog2, coarse)
       lkPend := canIssue
-      lkVisit.cell := nc; lkVisit.own := vIssue === 0.U; lkVisit.scan := false.B
+      lkVisit.cell := nc; lkVisit.off := off; lkVisit.scan := false.B
       when(canIssue) { vIssue := vIssue + 1.U }
       lkq.io.enq.valid := lkPend
       lkq.io.enq.bits.begin := io.lookup.begin; lkq.io.enq.bits.end := io.lookup.end
@@ -217,7 +276,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
 
       // Every range handed to the stream and the scan's entries all seen: the next chunk of
       // this bucket can start its scan behind the visits still streaming.
-      val visitsIssued = vIssue === visits.length.U && !lkPend && !lkq.io.deq.valid
+      val visitsIssued = vIssue === visitCount && !lkPend && !lkq.io.deq.valid
       val scanDone = sent && scanLeft === 0.U
       when(visitsIssued && scanDone) {
         when(moreOfCell || nextSet) {
@@ -241,7 +300,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       val idx = li +& lj
       when(lj =/= chunk.U && idx < io.largeCount) {
         matcher.io.load.valid := true.B
-        matcher.io.load.bits := io.larges(VecIndex(idx, largeSlots))
+        matcher.io.load.bits := ChunkMember(io.larges(VecIndex(idx, largeSlots)), 0.U)
         lj := lj + 1.U
       }.otherwise {
         state := S.largeStream; sent := false.B
@@ -256,7 +315,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       val it = stream.io.out.bits
       matcher.io.in.valid := stream.io.out.valid && !it.rec.excluded
       matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
-      matcher.io.in.bits.cell := DontCare
+      matcher.io.in.bits.cell := DontCare; matcher.io.in.bits.off := DontCare
       matcher.io.in.bits.anyCell := true.B
       matcher.io.in.bits.own := it.rec.large // two large spheres meet once: from the lower
       stream.io.out.ready := matcher.io.in.ready || it.rec.excluded
@@ -280,23 +339,26 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         scanned := scanned + 1.U
         scanLeft := scanLeft - 1.U
         when(needClear) { matcher.io.clear := true.B; needClear := false.B }
-        val same = it.rec.cell.asUInt === curCell.asUInt
+        // A coarse chunk's cells are those of its base's coarse cell: compared with low bits clear.
+        val base = VecInit(it.rec.cell.map(c => Mux(coarseCh, Cat(c(cellBits - 1, 1), 0.U(1.W)).asSInt, c)))
+        val place = Mux(coarseCh, Cat(it.rec.cell(0)(0), it.rec.cell(1)(0), it.rec.cell(2)(0)), 0.U)
+        val same = base.asUInt === curCell.asUInt
         val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
         when(take) {
-          matcher.io.load.valid := true.B; matcher.io.load.bits := WorldKey(itemW, it.item, it.rec)
+          matcher.io.load.valid := true.B; matcher.io.load.bits := ChunkMember(WorldKey(itemW, it.item, it.rec), place)
           io.mark.valid := true.B
           loaded := loaded + 1.U
-          when(!haveCell) { curCell := it.rec.cell; haveCell := true.B }
+          when(!haveCell) { curCell := base; haveCell := true.B }
         }
         when(!it.mark && haveCell && same && loaded === chunk.U) { moreOfCell := true.B }
         when(!it.mark && haveCell && !same && !nextSet) {
-          nextLeader := it.pos; nextGroup := it.group; nextCell := it.rec.cell; nextSet := true.B
+          nextLeader := it.pos; nextGroup := it.group; nextCell := base; nextSet := true.B
         }
       }
     }.otherwise {
       matcher.io.in.valid := stream.io.out.valid
       matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
-      matcher.io.in.bits.cell := it.tag.cell; matcher.io.in.bits.own := it.tag.own
+      matcher.io.in.bits.cell := it.tag.cell; matcher.io.in.bits.off := it.tag.off; matcher.io.in.bits.own := DontCare
       matcher.io.in.bits.anyCell := false.B
       stream.io.out.ready := matcher.io.in.ready
       when(stream.io.out.fire) { probes := probes + 1.U }

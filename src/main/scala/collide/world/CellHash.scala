@@ -5,15 +5,26 @@ import chisel3.util._
 import collide.world.model.BroadPhaseModel
 
 /** The bucket of a cell, as BroadPhaseModel.bucket: ((cx * HashX) ^ (cy * HashY) ^
-  * (cz * HashZ)) mod the used buckets. Only the low bucketsLog2 bits of each product matter,
-  * so each is a bucketsLog2-bit constant multiply of the cell's low bits (two's complement:
-  * a negative coordinate's low bits times the constant's are the product's low bits). */
+  * (cz * HashZ)) mod the used buckets; with `coarse` (coarse chunks), that hash of the coarse
+  * cell (each coordinate halved, rounding down) times 8 plus the cell's place in its coarse
+  * cell (the low bit of x, y, z), so a coarse cell's 8 cells are 8 consecutive buckets. Only
+  * the low bits of each product matter, so each is a constant multiply of the cell's low bits
+  * (two's complement: a negative coordinate's low bits times the constant's are the product's
+  * low bits). */
 object CellHash {
-  def apply(cell: Vec[SInt], bucketsLog2: Int, usedLog2: UInt): UInt = {
+  def apply(cell: Vec[SInt], bucketsLog2: Int, usedLog2: UInt, coarse: Boolean = false): UInt = {
     val w = bucketsLog2
-    def low(c: SInt): UInt = c.pad(math.max(w, c.getWidth)).asUInt(w - 1, 0)
-    def times(c: SInt, h: Long): UInt = (low(c) * (h & ((1L << w) - 1)).U(w.W))(w - 1, 0)
-    val h = times(cell(0), BroadPhaseModel.HashX) ^ times(cell(1), BroadPhaseModel.HashY) ^ times(cell(2), BroadPhaseModel.HashZ)
+    def hash(c: Seq[SInt], w: Int): UInt = {
+      def low(c: SInt): UInt = c.pad(math.max(w, c.getWidth)).asUInt(w - 1, 0)
+      def times(c: SInt, h: Long): UInt = (low(c) * (h & ((1L << w) - 1)).U(w.W))(w - 1, 0)
+      times(c(0), BroadPhaseModel.HashX) ^ times(c(1), BroadPhaseModel.HashY) ^ times(c(2), BroadPhaseModel.HashZ)
+    }
+    val h =
+      if (!coarse) hash(cell, w)
+      else {
+        val place = Cat(cell(0)(0), cell(1)(0), cell(2)(0))
+        if (w <= 3) place(w - 1, 0) else Cat(hash(cell.map(c => (c >> 1).asSInt), w - 3), place)
+      }
     val mask = ((1.U((w + 1).W) << usedLog2) - 1.U)(w - 1, 0)
     h & mask
   }

@@ -25,12 +25,30 @@ object WorldKey {
   }
 }
 
-/** A sphere streamed past the chunk, with what decides whether it pairs with a member: the
-  * visited cell it must be in (unless anyCell, the large-sphere pass) and whether it must
-  * have the larger index (own: the chunk's own cell, or a large sphere meeting large ones). */
+/** A chunk member: its key and its place in the chunk's coarse cell (x, y, z in bits 2, 1, 0:
+  * its cell less the chunk's base cell; 0 in a chunk of one cell, whose base is that cell). */
+class ChunkMember(val itemW: Int, val cellBits: Int, val qWidth: Int) extends Bundle {
+  val key = new WorldKey(itemW, cellBits, qWidth)
+  val place = UInt(3.W)
+}
+
+object ChunkMember {
+  def apply(key: WorldKey, place: UInt): ChunkMember = {
+    val m = Wire(new ChunkMember(key.itemW, key.cellBits, key.qWidth))
+    m.key := key; m.place := place
+    m
+  }
+}
+
+/** A sphere streamed past the chunk, with what decides whether it pairs with a member: in the
+  * grid, the visited cell it must be in and that cell's offset from the chunk's base cell
+  * (-1..2 on each axis), from which each member applies the half-shell rule; in the large
+  * pass (anyCell) any cell, and whether it must have the larger index (own: a large sphere
+  * meeting large ones). */
 class WorldProbe(val itemW: Int, val cellBits: Int, val qWidth: Int) extends Bundle {
   val key = new WorldKey(itemW, cellBits, qWidth)
   val cell = Vec(3, SInt(cellBits.W))
+  val off = Vec(3, SInt(3.W))
   val anyCell = Bool()
   val own = Bool()
 }
@@ -51,9 +69,9 @@ class KeyRecord(val cellBits: Int, val qWidth: Int) extends Bundle {
 }
 
 /** What travels with a candidate generator's stream range: a chunk scan, or a visit (the
-  * cell whose entries stream past the chunk, and whether it is the chunk's own cell). */
+  * cell whose entries stream past the chunk, and its offset from the chunk's base cell). */
 class WorldVisit(val cellBits: Int) extends Bundle {
   val scan = Bool()
   val cell = Vec(3, SInt(cellBits.W))
-  val own = Bool()
+  val off = Vec(3, SInt(3.W))
 }

@@ -19,12 +19,14 @@ import collide.world.model._
   *
   *   sbt "Test/runMain collide.world.BroadPhaseCycleReport [--sizes 500,1000,...] [--max 16384]
   *        [--spheres FILE.csv ...] [--lanes 1,4,16] [--sort-ports 1,2,4] [--word-log2 3]
-  *        [--buckets-per-sphere-log2 1] [--cell-steps 2] [--out FILE.csv]"
+  *        [--buckets-per-sphere-log2 1] [--cell-steps 2] [--chunk 32] [--coarse-chunks true] [--team 4] [--out FILE.csv]"
   *
   * --word-log2 sets BroadPhaseParams.wordLog2 (counters a RAM word: clear, prefix and the walk
   * take a word a cycle) and --buckets-per-sphere-log2 BroadPhaseParams.bucketsPerSphereLog2
   * for every configuration of the run (the buckets column says what each world used), and
-  * --cell-steps BroadPhaseParams.cellSteps (1: cell edges 2^k alone; 2: also 1.5 * 2^k).
+  * --cell-steps BroadPhaseParams.cellSteps (1: cell edges 2^k alone; 2: also 1.5 * 2^k),
+  * --chunk BroadPhaseParams.chunk (spheres a generator holds) and --coarse-chunks
+  * BroadPhaseParams.coarseChunks (a coarse cell of 2 x 2 x 2 cells one chunk where it fits).
   *
   * --spheres adds a world from a `collide spheres` input file (header x,y,z,r; decimal or hex
   * floats, binary32 values), e.g. bench/world/world.py --dump-clouds DIR: the very spheres
@@ -56,6 +58,9 @@ object BroadPhaseCycleReport {
     var wordLog2 = BroadPhaseParams.default.wordLog2
     var bpsLog2 = BroadPhaseParams.default.bucketsPerSphereLog2
     var cellSteps = BroadPhaseParams.default.cellSteps
+    var chunk = BroadPhaseParams.default.chunk
+    var coarse = false
+    var team = BroadPhaseParams.default.team
     args.sliding(2, 2).foreach {
       case Array("--sizes", v) => sizes = v.split(',').map(_.trim.toInt).toSeq
       case Array("--max", v)   => maxSpheres = v.toInt
@@ -66,7 +71,10 @@ object BroadPhaseCycleReport {
       case Array("--word-log2", v) => wordLog2 = v.trim.toInt
       case Array("--buckets-per-sphere-log2", v) => bpsLog2 = v.trim.toInt
       case Array("--cell-steps", v) => cellSteps = v.trim.toInt
-      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --cell-steps, --out)")
+      case Array("--chunk", v) => chunk = v.trim.toInt
+      case Array("--coarse-chunks", v) => coarse = v.trim.toBoolean
+      case Array("--team", v) => team = v.trim.toInt
+      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --cell-steps, --chunk, --coarse-chunks, --out)")
     }
     require(sizes.forall(n => n >= 1 && n <= maxSpheres), s"--sizes must be 1..--max ($maxSpheres)")
     require(lanes.nonEmpty && lanes.forall(l => l >= 1 && l <= 16), s"--lanes must be 1..16, got ${lanes.mkString(",")}")
@@ -78,11 +86,11 @@ object BroadPhaseCycleReport {
       s"huge" -> huge(rng, n - 4, 4))) ++ files.map(readSpheres)
     require(worlds.forall(_._2.length <= maxSpheres), s"a world has more than --max ($maxSpheres) spheres")
     val header = "world,spheres,buckets,cells,chunks,scanned,probes,candidates,large," +
-      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps"
+      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team"
     val rows = scala.collection.mutable.ArrayBuffer(header)
     for (l <- lanes; q <- ports if q <= l) {
       val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l, sortPorts = q, wordLog2 = wordLog2,
-        bucketsPerSphereLog2 = bpsLog2, cellSteps = cellSteps))
+        bucketsPerSphereLog2 = bpsLog2, cellSteps = cellSteps, chunk = chunk, coarseChunks = coarse, team = team))
       RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
         dut.clock.setTimeout(0)
         for ((name, ws) <- worlds) {
@@ -98,7 +106,7 @@ object BroadPhaseCycleReport {
           val c = model.cycles(want, lanes = l, scpus = 16, sortRate = q)
           val row = Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
             v(s.large), v(s.cycLoad), v(s.cycClassify), v(s.cycPrefix), v(s.cycScatter), v(s.cycGrid), v(s.cycLarge), v(s.cycTotal),
-            c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l, q, wordLog2, cellSteps).mkString(",")
+            c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l, q, wordLog2, cellSteps, chunk, coarse, team).mkString(",")
           println(row)
           rows += row
         }

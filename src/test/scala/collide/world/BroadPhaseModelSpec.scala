@@ -53,7 +53,7 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
 
   for ((bp, what) <- Seq(BroadPhaseParams.default.copy(coarseChunks = true) -> "chunks of 16",
                          BroadPhaseParams.default.copy(coarseChunks = true, cellSteps = 2, chunk = 32) -> "cells of 1.5 * 2^k too, chunks of 32",
-                         BroadPhaseParams.tinyTable.copy(coarseChunks = true) -> "a four-bucket table, one-sphere chunks");
+                         BroadPhaseParams.tinyTable.copy(coarseChunks = true, wordLog2 = 3) -> "a four-bucket table, one-sphere chunks");
        cfg <- Seq(ScpuConfig.fp32, ScpuConfig.bf16, ScpuConfig.fp64)) {
     it should s"find exactly today's candidates with coarse chunks ($what), every ${cfg.name} hit once, in every hard case and random cloud" in {
       val model = new BroadPhaseModel(cfg, bp)
@@ -63,7 +63,7 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
         val r = checkWorld(model, s"$label, coarse chunks", world)
         val t = today.run(world)
         assert(r.candidates.toSet == t.candidates.toSet, s"$label: coarse chunks give other candidates than today's")
-        assert(r.stats.cells == t.stats.cells && r.stats.gridCandidates == t.stats.gridCandidates, s"$label: ${r.stats} against ${t.stats}")
+        assert(r.stats.gridCandidates == t.stats.gridCandidates && r.stats.cells <= t.stats.cells, s"$label: ${r.stats} against ${t.stats}")
       }
     }
   }

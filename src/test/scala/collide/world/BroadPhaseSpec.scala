@@ -92,12 +92,18 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     val model = new BroadPhaseModel(ScpuConfig.fp32, bp)
     test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
       dut.clock.setTimeout(0)
-      val levels = for ((label, w) <- worlds(rng)) yield {
-        val r = check(dut, model, label, bits(FloatFormat.fp32, w), rng, readyOdds = 0.7)
+      val runs = for ((label, w) <- worlds(rng)) yield {
+        val world = bits(FloatFormat.fp32, w)
+        val r = check(dut, model, label, world, rng, readyOdds = 0.7)
         println(f"[BroadPhaseSpec] $tag$label%-40s ${w.length}%4d spheres ${r.status("candidates")}%5s pairs ${r.cycles}%7d cycles, " +
           f"cell edge ${BroadPhaseParams.edge(r.status("level").toInt)}%g")
-        r.status("level").toInt
+        (r.status("level").toInt, model.run(world).stats)
       }
+      val levels = runs.map(_._1)
+      // With coarse chunks, coarse cells taken as one chunk and groups taken cell by cell must both occur.
+      val (coarse, cells) = (runs.map(_._2.coarse).sum, runs.map(_._2.cells).sum)
+      if (bp.coarseChunks) assert(coarse > 0 && coarse < cells, s"$tag$coarse of $cells chunks' cells were coarse")
+      else assert(coarse == 0)
       // Both kinds of cell must have been tried where both are built.
       val odd = levels.count(l => (l & 1) != 0)
       if (bp.cellSteps == 2) assert(odd > 0 && odd < levels.length, s"$tag$odd of ${levels.length} worlds had edges of 1.5 * 2^k")
@@ -136,6 +142,31 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   it should "find the same candidates with cells of edge 1.5 * 2^k too (two cell steps an octave), in every hard case and random cloud" in {
     everyHardCase("BroadPhaseSpec-cell-steps", BroadPhaseParams.fourLanesFourPorts.copy(cellSteps = 2), "edges 2^k and 1.5 * 2^k: ")
+  }
+
+  it should "find exactly the golden model's candidates with coarse chunks (a coarse cell's spheres one chunk), in every hard case and random cloud" in {
+    everyHardCase("BroadPhaseSpec-coarse", BroadPhaseParams.coarse, "coarse chunks: ")
+  }
+
+  it should "find the same candidates with coarse chunks, four lanes and four sort ports (one team of four), in every hard case and random cloud" in {
+    everyHardCase("BroadPhaseSpec-coarse-lanes", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32), "coarse chunks, four lanes: ")
+  }
+
+  it should "find the same candidates with coarse chunks and four lanes in two teams of two (each team walking every other word), in every hard case and random cloud" in {
+    everyHardCase("BroadPhaseSpec-coarse-teams", BroadPhaseParams.fourLanes.copy(coarseChunks = true, team = 2), "coarse chunks, teams of two: ")
+  }
+
+  it should "find the same candidates with coarse chunks and four lanes in teams of one (whole words a lane), in every hard case and random cloud" taggedAs (Slow) in {
+    everyHardCase("BroadPhaseSpec-coarse-words", BroadPhaseParams.fourLanes.copy(coarseChunks = true, team = 1), "coarse chunks, teams of one: ")
+  }
+
+  it should "stay exact with coarse chunks of two over a four-bucket table (every coarse cell shares the one group)" in {
+    val rng = Seeds.rng("BroadPhaseSpec-coarse-tiny")
+    val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.tinyTable.copy(coarseChunks = true, wordLog2 = 3, chunk = 2))
+    test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
+      dut.clock.setTimeout(0)
+      for ((label, w) <- worlds(rng).filter(_._2.length <= 100)) check(dut, model, label, bits(FloatFormat.fp32, w), rng, 0.5)
+    }
   }
 
   it should "stay exact with three lanes over a four-bucket table, and with the table cut into four slices for the large pass" in {

@@ -5,7 +5,7 @@ import chiseltest._
 import org.scalatest.flatspec.AnyFlatSpec
 import collide.scpu.ScpuConfig
 import collide.testutil.Seeds
-import collide.world.model.BroadPhaseModel
+import collide.world.model.{BroadPhaseModel, SphereClass}
 
 class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
   behavior of "ChunkMatcher"
@@ -21,34 +21,46 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
     val cell = Seq(rng.nextInt(2), 3, -2)
     K(index, cell, cell.map(c => c * 256 + rng.nextInt(256)), if (rng.nextInt(10) == 0) (1 << qWidth) - 1 else rng.nextInt(80))
   }
+  /** A member's place in a coarse chunk: half the time 0 (a chunk of one cell), else any of 8. */
+  private def place(rng: scala.util.Random): Int = if (rng.nextBoolean()) 0 else rng.nextInt(8)
+  /** A visit's offset from the chunk's base: a fine visit (own or half shell) or any coarse one. */
+  private def offset(rng: scala.util.Random): Seq[Int] =
+    if (rng.nextBoolean()) { val o = BroadPhaseModel.Visits(rng.nextInt(14)); Seq(o._1, o._2, o._3) }
+    else { val o = BroadPhaseModel.CoarseVisits(rng.nextInt(43)); Seq(o._1, o._2, o._3) }
+  /** The model's half-shell rule, for cells given as offsets from the chunk's base. */
+  private def owns(place: Int, off: Seq[Int], i: Int, j: Int): Boolean =
+    BroadPhaseModel.owns(SphereClass.Small(place >> 2 & 1, place >> 1 & 1, place & 1), SphereClass.Small(off(0), off(1), off(2)), i, j)
 
   private def poke(b: WorldKey, k: K): Unit = {
     b.index.poke(k.index.U); k.cell.zipWithIndex.foreach { case (c, i) => b.cell(i).poke(c.S) }
     k.q.zipWithIndex.foreach { case (q, i) => b.q(i).poke(q.S) }; b.qr.poke(k.qr.U)
   }
 
+  private def pokeMember(b: ChunkMember, m: (K, Int)): Unit = { poke(b.key, m._1); b.place.poke(m._2.U) }
+
   private def pokeProbe(b: WorldProbe, p: P): Unit = {
     poke(b.key, p.k); p.visit.zipWithIndex.foreach { case (c, i) => b.cell(i).poke(c.S) }
+    p.off.zipWithIndex.foreach { case (o, i) => b.off(i).poke(o.S) }
     b.anyCell.poke(p.anyCell.B); b.own.poke(p.own.B)
   }
 
   private def tuple(k: K) = (BigInt(k.q(0)), BigInt(k.q(1)), BigInt(k.q(2)), BigInt(k.qr))
 
-  it should "emit every member-entry pair in each probe's visited cell that passes the box filter, once, in order, under back-pressure" in {
+  it should "emit every member-entry pair in each probe's visited cell that the member owns and the box filter passes, once, in order, under back-pressure" in {
     val rng = Seeds.rng("ChunkMatcherSpec")
     test(new ChunkMatcher(itemW, cellBits, qWidth, chunk)) { dut =>
       dut.clock.setTimeout(0)
       var total = 0
       for (round <- 0 until Seeds.cases(40)) {
         val indices = rng.shuffle((0 until 1 << itemW).toList).take(chunk + 30)
-        val members = indices.take(1 + rng.nextInt(chunk)).map(key(rng, _))
+        val members = indices.take(1 + rng.nextInt(chunk)).map(i => (key(rng, i), place(rng)))
         // Visits change from probe to probe (back to back in the generator); a member itself
         // comes by on own visits.
-        val entries = (indices.drop(chunk).take(rng.nextInt(30)).map(key(rng, _)) ++ members.take(rng.nextInt(2)))
-          .map(k => P(k, Seq(rng.nextInt(2), 3, -2), rng.nextInt(8) == 0, rng.nextBoolean()))
+        val entries = (indices.drop(chunk).take(rng.nextInt(30)).map(key(rng, _)) ++ members.take(rng.nextInt(2)).map(_._1))
+          .map(k => P(k, Seq(rng.nextInt(2), 3, -2), offset(rng), rng.nextInt(8) == 0, rng.nextBoolean()))
         val slack = rng.nextInt(4)
-        val want = for (p <- entries; e = p.k; m <- members
-                        if (p.anyCell || e.cell == p.visit) && (!p.own || e.index > m.index) &&
+        val want = for (p <- entries; e = p.k; (m, pl) <- members
+                        if (if (p.anyCell) !p.own || e.index > m.index else e.cell == p.visit && owns(pl, p.off, m.index, e.index)) &&
                            model.boxPass(tuple(m), tuple(e), BigInt(slack)))
           yield (math.min(m.index, e.index), math.max(m.index, e.index))
         // The clear comes a cycle before the first load, or with it (as the generator does).
@@ -56,7 +68,7 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
         if (!clearWithLoad) { dut.io.clear.poke(true.B); dut.clock.step(); dut.io.clear.poke(false.B) }
         for ((m, n) <- members.zipWithIndex) {
           dut.io.clear.poke((clearWithLoad && n == 0).B)
-          dut.io.load.valid.poke(true.B); poke(dut.io.load.bits, m); dut.clock.step()
+          dut.io.load.valid.poke(true.B); pokeMember(dut.io.load.bits, m); dut.clock.step()
         }
         dut.io.clear.poke(false.B)
         dut.io.load.valid.poke(false.B)
@@ -88,7 +100,7 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
   it should "refuse a member beyond the chunk and say so" in {
     test(new ChunkMatcher(itemW, cellBits, qWidth, chunk)) { dut =>
       val rng = new scala.util.Random(1)
-      for (i <- 0 to chunk) { dut.io.load.valid.poke(true.B); poke(dut.io.load.bits, key(rng, i)); dut.clock.step() }
+      for (i <- 0 to chunk) { dut.io.load.valid.poke(true.B); pokeMember(dut.io.load.bits, (key(rng, i), 0)); dut.clock.step() }
       dut.io.load.valid.poke(false.B)
       assert(dut.io.overflow.peek().litToBoolean)
       dut.io.clear.poke(true.B); dut.clock.step()
@@ -99,6 +111,7 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
 
 object ChunkMatcherSpec {
   final case class K(index: Int, cell: Seq[Int], q: Seq[Int], qr: Int)
-  /** A streamed sphere and its visit: the cell it must be in (unless anyCell), own. */
-  final case class P(k: K, visit: Seq[Int], anyCell: Boolean, own: Boolean)
+  /** A streamed sphere and its visit: the cell it must be in and that cell's offset from the
+    * chunk's base (unless anyCell), own (anyCell only). */
+  final case class P(k: K, visit: Seq[Int], off: Seq[Int], anyCell: Boolean, own: Boolean)
 }

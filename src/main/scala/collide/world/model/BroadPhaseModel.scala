@@ -25,12 +25,13 @@ object SphereClass {
 /** Work counts of the reference traversal: what a cycle model of the hardware needs. */
 final case class BroadPhaseStats(
     spheres: Int, excluded: Int, large: Int, level: Int, buckets: Int,
-    cells: Int,         // occupied cells
+    cells: Int,         // chunks' cells: occupied cells, or coarse cells taken as one chunk
     lookups: Long,      // bucket reads: 14 per cell chunk (its cell and 13 half-shell neighbours)
     scanned: Long,      // bucket entries streamed past a chunk while visiting those cells
     gridPairs: Long,    // pairs of neighbouring small spheres (before the box filter)
     gridCandidates: Long, largeCandidates: Long, // after the box filter: what the SCPUs get
-    cellWork: IndexedSeq[Long] // cycles of one lane on each occupied cell, in bucket order
+    cellWork: IndexedSeq[Long], // cycles of one lane on each occupied cell, in bucket order
+    coarse: Int = 0     // of the cells, coarse cells taken as one chunk (coarseChunks)
 ) {
   def candidates: Long = gridCandidates + largeCandidates
 }
@@ -137,8 +138,16 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     }
   }
 
-  def bucket(cx: Long, cy: Long, cz: Long): Int =
-    (((cx * HashX) ^ (cy * HashY) ^ (cz * HashZ)) & (bp.buckets - 1).toLong).toInt
+  /** A cell's bucket: the hash of the cell; with coarse chunks, the hash of its coarse cell
+    * (2 x 2 x 2 cells) times 8 plus the cell's place in it, so that a coarse cell's 8 cells
+    * are 8 consecutive buckets (a group), one contiguous run of the sorted table. */
+  def bucket(cx: Long, cy: Long, cz: Long): Int = {
+    def hash(x: Long, y: Long, z: Long) = (x * HashX) ^ (y * HashY) ^ (z * HashZ)
+    val h =
+      if (!bp.coarseChunks) hash(cx, cy, cz)
+      else (hash(cx >> 1, cy >> 1, cz >> 1) << 3) | ((cx & 1) << 2) | ((cy & 1) << 1) | (cz & 1)
+    (h & (bp.buckets - 1).toLong).toInt
+  }
 
   /** Buckets used for n spheres: at least n 2^bucketsPerSphereLog2 (2n by default: load factor
     * <= 1/2), at most the table. */
@@ -205,57 +214,47 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     val out = IndexedSeq.newBuilder[(Int, Int)]
     var lookups, scanned, gridPairs, grid = 0L
     val work = IndexedSeq.newBuilder[Long]
-    var cells = 0
-    // Coarse chunks (bp.coarseChunks): each coarse cell's spheres, and those taken already.
-    def coarseOf(c: SphereClass.Small) = (Math.floorDiv(c.cx, 2L), Math.floorDiv(c.cy, 2L), Math.floorDiv(c.cz, 2L))
-    val coarse: Map[(Long, Long, Long), IndexedSeq[Int]] =
-      if (bp.coarseChunks) smalls.groupBy { case (_, c) => coarseOf(c) }.map { case (k, v) => k -> v.map(_._1).sorted } else Map.empty
-    val coarseDone = scala.collection.mutable.Set.empty[(Long, Long, Long)]
-    // Today's chunks of one cell: its own cell (j > i) and 13 half-shell neighbours.
-    def fineChunks(cell: SphereClass.Small, own: IndexedSeq[Int]): Long = {
+    var cells, coarseCount = 0
+    // The visits of one chunk: each cell's bucket streams past it; a member takes an entry
+    // of the visited cell if it owns the pair. Returns the cycles of the stream.
+    def visit(chunk: IndexedSeq[Int], cells: Seq[SphereClass.Small]): Long = {
       var w = 0L
-      for (chunk <- own.grouped(bp.chunk)) {
-        w += chunk.length // loading the chunk
-        for (o <- Visits) {
-          val nc = SphereClass.Small(cell.cx + o._1, cell.cy + o._2, cell.cz + o._3)
-          val ob = bucketOf(nc)
-          val len = start(ob + 1) - start(ob)
-          lookups += 1; scanned += len; w += math.max(1, len)
-          for (e <- start(ob) until start(ob + 1); j = entries(e) if cellOf(j) == nc; i <- chunk
-               if o != Own || j > i) {
-            gridPairs += 1
-            if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
-          }
+      for (nc <- cells) {
+        val ob = bucketOf(nc)
+        val len = start(ob + 1) - start(ob)
+        lookups += 1; scanned += len; w += math.max(1, len)
+        for (e <- start(ob) until start(ob + 1); j = entries(e) if cellOf(j) == nc; i <- chunk if owns(cellOf(i), nc, i, j)) {
+          gridPairs += 1
+          if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
         }
       }
       w
     }
-    for (b <- 0 until nb) {
-      // The occupied cells of this bucket, each with its spheres in index order.
-      val members = (start(b) until start(b + 1)).map(entries)
-      for ((cell, own) <- members.groupBy(cellOf).toSeq.sortBy(_._2.head)) {
-        val cc = if (bp.coarseChunks) Some(coarseOf(cell)).filter(coarse(_).length <= bp.chunk) else None
-        cc match {
-          case Some(c) if coarseDone(c) => // taken with its coarse cell's chunk
-          case Some(c) =>
-            // One chunk of the coarse cell's spheres (a scan of its 8 cells' buckets), and the
-            // 43 cells within reach of some member, each member taking only what it owns.
-            coarseDone += c
-            val chunk = coarse(c)
-            cells += chunk.map(cellOf).distinct.length
-            var w = CoarseBlock.length.toLong + chunk.length
-            for (d <- CoarseVisits) {
-              val nc = SphereClass.Small(2 * c._1 + d._1, 2 * c._2 + d._2, 2 * c._3 + d._3)
-              val ob = bucketOf(nc)
-              val len = start(ob + 1) - start(ob)
-              lookups += 1; scanned += len; w += math.max(1, len)
-              for (e <- start(ob) until start(ob + 1); j = entries(e) if cellOf(j) == nc; i <- chunk if owns(cellOf(i), nc, i, j)) {
-                gridPairs += 1
-                if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
-              }
-            }
-            work += w
-          case None => cells += 1; work += fineChunks(cell, own)
+    def around(base: SphereClass.Small, offsets: Seq[(Int, Int, Int)]) =
+      offsets.map(o => SphereClass.Small(base.cx + o._1, base.cy + o._2, base.cz + o._3))
+    // The walk goes over groups of 8 buckets (with coarse chunks a coarse cell's cells; a
+    // smaller table is one group). A group whose spheres fit a chunk is taken coarse cell by
+    // coarse cell in order of first entry, each one chunk with its 43 visits; any other group
+    // (and every group without coarse chunks) bucket by bucket, cell by cell in order of
+    // first entry, in chunks of `chunk` with their own cell and 13 half-shell neighbours.
+    for (g <- 0 until nb by 8) {
+      val (lo, hi) = (g, math.min(nb, g + 8))
+      val run = (start(lo) until start(hi)).map(entries) // the group's entries in table order
+      if (bp.coarseChunks && run.nonEmpty && run.length <= bp.chunk) {
+        def coarseOf(i: Int) = { val c = cellOf(i); SphereClass.Small(c.cx >> 1 << 1, c.cy >> 1 << 1, c.cz >> 1 << 1) }
+        val leaders = run.map(coarseOf).distinct
+        for (base <- leaders) {
+          val chunk = run.filter(coarseOf(_) == base)
+          cells += 1; coarseCount += 1
+          // The scan runs from its leader to the group's end.
+          val scan = run.length - run.indexWhere(coarseOf(_) == base)
+          work += scan + visit(chunk, around(base, CoarseVisits))
+        }
+      } else for (b <- lo until hi) {
+        val members = (start(b) until start(b + 1)).map(entries)
+        for ((cell, own) <- members.groupBy(cellOf).toSeq.sortBy(_._2.head)) {
+          cells += 1
+          work += own.grouped(bp.chunk).map(c => c.length + visit(c, around(cell, Visits))).sum
         }
       }
     }
@@ -265,7 +264,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
       out += ((math.min(l, j), math.max(l, j))); largePairs += 1
     }
     val stats = BroadPhaseStats(n, n - eligible.length, larges.length, level, nb, cells, lookups, scanned, gridPairs, grid,
-      largePairs, work.result())
+      largePairs, work.result(), coarseCount)
     BroadPhaseResult(level, classes, out.result(), stats)
   }
 
