@@ -152,7 +152,7 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     everyHardCase("BroadPhaseSpec-coarse-lanes", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32), "coarse chunks, four lanes: ")
   }
 
-  it should "find the same candidates with coarse chunks and four lanes in two teams of two (each team walking every other word), in every hard case and random cloud" in {
+  it should "find the same candidates with coarse chunks and four lanes in two teams of two (each team walking every other word), in every hard case and random cloud" taggedAs (Slow) in {
     everyHardCase("BroadPhaseSpec-coarse-teams", BroadPhaseParams.fourLanes.copy(coarseChunks = true, team = 2), "coarse chunks, teams of two: ")
   }
 
