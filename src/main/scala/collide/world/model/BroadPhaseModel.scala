@@ -26,11 +26,11 @@ object SphereClass {
 final case class BroadPhaseStats(
     spheres: Int, excluded: Int, large: Int, level: Int, buckets: Int,
     cells: Int,         // chunks' cells: occupied cells, or coarse cells taken as one chunk
-    lookups: Long,      // bucket reads: 14 per cell chunk (its cell and 13 half-shell neighbours)
+    lookups: Long,      // bucket reads: 14 per cell chunk (its cell and 13 half-shell neighbours), 43 per coarse chunk
     scanned: Long,      // bucket entries streamed past a chunk while visiting those cells
     gridPairs: Long,    // pairs of neighbouring small spheres (before the box filter)
     gridCandidates: Long, largeCandidates: Long, // after the box filter: what the SCPUs get
-    cellWork: IndexedSeq[Long], // cycles of one lane on each occupied cell, in bucket order
+    cellWork: IndexedSeq[Long], // cycles of one lane on each chunk's cell (or coarse cell), in bucket order
     coarse: Int = 0     // of the cells, coarse cells taken as one chunk (coarseChunks)
 ) {
   def candidates: Long = gridCandidates + largeCandidates
@@ -215,11 +215,11 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     var lookups, scanned, gridPairs, grid = 0L
     val work = IndexedSeq.newBuilder[Long]
     var cells, coarseCount = 0
-    // The visits of one chunk: each cell's bucket streams past it; a member takes an entry
-    // of the visited cell if it owns the pair. Returns the cycles of the stream.
-    def visit(chunk: IndexedSeq[Int], cells: Seq[SphereClass.Small]): Long = {
+    // The visits of one chunk: each visited cell's bucket streams past it; a member takes an
+    // entry of the visited cell if it owns the pair. Returns the cycles of the stream.
+    def visit(chunk: IndexedSeq[Int], visited: Seq[SphereClass.Small]): Long = {
       var w = 0L
-      for (nc <- cells) {
+      for (nc <- visited) {
         val ob = bucketOf(nc)
         val len = start(ob + 1) - start(ob)
         lookups += 1; scanned += len; w += math.max(1, len)
