@@ -24040,10 +24040,31 @@ module SphereKeys_fp32_c20_f8_m9d8_e2_l1_world(
   assign io_out_topNone = io_out_topNone_r;
 endmodule
 
-module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
+module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   input         clock,
                 reset,
-                io_start,
+                io_begin,
+                io_feed_0_valid,
+  input  [31:0] io_feed_0_bits_0,
+                io_feed_0_bits_1,
+                io_feed_0_bits_2,
+                io_feed_0_bits_3,
+  input         io_feed_1_valid,
+  input  [31:0] io_feed_1_bits_0,
+                io_feed_1_bits_1,
+                io_feed_1_bits_2,
+                io_feed_1_bits_3,
+  input         io_feed_2_valid,
+  input  [31:0] io_feed_2_bits_0,
+                io_feed_2_bits_1,
+                io_feed_2_bits_2,
+                io_feed_2_bits_3,
+  input         io_feed_3_valid,
+  input  [31:0] io_feed_3_bits_0,
+                io_feed_3_bits_1,
+                io_feed_3_bits_2,
+                io_feed_3_bits_3,
+  input         io_start,
   input  [12:0] io_num,
   output [11:0] io_sphere_0_addr,
   input  [31:0] io_sphere_0_data_0,
@@ -25611,7 +25632,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   reg  [28:0] larges_15_q_2;
   reg  [28:0] larges_15_qr;
   reg  [2:0]  state;
-  wire        starting = io_start & ~(|state);
+  wire        _starting_T = io_start | io_begin;
+  wire        starting = _starting_T & ~(|state);
+  reg         fed;
   reg  [12:0] num;
   reg  [3:0]  usedLog2;
   reg         sent;
@@ -25624,11 +25647,10 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   reg         st_badBucket;
   reg         st_sortMismatch;
   reg  [4:0]  largeCount;
-  wire        _laneKeys_15_io_in_level_T = state == 3'h1;
-  wire        classifying = state == 3'h3;
-  wire        _sorts_1_io_in_1_bits_scatter_T = state == 3'h5;
-  wire        inPass =
-    _laneKeys_15_io_in_level_T | classifying | _sorts_1_io_in_1_bits_scatter_T;
+  wire        _loading_T = state == 3'h2;
+  wire        classifying = state == 3'h4;
+  wire        _sorts_1_io_in_1_bits_scatter_T = state == 3'h6;
+  wire        inPass = _loading_T | classifying | _sorts_1_io_in_1_bits_scatter_T;
   reg  [12:0] i_0;
   reg  [12:0] i_1;
   reg  [12:0] i_2;
@@ -25647,56 +25669,48 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   reg  [12:0] i_15;
   wire [12:0] _GEN = {4'h0, num[12:4]};
   wire [12:0] _GEN_0 = {2'h0, num[12:2]};
-  wire        reading_0 = inPass & i_0 < (_laneKeys_15_io_in_level_T ? _GEN : _GEN_0);
+  wire        reading_0 = inPass & i_0 < (_loading_T ? _GEN : _GEN_0);
   wire [12:0] _GEN_1 = {3'h0, num[12:3]};
-  wire        reading_1 =
-    inPass & i_1 < (_laneKeys_15_io_in_level_T ? _GEN_1 : {1'h0, num[12:1]});
+  wire        reading_1 = inPass & i_1 < (_loading_T ? _GEN_1 : {1'h0, num[12:1]});
   wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
-  wire [14:0] _i_3_T_11 = {2'h0, num} * 15'h3;
+  wire [14:0] _i_3_T_16 = {2'h0, num} * 15'h3;
   wire        reading_2 =
-    inPass
-    & i_2 < (_laneKeys_15_io_in_level_T
-               ? {2'h0, _gens_3_io_largeFrom_T[26:16]}
-               : _i_3_T_11[14:2]);
+    inPass & i_2 < (_loading_T ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : _i_3_T_16[14:2]);
   wire [27:0] _GEN_2 = {15'h0, num};
-  wire        reading_3 = inPass & i_3 < (_laneKeys_15_io_in_level_T ? _GEN_0 : num);
+  wire        reading_3 = inPass & i_3 < (_loading_T ? _GEN_0 : num);
   wire [27:0] _gens_5_io_largeFrom_T = _GEN_2 * 28'h5000;
   wire        reading_4 =
-    inPass
-    & i_4 < (_laneKeys_15_io_in_level_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : 13'h0);
+    inPass & i_4 < (_loading_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : 13'h0);
   wire [27:0] _gens_6_io_largeFrom_T = _GEN_2 * 28'h6000;
   wire        reading_5 =
-    inPass
-    & i_5 < (_laneKeys_15_io_in_level_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : 13'h0);
+    inPass & i_5 < (_loading_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : 13'h0);
   wire [27:0] _gens_7_io_largeFrom_T = _GEN_2 * 28'h7000;
   wire        reading_6 =
-    inPass
-    & i_6 < (_laneKeys_15_io_in_level_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : 13'h0);
+    inPass & i_6 < (_loading_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : 13'h0);
   wire [28:0] _GEN_3 = {16'h0, num};
-  wire        reading_7 =
-    inPass & i_7 < (_laneKeys_15_io_in_level_T ? {1'h0, num[12:1]} : 13'h0);
+  wire        reading_7 = inPass & i_7 < (_loading_T ? {1'h0, num[12:1]} : 13'h0);
   wire [28:0] _gens_9_io_largeFrom_T = _GEN_3 * 29'h9000;
   wire        reading_8 =
-    inPass & i_8 < (_laneKeys_15_io_in_level_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_8 < (_loading_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_10_io_largeFrom_T = _GEN_3 * 29'hA000;
   wire        reading_9 =
-    inPass & i_9 < (_laneKeys_15_io_in_level_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_9 < (_loading_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_11_io_largeFrom_T = _GEN_3 * 29'hB000;
   wire        reading_10 =
-    inPass & i_10 < (_laneKeys_15_io_in_level_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_10 < (_loading_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_12_io_largeFrom_T = _GEN_3 * 29'hC000;
   wire        reading_11 =
-    inPass & i_11 < (_laneKeys_15_io_in_level_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_11 < (_loading_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_13_io_largeFrom_T = _GEN_3 * 29'hD000;
   wire        reading_12 =
-    inPass & i_12 < (_laneKeys_15_io_in_level_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_12 < (_loading_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_14_io_largeFrom_T = _GEN_3 * 29'hE000;
   wire        reading_13 =
-    inPass & i_13 < (_laneKeys_15_io_in_level_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_13 < (_loading_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
   wire [28:0] _gens_15_io_largeFrom_T = _GEN_3 * 29'hF000;
   wire        reading_14 =
-    inPass & i_14 < (_laneKeys_15_io_in_level_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
-  wire        reading_15 = inPass & i_15 < (_laneKeys_15_io_in_level_T ? num : 13'h0);
+    inPass & i_14 < (_loading_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_15 = inPass & i_15 < (_loading_T ? num : 13'h0);
   reg  [5:0]  inflight;
   wire        passDone =
     {reading_15,
@@ -25715,7 +25729,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
      reading_2,
      reading_1,
      reading_0} == 16'h0 & inflight == 6'h0;
-  wire        _gens_15_io_start_T = state == 3'h6;
+  wire        filling = state == 3'h1;
   reg         laneKeys_0_io_in_valid_REG;
   reg         laneKeys_1_io_in_valid_REG;
   reg         laneKeys_2_io_in_valid_REG;
@@ -25749,6 +25763,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   wire        _sorts_1_io_in_1_valid_T_8 =
     $signed(_laneKeys_3_io_out_need) > $signed(_cellExp_io_level);
   reg  [8:0]  m;
+  wire [8:0]  mergeEnd = fed ? 9'h44 : 9'h110;
+  wire        loading = _loading_T | filling;
   wire        filled_2 = _laneExps_0_io_used > 5'h2;
   wire        filled_4 = _laneExps_0_io_used > 5'h4;
   wire        filled_5 = _laneExps_0_io_used > 5'h5;
@@ -25941,8 +25957,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   wire        filled_268 = _laneExps_15_io_used > 5'hD;
   wire        filled_269 = _laneExps_15_io_used > 5'hE;
   wire        filled_271 = _laneExps_15_io_used > 5'h10;
-  wire [9:0]  _GEN_4 = {1'h0, m};
-  wire        _cellExp_io_in_1_valid_T = state == 3'h2;
+  wire        _cellExp_io_in_1_valid_T = state == 3'h3;
   reg         casez_tmp;
   always @(*) begin
     casez (m)
@@ -30059,7 +30074,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
         casez_tmp_2 = _laneExps_0_io_anyTop;
     endcase
   end // always @(*)
-  wire [9:0]  at_1 = _GEN_4 + 10'h1;
+  wire [9:0]  at_1 = {1'h0, m} + 10'h1;
   reg         casez_tmp_3;
   always @(*) begin
     casez (at_1[8:0])
@@ -34183,7 +34198,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     $signed(slack_e) < 15'sh0
       ? 29'h2
       : $signed(slack_e) > 15'sh1B ? 29'h1FFFFFFF : _slack_T_3[28:0] + 29'h1;
-  wire        _sorts_1_io_prefix_T = state == 3'h4;
+  wire        _sorts_1_io_prefix_T = state == 3'h5;
   wire        _sorts_0_io_in_0_valid_T_12 =
     _laneKeys_0_io_out_valid & (classifying | _sorts_1_io_in_1_bits_scatter_T)
     & ~_laneKeys_0_io_out_nonFinite
@@ -34209,25 +34224,25 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:242 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -34249,39 +34264,391 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   reg         entryGroup_13;
   reg         entryGroup_14;
   reg         entryGroup_15;
-  wire        _GEN_5 = passDone & ~sortBusy;
+  wire        _GEN_4 = passDone & ~sortBusy;
   wire [8:0]  _m_T = m + 9'h2;
-  wire        _GEN_6 = _m_T > 9'h10F;
-  wire        _GEN_7 = sent & ~sortBusy;
+  wire        _GEN_5 = _m_T >= mergeEnd;
+  wire        _GEN_6 = sent & ~sortBusy;
+  wire        _GEN_7 = state == 3'h6;
+  reg  [12:0] casez_tmp_7;
+  wire [12:0] _GEN_8 = _GEN_7 & reading_0 ? i_0 + 13'h1 : i_0;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_7 = _GEN_8;
+      3'b001:
+        casez_tmp_7 = i_0;
+      3'b010:
+        casez_tmp_7 = reading_0 ? i_0 + 13'h1 : i_0;
+      3'b011:
+        casez_tmp_7 = _GEN_5 ? 13'h0 : i_0;
+      3'b100:
+        casez_tmp_7 = reading_0 ? i_0 + 13'h1 : i_0;
+      3'b101:
+        casez_tmp_7 = _GEN_6 ? 13'h0 : i_0;
+      3'b110:
+        casez_tmp_7 = _GEN_8;
+      default:
+        casez_tmp_7 = _GEN_8;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_8;
+  wire [12:0] _GEN_9 = _GEN_7 & reading_1 ? i_1 + 13'h1 : i_1;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_8 = _GEN_9;
+      3'b001:
+        casez_tmp_8 = i_1;
+      3'b010:
+        casez_tmp_8 = reading_1 ? i_1 + 13'h1 : i_1;
+      3'b011:
+        casez_tmp_8 = _GEN_5 ? _GEN_0 : i_1;
+      3'b100:
+        casez_tmp_8 = reading_1 ? i_1 + 13'h1 : i_1;
+      3'b101:
+        casez_tmp_8 = _GEN_6 ? _GEN_0 : i_1;
+      3'b110:
+        casez_tmp_8 = _GEN_9;
+      default:
+        casez_tmp_8 = _GEN_9;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_9;
+  wire [12:0] _GEN_10 = _GEN_7 & reading_2 ? i_2 + 13'h1 : i_2;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_9 = _GEN_10;
+      3'b001:
+        casez_tmp_9 = i_2;
+      3'b010:
+        casez_tmp_9 = reading_2 ? i_2 + 13'h1 : i_2;
+      3'b011:
+        casez_tmp_9 = _GEN_5 ? {1'h0, num[12:1]} : i_2;
+      3'b100:
+        casez_tmp_9 = reading_2 ? i_2 + 13'h1 : i_2;
+      3'b101:
+        casez_tmp_9 = _GEN_6 ? {1'h0, num[12:1]} : i_2;
+      3'b110:
+        casez_tmp_9 = _GEN_10;
+      default:
+        casez_tmp_9 = _GEN_10;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_10;
+  wire [12:0] _GEN_11 = _GEN_7 & reading_3 ? i_3 + 13'h1 : i_3;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_10 = _GEN_11;
+      3'b001:
+        casez_tmp_10 = i_3;
+      3'b010:
+        casez_tmp_10 = reading_3 ? i_3 + 13'h1 : i_3;
+      3'b011:
+        casez_tmp_10 = _GEN_5 ? _i_3_T_16[14:2] : i_3;
+      3'b100:
+        casez_tmp_10 = reading_3 ? i_3 + 13'h1 : i_3;
+      3'b101:
+        casez_tmp_10 = _GEN_6 ? _i_3_T_16[14:2] : i_3;
+      3'b110:
+        casez_tmp_10 = _GEN_11;
+      default:
+        casez_tmp_10 = _GEN_11;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_11;
+  wire [12:0] _GEN_12 = _GEN_7 & reading_4 ? i_4 + 13'h1 : i_4;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_11 = _GEN_12;
+      3'b001:
+        casez_tmp_11 = i_4;
+      3'b010:
+        casez_tmp_11 = reading_4 ? i_4 + 13'h1 : i_4;
+      3'b011:
+        casez_tmp_11 = _GEN_5 ? 13'h0 : i_4;
+      3'b100:
+        casez_tmp_11 = reading_4 ? i_4 + 13'h1 : i_4;
+      3'b101:
+        casez_tmp_11 = _GEN_6 ? 13'h0 : i_4;
+      3'b110:
+        casez_tmp_11 = _GEN_12;
+      default:
+        casez_tmp_11 = _GEN_12;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_12;
+  wire [12:0] _GEN_13 = _GEN_7 & reading_5 ? i_5 + 13'h1 : i_5;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_12 = _GEN_13;
+      3'b001:
+        casez_tmp_12 = i_5;
+      3'b010:
+        casez_tmp_12 = reading_5 ? i_5 + 13'h1 : i_5;
+      3'b011:
+        casez_tmp_12 = _GEN_5 ? 13'h0 : i_5;
+      3'b100:
+        casez_tmp_12 = reading_5 ? i_5 + 13'h1 : i_5;
+      3'b101:
+        casez_tmp_12 = _GEN_6 ? 13'h0 : i_5;
+      3'b110:
+        casez_tmp_12 = _GEN_13;
+      default:
+        casez_tmp_12 = _GEN_13;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_13;
+  wire [12:0] _GEN_14 = _GEN_7 & reading_6 ? i_6 + 13'h1 : i_6;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_13 = _GEN_14;
+      3'b001:
+        casez_tmp_13 = i_6;
+      3'b010:
+        casez_tmp_13 = reading_6 ? i_6 + 13'h1 : i_6;
+      3'b011:
+        casez_tmp_13 = _GEN_5 ? 13'h0 : i_6;
+      3'b100:
+        casez_tmp_13 = reading_6 ? i_6 + 13'h1 : i_6;
+      3'b101:
+        casez_tmp_13 = _GEN_6 ? 13'h0 : i_6;
+      3'b110:
+        casez_tmp_13 = _GEN_14;
+      default:
+        casez_tmp_13 = _GEN_14;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_14;
+  wire [12:0] _GEN_15 = _GEN_7 & reading_7 ? i_7 + 13'h1 : i_7;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_14 = _GEN_15;
+      3'b001:
+        casez_tmp_14 = i_7;
+      3'b010:
+        casez_tmp_14 = reading_7 ? i_7 + 13'h1 : i_7;
+      3'b011:
+        casez_tmp_14 = _GEN_5 ? 13'h0 : i_7;
+      3'b100:
+        casez_tmp_14 = reading_7 ? i_7 + 13'h1 : i_7;
+      3'b101:
+        casez_tmp_14 = _GEN_6 ? 13'h0 : i_7;
+      3'b110:
+        casez_tmp_14 = _GEN_15;
+      default:
+        casez_tmp_14 = _GEN_15;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_15;
+  wire [12:0] _GEN_16 = _GEN_7 & reading_8 ? i_8 + 13'h1 : i_8;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_15 = _GEN_16;
+      3'b001:
+        casez_tmp_15 = i_8;
+      3'b010:
+        casez_tmp_15 = reading_8 ? i_8 + 13'h1 : i_8;
+      3'b011:
+        casez_tmp_15 = _GEN_5 ? 13'h0 : i_8;
+      3'b100:
+        casez_tmp_15 = reading_8 ? i_8 + 13'h1 : i_8;
+      3'b101:
+        casez_tmp_15 = _GEN_6 ? 13'h0 : i_8;
+      3'b110:
+        casez_tmp_15 = _GEN_16;
+      default:
+        casez_tmp_15 = _GEN_16;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_16;
+  wire [12:0] _GEN_17 = _GEN_7 & reading_9 ? i_9 + 13'h1 : i_9;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_16 = _GEN_17;
+      3'b001:
+        casez_tmp_16 = i_9;
+      3'b010:
+        casez_tmp_16 = reading_9 ? i_9 + 13'h1 : i_9;
+      3'b011:
+        casez_tmp_16 = _GEN_5 ? 13'h0 : i_9;
+      3'b100:
+        casez_tmp_16 = reading_9 ? i_9 + 13'h1 : i_9;
+      3'b101:
+        casez_tmp_16 = _GEN_6 ? 13'h0 : i_9;
+      3'b110:
+        casez_tmp_16 = _GEN_17;
+      default:
+        casez_tmp_16 = _GEN_17;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_17;
+  wire [12:0] _GEN_18 = _GEN_7 & reading_10 ? i_10 + 13'h1 : i_10;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_17 = _GEN_18;
+      3'b001:
+        casez_tmp_17 = i_10;
+      3'b010:
+        casez_tmp_17 = reading_10 ? i_10 + 13'h1 : i_10;
+      3'b011:
+        casez_tmp_17 = _GEN_5 ? 13'h0 : i_10;
+      3'b100:
+        casez_tmp_17 = reading_10 ? i_10 + 13'h1 : i_10;
+      3'b101:
+        casez_tmp_17 = _GEN_6 ? 13'h0 : i_10;
+      3'b110:
+        casez_tmp_17 = _GEN_18;
+      default:
+        casez_tmp_17 = _GEN_18;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_18;
+  wire [12:0] _GEN_19 = _GEN_7 & reading_11 ? i_11 + 13'h1 : i_11;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_18 = _GEN_19;
+      3'b001:
+        casez_tmp_18 = i_11;
+      3'b010:
+        casez_tmp_18 = reading_11 ? i_11 + 13'h1 : i_11;
+      3'b011:
+        casez_tmp_18 = _GEN_5 ? 13'h0 : i_11;
+      3'b100:
+        casez_tmp_18 = reading_11 ? i_11 + 13'h1 : i_11;
+      3'b101:
+        casez_tmp_18 = _GEN_6 ? 13'h0 : i_11;
+      3'b110:
+        casez_tmp_18 = _GEN_19;
+      default:
+        casez_tmp_18 = _GEN_19;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_19;
+  wire [12:0] _GEN_20 = _GEN_7 & reading_12 ? i_12 + 13'h1 : i_12;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_19 = _GEN_20;
+      3'b001:
+        casez_tmp_19 = i_12;
+      3'b010:
+        casez_tmp_19 = reading_12 ? i_12 + 13'h1 : i_12;
+      3'b011:
+        casez_tmp_19 = _GEN_5 ? 13'h0 : i_12;
+      3'b100:
+        casez_tmp_19 = reading_12 ? i_12 + 13'h1 : i_12;
+      3'b101:
+        casez_tmp_19 = _GEN_6 ? 13'h0 : i_12;
+      3'b110:
+        casez_tmp_19 = _GEN_20;
+      default:
+        casez_tmp_19 = _GEN_20;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_20;
+  wire [12:0] _GEN_21 = _GEN_7 & reading_13 ? i_13 + 13'h1 : i_13;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_20 = _GEN_21;
+      3'b001:
+        casez_tmp_20 = i_13;
+      3'b010:
+        casez_tmp_20 = reading_13 ? i_13 + 13'h1 : i_13;
+      3'b011:
+        casez_tmp_20 = _GEN_5 ? 13'h0 : i_13;
+      3'b100:
+        casez_tmp_20 = reading_13 ? i_13 + 13'h1 : i_13;
+      3'b101:
+        casez_tmp_20 = _GEN_6 ? 13'h0 : i_13;
+      3'b110:
+        casez_tmp_20 = _GEN_21;
+      default:
+        casez_tmp_20 = _GEN_21;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_21;
+  wire [12:0] _GEN_22 = _GEN_7 & reading_14 ? i_14 + 13'h1 : i_14;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_21 = _GEN_22;
+      3'b001:
+        casez_tmp_21 = i_14;
+      3'b010:
+        casez_tmp_21 = reading_14 ? i_14 + 13'h1 : i_14;
+      3'b011:
+        casez_tmp_21 = _GEN_5 ? 13'h0 : i_14;
+      3'b100:
+        casez_tmp_21 = reading_14 ? i_14 + 13'h1 : i_14;
+      3'b101:
+        casez_tmp_21 = _GEN_6 ? 13'h0 : i_14;
+      3'b110:
+        casez_tmp_21 = _GEN_22;
+      default:
+        casez_tmp_21 = _GEN_22;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_22;
+  wire [12:0] _GEN_23 = _GEN_7 & reading_15 ? i_15 + 13'h1 : i_15;
+  always @(*) begin
+    casez (state)
+      3'b000:
+        casez_tmp_22 = _GEN_23;
+      3'b001:
+        casez_tmp_22 = i_15;
+      3'b010:
+        casez_tmp_22 = reading_15 ? i_15 + 13'h1 : i_15;
+      3'b011:
+        casez_tmp_22 = _GEN_5 ? 13'h0 : i_15;
+      3'b100:
+        casez_tmp_22 = reading_15 ? i_15 + 13'h1 : i_15;
+      3'b101:
+        casez_tmp_22 = _GEN_6 ? 13'h0 : i_15;
+      3'b110:
+        casez_tmp_22 = _GEN_23;
+      default:
+        casez_tmp_22 = _GEN_23;
+    endcase
+  end // always @(*)
   reg         REG_4;
-  wire        _GEN_8 = passDone & ~REG_4;
-  wire        _GEN_9 = state == 3'h6;
-  wire        _GEN_10 =
-    _GEN_9 & sent
+  wire        _GEN_24 = passDone & ~REG_4;
+  wire        _GEN_25 =
+    (&state) & sent
     & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
         | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
         | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
         | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
-  reg  [2:0]  casez_tmp_7;
-  wire [2:0]  _GEN_11 = _GEN_10 ? 3'h0 : state;
+  reg  [2:0]  casez_tmp_23;
+  wire [2:0]  _GEN_26 = _GEN_25 ? 3'h0 : state;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_7 = _GEN_11;
+        casez_tmp_23 = _GEN_26;
       3'b001:
-        casez_tmp_7 = _GEN_5 ? 3'h2 : state;
+        casez_tmp_23 = io_start ? 3'h2 : state;
       3'b010:
-        casez_tmp_7 = _GEN_6 ? 3'h3 : state;
+        casez_tmp_23 = _GEN_4 ? 3'h3 : state;
       3'b011:
-        casez_tmp_7 = passDone ? 3'h4 : state;
+        casez_tmp_23 = _GEN_5 ? 3'h4 : state;
       3'b100:
-        casez_tmp_7 = _GEN_7 ? 3'h5 : state;
+        casez_tmp_23 = passDone ? 3'h5 : state;
       3'b101:
-        casez_tmp_7 = _GEN_8 ? 3'h6 : state;
+        casez_tmp_23 = _GEN_6 ? 3'h6 : state;
       3'b110:
-        casez_tmp_7 = _GEN_11;
+        casez_tmp_23 = _GEN_24 ? 3'h7 : state;
       default:
-        casez_tmp_7 = _GEN_11;
+        casez_tmp_23 = _GEN_26;
     endcase
   end // always @(*)
   wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
@@ -34314,19 +34681,21 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
                          : _usedLog2_ceilLog2_T_1[2]
                              ? 2'h2
                              : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1;
-  wire [27:0] _GEN_12 = {15'h0, io_num};
-  wire [28:0] _GEN_13 = {16'h0, io_num};
+  wire [12:0] _GEN_27 = {4'h0, io_num[12:4]};
+  wire [12:0] _GEN_28 = {3'h0, io_num[12:3]};
   wire [26:0] _i_3_T = {14'h0, io_num} * 27'h3000;
-  wire [27:0] _i_5_T = _GEN_12 * 28'h5000;
-  wire [27:0] _i_6_T = _GEN_12 * 28'h6000;
-  wire [27:0] _i_7_T = _GEN_12 * 28'h7000;
-  wire [28:0] _i_9_T = _GEN_13 * 29'h9000;
-  wire [28:0] _i_10_T = _GEN_13 * 29'hA000;
-  wire [28:0] _i_11_T = _GEN_13 * 29'hB000;
-  wire [28:0] _i_12_T = _GEN_13 * 29'hC000;
-  wire [28:0] _i_13_T = _GEN_13 * 29'hD000;
-  wire [28:0] _i_14_T = _GEN_13 * 29'hE000;
-  wire [28:0] _i_15_T = _GEN_13 * 29'hF000;
+  wire [27:0] _GEN_29 = {15'h0, io_num};
+  wire [27:0] _i_5_T = _GEN_29 * 28'h5000;
+  wire [27:0] _i_6_T = _GEN_29 * 28'h6000;
+  wire [27:0] _i_7_T = _GEN_29 * 28'h7000;
+  wire [28:0] _GEN_30 = {16'h0, io_num};
+  wire [28:0] _i_9_T = _GEN_30 * 29'h9000;
+  wire [28:0] _i_10_T = _GEN_30 * 29'hA000;
+  wire [28:0] _i_11_T = _GEN_30 * 29'hB000;
+  wire [28:0] _i_12_T = _GEN_30 * 29'hC000;
+  wire [28:0] _i_13_T = _GEN_30 * 29'hD000;
+  wire [28:0] _i_14_T = _GEN_30 * 29'hE000;
+  wire [28:0] _i_15_T = _GEN_30 * 29'hF000;
   wire        z_tooMany = io_num > 13'h1000;
   wire        largeHere_0 =
     classifying & _laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
@@ -34340,650 +34709,521 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   wire        largeHere_3 =
     classifying & _laneKeys_3_io_out_valid & ~_laneKeys_3_io_out_nonFinite
     & ~_laneKeys_3_io_out_needNone & _sorts_1_io_in_1_valid_T_8;
-  wire [5:0]  _GEN_14 = {1'h0, largeCount};
-  wire        _GEN_15 = _GEN_14 < 6'h10;
-  wire [5:0]  slot_1 = _GEN_14 + {5'h0, largeHere_0};
-  wire        _GEN_16 = slot_1 < 6'h10;
-  wire [1:0]  _GEN_17 = {1'h0, largeHere_0};
-  wire [1:0]  _GEN_18 = {1'h0, largeHere_1};
-  wire [1:0]  _largeNew_T_1 = _GEN_17 + _GEN_18;
-  wire [5:0]  slot_2 = _GEN_14 + {4'h0, _largeNew_T_1};
-  wire        _GEN_19 = slot_2 < 6'h10;
-  wire [1:0]  _GEN_20 = {1'h0, largeHere_2};
-  wire [5:0]  slot_3 = _GEN_14 + {4'h0, _GEN_17 + _GEN_18 + _GEN_20};
-  wire        _GEN_21 = slot_3 < 6'h10;
-  wire        _GEN_22 = ~(|state) & io_start;
-  wire        _GEN_23 = state == 3'h1;
-  wire        _GEN_24 = state == 3'h2;
-  wire        _GEN_25 = state == 3'h3;
-  wire        _GEN_26 = state == 3'h4;
-  wire        _GEN_27 = state == 3'h5;
+  wire [5:0]  _GEN_31 = {1'h0, largeCount};
+  wire        _GEN_32 = _GEN_31 < 6'h10;
+  wire [5:0]  slot_1 = _GEN_31 + {5'h0, largeHere_0};
+  wire        _GEN_33 = slot_1 < 6'h10;
+  wire [1:0]  _GEN_34 = {1'h0, largeHere_0};
+  wire [1:0]  _GEN_35 = {1'h0, largeHere_1};
+  wire [1:0]  _largeNew_T_1 = _GEN_34 + _GEN_35;
+  wire [5:0]  slot_2 = _GEN_31 + {4'h0, _largeNew_T_1};
+  wire        _GEN_36 = slot_2 < 6'h10;
+  wire [1:0]  _GEN_37 = {1'h0, largeHere_2};
+  wire [5:0]  slot_3 = _GEN_31 + {4'h0, _GEN_34 + _GEN_35 + _GEN_37};
+  wire        _GEN_38 = slot_3 < 6'h10;
+  wire        _GEN_39 = ~(|state) & _starting_T;
+  wire        _GEN_40 = state == 3'h1;
+  wire        _GEN_41 = state == 3'h2;
+  wire        _GEN_42 = state == 3'h3;
+  wire        _GEN_43 = state == 3'h4;
+  wire        _GEN_44 = state == 3'h5;
   wire [5:0]  largeNew =
-    _GEN_14 + {3'h0, {1'h0, _largeNew_T_1} + {1'h0, _GEN_20 + {1'h0, largeHere_3}}};
+    _GEN_31 + {3'h0, {1'h0, _largeNew_T_1} + {1'h0, _GEN_37 + {1'h0, largeHere_3}}};
   wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
   always @(posedge clock) begin
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h0) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h0) begin
       larges_0_index <= r_3;
       larges_0_q_0 <= _laneKeys_3_io_out_q_0;
       larges_0_q_1 <= _laneKeys_3_io_out_q_1;
       larges_0_q_2 <= _laneKeys_3_io_out_q_2;
       larges_0_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h0) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h0) begin
       larges_0_index <= r_2;
       larges_0_q_0 <= _laneKeys_2_io_out_q_0;
       larges_0_q_1 <= _laneKeys_2_io_out_q_1;
       larges_0_q_2 <= _laneKeys_2_io_out_q_2;
       larges_0_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h0) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h0) begin
       larges_0_index <= r_1;
       larges_0_q_0 <= _laneKeys_1_io_out_q_0;
       larges_0_q_1 <= _laneKeys_1_io_out_q_1;
       larges_0_q_2 <= _laneKeys_1_io_out_q_2;
       larges_0_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h0) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h0) begin
       larges_0_index <= r;
       larges_0_q_0 <= _laneKeys_0_io_out_q_0;
       larges_0_q_1 <= _laneKeys_0_io_out_q_1;
       larges_0_q_2 <= _laneKeys_0_io_out_q_2;
       larges_0_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h1) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h1) begin
       larges_1_index <= r_3;
       larges_1_q_0 <= _laneKeys_3_io_out_q_0;
       larges_1_q_1 <= _laneKeys_3_io_out_q_1;
       larges_1_q_2 <= _laneKeys_3_io_out_q_2;
       larges_1_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h1) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h1) begin
       larges_1_index <= r_2;
       larges_1_q_0 <= _laneKeys_2_io_out_q_0;
       larges_1_q_1 <= _laneKeys_2_io_out_q_1;
       larges_1_q_2 <= _laneKeys_2_io_out_q_2;
       larges_1_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h1) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h1) begin
       larges_1_index <= r_1;
       larges_1_q_0 <= _laneKeys_1_io_out_q_0;
       larges_1_q_1 <= _laneKeys_1_io_out_q_1;
       larges_1_q_2 <= _laneKeys_1_io_out_q_2;
       larges_1_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h1) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h1) begin
       larges_1_index <= r;
       larges_1_q_0 <= _laneKeys_0_io_out_q_0;
       larges_1_q_1 <= _laneKeys_0_io_out_q_1;
       larges_1_q_2 <= _laneKeys_0_io_out_q_2;
       larges_1_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h2) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h2) begin
       larges_2_index <= r_3;
       larges_2_q_0 <= _laneKeys_3_io_out_q_0;
       larges_2_q_1 <= _laneKeys_3_io_out_q_1;
       larges_2_q_2 <= _laneKeys_3_io_out_q_2;
       larges_2_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h2) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h2) begin
       larges_2_index <= r_2;
       larges_2_q_0 <= _laneKeys_2_io_out_q_0;
       larges_2_q_1 <= _laneKeys_2_io_out_q_1;
       larges_2_q_2 <= _laneKeys_2_io_out_q_2;
       larges_2_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h2) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h2) begin
       larges_2_index <= r_1;
       larges_2_q_0 <= _laneKeys_1_io_out_q_0;
       larges_2_q_1 <= _laneKeys_1_io_out_q_1;
       larges_2_q_2 <= _laneKeys_1_io_out_q_2;
       larges_2_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h2) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h2) begin
       larges_2_index <= r;
       larges_2_q_0 <= _laneKeys_0_io_out_q_0;
       larges_2_q_1 <= _laneKeys_0_io_out_q_1;
       larges_2_q_2 <= _laneKeys_0_io_out_q_2;
       larges_2_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h3) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h3) begin
       larges_3_index <= r_3;
       larges_3_q_0 <= _laneKeys_3_io_out_q_0;
       larges_3_q_1 <= _laneKeys_3_io_out_q_1;
       larges_3_q_2 <= _laneKeys_3_io_out_q_2;
       larges_3_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h3) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h3) begin
       larges_3_index <= r_2;
       larges_3_q_0 <= _laneKeys_2_io_out_q_0;
       larges_3_q_1 <= _laneKeys_2_io_out_q_1;
       larges_3_q_2 <= _laneKeys_2_io_out_q_2;
       larges_3_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h3) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h3) begin
       larges_3_index <= r_1;
       larges_3_q_0 <= _laneKeys_1_io_out_q_0;
       larges_3_q_1 <= _laneKeys_1_io_out_q_1;
       larges_3_q_2 <= _laneKeys_1_io_out_q_2;
       larges_3_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h3) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h3) begin
       larges_3_index <= r;
       larges_3_q_0 <= _laneKeys_0_io_out_q_0;
       larges_3_q_1 <= _laneKeys_0_io_out_q_1;
       larges_3_q_2 <= _laneKeys_0_io_out_q_2;
       larges_3_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h4) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h4) begin
       larges_4_index <= r_3;
       larges_4_q_0 <= _laneKeys_3_io_out_q_0;
       larges_4_q_1 <= _laneKeys_3_io_out_q_1;
       larges_4_q_2 <= _laneKeys_3_io_out_q_2;
       larges_4_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h4) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h4) begin
       larges_4_index <= r_2;
       larges_4_q_0 <= _laneKeys_2_io_out_q_0;
       larges_4_q_1 <= _laneKeys_2_io_out_q_1;
       larges_4_q_2 <= _laneKeys_2_io_out_q_2;
       larges_4_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h4) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h4) begin
       larges_4_index <= r_1;
       larges_4_q_0 <= _laneKeys_1_io_out_q_0;
       larges_4_q_1 <= _laneKeys_1_io_out_q_1;
       larges_4_q_2 <= _laneKeys_1_io_out_q_2;
       larges_4_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h4) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h4) begin
       larges_4_index <= r;
       larges_4_q_0 <= _laneKeys_0_io_out_q_0;
       larges_4_q_1 <= _laneKeys_0_io_out_q_1;
       larges_4_q_2 <= _laneKeys_0_io_out_q_2;
       larges_4_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h5) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h5) begin
       larges_5_index <= r_3;
       larges_5_q_0 <= _laneKeys_3_io_out_q_0;
       larges_5_q_1 <= _laneKeys_3_io_out_q_1;
       larges_5_q_2 <= _laneKeys_3_io_out_q_2;
       larges_5_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h5) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h5) begin
       larges_5_index <= r_2;
       larges_5_q_0 <= _laneKeys_2_io_out_q_0;
       larges_5_q_1 <= _laneKeys_2_io_out_q_1;
       larges_5_q_2 <= _laneKeys_2_io_out_q_2;
       larges_5_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h5) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h5) begin
       larges_5_index <= r_1;
       larges_5_q_0 <= _laneKeys_1_io_out_q_0;
       larges_5_q_1 <= _laneKeys_1_io_out_q_1;
       larges_5_q_2 <= _laneKeys_1_io_out_q_2;
       larges_5_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h5) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h5) begin
       larges_5_index <= r;
       larges_5_q_0 <= _laneKeys_0_io_out_q_0;
       larges_5_q_1 <= _laneKeys_0_io_out_q_1;
       larges_5_q_2 <= _laneKeys_0_io_out_q_2;
       larges_5_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h6) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h6) begin
       larges_6_index <= r_3;
       larges_6_q_0 <= _laneKeys_3_io_out_q_0;
       larges_6_q_1 <= _laneKeys_3_io_out_q_1;
       larges_6_q_2 <= _laneKeys_3_io_out_q_2;
       larges_6_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h6) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h6) begin
       larges_6_index <= r_2;
       larges_6_q_0 <= _laneKeys_2_io_out_q_0;
       larges_6_q_1 <= _laneKeys_2_io_out_q_1;
       larges_6_q_2 <= _laneKeys_2_io_out_q_2;
       larges_6_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h6) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h6) begin
       larges_6_index <= r_1;
       larges_6_q_0 <= _laneKeys_1_io_out_q_0;
       larges_6_q_1 <= _laneKeys_1_io_out_q_1;
       larges_6_q_2 <= _laneKeys_1_io_out_q_2;
       larges_6_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h6) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h6) begin
       larges_6_index <= r;
       larges_6_q_0 <= _laneKeys_0_io_out_q_0;
       larges_6_q_1 <= _laneKeys_0_io_out_q_1;
       larges_6_q_2 <= _laneKeys_0_io_out_q_2;
       larges_6_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h7) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h7) begin
       larges_7_index <= r_3;
       larges_7_q_0 <= _laneKeys_3_io_out_q_0;
       larges_7_q_1 <= _laneKeys_3_io_out_q_1;
       larges_7_q_2 <= _laneKeys_3_io_out_q_2;
       larges_7_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h7) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h7) begin
       larges_7_index <= r_2;
       larges_7_q_0 <= _laneKeys_2_io_out_q_0;
       larges_7_q_1 <= _laneKeys_2_io_out_q_1;
       larges_7_q_2 <= _laneKeys_2_io_out_q_2;
       larges_7_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h7) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h7) begin
       larges_7_index <= r_1;
       larges_7_q_0 <= _laneKeys_1_io_out_q_0;
       larges_7_q_1 <= _laneKeys_1_io_out_q_1;
       larges_7_q_2 <= _laneKeys_1_io_out_q_2;
       larges_7_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h7) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h7) begin
       larges_7_index <= r;
       larges_7_q_0 <= _laneKeys_0_io_out_q_0;
       larges_7_q_1 <= _laneKeys_0_io_out_q_1;
       larges_7_q_2 <= _laneKeys_0_io_out_q_2;
       larges_7_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h8) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h8) begin
       larges_8_index <= r_3;
       larges_8_q_0 <= _laneKeys_3_io_out_q_0;
       larges_8_q_1 <= _laneKeys_3_io_out_q_1;
       larges_8_q_2 <= _laneKeys_3_io_out_q_2;
       larges_8_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h8) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h8) begin
       larges_8_index <= r_2;
       larges_8_q_0 <= _laneKeys_2_io_out_q_0;
       larges_8_q_1 <= _laneKeys_2_io_out_q_1;
       larges_8_q_2 <= _laneKeys_2_io_out_q_2;
       larges_8_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h8) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h8) begin
       larges_8_index <= r_1;
       larges_8_q_0 <= _laneKeys_1_io_out_q_0;
       larges_8_q_1 <= _laneKeys_1_io_out_q_1;
       larges_8_q_2 <= _laneKeys_1_io_out_q_2;
       larges_8_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h8) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h8) begin
       larges_8_index <= r;
       larges_8_q_0 <= _laneKeys_0_io_out_q_0;
       larges_8_q_1 <= _laneKeys_0_io_out_q_1;
       larges_8_q_2 <= _laneKeys_0_io_out_q_2;
       larges_8_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'h9) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h9) begin
       larges_9_index <= r_3;
       larges_9_q_0 <= _laneKeys_3_io_out_q_0;
       larges_9_q_1 <= _laneKeys_3_io_out_q_1;
       larges_9_q_2 <= _laneKeys_3_io_out_q_2;
       larges_9_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'h9) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h9) begin
       larges_9_index <= r_2;
       larges_9_q_0 <= _laneKeys_2_io_out_q_0;
       larges_9_q_1 <= _laneKeys_2_io_out_q_1;
       larges_9_q_2 <= _laneKeys_2_io_out_q_2;
       larges_9_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'h9) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h9) begin
       larges_9_index <= r_1;
       larges_9_q_0 <= _laneKeys_1_io_out_q_0;
       larges_9_q_1 <= _laneKeys_1_io_out_q_1;
       larges_9_q_2 <= _laneKeys_1_io_out_q_2;
       larges_9_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'h9) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h9) begin
       larges_9_index <= r;
       larges_9_q_0 <= _laneKeys_0_io_out_q_0;
       larges_9_q_1 <= _laneKeys_0_io_out_q_1;
       larges_9_q_2 <= _laneKeys_0_io_out_q_2;
       larges_9_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'hA) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'hA) begin
       larges_10_index <= r_3;
       larges_10_q_0 <= _laneKeys_3_io_out_q_0;
       larges_10_q_1 <= _laneKeys_3_io_out_q_1;
       larges_10_q_2 <= _laneKeys_3_io_out_q_2;
       larges_10_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'hA) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'hA) begin
       larges_10_index <= r_2;
       larges_10_q_0 <= _laneKeys_2_io_out_q_0;
       larges_10_q_1 <= _laneKeys_2_io_out_q_1;
       larges_10_q_2 <= _laneKeys_2_io_out_q_2;
       larges_10_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'hA) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'hA) begin
       larges_10_index <= r_1;
       larges_10_q_0 <= _laneKeys_1_io_out_q_0;
       larges_10_q_1 <= _laneKeys_1_io_out_q_1;
       larges_10_q_2 <= _laneKeys_1_io_out_q_2;
       larges_10_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'hA) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'hA) begin
       larges_10_index <= r;
       larges_10_q_0 <= _laneKeys_0_io_out_q_0;
       larges_10_q_1 <= _laneKeys_0_io_out_q_1;
       larges_10_q_2 <= _laneKeys_0_io_out_q_2;
       larges_10_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'hB) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'hB) begin
       larges_11_index <= r_3;
       larges_11_q_0 <= _laneKeys_3_io_out_q_0;
       larges_11_q_1 <= _laneKeys_3_io_out_q_1;
       larges_11_q_2 <= _laneKeys_3_io_out_q_2;
       larges_11_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'hB) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'hB) begin
       larges_11_index <= r_2;
       larges_11_q_0 <= _laneKeys_2_io_out_q_0;
       larges_11_q_1 <= _laneKeys_2_io_out_q_1;
       larges_11_q_2 <= _laneKeys_2_io_out_q_2;
       larges_11_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'hB) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'hB) begin
       larges_11_index <= r_1;
       larges_11_q_0 <= _laneKeys_1_io_out_q_0;
       larges_11_q_1 <= _laneKeys_1_io_out_q_1;
       larges_11_q_2 <= _laneKeys_1_io_out_q_2;
       larges_11_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'hB) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'hB) begin
       larges_11_index <= r;
       larges_11_q_0 <= _laneKeys_0_io_out_q_0;
       larges_11_q_1 <= _laneKeys_0_io_out_q_1;
       larges_11_q_2 <= _laneKeys_0_io_out_q_2;
       larges_11_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'hC) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'hC) begin
       larges_12_index <= r_3;
       larges_12_q_0 <= _laneKeys_3_io_out_q_0;
       larges_12_q_1 <= _laneKeys_3_io_out_q_1;
       larges_12_q_2 <= _laneKeys_3_io_out_q_2;
       larges_12_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'hC) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'hC) begin
       larges_12_index <= r_2;
       larges_12_q_0 <= _laneKeys_2_io_out_q_0;
       larges_12_q_1 <= _laneKeys_2_io_out_q_1;
       larges_12_q_2 <= _laneKeys_2_io_out_q_2;
       larges_12_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'hC) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'hC) begin
       larges_12_index <= r_1;
       larges_12_q_0 <= _laneKeys_1_io_out_q_0;
       larges_12_q_1 <= _laneKeys_1_io_out_q_1;
       larges_12_q_2 <= _laneKeys_1_io_out_q_2;
       larges_12_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'hC) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'hC) begin
       larges_12_index <= r;
       larges_12_q_0 <= _laneKeys_0_io_out_q_0;
       larges_12_q_1 <= _laneKeys_0_io_out_q_1;
       larges_12_q_2 <= _laneKeys_0_io_out_q_2;
       larges_12_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'hD) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'hD) begin
       larges_13_index <= r_3;
       larges_13_q_0 <= _laneKeys_3_io_out_q_0;
       larges_13_q_1 <= _laneKeys_3_io_out_q_1;
       larges_13_q_2 <= _laneKeys_3_io_out_q_2;
       larges_13_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'hD) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'hD) begin
       larges_13_index <= r_2;
       larges_13_q_0 <= _laneKeys_2_io_out_q_0;
       larges_13_q_1 <= _laneKeys_2_io_out_q_1;
       larges_13_q_2 <= _laneKeys_2_io_out_q_2;
       larges_13_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'hD) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'hD) begin
       larges_13_index <= r_1;
       larges_13_q_0 <= _laneKeys_1_io_out_q_0;
       larges_13_q_1 <= _laneKeys_1_io_out_q_1;
       larges_13_q_2 <= _laneKeys_1_io_out_q_2;
       larges_13_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'hD) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'hD) begin
       larges_13_index <= r;
       larges_13_q_0 <= _laneKeys_0_io_out_q_0;
       larges_13_q_1 <= _laneKeys_0_io_out_q_1;
       larges_13_q_2 <= _laneKeys_0_io_out_q_2;
       larges_13_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & slot_3[3:0] == 4'hE) begin
+    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'hE) begin
       larges_14_index <= r_3;
       larges_14_q_0 <= _laneKeys_3_io_out_q_0;
       larges_14_q_1 <= _laneKeys_3_io_out_q_1;
       larges_14_q_2 <= _laneKeys_3_io_out_q_2;
       larges_14_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & slot_2[3:0] == 4'hE) begin
+    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'hE) begin
       larges_14_index <= r_2;
       larges_14_q_0 <= _laneKeys_2_io_out_q_0;
       larges_14_q_1 <= _laneKeys_2_io_out_q_1;
       larges_14_q_2 <= _laneKeys_2_io_out_q_2;
       larges_14_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & slot_1[3:0] == 4'hE) begin
+    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'hE) begin
       larges_14_index <= r_1;
       larges_14_q_0 <= _laneKeys_1_io_out_q_0;
       larges_14_q_1 <= _laneKeys_1_io_out_q_1;
       larges_14_q_2 <= _laneKeys_1_io_out_q_2;
       larges_14_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & largeCount[3:0] == 4'hE) begin
+    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'hE) begin
       larges_14_index <= r;
       larges_14_q_0 <= _laneKeys_0_io_out_q_0;
       larges_14_q_1 <= _laneKeys_0_io_out_q_1;
       larges_14_q_2 <= _laneKeys_0_io_out_q_2;
       larges_14_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_21 & (&(slot_3[3:0]))) begin
+    if (largeHere_3 & _GEN_38 & (&(slot_3[3:0]))) begin
       larges_15_index <= r_3;
       larges_15_q_0 <= _laneKeys_3_io_out_q_0;
       larges_15_q_1 <= _laneKeys_3_io_out_q_1;
       larges_15_q_2 <= _laneKeys_3_io_out_q_2;
       larges_15_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_19 & (&(slot_2[3:0]))) begin
+    else if (largeHere_2 & _GEN_36 & (&(slot_2[3:0]))) begin
       larges_15_index <= r_2;
       larges_15_q_0 <= _laneKeys_2_io_out_q_0;
       larges_15_q_1 <= _laneKeys_2_io_out_q_1;
       larges_15_q_2 <= _laneKeys_2_io_out_q_2;
       larges_15_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_16 & (&(slot_1[3:0]))) begin
+    else if (largeHere_1 & _GEN_33 & (&(slot_1[3:0]))) begin
       larges_15_index <= r_1;
       larges_15_q_0 <= _laneKeys_1_io_out_q_0;
       larges_15_q_1 <= _laneKeys_1_io_out_q_1;
       larges_15_q_2 <= _laneKeys_1_io_out_q_2;
       larges_15_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_15 & (&(largeCount[3:0]))) begin
+    else if (largeHere_0 & _GEN_32 & (&(largeCount[3:0]))) begin
       larges_15_index <= r;
       larges_15_q_0 <= _laneKeys_0_io_out_q_0;
       larges_15_q_1 <= _laneKeys_0_io_out_q_1;
       larges_15_q_2 <= _laneKeys_0_io_out_q_2;
       larges_15_qr <= _laneKeys_0_io_out_qr;
     end
-    if (_GEN_22) begin
+    if (_GEN_39) begin
       num <= io_num;
       usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
     end
-    if (~(~(|state) | _GEN_23 | _GEN_24)) begin
-      if (_GEN_25)
+    if (~(~(|state) | _GEN_40 | _GEN_41 | _GEN_42)) begin
+      if (_GEN_43)
         sent <= ~passDone & sent;
       else
-        sent <= _GEN_26 | (_GEN_27 ? ~_GEN_8 & sent : _GEN_9 | sent);
+        sent <= _GEN_44 | (_GEN_7 ? ~_GEN_24 & sent : (&state) | sent);
     end
     if (|state) begin
-      if (_GEN_23) begin
-        if (reading_0)
-          i_0 <= i_0 + 13'h1;
-        if (reading_1)
-          i_1 <= i_1 + 13'h1;
-        if (reading_2)
-          i_2 <= i_2 + 13'h1;
-        if (reading_3)
-          i_3 <= i_3 + 13'h1;
-        if (reading_4)
-          i_4 <= i_4 + 13'h1;
-        if (reading_5)
-          i_5 <= i_5 + 13'h1;
-        if (reading_6)
-          i_6 <= i_6 + 13'h1;
-        if (reading_7)
-          i_7 <= i_7 + 13'h1;
-        if (reading_8)
-          i_8 <= i_8 + 13'h1;
-        if (reading_9)
-          i_9 <= i_9 + 13'h1;
-        if (reading_10)
-          i_10 <= i_10 + 13'h1;
-        if (reading_11)
-          i_11 <= i_11 + 13'h1;
-        if (reading_12)
-          i_12 <= i_12 + 13'h1;
-        if (reading_13)
-          i_13 <= i_13 + 13'h1;
-        if (reading_14)
-          i_14 <= i_14 + 13'h1;
-        if (reading_15)
-          i_15 <= i_15 + 13'h1;
-        if (_GEN_5)
-          m <= 9'h0;
-      end
-      else if (_GEN_24) begin
-        if (_GEN_6) begin
-          i_0 <= 13'h0;
-          i_1 <= _GEN_0;
-          i_2 <= {1'h0, num[12:1]};
-          i_3 <= _i_3_T_11[14:2];
-          i_4 <= 13'h0;
-          i_5 <= 13'h0;
-          i_6 <= 13'h0;
-          i_7 <= 13'h0;
-          i_8 <= 13'h0;
-          i_9 <= 13'h0;
-          i_10 <= 13'h0;
-          i_11 <= 13'h0;
-          i_12 <= 13'h0;
-          i_13 <= 13'h0;
-          i_14 <= 13'h0;
-          i_15 <= 13'h0;
-        end
-        m <= _m_T;
-      end
-      else if (_GEN_25) begin
-        if (reading_0)
-          i_0 <= i_0 + 13'h1;
-        if (reading_1)
-          i_1 <= i_1 + 13'h1;
-        if (reading_2)
-          i_2 <= i_2 + 13'h1;
-        if (reading_3)
-          i_3 <= i_3 + 13'h1;
-        if (reading_4)
-          i_4 <= i_4 + 13'h1;
-        if (reading_5)
-          i_5 <= i_5 + 13'h1;
-        if (reading_6)
-          i_6 <= i_6 + 13'h1;
-        if (reading_7)
-          i_7 <= i_7 + 13'h1;
-        if (reading_8)
-          i_8 <= i_8 + 13'h1;
-        if (reading_9)
-          i_9 <= i_9 + 13'h1;
-        if (reading_10)
-          i_10 <= i_10 + 13'h1;
-        if (reading_11)
-          i_11 <= i_11 + 13'h1;
-        if (reading_12)
-          i_12 <= i_12 + 13'h1;
-        if (reading_13)
-          i_13 <= i_13 + 13'h1;
-        if (reading_14)
-          i_14 <= i_14 + 13'h1;
-        if (reading_15)
-          i_15 <= i_15 + 13'h1;
-      end
-      else if (_GEN_26) begin
-        if (_GEN_7) begin
-          i_0 <= 13'h0;
-          i_1 <= _GEN_0;
-          i_2 <= {1'h0, num[12:1]};
-          i_3 <= _i_3_T_11[14:2];
-          i_4 <= 13'h0;
-          i_5 <= 13'h0;
-          i_6 <= 13'h0;
-          i_7 <= 13'h0;
-          i_8 <= 13'h0;
-          i_9 <= 13'h0;
-          i_10 <= 13'h0;
-          i_11 <= 13'h0;
-          i_12 <= 13'h0;
-          i_13 <= 13'h0;
-          i_14 <= 13'h0;
-          i_15 <= 13'h0;
-        end
-      end
-      else begin
-        if (_GEN_27 & reading_0)
-          i_0 <= i_0 + 13'h1;
-        if (_GEN_27 & reading_1)
-          i_1 <= i_1 + 13'h1;
-        if (_GEN_27 & reading_2)
-          i_2 <= i_2 + 13'h1;
-        if (_GEN_27 & reading_3)
-          i_3 <= i_3 + 13'h1;
-        if (_GEN_27 & reading_4)
-          i_4 <= i_4 + 13'h1;
-        if (_GEN_27 & reading_5)
-          i_5 <= i_5 + 13'h1;
-        if (_GEN_27 & reading_6)
-          i_6 <= i_6 + 13'h1;
-        if (_GEN_27 & reading_7)
-          i_7 <= i_7 + 13'h1;
-        if (_GEN_27 & reading_8)
-          i_8 <= i_8 + 13'h1;
-        if (_GEN_27 & reading_9)
-          i_9 <= i_9 + 13'h1;
-        if (_GEN_27 & reading_10)
-          i_10 <= i_10 + 13'h1;
-        if (_GEN_27 & reading_11)
-          i_11 <= i_11 + 13'h1;
-        if (_GEN_27 & reading_12)
-          i_12 <= i_12 + 13'h1;
-        if (_GEN_27 & reading_13)
-          i_13 <= i_13 + 13'h1;
-        if (_GEN_27 & reading_14)
-          i_14 <= i_14 + 13'h1;
-        if (_GEN_27 & reading_15)
-          i_15 <= i_15 + 13'h1;
-      end
+      i_0 <= casez_tmp_7;
+      i_1 <= casez_tmp_8;
+      i_2 <= casez_tmp_9;
+      i_3 <= casez_tmp_10;
+      i_4 <= casez_tmp_11;
+      i_5 <= casez_tmp_12;
+      i_6 <= casez_tmp_13;
+      i_7 <= casez_tmp_14;
+      i_8 <= casez_tmp_15;
+      i_9 <= casez_tmp_16;
+      i_10 <= casez_tmp_17;
+      i_11 <= casez_tmp_18;
+      i_12 <= casez_tmp_19;
+      i_13 <= casez_tmp_20;
+      i_14 <= casez_tmp_21;
+      i_15 <= casez_tmp_22;
     end
-    else if (io_start) begin
-      i_0 <= 13'h0;
-      i_1 <= {4'h0, io_num[12:4]};
-      i_2 <= {3'h0, io_num[12:3]};
-      i_3 <= {2'h0, _i_3_T[26:16]};
-      i_4 <= {2'h0, io_num[12:2]};
-      i_5 <= {1'h0, _i_5_T[27:16]};
-      i_6 <= {1'h0, _i_6_T[27:16]};
-      i_7 <= {1'h0, _i_7_T[27:16]};
-      i_8 <= {1'h0, io_num[12:1]};
-      i_9 <= _i_9_T[28:16];
-      i_10 <= _i_10_T[28:16];
-      i_11 <= _i_11_T[28:16];
-      i_12 <= _i_12_T[28:16];
-      i_13 <= _i_13_T[28:16];
-      i_14 <= _i_14_T[28:16];
-      i_15 <= _i_15_T[28:16];
+    else if (_starting_T) begin
+      i_0 <= io_start ? 13'h0 : _GEN_27;
+      i_1 <= io_start ? _GEN_27 : _GEN_28;
+      i_2 <= io_start ? _GEN_28 : {2'h0, _i_3_T[26:16]};
+      i_3 <= {2'h0, io_start ? _i_3_T[26:16] : io_num[12:2]};
+      i_4 <= io_start ? {2'h0, io_num[12:2]} : {1'h0, _i_5_T[27:16]};
+      i_5 <= {1'h0, io_start ? _i_5_T[27:16] : _i_6_T[27:16]};
+      i_6 <= {1'h0, io_start ? _i_6_T[27:16] : _i_7_T[27:16]};
+      i_7 <= {1'h0, io_start ? _i_7_T[27:16] : io_num[12:1]};
+      i_8 <= io_start ? {1'h0, io_num[12:1]} : _i_9_T[28:16];
+      i_9 <= io_start ? _i_9_T[28:16] : _i_10_T[28:16];
+      i_10 <= io_start ? _i_10_T[28:16] : _i_11_T[28:16];
+      i_11 <= io_start ? _i_11_T[28:16] : _i_12_T[28:16];
+      i_12 <= io_start ? _i_12_T[28:16] : _i_13_T[28:16];
+      i_13 <= io_start ? _i_13_T[28:16] : _i_14_T[28:16];
+      i_14 <= io_start ? _i_14_T[28:16] : _i_15_T[28:16];
+      i_15 <= io_start ? _i_15_T[28:16] : io_num;
     end
     REG <= i_0[11:0];
     r <= REG;
@@ -34993,6 +35233,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     r_2 <= REG_2;
     REG_3 <= i_3[11:0];
     r_3 <= REG_3;
+    if (~(~(|state) | _GEN_40)) begin
+      if (_GEN_41) begin
+        if (_GEN_4)
+          m <= 9'h0;
+      end
+      else if (_GEN_42)
+        m <= _m_T;
+    end
     entryGroup <= _gens_0_io_entry_group;
     entryGroup_1 <= _gens_1_io_entry_group;
     entryGroup_2 <= _gens_2_io_entry_group;
@@ -35011,6 +35259,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     entryGroup_15 <= _gens_15_io_entry_group;
     if (reset) begin
       state <= 3'h0;
+      fed <= 1'h0;
       st_level <= 14'h0;
       st_large <= 13'h0;
       st_cycTotal <= 32'h0;
@@ -35041,8 +35290,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     end
     else begin
       if (|state) begin
-        state <= casez_tmp_7;
-        if (_GEN_23 | _GEN_24 | _GEN_25 | _GEN_26 | _GEN_27 | ~_GEN_10) begin
+        state <= casez_tmp_23;
+        if (_GEN_40 | _GEN_41 | _GEN_42 | _GEN_43 | _GEN_44 | _GEN_7 | ~_GEN_25) begin
         end
         else begin
           st_level <= _cellExp_io_level;
@@ -35053,16 +35302,17 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
         end
       end
       else begin
-        if (~io_start | z_tooMany) begin
+        if (~_starting_T | z_tooMany) begin
         end
         else
-          state <= 3'h1;
-        if (io_start)
+          state <= {1'h0, io_start ? 2'h2 : 2'h1};
+        if (_starting_T)
           st_level <= 14'h0;
-        st_badBucket <= ~io_start & st_badBucket;
-        st_sortMismatch <= ~io_start & st_sortMismatch;
+        st_badBucket <= ~_starting_T & st_badBucket;
+        st_sortMismatch <= ~_starting_T & st_sortMismatch;
       end
-      if (_GEN_22) begin
+      if (_GEN_39) begin
+        fed <= ~io_start;
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
         st_tooMany <= z_tooMany;
@@ -35070,14 +35320,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
       end
       else begin
         if (classifying) begin
-          st_large <= st_large + {7'h0, largeKept - _GEN_14};
+          st_large <= st_large + {7'h0, largeKept - _GEN_31};
           largeCount <= largeKept[4:0];
         end
-        if (|state)
+        if ((|state) & ~filling)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
       st_cellOverflow <=
-        ~_GEN_22
+        ~_GEN_39
         & (classifying
            & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
               & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
@@ -35093,9 +35343,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
                   & _sorts_1_io_in_1_valid_T_8) & _laneKeys_3_io_out_cellOverflow)
            | st_cellOverflow);
       st_largeOverflow <=
-        ~_GEN_22
-        & (largeHere_3 & ~_GEN_21 | largeHere_2 & ~_GEN_19 | largeHere_1 & ~_GEN_16
-           | largeHere_0 & ~_GEN_15 | st_largeOverflow);
+        ~_GEN_39
+        & (largeHere_3 & ~_GEN_38 | largeHere_2 & ~_GEN_36 | largeHere_1 & ~_GEN_33
+           | largeHere_0 & ~_GEN_32 | st_largeOverflow);
       inflight <=
         inflight
         + {1'h0,
@@ -35113,6 +35363,10 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
                   + {1'h0,
                      {1'h0, {1'h0, reading_12} + {1'h0, reading_13}}
                        + {1'h0, {1'h0, reading_14} + {1'h0, reading_15}}}}}
+        + {3'h0,
+           {1'h0, {1'h0, io_feed_0_valid & filling} + {1'h0, io_feed_1_valid & filling}}
+             + {1'h0,
+                {1'h0, io_feed_2_valid & filling} + {1'h0, io_feed_3_valid & filling}}}
         - {1'h0,
            {1'h0,
             {1'h0,
@@ -35166,7 +35420,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_0_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_0_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_0_io_out_need),
     .io_in_0_needNone  (_laneKeys_0_io_out_needNone),
     .io_in_0_top       (_laneKeys_0_io_out_top),
@@ -35197,7 +35451,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_1_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_1_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_1_io_out_need),
     .io_in_0_needNone  (_laneKeys_1_io_out_needNone),
     .io_in_0_top       (_laneKeys_1_io_out_top),
@@ -35228,7 +35482,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_2_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_2_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_2_io_out_need),
     .io_in_0_needNone  (_laneKeys_2_io_out_needNone),
     .io_in_0_top       (_laneKeys_2_io_out_top),
@@ -35259,7 +35513,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_3_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_3_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_3_io_out_need),
     .io_in_0_needNone  (_laneKeys_3_io_out_needNone),
     .io_in_0_top       (_laneKeys_3_io_out_top),
@@ -35290,7 +35544,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_4_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_4_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_4_io_out_need),
     .io_in_0_needNone  (_laneKeys_4_io_out_needNone),
     .io_in_0_top       (_laneKeys_4_io_out_top),
@@ -35321,7 +35575,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_5_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_5_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_5_io_out_need),
     .io_in_0_needNone  (_laneKeys_5_io_out_needNone),
     .io_in_0_top       (_laneKeys_5_io_out_top),
@@ -35352,7 +35606,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_6_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_6_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_6_io_out_need),
     .io_in_0_needNone  (_laneKeys_6_io_out_needNone),
     .io_in_0_top       (_laneKeys_6_io_out_top),
@@ -35383,7 +35637,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_7_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_7_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_7_io_out_need),
     .io_in_0_needNone  (_laneKeys_7_io_out_needNone),
     .io_in_0_top       (_laneKeys_7_io_out_top),
@@ -35414,7 +35668,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_8_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_8_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_8_io_out_need),
     .io_in_0_needNone  (_laneKeys_8_io_out_needNone),
     .io_in_0_top       (_laneKeys_8_io_out_top),
@@ -35445,7 +35699,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_9_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_9_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_9_io_out_need),
     .io_in_0_needNone  (_laneKeys_9_io_out_needNone),
     .io_in_0_top       (_laneKeys_9_io_out_top),
@@ -35476,7 +35730,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_10_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_10_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_10_io_out_need),
     .io_in_0_needNone  (_laneKeys_10_io_out_needNone),
     .io_in_0_top       (_laneKeys_10_io_out_top),
@@ -35507,7 +35761,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_11_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_11_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_11_io_out_need),
     .io_in_0_needNone  (_laneKeys_11_io_out_needNone),
     .io_in_0_top       (_laneKeys_11_io_out_top),
@@ -35538,7 +35792,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_12_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_12_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_12_io_out_need),
     .io_in_0_needNone  (_laneKeys_12_io_out_needNone),
     .io_in_0_top       (_laneKeys_12_io_out_top),
@@ -35569,7 +35823,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_13_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_13_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_13_io_out_need),
     .io_in_0_needNone  (_laneKeys_13_io_out_needNone),
     .io_in_0_top       (_laneKeys_13_io_out_top),
@@ -35600,7 +35854,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_14_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_14_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_14_io_out_need),
     .io_in_0_needNone  (_laneKeys_14_io_out_needNone),
     .io_in_0_top       (_laneKeys_14_io_out_top),
@@ -35631,7 +35885,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock             (clock),
     .reset             (reset),
     .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_15_io_out_valid & _laneKeys_15_io_in_level_T),
+    .io_in_0_valid     (_laneKeys_15_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_15_io_out_need),
     .io_in_0_needNone  (_laneKeys_15_io_out_needNone),
     .io_in_0_top       (_laneKeys_15_io_out_top),
@@ -35662,11 +35916,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .clock           (clock),
     .reset           (reset),
     .io_clear        (starting),
-    .io_in_0_valid   (_cellExp_io_in_1_valid_T & _GEN_4 < 10'h110 & casez_tmp),
+    .io_in_0_valid   (_cellExp_io_in_1_valid_T & m < mergeEnd & casez_tmp),
     .io_in_0_need    (casez_tmp_0),
     .io_in_0_top     (casez_tmp_1),
     .io_in_0_topNone (~casez_tmp_2),
-    .io_in_1_valid   (_cellExp_io_in_1_valid_T & at_1 < 10'h110 & casez_tmp_3),
+    .io_in_1_valid   (_cellExp_io_in_1_valid_T & at_1 < {1'h0, mergeEnd} & casez_tmp_3),
     .io_in_1_need    (casez_tmp_4),
     .io_in_1_top     (casez_tmp_5),
     .io_in_1_topNone (~casez_tmp_6),
@@ -36541,7 +36795,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_0 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'h0),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -36696,7 +36950,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_1 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'h1),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -36851,7 +37105,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_2 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'h2),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -37006,7 +37260,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_3 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'h3),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -37161,7 +37415,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_4 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'h4),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -37316,7 +37570,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_5 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'h5),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -37471,7 +37725,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_6 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'h6),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -37626,7 +37880,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_7 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'h7),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -37781,7 +38035,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_8 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'h8),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -37936,7 +38190,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_9 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'h9),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -38091,7 +38345,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_10 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'hA),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -38246,7 +38500,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_11 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'hB),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -38401,7 +38655,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_12 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'hC),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -38556,7 +38810,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_13 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'hD),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -38711,7 +38965,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_14 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'hE),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -38866,7 +39120,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_15 (
     .clock               (clock),
     .reset               (reset),
-    .io_start            (_gens_15_io_start_T & ~sent),
+    .io_start            ((&state) & ~sent),
     .io_lane             (4'hF),
     .io_usedLog2         (usedLog2),
     .io_slack            (slack),
@@ -39021,12 +39275,12 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_0 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (laneKeys_0_io_in_valid_REG),
-    .io_in_sphere_0      (io_sphere_0_data_0),
-    .io_in_sphere_1      (io_sphere_0_data_1),
-    .io_in_sphere_2      (io_sphere_0_data_2),
-    .io_in_sphere_3      (io_sphere_0_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_valid         (filling ? io_feed_0_valid : laneKeys_0_io_in_valid_REG),
+    .io_in_sphere_0      (filling ? io_feed_0_bits_0 : io_sphere_0_data_0),
+    .io_in_sphere_1      (filling ? io_feed_0_bits_1 : io_sphere_0_data_1),
+    .io_in_sphere_2      (filling ? io_feed_0_bits_2 : io_sphere_0_data_2),
+    .io_in_sphere_3      (filling ? io_feed_0_bits_3 : io_sphere_0_data_3),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_0_io_out_valid),
     .io_out_cell_0       (_laneKeys_0_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_0_io_out_cell_1),
@@ -39045,12 +39299,12 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_1 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (laneKeys_1_io_in_valid_REG),
-    .io_in_sphere_0      (io_sphere_1_data_0),
-    .io_in_sphere_1      (io_sphere_1_data_1),
-    .io_in_sphere_2      (io_sphere_1_data_2),
-    .io_in_sphere_3      (io_sphere_1_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_valid         (filling ? io_feed_1_valid : laneKeys_1_io_in_valid_REG),
+    .io_in_sphere_0      (filling ? io_feed_1_bits_0 : io_sphere_1_data_0),
+    .io_in_sphere_1      (filling ? io_feed_1_bits_1 : io_sphere_1_data_1),
+    .io_in_sphere_2      (filling ? io_feed_1_bits_2 : io_sphere_1_data_2),
+    .io_in_sphere_3      (filling ? io_feed_1_bits_3 : io_sphere_1_data_3),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_1_io_out_valid),
     .io_out_cell_0       (_laneKeys_1_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_1_io_out_cell_1),
@@ -39069,12 +39323,12 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_2 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (laneKeys_2_io_in_valid_REG),
-    .io_in_sphere_0      (io_sphere_2_data_0),
-    .io_in_sphere_1      (io_sphere_2_data_1),
-    .io_in_sphere_2      (io_sphere_2_data_2),
-    .io_in_sphere_3      (io_sphere_2_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_valid         (filling ? io_feed_2_valid : laneKeys_2_io_in_valid_REG),
+    .io_in_sphere_0      (filling ? io_feed_2_bits_0 : io_sphere_2_data_0),
+    .io_in_sphere_1      (filling ? io_feed_2_bits_1 : io_sphere_2_data_1),
+    .io_in_sphere_2      (filling ? io_feed_2_bits_2 : io_sphere_2_data_2),
+    .io_in_sphere_3      (filling ? io_feed_2_bits_3 : io_sphere_2_data_3),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_2_io_out_valid),
     .io_out_cell_0       (_laneKeys_2_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_2_io_out_cell_1),
@@ -39093,12 +39347,12 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_3 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (laneKeys_3_io_in_valid_REG),
-    .io_in_sphere_0      (io_sphere_3_data_0),
-    .io_in_sphere_1      (io_sphere_3_data_1),
-    .io_in_sphere_2      (io_sphere_3_data_2),
-    .io_in_sphere_3      (io_sphere_3_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_valid         (filling ? io_feed_3_valid : laneKeys_3_io_in_valid_REG),
+    .io_in_sphere_0      (filling ? io_feed_3_bits_0 : io_sphere_3_data_0),
+    .io_in_sphere_1      (filling ? io_feed_3_bits_1 : io_sphere_3_data_1),
+    .io_in_sphere_2      (filling ? io_feed_3_bits_2 : io_sphere_3_data_2),
+    .io_in_sphere_3      (filling ? io_feed_3_bits_3 : io_sphere_3_data_3),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_3_io_out_valid),
     .io_out_cell_0       (_laneKeys_3_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_3_io_out_cell_1),
@@ -39122,7 +39376,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_4_data_1),
     .io_in_sphere_2      (io_sphere_4_data_2),
     .io_in_sphere_3      (io_sphere_4_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_4_io_out_valid),
     .io_out_cell_0       (_laneKeys_4_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_4_io_out_cell_1),
@@ -39146,7 +39400,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_5_data_1),
     .io_in_sphere_2      (io_sphere_5_data_2),
     .io_in_sphere_3      (io_sphere_5_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_5_io_out_valid),
     .io_out_cell_0       (_laneKeys_5_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_5_io_out_cell_1),
@@ -39170,7 +39424,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_6_data_1),
     .io_in_sphere_2      (io_sphere_6_data_2),
     .io_in_sphere_3      (io_sphere_6_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_6_io_out_valid),
     .io_out_cell_0       (_laneKeys_6_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_6_io_out_cell_1),
@@ -39194,7 +39448,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_7_data_1),
     .io_in_sphere_2      (io_sphere_7_data_2),
     .io_in_sphere_3      (io_sphere_7_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_7_io_out_valid),
     .io_out_cell_0       (_laneKeys_7_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_7_io_out_cell_1),
@@ -39218,7 +39472,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_8_data_1),
     .io_in_sphere_2      (io_sphere_8_data_2),
     .io_in_sphere_3      (io_sphere_8_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_8_io_out_valid),
     .io_out_cell_0       (_laneKeys_8_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_8_io_out_cell_1),
@@ -39242,7 +39496,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_9_data_1),
     .io_in_sphere_2      (io_sphere_9_data_2),
     .io_in_sphere_3      (io_sphere_9_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_9_io_out_valid),
     .io_out_cell_0       (_laneKeys_9_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_9_io_out_cell_1),
@@ -39266,7 +39520,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_10_data_1),
     .io_in_sphere_2      (io_sphere_10_data_2),
     .io_in_sphere_3      (io_sphere_10_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_10_io_out_valid),
     .io_out_cell_0       (_laneKeys_10_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_10_io_out_cell_1),
@@ -39290,7 +39544,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_11_data_1),
     .io_in_sphere_2      (io_sphere_11_data_2),
     .io_in_sphere_3      (io_sphere_11_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_11_io_out_valid),
     .io_out_cell_0       (_laneKeys_11_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_11_io_out_cell_1),
@@ -39314,7 +39568,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_12_data_1),
     .io_in_sphere_2      (io_sphere_12_data_2),
     .io_in_sphere_3      (io_sphere_12_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_12_io_out_valid),
     .io_out_cell_0       (_laneKeys_12_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_12_io_out_cell_1),
@@ -39338,7 +39592,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_13_data_1),
     .io_in_sphere_2      (io_sphere_13_data_2),
     .io_in_sphere_3      (io_sphere_13_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_13_io_out_valid),
     .io_out_cell_0       (_laneKeys_13_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_13_io_out_cell_1),
@@ -39362,7 +39616,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_14_data_1),
     .io_in_sphere_2      (io_sphere_14_data_2),
     .io_in_sphere_3      (io_sphere_14_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_14_io_out_valid),
     .io_out_cell_0       (_laneKeys_14_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_14_io_out_cell_1),
@@ -39386,7 +39640,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_in_sphere_1      (io_sphere_15_data_1),
     .io_in_sphere_2      (io_sphere_15_data_2),
     .io_in_sphere_3      (io_sphere_15_data_3),
-    .io_in_level         (_laneKeys_15_io_in_level_T ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
     .io_out_valid        (_laneKeys_15_io_out_valid),
     .io_out_cell_0       (_laneKeys_15_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_15_io_out_cell_1),
@@ -39402,23 +39656,23 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world(
     .io_out_top          (_laneKeys_15_io_out_top),
     .io_out_topNone      (_laneKeys_15_io_out_topNone)
   );
-  assign io_sphere_0_addr = _gens_15_io_start_T ? _gens_0_io_keyAddr : i_0[11:0];
-  assign io_sphere_1_addr = _gens_15_io_start_T ? _gens_1_io_keyAddr : i_1[11:0];
-  assign io_sphere_2_addr = _gens_15_io_start_T ? _gens_2_io_keyAddr : i_2[11:0];
-  assign io_sphere_3_addr = _gens_15_io_start_T ? _gens_3_io_keyAddr : i_3[11:0];
-  assign io_sphere_4_addr = _gens_15_io_start_T ? _gens_4_io_keyAddr : i_4[11:0];
-  assign io_sphere_5_addr = _gens_15_io_start_T ? _gens_5_io_keyAddr : i_5[11:0];
-  assign io_sphere_6_addr = _gens_15_io_start_T ? _gens_6_io_keyAddr : i_6[11:0];
-  assign io_sphere_7_addr = _gens_15_io_start_T ? _gens_7_io_keyAddr : i_7[11:0];
-  assign io_sphere_8_addr = _gens_15_io_start_T ? _gens_8_io_keyAddr : i_8[11:0];
-  assign io_sphere_9_addr = _gens_15_io_start_T ? _gens_9_io_keyAddr : i_9[11:0];
-  assign io_sphere_10_addr = _gens_15_io_start_T ? _gens_10_io_keyAddr : i_10[11:0];
-  assign io_sphere_11_addr = _gens_15_io_start_T ? _gens_11_io_keyAddr : i_11[11:0];
-  assign io_sphere_12_addr = _gens_15_io_start_T ? _gens_12_io_keyAddr : i_12[11:0];
-  assign io_sphere_13_addr = _gens_15_io_start_T ? _gens_13_io_keyAddr : i_13[11:0];
-  assign io_sphere_14_addr = _gens_15_io_start_T ? _gens_14_io_keyAddr : i_14[11:0];
-  assign io_sphere_15_addr = _gens_15_io_start_T ? _gens_15_io_keyAddr : i_15[11:0];
-  assign io_busy = |state;
+  assign io_sphere_0_addr = (&state) ? _gens_0_io_keyAddr : i_0[11:0];
+  assign io_sphere_1_addr = (&state) ? _gens_1_io_keyAddr : i_1[11:0];
+  assign io_sphere_2_addr = (&state) ? _gens_2_io_keyAddr : i_2[11:0];
+  assign io_sphere_3_addr = (&state) ? _gens_3_io_keyAddr : i_3[11:0];
+  assign io_sphere_4_addr = (&state) ? _gens_4_io_keyAddr : i_4[11:0];
+  assign io_sphere_5_addr = (&state) ? _gens_5_io_keyAddr : i_5[11:0];
+  assign io_sphere_6_addr = (&state) ? _gens_6_io_keyAddr : i_6[11:0];
+  assign io_sphere_7_addr = (&state) ? _gens_7_io_keyAddr : i_7[11:0];
+  assign io_sphere_8_addr = (&state) ? _gens_8_io_keyAddr : i_8[11:0];
+  assign io_sphere_9_addr = (&state) ? _gens_9_io_keyAddr : i_9[11:0];
+  assign io_sphere_10_addr = (&state) ? _gens_10_io_keyAddr : i_10[11:0];
+  assign io_sphere_11_addr = (&state) ? _gens_11_io_keyAddr : i_11[11:0];
+  assign io_sphere_12_addr = (&state) ? _gens_12_io_keyAddr : i_12[11:0];
+  assign io_sphere_13_addr = (&state) ? _gens_13_io_keyAddr : i_13[11:0];
+  assign io_sphere_14_addr = (&state) ? _gens_14_io_keyAddr : i_14[11:0];
+  assign io_sphere_15_addr = (&state) ? _gens_15_io_keyAddr : i_15[11:0];
+  assign io_busy = (|state) & state != 3'h1;
   assign io_status_level = st_level;
   assign io_status_large = st_large;
   assign io_status_cycTotal = st_cycTotal;
@@ -41101,6 +41355,8 @@ module Puc_world(
   wire         loaded = _rd_io_loaded & running;
   reg          bpStarted;
   wire         bpStart = run_8[1] & loaded & ~bpStarted;
+  wire         _bp_io_feed_3_valid_T = _rd_io_sphereWrite_valid & run_8[1];
+  wire [12:0]  _GEN_2 = {1'h0, _rd_io_sphereWrite_bits_line, 2'h0};
   wire         bpDone = bpStarted & ~_bp_io_busy;
   wire         worldDone = bpDone & _lines_io_idle;
   wire         _rd_io_pairs_ready_T_1 = ~(run_8[1]) & _disp_io_pairs_ready;
@@ -41115,9 +41371,9 @@ module Puc_world(
       ? {40'h0, run_4[23:0]}
       : {32'h0, found} + (run_8[1] ? 64'h0 : {32'h0, flaggedMiss});
   wire         _capErr_T = totalRecords > run_6;
-  wire [1:0]   _GEN_2 = {errors[4], errors[1]};
-  wire [3:0]   _GEN_3 = errors[3:0] | {|nonFinite, 3'h0};
-  wire [2:0]   _GEN_4 = _GEN_3[2:0] | {_capErr_T & ~(|_GEN_2), 2'h0};
+  wire [1:0]   _GEN_3 = {errors[4], errors[1]};
+  wire [3:0]   _GEN_4 = errors[3:0] | {|nonFinite, 3'h0};
+  wire [2:0]   _GEN_5 = _GEN_4[2:0] | {_capErr_T & ~(|_GEN_3), 2'h0};
   wire         _wr_io_status_valid_T = state == 3'h4;
   wire         quietRun =
     ~_disp_io_fired & ~(_rd_io_pairs_ready_T_1 & _rd_io_pairs_valid)
@@ -41134,13 +41390,13 @@ module Puc_world(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:263 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:275 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [31:0]  _GEN_5 =
+  wire [31:0]  _GEN_6 =
     {8'h0,
      _disp_io_groups_bits_first
        + {20'h0,
@@ -41174,11 +41430,11 @@ module Puc_world(
                                                                 ? 4'hD
                                                                 : {3'h7,
                                                                    ~(_disp_io_groups_bits_invalid[14])}}};
-  wire         _GEN_6 =
+  wire         _GEN_7 =
     io_link_csr_valid & (|io_link_csr_bits_index) & io_link_csr_bits_index < 8'h9;
   wire [31:0]  tick = (|io_skipCycles) ? io_skipCycles : 32'h1;
-  wire         _GEN_7 = _wr_io_status_ready & _wr_io_status_valid_T;
-  wire         _GEN_8 =
+  wire         _GEN_8 = _wr_io_status_ready & _wr_io_status_valid_T;
+  wire         _GEN_9 =
     ~(|state) & io_link_csr_valid & ~(|io_link_csr_bits_index)
     & io_link_csr_bits_data == 64'h1;
   always @(posedge clock) begin
@@ -41207,25 +41463,25 @@ module Puc_world(
       pairsInFlight <= 25'h0;
     end
     else begin
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h1)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h1)
         csr_1 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h2)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h2)
         csr_2 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h3)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h3)
         csr_3 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h4)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h4)
         csr_4 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h5)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h5)
         csr_5 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h6)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h6)
         csr_6 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h7)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h7)
         csr_7 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h8)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h8)
         csr_8 <= io_link_csr_bits_data;
       if (state == 3'h5 & ~(|_wr_io_outstanding))
         state <= 3'h0;
-      else if (_GEN_7)
+      else if (_GEN_8)
         state <= 3'h5;
       else if (_pack_io_flush_T & drainDone)
         state <= 3'h4;
@@ -41233,7 +41489,7 @@ module Puc_world(
         state <= 3'h3;
       else if (_GEN)
         state <= _GEN_0 ? 3'h0 : _GEN_1 ? 3'h4 : 3'h2;
-      else if (_GEN_8)
+      else if (_GEN_9)
         state <= 3'h1;
       if (_GEN) begin
         errors <= {1'h0, badConfig, 2'h0, tooMany, 1'h0};
@@ -41253,8 +41509,8 @@ module Puc_world(
         nonFinite <= nonFinite + {27'h0, _coll_io_nNonFinite};
         flaggedMiss <= flaggedMiss + {27'h0, _coll_io_nFlagged};
         if (_groups_io_enq_ready & _disp_io_groups_valid & (|_disp_io_groups_bits_invalid)
-            & _GEN_5 < firstBad)
-          firstBad <= _GEN_5;
+            & _GEN_6 < firstBad)
+          firstBad <= _GEN_6;
         if (running & ~loaded)
           cycLoad <= cycLoad + tick;
         if (running & _disp_io_fired)
@@ -41265,7 +41521,7 @@ module Puc_world(
         if (running & (_wr_io_blocked | _pack_io_flush_T & (|_wr_io_outstanding)))
           cycWaitWr <= cycWaitWr + tick;
       end
-      if (_wr_io_status_valid_T & ~_GEN_7)
+      if (_wr_io_status_valid_T & ~_GEN_8)
         cycTotal <= cycTotal + tick;
       else if (_GEN)
         cycTotal <= 32'h1;
@@ -41276,7 +41532,7 @@ module Puc_world(
         pairsInFlight + {20'h0, _disp_io_fired ? _disp_io_groups_bits_cnt : 5'h0}
         - {20'h0, _coll_io_nPairs};
     end
-    if (_GEN_8) begin
+    if (_GEN_9) begin
       run_1 <= csr_1;
       run_2 <= csr_2;
       run_3 <= csr_3;
@@ -42172,11 +42428,11 @@ module Puc_world(
     .io_status_valid     (_wr_io_status_valid_T),
     .io_status_bits_addr (run_7),
     .io_status_bits_data
-      ({run_8[1] & ~(|_GEN_2) ? {19'h0, _bp_io_status_large} : 32'h0,
-        run_8[1] & ~(|_GEN_2)
+      ({run_8[1] & ~(|_GEN_3) ? {19'h0, _bp_io_status_large} : 32'h0,
+        run_8[1] & ~(|_GEN_3)
           ? {{18{_bp_io_status_level[13]}}, _bp_io_status_level}
           : 32'h0,
-        run_8[1] & ~(|_GEN_2) ? _bp_io_status_cycTotal : 32'h0,
+        run_8[1] & ~(|_GEN_3) ? _bp_io_status_cycTotal : 32'h0,
         cycWaitWr,
         cycWaitRd,
         cycCompute,
@@ -42185,18 +42441,18 @@ module Puc_world(
         flaggedMiss,
         firstBad,
         nonFinite,
-        (|_GEN_2) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
+        (|_GEN_3) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
         found,
         processed,
         26'h0,
         errors[5] | run_8[1]
           & (_bp_io_status_tooMany | _bp_io_status_cellOverflow
              | _bp_io_status_largeOverflow | _bp_io_status_badBucket
-             | _bp_io_status_sortMismatch) & ~(|_GEN_2),
+             | _bp_io_status_sortMismatch) & ~(|_GEN_3),
         errors[4],
-        _GEN_3[3],
-        _GEN_4[2:1],
-        _GEN_4[0] | firstBad != 32'hFFFFFFFF,
+        _GEN_4[3],
+        _GEN_5[2:1],
+        _GEN_5[0] | firstBad != 32'hFFFFFFFF,
         32'h1}),
     .io_wrReq_ready      (io_link_wrReq_ready),
     .io_wrReq_valid      (_wr_io_wrReq_valid),
@@ -42208,9 +42464,31 @@ module Puc_world(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
-  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_world bp (
+  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world bp (
     .clock                   (clock),
     .reset                   (reset),
+    .io_begin                (engineStart & run_8[1]),
+    .io_feed_0_valid
+      (_bp_io_feed_3_valid_T & {52'h0, _rd_io_sphereWrite_bits_line, 2'h0} < run_2),
+    .io_feed_0_bits_0        (_rd_io_sphereWrite_bits_data[31:0]),
+    .io_feed_0_bits_1        (_rd_io_sphereWrite_bits_data[63:32]),
+    .io_feed_0_bits_2        (_rd_io_sphereWrite_bits_data[95:64]),
+    .io_feed_0_bits_3        (_rd_io_sphereWrite_bits_data[127:96]),
+    .io_feed_1_valid         (_bp_io_feed_3_valid_T & {51'h0, _GEN_2 + 13'h1} < run_2),
+    .io_feed_1_bits_0        (_rd_io_sphereWrite_bits_data[159:128]),
+    .io_feed_1_bits_1        (_rd_io_sphereWrite_bits_data[191:160]),
+    .io_feed_1_bits_2        (_rd_io_sphereWrite_bits_data[223:192]),
+    .io_feed_1_bits_3        (_rd_io_sphereWrite_bits_data[255:224]),
+    .io_feed_2_valid         (_bp_io_feed_3_valid_T & {51'h0, _GEN_2 + 13'h2} < run_2),
+    .io_feed_2_bits_0        (_rd_io_sphereWrite_bits_data[287:256]),
+    .io_feed_2_bits_1        (_rd_io_sphereWrite_bits_data[319:288]),
+    .io_feed_2_bits_2        (_rd_io_sphereWrite_bits_data[351:320]),
+    .io_feed_2_bits_3        (_rd_io_sphereWrite_bits_data[383:352]),
+    .io_feed_3_valid         (_bp_io_feed_3_valid_T & {51'h0, _GEN_2 + 13'h3} < run_2),
+    .io_feed_3_bits_0        (_rd_io_sphereWrite_bits_data[415:384]),
+    .io_feed_3_bits_1        (_rd_io_sphereWrite_bits_data[447:416]),
+    .io_feed_3_bits_2        (_rd_io_sphereWrite_bits_data[479:448]),
+    .io_feed_3_bits_3        (_rd_io_sphereWrite_bits_data[511:480]),
     .io_start                (bpStart),
     .io_num                  (run_2[12:0]),
     .io_sphere_0_addr        (_bp_io_sphere_0_addr),

@@ -118,9 +118,21 @@ class Puc(p: PucParams) extends Module {
   val largeSpheres = WireDefault(0.U(32.W)); val worldCheck = WireDefault(false.B)
   p.world match {
     case Some(w) =>
-      val bp = Module(new collide.world.BroadPhase(w.fp, w.bp, p.maxSpheres))
+      // The table's lines feed the broad phase as they are written, a line's spheres a cycle
+      // (its level is chosen meanwhile, so its first pass over the table is not run), where it has
+      // a lane for each sphere of a line.
+      val spl = lay.spheresPerLine
+      val feedWidth = if (w.bp.lanes >= spl) spl else 0
+      val bp = Module(new collide.world.BroadPhase(w.fp, w.bp, p.maxSpheres, feedWidth = feedWidth))
+      bp.io.begin := engineStart && world && (feedWidth > 0).B
       bp.io.start := bpStart
       bp.io.num   := numSpheres(bp.io.countW - 1, 0) // <= maxSpheres: checked at sCheck
+      val wr = rd.io.sphereWrite
+      for ((f, s) <- bp.io.feed.zipWithIndex) {
+        val sw = 4 * p.linkWidth
+        f.valid := wr.valid && world && ((wr.bits.line << log2Ceil(spl)) +& s.U).pad(64) < numSpheres
+        f.bits := VecInit.tabulate(4)(c => wr.bits.data(s * sw + (c + 1) * p.linkWidth - 1, s * sw + c * p.linkWidth))
+      }
       for ((port, lane) <- ram.io.world.get.zip(bp.io.sphere)) {
         port.addr := lane.addr
         lane.data := VecInit(port.data.x, port.data.y, port.data.z, port.data.r)

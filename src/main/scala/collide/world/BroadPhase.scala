@@ -47,9 +47,16 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   * together they are the candidates. The golden model is
   * BroadPhaseModel; the spec BroadPhaseSpec compares them pair for pair.
   */
-class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int) extends Bundle {
+class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, feedWidth: Int = 0) extends Bundle {
   val itemW = log2Ceil(maxSpheres)
   val countW = log2Ceil(maxSpheres + 1)
+  /** Optional (the AFU's): a world's table is coming, `num` spheres. The spheres then arrive on
+    * `feed` as they are written into the table, each once, in any order, up to `feedWidth` a
+    * cycle, and `start` (with the same num) once all are in: the level is chosen and the
+    * counters cleared meanwhile, so the first pass over the table is not run. Without `begin`
+    * (or without feed ports, where it is ignored), `start` runs that pass. */
+  val begin = Input(Bool())
+  val feed = Vec(feedWidth, Flipped(Valid(Vec(4, UInt(p.width.W)))))
   val start = Input(Bool())
   val num = Input(UInt(countW.W))
   val sphere = Vec(bp.lanes, new Bundle {
@@ -61,8 +68,11 @@ class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int) extends B
   val status = Output(new BroadPhaseStatus(SphereKeys.kWidth(p), countW))
 }
 
-class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency: Int = 1) extends Module {
+class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency: Int = 1, feedWidth: Int = 0) extends Module {
   require(maxSpheres >= 2 && maxSpheres <= (1 << 24), s"maxSpheres must be 2..2^24, got $maxSpheres")
+  // The fed spheres go through lanes 0 .. feedWidth-1's SphereKeys and CellExponents.
+  require(feedWidth >= 0 && feedWidth <= bp.lanes,
+    s"feedWidth (spheres fed a cycle) must be 0..lanes (${bp.lanes}), got $feedWidth")
   /** Buckets the table holds: the model's cap, and no more than 2 maxSpheres can use. */
   val tableLog2: Int = bp.tableLog2(maxSpheres)
   private val largeSlots = math.max(1, bp.largeMax)
@@ -70,8 +80,9 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     s"BroadPhase_${p.name}_n${maxSpheres}_b${tableLog2}_L${bp.largeMax}_k${bp.chunk}_c${bp.cellBits}_f${bp.filterFracBits}_w${bp.wordLog2}" +
       (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "") +
       (if (bp.bucketsPerSphereLog2 != BroadPhaseParams.default.bucketsPerSphereLog2) s"_s${bp.bucketsPerSphereLog2}" else "") +
-      (if (bp.cellSteps != BroadPhaseParams.default.cellSteps) s"_e${bp.cellSteps}" else "") + (if (bp.coarseChunks) "_x" else "")
-  val io = IO(new BroadPhaseIO(p, bp, maxSpheres))
+      (if (bp.cellSteps != BroadPhaseParams.default.cellSteps) s"_e${bp.cellSteps}" else "") + (if (bp.coarseChunks) "_x" else "") +
+      (if (feedWidth > 0) s"_t$feedWidth" else "")
+  val io = IO(new BroadPhaseIO(p, bp, maxSpheres, feedWidth))
   private val itemW = io.itemW
   private val countW = io.countW
   private val qWidth = SphereKeys.qWidth(bp)
@@ -101,11 +112,14 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val laneKeys = Seq.fill(bp.lanes)(Module(new SphereKeys(p, bp, keysLatency)))
   private val larges = Reg(Vec(largeSlots, new WorldKey(itemW, bp.cellBits, qWidth)))
 
-  private object S extends ChiselEnum { val idle, load, merge, classify, prefix, scatter, generate = Value }
+  private object S extends ChiselEnum { val idle, fill, load, merge, classify, prefix, scatter, generate = Value }
   private val state = RegInit(S.idle)
-  io.busy := state =/= S.idle
-  /** A new world starts: every block forgets the last one. */
-  private val starting = io.start && state === S.idle
+  io.busy := state =/= S.idle && state =/= S.fill
+  /** A new world starts (at begin, or at a start without one): every block forgets the last one. */
+  private val begin = io.begin && (feedWidth > 0).B // nothing can be fed without feed ports
+  private val starting = (io.start || begin) && state === S.idle
+  /** This world's table was fed (begin): lanes 0 .. feedWidth-1 hold its needs and tops. */
+  private val fed = RegInit(false.B)
 
   private val num = Reg(UInt(countW.W))
   private val usedLog2 = Reg(UInt(log2Ceil(tableLog2 + 1).W))
@@ -156,16 +170,20 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     def isLarge: Bool = large(o)
     def isSmall: Bool = !out.nonFinite && !isLarge
   }
+  private val filling = state === S.fill
   for ((lk, l) <- laneKeys.zipWithIndex) {
     io.sphere(l).addr := Mux(state === S.generate, gens(l).io.keyAddr, i(l)(itemW - 1, 0))
     lk.io.in.valid := RegNext(reading(l), false.B)
     lk.io.in.sphere := io.sphere(l).data
-    lk.io.in.level := Mux(state === S.load, 0.S, level) // need and top do not depend on the level
+    if (l < feedWidth) when(filling) { lk.io.in.valid := io.feed(l).valid; lk.io.in.sphere := io.feed(l).bits }
+    // need and top do not depend on the level
+    lk.io.in.level := Mux(state === S.load || filling, 0.S, level)
   }
+  private val fedNow = if (feedWidth > 0) PopCount(io.feed.map(f => f.valid && filling)) else 0.U
   private val keyed = (0 until ports).map { q =>
     Keyed(laneKeys(q), Pipeline(RegNext(i(q)(itemW - 1, 0)), keysLatency, true.B))
   }
-  inflight := inflight + PopCount(reading) - PopCount(laneKeys.map(_.io.out.valid))
+  inflight := inflight + PopCount(reading) + fedNow - PopCount(laneKeys.map(_.io.out.valid))
   for ((g, lk) <- gens.zip(laneKeys)) g.io.keyData := record(lk)
 
   private def feed(ce: CellExponentIn, valid: Bool, o: SphereKeys): Unit = {
@@ -178,11 +196,15 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val mergeSlots = bp.largeMax + 1
   private val mergeItems = bp.lanes * mergeSlots
   private val m = Reg(UInt(log2Ceil(mergeItems + 2).W)) // the merge's next item: lane m / slots, slot m % slots
-  if (!wideLoad) feed(cellExp.io.in.head, laneKeys.head.io.out.valid && state === S.load, laneKeys.head)
+  /** A fed world's needs are in lanes 0 .. feedWidth-1 alone: the merge stops after them. */
+  private val mergeEnd = if (feedWidth > 0) Mux(fed, (feedWidth * mergeSlots).U, mergeItems.U) else mergeItems.U
+  // Fed spheres leave SphereKeys up to its latency after the state has moved to load.
+  private val loading = state === S.load || filling
+  if (!wideLoad) feed(cellExp.io.in.head, laneKeys.head.io.out.valid && loading, laneKeys.head)
   else {
     for ((e, lk) <- laneExps.zip(laneKeys)) {
       e.io.clear := starting
-      feed(e.io.in.head, lk.io.out.valid && state === S.load, lk)
+      feed(e.io.in.head, lk.io.out.valid && loading, lk)
     }
     // Every lane's filled slots, each with the lane's top (the largest of them is the top).
     val needs = VecInit(laneExps.flatMap(e => e.io.kept))
@@ -192,7 +214,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     for ((ce, d) <- cellExp.io.in.zipWithIndex) {
       val at = m +& d.U
       val idx = at(log2Ceil(mergeItems) - 1, 0)
-      ce.valid := state === S.merge && at < mergeItems.U && filled(idx)
+      ce.valid := state === S.merge && at < mergeEnd && filled(idx)
       ce.need := needs(idx); ce.needNone := false.B // an empty need is minK, as the lane kept it
       ce.top := tops(idx); ce.topNone := !anyTops(idx)
       ce.nonFinite := false.B
@@ -279,17 +301,24 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private def advance(): Unit = for (l <- 0 until bp.lanes) when(reading(l)) { i(l) := i(l) + 1.U }
   /** Classify and scatter: the ports' halves; other lanes read nothing. */
   private def restart(): Unit = for (l <- 0 until bp.lanes) i(l) := (if (l < ports) from(l) else 0.U)
-  when(state =/= S.idle) { st.cycTotal := st.cycTotal + 1.U }
+  // The broad phase's own cycles: from start (a fed table's arrival is the link's time).
+  when(state =/= S.idle && !filling) { st.cycTotal := st.cycTotal + 1.U }
   switch(state) {
     is(S.idle) {
-      when(io.start) {
+      when(io.start || begin) {
         val z = WireDefault(0.U.asTypeOf(st))
         num := io.num; usedLog2 := bucketsLog2For(io.num); largeCount := 0.U
-        // The load pass's slices, from io.num (num is not written yet).
-        for (l <- 0 until bp.lanes) i(l) := cutOf(io.num, l)
+        // The load pass's slices, from io.num (num is not written yet); a fed table reads none.
+        for (l <- 0 until bp.lanes) i(l) := Mux(io.start, cutOf(io.num, l), cutOf(io.num, l + 1))
+        fed := !io.start
         when(io.num > maxSpheres.U) { z.tooMany := true.B; st := z }
-          .otherwise { st := z; state := S.load }
+          .otherwise { st := z; state := Mux(io.start, S.load, S.fill) }
       }
+    }
+    is(S.fill) {
+      // The level is chosen as the spheres arrive; the load pass then only waits for the last of
+      // them to leave SphereKeys and for the clear, and the merge takes the fed lanes' needs.
+      when(io.start) { state := S.load }
     }
     is(S.load) {
       st.cycLoad := st.cycLoad + 1.U
@@ -301,7 +330,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     is(S.merge) {
       st.cycLoad := st.cycLoad + 1.U
       m := m + 2.U
-      when(m + 2.U >= mergeItems.U) { state := S.classify; restart() } // the last values land this cycle
+      when(m + 2.U >= mergeEnd) { state := S.classify; restart() } // the last values land this cycle
     }
     is(S.classify) {
       st.cycClassify := st.cycClassify + 1.U

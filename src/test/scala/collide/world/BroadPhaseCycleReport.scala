@@ -61,6 +61,7 @@ object BroadPhaseCycleReport {
     var chunk = BroadPhaseParams.default.chunk
     var coarse = false
     var team = BroadPhaseParams.default.team
+    var feed = 0
     args.sliding(2, 2).foreach {
       case Array("--sizes", v) => sizes = v.split(',').map(_.trim.toInt).toSeq
       case Array("--max", v)   => maxSpheres = v.toInt
@@ -74,8 +75,10 @@ object BroadPhaseCycleReport {
       case Array("--chunk", v) => chunk = v.trim.toInt
       case Array("--coarse-chunks", v) => coarse = v.trim.toBoolean
       case Array("--team", v) => team = v.trim.toInt
-      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --cell-steps, --chunk, --coarse-chunks, --out)")
+      case Array("--feed", v) => feed = v.trim.toInt
+      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --cell-steps, --chunk, --coarse-chunks, --team, --feed, --out)")
     }
+    require(feed >= 0 && lanes.forall(feed <= _), s"--feed (spheres fed a cycle as the table arrives, the AFU's spheres a line) must be 0..the lanes, got $feed")
     require(sizes.forall(n => n >= 1 && n <= maxSpheres), s"--sizes must be 1..--max ($maxSpheres)")
     require(lanes.nonEmpty && lanes.forall(l => l >= 1 && l <= 16), s"--lanes must be 1..16, got ${lanes.mkString(",")}")
     require(ports.nonEmpty && ports.forall(BroadPhaseParams.sortPortChoices.contains), s"--sort-ports must be among ${BroadPhaseParams.sortPortChoices.mkString(",")}, got ${ports.mkString(",")}")
@@ -86,18 +89,18 @@ object BroadPhaseCycleReport {
       s"huge" -> huge(rng, n - 4, 4))) ++ files.map(readSpheres)
     require(worlds.forall(_._2.length <= maxSpheres), s"a world has more than --max ($maxSpheres) spheres")
     val header = "world,spheres,buckets,cells,chunks,scanned,probes,candidates,large," +
-      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team"
+      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team,feed"
     val rows = scala.collection.mutable.ArrayBuffer(header)
     for (l <- lanes; q <- ports if q <= l) {
       val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l, sortPorts = q, wordLog2 = wordLog2,
         bucketsPerSphereLog2 = bpsLog2, cellSteps = cellSteps, chunk = chunk, coarseChunks = coarse, team = team))
-      RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
+      RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres, feedWidth = feed), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
         dut.clock.setTimeout(0)
         for ((name, ws) <- worlds) {
           val world = bits(FloatFormat.fp32, ws)
           val want = model.run(world)
           val table = world.map(model.converted)
-          val (pairs, _) = BroadPhaseDriver.run(dut, table, () => true, Long.MaxValue) { _ =>
+          val (pairs, _, _) = BroadPhaseDriver.run(dut, table, () => true, Long.MaxValue, if (feed > 0) Some(rng) else None) { _ =>
             throw new IllegalStateException(s"$name ${ws.length}: the broad phase never finished")
           }
           require(pairs.sorted == want.candidates.sorted, s"$name ${ws.length}: the RTL's pairs differ from the model's")
@@ -106,7 +109,7 @@ object BroadPhaseCycleReport {
           val c = model.cycles(want, lanes = l, scpus = 16, sortRate = q)
           val row = Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
             v(s.large), v(s.cycLoad), v(s.cycClassify), v(s.cycPrefix), v(s.cycScatter), v(s.cycGrid), v(s.cycLarge), v(s.cycTotal),
-            c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l, q, wordLog2, cellSteps, chunk, coarse, team).mkString(",")
+            c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l, q, wordLog2, cellSteps, chunk, coarse, team, feed).mkString(",")
           println(row)
           rows += row
         }

@@ -7,10 +7,39 @@ import chiseltest._
   * port (one cycle of read latency, as a block RAM) and takes a pair from each lane whenever
   * `ready()` allows, until busy falls. Returns the pairs in the order taken (lane order within
   * a cycle) and the cycles from start; after `maxCycles` it gives the pairs so far to `stuck`,
-  * which must not return. */
+  * which must not return.
+  *
+  * With `fed` (the BroadPhase's feed ports, as the AFU's table writes drive them), the world
+  * begins first and its spheres arrive on the feed a line of `feed.length` consecutive spheres a
+  * cycle, the lines in a random order with random idle cycles between them (a link returns
+  * lines out of order), the last line partly empty; start follows once all are in. */
 object BroadPhaseDriver {
-  def run(dut: BroadPhase, table: IndexedSeq[Seq[BigInt]], ready: () => Boolean, maxCycles: Long)
-         (stuck: Seq[(Int, Int)] => Nothing): (Seq[(Int, Int)], Long) = {
+  /** Feeds the table through the feed ports in shuffled lines; returns the cycles it took. */
+  private def feedTable(dut: BroadPhase, table: IndexedSeq[Seq[BigInt]], rng: scala.util.Random): Long = {
+    val width = dut.io.feed.length
+    dut.io.num.poke(table.length.U)
+    dut.io.begin.poke(true.B); dut.clock.step(); dut.io.begin.poke(false.B)
+    var cycles = 1L
+    for (line <- rng.shuffle((0 until (table.length + width - 1) / width).toList)) {
+      while (rng.nextInt(4) == 0) { dut.clock.step(); cycles += 1 }
+      for ((f, s) <- dut.io.feed.zipWithIndex) {
+        val at = line * width + s
+        f.valid.poke((at < table.length).B)
+        if (at < table.length) table(at).zipWithIndex.foreach { case (b, c) => f.bits(c).poke(b.U) }
+      }
+      dut.clock.step(); cycles += 1
+      dut.io.feed.foreach(_.valid.poke(false.B))
+    }
+    cycles
+  }
+
+  /** As above; with `fed`, also the cycles the feed took (from begin to start). */
+  def run(dut: BroadPhase, table: IndexedSeq[Seq[BigInt]], ready: () => Boolean, maxCycles: Long,
+          fed: Option[scala.util.Random] = None)
+         (stuck: Seq[(Int, Int)] => Nothing): (Seq[(Int, Int)], Long, Long) = {
+    dut.io.begin.poke(false.B)
+    dut.io.feed.foreach(_.valid.poke(false.B))
+    val feedCycles = fed.map(rng => feedTable(dut, table, rng)).getOrElse(0L)
     dut.io.num.poke(table.length.U)
     dut.io.start.poke(true.B); dut.clock.step(); dut.io.start.poke(false.B)
     val pairs = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
@@ -30,6 +59,6 @@ object BroadPhaseDriver {
       }
       if (cycles > maxCycles) stuck(pairs.toSeq)
     }
-    (pairs.toSeq, cycles)
+    (pairs.toSeq, cycles, feedCycles)
   }
 }

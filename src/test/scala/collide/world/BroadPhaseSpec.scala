@@ -28,9 +28,11 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   /** Serves the sphere table (one cycle of read latency) and takes the pairs, ready with
     * probability `readyOdds`. */
-  private def run(dut: BroadPhase, table: IndexedSeq[Seq[BigInt]], rng: scala.util.Random, readyOdds: Double): Run = {
+  private def run(dut: BroadPhase, table: IndexedSeq[Seq[BigInt]], rng: scala.util.Random, readyOdds: Double,
+                  fed: Boolean = false): Run = {
     val limit = 100000L + 40L * table.length * table.length
-    val (pairs, cycles) = BroadPhaseDriver.run(dut, table, () => rng.nextDouble() < readyOdds, limit) { got =>
+    val (pairs, cycles, feedCycles) =
+      BroadPhaseDriver.run(dut, table, () => rng.nextDouble() < readyOdds, limit, if (fed) Some(rng) else None) { got =>
       val s = dut.io.status
       fail(s"the broad phase never finished: ${table.length} spheres, cycles load ${s.cycLoad.peek().litValue} " +
         s"classify ${s.cycClassify.peek().litValue} prefix ${s.cycPrefix.peek().litValue} scatter ${s.cycScatter.peek().litValue} " +
@@ -38,17 +40,18 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
     val s = dut.io.status
     val fields = Seq("excluded" -> s.excluded, "large" -> s.large, "small" -> s.small, "candidates" -> s.candidates,
-      "cells" -> s.cells, "chunks" -> s.chunks, "cycTotal" -> s.cycTotal, "cycPrefix" -> s.cycPrefix, "cycGrid" -> s.cycGrid, "cycLarge" -> s.cycLarge)
-      .map { case (n, d) => n -> d.peek().litValue }.toMap
+      "cells" -> s.cells, "chunks" -> s.chunks, "cycTotal" -> s.cycTotal, "cycLoad" -> s.cycLoad, "cycPrefix" -> s.cycPrefix,
+      "cycGrid" -> s.cycGrid, "cycLarge" -> s.cycLarge)
+      .map { case (n, d) => n -> d.peek().litValue }.toMap + ("feedCycles" -> BigInt(feedCycles))
     val flags = Seq("tooMany" -> s.tooMany, "cellOverflow" -> s.cellOverflow, "largeOverflow" -> s.largeOverflow,
       "badBucket" -> s.badBucket, "sortMismatch" -> s.sortMismatch).map { case (n, b) => n -> (if (b.peek().litToBoolean) BigInt(1) else BigInt(0)) }
     Run(pairs, fields ++ flags + ("level" -> s.level.peek().litValue), cycles)
   }
 
   private def check(dut: BroadPhase, model: BroadPhaseModel, label: String, world: IndexedSeq[WorldSphere],
-                    rng: scala.util.Random, readyOdds: Double): Run = {
+                    rng: scala.util.Random, readyOdds: Double, fed: Boolean = false): Run = {
     val want = model.run(world)
-    val got = run(dut, world.map(model.converted), rng, readyOdds)
+    val got = run(dut, world.map(model.converted), rng, readyOdds, fed)
     val where = s"$label (${model.cfg.name}, ${world.length} spheres, level ${want.level})"
     Seq("tooMany", "cellOverflow", "largeOverflow", "badBucket", "sortMismatch").foreach { f =>
       assert(got.status(f) == 0, s"$where: $f raised")
@@ -81,6 +84,17 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     val words = math.max(1, model.bucketsFor(world.length) / perWord)
     assert(got.status("cycPrefix") == words + 3, s"$where: prefix sum of ${got.status("cycPrefix")} cycles, want ${words + 3} " +
       s"(${model.bucketsFor(world.length)} buckets)")
+    if (fed) {
+      // A fed table's level is chosen as it arrives: after start only the last spheres' keys and
+      // the merge of the fed lanes' needs remain, and, if the feed was shorter than the counters'
+      // clear (a word a cycle), the rest of the clear. Reading the table again would take num / lanes.
+      val feedWidth = dut.io.feed.length
+      val merge = if (model.bp.lanes > 1) (feedWidth * (model.bp.largeMax + 1) + 1) / 2 else 0
+      val clearLeft = math.max(0L, words - got.status("feedCycles").toLong)
+      val most = merge + clearLeft + 4
+      assert(got.status("cycLoad") <= most, s"$where: ${got.status("cycLoad")} load cycles after a fed table, at most $most " +
+        s"(${got.status("feedCycles")} cycles of feed)")
+    }
     got.copy(modelStats = Some(st))
   }
 
@@ -200,6 +214,30 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
         check(dut, model, s"$label: radii over 1:1000", bits(FloatFormat.fp32, mixedRadii(rng, 70)), rng, 0.8)
       }
     }
+  }
+
+  /** Worlds fed as the AFU's table writes feed them, `feedWidth` spheres a cycle, alternating with
+    * worlds read from the table (start without begin) on the same BroadPhase. */
+  private def fedWorlds(seedName: String, bp: BroadPhaseParams, feedWidth: Int, tag: String, pick: Seq[(String, Seq[S])] => Seq[(String, Seq[S])]): Unit = {
+    val rng = Seeds.rng(seedName)
+    val model = new BroadPhaseModel(ScpuConfig.fp32, bp)
+    test(new BroadPhase(ScpuConfig.fp32.params, bp, maxSpheres, feedWidth = feedWidth)).withAnnotations(annos) { dut =>
+      dut.clock.setTimeout(0)
+      for (((label, w), n) <- pick(worlds(rng)).zipWithIndex) {
+        val fed = n % 3 != 2
+        val r = check(dut, model, label, bits(FloatFormat.fp32, w), rng, readyOdds = 0.7, fed = fed)
+        println(f"[BroadPhaseSpec] $tag$label%-40s ${w.length}%4d spheres ${if (fed) "fed " else "read"} load ${r.status("cycLoad")}%4s of ${r.cycles}%6d cycles")
+      }
+    }
+  }
+
+  it should "choose the level as the table is fed, a line of four spheres a cycle in any order, then find the same candidates (four lanes, four ports, coarse chunks), as well as after reading the table" in {
+    fedWorlds("BroadPhaseSpec-fed", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32, cellSteps = 2), 4, "fed, four a line: ", ws => ws)
+  }
+
+  it should "take a fed table with fewer feed ports than lanes (two of four lanes' needs merged) and with one lane" in {
+    fedWorlds("BroadPhaseSpec-fed-two", BroadPhaseParams.fourLanesTwoPorts, 2, "fed, two a line: ", _.filter(_._2.length <= 120))
+    fedWorlds("BroadPhaseSpec-fed-one", BroadPhaseParams.default, 1, "fed, one lane: ", _.filter(_._2.length <= 120))
   }
 
   // fp16 in every run; bf16 and fp64 (their keys are covered by SphereKeysSpec) with SLOW=1.
