@@ -223,9 +223,9 @@ def report(rows, out, machine_md, lanes, ports=1):
               ": the broad phase takes "
               f"{min(per):.1f}-{max(per):.1f} cycles a sphere of the world (one run: {min(one):.1f}-{max(one):.1f}; slabs re-read their ghosts;",
               f"  its {lanes} candidate lane{plural} and its sort's passes of {spheres_a_cycle}),",
-              "  while the link brings four spheres a line and a line a cycle. Closing that gap needs fewer passes over",
-              "  the table (with coarse chunks its four passes are about half the broad phase's cycles on the uniform",
-              "  clouds) and a faster grid (docs/afu.md, \"World mode\", \"Lanes and sort ports\", \"Coarse chunks\").",
+              "  while the link brings four spheres a line and a line a cycle. The cell level is chosen as the table",
+              "  arrives, so what follows the table is the sort's three passes and the grid (docs/afu.md, \"World mode\",",
+              "  \"Coarse chunks\", \"The fed table and eight sort ports\").",
               ] + diamond_note + [
               "- Above 4,096 spheres (the world preset's table; a record names i and j in 12 bits each) every",
               "  slab along x is a run of its own, with the per-call costs each time and its ghosts read twice;",

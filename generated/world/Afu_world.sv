@@ -16458,30 +16458,30 @@ module CellExponent_fp32_L16_c20_e2_p2_world(
 endmodule
 
 // VCS coverage exclude_file
-module tables_0_512x192_world(
+module tables_0_512x176_world(
   input  [8:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [191:0] R0_data,
+  output [175:0] R0_data,
   input  [8:0]   R1_addr,
   input          R1_en,
                  R1_clk,
-  output [191:0] R1_data,
+  output [175:0] R1_data,
   input  [8:0]   R2_addr,
   input          R2_en,
                  R2_clk,
-  output [191:0] R2_data,
+  output [175:0] R2_data,
   input  [8:0]   R3_addr,
   input          R3_en,
                  R3_clk,
-  output [191:0] R3_data,
+  output [175:0] R3_data,
   input  [8:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [191:0] W0_data
+  input  [175:0] W0_data
 );
 
-  reg [191:0] Memory[0:511];
+  reg [175:0] Memory[0:511];
   reg         _R0_en_d0;
   reg [8:0]   _R0_addr_d0;
   always @(posedge R0_clk) begin
@@ -16510,29 +16510,29 @@ module tables_0_512x192_world(
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 192'bx;
-  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 192'bx;
-  assign R2_data = _R2_en_d0 ? Memory[_R2_addr_d0] : 192'bx;
-  assign R3_data = _R3_en_d0 ? Memory[_R3_addr_d0] : 192'bx;
+  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 176'bx;
+  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 176'bx;
+  assign R2_data = _R2_en_d0 ? Memory[_R2_addr_d0] : 176'bx;
+  assign R3_data = _R3_en_d0 ? Memory[_R3_addr_d0] : 176'bx;
 endmodule
 
 // VCS coverage exclude_file
-module mem_512x192_world(
+module mem_512x176_world(
   input  [8:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [191:0] R0_data,
+  output [175:0] R0_data,
   input  [8:0]   R1_addr,
   input          R1_en,
                  R1_clk,
-  output [191:0] R1_data,
+  output [175:0] R1_data,
   input  [8:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [191:0] W0_data
+  input  [175:0] W0_data
 );
 
-  reg [191:0] Memory[0:511];
+  reg [175:0] Memory[0:511];
   reg         _R0_en_d0;
   reg [8:0]   _R0_addr_d0;
   always @(posedge R0_clk) begin
@@ -16549,26 +16549,26 @@ module mem_512x192_world(
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 192'bx;
-  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 192'bx;
+  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 176'bx;
+  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 176'bx;
 endmodule
 
 // VCS coverage exclude_file
-module entries_2048x13_world(
-  input  [10:0] RW0_addr,
+module entries_1024x13_world(
+  input  [9:0]  RW0_addr,
   input         RW0_en,
                 RW0_clk,
                 RW0_wmode,
   input  [12:0] RW0_wdata,
   output [12:0] RW0_rdata,
-  input  [10:0] W0_addr,
+  input  [9:0]  W0_addr,
   input         W0_en,
                 W0_clk,
   input  [12:0] W0_data
 );
 
-  reg [12:0] Memory[0:2047];
-  reg [10:0] _RW0_raddr_d0;
+  reg [12:0] Memory[0:1023];
+  reg [9:0]  _RW0_raddr_d0;
   reg        _RW0_ren_d0;
   reg        _RW0_rmode_d0;
   always @(posedge RW0_clk) begin
@@ -16585,7 +16585,7 @@ module entries_2048x13_world(
   assign RW0_rdata = _RW0_ren_d0 & ~_RW0_rmode_d0 ? Memory[_RW0_raddr_d0] : 13'bx;
 endmodule
 
-module BucketSort_n2048_b13_w4_c16_p2_i12_world(
+module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   input         clock,
                 reset,
   input  [3:0]  io_usedLog2,
@@ -16603,7 +16603,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
   input  [12:0] io_in_1_bits_bucket,
   input  [11:0] io_in_1_bits_item,
   input  [12:0] io_lookup_0_bucket,
-  output [11:0] io_lookup_0_begin,
+  output [10:0] io_lookup_0_begin,
                 io_lookup_0_end,
                 io_lookup_0_word_0,
                 io_lookup_0_word_1,
@@ -16622,7 +16622,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_0_word_14,
                 io_lookup_0_word_15,
   input  [12:0] io_lookup_1_bucket,
-  output [11:0] io_lookup_1_begin,
+  output [10:0] io_lookup_1_begin,
                 io_lookup_1_end,
                 io_lookup_1_word_0,
                 io_lookup_1_word_1,
@@ -16641,7 +16641,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_1_word_14,
                 io_lookup_1_word_15,
   input  [12:0] io_lookup_2_bucket,
-  output [11:0] io_lookup_2_begin,
+  output [10:0] io_lookup_2_begin,
                 io_lookup_2_end,
                 io_lookup_2_word_0,
                 io_lookup_2_word_1,
@@ -16660,7 +16660,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_2_word_14,
                 io_lookup_2_word_15,
   input  [12:0] io_lookup_3_bucket,
-  output [11:0] io_lookup_3_begin,
+  output [10:0] io_lookup_3_begin,
                 io_lookup_3_end,
                 io_lookup_3_word_0,
                 io_lookup_3_word_1,
@@ -16679,7 +16679,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_3_word_14,
                 io_lookup_3_word_15,
   input  [12:0] io_lookup_4_bucket,
-  output [11:0] io_lookup_4_begin,
+  output [10:0] io_lookup_4_begin,
                 io_lookup_4_end,
                 io_lookup_4_word_0,
                 io_lookup_4_word_1,
@@ -16698,7 +16698,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_4_word_14,
                 io_lookup_4_word_15,
   input  [12:0] io_lookup_5_bucket,
-  output [11:0] io_lookup_5_begin,
+  output [10:0] io_lookup_5_begin,
                 io_lookup_5_end,
                 io_lookup_5_word_0,
                 io_lookup_5_word_1,
@@ -16717,7 +16717,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_5_word_14,
                 io_lookup_5_word_15,
   input  [12:0] io_lookup_6_bucket,
-  output [11:0] io_lookup_6_begin,
+  output [10:0] io_lookup_6_begin,
                 io_lookup_6_end,
                 io_lookup_6_word_0,
                 io_lookup_6_word_1,
@@ -16736,7 +16736,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_6_word_14,
                 io_lookup_6_word_15,
   input  [12:0] io_lookup_7_bucket,
-  output [11:0] io_lookup_7_begin,
+  output [10:0] io_lookup_7_begin,
                 io_lookup_7_end,
                 io_lookup_7_word_0,
                 io_lookup_7_word_1,
@@ -16755,7 +16755,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_7_word_14,
                 io_lookup_7_word_15,
   input  [12:0] io_lookup_8_bucket,
-  output [11:0] io_lookup_8_begin,
+  output [10:0] io_lookup_8_begin,
                 io_lookup_8_end,
                 io_lookup_8_word_0,
                 io_lookup_8_word_1,
@@ -16774,7 +16774,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_8_word_14,
                 io_lookup_8_word_15,
   input  [12:0] io_lookup_9_bucket,
-  output [11:0] io_lookup_9_begin,
+  output [10:0] io_lookup_9_begin,
                 io_lookup_9_end,
                 io_lookup_9_word_0,
                 io_lookup_9_word_1,
@@ -16793,7 +16793,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_9_word_14,
                 io_lookup_9_word_15,
   input  [12:0] io_lookup_10_bucket,
-  output [11:0] io_lookup_10_begin,
+  output [10:0] io_lookup_10_begin,
                 io_lookup_10_end,
                 io_lookup_10_word_0,
                 io_lookup_10_word_1,
@@ -16812,7 +16812,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_10_word_14,
                 io_lookup_10_word_15,
   input  [12:0] io_lookup_11_bucket,
-  output [11:0] io_lookup_11_begin,
+  output [10:0] io_lookup_11_begin,
                 io_lookup_11_end,
                 io_lookup_11_word_0,
                 io_lookup_11_word_1,
@@ -16831,7 +16831,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_11_word_14,
                 io_lookup_11_word_15,
   input  [12:0] io_lookup_12_bucket,
-  output [11:0] io_lookup_12_begin,
+  output [10:0] io_lookup_12_begin,
                 io_lookup_12_end,
                 io_lookup_12_word_0,
                 io_lookup_12_word_1,
@@ -16850,7 +16850,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_12_word_14,
                 io_lookup_12_word_15,
   input  [12:0] io_lookup_13_bucket,
-  output [11:0] io_lookup_13_begin,
+  output [10:0] io_lookup_13_begin,
                 io_lookup_13_end,
                 io_lookup_13_word_0,
                 io_lookup_13_word_1,
@@ -16869,7 +16869,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_13_word_14,
                 io_lookup_13_word_15,
   input  [12:0] io_lookup_14_bucket,
-  output [11:0] io_lookup_14_begin,
+  output [10:0] io_lookup_14_begin,
                 io_lookup_14_end,
                 io_lookup_14_word_0,
                 io_lookup_14_word_1,
@@ -16888,7 +16888,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_14_word_14,
                 io_lookup_14_word_15,
   input  [12:0] io_lookup_15_bucket,
-  output [11:0] io_lookup_15_begin,
+  output [10:0] io_lookup_15_begin,
                 io_lookup_15_end,
                 io_lookup_15_word_0,
                 io_lookup_15_word_1,
@@ -16906,139 +16906,139 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
                 io_lookup_15_word_13,
                 io_lookup_15_word_14,
                 io_lookup_15_word_15,
-  input  [10:0] io_entry_0_addr,
+  input  [9:0]  io_entry_0_addr,
   output [11:0] io_entry_0_item,
   output        io_entry_0_mark,
-  input  [10:0] io_entry_1_addr,
+  input  [9:0]  io_entry_1_addr,
   output [11:0] io_entry_1_item,
   output        io_entry_1_mark,
-  input  [10:0] io_entry_2_addr,
+  input  [9:0]  io_entry_2_addr,
   output [11:0] io_entry_2_item,
   output        io_entry_2_mark,
-  input  [10:0] io_entry_3_addr,
+  input  [9:0]  io_entry_3_addr,
   output [11:0] io_entry_3_item,
   output        io_entry_3_mark,
-  input  [10:0] io_entry_4_addr,
+  input  [9:0]  io_entry_4_addr,
   output [11:0] io_entry_4_item,
   output        io_entry_4_mark,
-  input  [10:0] io_entry_5_addr,
+  input  [9:0]  io_entry_5_addr,
   output [11:0] io_entry_5_item,
   output        io_entry_5_mark,
-  input  [10:0] io_entry_6_addr,
+  input  [9:0]  io_entry_6_addr,
   output [11:0] io_entry_6_item,
   output        io_entry_6_mark,
-  input  [10:0] io_entry_7_addr,
+  input  [9:0]  io_entry_7_addr,
   output [11:0] io_entry_7_item,
   output        io_entry_7_mark,
-  input  [10:0] io_entry_8_addr,
+  input  [9:0]  io_entry_8_addr,
   output [11:0] io_entry_8_item,
   output        io_entry_8_mark,
-  input  [10:0] io_entry_9_addr,
+  input  [9:0]  io_entry_9_addr,
   output [11:0] io_entry_9_item,
   output        io_entry_9_mark,
-  input  [10:0] io_entry_10_addr,
+  input  [9:0]  io_entry_10_addr,
   output [11:0] io_entry_10_item,
   output        io_entry_10_mark,
-  input  [10:0] io_entry_11_addr,
+  input  [9:0]  io_entry_11_addr,
   output [11:0] io_entry_11_item,
   output        io_entry_11_mark,
-  input  [10:0] io_entry_12_addr,
+  input  [9:0]  io_entry_12_addr,
   output [11:0] io_entry_12_item,
   output        io_entry_12_mark,
-  input  [10:0] io_entry_13_addr,
+  input  [9:0]  io_entry_13_addr,
   output [11:0] io_entry_13_item,
   output        io_entry_13_mark,
-  input  [10:0] io_entry_14_addr,
+  input  [9:0]  io_entry_14_addr,
   output [11:0] io_entry_14_item,
   output        io_entry_14_mark,
-  input  [10:0] io_entry_15_addr,
+  input  [9:0]  io_entry_15_addr,
   output [11:0] io_entry_15_item,
   output        io_entry_15_mark,
   input         io_mark_0_valid,
-  input  [10:0] io_mark_0_bits_addr,
+  input  [9:0]  io_mark_0_bits_addr,
   input  [11:0] io_mark_0_bits_item,
   input         io_mark_1_valid,
-  input  [10:0] io_mark_1_bits_addr,
+  input  [9:0]  io_mark_1_bits_addr,
   input  [11:0] io_mark_1_bits_item,
   input         io_mark_2_valid,
-  input  [10:0] io_mark_2_bits_addr,
+  input  [9:0]  io_mark_2_bits_addr,
   input  [11:0] io_mark_2_bits_item,
   input         io_mark_3_valid,
-  input  [10:0] io_mark_3_bits_addr,
+  input  [9:0]  io_mark_3_bits_addr,
   input  [11:0] io_mark_3_bits_item,
   input         io_mark_4_valid,
-  input  [10:0] io_mark_4_bits_addr,
+  input  [9:0]  io_mark_4_bits_addr,
   input  [11:0] io_mark_4_bits_item,
   input         io_mark_5_valid,
-  input  [10:0] io_mark_5_bits_addr,
+  input  [9:0]  io_mark_5_bits_addr,
   input  [11:0] io_mark_5_bits_item,
   input         io_mark_6_valid,
-  input  [10:0] io_mark_6_bits_addr,
+  input  [9:0]  io_mark_6_bits_addr,
   input  [11:0] io_mark_6_bits_item,
   input         io_mark_7_valid,
-  input  [10:0] io_mark_7_bits_addr,
+  input  [9:0]  io_mark_7_bits_addr,
   input  [11:0] io_mark_7_bits_item,
   input         io_mark_8_valid,
-  input  [10:0] io_mark_8_bits_addr,
+  input  [9:0]  io_mark_8_bits_addr,
   input  [11:0] io_mark_8_bits_item,
   input         io_mark_9_valid,
-  input  [10:0] io_mark_9_bits_addr,
+  input  [9:0]  io_mark_9_bits_addr,
   input  [11:0] io_mark_9_bits_item,
   input         io_mark_10_valid,
-  input  [10:0] io_mark_10_bits_addr,
+  input  [9:0]  io_mark_10_bits_addr,
   input  [11:0] io_mark_10_bits_item,
   input         io_mark_11_valid,
-  input  [10:0] io_mark_11_bits_addr,
+  input  [9:0]  io_mark_11_bits_addr,
   input  [11:0] io_mark_11_bits_item,
   input         io_mark_12_valid,
-  input  [10:0] io_mark_12_bits_addr,
+  input  [9:0]  io_mark_12_bits_addr,
   input  [11:0] io_mark_12_bits_item,
   input         io_mark_13_valid,
-  input  [10:0] io_mark_13_bits_addr,
+  input  [9:0]  io_mark_13_bits_addr,
   input  [11:0] io_mark_13_bits_item,
   input         io_mark_14_valid,
-  input  [10:0] io_mark_14_bits_addr,
+  input  [9:0]  io_mark_14_bits_addr,
   input  [11:0] io_mark_14_bits_item,
   input         io_mark_15_valid,
-  input  [10:0] io_mark_15_bits_addr,
+  input  [9:0]  io_mark_15_bits_addr,
   input  [11:0] io_mark_15_bits_item,
-  output [11:0] io_counted,
+  output [10:0] io_counted,
                 io_scattered,
   output        io_badBucket
 );
 
-  wire [11:0]  oldWord_1_15;
-  wire [11:0]  oldWord_1_14;
-  wire [11:0]  oldWord_1_13;
-  wire [11:0]  oldWord_1_12;
-  wire [11:0]  oldWord_1_11;
-  wire [11:0]  oldWord_1_10;
-  wire [11:0]  oldWord_1_9;
-  wire [11:0]  oldWord_1_8;
-  wire [11:0]  oldWord_1_7;
-  wire [11:0]  oldWord_1_6;
-  wire [11:0]  oldWord_1_5;
-  wire [11:0]  oldWord_1_4;
-  wire [11:0]  oldWord_1_3;
-  wire [11:0]  oldWord_1_2;
-  wire [11:0]  oldWord_1_1;
-  wire [11:0]  oldWord_1_0;
-  wire [11:0]  oldWord_15;
-  wire [11:0]  oldWord_14;
-  wire [11:0]  oldWord_13;
-  wire [11:0]  oldWord_12;
-  wire [11:0]  oldWord_11;
-  wire [11:0]  oldWord_10;
-  wire [11:0]  oldWord_9;
-  wire [11:0]  oldWord_8;
-  wire [11:0]  oldWord_7;
-  wire [11:0]  oldWord_6;
-  wire [11:0]  oldWord_5;
-  wire [11:0]  oldWord_4;
-  wire [11:0]  oldWord_3;
-  wire [11:0]  oldWord_2;
-  wire [11:0]  oldWord_1;
-  wire [11:0]  oldWord_0;
+  wire [10:0]  oldWord_1_15;
+  wire [10:0]  oldWord_1_14;
+  wire [10:0]  oldWord_1_13;
+  wire [10:0]  oldWord_1_12;
+  wire [10:0]  oldWord_1_11;
+  wire [10:0]  oldWord_1_10;
+  wire [10:0]  oldWord_1_9;
+  wire [10:0]  oldWord_1_8;
+  wire [10:0]  oldWord_1_7;
+  wire [10:0]  oldWord_1_6;
+  wire [10:0]  oldWord_1_5;
+  wire [10:0]  oldWord_1_4;
+  wire [10:0]  oldWord_1_3;
+  wire [10:0]  oldWord_1_2;
+  wire [10:0]  oldWord_1_1;
+  wire [10:0]  oldWord_1_0;
+  wire [10:0]  oldWord_15;
+  wire [10:0]  oldWord_14;
+  wire [10:0]  oldWord_13;
+  wire [10:0]  oldWord_12;
+  wire [10:0]  oldWord_11;
+  wire [10:0]  oldWord_10;
+  wire [10:0]  oldWord_9;
+  wire [10:0]  oldWord_8;
+  wire [10:0]  oldWord_7;
+  wire [10:0]  oldWord_6;
+  wire [10:0]  oldWord_5;
+  wire [10:0]  oldWord_4;
+  wire [10:0]  oldWord_3;
+  wire [10:0]  oldWord_2;
+  wire [10:0]  oldWord_1;
+  wire [10:0]  oldWord_0;
   wire [12:0]  _entries_15_ext_RW0_rdata;
   wire [12:0]  _entries_14_ext_RW0_rdata;
   wire [12:0]  _entries_13_ext_RW0_rdata;
@@ -17055,97 +17055,96 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
   wire [12:0]  _entries_2_ext_RW0_rdata;
   wire [12:0]  _entries_1_ext_RW0_rdata;
   wire [12:0]  _entries_0_ext_RW0_rdata;
-  wire [191:0] _cursors_0_ext_R0_data;
-  wire [191:0] _cursors_0_ext_R1_data;
-  wire [191:0] _tables_15_ext_R0_data;
-  wire [191:0] _tables_15_ext_R1_data;
-  wire [191:0] _tables_14_ext_R0_data;
-  wire [191:0] _tables_14_ext_R1_data;
-  wire [191:0] _tables_13_ext_R0_data;
-  wire [191:0] _tables_13_ext_R1_data;
-  wire [191:0] _tables_12_ext_R0_data;
-  wire [191:0] _tables_12_ext_R1_data;
-  wire [191:0] _tables_11_ext_R0_data;
-  wire [191:0] _tables_11_ext_R1_data;
-  wire [191:0] _tables_10_ext_R0_data;
-  wire [191:0] _tables_10_ext_R1_data;
-  wire [191:0] _tables_9_ext_R0_data;
-  wire [191:0] _tables_9_ext_R1_data;
-  wire [191:0] _tables_8_ext_R0_data;
-  wire [191:0] _tables_8_ext_R1_data;
-  wire [191:0] _tables_7_ext_R0_data;
-  wire [191:0] _tables_7_ext_R1_data;
-  wire [191:0] _tables_6_ext_R0_data;
-  wire [191:0] _tables_6_ext_R1_data;
-  wire [191:0] _tables_5_ext_R0_data;
-  wire [191:0] _tables_5_ext_R1_data;
-  wire [191:0] _tables_4_ext_R0_data;
-  wire [191:0] _tables_4_ext_R1_data;
-  wire [191:0] _tables_3_ext_R0_data;
-  wire [191:0] _tables_3_ext_R1_data;
-  wire [191:0] _tables_2_ext_R0_data;
-  wire [191:0] _tables_2_ext_R1_data;
-  wire [191:0] _tables_1_ext_R0_data;
-  wire [191:0] _tables_1_ext_R1_data;
-  wire [191:0] _tables_0_ext_R0_data;
-  wire [191:0] _tables_0_ext_R1_data;
-  wire [191:0] _tables_0_ext_R2_data;
-  wire [191:0] _tables_0_ext_R3_data;
+  wire [175:0] _cursors_0_ext_R0_data;
+  wire [175:0] _cursors_0_ext_R1_data;
+  wire [175:0] _tables_15_ext_R0_data;
+  wire [175:0] _tables_15_ext_R1_data;
+  wire [175:0] _tables_14_ext_R0_data;
+  wire [175:0] _tables_14_ext_R1_data;
+  wire [175:0] _tables_13_ext_R0_data;
+  wire [175:0] _tables_13_ext_R1_data;
+  wire [175:0] _tables_12_ext_R0_data;
+  wire [175:0] _tables_12_ext_R1_data;
+  wire [175:0] _tables_11_ext_R0_data;
+  wire [175:0] _tables_11_ext_R1_data;
+  wire [175:0] _tables_10_ext_R0_data;
+  wire [175:0] _tables_10_ext_R1_data;
+  wire [175:0] _tables_9_ext_R0_data;
+  wire [175:0] _tables_9_ext_R1_data;
+  wire [175:0] _tables_8_ext_R0_data;
+  wire [175:0] _tables_8_ext_R1_data;
+  wire [175:0] _tables_7_ext_R0_data;
+  wire [175:0] _tables_7_ext_R1_data;
+  wire [175:0] _tables_6_ext_R0_data;
+  wire [175:0] _tables_6_ext_R1_data;
+  wire [175:0] _tables_5_ext_R0_data;
+  wire [175:0] _tables_5_ext_R1_data;
+  wire [175:0] _tables_4_ext_R0_data;
+  wire [175:0] _tables_4_ext_R1_data;
+  wire [175:0] _tables_3_ext_R0_data;
+  wire [175:0] _tables_3_ext_R1_data;
+  wire [175:0] _tables_2_ext_R0_data;
+  wire [175:0] _tables_2_ext_R1_data;
+  wire [175:0] _tables_1_ext_R0_data;
+  wire [175:0] _tables_1_ext_R1_data;
+  wire [175:0] _tables_0_ext_R0_data;
+  wire [175:0] _tables_0_ext_R1_data;
+  wire [175:0] _tables_0_ext_R2_data;
+  wire [175:0] _tables_0_ext_R3_data;
   reg  [1:0]   state;
   reg  [9:0]   walk;
   wire [28:0]  _used_T = 29'h1 << io_usedLog2;
   wire [9:0]   usedWords = _used_T[13:4] == 10'h0 ? 10'h1 : _used_T[13:4];
-  reg  [11:0]  counted;
-  reg  [11:0]  scattered;
+  reg  [10:0]  counted;
+  reg  [10:0]  scattered;
   reg          bad;
-  reg  [11:0]  sum;
+  reg  [10:0]  sum;
   wire         _sumRead_T = state == 2'h2;
   wire         _sumRead_T_1 = walk < usedWords;
   wire         sumRead = _sumRead_T & _sumRead_T_1;
   reg          sumS1;
   reg  [8:0]   sumW;
   reg          sumLast;
-  wire [11:0]  totals_0 = _cursors_0_ext_R0_data[11:0] + _tables_0_ext_R0_data[11:0];
-  wire [11:0]  totals_1 = _cursors_0_ext_R0_data[23:12] + _tables_0_ext_R0_data[23:12];
-  wire [11:0]  totals_2 = _cursors_0_ext_R0_data[35:24] + _tables_0_ext_R0_data[35:24];
-  wire [11:0]  totals_3 = _cursors_0_ext_R0_data[47:36] + _tables_0_ext_R0_data[47:36];
-  wire [11:0]  totals_4 = _cursors_0_ext_R0_data[59:48] + _tables_0_ext_R0_data[59:48];
-  wire [11:0]  totals_5 = _cursors_0_ext_R0_data[71:60] + _tables_0_ext_R0_data[71:60];
-  wire [11:0]  totals_6 = _cursors_0_ext_R0_data[83:72] + _tables_0_ext_R0_data[83:72];
-  wire [11:0]  totals_7 = _cursors_0_ext_R0_data[95:84] + _tables_0_ext_R0_data[95:84];
-  wire [11:0]  totals_8 = _cursors_0_ext_R0_data[107:96] + _tables_0_ext_R0_data[107:96];
-  wire [11:0]  totals_9 =
-    _cursors_0_ext_R0_data[119:108] + _tables_0_ext_R0_data[119:108];
-  wire [11:0]  totals_10 =
-    _cursors_0_ext_R0_data[131:120] + _tables_0_ext_R0_data[131:120];
-  wire [11:0]  totals_11 =
-    _cursors_0_ext_R0_data[143:132] + _tables_0_ext_R0_data[143:132];
-  wire [11:0]  totals_12 =
-    _cursors_0_ext_R0_data[155:144] + _tables_0_ext_R0_data[155:144];
-  wire [11:0]  totals_13 =
-    _cursors_0_ext_R0_data[167:156] + _tables_0_ext_R0_data[167:156];
-  wire [11:0]  totals_14 =
-    _cursors_0_ext_R0_data[179:168] + _tables_0_ext_R0_data[179:168];
-  wire [11:0]  totals_15 =
-    _cursors_0_ext_R0_data[191:180] + _tables_0_ext_R0_data[191:180];
-  wire [11:0]  starts_1 = sum + totals_0;
-  wire [11:0]  starts_2 = starts_1 + totals_1;
-  wire [11:0]  starts_3 = starts_2 + totals_2;
-  wire [11:0]  starts_4 = starts_3 + totals_3;
-  wire [11:0]  starts_5 = starts_4 + totals_4;
-  wire [11:0]  starts_6 = starts_5 + totals_5;
-  wire [11:0]  starts_7 = starts_6 + totals_6;
-  wire [11:0]  starts_8 = starts_7 + totals_7;
-  wire [11:0]  starts_9 = starts_8 + totals_8;
-  wire [11:0]  starts_10 = starts_9 + totals_9;
-  wire [11:0]  starts_11 = starts_10 + totals_10;
-  wire [11:0]  starts_12 = starts_11 + totals_11;
-  wire [11:0]  starts_13 = starts_12 + totals_12;
-  wire [11:0]  starts_14 = starts_13 + totals_13;
-  wire [11:0]  starts_15 = starts_14 + totals_14;
+  wire [10:0]  totals_0 = _cursors_0_ext_R0_data[10:0] + _tables_0_ext_R0_data[10:0];
+  wire [10:0]  totals_1 = _cursors_0_ext_R0_data[21:11] + _tables_0_ext_R0_data[21:11];
+  wire [10:0]  totals_2 = _cursors_0_ext_R0_data[32:22] + _tables_0_ext_R0_data[32:22];
+  wire [10:0]  totals_3 = _cursors_0_ext_R0_data[43:33] + _tables_0_ext_R0_data[43:33];
+  wire [10:0]  totals_4 = _cursors_0_ext_R0_data[54:44] + _tables_0_ext_R0_data[54:44];
+  wire [10:0]  totals_5 = _cursors_0_ext_R0_data[65:55] + _tables_0_ext_R0_data[65:55];
+  wire [10:0]  totals_6 = _cursors_0_ext_R0_data[76:66] + _tables_0_ext_R0_data[76:66];
+  wire [10:0]  totals_7 = _cursors_0_ext_R0_data[87:77] + _tables_0_ext_R0_data[87:77];
+  wire [10:0]  totals_8 = _cursors_0_ext_R0_data[98:88] + _tables_0_ext_R0_data[98:88];
+  wire [10:0]  totals_9 = _cursors_0_ext_R0_data[109:99] + _tables_0_ext_R0_data[109:99];
+  wire [10:0]  totals_10 =
+    _cursors_0_ext_R0_data[120:110] + _tables_0_ext_R0_data[120:110];
+  wire [10:0]  totals_11 =
+    _cursors_0_ext_R0_data[131:121] + _tables_0_ext_R0_data[131:121];
+  wire [10:0]  totals_12 =
+    _cursors_0_ext_R0_data[142:132] + _tables_0_ext_R0_data[142:132];
+  wire [10:0]  totals_13 =
+    _cursors_0_ext_R0_data[153:143] + _tables_0_ext_R0_data[153:143];
+  wire [10:0]  totals_14 =
+    _cursors_0_ext_R0_data[164:154] + _tables_0_ext_R0_data[164:154];
+  wire [10:0]  totals_15 =
+    _cursors_0_ext_R0_data[175:165] + _tables_0_ext_R0_data[175:165];
+  wire [10:0]  starts_1 = sum + totals_0;
+  wire [10:0]  starts_2 = starts_1 + totals_1;
+  wire [10:0]  starts_3 = starts_2 + totals_2;
+  wire [10:0]  starts_4 = starts_3 + totals_3;
+  wire [10:0]  starts_5 = starts_4 + totals_4;
+  wire [10:0]  starts_6 = starts_5 + totals_5;
+  wire [10:0]  starts_7 = starts_6 + totals_6;
+  wire [10:0]  starts_8 = starts_7 + totals_7;
+  wire [10:0]  starts_9 = starts_8 + totals_8;
+  wire [10:0]  starts_10 = starts_9 + totals_9;
+  wire [10:0]  starts_11 = starts_10 + totals_10;
+  wire [10:0]  starts_12 = starts_11 + totals_11;
+  wire [10:0]  starts_13 = starts_12 + totals_12;
+  wire [10:0]  starts_14 = starts_13 + totals_13;
+  wire [10:0]  starts_15 = starts_14 + totals_14;
   wire         _io_in_1_ready_T = state == 2'h0;
   wire         _GEN = state == 2'h1;
-  wire [191:0] ends =
+  wire [175:0] ends =
     {starts_15 + totals_15,
      starts_14 + totals_14,
      starts_13 + totals_13,
@@ -17173,7 +17172,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
   reg  [11:0]  s1item;
   reg          fwdValid;
   reg  [8:0]   fwdW;
-  reg  [11:0]  casez_tmp;
+  reg  [10:0]  casez_tmp;
   always @(*) begin
     casez (s1b[3:0])
       4'b0000:
@@ -17210,8 +17209,8 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
         casez_tmp = oldWord_15;
     endcase
   end // always @(*)
-  wire [11:0]  _newWord_T_77 = casez_tmp + 12'h1;
-  wire [191:0] newWord =
+  wire [10:0]  _newWord_T_77 = casez_tmp + 11'h1;
+  wire [175:0] newWord =
     {(&(s1b[3:0])) ? _newWord_T_77 : oldWord_15,
      s1b[3:0] == 4'hE ? _newWord_T_77 : oldWord_14,
      s1b[3:0] == 4'hD ? _newWord_T_77 : oldWord_13,
@@ -17228,24 +17227,24 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
      s1b[3:0] == 4'h2 ? _newWord_T_77 : oldWord_2,
      s1b[3:0] == 4'h1 ? _newWord_T_77 : oldWord_1,
      s1b[3:0] == 4'h0 ? _newWord_T_77 : oldWord_0};
-  reg  [191:0] fwdV;
-  wire [191:0] _GEN_0 = fwdValid & fwdW == s1b[12:4] ? fwdV : _cursors_0_ext_R1_data;
-  assign oldWord_0 = _GEN_0[11:0];
-  assign oldWord_1 = _GEN_0[23:12];
-  assign oldWord_2 = _GEN_0[35:24];
-  assign oldWord_3 = _GEN_0[47:36];
-  assign oldWord_4 = _GEN_0[59:48];
-  assign oldWord_5 = _GEN_0[71:60];
-  assign oldWord_6 = _GEN_0[83:72];
-  assign oldWord_7 = _GEN_0[95:84];
-  assign oldWord_8 = _GEN_0[107:96];
-  assign oldWord_9 = _GEN_0[119:108];
-  assign oldWord_10 = _GEN_0[131:120];
-  assign oldWord_11 = _GEN_0[143:132];
-  assign oldWord_12 = _GEN_0[155:144];
-  assign oldWord_13 = _GEN_0[167:156];
-  assign oldWord_14 = _GEN_0[179:168];
-  assign oldWord_15 = _GEN_0[191:180];
+  reg  [175:0] fwdV;
+  wire [175:0] _GEN_0 = fwdValid & fwdW == s1b[12:4] ? fwdV : _cursors_0_ext_R1_data;
+  assign oldWord_0 = _GEN_0[10:0];
+  assign oldWord_1 = _GEN_0[21:11];
+  assign oldWord_2 = _GEN_0[32:22];
+  assign oldWord_3 = _GEN_0[43:33];
+  assign oldWord_4 = _GEN_0[54:44];
+  assign oldWord_5 = _GEN_0[65:55];
+  assign oldWord_6 = _GEN_0[76:66];
+  assign oldWord_7 = _GEN_0[87:77];
+  assign oldWord_8 = _GEN_0[98:88];
+  assign oldWord_9 = _GEN_0[109:99];
+  assign oldWord_10 = _GEN_0[120:110];
+  assign oldWord_11 = _GEN_0[131:121];
+  assign oldWord_12 = _GEN_0[142:132];
+  assign oldWord_13 = _GEN_0[153:143];
+  assign oldWord_14 = _GEN_0[164:154];
+  assign oldWord_15 = _GEN_0[175:165];
   wire         place_0_valid = s1 & s1scatter;
   wire         _GEN_1 = sumS1 | _GEN;
   wire         inRange_1 = {1'h0, io_in_1_bits_bucket} < _used_T[13:0];
@@ -17257,7 +17256,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
   reg  [11:0]  s1item_1;
   reg          fwdValid_1;
   reg  [8:0]   fwdW_1;
-  reg  [11:0]  casez_tmp_0;
+  reg  [10:0]  casez_tmp_0;
   always @(*) begin
     casez (s1b_1[3:0])
       4'b0000:
@@ -17294,8 +17293,8 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
         casez_tmp_0 = oldWord_1_15;
     endcase
   end // always @(*)
-  wire [11:0]  _newWord_T_157 = casez_tmp_0 + 12'h1;
-  wire [191:0] newWord_1 =
+  wire [10:0]  _newWord_T_157 = casez_tmp_0 + 11'h1;
+  wire [175:0] newWord_1 =
     {(&(s1b_1[3:0])) ? _newWord_T_157 : oldWord_1_15,
      s1b_1[3:0] == 4'hE ? _newWord_T_157 : oldWord_1_14,
      s1b_1[3:0] == 4'hD ? _newWord_T_157 : oldWord_1_13,
@@ -17312,1273 +17311,1273 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
      s1b_1[3:0] == 4'h2 ? _newWord_T_157 : oldWord_1_2,
      s1b_1[3:0] == 4'h1 ? _newWord_T_157 : oldWord_1_1,
      s1b_1[3:0] == 4'h0 ? _newWord_T_157 : oldWord_1_0};
-  reg  [191:0] fwdV_1;
-  wire [191:0] _GEN_2 =
+  reg  [175:0] fwdV_1;
+  wire [175:0] _GEN_2 =
     fwdValid_1 & fwdW_1 == s1b_1[12:4] ? fwdV_1 : _tables_0_ext_R1_data;
-  assign oldWord_1_0 = _GEN_2[11:0];
-  assign oldWord_1_1 = _GEN_2[23:12];
-  assign oldWord_1_2 = _GEN_2[35:24];
-  assign oldWord_1_3 = _GEN_2[47:36];
-  assign oldWord_1_4 = _GEN_2[59:48];
-  assign oldWord_1_5 = _GEN_2[71:60];
-  assign oldWord_1_6 = _GEN_2[83:72];
-  assign oldWord_1_7 = _GEN_2[95:84];
-  assign oldWord_1_8 = _GEN_2[107:96];
-  assign oldWord_1_9 = _GEN_2[119:108];
-  assign oldWord_1_10 = _GEN_2[131:120];
-  assign oldWord_1_11 = _GEN_2[143:132];
-  assign oldWord_1_12 = _GEN_2[155:144];
-  assign oldWord_1_13 = _GEN_2[167:156];
-  assign oldWord_1_14 = _GEN_2[179:168];
-  assign oldWord_1_15 = _GEN_2[191:180];
+  assign oldWord_1_0 = _GEN_2[10:0];
+  assign oldWord_1_1 = _GEN_2[21:11];
+  assign oldWord_1_2 = _GEN_2[32:22];
+  assign oldWord_1_3 = _GEN_2[43:33];
+  assign oldWord_1_4 = _GEN_2[54:44];
+  assign oldWord_1_5 = _GEN_2[65:55];
+  assign oldWord_1_6 = _GEN_2[76:66];
+  assign oldWord_1_7 = _GEN_2[87:77];
+  assign oldWord_1_8 = _GEN_2[98:88];
+  assign oldWord_1_9 = _GEN_2[109:99];
+  assign oldWord_1_10 = _GEN_2[120:110];
+  assign oldWord_1_11 = _GEN_2[131:121];
+  assign oldWord_1_12 = _GEN_2[142:132];
+  assign oldWord_1_13 = _GEN_2[153:143];
+  assign oldWord_1_14 = _GEN_2[164:154];
+  assign oldWord_1_15 = _GEN_2[175:165];
   wire         place_1_valid = s1_1 & s1scatter_1;
   wire [12:0]  _prev_T = io_lookup_0_bucket - 13'h1;
   reg          lbZero;
   reg  [3:0]   io_lookup_0_end_REG;
-  reg  [11:0]  casez_tmp_1;
+  reg  [10:0]  casez_tmp_1;
   always @(*) begin
     casez (io_lookup_0_end_REG)
       4'b0000:
-        casez_tmp_1 = _tables_0_ext_R2_data[11:0];
+        casez_tmp_1 = _tables_0_ext_R2_data[10:0];
       4'b0001:
-        casez_tmp_1 = _tables_0_ext_R2_data[23:12];
+        casez_tmp_1 = _tables_0_ext_R2_data[21:11];
       4'b0010:
-        casez_tmp_1 = _tables_0_ext_R2_data[35:24];
+        casez_tmp_1 = _tables_0_ext_R2_data[32:22];
       4'b0011:
-        casez_tmp_1 = _tables_0_ext_R2_data[47:36];
+        casez_tmp_1 = _tables_0_ext_R2_data[43:33];
       4'b0100:
-        casez_tmp_1 = _tables_0_ext_R2_data[59:48];
+        casez_tmp_1 = _tables_0_ext_R2_data[54:44];
       4'b0101:
-        casez_tmp_1 = _tables_0_ext_R2_data[71:60];
+        casez_tmp_1 = _tables_0_ext_R2_data[65:55];
       4'b0110:
-        casez_tmp_1 = _tables_0_ext_R2_data[83:72];
+        casez_tmp_1 = _tables_0_ext_R2_data[76:66];
       4'b0111:
-        casez_tmp_1 = _tables_0_ext_R2_data[95:84];
+        casez_tmp_1 = _tables_0_ext_R2_data[87:77];
       4'b1000:
-        casez_tmp_1 = _tables_0_ext_R2_data[107:96];
+        casez_tmp_1 = _tables_0_ext_R2_data[98:88];
       4'b1001:
-        casez_tmp_1 = _tables_0_ext_R2_data[119:108];
+        casez_tmp_1 = _tables_0_ext_R2_data[109:99];
       4'b1010:
-        casez_tmp_1 = _tables_0_ext_R2_data[131:120];
+        casez_tmp_1 = _tables_0_ext_R2_data[120:110];
       4'b1011:
-        casez_tmp_1 = _tables_0_ext_R2_data[143:132];
+        casez_tmp_1 = _tables_0_ext_R2_data[131:121];
       4'b1100:
-        casez_tmp_1 = _tables_0_ext_R2_data[155:144];
+        casez_tmp_1 = _tables_0_ext_R2_data[142:132];
       4'b1101:
-        casez_tmp_1 = _tables_0_ext_R2_data[167:156];
+        casez_tmp_1 = _tables_0_ext_R2_data[153:143];
       4'b1110:
-        casez_tmp_1 = _tables_0_ext_R2_data[179:168];
+        casez_tmp_1 = _tables_0_ext_R2_data[164:154];
       default:
-        casez_tmp_1 = _tables_0_ext_R2_data[191:180];
+        casez_tmp_1 = _tables_0_ext_R2_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_0_begin_REG;
-  reg  [11:0]  casez_tmp_2;
+  reg  [10:0]  casez_tmp_2;
   always @(*) begin
     casez (io_lookup_0_begin_REG)
       4'b0000:
-        casez_tmp_2 = _tables_0_ext_R3_data[11:0];
+        casez_tmp_2 = _tables_0_ext_R3_data[10:0];
       4'b0001:
-        casez_tmp_2 = _tables_0_ext_R3_data[23:12];
+        casez_tmp_2 = _tables_0_ext_R3_data[21:11];
       4'b0010:
-        casez_tmp_2 = _tables_0_ext_R3_data[35:24];
+        casez_tmp_2 = _tables_0_ext_R3_data[32:22];
       4'b0011:
-        casez_tmp_2 = _tables_0_ext_R3_data[47:36];
+        casez_tmp_2 = _tables_0_ext_R3_data[43:33];
       4'b0100:
-        casez_tmp_2 = _tables_0_ext_R3_data[59:48];
+        casez_tmp_2 = _tables_0_ext_R3_data[54:44];
       4'b0101:
-        casez_tmp_2 = _tables_0_ext_R3_data[71:60];
+        casez_tmp_2 = _tables_0_ext_R3_data[65:55];
       4'b0110:
-        casez_tmp_2 = _tables_0_ext_R3_data[83:72];
+        casez_tmp_2 = _tables_0_ext_R3_data[76:66];
       4'b0111:
-        casez_tmp_2 = _tables_0_ext_R3_data[95:84];
+        casez_tmp_2 = _tables_0_ext_R3_data[87:77];
       4'b1000:
-        casez_tmp_2 = _tables_0_ext_R3_data[107:96];
+        casez_tmp_2 = _tables_0_ext_R3_data[98:88];
       4'b1001:
-        casez_tmp_2 = _tables_0_ext_R3_data[119:108];
+        casez_tmp_2 = _tables_0_ext_R3_data[109:99];
       4'b1010:
-        casez_tmp_2 = _tables_0_ext_R3_data[131:120];
+        casez_tmp_2 = _tables_0_ext_R3_data[120:110];
       4'b1011:
-        casez_tmp_2 = _tables_0_ext_R3_data[143:132];
+        casez_tmp_2 = _tables_0_ext_R3_data[131:121];
       4'b1100:
-        casez_tmp_2 = _tables_0_ext_R3_data[155:144];
+        casez_tmp_2 = _tables_0_ext_R3_data[142:132];
       4'b1101:
-        casez_tmp_2 = _tables_0_ext_R3_data[167:156];
+        casez_tmp_2 = _tables_0_ext_R3_data[153:143];
       4'b1110:
-        casez_tmp_2 = _tables_0_ext_R3_data[179:168];
+        casez_tmp_2 = _tables_0_ext_R3_data[164:154];
       default:
-        casez_tmp_2 = _tables_0_ext_R3_data[191:180];
+        casez_tmp_2 = _tables_0_ext_R3_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _entryRd_T_31 = {1'h0, s1item};
   wire [12:0]  _prev_T_1 = io_lookup_1_bucket - 13'h1;
   reg          lbZero_1;
   reg  [3:0]   io_lookup_1_end_REG;
-  reg  [11:0]  casez_tmp_3;
+  reg  [10:0]  casez_tmp_3;
   always @(*) begin
     casez (io_lookup_1_end_REG)
       4'b0000:
-        casez_tmp_3 = _tables_1_ext_R0_data[11:0];
+        casez_tmp_3 = _tables_1_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_3 = _tables_1_ext_R0_data[23:12];
+        casez_tmp_3 = _tables_1_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_3 = _tables_1_ext_R0_data[35:24];
+        casez_tmp_3 = _tables_1_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_3 = _tables_1_ext_R0_data[47:36];
+        casez_tmp_3 = _tables_1_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_3 = _tables_1_ext_R0_data[59:48];
+        casez_tmp_3 = _tables_1_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_3 = _tables_1_ext_R0_data[71:60];
+        casez_tmp_3 = _tables_1_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_3 = _tables_1_ext_R0_data[83:72];
+        casez_tmp_3 = _tables_1_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_3 = _tables_1_ext_R0_data[95:84];
+        casez_tmp_3 = _tables_1_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_3 = _tables_1_ext_R0_data[107:96];
+        casez_tmp_3 = _tables_1_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_3 = _tables_1_ext_R0_data[119:108];
+        casez_tmp_3 = _tables_1_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_3 = _tables_1_ext_R0_data[131:120];
+        casez_tmp_3 = _tables_1_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_3 = _tables_1_ext_R0_data[143:132];
+        casez_tmp_3 = _tables_1_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_3 = _tables_1_ext_R0_data[155:144];
+        casez_tmp_3 = _tables_1_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_3 = _tables_1_ext_R0_data[167:156];
+        casez_tmp_3 = _tables_1_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_3 = _tables_1_ext_R0_data[179:168];
+        casez_tmp_3 = _tables_1_ext_R0_data[164:154];
       default:
-        casez_tmp_3 = _tables_1_ext_R0_data[191:180];
+        casez_tmp_3 = _tables_1_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_1_begin_REG;
-  reg  [11:0]  casez_tmp_4;
+  reg  [10:0]  casez_tmp_4;
   always @(*) begin
     casez (io_lookup_1_begin_REG)
       4'b0000:
-        casez_tmp_4 = _tables_1_ext_R1_data[11:0];
+        casez_tmp_4 = _tables_1_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_4 = _tables_1_ext_R1_data[23:12];
+        casez_tmp_4 = _tables_1_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_4 = _tables_1_ext_R1_data[35:24];
+        casez_tmp_4 = _tables_1_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_4 = _tables_1_ext_R1_data[47:36];
+        casez_tmp_4 = _tables_1_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_4 = _tables_1_ext_R1_data[59:48];
+        casez_tmp_4 = _tables_1_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_4 = _tables_1_ext_R1_data[71:60];
+        casez_tmp_4 = _tables_1_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_4 = _tables_1_ext_R1_data[83:72];
+        casez_tmp_4 = _tables_1_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_4 = _tables_1_ext_R1_data[95:84];
+        casez_tmp_4 = _tables_1_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_4 = _tables_1_ext_R1_data[107:96];
+        casez_tmp_4 = _tables_1_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_4 = _tables_1_ext_R1_data[119:108];
+        casez_tmp_4 = _tables_1_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_4 = _tables_1_ext_R1_data[131:120];
+        casez_tmp_4 = _tables_1_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_4 = _tables_1_ext_R1_data[143:132];
+        casez_tmp_4 = _tables_1_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_4 = _tables_1_ext_R1_data[155:144];
+        casez_tmp_4 = _tables_1_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_4 = _tables_1_ext_R1_data[167:156];
+        casez_tmp_4 = _tables_1_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_4 = _tables_1_ext_R1_data[179:168];
+        casez_tmp_4 = _tables_1_ext_R1_data[164:154];
       default:
-        casez_tmp_4 = _tables_1_ext_R1_data[191:180];
+        casez_tmp_4 = _tables_1_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_2 = io_lookup_2_bucket - 13'h1;
   reg          lbZero_2;
   reg  [3:0]   io_lookup_2_end_REG;
-  reg  [11:0]  casez_tmp_5;
+  reg  [10:0]  casez_tmp_5;
   always @(*) begin
     casez (io_lookup_2_end_REG)
       4'b0000:
-        casez_tmp_5 = _tables_2_ext_R0_data[11:0];
+        casez_tmp_5 = _tables_2_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_5 = _tables_2_ext_R0_data[23:12];
+        casez_tmp_5 = _tables_2_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_5 = _tables_2_ext_R0_data[35:24];
+        casez_tmp_5 = _tables_2_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_5 = _tables_2_ext_R0_data[47:36];
+        casez_tmp_5 = _tables_2_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_5 = _tables_2_ext_R0_data[59:48];
+        casez_tmp_5 = _tables_2_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_5 = _tables_2_ext_R0_data[71:60];
+        casez_tmp_5 = _tables_2_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_5 = _tables_2_ext_R0_data[83:72];
+        casez_tmp_5 = _tables_2_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_5 = _tables_2_ext_R0_data[95:84];
+        casez_tmp_5 = _tables_2_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_5 = _tables_2_ext_R0_data[107:96];
+        casez_tmp_5 = _tables_2_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_5 = _tables_2_ext_R0_data[119:108];
+        casez_tmp_5 = _tables_2_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_5 = _tables_2_ext_R0_data[131:120];
+        casez_tmp_5 = _tables_2_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_5 = _tables_2_ext_R0_data[143:132];
+        casez_tmp_5 = _tables_2_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_5 = _tables_2_ext_R0_data[155:144];
+        casez_tmp_5 = _tables_2_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_5 = _tables_2_ext_R0_data[167:156];
+        casez_tmp_5 = _tables_2_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_5 = _tables_2_ext_R0_data[179:168];
+        casez_tmp_5 = _tables_2_ext_R0_data[164:154];
       default:
-        casez_tmp_5 = _tables_2_ext_R0_data[191:180];
+        casez_tmp_5 = _tables_2_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_2_begin_REG;
-  reg  [11:0]  casez_tmp_6;
+  reg  [10:0]  casez_tmp_6;
   always @(*) begin
     casez (io_lookup_2_begin_REG)
       4'b0000:
-        casez_tmp_6 = _tables_2_ext_R1_data[11:0];
+        casez_tmp_6 = _tables_2_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_6 = _tables_2_ext_R1_data[23:12];
+        casez_tmp_6 = _tables_2_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_6 = _tables_2_ext_R1_data[35:24];
+        casez_tmp_6 = _tables_2_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_6 = _tables_2_ext_R1_data[47:36];
+        casez_tmp_6 = _tables_2_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_6 = _tables_2_ext_R1_data[59:48];
+        casez_tmp_6 = _tables_2_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_6 = _tables_2_ext_R1_data[71:60];
+        casez_tmp_6 = _tables_2_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_6 = _tables_2_ext_R1_data[83:72];
+        casez_tmp_6 = _tables_2_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_6 = _tables_2_ext_R1_data[95:84];
+        casez_tmp_6 = _tables_2_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_6 = _tables_2_ext_R1_data[107:96];
+        casez_tmp_6 = _tables_2_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_6 = _tables_2_ext_R1_data[119:108];
+        casez_tmp_6 = _tables_2_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_6 = _tables_2_ext_R1_data[131:120];
+        casez_tmp_6 = _tables_2_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_6 = _tables_2_ext_R1_data[143:132];
+        casez_tmp_6 = _tables_2_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_6 = _tables_2_ext_R1_data[155:144];
+        casez_tmp_6 = _tables_2_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_6 = _tables_2_ext_R1_data[167:156];
+        casez_tmp_6 = _tables_2_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_6 = _tables_2_ext_R1_data[179:168];
+        casez_tmp_6 = _tables_2_ext_R1_data[164:154];
       default:
-        casez_tmp_6 = _tables_2_ext_R1_data[191:180];
+        casez_tmp_6 = _tables_2_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_3 = io_lookup_3_bucket - 13'h1;
   reg          lbZero_3;
   reg  [3:0]   io_lookup_3_end_REG;
-  reg  [11:0]  casez_tmp_7;
+  reg  [10:0]  casez_tmp_7;
   always @(*) begin
     casez (io_lookup_3_end_REG)
       4'b0000:
-        casez_tmp_7 = _tables_3_ext_R0_data[11:0];
+        casez_tmp_7 = _tables_3_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_7 = _tables_3_ext_R0_data[23:12];
+        casez_tmp_7 = _tables_3_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_7 = _tables_3_ext_R0_data[35:24];
+        casez_tmp_7 = _tables_3_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_7 = _tables_3_ext_R0_data[47:36];
+        casez_tmp_7 = _tables_3_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_7 = _tables_3_ext_R0_data[59:48];
+        casez_tmp_7 = _tables_3_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_7 = _tables_3_ext_R0_data[71:60];
+        casez_tmp_7 = _tables_3_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_7 = _tables_3_ext_R0_data[83:72];
+        casez_tmp_7 = _tables_3_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_7 = _tables_3_ext_R0_data[95:84];
+        casez_tmp_7 = _tables_3_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_7 = _tables_3_ext_R0_data[107:96];
+        casez_tmp_7 = _tables_3_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_7 = _tables_3_ext_R0_data[119:108];
+        casez_tmp_7 = _tables_3_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_7 = _tables_3_ext_R0_data[131:120];
+        casez_tmp_7 = _tables_3_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_7 = _tables_3_ext_R0_data[143:132];
+        casez_tmp_7 = _tables_3_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_7 = _tables_3_ext_R0_data[155:144];
+        casez_tmp_7 = _tables_3_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_7 = _tables_3_ext_R0_data[167:156];
+        casez_tmp_7 = _tables_3_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_7 = _tables_3_ext_R0_data[179:168];
+        casez_tmp_7 = _tables_3_ext_R0_data[164:154];
       default:
-        casez_tmp_7 = _tables_3_ext_R0_data[191:180];
+        casez_tmp_7 = _tables_3_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_3_begin_REG;
-  reg  [11:0]  casez_tmp_8;
+  reg  [10:0]  casez_tmp_8;
   always @(*) begin
     casez (io_lookup_3_begin_REG)
       4'b0000:
-        casez_tmp_8 = _tables_3_ext_R1_data[11:0];
+        casez_tmp_8 = _tables_3_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_8 = _tables_3_ext_R1_data[23:12];
+        casez_tmp_8 = _tables_3_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_8 = _tables_3_ext_R1_data[35:24];
+        casez_tmp_8 = _tables_3_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_8 = _tables_3_ext_R1_data[47:36];
+        casez_tmp_8 = _tables_3_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_8 = _tables_3_ext_R1_data[59:48];
+        casez_tmp_8 = _tables_3_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_8 = _tables_3_ext_R1_data[71:60];
+        casez_tmp_8 = _tables_3_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_8 = _tables_3_ext_R1_data[83:72];
+        casez_tmp_8 = _tables_3_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_8 = _tables_3_ext_R1_data[95:84];
+        casez_tmp_8 = _tables_3_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_8 = _tables_3_ext_R1_data[107:96];
+        casez_tmp_8 = _tables_3_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_8 = _tables_3_ext_R1_data[119:108];
+        casez_tmp_8 = _tables_3_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_8 = _tables_3_ext_R1_data[131:120];
+        casez_tmp_8 = _tables_3_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_8 = _tables_3_ext_R1_data[143:132];
+        casez_tmp_8 = _tables_3_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_8 = _tables_3_ext_R1_data[155:144];
+        casez_tmp_8 = _tables_3_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_8 = _tables_3_ext_R1_data[167:156];
+        casez_tmp_8 = _tables_3_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_8 = _tables_3_ext_R1_data[179:168];
+        casez_tmp_8 = _tables_3_ext_R1_data[164:154];
       default:
-        casez_tmp_8 = _tables_3_ext_R1_data[191:180];
+        casez_tmp_8 = _tables_3_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_4 = io_lookup_4_bucket - 13'h1;
   reg          lbZero_4;
   reg  [3:0]   io_lookup_4_end_REG;
-  reg  [11:0]  casez_tmp_9;
+  reg  [10:0]  casez_tmp_9;
   always @(*) begin
     casez (io_lookup_4_end_REG)
       4'b0000:
-        casez_tmp_9 = _tables_4_ext_R0_data[11:0];
+        casez_tmp_9 = _tables_4_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_9 = _tables_4_ext_R0_data[23:12];
+        casez_tmp_9 = _tables_4_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_9 = _tables_4_ext_R0_data[35:24];
+        casez_tmp_9 = _tables_4_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_9 = _tables_4_ext_R0_data[47:36];
+        casez_tmp_9 = _tables_4_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_9 = _tables_4_ext_R0_data[59:48];
+        casez_tmp_9 = _tables_4_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_9 = _tables_4_ext_R0_data[71:60];
+        casez_tmp_9 = _tables_4_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_9 = _tables_4_ext_R0_data[83:72];
+        casez_tmp_9 = _tables_4_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_9 = _tables_4_ext_R0_data[95:84];
+        casez_tmp_9 = _tables_4_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_9 = _tables_4_ext_R0_data[107:96];
+        casez_tmp_9 = _tables_4_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_9 = _tables_4_ext_R0_data[119:108];
+        casez_tmp_9 = _tables_4_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_9 = _tables_4_ext_R0_data[131:120];
+        casez_tmp_9 = _tables_4_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_9 = _tables_4_ext_R0_data[143:132];
+        casez_tmp_9 = _tables_4_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_9 = _tables_4_ext_R0_data[155:144];
+        casez_tmp_9 = _tables_4_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_9 = _tables_4_ext_R0_data[167:156];
+        casez_tmp_9 = _tables_4_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_9 = _tables_4_ext_R0_data[179:168];
+        casez_tmp_9 = _tables_4_ext_R0_data[164:154];
       default:
-        casez_tmp_9 = _tables_4_ext_R0_data[191:180];
+        casez_tmp_9 = _tables_4_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_4_begin_REG;
-  reg  [11:0]  casez_tmp_10;
+  reg  [10:0]  casez_tmp_10;
   always @(*) begin
     casez (io_lookup_4_begin_REG)
       4'b0000:
-        casez_tmp_10 = _tables_4_ext_R1_data[11:0];
+        casez_tmp_10 = _tables_4_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_10 = _tables_4_ext_R1_data[23:12];
+        casez_tmp_10 = _tables_4_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_10 = _tables_4_ext_R1_data[35:24];
+        casez_tmp_10 = _tables_4_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_10 = _tables_4_ext_R1_data[47:36];
+        casez_tmp_10 = _tables_4_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_10 = _tables_4_ext_R1_data[59:48];
+        casez_tmp_10 = _tables_4_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_10 = _tables_4_ext_R1_data[71:60];
+        casez_tmp_10 = _tables_4_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_10 = _tables_4_ext_R1_data[83:72];
+        casez_tmp_10 = _tables_4_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_10 = _tables_4_ext_R1_data[95:84];
+        casez_tmp_10 = _tables_4_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_10 = _tables_4_ext_R1_data[107:96];
+        casez_tmp_10 = _tables_4_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_10 = _tables_4_ext_R1_data[119:108];
+        casez_tmp_10 = _tables_4_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_10 = _tables_4_ext_R1_data[131:120];
+        casez_tmp_10 = _tables_4_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_10 = _tables_4_ext_R1_data[143:132];
+        casez_tmp_10 = _tables_4_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_10 = _tables_4_ext_R1_data[155:144];
+        casez_tmp_10 = _tables_4_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_10 = _tables_4_ext_R1_data[167:156];
+        casez_tmp_10 = _tables_4_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_10 = _tables_4_ext_R1_data[179:168];
+        casez_tmp_10 = _tables_4_ext_R1_data[164:154];
       default:
-        casez_tmp_10 = _tables_4_ext_R1_data[191:180];
+        casez_tmp_10 = _tables_4_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_5 = io_lookup_5_bucket - 13'h1;
   reg          lbZero_5;
   reg  [3:0]   io_lookup_5_end_REG;
-  reg  [11:0]  casez_tmp_11;
+  reg  [10:0]  casez_tmp_11;
   always @(*) begin
     casez (io_lookup_5_end_REG)
       4'b0000:
-        casez_tmp_11 = _tables_5_ext_R0_data[11:0];
+        casez_tmp_11 = _tables_5_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_11 = _tables_5_ext_R0_data[23:12];
+        casez_tmp_11 = _tables_5_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_11 = _tables_5_ext_R0_data[35:24];
+        casez_tmp_11 = _tables_5_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_11 = _tables_5_ext_R0_data[47:36];
+        casez_tmp_11 = _tables_5_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_11 = _tables_5_ext_R0_data[59:48];
+        casez_tmp_11 = _tables_5_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_11 = _tables_5_ext_R0_data[71:60];
+        casez_tmp_11 = _tables_5_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_11 = _tables_5_ext_R0_data[83:72];
+        casez_tmp_11 = _tables_5_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_11 = _tables_5_ext_R0_data[95:84];
+        casez_tmp_11 = _tables_5_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_11 = _tables_5_ext_R0_data[107:96];
+        casez_tmp_11 = _tables_5_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_11 = _tables_5_ext_R0_data[119:108];
+        casez_tmp_11 = _tables_5_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_11 = _tables_5_ext_R0_data[131:120];
+        casez_tmp_11 = _tables_5_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_11 = _tables_5_ext_R0_data[143:132];
+        casez_tmp_11 = _tables_5_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_11 = _tables_5_ext_R0_data[155:144];
+        casez_tmp_11 = _tables_5_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_11 = _tables_5_ext_R0_data[167:156];
+        casez_tmp_11 = _tables_5_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_11 = _tables_5_ext_R0_data[179:168];
+        casez_tmp_11 = _tables_5_ext_R0_data[164:154];
       default:
-        casez_tmp_11 = _tables_5_ext_R0_data[191:180];
+        casez_tmp_11 = _tables_5_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_5_begin_REG;
-  reg  [11:0]  casez_tmp_12;
+  reg  [10:0]  casez_tmp_12;
   always @(*) begin
     casez (io_lookup_5_begin_REG)
       4'b0000:
-        casez_tmp_12 = _tables_5_ext_R1_data[11:0];
+        casez_tmp_12 = _tables_5_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_12 = _tables_5_ext_R1_data[23:12];
+        casez_tmp_12 = _tables_5_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_12 = _tables_5_ext_R1_data[35:24];
+        casez_tmp_12 = _tables_5_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_12 = _tables_5_ext_R1_data[47:36];
+        casez_tmp_12 = _tables_5_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_12 = _tables_5_ext_R1_data[59:48];
+        casez_tmp_12 = _tables_5_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_12 = _tables_5_ext_R1_data[71:60];
+        casez_tmp_12 = _tables_5_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_12 = _tables_5_ext_R1_data[83:72];
+        casez_tmp_12 = _tables_5_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_12 = _tables_5_ext_R1_data[95:84];
+        casez_tmp_12 = _tables_5_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_12 = _tables_5_ext_R1_data[107:96];
+        casez_tmp_12 = _tables_5_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_12 = _tables_5_ext_R1_data[119:108];
+        casez_tmp_12 = _tables_5_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_12 = _tables_5_ext_R1_data[131:120];
+        casez_tmp_12 = _tables_5_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_12 = _tables_5_ext_R1_data[143:132];
+        casez_tmp_12 = _tables_5_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_12 = _tables_5_ext_R1_data[155:144];
+        casez_tmp_12 = _tables_5_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_12 = _tables_5_ext_R1_data[167:156];
+        casez_tmp_12 = _tables_5_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_12 = _tables_5_ext_R1_data[179:168];
+        casez_tmp_12 = _tables_5_ext_R1_data[164:154];
       default:
-        casez_tmp_12 = _tables_5_ext_R1_data[191:180];
+        casez_tmp_12 = _tables_5_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_6 = io_lookup_6_bucket - 13'h1;
   reg          lbZero_6;
   reg  [3:0]   io_lookup_6_end_REG;
-  reg  [11:0]  casez_tmp_13;
+  reg  [10:0]  casez_tmp_13;
   always @(*) begin
     casez (io_lookup_6_end_REG)
       4'b0000:
-        casez_tmp_13 = _tables_6_ext_R0_data[11:0];
+        casez_tmp_13 = _tables_6_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_13 = _tables_6_ext_R0_data[23:12];
+        casez_tmp_13 = _tables_6_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_13 = _tables_6_ext_R0_data[35:24];
+        casez_tmp_13 = _tables_6_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_13 = _tables_6_ext_R0_data[47:36];
+        casez_tmp_13 = _tables_6_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_13 = _tables_6_ext_R0_data[59:48];
+        casez_tmp_13 = _tables_6_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_13 = _tables_6_ext_R0_data[71:60];
+        casez_tmp_13 = _tables_6_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_13 = _tables_6_ext_R0_data[83:72];
+        casez_tmp_13 = _tables_6_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_13 = _tables_6_ext_R0_data[95:84];
+        casez_tmp_13 = _tables_6_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_13 = _tables_6_ext_R0_data[107:96];
+        casez_tmp_13 = _tables_6_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_13 = _tables_6_ext_R0_data[119:108];
+        casez_tmp_13 = _tables_6_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_13 = _tables_6_ext_R0_data[131:120];
+        casez_tmp_13 = _tables_6_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_13 = _tables_6_ext_R0_data[143:132];
+        casez_tmp_13 = _tables_6_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_13 = _tables_6_ext_R0_data[155:144];
+        casez_tmp_13 = _tables_6_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_13 = _tables_6_ext_R0_data[167:156];
+        casez_tmp_13 = _tables_6_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_13 = _tables_6_ext_R0_data[179:168];
+        casez_tmp_13 = _tables_6_ext_R0_data[164:154];
       default:
-        casez_tmp_13 = _tables_6_ext_R0_data[191:180];
+        casez_tmp_13 = _tables_6_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_6_begin_REG;
-  reg  [11:0]  casez_tmp_14;
+  reg  [10:0]  casez_tmp_14;
   always @(*) begin
     casez (io_lookup_6_begin_REG)
       4'b0000:
-        casez_tmp_14 = _tables_6_ext_R1_data[11:0];
+        casez_tmp_14 = _tables_6_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_14 = _tables_6_ext_R1_data[23:12];
+        casez_tmp_14 = _tables_6_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_14 = _tables_6_ext_R1_data[35:24];
+        casez_tmp_14 = _tables_6_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_14 = _tables_6_ext_R1_data[47:36];
+        casez_tmp_14 = _tables_6_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_14 = _tables_6_ext_R1_data[59:48];
+        casez_tmp_14 = _tables_6_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_14 = _tables_6_ext_R1_data[71:60];
+        casez_tmp_14 = _tables_6_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_14 = _tables_6_ext_R1_data[83:72];
+        casez_tmp_14 = _tables_6_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_14 = _tables_6_ext_R1_data[95:84];
+        casez_tmp_14 = _tables_6_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_14 = _tables_6_ext_R1_data[107:96];
+        casez_tmp_14 = _tables_6_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_14 = _tables_6_ext_R1_data[119:108];
+        casez_tmp_14 = _tables_6_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_14 = _tables_6_ext_R1_data[131:120];
+        casez_tmp_14 = _tables_6_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_14 = _tables_6_ext_R1_data[143:132];
+        casez_tmp_14 = _tables_6_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_14 = _tables_6_ext_R1_data[155:144];
+        casez_tmp_14 = _tables_6_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_14 = _tables_6_ext_R1_data[167:156];
+        casez_tmp_14 = _tables_6_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_14 = _tables_6_ext_R1_data[179:168];
+        casez_tmp_14 = _tables_6_ext_R1_data[164:154];
       default:
-        casez_tmp_14 = _tables_6_ext_R1_data[191:180];
+        casez_tmp_14 = _tables_6_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_7 = io_lookup_7_bucket - 13'h1;
   reg          lbZero_7;
   reg  [3:0]   io_lookup_7_end_REG;
-  reg  [11:0]  casez_tmp_15;
+  reg  [10:0]  casez_tmp_15;
   always @(*) begin
     casez (io_lookup_7_end_REG)
       4'b0000:
-        casez_tmp_15 = _tables_7_ext_R0_data[11:0];
+        casez_tmp_15 = _tables_7_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_15 = _tables_7_ext_R0_data[23:12];
+        casez_tmp_15 = _tables_7_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_15 = _tables_7_ext_R0_data[35:24];
+        casez_tmp_15 = _tables_7_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_15 = _tables_7_ext_R0_data[47:36];
+        casez_tmp_15 = _tables_7_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_15 = _tables_7_ext_R0_data[59:48];
+        casez_tmp_15 = _tables_7_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_15 = _tables_7_ext_R0_data[71:60];
+        casez_tmp_15 = _tables_7_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_15 = _tables_7_ext_R0_data[83:72];
+        casez_tmp_15 = _tables_7_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_15 = _tables_7_ext_R0_data[95:84];
+        casez_tmp_15 = _tables_7_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_15 = _tables_7_ext_R0_data[107:96];
+        casez_tmp_15 = _tables_7_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_15 = _tables_7_ext_R0_data[119:108];
+        casez_tmp_15 = _tables_7_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_15 = _tables_7_ext_R0_data[131:120];
+        casez_tmp_15 = _tables_7_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_15 = _tables_7_ext_R0_data[143:132];
+        casez_tmp_15 = _tables_7_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_15 = _tables_7_ext_R0_data[155:144];
+        casez_tmp_15 = _tables_7_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_15 = _tables_7_ext_R0_data[167:156];
+        casez_tmp_15 = _tables_7_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_15 = _tables_7_ext_R0_data[179:168];
+        casez_tmp_15 = _tables_7_ext_R0_data[164:154];
       default:
-        casez_tmp_15 = _tables_7_ext_R0_data[191:180];
+        casez_tmp_15 = _tables_7_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_7_begin_REG;
-  reg  [11:0]  casez_tmp_16;
+  reg  [10:0]  casez_tmp_16;
   always @(*) begin
     casez (io_lookup_7_begin_REG)
       4'b0000:
-        casez_tmp_16 = _tables_7_ext_R1_data[11:0];
+        casez_tmp_16 = _tables_7_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_16 = _tables_7_ext_R1_data[23:12];
+        casez_tmp_16 = _tables_7_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_16 = _tables_7_ext_R1_data[35:24];
+        casez_tmp_16 = _tables_7_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_16 = _tables_7_ext_R1_data[47:36];
+        casez_tmp_16 = _tables_7_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_16 = _tables_7_ext_R1_data[59:48];
+        casez_tmp_16 = _tables_7_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_16 = _tables_7_ext_R1_data[71:60];
+        casez_tmp_16 = _tables_7_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_16 = _tables_7_ext_R1_data[83:72];
+        casez_tmp_16 = _tables_7_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_16 = _tables_7_ext_R1_data[95:84];
+        casez_tmp_16 = _tables_7_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_16 = _tables_7_ext_R1_data[107:96];
+        casez_tmp_16 = _tables_7_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_16 = _tables_7_ext_R1_data[119:108];
+        casez_tmp_16 = _tables_7_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_16 = _tables_7_ext_R1_data[131:120];
+        casez_tmp_16 = _tables_7_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_16 = _tables_7_ext_R1_data[143:132];
+        casez_tmp_16 = _tables_7_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_16 = _tables_7_ext_R1_data[155:144];
+        casez_tmp_16 = _tables_7_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_16 = _tables_7_ext_R1_data[167:156];
+        casez_tmp_16 = _tables_7_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_16 = _tables_7_ext_R1_data[179:168];
+        casez_tmp_16 = _tables_7_ext_R1_data[164:154];
       default:
-        casez_tmp_16 = _tables_7_ext_R1_data[191:180];
+        casez_tmp_16 = _tables_7_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_8 = io_lookup_8_bucket - 13'h1;
   reg          lbZero_8;
   reg  [3:0]   io_lookup_8_end_REG;
-  reg  [11:0]  casez_tmp_17;
+  reg  [10:0]  casez_tmp_17;
   always @(*) begin
     casez (io_lookup_8_end_REG)
       4'b0000:
-        casez_tmp_17 = _tables_8_ext_R0_data[11:0];
+        casez_tmp_17 = _tables_8_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_17 = _tables_8_ext_R0_data[23:12];
+        casez_tmp_17 = _tables_8_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_17 = _tables_8_ext_R0_data[35:24];
+        casez_tmp_17 = _tables_8_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_17 = _tables_8_ext_R0_data[47:36];
+        casez_tmp_17 = _tables_8_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_17 = _tables_8_ext_R0_data[59:48];
+        casez_tmp_17 = _tables_8_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_17 = _tables_8_ext_R0_data[71:60];
+        casez_tmp_17 = _tables_8_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_17 = _tables_8_ext_R0_data[83:72];
+        casez_tmp_17 = _tables_8_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_17 = _tables_8_ext_R0_data[95:84];
+        casez_tmp_17 = _tables_8_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_17 = _tables_8_ext_R0_data[107:96];
+        casez_tmp_17 = _tables_8_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_17 = _tables_8_ext_R0_data[119:108];
+        casez_tmp_17 = _tables_8_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_17 = _tables_8_ext_R0_data[131:120];
+        casez_tmp_17 = _tables_8_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_17 = _tables_8_ext_R0_data[143:132];
+        casez_tmp_17 = _tables_8_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_17 = _tables_8_ext_R0_data[155:144];
+        casez_tmp_17 = _tables_8_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_17 = _tables_8_ext_R0_data[167:156];
+        casez_tmp_17 = _tables_8_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_17 = _tables_8_ext_R0_data[179:168];
+        casez_tmp_17 = _tables_8_ext_R0_data[164:154];
       default:
-        casez_tmp_17 = _tables_8_ext_R0_data[191:180];
+        casez_tmp_17 = _tables_8_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_8_begin_REG;
-  reg  [11:0]  casez_tmp_18;
+  reg  [10:0]  casez_tmp_18;
   always @(*) begin
     casez (io_lookup_8_begin_REG)
       4'b0000:
-        casez_tmp_18 = _tables_8_ext_R1_data[11:0];
+        casez_tmp_18 = _tables_8_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_18 = _tables_8_ext_R1_data[23:12];
+        casez_tmp_18 = _tables_8_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_18 = _tables_8_ext_R1_data[35:24];
+        casez_tmp_18 = _tables_8_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_18 = _tables_8_ext_R1_data[47:36];
+        casez_tmp_18 = _tables_8_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_18 = _tables_8_ext_R1_data[59:48];
+        casez_tmp_18 = _tables_8_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_18 = _tables_8_ext_R1_data[71:60];
+        casez_tmp_18 = _tables_8_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_18 = _tables_8_ext_R1_data[83:72];
+        casez_tmp_18 = _tables_8_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_18 = _tables_8_ext_R1_data[95:84];
+        casez_tmp_18 = _tables_8_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_18 = _tables_8_ext_R1_data[107:96];
+        casez_tmp_18 = _tables_8_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_18 = _tables_8_ext_R1_data[119:108];
+        casez_tmp_18 = _tables_8_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_18 = _tables_8_ext_R1_data[131:120];
+        casez_tmp_18 = _tables_8_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_18 = _tables_8_ext_R1_data[143:132];
+        casez_tmp_18 = _tables_8_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_18 = _tables_8_ext_R1_data[155:144];
+        casez_tmp_18 = _tables_8_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_18 = _tables_8_ext_R1_data[167:156];
+        casez_tmp_18 = _tables_8_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_18 = _tables_8_ext_R1_data[179:168];
+        casez_tmp_18 = _tables_8_ext_R1_data[164:154];
       default:
-        casez_tmp_18 = _tables_8_ext_R1_data[191:180];
+        casez_tmp_18 = _tables_8_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_9 = io_lookup_9_bucket - 13'h1;
   reg          lbZero_9;
   reg  [3:0]   io_lookup_9_end_REG;
-  reg  [11:0]  casez_tmp_19;
+  reg  [10:0]  casez_tmp_19;
   always @(*) begin
     casez (io_lookup_9_end_REG)
       4'b0000:
-        casez_tmp_19 = _tables_9_ext_R0_data[11:0];
+        casez_tmp_19 = _tables_9_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_19 = _tables_9_ext_R0_data[23:12];
+        casez_tmp_19 = _tables_9_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_19 = _tables_9_ext_R0_data[35:24];
+        casez_tmp_19 = _tables_9_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_19 = _tables_9_ext_R0_data[47:36];
+        casez_tmp_19 = _tables_9_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_19 = _tables_9_ext_R0_data[59:48];
+        casez_tmp_19 = _tables_9_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_19 = _tables_9_ext_R0_data[71:60];
+        casez_tmp_19 = _tables_9_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_19 = _tables_9_ext_R0_data[83:72];
+        casez_tmp_19 = _tables_9_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_19 = _tables_9_ext_R0_data[95:84];
+        casez_tmp_19 = _tables_9_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_19 = _tables_9_ext_R0_data[107:96];
+        casez_tmp_19 = _tables_9_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_19 = _tables_9_ext_R0_data[119:108];
+        casez_tmp_19 = _tables_9_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_19 = _tables_9_ext_R0_data[131:120];
+        casez_tmp_19 = _tables_9_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_19 = _tables_9_ext_R0_data[143:132];
+        casez_tmp_19 = _tables_9_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_19 = _tables_9_ext_R0_data[155:144];
+        casez_tmp_19 = _tables_9_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_19 = _tables_9_ext_R0_data[167:156];
+        casez_tmp_19 = _tables_9_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_19 = _tables_9_ext_R0_data[179:168];
+        casez_tmp_19 = _tables_9_ext_R0_data[164:154];
       default:
-        casez_tmp_19 = _tables_9_ext_R0_data[191:180];
+        casez_tmp_19 = _tables_9_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_9_begin_REG;
-  reg  [11:0]  casez_tmp_20;
+  reg  [10:0]  casez_tmp_20;
   always @(*) begin
     casez (io_lookup_9_begin_REG)
       4'b0000:
-        casez_tmp_20 = _tables_9_ext_R1_data[11:0];
+        casez_tmp_20 = _tables_9_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_20 = _tables_9_ext_R1_data[23:12];
+        casez_tmp_20 = _tables_9_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_20 = _tables_9_ext_R1_data[35:24];
+        casez_tmp_20 = _tables_9_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_20 = _tables_9_ext_R1_data[47:36];
+        casez_tmp_20 = _tables_9_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_20 = _tables_9_ext_R1_data[59:48];
+        casez_tmp_20 = _tables_9_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_20 = _tables_9_ext_R1_data[71:60];
+        casez_tmp_20 = _tables_9_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_20 = _tables_9_ext_R1_data[83:72];
+        casez_tmp_20 = _tables_9_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_20 = _tables_9_ext_R1_data[95:84];
+        casez_tmp_20 = _tables_9_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_20 = _tables_9_ext_R1_data[107:96];
+        casez_tmp_20 = _tables_9_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_20 = _tables_9_ext_R1_data[119:108];
+        casez_tmp_20 = _tables_9_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_20 = _tables_9_ext_R1_data[131:120];
+        casez_tmp_20 = _tables_9_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_20 = _tables_9_ext_R1_data[143:132];
+        casez_tmp_20 = _tables_9_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_20 = _tables_9_ext_R1_data[155:144];
+        casez_tmp_20 = _tables_9_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_20 = _tables_9_ext_R1_data[167:156];
+        casez_tmp_20 = _tables_9_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_20 = _tables_9_ext_R1_data[179:168];
+        casez_tmp_20 = _tables_9_ext_R1_data[164:154];
       default:
-        casez_tmp_20 = _tables_9_ext_R1_data[191:180];
+        casez_tmp_20 = _tables_9_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_10 = io_lookup_10_bucket - 13'h1;
   reg          lbZero_10;
   reg  [3:0]   io_lookup_10_end_REG;
-  reg  [11:0]  casez_tmp_21;
+  reg  [10:0]  casez_tmp_21;
   always @(*) begin
     casez (io_lookup_10_end_REG)
       4'b0000:
-        casez_tmp_21 = _tables_10_ext_R0_data[11:0];
+        casez_tmp_21 = _tables_10_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_21 = _tables_10_ext_R0_data[23:12];
+        casez_tmp_21 = _tables_10_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_21 = _tables_10_ext_R0_data[35:24];
+        casez_tmp_21 = _tables_10_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_21 = _tables_10_ext_R0_data[47:36];
+        casez_tmp_21 = _tables_10_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_21 = _tables_10_ext_R0_data[59:48];
+        casez_tmp_21 = _tables_10_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_21 = _tables_10_ext_R0_data[71:60];
+        casez_tmp_21 = _tables_10_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_21 = _tables_10_ext_R0_data[83:72];
+        casez_tmp_21 = _tables_10_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_21 = _tables_10_ext_R0_data[95:84];
+        casez_tmp_21 = _tables_10_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_21 = _tables_10_ext_R0_data[107:96];
+        casez_tmp_21 = _tables_10_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_21 = _tables_10_ext_R0_data[119:108];
+        casez_tmp_21 = _tables_10_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_21 = _tables_10_ext_R0_data[131:120];
+        casez_tmp_21 = _tables_10_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_21 = _tables_10_ext_R0_data[143:132];
+        casez_tmp_21 = _tables_10_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_21 = _tables_10_ext_R0_data[155:144];
+        casez_tmp_21 = _tables_10_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_21 = _tables_10_ext_R0_data[167:156];
+        casez_tmp_21 = _tables_10_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_21 = _tables_10_ext_R0_data[179:168];
+        casez_tmp_21 = _tables_10_ext_R0_data[164:154];
       default:
-        casez_tmp_21 = _tables_10_ext_R0_data[191:180];
+        casez_tmp_21 = _tables_10_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_10_begin_REG;
-  reg  [11:0]  casez_tmp_22;
+  reg  [10:0]  casez_tmp_22;
   always @(*) begin
     casez (io_lookup_10_begin_REG)
       4'b0000:
-        casez_tmp_22 = _tables_10_ext_R1_data[11:0];
+        casez_tmp_22 = _tables_10_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_22 = _tables_10_ext_R1_data[23:12];
+        casez_tmp_22 = _tables_10_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_22 = _tables_10_ext_R1_data[35:24];
+        casez_tmp_22 = _tables_10_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_22 = _tables_10_ext_R1_data[47:36];
+        casez_tmp_22 = _tables_10_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_22 = _tables_10_ext_R1_data[59:48];
+        casez_tmp_22 = _tables_10_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_22 = _tables_10_ext_R1_data[71:60];
+        casez_tmp_22 = _tables_10_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_22 = _tables_10_ext_R1_data[83:72];
+        casez_tmp_22 = _tables_10_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_22 = _tables_10_ext_R1_data[95:84];
+        casez_tmp_22 = _tables_10_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_22 = _tables_10_ext_R1_data[107:96];
+        casez_tmp_22 = _tables_10_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_22 = _tables_10_ext_R1_data[119:108];
+        casez_tmp_22 = _tables_10_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_22 = _tables_10_ext_R1_data[131:120];
+        casez_tmp_22 = _tables_10_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_22 = _tables_10_ext_R1_data[143:132];
+        casez_tmp_22 = _tables_10_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_22 = _tables_10_ext_R1_data[155:144];
+        casez_tmp_22 = _tables_10_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_22 = _tables_10_ext_R1_data[167:156];
+        casez_tmp_22 = _tables_10_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_22 = _tables_10_ext_R1_data[179:168];
+        casez_tmp_22 = _tables_10_ext_R1_data[164:154];
       default:
-        casez_tmp_22 = _tables_10_ext_R1_data[191:180];
+        casez_tmp_22 = _tables_10_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_11 = io_lookup_11_bucket - 13'h1;
   reg          lbZero_11;
   reg  [3:0]   io_lookup_11_end_REG;
-  reg  [11:0]  casez_tmp_23;
+  reg  [10:0]  casez_tmp_23;
   always @(*) begin
     casez (io_lookup_11_end_REG)
       4'b0000:
-        casez_tmp_23 = _tables_11_ext_R0_data[11:0];
+        casez_tmp_23 = _tables_11_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_23 = _tables_11_ext_R0_data[23:12];
+        casez_tmp_23 = _tables_11_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_23 = _tables_11_ext_R0_data[35:24];
+        casez_tmp_23 = _tables_11_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_23 = _tables_11_ext_R0_data[47:36];
+        casez_tmp_23 = _tables_11_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_23 = _tables_11_ext_R0_data[59:48];
+        casez_tmp_23 = _tables_11_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_23 = _tables_11_ext_R0_data[71:60];
+        casez_tmp_23 = _tables_11_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_23 = _tables_11_ext_R0_data[83:72];
+        casez_tmp_23 = _tables_11_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_23 = _tables_11_ext_R0_data[95:84];
+        casez_tmp_23 = _tables_11_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_23 = _tables_11_ext_R0_data[107:96];
+        casez_tmp_23 = _tables_11_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_23 = _tables_11_ext_R0_data[119:108];
+        casez_tmp_23 = _tables_11_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_23 = _tables_11_ext_R0_data[131:120];
+        casez_tmp_23 = _tables_11_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_23 = _tables_11_ext_R0_data[143:132];
+        casez_tmp_23 = _tables_11_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_23 = _tables_11_ext_R0_data[155:144];
+        casez_tmp_23 = _tables_11_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_23 = _tables_11_ext_R0_data[167:156];
+        casez_tmp_23 = _tables_11_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_23 = _tables_11_ext_R0_data[179:168];
+        casez_tmp_23 = _tables_11_ext_R0_data[164:154];
       default:
-        casez_tmp_23 = _tables_11_ext_R0_data[191:180];
+        casez_tmp_23 = _tables_11_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_11_begin_REG;
-  reg  [11:0]  casez_tmp_24;
+  reg  [10:0]  casez_tmp_24;
   always @(*) begin
     casez (io_lookup_11_begin_REG)
       4'b0000:
-        casez_tmp_24 = _tables_11_ext_R1_data[11:0];
+        casez_tmp_24 = _tables_11_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_24 = _tables_11_ext_R1_data[23:12];
+        casez_tmp_24 = _tables_11_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_24 = _tables_11_ext_R1_data[35:24];
+        casez_tmp_24 = _tables_11_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_24 = _tables_11_ext_R1_data[47:36];
+        casez_tmp_24 = _tables_11_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_24 = _tables_11_ext_R1_data[59:48];
+        casez_tmp_24 = _tables_11_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_24 = _tables_11_ext_R1_data[71:60];
+        casez_tmp_24 = _tables_11_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_24 = _tables_11_ext_R1_data[83:72];
+        casez_tmp_24 = _tables_11_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_24 = _tables_11_ext_R1_data[95:84];
+        casez_tmp_24 = _tables_11_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_24 = _tables_11_ext_R1_data[107:96];
+        casez_tmp_24 = _tables_11_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_24 = _tables_11_ext_R1_data[119:108];
+        casez_tmp_24 = _tables_11_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_24 = _tables_11_ext_R1_data[131:120];
+        casez_tmp_24 = _tables_11_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_24 = _tables_11_ext_R1_data[143:132];
+        casez_tmp_24 = _tables_11_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_24 = _tables_11_ext_R1_data[155:144];
+        casez_tmp_24 = _tables_11_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_24 = _tables_11_ext_R1_data[167:156];
+        casez_tmp_24 = _tables_11_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_24 = _tables_11_ext_R1_data[179:168];
+        casez_tmp_24 = _tables_11_ext_R1_data[164:154];
       default:
-        casez_tmp_24 = _tables_11_ext_R1_data[191:180];
+        casez_tmp_24 = _tables_11_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_12 = io_lookup_12_bucket - 13'h1;
   reg          lbZero_12;
   reg  [3:0]   io_lookup_12_end_REG;
-  reg  [11:0]  casez_tmp_25;
+  reg  [10:0]  casez_tmp_25;
   always @(*) begin
     casez (io_lookup_12_end_REG)
       4'b0000:
-        casez_tmp_25 = _tables_12_ext_R0_data[11:0];
+        casez_tmp_25 = _tables_12_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_25 = _tables_12_ext_R0_data[23:12];
+        casez_tmp_25 = _tables_12_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_25 = _tables_12_ext_R0_data[35:24];
+        casez_tmp_25 = _tables_12_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_25 = _tables_12_ext_R0_data[47:36];
+        casez_tmp_25 = _tables_12_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_25 = _tables_12_ext_R0_data[59:48];
+        casez_tmp_25 = _tables_12_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_25 = _tables_12_ext_R0_data[71:60];
+        casez_tmp_25 = _tables_12_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_25 = _tables_12_ext_R0_data[83:72];
+        casez_tmp_25 = _tables_12_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_25 = _tables_12_ext_R0_data[95:84];
+        casez_tmp_25 = _tables_12_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_25 = _tables_12_ext_R0_data[107:96];
+        casez_tmp_25 = _tables_12_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_25 = _tables_12_ext_R0_data[119:108];
+        casez_tmp_25 = _tables_12_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_25 = _tables_12_ext_R0_data[131:120];
+        casez_tmp_25 = _tables_12_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_25 = _tables_12_ext_R0_data[143:132];
+        casez_tmp_25 = _tables_12_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_25 = _tables_12_ext_R0_data[155:144];
+        casez_tmp_25 = _tables_12_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_25 = _tables_12_ext_R0_data[167:156];
+        casez_tmp_25 = _tables_12_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_25 = _tables_12_ext_R0_data[179:168];
+        casez_tmp_25 = _tables_12_ext_R0_data[164:154];
       default:
-        casez_tmp_25 = _tables_12_ext_R0_data[191:180];
+        casez_tmp_25 = _tables_12_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_12_begin_REG;
-  reg  [11:0]  casez_tmp_26;
+  reg  [10:0]  casez_tmp_26;
   always @(*) begin
     casez (io_lookup_12_begin_REG)
       4'b0000:
-        casez_tmp_26 = _tables_12_ext_R1_data[11:0];
+        casez_tmp_26 = _tables_12_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_26 = _tables_12_ext_R1_data[23:12];
+        casez_tmp_26 = _tables_12_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_26 = _tables_12_ext_R1_data[35:24];
+        casez_tmp_26 = _tables_12_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_26 = _tables_12_ext_R1_data[47:36];
+        casez_tmp_26 = _tables_12_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_26 = _tables_12_ext_R1_data[59:48];
+        casez_tmp_26 = _tables_12_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_26 = _tables_12_ext_R1_data[71:60];
+        casez_tmp_26 = _tables_12_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_26 = _tables_12_ext_R1_data[83:72];
+        casez_tmp_26 = _tables_12_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_26 = _tables_12_ext_R1_data[95:84];
+        casez_tmp_26 = _tables_12_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_26 = _tables_12_ext_R1_data[107:96];
+        casez_tmp_26 = _tables_12_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_26 = _tables_12_ext_R1_data[119:108];
+        casez_tmp_26 = _tables_12_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_26 = _tables_12_ext_R1_data[131:120];
+        casez_tmp_26 = _tables_12_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_26 = _tables_12_ext_R1_data[143:132];
+        casez_tmp_26 = _tables_12_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_26 = _tables_12_ext_R1_data[155:144];
+        casez_tmp_26 = _tables_12_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_26 = _tables_12_ext_R1_data[167:156];
+        casez_tmp_26 = _tables_12_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_26 = _tables_12_ext_R1_data[179:168];
+        casez_tmp_26 = _tables_12_ext_R1_data[164:154];
       default:
-        casez_tmp_26 = _tables_12_ext_R1_data[191:180];
+        casez_tmp_26 = _tables_12_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_13 = io_lookup_13_bucket - 13'h1;
   reg          lbZero_13;
   reg  [3:0]   io_lookup_13_end_REG;
-  reg  [11:0]  casez_tmp_27;
+  reg  [10:0]  casez_tmp_27;
   always @(*) begin
     casez (io_lookup_13_end_REG)
       4'b0000:
-        casez_tmp_27 = _tables_13_ext_R0_data[11:0];
+        casez_tmp_27 = _tables_13_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_27 = _tables_13_ext_R0_data[23:12];
+        casez_tmp_27 = _tables_13_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_27 = _tables_13_ext_R0_data[35:24];
+        casez_tmp_27 = _tables_13_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_27 = _tables_13_ext_R0_data[47:36];
+        casez_tmp_27 = _tables_13_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_27 = _tables_13_ext_R0_data[59:48];
+        casez_tmp_27 = _tables_13_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_27 = _tables_13_ext_R0_data[71:60];
+        casez_tmp_27 = _tables_13_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_27 = _tables_13_ext_R0_data[83:72];
+        casez_tmp_27 = _tables_13_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_27 = _tables_13_ext_R0_data[95:84];
+        casez_tmp_27 = _tables_13_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_27 = _tables_13_ext_R0_data[107:96];
+        casez_tmp_27 = _tables_13_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_27 = _tables_13_ext_R0_data[119:108];
+        casez_tmp_27 = _tables_13_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_27 = _tables_13_ext_R0_data[131:120];
+        casez_tmp_27 = _tables_13_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_27 = _tables_13_ext_R0_data[143:132];
+        casez_tmp_27 = _tables_13_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_27 = _tables_13_ext_R0_data[155:144];
+        casez_tmp_27 = _tables_13_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_27 = _tables_13_ext_R0_data[167:156];
+        casez_tmp_27 = _tables_13_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_27 = _tables_13_ext_R0_data[179:168];
+        casez_tmp_27 = _tables_13_ext_R0_data[164:154];
       default:
-        casez_tmp_27 = _tables_13_ext_R0_data[191:180];
+        casez_tmp_27 = _tables_13_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_13_begin_REG;
-  reg  [11:0]  casez_tmp_28;
+  reg  [10:0]  casez_tmp_28;
   always @(*) begin
     casez (io_lookup_13_begin_REG)
       4'b0000:
-        casez_tmp_28 = _tables_13_ext_R1_data[11:0];
+        casez_tmp_28 = _tables_13_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_28 = _tables_13_ext_R1_data[23:12];
+        casez_tmp_28 = _tables_13_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_28 = _tables_13_ext_R1_data[35:24];
+        casez_tmp_28 = _tables_13_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_28 = _tables_13_ext_R1_data[47:36];
+        casez_tmp_28 = _tables_13_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_28 = _tables_13_ext_R1_data[59:48];
+        casez_tmp_28 = _tables_13_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_28 = _tables_13_ext_R1_data[71:60];
+        casez_tmp_28 = _tables_13_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_28 = _tables_13_ext_R1_data[83:72];
+        casez_tmp_28 = _tables_13_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_28 = _tables_13_ext_R1_data[95:84];
+        casez_tmp_28 = _tables_13_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_28 = _tables_13_ext_R1_data[107:96];
+        casez_tmp_28 = _tables_13_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_28 = _tables_13_ext_R1_data[119:108];
+        casez_tmp_28 = _tables_13_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_28 = _tables_13_ext_R1_data[131:120];
+        casez_tmp_28 = _tables_13_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_28 = _tables_13_ext_R1_data[143:132];
+        casez_tmp_28 = _tables_13_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_28 = _tables_13_ext_R1_data[155:144];
+        casez_tmp_28 = _tables_13_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_28 = _tables_13_ext_R1_data[167:156];
+        casez_tmp_28 = _tables_13_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_28 = _tables_13_ext_R1_data[179:168];
+        casez_tmp_28 = _tables_13_ext_R1_data[164:154];
       default:
-        casez_tmp_28 = _tables_13_ext_R1_data[191:180];
+        casez_tmp_28 = _tables_13_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_14 = io_lookup_14_bucket - 13'h1;
   reg          lbZero_14;
   reg  [3:0]   io_lookup_14_end_REG;
-  reg  [11:0]  casez_tmp_29;
+  reg  [10:0]  casez_tmp_29;
   always @(*) begin
     casez (io_lookup_14_end_REG)
       4'b0000:
-        casez_tmp_29 = _tables_14_ext_R0_data[11:0];
+        casez_tmp_29 = _tables_14_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_29 = _tables_14_ext_R0_data[23:12];
+        casez_tmp_29 = _tables_14_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_29 = _tables_14_ext_R0_data[35:24];
+        casez_tmp_29 = _tables_14_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_29 = _tables_14_ext_R0_data[47:36];
+        casez_tmp_29 = _tables_14_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_29 = _tables_14_ext_R0_data[59:48];
+        casez_tmp_29 = _tables_14_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_29 = _tables_14_ext_R0_data[71:60];
+        casez_tmp_29 = _tables_14_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_29 = _tables_14_ext_R0_data[83:72];
+        casez_tmp_29 = _tables_14_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_29 = _tables_14_ext_R0_data[95:84];
+        casez_tmp_29 = _tables_14_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_29 = _tables_14_ext_R0_data[107:96];
+        casez_tmp_29 = _tables_14_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_29 = _tables_14_ext_R0_data[119:108];
+        casez_tmp_29 = _tables_14_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_29 = _tables_14_ext_R0_data[131:120];
+        casez_tmp_29 = _tables_14_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_29 = _tables_14_ext_R0_data[143:132];
+        casez_tmp_29 = _tables_14_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_29 = _tables_14_ext_R0_data[155:144];
+        casez_tmp_29 = _tables_14_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_29 = _tables_14_ext_R0_data[167:156];
+        casez_tmp_29 = _tables_14_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_29 = _tables_14_ext_R0_data[179:168];
+        casez_tmp_29 = _tables_14_ext_R0_data[164:154];
       default:
-        casez_tmp_29 = _tables_14_ext_R0_data[191:180];
+        casez_tmp_29 = _tables_14_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_14_begin_REG;
-  reg  [11:0]  casez_tmp_30;
+  reg  [10:0]  casez_tmp_30;
   always @(*) begin
     casez (io_lookup_14_begin_REG)
       4'b0000:
-        casez_tmp_30 = _tables_14_ext_R1_data[11:0];
+        casez_tmp_30 = _tables_14_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_30 = _tables_14_ext_R1_data[23:12];
+        casez_tmp_30 = _tables_14_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_30 = _tables_14_ext_R1_data[35:24];
+        casez_tmp_30 = _tables_14_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_30 = _tables_14_ext_R1_data[47:36];
+        casez_tmp_30 = _tables_14_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_30 = _tables_14_ext_R1_data[59:48];
+        casez_tmp_30 = _tables_14_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_30 = _tables_14_ext_R1_data[71:60];
+        casez_tmp_30 = _tables_14_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_30 = _tables_14_ext_R1_data[83:72];
+        casez_tmp_30 = _tables_14_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_30 = _tables_14_ext_R1_data[95:84];
+        casez_tmp_30 = _tables_14_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_30 = _tables_14_ext_R1_data[107:96];
+        casez_tmp_30 = _tables_14_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_30 = _tables_14_ext_R1_data[119:108];
+        casez_tmp_30 = _tables_14_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_30 = _tables_14_ext_R1_data[131:120];
+        casez_tmp_30 = _tables_14_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_30 = _tables_14_ext_R1_data[143:132];
+        casez_tmp_30 = _tables_14_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_30 = _tables_14_ext_R1_data[155:144];
+        casez_tmp_30 = _tables_14_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_30 = _tables_14_ext_R1_data[167:156];
+        casez_tmp_30 = _tables_14_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_30 = _tables_14_ext_R1_data[179:168];
+        casez_tmp_30 = _tables_14_ext_R1_data[164:154];
       default:
-        casez_tmp_30 = _tables_14_ext_R1_data[191:180];
+        casez_tmp_30 = _tables_14_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_15 = io_lookup_15_bucket - 13'h1;
   reg          lbZero_15;
   reg  [3:0]   io_lookup_15_end_REG;
-  reg  [11:0]  casez_tmp_31;
+  reg  [10:0]  casez_tmp_31;
   always @(*) begin
     casez (io_lookup_15_end_REG)
       4'b0000:
-        casez_tmp_31 = _tables_15_ext_R0_data[11:0];
+        casez_tmp_31 = _tables_15_ext_R0_data[10:0];
       4'b0001:
-        casez_tmp_31 = _tables_15_ext_R0_data[23:12];
+        casez_tmp_31 = _tables_15_ext_R0_data[21:11];
       4'b0010:
-        casez_tmp_31 = _tables_15_ext_R0_data[35:24];
+        casez_tmp_31 = _tables_15_ext_R0_data[32:22];
       4'b0011:
-        casez_tmp_31 = _tables_15_ext_R0_data[47:36];
+        casez_tmp_31 = _tables_15_ext_R0_data[43:33];
       4'b0100:
-        casez_tmp_31 = _tables_15_ext_R0_data[59:48];
+        casez_tmp_31 = _tables_15_ext_R0_data[54:44];
       4'b0101:
-        casez_tmp_31 = _tables_15_ext_R0_data[71:60];
+        casez_tmp_31 = _tables_15_ext_R0_data[65:55];
       4'b0110:
-        casez_tmp_31 = _tables_15_ext_R0_data[83:72];
+        casez_tmp_31 = _tables_15_ext_R0_data[76:66];
       4'b0111:
-        casez_tmp_31 = _tables_15_ext_R0_data[95:84];
+        casez_tmp_31 = _tables_15_ext_R0_data[87:77];
       4'b1000:
-        casez_tmp_31 = _tables_15_ext_R0_data[107:96];
+        casez_tmp_31 = _tables_15_ext_R0_data[98:88];
       4'b1001:
-        casez_tmp_31 = _tables_15_ext_R0_data[119:108];
+        casez_tmp_31 = _tables_15_ext_R0_data[109:99];
       4'b1010:
-        casez_tmp_31 = _tables_15_ext_R0_data[131:120];
+        casez_tmp_31 = _tables_15_ext_R0_data[120:110];
       4'b1011:
-        casez_tmp_31 = _tables_15_ext_R0_data[143:132];
+        casez_tmp_31 = _tables_15_ext_R0_data[131:121];
       4'b1100:
-        casez_tmp_31 = _tables_15_ext_R0_data[155:144];
+        casez_tmp_31 = _tables_15_ext_R0_data[142:132];
       4'b1101:
-        casez_tmp_31 = _tables_15_ext_R0_data[167:156];
+        casez_tmp_31 = _tables_15_ext_R0_data[153:143];
       4'b1110:
-        casez_tmp_31 = _tables_15_ext_R0_data[179:168];
+        casez_tmp_31 = _tables_15_ext_R0_data[164:154];
       default:
-        casez_tmp_31 = _tables_15_ext_R0_data[191:180];
+        casez_tmp_31 = _tables_15_ext_R0_data[175:165];
     endcase
   end // always @(*)
   reg  [3:0]   io_lookup_15_begin_REG;
-  reg  [11:0]  casez_tmp_32;
+  reg  [10:0]  casez_tmp_32;
   always @(*) begin
     casez (io_lookup_15_begin_REG)
       4'b0000:
-        casez_tmp_32 = _tables_15_ext_R1_data[11:0];
+        casez_tmp_32 = _tables_15_ext_R1_data[10:0];
       4'b0001:
-        casez_tmp_32 = _tables_15_ext_R1_data[23:12];
+        casez_tmp_32 = _tables_15_ext_R1_data[21:11];
       4'b0010:
-        casez_tmp_32 = _tables_15_ext_R1_data[35:24];
+        casez_tmp_32 = _tables_15_ext_R1_data[32:22];
       4'b0011:
-        casez_tmp_32 = _tables_15_ext_R1_data[47:36];
+        casez_tmp_32 = _tables_15_ext_R1_data[43:33];
       4'b0100:
-        casez_tmp_32 = _tables_15_ext_R1_data[59:48];
+        casez_tmp_32 = _tables_15_ext_R1_data[54:44];
       4'b0101:
-        casez_tmp_32 = _tables_15_ext_R1_data[71:60];
+        casez_tmp_32 = _tables_15_ext_R1_data[65:55];
       4'b0110:
-        casez_tmp_32 = _tables_15_ext_R1_data[83:72];
+        casez_tmp_32 = _tables_15_ext_R1_data[76:66];
       4'b0111:
-        casez_tmp_32 = _tables_15_ext_R1_data[95:84];
+        casez_tmp_32 = _tables_15_ext_R1_data[87:77];
       4'b1000:
-        casez_tmp_32 = _tables_15_ext_R1_data[107:96];
+        casez_tmp_32 = _tables_15_ext_R1_data[98:88];
       4'b1001:
-        casez_tmp_32 = _tables_15_ext_R1_data[119:108];
+        casez_tmp_32 = _tables_15_ext_R1_data[109:99];
       4'b1010:
-        casez_tmp_32 = _tables_15_ext_R1_data[131:120];
+        casez_tmp_32 = _tables_15_ext_R1_data[120:110];
       4'b1011:
-        casez_tmp_32 = _tables_15_ext_R1_data[143:132];
+        casez_tmp_32 = _tables_15_ext_R1_data[131:121];
       4'b1100:
-        casez_tmp_32 = _tables_15_ext_R1_data[155:144];
+        casez_tmp_32 = _tables_15_ext_R1_data[142:132];
       4'b1101:
-        casez_tmp_32 = _tables_15_ext_R1_data[167:156];
+        casez_tmp_32 = _tables_15_ext_R1_data[153:143];
       4'b1110:
-        casez_tmp_32 = _tables_15_ext_R1_data[179:168];
+        casez_tmp_32 = _tables_15_ext_R1_data[164:154];
       default:
-        casez_tmp_32 = _tables_15_ext_R1_data[191:180];
+        casez_tmp_32 = _tables_15_ext_R1_data[175:165];
     endcase
   end // always @(*)
   wire [9:0]   _walk_T_2 = walk + 10'h1;
@@ -18587,8 +18586,8 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
   always @(posedge clock) begin
     if (reset) begin
       state <= 2'h0;
-      counted <= 12'h0;
-      scattered <= 12'h0;
+      counted <= 11'h0;
+      scattered <= 11'h0;
       bad <= 1'h0;
       sumS1 <= 1'h0;
       s1 <= 1'h0;
@@ -18604,13 +18603,13 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
       else if (_GEN_4)
         state <= 2'h2;
       if (_GEN_3) begin
-        counted <= 12'h0;
-        scattered <= 12'h0;
+        counted <= 11'h0;
+        scattered <= 11'h0;
       end
       else begin
         counted <=
-          counted + {10'h0, {1'h0, s1 & ~s1scatter} + {1'h0, s1_1 & ~s1scatter_1}};
-        scattered <= scattered + {10'h0, {1'h0, place_0_valid} + {1'h0, place_1_valid}};
+          counted + {9'h0, {1'h0, s1 & ~s1scatter} + {1'h0, s1_1 & ~s1scatter_1}};
+        scattered <= scattered + {9'h0, {1'h0, place_0_valid} + {1'h0, place_1_valid}};
       end
       bad <= _fire_T_1 & ~inRange_1 | _fire_T & ~inRange | ~_GEN_3 & bad;
       sumS1 <= sumRead;
@@ -18631,7 +18630,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     else if (_GEN_3 | ~_GEN_4) begin
     end
     else
-      sum <= 12'h0;
+      sum <= 11'h0;
     sumW <= walk[8:0];
     sumLast <= _walk_T_2 == usedWords;
     if (fire) begin
@@ -18701,7 +18700,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     io_lookup_15_end_REG <= io_lookup_15_bucket[3:0];
     io_lookup_15_begin_REG <= _prev_T_15[3:0];
   end // always @(posedge)
-  tables_0_512x192_world tables_0_ext (
+  tables_0_512x176_world tables_0_ext (
     .R0_addr (walk[8:0]),
     .R0_en   (sumRead),
     .R0_clk  (clock),
@@ -18723,25 +18722,25 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data
       (sumS1
-         ? {starts_15 + _cursors_0_ext_R0_data[191:180],
-            starts_14 + _cursors_0_ext_R0_data[179:168],
-            starts_13 + _cursors_0_ext_R0_data[167:156],
-            starts_12 + _cursors_0_ext_R0_data[155:144],
-            starts_11 + _cursors_0_ext_R0_data[143:132],
-            starts_10 + _cursors_0_ext_R0_data[131:120],
-            starts_9 + _cursors_0_ext_R0_data[119:108],
-            starts_8 + _cursors_0_ext_R0_data[107:96],
-            starts_7 + _cursors_0_ext_R0_data[95:84],
-            starts_6 + _cursors_0_ext_R0_data[83:72],
-            starts_5 + _cursors_0_ext_R0_data[71:60],
-            starts_4 + _cursors_0_ext_R0_data[59:48],
-            starts_3 + _cursors_0_ext_R0_data[47:36],
-            starts_2 + _cursors_0_ext_R0_data[35:24],
-            starts_1 + _cursors_0_ext_R0_data[23:12],
-            sum + _cursors_0_ext_R0_data[11:0]}
-         : _GEN ? 192'h0 : newWord_1)
+         ? {starts_15 + _cursors_0_ext_R0_data[175:165],
+            starts_14 + _cursors_0_ext_R0_data[164:154],
+            starts_13 + _cursors_0_ext_R0_data[153:143],
+            starts_12 + _cursors_0_ext_R0_data[142:132],
+            starts_11 + _cursors_0_ext_R0_data[131:121],
+            starts_10 + _cursors_0_ext_R0_data[120:110],
+            starts_9 + _cursors_0_ext_R0_data[109:99],
+            starts_8 + _cursors_0_ext_R0_data[98:88],
+            starts_7 + _cursors_0_ext_R0_data[87:77],
+            starts_6 + _cursors_0_ext_R0_data[76:66],
+            starts_5 + _cursors_0_ext_R0_data[65:55],
+            starts_4 + _cursors_0_ext_R0_data[54:44],
+            starts_3 + _cursors_0_ext_R0_data[43:33],
+            starts_2 + _cursors_0_ext_R0_data[32:22],
+            starts_1 + _cursors_0_ext_R0_data[21:11],
+            sum + _cursors_0_ext_R0_data[10:0]}
+         : _GEN ? 176'h0 : newWord_1)
   );
-  mem_512x192_world tables_1_ext (
+  mem_512x176_world tables_1_ext (
     .R0_addr (io_lookup_1_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18755,7 +18754,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_2_ext (
+  mem_512x176_world tables_2_ext (
     .R0_addr (io_lookup_2_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18769,7 +18768,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_3_ext (
+  mem_512x176_world tables_3_ext (
     .R0_addr (io_lookup_3_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18783,7 +18782,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_4_ext (
+  mem_512x176_world tables_4_ext (
     .R0_addr (io_lookup_4_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18797,7 +18796,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_5_ext (
+  mem_512x176_world tables_5_ext (
     .R0_addr (io_lookup_5_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18811,7 +18810,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_6_ext (
+  mem_512x176_world tables_6_ext (
     .R0_addr (io_lookup_6_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18825,7 +18824,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_7_ext (
+  mem_512x176_world tables_7_ext (
     .R0_addr (io_lookup_7_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18839,7 +18838,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_8_ext (
+  mem_512x176_world tables_8_ext (
     .R0_addr (io_lookup_8_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18853,7 +18852,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_9_ext (
+  mem_512x176_world tables_9_ext (
     .R0_addr (io_lookup_9_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18867,7 +18866,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_10_ext (
+  mem_512x176_world tables_10_ext (
     .R0_addr (io_lookup_10_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18881,7 +18880,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_11_ext (
+  mem_512x176_world tables_11_ext (
     .R0_addr (io_lookup_11_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18895,7 +18894,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_12_ext (
+  mem_512x176_world tables_12_ext (
     .R0_addr (io_lookup_12_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18909,7 +18908,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_13_ext (
+  mem_512x176_world tables_13_ext (
     .R0_addr (io_lookup_13_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18923,7 +18922,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_14_ext (
+  mem_512x176_world tables_14_ext (
     .R0_addr (io_lookup_14_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18937,7 +18936,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world tables_15_ext (
+  mem_512x176_world tables_15_ext (
     .R0_addr (io_lookup_15_bucket[12:4]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -18951,7 +18950,7 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x192_world cursors_0_ext (
+  mem_512x176_world cursors_0_ext (
     .R0_addr (walk[8:0]),
     .R0_en   (sumRead),
     .R0_clk  (clock),
@@ -18981,196 +18980,196 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
             starts_2,
             starts_1,
             sum}
-         : _GEN ? 192'h0 : newWord)
+         : _GEN ? 176'h0 : newWord)
   );
-  entries_2048x13_world entries_0_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_0_addr),
+  entries_1024x13_world entries_0_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_0_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_0_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_0_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_0_bits_addr),
     .W0_en     (place_1_valid | io_mark_0_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_0_bits_item})
   );
-  entries_2048x13_world entries_1_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_1_addr),
+  entries_1024x13_world entries_1_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_1_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_1_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_1_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_1_bits_addr),
     .W0_en     (place_1_valid | io_mark_1_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_1_bits_item})
   );
-  entries_2048x13_world entries_2_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_2_addr),
+  entries_1024x13_world entries_2_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_2_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_2_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_2_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_2_bits_addr),
     .W0_en     (place_1_valid | io_mark_2_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_2_bits_item})
   );
-  entries_2048x13_world entries_3_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_3_addr),
+  entries_1024x13_world entries_3_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_3_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_3_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_3_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_3_bits_addr),
     .W0_en     (place_1_valid | io_mark_3_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_3_bits_item})
   );
-  entries_2048x13_world entries_4_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_4_addr),
+  entries_1024x13_world entries_4_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_4_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_4_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_4_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_4_bits_addr),
     .W0_en     (place_1_valid | io_mark_4_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_4_bits_item})
   );
-  entries_2048x13_world entries_5_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_5_addr),
+  entries_1024x13_world entries_5_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_5_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_5_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_5_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_5_bits_addr),
     .W0_en     (place_1_valid | io_mark_5_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_5_bits_item})
   );
-  entries_2048x13_world entries_6_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_6_addr),
+  entries_1024x13_world entries_6_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_6_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_6_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_6_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_6_bits_addr),
     .W0_en     (place_1_valid | io_mark_6_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_6_bits_item})
   );
-  entries_2048x13_world entries_7_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_7_addr),
+  entries_1024x13_world entries_7_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_7_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_7_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_7_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_7_bits_addr),
     .W0_en     (place_1_valid | io_mark_7_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_7_bits_item})
   );
-  entries_2048x13_world entries_8_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_8_addr),
+  entries_1024x13_world entries_8_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_8_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_8_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_8_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_8_bits_addr),
     .W0_en     (place_1_valid | io_mark_8_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_8_bits_item})
   );
-  entries_2048x13_world entries_9_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_9_addr),
+  entries_1024x13_world entries_9_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_9_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_9_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_9_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_9_bits_addr),
     .W0_en     (place_1_valid | io_mark_9_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_9_bits_item})
   );
-  entries_2048x13_world entries_10_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_10_addr),
+  entries_1024x13_world entries_10_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_10_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_10_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_10_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_10_bits_addr),
     .W0_en     (place_1_valid | io_mark_10_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_10_bits_item})
   );
-  entries_2048x13_world entries_11_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_11_addr),
+  entries_1024x13_world entries_11_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_11_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_11_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_11_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_11_bits_addr),
     .W0_en     (place_1_valid | io_mark_11_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_11_bits_item})
   );
-  entries_2048x13_world entries_12_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_12_addr),
+  entries_1024x13_world entries_12_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_12_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_12_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_12_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_12_bits_addr),
     .W0_en     (place_1_valid | io_mark_12_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_12_bits_item})
   );
-  entries_2048x13_world entries_13_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_13_addr),
+  entries_1024x13_world entries_13_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_13_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_13_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_13_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_13_bits_addr),
     .W0_en     (place_1_valid | io_mark_13_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_13_bits_item})
   );
-  entries_2048x13_world entries_14_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_14_addr),
+  entries_1024x13_world entries_14_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_14_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_14_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_14_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_14_bits_addr),
     .W0_en     (place_1_valid | io_mark_14_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_14_bits_item})
   );
-  entries_2048x13_world entries_15_ext (
-    .RW0_addr  (place_0_valid ? casez_tmp[10:0] : io_entry_15_addr),
+  entries_1024x13_world entries_15_ext (
+    .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_15_addr),
     .RW0_en    (1'h1),
     .RW0_clk   (clock),
     .RW0_wmode (place_0_valid),
     .RW0_wdata (_entryRd_T_31),
     .RW0_rdata (_entries_15_ext_RW0_rdata),
-    .W0_addr   (place_1_valid ? casez_tmp_0[10:0] : io_mark_15_bits_addr),
+    .W0_addr   (place_1_valid ? casez_tmp_0[9:0] : io_mark_15_bits_addr),
     .W0_en     (place_1_valid | io_mark_15_valid),
     .W0_clk    (clock),
     .W0_data   ({~place_1_valid, place_1_valid ? s1item_1 : io_mark_15_bits_item})
@@ -19178,294 +19177,294 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
   assign io_busy = |state;
   assign io_in_0_ready = io_in_0_ready_0;
   assign io_in_1_ready = io_in_1_ready_0;
-  assign io_lookup_0_begin = lbZero ? 12'h0 : casez_tmp_2;
+  assign io_lookup_0_begin = lbZero ? 11'h0 : casez_tmp_2;
   assign io_lookup_0_end = casez_tmp_1;
-  assign io_lookup_0_word_0 = _tables_0_ext_R2_data[11:0];
-  assign io_lookup_0_word_1 = _tables_0_ext_R2_data[23:12];
-  assign io_lookup_0_word_2 = _tables_0_ext_R2_data[35:24];
-  assign io_lookup_0_word_3 = _tables_0_ext_R2_data[47:36];
-  assign io_lookup_0_word_4 = _tables_0_ext_R2_data[59:48];
-  assign io_lookup_0_word_5 = _tables_0_ext_R2_data[71:60];
-  assign io_lookup_0_word_6 = _tables_0_ext_R2_data[83:72];
-  assign io_lookup_0_word_7 = _tables_0_ext_R2_data[95:84];
-  assign io_lookup_0_word_8 = _tables_0_ext_R2_data[107:96];
-  assign io_lookup_0_word_9 = _tables_0_ext_R2_data[119:108];
-  assign io_lookup_0_word_10 = _tables_0_ext_R2_data[131:120];
-  assign io_lookup_0_word_11 = _tables_0_ext_R2_data[143:132];
-  assign io_lookup_0_word_12 = _tables_0_ext_R2_data[155:144];
-  assign io_lookup_0_word_13 = _tables_0_ext_R2_data[167:156];
-  assign io_lookup_0_word_14 = _tables_0_ext_R2_data[179:168];
-  assign io_lookup_0_word_15 = _tables_0_ext_R2_data[191:180];
-  assign io_lookup_1_begin = lbZero_1 ? 12'h0 : casez_tmp_4;
+  assign io_lookup_0_word_0 = _tables_0_ext_R2_data[10:0];
+  assign io_lookup_0_word_1 = _tables_0_ext_R2_data[21:11];
+  assign io_lookup_0_word_2 = _tables_0_ext_R2_data[32:22];
+  assign io_lookup_0_word_3 = _tables_0_ext_R2_data[43:33];
+  assign io_lookup_0_word_4 = _tables_0_ext_R2_data[54:44];
+  assign io_lookup_0_word_5 = _tables_0_ext_R2_data[65:55];
+  assign io_lookup_0_word_6 = _tables_0_ext_R2_data[76:66];
+  assign io_lookup_0_word_7 = _tables_0_ext_R2_data[87:77];
+  assign io_lookup_0_word_8 = _tables_0_ext_R2_data[98:88];
+  assign io_lookup_0_word_9 = _tables_0_ext_R2_data[109:99];
+  assign io_lookup_0_word_10 = _tables_0_ext_R2_data[120:110];
+  assign io_lookup_0_word_11 = _tables_0_ext_R2_data[131:121];
+  assign io_lookup_0_word_12 = _tables_0_ext_R2_data[142:132];
+  assign io_lookup_0_word_13 = _tables_0_ext_R2_data[153:143];
+  assign io_lookup_0_word_14 = _tables_0_ext_R2_data[164:154];
+  assign io_lookup_0_word_15 = _tables_0_ext_R2_data[175:165];
+  assign io_lookup_1_begin = lbZero_1 ? 11'h0 : casez_tmp_4;
   assign io_lookup_1_end = casez_tmp_3;
-  assign io_lookup_1_word_0 = _tables_1_ext_R0_data[11:0];
-  assign io_lookup_1_word_1 = _tables_1_ext_R0_data[23:12];
-  assign io_lookup_1_word_2 = _tables_1_ext_R0_data[35:24];
-  assign io_lookup_1_word_3 = _tables_1_ext_R0_data[47:36];
-  assign io_lookup_1_word_4 = _tables_1_ext_R0_data[59:48];
-  assign io_lookup_1_word_5 = _tables_1_ext_R0_data[71:60];
-  assign io_lookup_1_word_6 = _tables_1_ext_R0_data[83:72];
-  assign io_lookup_1_word_7 = _tables_1_ext_R0_data[95:84];
-  assign io_lookup_1_word_8 = _tables_1_ext_R0_data[107:96];
-  assign io_lookup_1_word_9 = _tables_1_ext_R0_data[119:108];
-  assign io_lookup_1_word_10 = _tables_1_ext_R0_data[131:120];
-  assign io_lookup_1_word_11 = _tables_1_ext_R0_data[143:132];
-  assign io_lookup_1_word_12 = _tables_1_ext_R0_data[155:144];
-  assign io_lookup_1_word_13 = _tables_1_ext_R0_data[167:156];
-  assign io_lookup_1_word_14 = _tables_1_ext_R0_data[179:168];
-  assign io_lookup_1_word_15 = _tables_1_ext_R0_data[191:180];
-  assign io_lookup_2_begin = lbZero_2 ? 12'h0 : casez_tmp_6;
+  assign io_lookup_1_word_0 = _tables_1_ext_R0_data[10:0];
+  assign io_lookup_1_word_1 = _tables_1_ext_R0_data[21:11];
+  assign io_lookup_1_word_2 = _tables_1_ext_R0_data[32:22];
+  assign io_lookup_1_word_3 = _tables_1_ext_R0_data[43:33];
+  assign io_lookup_1_word_4 = _tables_1_ext_R0_data[54:44];
+  assign io_lookup_1_word_5 = _tables_1_ext_R0_data[65:55];
+  assign io_lookup_1_word_6 = _tables_1_ext_R0_data[76:66];
+  assign io_lookup_1_word_7 = _tables_1_ext_R0_data[87:77];
+  assign io_lookup_1_word_8 = _tables_1_ext_R0_data[98:88];
+  assign io_lookup_1_word_9 = _tables_1_ext_R0_data[109:99];
+  assign io_lookup_1_word_10 = _tables_1_ext_R0_data[120:110];
+  assign io_lookup_1_word_11 = _tables_1_ext_R0_data[131:121];
+  assign io_lookup_1_word_12 = _tables_1_ext_R0_data[142:132];
+  assign io_lookup_1_word_13 = _tables_1_ext_R0_data[153:143];
+  assign io_lookup_1_word_14 = _tables_1_ext_R0_data[164:154];
+  assign io_lookup_1_word_15 = _tables_1_ext_R0_data[175:165];
+  assign io_lookup_2_begin = lbZero_2 ? 11'h0 : casez_tmp_6;
   assign io_lookup_2_end = casez_tmp_5;
-  assign io_lookup_2_word_0 = _tables_2_ext_R0_data[11:0];
-  assign io_lookup_2_word_1 = _tables_2_ext_R0_data[23:12];
-  assign io_lookup_2_word_2 = _tables_2_ext_R0_data[35:24];
-  assign io_lookup_2_word_3 = _tables_2_ext_R0_data[47:36];
-  assign io_lookup_2_word_4 = _tables_2_ext_R0_data[59:48];
-  assign io_lookup_2_word_5 = _tables_2_ext_R0_data[71:60];
-  assign io_lookup_2_word_6 = _tables_2_ext_R0_data[83:72];
-  assign io_lookup_2_word_7 = _tables_2_ext_R0_data[95:84];
-  assign io_lookup_2_word_8 = _tables_2_ext_R0_data[107:96];
-  assign io_lookup_2_word_9 = _tables_2_ext_R0_data[119:108];
-  assign io_lookup_2_word_10 = _tables_2_ext_R0_data[131:120];
-  assign io_lookup_2_word_11 = _tables_2_ext_R0_data[143:132];
-  assign io_lookup_2_word_12 = _tables_2_ext_R0_data[155:144];
-  assign io_lookup_2_word_13 = _tables_2_ext_R0_data[167:156];
-  assign io_lookup_2_word_14 = _tables_2_ext_R0_data[179:168];
-  assign io_lookup_2_word_15 = _tables_2_ext_R0_data[191:180];
-  assign io_lookup_3_begin = lbZero_3 ? 12'h0 : casez_tmp_8;
+  assign io_lookup_2_word_0 = _tables_2_ext_R0_data[10:0];
+  assign io_lookup_2_word_1 = _tables_2_ext_R0_data[21:11];
+  assign io_lookup_2_word_2 = _tables_2_ext_R0_data[32:22];
+  assign io_lookup_2_word_3 = _tables_2_ext_R0_data[43:33];
+  assign io_lookup_2_word_4 = _tables_2_ext_R0_data[54:44];
+  assign io_lookup_2_word_5 = _tables_2_ext_R0_data[65:55];
+  assign io_lookup_2_word_6 = _tables_2_ext_R0_data[76:66];
+  assign io_lookup_2_word_7 = _tables_2_ext_R0_data[87:77];
+  assign io_lookup_2_word_8 = _tables_2_ext_R0_data[98:88];
+  assign io_lookup_2_word_9 = _tables_2_ext_R0_data[109:99];
+  assign io_lookup_2_word_10 = _tables_2_ext_R0_data[120:110];
+  assign io_lookup_2_word_11 = _tables_2_ext_R0_data[131:121];
+  assign io_lookup_2_word_12 = _tables_2_ext_R0_data[142:132];
+  assign io_lookup_2_word_13 = _tables_2_ext_R0_data[153:143];
+  assign io_lookup_2_word_14 = _tables_2_ext_R0_data[164:154];
+  assign io_lookup_2_word_15 = _tables_2_ext_R0_data[175:165];
+  assign io_lookup_3_begin = lbZero_3 ? 11'h0 : casez_tmp_8;
   assign io_lookup_3_end = casez_tmp_7;
-  assign io_lookup_3_word_0 = _tables_3_ext_R0_data[11:0];
-  assign io_lookup_3_word_1 = _tables_3_ext_R0_data[23:12];
-  assign io_lookup_3_word_2 = _tables_3_ext_R0_data[35:24];
-  assign io_lookup_3_word_3 = _tables_3_ext_R0_data[47:36];
-  assign io_lookup_3_word_4 = _tables_3_ext_R0_data[59:48];
-  assign io_lookup_3_word_5 = _tables_3_ext_R0_data[71:60];
-  assign io_lookup_3_word_6 = _tables_3_ext_R0_data[83:72];
-  assign io_lookup_3_word_7 = _tables_3_ext_R0_data[95:84];
-  assign io_lookup_3_word_8 = _tables_3_ext_R0_data[107:96];
-  assign io_lookup_3_word_9 = _tables_3_ext_R0_data[119:108];
-  assign io_lookup_3_word_10 = _tables_3_ext_R0_data[131:120];
-  assign io_lookup_3_word_11 = _tables_3_ext_R0_data[143:132];
-  assign io_lookup_3_word_12 = _tables_3_ext_R0_data[155:144];
-  assign io_lookup_3_word_13 = _tables_3_ext_R0_data[167:156];
-  assign io_lookup_3_word_14 = _tables_3_ext_R0_data[179:168];
-  assign io_lookup_3_word_15 = _tables_3_ext_R0_data[191:180];
-  assign io_lookup_4_begin = lbZero_4 ? 12'h0 : casez_tmp_10;
+  assign io_lookup_3_word_0 = _tables_3_ext_R0_data[10:0];
+  assign io_lookup_3_word_1 = _tables_3_ext_R0_data[21:11];
+  assign io_lookup_3_word_2 = _tables_3_ext_R0_data[32:22];
+  assign io_lookup_3_word_3 = _tables_3_ext_R0_data[43:33];
+  assign io_lookup_3_word_4 = _tables_3_ext_R0_data[54:44];
+  assign io_lookup_3_word_5 = _tables_3_ext_R0_data[65:55];
+  assign io_lookup_3_word_6 = _tables_3_ext_R0_data[76:66];
+  assign io_lookup_3_word_7 = _tables_3_ext_R0_data[87:77];
+  assign io_lookup_3_word_8 = _tables_3_ext_R0_data[98:88];
+  assign io_lookup_3_word_9 = _tables_3_ext_R0_data[109:99];
+  assign io_lookup_3_word_10 = _tables_3_ext_R0_data[120:110];
+  assign io_lookup_3_word_11 = _tables_3_ext_R0_data[131:121];
+  assign io_lookup_3_word_12 = _tables_3_ext_R0_data[142:132];
+  assign io_lookup_3_word_13 = _tables_3_ext_R0_data[153:143];
+  assign io_lookup_3_word_14 = _tables_3_ext_R0_data[164:154];
+  assign io_lookup_3_word_15 = _tables_3_ext_R0_data[175:165];
+  assign io_lookup_4_begin = lbZero_4 ? 11'h0 : casez_tmp_10;
   assign io_lookup_4_end = casez_tmp_9;
-  assign io_lookup_4_word_0 = _tables_4_ext_R0_data[11:0];
-  assign io_lookup_4_word_1 = _tables_4_ext_R0_data[23:12];
-  assign io_lookup_4_word_2 = _tables_4_ext_R0_data[35:24];
-  assign io_lookup_4_word_3 = _tables_4_ext_R0_data[47:36];
-  assign io_lookup_4_word_4 = _tables_4_ext_R0_data[59:48];
-  assign io_lookup_4_word_5 = _tables_4_ext_R0_data[71:60];
-  assign io_lookup_4_word_6 = _tables_4_ext_R0_data[83:72];
-  assign io_lookup_4_word_7 = _tables_4_ext_R0_data[95:84];
-  assign io_lookup_4_word_8 = _tables_4_ext_R0_data[107:96];
-  assign io_lookup_4_word_9 = _tables_4_ext_R0_data[119:108];
-  assign io_lookup_4_word_10 = _tables_4_ext_R0_data[131:120];
-  assign io_lookup_4_word_11 = _tables_4_ext_R0_data[143:132];
-  assign io_lookup_4_word_12 = _tables_4_ext_R0_data[155:144];
-  assign io_lookup_4_word_13 = _tables_4_ext_R0_data[167:156];
-  assign io_lookup_4_word_14 = _tables_4_ext_R0_data[179:168];
-  assign io_lookup_4_word_15 = _tables_4_ext_R0_data[191:180];
-  assign io_lookup_5_begin = lbZero_5 ? 12'h0 : casez_tmp_12;
+  assign io_lookup_4_word_0 = _tables_4_ext_R0_data[10:0];
+  assign io_lookup_4_word_1 = _tables_4_ext_R0_data[21:11];
+  assign io_lookup_4_word_2 = _tables_4_ext_R0_data[32:22];
+  assign io_lookup_4_word_3 = _tables_4_ext_R0_data[43:33];
+  assign io_lookup_4_word_4 = _tables_4_ext_R0_data[54:44];
+  assign io_lookup_4_word_5 = _tables_4_ext_R0_data[65:55];
+  assign io_lookup_4_word_6 = _tables_4_ext_R0_data[76:66];
+  assign io_lookup_4_word_7 = _tables_4_ext_R0_data[87:77];
+  assign io_lookup_4_word_8 = _tables_4_ext_R0_data[98:88];
+  assign io_lookup_4_word_9 = _tables_4_ext_R0_data[109:99];
+  assign io_lookup_4_word_10 = _tables_4_ext_R0_data[120:110];
+  assign io_lookup_4_word_11 = _tables_4_ext_R0_data[131:121];
+  assign io_lookup_4_word_12 = _tables_4_ext_R0_data[142:132];
+  assign io_lookup_4_word_13 = _tables_4_ext_R0_data[153:143];
+  assign io_lookup_4_word_14 = _tables_4_ext_R0_data[164:154];
+  assign io_lookup_4_word_15 = _tables_4_ext_R0_data[175:165];
+  assign io_lookup_5_begin = lbZero_5 ? 11'h0 : casez_tmp_12;
   assign io_lookup_5_end = casez_tmp_11;
-  assign io_lookup_5_word_0 = _tables_5_ext_R0_data[11:0];
-  assign io_lookup_5_word_1 = _tables_5_ext_R0_data[23:12];
-  assign io_lookup_5_word_2 = _tables_5_ext_R0_data[35:24];
-  assign io_lookup_5_word_3 = _tables_5_ext_R0_data[47:36];
-  assign io_lookup_5_word_4 = _tables_5_ext_R0_data[59:48];
-  assign io_lookup_5_word_5 = _tables_5_ext_R0_data[71:60];
-  assign io_lookup_5_word_6 = _tables_5_ext_R0_data[83:72];
-  assign io_lookup_5_word_7 = _tables_5_ext_R0_data[95:84];
-  assign io_lookup_5_word_8 = _tables_5_ext_R0_data[107:96];
-  assign io_lookup_5_word_9 = _tables_5_ext_R0_data[119:108];
-  assign io_lookup_5_word_10 = _tables_5_ext_R0_data[131:120];
-  assign io_lookup_5_word_11 = _tables_5_ext_R0_data[143:132];
-  assign io_lookup_5_word_12 = _tables_5_ext_R0_data[155:144];
-  assign io_lookup_5_word_13 = _tables_5_ext_R0_data[167:156];
-  assign io_lookup_5_word_14 = _tables_5_ext_R0_data[179:168];
-  assign io_lookup_5_word_15 = _tables_5_ext_R0_data[191:180];
-  assign io_lookup_6_begin = lbZero_6 ? 12'h0 : casez_tmp_14;
+  assign io_lookup_5_word_0 = _tables_5_ext_R0_data[10:0];
+  assign io_lookup_5_word_1 = _tables_5_ext_R0_data[21:11];
+  assign io_lookup_5_word_2 = _tables_5_ext_R0_data[32:22];
+  assign io_lookup_5_word_3 = _tables_5_ext_R0_data[43:33];
+  assign io_lookup_5_word_4 = _tables_5_ext_R0_data[54:44];
+  assign io_lookup_5_word_5 = _tables_5_ext_R0_data[65:55];
+  assign io_lookup_5_word_6 = _tables_5_ext_R0_data[76:66];
+  assign io_lookup_5_word_7 = _tables_5_ext_R0_data[87:77];
+  assign io_lookup_5_word_8 = _tables_5_ext_R0_data[98:88];
+  assign io_lookup_5_word_9 = _tables_5_ext_R0_data[109:99];
+  assign io_lookup_5_word_10 = _tables_5_ext_R0_data[120:110];
+  assign io_lookup_5_word_11 = _tables_5_ext_R0_data[131:121];
+  assign io_lookup_5_word_12 = _tables_5_ext_R0_data[142:132];
+  assign io_lookup_5_word_13 = _tables_5_ext_R0_data[153:143];
+  assign io_lookup_5_word_14 = _tables_5_ext_R0_data[164:154];
+  assign io_lookup_5_word_15 = _tables_5_ext_R0_data[175:165];
+  assign io_lookup_6_begin = lbZero_6 ? 11'h0 : casez_tmp_14;
   assign io_lookup_6_end = casez_tmp_13;
-  assign io_lookup_6_word_0 = _tables_6_ext_R0_data[11:0];
-  assign io_lookup_6_word_1 = _tables_6_ext_R0_data[23:12];
-  assign io_lookup_6_word_2 = _tables_6_ext_R0_data[35:24];
-  assign io_lookup_6_word_3 = _tables_6_ext_R0_data[47:36];
-  assign io_lookup_6_word_4 = _tables_6_ext_R0_data[59:48];
-  assign io_lookup_6_word_5 = _tables_6_ext_R0_data[71:60];
-  assign io_lookup_6_word_6 = _tables_6_ext_R0_data[83:72];
-  assign io_lookup_6_word_7 = _tables_6_ext_R0_data[95:84];
-  assign io_lookup_6_word_8 = _tables_6_ext_R0_data[107:96];
-  assign io_lookup_6_word_9 = _tables_6_ext_R0_data[119:108];
-  assign io_lookup_6_word_10 = _tables_6_ext_R0_data[131:120];
-  assign io_lookup_6_word_11 = _tables_6_ext_R0_data[143:132];
-  assign io_lookup_6_word_12 = _tables_6_ext_R0_data[155:144];
-  assign io_lookup_6_word_13 = _tables_6_ext_R0_data[167:156];
-  assign io_lookup_6_word_14 = _tables_6_ext_R0_data[179:168];
-  assign io_lookup_6_word_15 = _tables_6_ext_R0_data[191:180];
-  assign io_lookup_7_begin = lbZero_7 ? 12'h0 : casez_tmp_16;
+  assign io_lookup_6_word_0 = _tables_6_ext_R0_data[10:0];
+  assign io_lookup_6_word_1 = _tables_6_ext_R0_data[21:11];
+  assign io_lookup_6_word_2 = _tables_6_ext_R0_data[32:22];
+  assign io_lookup_6_word_3 = _tables_6_ext_R0_data[43:33];
+  assign io_lookup_6_word_4 = _tables_6_ext_R0_data[54:44];
+  assign io_lookup_6_word_5 = _tables_6_ext_R0_data[65:55];
+  assign io_lookup_6_word_6 = _tables_6_ext_R0_data[76:66];
+  assign io_lookup_6_word_7 = _tables_6_ext_R0_data[87:77];
+  assign io_lookup_6_word_8 = _tables_6_ext_R0_data[98:88];
+  assign io_lookup_6_word_9 = _tables_6_ext_R0_data[109:99];
+  assign io_lookup_6_word_10 = _tables_6_ext_R0_data[120:110];
+  assign io_lookup_6_word_11 = _tables_6_ext_R0_data[131:121];
+  assign io_lookup_6_word_12 = _tables_6_ext_R0_data[142:132];
+  assign io_lookup_6_word_13 = _tables_6_ext_R0_data[153:143];
+  assign io_lookup_6_word_14 = _tables_6_ext_R0_data[164:154];
+  assign io_lookup_6_word_15 = _tables_6_ext_R0_data[175:165];
+  assign io_lookup_7_begin = lbZero_7 ? 11'h0 : casez_tmp_16;
   assign io_lookup_7_end = casez_tmp_15;
-  assign io_lookup_7_word_0 = _tables_7_ext_R0_data[11:0];
-  assign io_lookup_7_word_1 = _tables_7_ext_R0_data[23:12];
-  assign io_lookup_7_word_2 = _tables_7_ext_R0_data[35:24];
-  assign io_lookup_7_word_3 = _tables_7_ext_R0_data[47:36];
-  assign io_lookup_7_word_4 = _tables_7_ext_R0_data[59:48];
-  assign io_lookup_7_word_5 = _tables_7_ext_R0_data[71:60];
-  assign io_lookup_7_word_6 = _tables_7_ext_R0_data[83:72];
-  assign io_lookup_7_word_7 = _tables_7_ext_R0_data[95:84];
-  assign io_lookup_7_word_8 = _tables_7_ext_R0_data[107:96];
-  assign io_lookup_7_word_9 = _tables_7_ext_R0_data[119:108];
-  assign io_lookup_7_word_10 = _tables_7_ext_R0_data[131:120];
-  assign io_lookup_7_word_11 = _tables_7_ext_R0_data[143:132];
-  assign io_lookup_7_word_12 = _tables_7_ext_R0_data[155:144];
-  assign io_lookup_7_word_13 = _tables_7_ext_R0_data[167:156];
-  assign io_lookup_7_word_14 = _tables_7_ext_R0_data[179:168];
-  assign io_lookup_7_word_15 = _tables_7_ext_R0_data[191:180];
-  assign io_lookup_8_begin = lbZero_8 ? 12'h0 : casez_tmp_18;
+  assign io_lookup_7_word_0 = _tables_7_ext_R0_data[10:0];
+  assign io_lookup_7_word_1 = _tables_7_ext_R0_data[21:11];
+  assign io_lookup_7_word_2 = _tables_7_ext_R0_data[32:22];
+  assign io_lookup_7_word_3 = _tables_7_ext_R0_data[43:33];
+  assign io_lookup_7_word_4 = _tables_7_ext_R0_data[54:44];
+  assign io_lookup_7_word_5 = _tables_7_ext_R0_data[65:55];
+  assign io_lookup_7_word_6 = _tables_7_ext_R0_data[76:66];
+  assign io_lookup_7_word_7 = _tables_7_ext_R0_data[87:77];
+  assign io_lookup_7_word_8 = _tables_7_ext_R0_data[98:88];
+  assign io_lookup_7_word_9 = _tables_7_ext_R0_data[109:99];
+  assign io_lookup_7_word_10 = _tables_7_ext_R0_data[120:110];
+  assign io_lookup_7_word_11 = _tables_7_ext_R0_data[131:121];
+  assign io_lookup_7_word_12 = _tables_7_ext_R0_data[142:132];
+  assign io_lookup_7_word_13 = _tables_7_ext_R0_data[153:143];
+  assign io_lookup_7_word_14 = _tables_7_ext_R0_data[164:154];
+  assign io_lookup_7_word_15 = _tables_7_ext_R0_data[175:165];
+  assign io_lookup_8_begin = lbZero_8 ? 11'h0 : casez_tmp_18;
   assign io_lookup_8_end = casez_tmp_17;
-  assign io_lookup_8_word_0 = _tables_8_ext_R0_data[11:0];
-  assign io_lookup_8_word_1 = _tables_8_ext_R0_data[23:12];
-  assign io_lookup_8_word_2 = _tables_8_ext_R0_data[35:24];
-  assign io_lookup_8_word_3 = _tables_8_ext_R0_data[47:36];
-  assign io_lookup_8_word_4 = _tables_8_ext_R0_data[59:48];
-  assign io_lookup_8_word_5 = _tables_8_ext_R0_data[71:60];
-  assign io_lookup_8_word_6 = _tables_8_ext_R0_data[83:72];
-  assign io_lookup_8_word_7 = _tables_8_ext_R0_data[95:84];
-  assign io_lookup_8_word_8 = _tables_8_ext_R0_data[107:96];
-  assign io_lookup_8_word_9 = _tables_8_ext_R0_data[119:108];
-  assign io_lookup_8_word_10 = _tables_8_ext_R0_data[131:120];
-  assign io_lookup_8_word_11 = _tables_8_ext_R0_data[143:132];
-  assign io_lookup_8_word_12 = _tables_8_ext_R0_data[155:144];
-  assign io_lookup_8_word_13 = _tables_8_ext_R0_data[167:156];
-  assign io_lookup_8_word_14 = _tables_8_ext_R0_data[179:168];
-  assign io_lookup_8_word_15 = _tables_8_ext_R0_data[191:180];
-  assign io_lookup_9_begin = lbZero_9 ? 12'h0 : casez_tmp_20;
+  assign io_lookup_8_word_0 = _tables_8_ext_R0_data[10:0];
+  assign io_lookup_8_word_1 = _tables_8_ext_R0_data[21:11];
+  assign io_lookup_8_word_2 = _tables_8_ext_R0_data[32:22];
+  assign io_lookup_8_word_3 = _tables_8_ext_R0_data[43:33];
+  assign io_lookup_8_word_4 = _tables_8_ext_R0_data[54:44];
+  assign io_lookup_8_word_5 = _tables_8_ext_R0_data[65:55];
+  assign io_lookup_8_word_6 = _tables_8_ext_R0_data[76:66];
+  assign io_lookup_8_word_7 = _tables_8_ext_R0_data[87:77];
+  assign io_lookup_8_word_8 = _tables_8_ext_R0_data[98:88];
+  assign io_lookup_8_word_9 = _tables_8_ext_R0_data[109:99];
+  assign io_lookup_8_word_10 = _tables_8_ext_R0_data[120:110];
+  assign io_lookup_8_word_11 = _tables_8_ext_R0_data[131:121];
+  assign io_lookup_8_word_12 = _tables_8_ext_R0_data[142:132];
+  assign io_lookup_8_word_13 = _tables_8_ext_R0_data[153:143];
+  assign io_lookup_8_word_14 = _tables_8_ext_R0_data[164:154];
+  assign io_lookup_8_word_15 = _tables_8_ext_R0_data[175:165];
+  assign io_lookup_9_begin = lbZero_9 ? 11'h0 : casez_tmp_20;
   assign io_lookup_9_end = casez_tmp_19;
-  assign io_lookup_9_word_0 = _tables_9_ext_R0_data[11:0];
-  assign io_lookup_9_word_1 = _tables_9_ext_R0_data[23:12];
-  assign io_lookup_9_word_2 = _tables_9_ext_R0_data[35:24];
-  assign io_lookup_9_word_3 = _tables_9_ext_R0_data[47:36];
-  assign io_lookup_9_word_4 = _tables_9_ext_R0_data[59:48];
-  assign io_lookup_9_word_5 = _tables_9_ext_R0_data[71:60];
-  assign io_lookup_9_word_6 = _tables_9_ext_R0_data[83:72];
-  assign io_lookup_9_word_7 = _tables_9_ext_R0_data[95:84];
-  assign io_lookup_9_word_8 = _tables_9_ext_R0_data[107:96];
-  assign io_lookup_9_word_9 = _tables_9_ext_R0_data[119:108];
-  assign io_lookup_9_word_10 = _tables_9_ext_R0_data[131:120];
-  assign io_lookup_9_word_11 = _tables_9_ext_R0_data[143:132];
-  assign io_lookup_9_word_12 = _tables_9_ext_R0_data[155:144];
-  assign io_lookup_9_word_13 = _tables_9_ext_R0_data[167:156];
-  assign io_lookup_9_word_14 = _tables_9_ext_R0_data[179:168];
-  assign io_lookup_9_word_15 = _tables_9_ext_R0_data[191:180];
-  assign io_lookup_10_begin = lbZero_10 ? 12'h0 : casez_tmp_22;
+  assign io_lookup_9_word_0 = _tables_9_ext_R0_data[10:0];
+  assign io_lookup_9_word_1 = _tables_9_ext_R0_data[21:11];
+  assign io_lookup_9_word_2 = _tables_9_ext_R0_data[32:22];
+  assign io_lookup_9_word_3 = _tables_9_ext_R0_data[43:33];
+  assign io_lookup_9_word_4 = _tables_9_ext_R0_data[54:44];
+  assign io_lookup_9_word_5 = _tables_9_ext_R0_data[65:55];
+  assign io_lookup_9_word_6 = _tables_9_ext_R0_data[76:66];
+  assign io_lookup_9_word_7 = _tables_9_ext_R0_data[87:77];
+  assign io_lookup_9_word_8 = _tables_9_ext_R0_data[98:88];
+  assign io_lookup_9_word_9 = _tables_9_ext_R0_data[109:99];
+  assign io_lookup_9_word_10 = _tables_9_ext_R0_data[120:110];
+  assign io_lookup_9_word_11 = _tables_9_ext_R0_data[131:121];
+  assign io_lookup_9_word_12 = _tables_9_ext_R0_data[142:132];
+  assign io_lookup_9_word_13 = _tables_9_ext_R0_data[153:143];
+  assign io_lookup_9_word_14 = _tables_9_ext_R0_data[164:154];
+  assign io_lookup_9_word_15 = _tables_9_ext_R0_data[175:165];
+  assign io_lookup_10_begin = lbZero_10 ? 11'h0 : casez_tmp_22;
   assign io_lookup_10_end = casez_tmp_21;
-  assign io_lookup_10_word_0 = _tables_10_ext_R0_data[11:0];
-  assign io_lookup_10_word_1 = _tables_10_ext_R0_data[23:12];
-  assign io_lookup_10_word_2 = _tables_10_ext_R0_data[35:24];
-  assign io_lookup_10_word_3 = _tables_10_ext_R0_data[47:36];
-  assign io_lookup_10_word_4 = _tables_10_ext_R0_data[59:48];
-  assign io_lookup_10_word_5 = _tables_10_ext_R0_data[71:60];
-  assign io_lookup_10_word_6 = _tables_10_ext_R0_data[83:72];
-  assign io_lookup_10_word_7 = _tables_10_ext_R0_data[95:84];
-  assign io_lookup_10_word_8 = _tables_10_ext_R0_data[107:96];
-  assign io_lookup_10_word_9 = _tables_10_ext_R0_data[119:108];
-  assign io_lookup_10_word_10 = _tables_10_ext_R0_data[131:120];
-  assign io_lookup_10_word_11 = _tables_10_ext_R0_data[143:132];
-  assign io_lookup_10_word_12 = _tables_10_ext_R0_data[155:144];
-  assign io_lookup_10_word_13 = _tables_10_ext_R0_data[167:156];
-  assign io_lookup_10_word_14 = _tables_10_ext_R0_data[179:168];
-  assign io_lookup_10_word_15 = _tables_10_ext_R0_data[191:180];
-  assign io_lookup_11_begin = lbZero_11 ? 12'h0 : casez_tmp_24;
+  assign io_lookup_10_word_0 = _tables_10_ext_R0_data[10:0];
+  assign io_lookup_10_word_1 = _tables_10_ext_R0_data[21:11];
+  assign io_lookup_10_word_2 = _tables_10_ext_R0_data[32:22];
+  assign io_lookup_10_word_3 = _tables_10_ext_R0_data[43:33];
+  assign io_lookup_10_word_4 = _tables_10_ext_R0_data[54:44];
+  assign io_lookup_10_word_5 = _tables_10_ext_R0_data[65:55];
+  assign io_lookup_10_word_6 = _tables_10_ext_R0_data[76:66];
+  assign io_lookup_10_word_7 = _tables_10_ext_R0_data[87:77];
+  assign io_lookup_10_word_8 = _tables_10_ext_R0_data[98:88];
+  assign io_lookup_10_word_9 = _tables_10_ext_R0_data[109:99];
+  assign io_lookup_10_word_10 = _tables_10_ext_R0_data[120:110];
+  assign io_lookup_10_word_11 = _tables_10_ext_R0_data[131:121];
+  assign io_lookup_10_word_12 = _tables_10_ext_R0_data[142:132];
+  assign io_lookup_10_word_13 = _tables_10_ext_R0_data[153:143];
+  assign io_lookup_10_word_14 = _tables_10_ext_R0_data[164:154];
+  assign io_lookup_10_word_15 = _tables_10_ext_R0_data[175:165];
+  assign io_lookup_11_begin = lbZero_11 ? 11'h0 : casez_tmp_24;
   assign io_lookup_11_end = casez_tmp_23;
-  assign io_lookup_11_word_0 = _tables_11_ext_R0_data[11:0];
-  assign io_lookup_11_word_1 = _tables_11_ext_R0_data[23:12];
-  assign io_lookup_11_word_2 = _tables_11_ext_R0_data[35:24];
-  assign io_lookup_11_word_3 = _tables_11_ext_R0_data[47:36];
-  assign io_lookup_11_word_4 = _tables_11_ext_R0_data[59:48];
-  assign io_lookup_11_word_5 = _tables_11_ext_R0_data[71:60];
-  assign io_lookup_11_word_6 = _tables_11_ext_R0_data[83:72];
-  assign io_lookup_11_word_7 = _tables_11_ext_R0_data[95:84];
-  assign io_lookup_11_word_8 = _tables_11_ext_R0_data[107:96];
-  assign io_lookup_11_word_9 = _tables_11_ext_R0_data[119:108];
-  assign io_lookup_11_word_10 = _tables_11_ext_R0_data[131:120];
-  assign io_lookup_11_word_11 = _tables_11_ext_R0_data[143:132];
-  assign io_lookup_11_word_12 = _tables_11_ext_R0_data[155:144];
-  assign io_lookup_11_word_13 = _tables_11_ext_R0_data[167:156];
-  assign io_lookup_11_word_14 = _tables_11_ext_R0_data[179:168];
-  assign io_lookup_11_word_15 = _tables_11_ext_R0_data[191:180];
-  assign io_lookup_12_begin = lbZero_12 ? 12'h0 : casez_tmp_26;
+  assign io_lookup_11_word_0 = _tables_11_ext_R0_data[10:0];
+  assign io_lookup_11_word_1 = _tables_11_ext_R0_data[21:11];
+  assign io_lookup_11_word_2 = _tables_11_ext_R0_data[32:22];
+  assign io_lookup_11_word_3 = _tables_11_ext_R0_data[43:33];
+  assign io_lookup_11_word_4 = _tables_11_ext_R0_data[54:44];
+  assign io_lookup_11_word_5 = _tables_11_ext_R0_data[65:55];
+  assign io_lookup_11_word_6 = _tables_11_ext_R0_data[76:66];
+  assign io_lookup_11_word_7 = _tables_11_ext_R0_data[87:77];
+  assign io_lookup_11_word_8 = _tables_11_ext_R0_data[98:88];
+  assign io_lookup_11_word_9 = _tables_11_ext_R0_data[109:99];
+  assign io_lookup_11_word_10 = _tables_11_ext_R0_data[120:110];
+  assign io_lookup_11_word_11 = _tables_11_ext_R0_data[131:121];
+  assign io_lookup_11_word_12 = _tables_11_ext_R0_data[142:132];
+  assign io_lookup_11_word_13 = _tables_11_ext_R0_data[153:143];
+  assign io_lookup_11_word_14 = _tables_11_ext_R0_data[164:154];
+  assign io_lookup_11_word_15 = _tables_11_ext_R0_data[175:165];
+  assign io_lookup_12_begin = lbZero_12 ? 11'h0 : casez_tmp_26;
   assign io_lookup_12_end = casez_tmp_25;
-  assign io_lookup_12_word_0 = _tables_12_ext_R0_data[11:0];
-  assign io_lookup_12_word_1 = _tables_12_ext_R0_data[23:12];
-  assign io_lookup_12_word_2 = _tables_12_ext_R0_data[35:24];
-  assign io_lookup_12_word_3 = _tables_12_ext_R0_data[47:36];
-  assign io_lookup_12_word_4 = _tables_12_ext_R0_data[59:48];
-  assign io_lookup_12_word_5 = _tables_12_ext_R0_data[71:60];
-  assign io_lookup_12_word_6 = _tables_12_ext_R0_data[83:72];
-  assign io_lookup_12_word_7 = _tables_12_ext_R0_data[95:84];
-  assign io_lookup_12_word_8 = _tables_12_ext_R0_data[107:96];
-  assign io_lookup_12_word_9 = _tables_12_ext_R0_data[119:108];
-  assign io_lookup_12_word_10 = _tables_12_ext_R0_data[131:120];
-  assign io_lookup_12_word_11 = _tables_12_ext_R0_data[143:132];
-  assign io_lookup_12_word_12 = _tables_12_ext_R0_data[155:144];
-  assign io_lookup_12_word_13 = _tables_12_ext_R0_data[167:156];
-  assign io_lookup_12_word_14 = _tables_12_ext_R0_data[179:168];
-  assign io_lookup_12_word_15 = _tables_12_ext_R0_data[191:180];
-  assign io_lookup_13_begin = lbZero_13 ? 12'h0 : casez_tmp_28;
+  assign io_lookup_12_word_0 = _tables_12_ext_R0_data[10:0];
+  assign io_lookup_12_word_1 = _tables_12_ext_R0_data[21:11];
+  assign io_lookup_12_word_2 = _tables_12_ext_R0_data[32:22];
+  assign io_lookup_12_word_3 = _tables_12_ext_R0_data[43:33];
+  assign io_lookup_12_word_4 = _tables_12_ext_R0_data[54:44];
+  assign io_lookup_12_word_5 = _tables_12_ext_R0_data[65:55];
+  assign io_lookup_12_word_6 = _tables_12_ext_R0_data[76:66];
+  assign io_lookup_12_word_7 = _tables_12_ext_R0_data[87:77];
+  assign io_lookup_12_word_8 = _tables_12_ext_R0_data[98:88];
+  assign io_lookup_12_word_9 = _tables_12_ext_R0_data[109:99];
+  assign io_lookup_12_word_10 = _tables_12_ext_R0_data[120:110];
+  assign io_lookup_12_word_11 = _tables_12_ext_R0_data[131:121];
+  assign io_lookup_12_word_12 = _tables_12_ext_R0_data[142:132];
+  assign io_lookup_12_word_13 = _tables_12_ext_R0_data[153:143];
+  assign io_lookup_12_word_14 = _tables_12_ext_R0_data[164:154];
+  assign io_lookup_12_word_15 = _tables_12_ext_R0_data[175:165];
+  assign io_lookup_13_begin = lbZero_13 ? 11'h0 : casez_tmp_28;
   assign io_lookup_13_end = casez_tmp_27;
-  assign io_lookup_13_word_0 = _tables_13_ext_R0_data[11:0];
-  assign io_lookup_13_word_1 = _tables_13_ext_R0_data[23:12];
-  assign io_lookup_13_word_2 = _tables_13_ext_R0_data[35:24];
-  assign io_lookup_13_word_3 = _tables_13_ext_R0_data[47:36];
-  assign io_lookup_13_word_4 = _tables_13_ext_R0_data[59:48];
-  assign io_lookup_13_word_5 = _tables_13_ext_R0_data[71:60];
-  assign io_lookup_13_word_6 = _tables_13_ext_R0_data[83:72];
-  assign io_lookup_13_word_7 = _tables_13_ext_R0_data[95:84];
-  assign io_lookup_13_word_8 = _tables_13_ext_R0_data[107:96];
-  assign io_lookup_13_word_9 = _tables_13_ext_R0_data[119:108];
-  assign io_lookup_13_word_10 = _tables_13_ext_R0_data[131:120];
-  assign io_lookup_13_word_11 = _tables_13_ext_R0_data[143:132];
-  assign io_lookup_13_word_12 = _tables_13_ext_R0_data[155:144];
-  assign io_lookup_13_word_13 = _tables_13_ext_R0_data[167:156];
-  assign io_lookup_13_word_14 = _tables_13_ext_R0_data[179:168];
-  assign io_lookup_13_word_15 = _tables_13_ext_R0_data[191:180];
-  assign io_lookup_14_begin = lbZero_14 ? 12'h0 : casez_tmp_30;
+  assign io_lookup_13_word_0 = _tables_13_ext_R0_data[10:0];
+  assign io_lookup_13_word_1 = _tables_13_ext_R0_data[21:11];
+  assign io_lookup_13_word_2 = _tables_13_ext_R0_data[32:22];
+  assign io_lookup_13_word_3 = _tables_13_ext_R0_data[43:33];
+  assign io_lookup_13_word_4 = _tables_13_ext_R0_data[54:44];
+  assign io_lookup_13_word_5 = _tables_13_ext_R0_data[65:55];
+  assign io_lookup_13_word_6 = _tables_13_ext_R0_data[76:66];
+  assign io_lookup_13_word_7 = _tables_13_ext_R0_data[87:77];
+  assign io_lookup_13_word_8 = _tables_13_ext_R0_data[98:88];
+  assign io_lookup_13_word_9 = _tables_13_ext_R0_data[109:99];
+  assign io_lookup_13_word_10 = _tables_13_ext_R0_data[120:110];
+  assign io_lookup_13_word_11 = _tables_13_ext_R0_data[131:121];
+  assign io_lookup_13_word_12 = _tables_13_ext_R0_data[142:132];
+  assign io_lookup_13_word_13 = _tables_13_ext_R0_data[153:143];
+  assign io_lookup_13_word_14 = _tables_13_ext_R0_data[164:154];
+  assign io_lookup_13_word_15 = _tables_13_ext_R0_data[175:165];
+  assign io_lookup_14_begin = lbZero_14 ? 11'h0 : casez_tmp_30;
   assign io_lookup_14_end = casez_tmp_29;
-  assign io_lookup_14_word_0 = _tables_14_ext_R0_data[11:0];
-  assign io_lookup_14_word_1 = _tables_14_ext_R0_data[23:12];
-  assign io_lookup_14_word_2 = _tables_14_ext_R0_data[35:24];
-  assign io_lookup_14_word_3 = _tables_14_ext_R0_data[47:36];
-  assign io_lookup_14_word_4 = _tables_14_ext_R0_data[59:48];
-  assign io_lookup_14_word_5 = _tables_14_ext_R0_data[71:60];
-  assign io_lookup_14_word_6 = _tables_14_ext_R0_data[83:72];
-  assign io_lookup_14_word_7 = _tables_14_ext_R0_data[95:84];
-  assign io_lookup_14_word_8 = _tables_14_ext_R0_data[107:96];
-  assign io_lookup_14_word_9 = _tables_14_ext_R0_data[119:108];
-  assign io_lookup_14_word_10 = _tables_14_ext_R0_data[131:120];
-  assign io_lookup_14_word_11 = _tables_14_ext_R0_data[143:132];
-  assign io_lookup_14_word_12 = _tables_14_ext_R0_data[155:144];
-  assign io_lookup_14_word_13 = _tables_14_ext_R0_data[167:156];
-  assign io_lookup_14_word_14 = _tables_14_ext_R0_data[179:168];
-  assign io_lookup_14_word_15 = _tables_14_ext_R0_data[191:180];
-  assign io_lookup_15_begin = lbZero_15 ? 12'h0 : casez_tmp_32;
+  assign io_lookup_14_word_0 = _tables_14_ext_R0_data[10:0];
+  assign io_lookup_14_word_1 = _tables_14_ext_R0_data[21:11];
+  assign io_lookup_14_word_2 = _tables_14_ext_R0_data[32:22];
+  assign io_lookup_14_word_3 = _tables_14_ext_R0_data[43:33];
+  assign io_lookup_14_word_4 = _tables_14_ext_R0_data[54:44];
+  assign io_lookup_14_word_5 = _tables_14_ext_R0_data[65:55];
+  assign io_lookup_14_word_6 = _tables_14_ext_R0_data[76:66];
+  assign io_lookup_14_word_7 = _tables_14_ext_R0_data[87:77];
+  assign io_lookup_14_word_8 = _tables_14_ext_R0_data[98:88];
+  assign io_lookup_14_word_9 = _tables_14_ext_R0_data[109:99];
+  assign io_lookup_14_word_10 = _tables_14_ext_R0_data[120:110];
+  assign io_lookup_14_word_11 = _tables_14_ext_R0_data[131:121];
+  assign io_lookup_14_word_12 = _tables_14_ext_R0_data[142:132];
+  assign io_lookup_14_word_13 = _tables_14_ext_R0_data[153:143];
+  assign io_lookup_14_word_14 = _tables_14_ext_R0_data[164:154];
+  assign io_lookup_14_word_15 = _tables_14_ext_R0_data[175:165];
+  assign io_lookup_15_begin = lbZero_15 ? 11'h0 : casez_tmp_32;
   assign io_lookup_15_end = casez_tmp_31;
-  assign io_lookup_15_word_0 = _tables_15_ext_R0_data[11:0];
-  assign io_lookup_15_word_1 = _tables_15_ext_R0_data[23:12];
-  assign io_lookup_15_word_2 = _tables_15_ext_R0_data[35:24];
-  assign io_lookup_15_word_3 = _tables_15_ext_R0_data[47:36];
-  assign io_lookup_15_word_4 = _tables_15_ext_R0_data[59:48];
-  assign io_lookup_15_word_5 = _tables_15_ext_R0_data[71:60];
-  assign io_lookup_15_word_6 = _tables_15_ext_R0_data[83:72];
-  assign io_lookup_15_word_7 = _tables_15_ext_R0_data[95:84];
-  assign io_lookup_15_word_8 = _tables_15_ext_R0_data[107:96];
-  assign io_lookup_15_word_9 = _tables_15_ext_R0_data[119:108];
-  assign io_lookup_15_word_10 = _tables_15_ext_R0_data[131:120];
-  assign io_lookup_15_word_11 = _tables_15_ext_R0_data[143:132];
-  assign io_lookup_15_word_12 = _tables_15_ext_R0_data[155:144];
-  assign io_lookup_15_word_13 = _tables_15_ext_R0_data[167:156];
-  assign io_lookup_15_word_14 = _tables_15_ext_R0_data[179:168];
-  assign io_lookup_15_word_15 = _tables_15_ext_R0_data[191:180];
+  assign io_lookup_15_word_0 = _tables_15_ext_R0_data[10:0];
+  assign io_lookup_15_word_1 = _tables_15_ext_R0_data[21:11];
+  assign io_lookup_15_word_2 = _tables_15_ext_R0_data[32:22];
+  assign io_lookup_15_word_3 = _tables_15_ext_R0_data[43:33];
+  assign io_lookup_15_word_4 = _tables_15_ext_R0_data[54:44];
+  assign io_lookup_15_word_5 = _tables_15_ext_R0_data[65:55];
+  assign io_lookup_15_word_6 = _tables_15_ext_R0_data[76:66];
+  assign io_lookup_15_word_7 = _tables_15_ext_R0_data[87:77];
+  assign io_lookup_15_word_8 = _tables_15_ext_R0_data[98:88];
+  assign io_lookup_15_word_9 = _tables_15_ext_R0_data[109:99];
+  assign io_lookup_15_word_10 = _tables_15_ext_R0_data[120:110];
+  assign io_lookup_15_word_11 = _tables_15_ext_R0_data[131:121];
+  assign io_lookup_15_word_12 = _tables_15_ext_R0_data[142:132];
+  assign io_lookup_15_word_13 = _tables_15_ext_R0_data[153:143];
+  assign io_lookup_15_word_14 = _tables_15_ext_R0_data[164:154];
+  assign io_lookup_15_word_15 = _tables_15_ext_R0_data[175:165];
   assign io_entry_0_item = _entries_0_ext_RW0_rdata[11:0];
   assign io_entry_0_mark = _entries_0_ext_RW0_rdata[12];
   assign io_entry_1_item = _entries_1_ext_RW0_rdata[11:0];
@@ -19504,23 +19503,23 @@ module BucketSort_n2048_b13_w4_c16_p2_i12_world(
 endmodule
 
 // VCS coverage exclude_file
-module ram_5x275_world(
+module ram_5x276_world(
   input  [2:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [274:0] R0_data,
+  output [275:0] R0_data,
   input  [2:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [274:0] W0_data
+  input  [275:0] W0_data
 );
 
-  reg [274:0] Memory[0:4];
+  reg [275:0] Memory[0:4];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = R0_en ? Memory[R0_addr] : 275'bx;
+  assign R0_data = R0_en ? Memory[R0_addr] : 276'bx;
 endmodule
 
 module Queue5_StreamItem_world(
@@ -19528,7 +19527,7 @@ module Queue5_StreamItem_world(
                 reset,
   output        io_enq_ready,
   input         io_enq_valid,
-                io_enq_bits_group,
+  input  [1:0]  io_enq_bits_group,
   input  [12:0] io_enq_bits_pos,
   input  [11:0] io_enq_bits_item,
   input         io_enq_bits_mark,
@@ -19550,7 +19549,7 @@ module Queue5_StreamItem_world(
                 io_enq_bits_tag_off_2,
   input         io_deq_ready,
   output        io_deq_valid,
-                io_deq_bits_group,
+  output [1:0]  io_deq_bits_group,
   output [12:0] io_deq_bits_pos,
   output [11:0] io_deq_bits_item,
   output        io_deq_bits_mark,
@@ -19573,7 +19572,7 @@ module Queue5_StreamItem_world(
                 io_count
 );
 
-  wire [274:0] _ram_ext_R0_data;
+  wire [275:0] _ram_ext_R0_data;
   reg  [2:0]   enq_ptr_value;
   reg  [2:0]   deq_ptr_value;
   reg          maybe_full;
@@ -19606,7 +19605,7 @@ module Queue5_StreamItem_world(
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_5x275_world ram_ext (
+  ram_5x276_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -19638,26 +19637,26 @@ module Queue5_StreamItem_world(
   );
   assign io_enq_ready = ~full;
   assign io_deq_valid = ~empty;
-  assign io_deq_bits_group = _ram_ext_R0_data[0];
-  assign io_deq_bits_pos = _ram_ext_R0_data[13:1];
-  assign io_deq_bits_item = _ram_ext_R0_data[25:14];
-  assign io_deq_bits_mark = _ram_ext_R0_data[26];
-  assign io_deq_bits_rec_cell_0 = _ram_ext_R0_data[46:27];
-  assign io_deq_bits_rec_cell_1 = _ram_ext_R0_data[66:47];
-  assign io_deq_bits_rec_cell_2 = _ram_ext_R0_data[86:67];
-  assign io_deq_bits_rec_q_0 = _ram_ext_R0_data[115:87];
-  assign io_deq_bits_rec_q_1 = _ram_ext_R0_data[144:116];
-  assign io_deq_bits_rec_q_2 = _ram_ext_R0_data[173:145];
-  assign io_deq_bits_rec_qr = _ram_ext_R0_data[202:174];
-  assign io_deq_bits_rec_large = _ram_ext_R0_data[203];
-  assign io_deq_bits_rec_excluded = _ram_ext_R0_data[204];
-  assign io_deq_bits_tag_scan = _ram_ext_R0_data[205];
-  assign io_deq_bits_tag_cell_0 = _ram_ext_R0_data[225:206];
-  assign io_deq_bits_tag_cell_1 = _ram_ext_R0_data[245:226];
-  assign io_deq_bits_tag_cell_2 = _ram_ext_R0_data[265:246];
-  assign io_deq_bits_tag_off_0 = _ram_ext_R0_data[268:266];
-  assign io_deq_bits_tag_off_1 = _ram_ext_R0_data[271:269];
-  assign io_deq_bits_tag_off_2 = _ram_ext_R0_data[274:272];
+  assign io_deq_bits_group = _ram_ext_R0_data[1:0];
+  assign io_deq_bits_pos = _ram_ext_R0_data[14:2];
+  assign io_deq_bits_item = _ram_ext_R0_data[26:15];
+  assign io_deq_bits_mark = _ram_ext_R0_data[27];
+  assign io_deq_bits_rec_cell_0 = _ram_ext_R0_data[47:28];
+  assign io_deq_bits_rec_cell_1 = _ram_ext_R0_data[67:48];
+  assign io_deq_bits_rec_cell_2 = _ram_ext_R0_data[87:68];
+  assign io_deq_bits_rec_q_0 = _ram_ext_R0_data[116:88];
+  assign io_deq_bits_rec_q_1 = _ram_ext_R0_data[145:117];
+  assign io_deq_bits_rec_q_2 = _ram_ext_R0_data[174:146];
+  assign io_deq_bits_rec_qr = _ram_ext_R0_data[203:175];
+  assign io_deq_bits_rec_large = _ram_ext_R0_data[204];
+  assign io_deq_bits_rec_excluded = _ram_ext_R0_data[205];
+  assign io_deq_bits_tag_scan = _ram_ext_R0_data[206];
+  assign io_deq_bits_tag_cell_0 = _ram_ext_R0_data[226:207];
+  assign io_deq_bits_tag_cell_1 = _ram_ext_R0_data[246:227];
+  assign io_deq_bits_tag_cell_2 = _ram_ext_R0_data[266:247];
+  assign io_deq_bits_tag_off_0 = _ram_ext_R0_data[269:267];
+  assign io_deq_bits_tag_off_1 = _ram_ext_R0_data[272:270];
+  assign io_deq_bits_tag_off_2 = _ram_ext_R0_data[275:273];
   assign io_count =
     ptr_match
       ? (maybe_full ? 3'h5 : 3'h0)
@@ -19671,8 +19670,12 @@ module KeyStream_world(
   input         io_req_valid,
   input  [12:0] io_req_bits_begin_0,
                 io_req_bits_begin_1,
+                io_req_bits_begin_2,
+                io_req_bits_begin_3,
                 io_req_bits_end_0,
                 io_req_bits_end_1,
+                io_req_bits_end_2,
+                io_req_bits_end_3,
   input         io_req_bits_direct,
                 io_req_bits_tag_scan,
   input  [19:0] io_req_bits_tag_cell_0,
@@ -19682,7 +19685,7 @@ module KeyStream_world(
                 io_req_bits_tag_off_1,
                 io_req_bits_tag_off_2,
   output [11:0] io_entryAddr,
-  output        io_entryGroup,
+  output [1:0]  io_entryGroup,
   input  [11:0] io_entryItem,
   input         io_entryMark,
   output [11:0] io_keyAddr,
@@ -19697,7 +19700,7 @@ module KeyStream_world(
                 io_keyData_excluded,
                 io_out_ready,
   output        io_out_valid,
-                io_out_bits_group,
+  output [1:0]  io_out_bits_group,
   output [12:0] io_out_bits_pos,
   output [11:0] io_out_bits_item,
   output        io_out_bits_mark,
@@ -19725,8 +19728,12 @@ module KeyStream_world(
   wire [2:0]  _q_io_count;
   reg  [12:0] cur_begin_0;
   reg  [12:0] cur_begin_1;
+  reg  [12:0] cur_begin_2;
+  reg  [12:0] cur_begin_3;
   reg  [12:0] cur_end_0;
   reg  [12:0] cur_end_1;
+  reg  [12:0] cur_end_2;
+  reg  [12:0] cur_end_3;
   reg         cur_direct;
   reg         cur_tag_scan;
   reg  [19:0] cur_tag_cell_0;
@@ -19737,7 +19744,7 @@ module KeyStream_world(
   reg  [2:0]  cur_tag_off_2;
   reg         busy;
   reg         s1v;
-  reg         s1_group;
+  reg  [1:0]  s1_group;
   reg  [12:0] s1_pos;
   reg         s1_direct;
   reg         s1_tag_scan;
@@ -19749,7 +19756,7 @@ module KeyStream_world(
   reg  [2:0]  s1_tag_off_2;
   reg         kv_0;
   reg         kv_1;
-  reg         ks_0_group;
+  reg  [1:0]  ks_0_group;
   reg  [12:0] ks_0_pos;
   reg         ks_0_tag_scan;
   reg  [19:0] ks_0_tag_cell_0;
@@ -19760,7 +19767,7 @@ module KeyStream_world(
   reg  [2:0]  ks_0_tag_off_2;
   reg  [11:0] ks_0_item;
   reg         ks_0_mark;
-  reg         ks_1_group;
+  reg  [1:0]  ks_1_group;
   reg  [12:0] ks_1_pos;
   reg         ks_1_tag_scan;
   reg  [19:0] ks_1_tag_cell_0;
@@ -19774,33 +19781,63 @@ module KeyStream_world(
   wire        issue =
     busy & {1'h0, _q_io_count}
     + {1'h0, {1'h0, {1'h0, s1v} + {1'h0, kv_0}} + {2'h0, kv_1}} < 4'h5;
-  wire        left_0 = cur_begin_0 != cur_end_0;
-  wire [12:0] _GEN = left_0 ? cur_begin_0 : cur_begin_1;
-  wire [12:0] _cur_begin_T = _GEN + 13'h1;
+  wire        left_1 = cur_begin_1 != cur_end_1;
+  wire        left_2 = cur_begin_2 != cur_end_2;
+  wire [1:0]  g = cur_begin_0 != cur_end_0 ? 2'h0 : left_1 ? 2'h1 : {1'h1, ~left_2};
+  reg  [12:0] casez_tmp;
+  always @(*) begin
+    casez (g)
+      2'b00:
+        casez_tmp = cur_begin_0;
+      2'b01:
+        casez_tmp = cur_begin_1;
+      2'b10:
+        casez_tmp = cur_begin_2;
+      default:
+        casez_tmp = cur_begin_3;
+    endcase
+  end // always @(*)
+  wire [12:0] _cur_begin_T = casez_tmp + 13'h1;
+  reg  [12:0] casez_tmp_0;
+  always @(*) begin
+    casez (g)
+      2'b00:
+        casez_tmp_0 = cur_end_0;
+      2'b01:
+        casez_tmp_0 = cur_end_1;
+      2'b10:
+        casez_tmp_0 = cur_end_2;
+      default:
+        casez_tmp_0 = cur_end_3;
+    endcase
+  end // always @(*)
   wire        last =
     issue
-    & ~(left_0
-          ? _cur_begin_T != cur_end_0 | cur_begin_1 != cur_end_1
-          : _cur_begin_T != cur_end_1);
+    & ~(_cur_begin_T != casez_tmp_0 | left_1 & g == 2'h0 | left_2 & ~(g[1])
+        | cur_begin_3 != cur_end_3 & g != 2'h3);
   wire        io_req_ready_0 = ~busy | last;
   wire [11:0] item = s1_direct ? s1_pos[11:0] : io_entryItem;
   `ifndef SYNTHESIS
     always @(posedge clock) begin
       if (~reset & ~(~kv_1 | _q_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: KeyStream_world: a read came back with no room (credit accounting)\n    at KeyStream_world.scala:117 assert(!kv.last || q.io.enq.ready, \"KeyStream_world: a read came back with no room (credit accounting)\")\n");
+          $error("Assertion failed: KeyStream_world: a read came back with no room (credit accounting)\n    at KeyStream_world.scala:123 assert(!kv.last || q.io.enq.ready, \"KeyStream_world: a read came back with no room (credit accounting)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire        _GEN_0 = io_req_ready_0 & io_req_valid;
+  wire        _GEN = io_req_ready_0 & io_req_valid;
   always @(posedge clock) begin
-    if (_GEN_0) begin
+    if (_GEN) begin
       cur_begin_0 <= io_req_bits_begin_0;
       cur_begin_1 <= io_req_bits_begin_1;
+      cur_begin_2 <= io_req_bits_begin_2;
+      cur_begin_3 <= io_req_bits_begin_3;
       cur_end_0 <= io_req_bits_end_0;
       cur_end_1 <= io_req_bits_end_1;
+      cur_end_2 <= io_req_bits_end_2;
+      cur_end_3 <= io_req_bits_end_3;
       cur_direct <= io_req_bits_direct;
       cur_tag_scan <= io_req_bits_tag_scan;
       cur_tag_cell_0 <= io_req_bits_tag_cell_0;
@@ -19811,14 +19848,18 @@ module KeyStream_world(
       cur_tag_off_2 <= io_req_bits_tag_off_2;
     end
     else begin
-      if (issue & left_0)
+      if (issue & g == 2'h0)
         cur_begin_0 <= _cur_begin_T;
-      if (issue & ~left_0)
+      if (issue & g == 2'h1)
         cur_begin_1 <= _cur_begin_T;
+      if (issue & g == 2'h2)
+        cur_begin_2 <= _cur_begin_T;
+      if (issue & (&g))
+        cur_begin_3 <= _cur_begin_T;
     end
     if (issue) begin
-      s1_group <= ~left_0;
-      s1_pos <= _GEN;
+      s1_group <= g;
+      s1_pos <= casez_tmp;
       s1_direct <= cur_direct;
       s1_tag_scan <= cur_tag_scan;
       s1_tag_cell_0 <= cur_tag_cell_0;
@@ -19859,10 +19900,12 @@ module KeyStream_world(
       kv_1 <= 1'h0;
     end
     else begin
-      if (_GEN_0)
+      if (_GEN)
         busy <=
           io_req_bits_begin_0 != io_req_bits_end_0
-          | io_req_bits_begin_1 != io_req_bits_end_1;
+          | io_req_bits_begin_1 != io_req_bits_end_1
+          | io_req_bits_begin_2 != io_req_bits_end_2
+          | io_req_bits_begin_3 != io_req_bits_end_3;
       else
         busy <= ~last & busy;
       s1v <= issue;
@@ -19920,8 +19963,8 @@ module KeyStream_world(
     .io_count                 (_q_io_count)
   );
   assign io_req_ready = io_req_ready_0;
-  assign io_entryAddr = _GEN[11:0];
-  assign io_entryGroup = ~left_0;
+  assign io_entryAddr = casez_tmp[11:0];
+  assign io_entryGroup = g;
   assign io_keyAddr = item;
   assign io_out_valid = _q_io_deq_valid;
   assign io_idle = ~busy & ~s1v & ~(kv_0 | kv_1) & ~_q_io_deq_valid;
@@ -21783,23 +21826,23 @@ module ChunkMatcher_i12_c20_q29_k32_world(
 endmodule
 
 // VCS coverage exclude_file
-module ram_3x123_world(
+module ram_3x175_world(
   input  [1:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [122:0] R0_data,
+  output [174:0] R0_data,
   input  [1:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [122:0] W0_data
+  input  [174:0] W0_data
 );
 
-  reg [122:0] Memory[0:2];
+  reg [174:0] Memory[0:2];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = R0_en ? Memory[R0_addr] : 123'bx;
+  assign R0_data = R0_en ? Memory[R0_addr] : 175'bx;
 endmodule
 
 module Queue3_StreamRange_world(
@@ -21808,8 +21851,12 @@ module Queue3_StreamRange_world(
                 io_enq_valid,
   input  [12:0] io_enq_bits_begin_0,
                 io_enq_bits_begin_1,
+                io_enq_bits_begin_2,
+                io_enq_bits_begin_3,
                 io_enq_bits_end_0,
                 io_enq_bits_end_1,
+                io_enq_bits_end_2,
+                io_enq_bits_end_3,
   input         io_enq_bits_tag_scan,
   input  [19:0] io_enq_bits_tag_cell_0,
                 io_enq_bits_tag_cell_1,
@@ -21821,8 +21868,12 @@ module Queue3_StreamRange_world(
   output        io_deq_valid,
   output [12:0] io_deq_bits_begin_0,
                 io_deq_bits_begin_1,
+                io_deq_bits_begin_2,
+                io_deq_bits_begin_3,
                 io_deq_bits_end_0,
                 io_deq_bits_end_1,
+                io_deq_bits_end_2,
+                io_deq_bits_end_3,
   output        io_deq_bits_direct,
                 io_deq_bits_tag_scan,
   output [19:0] io_deq_bits_tag_cell_0,
@@ -21835,7 +21886,7 @@ module Queue3_StreamRange_world(
 );
 
   wire         io_enq_ready;
-  wire [122:0] _ram_ext_R0_data;
+  wire [174:0] _ram_ext_R0_data;
   reg  [1:0]   enq_ptr_value;
   reg  [1:0]   deq_ptr_value;
   reg          maybe_full;
@@ -21868,7 +21919,7 @@ module Queue3_StreamRange_world(
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_3x123_world ram_ext (
+  ram_3x175_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -21885,31 +21936,39 @@ module Queue3_StreamRange_world(
         io_enq_bits_tag_cell_0,
         io_enq_bits_tag_scan,
         1'h0,
+        io_enq_bits_end_3,
+        io_enq_bits_end_2,
         io_enq_bits_end_1,
         io_enq_bits_end_0,
+        io_enq_bits_begin_3,
+        io_enq_bits_begin_2,
         io_enq_bits_begin_1,
         io_enq_bits_begin_0})
   );
   assign io_deq_valid = ~empty;
   assign io_deq_bits_begin_0 = _ram_ext_R0_data[12:0];
   assign io_deq_bits_begin_1 = _ram_ext_R0_data[25:13];
-  assign io_deq_bits_end_0 = _ram_ext_R0_data[38:26];
-  assign io_deq_bits_end_1 = _ram_ext_R0_data[51:39];
-  assign io_deq_bits_direct = _ram_ext_R0_data[52];
-  assign io_deq_bits_tag_scan = _ram_ext_R0_data[53];
-  assign io_deq_bits_tag_cell_0 = _ram_ext_R0_data[73:54];
-  assign io_deq_bits_tag_cell_1 = _ram_ext_R0_data[93:74];
-  assign io_deq_bits_tag_cell_2 = _ram_ext_R0_data[113:94];
-  assign io_deq_bits_tag_off_0 = _ram_ext_R0_data[116:114];
-  assign io_deq_bits_tag_off_1 = _ram_ext_R0_data[119:117];
-  assign io_deq_bits_tag_off_2 = _ram_ext_R0_data[122:120];
+  assign io_deq_bits_begin_2 = _ram_ext_R0_data[38:26];
+  assign io_deq_bits_begin_3 = _ram_ext_R0_data[51:39];
+  assign io_deq_bits_end_0 = _ram_ext_R0_data[64:52];
+  assign io_deq_bits_end_1 = _ram_ext_R0_data[77:65];
+  assign io_deq_bits_end_2 = _ram_ext_R0_data[90:78];
+  assign io_deq_bits_end_3 = _ram_ext_R0_data[103:91];
+  assign io_deq_bits_direct = _ram_ext_R0_data[104];
+  assign io_deq_bits_tag_scan = _ram_ext_R0_data[105];
+  assign io_deq_bits_tag_cell_0 = _ram_ext_R0_data[125:106];
+  assign io_deq_bits_tag_cell_1 = _ram_ext_R0_data[145:126];
+  assign io_deq_bits_tag_cell_2 = _ram_ext_R0_data[165:146];
+  assign io_deq_bits_tag_off_0 = _ram_ext_R0_data[168:166];
+  assign io_deq_bits_tag_off_1 = _ram_ext_R0_data[171:169];
+  assign io_deq_bits_tag_off_2 = _ram_ext_R0_data[174:172];
   assign io_count =
     ptr_match
       ? {2{maybe_full}}
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 2'h1 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
+module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
   input         clock,
                 reset,
                 io_start,
@@ -22002,8 +22061,12 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
   output [12:0] io_lookup_bucket,
   input  [12:0] io_lookup_begin_0,
                 io_lookup_begin_1,
+                io_lookup_begin_2,
+                io_lookup_begin_3,
                 io_lookup_end_0,
                 io_lookup_end_1,
+                io_lookup_end_2,
+                io_lookup_end_3,
                 io_lookup_word_0_0,
                 io_lookup_word_0_1,
                 io_lookup_word_0_2,
@@ -22036,12 +22099,44 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
                 io_lookup_word_1_13,
                 io_lookup_word_1_14,
                 io_lookup_word_1_15,
+                io_lookup_word_2_0,
+                io_lookup_word_2_1,
+                io_lookup_word_2_2,
+                io_lookup_word_2_3,
+                io_lookup_word_2_4,
+                io_lookup_word_2_5,
+                io_lookup_word_2_6,
+                io_lookup_word_2_7,
+                io_lookup_word_2_8,
+                io_lookup_word_2_9,
+                io_lookup_word_2_10,
+                io_lookup_word_2_11,
+                io_lookup_word_2_12,
+                io_lookup_word_2_13,
+                io_lookup_word_2_14,
+                io_lookup_word_2_15,
+                io_lookup_word_3_0,
+                io_lookup_word_3_1,
+                io_lookup_word_3_2,
+                io_lookup_word_3_3,
+                io_lookup_word_3_4,
+                io_lookup_word_3_5,
+                io_lookup_word_3_6,
+                io_lookup_word_3_7,
+                io_lookup_word_3_8,
+                io_lookup_word_3_9,
+                io_lookup_word_3_10,
+                io_lookup_word_3_11,
+                io_lookup_word_3_12,
+                io_lookup_word_3_13,
+                io_lookup_word_3_14,
+                io_lookup_word_3_15,
   output [11:0] io_entry_addr,
-  output        io_entry_group,
+  output [1:0]  io_entry_group,
   input  [11:0] io_entry_item,
   input         io_entry_mark,
   output        io_mark_valid,
-                io_mark_bits_group,
+  output [1:0]  io_mark_bits_group,
   output [11:0] io_mark_bits_addr,
                 io_mark_bits_item,
                 io_keyAddr,
@@ -22065,8 +22160,12 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
   wire        _lkq_io_deq_valid;
   wire [12:0] _lkq_io_deq_bits_begin_0;
   wire [12:0] _lkq_io_deq_bits_begin_1;
+  wire [12:0] _lkq_io_deq_bits_begin_2;
+  wire [12:0] _lkq_io_deq_bits_begin_3;
   wire [12:0] _lkq_io_deq_bits_end_0;
   wire [12:0] _lkq_io_deq_bits_end_1;
+  wire [12:0] _lkq_io_deq_bits_end_2;
+  wire [12:0] _lkq_io_deq_bits_end_3;
   wire        _lkq_io_deq_bits_direct;
   wire        _lkq_io_deq_bits_tag_scan;
   wire [19:0] _lkq_io_deq_bits_tag_cell_0;
@@ -22080,7 +22179,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
   wire        _matcher_io_idle;
   wire        _stream_io_req_ready;
   wire        _stream_io_out_valid;
-  wire        _stream_io_out_bits_group;
+  wire [1:0]  _stream_io_out_bits_group;
   wire [12:0] _stream_io_out_bits_pos;
   wire [11:0] _stream_io_out_bits_item;
   wire        _stream_io_out_bits_mark;
@@ -22108,8 +22207,12 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
   reg  [13:0] walkB;
   reg  [12:0] p_0;
   reg  [12:0] p_1;
+  reg  [12:0] p_2;
+  reg  [12:0] p_3;
   reg  [12:0] bEnd_0;
   reg  [12:0] bEnd_1;
+  reg  [12:0] bEnd_2;
+  reg  [12:0] bEnd_3;
   reg  [19:0] curCell_0;
   reg  [19:0] curCell_1;
   reg  [19:0] curCell_2;
@@ -22119,7 +22222,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
   reg         moreOfCell;
   reg         nextSet;
   reg  [12:0] nextLeader;
-  reg         nextGroup;
+  reg  [1:0]  nextGroup;
   reg  [19:0] nextCell_0;
   reg  [19:0] nextCell_1;
   reg  [19:0] nextCell_2;
@@ -22141,100 +22244,131 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
   wire        _GEN_1 = state == 3'h1;
   wire        issueOk = bIssue < _io_lookup_bucket_mask_T[13:0];
   wire        gCoarse_0 =
-    walkB[3:0] == 4'h0 & {1'h0, io_lookup_word_0_7 - io_lookup_begin_0}
-    + {1'h0, io_lookup_word_1_7 - io_lookup_begin_1} < 14'h21;
+    walkB[3:0] == 4'h0
+    & {1'h0,
+       {1'h0,
+        {1'h0, io_lookup_word_0_7 - io_lookup_begin_0}
+          + {1'h0, io_lookup_word_1_7 - io_lookup_begin_1}}
+         + {2'h0, io_lookup_word_2_7 - io_lookup_begin_2}}
+    + {3'h0, io_lookup_word_3_7 - io_lookup_begin_3} < 16'h21;
   wire        gCoarse_1 =
-    walkB[3:0] < 4'h9 & {1'h0, io_lookup_word_0_15 - io_lookup_word_0_7}
-    + {1'h0, io_lookup_word_1_15 - io_lookup_word_1_7} < 14'h21;
+    walkB[3:0] < 4'h9
+    & {1'h0,
+       {1'h0,
+        {1'h0, io_lookup_word_0_15 - io_lookup_word_0_7}
+          + {1'h0, io_lookup_word_1_15 - io_lookup_word_1_7}}
+         + {2'h0, io_lookup_word_2_15 - io_lookup_word_2_7}}
+    + {3'h0, io_lookup_word_3_15 - io_lookup_word_3_7} < 16'h21;
   wire        occupied_0 =
     walkB[3:0] == 4'h0 & {walkB[13:4], 4'h0} < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_0 ? {walkB[6], 1'h0} : 2'h0) == io_lane[1:0]
-    & (io_lookup_word_0_0 != io_lookup_begin_0 | io_lookup_word_1_0 != io_lookup_begin_1);
+    & (io_lookup_word_0_0 != io_lookup_begin_0 | io_lookup_word_1_0 != io_lookup_begin_1
+       | io_lookup_word_2_0 != io_lookup_begin_2
+       | io_lookup_word_3_0 != io_lookup_begin_3);
   wire [13:0] _GEN_2 = {walkB[13:4], 4'h0};
   wire [13:0] _occupied_bucket_T_1 = _GEN_2 + 14'h1;
   wire        occupied_1 =
     walkB[3:0] < 4'h2 & _occupied_bucket_T_1 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_1[1:0]) == io_lane[1:0]
-    & (io_lookup_word_0_1 != io_lookup_word_0_0
-       | io_lookup_word_1_1 != io_lookup_word_1_0);
+    & (io_lookup_word_0_1 != io_lookup_word_0_0 | io_lookup_word_1_1 != io_lookup_word_1_0
+       | io_lookup_word_2_1 != io_lookup_word_2_0
+       | io_lookup_word_3_1 != io_lookup_word_3_0);
   wire [13:0] _occupied_bucket_T_2 = _GEN_2 + 14'h2;
   wire        occupied_2 =
     walkB[3:0] < 4'h3 & _occupied_bucket_T_2 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_2[1:0]) == io_lane[1:0]
-    & (io_lookup_word_0_2 != io_lookup_word_0_1
-       | io_lookup_word_1_2 != io_lookup_word_1_1);
+    & (io_lookup_word_0_2 != io_lookup_word_0_1 | io_lookup_word_1_2 != io_lookup_word_1_1
+       | io_lookup_word_2_2 != io_lookup_word_2_1
+       | io_lookup_word_3_2 != io_lookup_word_3_1);
   wire [13:0] _occupied_bucket_T_3 = _GEN_2 + 14'h3;
   wire        occupied_3 =
     walkB[3:0] < 4'h4 & _occupied_bucket_T_3 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_3[1:0]) == io_lane[1:0]
-    & (io_lookup_word_0_3 != io_lookup_word_0_2
-       | io_lookup_word_1_3 != io_lookup_word_1_2);
+    & (io_lookup_word_0_3 != io_lookup_word_0_2 | io_lookup_word_1_3 != io_lookup_word_1_2
+       | io_lookup_word_2_3 != io_lookup_word_2_2
+       | io_lookup_word_3_3 != io_lookup_word_3_2);
   wire [13:0] _occupied_bucket_T_4 = _GEN_2 + 14'h4;
   wire        occupied_4 =
     walkB[3:0] < 4'h5 & _occupied_bucket_T_4 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_4[1:0]) == io_lane[1:0]
-    & (io_lookup_word_0_4 != io_lookup_word_0_3
-       | io_lookup_word_1_4 != io_lookup_word_1_3);
+    & (io_lookup_word_0_4 != io_lookup_word_0_3 | io_lookup_word_1_4 != io_lookup_word_1_3
+       | io_lookup_word_2_4 != io_lookup_word_2_3
+       | io_lookup_word_3_4 != io_lookup_word_3_3);
   wire [13:0] _occupied_bucket_T_5 = _GEN_2 + 14'h5;
   wire        occupied_5 =
     walkB[3:0] < 4'h6 & _occupied_bucket_T_5 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_5[1:0]) == io_lane[1:0]
-    & (io_lookup_word_0_5 != io_lookup_word_0_4
-       | io_lookup_word_1_5 != io_lookup_word_1_4);
+    & (io_lookup_word_0_5 != io_lookup_word_0_4 | io_lookup_word_1_5 != io_lookup_word_1_4
+       | io_lookup_word_2_5 != io_lookup_word_2_4
+       | io_lookup_word_3_5 != io_lookup_word_3_4);
   wire [13:0] _occupied_bucket_T_6 = _GEN_2 + 14'h6;
   wire        occupied_6 =
     walkB[3:0] < 4'h7 & _occupied_bucket_T_6 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_6[1:0]) == io_lane[1:0]
-    & (io_lookup_word_0_6 != io_lookup_word_0_5
-       | io_lookup_word_1_6 != io_lookup_word_1_5);
+    & (io_lookup_word_0_6 != io_lookup_word_0_5 | io_lookup_word_1_6 != io_lookup_word_1_5
+       | io_lookup_word_2_6 != io_lookup_word_2_5
+       | io_lookup_word_3_6 != io_lookup_word_3_5);
   wire [13:0] _occupied_bucket_T_7 = _GEN_2 + 14'h7;
   wire        occupied_7 =
     ~(walkB[3]) & _occupied_bucket_T_7 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_7[1:0]) == io_lane[1:0]
-    & (io_lookup_word_0_7 != io_lookup_word_0_6
-       | io_lookup_word_1_7 != io_lookup_word_1_6);
+    & (io_lookup_word_0_7 != io_lookup_word_0_6 | io_lookup_word_1_7 != io_lookup_word_1_6
+       | io_lookup_word_2_7 != io_lookup_word_2_6
+       | io_lookup_word_3_7 != io_lookup_word_3_6);
   wire [13:0] _occupied_bucket_T_8 = _GEN_2 + 14'h8;
   wire        occupied_8 =
     walkB[3:0] < 4'h9 & _occupied_bucket_T_8 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_8[1:0]) == io_lane[1:0]
-    & (io_lookup_word_0_8 != io_lookup_word_0_7
-       | io_lookup_word_1_8 != io_lookup_word_1_7);
+    & (io_lookup_word_0_8 != io_lookup_word_0_7 | io_lookup_word_1_8 != io_lookup_word_1_7
+       | io_lookup_word_2_8 != io_lookup_word_2_7
+       | io_lookup_word_3_8 != io_lookup_word_3_7);
   wire [13:0] _occupied_bucket_T_9 = _GEN_2 + 14'h9;
   wire        occupied_9 =
     walkB[3:0] < 4'hA & _occupied_bucket_T_9 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_9[1:0]) == io_lane[1:0]
-    & (io_lookup_word_0_9 != io_lookup_word_0_8
-       | io_lookup_word_1_9 != io_lookup_word_1_8);
+    & (io_lookup_word_0_9 != io_lookup_word_0_8 | io_lookup_word_1_9 != io_lookup_word_1_8
+       | io_lookup_word_2_9 != io_lookup_word_2_8
+       | io_lookup_word_3_9 != io_lookup_word_3_8);
   wire [13:0] _occupied_bucket_T_10 = _GEN_2 + 14'hA;
   wire        occupied_10 =
     walkB[3:0] < 4'hB & _occupied_bucket_T_10 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_10[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_10 != io_lookup_word_0_9
-       | io_lookup_word_1_10 != io_lookup_word_1_9);
+       | io_lookup_word_1_10 != io_lookup_word_1_9
+       | io_lookup_word_2_10 != io_lookup_word_2_9
+       | io_lookup_word_3_10 != io_lookup_word_3_9);
   wire [13:0] _occupied_bucket_T_11 = _GEN_2 + 14'hB;
   wire        occupied_11 =
     walkB[3:2] != 2'h3 & _occupied_bucket_T_11 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_11[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_11 != io_lookup_word_0_10
-       | io_lookup_word_1_11 != io_lookup_word_1_10);
+       | io_lookup_word_1_11 != io_lookup_word_1_10
+       | io_lookup_word_2_11 != io_lookup_word_2_10
+       | io_lookup_word_3_11 != io_lookup_word_3_10);
   wire [13:0] _occupied_bucket_T_12 = _GEN_2 + 14'hC;
   wire        occupied_12 =
     walkB[3:0] < 4'hD & _occupied_bucket_T_12 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_12[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_12 != io_lookup_word_0_11
-       | io_lookup_word_1_12 != io_lookup_word_1_11);
+       | io_lookup_word_1_12 != io_lookup_word_1_11
+       | io_lookup_word_2_12 != io_lookup_word_2_11
+       | io_lookup_word_3_12 != io_lookup_word_3_11);
   wire [13:0] _occupied_bucket_T_13 = _GEN_2 + 14'hD;
   wire        occupied_13 =
     walkB[3:1] != 3'h7 & _occupied_bucket_T_13 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_13[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_13 != io_lookup_word_0_12
-       | io_lookup_word_1_13 != io_lookup_word_1_12);
+       | io_lookup_word_1_13 != io_lookup_word_1_12
+       | io_lookup_word_2_13 != io_lookup_word_2_12
+       | io_lookup_word_3_13 != io_lookup_word_3_12);
   wire [13:0] _occupied_bucket_T_14 = _GEN_2 + 14'hE;
   wire        occupied_14 =
     walkB[3:0] != 4'hF & _occupied_bucket_T_14 < _io_lookup_bucket_mask_T[13:0]
     & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_14[1:0]) == io_lane[1:0]
     & (io_lookup_word_0_14 != io_lookup_word_0_13
-       | io_lookup_word_1_14 != io_lookup_word_1_13);
+       | io_lookup_word_1_14 != io_lookup_word_1_13
+       | io_lookup_word_2_14 != io_lookup_word_2_13
+       | io_lookup_word_3_14 != io_lookup_word_3_13);
   wire [13:0] _occupied_bucket_T_15 = _GEN_2 + 14'hF;
   wire [3:0]  lane =
     occupied_0
@@ -22273,7 +22407,9 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
     & (|{_occupied_bucket_T_15 < _io_lookup_bucket_mask_T[13:0]
            & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_15[1:0]) == io_lane[1:0]
            & (io_lookup_word_0_15 != io_lookup_word_0_14
-              | io_lookup_word_1_15 != io_lookup_word_1_14),
+              | io_lookup_word_1_15 != io_lookup_word_1_14
+              | io_lookup_word_2_15 != io_lookup_word_2_14
+              | io_lookup_word_3_15 != io_lookup_word_3_14),
          occupied_14,
          occupied_13,
          occupied_12,
@@ -22439,150 +22575,446 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
   end // always @(*)
   reg  [12:0] casez_tmp_3;
   always @(*) begin
-    casez (lane)
+    casez (gLo)
       4'b0000:
-        casez_tmp_3 = io_lookup_begin_0;
+        casez_tmp_3 = io_lookup_begin_2;
       4'b0001:
-        casez_tmp_3 = io_lookup_word_0_0;
+        casez_tmp_3 = io_lookup_word_2_0;
       4'b0010:
-        casez_tmp_3 = io_lookup_word_0_1;
+        casez_tmp_3 = io_lookup_word_2_1;
       4'b0011:
-        casez_tmp_3 = io_lookup_word_0_2;
+        casez_tmp_3 = io_lookup_word_2_2;
       4'b0100:
-        casez_tmp_3 = io_lookup_word_0_3;
+        casez_tmp_3 = io_lookup_word_2_3;
       4'b0101:
-        casez_tmp_3 = io_lookup_word_0_4;
+        casez_tmp_3 = io_lookup_word_2_4;
       4'b0110:
-        casez_tmp_3 = io_lookup_word_0_5;
+        casez_tmp_3 = io_lookup_word_2_5;
       4'b0111:
-        casez_tmp_3 = io_lookup_word_0_6;
+        casez_tmp_3 = io_lookup_word_2_6;
       4'b1000:
-        casez_tmp_3 = io_lookup_word_0_7;
+        casez_tmp_3 = io_lookup_word_2_7;
       4'b1001:
-        casez_tmp_3 = io_lookup_word_0_8;
+        casez_tmp_3 = io_lookup_word_2_8;
       4'b1010:
-        casez_tmp_3 = io_lookup_word_0_9;
+        casez_tmp_3 = io_lookup_word_2_9;
       4'b1011:
-        casez_tmp_3 = io_lookup_word_0_10;
+        casez_tmp_3 = io_lookup_word_2_10;
       4'b1100:
-        casez_tmp_3 = io_lookup_word_0_11;
+        casez_tmp_3 = io_lookup_word_2_11;
       4'b1101:
-        casez_tmp_3 = io_lookup_word_0_12;
+        casez_tmp_3 = io_lookup_word_2_12;
       4'b1110:
-        casez_tmp_3 = io_lookup_word_0_13;
+        casez_tmp_3 = io_lookup_word_2_13;
       default:
-        casez_tmp_3 = io_lookup_word_0_14;
+        casez_tmp_3 = io_lookup_word_2_14;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_4;
   always @(*) begin
-    casez (lane)
+    casez (gLast)
       4'b0000:
-        casez_tmp_4 = io_lookup_word_0_0;
+        casez_tmp_4 = io_lookup_word_2_0;
       4'b0001:
-        casez_tmp_4 = io_lookup_word_0_1;
+        casez_tmp_4 = io_lookup_word_2_1;
       4'b0010:
-        casez_tmp_4 = io_lookup_word_0_2;
+        casez_tmp_4 = io_lookup_word_2_2;
       4'b0011:
-        casez_tmp_4 = io_lookup_word_0_3;
+        casez_tmp_4 = io_lookup_word_2_3;
       4'b0100:
-        casez_tmp_4 = io_lookup_word_0_4;
+        casez_tmp_4 = io_lookup_word_2_4;
       4'b0101:
-        casez_tmp_4 = io_lookup_word_0_5;
+        casez_tmp_4 = io_lookup_word_2_5;
       4'b0110:
-        casez_tmp_4 = io_lookup_word_0_6;
+        casez_tmp_4 = io_lookup_word_2_6;
       4'b0111:
-        casez_tmp_4 = io_lookup_word_0_7;
+        casez_tmp_4 = io_lookup_word_2_7;
       4'b1000:
-        casez_tmp_4 = io_lookup_word_0_8;
+        casez_tmp_4 = io_lookup_word_2_8;
       4'b1001:
-        casez_tmp_4 = io_lookup_word_0_9;
+        casez_tmp_4 = io_lookup_word_2_9;
       4'b1010:
-        casez_tmp_4 = io_lookup_word_0_10;
+        casez_tmp_4 = io_lookup_word_2_10;
       4'b1011:
-        casez_tmp_4 = io_lookup_word_0_11;
+        casez_tmp_4 = io_lookup_word_2_11;
       4'b1100:
-        casez_tmp_4 = io_lookup_word_0_12;
+        casez_tmp_4 = io_lookup_word_2_12;
       4'b1101:
-        casez_tmp_4 = io_lookup_word_0_13;
+        casez_tmp_4 = io_lookup_word_2_13;
       4'b1110:
-        casez_tmp_4 = io_lookup_word_0_14;
+        casez_tmp_4 = io_lookup_word_2_14;
       default:
-        casez_tmp_4 = io_lookup_word_0_15;
+        casez_tmp_4 = io_lookup_word_2_15;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_5;
   always @(*) begin
-    casez (lane)
+    casez (gLo)
       4'b0000:
-        casez_tmp_5 = io_lookup_begin_1;
+        casez_tmp_5 = io_lookup_begin_3;
       4'b0001:
-        casez_tmp_5 = io_lookup_word_1_0;
+        casez_tmp_5 = io_lookup_word_3_0;
       4'b0010:
-        casez_tmp_5 = io_lookup_word_1_1;
+        casez_tmp_5 = io_lookup_word_3_1;
       4'b0011:
-        casez_tmp_5 = io_lookup_word_1_2;
+        casez_tmp_5 = io_lookup_word_3_2;
       4'b0100:
-        casez_tmp_5 = io_lookup_word_1_3;
+        casez_tmp_5 = io_lookup_word_3_3;
       4'b0101:
-        casez_tmp_5 = io_lookup_word_1_4;
+        casez_tmp_5 = io_lookup_word_3_4;
       4'b0110:
-        casez_tmp_5 = io_lookup_word_1_5;
+        casez_tmp_5 = io_lookup_word_3_5;
       4'b0111:
-        casez_tmp_5 = io_lookup_word_1_6;
+        casez_tmp_5 = io_lookup_word_3_6;
       4'b1000:
-        casez_tmp_5 = io_lookup_word_1_7;
+        casez_tmp_5 = io_lookup_word_3_7;
       4'b1001:
-        casez_tmp_5 = io_lookup_word_1_8;
+        casez_tmp_5 = io_lookup_word_3_8;
       4'b1010:
-        casez_tmp_5 = io_lookup_word_1_9;
+        casez_tmp_5 = io_lookup_word_3_9;
       4'b1011:
-        casez_tmp_5 = io_lookup_word_1_10;
+        casez_tmp_5 = io_lookup_word_3_10;
       4'b1100:
-        casez_tmp_5 = io_lookup_word_1_11;
+        casez_tmp_5 = io_lookup_word_3_11;
       4'b1101:
-        casez_tmp_5 = io_lookup_word_1_12;
+        casez_tmp_5 = io_lookup_word_3_12;
       4'b1110:
-        casez_tmp_5 = io_lookup_word_1_13;
+        casez_tmp_5 = io_lookup_word_3_13;
       default:
-        casez_tmp_5 = io_lookup_word_1_14;
+        casez_tmp_5 = io_lookup_word_3_14;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_6;
   always @(*) begin
+    casez (gLast)
+      4'b0000:
+        casez_tmp_6 = io_lookup_word_3_0;
+      4'b0001:
+        casez_tmp_6 = io_lookup_word_3_1;
+      4'b0010:
+        casez_tmp_6 = io_lookup_word_3_2;
+      4'b0011:
+        casez_tmp_6 = io_lookup_word_3_3;
+      4'b0100:
+        casez_tmp_6 = io_lookup_word_3_4;
+      4'b0101:
+        casez_tmp_6 = io_lookup_word_3_5;
+      4'b0110:
+        casez_tmp_6 = io_lookup_word_3_6;
+      4'b0111:
+        casez_tmp_6 = io_lookup_word_3_7;
+      4'b1000:
+        casez_tmp_6 = io_lookup_word_3_8;
+      4'b1001:
+        casez_tmp_6 = io_lookup_word_3_9;
+      4'b1010:
+        casez_tmp_6 = io_lookup_word_3_10;
+      4'b1011:
+        casez_tmp_6 = io_lookup_word_3_11;
+      4'b1100:
+        casez_tmp_6 = io_lookup_word_3_12;
+      4'b1101:
+        casez_tmp_6 = io_lookup_word_3_13;
+      4'b1110:
+        casez_tmp_6 = io_lookup_word_3_14;
+      default:
+        casez_tmp_6 = io_lookup_word_3_15;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_7;
+  always @(*) begin
     casez (lane)
       4'b0000:
-        casez_tmp_6 = io_lookup_word_1_0;
+        casez_tmp_7 = io_lookup_begin_0;
       4'b0001:
-        casez_tmp_6 = io_lookup_word_1_1;
+        casez_tmp_7 = io_lookup_word_0_0;
       4'b0010:
-        casez_tmp_6 = io_lookup_word_1_2;
+        casez_tmp_7 = io_lookup_word_0_1;
       4'b0011:
-        casez_tmp_6 = io_lookup_word_1_3;
+        casez_tmp_7 = io_lookup_word_0_2;
       4'b0100:
-        casez_tmp_6 = io_lookup_word_1_4;
+        casez_tmp_7 = io_lookup_word_0_3;
       4'b0101:
-        casez_tmp_6 = io_lookup_word_1_5;
+        casez_tmp_7 = io_lookup_word_0_4;
       4'b0110:
-        casez_tmp_6 = io_lookup_word_1_6;
+        casez_tmp_7 = io_lookup_word_0_5;
       4'b0111:
-        casez_tmp_6 = io_lookup_word_1_7;
+        casez_tmp_7 = io_lookup_word_0_6;
       4'b1000:
-        casez_tmp_6 = io_lookup_word_1_8;
+        casez_tmp_7 = io_lookup_word_0_7;
       4'b1001:
-        casez_tmp_6 = io_lookup_word_1_9;
+        casez_tmp_7 = io_lookup_word_0_8;
       4'b1010:
-        casez_tmp_6 = io_lookup_word_1_10;
+        casez_tmp_7 = io_lookup_word_0_9;
       4'b1011:
-        casez_tmp_6 = io_lookup_word_1_11;
+        casez_tmp_7 = io_lookup_word_0_10;
       4'b1100:
-        casez_tmp_6 = io_lookup_word_1_12;
+        casez_tmp_7 = io_lookup_word_0_11;
       4'b1101:
-        casez_tmp_6 = io_lookup_word_1_13;
+        casez_tmp_7 = io_lookup_word_0_12;
       4'b1110:
-        casez_tmp_6 = io_lookup_word_1_14;
+        casez_tmp_7 = io_lookup_word_0_13;
       default:
-        casez_tmp_6 = io_lookup_word_1_15;
+        casez_tmp_7 = io_lookup_word_0_14;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_8;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_8 = io_lookup_word_0_0;
+      4'b0001:
+        casez_tmp_8 = io_lookup_word_0_1;
+      4'b0010:
+        casez_tmp_8 = io_lookup_word_0_2;
+      4'b0011:
+        casez_tmp_8 = io_lookup_word_0_3;
+      4'b0100:
+        casez_tmp_8 = io_lookup_word_0_4;
+      4'b0101:
+        casez_tmp_8 = io_lookup_word_0_5;
+      4'b0110:
+        casez_tmp_8 = io_lookup_word_0_6;
+      4'b0111:
+        casez_tmp_8 = io_lookup_word_0_7;
+      4'b1000:
+        casez_tmp_8 = io_lookup_word_0_8;
+      4'b1001:
+        casez_tmp_8 = io_lookup_word_0_9;
+      4'b1010:
+        casez_tmp_8 = io_lookup_word_0_10;
+      4'b1011:
+        casez_tmp_8 = io_lookup_word_0_11;
+      4'b1100:
+        casez_tmp_8 = io_lookup_word_0_12;
+      4'b1101:
+        casez_tmp_8 = io_lookup_word_0_13;
+      4'b1110:
+        casez_tmp_8 = io_lookup_word_0_14;
+      default:
+        casez_tmp_8 = io_lookup_word_0_15;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_9;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_9 = io_lookup_begin_1;
+      4'b0001:
+        casez_tmp_9 = io_lookup_word_1_0;
+      4'b0010:
+        casez_tmp_9 = io_lookup_word_1_1;
+      4'b0011:
+        casez_tmp_9 = io_lookup_word_1_2;
+      4'b0100:
+        casez_tmp_9 = io_lookup_word_1_3;
+      4'b0101:
+        casez_tmp_9 = io_lookup_word_1_4;
+      4'b0110:
+        casez_tmp_9 = io_lookup_word_1_5;
+      4'b0111:
+        casez_tmp_9 = io_lookup_word_1_6;
+      4'b1000:
+        casez_tmp_9 = io_lookup_word_1_7;
+      4'b1001:
+        casez_tmp_9 = io_lookup_word_1_8;
+      4'b1010:
+        casez_tmp_9 = io_lookup_word_1_9;
+      4'b1011:
+        casez_tmp_9 = io_lookup_word_1_10;
+      4'b1100:
+        casez_tmp_9 = io_lookup_word_1_11;
+      4'b1101:
+        casez_tmp_9 = io_lookup_word_1_12;
+      4'b1110:
+        casez_tmp_9 = io_lookup_word_1_13;
+      default:
+        casez_tmp_9 = io_lookup_word_1_14;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_10;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_10 = io_lookup_word_1_0;
+      4'b0001:
+        casez_tmp_10 = io_lookup_word_1_1;
+      4'b0010:
+        casez_tmp_10 = io_lookup_word_1_2;
+      4'b0011:
+        casez_tmp_10 = io_lookup_word_1_3;
+      4'b0100:
+        casez_tmp_10 = io_lookup_word_1_4;
+      4'b0101:
+        casez_tmp_10 = io_lookup_word_1_5;
+      4'b0110:
+        casez_tmp_10 = io_lookup_word_1_6;
+      4'b0111:
+        casez_tmp_10 = io_lookup_word_1_7;
+      4'b1000:
+        casez_tmp_10 = io_lookup_word_1_8;
+      4'b1001:
+        casez_tmp_10 = io_lookup_word_1_9;
+      4'b1010:
+        casez_tmp_10 = io_lookup_word_1_10;
+      4'b1011:
+        casez_tmp_10 = io_lookup_word_1_11;
+      4'b1100:
+        casez_tmp_10 = io_lookup_word_1_12;
+      4'b1101:
+        casez_tmp_10 = io_lookup_word_1_13;
+      4'b1110:
+        casez_tmp_10 = io_lookup_word_1_14;
+      default:
+        casez_tmp_10 = io_lookup_word_1_15;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_11;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_11 = io_lookup_begin_2;
+      4'b0001:
+        casez_tmp_11 = io_lookup_word_2_0;
+      4'b0010:
+        casez_tmp_11 = io_lookup_word_2_1;
+      4'b0011:
+        casez_tmp_11 = io_lookup_word_2_2;
+      4'b0100:
+        casez_tmp_11 = io_lookup_word_2_3;
+      4'b0101:
+        casez_tmp_11 = io_lookup_word_2_4;
+      4'b0110:
+        casez_tmp_11 = io_lookup_word_2_5;
+      4'b0111:
+        casez_tmp_11 = io_lookup_word_2_6;
+      4'b1000:
+        casez_tmp_11 = io_lookup_word_2_7;
+      4'b1001:
+        casez_tmp_11 = io_lookup_word_2_8;
+      4'b1010:
+        casez_tmp_11 = io_lookup_word_2_9;
+      4'b1011:
+        casez_tmp_11 = io_lookup_word_2_10;
+      4'b1100:
+        casez_tmp_11 = io_lookup_word_2_11;
+      4'b1101:
+        casez_tmp_11 = io_lookup_word_2_12;
+      4'b1110:
+        casez_tmp_11 = io_lookup_word_2_13;
+      default:
+        casez_tmp_11 = io_lookup_word_2_14;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_12;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_12 = io_lookup_word_2_0;
+      4'b0001:
+        casez_tmp_12 = io_lookup_word_2_1;
+      4'b0010:
+        casez_tmp_12 = io_lookup_word_2_2;
+      4'b0011:
+        casez_tmp_12 = io_lookup_word_2_3;
+      4'b0100:
+        casez_tmp_12 = io_lookup_word_2_4;
+      4'b0101:
+        casez_tmp_12 = io_lookup_word_2_5;
+      4'b0110:
+        casez_tmp_12 = io_lookup_word_2_6;
+      4'b0111:
+        casez_tmp_12 = io_lookup_word_2_7;
+      4'b1000:
+        casez_tmp_12 = io_lookup_word_2_8;
+      4'b1001:
+        casez_tmp_12 = io_lookup_word_2_9;
+      4'b1010:
+        casez_tmp_12 = io_lookup_word_2_10;
+      4'b1011:
+        casez_tmp_12 = io_lookup_word_2_11;
+      4'b1100:
+        casez_tmp_12 = io_lookup_word_2_12;
+      4'b1101:
+        casez_tmp_12 = io_lookup_word_2_13;
+      4'b1110:
+        casez_tmp_12 = io_lookup_word_2_14;
+      default:
+        casez_tmp_12 = io_lookup_word_2_15;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_13;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_13 = io_lookup_begin_3;
+      4'b0001:
+        casez_tmp_13 = io_lookup_word_3_0;
+      4'b0010:
+        casez_tmp_13 = io_lookup_word_3_1;
+      4'b0011:
+        casez_tmp_13 = io_lookup_word_3_2;
+      4'b0100:
+        casez_tmp_13 = io_lookup_word_3_3;
+      4'b0101:
+        casez_tmp_13 = io_lookup_word_3_4;
+      4'b0110:
+        casez_tmp_13 = io_lookup_word_3_5;
+      4'b0111:
+        casez_tmp_13 = io_lookup_word_3_6;
+      4'b1000:
+        casez_tmp_13 = io_lookup_word_3_7;
+      4'b1001:
+        casez_tmp_13 = io_lookup_word_3_8;
+      4'b1010:
+        casez_tmp_13 = io_lookup_word_3_9;
+      4'b1011:
+        casez_tmp_13 = io_lookup_word_3_10;
+      4'b1100:
+        casez_tmp_13 = io_lookup_word_3_11;
+      4'b1101:
+        casez_tmp_13 = io_lookup_word_3_12;
+      4'b1110:
+        casez_tmp_13 = io_lookup_word_3_13;
+      default:
+        casez_tmp_13 = io_lookup_word_3_14;
+    endcase
+  end // always @(*)
+  reg  [12:0] casez_tmp_14;
+  always @(*) begin
+    casez (lane)
+      4'b0000:
+        casez_tmp_14 = io_lookup_word_3_0;
+      4'b0001:
+        casez_tmp_14 = io_lookup_word_3_1;
+      4'b0010:
+        casez_tmp_14 = io_lookup_word_3_2;
+      4'b0011:
+        casez_tmp_14 = io_lookup_word_3_3;
+      4'b0100:
+        casez_tmp_14 = io_lookup_word_3_4;
+      4'b0101:
+        casez_tmp_14 = io_lookup_word_3_5;
+      4'b0110:
+        casez_tmp_14 = io_lookup_word_3_6;
+      4'b0111:
+        casez_tmp_14 = io_lookup_word_3_7;
+      4'b1000:
+        casez_tmp_14 = io_lookup_word_3_8;
+      4'b1001:
+        casez_tmp_14 = io_lookup_word_3_9;
+      4'b1010:
+        casez_tmp_14 = io_lookup_word_3_10;
+      4'b1011:
+        casez_tmp_14 = io_lookup_word_3_11;
+      4'b1100:
+        casez_tmp_14 = io_lookup_word_3_12;
+      4'b1101:
+        casez_tmp_14 = io_lookup_word_3_13;
+      4'b1110:
+        casez_tmp_14 = io_lookup_word_3_14;
+      default:
+        casez_tmp_14 = io_lookup_word_3_15;
     endcase
   end // always @(*)
   wire        _GEN_4 = ~walkPend & ~issueOk & _stream_io_idle & _matcher_io_idle;
@@ -22590,596 +23022,596 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
   wire        _GEN_6 = _GEN_5 & sent;
   wire        _GEN_7 = _GEN_0 | _GEN_1;
   wire [5:0]  _off_T_1 = coarseCh ? vIssue + 6'hE : vIssue;
-  reg  [2:0]  casez_tmp_7;
+  reg  [2:0]  casez_tmp_15;
   always @(*) begin
     casez (_off_T_1)
       6'b000000:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b000001:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b000010:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b000011:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b000100:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b000101:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b000110:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b000111:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b001000:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b001001:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b001010:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b001011:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b001100:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b001101:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b001110:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b001111:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b010000:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b010001:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b010010:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b010011:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b010100:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b010101:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b010110:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b010111:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b011000:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b011001:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b011010:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b011011:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b011100:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b011101:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b011110:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b011111:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b100000:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b100001:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b100010:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b100011:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b100100:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b100101:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b100110:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b100111:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b101000:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b101001:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b101010:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b101011:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b101100:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b101101:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b101110:
-        casez_tmp_7 = 3'h1;
+        casez_tmp_15 = 3'h1;
       6'b101111:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b110000:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b110001:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b110010:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b110011:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b110100:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b110101:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b110110:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b110111:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b111000:
-        casez_tmp_7 = 3'h2;
+        casez_tmp_15 = 3'h2;
       6'b111001:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b111010:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b111011:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b111100:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b111101:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       6'b111110:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
       default:
-        casez_tmp_7 = 3'h0;
+        casez_tmp_15 = 3'h0;
     endcase
   end // always @(*)
-  reg  [2:0]  casez_tmp_8;
+  reg  [2:0]  casez_tmp_16;
   always @(*) begin
     casez (_off_T_1)
       6'b000000:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b000001:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b000010:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b000011:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b000100:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b000101:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b000110:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b000111:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b001000:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b001001:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b001010:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b001011:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b001100:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b001101:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b001110:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b001111:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b010000:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b010001:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b010010:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b010011:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b010100:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b010101:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b010110:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b010111:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b011000:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b011001:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b011010:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b011011:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b011100:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b011101:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b011110:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b011111:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b100000:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b100001:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b100010:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b100011:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b100100:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b100101:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b100110:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b100111:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b101000:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b101001:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b101010:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b101011:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b101100:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b101101:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b101110:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b101111:
-        casez_tmp_8 = 3'h7;
+        casez_tmp_16 = 3'h7;
       6'b110000:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b110001:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b110010:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b110011:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b110100:
-        casez_tmp_8 = 3'h1;
+        casez_tmp_16 = 3'h1;
       6'b110101:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b110110:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b110111:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b111000:
-        casez_tmp_8 = 3'h2;
+        casez_tmp_16 = 3'h2;
       6'b111001:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b111010:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b111011:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b111100:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b111101:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       6'b111110:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
       default:
-        casez_tmp_8 = 3'h0;
+        casez_tmp_16 = 3'h0;
     endcase
   end // always @(*)
-  reg  [2:0]  casez_tmp_9;
+  reg  [2:0]  casez_tmp_17;
   always @(*) begin
     casez (_off_T_1)
       6'b000000:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b000001:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b000010:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b000011:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b000100:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b000101:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b000110:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b000111:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b001000:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b001001:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b001010:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b001011:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b001100:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b001101:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b001110:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b001111:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b010000:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b010001:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b010010:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b010011:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b010100:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b010101:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b010110:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b010111:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b011000:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b011001:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b011010:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b011011:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b011100:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b011101:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b011110:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b011111:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b100000:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b100001:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b100010:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b100011:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b100100:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b100101:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b100110:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b100111:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b101000:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b101001:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b101010:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b101011:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b101100:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b101101:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b101110:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b101111:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b110000:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b110001:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b110010:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b110011:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b110100:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b110101:
-        casez_tmp_9 = 3'h7;
+        casez_tmp_17 = 3'h7;
       6'b110110:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b110111:
-        casez_tmp_9 = 3'h1;
+        casez_tmp_17 = 3'h1;
       6'b111000:
-        casez_tmp_9 = 3'h2;
+        casez_tmp_17 = 3'h2;
       6'b111001:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b111010:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b111011:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b111100:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b111101:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       6'b111110:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
       default:
-        casez_tmp_9 = 3'h0;
+        casez_tmp_17 = 3'h0;
     endcase
   end // always @(*)
-  wire [19:0] nc_0 = curCell_0 + {{17{casez_tmp_7[2]}}, casez_tmp_7};
-  wire [19:0] nc_1 = curCell_1 + {{17{casez_tmp_8[2]}}, casez_tmp_8};
-  wire [19:0] nc_2 = curCell_2 + {{17{casez_tmp_9[2]}}, casez_tmp_9};
+  wire [19:0] nc_0 = curCell_0 + {{17{casez_tmp_15[2]}}, casez_tmp_15};
+  wire [19:0] nc_1 = curCell_1 + {{17{casez_tmp_16[2]}}, casez_tmp_16};
+  wire [19:0] nc_2 = curCell_2 + {{17{casez_tmp_17[2]}}, casez_tmp_17};
   wire        _GEN_8 = state == 3'h3;
   wire [6:0]  _GEN_9 = {1'h0, li};
   wire [6:0]  idx = _GEN_9 + {1'h0, lj};
   wire [6:0]  _GEN_10 = {2'h0, io_largeCount};
   wire        _GEN_11 = lj != 6'h20 & idx < _GEN_10;
-  reg  [11:0] casez_tmp_10;
+  reg  [11:0] casez_tmp_18;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_10 = io_larges_0_index;
+        casez_tmp_18 = io_larges_0_index;
       4'b0001:
-        casez_tmp_10 = io_larges_1_index;
+        casez_tmp_18 = io_larges_1_index;
       4'b0010:
-        casez_tmp_10 = io_larges_2_index;
+        casez_tmp_18 = io_larges_2_index;
       4'b0011:
-        casez_tmp_10 = io_larges_3_index;
+        casez_tmp_18 = io_larges_3_index;
       4'b0100:
-        casez_tmp_10 = io_larges_4_index;
+        casez_tmp_18 = io_larges_4_index;
       4'b0101:
-        casez_tmp_10 = io_larges_5_index;
+        casez_tmp_18 = io_larges_5_index;
       4'b0110:
-        casez_tmp_10 = io_larges_6_index;
+        casez_tmp_18 = io_larges_6_index;
       4'b0111:
-        casez_tmp_10 = io_larges_7_index;
+        casez_tmp_18 = io_larges_7_index;
       4'b1000:
-        casez_tmp_10 = io_larges_8_index;
+        casez_tmp_18 = io_larges_8_index;
       4'b1001:
-        casez_tmp_10 = io_larges_9_index;
+        casez_tmp_18 = io_larges_9_index;
       4'b1010:
-        casez_tmp_10 = io_larges_10_index;
+        casez_tmp_18 = io_larges_10_index;
       4'b1011:
-        casez_tmp_10 = io_larges_11_index;
+        casez_tmp_18 = io_larges_11_index;
       4'b1100:
-        casez_tmp_10 = io_larges_12_index;
+        casez_tmp_18 = io_larges_12_index;
       4'b1101:
-        casez_tmp_10 = io_larges_13_index;
+        casez_tmp_18 = io_larges_13_index;
       4'b1110:
-        casez_tmp_10 = io_larges_14_index;
+        casez_tmp_18 = io_larges_14_index;
       default:
-        casez_tmp_10 = io_larges_15_index;
+        casez_tmp_18 = io_larges_15_index;
     endcase
   end // always @(*)
-  reg  [28:0] casez_tmp_11;
+  reg  [28:0] casez_tmp_19;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_11 = io_larges_0_q_0;
+        casez_tmp_19 = io_larges_0_q_0;
       4'b0001:
-        casez_tmp_11 = io_larges_1_q_0;
+        casez_tmp_19 = io_larges_1_q_0;
       4'b0010:
-        casez_tmp_11 = io_larges_2_q_0;
+        casez_tmp_19 = io_larges_2_q_0;
       4'b0011:
-        casez_tmp_11 = io_larges_3_q_0;
+        casez_tmp_19 = io_larges_3_q_0;
       4'b0100:
-        casez_tmp_11 = io_larges_4_q_0;
+        casez_tmp_19 = io_larges_4_q_0;
       4'b0101:
-        casez_tmp_11 = io_larges_5_q_0;
+        casez_tmp_19 = io_larges_5_q_0;
       4'b0110:
-        casez_tmp_11 = io_larges_6_q_0;
+        casez_tmp_19 = io_larges_6_q_0;
       4'b0111:
-        casez_tmp_11 = io_larges_7_q_0;
+        casez_tmp_19 = io_larges_7_q_0;
       4'b1000:
-        casez_tmp_11 = io_larges_8_q_0;
+        casez_tmp_19 = io_larges_8_q_0;
       4'b1001:
-        casez_tmp_11 = io_larges_9_q_0;
+        casez_tmp_19 = io_larges_9_q_0;
       4'b1010:
-        casez_tmp_11 = io_larges_10_q_0;
+        casez_tmp_19 = io_larges_10_q_0;
       4'b1011:
-        casez_tmp_11 = io_larges_11_q_0;
+        casez_tmp_19 = io_larges_11_q_0;
       4'b1100:
-        casez_tmp_11 = io_larges_12_q_0;
+        casez_tmp_19 = io_larges_12_q_0;
       4'b1101:
-        casez_tmp_11 = io_larges_13_q_0;
+        casez_tmp_19 = io_larges_13_q_0;
       4'b1110:
-        casez_tmp_11 = io_larges_14_q_0;
+        casez_tmp_19 = io_larges_14_q_0;
       default:
-        casez_tmp_11 = io_larges_15_q_0;
+        casez_tmp_19 = io_larges_15_q_0;
     endcase
   end // always @(*)
-  reg  [28:0] casez_tmp_12;
+  reg  [28:0] casez_tmp_20;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_12 = io_larges_0_q_1;
+        casez_tmp_20 = io_larges_0_q_1;
       4'b0001:
-        casez_tmp_12 = io_larges_1_q_1;
+        casez_tmp_20 = io_larges_1_q_1;
       4'b0010:
-        casez_tmp_12 = io_larges_2_q_1;
+        casez_tmp_20 = io_larges_2_q_1;
       4'b0011:
-        casez_tmp_12 = io_larges_3_q_1;
+        casez_tmp_20 = io_larges_3_q_1;
       4'b0100:
-        casez_tmp_12 = io_larges_4_q_1;
+        casez_tmp_20 = io_larges_4_q_1;
       4'b0101:
-        casez_tmp_12 = io_larges_5_q_1;
+        casez_tmp_20 = io_larges_5_q_1;
       4'b0110:
-        casez_tmp_12 = io_larges_6_q_1;
+        casez_tmp_20 = io_larges_6_q_1;
       4'b0111:
-        casez_tmp_12 = io_larges_7_q_1;
+        casez_tmp_20 = io_larges_7_q_1;
       4'b1000:
-        casez_tmp_12 = io_larges_8_q_1;
+        casez_tmp_20 = io_larges_8_q_1;
       4'b1001:
-        casez_tmp_12 = io_larges_9_q_1;
+        casez_tmp_20 = io_larges_9_q_1;
       4'b1010:
-        casez_tmp_12 = io_larges_10_q_1;
+        casez_tmp_20 = io_larges_10_q_1;
       4'b1011:
-        casez_tmp_12 = io_larges_11_q_1;
+        casez_tmp_20 = io_larges_11_q_1;
       4'b1100:
-        casez_tmp_12 = io_larges_12_q_1;
+        casez_tmp_20 = io_larges_12_q_1;
       4'b1101:
-        casez_tmp_12 = io_larges_13_q_1;
+        casez_tmp_20 = io_larges_13_q_1;
       4'b1110:
-        casez_tmp_12 = io_larges_14_q_1;
+        casez_tmp_20 = io_larges_14_q_1;
       default:
-        casez_tmp_12 = io_larges_15_q_1;
+        casez_tmp_20 = io_larges_15_q_1;
     endcase
   end // always @(*)
-  reg  [28:0] casez_tmp_13;
+  reg  [28:0] casez_tmp_21;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_13 = io_larges_0_q_2;
+        casez_tmp_21 = io_larges_0_q_2;
       4'b0001:
-        casez_tmp_13 = io_larges_1_q_2;
+        casez_tmp_21 = io_larges_1_q_2;
       4'b0010:
-        casez_tmp_13 = io_larges_2_q_2;
+        casez_tmp_21 = io_larges_2_q_2;
       4'b0011:
-        casez_tmp_13 = io_larges_3_q_2;
+        casez_tmp_21 = io_larges_3_q_2;
       4'b0100:
-        casez_tmp_13 = io_larges_4_q_2;
+        casez_tmp_21 = io_larges_4_q_2;
       4'b0101:
-        casez_tmp_13 = io_larges_5_q_2;
+        casez_tmp_21 = io_larges_5_q_2;
       4'b0110:
-        casez_tmp_13 = io_larges_6_q_2;
+        casez_tmp_21 = io_larges_6_q_2;
       4'b0111:
-        casez_tmp_13 = io_larges_7_q_2;
+        casez_tmp_21 = io_larges_7_q_2;
       4'b1000:
-        casez_tmp_13 = io_larges_8_q_2;
+        casez_tmp_21 = io_larges_8_q_2;
       4'b1001:
-        casez_tmp_13 = io_larges_9_q_2;
+        casez_tmp_21 = io_larges_9_q_2;
       4'b1010:
-        casez_tmp_13 = io_larges_10_q_2;
+        casez_tmp_21 = io_larges_10_q_2;
       4'b1011:
-        casez_tmp_13 = io_larges_11_q_2;
+        casez_tmp_21 = io_larges_11_q_2;
       4'b1100:
-        casez_tmp_13 = io_larges_12_q_2;
+        casez_tmp_21 = io_larges_12_q_2;
       4'b1101:
-        casez_tmp_13 = io_larges_13_q_2;
+        casez_tmp_21 = io_larges_13_q_2;
       4'b1110:
-        casez_tmp_13 = io_larges_14_q_2;
+        casez_tmp_21 = io_larges_14_q_2;
       default:
-        casez_tmp_13 = io_larges_15_q_2;
+        casez_tmp_21 = io_larges_15_q_2;
     endcase
   end // always @(*)
-  reg  [28:0] casez_tmp_14;
+  reg  [28:0] casez_tmp_22;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_14 = io_larges_0_qr;
+        casez_tmp_22 = io_larges_0_qr;
       4'b0001:
-        casez_tmp_14 = io_larges_1_qr;
+        casez_tmp_22 = io_larges_1_qr;
       4'b0010:
-        casez_tmp_14 = io_larges_2_qr;
+        casez_tmp_22 = io_larges_2_qr;
       4'b0011:
-        casez_tmp_14 = io_larges_3_qr;
+        casez_tmp_22 = io_larges_3_qr;
       4'b0100:
-        casez_tmp_14 = io_larges_4_qr;
+        casez_tmp_22 = io_larges_4_qr;
       4'b0101:
-        casez_tmp_14 = io_larges_5_qr;
+        casez_tmp_22 = io_larges_5_qr;
       4'b0110:
-        casez_tmp_14 = io_larges_6_qr;
+        casez_tmp_22 = io_larges_6_qr;
       4'b0111:
-        casez_tmp_14 = io_larges_7_qr;
+        casez_tmp_22 = io_larges_7_qr;
       4'b1000:
-        casez_tmp_14 = io_larges_8_qr;
+        casez_tmp_22 = io_larges_8_qr;
       4'b1001:
-        casez_tmp_14 = io_larges_9_qr;
+        casez_tmp_22 = io_larges_9_qr;
       4'b1010:
-        casez_tmp_14 = io_larges_10_qr;
+        casez_tmp_22 = io_larges_10_qr;
       4'b1011:
-        casez_tmp_14 = io_larges_11_qr;
+        casez_tmp_22 = io_larges_11_qr;
       4'b1100:
-        casez_tmp_14 = io_larges_12_qr;
+        casez_tmp_22 = io_larges_12_qr;
       4'b1101:
-        casez_tmp_14 = io_larges_13_qr;
+        casez_tmp_22 = io_larges_13_qr;
       4'b1110:
-        casez_tmp_14 = io_larges_14_qr;
+        casez_tmp_22 = io_larges_14_qr;
       default:
-        casez_tmp_14 = io_larges_15_qr;
+        casez_tmp_22 = io_larges_15_qr;
     endcase
   end // always @(*)
   wire        _GEN_12 = state == 3'h4;
@@ -23289,8 +23721,10 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
           _GEN_24
             ? (lane[3] ? _GEN_2 + 14'h40 : _GEN_2 + {10'h0, lane[3], 3'h7} + 14'h1)
             : (&lane) ? _GEN_2 + 14'h40 : _GEN_2 + {10'h0, lane} + 14'h1;
-        p_0 <= _GEN_24 ? casez_tmp : casez_tmp_3;
-        p_1 <= _GEN_24 ? casez_tmp_1 : casez_tmp_5;
+        p_0 <= _GEN_24 ? casez_tmp : casez_tmp_7;
+        p_1 <= _GEN_24 ? casez_tmp_1 : casez_tmp_9;
+        p_2 <= _GEN_24 ? casez_tmp_3 : casez_tmp_11;
+        p_3 <= _GEN_24 ? casez_tmp_5 : casez_tmp_13;
         vIssue <= 6'h0;
       end
       else if (issueOk)
@@ -23304,10 +23738,22 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
       end
     end
     else begin
-      if (_GEN_33)
-        p_0 <= nextGroup ? bEnd_0 : nextLeader;
-      if (_GEN_33 & nextGroup)
-        p_1 <= nextLeader;
+      if (_GEN_33) begin
+        if (|nextGroup)
+          p_0 <= bEnd_0;
+        else if (nextGroup == 2'h0)
+          p_0 <= nextLeader;
+        if (nextGroup[1])
+          p_1 <= bEnd_1;
+        else if (nextGroup == 2'h1)
+          p_1 <= nextLeader;
+        if (&nextGroup)
+          p_2 <= bEnd_2;
+        else if (nextGroup == 2'h2)
+          p_2 <= nextLeader;
+      end
+      if (_GEN_5 & _GEN_30 & _GEN_31 & ~moreOfCell & (&nextGroup))
+        p_3 <= nextLeader;
       if (_GEN_5) begin
         sent <= ~_GEN_32 & (_GEN_27 | sent);
         if (_GEN_32)
@@ -23337,8 +23783,10 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
     if (_GEN_25) begin
     end
     else begin
-      bEnd_0 <= _GEN_24 ? casez_tmp_0 : casez_tmp_4;
-      bEnd_1 <= _GEN_24 ? casez_tmp_2 : casez_tmp_6;
+      bEnd_0 <= _GEN_24 ? casez_tmp_0 : casez_tmp_8;
+      bEnd_1 <= _GEN_24 ? casez_tmp_2 : casez_tmp_10;
+      bEnd_2 <= _GEN_24 ? casez_tmp_4 : casez_tmp_12;
+      bEnd_3 <= _GEN_24 ? casez_tmp_6 : casez_tmp_14;
     end
     if (_GEN_35) begin
       curCell_0 <= base_1_0;
@@ -23376,7 +23824,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
     else if (_GEN_28) begin
     end
     else
-      scanLeft <= bEnd_0 - p_0 + bEnd_1 - p_1;
+      scanLeft <= bEnd_0 - p_0 + bEnd_1 - p_1 + bEnd_2 - p_2 + bEnd_3 - p_3;
     needClear <=
       ~_GEN_20
       & (_GEN_0 ? needClear : _GEN_1 ? _GEN_3 | needClear : _GEN_5 & _GEN_32 | needClear);
@@ -23387,9 +23835,9 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
       lkVisit_cell_0 <= nc_0;
       lkVisit_cell_1 <= nc_1;
       lkVisit_cell_2 <= nc_2;
-      lkVisit_off_0 <= casez_tmp_7;
-      lkVisit_off_1 <= casez_tmp_8;
-      lkVisit_off_2 <= casez_tmp_9;
+      lkVisit_off_0 <= casez_tmp_15;
+      lkVisit_off_1 <= casez_tmp_16;
+      lkVisit_off_2 <= casez_tmp_17;
     end
   end // always @(posedge)
   KeyStream_world stream (
@@ -23400,9 +23848,13 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
     .io_req_bits_begin_0
       (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_0 : p_0) : io_largeFrom),
     .io_req_bits_begin_1      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_1 : p_1) : 13'h0),
+    .io_req_bits_begin_2      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_2 : p_2) : 13'h0),
+    .io_req_bits_begin_3      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_3 : p_3) : 13'h0),
     .io_req_bits_end_0
       (_GEN_5 ? (sent ? _lkq_io_deq_bits_end_0 : bEnd_0) : io_largeTo),
     .io_req_bits_end_1        (_GEN_5 ? (sent ? _lkq_io_deq_bits_end_1 : bEnd_1) : 13'h0),
+    .io_req_bits_end_2        (_GEN_5 ? (sent ? _lkq_io_deq_bits_end_2 : bEnd_2) : 13'h0),
+    .io_req_bits_end_3        (_GEN_5 ? (sent ? _lkq_io_deq_bits_end_3 : bEnd_3) : 13'h0),
     .io_req_bits_direct       (~_GEN_5 | sent & _lkq_io_deq_bits_direct),
     .io_req_bits_tag_scan     (_GEN_5 & (~sent | _lkq_io_deq_bits_tag_scan)),
     .io_req_bits_tag_cell_0   (_GEN_6 ? _lkq_io_deq_bits_tag_cell_0 : 20'h0),
@@ -23455,11 +23907,11 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
     .io_clear
       (_GEN_20 | ~_GEN_0 & (_GEN_1 ? ~_GEN_3 & _GEN_4 : ~_GEN_14 & _GEN_12 & _GEN_16)),
     .io_load_valid          (_GEN_21 | ~(_GEN_0 | _GEN_1 | _GEN_5) & _GEN_8 & _GEN_11),
-    .io_load_bits_key_index (_GEN_21 ? _stream_io_out_bits_item : casez_tmp_10),
-    .io_load_bits_key_q_0   (_GEN_21 ? _stream_io_out_bits_rec_q_0 : casez_tmp_11),
-    .io_load_bits_key_q_1   (_GEN_21 ? _stream_io_out_bits_rec_q_1 : casez_tmp_12),
-    .io_load_bits_key_q_2   (_GEN_21 ? _stream_io_out_bits_rec_q_2 : casez_tmp_13),
-    .io_load_bits_key_qr    (_GEN_21 ? _stream_io_out_bits_rec_qr : casez_tmp_14),
+    .io_load_bits_key_index (_GEN_21 ? _stream_io_out_bits_item : casez_tmp_18),
+    .io_load_bits_key_q_0   (_GEN_21 ? _stream_io_out_bits_rec_q_0 : casez_tmp_19),
+    .io_load_bits_key_q_1   (_GEN_21 ? _stream_io_out_bits_rec_q_1 : casez_tmp_20),
+    .io_load_bits_key_q_2   (_GEN_21 ? _stream_io_out_bits_rec_q_2 : casez_tmp_21),
+    .io_load_bits_key_qr    (_GEN_21 ? _stream_io_out_bits_rec_qr : casez_tmp_22),
     .io_load_bits_place
       (_GEN_21 & coarseCh
          ? {_stream_io_out_bits_rec_cell_0[0],
@@ -23500,8 +23952,12 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
     .io_enq_valid           (~_GEN_7 & _GEN_5 & lkPend),
     .io_enq_bits_begin_0    (io_lookup_begin_0),
     .io_enq_bits_begin_1    (io_lookup_begin_1),
+    .io_enq_bits_begin_2    (io_lookup_begin_2),
+    .io_enq_bits_begin_3    (io_lookup_begin_3),
     .io_enq_bits_end_0      (io_lookup_end_0),
     .io_enq_bits_end_1      (io_lookup_end_1),
+    .io_enq_bits_end_2      (io_lookup_end_2),
+    .io_enq_bits_end_3      (io_lookup_end_3),
     .io_enq_bits_tag_scan   (lkVisit_scan),
     .io_enq_bits_tag_cell_0 (lkVisit_cell_0),
     .io_enq_bits_tag_cell_1 (lkVisit_cell_1),
@@ -23513,8 +23969,12 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world(
     .io_deq_valid           (_lkq_io_deq_valid),
     .io_deq_bits_begin_0    (_lkq_io_deq_bits_begin_0),
     .io_deq_bits_begin_1    (_lkq_io_deq_bits_begin_1),
+    .io_deq_bits_begin_2    (_lkq_io_deq_bits_begin_2),
+    .io_deq_bits_begin_3    (_lkq_io_deq_bits_begin_3),
     .io_deq_bits_end_0      (_lkq_io_deq_bits_end_0),
     .io_deq_bits_end_1      (_lkq_io_deq_bits_end_1),
+    .io_deq_bits_end_2      (_lkq_io_deq_bits_end_2),
+    .io_deq_bits_end_3      (_lkq_io_deq_bits_end_3),
     .io_deq_bits_direct     (_lkq_io_deq_bits_direct),
     .io_deq_bits_tag_scan   (_lkq_io_deq_bits_tag_scan),
     .io_deq_bits_tag_cell_0 (_lkq_io_deq_bits_tag_cell_0),
@@ -24040,7 +24500,7 @@ module SphereKeys_fp32_c20_f8_m9d8_e2_l1_world(
   assign io_out_topNone = io_out_topNone_r;
 endmodule
 
-module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
+module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   input         clock,
                 reset,
                 io_begin,
@@ -24329,6 +24789,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   wire [19:0] _laneKeys_7_io_out_cell_0;
   wire [19:0] _laneKeys_7_io_out_cell_1;
   wire [19:0] _laneKeys_7_io_out_cell_2;
+  wire        _laneKeys_7_io_out_cellOverflow;
   wire [28:0] _laneKeys_7_io_out_q_0;
   wire [28:0] _laneKeys_7_io_out_q_1;
   wire [28:0] _laneKeys_7_io_out_q_2;
@@ -24342,6 +24803,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   wire [19:0] _laneKeys_6_io_out_cell_0;
   wire [19:0] _laneKeys_6_io_out_cell_1;
   wire [19:0] _laneKeys_6_io_out_cell_2;
+  wire        _laneKeys_6_io_out_cellOverflow;
   wire [28:0] _laneKeys_6_io_out_q_0;
   wire [28:0] _laneKeys_6_io_out_q_1;
   wire [28:0] _laneKeys_6_io_out_q_2;
@@ -24355,6 +24817,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   wire [19:0] _laneKeys_5_io_out_cell_0;
   wire [19:0] _laneKeys_5_io_out_cell_1;
   wire [19:0] _laneKeys_5_io_out_cell_2;
+  wire        _laneKeys_5_io_out_cellOverflow;
   wire [28:0] _laneKeys_5_io_out_q_0;
   wire [28:0] _laneKeys_5_io_out_q_1;
   wire [28:0] _laneKeys_5_io_out_q_2;
@@ -24368,6 +24831,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   wire [19:0] _laneKeys_4_io_out_cell_0;
   wire [19:0] _laneKeys_4_io_out_cell_1;
   wire [19:0] _laneKeys_4_io_out_cell_2;
+  wire        _laneKeys_4_io_out_cellOverflow;
   wire [28:0] _laneKeys_4_io_out_q_0;
   wire [28:0] _laneKeys_4_io_out_q_1;
   wire [28:0] _laneKeys_4_io_out_q_2;
@@ -24435,439 +24899,1091 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   wire        _laneKeys_0_io_out_topNone;
   wire [12:0] _gens_15_io_lookup_bucket;
   wire [11:0] _gens_15_io_entry_addr;
-  wire        _gens_15_io_entry_group;
+  wire [1:0]  _gens_15_io_entry_group;
   wire        _gens_15_io_mark_valid;
-  wire        _gens_15_io_mark_bits_group;
+  wire [1:0]  _gens_15_io_mark_bits_group;
   wire [11:0] _gens_15_io_mark_bits_addr;
   wire [11:0] _gens_15_io_mark_bits_item;
   wire [11:0] _gens_15_io_keyAddr;
   wire        _gens_15_io_busy;
   wire [12:0] _gens_14_io_lookup_bucket;
   wire [11:0] _gens_14_io_entry_addr;
-  wire        _gens_14_io_entry_group;
+  wire [1:0]  _gens_14_io_entry_group;
   wire        _gens_14_io_mark_valid;
-  wire        _gens_14_io_mark_bits_group;
+  wire [1:0]  _gens_14_io_mark_bits_group;
   wire [11:0] _gens_14_io_mark_bits_addr;
   wire [11:0] _gens_14_io_mark_bits_item;
   wire [11:0] _gens_14_io_keyAddr;
   wire        _gens_14_io_busy;
   wire [12:0] _gens_13_io_lookup_bucket;
   wire [11:0] _gens_13_io_entry_addr;
-  wire        _gens_13_io_entry_group;
+  wire [1:0]  _gens_13_io_entry_group;
   wire        _gens_13_io_mark_valid;
-  wire        _gens_13_io_mark_bits_group;
+  wire [1:0]  _gens_13_io_mark_bits_group;
   wire [11:0] _gens_13_io_mark_bits_addr;
   wire [11:0] _gens_13_io_mark_bits_item;
   wire [11:0] _gens_13_io_keyAddr;
   wire        _gens_13_io_busy;
   wire [12:0] _gens_12_io_lookup_bucket;
   wire [11:0] _gens_12_io_entry_addr;
-  wire        _gens_12_io_entry_group;
+  wire [1:0]  _gens_12_io_entry_group;
   wire        _gens_12_io_mark_valid;
-  wire        _gens_12_io_mark_bits_group;
+  wire [1:0]  _gens_12_io_mark_bits_group;
   wire [11:0] _gens_12_io_mark_bits_addr;
   wire [11:0] _gens_12_io_mark_bits_item;
   wire [11:0] _gens_12_io_keyAddr;
   wire        _gens_12_io_busy;
   wire [12:0] _gens_11_io_lookup_bucket;
   wire [11:0] _gens_11_io_entry_addr;
-  wire        _gens_11_io_entry_group;
+  wire [1:0]  _gens_11_io_entry_group;
   wire        _gens_11_io_mark_valid;
-  wire        _gens_11_io_mark_bits_group;
+  wire [1:0]  _gens_11_io_mark_bits_group;
   wire [11:0] _gens_11_io_mark_bits_addr;
   wire [11:0] _gens_11_io_mark_bits_item;
   wire [11:0] _gens_11_io_keyAddr;
   wire        _gens_11_io_busy;
   wire [12:0] _gens_10_io_lookup_bucket;
   wire [11:0] _gens_10_io_entry_addr;
-  wire        _gens_10_io_entry_group;
+  wire [1:0]  _gens_10_io_entry_group;
   wire        _gens_10_io_mark_valid;
-  wire        _gens_10_io_mark_bits_group;
+  wire [1:0]  _gens_10_io_mark_bits_group;
   wire [11:0] _gens_10_io_mark_bits_addr;
   wire [11:0] _gens_10_io_mark_bits_item;
   wire [11:0] _gens_10_io_keyAddr;
   wire        _gens_10_io_busy;
   wire [12:0] _gens_9_io_lookup_bucket;
   wire [11:0] _gens_9_io_entry_addr;
-  wire        _gens_9_io_entry_group;
+  wire [1:0]  _gens_9_io_entry_group;
   wire        _gens_9_io_mark_valid;
-  wire        _gens_9_io_mark_bits_group;
+  wire [1:0]  _gens_9_io_mark_bits_group;
   wire [11:0] _gens_9_io_mark_bits_addr;
   wire [11:0] _gens_9_io_mark_bits_item;
   wire [11:0] _gens_9_io_keyAddr;
   wire        _gens_9_io_busy;
   wire [12:0] _gens_8_io_lookup_bucket;
   wire [11:0] _gens_8_io_entry_addr;
-  wire        _gens_8_io_entry_group;
+  wire [1:0]  _gens_8_io_entry_group;
   wire        _gens_8_io_mark_valid;
-  wire        _gens_8_io_mark_bits_group;
+  wire [1:0]  _gens_8_io_mark_bits_group;
   wire [11:0] _gens_8_io_mark_bits_addr;
   wire [11:0] _gens_8_io_mark_bits_item;
   wire [11:0] _gens_8_io_keyAddr;
   wire        _gens_8_io_busy;
   wire [12:0] _gens_7_io_lookup_bucket;
   wire [11:0] _gens_7_io_entry_addr;
-  wire        _gens_7_io_entry_group;
+  wire [1:0]  _gens_7_io_entry_group;
   wire        _gens_7_io_mark_valid;
-  wire        _gens_7_io_mark_bits_group;
+  wire [1:0]  _gens_7_io_mark_bits_group;
   wire [11:0] _gens_7_io_mark_bits_addr;
   wire [11:0] _gens_7_io_mark_bits_item;
   wire [11:0] _gens_7_io_keyAddr;
   wire        _gens_7_io_busy;
   wire [12:0] _gens_6_io_lookup_bucket;
   wire [11:0] _gens_6_io_entry_addr;
-  wire        _gens_6_io_entry_group;
+  wire [1:0]  _gens_6_io_entry_group;
   wire        _gens_6_io_mark_valid;
-  wire        _gens_6_io_mark_bits_group;
+  wire [1:0]  _gens_6_io_mark_bits_group;
   wire [11:0] _gens_6_io_mark_bits_addr;
   wire [11:0] _gens_6_io_mark_bits_item;
   wire [11:0] _gens_6_io_keyAddr;
   wire        _gens_6_io_busy;
   wire [12:0] _gens_5_io_lookup_bucket;
   wire [11:0] _gens_5_io_entry_addr;
-  wire        _gens_5_io_entry_group;
+  wire [1:0]  _gens_5_io_entry_group;
   wire        _gens_5_io_mark_valid;
-  wire        _gens_5_io_mark_bits_group;
+  wire [1:0]  _gens_5_io_mark_bits_group;
   wire [11:0] _gens_5_io_mark_bits_addr;
   wire [11:0] _gens_5_io_mark_bits_item;
   wire [11:0] _gens_5_io_keyAddr;
   wire        _gens_5_io_busy;
   wire [12:0] _gens_4_io_lookup_bucket;
   wire [11:0] _gens_4_io_entry_addr;
-  wire        _gens_4_io_entry_group;
+  wire [1:0]  _gens_4_io_entry_group;
   wire        _gens_4_io_mark_valid;
-  wire        _gens_4_io_mark_bits_group;
+  wire [1:0]  _gens_4_io_mark_bits_group;
   wire [11:0] _gens_4_io_mark_bits_addr;
   wire [11:0] _gens_4_io_mark_bits_item;
   wire [11:0] _gens_4_io_keyAddr;
   wire        _gens_4_io_busy;
   wire [12:0] _gens_3_io_lookup_bucket;
   wire [11:0] _gens_3_io_entry_addr;
-  wire        _gens_3_io_entry_group;
+  wire [1:0]  _gens_3_io_entry_group;
   wire        _gens_3_io_mark_valid;
-  wire        _gens_3_io_mark_bits_group;
+  wire [1:0]  _gens_3_io_mark_bits_group;
   wire [11:0] _gens_3_io_mark_bits_addr;
   wire [11:0] _gens_3_io_mark_bits_item;
   wire [11:0] _gens_3_io_keyAddr;
   wire        _gens_3_io_busy;
   wire [12:0] _gens_2_io_lookup_bucket;
   wire [11:0] _gens_2_io_entry_addr;
-  wire        _gens_2_io_entry_group;
+  wire [1:0]  _gens_2_io_entry_group;
   wire        _gens_2_io_mark_valid;
-  wire        _gens_2_io_mark_bits_group;
+  wire [1:0]  _gens_2_io_mark_bits_group;
   wire [11:0] _gens_2_io_mark_bits_addr;
   wire [11:0] _gens_2_io_mark_bits_item;
   wire [11:0] _gens_2_io_keyAddr;
   wire        _gens_2_io_busy;
   wire [12:0] _gens_1_io_lookup_bucket;
   wire [11:0] _gens_1_io_entry_addr;
-  wire        _gens_1_io_entry_group;
+  wire [1:0]  _gens_1_io_entry_group;
   wire        _gens_1_io_mark_valid;
-  wire        _gens_1_io_mark_bits_group;
+  wire [1:0]  _gens_1_io_mark_bits_group;
   wire [11:0] _gens_1_io_mark_bits_addr;
   wire [11:0] _gens_1_io_mark_bits_item;
   wire [11:0] _gens_1_io_keyAddr;
   wire        _gens_1_io_busy;
   wire [12:0] _gens_0_io_lookup_bucket;
   wire [11:0] _gens_0_io_entry_addr;
-  wire        _gens_0_io_entry_group;
+  wire [1:0]  _gens_0_io_entry_group;
   wire        _gens_0_io_mark_valid;
-  wire        _gens_0_io_mark_bits_group;
+  wire [1:0]  _gens_0_io_mark_bits_group;
   wire [11:0] _gens_0_io_mark_bits_addr;
   wire [11:0] _gens_0_io_mark_bits_item;
   wire [11:0] _gens_0_io_keyAddr;
   wire        _gens_0_io_busy;
+  wire        _sorts_3_io_busy;
+  wire        _sorts_3_io_in_0_ready;
+  wire        _sorts_3_io_in_1_ready;
+  wire [10:0] _sorts_3_io_lookup_0_begin;
+  wire [10:0] _sorts_3_io_lookup_0_end;
+  wire [10:0] _sorts_3_io_lookup_0_word_0;
+  wire [10:0] _sorts_3_io_lookup_0_word_1;
+  wire [10:0] _sorts_3_io_lookup_0_word_2;
+  wire [10:0] _sorts_3_io_lookup_0_word_3;
+  wire [10:0] _sorts_3_io_lookup_0_word_4;
+  wire [10:0] _sorts_3_io_lookup_0_word_5;
+  wire [10:0] _sorts_3_io_lookup_0_word_6;
+  wire [10:0] _sorts_3_io_lookup_0_word_7;
+  wire [10:0] _sorts_3_io_lookup_0_word_8;
+  wire [10:0] _sorts_3_io_lookup_0_word_9;
+  wire [10:0] _sorts_3_io_lookup_0_word_10;
+  wire [10:0] _sorts_3_io_lookup_0_word_11;
+  wire [10:0] _sorts_3_io_lookup_0_word_12;
+  wire [10:0] _sorts_3_io_lookup_0_word_13;
+  wire [10:0] _sorts_3_io_lookup_0_word_14;
+  wire [10:0] _sorts_3_io_lookup_0_word_15;
+  wire [10:0] _sorts_3_io_lookup_1_begin;
+  wire [10:0] _sorts_3_io_lookup_1_end;
+  wire [10:0] _sorts_3_io_lookup_1_word_0;
+  wire [10:0] _sorts_3_io_lookup_1_word_1;
+  wire [10:0] _sorts_3_io_lookup_1_word_2;
+  wire [10:0] _sorts_3_io_lookup_1_word_3;
+  wire [10:0] _sorts_3_io_lookup_1_word_4;
+  wire [10:0] _sorts_3_io_lookup_1_word_5;
+  wire [10:0] _sorts_3_io_lookup_1_word_6;
+  wire [10:0] _sorts_3_io_lookup_1_word_7;
+  wire [10:0] _sorts_3_io_lookup_1_word_8;
+  wire [10:0] _sorts_3_io_lookup_1_word_9;
+  wire [10:0] _sorts_3_io_lookup_1_word_10;
+  wire [10:0] _sorts_3_io_lookup_1_word_11;
+  wire [10:0] _sorts_3_io_lookup_1_word_12;
+  wire [10:0] _sorts_3_io_lookup_1_word_13;
+  wire [10:0] _sorts_3_io_lookup_1_word_14;
+  wire [10:0] _sorts_3_io_lookup_1_word_15;
+  wire [10:0] _sorts_3_io_lookup_2_begin;
+  wire [10:0] _sorts_3_io_lookup_2_end;
+  wire [10:0] _sorts_3_io_lookup_2_word_0;
+  wire [10:0] _sorts_3_io_lookup_2_word_1;
+  wire [10:0] _sorts_3_io_lookup_2_word_2;
+  wire [10:0] _sorts_3_io_lookup_2_word_3;
+  wire [10:0] _sorts_3_io_lookup_2_word_4;
+  wire [10:0] _sorts_3_io_lookup_2_word_5;
+  wire [10:0] _sorts_3_io_lookup_2_word_6;
+  wire [10:0] _sorts_3_io_lookup_2_word_7;
+  wire [10:0] _sorts_3_io_lookup_2_word_8;
+  wire [10:0] _sorts_3_io_lookup_2_word_9;
+  wire [10:0] _sorts_3_io_lookup_2_word_10;
+  wire [10:0] _sorts_3_io_lookup_2_word_11;
+  wire [10:0] _sorts_3_io_lookup_2_word_12;
+  wire [10:0] _sorts_3_io_lookup_2_word_13;
+  wire [10:0] _sorts_3_io_lookup_2_word_14;
+  wire [10:0] _sorts_3_io_lookup_2_word_15;
+  wire [10:0] _sorts_3_io_lookup_3_begin;
+  wire [10:0] _sorts_3_io_lookup_3_end;
+  wire [10:0] _sorts_3_io_lookup_3_word_0;
+  wire [10:0] _sorts_3_io_lookup_3_word_1;
+  wire [10:0] _sorts_3_io_lookup_3_word_2;
+  wire [10:0] _sorts_3_io_lookup_3_word_3;
+  wire [10:0] _sorts_3_io_lookup_3_word_4;
+  wire [10:0] _sorts_3_io_lookup_3_word_5;
+  wire [10:0] _sorts_3_io_lookup_3_word_6;
+  wire [10:0] _sorts_3_io_lookup_3_word_7;
+  wire [10:0] _sorts_3_io_lookup_3_word_8;
+  wire [10:0] _sorts_3_io_lookup_3_word_9;
+  wire [10:0] _sorts_3_io_lookup_3_word_10;
+  wire [10:0] _sorts_3_io_lookup_3_word_11;
+  wire [10:0] _sorts_3_io_lookup_3_word_12;
+  wire [10:0] _sorts_3_io_lookup_3_word_13;
+  wire [10:0] _sorts_3_io_lookup_3_word_14;
+  wire [10:0] _sorts_3_io_lookup_3_word_15;
+  wire [10:0] _sorts_3_io_lookup_4_begin;
+  wire [10:0] _sorts_3_io_lookup_4_end;
+  wire [10:0] _sorts_3_io_lookup_4_word_0;
+  wire [10:0] _sorts_3_io_lookup_4_word_1;
+  wire [10:0] _sorts_3_io_lookup_4_word_2;
+  wire [10:0] _sorts_3_io_lookup_4_word_3;
+  wire [10:0] _sorts_3_io_lookup_4_word_4;
+  wire [10:0] _sorts_3_io_lookup_4_word_5;
+  wire [10:0] _sorts_3_io_lookup_4_word_6;
+  wire [10:0] _sorts_3_io_lookup_4_word_7;
+  wire [10:0] _sorts_3_io_lookup_4_word_8;
+  wire [10:0] _sorts_3_io_lookup_4_word_9;
+  wire [10:0] _sorts_3_io_lookup_4_word_10;
+  wire [10:0] _sorts_3_io_lookup_4_word_11;
+  wire [10:0] _sorts_3_io_lookup_4_word_12;
+  wire [10:0] _sorts_3_io_lookup_4_word_13;
+  wire [10:0] _sorts_3_io_lookup_4_word_14;
+  wire [10:0] _sorts_3_io_lookup_4_word_15;
+  wire [10:0] _sorts_3_io_lookup_5_begin;
+  wire [10:0] _sorts_3_io_lookup_5_end;
+  wire [10:0] _sorts_3_io_lookup_5_word_0;
+  wire [10:0] _sorts_3_io_lookup_5_word_1;
+  wire [10:0] _sorts_3_io_lookup_5_word_2;
+  wire [10:0] _sorts_3_io_lookup_5_word_3;
+  wire [10:0] _sorts_3_io_lookup_5_word_4;
+  wire [10:0] _sorts_3_io_lookup_5_word_5;
+  wire [10:0] _sorts_3_io_lookup_5_word_6;
+  wire [10:0] _sorts_3_io_lookup_5_word_7;
+  wire [10:0] _sorts_3_io_lookup_5_word_8;
+  wire [10:0] _sorts_3_io_lookup_5_word_9;
+  wire [10:0] _sorts_3_io_lookup_5_word_10;
+  wire [10:0] _sorts_3_io_lookup_5_word_11;
+  wire [10:0] _sorts_3_io_lookup_5_word_12;
+  wire [10:0] _sorts_3_io_lookup_5_word_13;
+  wire [10:0] _sorts_3_io_lookup_5_word_14;
+  wire [10:0] _sorts_3_io_lookup_5_word_15;
+  wire [10:0] _sorts_3_io_lookup_6_begin;
+  wire [10:0] _sorts_3_io_lookup_6_end;
+  wire [10:0] _sorts_3_io_lookup_6_word_0;
+  wire [10:0] _sorts_3_io_lookup_6_word_1;
+  wire [10:0] _sorts_3_io_lookup_6_word_2;
+  wire [10:0] _sorts_3_io_lookup_6_word_3;
+  wire [10:0] _sorts_3_io_lookup_6_word_4;
+  wire [10:0] _sorts_3_io_lookup_6_word_5;
+  wire [10:0] _sorts_3_io_lookup_6_word_6;
+  wire [10:0] _sorts_3_io_lookup_6_word_7;
+  wire [10:0] _sorts_3_io_lookup_6_word_8;
+  wire [10:0] _sorts_3_io_lookup_6_word_9;
+  wire [10:0] _sorts_3_io_lookup_6_word_10;
+  wire [10:0] _sorts_3_io_lookup_6_word_11;
+  wire [10:0] _sorts_3_io_lookup_6_word_12;
+  wire [10:0] _sorts_3_io_lookup_6_word_13;
+  wire [10:0] _sorts_3_io_lookup_6_word_14;
+  wire [10:0] _sorts_3_io_lookup_6_word_15;
+  wire [10:0] _sorts_3_io_lookup_7_begin;
+  wire [10:0] _sorts_3_io_lookup_7_end;
+  wire [10:0] _sorts_3_io_lookup_7_word_0;
+  wire [10:0] _sorts_3_io_lookup_7_word_1;
+  wire [10:0] _sorts_3_io_lookup_7_word_2;
+  wire [10:0] _sorts_3_io_lookup_7_word_3;
+  wire [10:0] _sorts_3_io_lookup_7_word_4;
+  wire [10:0] _sorts_3_io_lookup_7_word_5;
+  wire [10:0] _sorts_3_io_lookup_7_word_6;
+  wire [10:0] _sorts_3_io_lookup_7_word_7;
+  wire [10:0] _sorts_3_io_lookup_7_word_8;
+  wire [10:0] _sorts_3_io_lookup_7_word_9;
+  wire [10:0] _sorts_3_io_lookup_7_word_10;
+  wire [10:0] _sorts_3_io_lookup_7_word_11;
+  wire [10:0] _sorts_3_io_lookup_7_word_12;
+  wire [10:0] _sorts_3_io_lookup_7_word_13;
+  wire [10:0] _sorts_3_io_lookup_7_word_14;
+  wire [10:0] _sorts_3_io_lookup_7_word_15;
+  wire [10:0] _sorts_3_io_lookup_8_begin;
+  wire [10:0] _sorts_3_io_lookup_8_end;
+  wire [10:0] _sorts_3_io_lookup_8_word_0;
+  wire [10:0] _sorts_3_io_lookup_8_word_1;
+  wire [10:0] _sorts_3_io_lookup_8_word_2;
+  wire [10:0] _sorts_3_io_lookup_8_word_3;
+  wire [10:0] _sorts_3_io_lookup_8_word_4;
+  wire [10:0] _sorts_3_io_lookup_8_word_5;
+  wire [10:0] _sorts_3_io_lookup_8_word_6;
+  wire [10:0] _sorts_3_io_lookup_8_word_7;
+  wire [10:0] _sorts_3_io_lookup_8_word_8;
+  wire [10:0] _sorts_3_io_lookup_8_word_9;
+  wire [10:0] _sorts_3_io_lookup_8_word_10;
+  wire [10:0] _sorts_3_io_lookup_8_word_11;
+  wire [10:0] _sorts_3_io_lookup_8_word_12;
+  wire [10:0] _sorts_3_io_lookup_8_word_13;
+  wire [10:0] _sorts_3_io_lookup_8_word_14;
+  wire [10:0] _sorts_3_io_lookup_8_word_15;
+  wire [10:0] _sorts_3_io_lookup_9_begin;
+  wire [10:0] _sorts_3_io_lookup_9_end;
+  wire [10:0] _sorts_3_io_lookup_9_word_0;
+  wire [10:0] _sorts_3_io_lookup_9_word_1;
+  wire [10:0] _sorts_3_io_lookup_9_word_2;
+  wire [10:0] _sorts_3_io_lookup_9_word_3;
+  wire [10:0] _sorts_3_io_lookup_9_word_4;
+  wire [10:0] _sorts_3_io_lookup_9_word_5;
+  wire [10:0] _sorts_3_io_lookup_9_word_6;
+  wire [10:0] _sorts_3_io_lookup_9_word_7;
+  wire [10:0] _sorts_3_io_lookup_9_word_8;
+  wire [10:0] _sorts_3_io_lookup_9_word_9;
+  wire [10:0] _sorts_3_io_lookup_9_word_10;
+  wire [10:0] _sorts_3_io_lookup_9_word_11;
+  wire [10:0] _sorts_3_io_lookup_9_word_12;
+  wire [10:0] _sorts_3_io_lookup_9_word_13;
+  wire [10:0] _sorts_3_io_lookup_9_word_14;
+  wire [10:0] _sorts_3_io_lookup_9_word_15;
+  wire [10:0] _sorts_3_io_lookup_10_begin;
+  wire [10:0] _sorts_3_io_lookup_10_end;
+  wire [10:0] _sorts_3_io_lookup_10_word_0;
+  wire [10:0] _sorts_3_io_lookup_10_word_1;
+  wire [10:0] _sorts_3_io_lookup_10_word_2;
+  wire [10:0] _sorts_3_io_lookup_10_word_3;
+  wire [10:0] _sorts_3_io_lookup_10_word_4;
+  wire [10:0] _sorts_3_io_lookup_10_word_5;
+  wire [10:0] _sorts_3_io_lookup_10_word_6;
+  wire [10:0] _sorts_3_io_lookup_10_word_7;
+  wire [10:0] _sorts_3_io_lookup_10_word_8;
+  wire [10:0] _sorts_3_io_lookup_10_word_9;
+  wire [10:0] _sorts_3_io_lookup_10_word_10;
+  wire [10:0] _sorts_3_io_lookup_10_word_11;
+  wire [10:0] _sorts_3_io_lookup_10_word_12;
+  wire [10:0] _sorts_3_io_lookup_10_word_13;
+  wire [10:0] _sorts_3_io_lookup_10_word_14;
+  wire [10:0] _sorts_3_io_lookup_10_word_15;
+  wire [10:0] _sorts_3_io_lookup_11_begin;
+  wire [10:0] _sorts_3_io_lookup_11_end;
+  wire [10:0] _sorts_3_io_lookup_11_word_0;
+  wire [10:0] _sorts_3_io_lookup_11_word_1;
+  wire [10:0] _sorts_3_io_lookup_11_word_2;
+  wire [10:0] _sorts_3_io_lookup_11_word_3;
+  wire [10:0] _sorts_3_io_lookup_11_word_4;
+  wire [10:0] _sorts_3_io_lookup_11_word_5;
+  wire [10:0] _sorts_3_io_lookup_11_word_6;
+  wire [10:0] _sorts_3_io_lookup_11_word_7;
+  wire [10:0] _sorts_3_io_lookup_11_word_8;
+  wire [10:0] _sorts_3_io_lookup_11_word_9;
+  wire [10:0] _sorts_3_io_lookup_11_word_10;
+  wire [10:0] _sorts_3_io_lookup_11_word_11;
+  wire [10:0] _sorts_3_io_lookup_11_word_12;
+  wire [10:0] _sorts_3_io_lookup_11_word_13;
+  wire [10:0] _sorts_3_io_lookup_11_word_14;
+  wire [10:0] _sorts_3_io_lookup_11_word_15;
+  wire [10:0] _sorts_3_io_lookup_12_begin;
+  wire [10:0] _sorts_3_io_lookup_12_end;
+  wire [10:0] _sorts_3_io_lookup_12_word_0;
+  wire [10:0] _sorts_3_io_lookup_12_word_1;
+  wire [10:0] _sorts_3_io_lookup_12_word_2;
+  wire [10:0] _sorts_3_io_lookup_12_word_3;
+  wire [10:0] _sorts_3_io_lookup_12_word_4;
+  wire [10:0] _sorts_3_io_lookup_12_word_5;
+  wire [10:0] _sorts_3_io_lookup_12_word_6;
+  wire [10:0] _sorts_3_io_lookup_12_word_7;
+  wire [10:0] _sorts_3_io_lookup_12_word_8;
+  wire [10:0] _sorts_3_io_lookup_12_word_9;
+  wire [10:0] _sorts_3_io_lookup_12_word_10;
+  wire [10:0] _sorts_3_io_lookup_12_word_11;
+  wire [10:0] _sorts_3_io_lookup_12_word_12;
+  wire [10:0] _sorts_3_io_lookup_12_word_13;
+  wire [10:0] _sorts_3_io_lookup_12_word_14;
+  wire [10:0] _sorts_3_io_lookup_12_word_15;
+  wire [10:0] _sorts_3_io_lookup_13_begin;
+  wire [10:0] _sorts_3_io_lookup_13_end;
+  wire [10:0] _sorts_3_io_lookup_13_word_0;
+  wire [10:0] _sorts_3_io_lookup_13_word_1;
+  wire [10:0] _sorts_3_io_lookup_13_word_2;
+  wire [10:0] _sorts_3_io_lookup_13_word_3;
+  wire [10:0] _sorts_3_io_lookup_13_word_4;
+  wire [10:0] _sorts_3_io_lookup_13_word_5;
+  wire [10:0] _sorts_3_io_lookup_13_word_6;
+  wire [10:0] _sorts_3_io_lookup_13_word_7;
+  wire [10:0] _sorts_3_io_lookup_13_word_8;
+  wire [10:0] _sorts_3_io_lookup_13_word_9;
+  wire [10:0] _sorts_3_io_lookup_13_word_10;
+  wire [10:0] _sorts_3_io_lookup_13_word_11;
+  wire [10:0] _sorts_3_io_lookup_13_word_12;
+  wire [10:0] _sorts_3_io_lookup_13_word_13;
+  wire [10:0] _sorts_3_io_lookup_13_word_14;
+  wire [10:0] _sorts_3_io_lookup_13_word_15;
+  wire [10:0] _sorts_3_io_lookup_14_begin;
+  wire [10:0] _sorts_3_io_lookup_14_end;
+  wire [10:0] _sorts_3_io_lookup_14_word_0;
+  wire [10:0] _sorts_3_io_lookup_14_word_1;
+  wire [10:0] _sorts_3_io_lookup_14_word_2;
+  wire [10:0] _sorts_3_io_lookup_14_word_3;
+  wire [10:0] _sorts_3_io_lookup_14_word_4;
+  wire [10:0] _sorts_3_io_lookup_14_word_5;
+  wire [10:0] _sorts_3_io_lookup_14_word_6;
+  wire [10:0] _sorts_3_io_lookup_14_word_7;
+  wire [10:0] _sorts_3_io_lookup_14_word_8;
+  wire [10:0] _sorts_3_io_lookup_14_word_9;
+  wire [10:0] _sorts_3_io_lookup_14_word_10;
+  wire [10:0] _sorts_3_io_lookup_14_word_11;
+  wire [10:0] _sorts_3_io_lookup_14_word_12;
+  wire [10:0] _sorts_3_io_lookup_14_word_13;
+  wire [10:0] _sorts_3_io_lookup_14_word_14;
+  wire [10:0] _sorts_3_io_lookup_14_word_15;
+  wire [10:0] _sorts_3_io_lookup_15_begin;
+  wire [10:0] _sorts_3_io_lookup_15_end;
+  wire [10:0] _sorts_3_io_lookup_15_word_0;
+  wire [10:0] _sorts_3_io_lookup_15_word_1;
+  wire [10:0] _sorts_3_io_lookup_15_word_2;
+  wire [10:0] _sorts_3_io_lookup_15_word_3;
+  wire [10:0] _sorts_3_io_lookup_15_word_4;
+  wire [10:0] _sorts_3_io_lookup_15_word_5;
+  wire [10:0] _sorts_3_io_lookup_15_word_6;
+  wire [10:0] _sorts_3_io_lookup_15_word_7;
+  wire [10:0] _sorts_3_io_lookup_15_word_8;
+  wire [10:0] _sorts_3_io_lookup_15_word_9;
+  wire [10:0] _sorts_3_io_lookup_15_word_10;
+  wire [10:0] _sorts_3_io_lookup_15_word_11;
+  wire [10:0] _sorts_3_io_lookup_15_word_12;
+  wire [10:0] _sorts_3_io_lookup_15_word_13;
+  wire [10:0] _sorts_3_io_lookup_15_word_14;
+  wire [10:0] _sorts_3_io_lookup_15_word_15;
+  wire [11:0] _sorts_3_io_entry_0_item;
+  wire        _sorts_3_io_entry_0_mark;
+  wire [11:0] _sorts_3_io_entry_1_item;
+  wire        _sorts_3_io_entry_1_mark;
+  wire [11:0] _sorts_3_io_entry_2_item;
+  wire        _sorts_3_io_entry_2_mark;
+  wire [11:0] _sorts_3_io_entry_3_item;
+  wire        _sorts_3_io_entry_3_mark;
+  wire [11:0] _sorts_3_io_entry_4_item;
+  wire        _sorts_3_io_entry_4_mark;
+  wire [11:0] _sorts_3_io_entry_5_item;
+  wire        _sorts_3_io_entry_5_mark;
+  wire [11:0] _sorts_3_io_entry_6_item;
+  wire        _sorts_3_io_entry_6_mark;
+  wire [11:0] _sorts_3_io_entry_7_item;
+  wire        _sorts_3_io_entry_7_mark;
+  wire [11:0] _sorts_3_io_entry_8_item;
+  wire        _sorts_3_io_entry_8_mark;
+  wire [11:0] _sorts_3_io_entry_9_item;
+  wire        _sorts_3_io_entry_9_mark;
+  wire [11:0] _sorts_3_io_entry_10_item;
+  wire        _sorts_3_io_entry_10_mark;
+  wire [11:0] _sorts_3_io_entry_11_item;
+  wire        _sorts_3_io_entry_11_mark;
+  wire [11:0] _sorts_3_io_entry_12_item;
+  wire        _sorts_3_io_entry_12_mark;
+  wire [11:0] _sorts_3_io_entry_13_item;
+  wire        _sorts_3_io_entry_13_mark;
+  wire [11:0] _sorts_3_io_entry_14_item;
+  wire        _sorts_3_io_entry_14_mark;
+  wire [11:0] _sorts_3_io_entry_15_item;
+  wire        _sorts_3_io_entry_15_mark;
+  wire [10:0] _sorts_3_io_counted;
+  wire [10:0] _sorts_3_io_scattered;
+  wire        _sorts_3_io_badBucket;
+  wire        _sorts_2_io_busy;
+  wire        _sorts_2_io_in_0_ready;
+  wire        _sorts_2_io_in_1_ready;
+  wire [10:0] _sorts_2_io_lookup_0_begin;
+  wire [10:0] _sorts_2_io_lookup_0_end;
+  wire [10:0] _sorts_2_io_lookup_0_word_0;
+  wire [10:0] _sorts_2_io_lookup_0_word_1;
+  wire [10:0] _sorts_2_io_lookup_0_word_2;
+  wire [10:0] _sorts_2_io_lookup_0_word_3;
+  wire [10:0] _sorts_2_io_lookup_0_word_4;
+  wire [10:0] _sorts_2_io_lookup_0_word_5;
+  wire [10:0] _sorts_2_io_lookup_0_word_6;
+  wire [10:0] _sorts_2_io_lookup_0_word_7;
+  wire [10:0] _sorts_2_io_lookup_0_word_8;
+  wire [10:0] _sorts_2_io_lookup_0_word_9;
+  wire [10:0] _sorts_2_io_lookup_0_word_10;
+  wire [10:0] _sorts_2_io_lookup_0_word_11;
+  wire [10:0] _sorts_2_io_lookup_0_word_12;
+  wire [10:0] _sorts_2_io_lookup_0_word_13;
+  wire [10:0] _sorts_2_io_lookup_0_word_14;
+  wire [10:0] _sorts_2_io_lookup_0_word_15;
+  wire [10:0] _sorts_2_io_lookup_1_begin;
+  wire [10:0] _sorts_2_io_lookup_1_end;
+  wire [10:0] _sorts_2_io_lookup_1_word_0;
+  wire [10:0] _sorts_2_io_lookup_1_word_1;
+  wire [10:0] _sorts_2_io_lookup_1_word_2;
+  wire [10:0] _sorts_2_io_lookup_1_word_3;
+  wire [10:0] _sorts_2_io_lookup_1_word_4;
+  wire [10:0] _sorts_2_io_lookup_1_word_5;
+  wire [10:0] _sorts_2_io_lookup_1_word_6;
+  wire [10:0] _sorts_2_io_lookup_1_word_7;
+  wire [10:0] _sorts_2_io_lookup_1_word_8;
+  wire [10:0] _sorts_2_io_lookup_1_word_9;
+  wire [10:0] _sorts_2_io_lookup_1_word_10;
+  wire [10:0] _sorts_2_io_lookup_1_word_11;
+  wire [10:0] _sorts_2_io_lookup_1_word_12;
+  wire [10:0] _sorts_2_io_lookup_1_word_13;
+  wire [10:0] _sorts_2_io_lookup_1_word_14;
+  wire [10:0] _sorts_2_io_lookup_1_word_15;
+  wire [10:0] _sorts_2_io_lookup_2_begin;
+  wire [10:0] _sorts_2_io_lookup_2_end;
+  wire [10:0] _sorts_2_io_lookup_2_word_0;
+  wire [10:0] _sorts_2_io_lookup_2_word_1;
+  wire [10:0] _sorts_2_io_lookup_2_word_2;
+  wire [10:0] _sorts_2_io_lookup_2_word_3;
+  wire [10:0] _sorts_2_io_lookup_2_word_4;
+  wire [10:0] _sorts_2_io_lookup_2_word_5;
+  wire [10:0] _sorts_2_io_lookup_2_word_6;
+  wire [10:0] _sorts_2_io_lookup_2_word_7;
+  wire [10:0] _sorts_2_io_lookup_2_word_8;
+  wire [10:0] _sorts_2_io_lookup_2_word_9;
+  wire [10:0] _sorts_2_io_lookup_2_word_10;
+  wire [10:0] _sorts_2_io_lookup_2_word_11;
+  wire [10:0] _sorts_2_io_lookup_2_word_12;
+  wire [10:0] _sorts_2_io_lookup_2_word_13;
+  wire [10:0] _sorts_2_io_lookup_2_word_14;
+  wire [10:0] _sorts_2_io_lookup_2_word_15;
+  wire [10:0] _sorts_2_io_lookup_3_begin;
+  wire [10:0] _sorts_2_io_lookup_3_end;
+  wire [10:0] _sorts_2_io_lookup_3_word_0;
+  wire [10:0] _sorts_2_io_lookup_3_word_1;
+  wire [10:0] _sorts_2_io_lookup_3_word_2;
+  wire [10:0] _sorts_2_io_lookup_3_word_3;
+  wire [10:0] _sorts_2_io_lookup_3_word_4;
+  wire [10:0] _sorts_2_io_lookup_3_word_5;
+  wire [10:0] _sorts_2_io_lookup_3_word_6;
+  wire [10:0] _sorts_2_io_lookup_3_word_7;
+  wire [10:0] _sorts_2_io_lookup_3_word_8;
+  wire [10:0] _sorts_2_io_lookup_3_word_9;
+  wire [10:0] _sorts_2_io_lookup_3_word_10;
+  wire [10:0] _sorts_2_io_lookup_3_word_11;
+  wire [10:0] _sorts_2_io_lookup_3_word_12;
+  wire [10:0] _sorts_2_io_lookup_3_word_13;
+  wire [10:0] _sorts_2_io_lookup_3_word_14;
+  wire [10:0] _sorts_2_io_lookup_3_word_15;
+  wire [10:0] _sorts_2_io_lookup_4_begin;
+  wire [10:0] _sorts_2_io_lookup_4_end;
+  wire [10:0] _sorts_2_io_lookup_4_word_0;
+  wire [10:0] _sorts_2_io_lookup_4_word_1;
+  wire [10:0] _sorts_2_io_lookup_4_word_2;
+  wire [10:0] _sorts_2_io_lookup_4_word_3;
+  wire [10:0] _sorts_2_io_lookup_4_word_4;
+  wire [10:0] _sorts_2_io_lookup_4_word_5;
+  wire [10:0] _sorts_2_io_lookup_4_word_6;
+  wire [10:0] _sorts_2_io_lookup_4_word_7;
+  wire [10:0] _sorts_2_io_lookup_4_word_8;
+  wire [10:0] _sorts_2_io_lookup_4_word_9;
+  wire [10:0] _sorts_2_io_lookup_4_word_10;
+  wire [10:0] _sorts_2_io_lookup_4_word_11;
+  wire [10:0] _sorts_2_io_lookup_4_word_12;
+  wire [10:0] _sorts_2_io_lookup_4_word_13;
+  wire [10:0] _sorts_2_io_lookup_4_word_14;
+  wire [10:0] _sorts_2_io_lookup_4_word_15;
+  wire [10:0] _sorts_2_io_lookup_5_begin;
+  wire [10:0] _sorts_2_io_lookup_5_end;
+  wire [10:0] _sorts_2_io_lookup_5_word_0;
+  wire [10:0] _sorts_2_io_lookup_5_word_1;
+  wire [10:0] _sorts_2_io_lookup_5_word_2;
+  wire [10:0] _sorts_2_io_lookup_5_word_3;
+  wire [10:0] _sorts_2_io_lookup_5_word_4;
+  wire [10:0] _sorts_2_io_lookup_5_word_5;
+  wire [10:0] _sorts_2_io_lookup_5_word_6;
+  wire [10:0] _sorts_2_io_lookup_5_word_7;
+  wire [10:0] _sorts_2_io_lookup_5_word_8;
+  wire [10:0] _sorts_2_io_lookup_5_word_9;
+  wire [10:0] _sorts_2_io_lookup_5_word_10;
+  wire [10:0] _sorts_2_io_lookup_5_word_11;
+  wire [10:0] _sorts_2_io_lookup_5_word_12;
+  wire [10:0] _sorts_2_io_lookup_5_word_13;
+  wire [10:0] _sorts_2_io_lookup_5_word_14;
+  wire [10:0] _sorts_2_io_lookup_5_word_15;
+  wire [10:0] _sorts_2_io_lookup_6_begin;
+  wire [10:0] _sorts_2_io_lookup_6_end;
+  wire [10:0] _sorts_2_io_lookup_6_word_0;
+  wire [10:0] _sorts_2_io_lookup_6_word_1;
+  wire [10:0] _sorts_2_io_lookup_6_word_2;
+  wire [10:0] _sorts_2_io_lookup_6_word_3;
+  wire [10:0] _sorts_2_io_lookup_6_word_4;
+  wire [10:0] _sorts_2_io_lookup_6_word_5;
+  wire [10:0] _sorts_2_io_lookup_6_word_6;
+  wire [10:0] _sorts_2_io_lookup_6_word_7;
+  wire [10:0] _sorts_2_io_lookup_6_word_8;
+  wire [10:0] _sorts_2_io_lookup_6_word_9;
+  wire [10:0] _sorts_2_io_lookup_6_word_10;
+  wire [10:0] _sorts_2_io_lookup_6_word_11;
+  wire [10:0] _sorts_2_io_lookup_6_word_12;
+  wire [10:0] _sorts_2_io_lookup_6_word_13;
+  wire [10:0] _sorts_2_io_lookup_6_word_14;
+  wire [10:0] _sorts_2_io_lookup_6_word_15;
+  wire [10:0] _sorts_2_io_lookup_7_begin;
+  wire [10:0] _sorts_2_io_lookup_7_end;
+  wire [10:0] _sorts_2_io_lookup_7_word_0;
+  wire [10:0] _sorts_2_io_lookup_7_word_1;
+  wire [10:0] _sorts_2_io_lookup_7_word_2;
+  wire [10:0] _sorts_2_io_lookup_7_word_3;
+  wire [10:0] _sorts_2_io_lookup_7_word_4;
+  wire [10:0] _sorts_2_io_lookup_7_word_5;
+  wire [10:0] _sorts_2_io_lookup_7_word_6;
+  wire [10:0] _sorts_2_io_lookup_7_word_7;
+  wire [10:0] _sorts_2_io_lookup_7_word_8;
+  wire [10:0] _sorts_2_io_lookup_7_word_9;
+  wire [10:0] _sorts_2_io_lookup_7_word_10;
+  wire [10:0] _sorts_2_io_lookup_7_word_11;
+  wire [10:0] _sorts_2_io_lookup_7_word_12;
+  wire [10:0] _sorts_2_io_lookup_7_word_13;
+  wire [10:0] _sorts_2_io_lookup_7_word_14;
+  wire [10:0] _sorts_2_io_lookup_7_word_15;
+  wire [10:0] _sorts_2_io_lookup_8_begin;
+  wire [10:0] _sorts_2_io_lookup_8_end;
+  wire [10:0] _sorts_2_io_lookup_8_word_0;
+  wire [10:0] _sorts_2_io_lookup_8_word_1;
+  wire [10:0] _sorts_2_io_lookup_8_word_2;
+  wire [10:0] _sorts_2_io_lookup_8_word_3;
+  wire [10:0] _sorts_2_io_lookup_8_word_4;
+  wire [10:0] _sorts_2_io_lookup_8_word_5;
+  wire [10:0] _sorts_2_io_lookup_8_word_6;
+  wire [10:0] _sorts_2_io_lookup_8_word_7;
+  wire [10:0] _sorts_2_io_lookup_8_word_8;
+  wire [10:0] _sorts_2_io_lookup_8_word_9;
+  wire [10:0] _sorts_2_io_lookup_8_word_10;
+  wire [10:0] _sorts_2_io_lookup_8_word_11;
+  wire [10:0] _sorts_2_io_lookup_8_word_12;
+  wire [10:0] _sorts_2_io_lookup_8_word_13;
+  wire [10:0] _sorts_2_io_lookup_8_word_14;
+  wire [10:0] _sorts_2_io_lookup_8_word_15;
+  wire [10:0] _sorts_2_io_lookup_9_begin;
+  wire [10:0] _sorts_2_io_lookup_9_end;
+  wire [10:0] _sorts_2_io_lookup_9_word_0;
+  wire [10:0] _sorts_2_io_lookup_9_word_1;
+  wire [10:0] _sorts_2_io_lookup_9_word_2;
+  wire [10:0] _sorts_2_io_lookup_9_word_3;
+  wire [10:0] _sorts_2_io_lookup_9_word_4;
+  wire [10:0] _sorts_2_io_lookup_9_word_5;
+  wire [10:0] _sorts_2_io_lookup_9_word_6;
+  wire [10:0] _sorts_2_io_lookup_9_word_7;
+  wire [10:0] _sorts_2_io_lookup_9_word_8;
+  wire [10:0] _sorts_2_io_lookup_9_word_9;
+  wire [10:0] _sorts_2_io_lookup_9_word_10;
+  wire [10:0] _sorts_2_io_lookup_9_word_11;
+  wire [10:0] _sorts_2_io_lookup_9_word_12;
+  wire [10:0] _sorts_2_io_lookup_9_word_13;
+  wire [10:0] _sorts_2_io_lookup_9_word_14;
+  wire [10:0] _sorts_2_io_lookup_9_word_15;
+  wire [10:0] _sorts_2_io_lookup_10_begin;
+  wire [10:0] _sorts_2_io_lookup_10_end;
+  wire [10:0] _sorts_2_io_lookup_10_word_0;
+  wire [10:0] _sorts_2_io_lookup_10_word_1;
+  wire [10:0] _sorts_2_io_lookup_10_word_2;
+  wire [10:0] _sorts_2_io_lookup_10_word_3;
+  wire [10:0] _sorts_2_io_lookup_10_word_4;
+  wire [10:0] _sorts_2_io_lookup_10_word_5;
+  wire [10:0] _sorts_2_io_lookup_10_word_6;
+  wire [10:0] _sorts_2_io_lookup_10_word_7;
+  wire [10:0] _sorts_2_io_lookup_10_word_8;
+  wire [10:0] _sorts_2_io_lookup_10_word_9;
+  wire [10:0] _sorts_2_io_lookup_10_word_10;
+  wire [10:0] _sorts_2_io_lookup_10_word_11;
+  wire [10:0] _sorts_2_io_lookup_10_word_12;
+  wire [10:0] _sorts_2_io_lookup_10_word_13;
+  wire [10:0] _sorts_2_io_lookup_10_word_14;
+  wire [10:0] _sorts_2_io_lookup_10_word_15;
+  wire [10:0] _sorts_2_io_lookup_11_begin;
+  wire [10:0] _sorts_2_io_lookup_11_end;
+  wire [10:0] _sorts_2_io_lookup_11_word_0;
+  wire [10:0] _sorts_2_io_lookup_11_word_1;
+  wire [10:0] _sorts_2_io_lookup_11_word_2;
+  wire [10:0] _sorts_2_io_lookup_11_word_3;
+  wire [10:0] _sorts_2_io_lookup_11_word_4;
+  wire [10:0] _sorts_2_io_lookup_11_word_5;
+  wire [10:0] _sorts_2_io_lookup_11_word_6;
+  wire [10:0] _sorts_2_io_lookup_11_word_7;
+  wire [10:0] _sorts_2_io_lookup_11_word_8;
+  wire [10:0] _sorts_2_io_lookup_11_word_9;
+  wire [10:0] _sorts_2_io_lookup_11_word_10;
+  wire [10:0] _sorts_2_io_lookup_11_word_11;
+  wire [10:0] _sorts_2_io_lookup_11_word_12;
+  wire [10:0] _sorts_2_io_lookup_11_word_13;
+  wire [10:0] _sorts_2_io_lookup_11_word_14;
+  wire [10:0] _sorts_2_io_lookup_11_word_15;
+  wire [10:0] _sorts_2_io_lookup_12_begin;
+  wire [10:0] _sorts_2_io_lookup_12_end;
+  wire [10:0] _sorts_2_io_lookup_12_word_0;
+  wire [10:0] _sorts_2_io_lookup_12_word_1;
+  wire [10:0] _sorts_2_io_lookup_12_word_2;
+  wire [10:0] _sorts_2_io_lookup_12_word_3;
+  wire [10:0] _sorts_2_io_lookup_12_word_4;
+  wire [10:0] _sorts_2_io_lookup_12_word_5;
+  wire [10:0] _sorts_2_io_lookup_12_word_6;
+  wire [10:0] _sorts_2_io_lookup_12_word_7;
+  wire [10:0] _sorts_2_io_lookup_12_word_8;
+  wire [10:0] _sorts_2_io_lookup_12_word_9;
+  wire [10:0] _sorts_2_io_lookup_12_word_10;
+  wire [10:0] _sorts_2_io_lookup_12_word_11;
+  wire [10:0] _sorts_2_io_lookup_12_word_12;
+  wire [10:0] _sorts_2_io_lookup_12_word_13;
+  wire [10:0] _sorts_2_io_lookup_12_word_14;
+  wire [10:0] _sorts_2_io_lookup_12_word_15;
+  wire [10:0] _sorts_2_io_lookup_13_begin;
+  wire [10:0] _sorts_2_io_lookup_13_end;
+  wire [10:0] _sorts_2_io_lookup_13_word_0;
+  wire [10:0] _sorts_2_io_lookup_13_word_1;
+  wire [10:0] _sorts_2_io_lookup_13_word_2;
+  wire [10:0] _sorts_2_io_lookup_13_word_3;
+  wire [10:0] _sorts_2_io_lookup_13_word_4;
+  wire [10:0] _sorts_2_io_lookup_13_word_5;
+  wire [10:0] _sorts_2_io_lookup_13_word_6;
+  wire [10:0] _sorts_2_io_lookup_13_word_7;
+  wire [10:0] _sorts_2_io_lookup_13_word_8;
+  wire [10:0] _sorts_2_io_lookup_13_word_9;
+  wire [10:0] _sorts_2_io_lookup_13_word_10;
+  wire [10:0] _sorts_2_io_lookup_13_word_11;
+  wire [10:0] _sorts_2_io_lookup_13_word_12;
+  wire [10:0] _sorts_2_io_lookup_13_word_13;
+  wire [10:0] _sorts_2_io_lookup_13_word_14;
+  wire [10:0] _sorts_2_io_lookup_13_word_15;
+  wire [10:0] _sorts_2_io_lookup_14_begin;
+  wire [10:0] _sorts_2_io_lookup_14_end;
+  wire [10:0] _sorts_2_io_lookup_14_word_0;
+  wire [10:0] _sorts_2_io_lookup_14_word_1;
+  wire [10:0] _sorts_2_io_lookup_14_word_2;
+  wire [10:0] _sorts_2_io_lookup_14_word_3;
+  wire [10:0] _sorts_2_io_lookup_14_word_4;
+  wire [10:0] _sorts_2_io_lookup_14_word_5;
+  wire [10:0] _sorts_2_io_lookup_14_word_6;
+  wire [10:0] _sorts_2_io_lookup_14_word_7;
+  wire [10:0] _sorts_2_io_lookup_14_word_8;
+  wire [10:0] _sorts_2_io_lookup_14_word_9;
+  wire [10:0] _sorts_2_io_lookup_14_word_10;
+  wire [10:0] _sorts_2_io_lookup_14_word_11;
+  wire [10:0] _sorts_2_io_lookup_14_word_12;
+  wire [10:0] _sorts_2_io_lookup_14_word_13;
+  wire [10:0] _sorts_2_io_lookup_14_word_14;
+  wire [10:0] _sorts_2_io_lookup_14_word_15;
+  wire [10:0] _sorts_2_io_lookup_15_begin;
+  wire [10:0] _sorts_2_io_lookup_15_end;
+  wire [10:0] _sorts_2_io_lookup_15_word_0;
+  wire [10:0] _sorts_2_io_lookup_15_word_1;
+  wire [10:0] _sorts_2_io_lookup_15_word_2;
+  wire [10:0] _sorts_2_io_lookup_15_word_3;
+  wire [10:0] _sorts_2_io_lookup_15_word_4;
+  wire [10:0] _sorts_2_io_lookup_15_word_5;
+  wire [10:0] _sorts_2_io_lookup_15_word_6;
+  wire [10:0] _sorts_2_io_lookup_15_word_7;
+  wire [10:0] _sorts_2_io_lookup_15_word_8;
+  wire [10:0] _sorts_2_io_lookup_15_word_9;
+  wire [10:0] _sorts_2_io_lookup_15_word_10;
+  wire [10:0] _sorts_2_io_lookup_15_word_11;
+  wire [10:0] _sorts_2_io_lookup_15_word_12;
+  wire [10:0] _sorts_2_io_lookup_15_word_13;
+  wire [10:0] _sorts_2_io_lookup_15_word_14;
+  wire [10:0] _sorts_2_io_lookup_15_word_15;
+  wire [11:0] _sorts_2_io_entry_0_item;
+  wire        _sorts_2_io_entry_0_mark;
+  wire [11:0] _sorts_2_io_entry_1_item;
+  wire        _sorts_2_io_entry_1_mark;
+  wire [11:0] _sorts_2_io_entry_2_item;
+  wire        _sorts_2_io_entry_2_mark;
+  wire [11:0] _sorts_2_io_entry_3_item;
+  wire        _sorts_2_io_entry_3_mark;
+  wire [11:0] _sorts_2_io_entry_4_item;
+  wire        _sorts_2_io_entry_4_mark;
+  wire [11:0] _sorts_2_io_entry_5_item;
+  wire        _sorts_2_io_entry_5_mark;
+  wire [11:0] _sorts_2_io_entry_6_item;
+  wire        _sorts_2_io_entry_6_mark;
+  wire [11:0] _sorts_2_io_entry_7_item;
+  wire        _sorts_2_io_entry_7_mark;
+  wire [11:0] _sorts_2_io_entry_8_item;
+  wire        _sorts_2_io_entry_8_mark;
+  wire [11:0] _sorts_2_io_entry_9_item;
+  wire        _sorts_2_io_entry_9_mark;
+  wire [11:0] _sorts_2_io_entry_10_item;
+  wire        _sorts_2_io_entry_10_mark;
+  wire [11:0] _sorts_2_io_entry_11_item;
+  wire        _sorts_2_io_entry_11_mark;
+  wire [11:0] _sorts_2_io_entry_12_item;
+  wire        _sorts_2_io_entry_12_mark;
+  wire [11:0] _sorts_2_io_entry_13_item;
+  wire        _sorts_2_io_entry_13_mark;
+  wire [11:0] _sorts_2_io_entry_14_item;
+  wire        _sorts_2_io_entry_14_mark;
+  wire [11:0] _sorts_2_io_entry_15_item;
+  wire        _sorts_2_io_entry_15_mark;
+  wire [10:0] _sorts_2_io_counted;
+  wire [10:0] _sorts_2_io_scattered;
+  wire        _sorts_2_io_badBucket;
   wire        _sorts_1_io_busy;
   wire        _sorts_1_io_in_0_ready;
   wire        _sorts_1_io_in_1_ready;
-  wire [11:0] _sorts_1_io_lookup_0_begin;
-  wire [11:0] _sorts_1_io_lookup_0_end;
-  wire [11:0] _sorts_1_io_lookup_0_word_0;
-  wire [11:0] _sorts_1_io_lookup_0_word_1;
-  wire [11:0] _sorts_1_io_lookup_0_word_2;
-  wire [11:0] _sorts_1_io_lookup_0_word_3;
-  wire [11:0] _sorts_1_io_lookup_0_word_4;
-  wire [11:0] _sorts_1_io_lookup_0_word_5;
-  wire [11:0] _sorts_1_io_lookup_0_word_6;
-  wire [11:0] _sorts_1_io_lookup_0_word_7;
-  wire [11:0] _sorts_1_io_lookup_0_word_8;
-  wire [11:0] _sorts_1_io_lookup_0_word_9;
-  wire [11:0] _sorts_1_io_lookup_0_word_10;
-  wire [11:0] _sorts_1_io_lookup_0_word_11;
-  wire [11:0] _sorts_1_io_lookup_0_word_12;
-  wire [11:0] _sorts_1_io_lookup_0_word_13;
-  wire [11:0] _sorts_1_io_lookup_0_word_14;
-  wire [11:0] _sorts_1_io_lookup_0_word_15;
-  wire [11:0] _sorts_1_io_lookup_1_begin;
-  wire [11:0] _sorts_1_io_lookup_1_end;
-  wire [11:0] _sorts_1_io_lookup_1_word_0;
-  wire [11:0] _sorts_1_io_lookup_1_word_1;
-  wire [11:0] _sorts_1_io_lookup_1_word_2;
-  wire [11:0] _sorts_1_io_lookup_1_word_3;
-  wire [11:0] _sorts_1_io_lookup_1_word_4;
-  wire [11:0] _sorts_1_io_lookup_1_word_5;
-  wire [11:0] _sorts_1_io_lookup_1_word_6;
-  wire [11:0] _sorts_1_io_lookup_1_word_7;
-  wire [11:0] _sorts_1_io_lookup_1_word_8;
-  wire [11:0] _sorts_1_io_lookup_1_word_9;
-  wire [11:0] _sorts_1_io_lookup_1_word_10;
-  wire [11:0] _sorts_1_io_lookup_1_word_11;
-  wire [11:0] _sorts_1_io_lookup_1_word_12;
-  wire [11:0] _sorts_1_io_lookup_1_word_13;
-  wire [11:0] _sorts_1_io_lookup_1_word_14;
-  wire [11:0] _sorts_1_io_lookup_1_word_15;
-  wire [11:0] _sorts_1_io_lookup_2_begin;
-  wire [11:0] _sorts_1_io_lookup_2_end;
-  wire [11:0] _sorts_1_io_lookup_2_word_0;
-  wire [11:0] _sorts_1_io_lookup_2_word_1;
-  wire [11:0] _sorts_1_io_lookup_2_word_2;
-  wire [11:0] _sorts_1_io_lookup_2_word_3;
-  wire [11:0] _sorts_1_io_lookup_2_word_4;
-  wire [11:0] _sorts_1_io_lookup_2_word_5;
-  wire [11:0] _sorts_1_io_lookup_2_word_6;
-  wire [11:0] _sorts_1_io_lookup_2_word_7;
-  wire [11:0] _sorts_1_io_lookup_2_word_8;
-  wire [11:0] _sorts_1_io_lookup_2_word_9;
-  wire [11:0] _sorts_1_io_lookup_2_word_10;
-  wire [11:0] _sorts_1_io_lookup_2_word_11;
-  wire [11:0] _sorts_1_io_lookup_2_word_12;
-  wire [11:0] _sorts_1_io_lookup_2_word_13;
-  wire [11:0] _sorts_1_io_lookup_2_word_14;
-  wire [11:0] _sorts_1_io_lookup_2_word_15;
-  wire [11:0] _sorts_1_io_lookup_3_begin;
-  wire [11:0] _sorts_1_io_lookup_3_end;
-  wire [11:0] _sorts_1_io_lookup_3_word_0;
-  wire [11:0] _sorts_1_io_lookup_3_word_1;
-  wire [11:0] _sorts_1_io_lookup_3_word_2;
-  wire [11:0] _sorts_1_io_lookup_3_word_3;
-  wire [11:0] _sorts_1_io_lookup_3_word_4;
-  wire [11:0] _sorts_1_io_lookup_3_word_5;
-  wire [11:0] _sorts_1_io_lookup_3_word_6;
-  wire [11:0] _sorts_1_io_lookup_3_word_7;
-  wire [11:0] _sorts_1_io_lookup_3_word_8;
-  wire [11:0] _sorts_1_io_lookup_3_word_9;
-  wire [11:0] _sorts_1_io_lookup_3_word_10;
-  wire [11:0] _sorts_1_io_lookup_3_word_11;
-  wire [11:0] _sorts_1_io_lookup_3_word_12;
-  wire [11:0] _sorts_1_io_lookup_3_word_13;
-  wire [11:0] _sorts_1_io_lookup_3_word_14;
-  wire [11:0] _sorts_1_io_lookup_3_word_15;
-  wire [11:0] _sorts_1_io_lookup_4_begin;
-  wire [11:0] _sorts_1_io_lookup_4_end;
-  wire [11:0] _sorts_1_io_lookup_4_word_0;
-  wire [11:0] _sorts_1_io_lookup_4_word_1;
-  wire [11:0] _sorts_1_io_lookup_4_word_2;
-  wire [11:0] _sorts_1_io_lookup_4_word_3;
-  wire [11:0] _sorts_1_io_lookup_4_word_4;
-  wire [11:0] _sorts_1_io_lookup_4_word_5;
-  wire [11:0] _sorts_1_io_lookup_4_word_6;
-  wire [11:0] _sorts_1_io_lookup_4_word_7;
-  wire [11:0] _sorts_1_io_lookup_4_word_8;
-  wire [11:0] _sorts_1_io_lookup_4_word_9;
-  wire [11:0] _sorts_1_io_lookup_4_word_10;
-  wire [11:0] _sorts_1_io_lookup_4_word_11;
-  wire [11:0] _sorts_1_io_lookup_4_word_12;
-  wire [11:0] _sorts_1_io_lookup_4_word_13;
-  wire [11:0] _sorts_1_io_lookup_4_word_14;
-  wire [11:0] _sorts_1_io_lookup_4_word_15;
-  wire [11:0] _sorts_1_io_lookup_5_begin;
-  wire [11:0] _sorts_1_io_lookup_5_end;
-  wire [11:0] _sorts_1_io_lookup_5_word_0;
-  wire [11:0] _sorts_1_io_lookup_5_word_1;
-  wire [11:0] _sorts_1_io_lookup_5_word_2;
-  wire [11:0] _sorts_1_io_lookup_5_word_3;
-  wire [11:0] _sorts_1_io_lookup_5_word_4;
-  wire [11:0] _sorts_1_io_lookup_5_word_5;
-  wire [11:0] _sorts_1_io_lookup_5_word_6;
-  wire [11:0] _sorts_1_io_lookup_5_word_7;
-  wire [11:0] _sorts_1_io_lookup_5_word_8;
-  wire [11:0] _sorts_1_io_lookup_5_word_9;
-  wire [11:0] _sorts_1_io_lookup_5_word_10;
-  wire [11:0] _sorts_1_io_lookup_5_word_11;
-  wire [11:0] _sorts_1_io_lookup_5_word_12;
-  wire [11:0] _sorts_1_io_lookup_5_word_13;
-  wire [11:0] _sorts_1_io_lookup_5_word_14;
-  wire [11:0] _sorts_1_io_lookup_5_word_15;
-  wire [11:0] _sorts_1_io_lookup_6_begin;
-  wire [11:0] _sorts_1_io_lookup_6_end;
-  wire [11:0] _sorts_1_io_lookup_6_word_0;
-  wire [11:0] _sorts_1_io_lookup_6_word_1;
-  wire [11:0] _sorts_1_io_lookup_6_word_2;
-  wire [11:0] _sorts_1_io_lookup_6_word_3;
-  wire [11:0] _sorts_1_io_lookup_6_word_4;
-  wire [11:0] _sorts_1_io_lookup_6_word_5;
-  wire [11:0] _sorts_1_io_lookup_6_word_6;
-  wire [11:0] _sorts_1_io_lookup_6_word_7;
-  wire [11:0] _sorts_1_io_lookup_6_word_8;
-  wire [11:0] _sorts_1_io_lookup_6_word_9;
-  wire [11:0] _sorts_1_io_lookup_6_word_10;
-  wire [11:0] _sorts_1_io_lookup_6_word_11;
-  wire [11:0] _sorts_1_io_lookup_6_word_12;
-  wire [11:0] _sorts_1_io_lookup_6_word_13;
-  wire [11:0] _sorts_1_io_lookup_6_word_14;
-  wire [11:0] _sorts_1_io_lookup_6_word_15;
-  wire [11:0] _sorts_1_io_lookup_7_begin;
-  wire [11:0] _sorts_1_io_lookup_7_end;
-  wire [11:0] _sorts_1_io_lookup_7_word_0;
-  wire [11:0] _sorts_1_io_lookup_7_word_1;
-  wire [11:0] _sorts_1_io_lookup_7_word_2;
-  wire [11:0] _sorts_1_io_lookup_7_word_3;
-  wire [11:0] _sorts_1_io_lookup_7_word_4;
-  wire [11:0] _sorts_1_io_lookup_7_word_5;
-  wire [11:0] _sorts_1_io_lookup_7_word_6;
-  wire [11:0] _sorts_1_io_lookup_7_word_7;
-  wire [11:0] _sorts_1_io_lookup_7_word_8;
-  wire [11:0] _sorts_1_io_lookup_7_word_9;
-  wire [11:0] _sorts_1_io_lookup_7_word_10;
-  wire [11:0] _sorts_1_io_lookup_7_word_11;
-  wire [11:0] _sorts_1_io_lookup_7_word_12;
-  wire [11:0] _sorts_1_io_lookup_7_word_13;
-  wire [11:0] _sorts_1_io_lookup_7_word_14;
-  wire [11:0] _sorts_1_io_lookup_7_word_15;
-  wire [11:0] _sorts_1_io_lookup_8_begin;
-  wire [11:0] _sorts_1_io_lookup_8_end;
-  wire [11:0] _sorts_1_io_lookup_8_word_0;
-  wire [11:0] _sorts_1_io_lookup_8_word_1;
-  wire [11:0] _sorts_1_io_lookup_8_word_2;
-  wire [11:0] _sorts_1_io_lookup_8_word_3;
-  wire [11:0] _sorts_1_io_lookup_8_word_4;
-  wire [11:0] _sorts_1_io_lookup_8_word_5;
-  wire [11:0] _sorts_1_io_lookup_8_word_6;
-  wire [11:0] _sorts_1_io_lookup_8_word_7;
-  wire [11:0] _sorts_1_io_lookup_8_word_8;
-  wire [11:0] _sorts_1_io_lookup_8_word_9;
-  wire [11:0] _sorts_1_io_lookup_8_word_10;
-  wire [11:0] _sorts_1_io_lookup_8_word_11;
-  wire [11:0] _sorts_1_io_lookup_8_word_12;
-  wire [11:0] _sorts_1_io_lookup_8_word_13;
-  wire [11:0] _sorts_1_io_lookup_8_word_14;
-  wire [11:0] _sorts_1_io_lookup_8_word_15;
-  wire [11:0] _sorts_1_io_lookup_9_begin;
-  wire [11:0] _sorts_1_io_lookup_9_end;
-  wire [11:0] _sorts_1_io_lookup_9_word_0;
-  wire [11:0] _sorts_1_io_lookup_9_word_1;
-  wire [11:0] _sorts_1_io_lookup_9_word_2;
-  wire [11:0] _sorts_1_io_lookup_9_word_3;
-  wire [11:0] _sorts_1_io_lookup_9_word_4;
-  wire [11:0] _sorts_1_io_lookup_9_word_5;
-  wire [11:0] _sorts_1_io_lookup_9_word_6;
-  wire [11:0] _sorts_1_io_lookup_9_word_7;
-  wire [11:0] _sorts_1_io_lookup_9_word_8;
-  wire [11:0] _sorts_1_io_lookup_9_word_9;
-  wire [11:0] _sorts_1_io_lookup_9_word_10;
-  wire [11:0] _sorts_1_io_lookup_9_word_11;
-  wire [11:0] _sorts_1_io_lookup_9_word_12;
-  wire [11:0] _sorts_1_io_lookup_9_word_13;
-  wire [11:0] _sorts_1_io_lookup_9_word_14;
-  wire [11:0] _sorts_1_io_lookup_9_word_15;
-  wire [11:0] _sorts_1_io_lookup_10_begin;
-  wire [11:0] _sorts_1_io_lookup_10_end;
-  wire [11:0] _sorts_1_io_lookup_10_word_0;
-  wire [11:0] _sorts_1_io_lookup_10_word_1;
-  wire [11:0] _sorts_1_io_lookup_10_word_2;
-  wire [11:0] _sorts_1_io_lookup_10_word_3;
-  wire [11:0] _sorts_1_io_lookup_10_word_4;
-  wire [11:0] _sorts_1_io_lookup_10_word_5;
-  wire [11:0] _sorts_1_io_lookup_10_word_6;
-  wire [11:0] _sorts_1_io_lookup_10_word_7;
-  wire [11:0] _sorts_1_io_lookup_10_word_8;
-  wire [11:0] _sorts_1_io_lookup_10_word_9;
-  wire [11:0] _sorts_1_io_lookup_10_word_10;
-  wire [11:0] _sorts_1_io_lookup_10_word_11;
-  wire [11:0] _sorts_1_io_lookup_10_word_12;
-  wire [11:0] _sorts_1_io_lookup_10_word_13;
-  wire [11:0] _sorts_1_io_lookup_10_word_14;
-  wire [11:0] _sorts_1_io_lookup_10_word_15;
-  wire [11:0] _sorts_1_io_lookup_11_begin;
-  wire [11:0] _sorts_1_io_lookup_11_end;
-  wire [11:0] _sorts_1_io_lookup_11_word_0;
-  wire [11:0] _sorts_1_io_lookup_11_word_1;
-  wire [11:0] _sorts_1_io_lookup_11_word_2;
-  wire [11:0] _sorts_1_io_lookup_11_word_3;
-  wire [11:0] _sorts_1_io_lookup_11_word_4;
-  wire [11:0] _sorts_1_io_lookup_11_word_5;
-  wire [11:0] _sorts_1_io_lookup_11_word_6;
-  wire [11:0] _sorts_1_io_lookup_11_word_7;
-  wire [11:0] _sorts_1_io_lookup_11_word_8;
-  wire [11:0] _sorts_1_io_lookup_11_word_9;
-  wire [11:0] _sorts_1_io_lookup_11_word_10;
-  wire [11:0] _sorts_1_io_lookup_11_word_11;
-  wire [11:0] _sorts_1_io_lookup_11_word_12;
-  wire [11:0] _sorts_1_io_lookup_11_word_13;
-  wire [11:0] _sorts_1_io_lookup_11_word_14;
-  wire [11:0] _sorts_1_io_lookup_11_word_15;
-  wire [11:0] _sorts_1_io_lookup_12_begin;
-  wire [11:0] _sorts_1_io_lookup_12_end;
-  wire [11:0] _sorts_1_io_lookup_12_word_0;
-  wire [11:0] _sorts_1_io_lookup_12_word_1;
-  wire [11:0] _sorts_1_io_lookup_12_word_2;
-  wire [11:0] _sorts_1_io_lookup_12_word_3;
-  wire [11:0] _sorts_1_io_lookup_12_word_4;
-  wire [11:0] _sorts_1_io_lookup_12_word_5;
-  wire [11:0] _sorts_1_io_lookup_12_word_6;
-  wire [11:0] _sorts_1_io_lookup_12_word_7;
-  wire [11:0] _sorts_1_io_lookup_12_word_8;
-  wire [11:0] _sorts_1_io_lookup_12_word_9;
-  wire [11:0] _sorts_1_io_lookup_12_word_10;
-  wire [11:0] _sorts_1_io_lookup_12_word_11;
-  wire [11:0] _sorts_1_io_lookup_12_word_12;
-  wire [11:0] _sorts_1_io_lookup_12_word_13;
-  wire [11:0] _sorts_1_io_lookup_12_word_14;
-  wire [11:0] _sorts_1_io_lookup_12_word_15;
-  wire [11:0] _sorts_1_io_lookup_13_begin;
-  wire [11:0] _sorts_1_io_lookup_13_end;
-  wire [11:0] _sorts_1_io_lookup_13_word_0;
-  wire [11:0] _sorts_1_io_lookup_13_word_1;
-  wire [11:0] _sorts_1_io_lookup_13_word_2;
-  wire [11:0] _sorts_1_io_lookup_13_word_3;
-  wire [11:0] _sorts_1_io_lookup_13_word_4;
-  wire [11:0] _sorts_1_io_lookup_13_word_5;
-  wire [11:0] _sorts_1_io_lookup_13_word_6;
-  wire [11:0] _sorts_1_io_lookup_13_word_7;
-  wire [11:0] _sorts_1_io_lookup_13_word_8;
-  wire [11:0] _sorts_1_io_lookup_13_word_9;
-  wire [11:0] _sorts_1_io_lookup_13_word_10;
-  wire [11:0] _sorts_1_io_lookup_13_word_11;
-  wire [11:0] _sorts_1_io_lookup_13_word_12;
-  wire [11:0] _sorts_1_io_lookup_13_word_13;
-  wire [11:0] _sorts_1_io_lookup_13_word_14;
-  wire [11:0] _sorts_1_io_lookup_13_word_15;
-  wire [11:0] _sorts_1_io_lookup_14_begin;
-  wire [11:0] _sorts_1_io_lookup_14_end;
-  wire [11:0] _sorts_1_io_lookup_14_word_0;
-  wire [11:0] _sorts_1_io_lookup_14_word_1;
-  wire [11:0] _sorts_1_io_lookup_14_word_2;
-  wire [11:0] _sorts_1_io_lookup_14_word_3;
-  wire [11:0] _sorts_1_io_lookup_14_word_4;
-  wire [11:0] _sorts_1_io_lookup_14_word_5;
-  wire [11:0] _sorts_1_io_lookup_14_word_6;
-  wire [11:0] _sorts_1_io_lookup_14_word_7;
-  wire [11:0] _sorts_1_io_lookup_14_word_8;
-  wire [11:0] _sorts_1_io_lookup_14_word_9;
-  wire [11:0] _sorts_1_io_lookup_14_word_10;
-  wire [11:0] _sorts_1_io_lookup_14_word_11;
-  wire [11:0] _sorts_1_io_lookup_14_word_12;
-  wire [11:0] _sorts_1_io_lookup_14_word_13;
-  wire [11:0] _sorts_1_io_lookup_14_word_14;
-  wire [11:0] _sorts_1_io_lookup_14_word_15;
-  wire [11:0] _sorts_1_io_lookup_15_begin;
-  wire [11:0] _sorts_1_io_lookup_15_end;
-  wire [11:0] _sorts_1_io_lookup_15_word_0;
-  wire [11:0] _sorts_1_io_lookup_15_word_1;
-  wire [11:0] _sorts_1_io_lookup_15_word_2;
-  wire [11:0] _sorts_1_io_lookup_15_word_3;
-  wire [11:0] _sorts_1_io_lookup_15_word_4;
-  wire [11:0] _sorts_1_io_lookup_15_word_5;
-  wire [11:0] _sorts_1_io_lookup_15_word_6;
-  wire [11:0] _sorts_1_io_lookup_15_word_7;
-  wire [11:0] _sorts_1_io_lookup_15_word_8;
-  wire [11:0] _sorts_1_io_lookup_15_word_9;
-  wire [11:0] _sorts_1_io_lookup_15_word_10;
-  wire [11:0] _sorts_1_io_lookup_15_word_11;
-  wire [11:0] _sorts_1_io_lookup_15_word_12;
-  wire [11:0] _sorts_1_io_lookup_15_word_13;
-  wire [11:0] _sorts_1_io_lookup_15_word_14;
-  wire [11:0] _sorts_1_io_lookup_15_word_15;
+  wire [10:0] _sorts_1_io_lookup_0_begin;
+  wire [10:0] _sorts_1_io_lookup_0_end;
+  wire [10:0] _sorts_1_io_lookup_0_word_0;
+  wire [10:0] _sorts_1_io_lookup_0_word_1;
+  wire [10:0] _sorts_1_io_lookup_0_word_2;
+  wire [10:0] _sorts_1_io_lookup_0_word_3;
+  wire [10:0] _sorts_1_io_lookup_0_word_4;
+  wire [10:0] _sorts_1_io_lookup_0_word_5;
+  wire [10:0] _sorts_1_io_lookup_0_word_6;
+  wire [10:0] _sorts_1_io_lookup_0_word_7;
+  wire [10:0] _sorts_1_io_lookup_0_word_8;
+  wire [10:0] _sorts_1_io_lookup_0_word_9;
+  wire [10:0] _sorts_1_io_lookup_0_word_10;
+  wire [10:0] _sorts_1_io_lookup_0_word_11;
+  wire [10:0] _sorts_1_io_lookup_0_word_12;
+  wire [10:0] _sorts_1_io_lookup_0_word_13;
+  wire [10:0] _sorts_1_io_lookup_0_word_14;
+  wire [10:0] _sorts_1_io_lookup_0_word_15;
+  wire [10:0] _sorts_1_io_lookup_1_begin;
+  wire [10:0] _sorts_1_io_lookup_1_end;
+  wire [10:0] _sorts_1_io_lookup_1_word_0;
+  wire [10:0] _sorts_1_io_lookup_1_word_1;
+  wire [10:0] _sorts_1_io_lookup_1_word_2;
+  wire [10:0] _sorts_1_io_lookup_1_word_3;
+  wire [10:0] _sorts_1_io_lookup_1_word_4;
+  wire [10:0] _sorts_1_io_lookup_1_word_5;
+  wire [10:0] _sorts_1_io_lookup_1_word_6;
+  wire [10:0] _sorts_1_io_lookup_1_word_7;
+  wire [10:0] _sorts_1_io_lookup_1_word_8;
+  wire [10:0] _sorts_1_io_lookup_1_word_9;
+  wire [10:0] _sorts_1_io_lookup_1_word_10;
+  wire [10:0] _sorts_1_io_lookup_1_word_11;
+  wire [10:0] _sorts_1_io_lookup_1_word_12;
+  wire [10:0] _sorts_1_io_lookup_1_word_13;
+  wire [10:0] _sorts_1_io_lookup_1_word_14;
+  wire [10:0] _sorts_1_io_lookup_1_word_15;
+  wire [10:0] _sorts_1_io_lookup_2_begin;
+  wire [10:0] _sorts_1_io_lookup_2_end;
+  wire [10:0] _sorts_1_io_lookup_2_word_0;
+  wire [10:0] _sorts_1_io_lookup_2_word_1;
+  wire [10:0] _sorts_1_io_lookup_2_word_2;
+  wire [10:0] _sorts_1_io_lookup_2_word_3;
+  wire [10:0] _sorts_1_io_lookup_2_word_4;
+  wire [10:0] _sorts_1_io_lookup_2_word_5;
+  wire [10:0] _sorts_1_io_lookup_2_word_6;
+  wire [10:0] _sorts_1_io_lookup_2_word_7;
+  wire [10:0] _sorts_1_io_lookup_2_word_8;
+  wire [10:0] _sorts_1_io_lookup_2_word_9;
+  wire [10:0] _sorts_1_io_lookup_2_word_10;
+  wire [10:0] _sorts_1_io_lookup_2_word_11;
+  wire [10:0] _sorts_1_io_lookup_2_word_12;
+  wire [10:0] _sorts_1_io_lookup_2_word_13;
+  wire [10:0] _sorts_1_io_lookup_2_word_14;
+  wire [10:0] _sorts_1_io_lookup_2_word_15;
+  wire [10:0] _sorts_1_io_lookup_3_begin;
+  wire [10:0] _sorts_1_io_lookup_3_end;
+  wire [10:0] _sorts_1_io_lookup_3_word_0;
+  wire [10:0] _sorts_1_io_lookup_3_word_1;
+  wire [10:0] _sorts_1_io_lookup_3_word_2;
+  wire [10:0] _sorts_1_io_lookup_3_word_3;
+  wire [10:0] _sorts_1_io_lookup_3_word_4;
+  wire [10:0] _sorts_1_io_lookup_3_word_5;
+  wire [10:0] _sorts_1_io_lookup_3_word_6;
+  wire [10:0] _sorts_1_io_lookup_3_word_7;
+  wire [10:0] _sorts_1_io_lookup_3_word_8;
+  wire [10:0] _sorts_1_io_lookup_3_word_9;
+  wire [10:0] _sorts_1_io_lookup_3_word_10;
+  wire [10:0] _sorts_1_io_lookup_3_word_11;
+  wire [10:0] _sorts_1_io_lookup_3_word_12;
+  wire [10:0] _sorts_1_io_lookup_3_word_13;
+  wire [10:0] _sorts_1_io_lookup_3_word_14;
+  wire [10:0] _sorts_1_io_lookup_3_word_15;
+  wire [10:0] _sorts_1_io_lookup_4_begin;
+  wire [10:0] _sorts_1_io_lookup_4_end;
+  wire [10:0] _sorts_1_io_lookup_4_word_0;
+  wire [10:0] _sorts_1_io_lookup_4_word_1;
+  wire [10:0] _sorts_1_io_lookup_4_word_2;
+  wire [10:0] _sorts_1_io_lookup_4_word_3;
+  wire [10:0] _sorts_1_io_lookup_4_word_4;
+  wire [10:0] _sorts_1_io_lookup_4_word_5;
+  wire [10:0] _sorts_1_io_lookup_4_word_6;
+  wire [10:0] _sorts_1_io_lookup_4_word_7;
+  wire [10:0] _sorts_1_io_lookup_4_word_8;
+  wire [10:0] _sorts_1_io_lookup_4_word_9;
+  wire [10:0] _sorts_1_io_lookup_4_word_10;
+  wire [10:0] _sorts_1_io_lookup_4_word_11;
+  wire [10:0] _sorts_1_io_lookup_4_word_12;
+  wire [10:0] _sorts_1_io_lookup_4_word_13;
+  wire [10:0] _sorts_1_io_lookup_4_word_14;
+  wire [10:0] _sorts_1_io_lookup_4_word_15;
+  wire [10:0] _sorts_1_io_lookup_5_begin;
+  wire [10:0] _sorts_1_io_lookup_5_end;
+  wire [10:0] _sorts_1_io_lookup_5_word_0;
+  wire [10:0] _sorts_1_io_lookup_5_word_1;
+  wire [10:0] _sorts_1_io_lookup_5_word_2;
+  wire [10:0] _sorts_1_io_lookup_5_word_3;
+  wire [10:0] _sorts_1_io_lookup_5_word_4;
+  wire [10:0] _sorts_1_io_lookup_5_word_5;
+  wire [10:0] _sorts_1_io_lookup_5_word_6;
+  wire [10:0] _sorts_1_io_lookup_5_word_7;
+  wire [10:0] _sorts_1_io_lookup_5_word_8;
+  wire [10:0] _sorts_1_io_lookup_5_word_9;
+  wire [10:0] _sorts_1_io_lookup_5_word_10;
+  wire [10:0] _sorts_1_io_lookup_5_word_11;
+  wire [10:0] _sorts_1_io_lookup_5_word_12;
+  wire [10:0] _sorts_1_io_lookup_5_word_13;
+  wire [10:0] _sorts_1_io_lookup_5_word_14;
+  wire [10:0] _sorts_1_io_lookup_5_word_15;
+  wire [10:0] _sorts_1_io_lookup_6_begin;
+  wire [10:0] _sorts_1_io_lookup_6_end;
+  wire [10:0] _sorts_1_io_lookup_6_word_0;
+  wire [10:0] _sorts_1_io_lookup_6_word_1;
+  wire [10:0] _sorts_1_io_lookup_6_word_2;
+  wire [10:0] _sorts_1_io_lookup_6_word_3;
+  wire [10:0] _sorts_1_io_lookup_6_word_4;
+  wire [10:0] _sorts_1_io_lookup_6_word_5;
+  wire [10:0] _sorts_1_io_lookup_6_word_6;
+  wire [10:0] _sorts_1_io_lookup_6_word_7;
+  wire [10:0] _sorts_1_io_lookup_6_word_8;
+  wire [10:0] _sorts_1_io_lookup_6_word_9;
+  wire [10:0] _sorts_1_io_lookup_6_word_10;
+  wire [10:0] _sorts_1_io_lookup_6_word_11;
+  wire [10:0] _sorts_1_io_lookup_6_word_12;
+  wire [10:0] _sorts_1_io_lookup_6_word_13;
+  wire [10:0] _sorts_1_io_lookup_6_word_14;
+  wire [10:0] _sorts_1_io_lookup_6_word_15;
+  wire [10:0] _sorts_1_io_lookup_7_begin;
+  wire [10:0] _sorts_1_io_lookup_7_end;
+  wire [10:0] _sorts_1_io_lookup_7_word_0;
+  wire [10:0] _sorts_1_io_lookup_7_word_1;
+  wire [10:0] _sorts_1_io_lookup_7_word_2;
+  wire [10:0] _sorts_1_io_lookup_7_word_3;
+  wire [10:0] _sorts_1_io_lookup_7_word_4;
+  wire [10:0] _sorts_1_io_lookup_7_word_5;
+  wire [10:0] _sorts_1_io_lookup_7_word_6;
+  wire [10:0] _sorts_1_io_lookup_7_word_7;
+  wire [10:0] _sorts_1_io_lookup_7_word_8;
+  wire [10:0] _sorts_1_io_lookup_7_word_9;
+  wire [10:0] _sorts_1_io_lookup_7_word_10;
+  wire [10:0] _sorts_1_io_lookup_7_word_11;
+  wire [10:0] _sorts_1_io_lookup_7_word_12;
+  wire [10:0] _sorts_1_io_lookup_7_word_13;
+  wire [10:0] _sorts_1_io_lookup_7_word_14;
+  wire [10:0] _sorts_1_io_lookup_7_word_15;
+  wire [10:0] _sorts_1_io_lookup_8_begin;
+  wire [10:0] _sorts_1_io_lookup_8_end;
+  wire [10:0] _sorts_1_io_lookup_8_word_0;
+  wire [10:0] _sorts_1_io_lookup_8_word_1;
+  wire [10:0] _sorts_1_io_lookup_8_word_2;
+  wire [10:0] _sorts_1_io_lookup_8_word_3;
+  wire [10:0] _sorts_1_io_lookup_8_word_4;
+  wire [10:0] _sorts_1_io_lookup_8_word_5;
+  wire [10:0] _sorts_1_io_lookup_8_word_6;
+  wire [10:0] _sorts_1_io_lookup_8_word_7;
+  wire [10:0] _sorts_1_io_lookup_8_word_8;
+  wire [10:0] _sorts_1_io_lookup_8_word_9;
+  wire [10:0] _sorts_1_io_lookup_8_word_10;
+  wire [10:0] _sorts_1_io_lookup_8_word_11;
+  wire [10:0] _sorts_1_io_lookup_8_word_12;
+  wire [10:0] _sorts_1_io_lookup_8_word_13;
+  wire [10:0] _sorts_1_io_lookup_8_word_14;
+  wire [10:0] _sorts_1_io_lookup_8_word_15;
+  wire [10:0] _sorts_1_io_lookup_9_begin;
+  wire [10:0] _sorts_1_io_lookup_9_end;
+  wire [10:0] _sorts_1_io_lookup_9_word_0;
+  wire [10:0] _sorts_1_io_lookup_9_word_1;
+  wire [10:0] _sorts_1_io_lookup_9_word_2;
+  wire [10:0] _sorts_1_io_lookup_9_word_3;
+  wire [10:0] _sorts_1_io_lookup_9_word_4;
+  wire [10:0] _sorts_1_io_lookup_9_word_5;
+  wire [10:0] _sorts_1_io_lookup_9_word_6;
+  wire [10:0] _sorts_1_io_lookup_9_word_7;
+  wire [10:0] _sorts_1_io_lookup_9_word_8;
+  wire [10:0] _sorts_1_io_lookup_9_word_9;
+  wire [10:0] _sorts_1_io_lookup_9_word_10;
+  wire [10:0] _sorts_1_io_lookup_9_word_11;
+  wire [10:0] _sorts_1_io_lookup_9_word_12;
+  wire [10:0] _sorts_1_io_lookup_9_word_13;
+  wire [10:0] _sorts_1_io_lookup_9_word_14;
+  wire [10:0] _sorts_1_io_lookup_9_word_15;
+  wire [10:0] _sorts_1_io_lookup_10_begin;
+  wire [10:0] _sorts_1_io_lookup_10_end;
+  wire [10:0] _sorts_1_io_lookup_10_word_0;
+  wire [10:0] _sorts_1_io_lookup_10_word_1;
+  wire [10:0] _sorts_1_io_lookup_10_word_2;
+  wire [10:0] _sorts_1_io_lookup_10_word_3;
+  wire [10:0] _sorts_1_io_lookup_10_word_4;
+  wire [10:0] _sorts_1_io_lookup_10_word_5;
+  wire [10:0] _sorts_1_io_lookup_10_word_6;
+  wire [10:0] _sorts_1_io_lookup_10_word_7;
+  wire [10:0] _sorts_1_io_lookup_10_word_8;
+  wire [10:0] _sorts_1_io_lookup_10_word_9;
+  wire [10:0] _sorts_1_io_lookup_10_word_10;
+  wire [10:0] _sorts_1_io_lookup_10_word_11;
+  wire [10:0] _sorts_1_io_lookup_10_word_12;
+  wire [10:0] _sorts_1_io_lookup_10_word_13;
+  wire [10:0] _sorts_1_io_lookup_10_word_14;
+  wire [10:0] _sorts_1_io_lookup_10_word_15;
+  wire [10:0] _sorts_1_io_lookup_11_begin;
+  wire [10:0] _sorts_1_io_lookup_11_end;
+  wire [10:0] _sorts_1_io_lookup_11_word_0;
+  wire [10:0] _sorts_1_io_lookup_11_word_1;
+  wire [10:0] _sorts_1_io_lookup_11_word_2;
+  wire [10:0] _sorts_1_io_lookup_11_word_3;
+  wire [10:0] _sorts_1_io_lookup_11_word_4;
+  wire [10:0] _sorts_1_io_lookup_11_word_5;
+  wire [10:0] _sorts_1_io_lookup_11_word_6;
+  wire [10:0] _sorts_1_io_lookup_11_word_7;
+  wire [10:0] _sorts_1_io_lookup_11_word_8;
+  wire [10:0] _sorts_1_io_lookup_11_word_9;
+  wire [10:0] _sorts_1_io_lookup_11_word_10;
+  wire [10:0] _sorts_1_io_lookup_11_word_11;
+  wire [10:0] _sorts_1_io_lookup_11_word_12;
+  wire [10:0] _sorts_1_io_lookup_11_word_13;
+  wire [10:0] _sorts_1_io_lookup_11_word_14;
+  wire [10:0] _sorts_1_io_lookup_11_word_15;
+  wire [10:0] _sorts_1_io_lookup_12_begin;
+  wire [10:0] _sorts_1_io_lookup_12_end;
+  wire [10:0] _sorts_1_io_lookup_12_word_0;
+  wire [10:0] _sorts_1_io_lookup_12_word_1;
+  wire [10:0] _sorts_1_io_lookup_12_word_2;
+  wire [10:0] _sorts_1_io_lookup_12_word_3;
+  wire [10:0] _sorts_1_io_lookup_12_word_4;
+  wire [10:0] _sorts_1_io_lookup_12_word_5;
+  wire [10:0] _sorts_1_io_lookup_12_word_6;
+  wire [10:0] _sorts_1_io_lookup_12_word_7;
+  wire [10:0] _sorts_1_io_lookup_12_word_8;
+  wire [10:0] _sorts_1_io_lookup_12_word_9;
+  wire [10:0] _sorts_1_io_lookup_12_word_10;
+  wire [10:0] _sorts_1_io_lookup_12_word_11;
+  wire [10:0] _sorts_1_io_lookup_12_word_12;
+  wire [10:0] _sorts_1_io_lookup_12_word_13;
+  wire [10:0] _sorts_1_io_lookup_12_word_14;
+  wire [10:0] _sorts_1_io_lookup_12_word_15;
+  wire [10:0] _sorts_1_io_lookup_13_begin;
+  wire [10:0] _sorts_1_io_lookup_13_end;
+  wire [10:0] _sorts_1_io_lookup_13_word_0;
+  wire [10:0] _sorts_1_io_lookup_13_word_1;
+  wire [10:0] _sorts_1_io_lookup_13_word_2;
+  wire [10:0] _sorts_1_io_lookup_13_word_3;
+  wire [10:0] _sorts_1_io_lookup_13_word_4;
+  wire [10:0] _sorts_1_io_lookup_13_word_5;
+  wire [10:0] _sorts_1_io_lookup_13_word_6;
+  wire [10:0] _sorts_1_io_lookup_13_word_7;
+  wire [10:0] _sorts_1_io_lookup_13_word_8;
+  wire [10:0] _sorts_1_io_lookup_13_word_9;
+  wire [10:0] _sorts_1_io_lookup_13_word_10;
+  wire [10:0] _sorts_1_io_lookup_13_word_11;
+  wire [10:0] _sorts_1_io_lookup_13_word_12;
+  wire [10:0] _sorts_1_io_lookup_13_word_13;
+  wire [10:0] _sorts_1_io_lookup_13_word_14;
+  wire [10:0] _sorts_1_io_lookup_13_word_15;
+  wire [10:0] _sorts_1_io_lookup_14_begin;
+  wire [10:0] _sorts_1_io_lookup_14_end;
+  wire [10:0] _sorts_1_io_lookup_14_word_0;
+  wire [10:0] _sorts_1_io_lookup_14_word_1;
+  wire [10:0] _sorts_1_io_lookup_14_word_2;
+  wire [10:0] _sorts_1_io_lookup_14_word_3;
+  wire [10:0] _sorts_1_io_lookup_14_word_4;
+  wire [10:0] _sorts_1_io_lookup_14_word_5;
+  wire [10:0] _sorts_1_io_lookup_14_word_6;
+  wire [10:0] _sorts_1_io_lookup_14_word_7;
+  wire [10:0] _sorts_1_io_lookup_14_word_8;
+  wire [10:0] _sorts_1_io_lookup_14_word_9;
+  wire [10:0] _sorts_1_io_lookup_14_word_10;
+  wire [10:0] _sorts_1_io_lookup_14_word_11;
+  wire [10:0] _sorts_1_io_lookup_14_word_12;
+  wire [10:0] _sorts_1_io_lookup_14_word_13;
+  wire [10:0] _sorts_1_io_lookup_14_word_14;
+  wire [10:0] _sorts_1_io_lookup_14_word_15;
+  wire [10:0] _sorts_1_io_lookup_15_begin;
+  wire [10:0] _sorts_1_io_lookup_15_end;
+  wire [10:0] _sorts_1_io_lookup_15_word_0;
+  wire [10:0] _sorts_1_io_lookup_15_word_1;
+  wire [10:0] _sorts_1_io_lookup_15_word_2;
+  wire [10:0] _sorts_1_io_lookup_15_word_3;
+  wire [10:0] _sorts_1_io_lookup_15_word_4;
+  wire [10:0] _sorts_1_io_lookup_15_word_5;
+  wire [10:0] _sorts_1_io_lookup_15_word_6;
+  wire [10:0] _sorts_1_io_lookup_15_word_7;
+  wire [10:0] _sorts_1_io_lookup_15_word_8;
+  wire [10:0] _sorts_1_io_lookup_15_word_9;
+  wire [10:0] _sorts_1_io_lookup_15_word_10;
+  wire [10:0] _sorts_1_io_lookup_15_word_11;
+  wire [10:0] _sorts_1_io_lookup_15_word_12;
+  wire [10:0] _sorts_1_io_lookup_15_word_13;
+  wire [10:0] _sorts_1_io_lookup_15_word_14;
+  wire [10:0] _sorts_1_io_lookup_15_word_15;
   wire [11:0] _sorts_1_io_entry_0_item;
   wire        _sorts_1_io_entry_0_mark;
   wire [11:0] _sorts_1_io_entry_1_item;
@@ -24900,300 +26016,300 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   wire        _sorts_1_io_entry_14_mark;
   wire [11:0] _sorts_1_io_entry_15_item;
   wire        _sorts_1_io_entry_15_mark;
-  wire [11:0] _sorts_1_io_counted;
-  wire [11:0] _sorts_1_io_scattered;
+  wire [10:0] _sorts_1_io_counted;
+  wire [10:0] _sorts_1_io_scattered;
   wire        _sorts_1_io_badBucket;
   wire        _sorts_0_io_busy;
   wire        _sorts_0_io_in_0_ready;
   wire        _sorts_0_io_in_1_ready;
-  wire [11:0] _sorts_0_io_lookup_0_begin;
-  wire [11:0] _sorts_0_io_lookup_0_end;
-  wire [11:0] _sorts_0_io_lookup_0_word_0;
-  wire [11:0] _sorts_0_io_lookup_0_word_1;
-  wire [11:0] _sorts_0_io_lookup_0_word_2;
-  wire [11:0] _sorts_0_io_lookup_0_word_3;
-  wire [11:0] _sorts_0_io_lookup_0_word_4;
-  wire [11:0] _sorts_0_io_lookup_0_word_5;
-  wire [11:0] _sorts_0_io_lookup_0_word_6;
-  wire [11:0] _sorts_0_io_lookup_0_word_7;
-  wire [11:0] _sorts_0_io_lookup_0_word_8;
-  wire [11:0] _sorts_0_io_lookup_0_word_9;
-  wire [11:0] _sorts_0_io_lookup_0_word_10;
-  wire [11:0] _sorts_0_io_lookup_0_word_11;
-  wire [11:0] _sorts_0_io_lookup_0_word_12;
-  wire [11:0] _sorts_0_io_lookup_0_word_13;
-  wire [11:0] _sorts_0_io_lookup_0_word_14;
-  wire [11:0] _sorts_0_io_lookup_0_word_15;
-  wire [11:0] _sorts_0_io_lookup_1_begin;
-  wire [11:0] _sorts_0_io_lookup_1_end;
-  wire [11:0] _sorts_0_io_lookup_1_word_0;
-  wire [11:0] _sorts_0_io_lookup_1_word_1;
-  wire [11:0] _sorts_0_io_lookup_1_word_2;
-  wire [11:0] _sorts_0_io_lookup_1_word_3;
-  wire [11:0] _sorts_0_io_lookup_1_word_4;
-  wire [11:0] _sorts_0_io_lookup_1_word_5;
-  wire [11:0] _sorts_0_io_lookup_1_word_6;
-  wire [11:0] _sorts_0_io_lookup_1_word_7;
-  wire [11:0] _sorts_0_io_lookup_1_word_8;
-  wire [11:0] _sorts_0_io_lookup_1_word_9;
-  wire [11:0] _sorts_0_io_lookup_1_word_10;
-  wire [11:0] _sorts_0_io_lookup_1_word_11;
-  wire [11:0] _sorts_0_io_lookup_1_word_12;
-  wire [11:0] _sorts_0_io_lookup_1_word_13;
-  wire [11:0] _sorts_0_io_lookup_1_word_14;
-  wire [11:0] _sorts_0_io_lookup_1_word_15;
-  wire [11:0] _sorts_0_io_lookup_2_begin;
-  wire [11:0] _sorts_0_io_lookup_2_end;
-  wire [11:0] _sorts_0_io_lookup_2_word_0;
-  wire [11:0] _sorts_0_io_lookup_2_word_1;
-  wire [11:0] _sorts_0_io_lookup_2_word_2;
-  wire [11:0] _sorts_0_io_lookup_2_word_3;
-  wire [11:0] _sorts_0_io_lookup_2_word_4;
-  wire [11:0] _sorts_0_io_lookup_2_word_5;
-  wire [11:0] _sorts_0_io_lookup_2_word_6;
-  wire [11:0] _sorts_0_io_lookup_2_word_7;
-  wire [11:0] _sorts_0_io_lookup_2_word_8;
-  wire [11:0] _sorts_0_io_lookup_2_word_9;
-  wire [11:0] _sorts_0_io_lookup_2_word_10;
-  wire [11:0] _sorts_0_io_lookup_2_word_11;
-  wire [11:0] _sorts_0_io_lookup_2_word_12;
-  wire [11:0] _sorts_0_io_lookup_2_word_13;
-  wire [11:0] _sorts_0_io_lookup_2_word_14;
-  wire [11:0] _sorts_0_io_lookup_2_word_15;
-  wire [11:0] _sorts_0_io_lookup_3_begin;
-  wire [11:0] _sorts_0_io_lookup_3_end;
-  wire [11:0] _sorts_0_io_lookup_3_word_0;
-  wire [11:0] _sorts_0_io_lookup_3_word_1;
-  wire [11:0] _sorts_0_io_lookup_3_word_2;
-  wire [11:0] _sorts_0_io_lookup_3_word_3;
-  wire [11:0] _sorts_0_io_lookup_3_word_4;
-  wire [11:0] _sorts_0_io_lookup_3_word_5;
-  wire [11:0] _sorts_0_io_lookup_3_word_6;
-  wire [11:0] _sorts_0_io_lookup_3_word_7;
-  wire [11:0] _sorts_0_io_lookup_3_word_8;
-  wire [11:0] _sorts_0_io_lookup_3_word_9;
-  wire [11:0] _sorts_0_io_lookup_3_word_10;
-  wire [11:0] _sorts_0_io_lookup_3_word_11;
-  wire [11:0] _sorts_0_io_lookup_3_word_12;
-  wire [11:0] _sorts_0_io_lookup_3_word_13;
-  wire [11:0] _sorts_0_io_lookup_3_word_14;
-  wire [11:0] _sorts_0_io_lookup_3_word_15;
-  wire [11:0] _sorts_0_io_lookup_4_begin;
-  wire [11:0] _sorts_0_io_lookup_4_end;
-  wire [11:0] _sorts_0_io_lookup_4_word_0;
-  wire [11:0] _sorts_0_io_lookup_4_word_1;
-  wire [11:0] _sorts_0_io_lookup_4_word_2;
-  wire [11:0] _sorts_0_io_lookup_4_word_3;
-  wire [11:0] _sorts_0_io_lookup_4_word_4;
-  wire [11:0] _sorts_0_io_lookup_4_word_5;
-  wire [11:0] _sorts_0_io_lookup_4_word_6;
-  wire [11:0] _sorts_0_io_lookup_4_word_7;
-  wire [11:0] _sorts_0_io_lookup_4_word_8;
-  wire [11:0] _sorts_0_io_lookup_4_word_9;
-  wire [11:0] _sorts_0_io_lookup_4_word_10;
-  wire [11:0] _sorts_0_io_lookup_4_word_11;
-  wire [11:0] _sorts_0_io_lookup_4_word_12;
-  wire [11:0] _sorts_0_io_lookup_4_word_13;
-  wire [11:0] _sorts_0_io_lookup_4_word_14;
-  wire [11:0] _sorts_0_io_lookup_4_word_15;
-  wire [11:0] _sorts_0_io_lookup_5_begin;
-  wire [11:0] _sorts_0_io_lookup_5_end;
-  wire [11:0] _sorts_0_io_lookup_5_word_0;
-  wire [11:0] _sorts_0_io_lookup_5_word_1;
-  wire [11:0] _sorts_0_io_lookup_5_word_2;
-  wire [11:0] _sorts_0_io_lookup_5_word_3;
-  wire [11:0] _sorts_0_io_lookup_5_word_4;
-  wire [11:0] _sorts_0_io_lookup_5_word_5;
-  wire [11:0] _sorts_0_io_lookup_5_word_6;
-  wire [11:0] _sorts_0_io_lookup_5_word_7;
-  wire [11:0] _sorts_0_io_lookup_5_word_8;
-  wire [11:0] _sorts_0_io_lookup_5_word_9;
-  wire [11:0] _sorts_0_io_lookup_5_word_10;
-  wire [11:0] _sorts_0_io_lookup_5_word_11;
-  wire [11:0] _sorts_0_io_lookup_5_word_12;
-  wire [11:0] _sorts_0_io_lookup_5_word_13;
-  wire [11:0] _sorts_0_io_lookup_5_word_14;
-  wire [11:0] _sorts_0_io_lookup_5_word_15;
-  wire [11:0] _sorts_0_io_lookup_6_begin;
-  wire [11:0] _sorts_0_io_lookup_6_end;
-  wire [11:0] _sorts_0_io_lookup_6_word_0;
-  wire [11:0] _sorts_0_io_lookup_6_word_1;
-  wire [11:0] _sorts_0_io_lookup_6_word_2;
-  wire [11:0] _sorts_0_io_lookup_6_word_3;
-  wire [11:0] _sorts_0_io_lookup_6_word_4;
-  wire [11:0] _sorts_0_io_lookup_6_word_5;
-  wire [11:0] _sorts_0_io_lookup_6_word_6;
-  wire [11:0] _sorts_0_io_lookup_6_word_7;
-  wire [11:0] _sorts_0_io_lookup_6_word_8;
-  wire [11:0] _sorts_0_io_lookup_6_word_9;
-  wire [11:0] _sorts_0_io_lookup_6_word_10;
-  wire [11:0] _sorts_0_io_lookup_6_word_11;
-  wire [11:0] _sorts_0_io_lookup_6_word_12;
-  wire [11:0] _sorts_0_io_lookup_6_word_13;
-  wire [11:0] _sorts_0_io_lookup_6_word_14;
-  wire [11:0] _sorts_0_io_lookup_6_word_15;
-  wire [11:0] _sorts_0_io_lookup_7_begin;
-  wire [11:0] _sorts_0_io_lookup_7_end;
-  wire [11:0] _sorts_0_io_lookup_7_word_0;
-  wire [11:0] _sorts_0_io_lookup_7_word_1;
-  wire [11:0] _sorts_0_io_lookup_7_word_2;
-  wire [11:0] _sorts_0_io_lookup_7_word_3;
-  wire [11:0] _sorts_0_io_lookup_7_word_4;
-  wire [11:0] _sorts_0_io_lookup_7_word_5;
-  wire [11:0] _sorts_0_io_lookup_7_word_6;
-  wire [11:0] _sorts_0_io_lookup_7_word_7;
-  wire [11:0] _sorts_0_io_lookup_7_word_8;
-  wire [11:0] _sorts_0_io_lookup_7_word_9;
-  wire [11:0] _sorts_0_io_lookup_7_word_10;
-  wire [11:0] _sorts_0_io_lookup_7_word_11;
-  wire [11:0] _sorts_0_io_lookup_7_word_12;
-  wire [11:0] _sorts_0_io_lookup_7_word_13;
-  wire [11:0] _sorts_0_io_lookup_7_word_14;
-  wire [11:0] _sorts_0_io_lookup_7_word_15;
-  wire [11:0] _sorts_0_io_lookup_8_begin;
-  wire [11:0] _sorts_0_io_lookup_8_end;
-  wire [11:0] _sorts_0_io_lookup_8_word_0;
-  wire [11:0] _sorts_0_io_lookup_8_word_1;
-  wire [11:0] _sorts_0_io_lookup_8_word_2;
-  wire [11:0] _sorts_0_io_lookup_8_word_3;
-  wire [11:0] _sorts_0_io_lookup_8_word_4;
-  wire [11:0] _sorts_0_io_lookup_8_word_5;
-  wire [11:0] _sorts_0_io_lookup_8_word_6;
-  wire [11:0] _sorts_0_io_lookup_8_word_7;
-  wire [11:0] _sorts_0_io_lookup_8_word_8;
-  wire [11:0] _sorts_0_io_lookup_8_word_9;
-  wire [11:0] _sorts_0_io_lookup_8_word_10;
-  wire [11:0] _sorts_0_io_lookup_8_word_11;
-  wire [11:0] _sorts_0_io_lookup_8_word_12;
-  wire [11:0] _sorts_0_io_lookup_8_word_13;
-  wire [11:0] _sorts_0_io_lookup_8_word_14;
-  wire [11:0] _sorts_0_io_lookup_8_word_15;
-  wire [11:0] _sorts_0_io_lookup_9_begin;
-  wire [11:0] _sorts_0_io_lookup_9_end;
-  wire [11:0] _sorts_0_io_lookup_9_word_0;
-  wire [11:0] _sorts_0_io_lookup_9_word_1;
-  wire [11:0] _sorts_0_io_lookup_9_word_2;
-  wire [11:0] _sorts_0_io_lookup_9_word_3;
-  wire [11:0] _sorts_0_io_lookup_9_word_4;
-  wire [11:0] _sorts_0_io_lookup_9_word_5;
-  wire [11:0] _sorts_0_io_lookup_9_word_6;
-  wire [11:0] _sorts_0_io_lookup_9_word_7;
-  wire [11:0] _sorts_0_io_lookup_9_word_8;
-  wire [11:0] _sorts_0_io_lookup_9_word_9;
-  wire [11:0] _sorts_0_io_lookup_9_word_10;
-  wire [11:0] _sorts_0_io_lookup_9_word_11;
-  wire [11:0] _sorts_0_io_lookup_9_word_12;
-  wire [11:0] _sorts_0_io_lookup_9_word_13;
-  wire [11:0] _sorts_0_io_lookup_9_word_14;
-  wire [11:0] _sorts_0_io_lookup_9_word_15;
-  wire [11:0] _sorts_0_io_lookup_10_begin;
-  wire [11:0] _sorts_0_io_lookup_10_end;
-  wire [11:0] _sorts_0_io_lookup_10_word_0;
-  wire [11:0] _sorts_0_io_lookup_10_word_1;
-  wire [11:0] _sorts_0_io_lookup_10_word_2;
-  wire [11:0] _sorts_0_io_lookup_10_word_3;
-  wire [11:0] _sorts_0_io_lookup_10_word_4;
-  wire [11:0] _sorts_0_io_lookup_10_word_5;
-  wire [11:0] _sorts_0_io_lookup_10_word_6;
-  wire [11:0] _sorts_0_io_lookup_10_word_7;
-  wire [11:0] _sorts_0_io_lookup_10_word_8;
-  wire [11:0] _sorts_0_io_lookup_10_word_9;
-  wire [11:0] _sorts_0_io_lookup_10_word_10;
-  wire [11:0] _sorts_0_io_lookup_10_word_11;
-  wire [11:0] _sorts_0_io_lookup_10_word_12;
-  wire [11:0] _sorts_0_io_lookup_10_word_13;
-  wire [11:0] _sorts_0_io_lookup_10_word_14;
-  wire [11:0] _sorts_0_io_lookup_10_word_15;
-  wire [11:0] _sorts_0_io_lookup_11_begin;
-  wire [11:0] _sorts_0_io_lookup_11_end;
-  wire [11:0] _sorts_0_io_lookup_11_word_0;
-  wire [11:0] _sorts_0_io_lookup_11_word_1;
-  wire [11:0] _sorts_0_io_lookup_11_word_2;
-  wire [11:0] _sorts_0_io_lookup_11_word_3;
-  wire [11:0] _sorts_0_io_lookup_11_word_4;
-  wire [11:0] _sorts_0_io_lookup_11_word_5;
-  wire [11:0] _sorts_0_io_lookup_11_word_6;
-  wire [11:0] _sorts_0_io_lookup_11_word_7;
-  wire [11:0] _sorts_0_io_lookup_11_word_8;
-  wire [11:0] _sorts_0_io_lookup_11_word_9;
-  wire [11:0] _sorts_0_io_lookup_11_word_10;
-  wire [11:0] _sorts_0_io_lookup_11_word_11;
-  wire [11:0] _sorts_0_io_lookup_11_word_12;
-  wire [11:0] _sorts_0_io_lookup_11_word_13;
-  wire [11:0] _sorts_0_io_lookup_11_word_14;
-  wire [11:0] _sorts_0_io_lookup_11_word_15;
-  wire [11:0] _sorts_0_io_lookup_12_begin;
-  wire [11:0] _sorts_0_io_lookup_12_end;
-  wire [11:0] _sorts_0_io_lookup_12_word_0;
-  wire [11:0] _sorts_0_io_lookup_12_word_1;
-  wire [11:0] _sorts_0_io_lookup_12_word_2;
-  wire [11:0] _sorts_0_io_lookup_12_word_3;
-  wire [11:0] _sorts_0_io_lookup_12_word_4;
-  wire [11:0] _sorts_0_io_lookup_12_word_5;
-  wire [11:0] _sorts_0_io_lookup_12_word_6;
-  wire [11:0] _sorts_0_io_lookup_12_word_7;
-  wire [11:0] _sorts_0_io_lookup_12_word_8;
-  wire [11:0] _sorts_0_io_lookup_12_word_9;
-  wire [11:0] _sorts_0_io_lookup_12_word_10;
-  wire [11:0] _sorts_0_io_lookup_12_word_11;
-  wire [11:0] _sorts_0_io_lookup_12_word_12;
-  wire [11:0] _sorts_0_io_lookup_12_word_13;
-  wire [11:0] _sorts_0_io_lookup_12_word_14;
-  wire [11:0] _sorts_0_io_lookup_12_word_15;
-  wire [11:0] _sorts_0_io_lookup_13_begin;
-  wire [11:0] _sorts_0_io_lookup_13_end;
-  wire [11:0] _sorts_0_io_lookup_13_word_0;
-  wire [11:0] _sorts_0_io_lookup_13_word_1;
-  wire [11:0] _sorts_0_io_lookup_13_word_2;
-  wire [11:0] _sorts_0_io_lookup_13_word_3;
-  wire [11:0] _sorts_0_io_lookup_13_word_4;
-  wire [11:0] _sorts_0_io_lookup_13_word_5;
-  wire [11:0] _sorts_0_io_lookup_13_word_6;
-  wire [11:0] _sorts_0_io_lookup_13_word_7;
-  wire [11:0] _sorts_0_io_lookup_13_word_8;
-  wire [11:0] _sorts_0_io_lookup_13_word_9;
-  wire [11:0] _sorts_0_io_lookup_13_word_10;
-  wire [11:0] _sorts_0_io_lookup_13_word_11;
-  wire [11:0] _sorts_0_io_lookup_13_word_12;
-  wire [11:0] _sorts_0_io_lookup_13_word_13;
-  wire [11:0] _sorts_0_io_lookup_13_word_14;
-  wire [11:0] _sorts_0_io_lookup_13_word_15;
-  wire [11:0] _sorts_0_io_lookup_14_begin;
-  wire [11:0] _sorts_0_io_lookup_14_end;
-  wire [11:0] _sorts_0_io_lookup_14_word_0;
-  wire [11:0] _sorts_0_io_lookup_14_word_1;
-  wire [11:0] _sorts_0_io_lookup_14_word_2;
-  wire [11:0] _sorts_0_io_lookup_14_word_3;
-  wire [11:0] _sorts_0_io_lookup_14_word_4;
-  wire [11:0] _sorts_0_io_lookup_14_word_5;
-  wire [11:0] _sorts_0_io_lookup_14_word_6;
-  wire [11:0] _sorts_0_io_lookup_14_word_7;
-  wire [11:0] _sorts_0_io_lookup_14_word_8;
-  wire [11:0] _sorts_0_io_lookup_14_word_9;
-  wire [11:0] _sorts_0_io_lookup_14_word_10;
-  wire [11:0] _sorts_0_io_lookup_14_word_11;
-  wire [11:0] _sorts_0_io_lookup_14_word_12;
-  wire [11:0] _sorts_0_io_lookup_14_word_13;
-  wire [11:0] _sorts_0_io_lookup_14_word_14;
-  wire [11:0] _sorts_0_io_lookup_14_word_15;
-  wire [11:0] _sorts_0_io_lookup_15_begin;
-  wire [11:0] _sorts_0_io_lookup_15_end;
-  wire [11:0] _sorts_0_io_lookup_15_word_0;
-  wire [11:0] _sorts_0_io_lookup_15_word_1;
-  wire [11:0] _sorts_0_io_lookup_15_word_2;
-  wire [11:0] _sorts_0_io_lookup_15_word_3;
-  wire [11:0] _sorts_0_io_lookup_15_word_4;
-  wire [11:0] _sorts_0_io_lookup_15_word_5;
-  wire [11:0] _sorts_0_io_lookup_15_word_6;
-  wire [11:0] _sorts_0_io_lookup_15_word_7;
-  wire [11:0] _sorts_0_io_lookup_15_word_8;
-  wire [11:0] _sorts_0_io_lookup_15_word_9;
-  wire [11:0] _sorts_0_io_lookup_15_word_10;
-  wire [11:0] _sorts_0_io_lookup_15_word_11;
-  wire [11:0] _sorts_0_io_lookup_15_word_12;
-  wire [11:0] _sorts_0_io_lookup_15_word_13;
-  wire [11:0] _sorts_0_io_lookup_15_word_14;
-  wire [11:0] _sorts_0_io_lookup_15_word_15;
+  wire [10:0] _sorts_0_io_lookup_0_begin;
+  wire [10:0] _sorts_0_io_lookup_0_end;
+  wire [10:0] _sorts_0_io_lookup_0_word_0;
+  wire [10:0] _sorts_0_io_lookup_0_word_1;
+  wire [10:0] _sorts_0_io_lookup_0_word_2;
+  wire [10:0] _sorts_0_io_lookup_0_word_3;
+  wire [10:0] _sorts_0_io_lookup_0_word_4;
+  wire [10:0] _sorts_0_io_lookup_0_word_5;
+  wire [10:0] _sorts_0_io_lookup_0_word_6;
+  wire [10:0] _sorts_0_io_lookup_0_word_7;
+  wire [10:0] _sorts_0_io_lookup_0_word_8;
+  wire [10:0] _sorts_0_io_lookup_0_word_9;
+  wire [10:0] _sorts_0_io_lookup_0_word_10;
+  wire [10:0] _sorts_0_io_lookup_0_word_11;
+  wire [10:0] _sorts_0_io_lookup_0_word_12;
+  wire [10:0] _sorts_0_io_lookup_0_word_13;
+  wire [10:0] _sorts_0_io_lookup_0_word_14;
+  wire [10:0] _sorts_0_io_lookup_0_word_15;
+  wire [10:0] _sorts_0_io_lookup_1_begin;
+  wire [10:0] _sorts_0_io_lookup_1_end;
+  wire [10:0] _sorts_0_io_lookup_1_word_0;
+  wire [10:0] _sorts_0_io_lookup_1_word_1;
+  wire [10:0] _sorts_0_io_lookup_1_word_2;
+  wire [10:0] _sorts_0_io_lookup_1_word_3;
+  wire [10:0] _sorts_0_io_lookup_1_word_4;
+  wire [10:0] _sorts_0_io_lookup_1_word_5;
+  wire [10:0] _sorts_0_io_lookup_1_word_6;
+  wire [10:0] _sorts_0_io_lookup_1_word_7;
+  wire [10:0] _sorts_0_io_lookup_1_word_8;
+  wire [10:0] _sorts_0_io_lookup_1_word_9;
+  wire [10:0] _sorts_0_io_lookup_1_word_10;
+  wire [10:0] _sorts_0_io_lookup_1_word_11;
+  wire [10:0] _sorts_0_io_lookup_1_word_12;
+  wire [10:0] _sorts_0_io_lookup_1_word_13;
+  wire [10:0] _sorts_0_io_lookup_1_word_14;
+  wire [10:0] _sorts_0_io_lookup_1_word_15;
+  wire [10:0] _sorts_0_io_lookup_2_begin;
+  wire [10:0] _sorts_0_io_lookup_2_end;
+  wire [10:0] _sorts_0_io_lookup_2_word_0;
+  wire [10:0] _sorts_0_io_lookup_2_word_1;
+  wire [10:0] _sorts_0_io_lookup_2_word_2;
+  wire [10:0] _sorts_0_io_lookup_2_word_3;
+  wire [10:0] _sorts_0_io_lookup_2_word_4;
+  wire [10:0] _sorts_0_io_lookup_2_word_5;
+  wire [10:0] _sorts_0_io_lookup_2_word_6;
+  wire [10:0] _sorts_0_io_lookup_2_word_7;
+  wire [10:0] _sorts_0_io_lookup_2_word_8;
+  wire [10:0] _sorts_0_io_lookup_2_word_9;
+  wire [10:0] _sorts_0_io_lookup_2_word_10;
+  wire [10:0] _sorts_0_io_lookup_2_word_11;
+  wire [10:0] _sorts_0_io_lookup_2_word_12;
+  wire [10:0] _sorts_0_io_lookup_2_word_13;
+  wire [10:0] _sorts_0_io_lookup_2_word_14;
+  wire [10:0] _sorts_0_io_lookup_2_word_15;
+  wire [10:0] _sorts_0_io_lookup_3_begin;
+  wire [10:0] _sorts_0_io_lookup_3_end;
+  wire [10:0] _sorts_0_io_lookup_3_word_0;
+  wire [10:0] _sorts_0_io_lookup_3_word_1;
+  wire [10:0] _sorts_0_io_lookup_3_word_2;
+  wire [10:0] _sorts_0_io_lookup_3_word_3;
+  wire [10:0] _sorts_0_io_lookup_3_word_4;
+  wire [10:0] _sorts_0_io_lookup_3_word_5;
+  wire [10:0] _sorts_0_io_lookup_3_word_6;
+  wire [10:0] _sorts_0_io_lookup_3_word_7;
+  wire [10:0] _sorts_0_io_lookup_3_word_8;
+  wire [10:0] _sorts_0_io_lookup_3_word_9;
+  wire [10:0] _sorts_0_io_lookup_3_word_10;
+  wire [10:0] _sorts_0_io_lookup_3_word_11;
+  wire [10:0] _sorts_0_io_lookup_3_word_12;
+  wire [10:0] _sorts_0_io_lookup_3_word_13;
+  wire [10:0] _sorts_0_io_lookup_3_word_14;
+  wire [10:0] _sorts_0_io_lookup_3_word_15;
+  wire [10:0] _sorts_0_io_lookup_4_begin;
+  wire [10:0] _sorts_0_io_lookup_4_end;
+  wire [10:0] _sorts_0_io_lookup_4_word_0;
+  wire [10:0] _sorts_0_io_lookup_4_word_1;
+  wire [10:0] _sorts_0_io_lookup_4_word_2;
+  wire [10:0] _sorts_0_io_lookup_4_word_3;
+  wire [10:0] _sorts_0_io_lookup_4_word_4;
+  wire [10:0] _sorts_0_io_lookup_4_word_5;
+  wire [10:0] _sorts_0_io_lookup_4_word_6;
+  wire [10:0] _sorts_0_io_lookup_4_word_7;
+  wire [10:0] _sorts_0_io_lookup_4_word_8;
+  wire [10:0] _sorts_0_io_lookup_4_word_9;
+  wire [10:0] _sorts_0_io_lookup_4_word_10;
+  wire [10:0] _sorts_0_io_lookup_4_word_11;
+  wire [10:0] _sorts_0_io_lookup_4_word_12;
+  wire [10:0] _sorts_0_io_lookup_4_word_13;
+  wire [10:0] _sorts_0_io_lookup_4_word_14;
+  wire [10:0] _sorts_0_io_lookup_4_word_15;
+  wire [10:0] _sorts_0_io_lookup_5_begin;
+  wire [10:0] _sorts_0_io_lookup_5_end;
+  wire [10:0] _sorts_0_io_lookup_5_word_0;
+  wire [10:0] _sorts_0_io_lookup_5_word_1;
+  wire [10:0] _sorts_0_io_lookup_5_word_2;
+  wire [10:0] _sorts_0_io_lookup_5_word_3;
+  wire [10:0] _sorts_0_io_lookup_5_word_4;
+  wire [10:0] _sorts_0_io_lookup_5_word_5;
+  wire [10:0] _sorts_0_io_lookup_5_word_6;
+  wire [10:0] _sorts_0_io_lookup_5_word_7;
+  wire [10:0] _sorts_0_io_lookup_5_word_8;
+  wire [10:0] _sorts_0_io_lookup_5_word_9;
+  wire [10:0] _sorts_0_io_lookup_5_word_10;
+  wire [10:0] _sorts_0_io_lookup_5_word_11;
+  wire [10:0] _sorts_0_io_lookup_5_word_12;
+  wire [10:0] _sorts_0_io_lookup_5_word_13;
+  wire [10:0] _sorts_0_io_lookup_5_word_14;
+  wire [10:0] _sorts_0_io_lookup_5_word_15;
+  wire [10:0] _sorts_0_io_lookup_6_begin;
+  wire [10:0] _sorts_0_io_lookup_6_end;
+  wire [10:0] _sorts_0_io_lookup_6_word_0;
+  wire [10:0] _sorts_0_io_lookup_6_word_1;
+  wire [10:0] _sorts_0_io_lookup_6_word_2;
+  wire [10:0] _sorts_0_io_lookup_6_word_3;
+  wire [10:0] _sorts_0_io_lookup_6_word_4;
+  wire [10:0] _sorts_0_io_lookup_6_word_5;
+  wire [10:0] _sorts_0_io_lookup_6_word_6;
+  wire [10:0] _sorts_0_io_lookup_6_word_7;
+  wire [10:0] _sorts_0_io_lookup_6_word_8;
+  wire [10:0] _sorts_0_io_lookup_6_word_9;
+  wire [10:0] _sorts_0_io_lookup_6_word_10;
+  wire [10:0] _sorts_0_io_lookup_6_word_11;
+  wire [10:0] _sorts_0_io_lookup_6_word_12;
+  wire [10:0] _sorts_0_io_lookup_6_word_13;
+  wire [10:0] _sorts_0_io_lookup_6_word_14;
+  wire [10:0] _sorts_0_io_lookup_6_word_15;
+  wire [10:0] _sorts_0_io_lookup_7_begin;
+  wire [10:0] _sorts_0_io_lookup_7_end;
+  wire [10:0] _sorts_0_io_lookup_7_word_0;
+  wire [10:0] _sorts_0_io_lookup_7_word_1;
+  wire [10:0] _sorts_0_io_lookup_7_word_2;
+  wire [10:0] _sorts_0_io_lookup_7_word_3;
+  wire [10:0] _sorts_0_io_lookup_7_word_4;
+  wire [10:0] _sorts_0_io_lookup_7_word_5;
+  wire [10:0] _sorts_0_io_lookup_7_word_6;
+  wire [10:0] _sorts_0_io_lookup_7_word_7;
+  wire [10:0] _sorts_0_io_lookup_7_word_8;
+  wire [10:0] _sorts_0_io_lookup_7_word_9;
+  wire [10:0] _sorts_0_io_lookup_7_word_10;
+  wire [10:0] _sorts_0_io_lookup_7_word_11;
+  wire [10:0] _sorts_0_io_lookup_7_word_12;
+  wire [10:0] _sorts_0_io_lookup_7_word_13;
+  wire [10:0] _sorts_0_io_lookup_7_word_14;
+  wire [10:0] _sorts_0_io_lookup_7_word_15;
+  wire [10:0] _sorts_0_io_lookup_8_begin;
+  wire [10:0] _sorts_0_io_lookup_8_end;
+  wire [10:0] _sorts_0_io_lookup_8_word_0;
+  wire [10:0] _sorts_0_io_lookup_8_word_1;
+  wire [10:0] _sorts_0_io_lookup_8_word_2;
+  wire [10:0] _sorts_0_io_lookup_8_word_3;
+  wire [10:0] _sorts_0_io_lookup_8_word_4;
+  wire [10:0] _sorts_0_io_lookup_8_word_5;
+  wire [10:0] _sorts_0_io_lookup_8_word_6;
+  wire [10:0] _sorts_0_io_lookup_8_word_7;
+  wire [10:0] _sorts_0_io_lookup_8_word_8;
+  wire [10:0] _sorts_0_io_lookup_8_word_9;
+  wire [10:0] _sorts_0_io_lookup_8_word_10;
+  wire [10:0] _sorts_0_io_lookup_8_word_11;
+  wire [10:0] _sorts_0_io_lookup_8_word_12;
+  wire [10:0] _sorts_0_io_lookup_8_word_13;
+  wire [10:0] _sorts_0_io_lookup_8_word_14;
+  wire [10:0] _sorts_0_io_lookup_8_word_15;
+  wire [10:0] _sorts_0_io_lookup_9_begin;
+  wire [10:0] _sorts_0_io_lookup_9_end;
+  wire [10:0] _sorts_0_io_lookup_9_word_0;
+  wire [10:0] _sorts_0_io_lookup_9_word_1;
+  wire [10:0] _sorts_0_io_lookup_9_word_2;
+  wire [10:0] _sorts_0_io_lookup_9_word_3;
+  wire [10:0] _sorts_0_io_lookup_9_word_4;
+  wire [10:0] _sorts_0_io_lookup_9_word_5;
+  wire [10:0] _sorts_0_io_lookup_9_word_6;
+  wire [10:0] _sorts_0_io_lookup_9_word_7;
+  wire [10:0] _sorts_0_io_lookup_9_word_8;
+  wire [10:0] _sorts_0_io_lookup_9_word_9;
+  wire [10:0] _sorts_0_io_lookup_9_word_10;
+  wire [10:0] _sorts_0_io_lookup_9_word_11;
+  wire [10:0] _sorts_0_io_lookup_9_word_12;
+  wire [10:0] _sorts_0_io_lookup_9_word_13;
+  wire [10:0] _sorts_0_io_lookup_9_word_14;
+  wire [10:0] _sorts_0_io_lookup_9_word_15;
+  wire [10:0] _sorts_0_io_lookup_10_begin;
+  wire [10:0] _sorts_0_io_lookup_10_end;
+  wire [10:0] _sorts_0_io_lookup_10_word_0;
+  wire [10:0] _sorts_0_io_lookup_10_word_1;
+  wire [10:0] _sorts_0_io_lookup_10_word_2;
+  wire [10:0] _sorts_0_io_lookup_10_word_3;
+  wire [10:0] _sorts_0_io_lookup_10_word_4;
+  wire [10:0] _sorts_0_io_lookup_10_word_5;
+  wire [10:0] _sorts_0_io_lookup_10_word_6;
+  wire [10:0] _sorts_0_io_lookup_10_word_7;
+  wire [10:0] _sorts_0_io_lookup_10_word_8;
+  wire [10:0] _sorts_0_io_lookup_10_word_9;
+  wire [10:0] _sorts_0_io_lookup_10_word_10;
+  wire [10:0] _sorts_0_io_lookup_10_word_11;
+  wire [10:0] _sorts_0_io_lookup_10_word_12;
+  wire [10:0] _sorts_0_io_lookup_10_word_13;
+  wire [10:0] _sorts_0_io_lookup_10_word_14;
+  wire [10:0] _sorts_0_io_lookup_10_word_15;
+  wire [10:0] _sorts_0_io_lookup_11_begin;
+  wire [10:0] _sorts_0_io_lookup_11_end;
+  wire [10:0] _sorts_0_io_lookup_11_word_0;
+  wire [10:0] _sorts_0_io_lookup_11_word_1;
+  wire [10:0] _sorts_0_io_lookup_11_word_2;
+  wire [10:0] _sorts_0_io_lookup_11_word_3;
+  wire [10:0] _sorts_0_io_lookup_11_word_4;
+  wire [10:0] _sorts_0_io_lookup_11_word_5;
+  wire [10:0] _sorts_0_io_lookup_11_word_6;
+  wire [10:0] _sorts_0_io_lookup_11_word_7;
+  wire [10:0] _sorts_0_io_lookup_11_word_8;
+  wire [10:0] _sorts_0_io_lookup_11_word_9;
+  wire [10:0] _sorts_0_io_lookup_11_word_10;
+  wire [10:0] _sorts_0_io_lookup_11_word_11;
+  wire [10:0] _sorts_0_io_lookup_11_word_12;
+  wire [10:0] _sorts_0_io_lookup_11_word_13;
+  wire [10:0] _sorts_0_io_lookup_11_word_14;
+  wire [10:0] _sorts_0_io_lookup_11_word_15;
+  wire [10:0] _sorts_0_io_lookup_12_begin;
+  wire [10:0] _sorts_0_io_lookup_12_end;
+  wire [10:0] _sorts_0_io_lookup_12_word_0;
+  wire [10:0] _sorts_0_io_lookup_12_word_1;
+  wire [10:0] _sorts_0_io_lookup_12_word_2;
+  wire [10:0] _sorts_0_io_lookup_12_word_3;
+  wire [10:0] _sorts_0_io_lookup_12_word_4;
+  wire [10:0] _sorts_0_io_lookup_12_word_5;
+  wire [10:0] _sorts_0_io_lookup_12_word_6;
+  wire [10:0] _sorts_0_io_lookup_12_word_7;
+  wire [10:0] _sorts_0_io_lookup_12_word_8;
+  wire [10:0] _sorts_0_io_lookup_12_word_9;
+  wire [10:0] _sorts_0_io_lookup_12_word_10;
+  wire [10:0] _sorts_0_io_lookup_12_word_11;
+  wire [10:0] _sorts_0_io_lookup_12_word_12;
+  wire [10:0] _sorts_0_io_lookup_12_word_13;
+  wire [10:0] _sorts_0_io_lookup_12_word_14;
+  wire [10:0] _sorts_0_io_lookup_12_word_15;
+  wire [10:0] _sorts_0_io_lookup_13_begin;
+  wire [10:0] _sorts_0_io_lookup_13_end;
+  wire [10:0] _sorts_0_io_lookup_13_word_0;
+  wire [10:0] _sorts_0_io_lookup_13_word_1;
+  wire [10:0] _sorts_0_io_lookup_13_word_2;
+  wire [10:0] _sorts_0_io_lookup_13_word_3;
+  wire [10:0] _sorts_0_io_lookup_13_word_4;
+  wire [10:0] _sorts_0_io_lookup_13_word_5;
+  wire [10:0] _sorts_0_io_lookup_13_word_6;
+  wire [10:0] _sorts_0_io_lookup_13_word_7;
+  wire [10:0] _sorts_0_io_lookup_13_word_8;
+  wire [10:0] _sorts_0_io_lookup_13_word_9;
+  wire [10:0] _sorts_0_io_lookup_13_word_10;
+  wire [10:0] _sorts_0_io_lookup_13_word_11;
+  wire [10:0] _sorts_0_io_lookup_13_word_12;
+  wire [10:0] _sorts_0_io_lookup_13_word_13;
+  wire [10:0] _sorts_0_io_lookup_13_word_14;
+  wire [10:0] _sorts_0_io_lookup_13_word_15;
+  wire [10:0] _sorts_0_io_lookup_14_begin;
+  wire [10:0] _sorts_0_io_lookup_14_end;
+  wire [10:0] _sorts_0_io_lookup_14_word_0;
+  wire [10:0] _sorts_0_io_lookup_14_word_1;
+  wire [10:0] _sorts_0_io_lookup_14_word_2;
+  wire [10:0] _sorts_0_io_lookup_14_word_3;
+  wire [10:0] _sorts_0_io_lookup_14_word_4;
+  wire [10:0] _sorts_0_io_lookup_14_word_5;
+  wire [10:0] _sorts_0_io_lookup_14_word_6;
+  wire [10:0] _sorts_0_io_lookup_14_word_7;
+  wire [10:0] _sorts_0_io_lookup_14_word_8;
+  wire [10:0] _sorts_0_io_lookup_14_word_9;
+  wire [10:0] _sorts_0_io_lookup_14_word_10;
+  wire [10:0] _sorts_0_io_lookup_14_word_11;
+  wire [10:0] _sorts_0_io_lookup_14_word_12;
+  wire [10:0] _sorts_0_io_lookup_14_word_13;
+  wire [10:0] _sorts_0_io_lookup_14_word_14;
+  wire [10:0] _sorts_0_io_lookup_14_word_15;
+  wire [10:0] _sorts_0_io_lookup_15_begin;
+  wire [10:0] _sorts_0_io_lookup_15_end;
+  wire [10:0] _sorts_0_io_lookup_15_word_0;
+  wire [10:0] _sorts_0_io_lookup_15_word_1;
+  wire [10:0] _sorts_0_io_lookup_15_word_2;
+  wire [10:0] _sorts_0_io_lookup_15_word_3;
+  wire [10:0] _sorts_0_io_lookup_15_word_4;
+  wire [10:0] _sorts_0_io_lookup_15_word_5;
+  wire [10:0] _sorts_0_io_lookup_15_word_6;
+  wire [10:0] _sorts_0_io_lookup_15_word_7;
+  wire [10:0] _sorts_0_io_lookup_15_word_8;
+  wire [10:0] _sorts_0_io_lookup_15_word_9;
+  wire [10:0] _sorts_0_io_lookup_15_word_10;
+  wire [10:0] _sorts_0_io_lookup_15_word_11;
+  wire [10:0] _sorts_0_io_lookup_15_word_12;
+  wire [10:0] _sorts_0_io_lookup_15_word_13;
+  wire [10:0] _sorts_0_io_lookup_15_word_14;
+  wire [10:0] _sorts_0_io_lookup_15_word_15;
   wire [11:0] _sorts_0_io_entry_0_item;
   wire        _sorts_0_io_entry_0_mark;
   wire [11:0] _sorts_0_io_entry_1_item;
@@ -25226,8 +26342,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   wire        _sorts_0_io_entry_14_mark;
   wire [11:0] _sorts_0_io_entry_15_item;
   wire        _sorts_0_io_entry_15_mark;
-  wire [11:0] _sorts_0_io_counted;
-  wire [11:0] _sorts_0_io_scattered;
+  wire [10:0] _sorts_0_io_counted;
+  wire [10:0] _sorts_0_io_scattered;
   wire        _sorts_0_io_badBucket;
   wire [13:0] _cellExp_io_level;
   wire [13:0] _laneExps_15_io_kept_0;
@@ -25550,7 +26666,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   wire [4:0]  _laneExps_0_io_used;
   wire [13:0] _laneExps_0_io_top;
   wire        _laneExps_0_io_anyTop;
-  wire        sortBusy = _sorts_0_io_busy | _sorts_1_io_busy;
+  wire        sortBusy =
+    _sorts_0_io_busy | _sorts_1_io_busy | _sorts_2_io_busy | _sorts_3_io_busy;
   reg  [11:0] larges_0_index;
   reg  [28:0] larges_0_q_0;
   reg  [28:0] larges_0_q_1;
@@ -25649,8 +26766,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   reg  [4:0]  largeCount;
   wire        _loading_T = state == 3'h2;
   wire        classifying = state == 3'h4;
-  wire        _sorts_1_io_in_1_bits_scatter_T = state == 3'h6;
-  wire        inPass = _loading_T | classifying | _sorts_1_io_in_1_bits_scatter_T;
+  wire        _sorts_3_io_in_1_bits_scatter_T = state == 3'h6;
+  wire        inPass = _loading_T | classifying | _sorts_3_io_in_1_bits_scatter_T;
   reg  [12:0] i_0;
   reg  [12:0] i_1;
   reg  [12:0] i_2;
@@ -25668,46 +26785,53 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   reg  [12:0] i_14;
   reg  [12:0] i_15;
   wire [12:0] _GEN = {4'h0, num[12:4]};
-  wire [12:0] _GEN_0 = {2'h0, num[12:2]};
+  wire [12:0] _GEN_0 = {3'h0, num[12:3]};
   wire        reading_0 = inPass & i_0 < (_loading_T ? _GEN : _GEN_0);
-  wire [12:0] _GEN_1 = {3'h0, num[12:3]};
-  wire        reading_1 = inPass & i_1 < (_loading_T ? _GEN_1 : {1'h0, num[12:1]});
+  wire [12:0] _GEN_1 = {2'h0, num[12:2]};
+  wire        reading_1 = inPass & i_1 < (_loading_T ? _GEN_0 : _GEN_1);
   wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
-  wire [14:0] _i_3_T_16 = {2'h0, num} * 15'h3;
+  wire [14:0] _i_3_T_17 = {2'h0, num} * 15'h3;
   wire        reading_2 =
-    inPass & i_2 < (_loading_T ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : _i_3_T_16[14:2]);
+    inPass
+    & i_2 < (_loading_T
+               ? {2'h0, _gens_3_io_largeFrom_T[26:16]}
+               : {1'h0, _i_3_T_17[14:3]});
   wire [27:0] _GEN_2 = {15'h0, num};
-  wire        reading_3 = inPass & i_3 < (_loading_T ? _GEN_0 : num);
+  wire [15:0] _GEN_3 = {3'h0, num};
+  wire        reading_3 = inPass & i_3 < (_loading_T ? _GEN_1 : {1'h0, num[12:1]});
   wire [27:0] _gens_5_io_largeFrom_T = _GEN_2 * 28'h5000;
+  wire [15:0] _i_5_T_16 = _GEN_3 * 16'h5;
   wire        reading_4 =
-    inPass & i_4 < (_loading_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : 13'h0);
+    inPass & i_4 < (_loading_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_16[15:3]);
   wire [27:0] _gens_6_io_largeFrom_T = _GEN_2 * 28'h6000;
+  wire [15:0] _i_6_T_16 = _GEN_3 * 16'h6;
   wire        reading_5 =
-    inPass & i_5 < (_loading_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : 13'h0);
+    inPass & i_5 < (_loading_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_16[15:3]);
   wire [27:0] _gens_7_io_largeFrom_T = _GEN_2 * 28'h7000;
+  wire [15:0] _i_7_T_15 = _GEN_3 * 16'h7;
   wire        reading_6 =
-    inPass & i_6 < (_loading_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : 13'h0);
-  wire [28:0] _GEN_3 = {16'h0, num};
-  wire        reading_7 = inPass & i_7 < (_loading_T ? {1'h0, num[12:1]} : 13'h0);
-  wire [28:0] _gens_9_io_largeFrom_T = _GEN_3 * 29'h9000;
+    inPass & i_6 < (_loading_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_15[15:3]);
+  wire [28:0] _GEN_4 = {16'h0, num};
+  wire        reading_7 = inPass & i_7 < (_loading_T ? {1'h0, num[12:1]} : num);
+  wire [28:0] _gens_9_io_largeFrom_T = _GEN_4 * 29'h9000;
   wire        reading_8 =
     inPass & i_8 < (_loading_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_10_io_largeFrom_T = _GEN_3 * 29'hA000;
+  wire [28:0] _gens_10_io_largeFrom_T = _GEN_4 * 29'hA000;
   wire        reading_9 =
     inPass & i_9 < (_loading_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_11_io_largeFrom_T = _GEN_3 * 29'hB000;
+  wire [28:0] _gens_11_io_largeFrom_T = _GEN_4 * 29'hB000;
   wire        reading_10 =
     inPass & i_10 < (_loading_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_12_io_largeFrom_T = _GEN_3 * 29'hC000;
+  wire [28:0] _gens_12_io_largeFrom_T = _GEN_4 * 29'hC000;
   wire        reading_11 =
     inPass & i_11 < (_loading_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_13_io_largeFrom_T = _GEN_3 * 29'hD000;
+  wire [28:0] _gens_13_io_largeFrom_T = _GEN_4 * 29'hD000;
   wire        reading_12 =
     inPass & i_12 < (_loading_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_14_io_largeFrom_T = _GEN_3 * 29'hE000;
+  wire [28:0] _gens_14_io_largeFrom_T = _GEN_4 * 29'hE000;
   wire        reading_13 =
     inPass & i_13 < (_loading_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_15_io_largeFrom_T = _GEN_3 * 29'hF000;
+  wire [28:0] _gens_15_io_largeFrom_T = _GEN_4 * 29'hF000;
   wire        reading_14 =
     inPass & i_14 < (_loading_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
   wire        reading_15 = inPass & i_15 < (_loading_T ? num : 13'h0);
@@ -25754,6 +26878,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   reg  [11:0] r_2;
   reg  [11:0] REG_3;
   reg  [11:0] r_3;
+  reg  [11:0] REG_4;
+  reg  [11:0] r_4;
+  reg  [11:0] REG_5;
+  reg  [11:0] r_5;
+  reg  [11:0] REG_6;
+  reg  [11:0] r_6;
+  reg  [11:0] REG_7;
+  reg  [11:0] r_7;
   wire        _sorts_0_io_in_0_valid_T_8 =
     $signed(_laneKeys_0_io_out_need) > $signed(_cellExp_io_level);
   wire        _sorts_0_io_in_1_valid_T_8 =
@@ -25762,6 +26894,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     $signed(_laneKeys_2_io_out_need) > $signed(_cellExp_io_level);
   wire        _sorts_1_io_in_1_valid_T_8 =
     $signed(_laneKeys_3_io_out_need) > $signed(_cellExp_io_level);
+  wire        _sorts_2_io_in_0_valid_T_8 =
+    $signed(_laneKeys_4_io_out_need) > $signed(_cellExp_io_level);
+  wire        _sorts_2_io_in_1_valid_T_8 =
+    $signed(_laneKeys_5_io_out_need) > $signed(_cellExp_io_level);
+  wire        _sorts_3_io_in_0_valid_T_8 =
+    $signed(_laneKeys_6_io_out_need) > $signed(_cellExp_io_level);
+  wire        _sorts_3_io_in_1_valid_T_8 =
+    $signed(_laneKeys_7_io_out_need) > $signed(_cellExp_io_level);
   reg  [8:0]  m;
   wire [8:0]  mergeEnd = fed ? 9'h44 : 9'h110;
   wire        loading = _loading_T | filling;
@@ -34198,28 +35338,48 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     $signed(slack_e) < 15'sh0
       ? 29'h2
       : $signed(slack_e) > 15'sh1B ? 29'h1FFFFFFF : _slack_T_3[28:0] + 29'h1;
-  wire        _sorts_1_io_prefix_T = state == 3'h5;
+  wire        _sorts_3_io_prefix_T = state == 3'h5;
   wire        _sorts_0_io_in_0_valid_T_12 =
-    _laneKeys_0_io_out_valid & (classifying | _sorts_1_io_in_1_bits_scatter_T)
+    _laneKeys_0_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_0_io_out_nonFinite
     & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
         & _sorts_0_io_in_0_valid_T_8);
-  wire [28:0] _sorts_1_io_in_1_bits_bucket_mask_T = 29'h1 << usedLog2;
+  wire [28:0] _sorts_3_io_in_1_bits_bucket_mask_T = 29'h1 << usedLog2;
   wire        _sorts_0_io_in_1_valid_T_12 =
-    _laneKeys_1_io_out_valid & (classifying | _sorts_1_io_in_1_bits_scatter_T)
+    _laneKeys_1_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_1_io_out_nonFinite
     & ~(~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
         & _sorts_0_io_in_1_valid_T_8);
   wire        _sorts_1_io_in_0_valid_T_12 =
-    _laneKeys_2_io_out_valid & (classifying | _sorts_1_io_in_1_bits_scatter_T)
+    _laneKeys_2_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_2_io_out_nonFinite
     & ~(~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
         & _sorts_1_io_in_0_valid_T_8);
   wire        _sorts_1_io_in_1_valid_T_12 =
-    _laneKeys_3_io_out_valid & (classifying | _sorts_1_io_in_1_bits_scatter_T)
+    _laneKeys_3_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_3_io_out_nonFinite
     & ~(~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
         & _sorts_1_io_in_1_valid_T_8);
+  wire        _sorts_2_io_in_0_valid_T_12 =
+    _laneKeys_4_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
+    & ~_laneKeys_4_io_out_nonFinite
+    & ~(~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
+        & _sorts_2_io_in_0_valid_T_8);
+  wire        _sorts_2_io_in_1_valid_T_12 =
+    _laneKeys_5_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
+    & ~_laneKeys_5_io_out_nonFinite
+    & ~(~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
+        & _sorts_2_io_in_1_valid_T_8);
+  wire        _sorts_3_io_in_0_valid_T_12 =
+    _laneKeys_6_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
+    & ~_laneKeys_6_io_out_nonFinite
+    & ~(~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
+        & _sorts_3_io_in_0_valid_T_8);
+  wire        _sorts_3_io_in_1_valid_T_12 =
+    _laneKeys_7_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
+    & ~_laneKeys_7_io_out_nonFinite
+    & ~(~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
+        & _sorts_3_io_in_1_valid_T_8);
   `ifndef SYNTHESIS
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
@@ -34246,409 +35406,849 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
         if (`STOP_COND_)
           $fatal;
       end
+      if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  reg         entryGroup;
-  reg         entryGroup_1;
-  reg         entryGroup_2;
-  reg         entryGroup_3;
-  reg         entryGroup_4;
-  reg         entryGroup_5;
-  reg         entryGroup_6;
-  reg         entryGroup_7;
-  reg         entryGroup_8;
-  reg         entryGroup_9;
-  reg         entryGroup_10;
-  reg         entryGroup_11;
-  reg         entryGroup_12;
-  reg         entryGroup_13;
-  reg         entryGroup_14;
-  reg         entryGroup_15;
-  wire        _GEN_4 = passDone & ~sortBusy;
+  reg  [1:0]  entryGroup;
+  reg  [11:0] casez_tmp_7;
+  always @(*) begin
+    casez (entryGroup)
+      2'b00:
+        casez_tmp_7 = _sorts_0_io_entry_0_item;
+      2'b01:
+        casez_tmp_7 = _sorts_1_io_entry_0_item;
+      2'b10:
+        casez_tmp_7 = _sorts_2_io_entry_0_item;
+      default:
+        casez_tmp_7 = _sorts_3_io_entry_0_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_8;
+  always @(*) begin
+    casez (entryGroup)
+      2'b00:
+        casez_tmp_8 = _sorts_0_io_entry_0_mark;
+      2'b01:
+        casez_tmp_8 = _sorts_1_io_entry_0_mark;
+      2'b10:
+        casez_tmp_8 = _sorts_2_io_entry_0_mark;
+      default:
+        casez_tmp_8 = _sorts_3_io_entry_0_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_1;
+  reg  [11:0] casez_tmp_9;
+  always @(*) begin
+    casez (entryGroup_1)
+      2'b00:
+        casez_tmp_9 = _sorts_0_io_entry_1_item;
+      2'b01:
+        casez_tmp_9 = _sorts_1_io_entry_1_item;
+      2'b10:
+        casez_tmp_9 = _sorts_2_io_entry_1_item;
+      default:
+        casez_tmp_9 = _sorts_3_io_entry_1_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_10;
+  always @(*) begin
+    casez (entryGroup_1)
+      2'b00:
+        casez_tmp_10 = _sorts_0_io_entry_1_mark;
+      2'b01:
+        casez_tmp_10 = _sorts_1_io_entry_1_mark;
+      2'b10:
+        casez_tmp_10 = _sorts_2_io_entry_1_mark;
+      default:
+        casez_tmp_10 = _sorts_3_io_entry_1_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_2;
+  reg  [11:0] casez_tmp_11;
+  always @(*) begin
+    casez (entryGroup_2)
+      2'b00:
+        casez_tmp_11 = _sorts_0_io_entry_2_item;
+      2'b01:
+        casez_tmp_11 = _sorts_1_io_entry_2_item;
+      2'b10:
+        casez_tmp_11 = _sorts_2_io_entry_2_item;
+      default:
+        casez_tmp_11 = _sorts_3_io_entry_2_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_12;
+  always @(*) begin
+    casez (entryGroup_2)
+      2'b00:
+        casez_tmp_12 = _sorts_0_io_entry_2_mark;
+      2'b01:
+        casez_tmp_12 = _sorts_1_io_entry_2_mark;
+      2'b10:
+        casez_tmp_12 = _sorts_2_io_entry_2_mark;
+      default:
+        casez_tmp_12 = _sorts_3_io_entry_2_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_3;
+  reg  [11:0] casez_tmp_13;
+  always @(*) begin
+    casez (entryGroup_3)
+      2'b00:
+        casez_tmp_13 = _sorts_0_io_entry_3_item;
+      2'b01:
+        casez_tmp_13 = _sorts_1_io_entry_3_item;
+      2'b10:
+        casez_tmp_13 = _sorts_2_io_entry_3_item;
+      default:
+        casez_tmp_13 = _sorts_3_io_entry_3_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_14;
+  always @(*) begin
+    casez (entryGroup_3)
+      2'b00:
+        casez_tmp_14 = _sorts_0_io_entry_3_mark;
+      2'b01:
+        casez_tmp_14 = _sorts_1_io_entry_3_mark;
+      2'b10:
+        casez_tmp_14 = _sorts_2_io_entry_3_mark;
+      default:
+        casez_tmp_14 = _sorts_3_io_entry_3_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_4;
+  reg  [11:0] casez_tmp_15;
+  always @(*) begin
+    casez (entryGroup_4)
+      2'b00:
+        casez_tmp_15 = _sorts_0_io_entry_4_item;
+      2'b01:
+        casez_tmp_15 = _sorts_1_io_entry_4_item;
+      2'b10:
+        casez_tmp_15 = _sorts_2_io_entry_4_item;
+      default:
+        casez_tmp_15 = _sorts_3_io_entry_4_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_16;
+  always @(*) begin
+    casez (entryGroup_4)
+      2'b00:
+        casez_tmp_16 = _sorts_0_io_entry_4_mark;
+      2'b01:
+        casez_tmp_16 = _sorts_1_io_entry_4_mark;
+      2'b10:
+        casez_tmp_16 = _sorts_2_io_entry_4_mark;
+      default:
+        casez_tmp_16 = _sorts_3_io_entry_4_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_5;
+  reg  [11:0] casez_tmp_17;
+  always @(*) begin
+    casez (entryGroup_5)
+      2'b00:
+        casez_tmp_17 = _sorts_0_io_entry_5_item;
+      2'b01:
+        casez_tmp_17 = _sorts_1_io_entry_5_item;
+      2'b10:
+        casez_tmp_17 = _sorts_2_io_entry_5_item;
+      default:
+        casez_tmp_17 = _sorts_3_io_entry_5_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_18;
+  always @(*) begin
+    casez (entryGroup_5)
+      2'b00:
+        casez_tmp_18 = _sorts_0_io_entry_5_mark;
+      2'b01:
+        casez_tmp_18 = _sorts_1_io_entry_5_mark;
+      2'b10:
+        casez_tmp_18 = _sorts_2_io_entry_5_mark;
+      default:
+        casez_tmp_18 = _sorts_3_io_entry_5_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_6;
+  reg  [11:0] casez_tmp_19;
+  always @(*) begin
+    casez (entryGroup_6)
+      2'b00:
+        casez_tmp_19 = _sorts_0_io_entry_6_item;
+      2'b01:
+        casez_tmp_19 = _sorts_1_io_entry_6_item;
+      2'b10:
+        casez_tmp_19 = _sorts_2_io_entry_6_item;
+      default:
+        casez_tmp_19 = _sorts_3_io_entry_6_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_20;
+  always @(*) begin
+    casez (entryGroup_6)
+      2'b00:
+        casez_tmp_20 = _sorts_0_io_entry_6_mark;
+      2'b01:
+        casez_tmp_20 = _sorts_1_io_entry_6_mark;
+      2'b10:
+        casez_tmp_20 = _sorts_2_io_entry_6_mark;
+      default:
+        casez_tmp_20 = _sorts_3_io_entry_6_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_7;
+  reg  [11:0] casez_tmp_21;
+  always @(*) begin
+    casez (entryGroup_7)
+      2'b00:
+        casez_tmp_21 = _sorts_0_io_entry_7_item;
+      2'b01:
+        casez_tmp_21 = _sorts_1_io_entry_7_item;
+      2'b10:
+        casez_tmp_21 = _sorts_2_io_entry_7_item;
+      default:
+        casez_tmp_21 = _sorts_3_io_entry_7_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_22;
+  always @(*) begin
+    casez (entryGroup_7)
+      2'b00:
+        casez_tmp_22 = _sorts_0_io_entry_7_mark;
+      2'b01:
+        casez_tmp_22 = _sorts_1_io_entry_7_mark;
+      2'b10:
+        casez_tmp_22 = _sorts_2_io_entry_7_mark;
+      default:
+        casez_tmp_22 = _sorts_3_io_entry_7_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_8;
+  reg  [11:0] casez_tmp_23;
+  always @(*) begin
+    casez (entryGroup_8)
+      2'b00:
+        casez_tmp_23 = _sorts_0_io_entry_8_item;
+      2'b01:
+        casez_tmp_23 = _sorts_1_io_entry_8_item;
+      2'b10:
+        casez_tmp_23 = _sorts_2_io_entry_8_item;
+      default:
+        casez_tmp_23 = _sorts_3_io_entry_8_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_24;
+  always @(*) begin
+    casez (entryGroup_8)
+      2'b00:
+        casez_tmp_24 = _sorts_0_io_entry_8_mark;
+      2'b01:
+        casez_tmp_24 = _sorts_1_io_entry_8_mark;
+      2'b10:
+        casez_tmp_24 = _sorts_2_io_entry_8_mark;
+      default:
+        casez_tmp_24 = _sorts_3_io_entry_8_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_9;
+  reg  [11:0] casez_tmp_25;
+  always @(*) begin
+    casez (entryGroup_9)
+      2'b00:
+        casez_tmp_25 = _sorts_0_io_entry_9_item;
+      2'b01:
+        casez_tmp_25 = _sorts_1_io_entry_9_item;
+      2'b10:
+        casez_tmp_25 = _sorts_2_io_entry_9_item;
+      default:
+        casez_tmp_25 = _sorts_3_io_entry_9_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_26;
+  always @(*) begin
+    casez (entryGroup_9)
+      2'b00:
+        casez_tmp_26 = _sorts_0_io_entry_9_mark;
+      2'b01:
+        casez_tmp_26 = _sorts_1_io_entry_9_mark;
+      2'b10:
+        casez_tmp_26 = _sorts_2_io_entry_9_mark;
+      default:
+        casez_tmp_26 = _sorts_3_io_entry_9_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_10;
+  reg  [11:0] casez_tmp_27;
+  always @(*) begin
+    casez (entryGroup_10)
+      2'b00:
+        casez_tmp_27 = _sorts_0_io_entry_10_item;
+      2'b01:
+        casez_tmp_27 = _sorts_1_io_entry_10_item;
+      2'b10:
+        casez_tmp_27 = _sorts_2_io_entry_10_item;
+      default:
+        casez_tmp_27 = _sorts_3_io_entry_10_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_28;
+  always @(*) begin
+    casez (entryGroup_10)
+      2'b00:
+        casez_tmp_28 = _sorts_0_io_entry_10_mark;
+      2'b01:
+        casez_tmp_28 = _sorts_1_io_entry_10_mark;
+      2'b10:
+        casez_tmp_28 = _sorts_2_io_entry_10_mark;
+      default:
+        casez_tmp_28 = _sorts_3_io_entry_10_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_11;
+  reg  [11:0] casez_tmp_29;
+  always @(*) begin
+    casez (entryGroup_11)
+      2'b00:
+        casez_tmp_29 = _sorts_0_io_entry_11_item;
+      2'b01:
+        casez_tmp_29 = _sorts_1_io_entry_11_item;
+      2'b10:
+        casez_tmp_29 = _sorts_2_io_entry_11_item;
+      default:
+        casez_tmp_29 = _sorts_3_io_entry_11_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_30;
+  always @(*) begin
+    casez (entryGroup_11)
+      2'b00:
+        casez_tmp_30 = _sorts_0_io_entry_11_mark;
+      2'b01:
+        casez_tmp_30 = _sorts_1_io_entry_11_mark;
+      2'b10:
+        casez_tmp_30 = _sorts_2_io_entry_11_mark;
+      default:
+        casez_tmp_30 = _sorts_3_io_entry_11_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_12;
+  reg  [11:0] casez_tmp_31;
+  always @(*) begin
+    casez (entryGroup_12)
+      2'b00:
+        casez_tmp_31 = _sorts_0_io_entry_12_item;
+      2'b01:
+        casez_tmp_31 = _sorts_1_io_entry_12_item;
+      2'b10:
+        casez_tmp_31 = _sorts_2_io_entry_12_item;
+      default:
+        casez_tmp_31 = _sorts_3_io_entry_12_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_32;
+  always @(*) begin
+    casez (entryGroup_12)
+      2'b00:
+        casez_tmp_32 = _sorts_0_io_entry_12_mark;
+      2'b01:
+        casez_tmp_32 = _sorts_1_io_entry_12_mark;
+      2'b10:
+        casez_tmp_32 = _sorts_2_io_entry_12_mark;
+      default:
+        casez_tmp_32 = _sorts_3_io_entry_12_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_13;
+  reg  [11:0] casez_tmp_33;
+  always @(*) begin
+    casez (entryGroup_13)
+      2'b00:
+        casez_tmp_33 = _sorts_0_io_entry_13_item;
+      2'b01:
+        casez_tmp_33 = _sorts_1_io_entry_13_item;
+      2'b10:
+        casez_tmp_33 = _sorts_2_io_entry_13_item;
+      default:
+        casez_tmp_33 = _sorts_3_io_entry_13_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_34;
+  always @(*) begin
+    casez (entryGroup_13)
+      2'b00:
+        casez_tmp_34 = _sorts_0_io_entry_13_mark;
+      2'b01:
+        casez_tmp_34 = _sorts_1_io_entry_13_mark;
+      2'b10:
+        casez_tmp_34 = _sorts_2_io_entry_13_mark;
+      default:
+        casez_tmp_34 = _sorts_3_io_entry_13_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_14;
+  reg  [11:0] casez_tmp_35;
+  always @(*) begin
+    casez (entryGroup_14)
+      2'b00:
+        casez_tmp_35 = _sorts_0_io_entry_14_item;
+      2'b01:
+        casez_tmp_35 = _sorts_1_io_entry_14_item;
+      2'b10:
+        casez_tmp_35 = _sorts_2_io_entry_14_item;
+      default:
+        casez_tmp_35 = _sorts_3_io_entry_14_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_36;
+  always @(*) begin
+    casez (entryGroup_14)
+      2'b00:
+        casez_tmp_36 = _sorts_0_io_entry_14_mark;
+      2'b01:
+        casez_tmp_36 = _sorts_1_io_entry_14_mark;
+      2'b10:
+        casez_tmp_36 = _sorts_2_io_entry_14_mark;
+      default:
+        casez_tmp_36 = _sorts_3_io_entry_14_mark;
+    endcase
+  end // always @(*)
+  reg  [1:0]  entryGroup_15;
+  reg  [11:0] casez_tmp_37;
+  always @(*) begin
+    casez (entryGroup_15)
+      2'b00:
+        casez_tmp_37 = _sorts_0_io_entry_15_item;
+      2'b01:
+        casez_tmp_37 = _sorts_1_io_entry_15_item;
+      2'b10:
+        casez_tmp_37 = _sorts_2_io_entry_15_item;
+      default:
+        casez_tmp_37 = _sorts_3_io_entry_15_item;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_38;
+  always @(*) begin
+    casez (entryGroup_15)
+      2'b00:
+        casez_tmp_38 = _sorts_0_io_entry_15_mark;
+      2'b01:
+        casez_tmp_38 = _sorts_1_io_entry_15_mark;
+      2'b10:
+        casez_tmp_38 = _sorts_2_io_entry_15_mark;
+      default:
+        casez_tmp_38 = _sorts_3_io_entry_15_mark;
+    endcase
+  end // always @(*)
+  wire        _GEN_5 = passDone & ~sortBusy;
   wire [8:0]  _m_T = m + 9'h2;
-  wire        _GEN_5 = _m_T >= mergeEnd;
-  wire        _GEN_6 = sent & ~sortBusy;
-  wire        _GEN_7 = state == 3'h6;
-  reg  [12:0] casez_tmp_7;
-  wire [12:0] _GEN_8 = _GEN_7 & reading_0 ? i_0 + 13'h1 : i_0;
+  wire        _GEN_6 = _m_T >= mergeEnd;
+  wire        _GEN_7 = sent & ~sortBusy;
+  wire        _GEN_8 = state == 3'h6;
+  reg  [12:0] casez_tmp_39;
+  wire [12:0] _GEN_9 = _GEN_8 & reading_0 ? i_0 + 13'h1 : i_0;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_7 = _GEN_8;
+        casez_tmp_39 = _GEN_9;
       3'b001:
-        casez_tmp_7 = i_0;
+        casez_tmp_39 = i_0;
       3'b010:
-        casez_tmp_7 = reading_0 ? i_0 + 13'h1 : i_0;
+        casez_tmp_39 = reading_0 ? i_0 + 13'h1 : i_0;
       3'b011:
-        casez_tmp_7 = _GEN_5 ? 13'h0 : i_0;
+        casez_tmp_39 = _GEN_6 ? 13'h0 : i_0;
       3'b100:
-        casez_tmp_7 = reading_0 ? i_0 + 13'h1 : i_0;
+        casez_tmp_39 = reading_0 ? i_0 + 13'h1 : i_0;
       3'b101:
-        casez_tmp_7 = _GEN_6 ? 13'h0 : i_0;
+        casez_tmp_39 = _GEN_7 ? 13'h0 : i_0;
       3'b110:
-        casez_tmp_7 = _GEN_8;
+        casez_tmp_39 = _GEN_9;
       default:
-        casez_tmp_7 = _GEN_8;
+        casez_tmp_39 = _GEN_9;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_8;
-  wire [12:0] _GEN_9 = _GEN_7 & reading_1 ? i_1 + 13'h1 : i_1;
+  reg  [12:0] casez_tmp_40;
+  wire [12:0] _GEN_10 = _GEN_8 & reading_1 ? i_1 + 13'h1 : i_1;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_8 = _GEN_9;
+        casez_tmp_40 = _GEN_10;
       3'b001:
-        casez_tmp_8 = i_1;
+        casez_tmp_40 = i_1;
       3'b010:
-        casez_tmp_8 = reading_1 ? i_1 + 13'h1 : i_1;
+        casez_tmp_40 = reading_1 ? i_1 + 13'h1 : i_1;
       3'b011:
-        casez_tmp_8 = _GEN_5 ? _GEN_0 : i_1;
+        casez_tmp_40 = _GEN_6 ? _GEN_0 : i_1;
       3'b100:
-        casez_tmp_8 = reading_1 ? i_1 + 13'h1 : i_1;
+        casez_tmp_40 = reading_1 ? i_1 + 13'h1 : i_1;
       3'b101:
-        casez_tmp_8 = _GEN_6 ? _GEN_0 : i_1;
+        casez_tmp_40 = _GEN_7 ? _GEN_0 : i_1;
       3'b110:
-        casez_tmp_8 = _GEN_9;
+        casez_tmp_40 = _GEN_10;
       default:
-        casez_tmp_8 = _GEN_9;
+        casez_tmp_40 = _GEN_10;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_9;
-  wire [12:0] _GEN_10 = _GEN_7 & reading_2 ? i_2 + 13'h1 : i_2;
+  reg  [12:0] casez_tmp_41;
+  wire [12:0] _GEN_11 = _GEN_8 & reading_2 ? i_2 + 13'h1 : i_2;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_9 = _GEN_10;
+        casez_tmp_41 = _GEN_11;
       3'b001:
-        casez_tmp_9 = i_2;
+        casez_tmp_41 = i_2;
       3'b010:
-        casez_tmp_9 = reading_2 ? i_2 + 13'h1 : i_2;
+        casez_tmp_41 = reading_2 ? i_2 + 13'h1 : i_2;
       3'b011:
-        casez_tmp_9 = _GEN_5 ? {1'h0, num[12:1]} : i_2;
+        casez_tmp_41 = _GEN_6 ? _GEN_1 : i_2;
       3'b100:
-        casez_tmp_9 = reading_2 ? i_2 + 13'h1 : i_2;
+        casez_tmp_41 = reading_2 ? i_2 + 13'h1 : i_2;
       3'b101:
-        casez_tmp_9 = _GEN_6 ? {1'h0, num[12:1]} : i_2;
+        casez_tmp_41 = _GEN_7 ? _GEN_1 : i_2;
       3'b110:
-        casez_tmp_9 = _GEN_10;
+        casez_tmp_41 = _GEN_11;
       default:
-        casez_tmp_9 = _GEN_10;
+        casez_tmp_41 = _GEN_11;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_10;
-  wire [12:0] _GEN_11 = _GEN_7 & reading_3 ? i_3 + 13'h1 : i_3;
+  reg  [12:0] casez_tmp_42;
+  wire [12:0] _GEN_12 = _GEN_8 & reading_3 ? i_3 + 13'h1 : i_3;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_10 = _GEN_11;
+        casez_tmp_42 = _GEN_12;
       3'b001:
-        casez_tmp_10 = i_3;
+        casez_tmp_42 = i_3;
       3'b010:
-        casez_tmp_10 = reading_3 ? i_3 + 13'h1 : i_3;
+        casez_tmp_42 = reading_3 ? i_3 + 13'h1 : i_3;
       3'b011:
-        casez_tmp_10 = _GEN_5 ? _i_3_T_16[14:2] : i_3;
+        casez_tmp_42 = _GEN_6 ? {1'h0, _i_3_T_17[14:3]} : i_3;
       3'b100:
-        casez_tmp_10 = reading_3 ? i_3 + 13'h1 : i_3;
+        casez_tmp_42 = reading_3 ? i_3 + 13'h1 : i_3;
       3'b101:
-        casez_tmp_10 = _GEN_6 ? _i_3_T_16[14:2] : i_3;
+        casez_tmp_42 = _GEN_7 ? {1'h0, _i_3_T_17[14:3]} : i_3;
       3'b110:
-        casez_tmp_10 = _GEN_11;
+        casez_tmp_42 = _GEN_12;
       default:
-        casez_tmp_10 = _GEN_11;
+        casez_tmp_42 = _GEN_12;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_11;
-  wire [12:0] _GEN_12 = _GEN_7 & reading_4 ? i_4 + 13'h1 : i_4;
+  reg  [12:0] casez_tmp_43;
+  wire [12:0] _GEN_13 = _GEN_8 & reading_4 ? i_4 + 13'h1 : i_4;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_11 = _GEN_12;
+        casez_tmp_43 = _GEN_13;
       3'b001:
-        casez_tmp_11 = i_4;
+        casez_tmp_43 = i_4;
       3'b010:
-        casez_tmp_11 = reading_4 ? i_4 + 13'h1 : i_4;
+        casez_tmp_43 = reading_4 ? i_4 + 13'h1 : i_4;
       3'b011:
-        casez_tmp_11 = _GEN_5 ? 13'h0 : i_4;
+        casez_tmp_43 = _GEN_6 ? {1'h0, num[12:1]} : i_4;
       3'b100:
-        casez_tmp_11 = reading_4 ? i_4 + 13'h1 : i_4;
+        casez_tmp_43 = reading_4 ? i_4 + 13'h1 : i_4;
       3'b101:
-        casez_tmp_11 = _GEN_6 ? 13'h0 : i_4;
+        casez_tmp_43 = _GEN_7 ? {1'h0, num[12:1]} : i_4;
       3'b110:
-        casez_tmp_11 = _GEN_12;
+        casez_tmp_43 = _GEN_13;
       default:
-        casez_tmp_11 = _GEN_12;
+        casez_tmp_43 = _GEN_13;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_12;
-  wire [12:0] _GEN_13 = _GEN_7 & reading_5 ? i_5 + 13'h1 : i_5;
+  reg  [12:0] casez_tmp_44;
+  wire [12:0] _GEN_14 = _GEN_8 & reading_5 ? i_5 + 13'h1 : i_5;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_12 = _GEN_13;
+        casez_tmp_44 = _GEN_14;
       3'b001:
-        casez_tmp_12 = i_5;
+        casez_tmp_44 = i_5;
       3'b010:
-        casez_tmp_12 = reading_5 ? i_5 + 13'h1 : i_5;
+        casez_tmp_44 = reading_5 ? i_5 + 13'h1 : i_5;
       3'b011:
-        casez_tmp_12 = _GEN_5 ? 13'h0 : i_5;
+        casez_tmp_44 = _GEN_6 ? _i_5_T_16[15:3] : i_5;
       3'b100:
-        casez_tmp_12 = reading_5 ? i_5 + 13'h1 : i_5;
+        casez_tmp_44 = reading_5 ? i_5 + 13'h1 : i_5;
       3'b101:
-        casez_tmp_12 = _GEN_6 ? 13'h0 : i_5;
+        casez_tmp_44 = _GEN_7 ? _i_5_T_16[15:3] : i_5;
       3'b110:
-        casez_tmp_12 = _GEN_13;
+        casez_tmp_44 = _GEN_14;
       default:
-        casez_tmp_12 = _GEN_13;
+        casez_tmp_44 = _GEN_14;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_13;
-  wire [12:0] _GEN_14 = _GEN_7 & reading_6 ? i_6 + 13'h1 : i_6;
+  reg  [12:0] casez_tmp_45;
+  wire [12:0] _GEN_15 = _GEN_8 & reading_6 ? i_6 + 13'h1 : i_6;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_13 = _GEN_14;
+        casez_tmp_45 = _GEN_15;
       3'b001:
-        casez_tmp_13 = i_6;
+        casez_tmp_45 = i_6;
       3'b010:
-        casez_tmp_13 = reading_6 ? i_6 + 13'h1 : i_6;
+        casez_tmp_45 = reading_6 ? i_6 + 13'h1 : i_6;
       3'b011:
-        casez_tmp_13 = _GEN_5 ? 13'h0 : i_6;
+        casez_tmp_45 = _GEN_6 ? _i_6_T_16[15:3] : i_6;
       3'b100:
-        casez_tmp_13 = reading_6 ? i_6 + 13'h1 : i_6;
+        casez_tmp_45 = reading_6 ? i_6 + 13'h1 : i_6;
       3'b101:
-        casez_tmp_13 = _GEN_6 ? 13'h0 : i_6;
+        casez_tmp_45 = _GEN_7 ? _i_6_T_16[15:3] : i_6;
       3'b110:
-        casez_tmp_13 = _GEN_14;
+        casez_tmp_45 = _GEN_15;
       default:
-        casez_tmp_13 = _GEN_14;
+        casez_tmp_45 = _GEN_15;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_14;
-  wire [12:0] _GEN_15 = _GEN_7 & reading_7 ? i_7 + 13'h1 : i_7;
+  reg  [12:0] casez_tmp_46;
+  wire [12:0] _GEN_16 = _GEN_8 & reading_7 ? i_7 + 13'h1 : i_7;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_14 = _GEN_15;
+        casez_tmp_46 = _GEN_16;
       3'b001:
-        casez_tmp_14 = i_7;
+        casez_tmp_46 = i_7;
       3'b010:
-        casez_tmp_14 = reading_7 ? i_7 + 13'h1 : i_7;
+        casez_tmp_46 = reading_7 ? i_7 + 13'h1 : i_7;
       3'b011:
-        casez_tmp_14 = _GEN_5 ? 13'h0 : i_7;
+        casez_tmp_46 = _GEN_6 ? _i_7_T_15[15:3] : i_7;
       3'b100:
-        casez_tmp_14 = reading_7 ? i_7 + 13'h1 : i_7;
+        casez_tmp_46 = reading_7 ? i_7 + 13'h1 : i_7;
       3'b101:
-        casez_tmp_14 = _GEN_6 ? 13'h0 : i_7;
+        casez_tmp_46 = _GEN_7 ? _i_7_T_15[15:3] : i_7;
       3'b110:
-        casez_tmp_14 = _GEN_15;
+        casez_tmp_46 = _GEN_16;
       default:
-        casez_tmp_14 = _GEN_15;
+        casez_tmp_46 = _GEN_16;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_15;
-  wire [12:0] _GEN_16 = _GEN_7 & reading_8 ? i_8 + 13'h1 : i_8;
+  reg  [12:0] casez_tmp_47;
+  wire [12:0] _GEN_17 = _GEN_8 & reading_8 ? i_8 + 13'h1 : i_8;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_15 = _GEN_16;
+        casez_tmp_47 = _GEN_17;
       3'b001:
-        casez_tmp_15 = i_8;
+        casez_tmp_47 = i_8;
       3'b010:
-        casez_tmp_15 = reading_8 ? i_8 + 13'h1 : i_8;
+        casez_tmp_47 = reading_8 ? i_8 + 13'h1 : i_8;
       3'b011:
-        casez_tmp_15 = _GEN_5 ? 13'h0 : i_8;
+        casez_tmp_47 = _GEN_6 ? 13'h0 : i_8;
       3'b100:
-        casez_tmp_15 = reading_8 ? i_8 + 13'h1 : i_8;
+        casez_tmp_47 = reading_8 ? i_8 + 13'h1 : i_8;
       3'b101:
-        casez_tmp_15 = _GEN_6 ? 13'h0 : i_8;
+        casez_tmp_47 = _GEN_7 ? 13'h0 : i_8;
       3'b110:
-        casez_tmp_15 = _GEN_16;
+        casez_tmp_47 = _GEN_17;
       default:
-        casez_tmp_15 = _GEN_16;
+        casez_tmp_47 = _GEN_17;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_16;
-  wire [12:0] _GEN_17 = _GEN_7 & reading_9 ? i_9 + 13'h1 : i_9;
+  reg  [12:0] casez_tmp_48;
+  wire [12:0] _GEN_18 = _GEN_8 & reading_9 ? i_9 + 13'h1 : i_9;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_16 = _GEN_17;
+        casez_tmp_48 = _GEN_18;
       3'b001:
-        casez_tmp_16 = i_9;
+        casez_tmp_48 = i_9;
       3'b010:
-        casez_tmp_16 = reading_9 ? i_9 + 13'h1 : i_9;
+        casez_tmp_48 = reading_9 ? i_9 + 13'h1 : i_9;
       3'b011:
-        casez_tmp_16 = _GEN_5 ? 13'h0 : i_9;
+        casez_tmp_48 = _GEN_6 ? 13'h0 : i_9;
       3'b100:
-        casez_tmp_16 = reading_9 ? i_9 + 13'h1 : i_9;
+        casez_tmp_48 = reading_9 ? i_9 + 13'h1 : i_9;
       3'b101:
-        casez_tmp_16 = _GEN_6 ? 13'h0 : i_9;
+        casez_tmp_48 = _GEN_7 ? 13'h0 : i_9;
       3'b110:
-        casez_tmp_16 = _GEN_17;
+        casez_tmp_48 = _GEN_18;
       default:
-        casez_tmp_16 = _GEN_17;
+        casez_tmp_48 = _GEN_18;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_17;
-  wire [12:0] _GEN_18 = _GEN_7 & reading_10 ? i_10 + 13'h1 : i_10;
+  reg  [12:0] casez_tmp_49;
+  wire [12:0] _GEN_19 = _GEN_8 & reading_10 ? i_10 + 13'h1 : i_10;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_17 = _GEN_18;
+        casez_tmp_49 = _GEN_19;
       3'b001:
-        casez_tmp_17 = i_10;
+        casez_tmp_49 = i_10;
       3'b010:
-        casez_tmp_17 = reading_10 ? i_10 + 13'h1 : i_10;
+        casez_tmp_49 = reading_10 ? i_10 + 13'h1 : i_10;
       3'b011:
-        casez_tmp_17 = _GEN_5 ? 13'h0 : i_10;
+        casez_tmp_49 = _GEN_6 ? 13'h0 : i_10;
       3'b100:
-        casez_tmp_17 = reading_10 ? i_10 + 13'h1 : i_10;
+        casez_tmp_49 = reading_10 ? i_10 + 13'h1 : i_10;
       3'b101:
-        casez_tmp_17 = _GEN_6 ? 13'h0 : i_10;
+        casez_tmp_49 = _GEN_7 ? 13'h0 : i_10;
       3'b110:
-        casez_tmp_17 = _GEN_18;
+        casez_tmp_49 = _GEN_19;
       default:
-        casez_tmp_17 = _GEN_18;
+        casez_tmp_49 = _GEN_19;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_18;
-  wire [12:0] _GEN_19 = _GEN_7 & reading_11 ? i_11 + 13'h1 : i_11;
+  reg  [12:0] casez_tmp_50;
+  wire [12:0] _GEN_20 = _GEN_8 & reading_11 ? i_11 + 13'h1 : i_11;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_18 = _GEN_19;
+        casez_tmp_50 = _GEN_20;
       3'b001:
-        casez_tmp_18 = i_11;
+        casez_tmp_50 = i_11;
       3'b010:
-        casez_tmp_18 = reading_11 ? i_11 + 13'h1 : i_11;
+        casez_tmp_50 = reading_11 ? i_11 + 13'h1 : i_11;
       3'b011:
-        casez_tmp_18 = _GEN_5 ? 13'h0 : i_11;
+        casez_tmp_50 = _GEN_6 ? 13'h0 : i_11;
       3'b100:
-        casez_tmp_18 = reading_11 ? i_11 + 13'h1 : i_11;
+        casez_tmp_50 = reading_11 ? i_11 + 13'h1 : i_11;
       3'b101:
-        casez_tmp_18 = _GEN_6 ? 13'h0 : i_11;
+        casez_tmp_50 = _GEN_7 ? 13'h0 : i_11;
       3'b110:
-        casez_tmp_18 = _GEN_19;
+        casez_tmp_50 = _GEN_20;
       default:
-        casez_tmp_18 = _GEN_19;
+        casez_tmp_50 = _GEN_20;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_19;
-  wire [12:0] _GEN_20 = _GEN_7 & reading_12 ? i_12 + 13'h1 : i_12;
+  reg  [12:0] casez_tmp_51;
+  wire [12:0] _GEN_21 = _GEN_8 & reading_12 ? i_12 + 13'h1 : i_12;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_19 = _GEN_20;
+        casez_tmp_51 = _GEN_21;
       3'b001:
-        casez_tmp_19 = i_12;
+        casez_tmp_51 = i_12;
       3'b010:
-        casez_tmp_19 = reading_12 ? i_12 + 13'h1 : i_12;
+        casez_tmp_51 = reading_12 ? i_12 + 13'h1 : i_12;
       3'b011:
-        casez_tmp_19 = _GEN_5 ? 13'h0 : i_12;
+        casez_tmp_51 = _GEN_6 ? 13'h0 : i_12;
       3'b100:
-        casez_tmp_19 = reading_12 ? i_12 + 13'h1 : i_12;
+        casez_tmp_51 = reading_12 ? i_12 + 13'h1 : i_12;
       3'b101:
-        casez_tmp_19 = _GEN_6 ? 13'h0 : i_12;
+        casez_tmp_51 = _GEN_7 ? 13'h0 : i_12;
       3'b110:
-        casez_tmp_19 = _GEN_20;
+        casez_tmp_51 = _GEN_21;
       default:
-        casez_tmp_19 = _GEN_20;
+        casez_tmp_51 = _GEN_21;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_20;
-  wire [12:0] _GEN_21 = _GEN_7 & reading_13 ? i_13 + 13'h1 : i_13;
+  reg  [12:0] casez_tmp_52;
+  wire [12:0] _GEN_22 = _GEN_8 & reading_13 ? i_13 + 13'h1 : i_13;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_20 = _GEN_21;
+        casez_tmp_52 = _GEN_22;
       3'b001:
-        casez_tmp_20 = i_13;
+        casez_tmp_52 = i_13;
       3'b010:
-        casez_tmp_20 = reading_13 ? i_13 + 13'h1 : i_13;
+        casez_tmp_52 = reading_13 ? i_13 + 13'h1 : i_13;
       3'b011:
-        casez_tmp_20 = _GEN_5 ? 13'h0 : i_13;
+        casez_tmp_52 = _GEN_6 ? 13'h0 : i_13;
       3'b100:
-        casez_tmp_20 = reading_13 ? i_13 + 13'h1 : i_13;
+        casez_tmp_52 = reading_13 ? i_13 + 13'h1 : i_13;
       3'b101:
-        casez_tmp_20 = _GEN_6 ? 13'h0 : i_13;
+        casez_tmp_52 = _GEN_7 ? 13'h0 : i_13;
       3'b110:
-        casez_tmp_20 = _GEN_21;
+        casez_tmp_52 = _GEN_22;
       default:
-        casez_tmp_20 = _GEN_21;
+        casez_tmp_52 = _GEN_22;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_21;
-  wire [12:0] _GEN_22 = _GEN_7 & reading_14 ? i_14 + 13'h1 : i_14;
+  reg  [12:0] casez_tmp_53;
+  wire [12:0] _GEN_23 = _GEN_8 & reading_14 ? i_14 + 13'h1 : i_14;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_21 = _GEN_22;
+        casez_tmp_53 = _GEN_23;
       3'b001:
-        casez_tmp_21 = i_14;
+        casez_tmp_53 = i_14;
       3'b010:
-        casez_tmp_21 = reading_14 ? i_14 + 13'h1 : i_14;
+        casez_tmp_53 = reading_14 ? i_14 + 13'h1 : i_14;
       3'b011:
-        casez_tmp_21 = _GEN_5 ? 13'h0 : i_14;
+        casez_tmp_53 = _GEN_6 ? 13'h0 : i_14;
       3'b100:
-        casez_tmp_21 = reading_14 ? i_14 + 13'h1 : i_14;
+        casez_tmp_53 = reading_14 ? i_14 + 13'h1 : i_14;
       3'b101:
-        casez_tmp_21 = _GEN_6 ? 13'h0 : i_14;
+        casez_tmp_53 = _GEN_7 ? 13'h0 : i_14;
       3'b110:
-        casez_tmp_21 = _GEN_22;
+        casez_tmp_53 = _GEN_23;
       default:
-        casez_tmp_21 = _GEN_22;
+        casez_tmp_53 = _GEN_23;
     endcase
   end // always @(*)
-  reg  [12:0] casez_tmp_22;
-  wire [12:0] _GEN_23 = _GEN_7 & reading_15 ? i_15 + 13'h1 : i_15;
+  reg  [12:0] casez_tmp_54;
+  wire [12:0] _GEN_24 = _GEN_8 & reading_15 ? i_15 + 13'h1 : i_15;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_22 = _GEN_23;
+        casez_tmp_54 = _GEN_24;
       3'b001:
-        casez_tmp_22 = i_15;
+        casez_tmp_54 = i_15;
       3'b010:
-        casez_tmp_22 = reading_15 ? i_15 + 13'h1 : i_15;
+        casez_tmp_54 = reading_15 ? i_15 + 13'h1 : i_15;
       3'b011:
-        casez_tmp_22 = _GEN_5 ? 13'h0 : i_15;
+        casez_tmp_54 = _GEN_6 ? 13'h0 : i_15;
       3'b100:
-        casez_tmp_22 = reading_15 ? i_15 + 13'h1 : i_15;
+        casez_tmp_54 = reading_15 ? i_15 + 13'h1 : i_15;
       3'b101:
-        casez_tmp_22 = _GEN_6 ? 13'h0 : i_15;
+        casez_tmp_54 = _GEN_7 ? 13'h0 : i_15;
       3'b110:
-        casez_tmp_22 = _GEN_23;
+        casez_tmp_54 = _GEN_24;
       default:
-        casez_tmp_22 = _GEN_23;
+        casez_tmp_54 = _GEN_24;
     endcase
   end // always @(*)
-  reg         REG_4;
-  wire        _GEN_24 = passDone & ~REG_4;
-  wire        _GEN_25 =
+  reg         REG_8;
+  wire        _GEN_25 = passDone & ~REG_8;
+  wire        _GEN_26 =
     (&state) & sent
     & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
         | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
         | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
         | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
-  reg  [2:0]  casez_tmp_23;
-  wire [2:0]  _GEN_26 = _GEN_25 ? 3'h0 : state;
+  reg  [2:0]  casez_tmp_55;
+  wire [2:0]  _GEN_27 = _GEN_26 ? 3'h0 : state;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_23 = _GEN_26;
+        casez_tmp_55 = _GEN_27;
       3'b001:
-        casez_tmp_23 = io_start ? 3'h2 : state;
+        casez_tmp_55 = io_start ? 3'h2 : state;
       3'b010:
-        casez_tmp_23 = _GEN_4 ? 3'h3 : state;
+        casez_tmp_55 = _GEN_5 ? 3'h3 : state;
       3'b011:
-        casez_tmp_23 = _GEN_5 ? 3'h4 : state;
+        casez_tmp_55 = _GEN_6 ? 3'h4 : state;
       3'b100:
-        casez_tmp_23 = passDone ? 3'h5 : state;
+        casez_tmp_55 = passDone ? 3'h5 : state;
       3'b101:
-        casez_tmp_23 = _GEN_6 ? 3'h6 : state;
+        casez_tmp_55 = _GEN_7 ? 3'h6 : state;
       3'b110:
-        casez_tmp_23 = _GEN_24 ? 3'h7 : state;
+        casez_tmp_55 = _GEN_25 ? 3'h7 : state;
       default:
-        casez_tmp_23 = _GEN_26;
+        casez_tmp_55 = _GEN_27;
     endcase
   end // always @(*)
   wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
@@ -34681,21 +36281,21 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
                          : _usedLog2_ceilLog2_T_1[2]
                              ? 2'h2
                              : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1;
-  wire [12:0] _GEN_27 = {4'h0, io_num[12:4]};
-  wire [12:0] _GEN_28 = {3'h0, io_num[12:3]};
+  wire [12:0] _GEN_28 = {4'h0, io_num[12:4]};
+  wire [12:0] _GEN_29 = {3'h0, io_num[12:3]};
   wire [26:0] _i_3_T = {14'h0, io_num} * 27'h3000;
-  wire [27:0] _GEN_29 = {15'h0, io_num};
-  wire [27:0] _i_5_T = _GEN_29 * 28'h5000;
-  wire [27:0] _i_6_T = _GEN_29 * 28'h6000;
-  wire [27:0] _i_7_T = _GEN_29 * 28'h7000;
-  wire [28:0] _GEN_30 = {16'h0, io_num};
-  wire [28:0] _i_9_T = _GEN_30 * 29'h9000;
-  wire [28:0] _i_10_T = _GEN_30 * 29'hA000;
-  wire [28:0] _i_11_T = _GEN_30 * 29'hB000;
-  wire [28:0] _i_12_T = _GEN_30 * 29'hC000;
-  wire [28:0] _i_13_T = _GEN_30 * 29'hD000;
-  wire [28:0] _i_14_T = _GEN_30 * 29'hE000;
-  wire [28:0] _i_15_T = _GEN_30 * 29'hF000;
+  wire [27:0] _GEN_30 = {15'h0, io_num};
+  wire [27:0] _i_5_T = _GEN_30 * 28'h5000;
+  wire [27:0] _i_6_T = _GEN_30 * 28'h6000;
+  wire [27:0] _i_7_T = _GEN_30 * 28'h7000;
+  wire [28:0] _GEN_31 = {16'h0, io_num};
+  wire [28:0] _i_9_T = _GEN_31 * 29'h9000;
+  wire [28:0] _i_10_T = _GEN_31 * 29'hA000;
+  wire [28:0] _i_11_T = _GEN_31 * 29'hB000;
+  wire [28:0] _i_12_T = _GEN_31 * 29'hC000;
+  wire [28:0] _i_13_T = _GEN_31 * 29'hD000;
+  wire [28:0] _i_14_T = _GEN_31 * 29'hE000;
+  wire [28:0] _i_15_T = _GEN_31 * 29'hF000;
   wire        z_tooMany = io_num > 13'h1000;
   wire        largeHere_0 =
     classifying & _laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
@@ -34709,508 +36309,992 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
   wire        largeHere_3 =
     classifying & _laneKeys_3_io_out_valid & ~_laneKeys_3_io_out_nonFinite
     & ~_laneKeys_3_io_out_needNone & _sorts_1_io_in_1_valid_T_8;
-  wire [5:0]  _GEN_31 = {1'h0, largeCount};
-  wire        _GEN_32 = _GEN_31 < 6'h10;
-  wire [5:0]  slot_1 = _GEN_31 + {5'h0, largeHere_0};
-  wire        _GEN_33 = slot_1 < 6'h10;
-  wire [1:0]  _GEN_34 = {1'h0, largeHere_0};
-  wire [1:0]  _GEN_35 = {1'h0, largeHere_1};
-  wire [1:0]  _largeNew_T_1 = _GEN_34 + _GEN_35;
-  wire [5:0]  slot_2 = _GEN_31 + {4'h0, _largeNew_T_1};
-  wire        _GEN_36 = slot_2 < 6'h10;
-  wire [1:0]  _GEN_37 = {1'h0, largeHere_2};
-  wire [5:0]  slot_3 = _GEN_31 + {4'h0, _GEN_34 + _GEN_35 + _GEN_37};
-  wire        _GEN_38 = slot_3 < 6'h10;
-  wire        _GEN_39 = ~(|state) & _starting_T;
-  wire        _GEN_40 = state == 3'h1;
-  wire        _GEN_41 = state == 3'h2;
-  wire        _GEN_42 = state == 3'h3;
-  wire        _GEN_43 = state == 3'h4;
-  wire        _GEN_44 = state == 3'h5;
+  wire        largeHere_4 =
+    classifying & _laneKeys_4_io_out_valid & ~_laneKeys_4_io_out_nonFinite
+    & ~_laneKeys_4_io_out_needNone & _sorts_2_io_in_0_valid_T_8;
+  wire        largeHere_5 =
+    classifying & _laneKeys_5_io_out_valid & ~_laneKeys_5_io_out_nonFinite
+    & ~_laneKeys_5_io_out_needNone & _sorts_2_io_in_1_valid_T_8;
+  wire        largeHere_6 =
+    classifying & _laneKeys_6_io_out_valid & ~_laneKeys_6_io_out_nonFinite
+    & ~_laneKeys_6_io_out_needNone & _sorts_3_io_in_0_valid_T_8;
+  wire        largeHere_7 =
+    classifying & _laneKeys_7_io_out_valid & ~_laneKeys_7_io_out_nonFinite
+    & ~_laneKeys_7_io_out_needNone & _sorts_3_io_in_1_valid_T_8;
+  wire [5:0]  _GEN_32 = {1'h0, largeCount};
+  wire        _GEN_33 = _GEN_32 < 6'h10;
+  wire [5:0]  slot_1 = _GEN_32 + {5'h0, largeHere_0};
+  wire        _GEN_34 = slot_1 < 6'h10;
+  wire [1:0]  _GEN_35 = {1'h0, largeHere_0};
+  wire [1:0]  _GEN_36 = {1'h0, largeHere_1};
+  wire [1:0]  _largeNew_T_1 = _GEN_35 + _GEN_36;
+  wire [5:0]  slot_2 = _GEN_32 + {4'h0, _largeNew_T_1};
+  wire        _GEN_37 = slot_2 < 6'h10;
+  wire [1:0]  _GEN_38 = {1'h0, largeHere_2};
+  wire [1:0]  _slot_T_31 = _GEN_36 + _GEN_38;
+  wire [5:0]  slot_3 = _GEN_32 + {4'h0, _GEN_35 + _slot_T_31};
+  wire        _GEN_39 = slot_3 < 6'h10;
+  wire [1:0]  _GEN_40 = {1'h0, largeHere_3};
+  wire [2:0]  _GEN_41 = {1'h0, _largeNew_T_1};
+  wire [2:0]  _GEN_42 = {1'h0, _GEN_38 + _GEN_40};
+  wire [5:0]  slot_4 = _GEN_32 + {3'h0, _GEN_41 + _GEN_42};
+  wire        _GEN_43 = slot_4 < 6'h10;
+  wire [1:0]  _GEN_44 = {1'h0, largeHere_4};
+  wire [1:0]  _slot_T_35 = _GEN_40 + _GEN_44;
+  wire [5:0]  slot_5 = _GEN_32 + {3'h0, _GEN_41 + {1'h0, _GEN_38 + _slot_T_35}};
+  wire        _GEN_45 = slot_5 < 6'h10;
+  wire [1:0]  _GEN_46 = {1'h0, largeHere_5};
+  wire [1:0]  _largeNew_T_7 = _GEN_44 + _GEN_46;
+  wire [5:0]  slot_6 =
+    _GEN_32 + {3'h0, {1'h0, _GEN_35 + _slot_T_31} + {1'h0, _GEN_40 + _largeNew_T_7}};
+  wire        _GEN_47 = slot_6 < 6'h10;
+  wire [1:0]  _GEN_48 = {1'h0, largeHere_6};
+  wire [5:0]  slot_7 =
+    _GEN_32
+    + {3'h0,
+       {1'h0, _GEN_35 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_46 + _GEN_48}};
+  wire        _GEN_49 = slot_7 < 6'h10;
+  wire        _GEN_50 = ~(|state) & _starting_T;
+  wire        _GEN_51 = state == 3'h1;
+  wire        _GEN_52 = state == 3'h2;
+  wire        _GEN_53 = state == 3'h3;
+  wire        _GEN_54 = state == 3'h4;
+  wire        _GEN_55 = state == 3'h5;
   wire [5:0]  largeNew =
-    _GEN_31 + {3'h0, {1'h0, _largeNew_T_1} + {1'h0, _GEN_37 + {1'h0, largeHere_3}}};
+    _GEN_32
+    + {2'h0,
+       {1'h0, _GEN_41 + _GEN_42}
+         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_48 + {1'h0, largeHere_7}}}};
   wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
   always @(posedge clock) begin
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h0) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h0) begin
+      larges_0_index <= r_7;
+      larges_0_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_0_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_0_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_0_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h0) begin
+      larges_0_index <= r_6;
+      larges_0_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_0_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_0_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_0_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h0) begin
+      larges_0_index <= r_5;
+      larges_0_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_0_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_0_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_0_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h0) begin
+      larges_0_index <= r_4;
+      larges_0_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_0_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_0_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_0_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h0) begin
       larges_0_index <= r_3;
       larges_0_q_0 <= _laneKeys_3_io_out_q_0;
       larges_0_q_1 <= _laneKeys_3_io_out_q_1;
       larges_0_q_2 <= _laneKeys_3_io_out_q_2;
       larges_0_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h0) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h0) begin
       larges_0_index <= r_2;
       larges_0_q_0 <= _laneKeys_2_io_out_q_0;
       larges_0_q_1 <= _laneKeys_2_io_out_q_1;
       larges_0_q_2 <= _laneKeys_2_io_out_q_2;
       larges_0_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h0) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h0) begin
       larges_0_index <= r_1;
       larges_0_q_0 <= _laneKeys_1_io_out_q_0;
       larges_0_q_1 <= _laneKeys_1_io_out_q_1;
       larges_0_q_2 <= _laneKeys_1_io_out_q_2;
       larges_0_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h0) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h0) begin
       larges_0_index <= r;
       larges_0_q_0 <= _laneKeys_0_io_out_q_0;
       larges_0_q_1 <= _laneKeys_0_io_out_q_1;
       larges_0_q_2 <= _laneKeys_0_io_out_q_2;
       larges_0_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h1) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h1) begin
+      larges_1_index <= r_7;
+      larges_1_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_1_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_1_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_1_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h1) begin
+      larges_1_index <= r_6;
+      larges_1_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_1_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_1_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_1_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h1) begin
+      larges_1_index <= r_5;
+      larges_1_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_1_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_1_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_1_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h1) begin
+      larges_1_index <= r_4;
+      larges_1_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_1_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_1_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_1_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h1) begin
       larges_1_index <= r_3;
       larges_1_q_0 <= _laneKeys_3_io_out_q_0;
       larges_1_q_1 <= _laneKeys_3_io_out_q_1;
       larges_1_q_2 <= _laneKeys_3_io_out_q_2;
       larges_1_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h1) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h1) begin
       larges_1_index <= r_2;
       larges_1_q_0 <= _laneKeys_2_io_out_q_0;
       larges_1_q_1 <= _laneKeys_2_io_out_q_1;
       larges_1_q_2 <= _laneKeys_2_io_out_q_2;
       larges_1_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h1) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h1) begin
       larges_1_index <= r_1;
       larges_1_q_0 <= _laneKeys_1_io_out_q_0;
       larges_1_q_1 <= _laneKeys_1_io_out_q_1;
       larges_1_q_2 <= _laneKeys_1_io_out_q_2;
       larges_1_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h1) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h1) begin
       larges_1_index <= r;
       larges_1_q_0 <= _laneKeys_0_io_out_q_0;
       larges_1_q_1 <= _laneKeys_0_io_out_q_1;
       larges_1_q_2 <= _laneKeys_0_io_out_q_2;
       larges_1_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h2) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h2) begin
+      larges_2_index <= r_7;
+      larges_2_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_2_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_2_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_2_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h2) begin
+      larges_2_index <= r_6;
+      larges_2_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_2_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_2_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_2_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h2) begin
+      larges_2_index <= r_5;
+      larges_2_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_2_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_2_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_2_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h2) begin
+      larges_2_index <= r_4;
+      larges_2_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_2_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_2_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_2_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h2) begin
       larges_2_index <= r_3;
       larges_2_q_0 <= _laneKeys_3_io_out_q_0;
       larges_2_q_1 <= _laneKeys_3_io_out_q_1;
       larges_2_q_2 <= _laneKeys_3_io_out_q_2;
       larges_2_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h2) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h2) begin
       larges_2_index <= r_2;
       larges_2_q_0 <= _laneKeys_2_io_out_q_0;
       larges_2_q_1 <= _laneKeys_2_io_out_q_1;
       larges_2_q_2 <= _laneKeys_2_io_out_q_2;
       larges_2_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h2) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h2) begin
       larges_2_index <= r_1;
       larges_2_q_0 <= _laneKeys_1_io_out_q_0;
       larges_2_q_1 <= _laneKeys_1_io_out_q_1;
       larges_2_q_2 <= _laneKeys_1_io_out_q_2;
       larges_2_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h2) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h2) begin
       larges_2_index <= r;
       larges_2_q_0 <= _laneKeys_0_io_out_q_0;
       larges_2_q_1 <= _laneKeys_0_io_out_q_1;
       larges_2_q_2 <= _laneKeys_0_io_out_q_2;
       larges_2_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h3) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h3) begin
+      larges_3_index <= r_7;
+      larges_3_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_3_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_3_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_3_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h3) begin
+      larges_3_index <= r_6;
+      larges_3_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_3_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_3_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_3_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h3) begin
+      larges_3_index <= r_5;
+      larges_3_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_3_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_3_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_3_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h3) begin
+      larges_3_index <= r_4;
+      larges_3_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_3_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_3_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_3_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h3) begin
       larges_3_index <= r_3;
       larges_3_q_0 <= _laneKeys_3_io_out_q_0;
       larges_3_q_1 <= _laneKeys_3_io_out_q_1;
       larges_3_q_2 <= _laneKeys_3_io_out_q_2;
       larges_3_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h3) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h3) begin
       larges_3_index <= r_2;
       larges_3_q_0 <= _laneKeys_2_io_out_q_0;
       larges_3_q_1 <= _laneKeys_2_io_out_q_1;
       larges_3_q_2 <= _laneKeys_2_io_out_q_2;
       larges_3_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h3) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h3) begin
       larges_3_index <= r_1;
       larges_3_q_0 <= _laneKeys_1_io_out_q_0;
       larges_3_q_1 <= _laneKeys_1_io_out_q_1;
       larges_3_q_2 <= _laneKeys_1_io_out_q_2;
       larges_3_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h3) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h3) begin
       larges_3_index <= r;
       larges_3_q_0 <= _laneKeys_0_io_out_q_0;
       larges_3_q_1 <= _laneKeys_0_io_out_q_1;
       larges_3_q_2 <= _laneKeys_0_io_out_q_2;
       larges_3_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h4) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h4) begin
+      larges_4_index <= r_7;
+      larges_4_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_4_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_4_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_4_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h4) begin
+      larges_4_index <= r_6;
+      larges_4_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_4_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_4_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_4_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h4) begin
+      larges_4_index <= r_5;
+      larges_4_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_4_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_4_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_4_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h4) begin
+      larges_4_index <= r_4;
+      larges_4_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_4_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_4_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_4_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h4) begin
       larges_4_index <= r_3;
       larges_4_q_0 <= _laneKeys_3_io_out_q_0;
       larges_4_q_1 <= _laneKeys_3_io_out_q_1;
       larges_4_q_2 <= _laneKeys_3_io_out_q_2;
       larges_4_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h4) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h4) begin
       larges_4_index <= r_2;
       larges_4_q_0 <= _laneKeys_2_io_out_q_0;
       larges_4_q_1 <= _laneKeys_2_io_out_q_1;
       larges_4_q_2 <= _laneKeys_2_io_out_q_2;
       larges_4_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h4) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h4) begin
       larges_4_index <= r_1;
       larges_4_q_0 <= _laneKeys_1_io_out_q_0;
       larges_4_q_1 <= _laneKeys_1_io_out_q_1;
       larges_4_q_2 <= _laneKeys_1_io_out_q_2;
       larges_4_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h4) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h4) begin
       larges_4_index <= r;
       larges_4_q_0 <= _laneKeys_0_io_out_q_0;
       larges_4_q_1 <= _laneKeys_0_io_out_q_1;
       larges_4_q_2 <= _laneKeys_0_io_out_q_2;
       larges_4_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h5) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h5) begin
+      larges_5_index <= r_7;
+      larges_5_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_5_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_5_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_5_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h5) begin
+      larges_5_index <= r_6;
+      larges_5_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_5_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_5_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_5_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h5) begin
+      larges_5_index <= r_5;
+      larges_5_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_5_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_5_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_5_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h5) begin
+      larges_5_index <= r_4;
+      larges_5_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_5_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_5_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_5_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h5) begin
       larges_5_index <= r_3;
       larges_5_q_0 <= _laneKeys_3_io_out_q_0;
       larges_5_q_1 <= _laneKeys_3_io_out_q_1;
       larges_5_q_2 <= _laneKeys_3_io_out_q_2;
       larges_5_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h5) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h5) begin
       larges_5_index <= r_2;
       larges_5_q_0 <= _laneKeys_2_io_out_q_0;
       larges_5_q_1 <= _laneKeys_2_io_out_q_1;
       larges_5_q_2 <= _laneKeys_2_io_out_q_2;
       larges_5_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h5) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h5) begin
       larges_5_index <= r_1;
       larges_5_q_0 <= _laneKeys_1_io_out_q_0;
       larges_5_q_1 <= _laneKeys_1_io_out_q_1;
       larges_5_q_2 <= _laneKeys_1_io_out_q_2;
       larges_5_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h5) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h5) begin
       larges_5_index <= r;
       larges_5_q_0 <= _laneKeys_0_io_out_q_0;
       larges_5_q_1 <= _laneKeys_0_io_out_q_1;
       larges_5_q_2 <= _laneKeys_0_io_out_q_2;
       larges_5_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h6) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h6) begin
+      larges_6_index <= r_7;
+      larges_6_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_6_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_6_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_6_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h6) begin
+      larges_6_index <= r_6;
+      larges_6_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_6_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_6_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_6_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h6) begin
+      larges_6_index <= r_5;
+      larges_6_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_6_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_6_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_6_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h6) begin
+      larges_6_index <= r_4;
+      larges_6_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_6_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_6_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_6_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h6) begin
       larges_6_index <= r_3;
       larges_6_q_0 <= _laneKeys_3_io_out_q_0;
       larges_6_q_1 <= _laneKeys_3_io_out_q_1;
       larges_6_q_2 <= _laneKeys_3_io_out_q_2;
       larges_6_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h6) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h6) begin
       larges_6_index <= r_2;
       larges_6_q_0 <= _laneKeys_2_io_out_q_0;
       larges_6_q_1 <= _laneKeys_2_io_out_q_1;
       larges_6_q_2 <= _laneKeys_2_io_out_q_2;
       larges_6_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h6) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h6) begin
       larges_6_index <= r_1;
       larges_6_q_0 <= _laneKeys_1_io_out_q_0;
       larges_6_q_1 <= _laneKeys_1_io_out_q_1;
       larges_6_q_2 <= _laneKeys_1_io_out_q_2;
       larges_6_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h6) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h6) begin
       larges_6_index <= r;
       larges_6_q_0 <= _laneKeys_0_io_out_q_0;
       larges_6_q_1 <= _laneKeys_0_io_out_q_1;
       larges_6_q_2 <= _laneKeys_0_io_out_q_2;
       larges_6_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h7) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h7) begin
+      larges_7_index <= r_7;
+      larges_7_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_7_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_7_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_7_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h7) begin
+      larges_7_index <= r_6;
+      larges_7_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_7_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_7_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_7_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h7) begin
+      larges_7_index <= r_5;
+      larges_7_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_7_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_7_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_7_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h7) begin
+      larges_7_index <= r_4;
+      larges_7_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_7_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_7_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_7_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h7) begin
       larges_7_index <= r_3;
       larges_7_q_0 <= _laneKeys_3_io_out_q_0;
       larges_7_q_1 <= _laneKeys_3_io_out_q_1;
       larges_7_q_2 <= _laneKeys_3_io_out_q_2;
       larges_7_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h7) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h7) begin
       larges_7_index <= r_2;
       larges_7_q_0 <= _laneKeys_2_io_out_q_0;
       larges_7_q_1 <= _laneKeys_2_io_out_q_1;
       larges_7_q_2 <= _laneKeys_2_io_out_q_2;
       larges_7_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h7) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h7) begin
       larges_7_index <= r_1;
       larges_7_q_0 <= _laneKeys_1_io_out_q_0;
       larges_7_q_1 <= _laneKeys_1_io_out_q_1;
       larges_7_q_2 <= _laneKeys_1_io_out_q_2;
       larges_7_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h7) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h7) begin
       larges_7_index <= r;
       larges_7_q_0 <= _laneKeys_0_io_out_q_0;
       larges_7_q_1 <= _laneKeys_0_io_out_q_1;
       larges_7_q_2 <= _laneKeys_0_io_out_q_2;
       larges_7_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h8) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h8) begin
+      larges_8_index <= r_7;
+      larges_8_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_8_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_8_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_8_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h8) begin
+      larges_8_index <= r_6;
+      larges_8_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_8_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_8_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_8_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h8) begin
+      larges_8_index <= r_5;
+      larges_8_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_8_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_8_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_8_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h8) begin
+      larges_8_index <= r_4;
+      larges_8_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_8_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_8_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_8_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h8) begin
       larges_8_index <= r_3;
       larges_8_q_0 <= _laneKeys_3_io_out_q_0;
       larges_8_q_1 <= _laneKeys_3_io_out_q_1;
       larges_8_q_2 <= _laneKeys_3_io_out_q_2;
       larges_8_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h8) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h8) begin
       larges_8_index <= r_2;
       larges_8_q_0 <= _laneKeys_2_io_out_q_0;
       larges_8_q_1 <= _laneKeys_2_io_out_q_1;
       larges_8_q_2 <= _laneKeys_2_io_out_q_2;
       larges_8_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h8) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h8) begin
       larges_8_index <= r_1;
       larges_8_q_0 <= _laneKeys_1_io_out_q_0;
       larges_8_q_1 <= _laneKeys_1_io_out_q_1;
       larges_8_q_2 <= _laneKeys_1_io_out_q_2;
       larges_8_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h8) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h8) begin
       larges_8_index <= r;
       larges_8_q_0 <= _laneKeys_0_io_out_q_0;
       larges_8_q_1 <= _laneKeys_0_io_out_q_1;
       larges_8_q_2 <= _laneKeys_0_io_out_q_2;
       larges_8_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'h9) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h9) begin
+      larges_9_index <= r_7;
+      larges_9_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_9_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_9_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_9_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h9) begin
+      larges_9_index <= r_6;
+      larges_9_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_9_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_9_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_9_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h9) begin
+      larges_9_index <= r_5;
+      larges_9_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_9_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_9_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_9_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h9) begin
+      larges_9_index <= r_4;
+      larges_9_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_9_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_9_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_9_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h9) begin
       larges_9_index <= r_3;
       larges_9_q_0 <= _laneKeys_3_io_out_q_0;
       larges_9_q_1 <= _laneKeys_3_io_out_q_1;
       larges_9_q_2 <= _laneKeys_3_io_out_q_2;
       larges_9_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'h9) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h9) begin
       larges_9_index <= r_2;
       larges_9_q_0 <= _laneKeys_2_io_out_q_0;
       larges_9_q_1 <= _laneKeys_2_io_out_q_1;
       larges_9_q_2 <= _laneKeys_2_io_out_q_2;
       larges_9_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'h9) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h9) begin
       larges_9_index <= r_1;
       larges_9_q_0 <= _laneKeys_1_io_out_q_0;
       larges_9_q_1 <= _laneKeys_1_io_out_q_1;
       larges_9_q_2 <= _laneKeys_1_io_out_q_2;
       larges_9_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'h9) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h9) begin
       larges_9_index <= r;
       larges_9_q_0 <= _laneKeys_0_io_out_q_0;
       larges_9_q_1 <= _laneKeys_0_io_out_q_1;
       larges_9_q_2 <= _laneKeys_0_io_out_q_2;
       larges_9_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'hA) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'hA) begin
+      larges_10_index <= r_7;
+      larges_10_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_10_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_10_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_10_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'hA) begin
+      larges_10_index <= r_6;
+      larges_10_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_10_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_10_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_10_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'hA) begin
+      larges_10_index <= r_5;
+      larges_10_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_10_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_10_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_10_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'hA) begin
+      larges_10_index <= r_4;
+      larges_10_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_10_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_10_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_10_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'hA) begin
       larges_10_index <= r_3;
       larges_10_q_0 <= _laneKeys_3_io_out_q_0;
       larges_10_q_1 <= _laneKeys_3_io_out_q_1;
       larges_10_q_2 <= _laneKeys_3_io_out_q_2;
       larges_10_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'hA) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'hA) begin
       larges_10_index <= r_2;
       larges_10_q_0 <= _laneKeys_2_io_out_q_0;
       larges_10_q_1 <= _laneKeys_2_io_out_q_1;
       larges_10_q_2 <= _laneKeys_2_io_out_q_2;
       larges_10_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'hA) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'hA) begin
       larges_10_index <= r_1;
       larges_10_q_0 <= _laneKeys_1_io_out_q_0;
       larges_10_q_1 <= _laneKeys_1_io_out_q_1;
       larges_10_q_2 <= _laneKeys_1_io_out_q_2;
       larges_10_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'hA) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'hA) begin
       larges_10_index <= r;
       larges_10_q_0 <= _laneKeys_0_io_out_q_0;
       larges_10_q_1 <= _laneKeys_0_io_out_q_1;
       larges_10_q_2 <= _laneKeys_0_io_out_q_2;
       larges_10_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'hB) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'hB) begin
+      larges_11_index <= r_7;
+      larges_11_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_11_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_11_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_11_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'hB) begin
+      larges_11_index <= r_6;
+      larges_11_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_11_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_11_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_11_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'hB) begin
+      larges_11_index <= r_5;
+      larges_11_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_11_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_11_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_11_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'hB) begin
+      larges_11_index <= r_4;
+      larges_11_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_11_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_11_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_11_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'hB) begin
       larges_11_index <= r_3;
       larges_11_q_0 <= _laneKeys_3_io_out_q_0;
       larges_11_q_1 <= _laneKeys_3_io_out_q_1;
       larges_11_q_2 <= _laneKeys_3_io_out_q_2;
       larges_11_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'hB) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'hB) begin
       larges_11_index <= r_2;
       larges_11_q_0 <= _laneKeys_2_io_out_q_0;
       larges_11_q_1 <= _laneKeys_2_io_out_q_1;
       larges_11_q_2 <= _laneKeys_2_io_out_q_2;
       larges_11_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'hB) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'hB) begin
       larges_11_index <= r_1;
       larges_11_q_0 <= _laneKeys_1_io_out_q_0;
       larges_11_q_1 <= _laneKeys_1_io_out_q_1;
       larges_11_q_2 <= _laneKeys_1_io_out_q_2;
       larges_11_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'hB) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'hB) begin
       larges_11_index <= r;
       larges_11_q_0 <= _laneKeys_0_io_out_q_0;
       larges_11_q_1 <= _laneKeys_0_io_out_q_1;
       larges_11_q_2 <= _laneKeys_0_io_out_q_2;
       larges_11_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'hC) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'hC) begin
+      larges_12_index <= r_7;
+      larges_12_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_12_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_12_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_12_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'hC) begin
+      larges_12_index <= r_6;
+      larges_12_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_12_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_12_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_12_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'hC) begin
+      larges_12_index <= r_5;
+      larges_12_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_12_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_12_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_12_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'hC) begin
+      larges_12_index <= r_4;
+      larges_12_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_12_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_12_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_12_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'hC) begin
       larges_12_index <= r_3;
       larges_12_q_0 <= _laneKeys_3_io_out_q_0;
       larges_12_q_1 <= _laneKeys_3_io_out_q_1;
       larges_12_q_2 <= _laneKeys_3_io_out_q_2;
       larges_12_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'hC) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'hC) begin
       larges_12_index <= r_2;
       larges_12_q_0 <= _laneKeys_2_io_out_q_0;
       larges_12_q_1 <= _laneKeys_2_io_out_q_1;
       larges_12_q_2 <= _laneKeys_2_io_out_q_2;
       larges_12_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'hC) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'hC) begin
       larges_12_index <= r_1;
       larges_12_q_0 <= _laneKeys_1_io_out_q_0;
       larges_12_q_1 <= _laneKeys_1_io_out_q_1;
       larges_12_q_2 <= _laneKeys_1_io_out_q_2;
       larges_12_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'hC) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'hC) begin
       larges_12_index <= r;
       larges_12_q_0 <= _laneKeys_0_io_out_q_0;
       larges_12_q_1 <= _laneKeys_0_io_out_q_1;
       larges_12_q_2 <= _laneKeys_0_io_out_q_2;
       larges_12_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'hD) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'hD) begin
+      larges_13_index <= r_7;
+      larges_13_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_13_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_13_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_13_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'hD) begin
+      larges_13_index <= r_6;
+      larges_13_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_13_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_13_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_13_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'hD) begin
+      larges_13_index <= r_5;
+      larges_13_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_13_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_13_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_13_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'hD) begin
+      larges_13_index <= r_4;
+      larges_13_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_13_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_13_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_13_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'hD) begin
       larges_13_index <= r_3;
       larges_13_q_0 <= _laneKeys_3_io_out_q_0;
       larges_13_q_1 <= _laneKeys_3_io_out_q_1;
       larges_13_q_2 <= _laneKeys_3_io_out_q_2;
       larges_13_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'hD) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'hD) begin
       larges_13_index <= r_2;
       larges_13_q_0 <= _laneKeys_2_io_out_q_0;
       larges_13_q_1 <= _laneKeys_2_io_out_q_1;
       larges_13_q_2 <= _laneKeys_2_io_out_q_2;
       larges_13_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'hD) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'hD) begin
       larges_13_index <= r_1;
       larges_13_q_0 <= _laneKeys_1_io_out_q_0;
       larges_13_q_1 <= _laneKeys_1_io_out_q_1;
       larges_13_q_2 <= _laneKeys_1_io_out_q_2;
       larges_13_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'hD) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'hD) begin
       larges_13_index <= r;
       larges_13_q_0 <= _laneKeys_0_io_out_q_0;
       larges_13_q_1 <= _laneKeys_0_io_out_q_1;
       larges_13_q_2 <= _laneKeys_0_io_out_q_2;
       larges_13_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & slot_3[3:0] == 4'hE) begin
+    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'hE) begin
+      larges_14_index <= r_7;
+      larges_14_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_14_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_14_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_14_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'hE) begin
+      larges_14_index <= r_6;
+      larges_14_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_14_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_14_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_14_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'hE) begin
+      larges_14_index <= r_5;
+      larges_14_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_14_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_14_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_14_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'hE) begin
+      larges_14_index <= r_4;
+      larges_14_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_14_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_14_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_14_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'hE) begin
       larges_14_index <= r_3;
       larges_14_q_0 <= _laneKeys_3_io_out_q_0;
       larges_14_q_1 <= _laneKeys_3_io_out_q_1;
       larges_14_q_2 <= _laneKeys_3_io_out_q_2;
       larges_14_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & slot_2[3:0] == 4'hE) begin
+    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'hE) begin
       larges_14_index <= r_2;
       larges_14_q_0 <= _laneKeys_2_io_out_q_0;
       larges_14_q_1 <= _laneKeys_2_io_out_q_1;
       larges_14_q_2 <= _laneKeys_2_io_out_q_2;
       larges_14_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & slot_1[3:0] == 4'hE) begin
+    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'hE) begin
       larges_14_index <= r_1;
       larges_14_q_0 <= _laneKeys_1_io_out_q_0;
       larges_14_q_1 <= _laneKeys_1_io_out_q_1;
       larges_14_q_2 <= _laneKeys_1_io_out_q_2;
       larges_14_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & largeCount[3:0] == 4'hE) begin
+    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'hE) begin
       larges_14_index <= r;
       larges_14_q_0 <= _laneKeys_0_io_out_q_0;
       larges_14_q_1 <= _laneKeys_0_io_out_q_1;
       larges_14_q_2 <= _laneKeys_0_io_out_q_2;
       larges_14_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_3 & _GEN_38 & (&(slot_3[3:0]))) begin
+    if (largeHere_7 & _GEN_49 & (&(slot_7[3:0]))) begin
+      larges_15_index <= r_7;
+      larges_15_q_0 <= _laneKeys_7_io_out_q_0;
+      larges_15_q_1 <= _laneKeys_7_io_out_q_1;
+      larges_15_q_2 <= _laneKeys_7_io_out_q_2;
+      larges_15_qr <= _laneKeys_7_io_out_qr;
+    end
+    else if (largeHere_6 & _GEN_47 & (&(slot_6[3:0]))) begin
+      larges_15_index <= r_6;
+      larges_15_q_0 <= _laneKeys_6_io_out_q_0;
+      larges_15_q_1 <= _laneKeys_6_io_out_q_1;
+      larges_15_q_2 <= _laneKeys_6_io_out_q_2;
+      larges_15_qr <= _laneKeys_6_io_out_qr;
+    end
+    else if (largeHere_5 & _GEN_45 & (&(slot_5[3:0]))) begin
+      larges_15_index <= r_5;
+      larges_15_q_0 <= _laneKeys_5_io_out_q_0;
+      larges_15_q_1 <= _laneKeys_5_io_out_q_1;
+      larges_15_q_2 <= _laneKeys_5_io_out_q_2;
+      larges_15_qr <= _laneKeys_5_io_out_qr;
+    end
+    else if (largeHere_4 & _GEN_43 & (&(slot_4[3:0]))) begin
+      larges_15_index <= r_4;
+      larges_15_q_0 <= _laneKeys_4_io_out_q_0;
+      larges_15_q_1 <= _laneKeys_4_io_out_q_1;
+      larges_15_q_2 <= _laneKeys_4_io_out_q_2;
+      larges_15_qr <= _laneKeys_4_io_out_qr;
+    end
+    else if (largeHere_3 & _GEN_39 & (&(slot_3[3:0]))) begin
       larges_15_index <= r_3;
       larges_15_q_0 <= _laneKeys_3_io_out_q_0;
       larges_15_q_1 <= _laneKeys_3_io_out_q_1;
       larges_15_q_2 <= _laneKeys_3_io_out_q_2;
       larges_15_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_36 & (&(slot_2[3:0]))) begin
+    else if (largeHere_2 & _GEN_37 & (&(slot_2[3:0]))) begin
       larges_15_index <= r_2;
       larges_15_q_0 <= _laneKeys_2_io_out_q_0;
       larges_15_q_1 <= _laneKeys_2_io_out_q_1;
       larges_15_q_2 <= _laneKeys_2_io_out_q_2;
       larges_15_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_33 & (&(slot_1[3:0]))) begin
+    else if (largeHere_1 & _GEN_34 & (&(slot_1[3:0]))) begin
       larges_15_index <= r_1;
       larges_15_q_0 <= _laneKeys_1_io_out_q_0;
       larges_15_q_1 <= _laneKeys_1_io_out_q_1;
       larges_15_q_2 <= _laneKeys_1_io_out_q_2;
       larges_15_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_32 & (&(largeCount[3:0]))) begin
+    else if (largeHere_0 & _GEN_33 & (&(largeCount[3:0]))) begin
       larges_15_index <= r;
       larges_15_q_0 <= _laneKeys_0_io_out_q_0;
       larges_15_q_1 <= _laneKeys_0_io_out_q_1;
       larges_15_q_2 <= _laneKeys_0_io_out_q_2;
       larges_15_qr <= _laneKeys_0_io_out_qr;
     end
-    if (_GEN_39) begin
+    if (_GEN_50) begin
       num <= io_num;
       usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
     end
-    if (~(~(|state) | _GEN_40 | _GEN_41 | _GEN_42)) begin
-      if (_GEN_43)
+    if (~(~(|state) | _GEN_51 | _GEN_52 | _GEN_53)) begin
+      if (_GEN_54)
         sent <= ~passDone & sent;
       else
-        sent <= _GEN_44 | (_GEN_7 ? ~_GEN_24 & sent : (&state) | sent);
+        sent <= _GEN_55 | (_GEN_8 ? ~_GEN_25 & sent : (&state) | sent);
     end
     if (|state) begin
-      i_0 <= casez_tmp_7;
-      i_1 <= casez_tmp_8;
-      i_2 <= casez_tmp_9;
-      i_3 <= casez_tmp_10;
-      i_4 <= casez_tmp_11;
-      i_5 <= casez_tmp_12;
-      i_6 <= casez_tmp_13;
-      i_7 <= casez_tmp_14;
-      i_8 <= casez_tmp_15;
-      i_9 <= casez_tmp_16;
-      i_10 <= casez_tmp_17;
-      i_11 <= casez_tmp_18;
-      i_12 <= casez_tmp_19;
-      i_13 <= casez_tmp_20;
-      i_14 <= casez_tmp_21;
-      i_15 <= casez_tmp_22;
+      i_0 <= casez_tmp_39;
+      i_1 <= casez_tmp_40;
+      i_2 <= casez_tmp_41;
+      i_3 <= casez_tmp_42;
+      i_4 <= casez_tmp_43;
+      i_5 <= casez_tmp_44;
+      i_6 <= casez_tmp_45;
+      i_7 <= casez_tmp_46;
+      i_8 <= casez_tmp_47;
+      i_9 <= casez_tmp_48;
+      i_10 <= casez_tmp_49;
+      i_11 <= casez_tmp_50;
+      i_12 <= casez_tmp_51;
+      i_13 <= casez_tmp_52;
+      i_14 <= casez_tmp_53;
+      i_15 <= casez_tmp_54;
     end
     else if (_starting_T) begin
-      i_0 <= io_start ? 13'h0 : _GEN_27;
-      i_1 <= io_start ? _GEN_27 : _GEN_28;
-      i_2 <= io_start ? _GEN_28 : {2'h0, _i_3_T[26:16]};
+      i_0 <= io_start ? 13'h0 : _GEN_28;
+      i_1 <= io_start ? _GEN_28 : _GEN_29;
+      i_2 <= io_start ? _GEN_29 : {2'h0, _i_3_T[26:16]};
       i_3 <= {2'h0, io_start ? _i_3_T[26:16] : io_num[12:2]};
       i_4 <= io_start ? {2'h0, io_num[12:2]} : {1'h0, _i_5_T[27:16]};
       i_5 <= {1'h0, io_start ? _i_5_T[27:16] : _i_6_T[27:16]};
@@ -35233,12 +37317,20 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     r_2 <= REG_2;
     REG_3 <= i_3[11:0];
     r_3 <= REG_3;
-    if (~(~(|state) | _GEN_40)) begin
-      if (_GEN_41) begin
-        if (_GEN_4)
+    REG_4 <= i_4[11:0];
+    r_4 <= REG_4;
+    REG_5 <= i_5[11:0];
+    r_5 <= REG_5;
+    REG_6 <= i_6[11:0];
+    r_6 <= REG_6;
+    REG_7 <= i_7[11:0];
+    r_7 <= REG_7;
+    if (~(~(|state) | _GEN_51)) begin
+      if (_GEN_52) begin
+        if (_GEN_5)
           m <= 9'h0;
       end
-      else if (_GEN_42)
+      else if (_GEN_53)
         m <= _m_T;
     end
     entryGroup <= _gens_0_io_entry_group;
@@ -35286,19 +37378,23 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
       laneKeys_13_io_in_valid_REG <= 1'h0;
       laneKeys_14_io_in_valid_REG <= 1'h0;
       laneKeys_15_io_in_valid_REG <= 1'h0;
-      REG_4 <= 1'h0;
+      REG_8 <= 1'h0;
     end
     else begin
       if (|state) begin
-        state <= casez_tmp_23;
-        if (_GEN_40 | _GEN_41 | _GEN_42 | _GEN_43 | _GEN_44 | _GEN_7 | ~_GEN_25) begin
+        state <= casez_tmp_55;
+        if (_GEN_51 | _GEN_52 | _GEN_53 | _GEN_54 | _GEN_55 | _GEN_8 | ~_GEN_26) begin
         end
         else begin
           st_level <= _cellExp_io_level;
-          st_badBucket <= _sorts_0_io_badBucket | _sorts_1_io_badBucket;
+          st_badBucket <=
+            _sorts_0_io_badBucket | _sorts_1_io_badBucket | _sorts_2_io_badBucket
+            | _sorts_3_io_badBucket;
           st_sortMismatch <=
             _sorts_0_io_counted != _sorts_0_io_scattered
-            | _sorts_1_io_counted != _sorts_1_io_scattered;
+            | _sorts_1_io_counted != _sorts_1_io_scattered
+            | _sorts_2_io_counted != _sorts_2_io_scattered
+            | _sorts_3_io_counted != _sorts_3_io_scattered;
         end
       end
       else begin
@@ -35311,7 +37407,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
         st_badBucket <= ~_starting_T & st_badBucket;
         st_sortMismatch <= ~_starting_T & st_sortMismatch;
       end
-      if (_GEN_39) begin
+      if (_GEN_50) begin
         fed <= ~io_start;
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
@@ -35320,14 +37416,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
       end
       else begin
         if (classifying) begin
-          st_large <= st_large + {7'h0, largeKept - _GEN_31};
+          st_large <= st_large + {7'h0, largeKept - _GEN_32};
           largeCount <= largeKept[4:0];
         end
         if ((|state) & ~filling)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
       st_cellOverflow <=
-        ~_GEN_39
+        ~_GEN_50
         & (classifying
            & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
               & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
@@ -35340,12 +37436,25 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
                   & _sorts_1_io_in_0_valid_T_8) & _laneKeys_2_io_out_cellOverflow
               | _laneKeys_3_io_out_valid & ~_laneKeys_3_io_out_nonFinite
               & ~(~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
-                  & _sorts_1_io_in_1_valid_T_8) & _laneKeys_3_io_out_cellOverflow)
+                  & _sorts_1_io_in_1_valid_T_8) & _laneKeys_3_io_out_cellOverflow
+              | _laneKeys_4_io_out_valid & ~_laneKeys_4_io_out_nonFinite
+              & ~(~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
+                  & _sorts_2_io_in_0_valid_T_8) & _laneKeys_4_io_out_cellOverflow
+              | _laneKeys_5_io_out_valid & ~_laneKeys_5_io_out_nonFinite
+              & ~(~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
+                  & _sorts_2_io_in_1_valid_T_8) & _laneKeys_5_io_out_cellOverflow
+              | _laneKeys_6_io_out_valid & ~_laneKeys_6_io_out_nonFinite
+              & ~(~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
+                  & _sorts_3_io_in_0_valid_T_8) & _laneKeys_6_io_out_cellOverflow
+              | _laneKeys_7_io_out_valid & ~_laneKeys_7_io_out_nonFinite
+              & ~(~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
+                  & _sorts_3_io_in_1_valid_T_8) & _laneKeys_7_io_out_cellOverflow)
            | st_cellOverflow);
       st_largeOverflow <=
-        ~_GEN_39
-        & (largeHere_3 & ~_GEN_38 | largeHere_2 & ~_GEN_36 | largeHere_1 & ~_GEN_33
-           | largeHere_0 & ~_GEN_32 | st_largeOverflow);
+        ~_GEN_50
+        & (largeHere_7 & ~_GEN_49 | largeHere_6 & ~_GEN_47 | largeHere_5 & ~_GEN_45
+           | largeHere_4 & ~_GEN_43 | largeHere_3 & ~_GEN_39 | largeHere_2 & ~_GEN_37
+           | largeHere_1 & ~_GEN_34 | largeHere_0 & ~_GEN_33 | st_largeOverflow);
       inflight <=
         inflight
         + {1'h0,
@@ -35409,11 +37518,15 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
       laneKeys_13_io_in_valid_REG <= reading_13;
       laneKeys_14_io_in_valid_REG <= reading_14;
       laneKeys_15_io_in_valid_REG <= reading_15;
-      REG_4 <=
+      REG_8 <=
         _sorts_0_io_in_0_ready & _sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_1_ready
         & _sorts_0_io_in_1_valid_T_12 | _sorts_1_io_in_0_ready
         & _sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_1_ready
-        & _sorts_1_io_in_1_valid_T_12;
+        & _sorts_1_io_in_1_valid_T_12 | _sorts_2_io_in_0_ready
+        & _sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_1_ready
+        & _sorts_2_io_in_1_valid_T_12 | _sorts_3_io_in_0_ready
+        & _sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_1_ready
+        & _sorts_3_io_in_1_valid_T_12;
     end
   end // always @(posedge)
   CellExponent_fp32_L16_c20_e2_world laneExps_0 (
@@ -35926,33 +38039,33 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_in_1_topNone (~casez_tmp_6),
     .io_level        (_cellExp_io_level)
   );
-  BucketSort_n2048_b13_w4_c16_p2_i12_world sorts_0 (
+  BucketSort_n1024_b13_w4_c16_p2_i12_world sorts_0 (
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
     .io_clear             (starting),
-    .io_prefix            (_sorts_1_io_prefix_T & ~sent),
+    .io_prefix            (_sorts_3_io_prefix_T & ~sent),
     .io_busy              (_sorts_0_io_busy),
     .io_in_0_ready        (_sorts_0_io_in_0_ready),
     .io_in_0_valid        (_sorts_0_io_in_0_valid_T_12),
-    .io_in_0_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
+    .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
       ({_laneKeys_0_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_0_io_out_cell_1[10:1]
           * 10'h9F ^ _laneKeys_0_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_0_io_out_cell_0[0],
         _laneKeys_0_io_out_cell_1[0],
-        _laneKeys_0_io_out_cell_2[0]} & _sorts_1_io_in_1_bits_bucket_mask_T[12:0]
+        _laneKeys_0_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
     .io_in_0_bits_item    (r),
     .io_in_1_ready        (_sorts_0_io_in_1_ready),
     .io_in_1_valid        (_sorts_0_io_in_1_valid_T_12),
-    .io_in_1_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
+    .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
       ({_laneKeys_1_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_1_io_out_cell_1[10:1]
           * 10'h9F ^ _laneKeys_1_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_1_io_out_cell_0[0],
         _laneKeys_1_io_out_cell_1[0],
-        _laneKeys_1_io_out_cell_2[0]} & _sorts_1_io_in_1_bits_bucket_mask_T[12:0]
+        _laneKeys_1_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
     .io_in_1_bits_item    (r_1),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
@@ -36259,133 +38372,133 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_lookup_15_word_13 (_sorts_0_io_lookup_15_word_13),
     .io_lookup_15_word_14 (_sorts_0_io_lookup_15_word_14),
     .io_lookup_15_word_15 (_sorts_0_io_lookup_15_word_15),
-    .io_entry_0_addr      (_gens_0_io_entry_addr[10:0]),
+    .io_entry_0_addr      (_gens_0_io_entry_addr[9:0]),
     .io_entry_0_item      (_sorts_0_io_entry_0_item),
     .io_entry_0_mark      (_sorts_0_io_entry_0_mark),
-    .io_entry_1_addr      (_gens_1_io_entry_addr[10:0]),
+    .io_entry_1_addr      (_gens_1_io_entry_addr[9:0]),
     .io_entry_1_item      (_sorts_0_io_entry_1_item),
     .io_entry_1_mark      (_sorts_0_io_entry_1_mark),
-    .io_entry_2_addr      (_gens_2_io_entry_addr[10:0]),
+    .io_entry_2_addr      (_gens_2_io_entry_addr[9:0]),
     .io_entry_2_item      (_sorts_0_io_entry_2_item),
     .io_entry_2_mark      (_sorts_0_io_entry_2_mark),
-    .io_entry_3_addr      (_gens_3_io_entry_addr[10:0]),
+    .io_entry_3_addr      (_gens_3_io_entry_addr[9:0]),
     .io_entry_3_item      (_sorts_0_io_entry_3_item),
     .io_entry_3_mark      (_sorts_0_io_entry_3_mark),
-    .io_entry_4_addr      (_gens_4_io_entry_addr[10:0]),
+    .io_entry_4_addr      (_gens_4_io_entry_addr[9:0]),
     .io_entry_4_item      (_sorts_0_io_entry_4_item),
     .io_entry_4_mark      (_sorts_0_io_entry_4_mark),
-    .io_entry_5_addr      (_gens_5_io_entry_addr[10:0]),
+    .io_entry_5_addr      (_gens_5_io_entry_addr[9:0]),
     .io_entry_5_item      (_sorts_0_io_entry_5_item),
     .io_entry_5_mark      (_sorts_0_io_entry_5_mark),
-    .io_entry_6_addr      (_gens_6_io_entry_addr[10:0]),
+    .io_entry_6_addr      (_gens_6_io_entry_addr[9:0]),
     .io_entry_6_item      (_sorts_0_io_entry_6_item),
     .io_entry_6_mark      (_sorts_0_io_entry_6_mark),
-    .io_entry_7_addr      (_gens_7_io_entry_addr[10:0]),
+    .io_entry_7_addr      (_gens_7_io_entry_addr[9:0]),
     .io_entry_7_item      (_sorts_0_io_entry_7_item),
     .io_entry_7_mark      (_sorts_0_io_entry_7_mark),
-    .io_entry_8_addr      (_gens_8_io_entry_addr[10:0]),
+    .io_entry_8_addr      (_gens_8_io_entry_addr[9:0]),
     .io_entry_8_item      (_sorts_0_io_entry_8_item),
     .io_entry_8_mark      (_sorts_0_io_entry_8_mark),
-    .io_entry_9_addr      (_gens_9_io_entry_addr[10:0]),
+    .io_entry_9_addr      (_gens_9_io_entry_addr[9:0]),
     .io_entry_9_item      (_sorts_0_io_entry_9_item),
     .io_entry_9_mark      (_sorts_0_io_entry_9_mark),
-    .io_entry_10_addr     (_gens_10_io_entry_addr[10:0]),
+    .io_entry_10_addr     (_gens_10_io_entry_addr[9:0]),
     .io_entry_10_item     (_sorts_0_io_entry_10_item),
     .io_entry_10_mark     (_sorts_0_io_entry_10_mark),
-    .io_entry_11_addr     (_gens_11_io_entry_addr[10:0]),
+    .io_entry_11_addr     (_gens_11_io_entry_addr[9:0]),
     .io_entry_11_item     (_sorts_0_io_entry_11_item),
     .io_entry_11_mark     (_sorts_0_io_entry_11_mark),
-    .io_entry_12_addr     (_gens_12_io_entry_addr[10:0]),
+    .io_entry_12_addr     (_gens_12_io_entry_addr[9:0]),
     .io_entry_12_item     (_sorts_0_io_entry_12_item),
     .io_entry_12_mark     (_sorts_0_io_entry_12_mark),
-    .io_entry_13_addr     (_gens_13_io_entry_addr[10:0]),
+    .io_entry_13_addr     (_gens_13_io_entry_addr[9:0]),
     .io_entry_13_item     (_sorts_0_io_entry_13_item),
     .io_entry_13_mark     (_sorts_0_io_entry_13_mark),
-    .io_entry_14_addr     (_gens_14_io_entry_addr[10:0]),
+    .io_entry_14_addr     (_gens_14_io_entry_addr[9:0]),
     .io_entry_14_item     (_sorts_0_io_entry_14_item),
     .io_entry_14_mark     (_sorts_0_io_entry_14_mark),
-    .io_entry_15_addr     (_gens_15_io_entry_addr[10:0]),
+    .io_entry_15_addr     (_gens_15_io_entry_addr[9:0]),
     .io_entry_15_item     (_sorts_0_io_entry_15_item),
     .io_entry_15_mark     (_sorts_0_io_entry_15_mark),
-    .io_mark_0_valid      (_gens_0_io_mark_valid & ~_gens_0_io_mark_bits_group),
-    .io_mark_0_bits_addr  (_gens_0_io_mark_bits_addr[10:0]),
+    .io_mark_0_valid      (_gens_0_io_mark_valid & _gens_0_io_mark_bits_group == 2'h0),
+    .io_mark_0_bits_addr  (_gens_0_io_mark_bits_addr[9:0]),
     .io_mark_0_bits_item  (_gens_0_io_mark_bits_item),
-    .io_mark_1_valid      (_gens_1_io_mark_valid & ~_gens_1_io_mark_bits_group),
-    .io_mark_1_bits_addr  (_gens_1_io_mark_bits_addr[10:0]),
+    .io_mark_1_valid      (_gens_1_io_mark_valid & _gens_1_io_mark_bits_group == 2'h0),
+    .io_mark_1_bits_addr  (_gens_1_io_mark_bits_addr[9:0]),
     .io_mark_1_bits_item  (_gens_1_io_mark_bits_item),
-    .io_mark_2_valid      (_gens_2_io_mark_valid & ~_gens_2_io_mark_bits_group),
-    .io_mark_2_bits_addr  (_gens_2_io_mark_bits_addr[10:0]),
+    .io_mark_2_valid      (_gens_2_io_mark_valid & _gens_2_io_mark_bits_group == 2'h0),
+    .io_mark_2_bits_addr  (_gens_2_io_mark_bits_addr[9:0]),
     .io_mark_2_bits_item  (_gens_2_io_mark_bits_item),
-    .io_mark_3_valid      (_gens_3_io_mark_valid & ~_gens_3_io_mark_bits_group),
-    .io_mark_3_bits_addr  (_gens_3_io_mark_bits_addr[10:0]),
+    .io_mark_3_valid      (_gens_3_io_mark_valid & _gens_3_io_mark_bits_group == 2'h0),
+    .io_mark_3_bits_addr  (_gens_3_io_mark_bits_addr[9:0]),
     .io_mark_3_bits_item  (_gens_3_io_mark_bits_item),
-    .io_mark_4_valid      (_gens_4_io_mark_valid & ~_gens_4_io_mark_bits_group),
-    .io_mark_4_bits_addr  (_gens_4_io_mark_bits_addr[10:0]),
+    .io_mark_4_valid      (_gens_4_io_mark_valid & _gens_4_io_mark_bits_group == 2'h0),
+    .io_mark_4_bits_addr  (_gens_4_io_mark_bits_addr[9:0]),
     .io_mark_4_bits_item  (_gens_4_io_mark_bits_item),
-    .io_mark_5_valid      (_gens_5_io_mark_valid & ~_gens_5_io_mark_bits_group),
-    .io_mark_5_bits_addr  (_gens_5_io_mark_bits_addr[10:0]),
+    .io_mark_5_valid      (_gens_5_io_mark_valid & _gens_5_io_mark_bits_group == 2'h0),
+    .io_mark_5_bits_addr  (_gens_5_io_mark_bits_addr[9:0]),
     .io_mark_5_bits_item  (_gens_5_io_mark_bits_item),
-    .io_mark_6_valid      (_gens_6_io_mark_valid & ~_gens_6_io_mark_bits_group),
-    .io_mark_6_bits_addr  (_gens_6_io_mark_bits_addr[10:0]),
+    .io_mark_6_valid      (_gens_6_io_mark_valid & _gens_6_io_mark_bits_group == 2'h0),
+    .io_mark_6_bits_addr  (_gens_6_io_mark_bits_addr[9:0]),
     .io_mark_6_bits_item  (_gens_6_io_mark_bits_item),
-    .io_mark_7_valid      (_gens_7_io_mark_valid & ~_gens_7_io_mark_bits_group),
-    .io_mark_7_bits_addr  (_gens_7_io_mark_bits_addr[10:0]),
+    .io_mark_7_valid      (_gens_7_io_mark_valid & _gens_7_io_mark_bits_group == 2'h0),
+    .io_mark_7_bits_addr  (_gens_7_io_mark_bits_addr[9:0]),
     .io_mark_7_bits_item  (_gens_7_io_mark_bits_item),
-    .io_mark_8_valid      (_gens_8_io_mark_valid & ~_gens_8_io_mark_bits_group),
-    .io_mark_8_bits_addr  (_gens_8_io_mark_bits_addr[10:0]),
+    .io_mark_8_valid      (_gens_8_io_mark_valid & _gens_8_io_mark_bits_group == 2'h0),
+    .io_mark_8_bits_addr  (_gens_8_io_mark_bits_addr[9:0]),
     .io_mark_8_bits_item  (_gens_8_io_mark_bits_item),
-    .io_mark_9_valid      (_gens_9_io_mark_valid & ~_gens_9_io_mark_bits_group),
-    .io_mark_9_bits_addr  (_gens_9_io_mark_bits_addr[10:0]),
+    .io_mark_9_valid      (_gens_9_io_mark_valid & _gens_9_io_mark_bits_group == 2'h0),
+    .io_mark_9_bits_addr  (_gens_9_io_mark_bits_addr[9:0]),
     .io_mark_9_bits_item  (_gens_9_io_mark_bits_item),
-    .io_mark_10_valid     (_gens_10_io_mark_valid & ~_gens_10_io_mark_bits_group),
-    .io_mark_10_bits_addr (_gens_10_io_mark_bits_addr[10:0]),
+    .io_mark_10_valid     (_gens_10_io_mark_valid & _gens_10_io_mark_bits_group == 2'h0),
+    .io_mark_10_bits_addr (_gens_10_io_mark_bits_addr[9:0]),
     .io_mark_10_bits_item (_gens_10_io_mark_bits_item),
-    .io_mark_11_valid     (_gens_11_io_mark_valid & ~_gens_11_io_mark_bits_group),
-    .io_mark_11_bits_addr (_gens_11_io_mark_bits_addr[10:0]),
+    .io_mark_11_valid     (_gens_11_io_mark_valid & _gens_11_io_mark_bits_group == 2'h0),
+    .io_mark_11_bits_addr (_gens_11_io_mark_bits_addr[9:0]),
     .io_mark_11_bits_item (_gens_11_io_mark_bits_item),
-    .io_mark_12_valid     (_gens_12_io_mark_valid & ~_gens_12_io_mark_bits_group),
-    .io_mark_12_bits_addr (_gens_12_io_mark_bits_addr[10:0]),
+    .io_mark_12_valid     (_gens_12_io_mark_valid & _gens_12_io_mark_bits_group == 2'h0),
+    .io_mark_12_bits_addr (_gens_12_io_mark_bits_addr[9:0]),
     .io_mark_12_bits_item (_gens_12_io_mark_bits_item),
-    .io_mark_13_valid     (_gens_13_io_mark_valid & ~_gens_13_io_mark_bits_group),
-    .io_mark_13_bits_addr (_gens_13_io_mark_bits_addr[10:0]),
+    .io_mark_13_valid     (_gens_13_io_mark_valid & _gens_13_io_mark_bits_group == 2'h0),
+    .io_mark_13_bits_addr (_gens_13_io_mark_bits_addr[9:0]),
     .io_mark_13_bits_item (_gens_13_io_mark_bits_item),
-    .io_mark_14_valid     (_gens_14_io_mark_valid & ~_gens_14_io_mark_bits_group),
-    .io_mark_14_bits_addr (_gens_14_io_mark_bits_addr[10:0]),
+    .io_mark_14_valid     (_gens_14_io_mark_valid & _gens_14_io_mark_bits_group == 2'h0),
+    .io_mark_14_bits_addr (_gens_14_io_mark_bits_addr[9:0]),
     .io_mark_14_bits_item (_gens_14_io_mark_bits_item),
-    .io_mark_15_valid     (_gens_15_io_mark_valid & ~_gens_15_io_mark_bits_group),
-    .io_mark_15_bits_addr (_gens_15_io_mark_bits_addr[10:0]),
+    .io_mark_15_valid     (_gens_15_io_mark_valid & _gens_15_io_mark_bits_group == 2'h0),
+    .io_mark_15_bits_addr (_gens_15_io_mark_bits_addr[9:0]),
     .io_mark_15_bits_item (_gens_15_io_mark_bits_item),
     .io_counted           (_sorts_0_io_counted),
     .io_scattered         (_sorts_0_io_scattered),
     .io_badBucket         (_sorts_0_io_badBucket)
   );
-  BucketSort_n2048_b13_w4_c16_p2_i12_world sorts_1 (
+  BucketSort_n1024_b13_w4_c16_p2_i12_world sorts_1 (
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
     .io_clear             (starting),
-    .io_prefix            (_sorts_1_io_prefix_T & ~sent),
+    .io_prefix            (_sorts_3_io_prefix_T & ~sent),
     .io_busy              (_sorts_1_io_busy),
     .io_in_0_ready        (_sorts_1_io_in_0_ready),
     .io_in_0_valid        (_sorts_1_io_in_0_valid_T_12),
-    .io_in_0_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
+    .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
       ({_laneKeys_2_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_2_io_out_cell_1[10:1]
           * 10'h9F ^ _laneKeys_2_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_2_io_out_cell_0[0],
         _laneKeys_2_io_out_cell_1[0],
-        _laneKeys_2_io_out_cell_2[0]} & _sorts_1_io_in_1_bits_bucket_mask_T[12:0]
+        _laneKeys_2_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
     .io_in_0_bits_item    (r_2),
     .io_in_1_ready        (_sorts_1_io_in_1_ready),
     .io_in_1_valid        (_sorts_1_io_in_1_valid_T_12),
-    .io_in_1_bits_scatter (_sorts_1_io_in_1_bits_scatter_T),
+    .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
       ({_laneKeys_3_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_3_io_out_cell_1[10:1]
           * 10'h9F ^ _laneKeys_3_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_3_io_out_cell_0[0],
         _laneKeys_3_io_out_cell_1[0],
-        _laneKeys_3_io_out_cell_2[0]} & _sorts_1_io_in_1_bits_bucket_mask_T[12:0]
+        _laneKeys_3_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
        - 13'h1),
     .io_in_1_bits_item    (r_3),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
@@ -36692,107 +38805,973 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_lookup_15_word_13 (_sorts_1_io_lookup_15_word_13),
     .io_lookup_15_word_14 (_sorts_1_io_lookup_15_word_14),
     .io_lookup_15_word_15 (_sorts_1_io_lookup_15_word_15),
-    .io_entry_0_addr      (_gens_0_io_entry_addr[10:0]),
+    .io_entry_0_addr      (_gens_0_io_entry_addr[9:0]),
     .io_entry_0_item      (_sorts_1_io_entry_0_item),
     .io_entry_0_mark      (_sorts_1_io_entry_0_mark),
-    .io_entry_1_addr      (_gens_1_io_entry_addr[10:0]),
+    .io_entry_1_addr      (_gens_1_io_entry_addr[9:0]),
     .io_entry_1_item      (_sorts_1_io_entry_1_item),
     .io_entry_1_mark      (_sorts_1_io_entry_1_mark),
-    .io_entry_2_addr      (_gens_2_io_entry_addr[10:0]),
+    .io_entry_2_addr      (_gens_2_io_entry_addr[9:0]),
     .io_entry_2_item      (_sorts_1_io_entry_2_item),
     .io_entry_2_mark      (_sorts_1_io_entry_2_mark),
-    .io_entry_3_addr      (_gens_3_io_entry_addr[10:0]),
+    .io_entry_3_addr      (_gens_3_io_entry_addr[9:0]),
     .io_entry_3_item      (_sorts_1_io_entry_3_item),
     .io_entry_3_mark      (_sorts_1_io_entry_3_mark),
-    .io_entry_4_addr      (_gens_4_io_entry_addr[10:0]),
+    .io_entry_4_addr      (_gens_4_io_entry_addr[9:0]),
     .io_entry_4_item      (_sorts_1_io_entry_4_item),
     .io_entry_4_mark      (_sorts_1_io_entry_4_mark),
-    .io_entry_5_addr      (_gens_5_io_entry_addr[10:0]),
+    .io_entry_5_addr      (_gens_5_io_entry_addr[9:0]),
     .io_entry_5_item      (_sorts_1_io_entry_5_item),
     .io_entry_5_mark      (_sorts_1_io_entry_5_mark),
-    .io_entry_6_addr      (_gens_6_io_entry_addr[10:0]),
+    .io_entry_6_addr      (_gens_6_io_entry_addr[9:0]),
     .io_entry_6_item      (_sorts_1_io_entry_6_item),
     .io_entry_6_mark      (_sorts_1_io_entry_6_mark),
-    .io_entry_7_addr      (_gens_7_io_entry_addr[10:0]),
+    .io_entry_7_addr      (_gens_7_io_entry_addr[9:0]),
     .io_entry_7_item      (_sorts_1_io_entry_7_item),
     .io_entry_7_mark      (_sorts_1_io_entry_7_mark),
-    .io_entry_8_addr      (_gens_8_io_entry_addr[10:0]),
+    .io_entry_8_addr      (_gens_8_io_entry_addr[9:0]),
     .io_entry_8_item      (_sorts_1_io_entry_8_item),
     .io_entry_8_mark      (_sorts_1_io_entry_8_mark),
-    .io_entry_9_addr      (_gens_9_io_entry_addr[10:0]),
+    .io_entry_9_addr      (_gens_9_io_entry_addr[9:0]),
     .io_entry_9_item      (_sorts_1_io_entry_9_item),
     .io_entry_9_mark      (_sorts_1_io_entry_9_mark),
-    .io_entry_10_addr     (_gens_10_io_entry_addr[10:0]),
+    .io_entry_10_addr     (_gens_10_io_entry_addr[9:0]),
     .io_entry_10_item     (_sorts_1_io_entry_10_item),
     .io_entry_10_mark     (_sorts_1_io_entry_10_mark),
-    .io_entry_11_addr     (_gens_11_io_entry_addr[10:0]),
+    .io_entry_11_addr     (_gens_11_io_entry_addr[9:0]),
     .io_entry_11_item     (_sorts_1_io_entry_11_item),
     .io_entry_11_mark     (_sorts_1_io_entry_11_mark),
-    .io_entry_12_addr     (_gens_12_io_entry_addr[10:0]),
+    .io_entry_12_addr     (_gens_12_io_entry_addr[9:0]),
     .io_entry_12_item     (_sorts_1_io_entry_12_item),
     .io_entry_12_mark     (_sorts_1_io_entry_12_mark),
-    .io_entry_13_addr     (_gens_13_io_entry_addr[10:0]),
+    .io_entry_13_addr     (_gens_13_io_entry_addr[9:0]),
     .io_entry_13_item     (_sorts_1_io_entry_13_item),
     .io_entry_13_mark     (_sorts_1_io_entry_13_mark),
-    .io_entry_14_addr     (_gens_14_io_entry_addr[10:0]),
+    .io_entry_14_addr     (_gens_14_io_entry_addr[9:0]),
     .io_entry_14_item     (_sorts_1_io_entry_14_item),
     .io_entry_14_mark     (_sorts_1_io_entry_14_mark),
-    .io_entry_15_addr     (_gens_15_io_entry_addr[10:0]),
+    .io_entry_15_addr     (_gens_15_io_entry_addr[9:0]),
     .io_entry_15_item     (_sorts_1_io_entry_15_item),
     .io_entry_15_mark     (_sorts_1_io_entry_15_mark),
-    .io_mark_0_valid      (_gens_0_io_mark_valid & _gens_0_io_mark_bits_group),
-    .io_mark_0_bits_addr  (_gens_0_io_mark_bits_addr[10:0]),
+    .io_mark_0_valid      (_gens_0_io_mark_valid & _gens_0_io_mark_bits_group == 2'h1),
+    .io_mark_0_bits_addr  (_gens_0_io_mark_bits_addr[9:0]),
     .io_mark_0_bits_item  (_gens_0_io_mark_bits_item),
-    .io_mark_1_valid      (_gens_1_io_mark_valid & _gens_1_io_mark_bits_group),
-    .io_mark_1_bits_addr  (_gens_1_io_mark_bits_addr[10:0]),
+    .io_mark_1_valid      (_gens_1_io_mark_valid & _gens_1_io_mark_bits_group == 2'h1),
+    .io_mark_1_bits_addr  (_gens_1_io_mark_bits_addr[9:0]),
     .io_mark_1_bits_item  (_gens_1_io_mark_bits_item),
-    .io_mark_2_valid      (_gens_2_io_mark_valid & _gens_2_io_mark_bits_group),
-    .io_mark_2_bits_addr  (_gens_2_io_mark_bits_addr[10:0]),
+    .io_mark_2_valid      (_gens_2_io_mark_valid & _gens_2_io_mark_bits_group == 2'h1),
+    .io_mark_2_bits_addr  (_gens_2_io_mark_bits_addr[9:0]),
     .io_mark_2_bits_item  (_gens_2_io_mark_bits_item),
-    .io_mark_3_valid      (_gens_3_io_mark_valid & _gens_3_io_mark_bits_group),
-    .io_mark_3_bits_addr  (_gens_3_io_mark_bits_addr[10:0]),
+    .io_mark_3_valid      (_gens_3_io_mark_valid & _gens_3_io_mark_bits_group == 2'h1),
+    .io_mark_3_bits_addr  (_gens_3_io_mark_bits_addr[9:0]),
     .io_mark_3_bits_item  (_gens_3_io_mark_bits_item),
-    .io_mark_4_valid      (_gens_4_io_mark_valid & _gens_4_io_mark_bits_group),
-    .io_mark_4_bits_addr  (_gens_4_io_mark_bits_addr[10:0]),
+    .io_mark_4_valid      (_gens_4_io_mark_valid & _gens_4_io_mark_bits_group == 2'h1),
+    .io_mark_4_bits_addr  (_gens_4_io_mark_bits_addr[9:0]),
     .io_mark_4_bits_item  (_gens_4_io_mark_bits_item),
-    .io_mark_5_valid      (_gens_5_io_mark_valid & _gens_5_io_mark_bits_group),
-    .io_mark_5_bits_addr  (_gens_5_io_mark_bits_addr[10:0]),
+    .io_mark_5_valid      (_gens_5_io_mark_valid & _gens_5_io_mark_bits_group == 2'h1),
+    .io_mark_5_bits_addr  (_gens_5_io_mark_bits_addr[9:0]),
     .io_mark_5_bits_item  (_gens_5_io_mark_bits_item),
-    .io_mark_6_valid      (_gens_6_io_mark_valid & _gens_6_io_mark_bits_group),
-    .io_mark_6_bits_addr  (_gens_6_io_mark_bits_addr[10:0]),
+    .io_mark_6_valid      (_gens_6_io_mark_valid & _gens_6_io_mark_bits_group == 2'h1),
+    .io_mark_6_bits_addr  (_gens_6_io_mark_bits_addr[9:0]),
     .io_mark_6_bits_item  (_gens_6_io_mark_bits_item),
-    .io_mark_7_valid      (_gens_7_io_mark_valid & _gens_7_io_mark_bits_group),
-    .io_mark_7_bits_addr  (_gens_7_io_mark_bits_addr[10:0]),
+    .io_mark_7_valid      (_gens_7_io_mark_valid & _gens_7_io_mark_bits_group == 2'h1),
+    .io_mark_7_bits_addr  (_gens_7_io_mark_bits_addr[9:0]),
     .io_mark_7_bits_item  (_gens_7_io_mark_bits_item),
-    .io_mark_8_valid      (_gens_8_io_mark_valid & _gens_8_io_mark_bits_group),
-    .io_mark_8_bits_addr  (_gens_8_io_mark_bits_addr[10:0]),
+    .io_mark_8_valid      (_gens_8_io_mark_valid & _gens_8_io_mark_bits_group == 2'h1),
+    .io_mark_8_bits_addr  (_gens_8_io_mark_bits_addr[9:0]),
     .io_mark_8_bits_item  (_gens_8_io_mark_bits_item),
-    .io_mark_9_valid      (_gens_9_io_mark_valid & _gens_9_io_mark_bits_group),
-    .io_mark_9_bits_addr  (_gens_9_io_mark_bits_addr[10:0]),
+    .io_mark_9_valid      (_gens_9_io_mark_valid & _gens_9_io_mark_bits_group == 2'h1),
+    .io_mark_9_bits_addr  (_gens_9_io_mark_bits_addr[9:0]),
     .io_mark_9_bits_item  (_gens_9_io_mark_bits_item),
-    .io_mark_10_valid     (_gens_10_io_mark_valid & _gens_10_io_mark_bits_group),
-    .io_mark_10_bits_addr (_gens_10_io_mark_bits_addr[10:0]),
+    .io_mark_10_valid     (_gens_10_io_mark_valid & _gens_10_io_mark_bits_group == 2'h1),
+    .io_mark_10_bits_addr (_gens_10_io_mark_bits_addr[9:0]),
     .io_mark_10_bits_item (_gens_10_io_mark_bits_item),
-    .io_mark_11_valid     (_gens_11_io_mark_valid & _gens_11_io_mark_bits_group),
-    .io_mark_11_bits_addr (_gens_11_io_mark_bits_addr[10:0]),
+    .io_mark_11_valid     (_gens_11_io_mark_valid & _gens_11_io_mark_bits_group == 2'h1),
+    .io_mark_11_bits_addr (_gens_11_io_mark_bits_addr[9:0]),
     .io_mark_11_bits_item (_gens_11_io_mark_bits_item),
-    .io_mark_12_valid     (_gens_12_io_mark_valid & _gens_12_io_mark_bits_group),
-    .io_mark_12_bits_addr (_gens_12_io_mark_bits_addr[10:0]),
+    .io_mark_12_valid     (_gens_12_io_mark_valid & _gens_12_io_mark_bits_group == 2'h1),
+    .io_mark_12_bits_addr (_gens_12_io_mark_bits_addr[9:0]),
     .io_mark_12_bits_item (_gens_12_io_mark_bits_item),
-    .io_mark_13_valid     (_gens_13_io_mark_valid & _gens_13_io_mark_bits_group),
-    .io_mark_13_bits_addr (_gens_13_io_mark_bits_addr[10:0]),
+    .io_mark_13_valid     (_gens_13_io_mark_valid & _gens_13_io_mark_bits_group == 2'h1),
+    .io_mark_13_bits_addr (_gens_13_io_mark_bits_addr[9:0]),
     .io_mark_13_bits_item (_gens_13_io_mark_bits_item),
-    .io_mark_14_valid     (_gens_14_io_mark_valid & _gens_14_io_mark_bits_group),
-    .io_mark_14_bits_addr (_gens_14_io_mark_bits_addr[10:0]),
+    .io_mark_14_valid     (_gens_14_io_mark_valid & _gens_14_io_mark_bits_group == 2'h1),
+    .io_mark_14_bits_addr (_gens_14_io_mark_bits_addr[9:0]),
     .io_mark_14_bits_item (_gens_14_io_mark_bits_item),
-    .io_mark_15_valid     (_gens_15_io_mark_valid & _gens_15_io_mark_bits_group),
-    .io_mark_15_bits_addr (_gens_15_io_mark_bits_addr[10:0]),
+    .io_mark_15_valid     (_gens_15_io_mark_valid & _gens_15_io_mark_bits_group == 2'h1),
+    .io_mark_15_bits_addr (_gens_15_io_mark_bits_addr[9:0]),
     .io_mark_15_bits_item (_gens_15_io_mark_bits_item),
     .io_counted           (_sorts_1_io_counted),
     .io_scattered         (_sorts_1_io_scattered),
     .io_badBucket         (_sorts_1_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_0 (
+  BucketSort_n1024_b13_w4_c16_p2_i12_world sorts_2 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_usedLog2          (usedLog2),
+    .io_clear             (starting),
+    .io_prefix            (_sorts_3_io_prefix_T & ~sent),
+    .io_busy              (_sorts_2_io_busy),
+    .io_in_0_ready        (_sorts_2_io_in_0_ready),
+    .io_in_0_valid        (_sorts_2_io_in_0_valid_T_12),
+    .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
+    .io_in_0_bits_bucket
+      ({_laneKeys_4_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_4_io_out_cell_1[10:1]
+          * 10'h9F ^ _laneKeys_4_io_out_cell_2[10:1] * 10'h3B7,
+        _laneKeys_4_io_out_cell_0[0],
+        _laneKeys_4_io_out_cell_1[0],
+        _laneKeys_4_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_0_bits_item    (r_4),
+    .io_in_1_ready        (_sorts_2_io_in_1_ready),
+    .io_in_1_valid        (_sorts_2_io_in_1_valid_T_12),
+    .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
+    .io_in_1_bits_bucket
+      ({_laneKeys_5_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_5_io_out_cell_1[10:1]
+          * 10'h9F ^ _laneKeys_5_io_out_cell_2[10:1] * 10'h3B7,
+        _laneKeys_5_io_out_cell_0[0],
+        _laneKeys_5_io_out_cell_1[0],
+        _laneKeys_5_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_1_bits_item    (r_5),
+    .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
+    .io_lookup_0_begin    (_sorts_2_io_lookup_0_begin),
+    .io_lookup_0_end      (_sorts_2_io_lookup_0_end),
+    .io_lookup_0_word_0   (_sorts_2_io_lookup_0_word_0),
+    .io_lookup_0_word_1   (_sorts_2_io_lookup_0_word_1),
+    .io_lookup_0_word_2   (_sorts_2_io_lookup_0_word_2),
+    .io_lookup_0_word_3   (_sorts_2_io_lookup_0_word_3),
+    .io_lookup_0_word_4   (_sorts_2_io_lookup_0_word_4),
+    .io_lookup_0_word_5   (_sorts_2_io_lookup_0_word_5),
+    .io_lookup_0_word_6   (_sorts_2_io_lookup_0_word_6),
+    .io_lookup_0_word_7   (_sorts_2_io_lookup_0_word_7),
+    .io_lookup_0_word_8   (_sorts_2_io_lookup_0_word_8),
+    .io_lookup_0_word_9   (_sorts_2_io_lookup_0_word_9),
+    .io_lookup_0_word_10  (_sorts_2_io_lookup_0_word_10),
+    .io_lookup_0_word_11  (_sorts_2_io_lookup_0_word_11),
+    .io_lookup_0_word_12  (_sorts_2_io_lookup_0_word_12),
+    .io_lookup_0_word_13  (_sorts_2_io_lookup_0_word_13),
+    .io_lookup_0_word_14  (_sorts_2_io_lookup_0_word_14),
+    .io_lookup_0_word_15  (_sorts_2_io_lookup_0_word_15),
+    .io_lookup_1_bucket   (_gens_1_io_lookup_bucket),
+    .io_lookup_1_begin    (_sorts_2_io_lookup_1_begin),
+    .io_lookup_1_end      (_sorts_2_io_lookup_1_end),
+    .io_lookup_1_word_0   (_sorts_2_io_lookup_1_word_0),
+    .io_lookup_1_word_1   (_sorts_2_io_lookup_1_word_1),
+    .io_lookup_1_word_2   (_sorts_2_io_lookup_1_word_2),
+    .io_lookup_1_word_3   (_sorts_2_io_lookup_1_word_3),
+    .io_lookup_1_word_4   (_sorts_2_io_lookup_1_word_4),
+    .io_lookup_1_word_5   (_sorts_2_io_lookup_1_word_5),
+    .io_lookup_1_word_6   (_sorts_2_io_lookup_1_word_6),
+    .io_lookup_1_word_7   (_sorts_2_io_lookup_1_word_7),
+    .io_lookup_1_word_8   (_sorts_2_io_lookup_1_word_8),
+    .io_lookup_1_word_9   (_sorts_2_io_lookup_1_word_9),
+    .io_lookup_1_word_10  (_sorts_2_io_lookup_1_word_10),
+    .io_lookup_1_word_11  (_sorts_2_io_lookup_1_word_11),
+    .io_lookup_1_word_12  (_sorts_2_io_lookup_1_word_12),
+    .io_lookup_1_word_13  (_sorts_2_io_lookup_1_word_13),
+    .io_lookup_1_word_14  (_sorts_2_io_lookup_1_word_14),
+    .io_lookup_1_word_15  (_sorts_2_io_lookup_1_word_15),
+    .io_lookup_2_bucket   (_gens_2_io_lookup_bucket),
+    .io_lookup_2_begin    (_sorts_2_io_lookup_2_begin),
+    .io_lookup_2_end      (_sorts_2_io_lookup_2_end),
+    .io_lookup_2_word_0   (_sorts_2_io_lookup_2_word_0),
+    .io_lookup_2_word_1   (_sorts_2_io_lookup_2_word_1),
+    .io_lookup_2_word_2   (_sorts_2_io_lookup_2_word_2),
+    .io_lookup_2_word_3   (_sorts_2_io_lookup_2_word_3),
+    .io_lookup_2_word_4   (_sorts_2_io_lookup_2_word_4),
+    .io_lookup_2_word_5   (_sorts_2_io_lookup_2_word_5),
+    .io_lookup_2_word_6   (_sorts_2_io_lookup_2_word_6),
+    .io_lookup_2_word_7   (_sorts_2_io_lookup_2_word_7),
+    .io_lookup_2_word_8   (_sorts_2_io_lookup_2_word_8),
+    .io_lookup_2_word_9   (_sorts_2_io_lookup_2_word_9),
+    .io_lookup_2_word_10  (_sorts_2_io_lookup_2_word_10),
+    .io_lookup_2_word_11  (_sorts_2_io_lookup_2_word_11),
+    .io_lookup_2_word_12  (_sorts_2_io_lookup_2_word_12),
+    .io_lookup_2_word_13  (_sorts_2_io_lookup_2_word_13),
+    .io_lookup_2_word_14  (_sorts_2_io_lookup_2_word_14),
+    .io_lookup_2_word_15  (_sorts_2_io_lookup_2_word_15),
+    .io_lookup_3_bucket   (_gens_3_io_lookup_bucket),
+    .io_lookup_3_begin    (_sorts_2_io_lookup_3_begin),
+    .io_lookup_3_end      (_sorts_2_io_lookup_3_end),
+    .io_lookup_3_word_0   (_sorts_2_io_lookup_3_word_0),
+    .io_lookup_3_word_1   (_sorts_2_io_lookup_3_word_1),
+    .io_lookup_3_word_2   (_sorts_2_io_lookup_3_word_2),
+    .io_lookup_3_word_3   (_sorts_2_io_lookup_3_word_3),
+    .io_lookup_3_word_4   (_sorts_2_io_lookup_3_word_4),
+    .io_lookup_3_word_5   (_sorts_2_io_lookup_3_word_5),
+    .io_lookup_3_word_6   (_sorts_2_io_lookup_3_word_6),
+    .io_lookup_3_word_7   (_sorts_2_io_lookup_3_word_7),
+    .io_lookup_3_word_8   (_sorts_2_io_lookup_3_word_8),
+    .io_lookup_3_word_9   (_sorts_2_io_lookup_3_word_9),
+    .io_lookup_3_word_10  (_sorts_2_io_lookup_3_word_10),
+    .io_lookup_3_word_11  (_sorts_2_io_lookup_3_word_11),
+    .io_lookup_3_word_12  (_sorts_2_io_lookup_3_word_12),
+    .io_lookup_3_word_13  (_sorts_2_io_lookup_3_word_13),
+    .io_lookup_3_word_14  (_sorts_2_io_lookup_3_word_14),
+    .io_lookup_3_word_15  (_sorts_2_io_lookup_3_word_15),
+    .io_lookup_4_bucket   (_gens_4_io_lookup_bucket),
+    .io_lookup_4_begin    (_sorts_2_io_lookup_4_begin),
+    .io_lookup_4_end      (_sorts_2_io_lookup_4_end),
+    .io_lookup_4_word_0   (_sorts_2_io_lookup_4_word_0),
+    .io_lookup_4_word_1   (_sorts_2_io_lookup_4_word_1),
+    .io_lookup_4_word_2   (_sorts_2_io_lookup_4_word_2),
+    .io_lookup_4_word_3   (_sorts_2_io_lookup_4_word_3),
+    .io_lookup_4_word_4   (_sorts_2_io_lookup_4_word_4),
+    .io_lookup_4_word_5   (_sorts_2_io_lookup_4_word_5),
+    .io_lookup_4_word_6   (_sorts_2_io_lookup_4_word_6),
+    .io_lookup_4_word_7   (_sorts_2_io_lookup_4_word_7),
+    .io_lookup_4_word_8   (_sorts_2_io_lookup_4_word_8),
+    .io_lookup_4_word_9   (_sorts_2_io_lookup_4_word_9),
+    .io_lookup_4_word_10  (_sorts_2_io_lookup_4_word_10),
+    .io_lookup_4_word_11  (_sorts_2_io_lookup_4_word_11),
+    .io_lookup_4_word_12  (_sorts_2_io_lookup_4_word_12),
+    .io_lookup_4_word_13  (_sorts_2_io_lookup_4_word_13),
+    .io_lookup_4_word_14  (_sorts_2_io_lookup_4_word_14),
+    .io_lookup_4_word_15  (_sorts_2_io_lookup_4_word_15),
+    .io_lookup_5_bucket   (_gens_5_io_lookup_bucket),
+    .io_lookup_5_begin    (_sorts_2_io_lookup_5_begin),
+    .io_lookup_5_end      (_sorts_2_io_lookup_5_end),
+    .io_lookup_5_word_0   (_sorts_2_io_lookup_5_word_0),
+    .io_lookup_5_word_1   (_sorts_2_io_lookup_5_word_1),
+    .io_lookup_5_word_2   (_sorts_2_io_lookup_5_word_2),
+    .io_lookup_5_word_3   (_sorts_2_io_lookup_5_word_3),
+    .io_lookup_5_word_4   (_sorts_2_io_lookup_5_word_4),
+    .io_lookup_5_word_5   (_sorts_2_io_lookup_5_word_5),
+    .io_lookup_5_word_6   (_sorts_2_io_lookup_5_word_6),
+    .io_lookup_5_word_7   (_sorts_2_io_lookup_5_word_7),
+    .io_lookup_5_word_8   (_sorts_2_io_lookup_5_word_8),
+    .io_lookup_5_word_9   (_sorts_2_io_lookup_5_word_9),
+    .io_lookup_5_word_10  (_sorts_2_io_lookup_5_word_10),
+    .io_lookup_5_word_11  (_sorts_2_io_lookup_5_word_11),
+    .io_lookup_5_word_12  (_sorts_2_io_lookup_5_word_12),
+    .io_lookup_5_word_13  (_sorts_2_io_lookup_5_word_13),
+    .io_lookup_5_word_14  (_sorts_2_io_lookup_5_word_14),
+    .io_lookup_5_word_15  (_sorts_2_io_lookup_5_word_15),
+    .io_lookup_6_bucket   (_gens_6_io_lookup_bucket),
+    .io_lookup_6_begin    (_sorts_2_io_lookup_6_begin),
+    .io_lookup_6_end      (_sorts_2_io_lookup_6_end),
+    .io_lookup_6_word_0   (_sorts_2_io_lookup_6_word_0),
+    .io_lookup_6_word_1   (_sorts_2_io_lookup_6_word_1),
+    .io_lookup_6_word_2   (_sorts_2_io_lookup_6_word_2),
+    .io_lookup_6_word_3   (_sorts_2_io_lookup_6_word_3),
+    .io_lookup_6_word_4   (_sorts_2_io_lookup_6_word_4),
+    .io_lookup_6_word_5   (_sorts_2_io_lookup_6_word_5),
+    .io_lookup_6_word_6   (_sorts_2_io_lookup_6_word_6),
+    .io_lookup_6_word_7   (_sorts_2_io_lookup_6_word_7),
+    .io_lookup_6_word_8   (_sorts_2_io_lookup_6_word_8),
+    .io_lookup_6_word_9   (_sorts_2_io_lookup_6_word_9),
+    .io_lookup_6_word_10  (_sorts_2_io_lookup_6_word_10),
+    .io_lookup_6_word_11  (_sorts_2_io_lookup_6_word_11),
+    .io_lookup_6_word_12  (_sorts_2_io_lookup_6_word_12),
+    .io_lookup_6_word_13  (_sorts_2_io_lookup_6_word_13),
+    .io_lookup_6_word_14  (_sorts_2_io_lookup_6_word_14),
+    .io_lookup_6_word_15  (_sorts_2_io_lookup_6_word_15),
+    .io_lookup_7_bucket   (_gens_7_io_lookup_bucket),
+    .io_lookup_7_begin    (_sorts_2_io_lookup_7_begin),
+    .io_lookup_7_end      (_sorts_2_io_lookup_7_end),
+    .io_lookup_7_word_0   (_sorts_2_io_lookup_7_word_0),
+    .io_lookup_7_word_1   (_sorts_2_io_lookup_7_word_1),
+    .io_lookup_7_word_2   (_sorts_2_io_lookup_7_word_2),
+    .io_lookup_7_word_3   (_sorts_2_io_lookup_7_word_3),
+    .io_lookup_7_word_4   (_sorts_2_io_lookup_7_word_4),
+    .io_lookup_7_word_5   (_sorts_2_io_lookup_7_word_5),
+    .io_lookup_7_word_6   (_sorts_2_io_lookup_7_word_6),
+    .io_lookup_7_word_7   (_sorts_2_io_lookup_7_word_7),
+    .io_lookup_7_word_8   (_sorts_2_io_lookup_7_word_8),
+    .io_lookup_7_word_9   (_sorts_2_io_lookup_7_word_9),
+    .io_lookup_7_word_10  (_sorts_2_io_lookup_7_word_10),
+    .io_lookup_7_word_11  (_sorts_2_io_lookup_7_word_11),
+    .io_lookup_7_word_12  (_sorts_2_io_lookup_7_word_12),
+    .io_lookup_7_word_13  (_sorts_2_io_lookup_7_word_13),
+    .io_lookup_7_word_14  (_sorts_2_io_lookup_7_word_14),
+    .io_lookup_7_word_15  (_sorts_2_io_lookup_7_word_15),
+    .io_lookup_8_bucket   (_gens_8_io_lookup_bucket),
+    .io_lookup_8_begin    (_sorts_2_io_lookup_8_begin),
+    .io_lookup_8_end      (_sorts_2_io_lookup_8_end),
+    .io_lookup_8_word_0   (_sorts_2_io_lookup_8_word_0),
+    .io_lookup_8_word_1   (_sorts_2_io_lookup_8_word_1),
+    .io_lookup_8_word_2   (_sorts_2_io_lookup_8_word_2),
+    .io_lookup_8_word_3   (_sorts_2_io_lookup_8_word_3),
+    .io_lookup_8_word_4   (_sorts_2_io_lookup_8_word_4),
+    .io_lookup_8_word_5   (_sorts_2_io_lookup_8_word_5),
+    .io_lookup_8_word_6   (_sorts_2_io_lookup_8_word_6),
+    .io_lookup_8_word_7   (_sorts_2_io_lookup_8_word_7),
+    .io_lookup_8_word_8   (_sorts_2_io_lookup_8_word_8),
+    .io_lookup_8_word_9   (_sorts_2_io_lookup_8_word_9),
+    .io_lookup_8_word_10  (_sorts_2_io_lookup_8_word_10),
+    .io_lookup_8_word_11  (_sorts_2_io_lookup_8_word_11),
+    .io_lookup_8_word_12  (_sorts_2_io_lookup_8_word_12),
+    .io_lookup_8_word_13  (_sorts_2_io_lookup_8_word_13),
+    .io_lookup_8_word_14  (_sorts_2_io_lookup_8_word_14),
+    .io_lookup_8_word_15  (_sorts_2_io_lookup_8_word_15),
+    .io_lookup_9_bucket   (_gens_9_io_lookup_bucket),
+    .io_lookup_9_begin    (_sorts_2_io_lookup_9_begin),
+    .io_lookup_9_end      (_sorts_2_io_lookup_9_end),
+    .io_lookup_9_word_0   (_sorts_2_io_lookup_9_word_0),
+    .io_lookup_9_word_1   (_sorts_2_io_lookup_9_word_1),
+    .io_lookup_9_word_2   (_sorts_2_io_lookup_9_word_2),
+    .io_lookup_9_word_3   (_sorts_2_io_lookup_9_word_3),
+    .io_lookup_9_word_4   (_sorts_2_io_lookup_9_word_4),
+    .io_lookup_9_word_5   (_sorts_2_io_lookup_9_word_5),
+    .io_lookup_9_word_6   (_sorts_2_io_lookup_9_word_6),
+    .io_lookup_9_word_7   (_sorts_2_io_lookup_9_word_7),
+    .io_lookup_9_word_8   (_sorts_2_io_lookup_9_word_8),
+    .io_lookup_9_word_9   (_sorts_2_io_lookup_9_word_9),
+    .io_lookup_9_word_10  (_sorts_2_io_lookup_9_word_10),
+    .io_lookup_9_word_11  (_sorts_2_io_lookup_9_word_11),
+    .io_lookup_9_word_12  (_sorts_2_io_lookup_9_word_12),
+    .io_lookup_9_word_13  (_sorts_2_io_lookup_9_word_13),
+    .io_lookup_9_word_14  (_sorts_2_io_lookup_9_word_14),
+    .io_lookup_9_word_15  (_sorts_2_io_lookup_9_word_15),
+    .io_lookup_10_bucket  (_gens_10_io_lookup_bucket),
+    .io_lookup_10_begin   (_sorts_2_io_lookup_10_begin),
+    .io_lookup_10_end     (_sorts_2_io_lookup_10_end),
+    .io_lookup_10_word_0  (_sorts_2_io_lookup_10_word_0),
+    .io_lookup_10_word_1  (_sorts_2_io_lookup_10_word_1),
+    .io_lookup_10_word_2  (_sorts_2_io_lookup_10_word_2),
+    .io_lookup_10_word_3  (_sorts_2_io_lookup_10_word_3),
+    .io_lookup_10_word_4  (_sorts_2_io_lookup_10_word_4),
+    .io_lookup_10_word_5  (_sorts_2_io_lookup_10_word_5),
+    .io_lookup_10_word_6  (_sorts_2_io_lookup_10_word_6),
+    .io_lookup_10_word_7  (_sorts_2_io_lookup_10_word_7),
+    .io_lookup_10_word_8  (_sorts_2_io_lookup_10_word_8),
+    .io_lookup_10_word_9  (_sorts_2_io_lookup_10_word_9),
+    .io_lookup_10_word_10 (_sorts_2_io_lookup_10_word_10),
+    .io_lookup_10_word_11 (_sorts_2_io_lookup_10_word_11),
+    .io_lookup_10_word_12 (_sorts_2_io_lookup_10_word_12),
+    .io_lookup_10_word_13 (_sorts_2_io_lookup_10_word_13),
+    .io_lookup_10_word_14 (_sorts_2_io_lookup_10_word_14),
+    .io_lookup_10_word_15 (_sorts_2_io_lookup_10_word_15),
+    .io_lookup_11_bucket  (_gens_11_io_lookup_bucket),
+    .io_lookup_11_begin   (_sorts_2_io_lookup_11_begin),
+    .io_lookup_11_end     (_sorts_2_io_lookup_11_end),
+    .io_lookup_11_word_0  (_sorts_2_io_lookup_11_word_0),
+    .io_lookup_11_word_1  (_sorts_2_io_lookup_11_word_1),
+    .io_lookup_11_word_2  (_sorts_2_io_lookup_11_word_2),
+    .io_lookup_11_word_3  (_sorts_2_io_lookup_11_word_3),
+    .io_lookup_11_word_4  (_sorts_2_io_lookup_11_word_4),
+    .io_lookup_11_word_5  (_sorts_2_io_lookup_11_word_5),
+    .io_lookup_11_word_6  (_sorts_2_io_lookup_11_word_6),
+    .io_lookup_11_word_7  (_sorts_2_io_lookup_11_word_7),
+    .io_lookup_11_word_8  (_sorts_2_io_lookup_11_word_8),
+    .io_lookup_11_word_9  (_sorts_2_io_lookup_11_word_9),
+    .io_lookup_11_word_10 (_sorts_2_io_lookup_11_word_10),
+    .io_lookup_11_word_11 (_sorts_2_io_lookup_11_word_11),
+    .io_lookup_11_word_12 (_sorts_2_io_lookup_11_word_12),
+    .io_lookup_11_word_13 (_sorts_2_io_lookup_11_word_13),
+    .io_lookup_11_word_14 (_sorts_2_io_lookup_11_word_14),
+    .io_lookup_11_word_15 (_sorts_2_io_lookup_11_word_15),
+    .io_lookup_12_bucket  (_gens_12_io_lookup_bucket),
+    .io_lookup_12_begin   (_sorts_2_io_lookup_12_begin),
+    .io_lookup_12_end     (_sorts_2_io_lookup_12_end),
+    .io_lookup_12_word_0  (_sorts_2_io_lookup_12_word_0),
+    .io_lookup_12_word_1  (_sorts_2_io_lookup_12_word_1),
+    .io_lookup_12_word_2  (_sorts_2_io_lookup_12_word_2),
+    .io_lookup_12_word_3  (_sorts_2_io_lookup_12_word_3),
+    .io_lookup_12_word_4  (_sorts_2_io_lookup_12_word_4),
+    .io_lookup_12_word_5  (_sorts_2_io_lookup_12_word_5),
+    .io_lookup_12_word_6  (_sorts_2_io_lookup_12_word_6),
+    .io_lookup_12_word_7  (_sorts_2_io_lookup_12_word_7),
+    .io_lookup_12_word_8  (_sorts_2_io_lookup_12_word_8),
+    .io_lookup_12_word_9  (_sorts_2_io_lookup_12_word_9),
+    .io_lookup_12_word_10 (_sorts_2_io_lookup_12_word_10),
+    .io_lookup_12_word_11 (_sorts_2_io_lookup_12_word_11),
+    .io_lookup_12_word_12 (_sorts_2_io_lookup_12_word_12),
+    .io_lookup_12_word_13 (_sorts_2_io_lookup_12_word_13),
+    .io_lookup_12_word_14 (_sorts_2_io_lookup_12_word_14),
+    .io_lookup_12_word_15 (_sorts_2_io_lookup_12_word_15),
+    .io_lookup_13_bucket  (_gens_13_io_lookup_bucket),
+    .io_lookup_13_begin   (_sorts_2_io_lookup_13_begin),
+    .io_lookup_13_end     (_sorts_2_io_lookup_13_end),
+    .io_lookup_13_word_0  (_sorts_2_io_lookup_13_word_0),
+    .io_lookup_13_word_1  (_sorts_2_io_lookup_13_word_1),
+    .io_lookup_13_word_2  (_sorts_2_io_lookup_13_word_2),
+    .io_lookup_13_word_3  (_sorts_2_io_lookup_13_word_3),
+    .io_lookup_13_word_4  (_sorts_2_io_lookup_13_word_4),
+    .io_lookup_13_word_5  (_sorts_2_io_lookup_13_word_5),
+    .io_lookup_13_word_6  (_sorts_2_io_lookup_13_word_6),
+    .io_lookup_13_word_7  (_sorts_2_io_lookup_13_word_7),
+    .io_lookup_13_word_8  (_sorts_2_io_lookup_13_word_8),
+    .io_lookup_13_word_9  (_sorts_2_io_lookup_13_word_9),
+    .io_lookup_13_word_10 (_sorts_2_io_lookup_13_word_10),
+    .io_lookup_13_word_11 (_sorts_2_io_lookup_13_word_11),
+    .io_lookup_13_word_12 (_sorts_2_io_lookup_13_word_12),
+    .io_lookup_13_word_13 (_sorts_2_io_lookup_13_word_13),
+    .io_lookup_13_word_14 (_sorts_2_io_lookup_13_word_14),
+    .io_lookup_13_word_15 (_sorts_2_io_lookup_13_word_15),
+    .io_lookup_14_bucket  (_gens_14_io_lookup_bucket),
+    .io_lookup_14_begin   (_sorts_2_io_lookup_14_begin),
+    .io_lookup_14_end     (_sorts_2_io_lookup_14_end),
+    .io_lookup_14_word_0  (_sorts_2_io_lookup_14_word_0),
+    .io_lookup_14_word_1  (_sorts_2_io_lookup_14_word_1),
+    .io_lookup_14_word_2  (_sorts_2_io_lookup_14_word_2),
+    .io_lookup_14_word_3  (_sorts_2_io_lookup_14_word_3),
+    .io_lookup_14_word_4  (_sorts_2_io_lookup_14_word_4),
+    .io_lookup_14_word_5  (_sorts_2_io_lookup_14_word_5),
+    .io_lookup_14_word_6  (_sorts_2_io_lookup_14_word_6),
+    .io_lookup_14_word_7  (_sorts_2_io_lookup_14_word_7),
+    .io_lookup_14_word_8  (_sorts_2_io_lookup_14_word_8),
+    .io_lookup_14_word_9  (_sorts_2_io_lookup_14_word_9),
+    .io_lookup_14_word_10 (_sorts_2_io_lookup_14_word_10),
+    .io_lookup_14_word_11 (_sorts_2_io_lookup_14_word_11),
+    .io_lookup_14_word_12 (_sorts_2_io_lookup_14_word_12),
+    .io_lookup_14_word_13 (_sorts_2_io_lookup_14_word_13),
+    .io_lookup_14_word_14 (_sorts_2_io_lookup_14_word_14),
+    .io_lookup_14_word_15 (_sorts_2_io_lookup_14_word_15),
+    .io_lookup_15_bucket  (_gens_15_io_lookup_bucket),
+    .io_lookup_15_begin   (_sorts_2_io_lookup_15_begin),
+    .io_lookup_15_end     (_sorts_2_io_lookup_15_end),
+    .io_lookup_15_word_0  (_sorts_2_io_lookup_15_word_0),
+    .io_lookup_15_word_1  (_sorts_2_io_lookup_15_word_1),
+    .io_lookup_15_word_2  (_sorts_2_io_lookup_15_word_2),
+    .io_lookup_15_word_3  (_sorts_2_io_lookup_15_word_3),
+    .io_lookup_15_word_4  (_sorts_2_io_lookup_15_word_4),
+    .io_lookup_15_word_5  (_sorts_2_io_lookup_15_word_5),
+    .io_lookup_15_word_6  (_sorts_2_io_lookup_15_word_6),
+    .io_lookup_15_word_7  (_sorts_2_io_lookup_15_word_7),
+    .io_lookup_15_word_8  (_sorts_2_io_lookup_15_word_8),
+    .io_lookup_15_word_9  (_sorts_2_io_lookup_15_word_9),
+    .io_lookup_15_word_10 (_sorts_2_io_lookup_15_word_10),
+    .io_lookup_15_word_11 (_sorts_2_io_lookup_15_word_11),
+    .io_lookup_15_word_12 (_sorts_2_io_lookup_15_word_12),
+    .io_lookup_15_word_13 (_sorts_2_io_lookup_15_word_13),
+    .io_lookup_15_word_14 (_sorts_2_io_lookup_15_word_14),
+    .io_lookup_15_word_15 (_sorts_2_io_lookup_15_word_15),
+    .io_entry_0_addr      (_gens_0_io_entry_addr[9:0]),
+    .io_entry_0_item      (_sorts_2_io_entry_0_item),
+    .io_entry_0_mark      (_sorts_2_io_entry_0_mark),
+    .io_entry_1_addr      (_gens_1_io_entry_addr[9:0]),
+    .io_entry_1_item      (_sorts_2_io_entry_1_item),
+    .io_entry_1_mark      (_sorts_2_io_entry_1_mark),
+    .io_entry_2_addr      (_gens_2_io_entry_addr[9:0]),
+    .io_entry_2_item      (_sorts_2_io_entry_2_item),
+    .io_entry_2_mark      (_sorts_2_io_entry_2_mark),
+    .io_entry_3_addr      (_gens_3_io_entry_addr[9:0]),
+    .io_entry_3_item      (_sorts_2_io_entry_3_item),
+    .io_entry_3_mark      (_sorts_2_io_entry_3_mark),
+    .io_entry_4_addr      (_gens_4_io_entry_addr[9:0]),
+    .io_entry_4_item      (_sorts_2_io_entry_4_item),
+    .io_entry_4_mark      (_sorts_2_io_entry_4_mark),
+    .io_entry_5_addr      (_gens_5_io_entry_addr[9:0]),
+    .io_entry_5_item      (_sorts_2_io_entry_5_item),
+    .io_entry_5_mark      (_sorts_2_io_entry_5_mark),
+    .io_entry_6_addr      (_gens_6_io_entry_addr[9:0]),
+    .io_entry_6_item      (_sorts_2_io_entry_6_item),
+    .io_entry_6_mark      (_sorts_2_io_entry_6_mark),
+    .io_entry_7_addr      (_gens_7_io_entry_addr[9:0]),
+    .io_entry_7_item      (_sorts_2_io_entry_7_item),
+    .io_entry_7_mark      (_sorts_2_io_entry_7_mark),
+    .io_entry_8_addr      (_gens_8_io_entry_addr[9:0]),
+    .io_entry_8_item      (_sorts_2_io_entry_8_item),
+    .io_entry_8_mark      (_sorts_2_io_entry_8_mark),
+    .io_entry_9_addr      (_gens_9_io_entry_addr[9:0]),
+    .io_entry_9_item      (_sorts_2_io_entry_9_item),
+    .io_entry_9_mark      (_sorts_2_io_entry_9_mark),
+    .io_entry_10_addr     (_gens_10_io_entry_addr[9:0]),
+    .io_entry_10_item     (_sorts_2_io_entry_10_item),
+    .io_entry_10_mark     (_sorts_2_io_entry_10_mark),
+    .io_entry_11_addr     (_gens_11_io_entry_addr[9:0]),
+    .io_entry_11_item     (_sorts_2_io_entry_11_item),
+    .io_entry_11_mark     (_sorts_2_io_entry_11_mark),
+    .io_entry_12_addr     (_gens_12_io_entry_addr[9:0]),
+    .io_entry_12_item     (_sorts_2_io_entry_12_item),
+    .io_entry_12_mark     (_sorts_2_io_entry_12_mark),
+    .io_entry_13_addr     (_gens_13_io_entry_addr[9:0]),
+    .io_entry_13_item     (_sorts_2_io_entry_13_item),
+    .io_entry_13_mark     (_sorts_2_io_entry_13_mark),
+    .io_entry_14_addr     (_gens_14_io_entry_addr[9:0]),
+    .io_entry_14_item     (_sorts_2_io_entry_14_item),
+    .io_entry_14_mark     (_sorts_2_io_entry_14_mark),
+    .io_entry_15_addr     (_gens_15_io_entry_addr[9:0]),
+    .io_entry_15_item     (_sorts_2_io_entry_15_item),
+    .io_entry_15_mark     (_sorts_2_io_entry_15_mark),
+    .io_mark_0_valid      (_gens_0_io_mark_valid & _gens_0_io_mark_bits_group == 2'h2),
+    .io_mark_0_bits_addr  (_gens_0_io_mark_bits_addr[9:0]),
+    .io_mark_0_bits_item  (_gens_0_io_mark_bits_item),
+    .io_mark_1_valid      (_gens_1_io_mark_valid & _gens_1_io_mark_bits_group == 2'h2),
+    .io_mark_1_bits_addr  (_gens_1_io_mark_bits_addr[9:0]),
+    .io_mark_1_bits_item  (_gens_1_io_mark_bits_item),
+    .io_mark_2_valid      (_gens_2_io_mark_valid & _gens_2_io_mark_bits_group == 2'h2),
+    .io_mark_2_bits_addr  (_gens_2_io_mark_bits_addr[9:0]),
+    .io_mark_2_bits_item  (_gens_2_io_mark_bits_item),
+    .io_mark_3_valid      (_gens_3_io_mark_valid & _gens_3_io_mark_bits_group == 2'h2),
+    .io_mark_3_bits_addr  (_gens_3_io_mark_bits_addr[9:0]),
+    .io_mark_3_bits_item  (_gens_3_io_mark_bits_item),
+    .io_mark_4_valid      (_gens_4_io_mark_valid & _gens_4_io_mark_bits_group == 2'h2),
+    .io_mark_4_bits_addr  (_gens_4_io_mark_bits_addr[9:0]),
+    .io_mark_4_bits_item  (_gens_4_io_mark_bits_item),
+    .io_mark_5_valid      (_gens_5_io_mark_valid & _gens_5_io_mark_bits_group == 2'h2),
+    .io_mark_5_bits_addr  (_gens_5_io_mark_bits_addr[9:0]),
+    .io_mark_5_bits_item  (_gens_5_io_mark_bits_item),
+    .io_mark_6_valid      (_gens_6_io_mark_valid & _gens_6_io_mark_bits_group == 2'h2),
+    .io_mark_6_bits_addr  (_gens_6_io_mark_bits_addr[9:0]),
+    .io_mark_6_bits_item  (_gens_6_io_mark_bits_item),
+    .io_mark_7_valid      (_gens_7_io_mark_valid & _gens_7_io_mark_bits_group == 2'h2),
+    .io_mark_7_bits_addr  (_gens_7_io_mark_bits_addr[9:0]),
+    .io_mark_7_bits_item  (_gens_7_io_mark_bits_item),
+    .io_mark_8_valid      (_gens_8_io_mark_valid & _gens_8_io_mark_bits_group == 2'h2),
+    .io_mark_8_bits_addr  (_gens_8_io_mark_bits_addr[9:0]),
+    .io_mark_8_bits_item  (_gens_8_io_mark_bits_item),
+    .io_mark_9_valid      (_gens_9_io_mark_valid & _gens_9_io_mark_bits_group == 2'h2),
+    .io_mark_9_bits_addr  (_gens_9_io_mark_bits_addr[9:0]),
+    .io_mark_9_bits_item  (_gens_9_io_mark_bits_item),
+    .io_mark_10_valid     (_gens_10_io_mark_valid & _gens_10_io_mark_bits_group == 2'h2),
+    .io_mark_10_bits_addr (_gens_10_io_mark_bits_addr[9:0]),
+    .io_mark_10_bits_item (_gens_10_io_mark_bits_item),
+    .io_mark_11_valid     (_gens_11_io_mark_valid & _gens_11_io_mark_bits_group == 2'h2),
+    .io_mark_11_bits_addr (_gens_11_io_mark_bits_addr[9:0]),
+    .io_mark_11_bits_item (_gens_11_io_mark_bits_item),
+    .io_mark_12_valid     (_gens_12_io_mark_valid & _gens_12_io_mark_bits_group == 2'h2),
+    .io_mark_12_bits_addr (_gens_12_io_mark_bits_addr[9:0]),
+    .io_mark_12_bits_item (_gens_12_io_mark_bits_item),
+    .io_mark_13_valid     (_gens_13_io_mark_valid & _gens_13_io_mark_bits_group == 2'h2),
+    .io_mark_13_bits_addr (_gens_13_io_mark_bits_addr[9:0]),
+    .io_mark_13_bits_item (_gens_13_io_mark_bits_item),
+    .io_mark_14_valid     (_gens_14_io_mark_valid & _gens_14_io_mark_bits_group == 2'h2),
+    .io_mark_14_bits_addr (_gens_14_io_mark_bits_addr[9:0]),
+    .io_mark_14_bits_item (_gens_14_io_mark_bits_item),
+    .io_mark_15_valid     (_gens_15_io_mark_valid & _gens_15_io_mark_bits_group == 2'h2),
+    .io_mark_15_bits_addr (_gens_15_io_mark_bits_addr[9:0]),
+    .io_mark_15_bits_item (_gens_15_io_mark_bits_item),
+    .io_counted           (_sorts_2_io_counted),
+    .io_scattered         (_sorts_2_io_scattered),
+    .io_badBucket         (_sorts_2_io_badBucket)
+  );
+  BucketSort_n1024_b13_w4_c16_p2_i12_world sorts_3 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_usedLog2          (usedLog2),
+    .io_clear             (starting),
+    .io_prefix            (_sorts_3_io_prefix_T & ~sent),
+    .io_busy              (_sorts_3_io_busy),
+    .io_in_0_ready        (_sorts_3_io_in_0_ready),
+    .io_in_0_valid        (_sorts_3_io_in_0_valid_T_12),
+    .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
+    .io_in_0_bits_bucket
+      ({_laneKeys_6_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_6_io_out_cell_1[10:1]
+          * 10'h9F ^ _laneKeys_6_io_out_cell_2[10:1] * 10'h3B7,
+        _laneKeys_6_io_out_cell_0[0],
+        _laneKeys_6_io_out_cell_1[0],
+        _laneKeys_6_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_0_bits_item    (r_6),
+    .io_in_1_ready        (_sorts_3_io_in_1_ready),
+    .io_in_1_valid        (_sorts_3_io_in_1_valid_T_12),
+    .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
+    .io_in_1_bits_bucket
+      ({_laneKeys_7_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_7_io_out_cell_1[10:1]
+          * 10'h9F ^ _laneKeys_7_io_out_cell_2[10:1] * 10'h3B7,
+        _laneKeys_7_io_out_cell_0[0],
+        _laneKeys_7_io_out_cell_1[0],
+        _laneKeys_7_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
+    .io_in_1_bits_item    (r_7),
+    .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
+    .io_lookup_0_begin    (_sorts_3_io_lookup_0_begin),
+    .io_lookup_0_end      (_sorts_3_io_lookup_0_end),
+    .io_lookup_0_word_0   (_sorts_3_io_lookup_0_word_0),
+    .io_lookup_0_word_1   (_sorts_3_io_lookup_0_word_1),
+    .io_lookup_0_word_2   (_sorts_3_io_lookup_0_word_2),
+    .io_lookup_0_word_3   (_sorts_3_io_lookup_0_word_3),
+    .io_lookup_0_word_4   (_sorts_3_io_lookup_0_word_4),
+    .io_lookup_0_word_5   (_sorts_3_io_lookup_0_word_5),
+    .io_lookup_0_word_6   (_sorts_3_io_lookup_0_word_6),
+    .io_lookup_0_word_7   (_sorts_3_io_lookup_0_word_7),
+    .io_lookup_0_word_8   (_sorts_3_io_lookup_0_word_8),
+    .io_lookup_0_word_9   (_sorts_3_io_lookup_0_word_9),
+    .io_lookup_0_word_10  (_sorts_3_io_lookup_0_word_10),
+    .io_lookup_0_word_11  (_sorts_3_io_lookup_0_word_11),
+    .io_lookup_0_word_12  (_sorts_3_io_lookup_0_word_12),
+    .io_lookup_0_word_13  (_sorts_3_io_lookup_0_word_13),
+    .io_lookup_0_word_14  (_sorts_3_io_lookup_0_word_14),
+    .io_lookup_0_word_15  (_sorts_3_io_lookup_0_word_15),
+    .io_lookup_1_bucket   (_gens_1_io_lookup_bucket),
+    .io_lookup_1_begin    (_sorts_3_io_lookup_1_begin),
+    .io_lookup_1_end      (_sorts_3_io_lookup_1_end),
+    .io_lookup_1_word_0   (_sorts_3_io_lookup_1_word_0),
+    .io_lookup_1_word_1   (_sorts_3_io_lookup_1_word_1),
+    .io_lookup_1_word_2   (_sorts_3_io_lookup_1_word_2),
+    .io_lookup_1_word_3   (_sorts_3_io_lookup_1_word_3),
+    .io_lookup_1_word_4   (_sorts_3_io_lookup_1_word_4),
+    .io_lookup_1_word_5   (_sorts_3_io_lookup_1_word_5),
+    .io_lookup_1_word_6   (_sorts_3_io_lookup_1_word_6),
+    .io_lookup_1_word_7   (_sorts_3_io_lookup_1_word_7),
+    .io_lookup_1_word_8   (_sorts_3_io_lookup_1_word_8),
+    .io_lookup_1_word_9   (_sorts_3_io_lookup_1_word_9),
+    .io_lookup_1_word_10  (_sorts_3_io_lookup_1_word_10),
+    .io_lookup_1_word_11  (_sorts_3_io_lookup_1_word_11),
+    .io_lookup_1_word_12  (_sorts_3_io_lookup_1_word_12),
+    .io_lookup_1_word_13  (_sorts_3_io_lookup_1_word_13),
+    .io_lookup_1_word_14  (_sorts_3_io_lookup_1_word_14),
+    .io_lookup_1_word_15  (_sorts_3_io_lookup_1_word_15),
+    .io_lookup_2_bucket   (_gens_2_io_lookup_bucket),
+    .io_lookup_2_begin    (_sorts_3_io_lookup_2_begin),
+    .io_lookup_2_end      (_sorts_3_io_lookup_2_end),
+    .io_lookup_2_word_0   (_sorts_3_io_lookup_2_word_0),
+    .io_lookup_2_word_1   (_sorts_3_io_lookup_2_word_1),
+    .io_lookup_2_word_2   (_sorts_3_io_lookup_2_word_2),
+    .io_lookup_2_word_3   (_sorts_3_io_lookup_2_word_3),
+    .io_lookup_2_word_4   (_sorts_3_io_lookup_2_word_4),
+    .io_lookup_2_word_5   (_sorts_3_io_lookup_2_word_5),
+    .io_lookup_2_word_6   (_sorts_3_io_lookup_2_word_6),
+    .io_lookup_2_word_7   (_sorts_3_io_lookup_2_word_7),
+    .io_lookup_2_word_8   (_sorts_3_io_lookup_2_word_8),
+    .io_lookup_2_word_9   (_sorts_3_io_lookup_2_word_9),
+    .io_lookup_2_word_10  (_sorts_3_io_lookup_2_word_10),
+    .io_lookup_2_word_11  (_sorts_3_io_lookup_2_word_11),
+    .io_lookup_2_word_12  (_sorts_3_io_lookup_2_word_12),
+    .io_lookup_2_word_13  (_sorts_3_io_lookup_2_word_13),
+    .io_lookup_2_word_14  (_sorts_3_io_lookup_2_word_14),
+    .io_lookup_2_word_15  (_sorts_3_io_lookup_2_word_15),
+    .io_lookup_3_bucket   (_gens_3_io_lookup_bucket),
+    .io_lookup_3_begin    (_sorts_3_io_lookup_3_begin),
+    .io_lookup_3_end      (_sorts_3_io_lookup_3_end),
+    .io_lookup_3_word_0   (_sorts_3_io_lookup_3_word_0),
+    .io_lookup_3_word_1   (_sorts_3_io_lookup_3_word_1),
+    .io_lookup_3_word_2   (_sorts_3_io_lookup_3_word_2),
+    .io_lookup_3_word_3   (_sorts_3_io_lookup_3_word_3),
+    .io_lookup_3_word_4   (_sorts_3_io_lookup_3_word_4),
+    .io_lookup_3_word_5   (_sorts_3_io_lookup_3_word_5),
+    .io_lookup_3_word_6   (_sorts_3_io_lookup_3_word_6),
+    .io_lookup_3_word_7   (_sorts_3_io_lookup_3_word_7),
+    .io_lookup_3_word_8   (_sorts_3_io_lookup_3_word_8),
+    .io_lookup_3_word_9   (_sorts_3_io_lookup_3_word_9),
+    .io_lookup_3_word_10  (_sorts_3_io_lookup_3_word_10),
+    .io_lookup_3_word_11  (_sorts_3_io_lookup_3_word_11),
+    .io_lookup_3_word_12  (_sorts_3_io_lookup_3_word_12),
+    .io_lookup_3_word_13  (_sorts_3_io_lookup_3_word_13),
+    .io_lookup_3_word_14  (_sorts_3_io_lookup_3_word_14),
+    .io_lookup_3_word_15  (_sorts_3_io_lookup_3_word_15),
+    .io_lookup_4_bucket   (_gens_4_io_lookup_bucket),
+    .io_lookup_4_begin    (_sorts_3_io_lookup_4_begin),
+    .io_lookup_4_end      (_sorts_3_io_lookup_4_end),
+    .io_lookup_4_word_0   (_sorts_3_io_lookup_4_word_0),
+    .io_lookup_4_word_1   (_sorts_3_io_lookup_4_word_1),
+    .io_lookup_4_word_2   (_sorts_3_io_lookup_4_word_2),
+    .io_lookup_4_word_3   (_sorts_3_io_lookup_4_word_3),
+    .io_lookup_4_word_4   (_sorts_3_io_lookup_4_word_4),
+    .io_lookup_4_word_5   (_sorts_3_io_lookup_4_word_5),
+    .io_lookup_4_word_6   (_sorts_3_io_lookup_4_word_6),
+    .io_lookup_4_word_7   (_sorts_3_io_lookup_4_word_7),
+    .io_lookup_4_word_8   (_sorts_3_io_lookup_4_word_8),
+    .io_lookup_4_word_9   (_sorts_3_io_lookup_4_word_9),
+    .io_lookup_4_word_10  (_sorts_3_io_lookup_4_word_10),
+    .io_lookup_4_word_11  (_sorts_3_io_lookup_4_word_11),
+    .io_lookup_4_word_12  (_sorts_3_io_lookup_4_word_12),
+    .io_lookup_4_word_13  (_sorts_3_io_lookup_4_word_13),
+    .io_lookup_4_word_14  (_sorts_3_io_lookup_4_word_14),
+    .io_lookup_4_word_15  (_sorts_3_io_lookup_4_word_15),
+    .io_lookup_5_bucket   (_gens_5_io_lookup_bucket),
+    .io_lookup_5_begin    (_sorts_3_io_lookup_5_begin),
+    .io_lookup_5_end      (_sorts_3_io_lookup_5_end),
+    .io_lookup_5_word_0   (_sorts_3_io_lookup_5_word_0),
+    .io_lookup_5_word_1   (_sorts_3_io_lookup_5_word_1),
+    .io_lookup_5_word_2   (_sorts_3_io_lookup_5_word_2),
+    .io_lookup_5_word_3   (_sorts_3_io_lookup_5_word_3),
+    .io_lookup_5_word_4   (_sorts_3_io_lookup_5_word_4),
+    .io_lookup_5_word_5   (_sorts_3_io_lookup_5_word_5),
+    .io_lookup_5_word_6   (_sorts_3_io_lookup_5_word_6),
+    .io_lookup_5_word_7   (_sorts_3_io_lookup_5_word_7),
+    .io_lookup_5_word_8   (_sorts_3_io_lookup_5_word_8),
+    .io_lookup_5_word_9   (_sorts_3_io_lookup_5_word_9),
+    .io_lookup_5_word_10  (_sorts_3_io_lookup_5_word_10),
+    .io_lookup_5_word_11  (_sorts_3_io_lookup_5_word_11),
+    .io_lookup_5_word_12  (_sorts_3_io_lookup_5_word_12),
+    .io_lookup_5_word_13  (_sorts_3_io_lookup_5_word_13),
+    .io_lookup_5_word_14  (_sorts_3_io_lookup_5_word_14),
+    .io_lookup_5_word_15  (_sorts_3_io_lookup_5_word_15),
+    .io_lookup_6_bucket   (_gens_6_io_lookup_bucket),
+    .io_lookup_6_begin    (_sorts_3_io_lookup_6_begin),
+    .io_lookup_6_end      (_sorts_3_io_lookup_6_end),
+    .io_lookup_6_word_0   (_sorts_3_io_lookup_6_word_0),
+    .io_lookup_6_word_1   (_sorts_3_io_lookup_6_word_1),
+    .io_lookup_6_word_2   (_sorts_3_io_lookup_6_word_2),
+    .io_lookup_6_word_3   (_sorts_3_io_lookup_6_word_3),
+    .io_lookup_6_word_4   (_sorts_3_io_lookup_6_word_4),
+    .io_lookup_6_word_5   (_sorts_3_io_lookup_6_word_5),
+    .io_lookup_6_word_6   (_sorts_3_io_lookup_6_word_6),
+    .io_lookup_6_word_7   (_sorts_3_io_lookup_6_word_7),
+    .io_lookup_6_word_8   (_sorts_3_io_lookup_6_word_8),
+    .io_lookup_6_word_9   (_sorts_3_io_lookup_6_word_9),
+    .io_lookup_6_word_10  (_sorts_3_io_lookup_6_word_10),
+    .io_lookup_6_word_11  (_sorts_3_io_lookup_6_word_11),
+    .io_lookup_6_word_12  (_sorts_3_io_lookup_6_word_12),
+    .io_lookup_6_word_13  (_sorts_3_io_lookup_6_word_13),
+    .io_lookup_6_word_14  (_sorts_3_io_lookup_6_word_14),
+    .io_lookup_6_word_15  (_sorts_3_io_lookup_6_word_15),
+    .io_lookup_7_bucket   (_gens_7_io_lookup_bucket),
+    .io_lookup_7_begin    (_sorts_3_io_lookup_7_begin),
+    .io_lookup_7_end      (_sorts_3_io_lookup_7_end),
+    .io_lookup_7_word_0   (_sorts_3_io_lookup_7_word_0),
+    .io_lookup_7_word_1   (_sorts_3_io_lookup_7_word_1),
+    .io_lookup_7_word_2   (_sorts_3_io_lookup_7_word_2),
+    .io_lookup_7_word_3   (_sorts_3_io_lookup_7_word_3),
+    .io_lookup_7_word_4   (_sorts_3_io_lookup_7_word_4),
+    .io_lookup_7_word_5   (_sorts_3_io_lookup_7_word_5),
+    .io_lookup_7_word_6   (_sorts_3_io_lookup_7_word_6),
+    .io_lookup_7_word_7   (_sorts_3_io_lookup_7_word_7),
+    .io_lookup_7_word_8   (_sorts_3_io_lookup_7_word_8),
+    .io_lookup_7_word_9   (_sorts_3_io_lookup_7_word_9),
+    .io_lookup_7_word_10  (_sorts_3_io_lookup_7_word_10),
+    .io_lookup_7_word_11  (_sorts_3_io_lookup_7_word_11),
+    .io_lookup_7_word_12  (_sorts_3_io_lookup_7_word_12),
+    .io_lookup_7_word_13  (_sorts_3_io_lookup_7_word_13),
+    .io_lookup_7_word_14  (_sorts_3_io_lookup_7_word_14),
+    .io_lookup_7_word_15  (_sorts_3_io_lookup_7_word_15),
+    .io_lookup_8_bucket   (_gens_8_io_lookup_bucket),
+    .io_lookup_8_begin    (_sorts_3_io_lookup_8_begin),
+    .io_lookup_8_end      (_sorts_3_io_lookup_8_end),
+    .io_lookup_8_word_0   (_sorts_3_io_lookup_8_word_0),
+    .io_lookup_8_word_1   (_sorts_3_io_lookup_8_word_1),
+    .io_lookup_8_word_2   (_sorts_3_io_lookup_8_word_2),
+    .io_lookup_8_word_3   (_sorts_3_io_lookup_8_word_3),
+    .io_lookup_8_word_4   (_sorts_3_io_lookup_8_word_4),
+    .io_lookup_8_word_5   (_sorts_3_io_lookup_8_word_5),
+    .io_lookup_8_word_6   (_sorts_3_io_lookup_8_word_6),
+    .io_lookup_8_word_7   (_sorts_3_io_lookup_8_word_7),
+    .io_lookup_8_word_8   (_sorts_3_io_lookup_8_word_8),
+    .io_lookup_8_word_9   (_sorts_3_io_lookup_8_word_9),
+    .io_lookup_8_word_10  (_sorts_3_io_lookup_8_word_10),
+    .io_lookup_8_word_11  (_sorts_3_io_lookup_8_word_11),
+    .io_lookup_8_word_12  (_sorts_3_io_lookup_8_word_12),
+    .io_lookup_8_word_13  (_sorts_3_io_lookup_8_word_13),
+    .io_lookup_8_word_14  (_sorts_3_io_lookup_8_word_14),
+    .io_lookup_8_word_15  (_sorts_3_io_lookup_8_word_15),
+    .io_lookup_9_bucket   (_gens_9_io_lookup_bucket),
+    .io_lookup_9_begin    (_sorts_3_io_lookup_9_begin),
+    .io_lookup_9_end      (_sorts_3_io_lookup_9_end),
+    .io_lookup_9_word_0   (_sorts_3_io_lookup_9_word_0),
+    .io_lookup_9_word_1   (_sorts_3_io_lookup_9_word_1),
+    .io_lookup_9_word_2   (_sorts_3_io_lookup_9_word_2),
+    .io_lookup_9_word_3   (_sorts_3_io_lookup_9_word_3),
+    .io_lookup_9_word_4   (_sorts_3_io_lookup_9_word_4),
+    .io_lookup_9_word_5   (_sorts_3_io_lookup_9_word_5),
+    .io_lookup_9_word_6   (_sorts_3_io_lookup_9_word_6),
+    .io_lookup_9_word_7   (_sorts_3_io_lookup_9_word_7),
+    .io_lookup_9_word_8   (_sorts_3_io_lookup_9_word_8),
+    .io_lookup_9_word_9   (_sorts_3_io_lookup_9_word_9),
+    .io_lookup_9_word_10  (_sorts_3_io_lookup_9_word_10),
+    .io_lookup_9_word_11  (_sorts_3_io_lookup_9_word_11),
+    .io_lookup_9_word_12  (_sorts_3_io_lookup_9_word_12),
+    .io_lookup_9_word_13  (_sorts_3_io_lookup_9_word_13),
+    .io_lookup_9_word_14  (_sorts_3_io_lookup_9_word_14),
+    .io_lookup_9_word_15  (_sorts_3_io_lookup_9_word_15),
+    .io_lookup_10_bucket  (_gens_10_io_lookup_bucket),
+    .io_lookup_10_begin   (_sorts_3_io_lookup_10_begin),
+    .io_lookup_10_end     (_sorts_3_io_lookup_10_end),
+    .io_lookup_10_word_0  (_sorts_3_io_lookup_10_word_0),
+    .io_lookup_10_word_1  (_sorts_3_io_lookup_10_word_1),
+    .io_lookup_10_word_2  (_sorts_3_io_lookup_10_word_2),
+    .io_lookup_10_word_3  (_sorts_3_io_lookup_10_word_3),
+    .io_lookup_10_word_4  (_sorts_3_io_lookup_10_word_4),
+    .io_lookup_10_word_5  (_sorts_3_io_lookup_10_word_5),
+    .io_lookup_10_word_6  (_sorts_3_io_lookup_10_word_6),
+    .io_lookup_10_word_7  (_sorts_3_io_lookup_10_word_7),
+    .io_lookup_10_word_8  (_sorts_3_io_lookup_10_word_8),
+    .io_lookup_10_word_9  (_sorts_3_io_lookup_10_word_9),
+    .io_lookup_10_word_10 (_sorts_3_io_lookup_10_word_10),
+    .io_lookup_10_word_11 (_sorts_3_io_lookup_10_word_11),
+    .io_lookup_10_word_12 (_sorts_3_io_lookup_10_word_12),
+    .io_lookup_10_word_13 (_sorts_3_io_lookup_10_word_13),
+    .io_lookup_10_word_14 (_sorts_3_io_lookup_10_word_14),
+    .io_lookup_10_word_15 (_sorts_3_io_lookup_10_word_15),
+    .io_lookup_11_bucket  (_gens_11_io_lookup_bucket),
+    .io_lookup_11_begin   (_sorts_3_io_lookup_11_begin),
+    .io_lookup_11_end     (_sorts_3_io_lookup_11_end),
+    .io_lookup_11_word_0  (_sorts_3_io_lookup_11_word_0),
+    .io_lookup_11_word_1  (_sorts_3_io_lookup_11_word_1),
+    .io_lookup_11_word_2  (_sorts_3_io_lookup_11_word_2),
+    .io_lookup_11_word_3  (_sorts_3_io_lookup_11_word_3),
+    .io_lookup_11_word_4  (_sorts_3_io_lookup_11_word_4),
+    .io_lookup_11_word_5  (_sorts_3_io_lookup_11_word_5),
+    .io_lookup_11_word_6  (_sorts_3_io_lookup_11_word_6),
+    .io_lookup_11_word_7  (_sorts_3_io_lookup_11_word_7),
+    .io_lookup_11_word_8  (_sorts_3_io_lookup_11_word_8),
+    .io_lookup_11_word_9  (_sorts_3_io_lookup_11_word_9),
+    .io_lookup_11_word_10 (_sorts_3_io_lookup_11_word_10),
+    .io_lookup_11_word_11 (_sorts_3_io_lookup_11_word_11),
+    .io_lookup_11_word_12 (_sorts_3_io_lookup_11_word_12),
+    .io_lookup_11_word_13 (_sorts_3_io_lookup_11_word_13),
+    .io_lookup_11_word_14 (_sorts_3_io_lookup_11_word_14),
+    .io_lookup_11_word_15 (_sorts_3_io_lookup_11_word_15),
+    .io_lookup_12_bucket  (_gens_12_io_lookup_bucket),
+    .io_lookup_12_begin   (_sorts_3_io_lookup_12_begin),
+    .io_lookup_12_end     (_sorts_3_io_lookup_12_end),
+    .io_lookup_12_word_0  (_sorts_3_io_lookup_12_word_0),
+    .io_lookup_12_word_1  (_sorts_3_io_lookup_12_word_1),
+    .io_lookup_12_word_2  (_sorts_3_io_lookup_12_word_2),
+    .io_lookup_12_word_3  (_sorts_3_io_lookup_12_word_3),
+    .io_lookup_12_word_4  (_sorts_3_io_lookup_12_word_4),
+    .io_lookup_12_word_5  (_sorts_3_io_lookup_12_word_5),
+    .io_lookup_12_word_6  (_sorts_3_io_lookup_12_word_6),
+    .io_lookup_12_word_7  (_sorts_3_io_lookup_12_word_7),
+    .io_lookup_12_word_8  (_sorts_3_io_lookup_12_word_8),
+    .io_lookup_12_word_9  (_sorts_3_io_lookup_12_word_9),
+    .io_lookup_12_word_10 (_sorts_3_io_lookup_12_word_10),
+    .io_lookup_12_word_11 (_sorts_3_io_lookup_12_word_11),
+    .io_lookup_12_word_12 (_sorts_3_io_lookup_12_word_12),
+    .io_lookup_12_word_13 (_sorts_3_io_lookup_12_word_13),
+    .io_lookup_12_word_14 (_sorts_3_io_lookup_12_word_14),
+    .io_lookup_12_word_15 (_sorts_3_io_lookup_12_word_15),
+    .io_lookup_13_bucket  (_gens_13_io_lookup_bucket),
+    .io_lookup_13_begin   (_sorts_3_io_lookup_13_begin),
+    .io_lookup_13_end     (_sorts_3_io_lookup_13_end),
+    .io_lookup_13_word_0  (_sorts_3_io_lookup_13_word_0),
+    .io_lookup_13_word_1  (_sorts_3_io_lookup_13_word_1),
+    .io_lookup_13_word_2  (_sorts_3_io_lookup_13_word_2),
+    .io_lookup_13_word_3  (_sorts_3_io_lookup_13_word_3),
+    .io_lookup_13_word_4  (_sorts_3_io_lookup_13_word_4),
+    .io_lookup_13_word_5  (_sorts_3_io_lookup_13_word_5),
+    .io_lookup_13_word_6  (_sorts_3_io_lookup_13_word_6),
+    .io_lookup_13_word_7  (_sorts_3_io_lookup_13_word_7),
+    .io_lookup_13_word_8  (_sorts_3_io_lookup_13_word_8),
+    .io_lookup_13_word_9  (_sorts_3_io_lookup_13_word_9),
+    .io_lookup_13_word_10 (_sorts_3_io_lookup_13_word_10),
+    .io_lookup_13_word_11 (_sorts_3_io_lookup_13_word_11),
+    .io_lookup_13_word_12 (_sorts_3_io_lookup_13_word_12),
+    .io_lookup_13_word_13 (_sorts_3_io_lookup_13_word_13),
+    .io_lookup_13_word_14 (_sorts_3_io_lookup_13_word_14),
+    .io_lookup_13_word_15 (_sorts_3_io_lookup_13_word_15),
+    .io_lookup_14_bucket  (_gens_14_io_lookup_bucket),
+    .io_lookup_14_begin   (_sorts_3_io_lookup_14_begin),
+    .io_lookup_14_end     (_sorts_3_io_lookup_14_end),
+    .io_lookup_14_word_0  (_sorts_3_io_lookup_14_word_0),
+    .io_lookup_14_word_1  (_sorts_3_io_lookup_14_word_1),
+    .io_lookup_14_word_2  (_sorts_3_io_lookup_14_word_2),
+    .io_lookup_14_word_3  (_sorts_3_io_lookup_14_word_3),
+    .io_lookup_14_word_4  (_sorts_3_io_lookup_14_word_4),
+    .io_lookup_14_word_5  (_sorts_3_io_lookup_14_word_5),
+    .io_lookup_14_word_6  (_sorts_3_io_lookup_14_word_6),
+    .io_lookup_14_word_7  (_sorts_3_io_lookup_14_word_7),
+    .io_lookup_14_word_8  (_sorts_3_io_lookup_14_word_8),
+    .io_lookup_14_word_9  (_sorts_3_io_lookup_14_word_9),
+    .io_lookup_14_word_10 (_sorts_3_io_lookup_14_word_10),
+    .io_lookup_14_word_11 (_sorts_3_io_lookup_14_word_11),
+    .io_lookup_14_word_12 (_sorts_3_io_lookup_14_word_12),
+    .io_lookup_14_word_13 (_sorts_3_io_lookup_14_word_13),
+    .io_lookup_14_word_14 (_sorts_3_io_lookup_14_word_14),
+    .io_lookup_14_word_15 (_sorts_3_io_lookup_14_word_15),
+    .io_lookup_15_bucket  (_gens_15_io_lookup_bucket),
+    .io_lookup_15_begin   (_sorts_3_io_lookup_15_begin),
+    .io_lookup_15_end     (_sorts_3_io_lookup_15_end),
+    .io_lookup_15_word_0  (_sorts_3_io_lookup_15_word_0),
+    .io_lookup_15_word_1  (_sorts_3_io_lookup_15_word_1),
+    .io_lookup_15_word_2  (_sorts_3_io_lookup_15_word_2),
+    .io_lookup_15_word_3  (_sorts_3_io_lookup_15_word_3),
+    .io_lookup_15_word_4  (_sorts_3_io_lookup_15_word_4),
+    .io_lookup_15_word_5  (_sorts_3_io_lookup_15_word_5),
+    .io_lookup_15_word_6  (_sorts_3_io_lookup_15_word_6),
+    .io_lookup_15_word_7  (_sorts_3_io_lookup_15_word_7),
+    .io_lookup_15_word_8  (_sorts_3_io_lookup_15_word_8),
+    .io_lookup_15_word_9  (_sorts_3_io_lookup_15_word_9),
+    .io_lookup_15_word_10 (_sorts_3_io_lookup_15_word_10),
+    .io_lookup_15_word_11 (_sorts_3_io_lookup_15_word_11),
+    .io_lookup_15_word_12 (_sorts_3_io_lookup_15_word_12),
+    .io_lookup_15_word_13 (_sorts_3_io_lookup_15_word_13),
+    .io_lookup_15_word_14 (_sorts_3_io_lookup_15_word_14),
+    .io_lookup_15_word_15 (_sorts_3_io_lookup_15_word_15),
+    .io_entry_0_addr      (_gens_0_io_entry_addr[9:0]),
+    .io_entry_0_item      (_sorts_3_io_entry_0_item),
+    .io_entry_0_mark      (_sorts_3_io_entry_0_mark),
+    .io_entry_1_addr      (_gens_1_io_entry_addr[9:0]),
+    .io_entry_1_item      (_sorts_3_io_entry_1_item),
+    .io_entry_1_mark      (_sorts_3_io_entry_1_mark),
+    .io_entry_2_addr      (_gens_2_io_entry_addr[9:0]),
+    .io_entry_2_item      (_sorts_3_io_entry_2_item),
+    .io_entry_2_mark      (_sorts_3_io_entry_2_mark),
+    .io_entry_3_addr      (_gens_3_io_entry_addr[9:0]),
+    .io_entry_3_item      (_sorts_3_io_entry_3_item),
+    .io_entry_3_mark      (_sorts_3_io_entry_3_mark),
+    .io_entry_4_addr      (_gens_4_io_entry_addr[9:0]),
+    .io_entry_4_item      (_sorts_3_io_entry_4_item),
+    .io_entry_4_mark      (_sorts_3_io_entry_4_mark),
+    .io_entry_5_addr      (_gens_5_io_entry_addr[9:0]),
+    .io_entry_5_item      (_sorts_3_io_entry_5_item),
+    .io_entry_5_mark      (_sorts_3_io_entry_5_mark),
+    .io_entry_6_addr      (_gens_6_io_entry_addr[9:0]),
+    .io_entry_6_item      (_sorts_3_io_entry_6_item),
+    .io_entry_6_mark      (_sorts_3_io_entry_6_mark),
+    .io_entry_7_addr      (_gens_7_io_entry_addr[9:0]),
+    .io_entry_7_item      (_sorts_3_io_entry_7_item),
+    .io_entry_7_mark      (_sorts_3_io_entry_7_mark),
+    .io_entry_8_addr      (_gens_8_io_entry_addr[9:0]),
+    .io_entry_8_item      (_sorts_3_io_entry_8_item),
+    .io_entry_8_mark      (_sorts_3_io_entry_8_mark),
+    .io_entry_9_addr      (_gens_9_io_entry_addr[9:0]),
+    .io_entry_9_item      (_sorts_3_io_entry_9_item),
+    .io_entry_9_mark      (_sorts_3_io_entry_9_mark),
+    .io_entry_10_addr     (_gens_10_io_entry_addr[9:0]),
+    .io_entry_10_item     (_sorts_3_io_entry_10_item),
+    .io_entry_10_mark     (_sorts_3_io_entry_10_mark),
+    .io_entry_11_addr     (_gens_11_io_entry_addr[9:0]),
+    .io_entry_11_item     (_sorts_3_io_entry_11_item),
+    .io_entry_11_mark     (_sorts_3_io_entry_11_mark),
+    .io_entry_12_addr     (_gens_12_io_entry_addr[9:0]),
+    .io_entry_12_item     (_sorts_3_io_entry_12_item),
+    .io_entry_12_mark     (_sorts_3_io_entry_12_mark),
+    .io_entry_13_addr     (_gens_13_io_entry_addr[9:0]),
+    .io_entry_13_item     (_sorts_3_io_entry_13_item),
+    .io_entry_13_mark     (_sorts_3_io_entry_13_mark),
+    .io_entry_14_addr     (_gens_14_io_entry_addr[9:0]),
+    .io_entry_14_item     (_sorts_3_io_entry_14_item),
+    .io_entry_14_mark     (_sorts_3_io_entry_14_mark),
+    .io_entry_15_addr     (_gens_15_io_entry_addr[9:0]),
+    .io_entry_15_item     (_sorts_3_io_entry_15_item),
+    .io_entry_15_mark     (_sorts_3_io_entry_15_mark),
+    .io_mark_0_valid      (_gens_0_io_mark_valid & (&_gens_0_io_mark_bits_group)),
+    .io_mark_0_bits_addr  (_gens_0_io_mark_bits_addr[9:0]),
+    .io_mark_0_bits_item  (_gens_0_io_mark_bits_item),
+    .io_mark_1_valid      (_gens_1_io_mark_valid & (&_gens_1_io_mark_bits_group)),
+    .io_mark_1_bits_addr  (_gens_1_io_mark_bits_addr[9:0]),
+    .io_mark_1_bits_item  (_gens_1_io_mark_bits_item),
+    .io_mark_2_valid      (_gens_2_io_mark_valid & (&_gens_2_io_mark_bits_group)),
+    .io_mark_2_bits_addr  (_gens_2_io_mark_bits_addr[9:0]),
+    .io_mark_2_bits_item  (_gens_2_io_mark_bits_item),
+    .io_mark_3_valid      (_gens_3_io_mark_valid & (&_gens_3_io_mark_bits_group)),
+    .io_mark_3_bits_addr  (_gens_3_io_mark_bits_addr[9:0]),
+    .io_mark_3_bits_item  (_gens_3_io_mark_bits_item),
+    .io_mark_4_valid      (_gens_4_io_mark_valid & (&_gens_4_io_mark_bits_group)),
+    .io_mark_4_bits_addr  (_gens_4_io_mark_bits_addr[9:0]),
+    .io_mark_4_bits_item  (_gens_4_io_mark_bits_item),
+    .io_mark_5_valid      (_gens_5_io_mark_valid & (&_gens_5_io_mark_bits_group)),
+    .io_mark_5_bits_addr  (_gens_5_io_mark_bits_addr[9:0]),
+    .io_mark_5_bits_item  (_gens_5_io_mark_bits_item),
+    .io_mark_6_valid      (_gens_6_io_mark_valid & (&_gens_6_io_mark_bits_group)),
+    .io_mark_6_bits_addr  (_gens_6_io_mark_bits_addr[9:0]),
+    .io_mark_6_bits_item  (_gens_6_io_mark_bits_item),
+    .io_mark_7_valid      (_gens_7_io_mark_valid & (&_gens_7_io_mark_bits_group)),
+    .io_mark_7_bits_addr  (_gens_7_io_mark_bits_addr[9:0]),
+    .io_mark_7_bits_item  (_gens_7_io_mark_bits_item),
+    .io_mark_8_valid      (_gens_8_io_mark_valid & (&_gens_8_io_mark_bits_group)),
+    .io_mark_8_bits_addr  (_gens_8_io_mark_bits_addr[9:0]),
+    .io_mark_8_bits_item  (_gens_8_io_mark_bits_item),
+    .io_mark_9_valid      (_gens_9_io_mark_valid & (&_gens_9_io_mark_bits_group)),
+    .io_mark_9_bits_addr  (_gens_9_io_mark_bits_addr[9:0]),
+    .io_mark_9_bits_item  (_gens_9_io_mark_bits_item),
+    .io_mark_10_valid     (_gens_10_io_mark_valid & (&_gens_10_io_mark_bits_group)),
+    .io_mark_10_bits_addr (_gens_10_io_mark_bits_addr[9:0]),
+    .io_mark_10_bits_item (_gens_10_io_mark_bits_item),
+    .io_mark_11_valid     (_gens_11_io_mark_valid & (&_gens_11_io_mark_bits_group)),
+    .io_mark_11_bits_addr (_gens_11_io_mark_bits_addr[9:0]),
+    .io_mark_11_bits_item (_gens_11_io_mark_bits_item),
+    .io_mark_12_valid     (_gens_12_io_mark_valid & (&_gens_12_io_mark_bits_group)),
+    .io_mark_12_bits_addr (_gens_12_io_mark_bits_addr[9:0]),
+    .io_mark_12_bits_item (_gens_12_io_mark_bits_item),
+    .io_mark_13_valid     (_gens_13_io_mark_valid & (&_gens_13_io_mark_bits_group)),
+    .io_mark_13_bits_addr (_gens_13_io_mark_bits_addr[9:0]),
+    .io_mark_13_bits_item (_gens_13_io_mark_bits_item),
+    .io_mark_14_valid     (_gens_14_io_mark_valid & (&_gens_14_io_mark_bits_group)),
+    .io_mark_14_bits_addr (_gens_14_io_mark_bits_addr[9:0]),
+    .io_mark_14_bits_item (_gens_14_io_mark_bits_item),
+    .io_mark_15_valid     (_gens_15_io_mark_valid & (&_gens_15_io_mark_bits_group)),
+    .io_mark_15_bits_addr (_gens_15_io_mark_bits_addr[9:0]),
+    .io_mark_15_bits_item (_gens_15_io_mark_bits_item),
+    .io_counted           (_sorts_3_io_counted),
+    .io_scattered         (_sorts_3_io_scattered),
+    .io_badBucket         (_sorts_3_io_badBucket)
+  );
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_0 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -36883,48 +39862,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        (13'h0),
     .io_largeTo          (_GEN),
     .io_lookup_bucket    (_gens_0_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_0_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_0_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_0_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_0_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_0_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_0_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_0_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_0_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_0_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_0_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_0_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_0_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_0_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_0_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_0_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_0_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_0_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_0_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_0_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_0_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_0_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_0_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_0_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_0_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_0_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_0_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_0_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_0_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_0_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_0_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_0_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_0_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_0_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_0_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_0_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_0_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_0_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_0_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_0_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_0_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_0_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_0_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_0_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_0_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_0_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_0_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_0_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_0_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_0_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_0_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_0_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_0_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_0_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_0_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_0_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_0_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_0_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_0_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_0_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_0_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_0_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_0_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_0_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_0_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_0_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_0_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_0_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_0_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_0_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_0_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_0_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_0_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_0_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_0_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_0_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_0_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_0_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_0_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_0_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_0_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_0_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_0_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_0_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_0_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_0_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_0_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_0_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_0_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_0_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_0_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_0_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_0_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_0_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_0_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_0_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_0_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_0_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_0_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_0_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_0_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_0_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_0_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_0_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_0_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_0_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_0_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_0_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_0_word_15}),
     .io_entry_addr       (_gens_0_io_entry_addr),
     .io_entry_group      (_gens_0_io_entry_group),
-    .io_entry_item
-      (entryGroup ? _sorts_1_io_entry_0_item : _sorts_0_io_entry_0_item),
-    .io_entry_mark
-      (entryGroup ? _sorts_1_io_entry_0_mark : _sorts_0_io_entry_0_mark),
+    .io_entry_item       (casez_tmp_7),
+    .io_entry_mark       (casez_tmp_8),
     .io_mark_valid       (_gens_0_io_mark_valid),
     .io_mark_bits_group  (_gens_0_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_0_io_mark_bits_addr),
@@ -36947,7 +39960,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_0_bits_j),
     .io_busy             (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_1 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_1 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -37036,50 +40049,84 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
     .io_largeFrom        (_GEN),
-    .io_largeTo          (_GEN_1),
+    .io_largeTo          (_GEN_0),
     .io_lookup_bucket    (_gens_1_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_1_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_1_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_1_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_1_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_1_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_1_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_1_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_1_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_1_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_1_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_1_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_1_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_1_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_1_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_1_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_1_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_1_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_1_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_1_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_1_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_1_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_1_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_1_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_1_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_1_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_1_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_1_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_1_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_1_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_1_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_1_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_1_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_1_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_1_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_1_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_1_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_1_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_1_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_1_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_1_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_1_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_1_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_1_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_1_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_1_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_1_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_1_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_1_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_1_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_1_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_1_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_1_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_1_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_1_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_1_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_1_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_1_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_1_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_1_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_1_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_1_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_1_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_1_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_1_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_1_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_1_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_1_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_1_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_1_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_1_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_1_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_1_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_1_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_1_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_1_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_1_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_1_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_1_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_1_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_1_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_1_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_1_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_1_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_1_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_1_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_1_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_1_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_1_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_1_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_1_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_1_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_1_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_1_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_1_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_1_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_1_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_1_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_1_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_1_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_1_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_1_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_1_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_1_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_1_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_1_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_1_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_1_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_1_word_15}),
     .io_entry_addr       (_gens_1_io_entry_addr),
     .io_entry_group      (_gens_1_io_entry_group),
-    .io_entry_item
-      (entryGroup_1 ? _sorts_1_io_entry_1_item : _sorts_0_io_entry_1_item),
-    .io_entry_mark
-      (entryGroup_1 ? _sorts_1_io_entry_1_mark : _sorts_0_io_entry_1_mark),
+    .io_entry_item       (casez_tmp_9),
+    .io_entry_mark       (casez_tmp_10),
     .io_mark_valid       (_gens_1_io_mark_valid),
     .io_mark_bits_group  (_gens_1_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_1_io_mark_bits_addr),
@@ -37102,7 +40149,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_1_bits_j),
     .io_busy             (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_2 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_2 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -37190,51 +40237,85 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_larges_15_q_2    (larges_15_q_2),
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
-    .io_largeFrom        (_GEN_1),
+    .io_largeFrom        (_GEN_0),
     .io_largeTo          ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
     .io_lookup_bucket    (_gens_2_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_2_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_2_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_2_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_2_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_2_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_2_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_2_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_2_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_2_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_2_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_2_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_2_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_2_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_2_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_2_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_2_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_2_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_2_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_2_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_2_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_2_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_2_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_2_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_2_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_2_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_2_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_2_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_2_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_2_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_2_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_2_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_2_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_2_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_2_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_2_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_2_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_2_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_2_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_2_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_2_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_2_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_2_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_2_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_2_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_2_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_2_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_2_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_2_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_2_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_2_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_2_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_2_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_2_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_2_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_2_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_2_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_2_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_2_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_2_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_2_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_2_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_2_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_2_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_2_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_2_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_2_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_2_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_2_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_2_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_2_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_2_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_2_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_2_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_2_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_2_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_2_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_2_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_2_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_2_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_2_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_2_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_2_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_2_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_2_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_2_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_2_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_2_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_2_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_2_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_2_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_2_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_2_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_2_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_2_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_2_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_2_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_2_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_2_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_2_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_2_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_2_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_2_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_2_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_2_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_2_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_2_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_2_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_2_word_15}),
     .io_entry_addr       (_gens_2_io_entry_addr),
     .io_entry_group      (_gens_2_io_entry_group),
-    .io_entry_item
-      (entryGroup_2 ? _sorts_1_io_entry_2_item : _sorts_0_io_entry_2_item),
-    .io_entry_mark
-      (entryGroup_2 ? _sorts_1_io_entry_2_mark : _sorts_0_io_entry_2_mark),
+    .io_entry_item       (casez_tmp_11),
+    .io_entry_mark       (casez_tmp_12),
     .io_mark_valid       (_gens_2_io_mark_valid),
     .io_mark_bits_group  (_gens_2_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_2_io_mark_bits_addr),
@@ -37257,7 +40338,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_2_bits_j),
     .io_busy             (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_3 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_3 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -37346,50 +40427,84 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
     .io_largeFrom        ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
-    .io_largeTo          (_GEN_0),
+    .io_largeTo          (_GEN_1),
     .io_lookup_bucket    (_gens_3_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_3_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_3_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_3_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_3_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_3_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_3_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_3_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_3_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_3_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_3_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_3_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_3_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_3_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_3_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_3_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_3_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_3_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_3_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_3_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_3_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_3_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_3_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_3_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_3_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_3_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_3_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_3_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_3_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_3_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_3_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_3_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_3_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_3_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_3_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_3_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_3_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_3_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_3_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_3_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_3_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_3_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_3_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_3_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_3_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_3_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_3_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_3_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_3_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_3_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_3_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_3_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_3_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_3_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_3_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_3_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_3_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_3_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_3_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_3_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_3_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_3_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_3_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_3_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_3_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_3_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_3_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_3_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_3_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_3_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_3_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_3_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_3_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_3_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_3_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_3_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_3_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_3_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_3_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_3_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_3_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_3_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_3_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_3_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_3_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_3_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_3_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_3_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_3_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_3_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_3_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_3_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_3_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_3_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_3_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_3_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_3_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_3_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_3_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_3_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_3_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_3_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_3_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_3_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_3_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_3_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_3_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_3_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_3_word_15}),
     .io_entry_addr       (_gens_3_io_entry_addr),
     .io_entry_group      (_gens_3_io_entry_group),
-    .io_entry_item
-      (entryGroup_3 ? _sorts_1_io_entry_3_item : _sorts_0_io_entry_3_item),
-    .io_entry_mark
-      (entryGroup_3 ? _sorts_1_io_entry_3_mark : _sorts_0_io_entry_3_mark),
+    .io_entry_item       (casez_tmp_13),
+    .io_entry_mark       (casez_tmp_14),
     .io_mark_valid       (_gens_3_io_mark_valid),
     .io_mark_bits_group  (_gens_3_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_3_io_mark_bits_addr),
@@ -37412,7 +40527,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_3_bits_j),
     .io_busy             (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_4 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_4 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -37500,51 +40615,85 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_larges_15_q_2    (larges_15_q_2),
     .io_larges_15_qr     (larges_15_qr),
     .io_largeCount       (largeCount),
-    .io_largeFrom        (_GEN_0),
+    .io_largeFrom        (_GEN_1),
     .io_largeTo          ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
     .io_lookup_bucket    (_gens_4_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_4_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_4_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_4_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_4_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_4_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_4_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_4_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_4_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_4_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_4_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_4_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_4_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_4_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_4_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_4_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_4_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_4_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_4_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_4_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_4_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_4_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_4_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_4_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_4_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_4_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_4_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_4_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_4_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_4_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_4_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_4_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_4_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_4_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_4_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_4_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_4_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_4_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_4_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_4_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_4_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_4_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_4_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_4_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_4_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_4_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_4_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_4_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_4_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_4_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_4_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_4_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_4_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_4_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_4_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_4_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_4_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_4_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_4_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_4_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_4_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_4_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_4_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_4_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_4_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_4_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_4_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_4_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_4_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_4_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_4_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_4_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_4_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_4_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_4_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_4_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_4_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_4_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_4_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_4_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_4_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_4_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_4_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_4_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_4_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_4_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_4_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_4_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_4_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_4_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_4_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_4_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_4_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_4_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_4_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_4_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_4_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_4_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_4_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_4_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_4_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_4_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_4_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_4_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_4_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_4_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_4_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_4_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_4_word_15}),
     .io_entry_addr       (_gens_4_io_entry_addr),
     .io_entry_group      (_gens_4_io_entry_group),
-    .io_entry_item
-      (entryGroup_4 ? _sorts_1_io_entry_4_item : _sorts_0_io_entry_4_item),
-    .io_entry_mark
-      (entryGroup_4 ? _sorts_1_io_entry_4_mark : _sorts_0_io_entry_4_mark),
+    .io_entry_item       (casez_tmp_15),
+    .io_entry_mark       (casez_tmp_16),
     .io_mark_valid       (_gens_4_io_mark_valid),
     .io_mark_bits_group  (_gens_4_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_4_io_mark_bits_addr),
@@ -37559,7 +40708,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_keyData_qr       (_laneKeys_4_io_out_qr),
     .io_keyData_large
       (~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
-       & $signed(_laneKeys_4_io_out_need) > $signed(_cellExp_io_level)),
+       & _sorts_2_io_in_0_valid_T_8),
     .io_keyData_excluded (_laneKeys_4_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_4_ready),
     .io_pairs_valid      (io_pairs_4_valid),
@@ -37567,7 +40716,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_4_bits_j),
     .io_busy             (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_5 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_5 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -37658,48 +40807,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
     .io_largeTo          ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
     .io_lookup_bucket    (_gens_5_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_5_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_5_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_5_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_5_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_5_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_5_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_5_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_5_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_5_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_5_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_5_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_5_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_5_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_5_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_5_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_5_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_5_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_5_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_5_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_5_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_5_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_5_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_5_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_5_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_5_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_5_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_5_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_5_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_5_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_5_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_5_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_5_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_5_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_5_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_5_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_5_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_5_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_5_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_5_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_5_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_5_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_5_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_5_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_5_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_5_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_5_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_5_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_5_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_5_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_5_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_5_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_5_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_5_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_5_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_5_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_5_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_5_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_5_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_5_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_5_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_5_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_5_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_5_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_5_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_5_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_5_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_5_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_5_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_5_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_5_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_5_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_5_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_5_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_5_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_5_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_5_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_5_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_5_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_5_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_5_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_5_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_5_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_5_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_5_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_5_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_5_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_5_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_5_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_5_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_5_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_5_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_5_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_5_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_5_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_5_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_5_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_5_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_5_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_5_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_5_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_5_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_5_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_5_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_5_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_5_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_5_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_5_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_5_word_15}),
     .io_entry_addr       (_gens_5_io_entry_addr),
     .io_entry_group      (_gens_5_io_entry_group),
-    .io_entry_item
-      (entryGroup_5 ? _sorts_1_io_entry_5_item : _sorts_0_io_entry_5_item),
-    .io_entry_mark
-      (entryGroup_5 ? _sorts_1_io_entry_5_mark : _sorts_0_io_entry_5_mark),
+    .io_entry_item       (casez_tmp_17),
+    .io_entry_mark       (casez_tmp_18),
     .io_mark_valid       (_gens_5_io_mark_valid),
     .io_mark_bits_group  (_gens_5_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_5_io_mark_bits_addr),
@@ -37714,7 +40897,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_keyData_qr       (_laneKeys_5_io_out_qr),
     .io_keyData_large
       (~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
-       & $signed(_laneKeys_5_io_out_need) > $signed(_cellExp_io_level)),
+       & _sorts_2_io_in_1_valid_T_8),
     .io_keyData_excluded (_laneKeys_5_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_5_ready),
     .io_pairs_valid      (io_pairs_5_valid),
@@ -37722,7 +40905,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_5_bits_j),
     .io_busy             (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_6 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_6 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -37813,48 +40996,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
     .io_largeTo          ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
     .io_lookup_bucket    (_gens_6_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_6_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_6_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_6_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_6_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_6_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_6_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_6_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_6_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_6_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_6_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_6_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_6_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_6_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_6_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_6_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_6_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_6_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_6_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_6_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_6_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_6_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_6_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_6_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_6_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_6_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_6_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_6_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_6_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_6_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_6_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_6_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_6_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_6_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_6_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_6_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_6_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_6_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_6_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_6_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_6_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_6_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_6_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_6_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_6_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_6_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_6_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_6_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_6_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_6_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_6_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_6_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_6_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_6_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_6_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_6_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_6_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_6_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_6_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_6_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_6_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_6_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_6_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_6_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_6_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_6_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_6_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_6_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_6_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_6_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_6_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_6_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_6_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_6_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_6_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_6_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_6_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_6_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_6_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_6_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_6_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_6_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_6_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_6_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_6_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_6_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_6_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_6_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_6_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_6_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_6_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_6_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_6_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_6_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_6_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_6_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_6_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_6_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_6_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_6_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_6_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_6_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_6_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_6_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_6_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_6_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_6_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_6_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_6_word_15}),
     .io_entry_addr       (_gens_6_io_entry_addr),
     .io_entry_group      (_gens_6_io_entry_group),
-    .io_entry_item
-      (entryGroup_6 ? _sorts_1_io_entry_6_item : _sorts_0_io_entry_6_item),
-    .io_entry_mark
-      (entryGroup_6 ? _sorts_1_io_entry_6_mark : _sorts_0_io_entry_6_mark),
+    .io_entry_item       (casez_tmp_19),
+    .io_entry_mark       (casez_tmp_20),
     .io_mark_valid       (_gens_6_io_mark_valid),
     .io_mark_bits_group  (_gens_6_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_6_io_mark_bits_addr),
@@ -37869,7 +41086,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_keyData_qr       (_laneKeys_6_io_out_qr),
     .io_keyData_large
       (~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
-       & $signed(_laneKeys_6_io_out_need) > $signed(_cellExp_io_level)),
+       & _sorts_3_io_in_0_valid_T_8),
     .io_keyData_excluded (_laneKeys_6_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_6_ready),
     .io_pairs_valid      (io_pairs_6_valid),
@@ -37877,7 +41094,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_6_bits_j),
     .io_busy             (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_7 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_7 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -37968,48 +41185,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
     .io_largeTo          ({1'h0, num[12:1]}),
     .io_lookup_bucket    (_gens_7_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_7_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_7_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_7_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_7_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_7_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_7_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_7_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_7_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_7_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_7_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_7_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_7_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_7_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_7_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_7_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_7_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_7_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_7_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_7_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_7_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_7_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_7_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_7_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_7_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_7_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_7_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_7_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_7_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_7_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_7_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_7_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_7_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_7_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_7_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_7_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_7_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_7_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_7_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_7_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_7_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_7_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_7_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_7_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_7_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_7_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_7_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_7_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_7_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_7_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_7_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_7_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_7_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_7_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_7_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_7_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_7_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_7_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_7_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_7_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_7_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_7_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_7_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_7_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_7_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_7_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_7_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_7_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_7_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_7_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_7_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_7_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_7_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_7_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_7_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_7_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_7_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_7_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_7_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_7_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_7_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_7_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_7_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_7_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_7_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_7_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_7_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_7_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_7_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_7_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_7_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_7_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_7_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_7_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_7_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_7_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_7_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_7_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_7_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_7_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_7_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_7_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_7_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_7_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_7_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_7_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_7_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_7_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_7_word_15}),
     .io_entry_addr       (_gens_7_io_entry_addr),
     .io_entry_group      (_gens_7_io_entry_group),
-    .io_entry_item
-      (entryGroup_7 ? _sorts_1_io_entry_7_item : _sorts_0_io_entry_7_item),
-    .io_entry_mark
-      (entryGroup_7 ? _sorts_1_io_entry_7_mark : _sorts_0_io_entry_7_mark),
+    .io_entry_item       (casez_tmp_21),
+    .io_entry_mark       (casez_tmp_22),
     .io_mark_valid       (_gens_7_io_mark_valid),
     .io_mark_bits_group  (_gens_7_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_7_io_mark_bits_addr),
@@ -38024,7 +41275,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_keyData_qr       (_laneKeys_7_io_out_qr),
     .io_keyData_large
       (~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
-       & $signed(_laneKeys_7_io_out_need) > $signed(_cellExp_io_level)),
+       & _sorts_3_io_in_1_valid_T_8),
     .io_keyData_excluded (_laneKeys_7_io_out_nonFinite),
     .io_pairs_ready      (io_pairs_7_ready),
     .io_pairs_valid      (io_pairs_7_valid),
@@ -38032,7 +41283,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_7_bits_j),
     .io_busy             (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_8 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_8 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -38123,48 +41374,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        ({1'h0, num[12:1]}),
     .io_largeTo          (_gens_9_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_8_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_8_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_8_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_8_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_8_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_8_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_8_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_8_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_8_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_8_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_8_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_8_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_8_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_8_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_8_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_8_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_8_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_8_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_8_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_8_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_8_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_8_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_8_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_8_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_8_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_8_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_8_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_8_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_8_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_8_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_8_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_8_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_8_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_8_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_8_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_8_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_8_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_8_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_8_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_8_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_8_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_8_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_8_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_8_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_8_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_8_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_8_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_8_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_8_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_8_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_8_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_8_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_8_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_8_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_8_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_8_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_8_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_8_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_8_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_8_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_8_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_8_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_8_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_8_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_8_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_8_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_8_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_8_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_8_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_8_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_8_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_8_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_8_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_8_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_8_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_8_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_8_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_8_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_8_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_8_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_8_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_8_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_8_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_8_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_8_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_8_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_8_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_8_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_8_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_8_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_8_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_8_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_8_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_8_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_8_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_8_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_8_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_8_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_8_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_8_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_8_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_8_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_8_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_8_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_8_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_8_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_8_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_8_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_8_word_15}),
     .io_entry_addr       (_gens_8_io_entry_addr),
     .io_entry_group      (_gens_8_io_entry_group),
-    .io_entry_item
-      (entryGroup_8 ? _sorts_1_io_entry_8_item : _sorts_0_io_entry_8_item),
-    .io_entry_mark
-      (entryGroup_8 ? _sorts_1_io_entry_8_mark : _sorts_0_io_entry_8_mark),
+    .io_entry_item       (casez_tmp_23),
+    .io_entry_mark       (casez_tmp_24),
     .io_mark_valid       (_gens_8_io_mark_valid),
     .io_mark_bits_group  (_gens_8_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_8_io_mark_bits_addr),
@@ -38187,7 +41472,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_8_bits_j),
     .io_busy             (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_9 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_9 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -38278,48 +41563,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        (_gens_9_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_10_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_9_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_9_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_9_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_9_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_9_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_9_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_9_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_9_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_9_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_9_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_9_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_9_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_9_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_9_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_9_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_9_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_9_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_9_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_9_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_9_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_9_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_9_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_9_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_9_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_9_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_9_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_9_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_9_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_9_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_9_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_9_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_9_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_9_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_9_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_9_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_9_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_9_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_9_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_9_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_9_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_9_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_9_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_9_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_9_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_9_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_9_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_9_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_9_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_9_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_9_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_9_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_9_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_9_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_9_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_9_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_9_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_9_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_9_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_9_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_9_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_9_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_9_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_9_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_9_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_9_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_9_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_9_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_9_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_9_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_9_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_9_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_9_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_9_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_9_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_9_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_9_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_9_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_9_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_9_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_9_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_9_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_9_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_9_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_9_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_9_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_9_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_9_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_9_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_9_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_9_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_9_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_9_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_9_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_9_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_9_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_9_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_9_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_9_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_9_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_9_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_9_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_9_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_9_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_9_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_9_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_9_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_9_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_9_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_9_word_15}),
     .io_entry_addr       (_gens_9_io_entry_addr),
     .io_entry_group      (_gens_9_io_entry_group),
-    .io_entry_item
-      (entryGroup_9 ? _sorts_1_io_entry_9_item : _sorts_0_io_entry_9_item),
-    .io_entry_mark
-      (entryGroup_9 ? _sorts_1_io_entry_9_mark : _sorts_0_io_entry_9_mark),
+    .io_entry_item       (casez_tmp_25),
+    .io_entry_mark       (casez_tmp_26),
     .io_mark_valid       (_gens_9_io_mark_valid),
     .io_mark_bits_group  (_gens_9_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_9_io_mark_bits_addr),
@@ -38342,7 +41661,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_9_bits_j),
     .io_busy             (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_10 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_10 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -38433,48 +41752,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        (_gens_10_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_11_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_10_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_10_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_10_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_10_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_10_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_10_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_10_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_10_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_10_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_10_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_10_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_10_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_10_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_10_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_10_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_10_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_10_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_10_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_10_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_10_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_10_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_10_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_10_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_10_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_10_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_10_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_10_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_10_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_10_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_10_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_10_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_10_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_10_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_10_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_10_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_10_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_10_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_10_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_10_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_10_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_10_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_10_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_10_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_10_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_10_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_10_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_10_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_10_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_10_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_10_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_10_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_10_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_10_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_10_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_10_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_10_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_10_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_10_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_10_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_10_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_10_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_10_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_10_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_10_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_10_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_10_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_10_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_10_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_10_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_10_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_10_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_10_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_10_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_10_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_10_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_10_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_10_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_10_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_10_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_10_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_10_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_10_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_10_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_10_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_10_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_10_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_10_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_10_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_10_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_10_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_10_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_10_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_10_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_10_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_10_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_10_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_10_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_10_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_10_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_10_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_10_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_10_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_10_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_10_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_10_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_10_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_10_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_10_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_10_word_15}),
     .io_entry_addr       (_gens_10_io_entry_addr),
     .io_entry_group      (_gens_10_io_entry_group),
-    .io_entry_item
-      (entryGroup_10 ? _sorts_1_io_entry_10_item : _sorts_0_io_entry_10_item),
-    .io_entry_mark
-      (entryGroup_10 ? _sorts_1_io_entry_10_mark : _sorts_0_io_entry_10_mark),
+    .io_entry_item       (casez_tmp_27),
+    .io_entry_mark       (casez_tmp_28),
     .io_mark_valid       (_gens_10_io_mark_valid),
     .io_mark_bits_group  (_gens_10_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_10_io_mark_bits_addr),
@@ -38497,7 +41850,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_10_bits_j),
     .io_busy             (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_11 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_11 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -38588,48 +41941,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        (_gens_11_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_12_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_11_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_11_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_11_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_11_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_11_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_11_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_11_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_11_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_11_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_11_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_11_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_11_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_11_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_11_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_11_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_11_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_11_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_11_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_11_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_11_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_11_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_11_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_11_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_11_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_11_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_11_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_11_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_11_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_11_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_11_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_11_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_11_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_11_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_11_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_11_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_11_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_11_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_11_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_11_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_11_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_11_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_11_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_11_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_11_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_11_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_11_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_11_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_11_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_11_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_11_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_11_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_11_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_11_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_11_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_11_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_11_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_11_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_11_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_11_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_11_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_11_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_11_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_11_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_11_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_11_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_11_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_11_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_11_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_11_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_11_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_11_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_11_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_11_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_11_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_11_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_11_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_11_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_11_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_11_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_11_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_11_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_11_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_11_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_11_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_11_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_11_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_11_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_11_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_11_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_11_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_11_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_11_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_11_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_11_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_11_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_11_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_11_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_11_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_11_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_11_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_11_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_11_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_11_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_11_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_11_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_11_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_11_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_11_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_11_word_15}),
     .io_entry_addr       (_gens_11_io_entry_addr),
     .io_entry_group      (_gens_11_io_entry_group),
-    .io_entry_item
-      (entryGroup_11 ? _sorts_1_io_entry_11_item : _sorts_0_io_entry_11_item),
-    .io_entry_mark
-      (entryGroup_11 ? _sorts_1_io_entry_11_mark : _sorts_0_io_entry_11_mark),
+    .io_entry_item       (casez_tmp_29),
+    .io_entry_mark       (casez_tmp_30),
     .io_mark_valid       (_gens_11_io_mark_valid),
     .io_mark_bits_group  (_gens_11_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_11_io_mark_bits_addr),
@@ -38652,7 +42039,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_11_bits_j),
     .io_busy             (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_12 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_12 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -38743,48 +42130,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        (_gens_12_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_13_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_12_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_12_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_12_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_12_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_12_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_12_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_12_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_12_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_12_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_12_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_12_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_12_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_12_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_12_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_12_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_12_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_12_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_12_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_12_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_12_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_12_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_12_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_12_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_12_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_12_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_12_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_12_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_12_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_12_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_12_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_12_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_12_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_12_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_12_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_12_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_12_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_12_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_12_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_12_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_12_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_12_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_12_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_12_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_12_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_12_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_12_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_12_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_12_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_12_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_12_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_12_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_12_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_12_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_12_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_12_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_12_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_12_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_12_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_12_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_12_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_12_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_12_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_12_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_12_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_12_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_12_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_12_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_12_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_12_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_12_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_12_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_12_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_12_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_12_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_12_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_12_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_12_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_12_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_12_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_12_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_12_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_12_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_12_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_12_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_12_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_12_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_12_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_12_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_12_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_12_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_12_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_12_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_12_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_12_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_12_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_12_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_12_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_12_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_12_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_12_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_12_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_12_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_12_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_12_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_12_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_12_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_12_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_12_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_12_word_15}),
     .io_entry_addr       (_gens_12_io_entry_addr),
     .io_entry_group      (_gens_12_io_entry_group),
-    .io_entry_item
-      (entryGroup_12 ? _sorts_1_io_entry_12_item : _sorts_0_io_entry_12_item),
-    .io_entry_mark
-      (entryGroup_12 ? _sorts_1_io_entry_12_mark : _sorts_0_io_entry_12_mark),
+    .io_entry_item       (casez_tmp_31),
+    .io_entry_mark       (casez_tmp_32),
     .io_mark_valid       (_gens_12_io_mark_valid),
     .io_mark_bits_group  (_gens_12_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_12_io_mark_bits_addr),
@@ -38807,7 +42228,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_12_bits_j),
     .io_busy             (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_13 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_13 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -38898,48 +42319,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        (_gens_13_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_14_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_13_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_13_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_13_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_13_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_13_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_13_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_13_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_13_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_13_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_13_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_13_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_13_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_13_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_13_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_13_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_13_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_13_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_13_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_13_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_13_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_13_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_13_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_13_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_13_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_13_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_13_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_13_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_13_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_13_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_13_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_13_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_13_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_13_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_13_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_13_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_13_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_13_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_13_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_13_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_13_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_13_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_13_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_13_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_13_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_13_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_13_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_13_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_13_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_13_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_13_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_13_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_13_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_13_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_13_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_13_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_13_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_13_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_13_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_13_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_13_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_13_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_13_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_13_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_13_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_13_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_13_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_13_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_13_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_13_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_13_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_13_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_13_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_13_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_13_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_13_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_13_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_13_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_13_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_13_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_13_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_13_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_13_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_13_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_13_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_13_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_13_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_13_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_13_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_13_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_13_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_13_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_13_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_13_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_13_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_13_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_13_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_13_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_13_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_13_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_13_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_13_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_13_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_13_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_13_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_13_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_13_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_13_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_13_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_13_word_15}),
     .io_entry_addr       (_gens_13_io_entry_addr),
     .io_entry_group      (_gens_13_io_entry_group),
-    .io_entry_item
-      (entryGroup_13 ? _sorts_1_io_entry_13_item : _sorts_0_io_entry_13_item),
-    .io_entry_mark
-      (entryGroup_13 ? _sorts_1_io_entry_13_mark : _sorts_0_io_entry_13_mark),
+    .io_entry_item       (casez_tmp_33),
+    .io_entry_mark       (casez_tmp_34),
     .io_mark_valid       (_gens_13_io_mark_valid),
     .io_mark_bits_group  (_gens_13_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_13_io_mark_bits_addr),
@@ -38962,7 +42417,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_13_bits_j),
     .io_busy             (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_14 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_14 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -39053,48 +42508,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        (_gens_14_io_largeFrom_T[28:16]),
     .io_largeTo          (_gens_15_io_largeFrom_T[28:16]),
     .io_lookup_bucket    (_gens_14_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_14_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_14_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_14_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_14_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_14_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_14_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_14_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_14_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_14_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_14_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_14_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_14_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_14_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_14_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_14_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_14_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_14_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_14_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_14_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_14_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_14_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_14_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_14_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_14_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_14_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_14_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_14_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_14_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_14_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_14_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_14_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_14_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_14_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_14_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_14_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_14_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_14_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_14_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_14_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_14_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_14_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_14_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_14_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_14_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_14_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_14_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_14_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_14_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_14_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_14_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_14_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_14_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_14_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_14_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_14_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_14_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_14_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_14_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_14_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_14_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_14_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_14_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_14_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_14_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_14_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_14_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_14_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_14_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_14_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_14_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_14_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_14_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_14_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_14_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_14_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_14_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_14_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_14_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_14_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_14_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_14_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_14_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_14_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_14_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_14_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_14_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_14_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_14_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_14_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_14_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_14_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_14_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_14_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_14_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_14_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_14_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_14_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_14_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_14_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_14_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_14_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_14_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_14_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_14_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_14_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_14_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_14_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_14_word_15}),
     .io_entry_addr       (_gens_14_io_entry_addr),
     .io_entry_group      (_gens_14_io_entry_group),
-    .io_entry_item
-      (entryGroup_14 ? _sorts_1_io_entry_14_item : _sorts_0_io_entry_14_item),
-    .io_entry_mark
-      (entryGroup_14 ? _sorts_1_io_entry_14_mark : _sorts_0_io_entry_14_mark),
+    .io_entry_item       (casez_tmp_35),
+    .io_entry_mark       (casez_tmp_36),
     .io_mark_valid       (_gens_14_io_mark_valid),
     .io_mark_bits_group  (_gens_14_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_14_io_mark_bits_addr),
@@ -39117,7 +42606,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_pairs_bits_j     (io_pairs_14_bits_j),
     .io_busy             (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g2_x4_world gens_15 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_15 (
     .clock               (clock),
     .reset               (reset),
     .io_start            ((&state) & ~sent),
@@ -39208,48 +42697,82 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_largeFrom        (_gens_15_io_largeFrom_T[28:16]),
     .io_largeTo          (num),
     .io_lookup_bucket    (_gens_15_io_lookup_bucket),
-    .io_lookup_begin_0   ({1'h0, _sorts_0_io_lookup_15_begin}),
-    .io_lookup_begin_1   ({1'h0, _sorts_1_io_lookup_15_begin}),
-    .io_lookup_end_0     ({1'h0, _sorts_0_io_lookup_15_end}),
-    .io_lookup_end_1     ({1'h0, _sorts_1_io_lookup_15_end}),
-    .io_lookup_word_0_0  ({1'h0, _sorts_0_io_lookup_15_word_0}),
-    .io_lookup_word_0_1  ({1'h0, _sorts_0_io_lookup_15_word_1}),
-    .io_lookup_word_0_2  ({1'h0, _sorts_0_io_lookup_15_word_2}),
-    .io_lookup_word_0_3  ({1'h0, _sorts_0_io_lookup_15_word_3}),
-    .io_lookup_word_0_4  ({1'h0, _sorts_0_io_lookup_15_word_4}),
-    .io_lookup_word_0_5  ({1'h0, _sorts_0_io_lookup_15_word_5}),
-    .io_lookup_word_0_6  ({1'h0, _sorts_0_io_lookup_15_word_6}),
-    .io_lookup_word_0_7  ({1'h0, _sorts_0_io_lookup_15_word_7}),
-    .io_lookup_word_0_8  ({1'h0, _sorts_0_io_lookup_15_word_8}),
-    .io_lookup_word_0_9  ({1'h0, _sorts_0_io_lookup_15_word_9}),
-    .io_lookup_word_0_10 ({1'h0, _sorts_0_io_lookup_15_word_10}),
-    .io_lookup_word_0_11 ({1'h0, _sorts_0_io_lookup_15_word_11}),
-    .io_lookup_word_0_12 ({1'h0, _sorts_0_io_lookup_15_word_12}),
-    .io_lookup_word_0_13 ({1'h0, _sorts_0_io_lookup_15_word_13}),
-    .io_lookup_word_0_14 ({1'h0, _sorts_0_io_lookup_15_word_14}),
-    .io_lookup_word_0_15 ({1'h0, _sorts_0_io_lookup_15_word_15}),
-    .io_lookup_word_1_0  ({1'h0, _sorts_1_io_lookup_15_word_0}),
-    .io_lookup_word_1_1  ({1'h0, _sorts_1_io_lookup_15_word_1}),
-    .io_lookup_word_1_2  ({1'h0, _sorts_1_io_lookup_15_word_2}),
-    .io_lookup_word_1_3  ({1'h0, _sorts_1_io_lookup_15_word_3}),
-    .io_lookup_word_1_4  ({1'h0, _sorts_1_io_lookup_15_word_4}),
-    .io_lookup_word_1_5  ({1'h0, _sorts_1_io_lookup_15_word_5}),
-    .io_lookup_word_1_6  ({1'h0, _sorts_1_io_lookup_15_word_6}),
-    .io_lookup_word_1_7  ({1'h0, _sorts_1_io_lookup_15_word_7}),
-    .io_lookup_word_1_8  ({1'h0, _sorts_1_io_lookup_15_word_8}),
-    .io_lookup_word_1_9  ({1'h0, _sorts_1_io_lookup_15_word_9}),
-    .io_lookup_word_1_10 ({1'h0, _sorts_1_io_lookup_15_word_10}),
-    .io_lookup_word_1_11 ({1'h0, _sorts_1_io_lookup_15_word_11}),
-    .io_lookup_word_1_12 ({1'h0, _sorts_1_io_lookup_15_word_12}),
-    .io_lookup_word_1_13 ({1'h0, _sorts_1_io_lookup_15_word_13}),
-    .io_lookup_word_1_14 ({1'h0, _sorts_1_io_lookup_15_word_14}),
-    .io_lookup_word_1_15 ({1'h0, _sorts_1_io_lookup_15_word_15}),
+    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_15_begin}),
+    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_15_begin}),
+    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_15_begin}),
+    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_15_begin}),
+    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_15_end}),
+    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_15_end}),
+    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_15_end}),
+    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_15_end}),
+    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_15_word_0}),
+    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_15_word_1}),
+    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_15_word_2}),
+    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_15_word_3}),
+    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_15_word_4}),
+    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_15_word_5}),
+    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_15_word_6}),
+    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_15_word_7}),
+    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_15_word_8}),
+    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_15_word_9}),
+    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_15_word_10}),
+    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_15_word_11}),
+    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_15_word_12}),
+    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_15_word_13}),
+    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_15_word_14}),
+    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_15_word_15}),
+    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_15_word_0}),
+    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_15_word_1}),
+    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_15_word_2}),
+    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_15_word_3}),
+    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_15_word_4}),
+    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_15_word_5}),
+    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_15_word_6}),
+    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_15_word_7}),
+    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_15_word_8}),
+    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_15_word_9}),
+    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_15_word_10}),
+    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_15_word_11}),
+    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_15_word_12}),
+    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_15_word_13}),
+    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_15_word_14}),
+    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_15_word_15}),
+    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_15_word_0}),
+    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_15_word_1}),
+    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_15_word_2}),
+    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_15_word_3}),
+    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_15_word_4}),
+    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_15_word_5}),
+    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_15_word_6}),
+    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_15_word_7}),
+    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_15_word_8}),
+    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_15_word_9}),
+    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_15_word_10}),
+    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_15_word_11}),
+    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_15_word_12}),
+    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_15_word_13}),
+    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_15_word_14}),
+    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_15_word_15}),
+    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_15_word_0}),
+    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_15_word_1}),
+    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_15_word_2}),
+    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_15_word_3}),
+    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_15_word_4}),
+    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_15_word_5}),
+    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_15_word_6}),
+    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_15_word_7}),
+    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_15_word_8}),
+    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_15_word_9}),
+    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_15_word_10}),
+    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_15_word_11}),
+    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_15_word_12}),
+    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_15_word_13}),
+    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_15_word_14}),
+    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_15_word_15}),
     .io_entry_addr       (_gens_15_io_entry_addr),
     .io_entry_group      (_gens_15_io_entry_group),
-    .io_entry_item
-      (entryGroup_15 ? _sorts_1_io_entry_15_item : _sorts_0_io_entry_15_item),
-    .io_entry_mark
-      (entryGroup_15 ? _sorts_1_io_entry_15_mark : _sorts_0_io_entry_15_mark),
+    .io_entry_item       (casez_tmp_37),
+    .io_entry_mark       (casez_tmp_38),
     .io_mark_valid       (_gens_15_io_mark_valid),
     .io_mark_bits_group  (_gens_15_io_mark_bits_group),
     .io_mark_bits_addr   (_gens_15_io_mark_bits_addr),
@@ -39381,7 +42904,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_out_cell_0       (_laneKeys_4_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_4_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_4_io_out_cell_2),
-    .io_out_cellOverflow (/* unused */),
+    .io_out_cellOverflow (_laneKeys_4_io_out_cellOverflow),
     .io_out_q_0          (_laneKeys_4_io_out_q_0),
     .io_out_q_1          (_laneKeys_4_io_out_q_1),
     .io_out_q_2          (_laneKeys_4_io_out_q_2),
@@ -39405,7 +42928,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_out_cell_0       (_laneKeys_5_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_5_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_5_io_out_cell_2),
-    .io_out_cellOverflow (/* unused */),
+    .io_out_cellOverflow (_laneKeys_5_io_out_cellOverflow),
     .io_out_q_0          (_laneKeys_5_io_out_q_0),
     .io_out_q_1          (_laneKeys_5_io_out_q_1),
     .io_out_q_2          (_laneKeys_5_io_out_q_2),
@@ -39429,7 +42952,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_out_cell_0       (_laneKeys_6_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_6_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_6_io_out_cell_2),
-    .io_out_cellOverflow (/* unused */),
+    .io_out_cellOverflow (_laneKeys_6_io_out_cellOverflow),
     .io_out_q_0          (_laneKeys_6_io_out_q_0),
     .io_out_q_1          (_laneKeys_6_io_out_q_1),
     .io_out_q_2          (_laneKeys_6_io_out_q_2),
@@ -39453,7 +42976,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world(
     .io_out_cell_0       (_laneKeys_7_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_7_io_out_cell_1),
     .io_out_cell_2       (_laneKeys_7_io_out_cell_2),
-    .io_out_cellOverflow (/* unused */),
+    .io_out_cellOverflow (_laneKeys_7_io_out_cellOverflow),
     .io_out_q_0          (_laneKeys_7_io_out_q_0),
     .io_out_q_1          (_laneKeys_7_io_out_q_1),
     .io_out_q_2          (_laneKeys_7_io_out_q_2),
@@ -42464,7 +45987,7 @@ module Puc_world(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
-  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p4_e2_x_t4_world bp (
+  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world bp (
     .clock                   (clock),
     .reset                   (reset),
     .io_begin                (engineStart & run_8[1]),

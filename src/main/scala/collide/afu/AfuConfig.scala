@@ -135,10 +135,10 @@ object AfuConfig {
   val fp32Nr: AfuConfig  = default.copy(name = "fp32-nr", scpu = ScpuConfig.fp32Nr)
   val big: AfuConfig     = default.copy(name = "big", maxSpheres = 4096)
   /** World mode: 16 fp32 SCPUs fed by the on-chip broad phase's 16 candidate lanes, its sort's
-    * passes four spheres a cycle (two sorts of two ports), 16 counters a word, up to 4096
+    * passes eight spheres a cycle (four sorts of two ports), 16 counters a word, up to 4096
     * spheres (bench/results/world-lanes). */
   val world: AfuConfig   = big.copy(name = "world",
-    world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 4, wordLog2 = 4, chunk = 32,
+    world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 8, wordLog2 = 4, chunk = 32,
       cellSteps = 2, coarseChunks = true)))
 
   /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind

@@ -276,10 +276,10 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       sort.io.mark(l).bits.addr := gen.io.mark.bits.addr(sort.io.posW - 1, 0)
       sort.io.mark(l).bits.item := gen.io.mark.bits.item
     }
-    // The entry read comes back from the group the stream asked (two at most).
-    val (e0, eLast) = (sorts.head.io.entry(l), sorts.last.io.entry(l))
-    gen.io.entry.item := Mux(entryGroup === (groups - 1).U, eLast.item, e0.item)
-    gen.io.entry.mark := Mux(entryGroup === (groups - 1).U, eLast.mark, e0.mark)
+    // The entry read comes back from the group the stream asked.
+    def fromGroup[T <: Data](f: BucketSort => T): T = if (groups == 1) f(sorts.head) else VecInit(sorts.map(f))(entryGroup)
+    gen.io.entry.item := fromGroup(_.io.entry(l).item)
+    gen.io.entry.mark := fromGroup(_.io.entry(l).mark)
 
     gen.io.start := state === S.generate && !sent
     gen.io.usedLog2 := usedLog2

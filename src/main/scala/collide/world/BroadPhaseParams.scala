@@ -33,12 +33,13 @@ package collide.world
   *                   least N * 2^this (at most 2^bucketsLog2): 1 (2N, the default) keeps
   *                   collisions rare; 0 (N) halves the clear, the prefix sum, the walk and the
   *                   counters' RAM for more cells sharing a bucket (scanning time, never a pair)
-  * @param sortPorts  spheres a cycle in the sort's passes (1, 2 or 4, at most `lanes`): port
+  * @param sortPorts  spheres a cycle in the sort's passes (1, 2, 4 or 8, at most `lanes`): port
   *                   q reads the q-th part of the table through lane q's sphere port, counting
   *                   and scattering through a port of its own. Two ports share one sort (the
   *                   entries' two block-RAM ports; one more table of counters); four are two
   *                   sorts of two ports (`sortGroups`), each of half the table, whose buckets
-  *                   the generators read one after the other (a second table of counters a lane)
+  *                   the generators read one after the other (a second table of counters a
+  *                   lane); eight are four sorts of two, each of a quarter of the table
   * @param cellSteps  cell edges an octave: 1 (the default), powers of two only (2^k, a shift
   *                   of the coordinates); 2, also 1.5 * 2^k (a shift and an exact division by
   *                   three), so no cell is more than 4/3 of what its spheres need instead of
@@ -86,7 +87,7 @@ final case class BroadPhaseParams(
   require(lanes >= 1 && lanes <= 16, s"lanes must be 1..16 (a pair line holds 16 candidates a cycle), got $lanes")
 
   require(BroadPhaseParams.sortPortChoices.contains(sortPorts),
-    s"sortPorts must be 1, 2 or 4 (a block RAM's two ports, or two sorts of two), got $sortPorts")
+    s"sortPorts must be 1, 2, 4 or 8 (a block RAM's two ports, or two or four sorts of two), got $sortPorts")
   require(sortPorts <= lanes, s"sortPorts ($sortPorts) must be at most lanes ($lanes): port p reads the table through lane p's port")
 
   require(bucketsPerSphereLog2 >= 0 && bucketsPerSphereLog2 <= 2, s"bucketsPerSphereLog2 must be 0..2, got $bucketsPerSphereLog2")
@@ -116,12 +117,13 @@ final case class BroadPhaseParams(
     val counters = (1L << tableLog2(maxSpheres)) * countW
     sortGroups * ((lanes + portsPerSort - 1) * counters + lanes * cap.toLong * (itemW + 1))
   }
-  /** Sorts the passes use: one, or with four ports two of two ports, group g sorting the g-th
-    * half of the table (block RAM has two ports; the generators read both groups' buckets). */
-  val sortGroups: Int = if (sortPorts == 4) 2 else 1
+  /** Sorts the passes use: one, or with four or eight ports two or four of two ports, group g
+    * sorting the g-th half or quarter of the table (block RAM has two ports; the generators read
+    * every group's buckets). */
+  val sortGroups: Int = if (sortPorts >= 4) sortPorts / 2 else 1
   /** Ports of each of those sorts (1 or 2: a block RAM's ports). */
   val portsPerSort: Int = sortPorts / sortGroups
-  /** Entries of one group's sorted table: its half of the table, or all of it. */
+  /** Entries of one group's sorted table: its part of the table, or all of it. */
   def groupCapacity(maxSpheres: Int): Int = (maxSpheres + sortGroups - 1) / sortGroups
   /** Copies of the sphere table the lanes read: two lanes a copy (a block RAM's two ports). */
   val sphereCopies: Int = (lanes + 1) / 2
@@ -150,7 +152,7 @@ object BroadPhaseParams {
   def edge(level: Int): Double =
     if ((level & 1) == 0) math.scalb(1.0, level / 2) else 1.5 * math.scalb(1.0, Math.floorDiv(level - 1, 2))
   /** The sort's port counts built (`sortPorts`), fewest first. */
-  val sortPortChoices: Seq[Int] = Seq(1, 2, 4)
+  val sortPortChoices: Seq[Int] = Seq(1, 2, 4, 8)
   val default: BroadPhaseParams = BroadPhaseParams()
   /** Four buckets and one-sphere chunks: every cell collides with others in the hash and
     * every cell is visited once per sphere, to test that nothing breaks. */
@@ -165,4 +167,6 @@ object BroadPhaseParams {
   val fourLanesTwoPorts: BroadPhaseParams = fourLanes.copy(sortPorts = 2, wordLog2 = 4)
   /** Four candidate generators, the sort's passes four spheres a cycle (two sorts of two ports). */
   val fourLanesFourPorts: BroadPhaseParams = fourLanes.copy(sortPorts = 4, wordLog2 = 4)
+  /** Eight candidate generators, the sort's passes eight spheres a cycle (four sorts of two ports). */
+  val eightLanesEightPorts: BroadPhaseParams = default.copy(lanes = 8, sortPorts = 8, wordLog2 = 4)
 }

@@ -50,11 +50,11 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
   }
   val entry = new Bundle {
     val addr = Output(UInt(itemW.W))
-    val group = Output(UInt(1.W))
+    val group = Output(UInt(StreamRange.groupW(groups).W))
     val item = Input(UInt(itemW.W)) // the cycle after, from group's table
     val mark = Input(Bool())
   }
-  val mark = Valid(new Bundle { val group = UInt(1.W); val addr = UInt(itemW.W); val item = UInt(itemW.W) })
+  val mark = Valid(new Bundle { val group = UInt(StreamRange.groupW(groups).W); val addr = UInt(itemW.W); val item = UInt(itemW.W) })
   val keyAddr = Output(UInt(itemW.W))
   val keyData = Input(new KeyRecord(cellBits, qWidth)) // keyLatency cycles after keyAddr
   val pairs = Decoupled(new WorldPair(itemW))
@@ -74,7 +74,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
   require(lanes >= 1, s"lanes must be >= 1, got $lanes")
-  require(groups == 1 || groups == 2, s"groups must be 1 or 2, got $groups")
+  require(groups == 1 || groups == 2 || groups == 4, s"groups must be 1, 2 or 4, got $groups")
   private val perWord = 1 << wordLog2
   /** Buckets of a coarse cell's group: 8, or a whole word of a table smaller than that. */
   private val groupLog2 = math.min(3, wordLog2)
@@ -151,7 +151,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val moreOfCell = Reg(Bool())
   private val nextSet = Reg(Bool())
   private val nextLeader = Reg(UInt(countW.W))
-  private val nextGroup = Reg(UInt(1.W))
+  private val nextGroup = Reg(UInt(StreamRange.groupW(groups).W))
   private val nextCell = Reg(Vec(3, SInt(cellBits.W)))
   private val sent = Reg(Bool())
   private val scanLeft = Reg(UInt(countW.W))
@@ -283,9 +283,11 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
           sent := false.B; vIssue := 0.U; needClear := true.B
           // The next cell is known already: its visits' lookups need not wait for its scan.
           when(!moreOfCell) {
-            // Scans go in group order: a leader in group 1 leaves nothing of group 0 to scan.
+            // Scans go in group order: a leader in group g leaves nothing of the groups before it to scan.
             if (groups == 1) p(0) := nextLeader
-            else when(nextGroup === 0.U) { p(0) := nextLeader }.otherwise { p(0) := bEnd(0); p(1) := nextLeader }
+            else for (g <- 0 until groups) {
+              when(g.U < nextGroup) { p(g) := bEnd(g) }.elsewhen(g.U === nextGroup) { p(g) := nextLeader }
+            }
             curCell := nextCell; haveCell := true.B; cells := cells + 1.U
           }
         }.otherwise {

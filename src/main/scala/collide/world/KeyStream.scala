@@ -14,8 +14,13 @@ class StreamRange[T <: Data](tagType: T, countW: Int, groups: Int = 1) extends B
   val tag = tagType.cloneType
 }
 
-class StreamItem[T <: Data](tagType: T, itemW: Int, countW: Int, cellBits: Int, qWidth: Int) extends Bundle {
-  val group = UInt(1.W)     // which sorted table (0 with one group, and when direct)
+object StreamRange {
+  /** Bits of a group number. */
+  def groupW(groups: Int): Int = math.max(1, log2Ceil(groups))
+}
+
+class StreamItem[T <: Data](tagType: T, itemW: Int, countW: Int, cellBits: Int, qWidth: Int, groups: Int = 1) extends Bundle {
+  val group = UInt(StreamRange.groupW(groups).W) // which sorted table (0 with one group, and when direct)
   val pos = UInt(countW.W)  // position in the sorted table (direct: the index)
   val item = UInt(itemW.W)  // the sphere index
   val mark = Bool()         // the entry's mark bit (false when direct)
@@ -24,16 +29,16 @@ class StreamItem[T <: Data](tagType: T, itemW: Int, countW: Int, cellBits: Int, 
 }
 
 /** A position in flight between KeyStream's two reads. */
-class StreamStage[T <: Data](tagType: T, countW: Int) extends Bundle {
-  val group = UInt(1.W)
+class StreamStage[T <: Data](tagType: T, countW: Int, groups: Int) extends Bundle {
+  val group = UInt(StreamRange.groupW(groups).W)
   val pos = UInt(countW.W)
   val direct = Bool()
   val tag = tagType.cloneType
 }
 
 /** A position past its entry read, waiting for its key record. */
-class StreamKeyStage[T <: Data](tagType: T, itemW: Int, countW: Int) extends Bundle {
-  val group = UInt(1.W)
+class StreamKeyStage[T <: Data](tagType: T, itemW: Int, countW: Int, groups: Int) extends Bundle {
+  val group = UInt(StreamRange.groupW(groups).W)
   val pos = UInt(countW.W)
   val tag = tagType.cloneType
   val item = UInt(itemW.W)
@@ -52,39 +57,40 @@ class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidt
                            groups: Int = 1)
     extends Module {
   require(keyLatency >= 1, s"keyLatency must be >= 1, got $keyLatency")
-  require(groups == 1 || groups == 2, s"groups must be 1 or 2, got $groups")
+  require(groups == 1 || groups == 2 || groups == 4, s"groups must be 1, 2 or 4, got $groups")
+  private val gW = StreamRange.groupW(groups)
   private val depth = keyLatency + 3 // everything in flight, plus one: full rate when out is ready
   val io = IO(new Bundle {
     val req = Flipped(Decoupled(new StreamRange(tag, countW, groups)))
     val entryAddr = Output(UInt(itemW.W))
-    val entryGroup = Output(UInt(1.W)) // the table entryAddr is in
+    val entryGroup = Output(UInt(gW.W)) // the table entryAddr is in
     val entryItem = Input(UInt(itemW.W)) // a cycle after entryAddr
     val entryMark = Input(Bool())
     val keyAddr = Output(UInt(itemW.W))
     val keyData = Input(new KeyRecord(cellBits, qWidth)) // keyLatency cycles after keyAddr
-    val out = Decoupled(new StreamItem(tag, itemW, countW, cellBits, qWidth))
+    val out = Decoupled(new StreamItem(tag, itemW, countW, cellBits, qWidth, groups))
     /** No range held, nothing in flight or queued. */
     val idle = Output(Bool())
   })
 
   private val cur = Reg(new StreamRange(tag, countW, groups))
   private val busy = RegInit(false.B)
-  private val q = Module(new Queue(new StreamItem(tag, itemW, countW, cellBits, qWidth), depth))
+  private val q = Module(new Queue(new StreamItem(tag, itemW, countW, cellBits, qWidth, groups), depth))
 
-  private val s1v = RegInit(false.B); private val s1 = Reg(new StreamStage(tag, countW))
+  private val s1v = RegInit(false.B); private val s1 = Reg(new StreamStage(tag, countW, groups))
   private val kv = Seq.fill(keyLatency)(RegInit(false.B))
-  private val ks = Seq.fill(keyLatency)(Reg(new StreamKeyStage(tag, itemW, countW)))
+  private val ks = Seq.fill(keyLatency)(Reg(new StreamKeyStage(tag, itemW, countW, groups)))
 
   private val inFlight = (s1v +: kv).map(_.asUInt).reduce(_ +& _)
   private val room = q.io.count +& inFlight < depth.U
   private val issue = busy && room
   private val left = VecInit.tabulate(groups)(g => cur.begin(g) =/= cur.end(g))
   // The group read from: the first with positions left (group 1 once group 0's run is done).
-  private val g = if (groups == 1) 0.U(1.W) else Mux(left(0), 0.U(1.W), 1.U(1.W))
+  private val g = if (groups == 1) 0.U(1.W) else PriorityEncoder(left.asUInt)
   private val at = if (groups == 1) cur.begin(0) else cur.begin(g)
   private val moreAfter =
     if (groups == 1) at + 1.U =/= cur.end(0)
-    else Mux(g === 0.U, at + 1.U =/= cur.end(0) || left(1), at + 1.U =/= cur.end(1))
+    else at + 1.U =/= cur.end(g) || (0 until groups).map(h => left(h) && h.U > g).reduce(_ || _)
   private val last = issue && !moreAfter
   io.req.ready := !busy || last
   when(issue) { if (groups == 1) cur.begin(0) := at + 1.U else cur.begin(g) := at + 1.U }

@@ -27,12 +27,15 @@ class GenerateSpec extends AnyFlatSpec {
     assert(cfg("--preset", "world", "--world", "false").toOption.get.world.isEmpty)
     // 2^13 buckets of 13-bit counters and 4096 entries of a 12-bit index and a mark
     assert(collide.world.BroadPhaseParams.default.ramBits(4096) == 8192L * 13 + 4096L * 13)
-    // The world preset's 16 lanes and four sort ports: two sorts (groups), each of half the
-    // table: per group and lane a table of 8192 12-bit counters and 2048 entries of a 12-bit
-    // index and a mark, and per group a table of counters more for its second port; a sphere
-    // copy per two lanes.
-    val group16 = (16 + 1) * 8192L * 12 + 16 * 2048L * 13
-    assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 2.0 * group16)
+    // The world preset's 16 lanes and eight sort ports: four sorts (groups), each of a quarter
+    // of the table: per group and lane a table of 8192 11-bit counters and 1024 entries of a
+    // 12-bit index and a mark, and per group a table of counters more for its second port; a
+    // sphere copy per two lanes.
+    val group16 = (16 + 1) * 8192L * 11 + 16 * 1024L * 13
+    assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 4.0 * group16)
+    // Four sort ports: two sorts of half the table (12-bit counters, 2048 entries).
+    val p4 = cfg("--preset", "world", "--world-sort-ports", "4").toOption.get
+    assert(p4.id.endsWith("_world16p4w4e2k32x") && p4.world.get.ramBits(4096) == 2 * ((16 + 1) * 8192L * 12 + 16 * 2048L * 13), p4.id)
     assert(AfuConfig.world.puc.ramCopies == 16 + 8, "sixteen SCPU copies and the broad phase's eight")
     // Lanes: a sort RAM each, a sphere copy per two; a name of their own.
     val l5 = cfg("--preset", "world", "--world-lanes", "5").toOption.get
@@ -43,16 +46,16 @@ class GenerateSpec extends AnyFlatSpec {
     assert(l3.world.get.sortPorts == 2 && l3.id.endsWith("_world3p2w4e2k32x") && l3.world.get.ramBits(4096) == 3 * 159744L + 8192 * 13, l3.id)
     // One bucket a sphere: half the counters (4096 of 12 bits per group and lane) and a name of its own.
     val b1 = cfg("--preset", "world", "--world-buckets-per-sphere", "1").toOption.get
-    assert(b1.id.endsWith("_world16p4w4s0e2k32x") && b1.world.get.ramBits(4096) == 2 * ((16 + 1) * 4096L * 12 + 16 * 2048L * 13), b1.id)
+    assert(b1.id.endsWith("_world16p8w4s0e2k32x") && b1.world.get.ramBits(4096) == 4 * ((16 + 1) * 4096L * 11 + 16 * 1024L * 13), b1.id)
     // The preset's grid: chunks of 32, coarse chunks, edges of 1.5 * 2^k too.
     val pw = AfuConfig.world.world.get
     assert(pw.cellSteps == 2 && pw.chunk == 32 && pw.coarseChunks && pw.teamSize == 4, s"the preset's grid: $pw")
     // Edges of 2^k alone: a name of its own, the same RAM.
     val e1 = cfg("--preset", "world", "--world-cell-steps", "1").toOption.get
-    assert(e1.world.get.cellSteps == 1 && e1.id.endsWith("_world16p4w4k32x") && e1.world.get.ramBits(4096) == pw.ramBits(4096), e1.id)
+    assert(e1.world.get.cellSteps == 1 && e1.id.endsWith("_world16p8w4k32x") && e1.world.get.ramBits(4096) == pw.ramBits(4096), e1.id)
     // The grid before coarse chunks: chunks of 16 cells, edges 2^k; the same RAM.
     val x = cfg("--preset", "world", "--world-chunk", "16", "--world-coarse-chunks", "false", "--world-cell-steps", "1").toOption.get
-    assert(!x.world.get.coarseChunks && x.world.get.chunk == 16 && x.id.endsWith("_world16p4w4") && x.world.get.ramBits(4096) == pw.ramBits(4096), x.id)
+    assert(!x.world.get.coarseChunks && x.world.get.chunk == 16 && x.id.endsWith("_world16p8w4") && x.world.get.ramBits(4096) == pw.ramBits(4096), x.id)
     // Teams: the largest power of two up to 4 that divides the lanes.
     assert(l3.world.get.teamSize == 1 && cfg("--preset", "world", "--world-lanes", "6").toOption.get.world.get.teamSize == 2)
     val p1 = cfg("--preset", "world", "--world-lanes", "5", "--world-sort-ports", "1").toOption.get
@@ -89,7 +92,7 @@ class GenerateSpec extends AnyFlatSpec {
     err("--world-lanes", "4")("--world-lanes", "not built")
     err("--preset", "world", "--world-lanes", "17")("--world-lanes", "1..16")
     err("--world-sort-ports", "2")("--world-sort-ports", "not built")
-    err("--preset", "world", "--world-sort-ports", "3")("--world-sort-ports", "1, 2 or 4")
+    err("--preset", "world", "--world-sort-ports", "3")("--world-sort-ports", "1, 2, 4 or 8")
     err("--world", "true", "--world-sort-ports", "2")("--world-sort-ports", "at most lanes")
     err("--preset", "world", "--world-buckets-per-sphere", "3")("--world-buckets-per-sphere", "1, 2 or 4")
     err("--world-buckets-per-sphere", "1")("--world-buckets-per-sphere", "not built")

@@ -151,6 +151,11 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     everyHardCase("BroadPhaseSpec-four-ports", BroadPhaseParams.fourLanesFourPorts, "four sort ports: ")
   }
 
+  it should "find the same candidates with the sort's passes eight spheres a cycle (four sorts, each of a quarter of the table, read one after the other), with coarse chunks, in every hard case and random cloud" in {
+    everyHardCase("BroadPhaseSpec-eight-ports", BroadPhaseParams.eightLanesEightPorts.copy(coarseChunks = true, chunk = 32),
+      "eight sort ports: ")
+  }
+
   it should "find the same candidates with one bucket a sphere (more cells sharing a bucket), in every hard case and random cloud" in {
     everyHardCase("BroadPhaseSpec-one-bucket", BroadPhaseParams.fourLanesFourPorts.copy(bucketsPerSphereLog2 = 0), "one bucket a sphere: ")
   }
