@@ -147,7 +147,8 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     everyHardCase("BroadPhaseSpec-ports", BroadPhaseParams.fourLanesTwoPorts, "two sort ports: ")
   }
 
-  it should "find the same candidates with the sort's passes four spheres a cycle (two sorts, each of half the table, read one after the other), in every hard case and random cloud" in {
+  // Four ports run in every default run with coarse chunks (below, and the fed table's case).
+  it should "find the same candidates with the sort's passes four spheres a cycle (two sorts, each of half the table, read one after the other), in every hard case and random cloud" taggedAs (Slow) in {
     everyHardCase("BroadPhaseSpec-four-ports", BroadPhaseParams.fourLanesFourPorts, "four sort ports: ")
   }
 
@@ -240,7 +241,8 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     fedWorlds("BroadPhaseSpec-fed", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32, cellSteps = 2), 4, "fed, four a line: ", ws => ws)
   }
 
-  it should "take a fed table with fewer feed ports than lanes (two of four lanes' needs merged) and with one lane" in {
+  // The AFU's fp16 (eight a line into 16 lanes, SLOW=1) also feeds fewer ports than lanes.
+  it should "take a fed table with fewer feed ports than lanes (two of four lanes' needs merged) and with one lane" taggedAs (Slow) in {
     fedWorlds("BroadPhaseSpec-fed-two", BroadPhaseParams.fourLanesTwoPorts, 2, "fed, two a line: ", _.filter(_._2.length <= 120))
     fedWorlds("BroadPhaseSpec-fed-one", BroadPhaseParams.default, 1, "fed, one lane: ", _.filter(_._2.length <= 120))
   }
