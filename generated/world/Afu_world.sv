@@ -26790,27 +26790,25 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [12:0] _GEN_1 = {2'h0, num[12:2]};
   wire        reading_1 = inPass & i_1 < (_loading_T ? _GEN_0 : _GEN_1);
   wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
-  wire [14:0] _i_3_T_17 = {2'h0, num} * 15'h3;
+  wire [14:0] _i_3_T_9 = {2'h0, num} * 15'h3;
   wire        reading_2 =
     inPass
-    & i_2 < (_loading_T
-               ? {2'h0, _gens_3_io_largeFrom_T[26:16]}
-               : {1'h0, _i_3_T_17[14:3]});
+    & i_2 < (_loading_T ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : {1'h0, _i_3_T_9[14:3]});
   wire [27:0] _GEN_2 = {15'h0, num};
   wire [15:0] _GEN_3 = {3'h0, num};
   wire        reading_3 = inPass & i_3 < (_loading_T ? _GEN_1 : {1'h0, num[12:1]});
   wire [27:0] _gens_5_io_largeFrom_T = _GEN_2 * 28'h5000;
-  wire [15:0] _i_5_T_16 = _GEN_3 * 16'h5;
+  wire [15:0] _i_5_T_8 = _GEN_3 * 16'h5;
   wire        reading_4 =
-    inPass & i_4 < (_loading_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_16[15:3]);
+    inPass & i_4 < (_loading_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_8[15:3]);
   wire [27:0] _gens_6_io_largeFrom_T = _GEN_2 * 28'h6000;
-  wire [15:0] _i_6_T_16 = _GEN_3 * 16'h6;
+  wire [15:0] _i_6_T_8 = _GEN_3 * 16'h6;
   wire        reading_5 =
-    inPass & i_5 < (_loading_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_16[15:3]);
+    inPass & i_5 < (_loading_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_8[15:3]);
   wire [27:0] _gens_7_io_largeFrom_T = _GEN_2 * 28'h7000;
-  wire [15:0] _i_7_T_15 = _GEN_3 * 16'h7;
+  wire [15:0] _i_7_T_8 = _GEN_3 * 16'h7;
   wire        reading_6 =
-    inPass & i_6 < (_loading_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_15[15:3]);
+    inPass & i_6 < (_loading_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_8[15:3]);
   wire [28:0] _GEN_4 = {16'h0, num};
   wire        reading_7 = inPass & i_7 < (_loading_T ? {1'h0, num[12:1]} : num);
   wire [28:0] _gens_9_io_largeFrom_T = _GEN_4 * 29'h9000;
@@ -26854,7 +26852,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
      reading_1,
      reading_0} == 16'h0 & inflight == 6'h0;
   wire        filling = state == 3'h1;
+  wire        loading = _loading_T | filling;
   reg         laneKeys_0_io_in_valid_REG;
+  wire [13:0] _laneKeys_15_io_in_level_T = loading ? 14'h0 : _cellExp_io_level;
   reg         laneKeys_1_io_in_valid_REG;
   reg         laneKeys_2_io_in_valid_REG;
   reg         laneKeys_3_io_in_valid_REG;
@@ -26904,7 +26904,6 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     $signed(_laneKeys_7_io_out_need) > $signed(_cellExp_io_level);
   reg  [8:0]  m;
   wire [8:0]  mergeEnd = fed ? 9'h44 : 9'h110;
-  wire        loading = _loading_T | filling;
   wire        filled_2 = _laneExps_0_io_used > 5'h2;
   wire        filled_4 = _laneExps_0_io_used > 5'h4;
   wire        filled_5 = _laneExps_0_io_used > 5'h5;
@@ -35384,49 +35383,49 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:264 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -35946,11 +35945,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
       3'b010:
         casez_tmp_42 = reading_3 ? i_3 + 13'h1 : i_3;
       3'b011:
-        casez_tmp_42 = _GEN_6 ? {1'h0, _i_3_T_17[14:3]} : i_3;
+        casez_tmp_42 = _GEN_6 ? {1'h0, _i_3_T_9[14:3]} : i_3;
       3'b100:
         casez_tmp_42 = reading_3 ? i_3 + 13'h1 : i_3;
       3'b101:
-        casez_tmp_42 = _GEN_7 ? {1'h0, _i_3_T_17[14:3]} : i_3;
+        casez_tmp_42 = _GEN_7 ? {1'h0, _i_3_T_9[14:3]} : i_3;
       3'b110:
         casez_tmp_42 = _GEN_12;
       default:
@@ -35990,11 +35989,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
       3'b010:
         casez_tmp_44 = reading_5 ? i_5 + 13'h1 : i_5;
       3'b011:
-        casez_tmp_44 = _GEN_6 ? _i_5_T_16[15:3] : i_5;
+        casez_tmp_44 = _GEN_6 ? _i_5_T_8[15:3] : i_5;
       3'b100:
         casez_tmp_44 = reading_5 ? i_5 + 13'h1 : i_5;
       3'b101:
-        casez_tmp_44 = _GEN_7 ? _i_5_T_16[15:3] : i_5;
+        casez_tmp_44 = _GEN_7 ? _i_5_T_8[15:3] : i_5;
       3'b110:
         casez_tmp_44 = _GEN_14;
       default:
@@ -36012,11 +36011,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
       3'b010:
         casez_tmp_45 = reading_6 ? i_6 + 13'h1 : i_6;
       3'b011:
-        casez_tmp_45 = _GEN_6 ? _i_6_T_16[15:3] : i_6;
+        casez_tmp_45 = _GEN_6 ? _i_6_T_8[15:3] : i_6;
       3'b100:
         casez_tmp_45 = reading_6 ? i_6 + 13'h1 : i_6;
       3'b101:
-        casez_tmp_45 = _GEN_7 ? _i_6_T_16[15:3] : i_6;
+        casez_tmp_45 = _GEN_7 ? _i_6_T_8[15:3] : i_6;
       3'b110:
         casez_tmp_45 = _GEN_15;
       default:
@@ -36034,11 +36033,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
       3'b010:
         casez_tmp_46 = reading_7 ? i_7 + 13'h1 : i_7;
       3'b011:
-        casez_tmp_46 = _GEN_6 ? _i_7_T_15[15:3] : i_7;
+        casez_tmp_46 = _GEN_6 ? _i_7_T_8[15:3] : i_7;
       3'b100:
         casez_tmp_46 = reading_7 ? i_7 + 13'h1 : i_7;
       3'b101:
-        casez_tmp_46 = _GEN_7 ? _i_7_T_15[15:3] : i_7;
+        casez_tmp_46 = _GEN_7 ? _i_7_T_8[15:3] : i_7;
       3'b110:
         casez_tmp_46 = _GEN_16;
       default:
@@ -36283,19 +36282,19 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
                              : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1;
   wire [12:0] _GEN_28 = {4'h0, io_num[12:4]};
   wire [12:0] _GEN_29 = {3'h0, io_num[12:3]};
-  wire [26:0] _i_3_T = {14'h0, io_num} * 27'h3000;
+  wire [26:0] _cuts_T_6 = {14'h0, io_num} * 27'h3000;
   wire [27:0] _GEN_30 = {15'h0, io_num};
-  wire [27:0] _i_5_T = _GEN_30 * 28'h5000;
-  wire [27:0] _i_6_T = _GEN_30 * 28'h6000;
-  wire [27:0] _i_7_T = _GEN_30 * 28'h7000;
+  wire [27:0] _cuts_T_12 = _GEN_30 * 28'h5000;
+  wire [27:0] _cuts_T_15 = _GEN_30 * 28'h6000;
+  wire [27:0] _cuts_T_18 = _GEN_30 * 28'h7000;
   wire [28:0] _GEN_31 = {16'h0, io_num};
-  wire [28:0] _i_9_T = _GEN_31 * 29'h9000;
-  wire [28:0] _i_10_T = _GEN_31 * 29'hA000;
-  wire [28:0] _i_11_T = _GEN_31 * 29'hB000;
-  wire [28:0] _i_12_T = _GEN_31 * 29'hC000;
-  wire [28:0] _i_13_T = _GEN_31 * 29'hD000;
-  wire [28:0] _i_14_T = _GEN_31 * 29'hE000;
-  wire [28:0] _i_15_T = _GEN_31 * 29'hF000;
+  wire [28:0] _cuts_T_23 = _GEN_31 * 29'h9000;
+  wire [28:0] _cuts_T_25 = _GEN_31 * 29'hA000;
+  wire [28:0] _cuts_T_27 = _GEN_31 * 29'hB000;
+  wire [28:0] _cuts_T_29 = _GEN_31 * 29'hC000;
+  wire [28:0] _cuts_T_31 = _GEN_31 * 29'hD000;
+  wire [28:0] _cuts_T_33 = _GEN_31 * 29'hE000;
+  wire [28:0] _cuts_T_35 = _GEN_31 * 29'hF000;
   wire        z_tooMany = io_num > 13'h1000;
   wire        largeHere_0 =
     classifying & _laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
@@ -37294,20 +37293,20 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     else if (_starting_T) begin
       i_0 <= io_start ? 13'h0 : _GEN_28;
       i_1 <= io_start ? _GEN_28 : _GEN_29;
-      i_2 <= io_start ? _GEN_29 : {2'h0, _i_3_T[26:16]};
-      i_3 <= {2'h0, io_start ? _i_3_T[26:16] : io_num[12:2]};
-      i_4 <= io_start ? {2'h0, io_num[12:2]} : {1'h0, _i_5_T[27:16]};
-      i_5 <= {1'h0, io_start ? _i_5_T[27:16] : _i_6_T[27:16]};
-      i_6 <= {1'h0, io_start ? _i_6_T[27:16] : _i_7_T[27:16]};
-      i_7 <= {1'h0, io_start ? _i_7_T[27:16] : io_num[12:1]};
-      i_8 <= io_start ? {1'h0, io_num[12:1]} : _i_9_T[28:16];
-      i_9 <= io_start ? _i_9_T[28:16] : _i_10_T[28:16];
-      i_10 <= io_start ? _i_10_T[28:16] : _i_11_T[28:16];
-      i_11 <= io_start ? _i_11_T[28:16] : _i_12_T[28:16];
-      i_12 <= io_start ? _i_12_T[28:16] : _i_13_T[28:16];
-      i_13 <= io_start ? _i_13_T[28:16] : _i_14_T[28:16];
-      i_14 <= io_start ? _i_14_T[28:16] : _i_15_T[28:16];
-      i_15 <= io_start ? _i_15_T[28:16] : io_num;
+      i_2 <= io_start ? _GEN_29 : {2'h0, _cuts_T_6[26:16]};
+      i_3 <= {2'h0, io_start ? _cuts_T_6[26:16] : io_num[12:2]};
+      i_4 <= io_start ? {2'h0, io_num[12:2]} : {1'h0, _cuts_T_12[27:16]};
+      i_5 <= {1'h0, io_start ? _cuts_T_12[27:16] : _cuts_T_15[27:16]};
+      i_6 <= {1'h0, io_start ? _cuts_T_15[27:16] : _cuts_T_18[27:16]};
+      i_7 <= {1'h0, io_start ? _cuts_T_18[27:16] : io_num[12:1]};
+      i_8 <= io_start ? {1'h0, io_num[12:1]} : _cuts_T_23[28:16];
+      i_9 <= io_start ? _cuts_T_23[28:16] : _cuts_T_25[28:16];
+      i_10 <= io_start ? _cuts_T_25[28:16] : _cuts_T_27[28:16];
+      i_11 <= io_start ? _cuts_T_27[28:16] : _cuts_T_29[28:16];
+      i_12 <= io_start ? _cuts_T_29[28:16] : _cuts_T_31[28:16];
+      i_13 <= io_start ? _cuts_T_31[28:16] : _cuts_T_33[28:16];
+      i_14 <= io_start ? _cuts_T_33[28:16] : _cuts_T_35[28:16];
+      i_15 <= io_start ? _cuts_T_35[28:16] : io_num;
     end
     REG <= i_0[11:0];
     r <= REG;
@@ -42803,7 +42802,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (filling ? io_feed_0_bits_1 : io_sphere_0_data_1),
     .io_in_sphere_2      (filling ? io_feed_0_bits_2 : io_sphere_0_data_2),
     .io_in_sphere_3      (filling ? io_feed_0_bits_3 : io_sphere_0_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_0_io_out_valid),
     .io_out_cell_0       (_laneKeys_0_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_0_io_out_cell_1),
@@ -42827,7 +42826,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (filling ? io_feed_1_bits_1 : io_sphere_1_data_1),
     .io_in_sphere_2      (filling ? io_feed_1_bits_2 : io_sphere_1_data_2),
     .io_in_sphere_3      (filling ? io_feed_1_bits_3 : io_sphere_1_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_1_io_out_valid),
     .io_out_cell_0       (_laneKeys_1_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_1_io_out_cell_1),
@@ -42851,7 +42850,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (filling ? io_feed_2_bits_1 : io_sphere_2_data_1),
     .io_in_sphere_2      (filling ? io_feed_2_bits_2 : io_sphere_2_data_2),
     .io_in_sphere_3      (filling ? io_feed_2_bits_3 : io_sphere_2_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_2_io_out_valid),
     .io_out_cell_0       (_laneKeys_2_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_2_io_out_cell_1),
@@ -42875,7 +42874,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (filling ? io_feed_3_bits_1 : io_sphere_3_data_1),
     .io_in_sphere_2      (filling ? io_feed_3_bits_2 : io_sphere_3_data_2),
     .io_in_sphere_3      (filling ? io_feed_3_bits_3 : io_sphere_3_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_3_io_out_valid),
     .io_out_cell_0       (_laneKeys_3_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_3_io_out_cell_1),
@@ -42899,7 +42898,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_4_data_1),
     .io_in_sphere_2      (io_sphere_4_data_2),
     .io_in_sphere_3      (io_sphere_4_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_4_io_out_valid),
     .io_out_cell_0       (_laneKeys_4_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_4_io_out_cell_1),
@@ -42923,7 +42922,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_5_data_1),
     .io_in_sphere_2      (io_sphere_5_data_2),
     .io_in_sphere_3      (io_sphere_5_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_5_io_out_valid),
     .io_out_cell_0       (_laneKeys_5_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_5_io_out_cell_1),
@@ -42947,7 +42946,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_6_data_1),
     .io_in_sphere_2      (io_sphere_6_data_2),
     .io_in_sphere_3      (io_sphere_6_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_6_io_out_valid),
     .io_out_cell_0       (_laneKeys_6_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_6_io_out_cell_1),
@@ -42971,7 +42970,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_7_data_1),
     .io_in_sphere_2      (io_sphere_7_data_2),
     .io_in_sphere_3      (io_sphere_7_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_7_io_out_valid),
     .io_out_cell_0       (_laneKeys_7_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_7_io_out_cell_1),
@@ -42995,7 +42994,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_8_data_1),
     .io_in_sphere_2      (io_sphere_8_data_2),
     .io_in_sphere_3      (io_sphere_8_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_8_io_out_valid),
     .io_out_cell_0       (_laneKeys_8_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_8_io_out_cell_1),
@@ -43019,7 +43018,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_9_data_1),
     .io_in_sphere_2      (io_sphere_9_data_2),
     .io_in_sphere_3      (io_sphere_9_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_9_io_out_valid),
     .io_out_cell_0       (_laneKeys_9_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_9_io_out_cell_1),
@@ -43043,7 +43042,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_10_data_1),
     .io_in_sphere_2      (io_sphere_10_data_2),
     .io_in_sphere_3      (io_sphere_10_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_10_io_out_valid),
     .io_out_cell_0       (_laneKeys_10_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_10_io_out_cell_1),
@@ -43067,7 +43066,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_11_data_1),
     .io_in_sphere_2      (io_sphere_11_data_2),
     .io_in_sphere_3      (io_sphere_11_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_11_io_out_valid),
     .io_out_cell_0       (_laneKeys_11_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_11_io_out_cell_1),
@@ -43091,7 +43090,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_12_data_1),
     .io_in_sphere_2      (io_sphere_12_data_2),
     .io_in_sphere_3      (io_sphere_12_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_12_io_out_valid),
     .io_out_cell_0       (_laneKeys_12_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_12_io_out_cell_1),
@@ -43115,7 +43114,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_13_data_1),
     .io_in_sphere_2      (io_sphere_13_data_2),
     .io_in_sphere_3      (io_sphere_13_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_13_io_out_valid),
     .io_out_cell_0       (_laneKeys_13_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_13_io_out_cell_1),
@@ -43139,7 +43138,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_14_data_1),
     .io_in_sphere_2      (io_sphere_14_data_2),
     .io_in_sphere_3      (io_sphere_14_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_14_io_out_valid),
     .io_out_cell_0       (_laneKeys_14_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_14_io_out_cell_1),
@@ -43163,7 +43162,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_sphere_1      (io_sphere_15_data_1),
     .io_in_sphere_2      (io_sphere_15_data_2),
     .io_in_sphere_3      (io_sphere_15_data_3),
-    .io_in_level         (_loading_T | filling ? 14'h0 : _cellExp_io_level),
+    .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_15_io_out_valid),
     .io_out_cell_0       (_laneKeys_15_io_out_cell_0),
     .io_out_cell_1       (_laneKeys_15_io_out_cell_1),
@@ -44913,7 +44912,7 @@ module Puc_world(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:275 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:274 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end

@@ -124,18 +124,17 @@ class Puc(p: PucParams) extends Module {
       val spl = lay.spheresPerLine
       val feedWidth = if (w.bp.lanes >= spl) spl else 0
       val bp = Module(new collide.world.BroadPhase(w.fp, w.bp, p.maxSpheres, feedWidth = feedWidth))
-      bp.io.begin := engineStart && world && (feedWidth > 0).B
+      bp.io.begin := engineStart && world // ignored without feed ports
       bp.io.start := bpStart
       bp.io.num   := numSpheres(bp.io.countW - 1, 0) // <= maxSpheres: checked at sCheck
       val wr = rd.io.sphereWrite
       for ((f, s) <- bp.io.feed.zipWithIndex) {
-        val sw = 4 * p.linkWidth
         f.valid := wr.valid && world && ((wr.bits.line << log2Ceil(spl)) +& s.U).pad(64) < numSpheres
-        f.bits := VecInit.tabulate(4)(c => wr.bits.data(s * sw + (c + 1) * p.linkWidth - 1, s * sw + c * p.linkWidth))
+        f.bits := Sphere.at(wr.bits.data, s * 4 * p.linkWidth, p.linkWidth).fields
       }
       for ((port, lane) <- ram.io.world.get.zip(bp.io.sphere)) {
         port.addr := lane.addr
-        lane.data := VecInit(port.data.x, port.data.y, port.data.z, port.data.r)
+        lane.data := port.data.fields
       }
       val lines = Module(new WorldPairLines(p, bp.io.itemW, w.bp.lanes))
       lines.io.start := engineStart

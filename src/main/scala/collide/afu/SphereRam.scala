@@ -6,6 +6,17 @@ import chisel3.util._
 /** One sphere in the link format. */
 class Sphere(w: Int) extends Bundle {
   val x = UInt(w.W); val y = UInt(w.W); val z = UInt(w.W); val r = UInt(w.W)
+  /** x, y, z, r in order (the broad phase's sphere ports). */
+  def fields: Vec[UInt] = VecInit(x, y, z, r)
+}
+object Sphere {
+  /** The sphere of `w`-bit fields at bit `b` of a RAM word or link line (x lowest). */
+  def at(word: UInt, b: Int, w: Int): Sphere = {
+    val sp = Wire(new Sphere(w))
+    sp.x := word(b + w - 1, b); sp.y := word(b + 2 * w - 1, b + w)
+    sp.z := word(b + 3 * w - 1, b + 2 * w); sp.r := word(b + 4 * w - 1, b + 3 * w)
+    sp
+  }
 }
 
 /** The on-chip sphere table (the paper's VWIRB): written a whole host line at a time while
@@ -41,14 +52,7 @@ class SphereRam(p: PucParams) extends Module {
       val data = Output(new Sphere(p.linkWidth))
     }))
   })
-  /** The sphere at bit `b` of a RAM word. */
-  private def sphereAt(word: UInt, b: Int): Sphere = {
-    val sp = Wire(new Sphere(p.linkWidth))
-    val w = p.linkWidth
-    sp.x := word(b + w - 1, b); sp.y := word(b + 2 * w - 1, b + w)
-    sp.z := word(b + 3 * w - 1, b + 2 * w); sp.r := word(b + 4 * w - 1, b + 3 * w)
-    sp
-  }
+  private def sphereAt(word: UInt, b: Int): Sphere = Sphere.at(word, b, p.linkWidth)
   private def unpack(line: UInt, k: UInt): Sphere = VecInit.tabulate(spl)(s => sphereAt(line, s * 4 * p.linkWidth))(k)
   p.ramPorts match {
     case SphereRamPorts.Replicated =>

@@ -171,13 +171,16 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     def isSmall: Bool = !out.nonFinite && !isLarge
   }
   private val filling = state === S.fill
+  // The load pass, or a fed table's arrival (its spheres leave SphereKeys up to its latency
+  // after the state has moved to load).
+  private val loading = state === S.load || filling
   for ((lk, l) <- laneKeys.zipWithIndex) {
     io.sphere(l).addr := Mux(state === S.generate, gens(l).io.keyAddr, i(l)(itemW - 1, 0))
     lk.io.in.valid := RegNext(reading(l), false.B)
     lk.io.in.sphere := io.sphere(l).data
     if (l < feedWidth) when(filling) { lk.io.in.valid := io.feed(l).valid; lk.io.in.sphere := io.feed(l).bits }
     // need and top do not depend on the level
-    lk.io.in.level := Mux(state === S.load || filling, 0.S, level)
+    lk.io.in.level := Mux(loading, 0.S, level)
   }
   private val fedNow = if (feedWidth > 0) PopCount(io.feed.map(f => f.valid && filling)) else 0.U
   private val keyed = (0 until ports).map { q =>
@@ -198,8 +201,6 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val m = Reg(UInt(log2Ceil(mergeItems + 2).W)) // the merge's next item: lane m / slots, slot m % slots
   /** A fed world's needs are in lanes 0 .. feedWidth-1 alone: the merge stops after them. */
   private val mergeEnd = if (feedWidth > 0) Mux(fed, (feedWidth * mergeSlots).U, mergeItems.U) else mergeItems.U
-  // Fed spheres leave SphereKeys up to its latency after the state has moved to load.
-  private val loading = state === S.load || filling
   if (!wideLoad) feed(cellExp.io.in.head, laneKeys.head.io.out.valid && loading, laneKeys.head)
   else {
     for ((e, lk) <- laneExps.zip(laneKeys)) {
@@ -308,8 +309,10 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       when(io.start || begin) {
         val z = WireDefault(0.U.asTypeOf(st))
         num := io.num; usedLog2 := bucketsLog2For(io.num); largeCount := 0.U
-        // The load pass's slices, from io.num (num is not written yet); a fed table reads none.
-        for (l <- 0 until bp.lanes) i(l) := Mux(io.start, cutOf(io.num, l), cutOf(io.num, l + 1))
+        // The load pass's slices, from io.num (num is not written yet); a fed table reads none
+        // (each lane starts at its slice's end).
+        val cuts = (0 to bp.lanes).map(cutOf(io.num, _))
+        for (l <- 0 until bp.lanes) i(l) := Mux(io.start, cuts(l), cuts(l + 1))
         fed := !io.start
         when(io.num > maxSpheres.U) { z.tooMany := true.B; st := z }
           .otherwise { st := z; state := Mux(io.start, S.load, S.fill) }
