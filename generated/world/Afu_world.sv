@@ -21968,12 +21968,22 @@ module Queue3_StreamRange_world(
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 2'h1 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
+module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
   input         clock,
                 reset,
                 io_start,
   input  [3:0]  io_lane,
                 io_usedLog2,
+  output        io_need,
+  input         io_claim_valid,
+  input  [13:0] io_claim_bits_bucket,
+  input         io_claim_bits_single,
+  output        io_take,
+                io_defer_valid,
+  output [13:0] io_defer_bits,
+  input         io_deferOk,
+  output        io_unresolved,
+  input         io_claimsOut,
   input  [28:0] io_slack,
   input  [11:0] io_larges_0_index,
   input  [28:0] io_larges_0_q_0,
@@ -22205,6 +22215,11 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
   reg  [13:0] bIssue;
   reg         walkPend;
   reg  [13:0] walkB;
+  reg         inUnit;
+  reg         single;
+  reg         unitFirst;
+  reg         deferPend;
+  wire        _io_need_T = state == 3'h1;
   reg  [12:0] p_0;
   reg  [12:0] p_1;
   reg  [12:0] p_2;
@@ -22242,134 +22257,105 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
   reg  [5:0]  lj;
   wire        _GEN_0 = state == 3'h0;
   wire        _GEN_1 = state == 3'h1;
-  wire        issueOk = bIssue < _io_lookup_bucket_mask_T[13:0];
-  wire        gCoarse_0 =
-    walkB[3:0] == 4'h0
-    & {1'h0,
-       {1'h0,
-        {1'h0, io_lookup_word_0_7 - io_lookup_begin_0}
-          + {1'h0, io_lookup_word_1_7 - io_lookup_begin_1}}
-         + {2'h0, io_lookup_word_2_7 - io_lookup_begin_2}}
-    + {3'h0, io_lookup_word_3_7 - io_lookup_begin_3} < 16'h21;
-  wire        gCoarse_1 =
-    walkB[3:0] < 4'h9
-    & {1'h0,
-       {1'h0,
-        {1'h0, io_lookup_word_0_15 - io_lookup_word_0_7}
-          + {1'h0, io_lookup_word_1_15 - io_lookup_word_1_7}}
-         + {2'h0, io_lookup_word_2_15 - io_lookup_word_2_7}}
-    + {3'h0, io_lookup_word_3_15 - io_lookup_word_3_7} < 16'h21;
+  wire        issueOk = ~walkPend & ~deferPend & (inUnit | io_claim_valid);
+  wire [13:0] issueAt = inUnit ? bIssue : io_claim_bits_bucket;
+  wire        _GEN_2 = _GEN_1 & issueOk;
   wire        occupied_0 =
     walkB[3:0] == 4'h0 & {walkB[13:4], 4'h0} < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_0 ? {walkB[6], 1'h0} : 2'h0) == io_lane[1:0]
+    & (single ? walkB[3:0] == 4'h0 : ~(walkB[3]))
     & (io_lookup_word_0_0 != io_lookup_begin_0 | io_lookup_word_1_0 != io_lookup_begin_1
        | io_lookup_word_2_0 != io_lookup_begin_2
        | io_lookup_word_3_0 != io_lookup_begin_3);
-  wire [13:0] _GEN_2 = {walkB[13:4], 4'h0};
-  wire [13:0] _occupied_bucket_T_1 = _GEN_2 + 14'h1;
+  wire [13:0] _GEN_3 = {walkB[13:4], 4'h0};
   wire        occupied_1 =
-    walkB[3:0] < 4'h2 & _occupied_bucket_T_1 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_1[1:0]) == io_lane[1:0]
+    walkB[3:0] < 4'h2 & _GEN_3 + 14'h1 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'h1 : ~(walkB[3]))
     & (io_lookup_word_0_1 != io_lookup_word_0_0 | io_lookup_word_1_1 != io_lookup_word_1_0
        | io_lookup_word_2_1 != io_lookup_word_2_0
        | io_lookup_word_3_1 != io_lookup_word_3_0);
-  wire [13:0] _occupied_bucket_T_2 = _GEN_2 + 14'h2;
   wire        occupied_2 =
-    walkB[3:0] < 4'h3 & _occupied_bucket_T_2 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_2[1:0]) == io_lane[1:0]
+    walkB[3:0] < 4'h3 & _GEN_3 + 14'h2 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'h2 : ~(walkB[3]))
     & (io_lookup_word_0_2 != io_lookup_word_0_1 | io_lookup_word_1_2 != io_lookup_word_1_1
        | io_lookup_word_2_2 != io_lookup_word_2_1
        | io_lookup_word_3_2 != io_lookup_word_3_1);
-  wire [13:0] _occupied_bucket_T_3 = _GEN_2 + 14'h3;
   wire        occupied_3 =
-    walkB[3:0] < 4'h4 & _occupied_bucket_T_3 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_3[1:0]) == io_lane[1:0]
+    walkB[3:0] < 4'h4 & _GEN_3 + 14'h3 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'h3 : ~(walkB[3]))
     & (io_lookup_word_0_3 != io_lookup_word_0_2 | io_lookup_word_1_3 != io_lookup_word_1_2
        | io_lookup_word_2_3 != io_lookup_word_2_2
        | io_lookup_word_3_3 != io_lookup_word_3_2);
-  wire [13:0] _occupied_bucket_T_4 = _GEN_2 + 14'h4;
   wire        occupied_4 =
-    walkB[3:0] < 4'h5 & _occupied_bucket_T_4 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_4[1:0]) == io_lane[1:0]
+    walkB[3:0] < 4'h5 & _GEN_3 + 14'h4 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'h4 : ~(walkB[3]))
     & (io_lookup_word_0_4 != io_lookup_word_0_3 | io_lookup_word_1_4 != io_lookup_word_1_3
        | io_lookup_word_2_4 != io_lookup_word_2_3
        | io_lookup_word_3_4 != io_lookup_word_3_3);
-  wire [13:0] _occupied_bucket_T_5 = _GEN_2 + 14'h5;
   wire        occupied_5 =
-    walkB[3:0] < 4'h6 & _occupied_bucket_T_5 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_5[1:0]) == io_lane[1:0]
+    walkB[3:0] < 4'h6 & _GEN_3 + 14'h5 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'h5 : ~(walkB[3]))
     & (io_lookup_word_0_5 != io_lookup_word_0_4 | io_lookup_word_1_5 != io_lookup_word_1_4
        | io_lookup_word_2_5 != io_lookup_word_2_4
        | io_lookup_word_3_5 != io_lookup_word_3_4);
-  wire [13:0] _occupied_bucket_T_6 = _GEN_2 + 14'h6;
   wire        occupied_6 =
-    walkB[3:0] < 4'h7 & _occupied_bucket_T_6 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_6[1:0]) == io_lane[1:0]
+    walkB[3:0] < 4'h7 & _GEN_3 + 14'h6 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'h6 : ~(walkB[3]))
     & (io_lookup_word_0_6 != io_lookup_word_0_5 | io_lookup_word_1_6 != io_lookup_word_1_5
        | io_lookup_word_2_6 != io_lookup_word_2_5
        | io_lookup_word_3_6 != io_lookup_word_3_5);
-  wire [13:0] _occupied_bucket_T_7 = _GEN_2 + 14'h7;
   wire        occupied_7 =
-    ~(walkB[3]) & _occupied_bucket_T_7 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_0 ? {walkB[6], 1'h0} : _occupied_bucket_T_7[1:0]) == io_lane[1:0]
+    ~(walkB[3]) & _GEN_3 + 14'h7 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'h7 : ~(walkB[3]))
     & (io_lookup_word_0_7 != io_lookup_word_0_6 | io_lookup_word_1_7 != io_lookup_word_1_6
        | io_lookup_word_2_7 != io_lookup_word_2_6
        | io_lookup_word_3_7 != io_lookup_word_3_6);
-  wire [13:0] _occupied_bucket_T_8 = _GEN_2 + 14'h8;
   wire        occupied_8 =
-    walkB[3:0] < 4'h9 & _occupied_bucket_T_8 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_8[1:0]) == io_lane[1:0]
+    walkB[3:0] < 4'h9 & _GEN_3 + 14'h8 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'h8 : walkB[3])
     & (io_lookup_word_0_8 != io_lookup_word_0_7 | io_lookup_word_1_8 != io_lookup_word_1_7
        | io_lookup_word_2_8 != io_lookup_word_2_7
        | io_lookup_word_3_8 != io_lookup_word_3_7);
-  wire [13:0] _occupied_bucket_T_9 = _GEN_2 + 14'h9;
   wire        occupied_9 =
-    walkB[3:0] < 4'hA & _occupied_bucket_T_9 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_9[1:0]) == io_lane[1:0]
+    walkB[3:0] < 4'hA & _GEN_3 + 14'h9 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'h9 : walkB[3])
     & (io_lookup_word_0_9 != io_lookup_word_0_8 | io_lookup_word_1_9 != io_lookup_word_1_8
        | io_lookup_word_2_9 != io_lookup_word_2_8
        | io_lookup_word_3_9 != io_lookup_word_3_8);
-  wire [13:0] _occupied_bucket_T_10 = _GEN_2 + 14'hA;
   wire        occupied_10 =
-    walkB[3:0] < 4'hB & _occupied_bucket_T_10 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_10[1:0]) == io_lane[1:0]
+    walkB[3:0] < 4'hB & _GEN_3 + 14'hA < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'hA : walkB[3])
     & (io_lookup_word_0_10 != io_lookup_word_0_9
        | io_lookup_word_1_10 != io_lookup_word_1_9
        | io_lookup_word_2_10 != io_lookup_word_2_9
        | io_lookup_word_3_10 != io_lookup_word_3_9);
-  wire [13:0] _occupied_bucket_T_11 = _GEN_2 + 14'hB;
   wire        occupied_11 =
-    walkB[3:2] != 2'h3 & _occupied_bucket_T_11 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_11[1:0]) == io_lane[1:0]
+    walkB[3:2] != 2'h3 & _GEN_3 + 14'hB < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'hB : walkB[3])
     & (io_lookup_word_0_11 != io_lookup_word_0_10
        | io_lookup_word_1_11 != io_lookup_word_1_10
        | io_lookup_word_2_11 != io_lookup_word_2_10
        | io_lookup_word_3_11 != io_lookup_word_3_10);
-  wire [13:0] _occupied_bucket_T_12 = _GEN_2 + 14'hC;
   wire        occupied_12 =
-    walkB[3:0] < 4'hD & _occupied_bucket_T_12 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_12[1:0]) == io_lane[1:0]
+    walkB[3:0] < 4'hD & _GEN_3 + 14'hC < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'hC : walkB[3])
     & (io_lookup_word_0_12 != io_lookup_word_0_11
        | io_lookup_word_1_12 != io_lookup_word_1_11
        | io_lookup_word_2_12 != io_lookup_word_2_11
        | io_lookup_word_3_12 != io_lookup_word_3_11);
-  wire [13:0] _occupied_bucket_T_13 = _GEN_2 + 14'hD;
   wire        occupied_13 =
-    walkB[3:1] != 3'h7 & _occupied_bucket_T_13 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_13[1:0]) == io_lane[1:0]
+    walkB[3:1] != 3'h7 & _GEN_3 + 14'hD < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'hD : walkB[3])
     & (io_lookup_word_0_13 != io_lookup_word_0_12
        | io_lookup_word_1_13 != io_lookup_word_1_12
        | io_lookup_word_2_13 != io_lookup_word_2_12
        | io_lookup_word_3_13 != io_lookup_word_3_12);
-  wire [13:0] _occupied_bucket_T_14 = _GEN_2 + 14'hE;
   wire        occupied_14 =
-    walkB[3:0] != 4'hF & _occupied_bucket_T_14 < _io_lookup_bucket_mask_T[13:0]
-    & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_14[1:0]) == io_lane[1:0]
+    walkB[3:0] != 4'hF & _GEN_3 + 14'hE < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[3:0] == 4'hE : walkB[3])
     & (io_lookup_word_0_14 != io_lookup_word_0_13
        | io_lookup_word_1_14 != io_lookup_word_1_13
        | io_lookup_word_2_14 != io_lookup_word_2_13
        | io_lookup_word_3_14 != io_lookup_word_3_13);
-  wire [13:0] _occupied_bucket_T_15 = _GEN_2 + 14'hF;
   wire [3:0]  lane =
     occupied_0
       ? 4'h0
@@ -22402,29 +22388,46 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
                                                           : {3'h7, ~occupied_14};
   wire [3:0]  gLo = {lane[3], 3'h0};
   wire [3:0]  gLast = {lane[3], 3'h7};
-  wire        _GEN_3 =
-    walkPend
-    & (|{_occupied_bucket_T_15 < _io_lookup_bucket_mask_T[13:0]
-           & (gCoarse_1 ? {walkB[6], 1'h1} : _occupied_bucket_T_15[1:0]) == io_lane[1:0]
-           & (io_lookup_word_0_15 != io_lookup_word_0_14
-              | io_lookup_word_1_15 != io_lookup_word_1_14
-              | io_lookup_word_2_15 != io_lookup_word_2_14
-              | io_lookup_word_3_15 != io_lookup_word_3_14),
-         occupied_14,
-         occupied_13,
-         occupied_12,
-         occupied_11,
-         occupied_10,
-         occupied_9,
-         occupied_8,
-         occupied_7,
-         occupied_6,
-         occupied_5,
-         occupied_4,
-         occupied_3,
-         occupied_2,
-         occupied_1,
-         occupied_0});
+  wire        _GEN_4 =
+    lane[3]
+      ? walkB[3:0] < 4'h9
+        & {1'h0,
+           {1'h0,
+            {1'h0, io_lookup_word_0_15 - io_lookup_word_0_7}
+              + {1'h0, io_lookup_word_1_15 - io_lookup_word_1_7}}
+             + {2'h0, io_lookup_word_2_15 - io_lookup_word_2_7}}
+        + {3'h0, io_lookup_word_3_15 - io_lookup_word_3_7} < 16'h21 & ~single
+      : walkB[3:0] == 4'h0
+        & {1'h0,
+           {1'h0,
+            {1'h0, io_lookup_word_0_7 - io_lookup_begin_0}
+              + {1'h0, io_lookup_word_1_7 - io_lookup_begin_1}}
+             + {2'h0, io_lookup_word_2_7 - io_lookup_begin_2}}
+        + {3'h0, io_lookup_word_3_7 - io_lookup_begin_3} < 16'h21 & ~single;
+  wire [15:0] _GEN_5 =
+    {_GEN_3 + 14'hF < _io_lookup_bucket_mask_T[13:0]
+       & (single ? (&(walkB[3:0])) : walkB[3])
+       & (io_lookup_word_0_15 != io_lookup_word_0_14
+          | io_lookup_word_1_15 != io_lookup_word_1_14
+          | io_lookup_word_2_15 != io_lookup_word_2_14
+          | io_lookup_word_3_15 != io_lookup_word_3_14),
+     occupied_14,
+     occupied_13,
+     occupied_12,
+     occupied_11,
+     occupied_10,
+     occupied_9,
+     occupied_8,
+     occupied_7,
+     occupied_6,
+     occupied_5,
+     occupied_4,
+     occupied_3,
+     occupied_2,
+     occupied_1,
+     occupied_0};
+  wire        _GEN_6 = walkPend & (|_GEN_5) & unitFirst & ~_GEN_4;
+  wire        _GEN_7 = walkPend & (|_GEN_5);
   reg  [12:0] casez_tmp;
   always @(*) begin
     casez (gLo)
@@ -23017,10 +23020,12 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
         casez_tmp_14 = io_lookup_word_3_15;
     endcase
   end // always @(*)
-  wire        _GEN_4 = ~walkPend & ~issueOk & _stream_io_idle & _matcher_io_idle;
-  wire        _GEN_5 = state == 3'h2;
-  wire        _GEN_6 = _GEN_5 & sent;
-  wire        _GEN_7 = _GEN_0 | _GEN_1;
+  wire        _GEN_8 = _GEN_6 | _GEN_7;
+  wire        _GEN_9 =
+    ~walkPend & ~issueOk & ~deferPend & io_claimsOut & _stream_io_idle & _matcher_io_idle;
+  wire        _GEN_10 = state == 3'h2;
+  wire        _GEN_11 = _GEN_10 & sent;
+  wire        _GEN_12 = _GEN_0 | _GEN_1;
   wire [5:0]  _off_T_1 = coarseCh ? vIssue + 6'hE : vIssue;
   reg  [2:0]  casez_tmp_15;
   always @(*) begin
@@ -23424,11 +23429,11 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
   wire [19:0] nc_0 = curCell_0 + {{17{casez_tmp_15[2]}}, casez_tmp_15};
   wire [19:0] nc_1 = curCell_1 + {{17{casez_tmp_16[2]}}, casez_tmp_16};
   wire [19:0] nc_2 = curCell_2 + {{17{casez_tmp_17[2]}}, casez_tmp_17};
-  wire        _GEN_8 = state == 3'h3;
-  wire [6:0]  _GEN_9 = {1'h0, li};
-  wire [6:0]  idx = _GEN_9 + {1'h0, lj};
-  wire [6:0]  _GEN_10 = {2'h0, io_largeCount};
-  wire        _GEN_11 = lj != 6'h20 & idx < _GEN_10;
+  wire        _GEN_13 = state == 3'h3;
+  wire [6:0]  _GEN_14 = {1'h0, li};
+  wire [6:0]  idx = _GEN_14 + {1'h0, lj};
+  wire [6:0]  _GEN_15 = {2'h0, io_largeCount};
+  wire        _GEN_16 = lj != 6'h20 & idx < _GEN_15;
   reg  [11:0] casez_tmp_18;
   always @(*) begin
     casez (idx[3:0])
@@ -23614,16 +23619,17 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
         casez_tmp_22 = io_larges_15_qr;
     endcase
   end // always @(*)
-  wire        _GEN_12 = state == 3'h4;
-  wire        _GEN_13 =
-    ~_GEN_7 & (_GEN_5 ? (sent ? _lkq_io_deq_valid : ~sent) : ~_GEN_8 & _GEN_12 & ~sent);
-  wire        _GEN_14 = _GEN_5 | _GEN_8;
-  wire        _GEN_15 = _GEN_0 | _GEN_1 | _GEN_14;
-  wire        _GEN_16 = sent & _stream_io_idle & _matcher_io_idle;
-  wire        _GEN_17 = _GEN_5 | _GEN_1;
-  wire        _GEN_18 = _GEN & _stream_io_out_valid;
-  wire        _GEN_19 = _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18;
-  wire        _GEN_20 = _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & needClear;
+  wire        _GEN_17 = state == 3'h4;
+  wire        _GEN_18 =
+    ~_GEN_12
+    & (_GEN_10 ? (sent ? _lkq_io_deq_valid : ~sent) : ~_GEN_13 & _GEN_17 & ~sent);
+  wire        _GEN_19 = _GEN_10 | _GEN_13;
+  wire        _GEN_20 = _GEN_0 | _GEN_1 | _GEN_19;
+  wire        _GEN_21 = sent & _stream_io_idle & _matcher_io_idle;
+  wire        _GEN_22 = _GEN_10 | _io_need_T;
+  wire        _GEN_23 = _GEN & _stream_io_out_valid;
+  wire        _GEN_24 = _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23;
+  wire        _GEN_25 = _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23 & needClear;
   wire [19:0] base_1_0 =
     coarseCh
       ? {_stream_io_out_bits_rec_cell_0[19:1], 1'h0}
@@ -23638,40 +23644,45 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
       : _stream_io_out_bits_rec_cell_2;
   wire        same = {base_1_2, base_1_1, base_1_0} == {curCell_2, curCell_1, curCell_0};
   wire        take = ~_stream_io_out_bits_mark & (~haveCell | same & loaded != 6'h20);
-  wire        _GEN_21 = _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & take;
-  wire        _GEN_22 = ~_GEN_15 & _GEN_12 & ~_stream_io_out_bits_rec_excluded;
-  wire        _GEN_23 = ~_GEN_17 | _stream_io_out_bits_tag_scan;
+  wire        _GEN_26 = _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23 & take;
+  wire        _GEN_27 = ~_GEN_20 & _GEN_17 & ~_stream_io_out_bits_rec_excluded;
+  wire        _GEN_28 = ~_GEN_22 | _stream_io_out_bits_tag_scan;
   assign _GEN =
-    _GEN_17
+    _GEN_22
       ? (_stream_io_out_bits_tag_scan
            ? ~needClear | _matcher_io_idle
            : _matcher_io_in_ready)
-      : ~_GEN_15 & _GEN_12 & (_matcher_io_in_ready | _stream_io_out_bits_rec_excluded);
+      : ~_GEN_20 & _GEN_17 & (_matcher_io_in_ready | _stream_io_out_bits_rec_excluded);
   wire [5:0]  visitCount = coarseCh ? 6'h2B : 6'hE;
-  wire        _GEN_24 = lane[3] ? gCoarse_1 : gCoarse_0;
-  wire        _GEN_25 = _GEN_0 | ~(_GEN_1 & _GEN_3);
-  wire        _GEN_26 = _stream_io_req_ready & _GEN_13;
-  wire        _GEN_27 = _GEN_26 & ~sent;
-  wire        _GEN_28 = _GEN_7 | ~(_GEN_5 & _GEN_27);
+  wire        _GEN_29 = _GEN_0 | ~_GEN_2;
+  wire        _GEN_30 = _GEN_6 | ~_GEN_7;
+  wire        _GEN_31 = _GEN_0 | ~_GEN_1 | _GEN_6 | ~_GEN_7;
+  wire        _GEN_32 = _stream_io_req_ready & _GEN_18;
+  wire        _GEN_33 = _GEN_32 & ~sent;
+  wire        _GEN_34 = _GEN_12 | ~(_GEN_10 & _GEN_33);
   wire        canIssue =
     haveCell & vIssue != visitCount & {1'h0, _lkq_io_count} + {2'h0, lkPend} < 3'h3;
-  wire        _GEN_29 = _GEN_7 | ~_GEN_5;
-  wire        _GEN_30 =
+  wire        _GEN_35 = _GEN_12 | ~_GEN_10;
+  wire        _GEN_36 =
     vIssue == visitCount & ~lkPend & ~_lkq_io_deq_valid & sent & scanLeft == 13'h0;
-  wire        _GEN_31 = moreOfCell | nextSet;
-  wire        _GEN_32 = _GEN_30 & _GEN_31;
-  wire        _GEN_33 = _GEN_5 & _GEN_30 & _GEN_31 & ~moreOfCell;
-  wire [6:0]  nextLi = _GEN_9 + 7'h20;
-  wire        _GEN_34 = _GEN_12 & _GEN_16;
-  wire        _GEN_35 =
-    _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & take & ~haveCell;
-  wire        _GEN_36 = ~_stream_io_out_bits_mark & haveCell;
-  wire        _GEN_37 =
-    _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & _GEN_36 & ~same & ~nextSet;
+  wire        _GEN_37 = moreOfCell | nextSet;
+  wire        _GEN_38 = _GEN_36 & _GEN_37;
+  wire        _GEN_39 = _GEN_10 & _GEN_36 & _GEN_37 & ~moreOfCell;
+  wire [6:0]  nextLi = _GEN_14 + 7'h20;
+  wire        _GEN_40 = _GEN_17 & _GEN_21;
+  wire        _GEN_41 =
+    _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23 & take & ~haveCell;
+  wire        _GEN_42 = ~_stream_io_out_bits_mark & haveCell;
+  wire        _GEN_43 =
+    _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23 & _GEN_42 & ~same & ~nextSet;
   always @(posedge clock) begin
     if (reset) begin
       state <= 3'h0;
       walkPend <= 1'h0;
+      inUnit <= 1'h0;
+      single <= 1'h0;
+      unitFirst <= 1'h0;
+      deferPend <= 1'h0;
       coarseCh <= 1'h0;
       lkPend <= 1'h0;
     end
@@ -23680,120 +23691,144 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
         if (io_start)
           state <= 3'h1;
         walkPend <= ~io_start & walkPend;
-      end
-      else if (_GEN_1) begin
-        if (_GEN_3)
-          state <= 3'h2;
-        else if (_GEN_4)
-          state <=
-            {1'h0, io_largeCount == 5'h0 | io_largeFrom >= io_largeTo ? 2'h0 : 2'h3};
-        walkPend <= ~_GEN_3 & issueOk;
-        lkPend <= ~_GEN_3 & lkPend;
+        inUnit <= ~io_start & inUnit;
+        deferPend <= ~(io_start | io_deferOk) & deferPend;
       end
       else begin
-        if (_GEN_5) begin
-          if (~_GEN_30 | _GEN_31) begin
+        if (_GEN_1) begin
+          if (~_GEN_6) begin
+            if (_GEN_7)
+              state <= 3'h2;
+            else if (_GEN_9)
+              state <=
+                {1'h0, io_largeCount == 5'h0 | io_largeFrom >= io_largeTo ? 2'h0 : 2'h3};
           end
+          walkPend <= ~_GEN_8 & issueOk;
+          if (_GEN_30)
+            inUnit <= ~issueOk & inUnit;
           else
-            state <= 3'h1;
-          lkPend <= canIssue;
+            inUnit <= ~_GEN_4 & lane[2:0] != 3'h7 & ~single;
+          lkPend <= _GEN_30 & lkPend;
         end
-        else if (_GEN_8) begin
-          if (~_GEN_11)
-            state <= 3'h4;
+        else begin
+          if (_GEN_10) begin
+            if (~_GEN_36 | _GEN_37) begin
+            end
+            else
+              state <= 3'h1;
+            lkPend <= canIssue;
+          end
+          else if (_GEN_13) begin
+            if (~_GEN_16)
+              state <= 3'h4;
+          end
+          else if (_GEN_40)
+            state <= {1'h0, {2{nextLi < _GEN_15}}};
+          walkPend <= (~(_GEN_10 & _GEN_36) | _GEN_37) & walkPend;
         end
-        else if (_GEN_34)
-          state <= {1'h0, {2{nextLi < _GEN_10}}};
-        walkPend <= (~(_GEN_5 & _GEN_30) | _GEN_31) & walkPend;
+        deferPend <= _GEN_1 & _GEN_6 | ~io_deferOk & deferPend;
       end
-      if (_GEN_25) begin
+      if (_GEN_0 | ~(_GEN_1 & issueOk & ~inUnit)) begin
       end
       else
-        coarseCh <= _GEN_24;
+        single <= io_claim_bits_single;
+      if (_GEN_29) begin
+      end
+      else
+        unitFirst <= ~inUnit & ~io_claim_bits_single;
+      if (_GEN_31) begin
+      end
+      else
+        coarseCh <= _GEN_4;
     end
     if (_GEN_0) begin
       if (io_start)
-        bIssue <= {8'h0, io_lane[3:2], 4'h0};
-    end
-    else if (_GEN_1) begin
-      if (_GEN_3) begin
-        bIssue <=
-          _GEN_24
-            ? (lane[3] ? _GEN_2 + 14'h40 : _GEN_2 + {10'h0, lane[3], 3'h7} + 14'h1)
-            : (&lane) ? _GEN_2 + 14'h40 : _GEN_2 + {10'h0, lane} + 14'h1;
-        p_0 <= _GEN_24 ? casez_tmp : casez_tmp_7;
-        p_1 <= _GEN_24 ? casez_tmp_1 : casez_tmp_9;
-        p_2 <= _GEN_24 ? casez_tmp_3 : casez_tmp_11;
-        p_3 <= _GEN_24 ? casez_tmp_5 : casez_tmp_13;
-        vIssue <= 6'h0;
-      end
-      else if (issueOk)
-        bIssue <= {bIssue[13:4] + 10'h4, 4'h0};
-      sent <= ~_GEN_3 & sent;
-      if (_GEN_3 | ~_GEN_4) begin
-      end
-      else begin
-        li <= 6'h0;
-        lj <= 6'h0;
-      end
+        bIssue <= {6'h0, io_lane, 4'h0};
     end
     else begin
-      if (_GEN_33) begin
-        if (|nextGroup)
-          p_0 <= bEnd_0;
-        else if (nextGroup == 2'h0)
-          p_0 <= nextLeader;
-        if (nextGroup[1])
-          p_1 <= bEnd_1;
-        else if (nextGroup == 2'h1)
-          p_1 <= nextLeader;
-        if (&nextGroup)
-          p_2 <= bEnd_2;
-        else if (nextGroup == 2'h2)
-          p_2 <= nextLeader;
-      end
-      if (_GEN_5 & _GEN_30 & _GEN_31 & ~moreOfCell & (&nextGroup))
-        p_3 <= nextLeader;
-      if (_GEN_5) begin
-        sent <= ~_GEN_32 & (_GEN_27 | sent);
-        if (_GEN_32)
-          vIssue <= 6'h0;
-        else if (canIssue)
-          vIssue <= vIssue + 6'h1;
-      end
-      else if (_GEN_8) begin
-        sent <= _GEN_11 & sent;
-        if (_GEN_11)
-          lj <= lj + 6'h1;
-      end
-      else begin
-        sent <= _GEN_12 & _GEN_26 | sent;
-        if (_GEN_34)
-          lj <= 6'h0;
-      end
-      if (_GEN_14 | ~_GEN_34) begin
+      if (~_GEN_1 | _GEN_6 | ~_GEN_7) begin
       end
       else
-        li <= nextLi[5:0];
+        bIssue <= _GEN_3 + {10'h0, lane} + 14'h1;
+      if (_GEN_1) begin
+        if (_GEN_30) begin
+        end
+        else begin
+          p_0 <= _GEN_4 ? casez_tmp : casez_tmp_7;
+          p_1 <= _GEN_4 ? casez_tmp_1 : casez_tmp_9;
+          p_2 <= _GEN_4 ? casez_tmp_3 : casez_tmp_11;
+          p_3 <= _GEN_4 ? casez_tmp_5 : casez_tmp_13;
+        end
+        sent <= _GEN_30 & sent;
+        if (_GEN_30) begin
+        end
+        else
+          vIssue <= 6'h0;
+        if (_GEN_8 | ~_GEN_9) begin
+        end
+        else begin
+          li <= 6'h0;
+          lj <= 6'h0;
+        end
+      end
+      else begin
+        if (_GEN_39) begin
+          if (|nextGroup)
+            p_0 <= bEnd_0;
+          else if (nextGroup == 2'h0)
+            p_0 <= nextLeader;
+          if (nextGroup[1])
+            p_1 <= bEnd_1;
+          else if (nextGroup == 2'h1)
+            p_1 <= nextLeader;
+          if (&nextGroup)
+            p_2 <= bEnd_2;
+          else if (nextGroup == 2'h2)
+            p_2 <= nextLeader;
+        end
+        if (_GEN_10 & _GEN_36 & _GEN_37 & ~moreOfCell & (&nextGroup))
+          p_3 <= nextLeader;
+        if (_GEN_10) begin
+          sent <= ~_GEN_38 & (_GEN_33 | sent);
+          if (_GEN_38)
+            vIssue <= 6'h0;
+          else if (canIssue)
+            vIssue <= vIssue + 6'h1;
+        end
+        else if (_GEN_13) begin
+          sent <= _GEN_16 & sent;
+          if (_GEN_16)
+            lj <= lj + 6'h1;
+        end
+        else begin
+          sent <= _GEN_17 & _GEN_32 | sent;
+          if (_GEN_40)
+            lj <= 6'h0;
+        end
+        if (_GEN_19 | ~_GEN_40) begin
+        end
+        else
+          li <= nextLi[5:0];
+      end
     end
-    if (_GEN_0 | ~_GEN_1) begin
+    if (_GEN_29) begin
     end
     else
-      walkB <= bIssue;
-    if (_GEN_25) begin
+      walkB <= issueAt;
+    if (_GEN_31) begin
     end
     else begin
-      bEnd_0 <= _GEN_24 ? casez_tmp_0 : casez_tmp_8;
-      bEnd_1 <= _GEN_24 ? casez_tmp_2 : casez_tmp_10;
-      bEnd_2 <= _GEN_24 ? casez_tmp_4 : casez_tmp_12;
-      bEnd_3 <= _GEN_24 ? casez_tmp_6 : casez_tmp_14;
+      bEnd_0 <= _GEN_4 ? casez_tmp_0 : casez_tmp_8;
+      bEnd_1 <= _GEN_4 ? casez_tmp_2 : casez_tmp_10;
+      bEnd_2 <= _GEN_4 ? casez_tmp_4 : casez_tmp_12;
+      bEnd_3 <= _GEN_4 ? casez_tmp_6 : casez_tmp_14;
     end
-    if (_GEN_35) begin
+    if (_GEN_41) begin
       curCell_0 <= base_1_0;
       curCell_1 <= base_1_1;
       curCell_2 <= base_1_2;
     end
-    else if (_GEN_7 | ~_GEN_33) begin
+    else if (_GEN_12 | ~_GEN_39) begin
     end
     else begin
       curCell_0 <= nextCell_0;
@@ -23801,35 +23836,37 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
       curCell_2 <= nextCell_2;
     end
     haveCell <=
-      _GEN_35 | (_GEN_0 ? haveCell : _GEN_1 ? ~_GEN_3 & haveCell : _GEN_33 | haveCell);
-    if (_GEN_21)
+      _GEN_41 | (_GEN_0 ? haveCell : _GEN_1 ? _GEN_30 & haveCell : _GEN_39 | haveCell);
+    if (_GEN_26)
       loaded <= loaded + 6'h1;
-    else if (_GEN_28) begin
+    else if (_GEN_34) begin
     end
     else
       loaded <= 6'h0;
     moreOfCell <=
-      _GEN_17 & _stream_io_out_bits_tag_scan & _GEN_18 & _GEN_36 & same & loaded == 6'h20
-      | _GEN_28 & moreOfCell;
-    nextSet <= _GEN_37 | _GEN_28 & nextSet;
-    if (_GEN_37) begin
+      _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23 & _GEN_42 & same & loaded == 6'h20
+      | _GEN_34 & moreOfCell;
+    nextSet <= _GEN_43 | _GEN_34 & nextSet;
+    if (_GEN_43) begin
       nextLeader <= _stream_io_out_bits_pos;
       nextGroup <= _stream_io_out_bits_group;
       nextCell_0 <= base_1_0;
       nextCell_1 <= base_1_1;
       nextCell_2 <= base_1_2;
     end
-    if (_GEN_19)
+    if (_GEN_24)
       scanLeft <= scanLeft - 13'h1;
-    else if (_GEN_28) begin
+    else if (_GEN_34) begin
     end
     else
       scanLeft <= bEnd_0 - p_0 + bEnd_1 - p_1 + bEnd_2 - p_2 + bEnd_3 - p_3;
     needClear <=
-      ~_GEN_20
-      & (_GEN_0 ? needClear : _GEN_1 ? _GEN_3 | needClear : _GEN_5 & _GEN_32 | needClear);
-    lkVisit_scan <= _GEN_29 & lkVisit_scan;
-    if (_GEN_29) begin
+      ~_GEN_25
+      & (_GEN_0
+           ? needClear
+           : _GEN_1 ? ~_GEN_6 & _GEN_7 | needClear : _GEN_10 & _GEN_38 | needClear);
+    lkVisit_scan <= _GEN_35 & lkVisit_scan;
+    if (_GEN_35) begin
     end
     else begin
       lkVisit_cell_0 <= nc_0;
@@ -23844,25 +23881,28 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
     .clock                    (clock),
     .reset                    (reset),
     .io_req_ready             (_stream_io_req_ready),
-    .io_req_valid             (_GEN_13),
+    .io_req_valid             (_GEN_18),
     .io_req_bits_begin_0
-      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_0 : p_0) : io_largeFrom),
-    .io_req_bits_begin_1      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_1 : p_1) : 13'h0),
-    .io_req_bits_begin_2      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_2 : p_2) : 13'h0),
-    .io_req_bits_begin_3      (_GEN_5 ? (sent ? _lkq_io_deq_bits_begin_3 : p_3) : 13'h0),
+      (_GEN_10 ? (sent ? _lkq_io_deq_bits_begin_0 : p_0) : io_largeFrom),
+    .io_req_bits_begin_1      (_GEN_10 ? (sent ? _lkq_io_deq_bits_begin_1 : p_1) : 13'h0),
+    .io_req_bits_begin_2      (_GEN_10 ? (sent ? _lkq_io_deq_bits_begin_2 : p_2) : 13'h0),
+    .io_req_bits_begin_3      (_GEN_10 ? (sent ? _lkq_io_deq_bits_begin_3 : p_3) : 13'h0),
     .io_req_bits_end_0
-      (_GEN_5 ? (sent ? _lkq_io_deq_bits_end_0 : bEnd_0) : io_largeTo),
-    .io_req_bits_end_1        (_GEN_5 ? (sent ? _lkq_io_deq_bits_end_1 : bEnd_1) : 13'h0),
-    .io_req_bits_end_2        (_GEN_5 ? (sent ? _lkq_io_deq_bits_end_2 : bEnd_2) : 13'h0),
-    .io_req_bits_end_3        (_GEN_5 ? (sent ? _lkq_io_deq_bits_end_3 : bEnd_3) : 13'h0),
-    .io_req_bits_direct       (~_GEN_5 | sent & _lkq_io_deq_bits_direct),
-    .io_req_bits_tag_scan     (_GEN_5 & (~sent | _lkq_io_deq_bits_tag_scan)),
-    .io_req_bits_tag_cell_0   (_GEN_6 ? _lkq_io_deq_bits_tag_cell_0 : 20'h0),
-    .io_req_bits_tag_cell_1   (_GEN_6 ? _lkq_io_deq_bits_tag_cell_1 : 20'h0),
-    .io_req_bits_tag_cell_2   (_GEN_6 ? _lkq_io_deq_bits_tag_cell_2 : 20'h0),
-    .io_req_bits_tag_off_0    (_GEN_6 ? _lkq_io_deq_bits_tag_off_0 : 3'h0),
-    .io_req_bits_tag_off_1    (_GEN_6 ? _lkq_io_deq_bits_tag_off_1 : 3'h0),
-    .io_req_bits_tag_off_2    (_GEN_6 ? _lkq_io_deq_bits_tag_off_2 : 3'h0),
+      (_GEN_10 ? (sent ? _lkq_io_deq_bits_end_0 : bEnd_0) : io_largeTo),
+    .io_req_bits_end_1
+      (_GEN_10 ? (sent ? _lkq_io_deq_bits_end_1 : bEnd_1) : 13'h0),
+    .io_req_bits_end_2
+      (_GEN_10 ? (sent ? _lkq_io_deq_bits_end_2 : bEnd_2) : 13'h0),
+    .io_req_bits_end_3
+      (_GEN_10 ? (sent ? _lkq_io_deq_bits_end_3 : bEnd_3) : 13'h0),
+    .io_req_bits_direct       (~_GEN_10 | sent & _lkq_io_deq_bits_direct),
+    .io_req_bits_tag_scan     (_GEN_10 & (~sent | _lkq_io_deq_bits_tag_scan)),
+    .io_req_bits_tag_cell_0   (_GEN_11 ? _lkq_io_deq_bits_tag_cell_0 : 20'h0),
+    .io_req_bits_tag_cell_1   (_GEN_11 ? _lkq_io_deq_bits_tag_cell_1 : 20'h0),
+    .io_req_bits_tag_cell_2   (_GEN_11 ? _lkq_io_deq_bits_tag_cell_2 : 20'h0),
+    .io_req_bits_tag_off_0    (_GEN_11 ? _lkq_io_deq_bits_tag_off_0 : 3'h0),
+    .io_req_bits_tag_off_1    (_GEN_11 ? _lkq_io_deq_bits_tag_off_1 : 3'h0),
+    .io_req_bits_tag_off_2    (_GEN_11 ? _lkq_io_deq_bits_tag_off_2 : 3'h0),
     .io_entryAddr             (io_entry_addr),
     .io_entryGroup            (io_entry_group),
     .io_entryItem             (io_entry_item),
@@ -23905,15 +23945,15 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
     .clock                  (clock),
     .reset                  (reset),
     .io_clear
-      (_GEN_20 | ~_GEN_0 & (_GEN_1 ? ~_GEN_3 & _GEN_4 : ~_GEN_14 & _GEN_12 & _GEN_16)),
-    .io_load_valid          (_GEN_21 | ~(_GEN_0 | _GEN_1 | _GEN_5) & _GEN_8 & _GEN_11),
-    .io_load_bits_key_index (_GEN_21 ? _stream_io_out_bits_item : casez_tmp_18),
-    .io_load_bits_key_q_0   (_GEN_21 ? _stream_io_out_bits_rec_q_0 : casez_tmp_19),
-    .io_load_bits_key_q_1   (_GEN_21 ? _stream_io_out_bits_rec_q_1 : casez_tmp_20),
-    .io_load_bits_key_q_2   (_GEN_21 ? _stream_io_out_bits_rec_q_2 : casez_tmp_21),
-    .io_load_bits_key_qr    (_GEN_21 ? _stream_io_out_bits_rec_qr : casez_tmp_22),
+      (_GEN_25 | ~_GEN_0 & (_GEN_1 ? ~_GEN_8 & _GEN_9 : ~_GEN_19 & _GEN_17 & _GEN_21)),
+    .io_load_valid          (_GEN_26 | ~(_GEN_0 | _GEN_1 | _GEN_10) & _GEN_13 & _GEN_16),
+    .io_load_bits_key_index (_GEN_26 ? _stream_io_out_bits_item : casez_tmp_18),
+    .io_load_bits_key_q_0   (_GEN_26 ? _stream_io_out_bits_rec_q_0 : casez_tmp_19),
+    .io_load_bits_key_q_1   (_GEN_26 ? _stream_io_out_bits_rec_q_1 : casez_tmp_20),
+    .io_load_bits_key_q_2   (_GEN_26 ? _stream_io_out_bits_rec_q_2 : casez_tmp_21),
+    .io_load_bits_key_qr    (_GEN_26 ? _stream_io_out_bits_rec_qr : casez_tmp_22),
     .io_load_bits_place
-      (_GEN_21 & coarseCh
+      (_GEN_26 & coarseCh
          ? {_stream_io_out_bits_rec_cell_0[0],
             _stream_io_out_bits_rec_cell_1[0],
             _stream_io_out_bits_rec_cell_2[0]}
@@ -23921,9 +23961,9 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
     .io_slack               (io_slack),
     .io_in_ready            (_matcher_io_in_ready),
     .io_in_valid
-      (_GEN_17
-         ? (~_stream_io_out_bits_tag_scan | _GEN_22) & _stream_io_out_valid
-         : _GEN_22 & _stream_io_out_valid),
+      (_GEN_22
+         ? (~_stream_io_out_bits_tag_scan | _GEN_27) & _stream_io_out_valid
+         : _GEN_27 & _stream_io_out_valid),
     .io_in_bits_key_index   (_stream_io_out_bits_item),
     .io_in_bits_key_cell_0  (_stream_io_out_bits_rec_cell_0),
     .io_in_bits_key_cell_1  (_stream_io_out_bits_rec_cell_1),
@@ -23932,13 +23972,13 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
     .io_in_bits_key_q_1     (_stream_io_out_bits_rec_q_1),
     .io_in_bits_key_q_2     (_stream_io_out_bits_rec_q_2),
     .io_in_bits_key_qr      (_stream_io_out_bits_rec_qr),
-    .io_in_bits_cell_0      (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_0),
-    .io_in_bits_cell_1      (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_1),
-    .io_in_bits_cell_2      (_GEN_23 ? 20'h0 : _stream_io_out_bits_tag_cell_2),
-    .io_in_bits_off_0       (_GEN_23 ? 3'h0 : _stream_io_out_bits_tag_off_0),
-    .io_in_bits_off_1       (_GEN_23 ? 3'h0 : _stream_io_out_bits_tag_off_1),
-    .io_in_bits_off_2       (_GEN_23 ? 3'h0 : _stream_io_out_bits_tag_off_2),
-    .io_in_bits_anyCell     (_GEN_23),
+    .io_in_bits_cell_0      (_GEN_28 ? 20'h0 : _stream_io_out_bits_tag_cell_0),
+    .io_in_bits_cell_1      (_GEN_28 ? 20'h0 : _stream_io_out_bits_tag_cell_1),
+    .io_in_bits_cell_2      (_GEN_28 ? 20'h0 : _stream_io_out_bits_tag_cell_2),
+    .io_in_bits_off_0       (_GEN_28 ? 3'h0 : _stream_io_out_bits_tag_off_0),
+    .io_in_bits_off_1       (_GEN_28 ? 3'h0 : _stream_io_out_bits_tag_off_1),
+    .io_in_bits_off_2       (_GEN_28 ? 3'h0 : _stream_io_out_bits_tag_off_2),
+    .io_in_bits_anyCell     (_GEN_28),
     .io_in_bits_own         (_stream_io_out_bits_rec_large),
     .io_out_ready           (io_pairs_ready),
     .io_out_valid           (io_pairs_valid),
@@ -23949,7 +23989,11 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
   Queue3_StreamRange_world lkq (
     .clock                  (clock),
     .reset                  (reset),
-    .io_enq_valid           (~_GEN_7 & _GEN_5 & lkPend),
+    .io_enq_valid
+      (~_GEN_12 & _GEN_10 & lkPend
+       & ~(io_lookup_begin_0 == io_lookup_end_0 & io_lookup_begin_1 == io_lookup_end_1
+           & io_lookup_begin_2 == io_lookup_end_2
+           & io_lookup_begin_3 == io_lookup_end_3)),
     .io_enq_bits_begin_0    (io_lookup_begin_0),
     .io_enq_bits_begin_1    (io_lookup_begin_1),
     .io_enq_bits_begin_2    (io_lookup_begin_2),
@@ -23965,7 +24009,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
     .io_enq_bits_tag_off_0  (lkVisit_off_0),
     .io_enq_bits_tag_off_1  (lkVisit_off_1),
     .io_enq_bits_tag_off_2  (lkVisit_off_2),
-    .io_deq_ready           (~_GEN_7 & _GEN_6 & _stream_io_req_ready),
+    .io_deq_ready           (~_GEN_12 & _GEN_11 & _stream_io_req_ready),
     .io_deq_valid           (_lkq_io_deq_valid),
     .io_deq_bits_begin_0    (_lkq_io_deq_bits_begin_0),
     .io_deq_bits_begin_1    (_lkq_io_deq_bits_begin_1),
@@ -23985,18 +24029,23 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world(
     .io_deq_bits_tag_off_2  (_lkq_io_deq_bits_tag_off_2),
     .io_count               (_lkq_io_count)
   );
+  assign io_need = _io_need_T & ~inUnit & ~walkPend & ~deferPend;
+  assign io_take = ~_GEN_0 & _GEN_2 & ~inUnit;
+  assign io_defer_valid = deferPend;
+  assign io_defer_bits = walkB;
+  assign io_unresolved = walkPend & unitFirst | deferPend;
   assign io_lookup_bucket =
     _GEN_0
       ? 13'h0
       : _GEN_1
-          ? bIssue[12:0]
-          : _GEN_5
+          ? issueAt[12:0]
+          : _GEN_10
               ? {nc_0[10:1] * 10'h5D ^ nc_1[10:1] * 10'h9F ^ nc_2[10:1] * 10'h3B7,
                  nc_0[0],
                  nc_1[0],
                  nc_2[0]} & _io_lookup_bucket_mask_T[12:0] - 13'h1
               : 13'h0;
-  assign io_mark_valid = _GEN_19 & take;
+  assign io_mark_valid = _GEN_24 & take;
   assign io_mark_bits_group = _stream_io_out_bits_group;
   assign io_mark_bits_addr = _stream_io_out_bits_pos[11:0];
   assign io_mark_bits_item = _stream_io_out_bits_item;
@@ -24500,6 +24549,26 @@ module SphereKeys_fp32_c20_f8_m9d8_e2_l1_world(
   assign io_out_topNone = io_out_topNone_r;
 endmodule
 
+// VCS coverage exclude_file
+module deferred_124x11_world(
+  input  [6:0]  R0_addr,
+  input         R0_en,
+                R0_clk,
+  output [10:0] R0_data,
+  input  [6:0]  W0_addr,
+  input         W0_en,
+                W0_clk,
+  input  [10:0] W0_data
+);
+
+  reg [10:0] Memory[0:123];
+  always @(posedge W0_clk) begin
+    if (W0_en & 1'h1)
+      Memory[W0_addr] <= W0_data;
+  end // always @(posedge)
+  assign R0_data = R0_en ? Memory[R0_addr] : 11'bx;
+endmodule
+
 module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   input         clock,
                 reset,
@@ -24681,6 +24750,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
                 io_status_sortMismatch
 );
 
+  wire [15:0] _GEN;
+  wire [10:0] _deferred_ext_R0_data;
   wire        _laneKeys_15_io_out_valid;
   wire [19:0] _laneKeys_15_io_out_cell_0;
   wire [19:0] _laneKeys_15_io_out_cell_1;
@@ -24897,6 +24968,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire        _laneKeys_0_io_out_nonFinite;
   wire [13:0] _laneKeys_0_io_out_top;
   wire        _laneKeys_0_io_out_topNone;
+  wire        _gens_15_io_need;
+  wire        _gens_15_io_take;
+  wire        _gens_15_io_defer_valid;
+  wire [13:0] _gens_15_io_defer_bits;
+  wire        _gens_15_io_unresolved;
   wire [12:0] _gens_15_io_lookup_bucket;
   wire [11:0] _gens_15_io_entry_addr;
   wire [1:0]  _gens_15_io_entry_group;
@@ -24906,6 +24982,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_15_io_mark_bits_item;
   wire [11:0] _gens_15_io_keyAddr;
   wire        _gens_15_io_busy;
+  wire        _gens_14_io_need;
+  wire        _gens_14_io_take;
+  wire        _gens_14_io_defer_valid;
+  wire [13:0] _gens_14_io_defer_bits;
+  wire        _gens_14_io_unresolved;
   wire [12:0] _gens_14_io_lookup_bucket;
   wire [11:0] _gens_14_io_entry_addr;
   wire [1:0]  _gens_14_io_entry_group;
@@ -24915,6 +24996,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_14_io_mark_bits_item;
   wire [11:0] _gens_14_io_keyAddr;
   wire        _gens_14_io_busy;
+  wire        _gens_13_io_need;
+  wire        _gens_13_io_take;
+  wire        _gens_13_io_defer_valid;
+  wire [13:0] _gens_13_io_defer_bits;
+  wire        _gens_13_io_unresolved;
   wire [12:0] _gens_13_io_lookup_bucket;
   wire [11:0] _gens_13_io_entry_addr;
   wire [1:0]  _gens_13_io_entry_group;
@@ -24924,6 +25010,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_13_io_mark_bits_item;
   wire [11:0] _gens_13_io_keyAddr;
   wire        _gens_13_io_busy;
+  wire        _gens_12_io_need;
+  wire        _gens_12_io_take;
+  wire        _gens_12_io_defer_valid;
+  wire [13:0] _gens_12_io_defer_bits;
+  wire        _gens_12_io_unresolved;
   wire [12:0] _gens_12_io_lookup_bucket;
   wire [11:0] _gens_12_io_entry_addr;
   wire [1:0]  _gens_12_io_entry_group;
@@ -24933,6 +25024,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_12_io_mark_bits_item;
   wire [11:0] _gens_12_io_keyAddr;
   wire        _gens_12_io_busy;
+  wire        _gens_11_io_need;
+  wire        _gens_11_io_take;
+  wire        _gens_11_io_defer_valid;
+  wire [13:0] _gens_11_io_defer_bits;
+  wire        _gens_11_io_unresolved;
   wire [12:0] _gens_11_io_lookup_bucket;
   wire [11:0] _gens_11_io_entry_addr;
   wire [1:0]  _gens_11_io_entry_group;
@@ -24942,6 +25038,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_11_io_mark_bits_item;
   wire [11:0] _gens_11_io_keyAddr;
   wire        _gens_11_io_busy;
+  wire        _gens_10_io_need;
+  wire        _gens_10_io_take;
+  wire        _gens_10_io_defer_valid;
+  wire [13:0] _gens_10_io_defer_bits;
+  wire        _gens_10_io_unresolved;
   wire [12:0] _gens_10_io_lookup_bucket;
   wire [11:0] _gens_10_io_entry_addr;
   wire [1:0]  _gens_10_io_entry_group;
@@ -24951,6 +25052,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_10_io_mark_bits_item;
   wire [11:0] _gens_10_io_keyAddr;
   wire        _gens_10_io_busy;
+  wire        _gens_9_io_need;
+  wire        _gens_9_io_take;
+  wire        _gens_9_io_defer_valid;
+  wire [13:0] _gens_9_io_defer_bits;
+  wire        _gens_9_io_unresolved;
   wire [12:0] _gens_9_io_lookup_bucket;
   wire [11:0] _gens_9_io_entry_addr;
   wire [1:0]  _gens_9_io_entry_group;
@@ -24960,6 +25066,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_9_io_mark_bits_item;
   wire [11:0] _gens_9_io_keyAddr;
   wire        _gens_9_io_busy;
+  wire        _gens_8_io_need;
+  wire        _gens_8_io_take;
+  wire        _gens_8_io_defer_valid;
+  wire [13:0] _gens_8_io_defer_bits;
+  wire        _gens_8_io_unresolved;
   wire [12:0] _gens_8_io_lookup_bucket;
   wire [11:0] _gens_8_io_entry_addr;
   wire [1:0]  _gens_8_io_entry_group;
@@ -24969,6 +25080,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_8_io_mark_bits_item;
   wire [11:0] _gens_8_io_keyAddr;
   wire        _gens_8_io_busy;
+  wire        _gens_7_io_need;
+  wire        _gens_7_io_take;
+  wire        _gens_7_io_defer_valid;
+  wire [13:0] _gens_7_io_defer_bits;
+  wire        _gens_7_io_unresolved;
   wire [12:0] _gens_7_io_lookup_bucket;
   wire [11:0] _gens_7_io_entry_addr;
   wire [1:0]  _gens_7_io_entry_group;
@@ -24978,6 +25094,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_7_io_mark_bits_item;
   wire [11:0] _gens_7_io_keyAddr;
   wire        _gens_7_io_busy;
+  wire        _gens_6_io_need;
+  wire        _gens_6_io_take;
+  wire        _gens_6_io_defer_valid;
+  wire [13:0] _gens_6_io_defer_bits;
+  wire        _gens_6_io_unresolved;
   wire [12:0] _gens_6_io_lookup_bucket;
   wire [11:0] _gens_6_io_entry_addr;
   wire [1:0]  _gens_6_io_entry_group;
@@ -24987,6 +25108,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_6_io_mark_bits_item;
   wire [11:0] _gens_6_io_keyAddr;
   wire        _gens_6_io_busy;
+  wire        _gens_5_io_need;
+  wire        _gens_5_io_take;
+  wire        _gens_5_io_defer_valid;
+  wire [13:0] _gens_5_io_defer_bits;
+  wire        _gens_5_io_unresolved;
   wire [12:0] _gens_5_io_lookup_bucket;
   wire [11:0] _gens_5_io_entry_addr;
   wire [1:0]  _gens_5_io_entry_group;
@@ -24996,6 +25122,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_5_io_mark_bits_item;
   wire [11:0] _gens_5_io_keyAddr;
   wire        _gens_5_io_busy;
+  wire        _gens_4_io_need;
+  wire        _gens_4_io_take;
+  wire        _gens_4_io_defer_valid;
+  wire [13:0] _gens_4_io_defer_bits;
+  wire        _gens_4_io_unresolved;
   wire [12:0] _gens_4_io_lookup_bucket;
   wire [11:0] _gens_4_io_entry_addr;
   wire [1:0]  _gens_4_io_entry_group;
@@ -25005,6 +25136,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_4_io_mark_bits_item;
   wire [11:0] _gens_4_io_keyAddr;
   wire        _gens_4_io_busy;
+  wire        _gens_3_io_need;
+  wire        _gens_3_io_take;
+  wire        _gens_3_io_defer_valid;
+  wire [13:0] _gens_3_io_defer_bits;
+  wire        _gens_3_io_unresolved;
   wire [12:0] _gens_3_io_lookup_bucket;
   wire [11:0] _gens_3_io_entry_addr;
   wire [1:0]  _gens_3_io_entry_group;
@@ -25014,6 +25150,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_3_io_mark_bits_item;
   wire [11:0] _gens_3_io_keyAddr;
   wire        _gens_3_io_busy;
+  wire        _gens_2_io_need;
+  wire        _gens_2_io_take;
+  wire        _gens_2_io_defer_valid;
+  wire [13:0] _gens_2_io_defer_bits;
+  wire        _gens_2_io_unresolved;
   wire [12:0] _gens_2_io_lookup_bucket;
   wire [11:0] _gens_2_io_entry_addr;
   wire [1:0]  _gens_2_io_entry_group;
@@ -25023,6 +25164,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_2_io_mark_bits_item;
   wire [11:0] _gens_2_io_keyAddr;
   wire        _gens_2_io_busy;
+  wire        _gens_1_io_need;
+  wire        _gens_1_io_take;
+  wire        _gens_1_io_defer_valid;
+  wire [13:0] _gens_1_io_defer_bits;
+  wire        _gens_1_io_unresolved;
   wire [12:0] _gens_1_io_lookup_bucket;
   wire [11:0] _gens_1_io_entry_addr;
   wire [1:0]  _gens_1_io_entry_group;
@@ -25032,6 +25178,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [11:0] _gens_1_io_mark_bits_item;
   wire [11:0] _gens_1_io_keyAddr;
   wire        _gens_1_io_busy;
+  wire        _gens_0_io_need;
+  wire        _gens_0_io_take;
+  wire        _gens_0_io_defer_valid;
+  wire [13:0] _gens_0_io_defer_bits;
+  wire        _gens_0_io_unresolved;
   wire [12:0] _gens_0_io_lookup_bucket;
   wire [11:0] _gens_0_io_entry_addr;
   wire [1:0]  _gens_0_io_entry_group;
@@ -26784,52 +26935,52 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   reg  [12:0] i_13;
   reg  [12:0] i_14;
   reg  [12:0] i_15;
-  wire [12:0] _GEN = {4'h0, num[12:4]};
-  wire [12:0] _GEN_0 = {3'h0, num[12:3]};
-  wire        reading_0 = inPass & i_0 < (_loading_T ? _GEN : _GEN_0);
-  wire [12:0] _GEN_1 = {2'h0, num[12:2]};
-  wire        reading_1 = inPass & i_1 < (_loading_T ? _GEN_0 : _GEN_1);
+  wire [12:0] _GEN_0 = {4'h0, num[12:4]};
+  wire [12:0] _GEN_1 = {3'h0, num[12:3]};
+  wire        reading_0 = inPass & i_0 < (_loading_T ? _GEN_0 : _GEN_1);
+  wire [12:0] _GEN_2 = {2'h0, num[12:2]};
+  wire        reading_1 = inPass & i_1 < (_loading_T ? _GEN_1 : _GEN_2);
   wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
   wire [14:0] _i_3_T_9 = {2'h0, num} * 15'h3;
   wire        reading_2 =
     inPass
     & i_2 < (_loading_T ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : {1'h0, _i_3_T_9[14:3]});
-  wire [27:0] _GEN_2 = {15'h0, num};
-  wire [15:0] _GEN_3 = {3'h0, num};
-  wire        reading_3 = inPass & i_3 < (_loading_T ? _GEN_1 : {1'h0, num[12:1]});
-  wire [27:0] _gens_5_io_largeFrom_T = _GEN_2 * 28'h5000;
-  wire [15:0] _i_5_T_8 = _GEN_3 * 16'h5;
+  wire [27:0] _GEN_3 = {15'h0, num};
+  wire [15:0] _GEN_4 = {3'h0, num};
+  wire        reading_3 = inPass & i_3 < (_loading_T ? _GEN_2 : {1'h0, num[12:1]});
+  wire [27:0] _gens_5_io_largeFrom_T = _GEN_3 * 28'h5000;
+  wire [15:0] _i_5_T_8 = _GEN_4 * 16'h5;
   wire        reading_4 =
     inPass & i_4 < (_loading_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_8[15:3]);
-  wire [27:0] _gens_6_io_largeFrom_T = _GEN_2 * 28'h6000;
-  wire [15:0] _i_6_T_8 = _GEN_3 * 16'h6;
+  wire [27:0] _gens_6_io_largeFrom_T = _GEN_3 * 28'h6000;
+  wire [15:0] _i_6_T_8 = _GEN_4 * 16'h6;
   wire        reading_5 =
     inPass & i_5 < (_loading_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_8[15:3]);
-  wire [27:0] _gens_7_io_largeFrom_T = _GEN_2 * 28'h7000;
-  wire [15:0] _i_7_T_8 = _GEN_3 * 16'h7;
+  wire [27:0] _gens_7_io_largeFrom_T = _GEN_3 * 28'h7000;
+  wire [15:0] _i_7_T_8 = _GEN_4 * 16'h7;
   wire        reading_6 =
     inPass & i_6 < (_loading_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_8[15:3]);
-  wire [28:0] _GEN_4 = {16'h0, num};
+  wire [28:0] _GEN_5 = {16'h0, num};
   wire        reading_7 = inPass & i_7 < (_loading_T ? {1'h0, num[12:1]} : num);
-  wire [28:0] _gens_9_io_largeFrom_T = _GEN_4 * 29'h9000;
+  wire [28:0] _gens_9_io_largeFrom_T = _GEN_5 * 29'h9000;
   wire        reading_8 =
     inPass & i_8 < (_loading_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_10_io_largeFrom_T = _GEN_4 * 29'hA000;
+  wire [28:0] _gens_10_io_largeFrom_T = _GEN_5 * 29'hA000;
   wire        reading_9 =
     inPass & i_9 < (_loading_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_11_io_largeFrom_T = _GEN_4 * 29'hB000;
+  wire [28:0] _gens_11_io_largeFrom_T = _GEN_5 * 29'hB000;
   wire        reading_10 =
     inPass & i_10 < (_loading_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_12_io_largeFrom_T = _GEN_4 * 29'hC000;
+  wire [28:0] _gens_12_io_largeFrom_T = _GEN_5 * 29'hC000;
   wire        reading_11 =
     inPass & i_11 < (_loading_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_13_io_largeFrom_T = _GEN_4 * 29'hD000;
+  wire [28:0] _gens_13_io_largeFrom_T = _GEN_5 * 29'hD000;
   wire        reading_12 =
     inPass & i_12 < (_loading_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_14_io_largeFrom_T = _GEN_4 * 29'hE000;
+  wire [28:0] _gens_14_io_largeFrom_T = _GEN_5 * 29'hE000;
   wire        reading_13 =
     inPass & i_13 < (_loading_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_15_io_largeFrom_T = _GEN_4 * 29'hF000;
+  wire [28:0] _gens_15_io_largeFrom_T = _GEN_5 * 29'hF000;
   wire        reading_14 =
     inPass & i_14 < (_loading_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
   wire        reading_15 = inPass & i_15 < (_loading_T ? num : 13'h0);
@@ -35343,7 +35494,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     & ~_laneKeys_0_io_out_nonFinite
     & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
         & _sorts_0_io_in_0_valid_T_8);
-  wire [28:0] _sorts_3_io_in_1_bits_bucket_mask_T = 29'h1 << usedLog2;
+  wire [28:0] _units_T_1 = 29'h1 << usedLog2;
   wire        _sorts_0_io_in_1_valid_T_12 =
     _laneKeys_1_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_1_io_out_nonFinite
@@ -35379,58 +35530,6 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     & ~_laneKeys_7_io_out_nonFinite
     & ~(~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
         & _sorts_3_io_in_1_valid_T_8);
-  `ifndef SYNTHESIS
-    always @(posedge clock) begin
-      if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-      if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
-        if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
-        if (`STOP_COND_)
-          $fatal;
-      end
-    end // always @(posedge)
-  `endif // not def SYNTHESIS
   reg  [1:0]  entryGroup;
   reg  [11:0] casez_tmp_7;
   always @(*) begin
@@ -35863,391 +35962,581 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
         casez_tmp_38 = _sorts_3_io_entry_15_mark;
     endcase
   end // always @(*)
-  wire        _GEN_5 = passDone & ~sortBusy;
+  wire [25:0] units = (|(usedLog2[3:2])) ? _units_T_1[28:3] : 26'h1;
+  reg  [15:0] next;
+  reg         held_0;
+  reg         held_1;
+  reg         held_2;
+  reg         held_3;
+  reg         held_4;
+  reg         held_5;
+  reg         held_6;
+  reg         held_7;
+  reg         held_8;
+  reg         held_9;
+  reg         held_10;
+  reg         held_11;
+  reg         held_12;
+  reg         held_13;
+  reg         held_14;
+  reg         held_15;
+  reg         heldUnit_0;
+  reg         heldUnit_1;
+  reg         heldUnit_2;
+  reg         heldUnit_3;
+  reg         heldUnit_4;
+  reg         heldUnit_5;
+  reg         heldUnit_6;
+  reg         heldUnit_7;
+  reg         heldUnit_8;
+  reg         heldUnit_9;
+  reg         heldUnit_10;
+  reg         heldUnit_11;
+  reg         heldUnit_12;
+  reg         heldUnit_13;
+  reg         heldUnit_14;
+  reg         heldUnit_15;
+  reg  [13:0] grant_0;
+  reg  [13:0] grant_1;
+  reg  [13:0] grant_2;
+  reg  [13:0] grant_3;
+  reg  [13:0] grant_4;
+  reg  [13:0] grant_5;
+  reg  [13:0] grant_6;
+  reg  [13:0] grant_7;
+  reg  [13:0] grant_8;
+  reg  [13:0] grant_9;
+  reg  [13:0] grant_10;
+  reg  [13:0] grant_11;
+  reg  [13:0] grant_12;
+  reg  [13:0] grant_13;
+  reg  [13:0] grant_14;
+  reg  [13:0] grant_15;
+  reg         grantSingle_0;
+  reg         grantSingle_1;
+  reg         grantSingle_2;
+  reg         grantSingle_3;
+  reg         grantSingle_4;
+  reg         grantSingle_5;
+  reg         grantSingle_6;
+  reg         grantSingle_7;
+  reg         grantSingle_8;
+  reg         grantSingle_9;
+  reg         grantSingle_10;
+  reg         grantSingle_11;
+  reg         grantSingle_12;
+  reg         grantSingle_13;
+  reg         grantSingle_14;
+  reg         grantSingle_15;
+  reg  [6:0]  dCount;
+  reg  [9:0]  dNext;
+  wire [15:0] dLane =
+    _gens_0_io_defer_valid
+      ? 16'h1
+      : _gens_1_io_defer_valid
+          ? 16'h2
+          : _gens_2_io_defer_valid
+              ? 16'h4
+              : _gens_3_io_defer_valid
+                  ? 16'h8
+                  : _gens_4_io_defer_valid
+                      ? 16'h10
+                      : _gens_5_io_defer_valid
+                          ? 16'h20
+                          : _gens_6_io_defer_valid
+                              ? 16'h40
+                              : _gens_7_io_defer_valid
+                                  ? 16'h80
+                                  : _gens_8_io_defer_valid
+                                      ? 16'h100
+                                      : _gens_9_io_defer_valid
+                                          ? 16'h200
+                                          : _gens_10_io_defer_valid
+                                              ? 16'h400
+                                              : _gens_11_io_defer_valid
+                                                  ? 16'h800
+                                                  : _gens_12_io_defer_valid
+                                                      ? 16'h1000
+                                                      : _gens_13_io_defer_valid
+                                                          ? 16'h2000
+                                                          : _gens_14_io_defer_valid
+                                                              ? 16'h4000
+                                                              : {_gens_15_io_defer_valid,
+                                                                 15'h0};
+  assign _GEN =
+    {_gens_15_io_defer_valid,
+     _gens_14_io_defer_valid,
+     _gens_13_io_defer_valid,
+     _gens_12_io_defer_valid,
+     _gens_11_io_defer_valid,
+     _gens_10_io_defer_valid,
+     _gens_9_io_defer_valid,
+     _gens_8_io_defer_valid,
+     _gens_7_io_defer_valid,
+     _gens_6_io_defer_valid,
+     _gens_5_io_defer_valid,
+     _gens_4_io_defer_valid,
+     _gens_3_io_defer_valid,
+     _gens_2_io_defer_valid,
+     _gens_1_io_defer_valid,
+     _gens_0_io_defer_valid};
+  `ifndef SYNTHESIS
+    always @(posedge clock) begin
+      if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+      if (~reset & ~(_GEN == 16'h0 | dCount[6:2] != 5'h1F)) begin
+        if (`ASSERT_VERBOSE_COND_)
+          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:325 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
+        if (`STOP_COND_)
+          $fatal;
+      end
+    end // always @(posedge)
+  `endif // not def SYNTHESIS
+  wire        dLeft = dNext < {dCount, 3'h0};
+  wire        out =
+    {10'h0, next} >= units & ~dLeft
+    & ~(_gens_0_io_unresolved | _gens_1_io_unresolved | _gens_2_io_unresolved
+        | _gens_3_io_unresolved | _gens_4_io_unresolved | _gens_5_io_unresolved
+        | _gens_6_io_unresolved | _gens_7_io_unresolved | _gens_8_io_unresolved
+        | _gens_9_io_unresolved | _gens_10_io_unresolved | _gens_11_io_unresolved
+        | _gens_12_io_unresolved | _gens_13_io_unresolved | _gens_14_io_unresolved
+        | _gens_15_io_unresolved)
+    & ~(heldUnit_0 & held_0 | heldUnit_1 & held_1 | heldUnit_2 & held_2 | heldUnit_3
+        & held_3 | heldUnit_4 & held_4 | heldUnit_5 & held_5 | heldUnit_6 & held_6
+        | heldUnit_7 & held_7 | heldUnit_8 & held_8 | heldUnit_9 & held_9 | heldUnit_10
+        & held_10 | heldUnit_11 & held_11 | heldUnit_12 & held_12 | heldUnit_13 & held_13
+        | heldUnit_14 & held_14 | heldUnit_15 & held_15);
+  wire        _GEN_6 = passDone & ~sortBusy;
   wire [8:0]  _m_T = m + 9'h2;
-  wire        _GEN_6 = _m_T >= mergeEnd;
-  wire        _GEN_7 = sent & ~sortBusy;
-  wire        _GEN_8 = state == 3'h6;
+  wire        _GEN_7 = _m_T >= mergeEnd;
+  wire        _GEN_8 = sent & ~sortBusy;
+  wire        _GEN_9 = state == 3'h6;
   reg  [12:0] casez_tmp_39;
-  wire [12:0] _GEN_9 = _GEN_8 & reading_0 ? i_0 + 13'h1 : i_0;
+  wire [12:0] _GEN_10 = _GEN_9 & reading_0 ? i_0 + 13'h1 : i_0;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_39 = _GEN_9;
+        casez_tmp_39 = _GEN_10;
       3'b001:
         casez_tmp_39 = i_0;
       3'b010:
         casez_tmp_39 = reading_0 ? i_0 + 13'h1 : i_0;
       3'b011:
-        casez_tmp_39 = _GEN_6 ? 13'h0 : i_0;
+        casez_tmp_39 = _GEN_7 ? 13'h0 : i_0;
       3'b100:
         casez_tmp_39 = reading_0 ? i_0 + 13'h1 : i_0;
       3'b101:
-        casez_tmp_39 = _GEN_7 ? 13'h0 : i_0;
+        casez_tmp_39 = _GEN_8 ? 13'h0 : i_0;
       3'b110:
-        casez_tmp_39 = _GEN_9;
+        casez_tmp_39 = _GEN_10;
       default:
-        casez_tmp_39 = _GEN_9;
+        casez_tmp_39 = _GEN_10;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_40;
-  wire [12:0] _GEN_10 = _GEN_8 & reading_1 ? i_1 + 13'h1 : i_1;
+  wire [12:0] _GEN_11 = _GEN_9 & reading_1 ? i_1 + 13'h1 : i_1;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_40 = _GEN_10;
+        casez_tmp_40 = _GEN_11;
       3'b001:
         casez_tmp_40 = i_1;
       3'b010:
         casez_tmp_40 = reading_1 ? i_1 + 13'h1 : i_1;
       3'b011:
-        casez_tmp_40 = _GEN_6 ? _GEN_0 : i_1;
+        casez_tmp_40 = _GEN_7 ? _GEN_1 : i_1;
       3'b100:
         casez_tmp_40 = reading_1 ? i_1 + 13'h1 : i_1;
       3'b101:
-        casez_tmp_40 = _GEN_7 ? _GEN_0 : i_1;
+        casez_tmp_40 = _GEN_8 ? _GEN_1 : i_1;
       3'b110:
-        casez_tmp_40 = _GEN_10;
+        casez_tmp_40 = _GEN_11;
       default:
-        casez_tmp_40 = _GEN_10;
+        casez_tmp_40 = _GEN_11;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_41;
-  wire [12:0] _GEN_11 = _GEN_8 & reading_2 ? i_2 + 13'h1 : i_2;
+  wire [12:0] _GEN_12 = _GEN_9 & reading_2 ? i_2 + 13'h1 : i_2;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_41 = _GEN_11;
+        casez_tmp_41 = _GEN_12;
       3'b001:
         casez_tmp_41 = i_2;
       3'b010:
         casez_tmp_41 = reading_2 ? i_2 + 13'h1 : i_2;
       3'b011:
-        casez_tmp_41 = _GEN_6 ? _GEN_1 : i_2;
+        casez_tmp_41 = _GEN_7 ? _GEN_2 : i_2;
       3'b100:
         casez_tmp_41 = reading_2 ? i_2 + 13'h1 : i_2;
       3'b101:
-        casez_tmp_41 = _GEN_7 ? _GEN_1 : i_2;
+        casez_tmp_41 = _GEN_8 ? _GEN_2 : i_2;
       3'b110:
-        casez_tmp_41 = _GEN_11;
+        casez_tmp_41 = _GEN_12;
       default:
-        casez_tmp_41 = _GEN_11;
+        casez_tmp_41 = _GEN_12;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_42;
-  wire [12:0] _GEN_12 = _GEN_8 & reading_3 ? i_3 + 13'h1 : i_3;
+  wire [12:0] _GEN_13 = _GEN_9 & reading_3 ? i_3 + 13'h1 : i_3;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_42 = _GEN_12;
+        casez_tmp_42 = _GEN_13;
       3'b001:
         casez_tmp_42 = i_3;
       3'b010:
         casez_tmp_42 = reading_3 ? i_3 + 13'h1 : i_3;
       3'b011:
-        casez_tmp_42 = _GEN_6 ? {1'h0, _i_3_T_9[14:3]} : i_3;
+        casez_tmp_42 = _GEN_7 ? {1'h0, _i_3_T_9[14:3]} : i_3;
       3'b100:
         casez_tmp_42 = reading_3 ? i_3 + 13'h1 : i_3;
       3'b101:
-        casez_tmp_42 = _GEN_7 ? {1'h0, _i_3_T_9[14:3]} : i_3;
+        casez_tmp_42 = _GEN_8 ? {1'h0, _i_3_T_9[14:3]} : i_3;
       3'b110:
-        casez_tmp_42 = _GEN_12;
+        casez_tmp_42 = _GEN_13;
       default:
-        casez_tmp_42 = _GEN_12;
+        casez_tmp_42 = _GEN_13;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_43;
-  wire [12:0] _GEN_13 = _GEN_8 & reading_4 ? i_4 + 13'h1 : i_4;
+  wire [12:0] _GEN_14 = _GEN_9 & reading_4 ? i_4 + 13'h1 : i_4;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_43 = _GEN_13;
+        casez_tmp_43 = _GEN_14;
       3'b001:
         casez_tmp_43 = i_4;
       3'b010:
         casez_tmp_43 = reading_4 ? i_4 + 13'h1 : i_4;
       3'b011:
-        casez_tmp_43 = _GEN_6 ? {1'h0, num[12:1]} : i_4;
+        casez_tmp_43 = _GEN_7 ? {1'h0, num[12:1]} : i_4;
       3'b100:
         casez_tmp_43 = reading_4 ? i_4 + 13'h1 : i_4;
       3'b101:
-        casez_tmp_43 = _GEN_7 ? {1'h0, num[12:1]} : i_4;
+        casez_tmp_43 = _GEN_8 ? {1'h0, num[12:1]} : i_4;
       3'b110:
-        casez_tmp_43 = _GEN_13;
+        casez_tmp_43 = _GEN_14;
       default:
-        casez_tmp_43 = _GEN_13;
+        casez_tmp_43 = _GEN_14;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_44;
-  wire [12:0] _GEN_14 = _GEN_8 & reading_5 ? i_5 + 13'h1 : i_5;
+  wire [12:0] _GEN_15 = _GEN_9 & reading_5 ? i_5 + 13'h1 : i_5;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_44 = _GEN_14;
+        casez_tmp_44 = _GEN_15;
       3'b001:
         casez_tmp_44 = i_5;
       3'b010:
         casez_tmp_44 = reading_5 ? i_5 + 13'h1 : i_5;
       3'b011:
-        casez_tmp_44 = _GEN_6 ? _i_5_T_8[15:3] : i_5;
+        casez_tmp_44 = _GEN_7 ? _i_5_T_8[15:3] : i_5;
       3'b100:
         casez_tmp_44 = reading_5 ? i_5 + 13'h1 : i_5;
       3'b101:
-        casez_tmp_44 = _GEN_7 ? _i_5_T_8[15:3] : i_5;
+        casez_tmp_44 = _GEN_8 ? _i_5_T_8[15:3] : i_5;
       3'b110:
-        casez_tmp_44 = _GEN_14;
+        casez_tmp_44 = _GEN_15;
       default:
-        casez_tmp_44 = _GEN_14;
+        casez_tmp_44 = _GEN_15;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_45;
-  wire [12:0] _GEN_15 = _GEN_8 & reading_6 ? i_6 + 13'h1 : i_6;
+  wire [12:0] _GEN_16 = _GEN_9 & reading_6 ? i_6 + 13'h1 : i_6;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_45 = _GEN_15;
+        casez_tmp_45 = _GEN_16;
       3'b001:
         casez_tmp_45 = i_6;
       3'b010:
         casez_tmp_45 = reading_6 ? i_6 + 13'h1 : i_6;
       3'b011:
-        casez_tmp_45 = _GEN_6 ? _i_6_T_8[15:3] : i_6;
+        casez_tmp_45 = _GEN_7 ? _i_6_T_8[15:3] : i_6;
       3'b100:
         casez_tmp_45 = reading_6 ? i_6 + 13'h1 : i_6;
       3'b101:
-        casez_tmp_45 = _GEN_7 ? _i_6_T_8[15:3] : i_6;
+        casez_tmp_45 = _GEN_8 ? _i_6_T_8[15:3] : i_6;
       3'b110:
-        casez_tmp_45 = _GEN_15;
+        casez_tmp_45 = _GEN_16;
       default:
-        casez_tmp_45 = _GEN_15;
+        casez_tmp_45 = _GEN_16;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_46;
-  wire [12:0] _GEN_16 = _GEN_8 & reading_7 ? i_7 + 13'h1 : i_7;
+  wire [12:0] _GEN_17 = _GEN_9 & reading_7 ? i_7 + 13'h1 : i_7;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_46 = _GEN_16;
+        casez_tmp_46 = _GEN_17;
       3'b001:
         casez_tmp_46 = i_7;
       3'b010:
         casez_tmp_46 = reading_7 ? i_7 + 13'h1 : i_7;
       3'b011:
-        casez_tmp_46 = _GEN_6 ? _i_7_T_8[15:3] : i_7;
+        casez_tmp_46 = _GEN_7 ? _i_7_T_8[15:3] : i_7;
       3'b100:
         casez_tmp_46 = reading_7 ? i_7 + 13'h1 : i_7;
       3'b101:
-        casez_tmp_46 = _GEN_7 ? _i_7_T_8[15:3] : i_7;
+        casez_tmp_46 = _GEN_8 ? _i_7_T_8[15:3] : i_7;
       3'b110:
-        casez_tmp_46 = _GEN_16;
+        casez_tmp_46 = _GEN_17;
       default:
-        casez_tmp_46 = _GEN_16;
+        casez_tmp_46 = _GEN_17;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_47;
-  wire [12:0] _GEN_17 = _GEN_8 & reading_8 ? i_8 + 13'h1 : i_8;
+  wire [12:0] _GEN_18 = _GEN_9 & reading_8 ? i_8 + 13'h1 : i_8;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_47 = _GEN_17;
+        casez_tmp_47 = _GEN_18;
       3'b001:
         casez_tmp_47 = i_8;
       3'b010:
         casez_tmp_47 = reading_8 ? i_8 + 13'h1 : i_8;
       3'b011:
-        casez_tmp_47 = _GEN_6 ? 13'h0 : i_8;
+        casez_tmp_47 = _GEN_7 ? 13'h0 : i_8;
       3'b100:
         casez_tmp_47 = reading_8 ? i_8 + 13'h1 : i_8;
       3'b101:
-        casez_tmp_47 = _GEN_7 ? 13'h0 : i_8;
+        casez_tmp_47 = _GEN_8 ? 13'h0 : i_8;
       3'b110:
-        casez_tmp_47 = _GEN_17;
+        casez_tmp_47 = _GEN_18;
       default:
-        casez_tmp_47 = _GEN_17;
+        casez_tmp_47 = _GEN_18;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_48;
-  wire [12:0] _GEN_18 = _GEN_8 & reading_9 ? i_9 + 13'h1 : i_9;
+  wire [12:0] _GEN_19 = _GEN_9 & reading_9 ? i_9 + 13'h1 : i_9;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_48 = _GEN_18;
+        casez_tmp_48 = _GEN_19;
       3'b001:
         casez_tmp_48 = i_9;
       3'b010:
         casez_tmp_48 = reading_9 ? i_9 + 13'h1 : i_9;
       3'b011:
-        casez_tmp_48 = _GEN_6 ? 13'h0 : i_9;
+        casez_tmp_48 = _GEN_7 ? 13'h0 : i_9;
       3'b100:
         casez_tmp_48 = reading_9 ? i_9 + 13'h1 : i_9;
       3'b101:
-        casez_tmp_48 = _GEN_7 ? 13'h0 : i_9;
+        casez_tmp_48 = _GEN_8 ? 13'h0 : i_9;
       3'b110:
-        casez_tmp_48 = _GEN_18;
+        casez_tmp_48 = _GEN_19;
       default:
-        casez_tmp_48 = _GEN_18;
+        casez_tmp_48 = _GEN_19;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_49;
-  wire [12:0] _GEN_19 = _GEN_8 & reading_10 ? i_10 + 13'h1 : i_10;
+  wire [12:0] _GEN_20 = _GEN_9 & reading_10 ? i_10 + 13'h1 : i_10;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_49 = _GEN_19;
+        casez_tmp_49 = _GEN_20;
       3'b001:
         casez_tmp_49 = i_10;
       3'b010:
         casez_tmp_49 = reading_10 ? i_10 + 13'h1 : i_10;
       3'b011:
-        casez_tmp_49 = _GEN_6 ? 13'h0 : i_10;
+        casez_tmp_49 = _GEN_7 ? 13'h0 : i_10;
       3'b100:
         casez_tmp_49 = reading_10 ? i_10 + 13'h1 : i_10;
       3'b101:
-        casez_tmp_49 = _GEN_7 ? 13'h0 : i_10;
+        casez_tmp_49 = _GEN_8 ? 13'h0 : i_10;
       3'b110:
-        casez_tmp_49 = _GEN_19;
+        casez_tmp_49 = _GEN_20;
       default:
-        casez_tmp_49 = _GEN_19;
+        casez_tmp_49 = _GEN_20;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_50;
-  wire [12:0] _GEN_20 = _GEN_8 & reading_11 ? i_11 + 13'h1 : i_11;
+  wire [12:0] _GEN_21 = _GEN_9 & reading_11 ? i_11 + 13'h1 : i_11;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_50 = _GEN_20;
+        casez_tmp_50 = _GEN_21;
       3'b001:
         casez_tmp_50 = i_11;
       3'b010:
         casez_tmp_50 = reading_11 ? i_11 + 13'h1 : i_11;
       3'b011:
-        casez_tmp_50 = _GEN_6 ? 13'h0 : i_11;
+        casez_tmp_50 = _GEN_7 ? 13'h0 : i_11;
       3'b100:
         casez_tmp_50 = reading_11 ? i_11 + 13'h1 : i_11;
       3'b101:
-        casez_tmp_50 = _GEN_7 ? 13'h0 : i_11;
+        casez_tmp_50 = _GEN_8 ? 13'h0 : i_11;
       3'b110:
-        casez_tmp_50 = _GEN_20;
+        casez_tmp_50 = _GEN_21;
       default:
-        casez_tmp_50 = _GEN_20;
+        casez_tmp_50 = _GEN_21;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_51;
-  wire [12:0] _GEN_21 = _GEN_8 & reading_12 ? i_12 + 13'h1 : i_12;
+  wire [12:0] _GEN_22 = _GEN_9 & reading_12 ? i_12 + 13'h1 : i_12;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_51 = _GEN_21;
+        casez_tmp_51 = _GEN_22;
       3'b001:
         casez_tmp_51 = i_12;
       3'b010:
         casez_tmp_51 = reading_12 ? i_12 + 13'h1 : i_12;
       3'b011:
-        casez_tmp_51 = _GEN_6 ? 13'h0 : i_12;
+        casez_tmp_51 = _GEN_7 ? 13'h0 : i_12;
       3'b100:
         casez_tmp_51 = reading_12 ? i_12 + 13'h1 : i_12;
       3'b101:
-        casez_tmp_51 = _GEN_7 ? 13'h0 : i_12;
+        casez_tmp_51 = _GEN_8 ? 13'h0 : i_12;
       3'b110:
-        casez_tmp_51 = _GEN_21;
+        casez_tmp_51 = _GEN_22;
       default:
-        casez_tmp_51 = _GEN_21;
+        casez_tmp_51 = _GEN_22;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_52;
-  wire [12:0] _GEN_22 = _GEN_8 & reading_13 ? i_13 + 13'h1 : i_13;
+  wire [12:0] _GEN_23 = _GEN_9 & reading_13 ? i_13 + 13'h1 : i_13;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_52 = _GEN_22;
+        casez_tmp_52 = _GEN_23;
       3'b001:
         casez_tmp_52 = i_13;
       3'b010:
         casez_tmp_52 = reading_13 ? i_13 + 13'h1 : i_13;
       3'b011:
-        casez_tmp_52 = _GEN_6 ? 13'h0 : i_13;
+        casez_tmp_52 = _GEN_7 ? 13'h0 : i_13;
       3'b100:
         casez_tmp_52 = reading_13 ? i_13 + 13'h1 : i_13;
       3'b101:
-        casez_tmp_52 = _GEN_7 ? 13'h0 : i_13;
+        casez_tmp_52 = _GEN_8 ? 13'h0 : i_13;
       3'b110:
-        casez_tmp_52 = _GEN_22;
+        casez_tmp_52 = _GEN_23;
       default:
-        casez_tmp_52 = _GEN_22;
+        casez_tmp_52 = _GEN_23;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_53;
-  wire [12:0] _GEN_23 = _GEN_8 & reading_14 ? i_14 + 13'h1 : i_14;
+  wire [12:0] _GEN_24 = _GEN_9 & reading_14 ? i_14 + 13'h1 : i_14;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_53 = _GEN_23;
+        casez_tmp_53 = _GEN_24;
       3'b001:
         casez_tmp_53 = i_14;
       3'b010:
         casez_tmp_53 = reading_14 ? i_14 + 13'h1 : i_14;
       3'b011:
-        casez_tmp_53 = _GEN_6 ? 13'h0 : i_14;
+        casez_tmp_53 = _GEN_7 ? 13'h0 : i_14;
       3'b100:
         casez_tmp_53 = reading_14 ? i_14 + 13'h1 : i_14;
       3'b101:
-        casez_tmp_53 = _GEN_7 ? 13'h0 : i_14;
+        casez_tmp_53 = _GEN_8 ? 13'h0 : i_14;
       3'b110:
-        casez_tmp_53 = _GEN_23;
+        casez_tmp_53 = _GEN_24;
       default:
-        casez_tmp_53 = _GEN_23;
+        casez_tmp_53 = _GEN_24;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_54;
-  wire [12:0] _GEN_24 = _GEN_8 & reading_15 ? i_15 + 13'h1 : i_15;
+  wire [12:0] _GEN_25 = _GEN_9 & reading_15 ? i_15 + 13'h1 : i_15;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_54 = _GEN_24;
+        casez_tmp_54 = _GEN_25;
       3'b001:
         casez_tmp_54 = i_15;
       3'b010:
         casez_tmp_54 = reading_15 ? i_15 + 13'h1 : i_15;
       3'b011:
-        casez_tmp_54 = _GEN_6 ? 13'h0 : i_15;
+        casez_tmp_54 = _GEN_7 ? 13'h0 : i_15;
       3'b100:
         casez_tmp_54 = reading_15 ? i_15 + 13'h1 : i_15;
       3'b101:
-        casez_tmp_54 = _GEN_7 ? 13'h0 : i_15;
+        casez_tmp_54 = _GEN_8 ? 13'h0 : i_15;
       3'b110:
-        casez_tmp_54 = _GEN_24;
+        casez_tmp_54 = _GEN_25;
       default:
-        casez_tmp_54 = _GEN_24;
+        casez_tmp_54 = _GEN_25;
     endcase
   end // always @(*)
   reg         REG_8;
-  wire        _GEN_25 = passDone & ~REG_8;
-  wire        _GEN_26 =
+  wire        _GEN_26 = passDone & ~REG_8;
+  wire        _GEN_27 =
     (&state) & sent
     & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
         | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
         | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
         | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
   reg  [2:0]  casez_tmp_55;
-  wire [2:0]  _GEN_27 = _GEN_26 ? 3'h0 : state;
+  wire [2:0]  _GEN_28 = _GEN_27 ? 3'h0 : state;
   always @(*) begin
     casez (state)
       3'b000:
-        casez_tmp_55 = _GEN_27;
+        casez_tmp_55 = _GEN_28;
       3'b001:
         casez_tmp_55 = io_start ? 3'h2 : state;
       3'b010:
-        casez_tmp_55 = _GEN_5 ? 3'h3 : state;
+        casez_tmp_55 = _GEN_6 ? 3'h3 : state;
       3'b011:
-        casez_tmp_55 = _GEN_6 ? 3'h4 : state;
+        casez_tmp_55 = _GEN_7 ? 3'h4 : state;
       3'b100:
         casez_tmp_55 = passDone ? 3'h5 : state;
       3'b101:
-        casez_tmp_55 = _GEN_7 ? 3'h6 : state;
+        casez_tmp_55 = _GEN_8 ? 3'h6 : state;
       3'b110:
-        casez_tmp_55 = _GEN_25 ? 3'h7 : state;
+        casez_tmp_55 = _GEN_26 ? 3'h7 : state;
       default:
-        casez_tmp_55 = _GEN_27;
+        casez_tmp_55 = _GEN_28;
     endcase
   end // always @(*)
   wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
@@ -36280,21 +36569,21 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
                          : _usedLog2_ceilLog2_T_1[2]
                              ? 2'h2
                              : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1;
-  wire [12:0] _GEN_28 = {4'h0, io_num[12:4]};
-  wire [12:0] _GEN_29 = {3'h0, io_num[12:3]};
+  wire [12:0] _GEN_29 = {4'h0, io_num[12:4]};
+  wire [12:0] _GEN_30 = {3'h0, io_num[12:3]};
   wire [26:0] _cuts_T_6 = {14'h0, io_num} * 27'h3000;
-  wire [27:0] _GEN_30 = {15'h0, io_num};
-  wire [27:0] _cuts_T_12 = _GEN_30 * 28'h5000;
-  wire [27:0] _cuts_T_15 = _GEN_30 * 28'h6000;
-  wire [27:0] _cuts_T_18 = _GEN_30 * 28'h7000;
-  wire [28:0] _GEN_31 = {16'h0, io_num};
-  wire [28:0] _cuts_T_23 = _GEN_31 * 29'h9000;
-  wire [28:0] _cuts_T_25 = _GEN_31 * 29'hA000;
-  wire [28:0] _cuts_T_27 = _GEN_31 * 29'hB000;
-  wire [28:0] _cuts_T_29 = _GEN_31 * 29'hC000;
-  wire [28:0] _cuts_T_31 = _GEN_31 * 29'hD000;
-  wire [28:0] _cuts_T_33 = _GEN_31 * 29'hE000;
-  wire [28:0] _cuts_T_35 = _GEN_31 * 29'hF000;
+  wire [27:0] _GEN_31 = {15'h0, io_num};
+  wire [27:0] _cuts_T_12 = _GEN_31 * 28'h5000;
+  wire [27:0] _cuts_T_15 = _GEN_31 * 28'h6000;
+  wire [27:0] _cuts_T_18 = _GEN_31 * 28'h7000;
+  wire [28:0] _GEN_32 = {16'h0, io_num};
+  wire [28:0] _cuts_T_23 = _GEN_32 * 29'h9000;
+  wire [28:0] _cuts_T_25 = _GEN_32 * 29'hA000;
+  wire [28:0] _cuts_T_27 = _GEN_32 * 29'hB000;
+  wire [28:0] _cuts_T_29 = _GEN_32 * 29'hC000;
+  wire [28:0] _cuts_T_31 = _GEN_32 * 29'hD000;
+  wire [28:0] _cuts_T_33 = _GEN_32 * 29'hE000;
+  wire [28:0] _cuts_T_35 = _GEN_32 * 29'hF000;
   wire        z_tooMany = io_num > 13'h1000;
   wire        largeHere_0 =
     classifying & _laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
@@ -36320,957 +36609,1246 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire        largeHere_7 =
     classifying & _laneKeys_7_io_out_valid & ~_laneKeys_7_io_out_nonFinite
     & ~_laneKeys_7_io_out_needNone & _sorts_3_io_in_1_valid_T_8;
-  wire [5:0]  _GEN_32 = {1'h0, largeCount};
-  wire        _GEN_33 = _GEN_32 < 6'h10;
-  wire [5:0]  slot_1 = _GEN_32 + {5'h0, largeHere_0};
-  wire        _GEN_34 = slot_1 < 6'h10;
-  wire [1:0]  _GEN_35 = {1'h0, largeHere_0};
-  wire [1:0]  _GEN_36 = {1'h0, largeHere_1};
-  wire [1:0]  _largeNew_T_1 = _GEN_35 + _GEN_36;
-  wire [5:0]  slot_2 = _GEN_32 + {4'h0, _largeNew_T_1};
-  wire        _GEN_37 = slot_2 < 6'h10;
-  wire [1:0]  _GEN_38 = {1'h0, largeHere_2};
-  wire [1:0]  _slot_T_31 = _GEN_36 + _GEN_38;
-  wire [5:0]  slot_3 = _GEN_32 + {4'h0, _GEN_35 + _slot_T_31};
-  wire        _GEN_39 = slot_3 < 6'h10;
-  wire [1:0]  _GEN_40 = {1'h0, largeHere_3};
-  wire [2:0]  _GEN_41 = {1'h0, _largeNew_T_1};
-  wire [2:0]  _GEN_42 = {1'h0, _GEN_38 + _GEN_40};
-  wire [5:0]  slot_4 = _GEN_32 + {3'h0, _GEN_41 + _GEN_42};
-  wire        _GEN_43 = slot_4 < 6'h10;
-  wire [1:0]  _GEN_44 = {1'h0, largeHere_4};
-  wire [1:0]  _slot_T_35 = _GEN_40 + _GEN_44;
-  wire [5:0]  slot_5 = _GEN_32 + {3'h0, _GEN_41 + {1'h0, _GEN_38 + _slot_T_35}};
-  wire        _GEN_45 = slot_5 < 6'h10;
-  wire [1:0]  _GEN_46 = {1'h0, largeHere_5};
-  wire [1:0]  _largeNew_T_7 = _GEN_44 + _GEN_46;
+  wire [5:0]  _GEN_33 = {1'h0, largeCount};
+  wire        _GEN_34 = _GEN_33 < 6'h10;
+  wire [5:0]  slot_1 = _GEN_33 + {5'h0, largeHere_0};
+  wire        _GEN_35 = slot_1 < 6'h10;
+  wire [1:0]  _GEN_36 = {1'h0, largeHere_0};
+  wire [1:0]  _GEN_37 = {1'h0, largeHere_1};
+  wire [1:0]  _largeNew_T_1 = _GEN_36 + _GEN_37;
+  wire [5:0]  slot_2 = _GEN_33 + {4'h0, _largeNew_T_1};
+  wire        _GEN_38 = slot_2 < 6'h10;
+  wire [1:0]  _GEN_39 = {1'h0, largeHere_2};
+  wire [1:0]  _slot_T_31 = _GEN_37 + _GEN_39;
+  wire [5:0]  slot_3 = _GEN_33 + {4'h0, _GEN_36 + _slot_T_31};
+  wire        _GEN_40 = slot_3 < 6'h10;
+  wire [1:0]  _GEN_41 = {1'h0, largeHere_3};
+  wire [2:0]  _GEN_42 = {1'h0, _largeNew_T_1};
+  wire [2:0]  _GEN_43 = {1'h0, _GEN_39 + _GEN_41};
+  wire [5:0]  slot_4 = _GEN_33 + {3'h0, _GEN_42 + _GEN_43};
+  wire        _GEN_44 = slot_4 < 6'h10;
+  wire [1:0]  _GEN_45 = {1'h0, largeHere_4};
+  wire [1:0]  _slot_T_35 = _GEN_41 + _GEN_45;
+  wire [5:0]  slot_5 = _GEN_33 + {3'h0, _GEN_42 + {1'h0, _GEN_39 + _slot_T_35}};
+  wire        _GEN_46 = slot_5 < 6'h10;
+  wire [1:0]  _GEN_47 = {1'h0, largeHere_5};
+  wire [1:0]  _largeNew_T_7 = _GEN_45 + _GEN_47;
   wire [5:0]  slot_6 =
-    _GEN_32 + {3'h0, {1'h0, _GEN_35 + _slot_T_31} + {1'h0, _GEN_40 + _largeNew_T_7}};
-  wire        _GEN_47 = slot_6 < 6'h10;
-  wire [1:0]  _GEN_48 = {1'h0, largeHere_6};
+    _GEN_33 + {3'h0, {1'h0, _GEN_36 + _slot_T_31} + {1'h0, _GEN_41 + _largeNew_T_7}};
+  wire        _GEN_48 = slot_6 < 6'h10;
+  wire [1:0]  _GEN_49 = {1'h0, largeHere_6};
   wire [5:0]  slot_7 =
-    _GEN_32
+    _GEN_33
     + {3'h0,
-       {1'h0, _GEN_35 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_46 + _GEN_48}};
-  wire        _GEN_49 = slot_7 < 6'h10;
-  wire        _GEN_50 = ~(|state) & _starting_T;
-  wire        _GEN_51 = state == 3'h1;
-  wire        _GEN_52 = state == 3'h2;
-  wire        _GEN_53 = state == 3'h3;
-  wire        _GEN_54 = state == 3'h4;
-  wire        _GEN_55 = state == 3'h5;
+       {1'h0, _GEN_36 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_47 + _GEN_49}};
+  wire        _GEN_50 = slot_7 < 6'h10;
+  wire        wants_0 = _gens_0_io_need & ~held_0;
+  wire        wants_1 = _gens_1_io_need & ~held_1;
+  wire        wants_2 = _gens_2_io_need & ~held_2;
+  wire        wants_3 = _gens_3_io_need & ~held_3;
+  wire        wants_4 = _gens_4_io_need & ~held_4;
+  wire        wants_5 = _gens_5_io_need & ~held_5;
+  wire        wants_6 = _gens_6_io_need & ~held_6;
+  wire        wants_7 = _gens_7_io_need & ~held_7;
+  wire        wants_8 = _gens_8_io_need & ~held_8;
+  wire        wants_9 = _gens_9_io_need & ~held_9;
+  wire        wants_10 = _gens_10_io_need & ~held_10;
+  wire        wants_11 = _gens_11_io_need & ~held_11;
+  wire        wants_12 = _gens_12_io_need & ~held_12;
+  wire        wants_13 = _gens_13_io_need & ~held_13;
+  wire        wants_14 = _gens_14_io_need & ~held_14;
+  wire        wants_15 = _gens_15_io_need & ~held_15;
+  wire [15:0] toSingle =
+    dLeft
+      ? (wants_0
+           ? 16'h1
+           : wants_1
+               ? 16'h2
+               : wants_2
+                   ? 16'h4
+                   : wants_3
+                       ? 16'h8
+                       : wants_4
+                           ? 16'h10
+                           : wants_5
+                               ? 16'h20
+                               : wants_6
+                                   ? 16'h40
+                                   : wants_7
+                                       ? 16'h80
+                                       : wants_8
+                                           ? 16'h100
+                                           : wants_9
+                                               ? 16'h200
+                                               : wants_10
+                                                   ? 16'h400
+                                                   : wants_11
+                                                       ? 16'h800
+                                                       : wants_12
+                                                           ? 16'h1000
+                                                           : wants_13
+                                                               ? 16'h2000
+                                                               : wants_14
+                                                                   ? 16'h4000
+                                                                   : {wants_15, 15'h0})
+      : 16'h0;
+  wire [15:0] _toUnit_T_1 = ~toSingle;
+  wire [13:0] dBucket = {_deferred_ext_R0_data, dNext[2:0]};
+  wire        _taken_T = wants_0 & _toUnit_T_1[0];
+  wire [16:0] _GEN_51 = {1'h0, next};
+  wire [16:0] _at_T_3 = _GEN_51 + {16'h0, _taken_T} - 17'h1;
+  wire [16:0] _at_T_10 =
+    _GEN_51 + {15'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+    - 17'h1;
+  wire        _taken_T_1 = wants_1 & _toUnit_T_1[1];
+  wire [16:0] _at_T_20 =
+    _GEN_51
+    + {15'h0,
+       {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
+         + {1'h0, wants_2 & _toUnit_T_1[2]}} - 17'h1;
+  wire        _taken_T_2 = wants_2 & _toUnit_T_1[2];
+  wire [16:0] _at_T_33 =
+    _GEN_51
+    + {14'h0,
+       {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+         + {1'h0, {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}}}
+    - 17'h1;
+  wire        _taken_T_3 = wants_3 & _toUnit_T_1[3];
+  wire [16:0] _at_T_49 =
+    _GEN_51
+    + {14'h0,
+       {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+         + {1'h0,
+            {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}
+              + {1'h0, wants_4 & _toUnit_T_1[4]}}} - 17'h1;
+  wire        _taken_T_4 = wants_4 & _toUnit_T_1[4];
+  wire [16:0] _at_T_68 =
+    _GEN_51
+    + {14'h0,
+       {1'h0,
+        {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
+          + {1'h0, wants_2 & _toUnit_T_1[2]}}
+         + {1'h0,
+            {1'h0, wants_3 & _toUnit_T_1[3]} + {1'h0, wants_4 & _toUnit_T_1[4]}
+              + {1'h0, wants_5 & _toUnit_T_1[5]}}} - 17'h1;
+  wire        _taken_T_5 = wants_5 & _toUnit_T_1[5];
+  wire [16:0] _at_T_90 =
+    _GEN_51
+    + {14'h0,
+       {1'h0,
+        {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
+          + {1'h0, wants_2 & _toUnit_T_1[2]}}
+         + {1'h0, {1'h0, wants_3 & _toUnit_T_1[3]} + {1'h0, wants_4 & _toUnit_T_1[4]}}
+         + {1'h0, {1'h0, wants_5 & _toUnit_T_1[5]} + {1'h0, wants_6 & _toUnit_T_1[6]}}}
+    - 17'h1;
+  wire        _taken_T_6 = wants_6 & _toUnit_T_1[6];
+  wire [16:0] _at_T_115 =
+    _GEN_51
+    + {13'h0,
+       {1'h0,
+        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+          + {1'h0, {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}}}
+         + {1'h0,
+            {1'h0, {1'h0, wants_4 & _toUnit_T_1[4]} + {1'h0, wants_5 & _toUnit_T_1[5]}}
+              + {1'h0,
+                 {1'h0, wants_6 & _toUnit_T_1[6]} + {1'h0, wants_7 & _toUnit_T_1[7]}}}}
+    - 17'h1;
+  wire        _taken_T_7 = wants_7 & _toUnit_T_1[7];
+  wire [16:0] _at_T_143 =
+    _GEN_51
+    + {13'h0,
+       {1'h0,
+        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+          + {1'h0, {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}}}
+         + {1'h0,
+            {1'h0, {1'h0, wants_4 & _toUnit_T_1[4]} + {1'h0, wants_5 & _toUnit_T_1[5]}}
+              + {1'h0,
+                 {1'h0, wants_6 & _toUnit_T_1[6]} + {1'h0, wants_7 & _toUnit_T_1[7]}
+                   + {1'h0, wants_8 & _toUnit_T_1[8]}}}} - 17'h1;
+  wire        _taken_T_8 = wants_8 & _toUnit_T_1[8];
+  wire [16:0] _at_T_174 =
+    _GEN_51
+    + {13'h0,
+       {1'h0,
+        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+          + {1'h0,
+             {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}
+               + {1'h0, wants_4 & _toUnit_T_1[4]}}}
+         + {1'h0,
+            {1'h0, {1'h0, wants_5 & _toUnit_T_1[5]} + {1'h0, wants_6 & _toUnit_T_1[6]}}
+              + {1'h0,
+                 {1'h0, wants_7 & _toUnit_T_1[7]} + {1'h0, wants_8 & _toUnit_T_1[8]}
+                   + {1'h0, wants_9 & _toUnit_T_1[9]}}}} - 17'h1;
+  wire        _taken_T_9 = wants_9 & _toUnit_T_1[9];
+  wire [16:0] _at_T_208 =
+    _GEN_51
+    + {13'h0,
+       {1'h0,
+        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+          + {1'h0,
+             {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}
+               + {1'h0, wants_4 & _toUnit_T_1[4]}}}
+         + {1'h0,
+            {1'h0,
+             {1'h0, wants_5 & _toUnit_T_1[5]} + {1'h0, wants_6 & _toUnit_T_1[6]}
+               + {1'h0, wants_7 & _toUnit_T_1[7]}}
+              + {1'h0,
+                 {1'h0, wants_8 & _toUnit_T_1[8]} + {1'h0, wants_9 & _toUnit_T_1[9]}
+                   + {1'h0, wants_10 & _toUnit_T_1[10]}}}} - 17'h1;
+  wire        _taken_T_10 = wants_10 & _toUnit_T_1[10];
+  wire [16:0] _at_T_245 =
+    _GEN_51
+    + {13'h0,
+       {1'h0,
+        {1'h0,
+         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
+           + {1'h0, wants_2 & _toUnit_T_1[2]}}
+          + {1'h0,
+             {1'h0, wants_3 & _toUnit_T_1[3]} + {1'h0, wants_4 & _toUnit_T_1[4]}
+               + {1'h0, wants_5 & _toUnit_T_1[5]}}}
+         + {1'h0,
+            {1'h0,
+             {1'h0, wants_6 & _toUnit_T_1[6]} + {1'h0, wants_7 & _toUnit_T_1[7]}
+               + {1'h0, wants_8 & _toUnit_T_1[8]}}
+              + {1'h0,
+                 {1'h0, wants_9 & _toUnit_T_1[9]} + {1'h0, wants_10 & _toUnit_T_1[10]}
+                   + {1'h0, wants_11 & _toUnit_T_1[11]}}}} - 17'h1;
+  wire        _taken_T_11 = wants_11 & _toUnit_T_1[11];
+  wire [16:0] _at_T_285 =
+    _GEN_51
+    + {13'h0,
+       {1'h0,
+        {1'h0,
+         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
+           + {1'h0, wants_2 & _toUnit_T_1[2]}}
+          + {1'h0,
+             {1'h0, wants_3 & _toUnit_T_1[3]} + {1'h0, wants_4 & _toUnit_T_1[4]}
+               + {1'h0, wants_5 & _toUnit_T_1[5]}}}
+         + {1'h0,
+            {1'h0,
+             {1'h0, wants_6 & _toUnit_T_1[6]} + {1'h0, wants_7 & _toUnit_T_1[7]}
+               + {1'h0, wants_8 & _toUnit_T_1[8]}}
+              + {1'h0,
+                 {1'h0, wants_9 & _toUnit_T_1[9]} + {1'h0, wants_10 & _toUnit_T_1[10]}}
+              + {1'h0,
+                 {1'h0, wants_11 & _toUnit_T_1[11]}
+                   + {1'h0, wants_12 & _toUnit_T_1[12]}}}} - 17'h1;
+  wire        _taken_T_12 = wants_12 & _toUnit_T_1[12];
+  wire [16:0] _at_T_328 =
+    _GEN_51
+    + {13'h0,
+       {1'h0,
+        {1'h0,
+         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
+           + {1'h0, wants_2 & _toUnit_T_1[2]}}
+          + {1'h0, {1'h0, wants_3 & _toUnit_T_1[3]} + {1'h0, wants_4 & _toUnit_T_1[4]}}
+          + {1'h0, {1'h0, wants_5 & _toUnit_T_1[5]} + {1'h0, wants_6 & _toUnit_T_1[6]}}}
+         + {1'h0,
+            {1'h0,
+             {1'h0, wants_7 & _toUnit_T_1[7]} + {1'h0, wants_8 & _toUnit_T_1[8]}
+               + {1'h0, wants_9 & _toUnit_T_1[9]}}
+              + {1'h0,
+                 {1'h0, wants_10 & _toUnit_T_1[10]} + {1'h0, wants_11 & _toUnit_T_1[11]}}
+              + {1'h0,
+                 {1'h0, wants_12 & _toUnit_T_1[12]}
+                   + {1'h0, wants_13 & _toUnit_T_1[13]}}}} - 17'h1;
+  wire        _taken_T_13 = wants_13 & _toUnit_T_1[13];
+  wire [16:0] _at_T_374 =
+    _GEN_51
+    + {13'h0,
+       {1'h0,
+        {1'h0,
+         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
+           + {1'h0, wants_2 & _toUnit_T_1[2]}}
+          + {1'h0, {1'h0, wants_3 & _toUnit_T_1[3]} + {1'h0, wants_4 & _toUnit_T_1[4]}}
+          + {1'h0, {1'h0, wants_5 & _toUnit_T_1[5]} + {1'h0, wants_6 & _toUnit_T_1[6]}}}
+         + {1'h0,
+            {1'h0, {1'h0, wants_7 & _toUnit_T_1[7]} + {1'h0, wants_8 & _toUnit_T_1[8]}}
+              + {1'h0,
+                 {1'h0, wants_9 & _toUnit_T_1[9]} + {1'h0, wants_10 & _toUnit_T_1[10]}}}
+         + {1'h0,
+            {1'h0,
+             {1'h0, wants_11 & _toUnit_T_1[11]} + {1'h0, wants_12 & _toUnit_T_1[12]}}
+              + {1'h0,
+                 {1'h0, wants_13 & _toUnit_T_1[13]}
+                   + {1'h0, wants_14 & _toUnit_T_1[14]}}}} - 17'h1;
+  wire        _taken_T_14 = wants_14 & _toUnit_T_1[14];
+  wire [16:0] _at_T_423 =
+    _GEN_51
+    + {12'h0,
+       {1'h0,
+        {1'h0,
+         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+           + {1'h0, {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}}}
+          + {1'h0,
+             {1'h0, {1'h0, wants_4 & _toUnit_T_1[4]} + {1'h0, wants_5 & _toUnit_T_1[5]}}
+               + {1'h0,
+                  {1'h0, wants_6 & _toUnit_T_1[6]} + {1'h0, wants_7 & _toUnit_T_1[7]}}}}
+         + {1'h0,
+            {1'h0,
+             {1'h0, {1'h0, wants_8 & _toUnit_T_1[8]} + {1'h0, wants_9 & _toUnit_T_1[9]}}
+               + {1'h0,
+                  {1'h0, wants_10 & _toUnit_T_1[10]}
+                    + {1'h0, wants_11 & _toUnit_T_1[11]}}}
+              + {1'h0,
+                 {1'h0,
+                  {1'h0, wants_12 & _toUnit_T_1[12]} + {1'h0, wants_13 & _toUnit_T_1[13]}}
+                   + {1'h0,
+                      {1'h0, wants_14 & _toUnit_T_1[14]}
+                        + {1'h0, wants_15 & _toUnit_T_1[15]}}}}} - 17'h1;
+  wire        _taken_T_15 = wants_15 & _toUnit_T_1[15];
+  wire        _GEN_52 = ~(&state) | ~sent;
+  wire        _GEN_53 = ~(|state) & _starting_T;
+  wire        _GEN_54 = state == 3'h1;
+  wire        _GEN_55 = state == 3'h2;
+  wire        _GEN_56 = state == 3'h3;
+  wire        _GEN_57 = state == 3'h4;
+  wire        _GEN_58 = state == 3'h5;
+  wire [16:0] taken =
+    _GEN_51
+    + {12'h0,
+       {1'h0,
+        {1'h0,
+         {1'h0, {1'h0, _taken_T} + {1'h0, _taken_T_1}}
+           + {1'h0, {1'h0, _taken_T_2} + {1'h0, _taken_T_3}}}
+          + {1'h0,
+             {1'h0, {1'h0, _taken_T_4} + {1'h0, _taken_T_5}}
+               + {1'h0, {1'h0, _taken_T_6} + {1'h0, _taken_T_7}}}}
+         + {1'h0,
+            {1'h0,
+             {1'h0, {1'h0, _taken_T_8} + {1'h0, _taken_T_9}}
+               + {1'h0, {1'h0, _taken_T_10} + {1'h0, _taken_T_11}}}
+              + {1'h0,
+                 {1'h0, {1'h0, _taken_T_12} + {1'h0, _taken_T_13}}
+                   + {1'h0, {1'h0, _taken_T_14} + {1'h0, _taken_T_15}}}}};
+  wire        _heldUnit_0_T = {9'h0, _at_T_3} < units;
+  wire        _heldUnit_1_T = {9'h0, _at_T_10} < units;
+  wire        _heldUnit_2_T = {9'h0, _at_T_20} < units;
+  wire        _heldUnit_3_T = {9'h0, _at_T_33} < units;
+  wire        _heldUnit_4_T = {9'h0, _at_T_49} < units;
+  wire        _heldUnit_5_T = {9'h0, _at_T_68} < units;
+  wire        _heldUnit_6_T = {9'h0, _at_T_90} < units;
+  wire        _heldUnit_7_T = {9'h0, _at_T_115} < units;
+  wire        _heldUnit_8_T = {9'h0, _at_T_143} < units;
+  wire        _heldUnit_9_T = {9'h0, _at_T_174} < units;
+  wire        _heldUnit_10_T = {9'h0, _at_T_208} < units;
+  wire        _heldUnit_11_T = {9'h0, _at_T_245} < units;
+  wire        _heldUnit_12_T = {9'h0, _at_T_285} < units;
+  wire        _heldUnit_13_T = {9'h0, _at_T_328} < units;
+  wire        _heldUnit_14_T = {9'h0, _at_T_374} < units;
+  wire        _heldUnit_15_T = {9'h0, _at_T_423} < units;
   wire [5:0]  largeNew =
-    _GEN_32
+    _GEN_33
     + {2'h0,
-       {1'h0, _GEN_41 + _GEN_42}
-         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_48 + {1'h0, largeHere_7}}}};
+       {1'h0, _GEN_42 + _GEN_43}
+         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_49 + {1'h0, largeHere_7}}}};
   wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
   always @(posedge clock) begin
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h0) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h0) begin
       larges_0_index <= r_7;
       larges_0_q_0 <= _laneKeys_7_io_out_q_0;
       larges_0_q_1 <= _laneKeys_7_io_out_q_1;
       larges_0_q_2 <= _laneKeys_7_io_out_q_2;
       larges_0_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h0) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h0) begin
       larges_0_index <= r_6;
       larges_0_q_0 <= _laneKeys_6_io_out_q_0;
       larges_0_q_1 <= _laneKeys_6_io_out_q_1;
       larges_0_q_2 <= _laneKeys_6_io_out_q_2;
       larges_0_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h0) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h0) begin
       larges_0_index <= r_5;
       larges_0_q_0 <= _laneKeys_5_io_out_q_0;
       larges_0_q_1 <= _laneKeys_5_io_out_q_1;
       larges_0_q_2 <= _laneKeys_5_io_out_q_2;
       larges_0_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h0) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h0) begin
       larges_0_index <= r_4;
       larges_0_q_0 <= _laneKeys_4_io_out_q_0;
       larges_0_q_1 <= _laneKeys_4_io_out_q_1;
       larges_0_q_2 <= _laneKeys_4_io_out_q_2;
       larges_0_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h0) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h0) begin
       larges_0_index <= r_3;
       larges_0_q_0 <= _laneKeys_3_io_out_q_0;
       larges_0_q_1 <= _laneKeys_3_io_out_q_1;
       larges_0_q_2 <= _laneKeys_3_io_out_q_2;
       larges_0_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h0) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h0) begin
       larges_0_index <= r_2;
       larges_0_q_0 <= _laneKeys_2_io_out_q_0;
       larges_0_q_1 <= _laneKeys_2_io_out_q_1;
       larges_0_q_2 <= _laneKeys_2_io_out_q_2;
       larges_0_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h0) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h0) begin
       larges_0_index <= r_1;
       larges_0_q_0 <= _laneKeys_1_io_out_q_0;
       larges_0_q_1 <= _laneKeys_1_io_out_q_1;
       larges_0_q_2 <= _laneKeys_1_io_out_q_2;
       larges_0_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h0) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h0) begin
       larges_0_index <= r;
       larges_0_q_0 <= _laneKeys_0_io_out_q_0;
       larges_0_q_1 <= _laneKeys_0_io_out_q_1;
       larges_0_q_2 <= _laneKeys_0_io_out_q_2;
       larges_0_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h1) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h1) begin
       larges_1_index <= r_7;
       larges_1_q_0 <= _laneKeys_7_io_out_q_0;
       larges_1_q_1 <= _laneKeys_7_io_out_q_1;
       larges_1_q_2 <= _laneKeys_7_io_out_q_2;
       larges_1_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h1) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h1) begin
       larges_1_index <= r_6;
       larges_1_q_0 <= _laneKeys_6_io_out_q_0;
       larges_1_q_1 <= _laneKeys_6_io_out_q_1;
       larges_1_q_2 <= _laneKeys_6_io_out_q_2;
       larges_1_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h1) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h1) begin
       larges_1_index <= r_5;
       larges_1_q_0 <= _laneKeys_5_io_out_q_0;
       larges_1_q_1 <= _laneKeys_5_io_out_q_1;
       larges_1_q_2 <= _laneKeys_5_io_out_q_2;
       larges_1_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h1) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h1) begin
       larges_1_index <= r_4;
       larges_1_q_0 <= _laneKeys_4_io_out_q_0;
       larges_1_q_1 <= _laneKeys_4_io_out_q_1;
       larges_1_q_2 <= _laneKeys_4_io_out_q_2;
       larges_1_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h1) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h1) begin
       larges_1_index <= r_3;
       larges_1_q_0 <= _laneKeys_3_io_out_q_0;
       larges_1_q_1 <= _laneKeys_3_io_out_q_1;
       larges_1_q_2 <= _laneKeys_3_io_out_q_2;
       larges_1_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h1) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h1) begin
       larges_1_index <= r_2;
       larges_1_q_0 <= _laneKeys_2_io_out_q_0;
       larges_1_q_1 <= _laneKeys_2_io_out_q_1;
       larges_1_q_2 <= _laneKeys_2_io_out_q_2;
       larges_1_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h1) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h1) begin
       larges_1_index <= r_1;
       larges_1_q_0 <= _laneKeys_1_io_out_q_0;
       larges_1_q_1 <= _laneKeys_1_io_out_q_1;
       larges_1_q_2 <= _laneKeys_1_io_out_q_2;
       larges_1_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h1) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h1) begin
       larges_1_index <= r;
       larges_1_q_0 <= _laneKeys_0_io_out_q_0;
       larges_1_q_1 <= _laneKeys_0_io_out_q_1;
       larges_1_q_2 <= _laneKeys_0_io_out_q_2;
       larges_1_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h2) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h2) begin
       larges_2_index <= r_7;
       larges_2_q_0 <= _laneKeys_7_io_out_q_0;
       larges_2_q_1 <= _laneKeys_7_io_out_q_1;
       larges_2_q_2 <= _laneKeys_7_io_out_q_2;
       larges_2_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h2) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h2) begin
       larges_2_index <= r_6;
       larges_2_q_0 <= _laneKeys_6_io_out_q_0;
       larges_2_q_1 <= _laneKeys_6_io_out_q_1;
       larges_2_q_2 <= _laneKeys_6_io_out_q_2;
       larges_2_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h2) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h2) begin
       larges_2_index <= r_5;
       larges_2_q_0 <= _laneKeys_5_io_out_q_0;
       larges_2_q_1 <= _laneKeys_5_io_out_q_1;
       larges_2_q_2 <= _laneKeys_5_io_out_q_2;
       larges_2_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h2) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h2) begin
       larges_2_index <= r_4;
       larges_2_q_0 <= _laneKeys_4_io_out_q_0;
       larges_2_q_1 <= _laneKeys_4_io_out_q_1;
       larges_2_q_2 <= _laneKeys_4_io_out_q_2;
       larges_2_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h2) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h2) begin
       larges_2_index <= r_3;
       larges_2_q_0 <= _laneKeys_3_io_out_q_0;
       larges_2_q_1 <= _laneKeys_3_io_out_q_1;
       larges_2_q_2 <= _laneKeys_3_io_out_q_2;
       larges_2_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h2) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h2) begin
       larges_2_index <= r_2;
       larges_2_q_0 <= _laneKeys_2_io_out_q_0;
       larges_2_q_1 <= _laneKeys_2_io_out_q_1;
       larges_2_q_2 <= _laneKeys_2_io_out_q_2;
       larges_2_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h2) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h2) begin
       larges_2_index <= r_1;
       larges_2_q_0 <= _laneKeys_1_io_out_q_0;
       larges_2_q_1 <= _laneKeys_1_io_out_q_1;
       larges_2_q_2 <= _laneKeys_1_io_out_q_2;
       larges_2_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h2) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h2) begin
       larges_2_index <= r;
       larges_2_q_0 <= _laneKeys_0_io_out_q_0;
       larges_2_q_1 <= _laneKeys_0_io_out_q_1;
       larges_2_q_2 <= _laneKeys_0_io_out_q_2;
       larges_2_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h3) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h3) begin
       larges_3_index <= r_7;
       larges_3_q_0 <= _laneKeys_7_io_out_q_0;
       larges_3_q_1 <= _laneKeys_7_io_out_q_1;
       larges_3_q_2 <= _laneKeys_7_io_out_q_2;
       larges_3_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h3) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h3) begin
       larges_3_index <= r_6;
       larges_3_q_0 <= _laneKeys_6_io_out_q_0;
       larges_3_q_1 <= _laneKeys_6_io_out_q_1;
       larges_3_q_2 <= _laneKeys_6_io_out_q_2;
       larges_3_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h3) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h3) begin
       larges_3_index <= r_5;
       larges_3_q_0 <= _laneKeys_5_io_out_q_0;
       larges_3_q_1 <= _laneKeys_5_io_out_q_1;
       larges_3_q_2 <= _laneKeys_5_io_out_q_2;
       larges_3_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h3) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h3) begin
       larges_3_index <= r_4;
       larges_3_q_0 <= _laneKeys_4_io_out_q_0;
       larges_3_q_1 <= _laneKeys_4_io_out_q_1;
       larges_3_q_2 <= _laneKeys_4_io_out_q_2;
       larges_3_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h3) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h3) begin
       larges_3_index <= r_3;
       larges_3_q_0 <= _laneKeys_3_io_out_q_0;
       larges_3_q_1 <= _laneKeys_3_io_out_q_1;
       larges_3_q_2 <= _laneKeys_3_io_out_q_2;
       larges_3_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h3) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h3) begin
       larges_3_index <= r_2;
       larges_3_q_0 <= _laneKeys_2_io_out_q_0;
       larges_3_q_1 <= _laneKeys_2_io_out_q_1;
       larges_3_q_2 <= _laneKeys_2_io_out_q_2;
       larges_3_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h3) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h3) begin
       larges_3_index <= r_1;
       larges_3_q_0 <= _laneKeys_1_io_out_q_0;
       larges_3_q_1 <= _laneKeys_1_io_out_q_1;
       larges_3_q_2 <= _laneKeys_1_io_out_q_2;
       larges_3_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h3) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h3) begin
       larges_3_index <= r;
       larges_3_q_0 <= _laneKeys_0_io_out_q_0;
       larges_3_q_1 <= _laneKeys_0_io_out_q_1;
       larges_3_q_2 <= _laneKeys_0_io_out_q_2;
       larges_3_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h4) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h4) begin
       larges_4_index <= r_7;
       larges_4_q_0 <= _laneKeys_7_io_out_q_0;
       larges_4_q_1 <= _laneKeys_7_io_out_q_1;
       larges_4_q_2 <= _laneKeys_7_io_out_q_2;
       larges_4_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h4) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h4) begin
       larges_4_index <= r_6;
       larges_4_q_0 <= _laneKeys_6_io_out_q_0;
       larges_4_q_1 <= _laneKeys_6_io_out_q_1;
       larges_4_q_2 <= _laneKeys_6_io_out_q_2;
       larges_4_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h4) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h4) begin
       larges_4_index <= r_5;
       larges_4_q_0 <= _laneKeys_5_io_out_q_0;
       larges_4_q_1 <= _laneKeys_5_io_out_q_1;
       larges_4_q_2 <= _laneKeys_5_io_out_q_2;
       larges_4_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h4) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h4) begin
       larges_4_index <= r_4;
       larges_4_q_0 <= _laneKeys_4_io_out_q_0;
       larges_4_q_1 <= _laneKeys_4_io_out_q_1;
       larges_4_q_2 <= _laneKeys_4_io_out_q_2;
       larges_4_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h4) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h4) begin
       larges_4_index <= r_3;
       larges_4_q_0 <= _laneKeys_3_io_out_q_0;
       larges_4_q_1 <= _laneKeys_3_io_out_q_1;
       larges_4_q_2 <= _laneKeys_3_io_out_q_2;
       larges_4_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h4) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h4) begin
       larges_4_index <= r_2;
       larges_4_q_0 <= _laneKeys_2_io_out_q_0;
       larges_4_q_1 <= _laneKeys_2_io_out_q_1;
       larges_4_q_2 <= _laneKeys_2_io_out_q_2;
       larges_4_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h4) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h4) begin
       larges_4_index <= r_1;
       larges_4_q_0 <= _laneKeys_1_io_out_q_0;
       larges_4_q_1 <= _laneKeys_1_io_out_q_1;
       larges_4_q_2 <= _laneKeys_1_io_out_q_2;
       larges_4_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h4) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h4) begin
       larges_4_index <= r;
       larges_4_q_0 <= _laneKeys_0_io_out_q_0;
       larges_4_q_1 <= _laneKeys_0_io_out_q_1;
       larges_4_q_2 <= _laneKeys_0_io_out_q_2;
       larges_4_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h5) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h5) begin
       larges_5_index <= r_7;
       larges_5_q_0 <= _laneKeys_7_io_out_q_0;
       larges_5_q_1 <= _laneKeys_7_io_out_q_1;
       larges_5_q_2 <= _laneKeys_7_io_out_q_2;
       larges_5_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h5) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h5) begin
       larges_5_index <= r_6;
       larges_5_q_0 <= _laneKeys_6_io_out_q_0;
       larges_5_q_1 <= _laneKeys_6_io_out_q_1;
       larges_5_q_2 <= _laneKeys_6_io_out_q_2;
       larges_5_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h5) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h5) begin
       larges_5_index <= r_5;
       larges_5_q_0 <= _laneKeys_5_io_out_q_0;
       larges_5_q_1 <= _laneKeys_5_io_out_q_1;
       larges_5_q_2 <= _laneKeys_5_io_out_q_2;
       larges_5_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h5) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h5) begin
       larges_5_index <= r_4;
       larges_5_q_0 <= _laneKeys_4_io_out_q_0;
       larges_5_q_1 <= _laneKeys_4_io_out_q_1;
       larges_5_q_2 <= _laneKeys_4_io_out_q_2;
       larges_5_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h5) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h5) begin
       larges_5_index <= r_3;
       larges_5_q_0 <= _laneKeys_3_io_out_q_0;
       larges_5_q_1 <= _laneKeys_3_io_out_q_1;
       larges_5_q_2 <= _laneKeys_3_io_out_q_2;
       larges_5_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h5) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h5) begin
       larges_5_index <= r_2;
       larges_5_q_0 <= _laneKeys_2_io_out_q_0;
       larges_5_q_1 <= _laneKeys_2_io_out_q_1;
       larges_5_q_2 <= _laneKeys_2_io_out_q_2;
       larges_5_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h5) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h5) begin
       larges_5_index <= r_1;
       larges_5_q_0 <= _laneKeys_1_io_out_q_0;
       larges_5_q_1 <= _laneKeys_1_io_out_q_1;
       larges_5_q_2 <= _laneKeys_1_io_out_q_2;
       larges_5_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h5) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h5) begin
       larges_5_index <= r;
       larges_5_q_0 <= _laneKeys_0_io_out_q_0;
       larges_5_q_1 <= _laneKeys_0_io_out_q_1;
       larges_5_q_2 <= _laneKeys_0_io_out_q_2;
       larges_5_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h6) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h6) begin
       larges_6_index <= r_7;
       larges_6_q_0 <= _laneKeys_7_io_out_q_0;
       larges_6_q_1 <= _laneKeys_7_io_out_q_1;
       larges_6_q_2 <= _laneKeys_7_io_out_q_2;
       larges_6_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h6) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h6) begin
       larges_6_index <= r_6;
       larges_6_q_0 <= _laneKeys_6_io_out_q_0;
       larges_6_q_1 <= _laneKeys_6_io_out_q_1;
       larges_6_q_2 <= _laneKeys_6_io_out_q_2;
       larges_6_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h6) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h6) begin
       larges_6_index <= r_5;
       larges_6_q_0 <= _laneKeys_5_io_out_q_0;
       larges_6_q_1 <= _laneKeys_5_io_out_q_1;
       larges_6_q_2 <= _laneKeys_5_io_out_q_2;
       larges_6_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h6) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h6) begin
       larges_6_index <= r_4;
       larges_6_q_0 <= _laneKeys_4_io_out_q_0;
       larges_6_q_1 <= _laneKeys_4_io_out_q_1;
       larges_6_q_2 <= _laneKeys_4_io_out_q_2;
       larges_6_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h6) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h6) begin
       larges_6_index <= r_3;
       larges_6_q_0 <= _laneKeys_3_io_out_q_0;
       larges_6_q_1 <= _laneKeys_3_io_out_q_1;
       larges_6_q_2 <= _laneKeys_3_io_out_q_2;
       larges_6_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h6) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h6) begin
       larges_6_index <= r_2;
       larges_6_q_0 <= _laneKeys_2_io_out_q_0;
       larges_6_q_1 <= _laneKeys_2_io_out_q_1;
       larges_6_q_2 <= _laneKeys_2_io_out_q_2;
       larges_6_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h6) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h6) begin
       larges_6_index <= r_1;
       larges_6_q_0 <= _laneKeys_1_io_out_q_0;
       larges_6_q_1 <= _laneKeys_1_io_out_q_1;
       larges_6_q_2 <= _laneKeys_1_io_out_q_2;
       larges_6_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h6) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h6) begin
       larges_6_index <= r;
       larges_6_q_0 <= _laneKeys_0_io_out_q_0;
       larges_6_q_1 <= _laneKeys_0_io_out_q_1;
       larges_6_q_2 <= _laneKeys_0_io_out_q_2;
       larges_6_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h7) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h7) begin
       larges_7_index <= r_7;
       larges_7_q_0 <= _laneKeys_7_io_out_q_0;
       larges_7_q_1 <= _laneKeys_7_io_out_q_1;
       larges_7_q_2 <= _laneKeys_7_io_out_q_2;
       larges_7_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h7) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h7) begin
       larges_7_index <= r_6;
       larges_7_q_0 <= _laneKeys_6_io_out_q_0;
       larges_7_q_1 <= _laneKeys_6_io_out_q_1;
       larges_7_q_2 <= _laneKeys_6_io_out_q_2;
       larges_7_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h7) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h7) begin
       larges_7_index <= r_5;
       larges_7_q_0 <= _laneKeys_5_io_out_q_0;
       larges_7_q_1 <= _laneKeys_5_io_out_q_1;
       larges_7_q_2 <= _laneKeys_5_io_out_q_2;
       larges_7_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h7) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h7) begin
       larges_7_index <= r_4;
       larges_7_q_0 <= _laneKeys_4_io_out_q_0;
       larges_7_q_1 <= _laneKeys_4_io_out_q_1;
       larges_7_q_2 <= _laneKeys_4_io_out_q_2;
       larges_7_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h7) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h7) begin
       larges_7_index <= r_3;
       larges_7_q_0 <= _laneKeys_3_io_out_q_0;
       larges_7_q_1 <= _laneKeys_3_io_out_q_1;
       larges_7_q_2 <= _laneKeys_3_io_out_q_2;
       larges_7_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h7) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h7) begin
       larges_7_index <= r_2;
       larges_7_q_0 <= _laneKeys_2_io_out_q_0;
       larges_7_q_1 <= _laneKeys_2_io_out_q_1;
       larges_7_q_2 <= _laneKeys_2_io_out_q_2;
       larges_7_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h7) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h7) begin
       larges_7_index <= r_1;
       larges_7_q_0 <= _laneKeys_1_io_out_q_0;
       larges_7_q_1 <= _laneKeys_1_io_out_q_1;
       larges_7_q_2 <= _laneKeys_1_io_out_q_2;
       larges_7_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h7) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h7) begin
       larges_7_index <= r;
       larges_7_q_0 <= _laneKeys_0_io_out_q_0;
       larges_7_q_1 <= _laneKeys_0_io_out_q_1;
       larges_7_q_2 <= _laneKeys_0_io_out_q_2;
       larges_7_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h8) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h8) begin
       larges_8_index <= r_7;
       larges_8_q_0 <= _laneKeys_7_io_out_q_0;
       larges_8_q_1 <= _laneKeys_7_io_out_q_1;
       larges_8_q_2 <= _laneKeys_7_io_out_q_2;
       larges_8_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h8) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h8) begin
       larges_8_index <= r_6;
       larges_8_q_0 <= _laneKeys_6_io_out_q_0;
       larges_8_q_1 <= _laneKeys_6_io_out_q_1;
       larges_8_q_2 <= _laneKeys_6_io_out_q_2;
       larges_8_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h8) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h8) begin
       larges_8_index <= r_5;
       larges_8_q_0 <= _laneKeys_5_io_out_q_0;
       larges_8_q_1 <= _laneKeys_5_io_out_q_1;
       larges_8_q_2 <= _laneKeys_5_io_out_q_2;
       larges_8_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h8) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h8) begin
       larges_8_index <= r_4;
       larges_8_q_0 <= _laneKeys_4_io_out_q_0;
       larges_8_q_1 <= _laneKeys_4_io_out_q_1;
       larges_8_q_2 <= _laneKeys_4_io_out_q_2;
       larges_8_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h8) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h8) begin
       larges_8_index <= r_3;
       larges_8_q_0 <= _laneKeys_3_io_out_q_0;
       larges_8_q_1 <= _laneKeys_3_io_out_q_1;
       larges_8_q_2 <= _laneKeys_3_io_out_q_2;
       larges_8_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h8) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h8) begin
       larges_8_index <= r_2;
       larges_8_q_0 <= _laneKeys_2_io_out_q_0;
       larges_8_q_1 <= _laneKeys_2_io_out_q_1;
       larges_8_q_2 <= _laneKeys_2_io_out_q_2;
       larges_8_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h8) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h8) begin
       larges_8_index <= r_1;
       larges_8_q_0 <= _laneKeys_1_io_out_q_0;
       larges_8_q_1 <= _laneKeys_1_io_out_q_1;
       larges_8_q_2 <= _laneKeys_1_io_out_q_2;
       larges_8_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h8) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h8) begin
       larges_8_index <= r;
       larges_8_q_0 <= _laneKeys_0_io_out_q_0;
       larges_8_q_1 <= _laneKeys_0_io_out_q_1;
       larges_8_q_2 <= _laneKeys_0_io_out_q_2;
       larges_8_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'h9) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h9) begin
       larges_9_index <= r_7;
       larges_9_q_0 <= _laneKeys_7_io_out_q_0;
       larges_9_q_1 <= _laneKeys_7_io_out_q_1;
       larges_9_q_2 <= _laneKeys_7_io_out_q_2;
       larges_9_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'h9) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h9) begin
       larges_9_index <= r_6;
       larges_9_q_0 <= _laneKeys_6_io_out_q_0;
       larges_9_q_1 <= _laneKeys_6_io_out_q_1;
       larges_9_q_2 <= _laneKeys_6_io_out_q_2;
       larges_9_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'h9) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h9) begin
       larges_9_index <= r_5;
       larges_9_q_0 <= _laneKeys_5_io_out_q_0;
       larges_9_q_1 <= _laneKeys_5_io_out_q_1;
       larges_9_q_2 <= _laneKeys_5_io_out_q_2;
       larges_9_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'h9) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h9) begin
       larges_9_index <= r_4;
       larges_9_q_0 <= _laneKeys_4_io_out_q_0;
       larges_9_q_1 <= _laneKeys_4_io_out_q_1;
       larges_9_q_2 <= _laneKeys_4_io_out_q_2;
       larges_9_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'h9) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h9) begin
       larges_9_index <= r_3;
       larges_9_q_0 <= _laneKeys_3_io_out_q_0;
       larges_9_q_1 <= _laneKeys_3_io_out_q_1;
       larges_9_q_2 <= _laneKeys_3_io_out_q_2;
       larges_9_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'h9) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h9) begin
       larges_9_index <= r_2;
       larges_9_q_0 <= _laneKeys_2_io_out_q_0;
       larges_9_q_1 <= _laneKeys_2_io_out_q_1;
       larges_9_q_2 <= _laneKeys_2_io_out_q_2;
       larges_9_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'h9) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h9) begin
       larges_9_index <= r_1;
       larges_9_q_0 <= _laneKeys_1_io_out_q_0;
       larges_9_q_1 <= _laneKeys_1_io_out_q_1;
       larges_9_q_2 <= _laneKeys_1_io_out_q_2;
       larges_9_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'h9) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h9) begin
       larges_9_index <= r;
       larges_9_q_0 <= _laneKeys_0_io_out_q_0;
       larges_9_q_1 <= _laneKeys_0_io_out_q_1;
       larges_9_q_2 <= _laneKeys_0_io_out_q_2;
       larges_9_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'hA) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'hA) begin
       larges_10_index <= r_7;
       larges_10_q_0 <= _laneKeys_7_io_out_q_0;
       larges_10_q_1 <= _laneKeys_7_io_out_q_1;
       larges_10_q_2 <= _laneKeys_7_io_out_q_2;
       larges_10_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'hA) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'hA) begin
       larges_10_index <= r_6;
       larges_10_q_0 <= _laneKeys_6_io_out_q_0;
       larges_10_q_1 <= _laneKeys_6_io_out_q_1;
       larges_10_q_2 <= _laneKeys_6_io_out_q_2;
       larges_10_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'hA) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'hA) begin
       larges_10_index <= r_5;
       larges_10_q_0 <= _laneKeys_5_io_out_q_0;
       larges_10_q_1 <= _laneKeys_5_io_out_q_1;
       larges_10_q_2 <= _laneKeys_5_io_out_q_2;
       larges_10_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'hA) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'hA) begin
       larges_10_index <= r_4;
       larges_10_q_0 <= _laneKeys_4_io_out_q_0;
       larges_10_q_1 <= _laneKeys_4_io_out_q_1;
       larges_10_q_2 <= _laneKeys_4_io_out_q_2;
       larges_10_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'hA) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'hA) begin
       larges_10_index <= r_3;
       larges_10_q_0 <= _laneKeys_3_io_out_q_0;
       larges_10_q_1 <= _laneKeys_3_io_out_q_1;
       larges_10_q_2 <= _laneKeys_3_io_out_q_2;
       larges_10_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'hA) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'hA) begin
       larges_10_index <= r_2;
       larges_10_q_0 <= _laneKeys_2_io_out_q_0;
       larges_10_q_1 <= _laneKeys_2_io_out_q_1;
       larges_10_q_2 <= _laneKeys_2_io_out_q_2;
       larges_10_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'hA) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'hA) begin
       larges_10_index <= r_1;
       larges_10_q_0 <= _laneKeys_1_io_out_q_0;
       larges_10_q_1 <= _laneKeys_1_io_out_q_1;
       larges_10_q_2 <= _laneKeys_1_io_out_q_2;
       larges_10_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'hA) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'hA) begin
       larges_10_index <= r;
       larges_10_q_0 <= _laneKeys_0_io_out_q_0;
       larges_10_q_1 <= _laneKeys_0_io_out_q_1;
       larges_10_q_2 <= _laneKeys_0_io_out_q_2;
       larges_10_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'hB) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'hB) begin
       larges_11_index <= r_7;
       larges_11_q_0 <= _laneKeys_7_io_out_q_0;
       larges_11_q_1 <= _laneKeys_7_io_out_q_1;
       larges_11_q_2 <= _laneKeys_7_io_out_q_2;
       larges_11_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'hB) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'hB) begin
       larges_11_index <= r_6;
       larges_11_q_0 <= _laneKeys_6_io_out_q_0;
       larges_11_q_1 <= _laneKeys_6_io_out_q_1;
       larges_11_q_2 <= _laneKeys_6_io_out_q_2;
       larges_11_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'hB) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'hB) begin
       larges_11_index <= r_5;
       larges_11_q_0 <= _laneKeys_5_io_out_q_0;
       larges_11_q_1 <= _laneKeys_5_io_out_q_1;
       larges_11_q_2 <= _laneKeys_5_io_out_q_2;
       larges_11_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'hB) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'hB) begin
       larges_11_index <= r_4;
       larges_11_q_0 <= _laneKeys_4_io_out_q_0;
       larges_11_q_1 <= _laneKeys_4_io_out_q_1;
       larges_11_q_2 <= _laneKeys_4_io_out_q_2;
       larges_11_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'hB) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'hB) begin
       larges_11_index <= r_3;
       larges_11_q_0 <= _laneKeys_3_io_out_q_0;
       larges_11_q_1 <= _laneKeys_3_io_out_q_1;
       larges_11_q_2 <= _laneKeys_3_io_out_q_2;
       larges_11_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'hB) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'hB) begin
       larges_11_index <= r_2;
       larges_11_q_0 <= _laneKeys_2_io_out_q_0;
       larges_11_q_1 <= _laneKeys_2_io_out_q_1;
       larges_11_q_2 <= _laneKeys_2_io_out_q_2;
       larges_11_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'hB) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'hB) begin
       larges_11_index <= r_1;
       larges_11_q_0 <= _laneKeys_1_io_out_q_0;
       larges_11_q_1 <= _laneKeys_1_io_out_q_1;
       larges_11_q_2 <= _laneKeys_1_io_out_q_2;
       larges_11_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'hB) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'hB) begin
       larges_11_index <= r;
       larges_11_q_0 <= _laneKeys_0_io_out_q_0;
       larges_11_q_1 <= _laneKeys_0_io_out_q_1;
       larges_11_q_2 <= _laneKeys_0_io_out_q_2;
       larges_11_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'hC) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'hC) begin
       larges_12_index <= r_7;
       larges_12_q_0 <= _laneKeys_7_io_out_q_0;
       larges_12_q_1 <= _laneKeys_7_io_out_q_1;
       larges_12_q_2 <= _laneKeys_7_io_out_q_2;
       larges_12_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'hC) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'hC) begin
       larges_12_index <= r_6;
       larges_12_q_0 <= _laneKeys_6_io_out_q_0;
       larges_12_q_1 <= _laneKeys_6_io_out_q_1;
       larges_12_q_2 <= _laneKeys_6_io_out_q_2;
       larges_12_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'hC) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'hC) begin
       larges_12_index <= r_5;
       larges_12_q_0 <= _laneKeys_5_io_out_q_0;
       larges_12_q_1 <= _laneKeys_5_io_out_q_1;
       larges_12_q_2 <= _laneKeys_5_io_out_q_2;
       larges_12_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'hC) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'hC) begin
       larges_12_index <= r_4;
       larges_12_q_0 <= _laneKeys_4_io_out_q_0;
       larges_12_q_1 <= _laneKeys_4_io_out_q_1;
       larges_12_q_2 <= _laneKeys_4_io_out_q_2;
       larges_12_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'hC) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'hC) begin
       larges_12_index <= r_3;
       larges_12_q_0 <= _laneKeys_3_io_out_q_0;
       larges_12_q_1 <= _laneKeys_3_io_out_q_1;
       larges_12_q_2 <= _laneKeys_3_io_out_q_2;
       larges_12_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'hC) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'hC) begin
       larges_12_index <= r_2;
       larges_12_q_0 <= _laneKeys_2_io_out_q_0;
       larges_12_q_1 <= _laneKeys_2_io_out_q_1;
       larges_12_q_2 <= _laneKeys_2_io_out_q_2;
       larges_12_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'hC) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'hC) begin
       larges_12_index <= r_1;
       larges_12_q_0 <= _laneKeys_1_io_out_q_0;
       larges_12_q_1 <= _laneKeys_1_io_out_q_1;
       larges_12_q_2 <= _laneKeys_1_io_out_q_2;
       larges_12_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'hC) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'hC) begin
       larges_12_index <= r;
       larges_12_q_0 <= _laneKeys_0_io_out_q_0;
       larges_12_q_1 <= _laneKeys_0_io_out_q_1;
       larges_12_q_2 <= _laneKeys_0_io_out_q_2;
       larges_12_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'hD) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'hD) begin
       larges_13_index <= r_7;
       larges_13_q_0 <= _laneKeys_7_io_out_q_0;
       larges_13_q_1 <= _laneKeys_7_io_out_q_1;
       larges_13_q_2 <= _laneKeys_7_io_out_q_2;
       larges_13_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'hD) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'hD) begin
       larges_13_index <= r_6;
       larges_13_q_0 <= _laneKeys_6_io_out_q_0;
       larges_13_q_1 <= _laneKeys_6_io_out_q_1;
       larges_13_q_2 <= _laneKeys_6_io_out_q_2;
       larges_13_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'hD) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'hD) begin
       larges_13_index <= r_5;
       larges_13_q_0 <= _laneKeys_5_io_out_q_0;
       larges_13_q_1 <= _laneKeys_5_io_out_q_1;
       larges_13_q_2 <= _laneKeys_5_io_out_q_2;
       larges_13_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'hD) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'hD) begin
       larges_13_index <= r_4;
       larges_13_q_0 <= _laneKeys_4_io_out_q_0;
       larges_13_q_1 <= _laneKeys_4_io_out_q_1;
       larges_13_q_2 <= _laneKeys_4_io_out_q_2;
       larges_13_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'hD) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'hD) begin
       larges_13_index <= r_3;
       larges_13_q_0 <= _laneKeys_3_io_out_q_0;
       larges_13_q_1 <= _laneKeys_3_io_out_q_1;
       larges_13_q_2 <= _laneKeys_3_io_out_q_2;
       larges_13_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'hD) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'hD) begin
       larges_13_index <= r_2;
       larges_13_q_0 <= _laneKeys_2_io_out_q_0;
       larges_13_q_1 <= _laneKeys_2_io_out_q_1;
       larges_13_q_2 <= _laneKeys_2_io_out_q_2;
       larges_13_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'hD) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'hD) begin
       larges_13_index <= r_1;
       larges_13_q_0 <= _laneKeys_1_io_out_q_0;
       larges_13_q_1 <= _laneKeys_1_io_out_q_1;
       larges_13_q_2 <= _laneKeys_1_io_out_q_2;
       larges_13_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'hD) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'hD) begin
       larges_13_index <= r;
       larges_13_q_0 <= _laneKeys_0_io_out_q_0;
       larges_13_q_1 <= _laneKeys_0_io_out_q_1;
       larges_13_q_2 <= _laneKeys_0_io_out_q_2;
       larges_13_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & slot_7[3:0] == 4'hE) begin
+    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'hE) begin
       larges_14_index <= r_7;
       larges_14_q_0 <= _laneKeys_7_io_out_q_0;
       larges_14_q_1 <= _laneKeys_7_io_out_q_1;
       larges_14_q_2 <= _laneKeys_7_io_out_q_2;
       larges_14_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & slot_6[3:0] == 4'hE) begin
+    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'hE) begin
       larges_14_index <= r_6;
       larges_14_q_0 <= _laneKeys_6_io_out_q_0;
       larges_14_q_1 <= _laneKeys_6_io_out_q_1;
       larges_14_q_2 <= _laneKeys_6_io_out_q_2;
       larges_14_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & slot_5[3:0] == 4'hE) begin
+    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'hE) begin
       larges_14_index <= r_5;
       larges_14_q_0 <= _laneKeys_5_io_out_q_0;
       larges_14_q_1 <= _laneKeys_5_io_out_q_1;
       larges_14_q_2 <= _laneKeys_5_io_out_q_2;
       larges_14_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & slot_4[3:0] == 4'hE) begin
+    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'hE) begin
       larges_14_index <= r_4;
       larges_14_q_0 <= _laneKeys_4_io_out_q_0;
       larges_14_q_1 <= _laneKeys_4_io_out_q_1;
       larges_14_q_2 <= _laneKeys_4_io_out_q_2;
       larges_14_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & slot_3[3:0] == 4'hE) begin
+    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'hE) begin
       larges_14_index <= r_3;
       larges_14_q_0 <= _laneKeys_3_io_out_q_0;
       larges_14_q_1 <= _laneKeys_3_io_out_q_1;
       larges_14_q_2 <= _laneKeys_3_io_out_q_2;
       larges_14_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & slot_2[3:0] == 4'hE) begin
+    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'hE) begin
       larges_14_index <= r_2;
       larges_14_q_0 <= _laneKeys_2_io_out_q_0;
       larges_14_q_1 <= _laneKeys_2_io_out_q_1;
       larges_14_q_2 <= _laneKeys_2_io_out_q_2;
       larges_14_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & slot_1[3:0] == 4'hE) begin
+    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'hE) begin
       larges_14_index <= r_1;
       larges_14_q_0 <= _laneKeys_1_io_out_q_0;
       larges_14_q_1 <= _laneKeys_1_io_out_q_1;
       larges_14_q_2 <= _laneKeys_1_io_out_q_2;
       larges_14_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & largeCount[3:0] == 4'hE) begin
+    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'hE) begin
       larges_14_index <= r;
       larges_14_q_0 <= _laneKeys_0_io_out_q_0;
       larges_14_q_1 <= _laneKeys_0_io_out_q_1;
       larges_14_q_2 <= _laneKeys_0_io_out_q_2;
       larges_14_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_49 & (&(slot_7[3:0]))) begin
+    if (largeHere_7 & _GEN_50 & (&(slot_7[3:0]))) begin
       larges_15_index <= r_7;
       larges_15_q_0 <= _laneKeys_7_io_out_q_0;
       larges_15_q_1 <= _laneKeys_7_io_out_q_1;
       larges_15_q_2 <= _laneKeys_7_io_out_q_2;
       larges_15_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_47 & (&(slot_6[3:0]))) begin
+    else if (largeHere_6 & _GEN_48 & (&(slot_6[3:0]))) begin
       larges_15_index <= r_6;
       larges_15_q_0 <= _laneKeys_6_io_out_q_0;
       larges_15_q_1 <= _laneKeys_6_io_out_q_1;
       larges_15_q_2 <= _laneKeys_6_io_out_q_2;
       larges_15_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_45 & (&(slot_5[3:0]))) begin
+    else if (largeHere_5 & _GEN_46 & (&(slot_5[3:0]))) begin
       larges_15_index <= r_5;
       larges_15_q_0 <= _laneKeys_5_io_out_q_0;
       larges_15_q_1 <= _laneKeys_5_io_out_q_1;
       larges_15_q_2 <= _laneKeys_5_io_out_q_2;
       larges_15_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_43 & (&(slot_4[3:0]))) begin
+    else if (largeHere_4 & _GEN_44 & (&(slot_4[3:0]))) begin
       larges_15_index <= r_4;
       larges_15_q_0 <= _laneKeys_4_io_out_q_0;
       larges_15_q_1 <= _laneKeys_4_io_out_q_1;
       larges_15_q_2 <= _laneKeys_4_io_out_q_2;
       larges_15_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_39 & (&(slot_3[3:0]))) begin
+    else if (largeHere_3 & _GEN_40 & (&(slot_3[3:0]))) begin
       larges_15_index <= r_3;
       larges_15_q_0 <= _laneKeys_3_io_out_q_0;
       larges_15_q_1 <= _laneKeys_3_io_out_q_1;
       larges_15_q_2 <= _laneKeys_3_io_out_q_2;
       larges_15_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_37 & (&(slot_2[3:0]))) begin
+    else if (largeHere_2 & _GEN_38 & (&(slot_2[3:0]))) begin
       larges_15_index <= r_2;
       larges_15_q_0 <= _laneKeys_2_io_out_q_0;
       larges_15_q_1 <= _laneKeys_2_io_out_q_1;
       larges_15_q_2 <= _laneKeys_2_io_out_q_2;
       larges_15_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_34 & (&(slot_1[3:0]))) begin
+    else if (largeHere_1 & _GEN_35 & (&(slot_1[3:0]))) begin
       larges_15_index <= r_1;
       larges_15_q_0 <= _laneKeys_1_io_out_q_0;
       larges_15_q_1 <= _laneKeys_1_io_out_q_1;
       larges_15_q_2 <= _laneKeys_1_io_out_q_2;
       larges_15_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_33 & (&(largeCount[3:0]))) begin
+    else if (largeHere_0 & _GEN_34 & (&(largeCount[3:0]))) begin
       larges_15_index <= r;
       larges_15_q_0 <= _laneKeys_0_io_out_q_0;
       larges_15_q_1 <= _laneKeys_0_io_out_q_1;
       larges_15_q_2 <= _laneKeys_0_io_out_q_2;
       larges_15_qr <= _laneKeys_0_io_out_qr;
     end
-    if (_GEN_50) begin
+    if (_GEN_53) begin
       num <= io_num;
       usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
     end
-    if (~(~(|state) | _GEN_51 | _GEN_52 | _GEN_53)) begin
-      if (_GEN_54)
+    if (~(~(|state) | _GEN_54 | _GEN_55 | _GEN_56)) begin
+      if (_GEN_57)
         sent <= ~passDone & sent;
       else
-        sent <= _GEN_55 | (_GEN_8 ? ~_GEN_25 & sent : (&state) | sent);
+        sent <= _GEN_58 | (_GEN_9 ? ~_GEN_26 & sent : (&state) | sent);
     end
     if (|state) begin
       i_0 <= casez_tmp_39;
@@ -37291,9 +37869,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
       i_15 <= casez_tmp_54;
     end
     else if (_starting_T) begin
-      i_0 <= io_start ? 13'h0 : _GEN_28;
-      i_1 <= io_start ? _GEN_28 : _GEN_29;
-      i_2 <= io_start ? _GEN_29 : {2'h0, _cuts_T_6[26:16]};
+      i_0 <= io_start ? 13'h0 : _GEN_29;
+      i_1 <= io_start ? _GEN_29 : _GEN_30;
+      i_2 <= io_start ? _GEN_30 : {2'h0, _cuts_T_6[26:16]};
       i_3 <= {2'h0, io_start ? _cuts_T_6[26:16] : io_num[12:2]};
       i_4 <= io_start ? {2'h0, io_num[12:2]} : {1'h0, _cuts_T_12[27:16]};
       i_5 <= {1'h0, io_start ? _cuts_T_12[27:16] : _cuts_T_15[27:16]};
@@ -37324,12 +37902,12 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     r_6 <= REG_6;
     REG_7 <= i_7[11:0];
     r_7 <= REG_7;
-    if (~(~(|state) | _GEN_51)) begin
-      if (_GEN_52) begin
-        if (_GEN_5)
+    if (~(~(|state) | _GEN_54)) begin
+      if (_GEN_55) begin
+        if (_GEN_6)
           m <= 9'h0;
       end
-      else if (_GEN_53)
+      else if (_GEN_56)
         m <= _m_T;
     end
     entryGroup <= _gens_0_io_entry_group;
@@ -37348,6 +37926,98 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     entryGroup_13 <= _gens_13_io_entry_group;
     entryGroup_14 <= _gens_14_io_entry_group;
     entryGroup_15 <= _gens_15_io_entry_group;
+    if (_GEN_52) begin
+      next <= 16'h0;
+      dCount <= 7'h0;
+      dNext <= 10'h0;
+    end
+    else begin
+      next <= {9'h0, taken} > units ? units[15:0] : taken[15:0];
+      if (|_GEN)
+        dCount <= dCount + 7'h1;
+      if (|toSingle)
+        dNext <= dNext + 10'h1;
+    end
+    if (_taken_T)
+      grant_0 <= {_at_T_3[10:0], 3'h0};
+    else if (toSingle[0])
+      grant_0 <= dBucket;
+    if (_taken_T_1)
+      grant_1 <= {_at_T_10[10:0], 3'h0};
+    else if (toSingle[1])
+      grant_1 <= dBucket;
+    if (_taken_T_2)
+      grant_2 <= {_at_T_20[10:0], 3'h0};
+    else if (toSingle[2])
+      grant_2 <= dBucket;
+    if (_taken_T_3)
+      grant_3 <= {_at_T_33[10:0], 3'h0};
+    else if (toSingle[3])
+      grant_3 <= dBucket;
+    if (_taken_T_4)
+      grant_4 <= {_at_T_49[10:0], 3'h0};
+    else if (toSingle[4])
+      grant_4 <= dBucket;
+    if (_taken_T_5)
+      grant_5 <= {_at_T_68[10:0], 3'h0};
+    else if (toSingle[5])
+      grant_5 <= dBucket;
+    if (_taken_T_6)
+      grant_6 <= {_at_T_90[10:0], 3'h0};
+    else if (toSingle[6])
+      grant_6 <= dBucket;
+    if (_taken_T_7)
+      grant_7 <= {_at_T_115[10:0], 3'h0};
+    else if (toSingle[7])
+      grant_7 <= dBucket;
+    if (_taken_T_8)
+      grant_8 <= {_at_T_143[10:0], 3'h0};
+    else if (toSingle[8])
+      grant_8 <= dBucket;
+    if (_taken_T_9)
+      grant_9 <= {_at_T_174[10:0], 3'h0};
+    else if (toSingle[9])
+      grant_9 <= dBucket;
+    if (_taken_T_10)
+      grant_10 <= {_at_T_208[10:0], 3'h0};
+    else if (toSingle[10])
+      grant_10 <= dBucket;
+    if (_taken_T_11)
+      grant_11 <= {_at_T_245[10:0], 3'h0};
+    else if (toSingle[11])
+      grant_11 <= dBucket;
+    if (_taken_T_12)
+      grant_12 <= {_at_T_285[10:0], 3'h0};
+    else if (toSingle[12])
+      grant_12 <= dBucket;
+    if (_taken_T_13)
+      grant_13 <= {_at_T_328[10:0], 3'h0};
+    else if (toSingle[13])
+      grant_13 <= dBucket;
+    if (_taken_T_14)
+      grant_14 <= {_at_T_374[10:0], 3'h0};
+    else if (toSingle[14])
+      grant_14 <= dBucket;
+    if (_taken_T_15)
+      grant_15 <= {_at_T_423[10:0], 3'h0};
+    else if (toSingle[15])
+      grant_15 <= dBucket;
+    grantSingle_0 <= ~_taken_T & (toSingle[0] | grantSingle_0);
+    grantSingle_1 <= ~_taken_T_1 & (toSingle[1] | grantSingle_1);
+    grantSingle_2 <= ~_taken_T_2 & (toSingle[2] | grantSingle_2);
+    grantSingle_3 <= ~_taken_T_3 & (toSingle[3] | grantSingle_3);
+    grantSingle_4 <= ~_taken_T_4 & (toSingle[4] | grantSingle_4);
+    grantSingle_5 <= ~_taken_T_5 & (toSingle[5] | grantSingle_5);
+    grantSingle_6 <= ~_taken_T_6 & (toSingle[6] | grantSingle_6);
+    grantSingle_7 <= ~_taken_T_7 & (toSingle[7] | grantSingle_7);
+    grantSingle_8 <= ~_taken_T_8 & (toSingle[8] | grantSingle_8);
+    grantSingle_9 <= ~_taken_T_9 & (toSingle[9] | grantSingle_9);
+    grantSingle_10 <= ~_taken_T_10 & (toSingle[10] | grantSingle_10);
+    grantSingle_11 <= ~_taken_T_11 & (toSingle[11] | grantSingle_11);
+    grantSingle_12 <= ~_taken_T_12 & (toSingle[12] | grantSingle_12);
+    grantSingle_13 <= ~_taken_T_13 & (toSingle[13] | grantSingle_13);
+    grantSingle_14 <= ~_taken_T_14 & (toSingle[14] | grantSingle_14);
+    grantSingle_15 <= ~_taken_T_15 & (toSingle[15] | grantSingle_15);
     if (reset) begin
       state <= 3'h0;
       fed <= 1'h0;
@@ -37377,12 +38047,44 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
       laneKeys_13_io_in_valid_REG <= 1'h0;
       laneKeys_14_io_in_valid_REG <= 1'h0;
       laneKeys_15_io_in_valid_REG <= 1'h0;
+      held_0 <= 1'h0;
+      held_1 <= 1'h0;
+      held_2 <= 1'h0;
+      held_3 <= 1'h0;
+      held_4 <= 1'h0;
+      held_5 <= 1'h0;
+      held_6 <= 1'h0;
+      held_7 <= 1'h0;
+      held_8 <= 1'h0;
+      held_9 <= 1'h0;
+      held_10 <= 1'h0;
+      held_11 <= 1'h0;
+      held_12 <= 1'h0;
+      held_13 <= 1'h0;
+      held_14 <= 1'h0;
+      held_15 <= 1'h0;
+      heldUnit_0 <= 1'h0;
+      heldUnit_1 <= 1'h0;
+      heldUnit_2 <= 1'h0;
+      heldUnit_3 <= 1'h0;
+      heldUnit_4 <= 1'h0;
+      heldUnit_5 <= 1'h0;
+      heldUnit_6 <= 1'h0;
+      heldUnit_7 <= 1'h0;
+      heldUnit_8 <= 1'h0;
+      heldUnit_9 <= 1'h0;
+      heldUnit_10 <= 1'h0;
+      heldUnit_11 <= 1'h0;
+      heldUnit_12 <= 1'h0;
+      heldUnit_13 <= 1'h0;
+      heldUnit_14 <= 1'h0;
+      heldUnit_15 <= 1'h0;
       REG_8 <= 1'h0;
     end
     else begin
       if (|state) begin
         state <= casez_tmp_55;
-        if (_GEN_51 | _GEN_52 | _GEN_53 | _GEN_54 | _GEN_55 | _GEN_8 | ~_GEN_26) begin
+        if (_GEN_54 | _GEN_55 | _GEN_56 | _GEN_57 | _GEN_58 | _GEN_9 | ~_GEN_27) begin
         end
         else begin
           st_level <= _cellExp_io_level;
@@ -37406,7 +38108,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
         st_badBucket <= ~_starting_T & st_badBucket;
         st_sortMismatch <= ~_starting_T & st_sortMismatch;
       end
-      if (_GEN_50) begin
+      if (_GEN_53) begin
         fed <= ~io_start;
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
@@ -37415,14 +38117,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
       end
       else begin
         if (classifying) begin
-          st_large <= st_large + {7'h0, largeKept - _GEN_32};
+          st_large <= st_large + {7'h0, largeKept - _GEN_33};
           largeCount <= largeKept[4:0];
         end
         if ((|state) & ~filling)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
       st_cellOverflow <=
-        ~_GEN_50
+        ~_GEN_53
         & (classifying
            & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
               & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
@@ -37450,10 +38152,10 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
                   & _sorts_3_io_in_1_valid_T_8) & _laneKeys_7_io_out_cellOverflow)
            | st_cellOverflow);
       st_largeOverflow <=
-        ~_GEN_50
-        & (largeHere_7 & ~_GEN_49 | largeHere_6 & ~_GEN_47 | largeHere_5 & ~_GEN_45
-           | largeHere_4 & ~_GEN_43 | largeHere_3 & ~_GEN_39 | largeHere_2 & ~_GEN_37
-           | largeHere_1 & ~_GEN_34 | largeHere_0 & ~_GEN_33 | st_largeOverflow);
+        ~_GEN_53
+        & (largeHere_7 & ~_GEN_50 | largeHere_6 & ~_GEN_48 | largeHere_5 & ~_GEN_46
+           | largeHere_4 & ~_GEN_44 | largeHere_3 & ~_GEN_40 | largeHere_2 & ~_GEN_38
+           | largeHere_1 & ~_GEN_35 | largeHere_0 & ~_GEN_34 | st_largeOverflow);
       inflight <=
         inflight
         + {1'h0,
@@ -37517,6 +38219,108 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
       laneKeys_13_io_in_valid_REG <= reading_13;
       laneKeys_14_io_in_valid_REG <= reading_14;
       laneKeys_15_io_in_valid_REG <= reading_15;
+      held_0 <=
+        ~_GEN_52 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
+      held_1 <=
+        ~_GEN_52 & (_taken_T_1 ? _heldUnit_1_T : toSingle[1] | ~_gens_1_io_take & held_1);
+      held_2 <=
+        ~_GEN_52 & (_taken_T_2 ? _heldUnit_2_T : toSingle[2] | ~_gens_2_io_take & held_2);
+      held_3 <=
+        ~_GEN_52 & (_taken_T_3 ? _heldUnit_3_T : toSingle[3] | ~_gens_3_io_take & held_3);
+      held_4 <=
+        ~_GEN_52 & (_taken_T_4 ? _heldUnit_4_T : toSingle[4] | ~_gens_4_io_take & held_4);
+      held_5 <=
+        ~_GEN_52 & (_taken_T_5 ? _heldUnit_5_T : toSingle[5] | ~_gens_5_io_take & held_5);
+      held_6 <=
+        ~_GEN_52 & (_taken_T_6 ? _heldUnit_6_T : toSingle[6] | ~_gens_6_io_take & held_6);
+      held_7 <=
+        ~_GEN_52 & (_taken_T_7 ? _heldUnit_7_T : toSingle[7] | ~_gens_7_io_take & held_7);
+      held_8 <=
+        ~_GEN_52 & (_taken_T_8 ? _heldUnit_8_T : toSingle[8] | ~_gens_8_io_take & held_8);
+      held_9 <=
+        ~_GEN_52 & (_taken_T_9 ? _heldUnit_9_T : toSingle[9] | ~_gens_9_io_take & held_9);
+      held_10 <=
+        ~_GEN_52
+        & (_taken_T_10 ? _heldUnit_10_T : toSingle[10] | ~_gens_10_io_take & held_10);
+      held_11 <=
+        ~_GEN_52
+        & (_taken_T_11 ? _heldUnit_11_T : toSingle[11] | ~_gens_11_io_take & held_11);
+      held_12 <=
+        ~_GEN_52
+        & (_taken_T_12 ? _heldUnit_12_T : toSingle[12] | ~_gens_12_io_take & held_12);
+      held_13 <=
+        ~_GEN_52
+        & (_taken_T_13 ? _heldUnit_13_T : toSingle[13] | ~_gens_13_io_take & held_13);
+      held_14 <=
+        ~_GEN_52
+        & (_taken_T_14 ? _heldUnit_14_T : toSingle[14] | ~_gens_14_io_take & held_14);
+      held_15 <=
+        ~_GEN_52
+        & (_taken_T_15 ? _heldUnit_15_T : toSingle[15] | ~_gens_15_io_take & held_15);
+      if (_taken_T)
+        heldUnit_0 <= _heldUnit_0_T;
+      else
+        heldUnit_0 <= ~(toSingle[0]) & heldUnit_0;
+      if (_taken_T_1)
+        heldUnit_1 <= _heldUnit_1_T;
+      else
+        heldUnit_1 <= ~(toSingle[1]) & heldUnit_1;
+      if (_taken_T_2)
+        heldUnit_2 <= _heldUnit_2_T;
+      else
+        heldUnit_2 <= ~(toSingle[2]) & heldUnit_2;
+      if (_taken_T_3)
+        heldUnit_3 <= _heldUnit_3_T;
+      else
+        heldUnit_3 <= ~(toSingle[3]) & heldUnit_3;
+      if (_taken_T_4)
+        heldUnit_4 <= _heldUnit_4_T;
+      else
+        heldUnit_4 <= ~(toSingle[4]) & heldUnit_4;
+      if (_taken_T_5)
+        heldUnit_5 <= _heldUnit_5_T;
+      else
+        heldUnit_5 <= ~(toSingle[5]) & heldUnit_5;
+      if (_taken_T_6)
+        heldUnit_6 <= _heldUnit_6_T;
+      else
+        heldUnit_6 <= ~(toSingle[6]) & heldUnit_6;
+      if (_taken_T_7)
+        heldUnit_7 <= _heldUnit_7_T;
+      else
+        heldUnit_7 <= ~(toSingle[7]) & heldUnit_7;
+      if (_taken_T_8)
+        heldUnit_8 <= _heldUnit_8_T;
+      else
+        heldUnit_8 <= ~(toSingle[8]) & heldUnit_8;
+      if (_taken_T_9)
+        heldUnit_9 <= _heldUnit_9_T;
+      else
+        heldUnit_9 <= ~(toSingle[9]) & heldUnit_9;
+      if (_taken_T_10)
+        heldUnit_10 <= _heldUnit_10_T;
+      else
+        heldUnit_10 <= ~(toSingle[10]) & heldUnit_10;
+      if (_taken_T_11)
+        heldUnit_11 <= _heldUnit_11_T;
+      else
+        heldUnit_11 <= ~(toSingle[11]) & heldUnit_11;
+      if (_taken_T_12)
+        heldUnit_12 <= _heldUnit_12_T;
+      else
+        heldUnit_12 <= ~(toSingle[12]) & heldUnit_12;
+      if (_taken_T_13)
+        heldUnit_13 <= _heldUnit_13_T;
+      else
+        heldUnit_13 <= ~(toSingle[13]) & heldUnit_13;
+      if (_taken_T_14)
+        heldUnit_14 <= _heldUnit_14_T;
+      else
+        heldUnit_14 <= ~(toSingle[14]) & heldUnit_14;
+      if (_taken_T_15)
+        heldUnit_15 <= _heldUnit_15_T;
+      else
+        heldUnit_15 <= ~(toSingle[15]) & heldUnit_15;
       REG_8 <=
         _sorts_0_io_in_0_ready & _sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_1_ready
         & _sorts_0_io_in_1_valid_T_12 | _sorts_1_io_in_0_ready
@@ -38053,8 +38857,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
           * 10'h9F ^ _laneKeys_0_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_0_io_out_cell_0[0],
         _laneKeys_0_io_out_cell_1[0],
-        _laneKeys_0_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
-       - 13'h1),
+        _laneKeys_0_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
     .io_in_0_bits_item    (r),
     .io_in_1_ready        (_sorts_0_io_in_1_ready),
     .io_in_1_valid        (_sorts_0_io_in_1_valid_T_12),
@@ -38064,8 +38867,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
           * 10'h9F ^ _laneKeys_1_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_1_io_out_cell_0[0],
         _laneKeys_1_io_out_cell_1[0],
-        _laneKeys_1_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
-       - 13'h1),
+        _laneKeys_1_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
     .io_in_1_bits_item    (r_1),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_0_io_lookup_0_begin),
@@ -38486,8 +39288,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
           * 10'h9F ^ _laneKeys_2_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_2_io_out_cell_0[0],
         _laneKeys_2_io_out_cell_1[0],
-        _laneKeys_2_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
-       - 13'h1),
+        _laneKeys_2_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
     .io_in_0_bits_item    (r_2),
     .io_in_1_ready        (_sorts_1_io_in_1_ready),
     .io_in_1_valid        (_sorts_1_io_in_1_valid_T_12),
@@ -38497,8 +39298,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
           * 10'h9F ^ _laneKeys_3_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_3_io_out_cell_0[0],
         _laneKeys_3_io_out_cell_1[0],
-        _laneKeys_3_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
-       - 13'h1),
+        _laneKeys_3_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
     .io_in_1_bits_item    (r_3),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_1_io_lookup_0_begin),
@@ -38919,8 +39719,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
           * 10'h9F ^ _laneKeys_4_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_4_io_out_cell_0[0],
         _laneKeys_4_io_out_cell_1[0],
-        _laneKeys_4_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
-       - 13'h1),
+        _laneKeys_4_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
     .io_in_0_bits_item    (r_4),
     .io_in_1_ready        (_sorts_2_io_in_1_ready),
     .io_in_1_valid        (_sorts_2_io_in_1_valid_T_12),
@@ -38930,8 +39729,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
           * 10'h9F ^ _laneKeys_5_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_5_io_out_cell_0[0],
         _laneKeys_5_io_out_cell_1[0],
-        _laneKeys_5_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
-       - 13'h1),
+        _laneKeys_5_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
     .io_in_1_bits_item    (r_5),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_2_io_lookup_0_begin),
@@ -39352,8 +40150,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
           * 10'h9F ^ _laneKeys_6_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_6_io_out_cell_0[0],
         _laneKeys_6_io_out_cell_1[0],
-        _laneKeys_6_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
-       - 13'h1),
+        _laneKeys_6_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
     .io_in_0_bits_item    (r_6),
     .io_in_1_ready        (_sorts_3_io_in_1_ready),
     .io_in_1_valid        (_sorts_3_io_in_1_valid_T_12),
@@ -39363,8 +40160,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
           * 10'h9F ^ _laneKeys_7_io_out_cell_2[10:1] * 10'h3B7,
         _laneKeys_7_io_out_cell_0[0],
         _laneKeys_7_io_out_cell_1[0],
-        _laneKeys_7_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
-       - 13'h1),
+        _laneKeys_7_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
     .io_in_1_bits_item    (r_7),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_3_io_lookup_0_begin),
@@ -39770,3029 +40566,3189 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_scattered         (_sorts_3_io_scattered),
     .io_badBucket         (_sorts_3_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_0 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'h0),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (13'h0),
-    .io_largeTo          (_GEN),
-    .io_lookup_bucket    (_gens_0_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_0_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_0_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_0_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_0_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_0_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_0_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_0_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_0_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_0_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_0_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_0_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_0_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_0_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_0_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_0_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_0_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_0_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_0_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_0_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_0_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_0_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_0_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_0_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_0_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_0_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_0_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_0_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_0_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_0_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_0_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_0_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_0_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_0_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_0_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_0_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_0_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_0_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_0_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_0_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_0_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_0_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_0_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_0_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_0_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_0_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_0_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_0_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_0_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_0_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_0_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_0_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_0_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_0_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_0_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_0_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_0_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_0_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_0_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_0_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_0_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_0_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_0_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_0_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_0_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_0_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_0_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_0_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_0_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_0_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_0_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_0_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_0_word_15}),
-    .io_entry_addr       (_gens_0_io_entry_addr),
-    .io_entry_group      (_gens_0_io_entry_group),
-    .io_entry_item       (casez_tmp_7),
-    .io_entry_mark       (casez_tmp_8),
-    .io_mark_valid       (_gens_0_io_mark_valid),
-    .io_mark_bits_group  (_gens_0_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_0_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_0_io_mark_bits_item),
-    .io_keyAddr          (_gens_0_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_0_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_0_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_0_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_0_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_0_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_0_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_0_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_0 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'h0),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_0_io_need),
+    .io_claim_valid       (held_0),
+    .io_claim_bits_bucket (grant_0),
+    .io_claim_bits_single (grantSingle_0),
+    .io_take              (_gens_0_io_take),
+    .io_defer_valid       (_gens_0_io_defer_valid),
+    .io_defer_bits        (_gens_0_io_defer_bits),
+    .io_deferOk           (dLane[0]),
+    .io_unresolved        (_gens_0_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (13'h0),
+    .io_largeTo           (_GEN_0),
+    .io_lookup_bucket     (_gens_0_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_0_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_0_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_0_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_0_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_0_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_0_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_0_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_0_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_0_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_0_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_0_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_0_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_0_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_0_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_0_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_0_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_0_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_0_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_0_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_0_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_0_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_0_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_0_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_0_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_0_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_0_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_0_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_0_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_0_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_0_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_0_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_0_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_0_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_0_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_0_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_0_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_0_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_0_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_0_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_0_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_0_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_0_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_0_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_0_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_0_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_0_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_0_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_0_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_0_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_0_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_0_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_0_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_0_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_0_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_0_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_0_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_0_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_0_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_0_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_0_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_0_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_0_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_0_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_0_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_0_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_0_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_0_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_0_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_0_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_0_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_0_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_0_word_15}),
+    .io_entry_addr        (_gens_0_io_entry_addr),
+    .io_entry_group       (_gens_0_io_entry_group),
+    .io_entry_item        (casez_tmp_7),
+    .io_entry_mark        (casez_tmp_8),
+    .io_mark_valid        (_gens_0_io_mark_valid),
+    .io_mark_bits_group   (_gens_0_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_0_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_0_io_mark_bits_item),
+    .io_keyAddr           (_gens_0_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_0_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_0_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_0_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_0_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_0_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_0_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_0_io_out_qr),
     .io_keyData_large
       (~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
        & _sorts_0_io_in_0_valid_T_8),
-    .io_keyData_excluded (_laneKeys_0_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_0_ready),
-    .io_pairs_valid      (io_pairs_0_valid),
-    .io_pairs_bits_i     (io_pairs_0_bits_i),
-    .io_pairs_bits_j     (io_pairs_0_bits_j),
-    .io_busy             (_gens_0_io_busy)
+    .io_keyData_excluded  (_laneKeys_0_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_0_ready),
+    .io_pairs_valid       (io_pairs_0_valid),
+    .io_pairs_bits_i      (io_pairs_0_bits_i),
+    .io_pairs_bits_j      (io_pairs_0_bits_j),
+    .io_busy              (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_1 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'h1),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (_GEN),
-    .io_largeTo          (_GEN_0),
-    .io_lookup_bucket    (_gens_1_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_1_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_1_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_1_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_1_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_1_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_1_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_1_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_1_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_1_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_1_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_1_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_1_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_1_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_1_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_1_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_1_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_1_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_1_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_1_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_1_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_1_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_1_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_1_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_1_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_1_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_1_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_1_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_1_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_1_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_1_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_1_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_1_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_1_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_1_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_1_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_1_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_1_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_1_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_1_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_1_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_1_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_1_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_1_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_1_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_1_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_1_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_1_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_1_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_1_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_1_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_1_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_1_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_1_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_1_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_1_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_1_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_1_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_1_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_1_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_1_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_1_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_1_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_1_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_1_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_1_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_1_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_1_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_1_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_1_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_1_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_1_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_1_word_15}),
-    .io_entry_addr       (_gens_1_io_entry_addr),
-    .io_entry_group      (_gens_1_io_entry_group),
-    .io_entry_item       (casez_tmp_9),
-    .io_entry_mark       (casez_tmp_10),
-    .io_mark_valid       (_gens_1_io_mark_valid),
-    .io_mark_bits_group  (_gens_1_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_1_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_1_io_mark_bits_item),
-    .io_keyAddr          (_gens_1_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_1_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_1_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_1_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_1_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_1_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_1_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_1_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_1 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'h1),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_1_io_need),
+    .io_claim_valid       (held_1),
+    .io_claim_bits_bucket (grant_1),
+    .io_claim_bits_single (grantSingle_1),
+    .io_take              (_gens_1_io_take),
+    .io_defer_valid       (_gens_1_io_defer_valid),
+    .io_defer_bits        (_gens_1_io_defer_bits),
+    .io_deferOk           (dLane[1]),
+    .io_unresolved        (_gens_1_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (_GEN_0),
+    .io_largeTo           (_GEN_1),
+    .io_lookup_bucket     (_gens_1_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_1_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_1_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_1_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_1_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_1_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_1_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_1_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_1_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_1_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_1_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_1_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_1_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_1_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_1_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_1_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_1_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_1_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_1_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_1_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_1_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_1_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_1_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_1_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_1_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_1_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_1_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_1_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_1_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_1_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_1_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_1_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_1_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_1_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_1_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_1_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_1_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_1_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_1_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_1_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_1_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_1_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_1_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_1_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_1_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_1_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_1_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_1_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_1_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_1_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_1_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_1_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_1_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_1_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_1_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_1_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_1_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_1_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_1_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_1_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_1_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_1_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_1_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_1_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_1_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_1_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_1_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_1_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_1_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_1_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_1_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_1_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_1_word_15}),
+    .io_entry_addr        (_gens_1_io_entry_addr),
+    .io_entry_group       (_gens_1_io_entry_group),
+    .io_entry_item        (casez_tmp_9),
+    .io_entry_mark        (casez_tmp_10),
+    .io_mark_valid        (_gens_1_io_mark_valid),
+    .io_mark_bits_group   (_gens_1_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_1_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_1_io_mark_bits_item),
+    .io_keyAddr           (_gens_1_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_1_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_1_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_1_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_1_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_1_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_1_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_1_io_out_qr),
     .io_keyData_large
       (~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
        & _sorts_0_io_in_1_valid_T_8),
-    .io_keyData_excluded (_laneKeys_1_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_1_ready),
-    .io_pairs_valid      (io_pairs_1_valid),
-    .io_pairs_bits_i     (io_pairs_1_bits_i),
-    .io_pairs_bits_j     (io_pairs_1_bits_j),
-    .io_busy             (_gens_1_io_busy)
+    .io_keyData_excluded  (_laneKeys_1_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_1_ready),
+    .io_pairs_valid       (io_pairs_1_valid),
+    .io_pairs_bits_i      (io_pairs_1_bits_i),
+    .io_pairs_bits_j      (io_pairs_1_bits_j),
+    .io_busy              (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_2 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'h2),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (_GEN_0),
-    .io_largeTo          ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
-    .io_lookup_bucket    (_gens_2_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_2_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_2_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_2_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_2_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_2_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_2_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_2_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_2_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_2_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_2_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_2_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_2_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_2_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_2_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_2_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_2_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_2_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_2_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_2_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_2_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_2_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_2_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_2_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_2_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_2_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_2_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_2_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_2_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_2_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_2_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_2_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_2_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_2_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_2_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_2_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_2_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_2_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_2_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_2_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_2_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_2_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_2_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_2_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_2_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_2_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_2_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_2_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_2_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_2_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_2_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_2_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_2_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_2_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_2_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_2_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_2_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_2_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_2_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_2_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_2_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_2_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_2_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_2_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_2_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_2_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_2_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_2_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_2_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_2_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_2_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_2_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_2_word_15}),
-    .io_entry_addr       (_gens_2_io_entry_addr),
-    .io_entry_group      (_gens_2_io_entry_group),
-    .io_entry_item       (casez_tmp_11),
-    .io_entry_mark       (casez_tmp_12),
-    .io_mark_valid       (_gens_2_io_mark_valid),
-    .io_mark_bits_group  (_gens_2_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_2_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_2_io_mark_bits_item),
-    .io_keyAddr          (_gens_2_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_2_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_2_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_2_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_2_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_2_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_2_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_2_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_2 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'h2),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_2_io_need),
+    .io_claim_valid       (held_2),
+    .io_claim_bits_bucket (grant_2),
+    .io_claim_bits_single (grantSingle_2),
+    .io_take              (_gens_2_io_take),
+    .io_defer_valid       (_gens_2_io_defer_valid),
+    .io_defer_bits        (_gens_2_io_defer_bits),
+    .io_deferOk           (dLane[2]),
+    .io_unresolved        (_gens_2_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (_GEN_1),
+    .io_largeTo           ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
+    .io_lookup_bucket     (_gens_2_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_2_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_2_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_2_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_2_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_2_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_2_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_2_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_2_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_2_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_2_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_2_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_2_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_2_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_2_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_2_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_2_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_2_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_2_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_2_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_2_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_2_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_2_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_2_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_2_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_2_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_2_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_2_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_2_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_2_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_2_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_2_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_2_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_2_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_2_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_2_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_2_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_2_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_2_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_2_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_2_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_2_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_2_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_2_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_2_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_2_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_2_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_2_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_2_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_2_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_2_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_2_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_2_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_2_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_2_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_2_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_2_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_2_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_2_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_2_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_2_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_2_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_2_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_2_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_2_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_2_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_2_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_2_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_2_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_2_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_2_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_2_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_2_word_15}),
+    .io_entry_addr        (_gens_2_io_entry_addr),
+    .io_entry_group       (_gens_2_io_entry_group),
+    .io_entry_item        (casez_tmp_11),
+    .io_entry_mark        (casez_tmp_12),
+    .io_mark_valid        (_gens_2_io_mark_valid),
+    .io_mark_bits_group   (_gens_2_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_2_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_2_io_mark_bits_item),
+    .io_keyAddr           (_gens_2_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_2_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_2_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_2_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_2_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_2_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_2_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_2_io_out_qr),
     .io_keyData_large
       (~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
        & _sorts_1_io_in_0_valid_T_8),
-    .io_keyData_excluded (_laneKeys_2_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_2_ready),
-    .io_pairs_valid      (io_pairs_2_valid),
-    .io_pairs_bits_i     (io_pairs_2_bits_i),
-    .io_pairs_bits_j     (io_pairs_2_bits_j),
-    .io_busy             (_gens_2_io_busy)
+    .io_keyData_excluded  (_laneKeys_2_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_2_ready),
+    .io_pairs_valid       (io_pairs_2_valid),
+    .io_pairs_bits_i      (io_pairs_2_bits_i),
+    .io_pairs_bits_j      (io_pairs_2_bits_j),
+    .io_busy              (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_3 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'h3),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
-    .io_largeTo          (_GEN_1),
-    .io_lookup_bucket    (_gens_3_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_3_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_3_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_3_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_3_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_3_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_3_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_3_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_3_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_3_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_3_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_3_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_3_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_3_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_3_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_3_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_3_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_3_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_3_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_3_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_3_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_3_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_3_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_3_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_3_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_3_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_3_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_3_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_3_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_3_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_3_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_3_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_3_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_3_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_3_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_3_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_3_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_3_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_3_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_3_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_3_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_3_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_3_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_3_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_3_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_3_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_3_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_3_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_3_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_3_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_3_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_3_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_3_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_3_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_3_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_3_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_3_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_3_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_3_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_3_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_3_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_3_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_3_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_3_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_3_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_3_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_3_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_3_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_3_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_3_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_3_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_3_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_3_word_15}),
-    .io_entry_addr       (_gens_3_io_entry_addr),
-    .io_entry_group      (_gens_3_io_entry_group),
-    .io_entry_item       (casez_tmp_13),
-    .io_entry_mark       (casez_tmp_14),
-    .io_mark_valid       (_gens_3_io_mark_valid),
-    .io_mark_bits_group  (_gens_3_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_3_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_3_io_mark_bits_item),
-    .io_keyAddr          (_gens_3_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_3_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_3_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_3_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_3_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_3_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_3_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_3_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_3 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'h3),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_3_io_need),
+    .io_claim_valid       (held_3),
+    .io_claim_bits_bucket (grant_3),
+    .io_claim_bits_single (grantSingle_3),
+    .io_take              (_gens_3_io_take),
+    .io_defer_valid       (_gens_3_io_defer_valid),
+    .io_defer_bits        (_gens_3_io_defer_bits),
+    .io_deferOk           (dLane[3]),
+    .io_unresolved        (_gens_3_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         ({2'h0, _gens_3_io_largeFrom_T[26:16]}),
+    .io_largeTo           (_GEN_2),
+    .io_lookup_bucket     (_gens_3_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_3_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_3_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_3_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_3_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_3_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_3_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_3_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_3_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_3_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_3_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_3_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_3_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_3_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_3_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_3_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_3_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_3_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_3_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_3_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_3_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_3_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_3_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_3_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_3_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_3_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_3_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_3_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_3_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_3_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_3_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_3_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_3_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_3_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_3_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_3_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_3_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_3_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_3_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_3_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_3_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_3_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_3_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_3_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_3_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_3_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_3_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_3_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_3_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_3_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_3_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_3_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_3_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_3_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_3_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_3_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_3_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_3_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_3_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_3_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_3_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_3_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_3_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_3_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_3_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_3_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_3_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_3_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_3_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_3_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_3_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_3_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_3_word_15}),
+    .io_entry_addr        (_gens_3_io_entry_addr),
+    .io_entry_group       (_gens_3_io_entry_group),
+    .io_entry_item        (casez_tmp_13),
+    .io_entry_mark        (casez_tmp_14),
+    .io_mark_valid        (_gens_3_io_mark_valid),
+    .io_mark_bits_group   (_gens_3_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_3_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_3_io_mark_bits_item),
+    .io_keyAddr           (_gens_3_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_3_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_3_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_3_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_3_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_3_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_3_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_3_io_out_qr),
     .io_keyData_large
       (~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
        & _sorts_1_io_in_1_valid_T_8),
-    .io_keyData_excluded (_laneKeys_3_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_3_ready),
-    .io_pairs_valid      (io_pairs_3_valid),
-    .io_pairs_bits_i     (io_pairs_3_bits_i),
-    .io_pairs_bits_j     (io_pairs_3_bits_j),
-    .io_busy             (_gens_3_io_busy)
+    .io_keyData_excluded  (_laneKeys_3_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_3_ready),
+    .io_pairs_valid       (io_pairs_3_valid),
+    .io_pairs_bits_i      (io_pairs_3_bits_i),
+    .io_pairs_bits_j      (io_pairs_3_bits_j),
+    .io_busy              (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_4 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'h4),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (_GEN_1),
-    .io_largeTo          ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
-    .io_lookup_bucket    (_gens_4_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_4_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_4_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_4_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_4_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_4_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_4_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_4_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_4_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_4_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_4_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_4_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_4_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_4_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_4_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_4_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_4_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_4_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_4_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_4_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_4_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_4_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_4_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_4_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_4_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_4_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_4_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_4_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_4_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_4_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_4_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_4_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_4_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_4_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_4_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_4_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_4_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_4_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_4_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_4_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_4_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_4_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_4_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_4_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_4_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_4_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_4_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_4_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_4_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_4_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_4_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_4_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_4_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_4_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_4_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_4_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_4_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_4_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_4_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_4_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_4_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_4_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_4_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_4_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_4_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_4_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_4_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_4_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_4_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_4_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_4_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_4_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_4_word_15}),
-    .io_entry_addr       (_gens_4_io_entry_addr),
-    .io_entry_group      (_gens_4_io_entry_group),
-    .io_entry_item       (casez_tmp_15),
-    .io_entry_mark       (casez_tmp_16),
-    .io_mark_valid       (_gens_4_io_mark_valid),
-    .io_mark_bits_group  (_gens_4_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_4_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_4_io_mark_bits_item),
-    .io_keyAddr          (_gens_4_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_4_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_4_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_4_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_4_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_4_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_4_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_4_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_4 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'h4),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_4_io_need),
+    .io_claim_valid       (held_4),
+    .io_claim_bits_bucket (grant_4),
+    .io_claim_bits_single (grantSingle_4),
+    .io_take              (_gens_4_io_take),
+    .io_defer_valid       (_gens_4_io_defer_valid),
+    .io_defer_bits        (_gens_4_io_defer_bits),
+    .io_deferOk           (dLane[4]),
+    .io_unresolved        (_gens_4_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (_GEN_2),
+    .io_largeTo           ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
+    .io_lookup_bucket     (_gens_4_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_4_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_4_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_4_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_4_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_4_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_4_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_4_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_4_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_4_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_4_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_4_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_4_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_4_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_4_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_4_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_4_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_4_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_4_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_4_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_4_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_4_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_4_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_4_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_4_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_4_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_4_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_4_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_4_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_4_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_4_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_4_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_4_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_4_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_4_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_4_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_4_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_4_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_4_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_4_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_4_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_4_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_4_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_4_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_4_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_4_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_4_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_4_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_4_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_4_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_4_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_4_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_4_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_4_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_4_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_4_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_4_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_4_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_4_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_4_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_4_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_4_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_4_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_4_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_4_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_4_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_4_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_4_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_4_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_4_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_4_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_4_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_4_word_15}),
+    .io_entry_addr        (_gens_4_io_entry_addr),
+    .io_entry_group       (_gens_4_io_entry_group),
+    .io_entry_item        (casez_tmp_15),
+    .io_entry_mark        (casez_tmp_16),
+    .io_mark_valid        (_gens_4_io_mark_valid),
+    .io_mark_bits_group   (_gens_4_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_4_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_4_io_mark_bits_item),
+    .io_keyAddr           (_gens_4_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_4_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_4_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_4_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_4_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_4_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_4_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_4_io_out_qr),
     .io_keyData_large
       (~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
        & _sorts_2_io_in_0_valid_T_8),
-    .io_keyData_excluded (_laneKeys_4_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_4_ready),
-    .io_pairs_valid      (io_pairs_4_valid),
-    .io_pairs_bits_i     (io_pairs_4_bits_i),
-    .io_pairs_bits_j     (io_pairs_4_bits_j),
-    .io_busy             (_gens_4_io_busy)
+    .io_keyData_excluded  (_laneKeys_4_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_4_ready),
+    .io_pairs_valid       (io_pairs_4_valid),
+    .io_pairs_bits_i      (io_pairs_4_bits_i),
+    .io_pairs_bits_j      (io_pairs_4_bits_j),
+    .io_busy              (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_5 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'h5),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
-    .io_largeTo          ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
-    .io_lookup_bucket    (_gens_5_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_5_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_5_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_5_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_5_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_5_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_5_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_5_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_5_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_5_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_5_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_5_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_5_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_5_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_5_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_5_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_5_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_5_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_5_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_5_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_5_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_5_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_5_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_5_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_5_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_5_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_5_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_5_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_5_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_5_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_5_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_5_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_5_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_5_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_5_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_5_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_5_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_5_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_5_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_5_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_5_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_5_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_5_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_5_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_5_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_5_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_5_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_5_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_5_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_5_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_5_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_5_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_5_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_5_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_5_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_5_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_5_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_5_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_5_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_5_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_5_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_5_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_5_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_5_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_5_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_5_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_5_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_5_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_5_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_5_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_5_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_5_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_5_word_15}),
-    .io_entry_addr       (_gens_5_io_entry_addr),
-    .io_entry_group      (_gens_5_io_entry_group),
-    .io_entry_item       (casez_tmp_17),
-    .io_entry_mark       (casez_tmp_18),
-    .io_mark_valid       (_gens_5_io_mark_valid),
-    .io_mark_bits_group  (_gens_5_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_5_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_5_io_mark_bits_item),
-    .io_keyAddr          (_gens_5_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_5_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_5_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_5_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_5_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_5_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_5_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_5_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_5 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'h5),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_5_io_need),
+    .io_claim_valid       (held_5),
+    .io_claim_bits_bucket (grant_5),
+    .io_claim_bits_single (grantSingle_5),
+    .io_take              (_gens_5_io_take),
+    .io_defer_valid       (_gens_5_io_defer_valid),
+    .io_defer_bits        (_gens_5_io_defer_bits),
+    .io_deferOk           (dLane[5]),
+    .io_unresolved        (_gens_5_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         ({1'h0, _gens_5_io_largeFrom_T[27:16]}),
+    .io_largeTo           ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
+    .io_lookup_bucket     (_gens_5_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_5_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_5_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_5_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_5_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_5_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_5_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_5_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_5_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_5_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_5_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_5_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_5_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_5_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_5_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_5_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_5_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_5_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_5_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_5_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_5_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_5_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_5_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_5_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_5_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_5_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_5_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_5_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_5_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_5_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_5_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_5_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_5_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_5_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_5_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_5_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_5_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_5_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_5_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_5_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_5_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_5_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_5_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_5_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_5_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_5_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_5_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_5_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_5_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_5_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_5_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_5_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_5_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_5_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_5_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_5_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_5_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_5_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_5_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_5_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_5_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_5_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_5_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_5_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_5_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_5_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_5_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_5_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_5_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_5_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_5_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_5_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_5_word_15}),
+    .io_entry_addr        (_gens_5_io_entry_addr),
+    .io_entry_group       (_gens_5_io_entry_group),
+    .io_entry_item        (casez_tmp_17),
+    .io_entry_mark        (casez_tmp_18),
+    .io_mark_valid        (_gens_5_io_mark_valid),
+    .io_mark_bits_group   (_gens_5_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_5_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_5_io_mark_bits_item),
+    .io_keyAddr           (_gens_5_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_5_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_5_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_5_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_5_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_5_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_5_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_5_io_out_qr),
     .io_keyData_large
       (~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
        & _sorts_2_io_in_1_valid_T_8),
-    .io_keyData_excluded (_laneKeys_5_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_5_ready),
-    .io_pairs_valid      (io_pairs_5_valid),
-    .io_pairs_bits_i     (io_pairs_5_bits_i),
-    .io_pairs_bits_j     (io_pairs_5_bits_j),
-    .io_busy             (_gens_5_io_busy)
+    .io_keyData_excluded  (_laneKeys_5_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_5_ready),
+    .io_pairs_valid       (io_pairs_5_valid),
+    .io_pairs_bits_i      (io_pairs_5_bits_i),
+    .io_pairs_bits_j      (io_pairs_5_bits_j),
+    .io_busy              (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_6 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'h6),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
-    .io_largeTo          ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
-    .io_lookup_bucket    (_gens_6_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_6_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_6_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_6_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_6_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_6_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_6_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_6_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_6_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_6_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_6_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_6_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_6_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_6_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_6_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_6_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_6_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_6_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_6_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_6_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_6_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_6_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_6_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_6_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_6_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_6_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_6_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_6_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_6_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_6_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_6_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_6_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_6_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_6_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_6_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_6_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_6_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_6_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_6_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_6_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_6_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_6_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_6_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_6_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_6_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_6_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_6_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_6_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_6_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_6_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_6_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_6_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_6_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_6_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_6_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_6_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_6_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_6_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_6_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_6_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_6_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_6_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_6_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_6_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_6_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_6_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_6_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_6_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_6_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_6_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_6_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_6_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_6_word_15}),
-    .io_entry_addr       (_gens_6_io_entry_addr),
-    .io_entry_group      (_gens_6_io_entry_group),
-    .io_entry_item       (casez_tmp_19),
-    .io_entry_mark       (casez_tmp_20),
-    .io_mark_valid       (_gens_6_io_mark_valid),
-    .io_mark_bits_group  (_gens_6_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_6_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_6_io_mark_bits_item),
-    .io_keyAddr          (_gens_6_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_6_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_6_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_6_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_6_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_6_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_6_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_6_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_6 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'h6),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_6_io_need),
+    .io_claim_valid       (held_6),
+    .io_claim_bits_bucket (grant_6),
+    .io_claim_bits_single (grantSingle_6),
+    .io_take              (_gens_6_io_take),
+    .io_defer_valid       (_gens_6_io_defer_valid),
+    .io_defer_bits        (_gens_6_io_defer_bits),
+    .io_deferOk           (dLane[6]),
+    .io_unresolved        (_gens_6_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         ({1'h0, _gens_6_io_largeFrom_T[27:16]}),
+    .io_largeTo           ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
+    .io_lookup_bucket     (_gens_6_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_6_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_6_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_6_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_6_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_6_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_6_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_6_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_6_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_6_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_6_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_6_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_6_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_6_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_6_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_6_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_6_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_6_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_6_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_6_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_6_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_6_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_6_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_6_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_6_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_6_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_6_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_6_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_6_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_6_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_6_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_6_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_6_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_6_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_6_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_6_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_6_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_6_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_6_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_6_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_6_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_6_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_6_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_6_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_6_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_6_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_6_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_6_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_6_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_6_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_6_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_6_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_6_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_6_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_6_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_6_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_6_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_6_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_6_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_6_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_6_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_6_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_6_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_6_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_6_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_6_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_6_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_6_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_6_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_6_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_6_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_6_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_6_word_15}),
+    .io_entry_addr        (_gens_6_io_entry_addr),
+    .io_entry_group       (_gens_6_io_entry_group),
+    .io_entry_item        (casez_tmp_19),
+    .io_entry_mark        (casez_tmp_20),
+    .io_mark_valid        (_gens_6_io_mark_valid),
+    .io_mark_bits_group   (_gens_6_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_6_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_6_io_mark_bits_item),
+    .io_keyAddr           (_gens_6_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_6_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_6_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_6_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_6_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_6_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_6_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_6_io_out_qr),
     .io_keyData_large
       (~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
        & _sorts_3_io_in_0_valid_T_8),
-    .io_keyData_excluded (_laneKeys_6_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_6_ready),
-    .io_pairs_valid      (io_pairs_6_valid),
-    .io_pairs_bits_i     (io_pairs_6_bits_i),
-    .io_pairs_bits_j     (io_pairs_6_bits_j),
-    .io_busy             (_gens_6_io_busy)
+    .io_keyData_excluded  (_laneKeys_6_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_6_ready),
+    .io_pairs_valid       (io_pairs_6_valid),
+    .io_pairs_bits_i      (io_pairs_6_bits_i),
+    .io_pairs_bits_j      (io_pairs_6_bits_j),
+    .io_busy              (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_7 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'h7),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
-    .io_largeTo          ({1'h0, num[12:1]}),
-    .io_lookup_bucket    (_gens_7_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_7_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_7_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_7_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_7_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_7_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_7_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_7_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_7_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_7_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_7_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_7_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_7_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_7_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_7_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_7_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_7_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_7_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_7_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_7_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_7_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_7_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_7_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_7_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_7_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_7_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_7_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_7_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_7_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_7_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_7_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_7_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_7_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_7_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_7_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_7_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_7_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_7_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_7_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_7_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_7_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_7_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_7_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_7_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_7_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_7_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_7_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_7_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_7_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_7_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_7_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_7_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_7_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_7_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_7_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_7_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_7_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_7_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_7_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_7_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_7_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_7_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_7_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_7_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_7_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_7_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_7_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_7_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_7_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_7_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_7_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_7_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_7_word_15}),
-    .io_entry_addr       (_gens_7_io_entry_addr),
-    .io_entry_group      (_gens_7_io_entry_group),
-    .io_entry_item       (casez_tmp_21),
-    .io_entry_mark       (casez_tmp_22),
-    .io_mark_valid       (_gens_7_io_mark_valid),
-    .io_mark_bits_group  (_gens_7_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_7_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_7_io_mark_bits_item),
-    .io_keyAddr          (_gens_7_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_7_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_7_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_7_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_7_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_7_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_7_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_7_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_7 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'h7),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_7_io_need),
+    .io_claim_valid       (held_7),
+    .io_claim_bits_bucket (grant_7),
+    .io_claim_bits_single (grantSingle_7),
+    .io_take              (_gens_7_io_take),
+    .io_defer_valid       (_gens_7_io_defer_valid),
+    .io_defer_bits        (_gens_7_io_defer_bits),
+    .io_deferOk           (dLane[7]),
+    .io_unresolved        (_gens_7_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         ({1'h0, _gens_7_io_largeFrom_T[27:16]}),
+    .io_largeTo           ({1'h0, num[12:1]}),
+    .io_lookup_bucket     (_gens_7_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_7_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_7_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_7_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_7_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_7_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_7_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_7_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_7_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_7_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_7_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_7_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_7_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_7_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_7_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_7_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_7_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_7_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_7_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_7_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_7_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_7_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_7_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_7_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_7_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_7_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_7_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_7_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_7_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_7_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_7_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_7_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_7_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_7_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_7_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_7_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_7_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_7_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_7_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_7_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_7_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_7_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_7_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_7_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_7_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_7_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_7_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_7_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_7_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_7_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_7_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_7_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_7_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_7_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_7_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_7_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_7_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_7_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_7_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_7_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_7_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_7_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_7_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_7_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_7_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_7_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_7_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_7_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_7_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_7_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_7_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_7_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_7_word_15}),
+    .io_entry_addr        (_gens_7_io_entry_addr),
+    .io_entry_group       (_gens_7_io_entry_group),
+    .io_entry_item        (casez_tmp_21),
+    .io_entry_mark        (casez_tmp_22),
+    .io_mark_valid        (_gens_7_io_mark_valid),
+    .io_mark_bits_group   (_gens_7_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_7_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_7_io_mark_bits_item),
+    .io_keyAddr           (_gens_7_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_7_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_7_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_7_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_7_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_7_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_7_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_7_io_out_qr),
     .io_keyData_large
       (~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
        & _sorts_3_io_in_1_valid_T_8),
-    .io_keyData_excluded (_laneKeys_7_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_7_ready),
-    .io_pairs_valid      (io_pairs_7_valid),
-    .io_pairs_bits_i     (io_pairs_7_bits_i),
-    .io_pairs_bits_j     (io_pairs_7_bits_j),
-    .io_busy             (_gens_7_io_busy)
+    .io_keyData_excluded  (_laneKeys_7_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_7_ready),
+    .io_pairs_valid       (io_pairs_7_valid),
+    .io_pairs_bits_i      (io_pairs_7_bits_i),
+    .io_pairs_bits_j      (io_pairs_7_bits_j),
+    .io_busy              (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_8 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'h8),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        ({1'h0, num[12:1]}),
-    .io_largeTo          (_gens_9_io_largeFrom_T[28:16]),
-    .io_lookup_bucket    (_gens_8_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_8_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_8_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_8_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_8_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_8_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_8_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_8_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_8_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_8_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_8_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_8_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_8_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_8_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_8_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_8_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_8_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_8_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_8_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_8_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_8_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_8_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_8_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_8_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_8_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_8_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_8_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_8_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_8_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_8_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_8_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_8_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_8_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_8_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_8_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_8_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_8_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_8_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_8_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_8_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_8_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_8_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_8_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_8_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_8_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_8_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_8_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_8_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_8_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_8_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_8_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_8_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_8_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_8_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_8_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_8_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_8_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_8_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_8_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_8_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_8_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_8_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_8_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_8_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_8_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_8_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_8_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_8_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_8_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_8_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_8_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_8_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_8_word_15}),
-    .io_entry_addr       (_gens_8_io_entry_addr),
-    .io_entry_group      (_gens_8_io_entry_group),
-    .io_entry_item       (casez_tmp_23),
-    .io_entry_mark       (casez_tmp_24),
-    .io_mark_valid       (_gens_8_io_mark_valid),
-    .io_mark_bits_group  (_gens_8_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_8_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_8_io_mark_bits_item),
-    .io_keyAddr          (_gens_8_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_8_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_8_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_8_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_8_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_8_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_8_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_8_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_8 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'h8),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_8_io_need),
+    .io_claim_valid       (held_8),
+    .io_claim_bits_bucket (grant_8),
+    .io_claim_bits_single (grantSingle_8),
+    .io_take              (_gens_8_io_take),
+    .io_defer_valid       (_gens_8_io_defer_valid),
+    .io_defer_bits        (_gens_8_io_defer_bits),
+    .io_deferOk           (dLane[8]),
+    .io_unresolved        (_gens_8_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         ({1'h0, num[12:1]}),
+    .io_largeTo           (_gens_9_io_largeFrom_T[28:16]),
+    .io_lookup_bucket     (_gens_8_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_8_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_8_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_8_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_8_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_8_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_8_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_8_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_8_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_8_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_8_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_8_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_8_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_8_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_8_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_8_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_8_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_8_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_8_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_8_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_8_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_8_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_8_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_8_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_8_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_8_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_8_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_8_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_8_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_8_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_8_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_8_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_8_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_8_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_8_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_8_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_8_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_8_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_8_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_8_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_8_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_8_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_8_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_8_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_8_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_8_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_8_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_8_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_8_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_8_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_8_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_8_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_8_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_8_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_8_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_8_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_8_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_8_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_8_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_8_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_8_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_8_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_8_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_8_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_8_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_8_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_8_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_8_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_8_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_8_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_8_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_8_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_8_word_15}),
+    .io_entry_addr        (_gens_8_io_entry_addr),
+    .io_entry_group       (_gens_8_io_entry_group),
+    .io_entry_item        (casez_tmp_23),
+    .io_entry_mark        (casez_tmp_24),
+    .io_mark_valid        (_gens_8_io_mark_valid),
+    .io_mark_bits_group   (_gens_8_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_8_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_8_io_mark_bits_item),
+    .io_keyAddr           (_gens_8_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_8_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_8_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_8_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_8_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_8_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_8_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_8_io_out_qr),
     .io_keyData_large
       (~_laneKeys_8_io_out_nonFinite & ~_laneKeys_8_io_out_needNone
        & $signed(_laneKeys_8_io_out_need) > $signed(_cellExp_io_level)),
-    .io_keyData_excluded (_laneKeys_8_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_8_ready),
-    .io_pairs_valid      (io_pairs_8_valid),
-    .io_pairs_bits_i     (io_pairs_8_bits_i),
-    .io_pairs_bits_j     (io_pairs_8_bits_j),
-    .io_busy             (_gens_8_io_busy)
+    .io_keyData_excluded  (_laneKeys_8_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_8_ready),
+    .io_pairs_valid       (io_pairs_8_valid),
+    .io_pairs_bits_i      (io_pairs_8_bits_i),
+    .io_pairs_bits_j      (io_pairs_8_bits_j),
+    .io_busy              (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_9 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'h9),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (_gens_9_io_largeFrom_T[28:16]),
-    .io_largeTo          (_gens_10_io_largeFrom_T[28:16]),
-    .io_lookup_bucket    (_gens_9_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_9_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_9_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_9_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_9_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_9_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_9_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_9_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_9_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_9_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_9_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_9_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_9_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_9_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_9_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_9_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_9_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_9_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_9_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_9_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_9_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_9_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_9_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_9_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_9_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_9_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_9_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_9_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_9_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_9_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_9_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_9_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_9_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_9_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_9_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_9_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_9_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_9_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_9_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_9_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_9_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_9_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_9_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_9_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_9_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_9_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_9_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_9_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_9_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_9_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_9_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_9_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_9_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_9_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_9_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_9_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_9_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_9_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_9_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_9_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_9_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_9_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_9_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_9_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_9_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_9_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_9_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_9_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_9_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_9_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_9_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_9_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_9_word_15}),
-    .io_entry_addr       (_gens_9_io_entry_addr),
-    .io_entry_group      (_gens_9_io_entry_group),
-    .io_entry_item       (casez_tmp_25),
-    .io_entry_mark       (casez_tmp_26),
-    .io_mark_valid       (_gens_9_io_mark_valid),
-    .io_mark_bits_group  (_gens_9_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_9_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_9_io_mark_bits_item),
-    .io_keyAddr          (_gens_9_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_9_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_9_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_9_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_9_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_9_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_9_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_9_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_9 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'h9),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_9_io_need),
+    .io_claim_valid       (held_9),
+    .io_claim_bits_bucket (grant_9),
+    .io_claim_bits_single (grantSingle_9),
+    .io_take              (_gens_9_io_take),
+    .io_defer_valid       (_gens_9_io_defer_valid),
+    .io_defer_bits        (_gens_9_io_defer_bits),
+    .io_deferOk           (dLane[9]),
+    .io_unresolved        (_gens_9_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (_gens_9_io_largeFrom_T[28:16]),
+    .io_largeTo           (_gens_10_io_largeFrom_T[28:16]),
+    .io_lookup_bucket     (_gens_9_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_9_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_9_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_9_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_9_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_9_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_9_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_9_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_9_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_9_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_9_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_9_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_9_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_9_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_9_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_9_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_9_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_9_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_9_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_9_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_9_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_9_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_9_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_9_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_9_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_9_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_9_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_9_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_9_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_9_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_9_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_9_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_9_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_9_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_9_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_9_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_9_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_9_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_9_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_9_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_9_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_9_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_9_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_9_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_9_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_9_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_9_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_9_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_9_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_9_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_9_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_9_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_9_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_9_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_9_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_9_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_9_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_9_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_9_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_9_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_9_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_9_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_9_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_9_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_9_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_9_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_9_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_9_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_9_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_9_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_9_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_9_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_9_word_15}),
+    .io_entry_addr        (_gens_9_io_entry_addr),
+    .io_entry_group       (_gens_9_io_entry_group),
+    .io_entry_item        (casez_tmp_25),
+    .io_entry_mark        (casez_tmp_26),
+    .io_mark_valid        (_gens_9_io_mark_valid),
+    .io_mark_bits_group   (_gens_9_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_9_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_9_io_mark_bits_item),
+    .io_keyAddr           (_gens_9_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_9_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_9_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_9_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_9_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_9_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_9_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_9_io_out_qr),
     .io_keyData_large
       (~_laneKeys_9_io_out_nonFinite & ~_laneKeys_9_io_out_needNone
        & $signed(_laneKeys_9_io_out_need) > $signed(_cellExp_io_level)),
-    .io_keyData_excluded (_laneKeys_9_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_9_ready),
-    .io_pairs_valid      (io_pairs_9_valid),
-    .io_pairs_bits_i     (io_pairs_9_bits_i),
-    .io_pairs_bits_j     (io_pairs_9_bits_j),
-    .io_busy             (_gens_9_io_busy)
+    .io_keyData_excluded  (_laneKeys_9_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_9_ready),
+    .io_pairs_valid       (io_pairs_9_valid),
+    .io_pairs_bits_i      (io_pairs_9_bits_i),
+    .io_pairs_bits_j      (io_pairs_9_bits_j),
+    .io_busy              (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_10 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'hA),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (_gens_10_io_largeFrom_T[28:16]),
-    .io_largeTo          (_gens_11_io_largeFrom_T[28:16]),
-    .io_lookup_bucket    (_gens_10_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_10_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_10_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_10_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_10_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_10_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_10_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_10_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_10_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_10_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_10_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_10_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_10_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_10_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_10_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_10_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_10_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_10_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_10_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_10_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_10_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_10_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_10_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_10_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_10_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_10_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_10_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_10_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_10_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_10_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_10_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_10_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_10_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_10_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_10_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_10_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_10_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_10_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_10_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_10_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_10_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_10_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_10_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_10_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_10_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_10_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_10_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_10_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_10_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_10_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_10_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_10_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_10_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_10_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_10_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_10_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_10_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_10_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_10_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_10_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_10_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_10_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_10_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_10_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_10_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_10_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_10_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_10_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_10_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_10_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_10_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_10_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_10_word_15}),
-    .io_entry_addr       (_gens_10_io_entry_addr),
-    .io_entry_group      (_gens_10_io_entry_group),
-    .io_entry_item       (casez_tmp_27),
-    .io_entry_mark       (casez_tmp_28),
-    .io_mark_valid       (_gens_10_io_mark_valid),
-    .io_mark_bits_group  (_gens_10_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_10_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_10_io_mark_bits_item),
-    .io_keyAddr          (_gens_10_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_10_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_10_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_10_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_10_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_10_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_10_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_10_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_10 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'hA),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_10_io_need),
+    .io_claim_valid       (held_10),
+    .io_claim_bits_bucket (grant_10),
+    .io_claim_bits_single (grantSingle_10),
+    .io_take              (_gens_10_io_take),
+    .io_defer_valid       (_gens_10_io_defer_valid),
+    .io_defer_bits        (_gens_10_io_defer_bits),
+    .io_deferOk           (dLane[10]),
+    .io_unresolved        (_gens_10_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (_gens_10_io_largeFrom_T[28:16]),
+    .io_largeTo           (_gens_11_io_largeFrom_T[28:16]),
+    .io_lookup_bucket     (_gens_10_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_10_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_10_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_10_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_10_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_10_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_10_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_10_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_10_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_10_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_10_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_10_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_10_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_10_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_10_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_10_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_10_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_10_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_10_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_10_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_10_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_10_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_10_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_10_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_10_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_10_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_10_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_10_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_10_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_10_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_10_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_10_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_10_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_10_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_10_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_10_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_10_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_10_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_10_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_10_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_10_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_10_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_10_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_10_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_10_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_10_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_10_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_10_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_10_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_10_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_10_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_10_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_10_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_10_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_10_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_10_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_10_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_10_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_10_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_10_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_10_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_10_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_10_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_10_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_10_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_10_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_10_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_10_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_10_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_10_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_10_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_10_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_10_word_15}),
+    .io_entry_addr        (_gens_10_io_entry_addr),
+    .io_entry_group       (_gens_10_io_entry_group),
+    .io_entry_item        (casez_tmp_27),
+    .io_entry_mark        (casez_tmp_28),
+    .io_mark_valid        (_gens_10_io_mark_valid),
+    .io_mark_bits_group   (_gens_10_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_10_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_10_io_mark_bits_item),
+    .io_keyAddr           (_gens_10_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_10_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_10_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_10_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_10_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_10_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_10_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_10_io_out_qr),
     .io_keyData_large
       (~_laneKeys_10_io_out_nonFinite & ~_laneKeys_10_io_out_needNone
        & $signed(_laneKeys_10_io_out_need) > $signed(_cellExp_io_level)),
-    .io_keyData_excluded (_laneKeys_10_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_10_ready),
-    .io_pairs_valid      (io_pairs_10_valid),
-    .io_pairs_bits_i     (io_pairs_10_bits_i),
-    .io_pairs_bits_j     (io_pairs_10_bits_j),
-    .io_busy             (_gens_10_io_busy)
+    .io_keyData_excluded  (_laneKeys_10_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_10_ready),
+    .io_pairs_valid       (io_pairs_10_valid),
+    .io_pairs_bits_i      (io_pairs_10_bits_i),
+    .io_pairs_bits_j      (io_pairs_10_bits_j),
+    .io_busy              (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_11 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'hB),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (_gens_11_io_largeFrom_T[28:16]),
-    .io_largeTo          (_gens_12_io_largeFrom_T[28:16]),
-    .io_lookup_bucket    (_gens_11_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_11_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_11_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_11_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_11_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_11_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_11_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_11_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_11_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_11_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_11_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_11_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_11_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_11_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_11_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_11_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_11_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_11_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_11_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_11_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_11_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_11_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_11_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_11_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_11_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_11_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_11_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_11_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_11_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_11_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_11_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_11_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_11_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_11_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_11_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_11_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_11_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_11_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_11_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_11_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_11_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_11_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_11_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_11_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_11_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_11_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_11_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_11_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_11_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_11_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_11_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_11_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_11_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_11_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_11_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_11_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_11_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_11_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_11_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_11_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_11_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_11_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_11_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_11_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_11_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_11_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_11_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_11_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_11_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_11_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_11_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_11_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_11_word_15}),
-    .io_entry_addr       (_gens_11_io_entry_addr),
-    .io_entry_group      (_gens_11_io_entry_group),
-    .io_entry_item       (casez_tmp_29),
-    .io_entry_mark       (casez_tmp_30),
-    .io_mark_valid       (_gens_11_io_mark_valid),
-    .io_mark_bits_group  (_gens_11_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_11_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_11_io_mark_bits_item),
-    .io_keyAddr          (_gens_11_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_11_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_11_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_11_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_11_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_11_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_11_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_11_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_11 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'hB),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_11_io_need),
+    .io_claim_valid       (held_11),
+    .io_claim_bits_bucket (grant_11),
+    .io_claim_bits_single (grantSingle_11),
+    .io_take              (_gens_11_io_take),
+    .io_defer_valid       (_gens_11_io_defer_valid),
+    .io_defer_bits        (_gens_11_io_defer_bits),
+    .io_deferOk           (dLane[11]),
+    .io_unresolved        (_gens_11_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (_gens_11_io_largeFrom_T[28:16]),
+    .io_largeTo           (_gens_12_io_largeFrom_T[28:16]),
+    .io_lookup_bucket     (_gens_11_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_11_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_11_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_11_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_11_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_11_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_11_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_11_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_11_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_11_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_11_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_11_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_11_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_11_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_11_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_11_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_11_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_11_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_11_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_11_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_11_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_11_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_11_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_11_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_11_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_11_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_11_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_11_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_11_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_11_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_11_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_11_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_11_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_11_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_11_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_11_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_11_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_11_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_11_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_11_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_11_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_11_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_11_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_11_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_11_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_11_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_11_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_11_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_11_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_11_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_11_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_11_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_11_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_11_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_11_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_11_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_11_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_11_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_11_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_11_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_11_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_11_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_11_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_11_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_11_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_11_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_11_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_11_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_11_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_11_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_11_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_11_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_11_word_15}),
+    .io_entry_addr        (_gens_11_io_entry_addr),
+    .io_entry_group       (_gens_11_io_entry_group),
+    .io_entry_item        (casez_tmp_29),
+    .io_entry_mark        (casez_tmp_30),
+    .io_mark_valid        (_gens_11_io_mark_valid),
+    .io_mark_bits_group   (_gens_11_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_11_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_11_io_mark_bits_item),
+    .io_keyAddr           (_gens_11_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_11_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_11_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_11_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_11_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_11_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_11_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_11_io_out_qr),
     .io_keyData_large
       (~_laneKeys_11_io_out_nonFinite & ~_laneKeys_11_io_out_needNone
        & $signed(_laneKeys_11_io_out_need) > $signed(_cellExp_io_level)),
-    .io_keyData_excluded (_laneKeys_11_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_11_ready),
-    .io_pairs_valid      (io_pairs_11_valid),
-    .io_pairs_bits_i     (io_pairs_11_bits_i),
-    .io_pairs_bits_j     (io_pairs_11_bits_j),
-    .io_busy             (_gens_11_io_busy)
+    .io_keyData_excluded  (_laneKeys_11_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_11_ready),
+    .io_pairs_valid       (io_pairs_11_valid),
+    .io_pairs_bits_i      (io_pairs_11_bits_i),
+    .io_pairs_bits_j      (io_pairs_11_bits_j),
+    .io_busy              (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_12 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'hC),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (_gens_12_io_largeFrom_T[28:16]),
-    .io_largeTo          (_gens_13_io_largeFrom_T[28:16]),
-    .io_lookup_bucket    (_gens_12_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_12_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_12_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_12_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_12_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_12_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_12_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_12_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_12_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_12_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_12_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_12_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_12_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_12_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_12_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_12_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_12_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_12_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_12_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_12_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_12_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_12_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_12_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_12_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_12_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_12_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_12_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_12_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_12_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_12_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_12_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_12_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_12_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_12_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_12_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_12_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_12_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_12_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_12_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_12_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_12_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_12_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_12_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_12_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_12_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_12_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_12_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_12_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_12_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_12_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_12_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_12_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_12_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_12_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_12_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_12_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_12_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_12_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_12_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_12_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_12_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_12_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_12_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_12_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_12_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_12_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_12_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_12_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_12_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_12_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_12_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_12_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_12_word_15}),
-    .io_entry_addr       (_gens_12_io_entry_addr),
-    .io_entry_group      (_gens_12_io_entry_group),
-    .io_entry_item       (casez_tmp_31),
-    .io_entry_mark       (casez_tmp_32),
-    .io_mark_valid       (_gens_12_io_mark_valid),
-    .io_mark_bits_group  (_gens_12_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_12_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_12_io_mark_bits_item),
-    .io_keyAddr          (_gens_12_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_12_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_12_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_12_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_12_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_12_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_12_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_12_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_12 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'hC),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_12_io_need),
+    .io_claim_valid       (held_12),
+    .io_claim_bits_bucket (grant_12),
+    .io_claim_bits_single (grantSingle_12),
+    .io_take              (_gens_12_io_take),
+    .io_defer_valid       (_gens_12_io_defer_valid),
+    .io_defer_bits        (_gens_12_io_defer_bits),
+    .io_deferOk           (dLane[12]),
+    .io_unresolved        (_gens_12_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (_gens_12_io_largeFrom_T[28:16]),
+    .io_largeTo           (_gens_13_io_largeFrom_T[28:16]),
+    .io_lookup_bucket     (_gens_12_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_12_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_12_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_12_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_12_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_12_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_12_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_12_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_12_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_12_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_12_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_12_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_12_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_12_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_12_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_12_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_12_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_12_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_12_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_12_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_12_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_12_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_12_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_12_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_12_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_12_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_12_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_12_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_12_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_12_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_12_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_12_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_12_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_12_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_12_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_12_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_12_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_12_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_12_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_12_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_12_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_12_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_12_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_12_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_12_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_12_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_12_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_12_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_12_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_12_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_12_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_12_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_12_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_12_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_12_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_12_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_12_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_12_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_12_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_12_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_12_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_12_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_12_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_12_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_12_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_12_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_12_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_12_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_12_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_12_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_12_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_12_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_12_word_15}),
+    .io_entry_addr        (_gens_12_io_entry_addr),
+    .io_entry_group       (_gens_12_io_entry_group),
+    .io_entry_item        (casez_tmp_31),
+    .io_entry_mark        (casez_tmp_32),
+    .io_mark_valid        (_gens_12_io_mark_valid),
+    .io_mark_bits_group   (_gens_12_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_12_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_12_io_mark_bits_item),
+    .io_keyAddr           (_gens_12_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_12_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_12_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_12_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_12_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_12_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_12_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_12_io_out_qr),
     .io_keyData_large
       (~_laneKeys_12_io_out_nonFinite & ~_laneKeys_12_io_out_needNone
        & $signed(_laneKeys_12_io_out_need) > $signed(_cellExp_io_level)),
-    .io_keyData_excluded (_laneKeys_12_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_12_ready),
-    .io_pairs_valid      (io_pairs_12_valid),
-    .io_pairs_bits_i     (io_pairs_12_bits_i),
-    .io_pairs_bits_j     (io_pairs_12_bits_j),
-    .io_busy             (_gens_12_io_busy)
+    .io_keyData_excluded  (_laneKeys_12_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_12_ready),
+    .io_pairs_valid       (io_pairs_12_valid),
+    .io_pairs_bits_i      (io_pairs_12_bits_i),
+    .io_pairs_bits_j      (io_pairs_12_bits_j),
+    .io_busy              (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_13 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'hD),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (_gens_13_io_largeFrom_T[28:16]),
-    .io_largeTo          (_gens_14_io_largeFrom_T[28:16]),
-    .io_lookup_bucket    (_gens_13_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_13_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_13_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_13_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_13_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_13_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_13_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_13_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_13_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_13_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_13_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_13_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_13_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_13_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_13_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_13_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_13_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_13_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_13_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_13_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_13_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_13_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_13_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_13_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_13_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_13_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_13_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_13_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_13_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_13_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_13_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_13_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_13_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_13_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_13_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_13_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_13_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_13_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_13_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_13_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_13_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_13_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_13_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_13_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_13_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_13_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_13_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_13_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_13_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_13_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_13_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_13_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_13_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_13_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_13_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_13_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_13_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_13_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_13_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_13_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_13_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_13_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_13_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_13_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_13_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_13_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_13_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_13_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_13_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_13_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_13_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_13_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_13_word_15}),
-    .io_entry_addr       (_gens_13_io_entry_addr),
-    .io_entry_group      (_gens_13_io_entry_group),
-    .io_entry_item       (casez_tmp_33),
-    .io_entry_mark       (casez_tmp_34),
-    .io_mark_valid       (_gens_13_io_mark_valid),
-    .io_mark_bits_group  (_gens_13_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_13_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_13_io_mark_bits_item),
-    .io_keyAddr          (_gens_13_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_13_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_13_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_13_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_13_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_13_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_13_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_13_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_13 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'hD),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_13_io_need),
+    .io_claim_valid       (held_13),
+    .io_claim_bits_bucket (grant_13),
+    .io_claim_bits_single (grantSingle_13),
+    .io_take              (_gens_13_io_take),
+    .io_defer_valid       (_gens_13_io_defer_valid),
+    .io_defer_bits        (_gens_13_io_defer_bits),
+    .io_deferOk           (dLane[13]),
+    .io_unresolved        (_gens_13_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (_gens_13_io_largeFrom_T[28:16]),
+    .io_largeTo           (_gens_14_io_largeFrom_T[28:16]),
+    .io_lookup_bucket     (_gens_13_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_13_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_13_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_13_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_13_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_13_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_13_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_13_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_13_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_13_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_13_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_13_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_13_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_13_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_13_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_13_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_13_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_13_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_13_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_13_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_13_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_13_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_13_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_13_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_13_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_13_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_13_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_13_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_13_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_13_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_13_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_13_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_13_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_13_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_13_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_13_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_13_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_13_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_13_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_13_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_13_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_13_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_13_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_13_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_13_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_13_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_13_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_13_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_13_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_13_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_13_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_13_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_13_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_13_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_13_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_13_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_13_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_13_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_13_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_13_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_13_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_13_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_13_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_13_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_13_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_13_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_13_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_13_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_13_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_13_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_13_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_13_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_13_word_15}),
+    .io_entry_addr        (_gens_13_io_entry_addr),
+    .io_entry_group       (_gens_13_io_entry_group),
+    .io_entry_item        (casez_tmp_33),
+    .io_entry_mark        (casez_tmp_34),
+    .io_mark_valid        (_gens_13_io_mark_valid),
+    .io_mark_bits_group   (_gens_13_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_13_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_13_io_mark_bits_item),
+    .io_keyAddr           (_gens_13_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_13_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_13_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_13_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_13_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_13_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_13_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_13_io_out_qr),
     .io_keyData_large
       (~_laneKeys_13_io_out_nonFinite & ~_laneKeys_13_io_out_needNone
        & $signed(_laneKeys_13_io_out_need) > $signed(_cellExp_io_level)),
-    .io_keyData_excluded (_laneKeys_13_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_13_ready),
-    .io_pairs_valid      (io_pairs_13_valid),
-    .io_pairs_bits_i     (io_pairs_13_bits_i),
-    .io_pairs_bits_j     (io_pairs_13_bits_j),
-    .io_busy             (_gens_13_io_busy)
+    .io_keyData_excluded  (_laneKeys_13_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_13_ready),
+    .io_pairs_valid       (io_pairs_13_valid),
+    .io_pairs_bits_i      (io_pairs_13_bits_i),
+    .io_pairs_bits_j      (io_pairs_13_bits_j),
+    .io_busy              (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_14 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'hE),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (_gens_14_io_largeFrom_T[28:16]),
-    .io_largeTo          (_gens_15_io_largeFrom_T[28:16]),
-    .io_lookup_bucket    (_gens_14_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_14_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_14_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_14_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_14_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_14_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_14_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_14_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_14_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_14_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_14_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_14_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_14_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_14_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_14_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_14_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_14_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_14_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_14_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_14_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_14_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_14_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_14_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_14_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_14_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_14_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_14_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_14_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_14_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_14_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_14_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_14_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_14_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_14_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_14_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_14_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_14_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_14_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_14_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_14_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_14_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_14_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_14_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_14_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_14_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_14_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_14_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_14_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_14_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_14_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_14_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_14_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_14_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_14_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_14_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_14_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_14_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_14_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_14_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_14_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_14_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_14_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_14_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_14_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_14_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_14_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_14_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_14_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_14_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_14_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_14_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_14_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_14_word_15}),
-    .io_entry_addr       (_gens_14_io_entry_addr),
-    .io_entry_group      (_gens_14_io_entry_group),
-    .io_entry_item       (casez_tmp_35),
-    .io_entry_mark       (casez_tmp_36),
-    .io_mark_valid       (_gens_14_io_mark_valid),
-    .io_mark_bits_group  (_gens_14_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_14_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_14_io_mark_bits_item),
-    .io_keyAddr          (_gens_14_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_14_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_14_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_14_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_14_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_14_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_14_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_14_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_14 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'hE),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_14_io_need),
+    .io_claim_valid       (held_14),
+    .io_claim_bits_bucket (grant_14),
+    .io_claim_bits_single (grantSingle_14),
+    .io_take              (_gens_14_io_take),
+    .io_defer_valid       (_gens_14_io_defer_valid),
+    .io_defer_bits        (_gens_14_io_defer_bits),
+    .io_deferOk           (dLane[14]),
+    .io_unresolved        (_gens_14_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (_gens_14_io_largeFrom_T[28:16]),
+    .io_largeTo           (_gens_15_io_largeFrom_T[28:16]),
+    .io_lookup_bucket     (_gens_14_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_14_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_14_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_14_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_14_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_14_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_14_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_14_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_14_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_14_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_14_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_14_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_14_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_14_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_14_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_14_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_14_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_14_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_14_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_14_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_14_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_14_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_14_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_14_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_14_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_14_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_14_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_14_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_14_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_14_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_14_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_14_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_14_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_14_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_14_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_14_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_14_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_14_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_14_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_14_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_14_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_14_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_14_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_14_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_14_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_14_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_14_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_14_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_14_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_14_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_14_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_14_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_14_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_14_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_14_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_14_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_14_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_14_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_14_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_14_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_14_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_14_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_14_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_14_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_14_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_14_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_14_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_14_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_14_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_14_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_14_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_14_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_14_word_15}),
+    .io_entry_addr        (_gens_14_io_entry_addr),
+    .io_entry_group       (_gens_14_io_entry_group),
+    .io_entry_item        (casez_tmp_35),
+    .io_entry_mark        (casez_tmp_36),
+    .io_mark_valid        (_gens_14_io_mark_valid),
+    .io_mark_bits_group   (_gens_14_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_14_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_14_io_mark_bits_item),
+    .io_keyAddr           (_gens_14_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_14_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_14_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_14_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_14_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_14_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_14_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_14_io_out_qr),
     .io_keyData_large
       (~_laneKeys_14_io_out_nonFinite & ~_laneKeys_14_io_out_needNone
        & $signed(_laneKeys_14_io_out_need) > $signed(_cellExp_io_level)),
-    .io_keyData_excluded (_laneKeys_14_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_14_ready),
-    .io_pairs_valid      (io_pairs_14_valid),
-    .io_pairs_bits_i     (io_pairs_14_bits_i),
-    .io_pairs_bits_j     (io_pairs_14_bits_j),
-    .io_busy             (_gens_14_io_busy)
+    .io_keyData_excluded  (_laneKeys_14_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_14_ready),
+    .io_pairs_valid       (io_pairs_14_valid),
+    .io_pairs_bits_i      (io_pairs_14_bits_i),
+    .io_pairs_bits_j      (io_pairs_14_bits_j),
+    .io_busy              (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x4_world gens_15 (
-    .clock               (clock),
-    .reset               (reset),
-    .io_start            ((&state) & ~sent),
-    .io_lane             (4'hF),
-    .io_usedLog2         (usedLog2),
-    .io_slack            (slack),
-    .io_larges_0_index   (larges_0_index),
-    .io_larges_0_q_0     (larges_0_q_0),
-    .io_larges_0_q_1     (larges_0_q_1),
-    .io_larges_0_q_2     (larges_0_q_2),
-    .io_larges_0_qr      (larges_0_qr),
-    .io_larges_1_index   (larges_1_index),
-    .io_larges_1_q_0     (larges_1_q_0),
-    .io_larges_1_q_1     (larges_1_q_1),
-    .io_larges_1_q_2     (larges_1_q_2),
-    .io_larges_1_qr      (larges_1_qr),
-    .io_larges_2_index   (larges_2_index),
-    .io_larges_2_q_0     (larges_2_q_0),
-    .io_larges_2_q_1     (larges_2_q_1),
-    .io_larges_2_q_2     (larges_2_q_2),
-    .io_larges_2_qr      (larges_2_qr),
-    .io_larges_3_index   (larges_3_index),
-    .io_larges_3_q_0     (larges_3_q_0),
-    .io_larges_3_q_1     (larges_3_q_1),
-    .io_larges_3_q_2     (larges_3_q_2),
-    .io_larges_3_qr      (larges_3_qr),
-    .io_larges_4_index   (larges_4_index),
-    .io_larges_4_q_0     (larges_4_q_0),
-    .io_larges_4_q_1     (larges_4_q_1),
-    .io_larges_4_q_2     (larges_4_q_2),
-    .io_larges_4_qr      (larges_4_qr),
-    .io_larges_5_index   (larges_5_index),
-    .io_larges_5_q_0     (larges_5_q_0),
-    .io_larges_5_q_1     (larges_5_q_1),
-    .io_larges_5_q_2     (larges_5_q_2),
-    .io_larges_5_qr      (larges_5_qr),
-    .io_larges_6_index   (larges_6_index),
-    .io_larges_6_q_0     (larges_6_q_0),
-    .io_larges_6_q_1     (larges_6_q_1),
-    .io_larges_6_q_2     (larges_6_q_2),
-    .io_larges_6_qr      (larges_6_qr),
-    .io_larges_7_index   (larges_7_index),
-    .io_larges_7_q_0     (larges_7_q_0),
-    .io_larges_7_q_1     (larges_7_q_1),
-    .io_larges_7_q_2     (larges_7_q_2),
-    .io_larges_7_qr      (larges_7_qr),
-    .io_larges_8_index   (larges_8_index),
-    .io_larges_8_q_0     (larges_8_q_0),
-    .io_larges_8_q_1     (larges_8_q_1),
-    .io_larges_8_q_2     (larges_8_q_2),
-    .io_larges_8_qr      (larges_8_qr),
-    .io_larges_9_index   (larges_9_index),
-    .io_larges_9_q_0     (larges_9_q_0),
-    .io_larges_9_q_1     (larges_9_q_1),
-    .io_larges_9_q_2     (larges_9_q_2),
-    .io_larges_9_qr      (larges_9_qr),
-    .io_larges_10_index  (larges_10_index),
-    .io_larges_10_q_0    (larges_10_q_0),
-    .io_larges_10_q_1    (larges_10_q_1),
-    .io_larges_10_q_2    (larges_10_q_2),
-    .io_larges_10_qr     (larges_10_qr),
-    .io_larges_11_index  (larges_11_index),
-    .io_larges_11_q_0    (larges_11_q_0),
-    .io_larges_11_q_1    (larges_11_q_1),
-    .io_larges_11_q_2    (larges_11_q_2),
-    .io_larges_11_qr     (larges_11_qr),
-    .io_larges_12_index  (larges_12_index),
-    .io_larges_12_q_0    (larges_12_q_0),
-    .io_larges_12_q_1    (larges_12_q_1),
-    .io_larges_12_q_2    (larges_12_q_2),
-    .io_larges_12_qr     (larges_12_qr),
-    .io_larges_13_index  (larges_13_index),
-    .io_larges_13_q_0    (larges_13_q_0),
-    .io_larges_13_q_1    (larges_13_q_1),
-    .io_larges_13_q_2    (larges_13_q_2),
-    .io_larges_13_qr     (larges_13_qr),
-    .io_larges_14_index  (larges_14_index),
-    .io_larges_14_q_0    (larges_14_q_0),
-    .io_larges_14_q_1    (larges_14_q_1),
-    .io_larges_14_q_2    (larges_14_q_2),
-    .io_larges_14_qr     (larges_14_qr),
-    .io_larges_15_index  (larges_15_index),
-    .io_larges_15_q_0    (larges_15_q_0),
-    .io_larges_15_q_1    (larges_15_q_1),
-    .io_larges_15_q_2    (larges_15_q_2),
-    .io_larges_15_qr     (larges_15_qr),
-    .io_largeCount       (largeCount),
-    .io_largeFrom        (_gens_15_io_largeFrom_T[28:16]),
-    .io_largeTo          (num),
-    .io_lookup_bucket    (_gens_15_io_lookup_bucket),
-    .io_lookup_begin_0   ({2'h0, _sorts_0_io_lookup_15_begin}),
-    .io_lookup_begin_1   ({2'h0, _sorts_1_io_lookup_15_begin}),
-    .io_lookup_begin_2   ({2'h0, _sorts_2_io_lookup_15_begin}),
-    .io_lookup_begin_3   ({2'h0, _sorts_3_io_lookup_15_begin}),
-    .io_lookup_end_0     ({2'h0, _sorts_0_io_lookup_15_end}),
-    .io_lookup_end_1     ({2'h0, _sorts_1_io_lookup_15_end}),
-    .io_lookup_end_2     ({2'h0, _sorts_2_io_lookup_15_end}),
-    .io_lookup_end_3     ({2'h0, _sorts_3_io_lookup_15_end}),
-    .io_lookup_word_0_0  ({2'h0, _sorts_0_io_lookup_15_word_0}),
-    .io_lookup_word_0_1  ({2'h0, _sorts_0_io_lookup_15_word_1}),
-    .io_lookup_word_0_2  ({2'h0, _sorts_0_io_lookup_15_word_2}),
-    .io_lookup_word_0_3  ({2'h0, _sorts_0_io_lookup_15_word_3}),
-    .io_lookup_word_0_4  ({2'h0, _sorts_0_io_lookup_15_word_4}),
-    .io_lookup_word_0_5  ({2'h0, _sorts_0_io_lookup_15_word_5}),
-    .io_lookup_word_0_6  ({2'h0, _sorts_0_io_lookup_15_word_6}),
-    .io_lookup_word_0_7  ({2'h0, _sorts_0_io_lookup_15_word_7}),
-    .io_lookup_word_0_8  ({2'h0, _sorts_0_io_lookup_15_word_8}),
-    .io_lookup_word_0_9  ({2'h0, _sorts_0_io_lookup_15_word_9}),
-    .io_lookup_word_0_10 ({2'h0, _sorts_0_io_lookup_15_word_10}),
-    .io_lookup_word_0_11 ({2'h0, _sorts_0_io_lookup_15_word_11}),
-    .io_lookup_word_0_12 ({2'h0, _sorts_0_io_lookup_15_word_12}),
-    .io_lookup_word_0_13 ({2'h0, _sorts_0_io_lookup_15_word_13}),
-    .io_lookup_word_0_14 ({2'h0, _sorts_0_io_lookup_15_word_14}),
-    .io_lookup_word_0_15 ({2'h0, _sorts_0_io_lookup_15_word_15}),
-    .io_lookup_word_1_0  ({2'h0, _sorts_1_io_lookup_15_word_0}),
-    .io_lookup_word_1_1  ({2'h0, _sorts_1_io_lookup_15_word_1}),
-    .io_lookup_word_1_2  ({2'h0, _sorts_1_io_lookup_15_word_2}),
-    .io_lookup_word_1_3  ({2'h0, _sorts_1_io_lookup_15_word_3}),
-    .io_lookup_word_1_4  ({2'h0, _sorts_1_io_lookup_15_word_4}),
-    .io_lookup_word_1_5  ({2'h0, _sorts_1_io_lookup_15_word_5}),
-    .io_lookup_word_1_6  ({2'h0, _sorts_1_io_lookup_15_word_6}),
-    .io_lookup_word_1_7  ({2'h0, _sorts_1_io_lookup_15_word_7}),
-    .io_lookup_word_1_8  ({2'h0, _sorts_1_io_lookup_15_word_8}),
-    .io_lookup_word_1_9  ({2'h0, _sorts_1_io_lookup_15_word_9}),
-    .io_lookup_word_1_10 ({2'h0, _sorts_1_io_lookup_15_word_10}),
-    .io_lookup_word_1_11 ({2'h0, _sorts_1_io_lookup_15_word_11}),
-    .io_lookup_word_1_12 ({2'h0, _sorts_1_io_lookup_15_word_12}),
-    .io_lookup_word_1_13 ({2'h0, _sorts_1_io_lookup_15_word_13}),
-    .io_lookup_word_1_14 ({2'h0, _sorts_1_io_lookup_15_word_14}),
-    .io_lookup_word_1_15 ({2'h0, _sorts_1_io_lookup_15_word_15}),
-    .io_lookup_word_2_0  ({2'h0, _sorts_2_io_lookup_15_word_0}),
-    .io_lookup_word_2_1  ({2'h0, _sorts_2_io_lookup_15_word_1}),
-    .io_lookup_word_2_2  ({2'h0, _sorts_2_io_lookup_15_word_2}),
-    .io_lookup_word_2_3  ({2'h0, _sorts_2_io_lookup_15_word_3}),
-    .io_lookup_word_2_4  ({2'h0, _sorts_2_io_lookup_15_word_4}),
-    .io_lookup_word_2_5  ({2'h0, _sorts_2_io_lookup_15_word_5}),
-    .io_lookup_word_2_6  ({2'h0, _sorts_2_io_lookup_15_word_6}),
-    .io_lookup_word_2_7  ({2'h0, _sorts_2_io_lookup_15_word_7}),
-    .io_lookup_word_2_8  ({2'h0, _sorts_2_io_lookup_15_word_8}),
-    .io_lookup_word_2_9  ({2'h0, _sorts_2_io_lookup_15_word_9}),
-    .io_lookup_word_2_10 ({2'h0, _sorts_2_io_lookup_15_word_10}),
-    .io_lookup_word_2_11 ({2'h0, _sorts_2_io_lookup_15_word_11}),
-    .io_lookup_word_2_12 ({2'h0, _sorts_2_io_lookup_15_word_12}),
-    .io_lookup_word_2_13 ({2'h0, _sorts_2_io_lookup_15_word_13}),
-    .io_lookup_word_2_14 ({2'h0, _sorts_2_io_lookup_15_word_14}),
-    .io_lookup_word_2_15 ({2'h0, _sorts_2_io_lookup_15_word_15}),
-    .io_lookup_word_3_0  ({2'h0, _sorts_3_io_lookup_15_word_0}),
-    .io_lookup_word_3_1  ({2'h0, _sorts_3_io_lookup_15_word_1}),
-    .io_lookup_word_3_2  ({2'h0, _sorts_3_io_lookup_15_word_2}),
-    .io_lookup_word_3_3  ({2'h0, _sorts_3_io_lookup_15_word_3}),
-    .io_lookup_word_3_4  ({2'h0, _sorts_3_io_lookup_15_word_4}),
-    .io_lookup_word_3_5  ({2'h0, _sorts_3_io_lookup_15_word_5}),
-    .io_lookup_word_3_6  ({2'h0, _sorts_3_io_lookup_15_word_6}),
-    .io_lookup_word_3_7  ({2'h0, _sorts_3_io_lookup_15_word_7}),
-    .io_lookup_word_3_8  ({2'h0, _sorts_3_io_lookup_15_word_8}),
-    .io_lookup_word_3_9  ({2'h0, _sorts_3_io_lookup_15_word_9}),
-    .io_lookup_word_3_10 ({2'h0, _sorts_3_io_lookup_15_word_10}),
-    .io_lookup_word_3_11 ({2'h0, _sorts_3_io_lookup_15_word_11}),
-    .io_lookup_word_3_12 ({2'h0, _sorts_3_io_lookup_15_word_12}),
-    .io_lookup_word_3_13 ({2'h0, _sorts_3_io_lookup_15_word_13}),
-    .io_lookup_word_3_14 ({2'h0, _sorts_3_io_lookup_15_word_14}),
-    .io_lookup_word_3_15 ({2'h0, _sorts_3_io_lookup_15_word_15}),
-    .io_entry_addr       (_gens_15_io_entry_addr),
-    .io_entry_group      (_gens_15_io_entry_group),
-    .io_entry_item       (casez_tmp_37),
-    .io_entry_mark       (casez_tmp_38),
-    .io_mark_valid       (_gens_15_io_mark_valid),
-    .io_mark_bits_group  (_gens_15_io_mark_bits_group),
-    .io_mark_bits_addr   (_gens_15_io_mark_bits_addr),
-    .io_mark_bits_item   (_gens_15_io_mark_bits_item),
-    .io_keyAddr          (_gens_15_io_keyAddr),
-    .io_keyData_cell_0   (_laneKeys_15_io_out_cell_0),
-    .io_keyData_cell_1   (_laneKeys_15_io_out_cell_1),
-    .io_keyData_cell_2   (_laneKeys_15_io_out_cell_2),
-    .io_keyData_q_0      (_laneKeys_15_io_out_q_0),
-    .io_keyData_q_1      (_laneKeys_15_io_out_q_1),
-    .io_keyData_q_2      (_laneKeys_15_io_out_q_2),
-    .io_keyData_qr       (_laneKeys_15_io_out_qr),
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_15 (
+    .clock                (clock),
+    .reset                (reset),
+    .io_start             ((&state) & ~sent),
+    .io_lane              (4'hF),
+    .io_usedLog2          (usedLog2),
+    .io_need              (_gens_15_io_need),
+    .io_claim_valid       (held_15),
+    .io_claim_bits_bucket (grant_15),
+    .io_claim_bits_single (grantSingle_15),
+    .io_take              (_gens_15_io_take),
+    .io_defer_valid       (_gens_15_io_defer_valid),
+    .io_defer_bits        (_gens_15_io_defer_bits),
+    .io_deferOk           (dLane[15]),
+    .io_unresolved        (_gens_15_io_unresolved),
+    .io_claimsOut         (out),
+    .io_slack             (slack),
+    .io_larges_0_index    (larges_0_index),
+    .io_larges_0_q_0      (larges_0_q_0),
+    .io_larges_0_q_1      (larges_0_q_1),
+    .io_larges_0_q_2      (larges_0_q_2),
+    .io_larges_0_qr       (larges_0_qr),
+    .io_larges_1_index    (larges_1_index),
+    .io_larges_1_q_0      (larges_1_q_0),
+    .io_larges_1_q_1      (larges_1_q_1),
+    .io_larges_1_q_2      (larges_1_q_2),
+    .io_larges_1_qr       (larges_1_qr),
+    .io_larges_2_index    (larges_2_index),
+    .io_larges_2_q_0      (larges_2_q_0),
+    .io_larges_2_q_1      (larges_2_q_1),
+    .io_larges_2_q_2      (larges_2_q_2),
+    .io_larges_2_qr       (larges_2_qr),
+    .io_larges_3_index    (larges_3_index),
+    .io_larges_3_q_0      (larges_3_q_0),
+    .io_larges_3_q_1      (larges_3_q_1),
+    .io_larges_3_q_2      (larges_3_q_2),
+    .io_larges_3_qr       (larges_3_qr),
+    .io_larges_4_index    (larges_4_index),
+    .io_larges_4_q_0      (larges_4_q_0),
+    .io_larges_4_q_1      (larges_4_q_1),
+    .io_larges_4_q_2      (larges_4_q_2),
+    .io_larges_4_qr       (larges_4_qr),
+    .io_larges_5_index    (larges_5_index),
+    .io_larges_5_q_0      (larges_5_q_0),
+    .io_larges_5_q_1      (larges_5_q_1),
+    .io_larges_5_q_2      (larges_5_q_2),
+    .io_larges_5_qr       (larges_5_qr),
+    .io_larges_6_index    (larges_6_index),
+    .io_larges_6_q_0      (larges_6_q_0),
+    .io_larges_6_q_1      (larges_6_q_1),
+    .io_larges_6_q_2      (larges_6_q_2),
+    .io_larges_6_qr       (larges_6_qr),
+    .io_larges_7_index    (larges_7_index),
+    .io_larges_7_q_0      (larges_7_q_0),
+    .io_larges_7_q_1      (larges_7_q_1),
+    .io_larges_7_q_2      (larges_7_q_2),
+    .io_larges_7_qr       (larges_7_qr),
+    .io_larges_8_index    (larges_8_index),
+    .io_larges_8_q_0      (larges_8_q_0),
+    .io_larges_8_q_1      (larges_8_q_1),
+    .io_larges_8_q_2      (larges_8_q_2),
+    .io_larges_8_qr       (larges_8_qr),
+    .io_larges_9_index    (larges_9_index),
+    .io_larges_9_q_0      (larges_9_q_0),
+    .io_larges_9_q_1      (larges_9_q_1),
+    .io_larges_9_q_2      (larges_9_q_2),
+    .io_larges_9_qr       (larges_9_qr),
+    .io_larges_10_index   (larges_10_index),
+    .io_larges_10_q_0     (larges_10_q_0),
+    .io_larges_10_q_1     (larges_10_q_1),
+    .io_larges_10_q_2     (larges_10_q_2),
+    .io_larges_10_qr      (larges_10_qr),
+    .io_larges_11_index   (larges_11_index),
+    .io_larges_11_q_0     (larges_11_q_0),
+    .io_larges_11_q_1     (larges_11_q_1),
+    .io_larges_11_q_2     (larges_11_q_2),
+    .io_larges_11_qr      (larges_11_qr),
+    .io_larges_12_index   (larges_12_index),
+    .io_larges_12_q_0     (larges_12_q_0),
+    .io_larges_12_q_1     (larges_12_q_1),
+    .io_larges_12_q_2     (larges_12_q_2),
+    .io_larges_12_qr      (larges_12_qr),
+    .io_larges_13_index   (larges_13_index),
+    .io_larges_13_q_0     (larges_13_q_0),
+    .io_larges_13_q_1     (larges_13_q_1),
+    .io_larges_13_q_2     (larges_13_q_2),
+    .io_larges_13_qr      (larges_13_qr),
+    .io_larges_14_index   (larges_14_index),
+    .io_larges_14_q_0     (larges_14_q_0),
+    .io_larges_14_q_1     (larges_14_q_1),
+    .io_larges_14_q_2     (larges_14_q_2),
+    .io_larges_14_qr      (larges_14_qr),
+    .io_larges_15_index   (larges_15_index),
+    .io_larges_15_q_0     (larges_15_q_0),
+    .io_larges_15_q_1     (larges_15_q_1),
+    .io_larges_15_q_2     (larges_15_q_2),
+    .io_larges_15_qr      (larges_15_qr),
+    .io_largeCount        (largeCount),
+    .io_largeFrom         (_gens_15_io_largeFrom_T[28:16]),
+    .io_largeTo           (num),
+    .io_lookup_bucket     (_gens_15_io_lookup_bucket),
+    .io_lookup_begin_0    ({2'h0, _sorts_0_io_lookup_15_begin}),
+    .io_lookup_begin_1    ({2'h0, _sorts_1_io_lookup_15_begin}),
+    .io_lookup_begin_2    ({2'h0, _sorts_2_io_lookup_15_begin}),
+    .io_lookup_begin_3    ({2'h0, _sorts_3_io_lookup_15_begin}),
+    .io_lookup_end_0      ({2'h0, _sorts_0_io_lookup_15_end}),
+    .io_lookup_end_1      ({2'h0, _sorts_1_io_lookup_15_end}),
+    .io_lookup_end_2      ({2'h0, _sorts_2_io_lookup_15_end}),
+    .io_lookup_end_3      ({2'h0, _sorts_3_io_lookup_15_end}),
+    .io_lookup_word_0_0   ({2'h0, _sorts_0_io_lookup_15_word_0}),
+    .io_lookup_word_0_1   ({2'h0, _sorts_0_io_lookup_15_word_1}),
+    .io_lookup_word_0_2   ({2'h0, _sorts_0_io_lookup_15_word_2}),
+    .io_lookup_word_0_3   ({2'h0, _sorts_0_io_lookup_15_word_3}),
+    .io_lookup_word_0_4   ({2'h0, _sorts_0_io_lookup_15_word_4}),
+    .io_lookup_word_0_5   ({2'h0, _sorts_0_io_lookup_15_word_5}),
+    .io_lookup_word_0_6   ({2'h0, _sorts_0_io_lookup_15_word_6}),
+    .io_lookup_word_0_7   ({2'h0, _sorts_0_io_lookup_15_word_7}),
+    .io_lookup_word_0_8   ({2'h0, _sorts_0_io_lookup_15_word_8}),
+    .io_lookup_word_0_9   ({2'h0, _sorts_0_io_lookup_15_word_9}),
+    .io_lookup_word_0_10  ({2'h0, _sorts_0_io_lookup_15_word_10}),
+    .io_lookup_word_0_11  ({2'h0, _sorts_0_io_lookup_15_word_11}),
+    .io_lookup_word_0_12  ({2'h0, _sorts_0_io_lookup_15_word_12}),
+    .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_15_word_13}),
+    .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_15_word_14}),
+    .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_15_word_15}),
+    .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_15_word_0}),
+    .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_15_word_1}),
+    .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_15_word_2}),
+    .io_lookup_word_1_3   ({2'h0, _sorts_1_io_lookup_15_word_3}),
+    .io_lookup_word_1_4   ({2'h0, _sorts_1_io_lookup_15_word_4}),
+    .io_lookup_word_1_5   ({2'h0, _sorts_1_io_lookup_15_word_5}),
+    .io_lookup_word_1_6   ({2'h0, _sorts_1_io_lookup_15_word_6}),
+    .io_lookup_word_1_7   ({2'h0, _sorts_1_io_lookup_15_word_7}),
+    .io_lookup_word_1_8   ({2'h0, _sorts_1_io_lookup_15_word_8}),
+    .io_lookup_word_1_9   ({2'h0, _sorts_1_io_lookup_15_word_9}),
+    .io_lookup_word_1_10  ({2'h0, _sorts_1_io_lookup_15_word_10}),
+    .io_lookup_word_1_11  ({2'h0, _sorts_1_io_lookup_15_word_11}),
+    .io_lookup_word_1_12  ({2'h0, _sorts_1_io_lookup_15_word_12}),
+    .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_15_word_13}),
+    .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_15_word_14}),
+    .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_15_word_15}),
+    .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_15_word_0}),
+    .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_15_word_1}),
+    .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_15_word_2}),
+    .io_lookup_word_2_3   ({2'h0, _sorts_2_io_lookup_15_word_3}),
+    .io_lookup_word_2_4   ({2'h0, _sorts_2_io_lookup_15_word_4}),
+    .io_lookup_word_2_5   ({2'h0, _sorts_2_io_lookup_15_word_5}),
+    .io_lookup_word_2_6   ({2'h0, _sorts_2_io_lookup_15_word_6}),
+    .io_lookup_word_2_7   ({2'h0, _sorts_2_io_lookup_15_word_7}),
+    .io_lookup_word_2_8   ({2'h0, _sorts_2_io_lookup_15_word_8}),
+    .io_lookup_word_2_9   ({2'h0, _sorts_2_io_lookup_15_word_9}),
+    .io_lookup_word_2_10  ({2'h0, _sorts_2_io_lookup_15_word_10}),
+    .io_lookup_word_2_11  ({2'h0, _sorts_2_io_lookup_15_word_11}),
+    .io_lookup_word_2_12  ({2'h0, _sorts_2_io_lookup_15_word_12}),
+    .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_15_word_13}),
+    .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_15_word_14}),
+    .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_15_word_15}),
+    .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_15_word_0}),
+    .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_15_word_1}),
+    .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_15_word_2}),
+    .io_lookup_word_3_3   ({2'h0, _sorts_3_io_lookup_15_word_3}),
+    .io_lookup_word_3_4   ({2'h0, _sorts_3_io_lookup_15_word_4}),
+    .io_lookup_word_3_5   ({2'h0, _sorts_3_io_lookup_15_word_5}),
+    .io_lookup_word_3_6   ({2'h0, _sorts_3_io_lookup_15_word_6}),
+    .io_lookup_word_3_7   ({2'h0, _sorts_3_io_lookup_15_word_7}),
+    .io_lookup_word_3_8   ({2'h0, _sorts_3_io_lookup_15_word_8}),
+    .io_lookup_word_3_9   ({2'h0, _sorts_3_io_lookup_15_word_9}),
+    .io_lookup_word_3_10  ({2'h0, _sorts_3_io_lookup_15_word_10}),
+    .io_lookup_word_3_11  ({2'h0, _sorts_3_io_lookup_15_word_11}),
+    .io_lookup_word_3_12  ({2'h0, _sorts_3_io_lookup_15_word_12}),
+    .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_15_word_13}),
+    .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_15_word_14}),
+    .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_15_word_15}),
+    .io_entry_addr        (_gens_15_io_entry_addr),
+    .io_entry_group       (_gens_15_io_entry_group),
+    .io_entry_item        (casez_tmp_37),
+    .io_entry_mark        (casez_tmp_38),
+    .io_mark_valid        (_gens_15_io_mark_valid),
+    .io_mark_bits_group   (_gens_15_io_mark_bits_group),
+    .io_mark_bits_addr    (_gens_15_io_mark_bits_addr),
+    .io_mark_bits_item    (_gens_15_io_mark_bits_item),
+    .io_keyAddr           (_gens_15_io_keyAddr),
+    .io_keyData_cell_0    (_laneKeys_15_io_out_cell_0),
+    .io_keyData_cell_1    (_laneKeys_15_io_out_cell_1),
+    .io_keyData_cell_2    (_laneKeys_15_io_out_cell_2),
+    .io_keyData_q_0       (_laneKeys_15_io_out_q_0),
+    .io_keyData_q_1       (_laneKeys_15_io_out_q_1),
+    .io_keyData_q_2       (_laneKeys_15_io_out_q_2),
+    .io_keyData_qr        (_laneKeys_15_io_out_qr),
     .io_keyData_large
       (~_laneKeys_15_io_out_nonFinite & ~_laneKeys_15_io_out_needNone
        & $signed(_laneKeys_15_io_out_need) > $signed(_cellExp_io_level)),
-    .io_keyData_excluded (_laneKeys_15_io_out_nonFinite),
-    .io_pairs_ready      (io_pairs_15_ready),
-    .io_pairs_valid      (io_pairs_15_valid),
-    .io_pairs_bits_i     (io_pairs_15_bits_i),
-    .io_pairs_bits_j     (io_pairs_15_bits_j),
-    .io_busy             (_gens_15_io_busy)
+    .io_keyData_excluded  (_laneKeys_15_io_out_nonFinite),
+    .io_pairs_ready       (io_pairs_15_ready),
+    .io_pairs_valid       (io_pairs_15_valid),
+    .io_pairs_bits_i      (io_pairs_15_bits_i),
+    .io_pairs_bits_j      (io_pairs_15_bits_j),
+    .io_busy              (_gens_15_io_busy)
   );
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_0 (
     .clock               (clock),
@@ -43177,6 +44133,32 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_out_nonFinite    (_laneKeys_15_io_out_nonFinite),
     .io_out_top          (_laneKeys_15_io_out_top),
     .io_out_topNone      (_laneKeys_15_io_out_topNone)
+  );
+  deferred_124x11_world deferred_ext (
+    .R0_addr (dNext[9:3]),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_deferred_ext_R0_data),
+    .W0_addr (dCount),
+    .W0_en   (|_GEN),
+    .W0_clk  (clock),
+    .W0_data
+      ((dLane[0] ? _gens_0_io_defer_bits[13:3] : 11'h0)
+       | (dLane[1] ? _gens_1_io_defer_bits[13:3] : 11'h0)
+       | (dLane[2] ? _gens_2_io_defer_bits[13:3] : 11'h0)
+       | (dLane[3] ? _gens_3_io_defer_bits[13:3] : 11'h0)
+       | (dLane[4] ? _gens_4_io_defer_bits[13:3] : 11'h0)
+       | (dLane[5] ? _gens_5_io_defer_bits[13:3] : 11'h0)
+       | (dLane[6] ? _gens_6_io_defer_bits[13:3] : 11'h0)
+       | (dLane[7] ? _gens_7_io_defer_bits[13:3] : 11'h0)
+       | (dLane[8] ? _gens_8_io_defer_bits[13:3] : 11'h0)
+       | (dLane[9] ? _gens_9_io_defer_bits[13:3] : 11'h0)
+       | (dLane[10] ? _gens_10_io_defer_bits[13:3] : 11'h0)
+       | (dLane[11] ? _gens_11_io_defer_bits[13:3] : 11'h0)
+       | (dLane[12] ? _gens_12_io_defer_bits[13:3] : 11'h0)
+       | (dLane[13] ? _gens_13_io_defer_bits[13:3] : 11'h0)
+       | (dLane[14] ? _gens_14_io_defer_bits[13:3] : 11'h0)
+       | (dLane[15] ? _gens_15_io_defer_bits[13:3] : 11'h0))
   );
   assign io_sphere_0_addr = (&state) ? _gens_0_io_keyAddr : i_0[11:0];
   assign io_sphere_1_addr = (&state) ? _gens_1_io_keyAddr : i_1[11:0];

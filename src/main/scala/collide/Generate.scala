@@ -34,6 +34,7 @@ object Generate {
       worldCellSteps: Option[Int] = None,
       worldChunk: Option[Int] = None,
       worldCoarseChunks: Option[Boolean] = None,
+      worldClaims: Option[Boolean] = None,
       scpuImpl: Option[String] = None,
       listPresets: Boolean = false)
 
@@ -80,6 +81,9 @@ object Generate {
       opt[Boolean]("world-coarse-chunks").valueName("true|false").action((v, o) => o.copy(worldCoarseChunks = Some(v)))
         .text("a coarse cell (2 x 2 x 2 cells) whose spheres fit a chunk is one chunk, streaming 43 cells past it " +
           "instead of 14 a cell (world mode only; needs 8 or more counters a word)"),
+      opt[Boolean]("world-claims").valueName("true|false").action((v, o) => o.copy(worldClaims = Some(v)))
+        .text("the candidate lanes claim units of buckets from a shared counter as they need them, and the units that " +
+          "are not one coarse chunk a bucket at a time, instead of walking fixed shares (world mode only)"),
       opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
         .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
           "(same cycles and records, a far faster co-simulation; not synthesizable)"),
@@ -134,8 +138,9 @@ object Generate {
       c15 <- world("--world-cell-steps", o.worldCellSteps)((bp, v) => bp.copy(cellSteps = v))(c14)
       c16 <- world("--world-chunk", o.worldChunk)((bp, v) => bp.copy(chunk = v))(c15)
       c17 <- world("--world-coarse-chunks", o.worldCoarseChunks)((bp, v) => bp.copy(coarseChunks = v))(c16)
-      c18 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c17)
-    } yield c18
+      c18 <- world("--world-claims", o.worldClaims)((bp, v) => bp.copy(claims = v))(c17)
+      c19 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c18)
+    } yield c19
   }
 
   val firtoolOpts: Array[String] = Array(

@@ -103,7 +103,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val gens = Seq.tabulate(bp.lanes) { l =>
     val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
       keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes, groups = groups,
-      coarse = bp.coarseChunks, team = bp.teamSize))
+      coarse = bp.coarseChunks, team = bp.teamSize, claims = bp.claims))
     g.io.lane.foreach(_ := l.U)
     g
   }
@@ -291,6 +291,63 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     gen.io.largeFrom := cut(l)
     gen.io.largeTo := cut(l + 1)
     io.pairs(l) <> gen.io.pairs
+  }
+  // --- claims: the lanes take work from shared counters as they need it ---------------------
+  // Units of buckets (coarse groups, or words) in order, several lanes a cycle; a unit that is
+  // not one coarse chunk comes back deferred, and its buckets are then dealt one a cycle, before
+  // any further unit (the dense work first, in pieces, so no lane is left with it at the end).
+  if (bp.claims) {
+    val gWordLog2 = math.min(bp.wordLog2, tableLog2)
+    val uLog2 = CandidateGenerator.unitLog2(gWordLog2, bp.coarseChunks)
+    val w = CandidateGenerator.claimW(tableLog2)
+    val uW = tableLog2 - uLog2 + 1
+    // Units in use: the used buckets' (at least one, for a table smaller than a unit).
+    val units = Mux(usedLog2 > uLog2.U, (1.U((tableLog2 + 1).W) << usedLog2) >> uLog2, 1.U)
+    val next = Reg(UInt((uW + log2Ceil(bp.lanes + 1)).W))
+    val held = RegInit(VecInit(Seq.fill(bp.lanes)(false.B)))
+    val heldUnit = RegInit(VecInit(Seq.fill(bp.lanes)(false.B))) // held, and a whole unit
+    val grant = Reg(Vec(bp.lanes, UInt(w.W)))
+    val grantSingle = Reg(Vec(bp.lanes, Bool()))
+    // Deferred units: each holds more than a chunk, so at most maxSpheres / (chunk + 1) of them.
+    val deferCap = math.max(1, math.min(1 << (tableLog2 - uLog2), maxSpheres / (bp.chunk + 1)))
+    val deferred = Mem(deferCap, UInt(uW.W))
+    val dCount = Reg(UInt(log2Ceil(deferCap + 1).W))
+    val dNext = Reg(UInt((log2Ceil(deferCap + 1) + uLog2).W)) // deferred buckets dealt
+    for ((g, h) <- gens.zip(held)) when(g.io.take.get) { h := false.B }
+    // One deferral accepted a cycle, the lowest lane's.
+    val defers = VecInit(gens.map(_.io.defer.get.valid))
+    val dLane = PriorityEncoderOH(defers.asUInt)
+    for ((g, l) <- gens.zipWithIndex) g.io.deferOk.get := dLane(l)
+    when(defers.asUInt.orR) {
+      deferred.write(dCount, Mux1H(dLane, gens.map(_.io.defer.get.bits >> uLog2)))
+      dCount := dCount + 1.U
+    }
+    assert(!defers.asUInt.orR || dCount < deferCap.U, "BroadPhase: more deferred units than can hold more than a chunk")
+    // A lane that needs work and holds none gets some, a cycle later: the lowest such lane a
+    // deferred bucket if one is left, the others (in lane order) the next units.
+    val wants = VecInit(gens.zip(held).map { case (g, h) => g.io.need.get && !h })
+    val dLeft = dNext < (dCount << uLog2)
+    val toSingle = Mux(dLeft, PriorityEncoderOH(wants.asUInt), 0.U(bp.lanes.W))
+    val toUnit = wants.asUInt & ~toSingle
+    val dUnit = deferred.read(dNext >> uLog2)
+    val dBucket = if (uLog2 == 0) dUnit else Cat(dUnit, dNext(uLog2 - 1, 0))
+    for (l <- 0 until bp.lanes) {
+      val at = next +& PopCount(toUnit(l, 0)) - 1.U
+      when(toSingle(l)) { held(l) := true.B; heldUnit(l) := false.B; grant(l) := dBucket; grantSingle(l) := true.B }
+      when(toUnit(l)) { held(l) := at < units; heldUnit(l) := at < units; grant(l) := at << uLog2; grantSingle(l) := false.B }
+      gens(l).io.claim.get.valid := held(l)
+      gens(l).io.claim.get.bits.bucket := grant(l)
+      gens(l).io.claim.get.bits.single := grantSingle(l)
+    }
+    when(toSingle.orR) { dNext := dNext + 1.U }
+    val taken = next +& PopCount(toUnit)
+    next := Mux(taken > units, units, taken)
+    // Nothing left: every unit granted and resolved (walked, or deferred and every bucket dealt).
+    val out = next >= units && !dLeft && !gens.map(_.io.unresolved.get).reduce(_ || _) &&
+      !heldUnit.zip(held).map { case (u, h) => u && h }.reduce(_ || _)
+    gens.foreach(_.io.claimsOut.get := out)
+    // A new grid: every claim dropped and the counts from zero (the lanes look the cycle after).
+    when(state =/= S.generate || !sent) { next := 0.U; dCount := 0.U; dNext := 0.U; held.foreach(_ := false.B) }
   }
   st.candidates := st.candidates + PopCount(io.pairs.map(_.fire))
   private def laneSum(f: CandidateGenerator => UInt): UInt = gens.map(f).reduce(_ +& _)(31, 0)

@@ -58,6 +58,10 @@ package collide.world
   *                   taking its share of their coarse groups and buckets (1: a lane takes whole
   *                   words, so a dense coarse cell's 8 cells are one lane's work; `lanes`: every
   *                   lane walks every word). A power of two; the teams are of `teamSize`
+  * @param claims     lanes claim the next unit of buckets (a coarse group of 8, or a word)
+  *                   from a shared counter whenever they need one, instead of walking a fixed
+  *                   share: a lane that drew dense units takes fewer, so the lanes finish
+  *                   together (docs/afu.md, "Claimed units"). Teams are then not used
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -74,7 +78,8 @@ final case class BroadPhaseParams(
     bucketsPerSphereLog2: Int = 1,
     cellSteps: Int = 1,
     coarseChunks: Boolean = false,
-    team: Int = 4
+    team: Int = 4,
+    claims: Boolean = false
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -97,8 +102,8 @@ final case class BroadPhaseParams(
     s"coarseChunks needs wordLog2 >= 3 (the walk reads a coarse cell's 8 buckets in one word), got wordLog2 $wordLog2")
   require(team >= 1 && chisel3.util.isPow2(team), s"team must be a power of two, got $team")
   /** Lanes a team has: with coarse chunks the largest power of two up to `team` that divides
-    * the lanes (1 for an odd lane count: whole words a lane); 1 without. */
-  val teamSize: Int = if (!coarseChunks) 1 else Iterator.iterate(team)(_ / 2).find(t => lanes % t == 0).get
+    * the lanes (1 for an odd lane count: whole words a lane); 1 without, or with claims. */
+  val teamSize: Int = if (!coarseChunks || claims) 1 else Iterator.iterate(team)(_ / 2).find(t => lanes % t == 0).get
 
   val buckets: Int = 1 << bucketsLog2
 

@@ -30,11 +30,24 @@ import collide.world.model.BroadPhaseModel
   * the same order, the large part as a set; the lanes' streams together are that set.
   */
 class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, largeSlots: Int,
-                           perWord: Int, lanes: Int, groups: Int) extends Bundle {
+                           perWord: Int, lanes: Int, groups: Int, claimW: Int = 0) extends Bundle {
   val start = Input(Bool())
   /** This lane's number, 0 until lanes (none with one lane). */
   val lane = if (lanes > 1) Some(Input(UInt(log2Ceil(lanes).W))) else None
   val usedLog2 = Input(UInt(log2Ceil(bucketsLog2 + 1).W))
+  /** With claims (BroadPhase's shared counters): `need` asks for work when the lane has none
+    * to walk (so no lane sits on work another could take); `claim` is what was granted, a
+    * unit's first bucket or, `single`, one bucket of a deferred unit; taken when `take`. A unit
+    * that is not one coarse chunk is not walked but handed back on `defer` (accepted when
+    * `deferOk`), to be dealt a bucket at a time; `unresolved` while a unit's word is being read
+    * or its deferral waits; `claimsOut` once nothing is left to grant or to come back. */
+  val need = if (claimW > 0) Some(Output(Bool())) else None
+  val claim = if (claimW > 0) Some(Input(Valid(new Bundle { val bucket = UInt(claimW.W); val single = Bool() }))) else None
+  val take = if (claimW > 0) Some(Output(Bool())) else None
+  val defer = if (claimW > 0) Some(Valid(UInt(claimW.W))) else None
+  val deferOk = if (claimW > 0) Some(Input(Bool())) else None
+  val unresolved = if (claimW > 0) Some(Output(Bool())) else None
+  val claimsOut = if (claimW > 0) Some(Input(Bool())) else None
   val slack = Input(UInt(qWidth.W))
   val larges = Input(Vec(largeSlots, new WorldKey(itemW, cellBits, qWidth)))
   val largeCount = Input(UInt(log2Ceil(largeSlots + 1).W))
@@ -70,7 +83,7 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
 
 class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
                          largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1, groups: Int = 1,
-                         coarse: Boolean = false, team: Int = 1)
+                         coarse: Boolean = false, team: Int = 1, claims: Boolean = false)
     extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
   require(lanes >= 1, s"lanes must be >= 1, got $lanes")
@@ -83,7 +96,9 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     * t, t + lanes / team, ...; its member m takes the coarse groups (by group number) and the
     * other groups' buckets (by bucket number) that are m modulo the team. Every member reads
     * every word of its team: the walk is `team` times as long a lane. */
-  private val teamSize = if (coarse) team else 1
+  private val teamSize = if (coarse && !claims) team else 1
+  /** With claims, the buckets a claim holds: a coarse group, or a word. */
+  private val unitLog2 = CandidateGenerator.unitLog2(wordLog2, coarse)
   require(isPow2(teamSize) && lanes % teamSize == 0, s"a team of $teamSize must be a power of two dividing the lanes ($lanes)")
   private val dealByUnit = teamSize > 1
   private val memberBits = log2Ceil(teamSize)
@@ -94,8 +109,9 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   require(!coarse || wordLog2 >= 3 || wordLog2 == bucketsLog2,
     s"coarse chunks need words of 8 counters or one word for the table, got wordLog2 $wordLog2 of $bucketsLog2")
   override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2" +
-    (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "") + (if (coarse) s"_x$team" else "")
-  val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes, groups))
+    (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "") + (if (coarse) s"_x$teamSize" else "") + (if (claims) "_u" else "")
+  val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes, groups,
+    if (claims) CandidateGenerator.claimW(bucketsLog2) else 0))
   private val laneNo: UInt = io.lane.getOrElse(0.U)
 
   private val visitT = new WorldVisit(cellBits)
@@ -139,6 +155,16 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val bIssue = Reg(UInt(log2Ceil((1 << bucketsLog2) + lanes * perWord + 1).W))
   private val walkPend = RegInit(false.B)
   private val walkB = Reg(UInt((bucketsLog2 + 1).W))
+  // With claims: bIssue is a bucket of the unit being walked (else the next unit is the claim's).
+  private val inUnit = RegInit(false.B)
+  private val single = RegInit(false.B)   // the claim walked is one bucket of a deferred unit
+  private val unitFirst = RegInit(false.B) // the lookup pending is a unit's first
+  private val deferPend = RegInit(false.B) // the unit at walkB waits to be handed back
+  io.take.foreach(_ := false.B)
+  io.need.foreach(_ := state === S.walk && !inUnit && !walkPend && !deferPend)
+  io.defer.foreach { d => d.valid := deferPend; d.bits := walkB }
+  io.unresolved.foreach(_ := (walkPend && unitFirst) || deferPend)
+  io.deferOk.foreach(ok => when(ok) { deferPend := false.B })
   // --- the chunk: its cell, where its scan starts, what the scan found ----------------------
   // Per group: where the scan starts, and the bucket's end (a bucket's entries: group 0's, then 1's).
   private val p = Reg(Vec(groups, UInt(countW.W)))
@@ -188,7 +214,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   switch(state) {
     is(S.idle) {
       when(io.start) {
-        state := S.walk; bIssue := teamNo << wordLog2; walkPend := false.B
+        state := S.walk; bIssue := teamNo << wordLog2; walkPend := false.B; inUnit := false.B; deferPend := false.B
         cells := 0.U; chunks := 0.U; scanned := 0.U; probes := 0.U
       }
     }
@@ -196,10 +222,20 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       // A word of buckets a cycle: the lookup of bIssue returns the ends of its whole word,
       // and the first occupied bucket of this lane's at or after bIssue starts a chunk; none,
       // this lane's next word.
-      val issueOk = bIssue < used
-      io.lookup.bucket := bIssue(math.max(1, bucketsLog2) - 1, 0)
-      walkPend := issueOk; walkB := bIssue
-      when(issueOk) { bIssue := ((bIssue >> wordLog2) + wordStep.U) << wordLog2 }
+      // With claims, a lookup only while none is pending (its word may end the unit, or not),
+      // of the unit's next bucket or else of the held claim's first, which it takes.
+      val claimV = io.claim.map(_.valid).getOrElse(false.B)
+      val issueOk = if (claims) !walkPend && !deferPend && (inUnit || claimV) else bIssue < used
+      val issueAt = if (claims) Mux(inUnit, bIssue, io.claim.get.bits.bucket) else bIssue
+      io.lookup.bucket := issueAt(math.max(1, bucketsLog2) - 1, 0)
+      walkPend := issueOk
+      when(issueOk || (!claims).B) { walkB := issueAt }
+      when(issueOk) {
+        if (claims) {
+          inUnit := false.B; io.take.get := !inUnit; unitFirst := !inUnit && !io.claim.get.bits.single
+          when(!inUnit) { single := io.claim.get.bits.single }
+        } else bIssue := ((bIssue >> wordLog2) + wordStep.U) << wordLog2
+      }
       val base = (walkB >> wordLog2) << wordLog2
       val from = if (wordLog2 == 0) 0.U else walkB(wordLog2 - 1, 0)
       val ends = io.lookup.word
@@ -212,13 +248,14 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       val gCoarse = VecInit((0 until groupsInWord).map { gi =>
         val (lo, last) = (gi << groupLog2, ((gi + 1) << groupLog2) - 1)
         val total = (0 until groups).map(g => ends(g)(last) - begins(g)(lo)).reduce(_ +& _)
-        coarse.B && from <= lo.U && total <= chunk.U
+        coarse.B && from <= lo.U && total <= chunk.U && !single
       })
       // In a team, a member takes the coarse groups and the other groups' buckets whose number
       // among the team's is its own modulo the team: a group by its number in the team's walk
       // (word number over the teams, then the group in the word), a bucket by its place in the word.
       def mine(l: Int): Bool =
-        if (!dealByUnit) true.B
+        if (claims) Mux(single, from === l.U, if (unitLog2 >= wordLog2) true.B else (from >> unitLog2) === (l >> unitLog2).U)
+        else if (!dealByUnit) true.B
         else {
           val walkWord = base >> (wordLog2 + log2Ceil(wordStep))
           val walkGroup = if (wordLog2 == groupLog2) walkWord else Cat(walkWord, (l >> groupLog2).U((wordLog2 - groupLog2).W))
@@ -231,7 +268,11 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       val gLo = (lane >> groupLog2) << groupLog2
       val gLast = gLo | ((1 << groupLog2) - 1).U
       val asCoarse = gCoarse(lane >> groupLog2)
-      when(walkPend && occupied.asUInt.orR) {
+      // A unit's first word whose group is not one coarse chunk goes back to be dealt a bucket at a time.
+      val deferIt = (claims && coarse).B && unitFirst && !asCoarse
+      when(walkPend && occupied.asUInt.orR && deferIt) {
+        deferPend := true.B; walkPend := false.B
+      }.elsewhen(walkPend && occupied.asUInt.orR) {
         when(asCoarse) {
           for (g <- 0 until groups) { p(g) := begins(g)(gLo); bEnd(g) := ends(g)(gLast) }
           bIssue := Mux(gLast === (perWord - 1).U, base + (wordStep * perWord).U, base + gLast + 1.U)
@@ -240,11 +281,17 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
           // On past it in this word, or at the word's end on to this lane's next word.
           bIssue := Mux(lane === (perWord - 1).U, base + (wordStep * perWord).U, base + lane + 1.U)
         }
+        if (claims) {
+          // Past the bucket; the unit goes on unless that was its last bucket (a coarse group is one unit).
+          val lastOfUnit = if (unitLog2 == 0) true.B else lane(unitLog2 - 1, 0).andR
+          inUnit := !asCoarse && !lastOfUnit && !single
+          bIssue := base + lane + 1.U
+        }
         coarseCh := asCoarse
         haveCell := false.B
         walkPend := false.B; cells := cells + 1.U
         startChunk()
-      }.elsewhen(!walkPend && !issueOk && stream.io.idle && matcher.io.idle) {
+      }.elsewhen(!walkPend && !issueOk && !deferPend && io.claimsOut.getOrElse(true.B) && stream.io.idle && matcher.io.idle) {
         startLargePass() // the last chunk's visits all matched
       }
     }
@@ -270,7 +317,10 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       lkPend := canIssue
       lkVisit.cell := nc; lkVisit.off := off; lkVisit.scan := false.B
       when(canIssue) { vIssue := vIssue + 1.U }
-      lkq.io.enq.valid := lkPend
+      // A visit whose bucket is empty in every group is not queued: the stream would spend a
+      // cycle accepting it, and a uniform cloud's coarse chunk has a dozen of its 43 visits empty.
+      val lkEmpty = (0 until groups).map(g => io.lookup.begin(g) === io.lookup.end(g)).reduce(_ && _)
+      lkq.io.enq.valid := lkPend && !lkEmpty
       lkq.io.enq.bits.begin := io.lookup.begin; lkq.io.enq.bits.end := io.lookup.end
       lkq.io.enq.bits.direct := false.B; lkq.io.enq.bits.tag := lkVisit
 
@@ -366,4 +416,12 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       when(stream.io.out.fire) { probes := probes + 1.U }
     }
   }
+}
+
+object CandidateGenerator {
+  /** log2 of the buckets a claimed unit holds: a coarse group of 8 (or the word, if smaller),
+    * or a word without coarse chunks; a bucket is never split between lanes either way. */
+  def unitLog2(wordLog2: Int, coarse: Boolean): Int = if (coarse) math.min(3, wordLog2) else wordLog2
+  /** Bits of a claimed bucket (the table's buckets, and one more). */
+  def claimW(bucketsLog2: Int): Int = bucketsLog2 + 1
 }

@@ -152,7 +152,7 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     everyHardCase("BroadPhaseSpec-four-ports", BroadPhaseParams.fourLanesFourPorts, "four sort ports: ")
   }
 
-  it should "find the same candidates with the sort's passes eight spheres a cycle (four sorts, each of a quarter of the table, read one after the other), with coarse chunks, in every hard case and random cloud" in {
+  it should "find the same candidates with the sort's passes eight spheres a cycle (four sorts, each of a quarter of the table, read one after the other), with coarse chunks, in every hard case and random cloud" taggedAs (Slow) in {
     everyHardCase("BroadPhaseSpec-eight-ports", BroadPhaseParams.eightLanesEightPorts.copy(coarseChunks = true, chunk = 32),
       "eight sort ports: ")
   }
@@ -169,7 +169,7 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     everyHardCase("BroadPhaseSpec-coarse", BroadPhaseParams.coarse, "coarse chunks: ")
   }
 
-  it should "find the same candidates with coarse chunks, four lanes and four sort ports (one team of four), in every hard case and random cloud" in {
+  it should "find the same candidates with coarse chunks, four lanes and four sort ports (one team of four), in every hard case and random cloud" taggedAs (Slow) in {
     everyHardCase("BroadPhaseSpec-coarse-lanes", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32), "coarse chunks, four lanes: ")
   }
 
@@ -179,6 +179,23 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   it should "find the same candidates with coarse chunks and four lanes in teams of one (whole words a lane), in every hard case and random cloud" taggedAs (Slow) in {
     everyHardCase("BroadPhaseSpec-coarse-words", BroadPhaseParams.fourLanes.copy(coarseChunks = true, team = 1), "coarse chunks, teams of one: ")
+  }
+
+  it should "find the same candidates with the lanes claiming their work (units of buckets as they need them, a dense unit a bucket at a time), coarse chunks, four lanes and four sort ports, in every hard case and random cloud" in {
+    // Edges 2^k alone: some coarse groups overfill a chunk of 32 and are handed back (with 1.5 * 2^k none do here).
+    everyHardCase("BroadPhaseSpec-claims", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32, claims = true),
+      "claims, four lanes: ")
+  }
+
+  it should "stay exact with claimed work over a four-bucket table with coarse chunks of two (one unit, deferred and dealt a bucket at a time), in the model's order with one lane and with three" in {
+    val rng = Seeds.rng("BroadPhaseSpec-claims-tiny")
+    for (lanes <- Seq(1, 3)) {
+      val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.tinyTable.copy(coarseChunks = true, wordLog2 = 3, chunk = 2, lanes = lanes, claims = true))
+      test(new BroadPhase(ScpuConfig.fp32.params, model.bp, maxSpheres)).withAnnotations(annos) { dut =>
+        dut.clock.setTimeout(0)
+        for ((label, w) <- worlds(rng).filter(_._2.length <= 100)) check(dut, model, s"claims, $lanes lanes: $label", bits(FloatFormat.fp32, w), rng, 0.5)
+      }
+    }
   }
 
   it should "stay exact with coarse chunks of two over a four-bucket table (every coarse cell shares the one group)" in {
