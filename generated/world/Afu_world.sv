@@ -16458,50 +16458,50 @@ module CellExponent_fp32_L16_c20_e2_p2_world(
 endmodule
 
 // VCS coverage exclude_file
-module tables_0_512x176_world(
-  input  [8:0]   R0_addr,
+module tables_0_256x352_world(
+  input  [7:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [175:0] R0_data,
-  input  [8:0]   R1_addr,
+  output [351:0] R0_data,
+  input  [7:0]   R1_addr,
   input          R1_en,
                  R1_clk,
-  output [175:0] R1_data,
-  input  [8:0]   R2_addr,
+  output [351:0] R1_data,
+  input  [7:0]   R2_addr,
   input          R2_en,
                  R2_clk,
-  output [175:0] R2_data,
-  input  [8:0]   R3_addr,
+  output [351:0] R2_data,
+  input  [7:0]   R3_addr,
   input          R3_en,
                  R3_clk,
-  output [175:0] R3_data,
-  input  [8:0]   W0_addr,
+  output [351:0] R3_data,
+  input  [7:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [175:0] W0_data
+  input  [351:0] W0_data
 );
 
-  reg [175:0] Memory[0:511];
+  reg [351:0] Memory[0:255];
   reg         _R0_en_d0;
-  reg [8:0]   _R0_addr_d0;
+  reg [7:0]   _R0_addr_d0;
   always @(posedge R0_clk) begin
     _R0_en_d0 <= R0_en;
     _R0_addr_d0 <= R0_addr;
   end // always @(posedge)
   reg         _R1_en_d0;
-  reg [8:0]   _R1_addr_d0;
+  reg [7:0]   _R1_addr_d0;
   always @(posedge R1_clk) begin
     _R1_en_d0 <= R1_en;
     _R1_addr_d0 <= R1_addr;
   end // always @(posedge)
   reg         _R2_en_d0;
-  reg [8:0]   _R2_addr_d0;
+  reg [7:0]   _R2_addr_d0;
   always @(posedge R2_clk) begin
     _R2_en_d0 <= R2_en;
     _R2_addr_d0 <= R2_addr;
   end // always @(posedge)
   reg         _R3_en_d0;
-  reg [8:0]   _R3_addr_d0;
+  reg [7:0]   _R3_addr_d0;
   always @(posedge R3_clk) begin
     _R3_en_d0 <= R3_en;
     _R3_addr_d0 <= R3_addr;
@@ -16510,37 +16510,37 @@ module tables_0_512x176_world(
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 176'bx;
-  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 176'bx;
-  assign R2_data = _R2_en_d0 ? Memory[_R2_addr_d0] : 176'bx;
-  assign R3_data = _R3_en_d0 ? Memory[_R3_addr_d0] : 176'bx;
+  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 352'bx;
+  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 352'bx;
+  assign R2_data = _R2_en_d0 ? Memory[_R2_addr_d0] : 352'bx;
+  assign R3_data = _R3_en_d0 ? Memory[_R3_addr_d0] : 352'bx;
 endmodule
 
 // VCS coverage exclude_file
-module mem_512x176_world(
-  input  [8:0]   R0_addr,
+module mem_256x352_world(
+  input  [7:0]   R0_addr,
   input          R0_en,
                  R0_clk,
-  output [175:0] R0_data,
-  input  [8:0]   R1_addr,
+  output [351:0] R0_data,
+  input  [7:0]   R1_addr,
   input          R1_en,
                  R1_clk,
-  output [175:0] R1_data,
-  input  [8:0]   W0_addr,
+  output [351:0] R1_data,
+  input  [7:0]   W0_addr,
   input          W0_en,
                  W0_clk,
-  input  [175:0] W0_data
+  input  [351:0] W0_data
 );
 
-  reg [175:0] Memory[0:511];
+  reg [351:0] Memory[0:255];
   reg         _R0_en_d0;
-  reg [8:0]   _R0_addr_d0;
+  reg [7:0]   _R0_addr_d0;
   always @(posedge R0_clk) begin
     _R0_en_d0 <= R0_en;
     _R0_addr_d0 <= R0_addr;
   end // always @(posedge)
   reg         _R1_en_d0;
-  reg [8:0]   _R1_addr_d0;
+  reg [7:0]   _R1_addr_d0;
   always @(posedge R1_clk) begin
     _R1_en_d0 <= R1_en;
     _R1_addr_d0 <= R1_addr;
@@ -16549,8 +16549,8 @@ module mem_512x176_world(
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 176'bx;
-  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 176'bx;
+  assign R0_data = _R0_en_d0 ? Memory[_R0_addr_d0] : 352'bx;
+  assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 352'bx;
 endmodule
 
 // VCS coverage exclude_file
@@ -16585,7 +16585,7 @@ module entries_1024x13_world(
   assign RW0_rdata = _RW0_ren_d0 & ~_RW0_rmode_d0 ? Memory[_RW0_raddr_d0] : 13'bx;
 endmodule
 
-module BucketSort_n1024_b13_w4_c16_p2_i12_world(
+module BucketSort_n1024_b13_w5_c16_p2_i12_world(
   input         clock,
                 reset,
   input  [3:0]  io_usedLog2,
@@ -16621,6 +16621,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_0_word_13,
                 io_lookup_0_word_14,
                 io_lookup_0_word_15,
+                io_lookup_0_word_16,
+                io_lookup_0_word_17,
+                io_lookup_0_word_18,
+                io_lookup_0_word_19,
+                io_lookup_0_word_20,
+                io_lookup_0_word_21,
+                io_lookup_0_word_22,
+                io_lookup_0_word_23,
+                io_lookup_0_word_24,
+                io_lookup_0_word_25,
+                io_lookup_0_word_26,
+                io_lookup_0_word_27,
+                io_lookup_0_word_28,
+                io_lookup_0_word_29,
+                io_lookup_0_word_30,
+                io_lookup_0_word_31,
   input  [12:0] io_lookup_1_bucket,
   output [10:0] io_lookup_1_begin,
                 io_lookup_1_end,
@@ -16640,6 +16656,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_1_word_13,
                 io_lookup_1_word_14,
                 io_lookup_1_word_15,
+                io_lookup_1_word_16,
+                io_lookup_1_word_17,
+                io_lookup_1_word_18,
+                io_lookup_1_word_19,
+                io_lookup_1_word_20,
+                io_lookup_1_word_21,
+                io_lookup_1_word_22,
+                io_lookup_1_word_23,
+                io_lookup_1_word_24,
+                io_lookup_1_word_25,
+                io_lookup_1_word_26,
+                io_lookup_1_word_27,
+                io_lookup_1_word_28,
+                io_lookup_1_word_29,
+                io_lookup_1_word_30,
+                io_lookup_1_word_31,
   input  [12:0] io_lookup_2_bucket,
   output [10:0] io_lookup_2_begin,
                 io_lookup_2_end,
@@ -16659,6 +16691,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_2_word_13,
                 io_lookup_2_word_14,
                 io_lookup_2_word_15,
+                io_lookup_2_word_16,
+                io_lookup_2_word_17,
+                io_lookup_2_word_18,
+                io_lookup_2_word_19,
+                io_lookup_2_word_20,
+                io_lookup_2_word_21,
+                io_lookup_2_word_22,
+                io_lookup_2_word_23,
+                io_lookup_2_word_24,
+                io_lookup_2_word_25,
+                io_lookup_2_word_26,
+                io_lookup_2_word_27,
+                io_lookup_2_word_28,
+                io_lookup_2_word_29,
+                io_lookup_2_word_30,
+                io_lookup_2_word_31,
   input  [12:0] io_lookup_3_bucket,
   output [10:0] io_lookup_3_begin,
                 io_lookup_3_end,
@@ -16678,6 +16726,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_3_word_13,
                 io_lookup_3_word_14,
                 io_lookup_3_word_15,
+                io_lookup_3_word_16,
+                io_lookup_3_word_17,
+                io_lookup_3_word_18,
+                io_lookup_3_word_19,
+                io_lookup_3_word_20,
+                io_lookup_3_word_21,
+                io_lookup_3_word_22,
+                io_lookup_3_word_23,
+                io_lookup_3_word_24,
+                io_lookup_3_word_25,
+                io_lookup_3_word_26,
+                io_lookup_3_word_27,
+                io_lookup_3_word_28,
+                io_lookup_3_word_29,
+                io_lookup_3_word_30,
+                io_lookup_3_word_31,
   input  [12:0] io_lookup_4_bucket,
   output [10:0] io_lookup_4_begin,
                 io_lookup_4_end,
@@ -16697,6 +16761,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_4_word_13,
                 io_lookup_4_word_14,
                 io_lookup_4_word_15,
+                io_lookup_4_word_16,
+                io_lookup_4_word_17,
+                io_lookup_4_word_18,
+                io_lookup_4_word_19,
+                io_lookup_4_word_20,
+                io_lookup_4_word_21,
+                io_lookup_4_word_22,
+                io_lookup_4_word_23,
+                io_lookup_4_word_24,
+                io_lookup_4_word_25,
+                io_lookup_4_word_26,
+                io_lookup_4_word_27,
+                io_lookup_4_word_28,
+                io_lookup_4_word_29,
+                io_lookup_4_word_30,
+                io_lookup_4_word_31,
   input  [12:0] io_lookup_5_bucket,
   output [10:0] io_lookup_5_begin,
                 io_lookup_5_end,
@@ -16716,6 +16796,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_5_word_13,
                 io_lookup_5_word_14,
                 io_lookup_5_word_15,
+                io_lookup_5_word_16,
+                io_lookup_5_word_17,
+                io_lookup_5_word_18,
+                io_lookup_5_word_19,
+                io_lookup_5_word_20,
+                io_lookup_5_word_21,
+                io_lookup_5_word_22,
+                io_lookup_5_word_23,
+                io_lookup_5_word_24,
+                io_lookup_5_word_25,
+                io_lookup_5_word_26,
+                io_lookup_5_word_27,
+                io_lookup_5_word_28,
+                io_lookup_5_word_29,
+                io_lookup_5_word_30,
+                io_lookup_5_word_31,
   input  [12:0] io_lookup_6_bucket,
   output [10:0] io_lookup_6_begin,
                 io_lookup_6_end,
@@ -16735,6 +16831,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_6_word_13,
                 io_lookup_6_word_14,
                 io_lookup_6_word_15,
+                io_lookup_6_word_16,
+                io_lookup_6_word_17,
+                io_lookup_6_word_18,
+                io_lookup_6_word_19,
+                io_lookup_6_word_20,
+                io_lookup_6_word_21,
+                io_lookup_6_word_22,
+                io_lookup_6_word_23,
+                io_lookup_6_word_24,
+                io_lookup_6_word_25,
+                io_lookup_6_word_26,
+                io_lookup_6_word_27,
+                io_lookup_6_word_28,
+                io_lookup_6_word_29,
+                io_lookup_6_word_30,
+                io_lookup_6_word_31,
   input  [12:0] io_lookup_7_bucket,
   output [10:0] io_lookup_7_begin,
                 io_lookup_7_end,
@@ -16754,6 +16866,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_7_word_13,
                 io_lookup_7_word_14,
                 io_lookup_7_word_15,
+                io_lookup_7_word_16,
+                io_lookup_7_word_17,
+                io_lookup_7_word_18,
+                io_lookup_7_word_19,
+                io_lookup_7_word_20,
+                io_lookup_7_word_21,
+                io_lookup_7_word_22,
+                io_lookup_7_word_23,
+                io_lookup_7_word_24,
+                io_lookup_7_word_25,
+                io_lookup_7_word_26,
+                io_lookup_7_word_27,
+                io_lookup_7_word_28,
+                io_lookup_7_word_29,
+                io_lookup_7_word_30,
+                io_lookup_7_word_31,
   input  [12:0] io_lookup_8_bucket,
   output [10:0] io_lookup_8_begin,
                 io_lookup_8_end,
@@ -16773,6 +16901,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_8_word_13,
                 io_lookup_8_word_14,
                 io_lookup_8_word_15,
+                io_lookup_8_word_16,
+                io_lookup_8_word_17,
+                io_lookup_8_word_18,
+                io_lookup_8_word_19,
+                io_lookup_8_word_20,
+                io_lookup_8_word_21,
+                io_lookup_8_word_22,
+                io_lookup_8_word_23,
+                io_lookup_8_word_24,
+                io_lookup_8_word_25,
+                io_lookup_8_word_26,
+                io_lookup_8_word_27,
+                io_lookup_8_word_28,
+                io_lookup_8_word_29,
+                io_lookup_8_word_30,
+                io_lookup_8_word_31,
   input  [12:0] io_lookup_9_bucket,
   output [10:0] io_lookup_9_begin,
                 io_lookup_9_end,
@@ -16792,6 +16936,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_9_word_13,
                 io_lookup_9_word_14,
                 io_lookup_9_word_15,
+                io_lookup_9_word_16,
+                io_lookup_9_word_17,
+                io_lookup_9_word_18,
+                io_lookup_9_word_19,
+                io_lookup_9_word_20,
+                io_lookup_9_word_21,
+                io_lookup_9_word_22,
+                io_lookup_9_word_23,
+                io_lookup_9_word_24,
+                io_lookup_9_word_25,
+                io_lookup_9_word_26,
+                io_lookup_9_word_27,
+                io_lookup_9_word_28,
+                io_lookup_9_word_29,
+                io_lookup_9_word_30,
+                io_lookup_9_word_31,
   input  [12:0] io_lookup_10_bucket,
   output [10:0] io_lookup_10_begin,
                 io_lookup_10_end,
@@ -16811,6 +16971,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_10_word_13,
                 io_lookup_10_word_14,
                 io_lookup_10_word_15,
+                io_lookup_10_word_16,
+                io_lookup_10_word_17,
+                io_lookup_10_word_18,
+                io_lookup_10_word_19,
+                io_lookup_10_word_20,
+                io_lookup_10_word_21,
+                io_lookup_10_word_22,
+                io_lookup_10_word_23,
+                io_lookup_10_word_24,
+                io_lookup_10_word_25,
+                io_lookup_10_word_26,
+                io_lookup_10_word_27,
+                io_lookup_10_word_28,
+                io_lookup_10_word_29,
+                io_lookup_10_word_30,
+                io_lookup_10_word_31,
   input  [12:0] io_lookup_11_bucket,
   output [10:0] io_lookup_11_begin,
                 io_lookup_11_end,
@@ -16830,6 +17006,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_11_word_13,
                 io_lookup_11_word_14,
                 io_lookup_11_word_15,
+                io_lookup_11_word_16,
+                io_lookup_11_word_17,
+                io_lookup_11_word_18,
+                io_lookup_11_word_19,
+                io_lookup_11_word_20,
+                io_lookup_11_word_21,
+                io_lookup_11_word_22,
+                io_lookup_11_word_23,
+                io_lookup_11_word_24,
+                io_lookup_11_word_25,
+                io_lookup_11_word_26,
+                io_lookup_11_word_27,
+                io_lookup_11_word_28,
+                io_lookup_11_word_29,
+                io_lookup_11_word_30,
+                io_lookup_11_word_31,
   input  [12:0] io_lookup_12_bucket,
   output [10:0] io_lookup_12_begin,
                 io_lookup_12_end,
@@ -16849,6 +17041,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_12_word_13,
                 io_lookup_12_word_14,
                 io_lookup_12_word_15,
+                io_lookup_12_word_16,
+                io_lookup_12_word_17,
+                io_lookup_12_word_18,
+                io_lookup_12_word_19,
+                io_lookup_12_word_20,
+                io_lookup_12_word_21,
+                io_lookup_12_word_22,
+                io_lookup_12_word_23,
+                io_lookup_12_word_24,
+                io_lookup_12_word_25,
+                io_lookup_12_word_26,
+                io_lookup_12_word_27,
+                io_lookup_12_word_28,
+                io_lookup_12_word_29,
+                io_lookup_12_word_30,
+                io_lookup_12_word_31,
   input  [12:0] io_lookup_13_bucket,
   output [10:0] io_lookup_13_begin,
                 io_lookup_13_end,
@@ -16868,6 +17076,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_13_word_13,
                 io_lookup_13_word_14,
                 io_lookup_13_word_15,
+                io_lookup_13_word_16,
+                io_lookup_13_word_17,
+                io_lookup_13_word_18,
+                io_lookup_13_word_19,
+                io_lookup_13_word_20,
+                io_lookup_13_word_21,
+                io_lookup_13_word_22,
+                io_lookup_13_word_23,
+                io_lookup_13_word_24,
+                io_lookup_13_word_25,
+                io_lookup_13_word_26,
+                io_lookup_13_word_27,
+                io_lookup_13_word_28,
+                io_lookup_13_word_29,
+                io_lookup_13_word_30,
+                io_lookup_13_word_31,
   input  [12:0] io_lookup_14_bucket,
   output [10:0] io_lookup_14_begin,
                 io_lookup_14_end,
@@ -16887,6 +17111,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_14_word_13,
                 io_lookup_14_word_14,
                 io_lookup_14_word_15,
+                io_lookup_14_word_16,
+                io_lookup_14_word_17,
+                io_lookup_14_word_18,
+                io_lookup_14_word_19,
+                io_lookup_14_word_20,
+                io_lookup_14_word_21,
+                io_lookup_14_word_22,
+                io_lookup_14_word_23,
+                io_lookup_14_word_24,
+                io_lookup_14_word_25,
+                io_lookup_14_word_26,
+                io_lookup_14_word_27,
+                io_lookup_14_word_28,
+                io_lookup_14_word_29,
+                io_lookup_14_word_30,
+                io_lookup_14_word_31,
   input  [12:0] io_lookup_15_bucket,
   output [10:0] io_lookup_15_begin,
                 io_lookup_15_end,
@@ -16906,6 +17146,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
                 io_lookup_15_word_13,
                 io_lookup_15_word_14,
                 io_lookup_15_word_15,
+                io_lookup_15_word_16,
+                io_lookup_15_word_17,
+                io_lookup_15_word_18,
+                io_lookup_15_word_19,
+                io_lookup_15_word_20,
+                io_lookup_15_word_21,
+                io_lookup_15_word_22,
+                io_lookup_15_word_23,
+                io_lookup_15_word_24,
+                io_lookup_15_word_25,
+                io_lookup_15_word_26,
+                io_lookup_15_word_27,
+                io_lookup_15_word_28,
+                io_lookup_15_word_29,
+                io_lookup_15_word_30,
+                io_lookup_15_word_31,
   input  [9:0]  io_entry_0_addr,
   output [11:0] io_entry_0_item,
   output        io_entry_0_mark,
@@ -17007,6 +17263,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   output        io_badBucket
 );
 
+  wire [10:0]  oldWord_1_31;
+  wire [10:0]  oldWord_1_30;
+  wire [10:0]  oldWord_1_29;
+  wire [10:0]  oldWord_1_28;
+  wire [10:0]  oldWord_1_27;
+  wire [10:0]  oldWord_1_26;
+  wire [10:0]  oldWord_1_25;
+  wire [10:0]  oldWord_1_24;
+  wire [10:0]  oldWord_1_23;
+  wire [10:0]  oldWord_1_22;
+  wire [10:0]  oldWord_1_21;
+  wire [10:0]  oldWord_1_20;
+  wire [10:0]  oldWord_1_19;
+  wire [10:0]  oldWord_1_18;
+  wire [10:0]  oldWord_1_17;
+  wire [10:0]  oldWord_1_16;
   wire [10:0]  oldWord_1_15;
   wire [10:0]  oldWord_1_14;
   wire [10:0]  oldWord_1_13;
@@ -17023,6 +17295,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   wire [10:0]  oldWord_1_2;
   wire [10:0]  oldWord_1_1;
   wire [10:0]  oldWord_1_0;
+  wire [10:0]  oldWord_31;
+  wire [10:0]  oldWord_30;
+  wire [10:0]  oldWord_29;
+  wire [10:0]  oldWord_28;
+  wire [10:0]  oldWord_27;
+  wire [10:0]  oldWord_26;
+  wire [10:0]  oldWord_25;
+  wire [10:0]  oldWord_24;
+  wire [10:0]  oldWord_23;
+  wire [10:0]  oldWord_22;
+  wire [10:0]  oldWord_21;
+  wire [10:0]  oldWord_20;
+  wire [10:0]  oldWord_19;
+  wire [10:0]  oldWord_18;
+  wire [10:0]  oldWord_17;
+  wire [10:0]  oldWord_16;
   wire [10:0]  oldWord_15;
   wire [10:0]  oldWord_14;
   wire [10:0]  oldWord_13;
@@ -17055,46 +17343,46 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   wire [12:0]  _entries_2_ext_RW0_rdata;
   wire [12:0]  _entries_1_ext_RW0_rdata;
   wire [12:0]  _entries_0_ext_RW0_rdata;
-  wire [175:0] _cursors_0_ext_R0_data;
-  wire [175:0] _cursors_0_ext_R1_data;
-  wire [175:0] _tables_15_ext_R0_data;
-  wire [175:0] _tables_15_ext_R1_data;
-  wire [175:0] _tables_14_ext_R0_data;
-  wire [175:0] _tables_14_ext_R1_data;
-  wire [175:0] _tables_13_ext_R0_data;
-  wire [175:0] _tables_13_ext_R1_data;
-  wire [175:0] _tables_12_ext_R0_data;
-  wire [175:0] _tables_12_ext_R1_data;
-  wire [175:0] _tables_11_ext_R0_data;
-  wire [175:0] _tables_11_ext_R1_data;
-  wire [175:0] _tables_10_ext_R0_data;
-  wire [175:0] _tables_10_ext_R1_data;
-  wire [175:0] _tables_9_ext_R0_data;
-  wire [175:0] _tables_9_ext_R1_data;
-  wire [175:0] _tables_8_ext_R0_data;
-  wire [175:0] _tables_8_ext_R1_data;
-  wire [175:0] _tables_7_ext_R0_data;
-  wire [175:0] _tables_7_ext_R1_data;
-  wire [175:0] _tables_6_ext_R0_data;
-  wire [175:0] _tables_6_ext_R1_data;
-  wire [175:0] _tables_5_ext_R0_data;
-  wire [175:0] _tables_5_ext_R1_data;
-  wire [175:0] _tables_4_ext_R0_data;
-  wire [175:0] _tables_4_ext_R1_data;
-  wire [175:0] _tables_3_ext_R0_data;
-  wire [175:0] _tables_3_ext_R1_data;
-  wire [175:0] _tables_2_ext_R0_data;
-  wire [175:0] _tables_2_ext_R1_data;
-  wire [175:0] _tables_1_ext_R0_data;
-  wire [175:0] _tables_1_ext_R1_data;
-  wire [175:0] _tables_0_ext_R0_data;
-  wire [175:0] _tables_0_ext_R1_data;
-  wire [175:0] _tables_0_ext_R2_data;
-  wire [175:0] _tables_0_ext_R3_data;
+  wire [351:0] _cursors_0_ext_R0_data;
+  wire [351:0] _cursors_0_ext_R1_data;
+  wire [351:0] _tables_15_ext_R0_data;
+  wire [351:0] _tables_15_ext_R1_data;
+  wire [351:0] _tables_14_ext_R0_data;
+  wire [351:0] _tables_14_ext_R1_data;
+  wire [351:0] _tables_13_ext_R0_data;
+  wire [351:0] _tables_13_ext_R1_data;
+  wire [351:0] _tables_12_ext_R0_data;
+  wire [351:0] _tables_12_ext_R1_data;
+  wire [351:0] _tables_11_ext_R0_data;
+  wire [351:0] _tables_11_ext_R1_data;
+  wire [351:0] _tables_10_ext_R0_data;
+  wire [351:0] _tables_10_ext_R1_data;
+  wire [351:0] _tables_9_ext_R0_data;
+  wire [351:0] _tables_9_ext_R1_data;
+  wire [351:0] _tables_8_ext_R0_data;
+  wire [351:0] _tables_8_ext_R1_data;
+  wire [351:0] _tables_7_ext_R0_data;
+  wire [351:0] _tables_7_ext_R1_data;
+  wire [351:0] _tables_6_ext_R0_data;
+  wire [351:0] _tables_6_ext_R1_data;
+  wire [351:0] _tables_5_ext_R0_data;
+  wire [351:0] _tables_5_ext_R1_data;
+  wire [351:0] _tables_4_ext_R0_data;
+  wire [351:0] _tables_4_ext_R1_data;
+  wire [351:0] _tables_3_ext_R0_data;
+  wire [351:0] _tables_3_ext_R1_data;
+  wire [351:0] _tables_2_ext_R0_data;
+  wire [351:0] _tables_2_ext_R1_data;
+  wire [351:0] _tables_1_ext_R0_data;
+  wire [351:0] _tables_1_ext_R1_data;
+  wire [351:0] _tables_0_ext_R0_data;
+  wire [351:0] _tables_0_ext_R1_data;
+  wire [351:0] _tables_0_ext_R2_data;
+  wire [351:0] _tables_0_ext_R3_data;
   reg  [1:0]   state;
-  reg  [9:0]   walk;
+  reg  [8:0]   walk;
   wire [28:0]  _used_T = 29'h1 << io_usedLog2;
-  wire [9:0]   usedWords = _used_T[13:4] == 10'h0 ? 10'h1 : _used_T[13:4];
+  wire [8:0]   usedWords = _used_T[13:5] == 9'h0 ? 9'h1 : _used_T[13:5];
   reg  [10:0]  counted;
   reg  [10:0]  scattered;
   reg          bad;
@@ -17103,7 +17391,7 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   wire         _sumRead_T_1 = walk < usedWords;
   wire         sumRead = _sumRead_T & _sumRead_T_1;
   reg          sumS1;
-  reg  [8:0]   sumW;
+  reg  [7:0]   sumW;
   reg          sumLast;
   wire [10:0]  totals_0 = _cursors_0_ext_R0_data[10:0] + _tables_0_ext_R0_data[10:0];
   wire [10:0]  totals_1 = _cursors_0_ext_R0_data[21:11] + _tables_0_ext_R0_data[21:11];
@@ -17127,6 +17415,38 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     _cursors_0_ext_R0_data[164:154] + _tables_0_ext_R0_data[164:154];
   wire [10:0]  totals_15 =
     _cursors_0_ext_R0_data[175:165] + _tables_0_ext_R0_data[175:165];
+  wire [10:0]  totals_16 =
+    _cursors_0_ext_R0_data[186:176] + _tables_0_ext_R0_data[186:176];
+  wire [10:0]  totals_17 =
+    _cursors_0_ext_R0_data[197:187] + _tables_0_ext_R0_data[197:187];
+  wire [10:0]  totals_18 =
+    _cursors_0_ext_R0_data[208:198] + _tables_0_ext_R0_data[208:198];
+  wire [10:0]  totals_19 =
+    _cursors_0_ext_R0_data[219:209] + _tables_0_ext_R0_data[219:209];
+  wire [10:0]  totals_20 =
+    _cursors_0_ext_R0_data[230:220] + _tables_0_ext_R0_data[230:220];
+  wire [10:0]  totals_21 =
+    _cursors_0_ext_R0_data[241:231] + _tables_0_ext_R0_data[241:231];
+  wire [10:0]  totals_22 =
+    _cursors_0_ext_R0_data[252:242] + _tables_0_ext_R0_data[252:242];
+  wire [10:0]  totals_23 =
+    _cursors_0_ext_R0_data[263:253] + _tables_0_ext_R0_data[263:253];
+  wire [10:0]  totals_24 =
+    _cursors_0_ext_R0_data[274:264] + _tables_0_ext_R0_data[274:264];
+  wire [10:0]  totals_25 =
+    _cursors_0_ext_R0_data[285:275] + _tables_0_ext_R0_data[285:275];
+  wire [10:0]  totals_26 =
+    _cursors_0_ext_R0_data[296:286] + _tables_0_ext_R0_data[296:286];
+  wire [10:0]  totals_27 =
+    _cursors_0_ext_R0_data[307:297] + _tables_0_ext_R0_data[307:297];
+  wire [10:0]  totals_28 =
+    _cursors_0_ext_R0_data[318:308] + _tables_0_ext_R0_data[318:308];
+  wire [10:0]  totals_29 =
+    _cursors_0_ext_R0_data[329:319] + _tables_0_ext_R0_data[329:319];
+  wire [10:0]  totals_30 =
+    _cursors_0_ext_R0_data[340:330] + _tables_0_ext_R0_data[340:330];
+  wire [10:0]  totals_31 =
+    _cursors_0_ext_R0_data[351:341] + _tables_0_ext_R0_data[351:341];
   wire [10:0]  starts_1 = sum + totals_0;
   wire [10:0]  starts_2 = starts_1 + totals_1;
   wire [10:0]  starts_3 = starts_2 + totals_2;
@@ -17142,10 +17462,42 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   wire [10:0]  starts_13 = starts_12 + totals_12;
   wire [10:0]  starts_14 = starts_13 + totals_13;
   wire [10:0]  starts_15 = starts_14 + totals_14;
+  wire [10:0]  starts_16 = starts_15 + totals_15;
+  wire [10:0]  starts_17 = starts_16 + totals_16;
+  wire [10:0]  starts_18 = starts_17 + totals_17;
+  wire [10:0]  starts_19 = starts_18 + totals_18;
+  wire [10:0]  starts_20 = starts_19 + totals_19;
+  wire [10:0]  starts_21 = starts_20 + totals_20;
+  wire [10:0]  starts_22 = starts_21 + totals_21;
+  wire [10:0]  starts_23 = starts_22 + totals_22;
+  wire [10:0]  starts_24 = starts_23 + totals_23;
+  wire [10:0]  starts_25 = starts_24 + totals_24;
+  wire [10:0]  starts_26 = starts_25 + totals_25;
+  wire [10:0]  starts_27 = starts_26 + totals_26;
+  wire [10:0]  starts_28 = starts_27 + totals_27;
+  wire [10:0]  starts_29 = starts_28 + totals_28;
+  wire [10:0]  starts_30 = starts_29 + totals_29;
+  wire [10:0]  starts_31 = starts_30 + totals_30;
   wire         _io_in_1_ready_T = state == 2'h0;
   wire         _GEN = state == 2'h1;
-  wire [175:0] ends =
-    {starts_15 + totals_15,
+  wire [351:0] ends =
+    {starts_31 + totals_31,
+     starts_30 + totals_30,
+     starts_29 + totals_29,
+     starts_28 + totals_28,
+     starts_27 + totals_27,
+     starts_26 + totals_26,
+     starts_25 + totals_25,
+     starts_24 + totals_24,
+     starts_23 + totals_23,
+     starts_22 + totals_22,
+     starts_21 + totals_21,
+     starts_20 + totals_20,
+     starts_19 + totals_19,
+     starts_18 + totals_18,
+     starts_17 + totals_17,
+     starts_16 + totals_16,
+     starts_15 + totals_15,
      starts_14 + totals_14,
      starts_13 + totals_13,
      starts_12 + totals_12,
@@ -17171,64 +17523,112 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   reg          s1scatter;
   reg  [11:0]  s1item;
   reg          fwdValid;
-  reg  [8:0]   fwdW;
+  reg  [7:0]   fwdW;
   reg  [10:0]  casez_tmp;
   always @(*) begin
-    casez (s1b[3:0])
-      4'b0000:
+    casez (s1b[4:0])
+      5'b00000:
         casez_tmp = oldWord_0;
-      4'b0001:
+      5'b00001:
         casez_tmp = oldWord_1;
-      4'b0010:
+      5'b00010:
         casez_tmp = oldWord_2;
-      4'b0011:
+      5'b00011:
         casez_tmp = oldWord_3;
-      4'b0100:
+      5'b00100:
         casez_tmp = oldWord_4;
-      4'b0101:
+      5'b00101:
         casez_tmp = oldWord_5;
-      4'b0110:
+      5'b00110:
         casez_tmp = oldWord_6;
-      4'b0111:
+      5'b00111:
         casez_tmp = oldWord_7;
-      4'b1000:
+      5'b01000:
         casez_tmp = oldWord_8;
-      4'b1001:
+      5'b01001:
         casez_tmp = oldWord_9;
-      4'b1010:
+      5'b01010:
         casez_tmp = oldWord_10;
-      4'b1011:
+      5'b01011:
         casez_tmp = oldWord_11;
-      4'b1100:
+      5'b01100:
         casez_tmp = oldWord_12;
-      4'b1101:
+      5'b01101:
         casez_tmp = oldWord_13;
-      4'b1110:
+      5'b01110:
         casez_tmp = oldWord_14;
-      default:
+      5'b01111:
         casez_tmp = oldWord_15;
+      5'b10000:
+        casez_tmp = oldWord_16;
+      5'b10001:
+        casez_tmp = oldWord_17;
+      5'b10010:
+        casez_tmp = oldWord_18;
+      5'b10011:
+        casez_tmp = oldWord_19;
+      5'b10100:
+        casez_tmp = oldWord_20;
+      5'b10101:
+        casez_tmp = oldWord_21;
+      5'b10110:
+        casez_tmp = oldWord_22;
+      5'b10111:
+        casez_tmp = oldWord_23;
+      5'b11000:
+        casez_tmp = oldWord_24;
+      5'b11001:
+        casez_tmp = oldWord_25;
+      5'b11010:
+        casez_tmp = oldWord_26;
+      5'b11011:
+        casez_tmp = oldWord_27;
+      5'b11100:
+        casez_tmp = oldWord_28;
+      5'b11101:
+        casez_tmp = oldWord_29;
+      5'b11110:
+        casez_tmp = oldWord_30;
+      default:
+        casez_tmp = oldWord_31;
     endcase
   end // always @(*)
-  wire [10:0]  _newWord_T_77 = casez_tmp + 11'h1;
-  wire [175:0] newWord =
-    {(&(s1b[3:0])) ? _newWord_T_77 : oldWord_15,
-     s1b[3:0] == 4'hE ? _newWord_T_77 : oldWord_14,
-     s1b[3:0] == 4'hD ? _newWord_T_77 : oldWord_13,
-     s1b[3:0] == 4'hC ? _newWord_T_77 : oldWord_12,
-     s1b[3:0] == 4'hB ? _newWord_T_77 : oldWord_11,
-     s1b[3:0] == 4'hA ? _newWord_T_77 : oldWord_10,
-     s1b[3:0] == 4'h9 ? _newWord_T_77 : oldWord_9,
-     s1b[3:0] == 4'h8 ? _newWord_T_77 : oldWord_8,
-     s1b[3:0] == 4'h7 ? _newWord_T_77 : oldWord_7,
-     s1b[3:0] == 4'h6 ? _newWord_T_77 : oldWord_6,
-     s1b[3:0] == 4'h5 ? _newWord_T_77 : oldWord_5,
-     s1b[3:0] == 4'h4 ? _newWord_T_77 : oldWord_4,
-     s1b[3:0] == 4'h3 ? _newWord_T_77 : oldWord_3,
-     s1b[3:0] == 4'h2 ? _newWord_T_77 : oldWord_2,
-     s1b[3:0] == 4'h1 ? _newWord_T_77 : oldWord_1,
-     s1b[3:0] == 4'h0 ? _newWord_T_77 : oldWord_0};
-  reg  [175:0] fwdV;
-  wire [175:0] _GEN_0 = fwdValid & fwdW == s1b[12:4] ? fwdV : _cursors_0_ext_R1_data;
+  wire [10:0]  _newWord_T_157 = casez_tmp + 11'h1;
+  wire [351:0] newWord =
+    {(&(s1b[4:0])) ? _newWord_T_157 : oldWord_31,
+     s1b[4:0] == 5'h1E ? _newWord_T_157 : oldWord_30,
+     s1b[4:0] == 5'h1D ? _newWord_T_157 : oldWord_29,
+     s1b[4:0] == 5'h1C ? _newWord_T_157 : oldWord_28,
+     s1b[4:0] == 5'h1B ? _newWord_T_157 : oldWord_27,
+     s1b[4:0] == 5'h1A ? _newWord_T_157 : oldWord_26,
+     s1b[4:0] == 5'h19 ? _newWord_T_157 : oldWord_25,
+     s1b[4:0] == 5'h18 ? _newWord_T_157 : oldWord_24,
+     s1b[4:0] == 5'h17 ? _newWord_T_157 : oldWord_23,
+     s1b[4:0] == 5'h16 ? _newWord_T_157 : oldWord_22,
+     s1b[4:0] == 5'h15 ? _newWord_T_157 : oldWord_21,
+     s1b[4:0] == 5'h14 ? _newWord_T_157 : oldWord_20,
+     s1b[4:0] == 5'h13 ? _newWord_T_157 : oldWord_19,
+     s1b[4:0] == 5'h12 ? _newWord_T_157 : oldWord_18,
+     s1b[4:0] == 5'h11 ? _newWord_T_157 : oldWord_17,
+     s1b[4:0] == 5'h10 ? _newWord_T_157 : oldWord_16,
+     s1b[4:0] == 5'hF ? _newWord_T_157 : oldWord_15,
+     s1b[4:0] == 5'hE ? _newWord_T_157 : oldWord_14,
+     s1b[4:0] == 5'hD ? _newWord_T_157 : oldWord_13,
+     s1b[4:0] == 5'hC ? _newWord_T_157 : oldWord_12,
+     s1b[4:0] == 5'hB ? _newWord_T_157 : oldWord_11,
+     s1b[4:0] == 5'hA ? _newWord_T_157 : oldWord_10,
+     s1b[4:0] == 5'h9 ? _newWord_T_157 : oldWord_9,
+     s1b[4:0] == 5'h8 ? _newWord_T_157 : oldWord_8,
+     s1b[4:0] == 5'h7 ? _newWord_T_157 : oldWord_7,
+     s1b[4:0] == 5'h6 ? _newWord_T_157 : oldWord_6,
+     s1b[4:0] == 5'h5 ? _newWord_T_157 : oldWord_5,
+     s1b[4:0] == 5'h4 ? _newWord_T_157 : oldWord_4,
+     s1b[4:0] == 5'h3 ? _newWord_T_157 : oldWord_3,
+     s1b[4:0] == 5'h2 ? _newWord_T_157 : oldWord_2,
+     s1b[4:0] == 5'h1 ? _newWord_T_157 : oldWord_1,
+     s1b[4:0] == 5'h0 ? _newWord_T_157 : oldWord_0};
+  reg  [351:0] fwdV;
+  wire [351:0] _GEN_0 = fwdValid & fwdW == s1b[12:5] ? fwdV : _cursors_0_ext_R1_data;
   assign oldWord_0 = _GEN_0[10:0];
   assign oldWord_1 = _GEN_0[21:11];
   assign oldWord_2 = _GEN_0[32:22];
@@ -17245,6 +17645,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign oldWord_13 = _GEN_0[153:143];
   assign oldWord_14 = _GEN_0[164:154];
   assign oldWord_15 = _GEN_0[175:165];
+  assign oldWord_16 = _GEN_0[186:176];
+  assign oldWord_17 = _GEN_0[197:187];
+  assign oldWord_18 = _GEN_0[208:198];
+  assign oldWord_19 = _GEN_0[219:209];
+  assign oldWord_20 = _GEN_0[230:220];
+  assign oldWord_21 = _GEN_0[241:231];
+  assign oldWord_22 = _GEN_0[252:242];
+  assign oldWord_23 = _GEN_0[263:253];
+  assign oldWord_24 = _GEN_0[274:264];
+  assign oldWord_25 = _GEN_0[285:275];
+  assign oldWord_26 = _GEN_0[296:286];
+  assign oldWord_27 = _GEN_0[307:297];
+  assign oldWord_28 = _GEN_0[318:308];
+  assign oldWord_29 = _GEN_0[329:319];
+  assign oldWord_30 = _GEN_0[340:330];
+  assign oldWord_31 = _GEN_0[351:341];
   wire         place_0_valid = s1 & s1scatter;
   wire         _GEN_1 = sumS1 | _GEN;
   wire         inRange_1 = {1'h0, io_in_1_bits_bucket} < _used_T[13:0];
@@ -17255,65 +17671,113 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   reg          s1scatter_1;
   reg  [11:0]  s1item_1;
   reg          fwdValid_1;
-  reg  [8:0]   fwdW_1;
+  reg  [7:0]   fwdW_1;
   reg  [10:0]  casez_tmp_0;
   always @(*) begin
-    casez (s1b_1[3:0])
-      4'b0000:
+    casez (s1b_1[4:0])
+      5'b00000:
         casez_tmp_0 = oldWord_1_0;
-      4'b0001:
+      5'b00001:
         casez_tmp_0 = oldWord_1_1;
-      4'b0010:
+      5'b00010:
         casez_tmp_0 = oldWord_1_2;
-      4'b0011:
+      5'b00011:
         casez_tmp_0 = oldWord_1_3;
-      4'b0100:
+      5'b00100:
         casez_tmp_0 = oldWord_1_4;
-      4'b0101:
+      5'b00101:
         casez_tmp_0 = oldWord_1_5;
-      4'b0110:
+      5'b00110:
         casez_tmp_0 = oldWord_1_6;
-      4'b0111:
+      5'b00111:
         casez_tmp_0 = oldWord_1_7;
-      4'b1000:
+      5'b01000:
         casez_tmp_0 = oldWord_1_8;
-      4'b1001:
+      5'b01001:
         casez_tmp_0 = oldWord_1_9;
-      4'b1010:
+      5'b01010:
         casez_tmp_0 = oldWord_1_10;
-      4'b1011:
+      5'b01011:
         casez_tmp_0 = oldWord_1_11;
-      4'b1100:
+      5'b01100:
         casez_tmp_0 = oldWord_1_12;
-      4'b1101:
+      5'b01101:
         casez_tmp_0 = oldWord_1_13;
-      4'b1110:
+      5'b01110:
         casez_tmp_0 = oldWord_1_14;
-      default:
+      5'b01111:
         casez_tmp_0 = oldWord_1_15;
+      5'b10000:
+        casez_tmp_0 = oldWord_1_16;
+      5'b10001:
+        casez_tmp_0 = oldWord_1_17;
+      5'b10010:
+        casez_tmp_0 = oldWord_1_18;
+      5'b10011:
+        casez_tmp_0 = oldWord_1_19;
+      5'b10100:
+        casez_tmp_0 = oldWord_1_20;
+      5'b10101:
+        casez_tmp_0 = oldWord_1_21;
+      5'b10110:
+        casez_tmp_0 = oldWord_1_22;
+      5'b10111:
+        casez_tmp_0 = oldWord_1_23;
+      5'b11000:
+        casez_tmp_0 = oldWord_1_24;
+      5'b11001:
+        casez_tmp_0 = oldWord_1_25;
+      5'b11010:
+        casez_tmp_0 = oldWord_1_26;
+      5'b11011:
+        casez_tmp_0 = oldWord_1_27;
+      5'b11100:
+        casez_tmp_0 = oldWord_1_28;
+      5'b11101:
+        casez_tmp_0 = oldWord_1_29;
+      5'b11110:
+        casez_tmp_0 = oldWord_1_30;
+      default:
+        casez_tmp_0 = oldWord_1_31;
     endcase
   end // always @(*)
-  wire [10:0]  _newWord_T_157 = casez_tmp_0 + 11'h1;
-  wire [175:0] newWord_1 =
-    {(&(s1b_1[3:0])) ? _newWord_T_157 : oldWord_1_15,
-     s1b_1[3:0] == 4'hE ? _newWord_T_157 : oldWord_1_14,
-     s1b_1[3:0] == 4'hD ? _newWord_T_157 : oldWord_1_13,
-     s1b_1[3:0] == 4'hC ? _newWord_T_157 : oldWord_1_12,
-     s1b_1[3:0] == 4'hB ? _newWord_T_157 : oldWord_1_11,
-     s1b_1[3:0] == 4'hA ? _newWord_T_157 : oldWord_1_10,
-     s1b_1[3:0] == 4'h9 ? _newWord_T_157 : oldWord_1_9,
-     s1b_1[3:0] == 4'h8 ? _newWord_T_157 : oldWord_1_8,
-     s1b_1[3:0] == 4'h7 ? _newWord_T_157 : oldWord_1_7,
-     s1b_1[3:0] == 4'h6 ? _newWord_T_157 : oldWord_1_6,
-     s1b_1[3:0] == 4'h5 ? _newWord_T_157 : oldWord_1_5,
-     s1b_1[3:0] == 4'h4 ? _newWord_T_157 : oldWord_1_4,
-     s1b_1[3:0] == 4'h3 ? _newWord_T_157 : oldWord_1_3,
-     s1b_1[3:0] == 4'h2 ? _newWord_T_157 : oldWord_1_2,
-     s1b_1[3:0] == 4'h1 ? _newWord_T_157 : oldWord_1_1,
-     s1b_1[3:0] == 4'h0 ? _newWord_T_157 : oldWord_1_0};
-  reg  [175:0] fwdV_1;
-  wire [175:0] _GEN_2 =
-    fwdValid_1 & fwdW_1 == s1b_1[12:4] ? fwdV_1 : _tables_0_ext_R1_data;
+  wire [10:0]  _newWord_T_317 = casez_tmp_0 + 11'h1;
+  wire [351:0] newWord_1 =
+    {(&(s1b_1[4:0])) ? _newWord_T_317 : oldWord_1_31,
+     s1b_1[4:0] == 5'h1E ? _newWord_T_317 : oldWord_1_30,
+     s1b_1[4:0] == 5'h1D ? _newWord_T_317 : oldWord_1_29,
+     s1b_1[4:0] == 5'h1C ? _newWord_T_317 : oldWord_1_28,
+     s1b_1[4:0] == 5'h1B ? _newWord_T_317 : oldWord_1_27,
+     s1b_1[4:0] == 5'h1A ? _newWord_T_317 : oldWord_1_26,
+     s1b_1[4:0] == 5'h19 ? _newWord_T_317 : oldWord_1_25,
+     s1b_1[4:0] == 5'h18 ? _newWord_T_317 : oldWord_1_24,
+     s1b_1[4:0] == 5'h17 ? _newWord_T_317 : oldWord_1_23,
+     s1b_1[4:0] == 5'h16 ? _newWord_T_317 : oldWord_1_22,
+     s1b_1[4:0] == 5'h15 ? _newWord_T_317 : oldWord_1_21,
+     s1b_1[4:0] == 5'h14 ? _newWord_T_317 : oldWord_1_20,
+     s1b_1[4:0] == 5'h13 ? _newWord_T_317 : oldWord_1_19,
+     s1b_1[4:0] == 5'h12 ? _newWord_T_317 : oldWord_1_18,
+     s1b_1[4:0] == 5'h11 ? _newWord_T_317 : oldWord_1_17,
+     s1b_1[4:0] == 5'h10 ? _newWord_T_317 : oldWord_1_16,
+     s1b_1[4:0] == 5'hF ? _newWord_T_317 : oldWord_1_15,
+     s1b_1[4:0] == 5'hE ? _newWord_T_317 : oldWord_1_14,
+     s1b_1[4:0] == 5'hD ? _newWord_T_317 : oldWord_1_13,
+     s1b_1[4:0] == 5'hC ? _newWord_T_317 : oldWord_1_12,
+     s1b_1[4:0] == 5'hB ? _newWord_T_317 : oldWord_1_11,
+     s1b_1[4:0] == 5'hA ? _newWord_T_317 : oldWord_1_10,
+     s1b_1[4:0] == 5'h9 ? _newWord_T_317 : oldWord_1_9,
+     s1b_1[4:0] == 5'h8 ? _newWord_T_317 : oldWord_1_8,
+     s1b_1[4:0] == 5'h7 ? _newWord_T_317 : oldWord_1_7,
+     s1b_1[4:0] == 5'h6 ? _newWord_T_317 : oldWord_1_6,
+     s1b_1[4:0] == 5'h5 ? _newWord_T_317 : oldWord_1_5,
+     s1b_1[4:0] == 5'h4 ? _newWord_T_317 : oldWord_1_4,
+     s1b_1[4:0] == 5'h3 ? _newWord_T_317 : oldWord_1_3,
+     s1b_1[4:0] == 5'h2 ? _newWord_T_317 : oldWord_1_2,
+     s1b_1[4:0] == 5'h1 ? _newWord_T_317 : oldWord_1_1,
+     s1b_1[4:0] == 5'h0 ? _newWord_T_317 : oldWord_1_0};
+  reg  [351:0] fwdV_1;
+  wire [351:0] _GEN_2 =
+    fwdValid_1 & fwdW_1 == s1b_1[12:5] ? fwdV_1 : _tables_0_ext_R1_data;
   assign oldWord_1_0 = _GEN_2[10:0];
   assign oldWord_1_1 = _GEN_2[21:11];
   assign oldWord_1_2 = _GEN_2[32:22];
@@ -17330,1257 +17794,2297 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign oldWord_1_13 = _GEN_2[153:143];
   assign oldWord_1_14 = _GEN_2[164:154];
   assign oldWord_1_15 = _GEN_2[175:165];
+  assign oldWord_1_16 = _GEN_2[186:176];
+  assign oldWord_1_17 = _GEN_2[197:187];
+  assign oldWord_1_18 = _GEN_2[208:198];
+  assign oldWord_1_19 = _GEN_2[219:209];
+  assign oldWord_1_20 = _GEN_2[230:220];
+  assign oldWord_1_21 = _GEN_2[241:231];
+  assign oldWord_1_22 = _GEN_2[252:242];
+  assign oldWord_1_23 = _GEN_2[263:253];
+  assign oldWord_1_24 = _GEN_2[274:264];
+  assign oldWord_1_25 = _GEN_2[285:275];
+  assign oldWord_1_26 = _GEN_2[296:286];
+  assign oldWord_1_27 = _GEN_2[307:297];
+  assign oldWord_1_28 = _GEN_2[318:308];
+  assign oldWord_1_29 = _GEN_2[329:319];
+  assign oldWord_1_30 = _GEN_2[340:330];
+  assign oldWord_1_31 = _GEN_2[351:341];
   wire         place_1_valid = s1_1 & s1scatter_1;
   wire [12:0]  _prev_T = io_lookup_0_bucket - 13'h1;
   reg          lbZero;
-  reg  [3:0]   io_lookup_0_end_REG;
+  reg  [4:0]   io_lookup_0_end_REG;
   reg  [10:0]  casez_tmp_1;
   always @(*) begin
     casez (io_lookup_0_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_1 = _tables_0_ext_R2_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_1 = _tables_0_ext_R2_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_1 = _tables_0_ext_R2_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_1 = _tables_0_ext_R2_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_1 = _tables_0_ext_R2_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_1 = _tables_0_ext_R2_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_1 = _tables_0_ext_R2_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_1 = _tables_0_ext_R2_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_1 = _tables_0_ext_R2_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_1 = _tables_0_ext_R2_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_1 = _tables_0_ext_R2_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_1 = _tables_0_ext_R2_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_1 = _tables_0_ext_R2_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_1 = _tables_0_ext_R2_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_1 = _tables_0_ext_R2_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_1 = _tables_0_ext_R2_data[175:165];
+      5'b10000:
+        casez_tmp_1 = _tables_0_ext_R2_data[186:176];
+      5'b10001:
+        casez_tmp_1 = _tables_0_ext_R2_data[197:187];
+      5'b10010:
+        casez_tmp_1 = _tables_0_ext_R2_data[208:198];
+      5'b10011:
+        casez_tmp_1 = _tables_0_ext_R2_data[219:209];
+      5'b10100:
+        casez_tmp_1 = _tables_0_ext_R2_data[230:220];
+      5'b10101:
+        casez_tmp_1 = _tables_0_ext_R2_data[241:231];
+      5'b10110:
+        casez_tmp_1 = _tables_0_ext_R2_data[252:242];
+      5'b10111:
+        casez_tmp_1 = _tables_0_ext_R2_data[263:253];
+      5'b11000:
+        casez_tmp_1 = _tables_0_ext_R2_data[274:264];
+      5'b11001:
+        casez_tmp_1 = _tables_0_ext_R2_data[285:275];
+      5'b11010:
+        casez_tmp_1 = _tables_0_ext_R2_data[296:286];
+      5'b11011:
+        casez_tmp_1 = _tables_0_ext_R2_data[307:297];
+      5'b11100:
+        casez_tmp_1 = _tables_0_ext_R2_data[318:308];
+      5'b11101:
+        casez_tmp_1 = _tables_0_ext_R2_data[329:319];
+      5'b11110:
+        casez_tmp_1 = _tables_0_ext_R2_data[340:330];
+      default:
+        casez_tmp_1 = _tables_0_ext_R2_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_0_begin_REG;
+  reg  [4:0]   io_lookup_0_begin_REG;
   reg  [10:0]  casez_tmp_2;
   always @(*) begin
     casez (io_lookup_0_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_2 = _tables_0_ext_R3_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_2 = _tables_0_ext_R3_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_2 = _tables_0_ext_R3_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_2 = _tables_0_ext_R3_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_2 = _tables_0_ext_R3_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_2 = _tables_0_ext_R3_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_2 = _tables_0_ext_R3_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_2 = _tables_0_ext_R3_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_2 = _tables_0_ext_R3_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_2 = _tables_0_ext_R3_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_2 = _tables_0_ext_R3_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_2 = _tables_0_ext_R3_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_2 = _tables_0_ext_R3_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_2 = _tables_0_ext_R3_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_2 = _tables_0_ext_R3_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_2 = _tables_0_ext_R3_data[175:165];
+      5'b10000:
+        casez_tmp_2 = _tables_0_ext_R3_data[186:176];
+      5'b10001:
+        casez_tmp_2 = _tables_0_ext_R3_data[197:187];
+      5'b10010:
+        casez_tmp_2 = _tables_0_ext_R3_data[208:198];
+      5'b10011:
+        casez_tmp_2 = _tables_0_ext_R3_data[219:209];
+      5'b10100:
+        casez_tmp_2 = _tables_0_ext_R3_data[230:220];
+      5'b10101:
+        casez_tmp_2 = _tables_0_ext_R3_data[241:231];
+      5'b10110:
+        casez_tmp_2 = _tables_0_ext_R3_data[252:242];
+      5'b10111:
+        casez_tmp_2 = _tables_0_ext_R3_data[263:253];
+      5'b11000:
+        casez_tmp_2 = _tables_0_ext_R3_data[274:264];
+      5'b11001:
+        casez_tmp_2 = _tables_0_ext_R3_data[285:275];
+      5'b11010:
+        casez_tmp_2 = _tables_0_ext_R3_data[296:286];
+      5'b11011:
+        casez_tmp_2 = _tables_0_ext_R3_data[307:297];
+      5'b11100:
+        casez_tmp_2 = _tables_0_ext_R3_data[318:308];
+      5'b11101:
+        casez_tmp_2 = _tables_0_ext_R3_data[329:319];
+      5'b11110:
+        casez_tmp_2 = _tables_0_ext_R3_data[340:330];
+      default:
+        casez_tmp_2 = _tables_0_ext_R3_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _entryRd_T_31 = {1'h0, s1item};
   wire [12:0]  _prev_T_1 = io_lookup_1_bucket - 13'h1;
   reg          lbZero_1;
-  reg  [3:0]   io_lookup_1_end_REG;
+  reg  [4:0]   io_lookup_1_end_REG;
   reg  [10:0]  casez_tmp_3;
   always @(*) begin
     casez (io_lookup_1_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_3 = _tables_1_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_3 = _tables_1_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_3 = _tables_1_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_3 = _tables_1_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_3 = _tables_1_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_3 = _tables_1_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_3 = _tables_1_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_3 = _tables_1_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_3 = _tables_1_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_3 = _tables_1_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_3 = _tables_1_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_3 = _tables_1_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_3 = _tables_1_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_3 = _tables_1_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_3 = _tables_1_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_3 = _tables_1_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_3 = _tables_1_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_3 = _tables_1_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_3 = _tables_1_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_3 = _tables_1_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_3 = _tables_1_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_3 = _tables_1_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_3 = _tables_1_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_3 = _tables_1_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_3 = _tables_1_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_3 = _tables_1_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_3 = _tables_1_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_3 = _tables_1_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_3 = _tables_1_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_3 = _tables_1_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_3 = _tables_1_ext_R0_data[340:330];
+      default:
+        casez_tmp_3 = _tables_1_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_1_begin_REG;
+  reg  [4:0]   io_lookup_1_begin_REG;
   reg  [10:0]  casez_tmp_4;
   always @(*) begin
     casez (io_lookup_1_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_4 = _tables_1_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_4 = _tables_1_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_4 = _tables_1_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_4 = _tables_1_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_4 = _tables_1_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_4 = _tables_1_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_4 = _tables_1_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_4 = _tables_1_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_4 = _tables_1_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_4 = _tables_1_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_4 = _tables_1_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_4 = _tables_1_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_4 = _tables_1_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_4 = _tables_1_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_4 = _tables_1_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_4 = _tables_1_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_4 = _tables_1_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_4 = _tables_1_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_4 = _tables_1_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_4 = _tables_1_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_4 = _tables_1_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_4 = _tables_1_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_4 = _tables_1_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_4 = _tables_1_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_4 = _tables_1_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_4 = _tables_1_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_4 = _tables_1_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_4 = _tables_1_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_4 = _tables_1_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_4 = _tables_1_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_4 = _tables_1_ext_R1_data[340:330];
+      default:
+        casez_tmp_4 = _tables_1_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_2 = io_lookup_2_bucket - 13'h1;
   reg          lbZero_2;
-  reg  [3:0]   io_lookup_2_end_REG;
+  reg  [4:0]   io_lookup_2_end_REG;
   reg  [10:0]  casez_tmp_5;
   always @(*) begin
     casez (io_lookup_2_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_5 = _tables_2_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_5 = _tables_2_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_5 = _tables_2_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_5 = _tables_2_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_5 = _tables_2_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_5 = _tables_2_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_5 = _tables_2_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_5 = _tables_2_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_5 = _tables_2_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_5 = _tables_2_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_5 = _tables_2_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_5 = _tables_2_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_5 = _tables_2_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_5 = _tables_2_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_5 = _tables_2_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_5 = _tables_2_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_5 = _tables_2_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_5 = _tables_2_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_5 = _tables_2_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_5 = _tables_2_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_5 = _tables_2_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_5 = _tables_2_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_5 = _tables_2_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_5 = _tables_2_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_5 = _tables_2_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_5 = _tables_2_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_5 = _tables_2_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_5 = _tables_2_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_5 = _tables_2_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_5 = _tables_2_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_5 = _tables_2_ext_R0_data[340:330];
+      default:
+        casez_tmp_5 = _tables_2_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_2_begin_REG;
+  reg  [4:0]   io_lookup_2_begin_REG;
   reg  [10:0]  casez_tmp_6;
   always @(*) begin
     casez (io_lookup_2_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_6 = _tables_2_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_6 = _tables_2_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_6 = _tables_2_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_6 = _tables_2_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_6 = _tables_2_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_6 = _tables_2_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_6 = _tables_2_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_6 = _tables_2_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_6 = _tables_2_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_6 = _tables_2_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_6 = _tables_2_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_6 = _tables_2_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_6 = _tables_2_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_6 = _tables_2_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_6 = _tables_2_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_6 = _tables_2_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_6 = _tables_2_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_6 = _tables_2_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_6 = _tables_2_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_6 = _tables_2_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_6 = _tables_2_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_6 = _tables_2_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_6 = _tables_2_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_6 = _tables_2_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_6 = _tables_2_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_6 = _tables_2_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_6 = _tables_2_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_6 = _tables_2_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_6 = _tables_2_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_6 = _tables_2_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_6 = _tables_2_ext_R1_data[340:330];
+      default:
+        casez_tmp_6 = _tables_2_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_3 = io_lookup_3_bucket - 13'h1;
   reg          lbZero_3;
-  reg  [3:0]   io_lookup_3_end_REG;
+  reg  [4:0]   io_lookup_3_end_REG;
   reg  [10:0]  casez_tmp_7;
   always @(*) begin
     casez (io_lookup_3_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_7 = _tables_3_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_7 = _tables_3_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_7 = _tables_3_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_7 = _tables_3_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_7 = _tables_3_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_7 = _tables_3_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_7 = _tables_3_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_7 = _tables_3_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_7 = _tables_3_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_7 = _tables_3_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_7 = _tables_3_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_7 = _tables_3_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_7 = _tables_3_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_7 = _tables_3_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_7 = _tables_3_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_7 = _tables_3_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_7 = _tables_3_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_7 = _tables_3_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_7 = _tables_3_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_7 = _tables_3_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_7 = _tables_3_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_7 = _tables_3_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_7 = _tables_3_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_7 = _tables_3_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_7 = _tables_3_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_7 = _tables_3_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_7 = _tables_3_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_7 = _tables_3_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_7 = _tables_3_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_7 = _tables_3_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_7 = _tables_3_ext_R0_data[340:330];
+      default:
+        casez_tmp_7 = _tables_3_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_3_begin_REG;
+  reg  [4:0]   io_lookup_3_begin_REG;
   reg  [10:0]  casez_tmp_8;
   always @(*) begin
     casez (io_lookup_3_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_8 = _tables_3_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_8 = _tables_3_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_8 = _tables_3_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_8 = _tables_3_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_8 = _tables_3_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_8 = _tables_3_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_8 = _tables_3_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_8 = _tables_3_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_8 = _tables_3_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_8 = _tables_3_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_8 = _tables_3_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_8 = _tables_3_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_8 = _tables_3_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_8 = _tables_3_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_8 = _tables_3_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_8 = _tables_3_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_8 = _tables_3_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_8 = _tables_3_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_8 = _tables_3_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_8 = _tables_3_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_8 = _tables_3_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_8 = _tables_3_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_8 = _tables_3_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_8 = _tables_3_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_8 = _tables_3_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_8 = _tables_3_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_8 = _tables_3_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_8 = _tables_3_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_8 = _tables_3_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_8 = _tables_3_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_8 = _tables_3_ext_R1_data[340:330];
+      default:
+        casez_tmp_8 = _tables_3_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_4 = io_lookup_4_bucket - 13'h1;
   reg          lbZero_4;
-  reg  [3:0]   io_lookup_4_end_REG;
+  reg  [4:0]   io_lookup_4_end_REG;
   reg  [10:0]  casez_tmp_9;
   always @(*) begin
     casez (io_lookup_4_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_9 = _tables_4_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_9 = _tables_4_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_9 = _tables_4_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_9 = _tables_4_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_9 = _tables_4_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_9 = _tables_4_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_9 = _tables_4_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_9 = _tables_4_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_9 = _tables_4_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_9 = _tables_4_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_9 = _tables_4_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_9 = _tables_4_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_9 = _tables_4_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_9 = _tables_4_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_9 = _tables_4_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_9 = _tables_4_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_9 = _tables_4_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_9 = _tables_4_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_9 = _tables_4_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_9 = _tables_4_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_9 = _tables_4_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_9 = _tables_4_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_9 = _tables_4_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_9 = _tables_4_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_9 = _tables_4_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_9 = _tables_4_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_9 = _tables_4_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_9 = _tables_4_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_9 = _tables_4_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_9 = _tables_4_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_9 = _tables_4_ext_R0_data[340:330];
+      default:
+        casez_tmp_9 = _tables_4_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_4_begin_REG;
+  reg  [4:0]   io_lookup_4_begin_REG;
   reg  [10:0]  casez_tmp_10;
   always @(*) begin
     casez (io_lookup_4_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_10 = _tables_4_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_10 = _tables_4_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_10 = _tables_4_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_10 = _tables_4_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_10 = _tables_4_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_10 = _tables_4_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_10 = _tables_4_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_10 = _tables_4_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_10 = _tables_4_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_10 = _tables_4_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_10 = _tables_4_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_10 = _tables_4_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_10 = _tables_4_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_10 = _tables_4_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_10 = _tables_4_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_10 = _tables_4_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_10 = _tables_4_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_10 = _tables_4_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_10 = _tables_4_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_10 = _tables_4_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_10 = _tables_4_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_10 = _tables_4_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_10 = _tables_4_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_10 = _tables_4_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_10 = _tables_4_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_10 = _tables_4_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_10 = _tables_4_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_10 = _tables_4_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_10 = _tables_4_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_10 = _tables_4_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_10 = _tables_4_ext_R1_data[340:330];
+      default:
+        casez_tmp_10 = _tables_4_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_5 = io_lookup_5_bucket - 13'h1;
   reg          lbZero_5;
-  reg  [3:0]   io_lookup_5_end_REG;
+  reg  [4:0]   io_lookup_5_end_REG;
   reg  [10:0]  casez_tmp_11;
   always @(*) begin
     casez (io_lookup_5_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_11 = _tables_5_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_11 = _tables_5_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_11 = _tables_5_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_11 = _tables_5_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_11 = _tables_5_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_11 = _tables_5_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_11 = _tables_5_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_11 = _tables_5_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_11 = _tables_5_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_11 = _tables_5_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_11 = _tables_5_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_11 = _tables_5_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_11 = _tables_5_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_11 = _tables_5_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_11 = _tables_5_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_11 = _tables_5_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_11 = _tables_5_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_11 = _tables_5_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_11 = _tables_5_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_11 = _tables_5_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_11 = _tables_5_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_11 = _tables_5_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_11 = _tables_5_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_11 = _tables_5_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_11 = _tables_5_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_11 = _tables_5_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_11 = _tables_5_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_11 = _tables_5_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_11 = _tables_5_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_11 = _tables_5_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_11 = _tables_5_ext_R0_data[340:330];
+      default:
+        casez_tmp_11 = _tables_5_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_5_begin_REG;
+  reg  [4:0]   io_lookup_5_begin_REG;
   reg  [10:0]  casez_tmp_12;
   always @(*) begin
     casez (io_lookup_5_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_12 = _tables_5_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_12 = _tables_5_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_12 = _tables_5_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_12 = _tables_5_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_12 = _tables_5_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_12 = _tables_5_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_12 = _tables_5_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_12 = _tables_5_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_12 = _tables_5_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_12 = _tables_5_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_12 = _tables_5_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_12 = _tables_5_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_12 = _tables_5_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_12 = _tables_5_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_12 = _tables_5_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_12 = _tables_5_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_12 = _tables_5_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_12 = _tables_5_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_12 = _tables_5_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_12 = _tables_5_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_12 = _tables_5_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_12 = _tables_5_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_12 = _tables_5_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_12 = _tables_5_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_12 = _tables_5_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_12 = _tables_5_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_12 = _tables_5_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_12 = _tables_5_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_12 = _tables_5_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_12 = _tables_5_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_12 = _tables_5_ext_R1_data[340:330];
+      default:
+        casez_tmp_12 = _tables_5_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_6 = io_lookup_6_bucket - 13'h1;
   reg          lbZero_6;
-  reg  [3:0]   io_lookup_6_end_REG;
+  reg  [4:0]   io_lookup_6_end_REG;
   reg  [10:0]  casez_tmp_13;
   always @(*) begin
     casez (io_lookup_6_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_13 = _tables_6_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_13 = _tables_6_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_13 = _tables_6_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_13 = _tables_6_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_13 = _tables_6_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_13 = _tables_6_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_13 = _tables_6_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_13 = _tables_6_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_13 = _tables_6_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_13 = _tables_6_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_13 = _tables_6_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_13 = _tables_6_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_13 = _tables_6_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_13 = _tables_6_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_13 = _tables_6_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_13 = _tables_6_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_13 = _tables_6_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_13 = _tables_6_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_13 = _tables_6_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_13 = _tables_6_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_13 = _tables_6_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_13 = _tables_6_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_13 = _tables_6_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_13 = _tables_6_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_13 = _tables_6_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_13 = _tables_6_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_13 = _tables_6_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_13 = _tables_6_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_13 = _tables_6_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_13 = _tables_6_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_13 = _tables_6_ext_R0_data[340:330];
+      default:
+        casez_tmp_13 = _tables_6_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_6_begin_REG;
+  reg  [4:0]   io_lookup_6_begin_REG;
   reg  [10:0]  casez_tmp_14;
   always @(*) begin
     casez (io_lookup_6_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_14 = _tables_6_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_14 = _tables_6_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_14 = _tables_6_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_14 = _tables_6_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_14 = _tables_6_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_14 = _tables_6_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_14 = _tables_6_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_14 = _tables_6_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_14 = _tables_6_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_14 = _tables_6_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_14 = _tables_6_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_14 = _tables_6_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_14 = _tables_6_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_14 = _tables_6_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_14 = _tables_6_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_14 = _tables_6_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_14 = _tables_6_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_14 = _tables_6_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_14 = _tables_6_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_14 = _tables_6_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_14 = _tables_6_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_14 = _tables_6_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_14 = _tables_6_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_14 = _tables_6_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_14 = _tables_6_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_14 = _tables_6_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_14 = _tables_6_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_14 = _tables_6_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_14 = _tables_6_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_14 = _tables_6_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_14 = _tables_6_ext_R1_data[340:330];
+      default:
+        casez_tmp_14 = _tables_6_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_7 = io_lookup_7_bucket - 13'h1;
   reg          lbZero_7;
-  reg  [3:0]   io_lookup_7_end_REG;
+  reg  [4:0]   io_lookup_7_end_REG;
   reg  [10:0]  casez_tmp_15;
   always @(*) begin
     casez (io_lookup_7_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_15 = _tables_7_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_15 = _tables_7_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_15 = _tables_7_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_15 = _tables_7_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_15 = _tables_7_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_15 = _tables_7_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_15 = _tables_7_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_15 = _tables_7_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_15 = _tables_7_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_15 = _tables_7_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_15 = _tables_7_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_15 = _tables_7_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_15 = _tables_7_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_15 = _tables_7_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_15 = _tables_7_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_15 = _tables_7_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_15 = _tables_7_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_15 = _tables_7_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_15 = _tables_7_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_15 = _tables_7_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_15 = _tables_7_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_15 = _tables_7_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_15 = _tables_7_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_15 = _tables_7_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_15 = _tables_7_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_15 = _tables_7_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_15 = _tables_7_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_15 = _tables_7_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_15 = _tables_7_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_15 = _tables_7_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_15 = _tables_7_ext_R0_data[340:330];
+      default:
+        casez_tmp_15 = _tables_7_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_7_begin_REG;
+  reg  [4:0]   io_lookup_7_begin_REG;
   reg  [10:0]  casez_tmp_16;
   always @(*) begin
     casez (io_lookup_7_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_16 = _tables_7_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_16 = _tables_7_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_16 = _tables_7_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_16 = _tables_7_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_16 = _tables_7_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_16 = _tables_7_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_16 = _tables_7_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_16 = _tables_7_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_16 = _tables_7_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_16 = _tables_7_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_16 = _tables_7_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_16 = _tables_7_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_16 = _tables_7_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_16 = _tables_7_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_16 = _tables_7_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_16 = _tables_7_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_16 = _tables_7_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_16 = _tables_7_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_16 = _tables_7_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_16 = _tables_7_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_16 = _tables_7_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_16 = _tables_7_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_16 = _tables_7_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_16 = _tables_7_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_16 = _tables_7_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_16 = _tables_7_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_16 = _tables_7_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_16 = _tables_7_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_16 = _tables_7_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_16 = _tables_7_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_16 = _tables_7_ext_R1_data[340:330];
+      default:
+        casez_tmp_16 = _tables_7_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_8 = io_lookup_8_bucket - 13'h1;
   reg          lbZero_8;
-  reg  [3:0]   io_lookup_8_end_REG;
+  reg  [4:0]   io_lookup_8_end_REG;
   reg  [10:0]  casez_tmp_17;
   always @(*) begin
     casez (io_lookup_8_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_17 = _tables_8_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_17 = _tables_8_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_17 = _tables_8_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_17 = _tables_8_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_17 = _tables_8_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_17 = _tables_8_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_17 = _tables_8_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_17 = _tables_8_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_17 = _tables_8_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_17 = _tables_8_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_17 = _tables_8_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_17 = _tables_8_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_17 = _tables_8_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_17 = _tables_8_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_17 = _tables_8_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_17 = _tables_8_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_17 = _tables_8_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_17 = _tables_8_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_17 = _tables_8_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_17 = _tables_8_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_17 = _tables_8_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_17 = _tables_8_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_17 = _tables_8_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_17 = _tables_8_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_17 = _tables_8_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_17 = _tables_8_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_17 = _tables_8_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_17 = _tables_8_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_17 = _tables_8_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_17 = _tables_8_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_17 = _tables_8_ext_R0_data[340:330];
+      default:
+        casez_tmp_17 = _tables_8_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_8_begin_REG;
+  reg  [4:0]   io_lookup_8_begin_REG;
   reg  [10:0]  casez_tmp_18;
   always @(*) begin
     casez (io_lookup_8_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_18 = _tables_8_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_18 = _tables_8_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_18 = _tables_8_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_18 = _tables_8_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_18 = _tables_8_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_18 = _tables_8_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_18 = _tables_8_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_18 = _tables_8_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_18 = _tables_8_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_18 = _tables_8_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_18 = _tables_8_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_18 = _tables_8_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_18 = _tables_8_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_18 = _tables_8_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_18 = _tables_8_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_18 = _tables_8_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_18 = _tables_8_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_18 = _tables_8_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_18 = _tables_8_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_18 = _tables_8_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_18 = _tables_8_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_18 = _tables_8_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_18 = _tables_8_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_18 = _tables_8_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_18 = _tables_8_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_18 = _tables_8_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_18 = _tables_8_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_18 = _tables_8_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_18 = _tables_8_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_18 = _tables_8_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_18 = _tables_8_ext_R1_data[340:330];
+      default:
+        casez_tmp_18 = _tables_8_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_9 = io_lookup_9_bucket - 13'h1;
   reg          lbZero_9;
-  reg  [3:0]   io_lookup_9_end_REG;
+  reg  [4:0]   io_lookup_9_end_REG;
   reg  [10:0]  casez_tmp_19;
   always @(*) begin
     casez (io_lookup_9_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_19 = _tables_9_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_19 = _tables_9_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_19 = _tables_9_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_19 = _tables_9_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_19 = _tables_9_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_19 = _tables_9_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_19 = _tables_9_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_19 = _tables_9_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_19 = _tables_9_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_19 = _tables_9_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_19 = _tables_9_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_19 = _tables_9_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_19 = _tables_9_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_19 = _tables_9_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_19 = _tables_9_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_19 = _tables_9_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_19 = _tables_9_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_19 = _tables_9_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_19 = _tables_9_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_19 = _tables_9_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_19 = _tables_9_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_19 = _tables_9_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_19 = _tables_9_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_19 = _tables_9_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_19 = _tables_9_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_19 = _tables_9_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_19 = _tables_9_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_19 = _tables_9_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_19 = _tables_9_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_19 = _tables_9_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_19 = _tables_9_ext_R0_data[340:330];
+      default:
+        casez_tmp_19 = _tables_9_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_9_begin_REG;
+  reg  [4:0]   io_lookup_9_begin_REG;
   reg  [10:0]  casez_tmp_20;
   always @(*) begin
     casez (io_lookup_9_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_20 = _tables_9_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_20 = _tables_9_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_20 = _tables_9_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_20 = _tables_9_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_20 = _tables_9_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_20 = _tables_9_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_20 = _tables_9_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_20 = _tables_9_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_20 = _tables_9_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_20 = _tables_9_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_20 = _tables_9_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_20 = _tables_9_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_20 = _tables_9_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_20 = _tables_9_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_20 = _tables_9_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_20 = _tables_9_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_20 = _tables_9_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_20 = _tables_9_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_20 = _tables_9_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_20 = _tables_9_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_20 = _tables_9_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_20 = _tables_9_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_20 = _tables_9_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_20 = _tables_9_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_20 = _tables_9_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_20 = _tables_9_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_20 = _tables_9_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_20 = _tables_9_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_20 = _tables_9_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_20 = _tables_9_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_20 = _tables_9_ext_R1_data[340:330];
+      default:
+        casez_tmp_20 = _tables_9_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_10 = io_lookup_10_bucket - 13'h1;
   reg          lbZero_10;
-  reg  [3:0]   io_lookup_10_end_REG;
+  reg  [4:0]   io_lookup_10_end_REG;
   reg  [10:0]  casez_tmp_21;
   always @(*) begin
     casez (io_lookup_10_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_21 = _tables_10_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_21 = _tables_10_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_21 = _tables_10_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_21 = _tables_10_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_21 = _tables_10_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_21 = _tables_10_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_21 = _tables_10_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_21 = _tables_10_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_21 = _tables_10_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_21 = _tables_10_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_21 = _tables_10_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_21 = _tables_10_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_21 = _tables_10_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_21 = _tables_10_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_21 = _tables_10_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_21 = _tables_10_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_21 = _tables_10_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_21 = _tables_10_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_21 = _tables_10_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_21 = _tables_10_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_21 = _tables_10_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_21 = _tables_10_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_21 = _tables_10_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_21 = _tables_10_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_21 = _tables_10_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_21 = _tables_10_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_21 = _tables_10_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_21 = _tables_10_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_21 = _tables_10_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_21 = _tables_10_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_21 = _tables_10_ext_R0_data[340:330];
+      default:
+        casez_tmp_21 = _tables_10_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_10_begin_REG;
+  reg  [4:0]   io_lookup_10_begin_REG;
   reg  [10:0]  casez_tmp_22;
   always @(*) begin
     casez (io_lookup_10_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_22 = _tables_10_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_22 = _tables_10_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_22 = _tables_10_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_22 = _tables_10_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_22 = _tables_10_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_22 = _tables_10_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_22 = _tables_10_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_22 = _tables_10_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_22 = _tables_10_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_22 = _tables_10_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_22 = _tables_10_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_22 = _tables_10_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_22 = _tables_10_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_22 = _tables_10_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_22 = _tables_10_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_22 = _tables_10_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_22 = _tables_10_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_22 = _tables_10_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_22 = _tables_10_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_22 = _tables_10_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_22 = _tables_10_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_22 = _tables_10_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_22 = _tables_10_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_22 = _tables_10_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_22 = _tables_10_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_22 = _tables_10_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_22 = _tables_10_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_22 = _tables_10_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_22 = _tables_10_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_22 = _tables_10_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_22 = _tables_10_ext_R1_data[340:330];
+      default:
+        casez_tmp_22 = _tables_10_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_11 = io_lookup_11_bucket - 13'h1;
   reg          lbZero_11;
-  reg  [3:0]   io_lookup_11_end_REG;
+  reg  [4:0]   io_lookup_11_end_REG;
   reg  [10:0]  casez_tmp_23;
   always @(*) begin
     casez (io_lookup_11_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_23 = _tables_11_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_23 = _tables_11_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_23 = _tables_11_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_23 = _tables_11_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_23 = _tables_11_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_23 = _tables_11_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_23 = _tables_11_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_23 = _tables_11_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_23 = _tables_11_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_23 = _tables_11_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_23 = _tables_11_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_23 = _tables_11_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_23 = _tables_11_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_23 = _tables_11_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_23 = _tables_11_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_23 = _tables_11_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_23 = _tables_11_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_23 = _tables_11_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_23 = _tables_11_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_23 = _tables_11_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_23 = _tables_11_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_23 = _tables_11_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_23 = _tables_11_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_23 = _tables_11_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_23 = _tables_11_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_23 = _tables_11_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_23 = _tables_11_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_23 = _tables_11_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_23 = _tables_11_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_23 = _tables_11_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_23 = _tables_11_ext_R0_data[340:330];
+      default:
+        casez_tmp_23 = _tables_11_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_11_begin_REG;
+  reg  [4:0]   io_lookup_11_begin_REG;
   reg  [10:0]  casez_tmp_24;
   always @(*) begin
     casez (io_lookup_11_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_24 = _tables_11_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_24 = _tables_11_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_24 = _tables_11_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_24 = _tables_11_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_24 = _tables_11_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_24 = _tables_11_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_24 = _tables_11_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_24 = _tables_11_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_24 = _tables_11_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_24 = _tables_11_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_24 = _tables_11_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_24 = _tables_11_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_24 = _tables_11_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_24 = _tables_11_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_24 = _tables_11_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_24 = _tables_11_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_24 = _tables_11_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_24 = _tables_11_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_24 = _tables_11_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_24 = _tables_11_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_24 = _tables_11_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_24 = _tables_11_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_24 = _tables_11_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_24 = _tables_11_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_24 = _tables_11_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_24 = _tables_11_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_24 = _tables_11_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_24 = _tables_11_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_24 = _tables_11_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_24 = _tables_11_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_24 = _tables_11_ext_R1_data[340:330];
+      default:
+        casez_tmp_24 = _tables_11_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_12 = io_lookup_12_bucket - 13'h1;
   reg          lbZero_12;
-  reg  [3:0]   io_lookup_12_end_REG;
+  reg  [4:0]   io_lookup_12_end_REG;
   reg  [10:0]  casez_tmp_25;
   always @(*) begin
     casez (io_lookup_12_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_25 = _tables_12_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_25 = _tables_12_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_25 = _tables_12_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_25 = _tables_12_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_25 = _tables_12_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_25 = _tables_12_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_25 = _tables_12_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_25 = _tables_12_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_25 = _tables_12_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_25 = _tables_12_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_25 = _tables_12_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_25 = _tables_12_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_25 = _tables_12_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_25 = _tables_12_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_25 = _tables_12_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_25 = _tables_12_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_25 = _tables_12_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_25 = _tables_12_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_25 = _tables_12_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_25 = _tables_12_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_25 = _tables_12_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_25 = _tables_12_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_25 = _tables_12_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_25 = _tables_12_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_25 = _tables_12_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_25 = _tables_12_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_25 = _tables_12_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_25 = _tables_12_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_25 = _tables_12_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_25 = _tables_12_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_25 = _tables_12_ext_R0_data[340:330];
+      default:
+        casez_tmp_25 = _tables_12_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_12_begin_REG;
+  reg  [4:0]   io_lookup_12_begin_REG;
   reg  [10:0]  casez_tmp_26;
   always @(*) begin
     casez (io_lookup_12_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_26 = _tables_12_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_26 = _tables_12_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_26 = _tables_12_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_26 = _tables_12_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_26 = _tables_12_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_26 = _tables_12_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_26 = _tables_12_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_26 = _tables_12_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_26 = _tables_12_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_26 = _tables_12_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_26 = _tables_12_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_26 = _tables_12_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_26 = _tables_12_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_26 = _tables_12_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_26 = _tables_12_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_26 = _tables_12_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_26 = _tables_12_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_26 = _tables_12_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_26 = _tables_12_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_26 = _tables_12_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_26 = _tables_12_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_26 = _tables_12_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_26 = _tables_12_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_26 = _tables_12_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_26 = _tables_12_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_26 = _tables_12_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_26 = _tables_12_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_26 = _tables_12_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_26 = _tables_12_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_26 = _tables_12_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_26 = _tables_12_ext_R1_data[340:330];
+      default:
+        casez_tmp_26 = _tables_12_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_13 = io_lookup_13_bucket - 13'h1;
   reg          lbZero_13;
-  reg  [3:0]   io_lookup_13_end_REG;
+  reg  [4:0]   io_lookup_13_end_REG;
   reg  [10:0]  casez_tmp_27;
   always @(*) begin
     casez (io_lookup_13_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_27 = _tables_13_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_27 = _tables_13_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_27 = _tables_13_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_27 = _tables_13_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_27 = _tables_13_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_27 = _tables_13_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_27 = _tables_13_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_27 = _tables_13_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_27 = _tables_13_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_27 = _tables_13_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_27 = _tables_13_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_27 = _tables_13_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_27 = _tables_13_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_27 = _tables_13_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_27 = _tables_13_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_27 = _tables_13_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_27 = _tables_13_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_27 = _tables_13_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_27 = _tables_13_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_27 = _tables_13_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_27 = _tables_13_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_27 = _tables_13_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_27 = _tables_13_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_27 = _tables_13_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_27 = _tables_13_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_27 = _tables_13_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_27 = _tables_13_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_27 = _tables_13_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_27 = _tables_13_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_27 = _tables_13_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_27 = _tables_13_ext_R0_data[340:330];
+      default:
+        casez_tmp_27 = _tables_13_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_13_begin_REG;
+  reg  [4:0]   io_lookup_13_begin_REG;
   reg  [10:0]  casez_tmp_28;
   always @(*) begin
     casez (io_lookup_13_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_28 = _tables_13_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_28 = _tables_13_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_28 = _tables_13_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_28 = _tables_13_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_28 = _tables_13_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_28 = _tables_13_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_28 = _tables_13_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_28 = _tables_13_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_28 = _tables_13_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_28 = _tables_13_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_28 = _tables_13_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_28 = _tables_13_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_28 = _tables_13_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_28 = _tables_13_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_28 = _tables_13_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_28 = _tables_13_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_28 = _tables_13_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_28 = _tables_13_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_28 = _tables_13_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_28 = _tables_13_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_28 = _tables_13_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_28 = _tables_13_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_28 = _tables_13_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_28 = _tables_13_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_28 = _tables_13_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_28 = _tables_13_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_28 = _tables_13_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_28 = _tables_13_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_28 = _tables_13_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_28 = _tables_13_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_28 = _tables_13_ext_R1_data[340:330];
+      default:
+        casez_tmp_28 = _tables_13_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_14 = io_lookup_14_bucket - 13'h1;
   reg          lbZero_14;
-  reg  [3:0]   io_lookup_14_end_REG;
+  reg  [4:0]   io_lookup_14_end_REG;
   reg  [10:0]  casez_tmp_29;
   always @(*) begin
     casez (io_lookup_14_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_29 = _tables_14_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_29 = _tables_14_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_29 = _tables_14_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_29 = _tables_14_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_29 = _tables_14_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_29 = _tables_14_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_29 = _tables_14_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_29 = _tables_14_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_29 = _tables_14_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_29 = _tables_14_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_29 = _tables_14_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_29 = _tables_14_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_29 = _tables_14_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_29 = _tables_14_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_29 = _tables_14_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_29 = _tables_14_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_29 = _tables_14_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_29 = _tables_14_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_29 = _tables_14_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_29 = _tables_14_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_29 = _tables_14_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_29 = _tables_14_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_29 = _tables_14_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_29 = _tables_14_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_29 = _tables_14_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_29 = _tables_14_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_29 = _tables_14_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_29 = _tables_14_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_29 = _tables_14_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_29 = _tables_14_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_29 = _tables_14_ext_R0_data[340:330];
+      default:
+        casez_tmp_29 = _tables_14_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_14_begin_REG;
+  reg  [4:0]   io_lookup_14_begin_REG;
   reg  [10:0]  casez_tmp_30;
   always @(*) begin
     casez (io_lookup_14_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_30 = _tables_14_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_30 = _tables_14_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_30 = _tables_14_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_30 = _tables_14_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_30 = _tables_14_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_30 = _tables_14_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_30 = _tables_14_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_30 = _tables_14_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_30 = _tables_14_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_30 = _tables_14_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_30 = _tables_14_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_30 = _tables_14_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_30 = _tables_14_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_30 = _tables_14_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_30 = _tables_14_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_30 = _tables_14_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_30 = _tables_14_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_30 = _tables_14_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_30 = _tables_14_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_30 = _tables_14_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_30 = _tables_14_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_30 = _tables_14_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_30 = _tables_14_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_30 = _tables_14_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_30 = _tables_14_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_30 = _tables_14_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_30 = _tables_14_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_30 = _tables_14_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_30 = _tables_14_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_30 = _tables_14_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_30 = _tables_14_ext_R1_data[340:330];
+      default:
+        casez_tmp_30 = _tables_14_ext_R1_data[351:341];
     endcase
   end // always @(*)
   wire [12:0]  _prev_T_15 = io_lookup_15_bucket - 13'h1;
   reg          lbZero_15;
-  reg  [3:0]   io_lookup_15_end_REG;
+  reg  [4:0]   io_lookup_15_end_REG;
   reg  [10:0]  casez_tmp_31;
   always @(*) begin
     casez (io_lookup_15_end_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_31 = _tables_15_ext_R0_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_31 = _tables_15_ext_R0_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_31 = _tables_15_ext_R0_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_31 = _tables_15_ext_R0_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_31 = _tables_15_ext_R0_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_31 = _tables_15_ext_R0_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_31 = _tables_15_ext_R0_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_31 = _tables_15_ext_R0_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_31 = _tables_15_ext_R0_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_31 = _tables_15_ext_R0_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_31 = _tables_15_ext_R0_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_31 = _tables_15_ext_R0_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_31 = _tables_15_ext_R0_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_31 = _tables_15_ext_R0_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_31 = _tables_15_ext_R0_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_31 = _tables_15_ext_R0_data[175:165];
+      5'b10000:
+        casez_tmp_31 = _tables_15_ext_R0_data[186:176];
+      5'b10001:
+        casez_tmp_31 = _tables_15_ext_R0_data[197:187];
+      5'b10010:
+        casez_tmp_31 = _tables_15_ext_R0_data[208:198];
+      5'b10011:
+        casez_tmp_31 = _tables_15_ext_R0_data[219:209];
+      5'b10100:
+        casez_tmp_31 = _tables_15_ext_R0_data[230:220];
+      5'b10101:
+        casez_tmp_31 = _tables_15_ext_R0_data[241:231];
+      5'b10110:
+        casez_tmp_31 = _tables_15_ext_R0_data[252:242];
+      5'b10111:
+        casez_tmp_31 = _tables_15_ext_R0_data[263:253];
+      5'b11000:
+        casez_tmp_31 = _tables_15_ext_R0_data[274:264];
+      5'b11001:
+        casez_tmp_31 = _tables_15_ext_R0_data[285:275];
+      5'b11010:
+        casez_tmp_31 = _tables_15_ext_R0_data[296:286];
+      5'b11011:
+        casez_tmp_31 = _tables_15_ext_R0_data[307:297];
+      5'b11100:
+        casez_tmp_31 = _tables_15_ext_R0_data[318:308];
+      5'b11101:
+        casez_tmp_31 = _tables_15_ext_R0_data[329:319];
+      5'b11110:
+        casez_tmp_31 = _tables_15_ext_R0_data[340:330];
+      default:
+        casez_tmp_31 = _tables_15_ext_R0_data[351:341];
     endcase
   end // always @(*)
-  reg  [3:0]   io_lookup_15_begin_REG;
+  reg  [4:0]   io_lookup_15_begin_REG;
   reg  [10:0]  casez_tmp_32;
   always @(*) begin
     casez (io_lookup_15_begin_REG)
-      4'b0000:
+      5'b00000:
         casez_tmp_32 = _tables_15_ext_R1_data[10:0];
-      4'b0001:
+      5'b00001:
         casez_tmp_32 = _tables_15_ext_R1_data[21:11];
-      4'b0010:
+      5'b00010:
         casez_tmp_32 = _tables_15_ext_R1_data[32:22];
-      4'b0011:
+      5'b00011:
         casez_tmp_32 = _tables_15_ext_R1_data[43:33];
-      4'b0100:
+      5'b00100:
         casez_tmp_32 = _tables_15_ext_R1_data[54:44];
-      4'b0101:
+      5'b00101:
         casez_tmp_32 = _tables_15_ext_R1_data[65:55];
-      4'b0110:
+      5'b00110:
         casez_tmp_32 = _tables_15_ext_R1_data[76:66];
-      4'b0111:
+      5'b00111:
         casez_tmp_32 = _tables_15_ext_R1_data[87:77];
-      4'b1000:
+      5'b01000:
         casez_tmp_32 = _tables_15_ext_R1_data[98:88];
-      4'b1001:
+      5'b01001:
         casez_tmp_32 = _tables_15_ext_R1_data[109:99];
-      4'b1010:
+      5'b01010:
         casez_tmp_32 = _tables_15_ext_R1_data[120:110];
-      4'b1011:
+      5'b01011:
         casez_tmp_32 = _tables_15_ext_R1_data[131:121];
-      4'b1100:
+      5'b01100:
         casez_tmp_32 = _tables_15_ext_R1_data[142:132];
-      4'b1101:
+      5'b01101:
         casez_tmp_32 = _tables_15_ext_R1_data[153:143];
-      4'b1110:
+      5'b01110:
         casez_tmp_32 = _tables_15_ext_R1_data[164:154];
-      default:
+      5'b01111:
         casez_tmp_32 = _tables_15_ext_R1_data[175:165];
+      5'b10000:
+        casez_tmp_32 = _tables_15_ext_R1_data[186:176];
+      5'b10001:
+        casez_tmp_32 = _tables_15_ext_R1_data[197:187];
+      5'b10010:
+        casez_tmp_32 = _tables_15_ext_R1_data[208:198];
+      5'b10011:
+        casez_tmp_32 = _tables_15_ext_R1_data[219:209];
+      5'b10100:
+        casez_tmp_32 = _tables_15_ext_R1_data[230:220];
+      5'b10101:
+        casez_tmp_32 = _tables_15_ext_R1_data[241:231];
+      5'b10110:
+        casez_tmp_32 = _tables_15_ext_R1_data[252:242];
+      5'b10111:
+        casez_tmp_32 = _tables_15_ext_R1_data[263:253];
+      5'b11000:
+        casez_tmp_32 = _tables_15_ext_R1_data[274:264];
+      5'b11001:
+        casez_tmp_32 = _tables_15_ext_R1_data[285:275];
+      5'b11010:
+        casez_tmp_32 = _tables_15_ext_R1_data[296:286];
+      5'b11011:
+        casez_tmp_32 = _tables_15_ext_R1_data[307:297];
+      5'b11100:
+        casez_tmp_32 = _tables_15_ext_R1_data[318:308];
+      5'b11101:
+        casez_tmp_32 = _tables_15_ext_R1_data[329:319];
+      5'b11110:
+        casez_tmp_32 = _tables_15_ext_R1_data[340:330];
+      default:
+        casez_tmp_32 = _tables_15_ext_R1_data[351:341];
     endcase
   end // always @(*)
-  wire [9:0]   _walk_T_2 = walk + 10'h1;
+  wire [8:0]   _walk_T_2 = walk + 9'h1;
   wire         _GEN_3 = io_clear & _io_in_1_ready_T;
   wire         _GEN_4 = io_prefix & _io_in_1_ready_T;
   always @(posedge clock) begin
@@ -18621,17 +20125,19 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     if (_sumRead_T & _sumRead_T_1 | _GEN)
       walk <= _walk_T_2;
     else if (_GEN_3 | _GEN_4)
-      walk <= 10'h0;
+      walk <= 9'h0;
     if (sumS1)
       sum <=
         totals_0 + totals_1 + totals_2 + totals_3 + totals_4 + totals_5 + totals_6
         + totals_7 + totals_8 + totals_9 + totals_10 + totals_11 + totals_12 + totals_13
-        + totals_14 + totals_15 + sum;
+        + totals_14 + totals_15 + totals_16 + totals_17 + totals_18 + totals_19
+        + totals_20 + totals_21 + totals_22 + totals_23 + totals_24 + totals_25
+        + totals_26 + totals_27 + totals_28 + totals_29 + totals_30 + totals_31 + sum;
     else if (_GEN_3 | ~_GEN_4) begin
     end
     else
       sum <= 11'h0;
-    sumW <= walk[8:0];
+    sumW <= walk[7:0];
     sumLast <= _walk_T_2 == usedWords;
     if (fire) begin
       s1b <= io_in_0_bits_bucket;
@@ -18639,7 +20145,7 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
       s1item <= io_in_0_bits_item;
     end
     if (s1) begin
-      fwdW <= s1b[12:4];
+      fwdW <= s1b[12:5];
       fwdV <= newWord;
     end
     if (fire_1) begin
@@ -18648,81 +20154,97 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
       s1item_1 <= io_in_1_bits_item;
     end
     if (s1_1) begin
-      fwdW_1 <= s1b_1[12:4];
+      fwdW_1 <= s1b_1[12:5];
       fwdV_1 <= newWord_1;
     end
     lbZero <= io_lookup_0_bucket == 13'h0;
-    io_lookup_0_end_REG <= io_lookup_0_bucket[3:0];
-    io_lookup_0_begin_REG <= _prev_T[3:0];
+    io_lookup_0_end_REG <= io_lookup_0_bucket[4:0];
+    io_lookup_0_begin_REG <= _prev_T[4:0];
     lbZero_1 <= io_lookup_1_bucket == 13'h0;
-    io_lookup_1_end_REG <= io_lookup_1_bucket[3:0];
-    io_lookup_1_begin_REG <= _prev_T_1[3:0];
+    io_lookup_1_end_REG <= io_lookup_1_bucket[4:0];
+    io_lookup_1_begin_REG <= _prev_T_1[4:0];
     lbZero_2 <= io_lookup_2_bucket == 13'h0;
-    io_lookup_2_end_REG <= io_lookup_2_bucket[3:0];
-    io_lookup_2_begin_REG <= _prev_T_2[3:0];
+    io_lookup_2_end_REG <= io_lookup_2_bucket[4:0];
+    io_lookup_2_begin_REG <= _prev_T_2[4:0];
     lbZero_3 <= io_lookup_3_bucket == 13'h0;
-    io_lookup_3_end_REG <= io_lookup_3_bucket[3:0];
-    io_lookup_3_begin_REG <= _prev_T_3[3:0];
+    io_lookup_3_end_REG <= io_lookup_3_bucket[4:0];
+    io_lookup_3_begin_REG <= _prev_T_3[4:0];
     lbZero_4 <= io_lookup_4_bucket == 13'h0;
-    io_lookup_4_end_REG <= io_lookup_4_bucket[3:0];
-    io_lookup_4_begin_REG <= _prev_T_4[3:0];
+    io_lookup_4_end_REG <= io_lookup_4_bucket[4:0];
+    io_lookup_4_begin_REG <= _prev_T_4[4:0];
     lbZero_5 <= io_lookup_5_bucket == 13'h0;
-    io_lookup_5_end_REG <= io_lookup_5_bucket[3:0];
-    io_lookup_5_begin_REG <= _prev_T_5[3:0];
+    io_lookup_5_end_REG <= io_lookup_5_bucket[4:0];
+    io_lookup_5_begin_REG <= _prev_T_5[4:0];
     lbZero_6 <= io_lookup_6_bucket == 13'h0;
-    io_lookup_6_end_REG <= io_lookup_6_bucket[3:0];
-    io_lookup_6_begin_REG <= _prev_T_6[3:0];
+    io_lookup_6_end_REG <= io_lookup_6_bucket[4:0];
+    io_lookup_6_begin_REG <= _prev_T_6[4:0];
     lbZero_7 <= io_lookup_7_bucket == 13'h0;
-    io_lookup_7_end_REG <= io_lookup_7_bucket[3:0];
-    io_lookup_7_begin_REG <= _prev_T_7[3:0];
+    io_lookup_7_end_REG <= io_lookup_7_bucket[4:0];
+    io_lookup_7_begin_REG <= _prev_T_7[4:0];
     lbZero_8 <= io_lookup_8_bucket == 13'h0;
-    io_lookup_8_end_REG <= io_lookup_8_bucket[3:0];
-    io_lookup_8_begin_REG <= _prev_T_8[3:0];
+    io_lookup_8_end_REG <= io_lookup_8_bucket[4:0];
+    io_lookup_8_begin_REG <= _prev_T_8[4:0];
     lbZero_9 <= io_lookup_9_bucket == 13'h0;
-    io_lookup_9_end_REG <= io_lookup_9_bucket[3:0];
-    io_lookup_9_begin_REG <= _prev_T_9[3:0];
+    io_lookup_9_end_REG <= io_lookup_9_bucket[4:0];
+    io_lookup_9_begin_REG <= _prev_T_9[4:0];
     lbZero_10 <= io_lookup_10_bucket == 13'h0;
-    io_lookup_10_end_REG <= io_lookup_10_bucket[3:0];
-    io_lookup_10_begin_REG <= _prev_T_10[3:0];
+    io_lookup_10_end_REG <= io_lookup_10_bucket[4:0];
+    io_lookup_10_begin_REG <= _prev_T_10[4:0];
     lbZero_11 <= io_lookup_11_bucket == 13'h0;
-    io_lookup_11_end_REG <= io_lookup_11_bucket[3:0];
-    io_lookup_11_begin_REG <= _prev_T_11[3:0];
+    io_lookup_11_end_REG <= io_lookup_11_bucket[4:0];
+    io_lookup_11_begin_REG <= _prev_T_11[4:0];
     lbZero_12 <= io_lookup_12_bucket == 13'h0;
-    io_lookup_12_end_REG <= io_lookup_12_bucket[3:0];
-    io_lookup_12_begin_REG <= _prev_T_12[3:0];
+    io_lookup_12_end_REG <= io_lookup_12_bucket[4:0];
+    io_lookup_12_begin_REG <= _prev_T_12[4:0];
     lbZero_13 <= io_lookup_13_bucket == 13'h0;
-    io_lookup_13_end_REG <= io_lookup_13_bucket[3:0];
-    io_lookup_13_begin_REG <= _prev_T_13[3:0];
+    io_lookup_13_end_REG <= io_lookup_13_bucket[4:0];
+    io_lookup_13_begin_REG <= _prev_T_13[4:0];
     lbZero_14 <= io_lookup_14_bucket == 13'h0;
-    io_lookup_14_end_REG <= io_lookup_14_bucket[3:0];
-    io_lookup_14_begin_REG <= _prev_T_14[3:0];
+    io_lookup_14_end_REG <= io_lookup_14_bucket[4:0];
+    io_lookup_14_begin_REG <= _prev_T_14[4:0];
     lbZero_15 <= io_lookup_15_bucket == 13'h0;
-    io_lookup_15_end_REG <= io_lookup_15_bucket[3:0];
-    io_lookup_15_begin_REG <= _prev_T_15[3:0];
+    io_lookup_15_end_REG <= io_lookup_15_bucket[4:0];
+    io_lookup_15_begin_REG <= _prev_T_15[4:0];
   end // always @(posedge)
-  tables_0_512x176_world tables_0_ext (
-    .R0_addr (walk[8:0]),
+  tables_0_256x352_world tables_0_ext (
+    .R0_addr (walk[7:0]),
     .R0_en   (sumRead),
     .R0_clk  (clock),
     .R0_data (_tables_0_ext_R0_data),
-    .R1_addr (io_in_1_bits_bucket[12:4]),
+    .R1_addr (io_in_1_bits_bucket[12:5]),
     .R1_en   (fire_1),
     .R1_clk  (clock),
     .R1_data (_tables_0_ext_R1_data),
-    .R2_addr (io_lookup_0_bucket[12:4]),
+    .R2_addr (io_lookup_0_bucket[12:5]),
     .R2_en   (1'h1),
     .R2_clk  (clock),
     .R2_data (_tables_0_ext_R2_data),
-    .R3_addr (_prev_T[12:4]),
+    .R3_addr (_prev_T[12:5]),
     .R3_en   (1'h1),
     .R3_clk  (clock),
     .R3_data (_tables_0_ext_R3_data),
-    .W0_addr (sumS1 ? sumW : _GEN ? walk[8:0] : s1b_1[12:4]),
+    .W0_addr (sumS1 ? sumW : _GEN ? walk[7:0] : s1b_1[12:5]),
     .W0_en   (_GEN_1 | s1_1),
     .W0_clk  (clock),
     .W0_data
       (sumS1
-         ? {starts_15 + _cursors_0_ext_R0_data[175:165],
+         ? {starts_31 + _cursors_0_ext_R0_data[351:341],
+            starts_30 + _cursors_0_ext_R0_data[340:330],
+            starts_29 + _cursors_0_ext_R0_data[329:319],
+            starts_28 + _cursors_0_ext_R0_data[318:308],
+            starts_27 + _cursors_0_ext_R0_data[307:297],
+            starts_26 + _cursors_0_ext_R0_data[296:286],
+            starts_25 + _cursors_0_ext_R0_data[285:275],
+            starts_24 + _cursors_0_ext_R0_data[274:264],
+            starts_23 + _cursors_0_ext_R0_data[263:253],
+            starts_22 + _cursors_0_ext_R0_data[252:242],
+            starts_21 + _cursors_0_ext_R0_data[241:231],
+            starts_20 + _cursors_0_ext_R0_data[230:220],
+            starts_19 + _cursors_0_ext_R0_data[219:209],
+            starts_18 + _cursors_0_ext_R0_data[208:198],
+            starts_17 + _cursors_0_ext_R0_data[197:187],
+            starts_16 + _cursors_0_ext_R0_data[186:176],
+            starts_15 + _cursors_0_ext_R0_data[175:165],
             starts_14 + _cursors_0_ext_R0_data[164:154],
             starts_13 + _cursors_0_ext_R0_data[153:143],
             starts_12 + _cursors_0_ext_R0_data[142:132],
@@ -18738,14 +20260,14 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
             starts_2 + _cursors_0_ext_R0_data[32:22],
             starts_1 + _cursors_0_ext_R0_data[21:11],
             sum + _cursors_0_ext_R0_data[10:0]}
-         : _GEN ? 176'h0 : newWord_1)
+         : _GEN ? 352'h0 : newWord_1)
   );
-  mem_512x176_world tables_1_ext (
-    .R0_addr (io_lookup_1_bucket[12:4]),
+  mem_256x352_world tables_1_ext (
+    .R0_addr (io_lookup_1_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_1_ext_R0_data),
-    .R1_addr (_prev_T_1[12:4]),
+    .R1_addr (_prev_T_1[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_1_ext_R1_data),
@@ -18754,12 +20276,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_2_ext (
-    .R0_addr (io_lookup_2_bucket[12:4]),
+  mem_256x352_world tables_2_ext (
+    .R0_addr (io_lookup_2_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_2_ext_R0_data),
-    .R1_addr (_prev_T_2[12:4]),
+    .R1_addr (_prev_T_2[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_2_ext_R1_data),
@@ -18768,12 +20290,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_3_ext (
-    .R0_addr (io_lookup_3_bucket[12:4]),
+  mem_256x352_world tables_3_ext (
+    .R0_addr (io_lookup_3_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_3_ext_R0_data),
-    .R1_addr (_prev_T_3[12:4]),
+    .R1_addr (_prev_T_3[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_3_ext_R1_data),
@@ -18782,12 +20304,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_4_ext (
-    .R0_addr (io_lookup_4_bucket[12:4]),
+  mem_256x352_world tables_4_ext (
+    .R0_addr (io_lookup_4_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_4_ext_R0_data),
-    .R1_addr (_prev_T_4[12:4]),
+    .R1_addr (_prev_T_4[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_4_ext_R1_data),
@@ -18796,12 +20318,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_5_ext (
-    .R0_addr (io_lookup_5_bucket[12:4]),
+  mem_256x352_world tables_5_ext (
+    .R0_addr (io_lookup_5_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_5_ext_R0_data),
-    .R1_addr (_prev_T_5[12:4]),
+    .R1_addr (_prev_T_5[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_5_ext_R1_data),
@@ -18810,12 +20332,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_6_ext (
-    .R0_addr (io_lookup_6_bucket[12:4]),
+  mem_256x352_world tables_6_ext (
+    .R0_addr (io_lookup_6_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_6_ext_R0_data),
-    .R1_addr (_prev_T_6[12:4]),
+    .R1_addr (_prev_T_6[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_6_ext_R1_data),
@@ -18824,12 +20346,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_7_ext (
-    .R0_addr (io_lookup_7_bucket[12:4]),
+  mem_256x352_world tables_7_ext (
+    .R0_addr (io_lookup_7_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_7_ext_R0_data),
-    .R1_addr (_prev_T_7[12:4]),
+    .R1_addr (_prev_T_7[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_7_ext_R1_data),
@@ -18838,12 +20360,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_8_ext (
-    .R0_addr (io_lookup_8_bucket[12:4]),
+  mem_256x352_world tables_8_ext (
+    .R0_addr (io_lookup_8_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_8_ext_R0_data),
-    .R1_addr (_prev_T_8[12:4]),
+    .R1_addr (_prev_T_8[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_8_ext_R1_data),
@@ -18852,12 +20374,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_9_ext (
-    .R0_addr (io_lookup_9_bucket[12:4]),
+  mem_256x352_world tables_9_ext (
+    .R0_addr (io_lookup_9_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_9_ext_R0_data),
-    .R1_addr (_prev_T_9[12:4]),
+    .R1_addr (_prev_T_9[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_9_ext_R1_data),
@@ -18866,12 +20388,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_10_ext (
-    .R0_addr (io_lookup_10_bucket[12:4]),
+  mem_256x352_world tables_10_ext (
+    .R0_addr (io_lookup_10_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_10_ext_R0_data),
-    .R1_addr (_prev_T_10[12:4]),
+    .R1_addr (_prev_T_10[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_10_ext_R1_data),
@@ -18880,12 +20402,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_11_ext (
-    .R0_addr (io_lookup_11_bucket[12:4]),
+  mem_256x352_world tables_11_ext (
+    .R0_addr (io_lookup_11_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_11_ext_R0_data),
-    .R1_addr (_prev_T_11[12:4]),
+    .R1_addr (_prev_T_11[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_11_ext_R1_data),
@@ -18894,12 +20416,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_12_ext (
-    .R0_addr (io_lookup_12_bucket[12:4]),
+  mem_256x352_world tables_12_ext (
+    .R0_addr (io_lookup_12_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_12_ext_R0_data),
-    .R1_addr (_prev_T_12[12:4]),
+    .R1_addr (_prev_T_12[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_12_ext_R1_data),
@@ -18908,12 +20430,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_13_ext (
-    .R0_addr (io_lookup_13_bucket[12:4]),
+  mem_256x352_world tables_13_ext (
+    .R0_addr (io_lookup_13_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_13_ext_R0_data),
-    .R1_addr (_prev_T_13[12:4]),
+    .R1_addr (_prev_T_13[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_13_ext_R1_data),
@@ -18922,12 +20444,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_14_ext (
-    .R0_addr (io_lookup_14_bucket[12:4]),
+  mem_256x352_world tables_14_ext (
+    .R0_addr (io_lookup_14_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_14_ext_R0_data),
-    .R1_addr (_prev_T_14[12:4]),
+    .R1_addr (_prev_T_14[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_14_ext_R1_data),
@@ -18936,12 +20458,12 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world tables_15_ext (
-    .R0_addr (io_lookup_15_bucket[12:4]),
+  mem_256x352_world tables_15_ext (
+    .R0_addr (io_lookup_15_bucket[12:5]),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_tables_15_ext_R0_data),
-    .R1_addr (_prev_T_15[12:4]),
+    .R1_addr (_prev_T_15[12:5]),
     .R1_en   (1'h1),
     .R1_clk  (clock),
     .R1_data (_tables_15_ext_R1_data),
@@ -18950,21 +20472,37 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
     .W0_clk  (clock),
     .W0_data (ends)
   );
-  mem_512x176_world cursors_0_ext (
-    .R0_addr (walk[8:0]),
+  mem_256x352_world cursors_0_ext (
+    .R0_addr (walk[7:0]),
     .R0_en   (sumRead),
     .R0_clk  (clock),
     .R0_data (_cursors_0_ext_R0_data),
-    .R1_addr (io_in_0_bits_bucket[12:4]),
+    .R1_addr (io_in_0_bits_bucket[12:5]),
     .R1_en   (fire),
     .R1_clk  (clock),
     .R1_data (_cursors_0_ext_R1_data),
-    .W0_addr (sumS1 ? sumW : _GEN ? walk[8:0] : s1b[12:4]),
+    .W0_addr (sumS1 ? sumW : _GEN ? walk[7:0] : s1b[12:5]),
     .W0_en   (_GEN_1 | s1),
     .W0_clk  (clock),
     .W0_data
       (sumS1
-         ? {starts_15,
+         ? {starts_31,
+            starts_30,
+            starts_29,
+            starts_28,
+            starts_27,
+            starts_26,
+            starts_25,
+            starts_24,
+            starts_23,
+            starts_22,
+            starts_21,
+            starts_20,
+            starts_19,
+            starts_18,
+            starts_17,
+            starts_16,
+            starts_15,
             starts_14,
             starts_13,
             starts_12,
@@ -18980,7 +20518,7 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
             starts_2,
             starts_1,
             sum}
-         : _GEN ? 176'h0 : newWord)
+         : _GEN ? 352'h0 : newWord)
   );
   entries_1024x13_world entries_0_ext (
     .RW0_addr  (place_0_valid ? casez_tmp[9:0] : io_entry_0_addr),
@@ -19195,6 +20733,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_0_word_13 = _tables_0_ext_R2_data[153:143];
   assign io_lookup_0_word_14 = _tables_0_ext_R2_data[164:154];
   assign io_lookup_0_word_15 = _tables_0_ext_R2_data[175:165];
+  assign io_lookup_0_word_16 = _tables_0_ext_R2_data[186:176];
+  assign io_lookup_0_word_17 = _tables_0_ext_R2_data[197:187];
+  assign io_lookup_0_word_18 = _tables_0_ext_R2_data[208:198];
+  assign io_lookup_0_word_19 = _tables_0_ext_R2_data[219:209];
+  assign io_lookup_0_word_20 = _tables_0_ext_R2_data[230:220];
+  assign io_lookup_0_word_21 = _tables_0_ext_R2_data[241:231];
+  assign io_lookup_0_word_22 = _tables_0_ext_R2_data[252:242];
+  assign io_lookup_0_word_23 = _tables_0_ext_R2_data[263:253];
+  assign io_lookup_0_word_24 = _tables_0_ext_R2_data[274:264];
+  assign io_lookup_0_word_25 = _tables_0_ext_R2_data[285:275];
+  assign io_lookup_0_word_26 = _tables_0_ext_R2_data[296:286];
+  assign io_lookup_0_word_27 = _tables_0_ext_R2_data[307:297];
+  assign io_lookup_0_word_28 = _tables_0_ext_R2_data[318:308];
+  assign io_lookup_0_word_29 = _tables_0_ext_R2_data[329:319];
+  assign io_lookup_0_word_30 = _tables_0_ext_R2_data[340:330];
+  assign io_lookup_0_word_31 = _tables_0_ext_R2_data[351:341];
   assign io_lookup_1_begin = lbZero_1 ? 11'h0 : casez_tmp_4;
   assign io_lookup_1_end = casez_tmp_3;
   assign io_lookup_1_word_0 = _tables_1_ext_R0_data[10:0];
@@ -19213,6 +20767,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_1_word_13 = _tables_1_ext_R0_data[153:143];
   assign io_lookup_1_word_14 = _tables_1_ext_R0_data[164:154];
   assign io_lookup_1_word_15 = _tables_1_ext_R0_data[175:165];
+  assign io_lookup_1_word_16 = _tables_1_ext_R0_data[186:176];
+  assign io_lookup_1_word_17 = _tables_1_ext_R0_data[197:187];
+  assign io_lookup_1_word_18 = _tables_1_ext_R0_data[208:198];
+  assign io_lookup_1_word_19 = _tables_1_ext_R0_data[219:209];
+  assign io_lookup_1_word_20 = _tables_1_ext_R0_data[230:220];
+  assign io_lookup_1_word_21 = _tables_1_ext_R0_data[241:231];
+  assign io_lookup_1_word_22 = _tables_1_ext_R0_data[252:242];
+  assign io_lookup_1_word_23 = _tables_1_ext_R0_data[263:253];
+  assign io_lookup_1_word_24 = _tables_1_ext_R0_data[274:264];
+  assign io_lookup_1_word_25 = _tables_1_ext_R0_data[285:275];
+  assign io_lookup_1_word_26 = _tables_1_ext_R0_data[296:286];
+  assign io_lookup_1_word_27 = _tables_1_ext_R0_data[307:297];
+  assign io_lookup_1_word_28 = _tables_1_ext_R0_data[318:308];
+  assign io_lookup_1_word_29 = _tables_1_ext_R0_data[329:319];
+  assign io_lookup_1_word_30 = _tables_1_ext_R0_data[340:330];
+  assign io_lookup_1_word_31 = _tables_1_ext_R0_data[351:341];
   assign io_lookup_2_begin = lbZero_2 ? 11'h0 : casez_tmp_6;
   assign io_lookup_2_end = casez_tmp_5;
   assign io_lookup_2_word_0 = _tables_2_ext_R0_data[10:0];
@@ -19231,6 +20801,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_2_word_13 = _tables_2_ext_R0_data[153:143];
   assign io_lookup_2_word_14 = _tables_2_ext_R0_data[164:154];
   assign io_lookup_2_word_15 = _tables_2_ext_R0_data[175:165];
+  assign io_lookup_2_word_16 = _tables_2_ext_R0_data[186:176];
+  assign io_lookup_2_word_17 = _tables_2_ext_R0_data[197:187];
+  assign io_lookup_2_word_18 = _tables_2_ext_R0_data[208:198];
+  assign io_lookup_2_word_19 = _tables_2_ext_R0_data[219:209];
+  assign io_lookup_2_word_20 = _tables_2_ext_R0_data[230:220];
+  assign io_lookup_2_word_21 = _tables_2_ext_R0_data[241:231];
+  assign io_lookup_2_word_22 = _tables_2_ext_R0_data[252:242];
+  assign io_lookup_2_word_23 = _tables_2_ext_R0_data[263:253];
+  assign io_lookup_2_word_24 = _tables_2_ext_R0_data[274:264];
+  assign io_lookup_2_word_25 = _tables_2_ext_R0_data[285:275];
+  assign io_lookup_2_word_26 = _tables_2_ext_R0_data[296:286];
+  assign io_lookup_2_word_27 = _tables_2_ext_R0_data[307:297];
+  assign io_lookup_2_word_28 = _tables_2_ext_R0_data[318:308];
+  assign io_lookup_2_word_29 = _tables_2_ext_R0_data[329:319];
+  assign io_lookup_2_word_30 = _tables_2_ext_R0_data[340:330];
+  assign io_lookup_2_word_31 = _tables_2_ext_R0_data[351:341];
   assign io_lookup_3_begin = lbZero_3 ? 11'h0 : casez_tmp_8;
   assign io_lookup_3_end = casez_tmp_7;
   assign io_lookup_3_word_0 = _tables_3_ext_R0_data[10:0];
@@ -19249,6 +20835,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_3_word_13 = _tables_3_ext_R0_data[153:143];
   assign io_lookup_3_word_14 = _tables_3_ext_R0_data[164:154];
   assign io_lookup_3_word_15 = _tables_3_ext_R0_data[175:165];
+  assign io_lookup_3_word_16 = _tables_3_ext_R0_data[186:176];
+  assign io_lookup_3_word_17 = _tables_3_ext_R0_data[197:187];
+  assign io_lookup_3_word_18 = _tables_3_ext_R0_data[208:198];
+  assign io_lookup_3_word_19 = _tables_3_ext_R0_data[219:209];
+  assign io_lookup_3_word_20 = _tables_3_ext_R0_data[230:220];
+  assign io_lookup_3_word_21 = _tables_3_ext_R0_data[241:231];
+  assign io_lookup_3_word_22 = _tables_3_ext_R0_data[252:242];
+  assign io_lookup_3_word_23 = _tables_3_ext_R0_data[263:253];
+  assign io_lookup_3_word_24 = _tables_3_ext_R0_data[274:264];
+  assign io_lookup_3_word_25 = _tables_3_ext_R0_data[285:275];
+  assign io_lookup_3_word_26 = _tables_3_ext_R0_data[296:286];
+  assign io_lookup_3_word_27 = _tables_3_ext_R0_data[307:297];
+  assign io_lookup_3_word_28 = _tables_3_ext_R0_data[318:308];
+  assign io_lookup_3_word_29 = _tables_3_ext_R0_data[329:319];
+  assign io_lookup_3_word_30 = _tables_3_ext_R0_data[340:330];
+  assign io_lookup_3_word_31 = _tables_3_ext_R0_data[351:341];
   assign io_lookup_4_begin = lbZero_4 ? 11'h0 : casez_tmp_10;
   assign io_lookup_4_end = casez_tmp_9;
   assign io_lookup_4_word_0 = _tables_4_ext_R0_data[10:0];
@@ -19267,6 +20869,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_4_word_13 = _tables_4_ext_R0_data[153:143];
   assign io_lookup_4_word_14 = _tables_4_ext_R0_data[164:154];
   assign io_lookup_4_word_15 = _tables_4_ext_R0_data[175:165];
+  assign io_lookup_4_word_16 = _tables_4_ext_R0_data[186:176];
+  assign io_lookup_4_word_17 = _tables_4_ext_R0_data[197:187];
+  assign io_lookup_4_word_18 = _tables_4_ext_R0_data[208:198];
+  assign io_lookup_4_word_19 = _tables_4_ext_R0_data[219:209];
+  assign io_lookup_4_word_20 = _tables_4_ext_R0_data[230:220];
+  assign io_lookup_4_word_21 = _tables_4_ext_R0_data[241:231];
+  assign io_lookup_4_word_22 = _tables_4_ext_R0_data[252:242];
+  assign io_lookup_4_word_23 = _tables_4_ext_R0_data[263:253];
+  assign io_lookup_4_word_24 = _tables_4_ext_R0_data[274:264];
+  assign io_lookup_4_word_25 = _tables_4_ext_R0_data[285:275];
+  assign io_lookup_4_word_26 = _tables_4_ext_R0_data[296:286];
+  assign io_lookup_4_word_27 = _tables_4_ext_R0_data[307:297];
+  assign io_lookup_4_word_28 = _tables_4_ext_R0_data[318:308];
+  assign io_lookup_4_word_29 = _tables_4_ext_R0_data[329:319];
+  assign io_lookup_4_word_30 = _tables_4_ext_R0_data[340:330];
+  assign io_lookup_4_word_31 = _tables_4_ext_R0_data[351:341];
   assign io_lookup_5_begin = lbZero_5 ? 11'h0 : casez_tmp_12;
   assign io_lookup_5_end = casez_tmp_11;
   assign io_lookup_5_word_0 = _tables_5_ext_R0_data[10:0];
@@ -19285,6 +20903,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_5_word_13 = _tables_5_ext_R0_data[153:143];
   assign io_lookup_5_word_14 = _tables_5_ext_R0_data[164:154];
   assign io_lookup_5_word_15 = _tables_5_ext_R0_data[175:165];
+  assign io_lookup_5_word_16 = _tables_5_ext_R0_data[186:176];
+  assign io_lookup_5_word_17 = _tables_5_ext_R0_data[197:187];
+  assign io_lookup_5_word_18 = _tables_5_ext_R0_data[208:198];
+  assign io_lookup_5_word_19 = _tables_5_ext_R0_data[219:209];
+  assign io_lookup_5_word_20 = _tables_5_ext_R0_data[230:220];
+  assign io_lookup_5_word_21 = _tables_5_ext_R0_data[241:231];
+  assign io_lookup_5_word_22 = _tables_5_ext_R0_data[252:242];
+  assign io_lookup_5_word_23 = _tables_5_ext_R0_data[263:253];
+  assign io_lookup_5_word_24 = _tables_5_ext_R0_data[274:264];
+  assign io_lookup_5_word_25 = _tables_5_ext_R0_data[285:275];
+  assign io_lookup_5_word_26 = _tables_5_ext_R0_data[296:286];
+  assign io_lookup_5_word_27 = _tables_5_ext_R0_data[307:297];
+  assign io_lookup_5_word_28 = _tables_5_ext_R0_data[318:308];
+  assign io_lookup_5_word_29 = _tables_5_ext_R0_data[329:319];
+  assign io_lookup_5_word_30 = _tables_5_ext_R0_data[340:330];
+  assign io_lookup_5_word_31 = _tables_5_ext_R0_data[351:341];
   assign io_lookup_6_begin = lbZero_6 ? 11'h0 : casez_tmp_14;
   assign io_lookup_6_end = casez_tmp_13;
   assign io_lookup_6_word_0 = _tables_6_ext_R0_data[10:0];
@@ -19303,6 +20937,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_6_word_13 = _tables_6_ext_R0_data[153:143];
   assign io_lookup_6_word_14 = _tables_6_ext_R0_data[164:154];
   assign io_lookup_6_word_15 = _tables_6_ext_R0_data[175:165];
+  assign io_lookup_6_word_16 = _tables_6_ext_R0_data[186:176];
+  assign io_lookup_6_word_17 = _tables_6_ext_R0_data[197:187];
+  assign io_lookup_6_word_18 = _tables_6_ext_R0_data[208:198];
+  assign io_lookup_6_word_19 = _tables_6_ext_R0_data[219:209];
+  assign io_lookup_6_word_20 = _tables_6_ext_R0_data[230:220];
+  assign io_lookup_6_word_21 = _tables_6_ext_R0_data[241:231];
+  assign io_lookup_6_word_22 = _tables_6_ext_R0_data[252:242];
+  assign io_lookup_6_word_23 = _tables_6_ext_R0_data[263:253];
+  assign io_lookup_6_word_24 = _tables_6_ext_R0_data[274:264];
+  assign io_lookup_6_word_25 = _tables_6_ext_R0_data[285:275];
+  assign io_lookup_6_word_26 = _tables_6_ext_R0_data[296:286];
+  assign io_lookup_6_word_27 = _tables_6_ext_R0_data[307:297];
+  assign io_lookup_6_word_28 = _tables_6_ext_R0_data[318:308];
+  assign io_lookup_6_word_29 = _tables_6_ext_R0_data[329:319];
+  assign io_lookup_6_word_30 = _tables_6_ext_R0_data[340:330];
+  assign io_lookup_6_word_31 = _tables_6_ext_R0_data[351:341];
   assign io_lookup_7_begin = lbZero_7 ? 11'h0 : casez_tmp_16;
   assign io_lookup_7_end = casez_tmp_15;
   assign io_lookup_7_word_0 = _tables_7_ext_R0_data[10:0];
@@ -19321,6 +20971,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_7_word_13 = _tables_7_ext_R0_data[153:143];
   assign io_lookup_7_word_14 = _tables_7_ext_R0_data[164:154];
   assign io_lookup_7_word_15 = _tables_7_ext_R0_data[175:165];
+  assign io_lookup_7_word_16 = _tables_7_ext_R0_data[186:176];
+  assign io_lookup_7_word_17 = _tables_7_ext_R0_data[197:187];
+  assign io_lookup_7_word_18 = _tables_7_ext_R0_data[208:198];
+  assign io_lookup_7_word_19 = _tables_7_ext_R0_data[219:209];
+  assign io_lookup_7_word_20 = _tables_7_ext_R0_data[230:220];
+  assign io_lookup_7_word_21 = _tables_7_ext_R0_data[241:231];
+  assign io_lookup_7_word_22 = _tables_7_ext_R0_data[252:242];
+  assign io_lookup_7_word_23 = _tables_7_ext_R0_data[263:253];
+  assign io_lookup_7_word_24 = _tables_7_ext_R0_data[274:264];
+  assign io_lookup_7_word_25 = _tables_7_ext_R0_data[285:275];
+  assign io_lookup_7_word_26 = _tables_7_ext_R0_data[296:286];
+  assign io_lookup_7_word_27 = _tables_7_ext_R0_data[307:297];
+  assign io_lookup_7_word_28 = _tables_7_ext_R0_data[318:308];
+  assign io_lookup_7_word_29 = _tables_7_ext_R0_data[329:319];
+  assign io_lookup_7_word_30 = _tables_7_ext_R0_data[340:330];
+  assign io_lookup_7_word_31 = _tables_7_ext_R0_data[351:341];
   assign io_lookup_8_begin = lbZero_8 ? 11'h0 : casez_tmp_18;
   assign io_lookup_8_end = casez_tmp_17;
   assign io_lookup_8_word_0 = _tables_8_ext_R0_data[10:0];
@@ -19339,6 +21005,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_8_word_13 = _tables_8_ext_R0_data[153:143];
   assign io_lookup_8_word_14 = _tables_8_ext_R0_data[164:154];
   assign io_lookup_8_word_15 = _tables_8_ext_R0_data[175:165];
+  assign io_lookup_8_word_16 = _tables_8_ext_R0_data[186:176];
+  assign io_lookup_8_word_17 = _tables_8_ext_R0_data[197:187];
+  assign io_lookup_8_word_18 = _tables_8_ext_R0_data[208:198];
+  assign io_lookup_8_word_19 = _tables_8_ext_R0_data[219:209];
+  assign io_lookup_8_word_20 = _tables_8_ext_R0_data[230:220];
+  assign io_lookup_8_word_21 = _tables_8_ext_R0_data[241:231];
+  assign io_lookup_8_word_22 = _tables_8_ext_R0_data[252:242];
+  assign io_lookup_8_word_23 = _tables_8_ext_R0_data[263:253];
+  assign io_lookup_8_word_24 = _tables_8_ext_R0_data[274:264];
+  assign io_lookup_8_word_25 = _tables_8_ext_R0_data[285:275];
+  assign io_lookup_8_word_26 = _tables_8_ext_R0_data[296:286];
+  assign io_lookup_8_word_27 = _tables_8_ext_R0_data[307:297];
+  assign io_lookup_8_word_28 = _tables_8_ext_R0_data[318:308];
+  assign io_lookup_8_word_29 = _tables_8_ext_R0_data[329:319];
+  assign io_lookup_8_word_30 = _tables_8_ext_R0_data[340:330];
+  assign io_lookup_8_word_31 = _tables_8_ext_R0_data[351:341];
   assign io_lookup_9_begin = lbZero_9 ? 11'h0 : casez_tmp_20;
   assign io_lookup_9_end = casez_tmp_19;
   assign io_lookup_9_word_0 = _tables_9_ext_R0_data[10:0];
@@ -19357,6 +21039,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_9_word_13 = _tables_9_ext_R0_data[153:143];
   assign io_lookup_9_word_14 = _tables_9_ext_R0_data[164:154];
   assign io_lookup_9_word_15 = _tables_9_ext_R0_data[175:165];
+  assign io_lookup_9_word_16 = _tables_9_ext_R0_data[186:176];
+  assign io_lookup_9_word_17 = _tables_9_ext_R0_data[197:187];
+  assign io_lookup_9_word_18 = _tables_9_ext_R0_data[208:198];
+  assign io_lookup_9_word_19 = _tables_9_ext_R0_data[219:209];
+  assign io_lookup_9_word_20 = _tables_9_ext_R0_data[230:220];
+  assign io_lookup_9_word_21 = _tables_9_ext_R0_data[241:231];
+  assign io_lookup_9_word_22 = _tables_9_ext_R0_data[252:242];
+  assign io_lookup_9_word_23 = _tables_9_ext_R0_data[263:253];
+  assign io_lookup_9_word_24 = _tables_9_ext_R0_data[274:264];
+  assign io_lookup_9_word_25 = _tables_9_ext_R0_data[285:275];
+  assign io_lookup_9_word_26 = _tables_9_ext_R0_data[296:286];
+  assign io_lookup_9_word_27 = _tables_9_ext_R0_data[307:297];
+  assign io_lookup_9_word_28 = _tables_9_ext_R0_data[318:308];
+  assign io_lookup_9_word_29 = _tables_9_ext_R0_data[329:319];
+  assign io_lookup_9_word_30 = _tables_9_ext_R0_data[340:330];
+  assign io_lookup_9_word_31 = _tables_9_ext_R0_data[351:341];
   assign io_lookup_10_begin = lbZero_10 ? 11'h0 : casez_tmp_22;
   assign io_lookup_10_end = casez_tmp_21;
   assign io_lookup_10_word_0 = _tables_10_ext_R0_data[10:0];
@@ -19375,6 +21073,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_10_word_13 = _tables_10_ext_R0_data[153:143];
   assign io_lookup_10_word_14 = _tables_10_ext_R0_data[164:154];
   assign io_lookup_10_word_15 = _tables_10_ext_R0_data[175:165];
+  assign io_lookup_10_word_16 = _tables_10_ext_R0_data[186:176];
+  assign io_lookup_10_word_17 = _tables_10_ext_R0_data[197:187];
+  assign io_lookup_10_word_18 = _tables_10_ext_R0_data[208:198];
+  assign io_lookup_10_word_19 = _tables_10_ext_R0_data[219:209];
+  assign io_lookup_10_word_20 = _tables_10_ext_R0_data[230:220];
+  assign io_lookup_10_word_21 = _tables_10_ext_R0_data[241:231];
+  assign io_lookup_10_word_22 = _tables_10_ext_R0_data[252:242];
+  assign io_lookup_10_word_23 = _tables_10_ext_R0_data[263:253];
+  assign io_lookup_10_word_24 = _tables_10_ext_R0_data[274:264];
+  assign io_lookup_10_word_25 = _tables_10_ext_R0_data[285:275];
+  assign io_lookup_10_word_26 = _tables_10_ext_R0_data[296:286];
+  assign io_lookup_10_word_27 = _tables_10_ext_R0_data[307:297];
+  assign io_lookup_10_word_28 = _tables_10_ext_R0_data[318:308];
+  assign io_lookup_10_word_29 = _tables_10_ext_R0_data[329:319];
+  assign io_lookup_10_word_30 = _tables_10_ext_R0_data[340:330];
+  assign io_lookup_10_word_31 = _tables_10_ext_R0_data[351:341];
   assign io_lookup_11_begin = lbZero_11 ? 11'h0 : casez_tmp_24;
   assign io_lookup_11_end = casez_tmp_23;
   assign io_lookup_11_word_0 = _tables_11_ext_R0_data[10:0];
@@ -19393,6 +21107,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_11_word_13 = _tables_11_ext_R0_data[153:143];
   assign io_lookup_11_word_14 = _tables_11_ext_R0_data[164:154];
   assign io_lookup_11_word_15 = _tables_11_ext_R0_data[175:165];
+  assign io_lookup_11_word_16 = _tables_11_ext_R0_data[186:176];
+  assign io_lookup_11_word_17 = _tables_11_ext_R0_data[197:187];
+  assign io_lookup_11_word_18 = _tables_11_ext_R0_data[208:198];
+  assign io_lookup_11_word_19 = _tables_11_ext_R0_data[219:209];
+  assign io_lookup_11_word_20 = _tables_11_ext_R0_data[230:220];
+  assign io_lookup_11_word_21 = _tables_11_ext_R0_data[241:231];
+  assign io_lookup_11_word_22 = _tables_11_ext_R0_data[252:242];
+  assign io_lookup_11_word_23 = _tables_11_ext_R0_data[263:253];
+  assign io_lookup_11_word_24 = _tables_11_ext_R0_data[274:264];
+  assign io_lookup_11_word_25 = _tables_11_ext_R0_data[285:275];
+  assign io_lookup_11_word_26 = _tables_11_ext_R0_data[296:286];
+  assign io_lookup_11_word_27 = _tables_11_ext_R0_data[307:297];
+  assign io_lookup_11_word_28 = _tables_11_ext_R0_data[318:308];
+  assign io_lookup_11_word_29 = _tables_11_ext_R0_data[329:319];
+  assign io_lookup_11_word_30 = _tables_11_ext_R0_data[340:330];
+  assign io_lookup_11_word_31 = _tables_11_ext_R0_data[351:341];
   assign io_lookup_12_begin = lbZero_12 ? 11'h0 : casez_tmp_26;
   assign io_lookup_12_end = casez_tmp_25;
   assign io_lookup_12_word_0 = _tables_12_ext_R0_data[10:0];
@@ -19411,6 +21141,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_12_word_13 = _tables_12_ext_R0_data[153:143];
   assign io_lookup_12_word_14 = _tables_12_ext_R0_data[164:154];
   assign io_lookup_12_word_15 = _tables_12_ext_R0_data[175:165];
+  assign io_lookup_12_word_16 = _tables_12_ext_R0_data[186:176];
+  assign io_lookup_12_word_17 = _tables_12_ext_R0_data[197:187];
+  assign io_lookup_12_word_18 = _tables_12_ext_R0_data[208:198];
+  assign io_lookup_12_word_19 = _tables_12_ext_R0_data[219:209];
+  assign io_lookup_12_word_20 = _tables_12_ext_R0_data[230:220];
+  assign io_lookup_12_word_21 = _tables_12_ext_R0_data[241:231];
+  assign io_lookup_12_word_22 = _tables_12_ext_R0_data[252:242];
+  assign io_lookup_12_word_23 = _tables_12_ext_R0_data[263:253];
+  assign io_lookup_12_word_24 = _tables_12_ext_R0_data[274:264];
+  assign io_lookup_12_word_25 = _tables_12_ext_R0_data[285:275];
+  assign io_lookup_12_word_26 = _tables_12_ext_R0_data[296:286];
+  assign io_lookup_12_word_27 = _tables_12_ext_R0_data[307:297];
+  assign io_lookup_12_word_28 = _tables_12_ext_R0_data[318:308];
+  assign io_lookup_12_word_29 = _tables_12_ext_R0_data[329:319];
+  assign io_lookup_12_word_30 = _tables_12_ext_R0_data[340:330];
+  assign io_lookup_12_word_31 = _tables_12_ext_R0_data[351:341];
   assign io_lookup_13_begin = lbZero_13 ? 11'h0 : casez_tmp_28;
   assign io_lookup_13_end = casez_tmp_27;
   assign io_lookup_13_word_0 = _tables_13_ext_R0_data[10:0];
@@ -19429,6 +21175,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_13_word_13 = _tables_13_ext_R0_data[153:143];
   assign io_lookup_13_word_14 = _tables_13_ext_R0_data[164:154];
   assign io_lookup_13_word_15 = _tables_13_ext_R0_data[175:165];
+  assign io_lookup_13_word_16 = _tables_13_ext_R0_data[186:176];
+  assign io_lookup_13_word_17 = _tables_13_ext_R0_data[197:187];
+  assign io_lookup_13_word_18 = _tables_13_ext_R0_data[208:198];
+  assign io_lookup_13_word_19 = _tables_13_ext_R0_data[219:209];
+  assign io_lookup_13_word_20 = _tables_13_ext_R0_data[230:220];
+  assign io_lookup_13_word_21 = _tables_13_ext_R0_data[241:231];
+  assign io_lookup_13_word_22 = _tables_13_ext_R0_data[252:242];
+  assign io_lookup_13_word_23 = _tables_13_ext_R0_data[263:253];
+  assign io_lookup_13_word_24 = _tables_13_ext_R0_data[274:264];
+  assign io_lookup_13_word_25 = _tables_13_ext_R0_data[285:275];
+  assign io_lookup_13_word_26 = _tables_13_ext_R0_data[296:286];
+  assign io_lookup_13_word_27 = _tables_13_ext_R0_data[307:297];
+  assign io_lookup_13_word_28 = _tables_13_ext_R0_data[318:308];
+  assign io_lookup_13_word_29 = _tables_13_ext_R0_data[329:319];
+  assign io_lookup_13_word_30 = _tables_13_ext_R0_data[340:330];
+  assign io_lookup_13_word_31 = _tables_13_ext_R0_data[351:341];
   assign io_lookup_14_begin = lbZero_14 ? 11'h0 : casez_tmp_30;
   assign io_lookup_14_end = casez_tmp_29;
   assign io_lookup_14_word_0 = _tables_14_ext_R0_data[10:0];
@@ -19447,6 +21209,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_14_word_13 = _tables_14_ext_R0_data[153:143];
   assign io_lookup_14_word_14 = _tables_14_ext_R0_data[164:154];
   assign io_lookup_14_word_15 = _tables_14_ext_R0_data[175:165];
+  assign io_lookup_14_word_16 = _tables_14_ext_R0_data[186:176];
+  assign io_lookup_14_word_17 = _tables_14_ext_R0_data[197:187];
+  assign io_lookup_14_word_18 = _tables_14_ext_R0_data[208:198];
+  assign io_lookup_14_word_19 = _tables_14_ext_R0_data[219:209];
+  assign io_lookup_14_word_20 = _tables_14_ext_R0_data[230:220];
+  assign io_lookup_14_word_21 = _tables_14_ext_R0_data[241:231];
+  assign io_lookup_14_word_22 = _tables_14_ext_R0_data[252:242];
+  assign io_lookup_14_word_23 = _tables_14_ext_R0_data[263:253];
+  assign io_lookup_14_word_24 = _tables_14_ext_R0_data[274:264];
+  assign io_lookup_14_word_25 = _tables_14_ext_R0_data[285:275];
+  assign io_lookup_14_word_26 = _tables_14_ext_R0_data[296:286];
+  assign io_lookup_14_word_27 = _tables_14_ext_R0_data[307:297];
+  assign io_lookup_14_word_28 = _tables_14_ext_R0_data[318:308];
+  assign io_lookup_14_word_29 = _tables_14_ext_R0_data[329:319];
+  assign io_lookup_14_word_30 = _tables_14_ext_R0_data[340:330];
+  assign io_lookup_14_word_31 = _tables_14_ext_R0_data[351:341];
   assign io_lookup_15_begin = lbZero_15 ? 11'h0 : casez_tmp_32;
   assign io_lookup_15_end = casez_tmp_31;
   assign io_lookup_15_word_0 = _tables_15_ext_R0_data[10:0];
@@ -19465,6 +21243,22 @@ module BucketSort_n1024_b13_w4_c16_p2_i12_world(
   assign io_lookup_15_word_13 = _tables_15_ext_R0_data[153:143];
   assign io_lookup_15_word_14 = _tables_15_ext_R0_data[164:154];
   assign io_lookup_15_word_15 = _tables_15_ext_R0_data[175:165];
+  assign io_lookup_15_word_16 = _tables_15_ext_R0_data[186:176];
+  assign io_lookup_15_word_17 = _tables_15_ext_R0_data[197:187];
+  assign io_lookup_15_word_18 = _tables_15_ext_R0_data[208:198];
+  assign io_lookup_15_word_19 = _tables_15_ext_R0_data[219:209];
+  assign io_lookup_15_word_20 = _tables_15_ext_R0_data[230:220];
+  assign io_lookup_15_word_21 = _tables_15_ext_R0_data[241:231];
+  assign io_lookup_15_word_22 = _tables_15_ext_R0_data[252:242];
+  assign io_lookup_15_word_23 = _tables_15_ext_R0_data[263:253];
+  assign io_lookup_15_word_24 = _tables_15_ext_R0_data[274:264];
+  assign io_lookup_15_word_25 = _tables_15_ext_R0_data[285:275];
+  assign io_lookup_15_word_26 = _tables_15_ext_R0_data[296:286];
+  assign io_lookup_15_word_27 = _tables_15_ext_R0_data[307:297];
+  assign io_lookup_15_word_28 = _tables_15_ext_R0_data[318:308];
+  assign io_lookup_15_word_29 = _tables_15_ext_R0_data[329:319];
+  assign io_lookup_15_word_30 = _tables_15_ext_R0_data[340:330];
+  assign io_lookup_15_word_31 = _tables_15_ext_R0_data[351:341];
   assign io_entry_0_item = _entries_0_ext_RW0_rdata[11:0];
   assign io_entry_0_mark = _entries_0_ext_RW0_rdata[12];
   assign io_entry_1_item = _entries_1_ext_RW0_rdata[11:0];
@@ -19970,7 +21764,80 @@ module KeyStream_world(
   assign io_idle = ~busy & ~s1v & ~(kv_0 | kv_1) & ~_q_io_deq_valid;
 endmodule
 
-module ChunkMatcher_i12_c20_q29_k32_world(
+// VCS coverage exclude_file
+module ram_8x44_world(
+  input  [2:0]  R0_addr,
+  input         R0_en,
+                R0_clk,
+  output [43:0] R0_data,
+  input  [2:0]  W0_addr,
+  input         W0_en,
+                W0_clk,
+  input  [43:0] W0_data
+);
+
+  reg [43:0] Memory[0:7];
+  always @(posedge W0_clk) begin
+    if (W0_en & 1'h1)
+      Memory[W0_addr] <= W0_data;
+  end // always @(posedge)
+  assign R0_data = R0_en ? Memory[R0_addr] : 44'bx;
+endmodule
+
+module Queue8_Hits_world(
+  input         clock,
+                reset,
+  output        io_enq_ready,
+  input         io_enq_valid,
+  input  [31:0] io_enq_bits_mask,
+  input  [11:0] io_enq_bits_index,
+  input         io_deq_ready,
+  output        io_deq_valid,
+  output [31:0] io_deq_bits_mask,
+  output [11:0] io_deq_bits_index
+);
+
+  wire [43:0] _ram_ext_R0_data;
+  reg  [2:0]  enq_ptr_value;
+  reg  [2:0]  deq_ptr_value;
+  reg         maybe_full;
+  wire        ptr_match = enq_ptr_value == deq_ptr_value;
+  wire        empty = ptr_match & ~maybe_full;
+  wire        full = ptr_match & maybe_full;
+  wire        do_enq = ~full & io_enq_valid;
+  wire        do_deq = io_deq_ready & ~empty;
+  always @(posedge clock) begin
+    if (reset) begin
+      enq_ptr_value <= 3'h0;
+      deq_ptr_value <= 3'h0;
+      maybe_full <= 1'h0;
+    end
+    else begin
+      if (do_enq)
+        enq_ptr_value <= enq_ptr_value + 3'h1;
+      if (do_deq)
+        deq_ptr_value <= deq_ptr_value + 3'h1;
+      if (~(do_enq == do_deq))
+        maybe_full <= do_enq;
+    end
+  end // always @(posedge)
+  ram_8x44_world ram_ext (
+    .R0_addr (deq_ptr_value),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_ram_ext_R0_data),
+    .W0_addr (enq_ptr_value),
+    .W0_en   (do_enq),
+    .W0_clk  (clock),
+    .W0_data ({io_enq_bits_index, io_enq_bits_mask})
+  );
+  assign io_enq_ready = ~full;
+  assign io_deq_valid = ~empty;
+  assign io_deq_bits_mask = _ram_ext_R0_data[31:0];
+  assign io_deq_bits_index = _ram_ext_R0_data[43:32];
+endmodule
+
+module ChunkMatcher_i12_c20_q29_k32_h8_world(
   input         clock,
                 reset,
                 io_clear,
@@ -20007,6 +21874,9 @@ module ChunkMatcher_i12_c20_q29_k32_world(
   output        io_idle
 );
 
+  wire        _q_io_deq_valid;
+  wire [31:0] _q_io_deq_bits_mask;
+  wire [11:0] _q_io_deq_bits_index;
   reg  [11:0] members_0_key_index;
   reg  [28:0] members_0_key_q_0;
   reg  [28:0] members_0_key_q_1;
@@ -20200,174 +22070,6 @@ module ChunkMatcher_i12_c20_q29_k32_world(
   reg  [28:0] members_31_key_qr;
   reg  [2:0]  members_31_place;
   reg  [5:0]  used;
-  reg  [31:0] pending;
-  reg  [11:0] entry_index;
-  wire [4:0]  slot =
-    pending[0]
-      ? 5'h0
-      : pending[1]
-          ? 5'h1
-          : pending[2]
-              ? 5'h2
-              : pending[3]
-                  ? 5'h3
-                  : pending[4]
-                      ? 5'h4
-                      : pending[5]
-                          ? 5'h5
-                          : pending[6]
-                              ? 5'h6
-                              : pending[7]
-                                  ? 5'h7
-                                  : pending[8]
-                                      ? 5'h8
-                                      : pending[9]
-                                          ? 5'h9
-                                          : pending[10]
-                                              ? 5'hA
-                                              : pending[11]
-                                                  ? 5'hB
-                                                  : pending[12]
-                                                      ? 5'hC
-                                                      : pending[13]
-                                                          ? 5'hD
-                                                          : pending[14]
-                                                              ? 5'hE
-                                                              : pending[15]
-                                                                  ? 5'hF
-                                                                  : pending[16]
-                                                                      ? 5'h10
-                                                                      : pending[17]
-                                                                          ? 5'h11
-                                                                          : pending[18]
-                                                                              ? 5'h12
-                                                                              : pending[19]
-                                                                                  ? 5'h13
-                                                                                  : pending[20]
-                                                                                      ? 5'h14
-                                                                                      : pending[21]
-                                                                                          ? 5'h15
-                                                                                          : pending[22]
-                                                                                              ? 5'h16
-                                                                                              : pending[23]
-                                                                                                  ? 5'h17
-                                                                                                  : pending[24]
-                                                                                                      ? 5'h18
-                                                                                                      : pending[25]
-                                                                                                          ? 5'h19
-                                                                                                          : pending[26]
-                                                                                                              ? 5'h1A
-                                                                                                              : pending[27]
-                                                                                                                  ? 5'h1B
-                                                                                                                  : pending[28]
-                                                                                                                      ? 5'h1C
-                                                                                                                      : pending[29]
-                                                                                                                          ? 5'h1D
-                                                                                                                          : {4'hF,
-                                                                                                                             ~(pending[30])};
-  reg  [11:0] casez_tmp;
-  always @(*) begin
-    casez (slot)
-      5'b00000:
-        casez_tmp = members_0_key_index;
-      5'b00001:
-        casez_tmp = members_1_key_index;
-      5'b00010:
-        casez_tmp = members_2_key_index;
-      5'b00011:
-        casez_tmp = members_3_key_index;
-      5'b00100:
-        casez_tmp = members_4_key_index;
-      5'b00101:
-        casez_tmp = members_5_key_index;
-      5'b00110:
-        casez_tmp = members_6_key_index;
-      5'b00111:
-        casez_tmp = members_7_key_index;
-      5'b01000:
-        casez_tmp = members_8_key_index;
-      5'b01001:
-        casez_tmp = members_9_key_index;
-      5'b01010:
-        casez_tmp = members_10_key_index;
-      5'b01011:
-        casez_tmp = members_11_key_index;
-      5'b01100:
-        casez_tmp = members_12_key_index;
-      5'b01101:
-        casez_tmp = members_13_key_index;
-      5'b01110:
-        casez_tmp = members_14_key_index;
-      5'b01111:
-        casez_tmp = members_15_key_index;
-      5'b10000:
-        casez_tmp = members_16_key_index;
-      5'b10001:
-        casez_tmp = members_17_key_index;
-      5'b10010:
-        casez_tmp = members_18_key_index;
-      5'b10011:
-        casez_tmp = members_19_key_index;
-      5'b10100:
-        casez_tmp = members_20_key_index;
-      5'b10101:
-        casez_tmp = members_21_key_index;
-      5'b10110:
-        casez_tmp = members_22_key_index;
-      5'b10111:
-        casez_tmp = members_23_key_index;
-      5'b11000:
-        casez_tmp = members_24_key_index;
-      5'b11001:
-        casez_tmp = members_25_key_index;
-      5'b11010:
-        casez_tmp = members_26_key_index;
-      5'b11011:
-        casez_tmp = members_27_key_index;
-      5'b11100:
-        casez_tmp = members_28_key_index;
-      5'b11101:
-        casez_tmp = members_29_key_index;
-      5'b11110:
-        casez_tmp = members_30_key_index;
-      default:
-        casez_tmp = members_31_key_index;
-    endcase
-  end // always @(*)
-  wire        _io_out_bits_j_T = casez_tmp < entry_index;
-  wire        io_in_ready_0 =
-    ~(|pending)
-    | {1'h0,
-       {1'h0,
-        {1'h0,
-         {1'h0, {1'h0, pending[0]} + {1'h0, pending[1]}}
-           + {1'h0, {1'h0, pending[2]} + {1'h0, pending[3]}}}
-          + {1'h0,
-             {1'h0, {1'h0, pending[4]} + {1'h0, pending[5]}}
-               + {1'h0, {1'h0, pending[6]} + {1'h0, pending[7]}}}}
-         + {1'h0,
-            {1'h0,
-             {1'h0, {1'h0, pending[8]} + {1'h0, pending[9]}}
-               + {1'h0, {1'h0, pending[10]} + {1'h0, pending[11]}}}
-              + {1'h0,
-                 {1'h0, {1'h0, pending[12]} + {1'h0, pending[13]}}
-                   + {1'h0, {1'h0, pending[14]} + {1'h0, pending[15]}}}}}
-    + {1'h0,
-       {1'h0,
-        {1'h0,
-         {1'h0, {1'h0, pending[16]} + {1'h0, pending[17]}}
-           + {1'h0, {1'h0, pending[18]} + {1'h0, pending[19]}}}
-          + {1'h0,
-             {1'h0, {1'h0, pending[20]} + {1'h0, pending[21]}}
-               + {1'h0, {1'h0, pending[22]} + {1'h0, pending[23]}}}}
-         + {1'h0,
-            {1'h0,
-             {1'h0, {1'h0, pending[24]} + {1'h0, pending[25]}}
-               + {1'h0, {1'h0, pending[26]} + {1'h0, pending[27]}}}
-              + {1'h0,
-                 {1'h0, {1'h0, pending[28]} + {1'h0, pending[29]}}
-                   + {1'h0, {1'h0, pending[30]} + {1'h0, pending[31]}}}}} < 6'h2
-    & io_out_ready;
   wire        inCell =
     io_in_bits_key_cell_0 == io_in_bits_cell_0
     & io_in_bits_key_cell_1 == io_in_bits_cell_1
@@ -21466,8 +23168,176 @@ module ChunkMatcher_i12_c20_q29_k32_world(
        & ($signed(hitsNow_d_2) < 30'sh0
             ? 31'h0 - {hitsNow_d_2[29], hitsNow_d_2}
             : {1'h0, hitsNow_d_2}) <= hitsNow_bound};
+  reg  [31:0] pending;
+  reg  [11:0] entry;
+  wire [4:0]  slot =
+    pending[0]
+      ? 5'h0
+      : pending[1]
+          ? 5'h1
+          : pending[2]
+              ? 5'h2
+              : pending[3]
+                  ? 5'h3
+                  : pending[4]
+                      ? 5'h4
+                      : pending[5]
+                          ? 5'h5
+                          : pending[6]
+                              ? 5'h6
+                              : pending[7]
+                                  ? 5'h7
+                                  : pending[8]
+                                      ? 5'h8
+                                      : pending[9]
+                                          ? 5'h9
+                                          : pending[10]
+                                              ? 5'hA
+                                              : pending[11]
+                                                  ? 5'hB
+                                                  : pending[12]
+                                                      ? 5'hC
+                                                      : pending[13]
+                                                          ? 5'hD
+                                                          : pending[14]
+                                                              ? 5'hE
+                                                              : pending[15]
+                                                                  ? 5'hF
+                                                                  : pending[16]
+                                                                      ? 5'h10
+                                                                      : pending[17]
+                                                                          ? 5'h11
+                                                                          : pending[18]
+                                                                              ? 5'h12
+                                                                              : pending[19]
+                                                                                  ? 5'h13
+                                                                                  : pending[20]
+                                                                                      ? 5'h14
+                                                                                      : pending[21]
+                                                                                          ? 5'h15
+                                                                                          : pending[22]
+                                                                                              ? 5'h16
+                                                                                              : pending[23]
+                                                                                                  ? 5'h17
+                                                                                                  : pending[24]
+                                                                                                      ? 5'h18
+                                                                                                      : pending[25]
+                                                                                                          ? 5'h19
+                                                                                                          : pending[26]
+                                                                                                              ? 5'h1A
+                                                                                                              : pending[27]
+                                                                                                                  ? 5'h1B
+                                                                                                                  : pending[28]
+                                                                                                                      ? 5'h1C
+                                                                                                                      : pending[29]
+                                                                                                                          ? 5'h1D
+                                                                                                                          : {4'hF,
+                                                                                                                             ~(pending[30])};
+  reg  [11:0] casez_tmp;
+  always @(*) begin
+    casez (slot)
+      5'b00000:
+        casez_tmp = members_0_key_index;
+      5'b00001:
+        casez_tmp = members_1_key_index;
+      5'b00010:
+        casez_tmp = members_2_key_index;
+      5'b00011:
+        casez_tmp = members_3_key_index;
+      5'b00100:
+        casez_tmp = members_4_key_index;
+      5'b00101:
+        casez_tmp = members_5_key_index;
+      5'b00110:
+        casez_tmp = members_6_key_index;
+      5'b00111:
+        casez_tmp = members_7_key_index;
+      5'b01000:
+        casez_tmp = members_8_key_index;
+      5'b01001:
+        casez_tmp = members_9_key_index;
+      5'b01010:
+        casez_tmp = members_10_key_index;
+      5'b01011:
+        casez_tmp = members_11_key_index;
+      5'b01100:
+        casez_tmp = members_12_key_index;
+      5'b01101:
+        casez_tmp = members_13_key_index;
+      5'b01110:
+        casez_tmp = members_14_key_index;
+      5'b01111:
+        casez_tmp = members_15_key_index;
+      5'b10000:
+        casez_tmp = members_16_key_index;
+      5'b10001:
+        casez_tmp = members_17_key_index;
+      5'b10010:
+        casez_tmp = members_18_key_index;
+      5'b10011:
+        casez_tmp = members_19_key_index;
+      5'b10100:
+        casez_tmp = members_20_key_index;
+      5'b10101:
+        casez_tmp = members_21_key_index;
+      5'b10110:
+        casez_tmp = members_22_key_index;
+      5'b10111:
+        casez_tmp = members_23_key_index;
+      5'b11000:
+        casez_tmp = members_24_key_index;
+      5'b11001:
+        casez_tmp = members_25_key_index;
+      5'b11010:
+        casez_tmp = members_26_key_index;
+      5'b11011:
+        casez_tmp = members_27_key_index;
+      5'b11100:
+        casez_tmp = members_28_key_index;
+      5'b11101:
+        casez_tmp = members_29_key_index;
+      5'b11110:
+        casez_tmp = members_30_key_index;
+      default:
+        casez_tmp = members_31_key_index;
+    endcase
+  end // always @(*)
+  wire        _io_out_bits_j_T = casez_tmp < entry;
+  wire        free =
+    ~(|pending)
+    | {1'h0,
+       {1'h0,
+        {1'h0,
+         {1'h0, {1'h0, pending[0]} + {1'h0, pending[1]}}
+           + {1'h0, {1'h0, pending[2]} + {1'h0, pending[3]}}}
+          + {1'h0,
+             {1'h0, {1'h0, pending[4]} + {1'h0, pending[5]}}
+               + {1'h0, {1'h0, pending[6]} + {1'h0, pending[7]}}}}
+         + {1'h0,
+            {1'h0,
+             {1'h0, {1'h0, pending[8]} + {1'h0, pending[9]}}
+               + {1'h0, {1'h0, pending[10]} + {1'h0, pending[11]}}}
+              + {1'h0,
+                 {1'h0, {1'h0, pending[12]} + {1'h0, pending[13]}}
+                   + {1'h0, {1'h0, pending[14]} + {1'h0, pending[15]}}}}}
+    + {1'h0,
+       {1'h0,
+        {1'h0,
+         {1'h0, {1'h0, pending[16]} + {1'h0, pending[17]}}
+           + {1'h0, {1'h0, pending[18]} + {1'h0, pending[19]}}}
+          + {1'h0,
+             {1'h0, {1'h0, pending[20]} + {1'h0, pending[21]}}
+               + {1'h0, {1'h0, pending[22]} + {1'h0, pending[23]}}}}
+         + {1'h0,
+            {1'h0,
+             {1'h0, {1'h0, pending[24]} + {1'h0, pending[25]}}
+               + {1'h0, {1'h0, pending[26]} + {1'h0, pending[27]}}}
+              + {1'h0,
+                 {1'h0, {1'h0, pending[28]} + {1'h0, pending[29]}}
+                   + {1'h0, {1'h0, pending[30]} + {1'h0, pending[31]}}}}} < 6'h2
+    & io_out_ready;
   wire        _GEN_7 = used == 6'h20;
-  wire        _pending_T = io_in_ready_0 & io_in_valid;
+  wire        _pending_T = free & _q_io_deq_valid;
   always @(posedge clock) begin
     if (io_clear) begin
       if (io_load_valid) begin
@@ -21800,7 +23670,7 @@ module ChunkMatcher_i12_c20_q29_k32_world(
       members_31_place <= io_load_bits_place;
     end
     if (_pending_T)
-      entry_index <= io_in_bits_key_index;
+      entry <= _q_io_deq_bits_index;
     if (reset) begin
       used <= 6'h0;
       pending <= 32'h0;
@@ -21813,16 +23683,27 @@ module ChunkMatcher_i12_c20_q29_k32_world(
       else
         used <= used + 6'h1;
       if (_pending_T)
-        pending <= hitsNow;
+        pending <= _q_io_deq_bits_mask;
       else
         pending <= ({32{~(io_out_ready & (|pending))}} | ~(32'h1 << slot)) & pending;
     end
   end // always @(posedge)
-  assign io_in_ready = io_in_ready_0;
+  Queue8_Hits_world q (
+    .clock             (clock),
+    .reset             (reset),
+    .io_enq_ready      (io_in_ready),
+    .io_enq_valid      (io_in_valid & (|hitsNow)),
+    .io_enq_bits_mask  (hitsNow),
+    .io_enq_bits_index (io_in_bits_key_index),
+    .io_deq_ready      (free),
+    .io_deq_valid      (_q_io_deq_valid),
+    .io_deq_bits_mask  (_q_io_deq_bits_mask),
+    .io_deq_bits_index (_q_io_deq_bits_index)
+  );
   assign io_out_valid = |pending;
-  assign io_out_bits_i = _io_out_bits_j_T ? casez_tmp : entry_index;
-  assign io_out_bits_j = _io_out_bits_j_T ? entry_index : casez_tmp;
-  assign io_idle = ~(|pending);
+  assign io_out_bits_i = _io_out_bits_j_T ? casez_tmp : entry;
+  assign io_out_bits_j = _io_out_bits_j_T ? entry : casez_tmp;
+  assign io_idle = ~(|pending) & ~_q_io_deq_valid;
 endmodule
 
 // VCS coverage exclude_file
@@ -21968,7 +23849,7 @@ module Queue3_StreamRange_world(
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 2'h1 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
+module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world(
   input         clock,
                 reset,
                 io_start,
@@ -22093,6 +23974,22 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
                 io_lookup_word_0_13,
                 io_lookup_word_0_14,
                 io_lookup_word_0_15,
+                io_lookup_word_0_16,
+                io_lookup_word_0_17,
+                io_lookup_word_0_18,
+                io_lookup_word_0_19,
+                io_lookup_word_0_20,
+                io_lookup_word_0_21,
+                io_lookup_word_0_22,
+                io_lookup_word_0_23,
+                io_lookup_word_0_24,
+                io_lookup_word_0_25,
+                io_lookup_word_0_26,
+                io_lookup_word_0_27,
+                io_lookup_word_0_28,
+                io_lookup_word_0_29,
+                io_lookup_word_0_30,
+                io_lookup_word_0_31,
                 io_lookup_word_1_0,
                 io_lookup_word_1_1,
                 io_lookup_word_1_2,
@@ -22109,6 +24006,22 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
                 io_lookup_word_1_13,
                 io_lookup_word_1_14,
                 io_lookup_word_1_15,
+                io_lookup_word_1_16,
+                io_lookup_word_1_17,
+                io_lookup_word_1_18,
+                io_lookup_word_1_19,
+                io_lookup_word_1_20,
+                io_lookup_word_1_21,
+                io_lookup_word_1_22,
+                io_lookup_word_1_23,
+                io_lookup_word_1_24,
+                io_lookup_word_1_25,
+                io_lookup_word_1_26,
+                io_lookup_word_1_27,
+                io_lookup_word_1_28,
+                io_lookup_word_1_29,
+                io_lookup_word_1_30,
+                io_lookup_word_1_31,
                 io_lookup_word_2_0,
                 io_lookup_word_2_1,
                 io_lookup_word_2_2,
@@ -22125,6 +24038,22 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
                 io_lookup_word_2_13,
                 io_lookup_word_2_14,
                 io_lookup_word_2_15,
+                io_lookup_word_2_16,
+                io_lookup_word_2_17,
+                io_lookup_word_2_18,
+                io_lookup_word_2_19,
+                io_lookup_word_2_20,
+                io_lookup_word_2_21,
+                io_lookup_word_2_22,
+                io_lookup_word_2_23,
+                io_lookup_word_2_24,
+                io_lookup_word_2_25,
+                io_lookup_word_2_26,
+                io_lookup_word_2_27,
+                io_lookup_word_2_28,
+                io_lookup_word_2_29,
+                io_lookup_word_2_30,
+                io_lookup_word_2_31,
                 io_lookup_word_3_0,
                 io_lookup_word_3_1,
                 io_lookup_word_3_2,
@@ -22141,6 +24070,22 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
                 io_lookup_word_3_13,
                 io_lookup_word_3_14,
                 io_lookup_word_3_15,
+                io_lookup_word_3_16,
+                io_lookup_word_3_17,
+                io_lookup_word_3_18,
+                io_lookup_word_3_19,
+                io_lookup_word_3_20,
+                io_lookup_word_3_21,
+                io_lookup_word_3_22,
+                io_lookup_word_3_23,
+                io_lookup_word_3_24,
+                io_lookup_word_3_25,
+                io_lookup_word_3_26,
+                io_lookup_word_3_27,
+                io_lookup_word_3_28,
+                io_lookup_word_3_29,
+                io_lookup_word_3_30,
+                io_lookup_word_3_31,
   output [11:0] io_entry_addr,
   output [1:0]  io_entry_group,
   input  [11:0] io_entry_item,
@@ -22261,156 +24206,342 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
   wire [13:0] issueAt = inUnit ? bIssue : io_claim_bits_bucket;
   wire        _GEN_2 = _GEN_1 & issueOk;
   wire        occupied_0 =
-    walkB[3:0] == 4'h0 & {walkB[13:4], 4'h0} < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'h0 : ~(walkB[3]))
+    walkB[4:0] == 5'h0 & {walkB[13:5], 5'h0} < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h0 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_0 != io_lookup_begin_0 | io_lookup_word_1_0 != io_lookup_begin_1
        | io_lookup_word_2_0 != io_lookup_begin_2
        | io_lookup_word_3_0 != io_lookup_begin_3);
-  wire [13:0] _GEN_3 = {walkB[13:4], 4'h0};
+  wire [13:0] _GEN_3 = {walkB[13:5], 5'h0};
   wire        occupied_1 =
-    walkB[3:0] < 4'h2 & _GEN_3 + 14'h1 < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'h1 : ~(walkB[3]))
+    walkB[4:0] < 5'h2 & _GEN_3 + 14'h1 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h1 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_1 != io_lookup_word_0_0 | io_lookup_word_1_1 != io_lookup_word_1_0
        | io_lookup_word_2_1 != io_lookup_word_2_0
        | io_lookup_word_3_1 != io_lookup_word_3_0);
   wire        occupied_2 =
-    walkB[3:0] < 4'h3 & _GEN_3 + 14'h2 < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'h2 : ~(walkB[3]))
+    walkB[4:0] < 5'h3 & _GEN_3 + 14'h2 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h2 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_2 != io_lookup_word_0_1 | io_lookup_word_1_2 != io_lookup_word_1_1
        | io_lookup_word_2_2 != io_lookup_word_2_1
        | io_lookup_word_3_2 != io_lookup_word_3_1);
   wire        occupied_3 =
-    walkB[3:0] < 4'h4 & _GEN_3 + 14'h3 < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'h3 : ~(walkB[3]))
+    walkB[4:0] < 5'h4 & _GEN_3 + 14'h3 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h3 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_3 != io_lookup_word_0_2 | io_lookup_word_1_3 != io_lookup_word_1_2
        | io_lookup_word_2_3 != io_lookup_word_2_2
        | io_lookup_word_3_3 != io_lookup_word_3_2);
   wire        occupied_4 =
-    walkB[3:0] < 4'h5 & _GEN_3 + 14'h4 < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'h4 : ~(walkB[3]))
+    walkB[4:0] < 5'h5 & _GEN_3 + 14'h4 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h4 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_4 != io_lookup_word_0_3 | io_lookup_word_1_4 != io_lookup_word_1_3
        | io_lookup_word_2_4 != io_lookup_word_2_3
        | io_lookup_word_3_4 != io_lookup_word_3_3);
   wire        occupied_5 =
-    walkB[3:0] < 4'h6 & _GEN_3 + 14'h5 < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'h5 : ~(walkB[3]))
+    walkB[4:0] < 5'h6 & _GEN_3 + 14'h5 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h5 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_5 != io_lookup_word_0_4 | io_lookup_word_1_5 != io_lookup_word_1_4
        | io_lookup_word_2_5 != io_lookup_word_2_4
        | io_lookup_word_3_5 != io_lookup_word_3_4);
   wire        occupied_6 =
-    walkB[3:0] < 4'h7 & _GEN_3 + 14'h6 < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'h6 : ~(walkB[3]))
+    walkB[4:0] < 5'h7 & _GEN_3 + 14'h6 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h6 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_6 != io_lookup_word_0_5 | io_lookup_word_1_6 != io_lookup_word_1_5
        | io_lookup_word_2_6 != io_lookup_word_2_5
        | io_lookup_word_3_6 != io_lookup_word_3_5);
   wire        occupied_7 =
-    ~(walkB[3]) & _GEN_3 + 14'h7 < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'h7 : ~(walkB[3]))
+    walkB[4:0] < 5'h8 & _GEN_3 + 14'h7 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h7 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_7 != io_lookup_word_0_6 | io_lookup_word_1_7 != io_lookup_word_1_6
        | io_lookup_word_2_7 != io_lookup_word_2_6
        | io_lookup_word_3_7 != io_lookup_word_3_6);
   wire        occupied_8 =
-    walkB[3:0] < 4'h9 & _GEN_3 + 14'h8 < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'h8 : walkB[3])
+    walkB[4:0] < 5'h9 & _GEN_3 + 14'h8 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h8 : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_8 != io_lookup_word_0_7 | io_lookup_word_1_8 != io_lookup_word_1_7
        | io_lookup_word_2_8 != io_lookup_word_2_7
        | io_lookup_word_3_8 != io_lookup_word_3_7);
   wire        occupied_9 =
-    walkB[3:0] < 4'hA & _GEN_3 + 14'h9 < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'h9 : walkB[3])
+    walkB[4:0] < 5'hA & _GEN_3 + 14'h9 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h9 : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_9 != io_lookup_word_0_8 | io_lookup_word_1_9 != io_lookup_word_1_8
        | io_lookup_word_2_9 != io_lookup_word_2_8
        | io_lookup_word_3_9 != io_lookup_word_3_8);
   wire        occupied_10 =
-    walkB[3:0] < 4'hB & _GEN_3 + 14'hA < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'hA : walkB[3])
+    walkB[4:0] < 5'hB & _GEN_3 + 14'hA < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'hA : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_10 != io_lookup_word_0_9
        | io_lookup_word_1_10 != io_lookup_word_1_9
        | io_lookup_word_2_10 != io_lookup_word_2_9
        | io_lookup_word_3_10 != io_lookup_word_3_9);
   wire        occupied_11 =
-    walkB[3:2] != 2'h3 & _GEN_3 + 14'hB < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'hB : walkB[3])
+    walkB[4:0] < 5'hC & _GEN_3 + 14'hB < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'hB : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_11 != io_lookup_word_0_10
        | io_lookup_word_1_11 != io_lookup_word_1_10
        | io_lookup_word_2_11 != io_lookup_word_2_10
        | io_lookup_word_3_11 != io_lookup_word_3_10);
   wire        occupied_12 =
-    walkB[3:0] < 4'hD & _GEN_3 + 14'hC < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'hC : walkB[3])
+    walkB[4:0] < 5'hD & _GEN_3 + 14'hC < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'hC : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_12 != io_lookup_word_0_11
        | io_lookup_word_1_12 != io_lookup_word_1_11
        | io_lookup_word_2_12 != io_lookup_word_2_11
        | io_lookup_word_3_12 != io_lookup_word_3_11);
   wire        occupied_13 =
-    walkB[3:1] != 3'h7 & _GEN_3 + 14'hD < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'hD : walkB[3])
+    walkB[4:0] < 5'hE & _GEN_3 + 14'hD < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'hD : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_13 != io_lookup_word_0_12
        | io_lookup_word_1_13 != io_lookup_word_1_12
        | io_lookup_word_2_13 != io_lookup_word_2_12
        | io_lookup_word_3_13 != io_lookup_word_3_12);
   wire        occupied_14 =
-    walkB[3:0] != 4'hF & _GEN_3 + 14'hE < _io_lookup_bucket_mask_T[13:0]
-    & (single ? walkB[3:0] == 4'hE : walkB[3])
+    walkB[4:0] < 5'hF & _GEN_3 + 14'hE < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'hE : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_14 != io_lookup_word_0_13
        | io_lookup_word_1_14 != io_lookup_word_1_13
        | io_lookup_word_2_14 != io_lookup_word_2_13
        | io_lookup_word_3_14 != io_lookup_word_3_13);
-  wire [3:0]  lane =
+  wire        occupied_15 =
+    ~(walkB[4]) & _GEN_3 + 14'hF < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'hF : walkB[4:3] == 2'h1)
+    & (io_lookup_word_0_15 != io_lookup_word_0_14
+       | io_lookup_word_1_15 != io_lookup_word_1_14
+       | io_lookup_word_2_15 != io_lookup_word_2_14
+       | io_lookup_word_3_15 != io_lookup_word_3_14);
+  wire        occupied_16 =
+    walkB[4:0] < 5'h11 & _GEN_3 + 14'h10 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h10 : walkB[4:3] == 2'h2)
+    & (io_lookup_word_0_16 != io_lookup_word_0_15
+       | io_lookup_word_1_16 != io_lookup_word_1_15
+       | io_lookup_word_2_16 != io_lookup_word_2_15
+       | io_lookup_word_3_16 != io_lookup_word_3_15);
+  wire        occupied_17 =
+    walkB[4:0] < 5'h12 & _GEN_3 + 14'h11 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h11 : walkB[4:3] == 2'h2)
+    & (io_lookup_word_0_17 != io_lookup_word_0_16
+       | io_lookup_word_1_17 != io_lookup_word_1_16
+       | io_lookup_word_2_17 != io_lookup_word_2_16
+       | io_lookup_word_3_17 != io_lookup_word_3_16);
+  wire        occupied_18 =
+    walkB[4:0] < 5'h13 & _GEN_3 + 14'h12 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h12 : walkB[4:3] == 2'h2)
+    & (io_lookup_word_0_18 != io_lookup_word_0_17
+       | io_lookup_word_1_18 != io_lookup_word_1_17
+       | io_lookup_word_2_18 != io_lookup_word_2_17
+       | io_lookup_word_3_18 != io_lookup_word_3_17);
+  wire        occupied_19 =
+    walkB[4:0] < 5'h14 & _GEN_3 + 14'h13 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h13 : walkB[4:3] == 2'h2)
+    & (io_lookup_word_0_19 != io_lookup_word_0_18
+       | io_lookup_word_1_19 != io_lookup_word_1_18
+       | io_lookup_word_2_19 != io_lookup_word_2_18
+       | io_lookup_word_3_19 != io_lookup_word_3_18);
+  wire        occupied_20 =
+    walkB[4:0] < 5'h15 & _GEN_3 + 14'h14 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h14 : walkB[4:3] == 2'h2)
+    & (io_lookup_word_0_20 != io_lookup_word_0_19
+       | io_lookup_word_1_20 != io_lookup_word_1_19
+       | io_lookup_word_2_20 != io_lookup_word_2_19
+       | io_lookup_word_3_20 != io_lookup_word_3_19);
+  wire        occupied_21 =
+    walkB[4:0] < 5'h16 & _GEN_3 + 14'h15 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h15 : walkB[4:3] == 2'h2)
+    & (io_lookup_word_0_21 != io_lookup_word_0_20
+       | io_lookup_word_1_21 != io_lookup_word_1_20
+       | io_lookup_word_2_21 != io_lookup_word_2_20
+       | io_lookup_word_3_21 != io_lookup_word_3_20);
+  wire        occupied_22 =
+    walkB[4:0] < 5'h17 & _GEN_3 + 14'h16 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h16 : walkB[4:3] == 2'h2)
+    & (io_lookup_word_0_22 != io_lookup_word_0_21
+       | io_lookup_word_1_22 != io_lookup_word_1_21
+       | io_lookup_word_2_22 != io_lookup_word_2_21
+       | io_lookup_word_3_22 != io_lookup_word_3_21);
+  wire        occupied_23 =
+    walkB[4:3] != 2'h3 & _GEN_3 + 14'h17 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h17 : walkB[4:3] == 2'h2)
+    & (io_lookup_word_0_23 != io_lookup_word_0_22
+       | io_lookup_word_1_23 != io_lookup_word_1_22
+       | io_lookup_word_2_23 != io_lookup_word_2_22
+       | io_lookup_word_3_23 != io_lookup_word_3_22);
+  wire        occupied_24 =
+    walkB[4:0] < 5'h19 & _GEN_3 + 14'h18 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h18 : (&(walkB[4:3])))
+    & (io_lookup_word_0_24 != io_lookup_word_0_23
+       | io_lookup_word_1_24 != io_lookup_word_1_23
+       | io_lookup_word_2_24 != io_lookup_word_2_23
+       | io_lookup_word_3_24 != io_lookup_word_3_23);
+  wire        occupied_25 =
+    walkB[4:0] < 5'h1A & _GEN_3 + 14'h19 < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h19 : (&(walkB[4:3])))
+    & (io_lookup_word_0_25 != io_lookup_word_0_24
+       | io_lookup_word_1_25 != io_lookup_word_1_24
+       | io_lookup_word_2_25 != io_lookup_word_2_24
+       | io_lookup_word_3_25 != io_lookup_word_3_24);
+  wire        occupied_26 =
+    walkB[4:0] < 5'h1B & _GEN_3 + 14'h1A < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h1A : (&(walkB[4:3])))
+    & (io_lookup_word_0_26 != io_lookup_word_0_25
+       | io_lookup_word_1_26 != io_lookup_word_1_25
+       | io_lookup_word_2_26 != io_lookup_word_2_25
+       | io_lookup_word_3_26 != io_lookup_word_3_25);
+  wire        occupied_27 =
+    walkB[4:2] != 3'h7 & _GEN_3 + 14'h1B < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h1B : (&(walkB[4:3])))
+    & (io_lookup_word_0_27 != io_lookup_word_0_26
+       | io_lookup_word_1_27 != io_lookup_word_1_26
+       | io_lookup_word_2_27 != io_lookup_word_2_26
+       | io_lookup_word_3_27 != io_lookup_word_3_26);
+  wire        occupied_28 =
+    walkB[4:0] < 5'h1D & _GEN_3 + 14'h1C < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h1C : (&(walkB[4:3])))
+    & (io_lookup_word_0_28 != io_lookup_word_0_27
+       | io_lookup_word_1_28 != io_lookup_word_1_27
+       | io_lookup_word_2_28 != io_lookup_word_2_27
+       | io_lookup_word_3_28 != io_lookup_word_3_27);
+  wire        occupied_29 =
+    walkB[4:1] != 4'hF & _GEN_3 + 14'h1D < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h1D : (&(walkB[4:3])))
+    & (io_lookup_word_0_29 != io_lookup_word_0_28
+       | io_lookup_word_1_29 != io_lookup_word_1_28
+       | io_lookup_word_2_29 != io_lookup_word_2_28
+       | io_lookup_word_3_29 != io_lookup_word_3_28);
+  wire        occupied_30 =
+    walkB[4:0] != 5'h1F & _GEN_3 + 14'h1E < _io_lookup_bucket_mask_T[13:0]
+    & (single ? walkB[4:0] == 5'h1E : (&(walkB[4:3])))
+    & (io_lookup_word_0_30 != io_lookup_word_0_29
+       | io_lookup_word_1_30 != io_lookup_word_1_29
+       | io_lookup_word_2_30 != io_lookup_word_2_29
+       | io_lookup_word_3_30 != io_lookup_word_3_29);
+  wire [4:0]  lane =
     occupied_0
-      ? 4'h0
+      ? 5'h0
       : occupied_1
-          ? 4'h1
+          ? 5'h1
           : occupied_2
-              ? 4'h2
+              ? 5'h2
               : occupied_3
-                  ? 4'h3
+                  ? 5'h3
                   : occupied_4
-                      ? 4'h4
+                      ? 5'h4
                       : occupied_5
-                          ? 4'h5
+                          ? 5'h5
                           : occupied_6
-                              ? 4'h6
+                              ? 5'h6
                               : occupied_7
-                                  ? 4'h7
+                                  ? 5'h7
                                   : occupied_8
-                                      ? 4'h8
+                                      ? 5'h8
                                       : occupied_9
-                                          ? 4'h9
+                                          ? 5'h9
                                           : occupied_10
-                                              ? 4'hA
+                                              ? 5'hA
                                               : occupied_11
-                                                  ? 4'hB
+                                                  ? 5'hB
                                                   : occupied_12
-                                                      ? 4'hC
+                                                      ? 5'hC
                                                       : occupied_13
-                                                          ? 4'hD
-                                                          : {3'h7, ~occupied_14};
-  wire [3:0]  gLo = {lane[3], 3'h0};
-  wire [3:0]  gLast = {lane[3], 3'h7};
-  wire        _GEN_4 =
-    lane[3]
-      ? walkB[3:0] < 4'h9
-        & {1'h0,
-           {1'h0,
-            {1'h0, io_lookup_word_0_15 - io_lookup_word_0_7}
-              + {1'h0, io_lookup_word_1_15 - io_lookup_word_1_7}}
-             + {2'h0, io_lookup_word_2_15 - io_lookup_word_2_7}}
-        + {3'h0, io_lookup_word_3_15 - io_lookup_word_3_7} < 16'h21 & ~single
-      : walkB[3:0] == 4'h0
-        & {1'h0,
-           {1'h0,
-            {1'h0, io_lookup_word_0_7 - io_lookup_begin_0}
-              + {1'h0, io_lookup_word_1_7 - io_lookup_begin_1}}
-             + {2'h0, io_lookup_word_2_7 - io_lookup_begin_2}}
-        + {3'h0, io_lookup_word_3_7 - io_lookup_begin_3} < 16'h21 & ~single;
-  wire [15:0] _GEN_5 =
-    {_GEN_3 + 14'hF < _io_lookup_bucket_mask_T[13:0]
-       & (single ? (&(walkB[3:0])) : walkB[3])
-       & (io_lookup_word_0_15 != io_lookup_word_0_14
-          | io_lookup_word_1_15 != io_lookup_word_1_14
-          | io_lookup_word_2_15 != io_lookup_word_2_14
-          | io_lookup_word_3_15 != io_lookup_word_3_14),
+                                                          ? 5'hD
+                                                          : occupied_14
+                                                              ? 5'hE
+                                                              : occupied_15
+                                                                  ? 5'hF
+                                                                  : occupied_16
+                                                                      ? 5'h10
+                                                                      : occupied_17
+                                                                          ? 5'h11
+                                                                          : occupied_18
+                                                                              ? 5'h12
+                                                                              : occupied_19
+                                                                                  ? 5'h13
+                                                                                  : occupied_20
+                                                                                      ? 5'h14
+                                                                                      : occupied_21
+                                                                                          ? 5'h15
+                                                                                          : occupied_22
+                                                                                              ? 5'h16
+                                                                                              : occupied_23
+                                                                                                  ? 5'h17
+                                                                                                  : occupied_24
+                                                                                                      ? 5'h18
+                                                                                                      : occupied_25
+                                                                                                          ? 5'h19
+                                                                                                          : occupied_26
+                                                                                                              ? 5'h1A
+                                                                                                              : occupied_27
+                                                                                                                  ? 5'h1B
+                                                                                                                  : occupied_28
+                                                                                                                      ? 5'h1C
+                                                                                                                      : occupied_29
+                                                                                                                          ? 5'h1D
+                                                                                                                          : {4'hF,
+                                                                                                                             ~occupied_30};
+  wire [4:0]  gLo = {lane[4:3], 3'h0};
+  wire [4:0]  gLast = {lane[4:3], 3'h7};
+  reg         casez_tmp;
+  always @(*) begin
+    casez (lane[4:3])
+      2'b00:
+        casez_tmp =
+          walkB[4:0] == 5'h0
+          & {1'h0,
+             {1'h0,
+              {1'h0, io_lookup_word_0_7 - io_lookup_begin_0}
+                + {1'h0, io_lookup_word_1_7 - io_lookup_begin_1}}
+               + {2'h0, io_lookup_word_2_7 - io_lookup_begin_2}}
+          + {3'h0, io_lookup_word_3_7 - io_lookup_begin_3} < 16'h21 & ~single;
+      2'b01:
+        casez_tmp =
+          walkB[4:0] < 5'h9
+          & {1'h0,
+             {1'h0,
+              {1'h0, io_lookup_word_0_15 - io_lookup_word_0_7}
+                + {1'h0, io_lookup_word_1_15 - io_lookup_word_1_7}}
+               + {2'h0, io_lookup_word_2_15 - io_lookup_word_2_7}}
+          + {3'h0, io_lookup_word_3_15 - io_lookup_word_3_7} < 16'h21 & ~single;
+      2'b10:
+        casez_tmp =
+          walkB[4:0] < 5'h11
+          & {1'h0,
+             {1'h0,
+              {1'h0, io_lookup_word_0_23 - io_lookup_word_0_15}
+                + {1'h0, io_lookup_word_1_23 - io_lookup_word_1_15}}
+               + {2'h0, io_lookup_word_2_23 - io_lookup_word_2_15}}
+          + {3'h0, io_lookup_word_3_23 - io_lookup_word_3_15} < 16'h21 & ~single;
+      default:
+        casez_tmp =
+          walkB[4:0] < 5'h19
+          & {1'h0,
+             {1'h0,
+              {1'h0, io_lookup_word_0_31 - io_lookup_word_0_23}
+                + {1'h0, io_lookup_word_1_31 - io_lookup_word_1_23}}
+               + {2'h0, io_lookup_word_2_31 - io_lookup_word_2_23}}
+          + {3'h0, io_lookup_word_3_31 - io_lookup_word_3_23} < 16'h21 & ~single;
+    endcase
+  end // always @(*)
+  wire [31:0] _GEN_4 =
+    {_GEN_3 + 14'h1F < _io_lookup_bucket_mask_T[13:0]
+       & (single ? (&(walkB[4:0])) : (&(walkB[4:3])))
+       & (io_lookup_word_0_31 != io_lookup_word_0_30
+          | io_lookup_word_1_31 != io_lookup_word_1_30
+          | io_lookup_word_2_31 != io_lookup_word_2_30
+          | io_lookup_word_3_31 != io_lookup_word_3_30),
+     occupied_30,
+     occupied_29,
+     occupied_28,
+     occupied_27,
+     occupied_26,
+     occupied_25,
+     occupied_24,
+     occupied_23,
+     occupied_22,
+     occupied_21,
+     occupied_20,
+     occupied_19,
+     occupied_18,
+     occupied_17,
+     occupied_16,
+     occupied_15,
      occupied_14,
      occupied_13,
      occupied_12,
@@ -22426,740 +24557,1119 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
      occupied_2,
      occupied_1,
      occupied_0};
-  wire        _GEN_6 = walkPend & (|_GEN_5) & unitFirst & ~_GEN_4;
-  wire        _GEN_7 = walkPend & (|_GEN_5);
-  reg  [12:0] casez_tmp;
-  always @(*) begin
-    casez (gLo)
-      4'b0000:
-        casez_tmp = io_lookup_begin_0;
-      4'b0001:
-        casez_tmp = io_lookup_word_0_0;
-      4'b0010:
-        casez_tmp = io_lookup_word_0_1;
-      4'b0011:
-        casez_tmp = io_lookup_word_0_2;
-      4'b0100:
-        casez_tmp = io_lookup_word_0_3;
-      4'b0101:
-        casez_tmp = io_lookup_word_0_4;
-      4'b0110:
-        casez_tmp = io_lookup_word_0_5;
-      4'b0111:
-        casez_tmp = io_lookup_word_0_6;
-      4'b1000:
-        casez_tmp = io_lookup_word_0_7;
-      4'b1001:
-        casez_tmp = io_lookup_word_0_8;
-      4'b1010:
-        casez_tmp = io_lookup_word_0_9;
-      4'b1011:
-        casez_tmp = io_lookup_word_0_10;
-      4'b1100:
-        casez_tmp = io_lookup_word_0_11;
-      4'b1101:
-        casez_tmp = io_lookup_word_0_12;
-      4'b1110:
-        casez_tmp = io_lookup_word_0_13;
-      default:
-        casez_tmp = io_lookup_word_0_14;
-    endcase
-  end // always @(*)
+  wire        _GEN_5 = walkPend & (|_GEN_4) & unitFirst & ~casez_tmp;
+  wire        _GEN_6 = walkPend & (|_GEN_4);
   reg  [12:0] casez_tmp_0;
   always @(*) begin
-    casez (gLast)
-      4'b0000:
+    casez (gLo)
+      5'b00000:
+        casez_tmp_0 = io_lookup_begin_0;
+      5'b00001:
         casez_tmp_0 = io_lookup_word_0_0;
-      4'b0001:
+      5'b00010:
         casez_tmp_0 = io_lookup_word_0_1;
-      4'b0010:
+      5'b00011:
         casez_tmp_0 = io_lookup_word_0_2;
-      4'b0011:
+      5'b00100:
         casez_tmp_0 = io_lookup_word_0_3;
-      4'b0100:
+      5'b00101:
         casez_tmp_0 = io_lookup_word_0_4;
-      4'b0101:
+      5'b00110:
         casez_tmp_0 = io_lookup_word_0_5;
-      4'b0110:
+      5'b00111:
         casez_tmp_0 = io_lookup_word_0_6;
-      4'b0111:
+      5'b01000:
         casez_tmp_0 = io_lookup_word_0_7;
-      4'b1000:
+      5'b01001:
         casez_tmp_0 = io_lookup_word_0_8;
-      4'b1001:
+      5'b01010:
         casez_tmp_0 = io_lookup_word_0_9;
-      4'b1010:
+      5'b01011:
         casez_tmp_0 = io_lookup_word_0_10;
-      4'b1011:
+      5'b01100:
         casez_tmp_0 = io_lookup_word_0_11;
-      4'b1100:
+      5'b01101:
         casez_tmp_0 = io_lookup_word_0_12;
-      4'b1101:
+      5'b01110:
         casez_tmp_0 = io_lookup_word_0_13;
-      4'b1110:
+      5'b01111:
         casez_tmp_0 = io_lookup_word_0_14;
-      default:
+      5'b10000:
         casez_tmp_0 = io_lookup_word_0_15;
+      5'b10001:
+        casez_tmp_0 = io_lookup_word_0_16;
+      5'b10010:
+        casez_tmp_0 = io_lookup_word_0_17;
+      5'b10011:
+        casez_tmp_0 = io_lookup_word_0_18;
+      5'b10100:
+        casez_tmp_0 = io_lookup_word_0_19;
+      5'b10101:
+        casez_tmp_0 = io_lookup_word_0_20;
+      5'b10110:
+        casez_tmp_0 = io_lookup_word_0_21;
+      5'b10111:
+        casez_tmp_0 = io_lookup_word_0_22;
+      5'b11000:
+        casez_tmp_0 = io_lookup_word_0_23;
+      5'b11001:
+        casez_tmp_0 = io_lookup_word_0_24;
+      5'b11010:
+        casez_tmp_0 = io_lookup_word_0_25;
+      5'b11011:
+        casez_tmp_0 = io_lookup_word_0_26;
+      5'b11100:
+        casez_tmp_0 = io_lookup_word_0_27;
+      5'b11101:
+        casez_tmp_0 = io_lookup_word_0_28;
+      5'b11110:
+        casez_tmp_0 = io_lookup_word_0_29;
+      default:
+        casez_tmp_0 = io_lookup_word_0_30;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_1;
   always @(*) begin
-    casez (gLo)
-      4'b0000:
-        casez_tmp_1 = io_lookup_begin_1;
-      4'b0001:
-        casez_tmp_1 = io_lookup_word_1_0;
-      4'b0010:
-        casez_tmp_1 = io_lookup_word_1_1;
-      4'b0011:
-        casez_tmp_1 = io_lookup_word_1_2;
-      4'b0100:
-        casez_tmp_1 = io_lookup_word_1_3;
-      4'b0101:
-        casez_tmp_1 = io_lookup_word_1_4;
-      4'b0110:
-        casez_tmp_1 = io_lookup_word_1_5;
-      4'b0111:
-        casez_tmp_1 = io_lookup_word_1_6;
-      4'b1000:
-        casez_tmp_1 = io_lookup_word_1_7;
-      4'b1001:
-        casez_tmp_1 = io_lookup_word_1_8;
-      4'b1010:
-        casez_tmp_1 = io_lookup_word_1_9;
-      4'b1011:
-        casez_tmp_1 = io_lookup_word_1_10;
-      4'b1100:
-        casez_tmp_1 = io_lookup_word_1_11;
-      4'b1101:
-        casez_tmp_1 = io_lookup_word_1_12;
-      4'b1110:
-        casez_tmp_1 = io_lookup_word_1_13;
+    casez (gLast)
+      5'b00000:
+        casez_tmp_1 = io_lookup_word_0_0;
+      5'b00001:
+        casez_tmp_1 = io_lookup_word_0_1;
+      5'b00010:
+        casez_tmp_1 = io_lookup_word_0_2;
+      5'b00011:
+        casez_tmp_1 = io_lookup_word_0_3;
+      5'b00100:
+        casez_tmp_1 = io_lookup_word_0_4;
+      5'b00101:
+        casez_tmp_1 = io_lookup_word_0_5;
+      5'b00110:
+        casez_tmp_1 = io_lookup_word_0_6;
+      5'b00111:
+        casez_tmp_1 = io_lookup_word_0_7;
+      5'b01000:
+        casez_tmp_1 = io_lookup_word_0_8;
+      5'b01001:
+        casez_tmp_1 = io_lookup_word_0_9;
+      5'b01010:
+        casez_tmp_1 = io_lookup_word_0_10;
+      5'b01011:
+        casez_tmp_1 = io_lookup_word_0_11;
+      5'b01100:
+        casez_tmp_1 = io_lookup_word_0_12;
+      5'b01101:
+        casez_tmp_1 = io_lookup_word_0_13;
+      5'b01110:
+        casez_tmp_1 = io_lookup_word_0_14;
+      5'b01111:
+        casez_tmp_1 = io_lookup_word_0_15;
+      5'b10000:
+        casez_tmp_1 = io_lookup_word_0_16;
+      5'b10001:
+        casez_tmp_1 = io_lookup_word_0_17;
+      5'b10010:
+        casez_tmp_1 = io_lookup_word_0_18;
+      5'b10011:
+        casez_tmp_1 = io_lookup_word_0_19;
+      5'b10100:
+        casez_tmp_1 = io_lookup_word_0_20;
+      5'b10101:
+        casez_tmp_1 = io_lookup_word_0_21;
+      5'b10110:
+        casez_tmp_1 = io_lookup_word_0_22;
+      5'b10111:
+        casez_tmp_1 = io_lookup_word_0_23;
+      5'b11000:
+        casez_tmp_1 = io_lookup_word_0_24;
+      5'b11001:
+        casez_tmp_1 = io_lookup_word_0_25;
+      5'b11010:
+        casez_tmp_1 = io_lookup_word_0_26;
+      5'b11011:
+        casez_tmp_1 = io_lookup_word_0_27;
+      5'b11100:
+        casez_tmp_1 = io_lookup_word_0_28;
+      5'b11101:
+        casez_tmp_1 = io_lookup_word_0_29;
+      5'b11110:
+        casez_tmp_1 = io_lookup_word_0_30;
       default:
-        casez_tmp_1 = io_lookup_word_1_14;
+        casez_tmp_1 = io_lookup_word_0_31;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_2;
   always @(*) begin
-    casez (gLast)
-      4'b0000:
+    casez (gLo)
+      5'b00000:
+        casez_tmp_2 = io_lookup_begin_1;
+      5'b00001:
         casez_tmp_2 = io_lookup_word_1_0;
-      4'b0001:
+      5'b00010:
         casez_tmp_2 = io_lookup_word_1_1;
-      4'b0010:
+      5'b00011:
         casez_tmp_2 = io_lookup_word_1_2;
-      4'b0011:
+      5'b00100:
         casez_tmp_2 = io_lookup_word_1_3;
-      4'b0100:
+      5'b00101:
         casez_tmp_2 = io_lookup_word_1_4;
-      4'b0101:
+      5'b00110:
         casez_tmp_2 = io_lookup_word_1_5;
-      4'b0110:
+      5'b00111:
         casez_tmp_2 = io_lookup_word_1_6;
-      4'b0111:
+      5'b01000:
         casez_tmp_2 = io_lookup_word_1_7;
-      4'b1000:
+      5'b01001:
         casez_tmp_2 = io_lookup_word_1_8;
-      4'b1001:
+      5'b01010:
         casez_tmp_2 = io_lookup_word_1_9;
-      4'b1010:
+      5'b01011:
         casez_tmp_2 = io_lookup_word_1_10;
-      4'b1011:
+      5'b01100:
         casez_tmp_2 = io_lookup_word_1_11;
-      4'b1100:
+      5'b01101:
         casez_tmp_2 = io_lookup_word_1_12;
-      4'b1101:
+      5'b01110:
         casez_tmp_2 = io_lookup_word_1_13;
-      4'b1110:
+      5'b01111:
         casez_tmp_2 = io_lookup_word_1_14;
-      default:
+      5'b10000:
         casez_tmp_2 = io_lookup_word_1_15;
+      5'b10001:
+        casez_tmp_2 = io_lookup_word_1_16;
+      5'b10010:
+        casez_tmp_2 = io_lookup_word_1_17;
+      5'b10011:
+        casez_tmp_2 = io_lookup_word_1_18;
+      5'b10100:
+        casez_tmp_2 = io_lookup_word_1_19;
+      5'b10101:
+        casez_tmp_2 = io_lookup_word_1_20;
+      5'b10110:
+        casez_tmp_2 = io_lookup_word_1_21;
+      5'b10111:
+        casez_tmp_2 = io_lookup_word_1_22;
+      5'b11000:
+        casez_tmp_2 = io_lookup_word_1_23;
+      5'b11001:
+        casez_tmp_2 = io_lookup_word_1_24;
+      5'b11010:
+        casez_tmp_2 = io_lookup_word_1_25;
+      5'b11011:
+        casez_tmp_2 = io_lookup_word_1_26;
+      5'b11100:
+        casez_tmp_2 = io_lookup_word_1_27;
+      5'b11101:
+        casez_tmp_2 = io_lookup_word_1_28;
+      5'b11110:
+        casez_tmp_2 = io_lookup_word_1_29;
+      default:
+        casez_tmp_2 = io_lookup_word_1_30;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_3;
   always @(*) begin
-    casez (gLo)
-      4'b0000:
-        casez_tmp_3 = io_lookup_begin_2;
-      4'b0001:
-        casez_tmp_3 = io_lookup_word_2_0;
-      4'b0010:
-        casez_tmp_3 = io_lookup_word_2_1;
-      4'b0011:
-        casez_tmp_3 = io_lookup_word_2_2;
-      4'b0100:
-        casez_tmp_3 = io_lookup_word_2_3;
-      4'b0101:
-        casez_tmp_3 = io_lookup_word_2_4;
-      4'b0110:
-        casez_tmp_3 = io_lookup_word_2_5;
-      4'b0111:
-        casez_tmp_3 = io_lookup_word_2_6;
-      4'b1000:
-        casez_tmp_3 = io_lookup_word_2_7;
-      4'b1001:
-        casez_tmp_3 = io_lookup_word_2_8;
-      4'b1010:
-        casez_tmp_3 = io_lookup_word_2_9;
-      4'b1011:
-        casez_tmp_3 = io_lookup_word_2_10;
-      4'b1100:
-        casez_tmp_3 = io_lookup_word_2_11;
-      4'b1101:
-        casez_tmp_3 = io_lookup_word_2_12;
-      4'b1110:
-        casez_tmp_3 = io_lookup_word_2_13;
+    casez (gLast)
+      5'b00000:
+        casez_tmp_3 = io_lookup_word_1_0;
+      5'b00001:
+        casez_tmp_3 = io_lookup_word_1_1;
+      5'b00010:
+        casez_tmp_3 = io_lookup_word_1_2;
+      5'b00011:
+        casez_tmp_3 = io_lookup_word_1_3;
+      5'b00100:
+        casez_tmp_3 = io_lookup_word_1_4;
+      5'b00101:
+        casez_tmp_3 = io_lookup_word_1_5;
+      5'b00110:
+        casez_tmp_3 = io_lookup_word_1_6;
+      5'b00111:
+        casez_tmp_3 = io_lookup_word_1_7;
+      5'b01000:
+        casez_tmp_3 = io_lookup_word_1_8;
+      5'b01001:
+        casez_tmp_3 = io_lookup_word_1_9;
+      5'b01010:
+        casez_tmp_3 = io_lookup_word_1_10;
+      5'b01011:
+        casez_tmp_3 = io_lookup_word_1_11;
+      5'b01100:
+        casez_tmp_3 = io_lookup_word_1_12;
+      5'b01101:
+        casez_tmp_3 = io_lookup_word_1_13;
+      5'b01110:
+        casez_tmp_3 = io_lookup_word_1_14;
+      5'b01111:
+        casez_tmp_3 = io_lookup_word_1_15;
+      5'b10000:
+        casez_tmp_3 = io_lookup_word_1_16;
+      5'b10001:
+        casez_tmp_3 = io_lookup_word_1_17;
+      5'b10010:
+        casez_tmp_3 = io_lookup_word_1_18;
+      5'b10011:
+        casez_tmp_3 = io_lookup_word_1_19;
+      5'b10100:
+        casez_tmp_3 = io_lookup_word_1_20;
+      5'b10101:
+        casez_tmp_3 = io_lookup_word_1_21;
+      5'b10110:
+        casez_tmp_3 = io_lookup_word_1_22;
+      5'b10111:
+        casez_tmp_3 = io_lookup_word_1_23;
+      5'b11000:
+        casez_tmp_3 = io_lookup_word_1_24;
+      5'b11001:
+        casez_tmp_3 = io_lookup_word_1_25;
+      5'b11010:
+        casez_tmp_3 = io_lookup_word_1_26;
+      5'b11011:
+        casez_tmp_3 = io_lookup_word_1_27;
+      5'b11100:
+        casez_tmp_3 = io_lookup_word_1_28;
+      5'b11101:
+        casez_tmp_3 = io_lookup_word_1_29;
+      5'b11110:
+        casez_tmp_3 = io_lookup_word_1_30;
       default:
-        casez_tmp_3 = io_lookup_word_2_14;
+        casez_tmp_3 = io_lookup_word_1_31;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_4;
   always @(*) begin
-    casez (gLast)
-      4'b0000:
+    casez (gLo)
+      5'b00000:
+        casez_tmp_4 = io_lookup_begin_2;
+      5'b00001:
         casez_tmp_4 = io_lookup_word_2_0;
-      4'b0001:
+      5'b00010:
         casez_tmp_4 = io_lookup_word_2_1;
-      4'b0010:
+      5'b00011:
         casez_tmp_4 = io_lookup_word_2_2;
-      4'b0011:
+      5'b00100:
         casez_tmp_4 = io_lookup_word_2_3;
-      4'b0100:
+      5'b00101:
         casez_tmp_4 = io_lookup_word_2_4;
-      4'b0101:
+      5'b00110:
         casez_tmp_4 = io_lookup_word_2_5;
-      4'b0110:
+      5'b00111:
         casez_tmp_4 = io_lookup_word_2_6;
-      4'b0111:
+      5'b01000:
         casez_tmp_4 = io_lookup_word_2_7;
-      4'b1000:
+      5'b01001:
         casez_tmp_4 = io_lookup_word_2_8;
-      4'b1001:
+      5'b01010:
         casez_tmp_4 = io_lookup_word_2_9;
-      4'b1010:
+      5'b01011:
         casez_tmp_4 = io_lookup_word_2_10;
-      4'b1011:
+      5'b01100:
         casez_tmp_4 = io_lookup_word_2_11;
-      4'b1100:
+      5'b01101:
         casez_tmp_4 = io_lookup_word_2_12;
-      4'b1101:
+      5'b01110:
         casez_tmp_4 = io_lookup_word_2_13;
-      4'b1110:
+      5'b01111:
         casez_tmp_4 = io_lookup_word_2_14;
-      default:
+      5'b10000:
         casez_tmp_4 = io_lookup_word_2_15;
+      5'b10001:
+        casez_tmp_4 = io_lookup_word_2_16;
+      5'b10010:
+        casez_tmp_4 = io_lookup_word_2_17;
+      5'b10011:
+        casez_tmp_4 = io_lookup_word_2_18;
+      5'b10100:
+        casez_tmp_4 = io_lookup_word_2_19;
+      5'b10101:
+        casez_tmp_4 = io_lookup_word_2_20;
+      5'b10110:
+        casez_tmp_4 = io_lookup_word_2_21;
+      5'b10111:
+        casez_tmp_4 = io_lookup_word_2_22;
+      5'b11000:
+        casez_tmp_4 = io_lookup_word_2_23;
+      5'b11001:
+        casez_tmp_4 = io_lookup_word_2_24;
+      5'b11010:
+        casez_tmp_4 = io_lookup_word_2_25;
+      5'b11011:
+        casez_tmp_4 = io_lookup_word_2_26;
+      5'b11100:
+        casez_tmp_4 = io_lookup_word_2_27;
+      5'b11101:
+        casez_tmp_4 = io_lookup_word_2_28;
+      5'b11110:
+        casez_tmp_4 = io_lookup_word_2_29;
+      default:
+        casez_tmp_4 = io_lookup_word_2_30;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_5;
   always @(*) begin
-    casez (gLo)
-      4'b0000:
-        casez_tmp_5 = io_lookup_begin_3;
-      4'b0001:
-        casez_tmp_5 = io_lookup_word_3_0;
-      4'b0010:
-        casez_tmp_5 = io_lookup_word_3_1;
-      4'b0011:
-        casez_tmp_5 = io_lookup_word_3_2;
-      4'b0100:
-        casez_tmp_5 = io_lookup_word_3_3;
-      4'b0101:
-        casez_tmp_5 = io_lookup_word_3_4;
-      4'b0110:
-        casez_tmp_5 = io_lookup_word_3_5;
-      4'b0111:
-        casez_tmp_5 = io_lookup_word_3_6;
-      4'b1000:
-        casez_tmp_5 = io_lookup_word_3_7;
-      4'b1001:
-        casez_tmp_5 = io_lookup_word_3_8;
-      4'b1010:
-        casez_tmp_5 = io_lookup_word_3_9;
-      4'b1011:
-        casez_tmp_5 = io_lookup_word_3_10;
-      4'b1100:
-        casez_tmp_5 = io_lookup_word_3_11;
-      4'b1101:
-        casez_tmp_5 = io_lookup_word_3_12;
-      4'b1110:
-        casez_tmp_5 = io_lookup_word_3_13;
+    casez (gLast)
+      5'b00000:
+        casez_tmp_5 = io_lookup_word_2_0;
+      5'b00001:
+        casez_tmp_5 = io_lookup_word_2_1;
+      5'b00010:
+        casez_tmp_5 = io_lookup_word_2_2;
+      5'b00011:
+        casez_tmp_5 = io_lookup_word_2_3;
+      5'b00100:
+        casez_tmp_5 = io_lookup_word_2_4;
+      5'b00101:
+        casez_tmp_5 = io_lookup_word_2_5;
+      5'b00110:
+        casez_tmp_5 = io_lookup_word_2_6;
+      5'b00111:
+        casez_tmp_5 = io_lookup_word_2_7;
+      5'b01000:
+        casez_tmp_5 = io_lookup_word_2_8;
+      5'b01001:
+        casez_tmp_5 = io_lookup_word_2_9;
+      5'b01010:
+        casez_tmp_5 = io_lookup_word_2_10;
+      5'b01011:
+        casez_tmp_5 = io_lookup_word_2_11;
+      5'b01100:
+        casez_tmp_5 = io_lookup_word_2_12;
+      5'b01101:
+        casez_tmp_5 = io_lookup_word_2_13;
+      5'b01110:
+        casez_tmp_5 = io_lookup_word_2_14;
+      5'b01111:
+        casez_tmp_5 = io_lookup_word_2_15;
+      5'b10000:
+        casez_tmp_5 = io_lookup_word_2_16;
+      5'b10001:
+        casez_tmp_5 = io_lookup_word_2_17;
+      5'b10010:
+        casez_tmp_5 = io_lookup_word_2_18;
+      5'b10011:
+        casez_tmp_5 = io_lookup_word_2_19;
+      5'b10100:
+        casez_tmp_5 = io_lookup_word_2_20;
+      5'b10101:
+        casez_tmp_5 = io_lookup_word_2_21;
+      5'b10110:
+        casez_tmp_5 = io_lookup_word_2_22;
+      5'b10111:
+        casez_tmp_5 = io_lookup_word_2_23;
+      5'b11000:
+        casez_tmp_5 = io_lookup_word_2_24;
+      5'b11001:
+        casez_tmp_5 = io_lookup_word_2_25;
+      5'b11010:
+        casez_tmp_5 = io_lookup_word_2_26;
+      5'b11011:
+        casez_tmp_5 = io_lookup_word_2_27;
+      5'b11100:
+        casez_tmp_5 = io_lookup_word_2_28;
+      5'b11101:
+        casez_tmp_5 = io_lookup_word_2_29;
+      5'b11110:
+        casez_tmp_5 = io_lookup_word_2_30;
       default:
-        casez_tmp_5 = io_lookup_word_3_14;
+        casez_tmp_5 = io_lookup_word_2_31;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_6;
   always @(*) begin
-    casez (gLast)
-      4'b0000:
+    casez (gLo)
+      5'b00000:
+        casez_tmp_6 = io_lookup_begin_3;
+      5'b00001:
         casez_tmp_6 = io_lookup_word_3_0;
-      4'b0001:
+      5'b00010:
         casez_tmp_6 = io_lookup_word_3_1;
-      4'b0010:
+      5'b00011:
         casez_tmp_6 = io_lookup_word_3_2;
-      4'b0011:
+      5'b00100:
         casez_tmp_6 = io_lookup_word_3_3;
-      4'b0100:
+      5'b00101:
         casez_tmp_6 = io_lookup_word_3_4;
-      4'b0101:
+      5'b00110:
         casez_tmp_6 = io_lookup_word_3_5;
-      4'b0110:
+      5'b00111:
         casez_tmp_6 = io_lookup_word_3_6;
-      4'b0111:
+      5'b01000:
         casez_tmp_6 = io_lookup_word_3_7;
-      4'b1000:
+      5'b01001:
         casez_tmp_6 = io_lookup_word_3_8;
-      4'b1001:
+      5'b01010:
         casez_tmp_6 = io_lookup_word_3_9;
-      4'b1010:
+      5'b01011:
         casez_tmp_6 = io_lookup_word_3_10;
-      4'b1011:
+      5'b01100:
         casez_tmp_6 = io_lookup_word_3_11;
-      4'b1100:
+      5'b01101:
         casez_tmp_6 = io_lookup_word_3_12;
-      4'b1101:
+      5'b01110:
         casez_tmp_6 = io_lookup_word_3_13;
-      4'b1110:
+      5'b01111:
         casez_tmp_6 = io_lookup_word_3_14;
-      default:
+      5'b10000:
         casez_tmp_6 = io_lookup_word_3_15;
+      5'b10001:
+        casez_tmp_6 = io_lookup_word_3_16;
+      5'b10010:
+        casez_tmp_6 = io_lookup_word_3_17;
+      5'b10011:
+        casez_tmp_6 = io_lookup_word_3_18;
+      5'b10100:
+        casez_tmp_6 = io_lookup_word_3_19;
+      5'b10101:
+        casez_tmp_6 = io_lookup_word_3_20;
+      5'b10110:
+        casez_tmp_6 = io_lookup_word_3_21;
+      5'b10111:
+        casez_tmp_6 = io_lookup_word_3_22;
+      5'b11000:
+        casez_tmp_6 = io_lookup_word_3_23;
+      5'b11001:
+        casez_tmp_6 = io_lookup_word_3_24;
+      5'b11010:
+        casez_tmp_6 = io_lookup_word_3_25;
+      5'b11011:
+        casez_tmp_6 = io_lookup_word_3_26;
+      5'b11100:
+        casez_tmp_6 = io_lookup_word_3_27;
+      5'b11101:
+        casez_tmp_6 = io_lookup_word_3_28;
+      5'b11110:
+        casez_tmp_6 = io_lookup_word_3_29;
+      default:
+        casez_tmp_6 = io_lookup_word_3_30;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_7;
   always @(*) begin
-    casez (lane)
-      4'b0000:
-        casez_tmp_7 = io_lookup_begin_0;
-      4'b0001:
-        casez_tmp_7 = io_lookup_word_0_0;
-      4'b0010:
-        casez_tmp_7 = io_lookup_word_0_1;
-      4'b0011:
-        casez_tmp_7 = io_lookup_word_0_2;
-      4'b0100:
-        casez_tmp_7 = io_lookup_word_0_3;
-      4'b0101:
-        casez_tmp_7 = io_lookup_word_0_4;
-      4'b0110:
-        casez_tmp_7 = io_lookup_word_0_5;
-      4'b0111:
-        casez_tmp_7 = io_lookup_word_0_6;
-      4'b1000:
-        casez_tmp_7 = io_lookup_word_0_7;
-      4'b1001:
-        casez_tmp_7 = io_lookup_word_0_8;
-      4'b1010:
-        casez_tmp_7 = io_lookup_word_0_9;
-      4'b1011:
-        casez_tmp_7 = io_lookup_word_0_10;
-      4'b1100:
-        casez_tmp_7 = io_lookup_word_0_11;
-      4'b1101:
-        casez_tmp_7 = io_lookup_word_0_12;
-      4'b1110:
-        casez_tmp_7 = io_lookup_word_0_13;
+    casez (gLast)
+      5'b00000:
+        casez_tmp_7 = io_lookup_word_3_0;
+      5'b00001:
+        casez_tmp_7 = io_lookup_word_3_1;
+      5'b00010:
+        casez_tmp_7 = io_lookup_word_3_2;
+      5'b00011:
+        casez_tmp_7 = io_lookup_word_3_3;
+      5'b00100:
+        casez_tmp_7 = io_lookup_word_3_4;
+      5'b00101:
+        casez_tmp_7 = io_lookup_word_3_5;
+      5'b00110:
+        casez_tmp_7 = io_lookup_word_3_6;
+      5'b00111:
+        casez_tmp_7 = io_lookup_word_3_7;
+      5'b01000:
+        casez_tmp_7 = io_lookup_word_3_8;
+      5'b01001:
+        casez_tmp_7 = io_lookup_word_3_9;
+      5'b01010:
+        casez_tmp_7 = io_lookup_word_3_10;
+      5'b01011:
+        casez_tmp_7 = io_lookup_word_3_11;
+      5'b01100:
+        casez_tmp_7 = io_lookup_word_3_12;
+      5'b01101:
+        casez_tmp_7 = io_lookup_word_3_13;
+      5'b01110:
+        casez_tmp_7 = io_lookup_word_3_14;
+      5'b01111:
+        casez_tmp_7 = io_lookup_word_3_15;
+      5'b10000:
+        casez_tmp_7 = io_lookup_word_3_16;
+      5'b10001:
+        casez_tmp_7 = io_lookup_word_3_17;
+      5'b10010:
+        casez_tmp_7 = io_lookup_word_3_18;
+      5'b10011:
+        casez_tmp_7 = io_lookup_word_3_19;
+      5'b10100:
+        casez_tmp_7 = io_lookup_word_3_20;
+      5'b10101:
+        casez_tmp_7 = io_lookup_word_3_21;
+      5'b10110:
+        casez_tmp_7 = io_lookup_word_3_22;
+      5'b10111:
+        casez_tmp_7 = io_lookup_word_3_23;
+      5'b11000:
+        casez_tmp_7 = io_lookup_word_3_24;
+      5'b11001:
+        casez_tmp_7 = io_lookup_word_3_25;
+      5'b11010:
+        casez_tmp_7 = io_lookup_word_3_26;
+      5'b11011:
+        casez_tmp_7 = io_lookup_word_3_27;
+      5'b11100:
+        casez_tmp_7 = io_lookup_word_3_28;
+      5'b11101:
+        casez_tmp_7 = io_lookup_word_3_29;
+      5'b11110:
+        casez_tmp_7 = io_lookup_word_3_30;
       default:
-        casez_tmp_7 = io_lookup_word_0_14;
+        casez_tmp_7 = io_lookup_word_3_31;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_8;
   always @(*) begin
     casez (lane)
-      4'b0000:
+      5'b00000:
+        casez_tmp_8 = io_lookup_begin_0;
+      5'b00001:
         casez_tmp_8 = io_lookup_word_0_0;
-      4'b0001:
+      5'b00010:
         casez_tmp_8 = io_lookup_word_0_1;
-      4'b0010:
+      5'b00011:
         casez_tmp_8 = io_lookup_word_0_2;
-      4'b0011:
+      5'b00100:
         casez_tmp_8 = io_lookup_word_0_3;
-      4'b0100:
+      5'b00101:
         casez_tmp_8 = io_lookup_word_0_4;
-      4'b0101:
+      5'b00110:
         casez_tmp_8 = io_lookup_word_0_5;
-      4'b0110:
+      5'b00111:
         casez_tmp_8 = io_lookup_word_0_6;
-      4'b0111:
+      5'b01000:
         casez_tmp_8 = io_lookup_word_0_7;
-      4'b1000:
+      5'b01001:
         casez_tmp_8 = io_lookup_word_0_8;
-      4'b1001:
+      5'b01010:
         casez_tmp_8 = io_lookup_word_0_9;
-      4'b1010:
+      5'b01011:
         casez_tmp_8 = io_lookup_word_0_10;
-      4'b1011:
+      5'b01100:
         casez_tmp_8 = io_lookup_word_0_11;
-      4'b1100:
+      5'b01101:
         casez_tmp_8 = io_lookup_word_0_12;
-      4'b1101:
+      5'b01110:
         casez_tmp_8 = io_lookup_word_0_13;
-      4'b1110:
+      5'b01111:
         casez_tmp_8 = io_lookup_word_0_14;
-      default:
+      5'b10000:
         casez_tmp_8 = io_lookup_word_0_15;
+      5'b10001:
+        casez_tmp_8 = io_lookup_word_0_16;
+      5'b10010:
+        casez_tmp_8 = io_lookup_word_0_17;
+      5'b10011:
+        casez_tmp_8 = io_lookup_word_0_18;
+      5'b10100:
+        casez_tmp_8 = io_lookup_word_0_19;
+      5'b10101:
+        casez_tmp_8 = io_lookup_word_0_20;
+      5'b10110:
+        casez_tmp_8 = io_lookup_word_0_21;
+      5'b10111:
+        casez_tmp_8 = io_lookup_word_0_22;
+      5'b11000:
+        casez_tmp_8 = io_lookup_word_0_23;
+      5'b11001:
+        casez_tmp_8 = io_lookup_word_0_24;
+      5'b11010:
+        casez_tmp_8 = io_lookup_word_0_25;
+      5'b11011:
+        casez_tmp_8 = io_lookup_word_0_26;
+      5'b11100:
+        casez_tmp_8 = io_lookup_word_0_27;
+      5'b11101:
+        casez_tmp_8 = io_lookup_word_0_28;
+      5'b11110:
+        casez_tmp_8 = io_lookup_word_0_29;
+      default:
+        casez_tmp_8 = io_lookup_word_0_30;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_9;
   always @(*) begin
     casez (lane)
-      4'b0000:
-        casez_tmp_9 = io_lookup_begin_1;
-      4'b0001:
-        casez_tmp_9 = io_lookup_word_1_0;
-      4'b0010:
-        casez_tmp_9 = io_lookup_word_1_1;
-      4'b0011:
-        casez_tmp_9 = io_lookup_word_1_2;
-      4'b0100:
-        casez_tmp_9 = io_lookup_word_1_3;
-      4'b0101:
-        casez_tmp_9 = io_lookup_word_1_4;
-      4'b0110:
-        casez_tmp_9 = io_lookup_word_1_5;
-      4'b0111:
-        casez_tmp_9 = io_lookup_word_1_6;
-      4'b1000:
-        casez_tmp_9 = io_lookup_word_1_7;
-      4'b1001:
-        casez_tmp_9 = io_lookup_word_1_8;
-      4'b1010:
-        casez_tmp_9 = io_lookup_word_1_9;
-      4'b1011:
-        casez_tmp_9 = io_lookup_word_1_10;
-      4'b1100:
-        casez_tmp_9 = io_lookup_word_1_11;
-      4'b1101:
-        casez_tmp_9 = io_lookup_word_1_12;
-      4'b1110:
-        casez_tmp_9 = io_lookup_word_1_13;
+      5'b00000:
+        casez_tmp_9 = io_lookup_word_0_0;
+      5'b00001:
+        casez_tmp_9 = io_lookup_word_0_1;
+      5'b00010:
+        casez_tmp_9 = io_lookup_word_0_2;
+      5'b00011:
+        casez_tmp_9 = io_lookup_word_0_3;
+      5'b00100:
+        casez_tmp_9 = io_lookup_word_0_4;
+      5'b00101:
+        casez_tmp_9 = io_lookup_word_0_5;
+      5'b00110:
+        casez_tmp_9 = io_lookup_word_0_6;
+      5'b00111:
+        casez_tmp_9 = io_lookup_word_0_7;
+      5'b01000:
+        casez_tmp_9 = io_lookup_word_0_8;
+      5'b01001:
+        casez_tmp_9 = io_lookup_word_0_9;
+      5'b01010:
+        casez_tmp_9 = io_lookup_word_0_10;
+      5'b01011:
+        casez_tmp_9 = io_lookup_word_0_11;
+      5'b01100:
+        casez_tmp_9 = io_lookup_word_0_12;
+      5'b01101:
+        casez_tmp_9 = io_lookup_word_0_13;
+      5'b01110:
+        casez_tmp_9 = io_lookup_word_0_14;
+      5'b01111:
+        casez_tmp_9 = io_lookup_word_0_15;
+      5'b10000:
+        casez_tmp_9 = io_lookup_word_0_16;
+      5'b10001:
+        casez_tmp_9 = io_lookup_word_0_17;
+      5'b10010:
+        casez_tmp_9 = io_lookup_word_0_18;
+      5'b10011:
+        casez_tmp_9 = io_lookup_word_0_19;
+      5'b10100:
+        casez_tmp_9 = io_lookup_word_0_20;
+      5'b10101:
+        casez_tmp_9 = io_lookup_word_0_21;
+      5'b10110:
+        casez_tmp_9 = io_lookup_word_0_22;
+      5'b10111:
+        casez_tmp_9 = io_lookup_word_0_23;
+      5'b11000:
+        casez_tmp_9 = io_lookup_word_0_24;
+      5'b11001:
+        casez_tmp_9 = io_lookup_word_0_25;
+      5'b11010:
+        casez_tmp_9 = io_lookup_word_0_26;
+      5'b11011:
+        casez_tmp_9 = io_lookup_word_0_27;
+      5'b11100:
+        casez_tmp_9 = io_lookup_word_0_28;
+      5'b11101:
+        casez_tmp_9 = io_lookup_word_0_29;
+      5'b11110:
+        casez_tmp_9 = io_lookup_word_0_30;
       default:
-        casez_tmp_9 = io_lookup_word_1_14;
+        casez_tmp_9 = io_lookup_word_0_31;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_10;
   always @(*) begin
     casez (lane)
-      4'b0000:
+      5'b00000:
+        casez_tmp_10 = io_lookup_begin_1;
+      5'b00001:
         casez_tmp_10 = io_lookup_word_1_0;
-      4'b0001:
+      5'b00010:
         casez_tmp_10 = io_lookup_word_1_1;
-      4'b0010:
+      5'b00011:
         casez_tmp_10 = io_lookup_word_1_2;
-      4'b0011:
+      5'b00100:
         casez_tmp_10 = io_lookup_word_1_3;
-      4'b0100:
+      5'b00101:
         casez_tmp_10 = io_lookup_word_1_4;
-      4'b0101:
+      5'b00110:
         casez_tmp_10 = io_lookup_word_1_5;
-      4'b0110:
+      5'b00111:
         casez_tmp_10 = io_lookup_word_1_6;
-      4'b0111:
+      5'b01000:
         casez_tmp_10 = io_lookup_word_1_7;
-      4'b1000:
+      5'b01001:
         casez_tmp_10 = io_lookup_word_1_8;
-      4'b1001:
+      5'b01010:
         casez_tmp_10 = io_lookup_word_1_9;
-      4'b1010:
+      5'b01011:
         casez_tmp_10 = io_lookup_word_1_10;
-      4'b1011:
+      5'b01100:
         casez_tmp_10 = io_lookup_word_1_11;
-      4'b1100:
+      5'b01101:
         casez_tmp_10 = io_lookup_word_1_12;
-      4'b1101:
+      5'b01110:
         casez_tmp_10 = io_lookup_word_1_13;
-      4'b1110:
+      5'b01111:
         casez_tmp_10 = io_lookup_word_1_14;
-      default:
+      5'b10000:
         casez_tmp_10 = io_lookup_word_1_15;
+      5'b10001:
+        casez_tmp_10 = io_lookup_word_1_16;
+      5'b10010:
+        casez_tmp_10 = io_lookup_word_1_17;
+      5'b10011:
+        casez_tmp_10 = io_lookup_word_1_18;
+      5'b10100:
+        casez_tmp_10 = io_lookup_word_1_19;
+      5'b10101:
+        casez_tmp_10 = io_lookup_word_1_20;
+      5'b10110:
+        casez_tmp_10 = io_lookup_word_1_21;
+      5'b10111:
+        casez_tmp_10 = io_lookup_word_1_22;
+      5'b11000:
+        casez_tmp_10 = io_lookup_word_1_23;
+      5'b11001:
+        casez_tmp_10 = io_lookup_word_1_24;
+      5'b11010:
+        casez_tmp_10 = io_lookup_word_1_25;
+      5'b11011:
+        casez_tmp_10 = io_lookup_word_1_26;
+      5'b11100:
+        casez_tmp_10 = io_lookup_word_1_27;
+      5'b11101:
+        casez_tmp_10 = io_lookup_word_1_28;
+      5'b11110:
+        casez_tmp_10 = io_lookup_word_1_29;
+      default:
+        casez_tmp_10 = io_lookup_word_1_30;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_11;
   always @(*) begin
     casez (lane)
-      4'b0000:
-        casez_tmp_11 = io_lookup_begin_2;
-      4'b0001:
-        casez_tmp_11 = io_lookup_word_2_0;
-      4'b0010:
-        casez_tmp_11 = io_lookup_word_2_1;
-      4'b0011:
-        casez_tmp_11 = io_lookup_word_2_2;
-      4'b0100:
-        casez_tmp_11 = io_lookup_word_2_3;
-      4'b0101:
-        casez_tmp_11 = io_lookup_word_2_4;
-      4'b0110:
-        casez_tmp_11 = io_lookup_word_2_5;
-      4'b0111:
-        casez_tmp_11 = io_lookup_word_2_6;
-      4'b1000:
-        casez_tmp_11 = io_lookup_word_2_7;
-      4'b1001:
-        casez_tmp_11 = io_lookup_word_2_8;
-      4'b1010:
-        casez_tmp_11 = io_lookup_word_2_9;
-      4'b1011:
-        casez_tmp_11 = io_lookup_word_2_10;
-      4'b1100:
-        casez_tmp_11 = io_lookup_word_2_11;
-      4'b1101:
-        casez_tmp_11 = io_lookup_word_2_12;
-      4'b1110:
-        casez_tmp_11 = io_lookup_word_2_13;
+      5'b00000:
+        casez_tmp_11 = io_lookup_word_1_0;
+      5'b00001:
+        casez_tmp_11 = io_lookup_word_1_1;
+      5'b00010:
+        casez_tmp_11 = io_lookup_word_1_2;
+      5'b00011:
+        casez_tmp_11 = io_lookup_word_1_3;
+      5'b00100:
+        casez_tmp_11 = io_lookup_word_1_4;
+      5'b00101:
+        casez_tmp_11 = io_lookup_word_1_5;
+      5'b00110:
+        casez_tmp_11 = io_lookup_word_1_6;
+      5'b00111:
+        casez_tmp_11 = io_lookup_word_1_7;
+      5'b01000:
+        casez_tmp_11 = io_lookup_word_1_8;
+      5'b01001:
+        casez_tmp_11 = io_lookup_word_1_9;
+      5'b01010:
+        casez_tmp_11 = io_lookup_word_1_10;
+      5'b01011:
+        casez_tmp_11 = io_lookup_word_1_11;
+      5'b01100:
+        casez_tmp_11 = io_lookup_word_1_12;
+      5'b01101:
+        casez_tmp_11 = io_lookup_word_1_13;
+      5'b01110:
+        casez_tmp_11 = io_lookup_word_1_14;
+      5'b01111:
+        casez_tmp_11 = io_lookup_word_1_15;
+      5'b10000:
+        casez_tmp_11 = io_lookup_word_1_16;
+      5'b10001:
+        casez_tmp_11 = io_lookup_word_1_17;
+      5'b10010:
+        casez_tmp_11 = io_lookup_word_1_18;
+      5'b10011:
+        casez_tmp_11 = io_lookup_word_1_19;
+      5'b10100:
+        casez_tmp_11 = io_lookup_word_1_20;
+      5'b10101:
+        casez_tmp_11 = io_lookup_word_1_21;
+      5'b10110:
+        casez_tmp_11 = io_lookup_word_1_22;
+      5'b10111:
+        casez_tmp_11 = io_lookup_word_1_23;
+      5'b11000:
+        casez_tmp_11 = io_lookup_word_1_24;
+      5'b11001:
+        casez_tmp_11 = io_lookup_word_1_25;
+      5'b11010:
+        casez_tmp_11 = io_lookup_word_1_26;
+      5'b11011:
+        casez_tmp_11 = io_lookup_word_1_27;
+      5'b11100:
+        casez_tmp_11 = io_lookup_word_1_28;
+      5'b11101:
+        casez_tmp_11 = io_lookup_word_1_29;
+      5'b11110:
+        casez_tmp_11 = io_lookup_word_1_30;
       default:
-        casez_tmp_11 = io_lookup_word_2_14;
+        casez_tmp_11 = io_lookup_word_1_31;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_12;
   always @(*) begin
     casez (lane)
-      4'b0000:
+      5'b00000:
+        casez_tmp_12 = io_lookup_begin_2;
+      5'b00001:
         casez_tmp_12 = io_lookup_word_2_0;
-      4'b0001:
+      5'b00010:
         casez_tmp_12 = io_lookup_word_2_1;
-      4'b0010:
+      5'b00011:
         casez_tmp_12 = io_lookup_word_2_2;
-      4'b0011:
+      5'b00100:
         casez_tmp_12 = io_lookup_word_2_3;
-      4'b0100:
+      5'b00101:
         casez_tmp_12 = io_lookup_word_2_4;
-      4'b0101:
+      5'b00110:
         casez_tmp_12 = io_lookup_word_2_5;
-      4'b0110:
+      5'b00111:
         casez_tmp_12 = io_lookup_word_2_6;
-      4'b0111:
+      5'b01000:
         casez_tmp_12 = io_lookup_word_2_7;
-      4'b1000:
+      5'b01001:
         casez_tmp_12 = io_lookup_word_2_8;
-      4'b1001:
+      5'b01010:
         casez_tmp_12 = io_lookup_word_2_9;
-      4'b1010:
+      5'b01011:
         casez_tmp_12 = io_lookup_word_2_10;
-      4'b1011:
+      5'b01100:
         casez_tmp_12 = io_lookup_word_2_11;
-      4'b1100:
+      5'b01101:
         casez_tmp_12 = io_lookup_word_2_12;
-      4'b1101:
+      5'b01110:
         casez_tmp_12 = io_lookup_word_2_13;
-      4'b1110:
+      5'b01111:
         casez_tmp_12 = io_lookup_word_2_14;
-      default:
+      5'b10000:
         casez_tmp_12 = io_lookup_word_2_15;
+      5'b10001:
+        casez_tmp_12 = io_lookup_word_2_16;
+      5'b10010:
+        casez_tmp_12 = io_lookup_word_2_17;
+      5'b10011:
+        casez_tmp_12 = io_lookup_word_2_18;
+      5'b10100:
+        casez_tmp_12 = io_lookup_word_2_19;
+      5'b10101:
+        casez_tmp_12 = io_lookup_word_2_20;
+      5'b10110:
+        casez_tmp_12 = io_lookup_word_2_21;
+      5'b10111:
+        casez_tmp_12 = io_lookup_word_2_22;
+      5'b11000:
+        casez_tmp_12 = io_lookup_word_2_23;
+      5'b11001:
+        casez_tmp_12 = io_lookup_word_2_24;
+      5'b11010:
+        casez_tmp_12 = io_lookup_word_2_25;
+      5'b11011:
+        casez_tmp_12 = io_lookup_word_2_26;
+      5'b11100:
+        casez_tmp_12 = io_lookup_word_2_27;
+      5'b11101:
+        casez_tmp_12 = io_lookup_word_2_28;
+      5'b11110:
+        casez_tmp_12 = io_lookup_word_2_29;
+      default:
+        casez_tmp_12 = io_lookup_word_2_30;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_13;
   always @(*) begin
     casez (lane)
-      4'b0000:
-        casez_tmp_13 = io_lookup_begin_3;
-      4'b0001:
-        casez_tmp_13 = io_lookup_word_3_0;
-      4'b0010:
-        casez_tmp_13 = io_lookup_word_3_1;
-      4'b0011:
-        casez_tmp_13 = io_lookup_word_3_2;
-      4'b0100:
-        casez_tmp_13 = io_lookup_word_3_3;
-      4'b0101:
-        casez_tmp_13 = io_lookup_word_3_4;
-      4'b0110:
-        casez_tmp_13 = io_lookup_word_3_5;
-      4'b0111:
-        casez_tmp_13 = io_lookup_word_3_6;
-      4'b1000:
-        casez_tmp_13 = io_lookup_word_3_7;
-      4'b1001:
-        casez_tmp_13 = io_lookup_word_3_8;
-      4'b1010:
-        casez_tmp_13 = io_lookup_word_3_9;
-      4'b1011:
-        casez_tmp_13 = io_lookup_word_3_10;
-      4'b1100:
-        casez_tmp_13 = io_lookup_word_3_11;
-      4'b1101:
-        casez_tmp_13 = io_lookup_word_3_12;
-      4'b1110:
-        casez_tmp_13 = io_lookup_word_3_13;
+      5'b00000:
+        casez_tmp_13 = io_lookup_word_2_0;
+      5'b00001:
+        casez_tmp_13 = io_lookup_word_2_1;
+      5'b00010:
+        casez_tmp_13 = io_lookup_word_2_2;
+      5'b00011:
+        casez_tmp_13 = io_lookup_word_2_3;
+      5'b00100:
+        casez_tmp_13 = io_lookup_word_2_4;
+      5'b00101:
+        casez_tmp_13 = io_lookup_word_2_5;
+      5'b00110:
+        casez_tmp_13 = io_lookup_word_2_6;
+      5'b00111:
+        casez_tmp_13 = io_lookup_word_2_7;
+      5'b01000:
+        casez_tmp_13 = io_lookup_word_2_8;
+      5'b01001:
+        casez_tmp_13 = io_lookup_word_2_9;
+      5'b01010:
+        casez_tmp_13 = io_lookup_word_2_10;
+      5'b01011:
+        casez_tmp_13 = io_lookup_word_2_11;
+      5'b01100:
+        casez_tmp_13 = io_lookup_word_2_12;
+      5'b01101:
+        casez_tmp_13 = io_lookup_word_2_13;
+      5'b01110:
+        casez_tmp_13 = io_lookup_word_2_14;
+      5'b01111:
+        casez_tmp_13 = io_lookup_word_2_15;
+      5'b10000:
+        casez_tmp_13 = io_lookup_word_2_16;
+      5'b10001:
+        casez_tmp_13 = io_lookup_word_2_17;
+      5'b10010:
+        casez_tmp_13 = io_lookup_word_2_18;
+      5'b10011:
+        casez_tmp_13 = io_lookup_word_2_19;
+      5'b10100:
+        casez_tmp_13 = io_lookup_word_2_20;
+      5'b10101:
+        casez_tmp_13 = io_lookup_word_2_21;
+      5'b10110:
+        casez_tmp_13 = io_lookup_word_2_22;
+      5'b10111:
+        casez_tmp_13 = io_lookup_word_2_23;
+      5'b11000:
+        casez_tmp_13 = io_lookup_word_2_24;
+      5'b11001:
+        casez_tmp_13 = io_lookup_word_2_25;
+      5'b11010:
+        casez_tmp_13 = io_lookup_word_2_26;
+      5'b11011:
+        casez_tmp_13 = io_lookup_word_2_27;
+      5'b11100:
+        casez_tmp_13 = io_lookup_word_2_28;
+      5'b11101:
+        casez_tmp_13 = io_lookup_word_2_29;
+      5'b11110:
+        casez_tmp_13 = io_lookup_word_2_30;
       default:
-        casez_tmp_13 = io_lookup_word_3_14;
+        casez_tmp_13 = io_lookup_word_2_31;
     endcase
   end // always @(*)
   reg  [12:0] casez_tmp_14;
   always @(*) begin
     casez (lane)
-      4'b0000:
+      5'b00000:
+        casez_tmp_14 = io_lookup_begin_3;
+      5'b00001:
         casez_tmp_14 = io_lookup_word_3_0;
-      4'b0001:
+      5'b00010:
         casez_tmp_14 = io_lookup_word_3_1;
-      4'b0010:
+      5'b00011:
         casez_tmp_14 = io_lookup_word_3_2;
-      4'b0011:
+      5'b00100:
         casez_tmp_14 = io_lookup_word_3_3;
-      4'b0100:
+      5'b00101:
         casez_tmp_14 = io_lookup_word_3_4;
-      4'b0101:
+      5'b00110:
         casez_tmp_14 = io_lookup_word_3_5;
-      4'b0110:
+      5'b00111:
         casez_tmp_14 = io_lookup_word_3_6;
-      4'b0111:
+      5'b01000:
         casez_tmp_14 = io_lookup_word_3_7;
-      4'b1000:
+      5'b01001:
         casez_tmp_14 = io_lookup_word_3_8;
-      4'b1001:
+      5'b01010:
         casez_tmp_14 = io_lookup_word_3_9;
-      4'b1010:
+      5'b01011:
         casez_tmp_14 = io_lookup_word_3_10;
-      4'b1011:
+      5'b01100:
         casez_tmp_14 = io_lookup_word_3_11;
-      4'b1100:
+      5'b01101:
         casez_tmp_14 = io_lookup_word_3_12;
-      4'b1101:
+      5'b01110:
         casez_tmp_14 = io_lookup_word_3_13;
-      4'b1110:
+      5'b01111:
         casez_tmp_14 = io_lookup_word_3_14;
-      default:
+      5'b10000:
         casez_tmp_14 = io_lookup_word_3_15;
-    endcase
-  end // always @(*)
-  wire        _GEN_8 = _GEN_6 | _GEN_7;
-  wire        _GEN_9 =
-    ~walkPend & ~issueOk & ~deferPend & io_claimsOut & _stream_io_idle & _matcher_io_idle;
-  wire        _GEN_10 = state == 3'h2;
-  wire        _GEN_11 = _GEN_10 & sent;
-  wire        _GEN_12 = _GEN_0 | _GEN_1;
-  wire [5:0]  _off_T_1 = coarseCh ? vIssue + 6'hE : vIssue;
-  reg  [2:0]  casez_tmp_15;
-  always @(*) begin
-    casez (_off_T_1)
-      6'b000000:
-        casez_tmp_15 = 3'h0;
-      6'b000001:
-        casez_tmp_15 = 3'h0;
-      6'b000010:
-        casez_tmp_15 = 3'h0;
-      6'b000011:
-        casez_tmp_15 = 3'h0;
-      6'b000100:
-        casez_tmp_15 = 3'h0;
-      6'b000101:
-        casez_tmp_15 = 3'h1;
-      6'b000110:
-        casez_tmp_15 = 3'h1;
-      6'b000111:
-        casez_tmp_15 = 3'h1;
-      6'b001000:
-        casez_tmp_15 = 3'h1;
-      6'b001001:
-        casez_tmp_15 = 3'h1;
-      6'b001010:
-        casez_tmp_15 = 3'h1;
-      6'b001011:
-        casez_tmp_15 = 3'h1;
-      6'b001100:
-        casez_tmp_15 = 3'h1;
-      6'b001101:
-        casez_tmp_15 = 3'h1;
-      6'b001110:
-        casez_tmp_15 = 3'h0;
-      6'b001111:
-        casez_tmp_15 = 3'h0;
-      6'b010000:
-        casez_tmp_15 = 3'h0;
-      6'b010001:
-        casez_tmp_15 = 3'h0;
-      6'b010010:
-        casez_tmp_15 = 3'h1;
-      6'b010011:
-        casez_tmp_15 = 3'h1;
-      6'b010100:
-        casez_tmp_15 = 3'h1;
-      6'b010101:
-        casez_tmp_15 = 3'h1;
-      6'b010110:
-        casez_tmp_15 = 3'h0;
-      6'b010111:
-        casez_tmp_15 = 3'h0;
-      6'b011000:
-        casez_tmp_15 = 3'h1;
-      6'b011001:
-        casez_tmp_15 = 3'h1;
-      6'b011010:
-        casez_tmp_15 = 3'h0;
-      6'b011011:
-        casez_tmp_15 = 3'h0;
-      6'b011100:
-        casez_tmp_15 = 3'h0;
-      6'b011101:
-        casez_tmp_15 = 3'h1;
-      6'b011110:
-        casez_tmp_15 = 3'h1;
-      6'b011111:
-        casez_tmp_15 = 3'h1;
-      6'b100000:
-        casez_tmp_15 = 3'h0;
-      6'b100001:
-        casez_tmp_15 = 3'h1;
-      6'b100010:
-        casez_tmp_15 = 3'h0;
-      6'b100011:
-        casez_tmp_15 = 3'h1;
-      6'b100100:
-        casez_tmp_15 = 3'h1;
-      6'b100101:
-        casez_tmp_15 = 3'h1;
-      6'b100110:
-        casez_tmp_15 = 3'h1;
-      6'b100111:
-        casez_tmp_15 = 3'h2;
-      6'b101000:
-        casez_tmp_15 = 3'h2;
-      6'b101001:
-        casez_tmp_15 = 3'h2;
-      6'b101010:
-        casez_tmp_15 = 3'h2;
-      6'b101011:
-        casez_tmp_15 = 3'h1;
-      6'b101100:
-        casez_tmp_15 = 3'h2;
-      6'b101101:
-        casez_tmp_15 = 3'h2;
-      6'b101110:
-        casez_tmp_15 = 3'h1;
-      6'b101111:
-        casez_tmp_15 = 3'h2;
-      6'b110000:
-        casez_tmp_15 = 3'h2;
-      6'b110001:
-        casez_tmp_15 = 3'h2;
-      6'b110010:
-        casez_tmp_15 = 3'h2;
-      6'b110011:
-        casez_tmp_15 = 3'h2;
-      6'b110100:
-        casez_tmp_15 = 3'h2;
-      6'b110101:
-        casez_tmp_15 = 3'h2;
-      6'b110110:
-        casez_tmp_15 = 3'h2;
-      6'b110111:
-        casez_tmp_15 = 3'h2;
-      6'b111000:
-        casez_tmp_15 = 3'h2;
-      6'b111001:
-        casez_tmp_15 = 3'h0;
-      6'b111010:
-        casez_tmp_15 = 3'h0;
-      6'b111011:
-        casez_tmp_15 = 3'h0;
-      6'b111100:
-        casez_tmp_15 = 3'h0;
-      6'b111101:
-        casez_tmp_15 = 3'h0;
-      6'b111110:
-        casez_tmp_15 = 3'h0;
+      5'b10001:
+        casez_tmp_14 = io_lookup_word_3_16;
+      5'b10010:
+        casez_tmp_14 = io_lookup_word_3_17;
+      5'b10011:
+        casez_tmp_14 = io_lookup_word_3_18;
+      5'b10100:
+        casez_tmp_14 = io_lookup_word_3_19;
+      5'b10101:
+        casez_tmp_14 = io_lookup_word_3_20;
+      5'b10110:
+        casez_tmp_14 = io_lookup_word_3_21;
+      5'b10111:
+        casez_tmp_14 = io_lookup_word_3_22;
+      5'b11000:
+        casez_tmp_14 = io_lookup_word_3_23;
+      5'b11001:
+        casez_tmp_14 = io_lookup_word_3_24;
+      5'b11010:
+        casez_tmp_14 = io_lookup_word_3_25;
+      5'b11011:
+        casez_tmp_14 = io_lookup_word_3_26;
+      5'b11100:
+        casez_tmp_14 = io_lookup_word_3_27;
+      5'b11101:
+        casez_tmp_14 = io_lookup_word_3_28;
+      5'b11110:
+        casez_tmp_14 = io_lookup_word_3_29;
       default:
-        casez_tmp_15 = 3'h0;
+        casez_tmp_14 = io_lookup_word_3_30;
     endcase
   end // always @(*)
+  reg  [12:0] casez_tmp_15;
+  always @(*) begin
+    casez (lane)
+      5'b00000:
+        casez_tmp_15 = io_lookup_word_3_0;
+      5'b00001:
+        casez_tmp_15 = io_lookup_word_3_1;
+      5'b00010:
+        casez_tmp_15 = io_lookup_word_3_2;
+      5'b00011:
+        casez_tmp_15 = io_lookup_word_3_3;
+      5'b00100:
+        casez_tmp_15 = io_lookup_word_3_4;
+      5'b00101:
+        casez_tmp_15 = io_lookup_word_3_5;
+      5'b00110:
+        casez_tmp_15 = io_lookup_word_3_6;
+      5'b00111:
+        casez_tmp_15 = io_lookup_word_3_7;
+      5'b01000:
+        casez_tmp_15 = io_lookup_word_3_8;
+      5'b01001:
+        casez_tmp_15 = io_lookup_word_3_9;
+      5'b01010:
+        casez_tmp_15 = io_lookup_word_3_10;
+      5'b01011:
+        casez_tmp_15 = io_lookup_word_3_11;
+      5'b01100:
+        casez_tmp_15 = io_lookup_word_3_12;
+      5'b01101:
+        casez_tmp_15 = io_lookup_word_3_13;
+      5'b01110:
+        casez_tmp_15 = io_lookup_word_3_14;
+      5'b01111:
+        casez_tmp_15 = io_lookup_word_3_15;
+      5'b10000:
+        casez_tmp_15 = io_lookup_word_3_16;
+      5'b10001:
+        casez_tmp_15 = io_lookup_word_3_17;
+      5'b10010:
+        casez_tmp_15 = io_lookup_word_3_18;
+      5'b10011:
+        casez_tmp_15 = io_lookup_word_3_19;
+      5'b10100:
+        casez_tmp_15 = io_lookup_word_3_20;
+      5'b10101:
+        casez_tmp_15 = io_lookup_word_3_21;
+      5'b10110:
+        casez_tmp_15 = io_lookup_word_3_22;
+      5'b10111:
+        casez_tmp_15 = io_lookup_word_3_23;
+      5'b11000:
+        casez_tmp_15 = io_lookup_word_3_24;
+      5'b11001:
+        casez_tmp_15 = io_lookup_word_3_25;
+      5'b11010:
+        casez_tmp_15 = io_lookup_word_3_26;
+      5'b11011:
+        casez_tmp_15 = io_lookup_word_3_27;
+      5'b11100:
+        casez_tmp_15 = io_lookup_word_3_28;
+      5'b11101:
+        casez_tmp_15 = io_lookup_word_3_29;
+      5'b11110:
+        casez_tmp_15 = io_lookup_word_3_30;
+      default:
+        casez_tmp_15 = io_lookup_word_3_31;
+    endcase
+  end // always @(*)
+  wire        _GEN_7 = _GEN_5 | _GEN_6;
+  wire        _GEN_8 =
+    ~walkPend & ~issueOk & ~deferPend & io_claimsOut & _stream_io_idle & _matcher_io_idle;
+  wire        _GEN_9 = state == 3'h2;
+  wire        _GEN_10 = _GEN_9 & sent;
+  wire        _GEN_11 = _GEN_0 | _GEN_1;
+  wire [5:0]  _off_T_1 = coarseCh ? vIssue + 6'hE : vIssue;
   reg  [2:0]  casez_tmp_16;
   always @(*) begin
     casez (_off_T_1)
@@ -23168,23 +25678,23 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
       6'b000001:
         casez_tmp_16 = 3'h0;
       6'b000010:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h0;
       6'b000011:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h0;
       6'b000100:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h0;
       6'b000101:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h1;
       6'b000110:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h1;
       6'b000111:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h1;
       6'b001000:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h1;
       6'b001001:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h1;
       6'b001010:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h1;
       6'b001011:
         casez_tmp_16 = 3'h1;
       6'b001100:
@@ -23196,13 +25706,13 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
       6'b001111:
         casez_tmp_16 = 3'h0;
       6'b010000:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h0;
       6'b010001:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h0;
       6'b010010:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h1;
       6'b010011:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h1;
       6'b010100:
         casez_tmp_16 = 3'h1;
       6'b010101:
@@ -23210,65 +25720,65 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
       6'b010110:
         casez_tmp_16 = 3'h0;
       6'b010111:
-        casez_tmp_16 = 3'h1;
-      6'b011000:
         casez_tmp_16 = 3'h0;
+      6'b011000:
+        casez_tmp_16 = 3'h1;
       6'b011001:
         casez_tmp_16 = 3'h1;
       6'b011010:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h0;
       6'b011011:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b011100:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b011101:
         casez_tmp_16 = 3'h1;
       6'b011110:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h1;
       6'b011111:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h1;
       6'b100000:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b100001:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h1;
       6'b100010:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b100011:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h1;
       6'b100100:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h1;
       6'b100101:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h1;
       6'b100110:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h1;
       6'b100111:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h2;
       6'b101000:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h2;
       6'b101001:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h2;
       6'b101010:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h2;
       6'b101011:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h1;
       6'b101100:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h2;
       6'b101101:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h2;
       6'b101110:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h1;
       6'b101111:
-        casez_tmp_16 = 3'h7;
+        casez_tmp_16 = 3'h2;
       6'b110000:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h2;
       6'b110001:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h2;
       6'b110010:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h2;
       6'b110011:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h2;
       6'b110100:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h2;
       6'b110101:
         casez_tmp_16 = 3'h2;
       6'b110110:
@@ -23299,71 +25809,71 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
       6'b000000:
         casez_tmp_17 = 3'h0;
       6'b000001:
-        casez_tmp_17 = 3'h1;
-      6'b000010:
-        casez_tmp_17 = 3'h7;
-      6'b000011:
         casez_tmp_17 = 3'h0;
+      6'b000010:
+        casez_tmp_17 = 3'h1;
+      6'b000011:
+        casez_tmp_17 = 3'h1;
       6'b000100:
         casez_tmp_17 = 3'h1;
       6'b000101:
         casez_tmp_17 = 3'h7;
       6'b000110:
-        casez_tmp_17 = 3'h0;
-      6'b000111:
-        casez_tmp_17 = 3'h1;
-      6'b001000:
         casez_tmp_17 = 3'h7;
+      6'b000111:
+        casez_tmp_17 = 3'h7;
+      6'b001000:
+        casez_tmp_17 = 3'h0;
       6'b001001:
         casez_tmp_17 = 3'h0;
       6'b001010:
-        casez_tmp_17 = 3'h1;
-      6'b001011:
-        casez_tmp_17 = 3'h7;
-      6'b001100:
         casez_tmp_17 = 3'h0;
+      6'b001011:
+        casez_tmp_17 = 3'h1;
+      6'b001100:
+        casez_tmp_17 = 3'h1;
       6'b001101:
         casez_tmp_17 = 3'h1;
       6'b001110:
         casez_tmp_17 = 3'h0;
       6'b001111:
-        casez_tmp_17 = 3'h1;
-      6'b010000:
         casez_tmp_17 = 3'h0;
+      6'b010000:
+        casez_tmp_17 = 3'h1;
       6'b010001:
         casez_tmp_17 = 3'h1;
       6'b010010:
         casez_tmp_17 = 3'h0;
       6'b010011:
-        casez_tmp_17 = 3'h1;
-      6'b010100:
         casez_tmp_17 = 3'h0;
+      6'b010100:
+        casez_tmp_17 = 3'h1;
       6'b010101:
         casez_tmp_17 = 3'h1;
       6'b010110:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h0;
       6'b010111:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h1;
       6'b011000:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h0;
       6'b011001:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h1;
       6'b011010:
-        casez_tmp_17 = 3'h7;
+        casez_tmp_17 = 3'h1;
       6'b011011:
-        casez_tmp_17 = 3'h7;
+        casez_tmp_17 = 3'h2;
       6'b011100:
-        casez_tmp_17 = 3'h0;
+        casez_tmp_17 = 3'h2;
       6'b011101:
-        casez_tmp_17 = 3'h7;
+        casez_tmp_17 = 3'h1;
       6'b011110:
-        casez_tmp_17 = 3'h7;
+        casez_tmp_17 = 3'h2;
       6'b011111:
-        casez_tmp_17 = 3'h0;
+        casez_tmp_17 = 3'h2;
       6'b100000:
-        casez_tmp_17 = 3'h1;
+        casez_tmp_17 = 3'h2;
       6'b100001:
-        casez_tmp_17 = 3'h1;
+        casez_tmp_17 = 3'h2;
       6'b100010:
         casez_tmp_17 = 3'h2;
       6'b100011:
@@ -23371,43 +25881,43 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
       6'b100100:
         casez_tmp_17 = 3'h7;
       6'b100101:
-        casez_tmp_17 = 3'h0;
-      6'b100110:
         casez_tmp_17 = 3'h7;
+      6'b100110:
+        casez_tmp_17 = 3'h0;
       6'b100111:
         casez_tmp_17 = 3'h7;
       6'b101000:
-        casez_tmp_17 = 3'h0;
-      6'b101001:
         casez_tmp_17 = 3'h7;
+      6'b101001:
+        casez_tmp_17 = 3'h0;
       6'b101010:
         casez_tmp_17 = 3'h0;
       6'b101011:
-        casez_tmp_17 = 3'h1;
-      6'b101100:
-        casez_tmp_17 = 3'h1;
-      6'b101101:
-        casez_tmp_17 = 3'h1;
-      6'b101110:
-        casez_tmp_17 = 3'h2;
-      6'b101111:
-        casez_tmp_17 = 3'h2;
-      6'b110000:
-        casez_tmp_17 = 3'h2;
-      6'b110001:
         casez_tmp_17 = 3'h7;
-      6'b110010:
+      6'b101100:
+        casez_tmp_17 = 3'h7;
+      6'b101101:
         casez_tmp_17 = 3'h0;
+      6'b101110:
+        casez_tmp_17 = 3'h7;
+      6'b101111:
+        casez_tmp_17 = 3'h7;
+      6'b110000:
+        casez_tmp_17 = 3'h0;
+      6'b110001:
+        casez_tmp_17 = 3'h1;
+      6'b110010:
+        casez_tmp_17 = 3'h1;
       6'b110011:
         casez_tmp_17 = 3'h1;
       6'b110100:
-        casez_tmp_17 = 3'h2;
-      6'b110101:
-        casez_tmp_17 = 3'h7;
-      6'b110110:
-        casez_tmp_17 = 3'h0;
-      6'b110111:
         casez_tmp_17 = 3'h1;
+      6'b110101:
+        casez_tmp_17 = 3'h2;
+      6'b110110:
+        casez_tmp_17 = 3'h2;
+      6'b110111:
+        casez_tmp_17 = 3'h2;
       6'b111000:
         casez_tmp_17 = 3'h2;
       6'b111001:
@@ -23426,210 +25936,342 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
         casez_tmp_17 = 3'h0;
     endcase
   end // always @(*)
-  wire [19:0] nc_0 = curCell_0 + {{17{casez_tmp_15[2]}}, casez_tmp_15};
-  wire [19:0] nc_1 = curCell_1 + {{17{casez_tmp_16[2]}}, casez_tmp_16};
-  wire [19:0] nc_2 = curCell_2 + {{17{casez_tmp_17[2]}}, casez_tmp_17};
-  wire        _GEN_13 = state == 3'h3;
-  wire [6:0]  _GEN_14 = {1'h0, li};
-  wire [6:0]  idx = _GEN_14 + {1'h0, lj};
-  wire [6:0]  _GEN_15 = {2'h0, io_largeCount};
-  wire        _GEN_16 = lj != 6'h20 & idx < _GEN_15;
-  reg  [11:0] casez_tmp_18;
+  reg  [2:0]  casez_tmp_18;
   always @(*) begin
-    casez (idx[3:0])
-      4'b0000:
-        casez_tmp_18 = io_larges_0_index;
-      4'b0001:
-        casez_tmp_18 = io_larges_1_index;
-      4'b0010:
-        casez_tmp_18 = io_larges_2_index;
-      4'b0011:
-        casez_tmp_18 = io_larges_3_index;
-      4'b0100:
-        casez_tmp_18 = io_larges_4_index;
-      4'b0101:
-        casez_tmp_18 = io_larges_5_index;
-      4'b0110:
-        casez_tmp_18 = io_larges_6_index;
-      4'b0111:
-        casez_tmp_18 = io_larges_7_index;
-      4'b1000:
-        casez_tmp_18 = io_larges_8_index;
-      4'b1001:
-        casez_tmp_18 = io_larges_9_index;
-      4'b1010:
-        casez_tmp_18 = io_larges_10_index;
-      4'b1011:
-        casez_tmp_18 = io_larges_11_index;
-      4'b1100:
-        casez_tmp_18 = io_larges_12_index;
-      4'b1101:
-        casez_tmp_18 = io_larges_13_index;
-      4'b1110:
-        casez_tmp_18 = io_larges_14_index;
+    casez (_off_T_1)
+      6'b000000:
+        casez_tmp_18 = 3'h0;
+      6'b000001:
+        casez_tmp_18 = 3'h1;
+      6'b000010:
+        casez_tmp_18 = 3'h7;
+      6'b000011:
+        casez_tmp_18 = 3'h0;
+      6'b000100:
+        casez_tmp_18 = 3'h1;
+      6'b000101:
+        casez_tmp_18 = 3'h7;
+      6'b000110:
+        casez_tmp_18 = 3'h0;
+      6'b000111:
+        casez_tmp_18 = 3'h1;
+      6'b001000:
+        casez_tmp_18 = 3'h7;
+      6'b001001:
+        casez_tmp_18 = 3'h0;
+      6'b001010:
+        casez_tmp_18 = 3'h1;
+      6'b001011:
+        casez_tmp_18 = 3'h7;
+      6'b001100:
+        casez_tmp_18 = 3'h0;
+      6'b001101:
+        casez_tmp_18 = 3'h1;
+      6'b001110:
+        casez_tmp_18 = 3'h0;
+      6'b001111:
+        casez_tmp_18 = 3'h1;
+      6'b010000:
+        casez_tmp_18 = 3'h0;
+      6'b010001:
+        casez_tmp_18 = 3'h1;
+      6'b010010:
+        casez_tmp_18 = 3'h0;
+      6'b010011:
+        casez_tmp_18 = 3'h1;
+      6'b010100:
+        casez_tmp_18 = 3'h0;
+      6'b010101:
+        casez_tmp_18 = 3'h1;
+      6'b010110:
+        casez_tmp_18 = 3'h2;
+      6'b010111:
+        casez_tmp_18 = 3'h2;
+      6'b011000:
+        casez_tmp_18 = 3'h2;
+      6'b011001:
+        casez_tmp_18 = 3'h2;
+      6'b011010:
+        casez_tmp_18 = 3'h7;
+      6'b011011:
+        casez_tmp_18 = 3'h7;
+      6'b011100:
+        casez_tmp_18 = 3'h0;
+      6'b011101:
+        casez_tmp_18 = 3'h7;
+      6'b011110:
+        casez_tmp_18 = 3'h7;
+      6'b011111:
+        casez_tmp_18 = 3'h0;
+      6'b100000:
+        casez_tmp_18 = 3'h1;
+      6'b100001:
+        casez_tmp_18 = 3'h1;
+      6'b100010:
+        casez_tmp_18 = 3'h2;
+      6'b100011:
+        casez_tmp_18 = 3'h2;
+      6'b100100:
+        casez_tmp_18 = 3'h7;
+      6'b100101:
+        casez_tmp_18 = 3'h0;
+      6'b100110:
+        casez_tmp_18 = 3'h7;
+      6'b100111:
+        casez_tmp_18 = 3'h7;
+      6'b101000:
+        casez_tmp_18 = 3'h0;
+      6'b101001:
+        casez_tmp_18 = 3'h7;
+      6'b101010:
+        casez_tmp_18 = 3'h0;
+      6'b101011:
+        casez_tmp_18 = 3'h1;
+      6'b101100:
+        casez_tmp_18 = 3'h1;
+      6'b101101:
+        casez_tmp_18 = 3'h1;
+      6'b101110:
+        casez_tmp_18 = 3'h2;
+      6'b101111:
+        casez_tmp_18 = 3'h2;
+      6'b110000:
+        casez_tmp_18 = 3'h2;
+      6'b110001:
+        casez_tmp_18 = 3'h7;
+      6'b110010:
+        casez_tmp_18 = 3'h0;
+      6'b110011:
+        casez_tmp_18 = 3'h1;
+      6'b110100:
+        casez_tmp_18 = 3'h2;
+      6'b110101:
+        casez_tmp_18 = 3'h7;
+      6'b110110:
+        casez_tmp_18 = 3'h0;
+      6'b110111:
+        casez_tmp_18 = 3'h1;
+      6'b111000:
+        casez_tmp_18 = 3'h2;
+      6'b111001:
+        casez_tmp_18 = 3'h0;
+      6'b111010:
+        casez_tmp_18 = 3'h0;
+      6'b111011:
+        casez_tmp_18 = 3'h0;
+      6'b111100:
+        casez_tmp_18 = 3'h0;
+      6'b111101:
+        casez_tmp_18 = 3'h0;
+      6'b111110:
+        casez_tmp_18 = 3'h0;
       default:
-        casez_tmp_18 = io_larges_15_index;
+        casez_tmp_18 = 3'h0;
     endcase
   end // always @(*)
-  reg  [28:0] casez_tmp_19;
+  wire [19:0] nc_0 = curCell_0 + {{17{casez_tmp_16[2]}}, casez_tmp_16};
+  wire [19:0] nc_1 = curCell_1 + {{17{casez_tmp_17[2]}}, casez_tmp_17};
+  wire [19:0] nc_2 = curCell_2 + {{17{casez_tmp_18[2]}}, casez_tmp_18};
+  wire        _GEN_12 = state == 3'h3;
+  wire [6:0]  _GEN_13 = {1'h0, li};
+  wire [6:0]  idx = _GEN_13 + {1'h0, lj};
+  wire [6:0]  _GEN_14 = {2'h0, io_largeCount};
+  wire        _GEN_15 = lj != 6'h20 & idx < _GEN_14;
+  reg  [11:0] casez_tmp_19;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_19 = io_larges_0_q_0;
+        casez_tmp_19 = io_larges_0_index;
       4'b0001:
-        casez_tmp_19 = io_larges_1_q_0;
+        casez_tmp_19 = io_larges_1_index;
       4'b0010:
-        casez_tmp_19 = io_larges_2_q_0;
+        casez_tmp_19 = io_larges_2_index;
       4'b0011:
-        casez_tmp_19 = io_larges_3_q_0;
+        casez_tmp_19 = io_larges_3_index;
       4'b0100:
-        casez_tmp_19 = io_larges_4_q_0;
+        casez_tmp_19 = io_larges_4_index;
       4'b0101:
-        casez_tmp_19 = io_larges_5_q_0;
+        casez_tmp_19 = io_larges_5_index;
       4'b0110:
-        casez_tmp_19 = io_larges_6_q_0;
+        casez_tmp_19 = io_larges_6_index;
       4'b0111:
-        casez_tmp_19 = io_larges_7_q_0;
+        casez_tmp_19 = io_larges_7_index;
       4'b1000:
-        casez_tmp_19 = io_larges_8_q_0;
+        casez_tmp_19 = io_larges_8_index;
       4'b1001:
-        casez_tmp_19 = io_larges_9_q_0;
+        casez_tmp_19 = io_larges_9_index;
       4'b1010:
-        casez_tmp_19 = io_larges_10_q_0;
+        casez_tmp_19 = io_larges_10_index;
       4'b1011:
-        casez_tmp_19 = io_larges_11_q_0;
+        casez_tmp_19 = io_larges_11_index;
       4'b1100:
-        casez_tmp_19 = io_larges_12_q_0;
+        casez_tmp_19 = io_larges_12_index;
       4'b1101:
-        casez_tmp_19 = io_larges_13_q_0;
+        casez_tmp_19 = io_larges_13_index;
       4'b1110:
-        casez_tmp_19 = io_larges_14_q_0;
+        casez_tmp_19 = io_larges_14_index;
       default:
-        casez_tmp_19 = io_larges_15_q_0;
+        casez_tmp_19 = io_larges_15_index;
     endcase
   end // always @(*)
   reg  [28:0] casez_tmp_20;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_20 = io_larges_0_q_1;
+        casez_tmp_20 = io_larges_0_q_0;
       4'b0001:
-        casez_tmp_20 = io_larges_1_q_1;
+        casez_tmp_20 = io_larges_1_q_0;
       4'b0010:
-        casez_tmp_20 = io_larges_2_q_1;
+        casez_tmp_20 = io_larges_2_q_0;
       4'b0011:
-        casez_tmp_20 = io_larges_3_q_1;
+        casez_tmp_20 = io_larges_3_q_0;
       4'b0100:
-        casez_tmp_20 = io_larges_4_q_1;
+        casez_tmp_20 = io_larges_4_q_0;
       4'b0101:
-        casez_tmp_20 = io_larges_5_q_1;
+        casez_tmp_20 = io_larges_5_q_0;
       4'b0110:
-        casez_tmp_20 = io_larges_6_q_1;
+        casez_tmp_20 = io_larges_6_q_0;
       4'b0111:
-        casez_tmp_20 = io_larges_7_q_1;
+        casez_tmp_20 = io_larges_7_q_0;
       4'b1000:
-        casez_tmp_20 = io_larges_8_q_1;
+        casez_tmp_20 = io_larges_8_q_0;
       4'b1001:
-        casez_tmp_20 = io_larges_9_q_1;
+        casez_tmp_20 = io_larges_9_q_0;
       4'b1010:
-        casez_tmp_20 = io_larges_10_q_1;
+        casez_tmp_20 = io_larges_10_q_0;
       4'b1011:
-        casez_tmp_20 = io_larges_11_q_1;
+        casez_tmp_20 = io_larges_11_q_0;
       4'b1100:
-        casez_tmp_20 = io_larges_12_q_1;
+        casez_tmp_20 = io_larges_12_q_0;
       4'b1101:
-        casez_tmp_20 = io_larges_13_q_1;
+        casez_tmp_20 = io_larges_13_q_0;
       4'b1110:
-        casez_tmp_20 = io_larges_14_q_1;
+        casez_tmp_20 = io_larges_14_q_0;
       default:
-        casez_tmp_20 = io_larges_15_q_1;
+        casez_tmp_20 = io_larges_15_q_0;
     endcase
   end // always @(*)
   reg  [28:0] casez_tmp_21;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_21 = io_larges_0_q_2;
+        casez_tmp_21 = io_larges_0_q_1;
       4'b0001:
-        casez_tmp_21 = io_larges_1_q_2;
+        casez_tmp_21 = io_larges_1_q_1;
       4'b0010:
-        casez_tmp_21 = io_larges_2_q_2;
+        casez_tmp_21 = io_larges_2_q_1;
       4'b0011:
-        casez_tmp_21 = io_larges_3_q_2;
+        casez_tmp_21 = io_larges_3_q_1;
       4'b0100:
-        casez_tmp_21 = io_larges_4_q_2;
+        casez_tmp_21 = io_larges_4_q_1;
       4'b0101:
-        casez_tmp_21 = io_larges_5_q_2;
+        casez_tmp_21 = io_larges_5_q_1;
       4'b0110:
-        casez_tmp_21 = io_larges_6_q_2;
+        casez_tmp_21 = io_larges_6_q_1;
       4'b0111:
-        casez_tmp_21 = io_larges_7_q_2;
+        casez_tmp_21 = io_larges_7_q_1;
       4'b1000:
-        casez_tmp_21 = io_larges_8_q_2;
+        casez_tmp_21 = io_larges_8_q_1;
       4'b1001:
-        casez_tmp_21 = io_larges_9_q_2;
+        casez_tmp_21 = io_larges_9_q_1;
       4'b1010:
-        casez_tmp_21 = io_larges_10_q_2;
+        casez_tmp_21 = io_larges_10_q_1;
       4'b1011:
-        casez_tmp_21 = io_larges_11_q_2;
+        casez_tmp_21 = io_larges_11_q_1;
       4'b1100:
-        casez_tmp_21 = io_larges_12_q_2;
+        casez_tmp_21 = io_larges_12_q_1;
       4'b1101:
-        casez_tmp_21 = io_larges_13_q_2;
+        casez_tmp_21 = io_larges_13_q_1;
       4'b1110:
-        casez_tmp_21 = io_larges_14_q_2;
+        casez_tmp_21 = io_larges_14_q_1;
       default:
-        casez_tmp_21 = io_larges_15_q_2;
+        casez_tmp_21 = io_larges_15_q_1;
     endcase
   end // always @(*)
   reg  [28:0] casez_tmp_22;
   always @(*) begin
     casez (idx[3:0])
       4'b0000:
-        casez_tmp_22 = io_larges_0_qr;
+        casez_tmp_22 = io_larges_0_q_2;
       4'b0001:
-        casez_tmp_22 = io_larges_1_qr;
+        casez_tmp_22 = io_larges_1_q_2;
       4'b0010:
-        casez_tmp_22 = io_larges_2_qr;
+        casez_tmp_22 = io_larges_2_q_2;
       4'b0011:
-        casez_tmp_22 = io_larges_3_qr;
+        casez_tmp_22 = io_larges_3_q_2;
       4'b0100:
-        casez_tmp_22 = io_larges_4_qr;
+        casez_tmp_22 = io_larges_4_q_2;
       4'b0101:
-        casez_tmp_22 = io_larges_5_qr;
+        casez_tmp_22 = io_larges_5_q_2;
       4'b0110:
-        casez_tmp_22 = io_larges_6_qr;
+        casez_tmp_22 = io_larges_6_q_2;
       4'b0111:
-        casez_tmp_22 = io_larges_7_qr;
+        casez_tmp_22 = io_larges_7_q_2;
       4'b1000:
-        casez_tmp_22 = io_larges_8_qr;
+        casez_tmp_22 = io_larges_8_q_2;
       4'b1001:
-        casez_tmp_22 = io_larges_9_qr;
+        casez_tmp_22 = io_larges_9_q_2;
       4'b1010:
-        casez_tmp_22 = io_larges_10_qr;
+        casez_tmp_22 = io_larges_10_q_2;
       4'b1011:
-        casez_tmp_22 = io_larges_11_qr;
+        casez_tmp_22 = io_larges_11_q_2;
       4'b1100:
-        casez_tmp_22 = io_larges_12_qr;
+        casez_tmp_22 = io_larges_12_q_2;
       4'b1101:
-        casez_tmp_22 = io_larges_13_qr;
+        casez_tmp_22 = io_larges_13_q_2;
       4'b1110:
-        casez_tmp_22 = io_larges_14_qr;
+        casez_tmp_22 = io_larges_14_q_2;
       default:
-        casez_tmp_22 = io_larges_15_qr;
+        casez_tmp_22 = io_larges_15_q_2;
     endcase
   end // always @(*)
-  wire        _GEN_17 = state == 3'h4;
-  wire        _GEN_18 =
-    ~_GEN_12
-    & (_GEN_10 ? (sent ? _lkq_io_deq_valid : ~sent) : ~_GEN_13 & _GEN_17 & ~sent);
-  wire        _GEN_19 = _GEN_10 | _GEN_13;
-  wire        _GEN_20 = _GEN_0 | _GEN_1 | _GEN_19;
-  wire        _GEN_21 = sent & _stream_io_idle & _matcher_io_idle;
-  wire        _GEN_22 = _GEN_10 | _io_need_T;
-  wire        _GEN_23 = _GEN & _stream_io_out_valid;
-  wire        _GEN_24 = _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23;
-  wire        _GEN_25 = _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23 & needClear;
+  reg  [28:0] casez_tmp_23;
+  always @(*) begin
+    casez (idx[3:0])
+      4'b0000:
+        casez_tmp_23 = io_larges_0_qr;
+      4'b0001:
+        casez_tmp_23 = io_larges_1_qr;
+      4'b0010:
+        casez_tmp_23 = io_larges_2_qr;
+      4'b0011:
+        casez_tmp_23 = io_larges_3_qr;
+      4'b0100:
+        casez_tmp_23 = io_larges_4_qr;
+      4'b0101:
+        casez_tmp_23 = io_larges_5_qr;
+      4'b0110:
+        casez_tmp_23 = io_larges_6_qr;
+      4'b0111:
+        casez_tmp_23 = io_larges_7_qr;
+      4'b1000:
+        casez_tmp_23 = io_larges_8_qr;
+      4'b1001:
+        casez_tmp_23 = io_larges_9_qr;
+      4'b1010:
+        casez_tmp_23 = io_larges_10_qr;
+      4'b1011:
+        casez_tmp_23 = io_larges_11_qr;
+      4'b1100:
+        casez_tmp_23 = io_larges_12_qr;
+      4'b1101:
+        casez_tmp_23 = io_larges_13_qr;
+      4'b1110:
+        casez_tmp_23 = io_larges_14_qr;
+      default:
+        casez_tmp_23 = io_larges_15_qr;
+    endcase
+  end // always @(*)
+  wire        _GEN_16 = state == 3'h4;
+  wire        _GEN_17 =
+    ~_GEN_11 & (_GEN_9 ? (sent ? _lkq_io_deq_valid : ~sent) : ~_GEN_12 & _GEN_16 & ~sent);
+  wire        _GEN_18 = _GEN_9 | _GEN_12;
+  wire        _GEN_19 = _GEN_0 | _GEN_1 | _GEN_18;
+  wire        _GEN_20 = sent & _stream_io_idle & _matcher_io_idle;
+  wire        _GEN_21 = _GEN_9 | _io_need_T;
+  wire        _GEN_22 = _GEN & _stream_io_out_valid;
+  wire        _GEN_23 = _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22;
+  wire        _GEN_24 = _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & needClear;
   wire [19:0] base_1_0 =
     coarseCh
       ? {_stream_io_out_bits_rec_cell_0[19:1], 1'h0}
@@ -23644,37 +26286,37 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
       : _stream_io_out_bits_rec_cell_2;
   wire        same = {base_1_2, base_1_1, base_1_0} == {curCell_2, curCell_1, curCell_0};
   wire        take = ~_stream_io_out_bits_mark & (~haveCell | same & loaded != 6'h20);
-  wire        _GEN_26 = _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23 & take;
-  wire        _GEN_27 = ~_GEN_20 & _GEN_17 & ~_stream_io_out_bits_rec_excluded;
-  wire        _GEN_28 = ~_GEN_22 | _stream_io_out_bits_tag_scan;
+  wire        _GEN_25 = _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & take;
+  wire        _GEN_26 = ~_GEN_19 & _GEN_16 & ~_stream_io_out_bits_rec_excluded;
+  wire        _GEN_27 = ~_GEN_21 | _stream_io_out_bits_tag_scan;
   assign _GEN =
-    _GEN_22
+    _GEN_21
       ? (_stream_io_out_bits_tag_scan
            ? ~needClear | _matcher_io_idle
            : _matcher_io_in_ready)
-      : ~_GEN_20 & _GEN_17 & (_matcher_io_in_ready | _stream_io_out_bits_rec_excluded);
+      : ~_GEN_19 & _GEN_16 & (_matcher_io_in_ready | _stream_io_out_bits_rec_excluded);
   wire [5:0]  visitCount = coarseCh ? 6'h2B : 6'hE;
-  wire        _GEN_29 = _GEN_0 | ~_GEN_2;
-  wire        _GEN_30 = _GEN_6 | ~_GEN_7;
-  wire        _GEN_31 = _GEN_0 | ~_GEN_1 | _GEN_6 | ~_GEN_7;
-  wire        _GEN_32 = _stream_io_req_ready & _GEN_18;
-  wire        _GEN_33 = _GEN_32 & ~sent;
-  wire        _GEN_34 = _GEN_12 | ~(_GEN_10 & _GEN_33);
+  wire        _GEN_28 = _GEN_0 | ~_GEN_2;
+  wire        _GEN_29 = _GEN_5 | ~_GEN_6;
+  wire        _GEN_30 = _GEN_0 | ~_GEN_1 | _GEN_5 | ~_GEN_6;
+  wire        _GEN_31 = _stream_io_req_ready & _GEN_17;
+  wire        _GEN_32 = _GEN_31 & ~sent;
+  wire        _GEN_33 = _GEN_11 | ~(_GEN_9 & _GEN_32);
   wire        canIssue =
     haveCell & vIssue != visitCount & {1'h0, _lkq_io_count} + {2'h0, lkPend} < 3'h3;
-  wire        _GEN_35 = _GEN_12 | ~_GEN_10;
-  wire        _GEN_36 =
+  wire        _GEN_34 = _GEN_11 | ~_GEN_9;
+  wire        _GEN_35 =
     vIssue == visitCount & ~lkPend & ~_lkq_io_deq_valid & sent & scanLeft == 13'h0;
-  wire        _GEN_37 = moreOfCell | nextSet;
-  wire        _GEN_38 = _GEN_36 & _GEN_37;
-  wire        _GEN_39 = _GEN_10 & _GEN_36 & _GEN_37 & ~moreOfCell;
-  wire [6:0]  nextLi = _GEN_14 + 7'h20;
-  wire        _GEN_40 = _GEN_17 & _GEN_21;
-  wire        _GEN_41 =
-    _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23 & take & ~haveCell;
-  wire        _GEN_42 = ~_stream_io_out_bits_mark & haveCell;
-  wire        _GEN_43 =
-    _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23 & _GEN_42 & ~same & ~nextSet;
+  wire        _GEN_36 = moreOfCell | nextSet;
+  wire        _GEN_37 = _GEN_35 & _GEN_36;
+  wire        _GEN_38 = _GEN_9 & _GEN_35 & _GEN_36 & ~moreOfCell;
+  wire [6:0]  nextLi = _GEN_13 + 7'h20;
+  wire        _GEN_39 = _GEN_16 & _GEN_20;
+  wire        _GEN_40 =
+    _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & take & ~haveCell;
+  wire        _GEN_41 = ~_stream_io_out_bits_mark & haveCell;
+  wire        _GEN_42 =
+    _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & _GEN_41 & ~same & ~nextSet;
   always @(posedge clock) begin
     if (reset) begin
       state <= 3'h0;
@@ -23696,75 +26338,75 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
       end
       else begin
         if (_GEN_1) begin
-          if (~_GEN_6) begin
-            if (_GEN_7)
+          if (~_GEN_5) begin
+            if (_GEN_6)
               state <= 3'h2;
-            else if (_GEN_9)
+            else if (_GEN_8)
               state <=
                 {1'h0, io_largeCount == 5'h0 | io_largeFrom >= io_largeTo ? 2'h0 : 2'h3};
           end
-          walkPend <= ~_GEN_8 & issueOk;
-          if (_GEN_30)
+          walkPend <= ~_GEN_7 & issueOk;
+          if (_GEN_29)
             inUnit <= ~issueOk & inUnit;
           else
-            inUnit <= ~_GEN_4 & lane[2:0] != 3'h7 & ~single;
-          lkPend <= _GEN_30 & lkPend;
+            inUnit <= ~casez_tmp & lane[2:0] != 3'h7 & ~single;
+          lkPend <= _GEN_29 & lkPend;
         end
         else begin
-          if (_GEN_10) begin
-            if (~_GEN_36 | _GEN_37) begin
+          if (_GEN_9) begin
+            if (~_GEN_35 | _GEN_36) begin
             end
             else
               state <= 3'h1;
             lkPend <= canIssue;
           end
-          else if (_GEN_13) begin
-            if (~_GEN_16)
+          else if (_GEN_12) begin
+            if (~_GEN_15)
               state <= 3'h4;
           end
-          else if (_GEN_40)
-            state <= {1'h0, {2{nextLi < _GEN_15}}};
-          walkPend <= (~(_GEN_10 & _GEN_36) | _GEN_37) & walkPend;
+          else if (_GEN_39)
+            state <= {1'h0, {2{nextLi < _GEN_14}}};
+          walkPend <= (~(_GEN_9 & _GEN_35) | _GEN_36) & walkPend;
         end
-        deferPend <= _GEN_1 & _GEN_6 | ~io_deferOk & deferPend;
+        deferPend <= _GEN_1 & _GEN_5 | ~io_deferOk & deferPend;
       end
       if (_GEN_0 | ~(_GEN_1 & issueOk & ~inUnit)) begin
       end
       else
         single <= io_claim_bits_single;
-      if (_GEN_29) begin
+      if (_GEN_28) begin
       end
       else
         unitFirst <= ~inUnit & ~io_claim_bits_single;
-      if (_GEN_31) begin
+      if (_GEN_30) begin
       end
       else
-        coarseCh <= _GEN_4;
+        coarseCh <= casez_tmp;
     end
     if (_GEN_0) begin
       if (io_start)
-        bIssue <= {6'h0, io_lane, 4'h0};
+        bIssue <= {5'h0, io_lane, 5'h0};
     end
     else begin
-      if (~_GEN_1 | _GEN_6 | ~_GEN_7) begin
+      if (~_GEN_1 | _GEN_5 | ~_GEN_6) begin
       end
       else
-        bIssue <= _GEN_3 + {10'h0, lane} + 14'h1;
+        bIssue <= _GEN_3 + {9'h0, lane} + 14'h1;
       if (_GEN_1) begin
-        if (_GEN_30) begin
+        if (_GEN_29) begin
         end
         else begin
-          p_0 <= _GEN_4 ? casez_tmp : casez_tmp_7;
-          p_1 <= _GEN_4 ? casez_tmp_1 : casez_tmp_9;
-          p_2 <= _GEN_4 ? casez_tmp_3 : casez_tmp_11;
-          p_3 <= _GEN_4 ? casez_tmp_5 : casez_tmp_13;
+          p_0 <= casez_tmp ? casez_tmp_0 : casez_tmp_8;
+          p_1 <= casez_tmp ? casez_tmp_2 : casez_tmp_10;
+          p_2 <= casez_tmp ? casez_tmp_4 : casez_tmp_12;
+          p_3 <= casez_tmp ? casez_tmp_6 : casez_tmp_14;
         end
-        sent <= _GEN_30 & sent;
-        if (_GEN_30) begin
+        sent <= _GEN_29 & sent;
+        if (_GEN_29) begin
         end
         else
           vIssue <= 6'h0;
-        if (_GEN_8 | ~_GEN_9) begin
+        if (_GEN_7 | ~_GEN_8) begin
         end
         else begin
           li <= 6'h0;
@@ -23772,7 +26414,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
         end
       end
       else begin
-        if (_GEN_39) begin
+        if (_GEN_38) begin
           if (|nextGroup)
             p_0 <= bEnd_0;
           else if (nextGroup == 2'h0)
@@ -23786,49 +26428,49 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
           else if (nextGroup == 2'h2)
             p_2 <= nextLeader;
         end
-        if (_GEN_10 & _GEN_36 & _GEN_37 & ~moreOfCell & (&nextGroup))
+        if (_GEN_9 & _GEN_35 & _GEN_36 & ~moreOfCell & (&nextGroup))
           p_3 <= nextLeader;
-        if (_GEN_10) begin
-          sent <= ~_GEN_38 & (_GEN_33 | sent);
-          if (_GEN_38)
+        if (_GEN_9) begin
+          sent <= ~_GEN_37 & (_GEN_32 | sent);
+          if (_GEN_37)
             vIssue <= 6'h0;
           else if (canIssue)
             vIssue <= vIssue + 6'h1;
         end
-        else if (_GEN_13) begin
-          sent <= _GEN_16 & sent;
-          if (_GEN_16)
+        else if (_GEN_12) begin
+          sent <= _GEN_15 & sent;
+          if (_GEN_15)
             lj <= lj + 6'h1;
         end
         else begin
-          sent <= _GEN_17 & _GEN_32 | sent;
-          if (_GEN_40)
+          sent <= _GEN_16 & _GEN_31 | sent;
+          if (_GEN_39)
             lj <= 6'h0;
         end
-        if (_GEN_19 | ~_GEN_40) begin
+        if (_GEN_18 | ~_GEN_39) begin
         end
         else
           li <= nextLi[5:0];
       end
     end
-    if (_GEN_29) begin
+    if (_GEN_28) begin
     end
     else
       walkB <= issueAt;
-    if (_GEN_31) begin
+    if (_GEN_30) begin
     end
     else begin
-      bEnd_0 <= _GEN_4 ? casez_tmp_0 : casez_tmp_8;
-      bEnd_1 <= _GEN_4 ? casez_tmp_2 : casez_tmp_10;
-      bEnd_2 <= _GEN_4 ? casez_tmp_4 : casez_tmp_12;
-      bEnd_3 <= _GEN_4 ? casez_tmp_6 : casez_tmp_14;
+      bEnd_0 <= casez_tmp ? casez_tmp_1 : casez_tmp_9;
+      bEnd_1 <= casez_tmp ? casez_tmp_3 : casez_tmp_11;
+      bEnd_2 <= casez_tmp ? casez_tmp_5 : casez_tmp_13;
+      bEnd_3 <= casez_tmp ? casez_tmp_7 : casez_tmp_15;
     end
-    if (_GEN_41) begin
+    if (_GEN_40) begin
       curCell_0 <= base_1_0;
       curCell_1 <= base_1_1;
       curCell_2 <= base_1_2;
     end
-    else if (_GEN_12 | ~_GEN_39) begin
+    else if (_GEN_11 | ~_GEN_38) begin
     end
     else begin
       curCell_0 <= nextCell_0;
@@ -23836,73 +26478,70 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
       curCell_2 <= nextCell_2;
     end
     haveCell <=
-      _GEN_41 | (_GEN_0 ? haveCell : _GEN_1 ? _GEN_30 & haveCell : _GEN_39 | haveCell);
-    if (_GEN_26)
+      _GEN_40 | (_GEN_0 ? haveCell : _GEN_1 ? _GEN_29 & haveCell : _GEN_38 | haveCell);
+    if (_GEN_25)
       loaded <= loaded + 6'h1;
-    else if (_GEN_34) begin
+    else if (_GEN_33) begin
     end
     else
       loaded <= 6'h0;
     moreOfCell <=
-      _GEN_22 & _stream_io_out_bits_tag_scan & _GEN_23 & _GEN_42 & same & loaded == 6'h20
-      | _GEN_34 & moreOfCell;
-    nextSet <= _GEN_43 | _GEN_34 & nextSet;
-    if (_GEN_43) begin
+      _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & _GEN_41 & same & loaded == 6'h20
+      | _GEN_33 & moreOfCell;
+    nextSet <= _GEN_42 | _GEN_33 & nextSet;
+    if (_GEN_42) begin
       nextLeader <= _stream_io_out_bits_pos;
       nextGroup <= _stream_io_out_bits_group;
       nextCell_0 <= base_1_0;
       nextCell_1 <= base_1_1;
       nextCell_2 <= base_1_2;
     end
-    if (_GEN_24)
+    if (_GEN_23)
       scanLeft <= scanLeft - 13'h1;
-    else if (_GEN_34) begin
+    else if (_GEN_33) begin
     end
     else
       scanLeft <= bEnd_0 - p_0 + bEnd_1 - p_1 + bEnd_2 - p_2 + bEnd_3 - p_3;
     needClear <=
-      ~_GEN_25
+      ~_GEN_24
       & (_GEN_0
            ? needClear
-           : _GEN_1 ? ~_GEN_6 & _GEN_7 | needClear : _GEN_10 & _GEN_38 | needClear);
-    lkVisit_scan <= _GEN_35 & lkVisit_scan;
-    if (_GEN_35) begin
+           : _GEN_1 ? ~_GEN_5 & _GEN_6 | needClear : _GEN_9 & _GEN_37 | needClear);
+    lkVisit_scan <= _GEN_34 & lkVisit_scan;
+    if (_GEN_34) begin
     end
     else begin
       lkVisit_cell_0 <= nc_0;
       lkVisit_cell_1 <= nc_1;
       lkVisit_cell_2 <= nc_2;
-      lkVisit_off_0 <= casez_tmp_15;
-      lkVisit_off_1 <= casez_tmp_16;
-      lkVisit_off_2 <= casez_tmp_17;
+      lkVisit_off_0 <= casez_tmp_16;
+      lkVisit_off_1 <= casez_tmp_17;
+      lkVisit_off_2 <= casez_tmp_18;
     end
   end // always @(posedge)
   KeyStream_world stream (
     .clock                    (clock),
     .reset                    (reset),
     .io_req_ready             (_stream_io_req_ready),
-    .io_req_valid             (_GEN_18),
+    .io_req_valid             (_GEN_17),
     .io_req_bits_begin_0
-      (_GEN_10 ? (sent ? _lkq_io_deq_bits_begin_0 : p_0) : io_largeFrom),
-    .io_req_bits_begin_1      (_GEN_10 ? (sent ? _lkq_io_deq_bits_begin_1 : p_1) : 13'h0),
-    .io_req_bits_begin_2      (_GEN_10 ? (sent ? _lkq_io_deq_bits_begin_2 : p_2) : 13'h0),
-    .io_req_bits_begin_3      (_GEN_10 ? (sent ? _lkq_io_deq_bits_begin_3 : p_3) : 13'h0),
+      (_GEN_9 ? (sent ? _lkq_io_deq_bits_begin_0 : p_0) : io_largeFrom),
+    .io_req_bits_begin_1      (_GEN_9 ? (sent ? _lkq_io_deq_bits_begin_1 : p_1) : 13'h0),
+    .io_req_bits_begin_2      (_GEN_9 ? (sent ? _lkq_io_deq_bits_begin_2 : p_2) : 13'h0),
+    .io_req_bits_begin_3      (_GEN_9 ? (sent ? _lkq_io_deq_bits_begin_3 : p_3) : 13'h0),
     .io_req_bits_end_0
-      (_GEN_10 ? (sent ? _lkq_io_deq_bits_end_0 : bEnd_0) : io_largeTo),
-    .io_req_bits_end_1
-      (_GEN_10 ? (sent ? _lkq_io_deq_bits_end_1 : bEnd_1) : 13'h0),
-    .io_req_bits_end_2
-      (_GEN_10 ? (sent ? _lkq_io_deq_bits_end_2 : bEnd_2) : 13'h0),
-    .io_req_bits_end_3
-      (_GEN_10 ? (sent ? _lkq_io_deq_bits_end_3 : bEnd_3) : 13'h0),
-    .io_req_bits_direct       (~_GEN_10 | sent & _lkq_io_deq_bits_direct),
-    .io_req_bits_tag_scan     (_GEN_10 & (~sent | _lkq_io_deq_bits_tag_scan)),
-    .io_req_bits_tag_cell_0   (_GEN_11 ? _lkq_io_deq_bits_tag_cell_0 : 20'h0),
-    .io_req_bits_tag_cell_1   (_GEN_11 ? _lkq_io_deq_bits_tag_cell_1 : 20'h0),
-    .io_req_bits_tag_cell_2   (_GEN_11 ? _lkq_io_deq_bits_tag_cell_2 : 20'h0),
-    .io_req_bits_tag_off_0    (_GEN_11 ? _lkq_io_deq_bits_tag_off_0 : 3'h0),
-    .io_req_bits_tag_off_1    (_GEN_11 ? _lkq_io_deq_bits_tag_off_1 : 3'h0),
-    .io_req_bits_tag_off_2    (_GEN_11 ? _lkq_io_deq_bits_tag_off_2 : 3'h0),
+      (_GEN_9 ? (sent ? _lkq_io_deq_bits_end_0 : bEnd_0) : io_largeTo),
+    .io_req_bits_end_1        (_GEN_9 ? (sent ? _lkq_io_deq_bits_end_1 : bEnd_1) : 13'h0),
+    .io_req_bits_end_2        (_GEN_9 ? (sent ? _lkq_io_deq_bits_end_2 : bEnd_2) : 13'h0),
+    .io_req_bits_end_3        (_GEN_9 ? (sent ? _lkq_io_deq_bits_end_3 : bEnd_3) : 13'h0),
+    .io_req_bits_direct       (~_GEN_9 | sent & _lkq_io_deq_bits_direct),
+    .io_req_bits_tag_scan     (_GEN_9 & (~sent | _lkq_io_deq_bits_tag_scan)),
+    .io_req_bits_tag_cell_0   (_GEN_10 ? _lkq_io_deq_bits_tag_cell_0 : 20'h0),
+    .io_req_bits_tag_cell_1   (_GEN_10 ? _lkq_io_deq_bits_tag_cell_1 : 20'h0),
+    .io_req_bits_tag_cell_2   (_GEN_10 ? _lkq_io_deq_bits_tag_cell_2 : 20'h0),
+    .io_req_bits_tag_off_0    (_GEN_10 ? _lkq_io_deq_bits_tag_off_0 : 3'h0),
+    .io_req_bits_tag_off_1    (_GEN_10 ? _lkq_io_deq_bits_tag_off_1 : 3'h0),
+    .io_req_bits_tag_off_2    (_GEN_10 ? _lkq_io_deq_bits_tag_off_2 : 3'h0),
     .io_entryAddr             (io_entry_addr),
     .io_entryGroup            (io_entry_group),
     .io_entryItem             (io_entry_item),
@@ -23941,19 +26580,19 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
     .io_out_bits_tag_off_2    (_stream_io_out_bits_tag_off_2),
     .io_idle                  (_stream_io_idle)
   );
-  ChunkMatcher_i12_c20_q29_k32_world matcher (
+  ChunkMatcher_i12_c20_q29_k32_h8_world matcher (
     .clock                  (clock),
     .reset                  (reset),
     .io_clear
-      (_GEN_25 | ~_GEN_0 & (_GEN_1 ? ~_GEN_8 & _GEN_9 : ~_GEN_19 & _GEN_17 & _GEN_21)),
-    .io_load_valid          (_GEN_26 | ~(_GEN_0 | _GEN_1 | _GEN_10) & _GEN_13 & _GEN_16),
-    .io_load_bits_key_index (_GEN_26 ? _stream_io_out_bits_item : casez_tmp_18),
-    .io_load_bits_key_q_0   (_GEN_26 ? _stream_io_out_bits_rec_q_0 : casez_tmp_19),
-    .io_load_bits_key_q_1   (_GEN_26 ? _stream_io_out_bits_rec_q_1 : casez_tmp_20),
-    .io_load_bits_key_q_2   (_GEN_26 ? _stream_io_out_bits_rec_q_2 : casez_tmp_21),
-    .io_load_bits_key_qr    (_GEN_26 ? _stream_io_out_bits_rec_qr : casez_tmp_22),
+      (_GEN_24 | ~_GEN_0 & (_GEN_1 ? ~_GEN_7 & _GEN_8 : ~_GEN_18 & _GEN_16 & _GEN_20)),
+    .io_load_valid          (_GEN_25 | ~(_GEN_0 | _GEN_1 | _GEN_9) & _GEN_12 & _GEN_15),
+    .io_load_bits_key_index (_GEN_25 ? _stream_io_out_bits_item : casez_tmp_19),
+    .io_load_bits_key_q_0   (_GEN_25 ? _stream_io_out_bits_rec_q_0 : casez_tmp_20),
+    .io_load_bits_key_q_1   (_GEN_25 ? _stream_io_out_bits_rec_q_1 : casez_tmp_21),
+    .io_load_bits_key_q_2   (_GEN_25 ? _stream_io_out_bits_rec_q_2 : casez_tmp_22),
+    .io_load_bits_key_qr    (_GEN_25 ? _stream_io_out_bits_rec_qr : casez_tmp_23),
     .io_load_bits_place
-      (_GEN_26 & coarseCh
+      (_GEN_25 & coarseCh
          ? {_stream_io_out_bits_rec_cell_0[0],
             _stream_io_out_bits_rec_cell_1[0],
             _stream_io_out_bits_rec_cell_2[0]}
@@ -23961,9 +26600,9 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
     .io_slack               (io_slack),
     .io_in_ready            (_matcher_io_in_ready),
     .io_in_valid
-      (_GEN_22
-         ? (~_stream_io_out_bits_tag_scan | _GEN_27) & _stream_io_out_valid
-         : _GEN_27 & _stream_io_out_valid),
+      (_GEN_21
+         ? (~_stream_io_out_bits_tag_scan | _GEN_26) & _stream_io_out_valid
+         : _GEN_26 & _stream_io_out_valid),
     .io_in_bits_key_index   (_stream_io_out_bits_item),
     .io_in_bits_key_cell_0  (_stream_io_out_bits_rec_cell_0),
     .io_in_bits_key_cell_1  (_stream_io_out_bits_rec_cell_1),
@@ -23972,13 +26611,13 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
     .io_in_bits_key_q_1     (_stream_io_out_bits_rec_q_1),
     .io_in_bits_key_q_2     (_stream_io_out_bits_rec_q_2),
     .io_in_bits_key_qr      (_stream_io_out_bits_rec_qr),
-    .io_in_bits_cell_0      (_GEN_28 ? 20'h0 : _stream_io_out_bits_tag_cell_0),
-    .io_in_bits_cell_1      (_GEN_28 ? 20'h0 : _stream_io_out_bits_tag_cell_1),
-    .io_in_bits_cell_2      (_GEN_28 ? 20'h0 : _stream_io_out_bits_tag_cell_2),
-    .io_in_bits_off_0       (_GEN_28 ? 3'h0 : _stream_io_out_bits_tag_off_0),
-    .io_in_bits_off_1       (_GEN_28 ? 3'h0 : _stream_io_out_bits_tag_off_1),
-    .io_in_bits_off_2       (_GEN_28 ? 3'h0 : _stream_io_out_bits_tag_off_2),
-    .io_in_bits_anyCell     (_GEN_28),
+    .io_in_bits_cell_0      (_GEN_27 ? 20'h0 : _stream_io_out_bits_tag_cell_0),
+    .io_in_bits_cell_1      (_GEN_27 ? 20'h0 : _stream_io_out_bits_tag_cell_1),
+    .io_in_bits_cell_2      (_GEN_27 ? 20'h0 : _stream_io_out_bits_tag_cell_2),
+    .io_in_bits_off_0       (_GEN_27 ? 3'h0 : _stream_io_out_bits_tag_off_0),
+    .io_in_bits_off_1       (_GEN_27 ? 3'h0 : _stream_io_out_bits_tag_off_1),
+    .io_in_bits_off_2       (_GEN_27 ? 3'h0 : _stream_io_out_bits_tag_off_2),
+    .io_in_bits_anyCell     (_GEN_27),
     .io_in_bits_own         (_stream_io_out_bits_rec_large),
     .io_out_ready           (io_pairs_ready),
     .io_out_valid           (io_pairs_valid),
@@ -23990,7 +26629,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
     .clock                  (clock),
     .reset                  (reset),
     .io_enq_valid
-      (~_GEN_12 & _GEN_10 & lkPend
+      (~_GEN_11 & _GEN_9 & lkPend
        & ~(io_lookup_begin_0 == io_lookup_end_0 & io_lookup_begin_1 == io_lookup_end_1
            & io_lookup_begin_2 == io_lookup_end_2
            & io_lookup_begin_3 == io_lookup_end_3)),
@@ -24009,7 +26648,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
     .io_enq_bits_tag_off_0  (lkVisit_off_0),
     .io_enq_bits_tag_off_1  (lkVisit_off_1),
     .io_enq_bits_tag_off_2  (lkVisit_off_2),
-    .io_deq_ready           (~_GEN_12 & _GEN_11 & _stream_io_req_ready),
+    .io_deq_ready           (~_GEN_11 & _GEN_10 & _stream_io_req_ready),
     .io_deq_valid           (_lkq_io_deq_valid),
     .io_deq_bits_begin_0    (_lkq_io_deq_bits_begin_0),
     .io_deq_bits_begin_1    (_lkq_io_deq_bits_begin_1),
@@ -24039,13 +26678,13 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world(
       ? 13'h0
       : _GEN_1
           ? issueAt[12:0]
-          : _GEN_10
+          : _GEN_9
               ? {nc_0[10:1] * 10'h5D ^ nc_1[10:1] * 10'h9F ^ nc_2[10:1] * 10'h3B7,
                  nc_0[0],
                  nc_1[0],
                  nc_2[0]} & _io_lookup_bucket_mask_T[12:0] - 13'h1
               : 13'h0;
-  assign io_mark_valid = _GEN_24 & take;
+  assign io_mark_valid = _GEN_23 & take;
   assign io_mark_bits_group = _stream_io_out_bits_group;
   assign io_mark_bits_addr = _stream_io_out_bits_pos[11:0];
   assign io_mark_bits_item = _stream_io_out_bits_item;
@@ -24569,7 +27208,7 @@ module deferred_124x11_world(
   assign R0_data = R0_en ? Memory[R0_addr] : 11'bx;
 endmodule
 
-module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
+module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   input         clock,
                 reset,
                 io_begin,
@@ -25213,6 +27852,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_0_word_13;
   wire [10:0] _sorts_3_io_lookup_0_word_14;
   wire [10:0] _sorts_3_io_lookup_0_word_15;
+  wire [10:0] _sorts_3_io_lookup_0_word_16;
+  wire [10:0] _sorts_3_io_lookup_0_word_17;
+  wire [10:0] _sorts_3_io_lookup_0_word_18;
+  wire [10:0] _sorts_3_io_lookup_0_word_19;
+  wire [10:0] _sorts_3_io_lookup_0_word_20;
+  wire [10:0] _sorts_3_io_lookup_0_word_21;
+  wire [10:0] _sorts_3_io_lookup_0_word_22;
+  wire [10:0] _sorts_3_io_lookup_0_word_23;
+  wire [10:0] _sorts_3_io_lookup_0_word_24;
+  wire [10:0] _sorts_3_io_lookup_0_word_25;
+  wire [10:0] _sorts_3_io_lookup_0_word_26;
+  wire [10:0] _sorts_3_io_lookup_0_word_27;
+  wire [10:0] _sorts_3_io_lookup_0_word_28;
+  wire [10:0] _sorts_3_io_lookup_0_word_29;
+  wire [10:0] _sorts_3_io_lookup_0_word_30;
+  wire [10:0] _sorts_3_io_lookup_0_word_31;
   wire [10:0] _sorts_3_io_lookup_1_begin;
   wire [10:0] _sorts_3_io_lookup_1_end;
   wire [10:0] _sorts_3_io_lookup_1_word_0;
@@ -25231,6 +27886,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_1_word_13;
   wire [10:0] _sorts_3_io_lookup_1_word_14;
   wire [10:0] _sorts_3_io_lookup_1_word_15;
+  wire [10:0] _sorts_3_io_lookup_1_word_16;
+  wire [10:0] _sorts_3_io_lookup_1_word_17;
+  wire [10:0] _sorts_3_io_lookup_1_word_18;
+  wire [10:0] _sorts_3_io_lookup_1_word_19;
+  wire [10:0] _sorts_3_io_lookup_1_word_20;
+  wire [10:0] _sorts_3_io_lookup_1_word_21;
+  wire [10:0] _sorts_3_io_lookup_1_word_22;
+  wire [10:0] _sorts_3_io_lookup_1_word_23;
+  wire [10:0] _sorts_3_io_lookup_1_word_24;
+  wire [10:0] _sorts_3_io_lookup_1_word_25;
+  wire [10:0] _sorts_3_io_lookup_1_word_26;
+  wire [10:0] _sorts_3_io_lookup_1_word_27;
+  wire [10:0] _sorts_3_io_lookup_1_word_28;
+  wire [10:0] _sorts_3_io_lookup_1_word_29;
+  wire [10:0] _sorts_3_io_lookup_1_word_30;
+  wire [10:0] _sorts_3_io_lookup_1_word_31;
   wire [10:0] _sorts_3_io_lookup_2_begin;
   wire [10:0] _sorts_3_io_lookup_2_end;
   wire [10:0] _sorts_3_io_lookup_2_word_0;
@@ -25249,6 +27920,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_2_word_13;
   wire [10:0] _sorts_3_io_lookup_2_word_14;
   wire [10:0] _sorts_3_io_lookup_2_word_15;
+  wire [10:0] _sorts_3_io_lookup_2_word_16;
+  wire [10:0] _sorts_3_io_lookup_2_word_17;
+  wire [10:0] _sorts_3_io_lookup_2_word_18;
+  wire [10:0] _sorts_3_io_lookup_2_word_19;
+  wire [10:0] _sorts_3_io_lookup_2_word_20;
+  wire [10:0] _sorts_3_io_lookup_2_word_21;
+  wire [10:0] _sorts_3_io_lookup_2_word_22;
+  wire [10:0] _sorts_3_io_lookup_2_word_23;
+  wire [10:0] _sorts_3_io_lookup_2_word_24;
+  wire [10:0] _sorts_3_io_lookup_2_word_25;
+  wire [10:0] _sorts_3_io_lookup_2_word_26;
+  wire [10:0] _sorts_3_io_lookup_2_word_27;
+  wire [10:0] _sorts_3_io_lookup_2_word_28;
+  wire [10:0] _sorts_3_io_lookup_2_word_29;
+  wire [10:0] _sorts_3_io_lookup_2_word_30;
+  wire [10:0] _sorts_3_io_lookup_2_word_31;
   wire [10:0] _sorts_3_io_lookup_3_begin;
   wire [10:0] _sorts_3_io_lookup_3_end;
   wire [10:0] _sorts_3_io_lookup_3_word_0;
@@ -25267,6 +27954,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_3_word_13;
   wire [10:0] _sorts_3_io_lookup_3_word_14;
   wire [10:0] _sorts_3_io_lookup_3_word_15;
+  wire [10:0] _sorts_3_io_lookup_3_word_16;
+  wire [10:0] _sorts_3_io_lookup_3_word_17;
+  wire [10:0] _sorts_3_io_lookup_3_word_18;
+  wire [10:0] _sorts_3_io_lookup_3_word_19;
+  wire [10:0] _sorts_3_io_lookup_3_word_20;
+  wire [10:0] _sorts_3_io_lookup_3_word_21;
+  wire [10:0] _sorts_3_io_lookup_3_word_22;
+  wire [10:0] _sorts_3_io_lookup_3_word_23;
+  wire [10:0] _sorts_3_io_lookup_3_word_24;
+  wire [10:0] _sorts_3_io_lookup_3_word_25;
+  wire [10:0] _sorts_3_io_lookup_3_word_26;
+  wire [10:0] _sorts_3_io_lookup_3_word_27;
+  wire [10:0] _sorts_3_io_lookup_3_word_28;
+  wire [10:0] _sorts_3_io_lookup_3_word_29;
+  wire [10:0] _sorts_3_io_lookup_3_word_30;
+  wire [10:0] _sorts_3_io_lookup_3_word_31;
   wire [10:0] _sorts_3_io_lookup_4_begin;
   wire [10:0] _sorts_3_io_lookup_4_end;
   wire [10:0] _sorts_3_io_lookup_4_word_0;
@@ -25285,6 +27988,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_4_word_13;
   wire [10:0] _sorts_3_io_lookup_4_word_14;
   wire [10:0] _sorts_3_io_lookup_4_word_15;
+  wire [10:0] _sorts_3_io_lookup_4_word_16;
+  wire [10:0] _sorts_3_io_lookup_4_word_17;
+  wire [10:0] _sorts_3_io_lookup_4_word_18;
+  wire [10:0] _sorts_3_io_lookup_4_word_19;
+  wire [10:0] _sorts_3_io_lookup_4_word_20;
+  wire [10:0] _sorts_3_io_lookup_4_word_21;
+  wire [10:0] _sorts_3_io_lookup_4_word_22;
+  wire [10:0] _sorts_3_io_lookup_4_word_23;
+  wire [10:0] _sorts_3_io_lookup_4_word_24;
+  wire [10:0] _sorts_3_io_lookup_4_word_25;
+  wire [10:0] _sorts_3_io_lookup_4_word_26;
+  wire [10:0] _sorts_3_io_lookup_4_word_27;
+  wire [10:0] _sorts_3_io_lookup_4_word_28;
+  wire [10:0] _sorts_3_io_lookup_4_word_29;
+  wire [10:0] _sorts_3_io_lookup_4_word_30;
+  wire [10:0] _sorts_3_io_lookup_4_word_31;
   wire [10:0] _sorts_3_io_lookup_5_begin;
   wire [10:0] _sorts_3_io_lookup_5_end;
   wire [10:0] _sorts_3_io_lookup_5_word_0;
@@ -25303,6 +28022,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_5_word_13;
   wire [10:0] _sorts_3_io_lookup_5_word_14;
   wire [10:0] _sorts_3_io_lookup_5_word_15;
+  wire [10:0] _sorts_3_io_lookup_5_word_16;
+  wire [10:0] _sorts_3_io_lookup_5_word_17;
+  wire [10:0] _sorts_3_io_lookup_5_word_18;
+  wire [10:0] _sorts_3_io_lookup_5_word_19;
+  wire [10:0] _sorts_3_io_lookup_5_word_20;
+  wire [10:0] _sorts_3_io_lookup_5_word_21;
+  wire [10:0] _sorts_3_io_lookup_5_word_22;
+  wire [10:0] _sorts_3_io_lookup_5_word_23;
+  wire [10:0] _sorts_3_io_lookup_5_word_24;
+  wire [10:0] _sorts_3_io_lookup_5_word_25;
+  wire [10:0] _sorts_3_io_lookup_5_word_26;
+  wire [10:0] _sorts_3_io_lookup_5_word_27;
+  wire [10:0] _sorts_3_io_lookup_5_word_28;
+  wire [10:0] _sorts_3_io_lookup_5_word_29;
+  wire [10:0] _sorts_3_io_lookup_5_word_30;
+  wire [10:0] _sorts_3_io_lookup_5_word_31;
   wire [10:0] _sorts_3_io_lookup_6_begin;
   wire [10:0] _sorts_3_io_lookup_6_end;
   wire [10:0] _sorts_3_io_lookup_6_word_0;
@@ -25321,6 +28056,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_6_word_13;
   wire [10:0] _sorts_3_io_lookup_6_word_14;
   wire [10:0] _sorts_3_io_lookup_6_word_15;
+  wire [10:0] _sorts_3_io_lookup_6_word_16;
+  wire [10:0] _sorts_3_io_lookup_6_word_17;
+  wire [10:0] _sorts_3_io_lookup_6_word_18;
+  wire [10:0] _sorts_3_io_lookup_6_word_19;
+  wire [10:0] _sorts_3_io_lookup_6_word_20;
+  wire [10:0] _sorts_3_io_lookup_6_word_21;
+  wire [10:0] _sorts_3_io_lookup_6_word_22;
+  wire [10:0] _sorts_3_io_lookup_6_word_23;
+  wire [10:0] _sorts_3_io_lookup_6_word_24;
+  wire [10:0] _sorts_3_io_lookup_6_word_25;
+  wire [10:0] _sorts_3_io_lookup_6_word_26;
+  wire [10:0] _sorts_3_io_lookup_6_word_27;
+  wire [10:0] _sorts_3_io_lookup_6_word_28;
+  wire [10:0] _sorts_3_io_lookup_6_word_29;
+  wire [10:0] _sorts_3_io_lookup_6_word_30;
+  wire [10:0] _sorts_3_io_lookup_6_word_31;
   wire [10:0] _sorts_3_io_lookup_7_begin;
   wire [10:0] _sorts_3_io_lookup_7_end;
   wire [10:0] _sorts_3_io_lookup_7_word_0;
@@ -25339,6 +28090,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_7_word_13;
   wire [10:0] _sorts_3_io_lookup_7_word_14;
   wire [10:0] _sorts_3_io_lookup_7_word_15;
+  wire [10:0] _sorts_3_io_lookup_7_word_16;
+  wire [10:0] _sorts_3_io_lookup_7_word_17;
+  wire [10:0] _sorts_3_io_lookup_7_word_18;
+  wire [10:0] _sorts_3_io_lookup_7_word_19;
+  wire [10:0] _sorts_3_io_lookup_7_word_20;
+  wire [10:0] _sorts_3_io_lookup_7_word_21;
+  wire [10:0] _sorts_3_io_lookup_7_word_22;
+  wire [10:0] _sorts_3_io_lookup_7_word_23;
+  wire [10:0] _sorts_3_io_lookup_7_word_24;
+  wire [10:0] _sorts_3_io_lookup_7_word_25;
+  wire [10:0] _sorts_3_io_lookup_7_word_26;
+  wire [10:0] _sorts_3_io_lookup_7_word_27;
+  wire [10:0] _sorts_3_io_lookup_7_word_28;
+  wire [10:0] _sorts_3_io_lookup_7_word_29;
+  wire [10:0] _sorts_3_io_lookup_7_word_30;
+  wire [10:0] _sorts_3_io_lookup_7_word_31;
   wire [10:0] _sorts_3_io_lookup_8_begin;
   wire [10:0] _sorts_3_io_lookup_8_end;
   wire [10:0] _sorts_3_io_lookup_8_word_0;
@@ -25357,6 +28124,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_8_word_13;
   wire [10:0] _sorts_3_io_lookup_8_word_14;
   wire [10:0] _sorts_3_io_lookup_8_word_15;
+  wire [10:0] _sorts_3_io_lookup_8_word_16;
+  wire [10:0] _sorts_3_io_lookup_8_word_17;
+  wire [10:0] _sorts_3_io_lookup_8_word_18;
+  wire [10:0] _sorts_3_io_lookup_8_word_19;
+  wire [10:0] _sorts_3_io_lookup_8_word_20;
+  wire [10:0] _sorts_3_io_lookup_8_word_21;
+  wire [10:0] _sorts_3_io_lookup_8_word_22;
+  wire [10:0] _sorts_3_io_lookup_8_word_23;
+  wire [10:0] _sorts_3_io_lookup_8_word_24;
+  wire [10:0] _sorts_3_io_lookup_8_word_25;
+  wire [10:0] _sorts_3_io_lookup_8_word_26;
+  wire [10:0] _sorts_3_io_lookup_8_word_27;
+  wire [10:0] _sorts_3_io_lookup_8_word_28;
+  wire [10:0] _sorts_3_io_lookup_8_word_29;
+  wire [10:0] _sorts_3_io_lookup_8_word_30;
+  wire [10:0] _sorts_3_io_lookup_8_word_31;
   wire [10:0] _sorts_3_io_lookup_9_begin;
   wire [10:0] _sorts_3_io_lookup_9_end;
   wire [10:0] _sorts_3_io_lookup_9_word_0;
@@ -25375,6 +28158,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_9_word_13;
   wire [10:0] _sorts_3_io_lookup_9_word_14;
   wire [10:0] _sorts_3_io_lookup_9_word_15;
+  wire [10:0] _sorts_3_io_lookup_9_word_16;
+  wire [10:0] _sorts_3_io_lookup_9_word_17;
+  wire [10:0] _sorts_3_io_lookup_9_word_18;
+  wire [10:0] _sorts_3_io_lookup_9_word_19;
+  wire [10:0] _sorts_3_io_lookup_9_word_20;
+  wire [10:0] _sorts_3_io_lookup_9_word_21;
+  wire [10:0] _sorts_3_io_lookup_9_word_22;
+  wire [10:0] _sorts_3_io_lookup_9_word_23;
+  wire [10:0] _sorts_3_io_lookup_9_word_24;
+  wire [10:0] _sorts_3_io_lookup_9_word_25;
+  wire [10:0] _sorts_3_io_lookup_9_word_26;
+  wire [10:0] _sorts_3_io_lookup_9_word_27;
+  wire [10:0] _sorts_3_io_lookup_9_word_28;
+  wire [10:0] _sorts_3_io_lookup_9_word_29;
+  wire [10:0] _sorts_3_io_lookup_9_word_30;
+  wire [10:0] _sorts_3_io_lookup_9_word_31;
   wire [10:0] _sorts_3_io_lookup_10_begin;
   wire [10:0] _sorts_3_io_lookup_10_end;
   wire [10:0] _sorts_3_io_lookup_10_word_0;
@@ -25393,6 +28192,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_10_word_13;
   wire [10:0] _sorts_3_io_lookup_10_word_14;
   wire [10:0] _sorts_3_io_lookup_10_word_15;
+  wire [10:0] _sorts_3_io_lookup_10_word_16;
+  wire [10:0] _sorts_3_io_lookup_10_word_17;
+  wire [10:0] _sorts_3_io_lookup_10_word_18;
+  wire [10:0] _sorts_3_io_lookup_10_word_19;
+  wire [10:0] _sorts_3_io_lookup_10_word_20;
+  wire [10:0] _sorts_3_io_lookup_10_word_21;
+  wire [10:0] _sorts_3_io_lookup_10_word_22;
+  wire [10:0] _sorts_3_io_lookup_10_word_23;
+  wire [10:0] _sorts_3_io_lookup_10_word_24;
+  wire [10:0] _sorts_3_io_lookup_10_word_25;
+  wire [10:0] _sorts_3_io_lookup_10_word_26;
+  wire [10:0] _sorts_3_io_lookup_10_word_27;
+  wire [10:0] _sorts_3_io_lookup_10_word_28;
+  wire [10:0] _sorts_3_io_lookup_10_word_29;
+  wire [10:0] _sorts_3_io_lookup_10_word_30;
+  wire [10:0] _sorts_3_io_lookup_10_word_31;
   wire [10:0] _sorts_3_io_lookup_11_begin;
   wire [10:0] _sorts_3_io_lookup_11_end;
   wire [10:0] _sorts_3_io_lookup_11_word_0;
@@ -25411,6 +28226,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_11_word_13;
   wire [10:0] _sorts_3_io_lookup_11_word_14;
   wire [10:0] _sorts_3_io_lookup_11_word_15;
+  wire [10:0] _sorts_3_io_lookup_11_word_16;
+  wire [10:0] _sorts_3_io_lookup_11_word_17;
+  wire [10:0] _sorts_3_io_lookup_11_word_18;
+  wire [10:0] _sorts_3_io_lookup_11_word_19;
+  wire [10:0] _sorts_3_io_lookup_11_word_20;
+  wire [10:0] _sorts_3_io_lookup_11_word_21;
+  wire [10:0] _sorts_3_io_lookup_11_word_22;
+  wire [10:0] _sorts_3_io_lookup_11_word_23;
+  wire [10:0] _sorts_3_io_lookup_11_word_24;
+  wire [10:0] _sorts_3_io_lookup_11_word_25;
+  wire [10:0] _sorts_3_io_lookup_11_word_26;
+  wire [10:0] _sorts_3_io_lookup_11_word_27;
+  wire [10:0] _sorts_3_io_lookup_11_word_28;
+  wire [10:0] _sorts_3_io_lookup_11_word_29;
+  wire [10:0] _sorts_3_io_lookup_11_word_30;
+  wire [10:0] _sorts_3_io_lookup_11_word_31;
   wire [10:0] _sorts_3_io_lookup_12_begin;
   wire [10:0] _sorts_3_io_lookup_12_end;
   wire [10:0] _sorts_3_io_lookup_12_word_0;
@@ -25429,6 +28260,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_12_word_13;
   wire [10:0] _sorts_3_io_lookup_12_word_14;
   wire [10:0] _sorts_3_io_lookup_12_word_15;
+  wire [10:0] _sorts_3_io_lookup_12_word_16;
+  wire [10:0] _sorts_3_io_lookup_12_word_17;
+  wire [10:0] _sorts_3_io_lookup_12_word_18;
+  wire [10:0] _sorts_3_io_lookup_12_word_19;
+  wire [10:0] _sorts_3_io_lookup_12_word_20;
+  wire [10:0] _sorts_3_io_lookup_12_word_21;
+  wire [10:0] _sorts_3_io_lookup_12_word_22;
+  wire [10:0] _sorts_3_io_lookup_12_word_23;
+  wire [10:0] _sorts_3_io_lookup_12_word_24;
+  wire [10:0] _sorts_3_io_lookup_12_word_25;
+  wire [10:0] _sorts_3_io_lookup_12_word_26;
+  wire [10:0] _sorts_3_io_lookup_12_word_27;
+  wire [10:0] _sorts_3_io_lookup_12_word_28;
+  wire [10:0] _sorts_3_io_lookup_12_word_29;
+  wire [10:0] _sorts_3_io_lookup_12_word_30;
+  wire [10:0] _sorts_3_io_lookup_12_word_31;
   wire [10:0] _sorts_3_io_lookup_13_begin;
   wire [10:0] _sorts_3_io_lookup_13_end;
   wire [10:0] _sorts_3_io_lookup_13_word_0;
@@ -25447,6 +28294,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_13_word_13;
   wire [10:0] _sorts_3_io_lookup_13_word_14;
   wire [10:0] _sorts_3_io_lookup_13_word_15;
+  wire [10:0] _sorts_3_io_lookup_13_word_16;
+  wire [10:0] _sorts_3_io_lookup_13_word_17;
+  wire [10:0] _sorts_3_io_lookup_13_word_18;
+  wire [10:0] _sorts_3_io_lookup_13_word_19;
+  wire [10:0] _sorts_3_io_lookup_13_word_20;
+  wire [10:0] _sorts_3_io_lookup_13_word_21;
+  wire [10:0] _sorts_3_io_lookup_13_word_22;
+  wire [10:0] _sorts_3_io_lookup_13_word_23;
+  wire [10:0] _sorts_3_io_lookup_13_word_24;
+  wire [10:0] _sorts_3_io_lookup_13_word_25;
+  wire [10:0] _sorts_3_io_lookup_13_word_26;
+  wire [10:0] _sorts_3_io_lookup_13_word_27;
+  wire [10:0] _sorts_3_io_lookup_13_word_28;
+  wire [10:0] _sorts_3_io_lookup_13_word_29;
+  wire [10:0] _sorts_3_io_lookup_13_word_30;
+  wire [10:0] _sorts_3_io_lookup_13_word_31;
   wire [10:0] _sorts_3_io_lookup_14_begin;
   wire [10:0] _sorts_3_io_lookup_14_end;
   wire [10:0] _sorts_3_io_lookup_14_word_0;
@@ -25465,6 +28328,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_14_word_13;
   wire [10:0] _sorts_3_io_lookup_14_word_14;
   wire [10:0] _sorts_3_io_lookup_14_word_15;
+  wire [10:0] _sorts_3_io_lookup_14_word_16;
+  wire [10:0] _sorts_3_io_lookup_14_word_17;
+  wire [10:0] _sorts_3_io_lookup_14_word_18;
+  wire [10:0] _sorts_3_io_lookup_14_word_19;
+  wire [10:0] _sorts_3_io_lookup_14_word_20;
+  wire [10:0] _sorts_3_io_lookup_14_word_21;
+  wire [10:0] _sorts_3_io_lookup_14_word_22;
+  wire [10:0] _sorts_3_io_lookup_14_word_23;
+  wire [10:0] _sorts_3_io_lookup_14_word_24;
+  wire [10:0] _sorts_3_io_lookup_14_word_25;
+  wire [10:0] _sorts_3_io_lookup_14_word_26;
+  wire [10:0] _sorts_3_io_lookup_14_word_27;
+  wire [10:0] _sorts_3_io_lookup_14_word_28;
+  wire [10:0] _sorts_3_io_lookup_14_word_29;
+  wire [10:0] _sorts_3_io_lookup_14_word_30;
+  wire [10:0] _sorts_3_io_lookup_14_word_31;
   wire [10:0] _sorts_3_io_lookup_15_begin;
   wire [10:0] _sorts_3_io_lookup_15_end;
   wire [10:0] _sorts_3_io_lookup_15_word_0;
@@ -25483,6 +28362,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_3_io_lookup_15_word_13;
   wire [10:0] _sorts_3_io_lookup_15_word_14;
   wire [10:0] _sorts_3_io_lookup_15_word_15;
+  wire [10:0] _sorts_3_io_lookup_15_word_16;
+  wire [10:0] _sorts_3_io_lookup_15_word_17;
+  wire [10:0] _sorts_3_io_lookup_15_word_18;
+  wire [10:0] _sorts_3_io_lookup_15_word_19;
+  wire [10:0] _sorts_3_io_lookup_15_word_20;
+  wire [10:0] _sorts_3_io_lookup_15_word_21;
+  wire [10:0] _sorts_3_io_lookup_15_word_22;
+  wire [10:0] _sorts_3_io_lookup_15_word_23;
+  wire [10:0] _sorts_3_io_lookup_15_word_24;
+  wire [10:0] _sorts_3_io_lookup_15_word_25;
+  wire [10:0] _sorts_3_io_lookup_15_word_26;
+  wire [10:0] _sorts_3_io_lookup_15_word_27;
+  wire [10:0] _sorts_3_io_lookup_15_word_28;
+  wire [10:0] _sorts_3_io_lookup_15_word_29;
+  wire [10:0] _sorts_3_io_lookup_15_word_30;
+  wire [10:0] _sorts_3_io_lookup_15_word_31;
   wire [11:0] _sorts_3_io_entry_0_item;
   wire        _sorts_3_io_entry_0_mark;
   wire [11:0] _sorts_3_io_entry_1_item;
@@ -25539,6 +28434,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_0_word_13;
   wire [10:0] _sorts_2_io_lookup_0_word_14;
   wire [10:0] _sorts_2_io_lookup_0_word_15;
+  wire [10:0] _sorts_2_io_lookup_0_word_16;
+  wire [10:0] _sorts_2_io_lookup_0_word_17;
+  wire [10:0] _sorts_2_io_lookup_0_word_18;
+  wire [10:0] _sorts_2_io_lookup_0_word_19;
+  wire [10:0] _sorts_2_io_lookup_0_word_20;
+  wire [10:0] _sorts_2_io_lookup_0_word_21;
+  wire [10:0] _sorts_2_io_lookup_0_word_22;
+  wire [10:0] _sorts_2_io_lookup_0_word_23;
+  wire [10:0] _sorts_2_io_lookup_0_word_24;
+  wire [10:0] _sorts_2_io_lookup_0_word_25;
+  wire [10:0] _sorts_2_io_lookup_0_word_26;
+  wire [10:0] _sorts_2_io_lookup_0_word_27;
+  wire [10:0] _sorts_2_io_lookup_0_word_28;
+  wire [10:0] _sorts_2_io_lookup_0_word_29;
+  wire [10:0] _sorts_2_io_lookup_0_word_30;
+  wire [10:0] _sorts_2_io_lookup_0_word_31;
   wire [10:0] _sorts_2_io_lookup_1_begin;
   wire [10:0] _sorts_2_io_lookup_1_end;
   wire [10:0] _sorts_2_io_lookup_1_word_0;
@@ -25557,6 +28468,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_1_word_13;
   wire [10:0] _sorts_2_io_lookup_1_word_14;
   wire [10:0] _sorts_2_io_lookup_1_word_15;
+  wire [10:0] _sorts_2_io_lookup_1_word_16;
+  wire [10:0] _sorts_2_io_lookup_1_word_17;
+  wire [10:0] _sorts_2_io_lookup_1_word_18;
+  wire [10:0] _sorts_2_io_lookup_1_word_19;
+  wire [10:0] _sorts_2_io_lookup_1_word_20;
+  wire [10:0] _sorts_2_io_lookup_1_word_21;
+  wire [10:0] _sorts_2_io_lookup_1_word_22;
+  wire [10:0] _sorts_2_io_lookup_1_word_23;
+  wire [10:0] _sorts_2_io_lookup_1_word_24;
+  wire [10:0] _sorts_2_io_lookup_1_word_25;
+  wire [10:0] _sorts_2_io_lookup_1_word_26;
+  wire [10:0] _sorts_2_io_lookup_1_word_27;
+  wire [10:0] _sorts_2_io_lookup_1_word_28;
+  wire [10:0] _sorts_2_io_lookup_1_word_29;
+  wire [10:0] _sorts_2_io_lookup_1_word_30;
+  wire [10:0] _sorts_2_io_lookup_1_word_31;
   wire [10:0] _sorts_2_io_lookup_2_begin;
   wire [10:0] _sorts_2_io_lookup_2_end;
   wire [10:0] _sorts_2_io_lookup_2_word_0;
@@ -25575,6 +28502,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_2_word_13;
   wire [10:0] _sorts_2_io_lookup_2_word_14;
   wire [10:0] _sorts_2_io_lookup_2_word_15;
+  wire [10:0] _sorts_2_io_lookup_2_word_16;
+  wire [10:0] _sorts_2_io_lookup_2_word_17;
+  wire [10:0] _sorts_2_io_lookup_2_word_18;
+  wire [10:0] _sorts_2_io_lookup_2_word_19;
+  wire [10:0] _sorts_2_io_lookup_2_word_20;
+  wire [10:0] _sorts_2_io_lookup_2_word_21;
+  wire [10:0] _sorts_2_io_lookup_2_word_22;
+  wire [10:0] _sorts_2_io_lookup_2_word_23;
+  wire [10:0] _sorts_2_io_lookup_2_word_24;
+  wire [10:0] _sorts_2_io_lookup_2_word_25;
+  wire [10:0] _sorts_2_io_lookup_2_word_26;
+  wire [10:0] _sorts_2_io_lookup_2_word_27;
+  wire [10:0] _sorts_2_io_lookup_2_word_28;
+  wire [10:0] _sorts_2_io_lookup_2_word_29;
+  wire [10:0] _sorts_2_io_lookup_2_word_30;
+  wire [10:0] _sorts_2_io_lookup_2_word_31;
   wire [10:0] _sorts_2_io_lookup_3_begin;
   wire [10:0] _sorts_2_io_lookup_3_end;
   wire [10:0] _sorts_2_io_lookup_3_word_0;
@@ -25593,6 +28536,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_3_word_13;
   wire [10:0] _sorts_2_io_lookup_3_word_14;
   wire [10:0] _sorts_2_io_lookup_3_word_15;
+  wire [10:0] _sorts_2_io_lookup_3_word_16;
+  wire [10:0] _sorts_2_io_lookup_3_word_17;
+  wire [10:0] _sorts_2_io_lookup_3_word_18;
+  wire [10:0] _sorts_2_io_lookup_3_word_19;
+  wire [10:0] _sorts_2_io_lookup_3_word_20;
+  wire [10:0] _sorts_2_io_lookup_3_word_21;
+  wire [10:0] _sorts_2_io_lookup_3_word_22;
+  wire [10:0] _sorts_2_io_lookup_3_word_23;
+  wire [10:0] _sorts_2_io_lookup_3_word_24;
+  wire [10:0] _sorts_2_io_lookup_3_word_25;
+  wire [10:0] _sorts_2_io_lookup_3_word_26;
+  wire [10:0] _sorts_2_io_lookup_3_word_27;
+  wire [10:0] _sorts_2_io_lookup_3_word_28;
+  wire [10:0] _sorts_2_io_lookup_3_word_29;
+  wire [10:0] _sorts_2_io_lookup_3_word_30;
+  wire [10:0] _sorts_2_io_lookup_3_word_31;
   wire [10:0] _sorts_2_io_lookup_4_begin;
   wire [10:0] _sorts_2_io_lookup_4_end;
   wire [10:0] _sorts_2_io_lookup_4_word_0;
@@ -25611,6 +28570,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_4_word_13;
   wire [10:0] _sorts_2_io_lookup_4_word_14;
   wire [10:0] _sorts_2_io_lookup_4_word_15;
+  wire [10:0] _sorts_2_io_lookup_4_word_16;
+  wire [10:0] _sorts_2_io_lookup_4_word_17;
+  wire [10:0] _sorts_2_io_lookup_4_word_18;
+  wire [10:0] _sorts_2_io_lookup_4_word_19;
+  wire [10:0] _sorts_2_io_lookup_4_word_20;
+  wire [10:0] _sorts_2_io_lookup_4_word_21;
+  wire [10:0] _sorts_2_io_lookup_4_word_22;
+  wire [10:0] _sorts_2_io_lookup_4_word_23;
+  wire [10:0] _sorts_2_io_lookup_4_word_24;
+  wire [10:0] _sorts_2_io_lookup_4_word_25;
+  wire [10:0] _sorts_2_io_lookup_4_word_26;
+  wire [10:0] _sorts_2_io_lookup_4_word_27;
+  wire [10:0] _sorts_2_io_lookup_4_word_28;
+  wire [10:0] _sorts_2_io_lookup_4_word_29;
+  wire [10:0] _sorts_2_io_lookup_4_word_30;
+  wire [10:0] _sorts_2_io_lookup_4_word_31;
   wire [10:0] _sorts_2_io_lookup_5_begin;
   wire [10:0] _sorts_2_io_lookup_5_end;
   wire [10:0] _sorts_2_io_lookup_5_word_0;
@@ -25629,6 +28604,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_5_word_13;
   wire [10:0] _sorts_2_io_lookup_5_word_14;
   wire [10:0] _sorts_2_io_lookup_5_word_15;
+  wire [10:0] _sorts_2_io_lookup_5_word_16;
+  wire [10:0] _sorts_2_io_lookup_5_word_17;
+  wire [10:0] _sorts_2_io_lookup_5_word_18;
+  wire [10:0] _sorts_2_io_lookup_5_word_19;
+  wire [10:0] _sorts_2_io_lookup_5_word_20;
+  wire [10:0] _sorts_2_io_lookup_5_word_21;
+  wire [10:0] _sorts_2_io_lookup_5_word_22;
+  wire [10:0] _sorts_2_io_lookup_5_word_23;
+  wire [10:0] _sorts_2_io_lookup_5_word_24;
+  wire [10:0] _sorts_2_io_lookup_5_word_25;
+  wire [10:0] _sorts_2_io_lookup_5_word_26;
+  wire [10:0] _sorts_2_io_lookup_5_word_27;
+  wire [10:0] _sorts_2_io_lookup_5_word_28;
+  wire [10:0] _sorts_2_io_lookup_5_word_29;
+  wire [10:0] _sorts_2_io_lookup_5_word_30;
+  wire [10:0] _sorts_2_io_lookup_5_word_31;
   wire [10:0] _sorts_2_io_lookup_6_begin;
   wire [10:0] _sorts_2_io_lookup_6_end;
   wire [10:0] _sorts_2_io_lookup_6_word_0;
@@ -25647,6 +28638,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_6_word_13;
   wire [10:0] _sorts_2_io_lookup_6_word_14;
   wire [10:0] _sorts_2_io_lookup_6_word_15;
+  wire [10:0] _sorts_2_io_lookup_6_word_16;
+  wire [10:0] _sorts_2_io_lookup_6_word_17;
+  wire [10:0] _sorts_2_io_lookup_6_word_18;
+  wire [10:0] _sorts_2_io_lookup_6_word_19;
+  wire [10:0] _sorts_2_io_lookup_6_word_20;
+  wire [10:0] _sorts_2_io_lookup_6_word_21;
+  wire [10:0] _sorts_2_io_lookup_6_word_22;
+  wire [10:0] _sorts_2_io_lookup_6_word_23;
+  wire [10:0] _sorts_2_io_lookup_6_word_24;
+  wire [10:0] _sorts_2_io_lookup_6_word_25;
+  wire [10:0] _sorts_2_io_lookup_6_word_26;
+  wire [10:0] _sorts_2_io_lookup_6_word_27;
+  wire [10:0] _sorts_2_io_lookup_6_word_28;
+  wire [10:0] _sorts_2_io_lookup_6_word_29;
+  wire [10:0] _sorts_2_io_lookup_6_word_30;
+  wire [10:0] _sorts_2_io_lookup_6_word_31;
   wire [10:0] _sorts_2_io_lookup_7_begin;
   wire [10:0] _sorts_2_io_lookup_7_end;
   wire [10:0] _sorts_2_io_lookup_7_word_0;
@@ -25665,6 +28672,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_7_word_13;
   wire [10:0] _sorts_2_io_lookup_7_word_14;
   wire [10:0] _sorts_2_io_lookup_7_word_15;
+  wire [10:0] _sorts_2_io_lookup_7_word_16;
+  wire [10:0] _sorts_2_io_lookup_7_word_17;
+  wire [10:0] _sorts_2_io_lookup_7_word_18;
+  wire [10:0] _sorts_2_io_lookup_7_word_19;
+  wire [10:0] _sorts_2_io_lookup_7_word_20;
+  wire [10:0] _sorts_2_io_lookup_7_word_21;
+  wire [10:0] _sorts_2_io_lookup_7_word_22;
+  wire [10:0] _sorts_2_io_lookup_7_word_23;
+  wire [10:0] _sorts_2_io_lookup_7_word_24;
+  wire [10:0] _sorts_2_io_lookup_7_word_25;
+  wire [10:0] _sorts_2_io_lookup_7_word_26;
+  wire [10:0] _sorts_2_io_lookup_7_word_27;
+  wire [10:0] _sorts_2_io_lookup_7_word_28;
+  wire [10:0] _sorts_2_io_lookup_7_word_29;
+  wire [10:0] _sorts_2_io_lookup_7_word_30;
+  wire [10:0] _sorts_2_io_lookup_7_word_31;
   wire [10:0] _sorts_2_io_lookup_8_begin;
   wire [10:0] _sorts_2_io_lookup_8_end;
   wire [10:0] _sorts_2_io_lookup_8_word_0;
@@ -25683,6 +28706,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_8_word_13;
   wire [10:0] _sorts_2_io_lookup_8_word_14;
   wire [10:0] _sorts_2_io_lookup_8_word_15;
+  wire [10:0] _sorts_2_io_lookup_8_word_16;
+  wire [10:0] _sorts_2_io_lookup_8_word_17;
+  wire [10:0] _sorts_2_io_lookup_8_word_18;
+  wire [10:0] _sorts_2_io_lookup_8_word_19;
+  wire [10:0] _sorts_2_io_lookup_8_word_20;
+  wire [10:0] _sorts_2_io_lookup_8_word_21;
+  wire [10:0] _sorts_2_io_lookup_8_word_22;
+  wire [10:0] _sorts_2_io_lookup_8_word_23;
+  wire [10:0] _sorts_2_io_lookup_8_word_24;
+  wire [10:0] _sorts_2_io_lookup_8_word_25;
+  wire [10:0] _sorts_2_io_lookup_8_word_26;
+  wire [10:0] _sorts_2_io_lookup_8_word_27;
+  wire [10:0] _sorts_2_io_lookup_8_word_28;
+  wire [10:0] _sorts_2_io_lookup_8_word_29;
+  wire [10:0] _sorts_2_io_lookup_8_word_30;
+  wire [10:0] _sorts_2_io_lookup_8_word_31;
   wire [10:0] _sorts_2_io_lookup_9_begin;
   wire [10:0] _sorts_2_io_lookup_9_end;
   wire [10:0] _sorts_2_io_lookup_9_word_0;
@@ -25701,6 +28740,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_9_word_13;
   wire [10:0] _sorts_2_io_lookup_9_word_14;
   wire [10:0] _sorts_2_io_lookup_9_word_15;
+  wire [10:0] _sorts_2_io_lookup_9_word_16;
+  wire [10:0] _sorts_2_io_lookup_9_word_17;
+  wire [10:0] _sorts_2_io_lookup_9_word_18;
+  wire [10:0] _sorts_2_io_lookup_9_word_19;
+  wire [10:0] _sorts_2_io_lookup_9_word_20;
+  wire [10:0] _sorts_2_io_lookup_9_word_21;
+  wire [10:0] _sorts_2_io_lookup_9_word_22;
+  wire [10:0] _sorts_2_io_lookup_9_word_23;
+  wire [10:0] _sorts_2_io_lookup_9_word_24;
+  wire [10:0] _sorts_2_io_lookup_9_word_25;
+  wire [10:0] _sorts_2_io_lookup_9_word_26;
+  wire [10:0] _sorts_2_io_lookup_9_word_27;
+  wire [10:0] _sorts_2_io_lookup_9_word_28;
+  wire [10:0] _sorts_2_io_lookup_9_word_29;
+  wire [10:0] _sorts_2_io_lookup_9_word_30;
+  wire [10:0] _sorts_2_io_lookup_9_word_31;
   wire [10:0] _sorts_2_io_lookup_10_begin;
   wire [10:0] _sorts_2_io_lookup_10_end;
   wire [10:0] _sorts_2_io_lookup_10_word_0;
@@ -25719,6 +28774,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_10_word_13;
   wire [10:0] _sorts_2_io_lookup_10_word_14;
   wire [10:0] _sorts_2_io_lookup_10_word_15;
+  wire [10:0] _sorts_2_io_lookup_10_word_16;
+  wire [10:0] _sorts_2_io_lookup_10_word_17;
+  wire [10:0] _sorts_2_io_lookup_10_word_18;
+  wire [10:0] _sorts_2_io_lookup_10_word_19;
+  wire [10:0] _sorts_2_io_lookup_10_word_20;
+  wire [10:0] _sorts_2_io_lookup_10_word_21;
+  wire [10:0] _sorts_2_io_lookup_10_word_22;
+  wire [10:0] _sorts_2_io_lookup_10_word_23;
+  wire [10:0] _sorts_2_io_lookup_10_word_24;
+  wire [10:0] _sorts_2_io_lookup_10_word_25;
+  wire [10:0] _sorts_2_io_lookup_10_word_26;
+  wire [10:0] _sorts_2_io_lookup_10_word_27;
+  wire [10:0] _sorts_2_io_lookup_10_word_28;
+  wire [10:0] _sorts_2_io_lookup_10_word_29;
+  wire [10:0] _sorts_2_io_lookup_10_word_30;
+  wire [10:0] _sorts_2_io_lookup_10_word_31;
   wire [10:0] _sorts_2_io_lookup_11_begin;
   wire [10:0] _sorts_2_io_lookup_11_end;
   wire [10:0] _sorts_2_io_lookup_11_word_0;
@@ -25737,6 +28808,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_11_word_13;
   wire [10:0] _sorts_2_io_lookup_11_word_14;
   wire [10:0] _sorts_2_io_lookup_11_word_15;
+  wire [10:0] _sorts_2_io_lookup_11_word_16;
+  wire [10:0] _sorts_2_io_lookup_11_word_17;
+  wire [10:0] _sorts_2_io_lookup_11_word_18;
+  wire [10:0] _sorts_2_io_lookup_11_word_19;
+  wire [10:0] _sorts_2_io_lookup_11_word_20;
+  wire [10:0] _sorts_2_io_lookup_11_word_21;
+  wire [10:0] _sorts_2_io_lookup_11_word_22;
+  wire [10:0] _sorts_2_io_lookup_11_word_23;
+  wire [10:0] _sorts_2_io_lookup_11_word_24;
+  wire [10:0] _sorts_2_io_lookup_11_word_25;
+  wire [10:0] _sorts_2_io_lookup_11_word_26;
+  wire [10:0] _sorts_2_io_lookup_11_word_27;
+  wire [10:0] _sorts_2_io_lookup_11_word_28;
+  wire [10:0] _sorts_2_io_lookup_11_word_29;
+  wire [10:0] _sorts_2_io_lookup_11_word_30;
+  wire [10:0] _sorts_2_io_lookup_11_word_31;
   wire [10:0] _sorts_2_io_lookup_12_begin;
   wire [10:0] _sorts_2_io_lookup_12_end;
   wire [10:0] _sorts_2_io_lookup_12_word_0;
@@ -25755,6 +28842,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_12_word_13;
   wire [10:0] _sorts_2_io_lookup_12_word_14;
   wire [10:0] _sorts_2_io_lookup_12_word_15;
+  wire [10:0] _sorts_2_io_lookup_12_word_16;
+  wire [10:0] _sorts_2_io_lookup_12_word_17;
+  wire [10:0] _sorts_2_io_lookup_12_word_18;
+  wire [10:0] _sorts_2_io_lookup_12_word_19;
+  wire [10:0] _sorts_2_io_lookup_12_word_20;
+  wire [10:0] _sorts_2_io_lookup_12_word_21;
+  wire [10:0] _sorts_2_io_lookup_12_word_22;
+  wire [10:0] _sorts_2_io_lookup_12_word_23;
+  wire [10:0] _sorts_2_io_lookup_12_word_24;
+  wire [10:0] _sorts_2_io_lookup_12_word_25;
+  wire [10:0] _sorts_2_io_lookup_12_word_26;
+  wire [10:0] _sorts_2_io_lookup_12_word_27;
+  wire [10:0] _sorts_2_io_lookup_12_word_28;
+  wire [10:0] _sorts_2_io_lookup_12_word_29;
+  wire [10:0] _sorts_2_io_lookup_12_word_30;
+  wire [10:0] _sorts_2_io_lookup_12_word_31;
   wire [10:0] _sorts_2_io_lookup_13_begin;
   wire [10:0] _sorts_2_io_lookup_13_end;
   wire [10:0] _sorts_2_io_lookup_13_word_0;
@@ -25773,6 +28876,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_13_word_13;
   wire [10:0] _sorts_2_io_lookup_13_word_14;
   wire [10:0] _sorts_2_io_lookup_13_word_15;
+  wire [10:0] _sorts_2_io_lookup_13_word_16;
+  wire [10:0] _sorts_2_io_lookup_13_word_17;
+  wire [10:0] _sorts_2_io_lookup_13_word_18;
+  wire [10:0] _sorts_2_io_lookup_13_word_19;
+  wire [10:0] _sorts_2_io_lookup_13_word_20;
+  wire [10:0] _sorts_2_io_lookup_13_word_21;
+  wire [10:0] _sorts_2_io_lookup_13_word_22;
+  wire [10:0] _sorts_2_io_lookup_13_word_23;
+  wire [10:0] _sorts_2_io_lookup_13_word_24;
+  wire [10:0] _sorts_2_io_lookup_13_word_25;
+  wire [10:0] _sorts_2_io_lookup_13_word_26;
+  wire [10:0] _sorts_2_io_lookup_13_word_27;
+  wire [10:0] _sorts_2_io_lookup_13_word_28;
+  wire [10:0] _sorts_2_io_lookup_13_word_29;
+  wire [10:0] _sorts_2_io_lookup_13_word_30;
+  wire [10:0] _sorts_2_io_lookup_13_word_31;
   wire [10:0] _sorts_2_io_lookup_14_begin;
   wire [10:0] _sorts_2_io_lookup_14_end;
   wire [10:0] _sorts_2_io_lookup_14_word_0;
@@ -25791,6 +28910,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_14_word_13;
   wire [10:0] _sorts_2_io_lookup_14_word_14;
   wire [10:0] _sorts_2_io_lookup_14_word_15;
+  wire [10:0] _sorts_2_io_lookup_14_word_16;
+  wire [10:0] _sorts_2_io_lookup_14_word_17;
+  wire [10:0] _sorts_2_io_lookup_14_word_18;
+  wire [10:0] _sorts_2_io_lookup_14_word_19;
+  wire [10:0] _sorts_2_io_lookup_14_word_20;
+  wire [10:0] _sorts_2_io_lookup_14_word_21;
+  wire [10:0] _sorts_2_io_lookup_14_word_22;
+  wire [10:0] _sorts_2_io_lookup_14_word_23;
+  wire [10:0] _sorts_2_io_lookup_14_word_24;
+  wire [10:0] _sorts_2_io_lookup_14_word_25;
+  wire [10:0] _sorts_2_io_lookup_14_word_26;
+  wire [10:0] _sorts_2_io_lookup_14_word_27;
+  wire [10:0] _sorts_2_io_lookup_14_word_28;
+  wire [10:0] _sorts_2_io_lookup_14_word_29;
+  wire [10:0] _sorts_2_io_lookup_14_word_30;
+  wire [10:0] _sorts_2_io_lookup_14_word_31;
   wire [10:0] _sorts_2_io_lookup_15_begin;
   wire [10:0] _sorts_2_io_lookup_15_end;
   wire [10:0] _sorts_2_io_lookup_15_word_0;
@@ -25809,6 +28944,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_2_io_lookup_15_word_13;
   wire [10:0] _sorts_2_io_lookup_15_word_14;
   wire [10:0] _sorts_2_io_lookup_15_word_15;
+  wire [10:0] _sorts_2_io_lookup_15_word_16;
+  wire [10:0] _sorts_2_io_lookup_15_word_17;
+  wire [10:0] _sorts_2_io_lookup_15_word_18;
+  wire [10:0] _sorts_2_io_lookup_15_word_19;
+  wire [10:0] _sorts_2_io_lookup_15_word_20;
+  wire [10:0] _sorts_2_io_lookup_15_word_21;
+  wire [10:0] _sorts_2_io_lookup_15_word_22;
+  wire [10:0] _sorts_2_io_lookup_15_word_23;
+  wire [10:0] _sorts_2_io_lookup_15_word_24;
+  wire [10:0] _sorts_2_io_lookup_15_word_25;
+  wire [10:0] _sorts_2_io_lookup_15_word_26;
+  wire [10:0] _sorts_2_io_lookup_15_word_27;
+  wire [10:0] _sorts_2_io_lookup_15_word_28;
+  wire [10:0] _sorts_2_io_lookup_15_word_29;
+  wire [10:0] _sorts_2_io_lookup_15_word_30;
+  wire [10:0] _sorts_2_io_lookup_15_word_31;
   wire [11:0] _sorts_2_io_entry_0_item;
   wire        _sorts_2_io_entry_0_mark;
   wire [11:0] _sorts_2_io_entry_1_item;
@@ -25865,6 +29016,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_0_word_13;
   wire [10:0] _sorts_1_io_lookup_0_word_14;
   wire [10:0] _sorts_1_io_lookup_0_word_15;
+  wire [10:0] _sorts_1_io_lookup_0_word_16;
+  wire [10:0] _sorts_1_io_lookup_0_word_17;
+  wire [10:0] _sorts_1_io_lookup_0_word_18;
+  wire [10:0] _sorts_1_io_lookup_0_word_19;
+  wire [10:0] _sorts_1_io_lookup_0_word_20;
+  wire [10:0] _sorts_1_io_lookup_0_word_21;
+  wire [10:0] _sorts_1_io_lookup_0_word_22;
+  wire [10:0] _sorts_1_io_lookup_0_word_23;
+  wire [10:0] _sorts_1_io_lookup_0_word_24;
+  wire [10:0] _sorts_1_io_lookup_0_word_25;
+  wire [10:0] _sorts_1_io_lookup_0_word_26;
+  wire [10:0] _sorts_1_io_lookup_0_word_27;
+  wire [10:0] _sorts_1_io_lookup_0_word_28;
+  wire [10:0] _sorts_1_io_lookup_0_word_29;
+  wire [10:0] _sorts_1_io_lookup_0_word_30;
+  wire [10:0] _sorts_1_io_lookup_0_word_31;
   wire [10:0] _sorts_1_io_lookup_1_begin;
   wire [10:0] _sorts_1_io_lookup_1_end;
   wire [10:0] _sorts_1_io_lookup_1_word_0;
@@ -25883,6 +29050,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_1_word_13;
   wire [10:0] _sorts_1_io_lookup_1_word_14;
   wire [10:0] _sorts_1_io_lookup_1_word_15;
+  wire [10:0] _sorts_1_io_lookup_1_word_16;
+  wire [10:0] _sorts_1_io_lookup_1_word_17;
+  wire [10:0] _sorts_1_io_lookup_1_word_18;
+  wire [10:0] _sorts_1_io_lookup_1_word_19;
+  wire [10:0] _sorts_1_io_lookup_1_word_20;
+  wire [10:0] _sorts_1_io_lookup_1_word_21;
+  wire [10:0] _sorts_1_io_lookup_1_word_22;
+  wire [10:0] _sorts_1_io_lookup_1_word_23;
+  wire [10:0] _sorts_1_io_lookup_1_word_24;
+  wire [10:0] _sorts_1_io_lookup_1_word_25;
+  wire [10:0] _sorts_1_io_lookup_1_word_26;
+  wire [10:0] _sorts_1_io_lookup_1_word_27;
+  wire [10:0] _sorts_1_io_lookup_1_word_28;
+  wire [10:0] _sorts_1_io_lookup_1_word_29;
+  wire [10:0] _sorts_1_io_lookup_1_word_30;
+  wire [10:0] _sorts_1_io_lookup_1_word_31;
   wire [10:0] _sorts_1_io_lookup_2_begin;
   wire [10:0] _sorts_1_io_lookup_2_end;
   wire [10:0] _sorts_1_io_lookup_2_word_0;
@@ -25901,6 +29084,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_2_word_13;
   wire [10:0] _sorts_1_io_lookup_2_word_14;
   wire [10:0] _sorts_1_io_lookup_2_word_15;
+  wire [10:0] _sorts_1_io_lookup_2_word_16;
+  wire [10:0] _sorts_1_io_lookup_2_word_17;
+  wire [10:0] _sorts_1_io_lookup_2_word_18;
+  wire [10:0] _sorts_1_io_lookup_2_word_19;
+  wire [10:0] _sorts_1_io_lookup_2_word_20;
+  wire [10:0] _sorts_1_io_lookup_2_word_21;
+  wire [10:0] _sorts_1_io_lookup_2_word_22;
+  wire [10:0] _sorts_1_io_lookup_2_word_23;
+  wire [10:0] _sorts_1_io_lookup_2_word_24;
+  wire [10:0] _sorts_1_io_lookup_2_word_25;
+  wire [10:0] _sorts_1_io_lookup_2_word_26;
+  wire [10:0] _sorts_1_io_lookup_2_word_27;
+  wire [10:0] _sorts_1_io_lookup_2_word_28;
+  wire [10:0] _sorts_1_io_lookup_2_word_29;
+  wire [10:0] _sorts_1_io_lookup_2_word_30;
+  wire [10:0] _sorts_1_io_lookup_2_word_31;
   wire [10:0] _sorts_1_io_lookup_3_begin;
   wire [10:0] _sorts_1_io_lookup_3_end;
   wire [10:0] _sorts_1_io_lookup_3_word_0;
@@ -25919,6 +29118,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_3_word_13;
   wire [10:0] _sorts_1_io_lookup_3_word_14;
   wire [10:0] _sorts_1_io_lookup_3_word_15;
+  wire [10:0] _sorts_1_io_lookup_3_word_16;
+  wire [10:0] _sorts_1_io_lookup_3_word_17;
+  wire [10:0] _sorts_1_io_lookup_3_word_18;
+  wire [10:0] _sorts_1_io_lookup_3_word_19;
+  wire [10:0] _sorts_1_io_lookup_3_word_20;
+  wire [10:0] _sorts_1_io_lookup_3_word_21;
+  wire [10:0] _sorts_1_io_lookup_3_word_22;
+  wire [10:0] _sorts_1_io_lookup_3_word_23;
+  wire [10:0] _sorts_1_io_lookup_3_word_24;
+  wire [10:0] _sorts_1_io_lookup_3_word_25;
+  wire [10:0] _sorts_1_io_lookup_3_word_26;
+  wire [10:0] _sorts_1_io_lookup_3_word_27;
+  wire [10:0] _sorts_1_io_lookup_3_word_28;
+  wire [10:0] _sorts_1_io_lookup_3_word_29;
+  wire [10:0] _sorts_1_io_lookup_3_word_30;
+  wire [10:0] _sorts_1_io_lookup_3_word_31;
   wire [10:0] _sorts_1_io_lookup_4_begin;
   wire [10:0] _sorts_1_io_lookup_4_end;
   wire [10:0] _sorts_1_io_lookup_4_word_0;
@@ -25937,6 +29152,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_4_word_13;
   wire [10:0] _sorts_1_io_lookup_4_word_14;
   wire [10:0] _sorts_1_io_lookup_4_word_15;
+  wire [10:0] _sorts_1_io_lookup_4_word_16;
+  wire [10:0] _sorts_1_io_lookup_4_word_17;
+  wire [10:0] _sorts_1_io_lookup_4_word_18;
+  wire [10:0] _sorts_1_io_lookup_4_word_19;
+  wire [10:0] _sorts_1_io_lookup_4_word_20;
+  wire [10:0] _sorts_1_io_lookup_4_word_21;
+  wire [10:0] _sorts_1_io_lookup_4_word_22;
+  wire [10:0] _sorts_1_io_lookup_4_word_23;
+  wire [10:0] _sorts_1_io_lookup_4_word_24;
+  wire [10:0] _sorts_1_io_lookup_4_word_25;
+  wire [10:0] _sorts_1_io_lookup_4_word_26;
+  wire [10:0] _sorts_1_io_lookup_4_word_27;
+  wire [10:0] _sorts_1_io_lookup_4_word_28;
+  wire [10:0] _sorts_1_io_lookup_4_word_29;
+  wire [10:0] _sorts_1_io_lookup_4_word_30;
+  wire [10:0] _sorts_1_io_lookup_4_word_31;
   wire [10:0] _sorts_1_io_lookup_5_begin;
   wire [10:0] _sorts_1_io_lookup_5_end;
   wire [10:0] _sorts_1_io_lookup_5_word_0;
@@ -25955,6 +29186,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_5_word_13;
   wire [10:0] _sorts_1_io_lookup_5_word_14;
   wire [10:0] _sorts_1_io_lookup_5_word_15;
+  wire [10:0] _sorts_1_io_lookup_5_word_16;
+  wire [10:0] _sorts_1_io_lookup_5_word_17;
+  wire [10:0] _sorts_1_io_lookup_5_word_18;
+  wire [10:0] _sorts_1_io_lookup_5_word_19;
+  wire [10:0] _sorts_1_io_lookup_5_word_20;
+  wire [10:0] _sorts_1_io_lookup_5_word_21;
+  wire [10:0] _sorts_1_io_lookup_5_word_22;
+  wire [10:0] _sorts_1_io_lookup_5_word_23;
+  wire [10:0] _sorts_1_io_lookup_5_word_24;
+  wire [10:0] _sorts_1_io_lookup_5_word_25;
+  wire [10:0] _sorts_1_io_lookup_5_word_26;
+  wire [10:0] _sorts_1_io_lookup_5_word_27;
+  wire [10:0] _sorts_1_io_lookup_5_word_28;
+  wire [10:0] _sorts_1_io_lookup_5_word_29;
+  wire [10:0] _sorts_1_io_lookup_5_word_30;
+  wire [10:0] _sorts_1_io_lookup_5_word_31;
   wire [10:0] _sorts_1_io_lookup_6_begin;
   wire [10:0] _sorts_1_io_lookup_6_end;
   wire [10:0] _sorts_1_io_lookup_6_word_0;
@@ -25973,6 +29220,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_6_word_13;
   wire [10:0] _sorts_1_io_lookup_6_word_14;
   wire [10:0] _sorts_1_io_lookup_6_word_15;
+  wire [10:0] _sorts_1_io_lookup_6_word_16;
+  wire [10:0] _sorts_1_io_lookup_6_word_17;
+  wire [10:0] _sorts_1_io_lookup_6_word_18;
+  wire [10:0] _sorts_1_io_lookup_6_word_19;
+  wire [10:0] _sorts_1_io_lookup_6_word_20;
+  wire [10:0] _sorts_1_io_lookup_6_word_21;
+  wire [10:0] _sorts_1_io_lookup_6_word_22;
+  wire [10:0] _sorts_1_io_lookup_6_word_23;
+  wire [10:0] _sorts_1_io_lookup_6_word_24;
+  wire [10:0] _sorts_1_io_lookup_6_word_25;
+  wire [10:0] _sorts_1_io_lookup_6_word_26;
+  wire [10:0] _sorts_1_io_lookup_6_word_27;
+  wire [10:0] _sorts_1_io_lookup_6_word_28;
+  wire [10:0] _sorts_1_io_lookup_6_word_29;
+  wire [10:0] _sorts_1_io_lookup_6_word_30;
+  wire [10:0] _sorts_1_io_lookup_6_word_31;
   wire [10:0] _sorts_1_io_lookup_7_begin;
   wire [10:0] _sorts_1_io_lookup_7_end;
   wire [10:0] _sorts_1_io_lookup_7_word_0;
@@ -25991,6 +29254,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_7_word_13;
   wire [10:0] _sorts_1_io_lookup_7_word_14;
   wire [10:0] _sorts_1_io_lookup_7_word_15;
+  wire [10:0] _sorts_1_io_lookup_7_word_16;
+  wire [10:0] _sorts_1_io_lookup_7_word_17;
+  wire [10:0] _sorts_1_io_lookup_7_word_18;
+  wire [10:0] _sorts_1_io_lookup_7_word_19;
+  wire [10:0] _sorts_1_io_lookup_7_word_20;
+  wire [10:0] _sorts_1_io_lookup_7_word_21;
+  wire [10:0] _sorts_1_io_lookup_7_word_22;
+  wire [10:0] _sorts_1_io_lookup_7_word_23;
+  wire [10:0] _sorts_1_io_lookup_7_word_24;
+  wire [10:0] _sorts_1_io_lookup_7_word_25;
+  wire [10:0] _sorts_1_io_lookup_7_word_26;
+  wire [10:0] _sorts_1_io_lookup_7_word_27;
+  wire [10:0] _sorts_1_io_lookup_7_word_28;
+  wire [10:0] _sorts_1_io_lookup_7_word_29;
+  wire [10:0] _sorts_1_io_lookup_7_word_30;
+  wire [10:0] _sorts_1_io_lookup_7_word_31;
   wire [10:0] _sorts_1_io_lookup_8_begin;
   wire [10:0] _sorts_1_io_lookup_8_end;
   wire [10:0] _sorts_1_io_lookup_8_word_0;
@@ -26009,6 +29288,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_8_word_13;
   wire [10:0] _sorts_1_io_lookup_8_word_14;
   wire [10:0] _sorts_1_io_lookup_8_word_15;
+  wire [10:0] _sorts_1_io_lookup_8_word_16;
+  wire [10:0] _sorts_1_io_lookup_8_word_17;
+  wire [10:0] _sorts_1_io_lookup_8_word_18;
+  wire [10:0] _sorts_1_io_lookup_8_word_19;
+  wire [10:0] _sorts_1_io_lookup_8_word_20;
+  wire [10:0] _sorts_1_io_lookup_8_word_21;
+  wire [10:0] _sorts_1_io_lookup_8_word_22;
+  wire [10:0] _sorts_1_io_lookup_8_word_23;
+  wire [10:0] _sorts_1_io_lookup_8_word_24;
+  wire [10:0] _sorts_1_io_lookup_8_word_25;
+  wire [10:0] _sorts_1_io_lookup_8_word_26;
+  wire [10:0] _sorts_1_io_lookup_8_word_27;
+  wire [10:0] _sorts_1_io_lookup_8_word_28;
+  wire [10:0] _sorts_1_io_lookup_8_word_29;
+  wire [10:0] _sorts_1_io_lookup_8_word_30;
+  wire [10:0] _sorts_1_io_lookup_8_word_31;
   wire [10:0] _sorts_1_io_lookup_9_begin;
   wire [10:0] _sorts_1_io_lookup_9_end;
   wire [10:0] _sorts_1_io_lookup_9_word_0;
@@ -26027,6 +29322,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_9_word_13;
   wire [10:0] _sorts_1_io_lookup_9_word_14;
   wire [10:0] _sorts_1_io_lookup_9_word_15;
+  wire [10:0] _sorts_1_io_lookup_9_word_16;
+  wire [10:0] _sorts_1_io_lookup_9_word_17;
+  wire [10:0] _sorts_1_io_lookup_9_word_18;
+  wire [10:0] _sorts_1_io_lookup_9_word_19;
+  wire [10:0] _sorts_1_io_lookup_9_word_20;
+  wire [10:0] _sorts_1_io_lookup_9_word_21;
+  wire [10:0] _sorts_1_io_lookup_9_word_22;
+  wire [10:0] _sorts_1_io_lookup_9_word_23;
+  wire [10:0] _sorts_1_io_lookup_9_word_24;
+  wire [10:0] _sorts_1_io_lookup_9_word_25;
+  wire [10:0] _sorts_1_io_lookup_9_word_26;
+  wire [10:0] _sorts_1_io_lookup_9_word_27;
+  wire [10:0] _sorts_1_io_lookup_9_word_28;
+  wire [10:0] _sorts_1_io_lookup_9_word_29;
+  wire [10:0] _sorts_1_io_lookup_9_word_30;
+  wire [10:0] _sorts_1_io_lookup_9_word_31;
   wire [10:0] _sorts_1_io_lookup_10_begin;
   wire [10:0] _sorts_1_io_lookup_10_end;
   wire [10:0] _sorts_1_io_lookup_10_word_0;
@@ -26045,6 +29356,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_10_word_13;
   wire [10:0] _sorts_1_io_lookup_10_word_14;
   wire [10:0] _sorts_1_io_lookup_10_word_15;
+  wire [10:0] _sorts_1_io_lookup_10_word_16;
+  wire [10:0] _sorts_1_io_lookup_10_word_17;
+  wire [10:0] _sorts_1_io_lookup_10_word_18;
+  wire [10:0] _sorts_1_io_lookup_10_word_19;
+  wire [10:0] _sorts_1_io_lookup_10_word_20;
+  wire [10:0] _sorts_1_io_lookup_10_word_21;
+  wire [10:0] _sorts_1_io_lookup_10_word_22;
+  wire [10:0] _sorts_1_io_lookup_10_word_23;
+  wire [10:0] _sorts_1_io_lookup_10_word_24;
+  wire [10:0] _sorts_1_io_lookup_10_word_25;
+  wire [10:0] _sorts_1_io_lookup_10_word_26;
+  wire [10:0] _sorts_1_io_lookup_10_word_27;
+  wire [10:0] _sorts_1_io_lookup_10_word_28;
+  wire [10:0] _sorts_1_io_lookup_10_word_29;
+  wire [10:0] _sorts_1_io_lookup_10_word_30;
+  wire [10:0] _sorts_1_io_lookup_10_word_31;
   wire [10:0] _sorts_1_io_lookup_11_begin;
   wire [10:0] _sorts_1_io_lookup_11_end;
   wire [10:0] _sorts_1_io_lookup_11_word_0;
@@ -26063,6 +29390,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_11_word_13;
   wire [10:0] _sorts_1_io_lookup_11_word_14;
   wire [10:0] _sorts_1_io_lookup_11_word_15;
+  wire [10:0] _sorts_1_io_lookup_11_word_16;
+  wire [10:0] _sorts_1_io_lookup_11_word_17;
+  wire [10:0] _sorts_1_io_lookup_11_word_18;
+  wire [10:0] _sorts_1_io_lookup_11_word_19;
+  wire [10:0] _sorts_1_io_lookup_11_word_20;
+  wire [10:0] _sorts_1_io_lookup_11_word_21;
+  wire [10:0] _sorts_1_io_lookup_11_word_22;
+  wire [10:0] _sorts_1_io_lookup_11_word_23;
+  wire [10:0] _sorts_1_io_lookup_11_word_24;
+  wire [10:0] _sorts_1_io_lookup_11_word_25;
+  wire [10:0] _sorts_1_io_lookup_11_word_26;
+  wire [10:0] _sorts_1_io_lookup_11_word_27;
+  wire [10:0] _sorts_1_io_lookup_11_word_28;
+  wire [10:0] _sorts_1_io_lookup_11_word_29;
+  wire [10:0] _sorts_1_io_lookup_11_word_30;
+  wire [10:0] _sorts_1_io_lookup_11_word_31;
   wire [10:0] _sorts_1_io_lookup_12_begin;
   wire [10:0] _sorts_1_io_lookup_12_end;
   wire [10:0] _sorts_1_io_lookup_12_word_0;
@@ -26081,6 +29424,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_12_word_13;
   wire [10:0] _sorts_1_io_lookup_12_word_14;
   wire [10:0] _sorts_1_io_lookup_12_word_15;
+  wire [10:0] _sorts_1_io_lookup_12_word_16;
+  wire [10:0] _sorts_1_io_lookup_12_word_17;
+  wire [10:0] _sorts_1_io_lookup_12_word_18;
+  wire [10:0] _sorts_1_io_lookup_12_word_19;
+  wire [10:0] _sorts_1_io_lookup_12_word_20;
+  wire [10:0] _sorts_1_io_lookup_12_word_21;
+  wire [10:0] _sorts_1_io_lookup_12_word_22;
+  wire [10:0] _sorts_1_io_lookup_12_word_23;
+  wire [10:0] _sorts_1_io_lookup_12_word_24;
+  wire [10:0] _sorts_1_io_lookup_12_word_25;
+  wire [10:0] _sorts_1_io_lookup_12_word_26;
+  wire [10:0] _sorts_1_io_lookup_12_word_27;
+  wire [10:0] _sorts_1_io_lookup_12_word_28;
+  wire [10:0] _sorts_1_io_lookup_12_word_29;
+  wire [10:0] _sorts_1_io_lookup_12_word_30;
+  wire [10:0] _sorts_1_io_lookup_12_word_31;
   wire [10:0] _sorts_1_io_lookup_13_begin;
   wire [10:0] _sorts_1_io_lookup_13_end;
   wire [10:0] _sorts_1_io_lookup_13_word_0;
@@ -26099,6 +29458,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_13_word_13;
   wire [10:0] _sorts_1_io_lookup_13_word_14;
   wire [10:0] _sorts_1_io_lookup_13_word_15;
+  wire [10:0] _sorts_1_io_lookup_13_word_16;
+  wire [10:0] _sorts_1_io_lookup_13_word_17;
+  wire [10:0] _sorts_1_io_lookup_13_word_18;
+  wire [10:0] _sorts_1_io_lookup_13_word_19;
+  wire [10:0] _sorts_1_io_lookup_13_word_20;
+  wire [10:0] _sorts_1_io_lookup_13_word_21;
+  wire [10:0] _sorts_1_io_lookup_13_word_22;
+  wire [10:0] _sorts_1_io_lookup_13_word_23;
+  wire [10:0] _sorts_1_io_lookup_13_word_24;
+  wire [10:0] _sorts_1_io_lookup_13_word_25;
+  wire [10:0] _sorts_1_io_lookup_13_word_26;
+  wire [10:0] _sorts_1_io_lookup_13_word_27;
+  wire [10:0] _sorts_1_io_lookup_13_word_28;
+  wire [10:0] _sorts_1_io_lookup_13_word_29;
+  wire [10:0] _sorts_1_io_lookup_13_word_30;
+  wire [10:0] _sorts_1_io_lookup_13_word_31;
   wire [10:0] _sorts_1_io_lookup_14_begin;
   wire [10:0] _sorts_1_io_lookup_14_end;
   wire [10:0] _sorts_1_io_lookup_14_word_0;
@@ -26117,6 +29492,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_14_word_13;
   wire [10:0] _sorts_1_io_lookup_14_word_14;
   wire [10:0] _sorts_1_io_lookup_14_word_15;
+  wire [10:0] _sorts_1_io_lookup_14_word_16;
+  wire [10:0] _sorts_1_io_lookup_14_word_17;
+  wire [10:0] _sorts_1_io_lookup_14_word_18;
+  wire [10:0] _sorts_1_io_lookup_14_word_19;
+  wire [10:0] _sorts_1_io_lookup_14_word_20;
+  wire [10:0] _sorts_1_io_lookup_14_word_21;
+  wire [10:0] _sorts_1_io_lookup_14_word_22;
+  wire [10:0] _sorts_1_io_lookup_14_word_23;
+  wire [10:0] _sorts_1_io_lookup_14_word_24;
+  wire [10:0] _sorts_1_io_lookup_14_word_25;
+  wire [10:0] _sorts_1_io_lookup_14_word_26;
+  wire [10:0] _sorts_1_io_lookup_14_word_27;
+  wire [10:0] _sorts_1_io_lookup_14_word_28;
+  wire [10:0] _sorts_1_io_lookup_14_word_29;
+  wire [10:0] _sorts_1_io_lookup_14_word_30;
+  wire [10:0] _sorts_1_io_lookup_14_word_31;
   wire [10:0] _sorts_1_io_lookup_15_begin;
   wire [10:0] _sorts_1_io_lookup_15_end;
   wire [10:0] _sorts_1_io_lookup_15_word_0;
@@ -26135,6 +29526,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_1_io_lookup_15_word_13;
   wire [10:0] _sorts_1_io_lookup_15_word_14;
   wire [10:0] _sorts_1_io_lookup_15_word_15;
+  wire [10:0] _sorts_1_io_lookup_15_word_16;
+  wire [10:0] _sorts_1_io_lookup_15_word_17;
+  wire [10:0] _sorts_1_io_lookup_15_word_18;
+  wire [10:0] _sorts_1_io_lookup_15_word_19;
+  wire [10:0] _sorts_1_io_lookup_15_word_20;
+  wire [10:0] _sorts_1_io_lookup_15_word_21;
+  wire [10:0] _sorts_1_io_lookup_15_word_22;
+  wire [10:0] _sorts_1_io_lookup_15_word_23;
+  wire [10:0] _sorts_1_io_lookup_15_word_24;
+  wire [10:0] _sorts_1_io_lookup_15_word_25;
+  wire [10:0] _sorts_1_io_lookup_15_word_26;
+  wire [10:0] _sorts_1_io_lookup_15_word_27;
+  wire [10:0] _sorts_1_io_lookup_15_word_28;
+  wire [10:0] _sorts_1_io_lookup_15_word_29;
+  wire [10:0] _sorts_1_io_lookup_15_word_30;
+  wire [10:0] _sorts_1_io_lookup_15_word_31;
   wire [11:0] _sorts_1_io_entry_0_item;
   wire        _sorts_1_io_entry_0_mark;
   wire [11:0] _sorts_1_io_entry_1_item;
@@ -26191,6 +29598,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_0_word_13;
   wire [10:0] _sorts_0_io_lookup_0_word_14;
   wire [10:0] _sorts_0_io_lookup_0_word_15;
+  wire [10:0] _sorts_0_io_lookup_0_word_16;
+  wire [10:0] _sorts_0_io_lookup_0_word_17;
+  wire [10:0] _sorts_0_io_lookup_0_word_18;
+  wire [10:0] _sorts_0_io_lookup_0_word_19;
+  wire [10:0] _sorts_0_io_lookup_0_word_20;
+  wire [10:0] _sorts_0_io_lookup_0_word_21;
+  wire [10:0] _sorts_0_io_lookup_0_word_22;
+  wire [10:0] _sorts_0_io_lookup_0_word_23;
+  wire [10:0] _sorts_0_io_lookup_0_word_24;
+  wire [10:0] _sorts_0_io_lookup_0_word_25;
+  wire [10:0] _sorts_0_io_lookup_0_word_26;
+  wire [10:0] _sorts_0_io_lookup_0_word_27;
+  wire [10:0] _sorts_0_io_lookup_0_word_28;
+  wire [10:0] _sorts_0_io_lookup_0_word_29;
+  wire [10:0] _sorts_0_io_lookup_0_word_30;
+  wire [10:0] _sorts_0_io_lookup_0_word_31;
   wire [10:0] _sorts_0_io_lookup_1_begin;
   wire [10:0] _sorts_0_io_lookup_1_end;
   wire [10:0] _sorts_0_io_lookup_1_word_0;
@@ -26209,6 +29632,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_1_word_13;
   wire [10:0] _sorts_0_io_lookup_1_word_14;
   wire [10:0] _sorts_0_io_lookup_1_word_15;
+  wire [10:0] _sorts_0_io_lookup_1_word_16;
+  wire [10:0] _sorts_0_io_lookup_1_word_17;
+  wire [10:0] _sorts_0_io_lookup_1_word_18;
+  wire [10:0] _sorts_0_io_lookup_1_word_19;
+  wire [10:0] _sorts_0_io_lookup_1_word_20;
+  wire [10:0] _sorts_0_io_lookup_1_word_21;
+  wire [10:0] _sorts_0_io_lookup_1_word_22;
+  wire [10:0] _sorts_0_io_lookup_1_word_23;
+  wire [10:0] _sorts_0_io_lookup_1_word_24;
+  wire [10:0] _sorts_0_io_lookup_1_word_25;
+  wire [10:0] _sorts_0_io_lookup_1_word_26;
+  wire [10:0] _sorts_0_io_lookup_1_word_27;
+  wire [10:0] _sorts_0_io_lookup_1_word_28;
+  wire [10:0] _sorts_0_io_lookup_1_word_29;
+  wire [10:0] _sorts_0_io_lookup_1_word_30;
+  wire [10:0] _sorts_0_io_lookup_1_word_31;
   wire [10:0] _sorts_0_io_lookup_2_begin;
   wire [10:0] _sorts_0_io_lookup_2_end;
   wire [10:0] _sorts_0_io_lookup_2_word_0;
@@ -26227,6 +29666,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_2_word_13;
   wire [10:0] _sorts_0_io_lookup_2_word_14;
   wire [10:0] _sorts_0_io_lookup_2_word_15;
+  wire [10:0] _sorts_0_io_lookup_2_word_16;
+  wire [10:0] _sorts_0_io_lookup_2_word_17;
+  wire [10:0] _sorts_0_io_lookup_2_word_18;
+  wire [10:0] _sorts_0_io_lookup_2_word_19;
+  wire [10:0] _sorts_0_io_lookup_2_word_20;
+  wire [10:0] _sorts_0_io_lookup_2_word_21;
+  wire [10:0] _sorts_0_io_lookup_2_word_22;
+  wire [10:0] _sorts_0_io_lookup_2_word_23;
+  wire [10:0] _sorts_0_io_lookup_2_word_24;
+  wire [10:0] _sorts_0_io_lookup_2_word_25;
+  wire [10:0] _sorts_0_io_lookup_2_word_26;
+  wire [10:0] _sorts_0_io_lookup_2_word_27;
+  wire [10:0] _sorts_0_io_lookup_2_word_28;
+  wire [10:0] _sorts_0_io_lookup_2_word_29;
+  wire [10:0] _sorts_0_io_lookup_2_word_30;
+  wire [10:0] _sorts_0_io_lookup_2_word_31;
   wire [10:0] _sorts_0_io_lookup_3_begin;
   wire [10:0] _sorts_0_io_lookup_3_end;
   wire [10:0] _sorts_0_io_lookup_3_word_0;
@@ -26245,6 +29700,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_3_word_13;
   wire [10:0] _sorts_0_io_lookup_3_word_14;
   wire [10:0] _sorts_0_io_lookup_3_word_15;
+  wire [10:0] _sorts_0_io_lookup_3_word_16;
+  wire [10:0] _sorts_0_io_lookup_3_word_17;
+  wire [10:0] _sorts_0_io_lookup_3_word_18;
+  wire [10:0] _sorts_0_io_lookup_3_word_19;
+  wire [10:0] _sorts_0_io_lookup_3_word_20;
+  wire [10:0] _sorts_0_io_lookup_3_word_21;
+  wire [10:0] _sorts_0_io_lookup_3_word_22;
+  wire [10:0] _sorts_0_io_lookup_3_word_23;
+  wire [10:0] _sorts_0_io_lookup_3_word_24;
+  wire [10:0] _sorts_0_io_lookup_3_word_25;
+  wire [10:0] _sorts_0_io_lookup_3_word_26;
+  wire [10:0] _sorts_0_io_lookup_3_word_27;
+  wire [10:0] _sorts_0_io_lookup_3_word_28;
+  wire [10:0] _sorts_0_io_lookup_3_word_29;
+  wire [10:0] _sorts_0_io_lookup_3_word_30;
+  wire [10:0] _sorts_0_io_lookup_3_word_31;
   wire [10:0] _sorts_0_io_lookup_4_begin;
   wire [10:0] _sorts_0_io_lookup_4_end;
   wire [10:0] _sorts_0_io_lookup_4_word_0;
@@ -26263,6 +29734,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_4_word_13;
   wire [10:0] _sorts_0_io_lookup_4_word_14;
   wire [10:0] _sorts_0_io_lookup_4_word_15;
+  wire [10:0] _sorts_0_io_lookup_4_word_16;
+  wire [10:0] _sorts_0_io_lookup_4_word_17;
+  wire [10:0] _sorts_0_io_lookup_4_word_18;
+  wire [10:0] _sorts_0_io_lookup_4_word_19;
+  wire [10:0] _sorts_0_io_lookup_4_word_20;
+  wire [10:0] _sorts_0_io_lookup_4_word_21;
+  wire [10:0] _sorts_0_io_lookup_4_word_22;
+  wire [10:0] _sorts_0_io_lookup_4_word_23;
+  wire [10:0] _sorts_0_io_lookup_4_word_24;
+  wire [10:0] _sorts_0_io_lookup_4_word_25;
+  wire [10:0] _sorts_0_io_lookup_4_word_26;
+  wire [10:0] _sorts_0_io_lookup_4_word_27;
+  wire [10:0] _sorts_0_io_lookup_4_word_28;
+  wire [10:0] _sorts_0_io_lookup_4_word_29;
+  wire [10:0] _sorts_0_io_lookup_4_word_30;
+  wire [10:0] _sorts_0_io_lookup_4_word_31;
   wire [10:0] _sorts_0_io_lookup_5_begin;
   wire [10:0] _sorts_0_io_lookup_5_end;
   wire [10:0] _sorts_0_io_lookup_5_word_0;
@@ -26281,6 +29768,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_5_word_13;
   wire [10:0] _sorts_0_io_lookup_5_word_14;
   wire [10:0] _sorts_0_io_lookup_5_word_15;
+  wire [10:0] _sorts_0_io_lookup_5_word_16;
+  wire [10:0] _sorts_0_io_lookup_5_word_17;
+  wire [10:0] _sorts_0_io_lookup_5_word_18;
+  wire [10:0] _sorts_0_io_lookup_5_word_19;
+  wire [10:0] _sorts_0_io_lookup_5_word_20;
+  wire [10:0] _sorts_0_io_lookup_5_word_21;
+  wire [10:0] _sorts_0_io_lookup_5_word_22;
+  wire [10:0] _sorts_0_io_lookup_5_word_23;
+  wire [10:0] _sorts_0_io_lookup_5_word_24;
+  wire [10:0] _sorts_0_io_lookup_5_word_25;
+  wire [10:0] _sorts_0_io_lookup_5_word_26;
+  wire [10:0] _sorts_0_io_lookup_5_word_27;
+  wire [10:0] _sorts_0_io_lookup_5_word_28;
+  wire [10:0] _sorts_0_io_lookup_5_word_29;
+  wire [10:0] _sorts_0_io_lookup_5_word_30;
+  wire [10:0] _sorts_0_io_lookup_5_word_31;
   wire [10:0] _sorts_0_io_lookup_6_begin;
   wire [10:0] _sorts_0_io_lookup_6_end;
   wire [10:0] _sorts_0_io_lookup_6_word_0;
@@ -26299,6 +29802,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_6_word_13;
   wire [10:0] _sorts_0_io_lookup_6_word_14;
   wire [10:0] _sorts_0_io_lookup_6_word_15;
+  wire [10:0] _sorts_0_io_lookup_6_word_16;
+  wire [10:0] _sorts_0_io_lookup_6_word_17;
+  wire [10:0] _sorts_0_io_lookup_6_word_18;
+  wire [10:0] _sorts_0_io_lookup_6_word_19;
+  wire [10:0] _sorts_0_io_lookup_6_word_20;
+  wire [10:0] _sorts_0_io_lookup_6_word_21;
+  wire [10:0] _sorts_0_io_lookup_6_word_22;
+  wire [10:0] _sorts_0_io_lookup_6_word_23;
+  wire [10:0] _sorts_0_io_lookup_6_word_24;
+  wire [10:0] _sorts_0_io_lookup_6_word_25;
+  wire [10:0] _sorts_0_io_lookup_6_word_26;
+  wire [10:0] _sorts_0_io_lookup_6_word_27;
+  wire [10:0] _sorts_0_io_lookup_6_word_28;
+  wire [10:0] _sorts_0_io_lookup_6_word_29;
+  wire [10:0] _sorts_0_io_lookup_6_word_30;
+  wire [10:0] _sorts_0_io_lookup_6_word_31;
   wire [10:0] _sorts_0_io_lookup_7_begin;
   wire [10:0] _sorts_0_io_lookup_7_end;
   wire [10:0] _sorts_0_io_lookup_7_word_0;
@@ -26317,6 +29836,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_7_word_13;
   wire [10:0] _sorts_0_io_lookup_7_word_14;
   wire [10:0] _sorts_0_io_lookup_7_word_15;
+  wire [10:0] _sorts_0_io_lookup_7_word_16;
+  wire [10:0] _sorts_0_io_lookup_7_word_17;
+  wire [10:0] _sorts_0_io_lookup_7_word_18;
+  wire [10:0] _sorts_0_io_lookup_7_word_19;
+  wire [10:0] _sorts_0_io_lookup_7_word_20;
+  wire [10:0] _sorts_0_io_lookup_7_word_21;
+  wire [10:0] _sorts_0_io_lookup_7_word_22;
+  wire [10:0] _sorts_0_io_lookup_7_word_23;
+  wire [10:0] _sorts_0_io_lookup_7_word_24;
+  wire [10:0] _sorts_0_io_lookup_7_word_25;
+  wire [10:0] _sorts_0_io_lookup_7_word_26;
+  wire [10:0] _sorts_0_io_lookup_7_word_27;
+  wire [10:0] _sorts_0_io_lookup_7_word_28;
+  wire [10:0] _sorts_0_io_lookup_7_word_29;
+  wire [10:0] _sorts_0_io_lookup_7_word_30;
+  wire [10:0] _sorts_0_io_lookup_7_word_31;
   wire [10:0] _sorts_0_io_lookup_8_begin;
   wire [10:0] _sorts_0_io_lookup_8_end;
   wire [10:0] _sorts_0_io_lookup_8_word_0;
@@ -26335,6 +29870,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_8_word_13;
   wire [10:0] _sorts_0_io_lookup_8_word_14;
   wire [10:0] _sorts_0_io_lookup_8_word_15;
+  wire [10:0] _sorts_0_io_lookup_8_word_16;
+  wire [10:0] _sorts_0_io_lookup_8_word_17;
+  wire [10:0] _sorts_0_io_lookup_8_word_18;
+  wire [10:0] _sorts_0_io_lookup_8_word_19;
+  wire [10:0] _sorts_0_io_lookup_8_word_20;
+  wire [10:0] _sorts_0_io_lookup_8_word_21;
+  wire [10:0] _sorts_0_io_lookup_8_word_22;
+  wire [10:0] _sorts_0_io_lookup_8_word_23;
+  wire [10:0] _sorts_0_io_lookup_8_word_24;
+  wire [10:0] _sorts_0_io_lookup_8_word_25;
+  wire [10:0] _sorts_0_io_lookup_8_word_26;
+  wire [10:0] _sorts_0_io_lookup_8_word_27;
+  wire [10:0] _sorts_0_io_lookup_8_word_28;
+  wire [10:0] _sorts_0_io_lookup_8_word_29;
+  wire [10:0] _sorts_0_io_lookup_8_word_30;
+  wire [10:0] _sorts_0_io_lookup_8_word_31;
   wire [10:0] _sorts_0_io_lookup_9_begin;
   wire [10:0] _sorts_0_io_lookup_9_end;
   wire [10:0] _sorts_0_io_lookup_9_word_0;
@@ -26353,6 +29904,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_9_word_13;
   wire [10:0] _sorts_0_io_lookup_9_word_14;
   wire [10:0] _sorts_0_io_lookup_9_word_15;
+  wire [10:0] _sorts_0_io_lookup_9_word_16;
+  wire [10:0] _sorts_0_io_lookup_9_word_17;
+  wire [10:0] _sorts_0_io_lookup_9_word_18;
+  wire [10:0] _sorts_0_io_lookup_9_word_19;
+  wire [10:0] _sorts_0_io_lookup_9_word_20;
+  wire [10:0] _sorts_0_io_lookup_9_word_21;
+  wire [10:0] _sorts_0_io_lookup_9_word_22;
+  wire [10:0] _sorts_0_io_lookup_9_word_23;
+  wire [10:0] _sorts_0_io_lookup_9_word_24;
+  wire [10:0] _sorts_0_io_lookup_9_word_25;
+  wire [10:0] _sorts_0_io_lookup_9_word_26;
+  wire [10:0] _sorts_0_io_lookup_9_word_27;
+  wire [10:0] _sorts_0_io_lookup_9_word_28;
+  wire [10:0] _sorts_0_io_lookup_9_word_29;
+  wire [10:0] _sorts_0_io_lookup_9_word_30;
+  wire [10:0] _sorts_0_io_lookup_9_word_31;
   wire [10:0] _sorts_0_io_lookup_10_begin;
   wire [10:0] _sorts_0_io_lookup_10_end;
   wire [10:0] _sorts_0_io_lookup_10_word_0;
@@ -26371,6 +29938,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_10_word_13;
   wire [10:0] _sorts_0_io_lookup_10_word_14;
   wire [10:0] _sorts_0_io_lookup_10_word_15;
+  wire [10:0] _sorts_0_io_lookup_10_word_16;
+  wire [10:0] _sorts_0_io_lookup_10_word_17;
+  wire [10:0] _sorts_0_io_lookup_10_word_18;
+  wire [10:0] _sorts_0_io_lookup_10_word_19;
+  wire [10:0] _sorts_0_io_lookup_10_word_20;
+  wire [10:0] _sorts_0_io_lookup_10_word_21;
+  wire [10:0] _sorts_0_io_lookup_10_word_22;
+  wire [10:0] _sorts_0_io_lookup_10_word_23;
+  wire [10:0] _sorts_0_io_lookup_10_word_24;
+  wire [10:0] _sorts_0_io_lookup_10_word_25;
+  wire [10:0] _sorts_0_io_lookup_10_word_26;
+  wire [10:0] _sorts_0_io_lookup_10_word_27;
+  wire [10:0] _sorts_0_io_lookup_10_word_28;
+  wire [10:0] _sorts_0_io_lookup_10_word_29;
+  wire [10:0] _sorts_0_io_lookup_10_word_30;
+  wire [10:0] _sorts_0_io_lookup_10_word_31;
   wire [10:0] _sorts_0_io_lookup_11_begin;
   wire [10:0] _sorts_0_io_lookup_11_end;
   wire [10:0] _sorts_0_io_lookup_11_word_0;
@@ -26389,6 +29972,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_11_word_13;
   wire [10:0] _sorts_0_io_lookup_11_word_14;
   wire [10:0] _sorts_0_io_lookup_11_word_15;
+  wire [10:0] _sorts_0_io_lookup_11_word_16;
+  wire [10:0] _sorts_0_io_lookup_11_word_17;
+  wire [10:0] _sorts_0_io_lookup_11_word_18;
+  wire [10:0] _sorts_0_io_lookup_11_word_19;
+  wire [10:0] _sorts_0_io_lookup_11_word_20;
+  wire [10:0] _sorts_0_io_lookup_11_word_21;
+  wire [10:0] _sorts_0_io_lookup_11_word_22;
+  wire [10:0] _sorts_0_io_lookup_11_word_23;
+  wire [10:0] _sorts_0_io_lookup_11_word_24;
+  wire [10:0] _sorts_0_io_lookup_11_word_25;
+  wire [10:0] _sorts_0_io_lookup_11_word_26;
+  wire [10:0] _sorts_0_io_lookup_11_word_27;
+  wire [10:0] _sorts_0_io_lookup_11_word_28;
+  wire [10:0] _sorts_0_io_lookup_11_word_29;
+  wire [10:0] _sorts_0_io_lookup_11_word_30;
+  wire [10:0] _sorts_0_io_lookup_11_word_31;
   wire [10:0] _sorts_0_io_lookup_12_begin;
   wire [10:0] _sorts_0_io_lookup_12_end;
   wire [10:0] _sorts_0_io_lookup_12_word_0;
@@ -26407,6 +30006,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_12_word_13;
   wire [10:0] _sorts_0_io_lookup_12_word_14;
   wire [10:0] _sorts_0_io_lookup_12_word_15;
+  wire [10:0] _sorts_0_io_lookup_12_word_16;
+  wire [10:0] _sorts_0_io_lookup_12_word_17;
+  wire [10:0] _sorts_0_io_lookup_12_word_18;
+  wire [10:0] _sorts_0_io_lookup_12_word_19;
+  wire [10:0] _sorts_0_io_lookup_12_word_20;
+  wire [10:0] _sorts_0_io_lookup_12_word_21;
+  wire [10:0] _sorts_0_io_lookup_12_word_22;
+  wire [10:0] _sorts_0_io_lookup_12_word_23;
+  wire [10:0] _sorts_0_io_lookup_12_word_24;
+  wire [10:0] _sorts_0_io_lookup_12_word_25;
+  wire [10:0] _sorts_0_io_lookup_12_word_26;
+  wire [10:0] _sorts_0_io_lookup_12_word_27;
+  wire [10:0] _sorts_0_io_lookup_12_word_28;
+  wire [10:0] _sorts_0_io_lookup_12_word_29;
+  wire [10:0] _sorts_0_io_lookup_12_word_30;
+  wire [10:0] _sorts_0_io_lookup_12_word_31;
   wire [10:0] _sorts_0_io_lookup_13_begin;
   wire [10:0] _sorts_0_io_lookup_13_end;
   wire [10:0] _sorts_0_io_lookup_13_word_0;
@@ -26425,6 +30040,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_13_word_13;
   wire [10:0] _sorts_0_io_lookup_13_word_14;
   wire [10:0] _sorts_0_io_lookup_13_word_15;
+  wire [10:0] _sorts_0_io_lookup_13_word_16;
+  wire [10:0] _sorts_0_io_lookup_13_word_17;
+  wire [10:0] _sorts_0_io_lookup_13_word_18;
+  wire [10:0] _sorts_0_io_lookup_13_word_19;
+  wire [10:0] _sorts_0_io_lookup_13_word_20;
+  wire [10:0] _sorts_0_io_lookup_13_word_21;
+  wire [10:0] _sorts_0_io_lookup_13_word_22;
+  wire [10:0] _sorts_0_io_lookup_13_word_23;
+  wire [10:0] _sorts_0_io_lookup_13_word_24;
+  wire [10:0] _sorts_0_io_lookup_13_word_25;
+  wire [10:0] _sorts_0_io_lookup_13_word_26;
+  wire [10:0] _sorts_0_io_lookup_13_word_27;
+  wire [10:0] _sorts_0_io_lookup_13_word_28;
+  wire [10:0] _sorts_0_io_lookup_13_word_29;
+  wire [10:0] _sorts_0_io_lookup_13_word_30;
+  wire [10:0] _sorts_0_io_lookup_13_word_31;
   wire [10:0] _sorts_0_io_lookup_14_begin;
   wire [10:0] _sorts_0_io_lookup_14_end;
   wire [10:0] _sorts_0_io_lookup_14_word_0;
@@ -26443,6 +30074,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_14_word_13;
   wire [10:0] _sorts_0_io_lookup_14_word_14;
   wire [10:0] _sorts_0_io_lookup_14_word_15;
+  wire [10:0] _sorts_0_io_lookup_14_word_16;
+  wire [10:0] _sorts_0_io_lookup_14_word_17;
+  wire [10:0] _sorts_0_io_lookup_14_word_18;
+  wire [10:0] _sorts_0_io_lookup_14_word_19;
+  wire [10:0] _sorts_0_io_lookup_14_word_20;
+  wire [10:0] _sorts_0_io_lookup_14_word_21;
+  wire [10:0] _sorts_0_io_lookup_14_word_22;
+  wire [10:0] _sorts_0_io_lookup_14_word_23;
+  wire [10:0] _sorts_0_io_lookup_14_word_24;
+  wire [10:0] _sorts_0_io_lookup_14_word_25;
+  wire [10:0] _sorts_0_io_lookup_14_word_26;
+  wire [10:0] _sorts_0_io_lookup_14_word_27;
+  wire [10:0] _sorts_0_io_lookup_14_word_28;
+  wire [10:0] _sorts_0_io_lookup_14_word_29;
+  wire [10:0] _sorts_0_io_lookup_14_word_30;
+  wire [10:0] _sorts_0_io_lookup_14_word_31;
   wire [10:0] _sorts_0_io_lookup_15_begin;
   wire [10:0] _sorts_0_io_lookup_15_end;
   wire [10:0] _sorts_0_io_lookup_15_word_0;
@@ -26461,6 +30108,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
   wire [10:0] _sorts_0_io_lookup_15_word_13;
   wire [10:0] _sorts_0_io_lookup_15_word_14;
   wire [10:0] _sorts_0_io_lookup_15_word_15;
+  wire [10:0] _sorts_0_io_lookup_15_word_16;
+  wire [10:0] _sorts_0_io_lookup_15_word_17;
+  wire [10:0] _sorts_0_io_lookup_15_word_18;
+  wire [10:0] _sorts_0_io_lookup_15_word_19;
+  wire [10:0] _sorts_0_io_lookup_15_word_20;
+  wire [10:0] _sorts_0_io_lookup_15_word_21;
+  wire [10:0] _sorts_0_io_lookup_15_word_22;
+  wire [10:0] _sorts_0_io_lookup_15_word_23;
+  wire [10:0] _sorts_0_io_lookup_15_word_24;
+  wire [10:0] _sorts_0_io_lookup_15_word_25;
+  wire [10:0] _sorts_0_io_lookup_15_word_26;
+  wire [10:0] _sorts_0_io_lookup_15_word_27;
+  wire [10:0] _sorts_0_io_lookup_15_word_28;
+  wire [10:0] _sorts_0_io_lookup_15_word_29;
+  wire [10:0] _sorts_0_io_lookup_15_word_30;
+  wire [10:0] _sorts_0_io_lookup_15_word_31;
   wire [11:0] _sorts_0_io_entry_0_item;
   wire        _sorts_0_io_entry_0_mark;
   wire [11:0] _sorts_0_io_entry_1_item;
@@ -38842,7 +42505,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_in_1_topNone (~casez_tmp_6),
     .io_level        (_cellExp_io_level)
   );
-  BucketSort_n1024_b13_w4_c16_p2_i12_world sorts_0 (
+  BucketSort_n1024_b13_w5_c16_p2_i12_world sorts_0 (
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
@@ -38888,6 +42551,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_0_word_13  (_sorts_0_io_lookup_0_word_13),
     .io_lookup_0_word_14  (_sorts_0_io_lookup_0_word_14),
     .io_lookup_0_word_15  (_sorts_0_io_lookup_0_word_15),
+    .io_lookup_0_word_16  (_sorts_0_io_lookup_0_word_16),
+    .io_lookup_0_word_17  (_sorts_0_io_lookup_0_word_17),
+    .io_lookup_0_word_18  (_sorts_0_io_lookup_0_word_18),
+    .io_lookup_0_word_19  (_sorts_0_io_lookup_0_word_19),
+    .io_lookup_0_word_20  (_sorts_0_io_lookup_0_word_20),
+    .io_lookup_0_word_21  (_sorts_0_io_lookup_0_word_21),
+    .io_lookup_0_word_22  (_sorts_0_io_lookup_0_word_22),
+    .io_lookup_0_word_23  (_sorts_0_io_lookup_0_word_23),
+    .io_lookup_0_word_24  (_sorts_0_io_lookup_0_word_24),
+    .io_lookup_0_word_25  (_sorts_0_io_lookup_0_word_25),
+    .io_lookup_0_word_26  (_sorts_0_io_lookup_0_word_26),
+    .io_lookup_0_word_27  (_sorts_0_io_lookup_0_word_27),
+    .io_lookup_0_word_28  (_sorts_0_io_lookup_0_word_28),
+    .io_lookup_0_word_29  (_sorts_0_io_lookup_0_word_29),
+    .io_lookup_0_word_30  (_sorts_0_io_lookup_0_word_30),
+    .io_lookup_0_word_31  (_sorts_0_io_lookup_0_word_31),
     .io_lookup_1_bucket   (_gens_1_io_lookup_bucket),
     .io_lookup_1_begin    (_sorts_0_io_lookup_1_begin),
     .io_lookup_1_end      (_sorts_0_io_lookup_1_end),
@@ -38907,6 +42586,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_1_word_13  (_sorts_0_io_lookup_1_word_13),
     .io_lookup_1_word_14  (_sorts_0_io_lookup_1_word_14),
     .io_lookup_1_word_15  (_sorts_0_io_lookup_1_word_15),
+    .io_lookup_1_word_16  (_sorts_0_io_lookup_1_word_16),
+    .io_lookup_1_word_17  (_sorts_0_io_lookup_1_word_17),
+    .io_lookup_1_word_18  (_sorts_0_io_lookup_1_word_18),
+    .io_lookup_1_word_19  (_sorts_0_io_lookup_1_word_19),
+    .io_lookup_1_word_20  (_sorts_0_io_lookup_1_word_20),
+    .io_lookup_1_word_21  (_sorts_0_io_lookup_1_word_21),
+    .io_lookup_1_word_22  (_sorts_0_io_lookup_1_word_22),
+    .io_lookup_1_word_23  (_sorts_0_io_lookup_1_word_23),
+    .io_lookup_1_word_24  (_sorts_0_io_lookup_1_word_24),
+    .io_lookup_1_word_25  (_sorts_0_io_lookup_1_word_25),
+    .io_lookup_1_word_26  (_sorts_0_io_lookup_1_word_26),
+    .io_lookup_1_word_27  (_sorts_0_io_lookup_1_word_27),
+    .io_lookup_1_word_28  (_sorts_0_io_lookup_1_word_28),
+    .io_lookup_1_word_29  (_sorts_0_io_lookup_1_word_29),
+    .io_lookup_1_word_30  (_sorts_0_io_lookup_1_word_30),
+    .io_lookup_1_word_31  (_sorts_0_io_lookup_1_word_31),
     .io_lookup_2_bucket   (_gens_2_io_lookup_bucket),
     .io_lookup_2_begin    (_sorts_0_io_lookup_2_begin),
     .io_lookup_2_end      (_sorts_0_io_lookup_2_end),
@@ -38926,6 +42621,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_2_word_13  (_sorts_0_io_lookup_2_word_13),
     .io_lookup_2_word_14  (_sorts_0_io_lookup_2_word_14),
     .io_lookup_2_word_15  (_sorts_0_io_lookup_2_word_15),
+    .io_lookup_2_word_16  (_sorts_0_io_lookup_2_word_16),
+    .io_lookup_2_word_17  (_sorts_0_io_lookup_2_word_17),
+    .io_lookup_2_word_18  (_sorts_0_io_lookup_2_word_18),
+    .io_lookup_2_word_19  (_sorts_0_io_lookup_2_word_19),
+    .io_lookup_2_word_20  (_sorts_0_io_lookup_2_word_20),
+    .io_lookup_2_word_21  (_sorts_0_io_lookup_2_word_21),
+    .io_lookup_2_word_22  (_sorts_0_io_lookup_2_word_22),
+    .io_lookup_2_word_23  (_sorts_0_io_lookup_2_word_23),
+    .io_lookup_2_word_24  (_sorts_0_io_lookup_2_word_24),
+    .io_lookup_2_word_25  (_sorts_0_io_lookup_2_word_25),
+    .io_lookup_2_word_26  (_sorts_0_io_lookup_2_word_26),
+    .io_lookup_2_word_27  (_sorts_0_io_lookup_2_word_27),
+    .io_lookup_2_word_28  (_sorts_0_io_lookup_2_word_28),
+    .io_lookup_2_word_29  (_sorts_0_io_lookup_2_word_29),
+    .io_lookup_2_word_30  (_sorts_0_io_lookup_2_word_30),
+    .io_lookup_2_word_31  (_sorts_0_io_lookup_2_word_31),
     .io_lookup_3_bucket   (_gens_3_io_lookup_bucket),
     .io_lookup_3_begin    (_sorts_0_io_lookup_3_begin),
     .io_lookup_3_end      (_sorts_0_io_lookup_3_end),
@@ -38945,6 +42656,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_3_word_13  (_sorts_0_io_lookup_3_word_13),
     .io_lookup_3_word_14  (_sorts_0_io_lookup_3_word_14),
     .io_lookup_3_word_15  (_sorts_0_io_lookup_3_word_15),
+    .io_lookup_3_word_16  (_sorts_0_io_lookup_3_word_16),
+    .io_lookup_3_word_17  (_sorts_0_io_lookup_3_word_17),
+    .io_lookup_3_word_18  (_sorts_0_io_lookup_3_word_18),
+    .io_lookup_3_word_19  (_sorts_0_io_lookup_3_word_19),
+    .io_lookup_3_word_20  (_sorts_0_io_lookup_3_word_20),
+    .io_lookup_3_word_21  (_sorts_0_io_lookup_3_word_21),
+    .io_lookup_3_word_22  (_sorts_0_io_lookup_3_word_22),
+    .io_lookup_3_word_23  (_sorts_0_io_lookup_3_word_23),
+    .io_lookup_3_word_24  (_sorts_0_io_lookup_3_word_24),
+    .io_lookup_3_word_25  (_sorts_0_io_lookup_3_word_25),
+    .io_lookup_3_word_26  (_sorts_0_io_lookup_3_word_26),
+    .io_lookup_3_word_27  (_sorts_0_io_lookup_3_word_27),
+    .io_lookup_3_word_28  (_sorts_0_io_lookup_3_word_28),
+    .io_lookup_3_word_29  (_sorts_0_io_lookup_3_word_29),
+    .io_lookup_3_word_30  (_sorts_0_io_lookup_3_word_30),
+    .io_lookup_3_word_31  (_sorts_0_io_lookup_3_word_31),
     .io_lookup_4_bucket   (_gens_4_io_lookup_bucket),
     .io_lookup_4_begin    (_sorts_0_io_lookup_4_begin),
     .io_lookup_4_end      (_sorts_0_io_lookup_4_end),
@@ -38964,6 +42691,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_4_word_13  (_sorts_0_io_lookup_4_word_13),
     .io_lookup_4_word_14  (_sorts_0_io_lookup_4_word_14),
     .io_lookup_4_word_15  (_sorts_0_io_lookup_4_word_15),
+    .io_lookup_4_word_16  (_sorts_0_io_lookup_4_word_16),
+    .io_lookup_4_word_17  (_sorts_0_io_lookup_4_word_17),
+    .io_lookup_4_word_18  (_sorts_0_io_lookup_4_word_18),
+    .io_lookup_4_word_19  (_sorts_0_io_lookup_4_word_19),
+    .io_lookup_4_word_20  (_sorts_0_io_lookup_4_word_20),
+    .io_lookup_4_word_21  (_sorts_0_io_lookup_4_word_21),
+    .io_lookup_4_word_22  (_sorts_0_io_lookup_4_word_22),
+    .io_lookup_4_word_23  (_sorts_0_io_lookup_4_word_23),
+    .io_lookup_4_word_24  (_sorts_0_io_lookup_4_word_24),
+    .io_lookup_4_word_25  (_sorts_0_io_lookup_4_word_25),
+    .io_lookup_4_word_26  (_sorts_0_io_lookup_4_word_26),
+    .io_lookup_4_word_27  (_sorts_0_io_lookup_4_word_27),
+    .io_lookup_4_word_28  (_sorts_0_io_lookup_4_word_28),
+    .io_lookup_4_word_29  (_sorts_0_io_lookup_4_word_29),
+    .io_lookup_4_word_30  (_sorts_0_io_lookup_4_word_30),
+    .io_lookup_4_word_31  (_sorts_0_io_lookup_4_word_31),
     .io_lookup_5_bucket   (_gens_5_io_lookup_bucket),
     .io_lookup_5_begin    (_sorts_0_io_lookup_5_begin),
     .io_lookup_5_end      (_sorts_0_io_lookup_5_end),
@@ -38983,6 +42726,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_5_word_13  (_sorts_0_io_lookup_5_word_13),
     .io_lookup_5_word_14  (_sorts_0_io_lookup_5_word_14),
     .io_lookup_5_word_15  (_sorts_0_io_lookup_5_word_15),
+    .io_lookup_5_word_16  (_sorts_0_io_lookup_5_word_16),
+    .io_lookup_5_word_17  (_sorts_0_io_lookup_5_word_17),
+    .io_lookup_5_word_18  (_sorts_0_io_lookup_5_word_18),
+    .io_lookup_5_word_19  (_sorts_0_io_lookup_5_word_19),
+    .io_lookup_5_word_20  (_sorts_0_io_lookup_5_word_20),
+    .io_lookup_5_word_21  (_sorts_0_io_lookup_5_word_21),
+    .io_lookup_5_word_22  (_sorts_0_io_lookup_5_word_22),
+    .io_lookup_5_word_23  (_sorts_0_io_lookup_5_word_23),
+    .io_lookup_5_word_24  (_sorts_0_io_lookup_5_word_24),
+    .io_lookup_5_word_25  (_sorts_0_io_lookup_5_word_25),
+    .io_lookup_5_word_26  (_sorts_0_io_lookup_5_word_26),
+    .io_lookup_5_word_27  (_sorts_0_io_lookup_5_word_27),
+    .io_lookup_5_word_28  (_sorts_0_io_lookup_5_word_28),
+    .io_lookup_5_word_29  (_sorts_0_io_lookup_5_word_29),
+    .io_lookup_5_word_30  (_sorts_0_io_lookup_5_word_30),
+    .io_lookup_5_word_31  (_sorts_0_io_lookup_5_word_31),
     .io_lookup_6_bucket   (_gens_6_io_lookup_bucket),
     .io_lookup_6_begin    (_sorts_0_io_lookup_6_begin),
     .io_lookup_6_end      (_sorts_0_io_lookup_6_end),
@@ -39002,6 +42761,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_6_word_13  (_sorts_0_io_lookup_6_word_13),
     .io_lookup_6_word_14  (_sorts_0_io_lookup_6_word_14),
     .io_lookup_6_word_15  (_sorts_0_io_lookup_6_word_15),
+    .io_lookup_6_word_16  (_sorts_0_io_lookup_6_word_16),
+    .io_lookup_6_word_17  (_sorts_0_io_lookup_6_word_17),
+    .io_lookup_6_word_18  (_sorts_0_io_lookup_6_word_18),
+    .io_lookup_6_word_19  (_sorts_0_io_lookup_6_word_19),
+    .io_lookup_6_word_20  (_sorts_0_io_lookup_6_word_20),
+    .io_lookup_6_word_21  (_sorts_0_io_lookup_6_word_21),
+    .io_lookup_6_word_22  (_sorts_0_io_lookup_6_word_22),
+    .io_lookup_6_word_23  (_sorts_0_io_lookup_6_word_23),
+    .io_lookup_6_word_24  (_sorts_0_io_lookup_6_word_24),
+    .io_lookup_6_word_25  (_sorts_0_io_lookup_6_word_25),
+    .io_lookup_6_word_26  (_sorts_0_io_lookup_6_word_26),
+    .io_lookup_6_word_27  (_sorts_0_io_lookup_6_word_27),
+    .io_lookup_6_word_28  (_sorts_0_io_lookup_6_word_28),
+    .io_lookup_6_word_29  (_sorts_0_io_lookup_6_word_29),
+    .io_lookup_6_word_30  (_sorts_0_io_lookup_6_word_30),
+    .io_lookup_6_word_31  (_sorts_0_io_lookup_6_word_31),
     .io_lookup_7_bucket   (_gens_7_io_lookup_bucket),
     .io_lookup_7_begin    (_sorts_0_io_lookup_7_begin),
     .io_lookup_7_end      (_sorts_0_io_lookup_7_end),
@@ -39021,6 +42796,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_7_word_13  (_sorts_0_io_lookup_7_word_13),
     .io_lookup_7_word_14  (_sorts_0_io_lookup_7_word_14),
     .io_lookup_7_word_15  (_sorts_0_io_lookup_7_word_15),
+    .io_lookup_7_word_16  (_sorts_0_io_lookup_7_word_16),
+    .io_lookup_7_word_17  (_sorts_0_io_lookup_7_word_17),
+    .io_lookup_7_word_18  (_sorts_0_io_lookup_7_word_18),
+    .io_lookup_7_word_19  (_sorts_0_io_lookup_7_word_19),
+    .io_lookup_7_word_20  (_sorts_0_io_lookup_7_word_20),
+    .io_lookup_7_word_21  (_sorts_0_io_lookup_7_word_21),
+    .io_lookup_7_word_22  (_sorts_0_io_lookup_7_word_22),
+    .io_lookup_7_word_23  (_sorts_0_io_lookup_7_word_23),
+    .io_lookup_7_word_24  (_sorts_0_io_lookup_7_word_24),
+    .io_lookup_7_word_25  (_sorts_0_io_lookup_7_word_25),
+    .io_lookup_7_word_26  (_sorts_0_io_lookup_7_word_26),
+    .io_lookup_7_word_27  (_sorts_0_io_lookup_7_word_27),
+    .io_lookup_7_word_28  (_sorts_0_io_lookup_7_word_28),
+    .io_lookup_7_word_29  (_sorts_0_io_lookup_7_word_29),
+    .io_lookup_7_word_30  (_sorts_0_io_lookup_7_word_30),
+    .io_lookup_7_word_31  (_sorts_0_io_lookup_7_word_31),
     .io_lookup_8_bucket   (_gens_8_io_lookup_bucket),
     .io_lookup_8_begin    (_sorts_0_io_lookup_8_begin),
     .io_lookup_8_end      (_sorts_0_io_lookup_8_end),
@@ -39040,6 +42831,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_8_word_13  (_sorts_0_io_lookup_8_word_13),
     .io_lookup_8_word_14  (_sorts_0_io_lookup_8_word_14),
     .io_lookup_8_word_15  (_sorts_0_io_lookup_8_word_15),
+    .io_lookup_8_word_16  (_sorts_0_io_lookup_8_word_16),
+    .io_lookup_8_word_17  (_sorts_0_io_lookup_8_word_17),
+    .io_lookup_8_word_18  (_sorts_0_io_lookup_8_word_18),
+    .io_lookup_8_word_19  (_sorts_0_io_lookup_8_word_19),
+    .io_lookup_8_word_20  (_sorts_0_io_lookup_8_word_20),
+    .io_lookup_8_word_21  (_sorts_0_io_lookup_8_word_21),
+    .io_lookup_8_word_22  (_sorts_0_io_lookup_8_word_22),
+    .io_lookup_8_word_23  (_sorts_0_io_lookup_8_word_23),
+    .io_lookup_8_word_24  (_sorts_0_io_lookup_8_word_24),
+    .io_lookup_8_word_25  (_sorts_0_io_lookup_8_word_25),
+    .io_lookup_8_word_26  (_sorts_0_io_lookup_8_word_26),
+    .io_lookup_8_word_27  (_sorts_0_io_lookup_8_word_27),
+    .io_lookup_8_word_28  (_sorts_0_io_lookup_8_word_28),
+    .io_lookup_8_word_29  (_sorts_0_io_lookup_8_word_29),
+    .io_lookup_8_word_30  (_sorts_0_io_lookup_8_word_30),
+    .io_lookup_8_word_31  (_sorts_0_io_lookup_8_word_31),
     .io_lookup_9_bucket   (_gens_9_io_lookup_bucket),
     .io_lookup_9_begin    (_sorts_0_io_lookup_9_begin),
     .io_lookup_9_end      (_sorts_0_io_lookup_9_end),
@@ -39059,6 +42866,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_9_word_13  (_sorts_0_io_lookup_9_word_13),
     .io_lookup_9_word_14  (_sorts_0_io_lookup_9_word_14),
     .io_lookup_9_word_15  (_sorts_0_io_lookup_9_word_15),
+    .io_lookup_9_word_16  (_sorts_0_io_lookup_9_word_16),
+    .io_lookup_9_word_17  (_sorts_0_io_lookup_9_word_17),
+    .io_lookup_9_word_18  (_sorts_0_io_lookup_9_word_18),
+    .io_lookup_9_word_19  (_sorts_0_io_lookup_9_word_19),
+    .io_lookup_9_word_20  (_sorts_0_io_lookup_9_word_20),
+    .io_lookup_9_word_21  (_sorts_0_io_lookup_9_word_21),
+    .io_lookup_9_word_22  (_sorts_0_io_lookup_9_word_22),
+    .io_lookup_9_word_23  (_sorts_0_io_lookup_9_word_23),
+    .io_lookup_9_word_24  (_sorts_0_io_lookup_9_word_24),
+    .io_lookup_9_word_25  (_sorts_0_io_lookup_9_word_25),
+    .io_lookup_9_word_26  (_sorts_0_io_lookup_9_word_26),
+    .io_lookup_9_word_27  (_sorts_0_io_lookup_9_word_27),
+    .io_lookup_9_word_28  (_sorts_0_io_lookup_9_word_28),
+    .io_lookup_9_word_29  (_sorts_0_io_lookup_9_word_29),
+    .io_lookup_9_word_30  (_sorts_0_io_lookup_9_word_30),
+    .io_lookup_9_word_31  (_sorts_0_io_lookup_9_word_31),
     .io_lookup_10_bucket  (_gens_10_io_lookup_bucket),
     .io_lookup_10_begin   (_sorts_0_io_lookup_10_begin),
     .io_lookup_10_end     (_sorts_0_io_lookup_10_end),
@@ -39078,6 +42901,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_10_word_13 (_sorts_0_io_lookup_10_word_13),
     .io_lookup_10_word_14 (_sorts_0_io_lookup_10_word_14),
     .io_lookup_10_word_15 (_sorts_0_io_lookup_10_word_15),
+    .io_lookup_10_word_16 (_sorts_0_io_lookup_10_word_16),
+    .io_lookup_10_word_17 (_sorts_0_io_lookup_10_word_17),
+    .io_lookup_10_word_18 (_sorts_0_io_lookup_10_word_18),
+    .io_lookup_10_word_19 (_sorts_0_io_lookup_10_word_19),
+    .io_lookup_10_word_20 (_sorts_0_io_lookup_10_word_20),
+    .io_lookup_10_word_21 (_sorts_0_io_lookup_10_word_21),
+    .io_lookup_10_word_22 (_sorts_0_io_lookup_10_word_22),
+    .io_lookup_10_word_23 (_sorts_0_io_lookup_10_word_23),
+    .io_lookup_10_word_24 (_sorts_0_io_lookup_10_word_24),
+    .io_lookup_10_word_25 (_sorts_0_io_lookup_10_word_25),
+    .io_lookup_10_word_26 (_sorts_0_io_lookup_10_word_26),
+    .io_lookup_10_word_27 (_sorts_0_io_lookup_10_word_27),
+    .io_lookup_10_word_28 (_sorts_0_io_lookup_10_word_28),
+    .io_lookup_10_word_29 (_sorts_0_io_lookup_10_word_29),
+    .io_lookup_10_word_30 (_sorts_0_io_lookup_10_word_30),
+    .io_lookup_10_word_31 (_sorts_0_io_lookup_10_word_31),
     .io_lookup_11_bucket  (_gens_11_io_lookup_bucket),
     .io_lookup_11_begin   (_sorts_0_io_lookup_11_begin),
     .io_lookup_11_end     (_sorts_0_io_lookup_11_end),
@@ -39097,6 +42936,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_11_word_13 (_sorts_0_io_lookup_11_word_13),
     .io_lookup_11_word_14 (_sorts_0_io_lookup_11_word_14),
     .io_lookup_11_word_15 (_sorts_0_io_lookup_11_word_15),
+    .io_lookup_11_word_16 (_sorts_0_io_lookup_11_word_16),
+    .io_lookup_11_word_17 (_sorts_0_io_lookup_11_word_17),
+    .io_lookup_11_word_18 (_sorts_0_io_lookup_11_word_18),
+    .io_lookup_11_word_19 (_sorts_0_io_lookup_11_word_19),
+    .io_lookup_11_word_20 (_sorts_0_io_lookup_11_word_20),
+    .io_lookup_11_word_21 (_sorts_0_io_lookup_11_word_21),
+    .io_lookup_11_word_22 (_sorts_0_io_lookup_11_word_22),
+    .io_lookup_11_word_23 (_sorts_0_io_lookup_11_word_23),
+    .io_lookup_11_word_24 (_sorts_0_io_lookup_11_word_24),
+    .io_lookup_11_word_25 (_sorts_0_io_lookup_11_word_25),
+    .io_lookup_11_word_26 (_sorts_0_io_lookup_11_word_26),
+    .io_lookup_11_word_27 (_sorts_0_io_lookup_11_word_27),
+    .io_lookup_11_word_28 (_sorts_0_io_lookup_11_word_28),
+    .io_lookup_11_word_29 (_sorts_0_io_lookup_11_word_29),
+    .io_lookup_11_word_30 (_sorts_0_io_lookup_11_word_30),
+    .io_lookup_11_word_31 (_sorts_0_io_lookup_11_word_31),
     .io_lookup_12_bucket  (_gens_12_io_lookup_bucket),
     .io_lookup_12_begin   (_sorts_0_io_lookup_12_begin),
     .io_lookup_12_end     (_sorts_0_io_lookup_12_end),
@@ -39116,6 +42971,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_12_word_13 (_sorts_0_io_lookup_12_word_13),
     .io_lookup_12_word_14 (_sorts_0_io_lookup_12_word_14),
     .io_lookup_12_word_15 (_sorts_0_io_lookup_12_word_15),
+    .io_lookup_12_word_16 (_sorts_0_io_lookup_12_word_16),
+    .io_lookup_12_word_17 (_sorts_0_io_lookup_12_word_17),
+    .io_lookup_12_word_18 (_sorts_0_io_lookup_12_word_18),
+    .io_lookup_12_word_19 (_sorts_0_io_lookup_12_word_19),
+    .io_lookup_12_word_20 (_sorts_0_io_lookup_12_word_20),
+    .io_lookup_12_word_21 (_sorts_0_io_lookup_12_word_21),
+    .io_lookup_12_word_22 (_sorts_0_io_lookup_12_word_22),
+    .io_lookup_12_word_23 (_sorts_0_io_lookup_12_word_23),
+    .io_lookup_12_word_24 (_sorts_0_io_lookup_12_word_24),
+    .io_lookup_12_word_25 (_sorts_0_io_lookup_12_word_25),
+    .io_lookup_12_word_26 (_sorts_0_io_lookup_12_word_26),
+    .io_lookup_12_word_27 (_sorts_0_io_lookup_12_word_27),
+    .io_lookup_12_word_28 (_sorts_0_io_lookup_12_word_28),
+    .io_lookup_12_word_29 (_sorts_0_io_lookup_12_word_29),
+    .io_lookup_12_word_30 (_sorts_0_io_lookup_12_word_30),
+    .io_lookup_12_word_31 (_sorts_0_io_lookup_12_word_31),
     .io_lookup_13_bucket  (_gens_13_io_lookup_bucket),
     .io_lookup_13_begin   (_sorts_0_io_lookup_13_begin),
     .io_lookup_13_end     (_sorts_0_io_lookup_13_end),
@@ -39135,6 +43006,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_13_word_13 (_sorts_0_io_lookup_13_word_13),
     .io_lookup_13_word_14 (_sorts_0_io_lookup_13_word_14),
     .io_lookup_13_word_15 (_sorts_0_io_lookup_13_word_15),
+    .io_lookup_13_word_16 (_sorts_0_io_lookup_13_word_16),
+    .io_lookup_13_word_17 (_sorts_0_io_lookup_13_word_17),
+    .io_lookup_13_word_18 (_sorts_0_io_lookup_13_word_18),
+    .io_lookup_13_word_19 (_sorts_0_io_lookup_13_word_19),
+    .io_lookup_13_word_20 (_sorts_0_io_lookup_13_word_20),
+    .io_lookup_13_word_21 (_sorts_0_io_lookup_13_word_21),
+    .io_lookup_13_word_22 (_sorts_0_io_lookup_13_word_22),
+    .io_lookup_13_word_23 (_sorts_0_io_lookup_13_word_23),
+    .io_lookup_13_word_24 (_sorts_0_io_lookup_13_word_24),
+    .io_lookup_13_word_25 (_sorts_0_io_lookup_13_word_25),
+    .io_lookup_13_word_26 (_sorts_0_io_lookup_13_word_26),
+    .io_lookup_13_word_27 (_sorts_0_io_lookup_13_word_27),
+    .io_lookup_13_word_28 (_sorts_0_io_lookup_13_word_28),
+    .io_lookup_13_word_29 (_sorts_0_io_lookup_13_word_29),
+    .io_lookup_13_word_30 (_sorts_0_io_lookup_13_word_30),
+    .io_lookup_13_word_31 (_sorts_0_io_lookup_13_word_31),
     .io_lookup_14_bucket  (_gens_14_io_lookup_bucket),
     .io_lookup_14_begin   (_sorts_0_io_lookup_14_begin),
     .io_lookup_14_end     (_sorts_0_io_lookup_14_end),
@@ -39154,6 +43041,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_14_word_13 (_sorts_0_io_lookup_14_word_13),
     .io_lookup_14_word_14 (_sorts_0_io_lookup_14_word_14),
     .io_lookup_14_word_15 (_sorts_0_io_lookup_14_word_15),
+    .io_lookup_14_word_16 (_sorts_0_io_lookup_14_word_16),
+    .io_lookup_14_word_17 (_sorts_0_io_lookup_14_word_17),
+    .io_lookup_14_word_18 (_sorts_0_io_lookup_14_word_18),
+    .io_lookup_14_word_19 (_sorts_0_io_lookup_14_word_19),
+    .io_lookup_14_word_20 (_sorts_0_io_lookup_14_word_20),
+    .io_lookup_14_word_21 (_sorts_0_io_lookup_14_word_21),
+    .io_lookup_14_word_22 (_sorts_0_io_lookup_14_word_22),
+    .io_lookup_14_word_23 (_sorts_0_io_lookup_14_word_23),
+    .io_lookup_14_word_24 (_sorts_0_io_lookup_14_word_24),
+    .io_lookup_14_word_25 (_sorts_0_io_lookup_14_word_25),
+    .io_lookup_14_word_26 (_sorts_0_io_lookup_14_word_26),
+    .io_lookup_14_word_27 (_sorts_0_io_lookup_14_word_27),
+    .io_lookup_14_word_28 (_sorts_0_io_lookup_14_word_28),
+    .io_lookup_14_word_29 (_sorts_0_io_lookup_14_word_29),
+    .io_lookup_14_word_30 (_sorts_0_io_lookup_14_word_30),
+    .io_lookup_14_word_31 (_sorts_0_io_lookup_14_word_31),
     .io_lookup_15_bucket  (_gens_15_io_lookup_bucket),
     .io_lookup_15_begin   (_sorts_0_io_lookup_15_begin),
     .io_lookup_15_end     (_sorts_0_io_lookup_15_end),
@@ -39173,6 +43076,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_15_word_13 (_sorts_0_io_lookup_15_word_13),
     .io_lookup_15_word_14 (_sorts_0_io_lookup_15_word_14),
     .io_lookup_15_word_15 (_sorts_0_io_lookup_15_word_15),
+    .io_lookup_15_word_16 (_sorts_0_io_lookup_15_word_16),
+    .io_lookup_15_word_17 (_sorts_0_io_lookup_15_word_17),
+    .io_lookup_15_word_18 (_sorts_0_io_lookup_15_word_18),
+    .io_lookup_15_word_19 (_sorts_0_io_lookup_15_word_19),
+    .io_lookup_15_word_20 (_sorts_0_io_lookup_15_word_20),
+    .io_lookup_15_word_21 (_sorts_0_io_lookup_15_word_21),
+    .io_lookup_15_word_22 (_sorts_0_io_lookup_15_word_22),
+    .io_lookup_15_word_23 (_sorts_0_io_lookup_15_word_23),
+    .io_lookup_15_word_24 (_sorts_0_io_lookup_15_word_24),
+    .io_lookup_15_word_25 (_sorts_0_io_lookup_15_word_25),
+    .io_lookup_15_word_26 (_sorts_0_io_lookup_15_word_26),
+    .io_lookup_15_word_27 (_sorts_0_io_lookup_15_word_27),
+    .io_lookup_15_word_28 (_sorts_0_io_lookup_15_word_28),
+    .io_lookup_15_word_29 (_sorts_0_io_lookup_15_word_29),
+    .io_lookup_15_word_30 (_sorts_0_io_lookup_15_word_30),
+    .io_lookup_15_word_31 (_sorts_0_io_lookup_15_word_31),
     .io_entry_0_addr      (_gens_0_io_entry_addr[9:0]),
     .io_entry_0_item      (_sorts_0_io_entry_0_item),
     .io_entry_0_mark      (_sorts_0_io_entry_0_mark),
@@ -39273,7 +43192,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_scattered         (_sorts_0_io_scattered),
     .io_badBucket         (_sorts_0_io_badBucket)
   );
-  BucketSort_n1024_b13_w4_c16_p2_i12_world sorts_1 (
+  BucketSort_n1024_b13_w5_c16_p2_i12_world sorts_1 (
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
@@ -39319,6 +43238,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_0_word_13  (_sorts_1_io_lookup_0_word_13),
     .io_lookup_0_word_14  (_sorts_1_io_lookup_0_word_14),
     .io_lookup_0_word_15  (_sorts_1_io_lookup_0_word_15),
+    .io_lookup_0_word_16  (_sorts_1_io_lookup_0_word_16),
+    .io_lookup_0_word_17  (_sorts_1_io_lookup_0_word_17),
+    .io_lookup_0_word_18  (_sorts_1_io_lookup_0_word_18),
+    .io_lookup_0_word_19  (_sorts_1_io_lookup_0_word_19),
+    .io_lookup_0_word_20  (_sorts_1_io_lookup_0_word_20),
+    .io_lookup_0_word_21  (_sorts_1_io_lookup_0_word_21),
+    .io_lookup_0_word_22  (_sorts_1_io_lookup_0_word_22),
+    .io_lookup_0_word_23  (_sorts_1_io_lookup_0_word_23),
+    .io_lookup_0_word_24  (_sorts_1_io_lookup_0_word_24),
+    .io_lookup_0_word_25  (_sorts_1_io_lookup_0_word_25),
+    .io_lookup_0_word_26  (_sorts_1_io_lookup_0_word_26),
+    .io_lookup_0_word_27  (_sorts_1_io_lookup_0_word_27),
+    .io_lookup_0_word_28  (_sorts_1_io_lookup_0_word_28),
+    .io_lookup_0_word_29  (_sorts_1_io_lookup_0_word_29),
+    .io_lookup_0_word_30  (_sorts_1_io_lookup_0_word_30),
+    .io_lookup_0_word_31  (_sorts_1_io_lookup_0_word_31),
     .io_lookup_1_bucket   (_gens_1_io_lookup_bucket),
     .io_lookup_1_begin    (_sorts_1_io_lookup_1_begin),
     .io_lookup_1_end      (_sorts_1_io_lookup_1_end),
@@ -39338,6 +43273,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_1_word_13  (_sorts_1_io_lookup_1_word_13),
     .io_lookup_1_word_14  (_sorts_1_io_lookup_1_word_14),
     .io_lookup_1_word_15  (_sorts_1_io_lookup_1_word_15),
+    .io_lookup_1_word_16  (_sorts_1_io_lookup_1_word_16),
+    .io_lookup_1_word_17  (_sorts_1_io_lookup_1_word_17),
+    .io_lookup_1_word_18  (_sorts_1_io_lookup_1_word_18),
+    .io_lookup_1_word_19  (_sorts_1_io_lookup_1_word_19),
+    .io_lookup_1_word_20  (_sorts_1_io_lookup_1_word_20),
+    .io_lookup_1_word_21  (_sorts_1_io_lookup_1_word_21),
+    .io_lookup_1_word_22  (_sorts_1_io_lookup_1_word_22),
+    .io_lookup_1_word_23  (_sorts_1_io_lookup_1_word_23),
+    .io_lookup_1_word_24  (_sorts_1_io_lookup_1_word_24),
+    .io_lookup_1_word_25  (_sorts_1_io_lookup_1_word_25),
+    .io_lookup_1_word_26  (_sorts_1_io_lookup_1_word_26),
+    .io_lookup_1_word_27  (_sorts_1_io_lookup_1_word_27),
+    .io_lookup_1_word_28  (_sorts_1_io_lookup_1_word_28),
+    .io_lookup_1_word_29  (_sorts_1_io_lookup_1_word_29),
+    .io_lookup_1_word_30  (_sorts_1_io_lookup_1_word_30),
+    .io_lookup_1_word_31  (_sorts_1_io_lookup_1_word_31),
     .io_lookup_2_bucket   (_gens_2_io_lookup_bucket),
     .io_lookup_2_begin    (_sorts_1_io_lookup_2_begin),
     .io_lookup_2_end      (_sorts_1_io_lookup_2_end),
@@ -39357,6 +43308,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_2_word_13  (_sorts_1_io_lookup_2_word_13),
     .io_lookup_2_word_14  (_sorts_1_io_lookup_2_word_14),
     .io_lookup_2_word_15  (_sorts_1_io_lookup_2_word_15),
+    .io_lookup_2_word_16  (_sorts_1_io_lookup_2_word_16),
+    .io_lookup_2_word_17  (_sorts_1_io_lookup_2_word_17),
+    .io_lookup_2_word_18  (_sorts_1_io_lookup_2_word_18),
+    .io_lookup_2_word_19  (_sorts_1_io_lookup_2_word_19),
+    .io_lookup_2_word_20  (_sorts_1_io_lookup_2_word_20),
+    .io_lookup_2_word_21  (_sorts_1_io_lookup_2_word_21),
+    .io_lookup_2_word_22  (_sorts_1_io_lookup_2_word_22),
+    .io_lookup_2_word_23  (_sorts_1_io_lookup_2_word_23),
+    .io_lookup_2_word_24  (_sorts_1_io_lookup_2_word_24),
+    .io_lookup_2_word_25  (_sorts_1_io_lookup_2_word_25),
+    .io_lookup_2_word_26  (_sorts_1_io_lookup_2_word_26),
+    .io_lookup_2_word_27  (_sorts_1_io_lookup_2_word_27),
+    .io_lookup_2_word_28  (_sorts_1_io_lookup_2_word_28),
+    .io_lookup_2_word_29  (_sorts_1_io_lookup_2_word_29),
+    .io_lookup_2_word_30  (_sorts_1_io_lookup_2_word_30),
+    .io_lookup_2_word_31  (_sorts_1_io_lookup_2_word_31),
     .io_lookup_3_bucket   (_gens_3_io_lookup_bucket),
     .io_lookup_3_begin    (_sorts_1_io_lookup_3_begin),
     .io_lookup_3_end      (_sorts_1_io_lookup_3_end),
@@ -39376,6 +43343,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_3_word_13  (_sorts_1_io_lookup_3_word_13),
     .io_lookup_3_word_14  (_sorts_1_io_lookup_3_word_14),
     .io_lookup_3_word_15  (_sorts_1_io_lookup_3_word_15),
+    .io_lookup_3_word_16  (_sorts_1_io_lookup_3_word_16),
+    .io_lookup_3_word_17  (_sorts_1_io_lookup_3_word_17),
+    .io_lookup_3_word_18  (_sorts_1_io_lookup_3_word_18),
+    .io_lookup_3_word_19  (_sorts_1_io_lookup_3_word_19),
+    .io_lookup_3_word_20  (_sorts_1_io_lookup_3_word_20),
+    .io_lookup_3_word_21  (_sorts_1_io_lookup_3_word_21),
+    .io_lookup_3_word_22  (_sorts_1_io_lookup_3_word_22),
+    .io_lookup_3_word_23  (_sorts_1_io_lookup_3_word_23),
+    .io_lookup_3_word_24  (_sorts_1_io_lookup_3_word_24),
+    .io_lookup_3_word_25  (_sorts_1_io_lookup_3_word_25),
+    .io_lookup_3_word_26  (_sorts_1_io_lookup_3_word_26),
+    .io_lookup_3_word_27  (_sorts_1_io_lookup_3_word_27),
+    .io_lookup_3_word_28  (_sorts_1_io_lookup_3_word_28),
+    .io_lookup_3_word_29  (_sorts_1_io_lookup_3_word_29),
+    .io_lookup_3_word_30  (_sorts_1_io_lookup_3_word_30),
+    .io_lookup_3_word_31  (_sorts_1_io_lookup_3_word_31),
     .io_lookup_4_bucket   (_gens_4_io_lookup_bucket),
     .io_lookup_4_begin    (_sorts_1_io_lookup_4_begin),
     .io_lookup_4_end      (_sorts_1_io_lookup_4_end),
@@ -39395,6 +43378,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_4_word_13  (_sorts_1_io_lookup_4_word_13),
     .io_lookup_4_word_14  (_sorts_1_io_lookup_4_word_14),
     .io_lookup_4_word_15  (_sorts_1_io_lookup_4_word_15),
+    .io_lookup_4_word_16  (_sorts_1_io_lookup_4_word_16),
+    .io_lookup_4_word_17  (_sorts_1_io_lookup_4_word_17),
+    .io_lookup_4_word_18  (_sorts_1_io_lookup_4_word_18),
+    .io_lookup_4_word_19  (_sorts_1_io_lookup_4_word_19),
+    .io_lookup_4_word_20  (_sorts_1_io_lookup_4_word_20),
+    .io_lookup_4_word_21  (_sorts_1_io_lookup_4_word_21),
+    .io_lookup_4_word_22  (_sorts_1_io_lookup_4_word_22),
+    .io_lookup_4_word_23  (_sorts_1_io_lookup_4_word_23),
+    .io_lookup_4_word_24  (_sorts_1_io_lookup_4_word_24),
+    .io_lookup_4_word_25  (_sorts_1_io_lookup_4_word_25),
+    .io_lookup_4_word_26  (_sorts_1_io_lookup_4_word_26),
+    .io_lookup_4_word_27  (_sorts_1_io_lookup_4_word_27),
+    .io_lookup_4_word_28  (_sorts_1_io_lookup_4_word_28),
+    .io_lookup_4_word_29  (_sorts_1_io_lookup_4_word_29),
+    .io_lookup_4_word_30  (_sorts_1_io_lookup_4_word_30),
+    .io_lookup_4_word_31  (_sorts_1_io_lookup_4_word_31),
     .io_lookup_5_bucket   (_gens_5_io_lookup_bucket),
     .io_lookup_5_begin    (_sorts_1_io_lookup_5_begin),
     .io_lookup_5_end      (_sorts_1_io_lookup_5_end),
@@ -39414,6 +43413,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_5_word_13  (_sorts_1_io_lookup_5_word_13),
     .io_lookup_5_word_14  (_sorts_1_io_lookup_5_word_14),
     .io_lookup_5_word_15  (_sorts_1_io_lookup_5_word_15),
+    .io_lookup_5_word_16  (_sorts_1_io_lookup_5_word_16),
+    .io_lookup_5_word_17  (_sorts_1_io_lookup_5_word_17),
+    .io_lookup_5_word_18  (_sorts_1_io_lookup_5_word_18),
+    .io_lookup_5_word_19  (_sorts_1_io_lookup_5_word_19),
+    .io_lookup_5_word_20  (_sorts_1_io_lookup_5_word_20),
+    .io_lookup_5_word_21  (_sorts_1_io_lookup_5_word_21),
+    .io_lookup_5_word_22  (_sorts_1_io_lookup_5_word_22),
+    .io_lookup_5_word_23  (_sorts_1_io_lookup_5_word_23),
+    .io_lookup_5_word_24  (_sorts_1_io_lookup_5_word_24),
+    .io_lookup_5_word_25  (_sorts_1_io_lookup_5_word_25),
+    .io_lookup_5_word_26  (_sorts_1_io_lookup_5_word_26),
+    .io_lookup_5_word_27  (_sorts_1_io_lookup_5_word_27),
+    .io_lookup_5_word_28  (_sorts_1_io_lookup_5_word_28),
+    .io_lookup_5_word_29  (_sorts_1_io_lookup_5_word_29),
+    .io_lookup_5_word_30  (_sorts_1_io_lookup_5_word_30),
+    .io_lookup_5_word_31  (_sorts_1_io_lookup_5_word_31),
     .io_lookup_6_bucket   (_gens_6_io_lookup_bucket),
     .io_lookup_6_begin    (_sorts_1_io_lookup_6_begin),
     .io_lookup_6_end      (_sorts_1_io_lookup_6_end),
@@ -39433,6 +43448,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_6_word_13  (_sorts_1_io_lookup_6_word_13),
     .io_lookup_6_word_14  (_sorts_1_io_lookup_6_word_14),
     .io_lookup_6_word_15  (_sorts_1_io_lookup_6_word_15),
+    .io_lookup_6_word_16  (_sorts_1_io_lookup_6_word_16),
+    .io_lookup_6_word_17  (_sorts_1_io_lookup_6_word_17),
+    .io_lookup_6_word_18  (_sorts_1_io_lookup_6_word_18),
+    .io_lookup_6_word_19  (_sorts_1_io_lookup_6_word_19),
+    .io_lookup_6_word_20  (_sorts_1_io_lookup_6_word_20),
+    .io_lookup_6_word_21  (_sorts_1_io_lookup_6_word_21),
+    .io_lookup_6_word_22  (_sorts_1_io_lookup_6_word_22),
+    .io_lookup_6_word_23  (_sorts_1_io_lookup_6_word_23),
+    .io_lookup_6_word_24  (_sorts_1_io_lookup_6_word_24),
+    .io_lookup_6_word_25  (_sorts_1_io_lookup_6_word_25),
+    .io_lookup_6_word_26  (_sorts_1_io_lookup_6_word_26),
+    .io_lookup_6_word_27  (_sorts_1_io_lookup_6_word_27),
+    .io_lookup_6_word_28  (_sorts_1_io_lookup_6_word_28),
+    .io_lookup_6_word_29  (_sorts_1_io_lookup_6_word_29),
+    .io_lookup_6_word_30  (_sorts_1_io_lookup_6_word_30),
+    .io_lookup_6_word_31  (_sorts_1_io_lookup_6_word_31),
     .io_lookup_7_bucket   (_gens_7_io_lookup_bucket),
     .io_lookup_7_begin    (_sorts_1_io_lookup_7_begin),
     .io_lookup_7_end      (_sorts_1_io_lookup_7_end),
@@ -39452,6 +43483,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_7_word_13  (_sorts_1_io_lookup_7_word_13),
     .io_lookup_7_word_14  (_sorts_1_io_lookup_7_word_14),
     .io_lookup_7_word_15  (_sorts_1_io_lookup_7_word_15),
+    .io_lookup_7_word_16  (_sorts_1_io_lookup_7_word_16),
+    .io_lookup_7_word_17  (_sorts_1_io_lookup_7_word_17),
+    .io_lookup_7_word_18  (_sorts_1_io_lookup_7_word_18),
+    .io_lookup_7_word_19  (_sorts_1_io_lookup_7_word_19),
+    .io_lookup_7_word_20  (_sorts_1_io_lookup_7_word_20),
+    .io_lookup_7_word_21  (_sorts_1_io_lookup_7_word_21),
+    .io_lookup_7_word_22  (_sorts_1_io_lookup_7_word_22),
+    .io_lookup_7_word_23  (_sorts_1_io_lookup_7_word_23),
+    .io_lookup_7_word_24  (_sorts_1_io_lookup_7_word_24),
+    .io_lookup_7_word_25  (_sorts_1_io_lookup_7_word_25),
+    .io_lookup_7_word_26  (_sorts_1_io_lookup_7_word_26),
+    .io_lookup_7_word_27  (_sorts_1_io_lookup_7_word_27),
+    .io_lookup_7_word_28  (_sorts_1_io_lookup_7_word_28),
+    .io_lookup_7_word_29  (_sorts_1_io_lookup_7_word_29),
+    .io_lookup_7_word_30  (_sorts_1_io_lookup_7_word_30),
+    .io_lookup_7_word_31  (_sorts_1_io_lookup_7_word_31),
     .io_lookup_8_bucket   (_gens_8_io_lookup_bucket),
     .io_lookup_8_begin    (_sorts_1_io_lookup_8_begin),
     .io_lookup_8_end      (_sorts_1_io_lookup_8_end),
@@ -39471,6 +43518,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_8_word_13  (_sorts_1_io_lookup_8_word_13),
     .io_lookup_8_word_14  (_sorts_1_io_lookup_8_word_14),
     .io_lookup_8_word_15  (_sorts_1_io_lookup_8_word_15),
+    .io_lookup_8_word_16  (_sorts_1_io_lookup_8_word_16),
+    .io_lookup_8_word_17  (_sorts_1_io_lookup_8_word_17),
+    .io_lookup_8_word_18  (_sorts_1_io_lookup_8_word_18),
+    .io_lookup_8_word_19  (_sorts_1_io_lookup_8_word_19),
+    .io_lookup_8_word_20  (_sorts_1_io_lookup_8_word_20),
+    .io_lookup_8_word_21  (_sorts_1_io_lookup_8_word_21),
+    .io_lookup_8_word_22  (_sorts_1_io_lookup_8_word_22),
+    .io_lookup_8_word_23  (_sorts_1_io_lookup_8_word_23),
+    .io_lookup_8_word_24  (_sorts_1_io_lookup_8_word_24),
+    .io_lookup_8_word_25  (_sorts_1_io_lookup_8_word_25),
+    .io_lookup_8_word_26  (_sorts_1_io_lookup_8_word_26),
+    .io_lookup_8_word_27  (_sorts_1_io_lookup_8_word_27),
+    .io_lookup_8_word_28  (_sorts_1_io_lookup_8_word_28),
+    .io_lookup_8_word_29  (_sorts_1_io_lookup_8_word_29),
+    .io_lookup_8_word_30  (_sorts_1_io_lookup_8_word_30),
+    .io_lookup_8_word_31  (_sorts_1_io_lookup_8_word_31),
     .io_lookup_9_bucket   (_gens_9_io_lookup_bucket),
     .io_lookup_9_begin    (_sorts_1_io_lookup_9_begin),
     .io_lookup_9_end      (_sorts_1_io_lookup_9_end),
@@ -39490,6 +43553,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_9_word_13  (_sorts_1_io_lookup_9_word_13),
     .io_lookup_9_word_14  (_sorts_1_io_lookup_9_word_14),
     .io_lookup_9_word_15  (_sorts_1_io_lookup_9_word_15),
+    .io_lookup_9_word_16  (_sorts_1_io_lookup_9_word_16),
+    .io_lookup_9_word_17  (_sorts_1_io_lookup_9_word_17),
+    .io_lookup_9_word_18  (_sorts_1_io_lookup_9_word_18),
+    .io_lookup_9_word_19  (_sorts_1_io_lookup_9_word_19),
+    .io_lookup_9_word_20  (_sorts_1_io_lookup_9_word_20),
+    .io_lookup_9_word_21  (_sorts_1_io_lookup_9_word_21),
+    .io_lookup_9_word_22  (_sorts_1_io_lookup_9_word_22),
+    .io_lookup_9_word_23  (_sorts_1_io_lookup_9_word_23),
+    .io_lookup_9_word_24  (_sorts_1_io_lookup_9_word_24),
+    .io_lookup_9_word_25  (_sorts_1_io_lookup_9_word_25),
+    .io_lookup_9_word_26  (_sorts_1_io_lookup_9_word_26),
+    .io_lookup_9_word_27  (_sorts_1_io_lookup_9_word_27),
+    .io_lookup_9_word_28  (_sorts_1_io_lookup_9_word_28),
+    .io_lookup_9_word_29  (_sorts_1_io_lookup_9_word_29),
+    .io_lookup_9_word_30  (_sorts_1_io_lookup_9_word_30),
+    .io_lookup_9_word_31  (_sorts_1_io_lookup_9_word_31),
     .io_lookup_10_bucket  (_gens_10_io_lookup_bucket),
     .io_lookup_10_begin   (_sorts_1_io_lookup_10_begin),
     .io_lookup_10_end     (_sorts_1_io_lookup_10_end),
@@ -39509,6 +43588,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_10_word_13 (_sorts_1_io_lookup_10_word_13),
     .io_lookup_10_word_14 (_sorts_1_io_lookup_10_word_14),
     .io_lookup_10_word_15 (_sorts_1_io_lookup_10_word_15),
+    .io_lookup_10_word_16 (_sorts_1_io_lookup_10_word_16),
+    .io_lookup_10_word_17 (_sorts_1_io_lookup_10_word_17),
+    .io_lookup_10_word_18 (_sorts_1_io_lookup_10_word_18),
+    .io_lookup_10_word_19 (_sorts_1_io_lookup_10_word_19),
+    .io_lookup_10_word_20 (_sorts_1_io_lookup_10_word_20),
+    .io_lookup_10_word_21 (_sorts_1_io_lookup_10_word_21),
+    .io_lookup_10_word_22 (_sorts_1_io_lookup_10_word_22),
+    .io_lookup_10_word_23 (_sorts_1_io_lookup_10_word_23),
+    .io_lookup_10_word_24 (_sorts_1_io_lookup_10_word_24),
+    .io_lookup_10_word_25 (_sorts_1_io_lookup_10_word_25),
+    .io_lookup_10_word_26 (_sorts_1_io_lookup_10_word_26),
+    .io_lookup_10_word_27 (_sorts_1_io_lookup_10_word_27),
+    .io_lookup_10_word_28 (_sorts_1_io_lookup_10_word_28),
+    .io_lookup_10_word_29 (_sorts_1_io_lookup_10_word_29),
+    .io_lookup_10_word_30 (_sorts_1_io_lookup_10_word_30),
+    .io_lookup_10_word_31 (_sorts_1_io_lookup_10_word_31),
     .io_lookup_11_bucket  (_gens_11_io_lookup_bucket),
     .io_lookup_11_begin   (_sorts_1_io_lookup_11_begin),
     .io_lookup_11_end     (_sorts_1_io_lookup_11_end),
@@ -39528,6 +43623,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_11_word_13 (_sorts_1_io_lookup_11_word_13),
     .io_lookup_11_word_14 (_sorts_1_io_lookup_11_word_14),
     .io_lookup_11_word_15 (_sorts_1_io_lookup_11_word_15),
+    .io_lookup_11_word_16 (_sorts_1_io_lookup_11_word_16),
+    .io_lookup_11_word_17 (_sorts_1_io_lookup_11_word_17),
+    .io_lookup_11_word_18 (_sorts_1_io_lookup_11_word_18),
+    .io_lookup_11_word_19 (_sorts_1_io_lookup_11_word_19),
+    .io_lookup_11_word_20 (_sorts_1_io_lookup_11_word_20),
+    .io_lookup_11_word_21 (_sorts_1_io_lookup_11_word_21),
+    .io_lookup_11_word_22 (_sorts_1_io_lookup_11_word_22),
+    .io_lookup_11_word_23 (_sorts_1_io_lookup_11_word_23),
+    .io_lookup_11_word_24 (_sorts_1_io_lookup_11_word_24),
+    .io_lookup_11_word_25 (_sorts_1_io_lookup_11_word_25),
+    .io_lookup_11_word_26 (_sorts_1_io_lookup_11_word_26),
+    .io_lookup_11_word_27 (_sorts_1_io_lookup_11_word_27),
+    .io_lookup_11_word_28 (_sorts_1_io_lookup_11_word_28),
+    .io_lookup_11_word_29 (_sorts_1_io_lookup_11_word_29),
+    .io_lookup_11_word_30 (_sorts_1_io_lookup_11_word_30),
+    .io_lookup_11_word_31 (_sorts_1_io_lookup_11_word_31),
     .io_lookup_12_bucket  (_gens_12_io_lookup_bucket),
     .io_lookup_12_begin   (_sorts_1_io_lookup_12_begin),
     .io_lookup_12_end     (_sorts_1_io_lookup_12_end),
@@ -39547,6 +43658,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_12_word_13 (_sorts_1_io_lookup_12_word_13),
     .io_lookup_12_word_14 (_sorts_1_io_lookup_12_word_14),
     .io_lookup_12_word_15 (_sorts_1_io_lookup_12_word_15),
+    .io_lookup_12_word_16 (_sorts_1_io_lookup_12_word_16),
+    .io_lookup_12_word_17 (_sorts_1_io_lookup_12_word_17),
+    .io_lookup_12_word_18 (_sorts_1_io_lookup_12_word_18),
+    .io_lookup_12_word_19 (_sorts_1_io_lookup_12_word_19),
+    .io_lookup_12_word_20 (_sorts_1_io_lookup_12_word_20),
+    .io_lookup_12_word_21 (_sorts_1_io_lookup_12_word_21),
+    .io_lookup_12_word_22 (_sorts_1_io_lookup_12_word_22),
+    .io_lookup_12_word_23 (_sorts_1_io_lookup_12_word_23),
+    .io_lookup_12_word_24 (_sorts_1_io_lookup_12_word_24),
+    .io_lookup_12_word_25 (_sorts_1_io_lookup_12_word_25),
+    .io_lookup_12_word_26 (_sorts_1_io_lookup_12_word_26),
+    .io_lookup_12_word_27 (_sorts_1_io_lookup_12_word_27),
+    .io_lookup_12_word_28 (_sorts_1_io_lookup_12_word_28),
+    .io_lookup_12_word_29 (_sorts_1_io_lookup_12_word_29),
+    .io_lookup_12_word_30 (_sorts_1_io_lookup_12_word_30),
+    .io_lookup_12_word_31 (_sorts_1_io_lookup_12_word_31),
     .io_lookup_13_bucket  (_gens_13_io_lookup_bucket),
     .io_lookup_13_begin   (_sorts_1_io_lookup_13_begin),
     .io_lookup_13_end     (_sorts_1_io_lookup_13_end),
@@ -39566,6 +43693,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_13_word_13 (_sorts_1_io_lookup_13_word_13),
     .io_lookup_13_word_14 (_sorts_1_io_lookup_13_word_14),
     .io_lookup_13_word_15 (_sorts_1_io_lookup_13_word_15),
+    .io_lookup_13_word_16 (_sorts_1_io_lookup_13_word_16),
+    .io_lookup_13_word_17 (_sorts_1_io_lookup_13_word_17),
+    .io_lookup_13_word_18 (_sorts_1_io_lookup_13_word_18),
+    .io_lookup_13_word_19 (_sorts_1_io_lookup_13_word_19),
+    .io_lookup_13_word_20 (_sorts_1_io_lookup_13_word_20),
+    .io_lookup_13_word_21 (_sorts_1_io_lookup_13_word_21),
+    .io_lookup_13_word_22 (_sorts_1_io_lookup_13_word_22),
+    .io_lookup_13_word_23 (_sorts_1_io_lookup_13_word_23),
+    .io_lookup_13_word_24 (_sorts_1_io_lookup_13_word_24),
+    .io_lookup_13_word_25 (_sorts_1_io_lookup_13_word_25),
+    .io_lookup_13_word_26 (_sorts_1_io_lookup_13_word_26),
+    .io_lookup_13_word_27 (_sorts_1_io_lookup_13_word_27),
+    .io_lookup_13_word_28 (_sorts_1_io_lookup_13_word_28),
+    .io_lookup_13_word_29 (_sorts_1_io_lookup_13_word_29),
+    .io_lookup_13_word_30 (_sorts_1_io_lookup_13_word_30),
+    .io_lookup_13_word_31 (_sorts_1_io_lookup_13_word_31),
     .io_lookup_14_bucket  (_gens_14_io_lookup_bucket),
     .io_lookup_14_begin   (_sorts_1_io_lookup_14_begin),
     .io_lookup_14_end     (_sorts_1_io_lookup_14_end),
@@ -39585,6 +43728,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_14_word_13 (_sorts_1_io_lookup_14_word_13),
     .io_lookup_14_word_14 (_sorts_1_io_lookup_14_word_14),
     .io_lookup_14_word_15 (_sorts_1_io_lookup_14_word_15),
+    .io_lookup_14_word_16 (_sorts_1_io_lookup_14_word_16),
+    .io_lookup_14_word_17 (_sorts_1_io_lookup_14_word_17),
+    .io_lookup_14_word_18 (_sorts_1_io_lookup_14_word_18),
+    .io_lookup_14_word_19 (_sorts_1_io_lookup_14_word_19),
+    .io_lookup_14_word_20 (_sorts_1_io_lookup_14_word_20),
+    .io_lookup_14_word_21 (_sorts_1_io_lookup_14_word_21),
+    .io_lookup_14_word_22 (_sorts_1_io_lookup_14_word_22),
+    .io_lookup_14_word_23 (_sorts_1_io_lookup_14_word_23),
+    .io_lookup_14_word_24 (_sorts_1_io_lookup_14_word_24),
+    .io_lookup_14_word_25 (_sorts_1_io_lookup_14_word_25),
+    .io_lookup_14_word_26 (_sorts_1_io_lookup_14_word_26),
+    .io_lookup_14_word_27 (_sorts_1_io_lookup_14_word_27),
+    .io_lookup_14_word_28 (_sorts_1_io_lookup_14_word_28),
+    .io_lookup_14_word_29 (_sorts_1_io_lookup_14_word_29),
+    .io_lookup_14_word_30 (_sorts_1_io_lookup_14_word_30),
+    .io_lookup_14_word_31 (_sorts_1_io_lookup_14_word_31),
     .io_lookup_15_bucket  (_gens_15_io_lookup_bucket),
     .io_lookup_15_begin   (_sorts_1_io_lookup_15_begin),
     .io_lookup_15_end     (_sorts_1_io_lookup_15_end),
@@ -39604,6 +43763,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_15_word_13 (_sorts_1_io_lookup_15_word_13),
     .io_lookup_15_word_14 (_sorts_1_io_lookup_15_word_14),
     .io_lookup_15_word_15 (_sorts_1_io_lookup_15_word_15),
+    .io_lookup_15_word_16 (_sorts_1_io_lookup_15_word_16),
+    .io_lookup_15_word_17 (_sorts_1_io_lookup_15_word_17),
+    .io_lookup_15_word_18 (_sorts_1_io_lookup_15_word_18),
+    .io_lookup_15_word_19 (_sorts_1_io_lookup_15_word_19),
+    .io_lookup_15_word_20 (_sorts_1_io_lookup_15_word_20),
+    .io_lookup_15_word_21 (_sorts_1_io_lookup_15_word_21),
+    .io_lookup_15_word_22 (_sorts_1_io_lookup_15_word_22),
+    .io_lookup_15_word_23 (_sorts_1_io_lookup_15_word_23),
+    .io_lookup_15_word_24 (_sorts_1_io_lookup_15_word_24),
+    .io_lookup_15_word_25 (_sorts_1_io_lookup_15_word_25),
+    .io_lookup_15_word_26 (_sorts_1_io_lookup_15_word_26),
+    .io_lookup_15_word_27 (_sorts_1_io_lookup_15_word_27),
+    .io_lookup_15_word_28 (_sorts_1_io_lookup_15_word_28),
+    .io_lookup_15_word_29 (_sorts_1_io_lookup_15_word_29),
+    .io_lookup_15_word_30 (_sorts_1_io_lookup_15_word_30),
+    .io_lookup_15_word_31 (_sorts_1_io_lookup_15_word_31),
     .io_entry_0_addr      (_gens_0_io_entry_addr[9:0]),
     .io_entry_0_item      (_sorts_1_io_entry_0_item),
     .io_entry_0_mark      (_sorts_1_io_entry_0_mark),
@@ -39704,7 +43879,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_scattered         (_sorts_1_io_scattered),
     .io_badBucket         (_sorts_1_io_badBucket)
   );
-  BucketSort_n1024_b13_w4_c16_p2_i12_world sorts_2 (
+  BucketSort_n1024_b13_w5_c16_p2_i12_world sorts_2 (
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
@@ -39750,6 +43925,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_0_word_13  (_sorts_2_io_lookup_0_word_13),
     .io_lookup_0_word_14  (_sorts_2_io_lookup_0_word_14),
     .io_lookup_0_word_15  (_sorts_2_io_lookup_0_word_15),
+    .io_lookup_0_word_16  (_sorts_2_io_lookup_0_word_16),
+    .io_lookup_0_word_17  (_sorts_2_io_lookup_0_word_17),
+    .io_lookup_0_word_18  (_sorts_2_io_lookup_0_word_18),
+    .io_lookup_0_word_19  (_sorts_2_io_lookup_0_word_19),
+    .io_lookup_0_word_20  (_sorts_2_io_lookup_0_word_20),
+    .io_lookup_0_word_21  (_sorts_2_io_lookup_0_word_21),
+    .io_lookup_0_word_22  (_sorts_2_io_lookup_0_word_22),
+    .io_lookup_0_word_23  (_sorts_2_io_lookup_0_word_23),
+    .io_lookup_0_word_24  (_sorts_2_io_lookup_0_word_24),
+    .io_lookup_0_word_25  (_sorts_2_io_lookup_0_word_25),
+    .io_lookup_0_word_26  (_sorts_2_io_lookup_0_word_26),
+    .io_lookup_0_word_27  (_sorts_2_io_lookup_0_word_27),
+    .io_lookup_0_word_28  (_sorts_2_io_lookup_0_word_28),
+    .io_lookup_0_word_29  (_sorts_2_io_lookup_0_word_29),
+    .io_lookup_0_word_30  (_sorts_2_io_lookup_0_word_30),
+    .io_lookup_0_word_31  (_sorts_2_io_lookup_0_word_31),
     .io_lookup_1_bucket   (_gens_1_io_lookup_bucket),
     .io_lookup_1_begin    (_sorts_2_io_lookup_1_begin),
     .io_lookup_1_end      (_sorts_2_io_lookup_1_end),
@@ -39769,6 +43960,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_1_word_13  (_sorts_2_io_lookup_1_word_13),
     .io_lookup_1_word_14  (_sorts_2_io_lookup_1_word_14),
     .io_lookup_1_word_15  (_sorts_2_io_lookup_1_word_15),
+    .io_lookup_1_word_16  (_sorts_2_io_lookup_1_word_16),
+    .io_lookup_1_word_17  (_sorts_2_io_lookup_1_word_17),
+    .io_lookup_1_word_18  (_sorts_2_io_lookup_1_word_18),
+    .io_lookup_1_word_19  (_sorts_2_io_lookup_1_word_19),
+    .io_lookup_1_word_20  (_sorts_2_io_lookup_1_word_20),
+    .io_lookup_1_word_21  (_sorts_2_io_lookup_1_word_21),
+    .io_lookup_1_word_22  (_sorts_2_io_lookup_1_word_22),
+    .io_lookup_1_word_23  (_sorts_2_io_lookup_1_word_23),
+    .io_lookup_1_word_24  (_sorts_2_io_lookup_1_word_24),
+    .io_lookup_1_word_25  (_sorts_2_io_lookup_1_word_25),
+    .io_lookup_1_word_26  (_sorts_2_io_lookup_1_word_26),
+    .io_lookup_1_word_27  (_sorts_2_io_lookup_1_word_27),
+    .io_lookup_1_word_28  (_sorts_2_io_lookup_1_word_28),
+    .io_lookup_1_word_29  (_sorts_2_io_lookup_1_word_29),
+    .io_lookup_1_word_30  (_sorts_2_io_lookup_1_word_30),
+    .io_lookup_1_word_31  (_sorts_2_io_lookup_1_word_31),
     .io_lookup_2_bucket   (_gens_2_io_lookup_bucket),
     .io_lookup_2_begin    (_sorts_2_io_lookup_2_begin),
     .io_lookup_2_end      (_sorts_2_io_lookup_2_end),
@@ -39788,6 +43995,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_2_word_13  (_sorts_2_io_lookup_2_word_13),
     .io_lookup_2_word_14  (_sorts_2_io_lookup_2_word_14),
     .io_lookup_2_word_15  (_sorts_2_io_lookup_2_word_15),
+    .io_lookup_2_word_16  (_sorts_2_io_lookup_2_word_16),
+    .io_lookup_2_word_17  (_sorts_2_io_lookup_2_word_17),
+    .io_lookup_2_word_18  (_sorts_2_io_lookup_2_word_18),
+    .io_lookup_2_word_19  (_sorts_2_io_lookup_2_word_19),
+    .io_lookup_2_word_20  (_sorts_2_io_lookup_2_word_20),
+    .io_lookup_2_word_21  (_sorts_2_io_lookup_2_word_21),
+    .io_lookup_2_word_22  (_sorts_2_io_lookup_2_word_22),
+    .io_lookup_2_word_23  (_sorts_2_io_lookup_2_word_23),
+    .io_lookup_2_word_24  (_sorts_2_io_lookup_2_word_24),
+    .io_lookup_2_word_25  (_sorts_2_io_lookup_2_word_25),
+    .io_lookup_2_word_26  (_sorts_2_io_lookup_2_word_26),
+    .io_lookup_2_word_27  (_sorts_2_io_lookup_2_word_27),
+    .io_lookup_2_word_28  (_sorts_2_io_lookup_2_word_28),
+    .io_lookup_2_word_29  (_sorts_2_io_lookup_2_word_29),
+    .io_lookup_2_word_30  (_sorts_2_io_lookup_2_word_30),
+    .io_lookup_2_word_31  (_sorts_2_io_lookup_2_word_31),
     .io_lookup_3_bucket   (_gens_3_io_lookup_bucket),
     .io_lookup_3_begin    (_sorts_2_io_lookup_3_begin),
     .io_lookup_3_end      (_sorts_2_io_lookup_3_end),
@@ -39807,6 +44030,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_3_word_13  (_sorts_2_io_lookup_3_word_13),
     .io_lookup_3_word_14  (_sorts_2_io_lookup_3_word_14),
     .io_lookup_3_word_15  (_sorts_2_io_lookup_3_word_15),
+    .io_lookup_3_word_16  (_sorts_2_io_lookup_3_word_16),
+    .io_lookup_3_word_17  (_sorts_2_io_lookup_3_word_17),
+    .io_lookup_3_word_18  (_sorts_2_io_lookup_3_word_18),
+    .io_lookup_3_word_19  (_sorts_2_io_lookup_3_word_19),
+    .io_lookup_3_word_20  (_sorts_2_io_lookup_3_word_20),
+    .io_lookup_3_word_21  (_sorts_2_io_lookup_3_word_21),
+    .io_lookup_3_word_22  (_sorts_2_io_lookup_3_word_22),
+    .io_lookup_3_word_23  (_sorts_2_io_lookup_3_word_23),
+    .io_lookup_3_word_24  (_sorts_2_io_lookup_3_word_24),
+    .io_lookup_3_word_25  (_sorts_2_io_lookup_3_word_25),
+    .io_lookup_3_word_26  (_sorts_2_io_lookup_3_word_26),
+    .io_lookup_3_word_27  (_sorts_2_io_lookup_3_word_27),
+    .io_lookup_3_word_28  (_sorts_2_io_lookup_3_word_28),
+    .io_lookup_3_word_29  (_sorts_2_io_lookup_3_word_29),
+    .io_lookup_3_word_30  (_sorts_2_io_lookup_3_word_30),
+    .io_lookup_3_word_31  (_sorts_2_io_lookup_3_word_31),
     .io_lookup_4_bucket   (_gens_4_io_lookup_bucket),
     .io_lookup_4_begin    (_sorts_2_io_lookup_4_begin),
     .io_lookup_4_end      (_sorts_2_io_lookup_4_end),
@@ -39826,6 +44065,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_4_word_13  (_sorts_2_io_lookup_4_word_13),
     .io_lookup_4_word_14  (_sorts_2_io_lookup_4_word_14),
     .io_lookup_4_word_15  (_sorts_2_io_lookup_4_word_15),
+    .io_lookup_4_word_16  (_sorts_2_io_lookup_4_word_16),
+    .io_lookup_4_word_17  (_sorts_2_io_lookup_4_word_17),
+    .io_lookup_4_word_18  (_sorts_2_io_lookup_4_word_18),
+    .io_lookup_4_word_19  (_sorts_2_io_lookup_4_word_19),
+    .io_lookup_4_word_20  (_sorts_2_io_lookup_4_word_20),
+    .io_lookup_4_word_21  (_sorts_2_io_lookup_4_word_21),
+    .io_lookup_4_word_22  (_sorts_2_io_lookup_4_word_22),
+    .io_lookup_4_word_23  (_sorts_2_io_lookup_4_word_23),
+    .io_lookup_4_word_24  (_sorts_2_io_lookup_4_word_24),
+    .io_lookup_4_word_25  (_sorts_2_io_lookup_4_word_25),
+    .io_lookup_4_word_26  (_sorts_2_io_lookup_4_word_26),
+    .io_lookup_4_word_27  (_sorts_2_io_lookup_4_word_27),
+    .io_lookup_4_word_28  (_sorts_2_io_lookup_4_word_28),
+    .io_lookup_4_word_29  (_sorts_2_io_lookup_4_word_29),
+    .io_lookup_4_word_30  (_sorts_2_io_lookup_4_word_30),
+    .io_lookup_4_word_31  (_sorts_2_io_lookup_4_word_31),
     .io_lookup_5_bucket   (_gens_5_io_lookup_bucket),
     .io_lookup_5_begin    (_sorts_2_io_lookup_5_begin),
     .io_lookup_5_end      (_sorts_2_io_lookup_5_end),
@@ -39845,6 +44100,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_5_word_13  (_sorts_2_io_lookup_5_word_13),
     .io_lookup_5_word_14  (_sorts_2_io_lookup_5_word_14),
     .io_lookup_5_word_15  (_sorts_2_io_lookup_5_word_15),
+    .io_lookup_5_word_16  (_sorts_2_io_lookup_5_word_16),
+    .io_lookup_5_word_17  (_sorts_2_io_lookup_5_word_17),
+    .io_lookup_5_word_18  (_sorts_2_io_lookup_5_word_18),
+    .io_lookup_5_word_19  (_sorts_2_io_lookup_5_word_19),
+    .io_lookup_5_word_20  (_sorts_2_io_lookup_5_word_20),
+    .io_lookup_5_word_21  (_sorts_2_io_lookup_5_word_21),
+    .io_lookup_5_word_22  (_sorts_2_io_lookup_5_word_22),
+    .io_lookup_5_word_23  (_sorts_2_io_lookup_5_word_23),
+    .io_lookup_5_word_24  (_sorts_2_io_lookup_5_word_24),
+    .io_lookup_5_word_25  (_sorts_2_io_lookup_5_word_25),
+    .io_lookup_5_word_26  (_sorts_2_io_lookup_5_word_26),
+    .io_lookup_5_word_27  (_sorts_2_io_lookup_5_word_27),
+    .io_lookup_5_word_28  (_sorts_2_io_lookup_5_word_28),
+    .io_lookup_5_word_29  (_sorts_2_io_lookup_5_word_29),
+    .io_lookup_5_word_30  (_sorts_2_io_lookup_5_word_30),
+    .io_lookup_5_word_31  (_sorts_2_io_lookup_5_word_31),
     .io_lookup_6_bucket   (_gens_6_io_lookup_bucket),
     .io_lookup_6_begin    (_sorts_2_io_lookup_6_begin),
     .io_lookup_6_end      (_sorts_2_io_lookup_6_end),
@@ -39864,6 +44135,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_6_word_13  (_sorts_2_io_lookup_6_word_13),
     .io_lookup_6_word_14  (_sorts_2_io_lookup_6_word_14),
     .io_lookup_6_word_15  (_sorts_2_io_lookup_6_word_15),
+    .io_lookup_6_word_16  (_sorts_2_io_lookup_6_word_16),
+    .io_lookup_6_word_17  (_sorts_2_io_lookup_6_word_17),
+    .io_lookup_6_word_18  (_sorts_2_io_lookup_6_word_18),
+    .io_lookup_6_word_19  (_sorts_2_io_lookup_6_word_19),
+    .io_lookup_6_word_20  (_sorts_2_io_lookup_6_word_20),
+    .io_lookup_6_word_21  (_sorts_2_io_lookup_6_word_21),
+    .io_lookup_6_word_22  (_sorts_2_io_lookup_6_word_22),
+    .io_lookup_6_word_23  (_sorts_2_io_lookup_6_word_23),
+    .io_lookup_6_word_24  (_sorts_2_io_lookup_6_word_24),
+    .io_lookup_6_word_25  (_sorts_2_io_lookup_6_word_25),
+    .io_lookup_6_word_26  (_sorts_2_io_lookup_6_word_26),
+    .io_lookup_6_word_27  (_sorts_2_io_lookup_6_word_27),
+    .io_lookup_6_word_28  (_sorts_2_io_lookup_6_word_28),
+    .io_lookup_6_word_29  (_sorts_2_io_lookup_6_word_29),
+    .io_lookup_6_word_30  (_sorts_2_io_lookup_6_word_30),
+    .io_lookup_6_word_31  (_sorts_2_io_lookup_6_word_31),
     .io_lookup_7_bucket   (_gens_7_io_lookup_bucket),
     .io_lookup_7_begin    (_sorts_2_io_lookup_7_begin),
     .io_lookup_7_end      (_sorts_2_io_lookup_7_end),
@@ -39883,6 +44170,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_7_word_13  (_sorts_2_io_lookup_7_word_13),
     .io_lookup_7_word_14  (_sorts_2_io_lookup_7_word_14),
     .io_lookup_7_word_15  (_sorts_2_io_lookup_7_word_15),
+    .io_lookup_7_word_16  (_sorts_2_io_lookup_7_word_16),
+    .io_lookup_7_word_17  (_sorts_2_io_lookup_7_word_17),
+    .io_lookup_7_word_18  (_sorts_2_io_lookup_7_word_18),
+    .io_lookup_7_word_19  (_sorts_2_io_lookup_7_word_19),
+    .io_lookup_7_word_20  (_sorts_2_io_lookup_7_word_20),
+    .io_lookup_7_word_21  (_sorts_2_io_lookup_7_word_21),
+    .io_lookup_7_word_22  (_sorts_2_io_lookup_7_word_22),
+    .io_lookup_7_word_23  (_sorts_2_io_lookup_7_word_23),
+    .io_lookup_7_word_24  (_sorts_2_io_lookup_7_word_24),
+    .io_lookup_7_word_25  (_sorts_2_io_lookup_7_word_25),
+    .io_lookup_7_word_26  (_sorts_2_io_lookup_7_word_26),
+    .io_lookup_7_word_27  (_sorts_2_io_lookup_7_word_27),
+    .io_lookup_7_word_28  (_sorts_2_io_lookup_7_word_28),
+    .io_lookup_7_word_29  (_sorts_2_io_lookup_7_word_29),
+    .io_lookup_7_word_30  (_sorts_2_io_lookup_7_word_30),
+    .io_lookup_7_word_31  (_sorts_2_io_lookup_7_word_31),
     .io_lookup_8_bucket   (_gens_8_io_lookup_bucket),
     .io_lookup_8_begin    (_sorts_2_io_lookup_8_begin),
     .io_lookup_8_end      (_sorts_2_io_lookup_8_end),
@@ -39902,6 +44205,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_8_word_13  (_sorts_2_io_lookup_8_word_13),
     .io_lookup_8_word_14  (_sorts_2_io_lookup_8_word_14),
     .io_lookup_8_word_15  (_sorts_2_io_lookup_8_word_15),
+    .io_lookup_8_word_16  (_sorts_2_io_lookup_8_word_16),
+    .io_lookup_8_word_17  (_sorts_2_io_lookup_8_word_17),
+    .io_lookup_8_word_18  (_sorts_2_io_lookup_8_word_18),
+    .io_lookup_8_word_19  (_sorts_2_io_lookup_8_word_19),
+    .io_lookup_8_word_20  (_sorts_2_io_lookup_8_word_20),
+    .io_lookup_8_word_21  (_sorts_2_io_lookup_8_word_21),
+    .io_lookup_8_word_22  (_sorts_2_io_lookup_8_word_22),
+    .io_lookup_8_word_23  (_sorts_2_io_lookup_8_word_23),
+    .io_lookup_8_word_24  (_sorts_2_io_lookup_8_word_24),
+    .io_lookup_8_word_25  (_sorts_2_io_lookup_8_word_25),
+    .io_lookup_8_word_26  (_sorts_2_io_lookup_8_word_26),
+    .io_lookup_8_word_27  (_sorts_2_io_lookup_8_word_27),
+    .io_lookup_8_word_28  (_sorts_2_io_lookup_8_word_28),
+    .io_lookup_8_word_29  (_sorts_2_io_lookup_8_word_29),
+    .io_lookup_8_word_30  (_sorts_2_io_lookup_8_word_30),
+    .io_lookup_8_word_31  (_sorts_2_io_lookup_8_word_31),
     .io_lookup_9_bucket   (_gens_9_io_lookup_bucket),
     .io_lookup_9_begin    (_sorts_2_io_lookup_9_begin),
     .io_lookup_9_end      (_sorts_2_io_lookup_9_end),
@@ -39921,6 +44240,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_9_word_13  (_sorts_2_io_lookup_9_word_13),
     .io_lookup_9_word_14  (_sorts_2_io_lookup_9_word_14),
     .io_lookup_9_word_15  (_sorts_2_io_lookup_9_word_15),
+    .io_lookup_9_word_16  (_sorts_2_io_lookup_9_word_16),
+    .io_lookup_9_word_17  (_sorts_2_io_lookup_9_word_17),
+    .io_lookup_9_word_18  (_sorts_2_io_lookup_9_word_18),
+    .io_lookup_9_word_19  (_sorts_2_io_lookup_9_word_19),
+    .io_lookup_9_word_20  (_sorts_2_io_lookup_9_word_20),
+    .io_lookup_9_word_21  (_sorts_2_io_lookup_9_word_21),
+    .io_lookup_9_word_22  (_sorts_2_io_lookup_9_word_22),
+    .io_lookup_9_word_23  (_sorts_2_io_lookup_9_word_23),
+    .io_lookup_9_word_24  (_sorts_2_io_lookup_9_word_24),
+    .io_lookup_9_word_25  (_sorts_2_io_lookup_9_word_25),
+    .io_lookup_9_word_26  (_sorts_2_io_lookup_9_word_26),
+    .io_lookup_9_word_27  (_sorts_2_io_lookup_9_word_27),
+    .io_lookup_9_word_28  (_sorts_2_io_lookup_9_word_28),
+    .io_lookup_9_word_29  (_sorts_2_io_lookup_9_word_29),
+    .io_lookup_9_word_30  (_sorts_2_io_lookup_9_word_30),
+    .io_lookup_9_word_31  (_sorts_2_io_lookup_9_word_31),
     .io_lookup_10_bucket  (_gens_10_io_lookup_bucket),
     .io_lookup_10_begin   (_sorts_2_io_lookup_10_begin),
     .io_lookup_10_end     (_sorts_2_io_lookup_10_end),
@@ -39940,6 +44275,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_10_word_13 (_sorts_2_io_lookup_10_word_13),
     .io_lookup_10_word_14 (_sorts_2_io_lookup_10_word_14),
     .io_lookup_10_word_15 (_sorts_2_io_lookup_10_word_15),
+    .io_lookup_10_word_16 (_sorts_2_io_lookup_10_word_16),
+    .io_lookup_10_word_17 (_sorts_2_io_lookup_10_word_17),
+    .io_lookup_10_word_18 (_sorts_2_io_lookup_10_word_18),
+    .io_lookup_10_word_19 (_sorts_2_io_lookup_10_word_19),
+    .io_lookup_10_word_20 (_sorts_2_io_lookup_10_word_20),
+    .io_lookup_10_word_21 (_sorts_2_io_lookup_10_word_21),
+    .io_lookup_10_word_22 (_sorts_2_io_lookup_10_word_22),
+    .io_lookup_10_word_23 (_sorts_2_io_lookup_10_word_23),
+    .io_lookup_10_word_24 (_sorts_2_io_lookup_10_word_24),
+    .io_lookup_10_word_25 (_sorts_2_io_lookup_10_word_25),
+    .io_lookup_10_word_26 (_sorts_2_io_lookup_10_word_26),
+    .io_lookup_10_word_27 (_sorts_2_io_lookup_10_word_27),
+    .io_lookup_10_word_28 (_sorts_2_io_lookup_10_word_28),
+    .io_lookup_10_word_29 (_sorts_2_io_lookup_10_word_29),
+    .io_lookup_10_word_30 (_sorts_2_io_lookup_10_word_30),
+    .io_lookup_10_word_31 (_sorts_2_io_lookup_10_word_31),
     .io_lookup_11_bucket  (_gens_11_io_lookup_bucket),
     .io_lookup_11_begin   (_sorts_2_io_lookup_11_begin),
     .io_lookup_11_end     (_sorts_2_io_lookup_11_end),
@@ -39959,6 +44310,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_11_word_13 (_sorts_2_io_lookup_11_word_13),
     .io_lookup_11_word_14 (_sorts_2_io_lookup_11_word_14),
     .io_lookup_11_word_15 (_sorts_2_io_lookup_11_word_15),
+    .io_lookup_11_word_16 (_sorts_2_io_lookup_11_word_16),
+    .io_lookup_11_word_17 (_sorts_2_io_lookup_11_word_17),
+    .io_lookup_11_word_18 (_sorts_2_io_lookup_11_word_18),
+    .io_lookup_11_word_19 (_sorts_2_io_lookup_11_word_19),
+    .io_lookup_11_word_20 (_sorts_2_io_lookup_11_word_20),
+    .io_lookup_11_word_21 (_sorts_2_io_lookup_11_word_21),
+    .io_lookup_11_word_22 (_sorts_2_io_lookup_11_word_22),
+    .io_lookup_11_word_23 (_sorts_2_io_lookup_11_word_23),
+    .io_lookup_11_word_24 (_sorts_2_io_lookup_11_word_24),
+    .io_lookup_11_word_25 (_sorts_2_io_lookup_11_word_25),
+    .io_lookup_11_word_26 (_sorts_2_io_lookup_11_word_26),
+    .io_lookup_11_word_27 (_sorts_2_io_lookup_11_word_27),
+    .io_lookup_11_word_28 (_sorts_2_io_lookup_11_word_28),
+    .io_lookup_11_word_29 (_sorts_2_io_lookup_11_word_29),
+    .io_lookup_11_word_30 (_sorts_2_io_lookup_11_word_30),
+    .io_lookup_11_word_31 (_sorts_2_io_lookup_11_word_31),
     .io_lookup_12_bucket  (_gens_12_io_lookup_bucket),
     .io_lookup_12_begin   (_sorts_2_io_lookup_12_begin),
     .io_lookup_12_end     (_sorts_2_io_lookup_12_end),
@@ -39978,6 +44345,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_12_word_13 (_sorts_2_io_lookup_12_word_13),
     .io_lookup_12_word_14 (_sorts_2_io_lookup_12_word_14),
     .io_lookup_12_word_15 (_sorts_2_io_lookup_12_word_15),
+    .io_lookup_12_word_16 (_sorts_2_io_lookup_12_word_16),
+    .io_lookup_12_word_17 (_sorts_2_io_lookup_12_word_17),
+    .io_lookup_12_word_18 (_sorts_2_io_lookup_12_word_18),
+    .io_lookup_12_word_19 (_sorts_2_io_lookup_12_word_19),
+    .io_lookup_12_word_20 (_sorts_2_io_lookup_12_word_20),
+    .io_lookup_12_word_21 (_sorts_2_io_lookup_12_word_21),
+    .io_lookup_12_word_22 (_sorts_2_io_lookup_12_word_22),
+    .io_lookup_12_word_23 (_sorts_2_io_lookup_12_word_23),
+    .io_lookup_12_word_24 (_sorts_2_io_lookup_12_word_24),
+    .io_lookup_12_word_25 (_sorts_2_io_lookup_12_word_25),
+    .io_lookup_12_word_26 (_sorts_2_io_lookup_12_word_26),
+    .io_lookup_12_word_27 (_sorts_2_io_lookup_12_word_27),
+    .io_lookup_12_word_28 (_sorts_2_io_lookup_12_word_28),
+    .io_lookup_12_word_29 (_sorts_2_io_lookup_12_word_29),
+    .io_lookup_12_word_30 (_sorts_2_io_lookup_12_word_30),
+    .io_lookup_12_word_31 (_sorts_2_io_lookup_12_word_31),
     .io_lookup_13_bucket  (_gens_13_io_lookup_bucket),
     .io_lookup_13_begin   (_sorts_2_io_lookup_13_begin),
     .io_lookup_13_end     (_sorts_2_io_lookup_13_end),
@@ -39997,6 +44380,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_13_word_13 (_sorts_2_io_lookup_13_word_13),
     .io_lookup_13_word_14 (_sorts_2_io_lookup_13_word_14),
     .io_lookup_13_word_15 (_sorts_2_io_lookup_13_word_15),
+    .io_lookup_13_word_16 (_sorts_2_io_lookup_13_word_16),
+    .io_lookup_13_word_17 (_sorts_2_io_lookup_13_word_17),
+    .io_lookup_13_word_18 (_sorts_2_io_lookup_13_word_18),
+    .io_lookup_13_word_19 (_sorts_2_io_lookup_13_word_19),
+    .io_lookup_13_word_20 (_sorts_2_io_lookup_13_word_20),
+    .io_lookup_13_word_21 (_sorts_2_io_lookup_13_word_21),
+    .io_lookup_13_word_22 (_sorts_2_io_lookup_13_word_22),
+    .io_lookup_13_word_23 (_sorts_2_io_lookup_13_word_23),
+    .io_lookup_13_word_24 (_sorts_2_io_lookup_13_word_24),
+    .io_lookup_13_word_25 (_sorts_2_io_lookup_13_word_25),
+    .io_lookup_13_word_26 (_sorts_2_io_lookup_13_word_26),
+    .io_lookup_13_word_27 (_sorts_2_io_lookup_13_word_27),
+    .io_lookup_13_word_28 (_sorts_2_io_lookup_13_word_28),
+    .io_lookup_13_word_29 (_sorts_2_io_lookup_13_word_29),
+    .io_lookup_13_word_30 (_sorts_2_io_lookup_13_word_30),
+    .io_lookup_13_word_31 (_sorts_2_io_lookup_13_word_31),
     .io_lookup_14_bucket  (_gens_14_io_lookup_bucket),
     .io_lookup_14_begin   (_sorts_2_io_lookup_14_begin),
     .io_lookup_14_end     (_sorts_2_io_lookup_14_end),
@@ -40016,6 +44415,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_14_word_13 (_sorts_2_io_lookup_14_word_13),
     .io_lookup_14_word_14 (_sorts_2_io_lookup_14_word_14),
     .io_lookup_14_word_15 (_sorts_2_io_lookup_14_word_15),
+    .io_lookup_14_word_16 (_sorts_2_io_lookup_14_word_16),
+    .io_lookup_14_word_17 (_sorts_2_io_lookup_14_word_17),
+    .io_lookup_14_word_18 (_sorts_2_io_lookup_14_word_18),
+    .io_lookup_14_word_19 (_sorts_2_io_lookup_14_word_19),
+    .io_lookup_14_word_20 (_sorts_2_io_lookup_14_word_20),
+    .io_lookup_14_word_21 (_sorts_2_io_lookup_14_word_21),
+    .io_lookup_14_word_22 (_sorts_2_io_lookup_14_word_22),
+    .io_lookup_14_word_23 (_sorts_2_io_lookup_14_word_23),
+    .io_lookup_14_word_24 (_sorts_2_io_lookup_14_word_24),
+    .io_lookup_14_word_25 (_sorts_2_io_lookup_14_word_25),
+    .io_lookup_14_word_26 (_sorts_2_io_lookup_14_word_26),
+    .io_lookup_14_word_27 (_sorts_2_io_lookup_14_word_27),
+    .io_lookup_14_word_28 (_sorts_2_io_lookup_14_word_28),
+    .io_lookup_14_word_29 (_sorts_2_io_lookup_14_word_29),
+    .io_lookup_14_word_30 (_sorts_2_io_lookup_14_word_30),
+    .io_lookup_14_word_31 (_sorts_2_io_lookup_14_word_31),
     .io_lookup_15_bucket  (_gens_15_io_lookup_bucket),
     .io_lookup_15_begin   (_sorts_2_io_lookup_15_begin),
     .io_lookup_15_end     (_sorts_2_io_lookup_15_end),
@@ -40035,6 +44450,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_15_word_13 (_sorts_2_io_lookup_15_word_13),
     .io_lookup_15_word_14 (_sorts_2_io_lookup_15_word_14),
     .io_lookup_15_word_15 (_sorts_2_io_lookup_15_word_15),
+    .io_lookup_15_word_16 (_sorts_2_io_lookup_15_word_16),
+    .io_lookup_15_word_17 (_sorts_2_io_lookup_15_word_17),
+    .io_lookup_15_word_18 (_sorts_2_io_lookup_15_word_18),
+    .io_lookup_15_word_19 (_sorts_2_io_lookup_15_word_19),
+    .io_lookup_15_word_20 (_sorts_2_io_lookup_15_word_20),
+    .io_lookup_15_word_21 (_sorts_2_io_lookup_15_word_21),
+    .io_lookup_15_word_22 (_sorts_2_io_lookup_15_word_22),
+    .io_lookup_15_word_23 (_sorts_2_io_lookup_15_word_23),
+    .io_lookup_15_word_24 (_sorts_2_io_lookup_15_word_24),
+    .io_lookup_15_word_25 (_sorts_2_io_lookup_15_word_25),
+    .io_lookup_15_word_26 (_sorts_2_io_lookup_15_word_26),
+    .io_lookup_15_word_27 (_sorts_2_io_lookup_15_word_27),
+    .io_lookup_15_word_28 (_sorts_2_io_lookup_15_word_28),
+    .io_lookup_15_word_29 (_sorts_2_io_lookup_15_word_29),
+    .io_lookup_15_word_30 (_sorts_2_io_lookup_15_word_30),
+    .io_lookup_15_word_31 (_sorts_2_io_lookup_15_word_31),
     .io_entry_0_addr      (_gens_0_io_entry_addr[9:0]),
     .io_entry_0_item      (_sorts_2_io_entry_0_item),
     .io_entry_0_mark      (_sorts_2_io_entry_0_mark),
@@ -40135,7 +44566,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_scattered         (_sorts_2_io_scattered),
     .io_badBucket         (_sorts_2_io_badBucket)
   );
-  BucketSort_n1024_b13_w4_c16_p2_i12_world sorts_3 (
+  BucketSort_n1024_b13_w5_c16_p2_i12_world sorts_3 (
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
@@ -40181,6 +44612,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_0_word_13  (_sorts_3_io_lookup_0_word_13),
     .io_lookup_0_word_14  (_sorts_3_io_lookup_0_word_14),
     .io_lookup_0_word_15  (_sorts_3_io_lookup_0_word_15),
+    .io_lookup_0_word_16  (_sorts_3_io_lookup_0_word_16),
+    .io_lookup_0_word_17  (_sorts_3_io_lookup_0_word_17),
+    .io_lookup_0_word_18  (_sorts_3_io_lookup_0_word_18),
+    .io_lookup_0_word_19  (_sorts_3_io_lookup_0_word_19),
+    .io_lookup_0_word_20  (_sorts_3_io_lookup_0_word_20),
+    .io_lookup_0_word_21  (_sorts_3_io_lookup_0_word_21),
+    .io_lookup_0_word_22  (_sorts_3_io_lookup_0_word_22),
+    .io_lookup_0_word_23  (_sorts_3_io_lookup_0_word_23),
+    .io_lookup_0_word_24  (_sorts_3_io_lookup_0_word_24),
+    .io_lookup_0_word_25  (_sorts_3_io_lookup_0_word_25),
+    .io_lookup_0_word_26  (_sorts_3_io_lookup_0_word_26),
+    .io_lookup_0_word_27  (_sorts_3_io_lookup_0_word_27),
+    .io_lookup_0_word_28  (_sorts_3_io_lookup_0_word_28),
+    .io_lookup_0_word_29  (_sorts_3_io_lookup_0_word_29),
+    .io_lookup_0_word_30  (_sorts_3_io_lookup_0_word_30),
+    .io_lookup_0_word_31  (_sorts_3_io_lookup_0_word_31),
     .io_lookup_1_bucket   (_gens_1_io_lookup_bucket),
     .io_lookup_1_begin    (_sorts_3_io_lookup_1_begin),
     .io_lookup_1_end      (_sorts_3_io_lookup_1_end),
@@ -40200,6 +44647,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_1_word_13  (_sorts_3_io_lookup_1_word_13),
     .io_lookup_1_word_14  (_sorts_3_io_lookup_1_word_14),
     .io_lookup_1_word_15  (_sorts_3_io_lookup_1_word_15),
+    .io_lookup_1_word_16  (_sorts_3_io_lookup_1_word_16),
+    .io_lookup_1_word_17  (_sorts_3_io_lookup_1_word_17),
+    .io_lookup_1_word_18  (_sorts_3_io_lookup_1_word_18),
+    .io_lookup_1_word_19  (_sorts_3_io_lookup_1_word_19),
+    .io_lookup_1_word_20  (_sorts_3_io_lookup_1_word_20),
+    .io_lookup_1_word_21  (_sorts_3_io_lookup_1_word_21),
+    .io_lookup_1_word_22  (_sorts_3_io_lookup_1_word_22),
+    .io_lookup_1_word_23  (_sorts_3_io_lookup_1_word_23),
+    .io_lookup_1_word_24  (_sorts_3_io_lookup_1_word_24),
+    .io_lookup_1_word_25  (_sorts_3_io_lookup_1_word_25),
+    .io_lookup_1_word_26  (_sorts_3_io_lookup_1_word_26),
+    .io_lookup_1_word_27  (_sorts_3_io_lookup_1_word_27),
+    .io_lookup_1_word_28  (_sorts_3_io_lookup_1_word_28),
+    .io_lookup_1_word_29  (_sorts_3_io_lookup_1_word_29),
+    .io_lookup_1_word_30  (_sorts_3_io_lookup_1_word_30),
+    .io_lookup_1_word_31  (_sorts_3_io_lookup_1_word_31),
     .io_lookup_2_bucket   (_gens_2_io_lookup_bucket),
     .io_lookup_2_begin    (_sorts_3_io_lookup_2_begin),
     .io_lookup_2_end      (_sorts_3_io_lookup_2_end),
@@ -40219,6 +44682,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_2_word_13  (_sorts_3_io_lookup_2_word_13),
     .io_lookup_2_word_14  (_sorts_3_io_lookup_2_word_14),
     .io_lookup_2_word_15  (_sorts_3_io_lookup_2_word_15),
+    .io_lookup_2_word_16  (_sorts_3_io_lookup_2_word_16),
+    .io_lookup_2_word_17  (_sorts_3_io_lookup_2_word_17),
+    .io_lookup_2_word_18  (_sorts_3_io_lookup_2_word_18),
+    .io_lookup_2_word_19  (_sorts_3_io_lookup_2_word_19),
+    .io_lookup_2_word_20  (_sorts_3_io_lookup_2_word_20),
+    .io_lookup_2_word_21  (_sorts_3_io_lookup_2_word_21),
+    .io_lookup_2_word_22  (_sorts_3_io_lookup_2_word_22),
+    .io_lookup_2_word_23  (_sorts_3_io_lookup_2_word_23),
+    .io_lookup_2_word_24  (_sorts_3_io_lookup_2_word_24),
+    .io_lookup_2_word_25  (_sorts_3_io_lookup_2_word_25),
+    .io_lookup_2_word_26  (_sorts_3_io_lookup_2_word_26),
+    .io_lookup_2_word_27  (_sorts_3_io_lookup_2_word_27),
+    .io_lookup_2_word_28  (_sorts_3_io_lookup_2_word_28),
+    .io_lookup_2_word_29  (_sorts_3_io_lookup_2_word_29),
+    .io_lookup_2_word_30  (_sorts_3_io_lookup_2_word_30),
+    .io_lookup_2_word_31  (_sorts_3_io_lookup_2_word_31),
     .io_lookup_3_bucket   (_gens_3_io_lookup_bucket),
     .io_lookup_3_begin    (_sorts_3_io_lookup_3_begin),
     .io_lookup_3_end      (_sorts_3_io_lookup_3_end),
@@ -40238,6 +44717,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_3_word_13  (_sorts_3_io_lookup_3_word_13),
     .io_lookup_3_word_14  (_sorts_3_io_lookup_3_word_14),
     .io_lookup_3_word_15  (_sorts_3_io_lookup_3_word_15),
+    .io_lookup_3_word_16  (_sorts_3_io_lookup_3_word_16),
+    .io_lookup_3_word_17  (_sorts_3_io_lookup_3_word_17),
+    .io_lookup_3_word_18  (_sorts_3_io_lookup_3_word_18),
+    .io_lookup_3_word_19  (_sorts_3_io_lookup_3_word_19),
+    .io_lookup_3_word_20  (_sorts_3_io_lookup_3_word_20),
+    .io_lookup_3_word_21  (_sorts_3_io_lookup_3_word_21),
+    .io_lookup_3_word_22  (_sorts_3_io_lookup_3_word_22),
+    .io_lookup_3_word_23  (_sorts_3_io_lookup_3_word_23),
+    .io_lookup_3_word_24  (_sorts_3_io_lookup_3_word_24),
+    .io_lookup_3_word_25  (_sorts_3_io_lookup_3_word_25),
+    .io_lookup_3_word_26  (_sorts_3_io_lookup_3_word_26),
+    .io_lookup_3_word_27  (_sorts_3_io_lookup_3_word_27),
+    .io_lookup_3_word_28  (_sorts_3_io_lookup_3_word_28),
+    .io_lookup_3_word_29  (_sorts_3_io_lookup_3_word_29),
+    .io_lookup_3_word_30  (_sorts_3_io_lookup_3_word_30),
+    .io_lookup_3_word_31  (_sorts_3_io_lookup_3_word_31),
     .io_lookup_4_bucket   (_gens_4_io_lookup_bucket),
     .io_lookup_4_begin    (_sorts_3_io_lookup_4_begin),
     .io_lookup_4_end      (_sorts_3_io_lookup_4_end),
@@ -40257,6 +44752,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_4_word_13  (_sorts_3_io_lookup_4_word_13),
     .io_lookup_4_word_14  (_sorts_3_io_lookup_4_word_14),
     .io_lookup_4_word_15  (_sorts_3_io_lookup_4_word_15),
+    .io_lookup_4_word_16  (_sorts_3_io_lookup_4_word_16),
+    .io_lookup_4_word_17  (_sorts_3_io_lookup_4_word_17),
+    .io_lookup_4_word_18  (_sorts_3_io_lookup_4_word_18),
+    .io_lookup_4_word_19  (_sorts_3_io_lookup_4_word_19),
+    .io_lookup_4_word_20  (_sorts_3_io_lookup_4_word_20),
+    .io_lookup_4_word_21  (_sorts_3_io_lookup_4_word_21),
+    .io_lookup_4_word_22  (_sorts_3_io_lookup_4_word_22),
+    .io_lookup_4_word_23  (_sorts_3_io_lookup_4_word_23),
+    .io_lookup_4_word_24  (_sorts_3_io_lookup_4_word_24),
+    .io_lookup_4_word_25  (_sorts_3_io_lookup_4_word_25),
+    .io_lookup_4_word_26  (_sorts_3_io_lookup_4_word_26),
+    .io_lookup_4_word_27  (_sorts_3_io_lookup_4_word_27),
+    .io_lookup_4_word_28  (_sorts_3_io_lookup_4_word_28),
+    .io_lookup_4_word_29  (_sorts_3_io_lookup_4_word_29),
+    .io_lookup_4_word_30  (_sorts_3_io_lookup_4_word_30),
+    .io_lookup_4_word_31  (_sorts_3_io_lookup_4_word_31),
     .io_lookup_5_bucket   (_gens_5_io_lookup_bucket),
     .io_lookup_5_begin    (_sorts_3_io_lookup_5_begin),
     .io_lookup_5_end      (_sorts_3_io_lookup_5_end),
@@ -40276,6 +44787,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_5_word_13  (_sorts_3_io_lookup_5_word_13),
     .io_lookup_5_word_14  (_sorts_3_io_lookup_5_word_14),
     .io_lookup_5_word_15  (_sorts_3_io_lookup_5_word_15),
+    .io_lookup_5_word_16  (_sorts_3_io_lookup_5_word_16),
+    .io_lookup_5_word_17  (_sorts_3_io_lookup_5_word_17),
+    .io_lookup_5_word_18  (_sorts_3_io_lookup_5_word_18),
+    .io_lookup_5_word_19  (_sorts_3_io_lookup_5_word_19),
+    .io_lookup_5_word_20  (_sorts_3_io_lookup_5_word_20),
+    .io_lookup_5_word_21  (_sorts_3_io_lookup_5_word_21),
+    .io_lookup_5_word_22  (_sorts_3_io_lookup_5_word_22),
+    .io_lookup_5_word_23  (_sorts_3_io_lookup_5_word_23),
+    .io_lookup_5_word_24  (_sorts_3_io_lookup_5_word_24),
+    .io_lookup_5_word_25  (_sorts_3_io_lookup_5_word_25),
+    .io_lookup_5_word_26  (_sorts_3_io_lookup_5_word_26),
+    .io_lookup_5_word_27  (_sorts_3_io_lookup_5_word_27),
+    .io_lookup_5_word_28  (_sorts_3_io_lookup_5_word_28),
+    .io_lookup_5_word_29  (_sorts_3_io_lookup_5_word_29),
+    .io_lookup_5_word_30  (_sorts_3_io_lookup_5_word_30),
+    .io_lookup_5_word_31  (_sorts_3_io_lookup_5_word_31),
     .io_lookup_6_bucket   (_gens_6_io_lookup_bucket),
     .io_lookup_6_begin    (_sorts_3_io_lookup_6_begin),
     .io_lookup_6_end      (_sorts_3_io_lookup_6_end),
@@ -40295,6 +44822,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_6_word_13  (_sorts_3_io_lookup_6_word_13),
     .io_lookup_6_word_14  (_sorts_3_io_lookup_6_word_14),
     .io_lookup_6_word_15  (_sorts_3_io_lookup_6_word_15),
+    .io_lookup_6_word_16  (_sorts_3_io_lookup_6_word_16),
+    .io_lookup_6_word_17  (_sorts_3_io_lookup_6_word_17),
+    .io_lookup_6_word_18  (_sorts_3_io_lookup_6_word_18),
+    .io_lookup_6_word_19  (_sorts_3_io_lookup_6_word_19),
+    .io_lookup_6_word_20  (_sorts_3_io_lookup_6_word_20),
+    .io_lookup_6_word_21  (_sorts_3_io_lookup_6_word_21),
+    .io_lookup_6_word_22  (_sorts_3_io_lookup_6_word_22),
+    .io_lookup_6_word_23  (_sorts_3_io_lookup_6_word_23),
+    .io_lookup_6_word_24  (_sorts_3_io_lookup_6_word_24),
+    .io_lookup_6_word_25  (_sorts_3_io_lookup_6_word_25),
+    .io_lookup_6_word_26  (_sorts_3_io_lookup_6_word_26),
+    .io_lookup_6_word_27  (_sorts_3_io_lookup_6_word_27),
+    .io_lookup_6_word_28  (_sorts_3_io_lookup_6_word_28),
+    .io_lookup_6_word_29  (_sorts_3_io_lookup_6_word_29),
+    .io_lookup_6_word_30  (_sorts_3_io_lookup_6_word_30),
+    .io_lookup_6_word_31  (_sorts_3_io_lookup_6_word_31),
     .io_lookup_7_bucket   (_gens_7_io_lookup_bucket),
     .io_lookup_7_begin    (_sorts_3_io_lookup_7_begin),
     .io_lookup_7_end      (_sorts_3_io_lookup_7_end),
@@ -40314,6 +44857,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_7_word_13  (_sorts_3_io_lookup_7_word_13),
     .io_lookup_7_word_14  (_sorts_3_io_lookup_7_word_14),
     .io_lookup_7_word_15  (_sorts_3_io_lookup_7_word_15),
+    .io_lookup_7_word_16  (_sorts_3_io_lookup_7_word_16),
+    .io_lookup_7_word_17  (_sorts_3_io_lookup_7_word_17),
+    .io_lookup_7_word_18  (_sorts_3_io_lookup_7_word_18),
+    .io_lookup_7_word_19  (_sorts_3_io_lookup_7_word_19),
+    .io_lookup_7_word_20  (_sorts_3_io_lookup_7_word_20),
+    .io_lookup_7_word_21  (_sorts_3_io_lookup_7_word_21),
+    .io_lookup_7_word_22  (_sorts_3_io_lookup_7_word_22),
+    .io_lookup_7_word_23  (_sorts_3_io_lookup_7_word_23),
+    .io_lookup_7_word_24  (_sorts_3_io_lookup_7_word_24),
+    .io_lookup_7_word_25  (_sorts_3_io_lookup_7_word_25),
+    .io_lookup_7_word_26  (_sorts_3_io_lookup_7_word_26),
+    .io_lookup_7_word_27  (_sorts_3_io_lookup_7_word_27),
+    .io_lookup_7_word_28  (_sorts_3_io_lookup_7_word_28),
+    .io_lookup_7_word_29  (_sorts_3_io_lookup_7_word_29),
+    .io_lookup_7_word_30  (_sorts_3_io_lookup_7_word_30),
+    .io_lookup_7_word_31  (_sorts_3_io_lookup_7_word_31),
     .io_lookup_8_bucket   (_gens_8_io_lookup_bucket),
     .io_lookup_8_begin    (_sorts_3_io_lookup_8_begin),
     .io_lookup_8_end      (_sorts_3_io_lookup_8_end),
@@ -40333,6 +44892,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_8_word_13  (_sorts_3_io_lookup_8_word_13),
     .io_lookup_8_word_14  (_sorts_3_io_lookup_8_word_14),
     .io_lookup_8_word_15  (_sorts_3_io_lookup_8_word_15),
+    .io_lookup_8_word_16  (_sorts_3_io_lookup_8_word_16),
+    .io_lookup_8_word_17  (_sorts_3_io_lookup_8_word_17),
+    .io_lookup_8_word_18  (_sorts_3_io_lookup_8_word_18),
+    .io_lookup_8_word_19  (_sorts_3_io_lookup_8_word_19),
+    .io_lookup_8_word_20  (_sorts_3_io_lookup_8_word_20),
+    .io_lookup_8_word_21  (_sorts_3_io_lookup_8_word_21),
+    .io_lookup_8_word_22  (_sorts_3_io_lookup_8_word_22),
+    .io_lookup_8_word_23  (_sorts_3_io_lookup_8_word_23),
+    .io_lookup_8_word_24  (_sorts_3_io_lookup_8_word_24),
+    .io_lookup_8_word_25  (_sorts_3_io_lookup_8_word_25),
+    .io_lookup_8_word_26  (_sorts_3_io_lookup_8_word_26),
+    .io_lookup_8_word_27  (_sorts_3_io_lookup_8_word_27),
+    .io_lookup_8_word_28  (_sorts_3_io_lookup_8_word_28),
+    .io_lookup_8_word_29  (_sorts_3_io_lookup_8_word_29),
+    .io_lookup_8_word_30  (_sorts_3_io_lookup_8_word_30),
+    .io_lookup_8_word_31  (_sorts_3_io_lookup_8_word_31),
     .io_lookup_9_bucket   (_gens_9_io_lookup_bucket),
     .io_lookup_9_begin    (_sorts_3_io_lookup_9_begin),
     .io_lookup_9_end      (_sorts_3_io_lookup_9_end),
@@ -40352,6 +44927,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_9_word_13  (_sorts_3_io_lookup_9_word_13),
     .io_lookup_9_word_14  (_sorts_3_io_lookup_9_word_14),
     .io_lookup_9_word_15  (_sorts_3_io_lookup_9_word_15),
+    .io_lookup_9_word_16  (_sorts_3_io_lookup_9_word_16),
+    .io_lookup_9_word_17  (_sorts_3_io_lookup_9_word_17),
+    .io_lookup_9_word_18  (_sorts_3_io_lookup_9_word_18),
+    .io_lookup_9_word_19  (_sorts_3_io_lookup_9_word_19),
+    .io_lookup_9_word_20  (_sorts_3_io_lookup_9_word_20),
+    .io_lookup_9_word_21  (_sorts_3_io_lookup_9_word_21),
+    .io_lookup_9_word_22  (_sorts_3_io_lookup_9_word_22),
+    .io_lookup_9_word_23  (_sorts_3_io_lookup_9_word_23),
+    .io_lookup_9_word_24  (_sorts_3_io_lookup_9_word_24),
+    .io_lookup_9_word_25  (_sorts_3_io_lookup_9_word_25),
+    .io_lookup_9_word_26  (_sorts_3_io_lookup_9_word_26),
+    .io_lookup_9_word_27  (_sorts_3_io_lookup_9_word_27),
+    .io_lookup_9_word_28  (_sorts_3_io_lookup_9_word_28),
+    .io_lookup_9_word_29  (_sorts_3_io_lookup_9_word_29),
+    .io_lookup_9_word_30  (_sorts_3_io_lookup_9_word_30),
+    .io_lookup_9_word_31  (_sorts_3_io_lookup_9_word_31),
     .io_lookup_10_bucket  (_gens_10_io_lookup_bucket),
     .io_lookup_10_begin   (_sorts_3_io_lookup_10_begin),
     .io_lookup_10_end     (_sorts_3_io_lookup_10_end),
@@ -40371,6 +44962,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_10_word_13 (_sorts_3_io_lookup_10_word_13),
     .io_lookup_10_word_14 (_sorts_3_io_lookup_10_word_14),
     .io_lookup_10_word_15 (_sorts_3_io_lookup_10_word_15),
+    .io_lookup_10_word_16 (_sorts_3_io_lookup_10_word_16),
+    .io_lookup_10_word_17 (_sorts_3_io_lookup_10_word_17),
+    .io_lookup_10_word_18 (_sorts_3_io_lookup_10_word_18),
+    .io_lookup_10_word_19 (_sorts_3_io_lookup_10_word_19),
+    .io_lookup_10_word_20 (_sorts_3_io_lookup_10_word_20),
+    .io_lookup_10_word_21 (_sorts_3_io_lookup_10_word_21),
+    .io_lookup_10_word_22 (_sorts_3_io_lookup_10_word_22),
+    .io_lookup_10_word_23 (_sorts_3_io_lookup_10_word_23),
+    .io_lookup_10_word_24 (_sorts_3_io_lookup_10_word_24),
+    .io_lookup_10_word_25 (_sorts_3_io_lookup_10_word_25),
+    .io_lookup_10_word_26 (_sorts_3_io_lookup_10_word_26),
+    .io_lookup_10_word_27 (_sorts_3_io_lookup_10_word_27),
+    .io_lookup_10_word_28 (_sorts_3_io_lookup_10_word_28),
+    .io_lookup_10_word_29 (_sorts_3_io_lookup_10_word_29),
+    .io_lookup_10_word_30 (_sorts_3_io_lookup_10_word_30),
+    .io_lookup_10_word_31 (_sorts_3_io_lookup_10_word_31),
     .io_lookup_11_bucket  (_gens_11_io_lookup_bucket),
     .io_lookup_11_begin   (_sorts_3_io_lookup_11_begin),
     .io_lookup_11_end     (_sorts_3_io_lookup_11_end),
@@ -40390,6 +44997,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_11_word_13 (_sorts_3_io_lookup_11_word_13),
     .io_lookup_11_word_14 (_sorts_3_io_lookup_11_word_14),
     .io_lookup_11_word_15 (_sorts_3_io_lookup_11_word_15),
+    .io_lookup_11_word_16 (_sorts_3_io_lookup_11_word_16),
+    .io_lookup_11_word_17 (_sorts_3_io_lookup_11_word_17),
+    .io_lookup_11_word_18 (_sorts_3_io_lookup_11_word_18),
+    .io_lookup_11_word_19 (_sorts_3_io_lookup_11_word_19),
+    .io_lookup_11_word_20 (_sorts_3_io_lookup_11_word_20),
+    .io_lookup_11_word_21 (_sorts_3_io_lookup_11_word_21),
+    .io_lookup_11_word_22 (_sorts_3_io_lookup_11_word_22),
+    .io_lookup_11_word_23 (_sorts_3_io_lookup_11_word_23),
+    .io_lookup_11_word_24 (_sorts_3_io_lookup_11_word_24),
+    .io_lookup_11_word_25 (_sorts_3_io_lookup_11_word_25),
+    .io_lookup_11_word_26 (_sorts_3_io_lookup_11_word_26),
+    .io_lookup_11_word_27 (_sorts_3_io_lookup_11_word_27),
+    .io_lookup_11_word_28 (_sorts_3_io_lookup_11_word_28),
+    .io_lookup_11_word_29 (_sorts_3_io_lookup_11_word_29),
+    .io_lookup_11_word_30 (_sorts_3_io_lookup_11_word_30),
+    .io_lookup_11_word_31 (_sorts_3_io_lookup_11_word_31),
     .io_lookup_12_bucket  (_gens_12_io_lookup_bucket),
     .io_lookup_12_begin   (_sorts_3_io_lookup_12_begin),
     .io_lookup_12_end     (_sorts_3_io_lookup_12_end),
@@ -40409,6 +45032,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_12_word_13 (_sorts_3_io_lookup_12_word_13),
     .io_lookup_12_word_14 (_sorts_3_io_lookup_12_word_14),
     .io_lookup_12_word_15 (_sorts_3_io_lookup_12_word_15),
+    .io_lookup_12_word_16 (_sorts_3_io_lookup_12_word_16),
+    .io_lookup_12_word_17 (_sorts_3_io_lookup_12_word_17),
+    .io_lookup_12_word_18 (_sorts_3_io_lookup_12_word_18),
+    .io_lookup_12_word_19 (_sorts_3_io_lookup_12_word_19),
+    .io_lookup_12_word_20 (_sorts_3_io_lookup_12_word_20),
+    .io_lookup_12_word_21 (_sorts_3_io_lookup_12_word_21),
+    .io_lookup_12_word_22 (_sorts_3_io_lookup_12_word_22),
+    .io_lookup_12_word_23 (_sorts_3_io_lookup_12_word_23),
+    .io_lookup_12_word_24 (_sorts_3_io_lookup_12_word_24),
+    .io_lookup_12_word_25 (_sorts_3_io_lookup_12_word_25),
+    .io_lookup_12_word_26 (_sorts_3_io_lookup_12_word_26),
+    .io_lookup_12_word_27 (_sorts_3_io_lookup_12_word_27),
+    .io_lookup_12_word_28 (_sorts_3_io_lookup_12_word_28),
+    .io_lookup_12_word_29 (_sorts_3_io_lookup_12_word_29),
+    .io_lookup_12_word_30 (_sorts_3_io_lookup_12_word_30),
+    .io_lookup_12_word_31 (_sorts_3_io_lookup_12_word_31),
     .io_lookup_13_bucket  (_gens_13_io_lookup_bucket),
     .io_lookup_13_begin   (_sorts_3_io_lookup_13_begin),
     .io_lookup_13_end     (_sorts_3_io_lookup_13_end),
@@ -40428,6 +45067,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_13_word_13 (_sorts_3_io_lookup_13_word_13),
     .io_lookup_13_word_14 (_sorts_3_io_lookup_13_word_14),
     .io_lookup_13_word_15 (_sorts_3_io_lookup_13_word_15),
+    .io_lookup_13_word_16 (_sorts_3_io_lookup_13_word_16),
+    .io_lookup_13_word_17 (_sorts_3_io_lookup_13_word_17),
+    .io_lookup_13_word_18 (_sorts_3_io_lookup_13_word_18),
+    .io_lookup_13_word_19 (_sorts_3_io_lookup_13_word_19),
+    .io_lookup_13_word_20 (_sorts_3_io_lookup_13_word_20),
+    .io_lookup_13_word_21 (_sorts_3_io_lookup_13_word_21),
+    .io_lookup_13_word_22 (_sorts_3_io_lookup_13_word_22),
+    .io_lookup_13_word_23 (_sorts_3_io_lookup_13_word_23),
+    .io_lookup_13_word_24 (_sorts_3_io_lookup_13_word_24),
+    .io_lookup_13_word_25 (_sorts_3_io_lookup_13_word_25),
+    .io_lookup_13_word_26 (_sorts_3_io_lookup_13_word_26),
+    .io_lookup_13_word_27 (_sorts_3_io_lookup_13_word_27),
+    .io_lookup_13_word_28 (_sorts_3_io_lookup_13_word_28),
+    .io_lookup_13_word_29 (_sorts_3_io_lookup_13_word_29),
+    .io_lookup_13_word_30 (_sorts_3_io_lookup_13_word_30),
+    .io_lookup_13_word_31 (_sorts_3_io_lookup_13_word_31),
     .io_lookup_14_bucket  (_gens_14_io_lookup_bucket),
     .io_lookup_14_begin   (_sorts_3_io_lookup_14_begin),
     .io_lookup_14_end     (_sorts_3_io_lookup_14_end),
@@ -40447,6 +45102,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_14_word_13 (_sorts_3_io_lookup_14_word_13),
     .io_lookup_14_word_14 (_sorts_3_io_lookup_14_word_14),
     .io_lookup_14_word_15 (_sorts_3_io_lookup_14_word_15),
+    .io_lookup_14_word_16 (_sorts_3_io_lookup_14_word_16),
+    .io_lookup_14_word_17 (_sorts_3_io_lookup_14_word_17),
+    .io_lookup_14_word_18 (_sorts_3_io_lookup_14_word_18),
+    .io_lookup_14_word_19 (_sorts_3_io_lookup_14_word_19),
+    .io_lookup_14_word_20 (_sorts_3_io_lookup_14_word_20),
+    .io_lookup_14_word_21 (_sorts_3_io_lookup_14_word_21),
+    .io_lookup_14_word_22 (_sorts_3_io_lookup_14_word_22),
+    .io_lookup_14_word_23 (_sorts_3_io_lookup_14_word_23),
+    .io_lookup_14_word_24 (_sorts_3_io_lookup_14_word_24),
+    .io_lookup_14_word_25 (_sorts_3_io_lookup_14_word_25),
+    .io_lookup_14_word_26 (_sorts_3_io_lookup_14_word_26),
+    .io_lookup_14_word_27 (_sorts_3_io_lookup_14_word_27),
+    .io_lookup_14_word_28 (_sorts_3_io_lookup_14_word_28),
+    .io_lookup_14_word_29 (_sorts_3_io_lookup_14_word_29),
+    .io_lookup_14_word_30 (_sorts_3_io_lookup_14_word_30),
+    .io_lookup_14_word_31 (_sorts_3_io_lookup_14_word_31),
     .io_lookup_15_bucket  (_gens_15_io_lookup_bucket),
     .io_lookup_15_begin   (_sorts_3_io_lookup_15_begin),
     .io_lookup_15_end     (_sorts_3_io_lookup_15_end),
@@ -40466,6 +45137,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_15_word_13 (_sorts_3_io_lookup_15_word_13),
     .io_lookup_15_word_14 (_sorts_3_io_lookup_15_word_14),
     .io_lookup_15_word_15 (_sorts_3_io_lookup_15_word_15),
+    .io_lookup_15_word_16 (_sorts_3_io_lookup_15_word_16),
+    .io_lookup_15_word_17 (_sorts_3_io_lookup_15_word_17),
+    .io_lookup_15_word_18 (_sorts_3_io_lookup_15_word_18),
+    .io_lookup_15_word_19 (_sorts_3_io_lookup_15_word_19),
+    .io_lookup_15_word_20 (_sorts_3_io_lookup_15_word_20),
+    .io_lookup_15_word_21 (_sorts_3_io_lookup_15_word_21),
+    .io_lookup_15_word_22 (_sorts_3_io_lookup_15_word_22),
+    .io_lookup_15_word_23 (_sorts_3_io_lookup_15_word_23),
+    .io_lookup_15_word_24 (_sorts_3_io_lookup_15_word_24),
+    .io_lookup_15_word_25 (_sorts_3_io_lookup_15_word_25),
+    .io_lookup_15_word_26 (_sorts_3_io_lookup_15_word_26),
+    .io_lookup_15_word_27 (_sorts_3_io_lookup_15_word_27),
+    .io_lookup_15_word_28 (_sorts_3_io_lookup_15_word_28),
+    .io_lookup_15_word_29 (_sorts_3_io_lookup_15_word_29),
+    .io_lookup_15_word_30 (_sorts_3_io_lookup_15_word_30),
+    .io_lookup_15_word_31 (_sorts_3_io_lookup_15_word_31),
     .io_entry_0_addr      (_gens_0_io_entry_addr[9:0]),
     .io_entry_0_item      (_sorts_3_io_entry_0_item),
     .io_entry_0_mark      (_sorts_3_io_entry_0_mark),
@@ -40566,7 +45253,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_scattered         (_sorts_3_io_scattered),
     .io_badBucket         (_sorts_3_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_0 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_0 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -40691,6 +45378,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_0_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_0_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_0_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_0_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_0_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_0_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_0_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_0_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_0_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_0_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_0_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_0_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_0_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_0_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_0_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_0_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_0_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_0_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_0_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_0_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_0_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_0_word_2}),
@@ -40707,6 +45410,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_0_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_0_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_0_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_0_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_0_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_0_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_0_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_0_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_0_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_0_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_0_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_0_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_0_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_0_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_0_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_0_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_0_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_0_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_0_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_0_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_0_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_0_word_2}),
@@ -40723,6 +45442,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_0_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_0_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_0_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_0_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_0_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_0_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_0_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_0_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_0_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_0_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_0_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_0_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_0_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_0_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_0_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_0_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_0_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_0_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_0_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_0_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_0_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_0_word_2}),
@@ -40739,6 +45474,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_0_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_0_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_0_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_0_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_0_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_0_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_0_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_0_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_0_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_0_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_0_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_0_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_0_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_0_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_0_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_0_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_0_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_0_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_0_word_31}),
     .io_entry_addr        (_gens_0_io_entry_addr),
     .io_entry_group       (_gens_0_io_entry_group),
     .io_entry_item        (casez_tmp_7),
@@ -40765,7 +45516,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_0_bits_j),
     .io_busy              (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_1 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_1 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -40890,6 +45641,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_1_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_1_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_1_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_1_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_1_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_1_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_1_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_1_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_1_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_1_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_1_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_1_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_1_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_1_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_1_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_1_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_1_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_1_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_1_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_1_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_1_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_1_word_2}),
@@ -40906,6 +45673,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_1_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_1_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_1_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_1_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_1_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_1_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_1_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_1_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_1_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_1_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_1_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_1_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_1_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_1_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_1_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_1_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_1_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_1_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_1_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_1_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_1_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_1_word_2}),
@@ -40922,6 +45705,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_1_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_1_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_1_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_1_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_1_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_1_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_1_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_1_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_1_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_1_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_1_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_1_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_1_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_1_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_1_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_1_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_1_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_1_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_1_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_1_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_1_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_1_word_2}),
@@ -40938,6 +45737,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_1_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_1_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_1_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_1_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_1_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_1_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_1_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_1_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_1_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_1_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_1_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_1_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_1_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_1_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_1_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_1_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_1_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_1_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_1_word_31}),
     .io_entry_addr        (_gens_1_io_entry_addr),
     .io_entry_group       (_gens_1_io_entry_group),
     .io_entry_item        (casez_tmp_9),
@@ -40964,7 +45779,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_1_bits_j),
     .io_busy              (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_2 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_2 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -41089,6 +45904,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_2_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_2_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_2_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_2_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_2_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_2_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_2_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_2_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_2_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_2_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_2_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_2_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_2_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_2_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_2_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_2_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_2_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_2_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_2_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_2_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_2_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_2_word_2}),
@@ -41105,6 +45936,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_2_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_2_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_2_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_2_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_2_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_2_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_2_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_2_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_2_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_2_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_2_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_2_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_2_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_2_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_2_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_2_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_2_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_2_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_2_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_2_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_2_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_2_word_2}),
@@ -41121,6 +45968,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_2_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_2_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_2_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_2_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_2_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_2_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_2_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_2_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_2_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_2_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_2_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_2_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_2_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_2_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_2_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_2_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_2_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_2_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_2_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_2_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_2_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_2_word_2}),
@@ -41137,6 +46000,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_2_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_2_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_2_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_2_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_2_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_2_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_2_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_2_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_2_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_2_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_2_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_2_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_2_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_2_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_2_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_2_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_2_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_2_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_2_word_31}),
     .io_entry_addr        (_gens_2_io_entry_addr),
     .io_entry_group       (_gens_2_io_entry_group),
     .io_entry_item        (casez_tmp_11),
@@ -41163,7 +46042,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_2_bits_j),
     .io_busy              (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_3 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_3 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -41288,6 +46167,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_3_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_3_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_3_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_3_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_3_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_3_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_3_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_3_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_3_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_3_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_3_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_3_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_3_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_3_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_3_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_3_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_3_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_3_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_3_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_3_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_3_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_3_word_2}),
@@ -41304,6 +46199,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_3_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_3_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_3_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_3_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_3_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_3_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_3_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_3_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_3_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_3_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_3_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_3_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_3_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_3_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_3_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_3_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_3_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_3_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_3_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_3_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_3_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_3_word_2}),
@@ -41320,6 +46231,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_3_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_3_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_3_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_3_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_3_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_3_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_3_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_3_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_3_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_3_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_3_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_3_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_3_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_3_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_3_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_3_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_3_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_3_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_3_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_3_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_3_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_3_word_2}),
@@ -41336,6 +46263,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_3_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_3_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_3_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_3_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_3_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_3_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_3_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_3_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_3_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_3_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_3_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_3_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_3_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_3_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_3_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_3_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_3_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_3_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_3_word_31}),
     .io_entry_addr        (_gens_3_io_entry_addr),
     .io_entry_group       (_gens_3_io_entry_group),
     .io_entry_item        (casez_tmp_13),
@@ -41362,7 +46305,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_3_bits_j),
     .io_busy              (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_4 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_4 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -41487,6 +46430,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_4_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_4_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_4_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_4_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_4_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_4_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_4_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_4_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_4_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_4_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_4_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_4_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_4_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_4_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_4_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_4_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_4_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_4_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_4_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_4_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_4_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_4_word_2}),
@@ -41503,6 +46462,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_4_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_4_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_4_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_4_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_4_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_4_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_4_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_4_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_4_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_4_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_4_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_4_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_4_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_4_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_4_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_4_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_4_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_4_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_4_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_4_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_4_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_4_word_2}),
@@ -41519,6 +46494,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_4_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_4_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_4_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_4_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_4_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_4_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_4_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_4_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_4_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_4_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_4_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_4_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_4_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_4_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_4_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_4_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_4_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_4_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_4_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_4_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_4_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_4_word_2}),
@@ -41535,6 +46526,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_4_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_4_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_4_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_4_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_4_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_4_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_4_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_4_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_4_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_4_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_4_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_4_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_4_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_4_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_4_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_4_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_4_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_4_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_4_word_31}),
     .io_entry_addr        (_gens_4_io_entry_addr),
     .io_entry_group       (_gens_4_io_entry_group),
     .io_entry_item        (casez_tmp_15),
@@ -41561,7 +46568,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_4_bits_j),
     .io_busy              (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_5 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_5 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -41686,6 +46693,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_5_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_5_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_5_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_5_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_5_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_5_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_5_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_5_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_5_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_5_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_5_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_5_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_5_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_5_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_5_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_5_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_5_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_5_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_5_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_5_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_5_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_5_word_2}),
@@ -41702,6 +46725,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_5_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_5_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_5_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_5_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_5_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_5_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_5_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_5_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_5_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_5_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_5_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_5_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_5_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_5_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_5_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_5_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_5_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_5_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_5_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_5_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_5_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_5_word_2}),
@@ -41718,6 +46757,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_5_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_5_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_5_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_5_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_5_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_5_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_5_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_5_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_5_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_5_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_5_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_5_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_5_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_5_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_5_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_5_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_5_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_5_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_5_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_5_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_5_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_5_word_2}),
@@ -41734,6 +46789,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_5_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_5_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_5_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_5_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_5_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_5_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_5_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_5_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_5_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_5_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_5_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_5_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_5_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_5_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_5_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_5_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_5_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_5_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_5_word_31}),
     .io_entry_addr        (_gens_5_io_entry_addr),
     .io_entry_group       (_gens_5_io_entry_group),
     .io_entry_item        (casez_tmp_17),
@@ -41760,7 +46831,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_5_bits_j),
     .io_busy              (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_6 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_6 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -41885,6 +46956,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_6_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_6_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_6_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_6_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_6_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_6_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_6_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_6_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_6_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_6_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_6_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_6_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_6_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_6_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_6_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_6_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_6_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_6_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_6_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_6_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_6_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_6_word_2}),
@@ -41901,6 +46988,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_6_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_6_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_6_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_6_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_6_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_6_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_6_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_6_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_6_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_6_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_6_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_6_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_6_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_6_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_6_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_6_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_6_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_6_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_6_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_6_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_6_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_6_word_2}),
@@ -41917,6 +47020,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_6_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_6_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_6_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_6_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_6_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_6_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_6_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_6_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_6_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_6_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_6_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_6_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_6_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_6_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_6_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_6_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_6_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_6_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_6_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_6_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_6_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_6_word_2}),
@@ -41933,6 +47052,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_6_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_6_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_6_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_6_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_6_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_6_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_6_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_6_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_6_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_6_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_6_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_6_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_6_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_6_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_6_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_6_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_6_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_6_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_6_word_31}),
     .io_entry_addr        (_gens_6_io_entry_addr),
     .io_entry_group       (_gens_6_io_entry_group),
     .io_entry_item        (casez_tmp_19),
@@ -41959,7 +47094,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_6_bits_j),
     .io_busy              (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_7 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_7 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -42084,6 +47219,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_7_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_7_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_7_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_7_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_7_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_7_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_7_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_7_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_7_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_7_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_7_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_7_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_7_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_7_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_7_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_7_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_7_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_7_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_7_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_7_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_7_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_7_word_2}),
@@ -42100,6 +47251,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_7_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_7_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_7_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_7_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_7_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_7_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_7_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_7_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_7_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_7_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_7_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_7_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_7_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_7_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_7_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_7_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_7_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_7_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_7_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_7_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_7_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_7_word_2}),
@@ -42116,6 +47283,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_7_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_7_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_7_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_7_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_7_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_7_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_7_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_7_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_7_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_7_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_7_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_7_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_7_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_7_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_7_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_7_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_7_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_7_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_7_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_7_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_7_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_7_word_2}),
@@ -42132,6 +47315,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_7_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_7_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_7_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_7_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_7_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_7_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_7_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_7_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_7_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_7_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_7_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_7_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_7_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_7_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_7_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_7_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_7_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_7_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_7_word_31}),
     .io_entry_addr        (_gens_7_io_entry_addr),
     .io_entry_group       (_gens_7_io_entry_group),
     .io_entry_item        (casez_tmp_21),
@@ -42158,7 +47357,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_7_bits_j),
     .io_busy              (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_8 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_8 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -42283,6 +47482,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_8_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_8_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_8_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_8_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_8_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_8_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_8_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_8_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_8_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_8_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_8_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_8_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_8_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_8_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_8_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_8_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_8_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_8_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_8_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_8_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_8_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_8_word_2}),
@@ -42299,6 +47514,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_8_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_8_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_8_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_8_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_8_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_8_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_8_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_8_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_8_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_8_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_8_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_8_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_8_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_8_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_8_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_8_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_8_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_8_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_8_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_8_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_8_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_8_word_2}),
@@ -42315,6 +47546,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_8_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_8_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_8_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_8_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_8_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_8_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_8_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_8_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_8_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_8_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_8_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_8_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_8_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_8_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_8_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_8_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_8_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_8_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_8_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_8_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_8_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_8_word_2}),
@@ -42331,6 +47578,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_8_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_8_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_8_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_8_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_8_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_8_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_8_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_8_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_8_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_8_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_8_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_8_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_8_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_8_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_8_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_8_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_8_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_8_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_8_word_31}),
     .io_entry_addr        (_gens_8_io_entry_addr),
     .io_entry_group       (_gens_8_io_entry_group),
     .io_entry_item        (casez_tmp_23),
@@ -42357,7 +47620,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_8_bits_j),
     .io_busy              (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_9 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_9 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -42482,6 +47745,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_9_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_9_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_9_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_9_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_9_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_9_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_9_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_9_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_9_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_9_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_9_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_9_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_9_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_9_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_9_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_9_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_9_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_9_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_9_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_9_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_9_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_9_word_2}),
@@ -42498,6 +47777,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_9_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_9_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_9_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_9_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_9_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_9_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_9_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_9_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_9_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_9_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_9_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_9_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_9_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_9_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_9_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_9_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_9_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_9_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_9_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_9_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_9_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_9_word_2}),
@@ -42514,6 +47809,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_9_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_9_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_9_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_9_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_9_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_9_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_9_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_9_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_9_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_9_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_9_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_9_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_9_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_9_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_9_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_9_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_9_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_9_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_9_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_9_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_9_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_9_word_2}),
@@ -42530,6 +47841,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_9_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_9_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_9_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_9_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_9_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_9_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_9_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_9_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_9_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_9_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_9_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_9_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_9_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_9_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_9_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_9_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_9_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_9_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_9_word_31}),
     .io_entry_addr        (_gens_9_io_entry_addr),
     .io_entry_group       (_gens_9_io_entry_group),
     .io_entry_item        (casez_tmp_25),
@@ -42556,7 +47883,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_9_bits_j),
     .io_busy              (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_10 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_10 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -42681,6 +48008,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_10_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_10_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_10_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_10_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_10_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_10_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_10_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_10_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_10_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_10_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_10_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_10_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_10_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_10_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_10_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_10_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_10_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_10_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_10_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_10_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_10_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_10_word_2}),
@@ -42697,6 +48040,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_10_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_10_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_10_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_10_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_10_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_10_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_10_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_10_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_10_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_10_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_10_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_10_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_10_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_10_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_10_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_10_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_10_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_10_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_10_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_10_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_10_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_10_word_2}),
@@ -42713,6 +48072,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_10_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_10_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_10_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_10_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_10_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_10_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_10_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_10_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_10_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_10_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_10_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_10_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_10_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_10_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_10_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_10_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_10_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_10_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_10_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_10_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_10_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_10_word_2}),
@@ -42729,6 +48104,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_10_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_10_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_10_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_10_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_10_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_10_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_10_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_10_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_10_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_10_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_10_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_10_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_10_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_10_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_10_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_10_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_10_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_10_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_10_word_31}),
     .io_entry_addr        (_gens_10_io_entry_addr),
     .io_entry_group       (_gens_10_io_entry_group),
     .io_entry_item        (casez_tmp_27),
@@ -42755,7 +48146,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_10_bits_j),
     .io_busy              (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_11 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_11 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -42880,6 +48271,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_11_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_11_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_11_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_11_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_11_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_11_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_11_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_11_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_11_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_11_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_11_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_11_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_11_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_11_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_11_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_11_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_11_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_11_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_11_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_11_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_11_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_11_word_2}),
@@ -42896,6 +48303,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_11_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_11_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_11_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_11_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_11_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_11_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_11_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_11_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_11_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_11_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_11_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_11_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_11_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_11_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_11_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_11_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_11_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_11_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_11_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_11_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_11_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_11_word_2}),
@@ -42912,6 +48335,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_11_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_11_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_11_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_11_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_11_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_11_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_11_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_11_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_11_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_11_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_11_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_11_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_11_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_11_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_11_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_11_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_11_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_11_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_11_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_11_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_11_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_11_word_2}),
@@ -42928,6 +48367,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_11_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_11_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_11_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_11_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_11_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_11_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_11_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_11_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_11_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_11_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_11_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_11_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_11_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_11_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_11_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_11_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_11_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_11_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_11_word_31}),
     .io_entry_addr        (_gens_11_io_entry_addr),
     .io_entry_group       (_gens_11_io_entry_group),
     .io_entry_item        (casez_tmp_29),
@@ -42954,7 +48409,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_11_bits_j),
     .io_busy              (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_12 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_12 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -43079,6 +48534,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_12_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_12_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_12_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_12_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_12_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_12_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_12_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_12_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_12_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_12_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_12_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_12_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_12_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_12_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_12_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_12_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_12_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_12_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_12_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_12_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_12_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_12_word_2}),
@@ -43095,6 +48566,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_12_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_12_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_12_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_12_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_12_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_12_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_12_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_12_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_12_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_12_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_12_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_12_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_12_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_12_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_12_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_12_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_12_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_12_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_12_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_12_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_12_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_12_word_2}),
@@ -43111,6 +48598,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_12_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_12_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_12_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_12_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_12_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_12_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_12_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_12_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_12_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_12_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_12_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_12_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_12_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_12_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_12_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_12_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_12_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_12_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_12_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_12_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_12_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_12_word_2}),
@@ -43127,6 +48630,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_12_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_12_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_12_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_12_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_12_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_12_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_12_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_12_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_12_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_12_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_12_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_12_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_12_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_12_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_12_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_12_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_12_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_12_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_12_word_31}),
     .io_entry_addr        (_gens_12_io_entry_addr),
     .io_entry_group       (_gens_12_io_entry_group),
     .io_entry_item        (casez_tmp_31),
@@ -43153,7 +48672,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_12_bits_j),
     .io_busy              (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_13 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_13 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -43278,6 +48797,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_13_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_13_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_13_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_13_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_13_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_13_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_13_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_13_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_13_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_13_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_13_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_13_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_13_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_13_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_13_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_13_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_13_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_13_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_13_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_13_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_13_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_13_word_2}),
@@ -43294,6 +48829,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_13_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_13_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_13_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_13_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_13_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_13_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_13_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_13_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_13_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_13_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_13_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_13_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_13_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_13_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_13_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_13_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_13_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_13_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_13_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_13_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_13_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_13_word_2}),
@@ -43310,6 +48861,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_13_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_13_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_13_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_13_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_13_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_13_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_13_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_13_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_13_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_13_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_13_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_13_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_13_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_13_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_13_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_13_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_13_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_13_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_13_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_13_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_13_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_13_word_2}),
@@ -43326,6 +48893,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_13_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_13_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_13_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_13_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_13_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_13_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_13_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_13_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_13_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_13_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_13_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_13_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_13_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_13_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_13_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_13_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_13_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_13_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_13_word_31}),
     .io_entry_addr        (_gens_13_io_entry_addr),
     .io_entry_group       (_gens_13_io_entry_group),
     .io_entry_item        (casez_tmp_33),
@@ -43352,7 +48935,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_13_bits_j),
     .io_busy              (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_14 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_14 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -43477,6 +49060,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_14_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_14_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_14_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_14_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_14_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_14_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_14_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_14_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_14_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_14_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_14_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_14_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_14_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_14_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_14_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_14_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_14_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_14_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_14_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_14_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_14_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_14_word_2}),
@@ -43493,6 +49092,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_14_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_14_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_14_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_14_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_14_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_14_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_14_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_14_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_14_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_14_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_14_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_14_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_14_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_14_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_14_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_14_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_14_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_14_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_14_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_14_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_14_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_14_word_2}),
@@ -43509,6 +49124,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_14_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_14_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_14_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_14_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_14_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_14_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_14_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_14_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_14_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_14_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_14_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_14_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_14_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_14_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_14_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_14_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_14_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_14_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_14_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_14_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_14_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_14_word_2}),
@@ -43525,6 +49156,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_14_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_14_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_14_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_14_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_14_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_14_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_14_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_14_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_14_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_14_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_14_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_14_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_14_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_14_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_14_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_14_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_14_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_14_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_14_word_31}),
     .io_entry_addr        (_gens_14_io_entry_addr),
     .io_entry_group       (_gens_14_io_entry_group),
     .io_entry_item        (casez_tmp_35),
@@ -43551,7 +49198,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_14_bits_j),
     .io_busy              (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w4_l16_g4_x1_u_world gens_15 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_15 (
     .clock                (clock),
     .reset                (reset),
     .io_start             ((&state) & ~sent),
@@ -43676,6 +49323,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_0_13  ({2'h0, _sorts_0_io_lookup_15_word_13}),
     .io_lookup_word_0_14  ({2'h0, _sorts_0_io_lookup_15_word_14}),
     .io_lookup_word_0_15  ({2'h0, _sorts_0_io_lookup_15_word_15}),
+    .io_lookup_word_0_16  ({2'h0, _sorts_0_io_lookup_15_word_16}),
+    .io_lookup_word_0_17  ({2'h0, _sorts_0_io_lookup_15_word_17}),
+    .io_lookup_word_0_18  ({2'h0, _sorts_0_io_lookup_15_word_18}),
+    .io_lookup_word_0_19  ({2'h0, _sorts_0_io_lookup_15_word_19}),
+    .io_lookup_word_0_20  ({2'h0, _sorts_0_io_lookup_15_word_20}),
+    .io_lookup_word_0_21  ({2'h0, _sorts_0_io_lookup_15_word_21}),
+    .io_lookup_word_0_22  ({2'h0, _sorts_0_io_lookup_15_word_22}),
+    .io_lookup_word_0_23  ({2'h0, _sorts_0_io_lookup_15_word_23}),
+    .io_lookup_word_0_24  ({2'h0, _sorts_0_io_lookup_15_word_24}),
+    .io_lookup_word_0_25  ({2'h0, _sorts_0_io_lookup_15_word_25}),
+    .io_lookup_word_0_26  ({2'h0, _sorts_0_io_lookup_15_word_26}),
+    .io_lookup_word_0_27  ({2'h0, _sorts_0_io_lookup_15_word_27}),
+    .io_lookup_word_0_28  ({2'h0, _sorts_0_io_lookup_15_word_28}),
+    .io_lookup_word_0_29  ({2'h0, _sorts_0_io_lookup_15_word_29}),
+    .io_lookup_word_0_30  ({2'h0, _sorts_0_io_lookup_15_word_30}),
+    .io_lookup_word_0_31  ({2'h0, _sorts_0_io_lookup_15_word_31}),
     .io_lookup_word_1_0   ({2'h0, _sorts_1_io_lookup_15_word_0}),
     .io_lookup_word_1_1   ({2'h0, _sorts_1_io_lookup_15_word_1}),
     .io_lookup_word_1_2   ({2'h0, _sorts_1_io_lookup_15_word_2}),
@@ -43692,6 +49355,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_1_13  ({2'h0, _sorts_1_io_lookup_15_word_13}),
     .io_lookup_word_1_14  ({2'h0, _sorts_1_io_lookup_15_word_14}),
     .io_lookup_word_1_15  ({2'h0, _sorts_1_io_lookup_15_word_15}),
+    .io_lookup_word_1_16  ({2'h0, _sorts_1_io_lookup_15_word_16}),
+    .io_lookup_word_1_17  ({2'h0, _sorts_1_io_lookup_15_word_17}),
+    .io_lookup_word_1_18  ({2'h0, _sorts_1_io_lookup_15_word_18}),
+    .io_lookup_word_1_19  ({2'h0, _sorts_1_io_lookup_15_word_19}),
+    .io_lookup_word_1_20  ({2'h0, _sorts_1_io_lookup_15_word_20}),
+    .io_lookup_word_1_21  ({2'h0, _sorts_1_io_lookup_15_word_21}),
+    .io_lookup_word_1_22  ({2'h0, _sorts_1_io_lookup_15_word_22}),
+    .io_lookup_word_1_23  ({2'h0, _sorts_1_io_lookup_15_word_23}),
+    .io_lookup_word_1_24  ({2'h0, _sorts_1_io_lookup_15_word_24}),
+    .io_lookup_word_1_25  ({2'h0, _sorts_1_io_lookup_15_word_25}),
+    .io_lookup_word_1_26  ({2'h0, _sorts_1_io_lookup_15_word_26}),
+    .io_lookup_word_1_27  ({2'h0, _sorts_1_io_lookup_15_word_27}),
+    .io_lookup_word_1_28  ({2'h0, _sorts_1_io_lookup_15_word_28}),
+    .io_lookup_word_1_29  ({2'h0, _sorts_1_io_lookup_15_word_29}),
+    .io_lookup_word_1_30  ({2'h0, _sorts_1_io_lookup_15_word_30}),
+    .io_lookup_word_1_31  ({2'h0, _sorts_1_io_lookup_15_word_31}),
     .io_lookup_word_2_0   ({2'h0, _sorts_2_io_lookup_15_word_0}),
     .io_lookup_word_2_1   ({2'h0, _sorts_2_io_lookup_15_word_1}),
     .io_lookup_word_2_2   ({2'h0, _sorts_2_io_lookup_15_word_2}),
@@ -43708,6 +49387,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_2_13  ({2'h0, _sorts_2_io_lookup_15_word_13}),
     .io_lookup_word_2_14  ({2'h0, _sorts_2_io_lookup_15_word_14}),
     .io_lookup_word_2_15  ({2'h0, _sorts_2_io_lookup_15_word_15}),
+    .io_lookup_word_2_16  ({2'h0, _sorts_2_io_lookup_15_word_16}),
+    .io_lookup_word_2_17  ({2'h0, _sorts_2_io_lookup_15_word_17}),
+    .io_lookup_word_2_18  ({2'h0, _sorts_2_io_lookup_15_word_18}),
+    .io_lookup_word_2_19  ({2'h0, _sorts_2_io_lookup_15_word_19}),
+    .io_lookup_word_2_20  ({2'h0, _sorts_2_io_lookup_15_word_20}),
+    .io_lookup_word_2_21  ({2'h0, _sorts_2_io_lookup_15_word_21}),
+    .io_lookup_word_2_22  ({2'h0, _sorts_2_io_lookup_15_word_22}),
+    .io_lookup_word_2_23  ({2'h0, _sorts_2_io_lookup_15_word_23}),
+    .io_lookup_word_2_24  ({2'h0, _sorts_2_io_lookup_15_word_24}),
+    .io_lookup_word_2_25  ({2'h0, _sorts_2_io_lookup_15_word_25}),
+    .io_lookup_word_2_26  ({2'h0, _sorts_2_io_lookup_15_word_26}),
+    .io_lookup_word_2_27  ({2'h0, _sorts_2_io_lookup_15_word_27}),
+    .io_lookup_word_2_28  ({2'h0, _sorts_2_io_lookup_15_word_28}),
+    .io_lookup_word_2_29  ({2'h0, _sorts_2_io_lookup_15_word_29}),
+    .io_lookup_word_2_30  ({2'h0, _sorts_2_io_lookup_15_word_30}),
+    .io_lookup_word_2_31  ({2'h0, _sorts_2_io_lookup_15_word_31}),
     .io_lookup_word_3_0   ({2'h0, _sorts_3_io_lookup_15_word_0}),
     .io_lookup_word_3_1   ({2'h0, _sorts_3_io_lookup_15_word_1}),
     .io_lookup_word_3_2   ({2'h0, _sorts_3_io_lookup_15_word_2}),
@@ -43724,6 +49419,22 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world(
     .io_lookup_word_3_13  ({2'h0, _sorts_3_io_lookup_15_word_13}),
     .io_lookup_word_3_14  ({2'h0, _sorts_3_io_lookup_15_word_14}),
     .io_lookup_word_3_15  ({2'h0, _sorts_3_io_lookup_15_word_15}),
+    .io_lookup_word_3_16  ({2'h0, _sorts_3_io_lookup_15_word_16}),
+    .io_lookup_word_3_17  ({2'h0, _sorts_3_io_lookup_15_word_17}),
+    .io_lookup_word_3_18  ({2'h0, _sorts_3_io_lookup_15_word_18}),
+    .io_lookup_word_3_19  ({2'h0, _sorts_3_io_lookup_15_word_19}),
+    .io_lookup_word_3_20  ({2'h0, _sorts_3_io_lookup_15_word_20}),
+    .io_lookup_word_3_21  ({2'h0, _sorts_3_io_lookup_15_word_21}),
+    .io_lookup_word_3_22  ({2'h0, _sorts_3_io_lookup_15_word_22}),
+    .io_lookup_word_3_23  ({2'h0, _sorts_3_io_lookup_15_word_23}),
+    .io_lookup_word_3_24  ({2'h0, _sorts_3_io_lookup_15_word_24}),
+    .io_lookup_word_3_25  ({2'h0, _sorts_3_io_lookup_15_word_25}),
+    .io_lookup_word_3_26  ({2'h0, _sorts_3_io_lookup_15_word_26}),
+    .io_lookup_word_3_27  ({2'h0, _sorts_3_io_lookup_15_word_27}),
+    .io_lookup_word_3_28  ({2'h0, _sorts_3_io_lookup_15_word_28}),
+    .io_lookup_word_3_29  ({2'h0, _sorts_3_io_lookup_15_word_29}),
+    .io_lookup_word_3_30  ({2'h0, _sorts_3_io_lookup_15_word_30}),
+    .io_lookup_word_3_31  ({2'h0, _sorts_3_io_lookup_15_word_31}),
     .io_entry_addr        (_gens_15_io_entry_addr),
     .io_entry_group       (_gens_15_io_entry_group),
     .io_entry_item        (casez_tmp_37),
@@ -46968,7 +52679,7 @@ module Puc_world(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
-  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w4_l16_p8_e2_x_t4_world bp (
+  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world bp (
     .clock                   (clock),
     .reset                   (reset),
     .io_begin                (engineStart & run_8[1]),

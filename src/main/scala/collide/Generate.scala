@@ -35,6 +35,7 @@ object Generate {
       worldChunk: Option[Int] = None,
       worldCoarseChunks: Option[Boolean] = None,
       worldClaims: Option[Boolean] = None,
+      worldHitQueue: Option[Int] = None,
       scpuImpl: Option[String] = None,
       listPresets: Boolean = false)
 
@@ -84,6 +85,9 @@ object Generate {
       opt[Boolean]("world-claims").valueName("true|false").action((v, o) => o.copy(worldClaims = Some(v)))
         .text("the candidate lanes claim units of buckets from a shared counter as they need them, and the units that " +
           "are not one coarse chunk a bucket at a time, instead of walking fixed shares (world mode only)"),
+      opt[Int]("world-hit-queue").valueName("Q").action((v, o) => o.copy(worldHitQueue = Some(v)))
+        .text("streamed spheres with hits each candidate lane queues, 0..16, so a sphere with several hits does not " +
+          "stall the lane's stream (0: it stalls; world mode only)"),
       opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
         .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
           "(same cycles and records, a far faster co-simulation; not synthesizable)"),
@@ -139,8 +143,9 @@ object Generate {
       c16 <- world("--world-chunk", o.worldChunk)((bp, v) => bp.copy(chunk = v))(c15)
       c17 <- world("--world-coarse-chunks", o.worldCoarseChunks)((bp, v) => bp.copy(coarseChunks = v))(c16)
       c18 <- world("--world-claims", o.worldClaims)((bp, v) => bp.copy(claims = v))(c17)
-      c19 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c18)
-    } yield c19
+      c19 <- world("--world-hit-queue", o.worldHitQueue)((bp, v) => bp.copy(hitQueue = v))(c18)
+      c20 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c19)
+    } yield c20
   }
 
   val firtoolOpts: Array[String] = Array(

@@ -61,7 +61,10 @@ package collide.world
   * @param claims     lanes claim the next unit of buckets (a coarse group of 8, or a word)
   *                   from a shared counter whenever they need one, instead of walking a fixed
   *                   share: a lane that drew dense units takes fewer, so the lanes finish
-  *                   together (docs/afu.md, "Claimed units"). Teams are then not used
+  *                   together (docs/afu.md, "Claimed work"). Teams are then not used
+  * @param hitQueue   streamed spheres with hits a lane's ChunkMatcher queues (0..16) while
+  *                   its hits leave one a cycle: the stream goes on instead of stalling for a
+  *                   sphere with several hits (docs/afu.md, "Queued hits"); 0, it stalls
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -79,7 +82,8 @@ final case class BroadPhaseParams(
     cellSteps: Int = 1,
     coarseChunks: Boolean = false,
     team: Int = 4,
-    claims: Boolean = false
+    claims: Boolean = false,
+    hitQueue: Int = 0
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -101,6 +105,7 @@ final case class BroadPhaseParams(
   require(!coarseChunks || wordLog2 >= 3,
     s"coarseChunks needs wordLog2 >= 3 (the walk reads a coarse cell's 8 buckets in one word), got wordLog2 $wordLog2")
   require(team >= 1 && chisel3.util.isPow2(team), s"team must be a power of two, got $team")
+  require(hitQueue >= 0 && hitQueue <= 16, s"hitQueue must be 0..16 (streamed spheres with hits a lane queues), got $hitQueue")
   /** Lanes a team has: with coarse chunks the largest power of two up to `team` that divides
     * the lanes (1 for an odd lane count: whole words a lane); 1 without, or with claims. */
   val teamSize: Int = if (!coarseChunks || claims) 1 else Iterator.iterate(team)(_ / 2).find(t => lanes % t == 0).get

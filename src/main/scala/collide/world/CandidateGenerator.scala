@@ -83,7 +83,7 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
 
 class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
                          largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1, groups: Int = 1,
-                         coarse: Boolean = false, team: Int = 1, claims: Boolean = false)
+                         coarse: Boolean = false, team: Int = 1, claims: Boolean = false, hitQueue: Int = 0)
     extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
   require(lanes >= 1, s"lanes must be >= 1, got $lanes")
@@ -109,14 +109,15 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   require(!coarse || wordLog2 >= 3 || wordLog2 == bucketsLog2,
     s"coarse chunks need words of 8 counters or one word for the table, got wordLog2 $wordLog2 of $bucketsLog2")
   override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2" +
-    (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "") + (if (coarse) s"_x$teamSize" else "") + (if (claims) "_u" else "")
+    (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "") + (if (coarse) s"_x$teamSize" else "") + (if (claims) "_u" else "") +
+    (if (hitQueue > 0) s"_h$hitQueue" else "")
   val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes, groups,
     if (claims) CandidateGenerator.claimW(bucketsLog2) else 0))
   private val laneNo: UInt = io.lane.getOrElse(0.U)
 
   private val visitT = new WorldVisit(cellBits)
   private val stream = Module(new KeyStream(visitT, itemW, countW, cellBits, qWidth, keyLatency, groups))
-  private val matcher = Module(new ChunkMatcher(itemW, cellBits, qWidth, chunk))
+  private val matcher = Module(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hitQueue))
   io.entry.addr := stream.io.entryAddr
   io.entry.group := stream.io.entryGroup
   stream.io.entryItem := io.entry.item

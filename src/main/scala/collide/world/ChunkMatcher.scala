@@ -12,8 +12,11 @@ import chisel3.util._
   * BroadPhaseModel.owns); and the exact box filter |qa - qb| <= qra + qrb + slack must pass
   * on every axis. The large pass's probes (anyCell) skip the cell rules. Visits may follow
   * each other back to back (the visit travels with each probe). Hits leave one pair a cycle,
-  * (min, max), chunk members in slot order; the stream stalls (in.ready low) while a streamed
-  * sphere has more than one hit left, and out is valid/ready.
+  * (min, max), chunk members in slot order, streamed spheres in order; out is valid/ready.
+  * Without a hit queue (`hitQueue` 0) the stream stalls (in.ready low) while a streamed sphere
+  * has more than one hit left. With one, a sphere's hits (which members, and its index) wait
+  * in a queue of `hitQueue` spheres and the stream goes on: it stalls only when the queue is
+  * full, so a burst of hits costs the stream nothing while the hits average under one a cycle.
   */
 class ChunkMatcherIO(p: WorldKey, chunk: Int) extends Bundle {
   /** Empties the chunk (between chunks); with a load in the same cycle, that is the first member. */
@@ -29,9 +32,10 @@ class ChunkMatcherIO(p: WorldKey, chunk: Int) extends Bundle {
   val idle = Output(Bool())
 }
 
-class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int) extends Module {
+class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue: Int = 0) extends Module {
   require(chunk >= 1 && chunk <= 256)
-  override def desiredName = s"ChunkMatcher_i${itemW}_c${cellBits}_q${qWidth}_k$chunk"
+  require(hitQueue >= 0 && hitQueue <= 16, s"hitQueue must be 0..16, got $hitQueue")
+  override def desiredName = s"ChunkMatcher_i${itemW}_c${cellBits}_q${qWidth}_k$chunk" + (if (hitQueue > 0) s"_h$hitQueue" else "")
   private val key = new WorldKey(itemW, cellBits, qWidth)
   val io = IO(new ChunkMatcherIO(key, chunk))
 
@@ -78,18 +82,34 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int) extends M
     m.U < used && takes && boxPass(mem.key, e)
   }).asUInt
 
-  // The entry being drained and the hits it still owes.
+  // The streamed sphere being drained (its index) and the hits it still owes.
   private val pending = RegInit(0.U(chunk.W))
-  private val entry = Reg(key)
+  private val entry = Reg(UInt(itemW.W))
   private val slot = PriorityEncoder(pending)
   private val lastHit = PopCount(pending) <= 1.U
   io.out.valid := pending.orR
   private val m = members(VecIndex(slot, chunk)).key
-  io.out.bits.i := Mux(m.index < entry.index, m.index, entry.index)
-  io.out.bits.j := Mux(m.index < entry.index, entry.index, m.index)
-  io.in.ready := !pending.orR || (lastHit && io.out.ready)
+  io.out.bits.i := Mux(m.index < entry, m.index, entry)
+  io.out.bits.j := Mux(m.index < entry, entry, m.index)
   private val drained = Mux(io.out.fire, pending & ~UIntToOH(slot, chunk), pending)
-  pending := Mux(io.in.fire, hitsNow, drained)
-  when(io.in.fire) { entry := e }
-  io.idle := !pending.orR
+  // The drain takes its next sphere when it has nothing left to owe after this cycle.
+  private val free = !pending.orR || (lastHit && io.out.ready)
+  if (hitQueue == 0) {
+    io.in.ready := free
+    pending := Mux(io.in.fire, hitsNow, drained)
+    when(io.in.fire) { entry := e.index }
+    io.idle := !pending.orR
+  } else {
+    // Only spheres with a hit are queued; the comparators' result never reaches in.ready
+    // (a long path), so a full queue stops the stream even for a sphere without one.
+    class Hits extends Bundle { val mask = UInt(chunk.W); val index = UInt(itemW.W) }
+    val q = Module(new Queue(new Hits, hitQueue))
+    io.in.ready := q.io.enq.ready
+    q.io.enq.valid := io.in.valid && hitsNow.orR
+    q.io.enq.bits.mask := hitsNow; q.io.enq.bits.index := e.index
+    q.io.deq.ready := free
+    pending := Mux(q.io.deq.fire, q.io.deq.bits.mask, drained)
+    when(q.io.deq.fire) { entry := q.io.deq.bits.index }
+    io.idle := !pending.orR && !q.io.deq.valid
+  }
 }

@@ -165,8 +165,8 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     everyHardCase("BroadPhaseSpec-cell-steps", BroadPhaseParams.fourLanesFourPorts.copy(cellSteps = 2), "edges 2^k and 1.5 * 2^k: ")
   }
 
-  it should "find exactly the golden model's candidates with coarse chunks (a coarse cell's spheres one chunk), in every hard case and random cloud" in {
-    everyHardCase("BroadPhaseSpec-coarse", BroadPhaseParams.coarse, "coarse chunks: ")
+  it should "find exactly the golden model's candidates with coarse chunks (a coarse cell's spheres one chunk) and hits queued a sphere deep, in every hard case and random cloud" in {
+    everyHardCase("BroadPhaseSpec-coarse", BroadPhaseParams.coarse.copy(hitQueue = 1), "coarse chunks: ")
   }
 
   it should "find the same candidates with coarse chunks, four lanes and four sort ports (one team of four), in every hard case and random cloud" taggedAs (Slow) in {
@@ -181,9 +181,9 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     everyHardCase("BroadPhaseSpec-coarse-words", BroadPhaseParams.fourLanes.copy(coarseChunks = true, team = 1), "coarse chunks, teams of one: ")
   }
 
-  it should "find the same candidates with the lanes claiming their work (units of buckets as they need them, a dense unit a bucket at a time), coarse chunks, four lanes and four sort ports, in every hard case and random cloud" in {
+  it should "find the same candidates with the lanes claiming their work (units of buckets as they need them, a dense unit a bucket at a time), coarse chunks, four lanes, four sort ports and hits queued two spheres deep, in every hard case and random cloud" in {
     // Edges 2^k alone: some coarse groups overfill a chunk of 32 and are handed back (with 1.5 * 2^k none do here).
-    everyHardCase("BroadPhaseSpec-claims", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32, claims = true),
+    everyHardCase("BroadPhaseSpec-claims", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32, claims = true, hitQueue = 2),
       "claims, four lanes: ")
   }
 

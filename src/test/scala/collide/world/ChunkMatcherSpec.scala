@@ -46,9 +46,9 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   private def tuple(k: K) = (BigInt(k.q(0)), BigInt(k.q(1)), BigInt(k.q(2)), BigInt(k.qr))
 
-  it should "emit every member-entry pair in each probe's visited cell that the member owns and the box filter passes, once, in order, under back-pressure" in {
-    val rng = Seeds.rng("ChunkMatcherSpec")
-    test(new ChunkMatcher(itemW, cellBits, qWidth, chunk)) { dut =>
+  for (hq <- Seq(0, 1, 4)) it should s"emit every member-entry pair in each probe's visited cell that the member owns and the box filter passes, once, in order, under back-pressure (hit queue $hq)" in {
+    val rng = Seeds.rng(if (hq == 0) "ChunkMatcherSpec" else s"ChunkMatcherSpec-h$hq")
+    test(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hq)) { dut =>
       dut.clock.setTimeout(0)
       var total = 0
       for (round <- 0 until Seeds.cases(40)) {
@@ -92,9 +92,45 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
         assert(!dut.io.overflow.peek().litToBoolean)
         total += want.length
       }
-      println(s"[ChunkMatcherSpec] $total pairs compared")
+      println(s"[ChunkMatcherSpec] hit queue $hq: $total pairs compared")
       assert(total > 50, "the rounds should produce pairs")
     }
+  }
+
+  /** Cycles to accept `entries` probes, of which the first hits every member and the rest
+    * none, with the output always ready; and the pairs that came out. */
+  private def burst(hq: Int, entries: Int): (Int, Int) = {
+    var result = (0, 0)
+    test(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hq)) { dut =>
+      val members = (0 until chunk).map(i => K(i, Seq(0, 3, -2), Seq(0, 768, -512), 10))
+      for ((m, n) <- members.zipWithIndex) {
+        dut.io.clear.poke((n == 0).B); dut.io.load.valid.poke(true.B); pokeMember(dut.io.load.bits, (m, 0)); dut.clock.step()
+      }
+      dut.io.clear.poke(false.B); dut.io.load.valid.poke(false.B); dut.io.slack.poke(0.U); dut.io.out.ready.poke(true.B)
+      // Probe 0 sits on the members (a later index, own cell: every member takes it); the others are far off.
+      val probes = (0 until entries).map(n => P(K(100 + n, Seq(0, 3, -2), Seq(if (n == 0) 0 else 200 + 100 * n, 768, -512), 10),
+        Seq(0, 3, -2), Seq(0, 0, 0), anyCell = false, own = false))
+      var left = probes; var cycles = 0; var pairs = 0
+      while (left.nonEmpty || !dut.io.idle.peek().litToBoolean) {
+        dut.io.in.valid.poke(left.nonEmpty.B)
+        if (left.nonEmpty) pokeProbe(dut.io.in.bits, left.head)
+        if (dut.io.out.valid.peek().litToBoolean) pairs += 1
+        if (left.nonEmpty && dut.io.in.ready.peek().litToBoolean) { left = left.tail; if (left.isEmpty) result = (cycles + 1, 0) }
+        dut.clock.step(); cycles += 1
+        assert(cycles < 1000, "stuck")
+      }
+      result = (result._1, pairs)
+    }
+    result
+  }
+
+  it should "keep taking streamed spheres while a burst of hits leaves, with a hit queue" in {
+    val (stalled, pairsStalled) = burst(0, 6)
+    val (queued, pairsQueued) = burst(2, 6)
+    assert(pairsStalled == chunk && pairsQueued == chunk, s"every member's pair with the first probe: $pairsStalled, $pairsQueued")
+    // Without a queue the stream waits for all but the last of the first sphere's hits.
+    assert(stalled == 6 + chunk - 1, s"no queue: 6 probes accepted in $stalled cycles")
+    assert(queued == 6, s"a queue of 2: 6 probes accepted in $queued cycles")
   }
 
   it should "refuse a member beyond the chunk and say so" in {
