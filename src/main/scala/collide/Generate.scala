@@ -36,6 +36,7 @@ object Generate {
       worldCoarseChunks: Option[Boolean] = None,
       worldClaims: Option[Boolean] = None,
       worldHitQueue: Option[Int] = None,
+      worldWordLog2: Option[Int] = None,
       scpuImpl: Option[String] = None,
       listPresets: Boolean = false)
 
@@ -85,6 +86,9 @@ object Generate {
       opt[Boolean]("world-claims").valueName("true|false").action((v, o) => o.copy(worldClaims = Some(v)))
         .text("the candidate lanes claim units of buckets from a shared counter as they need them, and the units that " +
           "are not one coarse chunk a bucket at a time, instead of walking fixed shares (world mode only)"),
+      opt[Int]("world-word-log2").valueName("W").action((v, o) => o.copy(worldWordLog2 = Some(v)))
+        .text("2^W counters a RAM word in the broad phase's sort, 0..5: the clear, the prefix sum and the walk take a " +
+          "word a cycle (world mode only; coarse chunks need 3 or more; the preset has 5)"),
       opt[Int]("world-hit-queue").valueName("Q").action((v, o) => o.copy(worldHitQueue = Some(v)))
         .text("streamed spheres with hits each candidate lane queues, 0..16, so a sphere with several hits does not " +
           "stall the lane's stream (0: it stalls; world mode only)"),
@@ -144,8 +148,9 @@ object Generate {
       c17 <- world("--world-coarse-chunks", o.worldCoarseChunks)((bp, v) => bp.copy(coarseChunks = v))(c16)
       c18 <- world("--world-claims", o.worldClaims)((bp, v) => bp.copy(claims = v))(c17)
       c19 <- world("--world-hit-queue", o.worldHitQueue)((bp, v) => bp.copy(hitQueue = v))(c18)
-      c20 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c19)
-    } yield c20
+      c20 <- world("--world-word-log2", o.worldWordLog2)((bp, v) => bp.copy(wordLog2 = v))(c19)
+      c21 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c20)
+    } yield c21
   }
 
   val firtoolOpts: Array[String] = Array(

@@ -68,6 +68,9 @@ class GenerateSpec extends AnyFlatSpec {
     // Hits queued eight spheres deep in the preset; without a queue, a name without the h.
     assert(pw.hitQueue == 8 && pw.wordLog2 == 5, s"the preset's queue and word: $pw")
     assert(cfg("--preset", "world", "--world-hit-queue", "0").toOption.get.id.endsWith("_world16p8w5e2k32xu"))
+    // 16 counters a word: the same RAM bits, a name of its own.
+    val w4 = cfg("--preset", "world", "--world-word-log2", "4").toOption.get
+    assert(w4.id.endsWith("_world16p8w4e2k32xuh8") && w4.world.get.ramBits(4096) == pw.ramBits(4096), w4.id)
     assert(AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("hitQueue").num == 8)
     assert(cfg("--preset", "world", "--world-lanes", "1").toOption.get.id.endsWith("_worldw5e2k32xuh8"),
       "one lane: no lane count in the name, and the sort's ports follow the lanes down to one")
@@ -82,6 +85,8 @@ class GenerateSpec extends AnyFlatSpec {
     }
     err("--scpus", "0")("--scpus", "1..64")
     err("--preset", "world", "--world-hit-queue", "17")("--world-hit-queue", "0..16")
+    err("--preset", "world", "--world-word-log2", "2")("--world-word-log2", "coarseChunks needs wordLog2 >= 3")
+    err("--preset", "world", "--world-word-log2", "6")("--world-word-log2", "0..5")
     err("--world-hit-queue", "4")("--world-hit-queue", "world mode is not built")
     err("--scpus", "65")("--scpus", "1..64")
     err("--max-spheres", "1000")("--max-spheres", "power of two")
