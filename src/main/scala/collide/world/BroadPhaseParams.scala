@@ -64,7 +64,7 @@ package collide.world
   *                   together (docs/afu.md, "Claimed work"). Teams are then not used
   * @param hitQueue   streamed spheres with hits a lane's ChunkMatcher queues (0..16) while
   *                   its hits leave one a cycle: the stream goes on instead of stalling for a
-  *                   sphere with several hits (docs/afu.md, "Queued hits"); 0, it stalls
+  *                   sphere with several hits (docs/afu.md, "Queued hits and 32 counters a word"); 0, it stalls
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
