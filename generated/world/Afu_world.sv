@@ -23849,10 +23849,13 @@ module Queue3_StreamRange_world(
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 2'h1 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world(
+module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
   input         clock,
                 reset,
                 io_start,
+  input  [4:0]  io_box_0,
+                io_box_1,
+                io_box_2,
   input  [3:0]  io_lane,
                 io_usedLog2,
   output        io_need,
@@ -26072,6 +26075,14 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world(
   wire [19:0] nc_0 = curCell_0 + {{17{casez_tmp_16[2]}}, casez_tmp_16};
   wire [19:0] nc_1 = curCell_1 + {{17{casez_tmp_17[2]}}, casez_tmp_17};
   wire [19:0] nc_2 = curCell_2 + {{17{casez_tmp_18[2]}}, casez_tmp_18};
+  wire [41:0] _io_lookup_bucket_h_T_5 = 42'h1 << io_box_0;
+  wire [41:0] _io_lookup_bucket_h_T_12 = 42'h1 << io_box_1;
+  wire [40:0] _io_lookup_bucket_h_T_17 =
+    {31'h0, nc_1[10:1] & _io_lookup_bucket_h_T_12[9:0] - 10'h1} << io_box_0;
+  wire [41:0] _io_lookup_bucket_h_T_21 = 42'h1 << io_box_2;
+  wire [72:0] _io_lookup_bucket_h_T_27 =
+    {63'h0, nc_2[10:1] & _io_lookup_bucket_h_T_21[9:0] - 10'h1} << {1'h0, io_box_0}
+    + {1'h0, io_box_1};
   wire        _GEN_12 = state == 3'h3;
   wire [6:0]  _GEN_13 = {1'h0, li};
   wire [6:0]  idx = _GEN_13 + {1'h0, lj};
@@ -26679,7 +26690,8 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world(
       : _GEN_1
           ? issueAt[12:0]
           : _GEN_9
-              ? {nc_0[10:1] * 10'h5D ^ nc_1[10:1] * 10'h9F ^ nc_2[10:1] * 10'h3B7,
+              ? {nc_0[10:1] & _io_lookup_bucket_h_T_5[9:0] - 10'h1
+                   | _io_lookup_bucket_h_T_17[9:0] | _io_lookup_bucket_h_T_27[9:0],
                  nc_0[0],
                  nc_1[0],
                  nc_2[0]} & _io_lookup_bucket_mask_T[12:0] - 13'h1
@@ -27188,6 +27200,82 @@ module SphereKeys_fp32_c20_f8_m9d8_e2_l1_world(
   assign io_out_topNone = io_out_topNone_r;
 endmodule
 
+module BoxTracker_fp32_world(
+  input         clock,
+                reset,
+                io_clear,
+                io_in_valid,
+  input  [31:0] io_in_bits_0,
+                io_in_bits_1,
+                io_in_bits_2,
+                io_in_bits_3,
+  output        io_any,
+  output [31:0] io_lo_0,
+                io_lo_1,
+                io_lo_2,
+                io_hi_0,
+                io_hi_1,
+                io_hi_2
+);
+
+  reg         any;
+  reg  [31:0] lo_0;
+  reg  [31:0] lo_1;
+  reg  [31:0] lo_2;
+  reg  [31:0] hi_0;
+  reg  [31:0] hi_1;
+  reg  [31:0] hi_2;
+  wire        _GEN =
+    io_in_valid & ~((&(io_in_bits_0[30:23])) & (|(io_in_bits_0[22:0])))
+    & ~((&(io_in_bits_0[30:23])) & ~(|(io_in_bits_0[22:0])))
+    & ~((&(io_in_bits_1[30:23])) & (|(io_in_bits_1[22:0])))
+    & ~((&(io_in_bits_1[30:23])) & ~(|(io_in_bits_1[22:0])))
+    & ~((&(io_in_bits_2[30:23])) & (|(io_in_bits_2[22:0])))
+    & ~((&(io_in_bits_2[30:23])) & ~(|(io_in_bits_2[22:0])))
+    & ~((&(io_in_bits_3[30:23])) & (|(io_in_bits_3[22:0])))
+    & ~((&(io_in_bits_3[30:23])) & ~(|(io_in_bits_3[22:0])));
+  wire [31:0] k = io_in_bits_0[31] ? ~io_in_bits_0 : io_in_bits_0 | 32'h80000000;
+  wire [31:0] k_1 = io_in_bits_1[31] ? ~io_in_bits_1 : io_in_bits_1 | 32'h80000000;
+  wire [31:0] k_2 = io_in_bits_2[31] ? ~io_in_bits_2 : io_in_bits_2 | 32'h80000000;
+  always @(posedge clock) begin
+    if (reset)
+      any <= 1'h0;
+    else
+      any <= ~io_clear & (_GEN | any);
+    if (io_clear | ~(_GEN & (~any | k < lo_0))) begin
+    end
+    else
+      lo_0 <= k;
+    if (io_clear | ~(_GEN & (~any | k_1 < lo_1))) begin
+    end
+    else
+      lo_1 <= k_1;
+    if (io_clear | ~(_GEN & (~any | k_2 < lo_2))) begin
+    end
+    else
+      lo_2 <= k_2;
+    if (io_clear | ~(_GEN & (~any | k > hi_0))) begin
+    end
+    else
+      hi_0 <= k;
+    if (io_clear | ~(_GEN & (~any | k_1 > hi_1))) begin
+    end
+    else
+      hi_1 <= k_1;
+    if (io_clear | ~(_GEN & (~any | k_2 > hi_2))) begin
+    end
+    else
+      hi_2 <= k_2;
+  end // always @(posedge)
+  assign io_any = any;
+  assign io_lo_0 = lo_0;
+  assign io_lo_1 = lo_1;
+  assign io_lo_2 = lo_2;
+  assign io_hi_0 = hi_0;
+  assign io_hi_1 = hi_1;
+  assign io_hi_2 = hi_2;
+endmodule
+
 // VCS coverage exclude_file
 module deferred_124x11_world(
   input  [6:0]  R0_addr,
@@ -27208,7 +27296,7 @@ module deferred_124x11_world(
   assign R0_data = R0_en ? Memory[R0_addr] : 11'bx;
 endmodule
 
-module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
+module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   input         clock,
                 reset,
                 io_begin,
@@ -27391,6 +27479,124 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
 
   wire [15:0] _GEN;
   wire [10:0] _deferred_ext_R0_data;
+  wire [19:0] _corners_k_1_io_out_cell_0;
+  wire [19:0] _corners_k_1_io_out_cell_1;
+  wire [19:0] _corners_k_1_io_out_cell_2;
+  wire [19:0] _corners_k_io_out_cell_0;
+  wire [19:0] _corners_k_io_out_cell_1;
+  wire [19:0] _corners_k_io_out_cell_2;
+  wire        _trackers_15_io_any;
+  wire [31:0] _trackers_15_io_lo_0;
+  wire [31:0] _trackers_15_io_lo_1;
+  wire [31:0] _trackers_15_io_lo_2;
+  wire [31:0] _trackers_15_io_hi_0;
+  wire [31:0] _trackers_15_io_hi_1;
+  wire [31:0] _trackers_15_io_hi_2;
+  wire        _trackers_14_io_any;
+  wire [31:0] _trackers_14_io_lo_0;
+  wire [31:0] _trackers_14_io_lo_1;
+  wire [31:0] _trackers_14_io_lo_2;
+  wire [31:0] _trackers_14_io_hi_0;
+  wire [31:0] _trackers_14_io_hi_1;
+  wire [31:0] _trackers_14_io_hi_2;
+  wire        _trackers_13_io_any;
+  wire [31:0] _trackers_13_io_lo_0;
+  wire [31:0] _trackers_13_io_lo_1;
+  wire [31:0] _trackers_13_io_lo_2;
+  wire [31:0] _trackers_13_io_hi_0;
+  wire [31:0] _trackers_13_io_hi_1;
+  wire [31:0] _trackers_13_io_hi_2;
+  wire        _trackers_12_io_any;
+  wire [31:0] _trackers_12_io_lo_0;
+  wire [31:0] _trackers_12_io_lo_1;
+  wire [31:0] _trackers_12_io_lo_2;
+  wire [31:0] _trackers_12_io_hi_0;
+  wire [31:0] _trackers_12_io_hi_1;
+  wire [31:0] _trackers_12_io_hi_2;
+  wire        _trackers_11_io_any;
+  wire [31:0] _trackers_11_io_lo_0;
+  wire [31:0] _trackers_11_io_lo_1;
+  wire [31:0] _trackers_11_io_lo_2;
+  wire [31:0] _trackers_11_io_hi_0;
+  wire [31:0] _trackers_11_io_hi_1;
+  wire [31:0] _trackers_11_io_hi_2;
+  wire        _trackers_10_io_any;
+  wire [31:0] _trackers_10_io_lo_0;
+  wire [31:0] _trackers_10_io_lo_1;
+  wire [31:0] _trackers_10_io_lo_2;
+  wire [31:0] _trackers_10_io_hi_0;
+  wire [31:0] _trackers_10_io_hi_1;
+  wire [31:0] _trackers_10_io_hi_2;
+  wire        _trackers_9_io_any;
+  wire [31:0] _trackers_9_io_lo_0;
+  wire [31:0] _trackers_9_io_lo_1;
+  wire [31:0] _trackers_9_io_lo_2;
+  wire [31:0] _trackers_9_io_hi_0;
+  wire [31:0] _trackers_9_io_hi_1;
+  wire [31:0] _trackers_9_io_hi_2;
+  wire        _trackers_8_io_any;
+  wire [31:0] _trackers_8_io_lo_0;
+  wire [31:0] _trackers_8_io_lo_1;
+  wire [31:0] _trackers_8_io_lo_2;
+  wire [31:0] _trackers_8_io_hi_0;
+  wire [31:0] _trackers_8_io_hi_1;
+  wire [31:0] _trackers_8_io_hi_2;
+  wire        _trackers_7_io_any;
+  wire [31:0] _trackers_7_io_lo_0;
+  wire [31:0] _trackers_7_io_lo_1;
+  wire [31:0] _trackers_7_io_lo_2;
+  wire [31:0] _trackers_7_io_hi_0;
+  wire [31:0] _trackers_7_io_hi_1;
+  wire [31:0] _trackers_7_io_hi_2;
+  wire        _trackers_6_io_any;
+  wire [31:0] _trackers_6_io_lo_0;
+  wire [31:0] _trackers_6_io_lo_1;
+  wire [31:0] _trackers_6_io_lo_2;
+  wire [31:0] _trackers_6_io_hi_0;
+  wire [31:0] _trackers_6_io_hi_1;
+  wire [31:0] _trackers_6_io_hi_2;
+  wire        _trackers_5_io_any;
+  wire [31:0] _trackers_5_io_lo_0;
+  wire [31:0] _trackers_5_io_lo_1;
+  wire [31:0] _trackers_5_io_lo_2;
+  wire [31:0] _trackers_5_io_hi_0;
+  wire [31:0] _trackers_5_io_hi_1;
+  wire [31:0] _trackers_5_io_hi_2;
+  wire        _trackers_4_io_any;
+  wire [31:0] _trackers_4_io_lo_0;
+  wire [31:0] _trackers_4_io_lo_1;
+  wire [31:0] _trackers_4_io_lo_2;
+  wire [31:0] _trackers_4_io_hi_0;
+  wire [31:0] _trackers_4_io_hi_1;
+  wire [31:0] _trackers_4_io_hi_2;
+  wire        _trackers_3_io_any;
+  wire [31:0] _trackers_3_io_lo_0;
+  wire [31:0] _trackers_3_io_lo_1;
+  wire [31:0] _trackers_3_io_lo_2;
+  wire [31:0] _trackers_3_io_hi_0;
+  wire [31:0] _trackers_3_io_hi_1;
+  wire [31:0] _trackers_3_io_hi_2;
+  wire        _trackers_2_io_any;
+  wire [31:0] _trackers_2_io_lo_0;
+  wire [31:0] _trackers_2_io_lo_1;
+  wire [31:0] _trackers_2_io_lo_2;
+  wire [31:0] _trackers_2_io_hi_0;
+  wire [31:0] _trackers_2_io_hi_1;
+  wire [31:0] _trackers_2_io_hi_2;
+  wire        _trackers_1_io_any;
+  wire [31:0] _trackers_1_io_lo_0;
+  wire [31:0] _trackers_1_io_lo_1;
+  wire [31:0] _trackers_1_io_lo_2;
+  wire [31:0] _trackers_1_io_hi_0;
+  wire [31:0] _trackers_1_io_hi_1;
+  wire [31:0] _trackers_1_io_hi_2;
+  wire        _trackers_0_io_any;
+  wire [31:0] _trackers_0_io_lo_0;
+  wire [31:0] _trackers_0_io_lo_1;
+  wire [31:0] _trackers_0_io_lo_2;
+  wire [31:0] _trackers_0_io_hi_0;
+  wire [31:0] _trackers_0_io_hi_1;
+  wire [31:0] _trackers_0_io_hi_2;
   wire        _laneKeys_15_io_out_valid;
   wire [19:0] _laneKeys_15_io_out_cell_0;
   wire [19:0] _laneKeys_15_io_out_cell_1;
@@ -30480,8 +30686,6 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   wire [4:0]  _laneExps_0_io_used;
   wire [13:0] _laneExps_0_io_top;
   wire        _laneExps_0_io_anyTop;
-  wire        sortBusy =
-    _sorts_0_io_busy | _sorts_1_io_busy | _sorts_2_io_busy | _sorts_3_io_busy;
   reg  [11:0] larges_0_index;
   reg  [28:0] larges_0_q_0;
   reg  [28:0] larges_0_q_1;
@@ -30562,7 +30766,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   reg  [28:0] larges_15_q_1;
   reg  [28:0] larges_15_q_2;
   reg  [28:0] larges_15_qr;
-  reg  [2:0]  state;
+  reg  [3:0]  state;
   wire        _starting_T = io_start | io_begin;
   wire        starting = _starting_T & ~(|state);
   reg         fed;
@@ -30578,10 +30782,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   reg         st_badBucket;
   reg         st_sortMismatch;
   reg  [4:0]  largeCount;
-  wire        _loading_T = state == 3'h2;
-  wire        classifying = state == 3'h4;
-  wire        _sorts_3_io_in_1_bits_scatter_T = state == 3'h6;
-  wire        inPass = _loading_T | classifying | _sorts_3_io_in_1_bits_scatter_T;
+  wire        _loading_T = state == 4'h2;
+  wire        classifying = state == 4'h5;
+  wire        _sorts_3_io_in_1_bits_scatter_T = state == 4'h7;
   reg  [12:0] i_0;
   reg  [12:0] i_1;
   reg  [12:0] i_2;
@@ -30600,78 +30803,49 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   reg  [12:0] i_15;
   wire [12:0] _GEN_0 = {4'h0, num[12:4]};
   wire [12:0] _GEN_1 = {3'h0, num[12:3]};
-  wire        reading_0 = inPass & i_0 < (_loading_T ? _GEN_0 : _GEN_1);
   wire [12:0] _GEN_2 = {2'h0, num[12:2]};
-  wire        reading_1 = inPass & i_1 < (_loading_T ? _GEN_1 : _GEN_2);
   wire [26:0] _gens_3_io_largeFrom_T = {14'h0, num} * 27'h3000;
-  wire [14:0] _i_3_T_9 = {2'h0, num} * 15'h3;
-  wire        reading_2 =
-    inPass
-    & i_2 < (_loading_T ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : {1'h0, _i_3_T_9[14:3]});
   wire [27:0] _GEN_3 = {15'h0, num};
-  wire [15:0] _GEN_4 = {3'h0, num};
-  wire        reading_3 = inPass & i_3 < (_loading_T ? _GEN_2 : {1'h0, num[12:1]});
   wire [27:0] _gens_5_io_largeFrom_T = _GEN_3 * 28'h5000;
-  wire [15:0] _i_5_T_8 = _GEN_4 * 16'h5;
-  wire        reading_4 =
-    inPass & i_4 < (_loading_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_8[15:3]);
   wire [27:0] _gens_6_io_largeFrom_T = _GEN_3 * 28'h6000;
-  wire [15:0] _i_6_T_8 = _GEN_4 * 16'h6;
-  wire        reading_5 =
-    inPass & i_5 < (_loading_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_8[15:3]);
   wire [27:0] _gens_7_io_largeFrom_T = _GEN_3 * 28'h7000;
-  wire [15:0] _i_7_T_8 = _GEN_4 * 16'h7;
-  wire        reading_6 =
-    inPass & i_6 < (_loading_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_8[15:3]);
-  wire [28:0] _GEN_5 = {16'h0, num};
-  wire        reading_7 = inPass & i_7 < (_loading_T ? {1'h0, num[12:1]} : num);
-  wire [28:0] _gens_9_io_largeFrom_T = _GEN_5 * 29'h9000;
-  wire        reading_8 =
-    inPass & i_8 < (_loading_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_10_io_largeFrom_T = _GEN_5 * 29'hA000;
-  wire        reading_9 =
-    inPass & i_9 < (_loading_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_11_io_largeFrom_T = _GEN_5 * 29'hB000;
-  wire        reading_10 =
-    inPass & i_10 < (_loading_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_12_io_largeFrom_T = _GEN_5 * 29'hC000;
-  wire        reading_11 =
-    inPass & i_11 < (_loading_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_13_io_largeFrom_T = _GEN_5 * 29'hD000;
-  wire        reading_12 =
-    inPass & i_12 < (_loading_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_14_io_largeFrom_T = _GEN_5 * 29'hE000;
-  wire        reading_13 =
-    inPass & i_13 < (_loading_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
-  wire [28:0] _gens_15_io_largeFrom_T = _GEN_5 * 29'hF000;
-  wire        reading_14 =
-    inPass & i_14 < (_loading_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
-  wire        reading_15 = inPass & i_15 < (_loading_T ? num : 13'h0);
+  wire [28:0] _GEN_4 = {16'h0, num};
+  wire [28:0] _gens_9_io_largeFrom_T = _GEN_4 * 29'h9000;
+  wire [28:0] _gens_10_io_largeFrom_T = _GEN_4 * 29'hA000;
+  wire [28:0] _gens_11_io_largeFrom_T = _GEN_4 * 29'hB000;
+  wire [28:0] _gens_12_io_largeFrom_T = _GEN_4 * 29'hC000;
+  wire [28:0] _gens_13_io_largeFrom_T = _GEN_4 * 29'hD000;
+  wire [28:0] _gens_14_io_largeFrom_T = _GEN_4 * 29'hE000;
+  wire [28:0] _gens_15_io_largeFrom_T = _GEN_4 * 29'hF000;
   reg  [5:0]  inflight;
-  wire        passDone =
-    {reading_15,
-     reading_14,
-     reading_13,
-     reading_12,
-     reading_11,
-     reading_10,
-     reading_9,
-     reading_8,
-     reading_7,
-     reading_6,
-     reading_5,
-     reading_4,
-     reading_3,
-     reading_2,
-     reading_1,
-     reading_0} == 16'h0 & inflight == 6'h0;
-  wire        filling = state == 3'h1;
+  wire        filling = state == 4'h1;
   wire        loading = _loading_T | filling;
+  wire        _gens_15_io_start_T = state == 4'h8;
   reg         laneKeys_0_io_in_valid_REG;
+  wire        _GEN_5 = filling ? io_feed_0_valid : laneKeys_0_io_in_valid_REG;
+  wire [31:0] _GEN_6 = filling ? io_feed_0_bits_0 : io_sphere_0_data_0;
+  wire [31:0] _GEN_7 = filling ? io_feed_0_bits_1 : io_sphere_0_data_1;
+  wire [31:0] _GEN_8 = filling ? io_feed_0_bits_2 : io_sphere_0_data_2;
+  wire [31:0] _GEN_9 = filling ? io_feed_0_bits_3 : io_sphere_0_data_3;
   wire [13:0] _laneKeys_15_io_in_level_T = loading ? 14'h0 : _cellExp_io_level;
   reg         laneKeys_1_io_in_valid_REG;
+  wire        _GEN_10 = filling ? io_feed_1_valid : laneKeys_1_io_in_valid_REG;
+  wire [31:0] _GEN_11 = filling ? io_feed_1_bits_0 : io_sphere_1_data_0;
+  wire [31:0] _GEN_12 = filling ? io_feed_1_bits_1 : io_sphere_1_data_1;
+  wire [31:0] _GEN_13 = filling ? io_feed_1_bits_2 : io_sphere_1_data_2;
+  wire [31:0] _GEN_14 = filling ? io_feed_1_bits_3 : io_sphere_1_data_3;
   reg         laneKeys_2_io_in_valid_REG;
+  wire        _GEN_15 = filling ? io_feed_2_valid : laneKeys_2_io_in_valid_REG;
+  wire [31:0] _GEN_16 = filling ? io_feed_2_bits_0 : io_sphere_2_data_0;
+  wire [31:0] _GEN_17 = filling ? io_feed_2_bits_1 : io_sphere_2_data_1;
+  wire [31:0] _GEN_18 = filling ? io_feed_2_bits_2 : io_sphere_2_data_2;
+  wire [31:0] _GEN_19 = filling ? io_feed_2_bits_3 : io_sphere_2_data_3;
   reg         laneKeys_3_io_in_valid_REG;
+  wire        _GEN_20 = filling ? io_feed_3_valid : laneKeys_3_io_in_valid_REG;
+  wire [31:0] _GEN_21 = filling ? io_feed_3_bits_0 : io_sphere_3_data_0;
+  wire [31:0] _GEN_22 = filling ? io_feed_3_bits_1 : io_sphere_3_data_1;
+  wire [31:0] _GEN_23 = filling ? io_feed_3_bits_2 : io_sphere_3_data_2;
+  wire [31:0] _GEN_24 = filling ? io_feed_3_bits_3 : io_sphere_3_data_3;
   reg         laneKeys_4_io_in_valid_REG;
   reg         laneKeys_5_io_in_valid_REG;
   reg         laneKeys_6_io_in_valid_REG;
@@ -30716,6 +30890,385 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     $signed(_laneKeys_6_io_out_need) > $signed(_cellExp_io_level);
   wire        _sorts_3_io_in_1_valid_T_8 =
     $signed(_laneKeys_7_io_out_need) > $signed(_cellExp_io_level);
+  reg  [4:0]  boxB_0;
+  reg  [4:0]  boxB_1;
+  reg  [4:0]  boxB_2;
+  reg  [1:0]  boxCycle;
+  wire        _any_T = _trackers_0_io_any | _trackers_1_io_any;
+  wire [31:0] _GEN_25 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_0 < _trackers_0_io_lo_0
+      ? _trackers_1_io_lo_0
+      : _trackers_0_io_lo_0;
+  wire        _GEN_26 = _any_T | _trackers_2_io_any;
+  wire [31:0] _GEN_27 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_0 < _GEN_25
+      ? _trackers_2_io_lo_0
+      : _GEN_25;
+  wire        _GEN_28 = _GEN_26 | _trackers_3_io_any;
+  wire [31:0] _GEN_29 =
+    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_lo_0 < _GEN_27
+      ? _trackers_3_io_lo_0
+      : _GEN_27;
+  wire        _GEN_30 = _GEN_28 | _trackers_4_io_any;
+  wire [31:0] _GEN_31 =
+    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_lo_0 < _GEN_29
+      ? _trackers_4_io_lo_0
+      : _GEN_29;
+  wire        _GEN_32 = _GEN_30 | _trackers_5_io_any;
+  wire [31:0] _GEN_33 =
+    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_lo_0 < _GEN_31
+      ? _trackers_5_io_lo_0
+      : _GEN_31;
+  wire        _GEN_34 = _GEN_32 | _trackers_6_io_any;
+  wire [31:0] _GEN_35 =
+    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_lo_0 < _GEN_33
+      ? _trackers_6_io_lo_0
+      : _GEN_33;
+  wire        _GEN_36 = _GEN_34 | _trackers_7_io_any;
+  wire [31:0] _GEN_37 =
+    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_lo_0 < _GEN_35
+      ? _trackers_7_io_lo_0
+      : _GEN_35;
+  wire        _GEN_38 = _GEN_36 | _trackers_8_io_any;
+  wire [31:0] _GEN_39 =
+    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_lo_0 < _GEN_37
+      ? _trackers_8_io_lo_0
+      : _GEN_37;
+  wire        _GEN_40 = _GEN_38 | _trackers_9_io_any;
+  wire [31:0] _GEN_41 =
+    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_lo_0 < _GEN_39
+      ? _trackers_9_io_lo_0
+      : _GEN_39;
+  wire        _GEN_42 = _GEN_40 | _trackers_10_io_any;
+  wire [31:0] _GEN_43 =
+    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_lo_0 < _GEN_41
+      ? _trackers_10_io_lo_0
+      : _GEN_41;
+  wire        _GEN_44 = _GEN_42 | _trackers_11_io_any;
+  wire [31:0] _GEN_45 =
+    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_lo_0 < _GEN_43
+      ? _trackers_11_io_lo_0
+      : _GEN_43;
+  wire        _GEN_46 = _GEN_44 | _trackers_12_io_any;
+  wire [31:0] _GEN_47 =
+    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_lo_0 < _GEN_45
+      ? _trackers_12_io_lo_0
+      : _GEN_45;
+  wire        _GEN_48 = _GEN_46 | _trackers_13_io_any;
+  wire [31:0] _GEN_49 =
+    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_lo_0 < _GEN_47
+      ? _trackers_13_io_lo_0
+      : _GEN_47;
+  wire        _GEN_50 = _GEN_48 | _trackers_14_io_any;
+  wire [31:0] _GEN_51 =
+    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_lo_0 < _GEN_49
+      ? _trackers_14_io_lo_0
+      : _GEN_49;
+  wire [31:0] lo_0 =
+    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_lo_0 < _GEN_51
+      ? _trackers_15_io_lo_0
+      : _GEN_51;
+  wire [31:0] _GEN_52 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_1 < _trackers_0_io_lo_1
+      ? _trackers_1_io_lo_1
+      : _trackers_0_io_lo_1;
+  wire [31:0] _GEN_53 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_1 < _GEN_52
+      ? _trackers_2_io_lo_1
+      : _GEN_52;
+  wire [31:0] _GEN_54 =
+    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_lo_1 < _GEN_53
+      ? _trackers_3_io_lo_1
+      : _GEN_53;
+  wire [31:0] _GEN_55 =
+    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_lo_1 < _GEN_54
+      ? _trackers_4_io_lo_1
+      : _GEN_54;
+  wire [31:0] _GEN_56 =
+    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_lo_1 < _GEN_55
+      ? _trackers_5_io_lo_1
+      : _GEN_55;
+  wire [31:0] _GEN_57 =
+    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_lo_1 < _GEN_56
+      ? _trackers_6_io_lo_1
+      : _GEN_56;
+  wire [31:0] _GEN_58 =
+    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_lo_1 < _GEN_57
+      ? _trackers_7_io_lo_1
+      : _GEN_57;
+  wire [31:0] _GEN_59 =
+    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_lo_1 < _GEN_58
+      ? _trackers_8_io_lo_1
+      : _GEN_58;
+  wire [31:0] _GEN_60 =
+    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_lo_1 < _GEN_59
+      ? _trackers_9_io_lo_1
+      : _GEN_59;
+  wire [31:0] _GEN_61 =
+    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_lo_1 < _GEN_60
+      ? _trackers_10_io_lo_1
+      : _GEN_60;
+  wire [31:0] _GEN_62 =
+    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_lo_1 < _GEN_61
+      ? _trackers_11_io_lo_1
+      : _GEN_61;
+  wire [31:0] _GEN_63 =
+    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_lo_1 < _GEN_62
+      ? _trackers_12_io_lo_1
+      : _GEN_62;
+  wire [31:0] _GEN_64 =
+    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_lo_1 < _GEN_63
+      ? _trackers_13_io_lo_1
+      : _GEN_63;
+  wire [31:0] _GEN_65 =
+    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_lo_1 < _GEN_64
+      ? _trackers_14_io_lo_1
+      : _GEN_64;
+  wire [31:0] lo_1 =
+    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_lo_1 < _GEN_65
+      ? _trackers_15_io_lo_1
+      : _GEN_65;
+  wire [31:0] _GEN_66 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_2 < _trackers_0_io_lo_2
+      ? _trackers_1_io_lo_2
+      : _trackers_0_io_lo_2;
+  wire [31:0] _GEN_67 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_2 < _GEN_66
+      ? _trackers_2_io_lo_2
+      : _GEN_66;
+  wire [31:0] _GEN_68 =
+    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_lo_2 < _GEN_67
+      ? _trackers_3_io_lo_2
+      : _GEN_67;
+  wire [31:0] _GEN_69 =
+    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_lo_2 < _GEN_68
+      ? _trackers_4_io_lo_2
+      : _GEN_68;
+  wire [31:0] _GEN_70 =
+    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_lo_2 < _GEN_69
+      ? _trackers_5_io_lo_2
+      : _GEN_69;
+  wire [31:0] _GEN_71 =
+    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_lo_2 < _GEN_70
+      ? _trackers_6_io_lo_2
+      : _GEN_70;
+  wire [31:0] _GEN_72 =
+    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_lo_2 < _GEN_71
+      ? _trackers_7_io_lo_2
+      : _GEN_71;
+  wire [31:0] _GEN_73 =
+    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_lo_2 < _GEN_72
+      ? _trackers_8_io_lo_2
+      : _GEN_72;
+  wire [31:0] _GEN_74 =
+    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_lo_2 < _GEN_73
+      ? _trackers_9_io_lo_2
+      : _GEN_73;
+  wire [31:0] _GEN_75 =
+    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_lo_2 < _GEN_74
+      ? _trackers_10_io_lo_2
+      : _GEN_74;
+  wire [31:0] _GEN_76 =
+    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_lo_2 < _GEN_75
+      ? _trackers_11_io_lo_2
+      : _GEN_75;
+  wire [31:0] _GEN_77 =
+    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_lo_2 < _GEN_76
+      ? _trackers_12_io_lo_2
+      : _GEN_76;
+  wire [31:0] _GEN_78 =
+    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_lo_2 < _GEN_77
+      ? _trackers_13_io_lo_2
+      : _GEN_77;
+  wire [31:0] _GEN_79 =
+    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_lo_2 < _GEN_78
+      ? _trackers_14_io_lo_2
+      : _GEN_78;
+  wire [31:0] lo_2 =
+    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_lo_2 < _GEN_79
+      ? _trackers_15_io_lo_2
+      : _GEN_79;
+  wire [31:0] _GEN_80 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_0 > _trackers_0_io_hi_0
+      ? _trackers_1_io_hi_0
+      : _trackers_0_io_hi_0;
+  wire [31:0] _GEN_81 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_0 > _GEN_80
+      ? _trackers_2_io_hi_0
+      : _GEN_80;
+  wire [31:0] _GEN_82 =
+    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_hi_0 > _GEN_81
+      ? _trackers_3_io_hi_0
+      : _GEN_81;
+  wire [31:0] _GEN_83 =
+    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_hi_0 > _GEN_82
+      ? _trackers_4_io_hi_0
+      : _GEN_82;
+  wire [31:0] _GEN_84 =
+    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_hi_0 > _GEN_83
+      ? _trackers_5_io_hi_0
+      : _GEN_83;
+  wire [31:0] _GEN_85 =
+    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_hi_0 > _GEN_84
+      ? _trackers_6_io_hi_0
+      : _GEN_84;
+  wire [31:0] _GEN_86 =
+    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_hi_0 > _GEN_85
+      ? _trackers_7_io_hi_0
+      : _GEN_85;
+  wire [31:0] _GEN_87 =
+    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_hi_0 > _GEN_86
+      ? _trackers_8_io_hi_0
+      : _GEN_86;
+  wire [31:0] _GEN_88 =
+    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_hi_0 > _GEN_87
+      ? _trackers_9_io_hi_0
+      : _GEN_87;
+  wire [31:0] _GEN_89 =
+    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_hi_0 > _GEN_88
+      ? _trackers_10_io_hi_0
+      : _GEN_88;
+  wire [31:0] _GEN_90 =
+    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_hi_0 > _GEN_89
+      ? _trackers_11_io_hi_0
+      : _GEN_89;
+  wire [31:0] _GEN_91 =
+    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_hi_0 > _GEN_90
+      ? _trackers_12_io_hi_0
+      : _GEN_90;
+  wire [31:0] _GEN_92 =
+    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_hi_0 > _GEN_91
+      ? _trackers_13_io_hi_0
+      : _GEN_91;
+  wire [31:0] _GEN_93 =
+    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_hi_0 > _GEN_92
+      ? _trackers_14_io_hi_0
+      : _GEN_92;
+  wire [31:0] hi_0 =
+    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_hi_0 > _GEN_93
+      ? _trackers_15_io_hi_0
+      : _GEN_93;
+  wire [31:0] _GEN_94 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_1 > _trackers_0_io_hi_1
+      ? _trackers_1_io_hi_1
+      : _trackers_0_io_hi_1;
+  wire [31:0] _GEN_95 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_1 > _GEN_94
+      ? _trackers_2_io_hi_1
+      : _GEN_94;
+  wire [31:0] _GEN_96 =
+    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_hi_1 > _GEN_95
+      ? _trackers_3_io_hi_1
+      : _GEN_95;
+  wire [31:0] _GEN_97 =
+    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_hi_1 > _GEN_96
+      ? _trackers_4_io_hi_1
+      : _GEN_96;
+  wire [31:0] _GEN_98 =
+    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_hi_1 > _GEN_97
+      ? _trackers_5_io_hi_1
+      : _GEN_97;
+  wire [31:0] _GEN_99 =
+    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_hi_1 > _GEN_98
+      ? _trackers_6_io_hi_1
+      : _GEN_98;
+  wire [31:0] _GEN_100 =
+    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_hi_1 > _GEN_99
+      ? _trackers_7_io_hi_1
+      : _GEN_99;
+  wire [31:0] _GEN_101 =
+    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_hi_1 > _GEN_100
+      ? _trackers_8_io_hi_1
+      : _GEN_100;
+  wire [31:0] _GEN_102 =
+    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_hi_1 > _GEN_101
+      ? _trackers_9_io_hi_1
+      : _GEN_101;
+  wire [31:0] _GEN_103 =
+    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_hi_1 > _GEN_102
+      ? _trackers_10_io_hi_1
+      : _GEN_102;
+  wire [31:0] _GEN_104 =
+    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_hi_1 > _GEN_103
+      ? _trackers_11_io_hi_1
+      : _GEN_103;
+  wire [31:0] _GEN_105 =
+    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_hi_1 > _GEN_104
+      ? _trackers_12_io_hi_1
+      : _GEN_104;
+  wire [31:0] _GEN_106 =
+    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_hi_1 > _GEN_105
+      ? _trackers_13_io_hi_1
+      : _GEN_105;
+  wire [31:0] _GEN_107 =
+    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_hi_1 > _GEN_106
+      ? _trackers_14_io_hi_1
+      : _GEN_106;
+  wire [31:0] hi_1 =
+    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_hi_1 > _GEN_107
+      ? _trackers_15_io_hi_1
+      : _GEN_107;
+  wire [31:0] _GEN_108 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_2 > _trackers_0_io_hi_2
+      ? _trackers_1_io_hi_2
+      : _trackers_0_io_hi_2;
+  wire [31:0] _GEN_109 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_2 > _GEN_108
+      ? _trackers_2_io_hi_2
+      : _GEN_108;
+  wire [31:0] _GEN_110 =
+    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_hi_2 > _GEN_109
+      ? _trackers_3_io_hi_2
+      : _GEN_109;
+  wire [31:0] _GEN_111 =
+    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_hi_2 > _GEN_110
+      ? _trackers_4_io_hi_2
+      : _GEN_110;
+  wire [31:0] _GEN_112 =
+    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_hi_2 > _GEN_111
+      ? _trackers_5_io_hi_2
+      : _GEN_111;
+  wire [31:0] _GEN_113 =
+    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_hi_2 > _GEN_112
+      ? _trackers_6_io_hi_2
+      : _GEN_112;
+  wire [31:0] _GEN_114 =
+    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_hi_2 > _GEN_113
+      ? _trackers_7_io_hi_2
+      : _GEN_113;
+  wire [31:0] _GEN_115 =
+    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_hi_2 > _GEN_114
+      ? _trackers_8_io_hi_2
+      : _GEN_114;
+  wire [31:0] _GEN_116 =
+    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_hi_2 > _GEN_115
+      ? _trackers_9_io_hi_2
+      : _GEN_115;
+  wire [31:0] _GEN_117 =
+    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_hi_2 > _GEN_116
+      ? _trackers_10_io_hi_2
+      : _GEN_116;
+  wire [31:0] _GEN_118 =
+    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_hi_2 > _GEN_117
+      ? _trackers_11_io_hi_2
+      : _GEN_117;
+  wire [31:0] _GEN_119 =
+    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_hi_2 > _GEN_118
+      ? _trackers_12_io_hi_2
+      : _GEN_118;
+  wire [31:0] _GEN_120 =
+    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_hi_2 > _GEN_119
+      ? _trackers_13_io_hi_2
+      : _GEN_119;
+  wire [31:0] _GEN_121 =
+    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_hi_2 > _GEN_120
+      ? _trackers_14_io_hi_2
+      : _GEN_120;
+  wire [31:0] hi_2 =
+    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_hi_2 > _GEN_121
+      ? _trackers_15_io_hi_2
+      : _GEN_121;
+  wire [5:0]  _sorts_3_io_in_1_bits_bucket_h_T_26 = {1'h0, boxB_0} + {1'h0, boxB_1};
   reg  [8:0]  m;
   wire [8:0]  mergeEnd = fed ? 9'h44 : 9'h110;
   wire        filled_2 = _laneExps_0_io_used > 5'h2;
@@ -30910,7 +31463,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   wire        filled_268 = _laneExps_15_io_used > 5'hD;
   wire        filled_269 = _laneExps_15_io_used > 5'hE;
   wire        filled_271 = _laneExps_15_io_used > 5'h10;
-  wire        _cellExp_io_in_1_valid_T = state == 3'h3;
+  wire        _cellExp_io_in_1_valid_T = state == 4'h3;
   reg         casez_tmp;
   always @(*) begin
     casez (m)
@@ -39151,48 +39704,117 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     $signed(slack_e) < 15'sh0
       ? 29'h2
       : $signed(slack_e) > 15'sh1B ? 29'h1FFFFFFF : _slack_T_3[28:0] + 29'h1;
-  wire        _sorts_3_io_prefix_T = state == 3'h5;
+  wire        _sorts_3_io_prefix_T = state == 4'h6;
   wire        _sorts_0_io_in_0_valid_T_12 =
     _laneKeys_0_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_0_io_out_nonFinite
     & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
         & _sorts_0_io_in_0_valid_T_8);
+  wire [41:0] _sorts_3_io_in_1_bits_bucket_h_T_5 = 42'h1 << boxB_0;
+  wire [41:0] _sorts_3_io_in_1_bits_bucket_h_T_12 = 42'h1 << boxB_1;
+  wire [40:0] _GEN_122 = {36'h0, boxB_0};
+  wire [40:0] _sorts_0_io_in_0_bits_bucket_h_T_17 =
+    {31'h0,
+     _laneKeys_0_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
+    << _GEN_122;
+  wire [41:0] _sorts_3_io_in_1_bits_bucket_h_T_21 = 42'h1 << boxB_2;
+  wire [72:0] _GEN_123 = {67'h0, _sorts_3_io_in_1_bits_bucket_h_T_26};
+  wire [72:0] _sorts_0_io_in_0_bits_bucket_h_T_27 =
+    {63'h0,
+     _laneKeys_0_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
+    << _GEN_123;
   wire [28:0] _units_T_1 = 29'h1 << usedLog2;
   wire        _sorts_0_io_in_1_valid_T_12 =
     _laneKeys_1_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_1_io_out_nonFinite
     & ~(~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
         & _sorts_0_io_in_1_valid_T_8);
+  wire [40:0] _sorts_0_io_in_1_bits_bucket_h_T_17 =
+    {31'h0,
+     _laneKeys_1_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
+    << _GEN_122;
+  wire [72:0] _sorts_0_io_in_1_bits_bucket_h_T_27 =
+    {63'h0,
+     _laneKeys_1_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
+    << _GEN_123;
   wire        _sorts_1_io_in_0_valid_T_12 =
     _laneKeys_2_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_2_io_out_nonFinite
     & ~(~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
         & _sorts_1_io_in_0_valid_T_8);
+  wire [40:0] _sorts_1_io_in_0_bits_bucket_h_T_17 =
+    {31'h0,
+     _laneKeys_2_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
+    << _GEN_122;
+  wire [72:0] _sorts_1_io_in_0_bits_bucket_h_T_27 =
+    {63'h0,
+     _laneKeys_2_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
+    << _GEN_123;
   wire        _sorts_1_io_in_1_valid_T_12 =
     _laneKeys_3_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_3_io_out_nonFinite
     & ~(~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
         & _sorts_1_io_in_1_valid_T_8);
+  wire [40:0] _sorts_1_io_in_1_bits_bucket_h_T_17 =
+    {31'h0,
+     _laneKeys_3_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
+    << _GEN_122;
+  wire [72:0] _sorts_1_io_in_1_bits_bucket_h_T_27 =
+    {63'h0,
+     _laneKeys_3_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
+    << _GEN_123;
   wire        _sorts_2_io_in_0_valid_T_12 =
     _laneKeys_4_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_4_io_out_nonFinite
     & ~(~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
         & _sorts_2_io_in_0_valid_T_8);
+  wire [40:0] _sorts_2_io_in_0_bits_bucket_h_T_17 =
+    {31'h0,
+     _laneKeys_4_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
+    << _GEN_122;
+  wire [72:0] _sorts_2_io_in_0_bits_bucket_h_T_27 =
+    {63'h0,
+     _laneKeys_4_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
+    << _GEN_123;
   wire        _sorts_2_io_in_1_valid_T_12 =
     _laneKeys_5_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_5_io_out_nonFinite
     & ~(~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
         & _sorts_2_io_in_1_valid_T_8);
+  wire [40:0] _sorts_2_io_in_1_bits_bucket_h_T_17 =
+    {31'h0,
+     _laneKeys_5_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
+    << _GEN_122;
+  wire [72:0] _sorts_2_io_in_1_bits_bucket_h_T_27 =
+    {63'h0,
+     _laneKeys_5_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
+    << _GEN_123;
   wire        _sorts_3_io_in_0_valid_T_12 =
     _laneKeys_6_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_6_io_out_nonFinite
     & ~(~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
         & _sorts_3_io_in_0_valid_T_8);
+  wire [40:0] _sorts_3_io_in_0_bits_bucket_h_T_17 =
+    {31'h0,
+     _laneKeys_6_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
+    << _GEN_122;
+  wire [72:0] _sorts_3_io_in_0_bits_bucket_h_T_27 =
+    {63'h0,
+     _laneKeys_6_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
+    << _GEN_123;
   wire        _sorts_3_io_in_1_valid_T_12 =
     _laneKeys_7_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_7_io_out_nonFinite
     & ~(~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
         & _sorts_3_io_in_1_valid_T_8);
+  wire [40:0] _sorts_3_io_in_1_bits_bucket_h_T_17 =
+    {31'h0,
+     _laneKeys_7_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
+    << _GEN_122;
+  wire [72:0] _sorts_3_io_in_1_bits_bucket_h_T_27 =
+    {63'h0,
+     _laneKeys_7_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
+    << _GEN_123;
   reg  [1:0]  entryGroup;
   reg  [11:0] casez_tmp_7;
   always @(*) begin
@@ -39747,55 +40369,55 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:306 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:306 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:306 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:306 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:306 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:306 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:306 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:265 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:306 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(_GEN == 16'h0 | dCount[6:2] != 5'h1F)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:325 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
+          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:366 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -39815,393 +40437,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
         | heldUnit_7 & held_7 | heldUnit_8 & held_8 | heldUnit_9 & held_9 | heldUnit_10
         & held_10 | heldUnit_11 & held_11 | heldUnit_12 & held_12 | heldUnit_13 & held_13
         | heldUnit_14 & held_14 | heldUnit_15 & held_15);
-  wire        _GEN_6 = passDone & ~sortBusy;
-  wire [8:0]  _m_T = m + 9'h2;
-  wire        _GEN_7 = _m_T >= mergeEnd;
-  wire        _GEN_8 = sent & ~sortBusy;
-  wire        _GEN_9 = state == 3'h6;
-  reg  [12:0] casez_tmp_39;
-  wire [12:0] _GEN_10 = _GEN_9 & reading_0 ? i_0 + 13'h1 : i_0;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_39 = _GEN_10;
-      3'b001:
-        casez_tmp_39 = i_0;
-      3'b010:
-        casez_tmp_39 = reading_0 ? i_0 + 13'h1 : i_0;
-      3'b011:
-        casez_tmp_39 = _GEN_7 ? 13'h0 : i_0;
-      3'b100:
-        casez_tmp_39 = reading_0 ? i_0 + 13'h1 : i_0;
-      3'b101:
-        casez_tmp_39 = _GEN_8 ? 13'h0 : i_0;
-      3'b110:
-        casez_tmp_39 = _GEN_10;
-      default:
-        casez_tmp_39 = _GEN_10;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_40;
-  wire [12:0] _GEN_11 = _GEN_9 & reading_1 ? i_1 + 13'h1 : i_1;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_40 = _GEN_11;
-      3'b001:
-        casez_tmp_40 = i_1;
-      3'b010:
-        casez_tmp_40 = reading_1 ? i_1 + 13'h1 : i_1;
-      3'b011:
-        casez_tmp_40 = _GEN_7 ? _GEN_1 : i_1;
-      3'b100:
-        casez_tmp_40 = reading_1 ? i_1 + 13'h1 : i_1;
-      3'b101:
-        casez_tmp_40 = _GEN_8 ? _GEN_1 : i_1;
-      3'b110:
-        casez_tmp_40 = _GEN_11;
-      default:
-        casez_tmp_40 = _GEN_11;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_41;
-  wire [12:0] _GEN_12 = _GEN_9 & reading_2 ? i_2 + 13'h1 : i_2;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_41 = _GEN_12;
-      3'b001:
-        casez_tmp_41 = i_2;
-      3'b010:
-        casez_tmp_41 = reading_2 ? i_2 + 13'h1 : i_2;
-      3'b011:
-        casez_tmp_41 = _GEN_7 ? _GEN_2 : i_2;
-      3'b100:
-        casez_tmp_41 = reading_2 ? i_2 + 13'h1 : i_2;
-      3'b101:
-        casez_tmp_41 = _GEN_8 ? _GEN_2 : i_2;
-      3'b110:
-        casez_tmp_41 = _GEN_12;
-      default:
-        casez_tmp_41 = _GEN_12;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_42;
-  wire [12:0] _GEN_13 = _GEN_9 & reading_3 ? i_3 + 13'h1 : i_3;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_42 = _GEN_13;
-      3'b001:
-        casez_tmp_42 = i_3;
-      3'b010:
-        casez_tmp_42 = reading_3 ? i_3 + 13'h1 : i_3;
-      3'b011:
-        casez_tmp_42 = _GEN_7 ? {1'h0, _i_3_T_9[14:3]} : i_3;
-      3'b100:
-        casez_tmp_42 = reading_3 ? i_3 + 13'h1 : i_3;
-      3'b101:
-        casez_tmp_42 = _GEN_8 ? {1'h0, _i_3_T_9[14:3]} : i_3;
-      3'b110:
-        casez_tmp_42 = _GEN_13;
-      default:
-        casez_tmp_42 = _GEN_13;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_43;
-  wire [12:0] _GEN_14 = _GEN_9 & reading_4 ? i_4 + 13'h1 : i_4;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_43 = _GEN_14;
-      3'b001:
-        casez_tmp_43 = i_4;
-      3'b010:
-        casez_tmp_43 = reading_4 ? i_4 + 13'h1 : i_4;
-      3'b011:
-        casez_tmp_43 = _GEN_7 ? {1'h0, num[12:1]} : i_4;
-      3'b100:
-        casez_tmp_43 = reading_4 ? i_4 + 13'h1 : i_4;
-      3'b101:
-        casez_tmp_43 = _GEN_8 ? {1'h0, num[12:1]} : i_4;
-      3'b110:
-        casez_tmp_43 = _GEN_14;
-      default:
-        casez_tmp_43 = _GEN_14;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_44;
-  wire [12:0] _GEN_15 = _GEN_9 & reading_5 ? i_5 + 13'h1 : i_5;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_44 = _GEN_15;
-      3'b001:
-        casez_tmp_44 = i_5;
-      3'b010:
-        casez_tmp_44 = reading_5 ? i_5 + 13'h1 : i_5;
-      3'b011:
-        casez_tmp_44 = _GEN_7 ? _i_5_T_8[15:3] : i_5;
-      3'b100:
-        casez_tmp_44 = reading_5 ? i_5 + 13'h1 : i_5;
-      3'b101:
-        casez_tmp_44 = _GEN_8 ? _i_5_T_8[15:3] : i_5;
-      3'b110:
-        casez_tmp_44 = _GEN_15;
-      default:
-        casez_tmp_44 = _GEN_15;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_45;
-  wire [12:0] _GEN_16 = _GEN_9 & reading_6 ? i_6 + 13'h1 : i_6;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_45 = _GEN_16;
-      3'b001:
-        casez_tmp_45 = i_6;
-      3'b010:
-        casez_tmp_45 = reading_6 ? i_6 + 13'h1 : i_6;
-      3'b011:
-        casez_tmp_45 = _GEN_7 ? _i_6_T_8[15:3] : i_6;
-      3'b100:
-        casez_tmp_45 = reading_6 ? i_6 + 13'h1 : i_6;
-      3'b101:
-        casez_tmp_45 = _GEN_8 ? _i_6_T_8[15:3] : i_6;
-      3'b110:
-        casez_tmp_45 = _GEN_16;
-      default:
-        casez_tmp_45 = _GEN_16;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_46;
-  wire [12:0] _GEN_17 = _GEN_9 & reading_7 ? i_7 + 13'h1 : i_7;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_46 = _GEN_17;
-      3'b001:
-        casez_tmp_46 = i_7;
-      3'b010:
-        casez_tmp_46 = reading_7 ? i_7 + 13'h1 : i_7;
-      3'b011:
-        casez_tmp_46 = _GEN_7 ? _i_7_T_8[15:3] : i_7;
-      3'b100:
-        casez_tmp_46 = reading_7 ? i_7 + 13'h1 : i_7;
-      3'b101:
-        casez_tmp_46 = _GEN_8 ? _i_7_T_8[15:3] : i_7;
-      3'b110:
-        casez_tmp_46 = _GEN_17;
-      default:
-        casez_tmp_46 = _GEN_17;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_47;
-  wire [12:0] _GEN_18 = _GEN_9 & reading_8 ? i_8 + 13'h1 : i_8;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_47 = _GEN_18;
-      3'b001:
-        casez_tmp_47 = i_8;
-      3'b010:
-        casez_tmp_47 = reading_8 ? i_8 + 13'h1 : i_8;
-      3'b011:
-        casez_tmp_47 = _GEN_7 ? 13'h0 : i_8;
-      3'b100:
-        casez_tmp_47 = reading_8 ? i_8 + 13'h1 : i_8;
-      3'b101:
-        casez_tmp_47 = _GEN_8 ? 13'h0 : i_8;
-      3'b110:
-        casez_tmp_47 = _GEN_18;
-      default:
-        casez_tmp_47 = _GEN_18;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_48;
-  wire [12:0] _GEN_19 = _GEN_9 & reading_9 ? i_9 + 13'h1 : i_9;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_48 = _GEN_19;
-      3'b001:
-        casez_tmp_48 = i_9;
-      3'b010:
-        casez_tmp_48 = reading_9 ? i_9 + 13'h1 : i_9;
-      3'b011:
-        casez_tmp_48 = _GEN_7 ? 13'h0 : i_9;
-      3'b100:
-        casez_tmp_48 = reading_9 ? i_9 + 13'h1 : i_9;
-      3'b101:
-        casez_tmp_48 = _GEN_8 ? 13'h0 : i_9;
-      3'b110:
-        casez_tmp_48 = _GEN_19;
-      default:
-        casez_tmp_48 = _GEN_19;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_49;
-  wire [12:0] _GEN_20 = _GEN_9 & reading_10 ? i_10 + 13'h1 : i_10;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_49 = _GEN_20;
-      3'b001:
-        casez_tmp_49 = i_10;
-      3'b010:
-        casez_tmp_49 = reading_10 ? i_10 + 13'h1 : i_10;
-      3'b011:
-        casez_tmp_49 = _GEN_7 ? 13'h0 : i_10;
-      3'b100:
-        casez_tmp_49 = reading_10 ? i_10 + 13'h1 : i_10;
-      3'b101:
-        casez_tmp_49 = _GEN_8 ? 13'h0 : i_10;
-      3'b110:
-        casez_tmp_49 = _GEN_20;
-      default:
-        casez_tmp_49 = _GEN_20;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_50;
-  wire [12:0] _GEN_21 = _GEN_9 & reading_11 ? i_11 + 13'h1 : i_11;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_50 = _GEN_21;
-      3'b001:
-        casez_tmp_50 = i_11;
-      3'b010:
-        casez_tmp_50 = reading_11 ? i_11 + 13'h1 : i_11;
-      3'b011:
-        casez_tmp_50 = _GEN_7 ? 13'h0 : i_11;
-      3'b100:
-        casez_tmp_50 = reading_11 ? i_11 + 13'h1 : i_11;
-      3'b101:
-        casez_tmp_50 = _GEN_8 ? 13'h0 : i_11;
-      3'b110:
-        casez_tmp_50 = _GEN_21;
-      default:
-        casez_tmp_50 = _GEN_21;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_51;
-  wire [12:0] _GEN_22 = _GEN_9 & reading_12 ? i_12 + 13'h1 : i_12;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_51 = _GEN_22;
-      3'b001:
-        casez_tmp_51 = i_12;
-      3'b010:
-        casez_tmp_51 = reading_12 ? i_12 + 13'h1 : i_12;
-      3'b011:
-        casez_tmp_51 = _GEN_7 ? 13'h0 : i_12;
-      3'b100:
-        casez_tmp_51 = reading_12 ? i_12 + 13'h1 : i_12;
-      3'b101:
-        casez_tmp_51 = _GEN_8 ? 13'h0 : i_12;
-      3'b110:
-        casez_tmp_51 = _GEN_22;
-      default:
-        casez_tmp_51 = _GEN_22;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_52;
-  wire [12:0] _GEN_23 = _GEN_9 & reading_13 ? i_13 + 13'h1 : i_13;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_52 = _GEN_23;
-      3'b001:
-        casez_tmp_52 = i_13;
-      3'b010:
-        casez_tmp_52 = reading_13 ? i_13 + 13'h1 : i_13;
-      3'b011:
-        casez_tmp_52 = _GEN_7 ? 13'h0 : i_13;
-      3'b100:
-        casez_tmp_52 = reading_13 ? i_13 + 13'h1 : i_13;
-      3'b101:
-        casez_tmp_52 = _GEN_8 ? 13'h0 : i_13;
-      3'b110:
-        casez_tmp_52 = _GEN_23;
-      default:
-        casez_tmp_52 = _GEN_23;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_53;
-  wire [12:0] _GEN_24 = _GEN_9 & reading_14 ? i_14 + 13'h1 : i_14;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_53 = _GEN_24;
-      3'b001:
-        casez_tmp_53 = i_14;
-      3'b010:
-        casez_tmp_53 = reading_14 ? i_14 + 13'h1 : i_14;
-      3'b011:
-        casez_tmp_53 = _GEN_7 ? 13'h0 : i_14;
-      3'b100:
-        casez_tmp_53 = reading_14 ? i_14 + 13'h1 : i_14;
-      3'b101:
-        casez_tmp_53 = _GEN_8 ? 13'h0 : i_14;
-      3'b110:
-        casez_tmp_53 = _GEN_24;
-      default:
-        casez_tmp_53 = _GEN_24;
-    endcase
-  end // always @(*)
-  reg  [12:0] casez_tmp_54;
-  wire [12:0] _GEN_25 = _GEN_9 & reading_15 ? i_15 + 13'h1 : i_15;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_54 = _GEN_25;
-      3'b001:
-        casez_tmp_54 = i_15;
-      3'b010:
-        casez_tmp_54 = reading_15 ? i_15 + 13'h1 : i_15;
-      3'b011:
-        casez_tmp_54 = _GEN_7 ? 13'h0 : i_15;
-      3'b100:
-        casez_tmp_54 = reading_15 ? i_15 + 13'h1 : i_15;
-      3'b101:
-        casez_tmp_54 = _GEN_8 ? 13'h0 : i_15;
-      3'b110:
-        casez_tmp_54 = _GEN_25;
-      default:
-        casez_tmp_54 = _GEN_25;
-    endcase
-  end // always @(*)
   reg         REG_8;
-  wire        _GEN_26 = passDone & ~REG_8;
-  wire        _GEN_27 =
-    (&state) & sent
-    & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
-        | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
-        | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
-        | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
-  reg  [2:0]  casez_tmp_55;
-  wire [2:0]  _GEN_28 = _GEN_27 ? 3'h0 : state;
-  always @(*) begin
-    casez (state)
-      3'b000:
-        casez_tmp_55 = _GEN_28;
-      3'b001:
-        casez_tmp_55 = io_start ? 3'h2 : state;
-      3'b010:
-        casez_tmp_55 = _GEN_6 ? 3'h3 : state;
-      3'b011:
-        casez_tmp_55 = _GEN_7 ? 3'h4 : state;
-      3'b100:
-        casez_tmp_55 = passDone ? 3'h5 : state;
-      3'b101:
-        casez_tmp_55 = _GEN_8 ? 3'h6 : state;
-      3'b110:
-        casez_tmp_55 = _GEN_26 ? 3'h7 : state;
-      default:
-        casez_tmp_55 = _GEN_28;
-    endcase
-  end // always @(*)
   wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
   wire [5:0]  usedLog2_t =
     io_num == 13'h0
@@ -40232,22 +40468,102 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
                          : _usedLog2_ceilLog2_T_1[2]
                              ? 2'h2
                              : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1;
-  wire [12:0] _GEN_29 = {4'h0, io_num[12:4]};
-  wire [12:0] _GEN_30 = {3'h0, io_num[12:3]};
+  wire [12:0] _GEN_124 = {4'h0, io_num[12:4]};
+  wire [12:0] _GEN_125 = {3'h0, io_num[12:3]};
   wire [26:0] _cuts_T_6 = {14'h0, io_num} * 27'h3000;
-  wire [27:0] _GEN_31 = {15'h0, io_num};
-  wire [27:0] _cuts_T_12 = _GEN_31 * 28'h5000;
-  wire [27:0] _cuts_T_15 = _GEN_31 * 28'h6000;
-  wire [27:0] _cuts_T_18 = _GEN_31 * 28'h7000;
-  wire [28:0] _GEN_32 = {16'h0, io_num};
-  wire [28:0] _cuts_T_23 = _GEN_32 * 29'h9000;
-  wire [28:0] _cuts_T_25 = _GEN_32 * 29'hA000;
-  wire [28:0] _cuts_T_27 = _GEN_32 * 29'hB000;
-  wire [28:0] _cuts_T_29 = _GEN_32 * 29'hC000;
-  wire [28:0] _cuts_T_31 = _GEN_32 * 29'hD000;
-  wire [28:0] _cuts_T_33 = _GEN_32 * 29'hE000;
-  wire [28:0] _cuts_T_35 = _GEN_32 * 29'hF000;
+  wire [27:0] _GEN_126 = {15'h0, io_num};
+  wire [27:0] _cuts_T_12 = _GEN_126 * 28'h5000;
+  wire [27:0] _cuts_T_15 = _GEN_126 * 28'h6000;
+  wire [27:0] _cuts_T_18 = _GEN_126 * 28'h7000;
+  wire [28:0] _GEN_127 = {16'h0, io_num};
+  wire [28:0] _cuts_T_23 = _GEN_127 * 29'h9000;
+  wire [28:0] _cuts_T_25 = _GEN_127 * 29'hA000;
+  wire [28:0] _cuts_T_27 = _GEN_127 * 29'hB000;
+  wire [28:0] _cuts_T_29 = _GEN_127 * 29'hC000;
+  wire [28:0] _cuts_T_31 = _GEN_127 * 29'hD000;
+  wire [28:0] _cuts_T_33 = _GEN_127 * 29'hE000;
+  wire [28:0] _cuts_T_35 = _GEN_127 * 29'hF000;
+  wire [19:0] _first_T =
+    {_corners_k_1_io_out_cell_0[19], _corners_k_1_io_out_cell_0[19:1]}
+    - {_corners_k_io_out_cell_0[19], _corners_k_io_out_cell_0[19:1]};
+  wire [4:0]  first_hi = {_first_T[19], _first_T[19:16]};
+  wire [19:0] _first_T_44 =
+    {_corners_k_1_io_out_cell_1[19], _corners_k_1_io_out_cell_1[19:1]}
+    - {_corners_k_io_out_cell_1[19], _corners_k_io_out_cell_1[19:1]};
+  wire [4:0]  first_hi_5 = {_first_T_44[19], _first_T_44[19:16]};
+  wire [19:0] _first_T_88 =
+    {_corners_k_1_io_out_cell_2[19], _corners_k_1_io_out_cell_2[19:1]}
+    - {_corners_k_io_out_cell_2[19], _corners_k_io_out_cell_2[19:1]};
+  wire [4:0]  first_hi_10 = {_first_T_88[19], _first_T_88[19:16]};
+  wire        anyBox =
+    _any_T | _trackers_2_io_any | _trackers_3_io_any | _trackers_4_io_any
+    | _trackers_5_io_any | _trackers_6_io_any | _trackers_7_io_any | _trackers_8_io_any
+    | _trackers_9_io_any | _trackers_10_io_any | _trackers_11_io_any | _trackers_12_io_any
+    | _trackers_13_io_any | _trackers_14_io_any | _trackers_15_io_any;
+  wire [4:0]  _top_T_1 = boxB_0 >= boxB_1 ? boxB_0 : boxB_1;
+  wire [4:0]  top = _top_T_1 >= boxB_2 ? _top_T_1 : boxB_2;
+  wire [2:0]  firstTop_enc =
+    boxB_0 == top ? 3'h1 : boxB_1 == top ? 3'h2 : {boxB_2 == top, 2'h0};
+  wire        _GEN_128 = boxCycle == 2'h1;
+  wire        _GEN_129 = boxCycle == 2'h2;
   wire        z_tooMany = io_num > 13'h1000;
+  wire        sortBusy =
+    _sorts_0_io_busy | _sorts_1_io_busy | _sorts_2_io_busy | _sorts_3_io_busy;
+  wire        inPass = _loading_T | classifying | _sorts_3_io_in_1_bits_scatter_T;
+  wire        reading_0 = inPass & i_0 < (_loading_T ? _GEN_0 : _GEN_1);
+  wire        reading_1 = inPass & i_1 < (_loading_T ? _GEN_1 : _GEN_2);
+  wire [14:0] _i_3_T_9 = {2'h0, num} * 15'h3;
+  wire        reading_2 =
+    inPass
+    & i_2 < (_loading_T ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : {1'h0, _i_3_T_9[14:3]});
+  wire [15:0] _GEN_130 = {3'h0, num};
+  wire        reading_3 = inPass & i_3 < (_loading_T ? _GEN_2 : {1'h0, num[12:1]});
+  wire [15:0] _i_5_T_8 = _GEN_130 * 16'h5;
+  wire        reading_4 =
+    inPass & i_4 < (_loading_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_8[15:3]);
+  wire [15:0] _i_6_T_8 = _GEN_130 * 16'h6;
+  wire        reading_5 =
+    inPass & i_5 < (_loading_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_8[15:3]);
+  wire [15:0] _i_7_T_8 = _GEN_130 * 16'h7;
+  wire        reading_6 =
+    inPass & i_6 < (_loading_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_8[15:3]);
+  wire        reading_7 = inPass & i_7 < (_loading_T ? {1'h0, num[12:1]} : num);
+  wire        reading_8 =
+    inPass & i_8 < (_loading_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_9 =
+    inPass & i_9 < (_loading_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_10 =
+    inPass & i_10 < (_loading_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_11 =
+    inPass & i_11 < (_loading_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_12 =
+    inPass & i_12 < (_loading_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_13 =
+    inPass & i_13 < (_loading_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_14 =
+    inPass & i_14 < (_loading_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_15 = inPass & i_15 < (_loading_T ? num : 13'h0);
+  wire        passDone =
+    {reading_15,
+     reading_14,
+     reading_13,
+     reading_12,
+     reading_11,
+     reading_10,
+     reading_9,
+     reading_8,
+     reading_7,
+     reading_6,
+     reading_5,
+     reading_4,
+     reading_3,
+     reading_2,
+     reading_1,
+     reading_0} == 16'h0 & inflight == 6'h0;
+  wire [6:0]  sum = {1'h0, _sorts_3_io_in_1_bits_bucket_h_T_26} + {2'h0, boxB_2};
+  wire [6:0]  _GEN_131 = {3'h0, (|(usedLog2[3:2])) ? usedLog2 - 4'h3 : 4'h0};
+  wire        boxDone = boxCycle == 2'h2 & sum <= _GEN_131;
+  wire        _GEN_132 = state == 4'h4;
   wire        largeHere_0 =
     classifying & _laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
     & ~_laneKeys_0_io_out_needNone & _sorts_0_io_in_0_valid_T_8;
@@ -40272,39 +40588,39 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   wire        largeHere_7 =
     classifying & _laneKeys_7_io_out_valid & ~_laneKeys_7_io_out_nonFinite
     & ~_laneKeys_7_io_out_needNone & _sorts_3_io_in_1_valid_T_8;
-  wire [5:0]  _GEN_33 = {1'h0, largeCount};
-  wire        _GEN_34 = _GEN_33 < 6'h10;
-  wire [5:0]  slot_1 = _GEN_33 + {5'h0, largeHere_0};
-  wire        _GEN_35 = slot_1 < 6'h10;
-  wire [1:0]  _GEN_36 = {1'h0, largeHere_0};
-  wire [1:0]  _GEN_37 = {1'h0, largeHere_1};
-  wire [1:0]  _largeNew_T_1 = _GEN_36 + _GEN_37;
-  wire [5:0]  slot_2 = _GEN_33 + {4'h0, _largeNew_T_1};
-  wire        _GEN_38 = slot_2 < 6'h10;
-  wire [1:0]  _GEN_39 = {1'h0, largeHere_2};
-  wire [1:0]  _slot_T_31 = _GEN_37 + _GEN_39;
-  wire [5:0]  slot_3 = _GEN_33 + {4'h0, _GEN_36 + _slot_T_31};
-  wire        _GEN_40 = slot_3 < 6'h10;
-  wire [1:0]  _GEN_41 = {1'h0, largeHere_3};
-  wire [2:0]  _GEN_42 = {1'h0, _largeNew_T_1};
-  wire [2:0]  _GEN_43 = {1'h0, _GEN_39 + _GEN_41};
-  wire [5:0]  slot_4 = _GEN_33 + {3'h0, _GEN_42 + _GEN_43};
-  wire        _GEN_44 = slot_4 < 6'h10;
-  wire [1:0]  _GEN_45 = {1'h0, largeHere_4};
-  wire [1:0]  _slot_T_35 = _GEN_41 + _GEN_45;
-  wire [5:0]  slot_5 = _GEN_33 + {3'h0, _GEN_42 + {1'h0, _GEN_39 + _slot_T_35}};
-  wire        _GEN_46 = slot_5 < 6'h10;
-  wire [1:0]  _GEN_47 = {1'h0, largeHere_5};
-  wire [1:0]  _largeNew_T_7 = _GEN_45 + _GEN_47;
+  wire [5:0]  _GEN_133 = {1'h0, largeCount};
+  wire        _GEN_134 = _GEN_133 < 6'h10;
+  wire [5:0]  slot_1 = _GEN_133 + {5'h0, largeHere_0};
+  wire        _GEN_135 = slot_1 < 6'h10;
+  wire [1:0]  _GEN_136 = {1'h0, largeHere_0};
+  wire [1:0]  _GEN_137 = {1'h0, largeHere_1};
+  wire [1:0]  _largeNew_T_1 = _GEN_136 + _GEN_137;
+  wire [5:0]  slot_2 = _GEN_133 + {4'h0, _largeNew_T_1};
+  wire        _GEN_138 = slot_2 < 6'h10;
+  wire [1:0]  _GEN_139 = {1'h0, largeHere_2};
+  wire [1:0]  _slot_T_31 = _GEN_137 + _GEN_139;
+  wire [5:0]  slot_3 = _GEN_133 + {4'h0, _GEN_136 + _slot_T_31};
+  wire        _GEN_140 = slot_3 < 6'h10;
+  wire [1:0]  _GEN_141 = {1'h0, largeHere_3};
+  wire [2:0]  _GEN_142 = {1'h0, _largeNew_T_1};
+  wire [2:0]  _GEN_143 = {1'h0, _GEN_139 + _GEN_141};
+  wire [5:0]  slot_4 = _GEN_133 + {3'h0, _GEN_142 + _GEN_143};
+  wire        _GEN_144 = slot_4 < 6'h10;
+  wire [1:0]  _GEN_145 = {1'h0, largeHere_4};
+  wire [1:0]  _slot_T_35 = _GEN_141 + _GEN_145;
+  wire [5:0]  slot_5 = _GEN_133 + {3'h0, _GEN_142 + {1'h0, _GEN_139 + _slot_T_35}};
+  wire        _GEN_146 = slot_5 < 6'h10;
+  wire [1:0]  _GEN_147 = {1'h0, largeHere_5};
+  wire [1:0]  _largeNew_T_7 = _GEN_145 + _GEN_147;
   wire [5:0]  slot_6 =
-    _GEN_33 + {3'h0, {1'h0, _GEN_36 + _slot_T_31} + {1'h0, _GEN_41 + _largeNew_T_7}};
-  wire        _GEN_48 = slot_6 < 6'h10;
-  wire [1:0]  _GEN_49 = {1'h0, largeHere_6};
+    _GEN_133 + {3'h0, {1'h0, _GEN_136 + _slot_T_31} + {1'h0, _GEN_141 + _largeNew_T_7}};
+  wire        _GEN_148 = slot_6 < 6'h10;
+  wire [1:0]  _GEN_149 = {1'h0, largeHere_6};
   wire [5:0]  slot_7 =
-    _GEN_33
+    _GEN_133
     + {3'h0,
-       {1'h0, _GEN_36 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_47 + _GEN_49}};
-  wire        _GEN_50 = slot_7 < 6'h10;
+       {1'h0, _GEN_136 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_147 + _GEN_149}};
+  wire        _GEN_150 = slot_7 < 6'h10;
   wire        wants_0 = _gens_0_io_need & ~held_0;
   wire        wants_1 = _gens_1_io_need & ~held_1;
   wire        wants_2 = _gens_2_io_need & ~held_2;
@@ -40358,27 +40674,28 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   wire [15:0] _toUnit_T_1 = ~toSingle;
   wire [13:0] dBucket = {_deferred_ext_R0_data, dNext[2:0]};
   wire        _taken_T = wants_0 & _toUnit_T_1[0];
-  wire [16:0] _GEN_51 = {1'h0, next};
-  wire [16:0] _at_T_3 = _GEN_51 + {16'h0, _taken_T} - 17'h1;
+  wire [16:0] _GEN_151 = {1'h0, next};
+  wire [16:0] _at_T_3 = _GEN_151 + {16'h0, _taken_T} - 17'h1;
   wire [16:0] _at_T_10 =
-    _GEN_51 + {15'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+    _GEN_151
+    + {15'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
     - 17'h1;
   wire        _taken_T_1 = wants_1 & _toUnit_T_1[1];
   wire [16:0] _at_T_20 =
-    _GEN_51
+    _GEN_151
     + {15'h0,
        {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
          + {1'h0, wants_2 & _toUnit_T_1[2]}} - 17'h1;
   wire        _taken_T_2 = wants_2 & _toUnit_T_1[2];
   wire [16:0] _at_T_33 =
-    _GEN_51
+    _GEN_151
     + {14'h0,
        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
          + {1'h0, {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}}}
     - 17'h1;
   wire        _taken_T_3 = wants_3 & _toUnit_T_1[3];
   wire [16:0] _at_T_49 =
-    _GEN_51
+    _GEN_151
     + {14'h0,
        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
          + {1'h0,
@@ -40386,7 +40703,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
               + {1'h0, wants_4 & _toUnit_T_1[4]}}} - 17'h1;
   wire        _taken_T_4 = wants_4 & _toUnit_T_1[4];
   wire [16:0] _at_T_68 =
-    _GEN_51
+    _GEN_151
     + {14'h0,
        {1'h0,
         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
@@ -40396,7 +40713,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
               + {1'h0, wants_5 & _toUnit_T_1[5]}}} - 17'h1;
   wire        _taken_T_5 = wants_5 & _toUnit_T_1[5];
   wire [16:0] _at_T_90 =
-    _GEN_51
+    _GEN_151
     + {14'h0,
        {1'h0,
         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
@@ -40406,7 +40723,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     - 17'h1;
   wire        _taken_T_6 = wants_6 & _toUnit_T_1[6];
   wire [16:0] _at_T_115 =
-    _GEN_51
+    _GEN_151
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -40418,7 +40735,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     - 17'h1;
   wire        _taken_T_7 = wants_7 & _toUnit_T_1[7];
   wire [16:0] _at_T_143 =
-    _GEN_51
+    _GEN_151
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -40430,7 +40747,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
                    + {1'h0, wants_8 & _toUnit_T_1[8]}}}} - 17'h1;
   wire        _taken_T_8 = wants_8 & _toUnit_T_1[8];
   wire [16:0] _at_T_174 =
-    _GEN_51
+    _GEN_151
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -40444,7 +40761,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
                    + {1'h0, wants_9 & _toUnit_T_1[9]}}}} - 17'h1;
   wire        _taken_T_9 = wants_9 & _toUnit_T_1[9];
   wire [16:0] _at_T_208 =
-    _GEN_51
+    _GEN_151
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -40460,7 +40777,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
                    + {1'h0, wants_10 & _toUnit_T_1[10]}}}} - 17'h1;
   wire        _taken_T_10 = wants_10 & _toUnit_T_1[10];
   wire [16:0] _at_T_245 =
-    _GEN_51
+    _GEN_151
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -40478,7 +40795,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
                    + {1'h0, wants_11 & _toUnit_T_1[11]}}}} - 17'h1;
   wire        _taken_T_11 = wants_11 & _toUnit_T_1[11];
   wire [16:0] _at_T_285 =
-    _GEN_51
+    _GEN_151
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -40498,7 +40815,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
                    + {1'h0, wants_12 & _toUnit_T_1[12]}}}} - 17'h1;
   wire        _taken_T_12 = wants_12 & _toUnit_T_1[12];
   wire [16:0] _at_T_328 =
-    _GEN_51
+    _GEN_151
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -40517,7 +40834,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
                    + {1'h0, wants_13 & _toUnit_T_1[13]}}}} - 17'h1;
   wire        _taken_T_13 = wants_13 & _toUnit_T_1[13];
   wire [16:0] _at_T_374 =
-    _GEN_51
+    _GEN_151
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -40537,7 +40854,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
                    + {1'h0, wants_14 & _toUnit_T_1[14]}}}} - 17'h1;
   wire        _taken_T_14 = wants_14 & _toUnit_T_1[14];
   wire [16:0] _at_T_423 =
-    _GEN_51
+    _GEN_151
     + {12'h0,
        {1'h0,
         {1'h0,
@@ -40560,15 +40877,21 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
                       {1'h0, wants_14 & _toUnit_T_1[14]}
                         + {1'h0, wants_15 & _toUnit_T_1[15]}}}}} - 17'h1;
   wire        _taken_T_15 = wants_15 & _toUnit_T_1[15];
-  wire        _GEN_52 = ~(&state) | ~sent;
-  wire        _GEN_53 = ~(|state) & _starting_T;
-  wire        _GEN_54 = state == 3'h1;
-  wire        _GEN_55 = state == 3'h2;
-  wire        _GEN_56 = state == 3'h3;
-  wire        _GEN_57 = state == 3'h4;
-  wire        _GEN_58 = state == 3'h5;
+  wire        _GEN_152 = state != 4'h8 | ~sent;
+  wire        _GEN_153 = ~(|state) & _starting_T;
+  wire        _GEN_154 = state == 4'h1;
+  wire        _GEN_155 = state == 4'h2;
+  wire        _GEN_156 = passDone & ~sortBusy;
+  wire        _GEN_157 = state == 4'h3;
+  wire [8:0]  _m_T = m + 9'h2;
+  wire        _GEN_158 = state == 4'h5;
+  wire        _GEN_159 = state == 4'h6;
+  wire        _GEN_160 = sent & ~sortBusy;
+  wire        _GEN_161 = state == 4'h7;
+  wire        _GEN_162 = passDone & ~REG_8;
+  wire        _GEN_163 = state == 4'h8;
   wire [16:0] taken =
-    _GEN_51
+    _GEN_151
     + {12'h0,
        {1'h0,
         {1'h0,
@@ -40600,941 +40923,1078 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   wire        _heldUnit_13_T = {9'h0, _at_T_328} < units;
   wire        _heldUnit_14_T = {9'h0, _at_T_374} < units;
   wire        _heldUnit_15_T = {9'h0, _at_T_423} < units;
+  wire        _GEN_164 =
+    _GEN_163 & sent
+    & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
+        | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
+        | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
+        | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
   wire [5:0]  largeNew =
-    _GEN_33
+    _GEN_133
     + {2'h0,
-       {1'h0, _GEN_42 + _GEN_43}
-         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_49 + {1'h0, largeHere_7}}}};
+       {1'h0, _GEN_142 + _GEN_143}
+         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_149 + {1'h0, largeHere_7}}}};
   wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
+  wire        _GEN_165 = sum > _GEN_131;
   always @(posedge clock) begin
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h0) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h0) begin
       larges_0_index <= r_7;
       larges_0_q_0 <= _laneKeys_7_io_out_q_0;
       larges_0_q_1 <= _laneKeys_7_io_out_q_1;
       larges_0_q_2 <= _laneKeys_7_io_out_q_2;
       larges_0_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h0) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h0) begin
       larges_0_index <= r_6;
       larges_0_q_0 <= _laneKeys_6_io_out_q_0;
       larges_0_q_1 <= _laneKeys_6_io_out_q_1;
       larges_0_q_2 <= _laneKeys_6_io_out_q_2;
       larges_0_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h0) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h0) begin
       larges_0_index <= r_5;
       larges_0_q_0 <= _laneKeys_5_io_out_q_0;
       larges_0_q_1 <= _laneKeys_5_io_out_q_1;
       larges_0_q_2 <= _laneKeys_5_io_out_q_2;
       larges_0_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h0) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h0) begin
       larges_0_index <= r_4;
       larges_0_q_0 <= _laneKeys_4_io_out_q_0;
       larges_0_q_1 <= _laneKeys_4_io_out_q_1;
       larges_0_q_2 <= _laneKeys_4_io_out_q_2;
       larges_0_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h0) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h0) begin
       larges_0_index <= r_3;
       larges_0_q_0 <= _laneKeys_3_io_out_q_0;
       larges_0_q_1 <= _laneKeys_3_io_out_q_1;
       larges_0_q_2 <= _laneKeys_3_io_out_q_2;
       larges_0_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h0) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h0) begin
       larges_0_index <= r_2;
       larges_0_q_0 <= _laneKeys_2_io_out_q_0;
       larges_0_q_1 <= _laneKeys_2_io_out_q_1;
       larges_0_q_2 <= _laneKeys_2_io_out_q_2;
       larges_0_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h0) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h0) begin
       larges_0_index <= r_1;
       larges_0_q_0 <= _laneKeys_1_io_out_q_0;
       larges_0_q_1 <= _laneKeys_1_io_out_q_1;
       larges_0_q_2 <= _laneKeys_1_io_out_q_2;
       larges_0_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h0) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h0) begin
       larges_0_index <= r;
       larges_0_q_0 <= _laneKeys_0_io_out_q_0;
       larges_0_q_1 <= _laneKeys_0_io_out_q_1;
       larges_0_q_2 <= _laneKeys_0_io_out_q_2;
       larges_0_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h1) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h1) begin
       larges_1_index <= r_7;
       larges_1_q_0 <= _laneKeys_7_io_out_q_0;
       larges_1_q_1 <= _laneKeys_7_io_out_q_1;
       larges_1_q_2 <= _laneKeys_7_io_out_q_2;
       larges_1_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h1) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h1) begin
       larges_1_index <= r_6;
       larges_1_q_0 <= _laneKeys_6_io_out_q_0;
       larges_1_q_1 <= _laneKeys_6_io_out_q_1;
       larges_1_q_2 <= _laneKeys_6_io_out_q_2;
       larges_1_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h1) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h1) begin
       larges_1_index <= r_5;
       larges_1_q_0 <= _laneKeys_5_io_out_q_0;
       larges_1_q_1 <= _laneKeys_5_io_out_q_1;
       larges_1_q_2 <= _laneKeys_5_io_out_q_2;
       larges_1_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h1) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h1) begin
       larges_1_index <= r_4;
       larges_1_q_0 <= _laneKeys_4_io_out_q_0;
       larges_1_q_1 <= _laneKeys_4_io_out_q_1;
       larges_1_q_2 <= _laneKeys_4_io_out_q_2;
       larges_1_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h1) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h1) begin
       larges_1_index <= r_3;
       larges_1_q_0 <= _laneKeys_3_io_out_q_0;
       larges_1_q_1 <= _laneKeys_3_io_out_q_1;
       larges_1_q_2 <= _laneKeys_3_io_out_q_2;
       larges_1_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h1) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h1) begin
       larges_1_index <= r_2;
       larges_1_q_0 <= _laneKeys_2_io_out_q_0;
       larges_1_q_1 <= _laneKeys_2_io_out_q_1;
       larges_1_q_2 <= _laneKeys_2_io_out_q_2;
       larges_1_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h1) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h1) begin
       larges_1_index <= r_1;
       larges_1_q_0 <= _laneKeys_1_io_out_q_0;
       larges_1_q_1 <= _laneKeys_1_io_out_q_1;
       larges_1_q_2 <= _laneKeys_1_io_out_q_2;
       larges_1_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h1) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h1) begin
       larges_1_index <= r;
       larges_1_q_0 <= _laneKeys_0_io_out_q_0;
       larges_1_q_1 <= _laneKeys_0_io_out_q_1;
       larges_1_q_2 <= _laneKeys_0_io_out_q_2;
       larges_1_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h2) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h2) begin
       larges_2_index <= r_7;
       larges_2_q_0 <= _laneKeys_7_io_out_q_0;
       larges_2_q_1 <= _laneKeys_7_io_out_q_1;
       larges_2_q_2 <= _laneKeys_7_io_out_q_2;
       larges_2_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h2) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h2) begin
       larges_2_index <= r_6;
       larges_2_q_0 <= _laneKeys_6_io_out_q_0;
       larges_2_q_1 <= _laneKeys_6_io_out_q_1;
       larges_2_q_2 <= _laneKeys_6_io_out_q_2;
       larges_2_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h2) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h2) begin
       larges_2_index <= r_5;
       larges_2_q_0 <= _laneKeys_5_io_out_q_0;
       larges_2_q_1 <= _laneKeys_5_io_out_q_1;
       larges_2_q_2 <= _laneKeys_5_io_out_q_2;
       larges_2_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h2) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h2) begin
       larges_2_index <= r_4;
       larges_2_q_0 <= _laneKeys_4_io_out_q_0;
       larges_2_q_1 <= _laneKeys_4_io_out_q_1;
       larges_2_q_2 <= _laneKeys_4_io_out_q_2;
       larges_2_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h2) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h2) begin
       larges_2_index <= r_3;
       larges_2_q_0 <= _laneKeys_3_io_out_q_0;
       larges_2_q_1 <= _laneKeys_3_io_out_q_1;
       larges_2_q_2 <= _laneKeys_3_io_out_q_2;
       larges_2_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h2) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h2) begin
       larges_2_index <= r_2;
       larges_2_q_0 <= _laneKeys_2_io_out_q_0;
       larges_2_q_1 <= _laneKeys_2_io_out_q_1;
       larges_2_q_2 <= _laneKeys_2_io_out_q_2;
       larges_2_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h2) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h2) begin
       larges_2_index <= r_1;
       larges_2_q_0 <= _laneKeys_1_io_out_q_0;
       larges_2_q_1 <= _laneKeys_1_io_out_q_1;
       larges_2_q_2 <= _laneKeys_1_io_out_q_2;
       larges_2_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h2) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h2) begin
       larges_2_index <= r;
       larges_2_q_0 <= _laneKeys_0_io_out_q_0;
       larges_2_q_1 <= _laneKeys_0_io_out_q_1;
       larges_2_q_2 <= _laneKeys_0_io_out_q_2;
       larges_2_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h3) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h3) begin
       larges_3_index <= r_7;
       larges_3_q_0 <= _laneKeys_7_io_out_q_0;
       larges_3_q_1 <= _laneKeys_7_io_out_q_1;
       larges_3_q_2 <= _laneKeys_7_io_out_q_2;
       larges_3_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h3) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h3) begin
       larges_3_index <= r_6;
       larges_3_q_0 <= _laneKeys_6_io_out_q_0;
       larges_3_q_1 <= _laneKeys_6_io_out_q_1;
       larges_3_q_2 <= _laneKeys_6_io_out_q_2;
       larges_3_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h3) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h3) begin
       larges_3_index <= r_5;
       larges_3_q_0 <= _laneKeys_5_io_out_q_0;
       larges_3_q_1 <= _laneKeys_5_io_out_q_1;
       larges_3_q_2 <= _laneKeys_5_io_out_q_2;
       larges_3_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h3) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h3) begin
       larges_3_index <= r_4;
       larges_3_q_0 <= _laneKeys_4_io_out_q_0;
       larges_3_q_1 <= _laneKeys_4_io_out_q_1;
       larges_3_q_2 <= _laneKeys_4_io_out_q_2;
       larges_3_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h3) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h3) begin
       larges_3_index <= r_3;
       larges_3_q_0 <= _laneKeys_3_io_out_q_0;
       larges_3_q_1 <= _laneKeys_3_io_out_q_1;
       larges_3_q_2 <= _laneKeys_3_io_out_q_2;
       larges_3_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h3) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h3) begin
       larges_3_index <= r_2;
       larges_3_q_0 <= _laneKeys_2_io_out_q_0;
       larges_3_q_1 <= _laneKeys_2_io_out_q_1;
       larges_3_q_2 <= _laneKeys_2_io_out_q_2;
       larges_3_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h3) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h3) begin
       larges_3_index <= r_1;
       larges_3_q_0 <= _laneKeys_1_io_out_q_0;
       larges_3_q_1 <= _laneKeys_1_io_out_q_1;
       larges_3_q_2 <= _laneKeys_1_io_out_q_2;
       larges_3_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h3) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h3) begin
       larges_3_index <= r;
       larges_3_q_0 <= _laneKeys_0_io_out_q_0;
       larges_3_q_1 <= _laneKeys_0_io_out_q_1;
       larges_3_q_2 <= _laneKeys_0_io_out_q_2;
       larges_3_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h4) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h4) begin
       larges_4_index <= r_7;
       larges_4_q_0 <= _laneKeys_7_io_out_q_0;
       larges_4_q_1 <= _laneKeys_7_io_out_q_1;
       larges_4_q_2 <= _laneKeys_7_io_out_q_2;
       larges_4_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h4) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h4) begin
       larges_4_index <= r_6;
       larges_4_q_0 <= _laneKeys_6_io_out_q_0;
       larges_4_q_1 <= _laneKeys_6_io_out_q_1;
       larges_4_q_2 <= _laneKeys_6_io_out_q_2;
       larges_4_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h4) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h4) begin
       larges_4_index <= r_5;
       larges_4_q_0 <= _laneKeys_5_io_out_q_0;
       larges_4_q_1 <= _laneKeys_5_io_out_q_1;
       larges_4_q_2 <= _laneKeys_5_io_out_q_2;
       larges_4_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h4) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h4) begin
       larges_4_index <= r_4;
       larges_4_q_0 <= _laneKeys_4_io_out_q_0;
       larges_4_q_1 <= _laneKeys_4_io_out_q_1;
       larges_4_q_2 <= _laneKeys_4_io_out_q_2;
       larges_4_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h4) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h4) begin
       larges_4_index <= r_3;
       larges_4_q_0 <= _laneKeys_3_io_out_q_0;
       larges_4_q_1 <= _laneKeys_3_io_out_q_1;
       larges_4_q_2 <= _laneKeys_3_io_out_q_2;
       larges_4_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h4) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h4) begin
       larges_4_index <= r_2;
       larges_4_q_0 <= _laneKeys_2_io_out_q_0;
       larges_4_q_1 <= _laneKeys_2_io_out_q_1;
       larges_4_q_2 <= _laneKeys_2_io_out_q_2;
       larges_4_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h4) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h4) begin
       larges_4_index <= r_1;
       larges_4_q_0 <= _laneKeys_1_io_out_q_0;
       larges_4_q_1 <= _laneKeys_1_io_out_q_1;
       larges_4_q_2 <= _laneKeys_1_io_out_q_2;
       larges_4_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h4) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h4) begin
       larges_4_index <= r;
       larges_4_q_0 <= _laneKeys_0_io_out_q_0;
       larges_4_q_1 <= _laneKeys_0_io_out_q_1;
       larges_4_q_2 <= _laneKeys_0_io_out_q_2;
       larges_4_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h5) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h5) begin
       larges_5_index <= r_7;
       larges_5_q_0 <= _laneKeys_7_io_out_q_0;
       larges_5_q_1 <= _laneKeys_7_io_out_q_1;
       larges_5_q_2 <= _laneKeys_7_io_out_q_2;
       larges_5_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h5) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h5) begin
       larges_5_index <= r_6;
       larges_5_q_0 <= _laneKeys_6_io_out_q_0;
       larges_5_q_1 <= _laneKeys_6_io_out_q_1;
       larges_5_q_2 <= _laneKeys_6_io_out_q_2;
       larges_5_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h5) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h5) begin
       larges_5_index <= r_5;
       larges_5_q_0 <= _laneKeys_5_io_out_q_0;
       larges_5_q_1 <= _laneKeys_5_io_out_q_1;
       larges_5_q_2 <= _laneKeys_5_io_out_q_2;
       larges_5_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h5) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h5) begin
       larges_5_index <= r_4;
       larges_5_q_0 <= _laneKeys_4_io_out_q_0;
       larges_5_q_1 <= _laneKeys_4_io_out_q_1;
       larges_5_q_2 <= _laneKeys_4_io_out_q_2;
       larges_5_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h5) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h5) begin
       larges_5_index <= r_3;
       larges_5_q_0 <= _laneKeys_3_io_out_q_0;
       larges_5_q_1 <= _laneKeys_3_io_out_q_1;
       larges_5_q_2 <= _laneKeys_3_io_out_q_2;
       larges_5_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h5) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h5) begin
       larges_5_index <= r_2;
       larges_5_q_0 <= _laneKeys_2_io_out_q_0;
       larges_5_q_1 <= _laneKeys_2_io_out_q_1;
       larges_5_q_2 <= _laneKeys_2_io_out_q_2;
       larges_5_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h5) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h5) begin
       larges_5_index <= r_1;
       larges_5_q_0 <= _laneKeys_1_io_out_q_0;
       larges_5_q_1 <= _laneKeys_1_io_out_q_1;
       larges_5_q_2 <= _laneKeys_1_io_out_q_2;
       larges_5_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h5) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h5) begin
       larges_5_index <= r;
       larges_5_q_0 <= _laneKeys_0_io_out_q_0;
       larges_5_q_1 <= _laneKeys_0_io_out_q_1;
       larges_5_q_2 <= _laneKeys_0_io_out_q_2;
       larges_5_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h6) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h6) begin
       larges_6_index <= r_7;
       larges_6_q_0 <= _laneKeys_7_io_out_q_0;
       larges_6_q_1 <= _laneKeys_7_io_out_q_1;
       larges_6_q_2 <= _laneKeys_7_io_out_q_2;
       larges_6_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h6) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h6) begin
       larges_6_index <= r_6;
       larges_6_q_0 <= _laneKeys_6_io_out_q_0;
       larges_6_q_1 <= _laneKeys_6_io_out_q_1;
       larges_6_q_2 <= _laneKeys_6_io_out_q_2;
       larges_6_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h6) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h6) begin
       larges_6_index <= r_5;
       larges_6_q_0 <= _laneKeys_5_io_out_q_0;
       larges_6_q_1 <= _laneKeys_5_io_out_q_1;
       larges_6_q_2 <= _laneKeys_5_io_out_q_2;
       larges_6_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h6) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h6) begin
       larges_6_index <= r_4;
       larges_6_q_0 <= _laneKeys_4_io_out_q_0;
       larges_6_q_1 <= _laneKeys_4_io_out_q_1;
       larges_6_q_2 <= _laneKeys_4_io_out_q_2;
       larges_6_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h6) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h6) begin
       larges_6_index <= r_3;
       larges_6_q_0 <= _laneKeys_3_io_out_q_0;
       larges_6_q_1 <= _laneKeys_3_io_out_q_1;
       larges_6_q_2 <= _laneKeys_3_io_out_q_2;
       larges_6_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h6) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h6) begin
       larges_6_index <= r_2;
       larges_6_q_0 <= _laneKeys_2_io_out_q_0;
       larges_6_q_1 <= _laneKeys_2_io_out_q_1;
       larges_6_q_2 <= _laneKeys_2_io_out_q_2;
       larges_6_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h6) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h6) begin
       larges_6_index <= r_1;
       larges_6_q_0 <= _laneKeys_1_io_out_q_0;
       larges_6_q_1 <= _laneKeys_1_io_out_q_1;
       larges_6_q_2 <= _laneKeys_1_io_out_q_2;
       larges_6_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h6) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h6) begin
       larges_6_index <= r;
       larges_6_q_0 <= _laneKeys_0_io_out_q_0;
       larges_6_q_1 <= _laneKeys_0_io_out_q_1;
       larges_6_q_2 <= _laneKeys_0_io_out_q_2;
       larges_6_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h7) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h7) begin
       larges_7_index <= r_7;
       larges_7_q_0 <= _laneKeys_7_io_out_q_0;
       larges_7_q_1 <= _laneKeys_7_io_out_q_1;
       larges_7_q_2 <= _laneKeys_7_io_out_q_2;
       larges_7_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h7) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h7) begin
       larges_7_index <= r_6;
       larges_7_q_0 <= _laneKeys_6_io_out_q_0;
       larges_7_q_1 <= _laneKeys_6_io_out_q_1;
       larges_7_q_2 <= _laneKeys_6_io_out_q_2;
       larges_7_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h7) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h7) begin
       larges_7_index <= r_5;
       larges_7_q_0 <= _laneKeys_5_io_out_q_0;
       larges_7_q_1 <= _laneKeys_5_io_out_q_1;
       larges_7_q_2 <= _laneKeys_5_io_out_q_2;
       larges_7_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h7) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h7) begin
       larges_7_index <= r_4;
       larges_7_q_0 <= _laneKeys_4_io_out_q_0;
       larges_7_q_1 <= _laneKeys_4_io_out_q_1;
       larges_7_q_2 <= _laneKeys_4_io_out_q_2;
       larges_7_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h7) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h7) begin
       larges_7_index <= r_3;
       larges_7_q_0 <= _laneKeys_3_io_out_q_0;
       larges_7_q_1 <= _laneKeys_3_io_out_q_1;
       larges_7_q_2 <= _laneKeys_3_io_out_q_2;
       larges_7_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h7) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h7) begin
       larges_7_index <= r_2;
       larges_7_q_0 <= _laneKeys_2_io_out_q_0;
       larges_7_q_1 <= _laneKeys_2_io_out_q_1;
       larges_7_q_2 <= _laneKeys_2_io_out_q_2;
       larges_7_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h7) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h7) begin
       larges_7_index <= r_1;
       larges_7_q_0 <= _laneKeys_1_io_out_q_0;
       larges_7_q_1 <= _laneKeys_1_io_out_q_1;
       larges_7_q_2 <= _laneKeys_1_io_out_q_2;
       larges_7_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h7) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h7) begin
       larges_7_index <= r;
       larges_7_q_0 <= _laneKeys_0_io_out_q_0;
       larges_7_q_1 <= _laneKeys_0_io_out_q_1;
       larges_7_q_2 <= _laneKeys_0_io_out_q_2;
       larges_7_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h8) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h8) begin
       larges_8_index <= r_7;
       larges_8_q_0 <= _laneKeys_7_io_out_q_0;
       larges_8_q_1 <= _laneKeys_7_io_out_q_1;
       larges_8_q_2 <= _laneKeys_7_io_out_q_2;
       larges_8_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h8) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h8) begin
       larges_8_index <= r_6;
       larges_8_q_0 <= _laneKeys_6_io_out_q_0;
       larges_8_q_1 <= _laneKeys_6_io_out_q_1;
       larges_8_q_2 <= _laneKeys_6_io_out_q_2;
       larges_8_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h8) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h8) begin
       larges_8_index <= r_5;
       larges_8_q_0 <= _laneKeys_5_io_out_q_0;
       larges_8_q_1 <= _laneKeys_5_io_out_q_1;
       larges_8_q_2 <= _laneKeys_5_io_out_q_2;
       larges_8_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h8) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h8) begin
       larges_8_index <= r_4;
       larges_8_q_0 <= _laneKeys_4_io_out_q_0;
       larges_8_q_1 <= _laneKeys_4_io_out_q_1;
       larges_8_q_2 <= _laneKeys_4_io_out_q_2;
       larges_8_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h8) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h8) begin
       larges_8_index <= r_3;
       larges_8_q_0 <= _laneKeys_3_io_out_q_0;
       larges_8_q_1 <= _laneKeys_3_io_out_q_1;
       larges_8_q_2 <= _laneKeys_3_io_out_q_2;
       larges_8_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h8) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h8) begin
       larges_8_index <= r_2;
       larges_8_q_0 <= _laneKeys_2_io_out_q_0;
       larges_8_q_1 <= _laneKeys_2_io_out_q_1;
       larges_8_q_2 <= _laneKeys_2_io_out_q_2;
       larges_8_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h8) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h8) begin
       larges_8_index <= r_1;
       larges_8_q_0 <= _laneKeys_1_io_out_q_0;
       larges_8_q_1 <= _laneKeys_1_io_out_q_1;
       larges_8_q_2 <= _laneKeys_1_io_out_q_2;
       larges_8_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h8) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h8) begin
       larges_8_index <= r;
       larges_8_q_0 <= _laneKeys_0_io_out_q_0;
       larges_8_q_1 <= _laneKeys_0_io_out_q_1;
       larges_8_q_2 <= _laneKeys_0_io_out_q_2;
       larges_8_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'h9) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h9) begin
       larges_9_index <= r_7;
       larges_9_q_0 <= _laneKeys_7_io_out_q_0;
       larges_9_q_1 <= _laneKeys_7_io_out_q_1;
       larges_9_q_2 <= _laneKeys_7_io_out_q_2;
       larges_9_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'h9) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h9) begin
       larges_9_index <= r_6;
       larges_9_q_0 <= _laneKeys_6_io_out_q_0;
       larges_9_q_1 <= _laneKeys_6_io_out_q_1;
       larges_9_q_2 <= _laneKeys_6_io_out_q_2;
       larges_9_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'h9) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h9) begin
       larges_9_index <= r_5;
       larges_9_q_0 <= _laneKeys_5_io_out_q_0;
       larges_9_q_1 <= _laneKeys_5_io_out_q_1;
       larges_9_q_2 <= _laneKeys_5_io_out_q_2;
       larges_9_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'h9) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h9) begin
       larges_9_index <= r_4;
       larges_9_q_0 <= _laneKeys_4_io_out_q_0;
       larges_9_q_1 <= _laneKeys_4_io_out_q_1;
       larges_9_q_2 <= _laneKeys_4_io_out_q_2;
       larges_9_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'h9) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h9) begin
       larges_9_index <= r_3;
       larges_9_q_0 <= _laneKeys_3_io_out_q_0;
       larges_9_q_1 <= _laneKeys_3_io_out_q_1;
       larges_9_q_2 <= _laneKeys_3_io_out_q_2;
       larges_9_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'h9) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h9) begin
       larges_9_index <= r_2;
       larges_9_q_0 <= _laneKeys_2_io_out_q_0;
       larges_9_q_1 <= _laneKeys_2_io_out_q_1;
       larges_9_q_2 <= _laneKeys_2_io_out_q_2;
       larges_9_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'h9) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h9) begin
       larges_9_index <= r_1;
       larges_9_q_0 <= _laneKeys_1_io_out_q_0;
       larges_9_q_1 <= _laneKeys_1_io_out_q_1;
       larges_9_q_2 <= _laneKeys_1_io_out_q_2;
       larges_9_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'h9) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h9) begin
       larges_9_index <= r;
       larges_9_q_0 <= _laneKeys_0_io_out_q_0;
       larges_9_q_1 <= _laneKeys_0_io_out_q_1;
       larges_9_q_2 <= _laneKeys_0_io_out_q_2;
       larges_9_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'hA) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'hA) begin
       larges_10_index <= r_7;
       larges_10_q_0 <= _laneKeys_7_io_out_q_0;
       larges_10_q_1 <= _laneKeys_7_io_out_q_1;
       larges_10_q_2 <= _laneKeys_7_io_out_q_2;
       larges_10_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'hA) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'hA) begin
       larges_10_index <= r_6;
       larges_10_q_0 <= _laneKeys_6_io_out_q_0;
       larges_10_q_1 <= _laneKeys_6_io_out_q_1;
       larges_10_q_2 <= _laneKeys_6_io_out_q_2;
       larges_10_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'hA) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'hA) begin
       larges_10_index <= r_5;
       larges_10_q_0 <= _laneKeys_5_io_out_q_0;
       larges_10_q_1 <= _laneKeys_5_io_out_q_1;
       larges_10_q_2 <= _laneKeys_5_io_out_q_2;
       larges_10_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'hA) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'hA) begin
       larges_10_index <= r_4;
       larges_10_q_0 <= _laneKeys_4_io_out_q_0;
       larges_10_q_1 <= _laneKeys_4_io_out_q_1;
       larges_10_q_2 <= _laneKeys_4_io_out_q_2;
       larges_10_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'hA) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'hA) begin
       larges_10_index <= r_3;
       larges_10_q_0 <= _laneKeys_3_io_out_q_0;
       larges_10_q_1 <= _laneKeys_3_io_out_q_1;
       larges_10_q_2 <= _laneKeys_3_io_out_q_2;
       larges_10_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'hA) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'hA) begin
       larges_10_index <= r_2;
       larges_10_q_0 <= _laneKeys_2_io_out_q_0;
       larges_10_q_1 <= _laneKeys_2_io_out_q_1;
       larges_10_q_2 <= _laneKeys_2_io_out_q_2;
       larges_10_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'hA) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'hA) begin
       larges_10_index <= r_1;
       larges_10_q_0 <= _laneKeys_1_io_out_q_0;
       larges_10_q_1 <= _laneKeys_1_io_out_q_1;
       larges_10_q_2 <= _laneKeys_1_io_out_q_2;
       larges_10_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'hA) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'hA) begin
       larges_10_index <= r;
       larges_10_q_0 <= _laneKeys_0_io_out_q_0;
       larges_10_q_1 <= _laneKeys_0_io_out_q_1;
       larges_10_q_2 <= _laneKeys_0_io_out_q_2;
       larges_10_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'hB) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'hB) begin
       larges_11_index <= r_7;
       larges_11_q_0 <= _laneKeys_7_io_out_q_0;
       larges_11_q_1 <= _laneKeys_7_io_out_q_1;
       larges_11_q_2 <= _laneKeys_7_io_out_q_2;
       larges_11_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'hB) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'hB) begin
       larges_11_index <= r_6;
       larges_11_q_0 <= _laneKeys_6_io_out_q_0;
       larges_11_q_1 <= _laneKeys_6_io_out_q_1;
       larges_11_q_2 <= _laneKeys_6_io_out_q_2;
       larges_11_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'hB) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'hB) begin
       larges_11_index <= r_5;
       larges_11_q_0 <= _laneKeys_5_io_out_q_0;
       larges_11_q_1 <= _laneKeys_5_io_out_q_1;
       larges_11_q_2 <= _laneKeys_5_io_out_q_2;
       larges_11_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'hB) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'hB) begin
       larges_11_index <= r_4;
       larges_11_q_0 <= _laneKeys_4_io_out_q_0;
       larges_11_q_1 <= _laneKeys_4_io_out_q_1;
       larges_11_q_2 <= _laneKeys_4_io_out_q_2;
       larges_11_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'hB) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'hB) begin
       larges_11_index <= r_3;
       larges_11_q_0 <= _laneKeys_3_io_out_q_0;
       larges_11_q_1 <= _laneKeys_3_io_out_q_1;
       larges_11_q_2 <= _laneKeys_3_io_out_q_2;
       larges_11_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'hB) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'hB) begin
       larges_11_index <= r_2;
       larges_11_q_0 <= _laneKeys_2_io_out_q_0;
       larges_11_q_1 <= _laneKeys_2_io_out_q_1;
       larges_11_q_2 <= _laneKeys_2_io_out_q_2;
       larges_11_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'hB) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'hB) begin
       larges_11_index <= r_1;
       larges_11_q_0 <= _laneKeys_1_io_out_q_0;
       larges_11_q_1 <= _laneKeys_1_io_out_q_1;
       larges_11_q_2 <= _laneKeys_1_io_out_q_2;
       larges_11_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'hB) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'hB) begin
       larges_11_index <= r;
       larges_11_q_0 <= _laneKeys_0_io_out_q_0;
       larges_11_q_1 <= _laneKeys_0_io_out_q_1;
       larges_11_q_2 <= _laneKeys_0_io_out_q_2;
       larges_11_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'hC) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'hC) begin
       larges_12_index <= r_7;
       larges_12_q_0 <= _laneKeys_7_io_out_q_0;
       larges_12_q_1 <= _laneKeys_7_io_out_q_1;
       larges_12_q_2 <= _laneKeys_7_io_out_q_2;
       larges_12_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'hC) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'hC) begin
       larges_12_index <= r_6;
       larges_12_q_0 <= _laneKeys_6_io_out_q_0;
       larges_12_q_1 <= _laneKeys_6_io_out_q_1;
       larges_12_q_2 <= _laneKeys_6_io_out_q_2;
       larges_12_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'hC) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'hC) begin
       larges_12_index <= r_5;
       larges_12_q_0 <= _laneKeys_5_io_out_q_0;
       larges_12_q_1 <= _laneKeys_5_io_out_q_1;
       larges_12_q_2 <= _laneKeys_5_io_out_q_2;
       larges_12_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'hC) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'hC) begin
       larges_12_index <= r_4;
       larges_12_q_0 <= _laneKeys_4_io_out_q_0;
       larges_12_q_1 <= _laneKeys_4_io_out_q_1;
       larges_12_q_2 <= _laneKeys_4_io_out_q_2;
       larges_12_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'hC) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'hC) begin
       larges_12_index <= r_3;
       larges_12_q_0 <= _laneKeys_3_io_out_q_0;
       larges_12_q_1 <= _laneKeys_3_io_out_q_1;
       larges_12_q_2 <= _laneKeys_3_io_out_q_2;
       larges_12_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'hC) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'hC) begin
       larges_12_index <= r_2;
       larges_12_q_0 <= _laneKeys_2_io_out_q_0;
       larges_12_q_1 <= _laneKeys_2_io_out_q_1;
       larges_12_q_2 <= _laneKeys_2_io_out_q_2;
       larges_12_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'hC) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'hC) begin
       larges_12_index <= r_1;
       larges_12_q_0 <= _laneKeys_1_io_out_q_0;
       larges_12_q_1 <= _laneKeys_1_io_out_q_1;
       larges_12_q_2 <= _laneKeys_1_io_out_q_2;
       larges_12_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'hC) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'hC) begin
       larges_12_index <= r;
       larges_12_q_0 <= _laneKeys_0_io_out_q_0;
       larges_12_q_1 <= _laneKeys_0_io_out_q_1;
       larges_12_q_2 <= _laneKeys_0_io_out_q_2;
       larges_12_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'hD) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'hD) begin
       larges_13_index <= r_7;
       larges_13_q_0 <= _laneKeys_7_io_out_q_0;
       larges_13_q_1 <= _laneKeys_7_io_out_q_1;
       larges_13_q_2 <= _laneKeys_7_io_out_q_2;
       larges_13_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'hD) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'hD) begin
       larges_13_index <= r_6;
       larges_13_q_0 <= _laneKeys_6_io_out_q_0;
       larges_13_q_1 <= _laneKeys_6_io_out_q_1;
       larges_13_q_2 <= _laneKeys_6_io_out_q_2;
       larges_13_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'hD) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'hD) begin
       larges_13_index <= r_5;
       larges_13_q_0 <= _laneKeys_5_io_out_q_0;
       larges_13_q_1 <= _laneKeys_5_io_out_q_1;
       larges_13_q_2 <= _laneKeys_5_io_out_q_2;
       larges_13_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'hD) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'hD) begin
       larges_13_index <= r_4;
       larges_13_q_0 <= _laneKeys_4_io_out_q_0;
       larges_13_q_1 <= _laneKeys_4_io_out_q_1;
       larges_13_q_2 <= _laneKeys_4_io_out_q_2;
       larges_13_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'hD) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'hD) begin
       larges_13_index <= r_3;
       larges_13_q_0 <= _laneKeys_3_io_out_q_0;
       larges_13_q_1 <= _laneKeys_3_io_out_q_1;
       larges_13_q_2 <= _laneKeys_3_io_out_q_2;
       larges_13_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'hD) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'hD) begin
       larges_13_index <= r_2;
       larges_13_q_0 <= _laneKeys_2_io_out_q_0;
       larges_13_q_1 <= _laneKeys_2_io_out_q_1;
       larges_13_q_2 <= _laneKeys_2_io_out_q_2;
       larges_13_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'hD) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'hD) begin
       larges_13_index <= r_1;
       larges_13_q_0 <= _laneKeys_1_io_out_q_0;
       larges_13_q_1 <= _laneKeys_1_io_out_q_1;
       larges_13_q_2 <= _laneKeys_1_io_out_q_2;
       larges_13_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'hD) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'hD) begin
       larges_13_index <= r;
       larges_13_q_0 <= _laneKeys_0_io_out_q_0;
       larges_13_q_1 <= _laneKeys_0_io_out_q_1;
       larges_13_q_2 <= _laneKeys_0_io_out_q_2;
       larges_13_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & slot_7[3:0] == 4'hE) begin
+    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'hE) begin
       larges_14_index <= r_7;
       larges_14_q_0 <= _laneKeys_7_io_out_q_0;
       larges_14_q_1 <= _laneKeys_7_io_out_q_1;
       larges_14_q_2 <= _laneKeys_7_io_out_q_2;
       larges_14_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & slot_6[3:0] == 4'hE) begin
+    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'hE) begin
       larges_14_index <= r_6;
       larges_14_q_0 <= _laneKeys_6_io_out_q_0;
       larges_14_q_1 <= _laneKeys_6_io_out_q_1;
       larges_14_q_2 <= _laneKeys_6_io_out_q_2;
       larges_14_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & slot_5[3:0] == 4'hE) begin
+    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'hE) begin
       larges_14_index <= r_5;
       larges_14_q_0 <= _laneKeys_5_io_out_q_0;
       larges_14_q_1 <= _laneKeys_5_io_out_q_1;
       larges_14_q_2 <= _laneKeys_5_io_out_q_2;
       larges_14_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & slot_4[3:0] == 4'hE) begin
+    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'hE) begin
       larges_14_index <= r_4;
       larges_14_q_0 <= _laneKeys_4_io_out_q_0;
       larges_14_q_1 <= _laneKeys_4_io_out_q_1;
       larges_14_q_2 <= _laneKeys_4_io_out_q_2;
       larges_14_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & slot_3[3:0] == 4'hE) begin
+    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'hE) begin
       larges_14_index <= r_3;
       larges_14_q_0 <= _laneKeys_3_io_out_q_0;
       larges_14_q_1 <= _laneKeys_3_io_out_q_1;
       larges_14_q_2 <= _laneKeys_3_io_out_q_2;
       larges_14_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & slot_2[3:0] == 4'hE) begin
+    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'hE) begin
       larges_14_index <= r_2;
       larges_14_q_0 <= _laneKeys_2_io_out_q_0;
       larges_14_q_1 <= _laneKeys_2_io_out_q_1;
       larges_14_q_2 <= _laneKeys_2_io_out_q_2;
       larges_14_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & slot_1[3:0] == 4'hE) begin
+    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'hE) begin
       larges_14_index <= r_1;
       larges_14_q_0 <= _laneKeys_1_io_out_q_0;
       larges_14_q_1 <= _laneKeys_1_io_out_q_1;
       larges_14_q_2 <= _laneKeys_1_io_out_q_2;
       larges_14_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & largeCount[3:0] == 4'hE) begin
+    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'hE) begin
       larges_14_index <= r;
       larges_14_q_0 <= _laneKeys_0_io_out_q_0;
       larges_14_q_1 <= _laneKeys_0_io_out_q_1;
       larges_14_q_2 <= _laneKeys_0_io_out_q_2;
       larges_14_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_50 & (&(slot_7[3:0]))) begin
+    if (largeHere_7 & _GEN_150 & (&(slot_7[3:0]))) begin
       larges_15_index <= r_7;
       larges_15_q_0 <= _laneKeys_7_io_out_q_0;
       larges_15_q_1 <= _laneKeys_7_io_out_q_1;
       larges_15_q_2 <= _laneKeys_7_io_out_q_2;
       larges_15_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_48 & (&(slot_6[3:0]))) begin
+    else if (largeHere_6 & _GEN_148 & (&(slot_6[3:0]))) begin
       larges_15_index <= r_6;
       larges_15_q_0 <= _laneKeys_6_io_out_q_0;
       larges_15_q_1 <= _laneKeys_6_io_out_q_1;
       larges_15_q_2 <= _laneKeys_6_io_out_q_2;
       larges_15_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_46 & (&(slot_5[3:0]))) begin
+    else if (largeHere_5 & _GEN_146 & (&(slot_5[3:0]))) begin
       larges_15_index <= r_5;
       larges_15_q_0 <= _laneKeys_5_io_out_q_0;
       larges_15_q_1 <= _laneKeys_5_io_out_q_1;
       larges_15_q_2 <= _laneKeys_5_io_out_q_2;
       larges_15_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_44 & (&(slot_4[3:0]))) begin
+    else if (largeHere_4 & _GEN_144 & (&(slot_4[3:0]))) begin
       larges_15_index <= r_4;
       larges_15_q_0 <= _laneKeys_4_io_out_q_0;
       larges_15_q_1 <= _laneKeys_4_io_out_q_1;
       larges_15_q_2 <= _laneKeys_4_io_out_q_2;
       larges_15_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_40 & (&(slot_3[3:0]))) begin
+    else if (largeHere_3 & _GEN_140 & (&(slot_3[3:0]))) begin
       larges_15_index <= r_3;
       larges_15_q_0 <= _laneKeys_3_io_out_q_0;
       larges_15_q_1 <= _laneKeys_3_io_out_q_1;
       larges_15_q_2 <= _laneKeys_3_io_out_q_2;
       larges_15_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_38 & (&(slot_2[3:0]))) begin
+    else if (largeHere_2 & _GEN_138 & (&(slot_2[3:0]))) begin
       larges_15_index <= r_2;
       larges_15_q_0 <= _laneKeys_2_io_out_q_0;
       larges_15_q_1 <= _laneKeys_2_io_out_q_1;
       larges_15_q_2 <= _laneKeys_2_io_out_q_2;
       larges_15_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_35 & (&(slot_1[3:0]))) begin
+    else if (largeHere_1 & _GEN_135 & (&(slot_1[3:0]))) begin
       larges_15_index <= r_1;
       larges_15_q_0 <= _laneKeys_1_io_out_q_0;
       larges_15_q_1 <= _laneKeys_1_io_out_q_1;
       larges_15_q_2 <= _laneKeys_1_io_out_q_2;
       larges_15_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_34 & (&(largeCount[3:0]))) begin
+    else if (largeHere_0 & _GEN_134 & (&(largeCount[3:0]))) begin
       larges_15_index <= r;
       larges_15_q_0 <= _laneKeys_0_io_out_q_0;
       larges_15_q_1 <= _laneKeys_0_io_out_q_1;
       larges_15_q_2 <= _laneKeys_0_io_out_q_2;
       larges_15_qr <= _laneKeys_0_io_out_qr;
     end
-    if (_GEN_53) begin
+    if (_GEN_153) begin
       num <= io_num;
       usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
     end
-    if (~(~(|state) | _GEN_54 | _GEN_55 | _GEN_56)) begin
-      if (_GEN_57)
+    if (~(~(|state) | _GEN_154 | _GEN_155 | _GEN_157 | _GEN_132)) begin
+      if (_GEN_158)
         sent <= ~passDone & sent;
       else
-        sent <= _GEN_58 | (_GEN_9 ? ~_GEN_26 & sent : (&state) | sent);
+        sent <= _GEN_159 | (_GEN_161 ? ~_GEN_162 & sent : _GEN_163 | sent);
     end
     if (|state) begin
-      i_0 <= casez_tmp_39;
-      i_1 <= casez_tmp_40;
-      i_2 <= casez_tmp_41;
-      i_3 <= casez_tmp_42;
-      i_4 <= casez_tmp_43;
-      i_5 <= casez_tmp_44;
-      i_6 <= casez_tmp_45;
-      i_7 <= casez_tmp_46;
-      i_8 <= casez_tmp_47;
-      i_9 <= casez_tmp_48;
-      i_10 <= casez_tmp_49;
-      i_11 <= casez_tmp_50;
-      i_12 <= casez_tmp_51;
-      i_13 <= casez_tmp_52;
-      i_14 <= casez_tmp_53;
-      i_15 <= casez_tmp_54;
+      if (~_GEN_154) begin
+        if (_GEN_155) begin
+          if (reading_0)
+            i_0 <= i_0 + 13'h1;
+          if (reading_1)
+            i_1 <= i_1 + 13'h1;
+          if (reading_2)
+            i_2 <= i_2 + 13'h1;
+          if (reading_3)
+            i_3 <= i_3 + 13'h1;
+          if (reading_4)
+            i_4 <= i_4 + 13'h1;
+          if (reading_5)
+            i_5 <= i_5 + 13'h1;
+          if (reading_6)
+            i_6 <= i_6 + 13'h1;
+          if (reading_7)
+            i_7 <= i_7 + 13'h1;
+          if (reading_8)
+            i_8 <= i_8 + 13'h1;
+          if (reading_9)
+            i_9 <= i_9 + 13'h1;
+          if (reading_10)
+            i_10 <= i_10 + 13'h1;
+          if (reading_11)
+            i_11 <= i_11 + 13'h1;
+          if (reading_12)
+            i_12 <= i_12 + 13'h1;
+          if (reading_13)
+            i_13 <= i_13 + 13'h1;
+          if (reading_14)
+            i_14 <= i_14 + 13'h1;
+          if (reading_15)
+            i_15 <= i_15 + 13'h1;
+        end
+        else if (~_GEN_157) begin
+          if (_GEN_132) begin
+            if (boxDone) begin
+              i_0 <= 13'h0;
+              i_1 <= _GEN_1;
+              i_2 <= _GEN_2;
+              i_3 <= {1'h0, _i_3_T_9[14:3]};
+              i_4 <= {1'h0, num[12:1]};
+              i_5 <= _i_5_T_8[15:3];
+              i_6 <= _i_6_T_8[15:3];
+              i_7 <= _i_7_T_8[15:3];
+              i_8 <= 13'h0;
+              i_9 <= 13'h0;
+              i_10 <= 13'h0;
+              i_11 <= 13'h0;
+              i_12 <= 13'h0;
+              i_13 <= 13'h0;
+              i_14 <= 13'h0;
+              i_15 <= 13'h0;
+            end
+          end
+          else if (_GEN_158) begin
+            if (reading_0)
+              i_0 <= i_0 + 13'h1;
+            if (reading_1)
+              i_1 <= i_1 + 13'h1;
+            if (reading_2)
+              i_2 <= i_2 + 13'h1;
+            if (reading_3)
+              i_3 <= i_3 + 13'h1;
+            if (reading_4)
+              i_4 <= i_4 + 13'h1;
+            if (reading_5)
+              i_5 <= i_5 + 13'h1;
+            if (reading_6)
+              i_6 <= i_6 + 13'h1;
+            if (reading_7)
+              i_7 <= i_7 + 13'h1;
+            if (reading_8)
+              i_8 <= i_8 + 13'h1;
+            if (reading_9)
+              i_9 <= i_9 + 13'h1;
+            if (reading_10)
+              i_10 <= i_10 + 13'h1;
+            if (reading_11)
+              i_11 <= i_11 + 13'h1;
+            if (reading_12)
+              i_12 <= i_12 + 13'h1;
+            if (reading_13)
+              i_13 <= i_13 + 13'h1;
+            if (reading_14)
+              i_14 <= i_14 + 13'h1;
+            if (reading_15)
+              i_15 <= i_15 + 13'h1;
+          end
+          else if (_GEN_159) begin
+            if (_GEN_160) begin
+              i_0 <= 13'h0;
+              i_1 <= _GEN_1;
+              i_2 <= _GEN_2;
+              i_3 <= {1'h0, _i_3_T_9[14:3]};
+              i_4 <= {1'h0, num[12:1]};
+              i_5 <= _i_5_T_8[15:3];
+              i_6 <= _i_6_T_8[15:3];
+              i_7 <= _i_7_T_8[15:3];
+              i_8 <= 13'h0;
+              i_9 <= 13'h0;
+              i_10 <= 13'h0;
+              i_11 <= 13'h0;
+              i_12 <= 13'h0;
+              i_13 <= 13'h0;
+              i_14 <= 13'h0;
+              i_15 <= 13'h0;
+            end
+          end
+          else begin
+            if (_GEN_161 & reading_0)
+              i_0 <= i_0 + 13'h1;
+            if (_GEN_161 & reading_1)
+              i_1 <= i_1 + 13'h1;
+            if (_GEN_161 & reading_2)
+              i_2 <= i_2 + 13'h1;
+            if (_GEN_161 & reading_3)
+              i_3 <= i_3 + 13'h1;
+            if (_GEN_161 & reading_4)
+              i_4 <= i_4 + 13'h1;
+            if (_GEN_161 & reading_5)
+              i_5 <= i_5 + 13'h1;
+            if (_GEN_161 & reading_6)
+              i_6 <= i_6 + 13'h1;
+            if (_GEN_161 & reading_7)
+              i_7 <= i_7 + 13'h1;
+            if (_GEN_161 & reading_8)
+              i_8 <= i_8 + 13'h1;
+            if (_GEN_161 & reading_9)
+              i_9 <= i_9 + 13'h1;
+            if (_GEN_161 & reading_10)
+              i_10 <= i_10 + 13'h1;
+            if (_GEN_161 & reading_11)
+              i_11 <= i_11 + 13'h1;
+            if (_GEN_161 & reading_12)
+              i_12 <= i_12 + 13'h1;
+            if (_GEN_161 & reading_13)
+              i_13 <= i_13 + 13'h1;
+            if (_GEN_161 & reading_14)
+              i_14 <= i_14 + 13'h1;
+            if (_GEN_161 & reading_15)
+              i_15 <= i_15 + 13'h1;
+          end
+        end
+      end
     end
     else if (_starting_T) begin
-      i_0 <= io_start ? 13'h0 : _GEN_29;
-      i_1 <= io_start ? _GEN_29 : _GEN_30;
-      i_2 <= io_start ? _GEN_30 : {2'h0, _cuts_T_6[26:16]};
+      i_0 <= io_start ? 13'h0 : _GEN_124;
+      i_1 <= io_start ? _GEN_124 : _GEN_125;
+      i_2 <= io_start ? _GEN_125 : {2'h0, _cuts_T_6[26:16]};
       i_3 <= {2'h0, io_start ? _cuts_T_6[26:16] : io_num[12:2]};
       i_4 <= io_start ? {2'h0, io_num[12:2]} : {1'h0, _cuts_T_12[27:16]};
       i_5 <= {1'h0, io_start ? _cuts_T_12[27:16] : _cuts_T_15[27:16]};
@@ -41565,12 +42025,12 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     r_6 <= REG_6;
     REG_7 <= i_7[11:0];
     r_7 <= REG_7;
-    if (~(~(|state) | _GEN_54)) begin
-      if (_GEN_55) begin
-        if (_GEN_6)
+    if (~(~(|state) | _GEN_154)) begin
+      if (_GEN_155) begin
+        if (_GEN_156)
           m <= 9'h0;
       end
-      else if (_GEN_56)
+      else if (_GEN_157)
         m <= _m_T;
     end
     entryGroup <= _gens_0_io_entry_group;
@@ -41589,7 +42049,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     entryGroup_13 <= _gens_13_io_entry_group;
     entryGroup_14 <= _gens_14_io_entry_group;
     entryGroup_15 <= _gens_15_io_entry_group;
-    if (_GEN_52) begin
+    if (_GEN_152) begin
       next <= 16'h0;
       dCount <= 7'h0;
       dNext <= 10'h0;
@@ -41682,7 +42142,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     grantSingle_14 <= ~_taken_T_14 & (toSingle[14] | grantSingle_14);
     grantSingle_15 <= ~_taken_T_15 & (toSingle[15] | grantSingle_15);
     if (reset) begin
-      state <= 3'h0;
+      state <= 4'h0;
       fed <= 1'h0;
       st_level <= 14'h0;
       st_large <= 13'h0;
@@ -41710,6 +42170,10 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
       laneKeys_13_io_in_valid_REG <= 1'h0;
       laneKeys_14_io_in_valid_REG <= 1'h0;
       laneKeys_15_io_in_valid_REG <= 1'h0;
+      boxB_0 <= 5'h0;
+      boxB_1 <= 5'h0;
+      boxB_2 <= 5'h0;
+      boxCycle <= 2'h0;
       held_0 <= 1'h0;
       held_1 <= 1'h0;
       held_2 <= 1'h0;
@@ -41746,8 +42210,38 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     end
     else begin
       if (|state) begin
-        state <= casez_tmp_55;
-        if (_GEN_54 | _GEN_55 | _GEN_56 | _GEN_57 | _GEN_58 | _GEN_9 | ~_GEN_27) begin
+        if (_GEN_154) begin
+          if (io_start)
+            state <= 4'h2;
+        end
+        else if (_GEN_155) begin
+          if (_GEN_156)
+            state <= 4'h3;
+        end
+        else if (_GEN_157) begin
+          if (_m_T >= mergeEnd)
+            state <= 4'h4;
+        end
+        else if (_GEN_132) begin
+          if (boxDone)
+            state <= 4'h5;
+        end
+        else if (_GEN_158) begin
+          if (passDone)
+            state <= 4'h6;
+        end
+        else if (_GEN_159) begin
+          if (_GEN_160)
+            state <= 4'h7;
+        end
+        else if (_GEN_161) begin
+          if (_GEN_162)
+            state <= 4'h8;
+        end
+        else if (_GEN_164)
+          state <= 4'h0;
+        if (_GEN_154 | _GEN_155 | _GEN_157 | _GEN_132 | _GEN_158 | _GEN_159 | _GEN_161
+            | ~_GEN_164) begin
         end
         else begin
           st_level <= _cellExp_io_level;
@@ -41765,13 +42259,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
         if (~_starting_T | z_tooMany) begin
         end
         else
-          state <= {1'h0, io_start ? 2'h2 : 2'h1};
+          state <= {2'h0, io_start ? 2'h2 : 2'h1};
         if (_starting_T)
           st_level <= 14'h0;
         st_badBucket <= ~_starting_T & st_badBucket;
         st_sortMismatch <= ~_starting_T & st_sortMismatch;
       end
-      if (_GEN_53) begin
+      if (_GEN_153) begin
         fed <= ~io_start;
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
@@ -41780,14 +42274,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
       end
       else begin
         if (classifying) begin
-          st_large <= st_large + {7'h0, largeKept - _GEN_33};
+          st_large <= st_large + {7'h0, largeKept - _GEN_133};
           largeCount <= largeKept[4:0];
         end
         if ((|state) & ~filling)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
       st_cellOverflow <=
-        ~_GEN_53
+        ~_GEN_153
         & (classifying
            & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
               & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
@@ -41815,10 +42309,10 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
                   & _sorts_3_io_in_1_valid_T_8) & _laneKeys_7_io_out_cellOverflow)
            | st_cellOverflow);
       st_largeOverflow <=
-        ~_GEN_53
-        & (largeHere_7 & ~_GEN_50 | largeHere_6 & ~_GEN_48 | largeHere_5 & ~_GEN_46
-           | largeHere_4 & ~_GEN_44 | largeHere_3 & ~_GEN_40 | largeHere_2 & ~_GEN_38
-           | largeHere_1 & ~_GEN_35 | largeHere_0 & ~_GEN_34 | st_largeOverflow);
+        ~_GEN_153
+        & (largeHere_7 & ~_GEN_150 | largeHere_6 & ~_GEN_148 | largeHere_5 & ~_GEN_146
+           | largeHere_4 & ~_GEN_144 | largeHere_3 & ~_GEN_140 | largeHere_2 & ~_GEN_138
+           | largeHere_1 & ~_GEN_135 | largeHere_0 & ~_GEN_134 | st_largeOverflow);
       inflight <=
         inflight
         + {1'h0,
@@ -41882,43 +42376,159 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
       laneKeys_13_io_in_valid_REG <= reading_13;
       laneKeys_14_io_in_valid_REG <= reading_14;
       laneKeys_15_io_in_valid_REG <= reading_15;
+      if (_GEN_132) begin
+        if (_GEN_129 & _GEN_165 & firstTop_enc[0])
+          boxB_0 <= boxB_0 - 5'h1;
+        else if (_GEN_128)
+          boxB_0 <=
+            ~anyBox | {_first_T[19], _first_T} + 21'h1 < 21'h2
+              ? 5'h0
+              : {|first_hi,
+                 (|first_hi)
+                   ? {1'h0,
+                      _first_T[19],
+                      _first_T[19]
+                        ? 2'h0
+                        : _first_T[19]
+                            ? 2'h3
+                            : _first_T[18] ? 2'h2 : {1'h0, _first_T[17]}}
+                   : {|(_first_T[15:8]),
+                      (|(_first_T[15:8]))
+                        ? {|(_first_T[15:12]),
+                           (|(_first_T[15:12]))
+                             ? (_first_T[15]
+                                  ? 2'h3
+                                  : _first_T[14] ? 2'h2 : {1'h0, _first_T[13]})
+                             : _first_T[11]
+                                 ? 2'h3
+                                 : _first_T[10] ? 2'h2 : {1'h0, _first_T[9]}}
+                        : {|(_first_T[7:4]),
+                           (|(_first_T[7:4]))
+                             ? (_first_T[7]
+                                  ? 2'h3
+                                  : _first_T[6] ? 2'h2 : {1'h0, _first_T[5]})
+                             : _first_T[3]
+                                 ? 2'h3
+                                 : _first_T[2] ? 2'h2 : {1'h0, _first_T[1]}}}} + 5'h1;
+        if (_GEN_129 & _GEN_165 & firstTop_enc[1])
+          boxB_1 <= boxB_1 - 5'h1;
+        else if (_GEN_128)
+          boxB_1 <=
+            ~anyBox | {_first_T_44[19], _first_T_44} + 21'h1 < 21'h2
+              ? 5'h0
+              : {|first_hi_5,
+                 (|first_hi_5)
+                   ? {1'h0,
+                      _first_T_44[19],
+                      _first_T_44[19]
+                        ? 2'h0
+                        : _first_T_44[19]
+                            ? 2'h3
+                            : _first_T_44[18] ? 2'h2 : {1'h0, _first_T_44[17]}}
+                   : {|(_first_T_44[15:8]),
+                      (|(_first_T_44[15:8]))
+                        ? {|(_first_T_44[15:12]),
+                           (|(_first_T_44[15:12]))
+                             ? (_first_T_44[15]
+                                  ? 2'h3
+                                  : _first_T_44[14] ? 2'h2 : {1'h0, _first_T_44[13]})
+                             : _first_T_44[11]
+                                 ? 2'h3
+                                 : _first_T_44[10] ? 2'h2 : {1'h0, _first_T_44[9]}}
+                        : {|(_first_T_44[7:4]),
+                           (|(_first_T_44[7:4]))
+                             ? (_first_T_44[7]
+                                  ? 2'h3
+                                  : _first_T_44[6] ? 2'h2 : {1'h0, _first_T_44[5]})
+                             : _first_T_44[3]
+                                 ? 2'h3
+                                 : _first_T_44[2] ? 2'h2 : {1'h0, _first_T_44[1]}}}}
+                + 5'h1;
+        if (_GEN_129 & _GEN_165 & firstTop_enc[2])
+          boxB_2 <= boxB_2 - 5'h1;
+        else if (_GEN_128)
+          boxB_2 <=
+            ~anyBox | {_first_T_88[19], _first_T_88} + 21'h1 < 21'h2
+              ? 5'h0
+              : {|first_hi_10,
+                 (|first_hi_10)
+                   ? {1'h0,
+                      _first_T_88[19],
+                      _first_T_88[19]
+                        ? 2'h0
+                        : _first_T_88[19]
+                            ? 2'h3
+                            : _first_T_88[18] ? 2'h2 : {1'h0, _first_T_88[17]}}
+                   : {|(_first_T_88[15:8]),
+                      (|(_first_T_88[15:8]))
+                        ? {|(_first_T_88[15:12]),
+                           (|(_first_T_88[15:12]))
+                             ? (_first_T_88[15]
+                                  ? 2'h3
+                                  : _first_T_88[14] ? 2'h2 : {1'h0, _first_T_88[13]})
+                             : _first_T_88[11]
+                                 ? 2'h3
+                                 : _first_T_88[10] ? 2'h2 : {1'h0, _first_T_88[9]}}
+                        : {|(_first_T_88[7:4]),
+                           (|(_first_T_88[7:4]))
+                             ? (_first_T_88[7]
+                                  ? 2'h3
+                                  : _first_T_88[6] ? 2'h2 : {1'h0, _first_T_88[5]})
+                             : _first_T_88[3]
+                                 ? 2'h3
+                                 : _first_T_88[2] ? 2'h2 : {1'h0, _first_T_88[1]}}}}
+                + 5'h1;
+        if (~_GEN_129)
+          boxCycle <= boxCycle + 2'h1;
+      end
+      else
+        boxCycle <= 2'h0;
       held_0 <=
-        ~_GEN_52 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
+        ~_GEN_152 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
       held_1 <=
-        ~_GEN_52 & (_taken_T_1 ? _heldUnit_1_T : toSingle[1] | ~_gens_1_io_take & held_1);
+        ~_GEN_152
+        & (_taken_T_1 ? _heldUnit_1_T : toSingle[1] | ~_gens_1_io_take & held_1);
       held_2 <=
-        ~_GEN_52 & (_taken_T_2 ? _heldUnit_2_T : toSingle[2] | ~_gens_2_io_take & held_2);
+        ~_GEN_152
+        & (_taken_T_2 ? _heldUnit_2_T : toSingle[2] | ~_gens_2_io_take & held_2);
       held_3 <=
-        ~_GEN_52 & (_taken_T_3 ? _heldUnit_3_T : toSingle[3] | ~_gens_3_io_take & held_3);
+        ~_GEN_152
+        & (_taken_T_3 ? _heldUnit_3_T : toSingle[3] | ~_gens_3_io_take & held_3);
       held_4 <=
-        ~_GEN_52 & (_taken_T_4 ? _heldUnit_4_T : toSingle[4] | ~_gens_4_io_take & held_4);
+        ~_GEN_152
+        & (_taken_T_4 ? _heldUnit_4_T : toSingle[4] | ~_gens_4_io_take & held_4);
       held_5 <=
-        ~_GEN_52 & (_taken_T_5 ? _heldUnit_5_T : toSingle[5] | ~_gens_5_io_take & held_5);
+        ~_GEN_152
+        & (_taken_T_5 ? _heldUnit_5_T : toSingle[5] | ~_gens_5_io_take & held_5);
       held_6 <=
-        ~_GEN_52 & (_taken_T_6 ? _heldUnit_6_T : toSingle[6] | ~_gens_6_io_take & held_6);
+        ~_GEN_152
+        & (_taken_T_6 ? _heldUnit_6_T : toSingle[6] | ~_gens_6_io_take & held_6);
       held_7 <=
-        ~_GEN_52 & (_taken_T_7 ? _heldUnit_7_T : toSingle[7] | ~_gens_7_io_take & held_7);
+        ~_GEN_152
+        & (_taken_T_7 ? _heldUnit_7_T : toSingle[7] | ~_gens_7_io_take & held_7);
       held_8 <=
-        ~_GEN_52 & (_taken_T_8 ? _heldUnit_8_T : toSingle[8] | ~_gens_8_io_take & held_8);
+        ~_GEN_152
+        & (_taken_T_8 ? _heldUnit_8_T : toSingle[8] | ~_gens_8_io_take & held_8);
       held_9 <=
-        ~_GEN_52 & (_taken_T_9 ? _heldUnit_9_T : toSingle[9] | ~_gens_9_io_take & held_9);
+        ~_GEN_152
+        & (_taken_T_9 ? _heldUnit_9_T : toSingle[9] | ~_gens_9_io_take & held_9);
       held_10 <=
-        ~_GEN_52
+        ~_GEN_152
         & (_taken_T_10 ? _heldUnit_10_T : toSingle[10] | ~_gens_10_io_take & held_10);
       held_11 <=
-        ~_GEN_52
+        ~_GEN_152
         & (_taken_T_11 ? _heldUnit_11_T : toSingle[11] | ~_gens_11_io_take & held_11);
       held_12 <=
-        ~_GEN_52
+        ~_GEN_152
         & (_taken_T_12 ? _heldUnit_12_T : toSingle[12] | ~_gens_12_io_take & held_12);
       held_13 <=
-        ~_GEN_52
+        ~_GEN_152
         & (_taken_T_13 ? _heldUnit_13_T : toSingle[13] | ~_gens_13_io_take & held_13);
       held_14 <=
-        ~_GEN_52
+        ~_GEN_152
         & (_taken_T_14 ? _heldUnit_14_T : toSingle[14] | ~_gens_14_io_take & held_14);
       held_15 <=
-        ~_GEN_52
+        ~_GEN_152
         & (_taken_T_15 ? _heldUnit_15_T : toSingle[15] | ~_gens_15_io_take & held_15);
       if (_taken_T)
         heldUnit_0 <= _heldUnit_0_T;
@@ -42516,8 +43126,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_in_0_valid        (_sorts_0_io_in_0_valid_T_12),
     .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
-      ({_laneKeys_0_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_0_io_out_cell_1[10:1]
-          * 10'h9F ^ _laneKeys_0_io_out_cell_2[10:1] * 10'h3B7,
+      ({_laneKeys_0_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
+          | _sorts_0_io_in_0_bits_bucket_h_T_17[9:0]
+          | _sorts_0_io_in_0_bits_bucket_h_T_27[9:0],
         _laneKeys_0_io_out_cell_0[0],
         _laneKeys_0_io_out_cell_1[0],
         _laneKeys_0_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
@@ -42526,8 +43137,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_in_1_valid        (_sorts_0_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
-      ({_laneKeys_1_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_1_io_out_cell_1[10:1]
-          * 10'h9F ^ _laneKeys_1_io_out_cell_2[10:1] * 10'h3B7,
+      ({_laneKeys_1_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
+          | _sorts_0_io_in_1_bits_bucket_h_T_17[9:0]
+          | _sorts_0_io_in_1_bits_bucket_h_T_27[9:0],
         _laneKeys_1_io_out_cell_0[0],
         _laneKeys_1_io_out_cell_1[0],
         _laneKeys_1_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
@@ -43203,8 +43815,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_in_0_valid        (_sorts_1_io_in_0_valid_T_12),
     .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
-      ({_laneKeys_2_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_2_io_out_cell_1[10:1]
-          * 10'h9F ^ _laneKeys_2_io_out_cell_2[10:1] * 10'h3B7,
+      ({_laneKeys_2_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
+          | _sorts_1_io_in_0_bits_bucket_h_T_17[9:0]
+          | _sorts_1_io_in_0_bits_bucket_h_T_27[9:0],
         _laneKeys_2_io_out_cell_0[0],
         _laneKeys_2_io_out_cell_1[0],
         _laneKeys_2_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
@@ -43213,8 +43826,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_in_1_valid        (_sorts_1_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
-      ({_laneKeys_3_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_3_io_out_cell_1[10:1]
-          * 10'h9F ^ _laneKeys_3_io_out_cell_2[10:1] * 10'h3B7,
+      ({_laneKeys_3_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
+          | _sorts_1_io_in_1_bits_bucket_h_T_17[9:0]
+          | _sorts_1_io_in_1_bits_bucket_h_T_27[9:0],
         _laneKeys_3_io_out_cell_0[0],
         _laneKeys_3_io_out_cell_1[0],
         _laneKeys_3_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
@@ -43890,8 +44504,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_in_0_valid        (_sorts_2_io_in_0_valid_T_12),
     .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
-      ({_laneKeys_4_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_4_io_out_cell_1[10:1]
-          * 10'h9F ^ _laneKeys_4_io_out_cell_2[10:1] * 10'h3B7,
+      ({_laneKeys_4_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
+          | _sorts_2_io_in_0_bits_bucket_h_T_17[9:0]
+          | _sorts_2_io_in_0_bits_bucket_h_T_27[9:0],
         _laneKeys_4_io_out_cell_0[0],
         _laneKeys_4_io_out_cell_1[0],
         _laneKeys_4_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
@@ -43900,8 +44515,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_in_1_valid        (_sorts_2_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
-      ({_laneKeys_5_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_5_io_out_cell_1[10:1]
-          * 10'h9F ^ _laneKeys_5_io_out_cell_2[10:1] * 10'h3B7,
+      ({_laneKeys_5_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
+          | _sorts_2_io_in_1_bits_bucket_h_T_17[9:0]
+          | _sorts_2_io_in_1_bits_bucket_h_T_27[9:0],
         _laneKeys_5_io_out_cell_0[0],
         _laneKeys_5_io_out_cell_1[0],
         _laneKeys_5_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
@@ -44577,8 +45193,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_in_0_valid        (_sorts_3_io_in_0_valid_T_12),
     .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
-      ({_laneKeys_6_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_6_io_out_cell_1[10:1]
-          * 10'h9F ^ _laneKeys_6_io_out_cell_2[10:1] * 10'h3B7,
+      ({_laneKeys_6_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
+          | _sorts_3_io_in_0_bits_bucket_h_T_17[9:0]
+          | _sorts_3_io_in_0_bits_bucket_h_T_27[9:0],
         _laneKeys_6_io_out_cell_0[0],
         _laneKeys_6_io_out_cell_1[0],
         _laneKeys_6_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
@@ -44587,8 +45204,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_in_1_valid        (_sorts_3_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
-      ({_laneKeys_7_io_out_cell_0[10:1] * 10'h5D ^ _laneKeys_7_io_out_cell_1[10:1]
-          * 10'h9F ^ _laneKeys_7_io_out_cell_2[10:1] * 10'h3B7,
+      ({_laneKeys_7_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
+          | _sorts_3_io_in_1_bits_bucket_h_T_17[9:0]
+          | _sorts_3_io_in_1_bits_bucket_h_T_27[9:0],
         _laneKeys_7_io_out_cell_0[0],
         _laneKeys_7_io_out_cell_1[0],
         _laneKeys_7_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
@@ -45253,10 +45871,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_scattered         (_sorts_3_io_scattered),
     .io_badBucket         (_sorts_3_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_0 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_0 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'h0),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_0_io_need),
@@ -45516,10 +46137,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_0_bits_j),
     .io_busy              (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_1 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_1 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'h1),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_1_io_need),
@@ -45779,10 +46403,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_1_bits_j),
     .io_busy              (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_2 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_2 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'h2),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_2_io_need),
@@ -46042,10 +46669,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_2_bits_j),
     .io_busy              (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_3 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_3 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'h3),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_3_io_need),
@@ -46305,10 +46935,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_3_bits_j),
     .io_busy              (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_4 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_4 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'h4),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_4_io_need),
@@ -46568,10 +47201,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_4_bits_j),
     .io_busy              (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_5 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_5 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'h5),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_5_io_need),
@@ -46831,10 +47467,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_5_bits_j),
     .io_busy              (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_6 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_6 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'h6),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_6_io_need),
@@ -47094,10 +47733,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_6_bits_j),
     .io_busy              (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_7 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_7 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'h7),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_7_io_need),
@@ -47357,10 +47999,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_7_bits_j),
     .io_busy              (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_8 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_8 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'h8),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_8_io_need),
@@ -47620,10 +48265,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_8_bits_j),
     .io_busy              (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_9 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_9 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'h9),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_9_io_need),
@@ -47883,10 +48531,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_9_bits_j),
     .io_busy              (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_10 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_10 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'hA),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_10_io_need),
@@ -48146,10 +48797,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_10_bits_j),
     .io_busy              (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_11 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_11 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'hB),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_11_io_need),
@@ -48409,10 +49063,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_11_bits_j),
     .io_busy              (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_12 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_12 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'hC),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_12_io_need),
@@ -48672,10 +49329,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_12_bits_j),
     .io_busy              (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_13 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_13 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'hD),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_13_io_need),
@@ -48935,10 +49595,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_13_bits_j),
     .io_busy              (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_14 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_14 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'hE),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_14_io_need),
@@ -49198,10 +49861,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_pairs_bits_j      (io_pairs_14_bits_j),
     .io_busy              (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_world gens_15 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_15 (
     .clock                (clock),
     .reset                (reset),
-    .io_start             ((&state) & ~sent),
+    .io_start             (_gens_15_io_start_T & ~sent),
+    .io_box_0             (boxB_0),
+    .io_box_1             (boxB_1),
+    .io_box_2             (boxB_2),
     .io_lane              (4'hF),
     .io_usedLog2          (usedLog2),
     .io_need              (_gens_15_io_need),
@@ -49464,11 +50130,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_0 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (filling ? io_feed_0_valid : laneKeys_0_io_in_valid_REG),
-    .io_in_sphere_0      (filling ? io_feed_0_bits_0 : io_sphere_0_data_0),
-    .io_in_sphere_1      (filling ? io_feed_0_bits_1 : io_sphere_0_data_1),
-    .io_in_sphere_2      (filling ? io_feed_0_bits_2 : io_sphere_0_data_2),
-    .io_in_sphere_3      (filling ? io_feed_0_bits_3 : io_sphere_0_data_3),
+    .io_in_valid         (_GEN_5),
+    .io_in_sphere_0      (_GEN_6),
+    .io_in_sphere_1      (_GEN_7),
+    .io_in_sphere_2      (_GEN_8),
+    .io_in_sphere_3      (_GEN_9),
     .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_0_io_out_valid),
     .io_out_cell_0       (_laneKeys_0_io_out_cell_0),
@@ -49488,11 +50154,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_1 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (filling ? io_feed_1_valid : laneKeys_1_io_in_valid_REG),
-    .io_in_sphere_0      (filling ? io_feed_1_bits_0 : io_sphere_1_data_0),
-    .io_in_sphere_1      (filling ? io_feed_1_bits_1 : io_sphere_1_data_1),
-    .io_in_sphere_2      (filling ? io_feed_1_bits_2 : io_sphere_1_data_2),
-    .io_in_sphere_3      (filling ? io_feed_1_bits_3 : io_sphere_1_data_3),
+    .io_in_valid         (_GEN_10),
+    .io_in_sphere_0      (_GEN_11),
+    .io_in_sphere_1      (_GEN_12),
+    .io_in_sphere_2      (_GEN_13),
+    .io_in_sphere_3      (_GEN_14),
     .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_1_io_out_valid),
     .io_out_cell_0       (_laneKeys_1_io_out_cell_0),
@@ -49512,11 +50178,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_2 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (filling ? io_feed_2_valid : laneKeys_2_io_in_valid_REG),
-    .io_in_sphere_0      (filling ? io_feed_2_bits_0 : io_sphere_2_data_0),
-    .io_in_sphere_1      (filling ? io_feed_2_bits_1 : io_sphere_2_data_1),
-    .io_in_sphere_2      (filling ? io_feed_2_bits_2 : io_sphere_2_data_2),
-    .io_in_sphere_3      (filling ? io_feed_2_bits_3 : io_sphere_2_data_3),
+    .io_in_valid         (_GEN_15),
+    .io_in_sphere_0      (_GEN_16),
+    .io_in_sphere_1      (_GEN_17),
+    .io_in_sphere_2      (_GEN_18),
+    .io_in_sphere_3      (_GEN_19),
     .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_2_io_out_valid),
     .io_out_cell_0       (_laneKeys_2_io_out_cell_0),
@@ -49536,11 +50202,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_3 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (filling ? io_feed_3_valid : laneKeys_3_io_in_valid_REG),
-    .io_in_sphere_0      (filling ? io_feed_3_bits_0 : io_sphere_3_data_0),
-    .io_in_sphere_1      (filling ? io_feed_3_bits_1 : io_sphere_3_data_1),
-    .io_in_sphere_2      (filling ? io_feed_3_bits_2 : io_sphere_3_data_2),
-    .io_in_sphere_3      (filling ? io_feed_3_bits_3 : io_sphere_3_data_3),
+    .io_in_valid         (_GEN_20),
+    .io_in_sphere_0      (_GEN_21),
+    .io_in_sphere_1      (_GEN_22),
+    .io_in_sphere_2      (_GEN_23),
+    .io_in_sphere_3      (_GEN_24),
     .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_3_io_out_valid),
     .io_out_cell_0       (_laneKeys_3_io_out_cell_0),
@@ -49845,6 +50511,326 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
     .io_out_top          (_laneKeys_15_io_out_top),
     .io_out_topNone      (_laneKeys_15_io_out_topNone)
   );
+  BoxTracker_fp32_world trackers_0 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (_GEN_5 & loading),
+    .io_in_bits_0 (_GEN_6),
+    .io_in_bits_1 (_GEN_7),
+    .io_in_bits_2 (_GEN_8),
+    .io_in_bits_3 (_GEN_9),
+    .io_any       (_trackers_0_io_any),
+    .io_lo_0      (_trackers_0_io_lo_0),
+    .io_lo_1      (_trackers_0_io_lo_1),
+    .io_lo_2      (_trackers_0_io_lo_2),
+    .io_hi_0      (_trackers_0_io_hi_0),
+    .io_hi_1      (_trackers_0_io_hi_1),
+    .io_hi_2      (_trackers_0_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_1 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (_GEN_10 & loading),
+    .io_in_bits_0 (_GEN_11),
+    .io_in_bits_1 (_GEN_12),
+    .io_in_bits_2 (_GEN_13),
+    .io_in_bits_3 (_GEN_14),
+    .io_any       (_trackers_1_io_any),
+    .io_lo_0      (_trackers_1_io_lo_0),
+    .io_lo_1      (_trackers_1_io_lo_1),
+    .io_lo_2      (_trackers_1_io_lo_2),
+    .io_hi_0      (_trackers_1_io_hi_0),
+    .io_hi_1      (_trackers_1_io_hi_1),
+    .io_hi_2      (_trackers_1_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_2 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (_GEN_15 & loading),
+    .io_in_bits_0 (_GEN_16),
+    .io_in_bits_1 (_GEN_17),
+    .io_in_bits_2 (_GEN_18),
+    .io_in_bits_3 (_GEN_19),
+    .io_any       (_trackers_2_io_any),
+    .io_lo_0      (_trackers_2_io_lo_0),
+    .io_lo_1      (_trackers_2_io_lo_1),
+    .io_lo_2      (_trackers_2_io_lo_2),
+    .io_hi_0      (_trackers_2_io_hi_0),
+    .io_hi_1      (_trackers_2_io_hi_1),
+    .io_hi_2      (_trackers_2_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_3 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (_GEN_20 & loading),
+    .io_in_bits_0 (_GEN_21),
+    .io_in_bits_1 (_GEN_22),
+    .io_in_bits_2 (_GEN_23),
+    .io_in_bits_3 (_GEN_24),
+    .io_any       (_trackers_3_io_any),
+    .io_lo_0      (_trackers_3_io_lo_0),
+    .io_lo_1      (_trackers_3_io_lo_1),
+    .io_lo_2      (_trackers_3_io_lo_2),
+    .io_hi_0      (_trackers_3_io_hi_0),
+    .io_hi_1      (_trackers_3_io_hi_1),
+    .io_hi_2      (_trackers_3_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_4 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_4_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_4_data_0),
+    .io_in_bits_1 (io_sphere_4_data_1),
+    .io_in_bits_2 (io_sphere_4_data_2),
+    .io_in_bits_3 (io_sphere_4_data_3),
+    .io_any       (_trackers_4_io_any),
+    .io_lo_0      (_trackers_4_io_lo_0),
+    .io_lo_1      (_trackers_4_io_lo_1),
+    .io_lo_2      (_trackers_4_io_lo_2),
+    .io_hi_0      (_trackers_4_io_hi_0),
+    .io_hi_1      (_trackers_4_io_hi_1),
+    .io_hi_2      (_trackers_4_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_5 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_5_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_5_data_0),
+    .io_in_bits_1 (io_sphere_5_data_1),
+    .io_in_bits_2 (io_sphere_5_data_2),
+    .io_in_bits_3 (io_sphere_5_data_3),
+    .io_any       (_trackers_5_io_any),
+    .io_lo_0      (_trackers_5_io_lo_0),
+    .io_lo_1      (_trackers_5_io_lo_1),
+    .io_lo_2      (_trackers_5_io_lo_2),
+    .io_hi_0      (_trackers_5_io_hi_0),
+    .io_hi_1      (_trackers_5_io_hi_1),
+    .io_hi_2      (_trackers_5_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_6 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_6_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_6_data_0),
+    .io_in_bits_1 (io_sphere_6_data_1),
+    .io_in_bits_2 (io_sphere_6_data_2),
+    .io_in_bits_3 (io_sphere_6_data_3),
+    .io_any       (_trackers_6_io_any),
+    .io_lo_0      (_trackers_6_io_lo_0),
+    .io_lo_1      (_trackers_6_io_lo_1),
+    .io_lo_2      (_trackers_6_io_lo_2),
+    .io_hi_0      (_trackers_6_io_hi_0),
+    .io_hi_1      (_trackers_6_io_hi_1),
+    .io_hi_2      (_trackers_6_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_7 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_7_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_7_data_0),
+    .io_in_bits_1 (io_sphere_7_data_1),
+    .io_in_bits_2 (io_sphere_7_data_2),
+    .io_in_bits_3 (io_sphere_7_data_3),
+    .io_any       (_trackers_7_io_any),
+    .io_lo_0      (_trackers_7_io_lo_0),
+    .io_lo_1      (_trackers_7_io_lo_1),
+    .io_lo_2      (_trackers_7_io_lo_2),
+    .io_hi_0      (_trackers_7_io_hi_0),
+    .io_hi_1      (_trackers_7_io_hi_1),
+    .io_hi_2      (_trackers_7_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_8 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_8_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_8_data_0),
+    .io_in_bits_1 (io_sphere_8_data_1),
+    .io_in_bits_2 (io_sphere_8_data_2),
+    .io_in_bits_3 (io_sphere_8_data_3),
+    .io_any       (_trackers_8_io_any),
+    .io_lo_0      (_trackers_8_io_lo_0),
+    .io_lo_1      (_trackers_8_io_lo_1),
+    .io_lo_2      (_trackers_8_io_lo_2),
+    .io_hi_0      (_trackers_8_io_hi_0),
+    .io_hi_1      (_trackers_8_io_hi_1),
+    .io_hi_2      (_trackers_8_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_9 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_9_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_9_data_0),
+    .io_in_bits_1 (io_sphere_9_data_1),
+    .io_in_bits_2 (io_sphere_9_data_2),
+    .io_in_bits_3 (io_sphere_9_data_3),
+    .io_any       (_trackers_9_io_any),
+    .io_lo_0      (_trackers_9_io_lo_0),
+    .io_lo_1      (_trackers_9_io_lo_1),
+    .io_lo_2      (_trackers_9_io_lo_2),
+    .io_hi_0      (_trackers_9_io_hi_0),
+    .io_hi_1      (_trackers_9_io_hi_1),
+    .io_hi_2      (_trackers_9_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_10 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_10_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_10_data_0),
+    .io_in_bits_1 (io_sphere_10_data_1),
+    .io_in_bits_2 (io_sphere_10_data_2),
+    .io_in_bits_3 (io_sphere_10_data_3),
+    .io_any       (_trackers_10_io_any),
+    .io_lo_0      (_trackers_10_io_lo_0),
+    .io_lo_1      (_trackers_10_io_lo_1),
+    .io_lo_2      (_trackers_10_io_lo_2),
+    .io_hi_0      (_trackers_10_io_hi_0),
+    .io_hi_1      (_trackers_10_io_hi_1),
+    .io_hi_2      (_trackers_10_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_11 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_11_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_11_data_0),
+    .io_in_bits_1 (io_sphere_11_data_1),
+    .io_in_bits_2 (io_sphere_11_data_2),
+    .io_in_bits_3 (io_sphere_11_data_3),
+    .io_any       (_trackers_11_io_any),
+    .io_lo_0      (_trackers_11_io_lo_0),
+    .io_lo_1      (_trackers_11_io_lo_1),
+    .io_lo_2      (_trackers_11_io_lo_2),
+    .io_hi_0      (_trackers_11_io_hi_0),
+    .io_hi_1      (_trackers_11_io_hi_1),
+    .io_hi_2      (_trackers_11_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_12 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_12_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_12_data_0),
+    .io_in_bits_1 (io_sphere_12_data_1),
+    .io_in_bits_2 (io_sphere_12_data_2),
+    .io_in_bits_3 (io_sphere_12_data_3),
+    .io_any       (_trackers_12_io_any),
+    .io_lo_0      (_trackers_12_io_lo_0),
+    .io_lo_1      (_trackers_12_io_lo_1),
+    .io_lo_2      (_trackers_12_io_lo_2),
+    .io_hi_0      (_trackers_12_io_hi_0),
+    .io_hi_1      (_trackers_12_io_hi_1),
+    .io_hi_2      (_trackers_12_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_13 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_13_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_13_data_0),
+    .io_in_bits_1 (io_sphere_13_data_1),
+    .io_in_bits_2 (io_sphere_13_data_2),
+    .io_in_bits_3 (io_sphere_13_data_3),
+    .io_any       (_trackers_13_io_any),
+    .io_lo_0      (_trackers_13_io_lo_0),
+    .io_lo_1      (_trackers_13_io_lo_1),
+    .io_lo_2      (_trackers_13_io_lo_2),
+    .io_hi_0      (_trackers_13_io_hi_0),
+    .io_hi_1      (_trackers_13_io_hi_1),
+    .io_hi_2      (_trackers_13_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_14 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_14_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_14_data_0),
+    .io_in_bits_1 (io_sphere_14_data_1),
+    .io_in_bits_2 (io_sphere_14_data_2),
+    .io_in_bits_3 (io_sphere_14_data_3),
+    .io_any       (_trackers_14_io_any),
+    .io_lo_0      (_trackers_14_io_lo_0),
+    .io_lo_1      (_trackers_14_io_lo_1),
+    .io_lo_2      (_trackers_14_io_lo_2),
+    .io_hi_0      (_trackers_14_io_hi_0),
+    .io_hi_1      (_trackers_14_io_hi_1),
+    .io_hi_2      (_trackers_14_io_hi_2)
+  );
+  BoxTracker_fp32_world trackers_15 (
+    .clock        (clock),
+    .reset        (reset),
+    .io_clear     (starting),
+    .io_in_valid  (laneKeys_15_io_in_valid_REG & loading),
+    .io_in_bits_0 (io_sphere_15_data_0),
+    .io_in_bits_1 (io_sphere_15_data_1),
+    .io_in_bits_2 (io_sphere_15_data_2),
+    .io_in_bits_3 (io_sphere_15_data_3),
+    .io_any       (_trackers_15_io_any),
+    .io_lo_0      (_trackers_15_io_lo_0),
+    .io_lo_1      (_trackers_15_io_lo_1),
+    .io_lo_2      (_trackers_15_io_lo_2),
+    .io_hi_0      (_trackers_15_io_hi_0),
+    .io_hi_1      (_trackers_15_io_hi_1),
+    .io_hi_2      (_trackers_15_io_hi_2)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world corners_k (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h1),
+    .io_in_sphere_0      (lo_0[31] ? lo_0 ^ 32'h80000000 : ~lo_0),
+    .io_in_sphere_1      (lo_1[31] ? lo_1 ^ 32'h80000000 : ~lo_1),
+    .io_in_sphere_2      (lo_2[31] ? lo_2 ^ 32'h80000000 : ~lo_2),
+    .io_in_sphere_3      (32'h0),
+    .io_in_level         (_cellExp_io_level),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_corners_k_io_out_cell_0),
+    .io_out_cell_1       (_corners_k_io_out_cell_1),
+    .io_out_cell_2       (_corners_k_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (/* unused */),
+    .io_out_q_1          (/* unused */),
+    .io_out_q_2          (/* unused */),
+    .io_out_qr           (/* unused */),
+    .io_out_need         (/* unused */),
+    .io_out_needNone     (/* unused */),
+    .io_out_nonFinite    (/* unused */),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world corners_k_1 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (1'h1),
+    .io_in_sphere_0      (hi_0[31] ? hi_0 ^ 32'h80000000 : ~hi_0),
+    .io_in_sphere_1      (hi_1[31] ? hi_1 ^ 32'h80000000 : ~hi_1),
+    .io_in_sphere_2      (hi_2[31] ? hi_2 ^ 32'h80000000 : ~hi_2),
+    .io_in_sphere_3      (32'h0),
+    .io_in_level         (_cellExp_io_level),
+    .io_out_valid        (/* unused */),
+    .io_out_cell_0       (_corners_k_1_io_out_cell_0),
+    .io_out_cell_1       (_corners_k_1_io_out_cell_1),
+    .io_out_cell_2       (_corners_k_1_io_out_cell_2),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (/* unused */),
+    .io_out_q_1          (/* unused */),
+    .io_out_q_2          (/* unused */),
+    .io_out_qr           (/* unused */),
+    .io_out_need         (/* unused */),
+    .io_out_needNone     (/* unused */),
+    .io_out_nonFinite    (/* unused */),
+    .io_out_top          (/* unused */),
+    .io_out_topNone      (/* unused */)
+  );
   deferred_124x11_world deferred_ext (
     .R0_addr (dNext[9:3]),
     .R0_en   (1'h1),
@@ -49871,23 +50857,23 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world(
        | (dLane[14] ? _gens_14_io_defer_bits[13:3] : 11'h0)
        | (dLane[15] ? _gens_15_io_defer_bits[13:3] : 11'h0))
   );
-  assign io_sphere_0_addr = (&state) ? _gens_0_io_keyAddr : i_0[11:0];
-  assign io_sphere_1_addr = (&state) ? _gens_1_io_keyAddr : i_1[11:0];
-  assign io_sphere_2_addr = (&state) ? _gens_2_io_keyAddr : i_2[11:0];
-  assign io_sphere_3_addr = (&state) ? _gens_3_io_keyAddr : i_3[11:0];
-  assign io_sphere_4_addr = (&state) ? _gens_4_io_keyAddr : i_4[11:0];
-  assign io_sphere_5_addr = (&state) ? _gens_5_io_keyAddr : i_5[11:0];
-  assign io_sphere_6_addr = (&state) ? _gens_6_io_keyAddr : i_6[11:0];
-  assign io_sphere_7_addr = (&state) ? _gens_7_io_keyAddr : i_7[11:0];
-  assign io_sphere_8_addr = (&state) ? _gens_8_io_keyAddr : i_8[11:0];
-  assign io_sphere_9_addr = (&state) ? _gens_9_io_keyAddr : i_9[11:0];
-  assign io_sphere_10_addr = (&state) ? _gens_10_io_keyAddr : i_10[11:0];
-  assign io_sphere_11_addr = (&state) ? _gens_11_io_keyAddr : i_11[11:0];
-  assign io_sphere_12_addr = (&state) ? _gens_12_io_keyAddr : i_12[11:0];
-  assign io_sphere_13_addr = (&state) ? _gens_13_io_keyAddr : i_13[11:0];
-  assign io_sphere_14_addr = (&state) ? _gens_14_io_keyAddr : i_14[11:0];
-  assign io_sphere_15_addr = (&state) ? _gens_15_io_keyAddr : i_15[11:0];
-  assign io_busy = (|state) & state != 3'h1;
+  assign io_sphere_0_addr = _gens_15_io_start_T ? _gens_0_io_keyAddr : i_0[11:0];
+  assign io_sphere_1_addr = _gens_15_io_start_T ? _gens_1_io_keyAddr : i_1[11:0];
+  assign io_sphere_2_addr = _gens_15_io_start_T ? _gens_2_io_keyAddr : i_2[11:0];
+  assign io_sphere_3_addr = _gens_15_io_start_T ? _gens_3_io_keyAddr : i_3[11:0];
+  assign io_sphere_4_addr = _gens_15_io_start_T ? _gens_4_io_keyAddr : i_4[11:0];
+  assign io_sphere_5_addr = _gens_15_io_start_T ? _gens_5_io_keyAddr : i_5[11:0];
+  assign io_sphere_6_addr = _gens_15_io_start_T ? _gens_6_io_keyAddr : i_6[11:0];
+  assign io_sphere_7_addr = _gens_15_io_start_T ? _gens_7_io_keyAddr : i_7[11:0];
+  assign io_sphere_8_addr = _gens_15_io_start_T ? _gens_8_io_keyAddr : i_8[11:0];
+  assign io_sphere_9_addr = _gens_15_io_start_T ? _gens_9_io_keyAddr : i_9[11:0];
+  assign io_sphere_10_addr = _gens_15_io_start_T ? _gens_10_io_keyAddr : i_10[11:0];
+  assign io_sphere_11_addr = _gens_15_io_start_T ? _gens_11_io_keyAddr : i_11[11:0];
+  assign io_sphere_12_addr = _gens_15_io_start_T ? _gens_12_io_keyAddr : i_12[11:0];
+  assign io_sphere_13_addr = _gens_15_io_start_T ? _gens_13_io_keyAddr : i_13[11:0];
+  assign io_sphere_14_addr = _gens_15_io_start_T ? _gens_14_io_keyAddr : i_14[11:0];
+  assign io_sphere_15_addr = _gens_15_io_start_T ? _gens_15_io_keyAddr : i_15[11:0];
+  assign io_busy = (|state) & state != 4'h1;
   assign io_status_level = st_level;
   assign io_status_large = st_large;
   assign io_status_cycTotal = st_cycTotal;
@@ -52679,7 +53665,7 @@ module Puc_world(
     .io_outstanding      (_wr_io_outstanding),
     .io_blocked          (_wr_io_blocked)
   );
-  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_world bp (
+  BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world bp (
     .clock                   (clock),
     .reset                   (reset),
     .io_begin                (engineStart & run_8[1]),

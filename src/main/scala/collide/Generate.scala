@@ -36,6 +36,7 @@ object Generate {
       worldCoarseChunks: Option[Boolean] = None,
       worldClaims: Option[Boolean] = None,
       worldHitQueue: Option[Int] = None,
+      worldBoxBuckets: Option[Boolean] = None,
       worldWordLog2: Option[Int] = None,
       scpuImpl: Option[String] = None,
       listPresets: Boolean = false)
@@ -92,6 +93,9 @@ object Generate {
       opt[Int]("world-hit-queue").valueName("Q").action((v, o) => o.copy(worldHitQueue = Some(v)))
         .text("streamed spheres with hits each candidate lane queues, 0..16, so a sphere with several hits does not " +
           "stall the lane's stream (0: it stalls; world mode only)"),
+      opt[Boolean]("world-box-buckets").valueName("true|false").action((v, o) => o.copy(worldBoxBuckets = Some(v)))
+        .text("a cell's bucket is its coordinates modulo powers of two spanning the world's box (kept as the table " +
+          "arrives), so no two cells share a bucket where the box fits the table, instead of a hash (world mode only)"),
       opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
         .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
           "(same cycles and records, a far faster co-simulation; not synthesizable)"),
@@ -149,8 +153,9 @@ object Generate {
       c18 <- world("--world-claims", o.worldClaims)((bp, v) => bp.copy(claims = v))(c17)
       c19 <- world("--world-hit-queue", o.worldHitQueue)((bp, v) => bp.copy(hitQueue = v))(c18)
       c20 <- world("--world-word-log2", o.worldWordLog2)((bp, v) => bp.copy(wordLog2 = v))(c19)
-      c21 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c20)
-    } yield c21
+      c21 <- world("--world-box-buckets", o.worldBoxBuckets)((bp, v) => bp.copy(boxBuckets = v))(c20)
+      c22 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c21)
+    } yield c22
   }
 
   val firtoolOpts: Array[String] = Array(

@@ -81,7 +81,8 @@ final case class AfuConfig(
         (if (bp.bucketsPerSphereLog2 != collide.world.BroadPhaseParams.default.bucketsPerSphereLog2) s"s${bp.bucketsPerSphereLog2}" else "") +
         (if (bp.cellSteps != collide.world.BroadPhaseParams.default.cellSteps) s"e${bp.cellSteps}" else "") +
         (if (bp.chunk != collide.world.BroadPhaseParams.default.chunk) s"k${bp.chunk}" else "") +
-        (if (bp.coarseChunks) "x" else "") + (if (bp.claims) "u" else "") + (if (bp.hitQueue > 0) s"h${bp.hitQueue}" else "")).getOrElse("") +
+        (if (bp.coarseChunks) "x" else "") + (if (bp.claims) "u" else "") + (if (bp.hitQueue > 0) s"h${bp.hitQueue}" else "") +
+        (if (bp.boxBuckets) "bx" else "")).getOrElse("") +
       (if (scpuImpl == ScpuImpl.Model) "_model" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
@@ -136,11 +137,11 @@ object AfuConfig {
   val big: AfuConfig     = default.copy(name = "big", maxSpheres = 4096)
   /** World mode: 16 fp32 SCPUs fed by the on-chip broad phase's 16 candidate lanes (claiming
     * their work as they need it, queueing eight spheres' hits), its sort's passes eight spheres
-    * a cycle (four sorts of two ports), 32 counters a word, up to 4096 spheres
+    * a cycle (four sorts of two ports), 32 counters a word, box buckets, up to 4096 spheres
     * (bench/results/world-lanes). */
   val world: AfuConfig   = big.copy(name = "world",
     world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 8, wordLog2 = 5, chunk = 32,
-      cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8)))
+      cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true)))
 
   /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind
     * their pipelines (same cycles, same records; docs/afu.md, "A faster co-simulation"). */

@@ -30,7 +30,7 @@ object AfuManifest {
             "margin" -> s"${bp.marginNum}/${bp.marginDen}", "cellOverError" -> bp.cellOverError,
             "filterFracBits" -> bp.filterFracBits, "chunk" -> bp.chunk, "wordLog2" -> bp.wordLog2,
             "lanes" -> bp.lanes, "sortPorts" -> bp.sortPorts, "bucketsPerSphereLog2" -> bp.bucketsPerSphereLog2,
-            "cellSteps" -> bp.cellSteps, "coarseChunks" -> bp.coarseChunks, "team" -> bp.teamSize, "claims" -> bp.claims, "hitQueue" -> bp.hitQueue,
+            "cellSteps" -> bp.cellSteps, "coarseChunks" -> bp.coarseChunks, "team" -> bp.teamSize, "claims" -> bp.claims, "hitQueue" -> bp.hitQueue, "boxBuckets" -> bp.boxBuckets,
             "recordPair" -> s"i | j << ${RecordTag.WORLD_INDEX_BITS}")
         }.getOrElse(ujson.Null),
         "ram" -> ujson.Obj("copies" -> p.ramCopies, "banks" -> p.banks, "bitsPerCopy" -> p.ramBitsPerCopy.toDouble,

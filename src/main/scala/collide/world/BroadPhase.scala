@@ -19,6 +19,8 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   /** Cycles per pass: the first table read (the cell level), the second (classify and count), the
     * prefix sum, the scatter, the grid's candidate generation, the large pass, all. */
   val cycLoad, cycClassify, cycPrefix, cycScatter, cycGrid, cycLarge, cycTotal = UInt(32.W)
+  /** Box buckets' bits B_x, B_y, B_z (BroadPhaseModel.boxBits; zero without box buckets). */
+  val box = Vec(3, UInt(BoxTracker.bitsW.W))
   /** num > maxSpheres: nothing was done. */
   val tooMany = Bool()
   /** Internal checks that never fire by construction (docs/afu.md): a small sphere's cell
@@ -81,7 +83,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "") +
       (if (bp.bucketsPerSphereLog2 != BroadPhaseParams.default.bucketsPerSphereLog2) s"_s${bp.bucketsPerSphereLog2}" else "") +
       (if (bp.cellSteps != BroadPhaseParams.default.cellSteps) s"_e${bp.cellSteps}" else "") + (if (bp.coarseChunks) "_x" else "") +
-      (if (feedWidth > 0) s"_t$feedWidth" else "")
+      (if (feedWidth > 0) s"_t$feedWidth" else "") + (if (bp.boxBuckets) "_bx" else "")
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres, feedWidth))
   private val itemW = io.itemW
   private val countW = io.countW
@@ -103,7 +105,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val gens = Seq.tabulate(bp.lanes) { l =>
     val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
       keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes, groups = groups,
-      coarse = bp.coarseChunks, team = bp.teamSize, claims = bp.claims, hitQueue = bp.hitQueue))
+      coarse = bp.coarseChunks, team = bp.teamSize, claims = bp.claims, hitQueue = bp.hitQueue, boxBuckets = bp.boxBuckets))
     g.io.lane.foreach(_ := l.U)
     g
   }
@@ -112,7 +114,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val laneKeys = Seq.fill(bp.lanes)(Module(new SphereKeys(p, bp, keysLatency)))
   private val larges = Reg(Vec(largeSlots, new WorldKey(itemW, bp.cellBits, qWidth)))
 
-  private object S extends ChiselEnum { val idle, fill, load, merge, classify, prefix, scatter, generate = Value }
+  private object S extends ChiselEnum { val idle, fill, load, merge, box, classify, prefix, scatter, generate = Value }
   private val state = RegInit(S.idle)
   io.busy := state =/= S.idle && state =/= S.fill
   /** A new world starts (at begin, or at a start without one): every block forgets the last one. */
@@ -189,6 +191,45 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   inflight := inflight + PopCount(reading) + fedNow - PopCount(laneKeys.map(_.io.out.valid))
   for ((g, lk) <- gens.zip(laneKeys)) g.io.keyData := record(lk)
 
+  // --- box buckets: the world's box, kept by every lane as it loads (BroadPhaseModel.boxBits) --
+  /** The box's bits, chosen in state box (after the level) and used by every bucket after it. */
+  private val boxB = RegInit(VecInit(Seq.fill(3)(0.U(BoxTracker.bitsW.W))))
+  private val boxCycle = RegInit(0.U(2.W))
+  /** The box's bits are final: classify may start. */
+  private val boxDone = WireDefault(true.B)
+  if (bp.boxBuckets) {
+    val trackers = laneKeys.map { lk =>
+      val t = Module(new BoxTracker(p))
+      t.io.clear := starting
+      t.io.in.valid := lk.io.in.valid && loading
+      t.io.in.bits := lk.io.in.sphere
+      t
+    }
+    val (anyBox, lo, hi) = BoxTracker.merge(trackers)
+    // The cells of the least and greatest corner at the level, a cycle after state box begins.
+    val corners = Seq(lo, hi).map { keys =>
+      val k = Module(new SphereKeys(p, bp, 1))
+      k.io.in.valid := true.B
+      k.io.in.sphere := VecInit(keys.map(BoxTracker.bits) :+ 0.U(p.width.W))
+      k.io.in.level := level
+      k.io.out.cell.map(c => if (bp.coarseChunks) c >> 1 else c)
+    }
+    val first = VecInit.tabulate(3)(a => BoxTracker.bitsFor((corners(1)(a) -& corners(0)(a) +& 1.S).asUInt)(BoxTracker.bitsW - 1, 0))
+    val hashBits = if (bp.coarseChunks) Mux(usedLog2 > 3.U, usedLog2 - 3.U, 0.U) else usedLog2
+    val sum = boxB.reduce(_ +& _)
+    // The first largest loses one, while the three take more than the hash's bits.
+    val top = boxB.reduce((a, b) => Mux(a >= b, a, b))
+    val firstTop = PriorityEncoderOH(boxB.map(_ === top))
+    boxDone := boxCycle === 2.U && sum <= hashBits
+    when(state === S.box) {
+      when(boxCycle === 1.U) { boxB := Mux(anyBox, first, VecInit(Seq.fill(3)(0.U(BoxTracker.bitsW.W)))) }
+      when(boxCycle =/= 2.U) { boxCycle := boxCycle + 1.U }
+        .elsewhen(sum > hashBits) { for (a <- 0 until 3) when(firstTop(a)) { boxB(a) := boxB(a) - 1.U } }
+    }.otherwise { boxCycle := 0.U }
+  }
+  private val boxArg = if (bp.boxBuckets) Some(boxB) else None
+  for (g <- gens) g.io.box.foreach(_ := boxB)
+
   private def feed(ce: CellExponentIn, valid: Bool, o: SphereKeys): Unit = {
     ce.valid := valid
     ce.need := o.io.out.need; ce.needNone := o.io.out.needNone
@@ -260,7 +301,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   for ((in, kd) <- sortIns.zip(keyed)) {
     in.valid := kd.valid && (state === S.classify || state === S.scatter) && kd.isSmall
     in.bits.scatter := state === S.scatter
-    in.bits.bucket := CellHash(kd.out.cell, tableLog2, usedLog2, bp.coarseChunks)
+    in.bits.bucket := CellHash(kd.out.cell, tableLog2, usedLog2, bp.coarseChunks, boxArg)
     in.bits.item := kd.index
     assert(!in.valid || in.ready, "BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)")
   }
@@ -384,13 +425,19 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       st.cycLoad := st.cycLoad + 1.U
       advance()
       when(passDone && !sortBusy) {
-        if (wideLoad) { state := S.merge; m := 0.U } else { state := S.classify; restart() }
+        if (wideLoad) { state := S.merge; m := 0.U } else if (bp.boxBuckets) state := S.box else { state := S.classify; restart() }
       }
     }
     is(S.merge) {
       st.cycLoad := st.cycLoad + 1.U
       m := m + 2.U
-      when(m + 2.U >= mergeEnd) { state := S.classify; restart() } // the last values land this cycle
+      when(m + 2.U >= mergeEnd) { // the last values land this cycle
+        if (bp.boxBuckets) state := S.box else { state := S.classify; restart() }
+      }
+    }
+    is(S.box) {
+      st.cycLoad := st.cycLoad + 1.U
+      when(boxDone) { state := S.classify; restart(); st.box := boxB }
     }
     is(S.classify) {
       st.cycClassify := st.cycClassify + 1.U

@@ -65,6 +65,12 @@ package collide.world
   * @param hitQueue   streamed spheres with hits a lane's ChunkMatcher queues (0..16) while
   *                   its hits leave one a cycle: the stream goes on instead of stalling for a
   *                   sphere with several hits (docs/afu.md, "Queued hits and 32 counters a word"); 0, it stalls
+  * @param boxBuckets where the world's box of cells (coarse cells with coarse chunks) fits the
+  *                   table, a cell's bucket is its coordinates modulo powers of two that span
+  *                   the box, so that no two cells of the world share a bucket (no probe wasted
+  *                   on another cell's entries); elsewhere Teschner's hash, as without
+  *                   (docs/afu.md, "Box buckets"). The box is the least and greatest coordinate
+  *                   of every eligible sphere, kept as the table arrives
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -83,7 +89,8 @@ final case class BroadPhaseParams(
     coarseChunks: Boolean = false,
     team: Int = 4,
     claims: Boolean = false,
-    hitQueue: Int = 0
+    hitQueue: Int = 0,
+    boxBuckets: Boolean = false
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")

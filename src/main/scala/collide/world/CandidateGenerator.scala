@@ -30,8 +30,10 @@ import collide.world.model.BroadPhaseModel
   * the same order, the large part as a set; the lanes' streams together are that set.
   */
 class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, largeSlots: Int,
-                           perWord: Int, lanes: Int, groups: Int, claimW: Int = 0) extends Bundle {
+                           perWord: Int, lanes: Int, groups: Int, claimW: Int = 0, boxBuckets: Boolean = false) extends Bundle {
   val start = Input(Bool())
+  /** With box buckets, the world's box bits B_x, B_y, B_z (CellHash), fixed during the grid. */
+  val box = if (boxBuckets) Some(Input(Vec(3, UInt(BoxTracker.bitsW.W)))) else None
   /** This lane's number, 0 until lanes (none with one lane). */
   val lane = if (lanes > 1) Some(Input(UInt(log2Ceil(lanes).W))) else None
   val usedLog2 = Input(UInt(log2Ceil(bucketsLog2 + 1).W))
@@ -83,7 +85,8 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
 
 class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
                          largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1, groups: Int = 1,
-                         coarse: Boolean = false, team: Int = 1, claims: Boolean = false, hitQueue: Int = 0)
+                         coarse: Boolean = false, team: Int = 1, claims: Boolean = false, hitQueue: Int = 0,
+                         boxBuckets: Boolean = false)
     extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
   require(lanes >= 1, s"lanes must be >= 1, got $lanes")
@@ -110,9 +113,9 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     s"coarse chunks need words of 8 counters or one word for the table, got wordLog2 $wordLog2 of $bucketsLog2")
   override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2" +
     (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "") + (if (coarse) s"_x$teamSize" else "") + (if (claims) "_u" else "") +
-    (if (hitQueue > 0) s"_h$hitQueue" else "")
+    (if (hitQueue > 0) s"_h$hitQueue" else "") + (if (boxBuckets) "_bx" else "")
   val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes, groups,
-    if (claims) CandidateGenerator.claimW(bucketsLog2) else 0))
+    if (claims) CandidateGenerator.claimW(bucketsLog2) else 0, boxBuckets))
   private val laneNo: UInt = io.lane.getOrElse(0.U)
 
   private val visitT = new WorldVisit(cellBits)
@@ -314,7 +317,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       val off = offsets(VecIndex(Mux(coarseCh, fineVisits.length.U +& vIssue, vIssue), offsets.length))
       val nc = VecInit((0 until 3).map(a => curCell(a) + off(a)))
       val canIssue = haveCell && vIssue =/= visitCount && (lkq.io.count +& lkPend.asUInt) < 3.U
-      io.lookup.bucket := CellHash(nc, bucketsLog2, io.usedLog2, coarse)
+      io.lookup.bucket := CellHash(nc, bucketsLog2, io.usedLog2, coarse, io.box)
       lkPend := canIssue
       lkVisit.cell := nc; lkVisit.off := off; lkVisit.scan := false.B
       when(canIssue) { vIssue := vIssue + 1.U }

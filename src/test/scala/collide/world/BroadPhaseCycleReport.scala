@@ -19,14 +19,16 @@ import collide.world.model._
   *
   *   sbt "Test/runMain collide.world.BroadPhaseCycleReport [--sizes 500,1000,...] [--max 16384]
   *        [--spheres FILE.csv ...] [--lanes 1,4,16] [--sort-ports 1,2,4] [--word-log2 3]
-  *        [--buckets-per-sphere-log2 1] [--cell-steps 2] [--chunk 32] [--coarse-chunks true] [--team 4] [--claims true] [--hit-queue 4] [--out FILE.csv]"
+  *        [--buckets-per-sphere-log2 1] [--cell-steps 2] [--chunk 32] [--coarse-chunks true] [--team 4] [--claims true] [--hit-queue 4] [--box-buckets true] [--out FILE.csv]"
   *
   * --word-log2 sets BroadPhaseParams.wordLog2 (counters a RAM word: clear, prefix and the walk
   * take a word a cycle) and --buckets-per-sphere-log2 BroadPhaseParams.bucketsPerSphereLog2
   * for every configuration of the run (the buckets column says what each world used), and
   * --cell-steps BroadPhaseParams.cellSteps (1: cell edges 2^k alone; 2: also 1.5 * 2^k),
   * --chunk BroadPhaseParams.chunk (spheres a generator holds) and --coarse-chunks
-  * BroadPhaseParams.coarseChunks (a coarse cell of 2 x 2 x 2 cells one chunk where it fits).
+  * BroadPhaseParams.coarseChunks (a coarse cell of 2 x 2 x 2 cells one chunk where it fits),
+  * --box-buckets BroadPhaseParams.boxBuckets (the box_bits column: each world's box bits, the
+  * RTL's checked against the model's, or "hash").
   *
   * --spheres adds a world from a `collide spheres` input file (header x,y,z,r; decimal or hex
   * floats, binary32 values), e.g. bench/world/world.py --dump-clouds DIR: the very spheres
@@ -64,6 +66,7 @@ object BroadPhaseCycleReport {
     var claims = BroadPhaseParams.default.claims
     var feed = 0
     var hitQueue = BroadPhaseParams.default.hitQueue
+    var boxBuckets = BroadPhaseParams.default.boxBuckets
     args.sliding(2, 2).foreach {
       case Array("--sizes", v) => sizes = v.split(',').map(_.trim.toInt).toSeq
       case Array("--max", v)   => maxSpheres = v.toInt
@@ -80,7 +83,8 @@ object BroadPhaseCycleReport {
       case Array("--claims", v) => claims = v.trim.toBoolean
       case Array("--feed", v) => feed = v.trim.toInt
       case Array("--hit-queue", v) => hitQueue = v.trim.toInt
-      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --cell-steps, --chunk, --coarse-chunks, --team, --claims, --hit-queue, --feed, --out)")
+      case Array("--box-buckets", v) => boxBuckets = v.trim.toBoolean
+      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --cell-steps, --chunk, --coarse-chunks, --team, --claims, --hit-queue, --box-buckets, --feed, --out)")
     }
     require(feed >= 0 && lanes.forall(feed <= _), s"--feed (spheres fed a cycle as the table arrives, the AFU's spheres a line) must be 0..the lanes, got $feed")
     require(sizes.forall(n => n >= 1 && n <= maxSpheres), s"--sizes must be 1..--max ($maxSpheres)")
@@ -93,11 +97,11 @@ object BroadPhaseCycleReport {
       s"huge" -> huge(rng, n - 4, 4))) ++ files.map(readSpheres)
     require(worlds.forall(_._2.length <= maxSpheres), s"a world has more than --max ($maxSpheres) spheres")
     val header = "world,spheres,buckets,cells,chunks,scanned,probes,candidates,large," +
-      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team,feed,claims,hit_queue"
+      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team,feed,claims,hit_queue,box_buckets,box_bits"
     val rows = scala.collection.mutable.ArrayBuffer(header)
     for (l <- lanes; q <- ports if q <= l) {
       val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l, sortPorts = q, wordLog2 = wordLog2,
-        bucketsPerSphereLog2 = bpsLog2, cellSteps = cellSteps, chunk = chunk, coarseChunks = coarse, team = team, claims = claims, hitQueue = hitQueue))
+        bucketsPerSphereLog2 = bpsLog2, cellSteps = cellSteps, chunk = chunk, coarseChunks = coarse, team = team, claims = claims, hitQueue = hitQueue, boxBuckets = boxBuckets))
       RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres, feedWidth = feed), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
         dut.clock.setTimeout(0)
         for ((name, ws) <- worlds) {
@@ -111,9 +115,12 @@ object BroadPhaseCycleReport {
           val s = dut.io.status
           def v(d: UInt) = d.peek().litValue
           val c = model.cycles(want, lanes = l, scpus = 16, sortRate = q)
+          val box = want.stats.box.map(b => Seq(b.x, b.y, b.z))
+          require(box.forall(_ == s.box.map(v(_).toInt)), s"$name ${ws.length}: the RTL's box bits ${s.box.map(v(_))} are not the model's $box")
           val row = Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
             v(s.large), v(s.cycLoad), v(s.cycClassify), v(s.cycPrefix), v(s.cycScatter), v(s.cycGrid), v(s.cycLarge), v(s.cycTotal),
-            c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l, q, wordLog2, cellSteps, chunk, coarse, team, feed, claims, hitQueue).mkString(",")
+            c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l, q, wordLog2, cellSteps, chunk, coarse, team, feed, claims, hitQueue, boxBuckets,
+            box.map(_.mkString(".")).getOrElse("hash")).mkString(",")
           println(row)
           rows += row
         }

@@ -87,6 +87,64 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
     assert(cd.scanned == td.scanned && cd.lookups == td.lookups && cd.cellWork == td.cellWork, s"$cd against $td")
   }
 
+  for ((bp, what) <- Seq(BroadPhaseParams.default.copy(coarseChunks = true, cellSteps = 2, chunk = 32) -> "coarse chunks of 32, cells of 1.5 * 2^k too",
+                         BroadPhaseParams.default -> "cells of 2^k, no coarse chunks",
+                         BroadPhaseParams.tinyTable.copy(coarseChunks = true, wordLog2 = 3) -> "a four-bucket table, coarse chunks of one");
+       cfg <- Seq(ScpuConfig.fp32, ScpuConfig.bf16, ScpuConfig.fp64)) {
+    it should s"find exactly the hashed table's candidates with box buckets ($what), every ${cfg.name} hit once, in every hard case and random cloud" in {
+      val model = new BroadPhaseModel(cfg, bp.copy(boxBuckets = true))
+      val hashed = new BroadPhaseModel(cfg, bp)
+      for ((label, w) <- worlds(s"box-${cfg.name}")) {
+        val world = bits(cfg.linkFormat, w)
+        val r = checkWorld(model, s"$label, box buckets", world)
+        assert(r.candidates.toSet == hashed.run(world).candidates.toSet, s"$label: box buckets give other candidates than the hash")
+        assert(r.stats.box.isDefined == r.classes.exists(_ != SphereClass.Excluded), s"$label: box ${r.stats.box}")
+      }
+    }
+  }
+
+  /** The distinct hash units (cells, or coarse cells) of a world's small spheres, and the buckets' units they fall in. */
+  private def units(model: BroadPhaseModel, r: BroadPhaseResult): (Int, Int) = {
+    val shift = if (model.bp.coarseChunks) 1 else 0
+    val nb = r.stats.buckets
+    val cells = r.classes.collect { case c: SphereClass.Small => c }.distinct
+    val us = cells.map(c => (c.cx >> shift, c.cy >> shift, c.cz >> shift)).distinct
+    val hashes = cells.map(c => (model.bucket(c.cx, c.cy, c.cz, r.stats.box) & (nb - 1)) >> (3 * shift)).distinct
+    (us.length, hashes.length)
+  }
+
+  it should "give every coarse cell of a world its own buckets where the world's box fits the table, and wrap along the longest side where not" in {
+    val bp = BroadPhaseParams.default.copy(coarseChunks = true, boxBuckets = true)
+    val model = new BroadPhaseModel(ScpuConfig.fp32, bp)
+    // Radius 0.5 needs a cell of 2 (2^1 >= 1.125), a coarse cell of 4: x over coarse cells
+    // -2..2 (5: 3 bits), y in one (0 bits), z over 0..2 (3: 2 bits). 15 spheres, 32 buckets:
+    // 2 bits of hash beside a coarse cell's place. Too few: the first longest loses a bit until
+    // they fit, (3, 0, 2) -> (2, 0, 2) -> (1, 0, 2) -> (1, 0, 1).
+    def world(n: Int) = bits(FloatFormat.fp32, (0 until n).map(i => S(-8.0 + 4.0 * (i % 5), 1.0, 4.0 * (i / 5 % 3), 0.5)))
+    val small = model.run(world(15))
+    assert(small.level == 2 && small.stats.buckets == 32 && small.stats.box.contains(BoxBits(1, 0, 1)), s"${small.level} ${small.stats}")
+    // 64 spheres (128 buckets: 4 bits) over the same 15 coarse cells: 3 + 0 + 2 = 5 bits, x
+    // loses one (x modulo 4: coarse cells -2 and 2 share buckets).
+    val wrapped = model.run(world(64))
+    assert(wrapped.stats.box.contains(BoxBits(2, 0, 2)), s"${wrapped.stats.box}")
+    assert(units(model, wrapped) == (15, 12), s"${units(model, wrapped)}")
+    // 512 spheres (1024 buckets: 7 bits): it fits, 15 coarse cells in 15 groups.
+    val fits = model.run(world(512))
+    assert(fits.stats.box.contains(BoxBits(3, 0, 2)) && units(model, fits) == (15, 15), s"${fits.stats.box} ${units(model, fits)}")
+    // A uniform cloud: every coarse cell its own group where the hash shares some, fewer spheres streamed.
+    val rng = Seeds.rng("BroadPhaseModelSpec-box")
+    val cloud = bits(FloatFormat.fp32, uniform(rng, 2000))
+    val boxed = new BroadPhaseModel(ScpuConfig.fp32, bp.copy(cellSteps = 2, chunk = 32))
+    val hashed = new BroadPhaseModel(ScpuConfig.fp32, bp.copy(cellSteps = 2, chunk = 32, boxBuckets = false))
+    val (b, h) = (boxed.run(cloud), hashed.run(cloud))
+    val (bu, hu) = (units(boxed, b), units(hashed, h))
+    println(s"[BroadPhaseModelSpec] uniform 2000: box ${b.stats.box}, coarse cells ${bu._1} in ${bu._2} groups (hash: ${hu._2}), " +
+      s"streamed ${h.stats.scanned} -> ${b.stats.scanned}")
+    assert(bu._1 == bu._2 && hu._2 < hu._1, s"box $bu, hash $hu")
+    assert(b.stats.scanned < h.stats.scanned, s"box buckets streamed ${b.stats.scanned}, the hash ${h.stats.scanned}")
+    assert(boxed.run(IndexedSeq.empty).stats.box.isEmpty)
+  }
+
   it should "give the same candidates when every cell collides with others in a four-bucket table" in {
     val model = new BroadPhaseModel(ScpuConfig.fp32, BroadPhaseParams.tinyTable)
     for ((label, w) <- worlds("tiny-table")) checkWorld(model, label, bits(FloatFormat.fp32, w))

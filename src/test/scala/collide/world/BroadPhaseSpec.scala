@@ -45,7 +45,8 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
       .map { case (n, d) => n -> d.peek().litValue }.toMap + ("feedCycles" -> BigInt(feedCycles))
     val flags = Seq("tooMany" -> s.tooMany, "cellOverflow" -> s.cellOverflow, "largeOverflow" -> s.largeOverflow,
       "badBucket" -> s.badBucket, "sortMismatch" -> s.sortMismatch).map { case (n, b) => n -> (if (b.peek().litToBoolean) BigInt(1) else BigInt(0)) }
-    Run(pairs, fields ++ flags + ("level" -> s.level.peek().litValue), cycles)
+    val box = s.box.zipWithIndex.map { case (b, a) => s"box$a" -> b.peek().litValue }
+    Run(pairs, fields ++ flags ++ box + ("level" -> s.level.peek().litValue), cycles)
   }
 
   private def check(dut: BroadPhase, model: BroadPhaseModel, label: String, world: IndexedSeq[WorldSphere],
@@ -57,6 +58,10 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
       assert(got.status(f) == 0, s"$where: $f raised")
     }
     assert(got.status("level") == want.level, s"$where: level ${got.status("level")}")
+    // Box buckets: the RTL's box bits are the model's (zero for a world with no eligible sphere
+    // or without box buckets, whose status never sets them).
+    val box = want.stats.box.map(b => Seq(b.x, b.y, b.z)).getOrElse(Seq(0, 0, 0)).map(BigInt(_))
+    assert((0 until 3).map(a => got.status(s"box$a")) == box, s"$where: box bits ${(0 until 3).map(a => got.status(s"box$a"))}, want $box")
     val st = want.stats
     assert(got.status("excluded") == st.excluded && got.status("large") == st.large &&
       got.status("small") == st.spheres - st.excluded - st.large, s"$where: classes ${got.status}")
@@ -87,11 +92,13 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     if (fed) {
       // A fed table's level is chosen as it arrives: after start only the last spheres' keys and
       // the merge of the fed lanes' needs remain, and, if the feed was shorter than the counters'
-      // clear (a word a cycle), the rest of the clear. Reading the table again would take num / lanes.
+      // clear (a word a cycle), the rest of the clear; with box buckets three cycles for the box's
+      // bits and one for each bit it loses to fit. Reading the table again would take num / lanes.
       val feedWidth = dut.io.feed.length
       val merge = if (model.bp.lanes > 1) (feedWidth * (model.bp.largeMax + 1) + 1) / 2 else 0
       val clearLeft = math.max(0L, words - got.status("feedCycles").toLong)
-      val most = merge + clearLeft + 4
+      val box = if (model.bp.boxBuckets) 3 + st.boxWraps else 0
+      val most = merge + clearLeft + 4 + box
       assert(got.status("cycLoad") <= most, s"$where: ${got.status("cycLoad")} load cycles after a fed table, at most $most " +
         s"(${got.status("feedCycles")} cycles of feed)")
     }
@@ -185,6 +192,14 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     // Edges 2^k alone: some coarse groups overfill a chunk of 32 and are handed back (with 1.5 * 2^k none do here).
     everyHardCase("BroadPhaseSpec-claims", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32, claims = true, hitQueue = 2),
       "claims, four lanes: ")
+  }
+
+  it should "find the same candidates with box buckets (a cell's coordinates modulo the world's box, wrapped where it does not fit) fed four a line into four claiming lanes with four sort ports and coarse chunks, in every hard case and random cloud" in {
+    fedWorlds("BroadPhaseSpec-box", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32, cellSteps = 2, claims = true,
+      hitQueue = 2, boxBuckets = true), 4, "box buckets: ", ws => ws)
+  }
+  it should "find exactly the golden model's candidates with box buckets and one lane, in the model's order, without coarse chunks" taggedAs (Slow) in {
+    everyHardCase("BroadPhaseSpec-box-one", BroadPhaseParams.default.copy(boxBuckets = true), "box buckets, one lane: ")
   }
 
   it should "stay exact with claimed work over a four-bucket table with coarse chunks of two (one unit, deferred and dealt a bucket at a time), in the model's order with one lane and with three" in {

@@ -31,7 +31,9 @@ final case class BroadPhaseStats(
     gridPairs: Long,    // pairs of neighbouring small spheres (before the box filter)
     gridCandidates: Long, largeCandidates: Long, // after the box filter: what the SCPUs get
     cellWork: IndexedSeq[Long], // cycles of one lane on each chunk's cell (or coarse cell), in bucket order
-    coarse: Int = 0     // of the cells, coarse cells taken as one chunk (coarseChunks)
+    coarse: Int = 0,    // of the cells, coarse cells taken as one chunk (coarseChunks)
+    box: Option[BoxBits] = None, // box buckets' bits (boxBuckets)
+    boxWraps: Int = 0   // bits the box lost to fit the table (the hardware takes a cycle for each)
 ) {
   def candidates: Long = gridCandidates + largeCandidates
 }
@@ -141,13 +143,46 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
   /** A cell's bucket: the hash of the cell; with coarse chunks, the hash of its coarse cell
     * (2 x 2 x 2 cells) times 8 plus the cell's place in it, so that a coarse cell's 8 cells
     * are 8 consecutive buckets (a group), one contiguous run of the sorted table. */
-  def bucket(cx: Long, cy: Long, cz: Long): Int = {
-    def hash(x: Long, y: Long, z: Long) = (x * HashX) ^ (y * HashY) ^ (z * HashZ)
+  def bucket(cx: Long, cy: Long, cz: Long, box: Option[BoxBits] = None): Int = {
+    def hash(x: Long, y: Long, z: Long) = box match {
+      case None => (x * HashX) ^ (y * HashY) ^ (z * HashZ)
+      case Some(b) => (x & ((1L << b.x) - 1)) | ((y & ((1L << b.y) - 1)) << b.x) | ((z & ((1L << b.z) - 1)) << (b.x + b.y))
+    }
     val h =
       if (!bp.coarseChunks) hash(cx, cy, cz)
       else (hash(cx >> 1, cy >> 1, cz >> 1) << 3) | ((cx & 1) << 2) | ((cy & 1) << 1) | (cz & 1)
     (h & (bp.buckets - 1).toLong).toInt
   }
+
+  /** With `boxBuckets`, the bits of the world's box (docs/afu.md, "Box buckets"): per axis, the
+    * units of the hash (cells, or coarse cells with coarse chunks) of the least and the
+    * greatest coordinate of any eligible sphere at `level`, and B_a = ceil(log2(hi - lo + 1)),
+    * which tells 2^B_a consecutive units apart. While the three take more than the table's hash
+    * bits H (log2 of the used buckets, less 3 for a coarse cell's place), the first largest
+    * loses one: the box then wraps along it. A unit's coordinates modulo 2^B_a are its hash:
+    * where the box fits, no two units of the world share a bucket. None without boxBuckets or
+    * without an eligible sphere (Teschner's hash). */
+  def boxBits(conv: IndexedSeq[Seq[BigInt]], level: Int, usedBuckets: Int): Option[BoxBits] =
+    boxBitsAndWraps(conv, level, usedBuckets).map(_._1)
+  /** boxBits, and the bits the box lost to fit. */
+  def boxBitsAndWraps(conv: IndexedSeq[Seq[BigInt]], level: Int, usedBuckets: Int): Option[(BoxBits, Int)] =
+    if (!bp.boxBuckets || conv.isEmpty) None
+    else {
+      val unitShift = if (bp.coarseChunks) 1 else 0
+      val hashBits = math.max(0, Integer.numberOfTrailingZeros(usedBuckets) - (if (bp.coarseChunks) 3 else 0))
+      // Float order of finite bit patterns as unsigned keys: negatives' bits inverted, the
+      // sign bit set on the rest (what the hardware compares).
+      val sign = BigInt(1) << (p.width - 1)
+      def key(b: BigInt): BigInt = if (b.testBit(p.width - 1)) (~b) & (sign * 2 - 1) else b | sign
+      val b = Array.tabulate(3) { a =>
+        val vs = conv.map(_(a))
+        def unit(v: BigInt): Long = cell(v, level).get >> unitShift
+        BoxBits.bitsFor(unit(vs.maxBy(key)) - unit(vs.minBy(key)) + 1)
+      }
+      val before = b.sum
+      while (b.sum > hashBits) { val m = b.indexOf(b.max); b(m) -= 1 }
+      Some((BoxBits(b(0), b(1), b(2)), before - b.sum))
+    }
 
   /** Buckets used for n spheres: at least n 2^bucketsPerSphereLog2 (2n by default: load factor
     * <= 1/2), at most the table. */
@@ -206,7 +241,9 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     val slack = boxSlack(level)
     val smalls = world.indices.flatMap(i => classes(i) match { case s: SphereClass.Small => Some(i -> s); case _ => None })
     val nb = bucketsFor(n) // the hardware knows n before it knows which spheres are small
-    def bucketOf(c: SphereClass.Small) = bucket(c.cx, c.cy, c.cz) & (nb - 1)
+    val boxAndWraps = boxBitsAndWraps(eligible.map(conv), level, nb)
+    val boxed = boxAndWraps.map(_._1)
+    def bucketOf(c: SphereClass.Small) = bucket(c.cx, c.cy, c.cz, boxed) & (nb - 1)
 
     val (start, entries) = countingSort(smalls.map { case (i, c) => i -> bucketOf(c) }, nb)
     def cellOf(i: Int) = classes(i).asInstanceOf[SphereClass.Small]
@@ -264,7 +301,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
       out += ((math.min(l, j), math.max(l, j))); largePairs += 1
     }
     val stats = BroadPhaseStats(n, n - eligible.length, larges.length, level, nb, cells, lookups, scanned, gridPairs, grid,
-      largePairs, work.result(), coarseCount)
+      largePairs, work.result(), coarseCount, boxed, boxAndWraps.map(_._2).getOrElse(0))
     BroadPhaseResult(level, classes, out.result(), stats)
   }
 
@@ -304,6 +341,15 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
       large = div(st.large * eligible, lanes),
       narrow = div(st.candidates, scpus))
   }
+}
+
+/** Box buckets' bits per axis (BroadPhaseModel.boxBits). */
+final case class BoxBits(x: Int, y: Int, z: Int) {
+  def sum: Int = x + y + z
+}
+object BoxBits {
+  /** ceil(log2(extent)): the least B with 2^B >= extent (extent >= 1). */
+  def bitsFor(extent: Long): Int = { require(extent >= 1, s"extent $extent"); 64 - java.lang.Long.numberOfLeadingZeros(extent - 1) }
 }
 
 object BroadPhaseModel {
