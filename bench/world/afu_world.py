@@ -225,7 +225,7 @@ def report(rows, out, machine_md, lanes, ports=1):
               f"  its {lanes} candidate lane{plural} and its sort's passes of {spheres_a_cycle}),",
               "  while the link brings four spheres a line and a line a cycle. The cell level is chosen as the table",
               "  arrives, so what follows the table is the sort's three passes and the grid (docs/afu.md, \"World mode\",",
-              "  \"Coarse chunks\", \"The fed table and eight sort ports\", \"Claimed work\", \"Queued hits and 32 counters a word\").",
+              "  \"Coarse chunks\", \"The fed table and eight sort ports\", \"Claimed work\", \"Queued hits and 32 counters a word\", \"Box buckets\").",
               ] + diamond_note + [
               "- Above 4,096 spheres (the world preset's table; a record names i and j in 12 bits each) every",
               "  slab along x is a run of its own, with the per-call costs each time and its ghosts read twice;",

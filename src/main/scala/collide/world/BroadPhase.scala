@@ -47,7 +47,9 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   * and 3 into another (group 1), whose buckets the generators read one after the other. With `bp.lanes` candidate generators, lane
   * l reads the table through port l of `sphere` and emits its pairs on port l of `pairs`;
   * together they are the candidates. The golden model is
-  * BroadPhaseModel; the spec BroadPhaseSpec compares them pair for pair.
+  * BroadPhaseModel; the spec BroadPhaseSpec compares them pair for pair. With box buckets
+  * (bp.boxBuckets) every lane's BoxTracker keeps the box of the spheres it loads, and a state
+  * between the level and pass 2 turns the box into the bits of the cells' bucket map.
   */
 class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, feedWidth: Int = 0) extends Bundle {
   val itemW = log2Ceil(maxSpheres)
