@@ -71,8 +71,8 @@ object Generate {
         .text("the broad phase's candidate generators, 1..16 (world mode only; each adds a copy of its sort RAM, " +
           "and every two a copy of the sphere table; the sort's ports follow down to L)"),
       opt[Int]("world-sort-ports").valueName("P").action((v, o) => o.copy(worldSortPorts = Some(v)))
-        .text("spheres a cycle in the broad phase's sort passes, 1, 2, 4 or 8, at most the lanes (world mode only; " +
-          "2 adds a table of counters, 4 is two sorts of half the table: a second table of counters a lane, 8 four sorts of a quarter)"),
+        .text("spheres a cycle in the broad phase's sort passes, 1, 2, 4, 8 or 16, at most the lanes (world mode only; " +
+          "2 adds a table of counters, 4 is two sorts of half the table: a second table of counters a lane, 8 four sorts of a quarter, 16 eight of an eighth)"),
       opt[Int]("world-buckets-per-sphere").valueName("B").action((v, o) => o.copy(worldBucketsPerSphere = Some(v)))
         .text("buckets a world uses per sphere, 1, 2 (default) or 4 (world mode only; 1 halves the sort's counters " +
           "and its clear and prefix sum, for more cells sharing a bucket)"),

@@ -33,13 +33,14 @@ package collide.world
   *                   least N * 2^this (at most 2^bucketsLog2): 1 (2N, the default) keeps
   *                   collisions rare; 0 (N) halves the clear, the prefix sum, the walk and the
   *                   counters' RAM for more cells sharing a bucket (scanning time, never a pair)
-  * @param sortPorts  spheres a cycle in the sort's passes (1, 2, 4 or 8, at most `lanes`): port
+  * @param sortPorts  spheres a cycle in the sort's passes (1, 2, 4, 8 or 16, at most `lanes`): port
   *                   q reads the q-th part of the table through lane q's sphere port, counting
   *                   and scattering through a port of its own. Two ports share one sort (the
   *                   entries' two block-RAM ports; one more table of counters); four are two
   *                   sorts of two ports (`sortGroups`), each of half the table, whose buckets
   *                   the generators read one after the other (a second table of counters a
-  *                   lane); eight are four sorts of two, each of a quarter of the table
+  *                   lane); eight are four sorts of two, each of a quarter of the table, and
+  *                   16 eight sorts of two, each of an eighth
   * @param cellSteps  cell edges an octave: 1 (the default), powers of two only (2^k, a shift
   *                   of the coordinates); 2, also 1.5 * 2^k (a shift and an exact division by
   *                   three), so no cell is more than 4/3 of what its spheres need instead of
@@ -103,7 +104,7 @@ final case class BroadPhaseParams(
   require(lanes >= 1 && lanes <= 16, s"lanes must be 1..16 (a pair line holds 16 candidates a cycle), got $lanes")
 
   require(BroadPhaseParams.sortPortChoices.contains(sortPorts),
-    s"sortPorts must be 1, 2, 4 or 8 (a block RAM's two ports, or two or four sorts of two), got $sortPorts")
+    s"sortPorts must be 1, 2, 4, 8 or 16 (a block RAM's two ports, or two, four or eight sorts of two), got $sortPorts")
   require(sortPorts <= lanes, s"sortPorts ($sortPorts) must be at most lanes ($lanes): port p reads the table through lane p's port")
 
   require(bucketsPerSphereLog2 >= 0 && bucketsPerSphereLog2 <= 2, s"bucketsPerSphereLog2 must be 0..2, got $bucketsPerSphereLog2")
@@ -134,8 +135,8 @@ final case class BroadPhaseParams(
     val counters = (1L << tableLog2(maxSpheres)) * countW
     sortGroups * ((lanes + portsPerSort - 1) * counters + lanes * cap.toLong * (itemW + 1))
   }
-  /** Sorts the passes use: one, or with four or eight ports two or four of two ports, group g
-    * sorting the g-th half or quarter of the table (block RAM has two ports; the generators read
+  /** Sorts the passes use: one, or with four, eight or 16 ports two, four or eight of two ports, group g
+    * sorting the g-th half, quarter or eighth of the table (block RAM has two ports; the generators read
     * every group's buckets). */
   val sortGroups: Int = if (sortPorts >= 4) sortPorts / 2 else 1
   /** Ports of each of those sorts (1 or 2: a block RAM's ports). */
@@ -169,7 +170,7 @@ object BroadPhaseParams {
   def edge(level: Int): Double =
     if ((level & 1) == 0) math.scalb(1.0, level / 2) else 1.5 * math.scalb(1.0, Math.floorDiv(level - 1, 2))
   /** The sort's port counts built (`sortPorts`), fewest first. */
-  val sortPortChoices: Seq[Int] = Seq(1, 2, 4, 8)
+  val sortPortChoices: Seq[Int] = Seq(1, 2, 4, 8, 16)
   val default: BroadPhaseParams = BroadPhaseParams()
   /** Four buckets and one-sphere chunks: every cell collides with others in the hash and
     * every cell is visited once per sphere, to test that nothing breaks. */

@@ -90,7 +90,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
   require(lanes >= 1, s"lanes must be >= 1, got $lanes")
-  require(groups == 1 || groups == 2 || groups == 4, s"groups must be 1, 2 or 4, got $groups")
+  require(Seq(1, 2, 4, 8).contains(groups), s"groups must be 1, 2, 4 or 8, got $groups")
   private val perWord = 1 << wordLog2
   /** Buckets of a coarse cell's group: 8, or a whole word of a table smaller than that. */
   private val groupLog2 = math.min(3, wordLog2)

@@ -57,7 +57,7 @@ class KeyStream[T <: Data](tag: T, itemW: Int, countW: Int, cellBits: Int, qWidt
                            groups: Int = 1)
     extends Module {
   require(keyLatency >= 1, s"keyLatency must be >= 1, got $keyLatency")
-  require(groups == 1 || groups == 2 || groups == 4, s"groups must be 1, 2 or 4, got $groups")
+  require(Seq(1, 2, 4, 8).contains(groups), s"groups must be 1, 2, 4 or 8, got $groups")
   private val gW = StreamRange.groupW(groups)
   private val depth = keyLatency + 3 // everything in flight, plus one: full rate when out is ready
   val io = IO(new Bundle {

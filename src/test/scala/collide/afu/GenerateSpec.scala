@@ -72,6 +72,10 @@ class GenerateSpec extends AnyFlatSpec {
     val w4 = cfg("--preset", "world", "--world-word-log2", "4").toOption.get
     assert(w4.id.endsWith("_world16p8w4e2k32xuh8bx") && w4.world.get.ramBits(4096) == pw.ramBits(4096), w4.id)
     assert(AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("hitQueue").num == 8)
+    // 16 sort ports: eight sorts of an eighth of the table, eight tables of 10-bit counters a lane.
+    val p16 = cfg("--preset", "world", "--world-sort-ports", "16").toOption.get
+    assert(p16.id.endsWith("_world16p16w5e2k32xuh8bx") && p16.world.get.sortGroups == 8 &&
+      p16.world.get.ramBits(4096) == 8 * ((16 + 1) * 8192L * 10 + 16 * 512L * 13), p16.id)
     // Box buckets in the preset; a hashed table is a name of its own with the same RAM bits.
     val hb = cfg("--preset", "world", "--world-box-buckets", "false").toOption.get
     assert(pw.boxBuckets && hb.id.endsWith("_world16p8w5e2k32xuh8") && hb.world.get.ramBits(4096) == pw.ramBits(4096), hb.id)
@@ -110,7 +114,7 @@ class GenerateSpec extends AnyFlatSpec {
     err("--world-lanes", "4")("--world-lanes", "not built")
     err("--preset", "world", "--world-lanes", "17")("--world-lanes", "1..16")
     err("--world-sort-ports", "2")("--world-sort-ports", "not built")
-    err("--preset", "world", "--world-sort-ports", "3")("--world-sort-ports", "1, 2, 4 or 8")
+    err("--preset", "world", "--world-sort-ports", "3")("--world-sort-ports", "1, 2, 4, 8 or 16")
     err("--world", "true", "--world-sort-ports", "2")("--world-sort-ports", "at most lanes")
     err("--preset", "world", "--world-buckets-per-sphere", "3")("--world-buckets-per-sphere", "1, 2 or 4")
     err("--world-buckets-per-sphere", "1")("--world-buckets-per-sphere", "not built")

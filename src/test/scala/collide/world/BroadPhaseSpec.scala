@@ -164,6 +164,10 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
       "eight sort ports: ")
   }
 
+  it should "find the same candidates with the sort's passes 16 spheres a cycle (eight sorts, each of an eighth of the table), fed into 16 claiming lanes with box buckets, in every hard case and random cloud" taggedAs (Slow) in {
+    fedWorlds("BroadPhaseSpec-16-ports", collide.afu.AfuConfig.world.world.get.copy(sortPorts = 16), 4, "16 sort ports: ", ws => ws)
+  }
+
   it should "find the same candidates with one bucket a sphere (more cells sharing a bucket), in every hard case and random cloud" in {
     everyHardCase("BroadPhaseSpec-one-bucket", BroadPhaseParams.fourLanesFourPorts.copy(bucketsPerSphereLog2 = 0), "one bucket a sphere: ")
   }
