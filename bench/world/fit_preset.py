@@ -13,7 +13,10 @@ from pathlib import Path
 from fit_cycles import fit, formula
 
 ROOT = Path(__file__).resolve().parents[2]
-NUMERIC = ("spheres", "buckets", "cells", "chunks", "scanned", "probes", "candidates", "large", "total")
+# The columns that name a configuration (the rest are worlds and their counts).
+CONFIG = ("lanes", "sort_ports", "word_log2", "cell_steps", "chunk", "coarse_chunks", "team", "feed", "claims",
+          "hit_queue", "box_buckets")
+TERMS = ["spheres", "candidates"]
 
 
 def main(argv=None):
@@ -21,17 +24,15 @@ def main(argv=None):
     ap.add_argument("--csv", default=str(ROOT / "bench/results/world-lanes/box-buckets.csv"))
     a = ap.parse_args(argv)
     rows = list(csv.DictReader(open(a.csv, newline="")))
-    configs = {tuple(r[k] for k in r if k not in NUMERIC and k not in ("world",) and not k.startswith("model")
-                     and k not in ("load", "classify", "prefix", "scatter", "grid", "large_pass", "box_bits")) for r in rows}
+    configs = {tuple(r.get(k) for k in CONFIG) for r in rows}
     if len(configs) != 1:
         raise SystemExit(f"{a.csv}: rows of {len(configs)} configurations; fit one at a time")
     for r in rows:
-        for k in NUMERIC:
+        for k in TERMS + ["total"]:
             r[k] = int(r[k])
     out = [f"Least squares over the {len(rows)} worlds of {Path(a.csv).name} (no constant term):", ""]
-    terms = ["spheres", "candidates"]
-    coef, worst = fit(rows, "total", terms)
-    out.append(f"- total cycles = {formula(coef, terms)}; worst residual {worst:.1f} %")
+    coef, worst = fit(rows, "total", TERMS)
+    out.append(f"- total cycles = {formula(coef, TERMS)}; worst residual {worst:.1f} %")
     print("\n".join(out))
     return 0
 

@@ -161,11 +161,9 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     * bits H (log2 of the used buckets, less 3 for a coarse cell's place), the first largest
     * loses one: the box then wraps along it. A unit's coordinates modulo 2^B_a are its hash:
     * where the box fits, no two units of the world share a bucket. None without boxBuckets or
-    * without an eligible sphere (Teschner's hash). */
-  def boxBits(conv: IndexedSeq[Seq[BigInt]], level: Int, usedBuckets: Int): Option[BoxBits] =
-    boxBitsAndWraps(conv, level, usedBuckets).map(_._1)
-  /** boxBits, and the bits the box lost to fit. */
-  def boxBitsAndWraps(conv: IndexedSeq[Seq[BigInt]], level: Int, usedBuckets: Int): Option[(BoxBits, Int)] =
+    * without an eligible sphere (Teschner's hash). With the bits, the number the box lost to fit
+    * (the hardware takes a cycle for each). */
+  def boxBits(conv: IndexedSeq[Seq[BigInt]], level: Int, usedBuckets: Int): Option[(BoxBits, Int)] =
     if (!bp.boxBuckets || conv.isEmpty) None
     else {
       val unitShift = if (bp.coarseChunks) 1 else 0
@@ -241,7 +239,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     val slack = boxSlack(level)
     val smalls = world.indices.flatMap(i => classes(i) match { case s: SphereClass.Small => Some(i -> s); case _ => None })
     val nb = bucketsFor(n) // the hardware knows n before it knows which spheres are small
-    val boxAndWraps = boxBitsAndWraps(eligible.map(conv), level, nb)
+    val boxAndWraps = boxBits(eligible.map(conv), level, nb)
     val boxed = boxAndWraps.map(_._1)
     def bucketOf(c: SphereClass.Small) = bucket(c.cx, c.cy, c.cz, boxed) & (nb - 1)
 
