@@ -1,6 +1,8 @@
 """bench/world/world.py's clouds (no collide binary needed): the sizes asked for, every value
 a binary32 value written exactly, about one contact a sphere in the uniform cloud.
 Run with the suite: tools/pyenv -m unittest discover -s bench/tests -v"""
+import contextlib
+import io
 import itertools
 import json
 import math
@@ -15,6 +17,7 @@ import world  # noqa: E402
 import afu_world  # noqa: E402
 import lanes  # noqa: E402
 import lanes_area  # noqa: E402
+import fit_preset  # noqa: E402
 
 
 class WorldClouds(unittest.TestCase):
@@ -156,6 +159,33 @@ class LanesArea(unittest.TestCase):
                 lanes_area.broad_phase(f)
             self.assertIn("not a world-mode AFU", str(e.exception))
 
+
+class FitPreset(unittest.TestCase):
+    """bench/world/fit_preset.py: the committed preset rows fit; a bad CSV is refused by name."""
+
+    def run_fit(self, text):
+        with tempfile.TemporaryDirectory() as d:
+            p = Path(d) / "cycles.csv"
+            p.write_text(text)
+            with self.assertRaises(SystemExit) as e:
+                fit_preset.main(["--csv", str(p)])
+            return str(e.exception.code)
+
+    def test_the_committed_preset_rows_fit_spheres_and_candidates(self):
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            self.assertEqual(fit_preset.main([]), 0)
+        self.assertIn("x spheres +", out.getvalue())
+        self.assertIn("x candidates; worst residual", out.getvalue())
+
+    def test_a_missing_file_a_foreign_csv_a_bad_number_and_mixed_configurations_are_refused(self):
+        with self.assertRaises(SystemExit) as e:
+            fit_preset.main(["--csv", "/no/such/cycles.csv"])
+        self.assertIn("/no/such/cycles.csv: cannot read it", str(e.exception.code))
+        self.assertIn("no column spheres, candidates, total", self.run_fit("a,b\n1,2\n"))
+        head = "world,spheres,candidates,total,lanes\n"
+        self.assertIn("line 2: spheres is 'x'", self.run_fit(head + "u,x,3,9,16\n"))
+        self.assertIn("rows of 2 configurations", self.run_fit(head + "u,1,3,9,16\nu,2,3,9,8\n"))
 
 if __name__ == "__main__":
     unittest.main()

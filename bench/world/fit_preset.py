@@ -23,13 +23,22 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--csv", default=str(ROOT / "bench/results/world-lanes/box-buckets.csv"))
     a = ap.parse_args(argv)
-    rows = list(csv.DictReader(open(a.csv, newline="")))
+    try:
+        rows = list(csv.DictReader(open(a.csv, newline="")))
+    except OSError as e:
+        raise SystemExit(f"{a.csv}: cannot read it: {e.strerror}")
+    missing = [k for k in TERMS + ["total"] if not rows or k not in rows[0]]
+    if missing:
+        raise SystemExit(f"{a.csv}: not a BroadPhaseCycleReport CSV with rows (no column {', '.join(missing)})")
     configs = {tuple(r.get(k) for k in CONFIG) for r in rows}
     if len(configs) != 1:
         raise SystemExit(f"{a.csv}: rows of {len(configs)} configurations; fit one at a time")
-    for r in rows:
+    for n, r in enumerate(rows, start=2):
         for k in TERMS + ["total"]:
-            r[k] = int(r[k])
+            try:
+                r[k] = int(r[k])
+            except ValueError:
+                raise SystemExit(f"{a.csv} line {n}: {k} is '{r[k]}', not a whole number")
     out = [f"Least squares over the {len(rows)} worlds of {Path(a.csv).name} (no constant term):", ""]
     coef, worst = fit(rows, "total", TERMS)
     out.append(f"- total cycles = {formula(coef, TERMS)}; worst residual {worst:.1f} %")
