@@ -7,7 +7,7 @@
 namespace collide::contract {
 
 // CSR indices (64-bit host writes)
-inline constexpr std::uint32_t CSR_CTRL = 0u;  // write CTRL_START to start a run
+inline constexpr std::uint32_t CSR_CTRL = 0u;  // write CTRL_START to start a run (during a run: queued where afu.runQueue, else ignored)
 inline constexpr std::uint32_t CSR_SPHERE_BASE = 1u;  // line address of the sphere table
 inline constexpr std::uint32_t CSR_NUM_SPHERES = 2u;  // spheres in the table
 inline constexpr std::uint32_t CSR_PAIR_BASE = 3u;  // line address of the pair list

@@ -4,7 +4,7 @@
 `define COLLIDE_AFU_CONTRACT_SVH
 
 // CSR indices (64-bit host writes)
-localparam int unsigned AFU_CSR_CTRL = 0;  // write CTRL_START to start a run
+localparam int unsigned AFU_CSR_CTRL = 0;  // write CTRL_START to start a run (during a run: queued where afu.runQueue, else ignored)
 localparam int unsigned AFU_CSR_SPHERE_BASE = 1;  // line address of the sphere table
 localparam int unsigned AFU_CSR_NUM_SPHERES = 2;  // spheres in the table
 localparam int unsigned AFU_CSR_PAIR_BASE = 3;  // line address of the pair list

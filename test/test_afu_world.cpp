@@ -132,6 +132,65 @@ TEST(AfuWorld, CutsAWorldLargerThanARunIntoSlabsAndFindsEveryContactOnce) {
   }
 }
 
+TEST(AfuWorld, QueuesItsRunsInOneCallWithTheSameContactsSoonerThanRunByRun) {
+  // The world preset has a run queue: a world of several runs is one call, each run's table
+  // loading while the run before it computes. The same AFU driven run by run (queue off in the
+  // driver) gives the same contacts bit for bit; the queue takes less modelled time, and the
+  // runs after the first wait for (almost) none of their table.
+  const auto seed = test::testSeed(1308);
+  test::WorldShape s;
+  s.spheres = 3000;
+  s.extent = 14;
+  const auto t = test::randomWorld(seed, s);
+  const auto want = onCpu(t);
+  ASSERT_GT(want.pairs.size(), 300u);
+  for (const char* preset : {"qpi", "ideal"}) {
+    const auto lp = link::presetParams(preset);
+    world::AfuWorld queued("", lp);
+    ASSERT_TRUE(queued.driver().options().runQueue) << "the world preset's manifest says afu.runQueue";
+    auto byRun = worldOptions();
+    byRun.runQueue = false;
+    world::AfuWorld single(driver::makeAfuPort("", {}), lp, byRun);
+    queued.setMaxRunSpheres(1000);
+    single.setMaxRunSpheres(1000);
+    world::WorldContacts a, b;
+    queued.collide(t, a);
+    single.collide(t, b);
+    expectSame(a, want, std::string("queued runs, ") + preset);
+    expectSame(b, want, std::string("run by run, ") + preset);
+    ASSERT_GE(queued.lastSlabs(), 3u);
+    EXPECT_EQ(queued.lastSlabs(), single.lastSlabs());
+    EXPECT_EQ(queued.lastCalls(), 1u);
+    EXPECT_EQ(single.lastCalls(), single.lastSlabs());
+    const auto& q = queued.lastRun();
+    const auto& r = single.lastRun();
+    EXPECT_EQ(q.run.status.pairsProcessed, r.run.status.pairsProcessed) << preset;
+    EXPECT_EQ(q.run.stats.readLines, r.run.stats.readLines) << preset;
+    EXPECT_LT(q.run.stats.modelledNs, r.run.stats.modelledNs) << preset;
+    EXPECT_GE(q.run.stats.modelledNs, q.run.stats.linkBoundNs) << preset;
+    // Cycles waiting for a table: the first run's, and little more.
+    EXPECT_LT(q.run.status.cyclesLoading * 2, r.run.status.cyclesLoading) << preset;
+  }
+}
+
+TEST(AfuWorld, RunsAQueuedRunAgainWhenItsBufferIsTooSmall) {
+  // Dense: more than 8 contacts a sphere, so every queued run's first buffer (8 records a
+  // sphere) is too small; each is run again alone with room for all. Every contact once.
+  std::mt19937_64 rng(test::testSeed(1309));
+  std::uniform_real_distribution<double> along(0, 12), across(0, 2.5);
+  SphereTable t;  // a bar along x: slabs of 400 hold a slab's spheres and those within reach
+  for (int k = 0; k < 900; ++k) t.push(along(rng), across(rng), across(rng), 0.5);
+  const auto want = onCpu(t);
+  ASSERT_GT(want.pairs.size(), 9 * t.size() / 2) << "the world must be dense for this test";
+  world::AfuWorld afu("", link::presetParams("ideal"));
+  afu.setMaxRunSpheres(400);
+  world::WorldContacts got;
+  afu.collide(t, got);
+  expectSame(got, want, "queued runs with buffers too small");
+  EXPECT_GT(afu.lastCalls(), 1u);
+  EXPECT_EQ(afu.lastRun().attempts, afu.lastSlabs() + afu.lastCalls() - 1);
+}
+
 TEST(AfuWorld, CutsAWorldTooThickForSlabsIntoBoxesAndFindsEveryContactOnce) {
   // A wall of 8 x 30 x 3 touching spheres (0.9 apart, radius 0.5; jittered): a sphere and
   // those within reach along x are about 180 of them, so runs of 150 cannot be slabs; boxes

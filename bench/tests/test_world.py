@@ -64,6 +64,20 @@ class AfuWorldReport(unittest.TestCase):
                            "cycles_broad", "ode_sap_ns", "simd_grid_ns", "ode_over_afu", "grid_over_afu"], 2.0)
         return r | {"cloud": cloud, "spheres": float(spheres), "link": link, "contacts": 3.0 * spheres}
 
+    def test_an_earlier_csv_puts_its_time_beside_each_row_and_a_foreign_one_is_refused(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = Path(d)
+            rows = [self.row("uniform", 670, "qpi"), self.row("uniform", 2000, "qpi")]
+            afu_world.report(rows, out, "## How and where\n", lanes=16, ports=8, compare={("uniform", 670, "qpi"): 4500.0})
+            text = (out / "README.md").read_text()
+            self.assertIn("| calls | AFU (us) | before (us) | link bound", text)
+            self.assertIn("| 670 | 2,010 | qpi | 2 | 2 | 0.0 | 4.5 |", text)
+            self.assertIn("| 2,000 | 6,000 | qpi | 2 | 2 | 0.0 | - |", text)  # no earlier row
+            (out / "bad.csv").write_text("a,b\n1,2\n")
+            with self.assertRaises(SystemExit) as e:
+                afu_world.compared(str(out / "bad.csv"))
+            self.assertIn("not a world-afu.csv", str(e.exception))
+
     def test_a_refused_world_is_listed_under_its_cloud_and_the_diamond_gets_its_section(self):
         with tempfile.TemporaryDirectory() as d:
             out = Path(d)

@@ -63,6 +63,8 @@ def main(argv=None):
     ap.add_argument("--built", default="", help="where --collide was built, for MACHINE.md (e.g. a clean clone at a commit)")
     ap.add_argument("--out", default=str(ROOT / "bench/results/world-afu"))
     ap.add_argument("--report-only", action="store_true", help="rewrite README.md from OUT/world-afu.csv")
+    ap.add_argument("--compare", default="", metavar="CSV",
+                    help="an earlier world-afu.csv (e.g. run by run, before the run queue): its AFU time beside each row's")
     a = ap.parse_args(argv)
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -72,7 +74,7 @@ def main(argv=None):
             ap.error(f"--clouds: unknown cloud {kind!r} (known: {', '.join(CLOUDS)})")
     earlier = out / "world-afu.csv"
     if a.report_only:
-        report(read_rows(earlier), out, (out / "MACHINE.md").read_text(), *lanes_of(a.afu))
+        report(read_rows(earlier), out, (out / "MACHINE.md").read_text(), *lanes_of(a.afu), compare=compared(a.compare))
         return 0
     start = world.machine()
     # Kept rows are written back as read (their text), and parsed for the report.
@@ -110,7 +112,7 @@ def main(argv=None):
                     row = {"cloud": kind, "spheres": n, "link": link, "candidates": s["candidates"],
                            "contacts": s["contacts"], "afu_ns": f["modelled_ns"], "link_bound_ns": f["link_bound_ns"],
                            "afu_over_bound": f["modelled_ns"] / f["link_bound_ns"], "runs": f["runs"],
-                           "slabs": f["slabs"],
+                           "slabs": f["slabs"], "calls": f.get("calls", f["slabs"]),
                            "read_lines": f["read_lines"], "write_lines": f["write_lines"],
                            "cycles_total": f["cycles_total"], "cycles_broad": f["cycles_broad"],
                            "cycles_load": f["cycles_load"], "cell_edge": f["cell_edge"], "large": f["large"],
@@ -135,8 +137,18 @@ def main(argv=None):
         old = kept_sections(earlier_machine, sorted({r["cloud"] for r in kept}), clouds)
         machine_md = old + "\n\n" + machine_md.replace("## How and where", "## How and where: " + ", ".join(clouds), 1)
         (out / "MACHINE.md").write_text(machine_md)
-    report(rows, out, machine_md, *lanes_of(a.afu))
+    report(rows, out, machine_md, *lanes_of(a.afu), compare=compared(a.compare))
     return 0
+
+
+def compared(path):
+    """An earlier CSV's AFU time by (cloud, spheres, link), or {} without one."""
+    if not path:
+        return {}
+    try:
+        return {(r["cloud"], int(float(r["spheres"])), r["link"]): float(r["afu_ns"]) for r in csv.DictReader(open(path, newline=""))}
+    except (OSError, KeyError, ValueError) as e:
+        sys.exit(f"afu_world: --compare {path}: not a world-afu.csv ({e})")
 
 
 def kept_sections(text, kept_clouds, rerun):
@@ -173,26 +185,33 @@ def lanes_of(afu):
     return int(bp.get("lanes", 1)), int(bp.get("sortPorts", 1))
 
 
-def report(rows, out, machine_md, lanes, ports=1):
+def report(rows, out, machine_md, lanes, ports=1, compare=None):
     plural = "s" if lanes > 1 else ""
     spheres_a_cycle = f"{ports} sphere{'s' if ports > 1 else ''} a cycle"
     lines = ["# World mode on the AFU against ODE and the CPU grid", "",
              f"`collide spheres --afu generated/world` (the on-chip broad phase, {lanes} candidate lane{plural} and its sort's passes {spheres_a_cycle}, and 16 fp32",
              "SCPUs; time modelled by the link model; above 4,096 spheres the host cuts the world into slabs",
-             "along x, or boxes along x and y, one AFU run each, all runs' time summed) beside `--backend ode",
+             "along x, or boxes along x and y, one AFU run each, all in one call through the AFU's run queue where",
+             "the manifest has one: each run's table loads while the run before it computes) beside `--backend ode",
              "--space sap` (ODE 0.16's sweep-and-prune space + dCollide, binary64) and `--backend simd` (our",
              "grid + the binary32 kernel),",
              "both wall clock, fastest of N, on the same spheres in the same run (bench/world/afu_world.py).",
              "The AFU's contacts equal simd's byte for byte in every row (the script stops otherwise).",
-             "Every number: [world-afu.csv](world-afu.csv).", ""]
+             "Every number: [world-afu.csv](world-afu.csv)." +
+             (" \"Before\": the same row's AFU time in the CSV given to --compare (see MACHINE.md's command)." if compare else ""), ""]
+    cmp = compare or {}
     for kind in [c for c in CLOUDS if any(r["cloud"] == c for r in rows)]:
         lines += [f"## {kind}" + (" (the paper's diamond at step 0, the largest with at most the row's size)" if kind == "diamond" else ""), "",
-                  "| spheres | contacts | link | AFU runs | AFU (us) | link bound (us) | AFU / bound | broad-phase cycles | ODE sap (us) | ODE / AFU | grid (us) | grid / AFU |",
-                  "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+                  "| spheres | contacts | link | AFU runs | calls | AFU (us) | " + ("before (us) | " if cmp else "") +
+                  "link bound (us) | AFU / bound | broad-phase cycles | ODE sap (us) | ODE / AFU | grid (us) | grid / AFU |",
+                  "|---:|---:|---|---:|---:|---:|" + ("---:|" if cmp else "") + "---:|---:|---:|---:|---:|---:|---:|"]
         for r in rows:
             if r["cloud"] != kind:
                 continue
-            lines.append(f"| {int(r['spheres']):,} | {int(r['contacts']):,} | {r['link']} | {int(r['slabs'])} | {r['afu_ns'] / 1e3:,.1f} | "
+            was = cmp.get((r["cloud"], int(r["spheres"]), r["link"]))
+            before = (f"{was / 1e3:,.1f} | " if was else "- | ") if cmp else ""
+            lines.append(f"| {int(r['spheres']):,} | {int(r['contacts']):,} | {r['link']} | {int(r['slabs'])} | "
+                         f"{int(r.get('calls', r['slabs']))} | {r['afu_ns'] / 1e3:,.1f} | {before}"
                          f"{r['link_bound_ns'] / 1e3:,.1f} | {r['afu_over_bound']:.1f}x | {int(r['cycles_broad']):,} | "
                          f"{r['ode_sap_ns'] / 1e3:,.1f} | {r['ode_over_afu']:.2f}x | {r['simd_grid_ns'] / 1e3:,.1f} | "
                          f"{r['grid_over_afu']:.2f}x |")
@@ -228,7 +247,8 @@ def report(rows, out, machine_md, lanes, ports=1):
               "  \"Coarse chunks\", \"The fed table and eight sort ports\", \"Claimed work\", \"Queued hits and 32 counters a word\", \"Box buckets\").",
               ] + diamond_note + [
               "- Above 4,096 spheres (the world preset's table; a record names i and j in 12 bits each) every",
-              "  slab along x is a run of its own, with the per-call costs each time and its ghosts read twice;",
+              "  slab along x is a run of its own, its ghosts read twice; with the run queue all runs are one call",
+              "  (one transaction's costs, and one call's link bound), each table read while the run before computes;",
               "  where slabs cannot hold a world (more than 4,096 spheres within reach of one x slice, as in the",
               "  64,906-sphere diamond) the host cuts boxes along x and y instead (docs/host.md). One run of a",
               "  whole 64k world needs wider record tags (not built; banked sphere RAM, which makes its table",

@@ -1546,7 +1546,7 @@ module ReadEngine_r64_p64_default(
 endmodule
 
 // VCS coverage exclude_file
-module mem_256x512_default(
+module mems_0_256x512_default(
   input  [7:0]   R0_addr,
   input          R0_en,
                  R0_clk,
@@ -1765,89 +1765,89 @@ module SphereRam_s1024_c16_default(
                  io_rdata_15_1_r
 );
 
-  wire [511:0] _mem_15_ext_R0_data;
-  wire [511:0] _mem_15_ext_R1_data;
-  wire [511:0] _mem_14_ext_R0_data;
-  wire [511:0] _mem_14_ext_R1_data;
-  wire [511:0] _mem_13_ext_R0_data;
-  wire [511:0] _mem_13_ext_R1_data;
-  wire [511:0] _mem_12_ext_R0_data;
-  wire [511:0] _mem_12_ext_R1_data;
-  wire [511:0] _mem_11_ext_R0_data;
-  wire [511:0] _mem_11_ext_R1_data;
-  wire [511:0] _mem_10_ext_R0_data;
-  wire [511:0] _mem_10_ext_R1_data;
-  wire [511:0] _mem_9_ext_R0_data;
-  wire [511:0] _mem_9_ext_R1_data;
-  wire [511:0] _mem_8_ext_R0_data;
-  wire [511:0] _mem_8_ext_R1_data;
-  wire [511:0] _mem_7_ext_R0_data;
-  wire [511:0] _mem_7_ext_R1_data;
-  wire [511:0] _mem_6_ext_R0_data;
-  wire [511:0] _mem_6_ext_R1_data;
-  wire [511:0] _mem_5_ext_R0_data;
-  wire [511:0] _mem_5_ext_R1_data;
-  wire [511:0] _mem_4_ext_R0_data;
-  wire [511:0] _mem_4_ext_R1_data;
-  wire [511:0] _mem_3_ext_R0_data;
-  wire [511:0] _mem_3_ext_R1_data;
-  wire [511:0] _mem_2_ext_R0_data;
-  wire [511:0] _mem_2_ext_R1_data;
-  wire [511:0] _mem_1_ext_R0_data;
-  wire [511:0] _mem_1_ext_R1_data;
-  wire [511:0] _mem_ext_R0_data;
-  wire [511:0] _mem_ext_R1_data;
+  wire [511:0] _mems_0_15_ext_R0_data;
+  wire [511:0] _mems_0_15_ext_R1_data;
+  wire [511:0] _mems_0_14_ext_R0_data;
+  wire [511:0] _mems_0_14_ext_R1_data;
+  wire [511:0] _mems_0_13_ext_R0_data;
+  wire [511:0] _mems_0_13_ext_R1_data;
+  wire [511:0] _mems_0_12_ext_R0_data;
+  wire [511:0] _mems_0_12_ext_R1_data;
+  wire [511:0] _mems_0_11_ext_R0_data;
+  wire [511:0] _mems_0_11_ext_R1_data;
+  wire [511:0] _mems_0_10_ext_R0_data;
+  wire [511:0] _mems_0_10_ext_R1_data;
+  wire [511:0] _mems_0_9_ext_R0_data;
+  wire [511:0] _mems_0_9_ext_R1_data;
+  wire [511:0] _mems_0_8_ext_R0_data;
+  wire [511:0] _mems_0_8_ext_R1_data;
+  wire [511:0] _mems_0_7_ext_R0_data;
+  wire [511:0] _mems_0_7_ext_R1_data;
+  wire [511:0] _mems_0_6_ext_R0_data;
+  wire [511:0] _mems_0_6_ext_R1_data;
+  wire [511:0] _mems_0_5_ext_R0_data;
+  wire [511:0] _mems_0_5_ext_R1_data;
+  wire [511:0] _mems_0_4_ext_R0_data;
+  wire [511:0] _mems_0_4_ext_R1_data;
+  wire [511:0] _mems_0_3_ext_R0_data;
+  wire [511:0] _mems_0_3_ext_R1_data;
+  wire [511:0] _mems_0_2_ext_R0_data;
+  wire [511:0] _mems_0_2_ext_R1_data;
+  wire [511:0] _mems_0_1_ext_R0_data;
+  wire [511:0] _mems_0_1_ext_R1_data;
+  wire [511:0] _mems_0_ext_R0_data;
+  wire [511:0] _mems_0_ext_R1_data;
   reg  [1:0]   sel;
   reg  [31:0]  casez_tmp;
   always @(*) begin
     casez (sel)
       2'b00:
-        casez_tmp = _mem_ext_R1_data[31:0];
+        casez_tmp = _mems_0_ext_R1_data[31:0];
       2'b01:
-        casez_tmp = _mem_ext_R1_data[159:128];
+        casez_tmp = _mems_0_ext_R1_data[159:128];
       2'b10:
-        casez_tmp = _mem_ext_R1_data[287:256];
+        casez_tmp = _mems_0_ext_R1_data[287:256];
       default:
-        casez_tmp = _mem_ext_R1_data[415:384];
+        casez_tmp = _mems_0_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_0;
   always @(*) begin
     casez (sel)
       2'b00:
-        casez_tmp_0 = _mem_ext_R1_data[63:32];
+        casez_tmp_0 = _mems_0_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_0 = _mem_ext_R1_data[191:160];
+        casez_tmp_0 = _mems_0_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_0 = _mem_ext_R1_data[319:288];
+        casez_tmp_0 = _mems_0_ext_R1_data[319:288];
       default:
-        casez_tmp_0 = _mem_ext_R1_data[447:416];
+        casez_tmp_0 = _mems_0_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_1;
   always @(*) begin
     casez (sel)
       2'b00:
-        casez_tmp_1 = _mem_ext_R1_data[95:64];
+        casez_tmp_1 = _mems_0_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_1 = _mem_ext_R1_data[223:192];
+        casez_tmp_1 = _mems_0_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_1 = _mem_ext_R1_data[351:320];
+        casez_tmp_1 = _mems_0_ext_R1_data[351:320];
       default:
-        casez_tmp_1 = _mem_ext_R1_data[479:448];
+        casez_tmp_1 = _mems_0_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_2;
   always @(*) begin
     casez (sel)
       2'b00:
-        casez_tmp_2 = _mem_ext_R1_data[127:96];
+        casez_tmp_2 = _mems_0_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_2 = _mem_ext_R1_data[255:224];
+        casez_tmp_2 = _mems_0_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_2 = _mem_ext_R1_data[383:352];
+        casez_tmp_2 = _mems_0_ext_R1_data[383:352];
       default:
-        casez_tmp_2 = _mem_ext_R1_data[511:480];
+        casez_tmp_2 = _mems_0_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_1;
@@ -1855,52 +1855,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_1)
       2'b00:
-        casez_tmp_3 = _mem_ext_R0_data[31:0];
+        casez_tmp_3 = _mems_0_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_3 = _mem_ext_R0_data[159:128];
+        casez_tmp_3 = _mems_0_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_3 = _mem_ext_R0_data[287:256];
+        casez_tmp_3 = _mems_0_ext_R0_data[287:256];
       default:
-        casez_tmp_3 = _mem_ext_R0_data[415:384];
+        casez_tmp_3 = _mems_0_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_4;
   always @(*) begin
     casez (sel_1)
       2'b00:
-        casez_tmp_4 = _mem_ext_R0_data[63:32];
+        casez_tmp_4 = _mems_0_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_4 = _mem_ext_R0_data[191:160];
+        casez_tmp_4 = _mems_0_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_4 = _mem_ext_R0_data[319:288];
+        casez_tmp_4 = _mems_0_ext_R0_data[319:288];
       default:
-        casez_tmp_4 = _mem_ext_R0_data[447:416];
+        casez_tmp_4 = _mems_0_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_5;
   always @(*) begin
     casez (sel_1)
       2'b00:
-        casez_tmp_5 = _mem_ext_R0_data[95:64];
+        casez_tmp_5 = _mems_0_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_5 = _mem_ext_R0_data[223:192];
+        casez_tmp_5 = _mems_0_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_5 = _mem_ext_R0_data[351:320];
+        casez_tmp_5 = _mems_0_ext_R0_data[351:320];
       default:
-        casez_tmp_5 = _mem_ext_R0_data[479:448];
+        casez_tmp_5 = _mems_0_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_6;
   always @(*) begin
     casez (sel_1)
       2'b00:
-        casez_tmp_6 = _mem_ext_R0_data[127:96];
+        casez_tmp_6 = _mems_0_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_6 = _mem_ext_R0_data[255:224];
+        casez_tmp_6 = _mems_0_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_6 = _mem_ext_R0_data[383:352];
+        casez_tmp_6 = _mems_0_ext_R0_data[383:352];
       default:
-        casez_tmp_6 = _mem_ext_R0_data[511:480];
+        casez_tmp_6 = _mems_0_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_2;
@@ -1908,52 +1908,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_2)
       2'b00:
-        casez_tmp_7 = _mem_1_ext_R1_data[31:0];
+        casez_tmp_7 = _mems_0_1_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_7 = _mem_1_ext_R1_data[159:128];
+        casez_tmp_7 = _mems_0_1_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_7 = _mem_1_ext_R1_data[287:256];
+        casez_tmp_7 = _mems_0_1_ext_R1_data[287:256];
       default:
-        casez_tmp_7 = _mem_1_ext_R1_data[415:384];
+        casez_tmp_7 = _mems_0_1_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_8;
   always @(*) begin
     casez (sel_2)
       2'b00:
-        casez_tmp_8 = _mem_1_ext_R1_data[63:32];
+        casez_tmp_8 = _mems_0_1_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_8 = _mem_1_ext_R1_data[191:160];
+        casez_tmp_8 = _mems_0_1_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_8 = _mem_1_ext_R1_data[319:288];
+        casez_tmp_8 = _mems_0_1_ext_R1_data[319:288];
       default:
-        casez_tmp_8 = _mem_1_ext_R1_data[447:416];
+        casez_tmp_8 = _mems_0_1_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_9;
   always @(*) begin
     casez (sel_2)
       2'b00:
-        casez_tmp_9 = _mem_1_ext_R1_data[95:64];
+        casez_tmp_9 = _mems_0_1_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_9 = _mem_1_ext_R1_data[223:192];
+        casez_tmp_9 = _mems_0_1_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_9 = _mem_1_ext_R1_data[351:320];
+        casez_tmp_9 = _mems_0_1_ext_R1_data[351:320];
       default:
-        casez_tmp_9 = _mem_1_ext_R1_data[479:448];
+        casez_tmp_9 = _mems_0_1_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_10;
   always @(*) begin
     casez (sel_2)
       2'b00:
-        casez_tmp_10 = _mem_1_ext_R1_data[127:96];
+        casez_tmp_10 = _mems_0_1_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_10 = _mem_1_ext_R1_data[255:224];
+        casez_tmp_10 = _mems_0_1_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_10 = _mem_1_ext_R1_data[383:352];
+        casez_tmp_10 = _mems_0_1_ext_R1_data[383:352];
       default:
-        casez_tmp_10 = _mem_1_ext_R1_data[511:480];
+        casez_tmp_10 = _mems_0_1_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_3;
@@ -1961,52 +1961,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_3)
       2'b00:
-        casez_tmp_11 = _mem_1_ext_R0_data[31:0];
+        casez_tmp_11 = _mems_0_1_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_11 = _mem_1_ext_R0_data[159:128];
+        casez_tmp_11 = _mems_0_1_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_11 = _mem_1_ext_R0_data[287:256];
+        casez_tmp_11 = _mems_0_1_ext_R0_data[287:256];
       default:
-        casez_tmp_11 = _mem_1_ext_R0_data[415:384];
+        casez_tmp_11 = _mems_0_1_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_12;
   always @(*) begin
     casez (sel_3)
       2'b00:
-        casez_tmp_12 = _mem_1_ext_R0_data[63:32];
+        casez_tmp_12 = _mems_0_1_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_12 = _mem_1_ext_R0_data[191:160];
+        casez_tmp_12 = _mems_0_1_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_12 = _mem_1_ext_R0_data[319:288];
+        casez_tmp_12 = _mems_0_1_ext_R0_data[319:288];
       default:
-        casez_tmp_12 = _mem_1_ext_R0_data[447:416];
+        casez_tmp_12 = _mems_0_1_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_13;
   always @(*) begin
     casez (sel_3)
       2'b00:
-        casez_tmp_13 = _mem_1_ext_R0_data[95:64];
+        casez_tmp_13 = _mems_0_1_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_13 = _mem_1_ext_R0_data[223:192];
+        casez_tmp_13 = _mems_0_1_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_13 = _mem_1_ext_R0_data[351:320];
+        casez_tmp_13 = _mems_0_1_ext_R0_data[351:320];
       default:
-        casez_tmp_13 = _mem_1_ext_R0_data[479:448];
+        casez_tmp_13 = _mems_0_1_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_14;
   always @(*) begin
     casez (sel_3)
       2'b00:
-        casez_tmp_14 = _mem_1_ext_R0_data[127:96];
+        casez_tmp_14 = _mems_0_1_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_14 = _mem_1_ext_R0_data[255:224];
+        casez_tmp_14 = _mems_0_1_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_14 = _mem_1_ext_R0_data[383:352];
+        casez_tmp_14 = _mems_0_1_ext_R0_data[383:352];
       default:
-        casez_tmp_14 = _mem_1_ext_R0_data[511:480];
+        casez_tmp_14 = _mems_0_1_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_4;
@@ -2014,52 +2014,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_4)
       2'b00:
-        casez_tmp_15 = _mem_2_ext_R1_data[31:0];
+        casez_tmp_15 = _mems_0_2_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_15 = _mem_2_ext_R1_data[159:128];
+        casez_tmp_15 = _mems_0_2_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_15 = _mem_2_ext_R1_data[287:256];
+        casez_tmp_15 = _mems_0_2_ext_R1_data[287:256];
       default:
-        casez_tmp_15 = _mem_2_ext_R1_data[415:384];
+        casez_tmp_15 = _mems_0_2_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_16;
   always @(*) begin
     casez (sel_4)
       2'b00:
-        casez_tmp_16 = _mem_2_ext_R1_data[63:32];
+        casez_tmp_16 = _mems_0_2_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_16 = _mem_2_ext_R1_data[191:160];
+        casez_tmp_16 = _mems_0_2_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_16 = _mem_2_ext_R1_data[319:288];
+        casez_tmp_16 = _mems_0_2_ext_R1_data[319:288];
       default:
-        casez_tmp_16 = _mem_2_ext_R1_data[447:416];
+        casez_tmp_16 = _mems_0_2_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_17;
   always @(*) begin
     casez (sel_4)
       2'b00:
-        casez_tmp_17 = _mem_2_ext_R1_data[95:64];
+        casez_tmp_17 = _mems_0_2_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_17 = _mem_2_ext_R1_data[223:192];
+        casez_tmp_17 = _mems_0_2_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_17 = _mem_2_ext_R1_data[351:320];
+        casez_tmp_17 = _mems_0_2_ext_R1_data[351:320];
       default:
-        casez_tmp_17 = _mem_2_ext_R1_data[479:448];
+        casez_tmp_17 = _mems_0_2_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_18;
   always @(*) begin
     casez (sel_4)
       2'b00:
-        casez_tmp_18 = _mem_2_ext_R1_data[127:96];
+        casez_tmp_18 = _mems_0_2_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_18 = _mem_2_ext_R1_data[255:224];
+        casez_tmp_18 = _mems_0_2_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_18 = _mem_2_ext_R1_data[383:352];
+        casez_tmp_18 = _mems_0_2_ext_R1_data[383:352];
       default:
-        casez_tmp_18 = _mem_2_ext_R1_data[511:480];
+        casez_tmp_18 = _mems_0_2_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_5;
@@ -2067,52 +2067,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_5)
       2'b00:
-        casez_tmp_19 = _mem_2_ext_R0_data[31:0];
+        casez_tmp_19 = _mems_0_2_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_19 = _mem_2_ext_R0_data[159:128];
+        casez_tmp_19 = _mems_0_2_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_19 = _mem_2_ext_R0_data[287:256];
+        casez_tmp_19 = _mems_0_2_ext_R0_data[287:256];
       default:
-        casez_tmp_19 = _mem_2_ext_R0_data[415:384];
+        casez_tmp_19 = _mems_0_2_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_20;
   always @(*) begin
     casez (sel_5)
       2'b00:
-        casez_tmp_20 = _mem_2_ext_R0_data[63:32];
+        casez_tmp_20 = _mems_0_2_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_20 = _mem_2_ext_R0_data[191:160];
+        casez_tmp_20 = _mems_0_2_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_20 = _mem_2_ext_R0_data[319:288];
+        casez_tmp_20 = _mems_0_2_ext_R0_data[319:288];
       default:
-        casez_tmp_20 = _mem_2_ext_R0_data[447:416];
+        casez_tmp_20 = _mems_0_2_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_21;
   always @(*) begin
     casez (sel_5)
       2'b00:
-        casez_tmp_21 = _mem_2_ext_R0_data[95:64];
+        casez_tmp_21 = _mems_0_2_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_21 = _mem_2_ext_R0_data[223:192];
+        casez_tmp_21 = _mems_0_2_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_21 = _mem_2_ext_R0_data[351:320];
+        casez_tmp_21 = _mems_0_2_ext_R0_data[351:320];
       default:
-        casez_tmp_21 = _mem_2_ext_R0_data[479:448];
+        casez_tmp_21 = _mems_0_2_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_22;
   always @(*) begin
     casez (sel_5)
       2'b00:
-        casez_tmp_22 = _mem_2_ext_R0_data[127:96];
+        casez_tmp_22 = _mems_0_2_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_22 = _mem_2_ext_R0_data[255:224];
+        casez_tmp_22 = _mems_0_2_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_22 = _mem_2_ext_R0_data[383:352];
+        casez_tmp_22 = _mems_0_2_ext_R0_data[383:352];
       default:
-        casez_tmp_22 = _mem_2_ext_R0_data[511:480];
+        casez_tmp_22 = _mems_0_2_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_6;
@@ -2120,52 +2120,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_6)
       2'b00:
-        casez_tmp_23 = _mem_3_ext_R1_data[31:0];
+        casez_tmp_23 = _mems_0_3_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_23 = _mem_3_ext_R1_data[159:128];
+        casez_tmp_23 = _mems_0_3_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_23 = _mem_3_ext_R1_data[287:256];
+        casez_tmp_23 = _mems_0_3_ext_R1_data[287:256];
       default:
-        casez_tmp_23 = _mem_3_ext_R1_data[415:384];
+        casez_tmp_23 = _mems_0_3_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_24;
   always @(*) begin
     casez (sel_6)
       2'b00:
-        casez_tmp_24 = _mem_3_ext_R1_data[63:32];
+        casez_tmp_24 = _mems_0_3_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_24 = _mem_3_ext_R1_data[191:160];
+        casez_tmp_24 = _mems_0_3_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_24 = _mem_3_ext_R1_data[319:288];
+        casez_tmp_24 = _mems_0_3_ext_R1_data[319:288];
       default:
-        casez_tmp_24 = _mem_3_ext_R1_data[447:416];
+        casez_tmp_24 = _mems_0_3_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_25;
   always @(*) begin
     casez (sel_6)
       2'b00:
-        casez_tmp_25 = _mem_3_ext_R1_data[95:64];
+        casez_tmp_25 = _mems_0_3_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_25 = _mem_3_ext_R1_data[223:192];
+        casez_tmp_25 = _mems_0_3_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_25 = _mem_3_ext_R1_data[351:320];
+        casez_tmp_25 = _mems_0_3_ext_R1_data[351:320];
       default:
-        casez_tmp_25 = _mem_3_ext_R1_data[479:448];
+        casez_tmp_25 = _mems_0_3_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_26;
   always @(*) begin
     casez (sel_6)
       2'b00:
-        casez_tmp_26 = _mem_3_ext_R1_data[127:96];
+        casez_tmp_26 = _mems_0_3_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_26 = _mem_3_ext_R1_data[255:224];
+        casez_tmp_26 = _mems_0_3_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_26 = _mem_3_ext_R1_data[383:352];
+        casez_tmp_26 = _mems_0_3_ext_R1_data[383:352];
       default:
-        casez_tmp_26 = _mem_3_ext_R1_data[511:480];
+        casez_tmp_26 = _mems_0_3_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_7;
@@ -2173,52 +2173,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_7)
       2'b00:
-        casez_tmp_27 = _mem_3_ext_R0_data[31:0];
+        casez_tmp_27 = _mems_0_3_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_27 = _mem_3_ext_R0_data[159:128];
+        casez_tmp_27 = _mems_0_3_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_27 = _mem_3_ext_R0_data[287:256];
+        casez_tmp_27 = _mems_0_3_ext_R0_data[287:256];
       default:
-        casez_tmp_27 = _mem_3_ext_R0_data[415:384];
+        casez_tmp_27 = _mems_0_3_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_28;
   always @(*) begin
     casez (sel_7)
       2'b00:
-        casez_tmp_28 = _mem_3_ext_R0_data[63:32];
+        casez_tmp_28 = _mems_0_3_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_28 = _mem_3_ext_R0_data[191:160];
+        casez_tmp_28 = _mems_0_3_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_28 = _mem_3_ext_R0_data[319:288];
+        casez_tmp_28 = _mems_0_3_ext_R0_data[319:288];
       default:
-        casez_tmp_28 = _mem_3_ext_R0_data[447:416];
+        casez_tmp_28 = _mems_0_3_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_29;
   always @(*) begin
     casez (sel_7)
       2'b00:
-        casez_tmp_29 = _mem_3_ext_R0_data[95:64];
+        casez_tmp_29 = _mems_0_3_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_29 = _mem_3_ext_R0_data[223:192];
+        casez_tmp_29 = _mems_0_3_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_29 = _mem_3_ext_R0_data[351:320];
+        casez_tmp_29 = _mems_0_3_ext_R0_data[351:320];
       default:
-        casez_tmp_29 = _mem_3_ext_R0_data[479:448];
+        casez_tmp_29 = _mems_0_3_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_30;
   always @(*) begin
     casez (sel_7)
       2'b00:
-        casez_tmp_30 = _mem_3_ext_R0_data[127:96];
+        casez_tmp_30 = _mems_0_3_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_30 = _mem_3_ext_R0_data[255:224];
+        casez_tmp_30 = _mems_0_3_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_30 = _mem_3_ext_R0_data[383:352];
+        casez_tmp_30 = _mems_0_3_ext_R0_data[383:352];
       default:
-        casez_tmp_30 = _mem_3_ext_R0_data[511:480];
+        casez_tmp_30 = _mems_0_3_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_8;
@@ -2226,52 +2226,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_8)
       2'b00:
-        casez_tmp_31 = _mem_4_ext_R1_data[31:0];
+        casez_tmp_31 = _mems_0_4_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_31 = _mem_4_ext_R1_data[159:128];
+        casez_tmp_31 = _mems_0_4_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_31 = _mem_4_ext_R1_data[287:256];
+        casez_tmp_31 = _mems_0_4_ext_R1_data[287:256];
       default:
-        casez_tmp_31 = _mem_4_ext_R1_data[415:384];
+        casez_tmp_31 = _mems_0_4_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_32;
   always @(*) begin
     casez (sel_8)
       2'b00:
-        casez_tmp_32 = _mem_4_ext_R1_data[63:32];
+        casez_tmp_32 = _mems_0_4_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_32 = _mem_4_ext_R1_data[191:160];
+        casez_tmp_32 = _mems_0_4_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_32 = _mem_4_ext_R1_data[319:288];
+        casez_tmp_32 = _mems_0_4_ext_R1_data[319:288];
       default:
-        casez_tmp_32 = _mem_4_ext_R1_data[447:416];
+        casez_tmp_32 = _mems_0_4_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_33;
   always @(*) begin
     casez (sel_8)
       2'b00:
-        casez_tmp_33 = _mem_4_ext_R1_data[95:64];
+        casez_tmp_33 = _mems_0_4_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_33 = _mem_4_ext_R1_data[223:192];
+        casez_tmp_33 = _mems_0_4_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_33 = _mem_4_ext_R1_data[351:320];
+        casez_tmp_33 = _mems_0_4_ext_R1_data[351:320];
       default:
-        casez_tmp_33 = _mem_4_ext_R1_data[479:448];
+        casez_tmp_33 = _mems_0_4_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_34;
   always @(*) begin
     casez (sel_8)
       2'b00:
-        casez_tmp_34 = _mem_4_ext_R1_data[127:96];
+        casez_tmp_34 = _mems_0_4_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_34 = _mem_4_ext_R1_data[255:224];
+        casez_tmp_34 = _mems_0_4_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_34 = _mem_4_ext_R1_data[383:352];
+        casez_tmp_34 = _mems_0_4_ext_R1_data[383:352];
       default:
-        casez_tmp_34 = _mem_4_ext_R1_data[511:480];
+        casez_tmp_34 = _mems_0_4_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_9;
@@ -2279,52 +2279,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_9)
       2'b00:
-        casez_tmp_35 = _mem_4_ext_R0_data[31:0];
+        casez_tmp_35 = _mems_0_4_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_35 = _mem_4_ext_R0_data[159:128];
+        casez_tmp_35 = _mems_0_4_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_35 = _mem_4_ext_R0_data[287:256];
+        casez_tmp_35 = _mems_0_4_ext_R0_data[287:256];
       default:
-        casez_tmp_35 = _mem_4_ext_R0_data[415:384];
+        casez_tmp_35 = _mems_0_4_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_36;
   always @(*) begin
     casez (sel_9)
       2'b00:
-        casez_tmp_36 = _mem_4_ext_R0_data[63:32];
+        casez_tmp_36 = _mems_0_4_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_36 = _mem_4_ext_R0_data[191:160];
+        casez_tmp_36 = _mems_0_4_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_36 = _mem_4_ext_R0_data[319:288];
+        casez_tmp_36 = _mems_0_4_ext_R0_data[319:288];
       default:
-        casez_tmp_36 = _mem_4_ext_R0_data[447:416];
+        casez_tmp_36 = _mems_0_4_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_37;
   always @(*) begin
     casez (sel_9)
       2'b00:
-        casez_tmp_37 = _mem_4_ext_R0_data[95:64];
+        casez_tmp_37 = _mems_0_4_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_37 = _mem_4_ext_R0_data[223:192];
+        casez_tmp_37 = _mems_0_4_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_37 = _mem_4_ext_R0_data[351:320];
+        casez_tmp_37 = _mems_0_4_ext_R0_data[351:320];
       default:
-        casez_tmp_37 = _mem_4_ext_R0_data[479:448];
+        casez_tmp_37 = _mems_0_4_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_38;
   always @(*) begin
     casez (sel_9)
       2'b00:
-        casez_tmp_38 = _mem_4_ext_R0_data[127:96];
+        casez_tmp_38 = _mems_0_4_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_38 = _mem_4_ext_R0_data[255:224];
+        casez_tmp_38 = _mems_0_4_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_38 = _mem_4_ext_R0_data[383:352];
+        casez_tmp_38 = _mems_0_4_ext_R0_data[383:352];
       default:
-        casez_tmp_38 = _mem_4_ext_R0_data[511:480];
+        casez_tmp_38 = _mems_0_4_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_10;
@@ -2332,52 +2332,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_10)
       2'b00:
-        casez_tmp_39 = _mem_5_ext_R1_data[31:0];
+        casez_tmp_39 = _mems_0_5_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_39 = _mem_5_ext_R1_data[159:128];
+        casez_tmp_39 = _mems_0_5_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_39 = _mem_5_ext_R1_data[287:256];
+        casez_tmp_39 = _mems_0_5_ext_R1_data[287:256];
       default:
-        casez_tmp_39 = _mem_5_ext_R1_data[415:384];
+        casez_tmp_39 = _mems_0_5_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_40;
   always @(*) begin
     casez (sel_10)
       2'b00:
-        casez_tmp_40 = _mem_5_ext_R1_data[63:32];
+        casez_tmp_40 = _mems_0_5_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_40 = _mem_5_ext_R1_data[191:160];
+        casez_tmp_40 = _mems_0_5_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_40 = _mem_5_ext_R1_data[319:288];
+        casez_tmp_40 = _mems_0_5_ext_R1_data[319:288];
       default:
-        casez_tmp_40 = _mem_5_ext_R1_data[447:416];
+        casez_tmp_40 = _mems_0_5_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_41;
   always @(*) begin
     casez (sel_10)
       2'b00:
-        casez_tmp_41 = _mem_5_ext_R1_data[95:64];
+        casez_tmp_41 = _mems_0_5_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_41 = _mem_5_ext_R1_data[223:192];
+        casez_tmp_41 = _mems_0_5_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_41 = _mem_5_ext_R1_data[351:320];
+        casez_tmp_41 = _mems_0_5_ext_R1_data[351:320];
       default:
-        casez_tmp_41 = _mem_5_ext_R1_data[479:448];
+        casez_tmp_41 = _mems_0_5_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_42;
   always @(*) begin
     casez (sel_10)
       2'b00:
-        casez_tmp_42 = _mem_5_ext_R1_data[127:96];
+        casez_tmp_42 = _mems_0_5_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_42 = _mem_5_ext_R1_data[255:224];
+        casez_tmp_42 = _mems_0_5_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_42 = _mem_5_ext_R1_data[383:352];
+        casez_tmp_42 = _mems_0_5_ext_R1_data[383:352];
       default:
-        casez_tmp_42 = _mem_5_ext_R1_data[511:480];
+        casez_tmp_42 = _mems_0_5_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_11;
@@ -2385,52 +2385,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_11)
       2'b00:
-        casez_tmp_43 = _mem_5_ext_R0_data[31:0];
+        casez_tmp_43 = _mems_0_5_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_43 = _mem_5_ext_R0_data[159:128];
+        casez_tmp_43 = _mems_0_5_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_43 = _mem_5_ext_R0_data[287:256];
+        casez_tmp_43 = _mems_0_5_ext_R0_data[287:256];
       default:
-        casez_tmp_43 = _mem_5_ext_R0_data[415:384];
+        casez_tmp_43 = _mems_0_5_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_44;
   always @(*) begin
     casez (sel_11)
       2'b00:
-        casez_tmp_44 = _mem_5_ext_R0_data[63:32];
+        casez_tmp_44 = _mems_0_5_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_44 = _mem_5_ext_R0_data[191:160];
+        casez_tmp_44 = _mems_0_5_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_44 = _mem_5_ext_R0_data[319:288];
+        casez_tmp_44 = _mems_0_5_ext_R0_data[319:288];
       default:
-        casez_tmp_44 = _mem_5_ext_R0_data[447:416];
+        casez_tmp_44 = _mems_0_5_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_45;
   always @(*) begin
     casez (sel_11)
       2'b00:
-        casez_tmp_45 = _mem_5_ext_R0_data[95:64];
+        casez_tmp_45 = _mems_0_5_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_45 = _mem_5_ext_R0_data[223:192];
+        casez_tmp_45 = _mems_0_5_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_45 = _mem_5_ext_R0_data[351:320];
+        casez_tmp_45 = _mems_0_5_ext_R0_data[351:320];
       default:
-        casez_tmp_45 = _mem_5_ext_R0_data[479:448];
+        casez_tmp_45 = _mems_0_5_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_46;
   always @(*) begin
     casez (sel_11)
       2'b00:
-        casez_tmp_46 = _mem_5_ext_R0_data[127:96];
+        casez_tmp_46 = _mems_0_5_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_46 = _mem_5_ext_R0_data[255:224];
+        casez_tmp_46 = _mems_0_5_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_46 = _mem_5_ext_R0_data[383:352];
+        casez_tmp_46 = _mems_0_5_ext_R0_data[383:352];
       default:
-        casez_tmp_46 = _mem_5_ext_R0_data[511:480];
+        casez_tmp_46 = _mems_0_5_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_12;
@@ -2438,52 +2438,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_12)
       2'b00:
-        casez_tmp_47 = _mem_6_ext_R1_data[31:0];
+        casez_tmp_47 = _mems_0_6_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_47 = _mem_6_ext_R1_data[159:128];
+        casez_tmp_47 = _mems_0_6_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_47 = _mem_6_ext_R1_data[287:256];
+        casez_tmp_47 = _mems_0_6_ext_R1_data[287:256];
       default:
-        casez_tmp_47 = _mem_6_ext_R1_data[415:384];
+        casez_tmp_47 = _mems_0_6_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_48;
   always @(*) begin
     casez (sel_12)
       2'b00:
-        casez_tmp_48 = _mem_6_ext_R1_data[63:32];
+        casez_tmp_48 = _mems_0_6_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_48 = _mem_6_ext_R1_data[191:160];
+        casez_tmp_48 = _mems_0_6_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_48 = _mem_6_ext_R1_data[319:288];
+        casez_tmp_48 = _mems_0_6_ext_R1_data[319:288];
       default:
-        casez_tmp_48 = _mem_6_ext_R1_data[447:416];
+        casez_tmp_48 = _mems_0_6_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_49;
   always @(*) begin
     casez (sel_12)
       2'b00:
-        casez_tmp_49 = _mem_6_ext_R1_data[95:64];
+        casez_tmp_49 = _mems_0_6_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_49 = _mem_6_ext_R1_data[223:192];
+        casez_tmp_49 = _mems_0_6_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_49 = _mem_6_ext_R1_data[351:320];
+        casez_tmp_49 = _mems_0_6_ext_R1_data[351:320];
       default:
-        casez_tmp_49 = _mem_6_ext_R1_data[479:448];
+        casez_tmp_49 = _mems_0_6_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_50;
   always @(*) begin
     casez (sel_12)
       2'b00:
-        casez_tmp_50 = _mem_6_ext_R1_data[127:96];
+        casez_tmp_50 = _mems_0_6_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_50 = _mem_6_ext_R1_data[255:224];
+        casez_tmp_50 = _mems_0_6_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_50 = _mem_6_ext_R1_data[383:352];
+        casez_tmp_50 = _mems_0_6_ext_R1_data[383:352];
       default:
-        casez_tmp_50 = _mem_6_ext_R1_data[511:480];
+        casez_tmp_50 = _mems_0_6_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_13;
@@ -2491,52 +2491,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_13)
       2'b00:
-        casez_tmp_51 = _mem_6_ext_R0_data[31:0];
+        casez_tmp_51 = _mems_0_6_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_51 = _mem_6_ext_R0_data[159:128];
+        casez_tmp_51 = _mems_0_6_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_51 = _mem_6_ext_R0_data[287:256];
+        casez_tmp_51 = _mems_0_6_ext_R0_data[287:256];
       default:
-        casez_tmp_51 = _mem_6_ext_R0_data[415:384];
+        casez_tmp_51 = _mems_0_6_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_52;
   always @(*) begin
     casez (sel_13)
       2'b00:
-        casez_tmp_52 = _mem_6_ext_R0_data[63:32];
+        casez_tmp_52 = _mems_0_6_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_52 = _mem_6_ext_R0_data[191:160];
+        casez_tmp_52 = _mems_0_6_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_52 = _mem_6_ext_R0_data[319:288];
+        casez_tmp_52 = _mems_0_6_ext_R0_data[319:288];
       default:
-        casez_tmp_52 = _mem_6_ext_R0_data[447:416];
+        casez_tmp_52 = _mems_0_6_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_53;
   always @(*) begin
     casez (sel_13)
       2'b00:
-        casez_tmp_53 = _mem_6_ext_R0_data[95:64];
+        casez_tmp_53 = _mems_0_6_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_53 = _mem_6_ext_R0_data[223:192];
+        casez_tmp_53 = _mems_0_6_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_53 = _mem_6_ext_R0_data[351:320];
+        casez_tmp_53 = _mems_0_6_ext_R0_data[351:320];
       default:
-        casez_tmp_53 = _mem_6_ext_R0_data[479:448];
+        casez_tmp_53 = _mems_0_6_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_54;
   always @(*) begin
     casez (sel_13)
       2'b00:
-        casez_tmp_54 = _mem_6_ext_R0_data[127:96];
+        casez_tmp_54 = _mems_0_6_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_54 = _mem_6_ext_R0_data[255:224];
+        casez_tmp_54 = _mems_0_6_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_54 = _mem_6_ext_R0_data[383:352];
+        casez_tmp_54 = _mems_0_6_ext_R0_data[383:352];
       default:
-        casez_tmp_54 = _mem_6_ext_R0_data[511:480];
+        casez_tmp_54 = _mems_0_6_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_14;
@@ -2544,52 +2544,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_14)
       2'b00:
-        casez_tmp_55 = _mem_7_ext_R1_data[31:0];
+        casez_tmp_55 = _mems_0_7_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_55 = _mem_7_ext_R1_data[159:128];
+        casez_tmp_55 = _mems_0_7_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_55 = _mem_7_ext_R1_data[287:256];
+        casez_tmp_55 = _mems_0_7_ext_R1_data[287:256];
       default:
-        casez_tmp_55 = _mem_7_ext_R1_data[415:384];
+        casez_tmp_55 = _mems_0_7_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_56;
   always @(*) begin
     casez (sel_14)
       2'b00:
-        casez_tmp_56 = _mem_7_ext_R1_data[63:32];
+        casez_tmp_56 = _mems_0_7_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_56 = _mem_7_ext_R1_data[191:160];
+        casez_tmp_56 = _mems_0_7_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_56 = _mem_7_ext_R1_data[319:288];
+        casez_tmp_56 = _mems_0_7_ext_R1_data[319:288];
       default:
-        casez_tmp_56 = _mem_7_ext_R1_data[447:416];
+        casez_tmp_56 = _mems_0_7_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_57;
   always @(*) begin
     casez (sel_14)
       2'b00:
-        casez_tmp_57 = _mem_7_ext_R1_data[95:64];
+        casez_tmp_57 = _mems_0_7_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_57 = _mem_7_ext_R1_data[223:192];
+        casez_tmp_57 = _mems_0_7_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_57 = _mem_7_ext_R1_data[351:320];
+        casez_tmp_57 = _mems_0_7_ext_R1_data[351:320];
       default:
-        casez_tmp_57 = _mem_7_ext_R1_data[479:448];
+        casez_tmp_57 = _mems_0_7_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_58;
   always @(*) begin
     casez (sel_14)
       2'b00:
-        casez_tmp_58 = _mem_7_ext_R1_data[127:96];
+        casez_tmp_58 = _mems_0_7_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_58 = _mem_7_ext_R1_data[255:224];
+        casez_tmp_58 = _mems_0_7_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_58 = _mem_7_ext_R1_data[383:352];
+        casez_tmp_58 = _mems_0_7_ext_R1_data[383:352];
       default:
-        casez_tmp_58 = _mem_7_ext_R1_data[511:480];
+        casez_tmp_58 = _mems_0_7_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_15;
@@ -2597,52 +2597,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_15)
       2'b00:
-        casez_tmp_59 = _mem_7_ext_R0_data[31:0];
+        casez_tmp_59 = _mems_0_7_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_59 = _mem_7_ext_R0_data[159:128];
+        casez_tmp_59 = _mems_0_7_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_59 = _mem_7_ext_R0_data[287:256];
+        casez_tmp_59 = _mems_0_7_ext_R0_data[287:256];
       default:
-        casez_tmp_59 = _mem_7_ext_R0_data[415:384];
+        casez_tmp_59 = _mems_0_7_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_60;
   always @(*) begin
     casez (sel_15)
       2'b00:
-        casez_tmp_60 = _mem_7_ext_R0_data[63:32];
+        casez_tmp_60 = _mems_0_7_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_60 = _mem_7_ext_R0_data[191:160];
+        casez_tmp_60 = _mems_0_7_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_60 = _mem_7_ext_R0_data[319:288];
+        casez_tmp_60 = _mems_0_7_ext_R0_data[319:288];
       default:
-        casez_tmp_60 = _mem_7_ext_R0_data[447:416];
+        casez_tmp_60 = _mems_0_7_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_61;
   always @(*) begin
     casez (sel_15)
       2'b00:
-        casez_tmp_61 = _mem_7_ext_R0_data[95:64];
+        casez_tmp_61 = _mems_0_7_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_61 = _mem_7_ext_R0_data[223:192];
+        casez_tmp_61 = _mems_0_7_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_61 = _mem_7_ext_R0_data[351:320];
+        casez_tmp_61 = _mems_0_7_ext_R0_data[351:320];
       default:
-        casez_tmp_61 = _mem_7_ext_R0_data[479:448];
+        casez_tmp_61 = _mems_0_7_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_62;
   always @(*) begin
     casez (sel_15)
       2'b00:
-        casez_tmp_62 = _mem_7_ext_R0_data[127:96];
+        casez_tmp_62 = _mems_0_7_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_62 = _mem_7_ext_R0_data[255:224];
+        casez_tmp_62 = _mems_0_7_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_62 = _mem_7_ext_R0_data[383:352];
+        casez_tmp_62 = _mems_0_7_ext_R0_data[383:352];
       default:
-        casez_tmp_62 = _mem_7_ext_R0_data[511:480];
+        casez_tmp_62 = _mems_0_7_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_16;
@@ -2650,52 +2650,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_16)
       2'b00:
-        casez_tmp_63 = _mem_8_ext_R1_data[31:0];
+        casez_tmp_63 = _mems_0_8_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_63 = _mem_8_ext_R1_data[159:128];
+        casez_tmp_63 = _mems_0_8_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_63 = _mem_8_ext_R1_data[287:256];
+        casez_tmp_63 = _mems_0_8_ext_R1_data[287:256];
       default:
-        casez_tmp_63 = _mem_8_ext_R1_data[415:384];
+        casez_tmp_63 = _mems_0_8_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_64;
   always @(*) begin
     casez (sel_16)
       2'b00:
-        casez_tmp_64 = _mem_8_ext_R1_data[63:32];
+        casez_tmp_64 = _mems_0_8_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_64 = _mem_8_ext_R1_data[191:160];
+        casez_tmp_64 = _mems_0_8_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_64 = _mem_8_ext_R1_data[319:288];
+        casez_tmp_64 = _mems_0_8_ext_R1_data[319:288];
       default:
-        casez_tmp_64 = _mem_8_ext_R1_data[447:416];
+        casez_tmp_64 = _mems_0_8_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_65;
   always @(*) begin
     casez (sel_16)
       2'b00:
-        casez_tmp_65 = _mem_8_ext_R1_data[95:64];
+        casez_tmp_65 = _mems_0_8_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_65 = _mem_8_ext_R1_data[223:192];
+        casez_tmp_65 = _mems_0_8_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_65 = _mem_8_ext_R1_data[351:320];
+        casez_tmp_65 = _mems_0_8_ext_R1_data[351:320];
       default:
-        casez_tmp_65 = _mem_8_ext_R1_data[479:448];
+        casez_tmp_65 = _mems_0_8_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_66;
   always @(*) begin
     casez (sel_16)
       2'b00:
-        casez_tmp_66 = _mem_8_ext_R1_data[127:96];
+        casez_tmp_66 = _mems_0_8_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_66 = _mem_8_ext_R1_data[255:224];
+        casez_tmp_66 = _mems_0_8_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_66 = _mem_8_ext_R1_data[383:352];
+        casez_tmp_66 = _mems_0_8_ext_R1_data[383:352];
       default:
-        casez_tmp_66 = _mem_8_ext_R1_data[511:480];
+        casez_tmp_66 = _mems_0_8_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_17;
@@ -2703,52 +2703,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_17)
       2'b00:
-        casez_tmp_67 = _mem_8_ext_R0_data[31:0];
+        casez_tmp_67 = _mems_0_8_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_67 = _mem_8_ext_R0_data[159:128];
+        casez_tmp_67 = _mems_0_8_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_67 = _mem_8_ext_R0_data[287:256];
+        casez_tmp_67 = _mems_0_8_ext_R0_data[287:256];
       default:
-        casez_tmp_67 = _mem_8_ext_R0_data[415:384];
+        casez_tmp_67 = _mems_0_8_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_68;
   always @(*) begin
     casez (sel_17)
       2'b00:
-        casez_tmp_68 = _mem_8_ext_R0_data[63:32];
+        casez_tmp_68 = _mems_0_8_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_68 = _mem_8_ext_R0_data[191:160];
+        casez_tmp_68 = _mems_0_8_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_68 = _mem_8_ext_R0_data[319:288];
+        casez_tmp_68 = _mems_0_8_ext_R0_data[319:288];
       default:
-        casez_tmp_68 = _mem_8_ext_R0_data[447:416];
+        casez_tmp_68 = _mems_0_8_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_69;
   always @(*) begin
     casez (sel_17)
       2'b00:
-        casez_tmp_69 = _mem_8_ext_R0_data[95:64];
+        casez_tmp_69 = _mems_0_8_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_69 = _mem_8_ext_R0_data[223:192];
+        casez_tmp_69 = _mems_0_8_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_69 = _mem_8_ext_R0_data[351:320];
+        casez_tmp_69 = _mems_0_8_ext_R0_data[351:320];
       default:
-        casez_tmp_69 = _mem_8_ext_R0_data[479:448];
+        casez_tmp_69 = _mems_0_8_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_70;
   always @(*) begin
     casez (sel_17)
       2'b00:
-        casez_tmp_70 = _mem_8_ext_R0_data[127:96];
+        casez_tmp_70 = _mems_0_8_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_70 = _mem_8_ext_R0_data[255:224];
+        casez_tmp_70 = _mems_0_8_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_70 = _mem_8_ext_R0_data[383:352];
+        casez_tmp_70 = _mems_0_8_ext_R0_data[383:352];
       default:
-        casez_tmp_70 = _mem_8_ext_R0_data[511:480];
+        casez_tmp_70 = _mems_0_8_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_18;
@@ -2756,52 +2756,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_18)
       2'b00:
-        casez_tmp_71 = _mem_9_ext_R1_data[31:0];
+        casez_tmp_71 = _mems_0_9_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_71 = _mem_9_ext_R1_data[159:128];
+        casez_tmp_71 = _mems_0_9_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_71 = _mem_9_ext_R1_data[287:256];
+        casez_tmp_71 = _mems_0_9_ext_R1_data[287:256];
       default:
-        casez_tmp_71 = _mem_9_ext_R1_data[415:384];
+        casez_tmp_71 = _mems_0_9_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_72;
   always @(*) begin
     casez (sel_18)
       2'b00:
-        casez_tmp_72 = _mem_9_ext_R1_data[63:32];
+        casez_tmp_72 = _mems_0_9_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_72 = _mem_9_ext_R1_data[191:160];
+        casez_tmp_72 = _mems_0_9_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_72 = _mem_9_ext_R1_data[319:288];
+        casez_tmp_72 = _mems_0_9_ext_R1_data[319:288];
       default:
-        casez_tmp_72 = _mem_9_ext_R1_data[447:416];
+        casez_tmp_72 = _mems_0_9_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_73;
   always @(*) begin
     casez (sel_18)
       2'b00:
-        casez_tmp_73 = _mem_9_ext_R1_data[95:64];
+        casez_tmp_73 = _mems_0_9_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_73 = _mem_9_ext_R1_data[223:192];
+        casez_tmp_73 = _mems_0_9_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_73 = _mem_9_ext_R1_data[351:320];
+        casez_tmp_73 = _mems_0_9_ext_R1_data[351:320];
       default:
-        casez_tmp_73 = _mem_9_ext_R1_data[479:448];
+        casez_tmp_73 = _mems_0_9_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_74;
   always @(*) begin
     casez (sel_18)
       2'b00:
-        casez_tmp_74 = _mem_9_ext_R1_data[127:96];
+        casez_tmp_74 = _mems_0_9_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_74 = _mem_9_ext_R1_data[255:224];
+        casez_tmp_74 = _mems_0_9_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_74 = _mem_9_ext_R1_data[383:352];
+        casez_tmp_74 = _mems_0_9_ext_R1_data[383:352];
       default:
-        casez_tmp_74 = _mem_9_ext_R1_data[511:480];
+        casez_tmp_74 = _mems_0_9_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_19;
@@ -2809,52 +2809,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_19)
       2'b00:
-        casez_tmp_75 = _mem_9_ext_R0_data[31:0];
+        casez_tmp_75 = _mems_0_9_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_75 = _mem_9_ext_R0_data[159:128];
+        casez_tmp_75 = _mems_0_9_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_75 = _mem_9_ext_R0_data[287:256];
+        casez_tmp_75 = _mems_0_9_ext_R0_data[287:256];
       default:
-        casez_tmp_75 = _mem_9_ext_R0_data[415:384];
+        casez_tmp_75 = _mems_0_9_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_76;
   always @(*) begin
     casez (sel_19)
       2'b00:
-        casez_tmp_76 = _mem_9_ext_R0_data[63:32];
+        casez_tmp_76 = _mems_0_9_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_76 = _mem_9_ext_R0_data[191:160];
+        casez_tmp_76 = _mems_0_9_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_76 = _mem_9_ext_R0_data[319:288];
+        casez_tmp_76 = _mems_0_9_ext_R0_data[319:288];
       default:
-        casez_tmp_76 = _mem_9_ext_R0_data[447:416];
+        casez_tmp_76 = _mems_0_9_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_77;
   always @(*) begin
     casez (sel_19)
       2'b00:
-        casez_tmp_77 = _mem_9_ext_R0_data[95:64];
+        casez_tmp_77 = _mems_0_9_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_77 = _mem_9_ext_R0_data[223:192];
+        casez_tmp_77 = _mems_0_9_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_77 = _mem_9_ext_R0_data[351:320];
+        casez_tmp_77 = _mems_0_9_ext_R0_data[351:320];
       default:
-        casez_tmp_77 = _mem_9_ext_R0_data[479:448];
+        casez_tmp_77 = _mems_0_9_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_78;
   always @(*) begin
     casez (sel_19)
       2'b00:
-        casez_tmp_78 = _mem_9_ext_R0_data[127:96];
+        casez_tmp_78 = _mems_0_9_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_78 = _mem_9_ext_R0_data[255:224];
+        casez_tmp_78 = _mems_0_9_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_78 = _mem_9_ext_R0_data[383:352];
+        casez_tmp_78 = _mems_0_9_ext_R0_data[383:352];
       default:
-        casez_tmp_78 = _mem_9_ext_R0_data[511:480];
+        casez_tmp_78 = _mems_0_9_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_20;
@@ -2862,52 +2862,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_20)
       2'b00:
-        casez_tmp_79 = _mem_10_ext_R1_data[31:0];
+        casez_tmp_79 = _mems_0_10_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_79 = _mem_10_ext_R1_data[159:128];
+        casez_tmp_79 = _mems_0_10_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_79 = _mem_10_ext_R1_data[287:256];
+        casez_tmp_79 = _mems_0_10_ext_R1_data[287:256];
       default:
-        casez_tmp_79 = _mem_10_ext_R1_data[415:384];
+        casez_tmp_79 = _mems_0_10_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_80;
   always @(*) begin
     casez (sel_20)
       2'b00:
-        casez_tmp_80 = _mem_10_ext_R1_data[63:32];
+        casez_tmp_80 = _mems_0_10_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_80 = _mem_10_ext_R1_data[191:160];
+        casez_tmp_80 = _mems_0_10_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_80 = _mem_10_ext_R1_data[319:288];
+        casez_tmp_80 = _mems_0_10_ext_R1_data[319:288];
       default:
-        casez_tmp_80 = _mem_10_ext_R1_data[447:416];
+        casez_tmp_80 = _mems_0_10_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_81;
   always @(*) begin
     casez (sel_20)
       2'b00:
-        casez_tmp_81 = _mem_10_ext_R1_data[95:64];
+        casez_tmp_81 = _mems_0_10_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_81 = _mem_10_ext_R1_data[223:192];
+        casez_tmp_81 = _mems_0_10_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_81 = _mem_10_ext_R1_data[351:320];
+        casez_tmp_81 = _mems_0_10_ext_R1_data[351:320];
       default:
-        casez_tmp_81 = _mem_10_ext_R1_data[479:448];
+        casez_tmp_81 = _mems_0_10_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_82;
   always @(*) begin
     casez (sel_20)
       2'b00:
-        casez_tmp_82 = _mem_10_ext_R1_data[127:96];
+        casez_tmp_82 = _mems_0_10_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_82 = _mem_10_ext_R1_data[255:224];
+        casez_tmp_82 = _mems_0_10_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_82 = _mem_10_ext_R1_data[383:352];
+        casez_tmp_82 = _mems_0_10_ext_R1_data[383:352];
       default:
-        casez_tmp_82 = _mem_10_ext_R1_data[511:480];
+        casez_tmp_82 = _mems_0_10_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_21;
@@ -2915,52 +2915,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_21)
       2'b00:
-        casez_tmp_83 = _mem_10_ext_R0_data[31:0];
+        casez_tmp_83 = _mems_0_10_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_83 = _mem_10_ext_R0_data[159:128];
+        casez_tmp_83 = _mems_0_10_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_83 = _mem_10_ext_R0_data[287:256];
+        casez_tmp_83 = _mems_0_10_ext_R0_data[287:256];
       default:
-        casez_tmp_83 = _mem_10_ext_R0_data[415:384];
+        casez_tmp_83 = _mems_0_10_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_84;
   always @(*) begin
     casez (sel_21)
       2'b00:
-        casez_tmp_84 = _mem_10_ext_R0_data[63:32];
+        casez_tmp_84 = _mems_0_10_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_84 = _mem_10_ext_R0_data[191:160];
+        casez_tmp_84 = _mems_0_10_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_84 = _mem_10_ext_R0_data[319:288];
+        casez_tmp_84 = _mems_0_10_ext_R0_data[319:288];
       default:
-        casez_tmp_84 = _mem_10_ext_R0_data[447:416];
+        casez_tmp_84 = _mems_0_10_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_85;
   always @(*) begin
     casez (sel_21)
       2'b00:
-        casez_tmp_85 = _mem_10_ext_R0_data[95:64];
+        casez_tmp_85 = _mems_0_10_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_85 = _mem_10_ext_R0_data[223:192];
+        casez_tmp_85 = _mems_0_10_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_85 = _mem_10_ext_R0_data[351:320];
+        casez_tmp_85 = _mems_0_10_ext_R0_data[351:320];
       default:
-        casez_tmp_85 = _mem_10_ext_R0_data[479:448];
+        casez_tmp_85 = _mems_0_10_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_86;
   always @(*) begin
     casez (sel_21)
       2'b00:
-        casez_tmp_86 = _mem_10_ext_R0_data[127:96];
+        casez_tmp_86 = _mems_0_10_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_86 = _mem_10_ext_R0_data[255:224];
+        casez_tmp_86 = _mems_0_10_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_86 = _mem_10_ext_R0_data[383:352];
+        casez_tmp_86 = _mems_0_10_ext_R0_data[383:352];
       default:
-        casez_tmp_86 = _mem_10_ext_R0_data[511:480];
+        casez_tmp_86 = _mems_0_10_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_22;
@@ -2968,52 +2968,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_22)
       2'b00:
-        casez_tmp_87 = _mem_11_ext_R1_data[31:0];
+        casez_tmp_87 = _mems_0_11_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_87 = _mem_11_ext_R1_data[159:128];
+        casez_tmp_87 = _mems_0_11_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_87 = _mem_11_ext_R1_data[287:256];
+        casez_tmp_87 = _mems_0_11_ext_R1_data[287:256];
       default:
-        casez_tmp_87 = _mem_11_ext_R1_data[415:384];
+        casez_tmp_87 = _mems_0_11_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_88;
   always @(*) begin
     casez (sel_22)
       2'b00:
-        casez_tmp_88 = _mem_11_ext_R1_data[63:32];
+        casez_tmp_88 = _mems_0_11_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_88 = _mem_11_ext_R1_data[191:160];
+        casez_tmp_88 = _mems_0_11_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_88 = _mem_11_ext_R1_data[319:288];
+        casez_tmp_88 = _mems_0_11_ext_R1_data[319:288];
       default:
-        casez_tmp_88 = _mem_11_ext_R1_data[447:416];
+        casez_tmp_88 = _mems_0_11_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_89;
   always @(*) begin
     casez (sel_22)
       2'b00:
-        casez_tmp_89 = _mem_11_ext_R1_data[95:64];
+        casez_tmp_89 = _mems_0_11_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_89 = _mem_11_ext_R1_data[223:192];
+        casez_tmp_89 = _mems_0_11_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_89 = _mem_11_ext_R1_data[351:320];
+        casez_tmp_89 = _mems_0_11_ext_R1_data[351:320];
       default:
-        casez_tmp_89 = _mem_11_ext_R1_data[479:448];
+        casez_tmp_89 = _mems_0_11_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_90;
   always @(*) begin
     casez (sel_22)
       2'b00:
-        casez_tmp_90 = _mem_11_ext_R1_data[127:96];
+        casez_tmp_90 = _mems_0_11_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_90 = _mem_11_ext_R1_data[255:224];
+        casez_tmp_90 = _mems_0_11_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_90 = _mem_11_ext_R1_data[383:352];
+        casez_tmp_90 = _mems_0_11_ext_R1_data[383:352];
       default:
-        casez_tmp_90 = _mem_11_ext_R1_data[511:480];
+        casez_tmp_90 = _mems_0_11_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_23;
@@ -3021,52 +3021,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_23)
       2'b00:
-        casez_tmp_91 = _mem_11_ext_R0_data[31:0];
+        casez_tmp_91 = _mems_0_11_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_91 = _mem_11_ext_R0_data[159:128];
+        casez_tmp_91 = _mems_0_11_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_91 = _mem_11_ext_R0_data[287:256];
+        casez_tmp_91 = _mems_0_11_ext_R0_data[287:256];
       default:
-        casez_tmp_91 = _mem_11_ext_R0_data[415:384];
+        casez_tmp_91 = _mems_0_11_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_92;
   always @(*) begin
     casez (sel_23)
       2'b00:
-        casez_tmp_92 = _mem_11_ext_R0_data[63:32];
+        casez_tmp_92 = _mems_0_11_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_92 = _mem_11_ext_R0_data[191:160];
+        casez_tmp_92 = _mems_0_11_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_92 = _mem_11_ext_R0_data[319:288];
+        casez_tmp_92 = _mems_0_11_ext_R0_data[319:288];
       default:
-        casez_tmp_92 = _mem_11_ext_R0_data[447:416];
+        casez_tmp_92 = _mems_0_11_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_93;
   always @(*) begin
     casez (sel_23)
       2'b00:
-        casez_tmp_93 = _mem_11_ext_R0_data[95:64];
+        casez_tmp_93 = _mems_0_11_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_93 = _mem_11_ext_R0_data[223:192];
+        casez_tmp_93 = _mems_0_11_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_93 = _mem_11_ext_R0_data[351:320];
+        casez_tmp_93 = _mems_0_11_ext_R0_data[351:320];
       default:
-        casez_tmp_93 = _mem_11_ext_R0_data[479:448];
+        casez_tmp_93 = _mems_0_11_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_94;
   always @(*) begin
     casez (sel_23)
       2'b00:
-        casez_tmp_94 = _mem_11_ext_R0_data[127:96];
+        casez_tmp_94 = _mems_0_11_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_94 = _mem_11_ext_R0_data[255:224];
+        casez_tmp_94 = _mems_0_11_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_94 = _mem_11_ext_R0_data[383:352];
+        casez_tmp_94 = _mems_0_11_ext_R0_data[383:352];
       default:
-        casez_tmp_94 = _mem_11_ext_R0_data[511:480];
+        casez_tmp_94 = _mems_0_11_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_24;
@@ -3074,52 +3074,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_24)
       2'b00:
-        casez_tmp_95 = _mem_12_ext_R1_data[31:0];
+        casez_tmp_95 = _mems_0_12_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_95 = _mem_12_ext_R1_data[159:128];
+        casez_tmp_95 = _mems_0_12_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_95 = _mem_12_ext_R1_data[287:256];
+        casez_tmp_95 = _mems_0_12_ext_R1_data[287:256];
       default:
-        casez_tmp_95 = _mem_12_ext_R1_data[415:384];
+        casez_tmp_95 = _mems_0_12_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_96;
   always @(*) begin
     casez (sel_24)
       2'b00:
-        casez_tmp_96 = _mem_12_ext_R1_data[63:32];
+        casez_tmp_96 = _mems_0_12_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_96 = _mem_12_ext_R1_data[191:160];
+        casez_tmp_96 = _mems_0_12_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_96 = _mem_12_ext_R1_data[319:288];
+        casez_tmp_96 = _mems_0_12_ext_R1_data[319:288];
       default:
-        casez_tmp_96 = _mem_12_ext_R1_data[447:416];
+        casez_tmp_96 = _mems_0_12_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_97;
   always @(*) begin
     casez (sel_24)
       2'b00:
-        casez_tmp_97 = _mem_12_ext_R1_data[95:64];
+        casez_tmp_97 = _mems_0_12_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_97 = _mem_12_ext_R1_data[223:192];
+        casez_tmp_97 = _mems_0_12_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_97 = _mem_12_ext_R1_data[351:320];
+        casez_tmp_97 = _mems_0_12_ext_R1_data[351:320];
       default:
-        casez_tmp_97 = _mem_12_ext_R1_data[479:448];
+        casez_tmp_97 = _mems_0_12_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_98;
   always @(*) begin
     casez (sel_24)
       2'b00:
-        casez_tmp_98 = _mem_12_ext_R1_data[127:96];
+        casez_tmp_98 = _mems_0_12_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_98 = _mem_12_ext_R1_data[255:224];
+        casez_tmp_98 = _mems_0_12_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_98 = _mem_12_ext_R1_data[383:352];
+        casez_tmp_98 = _mems_0_12_ext_R1_data[383:352];
       default:
-        casez_tmp_98 = _mem_12_ext_R1_data[511:480];
+        casez_tmp_98 = _mems_0_12_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_25;
@@ -3127,52 +3127,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_25)
       2'b00:
-        casez_tmp_99 = _mem_12_ext_R0_data[31:0];
+        casez_tmp_99 = _mems_0_12_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_99 = _mem_12_ext_R0_data[159:128];
+        casez_tmp_99 = _mems_0_12_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_99 = _mem_12_ext_R0_data[287:256];
+        casez_tmp_99 = _mems_0_12_ext_R0_data[287:256];
       default:
-        casez_tmp_99 = _mem_12_ext_R0_data[415:384];
+        casez_tmp_99 = _mems_0_12_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_100;
   always @(*) begin
     casez (sel_25)
       2'b00:
-        casez_tmp_100 = _mem_12_ext_R0_data[63:32];
+        casez_tmp_100 = _mems_0_12_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_100 = _mem_12_ext_R0_data[191:160];
+        casez_tmp_100 = _mems_0_12_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_100 = _mem_12_ext_R0_data[319:288];
+        casez_tmp_100 = _mems_0_12_ext_R0_data[319:288];
       default:
-        casez_tmp_100 = _mem_12_ext_R0_data[447:416];
+        casez_tmp_100 = _mems_0_12_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_101;
   always @(*) begin
     casez (sel_25)
       2'b00:
-        casez_tmp_101 = _mem_12_ext_R0_data[95:64];
+        casez_tmp_101 = _mems_0_12_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_101 = _mem_12_ext_R0_data[223:192];
+        casez_tmp_101 = _mems_0_12_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_101 = _mem_12_ext_R0_data[351:320];
+        casez_tmp_101 = _mems_0_12_ext_R0_data[351:320];
       default:
-        casez_tmp_101 = _mem_12_ext_R0_data[479:448];
+        casez_tmp_101 = _mems_0_12_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_102;
   always @(*) begin
     casez (sel_25)
       2'b00:
-        casez_tmp_102 = _mem_12_ext_R0_data[127:96];
+        casez_tmp_102 = _mems_0_12_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_102 = _mem_12_ext_R0_data[255:224];
+        casez_tmp_102 = _mems_0_12_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_102 = _mem_12_ext_R0_data[383:352];
+        casez_tmp_102 = _mems_0_12_ext_R0_data[383:352];
       default:
-        casez_tmp_102 = _mem_12_ext_R0_data[511:480];
+        casez_tmp_102 = _mems_0_12_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_26;
@@ -3180,52 +3180,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_26)
       2'b00:
-        casez_tmp_103 = _mem_13_ext_R1_data[31:0];
+        casez_tmp_103 = _mems_0_13_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_103 = _mem_13_ext_R1_data[159:128];
+        casez_tmp_103 = _mems_0_13_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_103 = _mem_13_ext_R1_data[287:256];
+        casez_tmp_103 = _mems_0_13_ext_R1_data[287:256];
       default:
-        casez_tmp_103 = _mem_13_ext_R1_data[415:384];
+        casez_tmp_103 = _mems_0_13_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_104;
   always @(*) begin
     casez (sel_26)
       2'b00:
-        casez_tmp_104 = _mem_13_ext_R1_data[63:32];
+        casez_tmp_104 = _mems_0_13_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_104 = _mem_13_ext_R1_data[191:160];
+        casez_tmp_104 = _mems_0_13_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_104 = _mem_13_ext_R1_data[319:288];
+        casez_tmp_104 = _mems_0_13_ext_R1_data[319:288];
       default:
-        casez_tmp_104 = _mem_13_ext_R1_data[447:416];
+        casez_tmp_104 = _mems_0_13_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_105;
   always @(*) begin
     casez (sel_26)
       2'b00:
-        casez_tmp_105 = _mem_13_ext_R1_data[95:64];
+        casez_tmp_105 = _mems_0_13_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_105 = _mem_13_ext_R1_data[223:192];
+        casez_tmp_105 = _mems_0_13_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_105 = _mem_13_ext_R1_data[351:320];
+        casez_tmp_105 = _mems_0_13_ext_R1_data[351:320];
       default:
-        casez_tmp_105 = _mem_13_ext_R1_data[479:448];
+        casez_tmp_105 = _mems_0_13_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_106;
   always @(*) begin
     casez (sel_26)
       2'b00:
-        casez_tmp_106 = _mem_13_ext_R1_data[127:96];
+        casez_tmp_106 = _mems_0_13_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_106 = _mem_13_ext_R1_data[255:224];
+        casez_tmp_106 = _mems_0_13_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_106 = _mem_13_ext_R1_data[383:352];
+        casez_tmp_106 = _mems_0_13_ext_R1_data[383:352];
       default:
-        casez_tmp_106 = _mem_13_ext_R1_data[511:480];
+        casez_tmp_106 = _mems_0_13_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_27;
@@ -3233,52 +3233,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_27)
       2'b00:
-        casez_tmp_107 = _mem_13_ext_R0_data[31:0];
+        casez_tmp_107 = _mems_0_13_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_107 = _mem_13_ext_R0_data[159:128];
+        casez_tmp_107 = _mems_0_13_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_107 = _mem_13_ext_R0_data[287:256];
+        casez_tmp_107 = _mems_0_13_ext_R0_data[287:256];
       default:
-        casez_tmp_107 = _mem_13_ext_R0_data[415:384];
+        casez_tmp_107 = _mems_0_13_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_108;
   always @(*) begin
     casez (sel_27)
       2'b00:
-        casez_tmp_108 = _mem_13_ext_R0_data[63:32];
+        casez_tmp_108 = _mems_0_13_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_108 = _mem_13_ext_R0_data[191:160];
+        casez_tmp_108 = _mems_0_13_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_108 = _mem_13_ext_R0_data[319:288];
+        casez_tmp_108 = _mems_0_13_ext_R0_data[319:288];
       default:
-        casez_tmp_108 = _mem_13_ext_R0_data[447:416];
+        casez_tmp_108 = _mems_0_13_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_109;
   always @(*) begin
     casez (sel_27)
       2'b00:
-        casez_tmp_109 = _mem_13_ext_R0_data[95:64];
+        casez_tmp_109 = _mems_0_13_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_109 = _mem_13_ext_R0_data[223:192];
+        casez_tmp_109 = _mems_0_13_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_109 = _mem_13_ext_R0_data[351:320];
+        casez_tmp_109 = _mems_0_13_ext_R0_data[351:320];
       default:
-        casez_tmp_109 = _mem_13_ext_R0_data[479:448];
+        casez_tmp_109 = _mems_0_13_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_110;
   always @(*) begin
     casez (sel_27)
       2'b00:
-        casez_tmp_110 = _mem_13_ext_R0_data[127:96];
+        casez_tmp_110 = _mems_0_13_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_110 = _mem_13_ext_R0_data[255:224];
+        casez_tmp_110 = _mems_0_13_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_110 = _mem_13_ext_R0_data[383:352];
+        casez_tmp_110 = _mems_0_13_ext_R0_data[383:352];
       default:
-        casez_tmp_110 = _mem_13_ext_R0_data[511:480];
+        casez_tmp_110 = _mems_0_13_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_28;
@@ -3286,52 +3286,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_28)
       2'b00:
-        casez_tmp_111 = _mem_14_ext_R1_data[31:0];
+        casez_tmp_111 = _mems_0_14_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_111 = _mem_14_ext_R1_data[159:128];
+        casez_tmp_111 = _mems_0_14_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_111 = _mem_14_ext_R1_data[287:256];
+        casez_tmp_111 = _mems_0_14_ext_R1_data[287:256];
       default:
-        casez_tmp_111 = _mem_14_ext_R1_data[415:384];
+        casez_tmp_111 = _mems_0_14_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_112;
   always @(*) begin
     casez (sel_28)
       2'b00:
-        casez_tmp_112 = _mem_14_ext_R1_data[63:32];
+        casez_tmp_112 = _mems_0_14_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_112 = _mem_14_ext_R1_data[191:160];
+        casez_tmp_112 = _mems_0_14_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_112 = _mem_14_ext_R1_data[319:288];
+        casez_tmp_112 = _mems_0_14_ext_R1_data[319:288];
       default:
-        casez_tmp_112 = _mem_14_ext_R1_data[447:416];
+        casez_tmp_112 = _mems_0_14_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_113;
   always @(*) begin
     casez (sel_28)
       2'b00:
-        casez_tmp_113 = _mem_14_ext_R1_data[95:64];
+        casez_tmp_113 = _mems_0_14_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_113 = _mem_14_ext_R1_data[223:192];
+        casez_tmp_113 = _mems_0_14_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_113 = _mem_14_ext_R1_data[351:320];
+        casez_tmp_113 = _mems_0_14_ext_R1_data[351:320];
       default:
-        casez_tmp_113 = _mem_14_ext_R1_data[479:448];
+        casez_tmp_113 = _mems_0_14_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_114;
   always @(*) begin
     casez (sel_28)
       2'b00:
-        casez_tmp_114 = _mem_14_ext_R1_data[127:96];
+        casez_tmp_114 = _mems_0_14_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_114 = _mem_14_ext_R1_data[255:224];
+        casez_tmp_114 = _mems_0_14_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_114 = _mem_14_ext_R1_data[383:352];
+        casez_tmp_114 = _mems_0_14_ext_R1_data[383:352];
       default:
-        casez_tmp_114 = _mem_14_ext_R1_data[511:480];
+        casez_tmp_114 = _mems_0_14_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_29;
@@ -3339,52 +3339,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_29)
       2'b00:
-        casez_tmp_115 = _mem_14_ext_R0_data[31:0];
+        casez_tmp_115 = _mems_0_14_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_115 = _mem_14_ext_R0_data[159:128];
+        casez_tmp_115 = _mems_0_14_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_115 = _mem_14_ext_R0_data[287:256];
+        casez_tmp_115 = _mems_0_14_ext_R0_data[287:256];
       default:
-        casez_tmp_115 = _mem_14_ext_R0_data[415:384];
+        casez_tmp_115 = _mems_0_14_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_116;
   always @(*) begin
     casez (sel_29)
       2'b00:
-        casez_tmp_116 = _mem_14_ext_R0_data[63:32];
+        casez_tmp_116 = _mems_0_14_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_116 = _mem_14_ext_R0_data[191:160];
+        casez_tmp_116 = _mems_0_14_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_116 = _mem_14_ext_R0_data[319:288];
+        casez_tmp_116 = _mems_0_14_ext_R0_data[319:288];
       default:
-        casez_tmp_116 = _mem_14_ext_R0_data[447:416];
+        casez_tmp_116 = _mems_0_14_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_117;
   always @(*) begin
     casez (sel_29)
       2'b00:
-        casez_tmp_117 = _mem_14_ext_R0_data[95:64];
+        casez_tmp_117 = _mems_0_14_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_117 = _mem_14_ext_R0_data[223:192];
+        casez_tmp_117 = _mems_0_14_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_117 = _mem_14_ext_R0_data[351:320];
+        casez_tmp_117 = _mems_0_14_ext_R0_data[351:320];
       default:
-        casez_tmp_117 = _mem_14_ext_R0_data[479:448];
+        casez_tmp_117 = _mems_0_14_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_118;
   always @(*) begin
     casez (sel_29)
       2'b00:
-        casez_tmp_118 = _mem_14_ext_R0_data[127:96];
+        casez_tmp_118 = _mems_0_14_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_118 = _mem_14_ext_R0_data[255:224];
+        casez_tmp_118 = _mems_0_14_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_118 = _mem_14_ext_R0_data[383:352];
+        casez_tmp_118 = _mems_0_14_ext_R0_data[383:352];
       default:
-        casez_tmp_118 = _mem_14_ext_R0_data[511:480];
+        casez_tmp_118 = _mems_0_14_ext_R0_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_30;
@@ -3392,52 +3392,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_30)
       2'b00:
-        casez_tmp_119 = _mem_15_ext_R1_data[31:0];
+        casez_tmp_119 = _mems_0_15_ext_R1_data[31:0];
       2'b01:
-        casez_tmp_119 = _mem_15_ext_R1_data[159:128];
+        casez_tmp_119 = _mems_0_15_ext_R1_data[159:128];
       2'b10:
-        casez_tmp_119 = _mem_15_ext_R1_data[287:256];
+        casez_tmp_119 = _mems_0_15_ext_R1_data[287:256];
       default:
-        casez_tmp_119 = _mem_15_ext_R1_data[415:384];
+        casez_tmp_119 = _mems_0_15_ext_R1_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_120;
   always @(*) begin
     casez (sel_30)
       2'b00:
-        casez_tmp_120 = _mem_15_ext_R1_data[63:32];
+        casez_tmp_120 = _mems_0_15_ext_R1_data[63:32];
       2'b01:
-        casez_tmp_120 = _mem_15_ext_R1_data[191:160];
+        casez_tmp_120 = _mems_0_15_ext_R1_data[191:160];
       2'b10:
-        casez_tmp_120 = _mem_15_ext_R1_data[319:288];
+        casez_tmp_120 = _mems_0_15_ext_R1_data[319:288];
       default:
-        casez_tmp_120 = _mem_15_ext_R1_data[447:416];
+        casez_tmp_120 = _mems_0_15_ext_R1_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_121;
   always @(*) begin
     casez (sel_30)
       2'b00:
-        casez_tmp_121 = _mem_15_ext_R1_data[95:64];
+        casez_tmp_121 = _mems_0_15_ext_R1_data[95:64];
       2'b01:
-        casez_tmp_121 = _mem_15_ext_R1_data[223:192];
+        casez_tmp_121 = _mems_0_15_ext_R1_data[223:192];
       2'b10:
-        casez_tmp_121 = _mem_15_ext_R1_data[351:320];
+        casez_tmp_121 = _mems_0_15_ext_R1_data[351:320];
       default:
-        casez_tmp_121 = _mem_15_ext_R1_data[479:448];
+        casez_tmp_121 = _mems_0_15_ext_R1_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_122;
   always @(*) begin
     casez (sel_30)
       2'b00:
-        casez_tmp_122 = _mem_15_ext_R1_data[127:96];
+        casez_tmp_122 = _mems_0_15_ext_R1_data[127:96];
       2'b01:
-        casez_tmp_122 = _mem_15_ext_R1_data[255:224];
+        casez_tmp_122 = _mems_0_15_ext_R1_data[255:224];
       2'b10:
-        casez_tmp_122 = _mem_15_ext_R1_data[383:352];
+        casez_tmp_122 = _mems_0_15_ext_R1_data[383:352];
       default:
-        casez_tmp_122 = _mem_15_ext_R1_data[511:480];
+        casez_tmp_122 = _mems_0_15_ext_R1_data[511:480];
     endcase
   end // always @(*)
   reg  [1:0]   sel_31;
@@ -3445,52 +3445,52 @@ module SphereRam_s1024_c16_default(
   always @(*) begin
     casez (sel_31)
       2'b00:
-        casez_tmp_123 = _mem_15_ext_R0_data[31:0];
+        casez_tmp_123 = _mems_0_15_ext_R0_data[31:0];
       2'b01:
-        casez_tmp_123 = _mem_15_ext_R0_data[159:128];
+        casez_tmp_123 = _mems_0_15_ext_R0_data[159:128];
       2'b10:
-        casez_tmp_123 = _mem_15_ext_R0_data[287:256];
+        casez_tmp_123 = _mems_0_15_ext_R0_data[287:256];
       default:
-        casez_tmp_123 = _mem_15_ext_R0_data[415:384];
+        casez_tmp_123 = _mems_0_15_ext_R0_data[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_124;
   always @(*) begin
     casez (sel_31)
       2'b00:
-        casez_tmp_124 = _mem_15_ext_R0_data[63:32];
+        casez_tmp_124 = _mems_0_15_ext_R0_data[63:32];
       2'b01:
-        casez_tmp_124 = _mem_15_ext_R0_data[191:160];
+        casez_tmp_124 = _mems_0_15_ext_R0_data[191:160];
       2'b10:
-        casez_tmp_124 = _mem_15_ext_R0_data[319:288];
+        casez_tmp_124 = _mems_0_15_ext_R0_data[319:288];
       default:
-        casez_tmp_124 = _mem_15_ext_R0_data[447:416];
+        casez_tmp_124 = _mems_0_15_ext_R0_data[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_125;
   always @(*) begin
     casez (sel_31)
       2'b00:
-        casez_tmp_125 = _mem_15_ext_R0_data[95:64];
+        casez_tmp_125 = _mems_0_15_ext_R0_data[95:64];
       2'b01:
-        casez_tmp_125 = _mem_15_ext_R0_data[223:192];
+        casez_tmp_125 = _mems_0_15_ext_R0_data[223:192];
       2'b10:
-        casez_tmp_125 = _mem_15_ext_R0_data[351:320];
+        casez_tmp_125 = _mems_0_15_ext_R0_data[351:320];
       default:
-        casez_tmp_125 = _mem_15_ext_R0_data[479:448];
+        casez_tmp_125 = _mems_0_15_ext_R0_data[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_126;
   always @(*) begin
     casez (sel_31)
       2'b00:
-        casez_tmp_126 = _mem_15_ext_R0_data[127:96];
+        casez_tmp_126 = _mems_0_15_ext_R0_data[127:96];
       2'b01:
-        casez_tmp_126 = _mem_15_ext_R0_data[255:224];
+        casez_tmp_126 = _mems_0_15_ext_R0_data[255:224];
       2'b10:
-        casez_tmp_126 = _mem_15_ext_R0_data[383:352];
+        casez_tmp_126 = _mems_0_15_ext_R0_data[383:352];
       default:
-        casez_tmp_126 = _mem_15_ext_R0_data[511:480];
+        casez_tmp_126 = _mems_0_15_ext_R0_data[511:480];
     endcase
   end // always @(*)
   always @(posedge clock) begin
@@ -3559,225 +3559,225 @@ module SphereRam_s1024_c16_default(
       sel_31 <= io_raddr_15_1[1:0];
     end
   end // always @(posedge)
-  mem_256x512_default mem_ext (
+  mems_0_256x512_default mems_0_ext (
     .R0_addr (io_raddr_0_1[9:2]),
     .R0_en   (io_ren_0),
     .R0_clk  (clock),
-    .R0_data (_mem_ext_R0_data),
+    .R0_data (_mems_0_ext_R0_data),
     .R1_addr (io_raddr_0_0[9:2]),
     .R1_en   (io_ren_0),
     .R1_clk  (clock),
-    .R1_data (_mem_ext_R1_data),
+    .R1_data (_mems_0_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_1_ext (
+  mems_0_256x512_default mems_0_1_ext (
     .R0_addr (io_raddr_1_1[9:2]),
     .R0_en   (io_ren_1),
     .R0_clk  (clock),
-    .R0_data (_mem_1_ext_R0_data),
+    .R0_data (_mems_0_1_ext_R0_data),
     .R1_addr (io_raddr_1_0[9:2]),
     .R1_en   (io_ren_1),
     .R1_clk  (clock),
-    .R1_data (_mem_1_ext_R1_data),
+    .R1_data (_mems_0_1_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_2_ext (
+  mems_0_256x512_default mems_0_2_ext (
     .R0_addr (io_raddr_2_1[9:2]),
     .R0_en   (io_ren_2),
     .R0_clk  (clock),
-    .R0_data (_mem_2_ext_R0_data),
+    .R0_data (_mems_0_2_ext_R0_data),
     .R1_addr (io_raddr_2_0[9:2]),
     .R1_en   (io_ren_2),
     .R1_clk  (clock),
-    .R1_data (_mem_2_ext_R1_data),
+    .R1_data (_mems_0_2_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_3_ext (
+  mems_0_256x512_default mems_0_3_ext (
     .R0_addr (io_raddr_3_1[9:2]),
     .R0_en   (io_ren_3),
     .R0_clk  (clock),
-    .R0_data (_mem_3_ext_R0_data),
+    .R0_data (_mems_0_3_ext_R0_data),
     .R1_addr (io_raddr_3_0[9:2]),
     .R1_en   (io_ren_3),
     .R1_clk  (clock),
-    .R1_data (_mem_3_ext_R1_data),
+    .R1_data (_mems_0_3_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_4_ext (
+  mems_0_256x512_default mems_0_4_ext (
     .R0_addr (io_raddr_4_1[9:2]),
     .R0_en   (io_ren_4),
     .R0_clk  (clock),
-    .R0_data (_mem_4_ext_R0_data),
+    .R0_data (_mems_0_4_ext_R0_data),
     .R1_addr (io_raddr_4_0[9:2]),
     .R1_en   (io_ren_4),
     .R1_clk  (clock),
-    .R1_data (_mem_4_ext_R1_data),
+    .R1_data (_mems_0_4_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_5_ext (
+  mems_0_256x512_default mems_0_5_ext (
     .R0_addr (io_raddr_5_1[9:2]),
     .R0_en   (io_ren_5),
     .R0_clk  (clock),
-    .R0_data (_mem_5_ext_R0_data),
+    .R0_data (_mems_0_5_ext_R0_data),
     .R1_addr (io_raddr_5_0[9:2]),
     .R1_en   (io_ren_5),
     .R1_clk  (clock),
-    .R1_data (_mem_5_ext_R1_data),
+    .R1_data (_mems_0_5_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_6_ext (
+  mems_0_256x512_default mems_0_6_ext (
     .R0_addr (io_raddr_6_1[9:2]),
     .R0_en   (io_ren_6),
     .R0_clk  (clock),
-    .R0_data (_mem_6_ext_R0_data),
+    .R0_data (_mems_0_6_ext_R0_data),
     .R1_addr (io_raddr_6_0[9:2]),
     .R1_en   (io_ren_6),
     .R1_clk  (clock),
-    .R1_data (_mem_6_ext_R1_data),
+    .R1_data (_mems_0_6_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_7_ext (
+  mems_0_256x512_default mems_0_7_ext (
     .R0_addr (io_raddr_7_1[9:2]),
     .R0_en   (io_ren_7),
     .R0_clk  (clock),
-    .R0_data (_mem_7_ext_R0_data),
+    .R0_data (_mems_0_7_ext_R0_data),
     .R1_addr (io_raddr_7_0[9:2]),
     .R1_en   (io_ren_7),
     .R1_clk  (clock),
-    .R1_data (_mem_7_ext_R1_data),
+    .R1_data (_mems_0_7_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_8_ext (
+  mems_0_256x512_default mems_0_8_ext (
     .R0_addr (io_raddr_8_1[9:2]),
     .R0_en   (io_ren_8),
     .R0_clk  (clock),
-    .R0_data (_mem_8_ext_R0_data),
+    .R0_data (_mems_0_8_ext_R0_data),
     .R1_addr (io_raddr_8_0[9:2]),
     .R1_en   (io_ren_8),
     .R1_clk  (clock),
-    .R1_data (_mem_8_ext_R1_data),
+    .R1_data (_mems_0_8_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_9_ext (
+  mems_0_256x512_default mems_0_9_ext (
     .R0_addr (io_raddr_9_1[9:2]),
     .R0_en   (io_ren_9),
     .R0_clk  (clock),
-    .R0_data (_mem_9_ext_R0_data),
+    .R0_data (_mems_0_9_ext_R0_data),
     .R1_addr (io_raddr_9_0[9:2]),
     .R1_en   (io_ren_9),
     .R1_clk  (clock),
-    .R1_data (_mem_9_ext_R1_data),
+    .R1_data (_mems_0_9_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_10_ext (
+  mems_0_256x512_default mems_0_10_ext (
     .R0_addr (io_raddr_10_1[9:2]),
     .R0_en   (io_ren_10),
     .R0_clk  (clock),
-    .R0_data (_mem_10_ext_R0_data),
+    .R0_data (_mems_0_10_ext_R0_data),
     .R1_addr (io_raddr_10_0[9:2]),
     .R1_en   (io_ren_10),
     .R1_clk  (clock),
-    .R1_data (_mem_10_ext_R1_data),
+    .R1_data (_mems_0_10_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_11_ext (
+  mems_0_256x512_default mems_0_11_ext (
     .R0_addr (io_raddr_11_1[9:2]),
     .R0_en   (io_ren_11),
     .R0_clk  (clock),
-    .R0_data (_mem_11_ext_R0_data),
+    .R0_data (_mems_0_11_ext_R0_data),
     .R1_addr (io_raddr_11_0[9:2]),
     .R1_en   (io_ren_11),
     .R1_clk  (clock),
-    .R1_data (_mem_11_ext_R1_data),
+    .R1_data (_mems_0_11_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_12_ext (
+  mems_0_256x512_default mems_0_12_ext (
     .R0_addr (io_raddr_12_1[9:2]),
     .R0_en   (io_ren_12),
     .R0_clk  (clock),
-    .R0_data (_mem_12_ext_R0_data),
+    .R0_data (_mems_0_12_ext_R0_data),
     .R1_addr (io_raddr_12_0[9:2]),
     .R1_en   (io_ren_12),
     .R1_clk  (clock),
-    .R1_data (_mem_12_ext_R1_data),
+    .R1_data (_mems_0_12_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_13_ext (
+  mems_0_256x512_default mems_0_13_ext (
     .R0_addr (io_raddr_13_1[9:2]),
     .R0_en   (io_ren_13),
     .R0_clk  (clock),
-    .R0_data (_mem_13_ext_R0_data),
+    .R0_data (_mems_0_13_ext_R0_data),
     .R1_addr (io_raddr_13_0[9:2]),
     .R1_en   (io_ren_13),
     .R1_clk  (clock),
-    .R1_data (_mem_13_ext_R1_data),
+    .R1_data (_mems_0_13_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_14_ext (
+  mems_0_256x512_default mems_0_14_ext (
     .R0_addr (io_raddr_14_1[9:2]),
     .R0_en   (io_ren_14),
     .R0_clk  (clock),
-    .R0_data (_mem_14_ext_R0_data),
+    .R0_data (_mems_0_14_ext_R0_data),
     .R1_addr (io_raddr_14_0[9:2]),
     .R1_en   (io_ren_14),
     .R1_clk  (clock),
-    .R1_data (_mem_14_ext_R1_data),
+    .R1_data (_mems_0_14_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_256x512_default mem_15_ext (
+  mems_0_256x512_default mems_0_15_ext (
     .R0_addr (io_raddr_15_1[9:2]),
     .R0_en   (io_ren_15),
     .R0_clk  (clock),
-    .R0_data (_mem_15_ext_R0_data),
+    .R0_data (_mems_0_15_ext_R0_data),
     .R1_addr (io_raddr_15_0[9:2]),
     .R1_en   (io_ren_15),
     .R1_clk  (clock),
-    .R1_data (_mem_15_ext_R1_data),
+    .R1_data (_mems_0_15_ext_R1_data),
     .W0_addr (io_write_bits_line),
     .W0_en   (io_write_valid),
     .W0_clk  (clock),
@@ -15505,16 +15505,17 @@ module Puc_default(
   wire         tooMany = run_2 > 64'h400;
   wire         _GEN_0 = badConfig & _badConfig_T_9;
   wire         _GEN_1 = badConfig | tooMany;
-  wire         engineStart = _GEN & ~_GEN_0 & ~_GEN_1;
+  wire         runStart = _GEN & ~_GEN_0 & ~_GEN_1;
   wire         _running_T = state == 3'h2;
   wire         _pack_io_flush_T = state == 3'h3;
   wire         running = _running_T | _pack_io_flush_T;
-  wire [10:0]  _rd_io_sphereLines_T = run_2[10:0] + 11'h3;
-  wire [24:0]  _rd_io_pairLines_T = {1'h0, run_4[23:0]} + 25'hF;
-  wire         loaded = _rd_io_loaded & running;
+  wire [10:0]  _rd_io_sphereLines_T_1 = run_2[10:0] + 11'h3;
+  wire [24:0]  _rd_io_pairLines_T_1 = {1'h0, run_4[23:0]} + 25'hF;
+  reg          tableIn;
+  wire         loaded = running & (tableIn | _rd_io_loaded);
   reg  [24:0]  pairsInFlight;
   wire         runDone =
-    processed == {8'h0, run_4[23:0]} & ~(|_rd_io_outstanding) & _rd_io_loaded;
+    processed == {8'h0, run_4[23:0]} & loaded & ~(|_rd_io_outstanding);
   wire         drainDone = _pack_io_idle & ~_pack_io_lines_valid & ~(|_wr_io_outstanding);
   wire [63:0]  totalRecords =
     run_8[0]
@@ -15540,7 +15541,7 @@ module Puc_default(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:274 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:324 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -15610,6 +15611,7 @@ module Puc_default(
       cycCompute <= 32'h0;
       cycWaitRd <= 32'h0;
       cycWaitWr <= 32'h0;
+      tableIn <= 1'h0;
       pairsInFlight <= 25'h0;
     end
     else begin
@@ -15679,6 +15681,7 @@ module Puc_default(
         cycTotal <= 32'h1;
       else if (running)
         cycTotal <= cycTotal + tick;
+      tableIn <= ~_GEN & (loaded | tableIn);
       pairsInFlight <=
         pairsInFlight + {20'h0, _disp_io_fired ? _disp_io_groups_bits_cnt : 5'h0}
         - {20'h0, _coll_io_nPairs};
@@ -15697,12 +15700,12 @@ module Puc_default(
   ReadEngine_r64_p64_default rd (
     .clock                    (clock),
     .reset                    (reset),
-    .io_start                 (engineStart),
+    .io_start                 (runStart),
     .io_active                (running),
     .io_sphereBase            (run_1),
-    .io_sphereLines           (_rd_io_sphereLines_T[10:2]),
+    .io_sphereLines           (_rd_io_sphereLines_T_1[10:2]),
     .io_pairBase              (run_3),
-    .io_pairLines             (_rd_io_pairLines_T[24:4]),
+    .io_pairLines             (_rd_io_pairLines_T_1[24:4]),
     .io_rdReq_ready           (io_link_rdReq_ready),
     .io_rdReq_valid           (_rd_io_rdReq_valid),
     .io_rdReq_bits_addr       (io_link_rdReq_bits_addr),
@@ -16469,7 +16472,7 @@ module Puc_default(
   ContactPacker_w32_derivedmasked_r7_default pack (
     .clock              (clock),
     .reset              (reset),
-    .io_start           (engineStart),
+    .io_start           (runStart),
     .io_dense           (run_8[0]),
     .io_numPairs        (run_4[23:0]),
     .io_base            (run_5),

@@ -1546,7 +1546,7 @@ module ReadEngine_r64_p64_world(
 endmodule
 
 // VCS coverage exclude_file
-module mem_1024x512_world(
+module mems_1024x512_world(
   input  [9:0]   R0_addr,
   input          R0_en,
                  R0_clk,
@@ -1582,11 +1582,13 @@ module mem_1024x512_world(
   assign R1_data = _R1_en_d0 ? Memory[_R1_addr_d0] : 512'bx;
 endmodule
 
-module SphereRam_s4096_c24_world(
+module SphereRam_s4096_c24_t2_world(
   input          clock,
                  io_write_valid,
   input  [9:0]   io_write_bits_line,
   input  [511:0] io_write_bits_data,
+  input          io_wtable,
+                 io_rtable,
   input  [11:0]  io_raddr_0_0,
                  io_raddr_0_1,
                  io_raddr_1_0,
@@ -1845,3013 +1847,3543 @@ module SphereRam_s4096_c24_world(
                  io_world_15_data_r
 );
 
-  wire [511:0] _mem_23_ext_R0_data;
-  wire [511:0] _mem_23_ext_R1_data;
-  wire [511:0] _mem_22_ext_R0_data;
-  wire [511:0] _mem_22_ext_R1_data;
-  wire [511:0] _mem_21_ext_R0_data;
-  wire [511:0] _mem_21_ext_R1_data;
-  wire [511:0] _mem_20_ext_R0_data;
-  wire [511:0] _mem_20_ext_R1_data;
-  wire [511:0] _mem_19_ext_R0_data;
-  wire [511:0] _mem_19_ext_R1_data;
-  wire [511:0] _mem_18_ext_R0_data;
-  wire [511:0] _mem_18_ext_R1_data;
-  wire [511:0] _mem_17_ext_R0_data;
-  wire [511:0] _mem_17_ext_R1_data;
-  wire [511:0] _mem_16_ext_R0_data;
-  wire [511:0] _mem_16_ext_R1_data;
-  wire [511:0] _mem_15_ext_R0_data;
-  wire [511:0] _mem_15_ext_R1_data;
-  wire [511:0] _mem_14_ext_R0_data;
-  wire [511:0] _mem_14_ext_R1_data;
-  wire [511:0] _mem_13_ext_R0_data;
-  wire [511:0] _mem_13_ext_R1_data;
-  wire [511:0] _mem_12_ext_R0_data;
-  wire [511:0] _mem_12_ext_R1_data;
-  wire [511:0] _mem_11_ext_R0_data;
-  wire [511:0] _mem_11_ext_R1_data;
-  wire [511:0] _mem_10_ext_R0_data;
-  wire [511:0] _mem_10_ext_R1_data;
-  wire [511:0] _mem_9_ext_R0_data;
-  wire [511:0] _mem_9_ext_R1_data;
-  wire [511:0] _mem_8_ext_R0_data;
-  wire [511:0] _mem_8_ext_R1_data;
-  wire [511:0] _mem_7_ext_R0_data;
-  wire [511:0] _mem_7_ext_R1_data;
-  wire [511:0] _mem_6_ext_R0_data;
-  wire [511:0] _mem_6_ext_R1_data;
-  wire [511:0] _mem_5_ext_R0_data;
-  wire [511:0] _mem_5_ext_R1_data;
-  wire [511:0] _mem_4_ext_R0_data;
-  wire [511:0] _mem_4_ext_R1_data;
-  wire [511:0] _mem_3_ext_R0_data;
-  wire [511:0] _mem_3_ext_R1_data;
-  wire [511:0] _mem_2_ext_R0_data;
-  wire [511:0] _mem_2_ext_R1_data;
-  wire [511:0] _mem_1_ext_R0_data;
-  wire [511:0] _mem_1_ext_R1_data;
-  wire [511:0] _mem_ext_R0_data;
-  wire [511:0] _mem_ext_R1_data;
+  wire [511:0] _mems_1_23_ext_R0_data;
+  wire [511:0] _mems_1_23_ext_R1_data;
+  wire [511:0] _mems_0_23_ext_R0_data;
+  wire [511:0] _mems_0_23_ext_R1_data;
+  wire [511:0] _mems_1_22_ext_R0_data;
+  wire [511:0] _mems_1_22_ext_R1_data;
+  wire [511:0] _mems_0_22_ext_R0_data;
+  wire [511:0] _mems_0_22_ext_R1_data;
+  wire [511:0] _mems_1_21_ext_R0_data;
+  wire [511:0] _mems_1_21_ext_R1_data;
+  wire [511:0] _mems_0_21_ext_R0_data;
+  wire [511:0] _mems_0_21_ext_R1_data;
+  wire [511:0] _mems_1_20_ext_R0_data;
+  wire [511:0] _mems_1_20_ext_R1_data;
+  wire [511:0] _mems_0_20_ext_R0_data;
+  wire [511:0] _mems_0_20_ext_R1_data;
+  wire [511:0] _mems_1_19_ext_R0_data;
+  wire [511:0] _mems_1_19_ext_R1_data;
+  wire [511:0] _mems_0_19_ext_R0_data;
+  wire [511:0] _mems_0_19_ext_R1_data;
+  wire [511:0] _mems_1_18_ext_R0_data;
+  wire [511:0] _mems_1_18_ext_R1_data;
+  wire [511:0] _mems_0_18_ext_R0_data;
+  wire [511:0] _mems_0_18_ext_R1_data;
+  wire [511:0] _mems_1_17_ext_R0_data;
+  wire [511:0] _mems_1_17_ext_R1_data;
+  wire [511:0] _mems_0_17_ext_R0_data;
+  wire [511:0] _mems_0_17_ext_R1_data;
+  wire [511:0] _mems_1_16_ext_R0_data;
+  wire [511:0] _mems_1_16_ext_R1_data;
+  wire [511:0] _mems_0_16_ext_R0_data;
+  wire [511:0] _mems_0_16_ext_R1_data;
+  wire [511:0] _mems_1_15_ext_R0_data;
+  wire [511:0] _mems_1_15_ext_R1_data;
+  wire [511:0] _mems_0_15_ext_R0_data;
+  wire [511:0] _mems_0_15_ext_R1_data;
+  wire [511:0] _mems_1_14_ext_R0_data;
+  wire [511:0] _mems_1_14_ext_R1_data;
+  wire [511:0] _mems_0_14_ext_R0_data;
+  wire [511:0] _mems_0_14_ext_R1_data;
+  wire [511:0] _mems_1_13_ext_R0_data;
+  wire [511:0] _mems_1_13_ext_R1_data;
+  wire [511:0] _mems_0_13_ext_R0_data;
+  wire [511:0] _mems_0_13_ext_R1_data;
+  wire [511:0] _mems_1_12_ext_R0_data;
+  wire [511:0] _mems_1_12_ext_R1_data;
+  wire [511:0] _mems_0_12_ext_R0_data;
+  wire [511:0] _mems_0_12_ext_R1_data;
+  wire [511:0] _mems_1_11_ext_R0_data;
+  wire [511:0] _mems_1_11_ext_R1_data;
+  wire [511:0] _mems_0_11_ext_R0_data;
+  wire [511:0] _mems_0_11_ext_R1_data;
+  wire [511:0] _mems_1_10_ext_R0_data;
+  wire [511:0] _mems_1_10_ext_R1_data;
+  wire [511:0] _mems_0_10_ext_R0_data;
+  wire [511:0] _mems_0_10_ext_R1_data;
+  wire [511:0] _mems_1_9_ext_R0_data;
+  wire [511:0] _mems_1_9_ext_R1_data;
+  wire [511:0] _mems_0_9_ext_R0_data;
+  wire [511:0] _mems_0_9_ext_R1_data;
+  wire [511:0] _mems_1_8_ext_R0_data;
+  wire [511:0] _mems_1_8_ext_R1_data;
+  wire [511:0] _mems_0_8_ext_R0_data;
+  wire [511:0] _mems_0_8_ext_R1_data;
+  wire [511:0] _mems_1_7_ext_R0_data;
+  wire [511:0] _mems_1_7_ext_R1_data;
+  wire [511:0] _mems_0_7_ext_R0_data;
+  wire [511:0] _mems_0_7_ext_R1_data;
+  wire [511:0] _mems_1_6_ext_R0_data;
+  wire [511:0] _mems_1_6_ext_R1_data;
+  wire [511:0] _mems_0_6_ext_R0_data;
+  wire [511:0] _mems_0_6_ext_R1_data;
+  wire [511:0] _mems_1_5_ext_R0_data;
+  wire [511:0] _mems_1_5_ext_R1_data;
+  wire [511:0] _mems_0_5_ext_R0_data;
+  wire [511:0] _mems_0_5_ext_R1_data;
+  wire [511:0] _mems_1_4_ext_R0_data;
+  wire [511:0] _mems_1_4_ext_R1_data;
+  wire [511:0] _mems_0_4_ext_R0_data;
+  wire [511:0] _mems_0_4_ext_R1_data;
+  wire [511:0] _mems_1_3_ext_R0_data;
+  wire [511:0] _mems_1_3_ext_R1_data;
+  wire [511:0] _mems_0_3_ext_R0_data;
+  wire [511:0] _mems_0_3_ext_R1_data;
+  wire [511:0] _mems_1_2_ext_R0_data;
+  wire [511:0] _mems_1_2_ext_R1_data;
+  wire [511:0] _mems_0_2_ext_R0_data;
+  wire [511:0] _mems_0_2_ext_R1_data;
+  wire [511:0] _mems_1_1_ext_R0_data;
+  wire [511:0] _mems_1_1_ext_R1_data;
+  wire [511:0] _mems_0_1_ext_R0_data;
+  wire [511:0] _mems_0_1_ext_R1_data;
+  wire [511:0] _mems_1_ext_R0_data;
+  wire [511:0] _mems_1_ext_R1_data;
+  wire [511:0] _mems_0_ext_R0_data;
+  wire [511:0] _mems_0_ext_R1_data;
+  wire         _GEN = io_write_valid & ~io_wtable;
+  wire         _GEN_0 = io_write_valid & io_wtable;
+  reg          word_r;
+  wire [511:0] word = word_r ? _mems_1_ext_R1_data : _mems_0_ext_R1_data;
   reg  [1:0]   sel;
   reg  [31:0]  casez_tmp;
   always @(*) begin
     casez (sel)
       2'b00:
-        casez_tmp = _mem_ext_R1_data[31:0];
+        casez_tmp = word[31:0];
       2'b01:
-        casez_tmp = _mem_ext_R1_data[159:128];
+        casez_tmp = word[159:128];
       2'b10:
-        casez_tmp = _mem_ext_R1_data[287:256];
+        casez_tmp = word[287:256];
       default:
-        casez_tmp = _mem_ext_R1_data[415:384];
+        casez_tmp = word[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_0;
   always @(*) begin
     casez (sel)
       2'b00:
-        casez_tmp_0 = _mem_ext_R1_data[63:32];
+        casez_tmp_0 = word[63:32];
       2'b01:
-        casez_tmp_0 = _mem_ext_R1_data[191:160];
+        casez_tmp_0 = word[191:160];
       2'b10:
-        casez_tmp_0 = _mem_ext_R1_data[319:288];
+        casez_tmp_0 = word[319:288];
       default:
-        casez_tmp_0 = _mem_ext_R1_data[447:416];
+        casez_tmp_0 = word[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_1;
   always @(*) begin
     casez (sel)
       2'b00:
-        casez_tmp_1 = _mem_ext_R1_data[95:64];
+        casez_tmp_1 = word[95:64];
       2'b01:
-        casez_tmp_1 = _mem_ext_R1_data[223:192];
+        casez_tmp_1 = word[223:192];
       2'b10:
-        casez_tmp_1 = _mem_ext_R1_data[351:320];
+        casez_tmp_1 = word[351:320];
       default:
-        casez_tmp_1 = _mem_ext_R1_data[479:448];
+        casez_tmp_1 = word[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_2;
   always @(*) begin
     casez (sel)
       2'b00:
-        casez_tmp_2 = _mem_ext_R1_data[127:96];
+        casez_tmp_2 = word[127:96];
       2'b01:
-        casez_tmp_2 = _mem_ext_R1_data[255:224];
+        casez_tmp_2 = word[255:224];
       2'b10:
-        casez_tmp_2 = _mem_ext_R1_data[383:352];
+        casez_tmp_2 = word[383:352];
       default:
-        casez_tmp_2 = _mem_ext_R1_data[511:480];
+        casez_tmp_2 = word[511:480];
     endcase
   end // always @(*)
+  reg          word_r_1;
+  wire [511:0] word_1 = word_r_1 ? _mems_1_ext_R0_data : _mems_0_ext_R0_data;
   reg  [1:0]   sel_1;
   reg  [31:0]  casez_tmp_3;
   always @(*) begin
     casez (sel_1)
       2'b00:
-        casez_tmp_3 = _mem_ext_R0_data[31:0];
+        casez_tmp_3 = word_1[31:0];
       2'b01:
-        casez_tmp_3 = _mem_ext_R0_data[159:128];
+        casez_tmp_3 = word_1[159:128];
       2'b10:
-        casez_tmp_3 = _mem_ext_R0_data[287:256];
+        casez_tmp_3 = word_1[287:256];
       default:
-        casez_tmp_3 = _mem_ext_R0_data[415:384];
+        casez_tmp_3 = word_1[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_4;
   always @(*) begin
     casez (sel_1)
       2'b00:
-        casez_tmp_4 = _mem_ext_R0_data[63:32];
+        casez_tmp_4 = word_1[63:32];
       2'b01:
-        casez_tmp_4 = _mem_ext_R0_data[191:160];
+        casez_tmp_4 = word_1[191:160];
       2'b10:
-        casez_tmp_4 = _mem_ext_R0_data[319:288];
+        casez_tmp_4 = word_1[319:288];
       default:
-        casez_tmp_4 = _mem_ext_R0_data[447:416];
+        casez_tmp_4 = word_1[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_5;
   always @(*) begin
     casez (sel_1)
       2'b00:
-        casez_tmp_5 = _mem_ext_R0_data[95:64];
+        casez_tmp_5 = word_1[95:64];
       2'b01:
-        casez_tmp_5 = _mem_ext_R0_data[223:192];
+        casez_tmp_5 = word_1[223:192];
       2'b10:
-        casez_tmp_5 = _mem_ext_R0_data[351:320];
+        casez_tmp_5 = word_1[351:320];
       default:
-        casez_tmp_5 = _mem_ext_R0_data[479:448];
+        casez_tmp_5 = word_1[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_6;
   always @(*) begin
     casez (sel_1)
       2'b00:
-        casez_tmp_6 = _mem_ext_R0_data[127:96];
+        casez_tmp_6 = word_1[127:96];
       2'b01:
-        casez_tmp_6 = _mem_ext_R0_data[255:224];
+        casez_tmp_6 = word_1[255:224];
       2'b10:
-        casez_tmp_6 = _mem_ext_R0_data[383:352];
+        casez_tmp_6 = word_1[383:352];
       default:
-        casez_tmp_6 = _mem_ext_R0_data[511:480];
+        casez_tmp_6 = word_1[511:480];
     endcase
   end // always @(*)
+  reg          word_r_2;
+  wire [511:0] word_2 = word_r_2 ? _mems_1_1_ext_R1_data : _mems_0_1_ext_R1_data;
   reg  [1:0]   sel_2;
   reg  [31:0]  casez_tmp_7;
   always @(*) begin
     casez (sel_2)
       2'b00:
-        casez_tmp_7 = _mem_1_ext_R1_data[31:0];
+        casez_tmp_7 = word_2[31:0];
       2'b01:
-        casez_tmp_7 = _mem_1_ext_R1_data[159:128];
+        casez_tmp_7 = word_2[159:128];
       2'b10:
-        casez_tmp_7 = _mem_1_ext_R1_data[287:256];
+        casez_tmp_7 = word_2[287:256];
       default:
-        casez_tmp_7 = _mem_1_ext_R1_data[415:384];
+        casez_tmp_7 = word_2[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_8;
   always @(*) begin
     casez (sel_2)
       2'b00:
-        casez_tmp_8 = _mem_1_ext_R1_data[63:32];
+        casez_tmp_8 = word_2[63:32];
       2'b01:
-        casez_tmp_8 = _mem_1_ext_R1_data[191:160];
+        casez_tmp_8 = word_2[191:160];
       2'b10:
-        casez_tmp_8 = _mem_1_ext_R1_data[319:288];
+        casez_tmp_8 = word_2[319:288];
       default:
-        casez_tmp_8 = _mem_1_ext_R1_data[447:416];
+        casez_tmp_8 = word_2[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_9;
   always @(*) begin
     casez (sel_2)
       2'b00:
-        casez_tmp_9 = _mem_1_ext_R1_data[95:64];
+        casez_tmp_9 = word_2[95:64];
       2'b01:
-        casez_tmp_9 = _mem_1_ext_R1_data[223:192];
+        casez_tmp_9 = word_2[223:192];
       2'b10:
-        casez_tmp_9 = _mem_1_ext_R1_data[351:320];
+        casez_tmp_9 = word_2[351:320];
       default:
-        casez_tmp_9 = _mem_1_ext_R1_data[479:448];
+        casez_tmp_9 = word_2[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_10;
   always @(*) begin
     casez (sel_2)
       2'b00:
-        casez_tmp_10 = _mem_1_ext_R1_data[127:96];
+        casez_tmp_10 = word_2[127:96];
       2'b01:
-        casez_tmp_10 = _mem_1_ext_R1_data[255:224];
+        casez_tmp_10 = word_2[255:224];
       2'b10:
-        casez_tmp_10 = _mem_1_ext_R1_data[383:352];
+        casez_tmp_10 = word_2[383:352];
       default:
-        casez_tmp_10 = _mem_1_ext_R1_data[511:480];
+        casez_tmp_10 = word_2[511:480];
     endcase
   end // always @(*)
+  reg          word_r_3;
+  wire [511:0] word_3 = word_r_3 ? _mems_1_1_ext_R0_data : _mems_0_1_ext_R0_data;
   reg  [1:0]   sel_3;
   reg  [31:0]  casez_tmp_11;
   always @(*) begin
     casez (sel_3)
       2'b00:
-        casez_tmp_11 = _mem_1_ext_R0_data[31:0];
+        casez_tmp_11 = word_3[31:0];
       2'b01:
-        casez_tmp_11 = _mem_1_ext_R0_data[159:128];
+        casez_tmp_11 = word_3[159:128];
       2'b10:
-        casez_tmp_11 = _mem_1_ext_R0_data[287:256];
+        casez_tmp_11 = word_3[287:256];
       default:
-        casez_tmp_11 = _mem_1_ext_R0_data[415:384];
+        casez_tmp_11 = word_3[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_12;
   always @(*) begin
     casez (sel_3)
       2'b00:
-        casez_tmp_12 = _mem_1_ext_R0_data[63:32];
+        casez_tmp_12 = word_3[63:32];
       2'b01:
-        casez_tmp_12 = _mem_1_ext_R0_data[191:160];
+        casez_tmp_12 = word_3[191:160];
       2'b10:
-        casez_tmp_12 = _mem_1_ext_R0_data[319:288];
+        casez_tmp_12 = word_3[319:288];
       default:
-        casez_tmp_12 = _mem_1_ext_R0_data[447:416];
+        casez_tmp_12 = word_3[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_13;
   always @(*) begin
     casez (sel_3)
       2'b00:
-        casez_tmp_13 = _mem_1_ext_R0_data[95:64];
+        casez_tmp_13 = word_3[95:64];
       2'b01:
-        casez_tmp_13 = _mem_1_ext_R0_data[223:192];
+        casez_tmp_13 = word_3[223:192];
       2'b10:
-        casez_tmp_13 = _mem_1_ext_R0_data[351:320];
+        casez_tmp_13 = word_3[351:320];
       default:
-        casez_tmp_13 = _mem_1_ext_R0_data[479:448];
+        casez_tmp_13 = word_3[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_14;
   always @(*) begin
     casez (sel_3)
       2'b00:
-        casez_tmp_14 = _mem_1_ext_R0_data[127:96];
+        casez_tmp_14 = word_3[127:96];
       2'b01:
-        casez_tmp_14 = _mem_1_ext_R0_data[255:224];
+        casez_tmp_14 = word_3[255:224];
       2'b10:
-        casez_tmp_14 = _mem_1_ext_R0_data[383:352];
+        casez_tmp_14 = word_3[383:352];
       default:
-        casez_tmp_14 = _mem_1_ext_R0_data[511:480];
+        casez_tmp_14 = word_3[511:480];
     endcase
   end // always @(*)
+  reg          word_r_4;
+  wire [511:0] word_4 = word_r_4 ? _mems_1_2_ext_R1_data : _mems_0_2_ext_R1_data;
   reg  [1:0]   sel_4;
   reg  [31:0]  casez_tmp_15;
   always @(*) begin
     casez (sel_4)
       2'b00:
-        casez_tmp_15 = _mem_2_ext_R1_data[31:0];
+        casez_tmp_15 = word_4[31:0];
       2'b01:
-        casez_tmp_15 = _mem_2_ext_R1_data[159:128];
+        casez_tmp_15 = word_4[159:128];
       2'b10:
-        casez_tmp_15 = _mem_2_ext_R1_data[287:256];
+        casez_tmp_15 = word_4[287:256];
       default:
-        casez_tmp_15 = _mem_2_ext_R1_data[415:384];
+        casez_tmp_15 = word_4[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_16;
   always @(*) begin
     casez (sel_4)
       2'b00:
-        casez_tmp_16 = _mem_2_ext_R1_data[63:32];
+        casez_tmp_16 = word_4[63:32];
       2'b01:
-        casez_tmp_16 = _mem_2_ext_R1_data[191:160];
+        casez_tmp_16 = word_4[191:160];
       2'b10:
-        casez_tmp_16 = _mem_2_ext_R1_data[319:288];
+        casez_tmp_16 = word_4[319:288];
       default:
-        casez_tmp_16 = _mem_2_ext_R1_data[447:416];
+        casez_tmp_16 = word_4[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_17;
   always @(*) begin
     casez (sel_4)
       2'b00:
-        casez_tmp_17 = _mem_2_ext_R1_data[95:64];
+        casez_tmp_17 = word_4[95:64];
       2'b01:
-        casez_tmp_17 = _mem_2_ext_R1_data[223:192];
+        casez_tmp_17 = word_4[223:192];
       2'b10:
-        casez_tmp_17 = _mem_2_ext_R1_data[351:320];
+        casez_tmp_17 = word_4[351:320];
       default:
-        casez_tmp_17 = _mem_2_ext_R1_data[479:448];
+        casez_tmp_17 = word_4[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_18;
   always @(*) begin
     casez (sel_4)
       2'b00:
-        casez_tmp_18 = _mem_2_ext_R1_data[127:96];
+        casez_tmp_18 = word_4[127:96];
       2'b01:
-        casez_tmp_18 = _mem_2_ext_R1_data[255:224];
+        casez_tmp_18 = word_4[255:224];
       2'b10:
-        casez_tmp_18 = _mem_2_ext_R1_data[383:352];
+        casez_tmp_18 = word_4[383:352];
       default:
-        casez_tmp_18 = _mem_2_ext_R1_data[511:480];
+        casez_tmp_18 = word_4[511:480];
     endcase
   end // always @(*)
+  reg          word_r_5;
+  wire [511:0] word_5 = word_r_5 ? _mems_1_2_ext_R0_data : _mems_0_2_ext_R0_data;
   reg  [1:0]   sel_5;
   reg  [31:0]  casez_tmp_19;
   always @(*) begin
     casez (sel_5)
       2'b00:
-        casez_tmp_19 = _mem_2_ext_R0_data[31:0];
+        casez_tmp_19 = word_5[31:0];
       2'b01:
-        casez_tmp_19 = _mem_2_ext_R0_data[159:128];
+        casez_tmp_19 = word_5[159:128];
       2'b10:
-        casez_tmp_19 = _mem_2_ext_R0_data[287:256];
+        casez_tmp_19 = word_5[287:256];
       default:
-        casez_tmp_19 = _mem_2_ext_R0_data[415:384];
+        casez_tmp_19 = word_5[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_20;
   always @(*) begin
     casez (sel_5)
       2'b00:
-        casez_tmp_20 = _mem_2_ext_R0_data[63:32];
+        casez_tmp_20 = word_5[63:32];
       2'b01:
-        casez_tmp_20 = _mem_2_ext_R0_data[191:160];
+        casez_tmp_20 = word_5[191:160];
       2'b10:
-        casez_tmp_20 = _mem_2_ext_R0_data[319:288];
+        casez_tmp_20 = word_5[319:288];
       default:
-        casez_tmp_20 = _mem_2_ext_R0_data[447:416];
+        casez_tmp_20 = word_5[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_21;
   always @(*) begin
     casez (sel_5)
       2'b00:
-        casez_tmp_21 = _mem_2_ext_R0_data[95:64];
+        casez_tmp_21 = word_5[95:64];
       2'b01:
-        casez_tmp_21 = _mem_2_ext_R0_data[223:192];
+        casez_tmp_21 = word_5[223:192];
       2'b10:
-        casez_tmp_21 = _mem_2_ext_R0_data[351:320];
+        casez_tmp_21 = word_5[351:320];
       default:
-        casez_tmp_21 = _mem_2_ext_R0_data[479:448];
+        casez_tmp_21 = word_5[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_22;
   always @(*) begin
     casez (sel_5)
       2'b00:
-        casez_tmp_22 = _mem_2_ext_R0_data[127:96];
+        casez_tmp_22 = word_5[127:96];
       2'b01:
-        casez_tmp_22 = _mem_2_ext_R0_data[255:224];
+        casez_tmp_22 = word_5[255:224];
       2'b10:
-        casez_tmp_22 = _mem_2_ext_R0_data[383:352];
+        casez_tmp_22 = word_5[383:352];
       default:
-        casez_tmp_22 = _mem_2_ext_R0_data[511:480];
+        casez_tmp_22 = word_5[511:480];
     endcase
   end // always @(*)
+  reg          word_r_6;
+  wire [511:0] word_6 = word_r_6 ? _mems_1_3_ext_R1_data : _mems_0_3_ext_R1_data;
   reg  [1:0]   sel_6;
   reg  [31:0]  casez_tmp_23;
   always @(*) begin
     casez (sel_6)
       2'b00:
-        casez_tmp_23 = _mem_3_ext_R1_data[31:0];
+        casez_tmp_23 = word_6[31:0];
       2'b01:
-        casez_tmp_23 = _mem_3_ext_R1_data[159:128];
+        casez_tmp_23 = word_6[159:128];
       2'b10:
-        casez_tmp_23 = _mem_3_ext_R1_data[287:256];
+        casez_tmp_23 = word_6[287:256];
       default:
-        casez_tmp_23 = _mem_3_ext_R1_data[415:384];
+        casez_tmp_23 = word_6[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_24;
   always @(*) begin
     casez (sel_6)
       2'b00:
-        casez_tmp_24 = _mem_3_ext_R1_data[63:32];
+        casez_tmp_24 = word_6[63:32];
       2'b01:
-        casez_tmp_24 = _mem_3_ext_R1_data[191:160];
+        casez_tmp_24 = word_6[191:160];
       2'b10:
-        casez_tmp_24 = _mem_3_ext_R1_data[319:288];
+        casez_tmp_24 = word_6[319:288];
       default:
-        casez_tmp_24 = _mem_3_ext_R1_data[447:416];
+        casez_tmp_24 = word_6[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_25;
   always @(*) begin
     casez (sel_6)
       2'b00:
-        casez_tmp_25 = _mem_3_ext_R1_data[95:64];
+        casez_tmp_25 = word_6[95:64];
       2'b01:
-        casez_tmp_25 = _mem_3_ext_R1_data[223:192];
+        casez_tmp_25 = word_6[223:192];
       2'b10:
-        casez_tmp_25 = _mem_3_ext_R1_data[351:320];
+        casez_tmp_25 = word_6[351:320];
       default:
-        casez_tmp_25 = _mem_3_ext_R1_data[479:448];
+        casez_tmp_25 = word_6[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_26;
   always @(*) begin
     casez (sel_6)
       2'b00:
-        casez_tmp_26 = _mem_3_ext_R1_data[127:96];
+        casez_tmp_26 = word_6[127:96];
       2'b01:
-        casez_tmp_26 = _mem_3_ext_R1_data[255:224];
+        casez_tmp_26 = word_6[255:224];
       2'b10:
-        casez_tmp_26 = _mem_3_ext_R1_data[383:352];
+        casez_tmp_26 = word_6[383:352];
       default:
-        casez_tmp_26 = _mem_3_ext_R1_data[511:480];
+        casez_tmp_26 = word_6[511:480];
     endcase
   end // always @(*)
+  reg          word_r_7;
+  wire [511:0] word_7 = word_r_7 ? _mems_1_3_ext_R0_data : _mems_0_3_ext_R0_data;
   reg  [1:0]   sel_7;
   reg  [31:0]  casez_tmp_27;
   always @(*) begin
     casez (sel_7)
       2'b00:
-        casez_tmp_27 = _mem_3_ext_R0_data[31:0];
+        casez_tmp_27 = word_7[31:0];
       2'b01:
-        casez_tmp_27 = _mem_3_ext_R0_data[159:128];
+        casez_tmp_27 = word_7[159:128];
       2'b10:
-        casez_tmp_27 = _mem_3_ext_R0_data[287:256];
+        casez_tmp_27 = word_7[287:256];
       default:
-        casez_tmp_27 = _mem_3_ext_R0_data[415:384];
+        casez_tmp_27 = word_7[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_28;
   always @(*) begin
     casez (sel_7)
       2'b00:
-        casez_tmp_28 = _mem_3_ext_R0_data[63:32];
+        casez_tmp_28 = word_7[63:32];
       2'b01:
-        casez_tmp_28 = _mem_3_ext_R0_data[191:160];
+        casez_tmp_28 = word_7[191:160];
       2'b10:
-        casez_tmp_28 = _mem_3_ext_R0_data[319:288];
+        casez_tmp_28 = word_7[319:288];
       default:
-        casez_tmp_28 = _mem_3_ext_R0_data[447:416];
+        casez_tmp_28 = word_7[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_29;
   always @(*) begin
     casez (sel_7)
       2'b00:
-        casez_tmp_29 = _mem_3_ext_R0_data[95:64];
+        casez_tmp_29 = word_7[95:64];
       2'b01:
-        casez_tmp_29 = _mem_3_ext_R0_data[223:192];
+        casez_tmp_29 = word_7[223:192];
       2'b10:
-        casez_tmp_29 = _mem_3_ext_R0_data[351:320];
+        casez_tmp_29 = word_7[351:320];
       default:
-        casez_tmp_29 = _mem_3_ext_R0_data[479:448];
+        casez_tmp_29 = word_7[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_30;
   always @(*) begin
     casez (sel_7)
       2'b00:
-        casez_tmp_30 = _mem_3_ext_R0_data[127:96];
+        casez_tmp_30 = word_7[127:96];
       2'b01:
-        casez_tmp_30 = _mem_3_ext_R0_data[255:224];
+        casez_tmp_30 = word_7[255:224];
       2'b10:
-        casez_tmp_30 = _mem_3_ext_R0_data[383:352];
+        casez_tmp_30 = word_7[383:352];
       default:
-        casez_tmp_30 = _mem_3_ext_R0_data[511:480];
+        casez_tmp_30 = word_7[511:480];
     endcase
   end // always @(*)
+  reg          word_r_8;
+  wire [511:0] word_8 = word_r_8 ? _mems_1_4_ext_R1_data : _mems_0_4_ext_R1_data;
   reg  [1:0]   sel_8;
   reg  [31:0]  casez_tmp_31;
   always @(*) begin
     casez (sel_8)
       2'b00:
-        casez_tmp_31 = _mem_4_ext_R1_data[31:0];
+        casez_tmp_31 = word_8[31:0];
       2'b01:
-        casez_tmp_31 = _mem_4_ext_R1_data[159:128];
+        casez_tmp_31 = word_8[159:128];
       2'b10:
-        casez_tmp_31 = _mem_4_ext_R1_data[287:256];
+        casez_tmp_31 = word_8[287:256];
       default:
-        casez_tmp_31 = _mem_4_ext_R1_data[415:384];
+        casez_tmp_31 = word_8[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_32;
   always @(*) begin
     casez (sel_8)
       2'b00:
-        casez_tmp_32 = _mem_4_ext_R1_data[63:32];
+        casez_tmp_32 = word_8[63:32];
       2'b01:
-        casez_tmp_32 = _mem_4_ext_R1_data[191:160];
+        casez_tmp_32 = word_8[191:160];
       2'b10:
-        casez_tmp_32 = _mem_4_ext_R1_data[319:288];
+        casez_tmp_32 = word_8[319:288];
       default:
-        casez_tmp_32 = _mem_4_ext_R1_data[447:416];
+        casez_tmp_32 = word_8[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_33;
   always @(*) begin
     casez (sel_8)
       2'b00:
-        casez_tmp_33 = _mem_4_ext_R1_data[95:64];
+        casez_tmp_33 = word_8[95:64];
       2'b01:
-        casez_tmp_33 = _mem_4_ext_R1_data[223:192];
+        casez_tmp_33 = word_8[223:192];
       2'b10:
-        casez_tmp_33 = _mem_4_ext_R1_data[351:320];
+        casez_tmp_33 = word_8[351:320];
       default:
-        casez_tmp_33 = _mem_4_ext_R1_data[479:448];
+        casez_tmp_33 = word_8[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_34;
   always @(*) begin
     casez (sel_8)
       2'b00:
-        casez_tmp_34 = _mem_4_ext_R1_data[127:96];
+        casez_tmp_34 = word_8[127:96];
       2'b01:
-        casez_tmp_34 = _mem_4_ext_R1_data[255:224];
+        casez_tmp_34 = word_8[255:224];
       2'b10:
-        casez_tmp_34 = _mem_4_ext_R1_data[383:352];
+        casez_tmp_34 = word_8[383:352];
       default:
-        casez_tmp_34 = _mem_4_ext_R1_data[511:480];
+        casez_tmp_34 = word_8[511:480];
     endcase
   end // always @(*)
+  reg          word_r_9;
+  wire [511:0] word_9 = word_r_9 ? _mems_1_4_ext_R0_data : _mems_0_4_ext_R0_data;
   reg  [1:0]   sel_9;
   reg  [31:0]  casez_tmp_35;
   always @(*) begin
     casez (sel_9)
       2'b00:
-        casez_tmp_35 = _mem_4_ext_R0_data[31:0];
+        casez_tmp_35 = word_9[31:0];
       2'b01:
-        casez_tmp_35 = _mem_4_ext_R0_data[159:128];
+        casez_tmp_35 = word_9[159:128];
       2'b10:
-        casez_tmp_35 = _mem_4_ext_R0_data[287:256];
+        casez_tmp_35 = word_9[287:256];
       default:
-        casez_tmp_35 = _mem_4_ext_R0_data[415:384];
+        casez_tmp_35 = word_9[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_36;
   always @(*) begin
     casez (sel_9)
       2'b00:
-        casez_tmp_36 = _mem_4_ext_R0_data[63:32];
+        casez_tmp_36 = word_9[63:32];
       2'b01:
-        casez_tmp_36 = _mem_4_ext_R0_data[191:160];
+        casez_tmp_36 = word_9[191:160];
       2'b10:
-        casez_tmp_36 = _mem_4_ext_R0_data[319:288];
+        casez_tmp_36 = word_9[319:288];
       default:
-        casez_tmp_36 = _mem_4_ext_R0_data[447:416];
+        casez_tmp_36 = word_9[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_37;
   always @(*) begin
     casez (sel_9)
       2'b00:
-        casez_tmp_37 = _mem_4_ext_R0_data[95:64];
+        casez_tmp_37 = word_9[95:64];
       2'b01:
-        casez_tmp_37 = _mem_4_ext_R0_data[223:192];
+        casez_tmp_37 = word_9[223:192];
       2'b10:
-        casez_tmp_37 = _mem_4_ext_R0_data[351:320];
+        casez_tmp_37 = word_9[351:320];
       default:
-        casez_tmp_37 = _mem_4_ext_R0_data[479:448];
+        casez_tmp_37 = word_9[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_38;
   always @(*) begin
     casez (sel_9)
       2'b00:
-        casez_tmp_38 = _mem_4_ext_R0_data[127:96];
+        casez_tmp_38 = word_9[127:96];
       2'b01:
-        casez_tmp_38 = _mem_4_ext_R0_data[255:224];
+        casez_tmp_38 = word_9[255:224];
       2'b10:
-        casez_tmp_38 = _mem_4_ext_R0_data[383:352];
+        casez_tmp_38 = word_9[383:352];
       default:
-        casez_tmp_38 = _mem_4_ext_R0_data[511:480];
+        casez_tmp_38 = word_9[511:480];
     endcase
   end // always @(*)
+  reg          word_r_10;
+  wire [511:0] word_10 = word_r_10 ? _mems_1_5_ext_R1_data : _mems_0_5_ext_R1_data;
   reg  [1:0]   sel_10;
   reg  [31:0]  casez_tmp_39;
   always @(*) begin
     casez (sel_10)
       2'b00:
-        casez_tmp_39 = _mem_5_ext_R1_data[31:0];
+        casez_tmp_39 = word_10[31:0];
       2'b01:
-        casez_tmp_39 = _mem_5_ext_R1_data[159:128];
+        casez_tmp_39 = word_10[159:128];
       2'b10:
-        casez_tmp_39 = _mem_5_ext_R1_data[287:256];
+        casez_tmp_39 = word_10[287:256];
       default:
-        casez_tmp_39 = _mem_5_ext_R1_data[415:384];
+        casez_tmp_39 = word_10[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_40;
   always @(*) begin
     casez (sel_10)
       2'b00:
-        casez_tmp_40 = _mem_5_ext_R1_data[63:32];
+        casez_tmp_40 = word_10[63:32];
       2'b01:
-        casez_tmp_40 = _mem_5_ext_R1_data[191:160];
+        casez_tmp_40 = word_10[191:160];
       2'b10:
-        casez_tmp_40 = _mem_5_ext_R1_data[319:288];
+        casez_tmp_40 = word_10[319:288];
       default:
-        casez_tmp_40 = _mem_5_ext_R1_data[447:416];
+        casez_tmp_40 = word_10[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_41;
   always @(*) begin
     casez (sel_10)
       2'b00:
-        casez_tmp_41 = _mem_5_ext_R1_data[95:64];
+        casez_tmp_41 = word_10[95:64];
       2'b01:
-        casez_tmp_41 = _mem_5_ext_R1_data[223:192];
+        casez_tmp_41 = word_10[223:192];
       2'b10:
-        casez_tmp_41 = _mem_5_ext_R1_data[351:320];
+        casez_tmp_41 = word_10[351:320];
       default:
-        casez_tmp_41 = _mem_5_ext_R1_data[479:448];
+        casez_tmp_41 = word_10[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_42;
   always @(*) begin
     casez (sel_10)
       2'b00:
-        casez_tmp_42 = _mem_5_ext_R1_data[127:96];
+        casez_tmp_42 = word_10[127:96];
       2'b01:
-        casez_tmp_42 = _mem_5_ext_R1_data[255:224];
+        casez_tmp_42 = word_10[255:224];
       2'b10:
-        casez_tmp_42 = _mem_5_ext_R1_data[383:352];
+        casez_tmp_42 = word_10[383:352];
       default:
-        casez_tmp_42 = _mem_5_ext_R1_data[511:480];
+        casez_tmp_42 = word_10[511:480];
     endcase
   end // always @(*)
+  reg          word_r_11;
+  wire [511:0] word_11 = word_r_11 ? _mems_1_5_ext_R0_data : _mems_0_5_ext_R0_data;
   reg  [1:0]   sel_11;
   reg  [31:0]  casez_tmp_43;
   always @(*) begin
     casez (sel_11)
       2'b00:
-        casez_tmp_43 = _mem_5_ext_R0_data[31:0];
+        casez_tmp_43 = word_11[31:0];
       2'b01:
-        casez_tmp_43 = _mem_5_ext_R0_data[159:128];
+        casez_tmp_43 = word_11[159:128];
       2'b10:
-        casez_tmp_43 = _mem_5_ext_R0_data[287:256];
+        casez_tmp_43 = word_11[287:256];
       default:
-        casez_tmp_43 = _mem_5_ext_R0_data[415:384];
+        casez_tmp_43 = word_11[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_44;
   always @(*) begin
     casez (sel_11)
       2'b00:
-        casez_tmp_44 = _mem_5_ext_R0_data[63:32];
+        casez_tmp_44 = word_11[63:32];
       2'b01:
-        casez_tmp_44 = _mem_5_ext_R0_data[191:160];
+        casez_tmp_44 = word_11[191:160];
       2'b10:
-        casez_tmp_44 = _mem_5_ext_R0_data[319:288];
+        casez_tmp_44 = word_11[319:288];
       default:
-        casez_tmp_44 = _mem_5_ext_R0_data[447:416];
+        casez_tmp_44 = word_11[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_45;
   always @(*) begin
     casez (sel_11)
       2'b00:
-        casez_tmp_45 = _mem_5_ext_R0_data[95:64];
+        casez_tmp_45 = word_11[95:64];
       2'b01:
-        casez_tmp_45 = _mem_5_ext_R0_data[223:192];
+        casez_tmp_45 = word_11[223:192];
       2'b10:
-        casez_tmp_45 = _mem_5_ext_R0_data[351:320];
+        casez_tmp_45 = word_11[351:320];
       default:
-        casez_tmp_45 = _mem_5_ext_R0_data[479:448];
+        casez_tmp_45 = word_11[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_46;
   always @(*) begin
     casez (sel_11)
       2'b00:
-        casez_tmp_46 = _mem_5_ext_R0_data[127:96];
+        casez_tmp_46 = word_11[127:96];
       2'b01:
-        casez_tmp_46 = _mem_5_ext_R0_data[255:224];
+        casez_tmp_46 = word_11[255:224];
       2'b10:
-        casez_tmp_46 = _mem_5_ext_R0_data[383:352];
+        casez_tmp_46 = word_11[383:352];
       default:
-        casez_tmp_46 = _mem_5_ext_R0_data[511:480];
+        casez_tmp_46 = word_11[511:480];
     endcase
   end // always @(*)
+  reg          word_r_12;
+  wire [511:0] word_12 = word_r_12 ? _mems_1_6_ext_R1_data : _mems_0_6_ext_R1_data;
   reg  [1:0]   sel_12;
   reg  [31:0]  casez_tmp_47;
   always @(*) begin
     casez (sel_12)
       2'b00:
-        casez_tmp_47 = _mem_6_ext_R1_data[31:0];
+        casez_tmp_47 = word_12[31:0];
       2'b01:
-        casez_tmp_47 = _mem_6_ext_R1_data[159:128];
+        casez_tmp_47 = word_12[159:128];
       2'b10:
-        casez_tmp_47 = _mem_6_ext_R1_data[287:256];
+        casez_tmp_47 = word_12[287:256];
       default:
-        casez_tmp_47 = _mem_6_ext_R1_data[415:384];
+        casez_tmp_47 = word_12[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_48;
   always @(*) begin
     casez (sel_12)
       2'b00:
-        casez_tmp_48 = _mem_6_ext_R1_data[63:32];
+        casez_tmp_48 = word_12[63:32];
       2'b01:
-        casez_tmp_48 = _mem_6_ext_R1_data[191:160];
+        casez_tmp_48 = word_12[191:160];
       2'b10:
-        casez_tmp_48 = _mem_6_ext_R1_data[319:288];
+        casez_tmp_48 = word_12[319:288];
       default:
-        casez_tmp_48 = _mem_6_ext_R1_data[447:416];
+        casez_tmp_48 = word_12[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_49;
   always @(*) begin
     casez (sel_12)
       2'b00:
-        casez_tmp_49 = _mem_6_ext_R1_data[95:64];
+        casez_tmp_49 = word_12[95:64];
       2'b01:
-        casez_tmp_49 = _mem_6_ext_R1_data[223:192];
+        casez_tmp_49 = word_12[223:192];
       2'b10:
-        casez_tmp_49 = _mem_6_ext_R1_data[351:320];
+        casez_tmp_49 = word_12[351:320];
       default:
-        casez_tmp_49 = _mem_6_ext_R1_data[479:448];
+        casez_tmp_49 = word_12[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_50;
   always @(*) begin
     casez (sel_12)
       2'b00:
-        casez_tmp_50 = _mem_6_ext_R1_data[127:96];
+        casez_tmp_50 = word_12[127:96];
       2'b01:
-        casez_tmp_50 = _mem_6_ext_R1_data[255:224];
+        casez_tmp_50 = word_12[255:224];
       2'b10:
-        casez_tmp_50 = _mem_6_ext_R1_data[383:352];
+        casez_tmp_50 = word_12[383:352];
       default:
-        casez_tmp_50 = _mem_6_ext_R1_data[511:480];
+        casez_tmp_50 = word_12[511:480];
     endcase
   end // always @(*)
+  reg          word_r_13;
+  wire [511:0] word_13 = word_r_13 ? _mems_1_6_ext_R0_data : _mems_0_6_ext_R0_data;
   reg  [1:0]   sel_13;
   reg  [31:0]  casez_tmp_51;
   always @(*) begin
     casez (sel_13)
       2'b00:
-        casez_tmp_51 = _mem_6_ext_R0_data[31:0];
+        casez_tmp_51 = word_13[31:0];
       2'b01:
-        casez_tmp_51 = _mem_6_ext_R0_data[159:128];
+        casez_tmp_51 = word_13[159:128];
       2'b10:
-        casez_tmp_51 = _mem_6_ext_R0_data[287:256];
+        casez_tmp_51 = word_13[287:256];
       default:
-        casez_tmp_51 = _mem_6_ext_R0_data[415:384];
+        casez_tmp_51 = word_13[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_52;
   always @(*) begin
     casez (sel_13)
       2'b00:
-        casez_tmp_52 = _mem_6_ext_R0_data[63:32];
+        casez_tmp_52 = word_13[63:32];
       2'b01:
-        casez_tmp_52 = _mem_6_ext_R0_data[191:160];
+        casez_tmp_52 = word_13[191:160];
       2'b10:
-        casez_tmp_52 = _mem_6_ext_R0_data[319:288];
+        casez_tmp_52 = word_13[319:288];
       default:
-        casez_tmp_52 = _mem_6_ext_R0_data[447:416];
+        casez_tmp_52 = word_13[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_53;
   always @(*) begin
     casez (sel_13)
       2'b00:
-        casez_tmp_53 = _mem_6_ext_R0_data[95:64];
+        casez_tmp_53 = word_13[95:64];
       2'b01:
-        casez_tmp_53 = _mem_6_ext_R0_data[223:192];
+        casez_tmp_53 = word_13[223:192];
       2'b10:
-        casez_tmp_53 = _mem_6_ext_R0_data[351:320];
+        casez_tmp_53 = word_13[351:320];
       default:
-        casez_tmp_53 = _mem_6_ext_R0_data[479:448];
+        casez_tmp_53 = word_13[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_54;
   always @(*) begin
     casez (sel_13)
       2'b00:
-        casez_tmp_54 = _mem_6_ext_R0_data[127:96];
+        casez_tmp_54 = word_13[127:96];
       2'b01:
-        casez_tmp_54 = _mem_6_ext_R0_data[255:224];
+        casez_tmp_54 = word_13[255:224];
       2'b10:
-        casez_tmp_54 = _mem_6_ext_R0_data[383:352];
+        casez_tmp_54 = word_13[383:352];
       default:
-        casez_tmp_54 = _mem_6_ext_R0_data[511:480];
+        casez_tmp_54 = word_13[511:480];
     endcase
   end // always @(*)
+  reg          word_r_14;
+  wire [511:0] word_14 = word_r_14 ? _mems_1_7_ext_R1_data : _mems_0_7_ext_R1_data;
   reg  [1:0]   sel_14;
   reg  [31:0]  casez_tmp_55;
   always @(*) begin
     casez (sel_14)
       2'b00:
-        casez_tmp_55 = _mem_7_ext_R1_data[31:0];
+        casez_tmp_55 = word_14[31:0];
       2'b01:
-        casez_tmp_55 = _mem_7_ext_R1_data[159:128];
+        casez_tmp_55 = word_14[159:128];
       2'b10:
-        casez_tmp_55 = _mem_7_ext_R1_data[287:256];
+        casez_tmp_55 = word_14[287:256];
       default:
-        casez_tmp_55 = _mem_7_ext_R1_data[415:384];
+        casez_tmp_55 = word_14[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_56;
   always @(*) begin
     casez (sel_14)
       2'b00:
-        casez_tmp_56 = _mem_7_ext_R1_data[63:32];
+        casez_tmp_56 = word_14[63:32];
       2'b01:
-        casez_tmp_56 = _mem_7_ext_R1_data[191:160];
+        casez_tmp_56 = word_14[191:160];
       2'b10:
-        casez_tmp_56 = _mem_7_ext_R1_data[319:288];
+        casez_tmp_56 = word_14[319:288];
       default:
-        casez_tmp_56 = _mem_7_ext_R1_data[447:416];
+        casez_tmp_56 = word_14[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_57;
   always @(*) begin
     casez (sel_14)
       2'b00:
-        casez_tmp_57 = _mem_7_ext_R1_data[95:64];
+        casez_tmp_57 = word_14[95:64];
       2'b01:
-        casez_tmp_57 = _mem_7_ext_R1_data[223:192];
+        casez_tmp_57 = word_14[223:192];
       2'b10:
-        casez_tmp_57 = _mem_7_ext_R1_data[351:320];
+        casez_tmp_57 = word_14[351:320];
       default:
-        casez_tmp_57 = _mem_7_ext_R1_data[479:448];
+        casez_tmp_57 = word_14[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_58;
   always @(*) begin
     casez (sel_14)
       2'b00:
-        casez_tmp_58 = _mem_7_ext_R1_data[127:96];
+        casez_tmp_58 = word_14[127:96];
       2'b01:
-        casez_tmp_58 = _mem_7_ext_R1_data[255:224];
+        casez_tmp_58 = word_14[255:224];
       2'b10:
-        casez_tmp_58 = _mem_7_ext_R1_data[383:352];
+        casez_tmp_58 = word_14[383:352];
       default:
-        casez_tmp_58 = _mem_7_ext_R1_data[511:480];
+        casez_tmp_58 = word_14[511:480];
     endcase
   end // always @(*)
+  reg          word_r_15;
+  wire [511:0] word_15 = word_r_15 ? _mems_1_7_ext_R0_data : _mems_0_7_ext_R0_data;
   reg  [1:0]   sel_15;
   reg  [31:0]  casez_tmp_59;
   always @(*) begin
     casez (sel_15)
       2'b00:
-        casez_tmp_59 = _mem_7_ext_R0_data[31:0];
+        casez_tmp_59 = word_15[31:0];
       2'b01:
-        casez_tmp_59 = _mem_7_ext_R0_data[159:128];
+        casez_tmp_59 = word_15[159:128];
       2'b10:
-        casez_tmp_59 = _mem_7_ext_R0_data[287:256];
+        casez_tmp_59 = word_15[287:256];
       default:
-        casez_tmp_59 = _mem_7_ext_R0_data[415:384];
+        casez_tmp_59 = word_15[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_60;
   always @(*) begin
     casez (sel_15)
       2'b00:
-        casez_tmp_60 = _mem_7_ext_R0_data[63:32];
+        casez_tmp_60 = word_15[63:32];
       2'b01:
-        casez_tmp_60 = _mem_7_ext_R0_data[191:160];
+        casez_tmp_60 = word_15[191:160];
       2'b10:
-        casez_tmp_60 = _mem_7_ext_R0_data[319:288];
+        casez_tmp_60 = word_15[319:288];
       default:
-        casez_tmp_60 = _mem_7_ext_R0_data[447:416];
+        casez_tmp_60 = word_15[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_61;
   always @(*) begin
     casez (sel_15)
       2'b00:
-        casez_tmp_61 = _mem_7_ext_R0_data[95:64];
+        casez_tmp_61 = word_15[95:64];
       2'b01:
-        casez_tmp_61 = _mem_7_ext_R0_data[223:192];
+        casez_tmp_61 = word_15[223:192];
       2'b10:
-        casez_tmp_61 = _mem_7_ext_R0_data[351:320];
+        casez_tmp_61 = word_15[351:320];
       default:
-        casez_tmp_61 = _mem_7_ext_R0_data[479:448];
+        casez_tmp_61 = word_15[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_62;
   always @(*) begin
     casez (sel_15)
       2'b00:
-        casez_tmp_62 = _mem_7_ext_R0_data[127:96];
+        casez_tmp_62 = word_15[127:96];
       2'b01:
-        casez_tmp_62 = _mem_7_ext_R0_data[255:224];
+        casez_tmp_62 = word_15[255:224];
       2'b10:
-        casez_tmp_62 = _mem_7_ext_R0_data[383:352];
+        casez_tmp_62 = word_15[383:352];
       default:
-        casez_tmp_62 = _mem_7_ext_R0_data[511:480];
+        casez_tmp_62 = word_15[511:480];
     endcase
   end // always @(*)
+  reg          word_r_16;
+  wire [511:0] word_16 = word_r_16 ? _mems_1_8_ext_R1_data : _mems_0_8_ext_R1_data;
   reg  [1:0]   sel_16;
   reg  [31:0]  casez_tmp_63;
   always @(*) begin
     casez (sel_16)
       2'b00:
-        casez_tmp_63 = _mem_8_ext_R1_data[31:0];
+        casez_tmp_63 = word_16[31:0];
       2'b01:
-        casez_tmp_63 = _mem_8_ext_R1_data[159:128];
+        casez_tmp_63 = word_16[159:128];
       2'b10:
-        casez_tmp_63 = _mem_8_ext_R1_data[287:256];
+        casez_tmp_63 = word_16[287:256];
       default:
-        casez_tmp_63 = _mem_8_ext_R1_data[415:384];
+        casez_tmp_63 = word_16[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_64;
   always @(*) begin
     casez (sel_16)
       2'b00:
-        casez_tmp_64 = _mem_8_ext_R1_data[63:32];
+        casez_tmp_64 = word_16[63:32];
       2'b01:
-        casez_tmp_64 = _mem_8_ext_R1_data[191:160];
+        casez_tmp_64 = word_16[191:160];
       2'b10:
-        casez_tmp_64 = _mem_8_ext_R1_data[319:288];
+        casez_tmp_64 = word_16[319:288];
       default:
-        casez_tmp_64 = _mem_8_ext_R1_data[447:416];
+        casez_tmp_64 = word_16[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_65;
   always @(*) begin
     casez (sel_16)
       2'b00:
-        casez_tmp_65 = _mem_8_ext_R1_data[95:64];
+        casez_tmp_65 = word_16[95:64];
       2'b01:
-        casez_tmp_65 = _mem_8_ext_R1_data[223:192];
+        casez_tmp_65 = word_16[223:192];
       2'b10:
-        casez_tmp_65 = _mem_8_ext_R1_data[351:320];
+        casez_tmp_65 = word_16[351:320];
       default:
-        casez_tmp_65 = _mem_8_ext_R1_data[479:448];
+        casez_tmp_65 = word_16[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_66;
   always @(*) begin
     casez (sel_16)
       2'b00:
-        casez_tmp_66 = _mem_8_ext_R1_data[127:96];
+        casez_tmp_66 = word_16[127:96];
       2'b01:
-        casez_tmp_66 = _mem_8_ext_R1_data[255:224];
+        casez_tmp_66 = word_16[255:224];
       2'b10:
-        casez_tmp_66 = _mem_8_ext_R1_data[383:352];
+        casez_tmp_66 = word_16[383:352];
       default:
-        casez_tmp_66 = _mem_8_ext_R1_data[511:480];
+        casez_tmp_66 = word_16[511:480];
     endcase
   end // always @(*)
+  reg          word_r_17;
+  wire [511:0] word_17 = word_r_17 ? _mems_1_8_ext_R0_data : _mems_0_8_ext_R0_data;
   reg  [1:0]   sel_17;
   reg  [31:0]  casez_tmp_67;
   always @(*) begin
     casez (sel_17)
       2'b00:
-        casez_tmp_67 = _mem_8_ext_R0_data[31:0];
+        casez_tmp_67 = word_17[31:0];
       2'b01:
-        casez_tmp_67 = _mem_8_ext_R0_data[159:128];
+        casez_tmp_67 = word_17[159:128];
       2'b10:
-        casez_tmp_67 = _mem_8_ext_R0_data[287:256];
+        casez_tmp_67 = word_17[287:256];
       default:
-        casez_tmp_67 = _mem_8_ext_R0_data[415:384];
+        casez_tmp_67 = word_17[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_68;
   always @(*) begin
     casez (sel_17)
       2'b00:
-        casez_tmp_68 = _mem_8_ext_R0_data[63:32];
+        casez_tmp_68 = word_17[63:32];
       2'b01:
-        casez_tmp_68 = _mem_8_ext_R0_data[191:160];
+        casez_tmp_68 = word_17[191:160];
       2'b10:
-        casez_tmp_68 = _mem_8_ext_R0_data[319:288];
+        casez_tmp_68 = word_17[319:288];
       default:
-        casez_tmp_68 = _mem_8_ext_R0_data[447:416];
+        casez_tmp_68 = word_17[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_69;
   always @(*) begin
     casez (sel_17)
       2'b00:
-        casez_tmp_69 = _mem_8_ext_R0_data[95:64];
+        casez_tmp_69 = word_17[95:64];
       2'b01:
-        casez_tmp_69 = _mem_8_ext_R0_data[223:192];
+        casez_tmp_69 = word_17[223:192];
       2'b10:
-        casez_tmp_69 = _mem_8_ext_R0_data[351:320];
+        casez_tmp_69 = word_17[351:320];
       default:
-        casez_tmp_69 = _mem_8_ext_R0_data[479:448];
+        casez_tmp_69 = word_17[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_70;
   always @(*) begin
     casez (sel_17)
       2'b00:
-        casez_tmp_70 = _mem_8_ext_R0_data[127:96];
+        casez_tmp_70 = word_17[127:96];
       2'b01:
-        casez_tmp_70 = _mem_8_ext_R0_data[255:224];
+        casez_tmp_70 = word_17[255:224];
       2'b10:
-        casez_tmp_70 = _mem_8_ext_R0_data[383:352];
+        casez_tmp_70 = word_17[383:352];
       default:
-        casez_tmp_70 = _mem_8_ext_R0_data[511:480];
+        casez_tmp_70 = word_17[511:480];
     endcase
   end // always @(*)
+  reg          word_r_18;
+  wire [511:0] word_18 = word_r_18 ? _mems_1_9_ext_R1_data : _mems_0_9_ext_R1_data;
   reg  [1:0]   sel_18;
   reg  [31:0]  casez_tmp_71;
   always @(*) begin
     casez (sel_18)
       2'b00:
-        casez_tmp_71 = _mem_9_ext_R1_data[31:0];
+        casez_tmp_71 = word_18[31:0];
       2'b01:
-        casez_tmp_71 = _mem_9_ext_R1_data[159:128];
+        casez_tmp_71 = word_18[159:128];
       2'b10:
-        casez_tmp_71 = _mem_9_ext_R1_data[287:256];
+        casez_tmp_71 = word_18[287:256];
       default:
-        casez_tmp_71 = _mem_9_ext_R1_data[415:384];
+        casez_tmp_71 = word_18[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_72;
   always @(*) begin
     casez (sel_18)
       2'b00:
-        casez_tmp_72 = _mem_9_ext_R1_data[63:32];
+        casez_tmp_72 = word_18[63:32];
       2'b01:
-        casez_tmp_72 = _mem_9_ext_R1_data[191:160];
+        casez_tmp_72 = word_18[191:160];
       2'b10:
-        casez_tmp_72 = _mem_9_ext_R1_data[319:288];
+        casez_tmp_72 = word_18[319:288];
       default:
-        casez_tmp_72 = _mem_9_ext_R1_data[447:416];
+        casez_tmp_72 = word_18[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_73;
   always @(*) begin
     casez (sel_18)
       2'b00:
-        casez_tmp_73 = _mem_9_ext_R1_data[95:64];
+        casez_tmp_73 = word_18[95:64];
       2'b01:
-        casez_tmp_73 = _mem_9_ext_R1_data[223:192];
+        casez_tmp_73 = word_18[223:192];
       2'b10:
-        casez_tmp_73 = _mem_9_ext_R1_data[351:320];
+        casez_tmp_73 = word_18[351:320];
       default:
-        casez_tmp_73 = _mem_9_ext_R1_data[479:448];
+        casez_tmp_73 = word_18[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_74;
   always @(*) begin
     casez (sel_18)
       2'b00:
-        casez_tmp_74 = _mem_9_ext_R1_data[127:96];
+        casez_tmp_74 = word_18[127:96];
       2'b01:
-        casez_tmp_74 = _mem_9_ext_R1_data[255:224];
+        casez_tmp_74 = word_18[255:224];
       2'b10:
-        casez_tmp_74 = _mem_9_ext_R1_data[383:352];
+        casez_tmp_74 = word_18[383:352];
       default:
-        casez_tmp_74 = _mem_9_ext_R1_data[511:480];
+        casez_tmp_74 = word_18[511:480];
     endcase
   end // always @(*)
+  reg          word_r_19;
+  wire [511:0] word_19 = word_r_19 ? _mems_1_9_ext_R0_data : _mems_0_9_ext_R0_data;
   reg  [1:0]   sel_19;
   reg  [31:0]  casez_tmp_75;
   always @(*) begin
     casez (sel_19)
       2'b00:
-        casez_tmp_75 = _mem_9_ext_R0_data[31:0];
+        casez_tmp_75 = word_19[31:0];
       2'b01:
-        casez_tmp_75 = _mem_9_ext_R0_data[159:128];
+        casez_tmp_75 = word_19[159:128];
       2'b10:
-        casez_tmp_75 = _mem_9_ext_R0_data[287:256];
+        casez_tmp_75 = word_19[287:256];
       default:
-        casez_tmp_75 = _mem_9_ext_R0_data[415:384];
+        casez_tmp_75 = word_19[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_76;
   always @(*) begin
     casez (sel_19)
       2'b00:
-        casez_tmp_76 = _mem_9_ext_R0_data[63:32];
+        casez_tmp_76 = word_19[63:32];
       2'b01:
-        casez_tmp_76 = _mem_9_ext_R0_data[191:160];
+        casez_tmp_76 = word_19[191:160];
       2'b10:
-        casez_tmp_76 = _mem_9_ext_R0_data[319:288];
+        casez_tmp_76 = word_19[319:288];
       default:
-        casez_tmp_76 = _mem_9_ext_R0_data[447:416];
+        casez_tmp_76 = word_19[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_77;
   always @(*) begin
     casez (sel_19)
       2'b00:
-        casez_tmp_77 = _mem_9_ext_R0_data[95:64];
+        casez_tmp_77 = word_19[95:64];
       2'b01:
-        casez_tmp_77 = _mem_9_ext_R0_data[223:192];
+        casez_tmp_77 = word_19[223:192];
       2'b10:
-        casez_tmp_77 = _mem_9_ext_R0_data[351:320];
+        casez_tmp_77 = word_19[351:320];
       default:
-        casez_tmp_77 = _mem_9_ext_R0_data[479:448];
+        casez_tmp_77 = word_19[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_78;
   always @(*) begin
     casez (sel_19)
       2'b00:
-        casez_tmp_78 = _mem_9_ext_R0_data[127:96];
+        casez_tmp_78 = word_19[127:96];
       2'b01:
-        casez_tmp_78 = _mem_9_ext_R0_data[255:224];
+        casez_tmp_78 = word_19[255:224];
       2'b10:
-        casez_tmp_78 = _mem_9_ext_R0_data[383:352];
+        casez_tmp_78 = word_19[383:352];
       default:
-        casez_tmp_78 = _mem_9_ext_R0_data[511:480];
+        casez_tmp_78 = word_19[511:480];
     endcase
   end // always @(*)
+  reg          word_r_20;
+  wire [511:0] word_20 = word_r_20 ? _mems_1_10_ext_R1_data : _mems_0_10_ext_R1_data;
   reg  [1:0]   sel_20;
   reg  [31:0]  casez_tmp_79;
   always @(*) begin
     casez (sel_20)
       2'b00:
-        casez_tmp_79 = _mem_10_ext_R1_data[31:0];
+        casez_tmp_79 = word_20[31:0];
       2'b01:
-        casez_tmp_79 = _mem_10_ext_R1_data[159:128];
+        casez_tmp_79 = word_20[159:128];
       2'b10:
-        casez_tmp_79 = _mem_10_ext_R1_data[287:256];
+        casez_tmp_79 = word_20[287:256];
       default:
-        casez_tmp_79 = _mem_10_ext_R1_data[415:384];
+        casez_tmp_79 = word_20[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_80;
   always @(*) begin
     casez (sel_20)
       2'b00:
-        casez_tmp_80 = _mem_10_ext_R1_data[63:32];
+        casez_tmp_80 = word_20[63:32];
       2'b01:
-        casez_tmp_80 = _mem_10_ext_R1_data[191:160];
+        casez_tmp_80 = word_20[191:160];
       2'b10:
-        casez_tmp_80 = _mem_10_ext_R1_data[319:288];
+        casez_tmp_80 = word_20[319:288];
       default:
-        casez_tmp_80 = _mem_10_ext_R1_data[447:416];
+        casez_tmp_80 = word_20[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_81;
   always @(*) begin
     casez (sel_20)
       2'b00:
-        casez_tmp_81 = _mem_10_ext_R1_data[95:64];
+        casez_tmp_81 = word_20[95:64];
       2'b01:
-        casez_tmp_81 = _mem_10_ext_R1_data[223:192];
+        casez_tmp_81 = word_20[223:192];
       2'b10:
-        casez_tmp_81 = _mem_10_ext_R1_data[351:320];
+        casez_tmp_81 = word_20[351:320];
       default:
-        casez_tmp_81 = _mem_10_ext_R1_data[479:448];
+        casez_tmp_81 = word_20[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_82;
   always @(*) begin
     casez (sel_20)
       2'b00:
-        casez_tmp_82 = _mem_10_ext_R1_data[127:96];
+        casez_tmp_82 = word_20[127:96];
       2'b01:
-        casez_tmp_82 = _mem_10_ext_R1_data[255:224];
+        casez_tmp_82 = word_20[255:224];
       2'b10:
-        casez_tmp_82 = _mem_10_ext_R1_data[383:352];
+        casez_tmp_82 = word_20[383:352];
       default:
-        casez_tmp_82 = _mem_10_ext_R1_data[511:480];
+        casez_tmp_82 = word_20[511:480];
     endcase
   end // always @(*)
+  reg          word_r_21;
+  wire [511:0] word_21 = word_r_21 ? _mems_1_10_ext_R0_data : _mems_0_10_ext_R0_data;
   reg  [1:0]   sel_21;
   reg  [31:0]  casez_tmp_83;
   always @(*) begin
     casez (sel_21)
       2'b00:
-        casez_tmp_83 = _mem_10_ext_R0_data[31:0];
+        casez_tmp_83 = word_21[31:0];
       2'b01:
-        casez_tmp_83 = _mem_10_ext_R0_data[159:128];
+        casez_tmp_83 = word_21[159:128];
       2'b10:
-        casez_tmp_83 = _mem_10_ext_R0_data[287:256];
+        casez_tmp_83 = word_21[287:256];
       default:
-        casez_tmp_83 = _mem_10_ext_R0_data[415:384];
+        casez_tmp_83 = word_21[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_84;
   always @(*) begin
     casez (sel_21)
       2'b00:
-        casez_tmp_84 = _mem_10_ext_R0_data[63:32];
+        casez_tmp_84 = word_21[63:32];
       2'b01:
-        casez_tmp_84 = _mem_10_ext_R0_data[191:160];
+        casez_tmp_84 = word_21[191:160];
       2'b10:
-        casez_tmp_84 = _mem_10_ext_R0_data[319:288];
+        casez_tmp_84 = word_21[319:288];
       default:
-        casez_tmp_84 = _mem_10_ext_R0_data[447:416];
+        casez_tmp_84 = word_21[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_85;
   always @(*) begin
     casez (sel_21)
       2'b00:
-        casez_tmp_85 = _mem_10_ext_R0_data[95:64];
+        casez_tmp_85 = word_21[95:64];
       2'b01:
-        casez_tmp_85 = _mem_10_ext_R0_data[223:192];
+        casez_tmp_85 = word_21[223:192];
       2'b10:
-        casez_tmp_85 = _mem_10_ext_R0_data[351:320];
+        casez_tmp_85 = word_21[351:320];
       default:
-        casez_tmp_85 = _mem_10_ext_R0_data[479:448];
+        casez_tmp_85 = word_21[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_86;
   always @(*) begin
     casez (sel_21)
       2'b00:
-        casez_tmp_86 = _mem_10_ext_R0_data[127:96];
+        casez_tmp_86 = word_21[127:96];
       2'b01:
-        casez_tmp_86 = _mem_10_ext_R0_data[255:224];
+        casez_tmp_86 = word_21[255:224];
       2'b10:
-        casez_tmp_86 = _mem_10_ext_R0_data[383:352];
+        casez_tmp_86 = word_21[383:352];
       default:
-        casez_tmp_86 = _mem_10_ext_R0_data[511:480];
+        casez_tmp_86 = word_21[511:480];
     endcase
   end // always @(*)
+  reg          word_r_22;
+  wire [511:0] word_22 = word_r_22 ? _mems_1_11_ext_R1_data : _mems_0_11_ext_R1_data;
   reg  [1:0]   sel_22;
   reg  [31:0]  casez_tmp_87;
   always @(*) begin
     casez (sel_22)
       2'b00:
-        casez_tmp_87 = _mem_11_ext_R1_data[31:0];
+        casez_tmp_87 = word_22[31:0];
       2'b01:
-        casez_tmp_87 = _mem_11_ext_R1_data[159:128];
+        casez_tmp_87 = word_22[159:128];
       2'b10:
-        casez_tmp_87 = _mem_11_ext_R1_data[287:256];
+        casez_tmp_87 = word_22[287:256];
       default:
-        casez_tmp_87 = _mem_11_ext_R1_data[415:384];
+        casez_tmp_87 = word_22[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_88;
   always @(*) begin
     casez (sel_22)
       2'b00:
-        casez_tmp_88 = _mem_11_ext_R1_data[63:32];
+        casez_tmp_88 = word_22[63:32];
       2'b01:
-        casez_tmp_88 = _mem_11_ext_R1_data[191:160];
+        casez_tmp_88 = word_22[191:160];
       2'b10:
-        casez_tmp_88 = _mem_11_ext_R1_data[319:288];
+        casez_tmp_88 = word_22[319:288];
       default:
-        casez_tmp_88 = _mem_11_ext_R1_data[447:416];
+        casez_tmp_88 = word_22[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_89;
   always @(*) begin
     casez (sel_22)
       2'b00:
-        casez_tmp_89 = _mem_11_ext_R1_data[95:64];
+        casez_tmp_89 = word_22[95:64];
       2'b01:
-        casez_tmp_89 = _mem_11_ext_R1_data[223:192];
+        casez_tmp_89 = word_22[223:192];
       2'b10:
-        casez_tmp_89 = _mem_11_ext_R1_data[351:320];
+        casez_tmp_89 = word_22[351:320];
       default:
-        casez_tmp_89 = _mem_11_ext_R1_data[479:448];
+        casez_tmp_89 = word_22[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_90;
   always @(*) begin
     casez (sel_22)
       2'b00:
-        casez_tmp_90 = _mem_11_ext_R1_data[127:96];
+        casez_tmp_90 = word_22[127:96];
       2'b01:
-        casez_tmp_90 = _mem_11_ext_R1_data[255:224];
+        casez_tmp_90 = word_22[255:224];
       2'b10:
-        casez_tmp_90 = _mem_11_ext_R1_data[383:352];
+        casez_tmp_90 = word_22[383:352];
       default:
-        casez_tmp_90 = _mem_11_ext_R1_data[511:480];
+        casez_tmp_90 = word_22[511:480];
     endcase
   end // always @(*)
+  reg          word_r_23;
+  wire [511:0] word_23 = word_r_23 ? _mems_1_11_ext_R0_data : _mems_0_11_ext_R0_data;
   reg  [1:0]   sel_23;
   reg  [31:0]  casez_tmp_91;
   always @(*) begin
     casez (sel_23)
       2'b00:
-        casez_tmp_91 = _mem_11_ext_R0_data[31:0];
+        casez_tmp_91 = word_23[31:0];
       2'b01:
-        casez_tmp_91 = _mem_11_ext_R0_data[159:128];
+        casez_tmp_91 = word_23[159:128];
       2'b10:
-        casez_tmp_91 = _mem_11_ext_R0_data[287:256];
+        casez_tmp_91 = word_23[287:256];
       default:
-        casez_tmp_91 = _mem_11_ext_R0_data[415:384];
+        casez_tmp_91 = word_23[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_92;
   always @(*) begin
     casez (sel_23)
       2'b00:
-        casez_tmp_92 = _mem_11_ext_R0_data[63:32];
+        casez_tmp_92 = word_23[63:32];
       2'b01:
-        casez_tmp_92 = _mem_11_ext_R0_data[191:160];
+        casez_tmp_92 = word_23[191:160];
       2'b10:
-        casez_tmp_92 = _mem_11_ext_R0_data[319:288];
+        casez_tmp_92 = word_23[319:288];
       default:
-        casez_tmp_92 = _mem_11_ext_R0_data[447:416];
+        casez_tmp_92 = word_23[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_93;
   always @(*) begin
     casez (sel_23)
       2'b00:
-        casez_tmp_93 = _mem_11_ext_R0_data[95:64];
+        casez_tmp_93 = word_23[95:64];
       2'b01:
-        casez_tmp_93 = _mem_11_ext_R0_data[223:192];
+        casez_tmp_93 = word_23[223:192];
       2'b10:
-        casez_tmp_93 = _mem_11_ext_R0_data[351:320];
+        casez_tmp_93 = word_23[351:320];
       default:
-        casez_tmp_93 = _mem_11_ext_R0_data[479:448];
+        casez_tmp_93 = word_23[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_94;
   always @(*) begin
     casez (sel_23)
       2'b00:
-        casez_tmp_94 = _mem_11_ext_R0_data[127:96];
+        casez_tmp_94 = word_23[127:96];
       2'b01:
-        casez_tmp_94 = _mem_11_ext_R0_data[255:224];
+        casez_tmp_94 = word_23[255:224];
       2'b10:
-        casez_tmp_94 = _mem_11_ext_R0_data[383:352];
+        casez_tmp_94 = word_23[383:352];
       default:
-        casez_tmp_94 = _mem_11_ext_R0_data[511:480];
+        casez_tmp_94 = word_23[511:480];
     endcase
   end // always @(*)
+  reg          word_r_24;
+  wire [511:0] word_24 = word_r_24 ? _mems_1_12_ext_R1_data : _mems_0_12_ext_R1_data;
   reg  [1:0]   sel_24;
   reg  [31:0]  casez_tmp_95;
   always @(*) begin
     casez (sel_24)
       2'b00:
-        casez_tmp_95 = _mem_12_ext_R1_data[31:0];
+        casez_tmp_95 = word_24[31:0];
       2'b01:
-        casez_tmp_95 = _mem_12_ext_R1_data[159:128];
+        casez_tmp_95 = word_24[159:128];
       2'b10:
-        casez_tmp_95 = _mem_12_ext_R1_data[287:256];
+        casez_tmp_95 = word_24[287:256];
       default:
-        casez_tmp_95 = _mem_12_ext_R1_data[415:384];
+        casez_tmp_95 = word_24[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_96;
   always @(*) begin
     casez (sel_24)
       2'b00:
-        casez_tmp_96 = _mem_12_ext_R1_data[63:32];
+        casez_tmp_96 = word_24[63:32];
       2'b01:
-        casez_tmp_96 = _mem_12_ext_R1_data[191:160];
+        casez_tmp_96 = word_24[191:160];
       2'b10:
-        casez_tmp_96 = _mem_12_ext_R1_data[319:288];
+        casez_tmp_96 = word_24[319:288];
       default:
-        casez_tmp_96 = _mem_12_ext_R1_data[447:416];
+        casez_tmp_96 = word_24[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_97;
   always @(*) begin
     casez (sel_24)
       2'b00:
-        casez_tmp_97 = _mem_12_ext_R1_data[95:64];
+        casez_tmp_97 = word_24[95:64];
       2'b01:
-        casez_tmp_97 = _mem_12_ext_R1_data[223:192];
+        casez_tmp_97 = word_24[223:192];
       2'b10:
-        casez_tmp_97 = _mem_12_ext_R1_data[351:320];
+        casez_tmp_97 = word_24[351:320];
       default:
-        casez_tmp_97 = _mem_12_ext_R1_data[479:448];
+        casez_tmp_97 = word_24[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_98;
   always @(*) begin
     casez (sel_24)
       2'b00:
-        casez_tmp_98 = _mem_12_ext_R1_data[127:96];
+        casez_tmp_98 = word_24[127:96];
       2'b01:
-        casez_tmp_98 = _mem_12_ext_R1_data[255:224];
+        casez_tmp_98 = word_24[255:224];
       2'b10:
-        casez_tmp_98 = _mem_12_ext_R1_data[383:352];
+        casez_tmp_98 = word_24[383:352];
       default:
-        casez_tmp_98 = _mem_12_ext_R1_data[511:480];
+        casez_tmp_98 = word_24[511:480];
     endcase
   end // always @(*)
+  reg          word_r_25;
+  wire [511:0] word_25 = word_r_25 ? _mems_1_12_ext_R0_data : _mems_0_12_ext_R0_data;
   reg  [1:0]   sel_25;
   reg  [31:0]  casez_tmp_99;
   always @(*) begin
     casez (sel_25)
       2'b00:
-        casez_tmp_99 = _mem_12_ext_R0_data[31:0];
+        casez_tmp_99 = word_25[31:0];
       2'b01:
-        casez_tmp_99 = _mem_12_ext_R0_data[159:128];
+        casez_tmp_99 = word_25[159:128];
       2'b10:
-        casez_tmp_99 = _mem_12_ext_R0_data[287:256];
+        casez_tmp_99 = word_25[287:256];
       default:
-        casez_tmp_99 = _mem_12_ext_R0_data[415:384];
+        casez_tmp_99 = word_25[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_100;
   always @(*) begin
     casez (sel_25)
       2'b00:
-        casez_tmp_100 = _mem_12_ext_R0_data[63:32];
+        casez_tmp_100 = word_25[63:32];
       2'b01:
-        casez_tmp_100 = _mem_12_ext_R0_data[191:160];
+        casez_tmp_100 = word_25[191:160];
       2'b10:
-        casez_tmp_100 = _mem_12_ext_R0_data[319:288];
+        casez_tmp_100 = word_25[319:288];
       default:
-        casez_tmp_100 = _mem_12_ext_R0_data[447:416];
+        casez_tmp_100 = word_25[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_101;
   always @(*) begin
     casez (sel_25)
       2'b00:
-        casez_tmp_101 = _mem_12_ext_R0_data[95:64];
+        casez_tmp_101 = word_25[95:64];
       2'b01:
-        casez_tmp_101 = _mem_12_ext_R0_data[223:192];
+        casez_tmp_101 = word_25[223:192];
       2'b10:
-        casez_tmp_101 = _mem_12_ext_R0_data[351:320];
+        casez_tmp_101 = word_25[351:320];
       default:
-        casez_tmp_101 = _mem_12_ext_R0_data[479:448];
+        casez_tmp_101 = word_25[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_102;
   always @(*) begin
     casez (sel_25)
       2'b00:
-        casez_tmp_102 = _mem_12_ext_R0_data[127:96];
+        casez_tmp_102 = word_25[127:96];
       2'b01:
-        casez_tmp_102 = _mem_12_ext_R0_data[255:224];
+        casez_tmp_102 = word_25[255:224];
       2'b10:
-        casez_tmp_102 = _mem_12_ext_R0_data[383:352];
+        casez_tmp_102 = word_25[383:352];
       default:
-        casez_tmp_102 = _mem_12_ext_R0_data[511:480];
+        casez_tmp_102 = word_25[511:480];
     endcase
   end // always @(*)
+  reg          word_r_26;
+  wire [511:0] word_26 = word_r_26 ? _mems_1_13_ext_R1_data : _mems_0_13_ext_R1_data;
   reg  [1:0]   sel_26;
   reg  [31:0]  casez_tmp_103;
   always @(*) begin
     casez (sel_26)
       2'b00:
-        casez_tmp_103 = _mem_13_ext_R1_data[31:0];
+        casez_tmp_103 = word_26[31:0];
       2'b01:
-        casez_tmp_103 = _mem_13_ext_R1_data[159:128];
+        casez_tmp_103 = word_26[159:128];
       2'b10:
-        casez_tmp_103 = _mem_13_ext_R1_data[287:256];
+        casez_tmp_103 = word_26[287:256];
       default:
-        casez_tmp_103 = _mem_13_ext_R1_data[415:384];
+        casez_tmp_103 = word_26[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_104;
   always @(*) begin
     casez (sel_26)
       2'b00:
-        casez_tmp_104 = _mem_13_ext_R1_data[63:32];
+        casez_tmp_104 = word_26[63:32];
       2'b01:
-        casez_tmp_104 = _mem_13_ext_R1_data[191:160];
+        casez_tmp_104 = word_26[191:160];
       2'b10:
-        casez_tmp_104 = _mem_13_ext_R1_data[319:288];
+        casez_tmp_104 = word_26[319:288];
       default:
-        casez_tmp_104 = _mem_13_ext_R1_data[447:416];
+        casez_tmp_104 = word_26[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_105;
   always @(*) begin
     casez (sel_26)
       2'b00:
-        casez_tmp_105 = _mem_13_ext_R1_data[95:64];
+        casez_tmp_105 = word_26[95:64];
       2'b01:
-        casez_tmp_105 = _mem_13_ext_R1_data[223:192];
+        casez_tmp_105 = word_26[223:192];
       2'b10:
-        casez_tmp_105 = _mem_13_ext_R1_data[351:320];
+        casez_tmp_105 = word_26[351:320];
       default:
-        casez_tmp_105 = _mem_13_ext_R1_data[479:448];
+        casez_tmp_105 = word_26[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_106;
   always @(*) begin
     casez (sel_26)
       2'b00:
-        casez_tmp_106 = _mem_13_ext_R1_data[127:96];
+        casez_tmp_106 = word_26[127:96];
       2'b01:
-        casez_tmp_106 = _mem_13_ext_R1_data[255:224];
+        casez_tmp_106 = word_26[255:224];
       2'b10:
-        casez_tmp_106 = _mem_13_ext_R1_data[383:352];
+        casez_tmp_106 = word_26[383:352];
       default:
-        casez_tmp_106 = _mem_13_ext_R1_data[511:480];
+        casez_tmp_106 = word_26[511:480];
     endcase
   end // always @(*)
+  reg          word_r_27;
+  wire [511:0] word_27 = word_r_27 ? _mems_1_13_ext_R0_data : _mems_0_13_ext_R0_data;
   reg  [1:0]   sel_27;
   reg  [31:0]  casez_tmp_107;
   always @(*) begin
     casez (sel_27)
       2'b00:
-        casez_tmp_107 = _mem_13_ext_R0_data[31:0];
+        casez_tmp_107 = word_27[31:0];
       2'b01:
-        casez_tmp_107 = _mem_13_ext_R0_data[159:128];
+        casez_tmp_107 = word_27[159:128];
       2'b10:
-        casez_tmp_107 = _mem_13_ext_R0_data[287:256];
+        casez_tmp_107 = word_27[287:256];
       default:
-        casez_tmp_107 = _mem_13_ext_R0_data[415:384];
+        casez_tmp_107 = word_27[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_108;
   always @(*) begin
     casez (sel_27)
       2'b00:
-        casez_tmp_108 = _mem_13_ext_R0_data[63:32];
+        casez_tmp_108 = word_27[63:32];
       2'b01:
-        casez_tmp_108 = _mem_13_ext_R0_data[191:160];
+        casez_tmp_108 = word_27[191:160];
       2'b10:
-        casez_tmp_108 = _mem_13_ext_R0_data[319:288];
+        casez_tmp_108 = word_27[319:288];
       default:
-        casez_tmp_108 = _mem_13_ext_R0_data[447:416];
+        casez_tmp_108 = word_27[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_109;
   always @(*) begin
     casez (sel_27)
       2'b00:
-        casez_tmp_109 = _mem_13_ext_R0_data[95:64];
+        casez_tmp_109 = word_27[95:64];
       2'b01:
-        casez_tmp_109 = _mem_13_ext_R0_data[223:192];
+        casez_tmp_109 = word_27[223:192];
       2'b10:
-        casez_tmp_109 = _mem_13_ext_R0_data[351:320];
+        casez_tmp_109 = word_27[351:320];
       default:
-        casez_tmp_109 = _mem_13_ext_R0_data[479:448];
+        casez_tmp_109 = word_27[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_110;
   always @(*) begin
     casez (sel_27)
       2'b00:
-        casez_tmp_110 = _mem_13_ext_R0_data[127:96];
+        casez_tmp_110 = word_27[127:96];
       2'b01:
-        casez_tmp_110 = _mem_13_ext_R0_data[255:224];
+        casez_tmp_110 = word_27[255:224];
       2'b10:
-        casez_tmp_110 = _mem_13_ext_R0_data[383:352];
+        casez_tmp_110 = word_27[383:352];
       default:
-        casez_tmp_110 = _mem_13_ext_R0_data[511:480];
+        casez_tmp_110 = word_27[511:480];
     endcase
   end // always @(*)
+  reg          word_r_28;
+  wire [511:0] word_28 = word_r_28 ? _mems_1_14_ext_R1_data : _mems_0_14_ext_R1_data;
   reg  [1:0]   sel_28;
   reg  [31:0]  casez_tmp_111;
   always @(*) begin
     casez (sel_28)
       2'b00:
-        casez_tmp_111 = _mem_14_ext_R1_data[31:0];
+        casez_tmp_111 = word_28[31:0];
       2'b01:
-        casez_tmp_111 = _mem_14_ext_R1_data[159:128];
+        casez_tmp_111 = word_28[159:128];
       2'b10:
-        casez_tmp_111 = _mem_14_ext_R1_data[287:256];
+        casez_tmp_111 = word_28[287:256];
       default:
-        casez_tmp_111 = _mem_14_ext_R1_data[415:384];
+        casez_tmp_111 = word_28[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_112;
   always @(*) begin
     casez (sel_28)
       2'b00:
-        casez_tmp_112 = _mem_14_ext_R1_data[63:32];
+        casez_tmp_112 = word_28[63:32];
       2'b01:
-        casez_tmp_112 = _mem_14_ext_R1_data[191:160];
+        casez_tmp_112 = word_28[191:160];
       2'b10:
-        casez_tmp_112 = _mem_14_ext_R1_data[319:288];
+        casez_tmp_112 = word_28[319:288];
       default:
-        casez_tmp_112 = _mem_14_ext_R1_data[447:416];
+        casez_tmp_112 = word_28[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_113;
   always @(*) begin
     casez (sel_28)
       2'b00:
-        casez_tmp_113 = _mem_14_ext_R1_data[95:64];
+        casez_tmp_113 = word_28[95:64];
       2'b01:
-        casez_tmp_113 = _mem_14_ext_R1_data[223:192];
+        casez_tmp_113 = word_28[223:192];
       2'b10:
-        casez_tmp_113 = _mem_14_ext_R1_data[351:320];
+        casez_tmp_113 = word_28[351:320];
       default:
-        casez_tmp_113 = _mem_14_ext_R1_data[479:448];
+        casez_tmp_113 = word_28[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_114;
   always @(*) begin
     casez (sel_28)
       2'b00:
-        casez_tmp_114 = _mem_14_ext_R1_data[127:96];
+        casez_tmp_114 = word_28[127:96];
       2'b01:
-        casez_tmp_114 = _mem_14_ext_R1_data[255:224];
+        casez_tmp_114 = word_28[255:224];
       2'b10:
-        casez_tmp_114 = _mem_14_ext_R1_data[383:352];
+        casez_tmp_114 = word_28[383:352];
       default:
-        casez_tmp_114 = _mem_14_ext_R1_data[511:480];
+        casez_tmp_114 = word_28[511:480];
     endcase
   end // always @(*)
+  reg          word_r_29;
+  wire [511:0] word_29 = word_r_29 ? _mems_1_14_ext_R0_data : _mems_0_14_ext_R0_data;
   reg  [1:0]   sel_29;
   reg  [31:0]  casez_tmp_115;
   always @(*) begin
     casez (sel_29)
       2'b00:
-        casez_tmp_115 = _mem_14_ext_R0_data[31:0];
+        casez_tmp_115 = word_29[31:0];
       2'b01:
-        casez_tmp_115 = _mem_14_ext_R0_data[159:128];
+        casez_tmp_115 = word_29[159:128];
       2'b10:
-        casez_tmp_115 = _mem_14_ext_R0_data[287:256];
+        casez_tmp_115 = word_29[287:256];
       default:
-        casez_tmp_115 = _mem_14_ext_R0_data[415:384];
+        casez_tmp_115 = word_29[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_116;
   always @(*) begin
     casez (sel_29)
       2'b00:
-        casez_tmp_116 = _mem_14_ext_R0_data[63:32];
+        casez_tmp_116 = word_29[63:32];
       2'b01:
-        casez_tmp_116 = _mem_14_ext_R0_data[191:160];
+        casez_tmp_116 = word_29[191:160];
       2'b10:
-        casez_tmp_116 = _mem_14_ext_R0_data[319:288];
+        casez_tmp_116 = word_29[319:288];
       default:
-        casez_tmp_116 = _mem_14_ext_R0_data[447:416];
+        casez_tmp_116 = word_29[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_117;
   always @(*) begin
     casez (sel_29)
       2'b00:
-        casez_tmp_117 = _mem_14_ext_R0_data[95:64];
+        casez_tmp_117 = word_29[95:64];
       2'b01:
-        casez_tmp_117 = _mem_14_ext_R0_data[223:192];
+        casez_tmp_117 = word_29[223:192];
       2'b10:
-        casez_tmp_117 = _mem_14_ext_R0_data[351:320];
+        casez_tmp_117 = word_29[351:320];
       default:
-        casez_tmp_117 = _mem_14_ext_R0_data[479:448];
+        casez_tmp_117 = word_29[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_118;
   always @(*) begin
     casez (sel_29)
       2'b00:
-        casez_tmp_118 = _mem_14_ext_R0_data[127:96];
+        casez_tmp_118 = word_29[127:96];
       2'b01:
-        casez_tmp_118 = _mem_14_ext_R0_data[255:224];
+        casez_tmp_118 = word_29[255:224];
       2'b10:
-        casez_tmp_118 = _mem_14_ext_R0_data[383:352];
+        casez_tmp_118 = word_29[383:352];
       default:
-        casez_tmp_118 = _mem_14_ext_R0_data[511:480];
+        casez_tmp_118 = word_29[511:480];
     endcase
   end // always @(*)
+  reg          word_r_30;
+  wire [511:0] word_30 = word_r_30 ? _mems_1_15_ext_R1_data : _mems_0_15_ext_R1_data;
   reg  [1:0]   sel_30;
   reg  [31:0]  casez_tmp_119;
   always @(*) begin
     casez (sel_30)
       2'b00:
-        casez_tmp_119 = _mem_15_ext_R1_data[31:0];
+        casez_tmp_119 = word_30[31:0];
       2'b01:
-        casez_tmp_119 = _mem_15_ext_R1_data[159:128];
+        casez_tmp_119 = word_30[159:128];
       2'b10:
-        casez_tmp_119 = _mem_15_ext_R1_data[287:256];
+        casez_tmp_119 = word_30[287:256];
       default:
-        casez_tmp_119 = _mem_15_ext_R1_data[415:384];
+        casez_tmp_119 = word_30[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_120;
   always @(*) begin
     casez (sel_30)
       2'b00:
-        casez_tmp_120 = _mem_15_ext_R1_data[63:32];
+        casez_tmp_120 = word_30[63:32];
       2'b01:
-        casez_tmp_120 = _mem_15_ext_R1_data[191:160];
+        casez_tmp_120 = word_30[191:160];
       2'b10:
-        casez_tmp_120 = _mem_15_ext_R1_data[319:288];
+        casez_tmp_120 = word_30[319:288];
       default:
-        casez_tmp_120 = _mem_15_ext_R1_data[447:416];
+        casez_tmp_120 = word_30[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_121;
   always @(*) begin
     casez (sel_30)
       2'b00:
-        casez_tmp_121 = _mem_15_ext_R1_data[95:64];
+        casez_tmp_121 = word_30[95:64];
       2'b01:
-        casez_tmp_121 = _mem_15_ext_R1_data[223:192];
+        casez_tmp_121 = word_30[223:192];
       2'b10:
-        casez_tmp_121 = _mem_15_ext_R1_data[351:320];
+        casez_tmp_121 = word_30[351:320];
       default:
-        casez_tmp_121 = _mem_15_ext_R1_data[479:448];
+        casez_tmp_121 = word_30[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_122;
   always @(*) begin
     casez (sel_30)
       2'b00:
-        casez_tmp_122 = _mem_15_ext_R1_data[127:96];
+        casez_tmp_122 = word_30[127:96];
       2'b01:
-        casez_tmp_122 = _mem_15_ext_R1_data[255:224];
+        casez_tmp_122 = word_30[255:224];
       2'b10:
-        casez_tmp_122 = _mem_15_ext_R1_data[383:352];
+        casez_tmp_122 = word_30[383:352];
       default:
-        casez_tmp_122 = _mem_15_ext_R1_data[511:480];
+        casez_tmp_122 = word_30[511:480];
     endcase
   end // always @(*)
+  reg          word_r_31;
+  wire [511:0] word_31 = word_r_31 ? _mems_1_15_ext_R0_data : _mems_0_15_ext_R0_data;
   reg  [1:0]   sel_31;
   reg  [31:0]  casez_tmp_123;
   always @(*) begin
     casez (sel_31)
       2'b00:
-        casez_tmp_123 = _mem_15_ext_R0_data[31:0];
+        casez_tmp_123 = word_31[31:0];
       2'b01:
-        casez_tmp_123 = _mem_15_ext_R0_data[159:128];
+        casez_tmp_123 = word_31[159:128];
       2'b10:
-        casez_tmp_123 = _mem_15_ext_R0_data[287:256];
+        casez_tmp_123 = word_31[287:256];
       default:
-        casez_tmp_123 = _mem_15_ext_R0_data[415:384];
+        casez_tmp_123 = word_31[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_124;
   always @(*) begin
     casez (sel_31)
       2'b00:
-        casez_tmp_124 = _mem_15_ext_R0_data[63:32];
+        casez_tmp_124 = word_31[63:32];
       2'b01:
-        casez_tmp_124 = _mem_15_ext_R0_data[191:160];
+        casez_tmp_124 = word_31[191:160];
       2'b10:
-        casez_tmp_124 = _mem_15_ext_R0_data[319:288];
+        casez_tmp_124 = word_31[319:288];
       default:
-        casez_tmp_124 = _mem_15_ext_R0_data[447:416];
+        casez_tmp_124 = word_31[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_125;
   always @(*) begin
     casez (sel_31)
       2'b00:
-        casez_tmp_125 = _mem_15_ext_R0_data[95:64];
+        casez_tmp_125 = word_31[95:64];
       2'b01:
-        casez_tmp_125 = _mem_15_ext_R0_data[223:192];
+        casez_tmp_125 = word_31[223:192];
       2'b10:
-        casez_tmp_125 = _mem_15_ext_R0_data[351:320];
+        casez_tmp_125 = word_31[351:320];
       default:
-        casez_tmp_125 = _mem_15_ext_R0_data[479:448];
+        casez_tmp_125 = word_31[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_126;
   always @(*) begin
     casez (sel_31)
       2'b00:
-        casez_tmp_126 = _mem_15_ext_R0_data[127:96];
+        casez_tmp_126 = word_31[127:96];
       2'b01:
-        casez_tmp_126 = _mem_15_ext_R0_data[255:224];
+        casez_tmp_126 = word_31[255:224];
       2'b10:
-        casez_tmp_126 = _mem_15_ext_R0_data[383:352];
+        casez_tmp_126 = word_31[383:352];
       default:
-        casez_tmp_126 = _mem_15_ext_R0_data[511:480];
+        casez_tmp_126 = word_31[511:480];
     endcase
   end // always @(*)
+  reg          word_r_32;
+  wire [511:0] word_32 = word_r_32 ? _mems_1_16_ext_R1_data : _mems_0_16_ext_R1_data;
   reg  [1:0]   io_world_0_data_REG;
   reg  [31:0]  casez_tmp_127;
   always @(*) begin
     casez (io_world_0_data_REG)
       2'b00:
-        casez_tmp_127 = _mem_16_ext_R1_data[31:0];
+        casez_tmp_127 = word_32[31:0];
       2'b01:
-        casez_tmp_127 = _mem_16_ext_R1_data[159:128];
+        casez_tmp_127 = word_32[159:128];
       2'b10:
-        casez_tmp_127 = _mem_16_ext_R1_data[287:256];
+        casez_tmp_127 = word_32[287:256];
       default:
-        casez_tmp_127 = _mem_16_ext_R1_data[415:384];
+        casez_tmp_127 = word_32[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_128;
   always @(*) begin
     casez (io_world_0_data_REG)
       2'b00:
-        casez_tmp_128 = _mem_16_ext_R1_data[63:32];
+        casez_tmp_128 = word_32[63:32];
       2'b01:
-        casez_tmp_128 = _mem_16_ext_R1_data[191:160];
+        casez_tmp_128 = word_32[191:160];
       2'b10:
-        casez_tmp_128 = _mem_16_ext_R1_data[319:288];
+        casez_tmp_128 = word_32[319:288];
       default:
-        casez_tmp_128 = _mem_16_ext_R1_data[447:416];
+        casez_tmp_128 = word_32[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_129;
   always @(*) begin
     casez (io_world_0_data_REG)
       2'b00:
-        casez_tmp_129 = _mem_16_ext_R1_data[95:64];
+        casez_tmp_129 = word_32[95:64];
       2'b01:
-        casez_tmp_129 = _mem_16_ext_R1_data[223:192];
+        casez_tmp_129 = word_32[223:192];
       2'b10:
-        casez_tmp_129 = _mem_16_ext_R1_data[351:320];
+        casez_tmp_129 = word_32[351:320];
       default:
-        casez_tmp_129 = _mem_16_ext_R1_data[479:448];
+        casez_tmp_129 = word_32[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_130;
   always @(*) begin
     casez (io_world_0_data_REG)
       2'b00:
-        casez_tmp_130 = _mem_16_ext_R1_data[127:96];
+        casez_tmp_130 = word_32[127:96];
       2'b01:
-        casez_tmp_130 = _mem_16_ext_R1_data[255:224];
+        casez_tmp_130 = word_32[255:224];
       2'b10:
-        casez_tmp_130 = _mem_16_ext_R1_data[383:352];
+        casez_tmp_130 = word_32[383:352];
       default:
-        casez_tmp_130 = _mem_16_ext_R1_data[511:480];
+        casez_tmp_130 = word_32[511:480];
     endcase
   end // always @(*)
+  reg          word_r_33;
+  wire [511:0] word_33 = word_r_33 ? _mems_1_16_ext_R0_data : _mems_0_16_ext_R0_data;
   reg  [1:0]   io_world_1_data_REG;
   reg  [31:0]  casez_tmp_131;
   always @(*) begin
     casez (io_world_1_data_REG)
       2'b00:
-        casez_tmp_131 = _mem_16_ext_R0_data[31:0];
+        casez_tmp_131 = word_33[31:0];
       2'b01:
-        casez_tmp_131 = _mem_16_ext_R0_data[159:128];
+        casez_tmp_131 = word_33[159:128];
       2'b10:
-        casez_tmp_131 = _mem_16_ext_R0_data[287:256];
+        casez_tmp_131 = word_33[287:256];
       default:
-        casez_tmp_131 = _mem_16_ext_R0_data[415:384];
+        casez_tmp_131 = word_33[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_132;
   always @(*) begin
     casez (io_world_1_data_REG)
       2'b00:
-        casez_tmp_132 = _mem_16_ext_R0_data[63:32];
+        casez_tmp_132 = word_33[63:32];
       2'b01:
-        casez_tmp_132 = _mem_16_ext_R0_data[191:160];
+        casez_tmp_132 = word_33[191:160];
       2'b10:
-        casez_tmp_132 = _mem_16_ext_R0_data[319:288];
+        casez_tmp_132 = word_33[319:288];
       default:
-        casez_tmp_132 = _mem_16_ext_R0_data[447:416];
+        casez_tmp_132 = word_33[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_133;
   always @(*) begin
     casez (io_world_1_data_REG)
       2'b00:
-        casez_tmp_133 = _mem_16_ext_R0_data[95:64];
+        casez_tmp_133 = word_33[95:64];
       2'b01:
-        casez_tmp_133 = _mem_16_ext_R0_data[223:192];
+        casez_tmp_133 = word_33[223:192];
       2'b10:
-        casez_tmp_133 = _mem_16_ext_R0_data[351:320];
+        casez_tmp_133 = word_33[351:320];
       default:
-        casez_tmp_133 = _mem_16_ext_R0_data[479:448];
+        casez_tmp_133 = word_33[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_134;
   always @(*) begin
     casez (io_world_1_data_REG)
       2'b00:
-        casez_tmp_134 = _mem_16_ext_R0_data[127:96];
+        casez_tmp_134 = word_33[127:96];
       2'b01:
-        casez_tmp_134 = _mem_16_ext_R0_data[255:224];
+        casez_tmp_134 = word_33[255:224];
       2'b10:
-        casez_tmp_134 = _mem_16_ext_R0_data[383:352];
+        casez_tmp_134 = word_33[383:352];
       default:
-        casez_tmp_134 = _mem_16_ext_R0_data[511:480];
+        casez_tmp_134 = word_33[511:480];
     endcase
   end // always @(*)
+  reg          word_r_34;
+  wire [511:0] word_34 = word_r_34 ? _mems_1_17_ext_R1_data : _mems_0_17_ext_R1_data;
   reg  [1:0]   io_world_2_data_REG;
   reg  [31:0]  casez_tmp_135;
   always @(*) begin
     casez (io_world_2_data_REG)
       2'b00:
-        casez_tmp_135 = _mem_17_ext_R1_data[31:0];
+        casez_tmp_135 = word_34[31:0];
       2'b01:
-        casez_tmp_135 = _mem_17_ext_R1_data[159:128];
+        casez_tmp_135 = word_34[159:128];
       2'b10:
-        casez_tmp_135 = _mem_17_ext_R1_data[287:256];
+        casez_tmp_135 = word_34[287:256];
       default:
-        casez_tmp_135 = _mem_17_ext_R1_data[415:384];
+        casez_tmp_135 = word_34[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_136;
   always @(*) begin
     casez (io_world_2_data_REG)
       2'b00:
-        casez_tmp_136 = _mem_17_ext_R1_data[63:32];
+        casez_tmp_136 = word_34[63:32];
       2'b01:
-        casez_tmp_136 = _mem_17_ext_R1_data[191:160];
+        casez_tmp_136 = word_34[191:160];
       2'b10:
-        casez_tmp_136 = _mem_17_ext_R1_data[319:288];
+        casez_tmp_136 = word_34[319:288];
       default:
-        casez_tmp_136 = _mem_17_ext_R1_data[447:416];
+        casez_tmp_136 = word_34[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_137;
   always @(*) begin
     casez (io_world_2_data_REG)
       2'b00:
-        casez_tmp_137 = _mem_17_ext_R1_data[95:64];
+        casez_tmp_137 = word_34[95:64];
       2'b01:
-        casez_tmp_137 = _mem_17_ext_R1_data[223:192];
+        casez_tmp_137 = word_34[223:192];
       2'b10:
-        casez_tmp_137 = _mem_17_ext_R1_data[351:320];
+        casez_tmp_137 = word_34[351:320];
       default:
-        casez_tmp_137 = _mem_17_ext_R1_data[479:448];
+        casez_tmp_137 = word_34[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_138;
   always @(*) begin
     casez (io_world_2_data_REG)
       2'b00:
-        casez_tmp_138 = _mem_17_ext_R1_data[127:96];
+        casez_tmp_138 = word_34[127:96];
       2'b01:
-        casez_tmp_138 = _mem_17_ext_R1_data[255:224];
+        casez_tmp_138 = word_34[255:224];
       2'b10:
-        casez_tmp_138 = _mem_17_ext_R1_data[383:352];
+        casez_tmp_138 = word_34[383:352];
       default:
-        casez_tmp_138 = _mem_17_ext_R1_data[511:480];
+        casez_tmp_138 = word_34[511:480];
     endcase
   end // always @(*)
+  reg          word_r_35;
+  wire [511:0] word_35 = word_r_35 ? _mems_1_17_ext_R0_data : _mems_0_17_ext_R0_data;
   reg  [1:0]   io_world_3_data_REG;
   reg  [31:0]  casez_tmp_139;
   always @(*) begin
     casez (io_world_3_data_REG)
       2'b00:
-        casez_tmp_139 = _mem_17_ext_R0_data[31:0];
+        casez_tmp_139 = word_35[31:0];
       2'b01:
-        casez_tmp_139 = _mem_17_ext_R0_data[159:128];
+        casez_tmp_139 = word_35[159:128];
       2'b10:
-        casez_tmp_139 = _mem_17_ext_R0_data[287:256];
+        casez_tmp_139 = word_35[287:256];
       default:
-        casez_tmp_139 = _mem_17_ext_R0_data[415:384];
+        casez_tmp_139 = word_35[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_140;
   always @(*) begin
     casez (io_world_3_data_REG)
       2'b00:
-        casez_tmp_140 = _mem_17_ext_R0_data[63:32];
+        casez_tmp_140 = word_35[63:32];
       2'b01:
-        casez_tmp_140 = _mem_17_ext_R0_data[191:160];
+        casez_tmp_140 = word_35[191:160];
       2'b10:
-        casez_tmp_140 = _mem_17_ext_R0_data[319:288];
+        casez_tmp_140 = word_35[319:288];
       default:
-        casez_tmp_140 = _mem_17_ext_R0_data[447:416];
+        casez_tmp_140 = word_35[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_141;
   always @(*) begin
     casez (io_world_3_data_REG)
       2'b00:
-        casez_tmp_141 = _mem_17_ext_R0_data[95:64];
+        casez_tmp_141 = word_35[95:64];
       2'b01:
-        casez_tmp_141 = _mem_17_ext_R0_data[223:192];
+        casez_tmp_141 = word_35[223:192];
       2'b10:
-        casez_tmp_141 = _mem_17_ext_R0_data[351:320];
+        casez_tmp_141 = word_35[351:320];
       default:
-        casez_tmp_141 = _mem_17_ext_R0_data[479:448];
+        casez_tmp_141 = word_35[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_142;
   always @(*) begin
     casez (io_world_3_data_REG)
       2'b00:
-        casez_tmp_142 = _mem_17_ext_R0_data[127:96];
+        casez_tmp_142 = word_35[127:96];
       2'b01:
-        casez_tmp_142 = _mem_17_ext_R0_data[255:224];
+        casez_tmp_142 = word_35[255:224];
       2'b10:
-        casez_tmp_142 = _mem_17_ext_R0_data[383:352];
+        casez_tmp_142 = word_35[383:352];
       default:
-        casez_tmp_142 = _mem_17_ext_R0_data[511:480];
+        casez_tmp_142 = word_35[511:480];
     endcase
   end // always @(*)
+  reg          word_r_36;
+  wire [511:0] word_36 = word_r_36 ? _mems_1_18_ext_R1_data : _mems_0_18_ext_R1_data;
   reg  [1:0]   io_world_4_data_REG;
   reg  [31:0]  casez_tmp_143;
   always @(*) begin
     casez (io_world_4_data_REG)
       2'b00:
-        casez_tmp_143 = _mem_18_ext_R1_data[31:0];
+        casez_tmp_143 = word_36[31:0];
       2'b01:
-        casez_tmp_143 = _mem_18_ext_R1_data[159:128];
+        casez_tmp_143 = word_36[159:128];
       2'b10:
-        casez_tmp_143 = _mem_18_ext_R1_data[287:256];
+        casez_tmp_143 = word_36[287:256];
       default:
-        casez_tmp_143 = _mem_18_ext_R1_data[415:384];
+        casez_tmp_143 = word_36[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_144;
   always @(*) begin
     casez (io_world_4_data_REG)
       2'b00:
-        casez_tmp_144 = _mem_18_ext_R1_data[63:32];
+        casez_tmp_144 = word_36[63:32];
       2'b01:
-        casez_tmp_144 = _mem_18_ext_R1_data[191:160];
+        casez_tmp_144 = word_36[191:160];
       2'b10:
-        casez_tmp_144 = _mem_18_ext_R1_data[319:288];
+        casez_tmp_144 = word_36[319:288];
       default:
-        casez_tmp_144 = _mem_18_ext_R1_data[447:416];
+        casez_tmp_144 = word_36[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_145;
   always @(*) begin
     casez (io_world_4_data_REG)
       2'b00:
-        casez_tmp_145 = _mem_18_ext_R1_data[95:64];
+        casez_tmp_145 = word_36[95:64];
       2'b01:
-        casez_tmp_145 = _mem_18_ext_R1_data[223:192];
+        casez_tmp_145 = word_36[223:192];
       2'b10:
-        casez_tmp_145 = _mem_18_ext_R1_data[351:320];
+        casez_tmp_145 = word_36[351:320];
       default:
-        casez_tmp_145 = _mem_18_ext_R1_data[479:448];
+        casez_tmp_145 = word_36[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_146;
   always @(*) begin
     casez (io_world_4_data_REG)
       2'b00:
-        casez_tmp_146 = _mem_18_ext_R1_data[127:96];
+        casez_tmp_146 = word_36[127:96];
       2'b01:
-        casez_tmp_146 = _mem_18_ext_R1_data[255:224];
+        casez_tmp_146 = word_36[255:224];
       2'b10:
-        casez_tmp_146 = _mem_18_ext_R1_data[383:352];
+        casez_tmp_146 = word_36[383:352];
       default:
-        casez_tmp_146 = _mem_18_ext_R1_data[511:480];
+        casez_tmp_146 = word_36[511:480];
     endcase
   end // always @(*)
+  reg          word_r_37;
+  wire [511:0] word_37 = word_r_37 ? _mems_1_18_ext_R0_data : _mems_0_18_ext_R0_data;
   reg  [1:0]   io_world_5_data_REG;
   reg  [31:0]  casez_tmp_147;
   always @(*) begin
     casez (io_world_5_data_REG)
       2'b00:
-        casez_tmp_147 = _mem_18_ext_R0_data[31:0];
+        casez_tmp_147 = word_37[31:0];
       2'b01:
-        casez_tmp_147 = _mem_18_ext_R0_data[159:128];
+        casez_tmp_147 = word_37[159:128];
       2'b10:
-        casez_tmp_147 = _mem_18_ext_R0_data[287:256];
+        casez_tmp_147 = word_37[287:256];
       default:
-        casez_tmp_147 = _mem_18_ext_R0_data[415:384];
+        casez_tmp_147 = word_37[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_148;
   always @(*) begin
     casez (io_world_5_data_REG)
       2'b00:
-        casez_tmp_148 = _mem_18_ext_R0_data[63:32];
+        casez_tmp_148 = word_37[63:32];
       2'b01:
-        casez_tmp_148 = _mem_18_ext_R0_data[191:160];
+        casez_tmp_148 = word_37[191:160];
       2'b10:
-        casez_tmp_148 = _mem_18_ext_R0_data[319:288];
+        casez_tmp_148 = word_37[319:288];
       default:
-        casez_tmp_148 = _mem_18_ext_R0_data[447:416];
+        casez_tmp_148 = word_37[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_149;
   always @(*) begin
     casez (io_world_5_data_REG)
       2'b00:
-        casez_tmp_149 = _mem_18_ext_R0_data[95:64];
+        casez_tmp_149 = word_37[95:64];
       2'b01:
-        casez_tmp_149 = _mem_18_ext_R0_data[223:192];
+        casez_tmp_149 = word_37[223:192];
       2'b10:
-        casez_tmp_149 = _mem_18_ext_R0_data[351:320];
+        casez_tmp_149 = word_37[351:320];
       default:
-        casez_tmp_149 = _mem_18_ext_R0_data[479:448];
+        casez_tmp_149 = word_37[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_150;
   always @(*) begin
     casez (io_world_5_data_REG)
       2'b00:
-        casez_tmp_150 = _mem_18_ext_R0_data[127:96];
+        casez_tmp_150 = word_37[127:96];
       2'b01:
-        casez_tmp_150 = _mem_18_ext_R0_data[255:224];
+        casez_tmp_150 = word_37[255:224];
       2'b10:
-        casez_tmp_150 = _mem_18_ext_R0_data[383:352];
+        casez_tmp_150 = word_37[383:352];
       default:
-        casez_tmp_150 = _mem_18_ext_R0_data[511:480];
+        casez_tmp_150 = word_37[511:480];
     endcase
   end // always @(*)
+  reg          word_r_38;
+  wire [511:0] word_38 = word_r_38 ? _mems_1_19_ext_R1_data : _mems_0_19_ext_R1_data;
   reg  [1:0]   io_world_6_data_REG;
   reg  [31:0]  casez_tmp_151;
   always @(*) begin
     casez (io_world_6_data_REG)
       2'b00:
-        casez_tmp_151 = _mem_19_ext_R1_data[31:0];
+        casez_tmp_151 = word_38[31:0];
       2'b01:
-        casez_tmp_151 = _mem_19_ext_R1_data[159:128];
+        casez_tmp_151 = word_38[159:128];
       2'b10:
-        casez_tmp_151 = _mem_19_ext_R1_data[287:256];
+        casez_tmp_151 = word_38[287:256];
       default:
-        casez_tmp_151 = _mem_19_ext_R1_data[415:384];
+        casez_tmp_151 = word_38[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_152;
   always @(*) begin
     casez (io_world_6_data_REG)
       2'b00:
-        casez_tmp_152 = _mem_19_ext_R1_data[63:32];
+        casez_tmp_152 = word_38[63:32];
       2'b01:
-        casez_tmp_152 = _mem_19_ext_R1_data[191:160];
+        casez_tmp_152 = word_38[191:160];
       2'b10:
-        casez_tmp_152 = _mem_19_ext_R1_data[319:288];
+        casez_tmp_152 = word_38[319:288];
       default:
-        casez_tmp_152 = _mem_19_ext_R1_data[447:416];
+        casez_tmp_152 = word_38[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_153;
   always @(*) begin
     casez (io_world_6_data_REG)
       2'b00:
-        casez_tmp_153 = _mem_19_ext_R1_data[95:64];
+        casez_tmp_153 = word_38[95:64];
       2'b01:
-        casez_tmp_153 = _mem_19_ext_R1_data[223:192];
+        casez_tmp_153 = word_38[223:192];
       2'b10:
-        casez_tmp_153 = _mem_19_ext_R1_data[351:320];
+        casez_tmp_153 = word_38[351:320];
       default:
-        casez_tmp_153 = _mem_19_ext_R1_data[479:448];
+        casez_tmp_153 = word_38[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_154;
   always @(*) begin
     casez (io_world_6_data_REG)
       2'b00:
-        casez_tmp_154 = _mem_19_ext_R1_data[127:96];
+        casez_tmp_154 = word_38[127:96];
       2'b01:
-        casez_tmp_154 = _mem_19_ext_R1_data[255:224];
+        casez_tmp_154 = word_38[255:224];
       2'b10:
-        casez_tmp_154 = _mem_19_ext_R1_data[383:352];
+        casez_tmp_154 = word_38[383:352];
       default:
-        casez_tmp_154 = _mem_19_ext_R1_data[511:480];
+        casez_tmp_154 = word_38[511:480];
     endcase
   end // always @(*)
+  reg          word_r_39;
+  wire [511:0] word_39 = word_r_39 ? _mems_1_19_ext_R0_data : _mems_0_19_ext_R0_data;
   reg  [1:0]   io_world_7_data_REG;
   reg  [31:0]  casez_tmp_155;
   always @(*) begin
     casez (io_world_7_data_REG)
       2'b00:
-        casez_tmp_155 = _mem_19_ext_R0_data[31:0];
+        casez_tmp_155 = word_39[31:0];
       2'b01:
-        casez_tmp_155 = _mem_19_ext_R0_data[159:128];
+        casez_tmp_155 = word_39[159:128];
       2'b10:
-        casez_tmp_155 = _mem_19_ext_R0_data[287:256];
+        casez_tmp_155 = word_39[287:256];
       default:
-        casez_tmp_155 = _mem_19_ext_R0_data[415:384];
+        casez_tmp_155 = word_39[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_156;
   always @(*) begin
     casez (io_world_7_data_REG)
       2'b00:
-        casez_tmp_156 = _mem_19_ext_R0_data[63:32];
+        casez_tmp_156 = word_39[63:32];
       2'b01:
-        casez_tmp_156 = _mem_19_ext_R0_data[191:160];
+        casez_tmp_156 = word_39[191:160];
       2'b10:
-        casez_tmp_156 = _mem_19_ext_R0_data[319:288];
+        casez_tmp_156 = word_39[319:288];
       default:
-        casez_tmp_156 = _mem_19_ext_R0_data[447:416];
+        casez_tmp_156 = word_39[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_157;
   always @(*) begin
     casez (io_world_7_data_REG)
       2'b00:
-        casez_tmp_157 = _mem_19_ext_R0_data[95:64];
+        casez_tmp_157 = word_39[95:64];
       2'b01:
-        casez_tmp_157 = _mem_19_ext_R0_data[223:192];
+        casez_tmp_157 = word_39[223:192];
       2'b10:
-        casez_tmp_157 = _mem_19_ext_R0_data[351:320];
+        casez_tmp_157 = word_39[351:320];
       default:
-        casez_tmp_157 = _mem_19_ext_R0_data[479:448];
+        casez_tmp_157 = word_39[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_158;
   always @(*) begin
     casez (io_world_7_data_REG)
       2'b00:
-        casez_tmp_158 = _mem_19_ext_R0_data[127:96];
+        casez_tmp_158 = word_39[127:96];
       2'b01:
-        casez_tmp_158 = _mem_19_ext_R0_data[255:224];
+        casez_tmp_158 = word_39[255:224];
       2'b10:
-        casez_tmp_158 = _mem_19_ext_R0_data[383:352];
+        casez_tmp_158 = word_39[383:352];
       default:
-        casez_tmp_158 = _mem_19_ext_R0_data[511:480];
+        casez_tmp_158 = word_39[511:480];
     endcase
   end // always @(*)
+  reg          word_r_40;
+  wire [511:0] word_40 = word_r_40 ? _mems_1_20_ext_R1_data : _mems_0_20_ext_R1_data;
   reg  [1:0]   io_world_8_data_REG;
   reg  [31:0]  casez_tmp_159;
   always @(*) begin
     casez (io_world_8_data_REG)
       2'b00:
-        casez_tmp_159 = _mem_20_ext_R1_data[31:0];
+        casez_tmp_159 = word_40[31:0];
       2'b01:
-        casez_tmp_159 = _mem_20_ext_R1_data[159:128];
+        casez_tmp_159 = word_40[159:128];
       2'b10:
-        casez_tmp_159 = _mem_20_ext_R1_data[287:256];
+        casez_tmp_159 = word_40[287:256];
       default:
-        casez_tmp_159 = _mem_20_ext_R1_data[415:384];
+        casez_tmp_159 = word_40[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_160;
   always @(*) begin
     casez (io_world_8_data_REG)
       2'b00:
-        casez_tmp_160 = _mem_20_ext_R1_data[63:32];
+        casez_tmp_160 = word_40[63:32];
       2'b01:
-        casez_tmp_160 = _mem_20_ext_R1_data[191:160];
+        casez_tmp_160 = word_40[191:160];
       2'b10:
-        casez_tmp_160 = _mem_20_ext_R1_data[319:288];
+        casez_tmp_160 = word_40[319:288];
       default:
-        casez_tmp_160 = _mem_20_ext_R1_data[447:416];
+        casez_tmp_160 = word_40[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_161;
   always @(*) begin
     casez (io_world_8_data_REG)
       2'b00:
-        casez_tmp_161 = _mem_20_ext_R1_data[95:64];
+        casez_tmp_161 = word_40[95:64];
       2'b01:
-        casez_tmp_161 = _mem_20_ext_R1_data[223:192];
+        casez_tmp_161 = word_40[223:192];
       2'b10:
-        casez_tmp_161 = _mem_20_ext_R1_data[351:320];
+        casez_tmp_161 = word_40[351:320];
       default:
-        casez_tmp_161 = _mem_20_ext_R1_data[479:448];
+        casez_tmp_161 = word_40[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_162;
   always @(*) begin
     casez (io_world_8_data_REG)
       2'b00:
-        casez_tmp_162 = _mem_20_ext_R1_data[127:96];
+        casez_tmp_162 = word_40[127:96];
       2'b01:
-        casez_tmp_162 = _mem_20_ext_R1_data[255:224];
+        casez_tmp_162 = word_40[255:224];
       2'b10:
-        casez_tmp_162 = _mem_20_ext_R1_data[383:352];
+        casez_tmp_162 = word_40[383:352];
       default:
-        casez_tmp_162 = _mem_20_ext_R1_data[511:480];
+        casez_tmp_162 = word_40[511:480];
     endcase
   end // always @(*)
+  reg          word_r_41;
+  wire [511:0] word_41 = word_r_41 ? _mems_1_20_ext_R0_data : _mems_0_20_ext_R0_data;
   reg  [1:0]   io_world_9_data_REG;
   reg  [31:0]  casez_tmp_163;
   always @(*) begin
     casez (io_world_9_data_REG)
       2'b00:
-        casez_tmp_163 = _mem_20_ext_R0_data[31:0];
+        casez_tmp_163 = word_41[31:0];
       2'b01:
-        casez_tmp_163 = _mem_20_ext_R0_data[159:128];
+        casez_tmp_163 = word_41[159:128];
       2'b10:
-        casez_tmp_163 = _mem_20_ext_R0_data[287:256];
+        casez_tmp_163 = word_41[287:256];
       default:
-        casez_tmp_163 = _mem_20_ext_R0_data[415:384];
+        casez_tmp_163 = word_41[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_164;
   always @(*) begin
     casez (io_world_9_data_REG)
       2'b00:
-        casez_tmp_164 = _mem_20_ext_R0_data[63:32];
+        casez_tmp_164 = word_41[63:32];
       2'b01:
-        casez_tmp_164 = _mem_20_ext_R0_data[191:160];
+        casez_tmp_164 = word_41[191:160];
       2'b10:
-        casez_tmp_164 = _mem_20_ext_R0_data[319:288];
+        casez_tmp_164 = word_41[319:288];
       default:
-        casez_tmp_164 = _mem_20_ext_R0_data[447:416];
+        casez_tmp_164 = word_41[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_165;
   always @(*) begin
     casez (io_world_9_data_REG)
       2'b00:
-        casez_tmp_165 = _mem_20_ext_R0_data[95:64];
+        casez_tmp_165 = word_41[95:64];
       2'b01:
-        casez_tmp_165 = _mem_20_ext_R0_data[223:192];
+        casez_tmp_165 = word_41[223:192];
       2'b10:
-        casez_tmp_165 = _mem_20_ext_R0_data[351:320];
+        casez_tmp_165 = word_41[351:320];
       default:
-        casez_tmp_165 = _mem_20_ext_R0_data[479:448];
+        casez_tmp_165 = word_41[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_166;
   always @(*) begin
     casez (io_world_9_data_REG)
       2'b00:
-        casez_tmp_166 = _mem_20_ext_R0_data[127:96];
+        casez_tmp_166 = word_41[127:96];
       2'b01:
-        casez_tmp_166 = _mem_20_ext_R0_data[255:224];
+        casez_tmp_166 = word_41[255:224];
       2'b10:
-        casez_tmp_166 = _mem_20_ext_R0_data[383:352];
+        casez_tmp_166 = word_41[383:352];
       default:
-        casez_tmp_166 = _mem_20_ext_R0_data[511:480];
+        casez_tmp_166 = word_41[511:480];
     endcase
   end // always @(*)
+  reg          word_r_42;
+  wire [511:0] word_42 = word_r_42 ? _mems_1_21_ext_R1_data : _mems_0_21_ext_R1_data;
   reg  [1:0]   io_world_10_data_REG;
   reg  [31:0]  casez_tmp_167;
   always @(*) begin
     casez (io_world_10_data_REG)
       2'b00:
-        casez_tmp_167 = _mem_21_ext_R1_data[31:0];
+        casez_tmp_167 = word_42[31:0];
       2'b01:
-        casez_tmp_167 = _mem_21_ext_R1_data[159:128];
+        casez_tmp_167 = word_42[159:128];
       2'b10:
-        casez_tmp_167 = _mem_21_ext_R1_data[287:256];
+        casez_tmp_167 = word_42[287:256];
       default:
-        casez_tmp_167 = _mem_21_ext_R1_data[415:384];
+        casez_tmp_167 = word_42[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_168;
   always @(*) begin
     casez (io_world_10_data_REG)
       2'b00:
-        casez_tmp_168 = _mem_21_ext_R1_data[63:32];
+        casez_tmp_168 = word_42[63:32];
       2'b01:
-        casez_tmp_168 = _mem_21_ext_R1_data[191:160];
+        casez_tmp_168 = word_42[191:160];
       2'b10:
-        casez_tmp_168 = _mem_21_ext_R1_data[319:288];
+        casez_tmp_168 = word_42[319:288];
       default:
-        casez_tmp_168 = _mem_21_ext_R1_data[447:416];
+        casez_tmp_168 = word_42[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_169;
   always @(*) begin
     casez (io_world_10_data_REG)
       2'b00:
-        casez_tmp_169 = _mem_21_ext_R1_data[95:64];
+        casez_tmp_169 = word_42[95:64];
       2'b01:
-        casez_tmp_169 = _mem_21_ext_R1_data[223:192];
+        casez_tmp_169 = word_42[223:192];
       2'b10:
-        casez_tmp_169 = _mem_21_ext_R1_data[351:320];
+        casez_tmp_169 = word_42[351:320];
       default:
-        casez_tmp_169 = _mem_21_ext_R1_data[479:448];
+        casez_tmp_169 = word_42[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_170;
   always @(*) begin
     casez (io_world_10_data_REG)
       2'b00:
-        casez_tmp_170 = _mem_21_ext_R1_data[127:96];
+        casez_tmp_170 = word_42[127:96];
       2'b01:
-        casez_tmp_170 = _mem_21_ext_R1_data[255:224];
+        casez_tmp_170 = word_42[255:224];
       2'b10:
-        casez_tmp_170 = _mem_21_ext_R1_data[383:352];
+        casez_tmp_170 = word_42[383:352];
       default:
-        casez_tmp_170 = _mem_21_ext_R1_data[511:480];
+        casez_tmp_170 = word_42[511:480];
     endcase
   end // always @(*)
+  reg          word_r_43;
+  wire [511:0] word_43 = word_r_43 ? _mems_1_21_ext_R0_data : _mems_0_21_ext_R0_data;
   reg  [1:0]   io_world_11_data_REG;
   reg  [31:0]  casez_tmp_171;
   always @(*) begin
     casez (io_world_11_data_REG)
       2'b00:
-        casez_tmp_171 = _mem_21_ext_R0_data[31:0];
+        casez_tmp_171 = word_43[31:0];
       2'b01:
-        casez_tmp_171 = _mem_21_ext_R0_data[159:128];
+        casez_tmp_171 = word_43[159:128];
       2'b10:
-        casez_tmp_171 = _mem_21_ext_R0_data[287:256];
+        casez_tmp_171 = word_43[287:256];
       default:
-        casez_tmp_171 = _mem_21_ext_R0_data[415:384];
+        casez_tmp_171 = word_43[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_172;
   always @(*) begin
     casez (io_world_11_data_REG)
       2'b00:
-        casez_tmp_172 = _mem_21_ext_R0_data[63:32];
+        casez_tmp_172 = word_43[63:32];
       2'b01:
-        casez_tmp_172 = _mem_21_ext_R0_data[191:160];
+        casez_tmp_172 = word_43[191:160];
       2'b10:
-        casez_tmp_172 = _mem_21_ext_R0_data[319:288];
+        casez_tmp_172 = word_43[319:288];
       default:
-        casez_tmp_172 = _mem_21_ext_R0_data[447:416];
+        casez_tmp_172 = word_43[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_173;
   always @(*) begin
     casez (io_world_11_data_REG)
       2'b00:
-        casez_tmp_173 = _mem_21_ext_R0_data[95:64];
+        casez_tmp_173 = word_43[95:64];
       2'b01:
-        casez_tmp_173 = _mem_21_ext_R0_data[223:192];
+        casez_tmp_173 = word_43[223:192];
       2'b10:
-        casez_tmp_173 = _mem_21_ext_R0_data[351:320];
+        casez_tmp_173 = word_43[351:320];
       default:
-        casez_tmp_173 = _mem_21_ext_R0_data[479:448];
+        casez_tmp_173 = word_43[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_174;
   always @(*) begin
     casez (io_world_11_data_REG)
       2'b00:
-        casez_tmp_174 = _mem_21_ext_R0_data[127:96];
+        casez_tmp_174 = word_43[127:96];
       2'b01:
-        casez_tmp_174 = _mem_21_ext_R0_data[255:224];
+        casez_tmp_174 = word_43[255:224];
       2'b10:
-        casez_tmp_174 = _mem_21_ext_R0_data[383:352];
+        casez_tmp_174 = word_43[383:352];
       default:
-        casez_tmp_174 = _mem_21_ext_R0_data[511:480];
+        casez_tmp_174 = word_43[511:480];
     endcase
   end // always @(*)
+  reg          word_r_44;
+  wire [511:0] word_44 = word_r_44 ? _mems_1_22_ext_R1_data : _mems_0_22_ext_R1_data;
   reg  [1:0]   io_world_12_data_REG;
   reg  [31:0]  casez_tmp_175;
   always @(*) begin
     casez (io_world_12_data_REG)
       2'b00:
-        casez_tmp_175 = _mem_22_ext_R1_data[31:0];
+        casez_tmp_175 = word_44[31:0];
       2'b01:
-        casez_tmp_175 = _mem_22_ext_R1_data[159:128];
+        casez_tmp_175 = word_44[159:128];
       2'b10:
-        casez_tmp_175 = _mem_22_ext_R1_data[287:256];
+        casez_tmp_175 = word_44[287:256];
       default:
-        casez_tmp_175 = _mem_22_ext_R1_data[415:384];
+        casez_tmp_175 = word_44[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_176;
   always @(*) begin
     casez (io_world_12_data_REG)
       2'b00:
-        casez_tmp_176 = _mem_22_ext_R1_data[63:32];
+        casez_tmp_176 = word_44[63:32];
       2'b01:
-        casez_tmp_176 = _mem_22_ext_R1_data[191:160];
+        casez_tmp_176 = word_44[191:160];
       2'b10:
-        casez_tmp_176 = _mem_22_ext_R1_data[319:288];
+        casez_tmp_176 = word_44[319:288];
       default:
-        casez_tmp_176 = _mem_22_ext_R1_data[447:416];
+        casez_tmp_176 = word_44[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_177;
   always @(*) begin
     casez (io_world_12_data_REG)
       2'b00:
-        casez_tmp_177 = _mem_22_ext_R1_data[95:64];
+        casez_tmp_177 = word_44[95:64];
       2'b01:
-        casez_tmp_177 = _mem_22_ext_R1_data[223:192];
+        casez_tmp_177 = word_44[223:192];
       2'b10:
-        casez_tmp_177 = _mem_22_ext_R1_data[351:320];
+        casez_tmp_177 = word_44[351:320];
       default:
-        casez_tmp_177 = _mem_22_ext_R1_data[479:448];
+        casez_tmp_177 = word_44[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_178;
   always @(*) begin
     casez (io_world_12_data_REG)
       2'b00:
-        casez_tmp_178 = _mem_22_ext_R1_data[127:96];
+        casez_tmp_178 = word_44[127:96];
       2'b01:
-        casez_tmp_178 = _mem_22_ext_R1_data[255:224];
+        casez_tmp_178 = word_44[255:224];
       2'b10:
-        casez_tmp_178 = _mem_22_ext_R1_data[383:352];
+        casez_tmp_178 = word_44[383:352];
       default:
-        casez_tmp_178 = _mem_22_ext_R1_data[511:480];
+        casez_tmp_178 = word_44[511:480];
     endcase
   end // always @(*)
+  reg          word_r_45;
+  wire [511:0] word_45 = word_r_45 ? _mems_1_22_ext_R0_data : _mems_0_22_ext_R0_data;
   reg  [1:0]   io_world_13_data_REG;
   reg  [31:0]  casez_tmp_179;
   always @(*) begin
     casez (io_world_13_data_REG)
       2'b00:
-        casez_tmp_179 = _mem_22_ext_R0_data[31:0];
+        casez_tmp_179 = word_45[31:0];
       2'b01:
-        casez_tmp_179 = _mem_22_ext_R0_data[159:128];
+        casez_tmp_179 = word_45[159:128];
       2'b10:
-        casez_tmp_179 = _mem_22_ext_R0_data[287:256];
+        casez_tmp_179 = word_45[287:256];
       default:
-        casez_tmp_179 = _mem_22_ext_R0_data[415:384];
+        casez_tmp_179 = word_45[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_180;
   always @(*) begin
     casez (io_world_13_data_REG)
       2'b00:
-        casez_tmp_180 = _mem_22_ext_R0_data[63:32];
+        casez_tmp_180 = word_45[63:32];
       2'b01:
-        casez_tmp_180 = _mem_22_ext_R0_data[191:160];
+        casez_tmp_180 = word_45[191:160];
       2'b10:
-        casez_tmp_180 = _mem_22_ext_R0_data[319:288];
+        casez_tmp_180 = word_45[319:288];
       default:
-        casez_tmp_180 = _mem_22_ext_R0_data[447:416];
+        casez_tmp_180 = word_45[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_181;
   always @(*) begin
     casez (io_world_13_data_REG)
       2'b00:
-        casez_tmp_181 = _mem_22_ext_R0_data[95:64];
+        casez_tmp_181 = word_45[95:64];
       2'b01:
-        casez_tmp_181 = _mem_22_ext_R0_data[223:192];
+        casez_tmp_181 = word_45[223:192];
       2'b10:
-        casez_tmp_181 = _mem_22_ext_R0_data[351:320];
+        casez_tmp_181 = word_45[351:320];
       default:
-        casez_tmp_181 = _mem_22_ext_R0_data[479:448];
+        casez_tmp_181 = word_45[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_182;
   always @(*) begin
     casez (io_world_13_data_REG)
       2'b00:
-        casez_tmp_182 = _mem_22_ext_R0_data[127:96];
+        casez_tmp_182 = word_45[127:96];
       2'b01:
-        casez_tmp_182 = _mem_22_ext_R0_data[255:224];
+        casez_tmp_182 = word_45[255:224];
       2'b10:
-        casez_tmp_182 = _mem_22_ext_R0_data[383:352];
+        casez_tmp_182 = word_45[383:352];
       default:
-        casez_tmp_182 = _mem_22_ext_R0_data[511:480];
+        casez_tmp_182 = word_45[511:480];
     endcase
   end // always @(*)
+  reg          word_r_46;
+  wire [511:0] word_46 = word_r_46 ? _mems_1_23_ext_R1_data : _mems_0_23_ext_R1_data;
   reg  [1:0]   io_world_14_data_REG;
   reg  [31:0]  casez_tmp_183;
   always @(*) begin
     casez (io_world_14_data_REG)
       2'b00:
-        casez_tmp_183 = _mem_23_ext_R1_data[31:0];
+        casez_tmp_183 = word_46[31:0];
       2'b01:
-        casez_tmp_183 = _mem_23_ext_R1_data[159:128];
+        casez_tmp_183 = word_46[159:128];
       2'b10:
-        casez_tmp_183 = _mem_23_ext_R1_data[287:256];
+        casez_tmp_183 = word_46[287:256];
       default:
-        casez_tmp_183 = _mem_23_ext_R1_data[415:384];
+        casez_tmp_183 = word_46[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_184;
   always @(*) begin
     casez (io_world_14_data_REG)
       2'b00:
-        casez_tmp_184 = _mem_23_ext_R1_data[63:32];
+        casez_tmp_184 = word_46[63:32];
       2'b01:
-        casez_tmp_184 = _mem_23_ext_R1_data[191:160];
+        casez_tmp_184 = word_46[191:160];
       2'b10:
-        casez_tmp_184 = _mem_23_ext_R1_data[319:288];
+        casez_tmp_184 = word_46[319:288];
       default:
-        casez_tmp_184 = _mem_23_ext_R1_data[447:416];
+        casez_tmp_184 = word_46[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_185;
   always @(*) begin
     casez (io_world_14_data_REG)
       2'b00:
-        casez_tmp_185 = _mem_23_ext_R1_data[95:64];
+        casez_tmp_185 = word_46[95:64];
       2'b01:
-        casez_tmp_185 = _mem_23_ext_R1_data[223:192];
+        casez_tmp_185 = word_46[223:192];
       2'b10:
-        casez_tmp_185 = _mem_23_ext_R1_data[351:320];
+        casez_tmp_185 = word_46[351:320];
       default:
-        casez_tmp_185 = _mem_23_ext_R1_data[479:448];
+        casez_tmp_185 = word_46[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_186;
   always @(*) begin
     casez (io_world_14_data_REG)
       2'b00:
-        casez_tmp_186 = _mem_23_ext_R1_data[127:96];
+        casez_tmp_186 = word_46[127:96];
       2'b01:
-        casez_tmp_186 = _mem_23_ext_R1_data[255:224];
+        casez_tmp_186 = word_46[255:224];
       2'b10:
-        casez_tmp_186 = _mem_23_ext_R1_data[383:352];
+        casez_tmp_186 = word_46[383:352];
       default:
-        casez_tmp_186 = _mem_23_ext_R1_data[511:480];
+        casez_tmp_186 = word_46[511:480];
     endcase
   end // always @(*)
+  reg          word_r_47;
+  wire [511:0] word_47 = word_r_47 ? _mems_1_23_ext_R0_data : _mems_0_23_ext_R0_data;
   reg  [1:0]   io_world_15_data_REG;
   reg  [31:0]  casez_tmp_187;
   always @(*) begin
     casez (io_world_15_data_REG)
       2'b00:
-        casez_tmp_187 = _mem_23_ext_R0_data[31:0];
+        casez_tmp_187 = word_47[31:0];
       2'b01:
-        casez_tmp_187 = _mem_23_ext_R0_data[159:128];
+        casez_tmp_187 = word_47[159:128];
       2'b10:
-        casez_tmp_187 = _mem_23_ext_R0_data[287:256];
+        casez_tmp_187 = word_47[287:256];
       default:
-        casez_tmp_187 = _mem_23_ext_R0_data[415:384];
+        casez_tmp_187 = word_47[415:384];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_188;
   always @(*) begin
     casez (io_world_15_data_REG)
       2'b00:
-        casez_tmp_188 = _mem_23_ext_R0_data[63:32];
+        casez_tmp_188 = word_47[63:32];
       2'b01:
-        casez_tmp_188 = _mem_23_ext_R0_data[191:160];
+        casez_tmp_188 = word_47[191:160];
       2'b10:
-        casez_tmp_188 = _mem_23_ext_R0_data[319:288];
+        casez_tmp_188 = word_47[319:288];
       default:
-        casez_tmp_188 = _mem_23_ext_R0_data[447:416];
+        casez_tmp_188 = word_47[447:416];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_189;
   always @(*) begin
     casez (io_world_15_data_REG)
       2'b00:
-        casez_tmp_189 = _mem_23_ext_R0_data[95:64];
+        casez_tmp_189 = word_47[95:64];
       2'b01:
-        casez_tmp_189 = _mem_23_ext_R0_data[223:192];
+        casez_tmp_189 = word_47[223:192];
       2'b10:
-        casez_tmp_189 = _mem_23_ext_R0_data[351:320];
+        casez_tmp_189 = word_47[351:320];
       default:
-        casez_tmp_189 = _mem_23_ext_R0_data[479:448];
+        casez_tmp_189 = word_47[479:448];
     endcase
   end // always @(*)
   reg  [31:0]  casez_tmp_190;
   always @(*) begin
     casez (io_world_15_data_REG)
       2'b00:
-        casez_tmp_190 = _mem_23_ext_R0_data[127:96];
+        casez_tmp_190 = word_47[127:96];
       2'b01:
-        casez_tmp_190 = _mem_23_ext_R0_data[255:224];
+        casez_tmp_190 = word_47[255:224];
       2'b10:
-        casez_tmp_190 = _mem_23_ext_R0_data[383:352];
+        casez_tmp_190 = word_47[383:352];
       default:
-        casez_tmp_190 = _mem_23_ext_R0_data[511:480];
+        casez_tmp_190 = word_47[511:480];
     endcase
   end // always @(*)
   always @(posedge clock) begin
     if (io_ren_0) begin
+      word_r <= io_rtable;
       sel <= io_raddr_0_0[1:0];
+      word_r_1 <= io_rtable;
       sel_1 <= io_raddr_0_1[1:0];
     end
     if (io_ren_1) begin
+      word_r_2 <= io_rtable;
       sel_2 <= io_raddr_1_0[1:0];
+      word_r_3 <= io_rtable;
       sel_3 <= io_raddr_1_1[1:0];
     end
     if (io_ren_2) begin
+      word_r_4 <= io_rtable;
       sel_4 <= io_raddr_2_0[1:0];
+      word_r_5 <= io_rtable;
       sel_5 <= io_raddr_2_1[1:0];
     end
     if (io_ren_3) begin
+      word_r_6 <= io_rtable;
       sel_6 <= io_raddr_3_0[1:0];
+      word_r_7 <= io_rtable;
       sel_7 <= io_raddr_3_1[1:0];
     end
     if (io_ren_4) begin
+      word_r_8 <= io_rtable;
       sel_8 <= io_raddr_4_0[1:0];
+      word_r_9 <= io_rtable;
       sel_9 <= io_raddr_4_1[1:0];
     end
     if (io_ren_5) begin
+      word_r_10 <= io_rtable;
       sel_10 <= io_raddr_5_0[1:0];
+      word_r_11 <= io_rtable;
       sel_11 <= io_raddr_5_1[1:0];
     end
     if (io_ren_6) begin
+      word_r_12 <= io_rtable;
       sel_12 <= io_raddr_6_0[1:0];
+      word_r_13 <= io_rtable;
       sel_13 <= io_raddr_6_1[1:0];
     end
     if (io_ren_7) begin
+      word_r_14 <= io_rtable;
       sel_14 <= io_raddr_7_0[1:0];
+      word_r_15 <= io_rtable;
       sel_15 <= io_raddr_7_1[1:0];
     end
     if (io_ren_8) begin
+      word_r_16 <= io_rtable;
       sel_16 <= io_raddr_8_0[1:0];
+      word_r_17 <= io_rtable;
       sel_17 <= io_raddr_8_1[1:0];
     end
     if (io_ren_9) begin
+      word_r_18 <= io_rtable;
       sel_18 <= io_raddr_9_0[1:0];
+      word_r_19 <= io_rtable;
       sel_19 <= io_raddr_9_1[1:0];
     end
     if (io_ren_10) begin
+      word_r_20 <= io_rtable;
       sel_20 <= io_raddr_10_0[1:0];
+      word_r_21 <= io_rtable;
       sel_21 <= io_raddr_10_1[1:0];
     end
     if (io_ren_11) begin
+      word_r_22 <= io_rtable;
       sel_22 <= io_raddr_11_0[1:0];
+      word_r_23 <= io_rtable;
       sel_23 <= io_raddr_11_1[1:0];
     end
     if (io_ren_12) begin
+      word_r_24 <= io_rtable;
       sel_24 <= io_raddr_12_0[1:0];
+      word_r_25 <= io_rtable;
       sel_25 <= io_raddr_12_1[1:0];
     end
     if (io_ren_13) begin
+      word_r_26 <= io_rtable;
       sel_26 <= io_raddr_13_0[1:0];
+      word_r_27 <= io_rtable;
       sel_27 <= io_raddr_13_1[1:0];
     end
     if (io_ren_14) begin
+      word_r_28 <= io_rtable;
       sel_28 <= io_raddr_14_0[1:0];
+      word_r_29 <= io_rtable;
       sel_29 <= io_raddr_14_1[1:0];
     end
     if (io_ren_15) begin
+      word_r_30 <= io_rtable;
       sel_30 <= io_raddr_15_0[1:0];
+      word_r_31 <= io_rtable;
       sel_31 <= io_raddr_15_1[1:0];
     end
+    word_r_32 <= io_rtable;
     io_world_0_data_REG <= io_world_0_addr[1:0];
+    word_r_33 <= io_rtable;
     io_world_1_data_REG <= io_world_1_addr[1:0];
+    word_r_34 <= io_rtable;
     io_world_2_data_REG <= io_world_2_addr[1:0];
+    word_r_35 <= io_rtable;
     io_world_3_data_REG <= io_world_3_addr[1:0];
+    word_r_36 <= io_rtable;
     io_world_4_data_REG <= io_world_4_addr[1:0];
+    word_r_37 <= io_rtable;
     io_world_5_data_REG <= io_world_5_addr[1:0];
+    word_r_38 <= io_rtable;
     io_world_6_data_REG <= io_world_6_addr[1:0];
+    word_r_39 <= io_rtable;
     io_world_7_data_REG <= io_world_7_addr[1:0];
+    word_r_40 <= io_rtable;
     io_world_8_data_REG <= io_world_8_addr[1:0];
+    word_r_41 <= io_rtable;
     io_world_9_data_REG <= io_world_9_addr[1:0];
+    word_r_42 <= io_rtable;
     io_world_10_data_REG <= io_world_10_addr[1:0];
+    word_r_43 <= io_rtable;
     io_world_11_data_REG <= io_world_11_addr[1:0];
+    word_r_44 <= io_rtable;
     io_world_12_data_REG <= io_world_12_addr[1:0];
+    word_r_45 <= io_rtable;
     io_world_13_data_REG <= io_world_13_addr[1:0];
+    word_r_46 <= io_rtable;
     io_world_14_data_REG <= io_world_14_addr[1:0];
+    word_r_47 <= io_rtable;
     io_world_15_data_REG <= io_world_15_addr[1:0];
   end // always @(posedge)
-  mem_1024x512_world mem_ext (
+  mems_1024x512_world mems_0_ext (
     .R0_addr (io_raddr_0_1[11:2]),
-    .R0_en   (io_ren_0),
+    .R0_en   (io_ren_0 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_ext_R0_data),
+    .R0_data (_mems_0_ext_R0_data),
     .R1_addr (io_raddr_0_0[11:2]),
-    .R1_en   (io_ren_0),
+    .R1_en   (io_ren_0 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_ext_R1_data),
+    .R1_data (_mems_0_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_1_ext (
+  mems_1024x512_world mems_1_ext (
+    .R0_addr (io_raddr_0_1[11:2]),
+    .R0_en   (io_ren_0 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_ext_R0_data),
+    .R1_addr (io_raddr_0_0[11:2]),
+    .R1_en   (io_ren_0 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_1_ext (
     .R0_addr (io_raddr_1_1[11:2]),
-    .R0_en   (io_ren_1),
+    .R0_en   (io_ren_1 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_1_ext_R0_data),
+    .R0_data (_mems_0_1_ext_R0_data),
     .R1_addr (io_raddr_1_0[11:2]),
-    .R1_en   (io_ren_1),
+    .R1_en   (io_ren_1 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_1_ext_R1_data),
+    .R1_data (_mems_0_1_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_2_ext (
+  mems_1024x512_world mems_1_1_ext (
+    .R0_addr (io_raddr_1_1[11:2]),
+    .R0_en   (io_ren_1 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_1_ext_R0_data),
+    .R1_addr (io_raddr_1_0[11:2]),
+    .R1_en   (io_ren_1 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_1_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_2_ext (
     .R0_addr (io_raddr_2_1[11:2]),
-    .R0_en   (io_ren_2),
+    .R0_en   (io_ren_2 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_2_ext_R0_data),
+    .R0_data (_mems_0_2_ext_R0_data),
     .R1_addr (io_raddr_2_0[11:2]),
-    .R1_en   (io_ren_2),
+    .R1_en   (io_ren_2 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_2_ext_R1_data),
+    .R1_data (_mems_0_2_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_3_ext (
+  mems_1024x512_world mems_1_2_ext (
+    .R0_addr (io_raddr_2_1[11:2]),
+    .R0_en   (io_ren_2 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_2_ext_R0_data),
+    .R1_addr (io_raddr_2_0[11:2]),
+    .R1_en   (io_ren_2 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_2_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_3_ext (
     .R0_addr (io_raddr_3_1[11:2]),
-    .R0_en   (io_ren_3),
+    .R0_en   (io_ren_3 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_3_ext_R0_data),
+    .R0_data (_mems_0_3_ext_R0_data),
     .R1_addr (io_raddr_3_0[11:2]),
-    .R1_en   (io_ren_3),
+    .R1_en   (io_ren_3 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_3_ext_R1_data),
+    .R1_data (_mems_0_3_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_4_ext (
+  mems_1024x512_world mems_1_3_ext (
+    .R0_addr (io_raddr_3_1[11:2]),
+    .R0_en   (io_ren_3 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_3_ext_R0_data),
+    .R1_addr (io_raddr_3_0[11:2]),
+    .R1_en   (io_ren_3 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_3_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_4_ext (
     .R0_addr (io_raddr_4_1[11:2]),
-    .R0_en   (io_ren_4),
+    .R0_en   (io_ren_4 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_4_ext_R0_data),
+    .R0_data (_mems_0_4_ext_R0_data),
     .R1_addr (io_raddr_4_0[11:2]),
-    .R1_en   (io_ren_4),
+    .R1_en   (io_ren_4 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_4_ext_R1_data),
+    .R1_data (_mems_0_4_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_5_ext (
+  mems_1024x512_world mems_1_4_ext (
+    .R0_addr (io_raddr_4_1[11:2]),
+    .R0_en   (io_ren_4 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_4_ext_R0_data),
+    .R1_addr (io_raddr_4_0[11:2]),
+    .R1_en   (io_ren_4 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_4_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_5_ext (
     .R0_addr (io_raddr_5_1[11:2]),
-    .R0_en   (io_ren_5),
+    .R0_en   (io_ren_5 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_5_ext_R0_data),
+    .R0_data (_mems_0_5_ext_R0_data),
     .R1_addr (io_raddr_5_0[11:2]),
-    .R1_en   (io_ren_5),
+    .R1_en   (io_ren_5 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_5_ext_R1_data),
+    .R1_data (_mems_0_5_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_6_ext (
+  mems_1024x512_world mems_1_5_ext (
+    .R0_addr (io_raddr_5_1[11:2]),
+    .R0_en   (io_ren_5 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_5_ext_R0_data),
+    .R1_addr (io_raddr_5_0[11:2]),
+    .R1_en   (io_ren_5 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_5_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_6_ext (
     .R0_addr (io_raddr_6_1[11:2]),
-    .R0_en   (io_ren_6),
+    .R0_en   (io_ren_6 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_6_ext_R0_data),
+    .R0_data (_mems_0_6_ext_R0_data),
     .R1_addr (io_raddr_6_0[11:2]),
-    .R1_en   (io_ren_6),
+    .R1_en   (io_ren_6 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_6_ext_R1_data),
+    .R1_data (_mems_0_6_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_7_ext (
+  mems_1024x512_world mems_1_6_ext (
+    .R0_addr (io_raddr_6_1[11:2]),
+    .R0_en   (io_ren_6 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_6_ext_R0_data),
+    .R1_addr (io_raddr_6_0[11:2]),
+    .R1_en   (io_ren_6 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_6_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_7_ext (
     .R0_addr (io_raddr_7_1[11:2]),
-    .R0_en   (io_ren_7),
+    .R0_en   (io_ren_7 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_7_ext_R0_data),
+    .R0_data (_mems_0_7_ext_R0_data),
     .R1_addr (io_raddr_7_0[11:2]),
-    .R1_en   (io_ren_7),
+    .R1_en   (io_ren_7 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_7_ext_R1_data),
+    .R1_data (_mems_0_7_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_8_ext (
+  mems_1024x512_world mems_1_7_ext (
+    .R0_addr (io_raddr_7_1[11:2]),
+    .R0_en   (io_ren_7 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_7_ext_R0_data),
+    .R1_addr (io_raddr_7_0[11:2]),
+    .R1_en   (io_ren_7 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_7_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_8_ext (
     .R0_addr (io_raddr_8_1[11:2]),
-    .R0_en   (io_ren_8),
+    .R0_en   (io_ren_8 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_8_ext_R0_data),
+    .R0_data (_mems_0_8_ext_R0_data),
     .R1_addr (io_raddr_8_0[11:2]),
-    .R1_en   (io_ren_8),
+    .R1_en   (io_ren_8 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_8_ext_R1_data),
+    .R1_data (_mems_0_8_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_9_ext (
+  mems_1024x512_world mems_1_8_ext (
+    .R0_addr (io_raddr_8_1[11:2]),
+    .R0_en   (io_ren_8 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_8_ext_R0_data),
+    .R1_addr (io_raddr_8_0[11:2]),
+    .R1_en   (io_ren_8 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_8_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_9_ext (
     .R0_addr (io_raddr_9_1[11:2]),
-    .R0_en   (io_ren_9),
+    .R0_en   (io_ren_9 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_9_ext_R0_data),
+    .R0_data (_mems_0_9_ext_R0_data),
     .R1_addr (io_raddr_9_0[11:2]),
-    .R1_en   (io_ren_9),
+    .R1_en   (io_ren_9 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_9_ext_R1_data),
+    .R1_data (_mems_0_9_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_10_ext (
+  mems_1024x512_world mems_1_9_ext (
+    .R0_addr (io_raddr_9_1[11:2]),
+    .R0_en   (io_ren_9 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_9_ext_R0_data),
+    .R1_addr (io_raddr_9_0[11:2]),
+    .R1_en   (io_ren_9 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_9_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_10_ext (
     .R0_addr (io_raddr_10_1[11:2]),
-    .R0_en   (io_ren_10),
+    .R0_en   (io_ren_10 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_10_ext_R0_data),
+    .R0_data (_mems_0_10_ext_R0_data),
     .R1_addr (io_raddr_10_0[11:2]),
-    .R1_en   (io_ren_10),
+    .R1_en   (io_ren_10 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_10_ext_R1_data),
+    .R1_data (_mems_0_10_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_11_ext (
+  mems_1024x512_world mems_1_10_ext (
+    .R0_addr (io_raddr_10_1[11:2]),
+    .R0_en   (io_ren_10 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_10_ext_R0_data),
+    .R1_addr (io_raddr_10_0[11:2]),
+    .R1_en   (io_ren_10 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_10_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_11_ext (
     .R0_addr (io_raddr_11_1[11:2]),
-    .R0_en   (io_ren_11),
+    .R0_en   (io_ren_11 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_11_ext_R0_data),
+    .R0_data (_mems_0_11_ext_R0_data),
     .R1_addr (io_raddr_11_0[11:2]),
-    .R1_en   (io_ren_11),
+    .R1_en   (io_ren_11 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_11_ext_R1_data),
+    .R1_data (_mems_0_11_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_12_ext (
+  mems_1024x512_world mems_1_11_ext (
+    .R0_addr (io_raddr_11_1[11:2]),
+    .R0_en   (io_ren_11 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_11_ext_R0_data),
+    .R1_addr (io_raddr_11_0[11:2]),
+    .R1_en   (io_ren_11 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_11_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_12_ext (
     .R0_addr (io_raddr_12_1[11:2]),
-    .R0_en   (io_ren_12),
+    .R0_en   (io_ren_12 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_12_ext_R0_data),
+    .R0_data (_mems_0_12_ext_R0_data),
     .R1_addr (io_raddr_12_0[11:2]),
-    .R1_en   (io_ren_12),
+    .R1_en   (io_ren_12 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_12_ext_R1_data),
+    .R1_data (_mems_0_12_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_13_ext (
+  mems_1024x512_world mems_1_12_ext (
+    .R0_addr (io_raddr_12_1[11:2]),
+    .R0_en   (io_ren_12 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_12_ext_R0_data),
+    .R1_addr (io_raddr_12_0[11:2]),
+    .R1_en   (io_ren_12 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_12_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_13_ext (
     .R0_addr (io_raddr_13_1[11:2]),
-    .R0_en   (io_ren_13),
+    .R0_en   (io_ren_13 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_13_ext_R0_data),
+    .R0_data (_mems_0_13_ext_R0_data),
     .R1_addr (io_raddr_13_0[11:2]),
-    .R1_en   (io_ren_13),
+    .R1_en   (io_ren_13 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_13_ext_R1_data),
+    .R1_data (_mems_0_13_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_14_ext (
+  mems_1024x512_world mems_1_13_ext (
+    .R0_addr (io_raddr_13_1[11:2]),
+    .R0_en   (io_ren_13 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_13_ext_R0_data),
+    .R1_addr (io_raddr_13_0[11:2]),
+    .R1_en   (io_ren_13 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_13_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_14_ext (
     .R0_addr (io_raddr_14_1[11:2]),
-    .R0_en   (io_ren_14),
+    .R0_en   (io_ren_14 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_14_ext_R0_data),
+    .R0_data (_mems_0_14_ext_R0_data),
     .R1_addr (io_raddr_14_0[11:2]),
-    .R1_en   (io_ren_14),
+    .R1_en   (io_ren_14 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_14_ext_R1_data),
+    .R1_data (_mems_0_14_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_15_ext (
+  mems_1024x512_world mems_1_14_ext (
+    .R0_addr (io_raddr_14_1[11:2]),
+    .R0_en   (io_ren_14 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_14_ext_R0_data),
+    .R1_addr (io_raddr_14_0[11:2]),
+    .R1_en   (io_ren_14 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_14_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_15_ext (
     .R0_addr (io_raddr_15_1[11:2]),
-    .R0_en   (io_ren_15),
+    .R0_en   (io_ren_15 & ~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_15_ext_R0_data),
+    .R0_data (_mems_0_15_ext_R0_data),
     .R1_addr (io_raddr_15_0[11:2]),
-    .R1_en   (io_ren_15),
+    .R1_en   (io_ren_15 & ~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_15_ext_R1_data),
+    .R1_data (_mems_0_15_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_16_ext (
+  mems_1024x512_world mems_1_15_ext (
+    .R0_addr (io_raddr_15_1[11:2]),
+    .R0_en   (io_ren_15 & io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_15_ext_R0_data),
+    .R1_addr (io_raddr_15_0[11:2]),
+    .R1_en   (io_ren_15 & io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_15_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_16_ext (
     .R0_addr (io_world_1_addr[11:2]),
-    .R0_en   (1'h1),
+    .R0_en   (~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_16_ext_R0_data),
+    .R0_data (_mems_0_16_ext_R0_data),
     .R1_addr (io_world_0_addr[11:2]),
-    .R1_en   (1'h1),
+    .R1_en   (~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_16_ext_R1_data),
+    .R1_data (_mems_0_16_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_17_ext (
+  mems_1024x512_world mems_1_16_ext (
+    .R0_addr (io_world_1_addr[11:2]),
+    .R0_en   (io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_16_ext_R0_data),
+    .R1_addr (io_world_0_addr[11:2]),
+    .R1_en   (io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_16_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_17_ext (
     .R0_addr (io_world_3_addr[11:2]),
-    .R0_en   (1'h1),
+    .R0_en   (~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_17_ext_R0_data),
+    .R0_data (_mems_0_17_ext_R0_data),
     .R1_addr (io_world_2_addr[11:2]),
-    .R1_en   (1'h1),
+    .R1_en   (~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_17_ext_R1_data),
+    .R1_data (_mems_0_17_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_18_ext (
+  mems_1024x512_world mems_1_17_ext (
+    .R0_addr (io_world_3_addr[11:2]),
+    .R0_en   (io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_17_ext_R0_data),
+    .R1_addr (io_world_2_addr[11:2]),
+    .R1_en   (io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_17_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_18_ext (
     .R0_addr (io_world_5_addr[11:2]),
-    .R0_en   (1'h1),
+    .R0_en   (~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_18_ext_R0_data),
+    .R0_data (_mems_0_18_ext_R0_data),
     .R1_addr (io_world_4_addr[11:2]),
-    .R1_en   (1'h1),
+    .R1_en   (~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_18_ext_R1_data),
+    .R1_data (_mems_0_18_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_19_ext (
+  mems_1024x512_world mems_1_18_ext (
+    .R0_addr (io_world_5_addr[11:2]),
+    .R0_en   (io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_18_ext_R0_data),
+    .R1_addr (io_world_4_addr[11:2]),
+    .R1_en   (io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_18_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_19_ext (
     .R0_addr (io_world_7_addr[11:2]),
-    .R0_en   (1'h1),
+    .R0_en   (~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_19_ext_R0_data),
+    .R0_data (_mems_0_19_ext_R0_data),
     .R1_addr (io_world_6_addr[11:2]),
-    .R1_en   (1'h1),
+    .R1_en   (~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_19_ext_R1_data),
+    .R1_data (_mems_0_19_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_20_ext (
+  mems_1024x512_world mems_1_19_ext (
+    .R0_addr (io_world_7_addr[11:2]),
+    .R0_en   (io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_19_ext_R0_data),
+    .R1_addr (io_world_6_addr[11:2]),
+    .R1_en   (io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_19_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_20_ext (
     .R0_addr (io_world_9_addr[11:2]),
-    .R0_en   (1'h1),
+    .R0_en   (~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_20_ext_R0_data),
+    .R0_data (_mems_0_20_ext_R0_data),
     .R1_addr (io_world_8_addr[11:2]),
-    .R1_en   (1'h1),
+    .R1_en   (~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_20_ext_R1_data),
+    .R1_data (_mems_0_20_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_21_ext (
+  mems_1024x512_world mems_1_20_ext (
+    .R0_addr (io_world_9_addr[11:2]),
+    .R0_en   (io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_20_ext_R0_data),
+    .R1_addr (io_world_8_addr[11:2]),
+    .R1_en   (io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_20_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_21_ext (
     .R0_addr (io_world_11_addr[11:2]),
-    .R0_en   (1'h1),
+    .R0_en   (~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_21_ext_R0_data),
+    .R0_data (_mems_0_21_ext_R0_data),
     .R1_addr (io_world_10_addr[11:2]),
-    .R1_en   (1'h1),
+    .R1_en   (~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_21_ext_R1_data),
+    .R1_data (_mems_0_21_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_22_ext (
+  mems_1024x512_world mems_1_21_ext (
+    .R0_addr (io_world_11_addr[11:2]),
+    .R0_en   (io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_21_ext_R0_data),
+    .R1_addr (io_world_10_addr[11:2]),
+    .R1_en   (io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_21_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_22_ext (
     .R0_addr (io_world_13_addr[11:2]),
-    .R0_en   (1'h1),
+    .R0_en   (~io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_22_ext_R0_data),
+    .R0_data (_mems_0_22_ext_R0_data),
     .R1_addr (io_world_12_addr[11:2]),
-    .R1_en   (1'h1),
+    .R1_en   (~io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_22_ext_R1_data),
+    .R1_data (_mems_0_22_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
-  mem_1024x512_world mem_23_ext (
-    .R0_addr (io_world_15_addr[11:2]),
-    .R0_en   (1'h1),
+  mems_1024x512_world mems_1_22_ext (
+    .R0_addr (io_world_13_addr[11:2]),
+    .R0_en   (io_rtable),
     .R0_clk  (clock),
-    .R0_data (_mem_23_ext_R0_data),
-    .R1_addr (io_world_14_addr[11:2]),
-    .R1_en   (1'h1),
+    .R0_data (_mems_1_22_ext_R0_data),
+    .R1_addr (io_world_12_addr[11:2]),
+    .R1_en   (io_rtable),
     .R1_clk  (clock),
-    .R1_data (_mem_23_ext_R1_data),
+    .R1_data (_mems_1_22_ext_R1_data),
     .W0_addr (io_write_bits_line),
-    .W0_en   (io_write_valid),
+    .W0_en   (_GEN_0),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_0_23_ext (
+    .R0_addr (io_world_15_addr[11:2]),
+    .R0_en   (~io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_0_23_ext_R0_data),
+    .R1_addr (io_world_14_addr[11:2]),
+    .R1_en   (~io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_0_23_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN),
+    .W0_clk  (clock),
+    .W0_data (io_write_bits_data)
+  );
+  mems_1024x512_world mems_1_23_ext (
+    .R0_addr (io_world_15_addr[11:2]),
+    .R0_en   (io_rtable),
+    .R0_clk  (clock),
+    .R0_data (_mems_1_23_ext_R0_data),
+    .R1_addr (io_world_14_addr[11:2]),
+    .R1_en   (io_rtable),
+    .R1_clk  (clock),
+    .R1_data (_mems_1_23_ext_R1_data),
+    .W0_addr (io_write_bits_line),
+    .W0_en   (_GEN_0),
     .W0_clk  (clock),
     .W0_data (io_write_bits_data)
   );
@@ -52128,6 +52660,8 @@ module Puc_world(
   input  [31:0]  io_skipCycles
 );
 
+  wire         prefetchGo;
+  wire         runStart;
   wire         _lines_io_in_0_ready;
   wire         _lines_io_in_1_ready;
   wire         _lines_io_in_2_ready;
@@ -52528,6 +53062,18 @@ module Puc_world(
   reg  [63:0]  run_6;
   reg  [63:0]  run_7;
   reg  [63:0]  run_8;
+  reg  [63:0]  next_1;
+  reg  [63:0]  next_2;
+  reg  [63:0]  next_3;
+  reg  [63:0]  next_4;
+  reg  [63:0]  next_5;
+  reg  [63:0]  next_6;
+  reg  [63:0]  next_7;
+  reg  [63:0]  next_8;
+  reg          nextValid;
+  reg          nextLoading;
+  reg          prefetched;
+  reg          curTable;
   reg  [5:0]   errors;
   reg  [31:0]  processed;
   reg  [31:0]  found;
@@ -52539,25 +53085,33 @@ module Puc_world(
   reg  [31:0]  cycCompute;
   reg  [31:0]  cycWaitRd;
   reg  [31:0]  cycWaitWr;
-  wire         _GEN = state == 3'h1;
-  wire         _badConfig_T_9 = run_7 == 64'h0;
+  wire         loadStart = runStart & ~prefetched;
+  wire         _movesOn_T_3 = state == 3'h1;
   wire         badConfig =
-    ~(run_8[1]) & ((|(run_4[63:24])) | (|run_4) & run_3 == 64'h0) | run_8[1] & run_8[0]
-    | (|run_2) & run_1 == 64'h0 | (|run_6) & run_5 == 64'h0 | _badConfig_T_9;
+    ~(run_8[1]) & ((|(run_4[63:24])) | (|run_4) & ~(|run_3)) | run_8[1] & run_8[0]
+    | (|run_2) & ~(|run_1) | (|run_6) & ~(|run_5) | ~(|run_7);
   wire         tooMany = run_2 > 64'h1000;
-  wire         _GEN_0 = badConfig & _badConfig_T_9;
-  wire         _GEN_1 = badConfig | tooMany;
-  wire         engineStart = _GEN & ~_GEN_0 & ~_GEN_1;
+  wire         _GEN = badConfig & ~(|run_7);
+  wire         _GEN_0 = badConfig | tooMany;
+  assign runStart = _movesOn_T_3 & ~_GEN & ~_GEN_0;
   wire         _running_T = state == 3'h2;
   wire         _pack_io_flush_T = state == 3'h3;
   wire         running = _running_T | _pack_io_flush_T;
-  wire [12:0]  _rd_io_sphereLines_T = run_2[12:0] + 13'h3;
-  wire [24:0]  _rd_io_pairLines_T = {1'h0, run_4[23:0]} + 25'hF;
-  wire         loaded = _rd_io_loaded & running;
+  wire [12:0]  _rd_io_sphereLines_T_1 =
+    (nextLoading ? next_2[12:0] : run_2[12:0]) + 13'h3;
+  wire [24:0]  _rd_io_pairLines_T_1 = {1'h0, run_4[23:0]} + 25'hF;
+  reg          tableIn;
+  wire         loaded = running & (tableIn | _rd_io_loaded & ~nextLoading);
+  assign prefetchGo =
+    nextValid & ~nextLoading & next_8[1]
+    & ~(~(next_8[1]) & ((|(next_4[63:24])) | (|next_4) & next_3 == 64'h0) | next_8[1]
+        & next_8[0] | (|next_2) & next_1 == 64'h0 | (|next_6) & next_5 == 64'h0
+        | next_7 == 64'h0) & next_2 < 64'h1001 & run_8[1] & loaded
+    & ~(|_rd_io_outstanding);
   reg          bpStarted;
   wire         bpStart = run_8[1] & loaded & ~bpStarted;
   wire         _bp_io_feed_3_valid_T = _rd_io_sphereWrite_valid & run_8[1];
-  wire [12:0]  _GEN_2 = {1'h0, _rd_io_sphereWrite_bits_line, 2'h0};
+  wire [12:0]  _GEN_1 = {1'h0, _rd_io_sphereWrite_bits_line, 2'h0};
   wire         bpDone = bpStarted & ~_bp_io_busy;
   wire         worldDone = bpDone & _lines_io_idle;
   wire         _rd_io_pairs_ready_T_1 = ~(run_8[1]) & _disp_io_pairs_ready;
@@ -52565,22 +53119,23 @@ module Puc_world(
   wire         runDone =
     (run_8[1]
        ? worldDone & processed == {7'h0, _lines_io_emitted}
-       : processed == {8'h0, run_4[23:0]}) & ~(|_rd_io_outstanding) & _rd_io_loaded;
+       : processed == {8'h0, run_4[23:0]}) & loaded
+    & (nextLoading | ~(|_rd_io_outstanding));
   wire         drainDone = _pack_io_idle & ~_pack_io_lines_valid & ~(|_wr_io_outstanding);
   wire [63:0]  totalRecords =
     run_8[0]
       ? {40'h0, run_4[23:0]}
       : {32'h0, found} + (run_8[1] ? 64'h0 : {32'h0, flaggedMiss});
   wire         _capErr_T = totalRecords > run_6;
-  wire [1:0]   _GEN_3 = {errors[4], errors[1]};
-  wire [3:0]   _GEN_4 = errors[3:0] | {|nonFinite, 3'h0};
-  wire [2:0]   _GEN_5 = _GEN_4[2:0] | {_capErr_T & ~(|_GEN_3), 2'h0};
+  wire [1:0]   _GEN_2 = {errors[4], errors[1]};
+  wire [3:0]   _GEN_3 = errors[3:0] | {|nonFinite, 3'h0};
+  wire [2:0]   _GEN_4 = _GEN_3[2:0] | {_capErr_T & ~(|_GEN_2), 2'h0};
   wire         _wr_io_status_valid_T = state == 3'h4;
   wire         quietRun =
     ~_disp_io_fired & ~(_rd_io_pairs_ready_T_1 & _rd_io_pairs_valid)
     & pairsInFlight == 25'h0 & ~(run_8[1] & (bpStart | bpStarted & ~worldDone));
   wire         io_idle_0 =
-    ~_rd_io_rdReq_valid & ~_wr_io_wrReq_valid
+    ~_rd_io_rdReq_valid & ~_wr_io_wrReq_valid & ~prefetchGo
     & (state == 3'h5
          ? (|_wr_io_outstanding)
          : state == 3'h4
@@ -52591,13 +53146,13 @@ module Puc_world(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:274 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:324 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [31:0]  _GEN_6 =
+  wire [31:0]  _GEN_5 =
     {8'h0,
      _disp_io_groups_bits_first
        + {20'h0,
@@ -52631,13 +53186,24 @@ module Puc_world(
                                                                 ? 4'hD
                                                                 : {3'h7,
                                                                    ~(_disp_io_groups_bits_invalid[14])}}};
-  wire         _GEN_7 =
+  wire         _GEN_6 =
     io_link_csr_valid & (|io_link_csr_bits_index) & io_link_csr_bits_index < 8'h9;
   wire [31:0]  tick = (|io_skipCycles) ? io_skipCycles : 32'h1;
-  wire         _GEN_8 = _wr_io_status_ready & _wr_io_status_valid_T;
-  wire         _GEN_9 =
-    ~(|state) & io_link_csr_valid & ~(|io_link_csr_bits_index)
-    & io_link_csr_bits_data == 64'h1;
+  wire         _GEN_7 = nextValid & nextLoading;
+  wire [2:0]   _GEN_8 = {2'h0, nextValid};
+  wire         _GEN_9 = _wr_io_status_ready & _wr_io_status_valid_T;
+  wire         startReq =
+    io_link_csr_valid & ~(|io_link_csr_bits_index) & io_link_csr_bits_data == 64'h1;
+  wire         _GEN_10 = ~(|state) & startReq;
+  wire         _GEN_11 = _movesOn_T_3 & _GEN & nextValid;
+  wire         _movesOn_T = state == 3'h5;
+  wire         _GEN_12 = _movesOn_T & ~(|_wr_io_outstanding);
+  wire         _GEN_13 = _GEN_12 & nextValid | _GEN_11;
+  wire         _GEN_14 =
+    startReq & (|state)
+    & (~nextValid | _movesOn_T & ~(|_wr_io_outstanding) | _movesOn_T_3
+       & (~(run_8[1]) & ((|(run_4[63:24])) | (|run_4) & ~(|run_3)) | run_8[1] & run_8[0]
+          | (|run_2) & ~(|run_1) | (|run_6) & ~(|run_5) | ~(|run_7)) & ~(|run_7));
   always @(posedge clock) begin
     if (reset) begin
       csr_1 <= 64'h0;
@@ -52649,6 +53215,10 @@ module Puc_world(
       csr_7 <= 64'h0;
       csr_8 <= 64'h0;
       state <= 3'h0;
+      nextValid <= 1'h0;
+      nextLoading <= 1'h0;
+      prefetched <= 1'h0;
+      curTable <= 1'h0;
       errors <= 6'h0;
       processed <= 32'h0;
       found <= 32'h0;
@@ -52660,39 +53230,51 @@ module Puc_world(
       cycCompute <= 32'h0;
       cycWaitRd <= 32'h0;
       cycWaitWr <= 32'h0;
+      tableIn <= 1'h0;
       bpStarted <= 1'h0;
       pairsInFlight <= 25'h0;
     end
     else begin
-      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h1)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h1)
         csr_1 <= io_link_csr_bits_data;
-      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h2)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h2)
         csr_2 <= io_link_csr_bits_data;
-      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h3)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h3)
         csr_3 <= io_link_csr_bits_data;
-      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h4)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h4)
         csr_4 <= io_link_csr_bits_data;
-      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h5)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h5)
         csr_5 <= io_link_csr_bits_data;
-      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h6)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h6)
         csr_6 <= io_link_csr_bits_data;
-      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h7)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h7)
         csr_7 <= io_link_csr_bits_data;
-      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h8)
+      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h8)
         csr_8 <= io_link_csr_bits_data;
-      if (state == 3'h5 & ~(|_wr_io_outstanding))
-        state <= 3'h0;
-      else if (_GEN_8)
+      if (_GEN_12)
+        state <= _GEN_8;
+      else if (_GEN_9)
         state <= 3'h5;
       else if (_pack_io_flush_T & drainDone)
         state <= 3'h4;
       else if (_running_T & runDone)
         state <= 3'h3;
-      else if (_GEN)
-        state <= _GEN_0 ? 3'h0 : _GEN_1 ? 3'h4 : 3'h2;
-      else if (_GEN_9)
+      else if (_movesOn_T_3)
+        state <= _GEN ? _GEN_8 : _GEN_0 ? 3'h4 : 3'h2;
+      else if (_GEN_10)
         state <= 3'h1;
-      if (_GEN) begin
+      nextValid <=
+        _GEN_14 | (_GEN_12 ? ~(nextValid | _GEN_11) & nextValid : ~_GEN_11 & nextValid);
+      nextLoading <= ~(_GEN_12 & nextValid) & (prefetchGo | ~_GEN_11 & nextLoading);
+      if (_GEN_13)
+        prefetched <= nextLoading;
+      else
+        prefetched <= ~_GEN_10 & prefetched;
+      if (_GEN_12 & _GEN_7)
+        curTable <= ~curTable;
+      else
+        curTable <= _movesOn_T_3 & _GEN & _GEN_7 ^ curTable;
+      if (_movesOn_T_3) begin
         errors <= {1'h0, badConfig, 2'h0, tooMany, 1'h0};
         processed <= 32'h0;
         found <= 32'h0;
@@ -52710,30 +53292,41 @@ module Puc_world(
         nonFinite <= nonFinite + {27'h0, _coll_io_nNonFinite};
         flaggedMiss <= flaggedMiss + {27'h0, _coll_io_nFlagged};
         if (_groups_io_enq_ready & _disp_io_groups_valid & (|_disp_io_groups_bits_invalid)
-            & _GEN_6 < firstBad)
-          firstBad <= _GEN_6;
+            & _GEN_5 < firstBad)
+          firstBad <= _GEN_5;
         if (running & ~loaded)
           cycLoad <= cycLoad + tick;
         if (running & _disp_io_fired)
           cycCompute <= cycCompute + 32'h1;
-        if (running & ~_disp_io_fired & (|_rd_io_outstanding)
+        if (running & ~_disp_io_fired & ~nextLoading & (|_rd_io_outstanding)
             & (~loaded | _disp_io_idle & _rd_io_pairBufferEmpty))
           cycWaitRd <= cycWaitRd + tick;
         if (running & (_wr_io_blocked | _pack_io_flush_T & (|_wr_io_outstanding)))
           cycWaitWr <= cycWaitWr + tick;
       end
-      if (_wr_io_status_valid_T & ~_GEN_8)
+      if (_wr_io_status_valid_T & ~_GEN_9)
         cycTotal <= cycTotal + tick;
-      else if (_GEN)
+      else if (_movesOn_T_3)
         cycTotal <= 32'h1;
       else if (running)
         cycTotal <= cycTotal + tick;
-      bpStarted <= ~_GEN & (bpStart | bpStarted);
+      tableIn <= ~_movesOn_T_3 & (loaded | tableIn);
+      bpStarted <= ~_movesOn_T_3 & (bpStart | bpStarted);
       pairsInFlight <=
         pairsInFlight + {20'h0, _disp_io_fired ? _disp_io_groups_bits_cnt : 5'h0}
         - {20'h0, _coll_io_nPairs};
     end
-    if (_GEN_9) begin
+    if (_GEN_13) begin
+      run_1 <= next_1;
+      run_2 <= next_2;
+      run_3 <= next_3;
+      run_4 <= next_4;
+      run_5 <= next_5;
+      run_6 <= next_6;
+      run_7 <= next_7;
+      run_8 <= next_8;
+    end
+    else if (_GEN_10) begin
       run_1 <= csr_1;
       run_2 <= csr_2;
       run_3 <= csr_3;
@@ -52743,16 +53336,27 @@ module Puc_world(
       run_7 <= csr_7;
       run_8 <= csr_8;
     end
+    if (_GEN_14) begin
+      next_1 <= csr_1;
+      next_2 <= csr_2;
+      next_3 <= csr_3;
+      next_4 <= csr_4;
+      next_5 <= csr_5;
+      next_6 <= csr_6;
+      next_7 <= csr_7;
+      next_8 <= csr_8;
+    end
   end // always @(posedge)
   ReadEngine_r64_p64_world rd (
     .clock                    (clock),
     .reset                    (reset),
-    .io_start                 (engineStart),
-    .io_active                (running),
-    .io_sphereBase            (run_1),
-    .io_sphereLines           (_rd_io_sphereLines_T[12:2]),
+    .io_start                 (loadStart | prefetchGo),
+    .io_active                (running | nextLoading),
+    .io_sphereBase            (nextLoading ? next_1 : run_1),
+    .io_sphereLines           (_rd_io_sphereLines_T_1[12:2]),
     .io_pairBase              (run_3),
-    .io_pairLines             (run_8[1] ? 21'h0 : _rd_io_pairLines_T[24:4]),
+    .io_pairLines
+      (run_8[1] | nextLoading ? 21'h0 : _rd_io_pairLines_T_1[24:4]),
     .io_rdReq_ready           (io_link_rdReq_ready),
     .io_rdReq_valid           (_rd_io_rdReq_valid),
     .io_rdReq_bits_addr       (io_link_rdReq_bits_addr),
@@ -52771,11 +53375,13 @@ module Puc_world(
     .io_outstanding           (_rd_io_outstanding),
     .io_pairBufferEmpty       (_rd_io_pairBufferEmpty)
   );
-  SphereRam_s4096_c24_world ram (
+  SphereRam_s4096_c24_t2_world ram (
     .clock              (clock),
     .io_write_valid     (_rd_io_sphereWrite_valid),
     .io_write_bits_line (_rd_io_sphereWrite_bits_line),
     .io_write_bits_data (_rd_io_sphereWrite_bits_data),
+    .io_wtable          (nextLoading ^ curTable),
+    .io_rtable          (curTable),
     .io_raddr_0_0       (_disp_io_raddr_0_0),
     .io_raddr_0_1       (_disp_io_raddr_0_1),
     .io_raddr_1_0       (_disp_io_raddr_1_0),
@@ -53594,7 +54200,7 @@ module Puc_world(
   ContactPacker_w32_derived_r5_world pack (
     .clock              (clock),
     .reset              (reset),
-    .io_start           (engineStart),
+    .io_start           (runStart),
     .io_dense           (run_8[0]),
     .io_numPairs        (run_4[23:0]),
     .io_base            (run_5),
@@ -53629,11 +54235,11 @@ module Puc_world(
     .io_status_valid     (_wr_io_status_valid_T),
     .io_status_bits_addr (run_7),
     .io_status_bits_data
-      ({run_8[1] & ~(|_GEN_3) ? {19'h0, _bp_io_status_large} : 32'h0,
-        run_8[1] & ~(|_GEN_3)
+      ({run_8[1] & ~(|_GEN_2) ? {19'h0, _bp_io_status_large} : 32'h0,
+        run_8[1] & ~(|_GEN_2)
           ? {{18{_bp_io_status_level[13]}}, _bp_io_status_level}
           : 32'h0,
-        run_8[1] & ~(|_GEN_3) ? _bp_io_status_cycTotal : 32'h0,
+        run_8[1] & ~(|_GEN_2) ? _bp_io_status_cycTotal : 32'h0,
         cycWaitWr,
         cycWaitRd,
         cycCompute,
@@ -53642,18 +54248,18 @@ module Puc_world(
         flaggedMiss,
         firstBad,
         nonFinite,
-        (|_GEN_3) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
+        (|_GEN_2) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
         found,
         processed,
         26'h0,
         errors[5] | run_8[1]
           & (_bp_io_status_tooMany | _bp_io_status_cellOverflow
              | _bp_io_status_largeOverflow | _bp_io_status_badBucket
-             | _bp_io_status_sortMismatch) & ~(|_GEN_3),
+             | _bp_io_status_sortMismatch) & ~(|_GEN_2),
         errors[4],
-        _GEN_4[3],
-        _GEN_5[2:1],
-        _GEN_5[0] | firstBad != 32'hFFFFFFFF,
+        _GEN_3[3],
+        _GEN_4[2:1],
+        _GEN_4[0] | firstBad != 32'hFFFFFFFF,
         32'h1}),
     .io_wrReq_ready      (io_link_wrReq_ready),
     .io_wrReq_valid      (_wr_io_wrReq_valid),
@@ -53668,24 +54274,31 @@ module Puc_world(
   BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world bp (
     .clock                   (clock),
     .reset                   (reset),
-    .io_begin                (engineStart & run_8[1]),
+    .io_begin                (loadStart & run_8[1]),
     .io_feed_0_valid
-      (_bp_io_feed_3_valid_T & {52'h0, _rd_io_sphereWrite_bits_line, 2'h0} < run_2),
+      (_bp_io_feed_3_valid_T & ~prefetched & ~nextLoading
+       & {52'h0, _rd_io_sphereWrite_bits_line, 2'h0} < run_2),
     .io_feed_0_bits_0        (_rd_io_sphereWrite_bits_data[31:0]),
     .io_feed_0_bits_1        (_rd_io_sphereWrite_bits_data[63:32]),
     .io_feed_0_bits_2        (_rd_io_sphereWrite_bits_data[95:64]),
     .io_feed_0_bits_3        (_rd_io_sphereWrite_bits_data[127:96]),
-    .io_feed_1_valid         (_bp_io_feed_3_valid_T & {51'h0, _GEN_2 + 13'h1} < run_2),
+    .io_feed_1_valid
+      (_bp_io_feed_3_valid_T & ~prefetched & ~nextLoading
+       & {51'h0, _GEN_1 + 13'h1} < run_2),
     .io_feed_1_bits_0        (_rd_io_sphereWrite_bits_data[159:128]),
     .io_feed_1_bits_1        (_rd_io_sphereWrite_bits_data[191:160]),
     .io_feed_1_bits_2        (_rd_io_sphereWrite_bits_data[223:192]),
     .io_feed_1_bits_3        (_rd_io_sphereWrite_bits_data[255:224]),
-    .io_feed_2_valid         (_bp_io_feed_3_valid_T & {51'h0, _GEN_2 + 13'h2} < run_2),
+    .io_feed_2_valid
+      (_bp_io_feed_3_valid_T & ~prefetched & ~nextLoading
+       & {51'h0, _GEN_1 + 13'h2} < run_2),
     .io_feed_2_bits_0        (_rd_io_sphereWrite_bits_data[287:256]),
     .io_feed_2_bits_1        (_rd_io_sphereWrite_bits_data[319:288]),
     .io_feed_2_bits_2        (_rd_io_sphereWrite_bits_data[351:320]),
     .io_feed_2_bits_3        (_rd_io_sphereWrite_bits_data[383:352]),
-    .io_feed_3_valid         (_bp_io_feed_3_valid_T & {51'h0, _GEN_2 + 13'h3} < run_2),
+    .io_feed_3_valid
+      (_bp_io_feed_3_valid_T & ~prefetched & ~nextLoading
+       & {51'h0, _GEN_1 + 13'h3} < run_2),
     .io_feed_3_bits_0        (_rd_io_sphereWrite_bits_data[415:384]),
     .io_feed_3_bits_1        (_rd_io_sphereWrite_bits_data[447:416]),
     .io_feed_3_bits_2        (_rd_io_sphereWrite_bits_data[479:448]),
@@ -53849,7 +54462,7 @@ module Puc_world(
   WorldPairLines_i12_l16_world lines (
     .clock            (clock),
     .reset            (reset),
-    .io_start         (engineStart),
+    .io_start         (runStart),
     .io_in_0_ready    (_lines_io_in_0_ready),
     .io_in_0_valid    (_bp_io_pairs_0_valid),
     .io_in_0_bits_i   (_bp_io_pairs_0_bits_i),

@@ -92,7 +92,8 @@ int runSpheresAfu(const SpheresOptions& o) {
             << std::fixed << std::setprecision(1) << "  modelled time " << totalNs / 1e3 << " us (link bound "
             << r.run.stats.linkBoundNs / 1e3 << " us; " << r.run.stats.readLines << " lines read, " << r.run.stats.writeLines
             << " written; " << afu.lastSlabs() << (afu.lastSlabs() == 1 ? " slab, " : " slabs or boxes, ") << r.attempts
-            << (r.attempts == 1 ? " run" : " runs") << "): broad phase "
+            << (r.attempts == 1 ? " run" : " runs") << " in " << afu.lastCalls()
+            << (afu.lastCalls() == 1 ? " call" : " calls") << (afu.driver().options().runQueue ? ", queued" : "") << "): broad phase "
             << broadNs / 1e3 << " us (" << s.cyclesBroad << " cycles; the SCPUs compute during its last pass), the rest "
             << (totalNs - broadNs) / 1e3 << " us (table load, drain, status, call overhead)\n";
   if (w.flaggedMisses)
@@ -112,6 +113,8 @@ int runSpheresAfu(const SpheresOptions& o) {
                 {"link_bound_ns", r.run.stats.linkBoundNs},
                 {"runs", r.attempts},
                 {"slabs", afu.lastSlabs()},
+                {"calls", afu.lastCalls()},
+                {"run_queue", afu.driver().options().runQueue},
                 {"read_lines", r.run.stats.readLines},
                 {"write_lines", r.run.stats.writeLines},
                 {"cycles_total", s.cyclesTotal},

@@ -49,6 +49,7 @@ DriverOptions withManifest(DriverOptions o, const Manifest& m) {
   o.arith = m.arith;
   o.maxSpheres = m.maxSpheres;
   o.world = m.world;
+  o.runQueue = m.runQueue;
   return o;
 }
 
@@ -97,11 +98,8 @@ double modelledRunNs(const link::LinkParams& lp, std::uint64_t statusCycle) {
   return lp.transactionOverheadNs + seenNs;
 }
 
-// Configure, then start (docs/afu-interface.md CSR table), and clock AFU and link until the
-// status line says done; fills r.stats and r.status.
-void AfuDriver::execute(const RunCsrs& c, RunResult& r) {
-  const std::uint64_t t0 = link_.cycle();
-  const std::uint64_t reads0 = link_.stats().readsAccepted, writes0 = link_.stats().writesAccepted;
+// Configure, then start (docs/afu-interface.md CSR table): kStartCsrWrites posted writes.
+void AfuDriver::postCsrs(const RunCsrs& c) {
   using namespace contract;
   link_.hostWriteCsr(CSR_SPHERE_BASE, c.sphereBase);
   link_.hostWriteCsr(CSR_NUM_SPHERES, c.numSpheres);
@@ -112,18 +110,29 @@ void AfuDriver::execute(const RunCsrs& c, RunResult& r) {
   link_.hostWriteCsr(CSR_STATUS_ADDR, c.statusAddr);
   link_.hostWriteCsr(CSR_MODE, c.mode);
   link_.hostWriteCsr(CSR_CTRL, CTRL_START);
+}
+
+void AfuDriver::hung(std::uint64_t statusAddr) const {
+  std::ostringstream m;
+  m << "AFU hung: no status line after " << opt_.watchdogCycles << " cycles (simulated-cycle watchdog); "
+    << link_.readsOutstanding() << " reads and " << link_.writesOutstanding()
+    << " writes outstanding, " << link_.stats().readResponses << " read and "
+    << link_.stats().writeResponses << " write responses delivered, AFU "
+    << (port_.idle() ? "idle-waiting" : "busy");
+  throw AfuError(m.str(), readStatus(mem_, statusAddr));
+}
+
+// Start one run and clock AFU and link until its status line says done; fills r.stats and
+// r.status.
+void AfuDriver::execute(const RunCsrs& c, RunResult& r) {
+  const std::uint64_t t0 = link_.cycle();
+  const std::uint64_t reads0 = link_.stats().readsAccepted, writes0 = link_.stats().writesAccepted;
+  using namespace contract;
+  postCsrs(c);
 
   const std::uint64_t deadline = t0 + opt_.watchdogCycles;
   for (;;) {
-    if (link_.cycle() >= deadline) {
-      std::ostringstream m;
-      m << "AFU hung: no status line after " << opt_.watchdogCycles << " cycles (simulated-cycle watchdog); "
-        << link_.readsOutstanding() << " reads and " << link_.writesOutstanding()
-        << " writes outstanding, " << link_.stats().readResponses << " read and "
-        << link_.stats().writeResponses << " write responses delivered, AFU "
-        << (port_.idle() ? "idle-waiting" : "busy");
-      throw AfuError(m.str(), readStatus(mem_, c.statusAddr));
-    }
+    if (link_.cycle() >= deadline) hung(c.statusAddr);
     const link::LinkToAfu in = link_.outputs();
     if (opt_.skipIdle && !in.anyEvent() && port_.idle()) {
       // Nothing reaches the AFU before the link's next event: jump there in one step.
@@ -243,15 +252,132 @@ WorldRunResult AfuDriver::runWorld(const SphereTable& spheres, std::size_t capac
     }
     const std::size_t written = std::min<std::size_t>(s.recordsWritten, capacity);
     w.run.records = readRecords(mem_, ct.base, written, lay, false, 0).records;
-    checkWorld(w.run, spheres.size(), capacity);
-    for (std::uint32_t k = 0; k < outOfRange.size(); ++k)
-      if (outOfRange[k]) w.rangeSpheres.push_back(k);
-    for (auto& rec : w.run.records)
-      if (outOfRange[worldPairI(rec.pair)] || outOfRange[worldPairJ(rec.pair)]) rec.flags |= contract::REC_HOST_RANGE;
-    rebuildDerived(spheres, w.run, nullptr);
+    finishWorld(spheres, outOfRange, capacity, w);
     w.run.stats = total;
     return w;
   }
+}
+
+void AfuDriver::finishWorld(const SphereTable& spheres, const std::vector<std::uint8_t>& outOfRange,
+                            std::size_t capacity, WorldRunResult& w) const {
+  checkWorld(w.run, spheres.size(), capacity);
+  for (std::uint32_t k = 0; k < outOfRange.size(); ++k)
+    if (outOfRange[k]) w.rangeSpheres.push_back(k);
+  for (auto& rec : w.run.records)
+    if (outOfRange[worldPairI(rec.pair)] || outOfRange[worldPairJ(rec.pair)]) rec.flags |= contract::REC_HOST_RANGE;
+  rebuildDerived(spheres, w.run, nullptr);
+}
+
+// The run queue holds one run behind the current one: run k is posted once the host has
+// seen run k - 2's status line (the AFU has then moved run k - 1 up), at the end of the
+// poll that sees it. The AFU reads run k's table while run k - 1 computes.
+void AfuDriver::executeQueue(const std::vector<RunCsrs>& runs, std::vector<RunResult>& out, RunStats& stats) {
+  const auto& lp = link_.params();
+  const std::uint64_t t0 = link_.cycle();
+  const std::uint64_t reads0 = link_.stats().readsAccepted, writes0 = link_.stats().writesAccepted;
+  constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
+  const std::size_t n = runs.size();
+  out.assign(n, RunResult{});
+  std::vector<std::uint64_t> seenAt(n, kNever);  // cycle at which the host has seen run k's status
+  std::size_t posted = 0, waiting = 0;           // runs started; the first not yet done
+  std::uint64_t progress = t0;                   // the last status seen: the watchdog counts from it
+  auto due = [&]() { return posted < 2 ? t0 : seenAt[posted - 2]; };
+  for (;;) {
+    while (posted < n && link_.cycle() >= due()) postCsrs(runs[posted++]);
+    if (link_.cycle() >= progress + opt_.watchdogCycles) hung(runs[waiting].statusAddr);
+    const link::LinkToAfu in = link_.outputs();
+    if (opt_.skipIdle && !in.anyEvent() && port_.idle()) {
+      std::uint64_t to = std::min(link_.nextEventCycle(), progress + opt_.watchdogCycles);
+      if (posted < n) to = std::min(to, due());
+      if (to > link_.cycle()) {
+        port_.skipIdleCycles(to - link_.cycle());
+        stats.cyclesSkipped += to - link_.cycle();
+        link_.skipTo(to);
+        continue;
+      }
+    }
+    port_.setInputs(in);
+    const link::AfuToLink o = port_.evalOutputs();
+    port_.clockEdge();
+    link_.tick(o);
+    ++stats.cyclesStepped;
+    if (!in.wrResp) continue;
+    while (waiting < n && mem_.load<std::uint32_t>(runs[waiting].statusAddr, contract::STATUS_DONE) != 0) {
+      const std::uint64_t c = link_.cycle() - t0;
+      out[waiting].stats.statusCycle = c;
+      // The host polls back to back from t0: the poll that starts after the commit sees it.
+      const double seenNs = lp.pollNs > 0 ? (std::ceil(c * lp.cycleNs() / lp.pollNs) + 1) * lp.pollNs : c * lp.cycleNs();
+      seenAt[waiting] = t0 + static_cast<std::uint64_t>(std::ceil(seenNs / lp.cycleNs()));
+      progress = link_.cycle();
+      ++waiting;
+    }
+    if (waiting == n) break;
+  }
+  stats.statusCycle = out.back().stats.statusCycle;
+  stats.modelledNs = modelledRunNs(lp, stats.statusCycle);
+  stats.readLines = link_.stats().readsAccepted - reads0;
+  stats.writeLines = link_.stats().writesAccepted - writes0;
+  stats.linkBoundNs = linkBoundNs(lp, stats.readLines, stats.writeLines);
+  for (std::size_t k = 0; k < n; ++k) out[k].status = readStatus(mem_, runs[k].statusAddr);
+}
+
+WorldBatchResult AfuDriver::runWorlds(const std::vector<SphereTable>& tables) {
+  WorldBatchResult b;
+  if (!opt_.runQueue || tables.size() < 2) {
+    for (const auto& t : tables) {
+      b.runs.push_back(runWorld(t));
+      accumulate(b.stats, b.runs.back().run.stats);
+      ++b.calls;
+    }
+    return b;
+  }
+  if (!opt_.world)
+    throw std::invalid_argument("rtl: this AFU has no world mode (its manifest has no afu.world; generate the world preset)");
+  for (std::size_t k = 0; k < tables.size(); ++k)
+    if (tables[k].size() > opt_.maxSpheres)
+      throw std::invalid_argument("rtl world mode: table " + std::to_string(k) + " has " + std::to_string(tables[k].size()) +
+                                  " spheres, the AFU holds " + std::to_string(opt_.maxSpheres));
+  if (link_.readsOutstanding() || link_.writesOutstanding())
+    throw std::logic_error("AfuDriver::runWorlds: the link still has requests in flight from the last run");
+  const BufferLayout lay = layout();
+  mem_.releaseAll();
+  std::vector<RunCsrs> csrs;
+  std::vector<std::vector<std::uint8_t>> outOfRange;
+  for (const auto& t : tables) {
+    const std::size_t capacity = std::max<std::size_t>(64, 8 * t.size());
+    const auto sph = mem_.allocate(std::max<std::uint64_t>(1, sphereLines(t.size(), opt_.format)));
+    const auto ct = mem_.allocate(std::max<std::uint64_t>(1, contactLines(capacity, lay, false)));
+    const auto st = mem_.allocate(1);
+    outOfRange.push_back(writeSphereTable(mem_, sph.base, t, opt_.format));
+    csrs.push_back(RunCsrs{sph.base, t.size(), 0, 0, ct.base, capacity, st.base, contract::MODE_WORLD});
+  }
+  std::vector<RunResult> out;
+  executeQueue(csrs, out, b.stats);
+  b.calls = 1;
+  // Read every run's records before any run again (runWorld reuses host memory).
+  std::vector<std::size_t> again;
+  b.runs.resize(tables.size());
+  for (std::size_t k = 0; k < tables.size(); ++k) {
+    WorldRunResult& w = b.runs[k];
+    w.run = std::move(out[k]);
+    w.attempts = 1;
+    const StatusLine& s = w.run.status;
+    if ((s.errors & contract::ERR_CAPACITY) && s.contactsFound > csrs[k].capacity) {
+      again.push_back(k);
+      continue;
+    }
+    const std::size_t written = std::min<std::size_t>(s.recordsWritten, csrs[k].capacity);
+    w.run.records = readRecords(mem_, csrs[k].contactBase, written, lay, false, 0).records;
+    finishWorld(tables[k], outOfRange[k], csrs[k].capacity, w);
+  }
+  for (auto k : again) {
+    const StatusLine first = b.runs[k].run.status;
+    b.runs[k] = runWorld(tables[k], first.contactsFound);  // room for every contact it counted
+    b.runs[k].attempts += 1;
+    accumulate(b.stats, b.runs[k].run.stats);
+    ++b.calls;
+  }
+  return b;
 }
 
 // A world run's records: hits only, each pair once, i < j within the table, as many as

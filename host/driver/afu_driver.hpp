@@ -31,6 +31,7 @@ struct DriverOptions {
   bool dense = false;                        // MODE bit 0
   std::uint32_t maxSpheres = 65536;          // the manifest's afu.maxSpheres
   bool world = false;                        // the manifest's afu.world: runWorld is possible
+  bool runQueue = false;                     // the manifest's afu.runQueue: runWorlds queues its runs
   // Cycles from the first CSR write to the status line before the run is declared hung.
   std::uint64_t watchdogCycles = 50'000'000;
   bool skipIdle = true;                      // jump the clock while the AFU idle-waits
@@ -92,6 +93,15 @@ struct WorldRunResult {
   std::vector<std::uint32_t> rangeSpheres;
 };
 
+// World mode over several tables (runWorlds): each table's result, and the call's statistics.
+struct WorldBatchResult {
+  std::vector<WorldRunResult> runs;  // one per table, in order; with a queue, each run's stats
+                                     // hold only its status cycle (the call's are in `stats`)
+  RunStats stats;                    // the whole call: summed over the calls it took
+  std::size_t calls = 0;             // driver calls (one per table without a queue; with one, 1
+                                     // plus one per table whose contact buffer was too small)
+};
+
 // The CSR values of one run (docs/afu-interface.md).
 struct RunCsrs {
   std::uint64_t sphereBase = 0, numSpheres = 0, pairBase = 0, numPairs = 0, contactBase = 0, capacity = 0,
@@ -110,6 +120,12 @@ class AfuDriver {
   // `capacityHint`: contact records the first buffer holds (0: 8 per sphere, at least 64).
   // Throws std::invalid_argument if the AFU has no world mode or the table is too big.
   WorldRunResult runWorld(const SphereTable& spheres, std::size_t capacityHint = 0);
+  // World mode on several tables. With the AFU's run queue (manifest afu.runQueue) in one
+  // call: every table's run is started while the run before it is on, so its table loads
+  // during that run's broad phase, and the call's costs are paid once; a run whose contact
+  // buffer was too small is run again alone (runWorld), with room for all. Without a queue,
+  // runWorld on each table. docs/host.md, "The run queue".
+  WorldBatchResult runWorlds(const std::vector<SphereTable>& tables);
 
   // Dense per-pair view of a run's records (pair k -> entry k), in the link format, with the
   // record flags (and REC_HOST_RANGE on the run's rangePairs, whether or not they hit).
@@ -123,6 +139,12 @@ class AfuDriver {
   void check(const RunResult& r, std::size_t pairs, std::size_t capacity, std::size_t headers) const;
   void checkWorld(const RunResult& r, std::size_t spheres, std::size_t capacity) const;
   void execute(const RunCsrs& csrs, RunResult& r);
+  void executeQueue(const std::vector<RunCsrs>& runs, std::vector<RunResult>& out, RunStats& stats);
+  void postCsrs(const RunCsrs& c);
+  [[noreturn]] void hung(std::uint64_t statusAddr) const;
+  // Checks a world run's records and marks, rebuilds its derived records.
+  void finishWorld(const SphereTable& spheres, const std::vector<std::uint8_t>& outOfRange, std::size_t capacity,
+                   WorldRunResult& w) const;
   void rebuildDerived(const SphereTable& spheres, RunResult& r, const PairList* pairs) const;
 
   AfuPort& port_;

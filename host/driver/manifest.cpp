@@ -83,6 +83,8 @@ Manifest fromJson(nlohmann::json raw, const std::string& file) {
   m.world = at("/afu/world", false);
   if (m.world && (m.records == contract::LAYOUT_FULL_MASKED || m.records == contract::LAYOUT_DERIVED_MASKED))
     bad("afu.world: world mode needs an indexed record layout, the manifest says " + layout);
+  m.runQueue = at("/afu/runQueue", false);
+  if (m.runQueue && !m.world) bad("afu.runQueue: a run queue needs world mode (afu.world)");
   if (m.world && ms > (1LL << contract::TAG_WORLD_INDEX_BITS))
     bad("afu.world: world mode holds at most " + std::to_string(1u << contract::TAG_WORLD_INDEX_BITS) + " spheres, afu.maxSpheres is " + std::to_string(ms));
   return m;

@@ -20,6 +20,7 @@ struct Manifest {
   ComputeArith arith;          // what rebuilds derived records
   std::uint32_t maxSpheres = 65536;
   bool world = false;          // afu.world: world mode (MODE_WORLD) is built
+  bool runQueue = false;       // afu.runQueue: a start during a run queues one more (world mode)
 };
 
 // Throws std::runtime_error naming the file: missing, unreadable, bad JSON, bad field.

@@ -3,7 +3,7 @@
 // (DriverOptions::watchdogCycles), which only bounds wall time while idle waits are
 // skipped: with skipping off, or an AFU that never goes idle, 50 million stepped cycles of
 // the Verilated AFU take about 20 minutes. WallClockWatchdog wraps the AfuPort, is armed at
-// the start of each run, and throws AfuError naming itself once a run has taken longer
+// the start of each call (a pair run, or a world collision with all its slabs), and throws AfuError naming itself once a run has taken longer
 // than its limit of wall-clock time. The rtl backend wraps every port in one.
 #include <chrono>
 #include <cstdint>

@@ -62,37 +62,45 @@ void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
 
   last_ = driver::WorldRunResult{};
   slabs_ = slabs.size();
+  tables_.resize(slabs.size());
+  for (std::size_t k = 0; k < slabs.size(); ++k) {
+    tables_[k].clear();
+    for (auto p : slabs[k].spheres) {
+      const auto m = members_[p];
+      tables_[k].push(s.x[m], s.y[m], s.z[m], s.r[m]);
+    }
+  }
+  // One call for every slab where the AFU queues runs (each table loading during the run
+  // before it), else a call a slab; the wall-clock limit is the call's.
+  port_->arm();
+  const driver::WorldBatchResult batch = driver_->runWorlds(tables_);
+  requireAtLeastLinkBound(batch.stats, driver_->link().params().name);
+  last_.run.stats = batch.stats;
+  calls_ = batch.calls;
   PairList pairs;
   ContactSet found;
   found.format = fmt;
   std::vector<std::uint32_t> range;
-  for (const Slab& slab : slabs) {
-    table_.clear();
-    for (auto p : slab.spheres) {
-      const auto k = members_[p];
-      table_.push(s.x[k], s.y[k], s.z[k], s.r[k]);
-    }
-    port_->arm();
-    const driver::WorldRunResult r = driver_->runWorld(table_);
-    requireAtLeastLinkBound(r.run.stats, driver_->link().params().name);
+  for (std::size_t k = 0; k < slabs.size(); ++k) {
+    const Slab& slab = slabs[k];
+    const driver::WorldRunResult& r = batch.runs[k];
     driver::accumulate(last_.run.status, r.run.status);
-    driver::accumulate(last_.run.stats, r.run.stats);
     last_.attempts += r.attempts;
     // Records name table rows; a run's table is ascending in the caller's indices, so i < j
     // stays i < j. A pair is this run's when keepsPair says so (owned here along x and y).
     for (const auto& rec : r.run.records) {
       const auto li = driver::worldPairI(rec.pair), lj = driver::worldPairJ(rec.pair);
       if (!keepsPair(slab, li, lj)) continue;
-      const std::size_t k = pairs.size();
+      const std::size_t i = pairs.size();
       pairs.push(members_[slab.spheres[li]], members_[slab.spheres[lj]]);
-      found.resizeForOverwrite(k + 1);
-      found.hit[k] = 1;
-      found.px[k] = rec.px; found.py[k] = rec.py; found.pz[k] = rec.pz;
-      found.nx[k] = rec.nx; found.ny[k] = rec.ny; found.nz[k] = rec.nz;
-      found.depth[k] = rec.depth;
-      found.flags[k] = rec.flags;
+      found.resizeForOverwrite(i + 1);
+      found.hit[i] = 1;
+      found.px[i] = rec.px; found.py[i] = rec.py; found.pz[i] = rec.pz;
+      found.nx[i] = rec.nx; found.ny[i] = rec.ny; found.nz[i] = rec.nz;
+      found.depth[i] = rec.depth;
+      found.flags[i] = rec.flags;
     }
-    for (auto k : r.rangeSpheres) range.push_back(members_[slab.spheres[k]]);
+    for (auto m : r.rangeSpheres) range.push_back(members_[slab.spheres[m]]);
   }
   out.candidates = last_.run.status.pairsProcessed;
   out.flaggedMisses = last_.run.status.flaggedMisses;

@@ -39,6 +39,9 @@ class AfuWorld final : public WorldEngine {
   const driver::WorldRunResult& lastRun() const { return last_; }
   // AFU runs (slabs) the last call took.
   std::size_t lastSlabs() const { return slabs_; }
+  // Driver calls the last call took: 1 with a run queue (plus one a run whose contact buffer
+  // was too small), else one a slab (and a second for such a run).
+  std::size_t lastCalls() const { return calls_; }
   // Spheres a run may hold (0: the AFU's afu.maxSpheres); smaller values cut worlds sooner.
   void setMaxRunSpheres(std::size_t n) { maxRun_ = n; }
   const driver::AfuDriver& driver() const { return *driver_; }
@@ -49,9 +52,9 @@ class AfuWorld final : public WorldEngine {
   std::unique_ptr<driver::WallClockWatchdog> port_;
   std::unique_ptr<driver::AfuDriver> driver_;
   driver::WorldRunResult last_;
-  std::size_t slabs_ = 0, maxRun_ = 0;
+  std::size_t slabs_ = 0, maxRun_ = 0, calls_ = 0;
   std::vector<std::uint32_t> members_;
-  SphereTable table_;
+  std::vector<SphereTable> tables_;
 };
 
 }  // namespace collide::world

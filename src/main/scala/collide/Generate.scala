@@ -39,6 +39,7 @@ object Generate {
       worldBoxBuckets: Option[Boolean] = None,
       worldWordLog2: Option[Int] = None,
       scpuImpl: Option[String] = None,
+      runQueue: Option[Boolean] = None,
       listPresets: Boolean = false)
 
   private val builder = scopt.OParser.builder[Opts]
@@ -96,6 +97,9 @@ object Generate {
       opt[Boolean]("world-box-buckets").valueName("true|false").action((v, o) => o.copy(worldBoxBuckets = Some(v)))
         .text("a cell's bucket is its coordinates modulo powers of two spanning the world's box (kept as the table " +
           "arrives), so no two cells share a bucket where the box fits the table, instead of a hash (world mode only)"),
+      opt[Boolean]("run-queue").valueName("true|false").action((v, o) => o.copy(runQueue = Some(v)))
+        .text("a run queue: a start during a run queues one more, and a queued world run's table loads into a " +
+          "second on-chip sphere table while the current run computes (world mode only; twice the sphere-table RAM)"),
       opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
         .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
           "(same cycles and records, a far faster co-simulation; not synthesizable)"),
@@ -139,7 +143,7 @@ object Generate {
       c9 <- opt("--dense-default", o.dense)((c, v) => step("--dense-default", c.copy(denseByDefault = v)))(c8)
       c10 <- opt("--records", o.records)((c, v) => RecordLayout.parse(v).flatMap(r => step("--records", c.copy(records = Some(r)))))(c9)
       c11 <- opt("--world", o.world)((c, v) => step("--world",
-        c.copy(world = if (v) Some(c.world.getOrElse(BroadPhaseParams.default)) else None)))(c10)
+        c.copy(world = if (v) Some(c.world.getOrElse(BroadPhaseParams.default)) else None, runQueue = v && c.runQueue)))(c10)
       c12 <- world("--world-lanes", o.worldLanes)((bp, v) => bp.copy(lanes = v,
         sortPorts = BroadPhaseParams.sortPortChoices.filter(_ <= math.min(bp.sortPorts, v)).max))(c11) // ports follow the lanes down
       c13 <- world("--world-sort-ports", o.worldSortPorts)((bp, v) => bp.copy(sortPorts = v))(c12)
@@ -155,7 +159,8 @@ object Generate {
       c20 <- world("--world-word-log2", o.worldWordLog2)((bp, v) => bp.copy(wordLog2 = v))(c19)
       c21 <- world("--world-box-buckets", o.worldBoxBuckets)((bp, v) => bp.copy(boxBuckets = v))(c20)
       c22 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c21)
-    } yield c22
+      c23 <- opt("--run-queue", o.runQueue)((c, v) => step("--run-queue", c.copy(runQueue = v)))(c22)
+    } yield c23
   }
 
   val firtoolOpts: Array[String] = Array(

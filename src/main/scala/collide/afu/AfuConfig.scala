@@ -23,6 +23,10 @@ import collide.scpu.{ScpuConfig, ScpuImpl}
   *                             with world mode, whose records name their spheres)
   * @param world                build world mode (MODE bit 1): an on-chip broad phase with these
   *                             parameters finds the pairs; None = pair lists only
+  * @param runQueue             a run queue (world mode only): a start while a run is on queues one
+  *                             more run, and a queued world run's table loads into a second
+  *                             on-chip table while the current run computes (docs/afu.md, "The
+  *                             run queue"); costs a second copy of every sphere-table RAM
   * @param scpuImpl             how the SCPUs are built: RTL, or (simulation only) the C++ SCPU
   *                             model behind a pipeline of the SCPU's latency (ScpuModelUnit): the
   *                             same cycles and records, a far cheaper co-simulation
@@ -39,7 +43,8 @@ final case class AfuConfig(
     denseByDefault: Boolean = false,
     records: Option[RecordLayout] = None,
     world: Option[collide.world.BroadPhaseParams] = None,
-    scpuImpl: ScpuImpl = ScpuImpl.Rtl) {
+    scpuImpl: ScpuImpl = ScpuImpl.Rtl,
+    runQueue: Boolean = false) {
   require(name.nonEmpty && name.forall(c => c.isLetterOrDigit || c == '-' || c == '_'),
     s"AfuConfig name '$name': must be non-empty letters, digits, '-' or '_'")
   require(scpus >= 1 && scpus <= 64, s"AfuConfig $name: scpus must be 1..64, got $scpus")
@@ -63,6 +68,7 @@ final case class AfuConfig(
       s"AfuConfig $name: world mode holds at most ${1 << RecordTag.WORLD_INDEX_BITS} spheres (a record's pair field names i and j), got $maxSpheres")
     require(records.forall(!_.masked), s"AfuConfig $name: world mode needs an indexed record layout, not ${records.get.name}")
   }
+  require(!runQueue || world.isDefined, s"AfuConfig $name: a run queue needs world mode (it loads a queued world run's table)")
   /** The record layout in effect (bestLayout unless asked for). */
   val recordLayout: RecordLayout = records.getOrElse(AfuConfig.bestLayout(scpu, world.isDefined))
 
@@ -74,7 +80,7 @@ final case class AfuConfig(
   def isPreset: Boolean = AfuConfig.presets.get(name).contains(this)
   /** A name from every parameter, for configurations that are not a preset. */
   def derivedName: String =
-    s"n${scpus}_${scpu.id}_s${maxSpheres}_r${maxReadsOutstanding}_w${maxWritesOutstanding}_t${tagBits}_${ramPorts.name}" +
+    s"n${scpus}_${scpu.id}_s${maxSpheres}_r${maxReadsOutstanding}_w${maxWritesOutstanding}_t${tagBits}_${ramPorts.name}" + (if (runQueue) "_q" else "") +
       (if (recordLayout != AfuConfig.bestLayout(scpu, world.isDefined)) s"_${recordLayout.name}" else "") +
       (if (denseByDefault) "_dense" else "") + world.map(bp => "_world" + (if (bp.lanes > 1) bp.lanes.toString else "") + (if (bp.sortPorts > 1) s"p${bp.sortPorts}" else "") +
         (if (bp.wordLog2 != collide.world.BroadPhaseParams.default.wordLog2) s"w${bp.wordLog2}" else "") +
@@ -91,7 +97,7 @@ final case class AfuConfig(
     scpus = scpus, linkWidth = linkWidth, scpuTagBits = scpu.tagBits, scpuLatency = scpu.latency,
     maxSpheres = maxSpheres, maxReads = maxReadsOutstanding, maxWrites = maxWritesOutstanding,
     tagBits = tagBits, ramPorts = ramPorts, denseByDefault = denseByDefault, records = recordLayout,
-    world = world.map(bp => PucWorld(bp, scpu.params)), name = "_" + id)
+    world = world.map(bp => PucWorld(bp, scpu.params)), tables = if (runQueue) 2 else 1, name = "_" + id)
 
   /** Pairs per cycle the dispatcher can reach (a group never spans two pair lines). */
   def peakPairsPerCycle: Double = {
@@ -106,6 +112,7 @@ final case class AfuConfig(
       s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, link ${scpu.linkFormat.name}, ${recordLayout.name} records " +
       s"(${layout.recordBytes} B, ${layout.recordsPerLine} a line), ${if (denseByDefault) "dense" else "compact"} by default" +
       world.map(bp => s", world mode built (${bp.lanes} candidate lane${if (bp.lanes > 1) "s" else ""}, ${bp.sortPorts} sort port${if (bp.sortPorts > 1) "s" else ""}, broad phase RAM ${bp.ramBits(maxSpheres)} bits)").getOrElse("") +
+      (if (runQueue) ", a run queue (two sphere tables)" else "") +
       (if (scpuImpl == ScpuImpl.Model) ", SCPUs simulated by the C++ model (not synthesizable)" else "")
 }
 
@@ -138,10 +145,11 @@ object AfuConfig {
   /** World mode: 16 fp32 SCPUs fed by the on-chip broad phase's 16 candidate lanes (claiming
     * their work as they need it, queueing eight spheres' hits), its sort's passes eight spheres
     * a cycle (four sorts of two ports), 32 counters a word, box buckets, up to 4096 spheres
-    * (bench/results/world-lanes). */
+    * a run, and a run queue: a world cut into several runs loads each run's table while the
+    * run before it computes (bench/results/world-lanes, bench/results/world-afu). */
   val world: AfuConfig   = big.copy(name = "world",
     world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 8, wordLog2 = 5, chunk = 32,
-      cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true)))
+      cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true)), runQueue = true)
 
   /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind
     * their pipelines (same cycles, same records; docs/afu.md, "A faster co-simulation"). */

@@ -22,7 +22,7 @@ object Csr {
   val MODE             = 8
   val count            = 9
   val entries: Seq[ContractEntry] = Seq(
-    ContractEntry("CTRL", CTRL, "write CTRL_START to start a run"),
+    ContractEntry("CTRL", CTRL, "write CTRL_START to start a run (during a run: queued where afu.runQueue, else ignored)"),
     ContractEntry("SPHERE_BASE", SPHERE_BASE, "line address of the sphere table"),
     ContractEntry("NUM_SPHERES", NUM_SPHERES, "spheres in the table"),
     ContractEntry("PAIR_BASE", PAIR_BASE, "line address of the pair list"),

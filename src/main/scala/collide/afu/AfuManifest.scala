@@ -25,6 +25,7 @@ object AfuManifest {
         "groupsInFlight" -> p.groupsInFlight, "scpuQueueDepth" -> p.scpuQueueDepth,
         "writeQueueLines" -> p.writeQueueLines,
         "world" -> cfg.world.isDefined,
+        "runQueue" -> cfg.runQueue, "sphereTables" -> p.tables,
         "broadPhase" -> cfg.world.map { bp =>
           ujson.Obj("largeMax" -> bp.largeMax, "cellBits" -> bp.cellBits, "bucketsLog2" -> bp.bucketsLog2,
             "margin" -> s"${bp.marginNum}/${bp.marginDen}", "cellOverError" -> bp.cellOverError,

@@ -9,7 +9,9 @@ import collide.scpu.{ScpuIn, ScpuOut}
   * the dispatcher (a pair line's 16 pairs over N SCPUs), the collector and packer (records,
   * compact or dense), the write engine and the status line. With world mode built (MODE
   * bit 1), the broad phase reads the loaded table and its candidates replace the pair lines
-  * (WorldPairLines); docs/afu.md describes both.
+  * (WorldPairLines); docs/afu.md describes both. With a run queue (two sphere tables), a start
+  * during a run queues one more, and a queued world run's table loads into the other table
+  * once the current run's is in (docs/afu.md, "The run queue").
   */
 class Puc(p: PucParams) extends Module {
   override def desiredName = s"Puc${p.name}"
@@ -37,7 +39,15 @@ class Puc(p: PucParams) extends Module {
     csr(io.link.csr.bits.index) := io.link.csr.bits.data
   }
   val run = Reg(Vec(Csr.count, UInt(64.W)))
-  when(state === sIdle && startReq) { run := csr; state := sCheck }
+  // The run queue: one run waits behind the current one (CSRs copied at its start, as a run's
+  // are); `nextLoading` while the read engine loads its table into the table not being read.
+  private val queued = p.tables > 1
+  val next        = Reg(Vec(Csr.count, UInt(64.W)))
+  val nextValid   = RegInit(false.B)
+  val nextLoading = RegInit(false.B)
+  val prefetched  = RegInit(false.B) // the current run's table was loaded while the one before it ran
+  val curTable    = RegInit(0.U(1.W)) // the table the current run reads
+  when(state === sIdle && startReq) { run := csr; state := sCheck; prefetched := false.B }
   val sphereBase = run(Csr.SPHERE_BASE); val numSpheres = run(Csr.NUM_SPHERES)
   val pairBase = run(Csr.PAIR_BASE); val numPairs64 = run(Csr.NUM_PAIRS)
   val contactBase = run(Csr.CONTACT_BASE); val capacity = run(Csr.CONTACT_CAPACITY)
@@ -63,21 +73,36 @@ class Puc(p: PucParams) extends Module {
   // Cycles this edge stands for in every cycle counter: 1, or n when the host skips n idle cycles.
   val tick = Mux(io.skipCycles =/= 0.U, io.skipCycles, 1.U(32.W))
 
-  val engineStart = WireDefault(false.B)
-  when(state === sCheck) {
+  /** A run's CSRs refused: (a bad configuration, more spheres than the table holds). */
+  private def refusal(c: Vec[UInt]): (Bool, Bool) = {
+    val wb = c(Csr.MODE)(1); val n = c(Csr.NUM_PAIRS)
     // World mode ignores PAIR_BASE and NUM_PAIRS; it is refused where it is not built, and dense.
-    val badPairs = !worldBit && (numPairs64 >= lay.maxPairs.U || (numPairs64 =/= 0.U && pairBase === 0.U))
-    val badWorld = worldBit && (!p.world.isDefined.B || dense)
-    val badConfig = badPairs || badWorld || (numSpheres =/= 0.U && sphereBase === 0.U) ||
-      (capacity =/= 0.U && contactBase === 0.U) || statusAddr === 0.U
-    val tooMany = numSpheres > p.maxSpheres.U
+    val badPairs = !wb && (n >= lay.maxPairs.U || (n =/= 0.U && c(Csr.PAIR_BASE) === 0.U))
+    val badWorld = wb && (!p.world.isDefined.B || c(Csr.MODE)(0))
+    val badConfig = badPairs || badWorld || (c(Csr.NUM_SPHERES) =/= 0.U && c(Csr.SPHERE_BASE) === 0.U) ||
+      (c(Csr.CONTACT_CAPACITY) =/= 0.U && c(Csr.CONTACT_BASE) === 0.U) || c(Csr.STATUS_ADDR) === 0.U
+    (badConfig, c(Csr.NUM_SPHERES) > p.maxSpheres.U)
+  }
+  /** The run is over (its status written, or nowhere to write it): the queued run is next. */
+  private def endRun(): Unit =
+    if (!queued) state := sIdle
+    else when(nextValid) {
+      run := next; nextValid := false.B; state := sCheck
+      prefetched := nextLoading; nextLoading := false.B
+      when(nextLoading) { curTable := ~curTable } // its table is the one just loaded
+    }.otherwise { state := sIdle }
+
+  val runStart = WireDefault(false.B) // a run passed its checks: its counters and engines restart
+  val loadStart = runStart && !prefetched // ... and its table is still to be read
+  when(state === sCheck) {
+    val (badConfig, tooMany) = refusal(run)
     errors := Mux(badConfig, ErrorFlags.BAD_CONFIG.U, 0.U) | Mux(tooMany, ErrorFlags.TOO_MANY_SPHERES.U, 0.U)
     when(badConfig && statusAddr === 0.U) {
-      state := sIdle // nowhere to report: write nothing at all
+      endRun() // nowhere to report: write nothing at all
     }.elsewhen(badConfig || tooMany) {
       state := sStatus
     }.otherwise {
-      engineStart := true.B; state := sRun
+      runStart := true.B; state := sRun
     }
   }
   val running = state === sRun || state === sDrain
@@ -93,17 +118,33 @@ class Puc(p: PucParams) extends Module {
   val pack   = Module(new ContactPacker(p))
   val wr     = Module(new WriteEngine(p))
 
-  rd.io.start       := engineStart
-  rd.io.active      := running
-  rd.io.sphereBase  := sphereBase
-  rd.io.sphereLines := ((numSpheres +& (lay.spheresPerLine - 1).U) >> log2Ceil(lay.spheresPerLine))(p.sphereLineBits, 0)
+  val prefetchGo = WireDefault(false.B) // the read engine turns to the queued run's table
+  rd.io.start       := loadStart || prefetchGo
+  rd.io.active      := running || nextLoading
+  rd.io.sphereBase  := Mux(nextLoading, next(Csr.SPHERE_BASE), sphereBase)
+  rd.io.sphereLines := ((Mux(nextLoading, next(Csr.NUM_SPHERES), numSpheres) +& (lay.spheresPerLine - 1).U) >>
+    log2Ceil(lay.spheresPerLine))(p.sphereLineBits, 0)
   rd.io.pairBase    := pairBase
-  rd.io.pairLines   := Mux(world, 0.U, ((numPairs +& (lay.pairsPerLine - 1).U) >> log2Ceil(lay.pairsPerLine))(p.pairLineBits, 0))
+  rd.io.pairLines   := Mux(world || nextLoading, 0.U, ((numPairs +& (lay.pairsPerLine - 1).U) >> log2Ceil(lay.pairsPerLine))(p.pairLineBits, 0))
   io.link.rdReq <> rd.io.rdReq
   rd.io.rdResp := io.link.rdResp
-  ram.io.write := rd.io.sphereWrite
+  ram.io.write  := rd.io.sphereWrite
+  ram.io.wtable := Mux(nextLoading, ~curTable, curTable)
+  ram.io.rtable := curTable
 
-  val loaded = rd.io.loaded && running
+  // The current run's table is in; latched, as the read engine may move on to the next run's.
+  val tableIn = RegInit(false.B)
+  val loaded = running && (tableIn || (rd.io.loaded && !nextLoading))
+  when(loaded) { tableIn := true.B }
+  when(state === sCheck) { tableIn := false.B }
+  if (queued) {
+    // Load the queued run's table once the current world run's is in and no read is in flight
+    // (world mode reads nothing else), where the queued run is a world run that will not be refused.
+    val (nextBad, nextTooMany) = refusal(next)
+    prefetchGo := nextValid && !nextLoading && next(Csr.MODE)(1) && !nextBad && !nextTooMany &&
+      world && loaded && rd.io.outstanding === 0.U
+    when(prefetchGo) { nextLoading := true.B }
+  }
 
   // ---- world mode: the broad phase starts once the table is loaded; its candidates, in
   // lines, take the pair lines' place at the dispatcher.
@@ -124,12 +165,14 @@ class Puc(p: PucParams) extends Module {
       val spl = lay.spheresPerLine
       val feedWidth = if (w.bp.lanes >= spl) spl else 0
       val bp = Module(new collide.world.BroadPhase(w.fp, w.bp, p.maxSpheres, feedWidth = feedWidth))
-      bp.io.begin := engineStart && world // ignored without feed ports
+      bp.io.begin := loadStart && world // ignored without feed ports
       bp.io.start := bpStart
       bp.io.num   := numSpheres(bp.io.countW - 1, 0) // <= maxSpheres: checked at sCheck
       val wr = rd.io.sphereWrite
       for ((f, s) <- bp.io.feed.zipWithIndex) {
-        f.valid := wr.valid && world && ((wr.bits.line << log2Ceil(spl)) +& s.U).pad(64) < numSpheres
+        // Not a queued run's table: the broad phase is busy with the current run's (a table
+        // loaded ahead is read by the broad phase's first pass instead).
+        f.valid := wr.valid && world && !prefetched && !nextLoading && ((wr.bits.line << log2Ceil(spl)) +& s.U).pad(64) < numSpheres
         f.bits := Sphere.at(wr.bits.data, s * 4 * p.linkWidth, p.linkWidth).fields
       }
       for ((port, lane) <- ram.io.world.get.zip(bp.io.sphere)) {
@@ -137,7 +180,7 @@ class Puc(p: PucParams) extends Module {
         lane.data := port.data.fields
       }
       val lines = Module(new WorldPairLines(p, bp.io.itemW, w.bp.lanes))
-      lines.io.start := engineStart
+      lines.io.start := runStart
       lines.io.in <> bp.io.pairs
       val bpDone = bpStarted && !bp.io.busy
       lines.io.done := bpDone
@@ -173,7 +216,7 @@ class Puc(p: PucParams) extends Module {
   coll.io.scpu <> io.scpuOut
   coll.io.room := pack.io.room
 
-  pack.io.start    := engineStart
+  pack.io.start    := runStart
   pack.io.dense    := dense
   pack.io.numPairs := numPairs
   pack.io.base     := contactBase
@@ -201,7 +244,7 @@ class Puc(p: PucParams) extends Module {
     cycTotal := cycTotal + tick
     when(!loaded) { cycLoad := cycLoad + tick }
     when(disp.io.fired) { cycCompute := cycCompute + 1.U } // never idle: a group fired
-    when(!disp.io.fired && rd.io.outstanding =/= 0.U && (!loaded || (disp.io.idle && rd.io.pairBufferEmpty))) {
+    when(!disp.io.fired && !nextLoading && rd.io.outstanding =/= 0.U && (!loaded || (disp.io.idle && rd.io.pairBufferEmpty))) {
       cycWaitRd := cycWaitRd + tick
     }
     when(wr.io.blocked || (state === sDrain && wr.io.outstanding =/= 0.U)) { cycWaitWr := cycWaitWr + tick }
@@ -219,7 +262,7 @@ class Puc(p: PucParams) extends Module {
   }
 
   val runDone   = Mux(world, worldDone && processed === worldEmitted, processed === numPairs) &&
-    rd.io.outstanding === 0.U && rd.io.loaded
+    loaded && (nextLoading || rd.io.outstanding === 0.U) // reads in flight for the queued run are its own
   val drainDone = pack.io.idle && !wr.io.lines.valid && wr.io.outstanding === 0.U
   when(state === sRun && runDone) { state := sDrain }
   when(state === sDrain && drainDone) { state := sStatus }
@@ -255,7 +298,14 @@ class Puc(p: PucParams) extends Module {
   wr.io.status.bits.data := words.asUInt
   when(wr.io.status.fire) { state := sStatusWait }
   when(state === sStatus && !wr.io.status.fire) { cycTotal := cycTotal + tick }
-  when(state === sStatusWait && wr.io.outstanding === 0.U) { state := sIdle }
+  when(state === sStatusWait && wr.io.outstanding === 0.U) { endRun() }
+  if (queued) {
+    // A start during a run queues it, if the queue is free or moves on in this cycle (written
+    // after endRun, so that its clear does not lose this start). A start with a run queued is
+    // ignored, as a start during a run is without a queue (the host waits for a status first).
+    val movesOn = (state === sStatusWait && wr.io.outstanding === 0.U) || (state === sCheck && refusal(run)._1 && statusAddr === 0.U)
+    when(startReq && state =/= sIdle && (!nextValid || movesOn)) { next := csr; nextValid := true.B }
+  }
   io.busy := state =/= sIdle
 
   // Idle: no request goes out, and nothing inside can move without an input. In a run that
@@ -264,7 +314,7 @@ class Puc(p: PucParams) extends Module {
   // waits on a response (sRun, sDrain: packer empty; sStatus: no free write tag; sStatusWait).
   val noRequest = !io.link.rdReq.valid && !io.link.wrReq.valid
   val quietRun  = !disp.io.fired && !rd.io.pairs.fire && pairsInFlight === 0.U && !worldActive
-  io.idle := noRequest && MuxLookup(state, false.B)(Seq(
+  io.idle := noRequest && !prefetchGo && MuxLookup(state, false.B)(Seq(
     sIdle       -> true.B,
     sRun        -> (quietRun && !runDone),
     sDrain      -> (quietRun && pack.io.idle && !drainDone),

@@ -55,6 +55,8 @@ final case class PucWorld(bp: collide.world.BroadPhaseParams, fp: collide.fp.FpP
   * @param denseByDefault reset value of MODE bit 0
   * @param records      what a contact record carries (RecordLayout)
   * @param world        the broad phase, when world mode is built (MODE bit 1)
+  * @param tables       sphere tables on chip: 1, or 2 for the run queue (a world run started
+  *                     while one runs waits, its table loading into the other table)
   * @param name         suffix of every module name, so two configurations never collide
   */
 final case class PucParams(
@@ -70,6 +72,7 @@ final case class PucParams(
     denseByDefault: Boolean = false,
     records: RecordLayout = RecordLayout.Full,
     world: Option[PucWorld] = None,
+    tables: Int = 1,
     name: String = "") {
   require(scpus >= 1 && scpus <= 64, s"scpus must be 1..64, got $scpus")
   require(linkWidth == 16 || linkWidth == 32 || linkWidth == 64, s"linkWidth must be 16, 32 or 64, got $linkWidth")
@@ -77,6 +80,8 @@ final case class PucParams(
   require(scpuLatency >= 0, s"scpuLatency must be >= 0, got $scpuLatency")
   require(maxReads >= 2 && maxReads <= (1 << tagBits), s"maxReads must be 2..2^tagBits (${1 << tagBits}), got $maxReads")
   require(maxWrites >= 2 && maxWrites <= (1 << tagBits), s"maxWrites must be 2..2^tagBits (${1 << tagBits}), got $maxWrites")
+  require(tables == 1 || tables == 2, s"tables must be 1 or 2, got $tables")
+  require(tables == 1 || world.isDefined, "a run queue (two sphere tables) needs world mode: it loads a queued world run's table")
   val layout: BufferLayout = BufferLayout(linkWidth, records)
   require(world.isEmpty || maxSpheres <= (1 << RecordTag.WORLD_INDEX_BITS),
     s"world mode: maxSpheres must be at most ${1 << RecordTag.WORLD_INDEX_BITS} (a record's pair field holds i and j), got $maxSpheres")
@@ -117,19 +122,21 @@ final case class PucParams(
   /** Whether the SCPUs read one banked copy (PairDispatcher names each read's port). */
   val banked: Boolean = ramPorts != SphereRamPorts.Replicated
   for (why <- if (banked) SphereRamPorts.bankRefusal(banks, layout.spheresPerLine, maxSpheres) else None) require(false, why)
-  /** Sphere table bits on chip, all copies. */
-  val ramBitsPerCopy: Long = maxSpheres.toLong * 4 * linkWidth
+  /** Sphere table bits on chip, all copies (each copy holds `tables` tables). */
+  val ramBitsPerCopy: Long = maxSpheres.toLong * 4 * linkWidth * tables
   val ramBits: Long = ramBitsPerCopy * ramCopies
   /** Stratix V M20K blocks of the sphere table, all copies (M20k: an estimate). The SCPUs'
     * copies need two read ports; the broad phase's one per lane, two lanes a copy. */
   val ramM20k: Long = {
+    val lines = maxSpheres / layout.spheresPerLine
     val scpuCopies = ramPorts match {
-      case SphereRamPorts.Replicated => scpus * M20k.blocks(maxSpheres / layout.spheresPerLine, Link.lineBits, twoPorts = true)
+      case SphereRamPorts.Replicated => scpus * M20k.blocks(lines, Link.lineBits, twoPorts = true)
       case _: SphereRamPorts.Banked  => banks * M20k.blocks(maxSpheres / banks, 4 * linkWidth, twoPorts = true)
     }
     val worldLanes = world.map(_.bp.lanes).getOrElse(0)
-    scpuCopies + (worldLanes / 2) * M20k.blocks(maxSpheres / layout.spheresPerLine, Link.lineBits, twoPorts = true) +
-      (worldLanes % 2) * M20k.blocks(maxSpheres / layout.spheresPerLine, Link.lineBits, twoPorts = false)
+    // A run queue's second table is a RAM of its own beside each (SphereRam: never three ports).
+    tables * (scpuCopies + (worldLanes / 2) * M20k.blocks(lines, Link.lineBits, twoPorts = true) +
+      (worldLanes % 2) * M20k.blocks(lines, Link.lineBits, twoPorts = false))
   }
   val pairBufferBits: Long = pairBufferLines.toLong * (Link.lineBits + pairLineBits)
 }

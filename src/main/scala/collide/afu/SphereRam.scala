@@ -31,15 +31,23 @@ object Sphere {
   * back from its bank and port.
   * World mode adds line-wide copies for the broad phase's lanes, two lanes a copy (a block RAM's
   * two read ports; one port when a lane is left over), always enabled.
+  * With a run queue (`tables` = 2) every RAM is two RAMs, one a table: the queued run's table is
+  * written into one (its write port) while this run's is read from the other (its two read
+  * ports), so no block RAM ever needs a third port.
   */
 class SphereRam(p: PucParams) extends Module {
   override def desiredName =
-    s"SphereRam_s${p.maxSpheres}_c${p.ramCopies}" + (if (p.banks > 1) s"_b${p.banks}" else "") + p.name
+    s"SphereRam_s${p.maxSpheres}_c${p.ramCopies}" + (if (p.banks > 1) s"_b${p.banks}" else "") +
+      (if (p.tables > 1) s"_t${p.tables}" else "") + p.name
   private val spl   = p.layout.spheresPerLine
   private val depth = p.maxSpheres / spl
   private val idxBits = log2Ceil(p.maxSpheres)
   val io = IO(new Bundle {
     val write = Flipped(Valid(new SphereLineWrite(math.max(p.sphereLineBits, 1))))
+    /** With two tables: the table written, and the table read (never the same while both are
+      * in use: the PUC loads a queued run's table only into the table not read). */
+    val wtable = Input(UInt(1.W))
+    val rtable = Input(UInt(1.W))
     /** Per SCPU, two reads (sphere i, sphere j); data the next cycle. */
     val raddr = Input(Vec(p.scpus, Vec(2, UInt(idxBits.W))))
     val ren   = Input(Vec(p.scpus, Bool()))
@@ -54,14 +62,26 @@ class SphereRam(p: PucParams) extends Module {
   })
   private def sphereAt(word: UInt, b: Int): Sphere = Sphere.at(word, b, p.linkWidth)
   private def unpack(line: UInt, k: UInt): Sphere = VecInit.tabulate(spl)(s => sphereAt(line, s * 4 * p.linkWidth))(k)
+  /** One RAM of `rows` words a table, as `p.tables` memories. */
+  private class Tables(rows: Int, width: Int) {
+    private val mems = Seq.fill(p.tables)(SyncReadMem(rows, UInt(width.W)))
+    private def at(row: UInt): UInt = if (rows == 1) 0.U else row(log2Ceil(rows) - 1, 0)
+    private def mine(sel: UInt, t: Int): Bool = if (p.tables == 1) true.B else sel === t.U
+    def write(row: UInt, data: UInt, en: Bool): Unit =
+      for ((m, t) <- mems.zipWithIndex) when(en && mine(io.wtable, t)) { m.write(at(row), data) }
+    def read(row: UInt, en: Bool): UInt = {
+      val words = mems.zipWithIndex.map { case (m, t) => m.read(at(row), en && mine(io.rtable, t)) }
+      if (p.tables == 1) words.head else Mux(RegEnable(io.rtable, en) === 1.U, words(1), words(0))
+    }
+  }
   p.ramPorts match {
     case SphereRamPorts.Replicated =>
       for (c <- 0 until p.scpus) {
-        val mem = SyncReadMem(depth, UInt(Link.lineBits.W))
-        when(io.write.valid) { mem.write(io.write.bits.line(log2Ceil(depth).max(1) - 1, 0), io.write.bits.data) }
+        val mem = new Tables(depth, Link.lineBits)
+        mem.write(io.write.bits.line, io.write.bits.data, io.write.valid)
         for (port <- 0 until 2) {
           val a = io.raddr(c)(port)
-          val word = if (depth == 1) mem.read(0.U, io.ren(c)) else mem.read(a(idxBits - 1, log2Ceil(spl)), io.ren(c))
+          val word = mem.read(a(idxBits - 1, log2Ceil(spl)), io.ren(c))
           val sel = RegEnable(a(log2Ceil(spl) - 1, 0), io.ren(c))
           io.rdata(c)(port) := unpack(word, sel)
         }
@@ -72,15 +92,14 @@ class SphereRam(p: PucParams) extends Module {
       val rows = p.maxSpheres / nb
       val sphereBits = 4 * p.linkWidth
       val groupBits = log2Ceil(nb / spl) // lines that fill every bank once
-      val banks = Seq.fill(nb)(SyncReadMem(rows, UInt(sphereBits.W)))
+      val banks = Seq.fill(nb)(new Tables(rows, sphereBits))
       val line = io.write.bits.line
       for ((mem, b) <- banks.zipWithIndex) {
         // Line l holds spheres l*spl + k: bank b takes sphere k = b mod spl of the lines with
         // l mod (nb / spl) = b / spl, at row l / (nb / spl).
         val k = b % spl
         val hit = if (groupBits == 0) true.B else line(groupBits - 1, 0) === (b / spl).U
-        val row = if (rows == 1) 0.U else (line >> groupBits).asUInt(log2Ceil(rows) - 1, 0)
-        when(io.write.valid && hit) { mem.write(row, io.write.bits.data(sphereBits * (k + 1) - 1, sphereBits * k)) }
+        mem.write((line >> groupBits).asUInt, io.write.bits.data(sphereBits * (k + 1) - 1, sphereBits * k), io.write.valid && hit)
       }
       val reads = for (c <- 0 until p.scpus; port <- 0 until 2) yield (c, port)
       def bankOf(a: UInt): UInt = SphereRam.bankOf(p, a)
@@ -102,10 +121,10 @@ class SphereRam(p: PucParams) extends Module {
       }
   }
   for (lanes <- io.world; pair <- lanes.grouped(2)) {
-    val mem = SyncReadMem(depth, UInt(Link.lineBits.W))
-    when(io.write.valid) { mem.write(io.write.bits.line(log2Ceil(depth).max(1) - 1, 0), io.write.bits.data) }
+    val mem = new Tables(depth, Link.lineBits)
+    mem.write(io.write.bits.line, io.write.bits.data, io.write.valid)
     for (w <- pair) {
-      val word = if (depth == 1) mem.read(0.U) else mem.read(w.addr(idxBits - 1, log2Ceil(spl)))
+      val word = mem.read(w.addr(idxBits - 1, log2Ceil(spl)), true.B)
       w.data := unpack(word, RegNext(w.addr(log2Ceil(spl) - 1, 0)))
     }
   }

@@ -57,6 +57,7 @@ object BoxTracker {
       }._2
     (any, VecInit.tabulate(3)(a => pick(_.io.lo(a), _ < _)), VecInit.tabulate(3)(a => pick(_.io.hi(a), _ > _)))
   }
-  /** ceil(log2(extent)) of extent >= 1 (BoxBits.bitsFor). */
+  /** ceil(log2(x)), 0 for x <= 1: a box's bits for an extent (BoxBits.bitsFor), and
+    * BroadPhase's bucket count for a table. */
   def bitsFor(extent: UInt): UInt = Mux(extent <= 1.U, 0.U, Log2(extent - 1.U) +& 1.U)
 }

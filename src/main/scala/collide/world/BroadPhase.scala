@@ -134,7 +134,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   /** log2 of BroadPhaseModel.bucketsFor(n): the least t with 2^t >= n 2^bucketsPerSphereLog2,
     * capped at the table. */
   private def bucketsLog2For(n: UInt): UInt = {
-    val ceilLog2 = Mux(n <= 1.U, 0.U, Log2(n - 1.U) +& 1.U)
+    val ceilLog2 = BoxTracker.bitsFor(n) // ceil(log2 n), 0 for n <= 1
     val t = Mux(n === 0.U, 0.U, ceilLog2 +& bp.bucketsPerSphereLog2.U)
     Mux(t > tableLog2.U, tableLog2.U, t)
   }

@@ -51,6 +51,14 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     val n = world.length.toLong
     val r = AfuRun.run(mem, w, maxCycles = 200000L + 60L * n * n,
       csrOverride = Map(Csr.MODE -> Csr.MODE_WORLD, Csr.NUM_PAIRS -> 12345, Csr.PAIR_BASE -> 0)) // both ignored
+    check(cfg, world, cap, r)
+  }
+
+  /** A world run's result against the all-pairs golden model (failures, and its status line). */
+  def check(cfg: AfuConfig, world: IndexedSeq[WorldSphere], cap: Long, r: RunResult): (Seq[String], Status) = {
+    val lay = cfg.layout
+    val want = expected(cfg, world)
+    val model = new BroadPhaseModel(cfg.scpu, cfg.world.get).run(world)
     val errs = scala.collection.mutable.ArrayBuffer[String]()
     val st = r.status.getOrElse(return (Seq(s"no status line in ${r.cycles} cycles"), Status(IndexedSeq.fill(16)(0L))))
     val written = math.min(want.size.toLong, cap)
@@ -83,6 +91,70 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     (errs.toSeq, st)
   }
 
+  /** One run of a queue: a world (world mode) or a pair world (pair mode); `late`: started only
+    * once the run before it is over, so that its table is not loaded ahead. */
+  final case class Queued(world: Either[IndexedSeq[WorldSphere], World], late: Boolean = false, tooMany: Boolean = false)
+
+  /** Runs started back to back through the run queue: each run has its own table, pair list,
+    * contact buffer and status line; run k is started once run k - 2's status line is in host
+    * memory (the queue holds one run), a late run once run k - 1's is. Returns each run's
+    * result (its writes: those to its buffers). */
+  def runQueue(dut: Afu, cfg: AfuConfig, runs: Seq[Queued], beh: LinkBehaviour, seed: Long): Seq[RunResult] = {
+    val lay = cfg.layout; val w = lay.linkWidth
+    val mem = new HostMemoryModel(dut.io, dut.clock, beh, seed, cfg.maxReadsOutstanding, cfg.maxWritesOutstanding)
+    def sphereBase(k: Int) = BigInt(0x100000 + k * 0x2000); def pairBase(k: Int) = BigInt(0x400000 + k * 0x4000)
+    def contactBase(k: Int) = BigInt(0x800000 + k * 0x20000); def statusAddr(k: Int) = BigInt(0xf00000 + k)
+    def spheres(q: Queued): IndexedSeq[Seq[BigInt]] = q.world.fold(_.map(s => Seq(s.x, s.y, s.z, s.r)), _.spheres)
+    def capacity(q: Queued): Long = q.world.fold(ws => expected(cfg, ws).size.toLong + 3, pw => pw.capacity.getOrElse(lay.compactSlotsFor(pw.pairs.size.toLong) + 3))
+    for ((q, k) <- runs.zipWithIndex) {
+      spheres(q).grouped(lay.spheresPerLine).zipWithIndex.foreach { case (group, l) =>
+        mem.mem(sphereBase(k) + l) = group.zipWithIndex.map { case (s, i) => s.zipWithIndex.map { case (v, c) => v << (i * 4 * w + c * w) }.sum }.sum
+      }
+      for (pw <- q.world.toOption) pw.pairs.grouped(lay.pairsPerLine).zipWithIndex.foreach { case (group, l) =>
+        mem.mem(pairBase(k) + l) = group.zipWithIndex.map { case ((i, j), x) => (BigInt(i & 0xffff) << (32 * x)) | (BigInt(j & 0xffff) << (32 * x + 16)) }.sum
+      }
+    }
+    def start(k: Int): Unit = {
+      val q = runs(k)
+      val n = if (q.tooMany) cfg.maxSpheres + 1L else spheres(q).size.toLong
+      val csrs = Seq(Csr.SPHERE_BASE -> sphereBase(k), Csr.NUM_SPHERES -> BigInt(n),
+        Csr.PAIR_BASE -> pairBase(k), Csr.NUM_PAIRS -> BigInt(q.world.fold(_ => 0, _.pairs.size)),
+        Csr.CONTACT_BASE -> contactBase(k), Csr.CONTACT_CAPACITY -> BigInt(capacity(q)), Csr.STATUS_ADDR -> statusAddr(k),
+        Csr.MODE -> BigInt(q.world.fold(_ => Csr.MODE_WORLD, pw => if (pw.dense) Csr.MODE_DENSE else 0)))
+      for ((i, v) <- csrs) mem.writeCsr(i, v)
+      mem.writeCsr(Csr.CTRL, Csr.CTRL_START)
+    }
+    val t0 = mem.cycle
+    var started = 0
+    val limit = 400000L + runs.map(q => 60L * spheres(q).size * spheres(q).size + 400L * q.world.fold(_ => 0, _.pairs.size)).sum
+    def done(k: Int) = k < 0 || mem.committed.contains(statusAddr(k))
+    while (!(done(runs.size - 1) && mem.idleLink()) && mem.cycle - t0 < limit) {
+      if (started < runs.size && done(started - (if (runs(started).late) 1 else 2))) { start(started); started += 1 }
+      else mem.step()
+    }
+    runs.indices.map { k =>
+      val mine = mem.writes.filter(e => e.addr == statusAddr(k) || (e.addr >= contactBase(k) && e.addr < contactBase(k) + 0x20000)).toSeq
+      RunResult(mine.find(_.addr == statusAddr(k)).map(e => Status(e.data)), mine, mem.cycle - t0, contactBase(k), statusAddr(k))
+    }
+  }
+
+  /** A queue of runs through `runQueue`, each checked like a run of its own. Returns the status lines. */
+  def checkQueue(dut: Afu, cfg: AfuConfig, runs: Seq[(String, Queued)], beh: LinkBehaviour, seed: Long): Seq[Status] = {
+    val results = runQueue(dut, cfg, runs.map(_._2), beh, seed)
+    for (((label, q), r) <- runs.zip(results)) yield {
+      val errs = (q.world, q.tooMany) match {
+        case (_, true) => r.status match {
+          case Some(st) if st.errors == ErrorFlags.TOO_MANY_SPHERES && st.processed == 0 && r.writes.size == 1 => Nil
+          case other => Seq(s"a refused run: $other, ${r.writes.size} writes")
+        }
+        case (Left(ws), _) => check(cfg, ws, expected(cfg, ws).size.toLong + 3, r)._1
+        case (Right(pw), _) => AfuRun.check(pw, AfuWorlds.expect(cfg.scpu, pw), r)
+      }
+      assert(errs.isEmpty, s"${cfg.id}, queued run $label (${beh.name}, seed $seed): ${errs.mkString("; ")}\n${r.status}")
+      r.status.get
+    }
+  }
+
   def worlds(rng: scala.util.Random, cfg: AfuConfig): Seq[(String, IndexedSeq[WorldSphere])] =
     BroadPhaseWorlds.hardCases(rng, onePointSpheres = 40).map { case (l, w) => l -> BroadPhaseWorlds.bits(cfg.scpu.linkFormat, w) }
 
@@ -105,12 +177,15 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
           assert(perrs.isEmpty, s"${cfg.id}: pair mode after $label: ${perrs.mkString("; ")}\n${r.status}")
         }
       }
+      // With a run queue, the same worlds once more, started back to back (each table loaded
+      // while the run before it computes, alternating the two tables).
+      if (cfg.runQueue) checkQueue(dut, cfg, worlds(rng, cfg).map { case (l, w) => l -> Queued(Left(w)) }, LinkBehaviour.harp, rng.nextLong())
       println(s"[AfuWorldSpec] ${cfg.id}: ${worlds(new scala.util.Random(0), cfg).size} worlds, $candidates candidates, " +
-        s"$contacts contacts, all equal to the all-pairs golden model")
+        s"$contacts contacts, all equal to the all-pairs golden model" + (if (cfg.runQueue) ", alone and queued" else ""))
     }
   }
 
-  private val small = AfuConfig.world.copy(scpus = 2, maxSpheres = 256)
+  private val small = AfuConfig.world.copy(scpus = 2, maxSpheres = 256, runQueue = false)
 
   it should "find every contact of every hard case exactly once, bit for bit the all-pairs golden model (two fp32 SCPUs, derived records)" in {
     endToEnd(small, "fp32")
@@ -118,8 +193,8 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   // A broad phase of four lanes (fed, four sort ports, the preset's grid) beside the banked
   // table: the 16-lane one is the case above's, and a second 16-lane build costs minutes of CI.
-  it should "find the same contacts, and the pair mode's, with the sphere table in four banks (four fp32 SCPUs, eight reads a cycle)" in {
-    endToEnd(small.copy(scpus = 4, ramPorts = SphereRamPorts.Banked(Some(4)),
+  it should "find the same contacts, and the pair mode's, with the sphere table in four banks (four fp32 SCPUs, eight reads a cycle), alone and through the run queue" in {
+    endToEnd(small.copy(scpus = 4, ramPorts = SphereRamPorts.Banked(Some(4)), runQueue = true,
       world = small.world.map(_.copy(lanes = 4, sortPorts = 4))), "fp32-banked")
   }
 
@@ -144,6 +219,40 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
       val full = BroadPhaseWorlds.bits(small.scpu.linkFormat, BroadPhaseWorlds.uniform(rng, small.maxSpheres))
       val (errs, st) = runWorld(dut, small, full, LinkBehaviour.harp, rng.nextLong())
       assert(errs.isEmpty, s"maxSpheres spheres: ${errs.mkString("; ")}\n$st")
+    }
+  }
+
+  private val queued = small.copy(runQueue = true)
+
+  it should "find every contact of every hard case through the run queue, the next table loading while a run computes, with queued pair-mode and refused runs among them" in {
+    val rng = Seeds.rng("AfuWorldSpec-queue")
+    test(new Afu(queued)).withAnnotations(annos) { dut =>
+      dut.clock.setTimeout(0)
+      val ws = worlds(rng, queued)
+      for ((beh, b) <- behaviours.zipWithIndex) {
+        // every hard case once per link, started back to back; some late (loaded after the run
+        // before, not ahead), a pair-mode run and a refused one among them
+        val runs = ws.zipWithIndex.map { case ((label, w), i) => label -> Queued(Left(w), late = (i + b) % 5 == 4) } ++
+          Seq("pairs" -> Queued(Right(AfuWorlds.random(rng, queued, 1 + rng.nextInt(100), dense = b == 1, specials = true))),
+            "refused" -> Queued(Left(ws.head._2), tooMany = true), "after" -> Queued(Left(ws.last._2)))
+        val order = rng.shuffle(runs.init) :+ runs.last
+        checkQueue(dut, queued, order, beh, rng.nextLong())
+      }
+      println(s"[AfuWorldSpec] ${queued.id}: ${ws.size} worlds queued on each of ${behaviours.size} links, equal to the all-pairs golden model")
+    }
+  }
+
+  it should "load each queued world's table while the run before it computes (no load cycles after the first run)" in {
+    val rng = Seeds.rng("AfuWorldSpec-prefetch")
+    test(new Afu(queued)).withAnnotations(annos) { dut =>
+      dut.clock.setTimeout(0)
+      val clouds = Seq.fill(5)(BroadPhaseWorlds.bits(queued.scpu.linkFormat, BroadPhaseWorlds.uniform(rng, 200, contacts = 2)))
+      val st = checkQueue(dut, queued, clouds.zipWithIndex.map { case (c, i) => s"cloud $i" -> Queued(Left(c)) }, LinkBehaviour.harp, rng.nextLong())
+      assert(st.head.cycLoad > 0, s"the first run's table is read in its own time: ${st.head}")
+      for ((s, i) <- st.zipWithIndex.tail) assert(s.cycLoad == 0, s"run $i waited ${s.cycLoad} cycles for its table: $s")
+      // Started late, the same runs each wait for their table.
+      val late = checkQueue(dut, queued, clouds.zipWithIndex.map { case (c, i) => s"late cloud $i" -> Queued(Left(c), late = true) }, LinkBehaviour.harp, rng.nextLong())
+      for ((s, i) <- late.zipWithIndex) assert(s.cycLoad > 0, s"late run $i: no load cycles: $s")
     }
   }
 

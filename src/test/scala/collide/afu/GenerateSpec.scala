@@ -82,6 +82,16 @@ class GenerateSpec extends AnyFlatSpec {
     assert(AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("boxBuckets").bool)
     assert(cfg("--preset", "world", "--world-lanes", "1").toOption.get.id.endsWith("_worldw5e2k32xuh8bx"),
       "one lane: no lane count in the name, and the sort's ports follow the lanes down to one")
+    // The run queue in the preset: every sphere-table RAM twice (a table each), the same copies;
+    // without it a name of its own and half the sphere-table bits; it goes with world mode.
+    val nq = cfg("--preset", "world", "--run-queue", "false").toOption.get
+    assert(AfuConfig.world.runQueue && AfuConfig.world.puc.tables == 2 && !nq.runQueue && nq.puc.tables == 1)
+    assert(nq.id.contains("_rep_world") && cfg("--preset", "world", "--world-lanes", "5").toOption.get.id.contains("_rep_q_world"), nq.id)
+    assert(AfuConfig.world.puc.ramBits == 2 * nq.puc.ramBits && AfuConfig.world.puc.ramCopies == nq.puc.ramCopies)
+    assert(AfuConfig.world.puc.ramM20k == 2 * nq.puc.ramM20k, "a second table is a second RAM beside each (never three ports on one)")
+    val mq = AfuManifest.json(AfuConfig.world, "")("afu")
+    assert(mq("runQueue").bool && mq("sphereTables").num == 2 && !AfuManifest.json(nq, "")("afu")("runQueue").bool)
+    assert(!cfg("--preset", "world", "--world", "false").toOption.get.runQueue, "no world mode, no run queue")
   }
 
   it should "refuse a configuration that cannot be built, naming the flag and the problem" in {
@@ -97,6 +107,7 @@ class GenerateSpec extends AnyFlatSpec {
     err("--preset", "world", "--world-word-log2", "6")("--world-word-log2", "0..5")
     err("--world-hit-queue", "4")("--world-hit-queue", "world mode is not built")
     err("--world-box-buckets", "true")("--world-box-buckets", "world mode is not built")
+    err("--run-queue", "true")("--run-queue", "needs world mode")
     err("--scpus", "65")("--scpus", "1..64")
     err("--max-spheres", "1000")("--max-spheres", "power of two")
     err("--max-reads", "65")("--max-reads", "2^tagBits")

@@ -42,7 +42,10 @@ class HostMemoryModel(link: LinkIO, clock: Clock, beh: LinkBehaviour, seed: Long
   val mem = mutable.Map[BigInt, BigInt]().withDefaultValue(BigInt(0))
   val writes = mutable.ArrayBuffer[WriteEvent]()
   private val pendingRd = mutable.ArrayBuffer[(Long, BigInt, BigInt)]() // due, tag, data
-  private val pendingWr = mutable.ArrayBuffer[(Long, BigInt)]()         // due, tag
+  private val pendingWr = mutable.ArrayBuffer[(Long, BigInt, BigInt)]() // due, tag, line
+  /** Lines whose write has been acknowledged: what a host polling its memory can see (a run
+    * queue's host starts the next run once a status line is here). */
+  val committed = mutable.Set[BigInt]()
   private val rdTags = mutable.Set[BigInt](); private val wrTags = mutable.Set[BigInt]()
   var cycle = 0L
   var trace: Option[() => String] = None
@@ -90,7 +93,7 @@ class HostMemoryModel(link: LinkIO, clock: Clock, beh: LinkBehaviour, seed: Long
     } else link.rdResp.valid.poke(false.B)
     val wrDue = pendingWr.filter(_._1 <= cycle).toSeq
     if (wrDue.nonEmpty) {
-      val w = pick(wrDue); pendingWr -= w; wrTags -= w._2; writesResponded += 1
+      val w = pick(wrDue); pendingWr -= w; wrTags -= w._2; writesResponded += 1; committed += w._3
       link.wrResp.valid.poke(true.B); link.wrResp.bits.tag.poke(w._2.U)
     } else link.wrResp.valid.poke(false.B)
     // requests
@@ -113,7 +116,7 @@ class HostMemoryModel(link: LinkIO, clock: Clock, beh: LinkBehaviour, seed: Long
       wrTags += tag
       writes += WriteEvent(cycle, addr, data, writesResponded)
       mem(addr) = data
-      pendingWr += ((cycle + draw(beh.wrLatency), tag))
+      pendingWr += ((cycle + draw(beh.wrLatency), tag, addr))
       maxWrInFlight = maxWrInFlight.max(wrTags.size)
       assert(wrTags.size <= maxWrites, s"cycle $cycle: ${wrTags.size} writes in flight, limit $maxWrites")
     }
