@@ -193,9 +193,12 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   // A broad phase of four lanes (fed, four sort ports, the preset's grid) beside the banked
   // table: the 16-lane one is the case above's, and a second 16-lane build costs minutes of CI.
+  // The banked AFU also has the run queue, so the queue's cases below share its build.
+  private val banked = small.copy(scpus = 4, ramPorts = SphereRamPorts.Banked(Some(4)), runQueue = true,
+    world = small.world.map(_.copy(lanes = 4, sortPorts = 4)))
+
   it should "find the same contacts, and the pair mode's, with the sphere table in four banks (four fp32 SCPUs, eight reads a cycle), alone and through the run queue" in {
-    endToEnd(small.copy(scpus = 4, ramPorts = SphereRamPorts.Banked(Some(4)), runQueue = true,
-      world = small.world.map(_.copy(lanes = 4, sortPorts = 4))), "fp32-banked")
+    endToEnd(banked, "fp32-banked")
   }
 
   it should "find the same contacts with three broad-phase lanes (four fp32 SCPUs; one sphere copy shared by two lanes, one for the third)" in {
@@ -222,7 +225,9 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  private val queued = small.copy(runQueue = true)
+  // The queue's cases run on the banked AFU above (its build is cached); the preset's replicated
+  // tables are queued by the Slow preset case and by the host's tests (test/test_afu_world.cpp).
+  private val queued = banked
 
   it should "find every contact of every hard case through the run queue, the next table loading while a run computes, with queued pair-mode and refused runs among them" in {
     val rng = Seeds.rng("AfuWorldSpec-queue")
