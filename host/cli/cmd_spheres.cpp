@@ -65,7 +65,8 @@ void readSpheres(const SpheresOptions& o, LinkFormat format, SphereTable& sphere
   }
 }
 
-// World mode on the AFU: one run a slab (its cycles do not vary), timed by the link model.
+// World mode on the AFU: one run a slab (all in one call through a run queue; its cycles do not
+// vary), timed by the link model.
 int runSpheresAfu(const SpheresOptions& o) {
   if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode (the AFU has its own grid)");
   const link::LinkParams lp = link::presetParams(o.link);

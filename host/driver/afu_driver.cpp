@@ -122,6 +122,28 @@ void AfuDriver::hung(std::uint64_t statusAddr) const {
   throw AfuError(m.str(), readStatus(mem_, statusAddr));
 }
 
+// One step of AFU and link: while nothing arrives and the AFU idle-waits (skipping on), a
+// jump to the link's next event, at most to `limit`; else one clocked cycle. True when that
+// cycle delivered a write response, the only thing that changes host memory.
+bool AfuDriver::advance(std::uint64_t limit, RunStats& stats) {
+  const link::LinkToAfu in = link_.outputs();
+  if (opt_.skipIdle && !in.anyEvent() && port_.idle()) {
+    const std::uint64_t to = std::min(link_.nextEventCycle(), limit);
+    if (to > link_.cycle()) {
+      port_.skipIdleCycles(to - link_.cycle());
+      stats.cyclesSkipped += to - link_.cycle();
+      link_.skipTo(to);
+      return false;
+    }
+  }
+  port_.setInputs(in);
+  const link::AfuToLink out = port_.evalOutputs();
+  port_.clockEdge();
+  link_.tick(out);
+  ++stats.cyclesStepped;
+  return in.wrResp.has_value();
+}
+
 // Start one run and clock AFU and link until its status line says done; fills r.stats and
 // r.status.
 void AfuDriver::execute(const RunCsrs& c, RunResult& r) {
@@ -133,24 +155,8 @@ void AfuDriver::execute(const RunCsrs& c, RunResult& r) {
   const std::uint64_t deadline = t0 + opt_.watchdogCycles;
   for (;;) {
     if (link_.cycle() >= deadline) hung(c.statusAddr);
-    const link::LinkToAfu in = link_.outputs();
-    if (opt_.skipIdle && !in.anyEvent() && port_.idle()) {
-      // Nothing reaches the AFU before the link's next event: jump there in one step.
-      const std::uint64_t to = std::min(link_.nextEventCycle(), deadline);
-      if (to > link_.cycle()) {
-        port_.skipIdleCycles(to - link_.cycle());
-        r.stats.cyclesSkipped += to - link_.cycle();
-        link_.skipTo(to);
-        continue;
-      }
-    }
-    port_.setInputs(in);
-    const link::AfuToLink out = port_.evalOutputs();
-    port_.clockEdge();
-    link_.tick(out);
-    ++r.stats.cyclesStepped;
-    // Only a write response changes host memory; the status line is the AFU's last write.
-    if (in.wrResp && mem_.load<std::uint32_t>(c.statusAddr, STATUS_DONE) != 0) break;
+    // The status line is the AFU's last write.
+    if (advance(deadline, r.stats) && mem_.load<std::uint32_t>(c.statusAddr, STATUS_DONE) != 0) break;
   }
 
   // Modelled host time: statusCycle counts to the end of the cycle whose write response
@@ -232,18 +238,16 @@ WorldRunResult AfuDriver::runWorld(const SphereTable& spheres, std::size_t capac
   if (link_.readsOutstanding() || link_.writesOutstanding())
     throw std::logic_error("AfuDriver::runWorld: the link still has requests in flight from the last run");
   const BufferLayout lay = layout();
-  std::size_t capacity = capacityHint ? capacityHint : std::max<std::size_t>(64, 8 * spheres.size());
+  std::size_t capacity = capacityHint ? capacityHint : worldCapacity(spheres.size());
   WorldRunResult w;
   RunStats total;
   for (;;) {
     mem_.releaseAll();
-    const auto sph = mem_.allocate(std::max<std::uint64_t>(1, sphereLines(spheres.size(), opt_.format)));
-    const auto ct = mem_.allocate(std::max<std::uint64_t>(1, contactLines(capacity, lay, false)));
-    const auto st = mem_.allocate(1);
-    const auto outOfRange = writeSphereTable(mem_, sph.base, spheres, opt_.format);
+    std::vector<std::uint8_t> outOfRange;
+    const RunCsrs c = stageWorld(spheres, capacity, outOfRange);
     w.run = RunResult{};
     ++w.attempts;
-    execute(RunCsrs{sph.base, spheres.size(), 0, 0, ct.base, capacity, st.base, contract::MODE_WORLD}, w.run);
+    execute(c, w.run);
     accumulate(total, w.run.stats);
     const StatusLine& s = w.run.status;
     if ((s.errors & contract::ERR_CAPACITY) && s.contactsFound > capacity && w.attempts == 1) {
@@ -251,11 +255,23 @@ WorldRunResult AfuDriver::runWorld(const SphereTable& spheres, std::size_t capac
       continue;
     }
     const std::size_t written = std::min<std::size_t>(s.recordsWritten, capacity);
-    w.run.records = readRecords(mem_, ct.base, written, lay, false, 0).records;
+    w.run.records = readRecords(mem_, c.contactBase, written, lay, false, 0).records;
     finishWorld(spheres, outOfRange, capacity, w);
     w.run.stats = total;
     return w;
   }
+}
+
+std::size_t AfuDriver::worldCapacity(std::size_t spheres) { return std::max<std::size_t>(64, 8 * spheres); }
+
+// A world run's buffers in host memory (after those already allocated): the table written
+// in the link format, a contact buffer of `capacity` records, a status line.
+RunCsrs AfuDriver::stageWorld(const SphereTable& spheres, std::size_t capacity, std::vector<std::uint8_t>& outOfRange) {
+  const auto sph = mem_.allocate(std::max<std::uint64_t>(1, sphereLines(spheres.size(), opt_.format)));
+  const auto ct = mem_.allocate(std::max<std::uint64_t>(1, contactLines(capacity, layout(), false)));
+  const auto st = mem_.allocate(1);
+  outOfRange = writeSphereTable(mem_, sph.base, spheres, opt_.format);
+  return RunCsrs{sph.base, spheres.size(), 0, 0, ct.base, capacity, st.base, contract::MODE_WORLD};
 }
 
 void AfuDriver::finishWorld(const SphereTable& spheres, const std::vector<std::uint8_t>& outOfRange,
@@ -285,23 +301,9 @@ void AfuDriver::executeQueue(const std::vector<RunCsrs>& runs, std::vector<RunRe
   for (;;) {
     while (posted < n && link_.cycle() >= due()) postCsrs(runs[posted++]);
     if (link_.cycle() >= progress + opt_.watchdogCycles) hung(runs[waiting].statusAddr);
-    const link::LinkToAfu in = link_.outputs();
-    if (opt_.skipIdle && !in.anyEvent() && port_.idle()) {
-      std::uint64_t to = std::min(link_.nextEventCycle(), progress + opt_.watchdogCycles);
-      if (posted < n) to = std::min(to, due());
-      if (to > link_.cycle()) {
-        port_.skipIdleCycles(to - link_.cycle());
-        stats.cyclesSkipped += to - link_.cycle();
-        link_.skipTo(to);
-        continue;
-      }
-    }
-    port_.setInputs(in);
-    const link::AfuToLink o = port_.evalOutputs();
-    port_.clockEdge();
-    link_.tick(o);
-    ++stats.cyclesStepped;
-    if (!in.wrResp) continue;
+    std::uint64_t limit = progress + opt_.watchdogCycles;  // a skip stops where the host posts
+    if (posted < n) limit = std::min(limit, due());
+    if (!advance(limit, stats)) continue;
     while (waiting < n && mem_.load<std::uint32_t>(runs[waiting].statusAddr, contract::STATUS_DONE) != 0) {
       const std::uint64_t c = link_.cycle() - t0;
       out[waiting].stats.statusCycle = c;
@@ -344,12 +346,8 @@ WorldBatchResult AfuDriver::runWorlds(const std::vector<SphereTable>& tables) {
   std::vector<RunCsrs> csrs;
   std::vector<std::vector<std::uint8_t>> outOfRange;
   for (const auto& t : tables) {
-    const std::size_t capacity = std::max<std::size_t>(64, 8 * t.size());
-    const auto sph = mem_.allocate(std::max<std::uint64_t>(1, sphereLines(t.size(), opt_.format)));
-    const auto ct = mem_.allocate(std::max<std::uint64_t>(1, contactLines(capacity, lay, false)));
-    const auto st = mem_.allocate(1);
-    outOfRange.push_back(writeSphereTable(mem_, sph.base, t, opt_.format));
-    csrs.push_back(RunCsrs{sph.base, t.size(), 0, 0, ct.base, capacity, st.base, contract::MODE_WORLD});
+    outOfRange.emplace_back();
+    csrs.push_back(stageWorld(t, worldCapacity(t.size()), outOfRange.back()));
   }
   std::vector<RunResult> out;
   executeQueue(csrs, out, b.stats);

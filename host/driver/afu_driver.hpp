@@ -140,6 +140,9 @@ class AfuDriver {
   void checkWorld(const RunResult& r, std::size_t spheres, std::size_t capacity) const;
   void execute(const RunCsrs& csrs, RunResult& r);
   void executeQueue(const std::vector<RunCsrs>& runs, std::vector<RunResult>& out, RunStats& stats);
+  bool advance(std::uint64_t limit, RunStats& stats);
+  static std::size_t worldCapacity(std::size_t spheres);  // a world run's first buffer: 8 a sphere, at least 64
+  RunCsrs stageWorld(const SphereTable& spheres, std::size_t capacity, std::vector<std::uint8_t>& outOfRange);
   void postCsrs(const RunCsrs& c);
   [[noreturn]] void hung(std::uint64_t statusAddr) const;
   // Checks a world run's records and marks, rebuilds its derived records.
