@@ -27832,7 +27832,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   input         clock,
                 reset,
                 io_begin,
-                io_feed_0_valid,
+  output        io_canBegin,
+  input         io_feed_0_valid,
   input  [31:0] io_feed_0_bits_0,
                 io_feed_0_bits_1,
                 io_feed_0_bits_2,
@@ -27999,6 +28000,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   output [11:0] io_pairs_15_bits_i,
                 io_pairs_15_bits_j,
   output        io_busy,
+                io_quiet,
   output [13:0] io_status_level,
   output [12:0] io_status_large,
   output [31:0] io_status_cycTotal,
@@ -28009,6 +28011,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                 io_status_sortMismatch
 );
 
+  wire        handOver;
   wire [15:0] _GEN;
   wire [10:0] _deferred_ext_R0_data;
   wire [19:0] _corners_k_1_io_out_cell_0;
@@ -28129,6 +28132,30 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [31:0] _trackers_0_io_hi_0;
   wire [31:0] _trackers_0_io_hi_1;
   wire [31:0] _trackers_0_io_hi_2;
+  wire        _feedKeys_3_io_out_valid;
+  wire [13:0] _feedKeys_3_io_out_need;
+  wire        _feedKeys_3_io_out_needNone;
+  wire        _feedKeys_3_io_out_nonFinite;
+  wire [13:0] _feedKeys_3_io_out_top;
+  wire        _feedKeys_3_io_out_topNone;
+  wire        _feedKeys_2_io_out_valid;
+  wire [13:0] _feedKeys_2_io_out_need;
+  wire        _feedKeys_2_io_out_needNone;
+  wire        _feedKeys_2_io_out_nonFinite;
+  wire [13:0] _feedKeys_2_io_out_top;
+  wire        _feedKeys_2_io_out_topNone;
+  wire        _feedKeys_1_io_out_valid;
+  wire [13:0] _feedKeys_1_io_out_need;
+  wire        _feedKeys_1_io_out_needNone;
+  wire        _feedKeys_1_io_out_nonFinite;
+  wire [13:0] _feedKeys_1_io_out_top;
+  wire        _feedKeys_1_io_out_topNone;
+  wire        _feedKeys_0_io_out_valid;
+  wire [13:0] _feedKeys_0_io_out_need;
+  wire        _feedKeys_0_io_out_needNone;
+  wire        _feedKeys_0_io_out_nonFinite;
+  wire [13:0] _feedKeys_0_io_out_top;
+  wire        _feedKeys_0_io_out_topNone;
   wire        _laneKeys_15_io_out_valid;
   wire [19:0] _laneKeys_15_io_out_cell_0;
   wire [19:0] _laneKeys_15_io_out_cell_1;
@@ -31218,6 +31245,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [4:0]  _laneExps_0_io_used;
   wire [13:0] _laneExps_0_io_top;
   wire        _laneExps_0_io_anyTop;
+  wire        sortBusy =
+    _sorts_0_io_busy | _sorts_1_io_busy | _sorts_2_io_busy | _sorts_3_io_busy;
   reg  [11:0] larges_0_index;
   reg  [28:0] larges_0_q_0;
   reg  [28:0] larges_0_q_1;
@@ -31299,9 +31328,24 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   reg  [28:0] larges_15_q_2;
   reg  [28:0] larges_15_qr;
   reg  [3:0]  state;
-  wire        _starting_T = io_start | io_begin;
-  wire        starting = _starting_T & ~(|state);
+  wire        io_busy_0 = (|state) & state != 4'h1;
+  reg         pending;
+  reg  [12:0] pendingNum;
+  wire        classifying = state == 4'h5;
+  wire        _sorts_3_io_prefix_T = state == 4'h6;
+  wire        _sorts_3_io_in_1_bits_scatter_T = state == 4'h7;
+  wire        _gens_15_io_start_T = state == 4'h8;
+  wire        io_canBegin_0 =
+    ~(|state)
+    | (classifying | _sorts_3_io_prefix_T | _sorts_3_io_in_1_bits_scatter_T
+       | _gens_15_io_start_T) & ~pending;
+  wire        begin_0 = io_begin & io_canBegin_0 & io_num < 13'h1001;
+  wire        starting = (io_start | begin_0) & ~(|state);
+  wire        beginAhead = begin_0 & (|state);
+  wire        clearFed = starting | beginAhead;
+  wire        clearWorld = starting | handOver;
   reg         fed;
+  reg         feedOn;
   reg  [12:0] num;
   reg  [3:0]  usedLog2;
   reg         sent;
@@ -31314,9 +31358,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   reg         st_badBucket;
   reg         st_sortMismatch;
   reg  [4:0]  largeCount;
-  wire        _loading_T = state == 4'h2;
-  wire        classifying = state == 4'h5;
-  wire        _sorts_3_io_in_1_bits_scatter_T = state == 4'h7;
+  wire        loading = state == 4'h2;
   reg  [12:0] i_0;
   reg  [12:0] i_1;
   reg  [12:0] i_2;
@@ -31350,34 +31392,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [28:0] _gens_14_io_largeFrom_T = _GEN_4 * 29'hE000;
   wire [28:0] _gens_15_io_largeFrom_T = _GEN_4 * 29'hF000;
   reg  [5:0]  inflight;
-  wire        filling = state == 4'h1;
-  wire        loading = _loading_T | filling;
-  wire        _gens_15_io_start_T = state == 4'h8;
   reg         laneKeys_0_io_in_valid_REG;
-  wire        _GEN_5 = filling ? io_feed_0_valid : laneKeys_0_io_in_valid_REG;
-  wire [31:0] _GEN_6 = filling ? io_feed_0_bits_0 : io_sphere_0_data_0;
-  wire [31:0] _GEN_7 = filling ? io_feed_0_bits_1 : io_sphere_0_data_1;
-  wire [31:0] _GEN_8 = filling ? io_feed_0_bits_2 : io_sphere_0_data_2;
-  wire [31:0] _GEN_9 = filling ? io_feed_0_bits_3 : io_sphere_0_data_3;
   wire [13:0] _laneKeys_15_io_in_level_T = loading ? 14'h0 : _cellExp_io_level;
   reg         laneKeys_1_io_in_valid_REG;
-  wire        _GEN_10 = filling ? io_feed_1_valid : laneKeys_1_io_in_valid_REG;
-  wire [31:0] _GEN_11 = filling ? io_feed_1_bits_0 : io_sphere_1_data_0;
-  wire [31:0] _GEN_12 = filling ? io_feed_1_bits_1 : io_sphere_1_data_1;
-  wire [31:0] _GEN_13 = filling ? io_feed_1_bits_2 : io_sphere_1_data_2;
-  wire [31:0] _GEN_14 = filling ? io_feed_1_bits_3 : io_sphere_1_data_3;
   reg         laneKeys_2_io_in_valid_REG;
-  wire        _GEN_15 = filling ? io_feed_2_valid : laneKeys_2_io_in_valid_REG;
-  wire [31:0] _GEN_16 = filling ? io_feed_2_bits_0 : io_sphere_2_data_0;
-  wire [31:0] _GEN_17 = filling ? io_feed_2_bits_1 : io_sphere_2_data_1;
-  wire [31:0] _GEN_18 = filling ? io_feed_2_bits_2 : io_sphere_2_data_2;
-  wire [31:0] _GEN_19 = filling ? io_feed_2_bits_3 : io_sphere_2_data_3;
   reg         laneKeys_3_io_in_valid_REG;
-  wire        _GEN_20 = filling ? io_feed_3_valid : laneKeys_3_io_in_valid_REG;
-  wire [31:0] _GEN_21 = filling ? io_feed_3_bits_0 : io_sphere_3_data_0;
-  wire [31:0] _GEN_22 = filling ? io_feed_3_bits_1 : io_sphere_3_data_1;
-  wire [31:0] _GEN_23 = filling ? io_feed_3_bits_2 : io_sphere_3_data_2;
-  wire [31:0] _GEN_24 = filling ? io_feed_3_bits_3 : io_sphere_3_data_3;
   reg         laneKeys_4_io_in_valid_REG;
   reg         laneKeys_5_io_in_valid_REG;
   reg         laneKeys_6_io_in_valid_REG;
@@ -31390,6 +31409,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   reg         laneKeys_13_io_in_valid_REG;
   reg         laneKeys_14_io_in_valid_REG;
   reg         laneKeys_15_io_in_valid_REG;
+  wire        fedIn_0 = io_feed_0_valid & feedOn;
+  wire        fedIn_1 = io_feed_1_valid & feedOn;
+  wire        fedIn_2 = io_feed_2_valid & feedOn;
+  wire        fedIn_3 = io_feed_3_valid & feedOn;
+  reg  [3:0]  feedInflight;
   reg  [11:0] REG;
   reg  [11:0] r;
   reg  [11:0] REG_1;
@@ -31406,6 +31430,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   reg  [11:0] r_6;
   reg  [11:0] REG_7;
   reg  [11:0] r_7;
+  wire        _io_quiet_T_3 = feedInflight == 4'h0;
   wire        _sorts_0_io_in_0_valid_T_8 =
     $signed(_laneKeys_0_io_out_need) > $signed(_cellExp_io_level);
   wire        _sorts_0_io_in_1_valid_T_8 =
@@ -31427,380 +31452,381 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   reg  [4:0]  boxB_2;
   reg  [1:0]  boxCycle;
   wire        _any_T = _trackers_0_io_any | _trackers_1_io_any;
-  wire [31:0] _GEN_25 =
+  wire [31:0] _GEN_5 =
     ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_0 < _trackers_0_io_lo_0
       ? _trackers_1_io_lo_0
       : _trackers_0_io_lo_0;
-  wire        _GEN_26 = _any_T | _trackers_2_io_any;
-  wire [31:0] _GEN_27 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_0 < _GEN_25
+  wire        _GEN_6 = _any_T | _trackers_2_io_any;
+  wire [31:0] _GEN_7 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_0 < _GEN_5
       ? _trackers_2_io_lo_0
-      : _GEN_25;
-  wire        _GEN_28 = _GEN_26 | _trackers_3_io_any;
-  wire [31:0] _GEN_29 =
-    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_lo_0 < _GEN_27
+      : _GEN_5;
+  wire        _GEN_8 = _GEN_6 | _trackers_3_io_any;
+  wire [31:0] _GEN_9 =
+    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_lo_0 < _GEN_7
       ? _trackers_3_io_lo_0
-      : _GEN_27;
-  wire        _GEN_30 = _GEN_28 | _trackers_4_io_any;
-  wire [31:0] _GEN_31 =
-    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_lo_0 < _GEN_29
+      : _GEN_7;
+  wire        _GEN_10 = _GEN_8 | _trackers_4_io_any;
+  wire [31:0] _GEN_11 =
+    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_lo_0 < _GEN_9
       ? _trackers_4_io_lo_0
-      : _GEN_29;
-  wire        _GEN_32 = _GEN_30 | _trackers_5_io_any;
-  wire [31:0] _GEN_33 =
-    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_lo_0 < _GEN_31
+      : _GEN_9;
+  wire        _GEN_12 = _GEN_10 | _trackers_5_io_any;
+  wire [31:0] _GEN_13 =
+    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_lo_0 < _GEN_11
       ? _trackers_5_io_lo_0
-      : _GEN_31;
-  wire        _GEN_34 = _GEN_32 | _trackers_6_io_any;
-  wire [31:0] _GEN_35 =
-    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_lo_0 < _GEN_33
+      : _GEN_11;
+  wire        _GEN_14 = _GEN_12 | _trackers_6_io_any;
+  wire [31:0] _GEN_15 =
+    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_lo_0 < _GEN_13
       ? _trackers_6_io_lo_0
-      : _GEN_33;
-  wire        _GEN_36 = _GEN_34 | _trackers_7_io_any;
-  wire [31:0] _GEN_37 =
-    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_lo_0 < _GEN_35
+      : _GEN_13;
+  wire        _GEN_16 = _GEN_14 | _trackers_7_io_any;
+  wire [31:0] _GEN_17 =
+    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_lo_0 < _GEN_15
       ? _trackers_7_io_lo_0
-      : _GEN_35;
-  wire        _GEN_38 = _GEN_36 | _trackers_8_io_any;
-  wire [31:0] _GEN_39 =
-    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_lo_0 < _GEN_37
+      : _GEN_15;
+  wire        _GEN_18 = _GEN_16 | _trackers_8_io_any;
+  wire [31:0] _GEN_19 =
+    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_lo_0 < _GEN_17
       ? _trackers_8_io_lo_0
-      : _GEN_37;
-  wire        _GEN_40 = _GEN_38 | _trackers_9_io_any;
-  wire [31:0] _GEN_41 =
-    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_lo_0 < _GEN_39
+      : _GEN_17;
+  wire        _GEN_20 = _GEN_18 | _trackers_9_io_any;
+  wire [31:0] _GEN_21 =
+    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_lo_0 < _GEN_19
       ? _trackers_9_io_lo_0
-      : _GEN_39;
-  wire        _GEN_42 = _GEN_40 | _trackers_10_io_any;
-  wire [31:0] _GEN_43 =
-    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_lo_0 < _GEN_41
+      : _GEN_19;
+  wire        _GEN_22 = _GEN_20 | _trackers_10_io_any;
+  wire [31:0] _GEN_23 =
+    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_lo_0 < _GEN_21
       ? _trackers_10_io_lo_0
-      : _GEN_41;
-  wire        _GEN_44 = _GEN_42 | _trackers_11_io_any;
-  wire [31:0] _GEN_45 =
-    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_lo_0 < _GEN_43
+      : _GEN_21;
+  wire        _GEN_24 = _GEN_22 | _trackers_11_io_any;
+  wire [31:0] _GEN_25 =
+    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_lo_0 < _GEN_23
       ? _trackers_11_io_lo_0
-      : _GEN_43;
-  wire        _GEN_46 = _GEN_44 | _trackers_12_io_any;
-  wire [31:0] _GEN_47 =
-    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_lo_0 < _GEN_45
+      : _GEN_23;
+  wire        _GEN_26 = _GEN_24 | _trackers_12_io_any;
+  wire [31:0] _GEN_27 =
+    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_lo_0 < _GEN_25
       ? _trackers_12_io_lo_0
-      : _GEN_45;
-  wire        _GEN_48 = _GEN_46 | _trackers_13_io_any;
-  wire [31:0] _GEN_49 =
-    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_lo_0 < _GEN_47
+      : _GEN_25;
+  wire        _GEN_28 = _GEN_26 | _trackers_13_io_any;
+  wire [31:0] _GEN_29 =
+    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_lo_0 < _GEN_27
       ? _trackers_13_io_lo_0
-      : _GEN_47;
-  wire        _GEN_50 = _GEN_48 | _trackers_14_io_any;
-  wire [31:0] _GEN_51 =
-    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_lo_0 < _GEN_49
+      : _GEN_27;
+  wire        _GEN_30 = _GEN_28 | _trackers_14_io_any;
+  wire [31:0] _GEN_31 =
+    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_lo_0 < _GEN_29
       ? _trackers_14_io_lo_0
-      : _GEN_49;
+      : _GEN_29;
   wire [31:0] lo_0 =
-    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_lo_0 < _GEN_51
+    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_lo_0 < _GEN_31
       ? _trackers_15_io_lo_0
-      : _GEN_51;
-  wire [31:0] _GEN_52 =
+      : _GEN_31;
+  wire [31:0] _GEN_32 =
     ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_1 < _trackers_0_io_lo_1
       ? _trackers_1_io_lo_1
       : _trackers_0_io_lo_1;
-  wire [31:0] _GEN_53 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_1 < _GEN_52
+  wire [31:0] _GEN_33 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_1 < _GEN_32
       ? _trackers_2_io_lo_1
-      : _GEN_52;
-  wire [31:0] _GEN_54 =
-    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_lo_1 < _GEN_53
+      : _GEN_32;
+  wire [31:0] _GEN_34 =
+    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_lo_1 < _GEN_33
       ? _trackers_3_io_lo_1
-      : _GEN_53;
-  wire [31:0] _GEN_55 =
-    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_lo_1 < _GEN_54
+      : _GEN_33;
+  wire [31:0] _GEN_35 =
+    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_lo_1 < _GEN_34
       ? _trackers_4_io_lo_1
-      : _GEN_54;
-  wire [31:0] _GEN_56 =
-    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_lo_1 < _GEN_55
+      : _GEN_34;
+  wire [31:0] _GEN_36 =
+    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_lo_1 < _GEN_35
       ? _trackers_5_io_lo_1
-      : _GEN_55;
-  wire [31:0] _GEN_57 =
-    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_lo_1 < _GEN_56
+      : _GEN_35;
+  wire [31:0] _GEN_37 =
+    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_lo_1 < _GEN_36
       ? _trackers_6_io_lo_1
-      : _GEN_56;
-  wire [31:0] _GEN_58 =
-    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_lo_1 < _GEN_57
+      : _GEN_36;
+  wire [31:0] _GEN_38 =
+    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_lo_1 < _GEN_37
       ? _trackers_7_io_lo_1
-      : _GEN_57;
-  wire [31:0] _GEN_59 =
-    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_lo_1 < _GEN_58
+      : _GEN_37;
+  wire [31:0] _GEN_39 =
+    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_lo_1 < _GEN_38
       ? _trackers_8_io_lo_1
-      : _GEN_58;
-  wire [31:0] _GEN_60 =
-    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_lo_1 < _GEN_59
+      : _GEN_38;
+  wire [31:0] _GEN_40 =
+    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_lo_1 < _GEN_39
       ? _trackers_9_io_lo_1
-      : _GEN_59;
-  wire [31:0] _GEN_61 =
-    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_lo_1 < _GEN_60
+      : _GEN_39;
+  wire [31:0] _GEN_41 =
+    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_lo_1 < _GEN_40
       ? _trackers_10_io_lo_1
-      : _GEN_60;
-  wire [31:0] _GEN_62 =
-    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_lo_1 < _GEN_61
+      : _GEN_40;
+  wire [31:0] _GEN_42 =
+    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_lo_1 < _GEN_41
       ? _trackers_11_io_lo_1
-      : _GEN_61;
-  wire [31:0] _GEN_63 =
-    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_lo_1 < _GEN_62
+      : _GEN_41;
+  wire [31:0] _GEN_43 =
+    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_lo_1 < _GEN_42
       ? _trackers_12_io_lo_1
-      : _GEN_62;
-  wire [31:0] _GEN_64 =
-    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_lo_1 < _GEN_63
+      : _GEN_42;
+  wire [31:0] _GEN_44 =
+    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_lo_1 < _GEN_43
       ? _trackers_13_io_lo_1
-      : _GEN_63;
-  wire [31:0] _GEN_65 =
-    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_lo_1 < _GEN_64
+      : _GEN_43;
+  wire [31:0] _GEN_45 =
+    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_lo_1 < _GEN_44
       ? _trackers_14_io_lo_1
-      : _GEN_64;
+      : _GEN_44;
   wire [31:0] lo_1 =
-    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_lo_1 < _GEN_65
+    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_lo_1 < _GEN_45
       ? _trackers_15_io_lo_1
-      : _GEN_65;
-  wire [31:0] _GEN_66 =
+      : _GEN_45;
+  wire [31:0] _GEN_46 =
     ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_2 < _trackers_0_io_lo_2
       ? _trackers_1_io_lo_2
       : _trackers_0_io_lo_2;
-  wire [31:0] _GEN_67 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_2 < _GEN_66
+  wire [31:0] _GEN_47 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_2 < _GEN_46
       ? _trackers_2_io_lo_2
-      : _GEN_66;
-  wire [31:0] _GEN_68 =
-    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_lo_2 < _GEN_67
+      : _GEN_46;
+  wire [31:0] _GEN_48 =
+    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_lo_2 < _GEN_47
       ? _trackers_3_io_lo_2
-      : _GEN_67;
-  wire [31:0] _GEN_69 =
-    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_lo_2 < _GEN_68
+      : _GEN_47;
+  wire [31:0] _GEN_49 =
+    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_lo_2 < _GEN_48
       ? _trackers_4_io_lo_2
-      : _GEN_68;
-  wire [31:0] _GEN_70 =
-    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_lo_2 < _GEN_69
+      : _GEN_48;
+  wire [31:0] _GEN_50 =
+    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_lo_2 < _GEN_49
       ? _trackers_5_io_lo_2
-      : _GEN_69;
-  wire [31:0] _GEN_71 =
-    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_lo_2 < _GEN_70
+      : _GEN_49;
+  wire [31:0] _GEN_51 =
+    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_lo_2 < _GEN_50
       ? _trackers_6_io_lo_2
-      : _GEN_70;
-  wire [31:0] _GEN_72 =
-    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_lo_2 < _GEN_71
+      : _GEN_50;
+  wire [31:0] _GEN_52 =
+    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_lo_2 < _GEN_51
       ? _trackers_7_io_lo_2
-      : _GEN_71;
-  wire [31:0] _GEN_73 =
-    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_lo_2 < _GEN_72
+      : _GEN_51;
+  wire [31:0] _GEN_53 =
+    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_lo_2 < _GEN_52
       ? _trackers_8_io_lo_2
-      : _GEN_72;
-  wire [31:0] _GEN_74 =
-    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_lo_2 < _GEN_73
+      : _GEN_52;
+  wire [31:0] _GEN_54 =
+    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_lo_2 < _GEN_53
       ? _trackers_9_io_lo_2
-      : _GEN_73;
-  wire [31:0] _GEN_75 =
-    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_lo_2 < _GEN_74
+      : _GEN_53;
+  wire [31:0] _GEN_55 =
+    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_lo_2 < _GEN_54
       ? _trackers_10_io_lo_2
-      : _GEN_74;
-  wire [31:0] _GEN_76 =
-    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_lo_2 < _GEN_75
+      : _GEN_54;
+  wire [31:0] _GEN_56 =
+    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_lo_2 < _GEN_55
       ? _trackers_11_io_lo_2
-      : _GEN_75;
-  wire [31:0] _GEN_77 =
-    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_lo_2 < _GEN_76
+      : _GEN_55;
+  wire [31:0] _GEN_57 =
+    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_lo_2 < _GEN_56
       ? _trackers_12_io_lo_2
-      : _GEN_76;
-  wire [31:0] _GEN_78 =
-    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_lo_2 < _GEN_77
+      : _GEN_56;
+  wire [31:0] _GEN_58 =
+    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_lo_2 < _GEN_57
       ? _trackers_13_io_lo_2
-      : _GEN_77;
-  wire [31:0] _GEN_79 =
-    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_lo_2 < _GEN_78
+      : _GEN_57;
+  wire [31:0] _GEN_59 =
+    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_lo_2 < _GEN_58
       ? _trackers_14_io_lo_2
-      : _GEN_78;
+      : _GEN_58;
   wire [31:0] lo_2 =
-    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_lo_2 < _GEN_79
+    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_lo_2 < _GEN_59
       ? _trackers_15_io_lo_2
-      : _GEN_79;
-  wire [31:0] _GEN_80 =
+      : _GEN_59;
+  wire [31:0] _GEN_60 =
     ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_0 > _trackers_0_io_hi_0
       ? _trackers_1_io_hi_0
       : _trackers_0_io_hi_0;
-  wire [31:0] _GEN_81 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_0 > _GEN_80
+  wire [31:0] _GEN_61 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_0 > _GEN_60
       ? _trackers_2_io_hi_0
-      : _GEN_80;
-  wire [31:0] _GEN_82 =
-    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_hi_0 > _GEN_81
+      : _GEN_60;
+  wire [31:0] _GEN_62 =
+    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_hi_0 > _GEN_61
       ? _trackers_3_io_hi_0
-      : _GEN_81;
-  wire [31:0] _GEN_83 =
-    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_hi_0 > _GEN_82
+      : _GEN_61;
+  wire [31:0] _GEN_63 =
+    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_hi_0 > _GEN_62
       ? _trackers_4_io_hi_0
-      : _GEN_82;
-  wire [31:0] _GEN_84 =
-    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_hi_0 > _GEN_83
+      : _GEN_62;
+  wire [31:0] _GEN_64 =
+    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_hi_0 > _GEN_63
       ? _trackers_5_io_hi_0
-      : _GEN_83;
-  wire [31:0] _GEN_85 =
-    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_hi_0 > _GEN_84
+      : _GEN_63;
+  wire [31:0] _GEN_65 =
+    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_hi_0 > _GEN_64
       ? _trackers_6_io_hi_0
-      : _GEN_84;
-  wire [31:0] _GEN_86 =
-    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_hi_0 > _GEN_85
+      : _GEN_64;
+  wire [31:0] _GEN_66 =
+    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_hi_0 > _GEN_65
       ? _trackers_7_io_hi_0
-      : _GEN_85;
-  wire [31:0] _GEN_87 =
-    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_hi_0 > _GEN_86
+      : _GEN_65;
+  wire [31:0] _GEN_67 =
+    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_hi_0 > _GEN_66
       ? _trackers_8_io_hi_0
-      : _GEN_86;
-  wire [31:0] _GEN_88 =
-    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_hi_0 > _GEN_87
+      : _GEN_66;
+  wire [31:0] _GEN_68 =
+    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_hi_0 > _GEN_67
       ? _trackers_9_io_hi_0
-      : _GEN_87;
-  wire [31:0] _GEN_89 =
-    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_hi_0 > _GEN_88
+      : _GEN_67;
+  wire [31:0] _GEN_69 =
+    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_hi_0 > _GEN_68
       ? _trackers_10_io_hi_0
-      : _GEN_88;
-  wire [31:0] _GEN_90 =
-    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_hi_0 > _GEN_89
+      : _GEN_68;
+  wire [31:0] _GEN_70 =
+    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_hi_0 > _GEN_69
       ? _trackers_11_io_hi_0
-      : _GEN_89;
-  wire [31:0] _GEN_91 =
-    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_hi_0 > _GEN_90
+      : _GEN_69;
+  wire [31:0] _GEN_71 =
+    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_hi_0 > _GEN_70
       ? _trackers_12_io_hi_0
-      : _GEN_90;
-  wire [31:0] _GEN_92 =
-    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_hi_0 > _GEN_91
+      : _GEN_70;
+  wire [31:0] _GEN_72 =
+    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_hi_0 > _GEN_71
       ? _trackers_13_io_hi_0
-      : _GEN_91;
-  wire [31:0] _GEN_93 =
-    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_hi_0 > _GEN_92
+      : _GEN_71;
+  wire [31:0] _GEN_73 =
+    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_hi_0 > _GEN_72
       ? _trackers_14_io_hi_0
-      : _GEN_92;
+      : _GEN_72;
   wire [31:0] hi_0 =
-    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_hi_0 > _GEN_93
+    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_hi_0 > _GEN_73
       ? _trackers_15_io_hi_0
-      : _GEN_93;
-  wire [31:0] _GEN_94 =
+      : _GEN_73;
+  wire [31:0] _GEN_74 =
     ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_1 > _trackers_0_io_hi_1
       ? _trackers_1_io_hi_1
       : _trackers_0_io_hi_1;
-  wire [31:0] _GEN_95 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_1 > _GEN_94
+  wire [31:0] _GEN_75 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_1 > _GEN_74
       ? _trackers_2_io_hi_1
-      : _GEN_94;
-  wire [31:0] _GEN_96 =
-    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_hi_1 > _GEN_95
+      : _GEN_74;
+  wire [31:0] _GEN_76 =
+    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_hi_1 > _GEN_75
       ? _trackers_3_io_hi_1
-      : _GEN_95;
-  wire [31:0] _GEN_97 =
-    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_hi_1 > _GEN_96
+      : _GEN_75;
+  wire [31:0] _GEN_77 =
+    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_hi_1 > _GEN_76
       ? _trackers_4_io_hi_1
-      : _GEN_96;
-  wire [31:0] _GEN_98 =
-    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_hi_1 > _GEN_97
+      : _GEN_76;
+  wire [31:0] _GEN_78 =
+    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_hi_1 > _GEN_77
       ? _trackers_5_io_hi_1
-      : _GEN_97;
-  wire [31:0] _GEN_99 =
-    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_hi_1 > _GEN_98
+      : _GEN_77;
+  wire [31:0] _GEN_79 =
+    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_hi_1 > _GEN_78
       ? _trackers_6_io_hi_1
-      : _GEN_98;
-  wire [31:0] _GEN_100 =
-    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_hi_1 > _GEN_99
+      : _GEN_78;
+  wire [31:0] _GEN_80 =
+    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_hi_1 > _GEN_79
       ? _trackers_7_io_hi_1
-      : _GEN_99;
-  wire [31:0] _GEN_101 =
-    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_hi_1 > _GEN_100
+      : _GEN_79;
+  wire [31:0] _GEN_81 =
+    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_hi_1 > _GEN_80
       ? _trackers_8_io_hi_1
-      : _GEN_100;
-  wire [31:0] _GEN_102 =
-    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_hi_1 > _GEN_101
+      : _GEN_80;
+  wire [31:0] _GEN_82 =
+    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_hi_1 > _GEN_81
       ? _trackers_9_io_hi_1
-      : _GEN_101;
-  wire [31:0] _GEN_103 =
-    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_hi_1 > _GEN_102
+      : _GEN_81;
+  wire [31:0] _GEN_83 =
+    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_hi_1 > _GEN_82
       ? _trackers_10_io_hi_1
-      : _GEN_102;
-  wire [31:0] _GEN_104 =
-    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_hi_1 > _GEN_103
+      : _GEN_82;
+  wire [31:0] _GEN_84 =
+    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_hi_1 > _GEN_83
       ? _trackers_11_io_hi_1
-      : _GEN_103;
-  wire [31:0] _GEN_105 =
-    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_hi_1 > _GEN_104
+      : _GEN_83;
+  wire [31:0] _GEN_85 =
+    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_hi_1 > _GEN_84
       ? _trackers_12_io_hi_1
-      : _GEN_104;
-  wire [31:0] _GEN_106 =
-    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_hi_1 > _GEN_105
+      : _GEN_84;
+  wire [31:0] _GEN_86 =
+    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_hi_1 > _GEN_85
       ? _trackers_13_io_hi_1
-      : _GEN_105;
-  wire [31:0] _GEN_107 =
-    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_hi_1 > _GEN_106
+      : _GEN_85;
+  wire [31:0] _GEN_87 =
+    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_hi_1 > _GEN_86
       ? _trackers_14_io_hi_1
-      : _GEN_106;
+      : _GEN_86;
   wire [31:0] hi_1 =
-    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_hi_1 > _GEN_107
+    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_hi_1 > _GEN_87
       ? _trackers_15_io_hi_1
-      : _GEN_107;
-  wire [31:0] _GEN_108 =
+      : _GEN_87;
+  wire [31:0] _GEN_88 =
     ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_2 > _trackers_0_io_hi_2
       ? _trackers_1_io_hi_2
       : _trackers_0_io_hi_2;
-  wire [31:0] _GEN_109 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_2 > _GEN_108
+  wire [31:0] _GEN_89 =
+    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_2 > _GEN_88
       ? _trackers_2_io_hi_2
-      : _GEN_108;
-  wire [31:0] _GEN_110 =
-    ~_GEN_26 | _trackers_3_io_any & _trackers_3_io_hi_2 > _GEN_109
+      : _GEN_88;
+  wire [31:0] _GEN_90 =
+    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_hi_2 > _GEN_89
       ? _trackers_3_io_hi_2
-      : _GEN_109;
-  wire [31:0] _GEN_111 =
-    ~_GEN_28 | _trackers_4_io_any & _trackers_4_io_hi_2 > _GEN_110
+      : _GEN_89;
+  wire [31:0] _GEN_91 =
+    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_hi_2 > _GEN_90
       ? _trackers_4_io_hi_2
-      : _GEN_110;
-  wire [31:0] _GEN_112 =
-    ~_GEN_30 | _trackers_5_io_any & _trackers_5_io_hi_2 > _GEN_111
+      : _GEN_90;
+  wire [31:0] _GEN_92 =
+    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_hi_2 > _GEN_91
       ? _trackers_5_io_hi_2
-      : _GEN_111;
-  wire [31:0] _GEN_113 =
-    ~_GEN_32 | _trackers_6_io_any & _trackers_6_io_hi_2 > _GEN_112
+      : _GEN_91;
+  wire [31:0] _GEN_93 =
+    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_hi_2 > _GEN_92
       ? _trackers_6_io_hi_2
-      : _GEN_112;
-  wire [31:0] _GEN_114 =
-    ~_GEN_34 | _trackers_7_io_any & _trackers_7_io_hi_2 > _GEN_113
+      : _GEN_92;
+  wire [31:0] _GEN_94 =
+    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_hi_2 > _GEN_93
       ? _trackers_7_io_hi_2
-      : _GEN_113;
-  wire [31:0] _GEN_115 =
-    ~_GEN_36 | _trackers_8_io_any & _trackers_8_io_hi_2 > _GEN_114
+      : _GEN_93;
+  wire [31:0] _GEN_95 =
+    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_hi_2 > _GEN_94
       ? _trackers_8_io_hi_2
-      : _GEN_114;
-  wire [31:0] _GEN_116 =
-    ~_GEN_38 | _trackers_9_io_any & _trackers_9_io_hi_2 > _GEN_115
+      : _GEN_94;
+  wire [31:0] _GEN_96 =
+    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_hi_2 > _GEN_95
       ? _trackers_9_io_hi_2
-      : _GEN_115;
-  wire [31:0] _GEN_117 =
-    ~_GEN_40 | _trackers_10_io_any & _trackers_10_io_hi_2 > _GEN_116
+      : _GEN_95;
+  wire [31:0] _GEN_97 =
+    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_hi_2 > _GEN_96
       ? _trackers_10_io_hi_2
-      : _GEN_116;
-  wire [31:0] _GEN_118 =
-    ~_GEN_42 | _trackers_11_io_any & _trackers_11_io_hi_2 > _GEN_117
+      : _GEN_96;
+  wire [31:0] _GEN_98 =
+    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_hi_2 > _GEN_97
       ? _trackers_11_io_hi_2
-      : _GEN_117;
-  wire [31:0] _GEN_119 =
-    ~_GEN_44 | _trackers_12_io_any & _trackers_12_io_hi_2 > _GEN_118
+      : _GEN_97;
+  wire [31:0] _GEN_99 =
+    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_hi_2 > _GEN_98
       ? _trackers_12_io_hi_2
-      : _GEN_118;
-  wire [31:0] _GEN_120 =
-    ~_GEN_46 | _trackers_13_io_any & _trackers_13_io_hi_2 > _GEN_119
+      : _GEN_98;
+  wire [31:0] _GEN_100 =
+    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_hi_2 > _GEN_99
       ? _trackers_13_io_hi_2
-      : _GEN_119;
-  wire [31:0] _GEN_121 =
-    ~_GEN_48 | _trackers_14_io_any & _trackers_14_io_hi_2 > _GEN_120
+      : _GEN_99;
+  wire [31:0] _GEN_101 =
+    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_hi_2 > _GEN_100
       ? _trackers_14_io_hi_2
-      : _GEN_120;
+      : _GEN_100;
   wire [31:0] hi_2 =
-    ~_GEN_50 | _trackers_15_io_any & _trackers_15_io_hi_2 > _GEN_121
+    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_hi_2 > _GEN_101
       ? _trackers_15_io_hi_2
-      : _GEN_121;
+      : _GEN_101;
   wire [5:0]  _sorts_3_io_in_1_bits_bucket_h_T_26 = {1'h0, boxB_0} + {1'h0, boxB_1};
+  wire        _GEN_102 = state == 4'h4;
   reg  [8:0]  m;
   wire [8:0]  mergeEnd = fed ? 9'h44 : 9'h110;
   wire        filled_2 = _laneExps_0_io_used > 5'h2;
@@ -40236,7 +40262,6 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     $signed(slack_e) < 15'sh0
       ? 29'h2
       : $signed(slack_e) > 15'sh1B ? 29'h1FFFFFFF : _slack_T_3[28:0] + 29'h1;
-  wire        _sorts_3_io_prefix_T = state == 4'h6;
   wire        _sorts_0_io_in_0_valid_T_12 =
     _laneKeys_0_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_0_io_out_nonFinite
@@ -40244,17 +40269,17 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         & _sorts_0_io_in_0_valid_T_8);
   wire [41:0] _sorts_3_io_in_1_bits_bucket_h_T_5 = 42'h1 << boxB_0;
   wire [41:0] _sorts_3_io_in_1_bits_bucket_h_T_12 = 42'h1 << boxB_1;
-  wire [40:0] _GEN_122 = {36'h0, boxB_0};
+  wire [40:0] _GEN_103 = {36'h0, boxB_0};
   wire [40:0] _sorts_0_io_in_0_bits_bucket_h_T_17 =
     {31'h0,
      _laneKeys_0_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_122;
+    << _GEN_103;
   wire [41:0] _sorts_3_io_in_1_bits_bucket_h_T_21 = 42'h1 << boxB_2;
-  wire [72:0] _GEN_123 = {67'h0, _sorts_3_io_in_1_bits_bucket_h_T_26};
+  wire [72:0] _GEN_104 = {67'h0, _sorts_3_io_in_1_bits_bucket_h_T_26};
   wire [72:0] _sorts_0_io_in_0_bits_bucket_h_T_27 =
     {63'h0,
      _laneKeys_0_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_123;
+    << _GEN_104;
   wire [28:0] _units_T_1 = 29'h1 << usedLog2;
   wire        _sorts_0_io_in_1_valid_T_12 =
     _laneKeys_1_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
@@ -40264,11 +40289,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [40:0] _sorts_0_io_in_1_bits_bucket_h_T_17 =
     {31'h0,
      _laneKeys_1_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_122;
+    << _GEN_103;
   wire [72:0] _sorts_0_io_in_1_bits_bucket_h_T_27 =
     {63'h0,
      _laneKeys_1_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_123;
+    << _GEN_104;
   wire        _sorts_1_io_in_0_valid_T_12 =
     _laneKeys_2_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_2_io_out_nonFinite
@@ -40277,11 +40302,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [40:0] _sorts_1_io_in_0_bits_bucket_h_T_17 =
     {31'h0,
      _laneKeys_2_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_122;
+    << _GEN_103;
   wire [72:0] _sorts_1_io_in_0_bits_bucket_h_T_27 =
     {63'h0,
      _laneKeys_2_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_123;
+    << _GEN_104;
   wire        _sorts_1_io_in_1_valid_T_12 =
     _laneKeys_3_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_3_io_out_nonFinite
@@ -40290,11 +40315,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [40:0] _sorts_1_io_in_1_bits_bucket_h_T_17 =
     {31'h0,
      _laneKeys_3_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_122;
+    << _GEN_103;
   wire [72:0] _sorts_1_io_in_1_bits_bucket_h_T_27 =
     {63'h0,
      _laneKeys_3_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_123;
+    << _GEN_104;
   wire        _sorts_2_io_in_0_valid_T_12 =
     _laneKeys_4_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_4_io_out_nonFinite
@@ -40303,11 +40328,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [40:0] _sorts_2_io_in_0_bits_bucket_h_T_17 =
     {31'h0,
      _laneKeys_4_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_122;
+    << _GEN_103;
   wire [72:0] _sorts_2_io_in_0_bits_bucket_h_T_27 =
     {63'h0,
      _laneKeys_4_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_123;
+    << _GEN_104;
   wire        _sorts_2_io_in_1_valid_T_12 =
     _laneKeys_5_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_5_io_out_nonFinite
@@ -40316,11 +40341,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [40:0] _sorts_2_io_in_1_bits_bucket_h_T_17 =
     {31'h0,
      _laneKeys_5_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_122;
+    << _GEN_103;
   wire [72:0] _sorts_2_io_in_1_bits_bucket_h_T_27 =
     {63'h0,
      _laneKeys_5_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_123;
+    << _GEN_104;
   wire        _sorts_3_io_in_0_valid_T_12 =
     _laneKeys_6_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_6_io_out_nonFinite
@@ -40329,11 +40354,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [40:0] _sorts_3_io_in_0_bits_bucket_h_T_17 =
     {31'h0,
      _laneKeys_6_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_122;
+    << _GEN_103;
   wire [72:0] _sorts_3_io_in_0_bits_bucket_h_T_27 =
     {63'h0,
      _laneKeys_6_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_123;
+    << _GEN_104;
   wire        _sorts_3_io_in_1_valid_T_12 =
     _laneKeys_7_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_7_io_out_nonFinite
@@ -40342,11 +40367,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [40:0] _sorts_3_io_in_1_bits_bucket_h_T_17 =
     {31'h0,
      _laneKeys_7_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_122;
+    << _GEN_103;
   wire [72:0] _sorts_3_io_in_1_bits_bucket_h_T_27 =
     {63'h0,
      _laneKeys_7_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_123;
+    << _GEN_104;
   reg  [1:0]  entryGroup;
   reg  [11:0] casez_tmp_7;
   always @(*) begin
@@ -40901,55 +40926,55 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:308 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:308 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:308 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:308 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:308 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:308 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:308 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:308 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(_GEN == 16'h0 | dCount[6:2] != 5'h1F)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:368 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
+          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:410 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -40969,12 +40994,72 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         | heldUnit_7 & held_7 | heldUnit_8 & held_8 | heldUnit_9 & held_9 | heldUnit_10
         & held_10 | heldUnit_11 & held_11 | heldUnit_12 & held_12 | heldUnit_13 & held_13
         | heldUnit_14 & held_14 | heldUnit_15 & held_15);
+  wire        _GEN_105 = state == 4'h1;
+  wire        _GEN_106 = state == 4'h2;
+  wire        _GEN_107 = state == 4'h3;
+  wire        _GEN_108 = ~(|state) | _GEN_105;
+  wire        _GEN_109 = state == 4'h5;
+  wire        _GEN_110 = state == 4'h6;
+  wire        _GEN_111 = state == 4'h7;
   reg         REG_8;
-  wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
-  wire [5:0]  usedLog2_t =
-    io_num == 13'h0
+  wire        _GEN_112 = state == 4'h8;
+  wire        _GEN_113 =
+    sent
+    & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
+        | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
+        | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
+        | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
+  wire        _GEN_114 = _GEN_112 & _GEN_113;
+  assign handOver =
+    ~(_GEN_108 | _GEN_106 | _GEN_107 | _GEN_102 | _GEN_109 | _GEN_110 | _GEN_111)
+    & _GEN_114 & pending;
+  wire [12:0] _usedLog2_ceilLog2_T_51 = pendingNum - 13'h1;
+  wire [5:0]  usedLog2_t_2 =
+    pendingNum == 13'h0
       ? 6'h0
       : {1'h0,
+         pendingNum < 13'h2
+           ? 5'h0
+           : {1'h0,
+              |(_usedLog2_ceilLog2_T_51[12:8]),
+              (|(_usedLog2_ceilLog2_T_51[12:8]))
+                ? {_usedLog2_ceilLog2_T_51[12],
+                   _usedLog2_ceilLog2_T_51[12]
+                     ? 2'h0
+                     : _usedLog2_ceilLog2_T_51[11]
+                         ? 2'h3
+                         : _usedLog2_ceilLog2_T_51[10]
+                             ? 2'h2
+                             : {1'h0, _usedLog2_ceilLog2_T_51[9]}}
+                : {|(_usedLog2_ceilLog2_T_51[7:4]),
+                   (|(_usedLog2_ceilLog2_T_51[7:4]))
+                     ? (_usedLog2_ceilLog2_T_51[7]
+                          ? 2'h3
+                          : _usedLog2_ceilLog2_T_51[6]
+                              ? 2'h2
+                              : {1'h0, _usedLog2_ceilLog2_T_51[5]})
+                     : _usedLog2_ceilLog2_T_51[3]
+                         ? 2'h3
+                         : _usedLog2_ceilLog2_T_51[2]
+                             ? 2'h2
+                             : {1'h0, _usedLog2_ceilLog2_T_51[1]}}} + 5'h1} + 6'h1;
+  wire [27:0] _GEN_115 = {15'h0, pendingNum};
+  wire [28:0] _GEN_116 = {16'h0, pendingNum};
+  wire [26:0] _cuts_T_80 = {14'h0, pendingNum} * 27'h3000;
+  wire [27:0] _cuts_T_86 = _GEN_115 * 28'h5000;
+  wire [27:0] _cuts_T_89 = _GEN_115 * 28'h6000;
+  wire [27:0] _cuts_T_92 = _GEN_115 * 28'h7000;
+  wire [28:0] _cuts_T_97 = _GEN_116 * 29'h9000;
+  wire [28:0] _cuts_T_99 = _GEN_116 * 29'hA000;
+  wire [28:0] _cuts_T_101 = _GEN_116 * 29'hB000;
+  wire [28:0] _cuts_T_103 = _GEN_116 * 29'hC000;
+  wire [28:0] _cuts_T_105 = _GEN_116 * 29'hD000;
+  wire [28:0] _cuts_T_107 = _GEN_116 * 29'hE000;
+  wire [28:0] _cuts_T_109 = _GEN_116 * 29'hF000;
+  wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
+  wire [5:0]  usedLog2_t =
+    (|io_num)
+      ? {1'h0,
          io_num < 13'h2
            ? 5'h0
            : {1'h0,
@@ -40999,22 +41084,68 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                          ? 2'h3
                          : _usedLog2_ceilLog2_T_1[2]
                              ? 2'h2
-                             : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1;
-  wire [12:0] _GEN_124 = {4'h0, io_num[12:4]};
-  wire [12:0] _GEN_125 = {3'h0, io_num[12:3]};
-  wire [26:0] _cuts_T_6 = {14'h0, io_num} * 27'h3000;
-  wire [27:0] _GEN_126 = {15'h0, io_num};
-  wire [27:0] _cuts_T_12 = _GEN_126 * 28'h5000;
-  wire [27:0] _cuts_T_15 = _GEN_126 * 28'h6000;
-  wire [27:0] _cuts_T_18 = _GEN_126 * 28'h7000;
-  wire [28:0] _GEN_127 = {16'h0, io_num};
-  wire [28:0] _cuts_T_23 = _GEN_127 * 29'h9000;
-  wire [28:0] _cuts_T_25 = _GEN_127 * 29'hA000;
-  wire [28:0] _cuts_T_27 = _GEN_127 * 29'hB000;
-  wire [28:0] _cuts_T_29 = _GEN_127 * 29'hC000;
-  wire [28:0] _cuts_T_31 = _GEN_127 * 29'hD000;
-  wire [28:0] _cuts_T_33 = _GEN_127 * 29'hE000;
-  wire [28:0] _cuts_T_35 = _GEN_127 * 29'hF000;
+                             : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1
+      : 6'h0;
+  wire [12:0] _usedLog2_ceilLog2_T_26 = io_num - 13'h1;
+  wire [5:0]  usedLog2_t_1 =
+    (|io_num)
+      ? {1'h0,
+         io_num < 13'h2
+           ? 5'h0
+           : {1'h0,
+              |(_usedLog2_ceilLog2_T_26[12:8]),
+              (|(_usedLog2_ceilLog2_T_26[12:8]))
+                ? {_usedLog2_ceilLog2_T_26[12],
+                   _usedLog2_ceilLog2_T_26[12]
+                     ? 2'h0
+                     : _usedLog2_ceilLog2_T_26[11]
+                         ? 2'h3
+                         : _usedLog2_ceilLog2_T_26[10]
+                             ? 2'h2
+                             : {1'h0, _usedLog2_ceilLog2_T_26[9]}}
+                : {|(_usedLog2_ceilLog2_T_26[7:4]),
+                   (|(_usedLog2_ceilLog2_T_26[7:4]))
+                     ? (_usedLog2_ceilLog2_T_26[7]
+                          ? 2'h3
+                          : _usedLog2_ceilLog2_T_26[6]
+                              ? 2'h2
+                              : {1'h0, _usedLog2_ceilLog2_T_26[5]})
+                     : _usedLog2_ceilLog2_T_26[3]
+                         ? 2'h3
+                         : _usedLog2_ceilLog2_T_26[2]
+                             ? 2'h2
+                             : {1'h0, _usedLog2_ceilLog2_T_26[1]}}} + 5'h1} + 6'h1
+      : 6'h0;
+  wire [12:0] _GEN_117 = {4'h0, io_num[12:4]};
+  wire [26:0] _GEN_118 = {14'h0, io_num};
+  wire [12:0] _GEN_119 = {3'h0, io_num[12:3]};
+  wire [27:0] _GEN_120 = {15'h0, io_num};
+  wire [12:0] _GEN_121 = {2'h0, io_num[12:2]};
+  wire [28:0] _GEN_122 = {16'h0, io_num};
+  wire [26:0] _cuts_T_6 = _GEN_118 * 27'h3000;
+  wire [27:0] _cuts_T_12 = _GEN_120 * 28'h5000;
+  wire [27:0] _cuts_T_15 = _GEN_120 * 28'h6000;
+  wire [27:0] _cuts_T_18 = _GEN_120 * 28'h7000;
+  wire [28:0] _cuts_T_23 = _GEN_122 * 29'h9000;
+  wire [28:0] _cuts_T_25 = _GEN_122 * 29'hA000;
+  wire [28:0] _cuts_T_27 = _GEN_122 * 29'hB000;
+  wire [28:0] _cuts_T_29 = _GEN_122 * 29'hC000;
+  wire [28:0] _cuts_T_31 = _GEN_122 * 29'hD000;
+  wire [28:0] _cuts_T_33 = _GEN_122 * 29'hE000;
+  wire [28:0] _cuts_T_35 = _GEN_122 * 29'hF000;
+  wire [26:0] _cuts_T_43 = _GEN_118 * 27'h3000;
+  wire [27:0] _cuts_T_49 = _GEN_120 * 28'h5000;
+  wire [27:0] _cuts_T_52 = _GEN_120 * 28'h6000;
+  wire [27:0] _cuts_T_55 = _GEN_120 * 28'h7000;
+  wire [28:0] _cuts_T_60 = _GEN_122 * 29'h9000;
+  wire [28:0] _cuts_T_62 = _GEN_122 * 29'hA000;
+  wire [28:0] _cuts_T_64 = _GEN_122 * 29'hB000;
+  wire [28:0] _cuts_T_66 = _GEN_122 * 29'hC000;
+  wire [28:0] _cuts_T_68 = _GEN_122 * 29'hD000;
+  wire [28:0] _cuts_T_70 = _GEN_122 * 29'hE000;
+  wire [28:0] _cuts_T_72 = _GEN_122 * 29'hF000;
+  wire        _GEN_123 = _GEN_105 & io_start;
+  wire        z_tooMany = io_num > 13'h1000;
   wire [19:0] _first_T =
     {_corners_k_1_io_out_cell_0[19], _corners_k_1_io_out_cell_0[19:1]}
     - {_corners_k_io_out_cell_0[19], _corners_k_io_out_cell_0[19:1]};
@@ -41036,45 +41167,72 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [4:0]  top = _top_T_1 >= boxB_2 ? _top_T_1 : boxB_2;
   wire [2:0]  firstTop_enc =
     boxB_0 == top ? 3'h1 : boxB_1 == top ? 3'h2 : {boxB_2 == top, 2'h0};
-  wire        _GEN_128 = boxCycle == 2'h1;
-  wire        _GEN_129 = boxCycle == 2'h2;
-  wire        z_tooMany = io_num > 13'h1000;
-  wire        sortBusy =
-    _sorts_0_io_busy | _sorts_1_io_busy | _sorts_2_io_busy | _sorts_3_io_busy;
-  wire        inPass = _loading_T | classifying | _sorts_3_io_in_1_bits_scatter_T;
-  wire        reading_0 = inPass & i_0 < (_loading_T ? _GEN_0 : _GEN_1);
-  wire        reading_1 = inPass & i_1 < (_loading_T ? _GEN_1 : _GEN_2);
-  wire [14:0] _i_3_T_9 = {2'h0, num} * 15'h3;
+  wire        _GEN_124 = boxCycle == 2'h1;
+  wire        _GEN_125 = boxCycle == 2'h2;
+  wire        filling = state == 4'h1;
+  wire        _GEN_126 =
+    classifying
+    & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
+       & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
+           & _sorts_0_io_in_0_valid_T_8) & _laneKeys_0_io_out_cellOverflow
+       | _laneKeys_1_io_out_valid & ~_laneKeys_1_io_out_nonFinite
+       & ~(~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
+           & _sorts_0_io_in_1_valid_T_8) & _laneKeys_1_io_out_cellOverflow
+       | _laneKeys_2_io_out_valid & ~_laneKeys_2_io_out_nonFinite
+       & ~(~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
+           & _sorts_1_io_in_0_valid_T_8) & _laneKeys_2_io_out_cellOverflow
+       | _laneKeys_3_io_out_valid & ~_laneKeys_3_io_out_nonFinite
+       & ~(~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
+           & _sorts_1_io_in_1_valid_T_8) & _laneKeys_3_io_out_cellOverflow
+       | _laneKeys_4_io_out_valid & ~_laneKeys_4_io_out_nonFinite
+       & ~(~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
+           & _sorts_2_io_in_0_valid_T_8) & _laneKeys_4_io_out_cellOverflow
+       | _laneKeys_5_io_out_valid & ~_laneKeys_5_io_out_nonFinite
+       & ~(~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
+           & _sorts_2_io_in_1_valid_T_8) & _laneKeys_5_io_out_cellOverflow
+       | _laneKeys_6_io_out_valid & ~_laneKeys_6_io_out_nonFinite
+       & ~(~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
+           & _sorts_3_io_in_0_valid_T_8) & _laneKeys_6_io_out_cellOverflow
+       | _laneKeys_7_io_out_valid & ~_laneKeys_7_io_out_nonFinite
+       & ~(~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
+           & _sorts_3_io_in_1_valid_T_8) & _laneKeys_7_io_out_cellOverflow)
+    | st_cellOverflow;
+  wire        _GEN_127 = ~(io_start & (~(|state) | filling)) & feedOn;
+  wire        _GEN_128 = ~(|state) | _GEN_105;
+  wire        inPass = loading | classifying | _sorts_3_io_in_1_bits_scatter_T;
+  wire        reading_0 = inPass & i_0 < (loading ? _GEN_0 : _GEN_1);
+  wire        reading_1 = inPass & i_1 < (loading ? _GEN_1 : _GEN_2);
+  wire [14:0] _i_3_T_10 = {2'h0, num} * 15'h3;
   wire        reading_2 =
     inPass
-    & i_2 < (_loading_T ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : {1'h0, _i_3_T_9[14:3]});
-  wire [15:0] _GEN_130 = {3'h0, num};
-  wire        reading_3 = inPass & i_3 < (_loading_T ? _GEN_2 : {1'h0, num[12:1]});
-  wire [15:0] _i_5_T_8 = _GEN_130 * 16'h5;
+    & i_2 < (loading ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : {1'h0, _i_3_T_10[14:3]});
+  wire [15:0] _GEN_129 = {3'h0, num};
+  wire        reading_3 = inPass & i_3 < (loading ? _GEN_2 : {1'h0, num[12:1]});
+  wire [15:0] _i_5_T_9 = _GEN_129 * 16'h5;
   wire        reading_4 =
-    inPass & i_4 < (_loading_T ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_8[15:3]);
-  wire [15:0] _i_6_T_8 = _GEN_130 * 16'h6;
+    inPass & i_4 < (loading ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_9[15:3]);
+  wire [15:0] _i_6_T_9 = _GEN_129 * 16'h6;
   wire        reading_5 =
-    inPass & i_5 < (_loading_T ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_8[15:3]);
-  wire [15:0] _i_7_T_8 = _GEN_130 * 16'h7;
+    inPass & i_5 < (loading ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_9[15:3]);
+  wire [15:0] _i_7_T_9 = _GEN_129 * 16'h7;
   wire        reading_6 =
-    inPass & i_6 < (_loading_T ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_8[15:3]);
-  wire        reading_7 = inPass & i_7 < (_loading_T ? {1'h0, num[12:1]} : num);
+    inPass & i_6 < (loading ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_9[15:3]);
+  wire        reading_7 = inPass & i_7 < (loading ? {1'h0, num[12:1]} : num);
   wire        reading_8 =
-    inPass & i_8 < (_loading_T ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_8 < (loading ? _gens_9_io_largeFrom_T[28:16] : 13'h0);
   wire        reading_9 =
-    inPass & i_9 < (_loading_T ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_9 < (loading ? _gens_10_io_largeFrom_T[28:16] : 13'h0);
   wire        reading_10 =
-    inPass & i_10 < (_loading_T ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_10 < (loading ? _gens_11_io_largeFrom_T[28:16] : 13'h0);
   wire        reading_11 =
-    inPass & i_11 < (_loading_T ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_11 < (loading ? _gens_12_io_largeFrom_T[28:16] : 13'h0);
   wire        reading_12 =
-    inPass & i_12 < (_loading_T ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_12 < (loading ? _gens_13_io_largeFrom_T[28:16] : 13'h0);
   wire        reading_13 =
-    inPass & i_13 < (_loading_T ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
+    inPass & i_13 < (loading ? _gens_14_io_largeFrom_T[28:16] : 13'h0);
   wire        reading_14 =
-    inPass & i_14 < (_loading_T ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
-  wire        reading_15 = inPass & i_15 < (_loading_T ? num : 13'h0);
+    inPass & i_14 < (loading ? _gens_15_io_largeFrom_T[28:16] : 13'h0);
+  wire        reading_15 = inPass & i_15 < (loading ? num : 13'h0);
   wire        passDone =
     {reading_15,
      reading_14,
@@ -41093,9 +41251,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
      reading_1,
      reading_0} == 16'h0 & inflight == 6'h0;
   wire [6:0]  sum = {1'h0, _sorts_3_io_in_1_bits_bucket_h_T_26} + {2'h0, boxB_2};
-  wire [6:0]  _GEN_131 = {3'h0, (|(usedLog2[3:2])) ? usedLog2 - 4'h3 : 4'h0};
-  wire        boxDone = boxCycle == 2'h2 & sum <= _GEN_131;
-  wire        _GEN_132 = state == 4'h4;
+  wire [6:0]  _GEN_130 = {3'h0, (|(usedLog2[3:2])) ? usedLog2 - 4'h3 : 4'h0};
+  wire        boxDone = boxCycle == 2'h2 & sum <= _GEN_130;
   wire        largeHere_0 =
     classifying & _laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
     & ~_laneKeys_0_io_out_needNone & _sorts_0_io_in_0_valid_T_8;
@@ -41120,39 +41277,39 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire        largeHere_7 =
     classifying & _laneKeys_7_io_out_valid & ~_laneKeys_7_io_out_nonFinite
     & ~_laneKeys_7_io_out_needNone & _sorts_3_io_in_1_valid_T_8;
-  wire [5:0]  _GEN_133 = {1'h0, largeCount};
-  wire        _GEN_134 = _GEN_133 < 6'h10;
-  wire [5:0]  slot_1 = _GEN_133 + {5'h0, largeHere_0};
-  wire        _GEN_135 = slot_1 < 6'h10;
-  wire [1:0]  _GEN_136 = {1'h0, largeHere_0};
-  wire [1:0]  _GEN_137 = {1'h0, largeHere_1};
-  wire [1:0]  _largeNew_T_1 = _GEN_136 + _GEN_137;
-  wire [5:0]  slot_2 = _GEN_133 + {4'h0, _largeNew_T_1};
-  wire        _GEN_138 = slot_2 < 6'h10;
-  wire [1:0]  _GEN_139 = {1'h0, largeHere_2};
-  wire [1:0]  _slot_T_31 = _GEN_137 + _GEN_139;
-  wire [5:0]  slot_3 = _GEN_133 + {4'h0, _GEN_136 + _slot_T_31};
-  wire        _GEN_140 = slot_3 < 6'h10;
-  wire [1:0]  _GEN_141 = {1'h0, largeHere_3};
-  wire [2:0]  _GEN_142 = {1'h0, _largeNew_T_1};
-  wire [2:0]  _GEN_143 = {1'h0, _GEN_139 + _GEN_141};
-  wire [5:0]  slot_4 = _GEN_133 + {3'h0, _GEN_142 + _GEN_143};
-  wire        _GEN_144 = slot_4 < 6'h10;
-  wire [1:0]  _GEN_145 = {1'h0, largeHere_4};
-  wire [1:0]  _slot_T_35 = _GEN_141 + _GEN_145;
-  wire [5:0]  slot_5 = _GEN_133 + {3'h0, _GEN_142 + {1'h0, _GEN_139 + _slot_T_35}};
-  wire        _GEN_146 = slot_5 < 6'h10;
-  wire [1:0]  _GEN_147 = {1'h0, largeHere_5};
-  wire [1:0]  _largeNew_T_7 = _GEN_145 + _GEN_147;
+  wire [5:0]  _GEN_131 = {1'h0, largeCount};
+  wire        _GEN_132 = _GEN_131 < 6'h10;
+  wire [5:0]  slot_1 = _GEN_131 + {5'h0, largeHere_0};
+  wire        _GEN_133 = slot_1 < 6'h10;
+  wire [1:0]  _GEN_134 = {1'h0, largeHere_0};
+  wire [1:0]  _GEN_135 = {1'h0, largeHere_1};
+  wire [1:0]  _largeNew_T_1 = _GEN_134 + _GEN_135;
+  wire [5:0]  slot_2 = _GEN_131 + {4'h0, _largeNew_T_1};
+  wire        _GEN_136 = slot_2 < 6'h10;
+  wire [1:0]  _GEN_137 = {1'h0, largeHere_2};
+  wire [1:0]  _slot_T_31 = _GEN_135 + _GEN_137;
+  wire [5:0]  slot_3 = _GEN_131 + {4'h0, _GEN_134 + _slot_T_31};
+  wire        _GEN_138 = slot_3 < 6'h10;
+  wire [1:0]  _GEN_139 = {1'h0, largeHere_3};
+  wire [2:0]  _GEN_140 = {1'h0, _largeNew_T_1};
+  wire [2:0]  _GEN_141 = {1'h0, _GEN_137 + _GEN_139};
+  wire [5:0]  slot_4 = _GEN_131 + {3'h0, _GEN_140 + _GEN_141};
+  wire        _GEN_142 = slot_4 < 6'h10;
+  wire [1:0]  _GEN_143 = {1'h0, largeHere_4};
+  wire [1:0]  _slot_T_35 = _GEN_139 + _GEN_143;
+  wire [5:0]  slot_5 = _GEN_131 + {3'h0, _GEN_140 + {1'h0, _GEN_137 + _slot_T_35}};
+  wire        _GEN_144 = slot_5 < 6'h10;
+  wire [1:0]  _GEN_145 = {1'h0, largeHere_5};
+  wire [1:0]  _largeNew_T_7 = _GEN_143 + _GEN_145;
   wire [5:0]  slot_6 =
-    _GEN_133 + {3'h0, {1'h0, _GEN_136 + _slot_T_31} + {1'h0, _GEN_141 + _largeNew_T_7}};
-  wire        _GEN_148 = slot_6 < 6'h10;
-  wire [1:0]  _GEN_149 = {1'h0, largeHere_6};
+    _GEN_131 + {3'h0, {1'h0, _GEN_134 + _slot_T_31} + {1'h0, _GEN_139 + _largeNew_T_7}};
+  wire        _GEN_146 = slot_6 < 6'h10;
+  wire [1:0]  _GEN_147 = {1'h0, largeHere_6};
   wire [5:0]  slot_7 =
-    _GEN_133
+    _GEN_131
     + {3'h0,
-       {1'h0, _GEN_136 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_147 + _GEN_149}};
-  wire        _GEN_150 = slot_7 < 6'h10;
+       {1'h0, _GEN_134 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_145 + _GEN_147}};
+  wire        _GEN_148 = slot_7 < 6'h10;
   wire        wants_0 = _gens_0_io_need & ~held_0;
   wire        wants_1 = _gens_1_io_need & ~held_1;
   wire        wants_2 = _gens_2_io_need & ~held_2;
@@ -41206,28 +41363,28 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [15:0] _toUnit_T_1 = ~toSingle;
   wire [13:0] dBucket = {_deferred_ext_R0_data, dNext[2:0]};
   wire        _taken_T = wants_0 & _toUnit_T_1[0];
-  wire [16:0] _GEN_151 = {1'h0, next};
-  wire [16:0] _at_T_3 = _GEN_151 + {16'h0, _taken_T} - 17'h1;
+  wire [16:0] _GEN_149 = {1'h0, next};
+  wire [16:0] _at_T_3 = _GEN_149 + {16'h0, _taken_T} - 17'h1;
   wire [16:0] _at_T_10 =
-    _GEN_151
+    _GEN_149
     + {15'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
     - 17'h1;
   wire        _taken_T_1 = wants_1 & _toUnit_T_1[1];
   wire [16:0] _at_T_20 =
-    _GEN_151
+    _GEN_149
     + {15'h0,
        {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
          + {1'h0, wants_2 & _toUnit_T_1[2]}} - 17'h1;
   wire        _taken_T_2 = wants_2 & _toUnit_T_1[2];
   wire [16:0] _at_T_33 =
-    _GEN_151
+    _GEN_149
     + {14'h0,
        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
          + {1'h0, {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}}}
     - 17'h1;
   wire        _taken_T_3 = wants_3 & _toUnit_T_1[3];
   wire [16:0] _at_T_49 =
-    _GEN_151
+    _GEN_149
     + {14'h0,
        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
          + {1'h0,
@@ -41235,7 +41392,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               + {1'h0, wants_4 & _toUnit_T_1[4]}}} - 17'h1;
   wire        _taken_T_4 = wants_4 & _toUnit_T_1[4];
   wire [16:0] _at_T_68 =
-    _GEN_151
+    _GEN_149
     + {14'h0,
        {1'h0,
         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
@@ -41245,7 +41402,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               + {1'h0, wants_5 & _toUnit_T_1[5]}}} - 17'h1;
   wire        _taken_T_5 = wants_5 & _toUnit_T_1[5];
   wire [16:0] _at_T_90 =
-    _GEN_151
+    _GEN_149
     + {14'h0,
        {1'h0,
         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
@@ -41255,7 +41412,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     - 17'h1;
   wire        _taken_T_6 = wants_6 & _toUnit_T_1[6];
   wire [16:0] _at_T_115 =
-    _GEN_151
+    _GEN_149
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -41267,7 +41424,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     - 17'h1;
   wire        _taken_T_7 = wants_7 & _toUnit_T_1[7];
   wire [16:0] _at_T_143 =
-    _GEN_151
+    _GEN_149
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -41279,7 +41436,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_8 & _toUnit_T_1[8]}}}} - 17'h1;
   wire        _taken_T_8 = wants_8 & _toUnit_T_1[8];
   wire [16:0] _at_T_174 =
-    _GEN_151
+    _GEN_149
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -41293,7 +41450,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_9 & _toUnit_T_1[9]}}}} - 17'h1;
   wire        _taken_T_9 = wants_9 & _toUnit_T_1[9];
   wire [16:0] _at_T_208 =
-    _GEN_151
+    _GEN_149
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -41309,7 +41466,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_10 & _toUnit_T_1[10]}}}} - 17'h1;
   wire        _taken_T_10 = wants_10 & _toUnit_T_1[10];
   wire [16:0] _at_T_245 =
-    _GEN_151
+    _GEN_149
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -41327,7 +41484,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_11 & _toUnit_T_1[11]}}}} - 17'h1;
   wire        _taken_T_11 = wants_11 & _toUnit_T_1[11];
   wire [16:0] _at_T_285 =
-    _GEN_151
+    _GEN_149
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -41347,7 +41504,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_12 & _toUnit_T_1[12]}}}} - 17'h1;
   wire        _taken_T_12 = wants_12 & _toUnit_T_1[12];
   wire [16:0] _at_T_328 =
-    _GEN_151
+    _GEN_149
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -41366,7 +41523,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_13 & _toUnit_T_1[13]}}}} - 17'h1;
   wire        _taken_T_13 = wants_13 & _toUnit_T_1[13];
   wire [16:0] _at_T_374 =
-    _GEN_151
+    _GEN_149
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -41386,7 +41543,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_14 & _toUnit_T_1[14]}}}} - 17'h1;
   wire        _taken_T_14 = wants_14 & _toUnit_T_1[14];
   wire [16:0] _at_T_423 =
-    _GEN_151
+    _GEN_149
     + {12'h0,
        {1'h0,
         {1'h0,
@@ -41409,21 +41566,18 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                       {1'h0, wants_14 & _toUnit_T_1[14]}
                         + {1'h0, wants_15 & _toUnit_T_1[15]}}}}} - 17'h1;
   wire        _taken_T_15 = wants_15 & _toUnit_T_1[15];
-  wire        _GEN_152 = state != 4'h8 | ~sent;
-  wire        _GEN_153 = ~(|state) & _starting_T;
-  wire        _GEN_154 = state == 4'h1;
-  wire        _GEN_155 = state == 4'h2;
-  wire        _GEN_156 = passDone & ~sortBusy;
-  wire        _GEN_157 = state == 4'h3;
+  wire        _GEN_150 = state != 4'h8 | ~sent;
+  wire        _GEN_151 = io_start | begin_0;
+  wire        _GEN_152 = passDone & _io_quiet_T_3 & ~sortBusy;
   wire [8:0]  _m_T = m + 9'h2;
-  wire        _GEN_158 = state == 4'h5;
-  wire        _GEN_159 = state == 4'h6;
-  wire        _GEN_160 = sent & ~sortBusy;
-  wire        _GEN_161 = state == 4'h7;
-  wire        _GEN_162 = passDone & ~REG_8;
-  wire        _GEN_163 = state == 4'h8;
+  wire        _GEN_153 = sent & ~sortBusy;
+  wire        _GEN_154 = passDone & ~REG_8;
+  wire        _GEN_155 = _GEN_112 & _GEN_113 & pending;
+  wire        _GEN_156 = _GEN_106 | _GEN_107 | _GEN_102 | _GEN_109 | _GEN_110 | _GEN_111;
+  wire        _GEN_157 = _GEN_105 | _GEN_156;
+  wire        _GEN_158 = _GEN_157 | ~_GEN_155;
   wire [16:0] taken =
-    _GEN_151
+    _GEN_149
     + {12'h0,
        {1'h0,
         {1'h0,
@@ -41439,6 +41593,16 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               + {1'h0,
                  {1'h0, {1'h0, _taken_T_12} + {1'h0, _taken_T_13}}
                    + {1'h0, {1'h0, _taken_T_14} + {1'h0, _taken_T_15}}}}};
+  wire        _GEN_159 =
+    largeHere_7 & ~_GEN_148 | largeHere_6 & ~_GEN_146 | largeHere_5 & ~_GEN_144
+    | largeHere_4 & ~_GEN_142 | largeHere_3 & ~_GEN_138 | largeHere_2 & ~_GEN_136
+    | largeHere_1 & ~_GEN_133 | largeHere_0 & ~_GEN_132 | st_largeOverflow;
+  wire [5:0]  largeNew =
+    _GEN_131
+    + {2'h0,
+       {1'h0, _GEN_140 + _GEN_141}
+         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_147 + {1'h0, largeHere_7}}}};
+  wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
   wire        _heldUnit_0_T = {9'h0, _at_T_3} < units;
   wire        _heldUnit_1_T = {9'h0, _at_T_10} < units;
   wire        _heldUnit_2_T = {9'h0, _at_T_20} < units;
@@ -41455,929 +41619,916 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire        _heldUnit_13_T = {9'h0, _at_T_328} < units;
   wire        _heldUnit_14_T = {9'h0, _at_T_374} < units;
   wire        _heldUnit_15_T = {9'h0, _at_T_423} < units;
-  wire        _GEN_164 =
-    _GEN_163 & sent
-    & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
-        | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
-        | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
-        | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
-  wire [5:0]  largeNew =
-    _GEN_133
-    + {2'h0,
-       {1'h0, _GEN_142 + _GEN_143}
-         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_149 + {1'h0, largeHere_7}}}};
-  wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
-  wire        _GEN_165 = sum > _GEN_131;
+  wire        _GEN_160 = _GEN_156 | ~_GEN_114;
+  wire        _GEN_161 = sum > _GEN_130;
   always @(posedge clock) begin
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h0) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h0) begin
       larges_0_index <= r_7;
       larges_0_q_0 <= _laneKeys_7_io_out_q_0;
       larges_0_q_1 <= _laneKeys_7_io_out_q_1;
       larges_0_q_2 <= _laneKeys_7_io_out_q_2;
       larges_0_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h0) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h0) begin
       larges_0_index <= r_6;
       larges_0_q_0 <= _laneKeys_6_io_out_q_0;
       larges_0_q_1 <= _laneKeys_6_io_out_q_1;
       larges_0_q_2 <= _laneKeys_6_io_out_q_2;
       larges_0_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h0) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h0) begin
       larges_0_index <= r_5;
       larges_0_q_0 <= _laneKeys_5_io_out_q_0;
       larges_0_q_1 <= _laneKeys_5_io_out_q_1;
       larges_0_q_2 <= _laneKeys_5_io_out_q_2;
       larges_0_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h0) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h0) begin
       larges_0_index <= r_4;
       larges_0_q_0 <= _laneKeys_4_io_out_q_0;
       larges_0_q_1 <= _laneKeys_4_io_out_q_1;
       larges_0_q_2 <= _laneKeys_4_io_out_q_2;
       larges_0_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h0) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h0) begin
       larges_0_index <= r_3;
       larges_0_q_0 <= _laneKeys_3_io_out_q_0;
       larges_0_q_1 <= _laneKeys_3_io_out_q_1;
       larges_0_q_2 <= _laneKeys_3_io_out_q_2;
       larges_0_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h0) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h0) begin
       larges_0_index <= r_2;
       larges_0_q_0 <= _laneKeys_2_io_out_q_0;
       larges_0_q_1 <= _laneKeys_2_io_out_q_1;
       larges_0_q_2 <= _laneKeys_2_io_out_q_2;
       larges_0_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h0) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h0) begin
       larges_0_index <= r_1;
       larges_0_q_0 <= _laneKeys_1_io_out_q_0;
       larges_0_q_1 <= _laneKeys_1_io_out_q_1;
       larges_0_q_2 <= _laneKeys_1_io_out_q_2;
       larges_0_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h0) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h0) begin
       larges_0_index <= r;
       larges_0_q_0 <= _laneKeys_0_io_out_q_0;
       larges_0_q_1 <= _laneKeys_0_io_out_q_1;
       larges_0_q_2 <= _laneKeys_0_io_out_q_2;
       larges_0_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h1) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h1) begin
       larges_1_index <= r_7;
       larges_1_q_0 <= _laneKeys_7_io_out_q_0;
       larges_1_q_1 <= _laneKeys_7_io_out_q_1;
       larges_1_q_2 <= _laneKeys_7_io_out_q_2;
       larges_1_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h1) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h1) begin
       larges_1_index <= r_6;
       larges_1_q_0 <= _laneKeys_6_io_out_q_0;
       larges_1_q_1 <= _laneKeys_6_io_out_q_1;
       larges_1_q_2 <= _laneKeys_6_io_out_q_2;
       larges_1_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h1) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h1) begin
       larges_1_index <= r_5;
       larges_1_q_0 <= _laneKeys_5_io_out_q_0;
       larges_1_q_1 <= _laneKeys_5_io_out_q_1;
       larges_1_q_2 <= _laneKeys_5_io_out_q_2;
       larges_1_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h1) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h1) begin
       larges_1_index <= r_4;
       larges_1_q_0 <= _laneKeys_4_io_out_q_0;
       larges_1_q_1 <= _laneKeys_4_io_out_q_1;
       larges_1_q_2 <= _laneKeys_4_io_out_q_2;
       larges_1_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h1) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h1) begin
       larges_1_index <= r_3;
       larges_1_q_0 <= _laneKeys_3_io_out_q_0;
       larges_1_q_1 <= _laneKeys_3_io_out_q_1;
       larges_1_q_2 <= _laneKeys_3_io_out_q_2;
       larges_1_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h1) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h1) begin
       larges_1_index <= r_2;
       larges_1_q_0 <= _laneKeys_2_io_out_q_0;
       larges_1_q_1 <= _laneKeys_2_io_out_q_1;
       larges_1_q_2 <= _laneKeys_2_io_out_q_2;
       larges_1_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h1) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h1) begin
       larges_1_index <= r_1;
       larges_1_q_0 <= _laneKeys_1_io_out_q_0;
       larges_1_q_1 <= _laneKeys_1_io_out_q_1;
       larges_1_q_2 <= _laneKeys_1_io_out_q_2;
       larges_1_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h1) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h1) begin
       larges_1_index <= r;
       larges_1_q_0 <= _laneKeys_0_io_out_q_0;
       larges_1_q_1 <= _laneKeys_0_io_out_q_1;
       larges_1_q_2 <= _laneKeys_0_io_out_q_2;
       larges_1_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h2) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h2) begin
       larges_2_index <= r_7;
       larges_2_q_0 <= _laneKeys_7_io_out_q_0;
       larges_2_q_1 <= _laneKeys_7_io_out_q_1;
       larges_2_q_2 <= _laneKeys_7_io_out_q_2;
       larges_2_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h2) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h2) begin
       larges_2_index <= r_6;
       larges_2_q_0 <= _laneKeys_6_io_out_q_0;
       larges_2_q_1 <= _laneKeys_6_io_out_q_1;
       larges_2_q_2 <= _laneKeys_6_io_out_q_2;
       larges_2_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h2) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h2) begin
       larges_2_index <= r_5;
       larges_2_q_0 <= _laneKeys_5_io_out_q_0;
       larges_2_q_1 <= _laneKeys_5_io_out_q_1;
       larges_2_q_2 <= _laneKeys_5_io_out_q_2;
       larges_2_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h2) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h2) begin
       larges_2_index <= r_4;
       larges_2_q_0 <= _laneKeys_4_io_out_q_0;
       larges_2_q_1 <= _laneKeys_4_io_out_q_1;
       larges_2_q_2 <= _laneKeys_4_io_out_q_2;
       larges_2_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h2) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h2) begin
       larges_2_index <= r_3;
       larges_2_q_0 <= _laneKeys_3_io_out_q_0;
       larges_2_q_1 <= _laneKeys_3_io_out_q_1;
       larges_2_q_2 <= _laneKeys_3_io_out_q_2;
       larges_2_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h2) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h2) begin
       larges_2_index <= r_2;
       larges_2_q_0 <= _laneKeys_2_io_out_q_0;
       larges_2_q_1 <= _laneKeys_2_io_out_q_1;
       larges_2_q_2 <= _laneKeys_2_io_out_q_2;
       larges_2_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h2) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h2) begin
       larges_2_index <= r_1;
       larges_2_q_0 <= _laneKeys_1_io_out_q_0;
       larges_2_q_1 <= _laneKeys_1_io_out_q_1;
       larges_2_q_2 <= _laneKeys_1_io_out_q_2;
       larges_2_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h2) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h2) begin
       larges_2_index <= r;
       larges_2_q_0 <= _laneKeys_0_io_out_q_0;
       larges_2_q_1 <= _laneKeys_0_io_out_q_1;
       larges_2_q_2 <= _laneKeys_0_io_out_q_2;
       larges_2_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h3) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h3) begin
       larges_3_index <= r_7;
       larges_3_q_0 <= _laneKeys_7_io_out_q_0;
       larges_3_q_1 <= _laneKeys_7_io_out_q_1;
       larges_3_q_2 <= _laneKeys_7_io_out_q_2;
       larges_3_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h3) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h3) begin
       larges_3_index <= r_6;
       larges_3_q_0 <= _laneKeys_6_io_out_q_0;
       larges_3_q_1 <= _laneKeys_6_io_out_q_1;
       larges_3_q_2 <= _laneKeys_6_io_out_q_2;
       larges_3_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h3) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h3) begin
       larges_3_index <= r_5;
       larges_3_q_0 <= _laneKeys_5_io_out_q_0;
       larges_3_q_1 <= _laneKeys_5_io_out_q_1;
       larges_3_q_2 <= _laneKeys_5_io_out_q_2;
       larges_3_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h3) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h3) begin
       larges_3_index <= r_4;
       larges_3_q_0 <= _laneKeys_4_io_out_q_0;
       larges_3_q_1 <= _laneKeys_4_io_out_q_1;
       larges_3_q_2 <= _laneKeys_4_io_out_q_2;
       larges_3_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h3) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h3) begin
       larges_3_index <= r_3;
       larges_3_q_0 <= _laneKeys_3_io_out_q_0;
       larges_3_q_1 <= _laneKeys_3_io_out_q_1;
       larges_3_q_2 <= _laneKeys_3_io_out_q_2;
       larges_3_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h3) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h3) begin
       larges_3_index <= r_2;
       larges_3_q_0 <= _laneKeys_2_io_out_q_0;
       larges_3_q_1 <= _laneKeys_2_io_out_q_1;
       larges_3_q_2 <= _laneKeys_2_io_out_q_2;
       larges_3_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h3) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h3) begin
       larges_3_index <= r_1;
       larges_3_q_0 <= _laneKeys_1_io_out_q_0;
       larges_3_q_1 <= _laneKeys_1_io_out_q_1;
       larges_3_q_2 <= _laneKeys_1_io_out_q_2;
       larges_3_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h3) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h3) begin
       larges_3_index <= r;
       larges_3_q_0 <= _laneKeys_0_io_out_q_0;
       larges_3_q_1 <= _laneKeys_0_io_out_q_1;
       larges_3_q_2 <= _laneKeys_0_io_out_q_2;
       larges_3_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h4) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h4) begin
       larges_4_index <= r_7;
       larges_4_q_0 <= _laneKeys_7_io_out_q_0;
       larges_4_q_1 <= _laneKeys_7_io_out_q_1;
       larges_4_q_2 <= _laneKeys_7_io_out_q_2;
       larges_4_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h4) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h4) begin
       larges_4_index <= r_6;
       larges_4_q_0 <= _laneKeys_6_io_out_q_0;
       larges_4_q_1 <= _laneKeys_6_io_out_q_1;
       larges_4_q_2 <= _laneKeys_6_io_out_q_2;
       larges_4_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h4) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h4) begin
       larges_4_index <= r_5;
       larges_4_q_0 <= _laneKeys_5_io_out_q_0;
       larges_4_q_1 <= _laneKeys_5_io_out_q_1;
       larges_4_q_2 <= _laneKeys_5_io_out_q_2;
       larges_4_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h4) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h4) begin
       larges_4_index <= r_4;
       larges_4_q_0 <= _laneKeys_4_io_out_q_0;
       larges_4_q_1 <= _laneKeys_4_io_out_q_1;
       larges_4_q_2 <= _laneKeys_4_io_out_q_2;
       larges_4_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h4) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h4) begin
       larges_4_index <= r_3;
       larges_4_q_0 <= _laneKeys_3_io_out_q_0;
       larges_4_q_1 <= _laneKeys_3_io_out_q_1;
       larges_4_q_2 <= _laneKeys_3_io_out_q_2;
       larges_4_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h4) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h4) begin
       larges_4_index <= r_2;
       larges_4_q_0 <= _laneKeys_2_io_out_q_0;
       larges_4_q_1 <= _laneKeys_2_io_out_q_1;
       larges_4_q_2 <= _laneKeys_2_io_out_q_2;
       larges_4_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h4) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h4) begin
       larges_4_index <= r_1;
       larges_4_q_0 <= _laneKeys_1_io_out_q_0;
       larges_4_q_1 <= _laneKeys_1_io_out_q_1;
       larges_4_q_2 <= _laneKeys_1_io_out_q_2;
       larges_4_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h4) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h4) begin
       larges_4_index <= r;
       larges_4_q_0 <= _laneKeys_0_io_out_q_0;
       larges_4_q_1 <= _laneKeys_0_io_out_q_1;
       larges_4_q_2 <= _laneKeys_0_io_out_q_2;
       larges_4_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h5) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h5) begin
       larges_5_index <= r_7;
       larges_5_q_0 <= _laneKeys_7_io_out_q_0;
       larges_5_q_1 <= _laneKeys_7_io_out_q_1;
       larges_5_q_2 <= _laneKeys_7_io_out_q_2;
       larges_5_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h5) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h5) begin
       larges_5_index <= r_6;
       larges_5_q_0 <= _laneKeys_6_io_out_q_0;
       larges_5_q_1 <= _laneKeys_6_io_out_q_1;
       larges_5_q_2 <= _laneKeys_6_io_out_q_2;
       larges_5_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h5) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h5) begin
       larges_5_index <= r_5;
       larges_5_q_0 <= _laneKeys_5_io_out_q_0;
       larges_5_q_1 <= _laneKeys_5_io_out_q_1;
       larges_5_q_2 <= _laneKeys_5_io_out_q_2;
       larges_5_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h5) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h5) begin
       larges_5_index <= r_4;
       larges_5_q_0 <= _laneKeys_4_io_out_q_0;
       larges_5_q_1 <= _laneKeys_4_io_out_q_1;
       larges_5_q_2 <= _laneKeys_4_io_out_q_2;
       larges_5_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h5) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h5) begin
       larges_5_index <= r_3;
       larges_5_q_0 <= _laneKeys_3_io_out_q_0;
       larges_5_q_1 <= _laneKeys_3_io_out_q_1;
       larges_5_q_2 <= _laneKeys_3_io_out_q_2;
       larges_5_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h5) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h5) begin
       larges_5_index <= r_2;
       larges_5_q_0 <= _laneKeys_2_io_out_q_0;
       larges_5_q_1 <= _laneKeys_2_io_out_q_1;
       larges_5_q_2 <= _laneKeys_2_io_out_q_2;
       larges_5_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h5) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h5) begin
       larges_5_index <= r_1;
       larges_5_q_0 <= _laneKeys_1_io_out_q_0;
       larges_5_q_1 <= _laneKeys_1_io_out_q_1;
       larges_5_q_2 <= _laneKeys_1_io_out_q_2;
       larges_5_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h5) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h5) begin
       larges_5_index <= r;
       larges_5_q_0 <= _laneKeys_0_io_out_q_0;
       larges_5_q_1 <= _laneKeys_0_io_out_q_1;
       larges_5_q_2 <= _laneKeys_0_io_out_q_2;
       larges_5_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h6) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h6) begin
       larges_6_index <= r_7;
       larges_6_q_0 <= _laneKeys_7_io_out_q_0;
       larges_6_q_1 <= _laneKeys_7_io_out_q_1;
       larges_6_q_2 <= _laneKeys_7_io_out_q_2;
       larges_6_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h6) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h6) begin
       larges_6_index <= r_6;
       larges_6_q_0 <= _laneKeys_6_io_out_q_0;
       larges_6_q_1 <= _laneKeys_6_io_out_q_1;
       larges_6_q_2 <= _laneKeys_6_io_out_q_2;
       larges_6_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h6) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h6) begin
       larges_6_index <= r_5;
       larges_6_q_0 <= _laneKeys_5_io_out_q_0;
       larges_6_q_1 <= _laneKeys_5_io_out_q_1;
       larges_6_q_2 <= _laneKeys_5_io_out_q_2;
       larges_6_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h6) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h6) begin
       larges_6_index <= r_4;
       larges_6_q_0 <= _laneKeys_4_io_out_q_0;
       larges_6_q_1 <= _laneKeys_4_io_out_q_1;
       larges_6_q_2 <= _laneKeys_4_io_out_q_2;
       larges_6_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h6) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h6) begin
       larges_6_index <= r_3;
       larges_6_q_0 <= _laneKeys_3_io_out_q_0;
       larges_6_q_1 <= _laneKeys_3_io_out_q_1;
       larges_6_q_2 <= _laneKeys_3_io_out_q_2;
       larges_6_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h6) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h6) begin
       larges_6_index <= r_2;
       larges_6_q_0 <= _laneKeys_2_io_out_q_0;
       larges_6_q_1 <= _laneKeys_2_io_out_q_1;
       larges_6_q_2 <= _laneKeys_2_io_out_q_2;
       larges_6_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h6) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h6) begin
       larges_6_index <= r_1;
       larges_6_q_0 <= _laneKeys_1_io_out_q_0;
       larges_6_q_1 <= _laneKeys_1_io_out_q_1;
       larges_6_q_2 <= _laneKeys_1_io_out_q_2;
       larges_6_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h6) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h6) begin
       larges_6_index <= r;
       larges_6_q_0 <= _laneKeys_0_io_out_q_0;
       larges_6_q_1 <= _laneKeys_0_io_out_q_1;
       larges_6_q_2 <= _laneKeys_0_io_out_q_2;
       larges_6_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h7) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h7) begin
       larges_7_index <= r_7;
       larges_7_q_0 <= _laneKeys_7_io_out_q_0;
       larges_7_q_1 <= _laneKeys_7_io_out_q_1;
       larges_7_q_2 <= _laneKeys_7_io_out_q_2;
       larges_7_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h7) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h7) begin
       larges_7_index <= r_6;
       larges_7_q_0 <= _laneKeys_6_io_out_q_0;
       larges_7_q_1 <= _laneKeys_6_io_out_q_1;
       larges_7_q_2 <= _laneKeys_6_io_out_q_2;
       larges_7_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h7) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h7) begin
       larges_7_index <= r_5;
       larges_7_q_0 <= _laneKeys_5_io_out_q_0;
       larges_7_q_1 <= _laneKeys_5_io_out_q_1;
       larges_7_q_2 <= _laneKeys_5_io_out_q_2;
       larges_7_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h7) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h7) begin
       larges_7_index <= r_4;
       larges_7_q_0 <= _laneKeys_4_io_out_q_0;
       larges_7_q_1 <= _laneKeys_4_io_out_q_1;
       larges_7_q_2 <= _laneKeys_4_io_out_q_2;
       larges_7_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h7) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h7) begin
       larges_7_index <= r_3;
       larges_7_q_0 <= _laneKeys_3_io_out_q_0;
       larges_7_q_1 <= _laneKeys_3_io_out_q_1;
       larges_7_q_2 <= _laneKeys_3_io_out_q_2;
       larges_7_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h7) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h7) begin
       larges_7_index <= r_2;
       larges_7_q_0 <= _laneKeys_2_io_out_q_0;
       larges_7_q_1 <= _laneKeys_2_io_out_q_1;
       larges_7_q_2 <= _laneKeys_2_io_out_q_2;
       larges_7_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h7) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h7) begin
       larges_7_index <= r_1;
       larges_7_q_0 <= _laneKeys_1_io_out_q_0;
       larges_7_q_1 <= _laneKeys_1_io_out_q_1;
       larges_7_q_2 <= _laneKeys_1_io_out_q_2;
       larges_7_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h7) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h7) begin
       larges_7_index <= r;
       larges_7_q_0 <= _laneKeys_0_io_out_q_0;
       larges_7_q_1 <= _laneKeys_0_io_out_q_1;
       larges_7_q_2 <= _laneKeys_0_io_out_q_2;
       larges_7_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h8) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h8) begin
       larges_8_index <= r_7;
       larges_8_q_0 <= _laneKeys_7_io_out_q_0;
       larges_8_q_1 <= _laneKeys_7_io_out_q_1;
       larges_8_q_2 <= _laneKeys_7_io_out_q_2;
       larges_8_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h8) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h8) begin
       larges_8_index <= r_6;
       larges_8_q_0 <= _laneKeys_6_io_out_q_0;
       larges_8_q_1 <= _laneKeys_6_io_out_q_1;
       larges_8_q_2 <= _laneKeys_6_io_out_q_2;
       larges_8_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h8) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h8) begin
       larges_8_index <= r_5;
       larges_8_q_0 <= _laneKeys_5_io_out_q_0;
       larges_8_q_1 <= _laneKeys_5_io_out_q_1;
       larges_8_q_2 <= _laneKeys_5_io_out_q_2;
       larges_8_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h8) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h8) begin
       larges_8_index <= r_4;
       larges_8_q_0 <= _laneKeys_4_io_out_q_0;
       larges_8_q_1 <= _laneKeys_4_io_out_q_1;
       larges_8_q_2 <= _laneKeys_4_io_out_q_2;
       larges_8_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h8) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h8) begin
       larges_8_index <= r_3;
       larges_8_q_0 <= _laneKeys_3_io_out_q_0;
       larges_8_q_1 <= _laneKeys_3_io_out_q_1;
       larges_8_q_2 <= _laneKeys_3_io_out_q_2;
       larges_8_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h8) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h8) begin
       larges_8_index <= r_2;
       larges_8_q_0 <= _laneKeys_2_io_out_q_0;
       larges_8_q_1 <= _laneKeys_2_io_out_q_1;
       larges_8_q_2 <= _laneKeys_2_io_out_q_2;
       larges_8_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h8) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h8) begin
       larges_8_index <= r_1;
       larges_8_q_0 <= _laneKeys_1_io_out_q_0;
       larges_8_q_1 <= _laneKeys_1_io_out_q_1;
       larges_8_q_2 <= _laneKeys_1_io_out_q_2;
       larges_8_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h8) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h8) begin
       larges_8_index <= r;
       larges_8_q_0 <= _laneKeys_0_io_out_q_0;
       larges_8_q_1 <= _laneKeys_0_io_out_q_1;
       larges_8_q_2 <= _laneKeys_0_io_out_q_2;
       larges_8_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'h9) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h9) begin
       larges_9_index <= r_7;
       larges_9_q_0 <= _laneKeys_7_io_out_q_0;
       larges_9_q_1 <= _laneKeys_7_io_out_q_1;
       larges_9_q_2 <= _laneKeys_7_io_out_q_2;
       larges_9_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'h9) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h9) begin
       larges_9_index <= r_6;
       larges_9_q_0 <= _laneKeys_6_io_out_q_0;
       larges_9_q_1 <= _laneKeys_6_io_out_q_1;
       larges_9_q_2 <= _laneKeys_6_io_out_q_2;
       larges_9_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'h9) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h9) begin
       larges_9_index <= r_5;
       larges_9_q_0 <= _laneKeys_5_io_out_q_0;
       larges_9_q_1 <= _laneKeys_5_io_out_q_1;
       larges_9_q_2 <= _laneKeys_5_io_out_q_2;
       larges_9_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'h9) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h9) begin
       larges_9_index <= r_4;
       larges_9_q_0 <= _laneKeys_4_io_out_q_0;
       larges_9_q_1 <= _laneKeys_4_io_out_q_1;
       larges_9_q_2 <= _laneKeys_4_io_out_q_2;
       larges_9_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'h9) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h9) begin
       larges_9_index <= r_3;
       larges_9_q_0 <= _laneKeys_3_io_out_q_0;
       larges_9_q_1 <= _laneKeys_3_io_out_q_1;
       larges_9_q_2 <= _laneKeys_3_io_out_q_2;
       larges_9_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'h9) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h9) begin
       larges_9_index <= r_2;
       larges_9_q_0 <= _laneKeys_2_io_out_q_0;
       larges_9_q_1 <= _laneKeys_2_io_out_q_1;
       larges_9_q_2 <= _laneKeys_2_io_out_q_2;
       larges_9_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'h9) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h9) begin
       larges_9_index <= r_1;
       larges_9_q_0 <= _laneKeys_1_io_out_q_0;
       larges_9_q_1 <= _laneKeys_1_io_out_q_1;
       larges_9_q_2 <= _laneKeys_1_io_out_q_2;
       larges_9_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'h9) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h9) begin
       larges_9_index <= r;
       larges_9_q_0 <= _laneKeys_0_io_out_q_0;
       larges_9_q_1 <= _laneKeys_0_io_out_q_1;
       larges_9_q_2 <= _laneKeys_0_io_out_q_2;
       larges_9_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'hA) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'hA) begin
       larges_10_index <= r_7;
       larges_10_q_0 <= _laneKeys_7_io_out_q_0;
       larges_10_q_1 <= _laneKeys_7_io_out_q_1;
       larges_10_q_2 <= _laneKeys_7_io_out_q_2;
       larges_10_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'hA) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'hA) begin
       larges_10_index <= r_6;
       larges_10_q_0 <= _laneKeys_6_io_out_q_0;
       larges_10_q_1 <= _laneKeys_6_io_out_q_1;
       larges_10_q_2 <= _laneKeys_6_io_out_q_2;
       larges_10_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'hA) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'hA) begin
       larges_10_index <= r_5;
       larges_10_q_0 <= _laneKeys_5_io_out_q_0;
       larges_10_q_1 <= _laneKeys_5_io_out_q_1;
       larges_10_q_2 <= _laneKeys_5_io_out_q_2;
       larges_10_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'hA) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'hA) begin
       larges_10_index <= r_4;
       larges_10_q_0 <= _laneKeys_4_io_out_q_0;
       larges_10_q_1 <= _laneKeys_4_io_out_q_1;
       larges_10_q_2 <= _laneKeys_4_io_out_q_2;
       larges_10_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'hA) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'hA) begin
       larges_10_index <= r_3;
       larges_10_q_0 <= _laneKeys_3_io_out_q_0;
       larges_10_q_1 <= _laneKeys_3_io_out_q_1;
       larges_10_q_2 <= _laneKeys_3_io_out_q_2;
       larges_10_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'hA) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'hA) begin
       larges_10_index <= r_2;
       larges_10_q_0 <= _laneKeys_2_io_out_q_0;
       larges_10_q_1 <= _laneKeys_2_io_out_q_1;
       larges_10_q_2 <= _laneKeys_2_io_out_q_2;
       larges_10_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'hA) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'hA) begin
       larges_10_index <= r_1;
       larges_10_q_0 <= _laneKeys_1_io_out_q_0;
       larges_10_q_1 <= _laneKeys_1_io_out_q_1;
       larges_10_q_2 <= _laneKeys_1_io_out_q_2;
       larges_10_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'hA) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'hA) begin
       larges_10_index <= r;
       larges_10_q_0 <= _laneKeys_0_io_out_q_0;
       larges_10_q_1 <= _laneKeys_0_io_out_q_1;
       larges_10_q_2 <= _laneKeys_0_io_out_q_2;
       larges_10_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'hB) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'hB) begin
       larges_11_index <= r_7;
       larges_11_q_0 <= _laneKeys_7_io_out_q_0;
       larges_11_q_1 <= _laneKeys_7_io_out_q_1;
       larges_11_q_2 <= _laneKeys_7_io_out_q_2;
       larges_11_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'hB) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'hB) begin
       larges_11_index <= r_6;
       larges_11_q_0 <= _laneKeys_6_io_out_q_0;
       larges_11_q_1 <= _laneKeys_6_io_out_q_1;
       larges_11_q_2 <= _laneKeys_6_io_out_q_2;
       larges_11_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'hB) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'hB) begin
       larges_11_index <= r_5;
       larges_11_q_0 <= _laneKeys_5_io_out_q_0;
       larges_11_q_1 <= _laneKeys_5_io_out_q_1;
       larges_11_q_2 <= _laneKeys_5_io_out_q_2;
       larges_11_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'hB) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'hB) begin
       larges_11_index <= r_4;
       larges_11_q_0 <= _laneKeys_4_io_out_q_0;
       larges_11_q_1 <= _laneKeys_4_io_out_q_1;
       larges_11_q_2 <= _laneKeys_4_io_out_q_2;
       larges_11_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'hB) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'hB) begin
       larges_11_index <= r_3;
       larges_11_q_0 <= _laneKeys_3_io_out_q_0;
       larges_11_q_1 <= _laneKeys_3_io_out_q_1;
       larges_11_q_2 <= _laneKeys_3_io_out_q_2;
       larges_11_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'hB) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'hB) begin
       larges_11_index <= r_2;
       larges_11_q_0 <= _laneKeys_2_io_out_q_0;
       larges_11_q_1 <= _laneKeys_2_io_out_q_1;
       larges_11_q_2 <= _laneKeys_2_io_out_q_2;
       larges_11_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'hB) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'hB) begin
       larges_11_index <= r_1;
       larges_11_q_0 <= _laneKeys_1_io_out_q_0;
       larges_11_q_1 <= _laneKeys_1_io_out_q_1;
       larges_11_q_2 <= _laneKeys_1_io_out_q_2;
       larges_11_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'hB) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'hB) begin
       larges_11_index <= r;
       larges_11_q_0 <= _laneKeys_0_io_out_q_0;
       larges_11_q_1 <= _laneKeys_0_io_out_q_1;
       larges_11_q_2 <= _laneKeys_0_io_out_q_2;
       larges_11_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'hC) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'hC) begin
       larges_12_index <= r_7;
       larges_12_q_0 <= _laneKeys_7_io_out_q_0;
       larges_12_q_1 <= _laneKeys_7_io_out_q_1;
       larges_12_q_2 <= _laneKeys_7_io_out_q_2;
       larges_12_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'hC) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'hC) begin
       larges_12_index <= r_6;
       larges_12_q_0 <= _laneKeys_6_io_out_q_0;
       larges_12_q_1 <= _laneKeys_6_io_out_q_1;
       larges_12_q_2 <= _laneKeys_6_io_out_q_2;
       larges_12_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'hC) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'hC) begin
       larges_12_index <= r_5;
       larges_12_q_0 <= _laneKeys_5_io_out_q_0;
       larges_12_q_1 <= _laneKeys_5_io_out_q_1;
       larges_12_q_2 <= _laneKeys_5_io_out_q_2;
       larges_12_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'hC) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'hC) begin
       larges_12_index <= r_4;
       larges_12_q_0 <= _laneKeys_4_io_out_q_0;
       larges_12_q_1 <= _laneKeys_4_io_out_q_1;
       larges_12_q_2 <= _laneKeys_4_io_out_q_2;
       larges_12_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'hC) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'hC) begin
       larges_12_index <= r_3;
       larges_12_q_0 <= _laneKeys_3_io_out_q_0;
       larges_12_q_1 <= _laneKeys_3_io_out_q_1;
       larges_12_q_2 <= _laneKeys_3_io_out_q_2;
       larges_12_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'hC) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'hC) begin
       larges_12_index <= r_2;
       larges_12_q_0 <= _laneKeys_2_io_out_q_0;
       larges_12_q_1 <= _laneKeys_2_io_out_q_1;
       larges_12_q_2 <= _laneKeys_2_io_out_q_2;
       larges_12_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'hC) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'hC) begin
       larges_12_index <= r_1;
       larges_12_q_0 <= _laneKeys_1_io_out_q_0;
       larges_12_q_1 <= _laneKeys_1_io_out_q_1;
       larges_12_q_2 <= _laneKeys_1_io_out_q_2;
       larges_12_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'hC) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'hC) begin
       larges_12_index <= r;
       larges_12_q_0 <= _laneKeys_0_io_out_q_0;
       larges_12_q_1 <= _laneKeys_0_io_out_q_1;
       larges_12_q_2 <= _laneKeys_0_io_out_q_2;
       larges_12_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'hD) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'hD) begin
       larges_13_index <= r_7;
       larges_13_q_0 <= _laneKeys_7_io_out_q_0;
       larges_13_q_1 <= _laneKeys_7_io_out_q_1;
       larges_13_q_2 <= _laneKeys_7_io_out_q_2;
       larges_13_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'hD) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'hD) begin
       larges_13_index <= r_6;
       larges_13_q_0 <= _laneKeys_6_io_out_q_0;
       larges_13_q_1 <= _laneKeys_6_io_out_q_1;
       larges_13_q_2 <= _laneKeys_6_io_out_q_2;
       larges_13_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'hD) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'hD) begin
       larges_13_index <= r_5;
       larges_13_q_0 <= _laneKeys_5_io_out_q_0;
       larges_13_q_1 <= _laneKeys_5_io_out_q_1;
       larges_13_q_2 <= _laneKeys_5_io_out_q_2;
       larges_13_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'hD) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'hD) begin
       larges_13_index <= r_4;
       larges_13_q_0 <= _laneKeys_4_io_out_q_0;
       larges_13_q_1 <= _laneKeys_4_io_out_q_1;
       larges_13_q_2 <= _laneKeys_4_io_out_q_2;
       larges_13_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'hD) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'hD) begin
       larges_13_index <= r_3;
       larges_13_q_0 <= _laneKeys_3_io_out_q_0;
       larges_13_q_1 <= _laneKeys_3_io_out_q_1;
       larges_13_q_2 <= _laneKeys_3_io_out_q_2;
       larges_13_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'hD) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'hD) begin
       larges_13_index <= r_2;
       larges_13_q_0 <= _laneKeys_2_io_out_q_0;
       larges_13_q_1 <= _laneKeys_2_io_out_q_1;
       larges_13_q_2 <= _laneKeys_2_io_out_q_2;
       larges_13_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'hD) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'hD) begin
       larges_13_index <= r_1;
       larges_13_q_0 <= _laneKeys_1_io_out_q_0;
       larges_13_q_1 <= _laneKeys_1_io_out_q_1;
       larges_13_q_2 <= _laneKeys_1_io_out_q_2;
       larges_13_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'hD) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'hD) begin
       larges_13_index <= r;
       larges_13_q_0 <= _laneKeys_0_io_out_q_0;
       larges_13_q_1 <= _laneKeys_0_io_out_q_1;
       larges_13_q_2 <= _laneKeys_0_io_out_q_2;
       larges_13_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & slot_7[3:0] == 4'hE) begin
+    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'hE) begin
       larges_14_index <= r_7;
       larges_14_q_0 <= _laneKeys_7_io_out_q_0;
       larges_14_q_1 <= _laneKeys_7_io_out_q_1;
       larges_14_q_2 <= _laneKeys_7_io_out_q_2;
       larges_14_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & slot_6[3:0] == 4'hE) begin
+    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'hE) begin
       larges_14_index <= r_6;
       larges_14_q_0 <= _laneKeys_6_io_out_q_0;
       larges_14_q_1 <= _laneKeys_6_io_out_q_1;
       larges_14_q_2 <= _laneKeys_6_io_out_q_2;
       larges_14_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & slot_5[3:0] == 4'hE) begin
+    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'hE) begin
       larges_14_index <= r_5;
       larges_14_q_0 <= _laneKeys_5_io_out_q_0;
       larges_14_q_1 <= _laneKeys_5_io_out_q_1;
       larges_14_q_2 <= _laneKeys_5_io_out_q_2;
       larges_14_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & slot_4[3:0] == 4'hE) begin
+    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'hE) begin
       larges_14_index <= r_4;
       larges_14_q_0 <= _laneKeys_4_io_out_q_0;
       larges_14_q_1 <= _laneKeys_4_io_out_q_1;
       larges_14_q_2 <= _laneKeys_4_io_out_q_2;
       larges_14_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & slot_3[3:0] == 4'hE) begin
+    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'hE) begin
       larges_14_index <= r_3;
       larges_14_q_0 <= _laneKeys_3_io_out_q_0;
       larges_14_q_1 <= _laneKeys_3_io_out_q_1;
       larges_14_q_2 <= _laneKeys_3_io_out_q_2;
       larges_14_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & slot_2[3:0] == 4'hE) begin
+    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'hE) begin
       larges_14_index <= r_2;
       larges_14_q_0 <= _laneKeys_2_io_out_q_0;
       larges_14_q_1 <= _laneKeys_2_io_out_q_1;
       larges_14_q_2 <= _laneKeys_2_io_out_q_2;
       larges_14_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & slot_1[3:0] == 4'hE) begin
+    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'hE) begin
       larges_14_index <= r_1;
       larges_14_q_0 <= _laneKeys_1_io_out_q_0;
       larges_14_q_1 <= _laneKeys_1_io_out_q_1;
       larges_14_q_2 <= _laneKeys_1_io_out_q_2;
       larges_14_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & largeCount[3:0] == 4'hE) begin
+    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'hE) begin
       larges_14_index <= r;
       larges_14_q_0 <= _laneKeys_0_io_out_q_0;
       larges_14_q_1 <= _laneKeys_0_io_out_q_1;
       larges_14_q_2 <= _laneKeys_0_io_out_q_2;
       larges_14_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_150 & (&(slot_7[3:0]))) begin
+    if (largeHere_7 & _GEN_148 & (&(slot_7[3:0]))) begin
       larges_15_index <= r_7;
       larges_15_q_0 <= _laneKeys_7_io_out_q_0;
       larges_15_q_1 <= _laneKeys_7_io_out_q_1;
       larges_15_q_2 <= _laneKeys_7_io_out_q_2;
       larges_15_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_148 & (&(slot_6[3:0]))) begin
+    else if (largeHere_6 & _GEN_146 & (&(slot_6[3:0]))) begin
       larges_15_index <= r_6;
       larges_15_q_0 <= _laneKeys_6_io_out_q_0;
       larges_15_q_1 <= _laneKeys_6_io_out_q_1;
       larges_15_q_2 <= _laneKeys_6_io_out_q_2;
       larges_15_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_146 & (&(slot_5[3:0]))) begin
+    else if (largeHere_5 & _GEN_144 & (&(slot_5[3:0]))) begin
       larges_15_index <= r_5;
       larges_15_q_0 <= _laneKeys_5_io_out_q_0;
       larges_15_q_1 <= _laneKeys_5_io_out_q_1;
       larges_15_q_2 <= _laneKeys_5_io_out_q_2;
       larges_15_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_144 & (&(slot_4[3:0]))) begin
+    else if (largeHere_4 & _GEN_142 & (&(slot_4[3:0]))) begin
       larges_15_index <= r_4;
       larges_15_q_0 <= _laneKeys_4_io_out_q_0;
       larges_15_q_1 <= _laneKeys_4_io_out_q_1;
       larges_15_q_2 <= _laneKeys_4_io_out_q_2;
       larges_15_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_140 & (&(slot_3[3:0]))) begin
+    else if (largeHere_3 & _GEN_138 & (&(slot_3[3:0]))) begin
       larges_15_index <= r_3;
       larges_15_q_0 <= _laneKeys_3_io_out_q_0;
       larges_15_q_1 <= _laneKeys_3_io_out_q_1;
       larges_15_q_2 <= _laneKeys_3_io_out_q_2;
       larges_15_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_138 & (&(slot_2[3:0]))) begin
+    else if (largeHere_2 & _GEN_136 & (&(slot_2[3:0]))) begin
       larges_15_index <= r_2;
       larges_15_q_0 <= _laneKeys_2_io_out_q_0;
       larges_15_q_1 <= _laneKeys_2_io_out_q_1;
       larges_15_q_2 <= _laneKeys_2_io_out_q_2;
       larges_15_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_135 & (&(slot_1[3:0]))) begin
+    else if (largeHere_1 & _GEN_133 & (&(slot_1[3:0]))) begin
       larges_15_index <= r_1;
       larges_15_q_0 <= _laneKeys_1_io_out_q_0;
       larges_15_q_1 <= _laneKeys_1_io_out_q_1;
       larges_15_q_2 <= _laneKeys_1_io_out_q_2;
       larges_15_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_134 & (&(largeCount[3:0]))) begin
+    else if (largeHere_0 & _GEN_132 & (&(largeCount[3:0]))) begin
       larges_15_index <= r;
       larges_15_q_0 <= _laneKeys_0_io_out_q_0;
       larges_15_q_1 <= _laneKeys_0_io_out_q_1;
       larges_15_q_2 <= _laneKeys_0_io_out_q_2;
       larges_15_qr <= _laneKeys_0_io_out_qr;
     end
-    if (_GEN_153) begin
-      num <= io_num;
-      usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
-    end
-    if (~(~(|state) | _GEN_154 | _GEN_155 | _GEN_157 | _GEN_132)) begin
-      if (_GEN_158)
-        sent <= ~passDone & sent;
-      else
-        sent <= _GEN_159 | (_GEN_161 ? ~_GEN_162 & sent : _GEN_163 | sent);
-    end
+    if (beginAhead)
+      pendingNum <= io_num;
     if (|state) begin
-      if (~_GEN_154) begin
-        if (_GEN_155) begin
+      if (_GEN_158) begin
+      end
+      else begin
+        num <= pendingNum;
+        usedLog2 <= usedLog2_t_2 > 6'hD ? 4'hD : usedLog2_t_2[3:0];
+      end
+      if (~_GEN_105) begin
+        if (_GEN_106) begin
           if (reading_0)
             i_0 <= i_0 + 13'h1;
           if (reading_1)
@@ -42411,17 +42562,17 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
           if (reading_15)
             i_15 <= i_15 + 13'h1;
         end
-        else if (~_GEN_157) begin
-          if (_GEN_132) begin
+        else if (~_GEN_107) begin
+          if (_GEN_102) begin
             if (boxDone) begin
               i_0 <= 13'h0;
               i_1 <= _GEN_1;
               i_2 <= _GEN_2;
-              i_3 <= {1'h0, _i_3_T_9[14:3]};
+              i_3 <= {1'h0, _i_3_T_10[14:3]};
               i_4 <= {1'h0, num[12:1]};
-              i_5 <= _i_5_T_8[15:3];
-              i_6 <= _i_6_T_8[15:3];
-              i_7 <= _i_7_T_8[15:3];
+              i_5 <= _i_5_T_9[15:3];
+              i_6 <= _i_6_T_9[15:3];
+              i_7 <= _i_7_T_9[15:3];
               i_8 <= 13'h0;
               i_9 <= 13'h0;
               i_10 <= 13'h0;
@@ -42432,7 +42583,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               i_15 <= 13'h0;
             end
           end
-          else if (_GEN_158) begin
+          else if (_GEN_109) begin
             if (reading_0)
               i_0 <= i_0 + 13'h1;
             if (reading_1)
@@ -42466,16 +42617,16 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
             if (reading_15)
               i_15 <= i_15 + 13'h1;
           end
-          else if (_GEN_159) begin
-            if (_GEN_160) begin
+          else if (_GEN_110) begin
+            if (_GEN_153) begin
               i_0 <= 13'h0;
               i_1 <= _GEN_1;
               i_2 <= _GEN_2;
-              i_3 <= {1'h0, _i_3_T_9[14:3]};
+              i_3 <= {1'h0, _i_3_T_10[14:3]};
               i_4 <= {1'h0, num[12:1]};
-              i_5 <= _i_5_T_8[15:3];
-              i_6 <= _i_6_T_8[15:3];
-              i_7 <= _i_7_T_8[15:3];
+              i_5 <= _i_5_T_9[15:3];
+              i_6 <= _i_6_T_9[15:3];
+              i_7 <= _i_7_T_9[15:3];
               i_8 <= 13'h0;
               i_9 <= 13'h0;
               i_10 <= 13'h0;
@@ -42486,60 +42637,108 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               i_15 <= 13'h0;
             end
           end
-          else begin
-            if (_GEN_161 & reading_0)
+          else if (_GEN_111) begin
+            if (reading_0)
               i_0 <= i_0 + 13'h1;
-            if (_GEN_161 & reading_1)
+            if (reading_1)
               i_1 <= i_1 + 13'h1;
-            if (_GEN_161 & reading_2)
+            if (reading_2)
               i_2 <= i_2 + 13'h1;
-            if (_GEN_161 & reading_3)
+            if (reading_3)
               i_3 <= i_3 + 13'h1;
-            if (_GEN_161 & reading_4)
+            if (reading_4)
               i_4 <= i_4 + 13'h1;
-            if (_GEN_161 & reading_5)
+            if (reading_5)
               i_5 <= i_5 + 13'h1;
-            if (_GEN_161 & reading_6)
+            if (reading_6)
               i_6 <= i_6 + 13'h1;
-            if (_GEN_161 & reading_7)
+            if (reading_7)
               i_7 <= i_7 + 13'h1;
-            if (_GEN_161 & reading_8)
+            if (reading_8)
               i_8 <= i_8 + 13'h1;
-            if (_GEN_161 & reading_9)
+            if (reading_9)
               i_9 <= i_9 + 13'h1;
-            if (_GEN_161 & reading_10)
+            if (reading_10)
               i_10 <= i_10 + 13'h1;
-            if (_GEN_161 & reading_11)
+            if (reading_11)
               i_11 <= i_11 + 13'h1;
-            if (_GEN_161 & reading_12)
+            if (reading_12)
               i_12 <= i_12 + 13'h1;
-            if (_GEN_161 & reading_13)
+            if (reading_13)
               i_13 <= i_13 + 13'h1;
-            if (_GEN_161 & reading_14)
+            if (reading_14)
               i_14 <= i_14 + 13'h1;
-            if (_GEN_161 & reading_15)
+            if (reading_15)
               i_15 <= i_15 + 13'h1;
+          end
+          else if (_GEN_155) begin
+            i_0 <= {4'h0, pendingNum[12:4]};
+            i_1 <= {3'h0, pendingNum[12:3]};
+            i_2 <= {2'h0, _cuts_T_80[26:16]};
+            i_3 <= {2'h0, pendingNum[12:2]};
+            i_4 <= {1'h0, _cuts_T_86[27:16]};
+            i_5 <= {1'h0, _cuts_T_89[27:16]};
+            i_6 <= {1'h0, _cuts_T_92[27:16]};
+            i_7 <= {1'h0, pendingNum[12:1]};
+            i_8 <= _cuts_T_97[28:16];
+            i_9 <= _cuts_T_99[28:16];
+            i_10 <= _cuts_T_101[28:16];
+            i_11 <= _cuts_T_103[28:16];
+            i_12 <= _cuts_T_105[28:16];
+            i_13 <= _cuts_T_107[28:16];
+            i_14 <= _cuts_T_109[28:16];
+            i_15 <= pendingNum;
           end
         end
       end
     end
-    else if (_starting_T) begin
-      i_0 <= io_start ? 13'h0 : _GEN_124;
-      i_1 <= io_start ? _GEN_124 : _GEN_125;
-      i_2 <= io_start ? _GEN_125 : {2'h0, _cuts_T_6[26:16]};
-      i_3 <= {2'h0, io_start ? _cuts_T_6[26:16] : io_num[12:2]};
-      i_4 <= io_start ? {2'h0, io_num[12:2]} : {1'h0, _cuts_T_12[27:16]};
-      i_5 <= {1'h0, io_start ? _cuts_T_12[27:16] : _cuts_T_15[27:16]};
-      i_6 <= {1'h0, io_start ? _cuts_T_15[27:16] : _cuts_T_18[27:16]};
-      i_7 <= {1'h0, io_start ? _cuts_T_18[27:16] : io_num[12:1]};
-      i_8 <= io_start ? {1'h0, io_num[12:1]} : _cuts_T_23[28:16];
-      i_9 <= io_start ? _cuts_T_23[28:16] : _cuts_T_25[28:16];
-      i_10 <= io_start ? _cuts_T_25[28:16] : _cuts_T_27[28:16];
-      i_11 <= io_start ? _cuts_T_27[28:16] : _cuts_T_29[28:16];
-      i_12 <= io_start ? _cuts_T_29[28:16] : _cuts_T_31[28:16];
-      i_13 <= io_start ? _cuts_T_31[28:16] : _cuts_T_33[28:16];
-      i_14 <= io_start ? _cuts_T_33[28:16] : _cuts_T_35[28:16];
-      i_15 <= io_start ? _cuts_T_35[28:16] : io_num;
+    else begin
+      if (_GEN_151)
+        num <= io_num;
+      if (io_start) begin
+        usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
+        i_0 <= 13'h0;
+        i_1 <= _GEN_117;
+        i_2 <= _GEN_119;
+        i_3 <= {2'h0, _cuts_T_6[26:16]};
+        i_4 <= _GEN_121;
+        i_5 <= {1'h0, _cuts_T_12[27:16]};
+        i_6 <= {1'h0, _cuts_T_15[27:16]};
+        i_7 <= {1'h0, _cuts_T_18[27:16]};
+        i_8 <= {1'h0, io_num[12:1]};
+        i_9 <= _cuts_T_23[28:16];
+        i_10 <= _cuts_T_25[28:16];
+        i_11 <= _cuts_T_27[28:16];
+        i_12 <= _cuts_T_29[28:16];
+        i_13 <= _cuts_T_31[28:16];
+        i_14 <= _cuts_T_33[28:16];
+        i_15 <= _cuts_T_35[28:16];
+      end
+      else if (begin_0) begin
+        usedLog2 <= usedLog2_t_1 > 6'hD ? 4'hD : usedLog2_t_1[3:0];
+        i_0 <= _GEN_117;
+        i_1 <= _GEN_119;
+        i_2 <= {2'h0, _cuts_T_43[26:16]};
+        i_3 <= _GEN_121;
+        i_4 <= {1'h0, _cuts_T_49[27:16]};
+        i_5 <= {1'h0, _cuts_T_52[27:16]};
+        i_6 <= {1'h0, _cuts_T_55[27:16]};
+        i_7 <= {1'h0, io_num[12:1]};
+        i_8 <= _cuts_T_60[28:16];
+        i_9 <= _cuts_T_62[28:16];
+        i_10 <= _cuts_T_64[28:16];
+        i_11 <= _cuts_T_66[28:16];
+        i_12 <= _cuts_T_68[28:16];
+        i_13 <= _cuts_T_70[28:16];
+        i_14 <= _cuts_T_72[28:16];
+        i_15 <= io_num;
+      end
+    end
+    if (~(~(|state) | _GEN_105 | _GEN_106 | _GEN_107 | _GEN_102)) begin
+      if (_GEN_109)
+        sent <= ~passDone & sent;
+      else
+        sent <= _GEN_110 | (_GEN_111 ? ~_GEN_154 & sent : _GEN_112 | sent);
     end
     REG <= i_0[11:0];
     r <= REG;
@@ -42557,12 +42756,12 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     r_6 <= REG_6;
     REG_7 <= i_7[11:0];
     r_7 <= REG_7;
-    if (~(~(|state) | _GEN_154)) begin
-      if (_GEN_155) begin
-        if (_GEN_156)
+    if (~_GEN_108) begin
+      if (_GEN_106) begin
+        if (_GEN_152)
           m <= 9'h0;
       end
-      else if (_GEN_157)
+      else if (_GEN_107)
         m <= _m_T;
     end
     entryGroup <= _gens_0_io_entry_group;
@@ -42581,7 +42780,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     entryGroup_13 <= _gens_13_io_entry_group;
     entryGroup_14 <= _gens_14_io_entry_group;
     entryGroup_15 <= _gens_15_io_entry_group;
-    if (_GEN_152) begin
+    if (_GEN_150) begin
       next <= 16'h0;
       dCount <= 7'h0;
       dNext <= 10'h0;
@@ -42675,7 +42874,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     grantSingle_15 <= ~_taken_T_15 & (toSingle[15] | grantSingle_15);
     if (reset) begin
       state <= 4'h0;
+      pending <= 1'h0;
       fed <= 1'h0;
+      feedOn <= 1'h0;
       st_level <= 14'h0;
       st_large <= 13'h0;
       st_cycTotal <= 32'h0;
@@ -42702,6 +42903,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       laneKeys_13_io_in_valid_REG <= 1'h0;
       laneKeys_14_io_in_valid_REG <= 1'h0;
       laneKeys_15_io_in_valid_REG <= 1'h0;
+      feedInflight <= 4'h0;
       boxB_0 <= 5'h0;
       boxB_1 <= 5'h0;
       boxB_2 <= 5'h0;
@@ -42742,109 +42944,102 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     end
     else begin
       if (|state) begin
-        if (_GEN_154) begin
+        if (_GEN_105) begin
           if (io_start)
             state <= 4'h2;
         end
-        else if (_GEN_155) begin
-          if (_GEN_156)
+        else if (_GEN_106) begin
+          if (_GEN_152)
             state <= 4'h3;
         end
-        else if (_GEN_157) begin
+        else if (_GEN_107) begin
           if (_m_T >= mergeEnd)
             state <= 4'h4;
         end
-        else if (_GEN_132) begin
+        else if (_GEN_102) begin
           if (boxDone)
             state <= 4'h5;
         end
-        else if (_GEN_158) begin
+        else if (_GEN_109) begin
           if (passDone)
             state <= 4'h6;
         end
-        else if (_GEN_159) begin
-          if (_GEN_160)
+        else if (_GEN_110) begin
+          if (_GEN_153)
             state <= 4'h7;
         end
-        else if (_GEN_161) begin
-          if (_GEN_162)
+        else if (_GEN_111) begin
+          if (_GEN_154)
             state <= 4'h8;
         end
-        else if (_GEN_164)
-          state <= 4'h0;
-        if (_GEN_154 | _GEN_155 | _GEN_157 | _GEN_132 | _GEN_158 | _GEN_159 | _GEN_161
-            | ~_GEN_164) begin
-        end
-        else begin
-          st_level <= _cellExp_io_level;
-          st_badBucket <=
-            _sorts_0_io_badBucket | _sorts_1_io_badBucket | _sorts_2_io_badBucket
-            | _sorts_3_io_badBucket;
-          st_sortMismatch <=
-            _sorts_0_io_counted != _sorts_0_io_scattered
-            | _sorts_1_io_counted != _sorts_1_io_scattered
-            | _sorts_2_io_counted != _sorts_2_io_scattered
-            | _sorts_3_io_counted != _sorts_3_io_scattered;
-        end
-      end
-      else begin
-        if (~_starting_T | z_tooMany) begin
+        else if (_GEN_114)
+          state <= {3'h0, pending};
+        fed <= ~_GEN_157 & _GEN_155 | fed;
+        st_tooMany <= ~_GEN_123 & st_tooMany;
+        st_cellOverflow <= ~_GEN_123 & _GEN_126;
+        st_largeOverflow <= ~_GEN_123 & _GEN_159;
+        if (_GEN_158) begin
+          if (classifying)
+            largeCount <= largeKept[4:0];
         end
         else
-          state <= {2'h0, io_start ? 2'h2 : 2'h1};
-        if (_starting_T)
-          st_level <= 14'h0;
-        st_badBucket <= ~_starting_T & st_badBucket;
-        st_sortMismatch <= ~_starting_T & st_sortMismatch;
-      end
-      if (_GEN_153) begin
-        fed <= ~io_start;
-        st_large <= 13'h0;
-        st_cycTotal <= 32'h0;
-        st_tooMany <= z_tooMany;
-        largeCount <= 5'h0;
+          largeCount <= 5'h0;
       end
       else begin
-        if (classifying) begin
-          st_large <= st_large + {7'h0, largeKept - _GEN_133};
-          largeCount <= largeKept[4:0];
+        if (io_start) begin
+          if (~z_tooMany)
+            state <= 4'h2;
+          st_tooMany <= z_tooMany;
         end
+        else if (begin_0)
+          state <= 4'h1;
+        fed <= ~io_start & (begin_0 | fed);
+        st_cellOverflow <= ~io_start & _GEN_126;
+        st_largeOverflow <= ~io_start & _GEN_159;
+        if (_GEN_151)
+          largeCount <= 5'h0;
+        else if (classifying)
+          largeCount <= largeKept[4:0];
+      end
+      pending <= (~(|state) | _GEN_157 | ~_GEN_155) & (beginAhead | pending);
+      if ((|state) | io_start)
+        feedOn <= beginAhead | _GEN_127;
+      else
+        feedOn <= begin_0 | beginAhead | _GEN_127;
+      if (_GEN_128) begin
+        if (io_start)
+          st_level <= 14'h0;
+      end
+      else if (_GEN_160) begin
+      end
+      else
+        st_level <= _cellExp_io_level;
+      if (_GEN_128 & io_start) begin
+        st_large <= 13'h0;
+        st_cycTotal <= 32'h0;
+      end
+      else begin
+        if (classifying)
+          st_large <= st_large + {7'h0, largeKept - _GEN_131};
         if ((|state) & ~filling)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
-      st_cellOverflow <=
-        ~_GEN_153
-        & (classifying
-           & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
-              & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
-                  & _sorts_0_io_in_0_valid_T_8) & _laneKeys_0_io_out_cellOverflow
-              | _laneKeys_1_io_out_valid & ~_laneKeys_1_io_out_nonFinite
-              & ~(~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
-                  & _sorts_0_io_in_1_valid_T_8) & _laneKeys_1_io_out_cellOverflow
-              | _laneKeys_2_io_out_valid & ~_laneKeys_2_io_out_nonFinite
-              & ~(~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
-                  & _sorts_1_io_in_0_valid_T_8) & _laneKeys_2_io_out_cellOverflow
-              | _laneKeys_3_io_out_valid & ~_laneKeys_3_io_out_nonFinite
-              & ~(~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
-                  & _sorts_1_io_in_1_valid_T_8) & _laneKeys_3_io_out_cellOverflow
-              | _laneKeys_4_io_out_valid & ~_laneKeys_4_io_out_nonFinite
-              & ~(~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
-                  & _sorts_2_io_in_0_valid_T_8) & _laneKeys_4_io_out_cellOverflow
-              | _laneKeys_5_io_out_valid & ~_laneKeys_5_io_out_nonFinite
-              & ~(~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
-                  & _sorts_2_io_in_1_valid_T_8) & _laneKeys_5_io_out_cellOverflow
-              | _laneKeys_6_io_out_valid & ~_laneKeys_6_io_out_nonFinite
-              & ~(~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
-                  & _sorts_3_io_in_0_valid_T_8) & _laneKeys_6_io_out_cellOverflow
-              | _laneKeys_7_io_out_valid & ~_laneKeys_7_io_out_nonFinite
-              & ~(~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
-                  & _sorts_3_io_in_1_valid_T_8) & _laneKeys_7_io_out_cellOverflow)
-           | st_cellOverflow);
-      st_largeOverflow <=
-        ~_GEN_153
-        & (largeHere_7 & ~_GEN_150 | largeHere_6 & ~_GEN_148 | largeHere_5 & ~_GEN_146
-           | largeHere_4 & ~_GEN_144 | largeHere_3 & ~_GEN_140 | largeHere_2 & ~_GEN_138
-           | largeHere_1 & ~_GEN_135 | largeHere_0 & ~_GEN_134 | st_largeOverflow);
+      if (_GEN_128) begin
+        st_badBucket <= ~io_start & st_badBucket;
+        st_sortMismatch <= ~io_start & st_sortMismatch;
+      end
+      else if (_GEN_160) begin
+      end
+      else begin
+        st_badBucket <=
+          _sorts_0_io_badBucket | _sorts_1_io_badBucket | _sorts_2_io_badBucket
+          | _sorts_3_io_badBucket;
+        st_sortMismatch <=
+          _sorts_0_io_counted != _sorts_0_io_scattered
+          | _sorts_1_io_counted != _sorts_1_io_scattered
+          | _sorts_2_io_counted != _sorts_2_io_scattered
+          | _sorts_3_io_counted != _sorts_3_io_scattered;
+      end
       inflight <=
         inflight
         + {1'h0,
@@ -42862,10 +43057,6 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                   + {1'h0,
                      {1'h0, {1'h0, reading_12} + {1'h0, reading_13}}
                        + {1'h0, {1'h0, reading_14} + {1'h0, reading_15}}}}}
-        + {3'h0,
-           {1'h0, {1'h0, io_feed_0_valid & filling} + {1'h0, io_feed_1_valid & filling}}
-             + {1'h0,
-                {1'h0, io_feed_2_valid & filling} + {1'h0, io_feed_3_valid & filling}}}
         - {1'h0,
            {1'h0,
             {1'h0,
@@ -42908,10 +43099,19 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       laneKeys_13_io_in_valid_REG <= reading_13;
       laneKeys_14_io_in_valid_REG <= reading_14;
       laneKeys_15_io_in_valid_REG <= reading_15;
-      if (_GEN_132) begin
-        if (_GEN_129 & _GEN_165 & firstTop_enc[0])
+      feedInflight <=
+        feedInflight
+        + {1'h0,
+           {1'h0, {1'h0, fedIn_0} + {1'h0, fedIn_1}}
+             + {1'h0, {1'h0, fedIn_2} + {1'h0, fedIn_3}}}
+        - {1'h0,
+           {1'h0, {1'h0, _feedKeys_0_io_out_valid} + {1'h0, _feedKeys_1_io_out_valid}}
+             + {1'h0,
+                {1'h0, _feedKeys_2_io_out_valid} + {1'h0, _feedKeys_3_io_out_valid}}};
+      if (_GEN_102) begin
+        if (_GEN_125 & _GEN_161 & firstTop_enc[0])
           boxB_0 <= boxB_0 - 5'h1;
-        else if (_GEN_128)
+        else if (_GEN_124)
           boxB_0 <=
             ~anyBox | {_first_T[19], _first_T} + 21'h1 < 21'h2
               ? 5'h0
@@ -42942,9 +43142,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                              : _first_T[3]
                                  ? 2'h3
                                  : _first_T[2] ? 2'h2 : {1'h0, _first_T[1]}}}} + 5'h1;
-        if (_GEN_129 & _GEN_165 & firstTop_enc[1])
+        if (_GEN_125 & _GEN_161 & firstTop_enc[1])
           boxB_1 <= boxB_1 - 5'h1;
-        else if (_GEN_128)
+        else if (_GEN_124)
           boxB_1 <=
             ~anyBox | {_first_T_44[19], _first_T_44} + 21'h1 < 21'h2
               ? 5'h0
@@ -42976,9 +43176,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                                  ? 2'h3
                                  : _first_T_44[2] ? 2'h2 : {1'h0, _first_T_44[1]}}}}
                 + 5'h1;
-        if (_GEN_129 & _GEN_165 & firstTop_enc[2])
+        if (_GEN_125 & _GEN_161 & firstTop_enc[2])
           boxB_2 <= boxB_2 - 5'h1;
-        else if (_GEN_128)
+        else if (_GEN_124)
           boxB_2 <=
             ~anyBox | {_first_T_88[19], _first_T_88} + 21'h1 < 21'h2
               ? 5'h0
@@ -43010,57 +43210,57 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                                  ? 2'h3
                                  : _first_T_88[2] ? 2'h2 : {1'h0, _first_T_88[1]}}}}
                 + 5'h1;
-        if (~_GEN_129)
+        if (~_GEN_125)
           boxCycle <= boxCycle + 2'h1;
       end
       else
         boxCycle <= 2'h0;
       held_0 <=
-        ~_GEN_152 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
+        ~_GEN_150 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
       held_1 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_1 ? _heldUnit_1_T : toSingle[1] | ~_gens_1_io_take & held_1);
       held_2 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_2 ? _heldUnit_2_T : toSingle[2] | ~_gens_2_io_take & held_2);
       held_3 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_3 ? _heldUnit_3_T : toSingle[3] | ~_gens_3_io_take & held_3);
       held_4 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_4 ? _heldUnit_4_T : toSingle[4] | ~_gens_4_io_take & held_4);
       held_5 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_5 ? _heldUnit_5_T : toSingle[5] | ~_gens_5_io_take & held_5);
       held_6 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_6 ? _heldUnit_6_T : toSingle[6] | ~_gens_6_io_take & held_6);
       held_7 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_7 ? _heldUnit_7_T : toSingle[7] | ~_gens_7_io_take & held_7);
       held_8 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_8 ? _heldUnit_8_T : toSingle[8] | ~_gens_8_io_take & held_8);
       held_9 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_9 ? _heldUnit_9_T : toSingle[9] | ~_gens_9_io_take & held_9);
       held_10 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_10 ? _heldUnit_10_T : toSingle[10] | ~_gens_10_io_take & held_10);
       held_11 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_11 ? _heldUnit_11_T : toSingle[11] | ~_gens_11_io_take & held_11);
       held_12 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_12 ? _heldUnit_12_T : toSingle[12] | ~_gens_12_io_take & held_12);
       held_13 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_13 ? _heldUnit_13_T : toSingle[13] | ~_gens_13_io_take & held_13);
       held_14 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_14 ? _heldUnit_14_T : toSingle[14] | ~_gens_14_io_take & held_14);
       held_15 <=
-        ~_GEN_152
+        ~_GEN_150
         & (_taken_T_15 ? _heldUnit_15_T : toSingle[15] | ~_gens_15_io_take & held_15);
       if (_taken_T)
         heldUnit_0 <= _heldUnit_0_T;
@@ -43140,13 +43340,24 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_0 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_0_io_out_valid & loading),
-    .io_in_0_need      (_laneKeys_0_io_out_need),
-    .io_in_0_needNone  (_laneKeys_0_io_out_needNone),
-    .io_in_0_top       (_laneKeys_0_io_out_top),
-    .io_in_0_topNone   (_laneKeys_0_io_out_topNone),
-    .io_in_0_nonFinite (_laneKeys_0_io_out_nonFinite),
+    .io_clear          (clearFed),
+    .io_in_0_valid     (_feedKeys_0_io_out_valid | _laneKeys_0_io_out_valid & loading),
+    .io_in_0_need
+      (_feedKeys_0_io_out_valid ? _feedKeys_0_io_out_need : _laneKeys_0_io_out_need),
+    .io_in_0_needNone
+      (_feedKeys_0_io_out_valid
+         ? _feedKeys_0_io_out_needNone
+         : _laneKeys_0_io_out_needNone),
+    .io_in_0_top
+      (_feedKeys_0_io_out_valid ? _feedKeys_0_io_out_top : _laneKeys_0_io_out_top),
+    .io_in_0_topNone
+      (_feedKeys_0_io_out_valid
+         ? _feedKeys_0_io_out_topNone
+         : _laneKeys_0_io_out_topNone),
+    .io_in_0_nonFinite
+      (_feedKeys_0_io_out_valid
+         ? _feedKeys_0_io_out_nonFinite
+         : _laneKeys_0_io_out_nonFinite),
     .io_kept_0         (_laneExps_0_io_kept_0),
     .io_kept_1         (_laneExps_0_io_kept_1),
     .io_kept_2         (_laneExps_0_io_kept_2),
@@ -43171,13 +43382,24 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_1 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_1_io_out_valid & loading),
-    .io_in_0_need      (_laneKeys_1_io_out_need),
-    .io_in_0_needNone  (_laneKeys_1_io_out_needNone),
-    .io_in_0_top       (_laneKeys_1_io_out_top),
-    .io_in_0_topNone   (_laneKeys_1_io_out_topNone),
-    .io_in_0_nonFinite (_laneKeys_1_io_out_nonFinite),
+    .io_clear          (clearFed),
+    .io_in_0_valid     (_feedKeys_1_io_out_valid | _laneKeys_1_io_out_valid & loading),
+    .io_in_0_need
+      (_feedKeys_1_io_out_valid ? _feedKeys_1_io_out_need : _laneKeys_1_io_out_need),
+    .io_in_0_needNone
+      (_feedKeys_1_io_out_valid
+         ? _feedKeys_1_io_out_needNone
+         : _laneKeys_1_io_out_needNone),
+    .io_in_0_top
+      (_feedKeys_1_io_out_valid ? _feedKeys_1_io_out_top : _laneKeys_1_io_out_top),
+    .io_in_0_topNone
+      (_feedKeys_1_io_out_valid
+         ? _feedKeys_1_io_out_topNone
+         : _laneKeys_1_io_out_topNone),
+    .io_in_0_nonFinite
+      (_feedKeys_1_io_out_valid
+         ? _feedKeys_1_io_out_nonFinite
+         : _laneKeys_1_io_out_nonFinite),
     .io_kept_0         (_laneExps_1_io_kept_0),
     .io_kept_1         (_laneExps_1_io_kept_1),
     .io_kept_2         (_laneExps_1_io_kept_2),
@@ -43202,13 +43424,24 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_2 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_2_io_out_valid & loading),
-    .io_in_0_need      (_laneKeys_2_io_out_need),
-    .io_in_0_needNone  (_laneKeys_2_io_out_needNone),
-    .io_in_0_top       (_laneKeys_2_io_out_top),
-    .io_in_0_topNone   (_laneKeys_2_io_out_topNone),
-    .io_in_0_nonFinite (_laneKeys_2_io_out_nonFinite),
+    .io_clear          (clearFed),
+    .io_in_0_valid     (_feedKeys_2_io_out_valid | _laneKeys_2_io_out_valid & loading),
+    .io_in_0_need
+      (_feedKeys_2_io_out_valid ? _feedKeys_2_io_out_need : _laneKeys_2_io_out_need),
+    .io_in_0_needNone
+      (_feedKeys_2_io_out_valid
+         ? _feedKeys_2_io_out_needNone
+         : _laneKeys_2_io_out_needNone),
+    .io_in_0_top
+      (_feedKeys_2_io_out_valid ? _feedKeys_2_io_out_top : _laneKeys_2_io_out_top),
+    .io_in_0_topNone
+      (_feedKeys_2_io_out_valid
+         ? _feedKeys_2_io_out_topNone
+         : _laneKeys_2_io_out_topNone),
+    .io_in_0_nonFinite
+      (_feedKeys_2_io_out_valid
+         ? _feedKeys_2_io_out_nonFinite
+         : _laneKeys_2_io_out_nonFinite),
     .io_kept_0         (_laneExps_2_io_kept_0),
     .io_kept_1         (_laneExps_2_io_kept_1),
     .io_kept_2         (_laneExps_2_io_kept_2),
@@ -43233,13 +43466,24 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_3 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
-    .io_in_0_valid     (_laneKeys_3_io_out_valid & loading),
-    .io_in_0_need      (_laneKeys_3_io_out_need),
-    .io_in_0_needNone  (_laneKeys_3_io_out_needNone),
-    .io_in_0_top       (_laneKeys_3_io_out_top),
-    .io_in_0_topNone   (_laneKeys_3_io_out_topNone),
-    .io_in_0_nonFinite (_laneKeys_3_io_out_nonFinite),
+    .io_clear          (clearFed),
+    .io_in_0_valid     (_feedKeys_3_io_out_valid | _laneKeys_3_io_out_valid & loading),
+    .io_in_0_need
+      (_feedKeys_3_io_out_valid ? _feedKeys_3_io_out_need : _laneKeys_3_io_out_need),
+    .io_in_0_needNone
+      (_feedKeys_3_io_out_valid
+         ? _feedKeys_3_io_out_needNone
+         : _laneKeys_3_io_out_needNone),
+    .io_in_0_top
+      (_feedKeys_3_io_out_valid ? _feedKeys_3_io_out_top : _laneKeys_3_io_out_top),
+    .io_in_0_topNone
+      (_feedKeys_3_io_out_valid
+         ? _feedKeys_3_io_out_topNone
+         : _laneKeys_3_io_out_topNone),
+    .io_in_0_nonFinite
+      (_feedKeys_3_io_out_valid
+         ? _feedKeys_3_io_out_nonFinite
+         : _laneKeys_3_io_out_nonFinite),
     .io_kept_0         (_laneExps_3_io_kept_0),
     .io_kept_1         (_laneExps_3_io_kept_1),
     .io_kept_2         (_laneExps_3_io_kept_2),
@@ -43264,7 +43508,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_4 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_4_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_4_io_out_need),
     .io_in_0_needNone  (_laneKeys_4_io_out_needNone),
@@ -43295,7 +43539,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_5 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_5_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_5_io_out_need),
     .io_in_0_needNone  (_laneKeys_5_io_out_needNone),
@@ -43326,7 +43570,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_6 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_6_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_6_io_out_need),
     .io_in_0_needNone  (_laneKeys_6_io_out_needNone),
@@ -43357,7 +43601,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_7 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_7_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_7_io_out_need),
     .io_in_0_needNone  (_laneKeys_7_io_out_needNone),
@@ -43388,7 +43632,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_8 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_8_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_8_io_out_need),
     .io_in_0_needNone  (_laneKeys_8_io_out_needNone),
@@ -43419,7 +43663,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_9 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_9_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_9_io_out_need),
     .io_in_0_needNone  (_laneKeys_9_io_out_needNone),
@@ -43450,7 +43694,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_10 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_10_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_10_io_out_need),
     .io_in_0_needNone  (_laneKeys_10_io_out_needNone),
@@ -43481,7 +43725,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_11 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_11_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_11_io_out_need),
     .io_in_0_needNone  (_laneKeys_11_io_out_needNone),
@@ -43512,7 +43756,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_12 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_12_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_12_io_out_need),
     .io_in_0_needNone  (_laneKeys_12_io_out_needNone),
@@ -43543,7 +43787,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_13 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_13_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_13_io_out_need),
     .io_in_0_needNone  (_laneKeys_13_io_out_needNone),
@@ -43574,7 +43818,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_14 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_14_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_14_io_out_need),
     .io_in_0_needNone  (_laneKeys_14_io_out_needNone),
@@ -43605,7 +43849,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_world laneExps_15 (
     .clock             (clock),
     .reset             (reset),
-    .io_clear          (starting),
+    .io_clear          (clearFed),
     .io_in_0_valid     (_laneKeys_15_io_out_valid & loading),
     .io_in_0_need      (_laneKeys_15_io_out_need),
     .io_in_0_needNone  (_laneKeys_15_io_out_needNone),
@@ -43636,7 +43880,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   CellExponent_fp32_L16_c20_e2_p2_world cellExp (
     .clock           (clock),
     .reset           (reset),
-    .io_clear        (starting),
+    .io_clear        (clearWorld),
     .io_in_0_valid   (_cellExp_io_in_1_valid_T & m < mergeEnd & casez_tmp),
     .io_in_0_need    (casez_tmp_0),
     .io_in_0_top     (casez_tmp_1),
@@ -43651,7 +43895,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
-    .io_clear             (starting),
+    .io_clear             (clearWorld),
     .io_prefix            (_sorts_3_io_prefix_T & ~sent),
     .io_busy              (_sorts_0_io_busy),
     .io_in_0_ready        (_sorts_0_io_in_0_ready),
@@ -44340,7 +44584,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
-    .io_clear             (starting),
+    .io_clear             (clearWorld),
     .io_prefix            (_sorts_3_io_prefix_T & ~sent),
     .io_busy              (_sorts_1_io_busy),
     .io_in_0_ready        (_sorts_1_io_in_0_ready),
@@ -45029,7 +45273,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
-    .io_clear             (starting),
+    .io_clear             (clearWorld),
     .io_prefix            (_sorts_3_io_prefix_T & ~sent),
     .io_busy              (_sorts_2_io_busy),
     .io_in_0_ready        (_sorts_2_io_in_0_ready),
@@ -45718,7 +45962,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
-    .io_clear             (starting),
+    .io_clear             (clearWorld),
     .io_prefix            (_sorts_3_io_prefix_T & ~sent),
     .io_busy              (_sorts_3_io_busy),
     .io_in_0_ready        (_sorts_3_io_in_0_ready),
@@ -50662,11 +50906,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_0 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (_GEN_5),
-    .io_in_sphere_0      (_GEN_6),
-    .io_in_sphere_1      (_GEN_7),
-    .io_in_sphere_2      (_GEN_8),
-    .io_in_sphere_3      (_GEN_9),
+    .io_in_valid         (laneKeys_0_io_in_valid_REG),
+    .io_in_sphere_0      (io_sphere_0_data_0),
+    .io_in_sphere_1      (io_sphere_0_data_1),
+    .io_in_sphere_2      (io_sphere_0_data_2),
+    .io_in_sphere_3      (io_sphere_0_data_3),
     .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_0_io_out_valid),
     .io_out_cell_0       (_laneKeys_0_io_out_cell_0),
@@ -50686,11 +50930,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_1 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (_GEN_10),
-    .io_in_sphere_0      (_GEN_11),
-    .io_in_sphere_1      (_GEN_12),
-    .io_in_sphere_2      (_GEN_13),
-    .io_in_sphere_3      (_GEN_14),
+    .io_in_valid         (laneKeys_1_io_in_valid_REG),
+    .io_in_sphere_0      (io_sphere_1_data_0),
+    .io_in_sphere_1      (io_sphere_1_data_1),
+    .io_in_sphere_2      (io_sphere_1_data_2),
+    .io_in_sphere_3      (io_sphere_1_data_3),
     .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_1_io_out_valid),
     .io_out_cell_0       (_laneKeys_1_io_out_cell_0),
@@ -50710,11 +50954,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_2 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (_GEN_15),
-    .io_in_sphere_0      (_GEN_16),
-    .io_in_sphere_1      (_GEN_17),
-    .io_in_sphere_2      (_GEN_18),
-    .io_in_sphere_3      (_GEN_19),
+    .io_in_valid         (laneKeys_2_io_in_valid_REG),
+    .io_in_sphere_0      (io_sphere_2_data_0),
+    .io_in_sphere_1      (io_sphere_2_data_1),
+    .io_in_sphere_2      (io_sphere_2_data_2),
+    .io_in_sphere_3      (io_sphere_2_data_3),
     .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_2_io_out_valid),
     .io_out_cell_0       (_laneKeys_2_io_out_cell_0),
@@ -50734,11 +50978,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   SphereKeys_fp32_c20_f8_m9d8_e2_l1_world laneKeys_3 (
     .clock               (clock),
     .reset               (reset),
-    .io_in_valid         (_GEN_20),
-    .io_in_sphere_0      (_GEN_21),
-    .io_in_sphere_1      (_GEN_22),
-    .io_in_sphere_2      (_GEN_23),
-    .io_in_sphere_3      (_GEN_24),
+    .io_in_valid         (laneKeys_3_io_in_valid_REG),
+    .io_in_sphere_0      (io_sphere_3_data_0),
+    .io_in_sphere_1      (io_sphere_3_data_1),
+    .io_in_sphere_2      (io_sphere_3_data_2),
+    .io_in_sphere_3      (io_sphere_3_data_3),
     .io_in_level         (_laneKeys_15_io_in_level_T),
     .io_out_valid        (_laneKeys_3_io_out_valid),
     .io_out_cell_0       (_laneKeys_3_io_out_cell_0),
@@ -51043,15 +51287,111 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_out_top          (_laneKeys_15_io_out_top),
     .io_out_topNone      (_laneKeys_15_io_out_topNone)
   );
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world feedKeys_0 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (fedIn_0),
+    .io_in_sphere_0      (io_feed_0_bits_0),
+    .io_in_sphere_1      (io_feed_0_bits_1),
+    .io_in_sphere_2      (io_feed_0_bits_2),
+    .io_in_sphere_3      (io_feed_0_bits_3),
+    .io_in_level         (14'h0),
+    .io_out_valid        (_feedKeys_0_io_out_valid),
+    .io_out_cell_0       (/* unused */),
+    .io_out_cell_1       (/* unused */),
+    .io_out_cell_2       (/* unused */),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (/* unused */),
+    .io_out_q_1          (/* unused */),
+    .io_out_q_2          (/* unused */),
+    .io_out_qr           (/* unused */),
+    .io_out_need         (_feedKeys_0_io_out_need),
+    .io_out_needNone     (_feedKeys_0_io_out_needNone),
+    .io_out_nonFinite    (_feedKeys_0_io_out_nonFinite),
+    .io_out_top          (_feedKeys_0_io_out_top),
+    .io_out_topNone      (_feedKeys_0_io_out_topNone)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world feedKeys_1 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (fedIn_1),
+    .io_in_sphere_0      (io_feed_1_bits_0),
+    .io_in_sphere_1      (io_feed_1_bits_1),
+    .io_in_sphere_2      (io_feed_1_bits_2),
+    .io_in_sphere_3      (io_feed_1_bits_3),
+    .io_in_level         (14'h0),
+    .io_out_valid        (_feedKeys_1_io_out_valid),
+    .io_out_cell_0       (/* unused */),
+    .io_out_cell_1       (/* unused */),
+    .io_out_cell_2       (/* unused */),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (/* unused */),
+    .io_out_q_1          (/* unused */),
+    .io_out_q_2          (/* unused */),
+    .io_out_qr           (/* unused */),
+    .io_out_need         (_feedKeys_1_io_out_need),
+    .io_out_needNone     (_feedKeys_1_io_out_needNone),
+    .io_out_nonFinite    (_feedKeys_1_io_out_nonFinite),
+    .io_out_top          (_feedKeys_1_io_out_top),
+    .io_out_topNone      (_feedKeys_1_io_out_topNone)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world feedKeys_2 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (fedIn_2),
+    .io_in_sphere_0      (io_feed_2_bits_0),
+    .io_in_sphere_1      (io_feed_2_bits_1),
+    .io_in_sphere_2      (io_feed_2_bits_2),
+    .io_in_sphere_3      (io_feed_2_bits_3),
+    .io_in_level         (14'h0),
+    .io_out_valid        (_feedKeys_2_io_out_valid),
+    .io_out_cell_0       (/* unused */),
+    .io_out_cell_1       (/* unused */),
+    .io_out_cell_2       (/* unused */),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (/* unused */),
+    .io_out_q_1          (/* unused */),
+    .io_out_q_2          (/* unused */),
+    .io_out_qr           (/* unused */),
+    .io_out_need         (_feedKeys_2_io_out_need),
+    .io_out_needNone     (_feedKeys_2_io_out_needNone),
+    .io_out_nonFinite    (_feedKeys_2_io_out_nonFinite),
+    .io_out_top          (_feedKeys_2_io_out_top),
+    .io_out_topNone      (_feedKeys_2_io_out_topNone)
+  );
+  SphereKeys_fp32_c20_f8_m9d8_e2_l1_world feedKeys_3 (
+    .clock               (clock),
+    .reset               (reset),
+    .io_in_valid         (fedIn_3),
+    .io_in_sphere_0      (io_feed_3_bits_0),
+    .io_in_sphere_1      (io_feed_3_bits_1),
+    .io_in_sphere_2      (io_feed_3_bits_2),
+    .io_in_sphere_3      (io_feed_3_bits_3),
+    .io_in_level         (14'h0),
+    .io_out_valid        (_feedKeys_3_io_out_valid),
+    .io_out_cell_0       (/* unused */),
+    .io_out_cell_1       (/* unused */),
+    .io_out_cell_2       (/* unused */),
+    .io_out_cellOverflow (/* unused */),
+    .io_out_q_0          (/* unused */),
+    .io_out_q_1          (/* unused */),
+    .io_out_q_2          (/* unused */),
+    .io_out_qr           (/* unused */),
+    .io_out_need         (_feedKeys_3_io_out_need),
+    .io_out_needNone     (_feedKeys_3_io_out_needNone),
+    .io_out_nonFinite    (_feedKeys_3_io_out_nonFinite),
+    .io_out_top          (_feedKeys_3_io_out_top),
+    .io_out_topNone      (_feedKeys_3_io_out_topNone)
+  );
   BoxTracker_fp32_world trackers_0 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
-    .io_in_valid  (_GEN_5 & loading),
-    .io_in_bits_0 (_GEN_6),
-    .io_in_bits_1 (_GEN_7),
-    .io_in_bits_2 (_GEN_8),
-    .io_in_bits_3 (_GEN_9),
+    .io_clear     (clearFed),
+    .io_in_valid  (fedIn_0 | laneKeys_0_io_in_valid_REG & loading),
+    .io_in_bits_0 (fedIn_0 ? io_feed_0_bits_0 : io_sphere_0_data_0),
+    .io_in_bits_1 (fedIn_0 ? io_feed_0_bits_1 : io_sphere_0_data_1),
+    .io_in_bits_2 (fedIn_0 ? io_feed_0_bits_2 : io_sphere_0_data_2),
+    .io_in_bits_3 (fedIn_0 ? io_feed_0_bits_3 : io_sphere_0_data_3),
     .io_any       (_trackers_0_io_any),
     .io_lo_0      (_trackers_0_io_lo_0),
     .io_lo_1      (_trackers_0_io_lo_1),
@@ -51063,12 +51403,12 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_1 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
-    .io_in_valid  (_GEN_10 & loading),
-    .io_in_bits_0 (_GEN_11),
-    .io_in_bits_1 (_GEN_12),
-    .io_in_bits_2 (_GEN_13),
-    .io_in_bits_3 (_GEN_14),
+    .io_clear     (clearFed),
+    .io_in_valid  (fedIn_1 | laneKeys_1_io_in_valid_REG & loading),
+    .io_in_bits_0 (fedIn_1 ? io_feed_1_bits_0 : io_sphere_1_data_0),
+    .io_in_bits_1 (fedIn_1 ? io_feed_1_bits_1 : io_sphere_1_data_1),
+    .io_in_bits_2 (fedIn_1 ? io_feed_1_bits_2 : io_sphere_1_data_2),
+    .io_in_bits_3 (fedIn_1 ? io_feed_1_bits_3 : io_sphere_1_data_3),
     .io_any       (_trackers_1_io_any),
     .io_lo_0      (_trackers_1_io_lo_0),
     .io_lo_1      (_trackers_1_io_lo_1),
@@ -51080,12 +51420,12 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_2 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
-    .io_in_valid  (_GEN_15 & loading),
-    .io_in_bits_0 (_GEN_16),
-    .io_in_bits_1 (_GEN_17),
-    .io_in_bits_2 (_GEN_18),
-    .io_in_bits_3 (_GEN_19),
+    .io_clear     (clearFed),
+    .io_in_valid  (fedIn_2 | laneKeys_2_io_in_valid_REG & loading),
+    .io_in_bits_0 (fedIn_2 ? io_feed_2_bits_0 : io_sphere_2_data_0),
+    .io_in_bits_1 (fedIn_2 ? io_feed_2_bits_1 : io_sphere_2_data_1),
+    .io_in_bits_2 (fedIn_2 ? io_feed_2_bits_2 : io_sphere_2_data_2),
+    .io_in_bits_3 (fedIn_2 ? io_feed_2_bits_3 : io_sphere_2_data_3),
     .io_any       (_trackers_2_io_any),
     .io_lo_0      (_trackers_2_io_lo_0),
     .io_lo_1      (_trackers_2_io_lo_1),
@@ -51097,12 +51437,12 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_3 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
-    .io_in_valid  (_GEN_20 & loading),
-    .io_in_bits_0 (_GEN_21),
-    .io_in_bits_1 (_GEN_22),
-    .io_in_bits_2 (_GEN_23),
-    .io_in_bits_3 (_GEN_24),
+    .io_clear     (clearFed),
+    .io_in_valid  (fedIn_3 | laneKeys_3_io_in_valid_REG & loading),
+    .io_in_bits_0 (fedIn_3 ? io_feed_3_bits_0 : io_sphere_3_data_0),
+    .io_in_bits_1 (fedIn_3 ? io_feed_3_bits_1 : io_sphere_3_data_1),
+    .io_in_bits_2 (fedIn_3 ? io_feed_3_bits_2 : io_sphere_3_data_2),
+    .io_in_bits_3 (fedIn_3 ? io_feed_3_bits_3 : io_sphere_3_data_3),
     .io_any       (_trackers_3_io_any),
     .io_lo_0      (_trackers_3_io_lo_0),
     .io_lo_1      (_trackers_3_io_lo_1),
@@ -51114,7 +51454,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_4 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_4_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_4_data_0),
     .io_in_bits_1 (io_sphere_4_data_1),
@@ -51131,7 +51471,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_5 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_5_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_5_data_0),
     .io_in_bits_1 (io_sphere_5_data_1),
@@ -51148,7 +51488,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_6 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_6_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_6_data_0),
     .io_in_bits_1 (io_sphere_6_data_1),
@@ -51165,7 +51505,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_7 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_7_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_7_data_0),
     .io_in_bits_1 (io_sphere_7_data_1),
@@ -51182,7 +51522,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_8 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_8_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_8_data_0),
     .io_in_bits_1 (io_sphere_8_data_1),
@@ -51199,7 +51539,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_9 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_9_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_9_data_0),
     .io_in_bits_1 (io_sphere_9_data_1),
@@ -51216,7 +51556,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_10 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_10_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_10_data_0),
     .io_in_bits_1 (io_sphere_10_data_1),
@@ -51233,7 +51573,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_11 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_11_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_11_data_0),
     .io_in_bits_1 (io_sphere_11_data_1),
@@ -51250,7 +51590,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_12 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_12_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_12_data_0),
     .io_in_bits_1 (io_sphere_12_data_1),
@@ -51267,7 +51607,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_13 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_13_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_13_data_0),
     .io_in_bits_1 (io_sphere_13_data_1),
@@ -51284,7 +51624,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_14 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_14_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_14_data_0),
     .io_in_bits_1 (io_sphere_14_data_1),
@@ -51301,7 +51641,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   BoxTracker_fp32_world trackers_15 (
     .clock        (clock),
     .reset        (reset),
-    .io_clear     (starting),
+    .io_clear     (clearFed),
     .io_in_valid  (laneKeys_15_io_in_valid_REG & loading),
     .io_in_bits_0 (io_sphere_15_data_0),
     .io_in_bits_1 (io_sphere_15_data_1),
@@ -51389,6 +51729,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
        | (dLane[14] ? _gens_14_io_defer_bits[13:3] : 11'h0)
        | (dLane[15] ? _gens_15_io_defer_bits[13:3] : 11'h0))
   );
+  assign io_canBegin = io_canBegin_0;
   assign io_sphere_0_addr = _gens_15_io_start_T ? _gens_0_io_keyAddr : i_0[11:0];
   assign io_sphere_1_addr = _gens_15_io_start_T ? _gens_1_io_keyAddr : i_1[11:0];
   assign io_sphere_2_addr = _gens_15_io_start_T ? _gens_2_io_keyAddr : i_2[11:0];
@@ -51405,7 +51746,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   assign io_sphere_13_addr = _gens_15_io_start_T ? _gens_13_io_keyAddr : i_13[11:0];
   assign io_sphere_14_addr = _gens_15_io_start_T ? _gens_14_io_keyAddr : i_14[11:0];
   assign io_sphere_15_addr = _gens_15_io_start_T ? _gens_15_io_keyAddr : i_15[11:0];
-  assign io_busy = (|state) & state != 4'h1;
+  assign io_busy = io_busy_0;
+  assign io_quiet = ~io_busy_0 & ~sortBusy & _io_quiet_T_3;
   assign io_status_level = st_level;
   assign io_status_large = st_large;
   assign io_status_cycTotal = st_cycTotal;
@@ -52683,6 +53025,7 @@ module Puc_world(
   wire [511:0] _lines_io_out_bits_data;
   wire [24:0]  _lines_io_emitted;
   wire         _lines_io_idle;
+  wire         _bp_io_canBegin;
   wire [11:0]  _bp_io_sphere_0_addr;
   wire [11:0]  _bp_io_sphere_1_addr;
   wire [11:0]  _bp_io_sphere_2_addr;
@@ -52748,6 +53091,7 @@ module Puc_world(
   wire [11:0]  _bp_io_pairs_15_bits_i;
   wire [11:0]  _bp_io_pairs_15_bits_j;
   wire         _bp_io_busy;
+  wire         _bp_io_quiet;
   wire [13:0]  _bp_io_status_level;
   wire [12:0]  _bp_io_status_large;
   wire [31:0]  _bp_io_status_cycTotal;
@@ -53086,19 +53430,21 @@ module Puc_world(
   reg  [31:0]  cycWaitRd;
   reg  [31:0]  cycWaitWr;
   wire         loadStart = runStart & ~prefetched;
-  wire         _movesOn_T_3 = state == 3'h1;
+  wire         _GEN = state == 3'h1;
+  wire         _badConfig_T_9 = run_7 == 64'h0;
   wire         badConfig =
-    ~(run_8[1]) & ((|(run_4[63:24])) | (|run_4) & ~(|run_3)) | run_8[1] & run_8[0]
-    | (|run_2) & ~(|run_1) | (|run_6) & ~(|run_5) | ~(|run_7);
+    ~(run_8[1]) & ((|(run_4[63:24])) | (|run_4) & run_3 == 64'h0) | run_8[1] & run_8[0]
+    | (|run_2) & run_1 == 64'h0 | (|run_6) & run_5 == 64'h0 | _badConfig_T_9;
   wire         tooMany = run_2 > 64'h1000;
-  wire         _GEN = badConfig & ~(|run_7);
-  wire         _GEN_0 = badConfig | tooMany;
-  assign runStart = _movesOn_T_3 & ~_GEN & ~_GEN_0;
+  wire         _GEN_0 = badConfig & _badConfig_T_9;
+  wire         _GEN_1 = badConfig | tooMany;
+  assign runStart = _GEN & ~_GEN_0 & ~_GEN_1;
   wire         _running_T = state == 3'h2;
   wire         _pack_io_flush_T = state == 3'h3;
   wire         running = _running_T | _pack_io_flush_T;
-  wire [12:0]  _rd_io_sphereLines_T_1 =
-    (nextLoading ? next_2[12:0] : run_2[12:0]) + 13'h3;
+  wire [63:0]  feedNum = nextLoading ? next_2 : run_2;
+  wire [12:0]  _rd_io_sphereLines_T_1 = feedNum[12:0] + 13'h3;
+  wire         _bp_io_feed_3_valid_T = run_8[1] | nextLoading;
   wire [24:0]  _rd_io_pairLines_T_1 = {1'h0, run_4[23:0]} + 25'hF;
   reg          tableIn;
   wire         loaded = running & (tableIn | _rd_io_loaded & ~nextLoading);
@@ -53107,11 +53453,10 @@ module Puc_world(
     & ~(~(next_8[1]) & ((|(next_4[63:24])) | (|next_4) & next_3 == 64'h0) | next_8[1]
         & next_8[0] | (|next_2) & next_1 == 64'h0 | (|next_6) & next_5 == 64'h0
         | next_7 == 64'h0) & next_2 < 64'h1001 & run_8[1] & loaded
-    & ~(|_rd_io_outstanding);
+    & ~(|_rd_io_outstanding) & _bp_io_canBegin;
   reg          bpStarted;
   wire         bpStart = run_8[1] & loaded & ~bpStarted;
-  wire         _bp_io_feed_3_valid_T = _rd_io_sphereWrite_valid & run_8[1];
-  wire [12:0]  _GEN_1 = {1'h0, _rd_io_sphereWrite_bits_line, 2'h0};
+  wire [12:0]  _GEN_2 = {1'h0, _rd_io_sphereWrite_bits_line, 2'h0};
   wire         bpDone = bpStarted & ~_bp_io_busy;
   wire         worldDone = bpDone & _lines_io_idle;
   wire         _rd_io_pairs_ready_T_1 = ~(run_8[1]) & _disp_io_pairs_ready;
@@ -53127,15 +53472,15 @@ module Puc_world(
       ? {40'h0, run_4[23:0]}
       : {32'h0, found} + (run_8[1] ? 64'h0 : {32'h0, flaggedMiss});
   wire         _capErr_T = totalRecords > run_6;
-  wire [1:0]   _GEN_2 = {errors[4], errors[1]};
-  wire [3:0]   _GEN_3 = errors[3:0] | {|nonFinite, 3'h0};
-  wire [2:0]   _GEN_4 = _GEN_3[2:0] | {_capErr_T & ~(|_GEN_2), 2'h0};
+  wire [1:0]   _GEN_3 = {errors[4], errors[1]};
+  wire [3:0]   _GEN_4 = errors[3:0] | {|nonFinite, 3'h0};
+  wire [2:0]   _GEN_5 = _GEN_4[2:0] | {_capErr_T & ~(|_GEN_3), 2'h0};
   wire         _wr_io_status_valid_T = state == 3'h4;
   wire         quietRun =
     ~_disp_io_fired & ~(_rd_io_pairs_ready_T_1 & _rd_io_pairs_valid)
     & pairsInFlight == 25'h0 & ~(run_8[1] & (bpStart | bpStarted & ~worldDone));
   wire         io_idle_0 =
-    ~_rd_io_rdReq_valid & ~_wr_io_wrReq_valid & ~prefetchGo
+    ~_rd_io_rdReq_valid & ~_wr_io_wrReq_valid & ~prefetchGo & _bp_io_quiet
     & (state == 3'h5
          ? (|_wr_io_outstanding)
          : state == 3'h4
@@ -53146,13 +53491,13 @@ module Puc_world(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:324 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:338 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [31:0]  _GEN_5 =
+  wire [31:0]  _GEN_6 =
     {8'h0,
      _disp_io_groups_bits_first
        + {20'h0,
@@ -53186,24 +53531,19 @@ module Puc_world(
                                                                 ? 4'hD
                                                                 : {3'h7,
                                                                    ~(_disp_io_groups_bits_invalid[14])}}};
-  wire         _GEN_6 =
+  wire         _GEN_7 =
     io_link_csr_valid & (|io_link_csr_bits_index) & io_link_csr_bits_index < 8'h9;
   wire [31:0]  tick = (|io_skipCycles) ? io_skipCycles : 32'h1;
-  wire         _GEN_7 = nextValid & nextLoading;
-  wire [2:0]   _GEN_8 = {2'h0, nextValid};
-  wire         _GEN_9 = _wr_io_status_ready & _wr_io_status_valid_T;
+  wire         _GEN_8 = nextValid & nextLoading;
+  wire [2:0]   _GEN_9 = {2'h0, nextValid};
+  wire         _GEN_10 = _wr_io_status_ready & _wr_io_status_valid_T;
   wire         startReq =
     io_link_csr_valid & ~(|io_link_csr_bits_index) & io_link_csr_bits_data == 64'h1;
-  wire         _GEN_10 = ~(|state) & startReq;
-  wire         _GEN_11 = _movesOn_T_3 & _GEN & nextValid;
-  wire         _movesOn_T = state == 3'h5;
-  wire         _GEN_12 = _movesOn_T & ~(|_wr_io_outstanding);
-  wire         _GEN_13 = _GEN_12 & nextValid | _GEN_11;
-  wire         _GEN_14 =
-    startReq & (|state)
-    & (~nextValid | _movesOn_T & ~(|_wr_io_outstanding) | _movesOn_T_3
-       & (~(run_8[1]) & ((|(run_4[63:24])) | (|run_4) & ~(|run_3)) | run_8[1] & run_8[0]
-          | (|run_2) & ~(|run_1) | (|run_6) & ~(|run_5) | ~(|run_7)) & ~(|run_7));
+  wire         _GEN_11 = ~(|state) & startReq;
+  wire         _GEN_12 = _GEN & _GEN_0 & nextValid;
+  wire         _GEN_13 = state == 3'h5 & ~(|_wr_io_outstanding);
+  wire         _GEN_14 = _GEN_13 & nextValid | _GEN_12;
+  wire         _GEN_15 = startReq & (|state) & (~nextValid | _GEN_13 | _GEN & _GEN_0);
   always @(posedge clock) begin
     if (reset) begin
       csr_1 <= 64'h0;
@@ -53235,46 +53575,46 @@ module Puc_world(
       pairsInFlight <= 25'h0;
     end
     else begin
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h1)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h1)
         csr_1 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h2)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h2)
         csr_2 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h3)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h3)
         csr_3 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h4)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h4)
         csr_4 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h5)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h5)
         csr_5 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h6)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h6)
         csr_6 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h7)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h7)
         csr_7 <= io_link_csr_bits_data;
-      if (_GEN_6 & io_link_csr_bits_index[3:0] == 4'h8)
+      if (_GEN_7 & io_link_csr_bits_index[3:0] == 4'h8)
         csr_8 <= io_link_csr_bits_data;
-      if (_GEN_12)
-        state <= _GEN_8;
-      else if (_GEN_9)
+      if (_GEN_13)
+        state <= _GEN_9;
+      else if (_GEN_10)
         state <= 3'h5;
       else if (_pack_io_flush_T & drainDone)
         state <= 3'h4;
       else if (_running_T & runDone)
         state <= 3'h3;
-      else if (_movesOn_T_3)
-        state <= _GEN ? _GEN_8 : _GEN_0 ? 3'h4 : 3'h2;
-      else if (_GEN_10)
+      else if (_GEN)
+        state <= _GEN_0 ? _GEN_9 : _GEN_1 ? 3'h4 : 3'h2;
+      else if (_GEN_11)
         state <= 3'h1;
       nextValid <=
-        _GEN_14 | (_GEN_12 ? ~(nextValid | _GEN_11) & nextValid : ~_GEN_11 & nextValid);
-      nextLoading <= ~(_GEN_12 & nextValid) & (prefetchGo | ~_GEN_11 & nextLoading);
-      if (_GEN_13)
+        _GEN_15 | (_GEN_13 ? ~(nextValid | _GEN_12) & nextValid : ~_GEN_12 & nextValid);
+      nextLoading <= ~(_GEN_13 & nextValid) & (prefetchGo | ~_GEN_12 & nextLoading);
+      if (_GEN_14)
         prefetched <= nextLoading;
       else
-        prefetched <= ~_GEN_10 & prefetched;
-      if (_GEN_12 & _GEN_7)
+        prefetched <= ~_GEN_11 & prefetched;
+      if (_GEN_13 & _GEN_8)
         curTable <= ~curTable;
       else
-        curTable <= _movesOn_T_3 & _GEN & _GEN_7 ^ curTable;
-      if (_movesOn_T_3) begin
+        curTable <= _GEN & _GEN_0 & _GEN_8 ^ curTable;
+      if (_GEN) begin
         errors <= {1'h0, badConfig, 2'h0, tooMany, 1'h0};
         processed <= 32'h0;
         found <= 32'h0;
@@ -53292,8 +53632,8 @@ module Puc_world(
         nonFinite <= nonFinite + {27'h0, _coll_io_nNonFinite};
         flaggedMiss <= flaggedMiss + {27'h0, _coll_io_nFlagged};
         if (_groups_io_enq_ready & _disp_io_groups_valid & (|_disp_io_groups_bits_invalid)
-            & _GEN_5 < firstBad)
-          firstBad <= _GEN_5;
+            & _GEN_6 < firstBad)
+          firstBad <= _GEN_6;
         if (running & ~loaded)
           cycLoad <= cycLoad + tick;
         if (running & _disp_io_fired)
@@ -53304,19 +53644,19 @@ module Puc_world(
         if (running & (_wr_io_blocked | _pack_io_flush_T & (|_wr_io_outstanding)))
           cycWaitWr <= cycWaitWr + tick;
       end
-      if (_wr_io_status_valid_T & ~_GEN_9)
+      if (_wr_io_status_valid_T & ~_GEN_10)
         cycTotal <= cycTotal + tick;
-      else if (_movesOn_T_3)
+      else if (_GEN)
         cycTotal <= 32'h1;
       else if (running)
         cycTotal <= cycTotal + tick;
-      tableIn <= ~_movesOn_T_3 & (loaded | tableIn);
-      bpStarted <= ~_movesOn_T_3 & (bpStart | bpStarted);
+      tableIn <= ~_GEN & (loaded | tableIn);
+      bpStarted <= ~_GEN & (bpStart | bpStarted);
       pairsInFlight <=
         pairsInFlight + {20'h0, _disp_io_fired ? _disp_io_groups_bits_cnt : 5'h0}
         - {20'h0, _coll_io_nPairs};
     end
-    if (_GEN_13) begin
+    if (_GEN_14) begin
       run_1 <= next_1;
       run_2 <= next_2;
       run_3 <= next_3;
@@ -53326,7 +53666,7 @@ module Puc_world(
       run_7 <= next_7;
       run_8 <= next_8;
     end
-    else if (_GEN_10) begin
+    else if (_GEN_11) begin
       run_1 <= csr_1;
       run_2 <= csr_2;
       run_3 <= csr_3;
@@ -53336,7 +53676,7 @@ module Puc_world(
       run_7 <= csr_7;
       run_8 <= csr_8;
     end
-    if (_GEN_14) begin
+    if (_GEN_15) begin
       next_1 <= csr_1;
       next_2 <= csr_2;
       next_3 <= csr_3;
@@ -53356,7 +53696,7 @@ module Puc_world(
     .io_sphereLines           (_rd_io_sphereLines_T_1[12:2]),
     .io_pairBase              (run_3),
     .io_pairLines
-      (run_8[1] | nextLoading ? 21'h0 : _rd_io_pairLines_T_1[24:4]),
+      (_bp_io_feed_3_valid_T ? 21'h0 : _rd_io_pairLines_T_1[24:4]),
     .io_rdReq_ready           (io_link_rdReq_ready),
     .io_rdReq_valid           (_rd_io_rdReq_valid),
     .io_rdReq_bits_addr       (io_link_rdReq_bits_addr),
@@ -54235,11 +54575,11 @@ module Puc_world(
     .io_status_valid     (_wr_io_status_valid_T),
     .io_status_bits_addr (run_7),
     .io_status_bits_data
-      ({run_8[1] & ~(|_GEN_2) ? {19'h0, _bp_io_status_large} : 32'h0,
-        run_8[1] & ~(|_GEN_2)
+      ({run_8[1] & ~(|_GEN_3) ? {19'h0, _bp_io_status_large} : 32'h0,
+        run_8[1] & ~(|_GEN_3)
           ? {{18{_bp_io_status_level[13]}}, _bp_io_status_level}
           : 32'h0,
-        run_8[1] & ~(|_GEN_2) ? _bp_io_status_cycTotal : 32'h0,
+        run_8[1] & ~(|_GEN_3) ? _bp_io_status_cycTotal : 32'h0,
         cycWaitWr,
         cycWaitRd,
         cycCompute,
@@ -54248,18 +54588,18 @@ module Puc_world(
         flaggedMiss,
         firstBad,
         nonFinite,
-        (|_GEN_2) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
+        (|_GEN_3) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
         found,
         processed,
         26'h0,
         errors[5] | run_8[1]
           & (_bp_io_status_tooMany | _bp_io_status_cellOverflow
              | _bp_io_status_largeOverflow | _bp_io_status_badBucket
-             | _bp_io_status_sortMismatch) & ~(|_GEN_2),
+             | _bp_io_status_sortMismatch) & ~(|_GEN_3),
         errors[4],
-        _GEN_3[3],
-        _GEN_4[2:1],
-        _GEN_4[0] | firstBad != 32'hFFFFFFFF,
+        _GEN_4[3],
+        _GEN_5[2:1],
+        _GEN_5[0] | firstBad != 32'hFFFFFFFF,
         32'h1}),
     .io_wrReq_ready      (io_link_wrReq_ready),
     .io_wrReq_valid      (_wr_io_wrReq_valid),
@@ -54274,37 +54614,38 @@ module Puc_world(
   BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world bp (
     .clock                   (clock),
     .reset                   (reset),
-    .io_begin                (loadStart & run_8[1]),
+    .io_begin                (loadStart & run_8[1] | prefetchGo),
+    .io_canBegin             (_bp_io_canBegin),
     .io_feed_0_valid
-      (_bp_io_feed_3_valid_T & ~prefetched & ~nextLoading
-       & {52'h0, _rd_io_sphereWrite_bits_line, 2'h0} < run_2),
+      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T
+       & {52'h0, _rd_io_sphereWrite_bits_line, 2'h0} < feedNum),
     .io_feed_0_bits_0        (_rd_io_sphereWrite_bits_data[31:0]),
     .io_feed_0_bits_1        (_rd_io_sphereWrite_bits_data[63:32]),
     .io_feed_0_bits_2        (_rd_io_sphereWrite_bits_data[95:64]),
     .io_feed_0_bits_3        (_rd_io_sphereWrite_bits_data[127:96]),
     .io_feed_1_valid
-      (_bp_io_feed_3_valid_T & ~prefetched & ~nextLoading
-       & {51'h0, _GEN_1 + 13'h1} < run_2),
+      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T
+       & {51'h0, _GEN_2 + 13'h1} < feedNum),
     .io_feed_1_bits_0        (_rd_io_sphereWrite_bits_data[159:128]),
     .io_feed_1_bits_1        (_rd_io_sphereWrite_bits_data[191:160]),
     .io_feed_1_bits_2        (_rd_io_sphereWrite_bits_data[223:192]),
     .io_feed_1_bits_3        (_rd_io_sphereWrite_bits_data[255:224]),
     .io_feed_2_valid
-      (_bp_io_feed_3_valid_T & ~prefetched & ~nextLoading
-       & {51'h0, _GEN_1 + 13'h2} < run_2),
+      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T
+       & {51'h0, _GEN_2 + 13'h2} < feedNum),
     .io_feed_2_bits_0        (_rd_io_sphereWrite_bits_data[287:256]),
     .io_feed_2_bits_1        (_rd_io_sphereWrite_bits_data[319:288]),
     .io_feed_2_bits_2        (_rd_io_sphereWrite_bits_data[351:320]),
     .io_feed_2_bits_3        (_rd_io_sphereWrite_bits_data[383:352]),
     .io_feed_3_valid
-      (_bp_io_feed_3_valid_T & ~prefetched & ~nextLoading
-       & {51'h0, _GEN_1 + 13'h3} < run_2),
+      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T
+       & {51'h0, _GEN_2 + 13'h3} < feedNum),
     .io_feed_3_bits_0        (_rd_io_sphereWrite_bits_data[415:384]),
     .io_feed_3_bits_1        (_rd_io_sphereWrite_bits_data[447:416]),
     .io_feed_3_bits_2        (_rd_io_sphereWrite_bits_data[479:448]),
     .io_feed_3_bits_3        (_rd_io_sphereWrite_bits_data[511:480]),
     .io_start                (bpStart),
-    .io_num                  (run_2[12:0]),
+    .io_num                  (prefetchGo ? next_2[12:0] : run_2[12:0]),
     .io_sphere_0_addr        (_bp_io_sphere_0_addr),
     .io_sphere_0_data_0      (_ram_io_world_0_data_x),
     .io_sphere_0_data_1      (_ram_io_world_0_data_y),
@@ -54450,6 +54791,7 @@ module Puc_world(
     .io_pairs_15_bits_i      (_bp_io_pairs_15_bits_i),
     .io_pairs_15_bits_j      (_bp_io_pairs_15_bits_j),
     .io_busy                 (_bp_io_busy),
+    .io_quiet                (_bp_io_quiet),
     .io_status_level         (_bp_io_status_level),
     .io_status_large         (_bp_io_status_large),
     .io_status_cycTotal      (_bp_io_status_cycTotal),

@@ -84,13 +84,16 @@ class Puc(p: PucParams) extends Module {
     (badConfig, c(Csr.NUM_SPHERES) > p.maxSpheres.U)
   }
   /** The run is over (its status written, or nowhere to write it): the queued run is next. */
-  private def endRun(): Unit =
+  private val runEnds = WireDefault(false.B) // endRun() was called this cycle
+  private def endRun(): Unit = {
+    runEnds := true.B
     if (!queued) state := sIdle
     else when(nextValid) {
       run := next; nextValid := false.B; state := sCheck
       prefetched := nextLoading; nextLoading := false.B
       when(nextLoading) { curTable := ~curTable } // its table is the one just loaded
     }.otherwise { state := sIdle }
+  }
 
   val runStart = WireDefault(false.B) // a run passed its checks: its counters and engines restart
   val loadStart = runStart && !prefetched // ... and its table is still to be read
@@ -119,6 +122,9 @@ class Puc(p: PucParams) extends Module {
   val wr     = Module(new WriteEngine(p))
 
   val prefetchGo = WireDefault(false.B) // the read engine turns to the queued run's table
+  // The broad phase takes a world begun ahead now (or never takes one: its table is read then).
+  val bpTakesAhead = WireDefault(true.B)
+  val bpQuiet = WireDefault(true.B) // the broad phase clears nothing and holds no fed sphere
   rd.io.start       := loadStart || prefetchGo
   rd.io.active      := running || nextLoading
   rd.io.sphereBase  := Mux(nextLoading, next(Csr.SPHERE_BASE), sphereBase)
@@ -142,7 +148,7 @@ class Puc(p: PucParams) extends Module {
     // (world mode reads nothing else), where the queued run is a world run that will not be refused.
     val (nextBad, nextTooMany) = refusal(next)
     prefetchGo := nextValid && !nextLoading && next(Csr.MODE)(1) && !nextBad && !nextTooMany &&
-      world && loaded && rd.io.outstanding === 0.U
+      world && loaded && rd.io.outstanding === 0.U && bpTakesAhead
     when(prefetchGo) { nextLoading := true.B }
   }
 
@@ -165,14 +171,23 @@ class Puc(p: PucParams) extends Module {
       val spl = lay.spheresPerLine
       val feedWidth = if (w.bp.lanes >= spl) spl else 0
       val bp = Module(new collide.world.BroadPhase(w.fp, w.bp, p.maxSpheres, feedWidth = feedWidth))
-      bp.io.begin := loadStart && world // ignored without feed ports
+      // A queued world run's table is fed too, begun ahead once the current run's broad phase
+      // is past its level and box (bpTakesAhead holds the prefetch until then); its counters are
+      // cleared when the current run's broad phase is over, so its own first pass is not run.
+      bp.io.begin := (loadStart && world) || prefetchGo // ignored without feed ports
+      bpTakesAhead := !bp.beginsAhead.B || bp.io.canBegin
+      bpQuiet := bp.io.quiet
       bp.io.start := bpStart
-      bp.io.num   := numSpheres(bp.io.countW - 1, 0) // <= maxSpheres: checked at sCheck
+      // <= maxSpheres: checked at sCheck, and for the queued run before its prefetch
+      bp.io.num   := Mux(prefetchGo, next(Csr.NUM_SPHERES), numSpheres)(bp.io.countW - 1, 0)
       val wr = rd.io.sphereWrite
+      val feedNum = Mux(nextLoading, next(Csr.NUM_SPHERES), numSpheres)
       for ((f, s) <- bp.io.feed.zipWithIndex) {
-        // Not a queued run's table: the broad phase is busy with the current run's (a table
-        // loaded ahead is read by the broad phase's first pass instead).
-        f.valid := wr.valid && world && !prefetched && !nextLoading && ((wr.bits.line << log2Ceil(spl)) +& s.U).pad(64) < numSpheres
+        // Every world run's table, the current run's or the queued run's, however late its
+        // lines come (a queued table may still be arriving when its run becomes current); the
+        // broad phase ignores lines of a world whose begin it did not take.
+        f.valid := wr.valid && (world || nextLoading) &&
+          ((wr.bits.line << log2Ceil(spl)) +& s.U).pad(64) < feedNum
         f.bits := Sphere.at(wr.bits.data, s * 4 * p.linkWidth, p.linkWidth).fields
       }
       for ((port, lane) <- ram.io.world.get.zip(bp.io.sphere)) {
@@ -303,8 +318,7 @@ class Puc(p: PucParams) extends Module {
     // A start during a run queues it, if the queue is free or moves on in this cycle (written
     // after endRun, so that its clear does not lose this start). A start with a run queued is
     // ignored, as a start during a run is without a queue (the host waits for a status first).
-    val movesOn = (state === sStatusWait && wr.io.outstanding === 0.U) || (state === sCheck && refusal(run)._1 && statusAddr === 0.U)
-    when(startReq && state =/= sIdle && (!nextValid || movesOn)) { next := csr; nextValid := true.B }
+    when(startReq && state =/= sIdle && (!nextValid || runEnds)) { next := csr; nextValid := true.B }
   }
   io.busy := state =/= sIdle
 
@@ -314,7 +328,7 @@ class Puc(p: PucParams) extends Module {
   // waits on a response (sRun, sDrain: packer empty; sStatus: no free write tag; sStatusWait).
   val noRequest = !io.link.rdReq.valid && !io.link.wrReq.valid
   val quietRun  = !disp.io.fired && !rd.io.pairs.fire && pairsInFlight === 0.U && !worldActive
-  io.idle := noRequest && !prefetchGo && MuxLookup(state, false.B)(Seq(
+  io.idle := noRequest && !prefetchGo && bpQuiet && MuxLookup(state, false.B)(Seq(
     sIdle       -> true.B,
     sRun        -> (quietRun && !runDone),
     sDrain      -> (quietRun && pack.io.idle && !drainDone),

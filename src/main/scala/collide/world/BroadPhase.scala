@@ -58,8 +58,12 @@ class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, feedWidth
     * `feed` as they are written into the table, each once, in any order, up to `feedWidth` a
     * cycle, and `start` (with the same num) once all are in: the level is chosen and the
     * counters cleared meanwhile, so the first pass over the table is not run. Without `begin`
-    * (or without feed ports, where it is ignored), `start` runs that pass. */
+    * (or without feed ports, where it is ignored), `start` runs that pass. A begin is taken
+    * only while `canBegin`: when idle, and (the AFU's run queue) while the current world is past
+    * its level and box, where the next world's table is fed while the current one works and its
+    * counters are cleared once the current one is over; its `start` comes after that. */
   val begin = Input(Bool())
+  val canBegin = Output(Bool())
   val feed = Vec(feedWidth, Flipped(Valid(Vec(4, UInt(p.width.W)))))
   val start = Input(Bool())
   val num = Input(UInt(countW.W))
@@ -69,6 +73,9 @@ class BroadPhaseIO(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, feedWidth
   })
   val pairs = Vec(bp.lanes, Decoupled(new WorldPair(itemW)))
   val busy = Output(Bool())
+  /** Nothing moves inside without an input: not busy, no counters clearing, no fed sphere in
+    * flight (the AFU lets its host skip idle cycles only then). */
+  val quiet = Output(Bool())
   val status = Output(new BroadPhaseStatus(SphereKeys.kWidth(p), countW))
 }
 
@@ -114,16 +121,38 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   /** Each lane recomputes its key records with a SphereKeys of its own; port p of the passes
     * uses lane p's. */
   private val laneKeys = Seq.fill(bp.lanes)(Module(new SphereKeys(p, bp, keysLatency)))
+  /** The fed spheres' needs and tops, apart from the lanes' SphereKeys, which the current world
+    * may be using while the next one is fed (only need, top and nonFinite are used). */
+  private val feedKeys = Seq.fill(feedWidth)(Module(new SphereKeys(p, bp, keysLatency)))
   private val larges = Reg(Vec(largeSlots, new WorldKey(itemW, bp.cellBits, qWidth)))
 
   private object S extends ChiselEnum { val idle, fill, load, merge, box, classify, prefix, scatter, generate = Value }
   private val state = RegInit(S.idle)
   io.busy := state =/= S.idle && state =/= S.fill
-  /** A new world starts (at begin, or at a start without one): every block forgets the last one. */
-  private val begin = io.begin && (feedWidth > 0).B // nothing can be fed without feed ports
+  /** A begin taken while the current world works (the run queue): its table is fed into the
+    * lane CellExponents and BoxTrackers, which the current world no longer needs once past its
+    * level and box; the counters and the level's CellExponent are cleared when it is over. Only
+    * with lanes (with one, the fed needs go straight into the CellExponent that holds the level). */
+  val beginsAhead: Boolean = feedWidth > 0 && wideLoad
+  private val pending = RegInit(false.B)
+  private val pendingNum = Reg(UInt(countW.W))
+  private val pastBox = state === S.classify || state === S.prefix || state === S.scatter || state === S.generate
+  io.canBegin := (feedWidth > 0).B && (state === S.idle || (beginsAhead.B && pastBox && !pending))
+  /** A new world starts (at begin, or at a start without one): every block forgets the last one.
+    * A begin of too many spheres is not taken: its start says so. */
+  private val begin = io.begin && io.canBegin && io.num <= maxSpheres.U
   private val starting = (io.start || begin) && state === S.idle
+  private val beginAhead = begin && state =/= S.idle
+  /** The current world is over and a world begun ahead fills next: its counters are cleared now. */
+  private val handOver = WireDefault(false.B)
+  /** The needs and boxes the feed fills are forgotten: at a begin, and at a start without one. */
+  private val clearFed = starting || beginAhead
+  /** The counters and the level are forgotten: a new world at idle, or the one begun ahead. */
+  private val clearWorld = starting || handOver
   /** This world's table was fed (begin): lanes 0 .. feedWidth-1 hold its needs and tops. */
   private val fed = RegInit(false.B)
+  /** Spheres are being fed: from a taken begin to its world's start. */
+  private val feedOn = RegInit(false.B)
 
   private val num = Reg(UInt(countW.W))
   private val usedLog2 = Reg(UInt(log2Ceil(tableLog2 + 1).W))
@@ -175,22 +204,29 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     def isSmall: Bool = !out.nonFinite && !isLarge
   }
   private val filling = state === S.fill
-  // The load pass, or a fed table's arrival (its spheres leave SphereKeys up to its latency
-  // after the state has moved to load).
-  private val loading = state === S.load || filling
+  // The load pass (its last spheres leave SphereKeys up to its latency after it).
+  private val loading = state === S.load
   for ((lk, l) <- laneKeys.zipWithIndex) {
     io.sphere(l).addr := Mux(state === S.generate, gens(l).io.keyAddr, i(l)(itemW - 1, 0))
     lk.io.in.valid := RegNext(reading(l), false.B)
     lk.io.in.sphere := io.sphere(l).data
-    if (l < feedWidth) when(filling) { lk.io.in.valid := io.feed(l).valid; lk.io.in.sphere := io.feed(l).bits }
     // need and top do not depend on the level
     lk.io.in.level := Mux(loading, 0.S, level)
   }
-  private val fedNow = if (feedWidth > 0) PopCount(io.feed.map(f => f.valid && filling)) else 0.U
+  private val fedIn = io.feed.map(f => f.valid && feedOn)
+  for ((fk, f) <- feedKeys.zip(io.feed)) {
+    fk.io.in.valid := f.valid && feedOn
+    fk.io.in.sphere := f.bits
+    fk.io.in.level := 0.S
+  }
+  /** Fed spheres not yet out of their SphereKeys. */
+  private val feedInflight = RegInit(0.U(log2Ceil(math.max(1, feedWidth) * (keysLatency + 2) + 1).W))
+  if (feedWidth > 0) feedInflight := feedInflight + PopCount(fedIn) - PopCount(feedKeys.map(_.io.out.valid))
   private val keyed = (0 until ports).map { q =>
     Keyed(laneKeys(q), Pipeline(RegNext(i(q)(itemW - 1, 0)), keysLatency, true.B))
   }
-  inflight := inflight + PopCount(reading) + fedNow - PopCount(laneKeys.map(_.io.out.valid))
+  inflight := inflight + PopCount(reading) - PopCount(laneKeys.map(_.io.out.valid))
+  io.quiet := !io.busy && !sortBusy && feedInflight === 0.U
   for ((g, lk) <- gens.zip(laneKeys)) g.io.keyData := record(lk)
 
   // --- box buckets: the world's box, kept by every lane as it loads (BroadPhaseModel.boxBits) --
@@ -200,11 +236,12 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   /** The box's bits are final: classify may start. */
   private val boxDone = WireDefault(true.B)
   if (bp.boxBuckets) {
-    val trackers = laneKeys.map { lk =>
+    val trackers = laneKeys.zipWithIndex.map { case (lk, l) =>
       val t = Module(new BoxTracker(p))
-      t.io.clear := starting
+      t.io.clear := clearFed
       t.io.in.valid := lk.io.in.valid && loading
       t.io.in.bits := lk.io.in.sphere
+      if (l < feedWidth) when(fedIn(l)) { t.io.in.valid := true.B; t.io.in.bits := io.feed(l).bits }
       t
     }
     val (anyBox, lo, hi) = BoxTracker.merge(trackers)
@@ -238,17 +275,22 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     ce.top := o.io.out.top; ce.topNone := o.io.out.topNone
     ce.nonFinite := o.io.out.nonFinite
   }
-  cellExp.io.clear := starting
+  /** Lane l's needs: from its SphereKeys in the load pass, or from its feed's as the table is fed. */
+  private def needsOf(ce: CellExponentIn, l: Int): Unit = {
+    feed(ce, laneKeys(l).io.out.valid && loading, laneKeys(l))
+    if (l < feedWidth) when(feedKeys(l).io.out.valid) { feed(ce, true.B, feedKeys(l)) }
+  }
+  cellExp.io.clear := clearWorld
   private val mergeSlots = bp.largeMax + 1
   private val mergeItems = bp.lanes * mergeSlots
   private val m = Reg(UInt(log2Ceil(mergeItems + 2).W)) // the merge's next item: lane m / slots, slot m % slots
   /** A fed world's needs are in lanes 0 .. feedWidth-1 alone: the merge stops after them. */
   private val mergeEnd = if (feedWidth > 0) Mux(fed, (feedWidth * mergeSlots).U, mergeItems.U) else mergeItems.U
-  if (!wideLoad) feed(cellExp.io.in.head, laneKeys.head.io.out.valid && loading, laneKeys.head)
+  if (!wideLoad) needsOf(cellExp.io.in.head, 0)
   else {
-    for ((e, lk) <- laneExps.zip(laneKeys)) {
-      e.io.clear := starting
-      feed(e.io.in.head, lk.io.out.valid && loading, lk)
+    for ((e, l) <- laneExps.zipWithIndex) {
+      e.io.clear := clearFed
+      needsOf(e.io.in.head, l)
     }
     // Every lane's filled slots, each with the lane's top (the largest of them is the top).
     val needs = VecInit(laneExps.flatMap(e => e.io.kept))
@@ -295,7 +337,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   }
   for (sort <- sorts) {
     sort.io.usedLog2 := usedLog2
-    sort.io.clear := starting
+    sort.io.clear := clearWorld
     sort.io.prefix := state === S.prefix && !sent
   }
   // Port q is port q % portsPerSort of group q / portsPerSort's sort.
@@ -404,29 +446,37 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private def restart(): Unit = for (l <- 0 until bp.lanes) i(l) := (if (l < ports) from(l) else 0.U)
   // The broad phase's own cycles: from start (a fed table's arrival is the link's time).
   when(state =/= S.idle && !filling) { st.cycTotal := st.cycTotal + 1.U }
+  /** A world of n spheres: its sizes and, for a fed table, a load pass that reads nothing (each
+    * lane starts at its slice's end). */
+  private def setUp(n: UInt, read: Bool): Unit = {
+    num := n; usedLog2 := bucketsLog2For(n); largeCount := 0.U
+    val cuts = (0 to bp.lanes).map(cutOf(n, _))
+    for (l <- 0 until bp.lanes) i(l) := Mux(read, cuts(l), cuts(l + 1))
+    fed := !read
+  }
+  // The status is the last world's until the next start (the AFU writes it after busy falls,
+  // while the next world may be fed).
+  when(io.start && (state === S.idle || filling)) { feedOn := false.B }
+  when(beginAhead) { pending := true.B; pendingNum := io.num; feedOn := true.B }
   switch(state) {
     is(S.idle) {
-      when(io.start || begin) {
+      when(io.start) {
         val z = WireDefault(0.U.asTypeOf(st))
-        num := io.num; usedLog2 := bucketsLog2For(io.num); largeCount := 0.U
-        // The load pass's slices, from io.num (num is not written yet); a fed table reads none
-        // (each lane starts at its slice's end).
-        val cuts = (0 to bp.lanes).map(cutOf(io.num, _))
-        for (l <- 0 until bp.lanes) i(l) := Mux(io.start, cuts(l), cuts(l + 1))
-        fed := !io.start
-        when(io.num > maxSpheres.U) { z.tooMany := true.B; st := z }
-          .otherwise { st := z; state := Mux(io.start, S.load, S.fill) }
+        setUp(io.num, true.B)
+        when(io.num > maxSpheres.U) { z.tooMany := true.B; st := z }.otherwise { st := z; state := S.load }
+      }.elsewhen(begin) {
+        setUp(io.num, false.B); feedOn := true.B; state := S.fill
       }
     }
     is(S.fill) {
       // The level is chosen as the spheres arrive; the load pass then only waits for the last of
       // them to leave SphereKeys and for the clear, and the merge takes the fed lanes' needs.
-      when(io.start) { state := S.load }
+      when(io.start) { state := S.load; st := 0.U.asTypeOf(st) }
     }
     is(S.load) {
       st.cycLoad := st.cycLoad + 1.U
       advance()
-      when(passDone && !sortBusy) {
+      when(passDone && feedInflight === 0.U && !sortBusy) {
         if (wideLoad) { state := S.merge; m := 0.U } else if (bp.boxBuckets) state := S.box else { state := S.classify; restart() }
       }
     }
@@ -464,6 +514,9 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       when(largeOnly) { st.cycLarge := st.cycLarge + 1.U }.otherwise { st.cycGrid := st.cycGrid + 1.U }
       when(sent && !gensBusy) {
         state := S.idle
+        when(pending) { // the world begun ahead: its table is (being) fed, its counters clear now
+          pending := false.B; handOver := true.B; setUp(pendingNum, false.B); state := S.fill
+        }
         st.level := level
         st.cells := laneSum(_.io.stats.cells); st.chunks := laneSum(_.io.stats.chunks)
         st.scanned := laneSum(_.io.stats.scanned); st.probes := laneSum(_.io.stats.probes)

@@ -79,20 +79,25 @@ object AfuRun {
   val contactBase = BigInt(0x80000)
   val statusAddr  = BigInt(0x7fff0)
 
-  def run(mem: HostMemoryModel, world: World, maxCycles: Long = -1,
-          csrOverride: Map[Int, BigInt] = Map.empty): RunResult = {
-    val w = world.w; val lay = world.lay
-    // sphere table lines
-    world.spheres.grouped(lay.spheresPerLine).zipWithIndex.foreach { case (group, l) =>
-      val line = group.zipWithIndex.map { case (s, k) =>
+  /** A sphere table and a pair list in host memory, in lines at the given line addresses, as
+    * the host lays them out. */
+  def writeLines(mem: HostMemoryModel, lay: BufferLayout, spheres: Seq[Seq[BigInt]], pairs: Seq[(Int, Int)],
+                 spheresAt: BigInt, pairsAt: BigInt): Unit = {
+    val w = lay.linkWidth
+    spheres.grouped(lay.spheresPerLine).zipWithIndex.foreach { case (group, l) =>
+      mem.mem(spheresAt + l) = group.zipWithIndex.map { case (s, k) =>
         s.zipWithIndex.map { case (v, c) => v << (k * 4 * w + c * w) }.sum
       }.sum
-      mem.mem(sphereBase + l) = line
     }
-    world.pairs.grouped(lay.pairsPerLine).zipWithIndex.foreach { case (group, l) =>
-      mem.mem(pairBase + l) = group.zipWithIndex.map { case ((i, j), k) =>
+    pairs.grouped(lay.pairsPerLine).zipWithIndex.foreach { case (group, l) =>
+      mem.mem(pairsAt + l) = group.zipWithIndex.map { case ((i, j), k) =>
         (BigInt(i & 0xffff) << (32 * k)) | (BigInt(j & 0xffff) << (32 * k + 16)) }.sum
     }
+  }
+
+  def run(mem: HostMemoryModel, world: World, maxCycles: Long = -1,
+          csrOverride: Map[Int, BigInt] = Map.empty): RunResult = {
+    writeLines(mem, world.lay, world.spheres, world.pairs, sphereBase, pairBase)
     val cap = world.capacity.getOrElse(world.lay.compactSlotsFor(world.pairs.size.toLong) + 3)
     val csrs = Map[Int, BigInt](Csr.SPHERE_BASE -> sphereBase, Csr.NUM_SPHERES -> world.nSpheres,
       Csr.PAIR_BASE -> pairBase, Csr.NUM_PAIRS -> world.pairs.size, Csr.CONTACT_BASE -> contactBase,

@@ -100,20 +100,14 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     * memory (the queue holds one run), a late run once run k - 1's is. Returns each run's
     * result (its writes: those to its buffers). */
   def runQueue(dut: Afu, cfg: AfuConfig, runs: Seq[Queued], beh: LinkBehaviour, seed: Long): Seq[RunResult] = {
-    val lay = cfg.layout; val w = lay.linkWidth
+    val lay = cfg.layout
     val mem = new HostMemoryModel(dut.io, dut.clock, beh, seed, cfg.maxReadsOutstanding, cfg.maxWritesOutstanding)
     def sphereBase(k: Int) = BigInt(0x100000 + k * 0x2000); def pairBase(k: Int) = BigInt(0x400000 + k * 0x4000)
     def contactBase(k: Int) = BigInt(0x800000 + k * 0x20000); def statusAddr(k: Int) = BigInt(0xf00000 + k)
     def spheres(q: Queued): IndexedSeq[Seq[BigInt]] = q.world.fold(_.map(s => Seq(s.x, s.y, s.z, s.r)), _.spheres)
     def capacity(q: Queued): Long = q.world.fold(ws => expected(cfg, ws).size.toLong + 3, pw => pw.capacity.getOrElse(lay.compactSlotsFor(pw.pairs.size.toLong) + 3))
-    for ((q, k) <- runs.zipWithIndex) {
-      spheres(q).grouped(lay.spheresPerLine).zipWithIndex.foreach { case (group, l) =>
-        mem.mem(sphereBase(k) + l) = group.zipWithIndex.map { case (s, i) => s.zipWithIndex.map { case (v, c) => v << (i * 4 * w + c * w) }.sum }.sum
-      }
-      for (pw <- q.world.toOption) pw.pairs.grouped(lay.pairsPerLine).zipWithIndex.foreach { case (group, l) =>
-        mem.mem(pairBase(k) + l) = group.zipWithIndex.map { case ((i, j), x) => (BigInt(i & 0xffff) << (32 * x)) | (BigInt(j & 0xffff) << (32 * x + 16)) }.sum
-      }
-    }
+    for ((q, k) <- runs.zipWithIndex)
+      AfuRun.writeLines(mem, lay, spheres(q), q.world.fold(_ => Nil, _.pairs), sphereBase(k), pairBase(k))
     def start(k: Int): Unit = {
       val q = runs(k)
       val n = if (q.tooMany) cfg.maxSpheres + 1L else spheres(q).size.toLong
@@ -247,7 +241,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  it should "load each queued world's table while the run before it computes (no load cycles after the first run)" in {
+  it should "load each queued world's table while the run before it computes, fed to its broad phase as it arrives (no load cycles after the first run, no more broad-phase cycles than started late), also where a run is too short to hide the next read" in {
     val rng = Seeds.rng("AfuWorldSpec-prefetch")
     test(new Afu(queued)).withAnnotations(annos) { dut =>
       dut.clock.setTimeout(0)
@@ -258,6 +252,17 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
       // Started late, the same runs each wait for their table.
       val late = checkQueue(dut, queued, clouds.zipWithIndex.map { case (c, i) => s"late cloud $i" -> Queued(Left(c), late = true) }, LinkBehaviour.harp, rng.nextLong())
       for ((s, i) <- late.zipWithIndex) assert(s.cycLoad > 0, s"late run $i: no load cycles: $s")
+      // A queued table is fed to the broad phase as it arrives, as a late run's is, so its
+      // broad phase does not read it again (that would take 200 / 4 cycles more a run).
+      def broad(s: Status) = s.words(StatusLine.CYCLES_BROAD / 4)
+      println(s"[AfuWorldSpec] broad-phase cycles queued ${st.map(broad).mkString(" ")}, late ${late.map(broad).mkString(" ")}")
+      for (((q, l), i) <- st.zip(late).zipWithIndex)
+        assert(broad(q) <= broad(l) + 8, s"run $i's broad phase took ${broad(q)} cycles queued, ${broad(l)} started late")
+      // Runs too short to hide the next table's read: it is still arriving when its run becomes
+      // current, and every line of it must still reach the broad phase.
+      val tiny = IndexedSeq(Seq.empty[BroadPhaseWorlds.S], BroadPhaseWorlds.uniform(rng, 1),
+        BroadPhaseWorlds.uniform(rng, 7, contacts = 2)).map(w => BroadPhaseWorlds.bits(queued.scpu.linkFormat, w))
+      checkQueue(dut, queued, (0 until 9).map(i => s"tiny $i" -> Queued(Left(tiny(i % 3)))), LinkBehaviour.harp, rng.nextLong())
     }
   }
 

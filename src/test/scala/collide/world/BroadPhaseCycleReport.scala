@@ -108,7 +108,7 @@ object BroadPhaseCycleReport {
           val world = bits(FloatFormat.fp32, ws)
           val want = model.run(world)
           val table = world.map(model.converted)
-          val (pairs, _, _) = BroadPhaseDriver.run(dut, table, () => true, Long.MaxValue, if (feed > 0) Some(rng) else None) { _ =>
+          val (pairs, _, _) = BroadPhaseDriver.run(dut, table, () => true, Long.MaxValue, if (feed > 0) Some(new BroadPhaseDriver.Feeder(dut, table, rng)) else None) { _ =>
             throw new IllegalStateException(s"$name ${ws.length}: the broad phase never finished")
           }
           require(pairs.sorted == want.candidates.sorted, s"$name ${ws.length}: the RTL's pairs differ from the model's")

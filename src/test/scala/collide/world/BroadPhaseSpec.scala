@@ -9,6 +9,7 @@ import collide.fp.FloatFormat
 import collide.scpu.ScpuConfig
 import collide.testutil.{Seeds, Slow}
 import collide.world.BroadPhaseWorlds._
+import collide.world.BroadPhaseDriver.Feeder
 import collide.world.model._
 
 /** The broad phase's RTL against its golden model, world by world: the same candidate
@@ -29,10 +30,10 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
   /** Serves the sphere table (one cycle of read latency) and takes the pairs, ready with
     * probability `readyOdds`. */
   private def run(dut: BroadPhase, table: IndexedSeq[Seq[BigInt]], rng: scala.util.Random, readyOdds: Double,
-                  fed: Boolean = false): Run = {
+                  fed: Option[Feeder] = None, ahead: Option[Feeder] = None): Run = {
     val limit = 100000L + 40L * table.length * table.length
     val (pairs, cycles, feedCycles) =
-      BroadPhaseDriver.run(dut, table, () => rng.nextDouble() < readyOdds, limit, if (fed) Some(rng) else None) { got =>
+      BroadPhaseDriver.run(dut, table, () => rng.nextDouble() < readyOdds, limit, fed, ahead) { got =>
       val s = dut.io.status
       fail(s"the broad phase never finished: ${table.length} spheres, cycles load ${s.cycLoad.peek().litValue} " +
         s"classify ${s.cycClassify.peek().litValue} prefix ${s.cycPrefix.peek().litValue} scatter ${s.cycScatter.peek().litValue} " +
@@ -49,10 +50,12 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     Run(pairs, fields ++ flags ++ box + ("level" -> s.level.peek().litValue), cycles)
   }
 
+  /** `fed`: the world's table was fed (a Feeder of `model.converted` values, see fedWorlds);
+    * `ahead`: the next world's, fed while this one runs. */
   private def check(dut: BroadPhase, model: BroadPhaseModel, label: String, world: IndexedSeq[WorldSphere],
-                    rng: scala.util.Random, readyOdds: Double, fed: Boolean = false): Run = {
+                    rng: scala.util.Random, readyOdds: Double, fed: Option[Feeder] = None, ahead: Option[Feeder] = None): Run = {
     val want = model.run(world)
-    val got = run(dut, world.map(model.converted), rng, readyOdds, fed)
+    val got = run(dut, world.map(model.converted), rng, readyOdds, fed, ahead)
     val where = s"$label (${model.cfg.name}, ${world.length} spheres, level ${want.level})"
     Seq("tooMany", "cellOverflow", "largeOverflow", "badBucket", "sortMismatch").foreach { f =>
       assert(got.status(f) == 0, s"$where: $f raised")
@@ -89,11 +92,12 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     val words = math.max(1, model.bucketsFor(world.length) / perWord)
     assert(got.status("cycPrefix") == words + 3, s"$where: prefix sum of ${got.status("cycPrefix")} cycles, want ${words + 3} " +
       s"(${model.bucketsFor(world.length)} buckets)")
-    if (fed) {
+    if (fed.isDefined) {
       // A fed table's level is chosen as it arrives: after start only the last spheres' keys and
-      // the merge of the fed lanes' needs remain, and, if the feed was shorter than the counters'
-      // clear (a word a cycle), the rest of the clear; with box buckets three cycles for the box's
-      // bits and one for each bit it loses to fit. Reading the table again would take num / lanes.
+      // the merge of the fed lanes' needs remain, and, if the clear (a word a cycle, from the
+      // begin, or from the end of the world before for one begun ahead) had fewer cycles before
+      // start, the rest of it; with box buckets three cycles for the box's bits and one for each
+      // bit it loses to fit. Reading the table again would take num / lanes.
       val feedWidth = dut.io.feed.length
       val merge = if (model.bp.lanes > 1) (feedWidth * (model.bp.largeMax + 1) + 1) / 2 else 0
       val clearLeft = math.max(0L, words - got.status("feedCycles").toLong)
@@ -258,22 +262,38 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  /** Worlds fed as the AFU's table writes feed them, `feedWidth` spheres a cycle, alternating with
-    * worlds read from the table (start without begin) on the same BroadPhase. */
+  /** Worlds fed as the AFU's table writes feed them, `feedWidth` spheres a cycle, some begun and
+    * fed while the world before them runs (as the AFU's run queue does, where the broad phase
+    * takes that), with a random gap after it (the AFU's status write), alternating with worlds read
+    * from the table (start without begin) on the same BroadPhase. */
   private def fedWorlds(seedName: String, bp: BroadPhaseParams, feedWidth: Int, tag: String, pick: Seq[(String, Seq[S])] => Seq[(String, Seq[S])]): Unit = {
     val rng = Seeds.rng(seedName)
     val model = new BroadPhaseModel(ScpuConfig.fp32, bp)
     test(new BroadPhase(ScpuConfig.fp32.params, bp, maxSpheres, feedWidth = feedWidth)).withAnnotations(annos) { dut =>
       dut.clock.setTimeout(0)
-      for (((label, w), n) <- pick(worlds(rng)).zipWithIndex) {
-        val fed = n % 3 != 2
-        val r = check(dut, model, label, bits(FloatFormat.fp32, w), rng, readyOdds = 0.7, fed = fed)
-        println(f"[BroadPhaseSpec] $tag$label%-40s ${w.length}%4d spheres ${if (fed) "fed " else "read"} load ${r.status("cycLoad")}%4s of ${r.cycles}%6d cycles")
+      val ws = pick(worlds(rng)).map { case (label, w) => (label, bits(FloatFormat.fp32, w)) }
+      // 0: fed after the world before; 1 and 3: fed ahead (while the world before runs); 2: read.
+      def mode(n: Int) = if (n == 0) 0 else n % 4
+      def feeder(n: Int) = new Feeder(dut, ws(n)._2.map(model.converted), rng)
+      var ahead: Option[Feeder] = None
+      var aheadCount, begunAhead = 0
+      for (((label, world), n) <- ws.zipWithIndex) {
+        val fed = if (mode(n) == 2) None else ahead.orElse(Some(feeder(n)))
+        ahead = if (n + 1 < ws.length && Set(1, 3)(mode(n + 1))) Some(feeder(n + 1)) else None
+        val r = check(dut, model, label, world, rng, readyOdds = 0.7, fed = fed, ahead = ahead)
+        val how = mode(n) match { case 0 => "fed  "; case 2 => "read "; case _ => "ahead" }
+        println(f"[BroadPhaseSpec] $tag$label%-40s ${world.length}%4d spheres $how load ${r.status("cycLoad")}%4s of ${r.cycles}%6d cycles")
+        ahead.foreach { f =>
+          aheadCount += 1; if (f.begunAhead) begunAhead += 1
+          for (_ <- 0 until rng.nextInt(64 + world.length)) f.step() // the gap: the clear goes on meanwhile
+        }
       }
+      // The broad phase must take a begin while the world before is past its level and box.
+      if (feedWidth > 1) assert(aheadCount > 0 && begunAhead == aheadCount, s"$begunAhead of $aheadCount worlds begun ahead")
     }
   }
 
-  it should "choose the level as the table is fed, a line of four spheres a cycle in any order, then find the same candidates (four lanes, four ports, coarse chunks), as well as after reading the table" in {
+  it should "choose the level as the table is fed, a line of four spheres a cycle in any order, after the world before and while it runs, then find the same candidates (four lanes, four ports, coarse chunks), as well as after reading the table" in {
     fedWorlds("BroadPhaseSpec-fed", BroadPhaseParams.fourLanesFourPorts.copy(coarseChunks = true, chunk = 32, cellSteps = 2), 4, "fed, four a line: ", ws => ws)
   }
 
