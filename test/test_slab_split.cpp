@@ -92,3 +92,22 @@ TEST(SlabSplit, RefusesAWorldNoBoxHoldsAndNamesTheSphere) {
     EXPECT_NE(m.find("nor into boxes along x and y"), std::string::npos) << m;
   }
 }
+
+TEST(SlabSplit, ChoosesTheCutWithTheFewestSpheresColumnsOverSlabsInACubeAndKeepsEveryContactOnce) {
+  // 6,000 spheres in a cube, runs of 400: slabs along x fit, but each carries a ghost layer
+  // about half its own thickness; columns along z cut along x and y carry two thinner ones.
+  std::mt19937_64 rng(collide::test::testSeed(2614));
+  std::uniform_real_distribution<double> pos(0, 22), rad(0.3, 0.6);
+  World w;
+  for (int k = 0; k < 6000; ++k) w.push(pos(rng), pos(rng), pos(rng), rad(rng));
+  const std::size_t cap = 400;
+  const auto slabs = splitIntoSlabs(w.x, w.r, cap);
+  const auto runs = splitIntoRuns(w.x, w.y, w.r, cap);
+  EXPECT_LT(sphereCount(runs), sphereCount(slabs)) << runs.size() << " runs against " << slabs.size() << " slabs";
+  EXPECT_LE(sphereCount(runs), sphereCount(splitIntoBoxes(w.x, w.y, w.r, cap)));  // never worse than before
+  bool ghostX = false, ghostY = false;
+  for (const auto& s : runs)
+    for (auto o : s.owned) { ghostX |= o == kOwnedY; ghostY |= o == kOwnedX; }
+  EXPECT_TRUE(ghostX && ghostY) << "not boxes";
+  expectEveryContactOnce(w, runs, cap, "cube, fewest spheres");
+}

@@ -39,7 +39,8 @@ void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
   out.contacts.format = fmt;
   splitSpheres(s, out, members_);
 
-  // One run, or slabs along x (boxes along x and y where slabs do not fit) by the values the AFU sees.
+  // One run, or slabs along x or boxes along x and y, whichever cut has the fewest spheres in
+  // all (ghosts included), by the values the AFU sees.
   const std::size_t cap = maxRun_ ? std::min<std::size_t>(maxRun_, driver_->options().maxSpheres)
                                   : driver_->options().maxSpheres;
   std::vector<Slab> slabs;
@@ -57,7 +58,7 @@ void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
       y[k] = q[1];
       r[k] = q[3];
     }
-    slabs = splitIntoBoxes(x, y, r, cap);
+    slabs = splitIntoRuns(x, y, r, cap);
   }
 
   last_ = driver::WorldRunResult{};

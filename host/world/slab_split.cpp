@@ -70,28 +70,9 @@ std::vector<Slab> cut(const std::vector<double>& x, const std::vector<double>& r
   return slabs;
 }
 
-}  // namespace
-
-std::vector<Slab> splitIntoSlabs(const std::vector<double>& x, const std::vector<double>& r, std::size_t cap) {
-  return cut(x, r, cap, nullptr, "x");
-}
-
-std::vector<Slab> splitIntoBoxes(const std::vector<double>& x, const std::vector<double>& y,
-                                 const std::vector<double>& r, std::size_t cap) {
-  try {
-    return splitIntoSlabs(x, r, cap);
-  } catch (const std::runtime_error&) {  // some sphere's x slice is too full: boxes
-  }
-  // The narrowest slabs along x that fit: a run of all spheres always does.
-  std::vector<Slab> slabs;
-  for (std::size_t wide = 2 * cap;; wide = std::min(2 * wide, x.size())) {
-    try {
-      slabs = splitIntoSlabs(x, r, wide);
-      break;
-    } catch (const std::runtime_error&) {
-      if (wide >= x.size()) throw;
-    }
-  }
+// Each slab cut along y into strips of at most `cap`: the boxes.
+std::vector<Slab> boxesOf(const std::vector<Slab>& slabs, const std::vector<double>& y, const std::vector<double>& r,
+                          std::size_t cap) {
   std::vector<Slab> boxes;
   for (const Slab& slab : slabs) {
     std::vector<double> sy, sr;
@@ -116,6 +97,54 @@ std::vector<Slab> splitIntoBoxes(const std::vector<double>& x, const std::vector
     }
   }
   return boxes;
+}
+
+}  // namespace
+
+std::vector<Slab> splitIntoSlabs(const std::vector<double>& x, const std::vector<double>& r, std::size_t cap) {
+  return cut(x, r, cap, nullptr, "x");
+}
+
+std::vector<Slab> splitIntoBoxes(const std::vector<double>& x, const std::vector<double>& y,
+                                 const std::vector<double>& r, std::size_t cap) {
+  try {
+    return splitIntoSlabs(x, r, cap);
+  } catch (const std::runtime_error&) {  // some sphere's x slice is too full: boxes
+  }
+  // The narrowest slabs along x that fit: a run of all spheres always does.
+  std::vector<Slab> slabs;
+  for (std::size_t wide = 2 * cap;; wide = std::min(2 * wide, x.size())) {
+    try {
+      slabs = splitIntoSlabs(x, r, wide);
+      break;
+    } catch (const std::runtime_error&) {
+      if (wide >= x.size()) throw;
+    }
+  }
+  return boxesOf(slabs, y, r, cap);
+}
+
+std::size_t sphereCount(const std::vector<Slab>& runs) {
+  std::size_t n = 0;
+  for (const Slab& s : runs) n += s.spheres.size();
+  return n;
+}
+
+std::vector<Slab> splitIntoRuns(const std::vector<double>& x, const std::vector<double>& y,
+                                const std::vector<double>& r, std::size_t cap) {
+  std::vector<Slab> best = splitIntoBoxes(x, y, r, cap);  // throws where nothing fits
+  auto better = [&](const std::vector<Slab>& c) {
+    const std::size_t a = sphereCount(c), b = sphereCount(best);
+    return a < b || (a == b && c.size() < best.size());
+  };
+  for (std::size_t k = 2; k * cap < x.size(); k += std::max<std::size_t>(1, k / 2)) {
+    try {
+      auto c = boxesOf(splitIntoSlabs(x, r, k * cap), y, r, cap);
+      if (better(c)) best = std::move(c);
+    } catch (const std::runtime_error&) {  // these slabs, or their strips, do not fit: the next
+    }
+  }
+  return best;
 }
 
 }  // namespace collide::world
