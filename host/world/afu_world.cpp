@@ -40,7 +40,7 @@ void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
   splitSpheres(s, out, members_);
 
   // One run, or slabs along x or boxes along x and y, whichever cut has the fewest spheres in
-  // all (ghosts included), by the values the AFU sees.
+  // all (ghosts included; a run counts for cap / 16 more), by the values the AFU sees.
   const std::size_t cap = maxRun_ ? std::min<std::size_t>(maxRun_, driver_->options().maxSpheres)
                                   : driver_->options().maxSpheres;
   std::vector<Slab> slabs;
