@@ -2,8 +2,8 @@
 broad phase and 16 fp32 SCPUs, Verilated, behind the link model) on the clouds of world.py,
 beside ODE's sweep-and-prune space + dCollide and the simd backend (our grid + the binary32
 kernel) measured on the same spheres in the same run. Above the world preset's 4,096 spheres
-the host cuts the world into slabs along x (boxes along x and y where slabs do not fit), one AFU
-run each (docs/host.md).
+the host cuts the world into slabs along x or boxes along x and y, whichever carries the fewest
+spheres (ghosts included), one AFU run each (docs/host.md).
 
     tools/pyenv bench/world/afu_world.py [--collide build/host/test/collide_world]
                                          [--afu generated/world] [--links qpi,ideal]
@@ -191,8 +191,9 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None):
     lines = ["# World mode on the AFU against ODE and the CPU grid", "",
              f"`collide spheres --afu generated/world` (the on-chip broad phase, {lanes} candidate lane{plural} and its sort's passes {spheres_a_cycle}, and 16 fp32",
              "SCPUs; time modelled by the link model; above 4,096 spheres the host cuts the world into slabs",
-             "along x, or boxes along x and y, one AFU run each, all in one call through the AFU's run queue where",
-             "the manifest has one: each run's table loads while the run before it computes) beside `--backend ode",
+             "along x or boxes along x and y, whichever carries the fewest spheres (a run counting for 256), one AFU run each, all in one call",
+             "through the AFU's run queue where the manifest has one: each run's table loads, and is fed to the broad",
+             "phase, while the run before it computes) beside `--backend ode",
              "--space sap` (ODE 0.16's sweep-and-prune space + dCollide, binary64) and `--backend simd` (our",
              "grid + the binary32 kernel),",
              "both wall clock, fastest of N, on the same spheres in the same run (bench/world/afu_world.py).",
@@ -240,17 +241,17 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None):
                                                              if qpi(r) and r["afu_over_bound"] <= 2.0)
                             if any(qpi(r) and r["afu_over_bound"] <= 2.0 for r in rows) else ", never within 2x") +
               ": the broad phase takes "
-              f"{min(per):.1f}-{max(per):.1f} cycles a sphere of the world (one run: {min(one):.1f}-{max(one):.1f}; slabs re-read their ghosts;",
+              f"{min(per):.1f}-{max(per):.1f} cycles a sphere of the world (one run: {min(one):.1f}-{max(one):.1f}; runs re-read their ghosts;",
               f"  its {lanes} candidate lane{plural} and its sort's passes of {spheres_a_cycle}),",
               "  while the link brings four spheres a line and a line a cycle. The cell level is chosen as the table",
               "  arrives, so what follows the table is the sort's three passes and the grid (docs/afu.md, \"World mode\",",
               "  \"Coarse chunks\", \"The fed table and eight sort ports\", \"Claimed work\", \"Queued hits and 32 counters a word\", \"Box buckets\").",
               ] + diamond_note + [
               "- Above 4,096 spheres (the world preset's table; a record names i and j in 12 bits each) every",
-              "  slab along x is a run of its own, its ghosts read twice; with the run queue all runs are one call",
-              "  (one transaction's costs, and one call's link bound), each table read while the run before computes;",
-              "  where slabs cannot hold a world (more than 4,096 spheres within reach of one x slice, as in the",
-              "  64,906-sphere diamond) the host cuts boxes along x and y instead (docs/host.md). One run of a",
+              "  slab along x or box along x and y is a run of its own, its ghosts read twice: the host takes the cut",
+              "  with the fewest spheres in all (near-square columns for the 65,536-sphere clouds; slabs cannot hold",
+              "  the 64,906-sphere diamond at all); with the run queue all runs are one call (one transaction's",
+              "  costs, and one call's link bound), each table read while the run before computes (docs/host.md). One run of a",
               "  whole 64k world needs wider record tags (not built; banked sphere RAM, which makes its table",
               "  affordable, is).", "", machine_md]
     (out / "README.md").write_text("\n".join(lines) + "\n")
