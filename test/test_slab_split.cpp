@@ -111,5 +111,6 @@ TEST(SlabSplit, ChoosesTheCutWithTheFewestSpheresColumnsOverSlabsInACubeAndKeeps
   for (const auto& s : runs)
     for (auto o : s.owned) { ghostX |= o == kOwnedY; ghostY |= o == kOwnedX; }
   EXPECT_TRUE(ghostX && ghostY) << "not boxes";
+  for (const auto& s : runs) EXPECT_LE(runs.front().spheres.size(), s.spheres.size()) << "the smallest run is not first";
   expectEveryContactOnce(w, runs, cap, "cube, fewest spheres");
 }

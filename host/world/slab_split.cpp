@@ -147,6 +147,13 @@ std::vector<Slab> splitIntoRuns(const std::vector<double>& x, const std::vector<
     } catch (const std::runtime_error&) {  // these slabs, or their strips, do not fit: the next
     }
   }
+  // The smallest run first: through the AFU's run queue, only the first run's table is read
+  // while nothing else happens (each later table loads during the run before it), and which
+  // run owns a pair does not depend on the order they run in.
+  const auto smallest = std::min_element(best.begin(), best.end(), [](const Slab& a, const Slab& b) {
+    return a.spheres.size() < b.spheres.size();
+  });
+  std::rotate(best.begin(), smallest, smallest + 1);
   return best;
 }
 

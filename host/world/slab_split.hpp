@@ -52,7 +52,8 @@ std::size_t sphereCount(const std::vector<Slab>& runs);
 // fixed passes cost the broad phase), among slabs along x (where they fit) and boxes whose slabs
 // along x hold 2, 3, 4, 6, 9, ... runs' worth before their cut along y. Thin slabs carry a ghost layer on one side of every run; near-square columns carry two
 // thinner ones, about 2 / sqrt(runs) of a slab's share (a uniform cloud of 65,536 spheres in
-// runs of 4,096: 0.5 more spheres in slabs, about 0.2 in columns). Throws as splitIntoBoxes.
+// runs of 4,096: 0.5 more spheres in slabs, about 0.2 in columns). The smallest run comes
+// first (its table is the one read with nothing to overlap). Throws as splitIntoBoxes.
 std::vector<Slab> splitIntoRuns(const std::vector<double>& x, const std::vector<double>& y,
                                 const std::vector<double>& r, std::size_t cap);
 
