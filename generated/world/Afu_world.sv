@@ -17121,6 +17121,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
   input         clock,
                 reset,
   input  [3:0]  io_usedLog2,
+  input  [13:0] io_walkBuckets,
   input         io_clear,
                 io_prefix,
   output        io_busy,
@@ -17914,13 +17915,13 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
   reg  [1:0]   state;
   reg  [8:0]   walk;
   wire [28:0]  _used_T = 29'h1 << io_usedLog2;
-  wire [8:0]   usedWords = _used_T[13:5] == 9'h0 ? 9'h1 : _used_T[13:5];
+  wire [8:0]   sumWords = io_walkBuckets[13:5] == 9'h0 ? 9'h1 : io_walkBuckets[13:5];
   reg  [10:0]  counted;
   reg  [10:0]  scattered;
   reg          bad;
   reg  [10:0]  sum;
   wire         _sumRead_T = state == 2'h2;
-  wire         _sumRead_T_1 = walk < usedWords;
+  wire         _sumRead_T_1 = walk < sumWords;
   wire         sumRead = _sumRead_T & _sumRead_T_1;
   reg          sumS1;
   reg  [7:0]   sumW;
@@ -20632,7 +20633,8 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
       fwdValid_1 <= 1'h0;
     end
     else begin
-      if (sumS1 & sumLast | _GEN & _walk_T_2 == usedWords)
+      if (sumS1 & sumLast | _GEN
+          & _walk_T_2 == (_used_T[13:5] == 9'h0 ? 9'h1 : _used_T[13:5]))
         state <= 2'h0;
       else if (_GEN_3)
         state <= 2'h1;
@@ -20670,7 +20672,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     else
       sum <= 11'h0;
     sumW <= walk[7:0];
-    sumLast <= _walk_T_2 == usedWords;
+    sumLast <= _walk_T_2 == sumWords;
     if (fire) begin
       s1b <= io_in_0_bits_bucket;
       s1scatter <= io_in_0_bits_scatter;
@@ -24385,11 +24387,14 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
   input         clock,
                 reset,
                 io_start,
-  input  [4:0]  io_box_0,
-                io_box_1,
-                io_box_2,
+  input  [19:0] io_box_origin_0,
+                io_box_origin_1,
+                io_box_origin_2,
+  input  [12:0] io_box_rx,
+                io_box_rxy,
   input  [3:0]  io_lane,
                 io_usedLog2,
+  input  [13:0] io_walkBuckets,
   output        io_need,
   input         io_claim_valid,
   input  [13:0] io_claim_bits_bucket,
@@ -24691,7 +24696,6 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
   wire [2:0]  _stream_io_out_bits_tag_off_2;
   wire        _stream_io_idle;
   reg  [2:0]  state;
-  wire [28:0] _io_lookup_bucket_mask_T = 29'h1 << io_usedLog2;
   reg  [13:0] bIssue;
   reg         walkPend;
   reg  [13:0] walkB;
@@ -24741,208 +24745,208 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
   wire [13:0] issueAt = inUnit ? bIssue : io_claim_bits_bucket;
   wire        _GEN_2 = _GEN_1 & issueOk;
   wire        occupied_0 =
-    walkB[4:0] == 5'h0 & {walkB[13:5], 5'h0} < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] == 5'h0 & {walkB[13:5], 5'h0} < io_walkBuckets
     & (single ? walkB[4:0] == 5'h0 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_0 != io_lookup_begin_0 | io_lookup_word_1_0 != io_lookup_begin_1
        | io_lookup_word_2_0 != io_lookup_begin_2
        | io_lookup_word_3_0 != io_lookup_begin_3);
   wire [13:0] _GEN_3 = {walkB[13:5], 5'h0};
   wire        occupied_1 =
-    walkB[4:0] < 5'h2 & _GEN_3 + 14'h1 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h2 & _GEN_3 + 14'h1 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h1 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_1 != io_lookup_word_0_0 | io_lookup_word_1_1 != io_lookup_word_1_0
        | io_lookup_word_2_1 != io_lookup_word_2_0
        | io_lookup_word_3_1 != io_lookup_word_3_0);
   wire        occupied_2 =
-    walkB[4:0] < 5'h3 & _GEN_3 + 14'h2 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h3 & _GEN_3 + 14'h2 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h2 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_2 != io_lookup_word_0_1 | io_lookup_word_1_2 != io_lookup_word_1_1
        | io_lookup_word_2_2 != io_lookup_word_2_1
        | io_lookup_word_3_2 != io_lookup_word_3_1);
   wire        occupied_3 =
-    walkB[4:0] < 5'h4 & _GEN_3 + 14'h3 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h4 & _GEN_3 + 14'h3 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h3 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_3 != io_lookup_word_0_2 | io_lookup_word_1_3 != io_lookup_word_1_2
        | io_lookup_word_2_3 != io_lookup_word_2_2
        | io_lookup_word_3_3 != io_lookup_word_3_2);
   wire        occupied_4 =
-    walkB[4:0] < 5'h5 & _GEN_3 + 14'h4 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h5 & _GEN_3 + 14'h4 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h4 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_4 != io_lookup_word_0_3 | io_lookup_word_1_4 != io_lookup_word_1_3
        | io_lookup_word_2_4 != io_lookup_word_2_3
        | io_lookup_word_3_4 != io_lookup_word_3_3);
   wire        occupied_5 =
-    walkB[4:0] < 5'h6 & _GEN_3 + 14'h5 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h6 & _GEN_3 + 14'h5 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h5 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_5 != io_lookup_word_0_4 | io_lookup_word_1_5 != io_lookup_word_1_4
        | io_lookup_word_2_5 != io_lookup_word_2_4
        | io_lookup_word_3_5 != io_lookup_word_3_4);
   wire        occupied_6 =
-    walkB[4:0] < 5'h7 & _GEN_3 + 14'h6 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h7 & _GEN_3 + 14'h6 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h6 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_6 != io_lookup_word_0_5 | io_lookup_word_1_6 != io_lookup_word_1_5
        | io_lookup_word_2_6 != io_lookup_word_2_5
        | io_lookup_word_3_6 != io_lookup_word_3_5);
   wire        occupied_7 =
-    walkB[4:0] < 5'h8 & _GEN_3 + 14'h7 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h8 & _GEN_3 + 14'h7 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h7 : ~(|(walkB[4:3])))
     & (io_lookup_word_0_7 != io_lookup_word_0_6 | io_lookup_word_1_7 != io_lookup_word_1_6
        | io_lookup_word_2_7 != io_lookup_word_2_6
        | io_lookup_word_3_7 != io_lookup_word_3_6);
   wire        occupied_8 =
-    walkB[4:0] < 5'h9 & _GEN_3 + 14'h8 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h9 & _GEN_3 + 14'h8 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h8 : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_8 != io_lookup_word_0_7 | io_lookup_word_1_8 != io_lookup_word_1_7
        | io_lookup_word_2_8 != io_lookup_word_2_7
        | io_lookup_word_3_8 != io_lookup_word_3_7);
   wire        occupied_9 =
-    walkB[4:0] < 5'hA & _GEN_3 + 14'h9 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'hA & _GEN_3 + 14'h9 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h9 : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_9 != io_lookup_word_0_8 | io_lookup_word_1_9 != io_lookup_word_1_8
        | io_lookup_word_2_9 != io_lookup_word_2_8
        | io_lookup_word_3_9 != io_lookup_word_3_8);
   wire        occupied_10 =
-    walkB[4:0] < 5'hB & _GEN_3 + 14'hA < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'hB & _GEN_3 + 14'hA < io_walkBuckets
     & (single ? walkB[4:0] == 5'hA : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_10 != io_lookup_word_0_9
        | io_lookup_word_1_10 != io_lookup_word_1_9
        | io_lookup_word_2_10 != io_lookup_word_2_9
        | io_lookup_word_3_10 != io_lookup_word_3_9);
   wire        occupied_11 =
-    walkB[4:0] < 5'hC & _GEN_3 + 14'hB < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'hC & _GEN_3 + 14'hB < io_walkBuckets
     & (single ? walkB[4:0] == 5'hB : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_11 != io_lookup_word_0_10
        | io_lookup_word_1_11 != io_lookup_word_1_10
        | io_lookup_word_2_11 != io_lookup_word_2_10
        | io_lookup_word_3_11 != io_lookup_word_3_10);
   wire        occupied_12 =
-    walkB[4:0] < 5'hD & _GEN_3 + 14'hC < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'hD & _GEN_3 + 14'hC < io_walkBuckets
     & (single ? walkB[4:0] == 5'hC : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_12 != io_lookup_word_0_11
        | io_lookup_word_1_12 != io_lookup_word_1_11
        | io_lookup_word_2_12 != io_lookup_word_2_11
        | io_lookup_word_3_12 != io_lookup_word_3_11);
   wire        occupied_13 =
-    walkB[4:0] < 5'hE & _GEN_3 + 14'hD < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'hE & _GEN_3 + 14'hD < io_walkBuckets
     & (single ? walkB[4:0] == 5'hD : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_13 != io_lookup_word_0_12
        | io_lookup_word_1_13 != io_lookup_word_1_12
        | io_lookup_word_2_13 != io_lookup_word_2_12
        | io_lookup_word_3_13 != io_lookup_word_3_12);
   wire        occupied_14 =
-    walkB[4:0] < 5'hF & _GEN_3 + 14'hE < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'hF & _GEN_3 + 14'hE < io_walkBuckets
     & (single ? walkB[4:0] == 5'hE : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_14 != io_lookup_word_0_13
        | io_lookup_word_1_14 != io_lookup_word_1_13
        | io_lookup_word_2_14 != io_lookup_word_2_13
        | io_lookup_word_3_14 != io_lookup_word_3_13);
   wire        occupied_15 =
-    ~(walkB[4]) & _GEN_3 + 14'hF < _io_lookup_bucket_mask_T[13:0]
+    ~(walkB[4]) & _GEN_3 + 14'hF < io_walkBuckets
     & (single ? walkB[4:0] == 5'hF : walkB[4:3] == 2'h1)
     & (io_lookup_word_0_15 != io_lookup_word_0_14
        | io_lookup_word_1_15 != io_lookup_word_1_14
        | io_lookup_word_2_15 != io_lookup_word_2_14
        | io_lookup_word_3_15 != io_lookup_word_3_14);
   wire        occupied_16 =
-    walkB[4:0] < 5'h11 & _GEN_3 + 14'h10 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h11 & _GEN_3 + 14'h10 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h10 : walkB[4:3] == 2'h2)
     & (io_lookup_word_0_16 != io_lookup_word_0_15
        | io_lookup_word_1_16 != io_lookup_word_1_15
        | io_lookup_word_2_16 != io_lookup_word_2_15
        | io_lookup_word_3_16 != io_lookup_word_3_15);
   wire        occupied_17 =
-    walkB[4:0] < 5'h12 & _GEN_3 + 14'h11 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h12 & _GEN_3 + 14'h11 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h11 : walkB[4:3] == 2'h2)
     & (io_lookup_word_0_17 != io_lookup_word_0_16
        | io_lookup_word_1_17 != io_lookup_word_1_16
        | io_lookup_word_2_17 != io_lookup_word_2_16
        | io_lookup_word_3_17 != io_lookup_word_3_16);
   wire        occupied_18 =
-    walkB[4:0] < 5'h13 & _GEN_3 + 14'h12 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h13 & _GEN_3 + 14'h12 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h12 : walkB[4:3] == 2'h2)
     & (io_lookup_word_0_18 != io_lookup_word_0_17
        | io_lookup_word_1_18 != io_lookup_word_1_17
        | io_lookup_word_2_18 != io_lookup_word_2_17
        | io_lookup_word_3_18 != io_lookup_word_3_17);
   wire        occupied_19 =
-    walkB[4:0] < 5'h14 & _GEN_3 + 14'h13 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h14 & _GEN_3 + 14'h13 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h13 : walkB[4:3] == 2'h2)
     & (io_lookup_word_0_19 != io_lookup_word_0_18
        | io_lookup_word_1_19 != io_lookup_word_1_18
        | io_lookup_word_2_19 != io_lookup_word_2_18
        | io_lookup_word_3_19 != io_lookup_word_3_18);
   wire        occupied_20 =
-    walkB[4:0] < 5'h15 & _GEN_3 + 14'h14 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h15 & _GEN_3 + 14'h14 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h14 : walkB[4:3] == 2'h2)
     & (io_lookup_word_0_20 != io_lookup_word_0_19
        | io_lookup_word_1_20 != io_lookup_word_1_19
        | io_lookup_word_2_20 != io_lookup_word_2_19
        | io_lookup_word_3_20 != io_lookup_word_3_19);
   wire        occupied_21 =
-    walkB[4:0] < 5'h16 & _GEN_3 + 14'h15 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h16 & _GEN_3 + 14'h15 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h15 : walkB[4:3] == 2'h2)
     & (io_lookup_word_0_21 != io_lookup_word_0_20
        | io_lookup_word_1_21 != io_lookup_word_1_20
        | io_lookup_word_2_21 != io_lookup_word_2_20
        | io_lookup_word_3_21 != io_lookup_word_3_20);
   wire        occupied_22 =
-    walkB[4:0] < 5'h17 & _GEN_3 + 14'h16 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h17 & _GEN_3 + 14'h16 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h16 : walkB[4:3] == 2'h2)
     & (io_lookup_word_0_22 != io_lookup_word_0_21
        | io_lookup_word_1_22 != io_lookup_word_1_21
        | io_lookup_word_2_22 != io_lookup_word_2_21
        | io_lookup_word_3_22 != io_lookup_word_3_21);
   wire        occupied_23 =
-    walkB[4:3] != 2'h3 & _GEN_3 + 14'h17 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:3] != 2'h3 & _GEN_3 + 14'h17 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h17 : walkB[4:3] == 2'h2)
     & (io_lookup_word_0_23 != io_lookup_word_0_22
        | io_lookup_word_1_23 != io_lookup_word_1_22
        | io_lookup_word_2_23 != io_lookup_word_2_22
        | io_lookup_word_3_23 != io_lookup_word_3_22);
   wire        occupied_24 =
-    walkB[4:0] < 5'h19 & _GEN_3 + 14'h18 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h19 & _GEN_3 + 14'h18 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h18 : (&(walkB[4:3])))
     & (io_lookup_word_0_24 != io_lookup_word_0_23
        | io_lookup_word_1_24 != io_lookup_word_1_23
        | io_lookup_word_2_24 != io_lookup_word_2_23
        | io_lookup_word_3_24 != io_lookup_word_3_23);
   wire        occupied_25 =
-    walkB[4:0] < 5'h1A & _GEN_3 + 14'h19 < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h1A & _GEN_3 + 14'h19 < io_walkBuckets
     & (single ? walkB[4:0] == 5'h19 : (&(walkB[4:3])))
     & (io_lookup_word_0_25 != io_lookup_word_0_24
        | io_lookup_word_1_25 != io_lookup_word_1_24
        | io_lookup_word_2_25 != io_lookup_word_2_24
        | io_lookup_word_3_25 != io_lookup_word_3_24);
   wire        occupied_26 =
-    walkB[4:0] < 5'h1B & _GEN_3 + 14'h1A < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h1B & _GEN_3 + 14'h1A < io_walkBuckets
     & (single ? walkB[4:0] == 5'h1A : (&(walkB[4:3])))
     & (io_lookup_word_0_26 != io_lookup_word_0_25
        | io_lookup_word_1_26 != io_lookup_word_1_25
        | io_lookup_word_2_26 != io_lookup_word_2_25
        | io_lookup_word_3_26 != io_lookup_word_3_25);
   wire        occupied_27 =
-    walkB[4:2] != 3'h7 & _GEN_3 + 14'h1B < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:2] != 3'h7 & _GEN_3 + 14'h1B < io_walkBuckets
     & (single ? walkB[4:0] == 5'h1B : (&(walkB[4:3])))
     & (io_lookup_word_0_27 != io_lookup_word_0_26
        | io_lookup_word_1_27 != io_lookup_word_1_26
        | io_lookup_word_2_27 != io_lookup_word_2_26
        | io_lookup_word_3_27 != io_lookup_word_3_26);
   wire        occupied_28 =
-    walkB[4:0] < 5'h1D & _GEN_3 + 14'h1C < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] < 5'h1D & _GEN_3 + 14'h1C < io_walkBuckets
     & (single ? walkB[4:0] == 5'h1C : (&(walkB[4:3])))
     & (io_lookup_word_0_28 != io_lookup_word_0_27
        | io_lookup_word_1_28 != io_lookup_word_1_27
        | io_lookup_word_2_28 != io_lookup_word_2_27
        | io_lookup_word_3_28 != io_lookup_word_3_27);
   wire        occupied_29 =
-    walkB[4:1] != 4'hF & _GEN_3 + 14'h1D < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:1] != 4'hF & _GEN_3 + 14'h1D < io_walkBuckets
     & (single ? walkB[4:0] == 5'h1D : (&(walkB[4:3])))
     & (io_lookup_word_0_29 != io_lookup_word_0_28
        | io_lookup_word_1_29 != io_lookup_word_1_28
        | io_lookup_word_2_29 != io_lookup_word_2_28
        | io_lookup_word_3_29 != io_lookup_word_3_28);
   wire        occupied_30 =
-    walkB[4:0] != 5'h1F & _GEN_3 + 14'h1E < _io_lookup_bucket_mask_T[13:0]
+    walkB[4:0] != 5'h1F & _GEN_3 + 14'h1E < io_walkBuckets
     & (single ? walkB[4:0] == 5'h1E : (&(walkB[4:3])))
     & (io_lookup_word_0_30 != io_lookup_word_0_29
        | io_lookup_word_1_30 != io_lookup_word_1_29
@@ -25055,8 +25059,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
     endcase
   end // always @(*)
   wire [31:0] _GEN_4 =
-    {_GEN_3 + 14'h1F < _io_lookup_bucket_mask_T[13:0]
-       & (single ? (&(walkB[4:0])) : (&(walkB[4:3])))
+    {_GEN_3 + 14'h1F < io_walkBuckets & (single ? (&(walkB[4:0])) : (&(walkB[4:3])))
        & (io_lookup_word_0_31 != io_lookup_word_0_30
           | io_lookup_word_1_31 != io_lookup_word_1_30
           | io_lookup_word_2_31 != io_lookup_word_2_30
@@ -26607,14 +26610,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
   wire [19:0] nc_0 = curCell_0 + {{17{casez_tmp_16[2]}}, casez_tmp_16};
   wire [19:0] nc_1 = curCell_1 + {{17{casez_tmp_17[2]}}, casez_tmp_17};
   wire [19:0] nc_2 = curCell_2 + {{17{casez_tmp_18[2]}}, casez_tmp_18};
-  wire [41:0] _io_lookup_bucket_h_T_5 = 42'h1 << io_box_0;
-  wire [41:0] _io_lookup_bucket_h_T_12 = 42'h1 << io_box_1;
-  wire [40:0] _io_lookup_bucket_h_T_17 =
-    {31'h0, nc_1[10:1] & _io_lookup_bucket_h_T_12[9:0] - 10'h1} << io_box_0;
-  wire [41:0] _io_lookup_bucket_h_T_21 = 42'h1 << io_box_2;
-  wire [72:0] _io_lookup_bucket_h_T_27 =
-    {63'h0, nc_2[10:1] & _io_lookup_bucket_h_T_21[9:0] - 10'h1} << {1'h0, io_box_0}
-    + {1'h0, io_box_1};
+  wire [28:0] _io_lookup_bucket_mask_T = 29'h1 << io_usedLog2;
   wire        _GEN_12 = state == 3'h3;
   wire [6:0]  _GEN_13 = {1'h0, li};
   wire [6:0]  idx = _GEN_13 + {1'h0, lj};
@@ -27222,8 +27218,9 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
       : _GEN_1
           ? issueAt[12:0]
           : _GEN_9
-              ? {nc_0[10:1] & _io_lookup_bucket_h_T_5[9:0] - 10'h1
-                   | _io_lookup_bucket_h_T_17[9:0] | _io_lookup_bucket_h_T_27[9:0],
+              ? {nc_0[10:1] - io_box_origin_0[9:0] + io_box_rx[9:0]
+                   * (nc_1[10:1] - io_box_origin_1[9:0]) + io_box_rxy[9:0]
+                   * (nc_2[10:1] - io_box_origin_2[9:0]),
                  nc_0[0],
                  nc_1[0],
                  nc_2[0]} & _io_lookup_bucket_mask_T[12:0] - 13'h1
@@ -31447,10 +31444,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     $signed(_laneKeys_6_io_out_need) > $signed(_cellExp_io_level);
   wire        _sorts_3_io_in_1_valid_T_8 =
     $signed(_laneKeys_7_io_out_need) > $signed(_cellExp_io_level);
-  reg  [4:0]  boxB_0;
-  reg  [4:0]  boxB_1;
-  reg  [4:0]  boxB_2;
+  reg  [19:0] boxMap_origin_0;
+  reg  [19:0] boxMap_origin_1;
+  reg  [19:0] boxMap_origin_2;
+  reg  [12:0] boxMap_rx;
+  reg  [12:0] boxMap_rxy;
   reg  [1:0]  boxCycle;
+  wire [28:0] _sorts_3_io_in_1_bits_bucket_mask_T = 29'h1 << usedLog2;
+  reg  [13:0] walkBuckets;
   wire        _any_T = _trackers_0_io_any | _trackers_1_io_any;
   wire [31:0] _GEN_5 =
     ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_0 < _trackers_0_io_lo_0
@@ -31825,7 +31826,10 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_hi_2 > _GEN_101
       ? _trackers_15_io_hi_2
       : _GEN_101;
-  wire [5:0]  _sorts_3_io_in_1_bits_bucket_h_T_26 = {1'h0, boxB_0} + {1'h0, boxB_1};
+  reg  [14:0] sat_0;
+  reg  [14:0] sat_1;
+  reg  [14:0] sat_2;
+  reg  [46:0] places;
   wire        _GEN_102 = state == 4'h4;
   reg  [8:0]  m;
   wire [8:0]  mergeEnd = fed ? 9'h44 : 9'h110;
@@ -40267,111 +40271,41 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     & ~_laneKeys_0_io_out_nonFinite
     & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
         & _sorts_0_io_in_0_valid_T_8);
-  wire [41:0] _sorts_3_io_in_1_bits_bucket_h_T_5 = 42'h1 << boxB_0;
-  wire [41:0] _sorts_3_io_in_1_bits_bucket_h_T_12 = 42'h1 << boxB_1;
-  wire [40:0] _GEN_103 = {36'h0, boxB_0};
-  wire [40:0] _sorts_0_io_in_0_bits_bucket_h_T_17 =
-    {31'h0,
-     _laneKeys_0_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_103;
-  wire [41:0] _sorts_3_io_in_1_bits_bucket_h_T_21 = 42'h1 << boxB_2;
-  wire [72:0] _GEN_104 = {67'h0, _sorts_3_io_in_1_bits_bucket_h_T_26};
-  wire [72:0] _sorts_0_io_in_0_bits_bucket_h_T_27 =
-    {63'h0,
-     _laneKeys_0_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_104;
-  wire [28:0] _units_T_1 = 29'h1 << usedLog2;
   wire        _sorts_0_io_in_1_valid_T_12 =
     _laneKeys_1_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_1_io_out_nonFinite
     & ~(~_laneKeys_1_io_out_nonFinite & ~_laneKeys_1_io_out_needNone
         & _sorts_0_io_in_1_valid_T_8);
-  wire [40:0] _sorts_0_io_in_1_bits_bucket_h_T_17 =
-    {31'h0,
-     _laneKeys_1_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_103;
-  wire [72:0] _sorts_0_io_in_1_bits_bucket_h_T_27 =
-    {63'h0,
-     _laneKeys_1_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_104;
   wire        _sorts_1_io_in_0_valid_T_12 =
     _laneKeys_2_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_2_io_out_nonFinite
     & ~(~_laneKeys_2_io_out_nonFinite & ~_laneKeys_2_io_out_needNone
         & _sorts_1_io_in_0_valid_T_8);
-  wire [40:0] _sorts_1_io_in_0_bits_bucket_h_T_17 =
-    {31'h0,
-     _laneKeys_2_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_103;
-  wire [72:0] _sorts_1_io_in_0_bits_bucket_h_T_27 =
-    {63'h0,
-     _laneKeys_2_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_104;
   wire        _sorts_1_io_in_1_valid_T_12 =
     _laneKeys_3_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_3_io_out_nonFinite
     & ~(~_laneKeys_3_io_out_nonFinite & ~_laneKeys_3_io_out_needNone
         & _sorts_1_io_in_1_valid_T_8);
-  wire [40:0] _sorts_1_io_in_1_bits_bucket_h_T_17 =
-    {31'h0,
-     _laneKeys_3_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_103;
-  wire [72:0] _sorts_1_io_in_1_bits_bucket_h_T_27 =
-    {63'h0,
-     _laneKeys_3_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_104;
   wire        _sorts_2_io_in_0_valid_T_12 =
     _laneKeys_4_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_4_io_out_nonFinite
     & ~(~_laneKeys_4_io_out_nonFinite & ~_laneKeys_4_io_out_needNone
         & _sorts_2_io_in_0_valid_T_8);
-  wire [40:0] _sorts_2_io_in_0_bits_bucket_h_T_17 =
-    {31'h0,
-     _laneKeys_4_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_103;
-  wire [72:0] _sorts_2_io_in_0_bits_bucket_h_T_27 =
-    {63'h0,
-     _laneKeys_4_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_104;
   wire        _sorts_2_io_in_1_valid_T_12 =
     _laneKeys_5_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_5_io_out_nonFinite
     & ~(~_laneKeys_5_io_out_nonFinite & ~_laneKeys_5_io_out_needNone
         & _sorts_2_io_in_1_valid_T_8);
-  wire [40:0] _sorts_2_io_in_1_bits_bucket_h_T_17 =
-    {31'h0,
-     _laneKeys_5_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_103;
-  wire [72:0] _sorts_2_io_in_1_bits_bucket_h_T_27 =
-    {63'h0,
-     _laneKeys_5_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_104;
   wire        _sorts_3_io_in_0_valid_T_12 =
     _laneKeys_6_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_6_io_out_nonFinite
     & ~(~_laneKeys_6_io_out_nonFinite & ~_laneKeys_6_io_out_needNone
         & _sorts_3_io_in_0_valid_T_8);
-  wire [40:0] _sorts_3_io_in_0_bits_bucket_h_T_17 =
-    {31'h0,
-     _laneKeys_6_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_103;
-  wire [72:0] _sorts_3_io_in_0_bits_bucket_h_T_27 =
-    {63'h0,
-     _laneKeys_6_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_104;
   wire        _sorts_3_io_in_1_valid_T_12 =
     _laneKeys_7_io_out_valid & (classifying | _sorts_3_io_in_1_bits_scatter_T)
     & ~_laneKeys_7_io_out_nonFinite
     & ~(~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
         & _sorts_3_io_in_1_valid_T_8);
-  wire [40:0] _sorts_3_io_in_1_bits_bucket_h_T_17 =
-    {31'h0,
-     _laneKeys_7_io_out_cell_1[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_12[9:0] - 10'h1}
-    << _GEN_103;
-  wire [72:0] _sorts_3_io_in_1_bits_bucket_h_T_27 =
-    {63'h0,
-     _laneKeys_7_io_out_cell_2[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_21[9:0] - 10'h1}
-    << _GEN_104;
   reg  [1:0]  entryGroup;
   reg  [11:0] casez_tmp_7;
   always @(*) begin
@@ -40804,7 +40738,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         casez_tmp_38 = _sorts_3_io_entry_15_mark;
     endcase
   end // always @(*)
-  wire [25:0] units = (|(usedLog2[3:2])) ? _units_T_1[28:3] : 26'h1;
+  wire [10:0] units = walkBuckets[13:3] == 11'h0 ? 11'h1 : walkBuckets[13:3];
   reg  [15:0] next;
   reg         held_0;
   reg         held_1;
@@ -40926,63 +40860,64 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:350 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(_GEN == 16'h0 | dCount[6:2] != 5'h1F)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:410 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
+          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:443 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
   wire        dLeft = dNext < {dCount, 3'h0};
+  wire [15:0] _GEN_103 = {5'h0, units};
   wire        out =
-    {10'h0, next} >= units & ~dLeft
+    next >= _GEN_103 & ~dLeft
     & ~(_gens_0_io_unresolved | _gens_1_io_unresolved | _gens_2_io_unresolved
         | _gens_3_io_unresolved | _gens_4_io_unresolved | _gens_5_io_unresolved
         | _gens_6_io_unresolved | _gens_7_io_unresolved | _gens_8_io_unresolved
@@ -40994,183 +40929,266 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         | heldUnit_7 & held_7 | heldUnit_8 & held_8 | heldUnit_9 & held_9 | heldUnit_10
         & held_10 | heldUnit_11 & held_11 | heldUnit_12 & held_12 | heldUnit_13 & held_13
         | heldUnit_14 & held_14 | heldUnit_15 & held_15);
-  wire        _GEN_105 = state == 4'h1;
-  wire        _GEN_106 = state == 4'h2;
-  wire        _GEN_107 = state == 4'h3;
-  wire        _GEN_108 = ~(|state) | _GEN_105;
-  wire        _GEN_109 = state == 4'h5;
-  wire        _GEN_110 = state == 4'h6;
-  wire        _GEN_111 = state == 4'h7;
+  wire        _GEN_104 = state == 4'h1;
+  wire        _GEN_105 = state == 4'h2;
+  wire        _GEN_106 = state == 4'h3;
+  wire        _GEN_107 = ~(|state) | _GEN_104;
+  wire        _GEN_108 = state == 4'h5;
+  wire        _GEN_109 = state == 4'h6;
+  wire        _GEN_110 = state == 4'h7;
   reg         REG_8;
-  wire        _GEN_112 = state == 4'h8;
-  wire        _GEN_113 =
+  wire        _GEN_111 = state == 4'h8;
+  wire        _GEN_112 =
     sent
     & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
         | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
         | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
         | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
-  wire        _GEN_114 = _GEN_112 & _GEN_113;
+  wire        _GEN_113 = _GEN_111 & _GEN_112;
   assign handOver =
-    ~(_GEN_108 | _GEN_106 | _GEN_107 | _GEN_102 | _GEN_109 | _GEN_110 | _GEN_111)
-    & _GEN_114 & pending;
-  wire [12:0] _usedLog2_ceilLog2_T_51 = pendingNum - 13'h1;
+    ~(_GEN_107 | _GEN_105 | _GEN_106 | _GEN_102 | _GEN_108 | _GEN_109 | _GEN_110)
+    & _GEN_113 & pending;
+  wire [27:0] _GEN_114 = {15'h0, pendingNum};
+  wire [28:0] _GEN_115 = {16'h0, pendingNum};
+  wire [26:0] _cuts_T_80 = {14'h0, pendingNum} * 27'h3000;
+  wire [27:0] _cuts_T_86 = _GEN_114 * 28'h5000;
+  wire [27:0] _cuts_T_89 = _GEN_114 * 28'h6000;
+  wire [27:0] _cuts_T_92 = _GEN_114 * 28'h7000;
+  wire [28:0] _cuts_T_97 = _GEN_115 * 29'h9000;
+  wire [28:0] _cuts_T_99 = _GEN_115 * 29'hA000;
+  wire [28:0] _cuts_T_101 = _GEN_115 * 29'hB000;
+  wire [28:0] _cuts_T_103 = _GEN_115 * 29'hC000;
+  wire [28:0] _cuts_T_105 = _GEN_115 * 29'hD000;
+  wire [28:0] _cuts_T_107 = _GEN_115 * 29'hE000;
+  wire [28:0] _cuts_T_109 = _GEN_115 * 29'hF000;
+  wire        _walkBuckets_ceilLog2_T_50 = pendingNum < 13'h2;
+  wire [12:0] _walkBuckets_ceilLog2_T_51 = pendingNum - 13'h1;
+  wire        _walkBuckets_t_T_4 = pendingNum == 13'h0;
   wire [5:0]  usedLog2_t_2 =
-    pendingNum == 13'h0
+    _walkBuckets_t_T_4
       ? 6'h0
       : {1'h0,
-         pendingNum < 13'h2
+         _walkBuckets_ceilLog2_T_50
            ? 5'h0
            : {1'h0,
-              |(_usedLog2_ceilLog2_T_51[12:8]),
-              (|(_usedLog2_ceilLog2_T_51[12:8]))
-                ? {_usedLog2_ceilLog2_T_51[12],
-                   _usedLog2_ceilLog2_T_51[12]
+              |(_walkBuckets_ceilLog2_T_51[12:8]),
+              (|(_walkBuckets_ceilLog2_T_51[12:8]))
+                ? {_walkBuckets_ceilLog2_T_51[12],
+                   _walkBuckets_ceilLog2_T_51[12]
                      ? 2'h0
-                     : _usedLog2_ceilLog2_T_51[11]
+                     : _walkBuckets_ceilLog2_T_51[11]
                          ? 2'h3
-                         : _usedLog2_ceilLog2_T_51[10]
+                         : _walkBuckets_ceilLog2_T_51[10]
                              ? 2'h2
-                             : {1'h0, _usedLog2_ceilLog2_T_51[9]}}
-                : {|(_usedLog2_ceilLog2_T_51[7:4]),
-                   (|(_usedLog2_ceilLog2_T_51[7:4]))
-                     ? (_usedLog2_ceilLog2_T_51[7]
+                             : {1'h0, _walkBuckets_ceilLog2_T_51[9]}}
+                : {|(_walkBuckets_ceilLog2_T_51[7:4]),
+                   (|(_walkBuckets_ceilLog2_T_51[7:4]))
+                     ? (_walkBuckets_ceilLog2_T_51[7]
                           ? 2'h3
-                          : _usedLog2_ceilLog2_T_51[6]
+                          : _walkBuckets_ceilLog2_T_51[6]
                               ? 2'h2
-                              : {1'h0, _usedLog2_ceilLog2_T_51[5]})
-                     : _usedLog2_ceilLog2_T_51[3]
+                              : {1'h0, _walkBuckets_ceilLog2_T_51[5]})
+                     : _walkBuckets_ceilLog2_T_51[3]
                          ? 2'h3
-                         : _usedLog2_ceilLog2_T_51[2]
+                         : _walkBuckets_ceilLog2_T_51[2]
                              ? 2'h2
-                             : {1'h0, _usedLog2_ceilLog2_T_51[1]}}} + 5'h1} + 6'h1;
-  wire [27:0] _GEN_115 = {15'h0, pendingNum};
-  wire [28:0] _GEN_116 = {16'h0, pendingNum};
-  wire [26:0] _cuts_T_80 = {14'h0, pendingNum} * 27'h3000;
-  wire [27:0] _cuts_T_86 = _GEN_115 * 28'h5000;
-  wire [27:0] _cuts_T_89 = _GEN_115 * 28'h6000;
-  wire [27:0] _cuts_T_92 = _GEN_115 * 28'h7000;
-  wire [28:0] _cuts_T_97 = _GEN_116 * 29'h9000;
-  wire [28:0] _cuts_T_99 = _GEN_116 * 29'hA000;
-  wire [28:0] _cuts_T_101 = _GEN_116 * 29'hB000;
-  wire [28:0] _cuts_T_103 = _GEN_116 * 29'hC000;
-  wire [28:0] _cuts_T_105 = _GEN_116 * 29'hD000;
-  wire [28:0] _cuts_T_107 = _GEN_116 * 29'hE000;
-  wire [28:0] _cuts_T_109 = _GEN_116 * 29'hF000;
-  wire [12:0] _usedLog2_ceilLog2_T_1 = io_num - 13'h1;
+                             : {1'h0, _walkBuckets_ceilLog2_T_51[1]}}} + 5'h1} + 6'h1;
+  wire [5:0]  walkBuckets_t_2 =
+    _walkBuckets_t_T_4
+      ? 6'h0
+      : {1'h0,
+         _walkBuckets_ceilLog2_T_50
+           ? 5'h0
+           : {1'h0,
+              |(_walkBuckets_ceilLog2_T_51[12:8]),
+              (|(_walkBuckets_ceilLog2_T_51[12:8]))
+                ? {_walkBuckets_ceilLog2_T_51[12],
+                   _walkBuckets_ceilLog2_T_51[12]
+                     ? 2'h0
+                     : _walkBuckets_ceilLog2_T_51[11]
+                         ? 2'h3
+                         : _walkBuckets_ceilLog2_T_51[10]
+                             ? 2'h2
+                             : {1'h0, _walkBuckets_ceilLog2_T_51[9]}}
+                : {|(_walkBuckets_ceilLog2_T_51[7:4]),
+                   (|(_walkBuckets_ceilLog2_T_51[7:4]))
+                     ? (_walkBuckets_ceilLog2_T_51[7]
+                          ? 2'h3
+                          : _walkBuckets_ceilLog2_T_51[6]
+                              ? 2'h2
+                              : {1'h0, _walkBuckets_ceilLog2_T_51[5]})
+                     : _walkBuckets_ceilLog2_T_51[3]
+                         ? 2'h3
+                         : _walkBuckets_ceilLog2_T_51[2]
+                             ? 2'h2
+                             : {1'h0, _walkBuckets_ceilLog2_T_51[1]}}} + 5'h1} + 6'h1;
+  wire [76:0] _walkBuckets_T_11 =
+    77'h1 << (walkBuckets_t_2 > 6'hD ? 6'hD : walkBuckets_t_2);
+  wire        _walkBuckets_ceilLog2_T = io_num < 13'h2;
+  wire [12:0] _walkBuckets_ceilLog2_T_1 = io_num - 13'h1;
   wire [5:0]  usedLog2_t =
     (|io_num)
       ? {1'h0,
-         io_num < 13'h2
+         _walkBuckets_ceilLog2_T
            ? 5'h0
            : {1'h0,
-              |(_usedLog2_ceilLog2_T_1[12:8]),
-              (|(_usedLog2_ceilLog2_T_1[12:8]))
-                ? {_usedLog2_ceilLog2_T_1[12],
-                   _usedLog2_ceilLog2_T_1[12]
+              |(_walkBuckets_ceilLog2_T_1[12:8]),
+              (|(_walkBuckets_ceilLog2_T_1[12:8]))
+                ? {_walkBuckets_ceilLog2_T_1[12],
+                   _walkBuckets_ceilLog2_T_1[12]
                      ? 2'h0
-                     : _usedLog2_ceilLog2_T_1[11]
+                     : _walkBuckets_ceilLog2_T_1[11]
                          ? 2'h3
-                         : _usedLog2_ceilLog2_T_1[10]
+                         : _walkBuckets_ceilLog2_T_1[10]
                              ? 2'h2
-                             : {1'h0, _usedLog2_ceilLog2_T_1[9]}}
-                : {|(_usedLog2_ceilLog2_T_1[7:4]),
-                   (|(_usedLog2_ceilLog2_T_1[7:4]))
-                     ? (_usedLog2_ceilLog2_T_1[7]
+                             : {1'h0, _walkBuckets_ceilLog2_T_1[9]}}
+                : {|(_walkBuckets_ceilLog2_T_1[7:4]),
+                   (|(_walkBuckets_ceilLog2_T_1[7:4]))
+                     ? (_walkBuckets_ceilLog2_T_1[7]
                           ? 2'h3
-                          : _usedLog2_ceilLog2_T_1[6]
+                          : _walkBuckets_ceilLog2_T_1[6]
                               ? 2'h2
-                              : {1'h0, _usedLog2_ceilLog2_T_1[5]})
-                     : _usedLog2_ceilLog2_T_1[3]
+                              : {1'h0, _walkBuckets_ceilLog2_T_1[5]})
+                     : _walkBuckets_ceilLog2_T_1[3]
                          ? 2'h3
-                         : _usedLog2_ceilLog2_T_1[2]
+                         : _walkBuckets_ceilLog2_T_1[2]
                              ? 2'h2
-                             : {1'h0, _usedLog2_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1
+                             : {1'h0, _walkBuckets_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1
       : 6'h0;
-  wire [12:0] _usedLog2_ceilLog2_T_26 = io_num - 13'h1;
+  wire [5:0]  walkBuckets_t =
+    (|io_num)
+      ? {1'h0,
+         _walkBuckets_ceilLog2_T
+           ? 5'h0
+           : {1'h0,
+              |(_walkBuckets_ceilLog2_T_1[12:8]),
+              (|(_walkBuckets_ceilLog2_T_1[12:8]))
+                ? {_walkBuckets_ceilLog2_T_1[12],
+                   _walkBuckets_ceilLog2_T_1[12]
+                     ? 2'h0
+                     : _walkBuckets_ceilLog2_T_1[11]
+                         ? 2'h3
+                         : _walkBuckets_ceilLog2_T_1[10]
+                             ? 2'h2
+                             : {1'h0, _walkBuckets_ceilLog2_T_1[9]}}
+                : {|(_walkBuckets_ceilLog2_T_1[7:4]),
+                   (|(_walkBuckets_ceilLog2_T_1[7:4]))
+                     ? (_walkBuckets_ceilLog2_T_1[7]
+                          ? 2'h3
+                          : _walkBuckets_ceilLog2_T_1[6]
+                              ? 2'h2
+                              : {1'h0, _walkBuckets_ceilLog2_T_1[5]})
+                     : _walkBuckets_ceilLog2_T_1[3]
+                         ? 2'h3
+                         : _walkBuckets_ceilLog2_T_1[2]
+                             ? 2'h2
+                             : {1'h0, _walkBuckets_ceilLog2_T_1[1]}}} + 5'h1} + 6'h1
+      : 6'h0;
+  wire [76:0] _walkBuckets_T_3 = 77'h1 << (walkBuckets_t > 6'hD ? 6'hD : walkBuckets_t);
+  wire        _walkBuckets_ceilLog2_T_25 = io_num < 13'h2;
+  wire [12:0] _walkBuckets_ceilLog2_T_26 = io_num - 13'h1;
   wire [5:0]  usedLog2_t_1 =
     (|io_num)
       ? {1'h0,
-         io_num < 13'h2
+         _walkBuckets_ceilLog2_T_25
            ? 5'h0
            : {1'h0,
-              |(_usedLog2_ceilLog2_T_26[12:8]),
-              (|(_usedLog2_ceilLog2_T_26[12:8]))
-                ? {_usedLog2_ceilLog2_T_26[12],
-                   _usedLog2_ceilLog2_T_26[12]
+              |(_walkBuckets_ceilLog2_T_26[12:8]),
+              (|(_walkBuckets_ceilLog2_T_26[12:8]))
+                ? {_walkBuckets_ceilLog2_T_26[12],
+                   _walkBuckets_ceilLog2_T_26[12]
                      ? 2'h0
-                     : _usedLog2_ceilLog2_T_26[11]
+                     : _walkBuckets_ceilLog2_T_26[11]
                          ? 2'h3
-                         : _usedLog2_ceilLog2_T_26[10]
+                         : _walkBuckets_ceilLog2_T_26[10]
                              ? 2'h2
-                             : {1'h0, _usedLog2_ceilLog2_T_26[9]}}
-                : {|(_usedLog2_ceilLog2_T_26[7:4]),
-                   (|(_usedLog2_ceilLog2_T_26[7:4]))
-                     ? (_usedLog2_ceilLog2_T_26[7]
+                             : {1'h0, _walkBuckets_ceilLog2_T_26[9]}}
+                : {|(_walkBuckets_ceilLog2_T_26[7:4]),
+                   (|(_walkBuckets_ceilLog2_T_26[7:4]))
+                     ? (_walkBuckets_ceilLog2_T_26[7]
                           ? 2'h3
-                          : _usedLog2_ceilLog2_T_26[6]
+                          : _walkBuckets_ceilLog2_T_26[6]
                               ? 2'h2
-                              : {1'h0, _usedLog2_ceilLog2_T_26[5]})
-                     : _usedLog2_ceilLog2_T_26[3]
+                              : {1'h0, _walkBuckets_ceilLog2_T_26[5]})
+                     : _walkBuckets_ceilLog2_T_26[3]
                          ? 2'h3
-                         : _usedLog2_ceilLog2_T_26[2]
+                         : _walkBuckets_ceilLog2_T_26[2]
                              ? 2'h2
-                             : {1'h0, _usedLog2_ceilLog2_T_26[1]}}} + 5'h1} + 6'h1
+                             : {1'h0, _walkBuckets_ceilLog2_T_26[1]}}} + 5'h1} + 6'h1
       : 6'h0;
-  wire [12:0] _GEN_117 = {4'h0, io_num[12:4]};
-  wire [26:0] _GEN_118 = {14'h0, io_num};
-  wire [12:0] _GEN_119 = {3'h0, io_num[12:3]};
-  wire [27:0] _GEN_120 = {15'h0, io_num};
-  wire [12:0] _GEN_121 = {2'h0, io_num[12:2]};
-  wire [28:0] _GEN_122 = {16'h0, io_num};
-  wire [26:0] _cuts_T_6 = _GEN_118 * 27'h3000;
-  wire [27:0] _cuts_T_12 = _GEN_120 * 28'h5000;
-  wire [27:0] _cuts_T_15 = _GEN_120 * 28'h6000;
-  wire [27:0] _cuts_T_18 = _GEN_120 * 28'h7000;
-  wire [28:0] _cuts_T_23 = _GEN_122 * 29'h9000;
-  wire [28:0] _cuts_T_25 = _GEN_122 * 29'hA000;
-  wire [28:0] _cuts_T_27 = _GEN_122 * 29'hB000;
-  wire [28:0] _cuts_T_29 = _GEN_122 * 29'hC000;
-  wire [28:0] _cuts_T_31 = _GEN_122 * 29'hD000;
-  wire [28:0] _cuts_T_33 = _GEN_122 * 29'hE000;
-  wire [28:0] _cuts_T_35 = _GEN_122 * 29'hF000;
-  wire [26:0] _cuts_T_43 = _GEN_118 * 27'h3000;
-  wire [27:0] _cuts_T_49 = _GEN_120 * 28'h5000;
-  wire [27:0] _cuts_T_52 = _GEN_120 * 28'h6000;
-  wire [27:0] _cuts_T_55 = _GEN_120 * 28'h7000;
-  wire [28:0] _cuts_T_60 = _GEN_122 * 29'h9000;
-  wire [28:0] _cuts_T_62 = _GEN_122 * 29'hA000;
-  wire [28:0] _cuts_T_64 = _GEN_122 * 29'hB000;
-  wire [28:0] _cuts_T_66 = _GEN_122 * 29'hC000;
-  wire [28:0] _cuts_T_68 = _GEN_122 * 29'hD000;
-  wire [28:0] _cuts_T_70 = _GEN_122 * 29'hE000;
-  wire [28:0] _cuts_T_72 = _GEN_122 * 29'hF000;
-  wire        _GEN_123 = _GEN_105 & io_start;
-  wire        z_tooMany = io_num > 13'h1000;
-  wire [19:0] _first_T =
+  wire [5:0]  walkBuckets_t_1 =
+    (|io_num)
+      ? {1'h0,
+         _walkBuckets_ceilLog2_T_25
+           ? 5'h0
+           : {1'h0,
+              |(_walkBuckets_ceilLog2_T_26[12:8]),
+              (|(_walkBuckets_ceilLog2_T_26[12:8]))
+                ? {_walkBuckets_ceilLog2_T_26[12],
+                   _walkBuckets_ceilLog2_T_26[12]
+                     ? 2'h0
+                     : _walkBuckets_ceilLog2_T_26[11]
+                         ? 2'h3
+                         : _walkBuckets_ceilLog2_T_26[10]
+                             ? 2'h2
+                             : {1'h0, _walkBuckets_ceilLog2_T_26[9]}}
+                : {|(_walkBuckets_ceilLog2_T_26[7:4]),
+                   (|(_walkBuckets_ceilLog2_T_26[7:4]))
+                     ? (_walkBuckets_ceilLog2_T_26[7]
+                          ? 2'h3
+                          : _walkBuckets_ceilLog2_T_26[6]
+                              ? 2'h2
+                              : {1'h0, _walkBuckets_ceilLog2_T_26[5]})
+                     : _walkBuckets_ceilLog2_T_26[3]
+                         ? 2'h3
+                         : _walkBuckets_ceilLog2_T_26[2]
+                             ? 2'h2
+                             : {1'h0, _walkBuckets_ceilLog2_T_26[1]}}} + 5'h1} + 6'h1
+      : 6'h0;
+  wire [76:0] _walkBuckets_T_7 =
+    77'h1 << (walkBuckets_t_1 > 6'hD ? 6'hD : walkBuckets_t_1);
+  wire [12:0] _GEN_116 = {4'h0, io_num[12:4]};
+  wire [26:0] _GEN_117 = {14'h0, io_num};
+  wire [12:0] _GEN_118 = {3'h0, io_num[12:3]};
+  wire [27:0] _GEN_119 = {15'h0, io_num};
+  wire [12:0] _GEN_120 = {2'h0, io_num[12:2]};
+  wire [28:0] _GEN_121 = {16'h0, io_num};
+  wire [26:0] _cuts_T_6 = _GEN_117 * 27'h3000;
+  wire [27:0] _cuts_T_12 = _GEN_119 * 28'h5000;
+  wire [27:0] _cuts_T_15 = _GEN_119 * 28'h6000;
+  wire [27:0] _cuts_T_18 = _GEN_119 * 28'h7000;
+  wire [28:0] _cuts_T_23 = _GEN_121 * 29'h9000;
+  wire [28:0] _cuts_T_25 = _GEN_121 * 29'hA000;
+  wire [28:0] _cuts_T_27 = _GEN_121 * 29'hB000;
+  wire [28:0] _cuts_T_29 = _GEN_121 * 29'hC000;
+  wire [28:0] _cuts_T_31 = _GEN_121 * 29'hD000;
+  wire [28:0] _cuts_T_33 = _GEN_121 * 29'hE000;
+  wire [28:0] _cuts_T_35 = _GEN_121 * 29'hF000;
+  wire [26:0] _cuts_T_43 = _GEN_117 * 27'h3000;
+  wire [27:0] _cuts_T_49 = _GEN_119 * 28'h5000;
+  wire [27:0] _cuts_T_52 = _GEN_119 * 28'h6000;
+  wire [27:0] _cuts_T_55 = _GEN_119 * 28'h7000;
+  wire [28:0] _cuts_T_60 = _GEN_121 * 29'h9000;
+  wire [28:0] _cuts_T_62 = _GEN_121 * 29'hA000;
+  wire [28:0] _cuts_T_64 = _GEN_121 * 29'hB000;
+  wire [28:0] _cuts_T_66 = _GEN_121 * 29'hC000;
+  wire [28:0] _cuts_T_68 = _GEN_121 * 29'hD000;
+  wire [28:0] _cuts_T_70 = _GEN_121 * 29'hE000;
+  wire [28:0] _cuts_T_72 = _GEN_121 * 29'hF000;
+  wire [19:0] _extent_T =
     {_corners_k_1_io_out_cell_0[19], _corners_k_1_io_out_cell_0[19:1]}
     - {_corners_k_io_out_cell_0[19], _corners_k_io_out_cell_0[19:1]};
-  wire [4:0]  first_hi = {_first_T[19], _first_T[19:16]};
-  wire [19:0] _first_T_44 =
-    {_corners_k_1_io_out_cell_1[19], _corners_k_1_io_out_cell_1[19:1]}
-    - {_corners_k_io_out_cell_1[19], _corners_k_io_out_cell_1[19:1]};
-  wire [4:0]  first_hi_5 = {_first_T_44[19], _first_T_44[19:16]};
-  wire [19:0] _first_T_88 =
+  wire [20:0] extent_0 = {_extent_T[19], _extent_T} + 21'h1;
+  wire [19:0] _extent_T_6 =
     {_corners_k_1_io_out_cell_2[19], _corners_k_1_io_out_cell_2[19:1]}
     - {_corners_k_io_out_cell_2[19], _corners_k_io_out_cell_2[19:1]};
-  wire [4:0]  first_hi_10 = {_first_T_88[19], _first_T_88[19:16]};
-  wire        anyBox =
-    _any_T | _trackers_2_io_any | _trackers_3_io_any | _trackers_4_io_any
-    | _trackers_5_io_any | _trackers_6_io_any | _trackers_7_io_any | _trackers_8_io_any
-    | _trackers_9_io_any | _trackers_10_io_any | _trackers_11_io_any | _trackers_12_io_any
-    | _trackers_13_io_any | _trackers_14_io_any | _trackers_15_io_any;
-  wire [4:0]  _top_T_1 = boxB_0 >= boxB_1 ? boxB_0 : boxB_1;
-  wire [4:0]  top = _top_T_1 >= boxB_2 ? _top_T_1 : boxB_2;
-  wire [2:0]  firstTop_enc =
-    boxB_0 == top ? 3'h1 : boxB_1 == top ? 3'h2 : {boxB_2 == top, 2'h0};
-  wire        _GEN_124 = boxCycle == 2'h1;
-  wire        _GEN_125 = boxCycle == 2'h2;
+  wire [20:0] extent_2 = {_extent_T_6[19], _extent_T_6} + 21'h1;
+  wire [18:0] _boxMap_origin_0_T = _corners_k_io_out_cell_0[19:1] - 19'h1;
+  wire [18:0] _boxMap_origin_2_T = _corners_k_io_out_cell_2[19:1] - 19'h1;
+  wire        _GEN_122 = _GEN_104 & io_start;
+  wire        z_tooMany = io_num > 13'h1000;
   wire        filling = state == 4'h1;
-  wire        _GEN_126 =
+  wire        _GEN_123 =
     classifying
     & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
        & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
@@ -41197,8 +41215,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
        & ~(~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
            & _sorts_3_io_in_1_valid_T_8) & _laneKeys_7_io_out_cellOverflow)
     | st_cellOverflow;
-  wire        _GEN_127 = ~(io_start & (~(|state) | filling)) & feedOn;
-  wire        _GEN_128 = ~(|state) | _GEN_105;
+  wire        _GEN_124 = ~(io_start & (~(|state) | filling)) & feedOn;
+  wire        _GEN_125 = ~(|state) | _GEN_104;
   wire        inPass = loading | classifying | _sorts_3_io_in_1_bits_scatter_T;
   wire        reading_0 = inPass & i_0 < (loading ? _GEN_0 : _GEN_1);
   wire        reading_1 = inPass & i_1 < (loading ? _GEN_1 : _GEN_2);
@@ -41206,15 +41224,15 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire        reading_2 =
     inPass
     & i_2 < (loading ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : {1'h0, _i_3_T_10[14:3]});
-  wire [15:0] _GEN_129 = {3'h0, num};
+  wire [15:0] _GEN_126 = {3'h0, num};
   wire        reading_3 = inPass & i_3 < (loading ? _GEN_2 : {1'h0, num[12:1]});
-  wire [15:0] _i_5_T_9 = _GEN_129 * 16'h5;
+  wire [15:0] _i_5_T_9 = _GEN_126 * 16'h5;
   wire        reading_4 =
     inPass & i_4 < (loading ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_9[15:3]);
-  wire [15:0] _i_6_T_9 = _GEN_129 * 16'h6;
+  wire [15:0] _i_6_T_9 = _GEN_126 * 16'h6;
   wire        reading_5 =
     inPass & i_5 < (loading ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_9[15:3]);
-  wire [15:0] _i_7_T_9 = _GEN_129 * 16'h7;
+  wire [15:0] _i_7_T_9 = _GEN_126 * 16'h7;
   wire        reading_6 =
     inPass & i_6 < (loading ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_9[15:3]);
   wire        reading_7 = inPass & i_7 < (loading ? {1'h0, num[12:1]} : num);
@@ -41250,9 +41268,23 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
      reading_2,
      reading_1,
      reading_0} == 16'h0 & inflight == 6'h0;
-  wire [6:0]  sum = {1'h0, _sorts_3_io_in_1_bits_bucket_h_T_26} + {2'h0, boxB_2};
-  wire [6:0]  _GEN_130 = {3'h0, (|(usedLog2[3:2])) ? usedLog2 - 4'h3 : 4'h0};
-  wire        boxDone = boxCycle == 2'h2 & sum <= _GEN_130;
+  wire [19:0] _extent_T_3 =
+    {_corners_k_1_io_out_cell_1[19], _corners_k_1_io_out_cell_1[19:1]}
+    - {_corners_k_io_out_cell_1[19], _corners_k_io_out_cell_1[19:1]};
+  wire [20:0] extent_1 = {_extent_T_3[19], _extent_T_3} + 21'h1;
+  wire        _GEN_127 = boxCycle == 2'h1;
+  wire        _GEN_128 = boxCycle == 2'h2;
+  wire [49:0] _words_T_1 = {places, 3'h0} + 50'h1F;
+  wire [13:0] _GEN_129 = {_words_T_1[13:5], 5'h0};
+  wire        _GEN_130 =
+    _GEN_102 & (&boxCycle)
+    & (_any_T | _trackers_2_io_any | _trackers_3_io_any | _trackers_4_io_any
+       | _trackers_5_io_any | _trackers_6_io_any | _trackers_7_io_any | _trackers_8_io_any
+       | _trackers_9_io_any | _trackers_10_io_any | _trackers_11_io_any
+       | _trackers_12_io_any | _trackers_13_io_any | _trackers_14_io_any
+       | _trackers_15_io_any)
+    & places <= {18'h0, 29'h1 << ((|(usedLog2[3:2])) ? usedLog2 - 4'h3 : 4'h0)}
+    & {_words_T_1[49:5], 5'h0} < {36'h0, _sorts_3_io_in_1_bits_bucket_mask_T[13:0]};
   wire        largeHere_0 =
     classifying & _laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
     & ~_laneKeys_0_io_out_needNone & _sorts_0_io_in_0_valid_T_8;
@@ -41365,6 +41397,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire        _taken_T = wants_0 & _toUnit_T_1[0];
   wire [16:0] _GEN_149 = {1'h0, next};
   wire [16:0] _at_T_3 = _GEN_149 + {16'h0, _taken_T} - 17'h1;
+  wire [16:0] _GEN_150 = {6'h0, units};
   wire [16:0] _at_T_10 =
     _GEN_149
     + {15'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -41566,16 +41599,17 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                       {1'h0, wants_14 & _toUnit_T_1[14]}
                         + {1'h0, wants_15 & _toUnit_T_1[15]}}}}} - 17'h1;
   wire        _taken_T_15 = wants_15 & _toUnit_T_1[15];
-  wire        _GEN_150 = state != 4'h8 | ~sent;
-  wire        _GEN_151 = io_start | begin_0;
-  wire        _GEN_152 = passDone & _io_quiet_T_3 & ~sortBusy;
+  wire        _GEN_151 = state != 4'h8 | ~sent;
+  wire        _GEN_152 = io_start | begin_0;
+  wire        _GEN_153 = passDone & _io_quiet_T_3 & ~sortBusy;
   wire [8:0]  _m_T = m + 9'h2;
-  wire        _GEN_153 = sent & ~sortBusy;
-  wire        _GEN_154 = passDone & ~REG_8;
-  wire        _GEN_155 = _GEN_112 & _GEN_113 & pending;
-  wire        _GEN_156 = _GEN_106 | _GEN_107 | _GEN_102 | _GEN_109 | _GEN_110 | _GEN_111;
-  wire        _GEN_157 = _GEN_105 | _GEN_156;
-  wire        _GEN_158 = _GEN_157 | ~_GEN_155;
+  wire        _GEN_154 = sent & ~sortBusy;
+  wire        _GEN_155 = passDone & ~REG_8;
+  wire        _GEN_156 = _GEN_111 & _GEN_112 & pending;
+  wire        _GEN_157 = _GEN_105 | _GEN_106 | _GEN_102 | _GEN_108 | _GEN_109 | _GEN_110;
+  wire        _GEN_158 = _GEN_104 | _GEN_157;
+  wire        _GEN_159 = _GEN_158 | ~_GEN_156;
+  wire [18:0] _boxMap_origin_1_T = _corners_k_io_out_cell_1[19:1] - 19'h1;
   wire [16:0] taken =
     _GEN_149
     + {12'h0,
@@ -41593,7 +41627,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               + {1'h0,
                  {1'h0, {1'h0, _taken_T_12} + {1'h0, _taken_T_13}}
                    + {1'h0, {1'h0, _taken_T_14} + {1'h0, _taken_T_15}}}}};
-  wire        _GEN_159 =
+  wire        _GEN_160 =
     largeHere_7 & ~_GEN_148 | largeHere_6 & ~_GEN_146 | largeHere_5 & ~_GEN_144
     | largeHere_4 & ~_GEN_142 | largeHere_3 & ~_GEN_138 | largeHere_2 & ~_GEN_136
     | largeHere_1 & ~_GEN_133 | largeHere_0 & ~_GEN_132 | st_largeOverflow;
@@ -41603,24 +41637,23 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
        {1'h0, _GEN_140 + _GEN_141}
          + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_147 + {1'h0, largeHere_7}}}};
   wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
-  wire        _heldUnit_0_T = {9'h0, _at_T_3} < units;
-  wire        _heldUnit_1_T = {9'h0, _at_T_10} < units;
-  wire        _heldUnit_2_T = {9'h0, _at_T_20} < units;
-  wire        _heldUnit_3_T = {9'h0, _at_T_33} < units;
-  wire        _heldUnit_4_T = {9'h0, _at_T_49} < units;
-  wire        _heldUnit_5_T = {9'h0, _at_T_68} < units;
-  wire        _heldUnit_6_T = {9'h0, _at_T_90} < units;
-  wire        _heldUnit_7_T = {9'h0, _at_T_115} < units;
-  wire        _heldUnit_8_T = {9'h0, _at_T_143} < units;
-  wire        _heldUnit_9_T = {9'h0, _at_T_174} < units;
-  wire        _heldUnit_10_T = {9'h0, _at_T_208} < units;
-  wire        _heldUnit_11_T = {9'h0, _at_T_245} < units;
-  wire        _heldUnit_12_T = {9'h0, _at_T_285} < units;
-  wire        _heldUnit_13_T = {9'h0, _at_T_328} < units;
-  wire        _heldUnit_14_T = {9'h0, _at_T_374} < units;
-  wire        _heldUnit_15_T = {9'h0, _at_T_423} < units;
-  wire        _GEN_160 = _GEN_156 | ~_GEN_114;
-  wire        _GEN_161 = sum > _GEN_130;
+  wire        _heldUnit_0_T = _at_T_3 < _GEN_150;
+  wire        _heldUnit_1_T = _at_T_10 < _GEN_150;
+  wire        _heldUnit_2_T = _at_T_20 < _GEN_150;
+  wire        _heldUnit_3_T = _at_T_33 < _GEN_150;
+  wire        _heldUnit_4_T = _at_T_49 < _GEN_150;
+  wire        _heldUnit_5_T = _at_T_68 < _GEN_150;
+  wire        _heldUnit_6_T = _at_T_90 < _GEN_150;
+  wire        _heldUnit_7_T = _at_T_115 < _GEN_150;
+  wire        _heldUnit_8_T = _at_T_143 < _GEN_150;
+  wire        _heldUnit_9_T = _at_T_174 < _GEN_150;
+  wire        _heldUnit_10_T = _at_T_208 < _GEN_150;
+  wire        _heldUnit_11_T = _at_T_245 < _GEN_150;
+  wire        _heldUnit_12_T = _at_T_285 < _GEN_150;
+  wire        _heldUnit_13_T = _at_T_328 < _GEN_150;
+  wire        _heldUnit_14_T = _at_T_374 < _GEN_150;
+  wire        _heldUnit_15_T = _at_T_423 < _GEN_150;
+  wire        _GEN_161 = _GEN_157 | ~_GEN_113;
   always @(posedge clock) begin
     if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h0) begin
       larges_0_index <= r_7;
@@ -42521,14 +42554,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     if (beginAhead)
       pendingNum <= io_num;
     if (|state) begin
-      if (_GEN_158) begin
+      if (_GEN_159) begin
       end
       else begin
         num <= pendingNum;
         usedLog2 <= usedLog2_t_2 > 6'hD ? 4'hD : usedLog2_t_2[3:0];
       end
-      if (~_GEN_105) begin
-        if (_GEN_106) begin
+      if (~_GEN_104) begin
+        if (_GEN_105) begin
           if (reading_0)
             i_0 <= i_0 + 13'h1;
           if (reading_1)
@@ -42562,9 +42595,9 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
           if (reading_15)
             i_15 <= i_15 + 13'h1;
         end
-        else if (~_GEN_107) begin
+        else if (~_GEN_106) begin
           if (_GEN_102) begin
-            if (boxDone) begin
+            if (&boxCycle) begin
               i_0 <= 13'h0;
               i_1 <= _GEN_1;
               i_2 <= _GEN_2;
@@ -42582,43 +42615,43 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               i_14 <= 13'h0;
               i_15 <= 13'h0;
             end
+          end
+          else if (_GEN_108) begin
+            if (reading_0)
+              i_0 <= i_0 + 13'h1;
+            if (reading_1)
+              i_1 <= i_1 + 13'h1;
+            if (reading_2)
+              i_2 <= i_2 + 13'h1;
+            if (reading_3)
+              i_3 <= i_3 + 13'h1;
+            if (reading_4)
+              i_4 <= i_4 + 13'h1;
+            if (reading_5)
+              i_5 <= i_5 + 13'h1;
+            if (reading_6)
+              i_6 <= i_6 + 13'h1;
+            if (reading_7)
+              i_7 <= i_7 + 13'h1;
+            if (reading_8)
+              i_8 <= i_8 + 13'h1;
+            if (reading_9)
+              i_9 <= i_9 + 13'h1;
+            if (reading_10)
+              i_10 <= i_10 + 13'h1;
+            if (reading_11)
+              i_11 <= i_11 + 13'h1;
+            if (reading_12)
+              i_12 <= i_12 + 13'h1;
+            if (reading_13)
+              i_13 <= i_13 + 13'h1;
+            if (reading_14)
+              i_14 <= i_14 + 13'h1;
+            if (reading_15)
+              i_15 <= i_15 + 13'h1;
           end
           else if (_GEN_109) begin
-            if (reading_0)
-              i_0 <= i_0 + 13'h1;
-            if (reading_1)
-              i_1 <= i_1 + 13'h1;
-            if (reading_2)
-              i_2 <= i_2 + 13'h1;
-            if (reading_3)
-              i_3 <= i_3 + 13'h1;
-            if (reading_4)
-              i_4 <= i_4 + 13'h1;
-            if (reading_5)
-              i_5 <= i_5 + 13'h1;
-            if (reading_6)
-              i_6 <= i_6 + 13'h1;
-            if (reading_7)
-              i_7 <= i_7 + 13'h1;
-            if (reading_8)
-              i_8 <= i_8 + 13'h1;
-            if (reading_9)
-              i_9 <= i_9 + 13'h1;
-            if (reading_10)
-              i_10 <= i_10 + 13'h1;
-            if (reading_11)
-              i_11 <= i_11 + 13'h1;
-            if (reading_12)
-              i_12 <= i_12 + 13'h1;
-            if (reading_13)
-              i_13 <= i_13 + 13'h1;
-            if (reading_14)
-              i_14 <= i_14 + 13'h1;
-            if (reading_15)
-              i_15 <= i_15 + 13'h1;
-          end
-          else if (_GEN_110) begin
-            if (_GEN_153) begin
+            if (_GEN_154) begin
               i_0 <= 13'h0;
               i_1 <= _GEN_1;
               i_2 <= _GEN_2;
@@ -42637,7 +42670,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               i_15 <= 13'h0;
             end
           end
-          else if (_GEN_111) begin
+          else if (_GEN_110) begin
             if (reading_0)
               i_0 <= i_0 + 13'h1;
             if (reading_1)
@@ -42671,7 +42704,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
             if (reading_15)
               i_15 <= i_15 + 13'h1;
           end
-          else if (_GEN_155) begin
+          else if (_GEN_156) begin
             i_0 <= {4'h0, pendingNum[12:4]};
             i_1 <= {3'h0, pendingNum[12:3]};
             i_2 <= {2'h0, _cuts_T_80[26:16]};
@@ -42691,17 +42724,23 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
           end
         end
       end
+      if (_GEN_159) begin
+        if (_GEN_130)
+          walkBuckets <= _GEN_129;
+      end
+      else
+        walkBuckets <= _walkBuckets_T_11[13:0];
     end
     else begin
-      if (_GEN_151)
+      if (_GEN_152)
         num <= io_num;
       if (io_start) begin
         usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
         i_0 <= 13'h0;
-        i_1 <= _GEN_117;
-        i_2 <= _GEN_119;
+        i_1 <= _GEN_116;
+        i_2 <= _GEN_118;
         i_3 <= {2'h0, _cuts_T_6[26:16]};
-        i_4 <= _GEN_121;
+        i_4 <= _GEN_120;
         i_5 <= {1'h0, _cuts_T_12[27:16]};
         i_6 <= {1'h0, _cuts_T_15[27:16]};
         i_7 <= {1'h0, _cuts_T_18[27:16]};
@@ -42713,13 +42752,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         i_13 <= _cuts_T_31[28:16];
         i_14 <= _cuts_T_33[28:16];
         i_15 <= _cuts_T_35[28:16];
+        walkBuckets <= _walkBuckets_T_3[13:0];
       end
       else if (begin_0) begin
         usedLog2 <= usedLog2_t_1 > 6'hD ? 4'hD : usedLog2_t_1[3:0];
-        i_0 <= _GEN_117;
-        i_1 <= _GEN_119;
+        i_0 <= _GEN_116;
+        i_1 <= _GEN_118;
         i_2 <= {2'h0, _cuts_T_43[26:16]};
-        i_3 <= _GEN_121;
+        i_3 <= _GEN_120;
         i_4 <= {1'h0, _cuts_T_49[27:16]};
         i_5 <= {1'h0, _cuts_T_52[27:16]};
         i_6 <= {1'h0, _cuts_T_55[27:16]};
@@ -42732,13 +42772,16 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         i_13 <= _cuts_T_70[28:16];
         i_14 <= _cuts_T_72[28:16];
         i_15 <= io_num;
+        walkBuckets <= _walkBuckets_T_7[13:0];
       end
+      else if (_GEN_130)
+        walkBuckets <= _GEN_129;
     end
-    if (~(~(|state) | _GEN_105 | _GEN_106 | _GEN_107 | _GEN_102)) begin
-      if (_GEN_109)
+    if (~(~(|state) | _GEN_104 | _GEN_105 | _GEN_106 | _GEN_102)) begin
+      if (_GEN_108)
         sent <= ~passDone & sent;
       else
-        sent <= _GEN_110 | (_GEN_111 ? ~_GEN_154 & sent : _GEN_112 | sent);
+        sent <= _GEN_109 | (_GEN_110 ? ~_GEN_155 & sent : _GEN_111 | sent);
     end
     REG <= i_0[11:0];
     r <= REG;
@@ -42756,12 +42799,31 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     r_6 <= REG_6;
     REG_7 <= i_7[11:0];
     r_7 <= REG_7;
-    if (~_GEN_108) begin
-      if (_GEN_106) begin
-        if (_GEN_152)
+    if (_GEN_102 & _GEN_127) begin
+      boxMap_origin_0 <= {_boxMap_origin_0_T[18], _boxMap_origin_0_T};
+      boxMap_origin_1 <= {_boxMap_origin_1_T[18], _boxMap_origin_1_T};
+      boxMap_origin_2 <= {_boxMap_origin_2_T[18], _boxMap_origin_2_T};
+      boxMap_rx <= extent_0[12:0] + 13'h1;
+      sat_0 <= (|(extent_0[20:14])) ? 15'h4000 : extent_0[14:0];
+      sat_1 <= (|(extent_1[20:14])) ? 15'h4000 : extent_1[14:0];
+      sat_2 <= (|(extent_2[20:14])) ? 15'h4000 : extent_2[14:0];
+    end
+    if (_GEN_102) begin
+      if (_GEN_128)
+        boxMap_rxy <= boxMap_rxy * boxMap_rx;
+      else if (_GEN_127)
+        boxMap_rxy <= extent_1[12:0] + 13'h1;
+    end
+    if (_GEN_102 & _GEN_128)
+      places <=
+        {15'h0, {16'h0, {1'h0, sat_0} + 16'h1} * {16'h0, {1'h0, sat_1} + 16'h1}}
+        * {31'h0, {1'h0, sat_2} + 16'h2} + {32'h0, sat_0} + 47'h2;
+    if (~_GEN_107) begin
+      if (_GEN_105) begin
+        if (_GEN_153)
           m <= 9'h0;
       end
-      else if (_GEN_107)
+      else if (_GEN_106)
         m <= _m_T;
     end
     entryGroup <= _gens_0_io_entry_group;
@@ -42780,13 +42842,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     entryGroup_13 <= _gens_13_io_entry_group;
     entryGroup_14 <= _gens_14_io_entry_group;
     entryGroup_15 <= _gens_15_io_entry_group;
-    if (_GEN_150) begin
+    if (_GEN_151) begin
       next <= 16'h0;
       dCount <= 7'h0;
       dNext <= 10'h0;
     end
     else begin
-      next <= {9'h0, taken} > units ? units[15:0] : taken[15:0];
+      next <= taken > _GEN_150 ? _GEN_103 : taken[15:0];
       if (|_GEN)
         dCount <= dCount + 7'h1;
       if (|toSingle)
@@ -42904,9 +42966,6 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       laneKeys_14_io_in_valid_REG <= 1'h0;
       laneKeys_15_io_in_valid_REG <= 1'h0;
       feedInflight <= 4'h0;
-      boxB_0 <= 5'h0;
-      boxB_1 <= 5'h0;
-      boxB_2 <= 5'h0;
       boxCycle <= 2'h0;
       held_0 <= 1'h0;
       held_1 <= 1'h0;
@@ -42944,41 +43003,41 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     end
     else begin
       if (|state) begin
-        if (_GEN_105) begin
+        if (_GEN_104) begin
           if (io_start)
             state <= 4'h2;
         end
-        else if (_GEN_106) begin
-          if (_GEN_152)
+        else if (_GEN_105) begin
+          if (_GEN_153)
             state <= 4'h3;
         end
-        else if (_GEN_107) begin
+        else if (_GEN_106) begin
           if (_m_T >= mergeEnd)
             state <= 4'h4;
         end
         else if (_GEN_102) begin
-          if (boxDone)
+          if (&boxCycle)
             state <= 4'h5;
         end
-        else if (_GEN_109) begin
+        else if (_GEN_108) begin
           if (passDone)
             state <= 4'h6;
         end
-        else if (_GEN_110) begin
-          if (_GEN_153)
+        else if (_GEN_109) begin
+          if (_GEN_154)
             state <= 4'h7;
         end
-        else if (_GEN_111) begin
-          if (_GEN_154)
+        else if (_GEN_110) begin
+          if (_GEN_155)
             state <= 4'h8;
         end
-        else if (_GEN_114)
+        else if (_GEN_113)
           state <= {3'h0, pending};
-        fed <= ~_GEN_157 & _GEN_155 | fed;
-        st_tooMany <= ~_GEN_123 & st_tooMany;
-        st_cellOverflow <= ~_GEN_123 & _GEN_126;
-        st_largeOverflow <= ~_GEN_123 & _GEN_159;
-        if (_GEN_158) begin
+        fed <= ~_GEN_158 & _GEN_156 | fed;
+        st_tooMany <= ~_GEN_122 & st_tooMany;
+        st_cellOverflow <= ~_GEN_122 & _GEN_123;
+        st_largeOverflow <= ~_GEN_122 & _GEN_160;
+        if (_GEN_159) begin
           if (classifying)
             largeCount <= largeKept[4:0];
         end
@@ -42994,27 +43053,27 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         else if (begin_0)
           state <= 4'h1;
         fed <= ~io_start & (begin_0 | fed);
-        st_cellOverflow <= ~io_start & _GEN_126;
-        st_largeOverflow <= ~io_start & _GEN_159;
-        if (_GEN_151)
+        st_cellOverflow <= ~io_start & _GEN_123;
+        st_largeOverflow <= ~io_start & _GEN_160;
+        if (_GEN_152)
           largeCount <= 5'h0;
         else if (classifying)
           largeCount <= largeKept[4:0];
       end
-      pending <= (~(|state) | _GEN_157 | ~_GEN_155) & (beginAhead | pending);
+      pending <= (~(|state) | _GEN_158 | ~_GEN_156) & (beginAhead | pending);
       if ((|state) | io_start)
-        feedOn <= beginAhead | _GEN_127;
+        feedOn <= beginAhead | _GEN_124;
       else
-        feedOn <= begin_0 | beginAhead | _GEN_127;
-      if (_GEN_128) begin
+        feedOn <= begin_0 | beginAhead | _GEN_124;
+      if (_GEN_125) begin
         if (io_start)
           st_level <= 14'h0;
       end
-      else if (_GEN_160) begin
+      else if (_GEN_161) begin
       end
       else
         st_level <= _cellExp_io_level;
-      if (_GEN_128 & io_start) begin
+      if (_GEN_125 & io_start) begin
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
       end
@@ -43024,11 +43083,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         if ((|state) & ~filling)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
-      if (_GEN_128) begin
+      if (_GEN_125) begin
         st_badBucket <= ~io_start & st_badBucket;
         st_sortMismatch <= ~io_start & st_sortMismatch;
       end
-      else if (_GEN_160) begin
+      else if (_GEN_161) begin
       end
       else begin
         st_badBucket <=
@@ -43108,159 +43167,56 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
            {1'h0, {1'h0, _feedKeys_0_io_out_valid} + {1'h0, _feedKeys_1_io_out_valid}}
              + {1'h0,
                 {1'h0, _feedKeys_2_io_out_valid} + {1'h0, _feedKeys_3_io_out_valid}}};
-      if (_GEN_102) begin
-        if (_GEN_125 & _GEN_161 & firstTop_enc[0])
-          boxB_0 <= boxB_0 - 5'h1;
-        else if (_GEN_124)
-          boxB_0 <=
-            ~anyBox | {_first_T[19], _first_T} + 21'h1 < 21'h2
-              ? 5'h0
-              : {|first_hi,
-                 (|first_hi)
-                   ? {1'h0,
-                      _first_T[19],
-                      _first_T[19]
-                        ? 2'h0
-                        : _first_T[19]
-                            ? 2'h3
-                            : _first_T[18] ? 2'h2 : {1'h0, _first_T[17]}}
-                   : {|(_first_T[15:8]),
-                      (|(_first_T[15:8]))
-                        ? {|(_first_T[15:12]),
-                           (|(_first_T[15:12]))
-                             ? (_first_T[15]
-                                  ? 2'h3
-                                  : _first_T[14] ? 2'h2 : {1'h0, _first_T[13]})
-                             : _first_T[11]
-                                 ? 2'h3
-                                 : _first_T[10] ? 2'h2 : {1'h0, _first_T[9]}}
-                        : {|(_first_T[7:4]),
-                           (|(_first_T[7:4]))
-                             ? (_first_T[7]
-                                  ? 2'h3
-                                  : _first_T[6] ? 2'h2 : {1'h0, _first_T[5]})
-                             : _first_T[3]
-                                 ? 2'h3
-                                 : _first_T[2] ? 2'h2 : {1'h0, _first_T[1]}}}} + 5'h1;
-        if (_GEN_125 & _GEN_161 & firstTop_enc[1])
-          boxB_1 <= boxB_1 - 5'h1;
-        else if (_GEN_124)
-          boxB_1 <=
-            ~anyBox | {_first_T_44[19], _first_T_44} + 21'h1 < 21'h2
-              ? 5'h0
-              : {|first_hi_5,
-                 (|first_hi_5)
-                   ? {1'h0,
-                      _first_T_44[19],
-                      _first_T_44[19]
-                        ? 2'h0
-                        : _first_T_44[19]
-                            ? 2'h3
-                            : _first_T_44[18] ? 2'h2 : {1'h0, _first_T_44[17]}}
-                   : {|(_first_T_44[15:8]),
-                      (|(_first_T_44[15:8]))
-                        ? {|(_first_T_44[15:12]),
-                           (|(_first_T_44[15:12]))
-                             ? (_first_T_44[15]
-                                  ? 2'h3
-                                  : _first_T_44[14] ? 2'h2 : {1'h0, _first_T_44[13]})
-                             : _first_T_44[11]
-                                 ? 2'h3
-                                 : _first_T_44[10] ? 2'h2 : {1'h0, _first_T_44[9]}}
-                        : {|(_first_T_44[7:4]),
-                           (|(_first_T_44[7:4]))
-                             ? (_first_T_44[7]
-                                  ? 2'h3
-                                  : _first_T_44[6] ? 2'h2 : {1'h0, _first_T_44[5]})
-                             : _first_T_44[3]
-                                 ? 2'h3
-                                 : _first_T_44[2] ? 2'h2 : {1'h0, _first_T_44[1]}}}}
-                + 5'h1;
-        if (_GEN_125 & _GEN_161 & firstTop_enc[2])
-          boxB_2 <= boxB_2 - 5'h1;
-        else if (_GEN_124)
-          boxB_2 <=
-            ~anyBox | {_first_T_88[19], _first_T_88} + 21'h1 < 21'h2
-              ? 5'h0
-              : {|first_hi_10,
-                 (|first_hi_10)
-                   ? {1'h0,
-                      _first_T_88[19],
-                      _first_T_88[19]
-                        ? 2'h0
-                        : _first_T_88[19]
-                            ? 2'h3
-                            : _first_T_88[18] ? 2'h2 : {1'h0, _first_T_88[17]}}
-                   : {|(_first_T_88[15:8]),
-                      (|(_first_T_88[15:8]))
-                        ? {|(_first_T_88[15:12]),
-                           (|(_first_T_88[15:12]))
-                             ? (_first_T_88[15]
-                                  ? 2'h3
-                                  : _first_T_88[14] ? 2'h2 : {1'h0, _first_T_88[13]})
-                             : _first_T_88[11]
-                                 ? 2'h3
-                                 : _first_T_88[10] ? 2'h2 : {1'h0, _first_T_88[9]}}
-                        : {|(_first_T_88[7:4]),
-                           (|(_first_T_88[7:4]))
-                             ? (_first_T_88[7]
-                                  ? 2'h3
-                                  : _first_T_88[6] ? 2'h2 : {1'h0, _first_T_88[5]})
-                             : _first_T_88[3]
-                                 ? 2'h3
-                                 : _first_T_88[2] ? 2'h2 : {1'h0, _first_T_88[1]}}}}
-                + 5'h1;
-        if (~_GEN_125)
-          boxCycle <= boxCycle + 2'h1;
-      end
-      else
+      if (~_GEN_102 | (&boxCycle))
         boxCycle <= 2'h0;
+      else
+        boxCycle <= boxCycle + 2'h1;
       held_0 <=
-        ~_GEN_150 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
+        ~_GEN_151 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
       held_1 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_1 ? _heldUnit_1_T : toSingle[1] | ~_gens_1_io_take & held_1);
       held_2 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_2 ? _heldUnit_2_T : toSingle[2] | ~_gens_2_io_take & held_2);
       held_3 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_3 ? _heldUnit_3_T : toSingle[3] | ~_gens_3_io_take & held_3);
       held_4 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_4 ? _heldUnit_4_T : toSingle[4] | ~_gens_4_io_take & held_4);
       held_5 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_5 ? _heldUnit_5_T : toSingle[5] | ~_gens_5_io_take & held_5);
       held_6 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_6 ? _heldUnit_6_T : toSingle[6] | ~_gens_6_io_take & held_6);
       held_7 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_7 ? _heldUnit_7_T : toSingle[7] | ~_gens_7_io_take & held_7);
       held_8 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_8 ? _heldUnit_8_T : toSingle[8] | ~_gens_8_io_take & held_8);
       held_9 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_9 ? _heldUnit_9_T : toSingle[9] | ~_gens_9_io_take & held_9);
       held_10 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_10 ? _heldUnit_10_T : toSingle[10] | ~_gens_10_io_take & held_10);
       held_11 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_11 ? _heldUnit_11_T : toSingle[11] | ~_gens_11_io_take & held_11);
       held_12 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_12 ? _heldUnit_12_T : toSingle[12] | ~_gens_12_io_take & held_12);
       held_13 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_13 ? _heldUnit_13_T : toSingle[13] | ~_gens_13_io_take & held_13);
       held_14 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_14 ? _heldUnit_14_T : toSingle[14] | ~_gens_14_io_take & held_14);
       held_15 <=
-        ~_GEN_150
+        ~_GEN_151
         & (_taken_T_15 ? _heldUnit_15_T : toSingle[15] | ~_gens_15_io_take & held_15);
       if (_taken_T)
         heldUnit_0 <= _heldUnit_0_T;
@@ -43895,6 +43851,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_clear             (clearWorld),
     .io_prefix            (_sorts_3_io_prefix_T & ~sent),
     .io_busy              (_sorts_0_io_busy),
@@ -43902,23 +43859,25 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_in_0_valid        (_sorts_0_io_in_0_valid_T_12),
     .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
-      ({_laneKeys_0_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
-          | _sorts_0_io_in_0_bits_bucket_h_T_17[9:0]
-          | _sorts_0_io_in_0_bits_bucket_h_T_27[9:0],
+      ({_laneKeys_0_io_out_cell_0[10:1] - boxMap_origin_0[9:0] + boxMap_rx[9:0]
+          * (_laneKeys_0_io_out_cell_1[10:1] - boxMap_origin_1[9:0]) + boxMap_rxy[9:0]
+          * (_laneKeys_0_io_out_cell_2[10:1] - boxMap_origin_2[9:0]),
         _laneKeys_0_io_out_cell_0[0],
         _laneKeys_0_io_out_cell_1[0],
-        _laneKeys_0_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
+        _laneKeys_0_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_0_bits_item    (r),
     .io_in_1_ready        (_sorts_0_io_in_1_ready),
     .io_in_1_valid        (_sorts_0_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
-      ({_laneKeys_1_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
-          | _sorts_0_io_in_1_bits_bucket_h_T_17[9:0]
-          | _sorts_0_io_in_1_bits_bucket_h_T_27[9:0],
+      ({_laneKeys_1_io_out_cell_0[10:1] - boxMap_origin_0[9:0] + boxMap_rx[9:0]
+          * (_laneKeys_1_io_out_cell_1[10:1] - boxMap_origin_1[9:0]) + boxMap_rxy[9:0]
+          * (_laneKeys_1_io_out_cell_2[10:1] - boxMap_origin_2[9:0]),
         _laneKeys_1_io_out_cell_0[0],
         _laneKeys_1_io_out_cell_1[0],
-        _laneKeys_1_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
+        _laneKeys_1_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_1_bits_item    (r_1),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_0_io_lookup_0_begin),
@@ -44584,6 +44543,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_clear             (clearWorld),
     .io_prefix            (_sorts_3_io_prefix_T & ~sent),
     .io_busy              (_sorts_1_io_busy),
@@ -44591,23 +44551,25 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_in_0_valid        (_sorts_1_io_in_0_valid_T_12),
     .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
-      ({_laneKeys_2_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
-          | _sorts_1_io_in_0_bits_bucket_h_T_17[9:0]
-          | _sorts_1_io_in_0_bits_bucket_h_T_27[9:0],
+      ({_laneKeys_2_io_out_cell_0[10:1] - boxMap_origin_0[9:0] + boxMap_rx[9:0]
+          * (_laneKeys_2_io_out_cell_1[10:1] - boxMap_origin_1[9:0]) + boxMap_rxy[9:0]
+          * (_laneKeys_2_io_out_cell_2[10:1] - boxMap_origin_2[9:0]),
         _laneKeys_2_io_out_cell_0[0],
         _laneKeys_2_io_out_cell_1[0],
-        _laneKeys_2_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
+        _laneKeys_2_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_0_bits_item    (r_2),
     .io_in_1_ready        (_sorts_1_io_in_1_ready),
     .io_in_1_valid        (_sorts_1_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
-      ({_laneKeys_3_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
-          | _sorts_1_io_in_1_bits_bucket_h_T_17[9:0]
-          | _sorts_1_io_in_1_bits_bucket_h_T_27[9:0],
+      ({_laneKeys_3_io_out_cell_0[10:1] - boxMap_origin_0[9:0] + boxMap_rx[9:0]
+          * (_laneKeys_3_io_out_cell_1[10:1] - boxMap_origin_1[9:0]) + boxMap_rxy[9:0]
+          * (_laneKeys_3_io_out_cell_2[10:1] - boxMap_origin_2[9:0]),
         _laneKeys_3_io_out_cell_0[0],
         _laneKeys_3_io_out_cell_1[0],
-        _laneKeys_3_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
+        _laneKeys_3_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_1_bits_item    (r_3),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_1_io_lookup_0_begin),
@@ -45273,6 +45235,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_clear             (clearWorld),
     .io_prefix            (_sorts_3_io_prefix_T & ~sent),
     .io_busy              (_sorts_2_io_busy),
@@ -45280,23 +45243,25 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_in_0_valid        (_sorts_2_io_in_0_valid_T_12),
     .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
-      ({_laneKeys_4_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
-          | _sorts_2_io_in_0_bits_bucket_h_T_17[9:0]
-          | _sorts_2_io_in_0_bits_bucket_h_T_27[9:0],
+      ({_laneKeys_4_io_out_cell_0[10:1] - boxMap_origin_0[9:0] + boxMap_rx[9:0]
+          * (_laneKeys_4_io_out_cell_1[10:1] - boxMap_origin_1[9:0]) + boxMap_rxy[9:0]
+          * (_laneKeys_4_io_out_cell_2[10:1] - boxMap_origin_2[9:0]),
         _laneKeys_4_io_out_cell_0[0],
         _laneKeys_4_io_out_cell_1[0],
-        _laneKeys_4_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
+        _laneKeys_4_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_0_bits_item    (r_4),
     .io_in_1_ready        (_sorts_2_io_in_1_ready),
     .io_in_1_valid        (_sorts_2_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
-      ({_laneKeys_5_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
-          | _sorts_2_io_in_1_bits_bucket_h_T_17[9:0]
-          | _sorts_2_io_in_1_bits_bucket_h_T_27[9:0],
+      ({_laneKeys_5_io_out_cell_0[10:1] - boxMap_origin_0[9:0] + boxMap_rx[9:0]
+          * (_laneKeys_5_io_out_cell_1[10:1] - boxMap_origin_1[9:0]) + boxMap_rxy[9:0]
+          * (_laneKeys_5_io_out_cell_2[10:1] - boxMap_origin_2[9:0]),
         _laneKeys_5_io_out_cell_0[0],
         _laneKeys_5_io_out_cell_1[0],
-        _laneKeys_5_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
+        _laneKeys_5_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_1_bits_item    (r_5),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_2_io_lookup_0_begin),
@@ -45962,6 +45927,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_clear             (clearWorld),
     .io_prefix            (_sorts_3_io_prefix_T & ~sent),
     .io_busy              (_sorts_3_io_busy),
@@ -45969,23 +45935,25 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_in_0_valid        (_sorts_3_io_in_0_valid_T_12),
     .io_in_0_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_0_bits_bucket
-      ({_laneKeys_6_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
-          | _sorts_3_io_in_0_bits_bucket_h_T_17[9:0]
-          | _sorts_3_io_in_0_bits_bucket_h_T_27[9:0],
+      ({_laneKeys_6_io_out_cell_0[10:1] - boxMap_origin_0[9:0] + boxMap_rx[9:0]
+          * (_laneKeys_6_io_out_cell_1[10:1] - boxMap_origin_1[9:0]) + boxMap_rxy[9:0]
+          * (_laneKeys_6_io_out_cell_2[10:1] - boxMap_origin_2[9:0]),
         _laneKeys_6_io_out_cell_0[0],
         _laneKeys_6_io_out_cell_1[0],
-        _laneKeys_6_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
+        _laneKeys_6_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_0_bits_item    (r_6),
     .io_in_1_ready        (_sorts_3_io_in_1_ready),
     .io_in_1_valid        (_sorts_3_io_in_1_valid_T_12),
     .io_in_1_bits_scatter (_sorts_3_io_in_1_bits_scatter_T),
     .io_in_1_bits_bucket
-      ({_laneKeys_7_io_out_cell_0[10:1] & _sorts_3_io_in_1_bits_bucket_h_T_5[9:0] - 10'h1
-          | _sorts_3_io_in_1_bits_bucket_h_T_17[9:0]
-          | _sorts_3_io_in_1_bits_bucket_h_T_27[9:0],
+      ({_laneKeys_7_io_out_cell_0[10:1] - boxMap_origin_0[9:0] + boxMap_rx[9:0]
+          * (_laneKeys_7_io_out_cell_1[10:1] - boxMap_origin_1[9:0]) + boxMap_rxy[9:0]
+          * (_laneKeys_7_io_out_cell_2[10:1] - boxMap_origin_2[9:0]),
         _laneKeys_7_io_out_cell_0[0],
         _laneKeys_7_io_out_cell_1[0],
-        _laneKeys_7_io_out_cell_2[0]} & _units_T_1[12:0] - 13'h1),
+        _laneKeys_7_io_out_cell_2[0]} & _sorts_3_io_in_1_bits_bucket_mask_T[12:0]
+       - 13'h1),
     .io_in_1_bits_item    (r_7),
     .io_lookup_0_bucket   (_gens_0_io_lookup_bucket),
     .io_lookup_0_begin    (_sorts_3_io_lookup_0_begin),
@@ -46651,11 +46619,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'h0),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_0_io_need),
     .io_claim_valid       (held_0),
     .io_claim_bits_bucket (grant_0),
@@ -46917,11 +46888,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'h1),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_1_io_need),
     .io_claim_valid       (held_1),
     .io_claim_bits_bucket (grant_1),
@@ -47183,11 +47157,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'h2),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_2_io_need),
     .io_claim_valid       (held_2),
     .io_claim_bits_bucket (grant_2),
@@ -47449,11 +47426,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'h3),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_3_io_need),
     .io_claim_valid       (held_3),
     .io_claim_bits_bucket (grant_3),
@@ -47715,11 +47695,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'h4),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_4_io_need),
     .io_claim_valid       (held_4),
     .io_claim_bits_bucket (grant_4),
@@ -47981,11 +47964,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'h5),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_5_io_need),
     .io_claim_valid       (held_5),
     .io_claim_bits_bucket (grant_5),
@@ -48247,11 +48233,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'h6),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_6_io_need),
     .io_claim_valid       (held_6),
     .io_claim_bits_bucket (grant_6),
@@ -48513,11 +48502,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'h7),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_7_io_need),
     .io_claim_valid       (held_7),
     .io_claim_bits_bucket (grant_7),
@@ -48779,11 +48771,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'h8),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_8_io_need),
     .io_claim_valid       (held_8),
     .io_claim_bits_bucket (grant_8),
@@ -49045,11 +49040,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'h9),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_9_io_need),
     .io_claim_valid       (held_9),
     .io_claim_bits_bucket (grant_9),
@@ -49311,11 +49309,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'hA),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_10_io_need),
     .io_claim_valid       (held_10),
     .io_claim_bits_bucket (grant_10),
@@ -49577,11 +49578,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'hB),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_11_io_need),
     .io_claim_valid       (held_11),
     .io_claim_bits_bucket (grant_11),
@@ -49843,11 +49847,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'hC),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_12_io_need),
     .io_claim_valid       (held_12),
     .io_claim_bits_bucket (grant_12),
@@ -50109,11 +50116,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'hD),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_13_io_need),
     .io_claim_valid       (held_13),
     .io_claim_bits_bucket (grant_13),
@@ -50375,11 +50385,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'hE),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_14_io_need),
     .io_claim_valid       (held_14),
     .io_claim_bits_bucket (grant_14),
@@ -50641,11 +50654,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
-    .io_box_0             (boxB_0),
-    .io_box_1             (boxB_1),
-    .io_box_2             (boxB_2),
+    .io_box_origin_0      (boxMap_origin_0),
+    .io_box_origin_1      (boxMap_origin_1),
+    .io_box_origin_2      (boxMap_origin_2),
+    .io_box_rx            (boxMap_rx),
+    .io_box_rxy           (boxMap_rxy),
     .io_lane              (4'hF),
     .io_usedLog2          (usedLog2),
+    .io_walkBuckets       (walkBuckets),
     .io_need              (_gens_15_io_need),
     .io_claim_valid       (held_15),
     .io_claim_bits_bucket (grant_15),

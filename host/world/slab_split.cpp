@@ -1,6 +1,7 @@
 #include "world/slab_split.hpp"
 
 #include <algorithm>
+#include <exception>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -132,21 +133,47 @@ std::size_t sphereCount(const std::vector<Slab>& runs) {
 
 std::vector<Slab> splitIntoRuns(const std::vector<double>& x, const std::vector<double>& y,
                                 const std::vector<double>& r, std::size_t cap) {
-  std::vector<Slab> best = splitIntoBoxes(x, y, r, cap);  // throws where nothing fits
   // A run also costs work that does not grow with its spheres (the broad phase's prefix sum
   // over its buckets, about cap / 16 cycles in the AFU, against about a cycle a sphere): a
   // run more is worth it only for that many spheres fewer.
   auto cost = [&](const std::vector<Slab>& c) { return sphereCount(c) + c.size() * (cap / 16); };
-  auto better = [&](const std::vector<Slab>& c) {
-    return cost(c) < cost(best) || (cost(c) == cost(best) && c.size() < best.size());
+  std::vector<Slab> best;
+  bool any = false;
+  auto consider = [&](std::vector<Slab>&& c) {
+    if (!any || cost(c) < cost(best) || (cost(c) == cost(best) && c.size() < best.size())) best = std::move(c);
+    any = true;
   };
-  for (std::size_t k = 2; k * cap < x.size(); k += std::max<std::size_t>(1, k / 2)) {
+  try {
+    consider(splitIntoSlabs(x, r, cap));
+  } catch (const std::runtime_error&) {  // some sphere's x slice is too full: boxes only
+  }
+  // Boxes: slabs k runs wide, each cut along y, each width tried once: k = 2, 3, 4, 6, 9, ...
+  // (growing by half); where slabs of one run do not fit, also the doublings splitIntoBoxes
+  // tries and the whole world (one slab always fits), so that boxes are found where it finds them.
+  const std::size_t n = x.size();
+  std::vector<std::size_t> widths;
+  for (std::size_t k = 2; k * cap < n; k += std::max<std::size_t>(1, k / 2)) widths.push_back(k * cap);
+  if (!any) {
+    for (std::size_t w = 2 * cap; w < n; w *= 2) widths.push_back(w);
+    widths.push_back(n);
+  }
+  std::sort(widths.begin(), widths.end());
+  widths.erase(std::unique(widths.begin(), widths.end()), widths.end());
+  std::exception_ptr narrowest;  // why the narrowest slabs that fit gave no boxes
+  for (std::size_t w : widths) {
+    std::vector<Slab> slabs;
     try {
-      auto c = boxesOf(splitIntoSlabs(x, r, k * cap), y, r, cap);
-      if (better(c)) best = std::move(c);
-    } catch (const std::runtime_error&) {  // these slabs, or their strips, do not fit: the next
+      slabs = splitIntoSlabs(x, r, w);
+    } catch (const std::runtime_error&) {  // too narrow for some sphere's neighbours
+      continue;
+    }
+    try {
+      consider(boxesOf(slabs, y, r, cap));
+    } catch (const std::runtime_error&) {
+      if (!any && !narrowest) narrowest = std::current_exception();
     }
   }
+  if (!any) std::rethrow_exception(narrowest);
   // The smallest run first: through the AFU's run queue, only the first run's table is read
   // while nothing else happens (each later table loads during the run before it), and which
   // run owns a pair does not depend on the order they run in.

@@ -6,7 +6,7 @@ import collide.fp.{FpParams, RawFloat}
 
 /** The least and the greatest x, y and z of the eligible spheres (every field finite) one
   * lane has seen since `clear`, for box buckets (docs/afu.md, "Box buckets";
-  * BroadPhaseModel.boxBits). Values are compared as order keys (BoxTracker.key): a float's
+  * BroadPhaseModel.boxMap). Values are compared as order keys (BoxTracker.key): a float's
   * bits with a negative's inverted and a positive's sign bit set compare as unsigned
   * integers in the float order, so no floating-point compare is needed. */
 class BoxTracker(p: FpParams) extends Module {
@@ -36,8 +36,6 @@ class BoxTracker(p: FpParams) extends Module {
 }
 
 object BoxTracker {
-  /** Width of a box bit count (at most a cell coordinate's width, 30). */
-  val bitsW: Int = 5
   /** The order key of a float's bits: unsigned order is the float order (finite values). */
   def key(bits: UInt): UInt = {
     val w = bits.getWidth
@@ -57,7 +55,6 @@ object BoxTracker {
       }._2
     (any, VecInit.tabulate(3)(a => pick(_.io.lo(a), _ < _)), VecInit.tabulate(3)(a => pick(_.io.hi(a), _ > _)))
   }
-  /** ceil(log2(x)), 0 for x <= 1: a box's bits for an extent (BoxBits.bitsFor), and
-    * BroadPhase's bucket count for a table. */
+  /** ceil(log2(x)), 0 for x <= 1: BroadPhase's bucket count for a table. */
   def bitsFor(extent: UInt): UInt = Mux(extent <= 1.U, 0.U, Log2(extent - 1.U) +& 1.U)
 }

@@ -19,8 +19,9 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   /** Cycles per pass: the first table read (the cell level), the second (classify and count), the
     * prefix sum, the scatter, the grid's candidate generation, the large pass, all. */
   val cycLoad, cycClassify, cycPrefix, cycScatter, cycGrid, cycLarge, cycTotal = UInt(32.W)
-  /** Box buckets' bits B_x, B_y, B_z (BroadPhaseModel.boxBits; zero without box buckets). */
-  val box = Vec(3, UInt(BoxTracker.bitsW.W))
+  /** Box buckets' extents in units per axis, saturated at 2^16 - 1 (BroadPhaseModel.BoxMap;
+    * zero without box buckets or without an eligible sphere). */
+  val box = Vec(3, UInt(BoxMapBits.extentW.W))
   /** num > maxSpheres: nothing was done. */
   val tooMany = Bool()
   /** Internal checks that never fire by construction (docs/afu.md): a small sphere's cell
@@ -214,8 +215,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     lk.io.in.level := Mux(loading, 0.S, level)
   }
   private val fedIn = io.feed.map(f => f.valid && feedOn)
-  for ((fk, f) <- feedKeys.zip(io.feed)) {
-    fk.io.in.valid := f.valid && feedOn
+  for (((fk, f), in) <- feedKeys.zip(io.feed).zip(fedIn)) {
+    fk.io.in.valid := in
     fk.io.in.sphere := f.bits
     fk.io.in.level := 0.S
   }
@@ -229,12 +230,20 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   io.quiet := !io.busy && !sortBusy && feedInflight === 0.U
   for ((g, lk) <- gens.zip(laneKeys)) g.io.keyData := record(lk)
 
-  // --- box buckets: the world's box, kept by every lane as it loads (BroadPhaseModel.boxBits) --
-  /** The box's bits, chosen in state box (after the level) and used by every bucket after it. */
-  private val boxB = RegInit(VecInit(Seq.fill(3)(0.U(BoxTracker.bitsW.W))))
+  // --- box buckets: the world's box, kept by every lane as it loads (BroadPhaseModel.boxMap) ---
+  private val unitBits = bp.cellBits // a unit (a cell, or a coarse cell) and the origin below it fit a cell's width
+  /** The box's map, set in state box (after the level) and used by every bucket after it. */
+  private val boxMap = Reg(new BoxMapBits(unitBits, tableLog2))
+  private val boxExtent = RegInit(VecInit(Seq.fill(3)(0.U(BoxMapBits.extentW.W))))
   private val boxCycle = RegInit(0.U(2.W))
-  /** The box's bits are final: classify may start. */
+  /** The box's map is final: classify may start. */
   private val boxDone = WireDefault(true.B)
+  /** Buckets in use: 2^usedLog2. */
+  private val used = (1.U((tableLog2 + 1).W) << usedLog2)(tableLog2, 0)
+  private val wordLog2 = math.min(bp.wordLog2, tableLog2)
+  /** The buckets the prefix sum and the walk cover (BroadPhaseModel.walkBuckets): those in use,
+    * or, where the box's places fit them, the places' buckets rounded up to a word. */
+  private val walkBuckets = Reg(UInt((tableLog2 + 1).W))
   if (bp.boxBuckets) {
     val trackers = laneKeys.zipWithIndex.map { case (lk, l) =>
       val t = Module(new BoxTracker(p))
@@ -245,7 +254,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       t
     }
     val (anyBox, lo, hi) = BoxTracker.merge(trackers)
-    // The cells of the least and greatest corner at the level, a cycle after state box begins.
+    // The units of the least and greatest corner at the level, a cycle after state box begins.
     val corners = Seq(lo, hi).map { keys =>
       val k = Module(new SphereKeys(p, bp, 1))
       k.io.in.valid := true.B
@@ -253,21 +262,43 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       k.io.in.level := level
       k.io.out.cell.map(c => if (bp.coarseChunks) c >> 1 else c)
     }
-    val first = VecInit.tabulate(3)(a => BoxTracker.bitsFor((corners(1)(a) -& corners(0)(a) +& 1.S).asUInt)(BoxTracker.bitsW - 1, 0))
+    // Extents in units (at least one: hi >= lo), exact in a cell's width plus one.
+    val extent = VecInit.tabulate(3)(a => (corners(1)(a) -& corners(0)(a) +& 1.S).asUInt)
+    // For the fit only, each extent saturated past the table (its places would not fit anyway).
+    val satW = tableLog2 + 2
+    val sat = Reg(Vec(3, UInt(satW.W)))
+    val places = Reg(UInt((3 * satW + 2).W))
+    val groupLog2 = if (bp.coarseChunks) 3 else 0
     val hashBits = if (bp.coarseChunks) Mux(usedLog2 > 3.U, usedLog2 - 3.U, 0.U) else usedLog2
-    val sum = boxB.reduce(_ +& _)
-    // The first largest loses one, while the three take more than the hash's bits.
-    val top = boxB.reduce((a, b) => Mux(a >= b, a, b))
-    val firstTop = PriorityEncoderOH(boxB.map(_ === top))
-    boxDone := boxCycle === 2.U && sum <= hashBits
+    val perWord = 1 << wordLog2
+    boxDone := boxCycle === 3.U
     when(state === S.box) {
-      when(boxCycle === 1.U) { boxB := Mux(anyBox, first, VecInit(Seq.fill(3)(0.U(BoxTracker.bitsW.W)))) }
-      when(boxCycle =/= 2.U) { boxCycle := boxCycle + 1.U }
-        .elsewhen(sum > hashBits) { for (a <- 0 until 3) when(firstTop(a)) { boxB(a) := boxB(a) - 1.U } }
+      boxCycle := boxCycle + 1.U
+      when(boxCycle === 1.U) {
+        for (a <- 0 until 3) boxMap.origin(a) := corners(0)(a) - 1.S
+        boxMap.rx := (extent(0) + 1.U)(tableLog2 - 1, 0)
+        boxMap.rxy := (extent(1) + 1.U)(tableLog2 - 1, 0) // times rx next cycle
+        val most = ((1 << BoxMapBits.extentW) - 1).U
+        for (a <- 0 until 3) {
+          boxExtent(a) := Mux(anyBox, Mux(extent(a) >= most, most, extent(a)), 0.U)
+          sat(a) := Mux(extent(a) >= (1 << (tableLog2 + 1)).U, (1 << (tableLog2 + 1)).U, extent(a))
+        }
+      }
+      when(boxCycle === 2.U) {
+        boxMap.rxy := (boxMap.rxy * boxMap.rx)(tableLog2 - 1, 0)
+        places := (sat(0) +& 1.U) * (sat(1) +& 1.U) * (sat(2) +& 2.U) + sat(0) + 2.U
+      }
+      when(boxCycle === 3.U) {
+        // The places' buckets rounded up to a word, where they fit the buckets in use.
+        val fits = anyBox && places <= (1.U((tableLog2 + 1).W) << hashBits)
+        val words = ((places << groupLog2) + (perWord - 1).U) >> wordLog2
+        when(fits && (words << wordLog2) < used) { walkBuckets := words << wordLog2 }
+        boxCycle := 0.U
+      }
     }.otherwise { boxCycle := 0.U }
   }
-  private val boxArg = if (bp.boxBuckets) Some(boxB) else None
-  for (g <- gens) g.io.box.foreach(_ := boxB)
+  private val boxArg = if (bp.boxBuckets) Some(boxMap) else None
+  for (g <- gens) g.io.box.foreach(_ := boxMap)
 
   private def feed(ce: CellExponentIn, valid: Bool, o: SphereKeys): Unit = {
     ce.valid := valid
@@ -337,6 +368,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   }
   for (sort <- sorts) {
     sort.io.usedLog2 := usedLog2
+    sort.io.walkBuckets := walkBuckets
     sort.io.clear := clearWorld
     sort.io.prefix := state === S.prefix && !sent
   }
@@ -369,6 +401,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
 
     gen.io.start := state === S.generate && !sent
     gen.io.usedLog2 := usedLog2
+    gen.io.walkBuckets := walkBuckets
     gen.io.slack := slack
     gen.io.larges := larges
     gen.io.largeCount := largeCount
@@ -386,8 +419,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     val uLog2 = CandidateGenerator.unitLog2(gWordLog2, bp.coarseChunks)
     val w = CandidateGenerator.claimW(tableLog2)
     val uW = tableLog2 - uLog2 + 1
-    // Units in use: the used buckets' (at least one, for a table smaller than a unit).
-    val units = Mux(usedLog2 > uLog2.U, (1.U((tableLog2 + 1).W) << usedLog2) >> uLog2, 1.U)
+    // Units to walk: the walked buckets' (at least one, for a table smaller than a unit).
+    val units = Mux((walkBuckets >> uLog2) === 0.U, 1.U, walkBuckets >> uLog2)
     val next = Reg(UInt((uW + log2Ceil(bp.lanes + 1)).W))
     val held = RegInit(VecInit(Seq.fill(bp.lanes)(false.B)))
     val heldUnit = RegInit(VecInit(Seq.fill(bp.lanes)(false.B))) // held, and a whole unit
@@ -450,12 +483,11 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     * lane starts at its slice's end). */
   private def setUp(n: UInt, read: Bool): Unit = {
     num := n; usedLog2 := bucketsLog2For(n); largeCount := 0.U
+    walkBuckets := (1.U((tableLog2 + 1).W) << bucketsLog2For(n))(tableLog2, 0) // the box may cut it
     val cuts = (0 to bp.lanes).map(cutOf(n, _))
     for (l <- 0 until bp.lanes) i(l) := Mux(read, cuts(l), cuts(l + 1))
     fed := !read
   }
-  // The status is the last world's until the next start (the AFU writes it after busy falls,
-  // while the next world may be fed).
   when(io.start && (state === S.idle || filling)) { feedOn := false.B }
   when(beginAhead) { pending := true.B; pendingNum := io.num; feedOn := true.B }
   switch(state) {
@@ -471,6 +503,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     is(S.fill) {
       // The level is chosen as the spheres arrive; the load pass then only waits for the last of
       // them to leave SphereKeys and for the clear, and the merge takes the fed lanes' needs.
+      // The status is the last world's until this start (the AFU writes it after busy falls,
+      // while the next world may be fed).
       when(io.start) { state := S.load; st := 0.U.asTypeOf(st) }
     }
     is(S.load) {
@@ -489,7 +523,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
     is(S.box) {
       st.cycLoad := st.cycLoad + 1.U
-      when(boxDone) { state := S.classify; restart(); st.box := boxB }
+      when(boxDone) { state := S.classify; restart(); st.box := boxExtent }
     }
     is(S.classify) {
       st.cycClassify := st.cycClassify + 1.U

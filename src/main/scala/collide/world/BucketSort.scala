@@ -46,6 +46,9 @@ class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int, copies: In
   val countW = log2Ceil(maxItems + 1)
   /** log2 of the buckets in use this world (<= bucketsLog2): what clear and prefix walk. */
   val usedLog2 = Input(UInt(log2Ceil(bucketsLog2 + 1).W))
+  /** The buckets the prefix sum covers, a whole number of words (BroadPhaseModel.walkBuckets):
+    * those in use, or fewer where no sphere's bucket or lookup lies past them. */
+  val walkBuckets = Input(UInt((bucketsLog2 + 1).W))
   val clear = Input(Bool())  // pulse: start clearing
   val prefix = Input(Bool()) // pulse: start the prefix sum
   val busy = Output(Bool())  // clearing or summing; in is not ready meanwhile
@@ -117,6 +120,11 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
     val w = used >> wl
     Mux(w === 0.U, 1.U, w)
   }
+  // Words the prefix sum covers (at least one).
+  private val sumWords = {
+    val w = io.walkBuckets >> wl
+    Mux(w === 0.U, 1.U, w)
+  }
   private val counted = RegInit(0.U(countW.W))
   private val scattered = RegInit(0.U(countW.W))
   private val bad = RegInit(false.B)
@@ -126,11 +134,11 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
 
   // --- clear and prefix: one word a cycle --------------------------------------------------
   private val sum = Reg(UInt(countW.W))
-  private val sumRead = state === S.summing && walk < usedWords
+  private val sumRead = state === S.summing && walk < sumWords
   private val sumRd = cursors.map(t => lanes(t.read(walkW, sumRead)))
   private val sumS1 = RegNext(sumRead, false.B)
   private val sumW = RegNext(walkW)
-  private val sumLast = RegNext(walk + 1.U === usedWords)
+  private val sumLast = RegNext(walk + 1.U === sumWords)
   // Per bucket of the word: every port's count, their total, and the exclusive prefix of the
   // totals on top of the running sum (the bucket's start).
   private val totals = VecInit.tabulate(perWord)(j => sumRd.map(_(j)).reduce(_ + _))
@@ -152,7 +160,7 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
     walk := walk + 1.U
     when(walk + 1.U === usedWords) { state := S.idle }
   }
-  when(state === S.summing && walk < usedWords) { walk := walk + 1.U }
+  when(state === S.summing && walk < sumWords) { walk := walk + 1.U }
   when(sumS1) {
     sum := totals.reduce(_ + _) + sum
     when(sumLast) { state := S.idle }

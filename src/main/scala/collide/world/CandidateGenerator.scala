@@ -32,11 +32,13 @@ import collide.world.model.BroadPhaseModel
 class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, largeSlots: Int,
                            perWord: Int, lanes: Int, groups: Int, claimW: Int = 0, boxBuckets: Boolean = false) extends Bundle {
   val start = Input(Bool())
-  /** With box buckets, the world's box bits B_x, B_y, B_z (CellHash), fixed during the grid. */
-  val box = if (boxBuckets) Some(Input(Vec(3, UInt(BoxTracker.bitsW.W)))) else None
+  /** With box buckets, the world's box map (CellHash), fixed during the grid. */
+  val box = if (boxBuckets) Some(Input(new BoxMapBits(cellBits, bucketsLog2))) else None
   /** This lane's number, 0 until lanes (none with one lane). */
   val lane = if (lanes > 1) Some(Input(UInt(log2Ceil(lanes).W))) else None
   val usedLog2 = Input(UInt(log2Ceil(bucketsLog2 + 1).W))
+  /** The buckets the walk covers, a whole number of words (BroadPhaseModel.walkBuckets). */
+  val walkBuckets = Input(UInt((bucketsLog2 + 1).W))
   /** With claims (BroadPhase's shared counters): `need` asks for work when the lane has none
     * to walk (so no lane sits on work another could take); `claim` is what was granted, a
     * unit's first bucket or, `single`, one bucket of a deferred unit; taken when `take`. A unit
@@ -150,7 +152,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   io.mark.bits.item := stream.io.out.bits.item
   io.lookup.bucket := 0.U
 
-  private val used = (1.U((bucketsLog2 + 1).W) << io.usedLog2)(bucketsLog2, 0)
+  private val used = io.walkBuckets // the walk's end (lookups use all 2^usedLog2 buckets' hash)
   private val cells, chunks, scanned, probes = RegInit(0.U(32.W))
   io.stats.cells := cells; io.stats.chunks := chunks; io.stats.scanned := scanned; io.stats.probes := probes
 

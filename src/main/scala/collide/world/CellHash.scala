@@ -10,10 +10,11 @@ import collide.world.model.BroadPhaseModel
   * cell (the low bit of x, y, z), so a coarse cell's 8 cells are 8 consecutive buckets. Only
   * the low bits of each product matter, so each is a constant multiply of the cell's low bits
   * (two's complement: a negative coordinate's low bits times the constant's are the product's
-  * low bits). With `box` (box buckets: BroadPhaseModel.boxBits, bits B_x, B_y, B_z), the hash
-  * is x mod 2^B_x + (y mod 2^B_y) 2^B_x + (z mod 2^B_z) 2^(B_x + B_y) instead: masks and shifts. */
+  * low bits). With `box` (box buckets: BroadPhaseModel.BoxMap), the hash is the unit's place in
+  * the padded box instead, (x - o_x) + rx (y - o_y) + rxy (z - o_z): two variable multiplies
+  * of the table's width, whose low bits are all that matter. */
 object CellHash {
-  def apply(cell: Vec[SInt], bucketsLog2: Int, usedLog2: UInt, coarse: Boolean = false, box: Option[Vec[UInt]] = None): UInt = {
+  def apply(cell: Vec[SInt], bucketsLog2: Int, usedLog2: UInt, coarse: Boolean = false, box: Option[BoxMapBits] = None): UInt = {
     val w = bucketsLog2
     def hash(c: Seq[SInt], w: Int): UInt = {
       def low(c: SInt): UInt = c.pad(math.max(w, c.getWidth)).asUInt(w - 1, 0)
@@ -21,8 +22,9 @@ object CellHash {
       box match {
         case None => times(c(0), BroadPhaseModel.HashX) ^ times(c(1), BroadPhaseModel.HashY) ^ times(c(2), BroadPhaseModel.HashZ)
         case Some(b) =>
-          def masked(c: SInt, n: UInt): UInt = low(c) & ((1.U((w + 1).W) << n) - 1.U)(w - 1, 0)
-          (masked(c(0), b(0)) | (masked(c(1), b(1)) << b(0)) | (masked(c(2), b(2)) << (b(0) +& b(1))))(w - 1, 0)
+          require(b.hashW >= w, s"a box map of ${b.hashW} bits for a hash of $w")
+          def d(a: Int): UInt = low(c(a) -& b.origin(a))
+          (d(0) + (b.rx(w - 1, 0) * d(1))(w - 1, 0) + (b.rxy(w - 1, 0) * d(2))(w - 1, 0))(w - 1, 0)
       }
     }
     val h =

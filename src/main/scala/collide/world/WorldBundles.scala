@@ -8,6 +8,21 @@ object VecIndex {
   def apply(i: UInt, n: Int): UInt = if (n <= 1) 0.U else i(log2Ceil(n) - 1, 0)
 }
 
+/** Box buckets' map (BroadPhaseModel.BoxMap) as the bucket paths use it: the origin (one unit
+  * below the box's least on each axis) and the linear index's radices x and x * y (the extents
+  * plus one), modulo 2^hashW: a unit's place is (x - o_x) + rx (y - o_y) + rxy (z - o_z), modulo
+  * the table. */
+class BoxMapBits(val unitBits: Int, val hashW: Int) extends Bundle {
+  val origin = Vec(3, SInt(unitBits.W))
+  val rx = UInt(hashW.W)
+  val rxy = UInt(hashW.W)
+}
+
+object BoxMapBits {
+  /** Width of a box extent in the status (saturated there). */
+  val extentW: Int = 16
+}
+
 /** One sphere as the candidate generator sees it: its index and SphereKeys' keys. */
 class WorldKey(val itemW: Int, val cellBits: Int, val qWidth: Int) extends Bundle {
   val index = UInt(itemW.W)

@@ -27,8 +27,9 @@ import collide.world.model._
   * --cell-steps BroadPhaseParams.cellSteps (1: cell edges 2^k alone; 2: also 1.5 * 2^k),
   * --chunk BroadPhaseParams.chunk (spheres a generator holds) and --coarse-chunks
   * BroadPhaseParams.coarseChunks (a coarse cell of 2 x 2 x 2 cells one chunk where it fits),
-  * --box-buckets BroadPhaseParams.boxBuckets (the box_bits column: each world's box bits, the
-  * RTL's checked against the model's, or "hash").
+  * --box-buckets BroadPhaseParams.boxBuckets (the box_extents column: each world's box in units
+  * along x, y and z, the RTL's checked against the model's, or "hash"; CSVs from before the
+  * padded box map have box_bits, its bits per axis, instead).
   *
   * --spheres adds a world from a `collide spheres` input file (header x,y,z,r; decimal or hex
   * floats, binary32 values), e.g. bench/world/world.py --dump-clouds DIR: the very spheres
@@ -97,7 +98,7 @@ object BroadPhaseCycleReport {
       s"huge" -> huge(rng, n - 4, 4))) ++ files.map(readSpheres)
     require(worlds.forall(_._2.length <= maxSpheres), s"a world has more than --max ($maxSpheres) spheres")
     val header = "world,spheres,buckets,cells,chunks,scanned,probes,candidates,large," +
-      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team,feed,claims,hit_queue,box_buckets,box_bits"
+      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team,feed,claims,hit_queue,box_buckets,box_extents"
     val rows = scala.collection.mutable.ArrayBuffer(header)
     for (l <- lanes; q <- ports if q <= l) {
       val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l, sortPorts = q, wordLog2 = wordLog2,
@@ -115,12 +116,12 @@ object BroadPhaseCycleReport {
           val s = dut.io.status
           def v(d: UInt) = d.peek().litValue
           val c = model.cycles(want, lanes = l, scpus = 16, sortRate = q)
-          val box = want.stats.box.map(b => Seq(b.x, b.y, b.z))
-          require(box.forall(_ == s.box.map(v(_).toInt)), s"$name ${ws.length}: the RTL's box bits ${s.box.map(v(_))} are not the model's $box")
+          val box = want.stats.box.map(_.reported(BoxMapBits.extentW))
+          require(box.forall(_ == s.box.map(v(_).toLong)), s"$name ${ws.length}: the RTL's box extents ${s.box.map(v(_))} are not the model's $box")
           val row = Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
             v(s.large), v(s.cycLoad), v(s.cycClassify), v(s.cycPrefix), v(s.cycScatter), v(s.cycGrid), v(s.cycLarge), v(s.cycTotal),
             c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l, q, wordLog2, cellSteps, chunk, coarse, team, feed, claims, hitQueue, boxBuckets,
-            box.map(_.mkString(".")).getOrElse("hash")).mkString(",")
+            box.map(_.mkString("x")).getOrElse("hash")).mkString(",")
           println(row)
           rows += row
         }

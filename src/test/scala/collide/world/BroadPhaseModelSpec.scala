@@ -113,24 +113,42 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
     (us.length, hashes.length)
   }
 
-  it should "give every coarse cell of a world its own buckets where the world's box fits the table, and wrap along the longest side where not" in {
+  it should "give every coarse cell of a world its own buckets, and every neighbour outside its box an empty one, where the padded box fits the table" in {
     val bp = BroadPhaseParams.default.copy(coarseChunks = true, boxBuckets = true)
     val model = new BroadPhaseModel(ScpuConfig.fp32, bp)
     // Radius 0.5 needs a cell of 2 (2^1 >= 1.125), a coarse cell of 4: x over coarse cells
-    // -2..2 (5: 3 bits), y in one (0 bits), z over 0..2 (3: 2 bits). 15 spheres, 32 buckets:
-    // 2 bits of hash beside a coarse cell's place. Too few: the first longest loses a bit until
-    // they fit, (3, 0, 2) -> (2, 0, 2) -> (1, 0, 2) -> (1, 0, 1).
+    // -2..2 (extent 5), y in one (1), z over 0..2 (3). Padded: radices 6 and 2, 6 * 2 * (3 + 2)
+    // + 6 + 1 = 67 places.
     def world(n: Int) = bits(FloatFormat.fp32, (0 until n).map(i => S(-8.0 + 4.0 * (i % 5), 1.0, 4.0 * (i / 5 % 3), 0.5)))
     val small = model.run(world(15))
-    assert(small.level == 2 && small.stats.buckets == 32 && small.stats.box.contains(BoxBits(1, 0, 1)), s"${small.level} ${small.stats}")
-    // 64 spheres (128 buckets: 4 bits) over the same 15 coarse cells: 3 + 0 + 2 = 5 bits, x
-    // loses one (x modulo 4: coarse cells -2 and 2 share buckets).
+    assert(small.level == 2 && small.stats.buckets == 32 && small.stats.box.contains(BoxMap(Seq(-2, 0, 0), Seq(5, 1, 3))),
+      s"${small.level} ${small.stats}")
+    assert(small.stats.box.get.places == 67)
+    // 64 spheres (128 buckets: 16 groups of 8) cannot hold 67 places: units share groups.
     val wrapped = model.run(world(64))
-    assert(wrapped.stats.box.contains(BoxBits(2, 0, 2)), s"${wrapped.stats.box}")
-    assert(units(model, wrapped) == (15, 12), s"${units(model, wrapped)}")
-    // 512 spheres (1024 buckets: 7 bits): it fits, 15 coarse cells in 15 groups.
+    assert(!wrapped.stats.box.get.fits(4) && units(model, wrapped)._2 < 15, s"${units(model, wrapped)}")
+    // 512 spheres (1024 buckets: 128 groups): it fits, 15 coarse cells in 15 groups, and every
+    // coarse cell next to the box (none of the world's) in a group no sphere is in.
     val fits = model.run(world(512))
-    assert(fits.stats.box.contains(BoxBits(3, 0, 2)) && units(model, fits) == (15, 15), s"${fits.stats.box} ${units(model, fits)}")
+    val box = fits.stats.box.get
+    assert(box.fits(7) && units(model, fits) == (15, 15), s"$box ${units(model, fits)}")
+    val nb = fits.stats.buckets
+    def group(x: Long, y: Long, z: Long) = (model.bucket(2 * x, 2 * y, 2 * z, Some(box)) & (nb - 1)) >> 3
+    val inside = for (x <- -2L to 2; y <- 0L to 0; z <- 0L to 2) yield (x, y, z)
+    val occupied = inside.map { case (x, y, z) => group(x, y, z) }.toSet
+    val around = for (x <- -3L to 3; y <- -1L to 1; z <- -1L to 3 if !inside.contains((x, y, z))) yield group(x, y, z)
+    assert(around.forall(g => !occupied.contains(g)), s"a neighbour outside the box shares a group with the world")
+    // Every place, in the box or next to it, is below `places`: the walk covers 67 groups of
+    // 8 buckets, rounded up to a word (perWord counters), not the 1,024 buckets in use.
+    val all = for (x <- -3L to 3; y <- -1L to 1; z <- -1L to 3) yield box.index(x, y, z)
+    assert(all.forall(i => i >= 0 && i < box.places), s"places ${all.min}..${all.max}, want 0 until ${box.places}")
+    val perWord = 1 << bp.wordLog2
+    assert(fits.stats.walkBuckets == (67 * 8 + perWord - 1) / perWord * perWord && fits.stats.walkBuckets < nb, s"${fits.stats.walkBuckets}")
+    assert(wrapped.stats.walkBuckets == wrapped.stats.buckets)
+    // The padding is what keeps them apart: numbered without it, x = -3 in layer z = 1 would be
+    // the world's x = 2 in layer 0; padded, it is the padding row's last place.
+    def tight(x: Long, y: Long, z: Long) = (x - box.lo(0)) + box.extent(0) * ((y - box.lo(1)) + box.extent(1) * (z - box.lo(2)))
+    assert(tight(-3, 0, 1) == tight(2, 0, 0) && box.index(-3, 0, 1) == box.index(3, 1, 0))
     // A uniform cloud: every coarse cell its own group where the hash shares some, fewer spheres streamed.
     val rng = Seeds.rng("BroadPhaseModelSpec-box")
     val cloud = bits(FloatFormat.fp32, uniform(rng, 2000))

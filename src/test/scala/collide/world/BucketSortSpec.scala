@@ -42,8 +42,12 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
     dut.io.in.foreach(_.valid.poke(false.B)); dut.clock.step()
   }
 
-  private def sortWorld(dut: BucketSort, rng: scala.util.Random, label: String, items: Seq[(Int, Int)], usedLog2: Int): Unit = {
+  /** `walk`: the buckets the prefix sum covers (all in use by default); the lookups below it are checked. */
+  private def sortWorld(dut: BucketSort, rng: scala.util.Random, label: String, items: Seq[(Int, Int)], usedLog2: Int,
+                        walk: Option[Int] = None): Unit = {
+    val walked = walk.getOrElse(1 << usedLog2)
     dut.io.usedLog2.poke(usedLog2.U)
+    dut.io.walkBuckets.poke(walked.U)
     pulse(dut, dut.io.clear)
     stream(dut, rng, items, scatter = false)
     pulse(dut, dut.io.prefix)
@@ -52,7 +56,7 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
     assert(!dut.io.badBucket.peek().litToBoolean, label)
     val (start, entries) = BroadPhaseModel.countingSort(items, 1 << usedLog2)
     val copies = dut.io.lookup.indices
-    for (b <- 0 until (1 << usedLog2)) {
+    for (b <- 0 until walked) {
       dut.io.lookup.foreach(_.bucket.poke(b.U)); dut.clock.step()
       for (c <- copies; lk = dut.io.lookup(c))
         assert(lk.begin.peek().litValue == start(b) && lk.end.peek().litValue == start(b + 1),
@@ -101,9 +105,14 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
         ("full table", Seq.fill(maxItems)(rng.nextInt(16)), 4),
         ("fewer buckets after more", Seq.fill(30)(rng.nextInt(2)), 1)
       ) ++ Seq.tabulate(Seeds.cases(6))(i => (s"random $i", Seq.fill(rng.nextInt(maxItems + 1))(rng.nextInt(32)), 5))
-      for ((label, bs, usedLog2) <- worlds) {
+      // The prefix sum over the first two words alone (box buckets' walk) after the first
+      // worlds, and full ones after it: the buckets below it are as with every word summed.
+      val walk = math.min(1 << bucketsLog2, 2 << wordLog2)
+      val low = Seq.fill(rng.nextInt(maxItems + 1))(rng.nextInt(walk))
+      for ((label, bs, usedLog2, walked) <- worlds.take(4).map(w => (w._1, w._2, w._3, None)) ++
+             Seq((s"a walk of $walk buckets", low, bucketsLog2, Some(walk))) ++ worlds.drop(4).map(w => (w._1, w._2, w._3, None))) {
         val items = bs.map(_ % (1 << usedLog2)).zipWithIndex.map { case (b, i) => (i, b) }
-        sortWorld(dut, rng, label, items, usedLog2)
+        sortWorld(dut, rng, label, items, usedLog2, walked)
       }
     }
   }

@@ -32,8 +32,8 @@ final case class BroadPhaseStats(
     gridCandidates: Long, largeCandidates: Long, // after the box filter: what the SCPUs get
     cellWork: IndexedSeq[Long], // cycles of one lane on each chunk's cell (or coarse cell), in bucket order
     coarse: Int = 0,    // of the cells, coarse cells taken as one chunk (coarseChunks)
-    box: Option[BoxBits] = None, // box buckets' bits (boxBuckets)
-    boxWraps: Int = 0   // bits the box lost to fit the table (the hardware takes a cycle for each)
+    box: Option[BoxMap] = None, // box buckets' map (boxBuckets)
+    walkBuckets: Int = 0 // buckets the prefix sum and the walk cover (walkBuckets)
 ) {
   def candidates: Long = gridCandidates + largeCandidates
 }
@@ -143,10 +143,10 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
   /** A cell's bucket: the hash of the cell; with coarse chunks, the hash of its coarse cell
     * (2 x 2 x 2 cells) times 8 plus the cell's place in it, so that a coarse cell's 8 cells
     * are 8 consecutive buckets (a group), one contiguous run of the sorted table. */
-  def bucket(cx: Long, cy: Long, cz: Long, box: Option[BoxBits] = None): Int = {
+  def bucket(cx: Long, cy: Long, cz: Long, box: Option[BoxMap] = None): Int = {
     def hash(x: Long, y: Long, z: Long) = box match {
       case None => (x * HashX) ^ (y * HashY) ^ (z * HashZ)
-      case Some(b) => (x & ((1L << b.x) - 1)) | ((y & ((1L << b.y) - 1)) << b.x) | ((z & ((1L << b.z) - 1)) << (b.x + b.y))
+      case Some(b) => b.index(x, y, z)
     }
     val h =
       if (!bp.coarseChunks) hash(cx, cy, cz)
@@ -154,33 +154,44 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     (h & (bp.buckets - 1).toLong).toInt
   }
 
-  /** With `boxBuckets`, the bits of the world's box (docs/afu.md, "Box buckets"): per axis, the
+  /** With `boxBuckets`, the map of the world's box (docs/afu.md, "Box buckets"): per axis, the
     * units of the hash (cells, or coarse cells with coarse chunks) of the least and the
-    * greatest coordinate of any eligible sphere at `level`, and B_a = ceil(log2(hi - lo + 1)),
-    * which tells 2^B_a consecutive units apart. While the three take more than the table's hash
-    * bits H (log2 of the used buckets, less 3 for a coarse cell's place), the first largest
-    * loses one: the box then wraps along it. A unit's coordinates modulo 2^B_a are its hash:
-    * where the box fits, no two units of the world share a bucket. None without boxBuckets or
-    * without an eligible sphere (Teschner's hash). With the bits, the number the box lost to fit
-    * (the hardware takes a cycle for each). */
-  def boxBits(conv: IndexedSeq[Seq[BigInt]], level: Int, usedBuckets: Int): Option[(BoxBits, Int)] =
+    * greatest coordinate of any eligible sphere at `level`. A unit's bucket (its group of 8
+    * with coarse chunks) is its place in the box, numbered x first with one unit of padding
+    * per axis (BoxMap.index), modulo the buckets in use: where the padded box fits
+    * (BoxMap.fits), no two units of the world share a bucket and no neighbour outside the box
+    * falls in an occupied one. None without boxBuckets or without an eligible sphere
+    * (Teschner's hash). */
+  def boxMap(conv: IndexedSeq[Seq[BigInt]], level: Int): Option[BoxMap] =
     if (!bp.boxBuckets || conv.isEmpty) None
     else {
       val unitShift = if (bp.coarseChunks) 1 else 0
-      val hashBits = math.max(0, Integer.numberOfTrailingZeros(usedBuckets) - (if (bp.coarseChunks) 3 else 0))
       // Float order of finite bit patterns as unsigned keys: negatives' bits inverted, the
       // sign bit set on the rest (what the hardware compares).
       val sign = BigInt(1) << (p.width - 1)
       def key(b: BigInt): BigInt = if (b.testBit(p.width - 1)) (~b) & (sign * 2 - 1) else b | sign
-      val b = Array.tabulate(3) { a =>
+      val ends = (0 until 3).map { a =>
         val vs = conv.map(_(a))
         def unit(v: BigInt): Long = cell(v, level).get >> unitShift
-        BoxBits.bitsFor(unit(vs.maxBy(key)) - unit(vs.minBy(key)) + 1)
+        (unit(vs.minBy(key)), unit(vs.maxBy(key)))
       }
-      val before = b.sum
-      while (b.sum > hashBits) { val m = b.indexOf(b.max); b(m) -= 1 }
-      Some((BoxBits(b(0), b(1), b(2)), before - b.sum))
+      Some(BoxMap(ends.map(_._1), ends.map(e => e._2 - e._1 + 1)))
     }
+
+  /** The buckets the prefix sum and the walk cover, of `nb` in use: where the box's places fit
+    * them, the buckets of its places (a group of 8 each with coarse chunks) rounded up to a
+    * word of `perWord` counters; else all `nb`. No unit of the world or neighbour of one is in
+    * a bucket past them. */
+  def walkBuckets(nb: Int, box: Option[BoxMap], perWord: Int): Int = {
+    val groupLog2 = if (bp.coarseChunks) 3 else 0
+    val hashBits = math.max(0, Integer.numberOfTrailingZeros(nb) - groupLog2)
+    box match {
+      case Some(b) if b.fits(hashBits) =>
+        val buckets = (b.places << groupLog2).toLong
+        math.min(nb.toLong, (buckets + perWord - 1) / perWord * perWord).toInt
+      case _ => nb
+    }
+  }
 
   /** Buckets used for n spheres: at least n 2^bucketsPerSphereLog2 (2n by default: load factor
     * <= 1/2), at most the table. */
@@ -239,11 +250,12 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     val slack = boxSlack(level)
     val smalls = world.indices.flatMap(i => classes(i) match { case s: SphereClass.Small => Some(i -> s); case _ => None })
     val nb = bucketsFor(n) // the hardware knows n before it knows which spheres are small
-    val boxAndWraps = boxBits(eligible.map(conv), level, nb)
-    val boxed = boxAndWraps.map(_._1)
+    val boxed = boxMap(eligible.map(conv), level)
+    val walk = walkBuckets(nb, boxed, 1 << math.min(bp.wordLog2, bp.bucketsLog2))
     def bucketOf(c: SphereClass.Small) = bucket(c.cx, c.cy, c.cz, boxed) & (nb - 1)
 
     val (start, entries) = countingSort(smalls.map { case (i, c) => i -> bucketOf(c) }, nb)
+    assert(start(walk) == smalls.length, s"a sphere's bucket is past the $walk buckets the walk covers")
     def cellOf(i: Int) = classes(i).asInstanceOf[SphereClass.Small]
 
     val out = IndexedSeq.newBuilder[(Int, Int)]
@@ -272,7 +284,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     // coarse cell in order of first entry, each one chunk with its 43 visits; any other group
     // (and every group without coarse chunks) bucket by bucket, cell by cell in order of
     // first entry, in chunks of `chunk` with their own cell and 13 half-shell neighbours.
-    for (g <- 0 until nb by 8) {
+    for (g <- 0 until walk by 8) {
       val (lo, hi) = (g, math.min(nb, g + 8))
       val run = (start(lo) until start(hi)).map(entries) // the group's entries in table order
       if (bp.coarseChunks && run.nonEmpty && run.length <= bp.chunk) {
@@ -299,7 +311,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
       out += ((math.min(l, j), math.max(l, j))); largePairs += 1
     }
     val stats = BroadPhaseStats(n, n - eligible.length, larges.length, level, nb, cells, lookups, scanned, gridPairs, grid,
-      largePairs, work.result(), coarseCount, boxed, boxAndWraps.map(_._2).getOrElse(0))
+      largePairs, work.result(), coarseCount, boxed, walk)
     BroadPhaseResult(level, classes, out.result(), stats)
   }
 
@@ -333,7 +345,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     def div(a: Long, b: Long) = (a + b - 1) / b
     BroadPhaseCycles(
       count = div(st.spheres, sortRate),
-      prefix = div(st.buckets, 1L << bp.wordLog2),
+      prefix = div(st.walkBuckets, 1L << bp.wordLog2),
       scatter = div(small, sortRate),
       generate = perLane.max,
       large = div(st.large * eligible, lanes),
@@ -341,13 +353,23 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
   }
 }
 
-/** Box buckets' bits per axis (BroadPhaseModel.boxBits). */
-final case class BoxBits(x: Int, y: Int, z: Int) {
-  def sum: Int = x + y + z
-}
-object BoxBits {
-  /** ceil(log2(extent)): the least B with 2^B >= extent (extent >= 1). */
-  def bitsFor(extent: Long): Int = { require(extent >= 1, s"extent $extent"); 64 - java.lang.Long.numberOfLeadingZeros(extent - 1) }
+/** Box buckets' map (BroadPhaseModel.boxMap): the box's least unit on each axis and its
+  * extent in units. A unit's place is its offset from the origin one unit below the box,
+  * numbered x first, then y, then z, with radices one more than the extents: place 0 of each
+  * row, row 0 of each layer and the layers below and above the box are padding, where every
+  * neighbour just outside the box lands, so no neighbour meets a sphere of another unit and
+  * every place is at least 0 and below `places`. */
+final case class BoxMap(lo: Seq[Long], extent: Seq[Long]) {
+  require(lo.length == 3 && extent.length == 3 && extent.forall(_ >= 1), s"box $lo $extent")
+  val origin: Seq[Long] = lo.map(_ - 1)
+  val radix: Seq[Long] = extent.map(_ + 1)
+  def index(x: Long, y: Long, z: Long): Long = (x - origin(0)) + radix(0) * ((y - origin(1)) + radix(1) * (z - origin(2)))
+  /** One more than the greatest place of a unit in the box or next to it. */
+  def places: BigInt = BigInt(radix(0)) * radix(1) * (extent(2) + 2) + radix(0) + 1
+  /** The places fit 2^hashBits: no two units share a bucket, and no bucket past them is used. */
+  def fits(hashBits: Int): Boolean = places <= (BigInt(1) << hashBits)
+  /** The extents as the status reports them: saturated at `w` bits. */
+  def reported(w: Int): Seq[Long] = extent.map(e => math.min(e, (1L << w) - 1))
 }
 
 object BroadPhaseModel {
