@@ -133,9 +133,9 @@ std::size_t sphereCount(const std::vector<Slab>& runs) {
 
 std::vector<Slab> splitIntoRuns(const std::vector<double>& x, const std::vector<double>& y,
                                 const std::vector<double>& r, std::size_t cap) {
-  // A run also costs work that does not grow with its spheres (the broad phase's prefix sum
-  // over its buckets, about cap / 16 cycles in the AFU, against about a cycle a sphere): a
-  // run more is worth it only for that many spheres fewer.
+  // A run also costs work that does not grow with its spheres (the broad phase's fixed passes,
+  // up to about cap / 16 cycles in the AFU, against about a cycle a sphere): a run more is
+  // worth it only for that many spheres fewer.
   auto cost = [&](const std::vector<Slab>& c) { return sphereCount(c) + c.size() * (cap / 16); };
   std::vector<Slab> best;
   bool any = false;
