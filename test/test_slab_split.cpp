@@ -106,7 +106,7 @@ TEST(SlabSplit, ChoosesTheCutWithTheFewestSpheresColumnsOverSlabsInACubeAndKeeps
   EXPECT_LT(sphereCount(runs), sphereCount(slabs)) << runs.size() << " runs against " << slabs.size() << " slabs";
   // never worse than the old rule by the measure it minimizes (a run counts for cap / 16 spheres)
   const auto old = splitIntoBoxes(w.x, w.y, w.r, cap);
-  EXPECT_LE(sphereCount(runs) + runs.size() * (cap / 16), sphereCount(old) + old.size() * (cap / 16));
+  EXPECT_LE(cutCost(runs, cap), cutCost(old, cap));
   bool ghostX = false, ghostY = false;
   for (const auto& s : runs)
     for (auto o : s.owned) { ghostX |= o == kOwnedY; ghostY |= o == kOwnedX; }

@@ -131,12 +131,16 @@ std::size_t sphereCount(const std::vector<Slab>& runs) {
   return n;
 }
 
-std::vector<Slab> splitIntoRuns(const std::vector<double>& x, const std::vector<double>& y,
-                                const std::vector<double>& r, std::size_t cap) {
+std::size_t cutCost(const std::vector<Slab>& runs, std::size_t cap) {
   // A run also costs work that does not grow with its spheres (the broad phase's fixed passes,
   // up to about cap / 16 cycles in the AFU, against about a cycle a sphere): a run more is
   // worth it only for that many spheres fewer.
-  auto cost = [&](const std::vector<Slab>& c) { return sphereCount(c) + c.size() * (cap / 16); };
+  return sphereCount(runs) + runs.size() * (cap / 16);
+}
+
+std::vector<Slab> splitIntoRuns(const std::vector<double>& x, const std::vector<double>& y,
+                                const std::vector<double>& r, std::size_t cap) {
+  auto cost = [&](const std::vector<Slab>& c) { return cutCost(c, cap); };
   std::vector<Slab> best;
   bool any = false;
   auto consider = [&](std::vector<Slab>&& c) {

@@ -48,9 +48,14 @@ std::vector<Slab> splitIntoBoxes(const std::vector<double>& x, const std::vector
 // works through.
 std::size_t sphereCount(const std::vector<Slab>& runs);
 
-// The cut with the fewest spheres in all, a run counted as cap / 16 spheres more (what its
-// fixed passes cost the broad phase), among slabs along x (where they fit) and boxes whose slabs
-// along x hold 2, 3, 4, 6, 9, ... runs' worth before their cut along y. Thin slabs carry a ghost layer on one side of every run; near-square columns carry two
+// What splitIntoRuns minimizes: the spheres in all runs plus cap / 16 for each run (a run's
+// fixed passes in the broad phase, at about a cycle a sphere).
+std::size_t cutCost(const std::vector<Slab>& runs, std::size_t cap);
+
+// The cut of least cutCost (the fewest spheres in all, a run counted as cap / 16 spheres more)
+// among slabs along x (where they fit) and boxes whose slabs along x hold 2, 3, 4, 6, 9, ...
+// runs' worth before their cut along y (where slabs do not fit, also the widths splitIntoBoxes
+// tries, so boxes are found wherever it finds them). Thin slabs carry a ghost layer on one side of every run; near-square columns carry two
 // thinner ones, about 2 / sqrt(runs) of a slab's share (a uniform cloud of 65,536 spheres in
 // runs of 4,096: 0.5 more spheres in slabs, about 0.2 in columns). The smallest run comes
 // first (its table is the one read with nothing to overlap). Throws as splitIntoBoxes.
