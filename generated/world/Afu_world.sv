@@ -22299,23 +22299,23 @@ module KeyStream_world(
 endmodule
 
 // VCS coverage exclude_file
-module ram_8x44_world(
+module ram_8x45_world(
   input  [2:0]  R0_addr,
   input         R0_en,
                 R0_clk,
-  output [43:0] R0_data,
+  output [44:0] R0_data,
   input  [2:0]  W0_addr,
   input         W0_en,
                 W0_clk,
-  input  [43:0] W0_data
+  input  [44:0] W0_data
 );
 
-  reg [43:0] Memory[0:7];
+  reg [44:0] Memory[0:7];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = R0_en ? Memory[R0_addr] : 44'bx;
+  assign R0_data = R0_en ? Memory[R0_addr] : 45'bx;
 endmodule
 
 module Queue8_Hits_world(
@@ -22325,13 +22325,15 @@ module Queue8_Hits_world(
   input         io_enq_valid,
   input  [31:0] io_enq_bits_mask,
   input  [11:0] io_enq_bits_index,
-  input         io_deq_ready,
+  input         io_enq_bits_bank,
+                io_deq_ready,
   output        io_deq_valid,
   output [31:0] io_deq_bits_mask,
-  output [11:0] io_deq_bits_index
+  output [11:0] io_deq_bits_index,
+  output        io_deq_bits_bank
 );
 
-  wire [43:0] _ram_ext_R0_data;
+  wire [44:0] _ram_ext_R0_data;
   reg  [2:0]  enq_ptr_value;
   reg  [2:0]  deq_ptr_value;
   reg         maybe_full;
@@ -22355,7 +22357,7 @@ module Queue8_Hits_world(
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_8x44_world ram_ext (
+  ram_8x45_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -22363,15 +22365,16 @@ module Queue8_Hits_world(
     .W0_addr (enq_ptr_value),
     .W0_en   (do_enq),
     .W0_clk  (clock),
-    .W0_data ({io_enq_bits_index, io_enq_bits_mask})
+    .W0_data ({io_enq_bits_bank, io_enq_bits_index, io_enq_bits_mask})
   );
   assign io_enq_ready = ~full;
   assign io_deq_valid = ~empty;
   assign io_deq_bits_mask = _ram_ext_R0_data[31:0];
   assign io_deq_bits_index = _ram_ext_R0_data[43:32];
+  assign io_deq_bits_bank = _ram_ext_R0_data[44];
 endmodule
 
-module ChunkMatcher_i12_c20_q29_k32_h8_world(
+module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
   input         clock,
                 reset,
                 io_clear,
@@ -22405,210 +22408,245 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   output        io_out_valid,
   output [11:0] io_out_bits_i,
                 io_out_bits_j,
-  output        io_idle
+  output        io_idle,
+                io_canClear
 );
 
   wire        _q_io_deq_valid;
   wire [31:0] _q_io_deq_bits_mask;
   wire [11:0] _q_io_deq_bits_index;
-  reg  [11:0] members_0_key_index;
+  wire        _q_io_deq_bits_bank;
   reg  [28:0] members_0_key_q_0;
   reg  [28:0] members_0_key_q_1;
   reg  [28:0] members_0_key_q_2;
   reg  [28:0] members_0_key_qr;
   reg  [2:0]  members_0_place;
-  reg  [11:0] members_1_key_index;
   reg  [28:0] members_1_key_q_0;
   reg  [28:0] members_1_key_q_1;
   reg  [28:0] members_1_key_q_2;
   reg  [28:0] members_1_key_qr;
   reg  [2:0]  members_1_place;
-  reg  [11:0] members_2_key_index;
   reg  [28:0] members_2_key_q_0;
   reg  [28:0] members_2_key_q_1;
   reg  [28:0] members_2_key_q_2;
   reg  [28:0] members_2_key_qr;
   reg  [2:0]  members_2_place;
-  reg  [11:0] members_3_key_index;
   reg  [28:0] members_3_key_q_0;
   reg  [28:0] members_3_key_q_1;
   reg  [28:0] members_3_key_q_2;
   reg  [28:0] members_3_key_qr;
   reg  [2:0]  members_3_place;
-  reg  [11:0] members_4_key_index;
   reg  [28:0] members_4_key_q_0;
   reg  [28:0] members_4_key_q_1;
   reg  [28:0] members_4_key_q_2;
   reg  [28:0] members_4_key_qr;
   reg  [2:0]  members_4_place;
-  reg  [11:0] members_5_key_index;
   reg  [28:0] members_5_key_q_0;
   reg  [28:0] members_5_key_q_1;
   reg  [28:0] members_5_key_q_2;
   reg  [28:0] members_5_key_qr;
   reg  [2:0]  members_5_place;
-  reg  [11:0] members_6_key_index;
   reg  [28:0] members_6_key_q_0;
   reg  [28:0] members_6_key_q_1;
   reg  [28:0] members_6_key_q_2;
   reg  [28:0] members_6_key_qr;
   reg  [2:0]  members_6_place;
-  reg  [11:0] members_7_key_index;
   reg  [28:0] members_7_key_q_0;
   reg  [28:0] members_7_key_q_1;
   reg  [28:0] members_7_key_q_2;
   reg  [28:0] members_7_key_qr;
   reg  [2:0]  members_7_place;
-  reg  [11:0] members_8_key_index;
   reg  [28:0] members_8_key_q_0;
   reg  [28:0] members_8_key_q_1;
   reg  [28:0] members_8_key_q_2;
   reg  [28:0] members_8_key_qr;
   reg  [2:0]  members_8_place;
-  reg  [11:0] members_9_key_index;
   reg  [28:0] members_9_key_q_0;
   reg  [28:0] members_9_key_q_1;
   reg  [28:0] members_9_key_q_2;
   reg  [28:0] members_9_key_qr;
   reg  [2:0]  members_9_place;
-  reg  [11:0] members_10_key_index;
   reg  [28:0] members_10_key_q_0;
   reg  [28:0] members_10_key_q_1;
   reg  [28:0] members_10_key_q_2;
   reg  [28:0] members_10_key_qr;
   reg  [2:0]  members_10_place;
-  reg  [11:0] members_11_key_index;
   reg  [28:0] members_11_key_q_0;
   reg  [28:0] members_11_key_q_1;
   reg  [28:0] members_11_key_q_2;
   reg  [28:0] members_11_key_qr;
   reg  [2:0]  members_11_place;
-  reg  [11:0] members_12_key_index;
   reg  [28:0] members_12_key_q_0;
   reg  [28:0] members_12_key_q_1;
   reg  [28:0] members_12_key_q_2;
   reg  [28:0] members_12_key_qr;
   reg  [2:0]  members_12_place;
-  reg  [11:0] members_13_key_index;
   reg  [28:0] members_13_key_q_0;
   reg  [28:0] members_13_key_q_1;
   reg  [28:0] members_13_key_q_2;
   reg  [28:0] members_13_key_qr;
   reg  [2:0]  members_13_place;
-  reg  [11:0] members_14_key_index;
   reg  [28:0] members_14_key_q_0;
   reg  [28:0] members_14_key_q_1;
   reg  [28:0] members_14_key_q_2;
   reg  [28:0] members_14_key_qr;
   reg  [2:0]  members_14_place;
-  reg  [11:0] members_15_key_index;
   reg  [28:0] members_15_key_q_0;
   reg  [28:0] members_15_key_q_1;
   reg  [28:0] members_15_key_q_2;
   reg  [28:0] members_15_key_qr;
   reg  [2:0]  members_15_place;
-  reg  [11:0] members_16_key_index;
   reg  [28:0] members_16_key_q_0;
   reg  [28:0] members_16_key_q_1;
   reg  [28:0] members_16_key_q_2;
   reg  [28:0] members_16_key_qr;
   reg  [2:0]  members_16_place;
-  reg  [11:0] members_17_key_index;
   reg  [28:0] members_17_key_q_0;
   reg  [28:0] members_17_key_q_1;
   reg  [28:0] members_17_key_q_2;
   reg  [28:0] members_17_key_qr;
   reg  [2:0]  members_17_place;
-  reg  [11:0] members_18_key_index;
   reg  [28:0] members_18_key_q_0;
   reg  [28:0] members_18_key_q_1;
   reg  [28:0] members_18_key_q_2;
   reg  [28:0] members_18_key_qr;
   reg  [2:0]  members_18_place;
-  reg  [11:0] members_19_key_index;
   reg  [28:0] members_19_key_q_0;
   reg  [28:0] members_19_key_q_1;
   reg  [28:0] members_19_key_q_2;
   reg  [28:0] members_19_key_qr;
   reg  [2:0]  members_19_place;
-  reg  [11:0] members_20_key_index;
   reg  [28:0] members_20_key_q_0;
   reg  [28:0] members_20_key_q_1;
   reg  [28:0] members_20_key_q_2;
   reg  [28:0] members_20_key_qr;
   reg  [2:0]  members_20_place;
-  reg  [11:0] members_21_key_index;
   reg  [28:0] members_21_key_q_0;
   reg  [28:0] members_21_key_q_1;
   reg  [28:0] members_21_key_q_2;
   reg  [28:0] members_21_key_qr;
   reg  [2:0]  members_21_place;
-  reg  [11:0] members_22_key_index;
   reg  [28:0] members_22_key_q_0;
   reg  [28:0] members_22_key_q_1;
   reg  [28:0] members_22_key_q_2;
   reg  [28:0] members_22_key_qr;
   reg  [2:0]  members_22_place;
-  reg  [11:0] members_23_key_index;
   reg  [28:0] members_23_key_q_0;
   reg  [28:0] members_23_key_q_1;
   reg  [28:0] members_23_key_q_2;
   reg  [28:0] members_23_key_qr;
   reg  [2:0]  members_23_place;
-  reg  [11:0] members_24_key_index;
   reg  [28:0] members_24_key_q_0;
   reg  [28:0] members_24_key_q_1;
   reg  [28:0] members_24_key_q_2;
   reg  [28:0] members_24_key_qr;
   reg  [2:0]  members_24_place;
-  reg  [11:0] members_25_key_index;
   reg  [28:0] members_25_key_q_0;
   reg  [28:0] members_25_key_q_1;
   reg  [28:0] members_25_key_q_2;
   reg  [28:0] members_25_key_qr;
   reg  [2:0]  members_25_place;
-  reg  [11:0] members_26_key_index;
   reg  [28:0] members_26_key_q_0;
   reg  [28:0] members_26_key_q_1;
   reg  [28:0] members_26_key_q_2;
   reg  [28:0] members_26_key_qr;
   reg  [2:0]  members_26_place;
-  reg  [11:0] members_27_key_index;
   reg  [28:0] members_27_key_q_0;
   reg  [28:0] members_27_key_q_1;
   reg  [28:0] members_27_key_q_2;
   reg  [28:0] members_27_key_qr;
   reg  [2:0]  members_27_place;
-  reg  [11:0] members_28_key_index;
   reg  [28:0] members_28_key_q_0;
   reg  [28:0] members_28_key_q_1;
   reg  [28:0] members_28_key_q_2;
   reg  [28:0] members_28_key_qr;
   reg  [2:0]  members_28_place;
-  reg  [11:0] members_29_key_index;
   reg  [28:0] members_29_key_q_0;
   reg  [28:0] members_29_key_q_1;
   reg  [28:0] members_29_key_q_2;
   reg  [28:0] members_29_key_qr;
   reg  [2:0]  members_29_place;
-  reg  [11:0] members_30_key_index;
   reg  [28:0] members_30_key_q_0;
   reg  [28:0] members_30_key_q_1;
   reg  [28:0] members_30_key_q_2;
   reg  [28:0] members_30_key_qr;
   reg  [2:0]  members_30_place;
-  reg  [11:0] members_31_key_index;
   reg  [28:0] members_31_key_q_0;
   reg  [28:0] members_31_key_q_1;
   reg  [28:0] members_31_key_q_2;
   reg  [28:0] members_31_key_qr;
   reg  [2:0]  members_31_place;
   reg  [5:0]  used;
+  reg         cur;
+  reg  [11:0] ids_0_0;
+  reg  [11:0] ids_0_1;
+  reg  [11:0] ids_0_2;
+  reg  [11:0] ids_0_3;
+  reg  [11:0] ids_0_4;
+  reg  [11:0] ids_0_5;
+  reg  [11:0] ids_0_6;
+  reg  [11:0] ids_0_7;
+  reg  [11:0] ids_0_8;
+  reg  [11:0] ids_0_9;
+  reg  [11:0] ids_0_10;
+  reg  [11:0] ids_0_11;
+  reg  [11:0] ids_0_12;
+  reg  [11:0] ids_0_13;
+  reg  [11:0] ids_0_14;
+  reg  [11:0] ids_0_15;
+  reg  [11:0] ids_0_16;
+  reg  [11:0] ids_0_17;
+  reg  [11:0] ids_0_18;
+  reg  [11:0] ids_0_19;
+  reg  [11:0] ids_0_20;
+  reg  [11:0] ids_0_21;
+  reg  [11:0] ids_0_22;
+  reg  [11:0] ids_0_23;
+  reg  [11:0] ids_0_24;
+  reg  [11:0] ids_0_25;
+  reg  [11:0] ids_0_26;
+  reg  [11:0] ids_0_27;
+  reg  [11:0] ids_0_28;
+  reg  [11:0] ids_0_29;
+  reg  [11:0] ids_0_30;
+  reg  [11:0] ids_0_31;
+  reg  [11:0] ids_1_0;
+  reg  [11:0] ids_1_1;
+  reg  [11:0] ids_1_2;
+  reg  [11:0] ids_1_3;
+  reg  [11:0] ids_1_4;
+  reg  [11:0] ids_1_5;
+  reg  [11:0] ids_1_6;
+  reg  [11:0] ids_1_7;
+  reg  [11:0] ids_1_8;
+  reg  [11:0] ids_1_9;
+  reg  [11:0] ids_1_10;
+  reg  [11:0] ids_1_11;
+  reg  [11:0] ids_1_12;
+  reg  [11:0] ids_1_13;
+  reg  [11:0] ids_1_14;
+  reg  [11:0] ids_1_15;
+  reg  [11:0] ids_1_16;
+  reg  [11:0] ids_1_17;
+  reg  [11:0] ids_1_18;
+  reg  [11:0] ids_1_19;
+  reg  [11:0] ids_1_20;
+  reg  [11:0] ids_1_21;
+  reg  [11:0] ids_1_22;
+  reg  [11:0] ids_1_23;
+  reg  [11:0] ids_1_24;
+  reg  [11:0] ids_1_25;
+  reg  [11:0] ids_1_26;
+  reg  [11:0] ids_1_27;
+  reg  [11:0] ids_1_28;
+  reg  [11:0] ids_1_29;
+  reg  [11:0] ids_1_30;
+  reg  [11:0] ids_1_31;
   wire        inCell =
     io_in_bits_key_cell_0 == io_in_bits_cell_0
     & io_in_bits_key_cell_1 == io_in_bits_cell_1
     & io_in_bits_key_cell_2 == io_in_bits_cell_2;
-  wire        hitsNow_later = io_in_bits_key_index > members_0_key_index;
+  wire        hitsNow_later = io_in_bits_key_index > (cur ? ids_1_0 : ids_0_0);
   wire [3:0]  _GEN = {io_in_bits_off_0[2], io_in_bits_off_0};
   wire [3:0]  hitsNow_takes_rel_0 = _GEN - {3'h0, members_0_place[2]};
   wire [3:0]  _GEN_0 = {io_in_bits_off_1[2], io_in_bits_off_1};
@@ -22628,7 +22666,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_1 = {members_0_key_q_1[28], members_0_key_q_1} - _GEN_5;
   wire [29:0] _GEN_6 = {io_in_bits_key_q_2[28], io_in_bits_key_q_2};
   wire [29:0] hitsNow_d_2 = {members_0_key_q_2[28], members_0_key_q_2} - _GEN_6;
-  wire        hitsNow_later_1 = io_in_bits_key_index > members_1_key_index;
+  wire        hitsNow_later_1 = io_in_bits_key_index > (cur ? ids_1_1 : ids_0_1);
   wire [3:0]  hitsNow_takes_rel_0_1 = _GEN - {3'h0, members_1_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_1 = _GEN_0 - {3'h0, members_1_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_1 = _GEN_1 - {3'h0, members_1_place[0]};
@@ -22640,7 +22678,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_3 = {members_1_key_q_0[28], members_1_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_4 = {members_1_key_q_1[28], members_1_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_5 = {members_1_key_q_2[28], members_1_key_q_2} - _GEN_6;
-  wire        hitsNow_later_2 = io_in_bits_key_index > members_2_key_index;
+  wire        hitsNow_later_2 = io_in_bits_key_index > (cur ? ids_1_2 : ids_0_2);
   wire [3:0]  hitsNow_takes_rel_0_2 = _GEN - {3'h0, members_2_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_2 = _GEN_0 - {3'h0, members_2_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_2 = _GEN_1 - {3'h0, members_2_place[0]};
@@ -22653,7 +22691,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_6 = {members_2_key_q_0[28], members_2_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_7 = {members_2_key_q_1[28], members_2_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_8 = {members_2_key_q_2[28], members_2_key_q_2} - _GEN_6;
-  wire        hitsNow_later_3 = io_in_bits_key_index > members_3_key_index;
+  wire        hitsNow_later_3 = io_in_bits_key_index > (cur ? ids_1_3 : ids_0_3);
   wire [3:0]  hitsNow_takes_rel_0_3 = _GEN - {3'h0, members_3_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_3 = _GEN_0 - {3'h0, members_3_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_3 = _GEN_1 - {3'h0, members_3_place[0]};
@@ -22666,7 +22704,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_9 = {members_3_key_q_0[28], members_3_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_10 = {members_3_key_q_1[28], members_3_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_11 = {members_3_key_q_2[28], members_3_key_q_2} - _GEN_6;
-  wire        hitsNow_later_4 = io_in_bits_key_index > members_4_key_index;
+  wire        hitsNow_later_4 = io_in_bits_key_index > (cur ? ids_1_4 : ids_0_4);
   wire [3:0]  hitsNow_takes_rel_0_4 = _GEN - {3'h0, members_4_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_4 = _GEN_0 - {3'h0, members_4_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_4 = _GEN_1 - {3'h0, members_4_place[0]};
@@ -22679,7 +22717,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_12 = {members_4_key_q_0[28], members_4_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_13 = {members_4_key_q_1[28], members_4_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_14 = {members_4_key_q_2[28], members_4_key_q_2} - _GEN_6;
-  wire        hitsNow_later_5 = io_in_bits_key_index > members_5_key_index;
+  wire        hitsNow_later_5 = io_in_bits_key_index > (cur ? ids_1_5 : ids_0_5);
   wire [3:0]  hitsNow_takes_rel_0_5 = _GEN - {3'h0, members_5_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_5 = _GEN_0 - {3'h0, members_5_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_5 = _GEN_1 - {3'h0, members_5_place[0]};
@@ -22692,7 +22730,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_15 = {members_5_key_q_0[28], members_5_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_16 = {members_5_key_q_1[28], members_5_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_17 = {members_5_key_q_2[28], members_5_key_q_2} - _GEN_6;
-  wire        hitsNow_later_6 = io_in_bits_key_index > members_6_key_index;
+  wire        hitsNow_later_6 = io_in_bits_key_index > (cur ? ids_1_6 : ids_0_6);
   wire [3:0]  hitsNow_takes_rel_0_6 = _GEN - {3'h0, members_6_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_6 = _GEN_0 - {3'h0, members_6_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_6 = _GEN_1 - {3'h0, members_6_place[0]};
@@ -22705,7 +22743,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_18 = {members_6_key_q_0[28], members_6_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_19 = {members_6_key_q_1[28], members_6_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_20 = {members_6_key_q_2[28], members_6_key_q_2} - _GEN_6;
-  wire        hitsNow_later_7 = io_in_bits_key_index > members_7_key_index;
+  wire        hitsNow_later_7 = io_in_bits_key_index > (cur ? ids_1_7 : ids_0_7);
   wire [3:0]  hitsNow_takes_rel_0_7 = _GEN - {3'h0, members_7_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_7 = _GEN_0 - {3'h0, members_7_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_7 = _GEN_1 - {3'h0, members_7_place[0]};
@@ -22718,7 +22756,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_21 = {members_7_key_q_0[28], members_7_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_22 = {members_7_key_q_1[28], members_7_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_23 = {members_7_key_q_2[28], members_7_key_q_2} - _GEN_6;
-  wire        hitsNow_later_8 = io_in_bits_key_index > members_8_key_index;
+  wire        hitsNow_later_8 = io_in_bits_key_index > (cur ? ids_1_8 : ids_0_8);
   wire [3:0]  hitsNow_takes_rel_0_8 = _GEN - {3'h0, members_8_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_8 = _GEN_0 - {3'h0, members_8_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_8 = _GEN_1 - {3'h0, members_8_place[0]};
@@ -22731,7 +22769,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_24 = {members_8_key_q_0[28], members_8_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_25 = {members_8_key_q_1[28], members_8_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_26 = {members_8_key_q_2[28], members_8_key_q_2} - _GEN_6;
-  wire        hitsNow_later_9 = io_in_bits_key_index > members_9_key_index;
+  wire        hitsNow_later_9 = io_in_bits_key_index > (cur ? ids_1_9 : ids_0_9);
   wire [3:0]  hitsNow_takes_rel_0_9 = _GEN - {3'h0, members_9_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_9 = _GEN_0 - {3'h0, members_9_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_9 = _GEN_1 - {3'h0, members_9_place[0]};
@@ -22744,7 +22782,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_27 = {members_9_key_q_0[28], members_9_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_28 = {members_9_key_q_1[28], members_9_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_29 = {members_9_key_q_2[28], members_9_key_q_2} - _GEN_6;
-  wire        hitsNow_later_10 = io_in_bits_key_index > members_10_key_index;
+  wire        hitsNow_later_10 = io_in_bits_key_index > (cur ? ids_1_10 : ids_0_10);
   wire [3:0]  hitsNow_takes_rel_0_10 = _GEN - {3'h0, members_10_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_10 = _GEN_0 - {3'h0, members_10_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_10 = _GEN_1 - {3'h0, members_10_place[0]};
@@ -22757,7 +22795,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_30 = {members_10_key_q_0[28], members_10_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_31 = {members_10_key_q_1[28], members_10_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_32 = {members_10_key_q_2[28], members_10_key_q_2} - _GEN_6;
-  wire        hitsNow_later_11 = io_in_bits_key_index > members_11_key_index;
+  wire        hitsNow_later_11 = io_in_bits_key_index > (cur ? ids_1_11 : ids_0_11);
   wire [3:0]  hitsNow_takes_rel_0_11 = _GEN - {3'h0, members_11_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_11 = _GEN_0 - {3'h0, members_11_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_11 = _GEN_1 - {3'h0, members_11_place[0]};
@@ -22770,7 +22808,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_33 = {members_11_key_q_0[28], members_11_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_34 = {members_11_key_q_1[28], members_11_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_35 = {members_11_key_q_2[28], members_11_key_q_2} - _GEN_6;
-  wire        hitsNow_later_12 = io_in_bits_key_index > members_12_key_index;
+  wire        hitsNow_later_12 = io_in_bits_key_index > (cur ? ids_1_12 : ids_0_12);
   wire [3:0]  hitsNow_takes_rel_0_12 = _GEN - {3'h0, members_12_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_12 = _GEN_0 - {3'h0, members_12_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_12 = _GEN_1 - {3'h0, members_12_place[0]};
@@ -22783,7 +22821,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_36 = {members_12_key_q_0[28], members_12_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_37 = {members_12_key_q_1[28], members_12_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_38 = {members_12_key_q_2[28], members_12_key_q_2} - _GEN_6;
-  wire        hitsNow_later_13 = io_in_bits_key_index > members_13_key_index;
+  wire        hitsNow_later_13 = io_in_bits_key_index > (cur ? ids_1_13 : ids_0_13);
   wire [3:0]  hitsNow_takes_rel_0_13 = _GEN - {3'h0, members_13_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_13 = _GEN_0 - {3'h0, members_13_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_13 = _GEN_1 - {3'h0, members_13_place[0]};
@@ -22796,7 +22834,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_39 = {members_13_key_q_0[28], members_13_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_40 = {members_13_key_q_1[28], members_13_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_41 = {members_13_key_q_2[28], members_13_key_q_2} - _GEN_6;
-  wire        hitsNow_later_14 = io_in_bits_key_index > members_14_key_index;
+  wire        hitsNow_later_14 = io_in_bits_key_index > (cur ? ids_1_14 : ids_0_14);
   wire [3:0]  hitsNow_takes_rel_0_14 = _GEN - {3'h0, members_14_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_14 = _GEN_0 - {3'h0, members_14_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_14 = _GEN_1 - {3'h0, members_14_place[0]};
@@ -22809,7 +22847,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_42 = {members_14_key_q_0[28], members_14_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_43 = {members_14_key_q_1[28], members_14_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_44 = {members_14_key_q_2[28], members_14_key_q_2} - _GEN_6;
-  wire        hitsNow_later_15 = io_in_bits_key_index > members_15_key_index;
+  wire        hitsNow_later_15 = io_in_bits_key_index > (cur ? ids_1_15 : ids_0_15);
   wire [3:0]  hitsNow_takes_rel_0_15 = _GEN - {3'h0, members_15_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_15 = _GEN_0 - {3'h0, members_15_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_15 = _GEN_1 - {3'h0, members_15_place[0]};
@@ -22822,7 +22860,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_45 = {members_15_key_q_0[28], members_15_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_46 = {members_15_key_q_1[28], members_15_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_47 = {members_15_key_q_2[28], members_15_key_q_2} - _GEN_6;
-  wire        hitsNow_later_16 = io_in_bits_key_index > members_16_key_index;
+  wire        hitsNow_later_16 = io_in_bits_key_index > (cur ? ids_1_16 : ids_0_16);
   wire [3:0]  hitsNow_takes_rel_0_16 = _GEN - {3'h0, members_16_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_16 = _GEN_0 - {3'h0, members_16_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_16 = _GEN_1 - {3'h0, members_16_place[0]};
@@ -22835,7 +22873,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_48 = {members_16_key_q_0[28], members_16_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_49 = {members_16_key_q_1[28], members_16_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_50 = {members_16_key_q_2[28], members_16_key_q_2} - _GEN_6;
-  wire        hitsNow_later_17 = io_in_bits_key_index > members_17_key_index;
+  wire        hitsNow_later_17 = io_in_bits_key_index > (cur ? ids_1_17 : ids_0_17);
   wire [3:0]  hitsNow_takes_rel_0_17 = _GEN - {3'h0, members_17_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_17 = _GEN_0 - {3'h0, members_17_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_17 = _GEN_1 - {3'h0, members_17_place[0]};
@@ -22848,7 +22886,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_51 = {members_17_key_q_0[28], members_17_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_52 = {members_17_key_q_1[28], members_17_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_53 = {members_17_key_q_2[28], members_17_key_q_2} - _GEN_6;
-  wire        hitsNow_later_18 = io_in_bits_key_index > members_18_key_index;
+  wire        hitsNow_later_18 = io_in_bits_key_index > (cur ? ids_1_18 : ids_0_18);
   wire [3:0]  hitsNow_takes_rel_0_18 = _GEN - {3'h0, members_18_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_18 = _GEN_0 - {3'h0, members_18_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_18 = _GEN_1 - {3'h0, members_18_place[0]};
@@ -22861,7 +22899,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_54 = {members_18_key_q_0[28], members_18_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_55 = {members_18_key_q_1[28], members_18_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_56 = {members_18_key_q_2[28], members_18_key_q_2} - _GEN_6;
-  wire        hitsNow_later_19 = io_in_bits_key_index > members_19_key_index;
+  wire        hitsNow_later_19 = io_in_bits_key_index > (cur ? ids_1_19 : ids_0_19);
   wire [3:0]  hitsNow_takes_rel_0_19 = _GEN - {3'h0, members_19_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_19 = _GEN_0 - {3'h0, members_19_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_19 = _GEN_1 - {3'h0, members_19_place[0]};
@@ -22874,7 +22912,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_57 = {members_19_key_q_0[28], members_19_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_58 = {members_19_key_q_1[28], members_19_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_59 = {members_19_key_q_2[28], members_19_key_q_2} - _GEN_6;
-  wire        hitsNow_later_20 = io_in_bits_key_index > members_20_key_index;
+  wire        hitsNow_later_20 = io_in_bits_key_index > (cur ? ids_1_20 : ids_0_20);
   wire [3:0]  hitsNow_takes_rel_0_20 = _GEN - {3'h0, members_20_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_20 = _GEN_0 - {3'h0, members_20_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_20 = _GEN_1 - {3'h0, members_20_place[0]};
@@ -22887,7 +22925,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_60 = {members_20_key_q_0[28], members_20_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_61 = {members_20_key_q_1[28], members_20_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_62 = {members_20_key_q_2[28], members_20_key_q_2} - _GEN_6;
-  wire        hitsNow_later_21 = io_in_bits_key_index > members_21_key_index;
+  wire        hitsNow_later_21 = io_in_bits_key_index > (cur ? ids_1_21 : ids_0_21);
   wire [3:0]  hitsNow_takes_rel_0_21 = _GEN - {3'h0, members_21_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_21 = _GEN_0 - {3'h0, members_21_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_21 = _GEN_1 - {3'h0, members_21_place[0]};
@@ -22900,7 +22938,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_63 = {members_21_key_q_0[28], members_21_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_64 = {members_21_key_q_1[28], members_21_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_65 = {members_21_key_q_2[28], members_21_key_q_2} - _GEN_6;
-  wire        hitsNow_later_22 = io_in_bits_key_index > members_22_key_index;
+  wire        hitsNow_later_22 = io_in_bits_key_index > (cur ? ids_1_22 : ids_0_22);
   wire [3:0]  hitsNow_takes_rel_0_22 = _GEN - {3'h0, members_22_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_22 = _GEN_0 - {3'h0, members_22_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_22 = _GEN_1 - {3'h0, members_22_place[0]};
@@ -22913,7 +22951,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_66 = {members_22_key_q_0[28], members_22_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_67 = {members_22_key_q_1[28], members_22_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_68 = {members_22_key_q_2[28], members_22_key_q_2} - _GEN_6;
-  wire        hitsNow_later_23 = io_in_bits_key_index > members_23_key_index;
+  wire        hitsNow_later_23 = io_in_bits_key_index > (cur ? ids_1_23 : ids_0_23);
   wire [3:0]  hitsNow_takes_rel_0_23 = _GEN - {3'h0, members_23_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_23 = _GEN_0 - {3'h0, members_23_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_23 = _GEN_1 - {3'h0, members_23_place[0]};
@@ -22926,7 +22964,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_69 = {members_23_key_q_0[28], members_23_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_70 = {members_23_key_q_1[28], members_23_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_71 = {members_23_key_q_2[28], members_23_key_q_2} - _GEN_6;
-  wire        hitsNow_later_24 = io_in_bits_key_index > members_24_key_index;
+  wire        hitsNow_later_24 = io_in_bits_key_index > (cur ? ids_1_24 : ids_0_24);
   wire [3:0]  hitsNow_takes_rel_0_24 = _GEN - {3'h0, members_24_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_24 = _GEN_0 - {3'h0, members_24_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_24 = _GEN_1 - {3'h0, members_24_place[0]};
@@ -22939,7 +22977,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_72 = {members_24_key_q_0[28], members_24_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_73 = {members_24_key_q_1[28], members_24_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_74 = {members_24_key_q_2[28], members_24_key_q_2} - _GEN_6;
-  wire        hitsNow_later_25 = io_in_bits_key_index > members_25_key_index;
+  wire        hitsNow_later_25 = io_in_bits_key_index > (cur ? ids_1_25 : ids_0_25);
   wire [3:0]  hitsNow_takes_rel_0_25 = _GEN - {3'h0, members_25_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_25 = _GEN_0 - {3'h0, members_25_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_25 = _GEN_1 - {3'h0, members_25_place[0]};
@@ -22952,7 +22990,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_75 = {members_25_key_q_0[28], members_25_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_76 = {members_25_key_q_1[28], members_25_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_77 = {members_25_key_q_2[28], members_25_key_q_2} - _GEN_6;
-  wire        hitsNow_later_26 = io_in_bits_key_index > members_26_key_index;
+  wire        hitsNow_later_26 = io_in_bits_key_index > (cur ? ids_1_26 : ids_0_26);
   wire [3:0]  hitsNow_takes_rel_0_26 = _GEN - {3'h0, members_26_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_26 = _GEN_0 - {3'h0, members_26_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_26 = _GEN_1 - {3'h0, members_26_place[0]};
@@ -22965,7 +23003,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_78 = {members_26_key_q_0[28], members_26_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_79 = {members_26_key_q_1[28], members_26_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_80 = {members_26_key_q_2[28], members_26_key_q_2} - _GEN_6;
-  wire        hitsNow_later_27 = io_in_bits_key_index > members_27_key_index;
+  wire        hitsNow_later_27 = io_in_bits_key_index > (cur ? ids_1_27 : ids_0_27);
   wire [3:0]  hitsNow_takes_rel_0_27 = _GEN - {3'h0, members_27_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_27 = _GEN_0 - {3'h0, members_27_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_27 = _GEN_1 - {3'h0, members_27_place[0]};
@@ -22978,7 +23016,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_81 = {members_27_key_q_0[28], members_27_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_82 = {members_27_key_q_1[28], members_27_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_83 = {members_27_key_q_2[28], members_27_key_q_2} - _GEN_6;
-  wire        hitsNow_later_28 = io_in_bits_key_index > members_28_key_index;
+  wire        hitsNow_later_28 = io_in_bits_key_index > (cur ? ids_1_28 : ids_0_28);
   wire [3:0]  hitsNow_takes_rel_0_28 = _GEN - {3'h0, members_28_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_28 = _GEN_0 - {3'h0, members_28_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_28 = _GEN_1 - {3'h0, members_28_place[0]};
@@ -22991,7 +23029,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_84 = {members_28_key_q_0[28], members_28_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_85 = {members_28_key_q_1[28], members_28_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_86 = {members_28_key_q_2[28], members_28_key_q_2} - _GEN_6;
-  wire        hitsNow_later_29 = io_in_bits_key_index > members_29_key_index;
+  wire        hitsNow_later_29 = io_in_bits_key_index > (cur ? ids_1_29 : ids_0_29);
   wire [3:0]  hitsNow_takes_rel_0_29 = _GEN - {3'h0, members_29_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_29 = _GEN_0 - {3'h0, members_29_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_29 = _GEN_1 - {3'h0, members_29_place[0]};
@@ -23004,7 +23042,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_87 = {members_29_key_q_0[28], members_29_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_88 = {members_29_key_q_1[28], members_29_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_89 = {members_29_key_q_2[28], members_29_key_q_2} - _GEN_6;
-  wire        hitsNow_later_30 = io_in_bits_key_index > members_30_key_index;
+  wire        hitsNow_later_30 = io_in_bits_key_index > (cur ? ids_1_30 : ids_0_30);
   wire [3:0]  hitsNow_takes_rel_0_30 = _GEN - {3'h0, members_30_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_30 = _GEN_0 - {3'h0, members_30_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_30 = _GEN_1 - {3'h0, members_30_place[0]};
@@ -23017,7 +23055,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   wire [29:0] hitsNow_d_90 = {members_30_key_q_0[28], members_30_key_q_0} - _GEN_4;
   wire [29:0] hitsNow_d_91 = {members_30_key_q_1[28], members_30_key_q_1} - _GEN_5;
   wire [29:0] hitsNow_d_92 = {members_30_key_q_2[28], members_30_key_q_2} - _GEN_6;
-  wire        hitsNow_later_31 = io_in_bits_key_index > members_31_key_index;
+  wire        hitsNow_later_31 = io_in_bits_key_index > (cur ? ids_1_31 : ids_0_31);
   wire [3:0]  hitsNow_takes_rel_0_31 = _GEN - {3'h0, members_31_place[2]};
   wire [3:0]  hitsNow_takes_rel_1_31 = _GEN_0 - {3'h0, members_31_place[1]};
   wire [3:0]  hitsNow_takes_rel_2_31 = _GEN_1 - {3'h0, members_31_place[0]};
@@ -23704,6 +23742,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
             : {1'h0, hitsNow_d_2}) <= hitsNow_bound};
   reg  [31:0] pending;
   reg  [11:0] entry;
+  reg         pendBank;
   wire [4:0]  slot =
     pending[0]
       ? 5'h0
@@ -23771,72 +23810,142 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
   always @(*) begin
     casez (slot)
       5'b00000:
-        casez_tmp = members_0_key_index;
+        casez_tmp = ids_1_0;
       5'b00001:
-        casez_tmp = members_1_key_index;
+        casez_tmp = ids_1_1;
       5'b00010:
-        casez_tmp = members_2_key_index;
+        casez_tmp = ids_1_2;
       5'b00011:
-        casez_tmp = members_3_key_index;
+        casez_tmp = ids_1_3;
       5'b00100:
-        casez_tmp = members_4_key_index;
+        casez_tmp = ids_1_4;
       5'b00101:
-        casez_tmp = members_5_key_index;
+        casez_tmp = ids_1_5;
       5'b00110:
-        casez_tmp = members_6_key_index;
+        casez_tmp = ids_1_6;
       5'b00111:
-        casez_tmp = members_7_key_index;
+        casez_tmp = ids_1_7;
       5'b01000:
-        casez_tmp = members_8_key_index;
+        casez_tmp = ids_1_8;
       5'b01001:
-        casez_tmp = members_9_key_index;
+        casez_tmp = ids_1_9;
       5'b01010:
-        casez_tmp = members_10_key_index;
+        casez_tmp = ids_1_10;
       5'b01011:
-        casez_tmp = members_11_key_index;
+        casez_tmp = ids_1_11;
       5'b01100:
-        casez_tmp = members_12_key_index;
+        casez_tmp = ids_1_12;
       5'b01101:
-        casez_tmp = members_13_key_index;
+        casez_tmp = ids_1_13;
       5'b01110:
-        casez_tmp = members_14_key_index;
+        casez_tmp = ids_1_14;
       5'b01111:
-        casez_tmp = members_15_key_index;
+        casez_tmp = ids_1_15;
       5'b10000:
-        casez_tmp = members_16_key_index;
+        casez_tmp = ids_1_16;
       5'b10001:
-        casez_tmp = members_17_key_index;
+        casez_tmp = ids_1_17;
       5'b10010:
-        casez_tmp = members_18_key_index;
+        casez_tmp = ids_1_18;
       5'b10011:
-        casez_tmp = members_19_key_index;
+        casez_tmp = ids_1_19;
       5'b10100:
-        casez_tmp = members_20_key_index;
+        casez_tmp = ids_1_20;
       5'b10101:
-        casez_tmp = members_21_key_index;
+        casez_tmp = ids_1_21;
       5'b10110:
-        casez_tmp = members_22_key_index;
+        casez_tmp = ids_1_22;
       5'b10111:
-        casez_tmp = members_23_key_index;
+        casez_tmp = ids_1_23;
       5'b11000:
-        casez_tmp = members_24_key_index;
+        casez_tmp = ids_1_24;
       5'b11001:
-        casez_tmp = members_25_key_index;
+        casez_tmp = ids_1_25;
       5'b11010:
-        casez_tmp = members_26_key_index;
+        casez_tmp = ids_1_26;
       5'b11011:
-        casez_tmp = members_27_key_index;
+        casez_tmp = ids_1_27;
       5'b11100:
-        casez_tmp = members_28_key_index;
+        casez_tmp = ids_1_28;
       5'b11101:
-        casez_tmp = members_29_key_index;
+        casez_tmp = ids_1_29;
       5'b11110:
-        casez_tmp = members_30_key_index;
+        casez_tmp = ids_1_30;
       default:
-        casez_tmp = members_31_key_index;
+        casez_tmp = ids_1_31;
     endcase
   end // always @(*)
-  wire        _io_out_bits_j_T = casez_tmp < entry;
+  reg  [11:0] casez_tmp_0;
+  always @(*) begin
+    casez (slot)
+      5'b00000:
+        casez_tmp_0 = ids_0_0;
+      5'b00001:
+        casez_tmp_0 = ids_0_1;
+      5'b00010:
+        casez_tmp_0 = ids_0_2;
+      5'b00011:
+        casez_tmp_0 = ids_0_3;
+      5'b00100:
+        casez_tmp_0 = ids_0_4;
+      5'b00101:
+        casez_tmp_0 = ids_0_5;
+      5'b00110:
+        casez_tmp_0 = ids_0_6;
+      5'b00111:
+        casez_tmp_0 = ids_0_7;
+      5'b01000:
+        casez_tmp_0 = ids_0_8;
+      5'b01001:
+        casez_tmp_0 = ids_0_9;
+      5'b01010:
+        casez_tmp_0 = ids_0_10;
+      5'b01011:
+        casez_tmp_0 = ids_0_11;
+      5'b01100:
+        casez_tmp_0 = ids_0_12;
+      5'b01101:
+        casez_tmp_0 = ids_0_13;
+      5'b01110:
+        casez_tmp_0 = ids_0_14;
+      5'b01111:
+        casez_tmp_0 = ids_0_15;
+      5'b10000:
+        casez_tmp_0 = ids_0_16;
+      5'b10001:
+        casez_tmp_0 = ids_0_17;
+      5'b10010:
+        casez_tmp_0 = ids_0_18;
+      5'b10011:
+        casez_tmp_0 = ids_0_19;
+      5'b10100:
+        casez_tmp_0 = ids_0_20;
+      5'b10101:
+        casez_tmp_0 = ids_0_21;
+      5'b10110:
+        casez_tmp_0 = ids_0_22;
+      5'b10111:
+        casez_tmp_0 = ids_0_23;
+      5'b11000:
+        casez_tmp_0 = ids_0_24;
+      5'b11001:
+        casez_tmp_0 = ids_0_25;
+      5'b11010:
+        casez_tmp_0 = ids_0_26;
+      5'b11011:
+        casez_tmp_0 = ids_0_27;
+      5'b11100:
+        casez_tmp_0 = ids_0_28;
+      5'b11101:
+        casez_tmp_0 = ids_0_29;
+      5'b11110:
+        casez_tmp_0 = ids_0_30;
+      default:
+        casez_tmp_0 = ids_0_31;
+    endcase
+  end // always @(*)
+  wire [11:0] mIndex = pendBank ? casez_tmp : casez_tmp_0;
+  wire        _io_out_bits_j_T = mIndex < entry;
   wire        free =
     ~(|pending)
     | {1'h0,
@@ -23871,342 +23980,605 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
                    + {1'h0, {1'h0, pending[30]} + {1'h0, pending[31]}}}}} < 6'h2
     & io_out_ready;
   wire        _GEN_7 = used == 6'h20;
+  wire        _GEN_8 = used[4:0] == 5'h1;
+  wire        _GEN_9 = used[4:0] == 5'h2;
+  wire        _GEN_10 = used[4:0] == 5'h3;
+  wire        _GEN_11 = used[4:0] == 5'h4;
+  wire        _GEN_12 = used[4:0] == 5'h5;
+  wire        _GEN_13 = used[4:0] == 5'h6;
+  wire        _GEN_14 = used[4:0] == 5'h7;
+  wire        _GEN_15 = used[4:0] == 5'h8;
+  wire        _GEN_16 = used[4:0] == 5'h9;
+  wire        _GEN_17 = used[4:0] == 5'hA;
+  wire        _GEN_18 = used[4:0] == 5'hB;
+  wire        _GEN_19 = used[4:0] == 5'hC;
+  wire        _GEN_20 = used[4:0] == 5'hD;
+  wire        _GEN_21 = used[4:0] == 5'hE;
+  wire        _GEN_22 = used[4:0] == 5'hF;
+  wire        _GEN_23 = used[4:0] == 5'h10;
+  wire        _GEN_24 = used[4:0] == 5'h11;
+  wire        _GEN_25 = used[4:0] == 5'h12;
+  wire        _GEN_26 = used[4:0] == 5'h13;
+  wire        _GEN_27 = used[4:0] == 5'h14;
+  wire        _GEN_28 = used[4:0] == 5'h15;
+  wire        _GEN_29 = used[4:0] == 5'h16;
+  wire        _GEN_30 = used[4:0] == 5'h17;
+  wire        _GEN_31 = used[4:0] == 5'h18;
+  wire        _GEN_32 = used[4:0] == 5'h19;
+  wire        _GEN_33 = used[4:0] == 5'h1A;
+  wire        _GEN_34 = used[4:0] == 5'h1B;
+  wire        _GEN_35 = used[4:0] == 5'h1C;
+  wire        _GEN_36 = used[4:0] == 5'h1D;
+  wire        _GEN_37 = used[4:0] == 5'h1E;
   wire        _pending_T = free & _q_io_deq_valid;
+  wire        _GEN_38 = used[4:0] == 5'h0;
   always @(posedge clock) begin
     if (io_clear) begin
       if (io_load_valid) begin
-        members_0_key_index <= io_load_bits_key_index;
         members_0_key_q_0 <= io_load_bits_key_q_0;
         members_0_key_q_1 <= io_load_bits_key_q_1;
         members_0_key_q_2 <= io_load_bits_key_q_2;
         members_0_key_qr <= io_load_bits_key_qr;
         members_0_place <= io_load_bits_place;
       end
-    end
-    else if (~io_load_valid | _GEN_7 | (|(used[4:0]))) begin
-    end
-    else begin
-      members_0_key_index <= io_load_bits_key_index;
-      members_0_key_q_0 <= io_load_bits_key_q_0;
-      members_0_key_q_1 <= io_load_bits_key_q_1;
-      members_0_key_q_2 <= io_load_bits_key_q_2;
-      members_0_key_qr <= io_load_bits_key_qr;
-      members_0_place <= io_load_bits_place;
-    end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1) begin
+      if (io_load_valid & cur)
+        ids_0_0 <= io_load_bits_key_index;
+      if (io_load_valid & ~cur)
+        ids_1_0 <= io_load_bits_key_index;
     end
     else begin
-      members_1_key_index <= io_load_bits_key_index;
+      if (~io_load_valid | _GEN_7 | ~_GEN_38) begin
+      end
+      else begin
+        members_0_key_q_0 <= io_load_bits_key_q_0;
+        members_0_key_q_1 <= io_load_bits_key_q_1;
+        members_0_key_q_2 <= io_load_bits_key_q_2;
+        members_0_key_qr <= io_load_bits_key_qr;
+        members_0_place <= io_load_bits_place;
+      end
+      if (~io_load_valid | _GEN_7 | ~(~cur & _GEN_38)) begin
+      end
+      else
+        ids_0_0 <= io_load_bits_key_index;
+      if (~io_load_valid | _GEN_7 | ~(cur & _GEN_38)) begin
+      end
+      else
+        ids_1_0 <= io_load_bits_key_index;
+    end
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_8) begin
+    end
+    else begin
       members_1_key_q_0 <= io_load_bits_key_q_0;
       members_1_key_q_1 <= io_load_bits_key_q_1;
       members_1_key_q_2 <= io_load_bits_key_q_2;
       members_1_key_qr <= io_load_bits_key_qr;
       members_1_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h2) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_9) begin
     end
     else begin
-      members_2_key_index <= io_load_bits_key_index;
       members_2_key_q_0 <= io_load_bits_key_q_0;
       members_2_key_q_1 <= io_load_bits_key_q_1;
       members_2_key_q_2 <= io_load_bits_key_q_2;
       members_2_key_qr <= io_load_bits_key_qr;
       members_2_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h3) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_10) begin
     end
     else begin
-      members_3_key_index <= io_load_bits_key_index;
       members_3_key_q_0 <= io_load_bits_key_q_0;
       members_3_key_q_1 <= io_load_bits_key_q_1;
       members_3_key_q_2 <= io_load_bits_key_q_2;
       members_3_key_qr <= io_load_bits_key_qr;
       members_3_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h4) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_11) begin
     end
     else begin
-      members_4_key_index <= io_load_bits_key_index;
       members_4_key_q_0 <= io_load_bits_key_q_0;
       members_4_key_q_1 <= io_load_bits_key_q_1;
       members_4_key_q_2 <= io_load_bits_key_q_2;
       members_4_key_qr <= io_load_bits_key_qr;
       members_4_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h5) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_12) begin
     end
     else begin
-      members_5_key_index <= io_load_bits_key_index;
       members_5_key_q_0 <= io_load_bits_key_q_0;
       members_5_key_q_1 <= io_load_bits_key_q_1;
       members_5_key_q_2 <= io_load_bits_key_q_2;
       members_5_key_qr <= io_load_bits_key_qr;
       members_5_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h6) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_13) begin
     end
     else begin
-      members_6_key_index <= io_load_bits_key_index;
       members_6_key_q_0 <= io_load_bits_key_q_0;
       members_6_key_q_1 <= io_load_bits_key_q_1;
       members_6_key_q_2 <= io_load_bits_key_q_2;
       members_6_key_qr <= io_load_bits_key_qr;
       members_6_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h7) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_14) begin
     end
     else begin
-      members_7_key_index <= io_load_bits_key_index;
       members_7_key_q_0 <= io_load_bits_key_q_0;
       members_7_key_q_1 <= io_load_bits_key_q_1;
       members_7_key_q_2 <= io_load_bits_key_q_2;
       members_7_key_qr <= io_load_bits_key_qr;
       members_7_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h8) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_15) begin
     end
     else begin
-      members_8_key_index <= io_load_bits_key_index;
       members_8_key_q_0 <= io_load_bits_key_q_0;
       members_8_key_q_1 <= io_load_bits_key_q_1;
       members_8_key_q_2 <= io_load_bits_key_q_2;
       members_8_key_qr <= io_load_bits_key_qr;
       members_8_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h9) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_16) begin
     end
     else begin
-      members_9_key_index <= io_load_bits_key_index;
       members_9_key_q_0 <= io_load_bits_key_q_0;
       members_9_key_q_1 <= io_load_bits_key_q_1;
       members_9_key_q_2 <= io_load_bits_key_q_2;
       members_9_key_qr <= io_load_bits_key_qr;
       members_9_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hA) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_17) begin
     end
     else begin
-      members_10_key_index <= io_load_bits_key_index;
       members_10_key_q_0 <= io_load_bits_key_q_0;
       members_10_key_q_1 <= io_load_bits_key_q_1;
       members_10_key_q_2 <= io_load_bits_key_q_2;
       members_10_key_qr <= io_load_bits_key_qr;
       members_10_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hB) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_18) begin
     end
     else begin
-      members_11_key_index <= io_load_bits_key_index;
       members_11_key_q_0 <= io_load_bits_key_q_0;
       members_11_key_q_1 <= io_load_bits_key_q_1;
       members_11_key_q_2 <= io_load_bits_key_q_2;
       members_11_key_qr <= io_load_bits_key_qr;
       members_11_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hC) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_19) begin
     end
     else begin
-      members_12_key_index <= io_load_bits_key_index;
       members_12_key_q_0 <= io_load_bits_key_q_0;
       members_12_key_q_1 <= io_load_bits_key_q_1;
       members_12_key_q_2 <= io_load_bits_key_q_2;
       members_12_key_qr <= io_load_bits_key_qr;
       members_12_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hD) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_20) begin
     end
     else begin
-      members_13_key_index <= io_load_bits_key_index;
       members_13_key_q_0 <= io_load_bits_key_q_0;
       members_13_key_q_1 <= io_load_bits_key_q_1;
       members_13_key_q_2 <= io_load_bits_key_q_2;
       members_13_key_qr <= io_load_bits_key_qr;
       members_13_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hE) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_21) begin
     end
     else begin
-      members_14_key_index <= io_load_bits_key_index;
       members_14_key_q_0 <= io_load_bits_key_q_0;
       members_14_key_q_1 <= io_load_bits_key_q_1;
       members_14_key_q_2 <= io_load_bits_key_q_2;
       members_14_key_qr <= io_load_bits_key_qr;
       members_14_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'hF) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_22) begin
     end
     else begin
-      members_15_key_index <= io_load_bits_key_index;
       members_15_key_q_0 <= io_load_bits_key_q_0;
       members_15_key_q_1 <= io_load_bits_key_q_1;
       members_15_key_q_2 <= io_load_bits_key_q_2;
       members_15_key_qr <= io_load_bits_key_qr;
       members_15_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h10) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_23) begin
     end
     else begin
-      members_16_key_index <= io_load_bits_key_index;
       members_16_key_q_0 <= io_load_bits_key_q_0;
       members_16_key_q_1 <= io_load_bits_key_q_1;
       members_16_key_q_2 <= io_load_bits_key_q_2;
       members_16_key_qr <= io_load_bits_key_qr;
       members_16_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h11) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_24) begin
     end
     else begin
-      members_17_key_index <= io_load_bits_key_index;
       members_17_key_q_0 <= io_load_bits_key_q_0;
       members_17_key_q_1 <= io_load_bits_key_q_1;
       members_17_key_q_2 <= io_load_bits_key_q_2;
       members_17_key_qr <= io_load_bits_key_qr;
       members_17_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h12) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_25) begin
     end
     else begin
-      members_18_key_index <= io_load_bits_key_index;
       members_18_key_q_0 <= io_load_bits_key_q_0;
       members_18_key_q_1 <= io_load_bits_key_q_1;
       members_18_key_q_2 <= io_load_bits_key_q_2;
       members_18_key_qr <= io_load_bits_key_qr;
       members_18_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h13) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_26) begin
     end
     else begin
-      members_19_key_index <= io_load_bits_key_index;
       members_19_key_q_0 <= io_load_bits_key_q_0;
       members_19_key_q_1 <= io_load_bits_key_q_1;
       members_19_key_q_2 <= io_load_bits_key_q_2;
       members_19_key_qr <= io_load_bits_key_qr;
       members_19_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h14) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_27) begin
     end
     else begin
-      members_20_key_index <= io_load_bits_key_index;
       members_20_key_q_0 <= io_load_bits_key_q_0;
       members_20_key_q_1 <= io_load_bits_key_q_1;
       members_20_key_q_2 <= io_load_bits_key_q_2;
       members_20_key_qr <= io_load_bits_key_qr;
       members_20_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h15) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_28) begin
     end
     else begin
-      members_21_key_index <= io_load_bits_key_index;
       members_21_key_q_0 <= io_load_bits_key_q_0;
       members_21_key_q_1 <= io_load_bits_key_q_1;
       members_21_key_q_2 <= io_load_bits_key_q_2;
       members_21_key_qr <= io_load_bits_key_qr;
       members_21_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h16) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_29) begin
     end
     else begin
-      members_22_key_index <= io_load_bits_key_index;
       members_22_key_q_0 <= io_load_bits_key_q_0;
       members_22_key_q_1 <= io_load_bits_key_q_1;
       members_22_key_q_2 <= io_load_bits_key_q_2;
       members_22_key_qr <= io_load_bits_key_qr;
       members_22_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h17) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_30) begin
     end
     else begin
-      members_23_key_index <= io_load_bits_key_index;
       members_23_key_q_0 <= io_load_bits_key_q_0;
       members_23_key_q_1 <= io_load_bits_key_q_1;
       members_23_key_q_2 <= io_load_bits_key_q_2;
       members_23_key_qr <= io_load_bits_key_qr;
       members_23_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h18) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_31) begin
     end
     else begin
-      members_24_key_index <= io_load_bits_key_index;
       members_24_key_q_0 <= io_load_bits_key_q_0;
       members_24_key_q_1 <= io_load_bits_key_q_1;
       members_24_key_q_2 <= io_load_bits_key_q_2;
       members_24_key_qr <= io_load_bits_key_qr;
       members_24_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h19) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_32) begin
     end
     else begin
-      members_25_key_index <= io_load_bits_key_index;
       members_25_key_q_0 <= io_load_bits_key_q_0;
       members_25_key_q_1 <= io_load_bits_key_q_1;
       members_25_key_q_2 <= io_load_bits_key_q_2;
       members_25_key_qr <= io_load_bits_key_qr;
       members_25_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1A) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_33) begin
     end
     else begin
-      members_26_key_index <= io_load_bits_key_index;
       members_26_key_q_0 <= io_load_bits_key_q_0;
       members_26_key_q_1 <= io_load_bits_key_q_1;
       members_26_key_q_2 <= io_load_bits_key_q_2;
       members_26_key_qr <= io_load_bits_key_qr;
       members_26_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1B) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_34) begin
     end
     else begin
-      members_27_key_index <= io_load_bits_key_index;
       members_27_key_q_0 <= io_load_bits_key_q_0;
       members_27_key_q_1 <= io_load_bits_key_q_1;
       members_27_key_q_2 <= io_load_bits_key_q_2;
       members_27_key_qr <= io_load_bits_key_qr;
       members_27_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1C) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_35) begin
     end
     else begin
-      members_28_key_index <= io_load_bits_key_index;
       members_28_key_q_0 <= io_load_bits_key_q_0;
       members_28_key_q_1 <= io_load_bits_key_q_1;
       members_28_key_q_2 <= io_load_bits_key_q_2;
       members_28_key_qr <= io_load_bits_key_qr;
       members_28_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1D) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_36) begin
     end
     else begin
-      members_29_key_index <= io_load_bits_key_index;
       members_29_key_q_0 <= io_load_bits_key_q_0;
       members_29_key_q_1 <= io_load_bits_key_q_1;
       members_29_key_q_2 <= io_load_bits_key_q_2;
       members_29_key_qr <= io_load_bits_key_qr;
       members_29_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1E) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_37) begin
     end
     else begin
-      members_30_key_index <= io_load_bits_key_index;
       members_30_key_q_0 <= io_load_bits_key_q_0;
       members_30_key_q_1 <= io_load_bits_key_q_1;
       members_30_key_q_2 <= io_load_bits_key_q_2;
       members_30_key_qr <= io_load_bits_key_qr;
       members_30_place <= io_load_bits_place;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | used[4:0] != 5'h1F) begin
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(&(used[4:0]))) begin
     end
     else begin
-      members_31_key_index <= io_load_bits_key_index;
       members_31_key_q_0 <= io_load_bits_key_q_0;
       members_31_key_q_1 <= io_load_bits_key_q_1;
       members_31_key_q_2 <= io_load_bits_key_q_2;
       members_31_key_qr <= io_load_bits_key_qr;
       members_31_place <= io_load_bits_place;
     end
-    if (_pending_T)
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_8)) begin
+    end
+    else
+      ids_0_1 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_9)) begin
+    end
+    else
+      ids_0_2 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_10)) begin
+    end
+    else
+      ids_0_3 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_11)) begin
+    end
+    else
+      ids_0_4 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_12)) begin
+    end
+    else
+      ids_0_5 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_13)) begin
+    end
+    else
+      ids_0_6 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_14)) begin
+    end
+    else
+      ids_0_7 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_15)) begin
+    end
+    else
+      ids_0_8 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_16)) begin
+    end
+    else
+      ids_0_9 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_17)) begin
+    end
+    else
+      ids_0_10 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_18)) begin
+    end
+    else
+      ids_0_11 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_19)) begin
+    end
+    else
+      ids_0_12 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_20)) begin
+    end
+    else
+      ids_0_13 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_21)) begin
+    end
+    else
+      ids_0_14 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_22)) begin
+    end
+    else
+      ids_0_15 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_23)) begin
+    end
+    else
+      ids_0_16 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_24)) begin
+    end
+    else
+      ids_0_17 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_25)) begin
+    end
+    else
+      ids_0_18 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_26)) begin
+    end
+    else
+      ids_0_19 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_27)) begin
+    end
+    else
+      ids_0_20 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_28)) begin
+    end
+    else
+      ids_0_21 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_29)) begin
+    end
+    else
+      ids_0_22 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_30)) begin
+    end
+    else
+      ids_0_23 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_31)) begin
+    end
+    else
+      ids_0_24 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_32)) begin
+    end
+    else
+      ids_0_25 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_33)) begin
+    end
+    else
+      ids_0_26 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_34)) begin
+    end
+    else
+      ids_0_27 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_35)) begin
+    end
+    else
+      ids_0_28 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_36)) begin
+    end
+    else
+      ids_0_29 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_37)) begin
+    end
+    else
+      ids_0_30 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & (&(used[4:0])))) begin
+    end
+    else
+      ids_0_31 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_8)) begin
+    end
+    else
+      ids_1_1 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_9)) begin
+    end
+    else
+      ids_1_2 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_10)) begin
+    end
+    else
+      ids_1_3 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_11)) begin
+    end
+    else
+      ids_1_4 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_12)) begin
+    end
+    else
+      ids_1_5 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_13)) begin
+    end
+    else
+      ids_1_6 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_14)) begin
+    end
+    else
+      ids_1_7 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_15)) begin
+    end
+    else
+      ids_1_8 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_16)) begin
+    end
+    else
+      ids_1_9 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_17)) begin
+    end
+    else
+      ids_1_10 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_18)) begin
+    end
+    else
+      ids_1_11 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_19)) begin
+    end
+    else
+      ids_1_12 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_20)) begin
+    end
+    else
+      ids_1_13 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_21)) begin
+    end
+    else
+      ids_1_14 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_22)) begin
+    end
+    else
+      ids_1_15 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_23)) begin
+    end
+    else
+      ids_1_16 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_24)) begin
+    end
+    else
+      ids_1_17 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_25)) begin
+    end
+    else
+      ids_1_18 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_26)) begin
+    end
+    else
+      ids_1_19 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_27)) begin
+    end
+    else
+      ids_1_20 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_28)) begin
+    end
+    else
+      ids_1_21 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_29)) begin
+    end
+    else
+      ids_1_22 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_30)) begin
+    end
+    else
+      ids_1_23 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_31)) begin
+    end
+    else
+      ids_1_24 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_32)) begin
+    end
+    else
+      ids_1_25 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_33)) begin
+    end
+    else
+      ids_1_26 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_34)) begin
+    end
+    else
+      ids_1_27 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_35)) begin
+    end
+    else
+      ids_1_28 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_36)) begin
+    end
+    else
+      ids_1_29 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_37)) begin
+    end
+    else
+      ids_1_30 <= io_load_bits_key_index;
+    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & (&(used[4:0])))) begin
+    end
+    else
+      ids_1_31 <= io_load_bits_key_index;
+    if (_pending_T) begin
       entry <= _q_io_deq_bits_index;
+      pendBank <= _q_io_deq_bits_bank;
+    end
     if (reset) begin
       used <= 6'h0;
+      cur <= 1'h0;
       pending <= 32'h0;
     end
     else begin
@@ -24216,6 +24588,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
       end
       else
         used <= used + 6'h1;
+      cur <= io_clear ^ cur;
       if (_pending_T)
         pending <= _q_io_deq_bits_mask;
       else
@@ -24229,30 +24602,34 @@ module ChunkMatcher_i12_c20_q29_k32_h8_world(
     .io_enq_valid      (io_in_valid & (|hitsNow)),
     .io_enq_bits_mask  (hitsNow),
     .io_enq_bits_index (io_in_bits_key_index),
+    .io_enq_bits_bank  (cur),
     .io_deq_ready      (free),
     .io_deq_valid      (_q_io_deq_valid),
     .io_deq_bits_mask  (_q_io_deq_bits_mask),
-    .io_deq_bits_index (_q_io_deq_bits_index)
+    .io_deq_bits_index (_q_io_deq_bits_index),
+    .io_deq_bits_bank  (_q_io_deq_bits_bank)
   );
   assign io_out_valid = |pending;
-  assign io_out_bits_i = _io_out_bits_j_T ? casez_tmp : entry;
-  assign io_out_bits_j = _io_out_bits_j_T ? entry : casez_tmp;
+  assign io_out_bits_i = _io_out_bits_j_T ? mIndex : entry;
+  assign io_out_bits_j = _io_out_bits_j_T ? entry : mIndex;
   assign io_idle = ~(|pending) & ~_q_io_deq_valid;
+  assign io_canClear =
+    ~((|pending) & pendBank != cur) & ~(_q_io_deq_valid & _q_io_deq_bits_bank != cur);
 endmodule
 
 // VCS coverage exclude_file
-module ram_3x175_world(
-  input  [1:0]   R0_addr,
+module ram_6x175_world(
+  input  [2:0]   R0_addr,
   input          R0_en,
                  R0_clk,
   output [174:0] R0_data,
-  input  [1:0]   W0_addr,
+  input  [2:0]   W0_addr,
   input          W0_en,
                  W0_clk,
   input  [174:0] W0_data
 );
 
-  reg [174:0] Memory[0:2];
+  reg [174:0] Memory[0:5];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
@@ -24260,7 +24637,7 @@ module ram_3x175_world(
   assign R0_data = R0_en ? Memory[R0_addr] : 175'bx;
 endmodule
 
-module Queue3_StreamRange_world(
+module Queue6_StreamRange_world(
   input         clock,
                 reset,
                 io_enq_valid,
@@ -24297,44 +24674,44 @@ module Queue3_StreamRange_world(
   output [2:0]  io_deq_bits_tag_off_0,
                 io_deq_bits_tag_off_1,
                 io_deq_bits_tag_off_2,
-  output [1:0]  io_count
+                io_count
 );
 
   wire         io_enq_ready;
   wire [174:0] _ram_ext_R0_data;
-  reg  [1:0]   enq_ptr_value;
-  reg  [1:0]   deq_ptr_value;
+  reg  [2:0]   enq_ptr_value;
+  reg  [2:0]   deq_ptr_value;
   reg          maybe_full;
   wire         ptr_match = enq_ptr_value == deq_ptr_value;
   wire         empty = ptr_match & ~maybe_full;
   wire         do_enq = io_enq_ready & io_enq_valid;
   assign io_enq_ready = ~(ptr_match & maybe_full);
-  wire [1:0]   _ptr_diff_T = enq_ptr_value - deq_ptr_value;
+  wire [2:0]   _ptr_diff_T = enq_ptr_value - deq_ptr_value;
   wire         do_deq = io_deq_ready & ~empty;
   always @(posedge clock) begin
     if (reset) begin
-      enq_ptr_value <= 2'h0;
-      deq_ptr_value <= 2'h0;
+      enq_ptr_value <= 3'h0;
+      deq_ptr_value <= 3'h0;
       maybe_full <= 1'h0;
     end
     else begin
       if (do_enq) begin
-        if (enq_ptr_value == 2'h2)
-          enq_ptr_value <= 2'h0;
+        if (enq_ptr_value == 3'h5)
+          enq_ptr_value <= 3'h0;
         else
-          enq_ptr_value <= enq_ptr_value + 2'h1;
+          enq_ptr_value <= enq_ptr_value + 3'h1;
       end
       if (do_deq) begin
-        if (deq_ptr_value == 2'h2)
-          deq_ptr_value <= 2'h0;
+        if (deq_ptr_value == 3'h5)
+          deq_ptr_value <= 3'h0;
         else
-          deq_ptr_value <= deq_ptr_value + 2'h1;
+          deq_ptr_value <= deq_ptr_value + 3'h1;
       end
       if (~(do_enq == do_deq))
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_3x175_world ram_ext (
+  ram_6x175_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -24379,11 +24756,11 @@ module Queue3_StreamRange_world(
   assign io_deq_bits_tag_off_2 = _ram_ext_R0_data[174:172];
   assign io_count =
     ptr_match
-      ? {2{maybe_full}}
-      : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 2'h1 : _ptr_diff_T;
+      ? (maybe_full ? 3'h6 : 3'h0)
+      : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 3'h2 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
+module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world(
   input         clock,
                 reset,
                 io_start,
@@ -24669,9 +25046,10 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
   wire [2:0]  _lkq_io_deq_bits_tag_off_0;
   wire [2:0]  _lkq_io_deq_bits_tag_off_1;
   wire [2:0]  _lkq_io_deq_bits_tag_off_2;
-  wire [1:0]  _lkq_io_count;
+  wire [2:0]  _lkq_io_count;
   wire        _matcher_io_in_ready;
   wire        _matcher_io_idle;
+  wire        _matcher_io_canClear;
   wire        _stream_io_req_ready;
   wire        _stream_io_out_valid;
   wire [1:0]  _stream_io_out_bits_group;
@@ -26831,7 +27209,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
   assign _GEN =
     _GEN_21
       ? (_stream_io_out_bits_tag_scan
-           ? ~needClear | _matcher_io_idle
+           ? ~needClear | _matcher_io_canClear
            : _matcher_io_in_ready)
       : ~_GEN_19 & _GEN_16 & (_matcher_io_in_ready | _stream_io_out_bits_rec_excluded);
   wire [5:0]  visitCount = coarseCh ? 6'h2B : 6'hE;
@@ -26842,7 +27220,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
   wire        _GEN_32 = _GEN_31 & ~sent;
   wire        _GEN_33 = _GEN_11 | ~(_GEN_9 & _GEN_32);
   wire        canIssue =
-    haveCell & vIssue != visitCount & {1'h0, _lkq_io_count} + {2'h0, lkPend} < 3'h3;
+    haveCell & vIssue != visitCount & {1'h0, _lkq_io_count} + {3'h0, lkPend} < 4'h6;
   wire        _GEN_34 = _GEN_11 | ~_GEN_9;
   wire        _GEN_35 =
     vIssue == visitCount & ~lkPend & ~_lkq_io_deq_valid & sent & scanLeft == 13'h0;
@@ -27119,7 +27497,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
     .io_out_bits_tag_off_2    (_stream_io_out_bits_tag_off_2),
     .io_idle                  (_stream_io_idle)
   );
-  ChunkMatcher_i12_c20_q29_k32_h8_world matcher (
+  ChunkMatcher_i12_c20_q29_k32_h8_d_world matcher (
     .clock                  (clock),
     .reset                  (reset),
     .io_clear
@@ -27162,9 +27540,10 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world(
     .io_out_valid           (io_pairs_valid),
     .io_out_bits_i          (io_pairs_bits_i),
     .io_out_bits_j          (io_pairs_bits_j),
-    .io_idle                (_matcher_io_idle)
+    .io_idle                (_matcher_io_idle),
+    .io_canClear            (_matcher_io_canClear)
   );
-  Queue3_StreamRange_world lkq (
+  Queue6_StreamRange_world lkq (
     .clock                  (clock),
     .reset                  (reset),
     .io_enq_valid
@@ -40860,55 +41239,55 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:383 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:383 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:383 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:383 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:383 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:383 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:383 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:382 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:383 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(_GEN == 16'h0 | dCount[6:2] != 5'h1F)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:443 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
+          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:444 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -46615,7 +46994,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_scattered         (_sorts_3_io_scattered),
     .io_badBucket         (_sorts_3_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_0 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_0 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -46884,7 +47263,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_0_bits_j),
     .io_busy              (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_1 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_1 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -47153,7 +47532,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_1_bits_j),
     .io_busy              (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_2 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_2 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -47422,7 +47801,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_2_bits_j),
     .io_busy              (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_3 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_3 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -47691,7 +48070,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_3_bits_j),
     .io_busy              (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_4 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_4 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -47960,7 +48339,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_4_bits_j),
     .io_busy              (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_5 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_5 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48229,7 +48608,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_5_bits_j),
     .io_busy              (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_6 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_6 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48498,7 +48877,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_6_bits_j),
     .io_busy              (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_7 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_7 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48767,7 +49146,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_7_bits_j),
     .io_busy              (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_8 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_8 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49036,7 +49415,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_8_bits_j),
     .io_busy              (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_9 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_9 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49305,7 +49684,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_9_bits_j),
     .io_busy              (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_10 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_10 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49574,7 +49953,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_10_bits_j),
     .io_busy              (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_11 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_11 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49843,7 +50222,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_11_bits_j),
     .io_busy              (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_12 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_12 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -50112,7 +50491,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_12_bits_j),
     .io_busy              (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_13 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_13 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -50381,7 +50760,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_13_bits_j),
     .io_busy              (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_14 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_14 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -50650,7 +51029,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_14_bits_j),
     .io_busy              (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_world gens_15 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_15 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),

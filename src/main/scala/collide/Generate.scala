@@ -36,6 +36,8 @@ object Generate {
       worldCoarseChunks: Option[Boolean] = None,
       worldClaims: Option[Boolean] = None,
       worldHitQueue: Option[Int] = None,
+      worldDrainBehind: Option[Boolean] = None,
+      worldLookAhead: Option[Int] = None,
       worldBoxBuckets: Option[Boolean] = None,
       worldWordLog2: Option[Int] = None,
       scpuImpl: Option[String] = None,
@@ -95,8 +97,15 @@ object Generate {
         .text("streamed spheres with hits each candidate lane queues, 0..16, so a sphere with several hits does not " +
           "stall the lane's stream (0: it stalls; world mode only)"),
       opt[Boolean]("world-box-buckets").valueName("true|false").action((v, o) => o.copy(worldBoxBuckets = Some(v)))
-        .text("a cell's bucket is its coordinates modulo powers of two spanning the world's box (kept as the table " +
-          "arrives), so no two cells share a bucket where the box fits the table, instead of a hash (world mode only)"),
+        .text("a cell's bucket is its place in the world's box padded by a cell (kept as the table arrives), so no two " +
+          "cells share a bucket where the box's places fit the table, and the walk stops at its last place, instead of " +
+          "a hash (world mode only)"),
+      opt[Boolean]("world-drain-behind").valueName("true|false").action((v, o) => o.copy(worldDrainBehind = Some(v)))
+        .text("each candidate lane keeps its chunk's sphere indices in two banks, so the next chunk loads while the last " +
+          "one's hits still leave (world mode only)"),
+      opt[Int]("world-look-ahead").valueName("A").action((v, o) => o.copy(worldLookAhead = Some(v)))
+        .text("visits' bucket ranges each candidate lane looks up ahead of its stream, 3..16 (world mode only; the " +
+          "preset has 6)"),
       opt[Boolean]("run-queue").valueName("true|false").action((v, o) => o.copy(runQueue = Some(v)))
         .text("a run queue: a start during a run queues one more, and a queued world run's table loads into a " +
           "second on-chip sphere table while the current run computes (world mode only; twice the sphere-table RAM)"),
@@ -160,7 +169,9 @@ object Generate {
       c21 <- world("--world-box-buckets", o.worldBoxBuckets)((bp, v) => bp.copy(boxBuckets = v))(c20)
       c22 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c21)
       c23 <- opt("--run-queue", o.runQueue)((c, v) => step("--run-queue", c.copy(runQueue = v)))(c22)
-    } yield c23
+      c24 <- world("--world-drain-behind", o.worldDrainBehind)((bp, v) => bp.copy(drainBehind = v))(c23)
+      c25 <- world("--world-look-ahead", o.worldLookAhead)((bp, v) => bp.copy(lookAhead = v))(c24)
+    } yield c25
   }
 
   val firtoolOpts: Array[String] = Array(

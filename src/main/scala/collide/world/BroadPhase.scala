@@ -115,7 +115,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   private val gens = Seq.tabulate(bp.lanes) { l =>
     val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
       keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes, groups = groups,
-      coarse = bp.coarseChunks, team = bp.teamSize, claims = bp.claims, hitQueue = bp.hitQueue, boxBuckets = bp.boxBuckets))
+      coarse = bp.coarseChunks, team = bp.teamSize, claims = bp.claims, hitQueue = bp.hitQueue, boxBuckets = bp.boxBuckets,
+      drainBehind = bp.drainBehind, lookAhead = bp.lookAhead))
     g.io.lane.foreach(_ := l.U)
     g
   }

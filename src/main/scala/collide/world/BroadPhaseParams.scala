@@ -66,12 +66,20 @@ package collide.world
   * @param hitQueue   streamed spheres with hits a lane's ChunkMatcher queues (0..16) while
   *                   its hits leave one a cycle: the stream goes on instead of stalling for a
   *                   sphere with several hits (docs/afu.md, "Queued hits and 32 counters a word"); 0, it stalls
-  * @param boxBuckets where the world's box of cells (coarse cells with coarse chunks) fits the
-  *                   table, a cell's bucket is its coordinates modulo powers of two that span
-  *                   the box, so that no two cells of the world share a bucket (no probe wasted
-  *                   on another cell's entries); elsewhere Teschner's hash, as without
-  *                   (docs/afu.md, "Box buckets"). The box is the least and greatest coordinate
-  *                   of every eligible sphere, kept as the table arrives
+  * @param boxBuckets a cell's bucket (a coarse cell's group with coarse chunks) is its place in
+  *                   the world's box padded by a unit (x first), modulo the table: where the
+  *                   padded box's places fit the table no two cells share a bucket (no probe
+  *                   wasted on another cell's entries), and the prefix sum and the walk stop at
+  *                   the last place (docs/afu.md, "Box buckets", "The padded box"). The box is
+  *                   the least and greatest coordinate of every eligible sphere, kept as the
+  *                   table arrives; without, Teschner's hash
+  * @param drainBehind a lane's ChunkMatcher keeps its members' indices in two banks, so the next
+  *                   chunk loads while the last chunk's hits still leave, instead of waiting for
+  *                   them (docs/afu.md, "Draining behind")
+  * @param lookAhead  visits' bucket ranges (3..16) a lane looks up ahead of its stream: a
+  *                   visit's lookup takes a cycle, so more let the lookups run ahead through
+  *                   visits of many entries for the empty and one-entry ones after them
+  *                   (docs/afu.md, "Draining behind")
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -91,7 +99,9 @@ final case class BroadPhaseParams(
     team: Int = 4,
     claims: Boolean = false,
     hitQueue: Int = 0,
-    boxBuckets: Boolean = false
+    boxBuckets: Boolean = false,
+    drainBehind: Boolean = false,
+    lookAhead: Int = 3
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -113,6 +123,7 @@ final case class BroadPhaseParams(
   require(!coarseChunks || wordLog2 >= 3,
     s"coarseChunks needs wordLog2 >= 3 (the walk reads a coarse cell's 8 buckets in one word), got wordLog2 $wordLog2")
   require(team >= 1 && chisel3.util.isPow2(team), s"team must be a power of two, got $team")
+  require(lookAhead >= 3 && lookAhead <= 16, s"lookAhead must be 3..16 (visits' ranges a lane looks up ahead of its stream), got $lookAhead")
   require(hitQueue >= 0 && hitQueue <= 16, s"hitQueue must be 0..16 (streamed spheres with hits a lane queues), got $hitQueue")
   /** Lanes a team has: with coarse chunks the largest power of two up to `team` that divides
     * the lanes (1 for an odd lane count: whole words a lane); 1 without, or with claims. */

@@ -88,7 +88,7 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
 class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
                          largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1, groups: Int = 1,
                          coarse: Boolean = false, team: Int = 1, claims: Boolean = false, hitQueue: Int = 0,
-                         boxBuckets: Boolean = false)
+                         boxBuckets: Boolean = false, drainBehind: Boolean = false, lookAhead: Int = 3)
     extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
   require(lanes >= 1, s"lanes must be >= 1, got $lanes")
@@ -115,14 +115,14 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     s"coarse chunks need words of 8 counters or one word for the table, got wordLog2 $wordLog2 of $bucketsLog2")
   override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2" +
     (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "") + (if (coarse) s"_x$teamSize" else "") + (if (claims) "_u" else "") +
-    (if (hitQueue > 0) s"_h$hitQueue" else "") + (if (boxBuckets) "_bx" else "")
+    (if (hitQueue > 0) s"_h$hitQueue" else "") + (if (boxBuckets) "_bx" else "") + (if (drainBehind) "_d" else "") + (if (lookAhead != 3) s"_a$lookAhead" else "")
   val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes, groups,
     if (claims) CandidateGenerator.claimW(bucketsLog2) else 0, boxBuckets))
   private val laneNo: UInt = io.lane.getOrElse(0.U)
 
   private val visitT = new WorldVisit(cellBits)
   private val stream = Module(new KeyStream(visitT, itemW, countW, cellBits, qWidth, keyLatency, groups))
-  private val matcher = Module(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hitQueue))
+  private val matcher = Module(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hitQueue, drainBehind))
   io.entry.addr := stream.io.entryAddr
   io.entry.group := stream.io.entryGroup
   stream.io.entryItem := io.entry.item
@@ -197,9 +197,11 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val vIssue = Reg(UInt(log2Ceil(math.max(fineVisits.length, coarseVisits.length) + 1).W))
   private val lkPend = RegInit(false.B)
   private val lkVisit = Reg(visitT)
-  // Three ranges: one for the stream to take each cycle while a lookup is in flight and
-  // another is issued (visits of one entry or none follow each other at a cycle each).
-  private val lkq = Module(new Queue(new StreamRange(visitT, countW, groups), 3))
+  // `lookAhead` ranges: at least three, one for the stream to take each cycle while a lookup
+  // is in flight and another is issued (visits of one entry or none follow each other at a
+  // cycle each); more let the lookups run ahead through a visit of many entries, for the
+  // run of short and empty ones after it (a visit's lookup takes a cycle, empty or not).
+  private val lkq = Module(new Queue(new StreamRange(visitT, countW, groups), lookAhead))
   lkq.io.enq.valid := false.B
   lkq.io.enq.bits := DontCare
   lkq.io.deq.ready := false.B
@@ -318,7 +320,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
 
       val off = offsets(VecIndex(Mux(coarseCh, fineVisits.length.U +& vIssue, vIssue), offsets.length))
       val nc = VecInit((0 until 3).map(a => curCell(a) + off(a)))
-      val canIssue = haveCell && vIssue =/= visitCount && (lkq.io.count +& lkPend.asUInt) < 3.U
+      val canIssue = haveCell && vIssue =/= visitCount && (lkq.io.count +& lkPend.asUInt) < lookAhead.U
       io.lookup.bucket := CellHash(nc, bucketsLog2, io.usedLog2, coarse, io.box)
       lkPend := canIssue
       lkVisit.cell := nc; lkVisit.off := off; lkVisit.scan := false.B
@@ -391,8 +393,9 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     val it = stream.io.out.bits
     when(it.tag.scan) {
       // A chunk's first scan entry waits until the last chunk's hits have all left (they
-      // read its members), then clears the matcher, loading in the same cycle.
-      stream.io.out.ready := !needClear || matcher.io.idle
+      // read its members; with drainBehind, only the hits of the chunk before it), then
+      // clears the matcher, loading in the same cycle.
+      stream.io.out.ready := !needClear || matcher.io.canClear
       when(stream.io.out.fire) {
         scanned := scanned + 1.U
         scanLeft := scanLeft - 1.U

@@ -17,6 +17,10 @@ import chisel3.util._
   * has more than one hit left. With one, a sphere's hits (which members, and its index) wait
   * in a queue of `hitQueue` spheres and the stream goes on: it stalls only when the queue is
   * full, so a burst of hits costs the stream nothing while the hits average under one a cycle.
+  * With `drainBehind`, the members' indices (all a hit needs once it is found) are kept in two
+  * banks, the chunk being loaded and the one before, and each hit owed carries its bank: a
+  * clear then waits only for the hits of the chunk before the last (`canClear`), not for the
+  * last chunk's, so the next chunk loads while they leave.
   */
 class ChunkMatcherIO(p: WorldKey, chunk: Int) extends Bundle {
   /** Empties the chunk (between chunks); with a load in the same cycle, that is the first member. */
@@ -30,12 +34,17 @@ class ChunkMatcherIO(p: WorldKey, chunk: Int) extends Bundle {
   val out = Decoupled(new WorldPair(p.itemW))
   /** Nothing in flight: every hit of the accepted entries has left. */
   val idle = Output(Bool())
+  /** A clear now loses no hit owed: `idle`, or with drainBehind no hit owed by a chunk before
+    * the current one. */
+  val canClear = Output(Bool())
 }
 
-class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue: Int = 0) extends Module {
+class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue: Int = 0, drainBehind: Boolean = false)
+    extends Module {
   require(chunk >= 1 && chunk <= 256)
   require(hitQueue >= 0 && hitQueue <= 16, s"hitQueue must be 0..16, got $hitQueue")
-  override def desiredName = s"ChunkMatcher_i${itemW}_c${cellBits}_q${qWidth}_k$chunk" + (if (hitQueue > 0) s"_h$hitQueue" else "")
+  override def desiredName = s"ChunkMatcher_i${itemW}_c${cellBits}_q${qWidth}_k$chunk" + (if (hitQueue > 0) s"_h$hitQueue" else "") +
+    (if (drainBehind) "_d" else "")
   private val key = new WorldKey(itemW, cellBits, qWidth)
   val io = IO(new ChunkMatcherIO(key, chunk))
 
@@ -44,13 +53,31 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
   private val over = RegInit(false.B)
   io.overflow := over
   // A clear and a load in one cycle start the new chunk with that member.
+  // With drainBehind: the members' indices by bank; `cur` is the bank being loaded (a clear
+  // switches), and the other one is the chunk before, whose hits may still be owed.
+  private val cur = RegInit(false.B)
+  // Two registers, not a Vec of two: a bank chosen at run time would be a mux of arrays, which
+  // the Verilog we emit for Yosys may not have (docs/conventions.md, "Tools").
+  private val ids = Seq.fill(2)(Reg(Vec(chunk, UInt(itemW.W))))
+  private def writeId(bank: Bool, m: UInt, index: UInt): Unit =
+    for (b <- 0 until 2) when(bank === (b == 1).B) { ids(b)(VecIndex(m, chunk)) := index }
   when(io.clear) {
     used := io.load.valid.asUInt; over := false.B
     when(io.load.valid) { members(0) := io.load.bits }
+    if (drainBehind) {
+      cur := !cur
+      when(io.load.valid) { writeId(!cur, 0.U, io.load.bits.key.index) }
+    }
   }.elsewhen(io.load.valid) {
     when(used === chunk.U) { over := true.B }
-      .otherwise { members(VecIndex(used, chunk)) := io.load.bits; used := used + 1.U }
+      .otherwise {
+        members(VecIndex(used, chunk)) := io.load.bits; used := used + 1.U
+        if (drainBehind) writeId(cur, used, io.load.bits.key.index)
+      }
   }
+  /** Member m's index: its bank's with drainBehind (the members' own are then not read). */
+  private def memberIndex(bank: Bool, m: UInt): UInt =
+    if (drainBehind) Mux(bank, ids(1)(VecIndex(m, chunk)), ids(0)(VecIndex(m, chunk))) else members(VecIndex(m, chunk)).key.index
 
   private def boxPass(a: WorldKey, b: WorldKey): Bool = {
     val bound = a.qr +& b.qr +& io.slack
@@ -77,7 +104,7 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
   private val inCell = e.cell.zip(probe.cell).map { case (a, b) => a === b }.reduce(_ && _)
   private val hitsNow = VecInit((0 until chunk).map { m =>
     val mem = members(m)
-    val later = e.index > mem.key.index
+    val later = e.index > memberIndex(cur, m.U)
     val takes = Mux(probe.anyCell, !probe.own || later, inCell && owns(mem.place, probe.off, later))
     m.U < used && takes && boxPass(mem.key, e)
   }).asUInt
@@ -85,31 +112,37 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
   // The streamed sphere being drained (its index) and the hits it still owes.
   private val pending = RegInit(0.U(chunk.W))
   private val entry = Reg(UInt(itemW.W))
+  private val pendBank = Reg(Bool()) // the bank of the members `pending` names
   private val slot = PriorityEncoder(pending)
   private val lastHit = PopCount(pending) <= 1.U
   io.out.valid := pending.orR
-  private val m = members(VecIndex(slot, chunk)).key
-  io.out.bits.i := Mux(m.index < entry, m.index, entry)
-  io.out.bits.j := Mux(m.index < entry, entry, m.index)
+  private val mIndex = memberIndex(pendBank, slot)
+  io.out.bits.i := Mux(mIndex < entry, mIndex, entry)
+  io.out.bits.j := Mux(mIndex < entry, entry, mIndex)
+  // Hits are owed in order, the chunk before's first: none of it is left once neither the
+  // sphere draining nor the queue's head is of the other bank.
+  private val pendOld = pending.orR && pendBank =/= cur
   private val drained = Mux(io.out.fire, pending & ~UIntToOH(slot, chunk), pending)
   // The drain takes its next sphere when it has nothing left to owe after this cycle.
   private val free = !pending.orR || (lastHit && io.out.ready)
   if (hitQueue == 0) {
     io.in.ready := free
     pending := Mux(io.in.fire, hitsNow, drained)
-    when(io.in.fire) { entry := e.index }
+    when(io.in.fire) { entry := e.index; pendBank := cur }
     io.idle := !pending.orR
+    io.canClear := (if (drainBehind) !pendOld else io.idle)
   } else {
     // Only spheres with a hit are queued; the comparators' result never reaches in.ready
     // (a long path), so a full queue stops the stream even for a sphere without one.
-    class Hits extends Bundle { val mask = UInt(chunk.W); val index = UInt(itemW.W) }
+    class Hits extends Bundle { val mask = UInt(chunk.W); val index = UInt(itemW.W); val bank = Bool() }
     val q = Module(new Queue(new Hits, hitQueue))
     io.in.ready := q.io.enq.ready
     q.io.enq.valid := io.in.valid && hitsNow.orR
-    q.io.enq.bits.mask := hitsNow; q.io.enq.bits.index := e.index
+    q.io.enq.bits.mask := hitsNow; q.io.enq.bits.index := e.index; q.io.enq.bits.bank := cur
     q.io.deq.ready := free
     pending := Mux(q.io.deq.fire, q.io.deq.bits.mask, drained)
-    when(q.io.deq.fire) { entry := q.io.deq.bits.index }
+    when(q.io.deq.fire) { entry := q.io.deq.bits.index; pendBank := q.io.deq.bits.bank }
     io.idle := !pending.orR && !q.io.deq.valid
+    io.canClear := (if (drainBehind) !pendOld && !(q.io.deq.valid && q.io.deq.bits.bank =/= cur) else io.idle)
   }
 }
