@@ -19,6 +19,10 @@ class BroadPhaseStatus(kWidth: Int, countW: Int) extends Bundle {
   /** Cycles per pass: the first table read (the cell level), the second (classify and count), the
     * prefix sum, the scatter, the grid's candidate generation, the large pass, all. */
   val cycLoad, cycClassify, cycPrefix, cycScatter, cycGrid, cycLarge, cycTotal = UInt(32.W)
+  /** The grid's lane-cycles (lanes x cycGrid) by what they went to, in GridCycle's order
+    * (streamed, hitsFull, clearWait, scanStart, lookups, walk, done); a lane out of the grid
+    * (idle, or in the large pass) counts as done. */
+  val laneCycles = Vec(GridCycle.names.length, UInt(32.W))
   /** Box buckets' extents in units per axis, saturated at 2^16 - 1 (BroadPhaseModel.BoxMap;
     * zero without box buckets or without an eligible sphere). */
   val box = Vec(3, UInt(BoxMapBits.extentW.W))
@@ -420,8 +424,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     val uLog2 = CandidateGenerator.unitLog2(gWordLog2, bp.coarseChunks)
     val w = CandidateGenerator.claimW(tableLog2)
     val uW = tableLog2 - uLog2 + 1
-    // Units to walk: the walked buckets' (at least one, for a table smaller than a unit).
-    val units = Mux((walkBuckets >> uLog2) === 0.U, 1.U, walkBuckets >> uLog2)
+    // Units to walk: the walked buckets'.
+    val units = BucketSort.spans(walkBuckets, uLog2)
     val next = Reg(UInt((uW + log2Ceil(bp.lanes + 1)).W))
     val held = RegInit(VecInit(Seq.fill(bp.lanes)(false.B)))
     val heldUnit = RegInit(VecInit(Seq.fill(bp.lanes)(false.B))) // held, and a whole unit
@@ -546,7 +550,13 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     }
     is(S.generate) {
       sent := true.B
-      when(largeOnly) { st.cycLarge := st.cycLarge + 1.U }.otherwise { st.cycGrid := st.cycGrid + 1.U }
+      when(largeOnly) { st.cycLarge := st.cycLarge + 1.U }.otherwise {
+        st.cycGrid := st.cycGrid + 1.U
+        for ((_, c) <- GridCycle.names.zipWithIndex) {
+          val lanesAt = gens.map(g => Mux(g.io.inGrid, g.io.gridCycle === c.U, (c == GridCycle.names.indexOf("done")).B))
+          st.laneCycles(c) := st.laneCycles(c) + PopCount(lanesAt)
+        }
+      }
       when(sent && !gensBusy) {
         state := S.idle
         when(pending) { // the world begun ahead: its table is (being) fed, its counters clear now

@@ -115,16 +115,9 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
   private val state = RegInit(S.idle)
   private val walk = Reg(UInt((wordsLog2 + 1).W)) // the word clear and prefix are at
   private val used = (1.U((bucketsLog2 + 1).W) << io.usedLog2)(bucketsLog2, 0)
-  // Words holding used buckets (at least one: a world of one bucket still has a word).
-  private val usedWords = {
-    val w = used >> wl
-    Mux(w === 0.U, 1.U, w)
-  }
-  // Words the prefix sum covers (at least one).
-  private val sumWords = {
-    val w = io.walkBuckets >> wl
-    Mux(w === 0.U, 1.U, w)
-  }
+  // Words holding used buckets (a world of one bucket still has a word), and those the prefix sum covers.
+  private val usedWords = BucketSort.spans(used, wl)
+  private val sumWords = BucketSort.spans(io.walkBuckets, wl)
   private val counted = RegInit(0.U(countW.W))
   private val scattered = RegInit(0.U(countW.W))
   private val bad = RegInit(false.B)
@@ -226,5 +219,14 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
       else e.readWrite(Mux(place.head.valid, place.head.bits.pos, io.entry(c).addr), 0.U(1.W) ## place.head.bits.item, true.B, place.head.valid)
     io.entry(c).item := entryRd(itemW - 1, 0)
     io.entry(c).mark := entryRd(itemW)
+  }
+}
+
+object BucketSort {
+  /** The spans of 2^log2 buckets (counter words, claimed units) that `buckets` fill, at least
+    * one: a table smaller than a span still has one. */
+  def spans(buckets: UInt, log2: Int): UInt = {
+    val w = buckets >> log2
+    Mux(w === 0.U, 1.U, w)
   }
 }

@@ -77,6 +77,9 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
   val pairs = Decoupled(new WorldPair(itemW))
   val busy = Output(Bool())
   val inLargePass = Output(Bool())
+  /** In the grid (walking or in a chunk): what this cycle went to (GridCycle), for the status. */
+  val inGrid = Output(Bool())
+  val gridCycle = Output(UInt(GridCycle.width.W))
   val stats = Output(new Bundle {
     val cells = UInt(32.W)   // occupied cells visited
     val chunks = UInt(32.W)  // chunks (a cell of more than `chunk` spheres has several)
@@ -136,6 +139,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val state = RegInit(S.idle)
   io.busy := state =/= S.idle
   io.inLargePass := state === S.largeLoad || state === S.largeStream
+  io.inGrid := state === S.walk || state === S.chunk
 
   // Defaults: nothing requested, loaded, marked or matched.
   stream.io.req.valid := false.B
@@ -152,7 +156,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   io.mark.bits.item := stream.io.out.bits.item
   io.lookup.bucket := 0.U
 
-  private val used = io.walkBuckets // the walk's end (lookups use all 2^usedLog2 buckets' hash)
+  private val walkEnd = io.walkBuckets // (lookups use all 2^usedLog2 buckets' hash)
   private val cells, chunks, scanned, probes = RegInit(0.U(32.W))
   io.stats.cells := cells; io.stats.chunks := chunks; io.stats.scanned := scanned; io.stats.probes := probes
 
@@ -233,7 +237,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       // With claims, a lookup only while none is pending (its word may end the unit, or not),
       // of the unit's next bucket or else of the held claim's first, which it takes.
       val claimV = io.claim.map(_.valid).getOrElse(false.B)
-      val issueOk = if (claims) !walkPend && !deferPend && (inUnit || claimV) else bIssue < used
+      val issueOk = if (claims) !walkPend && !deferPend && (inUnit || claimV) else bIssue < walkEnd
       val issueAt = if (claims) Mux(inUnit, bIssue, io.claim.get.bits.bucket) else bIssue
       io.lookup.bucket := issueAt(math.max(1, bucketsLog2) - 1, 0)
       walkPend := issueOk
@@ -270,7 +274,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
           val bucket = (base + l.U).pad(memberBits)
           Mux(gCoarse(l >> groupLog2), walkGroup.pad(memberBits)(memberBits - 1, 0), bucket(memberBits - 1, 0)) === member
         }
-      val occupied = VecInit((0 until perWord).map(l => l.U >= from && base + l.U < used && mine(l) &&
+      val occupied = VecInit((0 until perWord).map(l => l.U >= from && base + l.U < walkEnd && mine(l) &&
         (0 until groups).map(g => ends(g)(l) =/= begins(g)(l)).reduce(_ || _)))
       val lane = PriorityEncoder(occupied.asUInt)
       val gLo = (lane >> groupLog2) << groupLog2
@@ -425,6 +429,30 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       when(stream.io.out.fire) { probes := probes + 1.U }
     }
   }
+
+  // What each grid cycle went to: an entry through the stream, or why none went.
+  private val outV = stream.io.out.valid
+  private val walkDone =
+    if (claims) !inUnit && !walkPend && !deferPend && io.claimsOut.get else !walkPend && bIssue >= walkEnd
+  io.gridCycle := MuxCase(GridCycle.walk, Seq(
+    stream.io.out.fire -> GridCycle.streamed,
+    (outV && stream.io.out.bits.tag.scan && needClear) -> GridCycle.clearWait,
+    outV -> GridCycle.hitsFull,
+    (state === S.chunk && !haveCell) -> GridCycle.scanStart,
+    (state === S.chunk) -> GridCycle.lookups,
+    walkDone -> GridCycle.done))
+}
+
+/** What a lane's grid cycle went to (BroadPhaseStatus.lanes): an entry scanned or streamed
+  * past its chunk; an entry held because the matcher's hit queue is full, or because a new
+  * chunk's first entry waits for hits still owed; no entry, the chunk's first scan entry not
+  * out yet (its reads' latency) or, the chunk known, the visits' lookups and reads behind; the
+  * walk to the next bucket or claim; nothing left (other lanes still walk). */
+object GridCycle {
+  val streamed = 0.U; val hitsFull = 1.U; val clearWait = 2.U; val scanStart = 3.U
+  val lookups = 4.U; val walk = 5.U; val done = 6.U
+  val names: Seq[String] = Seq("streamed", "hitsFull", "clearWait", "scanStart", "lookups", "walk", "done")
+  val width = 3
 }
 
 object CandidateGenerator {

@@ -102,7 +102,8 @@ object BroadPhaseCycleReport {
       s"huge" -> huge(rng, n - 4, 4))) ++ files.map(readSpheres)
     require(worlds.forall(_._2.length <= maxSpheres), s"a world has more than --max ($maxSpheres) spheres")
     val header = "world,spheres,buckets,cells,chunks,scanned,probes,candidates,large," +
-      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team,feed,claims,hit_queue,box_buckets,box_extents,drain_behind,look_ahead"
+      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team,feed,claims,hit_queue,box_buckets,box_extents,drain_behind,look_ahead," +
+      GridCycle.names.map(n => "lane_" + n.replaceAll("([A-Z])", "_$1").toLowerCase).mkString(",")
     val rows = scala.collection.mutable.ArrayBuffer(header)
     for (l <- lanes; q <- ports if q <= l) {
       val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l, sortPorts = q, wordLog2 = wordLog2,
@@ -121,11 +122,12 @@ object BroadPhaseCycleReport {
           def v(d: UInt) = d.peek().litValue
           val c = model.cycles(want, lanes = l, scpus = 16, sortRate = q)
           val box = want.stats.box.map(_.reported(BoxMapBits.extentW))
+          require(s.laneCycles.map(v).sum == l * v(s.cycGrid), s"$name ${ws.length}: the lane-cycles do not add up to lanes x grid cycles")
           require(box.forall(_ == s.box.map(v(_).toLong)), s"$name ${ws.length}: the RTL's box extents ${s.box.map(v(_))} are not the model's $box")
-          val row = Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
+          val row = (Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
             v(s.large), v(s.cycLoad), v(s.cycClassify), v(s.cycPrefix), v(s.cycScatter), v(s.cycGrid), v(s.cycLarge), v(s.cycTotal),
             c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l, q, wordLog2, cellSteps, chunk, coarse, team, feed, claims, hitQueue, boxBuckets,
-            box.map(_.mkString("x")).getOrElse("hash"), drainBehind, lookAhead).mkString(",")
+            box.map(_.mkString("x")).getOrElse("hash"), drainBehind, lookAhead) ++ s.laneCycles.map(v)).mkString(",")
           println(row)
           rows += row
         }

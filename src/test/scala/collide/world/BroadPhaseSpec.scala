@@ -42,12 +42,13 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     val s = dut.io.status
     val fields = Seq("excluded" -> s.excluded, "large" -> s.large, "small" -> s.small, "candidates" -> s.candidates,
       "cells" -> s.cells, "chunks" -> s.chunks, "cycTotal" -> s.cycTotal, "cycLoad" -> s.cycLoad, "cycPrefix" -> s.cycPrefix,
-      "cycGrid" -> s.cycGrid, "cycLarge" -> s.cycLarge)
-      .map { case (n, d) => n -> d.peek().litValue }.toMap + ("feedCycles" -> BigInt(feedCycles))
+      "cycGrid" -> s.cycGrid, "cycLarge" -> s.cycLarge, "scanned" -> s.scanned, "probes" -> s.probes) ++
+      GridCycle.names.zip(s.laneCycles).map { case (n, d) => s"lane_$n" -> d }
+    val fieldValues = fields.map { case (n, d) => n -> d.peek().litValue }.toMap + ("feedCycles" -> BigInt(feedCycles))
     val flags = Seq("tooMany" -> s.tooMany, "cellOverflow" -> s.cellOverflow, "largeOverflow" -> s.largeOverflow,
       "badBucket" -> s.badBucket, "sortMismatch" -> s.sortMismatch).map { case (n, b) => n -> (if (b.peek().litToBoolean) BigInt(1) else BigInt(0)) }
     val box = s.box.zipWithIndex.map { case (b, a) => s"box$a" -> b.peek().litValue }
-    Run(pairs, fields ++ flags ++ box + ("level" -> s.level.peek().litValue), cycles)
+    Run(pairs, fieldValues ++ flags ++ box + ("level" -> s.level.peek().litValue), cycles)
   }
 
   /** `fed`: the world's table was fed (a Feeder of `model.converted` values, see fedWorlds);
@@ -94,6 +95,13 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
     val walked = math.max(1, st.walkBuckets / perWord)
     assert(got.status("cycPrefix") == walked + 3, s"$where: prefix sum of ${got.status("cycPrefix")} cycles, want ${walked + 3} " +
       s"(${st.walkBuckets} of ${model.bucketsFor(world.length)} buckets)")
+    // Each lane-cycle of the grid went to one thing: the classes add up to lanes x the grid's
+    // cycles, and without a large pass the entries streamed are those scanned and probed.
+    val laneCycles = GridCycle.names.map(n => n -> got.status(s"lane_$n"))
+    assert(laneCycles.map(_._2).sum == model.bp.lanes * got.status("cycGrid"),
+      s"$where: lane-cycles ${laneCycles.mkString(", ")} against ${model.bp.lanes} lanes x ${got.status("cycGrid")} grid cycles")
+    if (st.large == 0) assert(got.status("lane_streamed") == got.status("scanned") + got.status("probes"),
+      s"$where: ${got.status("lane_streamed")} entries streamed, ${got.status("scanned")} scanned + ${got.status("probes")} probed")
     if (fed.isDefined) {
       // A fed table's level is chosen as it arrives: after start only the last spheres' keys and
       // the merge of the fed lanes' needs remain, and, if the clear (a word a cycle, from the
