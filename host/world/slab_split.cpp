@@ -100,6 +100,15 @@ std::vector<Slab> boxesOf(const std::vector<Slab>& slabs, const std::vector<doub
   return boxes;
 }
 
+// Slab widths past `cap` by doubling, 2 cap, 4 cap, ..., and last the whole world (`n`), where
+// one slab always fits: the widths tried where slabs of one run do not.
+std::vector<std::size_t> doublings(std::size_t cap, std::size_t n) {
+  std::vector<std::size_t> widths;
+  for (std::size_t w = 2 * cap; w < n; w *= 2) widths.push_back(w);
+  widths.push_back(n);
+  return widths;
+}
+
 }  // namespace
 
 std::vector<Slab> splitIntoSlabs(const std::vector<double>& x, const std::vector<double>& r, std::size_t cap) {
@@ -113,16 +122,17 @@ std::vector<Slab> splitIntoBoxes(const std::vector<double>& x, const std::vector
   } catch (const std::runtime_error&) {  // some sphere's x slice is too full: boxes
   }
   // The narrowest slabs along x that fit: a run of all spheres always does.
-  std::vector<Slab> slabs;
-  for (std::size_t wide = 2 * cap;; wide = std::min(2 * wide, x.size())) {
+  const std::vector<std::size_t> widths = doublings(cap, x.size());
+  for (std::size_t i = 0;; ++i) {
+    std::vector<Slab> slabs;
     try {
-      slabs = splitIntoSlabs(x, r, wide);
-      break;
-    } catch (const std::runtime_error&) {
-      if (wide >= x.size()) throw;
+      slabs = splitIntoSlabs(x, r, widths[i]);
+    } catch (const std::runtime_error&) {  // too narrow for some sphere's neighbours
+      if (i + 1 == widths.size()) throw;
+      continue;
     }
+    return boxesOf(slabs, y, r, cap);
   }
-  return boxesOf(slabs, y, r, cap);
 }
 
 std::size_t sphereCount(const std::vector<Slab>& runs) {
@@ -158,8 +168,8 @@ std::vector<Slab> splitIntoRuns(const std::vector<double>& x, const std::vector<
   std::vector<std::size_t> widths;
   for (std::size_t k = 2; k * cap < n; k += std::max<std::size_t>(1, k / 2)) widths.push_back(k * cap);
   if (!any) {
-    for (std::size_t w = 2 * cap; w < n; w *= 2) widths.push_back(w);
-    widths.push_back(n);
+    const std::vector<std::size_t> d = doublings(cap, n);
+    widths.insert(widths.end(), d.begin(), d.end());
   }
   std::sort(widths.begin(), widths.end());
   widths.erase(std::unique(widths.begin(), widths.end()), widths.end());

@@ -75,11 +75,11 @@ package collide.world
   *                   table arrives; without, Teschner's hash
   * @param drainBehind a lane's ChunkMatcher keeps its members' indices in two banks, so the next
   *                   chunk loads while the last chunk's hits still leave, instead of waiting for
-  *                   them (docs/afu.md, "Draining behind")
+  *                   them (docs/afu.md, "Where a lane's grid cycles go")
   * @param lookAhead  visits' bucket ranges (3..16) a lane looks up ahead of its stream: a
   *                   visit's lookup takes a cycle, so more let the lookups run ahead through
   *                   visits of many entries for the empty and one-entry ones after them
-  *                   (docs/afu.md, "Draining behind")
+  *                   (docs/afu.md, "Where a lane's grid cycles go")
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
