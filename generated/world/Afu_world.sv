@@ -24760,7 +24760,7 @@ module Queue6_StreamRange_world(
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 3'h2 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world(
+module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world(
   input         clock,
                 reset,
                 io_start,
@@ -26622,49 +26622,49 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       6'b001111:
         casez_tmp_16 = 3'h0;
       6'b010000:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h1;
       6'b010001:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h1;
       6'b010010:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h0;
       6'b010011:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h0;
       6'b010100:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h0;
       6'b010101:
         casez_tmp_16 = 3'h1;
       6'b010110:
-        casez_tmp_16 = 3'h0;
-      6'b010111:
-        casez_tmp_16 = 3'h0;
-      6'b011000:
         casez_tmp_16 = 3'h1;
+      6'b010111:
+        casez_tmp_16 = 3'h1;
+      6'b011000:
+        casez_tmp_16 = 3'h0;
       6'b011001:
         casez_tmp_16 = 3'h1;
       6'b011010:
         casez_tmp_16 = 3'h0;
       6'b011011:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h1;
       6'b011100:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h1;
       6'b011101:
         casez_tmp_16 = 3'h1;
       6'b011110:
         casez_tmp_16 = 3'h1;
       6'b011111:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h2;
       6'b100000:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h2;
       6'b100001:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h2;
       6'b100010:
-        casez_tmp_16 = 3'h0;
+        casez_tmp_16 = 3'h2;
       6'b100011:
         casez_tmp_16 = 3'h1;
       6'b100100:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h2;
       6'b100101:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h2;
       6'b100110:
         casez_tmp_16 = 3'h1;
       6'b100111:
@@ -26676,33 +26676,33 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       6'b101010:
         casez_tmp_16 = 3'h2;
       6'b101011:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h2;
       6'b101100:
         casez_tmp_16 = 3'h2;
       6'b101101:
         casez_tmp_16 = 3'h2;
       6'b101110:
-        casez_tmp_16 = 3'h1;
+        casez_tmp_16 = 3'h2;
       6'b101111:
         casez_tmp_16 = 3'h2;
       6'b110000:
         casez_tmp_16 = 3'h2;
       6'b110001:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b110010:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b110011:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b110100:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b110101:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b110110:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b110111:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b111000:
-        casez_tmp_16 = 3'h2;
+        casez_tmp_16 = 3'h0;
       6'b111001:
         casez_tmp_16 = 3'h0;
       6'b111010:
@@ -26753,89 +26753,89 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       6'b001110:
         casez_tmp_17 = 3'h0;
       6'b001111:
-        casez_tmp_17 = 3'h0;
-      6'b010000:
         casez_tmp_17 = 3'h1;
+      6'b010000:
+        casez_tmp_17 = 3'h0;
       6'b010001:
         casez_tmp_17 = 3'h1;
       6'b010010:
-        casez_tmp_17 = 3'h0;
-      6'b010011:
-        casez_tmp_17 = 3'h0;
-      6'b010100:
         casez_tmp_17 = 3'h1;
+      6'b010011:
+        casez_tmp_17 = 3'h2;
+      6'b010100:
+        casez_tmp_17 = 3'h2;
       6'b010101:
         casez_tmp_17 = 3'h1;
       6'b010110:
-        casez_tmp_17 = 3'h0;
+        casez_tmp_17 = 3'h2;
       6'b010111:
-        casez_tmp_17 = 3'h1;
+        casez_tmp_17 = 3'h2;
       6'b011000:
-        casez_tmp_17 = 3'h0;
+        casez_tmp_17 = 3'h2;
       6'b011001:
-        casez_tmp_17 = 3'h1;
+        casez_tmp_17 = 3'h2;
       6'b011010:
-        casez_tmp_17 = 3'h1;
+        casez_tmp_17 = 3'h2;
       6'b011011:
         casez_tmp_17 = 3'h2;
       6'b011100:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h7;
       6'b011101:
-        casez_tmp_17 = 3'h1;
+        casez_tmp_17 = 3'h7;
       6'b011110:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h0;
       6'b011111:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h7;
       6'b100000:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h7;
       6'b100001:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h0;
       6'b100010:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h0;
       6'b100011:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h7;
       6'b100100:
         casez_tmp_17 = 3'h7;
       6'b100101:
-        casez_tmp_17 = 3'h7;
-      6'b100110:
         casez_tmp_17 = 3'h0;
+      6'b100110:
+        casez_tmp_17 = 3'h7;
       6'b100111:
         casez_tmp_17 = 3'h7;
       6'b101000:
-        casez_tmp_17 = 3'h7;
+        casez_tmp_17 = 3'h0;
       6'b101001:
-        casez_tmp_17 = 3'h0;
+        casez_tmp_17 = 3'h1;
       6'b101010:
-        casez_tmp_17 = 3'h0;
+        casez_tmp_17 = 3'h1;
       6'b101011:
-        casez_tmp_17 = 3'h7;
+        casez_tmp_17 = 3'h1;
       6'b101100:
-        casez_tmp_17 = 3'h7;
+        casez_tmp_17 = 3'h1;
       6'b101101:
-        casez_tmp_17 = 3'h0;
+        casez_tmp_17 = 3'h2;
       6'b101110:
-        casez_tmp_17 = 3'h7;
+        casez_tmp_17 = 3'h2;
       6'b101111:
-        casez_tmp_17 = 3'h7;
+        casez_tmp_17 = 3'h2;
       6'b110000:
-        casez_tmp_17 = 3'h0;
+        casez_tmp_17 = 3'h2;
       6'b110001:
-        casez_tmp_17 = 3'h1;
+        casez_tmp_17 = 3'h0;
       6'b110010:
-        casez_tmp_17 = 3'h1;
+        casez_tmp_17 = 3'h0;
       6'b110011:
-        casez_tmp_17 = 3'h1;
+        casez_tmp_17 = 3'h0;
       6'b110100:
-        casez_tmp_17 = 3'h1;
+        casez_tmp_17 = 3'h0;
       6'b110101:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h0;
       6'b110110:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h0;
       6'b110111:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h0;
       6'b111000:
-        casez_tmp_17 = 3'h2;
+        casez_tmp_17 = 3'h0;
       6'b111001:
         casez_tmp_17 = 3'h0;
       6'b111010:
@@ -26884,59 +26884,59 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       6'b001101:
         casez_tmp_18 = 3'h1;
       6'b001110:
-        casez_tmp_18 = 3'h0;
+        casez_tmp_18 = 3'h2;
       6'b001111:
-        casez_tmp_18 = 3'h1;
+        casez_tmp_18 = 3'h2;
       6'b010000:
-        casez_tmp_18 = 3'h0;
+        casez_tmp_18 = 3'h2;
       6'b010001:
-        casez_tmp_18 = 3'h1;
+        casez_tmp_18 = 3'h2;
       6'b010010:
-        casez_tmp_18 = 3'h0;
+        casez_tmp_18 = 3'h7;
       6'b010011:
-        casez_tmp_18 = 3'h1;
+        casez_tmp_18 = 3'h7;
       6'b010100:
         casez_tmp_18 = 3'h0;
       6'b010101:
-        casez_tmp_18 = 3'h1;
+        casez_tmp_18 = 3'h7;
       6'b010110:
-        casez_tmp_18 = 3'h2;
+        casez_tmp_18 = 3'h7;
       6'b010111:
-        casez_tmp_18 = 3'h2;
-      6'b011000:
-        casez_tmp_18 = 3'h2;
-      6'b011001:
-        casez_tmp_18 = 3'h2;
-      6'b011010:
-        casez_tmp_18 = 3'h7;
-      6'b011011:
-        casez_tmp_18 = 3'h7;
-      6'b011100:
         casez_tmp_18 = 3'h0;
-      6'b011101:
+      6'b011000:
+        casez_tmp_18 = 3'h1;
+      6'b011001:
+        casez_tmp_18 = 3'h1;
+      6'b011010:
+        casez_tmp_18 = 3'h2;
+      6'b011011:
+        casez_tmp_18 = 3'h2;
+      6'b011100:
         casez_tmp_18 = 3'h7;
+      6'b011101:
+        casez_tmp_18 = 3'h0;
       6'b011110:
         casez_tmp_18 = 3'h7;
       6'b011111:
-        casez_tmp_18 = 3'h0;
+        casez_tmp_18 = 3'h7;
       6'b100000:
-        casez_tmp_18 = 3'h1;
+        casez_tmp_18 = 3'h0;
       6'b100001:
-        casez_tmp_18 = 3'h1;
+        casez_tmp_18 = 3'h7;
       6'b100010:
-        casez_tmp_18 = 3'h2;
+        casez_tmp_18 = 3'h0;
       6'b100011:
-        casez_tmp_18 = 3'h2;
+        casez_tmp_18 = 3'h1;
       6'b100100:
-        casez_tmp_18 = 3'h7;
+        casez_tmp_18 = 3'h1;
       6'b100101:
-        casez_tmp_18 = 3'h0;
+        casez_tmp_18 = 3'h1;
       6'b100110:
-        casez_tmp_18 = 3'h7;
+        casez_tmp_18 = 3'h2;
       6'b100111:
-        casez_tmp_18 = 3'h7;
+        casez_tmp_18 = 3'h2;
       6'b101000:
-        casez_tmp_18 = 3'h0;
+        casez_tmp_18 = 3'h2;
       6'b101001:
         casez_tmp_18 = 3'h7;
       6'b101010:
@@ -26944,31 +26944,31 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       6'b101011:
         casez_tmp_18 = 3'h1;
       6'b101100:
-        casez_tmp_18 = 3'h1;
+        casez_tmp_18 = 3'h2;
       6'b101101:
-        casez_tmp_18 = 3'h1;
+        casez_tmp_18 = 3'h7;
       6'b101110:
-        casez_tmp_18 = 3'h2;
+        casez_tmp_18 = 3'h0;
       6'b101111:
-        casez_tmp_18 = 3'h2;
+        casez_tmp_18 = 3'h1;
       6'b110000:
         casez_tmp_18 = 3'h2;
       6'b110001:
-        casez_tmp_18 = 3'h7;
+        casez_tmp_18 = 3'h0;
       6'b110010:
         casez_tmp_18 = 3'h0;
       6'b110011:
-        casez_tmp_18 = 3'h1;
+        casez_tmp_18 = 3'h0;
       6'b110100:
-        casez_tmp_18 = 3'h2;
+        casez_tmp_18 = 3'h0;
       6'b110101:
-        casez_tmp_18 = 3'h7;
+        casez_tmp_18 = 3'h0;
       6'b110110:
         casez_tmp_18 = 3'h0;
       6'b110111:
-        casez_tmp_18 = 3'h1;
+        casez_tmp_18 = 3'h0;
       6'b111000:
-        casez_tmp_18 = 3'h2;
+        casez_tmp_18 = 3'h0;
       6'b111001:
         casez_tmp_18 = 3'h0;
       6'b111010:
@@ -27186,9 +27186,6 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
   wire        _GEN_19 = _GEN_0 | _GEN_1 | _GEN_18;
   wire        _GEN_20 = sent & _stream_io_idle & _matcher_io_idle;
   wire        _GEN_21 = state == 3'h2 | _io_need_T;
-  wire        _GEN_22 = _GEN & _stream_io_out_valid;
-  wire        _GEN_23 = _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22;
-  wire        _GEN_24 = _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & needClear;
   wire [19:0] base_1_0 =
     coarseCh
       ? {_stream_io_out_bits_rec_cell_0[19:1], 1'h0}
@@ -27203,37 +27200,39 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       : _stream_io_out_bits_rec_cell_2;
   wire        same = {base_1_2, base_1_1, base_1_0} == {curCell_2, curCell_1, curCell_0};
   wire        take = ~_stream_io_out_bits_mark & (~haveCell | same & loaded != 6'h20);
+  wire        pairIt = coarseCh & take & ~needClear;
+  wire        _GEN_22 = _GEN & _stream_io_out_valid;
+  wire        _GEN_23 = _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22;
+  wire        _GEN_24 = _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & needClear;
   wire        _GEN_25 = _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & take;
-  wire        _GEN_26 = ~_GEN_19 & _GEN_16 & ~_stream_io_out_bits_rec_excluded;
-  wire        _GEN_27 = ~_GEN_21 | _stream_io_out_bits_tag_scan;
   assign _GEN =
     _GEN_21
       ? (_stream_io_out_bits_tag_scan
-           ? ~needClear | _matcher_io_canClear
+           ? (~needClear | _matcher_io_canClear) & (~pairIt | _matcher_io_in_ready)
            : _matcher_io_in_ready)
       : ~_GEN_19 & _GEN_16 & (_matcher_io_in_ready | _stream_io_out_bits_rec_excluded);
-  wire [5:0]  visitCount = coarseCh ? 6'h2B : 6'hE;
-  wire        _GEN_28 = _GEN_0 | ~_GEN_2;
-  wire        _GEN_29 = _GEN_5 | ~_GEN_6;
-  wire        _GEN_30 = _GEN_0 | ~_GEN_1 | _GEN_5 | ~_GEN_6;
-  wire        _GEN_31 = _stream_io_req_ready & _GEN_17;
-  wire        _GEN_32 = _GEN_31 & ~sent;
-  wire        _GEN_33 = _GEN_11 | ~(_GEN_9 & _GEN_32);
+  wire [5:0]  visitCount = coarseCh ? 6'h23 : 6'hE;
+  wire        _GEN_26 = _GEN_0 | ~_GEN_2;
+  wire        _GEN_27 = _GEN_5 | ~_GEN_6;
+  wire        _GEN_28 = _GEN_0 | ~_GEN_1 | _GEN_5 | ~_GEN_6;
+  wire        _GEN_29 = _stream_io_req_ready & _GEN_17;
+  wire        _GEN_30 = _GEN_29 & ~sent;
+  wire        _GEN_31 = _GEN_11 | ~(_GEN_9 & _GEN_30);
   wire        canIssue =
     haveCell & vIssue != visitCount & {1'h0, _lkq_io_count} + {3'h0, lkPend} < 4'h6;
-  wire        _GEN_34 = _GEN_11 | ~_GEN_9;
-  wire        _GEN_35 =
+  wire        _GEN_32 = _GEN_11 | ~_GEN_9;
+  wire        _GEN_33 =
     vIssue == visitCount & ~lkPend & ~_lkq_io_deq_valid & sent & scanLeft == 13'h0;
-  wire        _GEN_36 = moreOfCell | nextSet;
-  wire        _GEN_37 = _GEN_35 & _GEN_36;
-  wire        _GEN_38 = _GEN_9 & _GEN_35 & _GEN_36 & ~moreOfCell;
+  wire        _GEN_34 = moreOfCell | nextSet;
+  wire        _GEN_35 = _GEN_33 & _GEN_34;
+  wire        _GEN_36 = _GEN_9 & _GEN_33 & _GEN_34 & ~moreOfCell;
   wire [6:0]  nextLi = _GEN_13 + 7'h20;
-  wire        _GEN_39 = _GEN_16 & _GEN_20;
-  wire        _GEN_40 =
+  wire        _GEN_37 = _GEN_16 & _GEN_20;
+  wire        _GEN_38 =
     _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & take & ~haveCell;
-  wire        _GEN_41 = ~_stream_io_out_bits_mark & haveCell;
-  wire        _GEN_42 =
-    _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & _GEN_41 & ~same & ~nextSet;
+  wire        _GEN_39 = ~_stream_io_out_bits_mark & haveCell;
+  wire        _GEN_40 =
+    _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & _GEN_39 & ~same & ~nextSet;
   always @(posedge clock) begin
     if (reset) begin
       state <= 3'h0;
@@ -27263,15 +27262,15 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
                 {1'h0, io_largeCount == 5'h0 | io_largeFrom >= io_largeTo ? 2'h0 : 2'h3};
           end
           walkPend <= ~_GEN_7 & issueOk;
-          if (_GEN_29)
+          if (_GEN_27)
             inUnit <= ~issueOk & inUnit;
           else
             inUnit <= ~casez_tmp & lane[2:0] != 3'h7 & ~single;
-          lkPend <= _GEN_29 & lkPend;
+          lkPend <= _GEN_27 & lkPend;
         end
         else begin
           if (_GEN_9) begin
-            if (~_GEN_35 | _GEN_36) begin
+            if (~_GEN_33 | _GEN_34) begin
             end
             else
               state <= 3'h1;
@@ -27281,9 +27280,9 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
             if (~_GEN_15)
               state <= 3'h4;
           end
-          else if (_GEN_39)
+          else if (_GEN_37)
             state <= {1'h0, {2{nextLi < _GEN_14}}};
-          walkPend <= (~(_GEN_9 & _GEN_35) | _GEN_36) & walkPend;
+          walkPend <= (~(_GEN_9 & _GEN_33) | _GEN_34) & walkPend;
         end
         deferPend <= _GEN_1 & _GEN_5 | ~io_deferOk & deferPend;
       end
@@ -27291,11 +27290,11 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       end
       else
         single <= io_claim_bits_single;
-      if (_GEN_28) begin
+      if (_GEN_26) begin
       end
       else
         unitFirst <= ~inUnit & ~io_claim_bits_single;
-      if (_GEN_30) begin
+      if (_GEN_28) begin
       end
       else
         coarseCh <= casez_tmp;
@@ -27310,7 +27309,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       else
         bIssue <= _GEN_3 + {9'h0, lane} + 14'h1;
       if (_GEN_1) begin
-        if (_GEN_29) begin
+        if (_GEN_27) begin
         end
         else begin
           p_0 <= casez_tmp ? casez_tmp_0 : casez_tmp_8;
@@ -27318,8 +27317,8 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
           p_2 <= casez_tmp ? casez_tmp_4 : casez_tmp_12;
           p_3 <= casez_tmp ? casez_tmp_6 : casez_tmp_14;
         end
-        sent <= _GEN_29 & sent;
-        if (_GEN_29) begin
+        sent <= _GEN_27 & sent;
+        if (_GEN_27) begin
         end
         else
           vIssue <= 6'h0;
@@ -27331,7 +27330,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
         end
       end
       else begin
-        if (_GEN_38) begin
+        if (_GEN_36) begin
           if (|nextGroup)
             p_0 <= bEnd_0;
           else if (nextGroup == 2'h0)
@@ -27345,11 +27344,11 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
           else if (nextGroup == 2'h2)
             p_2 <= nextLeader;
         end
-        if (_GEN_9 & _GEN_35 & _GEN_36 & ~moreOfCell & (&nextGroup))
+        if (_GEN_9 & _GEN_33 & _GEN_34 & ~moreOfCell & (&nextGroup))
           p_3 <= nextLeader;
         if (_GEN_9) begin
-          sent <= ~_GEN_37 & (_GEN_32 | sent);
-          if (_GEN_37)
+          sent <= ~_GEN_35 & (_GEN_30 | sent);
+          if (_GEN_35)
             vIssue <= 6'h0;
           else if (canIssue)
             vIssue <= vIssue + 6'h1;
@@ -27360,21 +27359,21 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
             lj <= lj + 6'h1;
         end
         else begin
-          sent <= _GEN_16 & _GEN_31 | sent;
-          if (_GEN_39)
+          sent <= _GEN_16 & _GEN_29 | sent;
+          if (_GEN_37)
             lj <= 6'h0;
         end
-        if (_GEN_18 | ~_GEN_39) begin
+        if (_GEN_18 | ~_GEN_37) begin
         end
         else
           li <= nextLi[5:0];
       end
     end
-    if (_GEN_28) begin
+    if (_GEN_26) begin
     end
     else
       walkB <= issueAt;
-    if (_GEN_30) begin
+    if (_GEN_28) begin
     end
     else begin
       bEnd_0 <= casez_tmp ? casez_tmp_1 : casez_tmp_9;
@@ -27382,12 +27381,12 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       bEnd_2 <= casez_tmp ? casez_tmp_5 : casez_tmp_13;
       bEnd_3 <= casez_tmp ? casez_tmp_7 : casez_tmp_15;
     end
-    if (_GEN_40) begin
+    if (_GEN_38) begin
       curCell_0 <= base_1_0;
       curCell_1 <= base_1_1;
       curCell_2 <= base_1_2;
     end
-    else if (_GEN_11 | ~_GEN_38) begin
+    else if (_GEN_11 | ~_GEN_36) begin
     end
     else begin
       curCell_0 <= nextCell_0;
@@ -27395,18 +27394,18 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       curCell_2 <= nextCell_2;
     end
     haveCell <=
-      _GEN_40 | (_GEN_0 ? haveCell : _GEN_1 ? _GEN_29 & haveCell : _GEN_38 | haveCell);
+      _GEN_38 | (_GEN_0 ? haveCell : _GEN_1 ? _GEN_27 & haveCell : _GEN_36 | haveCell);
     if (_GEN_25)
       loaded <= loaded + 6'h1;
-    else if (_GEN_33) begin
+    else if (_GEN_31) begin
     end
     else
       loaded <= 6'h0;
     moreOfCell <=
-      _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & _GEN_41 & same & loaded == 6'h20
-      | _GEN_33 & moreOfCell;
-    nextSet <= _GEN_42 | _GEN_33 & nextSet;
-    if (_GEN_42) begin
+      _GEN_21 & _stream_io_out_bits_tag_scan & _GEN_22 & _GEN_39 & same & loaded == 6'h20
+      | _GEN_31 & moreOfCell;
+    nextSet <= _GEN_40 | _GEN_31 & nextSet;
+    if (_GEN_40) begin
       nextLeader <= _stream_io_out_bits_pos;
       nextGroup <= _stream_io_out_bits_group;
       nextCell_0 <= base_1_0;
@@ -27415,7 +27414,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
     end
     if (_GEN_23)
       scanLeft <= scanLeft - 13'h1;
-    else if (_GEN_33) begin
+    else if (_GEN_31) begin
     end
     else
       scanLeft <= bEnd_0 - p_0 + bEnd_1 - p_1 + bEnd_2 - p_2 + bEnd_3 - p_3;
@@ -27423,9 +27422,9 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
       ~_GEN_24
       & (_GEN_0
            ? needClear
-           : _GEN_1 ? ~_GEN_5 & _GEN_6 | needClear : _GEN_9 & _GEN_37 | needClear);
-    lkVisit_scan <= _GEN_34 & lkVisit_scan;
-    if (_GEN_34) begin
+           : _GEN_1 ? ~_GEN_5 & _GEN_6 | needClear : _GEN_9 & _GEN_35 | needClear);
+    lkVisit_scan <= _GEN_32 & lkVisit_scan;
+    if (_GEN_32) begin
     end
     else begin
       lkVisit_cell_0 <= nc_0;
@@ -27518,8 +27517,8 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
     .io_in_ready            (_matcher_io_in_ready),
     .io_in_valid
       (_GEN_21
-         ? (~_stream_io_out_bits_tag_scan | _GEN_26) & _stream_io_out_valid
-         : _GEN_26 & _stream_io_out_valid),
+         ? (~_stream_io_out_bits_tag_scan | pairIt) & _stream_io_out_valid
+         : ~_GEN_19 & _GEN_16 & _stream_io_out_valid & ~_stream_io_out_bits_rec_excluded),
     .io_in_bits_key_index   (_stream_io_out_bits_item),
     .io_in_bits_key_cell_0  (_stream_io_out_bits_rec_cell_0),
     .io_in_bits_key_cell_1  (_stream_io_out_bits_rec_cell_1),
@@ -27528,14 +27527,14 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_w
     .io_in_bits_key_q_1     (_stream_io_out_bits_rec_q_1),
     .io_in_bits_key_q_2     (_stream_io_out_bits_rec_q_2),
     .io_in_bits_key_qr      (_stream_io_out_bits_rec_qr),
-    .io_in_bits_cell_0      (_GEN_27 ? 20'h0 : _stream_io_out_bits_tag_cell_0),
-    .io_in_bits_cell_1      (_GEN_27 ? 20'h0 : _stream_io_out_bits_tag_cell_1),
-    .io_in_bits_cell_2      (_GEN_27 ? 20'h0 : _stream_io_out_bits_tag_cell_2),
-    .io_in_bits_off_0       (_GEN_27 ? 3'h0 : _stream_io_out_bits_tag_off_0),
-    .io_in_bits_off_1       (_GEN_27 ? 3'h0 : _stream_io_out_bits_tag_off_1),
-    .io_in_bits_off_2       (_GEN_27 ? 3'h0 : _stream_io_out_bits_tag_off_2),
-    .io_in_bits_anyCell     (_GEN_27),
-    .io_in_bits_own         (_stream_io_out_bits_rec_large),
+    .io_in_bits_cell_0      (_GEN_21 ? _stream_io_out_bits_tag_cell_0 : 20'h0),
+    .io_in_bits_cell_1      (_GEN_21 ? _stream_io_out_bits_tag_cell_1 : 20'h0),
+    .io_in_bits_cell_2      (_GEN_21 ? _stream_io_out_bits_tag_cell_2 : 20'h0),
+    .io_in_bits_off_0       (_GEN_21 ? _stream_io_out_bits_tag_off_0 : 3'h0),
+    .io_in_bits_off_1       (_GEN_21 ? _stream_io_out_bits_tag_off_1 : 3'h0),
+    .io_in_bits_off_2       (_GEN_21 ? _stream_io_out_bits_tag_off_2 : 3'h0),
+    .io_in_bits_anyCell     (~_GEN_21 | _stream_io_out_bits_tag_scan),
+    .io_in_bits_own         (~_GEN_21 & _stream_io_out_bits_rec_large),
     .io_out_ready           (io_pairs_ready),
     .io_out_valid           (io_pairs_valid),
     .io_out_bits_i          (io_pairs_bits_i),
@@ -46994,7 +46993,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_scattered         (_sorts_3_io_scattered),
     .io_badBucket         (_sorts_3_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_0 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_0 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -47263,7 +47262,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_0_bits_j),
     .io_busy              (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_1 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_1 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -47532,7 +47531,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_1_bits_j),
     .io_busy              (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_2 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_2 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -47801,7 +47800,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_2_bits_j),
     .io_busy              (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_3 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_3 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48070,7 +48069,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_3_bits_j),
     .io_busy              (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_4 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_4 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48339,7 +48338,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_4_bits_j),
     .io_busy              (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_5 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_5 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48608,7 +48607,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_5_bits_j),
     .io_busy              (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_6 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_6 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48877,7 +48876,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_6_bits_j),
     .io_busy              (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_7 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_7 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49146,7 +49145,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_7_bits_j),
     .io_busy              (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_8 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_8 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49415,7 +49414,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_8_bits_j),
     .io_busy              (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_9 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_9 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49684,7 +49683,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_9_bits_j),
     .io_busy              (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_10 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_10 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49953,7 +49952,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_10_bits_j),
     .io_busy              (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_11 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_11 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -50222,7 +50221,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_11_bits_j),
     .io_busy              (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_12 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_12 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -50491,7 +50490,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_12_bits_j),
     .io_busy              (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_13 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_13 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -50760,7 +50759,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_13_bits_j),
     .io_busy              (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_14 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_14 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -51029,7 +51028,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_14_bits_j),
     .io_busy              (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_world gens_15 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_15 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),

@@ -38,6 +38,7 @@ object Generate {
       worldHitQueue: Option[Int] = None,
       worldDrainBehind: Option[Boolean] = None,
       worldLookAhead: Option[Int] = None,
+      worldScanPairs: Option[Boolean] = None,
       worldBoxBuckets: Option[Boolean] = None,
       worldWordLog2: Option[Int] = None,
       scpuImpl: Option[String] = None,
@@ -106,6 +107,9 @@ object Generate {
       opt[Int]("world-look-ahead").valueName("A").action((v, o) => o.copy(worldLookAhead = Some(v)))
         .text("visits' bucket ranges each candidate lane looks up ahead of its stream, 3..16 (world mode only; the " +
           "preset has 6)"),
+      opt[Boolean]("world-scan-pairs").valueName("true|false").action((v, o) => o.copy(worldScanPairs = Some(v)))
+        .text("a coarse chunk's members pair with one another as its scan loads them, and its own 8 cells are not " +
+          "visited (world mode with coarse chunks only)"),
       opt[Boolean]("run-queue").valueName("true|false").action((v, o) => o.copy(runQueue = Some(v)))
         .text("a run queue: a start during a run queues one more, and a queued world run's table loads into a " +
           "second on-chip sphere table while the current run computes (world mode only; twice the sphere-table RAM)"),
@@ -162,7 +166,8 @@ object Generate {
       }(c13)
       c15 <- world("--world-cell-steps", o.worldCellSteps)((bp, v) => bp.copy(cellSteps = v))(c14)
       c16 <- world("--world-chunk", o.worldChunk)((bp, v) => bp.copy(chunk = v))(c15)
-      c17 <- world("--world-coarse-chunks", o.worldCoarseChunks)((bp, v) => bp.copy(coarseChunks = v))(c16)
+      c17 <- world("--world-coarse-chunks", o.worldCoarseChunks)((bp, v) => bp.copy(coarseChunks = v,
+        scanPairs = bp.scanPairs && v))(c16)
       c18 <- world("--world-claims", o.worldClaims)((bp, v) => bp.copy(claims = v))(c17)
       c19 <- world("--world-hit-queue", o.worldHitQueue)((bp, v) => bp.copy(hitQueue = v))(c18)
       c20 <- world("--world-word-log2", o.worldWordLog2)((bp, v) => bp.copy(wordLog2 = v))(c19)
@@ -171,7 +176,8 @@ object Generate {
       c23 <- opt("--run-queue", o.runQueue)((c, v) => step("--run-queue", c.copy(runQueue = v)))(c22)
       c24 <- world("--world-drain-behind", o.worldDrainBehind)((bp, v) => bp.copy(drainBehind = v))(c23)
       c25 <- world("--world-look-ahead", o.worldLookAhead)((bp, v) => bp.copy(lookAhead = v))(c24)
-    } yield c25
+      c26 <- world("--world-scan-pairs", o.worldScanPairs)((bp, v) => bp.copy(scanPairs = v))(c25)
+    } yield c26
   }
 
   val firtoolOpts: Array[String] = Array(

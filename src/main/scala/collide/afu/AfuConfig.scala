@@ -88,7 +88,8 @@ final case class AfuConfig(
         (if (bp.cellSteps != collide.world.BroadPhaseParams.default.cellSteps) s"e${bp.cellSteps}" else "") +
         (if (bp.chunk != collide.world.BroadPhaseParams.default.chunk) s"k${bp.chunk}" else "") +
         (if (bp.coarseChunks) "x" else "") + (if (bp.claims) "u" else "") + (if (bp.hitQueue > 0) s"h${bp.hitQueue}" else "") +
-        (if (bp.boxBuckets) "bx" else "") + (if (bp.drainBehind) "d" else "") + (if (bp.lookAhead != 3) s"a${bp.lookAhead}" else "")).getOrElse("") +
+        (if (bp.boxBuckets) "bx" else "") + (if (bp.drainBehind) "d" else "") + (if (bp.lookAhead != 3) s"a${bp.lookAhead}" else "") +
+        (if (bp.scanPairs) "sp" else "")).getOrElse("") +
       (if (scpuImpl == ScpuImpl.Model) "_model" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
@@ -144,13 +145,14 @@ object AfuConfig {
   val big: AfuConfig     = default.copy(name = "big", maxSpheres = 4096)
   /** World mode: 16 fp32 SCPUs fed by the on-chip broad phase's 16 candidate lanes (claiming
     * their work as they need it, queueing eight spheres' hits, loading a chunk while the last
-    * one's hits leave, looking up six visits ahead), its sort's passes eight spheres
+    * one's hits leave, looking up six visits ahead, pairing a coarse chunk's members as its
+    * scan loads them), its sort's passes eight spheres
     * a cycle (four sorts of two ports), 32 counters a word, box buckets, up to 4096 spheres
     * a run, and a run queue: a world cut into several runs loads each run's table while the
     * run before it computes (bench/results/world-lanes, bench/results/world-afu). */
   val world: AfuConfig   = big.copy(name = "world",
     world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 8, wordLog2 = 5, chunk = 32,
-      cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true, drainBehind = true, lookAhead = 6)),
+      cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true, drainBehind = true, lookAhead = 6, scanPairs = true)),
     runQueue = true)
 
   /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind

@@ -32,7 +32,7 @@ object AfuManifest {
             "filterFracBits" -> bp.filterFracBits, "chunk" -> bp.chunk, "wordLog2" -> bp.wordLog2,
             "lanes" -> bp.lanes, "sortPorts" -> bp.sortPorts, "bucketsPerSphereLog2" -> bp.bucketsPerSphereLog2,
             "cellSteps" -> bp.cellSteps, "coarseChunks" -> bp.coarseChunks, "team" -> bp.teamSize, "claims" -> bp.claims, "hitQueue" -> bp.hitQueue, "boxBuckets" -> bp.boxBuckets,
-            "drainBehind" -> bp.drainBehind, "lookAhead" -> bp.lookAhead,
+            "drainBehind" -> bp.drainBehind, "lookAhead" -> bp.lookAhead, "scanPairs" -> bp.scanPairs,
             "recordPair" -> s"i | j << ${RecordTag.WORLD_INDEX_BITS}")
         }.getOrElse(ujson.Null),
         "ram" -> ujson.Obj("copies" -> p.ramCopies, "banks" -> p.banks, "bitsPerCopy" -> p.ramBitsPerCopy.toDouble,

@@ -120,7 +120,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
       keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes, groups = groups,
       coarse = bp.coarseChunks, team = bp.teamSize, claims = bp.claims, hitQueue = bp.hitQueue, boxBuckets = bp.boxBuckets,
-      drainBehind = bp.drainBehind, lookAhead = bp.lookAhead))
+      drainBehind = bp.drainBehind, lookAhead = bp.lookAhead, scanPairs = bp.scanPairs))
     g.io.lane.foreach(_ := l.U)
     g
   }

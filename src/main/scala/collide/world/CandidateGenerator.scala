@@ -91,10 +91,13 @@ class CandidateGeneratorIO(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, 
 class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bucketsLog2: Int, chunk: Int,
                          largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1, groups: Int = 1,
                          coarse: Boolean = false, team: Int = 1, claims: Boolean = false, hitQueue: Int = 0,
-                         boxBuckets: Boolean = false, drainBehind: Boolean = false, lookAhead: Int = 3)
+                         boxBuckets: Boolean = false, drainBehind: Boolean = false, lookAhead: Int = 3,
+                         scanPairs: Boolean = false)
     extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
   require(lanes >= 1, s"lanes must be >= 1, got $lanes")
+  require(lookAhead >= 3 && lookAhead <= 16, s"lookAhead must be 3..16, got $lookAhead")
+  require(!scanPairs || coarse, "scanPairs needs coarse chunks")
   require(Seq(1, 2, 4, 8).contains(groups), s"groups must be 1, 2, 4 or 8, got $groups")
   private val perWord = 1 << wordLog2
   /** Buckets of a coarse cell's group: 8, or a whole word of a table smaller than that. */
@@ -118,7 +121,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     s"coarse chunks need words of 8 counters or one word for the table, got wordLog2 $wordLog2 of $bucketsLog2")
   override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2" +
     (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "") + (if (coarse) s"_x$teamSize" else "") + (if (claims) "_u" else "") +
-    (if (hitQueue > 0) s"_h$hitQueue" else "") + (if (boxBuckets) "_bx" else "") + (if (drainBehind) "_d" else "") + (if (lookAhead != 3) s"_a$lookAhead" else "")
+    (if (hitQueue > 0) s"_h$hitQueue" else "") + (if (boxBuckets) "_bx" else "") + (if (drainBehind) "_d" else "") + (if (lookAhead != 3) s"_a$lookAhead" else "") + (if (scanPairs) "_sp" else "")
   val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes, groups,
     if (claims) CandidateGenerator.claimW(bucketsLog2) else 0, boxBuckets))
   private val laneNo: UInt = io.lane.getOrElse(0.U)
@@ -194,7 +197,8 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val needClear = Reg(Bool())
   // --- visits: 14 lookups (43 for a coarse chunk), each becoming a stream range -------------
   private val fineVisits = BroadPhaseModel.Visits
-  private val coarseVisits = if (coarse) BroadPhaseModel.CoarseVisits else Nil
+  private val coarseVisits =
+    if (!coarse) Nil else if (scanPairs) BroadPhaseModel.CoarseOthers else BroadPhaseModel.CoarseVisits
   // One table: the fine visits' offsets, then the coarse ones'.
   private val offsets = VecInit((fineVisits ++ coarseVisits).map { case (a, b, c) => VecInit(Seq(a, b, c).map(_.S(3.W))) })
   private val visitCount = Mux(coarseCh, coarseVisits.length.U, fineVisits.length.U)
@@ -396,19 +400,30 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   when(state === S.chunk || state === S.walk) {
     val it = stream.io.out.bits
     when(it.tag.scan) {
+      // A coarse chunk's cells are those of its base's coarse cell: compared with low bits clear.
+      val base = VecInit(it.rec.cell.map(c => Mux(coarseCh, Cat(c(cellBits - 1, 1), 0.U(1.W)).asSInt, c)))
+      val place = Mux(coarseCh, Cat(it.rec.cell(0)(0), it.rec.cell(1)(0), it.rec.cell(2)(0)), 0.U)
+      val same = base.asUInt === curCell.asUInt
+      val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
+      // With scanPairs, an entry a coarse chunk takes also meets the members loaded before it
+      // (the matcher's registers hold exactly those), in any cell: all of a coarse cell are
+      // neighbours. Not at the clear, whose cycle still holds the last chunk's members (the
+      // first entry taken has none before it anyway).
+      val pairIt = scanPairs.B && coarseCh && take && !needClear
+      if (scanPairs) {
+        matcher.io.in.valid := stream.io.out.valid && pairIt
+        matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
+        matcher.io.in.bits.cell := DontCare; matcher.io.in.bits.off := DontCare
+        matcher.io.in.bits.anyCell := true.B; matcher.io.in.bits.own := false.B
+      }
       // A chunk's first scan entry waits until the last chunk's hits have all left (they
       // read its members; with drainBehind, only the hits of the chunk before it), then
       // clears the matcher, loading in the same cycle.
-      stream.io.out.ready := !needClear || matcher.io.canClear
+      stream.io.out.ready := (!needClear || matcher.io.canClear) && (!pairIt || matcher.io.in.ready)
       when(stream.io.out.fire) {
         scanned := scanned + 1.U
         scanLeft := scanLeft - 1.U
         when(needClear) { matcher.io.clear := true.B; needClear := false.B }
-        // A coarse chunk's cells are those of its base's coarse cell: compared with low bits clear.
-        val base = VecInit(it.rec.cell.map(c => Mux(coarseCh, Cat(c(cellBits - 1, 1), 0.U(1.W)).asSInt, c)))
-        val place = Mux(coarseCh, Cat(it.rec.cell(0)(0), it.rec.cell(1)(0), it.rec.cell(2)(0)), 0.U)
-        val same = base.asUInt === curCell.asUInt
-        val take = !it.mark && (!haveCell || (same && loaded =/= chunk.U))
         when(take) {
           matcher.io.load.valid := true.B; matcher.io.load.bits := ChunkMember(WorldKey(itemW, it.item, it.rec), place)
           io.mark.valid := true.B

@@ -35,57 +35,61 @@ class GenerateSpec extends AnyFlatSpec {
     assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 4.0 * group16)
     // Four sort ports: two sorts of half the table (12-bit counters, 2048 entries).
     val p4 = cfg("--preset", "world", "--world-sort-ports", "4").toOption.get
-    assert(p4.id.endsWith("_world16p4w5e2k32xuh8bxda6") && p4.world.get.ramBits(4096) == 2 * ((16 + 1) * 8192L * 12 + 16 * 2048L * 13), p4.id)
+    assert(p4.id.endsWith("_world16p4w5e2k32xuh8bxda6sp") && p4.world.get.ramBits(4096) == 2 * ((16 + 1) * 8192L * 12 + 16 * 2048L * 13), p4.id)
     assert(AfuConfig.world.puc.ramCopies == 16 + 8, "sixteen SCPU copies and the broad phase's eight")
     // Lanes: a sort RAM each, a sphere copy per two; a name of their own.
     val l5 = cfg("--preset", "world", "--world-lanes", "5").toOption.get
-    assert(l5.world.get.lanes == 5 && l5.id.endsWith("_world5p4w5e2k32xuh8bxda6") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
+    assert(l5.world.get.lanes == 5 && l5.id.endsWith("_world5p4w5e2k32xuh8bxda6sp") && l5.puc.ramCopies == 16 + 3, s"five lanes: ${l5.id}, ${l5.puc.ramCopies} copies")
     assert(l5.world.get.ramBits(4096) == 2 * ((5 + 1) * 8192L * 12 + 5 * 2048L * 13))
     // Fewer lanes than the ports: the ports follow down to the most a configuration allows.
     val l3 = cfg("--preset", "world", "--world-lanes", "3").toOption.get
-    assert(l3.world.get.sortPorts == 2 && l3.id.endsWith("_world3p2w5e2k32xuh8bxda6") && l3.world.get.ramBits(4096) == 3 * 159744L + 8192 * 13, l3.id)
+    assert(l3.world.get.sortPorts == 2 && l3.id.endsWith("_world3p2w5e2k32xuh8bxda6sp") && l3.world.get.ramBits(4096) == 3 * 159744L + 8192 * 13, l3.id)
     // One bucket a sphere: half the counters (4096 of 12 bits per group and lane) and a name of its own.
     val b1 = cfg("--preset", "world", "--world-buckets-per-sphere", "1").toOption.get
-    assert(b1.id.endsWith("_world16p8w5s0e2k32xuh8bxda6") && b1.world.get.ramBits(4096) == 4 * ((16 + 1) * 4096L * 11 + 16 * 1024L * 13), b1.id)
+    assert(b1.id.endsWith("_world16p8w5s0e2k32xuh8bxda6sp") && b1.world.get.ramBits(4096) == 4 * ((16 + 1) * 4096L * 11 + 16 * 1024L * 13), b1.id)
     // The preset's grid: chunks of 32, coarse chunks, edges of 1.5 * 2^k too.
     val pw = AfuConfig.world.world.get
     assert(pw.cellSteps == 2 && pw.chunk == 32 && pw.coarseChunks && pw.claims && pw.teamSize == 1, s"the preset's grid: $pw")
     // Edges of 2^k alone: a name of its own, the same RAM.
     val e1 = cfg("--preset", "world", "--world-cell-steps", "1").toOption.get
-    assert(e1.world.get.cellSteps == 1 && e1.id.endsWith("_world16p8w5k32xuh8bxda6") && e1.world.get.ramBits(4096) == pw.ramBits(4096), e1.id)
+    assert(e1.world.get.cellSteps == 1 && e1.id.endsWith("_world16p8w5k32xuh8bxda6sp") && e1.world.get.ramBits(4096) == pw.ramBits(4096), e1.id)
     // The grid before coarse chunks: chunks of 16 cells, edges 2^k; the same RAM.
     val x = cfg("--preset", "world", "--world-chunk", "16", "--world-coarse-chunks", "false", "--world-cell-steps", "1").toOption.get
     assert(!x.world.get.coarseChunks && x.world.get.chunk == 16 && x.id.endsWith("_world16p8w5uh8bxda6") && x.world.get.ramBits(4096) == pw.ramBits(4096), x.id)
     // Without claims, teams: the largest power of two up to 4 that divides the lanes; a name of its own.
     val t6 = cfg("--preset", "world", "--world-lanes", "6", "--world-claims", "false").toOption.get
-    assert(t6.world.get.teamSize == 2 && t6.id.endsWith("_world6p4w5e2k32xh8bxda6"), t6.id)
+    assert(t6.world.get.teamSize == 2 && t6.id.endsWith("_world6p4w5e2k32xh8bxda6sp"), t6.id)
     assert(cfg("--preset", "world", "--world-claims", "false").toOption.get.world.get.teamSize == 4)
     val p1 = cfg("--preset", "world", "--world-lanes", "5", "--world-sort-ports", "1").toOption.get
-    assert(p1.world.get.sortPorts == 1 && p1.id.endsWith("_world5w5e2k32xuh8bxda6") && p1.world.get.ramBits(4096) == 5 * 159744L, p1.id)
+    assert(p1.world.get.sortPorts == 1 && p1.id.endsWith("_world5w5e2k32xuh8bxda6sp") && p1.world.get.ramBits(4096) == 5 * 159744L, p1.id)
     assert(cfg("--world", "true", "--world-lanes", "5", "--world-sort-ports", "2").toOption.get.id.endsWith("_world5p2"),
       "eight counters a word (the default): no word size in the name")
     assert(cfg("--preset", "world", "--world-lanes", "16").toOption.get.isPreset)
     // Hits queued eight spheres deep in the preset; without a queue, a name without the h.
     assert(pw.hitQueue == 8 && pw.wordLog2 == 5, s"the preset's queue and word: $pw")
-    assert(cfg("--preset", "world", "--world-hit-queue", "0").toOption.get.id.endsWith("_world16p8w5e2k32xubxda6"))
+    assert(cfg("--preset", "world", "--world-hit-queue", "0").toOption.get.id.endsWith("_world16p8w5e2k32xubxda6sp"))
     // 16 counters a word: the same RAM bits, a name of its own.
     val w4 = cfg("--preset", "world", "--world-word-log2", "4").toOption.get
-    assert(w4.id.endsWith("_world16p8w4e2k32xuh8bxda6") && w4.world.get.ramBits(4096) == pw.ramBits(4096), w4.id)
+    assert(w4.id.endsWith("_world16p8w4e2k32xuh8bxda6sp") && w4.world.get.ramBits(4096) == pw.ramBits(4096), w4.id)
     assert(AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("hitQueue").num == 8)
     // Draining behind and six visits looked up ahead in the preset; without, names of their own.
     assert(pw.drainBehind && pw.lookAhead == 6, s"the preset's drain and look-ahead: $pw")
-    assert(cfg("--preset", "world", "--world-drain-behind", "false", "--world-look-ahead", "3").toOption.get.id.endsWith("_world16p8w5e2k32xuh8bx"))
+    assert(cfg("--preset", "world", "--world-drain-behind", "false", "--world-look-ahead", "3", "--world-scan-pairs", "false").toOption.get.id.endsWith("_world16p8w5e2k32xuh8bx"))
+    // Pairs in the scan in the preset; they need coarse chunks.
+    assert(pw.scanPairs && AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("scanPairs").bool)
+    assert(cfg("--preset", "world", "--world-coarse-chunks", "false", "--world-scan-pairs", "true").isLeft,
+      "scan pairs without coarse chunks are refused (without coarse chunks the preset drops them)")
     assert(AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("lookAhead").num == 6)
     assert(cfg("--preset", "world", "--world-look-ahead", "2").isLeft, "a look-ahead below three is refused")
     // 16 sort ports: eight sorts of an eighth of the table, eight tables of 10-bit counters a lane.
     val p16 = cfg("--preset", "world", "--world-sort-ports", "16").toOption.get
-    assert(p16.id.endsWith("_world16p16w5e2k32xuh8bxda6") && p16.world.get.sortGroups == 8 &&
+    assert(p16.id.endsWith("_world16p16w5e2k32xuh8bxda6sp") && p16.world.get.sortGroups == 8 &&
       p16.world.get.ramBits(4096) == 8 * ((16 + 1) * 8192L * 10 + 16 * 512L * 13), p16.id)
     // Box buckets in the preset; a hashed table is a name of its own with the same RAM bits.
     val hb = cfg("--preset", "world", "--world-box-buckets", "false").toOption.get
-    assert(pw.boxBuckets && hb.id.endsWith("_world16p8w5e2k32xuh8da6") && hb.world.get.ramBits(4096) == pw.ramBits(4096), hb.id)
+    assert(pw.boxBuckets && hb.id.endsWith("_world16p8w5e2k32xuh8da6sp") && hb.world.get.ramBits(4096) == pw.ramBits(4096), hb.id)
     assert(AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("boxBuckets").bool)
-    assert(cfg("--preset", "world", "--world-lanes", "1").toOption.get.id.endsWith("_worldw5e2k32xuh8bxda6"),
+    assert(cfg("--preset", "world", "--world-lanes", "1").toOption.get.id.endsWith("_worldw5e2k32xuh8bxda6sp"),
       "one lane: no lane count in the name, and the sort's ports follow the lanes down to one")
     // The run queue in the preset: every sphere-table RAM twice (a table each), the same copies;
     // without it a name of its own and half the sphere-table bits; it goes with world mode.

@@ -70,6 +70,7 @@ object BroadPhaseCycleReport {
     var boxBuckets = BroadPhaseParams.default.boxBuckets
     var drainBehind = BroadPhaseParams.default.drainBehind
     var lookAhead = BroadPhaseParams.default.lookAhead
+    var scanPairs = BroadPhaseParams.default.scanPairs
     args.sliding(2, 2).foreach {
       case Array("--sizes", v) => sizes = v.split(',').map(_.trim.toInt).toSeq
       case Array("--max", v)   => maxSpheres = v.toInt
@@ -89,7 +90,8 @@ object BroadPhaseCycleReport {
       case Array("--box-buckets", v) => boxBuckets = v.trim.toBoolean
       case Array("--drain-behind", v) => drainBehind = v.trim.toBoolean
       case Array("--look-ahead", v) => lookAhead = v.trim.toInt
-      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --cell-steps, --chunk, --coarse-chunks, --team, --claims, --hit-queue, --box-buckets, --drain-behind, --look-ahead, --feed, --out)")
+      case Array("--scan-pairs", v) => scanPairs = v.trim.toBoolean
+      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --cell-steps, --chunk, --coarse-chunks, --team, --claims, --hit-queue, --box-buckets, --drain-behind, --look-ahead, --scan-pairs, --feed, --out)")
     }
     require(feed >= 0 && lanes.forall(feed <= _), s"--feed (spheres fed a cycle as the table arrives, the AFU's spheres a line) must be 0..the lanes, got $feed")
     require(sizes.forall(n => n >= 1 && n <= maxSpheres), s"--sizes must be 1..--max ($maxSpheres)")
@@ -102,12 +104,12 @@ object BroadPhaseCycleReport {
       s"huge" -> huge(rng, n - 4, 4))) ++ files.map(readSpheres)
     require(worlds.forall(_._2.length <= maxSpheres), s"a world has more than --max ($maxSpheres) spheres")
     val header = "world,spheres,buckets,cells,chunks,scanned,probes,candidates,large," +
-      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team,feed,claims,hit_queue,box_buckets,box_extents,drain_behind,look_ahead," +
+      "load,classify,prefix,scatter,grid,large_pass,total,model_generate,model_total,lanes,sort_ports,word_log2,cell_steps,chunk,coarse_chunks,team,feed,claims,hit_queue,box_buckets,box_extents,drain_behind,look_ahead,scan_pairs," +
       GridCycle.names.map(n => "lane_" + n.replaceAll("([A-Z])", "_$1").toLowerCase).mkString(",")
     val rows = scala.collection.mutable.ArrayBuffer(header)
     for (l <- lanes; q <- ports if q <= l) {
       val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l, sortPorts = q, wordLog2 = wordLog2,
-        bucketsPerSphereLog2 = bpsLog2, cellSteps = cellSteps, chunk = chunk, coarseChunks = coarse, team = team, claims = claims, hitQueue = hitQueue, boxBuckets = boxBuckets, drainBehind = drainBehind, lookAhead = lookAhead))
+        bucketsPerSphereLog2 = bpsLog2, cellSteps = cellSteps, chunk = chunk, coarseChunks = coarse, team = team, claims = claims, hitQueue = hitQueue, boxBuckets = boxBuckets, drainBehind = drainBehind, lookAhead = lookAhead, scanPairs = scanPairs))
       RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres, feedWidth = feed), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
         dut.clock.setTimeout(0)
         for ((name, ws) <- worlds) {
@@ -127,7 +129,7 @@ object BroadPhaseCycleReport {
           val row = (Seq(name, ws.length, want.stats.buckets, v(s.cells), v(s.chunks), v(s.scanned), v(s.probes), v(s.candidates),
             v(s.large), v(s.cycLoad), v(s.cycClassify), v(s.cycPrefix), v(s.cycScatter), v(s.cycGrid), v(s.cycLarge), v(s.cycTotal),
             c.generate, c.count + c.prefix + c.scatter + c.generate + c.large, l, q, wordLog2, cellSteps, chunk, coarse, team, feed, claims, hitQueue, boxBuckets,
-            box.map(_.mkString("x")).getOrElse("hash"), drainBehind, lookAhead) ++ s.laneCycles.map(v)).mkString(",")
+            box.map(_.mkString("x")).getOrElse("hash"), drainBehind, lookAhead, scanPairs) ++ s.laneCycles.map(v)).mkString(",")
           println(row)
           rows += row
         }

@@ -53,11 +53,16 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
 
   for ((bp, what) <- Seq(BroadPhaseParams.default.copy(coarseChunks = true) -> "chunks of 16",
                          BroadPhaseParams.default.copy(coarseChunks = true, cellSteps = 2, chunk = 32) -> "cells of 1.5 * 2^k too, chunks of 32",
-                         BroadPhaseParams.tinyTable.copy(coarseChunks = true, wordLog2 = 3) -> "a four-bucket table, one-sphere chunks");
+                         BroadPhaseParams.tinyTable.copy(coarseChunks = true, wordLog2 = 3) -> "a four-bucket table, one-sphere chunks",
+                         BroadPhaseParams.default.copy(coarseChunks = true, cellSteps = 2, chunk = 32, scanPairs = true) ->
+                           "chunks of 32 whose members pair as the scan loads them",
+                         BroadPhaseParams.default.copy(coarseChunks = true, cellSteps = 2, chunk = 32, scanPairs = true, boxBuckets = true) ->
+                           "pairs in the scan, box buckets",
+                         BroadPhaseParams.tinyTable.copy(coarseChunks = true, wordLog2 = 3, scanPairs = true) -> "a four-bucket table, pairs in the scan");
        cfg <- Seq(ScpuConfig.fp32, ScpuConfig.bf16, ScpuConfig.fp64)) {
     it should s"find exactly today's candidates with coarse chunks ($what), every ${cfg.name} hit once, in every hard case and random cloud" in {
       val model = new BroadPhaseModel(cfg, bp)
-      val today = new BroadPhaseModel(cfg, bp.copy(coarseChunks = false))
+      val today = new BroadPhaseModel(cfg, bp.copy(coarseChunks = false, scanPairs = false))
       for ((label, w) <- worlds(s"coarse-${cfg.name}")) {
         val world = bits(cfg.linkFormat, w)
         val r = checkWorld(model, s"$label, coarse chunks", world)
@@ -85,6 +90,27 @@ class BroadPhaseModelSpec extends AnyFlatSpec {
     val dense = bits(FloatFormat.fp32, Seq.fill(40)(S(1.5, -2.25, 3.0, 0.5)))
     val (cd, td) = (coarse.run(dense).stats, today.run(dense).stats)
     assert(cd.scanned == td.scanned && cd.lookups == td.lookups && cd.cellWork == td.cellWork, s"$cd against $td")
+  }
+
+  it should "visit 8 cells fewer a coarse chunk with pairs in the scan, streaming each member once where the box fits, for the same candidates" in {
+    val rng = Seeds.rng("BroadPhaseModelSpec-scan-pairs")
+    val bp = BroadPhaseParams.default.copy(coarseChunks = true, cellSteps = 2, chunk = 32, boxBuckets = true)
+    val (paired, visited) = (new BroadPhaseModel(ScpuConfig.fp32, bp.copy(scanPairs = true)), new BroadPhaseModel(ScpuConfig.fp32, bp))
+    for ((label, w) <- Seq("uniform" -> uniform(rng, 2000), "clustered" -> clustered(rng, 2000, clusters = 8))) {
+      val world = bits(FloatFormat.fp32, w)
+      val (p, v) = (paired.run(world), visited.run(world))
+      println(s"[BroadPhaseModelSpec] $label 2000: lookups ${v.stats.lookups} -> ${p.stats.lookups}, streamed ${v.stats.scanned} -> ${p.stats.scanned}, " +
+        s"generate (16 lanes) ${visited.cycles(v, 16, 16).generate} -> ${paired.cycles(p, 16, 16).generate}")
+      assert(p.candidates.toSet == v.candidates.toSet && p.candidates.length == v.candidates.length, s"$label: other candidates")
+      assert(p.stats.coarse > 0 && p.stats.coarse == v.stats.coarse, s"$label: ${p.stats}")
+      assert(v.stats.lookups - p.stats.lookups == 8L * p.stats.coarse, s"$label: lookups ${v.stats.lookups} -> ${p.stats.lookups}")
+      // Where the padded box fits, a coarse chunk's own 8 buckets hold its members alone: the
+      // entries no longer visited are exactly the spheres in coarse chunks.
+      if (v.stats.box.exists(_.fits(Integer.numberOfTrailingZeros(v.stats.buckets) - 3))) {
+        val inCoarse = v.stats.scanned - p.stats.scanned
+        assert(inCoarse > 0 && inCoarse <= world.length, s"$label: ${v.stats.scanned} -> ${p.stats.scanned} entries streamed")
+      }
+    }
   }
 
   for ((bp, what) <- Seq(BroadPhaseParams.default.copy(coarseChunks = true, cellSteps = 2, chunk = 32) -> "coarse chunks of 32, cells of 1.5 * 2^k too",

@@ -26,7 +26,7 @@ object SphereClass {
 final case class BroadPhaseStats(
     spheres: Int, excluded: Int, large: Int, level: Int, buckets: Int,
     cells: Int,         // chunks' cells: occupied cells, or coarse cells taken as one chunk
-    lookups: Long,      // bucket reads: 14 per cell chunk (its cell and 13 half-shell neighbours), 43 per coarse chunk
+    lookups: Long,      // bucket reads: 14 per cell chunk (its cell and 13 half-shell neighbours), 43 per coarse chunk (35 with scanPairs)
     scanned: Long,      // bucket entries streamed past a chunk while visiting those cells
     gridPairs: Long,    // pairs of neighbouring small spheres (before the box filter)
     gridCandidates: Long, largeCandidates: Long, // after the box filter: what the SCPUs get
@@ -295,7 +295,13 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
           cells += 1; coarseCount += 1
           // The scan runs from its leader to the group's end.
           val scan = run.length - run.indexWhere(coarseOf(_) == base)
-          work += scan + visit(chunk, around(base, CoarseVisits))
+          // With scanPairs each member meets those loaded before it as the scan loads it, and
+          // the chunk's own 8 cells are not visited.
+          if (bp.scanPairs) for ((j, k) <- chunk.zipWithIndex; i <- chunk.take(k)) {
+            gridPairs += 1
+            if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
+          }
+          work += scan + visit(chunk, around(base, if (bp.scanPairs) CoarseOthers else CoarseVisits))
         }
       } else for (b <- lo until hi) {
         val members = (start(b) until start(b + 1)).map(entries)
@@ -393,6 +399,10 @@ object BroadPhaseModel {
     * block cell): 43 of them. */
   val CoarseVisits: Seq[(Int, Int, Int)] =
     (for (o <- Visits; b <- CoarseBlock) yield (b._1 + o._1, b._2 + o._2, b._3 + o._3)).distinct
+  /** CoarseVisits without the coarse cell's own 8 (its first 8): the cells a coarse chunk
+    * streams with scanPairs, whose scan pairs its members among themselves: 35. */
+  val CoarseOthers: Seq[(Int, Int, Int)] = CoarseVisits.drop(CoarseBlock.length)
+  require(CoarseVisits.take(CoarseBlock.length) == CoarseBlock)
   /** Whether a member i in cell `mine` takes sphere j of cell `visited`: the half-shell rule of
     * Visits, per member (j's cell its own with j > i, or in its half shell). */
   def owns(mine: SphereClass.Small, visited: SphereClass.Small, i: Int, j: Int): Boolean = {
