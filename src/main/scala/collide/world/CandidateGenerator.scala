@@ -24,8 +24,9 @@ import collide.world.model.BroadPhaseModel
   * buckets: a group whose spheres fit a chunk is scanned as one run and taken a coarse cell at
   * a time (the scan loads the first unmarked entry's coarse cell), each chunk streaming the 43
   * cells some member reaches (BroadPhaseModel.CoarseVisits) past the ChunkMatcher, whose
-  * members apply the half-shell rule by their place; any other group is walked bucket by
-  * bucket as without. With
+  * members apply the half-shell rule by their place (with `scanPairs`, the members pair among
+  * themselves as the scan loads them and only the 35 cells outside the coarse cell stream,
+  * BroadPhaseModel.CoarseOthers); any other group is walked bucket by bucket as without. With
   * one lane the pair stream is exactly BroadPhaseModel.run's candidates, the grid part in
   * the same order, the large part as a set; the lanes' streams together are that set.
   */
@@ -195,7 +196,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   private val sent = Reg(Bool())
   private val scanLeft = Reg(UInt(countW.W))
   private val needClear = Reg(Bool())
-  // --- visits: 14 lookups (43 for a coarse chunk), each becoming a stream range -------------
+  // --- visits: 14 lookups (43 for a coarse chunk, 35 with scanPairs), each a stream range ----
   private val fineVisits = BroadPhaseModel.Visits
   private val coarseVisits =
     if (!coarse) Nil else if (scanPairs) BroadPhaseModel.CoarseOthers else BroadPhaseModel.CoarseVisits
