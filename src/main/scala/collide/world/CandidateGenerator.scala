@@ -459,16 +459,18 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     walkDone -> GridCycle.done))
 }
 
-/** What a lane's grid cycle went to (BroadPhaseStatus.lanes): an entry scanned or streamed
+/** What a lane's grid cycle went to (BroadPhaseStatus.laneCycles): an entry scanned or streamed
   * past its chunk; an entry held because the matcher's hit queue is full, or because a new
   * chunk's first entry waits for hits still owed; no entry, the chunk's first scan entry not
   * out yet (its reads' latency) or, the chunk known, the visits' lookups and reads behind; the
   * walk to the next bucket or claim; nothing left (other lanes still walk). */
 object GridCycle {
-  val streamed = 0.U; val hitsFull = 1.U; val clearWait = 2.U; val scanStart = 3.U
-  val lookups = 4.U; val walk = 5.U; val done = 6.U
+  /** The classes in status order; each code is its place here. */
   val names: Seq[String] = Seq("streamed", "hitsFull", "clearWait", "scanStart", "lookups", "walk", "done")
-  val width = 3
+  val width: Int = log2Ceil(names.length)
+  private def code(name: String): UInt = { require(names.contains(name), name); names.indexOf(name).U(width.W) }
+  val streamed = code("streamed"); val hitsFull = code("hitsFull"); val clearWait = code("clearWait")
+  val scanStart = code("scanStart"); val lookups = code("lookups"); val walk = code("walk"); val done = code("done")
 }
 
 object CandidateGenerator {

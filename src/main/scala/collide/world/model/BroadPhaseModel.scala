@@ -262,6 +262,11 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
     var lookups, scanned, gridPairs, grid = 0L
     val work = IndexedSeq.newBuilder[Long]
     var cells, coarseCount = 0
+    // Neighbouring small spheres i and j: a candidate if the box filter passes.
+    def meet(i: Int, j: Int): Unit = {
+      gridPairs += 1
+      if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
+    }
     // The visits of one chunk: each visited cell's bucket streams past it; a member takes an
     // entry of the visited cell if it owns the pair. Returns the cycles of the stream.
     def visit(chunk: IndexedSeq[Int], visited: Seq[SphereClass.Small]): Long = {
@@ -270,10 +275,8 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
         val ob = bucketOf(nc)
         val len = start(ob + 1) - start(ob)
         lookups += 1; scanned += len; w += math.max(1, len)
-        for (e <- start(ob) until start(ob + 1); j = entries(e) if cellOf(j) == nc; i <- chunk if owns(cellOf(i), nc, i, j)) {
-          gridPairs += 1
-          if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
-        }
+        for (e <- start(ob) until start(ob + 1); j = entries(e) if cellOf(j) == nc; i <- chunk if owns(cellOf(i), nc, i, j))
+          meet(i, j)
       }
       w
     }
@@ -297,10 +300,7 @@ class BroadPhaseModel(val cfg: ScpuConfig, val bp: BroadPhaseParams = BroadPhase
           val scan = run.length - run.indexWhere(coarseOf(_) == base)
           // With scanPairs each member meets those loaded before it as the scan loads it, and
           // the chunk's own 8 cells are not visited.
-          if (bp.scanPairs) for ((j, k) <- chunk.zipWithIndex; i <- chunk.take(k)) {
-            gridPairs += 1
-            if (boxPass(box(i), box(j), slack)) { out += ((math.min(i, j), math.max(i, j))); grid += 1 }
-          }
+          if (bp.scanPairs) for ((j, k) <- chunk.zipWithIndex; i <- chunk.take(k)) meet(i, j)
           work += scan + visit(chunk, around(base, if (bp.scanPairs) CoarseOthers else CoarseVisits))
         }
       } else for (b <- lo until hi) {
