@@ -154,6 +154,21 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
   matcher.io.load.bits := DontCare
   matcher.io.in.valid := false.B
   matcher.io.in.bits := DontCare
+  /** Streams the stream's entry into the matcher, the one way all three users do it: a visit's
+    * entry goes past the chunk as a probe of the visit's cell (`anyCellOwn` None); the large
+    * pass's entries and a coarse chunk's scanned ones (pairs in the scan) meet every member,
+    * in any cell, with `own` the matcher's rule for two large spheres (`anyCellOwn`). */
+  private def probe(valid: Bool, anyCellOwn: Option[Bool]): Unit = {
+    val it = stream.io.out.bits
+    matcher.io.in.valid := valid
+    matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
+    anyCellOwn match {
+      case Some(own) => matcher.io.in.bits.anyCell := true.B; matcher.io.in.bits.own := own
+      case None =>
+        matcher.io.in.bits.anyCell := false.B
+        matcher.io.in.bits.cell := it.tag.cell; matcher.io.in.bits.off := it.tag.off
+    }
+  }
   io.mark.valid := false.B
   io.mark.bits.group := stream.io.out.bits.group
   io.mark.bits.addr := stream.io.out.bits.pos(itemW - 1, 0)
@@ -382,11 +397,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       stream.io.req.bits.direct := true.B; stream.io.req.bits.tag := DontCare
       when(stream.io.req.fire) { sent := true.B }
       val it = stream.io.out.bits
-      matcher.io.in.valid := stream.io.out.valid && !it.rec.excluded
-      matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
-      matcher.io.in.bits.cell := DontCare; matcher.io.in.bits.off := DontCare
-      matcher.io.in.bits.anyCell := true.B
-      matcher.io.in.bits.own := it.rec.large // two large spheres meet once: from the lower
+      probe(stream.io.out.valid && !it.rec.excluded, anyCellOwn = Some(it.rec.large)) // two large spheres meet once: from the lower
       stream.io.out.ready := matcher.io.in.ready || it.rec.excluded
       when(stream.io.out.fire && !it.rec.excluded) { probes := probes + 1.U }
       when(sent && stream.io.idle && matcher.io.idle) {
@@ -411,12 +422,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
       // neighbours. Not at the clear, whose cycle still holds the last chunk's members (the
       // first entry taken has none before it anyway).
       val pairIt = scanPairs.B && coarseCh && take && !needClear
-      if (scanPairs) {
-        matcher.io.in.valid := stream.io.out.valid && pairIt
-        matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
-        matcher.io.in.bits.cell := DontCare; matcher.io.in.bits.off := DontCare
-        matcher.io.in.bits.anyCell := true.B; matcher.io.in.bits.own := false.B
-      }
+      if (scanPairs) probe(stream.io.out.valid && pairIt, anyCellOwn = Some(false.B))
       // A chunk's first scan entry waits until the last chunk's hits have all left (they
       // read its members; with drainBehind, only the hits of the chunk before it), then
       // clears the matcher, loading in the same cycle.
@@ -437,10 +443,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
         }
       }
     }.otherwise {
-      matcher.io.in.valid := stream.io.out.valid
-      matcher.io.in.bits.key := WorldKey(itemW, it.item, it.rec)
-      matcher.io.in.bits.cell := it.tag.cell; matcher.io.in.bits.off := it.tag.off; matcher.io.in.bits.own := DontCare
-      matcher.io.in.bits.anyCell := false.B
+      probe(stream.io.out.valid, anyCellOwn = None)
       stream.io.out.ready := matcher.io.in.ready
       when(stream.io.out.fire) { probes := probes + 1.U }
     }

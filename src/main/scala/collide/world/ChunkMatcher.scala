@@ -122,6 +122,7 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
   // Hits are owed in order, the chunk before's first: none of it is left once neither the
   // sphere draining nor the queue's head is of the other bank.
   private val pendOld = pending.orR && pendBank =/= cur
+  private val oldQueued = Wire(Bool()) // the queue's head is a hit of the chunk before (none without a queue)
   private val drained = Mux(io.out.fire, pending & ~UIntToOH(slot, chunk), pending)
   // The drain takes its next sphere when it has nothing left to owe after this cycle.
   private val free = !pending.orR || (lastHit && io.out.ready)
@@ -130,7 +131,7 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
     pending := Mux(io.in.fire, hitsNow, drained)
     when(io.in.fire) { entry := e.index; pendBank := cur }
     io.idle := !pending.orR
-    io.canClear := (if (drainBehind) !pendOld else io.idle)
+    oldQueued := false.B
   } else {
     // Only spheres with a hit are queued; the comparators' result never reaches in.ready
     // (a long path), so a full queue stops the stream even for a sphere without one.
@@ -143,6 +144,7 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
     pending := Mux(q.io.deq.fire, q.io.deq.bits.mask, drained)
     when(q.io.deq.fire) { entry := q.io.deq.bits.index; pendBank := q.io.deq.bits.bank }
     io.idle := !pending.orR && !q.io.deq.valid
-    io.canClear := (if (drainBehind) !pendOld && !(q.io.deq.valid && q.io.deq.bits.bank =/= cur) else io.idle)
+    oldQueued := q.io.deq.valid && q.io.deq.bits.bank =/= cur
   }
+  io.canClear := (if (drainBehind) !pendOld && !oldQueued else io.idle)
 }
