@@ -170,6 +170,24 @@ TEST(AfuWorld, QueuesItsRunsInOneCallWithTheSameContactsSoonerThanRunByRun) {
     EXPECT_GE(q.run.stats.modelledNs, q.run.stats.linkBoundNs) << preset;
     // Cycles waiting for a table: the first run's, and little more.
     EXPECT_LT(q.run.status.cyclesLoading * 2, r.run.status.cyclesLoading) << preset;
+    // Each run's own status (the summary's per_run): they add up to the call's, every sphere
+    // is in some run, and the same runs give the same counts queued or not.
+    ASSERT_EQ(queued.lastRuns().size(), queued.lastSlabs());
+    std::size_t spheres = 0;
+    std::uint64_t pairs = 0, broad = 0;
+    for (std::size_t k = 0; k < queued.lastRuns().size(); ++k) {
+      const auto& run = queued.lastRuns()[k];
+      spheres += run.spheres;
+      pairs += run.status.pairsProcessed;
+      broad += run.status.cyclesBroad;
+      EXPECT_GT(run.status.cyclesBroad, 0u) << preset << " run " << k;
+      EXPECT_LE(run.spheres, 1000u) << preset << " run " << k;
+      EXPECT_EQ(run.spheres, single.lastRuns()[k].spheres) << preset << " run " << k;
+      EXPECT_EQ(run.status.pairsProcessed, single.lastRuns()[k].status.pairsProcessed) << preset << " run " << k;
+    }
+    EXPECT_GE(spheres, t.size()) << preset;
+    EXPECT_EQ(pairs, q.run.status.pairsProcessed) << preset;
+    EXPECT_EQ(broad, q.run.status.cyclesBroad) << preset;
   }
 }
 
@@ -189,6 +207,9 @@ TEST(AfuWorld, RunsAQueuedRunAgainWhenItsBufferIsTooSmall) {
   expectSame(got, want, "queued runs with buffers too small");
   EXPECT_GT(afu.lastCalls(), 1u);
   EXPECT_EQ(afu.lastRun().attempts, afu.lastSlabs() + afu.lastCalls() - 1);
+  std::size_t attempts = 0;
+  for (const auto& run : afu.lastRuns()) attempts += run.attempts;
+  EXPECT_EQ(attempts, afu.lastRun().attempts);
 }
 
 TEST(AfuWorld, CutsAWorldTooThickForSlabsIntoBoxesAndFindsEveryContactOnce) {

@@ -125,6 +125,22 @@ int runSpheresAfu(const SpheresOptions& o) {
                 {"cell_level", level},
                 {"cell_edge", driver::cellEdge(level)},
                 {"large", s.worldLarge}};
+    // Each run's own counts, in the order the AFU ran them (smallest first).
+    nlohmann::json perRun = nlohmann::json::array();
+    for (const auto& run : afu.lastRuns())
+      perRun.push_back({{"spheres", run.spheres},
+                        {"attempts", run.attempts},
+                        {"candidates", run.status.pairsProcessed},
+                        {"contacts", run.status.contactsFound},
+                        {"cycles_total", run.status.cyclesTotal},
+                        {"cycles_load", run.status.cyclesLoading},
+                        {"cycles_broad", run.status.cyclesBroad},
+                        {"cycles_compute", run.status.cyclesComputing},
+                        {"cycles_wait_read", run.status.cyclesWaitRead},
+                        {"cycles_wait_write", run.status.cyclesWaitWrite},
+                        {"cell_edge", driver::cellEdge(static_cast<std::int32_t>(run.status.worldCellLevel))},
+                        {"large", run.status.worldLarge}});
+    j["afu"]["per_run"] = perRun;
     summary->stream() << j.dump(2) << "\n";
     summary->commit();
   }

@@ -82,9 +82,11 @@ void AfuWorld::collide(const SphereTable& s, WorldContacts& out) {
   ContactSet found;
   found.format = fmt;
   std::vector<std::uint32_t> range;
+  runs_.clear();
   for (std::size_t k = 0; k < slabs.size(); ++k) {
     const Slab& slab = slabs[k];
     const driver::WorldRunResult& r = batch.runs[k];
+    runs_.push_back({slab.spheres.size(), r.attempts, r.run.status});
     driver::accumulate(last_.run.status, r.run.status);
     last_.attempts += r.attempts;
     // Records name table rows; a run's table is ascending in the caller's indices, so i < j

@@ -39,6 +39,13 @@ class AfuWorld final : public WorldEngine {
   const driver::WorldRunResult& lastRun() const { return last_; }
   // AFU runs (slabs) the last call took.
   std::size_t lastSlabs() const { return slabs_; }
+  // One run of the last call: the spheres its table held (ghosts included), the attempts it
+  // took and its own status line (the last attempt's), so a caller sees each run's cycles.
+  struct RunSummary {
+    std::size_t spheres = 0, attempts = 0;
+    driver::StatusLine status;
+  };
+  const std::vector<RunSummary>& lastRuns() const { return runs_; }
   // Driver calls the last call took: 1 with a run queue (plus one a run whose contact buffer
   // was too small), else one a slab (and a second for such a run).
   std::size_t lastCalls() const { return calls_; }
@@ -55,6 +62,7 @@ class AfuWorld final : public WorldEngine {
   std::size_t slabs_ = 0, maxRun_ = 0, calls_ = 0;
   std::vector<std::uint32_t> members_;
   std::vector<SphereTable> tables_;
+  std::vector<RunSummary> runs_;
 };
 
 }  // namespace collide::world

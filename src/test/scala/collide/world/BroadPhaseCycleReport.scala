@@ -31,7 +31,7 @@ import collide.world.model._
   * along x, y and z, the RTL's checked against the model's, or "hash"; CSVs from before the
   * padded box map have box_bits, its bits per axis, instead).
   *
-  * --spheres adds a world from a `collide spheres` input file (header x,y,z,r; decimal or hex
+  * --spheres adds a world from a `collide spheres` input file (one a flag, repeat it; header x,y,z,r; decimal or hex
   * floats, binary32 values), e.g. bench/world/world.py --dump-clouds DIR: the very spheres
   * the CPU backends were timed on. Its row is named after the file.
   *
@@ -40,7 +40,9 @@ import collide.world.model._
   */
 object BroadPhaseCycleReport {
   def readSpheres(file: String): (String, Seq[S]) = {
-    val lines = Files.readAllLines(Paths.get(file)).asScala.toSeq
+    val path = Paths.get(file)
+    require(Files.isRegularFile(path), s"--spheres $file: no such file")
+    val lines = Files.readAllLines(path).asScala.toSeq
     require(lines.headOption.map(_.trim).contains("x,y,z,r"), s"$file: the header must be x,y,z,r")
     val spheres = lines.tail.zipWithIndex.filter(_._1.trim.nonEmpty).map { case (l, i) =>
       val f = l.split(',').map(_.trim)
@@ -50,7 +52,7 @@ object BroadPhaseCycleReport {
       }
       S(num(f(0)), num(f(1)), num(f(2)), num(f(3)))
     }
-    (Paths.get(file).getFileName.toString.stripSuffix(".csv"), spheres)
+    (path.getFileName.toString.stripSuffix(".csv"), spheres)
   }
 
   def main(args: Array[String]): Unit = {
