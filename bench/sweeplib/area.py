@@ -12,27 +12,50 @@ from paths import BUILD, ROOT, write_atomic
 CACHE = BUILD / "area"
 
 
-def subtree(text: str, top: str):
-    """The preamble (macros) and the modules `top` instantiates, transitively: what Yosys needs."""
+def subtree(text: str, top: str, black=()):
+    """The preamble (macros) and the modules `top` instantiates, transitively: what Yosys needs.
+    Modules named in `black` are black boxes: their ports only, nothing below them, so Yosys
+    counts none of their cells (a block's own logic, or a block with its RAMs left out)."""
     first = re.search(r"^module ", text, re.M)
     pre = text[:first.start()] if first else ""
     blocks = {m.group(1): m.group(0) for m in re.finditer(r"^module (\w+)\(.*?^endmodule\n?", text, re.M | re.S)}
     if top not in blocks:
         raise RuntimeError(f"no module {top}")
+    if top in black:
+        raise RuntimeError(f"{top} is the top: it cannot be a black box")
     seen, todo = [], [top]
     while todo:
         name = todo.pop()
         if name in seen:
             continue
         seen.append(name)
-        todo += [n for n in re.findall(r"^\s+(\w+)\s+\w+\s*\(", blocks[name], re.M) if n in blocks]
-    return pre, [blocks[n] for n in sorted(seen)]
+        if name not in black:
+            todo += [n for n in re.findall(r"^\s+(\w+)\s+\w+\s*\(", blocks[name], re.M) if n in blocks]
+    return pre, [black_box(blocks[n]) if n in black else blocks[n] for n in sorted(seen)]
 
 
-def _cache(text: str, top: str, config_id: str):
-    """(preamble, modules, cache file): the cache is keyed by the block's Verilog with the
-    configuration's id (which every module name carries) taken out."""
-    pre, mods = subtree(text, top)
+def black_box(block: str) -> str:
+    """A module's header (its ports) as a Yosys black box."""
+    return "(* blackbox *)\n" + block[:block.index(");") + 2] + "\nendmodule\n"
+
+
+def children(text: str, top: str) -> dict:
+    """The modules `top` instantiates directly, with how many times."""
+    m = re.search(rf"^module {re.escape(top)}\(.*?^endmodule", text, re.M | re.S)
+    if not m:
+        raise RuntimeError(f"no module {top}")
+    names = set(re.findall(r"^module (\w+)\(", text, re.M))
+    out = {}
+    for n in re.findall(r"^\s+(\w+)\s+\w+\s*\(", m.group(0), re.M):
+        if n in names:
+            out[n] = out.get(n, 0) + 1
+    return out
+
+
+def _cache(text: str, top: str, config_id: str, black=()):
+    """(preamble, modules, cache file): the cache is keyed by the block's Verilog (black boxes
+    as such) with the configuration's id (which every module name carries) taken out."""
+    pre, mods = subtree(text, top, black)
     generic_top = top.replace(config_id, "ID")
     key = hashlib.sha1(("".join(mods).replace(config_id, "ID") + generic_top).encode()).hexdigest()[:16]
     return pre, mods, CACHE / f"{generic_top}-{key}.json"
@@ -42,16 +65,18 @@ def is_cached(sv: Path, top: str, config_id: str) -> bool:
     return _cache(sv.read_text(), top, config_id)[2].exists()
 
 
-def synth(sv: Path, top: str, log_dir: Path, config_id: str) -> dict:
-    """Area of `top` and what it instantiates. Cached (see _cache), so an SCPU shared by several
-    configurations (same spec, other SCPU counts) is synthesized once."""
-    pre, mods, cached = _cache(sv.read_text(), top, config_id)
+def synth(sv: Path, top: str, log_dir: Path, config_id: str, black=()) -> dict:
+    """Area of `top` and what it instantiates, but for the modules in `black` (black boxes).
+    Cached (see _cache), so an SCPU shared by several configurations (same spec, other SCPU
+    counts) is synthesized once."""
+    pre, mods, cached = _cache(sv.read_text(), top, config_id, black)
     if cached.exists():
         return json.loads(cached.read_text())
     log_dir.mkdir(parents=True, exist_ok=True)
-    part = log_dir / f"{top}.sv"
+    stem = top + (".black" if black else "")
+    part = log_dir / f"{stem}.sv"
     part.write_text(pre + "".join(mods))
-    log = log_dir / f"yosys-{top}.log"
+    log = log_dir / f"yosys-{stem}.log"
     r = subprocess.run(["bash", str(ROOT / "bench" / "area" / "yosys_area.sh"), str(part), top, str(log)],
                        capture_output=True, text=True)
     if r.returncode != 0:

@@ -229,6 +229,16 @@ class Area(unittest.TestCase):
         with self.assertRaisesRegex(RuntimeError, "no module Nope"):
             area.subtree(self.SV, "Nope")
 
+    def test_a_black_box_keeps_its_ports_and_nothing_below_it(self):
+        import area
+        _, mods = area.subtree(self.SV, "Top_a", black={"Mid_a"})
+        self.assertEqual(mods[0], "(* blackbox *)\nmodule Mid_a(\n  input x\n);\nendmodule\n")
+        self.assertEqual([m.split("(")[0] for m in mods[1:]], ["module Other_a", "module Top_a"])
+        with self.assertRaisesRegex(RuntimeError, "Top_a is the top"):
+            area.subtree(self.SV, "Top_a", black={"Top_a"})
+        self.assertEqual(area.children(self.SV, "Top_a"), {"Mid_a": 1, "Other_a": 1})
+        self.assertEqual(area.children(self.SV, "Leaf_a"), {})
+
     def test_the_afu_area_is_the_puc_plus_n_scpus(self):
         import area
         puc = {"luts": 100, "arith": 10, "dsp": 0, "ff": 50, "m10k": 40}

@@ -18,6 +18,7 @@ import afu_world  # noqa: E402
 import lanes  # noqa: E402
 import lanes_area  # noqa: E402
 import fit_preset  # noqa: E402
+import broad_phase_area  # noqa: E402
 
 
 class WorldClouds(unittest.TestCase):
@@ -200,6 +201,24 @@ class FitPreset(unittest.TestCase):
         head = "world,spheres,candidates,total,lanes\n"
         self.assertIn("line 2: spheres is 'x'", self.run_fit(head + "u,x,3,9,16\n"))
         self.assertIn("rows of 2 configurations", self.run_fit(head + "u,1,3,9,16\nu,2,3,9,8\n"))
+
+
+class BroadPhaseArea(unittest.TestCase):
+    SV = ("module mem_x(\n  input a\n);\n  reg [3:0] Memory[0:7];\nendmodule\n"
+          "module Gen_x(\n  input a\n);\n  mem_x m (\n    .a(a)\n  );\nendmodule\n"
+          "module Sort_x(\n  input a\n);\nendmodule\n"
+          "module BroadPhase_x(\n  input a\n);\n  Gen_x g0 (\n    .a(a)\n  );\n  Gen_x g1 (\n    .a(a)\n  );\n"
+          "  Sort_x s (\n    .a(a)\n  );\n  mem_x d (\n    .a(a)\n  );\nendmodule\n")
+
+    def test_each_block_is_counted_with_its_rams_left_out(self):
+        self.assertEqual(broad_phase_area.memories(self.SV), {"mem_x"})
+        rows = broad_phase_area.blocks(self.SV, "BroadPhase_x")
+        # Its own logic with every child a black box; each logic child once with its count; the
+        # RAM child not at all.
+        self.assertEqual(rows[0], ("BroadPhase_x", 1, {"Gen_x", "Sort_x", "mem_x"}))
+        self.assertEqual([(m, n) for m, n, _ in rows[1:]], [("Gen_x", 2), ("Sort_x", 1)])
+        self.assertEqual(rows[1][2], {"mem_x"})
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -1,0 +1,91 @@
+"""The whole broad phase's logic, block by block: Yosys (bench/area/yosys_area.sh, the Cyclone V
+proxy of every area here) on each module the BroadPhase instantiates, with its RAMs as black
+boxes, and on the BroadPhase's own logic with all of them as black boxes; the total is each
+block times its count. Synthesized whole, 16 lanes did not finish in 44 minutes; piece by piece
+each block takes minutes and is cached (bench/sweeplib/area.py).
+
+    tools/pyenv bench/world/broad_phase_area.py [generated/world] [--out bench/results/world-lanes/broad-phase-area.csv]
+
+RAMs (firtool's memory modules, a `Memory` array each) are left out of the logic: the proxy
+has no true dual-port block RAM and would build the sort's two-port tables from flip-flops.
+Their bits are the manifest's `afu.ram.broadPhaseBits`. No optimization crosses a block's
+boundary here, so a flattened synthesis may come out smaller (a lane's unused status logic, for
+one). Writes one row per block and a total row; prints the table.
+"""
+import argparse
+import csv
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
+import area  # noqa: E402
+
+FIELDS = ("luts", "arith", "dsp", "ff")
+
+
+def memories(text: str) -> set:
+    """firtool's memory modules: a `reg ... Memory[...]` array and no instance."""
+    return {m.group(1) for m in re.finditer(r"^module (\w+)\((.*?)^endmodule", text, re.M | re.S)
+            if re.search(r"^\s+reg\s.*\bMemory\[", m.group(2), re.M)}
+
+
+def blocks(text: str, bp: str):
+    """[(module, count, black boxes)]: the BroadPhase's own logic first (every child a black
+    box), then each child with the RAMs below it as black boxes."""
+    mems = memories(text)
+    kids = area.children(text, bp)
+    rows = [(bp, 1, set(kids))]
+    for k, n in sorted(kids.items()):
+        if k not in mems:
+            rows.append((k, n, mems))
+    return rows
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("folder", nargs="?", default=str(ROOT / "generated/world"))
+    ap.add_argument("--out", default=str(ROOT / "bench/results/world-lanes/broad-phase-area.csv"))
+    a = ap.parse_args(argv)
+    folder = Path(a.folder)
+    man_path = folder / "manifest.json"
+    if not man_path.exists():
+        raise SystemExit(f"{folder}: no manifest.json (generate it first: tools/sbt \"run --preset world\")")
+    man = json.loads(man_path.read_text())
+    if not man["afu"].get("broadPhase"):
+        raise SystemExit(f"{folder}: not a world-mode AFU (its manifest has no afu.broadPhase)")
+    svs = sorted(folder.glob("Afu_*.sv"))
+    if len(svs) != 1:
+        raise SystemExit(f"{folder}: expected one Afu_*.sv, found {len(svs)}")
+    text = svs[0].read_text()
+    bps = re.findall(r"^module (BroadPhase_\w+)\(", text, re.M)
+    if len(bps) != 1:
+        raise SystemExit(f"{svs[0]}: expected one BroadPhase module, found {len(bps)}")
+    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
+                            capture_output=True, text=True).stdout.strip()
+    rows, total = [], dict.fromkeys(FIELDS, 0)
+    for mod, n, black in blocks(text, bps[0]):
+        print(f"synthesizing {mod} ...", flush=True)
+        r = area.synth(svs[0], mod, ROOT / "build" / "area-logs", man["id"], frozenset(black))
+        own = mod == bps[0]
+        rows.append({"module": mod, "count": n, **{f: r[f] for f in FIELDS},
+                     "black_boxes": "every block below" if own else "RAMs", "commit": commit})
+        for f in FIELDS:
+            total[f] += n * r[f]
+    rows.append({"module": "total", "count": "", **total, "black_boxes": "", "commit": commit})
+    with open(a.out, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    print(f"| block | count | LUT cells | arithmetic cells | DSP blocks | flip-flops |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for r in rows:
+        print(f"| {r['module']} | {r['count']} | " + " | ".join(f"{r[f]:,}" for f in FIELDS) + " |")
+    print(f"RAM (not in the logic above): {man['afu']['ram']['broadPhaseBits']:,} bits; wrote {a.out}")
+
+
+if __name__ == "__main__":
+    main()
