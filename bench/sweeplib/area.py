@@ -12,13 +12,23 @@ from paths import BUILD, ROOT, write_atomic
 CACHE = BUILD / "area"
 
 
+def modules(text: str) -> dict:
+    """Every module of a Verilog file: name -> its text, `module` to `endmodule`."""
+    return {m.group(1): m.group(0) for m in re.finditer(r"^module (\w+)\(.*?^endmodule\n?", text, re.M | re.S)}
+
+
+def instances(block: str, names) -> list:
+    """The module types a module's text instantiates (once per instance), among `names`."""
+    return [n for n in re.findall(r"^\s+(\w+)\s+\w+\s*\(", block, re.M) if n in names]
+
+
 def subtree(text: str, top: str, black=()):
     """The preamble (macros) and the modules `top` instantiates, transitively: what Yosys needs.
     Modules named in `black` are black boxes: their ports only, nothing below them, so Yosys
     counts none of their cells (a block's own logic, or a block with its RAMs left out)."""
     first = re.search(r"^module ", text, re.M)
     pre = text[:first.start()] if first else ""
-    blocks = {m.group(1): m.group(0) for m in re.finditer(r"^module (\w+)\(.*?^endmodule\n?", text, re.M | re.S)}
+    blocks = modules(text)
     if top not in blocks:
         raise RuntimeError(f"no module {top}")
     if top in black:
@@ -30,7 +40,7 @@ def subtree(text: str, top: str, black=()):
             continue
         seen.append(name)
         if name not in black:
-            todo += [n for n in re.findall(r"^\s+(\w+)\s+\w+\s*\(", blocks[name], re.M) if n in blocks]
+            todo += instances(blocks[name], blocks)
     return pre, [black_box(blocks[n]) if n in black else blocks[n] for n in sorted(seen)]
 
 
@@ -41,14 +51,12 @@ def black_box(block: str) -> str:
 
 def children(text: str, top: str) -> dict:
     """The modules `top` instantiates directly, with how many times."""
-    m = re.search(rf"^module {re.escape(top)}\(.*?^endmodule", text, re.M | re.S)
-    if not m:
+    blocks = modules(text)
+    if top not in blocks:
         raise RuntimeError(f"no module {top}")
-    names = set(re.findall(r"^module (\w+)\(", text, re.M))
     out = {}
-    for n in re.findall(r"^\s+(\w+)\s+\w+\s*\(", m.group(0), re.M):
-        if n in names:
-            out[n] = out.get(n, 0) + 1
+    for n in instances(blocks[top], blocks):
+        out[n] = out.get(n, 0) + 1
     return out
 
 

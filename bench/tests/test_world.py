@@ -174,6 +174,12 @@ class LanesArea(unittest.TestCase):
                 lanes_area.broad_phase(f)
             self.assertIn("not a world-mode AFU", str(e.exception))
 
+    def test_a_folder_without_a_manifest_is_refused_by_name(self):
+        with tempfile.TemporaryDirectory() as d:
+            with self.assertRaises(SystemExit) as e:
+                lanes_area.broad_phase(Path(d))
+            self.assertIn(f"{d}: no manifest.json", str(e.exception))
+
 
 class FitPreset(unittest.TestCase):
     """bench/world/fit_preset.py: the committed preset rows fit; a bad CSV is refused by name."""

@@ -14,7 +14,6 @@ one). Writes one row per block and a total row; prints the table.
 """
 import argparse
 import csv
-import json
 import re
 import subprocess
 import sys
@@ -23,14 +22,16 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
 import area  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from lanes_area import broad_phase  # noqa: E402  (a generated world-mode folder's Verilog and BroadPhase)
 
+# area.FIELDS without M10K: the RAMs are black boxes here, their bits the manifest's.
 FIELDS = ("luts", "arith", "dsp", "ff")
 
 
 def memories(text: str) -> set:
-    """firtool's memory modules: a `reg ... Memory[...]` array and no instance."""
-    return {m.group(1) for m in re.finditer(r"^module (\w+)\((.*?)^endmodule", text, re.M | re.S)
-            if re.search(r"^\s+reg\s.*\bMemory\[", m.group(2), re.M)}
+    """firtool's memory modules: a `reg ... Memory[...]` array."""
+    return {n for n, block in area.modules(text).items() if re.search(r"^\s+reg\s.*\bMemory\[", block, re.M)}
 
 
 def blocks(text: str, bp: str):
@@ -50,27 +51,14 @@ def main(argv=None):
     ap.add_argument("folder", nargs="?", default=str(ROOT / "generated/world"))
     ap.add_argument("--out", default=str(ROOT / "bench/results/world-lanes/broad-phase-area.csv"))
     a = ap.parse_args(argv)
-    folder = Path(a.folder)
-    man_path = folder / "manifest.json"
-    if not man_path.exists():
-        raise SystemExit(f"{folder}: no manifest.json (generate it first: tools/sbt \"run --preset world\")")
-    man = json.loads(man_path.read_text())
-    if not man["afu"].get("broadPhase"):
-        raise SystemExit(f"{folder}: not a world-mode AFU (its manifest has no afu.broadPhase)")
-    svs = sorted(folder.glob("Afu_*.sv"))
-    if len(svs) != 1:
-        raise SystemExit(f"{folder}: expected one Afu_*.sv, found {len(svs)}")
-    text = svs[0].read_text()
-    bps = re.findall(r"^module (BroadPhase_\w+)\(", text, re.M)
-    if len(bps) != 1:
-        raise SystemExit(f"{svs[0]}: expected one BroadPhase module, found {len(bps)}")
-    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
-                            capture_output=True, text=True).stdout.strip()
+    _, config_id, sv, bp, ram_bits, _, _ = broad_phase(Path(a.folder))  # refuses what is not a world-mode AFU
+    text = sv.read_text()
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
     rows, total = [], dict.fromkeys(FIELDS, 0)
-    for mod, n, black in blocks(text, bps[0]):
+    for mod, n, black in blocks(text, bp):
         print(f"synthesizing {mod} ...", flush=True)
-        r = area.synth(svs[0], mod, ROOT / "build" / "area-logs", man["id"], frozenset(black))
-        own = mod == bps[0]
+        r = area.synth(sv, mod, area.BUILD / "logs" / "world-lanes", config_id, frozenset(black))
+        own = mod == bp
         rows.append({"module": mod, "count": n, **{f: r[f] for f in FIELDS},
                      "black_boxes": "every block below" if own else "RAMs", "commit": commit})
         for f in FIELDS:
@@ -84,7 +72,7 @@ def main(argv=None):
     print("|---|---:|---:|---:|---:|---:|")
     for r in rows:
         print(f"| {r['module']} | {r['count']} | " + " | ".join(f"{r[f]:,}" for f in FIELDS) + " |")
-    print(f"RAM (not in the logic above): {man['afu']['ram']['broadPhaseBits']:,} bits; wrote {a.out}")
+    print(f"RAM (not in the logic above): {int(ram_bits):,} bits; wrote {a.out}")
 
 
 if __name__ == "__main__":

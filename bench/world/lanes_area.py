@@ -30,6 +30,8 @@ from lanes import read_area  # noqa: E402  (the area CSV, as the lanes report re
 def broad_phase(folder: Path):
     """(lanes, config id, Verilog file, BroadPhase module name, RAM bits, sort ports, counters a
     word) of a generated world-mode folder."""
+    if not (folder / "manifest.json").exists():
+        raise SystemExit(f"{folder}: no manifest.json (generate it first: tools/sbt \"run --preset world\")")
     man = json.loads((folder / "manifest.json").read_text())
     bp = man["afu"].get("broadPhase")
     if not bp:

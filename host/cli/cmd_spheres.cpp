@@ -65,6 +65,16 @@ void readSpheres(const SpheresOptions& o, LinkFormat format, SphereTable& sphere
   }
 }
 
+// A world-mode status line's cycles and grid, as the summary's `afu` object and each of its
+// runs give them.
+nlohmann::json statusJson(const driver::StatusLine& s) {
+  const auto level = static_cast<std::int32_t>(s.worldCellLevel);
+  return {{"cycles_total", s.cyclesTotal},   {"cycles_load", s.cyclesLoading},
+          {"cycles_broad", s.cyclesBroad},   {"cycles_compute", s.cyclesComputing},
+          {"cell_level", level},             {"cell_edge", driver::cellEdge(level)},
+          {"large", s.worldLarge}};
+}
+
 // World mode on the AFU: one run a slab (all in one call through a run queue; its cycles do not
 // vary), timed by the link model.
 int runSpheresAfu(const SpheresOptions& o) {
@@ -117,29 +127,20 @@ int runSpheresAfu(const SpheresOptions& o) {
                 {"calls", afu.lastCalls()},
                 {"run_queue", afu.driver().options().runQueue},
                 {"read_lines", r.run.stats.readLines},
-                {"write_lines", r.run.stats.writeLines},
-                {"cycles_total", s.cyclesTotal},
-                {"cycles_load", s.cyclesLoading},
-                {"cycles_broad", s.cyclesBroad},
-                {"cycles_compute", s.cyclesComputing},
-                {"cell_level", level},
-                {"cell_edge", driver::cellEdge(level)},
-                {"large", s.worldLarge}};
+                {"write_lines", r.run.stats.writeLines}};
+    j["afu"].update(statusJson(s));
     // Each run's own counts, in the order the AFU ran them (smallest first).
     nlohmann::json perRun = nlohmann::json::array();
-    for (const auto& run : afu.lastRuns())
-      perRun.push_back({{"spheres", run.spheres},
-                        {"attempts", run.attempts},
-                        {"candidates", run.status.pairsProcessed},
-                        {"contacts", run.status.contactsFound},
-                        {"cycles_total", run.status.cyclesTotal},
-                        {"cycles_load", run.status.cyclesLoading},
-                        {"cycles_broad", run.status.cyclesBroad},
-                        {"cycles_compute", run.status.cyclesComputing},
-                        {"cycles_wait_read", run.status.cyclesWaitRead},
-                        {"cycles_wait_write", run.status.cyclesWaitWrite},
-                        {"cell_edge", driver::cellEdge(static_cast<std::int32_t>(run.status.worldCellLevel))},
-                        {"large", run.status.worldLarge}});
+    for (const auto& run : afu.lastRuns()) {
+      nlohmann::json one = {{"spheres", run.spheres},
+                            {"attempts", run.attempts},
+                            {"candidates", run.status.pairsProcessed},
+                            {"contacts", run.status.contactsFound},
+                            {"cycles_wait_read", run.status.cyclesWaitRead},
+                            {"cycles_wait_write", run.status.cyclesWaitWrite}};
+      one.update(statusJson(run.status));
+      perRun.push_back(std::move(one));
+    }
     j["afu"]["per_run"] = perRun;
     summary->stream() << j.dump(2) << "\n";
     summary->commit();
