@@ -73,18 +73,26 @@ def is_cached(sv: Path, top: str, config_id: str) -> bool:
     return _cache(sv.read_text(), top, config_id)[2].exists()
 
 
-def synth(sv: Path, top: str, log_dir: Path, config_id: str, black=()) -> dict:
-    """Area of `top` and what it instantiates, but for the modules in `black` (black boxes).
-    Cached (see _cache), so an SCPU shared by several configurations (same spec, other SCPU
-    counts) is synthesized once."""
+def _part(sv: Path, top: str, log_dir: Path, config_id: str, black, kind: str):
+    """(cache file, Verilog of top's subtree written for Yosys, its log): one per block and kind."""
     pre, mods, cached = _cache(sv.read_text(), top, config_id, black)
-    if cached.exists():
-        return json.loads(cached.read_text())
+    if kind:
+        cached = cached.with_name(cached.stem + f"-{kind}.json")
     log_dir.mkdir(parents=True, exist_ok=True)
     stem = top + (".black" if black else "")
     part = log_dir / f"{stem}.sv"
     part.write_text(pre + "".join(mods))
-    log = log_dir / f"yosys-{stem}.log"
+    return cached, part, log_dir / f"yosys-{stem}{'-' + kind if kind else ''}.log"
+
+
+def synth(sv: Path, top: str, log_dir: Path, config_id: str, black=()) -> dict:
+    """Area of `top` and what it instantiates, but for the modules in `black` (black boxes).
+    Cached (see _cache), so an SCPU shared by several configurations (same spec, other SCPU
+    counts) is synthesized once."""
+    cached = _cache(sv.read_text(), top, config_id, black)[2]
+    if cached.exists():
+        return json.loads(cached.read_text())
+    cached, part, log = _part(sv, top, log_dir, config_id, black, "")
     r = subprocess.run(["bash", str(ROOT / "bench" / "area" / "yosys_area.sh"), str(part), top, str(log)],
                        capture_output=True, text=True)
     if r.returncode != 0:
@@ -104,3 +112,79 @@ def afu_area(puc, scpu: dict, n: int) -> dict:
     if puc is not None:
         r |= {f"area_{k}": puc[k] + n * scpu[k] for k in FIELDS} | {f"puc_{k}": puc[k] for k in FIELDS}
     return r
+
+
+# --- timing proxy ---------------------------------------------------------------------------
+TIMING_FAMILIES = ("cyclonev", "arriav")
+_PATH_CELL = re.compile(r"^\s+(\d+)\s+(\S+)\s+\((MISTRAL_\w+)\.\w+(?:->\w+)?\)")
+_PATH_OUT = re.compile(r"^\s+(\d+)\s+\(<(primary output|unknown)>\)")
+_PATH_IN = re.compile(r"^\s+(\d+)\s+\\?(\S+)(?: \[\d+\])? \(<primary input>\)")
+
+
+def _signal(cell: str) -> str:
+    """The RTL signal a mapped cell was named after (Yosys appends _MISTRAL_<type>_<port>...)."""
+    return cell.split("_MISTRAL_")[0]
+
+
+def parse_sta(log: str) -> list:
+    """Each `sta` report of a Yosys log, in order: the slowest path's arrival (ps; cell delays
+    only), the register or output it ends at and the register or input it starts from, and the
+    logic on it: LUTs, carry-chain cells (one arithmetic cell a bit) and DSP blocks. None for a
+    report without a path."""
+    out = []
+    for section in log.split("Executing STA pass")[1:]:
+        head = re.search(r"Latest arrival time in '[^']*' is (\d+):", section)
+        if not head:
+            out.append(None)
+            continue
+        cells, start, end = [], "", ""
+        for line in section[head.end():].splitlines()[1:]:
+            if (c := _PATH_CELL.match(line)):
+                cells.append((c.group(2), c.group(3)))
+            elif (o := _PATH_OUT.match(line)):
+                # an output port, or (<unknown>) the input of a black box
+                end = "<output>" if o.group(2) == "primary output" else "<black box>"
+            elif (i := _PATH_IN.match(line)):
+                start = i.group(2)
+            elif line.strip() and not line.startswith((" ", "Warning:")):
+                break
+        if not end and cells:
+            end = _signal(cells.pop(0)[0]) # the endpoint: a register's (or RAM's) input
+        if cells and cells[-1][1] == "MISTRAL_FF":
+            start = _signal(cells.pop()[0]) # the launching register (its clock is the input)
+        kinds = [k for _, k in cells]
+        out.append({"ps": int(head.group(1)), "to": end, "from": start,
+                    "luts": sum(k in ("MISTRAL_NOT",) or re.fullmatch(r"MISTRAL_ALUT\d", k) is not None for k in kinds),
+                    "carry": kinds.count("MISTRAL_ALUT_ARITH"),
+                    "dsp": sum(k.startswith("MISTRAL_MUL") for k in kinds),
+                    "cells": len(kinds)})
+    return out
+
+
+def timing(sv: Path, top: str, log_dir: Path, config_id: str, black=()) -> dict:
+    """The timing proxy of `top` (bench/area/yosys_timing.sh): for each family of
+    TIMING_FAMILIES, the slowest path's cell delay in ps (`<family>_ps`, 0 without a path) and,
+    for the first, what the path is. Cached as synth is."""
+    script = ROOT / "bench" / "area" / "yosys_timing.sh"
+    # The flow is part of the key: a changed script times every block again.
+    flow = hashlib.sha1(script.read_bytes()).hexdigest()[:8]
+    cached, part, log = _part(sv, top, log_dir, config_id, black, f"timing-{flow}")
+    # The path's ends name module instances, whose names carry the configuration's id: cached
+    # with a placeholder, so a block shared by configurations names each its own.
+    def named(res: dict, a: str, b: str) -> dict:
+        return {k: (v.replace(a, b) if isinstance(v, str) else v) for k, v in res.items()}
+    if cached.exists():
+        return named(json.loads(cached.read_text()), "_{id}", f"_{config_id}")
+    # Only the black boxes top's subtree instantiates (a module Yosys never read cannot be selected).
+    present = sorted(b for b in black if re.search(rf"^module {re.escape(b)}\(", part.read_text(), re.M))
+    r = subprocess.run(["bash", str(script), str(part), top, str(log), *present], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"yosys on {top}: {r.stderr.strip()}")
+    reports = parse_sta(log.read_text())
+    if len(reports) != len(TIMING_FAMILIES):
+        raise RuntimeError(f"{log}: expected {len(TIMING_FAMILIES)} sta reports, found {len(reports)}")
+    first = reports[0] or {"ps": 0, "to": "", "from": "", "luts": 0, "carry": 0, "dsp": 0, "cells": 0}
+    res = {"top": top, **{f"{fam}_ps": (rep["ps"] if rep else 0) for fam, rep in zip(TIMING_FAMILIES, reports)},
+           **{f"path_{k}": first[k] for k in ("luts", "carry", "dsp", "cells", "from", "to")}}
+    write_atomic(cached, json.dumps(named(res, f"_{config_id}", "_{id}")) + "\n")
+    return res

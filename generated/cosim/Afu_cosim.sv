@@ -12834,85 +12834,100 @@ module ContactCollector_n16_cosim(
        | _header_bits_T_12 | _header_bits_T_13 | _header_bits_T_14 | _header_bits_T_15);
   wire        hdrFire = needHdr & allValid & (|io_room);
   wire        okPrefix_0 = ~active_0 | casez_tmp_111;
+  wire        _okPrefix_T_5 = ~active_2 | casez_tmp_113;
+  wire        _okPrefix_T_9 = ~active_4 | casez_tmp_115;
+  wire        _okPrefix_T_13 = ~active_6 | casez_tmp_117;
+  wire        _okPrefix_T_17 = ~active_8 | casez_tmp_119;
+  wire        _okPrefix_T_21 = ~active_10 | casez_tmp_121;
+  wire        _okPrefix_T_25 = ~active_12 | casez_tmp_123;
+  wire        _okPrefix_T_29 = ~active_14 | casez_tmp_125;
   wire        okPrefix_1 = okPrefix_0 & (~active_1 | casez_tmp_112);
-  wire        okPrefix_2 = okPrefix_1 & (~active_2 | casez_tmp_113);
-  wire        okPrefix_3 = okPrefix_2 & (~active_3 | casez_tmp_114);
-  wire        okPrefix_4 = okPrefix_3 & (~active_4 | casez_tmp_115);
-  wire        okPrefix_5 = okPrefix_4 & (~active_5 | casez_tmp_116);
-  wire        okPrefix_6 = okPrefix_5 & (~active_6 | casez_tmp_117);
-  wire        okPrefix_7 = okPrefix_6 & (~active_7 | casez_tmp_118);
-  wire        okPrefix_8 = okPrefix_7 & (~active_8 | casez_tmp_119);
-  wire        okPrefix_9 = okPrefix_8 & (~active_9 | casez_tmp_120);
-  wire        okPrefix_10 = okPrefix_9 & (~active_10 | casez_tmp_121);
-  wire        okPrefix_11 = okPrefix_10 & (~active_11 | casez_tmp_122);
-  wire        okPrefix_12 = okPrefix_11 & (~active_12 | casez_tmp_123);
-  wire        okPrefix_13 = okPrefix_12 & (~active_13 | casez_tmp_124);
-  wire        okPrefix_14 = okPrefix_13 & (~active_14 | casez_tmp_125);
+  wire        okPrefix_3 = okPrefix_1 & _okPrefix_T_5 & (~active_3 | casez_tmp_114);
+  wire        _okPrefix_T_36 = _okPrefix_T_9 & (~active_5 | casez_tmp_116);
+  wire        okPrefix_7 =
+    okPrefix_3 & _okPrefix_T_36 & _okPrefix_T_13 & (~active_7 | casez_tmp_118);
+  wire        _okPrefix_T_44 = _okPrefix_T_17 & (~active_9 | casez_tmp_120);
+  wire        _okPrefix_T_47 =
+    _okPrefix_T_44 & _okPrefix_T_21 & (~active_11 | casez_tmp_122);
+  wire        _okPrefix_T_48 = _okPrefix_T_25 & (~active_13 | casez_tmp_124);
   wire [4:0]  wantCount_1 = {4'h0, want_0} + {4'h0, want_1};
-  wire [4:0]  wantCount_2 = wantCount_1 + {4'h0, want_2};
-  wire [4:0]  wantCount_3 = wantCount_2 + {4'h0, want_3};
-  wire [4:0]  wantCount_4 = wantCount_3 + {4'h0, want_4};
-  wire [4:0]  wantCount_5 = wantCount_4 + {4'h0, want_5};
-  wire [4:0]  wantCount_6 = wantCount_5 + {4'h0, want_6};
-  wire [4:0]  wantCount_7 = wantCount_6 + {4'h0, want_7};
-  wire [4:0]  wantCount_8 = wantCount_7 + {4'h0, want_8};
-  wire [4:0]  wantCount_9 = wantCount_8 + {4'h0, want_9};
-  wire [4:0]  wantCount_10 = wantCount_9 + {4'h0, want_10};
-  wire [4:0]  wantCount_11 = wantCount_10 + {4'h0, want_11};
-  wire [4:0]  wantCount_12 = wantCount_11 + {4'h0, want_12};
-  wire [4:0]  wantCount_13 = wantCount_12 + {4'h0, want_13};
-  wire [4:0]  wantCount_14 = wantCount_13 + {4'h0, want_14};
-  wire [5:0]  _GEN_15 = {5'h0, needHdr};
-  wire [5:0]  _sel_T_289 = {5'h0, want_0} + _GEN_15;
-  wire [5:0]  _GEN_16 = {3'h0, io_room};
+  wire [4:0]  _GEN_15 = {4'h0, want_2};
+  wire [4:0]  wantCount_3 = wantCount_1 + _GEN_15 + {4'h0, want_3};
+  wire [4:0]  _GEN_16 = {4'h0, want_4};
+  wire [4:0]  _wantCount_T_24 = _GEN_16 + {4'h0, want_5};
+  wire [4:0]  _GEN_17 = {4'h0, want_6};
+  wire [4:0]  wantCount_7 = wantCount_3 + _wantCount_T_24 + _GEN_17 + {4'h0, want_7};
+  wire [4:0]  _GEN_18 = {4'h0, want_8};
+  wire [4:0]  _wantCount_T_40 = _GEN_18 + {4'h0, want_9};
+  wire [4:0]  _GEN_19 = {4'h0, want_10};
+  wire [4:0]  _wantCount_T_46 = _wantCount_T_40 + _GEN_19 + {4'h0, want_11};
+  wire [4:0]  _GEN_20 = {4'h0, want_12};
+  wire [4:0]  _wantCount_T_48 = _GEN_20 + {4'h0, want_13};
+  wire [4:0]  _GEN_21 = {4'h0, want_14};
+  wire [5:0]  _GEN_22 = {5'h0, needHdr};
+  wire [5:0]  _sel_T_289 = {5'h0, want_0} + _GEN_22;
+  wire [5:0]  _GEN_23 = {3'h0, io_room};
   wire        take_0 =
-    active_0 & okPrefix_0 & (~needHdr | allValid) & _sel_T_289 <= _GEN_16;
-  wire [5:0]  _sel_T_292 = {1'h0, wantCount_1} + _GEN_15;
+    active_0 & okPrefix_0 & (~needHdr | allValid) & _sel_T_289 <= _GEN_23;
+  wire [5:0]  _sel_T_292 = {1'h0, wantCount_1} + _GEN_22;
   wire        take_1 =
-    active_1 & okPrefix_1 & (~needHdr | allValid) & _sel_T_292 <= _GEN_16;
-  wire [5:0]  _sel_T_295 = {1'h0, wantCount_2} + _GEN_15;
+    active_1 & okPrefix_1 & (~needHdr | allValid) & _sel_T_292 <= _GEN_23;
+  wire [5:0]  _sel_T_295 = {1'h0, wantCount_1 + _GEN_15} + _GEN_22;
   wire        take_2 =
-    active_2 & okPrefix_2 & (~needHdr | allValid) & _sel_T_295 <= _GEN_16;
-  wire [5:0]  _sel_T_298 = {1'h0, wantCount_3} + _GEN_15;
+    active_2 & okPrefix_1 & _okPrefix_T_5 & (~needHdr | allValid) & _sel_T_295 <= _GEN_23;
+  wire [5:0]  _sel_T_298 = {1'h0, wantCount_3} + _GEN_22;
   wire        take_3 =
-    active_3 & okPrefix_3 & (~needHdr | allValid) & _sel_T_298 <= _GEN_16;
-  wire [5:0]  _sel_T_301 = {1'h0, wantCount_4} + _GEN_15;
+    active_3 & okPrefix_3 & (~needHdr | allValid) & _sel_T_298 <= _GEN_23;
+  wire [5:0]  _sel_T_301 = {1'h0, wantCount_3 + _GEN_16} + _GEN_22;
   wire        take_4 =
-    active_4 & okPrefix_4 & (~needHdr | allValid) & _sel_T_301 <= _GEN_16;
-  wire [5:0]  _sel_T_304 = {1'h0, wantCount_5} + _GEN_15;
+    active_4 & okPrefix_3 & _okPrefix_T_9 & (~needHdr | allValid) & _sel_T_301 <= _GEN_23;
+  wire [5:0]  _sel_T_304 = {1'h0, wantCount_3 + _wantCount_T_24} + _GEN_22;
   wire        take_5 =
-    active_5 & okPrefix_5 & (~needHdr | allValid) & _sel_T_304 <= _GEN_16;
-  wire [5:0]  _sel_T_307 = {1'h0, wantCount_6} + _GEN_15;
+    active_5 & okPrefix_3 & _okPrefix_T_36 & (~needHdr | allValid)
+    & _sel_T_304 <= _GEN_23;
+  wire [5:0]  _sel_T_307 = {1'h0, wantCount_3 + _wantCount_T_24 + _GEN_17} + _GEN_22;
   wire        take_6 =
-    active_6 & okPrefix_6 & (~needHdr | allValid) & _sel_T_307 <= _GEN_16;
-  wire [5:0]  _sel_T_310 = {1'h0, wantCount_7} + _GEN_15;
+    active_6 & okPrefix_3 & _okPrefix_T_36 & _okPrefix_T_13 & (~needHdr | allValid)
+    & _sel_T_307 <= _GEN_23;
+  wire [5:0]  _sel_T_310 = {1'h0, wantCount_7} + _GEN_22;
   wire        take_7 =
-    active_7 & okPrefix_7 & (~needHdr | allValid) & _sel_T_310 <= _GEN_16;
-  wire [5:0]  _sel_T_313 = {1'h0, wantCount_8} + _GEN_15;
+    active_7 & okPrefix_7 & (~needHdr | allValid) & _sel_T_310 <= _GEN_23;
+  wire [5:0]  _sel_T_313 = {1'h0, wantCount_7 + _GEN_18} + _GEN_22;
   wire        take_8 =
-    active_8 & okPrefix_8 & (~needHdr | allValid) & _sel_T_313 <= _GEN_16;
-  wire [5:0]  _sel_T_316 = {1'h0, wantCount_9} + _GEN_15;
+    active_8 & okPrefix_7 & _okPrefix_T_17 & (~needHdr | allValid)
+    & _sel_T_313 <= _GEN_23;
+  wire [5:0]  _sel_T_316 = {1'h0, wantCount_7 + _wantCount_T_40} + _GEN_22;
   wire        take_9 =
-    active_9 & okPrefix_9 & (~needHdr | allValid) & _sel_T_316 <= _GEN_16;
-  wire [5:0]  _sel_T_319 = {1'h0, wantCount_10} + _GEN_15;
+    active_9 & okPrefix_7 & _okPrefix_T_44 & (~needHdr | allValid)
+    & _sel_T_316 <= _GEN_23;
+  wire [5:0]  _sel_T_319 = {1'h0, wantCount_7 + _wantCount_T_40 + _GEN_19} + _GEN_22;
   wire        take_10 =
-    active_10 & okPrefix_10 & (~needHdr | allValid) & _sel_T_319 <= _GEN_16;
-  wire [5:0]  _sel_T_322 = {1'h0, wantCount_11} + _GEN_15;
+    active_10 & okPrefix_7 & _okPrefix_T_44 & _okPrefix_T_21 & (~needHdr | allValid)
+    & _sel_T_319 <= _GEN_23;
+  wire [5:0]  _sel_T_322 = {1'h0, wantCount_7 + _wantCount_T_46} + _GEN_22;
   wire        take_11 =
-    active_11 & okPrefix_11 & (~needHdr | allValid) & _sel_T_322 <= _GEN_16;
-  wire [5:0]  _sel_T_325 = {1'h0, wantCount_12} + _GEN_15;
+    active_11 & okPrefix_7 & _okPrefix_T_47 & (~needHdr | allValid)
+    & _sel_T_322 <= _GEN_23;
+  wire [5:0]  _sel_T_325 = {1'h0, wantCount_7 + _wantCount_T_46 + _GEN_20} + _GEN_22;
   wire        take_12 =
-    active_12 & okPrefix_12 & (~needHdr | allValid) & _sel_T_325 <= _GEN_16;
-  wire [5:0]  _sel_T_328 = {1'h0, wantCount_13} + _GEN_15;
+    active_12 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_25 & (~needHdr | allValid)
+    & _sel_T_325 <= _GEN_23;
+  wire [5:0]  _sel_T_328 =
+    {1'h0, wantCount_7 + _wantCount_T_46 + _wantCount_T_48} + _GEN_22;
   wire        take_13 =
-    active_13 & okPrefix_13 & (~needHdr | allValid) & _sel_T_328 <= _GEN_16;
-  wire [5:0]  _sel_T_331 = {1'h0, wantCount_14} + _GEN_15;
+    active_13 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48 & (~needHdr | allValid)
+    & _sel_T_328 <= _GEN_23;
+  wire [5:0]  _sel_T_331 =
+    {1'h0, wantCount_7 + _wantCount_T_46 + _wantCount_T_48 + _GEN_21} + _GEN_22;
   wire        take_14 =
-    active_14 & okPrefix_14 & (~needHdr | allValid) & _sel_T_331 <= _GEN_16;
-  wire [5:0]  _sel_T_334 = {1'h0, wantCount_14 + {4'h0, want_15}} + _GEN_15;
+    active_14 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48 & _okPrefix_T_29
+    & (~needHdr | allValid) & _sel_T_331 <= _GEN_23;
+  wire [5:0]  _sel_T_334 =
+    {1'h0, wantCount_7 + _wantCount_T_46 + _wantCount_T_48 + _GEN_21 + {4'h0, want_15}}
+    + _GEN_22;
   wire        take_15 =
-    active_15 & okPrefix_14 & (~active_15 | casez_tmp_126) & (~needHdr | allValid)
-    & _sel_T_334 <= _GEN_16;
+    active_15 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48 & _okPrefix_T_29
+    & (~active_15 | casez_tmp_126) & (~needHdr | allValid) & _sel_T_334 <= _GEN_23;
   wire [71:0] records_0_bits =
     io_groups_bits_invalid[0]
       ? 72'h60000000000000000
@@ -13205,18 +13220,18 @@ module ContactCollector_n16_cosim(
   wire        sel_15_6 = _sel_T_333 & _sel_T_334 == 6'h7;
   wire [4:0]  _spNext_T = sp + nTaken;
   wire        io_groups_ready_0 = io_groups_valid & _spNext_T == io_groups_bits_cnt;
-  wire        _GEN_17 = io_groups_ready_0 & io_groups_valid;
+  wire        _GEN_24 = io_groups_ready_0 & io_groups_valid;
   always @(posedge clock) begin
     if (reset) begin
       sp <= 5'h0;
       hdrSent <= 1'h0;
     end
     else begin
-      if (_GEN_17)
+      if (_GEN_24)
         sp <= 5'h0;
       else
         sp <= _spNext_T;
-      hdrSent <= ~_GEN_17 & (hdrFire | hdrSent);
+      hdrSent <= ~_GEN_24 & (hdrFire | hdrSent);
     end
   end // always @(posedge)
   assign io_groups_ready = io_groups_ready_0;

@@ -12834,85 +12834,100 @@ module ContactCollector_n16_default(
        | _header_bits_T_12 | _header_bits_T_13 | _header_bits_T_14 | _header_bits_T_15);
   wire        hdrFire = needHdr & allValid & (|io_room);
   wire        okPrefix_0 = ~active_0 | casez_tmp_111;
+  wire        _okPrefix_T_5 = ~active_2 | casez_tmp_113;
+  wire        _okPrefix_T_9 = ~active_4 | casez_tmp_115;
+  wire        _okPrefix_T_13 = ~active_6 | casez_tmp_117;
+  wire        _okPrefix_T_17 = ~active_8 | casez_tmp_119;
+  wire        _okPrefix_T_21 = ~active_10 | casez_tmp_121;
+  wire        _okPrefix_T_25 = ~active_12 | casez_tmp_123;
+  wire        _okPrefix_T_29 = ~active_14 | casez_tmp_125;
   wire        okPrefix_1 = okPrefix_0 & (~active_1 | casez_tmp_112);
-  wire        okPrefix_2 = okPrefix_1 & (~active_2 | casez_tmp_113);
-  wire        okPrefix_3 = okPrefix_2 & (~active_3 | casez_tmp_114);
-  wire        okPrefix_4 = okPrefix_3 & (~active_4 | casez_tmp_115);
-  wire        okPrefix_5 = okPrefix_4 & (~active_5 | casez_tmp_116);
-  wire        okPrefix_6 = okPrefix_5 & (~active_6 | casez_tmp_117);
-  wire        okPrefix_7 = okPrefix_6 & (~active_7 | casez_tmp_118);
-  wire        okPrefix_8 = okPrefix_7 & (~active_8 | casez_tmp_119);
-  wire        okPrefix_9 = okPrefix_8 & (~active_9 | casez_tmp_120);
-  wire        okPrefix_10 = okPrefix_9 & (~active_10 | casez_tmp_121);
-  wire        okPrefix_11 = okPrefix_10 & (~active_11 | casez_tmp_122);
-  wire        okPrefix_12 = okPrefix_11 & (~active_12 | casez_tmp_123);
-  wire        okPrefix_13 = okPrefix_12 & (~active_13 | casez_tmp_124);
-  wire        okPrefix_14 = okPrefix_13 & (~active_14 | casez_tmp_125);
+  wire        okPrefix_3 = okPrefix_1 & _okPrefix_T_5 & (~active_3 | casez_tmp_114);
+  wire        _okPrefix_T_36 = _okPrefix_T_9 & (~active_5 | casez_tmp_116);
+  wire        okPrefix_7 =
+    okPrefix_3 & _okPrefix_T_36 & _okPrefix_T_13 & (~active_7 | casez_tmp_118);
+  wire        _okPrefix_T_44 = _okPrefix_T_17 & (~active_9 | casez_tmp_120);
+  wire        _okPrefix_T_47 =
+    _okPrefix_T_44 & _okPrefix_T_21 & (~active_11 | casez_tmp_122);
+  wire        _okPrefix_T_48 = _okPrefix_T_25 & (~active_13 | casez_tmp_124);
   wire [4:0]  wantCount_1 = {4'h0, want_0} + {4'h0, want_1};
-  wire [4:0]  wantCount_2 = wantCount_1 + {4'h0, want_2};
-  wire [4:0]  wantCount_3 = wantCount_2 + {4'h0, want_3};
-  wire [4:0]  wantCount_4 = wantCount_3 + {4'h0, want_4};
-  wire [4:0]  wantCount_5 = wantCount_4 + {4'h0, want_5};
-  wire [4:0]  wantCount_6 = wantCount_5 + {4'h0, want_6};
-  wire [4:0]  wantCount_7 = wantCount_6 + {4'h0, want_7};
-  wire [4:0]  wantCount_8 = wantCount_7 + {4'h0, want_8};
-  wire [4:0]  wantCount_9 = wantCount_8 + {4'h0, want_9};
-  wire [4:0]  wantCount_10 = wantCount_9 + {4'h0, want_10};
-  wire [4:0]  wantCount_11 = wantCount_10 + {4'h0, want_11};
-  wire [4:0]  wantCount_12 = wantCount_11 + {4'h0, want_12};
-  wire [4:0]  wantCount_13 = wantCount_12 + {4'h0, want_13};
-  wire [4:0]  wantCount_14 = wantCount_13 + {4'h0, want_14};
-  wire [5:0]  _GEN_15 = {5'h0, needHdr};
-  wire [5:0]  _sel_T_289 = {5'h0, want_0} + _GEN_15;
-  wire [5:0]  _GEN_16 = {3'h0, io_room};
+  wire [4:0]  _GEN_15 = {4'h0, want_2};
+  wire [4:0]  wantCount_3 = wantCount_1 + _GEN_15 + {4'h0, want_3};
+  wire [4:0]  _GEN_16 = {4'h0, want_4};
+  wire [4:0]  _wantCount_T_24 = _GEN_16 + {4'h0, want_5};
+  wire [4:0]  _GEN_17 = {4'h0, want_6};
+  wire [4:0]  wantCount_7 = wantCount_3 + _wantCount_T_24 + _GEN_17 + {4'h0, want_7};
+  wire [4:0]  _GEN_18 = {4'h0, want_8};
+  wire [4:0]  _wantCount_T_40 = _GEN_18 + {4'h0, want_9};
+  wire [4:0]  _GEN_19 = {4'h0, want_10};
+  wire [4:0]  _wantCount_T_46 = _wantCount_T_40 + _GEN_19 + {4'h0, want_11};
+  wire [4:0]  _GEN_20 = {4'h0, want_12};
+  wire [4:0]  _wantCount_T_48 = _GEN_20 + {4'h0, want_13};
+  wire [4:0]  _GEN_21 = {4'h0, want_14};
+  wire [5:0]  _GEN_22 = {5'h0, needHdr};
+  wire [5:0]  _sel_T_289 = {5'h0, want_0} + _GEN_22;
+  wire [5:0]  _GEN_23 = {3'h0, io_room};
   wire        take_0 =
-    active_0 & okPrefix_0 & (~needHdr | allValid) & _sel_T_289 <= _GEN_16;
-  wire [5:0]  _sel_T_292 = {1'h0, wantCount_1} + _GEN_15;
+    active_0 & okPrefix_0 & (~needHdr | allValid) & _sel_T_289 <= _GEN_23;
+  wire [5:0]  _sel_T_292 = {1'h0, wantCount_1} + _GEN_22;
   wire        take_1 =
-    active_1 & okPrefix_1 & (~needHdr | allValid) & _sel_T_292 <= _GEN_16;
-  wire [5:0]  _sel_T_295 = {1'h0, wantCount_2} + _GEN_15;
+    active_1 & okPrefix_1 & (~needHdr | allValid) & _sel_T_292 <= _GEN_23;
+  wire [5:0]  _sel_T_295 = {1'h0, wantCount_1 + _GEN_15} + _GEN_22;
   wire        take_2 =
-    active_2 & okPrefix_2 & (~needHdr | allValid) & _sel_T_295 <= _GEN_16;
-  wire [5:0]  _sel_T_298 = {1'h0, wantCount_3} + _GEN_15;
+    active_2 & okPrefix_1 & _okPrefix_T_5 & (~needHdr | allValid) & _sel_T_295 <= _GEN_23;
+  wire [5:0]  _sel_T_298 = {1'h0, wantCount_3} + _GEN_22;
   wire        take_3 =
-    active_3 & okPrefix_3 & (~needHdr | allValid) & _sel_T_298 <= _GEN_16;
-  wire [5:0]  _sel_T_301 = {1'h0, wantCount_4} + _GEN_15;
+    active_3 & okPrefix_3 & (~needHdr | allValid) & _sel_T_298 <= _GEN_23;
+  wire [5:0]  _sel_T_301 = {1'h0, wantCount_3 + _GEN_16} + _GEN_22;
   wire        take_4 =
-    active_4 & okPrefix_4 & (~needHdr | allValid) & _sel_T_301 <= _GEN_16;
-  wire [5:0]  _sel_T_304 = {1'h0, wantCount_5} + _GEN_15;
+    active_4 & okPrefix_3 & _okPrefix_T_9 & (~needHdr | allValid) & _sel_T_301 <= _GEN_23;
+  wire [5:0]  _sel_T_304 = {1'h0, wantCount_3 + _wantCount_T_24} + _GEN_22;
   wire        take_5 =
-    active_5 & okPrefix_5 & (~needHdr | allValid) & _sel_T_304 <= _GEN_16;
-  wire [5:0]  _sel_T_307 = {1'h0, wantCount_6} + _GEN_15;
+    active_5 & okPrefix_3 & _okPrefix_T_36 & (~needHdr | allValid)
+    & _sel_T_304 <= _GEN_23;
+  wire [5:0]  _sel_T_307 = {1'h0, wantCount_3 + _wantCount_T_24 + _GEN_17} + _GEN_22;
   wire        take_6 =
-    active_6 & okPrefix_6 & (~needHdr | allValid) & _sel_T_307 <= _GEN_16;
-  wire [5:0]  _sel_T_310 = {1'h0, wantCount_7} + _GEN_15;
+    active_6 & okPrefix_3 & _okPrefix_T_36 & _okPrefix_T_13 & (~needHdr | allValid)
+    & _sel_T_307 <= _GEN_23;
+  wire [5:0]  _sel_T_310 = {1'h0, wantCount_7} + _GEN_22;
   wire        take_7 =
-    active_7 & okPrefix_7 & (~needHdr | allValid) & _sel_T_310 <= _GEN_16;
-  wire [5:0]  _sel_T_313 = {1'h0, wantCount_8} + _GEN_15;
+    active_7 & okPrefix_7 & (~needHdr | allValid) & _sel_T_310 <= _GEN_23;
+  wire [5:0]  _sel_T_313 = {1'h0, wantCount_7 + _GEN_18} + _GEN_22;
   wire        take_8 =
-    active_8 & okPrefix_8 & (~needHdr | allValid) & _sel_T_313 <= _GEN_16;
-  wire [5:0]  _sel_T_316 = {1'h0, wantCount_9} + _GEN_15;
+    active_8 & okPrefix_7 & _okPrefix_T_17 & (~needHdr | allValid)
+    & _sel_T_313 <= _GEN_23;
+  wire [5:0]  _sel_T_316 = {1'h0, wantCount_7 + _wantCount_T_40} + _GEN_22;
   wire        take_9 =
-    active_9 & okPrefix_9 & (~needHdr | allValid) & _sel_T_316 <= _GEN_16;
-  wire [5:0]  _sel_T_319 = {1'h0, wantCount_10} + _GEN_15;
+    active_9 & okPrefix_7 & _okPrefix_T_44 & (~needHdr | allValid)
+    & _sel_T_316 <= _GEN_23;
+  wire [5:0]  _sel_T_319 = {1'h0, wantCount_7 + _wantCount_T_40 + _GEN_19} + _GEN_22;
   wire        take_10 =
-    active_10 & okPrefix_10 & (~needHdr | allValid) & _sel_T_319 <= _GEN_16;
-  wire [5:0]  _sel_T_322 = {1'h0, wantCount_11} + _GEN_15;
+    active_10 & okPrefix_7 & _okPrefix_T_44 & _okPrefix_T_21 & (~needHdr | allValid)
+    & _sel_T_319 <= _GEN_23;
+  wire [5:0]  _sel_T_322 = {1'h0, wantCount_7 + _wantCount_T_46} + _GEN_22;
   wire        take_11 =
-    active_11 & okPrefix_11 & (~needHdr | allValid) & _sel_T_322 <= _GEN_16;
-  wire [5:0]  _sel_T_325 = {1'h0, wantCount_12} + _GEN_15;
+    active_11 & okPrefix_7 & _okPrefix_T_47 & (~needHdr | allValid)
+    & _sel_T_322 <= _GEN_23;
+  wire [5:0]  _sel_T_325 = {1'h0, wantCount_7 + _wantCount_T_46 + _GEN_20} + _GEN_22;
   wire        take_12 =
-    active_12 & okPrefix_12 & (~needHdr | allValid) & _sel_T_325 <= _GEN_16;
-  wire [5:0]  _sel_T_328 = {1'h0, wantCount_13} + _GEN_15;
+    active_12 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_25 & (~needHdr | allValid)
+    & _sel_T_325 <= _GEN_23;
+  wire [5:0]  _sel_T_328 =
+    {1'h0, wantCount_7 + _wantCount_T_46 + _wantCount_T_48} + _GEN_22;
   wire        take_13 =
-    active_13 & okPrefix_13 & (~needHdr | allValid) & _sel_T_328 <= _GEN_16;
-  wire [5:0]  _sel_T_331 = {1'h0, wantCount_14} + _GEN_15;
+    active_13 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48 & (~needHdr | allValid)
+    & _sel_T_328 <= _GEN_23;
+  wire [5:0]  _sel_T_331 =
+    {1'h0, wantCount_7 + _wantCount_T_46 + _wantCount_T_48 + _GEN_21} + _GEN_22;
   wire        take_14 =
-    active_14 & okPrefix_14 & (~needHdr | allValid) & _sel_T_331 <= _GEN_16;
-  wire [5:0]  _sel_T_334 = {1'h0, wantCount_14 + {4'h0, want_15}} + _GEN_15;
+    active_14 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48 & _okPrefix_T_29
+    & (~needHdr | allValid) & _sel_T_331 <= _GEN_23;
+  wire [5:0]  _sel_T_334 =
+    {1'h0, wantCount_7 + _wantCount_T_46 + _wantCount_T_48 + _GEN_21 + {4'h0, want_15}}
+    + _GEN_22;
   wire        take_15 =
-    active_15 & okPrefix_14 & (~active_15 | casez_tmp_126) & (~needHdr | allValid)
-    & _sel_T_334 <= _GEN_16;
+    active_15 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48 & _okPrefix_T_29
+    & (~active_15 | casez_tmp_126) & (~needHdr | allValid) & _sel_T_334 <= _GEN_23;
   wire [71:0] records_0_bits =
     io_groups_bits_invalid[0]
       ? 72'h60000000000000000
@@ -13205,18 +13220,18 @@ module ContactCollector_n16_default(
   wire        sel_15_6 = _sel_T_333 & _sel_T_334 == 6'h7;
   wire [4:0]  _spNext_T = sp + nTaken;
   wire        io_groups_ready_0 = io_groups_valid & _spNext_T == io_groups_bits_cnt;
-  wire        _GEN_17 = io_groups_ready_0 & io_groups_valid;
+  wire        _GEN_24 = io_groups_ready_0 & io_groups_valid;
   always @(posedge clock) begin
     if (reset) begin
       sp <= 5'h0;
       hdrSent <= 1'h0;
     end
     else begin
-      if (_GEN_17)
+      if (_GEN_24)
         sp <= 5'h0;
       else
         sp <= _spNext_T;
-      hdrSent <= ~_GEN_17 & (hdrFire | hdrSent);
+      hdrSent <= ~_GEN_24 & (hdrFire | hdrSent);
     end
   end // always @(posedge)
   assign io_groups_ready = io_groups_ready_0;
@@ -17221,88 +17236,29 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
     {sN_out_3_r,
      sN_nx_r2_rad_4} >= {23'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1};
   wire [26:0] _GEN_3 = {sN_out_3_r[24:0], sN_nx_r2_rad_4};
-  wire [26:0] sN_out_4_r =
-    sN_nx_ge_4
-      ? _GEN_3 - {21'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1}
-      : _GEN_3;
   wire [1:0]  sN_nx_r2_rad_5 =
-    io_in_bits_expOdd ? io_in_bits_sig[11:10] : io_in_bits_sig[12:11];
-  wire        sN_nx_ge_5 =
-    {sN_out_4_r,
-     sN_nx_r2_rad_5} >= {22'h1,
-                         sN_nx_ge,
-                         sN_nx_ge_1,
-                         sN_nx_ge_2,
-                         sN_nx_ge_3,
-                         sN_nx_ge_4,
-                         2'h1};
-  wire [26:0] _GEN_4 = {sN_out_4_r[24:0], sN_nx_r2_rad_5};
-  wire [26:0] sN_out_5_r =
-    sN_nx_ge_5
-      ? _GEN_4 - {20'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, sN_nx_ge_4, 2'h1}
-      : _GEN_4;
-  wire [1:0]  sN_nx_r2_rad_6 =
-    io_in_bits_expOdd ? io_in_bits_sig[9:8] : io_in_bits_sig[10:9];
+    sN_out_r_expOdd ? sN_out_r_sig[11:10] : sN_out_r_sig[12:11];
+  wire        sN_nx_ge_5 = {sN_out_r_r, sN_nx_r2_rad_5} >= {2'h0, sN_out_r_q, 2'h1};
+  wire [26:0] _GEN_4 = {sN_out_r_r[24:0], sN_nx_r2_rad_5};
+  wire [26:0] sN_out_5_r = sN_nx_ge_5 ? _GEN_4 - {sN_out_r_q, 2'h1} : _GEN_4;
+  wire [1:0]  sN_nx_r2_rad_6 = sN_out_r_expOdd ? sN_out_r_sig[9:8] : sN_out_r_sig[10:9];
   wire        sN_nx_ge_6 =
-    {sN_out_5_r,
-     sN_nx_r2_rad_6} >= {21'h1,
-                         sN_nx_ge,
-                         sN_nx_ge_1,
-                         sN_nx_ge_2,
-                         sN_nx_ge_3,
-                         sN_nx_ge_4,
-                         sN_nx_ge_5,
-                         2'h1};
+    {sN_out_5_r, sN_nx_r2_rad_6} >= {2'h0, sN_out_r_q[23:0], sN_nx_ge_5, 2'h1};
   wire [26:0] _GEN_5 = {sN_out_5_r[24:0], sN_nx_r2_rad_6};
   wire [26:0] sN_out_6_r =
-    sN_nx_ge_6
-      ? _GEN_5
-        - {19'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           2'h1}
-      : _GEN_5;
-  wire [1:0]  sN_nx_r2_rad_7 =
-    io_in_bits_expOdd ? io_in_bits_sig[7:6] : io_in_bits_sig[8:7];
+    sN_nx_ge_6 ? _GEN_5 - {sN_out_r_q[23:0], sN_nx_ge_5, 2'h1} : _GEN_5;
+  wire [1:0]  sN_nx_r2_rad_7 = sN_out_r_expOdd ? sN_out_r_sig[7:6] : sN_out_r_sig[8:7];
   wire        sN_nx_ge_7 =
     {sN_out_6_r,
-     sN_nx_r2_rad_7} >= {20'h1,
-                         sN_nx_ge,
-                         sN_nx_ge_1,
-                         sN_nx_ge_2,
-                         sN_nx_ge_3,
-                         sN_nx_ge_4,
-                         sN_nx_ge_5,
-                         sN_nx_ge_6,
-                         2'h1};
+     sN_nx_r2_rad_7} >= {2'h0, sN_out_r_q[22:0], sN_nx_ge_5, sN_nx_ge_6, 2'h1};
   wire [26:0] _GEN_6 = {sN_out_6_r[24:0], sN_nx_r2_rad_7};
   wire [26:0] sN_out_7_r =
-    sN_nx_ge_7
-      ? _GEN_6
-        - {18'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           2'h1}
-      : _GEN_6;
-  wire [1:0]  sN_nx_r2_rad_8 =
-    io_in_bits_expOdd ? io_in_bits_sig[5:4] : io_in_bits_sig[6:5];
+    sN_nx_ge_7 ? _GEN_6 - {sN_out_r_q[22:0], sN_nx_ge_5, sN_nx_ge_6, 2'h1} : _GEN_6;
+  wire [1:0]  sN_nx_r2_rad_8 = sN_out_r_expOdd ? sN_out_r_sig[5:4] : sN_out_r_sig[6:5];
   wire        sN_nx_ge_8 =
     {sN_out_7_r,
-     sN_nx_r2_rad_8} >= {19'h1,
-                         sN_nx_ge,
-                         sN_nx_ge_1,
-                         sN_nx_ge_2,
-                         sN_nx_ge_3,
-                         sN_nx_ge_4,
+     sN_nx_r2_rad_8} >= {2'h0,
+                         sN_out_r_q[21:0],
                          sN_nx_ge_5,
                          sN_nx_ge_6,
                          sN_nx_ge_7,
@@ -17310,500 +17266,169 @@ module DigitRecurrenceCore_sqrt_s24_L5_default(
   wire [26:0] _GEN_7 = {sN_out_7_r[24:0], sN_nx_r2_rad_8};
   wire [26:0] sN_out_8_r =
     sN_nx_ge_8
-      ? _GEN_7
-        - {17'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           2'h1}
+      ? _GEN_7 - {sN_out_r_q[21:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, 2'h1}
       : _GEN_7;
-  wire [1:0]  sN_nx_r2_rad_9 =
-    io_in_bits_expOdd ? io_in_bits_sig[3:2] : io_in_bits_sig[4:3];
+  wire [1:0]  sN_nx_r2_rad_9 = sN_out_r_expOdd ? sN_out_r_sig[3:2] : sN_out_r_sig[4:3];
   wire        sN_nx_ge_9 =
     {sN_out_8_r,
-     sN_nx_r2_rad_9} >= {18'h1,
-                         sN_nx_ge,
-                         sN_nx_ge_1,
-                         sN_nx_ge_2,
-                         sN_nx_ge_3,
-                         sN_nx_ge_4,
+     sN_nx_r2_rad_9} >= {2'h0,
+                         sN_out_r_q[20:0],
                          sN_nx_ge_5,
                          sN_nx_ge_6,
                          sN_nx_ge_7,
                          sN_nx_ge_8,
                          2'h1};
   wire [26:0] _GEN_8 = {sN_out_8_r[24:0], sN_nx_r2_rad_9};
-  wire [26:0] sN_out_9_r =
-    sN_nx_ge_9
-      ? _GEN_8
-        - {16'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           2'h1}
-      : _GEN_8;
   wire [1:0]  sN_nx_r2_rad_10 =
-    io_in_bits_expOdd ? io_in_bits_sig[1:0] : io_in_bits_sig[2:1];
-  wire        sN_nx_ge_10 =
-    {sN_out_9_r,
-     sN_nx_r2_rad_10} >= {17'h1,
-                          sN_nx_ge,
-                          sN_nx_ge_1,
-                          sN_nx_ge_2,
-                          sN_nx_ge_3,
-                          sN_nx_ge_4,
-                          sN_nx_ge_5,
-                          sN_nx_ge_6,
-                          sN_nx_ge_7,
-                          sN_nx_ge_8,
-                          sN_nx_ge_9,
-                          2'h1};
-  wire [26:0] _GEN_9 = {sN_out_9_r[24:0], sN_nx_r2_rad_10};
-  wire [26:0] sN_out_10_r =
-    sN_nx_ge_10
-      ? _GEN_9
-        - {15'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           2'h1}
-      : _GEN_9;
-  wire [1:0]  sN_nx_r2_rad_11 = io_in_bits_expOdd ? 2'h0 : {io_in_bits_sig[0], 1'h0};
+    sN_out_r_1_expOdd ? sN_out_r_1_sig[1:0] : sN_out_r_1_sig[2:1];
+  wire        sN_nx_ge_10 = {sN_out_r_1_r, sN_nx_r2_rad_10} >= {2'h0, sN_out_r_1_q, 2'h1};
+  wire [26:0] _GEN_9 = {sN_out_r_1_r[24:0], sN_nx_r2_rad_10};
+  wire [26:0] sN_out_10_r = sN_nx_ge_10 ? _GEN_9 - {sN_out_r_1_q, 2'h1} : _GEN_9;
+  wire [1:0]  sN_nx_r2_rad_11 = sN_out_r_1_expOdd ? 2'h0 : {sN_out_r_1_sig[0], 1'h0};
   wire        sN_nx_ge_11 =
-    {sN_out_10_r,
-     sN_nx_r2_rad_11} >= {16'h1,
-                          sN_nx_ge,
-                          sN_nx_ge_1,
-                          sN_nx_ge_2,
-                          sN_nx_ge_3,
-                          sN_nx_ge_4,
-                          sN_nx_ge_5,
-                          sN_nx_ge_6,
-                          sN_nx_ge_7,
-                          sN_nx_ge_8,
-                          sN_nx_ge_9,
-                          sN_nx_ge_10,
-                          2'h1};
+    {sN_out_10_r, sN_nx_r2_rad_11} >= {2'h0, sN_out_r_1_q[23:0], sN_nx_ge_10, 2'h1};
   wire [26:0] _GEN_10 = {sN_out_10_r[24:0], sN_nx_r2_rad_11};
   wire [26:0] sN_out_11_r =
-    sN_nx_ge_11
-      ? _GEN_10
-        - {14'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           2'h1}
-      : _GEN_10;
+    sN_nx_ge_11 ? _GEN_10 - {sN_out_r_1_q[23:0], sN_nx_ge_10, 2'h1} : _GEN_10;
   wire        sN_nx_ge_12 =
-    {sN_out_11_r,
-     2'h0} >= {15'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               2'h1};
+    {sN_out_11_r, 2'h0} >= {2'h0, sN_out_r_1_q[22:0], sN_nx_ge_10, sN_nx_ge_11, 2'h1};
   wire [26:0] _GEN_11 = {sN_out_11_r[24:0], 2'h0};
   wire [26:0] sN_out_12_r =
     sN_nx_ge_12
-      ? _GEN_11
-        - {13'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           2'h1}
+      ? _GEN_11 - {sN_out_r_1_q[22:0], sN_nx_ge_10, sN_nx_ge_11, 2'h1}
       : _GEN_11;
   wire        sN_nx_ge_13 =
     {sN_out_12_r,
-     2'h0} >= {14'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               2'h1};
+     2'h0} >= {2'h0, sN_out_r_1_q[21:0], sN_nx_ge_10, sN_nx_ge_11, sN_nx_ge_12, 2'h1};
   wire [26:0] _GEN_12 = {sN_out_12_r[24:0], 2'h0};
   wire [26:0] sN_out_13_r =
     sN_nx_ge_13
-      ? _GEN_12
-        - {12'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           2'h1}
+      ? _GEN_12 - {sN_out_r_1_q[21:0], sN_nx_ge_10, sN_nx_ge_11, sN_nx_ge_12, 2'h1}
       : _GEN_12;
   wire        sN_nx_ge_14 =
     {sN_out_13_r,
-     2'h0} >= {13'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
+     2'h0} >= {2'h0,
+               sN_out_r_1_q[20:0],
                sN_nx_ge_10,
                sN_nx_ge_11,
                sN_nx_ge_12,
                sN_nx_ge_13,
                2'h1};
   wire [26:0] _GEN_13 = {sN_out_13_r[24:0], 2'h0};
-  wire [26:0] sN_out_14_r =
-    sN_nx_ge_14
-      ? _GEN_13
-        - {11'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           2'h1}
-      : _GEN_13;
-  wire        sN_nx_ge_15 =
-    {sN_out_14_r,
-     2'h0} >= {12'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
-               2'h1};
-  wire [26:0] _GEN_14 = {sN_out_14_r[24:0], 2'h0};
-  wire [26:0] sN_out_15_r =
-    sN_nx_ge_15
-      ? _GEN_14
-        - {10'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           sN_nx_ge_14,
-           2'h1}
-      : _GEN_14;
+  wire        sN_nx_ge_15 = {sN_out_r_2_r, 2'h0} >= {2'h0, sN_out_r_2_q, 2'h1};
+  wire [26:0] _GEN_14 = {sN_out_r_2_r[24:0], 2'h0};
+  wire [26:0] sN_out_15_r = sN_nx_ge_15 ? _GEN_14 - {sN_out_r_2_q, 2'h1} : _GEN_14;
   wire        sN_nx_ge_16 =
-    {sN_out_15_r,
-     2'h0} >= {11'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
-               sN_nx_ge_15,
-               2'h1};
+    {sN_out_15_r, 2'h0} >= {2'h0, sN_out_r_2_q[23:0], sN_nx_ge_15, 2'h1};
   wire [26:0] _GEN_15 = {sN_out_15_r[24:0], 2'h0};
   wire [26:0] sN_out_16_r =
-    sN_nx_ge_16
-      ? _GEN_15
-        - {9'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           sN_nx_ge_14,
-           sN_nx_ge_15,
-           2'h1}
-      : _GEN_15;
+    sN_nx_ge_16 ? _GEN_15 - {sN_out_r_2_q[23:0], sN_nx_ge_15, 2'h1} : _GEN_15;
   wire        sN_nx_ge_17 =
-    {sN_out_16_r,
-     2'h0} >= {10'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
-               sN_nx_ge_15,
-               sN_nx_ge_16,
-               2'h1};
+    {sN_out_16_r, 2'h0} >= {2'h0, sN_out_r_2_q[22:0], sN_nx_ge_15, sN_nx_ge_16, 2'h1};
   wire [26:0] _GEN_16 = {sN_out_16_r[24:0], 2'h0};
   wire [26:0] sN_out_17_r =
     sN_nx_ge_17
-      ? _GEN_16
-        - {8'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           sN_nx_ge_14,
-           sN_nx_ge_15,
-           sN_nx_ge_16,
-           2'h1}
+      ? _GEN_16 - {sN_out_r_2_q[22:0], sN_nx_ge_15, sN_nx_ge_16, 2'h1}
       : _GEN_16;
   wire        sN_nx_ge_18 =
     {sN_out_17_r,
-     2'h0} >= {9'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
-               sN_nx_ge_15,
-               sN_nx_ge_16,
-               sN_nx_ge_17,
-               2'h1};
+     2'h0} >= {2'h0, sN_out_r_2_q[21:0], sN_nx_ge_15, sN_nx_ge_16, sN_nx_ge_17, 2'h1};
   wire [26:0] _GEN_17 = {sN_out_17_r[24:0], 2'h0};
   wire [26:0] sN_out_18_r =
     sN_nx_ge_18
-      ? _GEN_17
-        - {7'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           sN_nx_ge_14,
-           sN_nx_ge_15,
-           sN_nx_ge_16,
-           sN_nx_ge_17,
-           2'h1}
+      ? _GEN_17 - {sN_out_r_2_q[21:0], sN_nx_ge_15, sN_nx_ge_16, sN_nx_ge_17, 2'h1}
       : _GEN_17;
   wire        sN_nx_ge_19 =
     {sN_out_18_r,
-     2'h0} >= {8'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
+     2'h0} >= {2'h0,
+               sN_out_r_2_q[20:0],
                sN_nx_ge_15,
                sN_nx_ge_16,
                sN_nx_ge_17,
                sN_nx_ge_18,
                2'h1};
   wire [26:0] _GEN_18 = {sN_out_18_r[24:0], 2'h0};
-  wire        sN_nx_ge_20 = {sN_out_r_r, 2'h0} >= {2'h0, sN_out_r_q, 2'h1};
-  wire [26:0] _GEN_19 = {sN_out_r_r[24:0], 2'h0};
-  wire        sN_nx_ge_21 = {sN_out_r_1_r, 2'h0} >= {2'h0, sN_out_r_1_q, 2'h1};
-  wire [26:0] _GEN_20 = {sN_out_r_1_r[24:0], 2'h0};
-  wire        sN_nx_ge_22 = {sN_out_r_2_r, 2'h0} >= {2'h0, sN_out_r_2_q, 2'h1};
-  wire [26:0] _GEN_21 = {sN_out_r_2_r[24:0], 2'h0};
-  wire        sN_nx_ge_23 = {sN_out_r_3_r, 2'h0} >= {2'h0, sN_out_r_3_q, 2'h1};
-  wire [26:0] _GEN_22 = {sN_out_r_3_r[24:0], 2'h0};
+  wire        sN_nx_ge_20 = {sN_out_r_3_r, 2'h0} >= {2'h0, sN_out_r_3_q, 2'h1};
+  wire [26:0] _GEN_19 = {sN_out_r_3_r[24:0], 2'h0};
+  wire [26:0] sN_out_20_r = sN_nx_ge_20 ? _GEN_19 - {sN_out_r_3_q, 2'h1} : _GEN_19;
+  wire        sN_nx_ge_21 =
+    {sN_out_20_r, 2'h0} >= {2'h0, sN_out_r_3_q[23:0], sN_nx_ge_20, 2'h1};
+  wire [26:0] _GEN_20 = {sN_out_20_r[24:0], 2'h0};
+  wire [26:0] sN_out_21_r =
+    sN_nx_ge_21 ? _GEN_20 - {sN_out_r_3_q[23:0], sN_nx_ge_20, 2'h1} : _GEN_20;
+  wire        sN_nx_ge_22 =
+    {sN_out_21_r, 2'h0} >= {2'h0, sN_out_r_3_q[22:0], sN_nx_ge_20, sN_nx_ge_21, 2'h1};
+  wire [26:0] _GEN_21 = {sN_out_21_r[24:0], 2'h0};
+  wire [26:0] sN_out_22_r =
+    sN_nx_ge_22
+      ? _GEN_21 - {sN_out_r_3_q[22:0], sN_nx_ge_20, sN_nx_ge_21, 2'h1}
+      : _GEN_21;
+  wire        sN_nx_ge_23 =
+    {sN_out_22_r,
+     2'h0} >= {2'h0, sN_out_r_3_q[21:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, 2'h1};
+  wire [26:0] _GEN_22 = {sN_out_22_r[24:0], 2'h0};
   always @(posedge clock) begin
     if (io_en) begin
       sN_out_r_sig <= io_in_bits_sig;
       sN_out_r_expOdd <= io_in_bits_expOdd;
-      sN_out_r_q <=
-        {5'h1,
-         sN_nx_ge,
-         sN_nx_ge_1,
-         sN_nx_ge_2,
-         sN_nx_ge_3,
-         sN_nx_ge_4,
-         sN_nx_ge_5,
-         sN_nx_ge_6,
-         sN_nx_ge_7,
-         sN_nx_ge_8,
-         sN_nx_ge_9,
+      sN_out_r_q <= {20'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, sN_nx_ge_4};
+      sN_out_r_r <=
+        sN_nx_ge_4
+          ? _GEN_3 - {21'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1}
+          : _GEN_3;
+      sN_out_r_1_sig <= sN_out_r_sig;
+      sN_out_r_1_expOdd <= sN_out_r_expOdd;
+      sN_out_r_1_q <=
+        {sN_out_r_q[19:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, sN_nx_ge_8, sN_nx_ge_9};
+      sN_out_r_1_r <=
+        sN_nx_ge_9
+          ? _GEN_8
+            - {sN_out_r_q[20:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, sN_nx_ge_8, 2'h1}
+          : _GEN_8;
+      sN_out_r_2_sig <= sN_out_r_1_sig;
+      sN_out_r_2_expOdd <= sN_out_r_1_expOdd;
+      sN_out_r_2_q <=
+        {sN_out_r_1_q[19:0],
          sN_nx_ge_10,
          sN_nx_ge_11,
          sN_nx_ge_12,
          sN_nx_ge_13,
-         sN_nx_ge_14,
+         sN_nx_ge_14};
+      sN_out_r_2_r <=
+        sN_nx_ge_14
+          ? _GEN_13
+            - {sN_out_r_1_q[20:0],
+               sN_nx_ge_10,
+               sN_nx_ge_11,
+               sN_nx_ge_12,
+               sN_nx_ge_13,
+               2'h1}
+          : _GEN_13;
+      sN_out_r_3_sig <= sN_out_r_2_sig;
+      sN_out_r_3_expOdd <= sN_out_r_2_expOdd;
+      sN_out_r_3_q <=
+        {sN_out_r_2_q[19:0],
          sN_nx_ge_15,
          sN_nx_ge_16,
          sN_nx_ge_17,
          sN_nx_ge_18,
          sN_nx_ge_19};
-      sN_out_r_r <=
+      sN_out_r_3_r <=
         sN_nx_ge_19
           ? _GEN_18
-            - {6'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
+            - {sN_out_r_2_q[20:0],
                sN_nx_ge_15,
                sN_nx_ge_16,
                sN_nx_ge_17,
                sN_nx_ge_18,
                2'h1}
           : _GEN_18;
-      sN_out_r_1_sig <= sN_out_r_sig;
-      sN_out_r_1_expOdd <= sN_out_r_expOdd;
-      sN_out_r_1_q <= {sN_out_r_q[23:0], sN_nx_ge_20};
-      sN_out_r_1_r <= sN_nx_ge_20 ? _GEN_19 - {sN_out_r_q, 2'h1} : _GEN_19;
-      sN_out_r_2_sig <= sN_out_r_1_sig;
-      sN_out_r_2_expOdd <= sN_out_r_1_expOdd;
-      sN_out_r_2_q <= {sN_out_r_1_q[23:0], sN_nx_ge_21};
-      sN_out_r_2_r <= sN_nx_ge_21 ? _GEN_20 - {sN_out_r_1_q, 2'h1} : _GEN_20;
-      sN_out_r_3_sig <= sN_out_r_2_sig;
-      sN_out_r_3_expOdd <= sN_out_r_2_expOdd;
-      sN_out_r_3_q <= {sN_out_r_2_q[23:0], sN_nx_ge_22};
-      sN_out_r_3_r <= sN_nx_ge_22 ? _GEN_21 - {sN_out_r_2_q, 2'h1} : _GEN_21;
-      sN_out_r_4_q <= {sN_out_r_3_q[23:0], sN_nx_ge_23};
-      sN_out_r_4_r <= sN_nx_ge_23 ? _GEN_22 - {sN_out_r_3_q, 2'h1} : _GEN_22;
+      sN_out_r_4_q <=
+        {sN_out_r_3_q[20:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, sN_nx_ge_23};
+      sN_out_r_4_r <=
+        sN_nx_ge_23
+          ? _GEN_22 - {sN_out_r_3_q[21:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, 2'h1}
+          : _GEN_22;
     end
     if (reset) begin
       sN_out_valid_r <= 1'h0;
@@ -18093,101 +17718,98 @@ module DigitRecurrenceCore_recip_s24_L5_default(
   wire [23:0] _sN_nx_nx_r_T_14 = sN_nx_ge_3 ? _GEN_2 - io_in_bits_sig : _GEN_2;
   wire        sN_nx_ge_4 = {_sN_nx_nx_r_T_14, 1'h0} >= _GEN;
   wire [23:0] _GEN_3 = {_sN_nx_nx_r_T_14[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_18 = sN_nx_ge_4 ? _GEN_3 - io_in_bits_sig : _GEN_3;
-  wire        sN_nx_ge_5 = {_sN_nx_nx_r_T_18, 1'h0} >= _GEN;
-  wire [23:0] _GEN_4 = {_sN_nx_nx_r_T_18[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_22 = sN_nx_ge_5 ? _GEN_4 - io_in_bits_sig : _GEN_4;
-  wire        sN_nx_ge_6 = {_sN_nx_nx_r_T_22, 1'h0} >= _GEN;
+  wire [24:0] _GEN_4 = {1'h0, sN_out_r_sig};
+  wire        sN_nx_ge_5 = sN_out_r_r >= _GEN_4;
+  wire [23:0] _sN_nx_nx_r_T_22 =
+    sN_nx_ge_5 ? sN_out_r_r[23:0] - sN_out_r_sig : sN_out_r_r[23:0];
+  wire        sN_nx_ge_6 = {_sN_nx_nx_r_T_22, 1'h0} >= _GEN_4;
   wire [23:0] _GEN_5 = {_sN_nx_nx_r_T_22[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_26 = sN_nx_ge_6 ? _GEN_5 - io_in_bits_sig : _GEN_5;
-  wire        sN_nx_ge_7 = {_sN_nx_nx_r_T_26, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_26 = sN_nx_ge_6 ? _GEN_5 - sN_out_r_sig : _GEN_5;
+  wire        sN_nx_ge_7 = {_sN_nx_nx_r_T_26, 1'h0} >= _GEN_4;
   wire [23:0] _GEN_6 = {_sN_nx_nx_r_T_26[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_30 = sN_nx_ge_7 ? _GEN_6 - io_in_bits_sig : _GEN_6;
-  wire        sN_nx_ge_8 = {_sN_nx_nx_r_T_30, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_30 = sN_nx_ge_7 ? _GEN_6 - sN_out_r_sig : _GEN_6;
+  wire        sN_nx_ge_8 = {_sN_nx_nx_r_T_30, 1'h0} >= _GEN_4;
   wire [23:0] _GEN_7 = {_sN_nx_nx_r_T_30[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_34 = sN_nx_ge_8 ? _GEN_7 - io_in_bits_sig : _GEN_7;
-  wire        sN_nx_ge_9 = {_sN_nx_nx_r_T_34, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_34 = sN_nx_ge_8 ? _GEN_7 - sN_out_r_sig : _GEN_7;
+  wire        sN_nx_ge_9 = {_sN_nx_nx_r_T_34, 1'h0} >= _GEN_4;
   wire [23:0] _GEN_8 = {_sN_nx_nx_r_T_34[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_38 = sN_nx_ge_9 ? _GEN_8 - io_in_bits_sig : _GEN_8;
-  wire        sN_nx_ge_10 = {_sN_nx_nx_r_T_38, 1'h0} >= _GEN;
-  wire [23:0] _GEN_9 = {_sN_nx_nx_r_T_38[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_42 = sN_nx_ge_10 ? _GEN_9 - io_in_bits_sig : _GEN_9;
-  wire        sN_nx_ge_11 = {_sN_nx_nx_r_T_42, 1'h0} >= _GEN;
+  wire [24:0] _GEN_9 = {1'h0, sN_out_r_1_sig};
+  wire        sN_nx_ge_10 = sN_out_r_1_r >= _GEN_9;
+  wire [23:0] _sN_nx_nx_r_T_42 =
+    sN_nx_ge_10 ? sN_out_r_1_r[23:0] - sN_out_r_1_sig : sN_out_r_1_r[23:0];
+  wire        sN_nx_ge_11 = {_sN_nx_nx_r_T_42, 1'h0} >= _GEN_9;
   wire [23:0] _GEN_10 = {_sN_nx_nx_r_T_42[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_46 = sN_nx_ge_11 ? _GEN_10 - io_in_bits_sig : _GEN_10;
-  wire        sN_nx_ge_12 = {_sN_nx_nx_r_T_46, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_46 = sN_nx_ge_11 ? _GEN_10 - sN_out_r_1_sig : _GEN_10;
+  wire        sN_nx_ge_12 = {_sN_nx_nx_r_T_46, 1'h0} >= _GEN_9;
   wire [23:0] _GEN_11 = {_sN_nx_nx_r_T_46[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_50 = sN_nx_ge_12 ? _GEN_11 - io_in_bits_sig : _GEN_11;
-  wire        sN_nx_ge_13 = {_sN_nx_nx_r_T_50, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_50 = sN_nx_ge_12 ? _GEN_11 - sN_out_r_1_sig : _GEN_11;
+  wire        sN_nx_ge_13 = {_sN_nx_nx_r_T_50, 1'h0} >= _GEN_9;
   wire [23:0] _GEN_12 = {_sN_nx_nx_r_T_50[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_54 = sN_nx_ge_13 ? _GEN_12 - io_in_bits_sig : _GEN_12;
-  wire        sN_nx_ge_14 = {_sN_nx_nx_r_T_54, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_54 = sN_nx_ge_13 ? _GEN_12 - sN_out_r_1_sig : _GEN_12;
+  wire        sN_nx_ge_14 = {_sN_nx_nx_r_T_54, 1'h0} >= _GEN_9;
   wire [23:0] _GEN_13 = {_sN_nx_nx_r_T_54[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_58 = sN_nx_ge_14 ? _GEN_13 - io_in_bits_sig : _GEN_13;
-  wire        sN_nx_ge_15 = {_sN_nx_nx_r_T_58, 1'h0} >= _GEN;
-  wire [23:0] _GEN_14 = {_sN_nx_nx_r_T_58[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_62 = sN_nx_ge_15 ? _GEN_14 - io_in_bits_sig : _GEN_14;
-  wire        sN_nx_ge_16 = {_sN_nx_nx_r_T_62, 1'h0} >= _GEN;
+  wire [24:0] _GEN_14 = {1'h0, sN_out_r_2_sig};
+  wire        sN_nx_ge_15 = sN_out_r_2_r >= _GEN_14;
+  wire [23:0] _sN_nx_nx_r_T_62 =
+    sN_nx_ge_15 ? sN_out_r_2_r[23:0] - sN_out_r_2_sig : sN_out_r_2_r[23:0];
+  wire        sN_nx_ge_16 = {_sN_nx_nx_r_T_62, 1'h0} >= _GEN_14;
   wire [23:0] _GEN_15 = {_sN_nx_nx_r_T_62[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_66 = sN_nx_ge_16 ? _GEN_15 - io_in_bits_sig : _GEN_15;
-  wire        sN_nx_ge_17 = {_sN_nx_nx_r_T_66, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_66 = sN_nx_ge_16 ? _GEN_15 - sN_out_r_2_sig : _GEN_15;
+  wire        sN_nx_ge_17 = {_sN_nx_nx_r_T_66, 1'h0} >= _GEN_14;
   wire [23:0] _GEN_16 = {_sN_nx_nx_r_T_66[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_70 = sN_nx_ge_17 ? _GEN_16 - io_in_bits_sig : _GEN_16;
-  wire        sN_nx_ge_18 = {_sN_nx_nx_r_T_70, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_70 = sN_nx_ge_17 ? _GEN_16 - sN_out_r_2_sig : _GEN_16;
+  wire        sN_nx_ge_18 = {_sN_nx_nx_r_T_70, 1'h0} >= _GEN_14;
   wire [23:0] _GEN_17 = {_sN_nx_nx_r_T_70[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_74 = sN_nx_ge_18 ? _GEN_17 - io_in_bits_sig : _GEN_17;
-  wire        sN_nx_ge_19 = {_sN_nx_nx_r_T_74, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_74 = sN_nx_ge_18 ? _GEN_17 - sN_out_r_2_sig : _GEN_17;
+  wire        sN_nx_ge_19 = {_sN_nx_nx_r_T_74, 1'h0} >= _GEN_14;
   wire [23:0] _GEN_18 = {_sN_nx_nx_r_T_74[22:0], 1'h0};
-  wire        sN_nx_ge_20 = sN_out_r_r >= {1'h0, sN_out_r_sig};
-  wire        sN_nx_ge_21 = sN_out_r_1_r >= {1'h0, sN_out_r_1_sig};
-  wire        sN_nx_ge_22 = sN_out_r_2_r >= {1'h0, sN_out_r_2_sig};
-  wire        sN_nx_ge_23 = sN_out_r_3_r >= {1'h0, sN_out_r_3_sig};
+  wire [24:0] _GEN_19 = {1'h0, sN_out_r_3_sig};
+  wire        sN_nx_ge_20 = sN_out_r_3_r >= _GEN_19;
+  wire [23:0] _sN_nx_nx_r_T_82 =
+    sN_nx_ge_20 ? sN_out_r_3_r[23:0] - sN_out_r_3_sig : sN_out_r_3_r[23:0];
+  wire        sN_nx_ge_21 = {_sN_nx_nx_r_T_82, 1'h0} >= _GEN_19;
+  wire [23:0] _GEN_20 = {_sN_nx_nx_r_T_82[22:0], 1'h0};
+  wire [23:0] _sN_nx_nx_r_T_86 = sN_nx_ge_21 ? _GEN_20 - sN_out_r_3_sig : _GEN_20;
+  wire        sN_nx_ge_22 = {_sN_nx_nx_r_T_86, 1'h0} >= _GEN_19;
+  wire [23:0] _GEN_21 = {_sN_nx_nx_r_T_86[22:0], 1'h0};
+  wire [23:0] _sN_nx_nx_r_T_90 = sN_nx_ge_22 ? _GEN_21 - sN_out_r_3_sig : _GEN_21;
+  wire        sN_nx_ge_23 = {_sN_nx_nx_r_T_90, 1'h0} >= _GEN_19;
+  wire [23:0] _GEN_22 = {_sN_nx_nx_r_T_90[22:0], 1'h0};
   always @(posedge clock) begin
     if (io_en) begin
       sN_out_r_sig <= io_in_bits_sig;
       sN_out_r_expDec <= ~isOne;
-      sN_out_r_q <=
-        {5'h1,
-         sN_nx_ge,
-         sN_nx_ge_1,
-         sN_nx_ge_2,
-         sN_nx_ge_3,
-         sN_nx_ge_4,
-         sN_nx_ge_5,
-         sN_nx_ge_6,
-         sN_nx_ge_7,
-         sN_nx_ge_8,
-         sN_nx_ge_9,
+      sN_out_r_q <= {20'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, sN_nx_ge_4};
+      sN_out_r_r <= {sN_nx_ge_4 ? _GEN_3 - io_in_bits_sig : _GEN_3, 1'h0};
+      sN_out_r_1_sig <= sN_out_r_sig;
+      sN_out_r_1_expDec <= sN_out_r_expDec;
+      sN_out_r_1_q <=
+        {sN_out_r_q[19:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, sN_nx_ge_8, sN_nx_ge_9};
+      sN_out_r_1_r <= {sN_nx_ge_9 ? _GEN_8 - sN_out_r_sig : _GEN_8, 1'h0};
+      sN_out_r_2_sig <= sN_out_r_1_sig;
+      sN_out_r_2_expDec <= sN_out_r_1_expDec;
+      sN_out_r_2_q <=
+        {sN_out_r_1_q[19:0],
          sN_nx_ge_10,
          sN_nx_ge_11,
          sN_nx_ge_12,
          sN_nx_ge_13,
-         sN_nx_ge_14,
+         sN_nx_ge_14};
+      sN_out_r_2_r <= {sN_nx_ge_14 ? _GEN_13 - sN_out_r_1_sig : _GEN_13, 1'h0};
+      sN_out_r_3_sig <= sN_out_r_2_sig;
+      sN_out_r_3_expDec <= sN_out_r_2_expDec;
+      sN_out_r_3_q <=
+        {sN_out_r_2_q[19:0],
          sN_nx_ge_15,
          sN_nx_ge_16,
          sN_nx_ge_17,
          sN_nx_ge_18,
          sN_nx_ge_19};
-      sN_out_r_r <= {sN_nx_ge_19 ? _GEN_18 - io_in_bits_sig : _GEN_18, 1'h0};
-      sN_out_r_1_sig <= sN_out_r_sig;
-      sN_out_r_1_expDec <= sN_out_r_expDec;
-      sN_out_r_1_q <= {sN_out_r_q[23:0], sN_nx_ge_20};
-      sN_out_r_1_r <=
-        {sN_nx_ge_20 ? sN_out_r_r[23:0] - sN_out_r_sig : sN_out_r_r[23:0], 1'h0};
-      sN_out_r_2_sig <= sN_out_r_1_sig;
-      sN_out_r_2_expDec <= sN_out_r_1_expDec;
-      sN_out_r_2_q <= {sN_out_r_1_q[23:0], sN_nx_ge_21};
-      sN_out_r_2_r <=
-        {sN_nx_ge_21 ? sN_out_r_1_r[23:0] - sN_out_r_1_sig : sN_out_r_1_r[23:0], 1'h0};
-      sN_out_r_3_sig <= sN_out_r_2_sig;
-      sN_out_r_3_expDec <= sN_out_r_2_expDec;
-      sN_out_r_3_q <= {sN_out_r_2_q[23:0], sN_nx_ge_22};
-      sN_out_r_3_r <=
-        {sN_nx_ge_22 ? sN_out_r_2_r[23:0] - sN_out_r_2_sig : sN_out_r_2_r[23:0], 1'h0};
+      sN_out_r_3_r <= {sN_nx_ge_19 ? _GEN_18 - sN_out_r_2_sig : _GEN_18, 1'h0};
       sN_out_r_4_expDec <= sN_out_r_3_expDec;
-      sN_out_r_4_q <= {sN_out_r_3_q[23:0], sN_nx_ge_23};
-      sN_out_r_4_r <=
-        {sN_nx_ge_23 ? sN_out_r_3_r[23:0] - sN_out_r_3_sig : sN_out_r_3_r[23:0], 1'h0};
+      sN_out_r_4_q <=
+        {sN_out_r_3_q[20:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, sN_nx_ge_23};
+      sN_out_r_4_r <= {sN_nx_ge_23 ? _GEN_22 - sN_out_r_3_sig : _GEN_22, 1'h0};
     end
     if (reset) begin
       sN_out_valid_r <= 1'h0;

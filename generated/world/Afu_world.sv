@@ -14495,54 +14495,84 @@ module ContactCollector_n16_world(
   wire        want_14 = active_14 & (io_dense | hit_14 | io_keepFlagged & flagged_14);
   wire        want_15 = active_15 & (io_dense | hit_15 | io_keepFlagged & flagged_15);
   wire        okPrefix_0 = ~active_0 | casez_tmp_111;
+  wire        _okPrefix_T_5 = ~active_2 | casez_tmp_113;
+  wire        _okPrefix_T_9 = ~active_4 | casez_tmp_115;
+  wire        _okPrefix_T_13 = ~active_6 | casez_tmp_117;
+  wire        _okPrefix_T_17 = ~active_8 | casez_tmp_119;
+  wire        _okPrefix_T_21 = ~active_10 | casez_tmp_121;
+  wire        _okPrefix_T_25 = ~active_12 | casez_tmp_123;
+  wire        _okPrefix_T_29 = ~active_14 | casez_tmp_125;
   wire        okPrefix_1 = okPrefix_0 & (~active_1 | casez_tmp_112);
-  wire        okPrefix_2 = okPrefix_1 & (~active_2 | casez_tmp_113);
-  wire        okPrefix_3 = okPrefix_2 & (~active_3 | casez_tmp_114);
-  wire        okPrefix_4 = okPrefix_3 & (~active_4 | casez_tmp_115);
-  wire        okPrefix_5 = okPrefix_4 & (~active_5 | casez_tmp_116);
-  wire        okPrefix_6 = okPrefix_5 & (~active_6 | casez_tmp_117);
-  wire        okPrefix_7 = okPrefix_6 & (~active_7 | casez_tmp_118);
-  wire        okPrefix_8 = okPrefix_7 & (~active_8 | casez_tmp_119);
-  wire        okPrefix_9 = okPrefix_8 & (~active_9 | casez_tmp_120);
-  wire        okPrefix_10 = okPrefix_9 & (~active_10 | casez_tmp_121);
-  wire        okPrefix_11 = okPrefix_10 & (~active_11 | casez_tmp_122);
-  wire        okPrefix_12 = okPrefix_11 & (~active_12 | casez_tmp_123);
-  wire        okPrefix_13 = okPrefix_12 & (~active_13 | casez_tmp_124);
-  wire        okPrefix_14 = okPrefix_13 & (~active_14 | casez_tmp_125);
+  wire        okPrefix_3 = okPrefix_1 & _okPrefix_T_5 & (~active_3 | casez_tmp_114);
+  wire        _okPrefix_T_36 = _okPrefix_T_9 & (~active_5 | casez_tmp_116);
+  wire        okPrefix_7 =
+    okPrefix_3 & _okPrefix_T_36 & _okPrefix_T_13 & (~active_7 | casez_tmp_118);
+  wire        _okPrefix_T_44 = _okPrefix_T_17 & (~active_9 | casez_tmp_120);
+  wire        _okPrefix_T_47 =
+    _okPrefix_T_44 & _okPrefix_T_21 & (~active_11 | casez_tmp_122);
+  wire        _okPrefix_T_48 = _okPrefix_T_25 & (~active_13 | casez_tmp_124);
   wire [4:0]  wantCount_1 = {4'h0, want_0} + {4'h0, want_1};
-  wire [4:0]  wantCount_2 = wantCount_1 + {4'h0, want_2};
-  wire [4:0]  wantCount_3 = wantCount_2 + {4'h0, want_3};
-  wire [4:0]  wantCount_4 = wantCount_3 + {4'h0, want_4};
-  wire [4:0]  wantCount_5 = wantCount_4 + {4'h0, want_5};
-  wire [4:0]  wantCount_6 = wantCount_5 + {4'h0, want_6};
-  wire [4:0]  wantCount_7 = wantCount_6 + {4'h0, want_7};
-  wire [4:0]  wantCount_8 = wantCount_7 + {4'h0, want_8};
-  wire [4:0]  wantCount_9 = wantCount_8 + {4'h0, want_9};
-  wire [4:0]  wantCount_10 = wantCount_9 + {4'h0, want_10};
-  wire [4:0]  wantCount_11 = wantCount_10 + {4'h0, want_11};
-  wire [4:0]  wantCount_12 = wantCount_11 + {4'h0, want_12};
-  wire [4:0]  wantCount_13 = wantCount_12 + {4'h0, want_13};
-  wire [4:0]  wantCount_14 = wantCount_13 + {4'h0, want_14};
-  wire [4:0]  wantCount_15 = wantCount_14 + {4'h0, want_15};
-  wire [5:0]  _GEN_15 = {3'h0, io_room};
-  wire        take_0 = active_0 & okPrefix_0 & {5'h0, want_0} <= _GEN_15;
-  wire        take_1 = active_1 & okPrefix_1 & {1'h0, wantCount_1} <= _GEN_15;
-  wire        take_2 = active_2 & okPrefix_2 & {1'h0, wantCount_2} <= _GEN_15;
-  wire        take_3 = active_3 & okPrefix_3 & {1'h0, wantCount_3} <= _GEN_15;
-  wire        take_4 = active_4 & okPrefix_4 & {1'h0, wantCount_4} <= _GEN_15;
-  wire        take_5 = active_5 & okPrefix_5 & {1'h0, wantCount_5} <= _GEN_15;
-  wire        take_6 = active_6 & okPrefix_6 & {1'h0, wantCount_6} <= _GEN_15;
-  wire        take_7 = active_7 & okPrefix_7 & {1'h0, wantCount_7} <= _GEN_15;
-  wire        take_8 = active_8 & okPrefix_8 & {1'h0, wantCount_8} <= _GEN_15;
-  wire        take_9 = active_9 & okPrefix_9 & {1'h0, wantCount_9} <= _GEN_15;
-  wire        take_10 = active_10 & okPrefix_10 & {1'h0, wantCount_10} <= _GEN_15;
-  wire        take_11 = active_11 & okPrefix_11 & {1'h0, wantCount_11} <= _GEN_15;
-  wire        take_12 = active_12 & okPrefix_12 & {1'h0, wantCount_12} <= _GEN_15;
-  wire        take_13 = active_13 & okPrefix_13 & {1'h0, wantCount_13} <= _GEN_15;
-  wire        take_14 = active_14 & okPrefix_14 & {1'h0, wantCount_14} <= _GEN_15;
+  wire [4:0]  _GEN_15 = {4'h0, want_2};
+  wire [4:0]  wantCount_2 = wantCount_1 + _GEN_15;
+  wire [4:0]  wantCount_3 = wantCount_1 + _GEN_15 + {4'h0, want_3};
+  wire [4:0]  _GEN_16 = {4'h0, want_4};
+  wire [4:0]  _wantCount_T_24 = _GEN_16 + {4'h0, want_5};
+  wire [4:0]  _GEN_17 = {4'h0, want_6};
+  wire [4:0]  wantCount_4 = wantCount_3 + _GEN_16;
+  wire [4:0]  wantCount_5 = wantCount_3 + _wantCount_T_24;
+  wire [4:0]  wantCount_6 = wantCount_3 + _wantCount_T_24 + _GEN_17;
+  wire [4:0]  wantCount_7 = wantCount_3 + _wantCount_T_24 + _GEN_17 + {4'h0, want_7};
+  wire [4:0]  _GEN_18 = {4'h0, want_8};
+  wire [4:0]  _wantCount_T_40 = _GEN_18 + {4'h0, want_9};
+  wire [4:0]  _GEN_19 = {4'h0, want_10};
+  wire [4:0]  _wantCount_T_46 = _wantCount_T_40 + _GEN_19 + {4'h0, want_11};
+  wire [4:0]  _GEN_20 = {4'h0, want_12};
+  wire [4:0]  _wantCount_T_48 = _GEN_20 + {4'h0, want_13};
+  wire [4:0]  _GEN_21 = {4'h0, want_14};
+  wire [4:0]  wantCount_8 = wantCount_7 + _GEN_18;
+  wire [4:0]  wantCount_9 = wantCount_7 + _wantCount_T_40;
+  wire [4:0]  wantCount_10 = wantCount_7 + _wantCount_T_40 + _GEN_19;
+  wire [4:0]  wantCount_11 = wantCount_7 + _wantCount_T_46;
+  wire [4:0]  wantCount_12 = wantCount_7 + _wantCount_T_46 + _GEN_20;
+  wire [4:0]  wantCount_13 = wantCount_7 + _wantCount_T_46 + _wantCount_T_48;
+  wire [4:0]  wantCount_14 = wantCount_7 + _wantCount_T_46 + _wantCount_T_48 + _GEN_21;
+  wire [4:0]  wantCount_15 =
+    wantCount_7 + _wantCount_T_46 + _wantCount_T_48 + _GEN_21 + {4'h0, want_15};
+  wire [5:0]  _GEN_22 = {3'h0, io_room};
+  wire        take_0 = active_0 & okPrefix_0 & {5'h0, want_0} <= _GEN_22;
+  wire        take_1 = active_1 & okPrefix_1 & {1'h0, wantCount_1} <= _GEN_22;
+  wire        take_2 =
+    active_2 & okPrefix_1 & _okPrefix_T_5 & {1'h0, wantCount_2} <= _GEN_22;
+  wire        take_3 = active_3 & okPrefix_3 & {1'h0, wantCount_3} <= _GEN_22;
+  wire        take_4 =
+    active_4 & okPrefix_3 & _okPrefix_T_9 & {1'h0, wantCount_4} <= _GEN_22;
+  wire        take_5 =
+    active_5 & okPrefix_3 & _okPrefix_T_36 & {1'h0, wantCount_5} <= _GEN_22;
+  wire        take_6 =
+    active_6 & okPrefix_3 & _okPrefix_T_36 & _okPrefix_T_13
+    & {1'h0, wantCount_6} <= _GEN_22;
+  wire        take_7 = active_7 & okPrefix_7 & {1'h0, wantCount_7} <= _GEN_22;
+  wire        take_8 =
+    active_8 & okPrefix_7 & _okPrefix_T_17 & {1'h0, wantCount_8} <= _GEN_22;
+  wire        take_9 =
+    active_9 & okPrefix_7 & _okPrefix_T_44 & {1'h0, wantCount_9} <= _GEN_22;
+  wire        take_10 =
+    active_10 & okPrefix_7 & _okPrefix_T_44 & _okPrefix_T_21
+    & {1'h0, wantCount_10} <= _GEN_22;
+  wire        take_11 =
+    active_11 & okPrefix_7 & _okPrefix_T_47 & {1'h0, wantCount_11} <= _GEN_22;
+  wire        take_12 =
+    active_12 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_25
+    & {1'h0, wantCount_12} <= _GEN_22;
+  wire        take_13 =
+    active_13 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48
+    & {1'h0, wantCount_13} <= _GEN_22;
+  wire        take_14 =
+    active_14 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48 & _okPrefix_T_29
+    & {1'h0, wantCount_14} <= _GEN_22;
   wire        take_15 =
-    active_15 & okPrefix_14 & (~active_15 | casez_tmp_126)
-    & {1'h0, wantCount_15} <= _GEN_15;
+    active_15 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48 & _okPrefix_T_29
+    & (~active_15 | casez_tmp_126) & {1'h0, wantCount_15} <= _GEN_22;
   wire [95:0] records_1_bits =
     io_groups_bits_invalid[1]
       ? {8'h6, casez_tmp_12, 64'h0}
@@ -17926,126 +17956,135 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
   reg          sumS1;
   reg  [7:0]   sumW;
   reg          sumLast;
-  wire [10:0]  totals_0 = _cursors_0_ext_R0_data[10:0] + _tables_0_ext_R0_data[10:0];
   wire [10:0]  totals_1 = _cursors_0_ext_R0_data[21:11] + _tables_0_ext_R0_data[21:11];
-  wire [10:0]  totals_2 = _cursors_0_ext_R0_data[32:22] + _tables_0_ext_R0_data[32:22];
   wire [10:0]  totals_3 = _cursors_0_ext_R0_data[43:33] + _tables_0_ext_R0_data[43:33];
-  wire [10:0]  totals_4 = _cursors_0_ext_R0_data[54:44] + _tables_0_ext_R0_data[54:44];
   wire [10:0]  totals_5 = _cursors_0_ext_R0_data[65:55] + _tables_0_ext_R0_data[65:55];
-  wire [10:0]  totals_6 = _cursors_0_ext_R0_data[76:66] + _tables_0_ext_R0_data[76:66];
   wire [10:0]  totals_7 = _cursors_0_ext_R0_data[87:77] + _tables_0_ext_R0_data[87:77];
-  wire [10:0]  totals_8 = _cursors_0_ext_R0_data[98:88] + _tables_0_ext_R0_data[98:88];
   wire [10:0]  totals_9 = _cursors_0_ext_R0_data[109:99] + _tables_0_ext_R0_data[109:99];
-  wire [10:0]  totals_10 =
-    _cursors_0_ext_R0_data[120:110] + _tables_0_ext_R0_data[120:110];
   wire [10:0]  totals_11 =
     _cursors_0_ext_R0_data[131:121] + _tables_0_ext_R0_data[131:121];
-  wire [10:0]  totals_12 =
-    _cursors_0_ext_R0_data[142:132] + _tables_0_ext_R0_data[142:132];
   wire [10:0]  totals_13 =
     _cursors_0_ext_R0_data[153:143] + _tables_0_ext_R0_data[153:143];
-  wire [10:0]  totals_14 =
-    _cursors_0_ext_R0_data[164:154] + _tables_0_ext_R0_data[164:154];
   wire [10:0]  totals_15 =
     _cursors_0_ext_R0_data[175:165] + _tables_0_ext_R0_data[175:165];
-  wire [10:0]  totals_16 =
-    _cursors_0_ext_R0_data[186:176] + _tables_0_ext_R0_data[186:176];
   wire [10:0]  totals_17 =
     _cursors_0_ext_R0_data[197:187] + _tables_0_ext_R0_data[197:187];
-  wire [10:0]  totals_18 =
-    _cursors_0_ext_R0_data[208:198] + _tables_0_ext_R0_data[208:198];
   wire [10:0]  totals_19 =
     _cursors_0_ext_R0_data[219:209] + _tables_0_ext_R0_data[219:209];
-  wire [10:0]  totals_20 =
-    _cursors_0_ext_R0_data[230:220] + _tables_0_ext_R0_data[230:220];
   wire [10:0]  totals_21 =
     _cursors_0_ext_R0_data[241:231] + _tables_0_ext_R0_data[241:231];
-  wire [10:0]  totals_22 =
-    _cursors_0_ext_R0_data[252:242] + _tables_0_ext_R0_data[252:242];
   wire [10:0]  totals_23 =
     _cursors_0_ext_R0_data[263:253] + _tables_0_ext_R0_data[263:253];
-  wire [10:0]  totals_24 =
-    _cursors_0_ext_R0_data[274:264] + _tables_0_ext_R0_data[274:264];
   wire [10:0]  totals_25 =
     _cursors_0_ext_R0_data[285:275] + _tables_0_ext_R0_data[285:275];
-  wire [10:0]  totals_26 =
-    _cursors_0_ext_R0_data[296:286] + _tables_0_ext_R0_data[296:286];
   wire [10:0]  totals_27 =
     _cursors_0_ext_R0_data[307:297] + _tables_0_ext_R0_data[307:297];
-  wire [10:0]  totals_28 =
-    _cursors_0_ext_R0_data[318:308] + _tables_0_ext_R0_data[318:308];
   wire [10:0]  totals_29 =
     _cursors_0_ext_R0_data[329:319] + _tables_0_ext_R0_data[329:319];
   wire [10:0]  totals_30 =
     _cursors_0_ext_R0_data[340:330] + _tables_0_ext_R0_data[340:330];
-  wire [10:0]  totals_31 =
-    _cursors_0_ext_R0_data[351:341] + _tables_0_ext_R0_data[351:341];
-  wire [10:0]  starts_1 = sum + totals_0;
+  wire [10:0]  starts_1 =
+    sum + _cursors_0_ext_R0_data[10:0] + _tables_0_ext_R0_data[10:0];
   wire [10:0]  starts_2 = starts_1 + totals_1;
-  wire [10:0]  starts_3 = starts_2 + totals_2;
+  wire [10:0]  starts_3 =
+    starts_1 + totals_1 + _cursors_0_ext_R0_data[32:22] + _tables_0_ext_R0_data[32:22];
+  wire [10:0]  _inc_T_5 =
+    totals_3 + _cursors_0_ext_R0_data[54:44] + _tables_0_ext_R0_data[54:44];
   wire [10:0]  starts_4 = starts_3 + totals_3;
-  wire [10:0]  starts_5 = starts_4 + totals_4;
-  wire [10:0]  starts_6 = starts_5 + totals_5;
-  wire [10:0]  starts_7 = starts_6 + totals_6;
+  wire [10:0]  starts_5 = starts_3 + _inc_T_5;
+  wire [10:0]  starts_6 = starts_3 + _inc_T_5 + totals_5;
+  wire [10:0]  starts_7 =
+    starts_3 + _inc_T_5 + totals_5 + _cursors_0_ext_R0_data[76:66]
+    + _tables_0_ext_R0_data[76:66];
+  wire [10:0]  _inc_T_17 =
+    totals_7 + _cursors_0_ext_R0_data[98:88] + _tables_0_ext_R0_data[98:88];
+  wire [10:0]  _inc_T_23 =
+    _inc_T_17 + totals_9 + _cursors_0_ext_R0_data[120:110]
+    + _tables_0_ext_R0_data[120:110];
+  wire [10:0]  _inc_T_25 =
+    totals_11 + _cursors_0_ext_R0_data[142:132] + _tables_0_ext_R0_data[142:132];
   wire [10:0]  starts_8 = starts_7 + totals_7;
-  wire [10:0]  starts_9 = starts_8 + totals_8;
-  wire [10:0]  starts_10 = starts_9 + totals_9;
-  wire [10:0]  starts_11 = starts_10 + totals_10;
-  wire [10:0]  starts_12 = starts_11 + totals_11;
-  wire [10:0]  starts_13 = starts_12 + totals_12;
-  wire [10:0]  starts_14 = starts_13 + totals_13;
-  wire [10:0]  starts_15 = starts_14 + totals_14;
+  wire [10:0]  starts_9 = starts_7 + _inc_T_17;
+  wire [10:0]  starts_10 = starts_7 + _inc_T_17 + totals_9;
+  wire [10:0]  starts_11 = starts_7 + _inc_T_23;
+  wire [10:0]  starts_12 = starts_7 + _inc_T_23 + totals_11;
+  wire [10:0]  starts_13 = starts_7 + _inc_T_23 + _inc_T_25;
+  wire [10:0]  starts_14 = starts_7 + _inc_T_23 + _inc_T_25 + totals_13;
+  wire [10:0]  starts_15 =
+    starts_7 + _inc_T_23 + _inc_T_25 + totals_13 + _cursors_0_ext_R0_data[164:154]
+    + _tables_0_ext_R0_data[164:154];
+  wire [10:0]  _inc_T_49 =
+    totals_15 + _cursors_0_ext_R0_data[186:176] + _tables_0_ext_R0_data[186:176];
+  wire [10:0]  _inc_T_55 =
+    _inc_T_49 + totals_17 + _cursors_0_ext_R0_data[208:198]
+    + _tables_0_ext_R0_data[208:198];
+  wire [10:0]  _inc_T_57 =
+    totals_19 + _cursors_0_ext_R0_data[230:220] + _tables_0_ext_R0_data[230:220];
+  wire [10:0]  _inc_T_71 =
+    _inc_T_55 + _inc_T_57 + totals_21 + _cursors_0_ext_R0_data[252:242]
+    + _tables_0_ext_R0_data[252:242];
+  wire [10:0]  _inc_T_73 =
+    totals_23 + _cursors_0_ext_R0_data[274:264] + _tables_0_ext_R0_data[274:264];
+  wire [10:0]  _inc_T_79 =
+    _inc_T_73 + totals_25 + _cursors_0_ext_R0_data[296:286]
+    + _tables_0_ext_R0_data[296:286];
+  wire [10:0]  _inc_T_81 =
+    totals_27 + _cursors_0_ext_R0_data[318:308] + _tables_0_ext_R0_data[318:308];
   wire [10:0]  starts_16 = starts_15 + totals_15;
-  wire [10:0]  starts_17 = starts_16 + totals_16;
-  wire [10:0]  starts_18 = starts_17 + totals_17;
-  wire [10:0]  starts_19 = starts_18 + totals_18;
-  wire [10:0]  starts_20 = starts_19 + totals_19;
-  wire [10:0]  starts_21 = starts_20 + totals_20;
-  wire [10:0]  starts_22 = starts_21 + totals_21;
-  wire [10:0]  starts_23 = starts_22 + totals_22;
-  wire [10:0]  starts_24 = starts_23 + totals_23;
-  wire [10:0]  starts_25 = starts_24 + totals_24;
-  wire [10:0]  starts_26 = starts_25 + totals_25;
-  wire [10:0]  starts_27 = starts_26 + totals_26;
-  wire [10:0]  starts_28 = starts_27 + totals_27;
-  wire [10:0]  starts_29 = starts_28 + totals_28;
-  wire [10:0]  starts_30 = starts_29 + totals_29;
-  wire [10:0]  starts_31 = starts_30 + totals_30;
+  wire [10:0]  starts_17 = starts_15 + _inc_T_49;
+  wire [10:0]  starts_18 = starts_15 + _inc_T_49 + totals_17;
+  wire [10:0]  starts_19 = starts_15 + _inc_T_55;
+  wire [10:0]  starts_20 = starts_15 + _inc_T_55 + totals_19;
+  wire [10:0]  starts_21 = starts_15 + _inc_T_55 + _inc_T_57;
+  wire [10:0]  starts_22 = starts_15 + _inc_T_55 + _inc_T_57 + totals_21;
+  wire [10:0]  starts_23 = starts_15 + _inc_T_71;
+  wire [10:0]  starts_24 = starts_15 + _inc_T_71 + totals_23;
+  wire [10:0]  starts_25 = starts_15 + _inc_T_71 + _inc_T_73;
+  wire [10:0]  starts_26 = starts_15 + _inc_T_71 + _inc_T_73 + totals_25;
+  wire [10:0]  starts_27 = starts_15 + _inc_T_71 + _inc_T_79;
+  wire [10:0]  starts_28 = starts_15 + _inc_T_71 + _inc_T_79 + totals_27;
+  wire [10:0]  starts_29 = starts_15 + _inc_T_71 + _inc_T_79 + _inc_T_81;
+  wire [10:0]  starts_30 = starts_15 + _inc_T_71 + _inc_T_79 + _inc_T_81 + totals_29;
+  wire [10:0]  starts_31 =
+    starts_15 + _inc_T_71 + _inc_T_79 + _inc_T_81 + totals_29 + totals_30;
+  wire [10:0]  _inc_T_139 =
+    starts_15 + _inc_T_71 + _inc_T_79 + _inc_T_81 + totals_29 + totals_30
+    + _cursors_0_ext_R0_data[351:341] + _tables_0_ext_R0_data[351:341];
   wire         _io_in_1_ready_T = state == 2'h0;
   wire         _GEN = state == 2'h1;
   wire [351:0] ends =
-    {starts_31 + totals_31,
-     starts_30 + totals_30,
-     starts_29 + totals_29,
-     starts_28 + totals_28,
-     starts_27 + totals_27,
-     starts_26 + totals_26,
-     starts_25 + totals_25,
-     starts_24 + totals_24,
-     starts_23 + totals_23,
-     starts_22 + totals_22,
-     starts_21 + totals_21,
-     starts_20 + totals_20,
-     starts_19 + totals_19,
-     starts_18 + totals_18,
-     starts_17 + totals_17,
-     starts_16 + totals_16,
-     starts_15 + totals_15,
-     starts_14 + totals_14,
-     starts_13 + totals_13,
-     starts_12 + totals_12,
-     starts_11 + totals_11,
-     starts_10 + totals_10,
-     starts_9 + totals_9,
-     starts_8 + totals_8,
-     starts_7 + totals_7,
-     starts_6 + totals_6,
-     starts_5 + totals_5,
-     starts_4 + totals_4,
-     starts_3 + totals_3,
-     starts_2 + totals_2,
-     starts_1 + totals_1,
-     sum + totals_0};
+    {_inc_T_139,
+     starts_31,
+     starts_30,
+     starts_29,
+     starts_28,
+     starts_27,
+     starts_26,
+     starts_25,
+     starts_24,
+     starts_23,
+     starts_22,
+     starts_21,
+     starts_20,
+     starts_19,
+     starts_18,
+     starts_17,
+     starts_16,
+     starts_15,
+     starts_14,
+     starts_13,
+     starts_12,
+     starts_11,
+     starts_10,
+     starts_9,
+     starts_8,
+     starts_7,
+     starts_6,
+     starts_5,
+     starts_4,
+     starts_3,
+     starts_2,
+     starts_1};
   wire         io_in_0_ready_0 = _io_in_1_ready_T & ~io_clear & ~io_prefix;
   wire         io_in_1_ready_0 = _io_in_1_ready_T & ~io_clear & ~io_prefix;
   wire         inRange = {1'h0, io_in_0_bits_bucket} < _used_T[13:0];
@@ -20661,12 +20700,7 @@ module BucketSort_n1024_b13_w5_c16_p2_i12_world(
     else if (_GEN_3 | _GEN_4)
       walk <= 9'h0;
     if (sumS1)
-      sum <=
-        totals_0 + totals_1 + totals_2 + totals_3 + totals_4 + totals_5 + totals_6
-        + totals_7 + totals_8 + totals_9 + totals_10 + totals_11 + totals_12 + totals_13
-        + totals_14 + totals_15 + totals_16 + totals_17 + totals_18 + totals_19
-        + totals_20 + totals_21 + totals_22 + totals_23 + totals_24 + totals_25
-        + totals_26 + totals_27 + totals_28 + totals_29 + totals_30 + totals_31 + sum;
+      sum <= _inc_T_139;
     else if (_GEN_3 | ~_GEN_4) begin
     end
     else
@@ -31831,385 +31865,18 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   reg  [1:0]  boxCycle;
   wire [28:0] _sorts_3_io_in_1_bits_bucket_mask_T = 29'h1 << usedLog2;
   reg  [13:0] walkBuckets;
-  wire        _any_T = _trackers_0_io_any | _trackers_1_io_any;
-  wire [31:0] _GEN_5 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_0 < _trackers_0_io_lo_0
-      ? _trackers_1_io_lo_0
-      : _trackers_0_io_lo_0;
-  wire        _GEN_6 = _any_T | _trackers_2_io_any;
-  wire [31:0] _GEN_7 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_0 < _GEN_5
-      ? _trackers_2_io_lo_0
-      : _GEN_5;
-  wire        _GEN_8 = _GEN_6 | _trackers_3_io_any;
-  wire [31:0] _GEN_9 =
-    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_lo_0 < _GEN_7
-      ? _trackers_3_io_lo_0
-      : _GEN_7;
-  wire        _GEN_10 = _GEN_8 | _trackers_4_io_any;
-  wire [31:0] _GEN_11 =
-    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_lo_0 < _GEN_9
-      ? _trackers_4_io_lo_0
-      : _GEN_9;
-  wire        _GEN_12 = _GEN_10 | _trackers_5_io_any;
-  wire [31:0] _GEN_13 =
-    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_lo_0 < _GEN_11
-      ? _trackers_5_io_lo_0
-      : _GEN_11;
-  wire        _GEN_14 = _GEN_12 | _trackers_6_io_any;
-  wire [31:0] _GEN_15 =
-    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_lo_0 < _GEN_13
-      ? _trackers_6_io_lo_0
-      : _GEN_13;
-  wire        _GEN_16 = _GEN_14 | _trackers_7_io_any;
-  wire [31:0] _GEN_17 =
-    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_lo_0 < _GEN_15
-      ? _trackers_7_io_lo_0
-      : _GEN_15;
-  wire        _GEN_18 = _GEN_16 | _trackers_8_io_any;
-  wire [31:0] _GEN_19 =
-    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_lo_0 < _GEN_17
-      ? _trackers_8_io_lo_0
-      : _GEN_17;
-  wire        _GEN_20 = _GEN_18 | _trackers_9_io_any;
-  wire [31:0] _GEN_21 =
-    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_lo_0 < _GEN_19
-      ? _trackers_9_io_lo_0
-      : _GEN_19;
-  wire        _GEN_22 = _GEN_20 | _trackers_10_io_any;
-  wire [31:0] _GEN_23 =
-    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_lo_0 < _GEN_21
-      ? _trackers_10_io_lo_0
-      : _GEN_21;
-  wire        _GEN_24 = _GEN_22 | _trackers_11_io_any;
-  wire [31:0] _GEN_25 =
-    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_lo_0 < _GEN_23
-      ? _trackers_11_io_lo_0
-      : _GEN_23;
-  wire        _GEN_26 = _GEN_24 | _trackers_12_io_any;
-  wire [31:0] _GEN_27 =
-    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_lo_0 < _GEN_25
-      ? _trackers_12_io_lo_0
-      : _GEN_25;
-  wire        _GEN_28 = _GEN_26 | _trackers_13_io_any;
-  wire [31:0] _GEN_29 =
-    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_lo_0 < _GEN_27
-      ? _trackers_13_io_lo_0
-      : _GEN_27;
-  wire        _GEN_30 = _GEN_28 | _trackers_14_io_any;
-  wire [31:0] _GEN_31 =
-    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_lo_0 < _GEN_29
-      ? _trackers_14_io_lo_0
-      : _GEN_29;
-  wire [31:0] lo_0 =
-    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_lo_0 < _GEN_31
-      ? _trackers_15_io_lo_0
-      : _GEN_31;
-  wire [31:0] _GEN_32 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_1 < _trackers_0_io_lo_1
-      ? _trackers_1_io_lo_1
-      : _trackers_0_io_lo_1;
-  wire [31:0] _GEN_33 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_1 < _GEN_32
-      ? _trackers_2_io_lo_1
-      : _GEN_32;
-  wire [31:0] _GEN_34 =
-    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_lo_1 < _GEN_33
-      ? _trackers_3_io_lo_1
-      : _GEN_33;
-  wire [31:0] _GEN_35 =
-    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_lo_1 < _GEN_34
-      ? _trackers_4_io_lo_1
-      : _GEN_34;
-  wire [31:0] _GEN_36 =
-    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_lo_1 < _GEN_35
-      ? _trackers_5_io_lo_1
-      : _GEN_35;
-  wire [31:0] _GEN_37 =
-    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_lo_1 < _GEN_36
-      ? _trackers_6_io_lo_1
-      : _GEN_36;
-  wire [31:0] _GEN_38 =
-    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_lo_1 < _GEN_37
-      ? _trackers_7_io_lo_1
-      : _GEN_37;
-  wire [31:0] _GEN_39 =
-    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_lo_1 < _GEN_38
-      ? _trackers_8_io_lo_1
-      : _GEN_38;
-  wire [31:0] _GEN_40 =
-    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_lo_1 < _GEN_39
-      ? _trackers_9_io_lo_1
-      : _GEN_39;
-  wire [31:0] _GEN_41 =
-    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_lo_1 < _GEN_40
-      ? _trackers_10_io_lo_1
-      : _GEN_40;
-  wire [31:0] _GEN_42 =
-    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_lo_1 < _GEN_41
-      ? _trackers_11_io_lo_1
-      : _GEN_41;
-  wire [31:0] _GEN_43 =
-    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_lo_1 < _GEN_42
-      ? _trackers_12_io_lo_1
-      : _GEN_42;
-  wire [31:0] _GEN_44 =
-    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_lo_1 < _GEN_43
-      ? _trackers_13_io_lo_1
-      : _GEN_43;
-  wire [31:0] _GEN_45 =
-    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_lo_1 < _GEN_44
-      ? _trackers_14_io_lo_1
-      : _GEN_44;
-  wire [31:0] lo_1 =
-    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_lo_1 < _GEN_45
-      ? _trackers_15_io_lo_1
-      : _GEN_45;
-  wire [31:0] _GEN_46 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_2 < _trackers_0_io_lo_2
-      ? _trackers_1_io_lo_2
-      : _trackers_0_io_lo_2;
-  wire [31:0] _GEN_47 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_lo_2 < _GEN_46
-      ? _trackers_2_io_lo_2
-      : _GEN_46;
-  wire [31:0] _GEN_48 =
-    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_lo_2 < _GEN_47
-      ? _trackers_3_io_lo_2
-      : _GEN_47;
-  wire [31:0] _GEN_49 =
-    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_lo_2 < _GEN_48
-      ? _trackers_4_io_lo_2
-      : _GEN_48;
-  wire [31:0] _GEN_50 =
-    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_lo_2 < _GEN_49
-      ? _trackers_5_io_lo_2
-      : _GEN_49;
-  wire [31:0] _GEN_51 =
-    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_lo_2 < _GEN_50
-      ? _trackers_6_io_lo_2
-      : _GEN_50;
-  wire [31:0] _GEN_52 =
-    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_lo_2 < _GEN_51
-      ? _trackers_7_io_lo_2
-      : _GEN_51;
-  wire [31:0] _GEN_53 =
-    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_lo_2 < _GEN_52
-      ? _trackers_8_io_lo_2
-      : _GEN_52;
-  wire [31:0] _GEN_54 =
-    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_lo_2 < _GEN_53
-      ? _trackers_9_io_lo_2
-      : _GEN_53;
-  wire [31:0] _GEN_55 =
-    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_lo_2 < _GEN_54
-      ? _trackers_10_io_lo_2
-      : _GEN_54;
-  wire [31:0] _GEN_56 =
-    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_lo_2 < _GEN_55
-      ? _trackers_11_io_lo_2
-      : _GEN_55;
-  wire [31:0] _GEN_57 =
-    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_lo_2 < _GEN_56
-      ? _trackers_12_io_lo_2
-      : _GEN_56;
-  wire [31:0] _GEN_58 =
-    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_lo_2 < _GEN_57
-      ? _trackers_13_io_lo_2
-      : _GEN_57;
-  wire [31:0] _GEN_59 =
-    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_lo_2 < _GEN_58
-      ? _trackers_14_io_lo_2
-      : _GEN_58;
-  wire [31:0] lo_2 =
-    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_lo_2 < _GEN_59
-      ? _trackers_15_io_lo_2
-      : _GEN_59;
-  wire [31:0] _GEN_60 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_0 > _trackers_0_io_hi_0
-      ? _trackers_1_io_hi_0
-      : _trackers_0_io_hi_0;
-  wire [31:0] _GEN_61 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_0 > _GEN_60
-      ? _trackers_2_io_hi_0
-      : _GEN_60;
-  wire [31:0] _GEN_62 =
-    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_hi_0 > _GEN_61
-      ? _trackers_3_io_hi_0
-      : _GEN_61;
-  wire [31:0] _GEN_63 =
-    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_hi_0 > _GEN_62
-      ? _trackers_4_io_hi_0
-      : _GEN_62;
-  wire [31:0] _GEN_64 =
-    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_hi_0 > _GEN_63
-      ? _trackers_5_io_hi_0
-      : _GEN_63;
-  wire [31:0] _GEN_65 =
-    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_hi_0 > _GEN_64
-      ? _trackers_6_io_hi_0
-      : _GEN_64;
-  wire [31:0] _GEN_66 =
-    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_hi_0 > _GEN_65
-      ? _trackers_7_io_hi_0
-      : _GEN_65;
-  wire [31:0] _GEN_67 =
-    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_hi_0 > _GEN_66
-      ? _trackers_8_io_hi_0
-      : _GEN_66;
-  wire [31:0] _GEN_68 =
-    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_hi_0 > _GEN_67
-      ? _trackers_9_io_hi_0
-      : _GEN_67;
-  wire [31:0] _GEN_69 =
-    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_hi_0 > _GEN_68
-      ? _trackers_10_io_hi_0
-      : _GEN_68;
-  wire [31:0] _GEN_70 =
-    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_hi_0 > _GEN_69
-      ? _trackers_11_io_hi_0
-      : _GEN_69;
-  wire [31:0] _GEN_71 =
-    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_hi_0 > _GEN_70
-      ? _trackers_12_io_hi_0
-      : _GEN_70;
-  wire [31:0] _GEN_72 =
-    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_hi_0 > _GEN_71
-      ? _trackers_13_io_hi_0
-      : _GEN_71;
-  wire [31:0] _GEN_73 =
-    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_hi_0 > _GEN_72
-      ? _trackers_14_io_hi_0
-      : _GEN_72;
-  wire [31:0] hi_0 =
-    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_hi_0 > _GEN_73
-      ? _trackers_15_io_hi_0
-      : _GEN_73;
-  wire [31:0] _GEN_74 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_1 > _trackers_0_io_hi_1
-      ? _trackers_1_io_hi_1
-      : _trackers_0_io_hi_1;
-  wire [31:0] _GEN_75 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_1 > _GEN_74
-      ? _trackers_2_io_hi_1
-      : _GEN_74;
-  wire [31:0] _GEN_76 =
-    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_hi_1 > _GEN_75
-      ? _trackers_3_io_hi_1
-      : _GEN_75;
-  wire [31:0] _GEN_77 =
-    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_hi_1 > _GEN_76
-      ? _trackers_4_io_hi_1
-      : _GEN_76;
-  wire [31:0] _GEN_78 =
-    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_hi_1 > _GEN_77
-      ? _trackers_5_io_hi_1
-      : _GEN_77;
-  wire [31:0] _GEN_79 =
-    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_hi_1 > _GEN_78
-      ? _trackers_6_io_hi_1
-      : _GEN_78;
-  wire [31:0] _GEN_80 =
-    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_hi_1 > _GEN_79
-      ? _trackers_7_io_hi_1
-      : _GEN_79;
-  wire [31:0] _GEN_81 =
-    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_hi_1 > _GEN_80
-      ? _trackers_8_io_hi_1
-      : _GEN_80;
-  wire [31:0] _GEN_82 =
-    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_hi_1 > _GEN_81
-      ? _trackers_9_io_hi_1
-      : _GEN_81;
-  wire [31:0] _GEN_83 =
-    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_hi_1 > _GEN_82
-      ? _trackers_10_io_hi_1
-      : _GEN_82;
-  wire [31:0] _GEN_84 =
-    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_hi_1 > _GEN_83
-      ? _trackers_11_io_hi_1
-      : _GEN_83;
-  wire [31:0] _GEN_85 =
-    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_hi_1 > _GEN_84
-      ? _trackers_12_io_hi_1
-      : _GEN_84;
-  wire [31:0] _GEN_86 =
-    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_hi_1 > _GEN_85
-      ? _trackers_13_io_hi_1
-      : _GEN_85;
-  wire [31:0] _GEN_87 =
-    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_hi_1 > _GEN_86
-      ? _trackers_14_io_hi_1
-      : _GEN_86;
-  wire [31:0] hi_1 =
-    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_hi_1 > _GEN_87
-      ? _trackers_15_io_hi_1
-      : _GEN_87;
-  wire [31:0] _GEN_88 =
-    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_2 > _trackers_0_io_hi_2
-      ? _trackers_1_io_hi_2
-      : _trackers_0_io_hi_2;
-  wire [31:0] _GEN_89 =
-    ~_any_T | _trackers_2_io_any & _trackers_2_io_hi_2 > _GEN_88
-      ? _trackers_2_io_hi_2
-      : _GEN_88;
-  wire [31:0] _GEN_90 =
-    ~_GEN_6 | _trackers_3_io_any & _trackers_3_io_hi_2 > _GEN_89
-      ? _trackers_3_io_hi_2
-      : _GEN_89;
-  wire [31:0] _GEN_91 =
-    ~_GEN_8 | _trackers_4_io_any & _trackers_4_io_hi_2 > _GEN_90
-      ? _trackers_4_io_hi_2
-      : _GEN_90;
-  wire [31:0] _GEN_92 =
-    ~_GEN_10 | _trackers_5_io_any & _trackers_5_io_hi_2 > _GEN_91
-      ? _trackers_5_io_hi_2
-      : _GEN_91;
-  wire [31:0] _GEN_93 =
-    ~_GEN_12 | _trackers_6_io_any & _trackers_6_io_hi_2 > _GEN_92
-      ? _trackers_6_io_hi_2
-      : _GEN_92;
-  wire [31:0] _GEN_94 =
-    ~_GEN_14 | _trackers_7_io_any & _trackers_7_io_hi_2 > _GEN_93
-      ? _trackers_7_io_hi_2
-      : _GEN_93;
-  wire [31:0] _GEN_95 =
-    ~_GEN_16 | _trackers_8_io_any & _trackers_8_io_hi_2 > _GEN_94
-      ? _trackers_8_io_hi_2
-      : _GEN_94;
-  wire [31:0] _GEN_96 =
-    ~_GEN_18 | _trackers_9_io_any & _trackers_9_io_hi_2 > _GEN_95
-      ? _trackers_9_io_hi_2
-      : _GEN_95;
-  wire [31:0] _GEN_97 =
-    ~_GEN_20 | _trackers_10_io_any & _trackers_10_io_hi_2 > _GEN_96
-      ? _trackers_10_io_hi_2
-      : _GEN_96;
-  wire [31:0] _GEN_98 =
-    ~_GEN_22 | _trackers_11_io_any & _trackers_11_io_hi_2 > _GEN_97
-      ? _trackers_11_io_hi_2
-      : _GEN_97;
-  wire [31:0] _GEN_99 =
-    ~_GEN_24 | _trackers_12_io_any & _trackers_12_io_hi_2 > _GEN_98
-      ? _trackers_12_io_hi_2
-      : _GEN_98;
-  wire [31:0] _GEN_100 =
-    ~_GEN_26 | _trackers_13_io_any & _trackers_13_io_hi_2 > _GEN_99
-      ? _trackers_13_io_hi_2
-      : _GEN_99;
-  wire [31:0] _GEN_101 =
-    ~_GEN_28 | _trackers_14_io_any & _trackers_14_io_hi_2 > _GEN_100
-      ? _trackers_14_io_hi_2
-      : _GEN_100;
-  wire [31:0] hi_2 =
-    ~_GEN_30 | _trackers_15_io_any & _trackers_15_io_hi_2 > _GEN_101
-      ? _trackers_15_io_hi_2
-      : _GEN_101;
+  reg         anyBox;
+  reg  [31:0] lo_0;
+  reg  [31:0] lo_1;
+  reg  [31:0] lo_2;
+  reg  [31:0] hi_0;
+  reg  [31:0] hi_1;
+  reg  [31:0] hi_2;
   reg  [14:0] sat_0;
-  reg  [14:0] sat_1;
   reg  [14:0] sat_2;
   reg  [46:0] places;
-  wire        _GEN_102 = state == 4'h4;
+  reg  [31:0] placesXY;
+  wire        _GEN_5 = state == 4'h4;
   reg  [8:0]  m;
   wire [8:0]  mergeEnd = fed ? 9'h44 : 9'h110;
   wire        filled_2 = _laneExps_0_io_used > 5'h2;
@@ -41239,64 +40906,64 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:387 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:387 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:387 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:387 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:387 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:387 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:387 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:387 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(_GEN == 16'h0 | dCount[6:2] != 5'h1F)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:448 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
+          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:459 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
   wire        dLeft = dNext < {dCount, 3'h0};
-  wire [15:0] _GEN_103 = {5'h0, units};
+  wire [15:0] _GEN_6 = {5'h0, units};
   wire        out =
-    next >= _GEN_103 & ~dLeft
+    next >= _GEN_6 & ~dLeft
     & ~(_gens_0_io_unresolved | _gens_1_io_unresolved | _gens_2_io_unresolved
         | _gens_3_io_unresolved | _gens_4_io_unresolved | _gens_5_io_unresolved
         | _gens_6_io_unresolved | _gens_7_io_unresolved | _gens_8_io_unresolved
@@ -41308,38 +40975,38 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         | heldUnit_7 & held_7 | heldUnit_8 & held_8 | heldUnit_9 & held_9 | heldUnit_10
         & held_10 | heldUnit_11 & held_11 | heldUnit_12 & held_12 | heldUnit_13 & held_13
         | heldUnit_14 & held_14 | heldUnit_15 & held_15);
-  wire        _GEN_104 = state == 4'h1;
-  wire        _GEN_105 = state == 4'h2;
-  wire        _GEN_106 = state == 4'h3;
-  wire        _GEN_107 = ~(|state) | _GEN_104;
-  wire        _GEN_108 = state == 4'h5;
-  wire        _GEN_109 = state == 4'h6;
-  wire        _GEN_110 = state == 4'h7;
+  wire        _GEN_7 = state == 4'h1;
+  wire        _GEN_8 = state == 4'h2;
+  wire        _GEN_9 = state == 4'h3;
+  wire        _GEN_10 = ~(|state) | _GEN_7;
+  wire        _GEN_11 = state == 4'h5;
+  wire        _GEN_12 = state == 4'h6;
+  wire        _GEN_13 = state == 4'h7;
   reg         REG_8;
-  wire        _GEN_111 = state == 4'h8;
-  wire        _GEN_112 =
+  wire        _GEN_14 = state == 4'h8;
+  wire        _GEN_15 =
     sent
     & ~(_gens_0_io_busy | _gens_1_io_busy | _gens_2_io_busy | _gens_3_io_busy
         | _gens_4_io_busy | _gens_5_io_busy | _gens_6_io_busy | _gens_7_io_busy
         | _gens_8_io_busy | _gens_9_io_busy | _gens_10_io_busy | _gens_11_io_busy
         | _gens_12_io_busy | _gens_13_io_busy | _gens_14_io_busy | _gens_15_io_busy);
-  wire        _GEN_113 = _GEN_111 & _GEN_112;
+  wire        _GEN_16 = _GEN_14 & _GEN_15;
   assign handOver =
-    ~(_GEN_107 | _GEN_105 | _GEN_106 | _GEN_102 | _GEN_108 | _GEN_109 | _GEN_110)
-    & _GEN_113 & pending;
-  wire [27:0] _GEN_114 = {15'h0, pendingNum};
-  wire [28:0] _GEN_115 = {16'h0, pendingNum};
+    ~(_GEN_10 | _GEN_8 | _GEN_9 | _GEN_5 | _GEN_11 | _GEN_12 | _GEN_13) & _GEN_16
+    & pending;
+  wire [27:0] _GEN_17 = {15'h0, pendingNum};
+  wire [28:0] _GEN_18 = {16'h0, pendingNum};
   wire [26:0] _cuts_T_80 = {14'h0, pendingNum} * 27'h3000;
-  wire [27:0] _cuts_T_86 = _GEN_114 * 28'h5000;
-  wire [27:0] _cuts_T_89 = _GEN_114 * 28'h6000;
-  wire [27:0] _cuts_T_92 = _GEN_114 * 28'h7000;
-  wire [28:0] _cuts_T_97 = _GEN_115 * 29'h9000;
-  wire [28:0] _cuts_T_99 = _GEN_115 * 29'hA000;
-  wire [28:0] _cuts_T_101 = _GEN_115 * 29'hB000;
-  wire [28:0] _cuts_T_103 = _GEN_115 * 29'hC000;
-  wire [28:0] _cuts_T_105 = _GEN_115 * 29'hD000;
-  wire [28:0] _cuts_T_107 = _GEN_115 * 29'hE000;
-  wire [28:0] _cuts_T_109 = _GEN_115 * 29'hF000;
+  wire [27:0] _cuts_T_86 = _GEN_17 * 28'h5000;
+  wire [27:0] _cuts_T_89 = _GEN_17 * 28'h6000;
+  wire [27:0] _cuts_T_92 = _GEN_17 * 28'h7000;
+  wire [28:0] _cuts_T_97 = _GEN_18 * 29'h9000;
+  wire [28:0] _cuts_T_99 = _GEN_18 * 29'hA000;
+  wire [28:0] _cuts_T_101 = _GEN_18 * 29'hB000;
+  wire [28:0] _cuts_T_103 = _GEN_18 * 29'hC000;
+  wire [28:0] _cuts_T_105 = _GEN_18 * 29'hD000;
+  wire [28:0] _cuts_T_107 = _GEN_18 * 29'hE000;
+  wire [28:0] _cuts_T_109 = _GEN_18 * 29'hF000;
   wire        _walkBuckets_ceilLog2_T_50 = pendingNum < 13'h2;
   wire [12:0] _walkBuckets_ceilLog2_T_51 = pendingNum - 13'h1;
   wire        _walkBuckets_t_T_4 = pendingNum == 13'h0;
@@ -41526,34 +41193,34 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       : 6'h0;
   wire [76:0] _walkBuckets_T_7 =
     77'h1 << (walkBuckets_t_1 > 6'hD ? 6'hD : walkBuckets_t_1);
-  wire [12:0] _GEN_116 = {4'h0, io_num[12:4]};
-  wire [26:0] _GEN_117 = {14'h0, io_num};
-  wire [12:0] _GEN_118 = {3'h0, io_num[12:3]};
-  wire [27:0] _GEN_119 = {15'h0, io_num};
-  wire [12:0] _GEN_120 = {2'h0, io_num[12:2]};
-  wire [28:0] _GEN_121 = {16'h0, io_num};
-  wire [26:0] _cuts_T_6 = _GEN_117 * 27'h3000;
-  wire [27:0] _cuts_T_12 = _GEN_119 * 28'h5000;
-  wire [27:0] _cuts_T_15 = _GEN_119 * 28'h6000;
-  wire [27:0] _cuts_T_18 = _GEN_119 * 28'h7000;
-  wire [28:0] _cuts_T_23 = _GEN_121 * 29'h9000;
-  wire [28:0] _cuts_T_25 = _GEN_121 * 29'hA000;
-  wire [28:0] _cuts_T_27 = _GEN_121 * 29'hB000;
-  wire [28:0] _cuts_T_29 = _GEN_121 * 29'hC000;
-  wire [28:0] _cuts_T_31 = _GEN_121 * 29'hD000;
-  wire [28:0] _cuts_T_33 = _GEN_121 * 29'hE000;
-  wire [28:0] _cuts_T_35 = _GEN_121 * 29'hF000;
-  wire [26:0] _cuts_T_43 = _GEN_117 * 27'h3000;
-  wire [27:0] _cuts_T_49 = _GEN_119 * 28'h5000;
-  wire [27:0] _cuts_T_52 = _GEN_119 * 28'h6000;
-  wire [27:0] _cuts_T_55 = _GEN_119 * 28'h7000;
-  wire [28:0] _cuts_T_60 = _GEN_121 * 29'h9000;
-  wire [28:0] _cuts_T_62 = _GEN_121 * 29'hA000;
-  wire [28:0] _cuts_T_64 = _GEN_121 * 29'hB000;
-  wire [28:0] _cuts_T_66 = _GEN_121 * 29'hC000;
-  wire [28:0] _cuts_T_68 = _GEN_121 * 29'hD000;
-  wire [28:0] _cuts_T_70 = _GEN_121 * 29'hE000;
-  wire [28:0] _cuts_T_72 = _GEN_121 * 29'hF000;
+  wire [12:0] _GEN_19 = {4'h0, io_num[12:4]};
+  wire [26:0] _GEN_20 = {14'h0, io_num};
+  wire [12:0] _GEN_21 = {3'h0, io_num[12:3]};
+  wire [27:0] _GEN_22 = {15'h0, io_num};
+  wire [12:0] _GEN_23 = {2'h0, io_num[12:2]};
+  wire [28:0] _GEN_24 = {16'h0, io_num};
+  wire [26:0] _cuts_T_6 = _GEN_20 * 27'h3000;
+  wire [27:0] _cuts_T_12 = _GEN_22 * 28'h5000;
+  wire [27:0] _cuts_T_15 = _GEN_22 * 28'h6000;
+  wire [27:0] _cuts_T_18 = _GEN_22 * 28'h7000;
+  wire [28:0] _cuts_T_23 = _GEN_24 * 29'h9000;
+  wire [28:0] _cuts_T_25 = _GEN_24 * 29'hA000;
+  wire [28:0] _cuts_T_27 = _GEN_24 * 29'hB000;
+  wire [28:0] _cuts_T_29 = _GEN_24 * 29'hC000;
+  wire [28:0] _cuts_T_31 = _GEN_24 * 29'hD000;
+  wire [28:0] _cuts_T_33 = _GEN_24 * 29'hE000;
+  wire [28:0] _cuts_T_35 = _GEN_24 * 29'hF000;
+  wire [26:0] _cuts_T_43 = _GEN_20 * 27'h3000;
+  wire [27:0] _cuts_T_49 = _GEN_22 * 28'h5000;
+  wire [27:0] _cuts_T_52 = _GEN_22 * 28'h6000;
+  wire [27:0] _cuts_T_55 = _GEN_22 * 28'h7000;
+  wire [28:0] _cuts_T_60 = _GEN_24 * 29'h9000;
+  wire [28:0] _cuts_T_62 = _GEN_24 * 29'hA000;
+  wire [28:0] _cuts_T_64 = _GEN_24 * 29'hB000;
+  wire [28:0] _cuts_T_66 = _GEN_24 * 29'hC000;
+  wire [28:0] _cuts_T_68 = _GEN_24 * 29'hD000;
+  wire [28:0] _cuts_T_70 = _GEN_24 * 29'hE000;
+  wire [28:0] _cuts_T_72 = _GEN_24 * 29'hF000;
   wire [19:0] _extent_T =
     {_corners_k_1_io_out_cell_0[19], _corners_k_1_io_out_cell_0[19:1]}
     - {_corners_k_io_out_cell_0[19], _corners_k_io_out_cell_0[19:1]};
@@ -41564,10 +41231,11 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [20:0] extent_2 = {_extent_T_6[19], _extent_T_6} + 21'h1;
   wire [18:0] _boxMap_origin_0_T = _corners_k_io_out_cell_0[19:1] - 19'h1;
   wire [18:0] _boxMap_origin_2_T = _corners_k_io_out_cell_2[19:1] - 19'h1;
-  wire        _GEN_122 = _GEN_104 & io_start;
+  wire [14:0] _satNow_T_1 = (|(extent_0[20:14])) ? 15'h4000 : extent_0[14:0];
+  wire        _GEN_25 = _GEN_7 & io_start;
   wire        z_tooMany = io_num > 13'h1000;
   wire        filling = state == 4'h1;
-  wire        _GEN_123 =
+  wire        _GEN_26 =
     classifying
     & (_laneKeys_0_io_out_valid & ~_laneKeys_0_io_out_nonFinite
        & ~(~_laneKeys_0_io_out_nonFinite & ~_laneKeys_0_io_out_needNone
@@ -41594,8 +41262,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
        & ~(~_laneKeys_7_io_out_nonFinite & ~_laneKeys_7_io_out_needNone
            & _sorts_3_io_in_1_valid_T_8) & _laneKeys_7_io_out_cellOverflow)
     | st_cellOverflow;
-  wire        _GEN_124 = ~(io_start & (~(|state) | filling)) & feedOn;
-  wire        _GEN_125 = ~(|state) | _GEN_104;
+  wire        _GEN_27 = ~(io_start & (~(|state) | filling)) & feedOn;
+  wire        _GEN_28 = ~(|state) | _GEN_7;
   wire        inPass = loading | classifying | _sorts_3_io_in_1_bits_scatter_T;
   wire        reading_0 = inPass & i_0 < (loading ? _GEN_0 : _GEN_1);
   wire        reading_1 = inPass & i_1 < (loading ? _GEN_1 : _GEN_2);
@@ -41603,15 +41271,15 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire        reading_2 =
     inPass
     & i_2 < (loading ? {2'h0, _gens_3_io_largeFrom_T[26:16]} : {1'h0, _i_3_T_10[14:3]});
-  wire [15:0] _GEN_126 = {3'h0, num};
+  wire [15:0] _GEN_29 = {3'h0, num};
   wire        reading_3 = inPass & i_3 < (loading ? _GEN_2 : {1'h0, num[12:1]});
-  wire [15:0] _i_5_T_9 = _GEN_126 * 16'h5;
+  wire [15:0] _i_5_T_9 = _GEN_29 * 16'h5;
   wire        reading_4 =
     inPass & i_4 < (loading ? {1'h0, _gens_5_io_largeFrom_T[27:16]} : _i_5_T_9[15:3]);
-  wire [15:0] _i_6_T_9 = _GEN_126 * 16'h6;
+  wire [15:0] _i_6_T_9 = _GEN_29 * 16'h6;
   wire        reading_5 =
     inPass & i_5 < (loading ? {1'h0, _gens_6_io_largeFrom_T[27:16]} : _i_6_T_9[15:3]);
-  wire [15:0] _i_7_T_9 = _GEN_126 * 16'h7;
+  wire [15:0] _i_7_T_9 = _GEN_29 * 16'h7;
   wire        reading_6 =
     inPass & i_6 < (loading ? {1'h0, _gens_7_io_largeFrom_T[27:16]} : _i_7_T_9[15:3]);
   wire        reading_7 = inPass & i_7 < (loading ? {1'h0, num[12:1]} : num);
@@ -41647,21 +41315,402 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
      reading_2,
      reading_1,
      reading_0} == 16'h0 & inflight == 6'h0;
+  wire        _merged_T_450 = _trackers_0_io_any | _trackers_1_io_any;
+  wire [31:0] _merged_T_5 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_0 < _trackers_0_io_lo_0
+      ? _trackers_1_io_lo_0
+      : _trackers_0_io_lo_0;
+  wire        _merged_T_456 = _trackers_2_io_any | _trackers_3_io_any;
+  wire [31:0] _merged_T_11 =
+    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_lo_0 < _trackers_2_io_lo_0
+      ? _trackers_3_io_lo_0
+      : _trackers_2_io_lo_0;
+  wire        _merged_T_12 = _merged_T_450 | _merged_T_456;
+  wire [31:0] _merged_T_17 =
+    ~_merged_T_450 | _merged_T_456 & _merged_T_11 < _merged_T_5
+      ? _merged_T_11
+      : _merged_T_5;
+  wire        _merged_T_468 = _trackers_4_io_any | _trackers_5_io_any;
+  wire [31:0] _merged_T_23 =
+    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_lo_0 < _trackers_4_io_lo_0
+      ? _trackers_5_io_lo_0
+      : _trackers_4_io_lo_0;
+  wire        _merged_T_474 = _trackers_6_io_any | _trackers_7_io_any;
+  wire [31:0] _merged_T_29 =
+    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_lo_0 < _trackers_6_io_lo_0
+      ? _trackers_7_io_lo_0
+      : _trackers_6_io_lo_0;
+  wire        _merged_T_30 = _merged_T_468 | _merged_T_474;
+  wire [31:0] _merged_T_35 =
+    ~_merged_T_468 | _merged_T_474 & _merged_T_29 < _merged_T_23
+      ? _merged_T_29
+      : _merged_T_23;
+  wire [31:0] _merged_T_41 =
+    ~_merged_T_12 | _merged_T_30 & _merged_T_35 < _merged_T_17
+      ? _merged_T_35
+      : _merged_T_17;
+  wire        _merged_T_492 = _trackers_8_io_any | _trackers_9_io_any;
+  wire [31:0] _merged_T_47 =
+    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_lo_0 < _trackers_8_io_lo_0
+      ? _trackers_9_io_lo_0
+      : _trackers_8_io_lo_0;
+  wire        _merged_T_498 = _trackers_10_io_any | _trackers_11_io_any;
+  wire [31:0] _merged_T_53 =
+    ~_trackers_10_io_any | _trackers_11_io_any
+    & _trackers_11_io_lo_0 < _trackers_10_io_lo_0
+      ? _trackers_11_io_lo_0
+      : _trackers_10_io_lo_0;
+  wire        _merged_T_54 = _merged_T_492 | _merged_T_498;
+  wire [31:0] _merged_T_59 =
+    ~_merged_T_492 | _merged_T_498 & _merged_T_53 < _merged_T_47
+      ? _merged_T_53
+      : _merged_T_47;
+  wire        _merged_T_510 = _trackers_12_io_any | _trackers_13_io_any;
+  wire [31:0] _merged_T_65 =
+    ~_trackers_12_io_any | _trackers_13_io_any
+    & _trackers_13_io_lo_0 < _trackers_12_io_lo_0
+      ? _trackers_13_io_lo_0
+      : _trackers_12_io_lo_0;
+  wire        _merged_T_516 = _trackers_14_io_any | _trackers_15_io_any;
+  wire [31:0] _merged_T_71 =
+    ~_trackers_14_io_any | _trackers_15_io_any
+    & _trackers_15_io_lo_0 < _trackers_14_io_lo_0
+      ? _trackers_15_io_lo_0
+      : _trackers_14_io_lo_0;
+  wire        _merged_T_72 = _merged_T_510 | _merged_T_516;
+  wire [31:0] _merged_T_77 =
+    ~_merged_T_510 | _merged_T_516 & _merged_T_71 < _merged_T_65
+      ? _merged_T_71
+      : _merged_T_65;
+  wire [31:0] _merged_T_83 =
+    ~_merged_T_54 | _merged_T_72 & _merged_T_77 < _merged_T_59
+      ? _merged_T_77
+      : _merged_T_59;
+  wire [31:0] _merged_T_95 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_1 < _trackers_0_io_lo_1
+      ? _trackers_1_io_lo_1
+      : _trackers_0_io_lo_1;
+  wire [31:0] _merged_T_101 =
+    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_lo_1 < _trackers_2_io_lo_1
+      ? _trackers_3_io_lo_1
+      : _trackers_2_io_lo_1;
+  wire        _merged_T_102 = _merged_T_450 | _merged_T_456;
+  wire [31:0] _merged_T_107 =
+    ~_merged_T_450 | _merged_T_456 & _merged_T_101 < _merged_T_95
+      ? _merged_T_101
+      : _merged_T_95;
+  wire [31:0] _merged_T_113 =
+    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_lo_1 < _trackers_4_io_lo_1
+      ? _trackers_5_io_lo_1
+      : _trackers_4_io_lo_1;
+  wire [31:0] _merged_T_119 =
+    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_lo_1 < _trackers_6_io_lo_1
+      ? _trackers_7_io_lo_1
+      : _trackers_6_io_lo_1;
+  wire        _merged_T_120 = _merged_T_468 | _merged_T_474;
+  wire [31:0] _merged_T_125 =
+    ~_merged_T_468 | _merged_T_474 & _merged_T_119 < _merged_T_113
+      ? _merged_T_119
+      : _merged_T_113;
+  wire [31:0] _merged_T_131 =
+    ~_merged_T_102 | _merged_T_120 & _merged_T_125 < _merged_T_107
+      ? _merged_T_125
+      : _merged_T_107;
+  wire [31:0] _merged_T_137 =
+    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_lo_1 < _trackers_8_io_lo_1
+      ? _trackers_9_io_lo_1
+      : _trackers_8_io_lo_1;
+  wire [31:0] _merged_T_143 =
+    ~_trackers_10_io_any | _trackers_11_io_any
+    & _trackers_11_io_lo_1 < _trackers_10_io_lo_1
+      ? _trackers_11_io_lo_1
+      : _trackers_10_io_lo_1;
+  wire        _merged_T_144 = _merged_T_492 | _merged_T_498;
+  wire [31:0] _merged_T_149 =
+    ~_merged_T_492 | _merged_T_498 & _merged_T_143 < _merged_T_137
+      ? _merged_T_143
+      : _merged_T_137;
+  wire [31:0] _merged_T_155 =
+    ~_trackers_12_io_any | _trackers_13_io_any
+    & _trackers_13_io_lo_1 < _trackers_12_io_lo_1
+      ? _trackers_13_io_lo_1
+      : _trackers_12_io_lo_1;
+  wire [31:0] _merged_T_161 =
+    ~_trackers_14_io_any | _trackers_15_io_any
+    & _trackers_15_io_lo_1 < _trackers_14_io_lo_1
+      ? _trackers_15_io_lo_1
+      : _trackers_14_io_lo_1;
+  wire        _merged_T_162 = _merged_T_510 | _merged_T_516;
+  wire [31:0] _merged_T_167 =
+    ~_merged_T_510 | _merged_T_516 & _merged_T_161 < _merged_T_155
+      ? _merged_T_161
+      : _merged_T_155;
+  wire [31:0] _merged_T_173 =
+    ~_merged_T_144 | _merged_T_162 & _merged_T_167 < _merged_T_149
+      ? _merged_T_167
+      : _merged_T_149;
+  wire [31:0] _merged_T_185 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_lo_2 < _trackers_0_io_lo_2
+      ? _trackers_1_io_lo_2
+      : _trackers_0_io_lo_2;
+  wire [31:0] _merged_T_191 =
+    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_lo_2 < _trackers_2_io_lo_2
+      ? _trackers_3_io_lo_2
+      : _trackers_2_io_lo_2;
+  wire        _merged_T_192 = _merged_T_450 | _merged_T_456;
+  wire [31:0] _merged_T_197 =
+    ~_merged_T_450 | _merged_T_456 & _merged_T_191 < _merged_T_185
+      ? _merged_T_191
+      : _merged_T_185;
+  wire [31:0] _merged_T_203 =
+    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_lo_2 < _trackers_4_io_lo_2
+      ? _trackers_5_io_lo_2
+      : _trackers_4_io_lo_2;
+  wire [31:0] _merged_T_209 =
+    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_lo_2 < _trackers_6_io_lo_2
+      ? _trackers_7_io_lo_2
+      : _trackers_6_io_lo_2;
+  wire        _merged_T_210 = _merged_T_468 | _merged_T_474;
+  wire [31:0] _merged_T_215 =
+    ~_merged_T_468 | _merged_T_474 & _merged_T_209 < _merged_T_203
+      ? _merged_T_209
+      : _merged_T_203;
+  wire [31:0] _merged_T_221 =
+    ~_merged_T_192 | _merged_T_210 & _merged_T_215 < _merged_T_197
+      ? _merged_T_215
+      : _merged_T_197;
+  wire [31:0] _merged_T_227 =
+    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_lo_2 < _trackers_8_io_lo_2
+      ? _trackers_9_io_lo_2
+      : _trackers_8_io_lo_2;
+  wire [31:0] _merged_T_233 =
+    ~_trackers_10_io_any | _trackers_11_io_any
+    & _trackers_11_io_lo_2 < _trackers_10_io_lo_2
+      ? _trackers_11_io_lo_2
+      : _trackers_10_io_lo_2;
+  wire        _merged_T_234 = _merged_T_492 | _merged_T_498;
+  wire [31:0] _merged_T_239 =
+    ~_merged_T_492 | _merged_T_498 & _merged_T_233 < _merged_T_227
+      ? _merged_T_233
+      : _merged_T_227;
+  wire [31:0] _merged_T_245 =
+    ~_trackers_12_io_any | _trackers_13_io_any
+    & _trackers_13_io_lo_2 < _trackers_12_io_lo_2
+      ? _trackers_13_io_lo_2
+      : _trackers_12_io_lo_2;
+  wire [31:0] _merged_T_251 =
+    ~_trackers_14_io_any | _trackers_15_io_any
+    & _trackers_15_io_lo_2 < _trackers_14_io_lo_2
+      ? _trackers_15_io_lo_2
+      : _trackers_14_io_lo_2;
+  wire        _merged_T_252 = _merged_T_510 | _merged_T_516;
+  wire [31:0] _merged_T_257 =
+    ~_merged_T_510 | _merged_T_516 & _merged_T_251 < _merged_T_245
+      ? _merged_T_251
+      : _merged_T_245;
+  wire [31:0] _merged_T_263 =
+    ~_merged_T_234 | _merged_T_252 & _merged_T_257 < _merged_T_239
+      ? _merged_T_257
+      : _merged_T_239;
+  wire [31:0] _merged_T_275 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_0 > _trackers_0_io_hi_0
+      ? _trackers_1_io_hi_0
+      : _trackers_0_io_hi_0;
+  wire [31:0] _merged_T_281 =
+    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_hi_0 > _trackers_2_io_hi_0
+      ? _trackers_3_io_hi_0
+      : _trackers_2_io_hi_0;
+  wire        _merged_T_282 = _merged_T_450 | _merged_T_456;
+  wire [31:0] _merged_T_287 =
+    ~_merged_T_450 | _merged_T_456 & _merged_T_281 > _merged_T_275
+      ? _merged_T_281
+      : _merged_T_275;
+  wire [31:0] _merged_T_293 =
+    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_hi_0 > _trackers_4_io_hi_0
+      ? _trackers_5_io_hi_0
+      : _trackers_4_io_hi_0;
+  wire [31:0] _merged_T_299 =
+    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_hi_0 > _trackers_6_io_hi_0
+      ? _trackers_7_io_hi_0
+      : _trackers_6_io_hi_0;
+  wire        _merged_T_300 = _merged_T_468 | _merged_T_474;
+  wire [31:0] _merged_T_305 =
+    ~_merged_T_468 | _merged_T_474 & _merged_T_299 > _merged_T_293
+      ? _merged_T_299
+      : _merged_T_293;
+  wire [31:0] _merged_T_311 =
+    ~_merged_T_282 | _merged_T_300 & _merged_T_305 > _merged_T_287
+      ? _merged_T_305
+      : _merged_T_287;
+  wire [31:0] _merged_T_317 =
+    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_hi_0 > _trackers_8_io_hi_0
+      ? _trackers_9_io_hi_0
+      : _trackers_8_io_hi_0;
+  wire [31:0] _merged_T_323 =
+    ~_trackers_10_io_any | _trackers_11_io_any
+    & _trackers_11_io_hi_0 > _trackers_10_io_hi_0
+      ? _trackers_11_io_hi_0
+      : _trackers_10_io_hi_0;
+  wire        _merged_T_324 = _merged_T_492 | _merged_T_498;
+  wire [31:0] _merged_T_329 =
+    ~_merged_T_492 | _merged_T_498 & _merged_T_323 > _merged_T_317
+      ? _merged_T_323
+      : _merged_T_317;
+  wire [31:0] _merged_T_335 =
+    ~_trackers_12_io_any | _trackers_13_io_any
+    & _trackers_13_io_hi_0 > _trackers_12_io_hi_0
+      ? _trackers_13_io_hi_0
+      : _trackers_12_io_hi_0;
+  wire [31:0] _merged_T_341 =
+    ~_trackers_14_io_any | _trackers_15_io_any
+    & _trackers_15_io_hi_0 > _trackers_14_io_hi_0
+      ? _trackers_15_io_hi_0
+      : _trackers_14_io_hi_0;
+  wire        _merged_T_342 = _merged_T_510 | _merged_T_516;
+  wire [31:0] _merged_T_347 =
+    ~_merged_T_510 | _merged_T_516 & _merged_T_341 > _merged_T_335
+      ? _merged_T_341
+      : _merged_T_335;
+  wire [31:0] _merged_T_353 =
+    ~_merged_T_324 | _merged_T_342 & _merged_T_347 > _merged_T_329
+      ? _merged_T_347
+      : _merged_T_329;
+  wire [31:0] _merged_T_365 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_1 > _trackers_0_io_hi_1
+      ? _trackers_1_io_hi_1
+      : _trackers_0_io_hi_1;
+  wire [31:0] _merged_T_371 =
+    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_hi_1 > _trackers_2_io_hi_1
+      ? _trackers_3_io_hi_1
+      : _trackers_2_io_hi_1;
+  wire        _merged_T_372 = _merged_T_450 | _merged_T_456;
+  wire [31:0] _merged_T_377 =
+    ~_merged_T_450 | _merged_T_456 & _merged_T_371 > _merged_T_365
+      ? _merged_T_371
+      : _merged_T_365;
+  wire [31:0] _merged_T_383 =
+    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_hi_1 > _trackers_4_io_hi_1
+      ? _trackers_5_io_hi_1
+      : _trackers_4_io_hi_1;
+  wire [31:0] _merged_T_389 =
+    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_hi_1 > _trackers_6_io_hi_1
+      ? _trackers_7_io_hi_1
+      : _trackers_6_io_hi_1;
+  wire        _merged_T_390 = _merged_T_468 | _merged_T_474;
+  wire [31:0] _merged_T_395 =
+    ~_merged_T_468 | _merged_T_474 & _merged_T_389 > _merged_T_383
+      ? _merged_T_389
+      : _merged_T_383;
+  wire [31:0] _merged_T_401 =
+    ~_merged_T_372 | _merged_T_390 & _merged_T_395 > _merged_T_377
+      ? _merged_T_395
+      : _merged_T_377;
+  wire [31:0] _merged_T_407 =
+    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_hi_1 > _trackers_8_io_hi_1
+      ? _trackers_9_io_hi_1
+      : _trackers_8_io_hi_1;
+  wire [31:0] _merged_T_413 =
+    ~_trackers_10_io_any | _trackers_11_io_any
+    & _trackers_11_io_hi_1 > _trackers_10_io_hi_1
+      ? _trackers_11_io_hi_1
+      : _trackers_10_io_hi_1;
+  wire        _merged_T_414 = _merged_T_492 | _merged_T_498;
+  wire [31:0] _merged_T_419 =
+    ~_merged_T_492 | _merged_T_498 & _merged_T_413 > _merged_T_407
+      ? _merged_T_413
+      : _merged_T_407;
+  wire [31:0] _merged_T_425 =
+    ~_trackers_12_io_any | _trackers_13_io_any
+    & _trackers_13_io_hi_1 > _trackers_12_io_hi_1
+      ? _trackers_13_io_hi_1
+      : _trackers_12_io_hi_1;
+  wire [31:0] _merged_T_431 =
+    ~_trackers_14_io_any | _trackers_15_io_any
+    & _trackers_15_io_hi_1 > _trackers_14_io_hi_1
+      ? _trackers_15_io_hi_1
+      : _trackers_14_io_hi_1;
+  wire        _merged_T_432 = _merged_T_510 | _merged_T_516;
+  wire [31:0] _merged_T_437 =
+    ~_merged_T_510 | _merged_T_516 & _merged_T_431 > _merged_T_425
+      ? _merged_T_431
+      : _merged_T_425;
+  wire [31:0] _merged_T_443 =
+    ~_merged_T_414 | _merged_T_432 & _merged_T_437 > _merged_T_419
+      ? _merged_T_437
+      : _merged_T_419;
+  wire [31:0] _merged_T_455 =
+    ~_trackers_0_io_any | _trackers_1_io_any & _trackers_1_io_hi_2 > _trackers_0_io_hi_2
+      ? _trackers_1_io_hi_2
+      : _trackers_0_io_hi_2;
+  wire [31:0] _merged_T_461 =
+    ~_trackers_2_io_any | _trackers_3_io_any & _trackers_3_io_hi_2 > _trackers_2_io_hi_2
+      ? _trackers_3_io_hi_2
+      : _trackers_2_io_hi_2;
+  wire        _merged_T_462 = _merged_T_450 | _merged_T_456;
+  wire [31:0] _merged_T_467 =
+    ~_merged_T_450 | _merged_T_456 & _merged_T_461 > _merged_T_455
+      ? _merged_T_461
+      : _merged_T_455;
+  wire [31:0] _merged_T_473 =
+    ~_trackers_4_io_any | _trackers_5_io_any & _trackers_5_io_hi_2 > _trackers_4_io_hi_2
+      ? _trackers_5_io_hi_2
+      : _trackers_4_io_hi_2;
+  wire [31:0] _merged_T_479 =
+    ~_trackers_6_io_any | _trackers_7_io_any & _trackers_7_io_hi_2 > _trackers_6_io_hi_2
+      ? _trackers_7_io_hi_2
+      : _trackers_6_io_hi_2;
+  wire        _merged_T_480 = _merged_T_468 | _merged_T_474;
+  wire [31:0] _merged_T_485 =
+    ~_merged_T_468 | _merged_T_474 & _merged_T_479 > _merged_T_473
+      ? _merged_T_479
+      : _merged_T_473;
+  wire [31:0] _merged_T_491 =
+    ~_merged_T_462 | _merged_T_480 & _merged_T_485 > _merged_T_467
+      ? _merged_T_485
+      : _merged_T_467;
+  wire [31:0] _merged_T_497 =
+    ~_trackers_8_io_any | _trackers_9_io_any & _trackers_9_io_hi_2 > _trackers_8_io_hi_2
+      ? _trackers_9_io_hi_2
+      : _trackers_8_io_hi_2;
+  wire [31:0] _merged_T_503 =
+    ~_trackers_10_io_any | _trackers_11_io_any
+    & _trackers_11_io_hi_2 > _trackers_10_io_hi_2
+      ? _trackers_11_io_hi_2
+      : _trackers_10_io_hi_2;
+  wire        _merged_T_504 = _merged_T_492 | _merged_T_498;
+  wire [31:0] _merged_T_509 =
+    ~_merged_T_492 | _merged_T_498 & _merged_T_503 > _merged_T_497
+      ? _merged_T_503
+      : _merged_T_497;
+  wire [31:0] _merged_T_515 =
+    ~_trackers_12_io_any | _trackers_13_io_any
+    & _trackers_13_io_hi_2 > _trackers_12_io_hi_2
+      ? _trackers_13_io_hi_2
+      : _trackers_12_io_hi_2;
+  wire [31:0] _merged_T_521 =
+    ~_trackers_14_io_any | _trackers_15_io_any
+    & _trackers_15_io_hi_2 > _trackers_14_io_hi_2
+      ? _trackers_15_io_hi_2
+      : _trackers_14_io_hi_2;
+  wire        _merged_T_522 = _merged_T_510 | _merged_T_516;
+  wire [31:0] _merged_T_527 =
+    ~_merged_T_510 | _merged_T_516 & _merged_T_521 > _merged_T_515
+      ? _merged_T_521
+      : _merged_T_515;
+  wire [31:0] _merged_T_533 =
+    ~_merged_T_504 | _merged_T_522 & _merged_T_527 > _merged_T_509
+      ? _merged_T_527
+      : _merged_T_509;
   wire [19:0] _extent_T_3 =
     {_corners_k_1_io_out_cell_1[19], _corners_k_1_io_out_cell_1[19:1]}
     - {_corners_k_io_out_cell_1[19], _corners_k_io_out_cell_1[19:1]};
   wire [20:0] extent_1 = {_extent_T_3[19], _extent_T_3} + 21'h1;
-  wire        _GEN_127 = boxCycle == 2'h1;
-  wire        _GEN_128 = boxCycle == 2'h2;
+  wire        _GEN_30 = boxCycle == 2'h1;
+  wire        _GEN_31 = boxCycle == 2'h2;
   wire [49:0] _words_T_1 = {places, 3'h0} + 50'h1F;
-  wire [13:0] _GEN_129 = {_words_T_1[13:5], 5'h0};
-  wire        _GEN_130 =
-    _GEN_102 & (&boxCycle)
-    & (_any_T | _trackers_2_io_any | _trackers_3_io_any | _trackers_4_io_any
-       | _trackers_5_io_any | _trackers_6_io_any | _trackers_7_io_any | _trackers_8_io_any
-       | _trackers_9_io_any | _trackers_10_io_any | _trackers_11_io_any
-       | _trackers_12_io_any | _trackers_13_io_any | _trackers_14_io_any
-       | _trackers_15_io_any)
+  wire [13:0] _GEN_32 = {_words_T_1[13:5], 5'h0};
+  wire        _GEN_33 =
+    _GEN_5 & (&boxCycle) & anyBox
     & places <= {18'h0, 29'h1 << ((|(usedLog2[3:2])) ? usedLog2 - 4'h3 : 4'h0)}
     & {_words_T_1[49:5], 5'h0} < {36'h0, _sorts_3_io_in_1_bits_bucket_mask_T[13:0]};
   wire        largeHere_0 =
@@ -41688,39 +41737,39 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire        largeHere_7 =
     classifying & _laneKeys_7_io_out_valid & ~_laneKeys_7_io_out_nonFinite
     & ~_laneKeys_7_io_out_needNone & _sorts_3_io_in_1_valid_T_8;
-  wire [5:0]  _GEN_131 = {1'h0, largeCount};
-  wire        _GEN_132 = _GEN_131 < 6'h10;
-  wire [5:0]  slot_1 = _GEN_131 + {5'h0, largeHere_0};
-  wire        _GEN_133 = slot_1 < 6'h10;
-  wire [1:0]  _GEN_134 = {1'h0, largeHere_0};
-  wire [1:0]  _GEN_135 = {1'h0, largeHere_1};
-  wire [1:0]  _largeNew_T_1 = _GEN_134 + _GEN_135;
-  wire [5:0]  slot_2 = _GEN_131 + {4'h0, _largeNew_T_1};
-  wire        _GEN_136 = slot_2 < 6'h10;
-  wire [1:0]  _GEN_137 = {1'h0, largeHere_2};
-  wire [1:0]  _slot_T_31 = _GEN_135 + _GEN_137;
-  wire [5:0]  slot_3 = _GEN_131 + {4'h0, _GEN_134 + _slot_T_31};
-  wire        _GEN_138 = slot_3 < 6'h10;
-  wire [1:0]  _GEN_139 = {1'h0, largeHere_3};
-  wire [2:0]  _GEN_140 = {1'h0, _largeNew_T_1};
-  wire [2:0]  _GEN_141 = {1'h0, _GEN_137 + _GEN_139};
-  wire [5:0]  slot_4 = _GEN_131 + {3'h0, _GEN_140 + _GEN_141};
-  wire        _GEN_142 = slot_4 < 6'h10;
-  wire [1:0]  _GEN_143 = {1'h0, largeHere_4};
-  wire [1:0]  _slot_T_35 = _GEN_139 + _GEN_143;
-  wire [5:0]  slot_5 = _GEN_131 + {3'h0, _GEN_140 + {1'h0, _GEN_137 + _slot_T_35}};
-  wire        _GEN_144 = slot_5 < 6'h10;
-  wire [1:0]  _GEN_145 = {1'h0, largeHere_5};
-  wire [1:0]  _largeNew_T_7 = _GEN_143 + _GEN_145;
+  wire [5:0]  _GEN_34 = {1'h0, largeCount};
+  wire        _GEN_35 = _GEN_34 < 6'h10;
+  wire [5:0]  slot_1 = _GEN_34 + {5'h0, largeHere_0};
+  wire        _GEN_36 = slot_1 < 6'h10;
+  wire [1:0]  _GEN_37 = {1'h0, largeHere_0};
+  wire [1:0]  _GEN_38 = {1'h0, largeHere_1};
+  wire [1:0]  _largeNew_T_1 = _GEN_37 + _GEN_38;
+  wire [5:0]  slot_2 = _GEN_34 + {4'h0, _largeNew_T_1};
+  wire        _GEN_39 = slot_2 < 6'h10;
+  wire [1:0]  _GEN_40 = {1'h0, largeHere_2};
+  wire [1:0]  _slot_T_31 = _GEN_38 + _GEN_40;
+  wire [5:0]  slot_3 = _GEN_34 + {4'h0, _GEN_37 + _slot_T_31};
+  wire        _GEN_41 = slot_3 < 6'h10;
+  wire [1:0]  _GEN_42 = {1'h0, largeHere_3};
+  wire [2:0]  _GEN_43 = {1'h0, _largeNew_T_1};
+  wire [2:0]  _GEN_44 = {1'h0, _GEN_40 + _GEN_42};
+  wire [5:0]  slot_4 = _GEN_34 + {3'h0, _GEN_43 + _GEN_44};
+  wire        _GEN_45 = slot_4 < 6'h10;
+  wire [1:0]  _GEN_46 = {1'h0, largeHere_4};
+  wire [1:0]  _slot_T_35 = _GEN_42 + _GEN_46;
+  wire [5:0]  slot_5 = _GEN_34 + {3'h0, _GEN_43 + {1'h0, _GEN_40 + _slot_T_35}};
+  wire        _GEN_47 = slot_5 < 6'h10;
+  wire [1:0]  _GEN_48 = {1'h0, largeHere_5};
+  wire [1:0]  _largeNew_T_7 = _GEN_46 + _GEN_48;
   wire [5:0]  slot_6 =
-    _GEN_131 + {3'h0, {1'h0, _GEN_134 + _slot_T_31} + {1'h0, _GEN_139 + _largeNew_T_7}};
-  wire        _GEN_146 = slot_6 < 6'h10;
-  wire [1:0]  _GEN_147 = {1'h0, largeHere_6};
+    _GEN_34 + {3'h0, {1'h0, _GEN_37 + _slot_T_31} + {1'h0, _GEN_42 + _largeNew_T_7}};
+  wire        _GEN_49 = slot_6 < 6'h10;
+  wire [1:0]  _GEN_50 = {1'h0, largeHere_6};
   wire [5:0]  slot_7 =
-    _GEN_131
+    _GEN_34
     + {3'h0,
-       {1'h0, _GEN_134 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_145 + _GEN_147}};
-  wire        _GEN_148 = slot_7 < 6'h10;
+       {1'h0, _GEN_37 + _slot_T_31} + {1'h0, _slot_T_35} + {1'h0, _GEN_48 + _GEN_50}};
+  wire        _GEN_51 = slot_7 < 6'h10;
   wire        wants_0 = _gens_0_io_need & ~held_0;
   wire        wants_1 = _gens_1_io_need & ~held_1;
   wire        wants_2 = _gens_2_io_need & ~held_2;
@@ -41774,29 +41823,28 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
   wire [15:0] _toUnit_T_1 = ~toSingle;
   wire [13:0] dBucket = {_deferred_ext_R0_data, dNext[2:0]};
   wire        _taken_T = wants_0 & _toUnit_T_1[0];
-  wire [16:0] _GEN_149 = {1'h0, next};
-  wire [16:0] _at_T_3 = _GEN_149 + {16'h0, _taken_T} - 17'h1;
-  wire [16:0] _GEN_150 = {6'h0, units};
+  wire [16:0] _GEN_52 = {1'h0, next};
+  wire [16:0] _at_T_3 = _GEN_52 + {16'h0, _taken_T} - 17'h1;
+  wire [16:0] _GEN_53 = {6'h0, units};
   wire [16:0] _at_T_10 =
-    _GEN_149
-    + {15'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
+    _GEN_52 + {15'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
     - 17'h1;
   wire        _taken_T_1 = wants_1 & _toUnit_T_1[1];
   wire [16:0] _at_T_20 =
-    _GEN_149
+    _GEN_52
     + {15'h0,
        {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
          + {1'h0, wants_2 & _toUnit_T_1[2]}} - 17'h1;
   wire        _taken_T_2 = wants_2 & _toUnit_T_1[2];
   wire [16:0] _at_T_33 =
-    _GEN_149
+    _GEN_52
     + {14'h0,
        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
          + {1'h0, {1'h0, wants_2 & _toUnit_T_1[2]} + {1'h0, wants_3 & _toUnit_T_1[3]}}}
     - 17'h1;
   wire        _taken_T_3 = wants_3 & _toUnit_T_1[3];
   wire [16:0] _at_T_49 =
-    _GEN_149
+    _GEN_52
     + {14'h0,
        {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
          + {1'h0,
@@ -41804,7 +41852,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               + {1'h0, wants_4 & _toUnit_T_1[4]}}} - 17'h1;
   wire        _taken_T_4 = wants_4 & _toUnit_T_1[4];
   wire [16:0] _at_T_68 =
-    _GEN_149
+    _GEN_52
     + {14'h0,
        {1'h0,
         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
@@ -41814,7 +41862,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               + {1'h0, wants_5 & _toUnit_T_1[5]}}} - 17'h1;
   wire        _taken_T_5 = wants_5 & _toUnit_T_1[5];
   wire [16:0] _at_T_90 =
-    _GEN_149
+    _GEN_52
     + {14'h0,
        {1'h0,
         {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}
@@ -41824,7 +41872,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     - 17'h1;
   wire        _taken_T_6 = wants_6 & _toUnit_T_1[6];
   wire [16:0] _at_T_115 =
-    _GEN_149
+    _GEN_52
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -41836,7 +41884,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     - 17'h1;
   wire        _taken_T_7 = wants_7 & _toUnit_T_1[7];
   wire [16:0] _at_T_143 =
-    _GEN_149
+    _GEN_52
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -41848,7 +41896,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_8 & _toUnit_T_1[8]}}}} - 17'h1;
   wire        _taken_T_8 = wants_8 & _toUnit_T_1[8];
   wire [16:0] _at_T_174 =
-    _GEN_149
+    _GEN_52
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -41862,7 +41910,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_9 & _toUnit_T_1[9]}}}} - 17'h1;
   wire        _taken_T_9 = wants_9 & _toUnit_T_1[9];
   wire [16:0] _at_T_208 =
-    _GEN_149
+    _GEN_52
     + {13'h0,
        {1'h0,
         {1'h0, {1'h0, wants_0 & _toUnit_T_1[0]} + {1'h0, wants_1 & _toUnit_T_1[1]}}
@@ -41878,7 +41926,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_10 & _toUnit_T_1[10]}}}} - 17'h1;
   wire        _taken_T_10 = wants_10 & _toUnit_T_1[10];
   wire [16:0] _at_T_245 =
-    _GEN_149
+    _GEN_52
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -41896,7 +41944,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_11 & _toUnit_T_1[11]}}}} - 17'h1;
   wire        _taken_T_11 = wants_11 & _toUnit_T_1[11];
   wire [16:0] _at_T_285 =
-    _GEN_149
+    _GEN_52
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -41916,7 +41964,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_12 & _toUnit_T_1[12]}}}} - 17'h1;
   wire        _taken_T_12 = wants_12 & _toUnit_T_1[12];
   wire [16:0] _at_T_328 =
-    _GEN_149
+    _GEN_52
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -41935,7 +41983,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_13 & _toUnit_T_1[13]}}}} - 17'h1;
   wire        _taken_T_13 = wants_13 & _toUnit_T_1[13];
   wire [16:0] _at_T_374 =
-    _GEN_149
+    _GEN_52
     + {13'h0,
        {1'h0,
         {1'h0,
@@ -41955,7 +42003,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                    + {1'h0, wants_14 & _toUnit_T_1[14]}}}} - 17'h1;
   wire        _taken_T_14 = wants_14 & _toUnit_T_1[14];
   wire [16:0] _at_T_423 =
-    _GEN_149
+    _GEN_52
     + {12'h0,
        {1'h0,
         {1'h0,
@@ -41978,19 +42026,19 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
                       {1'h0, wants_14 & _toUnit_T_1[14]}
                         + {1'h0, wants_15 & _toUnit_T_1[15]}}}}} - 17'h1;
   wire        _taken_T_15 = wants_15 & _toUnit_T_1[15];
-  wire        _GEN_151 = state != 4'h8 | ~sent;
-  wire        _GEN_152 = io_start | begin_0;
-  wire        _GEN_153 = passDone & _io_quiet_T_3 & ~sortBusy;
+  wire        _GEN_54 = state != 4'h8 | ~sent;
+  wire        _GEN_55 = io_start | begin_0;
+  wire        _GEN_56 = passDone & _io_quiet_T_3 & ~sortBusy;
   wire [8:0]  _m_T = m + 9'h2;
-  wire        _GEN_154 = sent & ~sortBusy;
-  wire        _GEN_155 = passDone & ~REG_8;
-  wire        _GEN_156 = _GEN_111 & _GEN_112 & pending;
-  wire        _GEN_157 = _GEN_105 | _GEN_106 | _GEN_102 | _GEN_108 | _GEN_109 | _GEN_110;
-  wire        _GEN_158 = _GEN_104 | _GEN_157;
-  wire        _GEN_159 = _GEN_158 | ~_GEN_156;
+  wire        _GEN_57 = sent & ~sortBusy;
+  wire        _GEN_58 = passDone & ~REG_8;
+  wire        _GEN_59 = _GEN_14 & _GEN_15 & pending;
+  wire        _GEN_60 = _GEN_8 | _GEN_9 | _GEN_5 | _GEN_11 | _GEN_12 | _GEN_13;
+  wire        _GEN_61 = _GEN_7 | _GEN_60;
+  wire        _GEN_62 = _GEN_61 | ~_GEN_59;
   wire [18:0] _boxMap_origin_1_T = _corners_k_io_out_cell_1[19:1] - 19'h1;
   wire [16:0] taken =
-    _GEN_149
+    _GEN_52
     + {12'h0,
        {1'h0,
         {1'h0,
@@ -42006,924 +42054,924 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               + {1'h0,
                  {1'h0, {1'h0, _taken_T_12} + {1'h0, _taken_T_13}}
                    + {1'h0, {1'h0, _taken_T_14} + {1'h0, _taken_T_15}}}}};
-  wire        _GEN_160 =
-    largeHere_7 & ~_GEN_148 | largeHere_6 & ~_GEN_146 | largeHere_5 & ~_GEN_144
-    | largeHere_4 & ~_GEN_142 | largeHere_3 & ~_GEN_138 | largeHere_2 & ~_GEN_136
-    | largeHere_1 & ~_GEN_133 | largeHere_0 & ~_GEN_132 | st_largeOverflow;
+  wire        _GEN_63 =
+    largeHere_7 & ~_GEN_51 | largeHere_6 & ~_GEN_49 | largeHere_5 & ~_GEN_47 | largeHere_4
+    & ~_GEN_45 | largeHere_3 & ~_GEN_41 | largeHere_2 & ~_GEN_39 | largeHere_1 & ~_GEN_36
+    | largeHere_0 & ~_GEN_35 | st_largeOverflow;
   wire [5:0]  largeNew =
-    _GEN_131
+    _GEN_34
     + {2'h0,
-       {1'h0, _GEN_140 + _GEN_141}
-         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_147 + {1'h0, largeHere_7}}}};
+       {1'h0, _GEN_43 + _GEN_44}
+         + {1'h0, {1'h0, _largeNew_T_7} + {1'h0, _GEN_50 + {1'h0, largeHere_7}}}};
   wire [5:0]  largeKept = largeNew > 6'h10 ? 6'h10 : largeNew;
-  wire        _heldUnit_0_T = _at_T_3 < _GEN_150;
-  wire        _heldUnit_1_T = _at_T_10 < _GEN_150;
-  wire        _heldUnit_2_T = _at_T_20 < _GEN_150;
-  wire        _heldUnit_3_T = _at_T_33 < _GEN_150;
-  wire        _heldUnit_4_T = _at_T_49 < _GEN_150;
-  wire        _heldUnit_5_T = _at_T_68 < _GEN_150;
-  wire        _heldUnit_6_T = _at_T_90 < _GEN_150;
-  wire        _heldUnit_7_T = _at_T_115 < _GEN_150;
-  wire        _heldUnit_8_T = _at_T_143 < _GEN_150;
-  wire        _heldUnit_9_T = _at_T_174 < _GEN_150;
-  wire        _heldUnit_10_T = _at_T_208 < _GEN_150;
-  wire        _heldUnit_11_T = _at_T_245 < _GEN_150;
-  wire        _heldUnit_12_T = _at_T_285 < _GEN_150;
-  wire        _heldUnit_13_T = _at_T_328 < _GEN_150;
-  wire        _heldUnit_14_T = _at_T_374 < _GEN_150;
-  wire        _heldUnit_15_T = _at_T_423 < _GEN_150;
-  wire        _GEN_161 = _GEN_157 | ~_GEN_113;
+  wire        _heldUnit_0_T = _at_T_3 < _GEN_53;
+  wire        _heldUnit_1_T = _at_T_10 < _GEN_53;
+  wire        _heldUnit_2_T = _at_T_20 < _GEN_53;
+  wire        _heldUnit_3_T = _at_T_33 < _GEN_53;
+  wire        _heldUnit_4_T = _at_T_49 < _GEN_53;
+  wire        _heldUnit_5_T = _at_T_68 < _GEN_53;
+  wire        _heldUnit_6_T = _at_T_90 < _GEN_53;
+  wire        _heldUnit_7_T = _at_T_115 < _GEN_53;
+  wire        _heldUnit_8_T = _at_T_143 < _GEN_53;
+  wire        _heldUnit_9_T = _at_T_174 < _GEN_53;
+  wire        _heldUnit_10_T = _at_T_208 < _GEN_53;
+  wire        _heldUnit_11_T = _at_T_245 < _GEN_53;
+  wire        _heldUnit_12_T = _at_T_285 < _GEN_53;
+  wire        _heldUnit_13_T = _at_T_328 < _GEN_53;
+  wire        _heldUnit_14_T = _at_T_374 < _GEN_53;
+  wire        _heldUnit_15_T = _at_T_423 < _GEN_53;
+  wire        _GEN_64 = _GEN_60 | ~_GEN_16;
   always @(posedge clock) begin
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h0) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h0) begin
       larges_0_index <= r_7;
       larges_0_q_0 <= _laneKeys_7_io_out_q_0;
       larges_0_q_1 <= _laneKeys_7_io_out_q_1;
       larges_0_q_2 <= _laneKeys_7_io_out_q_2;
       larges_0_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h0) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h0) begin
       larges_0_index <= r_6;
       larges_0_q_0 <= _laneKeys_6_io_out_q_0;
       larges_0_q_1 <= _laneKeys_6_io_out_q_1;
       larges_0_q_2 <= _laneKeys_6_io_out_q_2;
       larges_0_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h0) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h0) begin
       larges_0_index <= r_5;
       larges_0_q_0 <= _laneKeys_5_io_out_q_0;
       larges_0_q_1 <= _laneKeys_5_io_out_q_1;
       larges_0_q_2 <= _laneKeys_5_io_out_q_2;
       larges_0_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h0) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h0) begin
       larges_0_index <= r_4;
       larges_0_q_0 <= _laneKeys_4_io_out_q_0;
       larges_0_q_1 <= _laneKeys_4_io_out_q_1;
       larges_0_q_2 <= _laneKeys_4_io_out_q_2;
       larges_0_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h0) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h0) begin
       larges_0_index <= r_3;
       larges_0_q_0 <= _laneKeys_3_io_out_q_0;
       larges_0_q_1 <= _laneKeys_3_io_out_q_1;
       larges_0_q_2 <= _laneKeys_3_io_out_q_2;
       larges_0_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h0) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h0) begin
       larges_0_index <= r_2;
       larges_0_q_0 <= _laneKeys_2_io_out_q_0;
       larges_0_q_1 <= _laneKeys_2_io_out_q_1;
       larges_0_q_2 <= _laneKeys_2_io_out_q_2;
       larges_0_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h0) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h0) begin
       larges_0_index <= r_1;
       larges_0_q_0 <= _laneKeys_1_io_out_q_0;
       larges_0_q_1 <= _laneKeys_1_io_out_q_1;
       larges_0_q_2 <= _laneKeys_1_io_out_q_2;
       larges_0_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h0) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h0) begin
       larges_0_index <= r;
       larges_0_q_0 <= _laneKeys_0_io_out_q_0;
       larges_0_q_1 <= _laneKeys_0_io_out_q_1;
       larges_0_q_2 <= _laneKeys_0_io_out_q_2;
       larges_0_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h1) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h1) begin
       larges_1_index <= r_7;
       larges_1_q_0 <= _laneKeys_7_io_out_q_0;
       larges_1_q_1 <= _laneKeys_7_io_out_q_1;
       larges_1_q_2 <= _laneKeys_7_io_out_q_2;
       larges_1_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h1) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h1) begin
       larges_1_index <= r_6;
       larges_1_q_0 <= _laneKeys_6_io_out_q_0;
       larges_1_q_1 <= _laneKeys_6_io_out_q_1;
       larges_1_q_2 <= _laneKeys_6_io_out_q_2;
       larges_1_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h1) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h1) begin
       larges_1_index <= r_5;
       larges_1_q_0 <= _laneKeys_5_io_out_q_0;
       larges_1_q_1 <= _laneKeys_5_io_out_q_1;
       larges_1_q_2 <= _laneKeys_5_io_out_q_2;
       larges_1_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h1) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h1) begin
       larges_1_index <= r_4;
       larges_1_q_0 <= _laneKeys_4_io_out_q_0;
       larges_1_q_1 <= _laneKeys_4_io_out_q_1;
       larges_1_q_2 <= _laneKeys_4_io_out_q_2;
       larges_1_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h1) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h1) begin
       larges_1_index <= r_3;
       larges_1_q_0 <= _laneKeys_3_io_out_q_0;
       larges_1_q_1 <= _laneKeys_3_io_out_q_1;
       larges_1_q_2 <= _laneKeys_3_io_out_q_2;
       larges_1_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h1) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h1) begin
       larges_1_index <= r_2;
       larges_1_q_0 <= _laneKeys_2_io_out_q_0;
       larges_1_q_1 <= _laneKeys_2_io_out_q_1;
       larges_1_q_2 <= _laneKeys_2_io_out_q_2;
       larges_1_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h1) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h1) begin
       larges_1_index <= r_1;
       larges_1_q_0 <= _laneKeys_1_io_out_q_0;
       larges_1_q_1 <= _laneKeys_1_io_out_q_1;
       larges_1_q_2 <= _laneKeys_1_io_out_q_2;
       larges_1_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h1) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h1) begin
       larges_1_index <= r;
       larges_1_q_0 <= _laneKeys_0_io_out_q_0;
       larges_1_q_1 <= _laneKeys_0_io_out_q_1;
       larges_1_q_2 <= _laneKeys_0_io_out_q_2;
       larges_1_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h2) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h2) begin
       larges_2_index <= r_7;
       larges_2_q_0 <= _laneKeys_7_io_out_q_0;
       larges_2_q_1 <= _laneKeys_7_io_out_q_1;
       larges_2_q_2 <= _laneKeys_7_io_out_q_2;
       larges_2_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h2) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h2) begin
       larges_2_index <= r_6;
       larges_2_q_0 <= _laneKeys_6_io_out_q_0;
       larges_2_q_1 <= _laneKeys_6_io_out_q_1;
       larges_2_q_2 <= _laneKeys_6_io_out_q_2;
       larges_2_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h2) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h2) begin
       larges_2_index <= r_5;
       larges_2_q_0 <= _laneKeys_5_io_out_q_0;
       larges_2_q_1 <= _laneKeys_5_io_out_q_1;
       larges_2_q_2 <= _laneKeys_5_io_out_q_2;
       larges_2_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h2) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h2) begin
       larges_2_index <= r_4;
       larges_2_q_0 <= _laneKeys_4_io_out_q_0;
       larges_2_q_1 <= _laneKeys_4_io_out_q_1;
       larges_2_q_2 <= _laneKeys_4_io_out_q_2;
       larges_2_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h2) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h2) begin
       larges_2_index <= r_3;
       larges_2_q_0 <= _laneKeys_3_io_out_q_0;
       larges_2_q_1 <= _laneKeys_3_io_out_q_1;
       larges_2_q_2 <= _laneKeys_3_io_out_q_2;
       larges_2_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h2) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h2) begin
       larges_2_index <= r_2;
       larges_2_q_0 <= _laneKeys_2_io_out_q_0;
       larges_2_q_1 <= _laneKeys_2_io_out_q_1;
       larges_2_q_2 <= _laneKeys_2_io_out_q_2;
       larges_2_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h2) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h2) begin
       larges_2_index <= r_1;
       larges_2_q_0 <= _laneKeys_1_io_out_q_0;
       larges_2_q_1 <= _laneKeys_1_io_out_q_1;
       larges_2_q_2 <= _laneKeys_1_io_out_q_2;
       larges_2_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h2) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h2) begin
       larges_2_index <= r;
       larges_2_q_0 <= _laneKeys_0_io_out_q_0;
       larges_2_q_1 <= _laneKeys_0_io_out_q_1;
       larges_2_q_2 <= _laneKeys_0_io_out_q_2;
       larges_2_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h3) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h3) begin
       larges_3_index <= r_7;
       larges_3_q_0 <= _laneKeys_7_io_out_q_0;
       larges_3_q_1 <= _laneKeys_7_io_out_q_1;
       larges_3_q_2 <= _laneKeys_7_io_out_q_2;
       larges_3_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h3) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h3) begin
       larges_3_index <= r_6;
       larges_3_q_0 <= _laneKeys_6_io_out_q_0;
       larges_3_q_1 <= _laneKeys_6_io_out_q_1;
       larges_3_q_2 <= _laneKeys_6_io_out_q_2;
       larges_3_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h3) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h3) begin
       larges_3_index <= r_5;
       larges_3_q_0 <= _laneKeys_5_io_out_q_0;
       larges_3_q_1 <= _laneKeys_5_io_out_q_1;
       larges_3_q_2 <= _laneKeys_5_io_out_q_2;
       larges_3_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h3) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h3) begin
       larges_3_index <= r_4;
       larges_3_q_0 <= _laneKeys_4_io_out_q_0;
       larges_3_q_1 <= _laneKeys_4_io_out_q_1;
       larges_3_q_2 <= _laneKeys_4_io_out_q_2;
       larges_3_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h3) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h3) begin
       larges_3_index <= r_3;
       larges_3_q_0 <= _laneKeys_3_io_out_q_0;
       larges_3_q_1 <= _laneKeys_3_io_out_q_1;
       larges_3_q_2 <= _laneKeys_3_io_out_q_2;
       larges_3_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h3) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h3) begin
       larges_3_index <= r_2;
       larges_3_q_0 <= _laneKeys_2_io_out_q_0;
       larges_3_q_1 <= _laneKeys_2_io_out_q_1;
       larges_3_q_2 <= _laneKeys_2_io_out_q_2;
       larges_3_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h3) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h3) begin
       larges_3_index <= r_1;
       larges_3_q_0 <= _laneKeys_1_io_out_q_0;
       larges_3_q_1 <= _laneKeys_1_io_out_q_1;
       larges_3_q_2 <= _laneKeys_1_io_out_q_2;
       larges_3_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h3) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h3) begin
       larges_3_index <= r;
       larges_3_q_0 <= _laneKeys_0_io_out_q_0;
       larges_3_q_1 <= _laneKeys_0_io_out_q_1;
       larges_3_q_2 <= _laneKeys_0_io_out_q_2;
       larges_3_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h4) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h4) begin
       larges_4_index <= r_7;
       larges_4_q_0 <= _laneKeys_7_io_out_q_0;
       larges_4_q_1 <= _laneKeys_7_io_out_q_1;
       larges_4_q_2 <= _laneKeys_7_io_out_q_2;
       larges_4_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h4) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h4) begin
       larges_4_index <= r_6;
       larges_4_q_0 <= _laneKeys_6_io_out_q_0;
       larges_4_q_1 <= _laneKeys_6_io_out_q_1;
       larges_4_q_2 <= _laneKeys_6_io_out_q_2;
       larges_4_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h4) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h4) begin
       larges_4_index <= r_5;
       larges_4_q_0 <= _laneKeys_5_io_out_q_0;
       larges_4_q_1 <= _laneKeys_5_io_out_q_1;
       larges_4_q_2 <= _laneKeys_5_io_out_q_2;
       larges_4_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h4) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h4) begin
       larges_4_index <= r_4;
       larges_4_q_0 <= _laneKeys_4_io_out_q_0;
       larges_4_q_1 <= _laneKeys_4_io_out_q_1;
       larges_4_q_2 <= _laneKeys_4_io_out_q_2;
       larges_4_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h4) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h4) begin
       larges_4_index <= r_3;
       larges_4_q_0 <= _laneKeys_3_io_out_q_0;
       larges_4_q_1 <= _laneKeys_3_io_out_q_1;
       larges_4_q_2 <= _laneKeys_3_io_out_q_2;
       larges_4_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h4) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h4) begin
       larges_4_index <= r_2;
       larges_4_q_0 <= _laneKeys_2_io_out_q_0;
       larges_4_q_1 <= _laneKeys_2_io_out_q_1;
       larges_4_q_2 <= _laneKeys_2_io_out_q_2;
       larges_4_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h4) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h4) begin
       larges_4_index <= r_1;
       larges_4_q_0 <= _laneKeys_1_io_out_q_0;
       larges_4_q_1 <= _laneKeys_1_io_out_q_1;
       larges_4_q_2 <= _laneKeys_1_io_out_q_2;
       larges_4_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h4) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h4) begin
       larges_4_index <= r;
       larges_4_q_0 <= _laneKeys_0_io_out_q_0;
       larges_4_q_1 <= _laneKeys_0_io_out_q_1;
       larges_4_q_2 <= _laneKeys_0_io_out_q_2;
       larges_4_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h5) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h5) begin
       larges_5_index <= r_7;
       larges_5_q_0 <= _laneKeys_7_io_out_q_0;
       larges_5_q_1 <= _laneKeys_7_io_out_q_1;
       larges_5_q_2 <= _laneKeys_7_io_out_q_2;
       larges_5_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h5) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h5) begin
       larges_5_index <= r_6;
       larges_5_q_0 <= _laneKeys_6_io_out_q_0;
       larges_5_q_1 <= _laneKeys_6_io_out_q_1;
       larges_5_q_2 <= _laneKeys_6_io_out_q_2;
       larges_5_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h5) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h5) begin
       larges_5_index <= r_5;
       larges_5_q_0 <= _laneKeys_5_io_out_q_0;
       larges_5_q_1 <= _laneKeys_5_io_out_q_1;
       larges_5_q_2 <= _laneKeys_5_io_out_q_2;
       larges_5_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h5) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h5) begin
       larges_5_index <= r_4;
       larges_5_q_0 <= _laneKeys_4_io_out_q_0;
       larges_5_q_1 <= _laneKeys_4_io_out_q_1;
       larges_5_q_2 <= _laneKeys_4_io_out_q_2;
       larges_5_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h5) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h5) begin
       larges_5_index <= r_3;
       larges_5_q_0 <= _laneKeys_3_io_out_q_0;
       larges_5_q_1 <= _laneKeys_3_io_out_q_1;
       larges_5_q_2 <= _laneKeys_3_io_out_q_2;
       larges_5_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h5) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h5) begin
       larges_5_index <= r_2;
       larges_5_q_0 <= _laneKeys_2_io_out_q_0;
       larges_5_q_1 <= _laneKeys_2_io_out_q_1;
       larges_5_q_2 <= _laneKeys_2_io_out_q_2;
       larges_5_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h5) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h5) begin
       larges_5_index <= r_1;
       larges_5_q_0 <= _laneKeys_1_io_out_q_0;
       larges_5_q_1 <= _laneKeys_1_io_out_q_1;
       larges_5_q_2 <= _laneKeys_1_io_out_q_2;
       larges_5_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h5) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h5) begin
       larges_5_index <= r;
       larges_5_q_0 <= _laneKeys_0_io_out_q_0;
       larges_5_q_1 <= _laneKeys_0_io_out_q_1;
       larges_5_q_2 <= _laneKeys_0_io_out_q_2;
       larges_5_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h6) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h6) begin
       larges_6_index <= r_7;
       larges_6_q_0 <= _laneKeys_7_io_out_q_0;
       larges_6_q_1 <= _laneKeys_7_io_out_q_1;
       larges_6_q_2 <= _laneKeys_7_io_out_q_2;
       larges_6_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h6) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h6) begin
       larges_6_index <= r_6;
       larges_6_q_0 <= _laneKeys_6_io_out_q_0;
       larges_6_q_1 <= _laneKeys_6_io_out_q_1;
       larges_6_q_2 <= _laneKeys_6_io_out_q_2;
       larges_6_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h6) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h6) begin
       larges_6_index <= r_5;
       larges_6_q_0 <= _laneKeys_5_io_out_q_0;
       larges_6_q_1 <= _laneKeys_5_io_out_q_1;
       larges_6_q_2 <= _laneKeys_5_io_out_q_2;
       larges_6_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h6) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h6) begin
       larges_6_index <= r_4;
       larges_6_q_0 <= _laneKeys_4_io_out_q_0;
       larges_6_q_1 <= _laneKeys_4_io_out_q_1;
       larges_6_q_2 <= _laneKeys_4_io_out_q_2;
       larges_6_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h6) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h6) begin
       larges_6_index <= r_3;
       larges_6_q_0 <= _laneKeys_3_io_out_q_0;
       larges_6_q_1 <= _laneKeys_3_io_out_q_1;
       larges_6_q_2 <= _laneKeys_3_io_out_q_2;
       larges_6_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h6) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h6) begin
       larges_6_index <= r_2;
       larges_6_q_0 <= _laneKeys_2_io_out_q_0;
       larges_6_q_1 <= _laneKeys_2_io_out_q_1;
       larges_6_q_2 <= _laneKeys_2_io_out_q_2;
       larges_6_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h6) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h6) begin
       larges_6_index <= r_1;
       larges_6_q_0 <= _laneKeys_1_io_out_q_0;
       larges_6_q_1 <= _laneKeys_1_io_out_q_1;
       larges_6_q_2 <= _laneKeys_1_io_out_q_2;
       larges_6_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h6) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h6) begin
       larges_6_index <= r;
       larges_6_q_0 <= _laneKeys_0_io_out_q_0;
       larges_6_q_1 <= _laneKeys_0_io_out_q_1;
       larges_6_q_2 <= _laneKeys_0_io_out_q_2;
       larges_6_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h7) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h7) begin
       larges_7_index <= r_7;
       larges_7_q_0 <= _laneKeys_7_io_out_q_0;
       larges_7_q_1 <= _laneKeys_7_io_out_q_1;
       larges_7_q_2 <= _laneKeys_7_io_out_q_2;
       larges_7_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h7) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h7) begin
       larges_7_index <= r_6;
       larges_7_q_0 <= _laneKeys_6_io_out_q_0;
       larges_7_q_1 <= _laneKeys_6_io_out_q_1;
       larges_7_q_2 <= _laneKeys_6_io_out_q_2;
       larges_7_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h7) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h7) begin
       larges_7_index <= r_5;
       larges_7_q_0 <= _laneKeys_5_io_out_q_0;
       larges_7_q_1 <= _laneKeys_5_io_out_q_1;
       larges_7_q_2 <= _laneKeys_5_io_out_q_2;
       larges_7_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h7) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h7) begin
       larges_7_index <= r_4;
       larges_7_q_0 <= _laneKeys_4_io_out_q_0;
       larges_7_q_1 <= _laneKeys_4_io_out_q_1;
       larges_7_q_2 <= _laneKeys_4_io_out_q_2;
       larges_7_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h7) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h7) begin
       larges_7_index <= r_3;
       larges_7_q_0 <= _laneKeys_3_io_out_q_0;
       larges_7_q_1 <= _laneKeys_3_io_out_q_1;
       larges_7_q_2 <= _laneKeys_3_io_out_q_2;
       larges_7_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h7) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h7) begin
       larges_7_index <= r_2;
       larges_7_q_0 <= _laneKeys_2_io_out_q_0;
       larges_7_q_1 <= _laneKeys_2_io_out_q_1;
       larges_7_q_2 <= _laneKeys_2_io_out_q_2;
       larges_7_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h7) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h7) begin
       larges_7_index <= r_1;
       larges_7_q_0 <= _laneKeys_1_io_out_q_0;
       larges_7_q_1 <= _laneKeys_1_io_out_q_1;
       larges_7_q_2 <= _laneKeys_1_io_out_q_2;
       larges_7_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h7) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h7) begin
       larges_7_index <= r;
       larges_7_q_0 <= _laneKeys_0_io_out_q_0;
       larges_7_q_1 <= _laneKeys_0_io_out_q_1;
       larges_7_q_2 <= _laneKeys_0_io_out_q_2;
       larges_7_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h8) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h8) begin
       larges_8_index <= r_7;
       larges_8_q_0 <= _laneKeys_7_io_out_q_0;
       larges_8_q_1 <= _laneKeys_7_io_out_q_1;
       larges_8_q_2 <= _laneKeys_7_io_out_q_2;
       larges_8_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h8) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h8) begin
       larges_8_index <= r_6;
       larges_8_q_0 <= _laneKeys_6_io_out_q_0;
       larges_8_q_1 <= _laneKeys_6_io_out_q_1;
       larges_8_q_2 <= _laneKeys_6_io_out_q_2;
       larges_8_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h8) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h8) begin
       larges_8_index <= r_5;
       larges_8_q_0 <= _laneKeys_5_io_out_q_0;
       larges_8_q_1 <= _laneKeys_5_io_out_q_1;
       larges_8_q_2 <= _laneKeys_5_io_out_q_2;
       larges_8_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h8) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h8) begin
       larges_8_index <= r_4;
       larges_8_q_0 <= _laneKeys_4_io_out_q_0;
       larges_8_q_1 <= _laneKeys_4_io_out_q_1;
       larges_8_q_2 <= _laneKeys_4_io_out_q_2;
       larges_8_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h8) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h8) begin
       larges_8_index <= r_3;
       larges_8_q_0 <= _laneKeys_3_io_out_q_0;
       larges_8_q_1 <= _laneKeys_3_io_out_q_1;
       larges_8_q_2 <= _laneKeys_3_io_out_q_2;
       larges_8_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h8) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h8) begin
       larges_8_index <= r_2;
       larges_8_q_0 <= _laneKeys_2_io_out_q_0;
       larges_8_q_1 <= _laneKeys_2_io_out_q_1;
       larges_8_q_2 <= _laneKeys_2_io_out_q_2;
       larges_8_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h8) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h8) begin
       larges_8_index <= r_1;
       larges_8_q_0 <= _laneKeys_1_io_out_q_0;
       larges_8_q_1 <= _laneKeys_1_io_out_q_1;
       larges_8_q_2 <= _laneKeys_1_io_out_q_2;
       larges_8_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h8) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h8) begin
       larges_8_index <= r;
       larges_8_q_0 <= _laneKeys_0_io_out_q_0;
       larges_8_q_1 <= _laneKeys_0_io_out_q_1;
       larges_8_q_2 <= _laneKeys_0_io_out_q_2;
       larges_8_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'h9) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'h9) begin
       larges_9_index <= r_7;
       larges_9_q_0 <= _laneKeys_7_io_out_q_0;
       larges_9_q_1 <= _laneKeys_7_io_out_q_1;
       larges_9_q_2 <= _laneKeys_7_io_out_q_2;
       larges_9_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'h9) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'h9) begin
       larges_9_index <= r_6;
       larges_9_q_0 <= _laneKeys_6_io_out_q_0;
       larges_9_q_1 <= _laneKeys_6_io_out_q_1;
       larges_9_q_2 <= _laneKeys_6_io_out_q_2;
       larges_9_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'h9) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'h9) begin
       larges_9_index <= r_5;
       larges_9_q_0 <= _laneKeys_5_io_out_q_0;
       larges_9_q_1 <= _laneKeys_5_io_out_q_1;
       larges_9_q_2 <= _laneKeys_5_io_out_q_2;
       larges_9_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'h9) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'h9) begin
       larges_9_index <= r_4;
       larges_9_q_0 <= _laneKeys_4_io_out_q_0;
       larges_9_q_1 <= _laneKeys_4_io_out_q_1;
       larges_9_q_2 <= _laneKeys_4_io_out_q_2;
       larges_9_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'h9) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'h9) begin
       larges_9_index <= r_3;
       larges_9_q_0 <= _laneKeys_3_io_out_q_0;
       larges_9_q_1 <= _laneKeys_3_io_out_q_1;
       larges_9_q_2 <= _laneKeys_3_io_out_q_2;
       larges_9_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'h9) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'h9) begin
       larges_9_index <= r_2;
       larges_9_q_0 <= _laneKeys_2_io_out_q_0;
       larges_9_q_1 <= _laneKeys_2_io_out_q_1;
       larges_9_q_2 <= _laneKeys_2_io_out_q_2;
       larges_9_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'h9) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'h9) begin
       larges_9_index <= r_1;
       larges_9_q_0 <= _laneKeys_1_io_out_q_0;
       larges_9_q_1 <= _laneKeys_1_io_out_q_1;
       larges_9_q_2 <= _laneKeys_1_io_out_q_2;
       larges_9_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'h9) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'h9) begin
       larges_9_index <= r;
       larges_9_q_0 <= _laneKeys_0_io_out_q_0;
       larges_9_q_1 <= _laneKeys_0_io_out_q_1;
       larges_9_q_2 <= _laneKeys_0_io_out_q_2;
       larges_9_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'hA) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'hA) begin
       larges_10_index <= r_7;
       larges_10_q_0 <= _laneKeys_7_io_out_q_0;
       larges_10_q_1 <= _laneKeys_7_io_out_q_1;
       larges_10_q_2 <= _laneKeys_7_io_out_q_2;
       larges_10_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'hA) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'hA) begin
       larges_10_index <= r_6;
       larges_10_q_0 <= _laneKeys_6_io_out_q_0;
       larges_10_q_1 <= _laneKeys_6_io_out_q_1;
       larges_10_q_2 <= _laneKeys_6_io_out_q_2;
       larges_10_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'hA) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'hA) begin
       larges_10_index <= r_5;
       larges_10_q_0 <= _laneKeys_5_io_out_q_0;
       larges_10_q_1 <= _laneKeys_5_io_out_q_1;
       larges_10_q_2 <= _laneKeys_5_io_out_q_2;
       larges_10_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'hA) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'hA) begin
       larges_10_index <= r_4;
       larges_10_q_0 <= _laneKeys_4_io_out_q_0;
       larges_10_q_1 <= _laneKeys_4_io_out_q_1;
       larges_10_q_2 <= _laneKeys_4_io_out_q_2;
       larges_10_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'hA) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'hA) begin
       larges_10_index <= r_3;
       larges_10_q_0 <= _laneKeys_3_io_out_q_0;
       larges_10_q_1 <= _laneKeys_3_io_out_q_1;
       larges_10_q_2 <= _laneKeys_3_io_out_q_2;
       larges_10_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'hA) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'hA) begin
       larges_10_index <= r_2;
       larges_10_q_0 <= _laneKeys_2_io_out_q_0;
       larges_10_q_1 <= _laneKeys_2_io_out_q_1;
       larges_10_q_2 <= _laneKeys_2_io_out_q_2;
       larges_10_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'hA) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'hA) begin
       larges_10_index <= r_1;
       larges_10_q_0 <= _laneKeys_1_io_out_q_0;
       larges_10_q_1 <= _laneKeys_1_io_out_q_1;
       larges_10_q_2 <= _laneKeys_1_io_out_q_2;
       larges_10_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'hA) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'hA) begin
       larges_10_index <= r;
       larges_10_q_0 <= _laneKeys_0_io_out_q_0;
       larges_10_q_1 <= _laneKeys_0_io_out_q_1;
       larges_10_q_2 <= _laneKeys_0_io_out_q_2;
       larges_10_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'hB) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'hB) begin
       larges_11_index <= r_7;
       larges_11_q_0 <= _laneKeys_7_io_out_q_0;
       larges_11_q_1 <= _laneKeys_7_io_out_q_1;
       larges_11_q_2 <= _laneKeys_7_io_out_q_2;
       larges_11_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'hB) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'hB) begin
       larges_11_index <= r_6;
       larges_11_q_0 <= _laneKeys_6_io_out_q_0;
       larges_11_q_1 <= _laneKeys_6_io_out_q_1;
       larges_11_q_2 <= _laneKeys_6_io_out_q_2;
       larges_11_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'hB) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'hB) begin
       larges_11_index <= r_5;
       larges_11_q_0 <= _laneKeys_5_io_out_q_0;
       larges_11_q_1 <= _laneKeys_5_io_out_q_1;
       larges_11_q_2 <= _laneKeys_5_io_out_q_2;
       larges_11_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'hB) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'hB) begin
       larges_11_index <= r_4;
       larges_11_q_0 <= _laneKeys_4_io_out_q_0;
       larges_11_q_1 <= _laneKeys_4_io_out_q_1;
       larges_11_q_2 <= _laneKeys_4_io_out_q_2;
       larges_11_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'hB) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'hB) begin
       larges_11_index <= r_3;
       larges_11_q_0 <= _laneKeys_3_io_out_q_0;
       larges_11_q_1 <= _laneKeys_3_io_out_q_1;
       larges_11_q_2 <= _laneKeys_3_io_out_q_2;
       larges_11_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'hB) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'hB) begin
       larges_11_index <= r_2;
       larges_11_q_0 <= _laneKeys_2_io_out_q_0;
       larges_11_q_1 <= _laneKeys_2_io_out_q_1;
       larges_11_q_2 <= _laneKeys_2_io_out_q_2;
       larges_11_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'hB) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'hB) begin
       larges_11_index <= r_1;
       larges_11_q_0 <= _laneKeys_1_io_out_q_0;
       larges_11_q_1 <= _laneKeys_1_io_out_q_1;
       larges_11_q_2 <= _laneKeys_1_io_out_q_2;
       larges_11_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'hB) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'hB) begin
       larges_11_index <= r;
       larges_11_q_0 <= _laneKeys_0_io_out_q_0;
       larges_11_q_1 <= _laneKeys_0_io_out_q_1;
       larges_11_q_2 <= _laneKeys_0_io_out_q_2;
       larges_11_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'hC) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'hC) begin
       larges_12_index <= r_7;
       larges_12_q_0 <= _laneKeys_7_io_out_q_0;
       larges_12_q_1 <= _laneKeys_7_io_out_q_1;
       larges_12_q_2 <= _laneKeys_7_io_out_q_2;
       larges_12_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'hC) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'hC) begin
       larges_12_index <= r_6;
       larges_12_q_0 <= _laneKeys_6_io_out_q_0;
       larges_12_q_1 <= _laneKeys_6_io_out_q_1;
       larges_12_q_2 <= _laneKeys_6_io_out_q_2;
       larges_12_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'hC) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'hC) begin
       larges_12_index <= r_5;
       larges_12_q_0 <= _laneKeys_5_io_out_q_0;
       larges_12_q_1 <= _laneKeys_5_io_out_q_1;
       larges_12_q_2 <= _laneKeys_5_io_out_q_2;
       larges_12_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'hC) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'hC) begin
       larges_12_index <= r_4;
       larges_12_q_0 <= _laneKeys_4_io_out_q_0;
       larges_12_q_1 <= _laneKeys_4_io_out_q_1;
       larges_12_q_2 <= _laneKeys_4_io_out_q_2;
       larges_12_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'hC) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'hC) begin
       larges_12_index <= r_3;
       larges_12_q_0 <= _laneKeys_3_io_out_q_0;
       larges_12_q_1 <= _laneKeys_3_io_out_q_1;
       larges_12_q_2 <= _laneKeys_3_io_out_q_2;
       larges_12_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'hC) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'hC) begin
       larges_12_index <= r_2;
       larges_12_q_0 <= _laneKeys_2_io_out_q_0;
       larges_12_q_1 <= _laneKeys_2_io_out_q_1;
       larges_12_q_2 <= _laneKeys_2_io_out_q_2;
       larges_12_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'hC) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'hC) begin
       larges_12_index <= r_1;
       larges_12_q_0 <= _laneKeys_1_io_out_q_0;
       larges_12_q_1 <= _laneKeys_1_io_out_q_1;
       larges_12_q_2 <= _laneKeys_1_io_out_q_2;
       larges_12_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'hC) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'hC) begin
       larges_12_index <= r;
       larges_12_q_0 <= _laneKeys_0_io_out_q_0;
       larges_12_q_1 <= _laneKeys_0_io_out_q_1;
       larges_12_q_2 <= _laneKeys_0_io_out_q_2;
       larges_12_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'hD) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'hD) begin
       larges_13_index <= r_7;
       larges_13_q_0 <= _laneKeys_7_io_out_q_0;
       larges_13_q_1 <= _laneKeys_7_io_out_q_1;
       larges_13_q_2 <= _laneKeys_7_io_out_q_2;
       larges_13_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'hD) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'hD) begin
       larges_13_index <= r_6;
       larges_13_q_0 <= _laneKeys_6_io_out_q_0;
       larges_13_q_1 <= _laneKeys_6_io_out_q_1;
       larges_13_q_2 <= _laneKeys_6_io_out_q_2;
       larges_13_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'hD) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'hD) begin
       larges_13_index <= r_5;
       larges_13_q_0 <= _laneKeys_5_io_out_q_0;
       larges_13_q_1 <= _laneKeys_5_io_out_q_1;
       larges_13_q_2 <= _laneKeys_5_io_out_q_2;
       larges_13_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'hD) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'hD) begin
       larges_13_index <= r_4;
       larges_13_q_0 <= _laneKeys_4_io_out_q_0;
       larges_13_q_1 <= _laneKeys_4_io_out_q_1;
       larges_13_q_2 <= _laneKeys_4_io_out_q_2;
       larges_13_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'hD) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'hD) begin
       larges_13_index <= r_3;
       larges_13_q_0 <= _laneKeys_3_io_out_q_0;
       larges_13_q_1 <= _laneKeys_3_io_out_q_1;
       larges_13_q_2 <= _laneKeys_3_io_out_q_2;
       larges_13_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'hD) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'hD) begin
       larges_13_index <= r_2;
       larges_13_q_0 <= _laneKeys_2_io_out_q_0;
       larges_13_q_1 <= _laneKeys_2_io_out_q_1;
       larges_13_q_2 <= _laneKeys_2_io_out_q_2;
       larges_13_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'hD) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'hD) begin
       larges_13_index <= r_1;
       larges_13_q_0 <= _laneKeys_1_io_out_q_0;
       larges_13_q_1 <= _laneKeys_1_io_out_q_1;
       larges_13_q_2 <= _laneKeys_1_io_out_q_2;
       larges_13_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'hD) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'hD) begin
       larges_13_index <= r;
       larges_13_q_0 <= _laneKeys_0_io_out_q_0;
       larges_13_q_1 <= _laneKeys_0_io_out_q_1;
       larges_13_q_2 <= _laneKeys_0_io_out_q_2;
       larges_13_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & slot_7[3:0] == 4'hE) begin
+    if (largeHere_7 & _GEN_51 & slot_7[3:0] == 4'hE) begin
       larges_14_index <= r_7;
       larges_14_q_0 <= _laneKeys_7_io_out_q_0;
       larges_14_q_1 <= _laneKeys_7_io_out_q_1;
       larges_14_q_2 <= _laneKeys_7_io_out_q_2;
       larges_14_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & slot_6[3:0] == 4'hE) begin
+    else if (largeHere_6 & _GEN_49 & slot_6[3:0] == 4'hE) begin
       larges_14_index <= r_6;
       larges_14_q_0 <= _laneKeys_6_io_out_q_0;
       larges_14_q_1 <= _laneKeys_6_io_out_q_1;
       larges_14_q_2 <= _laneKeys_6_io_out_q_2;
       larges_14_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & slot_5[3:0] == 4'hE) begin
+    else if (largeHere_5 & _GEN_47 & slot_5[3:0] == 4'hE) begin
       larges_14_index <= r_5;
       larges_14_q_0 <= _laneKeys_5_io_out_q_0;
       larges_14_q_1 <= _laneKeys_5_io_out_q_1;
       larges_14_q_2 <= _laneKeys_5_io_out_q_2;
       larges_14_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & slot_4[3:0] == 4'hE) begin
+    else if (largeHere_4 & _GEN_45 & slot_4[3:0] == 4'hE) begin
       larges_14_index <= r_4;
       larges_14_q_0 <= _laneKeys_4_io_out_q_0;
       larges_14_q_1 <= _laneKeys_4_io_out_q_1;
       larges_14_q_2 <= _laneKeys_4_io_out_q_2;
       larges_14_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & slot_3[3:0] == 4'hE) begin
+    else if (largeHere_3 & _GEN_41 & slot_3[3:0] == 4'hE) begin
       larges_14_index <= r_3;
       larges_14_q_0 <= _laneKeys_3_io_out_q_0;
       larges_14_q_1 <= _laneKeys_3_io_out_q_1;
       larges_14_q_2 <= _laneKeys_3_io_out_q_2;
       larges_14_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & slot_2[3:0] == 4'hE) begin
+    else if (largeHere_2 & _GEN_39 & slot_2[3:0] == 4'hE) begin
       larges_14_index <= r_2;
       larges_14_q_0 <= _laneKeys_2_io_out_q_0;
       larges_14_q_1 <= _laneKeys_2_io_out_q_1;
       larges_14_q_2 <= _laneKeys_2_io_out_q_2;
       larges_14_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & slot_1[3:0] == 4'hE) begin
+    else if (largeHere_1 & _GEN_36 & slot_1[3:0] == 4'hE) begin
       larges_14_index <= r_1;
       larges_14_q_0 <= _laneKeys_1_io_out_q_0;
       larges_14_q_1 <= _laneKeys_1_io_out_q_1;
       larges_14_q_2 <= _laneKeys_1_io_out_q_2;
       larges_14_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & largeCount[3:0] == 4'hE) begin
+    else if (largeHere_0 & _GEN_35 & largeCount[3:0] == 4'hE) begin
       larges_14_index <= r;
       larges_14_q_0 <= _laneKeys_0_io_out_q_0;
       larges_14_q_1 <= _laneKeys_0_io_out_q_1;
       larges_14_q_2 <= _laneKeys_0_io_out_q_2;
       larges_14_qr <= _laneKeys_0_io_out_qr;
     end
-    if (largeHere_7 & _GEN_148 & (&(slot_7[3:0]))) begin
+    if (largeHere_7 & _GEN_51 & (&(slot_7[3:0]))) begin
       larges_15_index <= r_7;
       larges_15_q_0 <= _laneKeys_7_io_out_q_0;
       larges_15_q_1 <= _laneKeys_7_io_out_q_1;
       larges_15_q_2 <= _laneKeys_7_io_out_q_2;
       larges_15_qr <= _laneKeys_7_io_out_qr;
     end
-    else if (largeHere_6 & _GEN_146 & (&(slot_6[3:0]))) begin
+    else if (largeHere_6 & _GEN_49 & (&(slot_6[3:0]))) begin
       larges_15_index <= r_6;
       larges_15_q_0 <= _laneKeys_6_io_out_q_0;
       larges_15_q_1 <= _laneKeys_6_io_out_q_1;
       larges_15_q_2 <= _laneKeys_6_io_out_q_2;
       larges_15_qr <= _laneKeys_6_io_out_qr;
     end
-    else if (largeHere_5 & _GEN_144 & (&(slot_5[3:0]))) begin
+    else if (largeHere_5 & _GEN_47 & (&(slot_5[3:0]))) begin
       larges_15_index <= r_5;
       larges_15_q_0 <= _laneKeys_5_io_out_q_0;
       larges_15_q_1 <= _laneKeys_5_io_out_q_1;
       larges_15_q_2 <= _laneKeys_5_io_out_q_2;
       larges_15_qr <= _laneKeys_5_io_out_qr;
     end
-    else if (largeHere_4 & _GEN_142 & (&(slot_4[3:0]))) begin
+    else if (largeHere_4 & _GEN_45 & (&(slot_4[3:0]))) begin
       larges_15_index <= r_4;
       larges_15_q_0 <= _laneKeys_4_io_out_q_0;
       larges_15_q_1 <= _laneKeys_4_io_out_q_1;
       larges_15_q_2 <= _laneKeys_4_io_out_q_2;
       larges_15_qr <= _laneKeys_4_io_out_qr;
     end
-    else if (largeHere_3 & _GEN_138 & (&(slot_3[3:0]))) begin
+    else if (largeHere_3 & _GEN_41 & (&(slot_3[3:0]))) begin
       larges_15_index <= r_3;
       larges_15_q_0 <= _laneKeys_3_io_out_q_0;
       larges_15_q_1 <= _laneKeys_3_io_out_q_1;
       larges_15_q_2 <= _laneKeys_3_io_out_q_2;
       larges_15_qr <= _laneKeys_3_io_out_qr;
     end
-    else if (largeHere_2 & _GEN_136 & (&(slot_2[3:0]))) begin
+    else if (largeHere_2 & _GEN_39 & (&(slot_2[3:0]))) begin
       larges_15_index <= r_2;
       larges_15_q_0 <= _laneKeys_2_io_out_q_0;
       larges_15_q_1 <= _laneKeys_2_io_out_q_1;
       larges_15_q_2 <= _laneKeys_2_io_out_q_2;
       larges_15_qr <= _laneKeys_2_io_out_qr;
     end
-    else if (largeHere_1 & _GEN_133 & (&(slot_1[3:0]))) begin
+    else if (largeHere_1 & _GEN_36 & (&(slot_1[3:0]))) begin
       larges_15_index <= r_1;
       larges_15_q_0 <= _laneKeys_1_io_out_q_0;
       larges_15_q_1 <= _laneKeys_1_io_out_q_1;
       larges_15_q_2 <= _laneKeys_1_io_out_q_2;
       larges_15_qr <= _laneKeys_1_io_out_qr;
     end
-    else if (largeHere_0 & _GEN_132 & (&(largeCount[3:0]))) begin
+    else if (largeHere_0 & _GEN_35 & (&(largeCount[3:0]))) begin
       larges_15_index <= r;
       larges_15_q_0 <= _laneKeys_0_io_out_q_0;
       larges_15_q_1 <= _laneKeys_0_io_out_q_1;
@@ -42933,14 +42981,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     if (beginAhead)
       pendingNum <= io_num;
     if (|state) begin
-      if (_GEN_159) begin
+      if (_GEN_62) begin
       end
       else begin
         num <= pendingNum;
         usedLog2 <= usedLog2_t_2 > 6'hD ? 4'hD : usedLog2_t_2[3:0];
       end
-      if (~_GEN_104) begin
-        if (_GEN_105) begin
+      if (~_GEN_7) begin
+        if (_GEN_8) begin
           if (reading_0)
             i_0 <= i_0 + 13'h1;
           if (reading_1)
@@ -42974,8 +43022,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
           if (reading_15)
             i_15 <= i_15 + 13'h1;
         end
-        else if (~_GEN_106) begin
-          if (_GEN_102) begin
+        else if (~_GEN_9) begin
+          if (_GEN_5) begin
             if (&boxCycle) begin
               i_0 <= 13'h0;
               i_1 <= _GEN_1;
@@ -42995,7 +43043,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               i_15 <= 13'h0;
             end
           end
-          else if (_GEN_108) begin
+          else if (_GEN_11) begin
             if (reading_0)
               i_0 <= i_0 + 13'h1;
             if (reading_1)
@@ -43029,8 +43077,8 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
             if (reading_15)
               i_15 <= i_15 + 13'h1;
           end
-          else if (_GEN_109) begin
-            if (_GEN_154) begin
+          else if (_GEN_12) begin
+            if (_GEN_57) begin
               i_0 <= 13'h0;
               i_1 <= _GEN_1;
               i_2 <= _GEN_2;
@@ -43049,7 +43097,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
               i_15 <= 13'h0;
             end
           end
-          else if (_GEN_110) begin
+          else if (_GEN_13) begin
             if (reading_0)
               i_0 <= i_0 + 13'h1;
             if (reading_1)
@@ -43083,7 +43131,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
             if (reading_15)
               i_15 <= i_15 + 13'h1;
           end
-          else if (_GEN_156) begin
+          else if (_GEN_59) begin
             i_0 <= {4'h0, pendingNum[12:4]};
             i_1 <= {3'h0, pendingNum[12:3]};
             i_2 <= {2'h0, _cuts_T_80[26:16]};
@@ -43103,23 +43151,23 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
           end
         end
       end
-      if (_GEN_159) begin
-        if (_GEN_130)
-          walkBuckets <= _GEN_129;
+      if (_GEN_62) begin
+        if (_GEN_33)
+          walkBuckets <= _GEN_32;
       end
       else
         walkBuckets <= _walkBuckets_T_11[13:0];
     end
     else begin
-      if (_GEN_152)
+      if (_GEN_55)
         num <= io_num;
       if (io_start) begin
         usedLog2 <= usedLog2_t > 6'hD ? 4'hD : usedLog2_t[3:0];
         i_0 <= 13'h0;
-        i_1 <= _GEN_116;
-        i_2 <= _GEN_118;
+        i_1 <= _GEN_19;
+        i_2 <= _GEN_21;
         i_3 <= {2'h0, _cuts_T_6[26:16]};
-        i_4 <= _GEN_120;
+        i_4 <= _GEN_23;
         i_5 <= {1'h0, _cuts_T_12[27:16]};
         i_6 <= {1'h0, _cuts_T_15[27:16]};
         i_7 <= {1'h0, _cuts_T_18[27:16]};
@@ -43135,10 +43183,10 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
       end
       else if (begin_0) begin
         usedLog2 <= usedLog2_t_1 > 6'hD ? 4'hD : usedLog2_t_1[3:0];
-        i_0 <= _GEN_116;
-        i_1 <= _GEN_118;
+        i_0 <= _GEN_19;
+        i_1 <= _GEN_21;
         i_2 <= {2'h0, _cuts_T_43[26:16]};
-        i_3 <= _GEN_120;
+        i_3 <= _GEN_23;
         i_4 <= {1'h0, _cuts_T_49[27:16]};
         i_5 <= {1'h0, _cuts_T_52[27:16]};
         i_6 <= {1'h0, _cuts_T_55[27:16]};
@@ -43153,14 +43201,14 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         i_15 <= io_num;
         walkBuckets <= _walkBuckets_T_7[13:0];
       end
-      else if (_GEN_130)
-        walkBuckets <= _GEN_129;
+      else if (_GEN_33)
+        walkBuckets <= _GEN_32;
     end
-    if (~(~(|state) | _GEN_104 | _GEN_105 | _GEN_106 | _GEN_102)) begin
-      if (_GEN_108)
+    if (~(~(|state) | _GEN_7 | _GEN_8 | _GEN_9 | _GEN_5)) begin
+      if (_GEN_11)
         sent <= ~passDone & sent;
       else
-        sent <= _GEN_109 | (_GEN_110 ? ~_GEN_155 & sent : _GEN_111 | sent);
+        sent <= _GEN_12 | (_GEN_13 ? ~_GEN_58 & sent : _GEN_14 | sent);
     end
     REG <= i_0[11:0];
     r <= REG;
@@ -43178,31 +43226,68 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     r_6 <= REG_6;
     REG_7 <= i_7[11:0];
     r_7 <= REG_7;
-    if (_GEN_102 & _GEN_127) begin
+    if (_GEN_5 & _GEN_30) begin
       boxMap_origin_0 <= {_boxMap_origin_0_T[18], _boxMap_origin_0_T};
       boxMap_origin_1 <= {_boxMap_origin_1_T[18], _boxMap_origin_1_T};
       boxMap_origin_2 <= {_boxMap_origin_2_T[18], _boxMap_origin_2_T};
       boxMap_rx <= extent_0[12:0] + 13'h1;
-      sat_0 <= (|(extent_0[20:14])) ? 15'h4000 : extent_0[14:0];
-      sat_1 <= (|(extent_1[20:14])) ? 15'h4000 : extent_1[14:0];
+      sat_0 <= _satNow_T_1;
       sat_2 <= (|(extent_2[20:14])) ? 15'h4000 : extent_2[14:0];
+      placesXY <=
+        {16'h0, {1'h0, _satNow_T_1} + 16'h1}
+        * {16'h0, {1'h0, (|(extent_1[20:14])) ? 15'h4000 : extent_1[14:0]} + 16'h1};
     end
-    if (_GEN_102) begin
-      if (_GEN_128)
+    if (_GEN_5) begin
+      if (_GEN_31)
         boxMap_rxy <= boxMap_rxy * boxMap_rx;
-      else if (_GEN_127)
+      else if (_GEN_30)
         boxMap_rxy <= extent_1[12:0] + 13'h1;
     end
-    if (_GEN_102 & _GEN_128)
+    anyBox <=
+      _merged_T_450 | _trackers_2_io_any | _trackers_3_io_any | _trackers_4_io_any
+      | _trackers_5_io_any | _trackers_6_io_any | _trackers_7_io_any | _trackers_8_io_any
+      | _trackers_9_io_any | _trackers_10_io_any | _trackers_11_io_any
+      | _trackers_12_io_any | _trackers_13_io_any | _trackers_14_io_any
+      | _trackers_15_io_any;
+    lo_0 <=
+      ~(_merged_T_12 | _merged_T_30) | (_merged_T_54 | _merged_T_72)
+      & _merged_T_83 < _merged_T_41
+        ? _merged_T_83
+        : _merged_T_41;
+    lo_1 <=
+      ~(_merged_T_102 | _merged_T_120) | (_merged_T_144 | _merged_T_162)
+      & _merged_T_173 < _merged_T_131
+        ? _merged_T_173
+        : _merged_T_131;
+    lo_2 <=
+      ~(_merged_T_192 | _merged_T_210) | (_merged_T_234 | _merged_T_252)
+      & _merged_T_263 < _merged_T_221
+        ? _merged_T_263
+        : _merged_T_221;
+    hi_0 <=
+      ~(_merged_T_282 | _merged_T_300) | (_merged_T_324 | _merged_T_342)
+      & _merged_T_353 > _merged_T_311
+        ? _merged_T_353
+        : _merged_T_311;
+    hi_1 <=
+      ~(_merged_T_372 | _merged_T_390) | (_merged_T_414 | _merged_T_432)
+      & _merged_T_443 > _merged_T_401
+        ? _merged_T_443
+        : _merged_T_401;
+    hi_2 <=
+      ~(_merged_T_462 | _merged_T_480) | (_merged_T_504 | _merged_T_522)
+      & _merged_T_533 > _merged_T_491
+        ? _merged_T_533
+        : _merged_T_491;
+    if (_GEN_5 & _GEN_31)
       places <=
-        {15'h0, {16'h0, {1'h0, sat_0} + 16'h1} * {16'h0, {1'h0, sat_1} + 16'h1}}
-        * {31'h0, {1'h0, sat_2} + 16'h2} + {32'h0, sat_0} + 47'h2;
-    if (~_GEN_107) begin
-      if (_GEN_105) begin
-        if (_GEN_153)
+        {15'h0, placesXY} * {31'h0, {1'h0, sat_2} + 16'h2} + {32'h0, sat_0} + 47'h2;
+    if (~_GEN_10) begin
+      if (_GEN_8) begin
+        if (_GEN_56)
           m <= 9'h0;
       end
-      else if (_GEN_106)
+      else if (_GEN_9)
         m <= _m_T;
     end
     entryGroup <= _gens_0_io_entry_group;
@@ -43221,13 +43306,13 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     entryGroup_13 <= _gens_13_io_entry_group;
     entryGroup_14 <= _gens_14_io_entry_group;
     entryGroup_15 <= _gens_15_io_entry_group;
-    if (_GEN_151) begin
+    if (_GEN_54) begin
       next <= 16'h0;
       dCount <= 7'h0;
       dNext <= 10'h0;
     end
     else begin
-      next <= taken > _GEN_150 ? _GEN_103 : taken[15:0];
+      next <= taken > _GEN_53 ? _GEN_6 : taken[15:0];
       if (|_GEN)
         dCount <= dCount + 7'h1;
       if (|toSingle)
@@ -43382,41 +43467,41 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     end
     else begin
       if (|state) begin
-        if (_GEN_104) begin
+        if (_GEN_7) begin
           if (io_start)
             state <= 4'h2;
         end
-        else if (_GEN_105) begin
-          if (_GEN_153)
+        else if (_GEN_8) begin
+          if (_GEN_56)
             state <= 4'h3;
         end
-        else if (_GEN_106) begin
+        else if (_GEN_9) begin
           if (_m_T >= mergeEnd)
             state <= 4'h4;
         end
-        else if (_GEN_102) begin
+        else if (_GEN_5) begin
           if (&boxCycle)
             state <= 4'h5;
         end
-        else if (_GEN_108) begin
+        else if (_GEN_11) begin
           if (passDone)
             state <= 4'h6;
         end
-        else if (_GEN_109) begin
-          if (_GEN_154)
+        else if (_GEN_12) begin
+          if (_GEN_57)
             state <= 4'h7;
         end
-        else if (_GEN_110) begin
-          if (_GEN_155)
+        else if (_GEN_13) begin
+          if (_GEN_58)
             state <= 4'h8;
         end
-        else if (_GEN_113)
+        else if (_GEN_16)
           state <= {3'h0, pending};
-        fed <= ~_GEN_158 & _GEN_156 | fed;
-        st_tooMany <= ~_GEN_122 & st_tooMany;
-        st_cellOverflow <= ~_GEN_122 & _GEN_123;
-        st_largeOverflow <= ~_GEN_122 & _GEN_160;
-        if (_GEN_159) begin
+        fed <= ~_GEN_61 & _GEN_59 | fed;
+        st_tooMany <= ~_GEN_25 & st_tooMany;
+        st_cellOverflow <= ~_GEN_25 & _GEN_26;
+        st_largeOverflow <= ~_GEN_25 & _GEN_63;
+        if (_GEN_62) begin
           if (classifying)
             largeCount <= largeKept[4:0];
         end
@@ -43432,41 +43517,41 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
         else if (begin_0)
           state <= 4'h1;
         fed <= ~io_start & (begin_0 | fed);
-        st_cellOverflow <= ~io_start & _GEN_123;
-        st_largeOverflow <= ~io_start & _GEN_160;
-        if (_GEN_152)
+        st_cellOverflow <= ~io_start & _GEN_26;
+        st_largeOverflow <= ~io_start & _GEN_63;
+        if (_GEN_55)
           largeCount <= 5'h0;
         else if (classifying)
           largeCount <= largeKept[4:0];
       end
-      pending <= (~(|state) | _GEN_158 | ~_GEN_156) & (beginAhead | pending);
+      pending <= (~(|state) | _GEN_61 | ~_GEN_59) & (beginAhead | pending);
       if ((|state) | io_start)
-        feedOn <= beginAhead | _GEN_124;
+        feedOn <= beginAhead | _GEN_27;
       else
-        feedOn <= begin_0 | beginAhead | _GEN_124;
-      if (_GEN_125) begin
+        feedOn <= begin_0 | beginAhead | _GEN_27;
+      if (_GEN_28) begin
         if (io_start)
           st_level <= 14'h0;
       end
-      else if (_GEN_161) begin
+      else if (_GEN_64) begin
       end
       else
         st_level <= _cellExp_io_level;
-      if (_GEN_125 & io_start) begin
+      if (_GEN_28 & io_start) begin
         st_large <= 13'h0;
         st_cycTotal <= 32'h0;
       end
       else begin
         if (classifying)
-          st_large <= st_large + {7'h0, largeKept - _GEN_131};
+          st_large <= st_large + {7'h0, largeKept - _GEN_34};
         if ((|state) & ~filling)
           st_cycTotal <= st_cycTotal + 32'h1;
       end
-      if (_GEN_125) begin
+      if (_GEN_28) begin
         st_badBucket <= ~io_start & st_badBucket;
         st_sortMismatch <= ~io_start & st_sortMismatch;
       end
-      else if (_GEN_161) begin
+      else if (_GEN_64) begin
       end
       else begin
         st_badBucket <=
@@ -43546,56 +43631,47 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
            {1'h0, {1'h0, _feedKeys_0_io_out_valid} + {1'h0, _feedKeys_1_io_out_valid}}
              + {1'h0,
                 {1'h0, _feedKeys_2_io_out_valid} + {1'h0, _feedKeys_3_io_out_valid}}};
-      if (~_GEN_102 | (&boxCycle))
+      if (~_GEN_5 | (&boxCycle))
         boxCycle <= 2'h0;
       else
         boxCycle <= boxCycle + 2'h1;
       held_0 <=
-        ~_GEN_151 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
+        ~_GEN_54 & (_taken_T ? _heldUnit_0_T : toSingle[0] | ~_gens_0_io_take & held_0);
       held_1 <=
-        ~_GEN_151
-        & (_taken_T_1 ? _heldUnit_1_T : toSingle[1] | ~_gens_1_io_take & held_1);
+        ~_GEN_54 & (_taken_T_1 ? _heldUnit_1_T : toSingle[1] | ~_gens_1_io_take & held_1);
       held_2 <=
-        ~_GEN_151
-        & (_taken_T_2 ? _heldUnit_2_T : toSingle[2] | ~_gens_2_io_take & held_2);
+        ~_GEN_54 & (_taken_T_2 ? _heldUnit_2_T : toSingle[2] | ~_gens_2_io_take & held_2);
       held_3 <=
-        ~_GEN_151
-        & (_taken_T_3 ? _heldUnit_3_T : toSingle[3] | ~_gens_3_io_take & held_3);
+        ~_GEN_54 & (_taken_T_3 ? _heldUnit_3_T : toSingle[3] | ~_gens_3_io_take & held_3);
       held_4 <=
-        ~_GEN_151
-        & (_taken_T_4 ? _heldUnit_4_T : toSingle[4] | ~_gens_4_io_take & held_4);
+        ~_GEN_54 & (_taken_T_4 ? _heldUnit_4_T : toSingle[4] | ~_gens_4_io_take & held_4);
       held_5 <=
-        ~_GEN_151
-        & (_taken_T_5 ? _heldUnit_5_T : toSingle[5] | ~_gens_5_io_take & held_5);
+        ~_GEN_54 & (_taken_T_5 ? _heldUnit_5_T : toSingle[5] | ~_gens_5_io_take & held_5);
       held_6 <=
-        ~_GEN_151
-        & (_taken_T_6 ? _heldUnit_6_T : toSingle[6] | ~_gens_6_io_take & held_6);
+        ~_GEN_54 & (_taken_T_6 ? _heldUnit_6_T : toSingle[6] | ~_gens_6_io_take & held_6);
       held_7 <=
-        ~_GEN_151
-        & (_taken_T_7 ? _heldUnit_7_T : toSingle[7] | ~_gens_7_io_take & held_7);
+        ~_GEN_54 & (_taken_T_7 ? _heldUnit_7_T : toSingle[7] | ~_gens_7_io_take & held_7);
       held_8 <=
-        ~_GEN_151
-        & (_taken_T_8 ? _heldUnit_8_T : toSingle[8] | ~_gens_8_io_take & held_8);
+        ~_GEN_54 & (_taken_T_8 ? _heldUnit_8_T : toSingle[8] | ~_gens_8_io_take & held_8);
       held_9 <=
-        ~_GEN_151
-        & (_taken_T_9 ? _heldUnit_9_T : toSingle[9] | ~_gens_9_io_take & held_9);
+        ~_GEN_54 & (_taken_T_9 ? _heldUnit_9_T : toSingle[9] | ~_gens_9_io_take & held_9);
       held_10 <=
-        ~_GEN_151
+        ~_GEN_54
         & (_taken_T_10 ? _heldUnit_10_T : toSingle[10] | ~_gens_10_io_take & held_10);
       held_11 <=
-        ~_GEN_151
+        ~_GEN_54
         & (_taken_T_11 ? _heldUnit_11_T : toSingle[11] | ~_gens_11_io_take & held_11);
       held_12 <=
-        ~_GEN_151
+        ~_GEN_54
         & (_taken_T_12 ? _heldUnit_12_T : toSingle[12] | ~_gens_12_io_take & held_12);
       held_13 <=
-        ~_GEN_151
+        ~_GEN_54
         & (_taken_T_13 ? _heldUnit_13_T : toSingle[13] | ~_gens_13_io_take & held_13);
       held_14 <=
-        ~_GEN_151
+        ~_GEN_54
         & (_taken_T_14 ? _heldUnit_14_T : toSingle[14] | ~_gens_14_io_take & held_14);
       held_15 <=
-        ~_GEN_151
+        ~_GEN_54
         & (_taken_T_15 ? _heldUnit_15_T : toSingle[15] | ~_gens_15_io_take & held_15);
       if (_taken_T)
         heldUnit_0 <= _heldUnit_0_T;
@@ -55954,88 +56030,29 @@ module DigitRecurrenceCore_sqrt_s24_L5_world(
     {sN_out_3_r,
      sN_nx_r2_rad_4} >= {23'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1};
   wire [26:0] _GEN_3 = {sN_out_3_r[24:0], sN_nx_r2_rad_4};
-  wire [26:0] sN_out_4_r =
-    sN_nx_ge_4
-      ? _GEN_3 - {21'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1}
-      : _GEN_3;
   wire [1:0]  sN_nx_r2_rad_5 =
-    io_in_bits_expOdd ? io_in_bits_sig[11:10] : io_in_bits_sig[12:11];
-  wire        sN_nx_ge_5 =
-    {sN_out_4_r,
-     sN_nx_r2_rad_5} >= {22'h1,
-                         sN_nx_ge,
-                         sN_nx_ge_1,
-                         sN_nx_ge_2,
-                         sN_nx_ge_3,
-                         sN_nx_ge_4,
-                         2'h1};
-  wire [26:0] _GEN_4 = {sN_out_4_r[24:0], sN_nx_r2_rad_5};
-  wire [26:0] sN_out_5_r =
-    sN_nx_ge_5
-      ? _GEN_4 - {20'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, sN_nx_ge_4, 2'h1}
-      : _GEN_4;
-  wire [1:0]  sN_nx_r2_rad_6 =
-    io_in_bits_expOdd ? io_in_bits_sig[9:8] : io_in_bits_sig[10:9];
+    sN_out_r_expOdd ? sN_out_r_sig[11:10] : sN_out_r_sig[12:11];
+  wire        sN_nx_ge_5 = {sN_out_r_r, sN_nx_r2_rad_5} >= {2'h0, sN_out_r_q, 2'h1};
+  wire [26:0] _GEN_4 = {sN_out_r_r[24:0], sN_nx_r2_rad_5};
+  wire [26:0] sN_out_5_r = sN_nx_ge_5 ? _GEN_4 - {sN_out_r_q, 2'h1} : _GEN_4;
+  wire [1:0]  sN_nx_r2_rad_6 = sN_out_r_expOdd ? sN_out_r_sig[9:8] : sN_out_r_sig[10:9];
   wire        sN_nx_ge_6 =
-    {sN_out_5_r,
-     sN_nx_r2_rad_6} >= {21'h1,
-                         sN_nx_ge,
-                         sN_nx_ge_1,
-                         sN_nx_ge_2,
-                         sN_nx_ge_3,
-                         sN_nx_ge_4,
-                         sN_nx_ge_5,
-                         2'h1};
+    {sN_out_5_r, sN_nx_r2_rad_6} >= {2'h0, sN_out_r_q[23:0], sN_nx_ge_5, 2'h1};
   wire [26:0] _GEN_5 = {sN_out_5_r[24:0], sN_nx_r2_rad_6};
   wire [26:0] sN_out_6_r =
-    sN_nx_ge_6
-      ? _GEN_5
-        - {19'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           2'h1}
-      : _GEN_5;
-  wire [1:0]  sN_nx_r2_rad_7 =
-    io_in_bits_expOdd ? io_in_bits_sig[7:6] : io_in_bits_sig[8:7];
+    sN_nx_ge_6 ? _GEN_5 - {sN_out_r_q[23:0], sN_nx_ge_5, 2'h1} : _GEN_5;
+  wire [1:0]  sN_nx_r2_rad_7 = sN_out_r_expOdd ? sN_out_r_sig[7:6] : sN_out_r_sig[8:7];
   wire        sN_nx_ge_7 =
     {sN_out_6_r,
-     sN_nx_r2_rad_7} >= {20'h1,
-                         sN_nx_ge,
-                         sN_nx_ge_1,
-                         sN_nx_ge_2,
-                         sN_nx_ge_3,
-                         sN_nx_ge_4,
-                         sN_nx_ge_5,
-                         sN_nx_ge_6,
-                         2'h1};
+     sN_nx_r2_rad_7} >= {2'h0, sN_out_r_q[22:0], sN_nx_ge_5, sN_nx_ge_6, 2'h1};
   wire [26:0] _GEN_6 = {sN_out_6_r[24:0], sN_nx_r2_rad_7};
   wire [26:0] sN_out_7_r =
-    sN_nx_ge_7
-      ? _GEN_6
-        - {18'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           2'h1}
-      : _GEN_6;
-  wire [1:0]  sN_nx_r2_rad_8 =
-    io_in_bits_expOdd ? io_in_bits_sig[5:4] : io_in_bits_sig[6:5];
+    sN_nx_ge_7 ? _GEN_6 - {sN_out_r_q[22:0], sN_nx_ge_5, sN_nx_ge_6, 2'h1} : _GEN_6;
+  wire [1:0]  sN_nx_r2_rad_8 = sN_out_r_expOdd ? sN_out_r_sig[5:4] : sN_out_r_sig[6:5];
   wire        sN_nx_ge_8 =
     {sN_out_7_r,
-     sN_nx_r2_rad_8} >= {19'h1,
-                         sN_nx_ge,
-                         sN_nx_ge_1,
-                         sN_nx_ge_2,
-                         sN_nx_ge_3,
-                         sN_nx_ge_4,
+     sN_nx_r2_rad_8} >= {2'h0,
+                         sN_out_r_q[21:0],
                          sN_nx_ge_5,
                          sN_nx_ge_6,
                          sN_nx_ge_7,
@@ -56043,500 +56060,169 @@ module DigitRecurrenceCore_sqrt_s24_L5_world(
   wire [26:0] _GEN_7 = {sN_out_7_r[24:0], sN_nx_r2_rad_8};
   wire [26:0] sN_out_8_r =
     sN_nx_ge_8
-      ? _GEN_7
-        - {17'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           2'h1}
+      ? _GEN_7 - {sN_out_r_q[21:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, 2'h1}
       : _GEN_7;
-  wire [1:0]  sN_nx_r2_rad_9 =
-    io_in_bits_expOdd ? io_in_bits_sig[3:2] : io_in_bits_sig[4:3];
+  wire [1:0]  sN_nx_r2_rad_9 = sN_out_r_expOdd ? sN_out_r_sig[3:2] : sN_out_r_sig[4:3];
   wire        sN_nx_ge_9 =
     {sN_out_8_r,
-     sN_nx_r2_rad_9} >= {18'h1,
-                         sN_nx_ge,
-                         sN_nx_ge_1,
-                         sN_nx_ge_2,
-                         sN_nx_ge_3,
-                         sN_nx_ge_4,
+     sN_nx_r2_rad_9} >= {2'h0,
+                         sN_out_r_q[20:0],
                          sN_nx_ge_5,
                          sN_nx_ge_6,
                          sN_nx_ge_7,
                          sN_nx_ge_8,
                          2'h1};
   wire [26:0] _GEN_8 = {sN_out_8_r[24:0], sN_nx_r2_rad_9};
-  wire [26:0] sN_out_9_r =
-    sN_nx_ge_9
-      ? _GEN_8
-        - {16'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           2'h1}
-      : _GEN_8;
   wire [1:0]  sN_nx_r2_rad_10 =
-    io_in_bits_expOdd ? io_in_bits_sig[1:0] : io_in_bits_sig[2:1];
-  wire        sN_nx_ge_10 =
-    {sN_out_9_r,
-     sN_nx_r2_rad_10} >= {17'h1,
-                          sN_nx_ge,
-                          sN_nx_ge_1,
-                          sN_nx_ge_2,
-                          sN_nx_ge_3,
-                          sN_nx_ge_4,
-                          sN_nx_ge_5,
-                          sN_nx_ge_6,
-                          sN_nx_ge_7,
-                          sN_nx_ge_8,
-                          sN_nx_ge_9,
-                          2'h1};
-  wire [26:0] _GEN_9 = {sN_out_9_r[24:0], sN_nx_r2_rad_10};
-  wire [26:0] sN_out_10_r =
-    sN_nx_ge_10
-      ? _GEN_9
-        - {15'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           2'h1}
-      : _GEN_9;
-  wire [1:0]  sN_nx_r2_rad_11 = io_in_bits_expOdd ? 2'h0 : {io_in_bits_sig[0], 1'h0};
+    sN_out_r_1_expOdd ? sN_out_r_1_sig[1:0] : sN_out_r_1_sig[2:1];
+  wire        sN_nx_ge_10 = {sN_out_r_1_r, sN_nx_r2_rad_10} >= {2'h0, sN_out_r_1_q, 2'h1};
+  wire [26:0] _GEN_9 = {sN_out_r_1_r[24:0], sN_nx_r2_rad_10};
+  wire [26:0] sN_out_10_r = sN_nx_ge_10 ? _GEN_9 - {sN_out_r_1_q, 2'h1} : _GEN_9;
+  wire [1:0]  sN_nx_r2_rad_11 = sN_out_r_1_expOdd ? 2'h0 : {sN_out_r_1_sig[0], 1'h0};
   wire        sN_nx_ge_11 =
-    {sN_out_10_r,
-     sN_nx_r2_rad_11} >= {16'h1,
-                          sN_nx_ge,
-                          sN_nx_ge_1,
-                          sN_nx_ge_2,
-                          sN_nx_ge_3,
-                          sN_nx_ge_4,
-                          sN_nx_ge_5,
-                          sN_nx_ge_6,
-                          sN_nx_ge_7,
-                          sN_nx_ge_8,
-                          sN_nx_ge_9,
-                          sN_nx_ge_10,
-                          2'h1};
+    {sN_out_10_r, sN_nx_r2_rad_11} >= {2'h0, sN_out_r_1_q[23:0], sN_nx_ge_10, 2'h1};
   wire [26:0] _GEN_10 = {sN_out_10_r[24:0], sN_nx_r2_rad_11};
   wire [26:0] sN_out_11_r =
-    sN_nx_ge_11
-      ? _GEN_10
-        - {14'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           2'h1}
-      : _GEN_10;
+    sN_nx_ge_11 ? _GEN_10 - {sN_out_r_1_q[23:0], sN_nx_ge_10, 2'h1} : _GEN_10;
   wire        sN_nx_ge_12 =
-    {sN_out_11_r,
-     2'h0} >= {15'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               2'h1};
+    {sN_out_11_r, 2'h0} >= {2'h0, sN_out_r_1_q[22:0], sN_nx_ge_10, sN_nx_ge_11, 2'h1};
   wire [26:0] _GEN_11 = {sN_out_11_r[24:0], 2'h0};
   wire [26:0] sN_out_12_r =
     sN_nx_ge_12
-      ? _GEN_11
-        - {13'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           2'h1}
+      ? _GEN_11 - {sN_out_r_1_q[22:0], sN_nx_ge_10, sN_nx_ge_11, 2'h1}
       : _GEN_11;
   wire        sN_nx_ge_13 =
     {sN_out_12_r,
-     2'h0} >= {14'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               2'h1};
+     2'h0} >= {2'h0, sN_out_r_1_q[21:0], sN_nx_ge_10, sN_nx_ge_11, sN_nx_ge_12, 2'h1};
   wire [26:0] _GEN_12 = {sN_out_12_r[24:0], 2'h0};
   wire [26:0] sN_out_13_r =
     sN_nx_ge_13
-      ? _GEN_12
-        - {12'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           2'h1}
+      ? _GEN_12 - {sN_out_r_1_q[21:0], sN_nx_ge_10, sN_nx_ge_11, sN_nx_ge_12, 2'h1}
       : _GEN_12;
   wire        sN_nx_ge_14 =
     {sN_out_13_r,
-     2'h0} >= {13'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
+     2'h0} >= {2'h0,
+               sN_out_r_1_q[20:0],
                sN_nx_ge_10,
                sN_nx_ge_11,
                sN_nx_ge_12,
                sN_nx_ge_13,
                2'h1};
   wire [26:0] _GEN_13 = {sN_out_13_r[24:0], 2'h0};
-  wire [26:0] sN_out_14_r =
-    sN_nx_ge_14
-      ? _GEN_13
-        - {11'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           2'h1}
-      : _GEN_13;
-  wire        sN_nx_ge_15 =
-    {sN_out_14_r,
-     2'h0} >= {12'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
-               2'h1};
-  wire [26:0] _GEN_14 = {sN_out_14_r[24:0], 2'h0};
-  wire [26:0] sN_out_15_r =
-    sN_nx_ge_15
-      ? _GEN_14
-        - {10'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           sN_nx_ge_14,
-           2'h1}
-      : _GEN_14;
+  wire        sN_nx_ge_15 = {sN_out_r_2_r, 2'h0} >= {2'h0, sN_out_r_2_q, 2'h1};
+  wire [26:0] _GEN_14 = {sN_out_r_2_r[24:0], 2'h0};
+  wire [26:0] sN_out_15_r = sN_nx_ge_15 ? _GEN_14 - {sN_out_r_2_q, 2'h1} : _GEN_14;
   wire        sN_nx_ge_16 =
-    {sN_out_15_r,
-     2'h0} >= {11'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
-               sN_nx_ge_15,
-               2'h1};
+    {sN_out_15_r, 2'h0} >= {2'h0, sN_out_r_2_q[23:0], sN_nx_ge_15, 2'h1};
   wire [26:0] _GEN_15 = {sN_out_15_r[24:0], 2'h0};
   wire [26:0] sN_out_16_r =
-    sN_nx_ge_16
-      ? _GEN_15
-        - {9'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           sN_nx_ge_14,
-           sN_nx_ge_15,
-           2'h1}
-      : _GEN_15;
+    sN_nx_ge_16 ? _GEN_15 - {sN_out_r_2_q[23:0], sN_nx_ge_15, 2'h1} : _GEN_15;
   wire        sN_nx_ge_17 =
-    {sN_out_16_r,
-     2'h0} >= {10'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
-               sN_nx_ge_15,
-               sN_nx_ge_16,
-               2'h1};
+    {sN_out_16_r, 2'h0} >= {2'h0, sN_out_r_2_q[22:0], sN_nx_ge_15, sN_nx_ge_16, 2'h1};
   wire [26:0] _GEN_16 = {sN_out_16_r[24:0], 2'h0};
   wire [26:0] sN_out_17_r =
     sN_nx_ge_17
-      ? _GEN_16
-        - {8'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           sN_nx_ge_14,
-           sN_nx_ge_15,
-           sN_nx_ge_16,
-           2'h1}
+      ? _GEN_16 - {sN_out_r_2_q[22:0], sN_nx_ge_15, sN_nx_ge_16, 2'h1}
       : _GEN_16;
   wire        sN_nx_ge_18 =
     {sN_out_17_r,
-     2'h0} >= {9'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
-               sN_nx_ge_15,
-               sN_nx_ge_16,
-               sN_nx_ge_17,
-               2'h1};
+     2'h0} >= {2'h0, sN_out_r_2_q[21:0], sN_nx_ge_15, sN_nx_ge_16, sN_nx_ge_17, 2'h1};
   wire [26:0] _GEN_17 = {sN_out_17_r[24:0], 2'h0};
   wire [26:0] sN_out_18_r =
     sN_nx_ge_18
-      ? _GEN_17
-        - {7'h1,
-           sN_nx_ge,
-           sN_nx_ge_1,
-           sN_nx_ge_2,
-           sN_nx_ge_3,
-           sN_nx_ge_4,
-           sN_nx_ge_5,
-           sN_nx_ge_6,
-           sN_nx_ge_7,
-           sN_nx_ge_8,
-           sN_nx_ge_9,
-           sN_nx_ge_10,
-           sN_nx_ge_11,
-           sN_nx_ge_12,
-           sN_nx_ge_13,
-           sN_nx_ge_14,
-           sN_nx_ge_15,
-           sN_nx_ge_16,
-           sN_nx_ge_17,
-           2'h1}
+      ? _GEN_17 - {sN_out_r_2_q[21:0], sN_nx_ge_15, sN_nx_ge_16, sN_nx_ge_17, 2'h1}
       : _GEN_17;
   wire        sN_nx_ge_19 =
     {sN_out_18_r,
-     2'h0} >= {8'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
+     2'h0} >= {2'h0,
+               sN_out_r_2_q[20:0],
                sN_nx_ge_15,
                sN_nx_ge_16,
                sN_nx_ge_17,
                sN_nx_ge_18,
                2'h1};
   wire [26:0] _GEN_18 = {sN_out_18_r[24:0], 2'h0};
-  wire        sN_nx_ge_20 = {sN_out_r_r, 2'h0} >= {2'h0, sN_out_r_q, 2'h1};
-  wire [26:0] _GEN_19 = {sN_out_r_r[24:0], 2'h0};
-  wire        sN_nx_ge_21 = {sN_out_r_1_r, 2'h0} >= {2'h0, sN_out_r_1_q, 2'h1};
-  wire [26:0] _GEN_20 = {sN_out_r_1_r[24:0], 2'h0};
-  wire        sN_nx_ge_22 = {sN_out_r_2_r, 2'h0} >= {2'h0, sN_out_r_2_q, 2'h1};
-  wire [26:0] _GEN_21 = {sN_out_r_2_r[24:0], 2'h0};
-  wire        sN_nx_ge_23 = {sN_out_r_3_r, 2'h0} >= {2'h0, sN_out_r_3_q, 2'h1};
-  wire [26:0] _GEN_22 = {sN_out_r_3_r[24:0], 2'h0};
+  wire        sN_nx_ge_20 = {sN_out_r_3_r, 2'h0} >= {2'h0, sN_out_r_3_q, 2'h1};
+  wire [26:0] _GEN_19 = {sN_out_r_3_r[24:0], 2'h0};
+  wire [26:0] sN_out_20_r = sN_nx_ge_20 ? _GEN_19 - {sN_out_r_3_q, 2'h1} : _GEN_19;
+  wire        sN_nx_ge_21 =
+    {sN_out_20_r, 2'h0} >= {2'h0, sN_out_r_3_q[23:0], sN_nx_ge_20, 2'h1};
+  wire [26:0] _GEN_20 = {sN_out_20_r[24:0], 2'h0};
+  wire [26:0] sN_out_21_r =
+    sN_nx_ge_21 ? _GEN_20 - {sN_out_r_3_q[23:0], sN_nx_ge_20, 2'h1} : _GEN_20;
+  wire        sN_nx_ge_22 =
+    {sN_out_21_r, 2'h0} >= {2'h0, sN_out_r_3_q[22:0], sN_nx_ge_20, sN_nx_ge_21, 2'h1};
+  wire [26:0] _GEN_21 = {sN_out_21_r[24:0], 2'h0};
+  wire [26:0] sN_out_22_r =
+    sN_nx_ge_22
+      ? _GEN_21 - {sN_out_r_3_q[22:0], sN_nx_ge_20, sN_nx_ge_21, 2'h1}
+      : _GEN_21;
+  wire        sN_nx_ge_23 =
+    {sN_out_22_r,
+     2'h0} >= {2'h0, sN_out_r_3_q[21:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, 2'h1};
+  wire [26:0] _GEN_22 = {sN_out_22_r[24:0], 2'h0};
   always @(posedge clock) begin
     if (io_en) begin
       sN_out_r_sig <= io_in_bits_sig;
       sN_out_r_expOdd <= io_in_bits_expOdd;
-      sN_out_r_q <=
-        {5'h1,
-         sN_nx_ge,
-         sN_nx_ge_1,
-         sN_nx_ge_2,
-         sN_nx_ge_3,
-         sN_nx_ge_4,
-         sN_nx_ge_5,
-         sN_nx_ge_6,
-         sN_nx_ge_7,
-         sN_nx_ge_8,
-         sN_nx_ge_9,
+      sN_out_r_q <= {20'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, sN_nx_ge_4};
+      sN_out_r_r <=
+        sN_nx_ge_4
+          ? _GEN_3 - {21'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1}
+          : _GEN_3;
+      sN_out_r_1_sig <= sN_out_r_sig;
+      sN_out_r_1_expOdd <= sN_out_r_expOdd;
+      sN_out_r_1_q <=
+        {sN_out_r_q[19:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, sN_nx_ge_8, sN_nx_ge_9};
+      sN_out_r_1_r <=
+        sN_nx_ge_9
+          ? _GEN_8
+            - {sN_out_r_q[20:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, sN_nx_ge_8, 2'h1}
+          : _GEN_8;
+      sN_out_r_2_sig <= sN_out_r_1_sig;
+      sN_out_r_2_expOdd <= sN_out_r_1_expOdd;
+      sN_out_r_2_q <=
+        {sN_out_r_1_q[19:0],
          sN_nx_ge_10,
          sN_nx_ge_11,
          sN_nx_ge_12,
          sN_nx_ge_13,
-         sN_nx_ge_14,
+         sN_nx_ge_14};
+      sN_out_r_2_r <=
+        sN_nx_ge_14
+          ? _GEN_13
+            - {sN_out_r_1_q[20:0],
+               sN_nx_ge_10,
+               sN_nx_ge_11,
+               sN_nx_ge_12,
+               sN_nx_ge_13,
+               2'h1}
+          : _GEN_13;
+      sN_out_r_3_sig <= sN_out_r_2_sig;
+      sN_out_r_3_expOdd <= sN_out_r_2_expOdd;
+      sN_out_r_3_q <=
+        {sN_out_r_2_q[19:0],
          sN_nx_ge_15,
          sN_nx_ge_16,
          sN_nx_ge_17,
          sN_nx_ge_18,
          sN_nx_ge_19};
-      sN_out_r_r <=
+      sN_out_r_3_r <=
         sN_nx_ge_19
           ? _GEN_18
-            - {6'h1,
-               sN_nx_ge,
-               sN_nx_ge_1,
-               sN_nx_ge_2,
-               sN_nx_ge_3,
-               sN_nx_ge_4,
-               sN_nx_ge_5,
-               sN_nx_ge_6,
-               sN_nx_ge_7,
-               sN_nx_ge_8,
-               sN_nx_ge_9,
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               sN_nx_ge_14,
+            - {sN_out_r_2_q[20:0],
                sN_nx_ge_15,
                sN_nx_ge_16,
                sN_nx_ge_17,
                sN_nx_ge_18,
                2'h1}
           : _GEN_18;
-      sN_out_r_1_sig <= sN_out_r_sig;
-      sN_out_r_1_expOdd <= sN_out_r_expOdd;
-      sN_out_r_1_q <= {sN_out_r_q[23:0], sN_nx_ge_20};
-      sN_out_r_1_r <= sN_nx_ge_20 ? _GEN_19 - {sN_out_r_q, 2'h1} : _GEN_19;
-      sN_out_r_2_sig <= sN_out_r_1_sig;
-      sN_out_r_2_expOdd <= sN_out_r_1_expOdd;
-      sN_out_r_2_q <= {sN_out_r_1_q[23:0], sN_nx_ge_21};
-      sN_out_r_2_r <= sN_nx_ge_21 ? _GEN_20 - {sN_out_r_1_q, 2'h1} : _GEN_20;
-      sN_out_r_3_sig <= sN_out_r_2_sig;
-      sN_out_r_3_expOdd <= sN_out_r_2_expOdd;
-      sN_out_r_3_q <= {sN_out_r_2_q[23:0], sN_nx_ge_22};
-      sN_out_r_3_r <= sN_nx_ge_22 ? _GEN_21 - {sN_out_r_2_q, 2'h1} : _GEN_21;
-      sN_out_r_4_q <= {sN_out_r_3_q[23:0], sN_nx_ge_23};
-      sN_out_r_4_r <= sN_nx_ge_23 ? _GEN_22 - {sN_out_r_3_q, 2'h1} : _GEN_22;
+      sN_out_r_4_q <=
+        {sN_out_r_3_q[20:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, sN_nx_ge_23};
+      sN_out_r_4_r <=
+        sN_nx_ge_23
+          ? _GEN_22 - {sN_out_r_3_q[21:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, 2'h1}
+          : _GEN_22;
     end
     if (reset) begin
       sN_out_valid_r <= 1'h0;
@@ -56826,101 +56512,98 @@ module DigitRecurrenceCore_recip_s24_L5_world(
   wire [23:0] _sN_nx_nx_r_T_14 = sN_nx_ge_3 ? _GEN_2 - io_in_bits_sig : _GEN_2;
   wire        sN_nx_ge_4 = {_sN_nx_nx_r_T_14, 1'h0} >= _GEN;
   wire [23:0] _GEN_3 = {_sN_nx_nx_r_T_14[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_18 = sN_nx_ge_4 ? _GEN_3 - io_in_bits_sig : _GEN_3;
-  wire        sN_nx_ge_5 = {_sN_nx_nx_r_T_18, 1'h0} >= _GEN;
-  wire [23:0] _GEN_4 = {_sN_nx_nx_r_T_18[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_22 = sN_nx_ge_5 ? _GEN_4 - io_in_bits_sig : _GEN_4;
-  wire        sN_nx_ge_6 = {_sN_nx_nx_r_T_22, 1'h0} >= _GEN;
+  wire [24:0] _GEN_4 = {1'h0, sN_out_r_sig};
+  wire        sN_nx_ge_5 = sN_out_r_r >= _GEN_4;
+  wire [23:0] _sN_nx_nx_r_T_22 =
+    sN_nx_ge_5 ? sN_out_r_r[23:0] - sN_out_r_sig : sN_out_r_r[23:0];
+  wire        sN_nx_ge_6 = {_sN_nx_nx_r_T_22, 1'h0} >= _GEN_4;
   wire [23:0] _GEN_5 = {_sN_nx_nx_r_T_22[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_26 = sN_nx_ge_6 ? _GEN_5 - io_in_bits_sig : _GEN_5;
-  wire        sN_nx_ge_7 = {_sN_nx_nx_r_T_26, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_26 = sN_nx_ge_6 ? _GEN_5 - sN_out_r_sig : _GEN_5;
+  wire        sN_nx_ge_7 = {_sN_nx_nx_r_T_26, 1'h0} >= _GEN_4;
   wire [23:0] _GEN_6 = {_sN_nx_nx_r_T_26[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_30 = sN_nx_ge_7 ? _GEN_6 - io_in_bits_sig : _GEN_6;
-  wire        sN_nx_ge_8 = {_sN_nx_nx_r_T_30, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_30 = sN_nx_ge_7 ? _GEN_6 - sN_out_r_sig : _GEN_6;
+  wire        sN_nx_ge_8 = {_sN_nx_nx_r_T_30, 1'h0} >= _GEN_4;
   wire [23:0] _GEN_7 = {_sN_nx_nx_r_T_30[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_34 = sN_nx_ge_8 ? _GEN_7 - io_in_bits_sig : _GEN_7;
-  wire        sN_nx_ge_9 = {_sN_nx_nx_r_T_34, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_34 = sN_nx_ge_8 ? _GEN_7 - sN_out_r_sig : _GEN_7;
+  wire        sN_nx_ge_9 = {_sN_nx_nx_r_T_34, 1'h0} >= _GEN_4;
   wire [23:0] _GEN_8 = {_sN_nx_nx_r_T_34[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_38 = sN_nx_ge_9 ? _GEN_8 - io_in_bits_sig : _GEN_8;
-  wire        sN_nx_ge_10 = {_sN_nx_nx_r_T_38, 1'h0} >= _GEN;
-  wire [23:0] _GEN_9 = {_sN_nx_nx_r_T_38[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_42 = sN_nx_ge_10 ? _GEN_9 - io_in_bits_sig : _GEN_9;
-  wire        sN_nx_ge_11 = {_sN_nx_nx_r_T_42, 1'h0} >= _GEN;
+  wire [24:0] _GEN_9 = {1'h0, sN_out_r_1_sig};
+  wire        sN_nx_ge_10 = sN_out_r_1_r >= _GEN_9;
+  wire [23:0] _sN_nx_nx_r_T_42 =
+    sN_nx_ge_10 ? sN_out_r_1_r[23:0] - sN_out_r_1_sig : sN_out_r_1_r[23:0];
+  wire        sN_nx_ge_11 = {_sN_nx_nx_r_T_42, 1'h0} >= _GEN_9;
   wire [23:0] _GEN_10 = {_sN_nx_nx_r_T_42[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_46 = sN_nx_ge_11 ? _GEN_10 - io_in_bits_sig : _GEN_10;
-  wire        sN_nx_ge_12 = {_sN_nx_nx_r_T_46, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_46 = sN_nx_ge_11 ? _GEN_10 - sN_out_r_1_sig : _GEN_10;
+  wire        sN_nx_ge_12 = {_sN_nx_nx_r_T_46, 1'h0} >= _GEN_9;
   wire [23:0] _GEN_11 = {_sN_nx_nx_r_T_46[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_50 = sN_nx_ge_12 ? _GEN_11 - io_in_bits_sig : _GEN_11;
-  wire        sN_nx_ge_13 = {_sN_nx_nx_r_T_50, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_50 = sN_nx_ge_12 ? _GEN_11 - sN_out_r_1_sig : _GEN_11;
+  wire        sN_nx_ge_13 = {_sN_nx_nx_r_T_50, 1'h0} >= _GEN_9;
   wire [23:0] _GEN_12 = {_sN_nx_nx_r_T_50[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_54 = sN_nx_ge_13 ? _GEN_12 - io_in_bits_sig : _GEN_12;
-  wire        sN_nx_ge_14 = {_sN_nx_nx_r_T_54, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_54 = sN_nx_ge_13 ? _GEN_12 - sN_out_r_1_sig : _GEN_12;
+  wire        sN_nx_ge_14 = {_sN_nx_nx_r_T_54, 1'h0} >= _GEN_9;
   wire [23:0] _GEN_13 = {_sN_nx_nx_r_T_54[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_58 = sN_nx_ge_14 ? _GEN_13 - io_in_bits_sig : _GEN_13;
-  wire        sN_nx_ge_15 = {_sN_nx_nx_r_T_58, 1'h0} >= _GEN;
-  wire [23:0] _GEN_14 = {_sN_nx_nx_r_T_58[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_62 = sN_nx_ge_15 ? _GEN_14 - io_in_bits_sig : _GEN_14;
-  wire        sN_nx_ge_16 = {_sN_nx_nx_r_T_62, 1'h0} >= _GEN;
+  wire [24:0] _GEN_14 = {1'h0, sN_out_r_2_sig};
+  wire        sN_nx_ge_15 = sN_out_r_2_r >= _GEN_14;
+  wire [23:0] _sN_nx_nx_r_T_62 =
+    sN_nx_ge_15 ? sN_out_r_2_r[23:0] - sN_out_r_2_sig : sN_out_r_2_r[23:0];
+  wire        sN_nx_ge_16 = {_sN_nx_nx_r_T_62, 1'h0} >= _GEN_14;
   wire [23:0] _GEN_15 = {_sN_nx_nx_r_T_62[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_66 = sN_nx_ge_16 ? _GEN_15 - io_in_bits_sig : _GEN_15;
-  wire        sN_nx_ge_17 = {_sN_nx_nx_r_T_66, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_66 = sN_nx_ge_16 ? _GEN_15 - sN_out_r_2_sig : _GEN_15;
+  wire        sN_nx_ge_17 = {_sN_nx_nx_r_T_66, 1'h0} >= _GEN_14;
   wire [23:0] _GEN_16 = {_sN_nx_nx_r_T_66[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_70 = sN_nx_ge_17 ? _GEN_16 - io_in_bits_sig : _GEN_16;
-  wire        sN_nx_ge_18 = {_sN_nx_nx_r_T_70, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_70 = sN_nx_ge_17 ? _GEN_16 - sN_out_r_2_sig : _GEN_16;
+  wire        sN_nx_ge_18 = {_sN_nx_nx_r_T_70, 1'h0} >= _GEN_14;
   wire [23:0] _GEN_17 = {_sN_nx_nx_r_T_70[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_74 = sN_nx_ge_18 ? _GEN_17 - io_in_bits_sig : _GEN_17;
-  wire        sN_nx_ge_19 = {_sN_nx_nx_r_T_74, 1'h0} >= _GEN;
+  wire [23:0] _sN_nx_nx_r_T_74 = sN_nx_ge_18 ? _GEN_17 - sN_out_r_2_sig : _GEN_17;
+  wire        sN_nx_ge_19 = {_sN_nx_nx_r_T_74, 1'h0} >= _GEN_14;
   wire [23:0] _GEN_18 = {_sN_nx_nx_r_T_74[22:0], 1'h0};
-  wire        sN_nx_ge_20 = sN_out_r_r >= {1'h0, sN_out_r_sig};
-  wire        sN_nx_ge_21 = sN_out_r_1_r >= {1'h0, sN_out_r_1_sig};
-  wire        sN_nx_ge_22 = sN_out_r_2_r >= {1'h0, sN_out_r_2_sig};
-  wire        sN_nx_ge_23 = sN_out_r_3_r >= {1'h0, sN_out_r_3_sig};
+  wire [24:0] _GEN_19 = {1'h0, sN_out_r_3_sig};
+  wire        sN_nx_ge_20 = sN_out_r_3_r >= _GEN_19;
+  wire [23:0] _sN_nx_nx_r_T_82 =
+    sN_nx_ge_20 ? sN_out_r_3_r[23:0] - sN_out_r_3_sig : sN_out_r_3_r[23:0];
+  wire        sN_nx_ge_21 = {_sN_nx_nx_r_T_82, 1'h0} >= _GEN_19;
+  wire [23:0] _GEN_20 = {_sN_nx_nx_r_T_82[22:0], 1'h0};
+  wire [23:0] _sN_nx_nx_r_T_86 = sN_nx_ge_21 ? _GEN_20 - sN_out_r_3_sig : _GEN_20;
+  wire        sN_nx_ge_22 = {_sN_nx_nx_r_T_86, 1'h0} >= _GEN_19;
+  wire [23:0] _GEN_21 = {_sN_nx_nx_r_T_86[22:0], 1'h0};
+  wire [23:0] _sN_nx_nx_r_T_90 = sN_nx_ge_22 ? _GEN_21 - sN_out_r_3_sig : _GEN_21;
+  wire        sN_nx_ge_23 = {_sN_nx_nx_r_T_90, 1'h0} >= _GEN_19;
+  wire [23:0] _GEN_22 = {_sN_nx_nx_r_T_90[22:0], 1'h0};
   always @(posedge clock) begin
     if (io_en) begin
       sN_out_r_sig <= io_in_bits_sig;
       sN_out_r_expDec <= ~isOne;
-      sN_out_r_q <=
-        {5'h1,
-         sN_nx_ge,
-         sN_nx_ge_1,
-         sN_nx_ge_2,
-         sN_nx_ge_3,
-         sN_nx_ge_4,
-         sN_nx_ge_5,
-         sN_nx_ge_6,
-         sN_nx_ge_7,
-         sN_nx_ge_8,
-         sN_nx_ge_9,
+      sN_out_r_q <= {20'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, sN_nx_ge_4};
+      sN_out_r_r <= {sN_nx_ge_4 ? _GEN_3 - io_in_bits_sig : _GEN_3, 1'h0};
+      sN_out_r_1_sig <= sN_out_r_sig;
+      sN_out_r_1_expDec <= sN_out_r_expDec;
+      sN_out_r_1_q <=
+        {sN_out_r_q[19:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, sN_nx_ge_8, sN_nx_ge_9};
+      sN_out_r_1_r <= {sN_nx_ge_9 ? _GEN_8 - sN_out_r_sig : _GEN_8, 1'h0};
+      sN_out_r_2_sig <= sN_out_r_1_sig;
+      sN_out_r_2_expDec <= sN_out_r_1_expDec;
+      sN_out_r_2_q <=
+        {sN_out_r_1_q[19:0],
          sN_nx_ge_10,
          sN_nx_ge_11,
          sN_nx_ge_12,
          sN_nx_ge_13,
-         sN_nx_ge_14,
+         sN_nx_ge_14};
+      sN_out_r_2_r <= {sN_nx_ge_14 ? _GEN_13 - sN_out_r_1_sig : _GEN_13, 1'h0};
+      sN_out_r_3_sig <= sN_out_r_2_sig;
+      sN_out_r_3_expDec <= sN_out_r_2_expDec;
+      sN_out_r_3_q <=
+        {sN_out_r_2_q[19:0],
          sN_nx_ge_15,
          sN_nx_ge_16,
          sN_nx_ge_17,
          sN_nx_ge_18,
          sN_nx_ge_19};
-      sN_out_r_r <= {sN_nx_ge_19 ? _GEN_18 - io_in_bits_sig : _GEN_18, 1'h0};
-      sN_out_r_1_sig <= sN_out_r_sig;
-      sN_out_r_1_expDec <= sN_out_r_expDec;
-      sN_out_r_1_q <= {sN_out_r_q[23:0], sN_nx_ge_20};
-      sN_out_r_1_r <=
-        {sN_nx_ge_20 ? sN_out_r_r[23:0] - sN_out_r_sig : sN_out_r_r[23:0], 1'h0};
-      sN_out_r_2_sig <= sN_out_r_1_sig;
-      sN_out_r_2_expDec <= sN_out_r_1_expDec;
-      sN_out_r_2_q <= {sN_out_r_1_q[23:0], sN_nx_ge_21};
-      sN_out_r_2_r <=
-        {sN_nx_ge_21 ? sN_out_r_1_r[23:0] - sN_out_r_1_sig : sN_out_r_1_r[23:0], 1'h0};
-      sN_out_r_3_sig <= sN_out_r_2_sig;
-      sN_out_r_3_expDec <= sN_out_r_2_expDec;
-      sN_out_r_3_q <= {sN_out_r_2_q[23:0], sN_nx_ge_22};
-      sN_out_r_3_r <=
-        {sN_nx_ge_22 ? sN_out_r_2_r[23:0] - sN_out_r_2_sig : sN_out_r_2_r[23:0], 1'h0};
+      sN_out_r_3_r <= {sN_nx_ge_19 ? _GEN_18 - sN_out_r_2_sig : _GEN_18, 1'h0};
       sN_out_r_4_expDec <= sN_out_r_3_expDec;
-      sN_out_r_4_q <= {sN_out_r_3_q[23:0], sN_nx_ge_23};
-      sN_out_r_4_r <=
-        {sN_nx_ge_23 ? sN_out_r_3_r[23:0] - sN_out_r_3_sig : sN_out_r_3_r[23:0], 1'h0};
+      sN_out_r_4_q <=
+        {sN_out_r_3_q[20:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, sN_nx_ge_23};
+      sN_out_r_4_r <= {sN_nx_ge_23 ? _GEN_22 - sN_out_r_3_sig : _GEN_22, 1'h0};
     end
     if (reset) begin
       sN_out_valid_r <= 1'h0;

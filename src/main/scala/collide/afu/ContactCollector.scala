@@ -3,6 +3,7 @@ package collide.afu
 import chisel3._
 import chisel3.util._
 import collide.scpu.{ContactKind, ScpuOut}
+import collide.util.Prefix
 
 /** One slot as it goes into a line (docs/afu-interface.md, Contacts): a record (the
   * layout's value fields, then the tag word or, masked, the flags byte) or a mask header,
@@ -77,8 +78,10 @@ class ContactCollector(p: PucParams) extends Module {
   val off      = needHdr.asUInt
 
   // Consume positions in order while their results are there and the records fit.
-  val okPrefix  = VecInit((0 until L).scanLeft(true.B)((acc, k) => acc && (!active(k) || validAt(k))).tail)
-  val wantCount = VecInit((0 until L).scanLeft(0.U(log2Ceil(L + 1).W))((acc, k) => acc + want(k).asUInt).tail)
+  // Both in log2(L) levels (Prefix): as a chain of L adders, the records' count was the
+  // collector's slowest path (docs/afu.md, "Timing").
+  val okPrefix  = VecInit(Prefix((0 until L).map(k => !active(k) || validAt(k)))(_ && _))
+  val wantCount = VecInit(Prefix((0 until L).map(k => Mux(want(k), 1.U(log2Ceil(L + 1).W), 0.U)))(_ + _))
   val take      = VecInit.tabulate(L)(k => active(k) && okPrefix(k) && (!needHdr || allValid) && wantCount(k) +& off <= io.room)
   for (s <- 0 until n) {
     io.scpu(s).ready := (0 until L).map(k => take(k) && scpuAt(k) === s.U).foldLeft(false.B)(_ || _)

@@ -21,9 +21,11 @@ import chisel3.util._
   *    then R -= D, QX = 2 QX + X, bit 1 else QX = 2 QX; then R = 4R. Three (2 sigBits+6)-bit
   *    adders per step. Sticky = R != 0.
   *
-  * `latency` registers are spread over the n iteration boundaries by Pipeline.placement
-  * (latest first): 0 is combinational, n is one register per iteration, more stacks extra
-  * registers at the output end.
+  * `latency` registers are spread evenly over the n iteration boundaries (Pipeline.spread), so
+  * each stage holds about n / latency iterations and the last register is at the output: 0 is
+  * combinational, n is one register per iteration, more stacks extra registers at the output
+  * end. (Placing them latest first, as before, left the first n - latency iterations as one
+  * combinational path: the timing proxy's slowest path in the SCPU, docs/afu.md "Timing".)
   */
 class DigitRecurrenceCore(val op: RootOp, val sigBits: Int, val latency: Int) extends Module {
   require(sigBits >= 3, s"DigitRecurrenceCore: sigBits must be >= 3, got $sigBits")
@@ -118,7 +120,7 @@ class DigitRecurrenceCore(val op: RootOp, val sigBits: Int, val latency: Int) ex
     nx
   }
 
-  private val regs = Pipeline.placement(latency, n)
+  private val regs = Pipeline.spread(latency, n)
   val sN = (0 until n).foldLeft(s0) { (st, i) =>
     val nx = step(st, i)
     val out = Wire(new State)

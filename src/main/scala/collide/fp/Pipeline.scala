@@ -26,4 +26,15 @@ object Pipeline {
     val extra = latency % stages
     (0 until stages).map(i => base + (if (i >= stages - extra) 1 else 0))
   }
+
+  /** Like placement, but for a chain of alike stages (an iterative core's iterations): fewer
+    * registers than boundaries are spaced evenly, about one every stages / latency, the last at
+    * the output, so the longest run of unregistered stages is as short as the latency allows
+    * (placement would leave the first stages - latency of them as one combinational path).
+    */
+  def spread(latency: Int, stages: Int): Seq[Int] = {
+    require(latency >= 0 && stages >= 1)
+    if (latency >= stages) placement(latency, stages)
+    else (0 until stages).map(i => if ((i + 1) * latency / stages > i * latency / stages) 1 else 0)
+  }
 }

@@ -3,6 +3,7 @@ package collide.world
 import chisel3._
 import chisel3.util._
 import collide.fp.{FpParams, RawFloat}
+import collide.util.Tree
 
 /** The least and the greatest x, y and z of the eligible spheres (every field finite) one
   * lane has seen since `clear`, for box buckets (docs/afu.md, "Box buckets";
@@ -46,11 +47,12 @@ object BoxTracker {
     val w = key.getWidth
     Mux(key(w - 1), key ^ (BigInt(1) << (w - 1)).U, ~key)
   }
-  /** The least and greatest of several trackers' keys (those that saw a sphere). */
+  /** The least and greatest of several trackers' keys (those that saw a sphere), in a tree of
+    * log2(trackers) compares (16 lanes' in a chain were the broad phase's slowest path). */
   def merge(ts: Seq[BoxTracker]): (Bool, Vec[UInt], Vec[UInt]) = {
     val any = ts.map(_.io.any).reduce(_ || _)
     def pick(f: BoxTracker => UInt, better: (UInt, UInt) => Bool): UInt =
-      ts.map(t => (t.io.any, f(t))).reduce { (a, b) =>
+      Tree.reduce(ts.map(t => (t.io.any, f(t)))) { (a, b) =>
         (a._1 || b._1, Mux(!a._1 || (b._1 && better(b._2, a._2)), b._2, a._2))
       }._2
     (any, VecInit.tabulate(3)(a => pick(_.io.lo(a), _ < _)), VecInit.tabulate(3)(a => pick(_.io.hi(a), _ > _)))

@@ -258,7 +258,13 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       if (l < feedWidth) when(fedIn(l)) { t.io.in.valid := true.B; t.io.in.bits := io.feed(l).bits }
       t
     }
-    val (anyBox, lo, hi) = BoxTracker.merge(trackers)
+    // Registered: the trackers are final at least two cycles before state box (the load pass
+    // ends once its last sphere is out of SphereKeys, a cycle after its tracker took it), and the
+    // merge then feeds the corners' SphereKeys from a register, not through its compares.
+    val merged = BoxTracker.merge(trackers)
+    val anyBox = RegNext(merged._1)
+    val lo = RegNext(merged._2)
+    val hi = RegNext(merged._3)
     // The units of the least and greatest corner at the level, a cycle after state box begins.
     val corners = Seq(lo, hi).map { keys =>
       val k = Module(new SphereKeys(p, bp, 1))
@@ -273,6 +279,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     val satW = tableLog2 + 2
     val sat = Reg(Vec(3, UInt(satW.W)))
     val places = Reg(UInt((3 * satW + 2).W))
+    val placesXY = Reg(UInt((2 * satW + 2).W)) // (x + 1)(y + 1), a cycle before places
     val groupLog2 = if (bp.coarseChunks) 3 else 0
     val hashBits = if (bp.coarseChunks) Mux(usedLog2 > 3.U, usedLog2 - 3.U, 0.U) else usedLog2
     val perWord = 1 << wordLog2
@@ -284,14 +291,18 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
         boxMap.rx := (extent(0) + 1.U)(tableLog2 - 1, 0)
         boxMap.rxy := (extent(1) + 1.U)(tableLog2 - 1, 0) // times rx next cycle
         val most = ((1 << BoxMapBits.extentW) - 1).U
+        val satNow = extent.map(e => Mux(e >= (1 << (tableLog2 + 1)).U, (1 << (tableLog2 + 1)).U, e)(satW - 1, 0))
         for (a <- 0 until 3) {
           boxExtent(a) := Mux(anyBox, Mux(extent(a) >= most, most, extent(a)), 0.U)
-          sat(a) := Mux(extent(a) >= (1 << (tableLog2 + 1)).U, (1 << (tableLog2 + 1)).U, extent(a))
+          sat(a) := satNow(a)
         }
+        // The places' first product now, the second next cycle: one multiply a cycle (two
+        // chained were the broad phase's own slowest path, docs/afu.md "Timing").
+        placesXY := (satNow(0) +& 1.U) * (satNow(1) +& 1.U)
       }
       when(boxCycle === 2.U) {
         boxMap.rxy := (boxMap.rxy * boxMap.rx)(tableLog2 - 1, 0)
-        places := (sat(0) +& 1.U) * (sat(1) +& 1.U) * (sat(2) +& 2.U) + sat(0) + 2.U
+        places := placesXY * (sat(2) +& 2.U) + sat(0) + 2.U
       }
       when(boxCycle === 3.U) {
         // The places' buckets rounded up to a word, where they fit the buckets in use.

@@ -2,6 +2,7 @@ package collide.world
 
 import chisel3._
 import chisel3.util._
+import collide.util.Prefix
 
 /** The broad phase's counting sort of sphere indices by bucket, in on-chip RAM
   * (BroadPhaseModel.countingSort is its golden model), `ports` items a cycle, kept in
@@ -135,7 +136,10 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
   // Per bucket of the word: every port's count, their total, and the exclusive prefix of the
   // totals on top of the running sum (the bucket's start).
   private val totals = VecInit.tabulate(perWord)(j => sumRd.map(_(j)).reduce(_ + _))
-  private val starts = VecInit(totals.scanLeft(sum)(_ + _).take(perWord))
+  // sum, then sum plus each prefix of the totals, in log2 levels of adders (Prefix): bucket j
+  // starts at inc(j) and ends at inc(j + 1); inc(perWord) is the next word's sum.
+  private val inc = Prefix(sum +: totals)(_ + _)
+  private val starts = VecInit(inc.take(perWord))
   /** Port p's cursor for bucket j: its start plus the counts of the ports before p. */
   private def portStart(p: Int, j: Int): UInt = sumRd.take(p).map(_(j)).foldLeft(starts(j))(_ + _)
   private class Place extends Bundle { val pos = UInt(posW.W); val item = UInt(itemW.W) }
@@ -155,11 +159,11 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
   }
   when(state === S.summing && walk < sumWords) { walk := walk + 1.U }
   when(sumS1) {
-    sum := totals.reduce(_ + _) + sum
+    sum := inc.last
     when(sumLast) { state := S.idle }
   }
   // Copies 1 and up hold the ends from the prefix sum on; nothing else writes them.
-  private val ends = flat((0 until perWord).map(j => starts(j) + totals(j)))
+  private val ends = flat(inc.tail)
   for (t <- tables.tail) when(sumS1) { t.write(sumW, ends) }
 
   // --- count / scatter: a two-stage read-modify-write of one counter per port --------------

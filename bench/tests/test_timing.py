@@ -1,0 +1,155 @@
+"""The timing proxy (bench/area/yosys_timing.sh, bench/sweeplib/area.py's parse_sta and timing,
+bench/area/afu_timing.py): reading Yosys's sta reports, the blocks an AFU is cut into, and one
+real run of Yosys on registered adders of two widths.
+Run with the suite: tools/pyenv -m unittest discover -s bench/tests -v"""
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
+sys.path.insert(0, str(ROOT / "bench" / "area"))
+
+import area  # noqa: E402
+import afu_timing  # noqa: E402
+
+# Two sta reports as Yosys 0.23 writes them: a register-to-register path, then one ending at a
+# black box's input (<unknown>), with a warning inside it.
+LOG = """
+7. Executing STA pass (static timing analysis).
+Warning: Module 'MISTRAL_CLKBUF' has no timing arcs!
+Latest arrival time in 'top' is 2844:
+    2844 s_MISTRAL_FF_Q (MISTRAL_FF.DATAIN)
+           \\s_MISTRAL_FF_Q_DATAIN [15]
+    2844 rb_MISTRAL_ALUT_ARITH_A_10 (MISTRAL_ALUT_ARITH.CI->SO)
+           \\rb_MISTRAL_ALUT_ARITH_A_CO [14]
+    2476 rb_MISTRAL_ALUT_ARITH_A_11 (MISTRAL_ALUT_ARITH.B->CO)
+           \\rb [1]
+    1200 x_MISTRAL_ALUT6_Q (MISTRAL_ALUT6.A->Q)
+           \\rb [0]
+     731 rb_MISTRAL_FF_Q (MISTRAL_FF.CLK->Q)
+           \\clk
+       0   \\clk (<primary input>)
+
+Arrival histogram:
+(  1512,   1008] | 
+
+12. Executing STA pass (static timing analysis).
+Latest arrival time in 'top' is 7483:
+    7483 (<unknown>)
+Warning: Critical-path does not terminate in a recognised endpoint.
+           \\_GEN_5 [2]
+    7483 _GEN_5_MISTRAL_ALUT2_Q (MISTRAL_ALUT2.B->Q)
+           \\io_a [3]
+       0   \\io_a [3] (<primary input>)
+
+13. Executing STA pass (static timing analysis).
+No timing paths found.
+"""
+
+ADDER = """module add{w}(input clk, input [{m}:0] a, input [{m}:0] b, output reg [{m}:0] s);
+  reg [{m}:0] ra, rb;
+  always @(posedge clk) begin ra <= a; rb <= b; s <= ra + rb; end
+endmodule
+"""
+
+
+class ParseSta(unittest.TestCase):
+    def test_each_report_gives_its_delay_its_ends_and_the_logic_on_its_path(self):
+        a, b, c = area.parse_sta(LOG)
+        # The launching register and the endpoint are named by their RTL signals; the clock
+        # input and both registers are not logic on the path.
+        self.assertEqual(a, {"ps": 2844, "to": "s", "from": "rb", "luts": 1, "carry": 2, "dsp": 0, "cells": 3})
+        self.assertEqual(b, {"ps": 7483, "to": "<black box>", "from": "io_a", "luts": 1, "carry": 0, "dsp": 0, "cells": 1})
+        self.assertIsNone(c)
+
+
+class AfuBlocks(unittest.TestCase):
+    SV = ("module mem_x(\n  input a\n);\n  reg [3:0] Memory[0:7];\nendmodule\n"
+          "module Gen_x(\n  input a\n);\n  mem_x m (\n    .a(a)\n  );\nendmodule\n"
+          "module BroadPhase_x(\n  input a\n);\n  Gen_x g0 (\n    .a(a)\n  );\n  Gen_x g1 (\n    .a(a)\n  );\nendmodule\n"
+          "module Puc_x(\n  input a\n);\n  BroadPhase_x b (\n    .a(a)\n  );\n  mem_x t (\n    .a(a)\n  );\nendmodule\n"
+          "module Scpu_x(\n  input a\n);\nendmodule\n"
+          "module Afu_x(\n  input a\n);\n  Puc_x p (\n    .a(a)\n  );\n  Scpu_x s0 (\n    .a(a)\n  );\n"
+          "  Scpu_x s1 (\n    .a(a)\n  );\n  Scpu_x s2 (\n    .a(a)\n  );\nendmodule\n")
+
+    def test_the_afu_the_puc_and_the_broad_phase_are_split_and_counts_multiply_down(self):
+        rows = afu_timing.blocks(self.SV, "Afu_x")
+        self.assertEqual([(m, n, what) for m, n, _, what in rows],
+                         [("Afu_x", 1, "every block below"), ("Puc_x", 1, "every block below"),
+                          ("Scpu_x", 3, "RAMs"), ("BroadPhase_x", 1, "every block below"), ("Gen_x", 2, "RAMs")])
+        self.assertEqual(rows[1][2], {"BroadPhase_x", "mem_x"})
+        self.assertEqual(rows[4][2], {"mem_x"})
+
+    def test_a_folder_without_a_manifest_or_its_top_is_refused_by_name(self):
+        with tempfile.TemporaryDirectory() as d:
+            with self.assertRaises(SystemExit) as e:
+                afu_timing.afu(Path(d))
+            self.assertIn("no manifest.json", str(e.exception.code))
+            (Path(d) / "manifest.json").write_text('{"id": "x", "topModule": "Afu_x"}')
+            with self.assertRaises(SystemExit) as e:
+                afu_timing.afu(Path(d))
+            self.assertIn("no Afu_x.sv", str(e.exception.code))
+
+
+RAM_FED = """(* blackbox *)
+module ram_x(input clk, input [3:0] a, output [15:0] q);
+endmodule
+module top_x(input clk, input [3:0] a, output reg [15:0] s);
+  wire [15:0] q;
+  ram_x r (.clk(clk), .a(a), .q(q));
+  always @(posedge clk) s <= q + 16'd1;
+endmodule
+"""
+
+
+class YosysTiming(unittest.TestCase):
+    def run_adder(self, width: int, d: Path) -> list:
+        sv = d / f"add{width}.v"
+        sv.write_text(ADDER.format(w=width, m=width - 1))
+        log = d / f"add{width}.log"
+        subprocess.run(["bash", str(ROOT / "bench/area/yosys_timing.sh"), str(sv), f"add{width}", str(log)], check=True)
+        return area.parse_sta(log.read_text())
+
+    def test_a_registered_adder_is_a_carry_chain_between_registers_and_a_wider_one_is_slower(self):
+        with tempfile.TemporaryDirectory() as d:
+            narrow, wide = self.run_adder(8, Path(d)), self.run_adder(32, Path(d))
+        self.assertEqual(len(narrow), len(area.TIMING_FAMILIES))
+        for n, w in zip(narrow, wide):
+            # A register launches it (the clock buffer is left out, so flip-flops launch paths).
+            self.assertIn(n["from"], ("ra", "rb"))
+            self.assertEqual(n["to"], "s")
+            self.assertEqual((n["carry"], w["carry"]), (8, 32))
+            self.assertGreater(w["ps"], n["ps"] + 20 * 20)  # 24 more carry cells, each tens of ps
+
+    def test_a_path_from_a_black_box_is_seen_only_when_the_black_box_is_everted(self):
+        with tempfile.TemporaryDirectory() as d:
+            sv = Path(d) / "top.v"
+            sv.write_text(RAM_FED)
+            reports = []
+            for black in ([], ["ram_x"]):
+                log = Path(d) / f"top{len(black)}.log"
+                subprocess.run(["bash", str(ROOT / "bench/area/yosys_timing.sh"), str(sv), "top_x", str(log), *black], check=True)
+                reports.append(area.parse_sta(log.read_text()))
+        # A black box has no timing arcs: nothing reaches s (the slowest path is s's own to the
+        # output); everted, its output starts the adder into s.
+        for rep in reports[0]:
+            self.assertEqual((rep["from"], rep["to"], rep["carry"]), ("s", "<output>", 0))
+        for rep in reports[1]:
+            self.assertEqual(rep["to"], "s")
+            self.assertGreater(rep["carry"], 0)
+
+
+class AfuTimingCli(unittest.TestCase):
+    def test_an_only_that_matches_nothing_or_is_not_a_regex_is_refused_by_name(self):
+        with tempfile.TemporaryDirectory() as d:
+            (Path(d) / "manifest.json").write_text('{"id": "x", "topModule": "Afu_x"}')
+            (Path(d) / "Afu_x.sv").write_text(AfuBlocks.SV)
+            with self.assertRaises(SystemExit) as e:
+                afu_timing.main([d, "--only", "Nothing_", "--out", str(Path(d) / "t.csv")])
+            self.assertIn("--only 'Nothing_': no block", str(e.exception.code))
+            with self.assertRaises(SystemExit) as e:
+                afu_timing.main([d, "--only", "(", "--out", str(Path(d) / "t.csv")])
+            self.assertIn("not a regular expression", str(e.exception.code))
