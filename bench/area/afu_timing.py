@@ -5,7 +5,7 @@ block of a generated AFU, with the cell delays Yosys 0.23 ships for Cyclone V an
 
 The blocks are those of the area tables: the AFU, its PUC and (world mode) its BroadPhase are
 split into their own logic (every child a black box) and their children, each child whole with
-its RAMs as black boxes (bench/world/broad_phase_area.py's memories). So a path that crosses
+its RAMs as black boxes (bench/sweeplib/area.py's blocks). So a path that crosses
 from one block into another is cut at the boundary, each side starting or ending at a port
 (arrival 0 at an input): a block's figure is a lower bound of the paths through it.
 
@@ -25,9 +25,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
-sys.path.insert(0, str(ROOT / "bench" / "world"))
 import area  # noqa: E402
-from broad_phase_area import memories  # noqa: E402  (firtool's memory modules)
 
 SPLIT_PREFIXES = ("Afu_", "Puc_", "BroadPhase_")
 FIELDS = ["folder", "module", "count", *[f"{f}_ps" for f in area.TIMING_FAMILIES],
@@ -36,20 +34,9 @@ FIELDS = ["folder", "module", "count", *[f"{f}_ps" for f in area.TIMING_FAMILIES
 
 
 def blocks(text: str, top: str):
-    """[(module, count in the AFU, black boxes, what is black)]: every module whose name starts
-    with one of SPLIT_PREFIXES as its own logic (its children black boxes), then its children
-    the same way; any other module whole, its RAMs black boxes. Counts multiply down the tree."""
-    mems = memories(text)
-    rows, todo = [], [(top, 1)]
-    while todo:
-        mod, n = todo.pop(0)
-        if mod.startswith(SPLIT_PREFIXES):
-            kids = area.children(text, mod)
-            rows.append((mod, n, frozenset(kids), "every block below"))
-            todo += [(k, n * c) for k, c in sorted(kids.items()) if k not in mems]
-        else:
-            rows.append((mod, n, frozenset(mems), "RAMs"))
-    return rows
+    """[(module, count in the AFU, black boxes, what is black)]: area.blocks, split at every
+    module whose name starts with one of SPLIT_PREFIXES."""
+    return area.blocks(text, top, lambda m: m.startswith(SPLIT_PREFIXES))
 
 
 def afu(folder: Path):

@@ -44,6 +44,29 @@ def subtree(text: str, top: str, black=()):
     return pre, [black_box(blocks[n]) if n in black else blocks[n] for n in sorted(seen)]
 
 
+def memories(text: str) -> set:
+    """firtool's memory modules: a `reg ... Memory[...]` array."""
+    return {n for n, block in modules(text).items() if re.search(r"^\s+reg\s.*\bMemory\[", block, re.M)}
+
+
+def blocks(text: str, top: str, split) -> list:
+    """A Verilog file cut into blocks for Yosys, from `top` down: [(module, count under top, black
+    boxes, what is black)]. A module for which `split(name)` holds is its own logic (its children
+    black boxes), then its children the same way, breadth first; any other module is whole, with
+    its RAMs (memories) as black boxes. Counts multiply down the tree."""
+    mems = memories(text)
+    rows, todo = [], [(top, 1)]
+    while todo:
+        mod, n = todo.pop(0)
+        if split(mod):
+            kids = children(text, mod)
+            rows.append((mod, n, frozenset(kids), "every block below"))
+            todo += [(k, n * c) for k, c in sorted(kids.items()) if k not in mems]
+        else:
+            rows.append((mod, n, frozenset(mems), "RAMs"))
+    return rows
+
+
 def black_box(block: str) -> str:
     """A module's header (its ports) as a Yosys black box."""
     return "(* blackbox *)\n" + block[:block.index(");") + 2] + "\nendmodule\n"
@@ -73,26 +96,29 @@ def is_cached(sv: Path, top: str, config_id: str) -> bool:
     return _cache(sv.read_text(), top, config_id)[2].exists()
 
 
-def _part(sv: Path, top: str, log_dir: Path, config_id: str, black, kind: str):
-    """(cache file, Verilog of top's subtree written for Yosys, its log): one per block and kind."""
+def _job(sv: Path, top: str, log_dir: Path, config_id: str, black, kind: str):
+    """(cache file, Yosys's input: top's subtree, the file it goes in, Yosys's log) of one block
+    and kind of result; nothing is written (see _write)."""
     pre, mods, cached = _cache(sv.read_text(), top, config_id, black)
     if kind:
         cached = cached.with_name(cached.stem + f"-{kind}.json")
-    log_dir.mkdir(parents=True, exist_ok=True)
     stem = top + (".black" if black else "")
-    part = log_dir / f"{stem}.sv"
-    part.write_text(pre + "".join(mods))
-    return cached, part, log_dir / f"yosys-{stem}{'-' + kind if kind else ''}.log"
+    return cached, pre + "".join(mods), log_dir / f"{stem}.sv", log_dir / f"yosys-{stem}{'-' + kind if kind else ''}.log"
+
+
+def _write(text: str, part: Path) -> None:
+    part.parent.mkdir(parents=True, exist_ok=True)
+    part.write_text(text)
 
 
 def synth(sv: Path, top: str, log_dir: Path, config_id: str, black=()) -> dict:
     """Area of `top` and what it instantiates, but for the modules in `black` (black boxes).
     Cached (see _cache), so an SCPU shared by several configurations (same spec, other SCPU
     counts) is synthesized once."""
-    cached = _cache(sv.read_text(), top, config_id, black)[2]
+    cached, text, part, log = _job(sv, top, log_dir, config_id, black, "")
     if cached.exists():
         return json.loads(cached.read_text())
-    cached, part, log = _part(sv, top, log_dir, config_id, black, "")
+    _write(text, part)
     r = subprocess.run(["bash", str(ROOT / "bench" / "area" / "yosys_area.sh"), str(part), top, str(log)],
                        capture_output=True, text=True)
     if r.returncode != 0:
@@ -168,15 +194,16 @@ def timing(sv: Path, top: str, log_dir: Path, config_id: str, black=()) -> dict:
     script = ROOT / "bench" / "area" / "yosys_timing.sh"
     # The flow is part of the key: a changed script times every block again.
     flow = hashlib.sha1(script.read_bytes()).hexdigest()[:8]
-    cached, part, log = _part(sv, top, log_dir, config_id, black, f"timing-{flow}")
+    cached, text, part, log = _job(sv, top, log_dir, config_id, black, f"timing-{flow}")
     # The path's ends name module instances, whose names carry the configuration's id: cached
     # with a placeholder, so a block shared by configurations names each its own.
     def named(res: dict, a: str, b: str) -> dict:
         return {k: (v.replace(a, b) if isinstance(v, str) else v) for k, v in res.items()}
     if cached.exists():
         return named(json.loads(cached.read_text()), "_{id}", f"_{config_id}")
+    _write(text, part)
     # Only the black boxes top's subtree instantiates (a module Yosys never read cannot be selected).
-    present = sorted(b for b in black if re.search(rf"^module {re.escape(b)}\(", part.read_text(), re.M))
+    present = sorted(set(black) & modules(text).keys())
     r = subprocess.run(["bash", str(script), str(part), top, str(log), *present], capture_output=True, text=True)
     if r.returncode != 0:
         raise RuntimeError(f"yosys on {top}: {r.stderr.strip()}")

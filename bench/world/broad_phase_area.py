@@ -14,7 +14,6 @@ one). Writes one row per block and a total row; prints the table.
 """
 import argparse
 import csv
-import re
 import subprocess
 import sys
 from pathlib import Path
@@ -29,21 +28,13 @@ from lanes_area import broad_phase  # noqa: E402  (a generated world-mode folder
 FIELDS = ("luts", "arith", "dsp", "ff")
 
 
-def memories(text: str) -> set:
-    """firtool's memory modules: a `reg ... Memory[...]` array."""
-    return {n for n, block in area.modules(text).items() if re.search(r"^\s+reg\s.*\bMemory\[", block, re.M)}
+memories = area.memories  # firtool's memory modules (bench/sweeplib/area.py)
 
 
 def blocks(text: str, bp: str):
     """[(module, count, black boxes)]: the BroadPhase's own logic first (every child a black
-    box), then each child with the RAMs below it as black boxes."""
-    mems = memories(text)
-    kids = area.children(text, bp)
-    rows = [(bp, 1, set(kids))]
-    for k, n in sorted(kids.items()):
-        if k not in mems:
-            rows.append((k, n, mems))
-    return rows
+    box), then each child with the RAMs below it as black boxes (area.blocks)."""
+    return [(m, n, black) for m, n, black, _ in area.blocks(text, bp, lambda m: m == bp)]
 
 
 def main(argv=None):
