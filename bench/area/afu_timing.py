@@ -5,7 +5,7 @@ block of a generated AFU, with the cell delays Yosys 0.23 ships for Cyclone V an
 
 The blocks are those of the area tables: the AFU, its PUC and (world mode) its BroadPhase are
 split into their own logic (every child a black box) and their children, each child whole with
-its RAMs as black boxes (bench/sweeplib/area.py's blocks). So a path that crosses
+its RAMs as black boxes (bench/sweeplib/area.py's afu_blocks). So a path that crosses
 from one block into another is cut at the boundary, each side starting or ending at a port
 (arrival 0 at an input): a block's figure is a lower bound of the paths through it.
 
@@ -27,16 +27,9 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
 import area  # noqa: E402
 
-SPLIT_PREFIXES = ("Afu_", "Puc_", "BroadPhase_")
 FIELDS = ["folder", "module", "count", *[f"{f}_ps" for f in area.TIMING_FAMILIES],
           *[f"{f}_mhz" for f in area.TIMING_FAMILIES], "path_from", "path_to", "path_luts", "path_carry",
           "path_dsp", "black_boxes", "commit"]
-
-
-def blocks(text: str, top: str):
-    """[(module, count in the AFU, black boxes, what is black)]: area.blocks, split at every
-    module whose name starts with one of SPLIT_PREFIXES."""
-    return area.blocks(text, top, lambda m: m.startswith(SPLIT_PREFIXES))
 
 
 def afu(folder: Path):
@@ -82,7 +75,7 @@ def main(argv=None):
         config_id, sv, top = afu(folder)
         commit = rtl_commit(folder.resolve())
         text = sv.read_text()
-        for mod, n, black, what in blocks(text, top):
+        for mod, n, black, what in area.afu_blocks(text, top):
             if not only.search(mod):
                 continue
             print(f"timing {mod} ...", flush=True)

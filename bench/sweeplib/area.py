@@ -187,14 +187,35 @@ def parse_sta(log: str) -> list:
     return out
 
 
+# The AFU's blocks as the timing proxy cuts them: these are their own logic, children apart.
+AFU_SPLIT = ("Afu_", "Puc_", "BroadPhase_")
+
+
+def afu_blocks(text: str, top: str) -> list:
+    """blocks(), split at the AFU, its PUC and its broad phase: each one's own logic (every
+    child a black box), every other block whole with its RAMs as black boxes."""
+    return blocks(text, top, lambda m: m.startswith(AFU_SPLIT))
+
+
+TIMING_SCRIPT = ROOT / "bench" / "area" / "yosys_timing.sh"
+
+
+def _timing_job(sv: Path, top: str, log_dir: Path, config_id: str, black):
+    # The flow is part of the key: a changed script times every block again.
+    flow = hashlib.sha1(TIMING_SCRIPT.read_bytes()).hexdigest()[:8]
+    return _job(sv, top, log_dir, config_id, black, f"timing-{flow}")
+
+
+def timing_is_cached(sv: Path, top: str, config_id: str, black=()) -> bool:
+    return _timing_job(sv, top, Path("."), config_id, black)[0].exists()
+
+
 def timing(sv: Path, top: str, log_dir: Path, config_id: str, black=()) -> dict:
     """The timing proxy of `top` (bench/area/yosys_timing.sh): for each family of
     TIMING_FAMILIES, the slowest path's cell delay in ps (`<family>_ps`, 0 without a path) and,
     for the first, what the path is. Cached as synth is."""
-    script = ROOT / "bench" / "area" / "yosys_timing.sh"
-    # The flow is part of the key: a changed script times every block again.
-    flow = hashlib.sha1(script.read_bytes()).hexdigest()[:8]
-    cached, text, part, log = _job(sv, top, log_dir, config_id, black, f"timing-{flow}")
+    script = TIMING_SCRIPT
+    cached, text, part, log = _timing_job(sv, top, log_dir, config_id, black)
     # The path's ends name module instances, whose names carry the configuration's id: cached
     # with a placeholder, so a block shared by configurations names each its own.
     def named(res: dict, a: str, b: str) -> dict:

@@ -87,6 +87,32 @@ def accuracy_table(rows):
     return table(head, body)
 
 
+def clock_table(rows):
+    """Per configuration: the timing proxy's slowest paths (the SCPU, the AFU's other blocks),
+    the clock they allow, and the modelled time on each link at the preset's clock and at that
+    one (rows of link "<preset>@cells")."""
+    cfgs = [r for r in dict((r["config"], r) for r in rows).values() if f(r, "cells_mhz")]
+    presets = [p for p in dict.fromkeys(r["link"] for r in rows) if not p.endswith("@cells")]
+    by = {(r["config"], r["link"]): r for r in rows}
+    ns = lambda r, k: fmt(f(r, k) / 1e3, ".1f") if f(r, k) else ""
+    head = ["config", "SCPU latency", "SCPU: ns Cyclone V (Arria V)", "SCPU's slowest path",
+            "other blocks: slowest", "ns Cyclone V (Arria V)", "AFU clock the cells allow (MHz)"]
+    head += [f"{p}: us at {fmt(f(by.get((cfgs[0]['config'], p), {}), 'clock_mhz'), '.0f')} MHz / at the cells' clock (x)"
+             for p in presets] if cfgs else []
+    body = []
+    for r in cfgs:
+        cells = []
+        for p in presets:
+            a, b = by.get((r["config"], p), {}), by.get((r["config"], p + "@cells"), {})
+            ratio = f(b, "modelled_ns") / f(a, "modelled_ns") if f(a, "modelled_ns") and f(b, "modelled_ns") else None
+            cells.append(f"{fmt(f(a, 'modelled_ns') and f(a, 'modelled_ns') / 1e3, '.2f')} / "
+                         f"{fmt(f(b, 'modelled_ns') and f(b, 'modelled_ns') / 1e3, '.2f')} ({fmt(ratio, '.1f')})")
+        body.append([r["config"], r["latency"], f"{ns(r, 'scpu_cyclonev_ps')} ({ns(r, 'scpu_arriav_ps')})", r["scpu_path"],
+                     r["rest_block"], f"{ns(r, 'rest_cyclonev_ps')} ({ns(r, 'rest_arriav_ps')})",
+                     fmt(f(r, "cells_mhz"), ".1f"), *cells])
+    return table(head, body) if body else "(timing not measured in this run: `--no-area`)\n"
+
+
 def links_table(rows):
     """ns per collision for every configuration (rows) on every link preset (columns), and how
     close each is to its link bound."""
@@ -205,6 +231,13 @@ def write(name, rows, out: Path) -> Path:
              f"[{name}.csv]({name}.csv); how and where: [MACHINE.md](MACHINE.md).\n"]
     parts += ["## Time\n", timing_table(rows), "\n## Where the time goes (share of the modelled time)\n", split_table(rows)]
     parts += ["\n## Area (Yosys `synth_intel_alm -family cyclonev`)\n", area_table(rows)]
+    if any("cells_mhz" in r for r in rows):
+        parts += ["\n## Clock (a timing proxy: Yosys `sta` over Cyclone V and Arria V cell delays, no routing)\n",
+                  "The slowest path of the SCPU and of the AFU's other blocks, each block timed on its own "
+                  "(bench/area/afu_timing.py's cut), and each link run again at the clock the slower one allows "
+                  "(link `<preset>@cells`): cell delays only, so that clock is an upper bound of what these builds "
+                  "reach, and the time at it a lower bound. bench/README.md, \"Timing proxy\", says what the proxy "
+                  "is and is not.\n\n", clock_table(rows)]
     if name == "paper":
         parts += ["\n## Side by side with the paper\n", paper_side_by_side(rows)]
         parts.append(f"\nThe paper (Table III, Stratix V): {PAPER_TABLE_III['logic_elements']:,} logic elements, "

@@ -9,26 +9,32 @@ from paths import BUILD, ROOT, write_atomic
 SCENES = BUILD / "scenes"
 
 
-def scene_file(scene) -> Path:
-    """scenes/diamond.json with the sweep's hMax and step count."""
+def scene_file(scene, link: str = None, clock_mhz: float = None) -> Path:
+    """scenes/diamond.json with the sweep's hMax and step count; with a clock, the link preset
+    `link` at that clock (`collide run --link` takes a preset's own clock)."""
     s = json.loads((ROOT / "scenes" / "diamond.json").read_text())
     s["name"] = scene.id
     s["steps"] = scene.steps
     s["bodies"]["diamond"]["hMax"] = scene.hmax
     s["bodies"]["diamond"]["dSph"] = 0
-    path = SCENES / f"{scene.id}.json"
+    name = scene.id
+    if clock_mhz is not None:
+        s["link"] = {"type": link, "clock_mhz": clock_mhz}
+        name += f"-{link}-{clock_mhz:g}MHz"
+    path = SCENES / f"{name}.json"
     write_atomic(path, json.dumps(s, indent=2) + "\n")
     return path
 
 
 def run(binary: Path, scene, backend: str, out_dir: Path, link: str = None, cpu_repeat: int = 1,
-        positions: bool = False) -> dict:
-    """`collide run` for one scene; returns its summary JSON (plus the positions file's path)."""
+        positions: bool = False, clock_mhz: float = None) -> dict:
+    """`collide run` for one scene; returns its summary JSON (plus the positions file's path).
+    clock_mhz: the link preset at that clock instead of its own (the scene names it)."""
     out_dir.mkdir(parents=True, exist_ok=True)
     summary = out_dir / "summary.json"
-    cmd = [str(binary), "run", str(scene_file(scene)), "--backend", backend, "--steps", str(scene.steps),
+    cmd = [str(binary), "run", str(scene_file(scene, link, clock_mhz)), "--backend", backend, "--steps", str(scene.steps),
            "--summary", str(summary), "--cpu-repeat", str(cpu_repeat)]
-    if link:
+    if link and clock_mhz is None:
         cmd += ["--link", link]
     if positions:
         cmd += ["--positions", str(out_dir / "positions.csv")]

@@ -28,6 +28,8 @@ RESOURCES = {
     ("build", "big"): (2, "8G", "2:00:00"),
     ("area", "normal"): (1, "4G", "2:00:00"),
     ("area", "big"): (1, "16G", "12:00:00"),
+    ("timing", "normal"): (1, "4G", "2:00:00"),
+    ("timing", "big"): (1, "16G", "12:00:00"),
     ("run", "normal"): (1, "2G", "0:30:00"),
 }
 # How long a task that Slurm reports ended may take to show its record (attribute caching on

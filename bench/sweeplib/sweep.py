@@ -38,6 +38,16 @@ def w_area(cfg, block):
     return 600 if "64" in cfg.spec else 200
 
 
+def w_timing(cfg, part):
+    return 2 * w_area(cfg, "scpu") if part == "scpu" else 150
+
+
+# A link name with this suffix: the link preset run at the clock the AFU's cells allow (the
+# timing proxy's first family, the slowest block of the AFU), not at the preset's own clock.
+AT_CELLS = "@cells"
+TIMING_PARTS = ("scpu", "rest")  # the SCPU, and the slowest of the AFU's other blocks
+
+
 class Runner:
     def __init__(self, sweep, out: Path, do_area: bool, cpu_repeat: int, work: Path = None):
         """work: where the scene runs, the executors' state and the logs go (default
@@ -50,6 +60,7 @@ class Runner:
         self.exec = work / "exec" if work else EXEC / sweep.name              # plan, task records, Slurm jobs
         self.logs = work / "logs" if work else BUILD / "logs" / sweep.name
         self.key = {"rtl": rtl_hash(), "host": host_hash(), "cpu_repeat": self.cpu_repeat}
+        self.do_timing = do_area and sweep.timing
 
     def settings(self) -> dict:
         """Everything a Slurm task needs to rebuild this runner on its node (worker.py)."""
@@ -67,25 +78,34 @@ class Runner:
         return Runner(Sweep.from_dict(d["sweep"]), Path(d["out"]), d["do_area"], d["cpu_repeat"],
                       Path(d["work"]) if d["work"] else None)
 
-    def cached(self, d: Path):
+    def run_key(self, cfg, link) -> dict:
+        """What a run's result depends on: the sources and settings, and for a run at the cells'
+        clock that clock (which moves with the timing proxy)."""
+        return self.key | ({"clock_mhz": self.cells_mhz(cfg)} if link and link.endswith(AT_CELLS) else {})
+
+    def cached(self, d: Path, cfg=None, link=None):
         """A run's summary if it was made with today's sources and settings."""
         k, s = d / "key.json", d / "summary.json"
-        if k.exists() and s.exists() and json.loads(k.read_text()) == self.key:
-            return json.loads(s.read_text())
-        return None
+        if not (k.exists() and s.exists()):
+            return None
+        if link and link.endswith(AT_CELLS) and not self.timed(cfg, "all", only_cached=True):
+            return None
+        return json.loads(s.read_text()) if json.loads(k.read_text()) == self.run_key(cfg, link) else None
 
     def run_dir(self, cfg, scene, backend, link) -> Path:
         return self.state / cfg.id / scene.id / (link or backend)
 
     def run_scene(self, cfg, scene, backend, link, positions=False):
         d = self.run_dir(cfg, scene, backend, link)
-        hit = self.cached(d)
+        hit = self.cached(d, cfg, link)
         if hit is not None:
             return hit, d
-        s = runs.run(build.binary(cfg), scene, backend, d, link=link, cpu_repeat=self.cpu_repeat,
-                     positions=positions)
+        key = self.run_key(cfg, link)
+        preset, clock = (link[:-len(AT_CELLS)], key["clock_mhz"]) if "clock_mhz" in key else (link, None)
+        s = runs.run(build.binary(cfg), scene, backend, d, link=preset, cpu_repeat=self.cpu_repeat,
+                     positions=positions, clock_mhz=clock)
         write_atomic(d / "node.txt", node() + "\n")   # the row's timings were measured there
-        write_atomic(d / "key.json", json.dumps(self.key))
+        write_atomic(d / "key.json", json.dumps(key))
         return s, d
 
     def drift_scene(self):
@@ -106,6 +126,7 @@ class Runner:
                             lambda: accuracy.measure(specs, logs / "accuracy.log"),
                             lambda: accuracy.cache_file(specs).exists()))
         scpu_blocks = {}  # one SCPU synthesis per spec and layout: the SCPU does not change with the count
+        scpu_timed = {}   # the same for its timing
         for cfg in sw.configs:
             b = f"build/{cfg.id}"
             out.append(Task(b, "build", ("generate",), w_build(cfg),
@@ -121,11 +142,21 @@ class Runner:
                                     lambda cfg=cfg, block=block: self.synth(cfg, block),
                                     lambda cfg=cfg, block=block: self.synth(cfg, block, only_cached=True),
                                     size="big" if big else "normal"))
+            timed = ()
+            if self.do_timing:
+                owner = scpu_timed.setdefault((cfg.spec, cfg.records), cfg)
+                timed = (f"timing/{owner.id}/scpu", f"timing/{cfg.id}/rest")
+                for part in TIMING_PARTS if owner is cfg else TIMING_PARTS[1:]:
+                    out.append(Task(f"timing/{cfg.id}/{part}", "timing", ("generate",), w_timing(cfg, part),
+                                    lambda cfg=cfg, part=part: self.timed(cfg, part),
+                                    lambda cfg=cfg, part=part: self.timed(cfg, part, only_cached=True),
+                                    size="big" if part == "scpu" and "64" in cfg.spec else "normal"))
             for scene, backend, link, positions in self.scene_runs(cfg):
-                out.append(Task(f"run/{cfg.id}/{scene.id}/{link or backend}", "run", (b,),
+                cells = bool(link) and link.endswith(AT_CELLS)
+                out.append(Task(f"run/{cfg.id}/{scene.id}/{link or backend}", "run", (b, *timed) if cells else (b,),
                                 W_DRIFT if positions else W_RUN,
                                 lambda a=(cfg, scene, backend, link, positions): self.run_scene(*a),
-                                lambda a=(cfg, scene, backend, link): self.cached(self.run_dir(*a)) is not None))
+                                lambda a=(cfg, scene, backend, link): self.cached(self.run_dir(*a), a[0], a[3]) is not None))
         ids = [t.id for t in out]
         if len(ids) != len(set(ids)):
             raise RuntimeError(f"sweep {sw.name}: two steps share an id: {sorted(i for i in ids if ids.count(i) > 1)}")
@@ -143,6 +174,9 @@ class Runner:
         for scene in sw.scenes:
             for link in sw.links:
                 yield scene, "rtl", link, False
+            if self.do_timing:
+                for link in sw.links:
+                    yield scene, "rtl", link + AT_CELLS, False
 
     def synth(self, cfg, block, only_cached=False):
         """Area of cfg's SCPU or PUC (area.synth); only_cached: whether it is cached, without synthesizing."""
@@ -153,6 +187,34 @@ class Runner:
         if only_cached:
             return area.is_cached(sv, top, cid)
         return area.synth(sv, top, self.logs, cid)
+
+    def timed(self, cfg, part, only_cached=False):
+        """The timing proxy (area.timing) of cfg's AFU as bench/area/afu_timing.py cuts it into
+        blocks: part "scpu" the SCPU, "rest" the slowest of its other blocks, "all" the slowest
+        block of all. A dict: <family>_ps for each of area.TIMING_FAMILIES, the block and its
+        path (first family). only_cached: whether every block it needs is cached, without Yosys."""
+        if only_cached and not generate.fresh(cfg, self.key["rtl"]):
+            return False
+        if part == "all":
+            if only_cached:
+                return all(self.timed(cfg, p, only_cached=True) for p in TIMING_PARTS)
+            return max((self.timed(cfg, p) for p in TIMING_PARTS), key=lambda r: r[f"{area.TIMING_FAMILIES[0]}_ps"])
+        sv, m = generate.verilog(cfg), generate.manifest(cfg)
+        blocks = [(mod, black) for mod, _, black, _ in area.afu_blocks(sv.read_text(), m["topModule"])
+                  if mod.startswith("Scpu_") == (part == "scpu")]
+        if not blocks:
+            raise RuntimeError(f"{cfg.id}: no {part} block in {sv}")
+        if only_cached:
+            return all(area.timing_is_cached(sv, mod, m["id"], black) for mod, black in blocks)
+        res = [area.timing(sv, mod, self.logs / "timing", m["id"], black) | {"block": mod} for mod, black in blocks]
+        return max(res, key=lambda r: r[f"{area.TIMING_FAMILIES[0]}_ps"])
+
+    def cells_mhz(self, cfg) -> float:
+        """The clock the AFU's cells allow: its slowest block's delay in the first family."""
+        ps = self.timed(cfg, "all")[f"{area.TIMING_FAMILIES[0]}_ps"]
+        if not ps:
+            raise RuntimeError(f"{cfg.id}: the timing proxy found no path in any block")
+        return round(1e6 / ps, 3)
 
     def collect(self) -> list:
         """The CSV's rows from the tasks' cached outputs (every task done), written to NAME.csv."""
@@ -166,20 +228,39 @@ class Runner:
             if self.do_area:  # cached by the area tasks: these are look-ups
                 scpu = self.synth(cfg, "scpu")
                 areas = area.afu_area(self.synth(cfg, "puc") if sw.puc_area else None, scpu, cfg.scpus)
+            clock = {}
+            if self.do_timing:  # cached by the timing tasks
+                clock = timing_columns(self.timed(cfg, "scpu"), self.timed(cfg, "rest"), m["id"])
             drift = {}
             if sw.drift_steps:
                 d = self.run_dir(cfg, self.drift_scene(), "rtl", "ideal")
                 drift = runs.drift(d / "positions.csv", drift_ref) | {"drift_steps": sw.drift_steps}
-            for scene in sw.scenes:
-                for link in sw.links:
-                    d = self.run_dir(cfg, scene, "rtl", link)
-                    s = self.cached(d)
-                    if s is None:
-                        raise RuntimeError(f"{d}: no current result (its run task did not finish)")
-                    where = (d / "node.txt").read_text().strip() if (d / "node.txt").exists() else ""
-                    rows.append(row(sw, cfg, m, scene, link, s, areas, acc.get(cfg.spec, {}), drift, where))
+            for scene, _, link, positions in self.scene_runs(cfg):
+                if positions:
+                    continue
+                d = self.run_dir(cfg, scene, "rtl", link)
+                s = self.cached(d, cfg, link)
+                if s is None:
+                    raise RuntimeError(f"{d}: no current result (its run task did not finish)")
+                where = (d / "node.txt").read_text().strip() if (d / "node.txt").exists() else ""
+                rows.append(row(sw, cfg, m, scene, link, s, areas | clock, acc.get(cfg.spec, {}), drift, where))
         write_csv(self.out / f"{sw.name}.csv", rows)
         return rows
+
+
+def timing_columns(scpu: dict, rest: dict, config_id: str) -> dict:
+    """The timing proxy's columns of a configuration: its SCPU's slowest path and the slowest of
+    its other blocks, each family in ps, and the clock the slower of the two allows (first
+    family). Block names lose the configuration's id, which every module name carries."""
+    fam = area.TIMING_FAMILIES
+    r = {}
+    for part, t in (("scpu", scpu), ("rest", rest)):
+        r |= {f"{part}_{f}_ps": t[f"{f}_ps"] for f in fam}
+        r[f"{part}_path"] = (f"{t['path_from'] or '<input>'} -> {t['path_to']}: {t['path_luts']} LUTs, "
+                             f"{t['path_carry']} carry, {t['path_dsp']} DSP")
+    r["rest_block"] = rest["block"].replace(f"_{config_id}", "")
+    r["cells_mhz"] = round(1e6 / max(scpu[f"{fam[0]}_ps"], rest[f"{fam[0]}_ps"]), 3)
+    return r
 
 
 def row(sw, cfg, m, scene, link, s, areas, acc, drift, where=""):
@@ -207,6 +288,7 @@ def row(sw, cfg, m, scene, link, s, areas, acc, drift, where=""):
         "simd_ns_per_collision": per(s["simd_ns"], contacts), "cpu_repeat": s.get("cpu_repeat", 1),
         "node": where,  # the machine whose clock the timing columns are from (MACHINE.md describes it)
         "rtl_wall_ns": s["backend_wall_ns"], "rtl_wall_over_ode": per(s["backend_wall_ns"], s["ode_ns"]),
+        "clock_mhz": round(1e3 / a["cycle_ns"], 3) if a.get("cycle_ns") else "",
         "cycles_stepped": a["cycles_stepped"], "cycles_skipped": a["cycles_skipped"],
         "ram_bits": m["afu"]["ram"]["sphereTableBits"] + m["afu"]["ram"]["pairBufferBits"],
         "ram_ports": cfg.ram or "replicated", "sphere_table_bits": m["afu"]["ram"]["sphereTableBits"],

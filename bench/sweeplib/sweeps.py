@@ -49,6 +49,8 @@ class Sweep:
     links: tuple = ("qpi", "ideal")
     area: bool = True          # Yosys area of each configuration's SCPU
     puc_area: bool = True      # ... and of its PUC (the AFU's area is then PUC + N x SCPU)
+    timing: bool = False       # the timing proxy of each configuration's blocks, and its links again at
+                               # the clock the cells allow (link "<preset>@cells"); with the area
     accuracy: bool = False     # the golden model's error against double, per SCPU spec
     drift_steps: int = 0       # > 0: diamond hMax 10 drift from ODE (double) after this many steps
     cpu_repeat: int = 20       # ODE / simd timings: fastest of this many a step
@@ -128,7 +130,7 @@ SWEEPS = {s.name: s for s in (
           configs=tuple(Config(n, "fp32") for n in SCPU_COUNTS), scenes=(Scene(10),)),
     Sweep("arith", "what accuracy costs: formats and algorithms at 16 SCPUs, diamond hMax 10",
           configs=tuple(Config(16, s) for s in ARITH_SPECS), scenes=(Scene(10),),
-          accuracy=True, drift_steps=6, puc_area=False),  # the PUC barely changes with the arithmetic
+          accuracy=True, drift_steps=6, puc_area=False, timing=True),  # the PUC barely changes with the arithmetic
     Sweep("links", "what the link's bytes cost: formats x record layouts x link presets, diamond hMax 10 and 13",
           configs=LINK_CONFIGS, scenes=(Scene(10), Scene(13)), links=LINK_PRESETS, area=False, accuracy=True,
           cpu_repeat=5),

@@ -16,7 +16,7 @@ import machine
 from paths import write_atomic
 
 # The order of the stages: a task only needs tasks of its own or an earlier kind.
-KINDS = ("generate", "accuracy", "build", "area", "run")
+KINDS = ("generate", "accuracy", "build", "area", "timing", "run")
 
 
 @dataclass

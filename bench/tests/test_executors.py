@@ -111,6 +111,17 @@ class Plan(unittest.TestCase):
         self.assertEqual(p["run/n16_fp16/diamond_h10_s1/qpi"].deps, ("build/n16_fp16",))
         self.assertIn("run/n16_fp32/diamond_h10_s6/ode", p)  # the drift's ODE reference
 
+    def test_the_arith_plan_times_each_scpu_once_and_runs_its_links_at_the_cells_clock_after_both_parts(self):
+        p = self.plan("arith")
+        self.assertEqual(len([i for i in p if i.startswith("timing/") and i.endswith("/scpu")]), 10)
+        self.assertEqual(len([i for i in p if i.startswith("timing/") and i.endswith("/rest")]), 10)
+        self.assertEqual(p["timing/n16_fp64/scpu"].size, "big")
+        self.assertEqual(p["run/n16_fp16/diamond_h10_s1/ideal@cells"].deps,
+                         ("build/n16_fp16", "timing/n16_fp16/scpu", "timing/n16_fp16/rest"))
+        self.assertEqual(p["run/n16_fp16/diamond_h10_s1/qpi"].deps, ("build/n16_fp16",))  # not held back by Yosys
+        off = self.plan("arith", area=False)
+        self.assertFalse([i for i in off if i.startswith("timing/") or i.endswith("@cells")])
+
     def test_the_scpus_plan_synthesizes_one_scpu_and_every_puc(self):
         p = self.plan("scpus")
         self.assertEqual(sorted(i for i in p if i.endswith("/scpu")), ["area/n1_fp32/scpu"])

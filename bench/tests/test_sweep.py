@@ -162,6 +162,62 @@ class Caching(unittest.TestCase):
             self.assertIsNone(r.cached(run))
 
 
+    def test_a_run_at_the_cells_clock_is_used_only_while_that_clock_is_the_same(self):
+        with tempfile.TemporaryDirectory() as d:
+            r = sweep.Runner.__new__(sweep.Runner)
+            r.key = {"rtl": "abc", "host": "def", "cpu_repeat": 20}
+            clock = {"mhz": 29.123}
+            r.timed = lambda cfg, part, only_cached=False: True
+            r.cells_mhz = lambda cfg: clock["mhz"]
+            run, cfg = Path(d), Config(16, "fp32")
+            (run / "summary.json").write_text(json.dumps({"pairs": 1}))
+            (run / "key.json").write_text(json.dumps(r.run_key(cfg, "ideal@cells")))
+            self.assertEqual(r.run_key(cfg, "ideal@cells")["clock_mhz"], 29.123)
+            self.assertNotIn("clock_mhz", r.run_key(cfg, "ideal"))
+            self.assertEqual(r.cached(run, cfg, "ideal@cells"), {"pairs": 1})
+            clock["mhz"] = 31.0   # the timing proxy moved: the run is stale
+            self.assertIsNone(r.cached(run, cfg, "ideal@cells"))
+            r.timed = lambda cfg, part, only_cached=False: False  # and while the timing is not cached
+            self.assertIsNone(r.cached(run, cfg, "ideal@cells"))
+
+
+class Clock(unittest.TestCase):
+    T = {"cyclonev_ps": 34339, "arriav_ps": 29747, "path_from": "s_q", "path_to": "p_r", "path_luts": 3,
+         "path_carry": 50, "path_dsp": 1, "block": "Scpu_fp32_n16_fp32"}
+
+    def test_the_clock_is_the_slower_part_and_block_names_lose_the_configuration(self):
+        rest = self.T | {"cyclonev_ps": 40000, "arriav_ps": 39000, "path_from": "", "block": "ContactCollector_n16_n16_fp32"}
+        c = sweep.timing_columns(self.T, rest, "n16_fp32")
+        self.assertEqual((c["scpu_cyclonev_ps"], c["rest_arriav_ps"], c["cells_mhz"]), (34339, 39000, 25.0))
+        self.assertEqual(c["rest_block"], "ContactCollector_n16")
+        self.assertEqual(c["rest_path"], "<input> -> p_r: 3 LUTs, 50 carry, 1 DSP")
+        self.assertEqual(sweep.timing_columns(self.T, rest | {"cyclonev_ps": 1000}, "x")["cells_mhz"], round(1e6 / 34339, 3))
+
+    def test_a_scene_at_a_clock_names_the_link_there_and_in_its_file_name(self):
+        a, b = runs.scene_file(Scene(3)), runs.scene_file(Scene(3), "ideal", 29.5)
+        self.assertNotEqual(a, b)
+        self.assertEqual(json.loads(b.read_text())["link"], {"type": "ideal", "clock_mhz": 29.5})
+        self.assertEqual(json.loads(a.read_text())["link"], {"type": "qpi"})  # scenes/diamond.json's own
+
+    def test_the_clock_table_sets_each_link_beside_itself_at_the_cells_clock(self):
+        cols = sweep.timing_columns(self.T, self.T | {"cyclonev_ps": 20000, "block": "X_n16_fp32"}, "n16_fp32")
+        rows = []
+        for link, ns, cyc in (("ideal", 4716.0, 5.0), ("ideal@cells", 33000.0, 34.339)):
+            s = summary(modelled=ns)
+            s["afu"]["cycle_ns"] = cyc
+            rows.append(sweep.row(SWEEPS["arith"], Config(16, "fp32"), MANIFEST, Scene(10), link, s, cols, {}, {}))
+        self.assertEqual((rows[0]["clock_mhz"], rows[1]["clock_mhz"]), (200.0, 29.121))
+        t = report.clock_table(sweep.read_csv(self.csv(rows)))
+        self.assertIn("| n16_fp32 | 21 | 34.3 (29.7) | s_q -> p_r: 3 LUTs, 50 carry, 1 DSP | X | 20.0 (29.7) | 29.1 | "
+                      "4.72 / 33.00 (7.0) |", t)
+        self.assertIn("ideal: us at 200 MHz / at the cells' clock (x)", t)
+
+    def csv(self, rows):
+        d = tempfile.mkdtemp()
+        sweep.write_csv(Path(d) / "x.csv", rows)
+        return Path(d) / "x.csv"
+
+
 class Plots(unittest.TestCase):
     def test_the_paper_sweep_draws_figures_5_6_and_7(self):
         rows = []

@@ -76,7 +76,7 @@ class AfuBlocks(unittest.TestCase):
           "  Scpu_x s1 (\n    .a(a)\n  );\n  Scpu_x s2 (\n    .a(a)\n  );\nendmodule\n")
 
     def test_the_afu_the_puc_and_the_broad_phase_are_split_and_counts_multiply_down(self):
-        rows = afu_timing.blocks(self.SV, "Afu_x")
+        rows = area.afu_blocks(self.SV, "Afu_x")
         self.assertEqual([(m, n, what) for m, n, _, what in rows],
                          [("Afu_x", 1, "every block below"), ("Puc_x", 1, "every block below"),
                           ("Scpu_x", 3, "RAMs"), ("BroadPhase_x", 1, "every block below"), ("Gen_x", 2, "RAMs")])
