@@ -257,7 +257,7 @@ def timing_columns(scpu: dict, rest: dict, config_id: str) -> dict:
     for part, t in (("scpu", scpu), ("rest", rest)):
         r |= {f"{part}_{f}_ps": t[f"{f}_ps"] for f in fam}
         r[f"{part}_path"] = (f"{t['path_from'] or '<input>'} -> {t['path_to']}: {t['path_luts']} LUTs, "
-                             f"{t['path_carry']} carry, {t['path_dsp']} DSP")
+                             f"{t['path_carry']} carry, {t['path_dsp']} DSP").replace(f"_{config_id}", "")
     r["rest_block"] = rest["block"].replace(f"_{config_id}", "")
     r["cells_mhz"] = round(1e6 / max(scpu[f"{fam[0]}_ps"], rest[f"{fam[0]}_ps"]), 3)
     return r

@@ -186,11 +186,12 @@ class Clock(unittest.TestCase):
          "path_carry": 50, "path_dsp": 1, "block": "Scpu_fp32_n16_fp32"}
 
     def test_the_clock_is_the_slower_part_and_block_names_lose_the_configuration(self):
-        rest = self.T | {"cyclonev_ps": 40000, "arriav_ps": 39000, "path_from": "", "block": "ContactCollector_n16_n16_fp32"}
+        rest = self.T | {"cyclonev_ps": 40000, "arriav_ps": 39000, "path_from": "", "path_to": "q.Fp_n16_fp32.r",
+                         "block": "ContactCollector_n16_n16_fp32"}
         c = sweep.timing_columns(self.T, rest, "n16_fp32")
         self.assertEqual((c["scpu_cyclonev_ps"], c["rest_arriav_ps"], c["cells_mhz"]), (34339, 39000, 25.0))
         self.assertEqual(c["rest_block"], "ContactCollector_n16")
-        self.assertEqual(c["rest_path"], "<input> -> p_r: 3 LUTs, 50 carry, 1 DSP")
+        self.assertEqual(c["rest_path"], "<input> -> q.Fp.r: 3 LUTs, 50 carry, 1 DSP")
         self.assertEqual(sweep.timing_columns(self.T, rest | {"cyclonev_ps": 1000}, "x")["cells_mhz"], round(1e6 / 34339, 3))
 
     def test_a_scene_at_a_clock_names_the_link_there_and_in_its_file_name(self):
