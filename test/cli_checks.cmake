@@ -594,6 +594,41 @@ elseif(CHECK STREQUAL "spheres_afu_world")
       message(FATAL_ERROR "summary per_run: ${runs} runs, ${run_cycles} cycles of ${cycles}, ${run_spheres} spheres of ${sent}:\n${summary}")
     endif()
   endforeach()
+  # At half the ideal link's clock: the same contacts and broad-phase cycles, the clock in the
+  # summary, and nearly twice the time (the link's 5 ns latencies are fewer cycles there).
+  execute_process(COMMAND ${COLLIDE} spheres --afu ${AFU_DIR} --link ideal --clock-mhz 100 --in ${in}
+                          --out ${WORK}/afu_100.csv --summary ${WORK}/afu_100.json
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  expect_match("${err}" "link ideal at 100 MHz")
+  file(READ ${WORK}/afu_100.csv got)
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "spheres --afu --clock-mhz 100 differs from --backend simd; see ${WORK}")
+  endif()
+  file(READ ${WORK}/afu_ideal.json at200)
+  file(READ ${WORK}/afu_100.json at100)
+  string(JSON clock GET "${at100}" afu clock_mhz)
+  string(JSON clock200 GET "${at200}" afu clock_mhz)
+  string(JSON ns200 GET "${at200}" afu modelled_ns)
+  string(JSON ns100 GET "${at100}" afu modelled_ns)
+  string(JSON cyc200 GET "${at200}" afu cycles_broad)
+  string(JSON cyc100 GET "${at100}" afu cycles_broad)
+  string(REGEX REPLACE "\\..*" "" low "${ns200}")  # its integer part: math() takes integers
+  math(EXPR lo "${low} * 18 / 10")
+  math(EXPR hi "${low} * 2 + 2")
+  if(NOT clock EQUAL 100 OR NOT clock200 EQUAL 200 OR NOT cyc100 EQUAL cyc200 OR ns100 LESS lo OR ns100 GREATER hi)
+    message(FATAL_ERROR "--clock-mhz 100: clock ${clock} (${clock200} without), broad phase ${cyc100} cycles "
+                        "(${cyc200}), ${ns100} ns against ${ns200} at 200 MHz (want ${lo}..${hi})")
+  endif()
+  # Out of the link's clock range, or on a CPU backend: refused, naming the option.
+  execute_process(COMMAND ${COLLIDE} spheres --afu ${AFU_DIR} --clock-mhz 5000 --in ${in} --out ${WORK}/bad.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "--clock-mhz: clock_mhz: 5000 MHz is outside the sane range")
+  execute_process(COMMAND ${COLLIDE} spheres --backend simd --clock-mhz 50 --in ${in} --out ${WORK}/bad.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "--clock-mhz applies to the AFU")
 else()
   message(FATAL_ERROR "unknown CHECK ${CHECK}")
 endif()

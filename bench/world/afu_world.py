@@ -9,14 +9,15 @@ spheres (ghosts included), one AFU run each (docs/host.md).
                                          [--afu generated/world] [--links qpi,ideal]
                                          [--sizes 670,2000,4096,10000,65536] [--repeat 5]
                                          [--clouds uniform,clustered,mixed,diamond]
-                                         [--out bench/results/world-afu]
+                                         [--clock-mhz F] [--out bench/results/world-afu]
 
 "diamond" is the paper's diamond at step 0, the largest with at most the size's spheres (hMax 10,
 14, 18, 24, 46 for the default sizes: 670, 1,834, 3,894, 9,224, 64,906 spheres). Rows of clouds not named in --clouds are kept from an
 earlier OUT/world-afu.csv, so one cloud can be re-run alone.
 
-The AFU's times are modelled (the link model's clock and costs, docs/host.md), the CPU's are
-wall clock (fastest of --repeat). Writes OUT/world-afu.csv, OUT/README.md and OUT/MACHINE.md.
+The AFU's times are modelled (the link model's clock and costs, docs/host.md; --clock-mhz: the
+AFU at that clock instead of the link preset's, for example the one bench/area/afu_timing.py
+says its cells allow), the CPU's are wall clock (fastest of --repeat). Writes OUT/world-afu.csv, OUT/README.md and OUT/MACHINE.md.
 The collide binary must have the world AFU built in: build/host/test/collide_world, which the
 test build makes from generated/world (or a host built with -DCOLLIDE_AFU_PRESET=world).
 """
@@ -60,6 +61,7 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--clouds", default=",".join(CLOUDS))
+    ap.add_argument("--clock-mhz", type=float, default=0, help="the AFU's clock instead of each link preset's")
     ap.add_argument("--built", default="", help="where --collide was built, for MACHINE.md (e.g. a clean clone at a commit)")
     ap.add_argument("--out", default=str(ROOT / "bench/results/world-afu"))
     ap.add_argument("--report-only", action="store_true", help="rewrite README.md from OUT/world-afu.csv")
@@ -96,7 +98,8 @@ def main(argv=None):
                     cpu[backend] = s
                 for link in a.links.split(","):
                     summary = work / "afu.json"
-                    refusal = run([a.collide, "spheres", "--afu", a.afu, "--link", link, "--in", path, "--out",
+                    clock = ["--clock-mhz", str(a.clock_mhz)] if a.clock_mhz else []
+                    refusal = run([a.collide, "spheres", "--afu", a.afu, "--link", link, *clock, "--in", path, "--out",
                                    work / "afu.csv", "--summary", summary], refusable=True)
                     if refusal:
                         what = f"{n:,} spheres (hMax {world.diamond_hmax(size)})" if kind == "diamond" else f"{n:,} spheres"
@@ -109,7 +112,7 @@ def main(argv=None):
                     f = s["afu"]
                     ode = cpu["ode"]["broad_ns"] + cpu["ode"]["narrow_ns"]
                     grid = cpu["simd"]["broad_ns"] + cpu["simd"]["narrow_ns"]
-                    row = {"cloud": kind, "spheres": n, "link": link, "candidates": s["candidates"],
+                    row = {"cloud": kind, "spheres": n, "link": link, "clock_mhz": f["clock_mhz"], "candidates": s["candidates"],
                            "contacts": s["contacts"], "afu_ns": f["modelled_ns"], "link_bound_ns": f["link_bound_ns"],
                            "afu_over_bound": f["modelled_ns"] / f["link_bound_ns"], "runs": f["runs"],
                            "slabs": f["slabs"], "calls": f.get("calls", f["slabs"]),
@@ -198,6 +201,9 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None):
              "grid + the binary32 kernel),",
              "both wall clock, fastest of N, on the same spheres in the same run (bench/world/afu_world.py).",
              "The AFU's contacts equal simd's byte for byte in every row (the script stops otherwise).",
+             *([f"The AFU runs at {', '.join(sorted({format(r['clock_mhz'], 'g') for r in rows if r.get('clock_mhz')}))} MHz "
+                "here (`--clock-mhz`), not at its links' own clocks; the links' rates and latencies stay in ns."]
+               if any(r.get("clock_mhz") not in (None, 200.0, 400.0) for r in rows) else []),
              "Every number: [world-afu.csv](world-afu.csv)." +
              (" \"Before\": the same row's AFU time in the CSV given to --compare (see MACHINE.md's command)." if compare else ""), ""]
     cmp = compare or {}

@@ -79,7 +79,15 @@ nlohmann::json statusJson(const driver::StatusLine& s) {
 // vary), timed by the link model.
 int runSpheresAfu(const SpheresOptions& o) {
   if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode (the AFU has its own grid)");
-  const link::LinkParams lp = link::presetParams(o.link);
+  link::LinkParams lp = link::presetParams(o.link);
+  if (o.clockMHz != 0) {
+    lp.clockMHz = o.clockMHz;
+    try {
+      lp.validate();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--clock-mhz: ") + e.what());
+    }
+  }
   driver::AfuPortOptions po;
   po.clockMHz = lp.clockMHz;
   world::AfuWorld afu(o.afu, lp, po);
@@ -99,7 +107,8 @@ int runSpheresAfu(const SpheresOptions& o) {
   const auto level = static_cast<std::int32_t>(s.worldCellLevel);
   std::cerr << "collide spheres: " << spheres.size() << " spheres (" << w.badSpheres.size() << " bad), " << w.candidates
             << " candidate pairs, " << w.pairs.size() << " contacts, on the AFU (world mode, cells of edge " << driver::cellEdge(level) << ", "
-            << s.worldLarge << " large; " << toString(w.contacts.format) << ", link " << lp.name << ")\n"
+            << s.worldLarge << " large; " << toString(w.contacts.format) << ", link " << lp.name << " at "
+            << lp.clockMHz << " MHz)\n"
             << std::fixed << std::setprecision(1) << "  modelled time " << totalNs / 1e3 << " us (link bound "
             << r.run.stats.linkBoundNs / 1e3 << " us; " << r.run.stats.readLines << " lines read, " << r.run.stats.writeLines
             << " written; " << afu.lastSlabs() << (afu.lastSlabs() == 1 ? " slab, " : " slabs or boxes, ") << r.attempts
@@ -120,6 +129,7 @@ int runSpheresAfu(const SpheresOptions& o) {
                         {"broad_ns", broadNs},             {"narrow_ns", totalNs - broadNs},
                         {"finish_ns", 0}};
     j["afu"] = {{"link", lp.name},
+                {"clock_mhz", lp.clockMHz},
                 {"modelled_ns", totalNs},
                 {"link_bound_ns", r.run.stats.linkBoundNs},
                 {"runs", r.attempts},
@@ -153,6 +163,8 @@ int runSpheresAfu(const SpheresOptions& o) {
 int runSpheres(const SpheresOptions& o) {
   return reportErrors("collide spheres", [&]() -> int {
     if (!o.afu.empty() || o.backend == "rtl") return runSpheresAfu(o);
+    if (o.clockMHz != 0)
+      throw std::invalid_argument("--clock-mhz applies to the AFU (--afu DIR or --backend rtl), not to --backend " + o.backend);
     Pipeline p = makePipeline(o);
     // Opened first, so that a bad path fails before the work; replaced only when complete.
     OutputFile out(o.out, OutputFile::Dash::IsStdout);

@@ -103,6 +103,9 @@ int main(int argc, char** argv) {
   w->add_option("--afu", spheres.afu, "world mode on a generated AFU (the world preset): its broad phase and SCPUs");
   w->add_option("--link", spheres.link, "rtl: link preset (collide info --links)")->capture_default_str()
       ->check(CLI::IsMember(linkNames));
+  // The link model's clock is the AFU's: this times the same cycles at another clock (for
+  // example the one a timing report allows); the link's own rates and latencies stay in ns.
+  w->add_option("--clock-mhz", spheres.clockMHz, "rtl: the AFU's clock in MHz instead of the link preset's");
   w->add_option("--in", spheres.in, "input CSV (x,y,z,r), - for stdin")->required();
   w->add_option("--out", spheres.out, "output CSV (i,j,px,py,pz,nx,ny,nz,depth,flags), - for stdout")->required();
   w->add_option("--repeat", spheres.repeat, "collide this many times, report the fastest broad and narrow phase")
