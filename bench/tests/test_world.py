@@ -79,6 +79,16 @@ class AfuWorldReport(unittest.TestCase):
                 afu_world.compared(str(out / "bad.csv"))
             self.assertIn("not a world-afu.csv", str(e.exception))
 
+    def test_rows_at_another_clock_say_so_and_rows_at_the_links_own_do_not(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = Path(d)
+            afu_world.report([self.row("uniform", 670, "qpi") | {"clock_mhz": 29.121, "clock_given": 1.0}], out, "", lanes=16, ports=8)
+            self.assertIn("The AFU runs at 29.121 MHz here (`--clock-mhz`)", (out / "README.md").read_text())
+            afu_world.report([self.row("uniform", 670, "qpi") | {"clock_mhz": 200.0, "clock_given": 0.0}], out, "", lanes=16, ports=8)
+            self.assertNotIn("--clock-mhz", (out / "README.md").read_text())
+            afu_world.report([self.row("uniform", 670, "qpi")], out, "", lanes=16, ports=8)  # an older CSV: no column
+            self.assertNotIn("--clock-mhz", (out / "README.md").read_text())
+
     def test_a_refused_world_is_listed_under_its_cloud_and_the_diamond_gets_its_section(self):
         with tempfile.TemporaryDirectory() as d:
             out = Path(d)
