@@ -625,6 +625,11 @@ elseif(CHECK STREQUAL "spheres_afu_world")
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   expect_rc(1)
   expect_match("${err}" "--clock-mhz: clock_mhz: 5000 MHz is outside the sane range")
+  # 0 is a clock like any other, out of range: not "the preset's"
+  execute_process(COMMAND ${COLLIDE} spheres --afu ${AFU_DIR} --clock-mhz 0 --in ${in} --out ${WORK}/bad.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "--clock-mhz: clock_mhz: 0 MHz is outside the sane range")
   execute_process(COMMAND ${COLLIDE} spheres --backend simd --clock-mhz 50 --in ${in} --out ${WORK}/bad.csv
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   expect_rc(1)

@@ -80,8 +80,8 @@ nlohmann::json statusJson(const driver::StatusLine& s) {
 int runSpheresAfu(const SpheresOptions& o) {
   if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode (the AFU has its own grid)");
   link::LinkParams lp = link::presetParams(o.link);
-  if (o.clockMHz != 0) {
-    lp.clockMHz = o.clockMHz;
+  if (o.clockMHz) {
+    lp.clockMHz = *o.clockMHz;
     try {
       lp.validate();
     } catch (const std::invalid_argument& e) {
@@ -163,7 +163,7 @@ int runSpheresAfu(const SpheresOptions& o) {
 int runSpheres(const SpheresOptions& o) {
   return reportErrors("collide spheres", [&]() -> int {
     if (!o.afu.empty() || o.backend == "rtl") return runSpheresAfu(o);
-    if (o.clockMHz != 0)
+    if (o.clockMHz)
       throw std::invalid_argument("--clock-mhz applies to the AFU (--afu DIR or --backend rtl), not to --backend " + o.backend);
     Pipeline p = makePipeline(o);
     // Opened first, so that a bad path fails before the work; replaced only when complete.

@@ -41,7 +41,7 @@ struct SpheresOptions {
   std::string space;             // ode: hash | sap ("" = the default, kDefaultOdeSpace)
   std::string afu;               // world mode on this generated AFU (manifest afu.world); "" with backend rtl: the built-in one
   std::string link = link::kDefaultPreset;  // rtl: a link preset name
-  double clockMHz = 0;           // rtl: the AFU's clock instead of the preset's (0: the preset's)
+  std::optional<double> clockMHz; // rtl: the AFU's clock instead of the preset's
   std::string in, out;           // "-" = stdin/stdout
   int repeat = 1;                // run the whole collision this many times, report the fastest of each phase
   std::string summary;           // counts and times as JSON

@@ -105,7 +105,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(linkNames));
   // The link model's clock is the AFU's: this times the same cycles at another clock (for
   // example the one a timing report allows); the link's own rates and latencies stay in ns.
-  w->add_option("--clock-mhz", spheres.clockMHz, "rtl: the AFU's clock in MHz instead of the link preset's");
+  w->add_option_function<double>("--clock-mhz", [&](double f) { spheres.clockMHz = f; },
+                                 "rtl: the AFU's clock in MHz instead of the link preset's");
   w->add_option("--in", spheres.in, "input CSV (x,y,z,r), - for stdin")->required();
   w->add_option("--out", spheres.out, "output CSV (i,j,px,py,pz,nx,ny,nz,depth,flags), - for stdout")->required();
   w->add_option("--repeat", spheres.repeat, "collide this many times, report the fastest broad and narrow phase")
