@@ -61,6 +61,7 @@ class Runner:
         self.logs = work / "logs" if work else BUILD / "logs" / sweep.name
         self.key = {"rtl": rtl_hash(), "host": host_hash(), "cpu_repeat": self.cpu_repeat}
         self.do_timing = do_area and sweep.timing
+        self._timed = {}  # (config, part) -> timed(): what Yosys's cached reports say
 
     def settings(self) -> dict:
         """Everything a Slurm task needs to rebuild this runner on its node (worker.py)."""
@@ -88,7 +89,7 @@ class Runner:
         k, s = d / "key.json", d / "summary.json"
         if not (k.exists() and s.exists()):
             return None
-        if link and link.endswith(AT_CELLS) and not self.timed(cfg, "all", only_cached=True):
+        if link and link.endswith(AT_CELLS) and not all(self.timed(cfg, p, only_cached=True) for p in TIMING_PARTS):
             return None
         return json.loads(s.read_text()) if json.loads(k.read_text()) == self.run_key(cfg, link) else None
 
@@ -191,14 +192,13 @@ class Runner:
     def timed(self, cfg, part, only_cached=False):
         """The timing proxy (area.timing) of cfg's AFU as bench/area/afu_timing.py cuts it into
         blocks: part "scpu" the SCPU, "rest" the slowest of its other blocks, "all" the slowest
-        block of all. A dict: <family>_ps for each of area.TIMING_FAMILIES, the block and its
-        path (first family). only_cached: whether every block it needs is cached, without Yosys."""
+        blocks. A dict: <family>_ps for each of area.TIMING_FAMILIES, the block and its path
+        (first family); kept for the runner's life, since the rows and the runs at the cells'
+        clock each ask again. only_cached: whether every block it needs is cached, without Yosys."""
+        if not only_cached and (cfg, part) in self._timed:
+            return self._timed[(cfg, part)]
         if only_cached and not generate.fresh(cfg, self.key["rtl"]):
             return False
-        if part == "all":
-            if only_cached:
-                return all(self.timed(cfg, p, only_cached=True) for p in TIMING_PARTS)
-            return max((self.timed(cfg, p) for p in TIMING_PARTS), key=lambda r: r[f"{area.TIMING_FAMILIES[0]}_ps"])
         sv, m = generate.verilog(cfg), generate.manifest(cfg)
         blocks = [(mod, black) for mod, _, black, _ in area.afu_blocks(sv.read_text(), m["topModule"])
                   if mod.startswith("Scpu_") == (part == "scpu")]
@@ -207,14 +207,12 @@ class Runner:
         if only_cached:
             return all(area.timing_is_cached(sv, mod, m["id"], black) for mod, black in blocks)
         res = [area.timing(sv, mod, self.logs / "timing", m["id"], black) | {"block": mod} for mod, black in blocks]
-        return max(res, key=lambda r: r[f"{area.TIMING_FAMILIES[0]}_ps"])
+        self._timed[(cfg, part)] = max(res, key=lambda r: r[f"{area.TIMING_FAMILIES[0]}_ps"])
+        return self._timed[(cfg, part)]
 
     def cells_mhz(self, cfg) -> float:
-        """The clock the AFU's cells allow: its slowest block's delay in the first family."""
-        ps = self.timed(cfg, "all")[f"{area.TIMING_FAMILIES[0]}_ps"]
-        if not ps:
-            raise RuntimeError(f"{cfg.id}: the timing proxy found no path in any block")
-        return round(1e6 / ps, 3)
+        """The clock the AFU's cells allow (cells_mhz of its two parts)."""
+        return cells_mhz(*(self.timed(cfg, p) for p in TIMING_PARTS), cfg.id)
 
     def collect(self) -> list:
         """The CSV's rows from the tasks' cached outputs (every task done), written to NAME.csv."""
@@ -248,6 +246,14 @@ class Runner:
         return rows
 
 
+def cells_mhz(scpu: dict, rest: dict, config_id: str) -> float:
+    """The clock the slower of an AFU's two parts allows: its delay in the first family."""
+    ps = max(scpu[f"{area.TIMING_FAMILIES[0]}_ps"], rest[f"{area.TIMING_FAMILIES[0]}_ps"])
+    if not ps:
+        raise RuntimeError(f"{config_id}: the timing proxy found no path in any block")
+    return round(1e6 / ps, 3)
+
+
 def timing_columns(scpu: dict, rest: dict, config_id: str) -> dict:
     """The timing proxy's columns of a configuration: its SCPU's slowest path and the slowest of
     its other blocks, each family in ps, and the clock the slower of the two allows (first
@@ -259,7 +265,7 @@ def timing_columns(scpu: dict, rest: dict, config_id: str) -> dict:
         r[f"{part}_path"] = (f"{t['path_from'] or '<input>'} -> {t['path_to']}: {t['path_luts']} LUTs, "
                              f"{t['path_carry']} carry, {t['path_dsp']} DSP").replace(f"_{config_id}", "")
     r["rest_block"] = rest["block"].replace(f"_{config_id}", "")
-    r["cells_mhz"] = round(1e6 / max(scpu[f"{fam[0]}_ps"], rest[f"{fam[0]}_ps"]), 3)
+    r["cells_mhz"] = cells_mhz(scpu, rest, config_id)
     return r
 
 

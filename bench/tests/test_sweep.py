@@ -193,6 +193,8 @@ class Clock(unittest.TestCase):
         self.assertEqual(c["rest_block"], "ContactCollector_n16")
         self.assertEqual(c["rest_path"], "<input> -> q.Fp.r: 3 LUTs, 50 carry, 1 DSP")
         self.assertEqual(sweep.timing_columns(self.T, rest | {"cyclonev_ps": 1000}, "x")["cells_mhz"], round(1e6 / 34339, 3))
+        with self.assertRaisesRegex(RuntimeError, "x: the timing proxy found no path"):
+            sweep.cells_mhz(self.T | {"cyclonev_ps": 0}, rest | {"cyclonev_ps": 0}, "x")
 
     def test_a_scene_at_a_clock_names_the_link_there_and_in_its_file_name(self):
         a, b = runs.scene_file(Scene(3)), runs.scene_file(Scene(3), "ideal", 29.5)
