@@ -81,6 +81,11 @@ elseif(CHECK STREQUAL "run_small")
   if(NOT n EQUAL 21)
     message(FATAL_ERROR "steps.csv has ${n} rows, expected header + 20")
   endif()
+  # A clock times an AFU: on a CPU backend it is refused, naming the option, before any step.
+  execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/small.json --steps 1 --clock-mhz 50
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "--clock-mhz applies to the AFU \\(--afu DIR or --backend rtl\\), not to backend simd")
 elseif(CHECK STREQUAL "run_lasting_scenes")
   # Every lasting-contact scene loads and runs a few steps on every CPU backend, in contact.
   foreach(scene diamond_settle pile_box)
@@ -181,7 +186,12 @@ elseif(CHECK STREQUAL "td_pairs_presets")
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     expect_rc(0)
     string(REPLACE "harp1" "qpi" canonical ${link})
-    expect_match("${err}" "2 pairs, 0 contacts, backend rtl .* us modelled \\(link ${canonical}\\)")
+    # The AFU's clock is the preset's: HARP v1's 200 MHz, CCI-P's 400 (collide info --links).
+    set(mhz 400)
+    if(link STREQUAL "ideal" OR link STREQUAL "harp1")
+      set(mhz 200)
+    endif()
+    expect_match("${err}" "2 pairs, 0 contacts, backend rtl .* us modelled \\(link ${canonical} at ${mhz} MHz\\)")
   endforeach()
 elseif(CHECK STREQUAL "td_pairs_wrong_afu")
   file(WRITE ${WORK}/in.csv "x1,y1,z1,r1,x2,y2,z2,r2\n0,0,0,1,5,0,0,1\n")
@@ -294,7 +304,37 @@ elseif(CHECK STREQUAL "afu_pairs")
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     expect_rc(0)
   endforeach()
+  # At another clock: the same contacts, more time, the clock named; out of range or without
+  # an AFU it is refused, naming the option.
+  execute_process(COMMAND ${COLLIDE} pairs --afu ${AFU_DIR} --link qpi --clock-mhz 50 --in ${WORK}/in.csv
+                          --out ${WORK}/out50.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err50)
+  expect_rc(0)
+  expect_match("${err50}" "link qpi at 50 MHz")
+  # Slower: a cycle is four times as long, and the link's latencies (in ns) are fewer cycles.
+  string(REGEX MATCH "([0-9.]+) us modelled" m "${err50}")
+  set(us50 ${CMAKE_MATCH_1})
+  string(REGEX MATCH "([0-9.]+) us modelled" m "${err}")
+  set(us200 ${CMAKE_MATCH_1})
+  if(us50 STREQUAL "" OR us200 STREQUAL "" OR NOT us50 GREATER us200)
+    message(FATAL_ERROR "--clock-mhz 50: ${us50} us modelled, not more than ${us200} us at 200 MHz")
+  endif()
+  file(READ ${WORK}/out50.csv got50)
+  execute_process(COMMAND ${COLLIDE} pairs --afu ${AFU_DIR} --clock-mhz 3000 --in ${WORK}/in.csv --out ${WORK}/bad.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "--clock-mhz: clock_mhz: 3000 MHz is outside the sane range")
+  execute_process(COMMAND ${COLLIDE} pairs --backend simd --clock-mhz 50 --in ${WORK}/in.csv --out ${WORK}/bad.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(1)
+  expect_match("${err}" "--clock-mhz applies to the AFU")
+  if(EXISTS ${WORK}/bad.csv)
+    message(FATAL_ERROR "a refused --clock-mhz wrote ${WORK}/bad.csv")
+  endif()
   file(READ ${WORK}/out.csv got)
+  if(NOT got50 STREQUAL got)
+    message(FATAL_ERROR "--clock-mhz 50 changed the contacts:\n${got50}--- against\n${got}")
+  endif()
   # The fp32 answers of the pairs_simd check (coincident, grazing, separated).
   set(want "pair,hit,px,py,pz,nx,ny,nz,depth,flags\n0,1,0x0p+0,0x0p+0,0x0p+0,0x1p+0,0x0p+0,0x0p+0,0x1.8p+1,5\n1,1,0x1.ccccccp+0,0x1.333334p+1,0x0p+0,0x1.333334p-1,0x1.99999ap-1,0x0p+0,0x0p+0,3\n2,0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0x0p+0,0\n")
   if(NOT got STREQUAL want)
@@ -558,6 +598,28 @@ elseif(CHECK STREQUAL "afu_run_world")
   expect_match("${out}" " 0 skipped exactly")
   if(NOT skipped STREQUAL stepped OR skipped STREQUAL "")
     message(FATAL_ERROR "skipping changed the AFU's time:\n  skipped: ${skipped}\n  stepped: ${stepped}")
+  endif()
+  # At a quarter of the link's clock (--clock-mhz over the scene's link): the same contacts, the
+  # clock in the header and the summary, and the modelled time nearly four times as long (the
+  # link's latencies in ns are fewer cycles there, so the cycles may be fewer, never more).
+  foreach(clock 200 50)
+    execute_process(COMMAND ${COLLIDE} run ${REPO}/scenes/pile_box_world.json --backend rtl --link ideal --steps 1
+                            --clock-mhz ${clock} --summary ${WORK}/at${clock}.json
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out${clock} ERROR_VARIABLE err)
+    expect_rc(0)
+    expect_match("${out${clock}}" "link ideal, AFU [a-z0-9-]+ at ${clock} MHz")
+    expect_match("${out${clock}}" "contacts     : 2217 sphere/sphere")
+    file(READ ${WORK}/at${clock}.json summary${clock})
+    string(JSON mhz${clock} GET "${summary${clock}}" afu clock_mhz)
+    string(JSON cyc${clock} GET "${summary${clock}}" afu cycles_total)
+    string(JSON ns${clock} GET "${summary${clock}}" afu modelled_ns)
+  endforeach()
+  string(REGEX REPLACE "\\..*" "" low "${ns200}")  # its integer part: math() takes integers
+  math(EXPR lo "${low} * 35 / 10")
+  math(EXPR hi "${low} * 4 + 4")
+  if(NOT mhz50 EQUAL 50 OR NOT mhz200 EQUAL 200 OR cyc50 GREATER cyc200 OR ns50 LESS lo OR ns50 GREATER hi)
+    message(FATAL_ERROR "run --clock-mhz 50: clock ${mhz50} (${mhz200}), ${cyc50} AFU cycles (${cyc200}), "
+                        "${ns50} ns against ${ns200} at 200 MHz (want ${lo}..${hi})")
   endif()
 elseif(CHECK STREQUAL "spheres_afu_world")
   # World mode on the AFU: the same contacts, flags and bad-sphere rows as the CPU grid with

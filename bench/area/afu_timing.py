@@ -1,7 +1,7 @@
 """The AFU's timing proxy, block by block: Yosys's `sta` (bench/area/yosys_timing.sh) on each
 block of a generated AFU, with the cell delays Yosys 0.23 ships for Cyclone V and Arria V.
 
-    tools/pyenv bench/area/afu_timing.py [generated/world ...] [--only REGEX] [--out bench/results/timing/afu.csv]
+    tools/pyenv bench/area/afu_timing.py [generated/world ...] [--only REGEX] [--area] [--out bench/results/timing/afu.csv]
 
 The blocks are those of the area tables: the AFU, its PUC and (world mode) its BroadPhase are
 split into their own logic (every child a black box) and their children, each child whole with
@@ -14,6 +14,8 @@ Each row: the block, its count in the AFU, the slowest path's cell delay in ps f
 that delay alone allows (MHz), where the path starts and ends and the LUTs and carry cells on
 it, and the commit of the RTL. Cached by each block's Verilog (bench/sweeplib/area.py), as the area is. `--only` keeps the
 blocks whose module name matches (for example `--only Scpu_` to compare SCPU configurations).
+`--area` also runs the area proxy (bench/area/yosys_area.sh) on each block as it is cut, and adds
+its LUT cells, arithmetic cells, DSP blocks and flip-flops: what a shorter path costs.
 """
 import argparse
 import csv
@@ -30,6 +32,7 @@ import area  # noqa: E402
 FIELDS = ["folder", "module", "count", *[f"{f}_ps" for f in area.TIMING_FAMILIES],
           *[f"{f}_mhz" for f in area.TIMING_FAMILIES], "path_from", "path_to", "path_luts", "path_carry",
           "path_dsp", "black_boxes", "commit"]
+AREA = ["luts", "arith", "dsp", "ff"]  # --area: the block's cells, as area.synth counts them
 
 
 def afu(folder: Path):
@@ -64,6 +67,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("folders", nargs="*", default=[str(ROOT / "generated/world")])
     ap.add_argument("--only", default="", help="time only the blocks whose module name matches this regex")
+    ap.add_argument("--area", action="store_true", help="also the area proxy of each block (columns " + ", ".join(AREA) + ")")
     ap.add_argument("--out", default=str(ROOT / "bench/results/timing/afu.csv"))
     a = ap.parse_args(argv)
     try:
@@ -85,11 +89,15 @@ def main(argv=None):
                          **{f"{f}_mhz": mhz(r[f"{f}_ps"]) for f in area.TIMING_FAMILIES},
                          "path_from": r["path_from"], "path_to": r["path_to"], "path_luts": r["path_luts"],
                          "path_carry": r["path_carry"], "path_dsp": r["path_dsp"], "black_boxes": what, "commit": commit})
+            if a.area:
+                print(f"area {mod} ...", flush=True)
+                cells = area.synth(sv, mod, area.BUILD / "logs" / "area", config_id, black)
+                rows[-1] |= {k: cells[k] for k in AREA}
     if not rows:
         raise SystemExit(f"--only {a.only!r}: no block of {', '.join(a.folders)} matches")
     Path(a.out).parent.mkdir(parents=True, exist_ok=True)
     with open(a.out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=FIELDS)
+        w = csv.DictWriter(f, fieldnames=FIELDS + (AREA if a.area else []))
         w.writeheader()
         w.writerows(rows)
     fam = area.TIMING_FAMILIES

@@ -2,6 +2,7 @@
 bench/area/afu_timing.py): reading Yosys's sta reports, the blocks an AFU is cut into, and one
 real run of Yosys on registered adders of two widths.
 Run with the suite: tools/pyenv -m unittest discover -s bench/tests -v"""
+import csv
 import subprocess
 import sys
 import tempfile
@@ -153,3 +154,32 @@ class AfuTimingCli(unittest.TestCase):
             with self.assertRaises(SystemExit) as e:
                 afu_timing.main([d, "--only", "(", "--out", str(Path(d) / "t.csv")])
             self.assertIn("not a regular expression", str(e.exception.code))
+
+    def test_area_adds_each_blocks_cells_beside_its_path(self):
+        # A two-SCPU AFU whose SCPU is a registered 8-bit adder: 24 flip-flops and a carry
+        # chain; the caches go to a temporary folder, not the repository's build tree.
+        sv = ("module Scpu_t(input clk, input [7:0] a, input [7:0] b, output reg [7:0] s);\n"
+              "  reg [7:0] ra, rb;\n  always @(posedge clk) begin ra <= a; rb <= b; s <= ra + rb; end\nendmodule\n"
+              "module Afu_t(input clk, input [7:0] a, input [7:0] b, output [7:0] s0, output [7:0] s1);\n"
+              "  Scpu_t u0 (\n    .clk(clk), .a(a), .b(b), .s(s0)\n  );\n"
+              "  Scpu_t u1 (\n    .clk(clk), .a(b), .b(a), .s(s1)\n  );\nendmodule\n")
+        with tempfile.TemporaryDirectory() as d:
+            (Path(d) / "manifest.json").write_text('{"id": "t", "topModule": "Afu_t"}')
+            (Path(d) / "Afu_t.sv").write_text(sv)
+            out = Path(d) / "t.csv"
+            saved = area.CACHE, area.BUILD
+            area.CACHE, area.BUILD = Path(d) / "cache", Path(d) / "build"
+            try:
+                afu_timing.main([d, "--only", "^Scpu_", "--area", "--out", str(out)])
+                rows = list(csv.DictReader(out.open()))
+                afu_timing.main([d, "--only", "^Scpu_", "--out", str(out)])
+                plain = list(csv.DictReader(out.open()))
+            finally:
+                area.CACHE, area.BUILD = saved
+        self.assertEqual([(r["module"], r["count"]) for r in rows], [("Scpu_t", "2")])
+        self.assertEqual(rows[0]["ff"], "24")
+        self.assertGreater(int(rows[0]["arith"]) + int(rows[0]["luts"]), 0)
+        self.assertEqual(rows[0]["path_to"], "s")
+        # Without --area the columns are the timing's alone.
+        self.assertNotIn("ff", plain[0])
+        self.assertEqual(plain[0]["cyclonev_ps"], rows[0]["cyclonev_ps"])

@@ -2,6 +2,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/clock_option.hpp"
 #include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/output_file.hpp"
@@ -22,12 +23,14 @@ int runPairs(const PairsOptions& o) {
       req.name = "rtl";
       req.afuDir = o.afu;
       req.link = link::presetParams(o.link);
+      applyClockOption(req.link, o.clockMHz);
       req.driver.dense = o.dense;
       req.driver.skipIdle = !o.noSkip;
       req.port.traceFile = o.trace;
       req.port.wallLimitS = o.wallLimit;
     } else {
       req.name = o.backend;
+      refuseClockOption(o.clockMHz, "--backend " + o.backend);
       if (!o.trace.empty()) throw std::invalid_argument("--trace needs --afu DIR");
     }
     // The one construction path of `run` and `spheres`' backends too.
@@ -54,7 +57,8 @@ int runPairs(const PairsOptions& o) {
     if (auto* rtl = dynamic_cast<RtlBackend*>(backend.get())) {
       const auto& b = rtl->lastBatch();
       std::cerr << ", " << b.runs << " AFU runs, " << b.counters.cyclesTotal << " AFU cycles, "
-                << b.stats.modelledNs / 1e3 << " us modelled (link " << req.link.name << ")";
+                << b.stats.modelledNs / 1e3 << " us modelled (link " << req.link.name << " at "
+                << req.link.clockMHz << " MHz)";
     }
     std::cerr << "\n";
     return 0;

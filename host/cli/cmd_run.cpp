@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/clock_option.hpp"
 #include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/output_file.hpp"
@@ -105,6 +106,8 @@ int runScene(const RunOptions& o) {
     if (o.steps) sc.steps = *o.steps;
     if (o.link) sc.link = link::presetParams(*o.link);
     const bool rtl = sc.backend == "rtl";
+    if (rtl) applyClockOption(sc.link, o.clockMHz);  // over the scene's link or --link
+    else refuseClockOption(o.clockMHz, "backend " + sc.backend);
     // A scene that cannot fit is refused before ODE allocates it (bench/results/scale).
     if (const auto avail = util::availableMemoryBytes()) {
       const bool hash = sc.offload == scene::Scene::Offload::Pairs && sc.space == limits::OdeSpaceKind::Hash;
@@ -146,7 +149,9 @@ int runScene(const RunOptions& o) {
     std::cout << "scene " << sc.name << ": " << sc.spheres.size() << " spheres, " << sc.steps
               << " steps, dt " << sc.dt << ", backend " << backendName << ", link "
               << (rtl ? sc.link.name : std::string("not simulated (CPU backend)"));
-    if (rtl) std::cout << ", AFU " << (driver::builtInAfuPreset().empty() ? "?" : driver::builtInAfuPreset());
+    if (rtl)
+      std::cout << ", AFU " << (driver::builtInAfuPreset().empty() ? "?" : driver::builtInAfuPreset()) << " at "
+                << sc.link.clockMHz << " MHz";
     std::cout << "\n";
 
     // The same pairs through ODE's collider and the simd batch in binary32 and binary64, timed
@@ -324,6 +329,7 @@ int runScene(const RunOptions& o) {
       if (rtl) {
         j["afu"] = {{"preset", driver::builtInAfuPreset()},
                     {"link", sc.link.name},
+                    {"clock_mhz", sc.link.clockMHz},
                     {"runs", afu.runs},
                     {"modelled_ns", afu.stats.modelledNs},
                     {"cycle_ns", afu.cycleNs},

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/clock_option.hpp"
 #include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/output_file.hpp"
@@ -80,14 +81,7 @@ nlohmann::json statusJson(const driver::StatusLine& s) {
 int runSpheresAfu(const SpheresOptions& o) {
   if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode (the AFU has its own grid)");
   link::LinkParams lp = link::presetParams(o.link);
-  if (o.clockMHz) {
-    lp.clockMHz = *o.clockMHz;
-    try {
-      lp.validate();
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("--clock-mhz: ") + e.what());
-    }
-  }
+  applyClockOption(lp, o.clockMHz);
   driver::AfuPortOptions po;
   po.clockMHz = lp.clockMHz;
   world::AfuWorld afu(o.afu, lp, po);
@@ -163,8 +157,7 @@ int runSpheresAfu(const SpheresOptions& o) {
 int runSpheres(const SpheresOptions& o) {
   return reportErrors("collide spheres", [&]() -> int {
     if (!o.afu.empty() || o.backend == "rtl") return runSpheresAfu(o);
-    if (o.clockMHz)
-      throw std::invalid_argument("--clock-mhz applies to the AFU (--afu DIR or --backend rtl), not to --backend " + o.backend);
+    refuseClockOption(o.clockMHz, "--backend " + o.backend);
     Pipeline p = makePipeline(o);
     // Opened first, so that a bad path fails before the work; replaced only when complete.
     OutputFile out(o.out, OutputFile::Dash::IsStdout);

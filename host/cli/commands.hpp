@@ -23,6 +23,7 @@ struct RunOptions {
   int cpuRepeat = 1;                   // time ODE and simd this many times a step, keep the least
   std::string positions;               // final sphere positions as CSV
   std::optional<double> wallLimit;     // rtl: wall-clock seconds an AFU run may take; overrides the scene's
+  std::optional<double> clockMHz;      // rtl: the AFU's clock, over the scene's link or --link
 };
 
 struct PairsOptions {
@@ -34,6 +35,7 @@ struct PairsOptions {
   std::string trace;    // rtl: waveform file (.fst / .vcd)
   bool noSkip = false;  // rtl: evaluate every cycle
   double wallLimit = driver::kDefaultWallLimitS;  // rtl: wall-clock seconds an AFU run may take
+  std::optional<double> clockMHz;  // rtl: the AFU's clock instead of the preset's
 };
 
 struct SpheresOptions {

@@ -1,5 +1,7 @@
 // collide: run scenes, collide pair vectors, inspect a generated AFU or the link presets. See docs/host.md.
 #include <iostream>
+#include <optional>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -30,6 +32,12 @@ bool unknownSubcommand(int argc, char** argv) {
   std::cerr << "collide: unknown subcommand '" << collide::util::clip(s) << "' (expected run, pairs, spheres or info)\n"
             << "Run with --help for more information.\n";
   return true;
+}
+
+// --clock-mhz on an AFU subcommand: set only when given, so that 0 is refused as a clock out of
+// range rather than read as "not given" (cli/clock_option.hpp checks it).
+void addClockOption(CLI::App* sub, std::optional<double>& mhz, const std::string& what) {
+  sub->add_option_function<double>("--clock-mhz", [&mhz](double f) { mhz = f; }, "rtl: the AFU's clock in MHz instead of " + what);
 }
 
 }  // namespace
@@ -69,6 +77,7 @@ int main(int argc, char** argv) {
   r->add_option_function<double>("--wall-limit", [&](double s) { run.wallLimit = s; },
                                  "rtl: wall-clock seconds an AFU run may take (default 600), overrides the scene's")
       ->check(wallRange);
+  addClockOption(r, run.clockMHz, "the link's (the scene's or --link's)");
 
   PairsOptions pairs;
   auto* p = app.add_subcommand("pairs", "vector mode: collide the pairs of a CSV file");
@@ -89,6 +98,7 @@ int main(int argc, char** argv) {
   p->add_option("--wall-limit", pairs.wallLimit, "rtl: wall-clock seconds an AFU run may take")
       ->capture_default_str()
       ->check(wallRange);
+  addClockOption(p, pairs.clockMHz, "the link preset's");
   p->add_option("--in", pairs.in, "input CSV (x1,y1,z1,r1,x2,y2,z2,r2), - for stdin")->required();
   p->add_option("--out", pairs.out, "output CSV, - for stdout")->required();
 
@@ -103,10 +113,7 @@ int main(int argc, char** argv) {
   w->add_option("--afu", spheres.afu, "world mode on a generated AFU (the world preset): its broad phase and SCPUs");
   w->add_option("--link", spheres.link, "rtl: link preset (collide info --links)")->capture_default_str()
       ->check(CLI::IsMember(linkNames));
-  // The link model's clock is the AFU's: this times the same cycles at another clock (for
-  // example the one a timing report allows); the link's own rates and latencies stay in ns.
-  w->add_option_function<double>("--clock-mhz", [&](double f) { spheres.clockMHz = f; },
-                                 "rtl: the AFU's clock in MHz instead of the link preset's");
+  addClockOption(w, spheres.clockMHz, "the link preset's");
   w->add_option("--in", spheres.in, "input CSV (x,y,z,r), - for stdin")->required();
   w->add_option("--out", spheres.out, "output CSV (i,j,px,py,pz,nx,ny,nz,depth,flags), - for stdout")->required();
   w->add_option("--repeat", spheres.repeat, "collide this many times, report the fastest broad and narrow phase")
