@@ -191,9 +191,9 @@ class Runner:
 
     def timed(self, cfg, part, only_cached=False):
         """The timing proxy (area.timing) of cfg's AFU as bench/area/afu_timing.py cuts it into
-        blocks: part "scpu" the SCPU, "rest" the slowest of its other blocks, "all" the slowest
-        blocks. A dict: <family>_ps for each of area.TIMING_FAMILIES, the block and its path
-        (first family); kept for the runner's life, since the rows and the runs at the cells'
+        blocks: part "scpu" the SCPU, "rest" the slowest of its other blocks (TIMING_PARTS). A
+        dict: <family>_ps for each of area.TIMING_FAMILIES, the block and its path (first
+        family); kept for the runner's life, since the rows and the runs at the cells'
         clock each ask again. only_cached: whether every block it needs is cached, without Yosys."""
         if not only_cached and (cfg, part) in self._timed:
             return self._timed[(cfg, part)]
