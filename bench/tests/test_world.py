@@ -79,6 +79,15 @@ class AfuWorldReport(unittest.TestCase):
                 afu_world.compared(str(out / "bad.csv"))
             self.assertIn("not a world-afu.csv", str(e.exception))
 
+    def test_a_clock_of_zero_is_refused_before_any_work_not_taken_as_each_presets(self):
+        with tempfile.TemporaryDirectory() as d:
+            for bad in ("0", "-5"):
+                with self.assertRaises(SystemExit) as e, contextlib.redirect_stderr(io.StringIO()) as err:
+                    afu_world.main(["--clock-mhz", bad, "--collide", "/nonexistent/collide", "--out", d])
+                self.assertEqual(e.exception.code, 2)
+                self.assertIn("--clock-mhz", err.getvalue())
+            self.assertEqual(list(Path(d).iterdir()), [])
+
     def test_rows_at_another_clock_say_so_and_rows_at_the_links_own_do_not(self):
         with tempfile.TemporaryDirectory() as d:
             out = Path(d)

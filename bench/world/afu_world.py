@@ -61,13 +61,16 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--clouds", default=",".join(CLOUDS))
-    ap.add_argument("--clock-mhz", type=float, default=0, help="the AFU's clock instead of each link preset's")
+    ap.add_argument("--clock-mhz", type=float, default=None, help="the AFU's clock instead of each link preset's")
     ap.add_argument("--built", default="", help="where --collide was built, for MACHINE.md (e.g. a clean clone at a commit)")
     ap.add_argument("--out", default=str(ROOT / "bench/results/world-afu"))
     ap.add_argument("--report-only", action="store_true", help="rewrite README.md from OUT/world-afu.csv")
     ap.add_argument("--compare", default="", metavar="CSV",
                     help="an earlier world-afu.csv (e.g. run by run, before the run queue): its AFU time beside each row's")
     a = ap.parse_args(argv)
+    # Given means given: 0 is a clock out of range, not "each preset's" (collide checks the range).
+    if a.clock_mhz is not None and not a.clock_mhz > 0:
+        ap.error(f"--clock-mhz: {a.clock_mhz:g} MHz is not a clock (collide takes 1..2000)")
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     clouds = a.clouds.split(",")
@@ -98,7 +101,7 @@ def main(argv=None):
                     cpu[backend] = s
                 for link in a.links.split(","):
                     summary = work / "afu.json"
-                    clock = ["--clock-mhz", str(a.clock_mhz)] if a.clock_mhz else []
+                    clock = ["--clock-mhz", str(a.clock_mhz)] if a.clock_mhz is not None else []
                     refusal = run([a.collide, "spheres", "--afu", a.afu, "--link", link, *clock, "--in", path, "--out",
                                    work / "afu.csv", "--summary", summary], refusable=True)
                     if refusal:
@@ -113,7 +116,7 @@ def main(argv=None):
                     ode = cpu["ode"]["broad_ns"] + cpu["ode"]["narrow_ns"]
                     grid = cpu["simd"]["broad_ns"] + cpu["simd"]["narrow_ns"]
                     row = {"cloud": kind, "spheres": n, "link": link, "clock_mhz": f["clock_mhz"],
-                           "clock_given": 1 if a.clock_mhz else 0, "candidates": s["candidates"],
+                           "clock_given": 0 if a.clock_mhz is None else 1, "candidates": s["candidates"],
                            "contacts": s["contacts"], "afu_ns": f["modelled_ns"], "link_bound_ns": f["link_bound_ns"],
                            "afu_over_bound": f["modelled_ns"] / f["link_bound_ns"], "runs": f["runs"],
                            "slabs": f["slabs"], "calls": f.get("calls", f["slabs"]),
