@@ -1589,6 +1589,7 @@ module SphereRam_s4096_c24_t2_world(
   input  [511:0] io_write_bits_data,
   input          io_wtable,
                  io_rtable,
+                 io_worldTable,
   input  [11:0]  io_raddr_0_0,
                  io_raddr_0_1,
                  io_raddr_1_0,
@@ -4682,37 +4683,37 @@ module SphereRam_s4096_c24_t2_world(
       word_r_31 <= io_rtable;
       sel_31 <= io_raddr_15_1[1:0];
     end
-    word_r_32 <= io_rtable;
+    word_r_32 <= io_worldTable;
     io_world_0_data_REG <= io_world_0_addr[1:0];
-    word_r_33 <= io_rtable;
+    word_r_33 <= io_worldTable;
     io_world_1_data_REG <= io_world_1_addr[1:0];
-    word_r_34 <= io_rtable;
+    word_r_34 <= io_worldTable;
     io_world_2_data_REG <= io_world_2_addr[1:0];
-    word_r_35 <= io_rtable;
+    word_r_35 <= io_worldTable;
     io_world_3_data_REG <= io_world_3_addr[1:0];
-    word_r_36 <= io_rtable;
+    word_r_36 <= io_worldTable;
     io_world_4_data_REG <= io_world_4_addr[1:0];
-    word_r_37 <= io_rtable;
+    word_r_37 <= io_worldTable;
     io_world_5_data_REG <= io_world_5_addr[1:0];
-    word_r_38 <= io_rtable;
+    word_r_38 <= io_worldTable;
     io_world_6_data_REG <= io_world_6_addr[1:0];
-    word_r_39 <= io_rtable;
+    word_r_39 <= io_worldTable;
     io_world_7_data_REG <= io_world_7_addr[1:0];
-    word_r_40 <= io_rtable;
+    word_r_40 <= io_worldTable;
     io_world_8_data_REG <= io_world_8_addr[1:0];
-    word_r_41 <= io_rtable;
+    word_r_41 <= io_worldTable;
     io_world_9_data_REG <= io_world_9_addr[1:0];
-    word_r_42 <= io_rtable;
+    word_r_42 <= io_worldTable;
     io_world_10_data_REG <= io_world_10_addr[1:0];
-    word_r_43 <= io_rtable;
+    word_r_43 <= io_worldTable;
     io_world_11_data_REG <= io_world_11_addr[1:0];
-    word_r_44 <= io_rtable;
+    word_r_44 <= io_worldTable;
     io_world_12_data_REG <= io_world_12_addr[1:0];
-    word_r_45 <= io_rtable;
+    word_r_45 <= io_worldTable;
     io_world_13_data_REG <= io_world_13_addr[1:0];
-    word_r_46 <= io_rtable;
+    word_r_46 <= io_worldTable;
     io_world_14_data_REG <= io_world_14_addr[1:0];
-    word_r_47 <= io_rtable;
+    word_r_47 <= io_worldTable;
     io_world_15_data_REG <= io_world_15_addr[1:0];
   end // always @(posedge)
   mems_1024x512_world mems_0_ext (
@@ -5165,11 +5166,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_0_16_ext (
     .R0_addr (io_world_1_addr[11:2]),
-    .R0_en   (~io_rtable),
+    .R0_en   (~io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_0_16_ext_R0_data),
     .R1_addr (io_world_0_addr[11:2]),
-    .R1_en   (~io_rtable),
+    .R1_en   (~io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_0_16_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5179,11 +5180,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_1_16_ext (
     .R0_addr (io_world_1_addr[11:2]),
-    .R0_en   (io_rtable),
+    .R0_en   (io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_1_16_ext_R0_data),
     .R1_addr (io_world_0_addr[11:2]),
-    .R1_en   (io_rtable),
+    .R1_en   (io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_1_16_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5193,11 +5194,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_0_17_ext (
     .R0_addr (io_world_3_addr[11:2]),
-    .R0_en   (~io_rtable),
+    .R0_en   (~io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_0_17_ext_R0_data),
     .R1_addr (io_world_2_addr[11:2]),
-    .R1_en   (~io_rtable),
+    .R1_en   (~io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_0_17_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5207,11 +5208,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_1_17_ext (
     .R0_addr (io_world_3_addr[11:2]),
-    .R0_en   (io_rtable),
+    .R0_en   (io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_1_17_ext_R0_data),
     .R1_addr (io_world_2_addr[11:2]),
-    .R1_en   (io_rtable),
+    .R1_en   (io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_1_17_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5221,11 +5222,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_0_18_ext (
     .R0_addr (io_world_5_addr[11:2]),
-    .R0_en   (~io_rtable),
+    .R0_en   (~io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_0_18_ext_R0_data),
     .R1_addr (io_world_4_addr[11:2]),
-    .R1_en   (~io_rtable),
+    .R1_en   (~io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_0_18_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5235,11 +5236,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_1_18_ext (
     .R0_addr (io_world_5_addr[11:2]),
-    .R0_en   (io_rtable),
+    .R0_en   (io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_1_18_ext_R0_data),
     .R1_addr (io_world_4_addr[11:2]),
-    .R1_en   (io_rtable),
+    .R1_en   (io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_1_18_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5249,11 +5250,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_0_19_ext (
     .R0_addr (io_world_7_addr[11:2]),
-    .R0_en   (~io_rtable),
+    .R0_en   (~io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_0_19_ext_R0_data),
     .R1_addr (io_world_6_addr[11:2]),
-    .R1_en   (~io_rtable),
+    .R1_en   (~io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_0_19_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5263,11 +5264,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_1_19_ext (
     .R0_addr (io_world_7_addr[11:2]),
-    .R0_en   (io_rtable),
+    .R0_en   (io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_1_19_ext_R0_data),
     .R1_addr (io_world_6_addr[11:2]),
-    .R1_en   (io_rtable),
+    .R1_en   (io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_1_19_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5277,11 +5278,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_0_20_ext (
     .R0_addr (io_world_9_addr[11:2]),
-    .R0_en   (~io_rtable),
+    .R0_en   (~io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_0_20_ext_R0_data),
     .R1_addr (io_world_8_addr[11:2]),
-    .R1_en   (~io_rtable),
+    .R1_en   (~io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_0_20_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5291,11 +5292,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_1_20_ext (
     .R0_addr (io_world_9_addr[11:2]),
-    .R0_en   (io_rtable),
+    .R0_en   (io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_1_20_ext_R0_data),
     .R1_addr (io_world_8_addr[11:2]),
-    .R1_en   (io_rtable),
+    .R1_en   (io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_1_20_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5305,11 +5306,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_0_21_ext (
     .R0_addr (io_world_11_addr[11:2]),
-    .R0_en   (~io_rtable),
+    .R0_en   (~io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_0_21_ext_R0_data),
     .R1_addr (io_world_10_addr[11:2]),
-    .R1_en   (~io_rtable),
+    .R1_en   (~io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_0_21_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5319,11 +5320,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_1_21_ext (
     .R0_addr (io_world_11_addr[11:2]),
-    .R0_en   (io_rtable),
+    .R0_en   (io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_1_21_ext_R0_data),
     .R1_addr (io_world_10_addr[11:2]),
-    .R1_en   (io_rtable),
+    .R1_en   (io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_1_21_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5333,11 +5334,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_0_22_ext (
     .R0_addr (io_world_13_addr[11:2]),
-    .R0_en   (~io_rtable),
+    .R0_en   (~io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_0_22_ext_R0_data),
     .R1_addr (io_world_12_addr[11:2]),
-    .R1_en   (~io_rtable),
+    .R1_en   (~io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_0_22_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5347,11 +5348,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_1_22_ext (
     .R0_addr (io_world_13_addr[11:2]),
-    .R0_en   (io_rtable),
+    .R0_en   (io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_1_22_ext_R0_data),
     .R1_addr (io_world_12_addr[11:2]),
-    .R1_en   (io_rtable),
+    .R1_en   (io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_1_22_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5361,11 +5362,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_0_23_ext (
     .R0_addr (io_world_15_addr[11:2]),
-    .R0_en   (~io_rtable),
+    .R0_en   (~io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_0_23_ext_R0_data),
     .R1_addr (io_world_14_addr[11:2]),
-    .R1_en   (~io_rtable),
+    .R1_en   (~io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_0_23_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -5375,11 +5376,11 @@ module SphereRam_s4096_c24_t2_world(
   );
   mems_1024x512_world mems_1_23_ext (
     .R0_addr (io_world_15_addr[11:2]),
-    .R0_en   (io_rtable),
+    .R0_en   (io_worldTable),
     .R0_clk  (clock),
     .R0_data (_mems_1_23_ext_R0_data),
     .R1_addr (io_world_14_addr[11:2]),
-    .R1_en   (io_rtable),
+    .R1_en   (io_worldTable),
     .R1_clk  (clock),
     .R1_data (_mems_1_23_ext_R1_data),
     .W0_addr (io_write_bits_line),
@@ -40906,55 +40907,55 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:398 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(_GEN == 16'h0 | dCount[6:2] != 5'h1F)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:459 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
+          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:462 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -53928,7 +53929,9 @@ module Puc_world(
   reg          bpStarted;
   wire         bpStart = run_8[1] & loaded & ~bpStarted;
   wire [12:0]  _GEN_2 = {1'h0, _rd_io_sphereWrite_bits_line, 2'h0};
-  wire         bpDone = bpStarted & ~_bp_io_busy;
+  reg          bpOver;
+  wire         _bpDoneNow_T_1 = bpStarted & ~_bp_io_busy;
+  wire         bpDone = bpOver | _bpDoneNow_T_1;
   wire         worldDone = bpDone & _lines_io_idle;
   wire         _rd_io_pairs_ready_T_1 = ~(run_8[1]) & _disp_io_pairs_ready;
   reg  [24:0]  pairsInFlight;
@@ -53962,7 +53965,7 @@ module Puc_world(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:338 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:373 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -54043,6 +54046,7 @@ module Puc_world(
       cycWaitWr <= 32'h0;
       tableIn <= 1'h0;
       bpStarted <= 1'h0;
+      bpOver <= 1'h0;
       pairsInFlight <= 25'h0;
     end
     else begin
@@ -54123,6 +54127,7 @@ module Puc_world(
         cycTotal <= cycTotal + tick;
       tableIn <= ~_GEN & (loaded | tableIn);
       bpStarted <= ~_GEN & (bpStart | bpStarted);
+      bpOver <= ~_GEN & (_bpDoneNow_T_1 | bpOver);
       pairsInFlight <=
         pairsInFlight + {20'h0, _disp_io_fired ? _disp_io_groups_bits_cnt : 5'h0}
         - {20'h0, _coll_io_nPairs};
@@ -54193,6 +54198,7 @@ module Puc_world(
     .io_write_bits_data (_rd_io_sphereWrite_bits_data),
     .io_wtable          (nextLoading ^ curTable),
     .io_rtable          (curTable),
+    .io_worldTable      (curTable),
     .io_raddr_0_0       (_disp_io_raddr_0_0),
     .io_raddr_0_1       (_disp_io_raddr_0_1),
     .io_raddr_1_0       (_disp_io_raddr_1_0),

@@ -43,6 +43,9 @@ object Generate {
       worldWordLog2: Option[Int] = None,
       scpuImpl: Option[String] = None,
       runQueue: Option[Boolean] = None,
+      worldLineQueue: Option[Int] = None,
+      worldClearBehind: Option[Boolean] = None,
+      startAhead: Option[Boolean] = None,
       listPresets: Boolean = false)
 
   private val builder = scopt.OParser.builder[Opts]
@@ -72,7 +75,7 @@ object Generate {
       opt[Boolean]("world").valueName("true|false").action((v, o) => o.copy(world = Some(v)))
         .text("build world mode (MODE bit 1: the on-chip broad phase, default parameters; at most 4096 spheres)"),
       opt[Int]("world-lanes").valueName("L").action((v, o) => o.copy(worldLanes = Some(v)))
-        .text("the broad phase's candidate generators, 1..16 (world mode only; each adds a copy of its sort RAM, " +
+        .text("the broad phase's candidate generators, 1..32 (world mode only; past 16 they share the pair lines, 16 candidates a cycle; each adds a copy of its sort RAM, " +
           "and every two a copy of the sphere table; the sort's ports follow down to L)"),
       opt[Int]("world-sort-ports").valueName("P").action((v, o) => o.copy(worldSortPorts = Some(v)))
         .text("spheres a cycle in the broad phase's sort passes, 1, 2, 4, 8 or 16, at most the lanes (world mode only; " +
@@ -113,6 +116,15 @@ object Generate {
       opt[Boolean]("run-queue").valueName("true|false").action((v, o) => o.copy(runQueue = Some(v)))
         .text("a run queue: a start during a run queues one more, and a queued world run's table loads into a " +
           "second on-chip sphere table while the current run computes (world mode only; twice the sphere-table RAM)"),
+      opt[Int]("world-line-queue").valueName("Q").action((v, o) => o.copy(worldLineQueue = Some(v)))
+        .text("pair lines of candidates queued between the broad phase and the dispatcher, 2..4096 (world mode only; " +
+          "deeper lets the lanes run on while a burst of contacts holds the SCPUs)"),
+      opt[Boolean]("world-clear-behind").valueName("true|false").action((v, o) => o.copy(worldClearBehind = Some(v)))
+        .text("the sort's counters are cleared behind its scatter while the grid reads the bucket ends from tables of " +
+          "their own (one table of counters more a sort), so the next world's clear costs no cycle (world mode only)"),
+      opt[Boolean]("start-ahead").valueName("true|false").action((v, o) => o.copy(startAhead = Some(v)))
+        .text("a queued world run's broad phase starts once the current run's is over and its table is in, while the " +
+          "current run's last pairs are computed and written (needs the run queue)"),
       opt[String]("scpu-impl").valueName("rtl|model").action((v, o) => o.copy(scpuImpl = Some(v)))
         .text("SCPUs as RTL (default), or for simulation only the C++ SCPU model behind their pipelines " +
           "(same cycles and records, a far faster co-simulation; not synthesizable)"),
@@ -156,7 +168,8 @@ object Generate {
       c9 <- opt("--dense-default", o.dense)((c, v) => step("--dense-default", c.copy(denseByDefault = v)))(c8)
       c10 <- opt("--records", o.records)((c, v) => RecordLayout.parse(v).flatMap(r => step("--records", c.copy(records = Some(r)))))(c9)
       c11 <- opt("--world", o.world)((c, v) => step("--world",
-        c.copy(world = if (v) Some(c.world.getOrElse(BroadPhaseParams.default)) else None, runQueue = v && c.runQueue)))(c10)
+        c.copy(world = if (v) Some(c.world.getOrElse(BroadPhaseParams.default)) else None, runQueue = v && c.runQueue,
+          startAhead = v && c.startAhead, worldLineQueue = if (v) c.worldLineQueue else 2)))(c10)
       c12 <- world("--world-lanes", o.worldLanes)((bp, v) => bp.copy(lanes = v,
         sortPorts = BroadPhaseParams.sortPortChoices.filter(_ <= math.min(bp.sortPorts, v)).max))(c11) // ports follow the lanes down
       c13 <- world("--world-sort-ports", o.worldSortPorts)((bp, v) => bp.copy(sortPorts = v))(c12)
@@ -173,11 +186,14 @@ object Generate {
       c20 <- world("--world-word-log2", o.worldWordLog2)((bp, v) => bp.copy(wordLog2 = v))(c19)
       c21 <- world("--world-box-buckets", o.worldBoxBuckets)((bp, v) => bp.copy(boxBuckets = v))(c20)
       c22 <- opt("--scpu-impl", o.scpuImpl)((c, v) => ScpuImpl.parse(v).flatMap(i => step("--scpu-impl", c.copy(scpuImpl = i))))(c21)
-      c23 <- opt("--run-queue", o.runQueue)((c, v) => step("--run-queue", c.copy(runQueue = v)))(c22)
+      c23 <- opt("--run-queue", o.runQueue)((c, v) => step("--run-queue", c.copy(runQueue = v, startAhead = v && c.startAhead)))(c22)
       c24 <- world("--world-drain-behind", o.worldDrainBehind)((bp, v) => bp.copy(drainBehind = v))(c23)
       c25 <- world("--world-look-ahead", o.worldLookAhead)((bp, v) => bp.copy(lookAhead = v))(c24)
       c26 <- world("--world-scan-pairs", o.worldScanPairs)((bp, v) => bp.copy(scanPairs = v))(c25)
-    } yield c26
+      c27 <- opt("--world-line-queue", o.worldLineQueue)((c, v) => step("--world-line-queue", c.copy(worldLineQueue = v)))(c26)
+      c28 <- opt("--start-ahead", o.startAhead)((c, v) => step("--start-ahead", c.copy(startAhead = v)))(c27)
+      c29 <- world("--world-clear-behind", o.worldClearBehind)((bp, v) => bp.copy(clearBehind = v))(c28)
+    } yield c29
   }
 
   val firtoolOpts: Array[String] = Array(

@@ -27,6 +27,14 @@ import collide.scpu.{ScpuConfig, ScpuImpl}
   *                             more run, and a queued world run's table loads into a second
   *                             on-chip table while the current run computes (docs/afu.md, "The
   *                             run queue"); costs a second copy of every sphere-table RAM
+  * @param worldLineQueue       world mode: pair lines of candidates queued between the broad
+  *                             phase and the dispatcher (2..4096): deeper lets the lanes run on
+  *                             while a burst of contacts holds the SCPUs (docs/afu.md, "Starting
+  *                             ahead")
+  * @param startAhead           with the run queue: a queued world run's broad phase starts as soon
+  *                             as the current run's is over and the queued table is in, while the
+  *                             current run's last pairs are still computed and written; its
+  *                             candidates wait for its own run (docs/afu.md, "Starting ahead")
   * @param scpuImpl             how the SCPUs are built: RTL, or (simulation only) the C++ SCPU
   *                             model behind a pipeline of the SCPU's latency (ScpuModelUnit): the
   *                             same cycles and records, a far cheaper co-simulation
@@ -44,7 +52,9 @@ final case class AfuConfig(
     records: Option[RecordLayout] = None,
     world: Option[collide.world.BroadPhaseParams] = None,
     scpuImpl: ScpuImpl = ScpuImpl.Rtl,
-    runQueue: Boolean = false) {
+    runQueue: Boolean = false,
+    worldLineQueue: Int = 2,
+    startAhead: Boolean = false) {
   require(name.nonEmpty && name.forall(c => c.isLetterOrDigit || c == '-' || c == '_'),
     s"AfuConfig name '$name': must be non-empty letters, digits, '-' or '_'")
   require(scpus >= 1 && scpus <= 64, s"AfuConfig $name: scpus must be 1..64, got $scpus")
@@ -69,6 +79,9 @@ final case class AfuConfig(
     require(records.forall(!_.masked), s"AfuConfig $name: world mode needs an indexed record layout, not ${records.get.name}")
   }
   require(!runQueue || world.isDefined, s"AfuConfig $name: a run queue needs world mode (it loads a queued world run's table)")
+  require(worldLineQueue >= 2 && worldLineQueue <= 4096, s"AfuConfig $name: worldLineQueue must be 2..4096 pair lines, got $worldLineQueue")
+  require(worldLineQueue == 2 || world.isDefined, s"AfuConfig $name: worldLineQueue needs world mode (it queues the broad phase's candidates)")
+  require(!startAhead || runQueue, s"AfuConfig $name: startAhead needs the run queue (it starts the queued world run's broad phase)")
   /** The record layout in effect (bestLayout unless asked for). */
   val recordLayout: RecordLayout = records.getOrElse(AfuConfig.bestLayout(scpu, world.isDefined))
 
@@ -89,7 +102,7 @@ final case class AfuConfig(
         (if (bp.chunk != collide.world.BroadPhaseParams.default.chunk) s"k${bp.chunk}" else "") +
         (if (bp.coarseChunks) "x" else "") + (if (bp.claims) "u" else "") + (if (bp.hitQueue > 0) s"h${bp.hitQueue}" else "") +
         (if (bp.boxBuckets) "bx" else "") + (if (bp.drainBehind) "d" else "") + (if (bp.lookAhead != 3) s"a${bp.lookAhead}" else "") +
-        (if (bp.scanPairs) "sp" else "")).getOrElse("") +
+        (if (bp.scanPairs) "sp" else "") + (if (bp.clearBehind) "cb" else "") + (if (worldLineQueue != 2) s"l$worldLineQueue" else "") + (if (startAhead) "z" else "")).getOrElse("") +
       (if (scpuImpl == ScpuImpl.Model) "_model" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
@@ -98,7 +111,7 @@ final case class AfuConfig(
     scpus = scpus, linkWidth = linkWidth, scpuTagBits = scpu.tagBits, scpuLatency = scpu.latency,
     maxSpheres = maxSpheres, maxReads = maxReadsOutstanding, maxWrites = maxWritesOutstanding,
     tagBits = tagBits, ramPorts = ramPorts, denseByDefault = denseByDefault, records = recordLayout,
-    world = world.map(bp => PucWorld(bp, scpu.params)), tables = if (runQueue) 2 else 1, name = "_" + id)
+    world = world.map(bp => PucWorld(bp, scpu.params, worldLineQueue, startAhead)), tables = if (runQueue) 2 else 1, name = "_" + id)
 
   /** Pairs per cycle the dispatcher can reach (a group never spans two pair lines). */
   def peakPairsPerCycle: Double = {
@@ -113,7 +126,7 @@ final case class AfuConfig(
       s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, link ${scpu.linkFormat.name}, ${recordLayout.name} records " +
       s"(${layout.recordBytes} B, ${layout.recordsPerLine} a line), ${if (denseByDefault) "dense" else "compact"} by default" +
       world.map(bp => s", world mode built (${bp.lanes} candidate lane${if (bp.lanes > 1) "s" else ""}, ${bp.sortPorts} sort port${if (bp.sortPorts > 1) "s" else ""}, broad phase RAM ${bp.ramBits(maxSpheres)} bits)").getOrElse("") +
-      (if (runQueue) ", a run queue (two sphere tables)" else "") +
+      (if (runQueue) ", a run queue (two sphere tables)" + (if (startAhead) ", queued broad phases started ahead" else "") else "") +
       (if (scpuImpl == ScpuImpl.Model) ", SCPUs simulated by the C++ model (not synthesizable)" else "")
 }
 
@@ -155,10 +168,20 @@ object AfuConfig {
       cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true, drainBehind = true, lookAhead = 6, scanPairs = true)),
     runQueue = true)
 
+  /** World mode at twice the lanes: the `world` preset with 32 candidate lanes and its sort's
+    * passes 16 spheres a cycle, 256 candidate lines queued for the dispatcher, the sort's counters
+    * cleared behind its scatter and a queued run's broad phase started ahead. The configuration
+    * of the ideal-link study (docs/afu.md, "Starting ahead"); about twice the `world` preset's
+    * broad-phase logic and three times its sort RAM, so a study of what the target costs, not a
+    * design fitted to one FPGA. */
+  val world32: AfuConfig = world.copy(name = "world32",
+    world = world.world.map(_.copy(lanes = 32, sortPorts = 16, clearBehind = true)),
+    worldLineQueue = 256, startAhead = true)
+
   /** The default AFU for fast co-simulation: its PUC in RTL, its SCPUs the C++ model behind
     * their pipelines (same cycles, same records; docs/afu.md, "A faster co-simulation"). */
   val cosim: AfuConfig = default.copy(name = "cosim", scpuImpl = ScpuImpl.Model)
 
-  val all: Seq[AfuConfig] = Seq(default, cosim, paper, small, fp16, fp16Full, fp16x4, fp64, fp64Full, fp32Nr, big, world)
+  val all: Seq[AfuConfig] = Seq(default, cosim, paper, small, fp16, fp16Full, fp16x4, fp64, fp64Full, fp32Nr, big, world, world32)
   val presets: Map[String, AfuConfig] = all.map(c => c.name -> c).toMap
 }

@@ -33,6 +33,7 @@ object AfuManifest {
             "lanes" -> bp.lanes, "sortPorts" -> bp.sortPorts, "bucketsPerSphereLog2" -> bp.bucketsPerSphereLog2,
             "cellSteps" -> bp.cellSteps, "coarseChunks" -> bp.coarseChunks, "team" -> bp.teamSize, "claims" -> bp.claims, "hitQueue" -> bp.hitQueue, "boxBuckets" -> bp.boxBuckets,
             "drainBehind" -> bp.drainBehind, "lookAhead" -> bp.lookAhead, "scanPairs" -> bp.scanPairs,
+            "clearBehind" -> bp.clearBehind, "lineQueue" -> cfg.worldLineQueue, "startAhead" -> cfg.startAhead,
             "recordPair" -> s"i | j << ${RecordTag.WORLD_INDEX_BITS}")
         }.getOrElse(ujson.Null),
         "ram" -> ujson.Obj("copies" -> p.ramCopies, "banks" -> p.banks, "bitsPerCopy" -> p.ramBitsPerCopy.toDouble,

@@ -137,6 +137,7 @@ class Puc(p: PucParams) extends Module {
   ram.io.write  := rd.io.sphereWrite
   ram.io.wtable := Mux(nextLoading, ~curTable, curTable)
   ram.io.rtable := curTable
+  ram.io.worldTable := curTable
 
   // The current run's table is in; latched, as the read engine may move on to the next run's.
   val tableIn = RegInit(false.B)
@@ -155,9 +156,14 @@ class Puc(p: PucParams) extends Module {
   // ---- world mode: the broad phase starts once the table is loaded; its candidates, in
   // lines, take the pair lines' place at the dispatcher.
   val bpStarted = RegInit(false.B)
+  /** startAhead: the queued world run's broad phase is started, ahead of its run (its candidates
+    * wait for it); at that run's check it is the run's own, already started. */
+  val aheadStarted = RegInit(false.B)
+  val aheadGo = WireDefault(false.B)
   val bpStart = world && loaded && !bpStarted
   when(bpStart) { bpStarted := true.B }
-  when(state === sCheck) { bpStarted := false.B }
+  when(aheadGo) { aheadStarted := true.B }
+  when(state === sCheck) { bpStarted := aheadStarted; aheadStarted := false.B }
   val worldLine    = Wire(Decoupled(new PairLine(p.pairLineBits)))
   val worldEmitted = WireDefault(0.U((lay.pairIndexBits + 1).W)) // candidates handed to the dispatcher
   val worldDone    = WireDefault(false.B) // the broad phase is over and every candidate handed on
@@ -177,9 +183,9 @@ class Puc(p: PucParams) extends Module {
       bp.io.begin := (loadStart && world) || prefetchGo // ignored without feed ports
       bpTakesAhead := !bp.beginsAhead.B || bp.io.canBegin
       bpQuiet := bp.io.quiet
-      bp.io.start := bpStart
+      bp.io.start := bpStart || aheadGo
       // <= maxSpheres: checked at sCheck, and for the queued run before its prefetch
-      bp.io.num   := Mux(prefetchGo, next(Csr.NUM_SPHERES), numSpheres)(bp.io.countW - 1, 0)
+      bp.io.num   := Mux(prefetchGo || aheadGo, next(Csr.NUM_SPHERES), numSpheres)(bp.io.countW - 1, 0)
       val wr = rd.io.sphereWrite
       val feedNum = Mux(nextLoading, next(Csr.NUM_SPHERES), numSpheres)
       for ((f, s) <- bp.io.feed.zipWithIndex) {
@@ -194,17 +200,46 @@ class Puc(p: PucParams) extends Module {
         port.addr := lane.addr
         lane.data := port.data.fields
       }
-      val lines = Module(new WorldPairLines(p, bp.io.itemW, w.bp.lanes))
+      val lines = Module(new WorldPairLines(p, bp.io.itemW, w.bp.lanes, w.lineQueue))
       lines.io.start := runStart
-      lines.io.in <> bp.io.pairs
-      val bpDone = bpStarted && !bp.io.busy
+      // A broad phase started ahead holds its candidates until its run is the current one.
+      for ((in, out) <- lines.io.in.zip(bp.io.pairs)) {
+        in.valid := out.valid && !aheadStarted
+        in.bits := out.bits
+        out.ready := in.ready && !aheadStarted
+      }
+      // This run's broad phase is over; latched, as with startAhead it may go on to the queued world.
+      val bpOver = RegInit(false.B)
+      val bpDoneNow = bpStarted && !bp.io.busy && !aheadStarted
+      when(bpDoneNow) { bpOver := true.B }
+      when(state === sCheck) { bpOver := false.B }
+      val bpDone = bpOver || bpDoneNow
       lines.io.done := bpDone
       worldLine <> lines.io.out
       worldEmitted := lines.io.emitted
       worldDone := bpDone && lines.io.idle
       val st = bp.io.status
-      cycBroad := st.cycTotal; cellLevel := st.level.pad(32).asUInt; largeSpheres := st.large.pad(32)
-      worldCheck := st.tooMany || st.cellOverflow || st.largeOverflow || st.badBucket || st.sortMismatch
+      val check = st.tooMany || st.cellOverflow || st.largeOverflow || st.badBucket || st.sortMismatch
+      if (w.startAhead) {
+        // Start the queued world once this run's broad phase is over and the queued table is in;
+        // the broad phase's copies then read that table while the SCPUs finish this run's.
+        aheadGo := world && nextLoading && rd.io.loaded && bpDone && !aheadStarted
+        val bpTable = RegInit(0.U(1.W))
+        when(aheadGo) { bpTable := ~curTable }.elsewhen(bpStart) { bpTable := curTable }
+        ram.io.worldTable := bpTable
+        // This run's broad-phase status, kept once the queued world's start clears it.
+        val kept = Reg(new Bundle { val cyc = UInt(32.W); val level = UInt(32.W); val large = UInt(32.W); val check = Bool() })
+        when(!aheadStarted) {
+          kept.cyc := st.cycTotal; kept.level := st.level.pad(32).asUInt; kept.large := st.large.pad(32); kept.check := check
+        }
+        cycBroad := Mux(aheadStarted, kept.cyc, st.cycTotal)
+        cellLevel := Mux(aheadStarted, kept.level, st.level.pad(32).asUInt)
+        largeSpheres := Mux(aheadStarted, kept.large, st.large.pad(32))
+        worldCheck := Mux(aheadStarted, kept.check, check)
+      } else {
+        cycBroad := st.cycTotal; cellLevel := st.level.pad(32).asUInt; largeSpheres := st.large.pad(32)
+        worldCheck := check
+      }
     case None =>
       worldLine.valid := false.B; worldLine.bits := DontCare
   }
@@ -328,7 +363,7 @@ class Puc(p: PucParams) extends Module {
   // waits on a response (sRun, sDrain: packer empty; sStatus: no free write tag; sStatusWait).
   val noRequest = !io.link.rdReq.valid && !io.link.wrReq.valid
   val quietRun  = !disp.io.fired && !rd.io.pairs.fire && pairsInFlight === 0.U && !worldActive
-  io.idle := noRequest && !prefetchGo && bpQuiet && MuxLookup(state, false.B)(Seq(
+  io.idle := noRequest && !prefetchGo && !aheadGo && bpQuiet && MuxLookup(state, false.B)(Seq(
     sIdle       -> true.B,
     sRun        -> (quietRun && !runDone),
     sDrain      -> (quietRun && pack.io.idle && !drainDone),

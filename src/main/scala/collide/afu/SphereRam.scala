@@ -48,6 +48,9 @@ class SphereRam(p: PucParams) extends Module {
       * in use: the PUC loads a queued run's table only into the table not read). */
     val wtable = Input(UInt(1.W))
     val rtable = Input(UInt(1.W))
+    /** The table the broad phase's copies read: rtable, except while a queued world's broad
+      * phase starts ahead on the table just loaded as the SCPUs finish the current run's. */
+    val worldTable = Input(UInt(1.W))
     /** Per SCPU, two reads (sphere i, sphere j); data the next cycle. */
     val raddr = Input(Vec(p.scpus, Vec(2, UInt(idxBits.W))))
     val ren   = Input(Vec(p.scpus, Bool()))
@@ -69,9 +72,9 @@ class SphereRam(p: PucParams) extends Module {
     private def mine(sel: UInt, t: Int): Bool = if (p.tables == 1) true.B else sel === t.U
     def write(row: UInt, data: UInt, en: Bool): Unit =
       for ((m, t) <- mems.zipWithIndex) when(en && mine(io.wtable, t)) { m.write(at(row), data) }
-    def read(row: UInt, en: Bool): UInt = {
-      val words = mems.zipWithIndex.map { case (m, t) => m.read(at(row), en && mine(io.rtable, t)) }
-      if (p.tables == 1) words.head else Mux(RegEnable(io.rtable, en) === 1.U, words(1), words(0))
+    def read(row: UInt, en: Bool, table: UInt = io.rtable): UInt = {
+      val words = mems.zipWithIndex.map { case (m, t) => m.read(at(row), en && mine(table, t)) }
+      if (p.tables == 1) words.head else Mux(RegEnable(table, en) === 1.U, words(1), words(0))
     }
   }
   p.ramPorts match {
@@ -124,7 +127,7 @@ class SphereRam(p: PucParams) extends Module {
     val mem = new Tables(depth, Link.lineBits)
     mem.write(io.write.bits.line, io.write.bits.data, io.write.valid)
     for (w <- pair) {
-      val word = mem.read(w.addr(idxBits - 1, log2Ceil(spl)), true.B)
+      val word = mem.read(w.addr(idxBits - 1, log2Ceil(spl)), true.B, io.worldTable)
       w.data := unpack(word, RegNext(w.addr(log2Ceil(spl) - 1, 0)))
     }
   }

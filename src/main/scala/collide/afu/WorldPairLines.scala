@@ -8,15 +8,20 @@ import collide.world.WorldPair
   * into pair lines for the dispatcher, exactly as the host lays out a pair list (u16 i, u16 j;
   * pair k of line l is candidate 16 l + k; the lanes' pairs of one cycle in lane order). A
   * lane's pair is taken when its slot is in the line: the rest wait a cycle, for the next
-  * line (lanes <= 16, so every waiting pair fits the next one). A line leaves when full, or
+  * line (up to 16 lanes every waiting pair fits the next one; with 32, lanes past the next
+  * line's room wait again, the lower lanes first). A line leaves when full, or
   * part-full once `done` says no candidate will follow. `emitted` counts the candidates in lines handed out; the dispatcher takes it
   * as the run's pair count, so a line's pairs are min(16, emitted - its first), which is the
-  * line's own count (a part-full line is the last). Unused slots are zero.
+  * line's own count (a part-full line is the last). Unused slots are zero. Up to `queue` lines
+  * wait for the dispatcher (2 by default): a deeper queue lets the lanes run on while a burst of
+  * contacts holds the SCPUs' results at the collector (docs/afu.md, "Starting ahead").
   */
-class WorldPairLines(p: PucParams, itemW: Int, lanes: Int = 1) extends Module {
-  override def desiredName = s"WorldPairLines_i${itemW}" + (if (lanes > 1) s"_l$lanes" else "") + p.name
+class WorldPairLines(p: PucParams, itemW: Int, lanes: Int = 1, queue: Int = 2) extends Module {
+  override def desiredName = s"WorldPairLines_i${itemW}" + (if (lanes > 1) s"_l$lanes" else "") +
+    (if (queue != 2) s"_q$queue" else "") + p.name
   private val ppl = p.layout.pairsPerLine
-  require(lanes >= 1 && lanes <= ppl, s"WorldPairLines: lanes must be 1..$ppl (a line's pairs), got $lanes")
+  require(lanes >= 1 && lanes <= 2 * ppl, s"WorldPairLines: lanes must be 1..${2 * ppl} (two lines' pairs), got $lanes")
+  require(queue >= 2 && queue <= 4096, s"WorldPairLines: queue must be 2..4096 lines, got $queue")
   val io = IO(new Bundle {
     val start   = Input(Bool()) // a new run: counters to zero (nothing may be held)
     val in      = Vec(lanes, Flipped(Decoupled(new WorldPair(itemW))))
@@ -30,8 +35,8 @@ class WorldPairLines(p: PucParams, itemW: Int, lanes: Int = 1) extends Module {
   private val cnt     = RegInit(0.U(log2Ceil(ppl + 1).W))
   private val line    = RegInit(0.U(p.pairLineBits.W))
   private val emitted = RegInit(0.U((p.layout.pairIndexBits + 1).W))
-  private val q = Module(new Queue(new PairLine(p.pairLineBits), 2) {
-    override def desiredName = s"WorldLineQueue${p.name}"
+  private val q = Module(new Queue(new PairLine(p.pairLineBits), queue) {
+    override def desiredName = "WorldLineQueue" + (if (queue != 2) s"_d$queue" else "") + p.name
   })
 
   private val full = cnt === ppl.U

@@ -97,7 +97,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "") +
       (if (bp.bucketsPerSphereLog2 != BroadPhaseParams.default.bucketsPerSphereLog2) s"_s${bp.bucketsPerSphereLog2}" else "") +
       (if (bp.cellSteps != BroadPhaseParams.default.cellSteps) s"_e${bp.cellSteps}" else "") + (if (bp.coarseChunks) "_x" else "") +
-      (if (feedWidth > 0) s"_t$feedWidth" else "") + (if (bp.boxBuckets) "_bx" else "")
+      (if (feedWidth > 0) s"_t$feedWidth" else "") + (if (bp.boxBuckets) "_bx" else "") + (if (bp.clearBehind) "_cb" else "")
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres, feedWidth))
   private val itemW = io.itemW
   private val countW = io.countW
@@ -114,7 +114,9 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
   // One copy of the sorted table per lane: each lane looks up and marks its own. With two
   // groups, group g sorts the g-th half of the table, each with its own counters and entries.
   private val sorts = Seq.fill(groups)(Module(new BucketSort(bp.groupCapacity(maxSpheres), tableLog2, bp.wordLog2, bp.lanes,
-    bp.portsPerSort, if (groups > 1) itemW else 0)))
+    bp.portsPerSort, if (groups > 1) itemW else 0, bp.clearBehind)))
+  /** The scatter is over: with clearBehind the sorts clear their cursors during the grid. */
+  private val scatterOver = WireDefault(false.B)
   private val sortBusy = sorts.map(_.io.busy).reduce(_ || _)
   private val gens = Seq.tabulate(bp.lanes) { l =>
     val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
@@ -387,6 +389,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     sort.io.walkBuckets := walkBuckets
     sort.io.clear := clearWorld
     sort.io.prefix := state === S.prefix && !sent
+    sort.io.scrub.foreach(_ := scatterOver)
   }
   // Port q is port q % portsPerSort of group q / portsPerSort's sort.
   private val sortIns = sorts.flatMap(_.io.in)
@@ -556,7 +559,7 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       advance()
       // The last scatter write lands the cycle after its request: one cycle of margin.
       when(passDone && !RegNext(sortIns.map(_.fire).reduce(_ || _), false.B)) {
-        state := S.generate; sent := false.B
+        state := S.generate; sent := false.B; scatterOver := true.B
       }
     }
     is(S.generate) {

@@ -84,6 +84,10 @@ package collide.world
   *                   scan loads them (any two spheres of a coarse cell are in neighbouring
   *                   cells), so its own 8 cells are not visited: 35 visits instead of 43, and
   *                   its members stream once, not twice (docs/afu.md, "Pairs in the scan")
+  * @param clearBehind the sort's counters are cleared behind its scatter, while the grid reads
+  *                   the bucket ends from tables of their own (one table of counters more a
+  *                   sort), so the next world's clear costs no cycle after the grid (docs/afu.md,
+  *                   "Starting ahead")
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -106,7 +110,8 @@ final case class BroadPhaseParams(
     boxBuckets: Boolean = false,
     drainBehind: Boolean = false,
     lookAhead: Int = 3,
-    scanPairs: Boolean = false
+    scanPairs: Boolean = false,
+    clearBehind: Boolean = false
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -116,7 +121,7 @@ final case class BroadPhaseParams(
   require(filterFracBits >= 0 && filterFracBits <= 24, s"filterFracBits must be 0..24, got $filterFracBits")
   require(chunk >= 1 && chunk <= 256, s"chunk must be 1..256, got $chunk")
   require(wordLog2 >= 0 && wordLog2 <= 5, s"wordLog2 must be 0..5, got $wordLog2")
-  require(lanes >= 1 && lanes <= 16, s"lanes must be 1..16 (a pair line holds 16 candidates a cycle), got $lanes")
+  require(lanes >= 1 && lanes <= 32, s"lanes must be 1..32 (twice the 16 candidates a pair line holds: past 16, lanes wait their turn for a line), got $lanes")
 
   require(BroadPhaseParams.sortPortChoices.contains(sortPorts),
     s"sortPorts must be 1, 2, 4, 8 or 16 (a block RAM's two ports, or two, four or eight sorts of two), got $sortPorts")
@@ -143,14 +148,14 @@ final case class BroadPhaseParams(
     math.min(bucketsLog2, math.max(1, chisel3.util.log2Ceil(maxSpheres.toLong << bucketsPerSphereLog2)))
   /** RAM bits of the broad phase for `maxSpheres`: the sort's counters (one per bucket) and its
     * entries (a sphere index and a mark each), once per lane, and a table of counters more
-    * per sort port past the first. The sphere table it reads is the AFU's (which holds
+    * per sort port past the first (and one more a sort with clearBehind). The sphere table it reads is the AFU's (which holds
     * ceil(lanes / 2) more copies for it: two lanes share a copy's two ports). */
   def ramBits(maxSpheres: Int): Long = {
     val cap = groupCapacity(maxSpheres)
     val countW = chisel3.util.log2Ceil(cap + 1)
     val itemW = chisel3.util.log2Ceil(maxSpheres)
     val counters = (1L << tableLog2(maxSpheres)) * countW
-    sortGroups * ((lanes + portsPerSort - 1) * counters + lanes * cap.toLong * (itemW + 1))
+    sortGroups * ((lanes + portsPerSort - 1 + (if (clearBehind) 1 else 0)) * counters + lanes * cap.toLong * (itemW + 1))
   }
   /** Sorts the passes use: one, or with four, eight or 16 ports two, four or eight of two ports, group g
     * sorting the g-th half, quarter or eighth of the table (block RAM has two ports; the generators read

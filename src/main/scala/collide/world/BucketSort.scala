@@ -40,7 +40,8 @@ import collide.util.Prefix
   * counted === scattered); a bucket at or above the used range is refused and latched in
   * badBucket, never written.
   */
-class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int, copies: Int, ports: Int, itemBits: Int) extends Bundle {
+class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int, copies: Int, ports: Int, itemBits: Int,
+                   clearBehind: Boolean = false) extends Bundle {
   /** Width of an item (what an entry holds) and of a position in the entries (maxItems deep). */
   val itemW = if (itemBits > 0) itemBits else log2Ceil(maxItems)
   val posW = log2Ceil(maxItems)
@@ -52,6 +53,9 @@ class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int, copies: In
   val walkBuckets = Input(UInt((bucketsLog2 + 1).W))
   val clear = Input(Bool())  // pulse: start clearing
   val prefix = Input(Bool()) // pulse: start the prefix sum
+  /** clearBehind: pulse once the scatter is over (its last write landed): the cursors are
+    * cleared behind it, while the lookups serve the world, so the next world's clear is done. */
+  val scrub = if (clearBehind) Some(Input(Bool())) else None
   val busy = Output(Bool())  // clearing or summing; in is not ready meanwhile
   val in = Vec(ports, Flipped(Decoupled(new Bundle {
     val scatter = Bool() // false: count this item's bucket; true: place the item
@@ -80,18 +84,19 @@ class BucketSortIO(maxItems: Int, bucketsLog2: Int, val perWord: Int, copies: In
   val badBucket = Output(Bool())
 }
 
-class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int = 1, ports: Int = 1, itemBits: Int = 0)
-    extends Module {
+class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int = 1, ports: Int = 1, itemBits: Int = 0,
+                 clearBehind: Boolean = false) extends Module {
   require(itemBits == 0 || itemBits >= log2Ceil(maxItems), s"itemBits $itemBits cannot name $maxItems items")
   require(maxItems >= 2 && bucketsLog2 >= 1 && bucketsLog2 <= 24)
   require(wordLog2 >= 0 && wordLog2 <= 5, s"wordLog2 must be 0..5, got $wordLog2")
-  require(copies >= 1 && copies <= 16, s"copies must be 1..16, got $copies")
+  require(copies >= 1 && copies <= 32, s"copies must be 1..32 (one a lane), got $copies")
   require(ports == 1 || ports == 2, s"ports must be 1 or 2 (a block RAM's two write ports), got $ports")
   private val wl = math.min(wordLog2, bucketsLog2)
   override def desiredName = s"BucketSort_n${maxItems}_b${bucketsLog2}_w$wl" +
-    (if (copies > 1) s"_c$copies" else "") + (if (ports > 1) s"_p$ports" else "") + (if (itemBits > 0) s"_i$itemBits" else "")
+    (if (copies > 1) s"_c$copies" else "") + (if (ports > 1) s"_p$ports" else "") + (if (itemBits > 0) s"_i$itemBits" else "") +
+    (if (clearBehind) "_cb" else "")
   private val perWord = 1 << wl
-  val io = IO(new BucketSortIO(maxItems, bucketsLog2, perWord, copies, ports, itemBits))
+  val io = IO(new BucketSortIO(maxItems, bucketsLog2, perWord, copies, ports, itemBits, clearBehind))
   private val wordsLog2 = bucketsLog2 - wl
   private val countW = io.countW
   private val itemW = io.itemW
@@ -106,10 +111,12 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
   // A word is a flat UInt (counter l in bits l*countW up): the generator's Verilog has no
   // packed arrays, and a Mux of whole Vecs would need them.
   private def counterTable() = SyncReadMem(1 << wordsLog2, UInt((perWord * countW).W), SyncReadMem.ReadFirst)
-  /** The lookup tables, one per copy; tables(0) is also the last port's cursors. */
+  /** The lookup tables, one per copy; tables(0) is also the last port's cursors, except with
+    * clearBehind, where the cursors are apart from every lookup table (one table more), so
+    * that they can be cleared while the lookups serve the world. */
   private val tables = Seq.fill(copies)(counterTable())
-  /** Each port's cursors: a table of its own, but for the last port, copy 0's. */
-  private val cursors = Seq.fill(ports - 1)(counterTable()) :+ tables.head
+  /** Each port's cursors: a table of its own, but for the last port, copy 0's (clearBehind: its own). */
+  private val cursors = if (clearBehind) Seq.fill(ports)(counterTable()) else Seq.fill(ports - 1)(counterTable()) :+ tables.head
   private val entries = Seq.fill(copies)(SyncReadMem(maxItems, UInt((itemW + 1).W))) // mark ## item
 
   private object S extends ChiselEnum { val idle, clearing, summing = Value }
@@ -118,6 +125,11 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
   private val used = (1.U((bucketsLog2 + 1).W) << io.usedLog2)(bucketsLog2, 0)
   // Words holding used buckets (a world of one bucket still has a word), and those the prefix sum covers.
   private val usedWords = BucketSort.spans(used, wl)
+  /** The words a clearing pass covers: the world's used ones; with clearBehind, the last world's
+    * (behind its scatter), or every word while the cursors may hold anything (after reset). */
+  private val clearTo = Reg(UInt((wordsLog2 + 1).W))
+  /** clearBehind: every cursor is zero (a clear has nothing to do). */
+  private val clean = RegInit(false.B)
   private val sumWords = BucketSort.spans(io.walkBuckets, wl)
   private val counted = RegInit(0.U(countW.W))
   private val scattered = RegInit(0.U(countW.W))
@@ -148,14 +160,28 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
   private val countFires = Wire(Vec(ports, Bool()))
   counted := counted + PopCount(countFires) // (a clear, below, wins)
   scattered := scattered + PopCount(place.map(_.valid))
-  when(io.clear && state === S.idle) {
-    state := S.clearing; walk := 0.U; counted := 0.U; scattered := 0.U; bad := false.B
-  }.elsewhen(io.prefix && state === S.idle) {
-    state := S.summing; walk := 0.U; sum := 0.U
+  if (!clearBehind) {
+    when(io.clear && state === S.idle) {
+      state := S.clearing; walk := 0.U; counted := 0.U; scattered := 0.U; bad := false.B
+    }.elsewhen(io.prefix && state === S.idle) {
+      state := S.summing; walk := 0.U; sum := 0.U
+    }
+  } else {
+    // A clear finds the cursors clean (cleared behind the last scatter), being cleared behind it
+    // (busy until that is done), or, after reset, holding anything: then every word is cleared.
+    when(io.clear) { counted := 0.U; scattered := 0.U; bad := false.B }
+    when(io.clear && state === S.idle && !clean) {
+      state := S.clearing; walk := 0.U; clearTo := (1 << wordsLog2).U
+    }.elsewhen(io.scrub.get && state === S.idle) {
+      state := S.clearing; walk := 0.U; clearTo := usedWords; clean := false.B
+    }.elsewhen(io.prefix && state === S.idle) {
+      state := S.summing; walk := 0.U; sum := 0.U; clean := false.B
+    }
+    when(countFires.asUInt.orR) { clean := false.B }
   }
   when(state === S.clearing) {
     walk := walk + 1.U
-    when(walk + 1.U === usedWords) { state := S.idle }
+    when(walk + 1.U === (if (clearBehind) clearTo else usedWords)) { state := S.idle; clean := true.B }
   }
   when(state === S.summing && walk < sumWords) { walk := walk + 1.U }
   when(sumS1) {
@@ -164,7 +190,7 @@ class BucketSort(maxItems: Int, bucketsLog2: Int, wordLog2: Int = 3, copies: Int
   }
   // Copies 1 and up hold the ends from the prefix sum on; nothing else writes them.
   private val ends = flat(inc.tail)
-  for (t <- tables.tail) when(sumS1) { t.write(sumW, ends) }
+  for (t <- if (clearBehind) tables else tables.tail) when(sumS1) { t.write(sumW, ends) }
 
   // --- count / scatter: a two-stage read-modify-write of one counter per port --------------
   io.in.foreach(_.ready := state === S.idle && !io.clear && !io.prefix)

@@ -101,6 +101,22 @@ class GenerateSpec extends AnyFlatSpec {
     val mq = AfuManifest.json(AfuConfig.world, "")("afu")
     assert(mq("runQueue").bool && mq("sphereTables").num == 2 && !AfuManifest.json(nq, "")("afu")("runQueue").bool)
     assert(!cfg("--preset", "world", "--world", "false").toOption.get.runQueue, "no world mode, no run queue")
+    // Starting queued broad phases ahead and a deeper line queue: names of their own, in the
+    // manifest; 32 lanes (past a line's 16 candidates) are built.
+    val sa = cfg("--preset", "world", "--world-lanes", "32", "--world-sort-ports", "16", "--world-line-queue", "64", "--start-ahead", "true").toOption.get
+    assert(sa.startAhead && sa.worldLineQueue == 64 && sa.world.get.lanes == 32 && sa.id.endsWith("_world32p16w5e2k32xuh8bxda6spl64z"), sa.id)
+    assert(sa.puc.world.get.startAhead && sa.puc.world.get.lineQueue == 64)
+    val ms = AfuManifest.json(sa, "")("afu")("broadPhase")
+    assert(ms("startAhead").bool && ms("lineQueue").num == 64 && ms("lanes").num == 32)
+    // The world32 preset is the world preset with exactly these flags.
+    val w32 = cfg("--preset", "world", "--world-lanes", "32", "--world-sort-ports", "16", "--world-line-queue", "256",
+      "--start-ahead", "true", "--world-clear-behind", "true").toOption.get
+    assert(w32.copy(name = "world32") == AfuConfig.world32 && cfg("--preset", "world32").toOption.get.id == "world32")
+    assert(AfuConfig.world32.puc.ramCopies == 16 + 16, "sixteen SCPU copies and the 32 lanes' sixteen")
+    // Counters cleared behind the scatter: one table of counters more a sort, a name of its own.
+    val cb = cfg("--preset", "world", "--world-clear-behind", "true").toOption.get
+    assert(cb.id.endsWith("_world16p8w5e2k32xuh8bxda6spcb") && AfuManifest.json(cb, "")("afu")("broadPhase")("clearBehind").bool, cb.id)
+    assert(cb.world.get.ramBits(4096) - pw.ramBits(4096) == 4L * 8192 * 11, "a table of 2^13 11-bit counters more in each of the four sorts")
   }
 
   it should "refuse a configuration that cannot be built, naming the flag and the problem" in {
@@ -117,6 +133,9 @@ class GenerateSpec extends AnyFlatSpec {
     err("--world-hit-queue", "4")("--world-hit-queue", "world mode is not built")
     err("--world-box-buckets", "true")("--world-box-buckets", "world mode is not built")
     err("--run-queue", "true")("--run-queue", "needs world mode")
+    err("--preset", "world", "--run-queue", "false", "--start-ahead", "true")("--start-ahead", "needs the run queue")
+    err("--preset", "world", "--world-line-queue", "1")("--world-line-queue", "2..4096")
+    err("--world-line-queue", "8")("--world-line-queue", "needs world mode")
     err("--scpus", "65")("--scpus", "1..64")
     err("--max-spheres", "1000")("--max-spheres", "power of two")
     err("--max-reads", "65")("--max-reads", "2^tagBits")
@@ -132,7 +151,7 @@ class GenerateSpec extends AnyFlatSpec {
     err("--world", "true", "--records", "derived-masked")("--world", "indexed")
     err("--world", "true", "--format", "fp24")("--world", "converts")
     err("--world-lanes", "4")("--world-lanes", "not built")
-    err("--preset", "world", "--world-lanes", "17")("--world-lanes", "1..16")
+    err("--preset", "world", "--world-lanes", "33")("--world-lanes", "1..32")
     err("--world-sort-ports", "2")("--world-sort-ports", "not built")
     err("--preset", "world", "--world-sort-ports", "3")("--world-sort-ports", "1, 2, 4, 8 or 16")
     err("--world", "true", "--world-sort-ports", "2")("--world-sort-ports", "at most lanes")

@@ -73,6 +73,7 @@ object BroadPhaseCycleReport {
     var drainBehind = BroadPhaseParams.default.drainBehind
     var lookAhead = BroadPhaseParams.default.lookAhead
     var scanPairs = BroadPhaseParams.default.scanPairs
+    var clearBehind = BroadPhaseParams.default.clearBehind
     args.sliding(2, 2).foreach {
       case Array("--sizes", v) => sizes = v.split(',').map(_.trim.toInt).toSeq
       case Array("--max", v)   => maxSpheres = v.toInt
@@ -91,13 +92,14 @@ object BroadPhaseCycleReport {
       case Array("--hit-queue", v) => hitQueue = v.trim.toInt
       case Array("--box-buckets", v) => boxBuckets = v.trim.toBoolean
       case Array("--drain-behind", v) => drainBehind = v.trim.toBoolean
+      case Array("--clear-behind", v) => clearBehind = v.trim.toBoolean
       case Array("--look-ahead", v) => lookAhead = v.trim.toInt
       case Array("--scan-pairs", v) => scanPairs = v.trim.toBoolean
-      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --cell-steps, --chunk, --coarse-chunks, --team, --claims, --hit-queue, --box-buckets, --drain-behind, --look-ahead, --scan-pairs, --feed, --out)")
+      case a => throw new IllegalArgumentException(s"unknown option ${a.mkString(" ")} (expected --sizes, --max, --spheres, --lanes, --sort-ports, --word-log2, --buckets-per-sphere-log2, --cell-steps, --chunk, --coarse-chunks, --team, --claims, --hit-queue, --box-buckets, --drain-behind, --look-ahead, --scan-pairs, --clear-behind, --feed, --out)")
     }
     require(feed >= 0 && lanes.forall(feed <= _), s"--feed (spheres fed a cycle as the table arrives, the AFU's spheres a line) must be 0..the lanes, got $feed")
     require(sizes.forall(n => n >= 1 && n <= maxSpheres), s"--sizes must be 1..--max ($maxSpheres)")
-    require(lanes.nonEmpty && lanes.forall(l => l >= 1 && l <= 16), s"--lanes must be 1..16, got ${lanes.mkString(",")}")
+    require(lanes.nonEmpty && lanes.forall(l => l >= 1 && l <= 32), s"--lanes must be 1..32, got ${lanes.mkString(",")}")
     require(ports.nonEmpty && ports.forall(BroadPhaseParams.sortPortChoices.contains), s"--sort-ports must be among ${BroadPhaseParams.sortPortChoices.mkString(",")}, got ${ports.mkString(",")}")
     val cfg = ScpuConfig.fp32
     val rng = new scala.util.Random(1)
@@ -111,7 +113,7 @@ object BroadPhaseCycleReport {
     val rows = scala.collection.mutable.ArrayBuffer(header)
     for (l <- lanes; q <- ports if q <= l) {
       val model = new BroadPhaseModel(cfg, BroadPhaseParams.default.copy(lanes = l, sortPorts = q, wordLog2 = wordLog2,
-        bucketsPerSphereLog2 = bpsLog2, cellSteps = cellSteps, chunk = chunk, coarseChunks = coarse, team = team, claims = claims, hitQueue = hitQueue, boxBuckets = boxBuckets, drainBehind = drainBehind, lookAhead = lookAhead, scanPairs = scanPairs))
+        bucketsPerSphereLog2 = bpsLog2, cellSteps = cellSteps, chunk = chunk, coarseChunks = coarse, team = team, claims = claims, hitQueue = hitQueue, boxBuckets = boxBuckets, drainBehind = drainBehind, lookAhead = lookAhead, scanPairs = scanPairs, clearBehind = clearBehind))
       RawTester.test(new BroadPhase(cfg.params, model.bp, maxSpheres, feedWidth = feed), Seq(VerilatorBackendAnnotation, VerilatorCFlags(Seq("-O1")))) { dut =>
         dut.clock.setTimeout(0)
         for ((name, ws) <- worlds) {

@@ -169,6 +169,10 @@ class BroadPhaseSpec extends AnyFlatSpec with ChiselScalatestTester {
   }
 
   // Four ports run in every default run with coarse chunks (below, and the fed table's case).
+  it should "find the same candidates with the sort's counters cleared behind each scatter while the grid reads its own tables of ends (no clear between worlds after the first), in every hard case and random cloud" in {
+    everyHardCase("BroadPhaseSpec-clear-behind", BroadPhaseParams.fourLanesTwoPorts.copy(clearBehind = true), "cleared behind: ")
+  }
+
   it should "find the same candidates with the sort's passes four spheres a cycle (two sorts, each of half the table, read one after the other), in every hard case and random cloud" taggedAs (Slow) in {
     everyHardCase("BroadPhaseSpec-four-ports", BroadPhaseParams.fourLanesFourPorts, "four sort ports: ")
   }

@@ -43,15 +43,27 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
   }
 
   /** `walk`: the buckets the prefix sum covers (all in use by default); the lookups below it are checked. */
+  /** With clearBehind (`dut.io.scrub`), the cursors are cleared behind the scatter while the
+    * lookups, entries and marks below are checked; `hurry`: the next world's clear is asked
+    * while that clearing may still run (it must wait for it), else once it is over (it must
+    * then cost no cycle). Returns the cycles the clear kept the sort busy. */
   private def sortWorld(dut: BucketSort, rng: scala.util.Random, label: String, items: Seq[(Int, Int)], usedLog2: Int,
-                        walk: Option[Int] = None): Unit = {
+                        walk: Option[Int] = None, hurry: Boolean = false): Int = {
     val walked = walk.getOrElse(1 << usedLog2)
     dut.io.usedLog2.poke(usedLog2.U)
     dut.io.walkBuckets.poke(walked.U)
-    pulse(dut, dut.io.clear)
+    dut.io.clear.poke(true.B); dut.clock.step(); dut.io.clear.poke(false.B)
+    var clearBusy = 0
+    while (dut.io.busy.peek().litToBoolean) { dut.clock.step(); clearBusy += 1; assert(clearBusy < 10000, "busy forever") }
+    dut.clock.step()
     stream(dut, rng, items, scatter = false)
     pulse(dut, dut.io.prefix)
     stream(dut, rng, items, scatter = true)
+    for (scrub <- dut.io.scrub) {
+      scrub.poke(true.B); dut.clock.step(); scrub.poke(false.B)
+      assert(dut.io.busy.peek().litToBoolean, s"$label: not clearing behind the scatter")
+      if (hurry) return clearBusy
+    }
     assert(dut.io.counted.peek().litValue == items.length && dut.io.scattered.peek().litValue == items.length, label)
     assert(!dut.io.badBucket.peek().litToBoolean, label)
     val (start, entries) = BroadPhaseModel.countingSort(items, 1 << usedLog2)
@@ -86,6 +98,8 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
         assert(dut.io.entry(c).item.peek().litValue == entries(a) && dut.io.entry(c).mark.peek().litToBoolean == marked(c)(a),
           s"$label: copy $c's entry $a after marking")
     }
+    if (dut.io.scrub.isDefined) waitIdle(dut)
+    clearBusy
   }
 
   // Counters one to a word (wordLog2 0) and eight to a word (the default: clear and prefix a
@@ -116,6 +130,29 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
       }
     }
   }
+
+  for ((wordLog2, copies, ports) <- Seq((3, 2, 1), (2, 3, 2)))
+  it should s"clear its counters behind the scatter while the lookups serve the world ($copies copies, $ports ports), so that the next world's clear costs no cycle, and one asked early waits for it" in {
+    val rng = Seeds.rng(s"BucketSortSpec-behind-w$wordLog2-c$copies-p$ports")
+    test(new BucketSort(maxItems, bucketsLog2, wordLog2, copies, ports, clearBehind = true)) { dut =>
+      dut.clock.setTimeout(0)
+      val words = (1 << bucketsLog2) >> wordLog2
+      lastHurried = false
+      for (k <- 0 until Seeds.cases(12)) {
+        val usedLog2 = 1 + rng.nextInt(bucketsLog2)
+        val items = Seq.fill(rng.nextInt(maxItems + 1))(rng.nextInt(1 << usedLog2)).zipWithIndex.map { case (b, i) => (i, b) }
+        val walk = if (rng.nextInt(3) == 0) Some(math.max(1 << wordLog2, ((1 << usedLog2) / 2) >> wordLog2 << wordLog2)) else None
+        val hurry = rng.nextInt(3) == 0
+        val busy = sortWorld(dut, rng, s"world $k (${items.size} items, 2^$usedLog2 buckets${if (hurry) ", cleared early" else ""})",
+          items.map { case (i, b) => (i, walk.fold(b)(w => b % w)) }, usedLog2, walk, hurry)
+        // After reset every word is cleared; after a finished clear behind, nothing is left to do.
+        if (k == 0) assert(busy == words, s"the first clear took $busy cycles, want every word ($words)")
+        else if (!lastHurried) assert(busy == 0, s"world $k: the clear took $busy cycles after the clear behind was over")
+        lastHurried = hurry
+      }
+    }
+  }
+  private var lastHurried = false
 
   it should "hold items wider than its positions, as a group of a four-port sort holds its half of a larger table" in {
     val rng = Seeds.rng("BucketSortSpec-wide-items")
