@@ -243,7 +243,7 @@ class AfuWorldSpec extends AnyFlatSpec with ChiselScalatestTester {
     }
   }
 
-  it should "load each queued world's table while the run before it computes, fed to its broad phase as it arrives (no load cycles after the first run; started ahead, its broad phase begun before its run, and a late run's never), also where a run is too short to hide the next read" in {
+  it should "load each queued world's table while the run before it computes, fed to its broad phase as it arrives (no load cycles after the first run; started ahead of its run, never late), also where a run is too short to hide the next read" in {
     val rng = Seeds.rng("AfuWorldSpec-prefetch")
     test(new Afu(queued)).withAnnotations(annos) { dut =>
       dut.clock.setTimeout(0)
