@@ -137,7 +137,7 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
     test(new BucketSort(maxItems, bucketsLog2, wordLog2, copies, ports, clearBehind = true)) { dut =>
       dut.clock.setTimeout(0)
       val words = (1 << bucketsLog2) >> wordLog2
-      lastHurried = false
+      var lastHurried = false // the world before asked its clear while the clearing behind ran
       for (k <- 0 until Seeds.cases(12)) {
         val usedLog2 = 1 + rng.nextInt(bucketsLog2)
         val items = Seq.fill(rng.nextInt(maxItems + 1))(rng.nextInt(1 << usedLog2)).zipWithIndex.map { case (b, i) => (i, b) }
@@ -154,7 +154,6 @@ class BucketSortSpec extends AnyFlatSpec with ChiselScalatestTester {
       }
     }
   }
-  private var lastHurried = false
 
   it should "hold items wider than its positions, as a group of a four-port sort holds its half of a larger table" in {
     val rng = Seeds.rng("BucketSortSpec-wide-items")
