@@ -22409,7 +22409,7 @@ module Queue8_Hits_world(
   assign io_deq_bits_bank = _ram_ext_R0_data[44];
 endmodule
 
-module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
+module ChunkMatcher_i12_c20_q29_k32_h8_d_n12w16_world(
   input         clock,
                 reset,
                 io_clear,
@@ -22451,166 +22451,230 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
   wire [31:0] _q_io_deq_bits_mask;
   wire [11:0] _q_io_deq_bits_index;
   wire        _q_io_deq_bits_bank;
-  reg  [28:0] members_0_key_q_0;
-  reg  [28:0] members_0_key_q_1;
-  reg  [28:0] members_0_key_q_2;
-  reg  [28:0] members_0_key_qr;
   reg  [2:0]  members_0_place;
-  reg  [28:0] members_1_key_q_0;
-  reg  [28:0] members_1_key_q_1;
-  reg  [28:0] members_1_key_q_2;
-  reg  [28:0] members_1_key_qr;
   reg  [2:0]  members_1_place;
-  reg  [28:0] members_2_key_q_0;
-  reg  [28:0] members_2_key_q_1;
-  reg  [28:0] members_2_key_q_2;
-  reg  [28:0] members_2_key_qr;
   reg  [2:0]  members_2_place;
-  reg  [28:0] members_3_key_q_0;
-  reg  [28:0] members_3_key_q_1;
-  reg  [28:0] members_3_key_q_2;
-  reg  [28:0] members_3_key_qr;
   reg  [2:0]  members_3_place;
-  reg  [28:0] members_4_key_q_0;
-  reg  [28:0] members_4_key_q_1;
-  reg  [28:0] members_4_key_q_2;
-  reg  [28:0] members_4_key_qr;
   reg  [2:0]  members_4_place;
-  reg  [28:0] members_5_key_q_0;
-  reg  [28:0] members_5_key_q_1;
-  reg  [28:0] members_5_key_q_2;
-  reg  [28:0] members_5_key_qr;
   reg  [2:0]  members_5_place;
-  reg  [28:0] members_6_key_q_0;
-  reg  [28:0] members_6_key_q_1;
-  reg  [28:0] members_6_key_q_2;
-  reg  [28:0] members_6_key_qr;
   reg  [2:0]  members_6_place;
-  reg  [28:0] members_7_key_q_0;
-  reg  [28:0] members_7_key_q_1;
-  reg  [28:0] members_7_key_q_2;
-  reg  [28:0] members_7_key_qr;
   reg  [2:0]  members_7_place;
-  reg  [28:0] members_8_key_q_0;
-  reg  [28:0] members_8_key_q_1;
-  reg  [28:0] members_8_key_q_2;
-  reg  [28:0] members_8_key_qr;
   reg  [2:0]  members_8_place;
-  reg  [28:0] members_9_key_q_0;
-  reg  [28:0] members_9_key_q_1;
-  reg  [28:0] members_9_key_q_2;
-  reg  [28:0] members_9_key_qr;
   reg  [2:0]  members_9_place;
-  reg  [28:0] members_10_key_q_0;
-  reg  [28:0] members_10_key_q_1;
-  reg  [28:0] members_10_key_q_2;
-  reg  [28:0] members_10_key_qr;
   reg  [2:0]  members_10_place;
-  reg  [28:0] members_11_key_q_0;
-  reg  [28:0] members_11_key_q_1;
-  reg  [28:0] members_11_key_q_2;
-  reg  [28:0] members_11_key_qr;
   reg  [2:0]  members_11_place;
-  reg  [28:0] members_12_key_q_0;
-  reg  [28:0] members_12_key_q_1;
-  reg  [28:0] members_12_key_q_2;
-  reg  [28:0] members_12_key_qr;
   reg  [2:0]  members_12_place;
-  reg  [28:0] members_13_key_q_0;
-  reg  [28:0] members_13_key_q_1;
-  reg  [28:0] members_13_key_q_2;
-  reg  [28:0] members_13_key_qr;
   reg  [2:0]  members_13_place;
-  reg  [28:0] members_14_key_q_0;
-  reg  [28:0] members_14_key_q_1;
-  reg  [28:0] members_14_key_q_2;
-  reg  [28:0] members_14_key_qr;
   reg  [2:0]  members_14_place;
-  reg  [28:0] members_15_key_q_0;
-  reg  [28:0] members_15_key_q_1;
-  reg  [28:0] members_15_key_q_2;
-  reg  [28:0] members_15_key_qr;
   reg  [2:0]  members_15_place;
-  reg  [28:0] members_16_key_q_0;
-  reg  [28:0] members_16_key_q_1;
-  reg  [28:0] members_16_key_q_2;
-  reg  [28:0] members_16_key_qr;
   reg  [2:0]  members_16_place;
-  reg  [28:0] members_17_key_q_0;
-  reg  [28:0] members_17_key_q_1;
-  reg  [28:0] members_17_key_q_2;
-  reg  [28:0] members_17_key_qr;
   reg  [2:0]  members_17_place;
-  reg  [28:0] members_18_key_q_0;
-  reg  [28:0] members_18_key_q_1;
-  reg  [28:0] members_18_key_q_2;
-  reg  [28:0] members_18_key_qr;
   reg  [2:0]  members_18_place;
-  reg  [28:0] members_19_key_q_0;
-  reg  [28:0] members_19_key_q_1;
-  reg  [28:0] members_19_key_q_2;
-  reg  [28:0] members_19_key_qr;
   reg  [2:0]  members_19_place;
-  reg  [28:0] members_20_key_q_0;
-  reg  [28:0] members_20_key_q_1;
-  reg  [28:0] members_20_key_q_2;
-  reg  [28:0] members_20_key_qr;
   reg  [2:0]  members_20_place;
-  reg  [28:0] members_21_key_q_0;
-  reg  [28:0] members_21_key_q_1;
-  reg  [28:0] members_21_key_q_2;
-  reg  [28:0] members_21_key_qr;
   reg  [2:0]  members_21_place;
-  reg  [28:0] members_22_key_q_0;
-  reg  [28:0] members_22_key_q_1;
-  reg  [28:0] members_22_key_q_2;
-  reg  [28:0] members_22_key_qr;
   reg  [2:0]  members_22_place;
-  reg  [28:0] members_23_key_q_0;
-  reg  [28:0] members_23_key_q_1;
-  reg  [28:0] members_23_key_q_2;
-  reg  [28:0] members_23_key_qr;
   reg  [2:0]  members_23_place;
-  reg  [28:0] members_24_key_q_0;
-  reg  [28:0] members_24_key_q_1;
-  reg  [28:0] members_24_key_q_2;
-  reg  [28:0] members_24_key_qr;
   reg  [2:0]  members_24_place;
-  reg  [28:0] members_25_key_q_0;
-  reg  [28:0] members_25_key_q_1;
-  reg  [28:0] members_25_key_q_2;
-  reg  [28:0] members_25_key_qr;
   reg  [2:0]  members_25_place;
-  reg  [28:0] members_26_key_q_0;
-  reg  [28:0] members_26_key_q_1;
-  reg  [28:0] members_26_key_q_2;
-  reg  [28:0] members_26_key_qr;
   reg  [2:0]  members_26_place;
-  reg  [28:0] members_27_key_q_0;
-  reg  [28:0] members_27_key_q_1;
-  reg  [28:0] members_27_key_q_2;
-  reg  [28:0] members_27_key_qr;
   reg  [2:0]  members_27_place;
-  reg  [28:0] members_28_key_q_0;
-  reg  [28:0] members_28_key_q_1;
-  reg  [28:0] members_28_key_q_2;
-  reg  [28:0] members_28_key_qr;
   reg  [2:0]  members_28_place;
-  reg  [28:0] members_29_key_q_0;
-  reg  [28:0] members_29_key_q_1;
-  reg  [28:0] members_29_key_q_2;
-  reg  [28:0] members_29_key_qr;
   reg  [2:0]  members_29_place;
-  reg  [28:0] members_30_key_q_0;
-  reg  [28:0] members_30_key_q_1;
-  reg  [28:0] members_30_key_q_2;
-  reg  [28:0] members_30_key_qr;
   reg  [2:0]  members_30_place;
-  reg  [28:0] members_31_key_q_0;
-  reg  [28:0] members_31_key_q_1;
-  reg  [28:0] members_31_key_q_2;
-  reg  [28:0] members_31_key_qr;
   reg  [2:0]  members_31_place;
+  reg  [30:0] wideBoxes_0_lo_0;
+  reg  [30:0] wideBoxes_0_lo_1;
+  reg  [30:0] wideBoxes_0_lo_2;
+  reg  [30:0] wideBoxes_0_hi_0;
+  reg  [30:0] wideBoxes_0_hi_1;
+  reg  [30:0] wideBoxes_0_hi_2;
+  reg  [30:0] wideBoxes_1_lo_0;
+  reg  [30:0] wideBoxes_1_lo_1;
+  reg  [30:0] wideBoxes_1_lo_2;
+  reg  [30:0] wideBoxes_1_hi_0;
+  reg  [30:0] wideBoxes_1_hi_1;
+  reg  [30:0] wideBoxes_1_hi_2;
+  reg  [30:0] wideBoxes_2_lo_0;
+  reg  [30:0] wideBoxes_2_lo_1;
+  reg  [30:0] wideBoxes_2_lo_2;
+  reg  [30:0] wideBoxes_2_hi_0;
+  reg  [30:0] wideBoxes_2_hi_1;
+  reg  [30:0] wideBoxes_2_hi_2;
+  reg  [30:0] wideBoxes_3_lo_0;
+  reg  [30:0] wideBoxes_3_lo_1;
+  reg  [30:0] wideBoxes_3_lo_2;
+  reg  [30:0] wideBoxes_3_hi_0;
+  reg  [30:0] wideBoxes_3_hi_1;
+  reg  [30:0] wideBoxes_3_hi_2;
+  reg  [30:0] wideBoxes_4_lo_0;
+  reg  [30:0] wideBoxes_4_lo_1;
+  reg  [30:0] wideBoxes_4_lo_2;
+  reg  [30:0] wideBoxes_4_hi_0;
+  reg  [30:0] wideBoxes_4_hi_1;
+  reg  [30:0] wideBoxes_4_hi_2;
+  reg  [30:0] wideBoxes_5_lo_0;
+  reg  [30:0] wideBoxes_5_lo_1;
+  reg  [30:0] wideBoxes_5_lo_2;
+  reg  [30:0] wideBoxes_5_hi_0;
+  reg  [30:0] wideBoxes_5_hi_1;
+  reg  [30:0] wideBoxes_5_hi_2;
+  reg  [30:0] wideBoxes_6_lo_0;
+  reg  [30:0] wideBoxes_6_lo_1;
+  reg  [30:0] wideBoxes_6_lo_2;
+  reg  [30:0] wideBoxes_6_hi_0;
+  reg  [30:0] wideBoxes_6_hi_1;
+  reg  [30:0] wideBoxes_6_hi_2;
+  reg  [30:0] wideBoxes_7_lo_0;
+  reg  [30:0] wideBoxes_7_lo_1;
+  reg  [30:0] wideBoxes_7_lo_2;
+  reg  [30:0] wideBoxes_7_hi_0;
+  reg  [30:0] wideBoxes_7_hi_1;
+  reg  [30:0] wideBoxes_7_hi_2;
+  reg  [30:0] wideBoxes_8_lo_0;
+  reg  [30:0] wideBoxes_8_lo_1;
+  reg  [30:0] wideBoxes_8_lo_2;
+  reg  [30:0] wideBoxes_8_hi_0;
+  reg  [30:0] wideBoxes_8_hi_1;
+  reg  [30:0] wideBoxes_8_hi_2;
+  reg  [30:0] wideBoxes_9_lo_0;
+  reg  [30:0] wideBoxes_9_lo_1;
+  reg  [30:0] wideBoxes_9_lo_2;
+  reg  [30:0] wideBoxes_9_hi_0;
+  reg  [30:0] wideBoxes_9_hi_1;
+  reg  [30:0] wideBoxes_9_hi_2;
+  reg  [30:0] wideBoxes_10_lo_0;
+  reg  [30:0] wideBoxes_10_lo_1;
+  reg  [30:0] wideBoxes_10_lo_2;
+  reg  [30:0] wideBoxes_10_hi_0;
+  reg  [30:0] wideBoxes_10_hi_1;
+  reg  [30:0] wideBoxes_10_hi_2;
+  reg  [30:0] wideBoxes_11_lo_0;
+  reg  [30:0] wideBoxes_11_lo_1;
+  reg  [30:0] wideBoxes_11_lo_2;
+  reg  [30:0] wideBoxes_11_hi_0;
+  reg  [30:0] wideBoxes_11_hi_1;
+  reg  [30:0] wideBoxes_11_hi_2;
+  reg  [30:0] wideBoxes_12_lo_0;
+  reg  [30:0] wideBoxes_12_lo_1;
+  reg  [30:0] wideBoxes_12_lo_2;
+  reg  [30:0] wideBoxes_12_hi_0;
+  reg  [30:0] wideBoxes_12_hi_1;
+  reg  [30:0] wideBoxes_12_hi_2;
+  reg  [30:0] wideBoxes_13_lo_0;
+  reg  [30:0] wideBoxes_13_lo_1;
+  reg  [30:0] wideBoxes_13_lo_2;
+  reg  [30:0] wideBoxes_13_hi_0;
+  reg  [30:0] wideBoxes_13_hi_1;
+  reg  [30:0] wideBoxes_13_hi_2;
+  reg  [30:0] wideBoxes_14_lo_0;
+  reg  [30:0] wideBoxes_14_lo_1;
+  reg  [30:0] wideBoxes_14_lo_2;
+  reg  [30:0] wideBoxes_14_hi_0;
+  reg  [30:0] wideBoxes_14_hi_1;
+  reg  [30:0] wideBoxes_14_hi_2;
+  reg  [30:0] wideBoxes_15_lo_0;
+  reg  [30:0] wideBoxes_15_lo_1;
+  reg  [30:0] wideBoxes_15_lo_2;
+  reg  [30:0] wideBoxes_15_hi_0;
+  reg  [30:0] wideBoxes_15_hi_1;
+  reg  [30:0] wideBoxes_15_hi_2;
+  reg  [11:0] nearBoxes_0_lo_0;
+  reg  [11:0] nearBoxes_0_lo_1;
+  reg  [11:0] nearBoxes_0_lo_2;
+  reg  [11:0] nearBoxes_0_hi_0;
+  reg  [11:0] nearBoxes_0_hi_1;
+  reg  [11:0] nearBoxes_0_hi_2;
+  reg  [11:0] nearBoxes_1_lo_0;
+  reg  [11:0] nearBoxes_1_lo_1;
+  reg  [11:0] nearBoxes_1_lo_2;
+  reg  [11:0] nearBoxes_1_hi_0;
+  reg  [11:0] nearBoxes_1_hi_1;
+  reg  [11:0] nearBoxes_1_hi_2;
+  reg  [11:0] nearBoxes_2_lo_0;
+  reg  [11:0] nearBoxes_2_lo_1;
+  reg  [11:0] nearBoxes_2_lo_2;
+  reg  [11:0] nearBoxes_2_hi_0;
+  reg  [11:0] nearBoxes_2_hi_1;
+  reg  [11:0] nearBoxes_2_hi_2;
+  reg  [11:0] nearBoxes_3_lo_0;
+  reg  [11:0] nearBoxes_3_lo_1;
+  reg  [11:0] nearBoxes_3_lo_2;
+  reg  [11:0] nearBoxes_3_hi_0;
+  reg  [11:0] nearBoxes_3_hi_1;
+  reg  [11:0] nearBoxes_3_hi_2;
+  reg  [11:0] nearBoxes_4_lo_0;
+  reg  [11:0] nearBoxes_4_lo_1;
+  reg  [11:0] nearBoxes_4_lo_2;
+  reg  [11:0] nearBoxes_4_hi_0;
+  reg  [11:0] nearBoxes_4_hi_1;
+  reg  [11:0] nearBoxes_4_hi_2;
+  reg  [11:0] nearBoxes_5_lo_0;
+  reg  [11:0] nearBoxes_5_lo_1;
+  reg  [11:0] nearBoxes_5_lo_2;
+  reg  [11:0] nearBoxes_5_hi_0;
+  reg  [11:0] nearBoxes_5_hi_1;
+  reg  [11:0] nearBoxes_5_hi_2;
+  reg  [11:0] nearBoxes_6_lo_0;
+  reg  [11:0] nearBoxes_6_lo_1;
+  reg  [11:0] nearBoxes_6_lo_2;
+  reg  [11:0] nearBoxes_6_hi_0;
+  reg  [11:0] nearBoxes_6_hi_1;
+  reg  [11:0] nearBoxes_6_hi_2;
+  reg  [11:0] nearBoxes_7_lo_0;
+  reg  [11:0] nearBoxes_7_lo_1;
+  reg  [11:0] nearBoxes_7_lo_2;
+  reg  [11:0] nearBoxes_7_hi_0;
+  reg  [11:0] nearBoxes_7_hi_1;
+  reg  [11:0] nearBoxes_7_hi_2;
+  reg  [11:0] nearBoxes_8_lo_0;
+  reg  [11:0] nearBoxes_8_lo_1;
+  reg  [11:0] nearBoxes_8_lo_2;
+  reg  [11:0] nearBoxes_8_hi_0;
+  reg  [11:0] nearBoxes_8_hi_1;
+  reg  [11:0] nearBoxes_8_hi_2;
+  reg  [11:0] nearBoxes_9_lo_0;
+  reg  [11:0] nearBoxes_9_lo_1;
+  reg  [11:0] nearBoxes_9_lo_2;
+  reg  [11:0] nearBoxes_9_hi_0;
+  reg  [11:0] nearBoxes_9_hi_1;
+  reg  [11:0] nearBoxes_9_hi_2;
+  reg  [11:0] nearBoxes_10_lo_0;
+  reg  [11:0] nearBoxes_10_lo_1;
+  reg  [11:0] nearBoxes_10_lo_2;
+  reg  [11:0] nearBoxes_10_hi_0;
+  reg  [11:0] nearBoxes_10_hi_1;
+  reg  [11:0] nearBoxes_10_hi_2;
+  reg  [11:0] nearBoxes_11_lo_0;
+  reg  [11:0] nearBoxes_11_lo_1;
+  reg  [11:0] nearBoxes_11_lo_2;
+  reg  [11:0] nearBoxes_11_hi_0;
+  reg  [11:0] nearBoxes_11_hi_1;
+  reg  [11:0] nearBoxes_11_hi_2;
+  reg  [11:0] nearBoxes_12_lo_0;
+  reg  [11:0] nearBoxes_12_lo_1;
+  reg  [11:0] nearBoxes_12_lo_2;
+  reg  [11:0] nearBoxes_12_hi_0;
+  reg  [11:0] nearBoxes_12_hi_1;
+  reg  [11:0] nearBoxes_12_hi_2;
+  reg  [11:0] nearBoxes_13_lo_0;
+  reg  [11:0] nearBoxes_13_lo_1;
+  reg  [11:0] nearBoxes_13_lo_2;
+  reg  [11:0] nearBoxes_13_hi_0;
+  reg  [11:0] nearBoxes_13_hi_1;
+  reg  [11:0] nearBoxes_13_hi_2;
+  reg  [11:0] nearBoxes_14_lo_0;
+  reg  [11:0] nearBoxes_14_lo_1;
+  reg  [11:0] nearBoxes_14_lo_2;
+  reg  [11:0] nearBoxes_14_hi_0;
+  reg  [11:0] nearBoxes_14_hi_1;
+  reg  [11:0] nearBoxes_14_hi_2;
+  reg  [11:0] nearBoxes_15_lo_0;
+  reg  [11:0] nearBoxes_15_lo_1;
+  reg  [11:0] nearBoxes_15_lo_2;
+  reg  [11:0] nearBoxes_15_hi_0;
+  reg  [11:0] nearBoxes_15_hi_1;
+  reg  [11:0] nearBoxes_15_hi_2;
   reg  [5:0]  used;
   reg         cur;
   reg  [11:0] ids_0_0;
@@ -22677,432 +22741,412 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
   reg  [11:0] ids_1_29;
   reg  [11:0] ids_1_30;
   reg  [11:0] ids_1_31;
+  wire [29:0] _probeNear_r_T = {1'h0, io_in_bits_key_qr} + {1'h0, io_slack};
+  wire [31:0] _GEN = {{3{io_in_bits_key_q_0[28]}}, io_in_bits_key_q_0};
+  wire [31:0] _GEN_0 = {2'h0, _probeNear_r_T};
+  wire [31:0] probeBox_lo_0 = _GEN - _GEN_0;
+  wire [31:0] probeBox_hi_0 = _GEN + _GEN_0;
+  wire [31:0] _GEN_1 = {{3{io_in_bits_key_q_1[28]}}, io_in_bits_key_q_1};
+  wire [31:0] probeBox_lo_1 = _GEN_1 - _GEN_0;
+  wire [31:0] probeBox_hi_1 = _GEN_1 + _GEN_0;
+  wire [31:0] _GEN_2 = {{3{io_in_bits_key_q_2[28]}}, io_in_bits_key_q_2};
+  wire [31:0] probeBox_lo_2 = _GEN_2 - _GEN_0;
+  wire [31:0] probeBox_hi_2 = _GEN_2 + _GEN_0;
+  wire [11:0] _probeNear_b_lo_0_T = io_in_bits_key_q_0[11:0] - _probeNear_r_T[11:0];
+  wire [11:0] _probeNear_b_hi_0_T = io_in_bits_key_q_0[11:0] + _probeNear_r_T[11:0];
+  wire [11:0] _probeNear_b_lo_1_T = io_in_bits_key_q_1[11:0] - _probeNear_r_T[11:0];
+  wire [11:0] _probeNear_b_hi_1_T = io_in_bits_key_q_1[11:0] + _probeNear_r_T[11:0];
+  wire [11:0] _probeNear_b_lo_2_T = io_in_bits_key_q_2[11:0] - _probeNear_r_T[11:0];
+  wire [11:0] _probeNear_b_hi_2_T = io_in_bits_key_q_2[11:0] + _probeNear_r_T[11:0];
   wire        inCell =
     io_in_bits_key_cell_0 == io_in_bits_cell_0
     & io_in_bits_key_cell_1 == io_in_bits_cell_1
     & io_in_bits_key_cell_2 == io_in_bits_cell_2;
   wire        hitsNow_later = io_in_bits_key_index > (cur ? ids_1_0 : ids_0_0);
-  wire [3:0]  _GEN = {io_in_bits_off_0[2], io_in_bits_off_0};
-  wire [3:0]  hitsNow_takes_rel_0 = _GEN - {3'h0, members_0_place[2]};
-  wire [3:0]  _GEN_0 = {io_in_bits_off_1[2], io_in_bits_off_1};
-  wire [3:0]  hitsNow_takes_rel_1 = _GEN_0 - {3'h0, members_0_place[1]};
-  wire [3:0]  _GEN_1 = {io_in_bits_off_2[2], io_in_bits_off_2};
-  wire [3:0]  hitsNow_takes_rel_2 = _GEN_1 - {3'h0, members_0_place[0]};
+  wire [3:0]  _GEN_3 = {io_in_bits_off_0[2], io_in_bits_off_0};
+  wire [3:0]  hitsNow_takes_rel_0 = _GEN_3 - {3'h0, members_0_place[2]};
+  wire [3:0]  _GEN_4 = {io_in_bits_off_1[2], io_in_bits_off_1};
+  wire [3:0]  hitsNow_takes_rel_1 = _GEN_4 - {3'h0, members_0_place[1]};
+  wire [3:0]  _GEN_5 = {io_in_bits_off_2[2], io_in_bits_off_2};
+  wire [3:0]  hitsNow_takes_rel_2 = _GEN_5 - {3'h0, members_0_place[0]};
   wire        hitsNow_takes_zero_0 = hitsNow_takes_rel_0 == 4'h0;
   wire        hitsNow_takes_near_2 =
     $signed(hitsNow_takes_rel_2) > -4'sh2 & $signed(hitsNow_takes_rel_2) < 4'sh2;
   wire        _hitsNow_takes_T_2 = hitsNow_takes_zero_0 & hitsNow_takes_rel_1 == 4'h0;
-  wire [29:0] _GEN_2 = {1'h0, io_in_bits_key_qr};
-  wire [30:0] _GEN_3 = {2'h0, io_slack};
-  wire [30:0] hitsNow_bound = {1'h0, {1'h0, members_0_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] _GEN_4 = {io_in_bits_key_q_0[28], io_in_bits_key_q_0};
-  wire [29:0] hitsNow_d = {members_0_key_q_0[28], members_0_key_q_0} - _GEN_4;
-  wire [29:0] _GEN_5 = {io_in_bits_key_q_1[28], io_in_bits_key_q_1};
-  wire [29:0] hitsNow_d_1 = {members_0_key_q_1[28], members_0_key_q_1} - _GEN_5;
-  wire [29:0] _GEN_6 = {io_in_bits_key_q_2[28], io_in_bits_key_q_2};
-  wire [29:0] hitsNow_d_2 = {members_0_key_q_2[28], members_0_key_q_2} - _GEN_6;
   wire        hitsNow_later_1 = io_in_bits_key_index > (cur ? ids_1_1 : ids_0_1);
-  wire [3:0]  hitsNow_takes_rel_0_1 = _GEN - {3'h0, members_1_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_1 = _GEN_0 - {3'h0, members_1_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_1 = _GEN_1 - {3'h0, members_1_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_1 = _GEN_3 - {3'h0, members_1_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_1 = _GEN_4 - {3'h0, members_1_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_1 = _GEN_5 - {3'h0, members_1_place[0]};
   wire        hitsNow_takes_zero_0_1 = hitsNow_takes_rel_0_1 == 4'h0;
   wire        hitsNow_takes_near_2_1 =
     $signed(hitsNow_takes_rel_2_1) > -4'sh2 & $signed(hitsNow_takes_rel_2_1) < 4'sh2;
   wire        _hitsNow_takes_T_8 = hitsNow_takes_zero_0_1 & hitsNow_takes_rel_1_1 == 4'h0;
-  wire [30:0] hitsNow_bound_1 = {1'h0, {1'h0, members_1_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_3 = {members_1_key_q_0[28], members_1_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_4 = {members_1_key_q_1[28], members_1_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_5 = {members_1_key_q_2[28], members_1_key_q_2} - _GEN_6;
   wire        hitsNow_later_2 = io_in_bits_key_index > (cur ? ids_1_2 : ids_0_2);
-  wire [3:0]  hitsNow_takes_rel_0_2 = _GEN - {3'h0, members_2_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_2 = _GEN_0 - {3'h0, members_2_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_2 = _GEN_1 - {3'h0, members_2_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_2 = _GEN_3 - {3'h0, members_2_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_2 = _GEN_4 - {3'h0, members_2_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_2 = _GEN_5 - {3'h0, members_2_place[0]};
   wire        hitsNow_takes_zero_0_2 = hitsNow_takes_rel_0_2 == 4'h0;
   wire        hitsNow_takes_near_2_2 =
     $signed(hitsNow_takes_rel_2_2) > -4'sh2 & $signed(hitsNow_takes_rel_2_2) < 4'sh2;
   wire        _hitsNow_takes_T_14 =
     hitsNow_takes_zero_0_2 & hitsNow_takes_rel_1_2 == 4'h0;
-  wire [30:0] hitsNow_bound_2 = {1'h0, {1'h0, members_2_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_6 = {members_2_key_q_0[28], members_2_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_7 = {members_2_key_q_1[28], members_2_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_8 = {members_2_key_q_2[28], members_2_key_q_2} - _GEN_6;
   wire        hitsNow_later_3 = io_in_bits_key_index > (cur ? ids_1_3 : ids_0_3);
-  wire [3:0]  hitsNow_takes_rel_0_3 = _GEN - {3'h0, members_3_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_3 = _GEN_0 - {3'h0, members_3_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_3 = _GEN_1 - {3'h0, members_3_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_3 = _GEN_3 - {3'h0, members_3_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_3 = _GEN_4 - {3'h0, members_3_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_3 = _GEN_5 - {3'h0, members_3_place[0]};
   wire        hitsNow_takes_zero_0_3 = hitsNow_takes_rel_0_3 == 4'h0;
   wire        hitsNow_takes_near_2_3 =
     $signed(hitsNow_takes_rel_2_3) > -4'sh2 & $signed(hitsNow_takes_rel_2_3) < 4'sh2;
   wire        _hitsNow_takes_T_20 =
     hitsNow_takes_zero_0_3 & hitsNow_takes_rel_1_3 == 4'h0;
-  wire [30:0] hitsNow_bound_3 = {1'h0, {1'h0, members_3_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_9 = {members_3_key_q_0[28], members_3_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_10 = {members_3_key_q_1[28], members_3_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_11 = {members_3_key_q_2[28], members_3_key_q_2} - _GEN_6;
   wire        hitsNow_later_4 = io_in_bits_key_index > (cur ? ids_1_4 : ids_0_4);
-  wire [3:0]  hitsNow_takes_rel_0_4 = _GEN - {3'h0, members_4_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_4 = _GEN_0 - {3'h0, members_4_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_4 = _GEN_1 - {3'h0, members_4_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_4 = _GEN_3 - {3'h0, members_4_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_4 = _GEN_4 - {3'h0, members_4_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_4 = _GEN_5 - {3'h0, members_4_place[0]};
   wire        hitsNow_takes_zero_0_4 = hitsNow_takes_rel_0_4 == 4'h0;
   wire        hitsNow_takes_near_2_4 =
     $signed(hitsNow_takes_rel_2_4) > -4'sh2 & $signed(hitsNow_takes_rel_2_4) < 4'sh2;
   wire        _hitsNow_takes_T_26 =
     hitsNow_takes_zero_0_4 & hitsNow_takes_rel_1_4 == 4'h0;
-  wire [30:0] hitsNow_bound_4 = {1'h0, {1'h0, members_4_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_12 = {members_4_key_q_0[28], members_4_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_13 = {members_4_key_q_1[28], members_4_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_14 = {members_4_key_q_2[28], members_4_key_q_2} - _GEN_6;
   wire        hitsNow_later_5 = io_in_bits_key_index > (cur ? ids_1_5 : ids_0_5);
-  wire [3:0]  hitsNow_takes_rel_0_5 = _GEN - {3'h0, members_5_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_5 = _GEN_0 - {3'h0, members_5_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_5 = _GEN_1 - {3'h0, members_5_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_5 = _GEN_3 - {3'h0, members_5_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_5 = _GEN_4 - {3'h0, members_5_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_5 = _GEN_5 - {3'h0, members_5_place[0]};
   wire        hitsNow_takes_zero_0_5 = hitsNow_takes_rel_0_5 == 4'h0;
   wire        hitsNow_takes_near_2_5 =
     $signed(hitsNow_takes_rel_2_5) > -4'sh2 & $signed(hitsNow_takes_rel_2_5) < 4'sh2;
   wire        _hitsNow_takes_T_32 =
     hitsNow_takes_zero_0_5 & hitsNow_takes_rel_1_5 == 4'h0;
-  wire [30:0] hitsNow_bound_5 = {1'h0, {1'h0, members_5_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_15 = {members_5_key_q_0[28], members_5_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_16 = {members_5_key_q_1[28], members_5_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_17 = {members_5_key_q_2[28], members_5_key_q_2} - _GEN_6;
   wire        hitsNow_later_6 = io_in_bits_key_index > (cur ? ids_1_6 : ids_0_6);
-  wire [3:0]  hitsNow_takes_rel_0_6 = _GEN - {3'h0, members_6_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_6 = _GEN_0 - {3'h0, members_6_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_6 = _GEN_1 - {3'h0, members_6_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_6 = _GEN_3 - {3'h0, members_6_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_6 = _GEN_4 - {3'h0, members_6_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_6 = _GEN_5 - {3'h0, members_6_place[0]};
   wire        hitsNow_takes_zero_0_6 = hitsNow_takes_rel_0_6 == 4'h0;
   wire        hitsNow_takes_near_2_6 =
     $signed(hitsNow_takes_rel_2_6) > -4'sh2 & $signed(hitsNow_takes_rel_2_6) < 4'sh2;
   wire        _hitsNow_takes_T_38 =
     hitsNow_takes_zero_0_6 & hitsNow_takes_rel_1_6 == 4'h0;
-  wire [30:0] hitsNow_bound_6 = {1'h0, {1'h0, members_6_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_18 = {members_6_key_q_0[28], members_6_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_19 = {members_6_key_q_1[28], members_6_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_20 = {members_6_key_q_2[28], members_6_key_q_2} - _GEN_6;
   wire        hitsNow_later_7 = io_in_bits_key_index > (cur ? ids_1_7 : ids_0_7);
-  wire [3:0]  hitsNow_takes_rel_0_7 = _GEN - {3'h0, members_7_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_7 = _GEN_0 - {3'h0, members_7_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_7 = _GEN_1 - {3'h0, members_7_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_7 = _GEN_3 - {3'h0, members_7_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_7 = _GEN_4 - {3'h0, members_7_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_7 = _GEN_5 - {3'h0, members_7_place[0]};
   wire        hitsNow_takes_zero_0_7 = hitsNow_takes_rel_0_7 == 4'h0;
   wire        hitsNow_takes_near_2_7 =
     $signed(hitsNow_takes_rel_2_7) > -4'sh2 & $signed(hitsNow_takes_rel_2_7) < 4'sh2;
   wire        _hitsNow_takes_T_44 =
     hitsNow_takes_zero_0_7 & hitsNow_takes_rel_1_7 == 4'h0;
-  wire [30:0] hitsNow_bound_7 = {1'h0, {1'h0, members_7_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_21 = {members_7_key_q_0[28], members_7_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_22 = {members_7_key_q_1[28], members_7_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_23 = {members_7_key_q_2[28], members_7_key_q_2} - _GEN_6;
   wire        hitsNow_later_8 = io_in_bits_key_index > (cur ? ids_1_8 : ids_0_8);
-  wire [3:0]  hitsNow_takes_rel_0_8 = _GEN - {3'h0, members_8_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_8 = _GEN_0 - {3'h0, members_8_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_8 = _GEN_1 - {3'h0, members_8_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_8 = _GEN_3 - {3'h0, members_8_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_8 = _GEN_4 - {3'h0, members_8_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_8 = _GEN_5 - {3'h0, members_8_place[0]};
   wire        hitsNow_takes_zero_0_8 = hitsNow_takes_rel_0_8 == 4'h0;
   wire        hitsNow_takes_near_2_8 =
     $signed(hitsNow_takes_rel_2_8) > -4'sh2 & $signed(hitsNow_takes_rel_2_8) < 4'sh2;
   wire        _hitsNow_takes_T_50 =
     hitsNow_takes_zero_0_8 & hitsNow_takes_rel_1_8 == 4'h0;
-  wire [30:0] hitsNow_bound_8 = {1'h0, {1'h0, members_8_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_24 = {members_8_key_q_0[28], members_8_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_25 = {members_8_key_q_1[28], members_8_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_26 = {members_8_key_q_2[28], members_8_key_q_2} - _GEN_6;
   wire        hitsNow_later_9 = io_in_bits_key_index > (cur ? ids_1_9 : ids_0_9);
-  wire [3:0]  hitsNow_takes_rel_0_9 = _GEN - {3'h0, members_9_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_9 = _GEN_0 - {3'h0, members_9_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_9 = _GEN_1 - {3'h0, members_9_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_9 = _GEN_3 - {3'h0, members_9_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_9 = _GEN_4 - {3'h0, members_9_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_9 = _GEN_5 - {3'h0, members_9_place[0]};
   wire        hitsNow_takes_zero_0_9 = hitsNow_takes_rel_0_9 == 4'h0;
   wire        hitsNow_takes_near_2_9 =
     $signed(hitsNow_takes_rel_2_9) > -4'sh2 & $signed(hitsNow_takes_rel_2_9) < 4'sh2;
   wire        _hitsNow_takes_T_56 =
     hitsNow_takes_zero_0_9 & hitsNow_takes_rel_1_9 == 4'h0;
-  wire [30:0] hitsNow_bound_9 = {1'h0, {1'h0, members_9_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_27 = {members_9_key_q_0[28], members_9_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_28 = {members_9_key_q_1[28], members_9_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_29 = {members_9_key_q_2[28], members_9_key_q_2} - _GEN_6;
   wire        hitsNow_later_10 = io_in_bits_key_index > (cur ? ids_1_10 : ids_0_10);
-  wire [3:0]  hitsNow_takes_rel_0_10 = _GEN - {3'h0, members_10_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_10 = _GEN_0 - {3'h0, members_10_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_10 = _GEN_1 - {3'h0, members_10_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_10 = _GEN_3 - {3'h0, members_10_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_10 = _GEN_4 - {3'h0, members_10_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_10 = _GEN_5 - {3'h0, members_10_place[0]};
   wire        hitsNow_takes_zero_0_10 = hitsNow_takes_rel_0_10 == 4'h0;
   wire        hitsNow_takes_near_2_10 =
     $signed(hitsNow_takes_rel_2_10) > -4'sh2 & $signed(hitsNow_takes_rel_2_10) < 4'sh2;
   wire        _hitsNow_takes_T_62 =
     hitsNow_takes_zero_0_10 & hitsNow_takes_rel_1_10 == 4'h0;
-  wire [30:0] hitsNow_bound_10 = {1'h0, {1'h0, members_10_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_30 = {members_10_key_q_0[28], members_10_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_31 = {members_10_key_q_1[28], members_10_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_32 = {members_10_key_q_2[28], members_10_key_q_2} - _GEN_6;
   wire        hitsNow_later_11 = io_in_bits_key_index > (cur ? ids_1_11 : ids_0_11);
-  wire [3:0]  hitsNow_takes_rel_0_11 = _GEN - {3'h0, members_11_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_11 = _GEN_0 - {3'h0, members_11_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_11 = _GEN_1 - {3'h0, members_11_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_11 = _GEN_3 - {3'h0, members_11_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_11 = _GEN_4 - {3'h0, members_11_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_11 = _GEN_5 - {3'h0, members_11_place[0]};
   wire        hitsNow_takes_zero_0_11 = hitsNow_takes_rel_0_11 == 4'h0;
   wire        hitsNow_takes_near_2_11 =
     $signed(hitsNow_takes_rel_2_11) > -4'sh2 & $signed(hitsNow_takes_rel_2_11) < 4'sh2;
   wire        _hitsNow_takes_T_68 =
     hitsNow_takes_zero_0_11 & hitsNow_takes_rel_1_11 == 4'h0;
-  wire [30:0] hitsNow_bound_11 = {1'h0, {1'h0, members_11_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_33 = {members_11_key_q_0[28], members_11_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_34 = {members_11_key_q_1[28], members_11_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_35 = {members_11_key_q_2[28], members_11_key_q_2} - _GEN_6;
   wire        hitsNow_later_12 = io_in_bits_key_index > (cur ? ids_1_12 : ids_0_12);
-  wire [3:0]  hitsNow_takes_rel_0_12 = _GEN - {3'h0, members_12_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_12 = _GEN_0 - {3'h0, members_12_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_12 = _GEN_1 - {3'h0, members_12_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_12 = _GEN_3 - {3'h0, members_12_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_12 = _GEN_4 - {3'h0, members_12_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_12 = _GEN_5 - {3'h0, members_12_place[0]};
   wire        hitsNow_takes_zero_0_12 = hitsNow_takes_rel_0_12 == 4'h0;
   wire        hitsNow_takes_near_2_12 =
     $signed(hitsNow_takes_rel_2_12) > -4'sh2 & $signed(hitsNow_takes_rel_2_12) < 4'sh2;
   wire        _hitsNow_takes_T_74 =
     hitsNow_takes_zero_0_12 & hitsNow_takes_rel_1_12 == 4'h0;
-  wire [30:0] hitsNow_bound_12 = {1'h0, {1'h0, members_12_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_36 = {members_12_key_q_0[28], members_12_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_37 = {members_12_key_q_1[28], members_12_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_38 = {members_12_key_q_2[28], members_12_key_q_2} - _GEN_6;
   wire        hitsNow_later_13 = io_in_bits_key_index > (cur ? ids_1_13 : ids_0_13);
-  wire [3:0]  hitsNow_takes_rel_0_13 = _GEN - {3'h0, members_13_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_13 = _GEN_0 - {3'h0, members_13_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_13 = _GEN_1 - {3'h0, members_13_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_13 = _GEN_3 - {3'h0, members_13_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_13 = _GEN_4 - {3'h0, members_13_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_13 = _GEN_5 - {3'h0, members_13_place[0]};
   wire        hitsNow_takes_zero_0_13 = hitsNow_takes_rel_0_13 == 4'h0;
   wire        hitsNow_takes_near_2_13 =
     $signed(hitsNow_takes_rel_2_13) > -4'sh2 & $signed(hitsNow_takes_rel_2_13) < 4'sh2;
   wire        _hitsNow_takes_T_80 =
     hitsNow_takes_zero_0_13 & hitsNow_takes_rel_1_13 == 4'h0;
-  wire [30:0] hitsNow_bound_13 = {1'h0, {1'h0, members_13_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_39 = {members_13_key_q_0[28], members_13_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_40 = {members_13_key_q_1[28], members_13_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_41 = {members_13_key_q_2[28], members_13_key_q_2} - _GEN_6;
   wire        hitsNow_later_14 = io_in_bits_key_index > (cur ? ids_1_14 : ids_0_14);
-  wire [3:0]  hitsNow_takes_rel_0_14 = _GEN - {3'h0, members_14_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_14 = _GEN_0 - {3'h0, members_14_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_14 = _GEN_1 - {3'h0, members_14_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_14 = _GEN_3 - {3'h0, members_14_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_14 = _GEN_4 - {3'h0, members_14_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_14 = _GEN_5 - {3'h0, members_14_place[0]};
   wire        hitsNow_takes_zero_0_14 = hitsNow_takes_rel_0_14 == 4'h0;
   wire        hitsNow_takes_near_2_14 =
     $signed(hitsNow_takes_rel_2_14) > -4'sh2 & $signed(hitsNow_takes_rel_2_14) < 4'sh2;
   wire        _hitsNow_takes_T_86 =
     hitsNow_takes_zero_0_14 & hitsNow_takes_rel_1_14 == 4'h0;
-  wire [30:0] hitsNow_bound_14 = {1'h0, {1'h0, members_14_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_42 = {members_14_key_q_0[28], members_14_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_43 = {members_14_key_q_1[28], members_14_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_44 = {members_14_key_q_2[28], members_14_key_q_2} - _GEN_6;
   wire        hitsNow_later_15 = io_in_bits_key_index > (cur ? ids_1_15 : ids_0_15);
-  wire [3:0]  hitsNow_takes_rel_0_15 = _GEN - {3'h0, members_15_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_15 = _GEN_0 - {3'h0, members_15_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_15 = _GEN_1 - {3'h0, members_15_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_15 = _GEN_3 - {3'h0, members_15_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_15 = _GEN_4 - {3'h0, members_15_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_15 = _GEN_5 - {3'h0, members_15_place[0]};
   wire        hitsNow_takes_zero_0_15 = hitsNow_takes_rel_0_15 == 4'h0;
   wire        hitsNow_takes_near_2_15 =
     $signed(hitsNow_takes_rel_2_15) > -4'sh2 & $signed(hitsNow_takes_rel_2_15) < 4'sh2;
   wire        _hitsNow_takes_T_92 =
     hitsNow_takes_zero_0_15 & hitsNow_takes_rel_1_15 == 4'h0;
-  wire [30:0] hitsNow_bound_15 = {1'h0, {1'h0, members_15_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_45 = {members_15_key_q_0[28], members_15_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_46 = {members_15_key_q_1[28], members_15_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_47 = {members_15_key_q_2[28], members_15_key_q_2} - _GEN_6;
   wire        hitsNow_later_16 = io_in_bits_key_index > (cur ? ids_1_16 : ids_0_16);
-  wire [3:0]  hitsNow_takes_rel_0_16 = _GEN - {3'h0, members_16_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_16 = _GEN_0 - {3'h0, members_16_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_16 = _GEN_1 - {3'h0, members_16_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_16 = _GEN_3 - {3'h0, members_16_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_16 = _GEN_4 - {3'h0, members_16_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_16 = _GEN_5 - {3'h0, members_16_place[0]};
   wire        hitsNow_takes_zero_0_16 = hitsNow_takes_rel_0_16 == 4'h0;
   wire        hitsNow_takes_near_2_16 =
     $signed(hitsNow_takes_rel_2_16) > -4'sh2 & $signed(hitsNow_takes_rel_2_16) < 4'sh2;
   wire        _hitsNow_takes_T_98 =
     hitsNow_takes_zero_0_16 & hitsNow_takes_rel_1_16 == 4'h0;
-  wire [30:0] hitsNow_bound_16 = {1'h0, {1'h0, members_16_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_48 = {members_16_key_q_0[28], members_16_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_49 = {members_16_key_q_1[28], members_16_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_50 = {members_16_key_q_2[28], members_16_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_226 = _probeNear_b_hi_0_T - nearBoxes_0_lo_0;
+  wire [11:0] _hitsNow_T_230 = nearBoxes_0_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_235 = _probeNear_b_hi_1_T - nearBoxes_0_lo_1;
+  wire [11:0] _hitsNow_T_239 = nearBoxes_0_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_244 = _probeNear_b_hi_2_T - nearBoxes_0_lo_2;
+  wire [11:0] _hitsNow_T_248 = nearBoxes_0_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_17 = io_in_bits_key_index > (cur ? ids_1_17 : ids_0_17);
-  wire [3:0]  hitsNow_takes_rel_0_17 = _GEN - {3'h0, members_17_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_17 = _GEN_0 - {3'h0, members_17_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_17 = _GEN_1 - {3'h0, members_17_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_17 = _GEN_3 - {3'h0, members_17_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_17 = _GEN_4 - {3'h0, members_17_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_17 = _GEN_5 - {3'h0, members_17_place[0]};
   wire        hitsNow_takes_zero_0_17 = hitsNow_takes_rel_0_17 == 4'h0;
   wire        hitsNow_takes_near_2_17 =
     $signed(hitsNow_takes_rel_2_17) > -4'sh2 & $signed(hitsNow_takes_rel_2_17) < 4'sh2;
   wire        _hitsNow_takes_T_104 =
     hitsNow_takes_zero_0_17 & hitsNow_takes_rel_1_17 == 4'h0;
-  wire [30:0] hitsNow_bound_17 = {1'h0, {1'h0, members_17_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_51 = {members_17_key_q_0[28], members_17_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_52 = {members_17_key_q_1[28], members_17_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_53 = {members_17_key_q_2[28], members_17_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_258 = _probeNear_b_hi_0_T - nearBoxes_1_lo_0;
+  wire [11:0] _hitsNow_T_262 = nearBoxes_1_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_267 = _probeNear_b_hi_1_T - nearBoxes_1_lo_1;
+  wire [11:0] _hitsNow_T_271 = nearBoxes_1_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_276 = _probeNear_b_hi_2_T - nearBoxes_1_lo_2;
+  wire [11:0] _hitsNow_T_280 = nearBoxes_1_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_18 = io_in_bits_key_index > (cur ? ids_1_18 : ids_0_18);
-  wire [3:0]  hitsNow_takes_rel_0_18 = _GEN - {3'h0, members_18_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_18 = _GEN_0 - {3'h0, members_18_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_18 = _GEN_1 - {3'h0, members_18_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_18 = _GEN_3 - {3'h0, members_18_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_18 = _GEN_4 - {3'h0, members_18_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_18 = _GEN_5 - {3'h0, members_18_place[0]};
   wire        hitsNow_takes_zero_0_18 = hitsNow_takes_rel_0_18 == 4'h0;
   wire        hitsNow_takes_near_2_18 =
     $signed(hitsNow_takes_rel_2_18) > -4'sh2 & $signed(hitsNow_takes_rel_2_18) < 4'sh2;
   wire        _hitsNow_takes_T_110 =
     hitsNow_takes_zero_0_18 & hitsNow_takes_rel_1_18 == 4'h0;
-  wire [30:0] hitsNow_bound_18 = {1'h0, {1'h0, members_18_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_54 = {members_18_key_q_0[28], members_18_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_55 = {members_18_key_q_1[28], members_18_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_56 = {members_18_key_q_2[28], members_18_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_290 = _probeNear_b_hi_0_T - nearBoxes_2_lo_0;
+  wire [11:0] _hitsNow_T_294 = nearBoxes_2_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_299 = _probeNear_b_hi_1_T - nearBoxes_2_lo_1;
+  wire [11:0] _hitsNow_T_303 = nearBoxes_2_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_308 = _probeNear_b_hi_2_T - nearBoxes_2_lo_2;
+  wire [11:0] _hitsNow_T_312 = nearBoxes_2_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_19 = io_in_bits_key_index > (cur ? ids_1_19 : ids_0_19);
-  wire [3:0]  hitsNow_takes_rel_0_19 = _GEN - {3'h0, members_19_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_19 = _GEN_0 - {3'h0, members_19_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_19 = _GEN_1 - {3'h0, members_19_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_19 = _GEN_3 - {3'h0, members_19_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_19 = _GEN_4 - {3'h0, members_19_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_19 = _GEN_5 - {3'h0, members_19_place[0]};
   wire        hitsNow_takes_zero_0_19 = hitsNow_takes_rel_0_19 == 4'h0;
   wire        hitsNow_takes_near_2_19 =
     $signed(hitsNow_takes_rel_2_19) > -4'sh2 & $signed(hitsNow_takes_rel_2_19) < 4'sh2;
   wire        _hitsNow_takes_T_116 =
     hitsNow_takes_zero_0_19 & hitsNow_takes_rel_1_19 == 4'h0;
-  wire [30:0] hitsNow_bound_19 = {1'h0, {1'h0, members_19_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_57 = {members_19_key_q_0[28], members_19_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_58 = {members_19_key_q_1[28], members_19_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_59 = {members_19_key_q_2[28], members_19_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_322 = _probeNear_b_hi_0_T - nearBoxes_3_lo_0;
+  wire [11:0] _hitsNow_T_326 = nearBoxes_3_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_331 = _probeNear_b_hi_1_T - nearBoxes_3_lo_1;
+  wire [11:0] _hitsNow_T_335 = nearBoxes_3_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_340 = _probeNear_b_hi_2_T - nearBoxes_3_lo_2;
+  wire [11:0] _hitsNow_T_344 = nearBoxes_3_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_20 = io_in_bits_key_index > (cur ? ids_1_20 : ids_0_20);
-  wire [3:0]  hitsNow_takes_rel_0_20 = _GEN - {3'h0, members_20_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_20 = _GEN_0 - {3'h0, members_20_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_20 = _GEN_1 - {3'h0, members_20_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_20 = _GEN_3 - {3'h0, members_20_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_20 = _GEN_4 - {3'h0, members_20_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_20 = _GEN_5 - {3'h0, members_20_place[0]};
   wire        hitsNow_takes_zero_0_20 = hitsNow_takes_rel_0_20 == 4'h0;
   wire        hitsNow_takes_near_2_20 =
     $signed(hitsNow_takes_rel_2_20) > -4'sh2 & $signed(hitsNow_takes_rel_2_20) < 4'sh2;
   wire        _hitsNow_takes_T_122 =
     hitsNow_takes_zero_0_20 & hitsNow_takes_rel_1_20 == 4'h0;
-  wire [30:0] hitsNow_bound_20 = {1'h0, {1'h0, members_20_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_60 = {members_20_key_q_0[28], members_20_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_61 = {members_20_key_q_1[28], members_20_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_62 = {members_20_key_q_2[28], members_20_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_354 = _probeNear_b_hi_0_T - nearBoxes_4_lo_0;
+  wire [11:0] _hitsNow_T_358 = nearBoxes_4_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_363 = _probeNear_b_hi_1_T - nearBoxes_4_lo_1;
+  wire [11:0] _hitsNow_T_367 = nearBoxes_4_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_372 = _probeNear_b_hi_2_T - nearBoxes_4_lo_2;
+  wire [11:0] _hitsNow_T_376 = nearBoxes_4_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_21 = io_in_bits_key_index > (cur ? ids_1_21 : ids_0_21);
-  wire [3:0]  hitsNow_takes_rel_0_21 = _GEN - {3'h0, members_21_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_21 = _GEN_0 - {3'h0, members_21_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_21 = _GEN_1 - {3'h0, members_21_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_21 = _GEN_3 - {3'h0, members_21_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_21 = _GEN_4 - {3'h0, members_21_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_21 = _GEN_5 - {3'h0, members_21_place[0]};
   wire        hitsNow_takes_zero_0_21 = hitsNow_takes_rel_0_21 == 4'h0;
   wire        hitsNow_takes_near_2_21 =
     $signed(hitsNow_takes_rel_2_21) > -4'sh2 & $signed(hitsNow_takes_rel_2_21) < 4'sh2;
   wire        _hitsNow_takes_T_128 =
     hitsNow_takes_zero_0_21 & hitsNow_takes_rel_1_21 == 4'h0;
-  wire [30:0] hitsNow_bound_21 = {1'h0, {1'h0, members_21_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_63 = {members_21_key_q_0[28], members_21_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_64 = {members_21_key_q_1[28], members_21_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_65 = {members_21_key_q_2[28], members_21_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_386 = _probeNear_b_hi_0_T - nearBoxes_5_lo_0;
+  wire [11:0] _hitsNow_T_390 = nearBoxes_5_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_395 = _probeNear_b_hi_1_T - nearBoxes_5_lo_1;
+  wire [11:0] _hitsNow_T_399 = nearBoxes_5_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_404 = _probeNear_b_hi_2_T - nearBoxes_5_lo_2;
+  wire [11:0] _hitsNow_T_408 = nearBoxes_5_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_22 = io_in_bits_key_index > (cur ? ids_1_22 : ids_0_22);
-  wire [3:0]  hitsNow_takes_rel_0_22 = _GEN - {3'h0, members_22_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_22 = _GEN_0 - {3'h0, members_22_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_22 = _GEN_1 - {3'h0, members_22_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_22 = _GEN_3 - {3'h0, members_22_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_22 = _GEN_4 - {3'h0, members_22_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_22 = _GEN_5 - {3'h0, members_22_place[0]};
   wire        hitsNow_takes_zero_0_22 = hitsNow_takes_rel_0_22 == 4'h0;
   wire        hitsNow_takes_near_2_22 =
     $signed(hitsNow_takes_rel_2_22) > -4'sh2 & $signed(hitsNow_takes_rel_2_22) < 4'sh2;
   wire        _hitsNow_takes_T_134 =
     hitsNow_takes_zero_0_22 & hitsNow_takes_rel_1_22 == 4'h0;
-  wire [30:0] hitsNow_bound_22 = {1'h0, {1'h0, members_22_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_66 = {members_22_key_q_0[28], members_22_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_67 = {members_22_key_q_1[28], members_22_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_68 = {members_22_key_q_2[28], members_22_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_418 = _probeNear_b_hi_0_T - nearBoxes_6_lo_0;
+  wire [11:0] _hitsNow_T_422 = nearBoxes_6_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_427 = _probeNear_b_hi_1_T - nearBoxes_6_lo_1;
+  wire [11:0] _hitsNow_T_431 = nearBoxes_6_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_436 = _probeNear_b_hi_2_T - nearBoxes_6_lo_2;
+  wire [11:0] _hitsNow_T_440 = nearBoxes_6_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_23 = io_in_bits_key_index > (cur ? ids_1_23 : ids_0_23);
-  wire [3:0]  hitsNow_takes_rel_0_23 = _GEN - {3'h0, members_23_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_23 = _GEN_0 - {3'h0, members_23_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_23 = _GEN_1 - {3'h0, members_23_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_23 = _GEN_3 - {3'h0, members_23_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_23 = _GEN_4 - {3'h0, members_23_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_23 = _GEN_5 - {3'h0, members_23_place[0]};
   wire        hitsNow_takes_zero_0_23 = hitsNow_takes_rel_0_23 == 4'h0;
   wire        hitsNow_takes_near_2_23 =
     $signed(hitsNow_takes_rel_2_23) > -4'sh2 & $signed(hitsNow_takes_rel_2_23) < 4'sh2;
   wire        _hitsNow_takes_T_140 =
     hitsNow_takes_zero_0_23 & hitsNow_takes_rel_1_23 == 4'h0;
-  wire [30:0] hitsNow_bound_23 = {1'h0, {1'h0, members_23_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_69 = {members_23_key_q_0[28], members_23_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_70 = {members_23_key_q_1[28], members_23_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_71 = {members_23_key_q_2[28], members_23_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_450 = _probeNear_b_hi_0_T - nearBoxes_7_lo_0;
+  wire [11:0] _hitsNow_T_454 = nearBoxes_7_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_459 = _probeNear_b_hi_1_T - nearBoxes_7_lo_1;
+  wire [11:0] _hitsNow_T_463 = nearBoxes_7_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_468 = _probeNear_b_hi_2_T - nearBoxes_7_lo_2;
+  wire [11:0] _hitsNow_T_472 = nearBoxes_7_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_24 = io_in_bits_key_index > (cur ? ids_1_24 : ids_0_24);
-  wire [3:0]  hitsNow_takes_rel_0_24 = _GEN - {3'h0, members_24_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_24 = _GEN_0 - {3'h0, members_24_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_24 = _GEN_1 - {3'h0, members_24_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_24 = _GEN_3 - {3'h0, members_24_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_24 = _GEN_4 - {3'h0, members_24_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_24 = _GEN_5 - {3'h0, members_24_place[0]};
   wire        hitsNow_takes_zero_0_24 = hitsNow_takes_rel_0_24 == 4'h0;
   wire        hitsNow_takes_near_2_24 =
     $signed(hitsNow_takes_rel_2_24) > -4'sh2 & $signed(hitsNow_takes_rel_2_24) < 4'sh2;
   wire        _hitsNow_takes_T_146 =
     hitsNow_takes_zero_0_24 & hitsNow_takes_rel_1_24 == 4'h0;
-  wire [30:0] hitsNow_bound_24 = {1'h0, {1'h0, members_24_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_72 = {members_24_key_q_0[28], members_24_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_73 = {members_24_key_q_1[28], members_24_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_74 = {members_24_key_q_2[28], members_24_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_482 = _probeNear_b_hi_0_T - nearBoxes_8_lo_0;
+  wire [11:0] _hitsNow_T_486 = nearBoxes_8_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_491 = _probeNear_b_hi_1_T - nearBoxes_8_lo_1;
+  wire [11:0] _hitsNow_T_495 = nearBoxes_8_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_500 = _probeNear_b_hi_2_T - nearBoxes_8_lo_2;
+  wire [11:0] _hitsNow_T_504 = nearBoxes_8_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_25 = io_in_bits_key_index > (cur ? ids_1_25 : ids_0_25);
-  wire [3:0]  hitsNow_takes_rel_0_25 = _GEN - {3'h0, members_25_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_25 = _GEN_0 - {3'h0, members_25_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_25 = _GEN_1 - {3'h0, members_25_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_25 = _GEN_3 - {3'h0, members_25_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_25 = _GEN_4 - {3'h0, members_25_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_25 = _GEN_5 - {3'h0, members_25_place[0]};
   wire        hitsNow_takes_zero_0_25 = hitsNow_takes_rel_0_25 == 4'h0;
   wire        hitsNow_takes_near_2_25 =
     $signed(hitsNow_takes_rel_2_25) > -4'sh2 & $signed(hitsNow_takes_rel_2_25) < 4'sh2;
   wire        _hitsNow_takes_T_152 =
     hitsNow_takes_zero_0_25 & hitsNow_takes_rel_1_25 == 4'h0;
-  wire [30:0] hitsNow_bound_25 = {1'h0, {1'h0, members_25_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_75 = {members_25_key_q_0[28], members_25_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_76 = {members_25_key_q_1[28], members_25_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_77 = {members_25_key_q_2[28], members_25_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_514 = _probeNear_b_hi_0_T - nearBoxes_9_lo_0;
+  wire [11:0] _hitsNow_T_518 = nearBoxes_9_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_523 = _probeNear_b_hi_1_T - nearBoxes_9_lo_1;
+  wire [11:0] _hitsNow_T_527 = nearBoxes_9_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_532 = _probeNear_b_hi_2_T - nearBoxes_9_lo_2;
+  wire [11:0] _hitsNow_T_536 = nearBoxes_9_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_26 = io_in_bits_key_index > (cur ? ids_1_26 : ids_0_26);
-  wire [3:0]  hitsNow_takes_rel_0_26 = _GEN - {3'h0, members_26_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_26 = _GEN_0 - {3'h0, members_26_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_26 = _GEN_1 - {3'h0, members_26_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_26 = _GEN_3 - {3'h0, members_26_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_26 = _GEN_4 - {3'h0, members_26_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_26 = _GEN_5 - {3'h0, members_26_place[0]};
   wire        hitsNow_takes_zero_0_26 = hitsNow_takes_rel_0_26 == 4'h0;
   wire        hitsNow_takes_near_2_26 =
     $signed(hitsNow_takes_rel_2_26) > -4'sh2 & $signed(hitsNow_takes_rel_2_26) < 4'sh2;
   wire        _hitsNow_takes_T_158 =
     hitsNow_takes_zero_0_26 & hitsNow_takes_rel_1_26 == 4'h0;
-  wire [30:0] hitsNow_bound_26 = {1'h0, {1'h0, members_26_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_78 = {members_26_key_q_0[28], members_26_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_79 = {members_26_key_q_1[28], members_26_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_80 = {members_26_key_q_2[28], members_26_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_546 = _probeNear_b_hi_0_T - nearBoxes_10_lo_0;
+  wire [11:0] _hitsNow_T_550 = nearBoxes_10_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_555 = _probeNear_b_hi_1_T - nearBoxes_10_lo_1;
+  wire [11:0] _hitsNow_T_559 = nearBoxes_10_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_564 = _probeNear_b_hi_2_T - nearBoxes_10_lo_2;
+  wire [11:0] _hitsNow_T_568 = nearBoxes_10_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_27 = io_in_bits_key_index > (cur ? ids_1_27 : ids_0_27);
-  wire [3:0]  hitsNow_takes_rel_0_27 = _GEN - {3'h0, members_27_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_27 = _GEN_0 - {3'h0, members_27_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_27 = _GEN_1 - {3'h0, members_27_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_27 = _GEN_3 - {3'h0, members_27_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_27 = _GEN_4 - {3'h0, members_27_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_27 = _GEN_5 - {3'h0, members_27_place[0]};
   wire        hitsNow_takes_zero_0_27 = hitsNow_takes_rel_0_27 == 4'h0;
   wire        hitsNow_takes_near_2_27 =
     $signed(hitsNow_takes_rel_2_27) > -4'sh2 & $signed(hitsNow_takes_rel_2_27) < 4'sh2;
   wire        _hitsNow_takes_T_164 =
     hitsNow_takes_zero_0_27 & hitsNow_takes_rel_1_27 == 4'h0;
-  wire [30:0] hitsNow_bound_27 = {1'h0, {1'h0, members_27_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_81 = {members_27_key_q_0[28], members_27_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_82 = {members_27_key_q_1[28], members_27_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_83 = {members_27_key_q_2[28], members_27_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_578 = _probeNear_b_hi_0_T - nearBoxes_11_lo_0;
+  wire [11:0] _hitsNow_T_582 = nearBoxes_11_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_587 = _probeNear_b_hi_1_T - nearBoxes_11_lo_1;
+  wire [11:0] _hitsNow_T_591 = nearBoxes_11_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_596 = _probeNear_b_hi_2_T - nearBoxes_11_lo_2;
+  wire [11:0] _hitsNow_T_600 = nearBoxes_11_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_28 = io_in_bits_key_index > (cur ? ids_1_28 : ids_0_28);
-  wire [3:0]  hitsNow_takes_rel_0_28 = _GEN - {3'h0, members_28_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_28 = _GEN_0 - {3'h0, members_28_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_28 = _GEN_1 - {3'h0, members_28_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_28 = _GEN_3 - {3'h0, members_28_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_28 = _GEN_4 - {3'h0, members_28_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_28 = _GEN_5 - {3'h0, members_28_place[0]};
   wire        hitsNow_takes_zero_0_28 = hitsNow_takes_rel_0_28 == 4'h0;
   wire        hitsNow_takes_near_2_28 =
     $signed(hitsNow_takes_rel_2_28) > -4'sh2 & $signed(hitsNow_takes_rel_2_28) < 4'sh2;
   wire        _hitsNow_takes_T_170 =
     hitsNow_takes_zero_0_28 & hitsNow_takes_rel_1_28 == 4'h0;
-  wire [30:0] hitsNow_bound_28 = {1'h0, {1'h0, members_28_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_84 = {members_28_key_q_0[28], members_28_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_85 = {members_28_key_q_1[28], members_28_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_86 = {members_28_key_q_2[28], members_28_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_610 = _probeNear_b_hi_0_T - nearBoxes_12_lo_0;
+  wire [11:0] _hitsNow_T_614 = nearBoxes_12_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_619 = _probeNear_b_hi_1_T - nearBoxes_12_lo_1;
+  wire [11:0] _hitsNow_T_623 = nearBoxes_12_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_628 = _probeNear_b_hi_2_T - nearBoxes_12_lo_2;
+  wire [11:0] _hitsNow_T_632 = nearBoxes_12_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_29 = io_in_bits_key_index > (cur ? ids_1_29 : ids_0_29);
-  wire [3:0]  hitsNow_takes_rel_0_29 = _GEN - {3'h0, members_29_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_29 = _GEN_0 - {3'h0, members_29_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_29 = _GEN_1 - {3'h0, members_29_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_29 = _GEN_3 - {3'h0, members_29_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_29 = _GEN_4 - {3'h0, members_29_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_29 = _GEN_5 - {3'h0, members_29_place[0]};
   wire        hitsNow_takes_zero_0_29 = hitsNow_takes_rel_0_29 == 4'h0;
   wire        hitsNow_takes_near_2_29 =
     $signed(hitsNow_takes_rel_2_29) > -4'sh2 & $signed(hitsNow_takes_rel_2_29) < 4'sh2;
   wire        _hitsNow_takes_T_176 =
     hitsNow_takes_zero_0_29 & hitsNow_takes_rel_1_29 == 4'h0;
-  wire [30:0] hitsNow_bound_29 = {1'h0, {1'h0, members_29_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_87 = {members_29_key_q_0[28], members_29_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_88 = {members_29_key_q_1[28], members_29_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_89 = {members_29_key_q_2[28], members_29_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_642 = _probeNear_b_hi_0_T - nearBoxes_13_lo_0;
+  wire [11:0] _hitsNow_T_646 = nearBoxes_13_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_651 = _probeNear_b_hi_1_T - nearBoxes_13_lo_1;
+  wire [11:0] _hitsNow_T_655 = nearBoxes_13_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_660 = _probeNear_b_hi_2_T - nearBoxes_13_lo_2;
+  wire [11:0] _hitsNow_T_664 = nearBoxes_13_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_30 = io_in_bits_key_index > (cur ? ids_1_30 : ids_0_30);
-  wire [3:0]  hitsNow_takes_rel_0_30 = _GEN - {3'h0, members_30_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_30 = _GEN_0 - {3'h0, members_30_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_30 = _GEN_1 - {3'h0, members_30_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_30 = _GEN_3 - {3'h0, members_30_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_30 = _GEN_4 - {3'h0, members_30_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_30 = _GEN_5 - {3'h0, members_30_place[0]};
   wire        hitsNow_takes_zero_0_30 = hitsNow_takes_rel_0_30 == 4'h0;
   wire        hitsNow_takes_near_2_30 =
     $signed(hitsNow_takes_rel_2_30) > -4'sh2 & $signed(hitsNow_takes_rel_2_30) < 4'sh2;
   wire        _hitsNow_takes_T_182 =
     hitsNow_takes_zero_0_30 & hitsNow_takes_rel_1_30 == 4'h0;
-  wire [30:0] hitsNow_bound_30 = {1'h0, {1'h0, members_30_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_90 = {members_30_key_q_0[28], members_30_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_91 = {members_30_key_q_1[28], members_30_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_92 = {members_30_key_q_2[28], members_30_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_674 = _probeNear_b_hi_0_T - nearBoxes_14_lo_0;
+  wire [11:0] _hitsNow_T_678 = nearBoxes_14_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_683 = _probeNear_b_hi_1_T - nearBoxes_14_lo_1;
+  wire [11:0] _hitsNow_T_687 = nearBoxes_14_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_692 = _probeNear_b_hi_2_T - nearBoxes_14_lo_2;
+  wire [11:0] _hitsNow_T_696 = nearBoxes_14_hi_2 - _probeNear_b_lo_2_T;
   wire        hitsNow_later_31 = io_in_bits_key_index > (cur ? ids_1_31 : ids_0_31);
-  wire [3:0]  hitsNow_takes_rel_0_31 = _GEN - {3'h0, members_31_place[2]};
-  wire [3:0]  hitsNow_takes_rel_1_31 = _GEN_0 - {3'h0, members_31_place[1]};
-  wire [3:0]  hitsNow_takes_rel_2_31 = _GEN_1 - {3'h0, members_31_place[0]};
+  wire [3:0]  hitsNow_takes_rel_0_31 = _GEN_3 - {3'h0, members_31_place[2]};
+  wire [3:0]  hitsNow_takes_rel_1_31 = _GEN_4 - {3'h0, members_31_place[1]};
+  wire [3:0]  hitsNow_takes_rel_2_31 = _GEN_5 - {3'h0, members_31_place[0]};
   wire        hitsNow_takes_zero_0_31 = hitsNow_takes_rel_0_31 == 4'h0;
   wire        hitsNow_takes_near_2_31 =
     $signed(hitsNow_takes_rel_2_31) > -4'sh2 & $signed(hitsNow_takes_rel_2_31) < 4'sh2;
   wire        _hitsNow_takes_T_188 =
     hitsNow_takes_zero_0_31 & hitsNow_takes_rel_1_31 == 4'h0;
-  wire [30:0] hitsNow_bound_31 = {1'h0, {1'h0, members_31_key_qr} + _GEN_2} + _GEN_3;
-  wire [29:0] hitsNow_d_93 = {members_31_key_q_0[28], members_31_key_q_0} - _GEN_4;
-  wire [29:0] hitsNow_d_94 = {members_31_key_q_1[28], members_31_key_q_1} - _GEN_5;
-  wire [29:0] hitsNow_d_95 = {members_31_key_q_2[28], members_31_key_q_2} - _GEN_6;
+  wire [11:0] _hitsNow_T_706 = _probeNear_b_hi_0_T - nearBoxes_15_lo_0;
+  wire [11:0] _hitsNow_T_710 = nearBoxes_15_hi_0 - _probeNear_b_lo_0_T;
+  wire [11:0] _hitsNow_T_715 = _probeNear_b_hi_1_T - nearBoxes_15_lo_1;
+  wire [11:0] _hitsNow_T_719 = nearBoxes_15_hi_1 - _probeNear_b_lo_1_T;
+  wire [11:0] _hitsNow_T_724 = _probeNear_b_hi_2_T - nearBoxes_15_lo_2;
+  wire [11:0] _hitsNow_T_728 = nearBoxes_15_hi_2 - _probeNear_b_lo_2_T;
   wire [31:0] hitsNow =
     {used[5]
        & (io_in_bits_anyCell
@@ -23115,16 +23159,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_31) < 4'sh2 & hitsNow_takes_near_2_31
                      | hitsNow_takes_zero_0_31 & hitsNow_takes_rel_1_31 == 4'h1
                      & hitsNow_takes_near_2_31 | _hitsNow_takes_T_188
-                     & hitsNow_takes_rel_2_31 == 4'h1))
-       & ($signed(hitsNow_d_93) < 30'sh0
-            ? 31'h0 - {hitsNow_d_93[29], hitsNow_d_93}
-            : {1'h0, hitsNow_d_93}) <= hitsNow_bound_31
-       & ($signed(hitsNow_d_94) < 30'sh0
-            ? 31'h0 - {hitsNow_d_94[29], hitsNow_d_94}
-            : {1'h0, hitsNow_d_94}) <= hitsNow_bound_31
-       & ($signed(hitsNow_d_95) < 30'sh0
-            ? 31'h0 - {hitsNow_d_95[29], hitsNow_d_95}
-            : {1'h0, hitsNow_d_95}) <= hitsNow_bound_31,
+                     & hitsNow_takes_rel_2_31 == 4'h1)) & ~(_hitsNow_T_706[11])
+       & ~(_hitsNow_T_710[11]) & ~(_hitsNow_T_715[11]) & ~(_hitsNow_T_719[11])
+       & ~(_hitsNow_T_724[11]) & ~(_hitsNow_T_728[11]),
      used > 6'h1E
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_30
@@ -23136,16 +23173,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_30) < 4'sh2 & hitsNow_takes_near_2_30
                      | hitsNow_takes_zero_0_30 & hitsNow_takes_rel_1_30 == 4'h1
                      & hitsNow_takes_near_2_30 | _hitsNow_takes_T_182
-                     & hitsNow_takes_rel_2_30 == 4'h1))
-       & ($signed(hitsNow_d_90) < 30'sh0
-            ? 31'h0 - {hitsNow_d_90[29], hitsNow_d_90}
-            : {1'h0, hitsNow_d_90}) <= hitsNow_bound_30
-       & ($signed(hitsNow_d_91) < 30'sh0
-            ? 31'h0 - {hitsNow_d_91[29], hitsNow_d_91}
-            : {1'h0, hitsNow_d_91}) <= hitsNow_bound_30
-       & ($signed(hitsNow_d_92) < 30'sh0
-            ? 31'h0 - {hitsNow_d_92[29], hitsNow_d_92}
-            : {1'h0, hitsNow_d_92}) <= hitsNow_bound_30,
+                     & hitsNow_takes_rel_2_30 == 4'h1)) & ~(_hitsNow_T_674[11])
+       & ~(_hitsNow_T_678[11]) & ~(_hitsNow_T_683[11]) & ~(_hitsNow_T_687[11])
+       & ~(_hitsNow_T_692[11]) & ~(_hitsNow_T_696[11]),
      used > 6'h1D
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_29
@@ -23157,16 +23187,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_29) < 4'sh2 & hitsNow_takes_near_2_29
                      | hitsNow_takes_zero_0_29 & hitsNow_takes_rel_1_29 == 4'h1
                      & hitsNow_takes_near_2_29 | _hitsNow_takes_T_176
-                     & hitsNow_takes_rel_2_29 == 4'h1))
-       & ($signed(hitsNow_d_87) < 30'sh0
-            ? 31'h0 - {hitsNow_d_87[29], hitsNow_d_87}
-            : {1'h0, hitsNow_d_87}) <= hitsNow_bound_29
-       & ($signed(hitsNow_d_88) < 30'sh0
-            ? 31'h0 - {hitsNow_d_88[29], hitsNow_d_88}
-            : {1'h0, hitsNow_d_88}) <= hitsNow_bound_29
-       & ($signed(hitsNow_d_89) < 30'sh0
-            ? 31'h0 - {hitsNow_d_89[29], hitsNow_d_89}
-            : {1'h0, hitsNow_d_89}) <= hitsNow_bound_29,
+                     & hitsNow_takes_rel_2_29 == 4'h1)) & ~(_hitsNow_T_642[11])
+       & ~(_hitsNow_T_646[11]) & ~(_hitsNow_T_651[11]) & ~(_hitsNow_T_655[11])
+       & ~(_hitsNow_T_660[11]) & ~(_hitsNow_T_664[11]),
      used > 6'h1C
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_28
@@ -23178,16 +23201,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_28) < 4'sh2 & hitsNow_takes_near_2_28
                      | hitsNow_takes_zero_0_28 & hitsNow_takes_rel_1_28 == 4'h1
                      & hitsNow_takes_near_2_28 | _hitsNow_takes_T_170
-                     & hitsNow_takes_rel_2_28 == 4'h1))
-       & ($signed(hitsNow_d_84) < 30'sh0
-            ? 31'h0 - {hitsNow_d_84[29], hitsNow_d_84}
-            : {1'h0, hitsNow_d_84}) <= hitsNow_bound_28
-       & ($signed(hitsNow_d_85) < 30'sh0
-            ? 31'h0 - {hitsNow_d_85[29], hitsNow_d_85}
-            : {1'h0, hitsNow_d_85}) <= hitsNow_bound_28
-       & ($signed(hitsNow_d_86) < 30'sh0
-            ? 31'h0 - {hitsNow_d_86[29], hitsNow_d_86}
-            : {1'h0, hitsNow_d_86}) <= hitsNow_bound_28,
+                     & hitsNow_takes_rel_2_28 == 4'h1)) & ~(_hitsNow_T_610[11])
+       & ~(_hitsNow_T_614[11]) & ~(_hitsNow_T_619[11]) & ~(_hitsNow_T_623[11])
+       & ~(_hitsNow_T_628[11]) & ~(_hitsNow_T_632[11]),
      used > 6'h1B
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_27
@@ -23199,16 +23215,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_27) < 4'sh2 & hitsNow_takes_near_2_27
                      | hitsNow_takes_zero_0_27 & hitsNow_takes_rel_1_27 == 4'h1
                      & hitsNow_takes_near_2_27 | _hitsNow_takes_T_164
-                     & hitsNow_takes_rel_2_27 == 4'h1))
-       & ($signed(hitsNow_d_81) < 30'sh0
-            ? 31'h0 - {hitsNow_d_81[29], hitsNow_d_81}
-            : {1'h0, hitsNow_d_81}) <= hitsNow_bound_27
-       & ($signed(hitsNow_d_82) < 30'sh0
-            ? 31'h0 - {hitsNow_d_82[29], hitsNow_d_82}
-            : {1'h0, hitsNow_d_82}) <= hitsNow_bound_27
-       & ($signed(hitsNow_d_83) < 30'sh0
-            ? 31'h0 - {hitsNow_d_83[29], hitsNow_d_83}
-            : {1'h0, hitsNow_d_83}) <= hitsNow_bound_27,
+                     & hitsNow_takes_rel_2_27 == 4'h1)) & ~(_hitsNow_T_578[11])
+       & ~(_hitsNow_T_582[11]) & ~(_hitsNow_T_587[11]) & ~(_hitsNow_T_591[11])
+       & ~(_hitsNow_T_596[11]) & ~(_hitsNow_T_600[11]),
      used > 6'h1A
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_26
@@ -23220,16 +23229,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_26) < 4'sh2 & hitsNow_takes_near_2_26
                      | hitsNow_takes_zero_0_26 & hitsNow_takes_rel_1_26 == 4'h1
                      & hitsNow_takes_near_2_26 | _hitsNow_takes_T_158
-                     & hitsNow_takes_rel_2_26 == 4'h1))
-       & ($signed(hitsNow_d_78) < 30'sh0
-            ? 31'h0 - {hitsNow_d_78[29], hitsNow_d_78}
-            : {1'h0, hitsNow_d_78}) <= hitsNow_bound_26
-       & ($signed(hitsNow_d_79) < 30'sh0
-            ? 31'h0 - {hitsNow_d_79[29], hitsNow_d_79}
-            : {1'h0, hitsNow_d_79}) <= hitsNow_bound_26
-       & ($signed(hitsNow_d_80) < 30'sh0
-            ? 31'h0 - {hitsNow_d_80[29], hitsNow_d_80}
-            : {1'h0, hitsNow_d_80}) <= hitsNow_bound_26,
+                     & hitsNow_takes_rel_2_26 == 4'h1)) & ~(_hitsNow_T_546[11])
+       & ~(_hitsNow_T_550[11]) & ~(_hitsNow_T_555[11]) & ~(_hitsNow_T_559[11])
+       & ~(_hitsNow_T_564[11]) & ~(_hitsNow_T_568[11]),
      used > 6'h19
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_25
@@ -23241,16 +23243,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_25) < 4'sh2 & hitsNow_takes_near_2_25
                      | hitsNow_takes_zero_0_25 & hitsNow_takes_rel_1_25 == 4'h1
                      & hitsNow_takes_near_2_25 | _hitsNow_takes_T_152
-                     & hitsNow_takes_rel_2_25 == 4'h1))
-       & ($signed(hitsNow_d_75) < 30'sh0
-            ? 31'h0 - {hitsNow_d_75[29], hitsNow_d_75}
-            : {1'h0, hitsNow_d_75}) <= hitsNow_bound_25
-       & ($signed(hitsNow_d_76) < 30'sh0
-            ? 31'h0 - {hitsNow_d_76[29], hitsNow_d_76}
-            : {1'h0, hitsNow_d_76}) <= hitsNow_bound_25
-       & ($signed(hitsNow_d_77) < 30'sh0
-            ? 31'h0 - {hitsNow_d_77[29], hitsNow_d_77}
-            : {1'h0, hitsNow_d_77}) <= hitsNow_bound_25,
+                     & hitsNow_takes_rel_2_25 == 4'h1)) & ~(_hitsNow_T_514[11])
+       & ~(_hitsNow_T_518[11]) & ~(_hitsNow_T_523[11]) & ~(_hitsNow_T_527[11])
+       & ~(_hitsNow_T_532[11]) & ~(_hitsNow_T_536[11]),
      used > 6'h18
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_24
@@ -23262,16 +23257,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_24) < 4'sh2 & hitsNow_takes_near_2_24
                      | hitsNow_takes_zero_0_24 & hitsNow_takes_rel_1_24 == 4'h1
                      & hitsNow_takes_near_2_24 | _hitsNow_takes_T_146
-                     & hitsNow_takes_rel_2_24 == 4'h1))
-       & ($signed(hitsNow_d_72) < 30'sh0
-            ? 31'h0 - {hitsNow_d_72[29], hitsNow_d_72}
-            : {1'h0, hitsNow_d_72}) <= hitsNow_bound_24
-       & ($signed(hitsNow_d_73) < 30'sh0
-            ? 31'h0 - {hitsNow_d_73[29], hitsNow_d_73}
-            : {1'h0, hitsNow_d_73}) <= hitsNow_bound_24
-       & ($signed(hitsNow_d_74) < 30'sh0
-            ? 31'h0 - {hitsNow_d_74[29], hitsNow_d_74}
-            : {1'h0, hitsNow_d_74}) <= hitsNow_bound_24,
+                     & hitsNow_takes_rel_2_24 == 4'h1)) & ~(_hitsNow_T_482[11])
+       & ~(_hitsNow_T_486[11]) & ~(_hitsNow_T_491[11]) & ~(_hitsNow_T_495[11])
+       & ~(_hitsNow_T_500[11]) & ~(_hitsNow_T_504[11]),
      used > 6'h17
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_23
@@ -23283,16 +23271,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_23) < 4'sh2 & hitsNow_takes_near_2_23
                      | hitsNow_takes_zero_0_23 & hitsNow_takes_rel_1_23 == 4'h1
                      & hitsNow_takes_near_2_23 | _hitsNow_takes_T_140
-                     & hitsNow_takes_rel_2_23 == 4'h1))
-       & ($signed(hitsNow_d_69) < 30'sh0
-            ? 31'h0 - {hitsNow_d_69[29], hitsNow_d_69}
-            : {1'h0, hitsNow_d_69}) <= hitsNow_bound_23
-       & ($signed(hitsNow_d_70) < 30'sh0
-            ? 31'h0 - {hitsNow_d_70[29], hitsNow_d_70}
-            : {1'h0, hitsNow_d_70}) <= hitsNow_bound_23
-       & ($signed(hitsNow_d_71) < 30'sh0
-            ? 31'h0 - {hitsNow_d_71[29], hitsNow_d_71}
-            : {1'h0, hitsNow_d_71}) <= hitsNow_bound_23,
+                     & hitsNow_takes_rel_2_23 == 4'h1)) & ~(_hitsNow_T_450[11])
+       & ~(_hitsNow_T_454[11]) & ~(_hitsNow_T_459[11]) & ~(_hitsNow_T_463[11])
+       & ~(_hitsNow_T_468[11]) & ~(_hitsNow_T_472[11]),
      used > 6'h16
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_22
@@ -23304,16 +23285,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_22) < 4'sh2 & hitsNow_takes_near_2_22
                      | hitsNow_takes_zero_0_22 & hitsNow_takes_rel_1_22 == 4'h1
                      & hitsNow_takes_near_2_22 | _hitsNow_takes_T_134
-                     & hitsNow_takes_rel_2_22 == 4'h1))
-       & ($signed(hitsNow_d_66) < 30'sh0
-            ? 31'h0 - {hitsNow_d_66[29], hitsNow_d_66}
-            : {1'h0, hitsNow_d_66}) <= hitsNow_bound_22
-       & ($signed(hitsNow_d_67) < 30'sh0
-            ? 31'h0 - {hitsNow_d_67[29], hitsNow_d_67}
-            : {1'h0, hitsNow_d_67}) <= hitsNow_bound_22
-       & ($signed(hitsNow_d_68) < 30'sh0
-            ? 31'h0 - {hitsNow_d_68[29], hitsNow_d_68}
-            : {1'h0, hitsNow_d_68}) <= hitsNow_bound_22,
+                     & hitsNow_takes_rel_2_22 == 4'h1)) & ~(_hitsNow_T_418[11])
+       & ~(_hitsNow_T_422[11]) & ~(_hitsNow_T_427[11]) & ~(_hitsNow_T_431[11])
+       & ~(_hitsNow_T_436[11]) & ~(_hitsNow_T_440[11]),
      used > 6'h15
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_21
@@ -23325,16 +23299,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_21) < 4'sh2 & hitsNow_takes_near_2_21
                      | hitsNow_takes_zero_0_21 & hitsNow_takes_rel_1_21 == 4'h1
                      & hitsNow_takes_near_2_21 | _hitsNow_takes_T_128
-                     & hitsNow_takes_rel_2_21 == 4'h1))
-       & ($signed(hitsNow_d_63) < 30'sh0
-            ? 31'h0 - {hitsNow_d_63[29], hitsNow_d_63}
-            : {1'h0, hitsNow_d_63}) <= hitsNow_bound_21
-       & ($signed(hitsNow_d_64) < 30'sh0
-            ? 31'h0 - {hitsNow_d_64[29], hitsNow_d_64}
-            : {1'h0, hitsNow_d_64}) <= hitsNow_bound_21
-       & ($signed(hitsNow_d_65) < 30'sh0
-            ? 31'h0 - {hitsNow_d_65[29], hitsNow_d_65}
-            : {1'h0, hitsNow_d_65}) <= hitsNow_bound_21,
+                     & hitsNow_takes_rel_2_21 == 4'h1)) & ~(_hitsNow_T_386[11])
+       & ~(_hitsNow_T_390[11]) & ~(_hitsNow_T_395[11]) & ~(_hitsNow_T_399[11])
+       & ~(_hitsNow_T_404[11]) & ~(_hitsNow_T_408[11]),
      used > 6'h14
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_20
@@ -23346,16 +23313,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_20) < 4'sh2 & hitsNow_takes_near_2_20
                      | hitsNow_takes_zero_0_20 & hitsNow_takes_rel_1_20 == 4'h1
                      & hitsNow_takes_near_2_20 | _hitsNow_takes_T_122
-                     & hitsNow_takes_rel_2_20 == 4'h1))
-       & ($signed(hitsNow_d_60) < 30'sh0
-            ? 31'h0 - {hitsNow_d_60[29], hitsNow_d_60}
-            : {1'h0, hitsNow_d_60}) <= hitsNow_bound_20
-       & ($signed(hitsNow_d_61) < 30'sh0
-            ? 31'h0 - {hitsNow_d_61[29], hitsNow_d_61}
-            : {1'h0, hitsNow_d_61}) <= hitsNow_bound_20
-       & ($signed(hitsNow_d_62) < 30'sh0
-            ? 31'h0 - {hitsNow_d_62[29], hitsNow_d_62}
-            : {1'h0, hitsNow_d_62}) <= hitsNow_bound_20,
+                     & hitsNow_takes_rel_2_20 == 4'h1)) & ~(_hitsNow_T_354[11])
+       & ~(_hitsNow_T_358[11]) & ~(_hitsNow_T_363[11]) & ~(_hitsNow_T_367[11])
+       & ~(_hitsNow_T_372[11]) & ~(_hitsNow_T_376[11]),
      used > 6'h13
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_19
@@ -23367,16 +23327,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_19) < 4'sh2 & hitsNow_takes_near_2_19
                      | hitsNow_takes_zero_0_19 & hitsNow_takes_rel_1_19 == 4'h1
                      & hitsNow_takes_near_2_19 | _hitsNow_takes_T_116
-                     & hitsNow_takes_rel_2_19 == 4'h1))
-       & ($signed(hitsNow_d_57) < 30'sh0
-            ? 31'h0 - {hitsNow_d_57[29], hitsNow_d_57}
-            : {1'h0, hitsNow_d_57}) <= hitsNow_bound_19
-       & ($signed(hitsNow_d_58) < 30'sh0
-            ? 31'h0 - {hitsNow_d_58[29], hitsNow_d_58}
-            : {1'h0, hitsNow_d_58}) <= hitsNow_bound_19
-       & ($signed(hitsNow_d_59) < 30'sh0
-            ? 31'h0 - {hitsNow_d_59[29], hitsNow_d_59}
-            : {1'h0, hitsNow_d_59}) <= hitsNow_bound_19,
+                     & hitsNow_takes_rel_2_19 == 4'h1)) & ~(_hitsNow_T_322[11])
+       & ~(_hitsNow_T_326[11]) & ~(_hitsNow_T_331[11]) & ~(_hitsNow_T_335[11])
+       & ~(_hitsNow_T_340[11]) & ~(_hitsNow_T_344[11]),
      used > 6'h12
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_18
@@ -23388,16 +23341,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_18) < 4'sh2 & hitsNow_takes_near_2_18
                      | hitsNow_takes_zero_0_18 & hitsNow_takes_rel_1_18 == 4'h1
                      & hitsNow_takes_near_2_18 | _hitsNow_takes_T_110
-                     & hitsNow_takes_rel_2_18 == 4'h1))
-       & ($signed(hitsNow_d_54) < 30'sh0
-            ? 31'h0 - {hitsNow_d_54[29], hitsNow_d_54}
-            : {1'h0, hitsNow_d_54}) <= hitsNow_bound_18
-       & ($signed(hitsNow_d_55) < 30'sh0
-            ? 31'h0 - {hitsNow_d_55[29], hitsNow_d_55}
-            : {1'h0, hitsNow_d_55}) <= hitsNow_bound_18
-       & ($signed(hitsNow_d_56) < 30'sh0
-            ? 31'h0 - {hitsNow_d_56[29], hitsNow_d_56}
-            : {1'h0, hitsNow_d_56}) <= hitsNow_bound_18,
+                     & hitsNow_takes_rel_2_18 == 4'h1)) & ~(_hitsNow_T_290[11])
+       & ~(_hitsNow_T_294[11]) & ~(_hitsNow_T_299[11]) & ~(_hitsNow_T_303[11])
+       & ~(_hitsNow_T_308[11]) & ~(_hitsNow_T_312[11]),
      used > 6'h11
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_17
@@ -23409,16 +23355,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_17) < 4'sh2 & hitsNow_takes_near_2_17
                      | hitsNow_takes_zero_0_17 & hitsNow_takes_rel_1_17 == 4'h1
                      & hitsNow_takes_near_2_17 | _hitsNow_takes_T_104
-                     & hitsNow_takes_rel_2_17 == 4'h1))
-       & ($signed(hitsNow_d_51) < 30'sh0
-            ? 31'h0 - {hitsNow_d_51[29], hitsNow_d_51}
-            : {1'h0, hitsNow_d_51}) <= hitsNow_bound_17
-       & ($signed(hitsNow_d_52) < 30'sh0
-            ? 31'h0 - {hitsNow_d_52[29], hitsNow_d_52}
-            : {1'h0, hitsNow_d_52}) <= hitsNow_bound_17
-       & ($signed(hitsNow_d_53) < 30'sh0
-            ? 31'h0 - {hitsNow_d_53[29], hitsNow_d_53}
-            : {1'h0, hitsNow_d_53}) <= hitsNow_bound_17,
+                     & hitsNow_takes_rel_2_17 == 4'h1)) & ~(_hitsNow_T_258[11])
+       & ~(_hitsNow_T_262[11]) & ~(_hitsNow_T_267[11]) & ~(_hitsNow_T_271[11])
+       & ~(_hitsNow_T_276[11]) & ~(_hitsNow_T_280[11]),
      used > 6'h10
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_16
@@ -23430,16 +23369,9 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      & $signed(hitsNow_takes_rel_1_16) < 4'sh2 & hitsNow_takes_near_2_16
                      | hitsNow_takes_zero_0_16 & hitsNow_takes_rel_1_16 == 4'h1
                      & hitsNow_takes_near_2_16 | _hitsNow_takes_T_98
-                     & hitsNow_takes_rel_2_16 == 4'h1))
-       & ($signed(hitsNow_d_48) < 30'sh0
-            ? 31'h0 - {hitsNow_d_48[29], hitsNow_d_48}
-            : {1'h0, hitsNow_d_48}) <= hitsNow_bound_16
-       & ($signed(hitsNow_d_49) < 30'sh0
-            ? 31'h0 - {hitsNow_d_49[29], hitsNow_d_49}
-            : {1'h0, hitsNow_d_49}) <= hitsNow_bound_16
-       & ($signed(hitsNow_d_50) < 30'sh0
-            ? 31'h0 - {hitsNow_d_50[29], hitsNow_d_50}
-            : {1'h0, hitsNow_d_50}) <= hitsNow_bound_16,
+                     & hitsNow_takes_rel_2_16 == 4'h1)) & ~(_hitsNow_T_226[11])
+       & ~(_hitsNow_T_230[11]) & ~(_hitsNow_T_235[11]) & ~(_hitsNow_T_239[11])
+       & ~(_hitsNow_T_244[11]) & ~(_hitsNow_T_248[11]),
      (|(used[5:4]))
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_15
@@ -23452,15 +23384,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_15 & hitsNow_takes_rel_1_15 == 4'h1
                      & hitsNow_takes_near_2_15 | _hitsNow_takes_T_92
                      & hitsNow_takes_rel_2_15 == 4'h1))
-       & ($signed(hitsNow_d_45) < 30'sh0
-            ? 31'h0 - {hitsNow_d_45[29], hitsNow_d_45}
-            : {1'h0, hitsNow_d_45}) <= hitsNow_bound_15
-       & ($signed(hitsNow_d_46) < 30'sh0
-            ? 31'h0 - {hitsNow_d_46[29], hitsNow_d_46}
-            : {1'h0, hitsNow_d_46}) <= hitsNow_bound_15
-       & ($signed(hitsNow_d_47) < 30'sh0
-            ? 31'h0 - {hitsNow_d_47[29], hitsNow_d_47}
-            : {1'h0, hitsNow_d_47}) <= hitsNow_bound_15,
+       & $signed({wideBoxes_15_lo_0[30], wideBoxes_15_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_15_hi_0[30], wideBoxes_15_hi_0})
+       & $signed({wideBoxes_15_lo_1[30], wideBoxes_15_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_15_hi_1[30], wideBoxes_15_hi_1})
+       & $signed({wideBoxes_15_lo_2[30], wideBoxes_15_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_15_hi_2[30], wideBoxes_15_hi_2}),
      used > 6'hE
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_14
@@ -23473,15 +23402,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_14 & hitsNow_takes_rel_1_14 == 4'h1
                      & hitsNow_takes_near_2_14 | _hitsNow_takes_T_86
                      & hitsNow_takes_rel_2_14 == 4'h1))
-       & ($signed(hitsNow_d_42) < 30'sh0
-            ? 31'h0 - {hitsNow_d_42[29], hitsNow_d_42}
-            : {1'h0, hitsNow_d_42}) <= hitsNow_bound_14
-       & ($signed(hitsNow_d_43) < 30'sh0
-            ? 31'h0 - {hitsNow_d_43[29], hitsNow_d_43}
-            : {1'h0, hitsNow_d_43}) <= hitsNow_bound_14
-       & ($signed(hitsNow_d_44) < 30'sh0
-            ? 31'h0 - {hitsNow_d_44[29], hitsNow_d_44}
-            : {1'h0, hitsNow_d_44}) <= hitsNow_bound_14,
+       & $signed({wideBoxes_14_lo_0[30], wideBoxes_14_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_14_hi_0[30], wideBoxes_14_hi_0})
+       & $signed({wideBoxes_14_lo_1[30], wideBoxes_14_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_14_hi_1[30], wideBoxes_14_hi_1})
+       & $signed({wideBoxes_14_lo_2[30], wideBoxes_14_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_14_hi_2[30], wideBoxes_14_hi_2}),
      used > 6'hD
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_13
@@ -23494,15 +23420,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_13 & hitsNow_takes_rel_1_13 == 4'h1
                      & hitsNow_takes_near_2_13 | _hitsNow_takes_T_80
                      & hitsNow_takes_rel_2_13 == 4'h1))
-       & ($signed(hitsNow_d_39) < 30'sh0
-            ? 31'h0 - {hitsNow_d_39[29], hitsNow_d_39}
-            : {1'h0, hitsNow_d_39}) <= hitsNow_bound_13
-       & ($signed(hitsNow_d_40) < 30'sh0
-            ? 31'h0 - {hitsNow_d_40[29], hitsNow_d_40}
-            : {1'h0, hitsNow_d_40}) <= hitsNow_bound_13
-       & ($signed(hitsNow_d_41) < 30'sh0
-            ? 31'h0 - {hitsNow_d_41[29], hitsNow_d_41}
-            : {1'h0, hitsNow_d_41}) <= hitsNow_bound_13,
+       & $signed({wideBoxes_13_lo_0[30], wideBoxes_13_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_13_hi_0[30], wideBoxes_13_hi_0})
+       & $signed({wideBoxes_13_lo_1[30], wideBoxes_13_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_13_hi_1[30], wideBoxes_13_hi_1})
+       & $signed({wideBoxes_13_lo_2[30], wideBoxes_13_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_13_hi_2[30], wideBoxes_13_hi_2}),
      used > 6'hC
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_12
@@ -23515,15 +23438,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_12 & hitsNow_takes_rel_1_12 == 4'h1
                      & hitsNow_takes_near_2_12 | _hitsNow_takes_T_74
                      & hitsNow_takes_rel_2_12 == 4'h1))
-       & ($signed(hitsNow_d_36) < 30'sh0
-            ? 31'h0 - {hitsNow_d_36[29], hitsNow_d_36}
-            : {1'h0, hitsNow_d_36}) <= hitsNow_bound_12
-       & ($signed(hitsNow_d_37) < 30'sh0
-            ? 31'h0 - {hitsNow_d_37[29], hitsNow_d_37}
-            : {1'h0, hitsNow_d_37}) <= hitsNow_bound_12
-       & ($signed(hitsNow_d_38) < 30'sh0
-            ? 31'h0 - {hitsNow_d_38[29], hitsNow_d_38}
-            : {1'h0, hitsNow_d_38}) <= hitsNow_bound_12,
+       & $signed({wideBoxes_12_lo_0[30], wideBoxes_12_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_12_hi_0[30], wideBoxes_12_hi_0})
+       & $signed({wideBoxes_12_lo_1[30], wideBoxes_12_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_12_hi_1[30], wideBoxes_12_hi_1})
+       & $signed({wideBoxes_12_lo_2[30], wideBoxes_12_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_12_hi_2[30], wideBoxes_12_hi_2}),
      used > 6'hB
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_11
@@ -23536,15 +23456,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_11 & hitsNow_takes_rel_1_11 == 4'h1
                      & hitsNow_takes_near_2_11 | _hitsNow_takes_T_68
                      & hitsNow_takes_rel_2_11 == 4'h1))
-       & ($signed(hitsNow_d_33) < 30'sh0
-            ? 31'h0 - {hitsNow_d_33[29], hitsNow_d_33}
-            : {1'h0, hitsNow_d_33}) <= hitsNow_bound_11
-       & ($signed(hitsNow_d_34) < 30'sh0
-            ? 31'h0 - {hitsNow_d_34[29], hitsNow_d_34}
-            : {1'h0, hitsNow_d_34}) <= hitsNow_bound_11
-       & ($signed(hitsNow_d_35) < 30'sh0
-            ? 31'h0 - {hitsNow_d_35[29], hitsNow_d_35}
-            : {1'h0, hitsNow_d_35}) <= hitsNow_bound_11,
+       & $signed({wideBoxes_11_lo_0[30], wideBoxes_11_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_11_hi_0[30], wideBoxes_11_hi_0})
+       & $signed({wideBoxes_11_lo_1[30], wideBoxes_11_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_11_hi_1[30], wideBoxes_11_hi_1})
+       & $signed({wideBoxes_11_lo_2[30], wideBoxes_11_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_11_hi_2[30], wideBoxes_11_hi_2}),
      used > 6'hA
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_10
@@ -23557,15 +23474,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_10 & hitsNow_takes_rel_1_10 == 4'h1
                      & hitsNow_takes_near_2_10 | _hitsNow_takes_T_62
                      & hitsNow_takes_rel_2_10 == 4'h1))
-       & ($signed(hitsNow_d_30) < 30'sh0
-            ? 31'h0 - {hitsNow_d_30[29], hitsNow_d_30}
-            : {1'h0, hitsNow_d_30}) <= hitsNow_bound_10
-       & ($signed(hitsNow_d_31) < 30'sh0
-            ? 31'h0 - {hitsNow_d_31[29], hitsNow_d_31}
-            : {1'h0, hitsNow_d_31}) <= hitsNow_bound_10
-       & ($signed(hitsNow_d_32) < 30'sh0
-            ? 31'h0 - {hitsNow_d_32[29], hitsNow_d_32}
-            : {1'h0, hitsNow_d_32}) <= hitsNow_bound_10,
+       & $signed({wideBoxes_10_lo_0[30], wideBoxes_10_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_10_hi_0[30], wideBoxes_10_hi_0})
+       & $signed({wideBoxes_10_lo_1[30], wideBoxes_10_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_10_hi_1[30], wideBoxes_10_hi_1})
+       & $signed({wideBoxes_10_lo_2[30], wideBoxes_10_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_10_hi_2[30], wideBoxes_10_hi_2}),
      used > 6'h9
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_9
@@ -23578,15 +23492,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_9 & hitsNow_takes_rel_1_9 == 4'h1
                      & hitsNow_takes_near_2_9 | _hitsNow_takes_T_56
                      & hitsNow_takes_rel_2_9 == 4'h1))
-       & ($signed(hitsNow_d_27) < 30'sh0
-            ? 31'h0 - {hitsNow_d_27[29], hitsNow_d_27}
-            : {1'h0, hitsNow_d_27}) <= hitsNow_bound_9
-       & ($signed(hitsNow_d_28) < 30'sh0
-            ? 31'h0 - {hitsNow_d_28[29], hitsNow_d_28}
-            : {1'h0, hitsNow_d_28}) <= hitsNow_bound_9
-       & ($signed(hitsNow_d_29) < 30'sh0
-            ? 31'h0 - {hitsNow_d_29[29], hitsNow_d_29}
-            : {1'h0, hitsNow_d_29}) <= hitsNow_bound_9,
+       & $signed({wideBoxes_9_lo_0[30], wideBoxes_9_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_9_hi_0[30], wideBoxes_9_hi_0})
+       & $signed({wideBoxes_9_lo_1[30], wideBoxes_9_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_9_hi_1[30], wideBoxes_9_hi_1})
+       & $signed({wideBoxes_9_lo_2[30], wideBoxes_9_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_9_hi_2[30], wideBoxes_9_hi_2}),
      used > 6'h8
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_8
@@ -23599,15 +23510,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_8 & hitsNow_takes_rel_1_8 == 4'h1
                      & hitsNow_takes_near_2_8 | _hitsNow_takes_T_50
                      & hitsNow_takes_rel_2_8 == 4'h1))
-       & ($signed(hitsNow_d_24) < 30'sh0
-            ? 31'h0 - {hitsNow_d_24[29], hitsNow_d_24}
-            : {1'h0, hitsNow_d_24}) <= hitsNow_bound_8
-       & ($signed(hitsNow_d_25) < 30'sh0
-            ? 31'h0 - {hitsNow_d_25[29], hitsNow_d_25}
-            : {1'h0, hitsNow_d_25}) <= hitsNow_bound_8
-       & ($signed(hitsNow_d_26) < 30'sh0
-            ? 31'h0 - {hitsNow_d_26[29], hitsNow_d_26}
-            : {1'h0, hitsNow_d_26}) <= hitsNow_bound_8,
+       & $signed({wideBoxes_8_lo_0[30], wideBoxes_8_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_8_hi_0[30], wideBoxes_8_hi_0})
+       & $signed({wideBoxes_8_lo_1[30], wideBoxes_8_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_8_hi_1[30], wideBoxes_8_hi_1})
+       & $signed({wideBoxes_8_lo_2[30], wideBoxes_8_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_8_hi_2[30], wideBoxes_8_hi_2}),
      (|(used[5:3]))
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_7
@@ -23620,15 +23528,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_7 & hitsNow_takes_rel_1_7 == 4'h1
                      & hitsNow_takes_near_2_7 | _hitsNow_takes_T_44
                      & hitsNow_takes_rel_2_7 == 4'h1))
-       & ($signed(hitsNow_d_21) < 30'sh0
-            ? 31'h0 - {hitsNow_d_21[29], hitsNow_d_21}
-            : {1'h0, hitsNow_d_21}) <= hitsNow_bound_7
-       & ($signed(hitsNow_d_22) < 30'sh0
-            ? 31'h0 - {hitsNow_d_22[29], hitsNow_d_22}
-            : {1'h0, hitsNow_d_22}) <= hitsNow_bound_7
-       & ($signed(hitsNow_d_23) < 30'sh0
-            ? 31'h0 - {hitsNow_d_23[29], hitsNow_d_23}
-            : {1'h0, hitsNow_d_23}) <= hitsNow_bound_7,
+       & $signed({wideBoxes_7_lo_0[30], wideBoxes_7_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_7_hi_0[30], wideBoxes_7_hi_0})
+       & $signed({wideBoxes_7_lo_1[30], wideBoxes_7_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_7_hi_1[30], wideBoxes_7_hi_1})
+       & $signed({wideBoxes_7_lo_2[30], wideBoxes_7_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_7_hi_2[30], wideBoxes_7_hi_2}),
      used > 6'h6
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_6
@@ -23641,15 +23546,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_6 & hitsNow_takes_rel_1_6 == 4'h1
                      & hitsNow_takes_near_2_6 | _hitsNow_takes_T_38
                      & hitsNow_takes_rel_2_6 == 4'h1))
-       & ($signed(hitsNow_d_18) < 30'sh0
-            ? 31'h0 - {hitsNow_d_18[29], hitsNow_d_18}
-            : {1'h0, hitsNow_d_18}) <= hitsNow_bound_6
-       & ($signed(hitsNow_d_19) < 30'sh0
-            ? 31'h0 - {hitsNow_d_19[29], hitsNow_d_19}
-            : {1'h0, hitsNow_d_19}) <= hitsNow_bound_6
-       & ($signed(hitsNow_d_20) < 30'sh0
-            ? 31'h0 - {hitsNow_d_20[29], hitsNow_d_20}
-            : {1'h0, hitsNow_d_20}) <= hitsNow_bound_6,
+       & $signed({wideBoxes_6_lo_0[30], wideBoxes_6_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_6_hi_0[30], wideBoxes_6_hi_0})
+       & $signed({wideBoxes_6_lo_1[30], wideBoxes_6_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_6_hi_1[30], wideBoxes_6_hi_1})
+       & $signed({wideBoxes_6_lo_2[30], wideBoxes_6_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_6_hi_2[30], wideBoxes_6_hi_2}),
      used > 6'h5
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_5
@@ -23662,15 +23564,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_5 & hitsNow_takes_rel_1_5 == 4'h1
                      & hitsNow_takes_near_2_5 | _hitsNow_takes_T_32
                      & hitsNow_takes_rel_2_5 == 4'h1))
-       & ($signed(hitsNow_d_15) < 30'sh0
-            ? 31'h0 - {hitsNow_d_15[29], hitsNow_d_15}
-            : {1'h0, hitsNow_d_15}) <= hitsNow_bound_5
-       & ($signed(hitsNow_d_16) < 30'sh0
-            ? 31'h0 - {hitsNow_d_16[29], hitsNow_d_16}
-            : {1'h0, hitsNow_d_16}) <= hitsNow_bound_5
-       & ($signed(hitsNow_d_17) < 30'sh0
-            ? 31'h0 - {hitsNow_d_17[29], hitsNow_d_17}
-            : {1'h0, hitsNow_d_17}) <= hitsNow_bound_5,
+       & $signed({wideBoxes_5_lo_0[30], wideBoxes_5_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_5_hi_0[30], wideBoxes_5_hi_0})
+       & $signed({wideBoxes_5_lo_1[30], wideBoxes_5_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_5_hi_1[30], wideBoxes_5_hi_1})
+       & $signed({wideBoxes_5_lo_2[30], wideBoxes_5_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_5_hi_2[30], wideBoxes_5_hi_2}),
      used > 6'h4
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_4
@@ -23683,15 +23582,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_4 & hitsNow_takes_rel_1_4 == 4'h1
                      & hitsNow_takes_near_2_4 | _hitsNow_takes_T_26
                      & hitsNow_takes_rel_2_4 == 4'h1))
-       & ($signed(hitsNow_d_12) < 30'sh0
-            ? 31'h0 - {hitsNow_d_12[29], hitsNow_d_12}
-            : {1'h0, hitsNow_d_12}) <= hitsNow_bound_4
-       & ($signed(hitsNow_d_13) < 30'sh0
-            ? 31'h0 - {hitsNow_d_13[29], hitsNow_d_13}
-            : {1'h0, hitsNow_d_13}) <= hitsNow_bound_4
-       & ($signed(hitsNow_d_14) < 30'sh0
-            ? 31'h0 - {hitsNow_d_14[29], hitsNow_d_14}
-            : {1'h0, hitsNow_d_14}) <= hitsNow_bound_4,
+       & $signed({wideBoxes_4_lo_0[30], wideBoxes_4_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_4_hi_0[30], wideBoxes_4_hi_0})
+       & $signed({wideBoxes_4_lo_1[30], wideBoxes_4_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_4_hi_1[30], wideBoxes_4_hi_1})
+       & $signed({wideBoxes_4_lo_2[30], wideBoxes_4_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_4_hi_2[30], wideBoxes_4_hi_2}),
      (|(used[5:2]))
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_3
@@ -23704,15 +23600,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_3 & hitsNow_takes_rel_1_3 == 4'h1
                      & hitsNow_takes_near_2_3 | _hitsNow_takes_T_20
                      & hitsNow_takes_rel_2_3 == 4'h1))
-       & ($signed(hitsNow_d_9) < 30'sh0
-            ? 31'h0 - {hitsNow_d_9[29], hitsNow_d_9}
-            : {1'h0, hitsNow_d_9}) <= hitsNow_bound_3
-       & ($signed(hitsNow_d_10) < 30'sh0
-            ? 31'h0 - {hitsNow_d_10[29], hitsNow_d_10}
-            : {1'h0, hitsNow_d_10}) <= hitsNow_bound_3
-       & ($signed(hitsNow_d_11) < 30'sh0
-            ? 31'h0 - {hitsNow_d_11[29], hitsNow_d_11}
-            : {1'h0, hitsNow_d_11}) <= hitsNow_bound_3,
+       & $signed({wideBoxes_3_lo_0[30], wideBoxes_3_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_3_hi_0[30], wideBoxes_3_hi_0})
+       & $signed({wideBoxes_3_lo_1[30], wideBoxes_3_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_3_hi_1[30], wideBoxes_3_hi_1})
+       & $signed({wideBoxes_3_lo_2[30], wideBoxes_3_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_3_hi_2[30], wideBoxes_3_hi_2}),
      used > 6'h2
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_2
@@ -23725,15 +23618,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_2 & hitsNow_takes_rel_1_2 == 4'h1
                      & hitsNow_takes_near_2_2 | _hitsNow_takes_T_14
                      & hitsNow_takes_rel_2_2 == 4'h1))
-       & ($signed(hitsNow_d_6) < 30'sh0
-            ? 31'h0 - {hitsNow_d_6[29], hitsNow_d_6}
-            : {1'h0, hitsNow_d_6}) <= hitsNow_bound_2
-       & ($signed(hitsNow_d_7) < 30'sh0
-            ? 31'h0 - {hitsNow_d_7[29], hitsNow_d_7}
-            : {1'h0, hitsNow_d_7}) <= hitsNow_bound_2
-       & ($signed(hitsNow_d_8) < 30'sh0
-            ? 31'h0 - {hitsNow_d_8[29], hitsNow_d_8}
-            : {1'h0, hitsNow_d_8}) <= hitsNow_bound_2,
+       & $signed({wideBoxes_2_lo_0[30], wideBoxes_2_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_2_hi_0[30], wideBoxes_2_hi_0})
+       & $signed({wideBoxes_2_lo_1[30], wideBoxes_2_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_2_hi_1[30], wideBoxes_2_hi_1})
+       & $signed({wideBoxes_2_lo_2[30], wideBoxes_2_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_2_hi_2[30], wideBoxes_2_hi_2}),
      (|(used[5:1]))
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later_1
@@ -23746,15 +23636,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0_1 & hitsNow_takes_rel_1_1 == 4'h1
                      & hitsNow_takes_near_2_1 | _hitsNow_takes_T_8
                      & hitsNow_takes_rel_2_1 == 4'h1))
-       & ($signed(hitsNow_d_3) < 30'sh0
-            ? 31'h0 - {hitsNow_d_3[29], hitsNow_d_3}
-            : {1'h0, hitsNow_d_3}) <= hitsNow_bound_1
-       & ($signed(hitsNow_d_4) < 30'sh0
-            ? 31'h0 - {hitsNow_d_4[29], hitsNow_d_4}
-            : {1'h0, hitsNow_d_4}) <= hitsNow_bound_1
-       & ($signed(hitsNow_d_5) < 30'sh0
-            ? 31'h0 - {hitsNow_d_5[29], hitsNow_d_5}
-            : {1'h0, hitsNow_d_5}) <= hitsNow_bound_1,
+       & $signed({wideBoxes_1_lo_0[30], wideBoxes_1_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_1_hi_0[30], wideBoxes_1_hi_0})
+       & $signed({wideBoxes_1_lo_1[30], wideBoxes_1_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_1_hi_1[30], wideBoxes_1_hi_1})
+       & $signed({wideBoxes_1_lo_2[30], wideBoxes_1_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_1_hi_2[30], wideBoxes_1_hi_2}),
      (|used)
        & (io_in_bits_anyCell
             ? ~io_in_bits_own | hitsNow_later
@@ -23766,15 +23653,12 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                      | hitsNow_takes_zero_0 & hitsNow_takes_rel_1 == 4'h1
                      & hitsNow_takes_near_2 | _hitsNow_takes_T_2
                      & hitsNow_takes_rel_2 == 4'h1))
-       & ($signed(hitsNow_d) < 30'sh0
-            ? 31'h0 - {hitsNow_d[29], hitsNow_d}
-            : {1'h0, hitsNow_d}) <= hitsNow_bound
-       & ($signed(hitsNow_d_1) < 30'sh0
-            ? 31'h0 - {hitsNow_d_1[29], hitsNow_d_1}
-            : {1'h0, hitsNow_d_1}) <= hitsNow_bound
-       & ($signed(hitsNow_d_2) < 30'sh0
-            ? 31'h0 - {hitsNow_d_2[29], hitsNow_d_2}
-            : {1'h0, hitsNow_d_2}) <= hitsNow_bound};
+       & $signed({wideBoxes_0_lo_0[30], wideBoxes_0_lo_0}) <= $signed(probeBox_hi_0)
+       & $signed(probeBox_lo_0) <= $signed({wideBoxes_0_hi_0[30], wideBoxes_0_hi_0})
+       & $signed({wideBoxes_0_lo_1[30], wideBoxes_0_lo_1}) <= $signed(probeBox_hi_1)
+       & $signed(probeBox_lo_1) <= $signed({wideBoxes_0_hi_1[30], wideBoxes_0_hi_1})
+       & $signed({wideBoxes_0_lo_2[30], wideBoxes_0_lo_2}) <= $signed(probeBox_hi_2)
+       & $signed(probeBox_lo_2) <= $signed({wideBoxes_0_hi_2[30], wideBoxes_0_hi_2})};
   reg  [31:0] pending;
   reg  [11:0] entry;
   reg         pendBank;
@@ -24014,47 +23898,65 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
                  {1'h0, {1'h0, pending[28]} + {1'h0, pending[29]}}
                    + {1'h0, {1'h0, pending[30]} + {1'h0, pending[31]}}}}} < 6'h2
     & io_out_ready;
-  wire        _GEN_7 = used == 6'h20;
-  wire        _GEN_8 = used[4:0] == 5'h1;
-  wire        _GEN_9 = used[4:0] == 5'h2;
-  wire        _GEN_10 = used[4:0] == 5'h3;
-  wire        _GEN_11 = used[4:0] == 5'h4;
-  wire        _GEN_12 = used[4:0] == 5'h5;
-  wire        _GEN_13 = used[4:0] == 5'h6;
-  wire        _GEN_14 = used[4:0] == 5'h7;
-  wire        _GEN_15 = used[4:0] == 5'h8;
-  wire        _GEN_16 = used[4:0] == 5'h9;
-  wire        _GEN_17 = used[4:0] == 5'hA;
-  wire        _GEN_18 = used[4:0] == 5'hB;
-  wire        _GEN_19 = used[4:0] == 5'hC;
-  wire        _GEN_20 = used[4:0] == 5'hD;
-  wire        _GEN_21 = used[4:0] == 5'hE;
-  wire        _GEN_22 = used[4:0] == 5'hF;
-  wire        _GEN_23 = used[4:0] == 5'h10;
-  wire        _GEN_24 = used[4:0] == 5'h11;
-  wire        _GEN_25 = used[4:0] == 5'h12;
-  wire        _GEN_26 = used[4:0] == 5'h13;
-  wire        _GEN_27 = used[4:0] == 5'h14;
-  wire        _GEN_28 = used[4:0] == 5'h15;
-  wire        _GEN_29 = used[4:0] == 5'h16;
-  wire        _GEN_30 = used[4:0] == 5'h17;
-  wire        _GEN_31 = used[4:0] == 5'h18;
-  wire        _GEN_32 = used[4:0] == 5'h19;
-  wire        _GEN_33 = used[4:0] == 5'h1A;
-  wire        _GEN_34 = used[4:0] == 5'h1B;
-  wire        _GEN_35 = used[4:0] == 5'h1C;
-  wire        _GEN_36 = used[4:0] == 5'h1D;
-  wire        _GEN_37 = used[4:0] == 5'h1E;
+  wire [30:0] _GEN_6 = {{2{io_load_bits_key_q_0[28]}}, io_load_bits_key_q_0};
+  wire [30:0] _GEN_7 = {2'h0, io_load_bits_key_qr};
+  wire [30:0] _GEN_8 = {{2{io_load_bits_key_q_1[28]}}, io_load_bits_key_q_1};
+  wire [30:0] _GEN_9 = {{2{io_load_bits_key_q_2[28]}}, io_load_bits_key_q_2};
+  wire        _GEN_10 = used == 6'h20;
+  wire        _GEN_11 = used[4:0] == 5'h1;
+  wire        _GEN_12 = used[4:0] == 5'h2;
+  wire        _GEN_13 = used[4:0] == 5'h3;
+  wire        _GEN_14 = used[4:0] == 5'h4;
+  wire        _GEN_15 = used[4:0] == 5'h5;
+  wire        _GEN_16 = used[4:0] == 5'h6;
+  wire        _GEN_17 = used[4:0] == 5'h7;
+  wire        _GEN_18 = used[4:0] == 5'h8;
+  wire        _GEN_19 = used[4:0] == 5'h9;
+  wire        _GEN_20 = used[4:0] == 5'hA;
+  wire        _GEN_21 = used[4:0] == 5'hB;
+  wire        _GEN_22 = used[4:0] == 5'hC;
+  wire        _GEN_23 = used[4:0] == 5'hD;
+  wire        _GEN_24 = used[4:0] == 5'hE;
+  wire        _GEN_25 = used[4:0] == 5'hF;
+  wire        _GEN_26 = used[4:0] == 5'h10;
+  wire        _GEN_27 = used[4:0] == 5'h11;
+  wire        _GEN_28 = used[4:0] == 5'h12;
+  wire        _GEN_29 = used[4:0] == 5'h13;
+  wire        _GEN_30 = used[4:0] == 5'h14;
+  wire        _GEN_31 = used[4:0] == 5'h15;
+  wire        _GEN_32 = used[4:0] == 5'h16;
+  wire        _GEN_33 = used[4:0] == 5'h17;
+  wire        _GEN_34 = used[4:0] == 5'h18;
+  wire        _GEN_35 = used[4:0] == 5'h19;
+  wire        _GEN_36 = used[4:0] == 5'h1A;
+  wire        _GEN_37 = used[4:0] == 5'h1B;
+  wire        _GEN_38 = used[4:0] == 5'h1C;
+  wire        _GEN_39 = used[4:0] == 5'h1D;
+  wire        _GEN_40 = used[4:0] == 5'h1E;
+  wire [30:0] w_1_lo_0 = _GEN_6 - _GEN_7;
+  wire [30:0] w_1_hi_0 = _GEN_6 + _GEN_7;
+  wire [30:0] w_1_lo_1 = _GEN_8 - _GEN_7;
+  wire [30:0] w_1_hi_1 = _GEN_8 + _GEN_7;
+  wire [30:0] w_1_lo_2 = _GEN_9 - _GEN_7;
+  wire [30:0] w_1_hi_2 = _GEN_9 + _GEN_7;
+  wire [11:0] _n_b_lo_0_T_2 = io_load_bits_key_q_0[11:0] - io_load_bits_key_qr[11:0];
+  wire [11:0] _n_b_hi_0_T_2 = io_load_bits_key_q_0[11:0] + io_load_bits_key_qr[11:0];
+  wire [11:0] _n_b_lo_1_T_2 = io_load_bits_key_q_1[11:0] - io_load_bits_key_qr[11:0];
+  wire [11:0] _n_b_hi_1_T_2 = io_load_bits_key_q_1[11:0] + io_load_bits_key_qr[11:0];
+  wire [11:0] _n_b_lo_2_T_2 = io_load_bits_key_q_2[11:0] - io_load_bits_key_qr[11:0];
+  wire [11:0] _n_b_hi_2_T_2 = io_load_bits_key_q_2[11:0] + io_load_bits_key_qr[11:0];
   wire        _pending_T = free & _q_io_deq_valid;
-  wire        _GEN_38 = used[4:0] == 5'h0;
+  wire        _GEN_41 = used[4:0] == 5'h0;
   always @(posedge clock) begin
     if (io_clear) begin
       if (io_load_valid) begin
-        members_0_key_q_0 <= io_load_bits_key_q_0;
-        members_0_key_q_1 <= io_load_bits_key_q_1;
-        members_0_key_q_2 <= io_load_bits_key_q_2;
-        members_0_key_qr <= io_load_bits_key_qr;
         members_0_place <= io_load_bits_place;
+        wideBoxes_0_lo_0 <= _GEN_6 - _GEN_7;
+        wideBoxes_0_lo_1 <= _GEN_8 - _GEN_7;
+        wideBoxes_0_lo_2 <= _GEN_9 - _GEN_7;
+        wideBoxes_0_hi_0 <= _GEN_6 + _GEN_7;
+        wideBoxes_0_hi_1 <= _GEN_8 + _GEN_7;
+        wideBoxes_0_hi_2 <= _GEN_9 + _GEN_7;
       end
       if (io_load_valid & cur)
         ids_0_0 <= io_load_bits_key_index;
@@ -24062,548 +23964,708 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
         ids_1_0 <= io_load_bits_key_index;
     end
     else begin
-      if (~io_load_valid | _GEN_7 | ~_GEN_38) begin
+      if (~io_load_valid | _GEN_10 | ~_GEN_41) begin
+      end
+      else
+        members_0_place <= io_load_bits_place;
+      if (~io_load_valid | _GEN_10 | (|used)) begin
       end
       else begin
-        members_0_key_q_0 <= io_load_bits_key_q_0;
-        members_0_key_q_1 <= io_load_bits_key_q_1;
-        members_0_key_q_2 <= io_load_bits_key_q_2;
-        members_0_key_qr <= io_load_bits_key_qr;
-        members_0_place <= io_load_bits_place;
+        wideBoxes_0_lo_0 <= w_1_lo_0;
+        wideBoxes_0_lo_1 <= w_1_lo_1;
+        wideBoxes_0_lo_2 <= w_1_lo_2;
+        wideBoxes_0_hi_0 <= w_1_hi_0;
+        wideBoxes_0_hi_1 <= w_1_hi_1;
+        wideBoxes_0_hi_2 <= w_1_hi_2;
       end
-      if (~io_load_valid | _GEN_7 | ~(~cur & _GEN_38)) begin
+      if (~io_load_valid | _GEN_10 | ~(~cur & _GEN_41)) begin
       end
       else
         ids_0_0 <= io_load_bits_key_index;
-      if (~io_load_valid | _GEN_7 | ~(cur & _GEN_38)) begin
+      if (~io_load_valid | _GEN_10 | ~(cur & _GEN_41)) begin
       end
       else
         ids_1_0 <= io_load_bits_key_index;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_8) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_11) begin
     end
-    else begin
-      members_1_key_q_0 <= io_load_bits_key_q_0;
-      members_1_key_q_1 <= io_load_bits_key_q_1;
-      members_1_key_q_2 <= io_load_bits_key_q_2;
-      members_1_key_qr <= io_load_bits_key_qr;
+    else
       members_1_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_12) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_9) begin
-    end
-    else begin
-      members_2_key_q_0 <= io_load_bits_key_q_0;
-      members_2_key_q_1 <= io_load_bits_key_q_1;
-      members_2_key_q_2 <= io_load_bits_key_q_2;
-      members_2_key_qr <= io_load_bits_key_qr;
+    else
       members_2_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_13) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_10) begin
-    end
-    else begin
-      members_3_key_q_0 <= io_load_bits_key_q_0;
-      members_3_key_q_1 <= io_load_bits_key_q_1;
-      members_3_key_q_2 <= io_load_bits_key_q_2;
-      members_3_key_qr <= io_load_bits_key_qr;
+    else
       members_3_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_14) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_11) begin
-    end
-    else begin
-      members_4_key_q_0 <= io_load_bits_key_q_0;
-      members_4_key_q_1 <= io_load_bits_key_q_1;
-      members_4_key_q_2 <= io_load_bits_key_q_2;
-      members_4_key_qr <= io_load_bits_key_qr;
+    else
       members_4_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_15) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_12) begin
-    end
-    else begin
-      members_5_key_q_0 <= io_load_bits_key_q_0;
-      members_5_key_q_1 <= io_load_bits_key_q_1;
-      members_5_key_q_2 <= io_load_bits_key_q_2;
-      members_5_key_qr <= io_load_bits_key_qr;
+    else
       members_5_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_16) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_13) begin
-    end
-    else begin
-      members_6_key_q_0 <= io_load_bits_key_q_0;
-      members_6_key_q_1 <= io_load_bits_key_q_1;
-      members_6_key_q_2 <= io_load_bits_key_q_2;
-      members_6_key_qr <= io_load_bits_key_qr;
+    else
       members_6_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_17) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_14) begin
-    end
-    else begin
-      members_7_key_q_0 <= io_load_bits_key_q_0;
-      members_7_key_q_1 <= io_load_bits_key_q_1;
-      members_7_key_q_2 <= io_load_bits_key_q_2;
-      members_7_key_qr <= io_load_bits_key_qr;
+    else
       members_7_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_18) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_15) begin
-    end
-    else begin
-      members_8_key_q_0 <= io_load_bits_key_q_0;
-      members_8_key_q_1 <= io_load_bits_key_q_1;
-      members_8_key_q_2 <= io_load_bits_key_q_2;
-      members_8_key_qr <= io_load_bits_key_qr;
+    else
       members_8_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_19) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_16) begin
-    end
-    else begin
-      members_9_key_q_0 <= io_load_bits_key_q_0;
-      members_9_key_q_1 <= io_load_bits_key_q_1;
-      members_9_key_q_2 <= io_load_bits_key_q_2;
-      members_9_key_qr <= io_load_bits_key_qr;
+    else
       members_9_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_20) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_17) begin
-    end
-    else begin
-      members_10_key_q_0 <= io_load_bits_key_q_0;
-      members_10_key_q_1 <= io_load_bits_key_q_1;
-      members_10_key_q_2 <= io_load_bits_key_q_2;
-      members_10_key_qr <= io_load_bits_key_qr;
+    else
       members_10_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_21) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_18) begin
-    end
-    else begin
-      members_11_key_q_0 <= io_load_bits_key_q_0;
-      members_11_key_q_1 <= io_load_bits_key_q_1;
-      members_11_key_q_2 <= io_load_bits_key_q_2;
-      members_11_key_qr <= io_load_bits_key_qr;
+    else
       members_11_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_22) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_19) begin
-    end
-    else begin
-      members_12_key_q_0 <= io_load_bits_key_q_0;
-      members_12_key_q_1 <= io_load_bits_key_q_1;
-      members_12_key_q_2 <= io_load_bits_key_q_2;
-      members_12_key_qr <= io_load_bits_key_qr;
+    else
       members_12_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_23) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_20) begin
-    end
-    else begin
-      members_13_key_q_0 <= io_load_bits_key_q_0;
-      members_13_key_q_1 <= io_load_bits_key_q_1;
-      members_13_key_q_2 <= io_load_bits_key_q_2;
-      members_13_key_qr <= io_load_bits_key_qr;
+    else
       members_13_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_24) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_21) begin
-    end
-    else begin
-      members_14_key_q_0 <= io_load_bits_key_q_0;
-      members_14_key_q_1 <= io_load_bits_key_q_1;
-      members_14_key_q_2 <= io_load_bits_key_q_2;
-      members_14_key_qr <= io_load_bits_key_qr;
+    else
       members_14_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_25) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_22) begin
-    end
-    else begin
-      members_15_key_q_0 <= io_load_bits_key_q_0;
-      members_15_key_q_1 <= io_load_bits_key_q_1;
-      members_15_key_q_2 <= io_load_bits_key_q_2;
-      members_15_key_qr <= io_load_bits_key_qr;
+    else
       members_15_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_26) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_23) begin
-    end
-    else begin
-      members_16_key_q_0 <= io_load_bits_key_q_0;
-      members_16_key_q_1 <= io_load_bits_key_q_1;
-      members_16_key_q_2 <= io_load_bits_key_q_2;
-      members_16_key_qr <= io_load_bits_key_qr;
+    else
       members_16_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_27) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_24) begin
-    end
-    else begin
-      members_17_key_q_0 <= io_load_bits_key_q_0;
-      members_17_key_q_1 <= io_load_bits_key_q_1;
-      members_17_key_q_2 <= io_load_bits_key_q_2;
-      members_17_key_qr <= io_load_bits_key_qr;
+    else
       members_17_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_28) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_25) begin
-    end
-    else begin
-      members_18_key_q_0 <= io_load_bits_key_q_0;
-      members_18_key_q_1 <= io_load_bits_key_q_1;
-      members_18_key_q_2 <= io_load_bits_key_q_2;
-      members_18_key_qr <= io_load_bits_key_qr;
+    else
       members_18_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_29) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_26) begin
-    end
-    else begin
-      members_19_key_q_0 <= io_load_bits_key_q_0;
-      members_19_key_q_1 <= io_load_bits_key_q_1;
-      members_19_key_q_2 <= io_load_bits_key_q_2;
-      members_19_key_qr <= io_load_bits_key_qr;
+    else
       members_19_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_30) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_27) begin
-    end
-    else begin
-      members_20_key_q_0 <= io_load_bits_key_q_0;
-      members_20_key_q_1 <= io_load_bits_key_q_1;
-      members_20_key_q_2 <= io_load_bits_key_q_2;
-      members_20_key_qr <= io_load_bits_key_qr;
+    else
       members_20_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_31) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_28) begin
-    end
-    else begin
-      members_21_key_q_0 <= io_load_bits_key_q_0;
-      members_21_key_q_1 <= io_load_bits_key_q_1;
-      members_21_key_q_2 <= io_load_bits_key_q_2;
-      members_21_key_qr <= io_load_bits_key_qr;
+    else
       members_21_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_32) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_29) begin
-    end
-    else begin
-      members_22_key_q_0 <= io_load_bits_key_q_0;
-      members_22_key_q_1 <= io_load_bits_key_q_1;
-      members_22_key_q_2 <= io_load_bits_key_q_2;
-      members_22_key_qr <= io_load_bits_key_qr;
+    else
       members_22_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_33) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_30) begin
-    end
-    else begin
-      members_23_key_q_0 <= io_load_bits_key_q_0;
-      members_23_key_q_1 <= io_load_bits_key_q_1;
-      members_23_key_q_2 <= io_load_bits_key_q_2;
-      members_23_key_qr <= io_load_bits_key_qr;
+    else
       members_23_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_34) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_31) begin
-    end
-    else begin
-      members_24_key_q_0 <= io_load_bits_key_q_0;
-      members_24_key_q_1 <= io_load_bits_key_q_1;
-      members_24_key_q_2 <= io_load_bits_key_q_2;
-      members_24_key_qr <= io_load_bits_key_qr;
+    else
       members_24_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_35) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_32) begin
-    end
-    else begin
-      members_25_key_q_0 <= io_load_bits_key_q_0;
-      members_25_key_q_1 <= io_load_bits_key_q_1;
-      members_25_key_q_2 <= io_load_bits_key_q_2;
-      members_25_key_qr <= io_load_bits_key_qr;
+    else
       members_25_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_36) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_33) begin
-    end
-    else begin
-      members_26_key_q_0 <= io_load_bits_key_q_0;
-      members_26_key_q_1 <= io_load_bits_key_q_1;
-      members_26_key_q_2 <= io_load_bits_key_q_2;
-      members_26_key_qr <= io_load_bits_key_qr;
+    else
       members_26_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_37) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_34) begin
-    end
-    else begin
-      members_27_key_q_0 <= io_load_bits_key_q_0;
-      members_27_key_q_1 <= io_load_bits_key_q_1;
-      members_27_key_q_2 <= io_load_bits_key_q_2;
-      members_27_key_qr <= io_load_bits_key_qr;
+    else
       members_27_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_38) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_35) begin
-    end
-    else begin
-      members_28_key_q_0 <= io_load_bits_key_q_0;
-      members_28_key_q_1 <= io_load_bits_key_q_1;
-      members_28_key_q_2 <= io_load_bits_key_q_2;
-      members_28_key_qr <= io_load_bits_key_qr;
+    else
       members_28_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_39) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_36) begin
-    end
-    else begin
-      members_29_key_q_0 <= io_load_bits_key_q_0;
-      members_29_key_q_1 <= io_load_bits_key_q_1;
-      members_29_key_q_2 <= io_load_bits_key_q_2;
-      members_29_key_qr <= io_load_bits_key_qr;
+    else
       members_29_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~_GEN_40) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~_GEN_37) begin
-    end
-    else begin
-      members_30_key_q_0 <= io_load_bits_key_q_0;
-      members_30_key_q_1 <= io_load_bits_key_q_1;
-      members_30_key_q_2 <= io_load_bits_key_q_2;
-      members_30_key_qr <= io_load_bits_key_qr;
+    else
       members_30_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(&(used[4:0]))) begin
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(&(used[4:0]))) begin
+    else
+      members_31_place <= io_load_bits_place;
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h1) begin
     end
     else begin
-      members_31_key_q_0 <= io_load_bits_key_q_0;
-      members_31_key_q_1 <= io_load_bits_key_q_1;
-      members_31_key_q_2 <= io_load_bits_key_q_2;
-      members_31_key_qr <= io_load_bits_key_qr;
-      members_31_place <= io_load_bits_place;
+      wideBoxes_1_lo_0 <= w_1_lo_0;
+      wideBoxes_1_lo_1 <= w_1_lo_1;
+      wideBoxes_1_lo_2 <= w_1_lo_2;
+      wideBoxes_1_hi_0 <= w_1_hi_0;
+      wideBoxes_1_hi_1 <= w_1_hi_1;
+      wideBoxes_1_hi_2 <= w_1_hi_2;
     end
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_8)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h2) begin
+    end
+    else begin
+      wideBoxes_2_lo_0 <= w_1_lo_0;
+      wideBoxes_2_lo_1 <= w_1_lo_1;
+      wideBoxes_2_lo_2 <= w_1_lo_2;
+      wideBoxes_2_hi_0 <= w_1_hi_0;
+      wideBoxes_2_hi_1 <= w_1_hi_1;
+      wideBoxes_2_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h3) begin
+    end
+    else begin
+      wideBoxes_3_lo_0 <= w_1_lo_0;
+      wideBoxes_3_lo_1 <= w_1_lo_1;
+      wideBoxes_3_lo_2 <= w_1_lo_2;
+      wideBoxes_3_hi_0 <= w_1_hi_0;
+      wideBoxes_3_hi_1 <= w_1_hi_1;
+      wideBoxes_3_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h4) begin
+    end
+    else begin
+      wideBoxes_4_lo_0 <= w_1_lo_0;
+      wideBoxes_4_lo_1 <= w_1_lo_1;
+      wideBoxes_4_lo_2 <= w_1_lo_2;
+      wideBoxes_4_hi_0 <= w_1_hi_0;
+      wideBoxes_4_hi_1 <= w_1_hi_1;
+      wideBoxes_4_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h5) begin
+    end
+    else begin
+      wideBoxes_5_lo_0 <= w_1_lo_0;
+      wideBoxes_5_lo_1 <= w_1_lo_1;
+      wideBoxes_5_lo_2 <= w_1_lo_2;
+      wideBoxes_5_hi_0 <= w_1_hi_0;
+      wideBoxes_5_hi_1 <= w_1_hi_1;
+      wideBoxes_5_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h6) begin
+    end
+    else begin
+      wideBoxes_6_lo_0 <= w_1_lo_0;
+      wideBoxes_6_lo_1 <= w_1_lo_1;
+      wideBoxes_6_lo_2 <= w_1_lo_2;
+      wideBoxes_6_hi_0 <= w_1_hi_0;
+      wideBoxes_6_hi_1 <= w_1_hi_1;
+      wideBoxes_6_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h7) begin
+    end
+    else begin
+      wideBoxes_7_lo_0 <= w_1_lo_0;
+      wideBoxes_7_lo_1 <= w_1_lo_1;
+      wideBoxes_7_lo_2 <= w_1_lo_2;
+      wideBoxes_7_hi_0 <= w_1_hi_0;
+      wideBoxes_7_hi_1 <= w_1_hi_1;
+      wideBoxes_7_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h8) begin
+    end
+    else begin
+      wideBoxes_8_lo_0 <= w_1_lo_0;
+      wideBoxes_8_lo_1 <= w_1_lo_1;
+      wideBoxes_8_lo_2 <= w_1_lo_2;
+      wideBoxes_8_hi_0 <= w_1_hi_0;
+      wideBoxes_8_hi_1 <= w_1_hi_1;
+      wideBoxes_8_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h9) begin
+    end
+    else begin
+      wideBoxes_9_lo_0 <= w_1_lo_0;
+      wideBoxes_9_lo_1 <= w_1_lo_1;
+      wideBoxes_9_lo_2 <= w_1_lo_2;
+      wideBoxes_9_hi_0 <= w_1_hi_0;
+      wideBoxes_9_hi_1 <= w_1_hi_1;
+      wideBoxes_9_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'hA) begin
+    end
+    else begin
+      wideBoxes_10_lo_0 <= w_1_lo_0;
+      wideBoxes_10_lo_1 <= w_1_lo_1;
+      wideBoxes_10_lo_2 <= w_1_lo_2;
+      wideBoxes_10_hi_0 <= w_1_hi_0;
+      wideBoxes_10_hi_1 <= w_1_hi_1;
+      wideBoxes_10_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'hB) begin
+    end
+    else begin
+      wideBoxes_11_lo_0 <= w_1_lo_0;
+      wideBoxes_11_lo_1 <= w_1_lo_1;
+      wideBoxes_11_lo_2 <= w_1_lo_2;
+      wideBoxes_11_hi_0 <= w_1_hi_0;
+      wideBoxes_11_hi_1 <= w_1_hi_1;
+      wideBoxes_11_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'hC) begin
+    end
+    else begin
+      wideBoxes_12_lo_0 <= w_1_lo_0;
+      wideBoxes_12_lo_1 <= w_1_lo_1;
+      wideBoxes_12_lo_2 <= w_1_lo_2;
+      wideBoxes_12_hi_0 <= w_1_hi_0;
+      wideBoxes_12_hi_1 <= w_1_hi_1;
+      wideBoxes_12_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'hD) begin
+    end
+    else begin
+      wideBoxes_13_lo_0 <= w_1_lo_0;
+      wideBoxes_13_lo_1 <= w_1_lo_1;
+      wideBoxes_13_lo_2 <= w_1_lo_2;
+      wideBoxes_13_hi_0 <= w_1_hi_0;
+      wideBoxes_13_hi_1 <= w_1_hi_1;
+      wideBoxes_13_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'hE) begin
+    end
+    else begin
+      wideBoxes_14_lo_0 <= w_1_lo_0;
+      wideBoxes_14_lo_1 <= w_1_lo_1;
+      wideBoxes_14_lo_2 <= w_1_lo_2;
+      wideBoxes_14_hi_0 <= w_1_hi_0;
+      wideBoxes_14_hi_1 <= w_1_hi_1;
+      wideBoxes_14_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'hF) begin
+    end
+    else begin
+      wideBoxes_15_lo_0 <= w_1_lo_0;
+      wideBoxes_15_lo_1 <= w_1_lo_1;
+      wideBoxes_15_lo_2 <= w_1_lo_2;
+      wideBoxes_15_hi_0 <= w_1_hi_0;
+      wideBoxes_15_hi_1 <= w_1_hi_1;
+      wideBoxes_15_hi_2 <= w_1_hi_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h10) begin
+    end
+    else begin
+      nearBoxes_0_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_0_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_0_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_0_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_0_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_0_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h11) begin
+    end
+    else begin
+      nearBoxes_1_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_1_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_1_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_1_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_1_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_1_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h12) begin
+    end
+    else begin
+      nearBoxes_2_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_2_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_2_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_2_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_2_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_2_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h13) begin
+    end
+    else begin
+      nearBoxes_3_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_3_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_3_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_3_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_3_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_3_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h14) begin
+    end
+    else begin
+      nearBoxes_4_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_4_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_4_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_4_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_4_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_4_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h15) begin
+    end
+    else begin
+      nearBoxes_5_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_5_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_5_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_5_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_5_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_5_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h16) begin
+    end
+    else begin
+      nearBoxes_6_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_6_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_6_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_6_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_6_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_6_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h17) begin
+    end
+    else begin
+      nearBoxes_7_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_7_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_7_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_7_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_7_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_7_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h18) begin
+    end
+    else begin
+      nearBoxes_8_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_8_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_8_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_8_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_8_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_8_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h19) begin
+    end
+    else begin
+      nearBoxes_9_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_9_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_9_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_9_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_9_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_9_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h1A) begin
+    end
+    else begin
+      nearBoxes_10_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_10_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_10_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_10_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_10_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_10_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h1B) begin
+    end
+    else begin
+      nearBoxes_11_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_11_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_11_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_11_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_11_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_11_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h1C) begin
+    end
+    else begin
+      nearBoxes_12_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_12_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_12_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_12_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_12_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_12_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h1D) begin
+    end
+    else begin
+      nearBoxes_13_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_13_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_13_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_13_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_13_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_13_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h1E) begin
+    end
+    else begin
+      nearBoxes_14_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_14_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_14_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_14_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_14_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_14_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | used != 6'h1F) begin
+    end
+    else begin
+      nearBoxes_15_lo_0 <= _n_b_lo_0_T_2;
+      nearBoxes_15_lo_1 <= _n_b_lo_1_T_2;
+      nearBoxes_15_lo_2 <= _n_b_lo_2_T_2;
+      nearBoxes_15_hi_0 <= _n_b_hi_0_T_2;
+      nearBoxes_15_hi_1 <= _n_b_hi_1_T_2;
+      nearBoxes_15_hi_2 <= _n_b_hi_2_T_2;
+    end
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_11)) begin
     end
     else
       ids_0_1 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_9)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_12)) begin
     end
     else
       ids_0_2 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_10)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_13)) begin
     end
     else
       ids_0_3 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_11)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_14)) begin
     end
     else
       ids_0_4 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_12)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_15)) begin
     end
     else
       ids_0_5 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_13)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_16)) begin
     end
     else
       ids_0_6 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_14)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_17)) begin
     end
     else
       ids_0_7 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_15)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_18)) begin
     end
     else
       ids_0_8 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_16)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_19)) begin
     end
     else
       ids_0_9 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_17)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_20)) begin
     end
     else
       ids_0_10 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_18)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_21)) begin
     end
     else
       ids_0_11 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_19)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_22)) begin
     end
     else
       ids_0_12 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_20)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_23)) begin
     end
     else
       ids_0_13 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_21)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_24)) begin
     end
     else
       ids_0_14 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_22)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_25)) begin
     end
     else
       ids_0_15 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_23)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_26)) begin
     end
     else
       ids_0_16 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_24)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_27)) begin
     end
     else
       ids_0_17 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_25)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_28)) begin
     end
     else
       ids_0_18 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_26)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_29)) begin
     end
     else
       ids_0_19 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_27)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_30)) begin
     end
     else
       ids_0_20 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_28)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_31)) begin
     end
     else
       ids_0_21 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_29)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_32)) begin
     end
     else
       ids_0_22 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_30)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_33)) begin
     end
     else
       ids_0_23 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_31)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_34)) begin
     end
     else
       ids_0_24 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_32)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_35)) begin
     end
     else
       ids_0_25 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_33)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_36)) begin
     end
     else
       ids_0_26 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_34)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_37)) begin
     end
     else
       ids_0_27 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_35)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_38)) begin
     end
     else
       ids_0_28 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_36)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_39)) begin
     end
     else
       ids_0_29 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & _GEN_37)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & _GEN_40)) begin
     end
     else
       ids_0_30 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(~cur & (&(used[4:0])))) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(~cur & (&(used[4:0])))) begin
     end
     else
       ids_0_31 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_8)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_11)) begin
     end
     else
       ids_1_1 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_9)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_12)) begin
     end
     else
       ids_1_2 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_10)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_13)) begin
     end
     else
       ids_1_3 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_11)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_14)) begin
     end
     else
       ids_1_4 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_12)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_15)) begin
     end
     else
       ids_1_5 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_13)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_16)) begin
     end
     else
       ids_1_6 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_14)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_17)) begin
     end
     else
       ids_1_7 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_15)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_18)) begin
     end
     else
       ids_1_8 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_16)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_19)) begin
     end
     else
       ids_1_9 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_17)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_20)) begin
     end
     else
       ids_1_10 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_18)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_21)) begin
     end
     else
       ids_1_11 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_19)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_22)) begin
     end
     else
       ids_1_12 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_20)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_23)) begin
     end
     else
       ids_1_13 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_21)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_24)) begin
     end
     else
       ids_1_14 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_22)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_25)) begin
     end
     else
       ids_1_15 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_23)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_26)) begin
     end
     else
       ids_1_16 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_24)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_27)) begin
     end
     else
       ids_1_17 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_25)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_28)) begin
     end
     else
       ids_1_18 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_26)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_29)) begin
     end
     else
       ids_1_19 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_27)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_30)) begin
     end
     else
       ids_1_20 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_28)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_31)) begin
     end
     else
       ids_1_21 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_29)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_32)) begin
     end
     else
       ids_1_22 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_30)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_33)) begin
     end
     else
       ids_1_23 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_31)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_34)) begin
     end
     else
       ids_1_24 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_32)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_35)) begin
     end
     else
       ids_1_25 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_33)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_36)) begin
     end
     else
       ids_1_26 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_34)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_37)) begin
     end
     else
       ids_1_27 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_35)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_38)) begin
     end
     else
       ids_1_28 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_36)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_39)) begin
     end
     else
       ids_1_29 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & _GEN_37)) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & _GEN_40)) begin
     end
     else
       ids_1_30 <= io_load_bits_key_index;
-    if (io_clear | ~io_load_valid | _GEN_7 | ~(cur & (&(used[4:0])))) begin
+    if (io_clear | ~io_load_valid | _GEN_10 | ~(cur & (&(used[4:0])))) begin
     end
     else
       ids_1_31 <= io_load_bits_key_index;
@@ -24619,7 +24681,7 @@ module ChunkMatcher_i12_c20_q29_k32_h8_d_world(
     else begin
       if (io_clear)
         used <= {5'h0, io_load_valid};
-      else if (~io_load_valid | _GEN_7) begin
+      else if (~io_load_valid | _GEN_10) begin
       end
       else
         used <= used + 6'h1;
@@ -24795,7 +24857,7 @@ module Queue6_StreamRange_world(
       : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 3'h2 : _ptr_diff_T;
 endmodule
 
-module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world(
+module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world(
   input         clock,
                 reset,
                 io_start,
@@ -27531,7 +27593,7 @@ module CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_s
     .io_out_bits_tag_off_2    (_stream_io_out_bits_tag_off_2),
     .io_idle                  (_stream_io_idle)
   );
-  ChunkMatcher_i12_c20_q29_k32_h8_d_world matcher (
+  ChunkMatcher_i12_c20_q29_k32_h8_d_n12w16_world matcher (
     .clock                  (clock),
     .reset                  (reset),
     .io_clear
@@ -40907,55 +40969,55 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     always @(posedge clock) begin
       if (~reset & ~(~_sorts_0_io_in_0_valid_T_12 | _sorts_0_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_0_io_in_1_valid_T_12 | _sorts_0_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_0_valid_T_12 | _sorts_1_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_1_io_in_1_valid_T_12 | _sorts_1_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_0_valid_T_12 | _sorts_2_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_2_io_in_1_valid_T_12 | _sorts_2_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_0_valid_T_12 | _sorts_3_io_in_0_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_sorts_3_io_in_1_valid_T_12 | _sorts_3_io_in_1_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:401 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
+          $error("Assertion failed: BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\n    at BroadPhase.scala:403 assert(!in.valid || in.ready, \"BroadPhase: the sort was not ready (a pass overlapped its clear or prefix)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(_GEN == 16'h0 | dCount[6:2] != 5'h1F)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:462 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
+          $error("Assertion failed: BroadPhase: more deferred units than can hold more than a chunk\n    at BroadPhase.scala:464 assert(!defers.asUInt.orR || dCount < deferCap.U, \"BroadPhase: more deferred units than can hold more than a chunk\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -47071,7 +47133,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_scattered         (_sorts_3_io_scattered),
     .io_badBucket         (_sorts_3_io_badBucket)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_0 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_0 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -47340,7 +47402,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_0_bits_j),
     .io_busy              (_gens_0_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_1 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_1 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -47609,7 +47671,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_1_bits_j),
     .io_busy              (_gens_1_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_2 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_2 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -47878,7 +47940,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_2_bits_j),
     .io_busy              (_gens_2_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_3 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_3 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48147,7 +48209,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_3_bits_j),
     .io_busy              (_gens_3_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_4 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_4 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48416,7 +48478,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_4_bits_j),
     .io_busy              (_gens_4_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_5 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_5 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48685,7 +48747,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_5_bits_j),
     .io_busy              (_gens_5_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_6 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_6 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -48954,7 +49016,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_6_bits_j),
     .io_busy              (_gens_6_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_7 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_7 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49223,7 +49285,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_7_bits_j),
     .io_busy              (_gens_7_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_8 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_8 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49492,7 +49554,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_8_bits_j),
     .io_busy              (_gens_8_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_9 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_9 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -49761,7 +49823,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_9_bits_j),
     .io_busy              (_gens_9_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_10 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_10 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -50030,7 +50092,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_10_bits_j),
     .io_busy              (_gens_10_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_11 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_11 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -50299,7 +50361,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_11_bits_j),
     .io_busy              (_gens_11_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_12 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_12 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -50568,7 +50630,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_12_bits_j),
     .io_busy              (_gens_12_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_13 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_13 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -50837,7 +50899,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_13_bits_j),
     .io_busy              (_gens_13_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_14 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_14 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -51106,7 +51168,7 @@ module BroadPhase_fp32_n4096_b13_L16_k32_c20_f8_w5_l16_p8_e2_x_t4_bx_world(
     .io_pairs_bits_j      (io_pairs_14_bits_j),
     .io_busy              (_gens_14_io_busy)
   );
-  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_world gens_15 (
+  CandidateGenerator_i12_b13_c20_q29_k32_L16_r2_w5_l16_g4_x1_u_h8_bx_d_a6_sp_n12_world gens_15 (
     .clock                (clock),
     .reset                (reset),
     .io_start             (_gens_15_io_start_T & ~sent),
@@ -53965,7 +54027,7 @@ module Puc_world(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:373 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:367 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end

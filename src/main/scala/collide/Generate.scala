@@ -45,6 +45,7 @@ object Generate {
       runQueue: Option[Boolean] = None,
       worldLineQueue: Option[Int] = None,
       worldClearBehind: Option[Boolean] = None,
+      worldNearFilter: Option[Boolean] = None,
       startAhead: Option[Boolean] = None,
       listPresets: Boolean = false)
 
@@ -122,6 +123,9 @@ object Generate {
       opt[Boolean]("world-clear-behind").valueName("true|false").action((v, o) => o.copy(worldClearBehind = Some(v)))
         .text("the sort's counters are cleared behind its scatter while the grid reads the bucket ends from tables of " +
           "their own (one table of counters more a sort), so the next world's clear costs no cycle (world mode only)"),
+      opt[Boolean]("world-near-filter").valueName("true|false").action((v, o) => o.copy(worldNearFilter = Some(v)))
+        .text("a chunk's slots past the large pass's compare the box filter modulo 2^(F+4), exact for the grid's " +
+          "neighbouring cells (the default; false keeps every slot's filter on the whole fixed point: more logic, same pairs)"),
       opt[Boolean]("start-ahead").valueName("true|false").action((v, o) => o.copy(startAhead = Some(v)))
         .text("a queued world run's broad phase starts once the current run's is over and its table is in, while the " +
           "current run's last pairs are computed and written (needs the run queue)"),
@@ -193,7 +197,8 @@ object Generate {
       c27 <- opt("--world-line-queue", o.worldLineQueue)((c, v) => step("--world-line-queue", c.copy(worldLineQueue = v)))(c26)
       c28 <- opt("--start-ahead", o.startAhead)((c, v) => step("--start-ahead", c.copy(startAhead = v)))(c27)
       c29 <- world("--world-clear-behind", o.worldClearBehind)((bp, v) => bp.copy(clearBehind = v))(c28)
-    } yield c29
+      c30 <- world("--world-near-filter", o.worldNearFilter)((bp, v) => bp.copy(nearFilter = v))(c29)
+    } yield c30
   }
 
   val firtoolOpts: Array[String] = Array(

@@ -102,7 +102,7 @@ final case class AfuConfig(
         (if (bp.chunk != collide.world.BroadPhaseParams.default.chunk) s"k${bp.chunk}" else "") +
         (if (bp.coarseChunks) "x" else "") + (if (bp.claims) "u" else "") + (if (bp.hitQueue > 0) s"h${bp.hitQueue}" else "") +
         (if (bp.boxBuckets) "bx" else "") + (if (bp.drainBehind) "d" else "") + (if (bp.lookAhead != 3) s"a${bp.lookAhead}" else "") +
-        (if (bp.scanPairs) "sp" else "") + (if (bp.clearBehind) "cb" else "") + (if (worldLineQueue != 2) s"l$worldLineQueue" else "") + (if (startAhead) "z" else "")).getOrElse("") +
+        (if (bp.scanPairs) "sp" else "") + (if (bp.clearBehind) "cb" else "") + (if (!bp.nearFilter) "wf" else "") + (if (worldLineQueue != 2) s"l$worldLineQueue" else "") + (if (startAhead) "z" else "")).getOrElse("") +
       (if (scpuImpl == ScpuImpl.Model) "_model" else "")
   /** Output folder and module-name suffix: the preset's name, else the derived name. */
   def id: String = (if (isPreset) name else derivedName).replace('-', '_')
@@ -125,7 +125,7 @@ final case class AfuConfig(
     s"$id: $scpus x SCPU ${scpu.describe}; maxSpheres $maxSpheres, reads $maxReadsOutstanding, writes $maxWritesOutstanding, " +
       s"tag $tagBits bits, sphere RAM ${ramPorts.name} ${puc.ramBits} bits, link ${scpu.linkFormat.name}, ${recordLayout.name} records " +
       s"(${layout.recordBytes} B, ${layout.recordsPerLine} a line), ${if (denseByDefault) "dense" else "compact"} by default" +
-      world.map(bp => s", world mode built (${bp.lanes} candidate lane${if (bp.lanes > 1) "s" else ""}, ${bp.sortPorts} sort port${if (bp.sortPorts > 1) "s" else ""}, broad phase RAM ${bp.ramBits(maxSpheres)} bits)").getOrElse("") +
+      world.map(bp => s", world mode built (${bp.lanes} candidate lane${if (bp.lanes > 1) "s" else ""}, ${bp.sortPorts} sort port${if (bp.sortPorts > 1) "s" else ""}, broad phase RAM ${bp.ramBits(maxSpheres)} bits, ${puc.broadPhaseM20k} M20K blocks by estimate; the sphere RAM's ${puc.ramM20k})").getOrElse("") +
       (if (runQueue) ", a run queue (two sphere tables)" + (if (startAhead) ", queued broad phases started ahead" else "") else "") +
       (if (scpuImpl == ScpuImpl.Model) ", SCPUs simulated by the C++ model (not synthesizable)" else "")
 }

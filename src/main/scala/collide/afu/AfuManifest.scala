@@ -33,13 +33,14 @@ object AfuManifest {
             "lanes" -> bp.lanes, "sortPorts" -> bp.sortPorts, "bucketsPerSphereLog2" -> bp.bucketsPerSphereLog2,
             "cellSteps" -> bp.cellSteps, "coarseChunks" -> bp.coarseChunks, "team" -> bp.teamSize, "claims" -> bp.claims, "hitQueue" -> bp.hitQueue, "boxBuckets" -> bp.boxBuckets,
             "drainBehind" -> bp.drainBehind, "lookAhead" -> bp.lookAhead, "scanPairs" -> bp.scanPairs,
-            "clearBehind" -> bp.clearBehind, "lineQueue" -> cfg.worldLineQueue, "startAhead" -> cfg.startAhead,
+            "clearBehind" -> bp.clearBehind, "nearFilter" -> bp.nearFilter, "lineQueue" -> cfg.worldLineQueue, "startAhead" -> cfg.startAhead,
             "recordPair" -> s"i | j << ${RecordTag.WORLD_INDEX_BITS}")
         }.getOrElse(ujson.Null),
         "ram" -> ujson.Obj("copies" -> p.ramCopies, "banks" -> p.banks, "bitsPerCopy" -> p.ramBitsPerCopy.toDouble,
           "sphereTableM20k" -> p.ramM20k.toDouble,
           "sphereTableBits" -> p.ramBits.toDouble, "pairBufferBits" -> p.pairBufferBits.toDouble,
-          "broadPhaseBits" -> ujson.Num(cfg.world.map(_.ramBits(cfg.maxSpheres).toDouble).getOrElse(0.0)))),
+          "broadPhaseBits" -> ujson.Num(cfg.world.map(_.ramBits(cfg.maxSpheres).toDouble).getOrElse(0.0)),
+          "broadPhaseM20k" -> p.broadPhaseM20k.toDouble)),
       "scpu" -> { val o = scpuJson(s); o("impl") = cfg.scpuImpl.name; o },
       "link" -> ujson.Obj(
         "format" -> AfuContract.linkName(cfg.scpu.linkFormat), "width" -> cfg.linkWidth,

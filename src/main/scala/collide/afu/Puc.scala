@@ -219,8 +219,11 @@ class Puc(p: PucParams) extends Module {
       worldEmitted := lines.io.emitted
       worldDone := bpDone && lines.io.idle
       val st = bp.io.status
-      val check = st.tooMany || st.cellOverflow || st.largeOverflow || st.badBucket || st.sortMismatch
-      if (w.startAhead) {
+      class BroadStatus extends Bundle { val cyc = UInt(32.W); val level = UInt(32.W); val large = UInt(32.W); val check = Bool() }
+      val now = Wire(new BroadStatus)
+      now.cyc := st.cycTotal; now.level := st.level.pad(32).asUInt; now.large := st.large.pad(32)
+      now.check := st.tooMany || st.cellOverflow || st.largeOverflow || st.badBucket || st.sortMismatch
+      val shown = if (w.startAhead) {
         // Start the queued world once this run's broad phase is over and the queued table is in;
         // the broad phase's copies then read that table while the SCPUs finish this run's.
         aheadGo := world && nextLoading && rd.io.loaded && bpDone && !aheadStarted
@@ -228,18 +231,9 @@ class Puc(p: PucParams) extends Module {
         when(aheadGo) { bpTable := ~curTable }.elsewhen(bpStart) { bpTable := curTable }
         ram.io.worldTable := bpTable
         // This run's broad-phase status, kept once the queued world's start clears it.
-        val kept = Reg(new Bundle { val cyc = UInt(32.W); val level = UInt(32.W); val large = UInt(32.W); val check = Bool() })
-        when(!aheadStarted) {
-          kept.cyc := st.cycTotal; kept.level := st.level.pad(32).asUInt; kept.large := st.large.pad(32); kept.check := check
-        }
-        cycBroad := Mux(aheadStarted, kept.cyc, st.cycTotal)
-        cellLevel := Mux(aheadStarted, kept.level, st.level.pad(32).asUInt)
-        largeSpheres := Mux(aheadStarted, kept.large, st.large.pad(32))
-        worldCheck := Mux(aheadStarted, kept.check, check)
-      } else {
-        cycBroad := st.cycTotal; cellLevel := st.level.pad(32).asUInt; largeSpheres := st.large.pad(32)
-        worldCheck := check
-      }
+        Mux(aheadStarted, RegEnable(now, !aheadStarted), now)
+      } else now
+      cycBroad := shown.cyc; cellLevel := shown.level; largeSpheres := shown.large; worldCheck := shown.check
     case None =>
       worldLine.valid := false.B; worldLine.bits := DontCare
   }

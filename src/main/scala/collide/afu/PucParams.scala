@@ -141,5 +141,8 @@ final case class PucParams(
     tables * (scpuCopies + (worldLanes / 2) * M20k.blocks(lines, Link.lineBits, twoPorts = true) +
       (worldLanes % 2) * M20k.blocks(lines, Link.lineBits, twoPorts = false))
   }
+  /** Stratix V M20K blocks of the broad phase's RAMs (BroadPhaseParams.rams), each RAM in its
+    * cheapest mode (M20k: an estimate); 0 without world mode. */
+  val broadPhaseM20k: Long = world.map(_.bp.rams(maxSpheres).map(r => r.count * M20k.blocks(r.words, r.width, r.twoWrites)).sum).getOrElse(0L)
   val pairBufferBits: Long = pairBufferLines.toLong * (Link.lineBits + pairLineBits)
 }

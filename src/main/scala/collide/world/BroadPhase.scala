@@ -97,7 +97,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
       (if (bp.lanes > 1) s"_l${bp.lanes}" else "") + (if (bp.sortPorts > 1) s"_p${bp.sortPorts}" else "") +
       (if (bp.bucketsPerSphereLog2 != BroadPhaseParams.default.bucketsPerSphereLog2) s"_s${bp.bucketsPerSphereLog2}" else "") +
       (if (bp.cellSteps != BroadPhaseParams.default.cellSteps) s"_e${bp.cellSteps}" else "") + (if (bp.coarseChunks) "_x" else "") +
-      (if (feedWidth > 0) s"_t$feedWidth" else "") + (if (bp.boxBuckets) "_bx" else "") + (if (bp.clearBehind) "_cb" else "")
+      (if (feedWidth > 0) s"_t$feedWidth" else "") + (if (bp.boxBuckets) "_bx" else "") + (if (bp.clearBehind) "_cb" else "") +
+      (if (!bp.nearFilter) "_wf" else "")
   val io = IO(new BroadPhaseIO(p, bp, maxSpheres, feedWidth))
   private val itemW = io.itemW
   private val countW = io.countW
@@ -122,7 +123,8 @@ class BroadPhase(p: FpParams, bp: BroadPhaseParams, maxSpheres: Int, keysLatency
     val g = Module(new CandidateGenerator(itemW, countW, bp.cellBits, qWidth, tableLog2, bp.chunk, largeSlots,
       keyLatency = 1 + keysLatency, wordLog2 = math.min(bp.wordLog2, tableLog2), lanes = bp.lanes, groups = groups,
       coarse = bp.coarseChunks, team = bp.teamSize, claims = bp.claims, hitQueue = bp.hitQueue, boxBuckets = bp.boxBuckets,
-      drainBehind = bp.drainBehind, lookAhead = bp.lookAhead, scanPairs = bp.scanPairs))
+      drainBehind = bp.drainBehind, lookAhead = bp.lookAhead, scanPairs = bp.scanPairs,
+      nearBits = if (bp.nearFilter) ChunkMatcher.nearBits(bp.filterFracBits) else 0))
     g.io.lane.foreach(_ := l.U)
     g
   }

@@ -88,6 +88,12 @@ package collide.world
   *                   the bucket ends from tables of their own (one table of counters more a
   *                   sort), so the next world's clear costs no cycle after the grid (docs/afu.md,
   *                   "Starting ahead")
+  * @param nearFilter a chunk's slots past the large pass's (the first min(chunk, largeMax))
+  *                   compare the box filter modulo 2^(filterFracBits + 4) instead of on the
+  *                   whole fixed point: the grid's probes are in cells next to the members', so
+  *                   the filter's differences are small and their signs exact modulo that
+  *                   (ChunkMatcher.nearBits). The same candidates, about half the comparators'
+  *                   cells; false keeps every slot's filter whole (docs/afu.md, "The near filter")
   */
 final case class BroadPhaseParams(
     largeMax: Int = 16,
@@ -111,7 +117,8 @@ final case class BroadPhaseParams(
     drainBehind: Boolean = false,
     lookAhead: Int = 3,
     scanPairs: Boolean = false,
-    clearBehind: Boolean = false
+    clearBehind: Boolean = false,
+    nearFilter: Boolean = true
 ) {
   require(largeMax >= 0 && largeMax <= 4096, s"largeMax must be 0..4096, got $largeMax")
   require(cellBits >= 4 && cellBits <= 30, s"cellBits must be 4..30, got $cellBits")
@@ -146,17 +153,25 @@ final case class BroadPhaseParams(
     * maxSpheres 2^bucketsPerSphereLog2 can use. */
   def tableLog2(maxSpheres: Int): Int =
     math.min(bucketsLog2, math.max(1, chisel3.util.log2Ceil(maxSpheres.toLong << bucketsPerSphereLog2)))
-  /** RAM bits of the broad phase for `maxSpheres`: the sort's counters (one per bucket) and its
-    * entries (a sphere index and a mark each), once per lane, and a table of counters more
-    * per sort port past the first (and one more a sort with clearBehind). The sphere table it reads is the AFU's (which holds
-    * ceil(lanes / 2) more copies for it: two lanes share a copy's two ports). */
-  def ramBits(maxSpheres: Int): Long = {
+  /** The broad phase's RAMs for `maxSpheres`, a sort's (BucketSort) times the sorts: per lane a
+    * table of bucket counters (a word of 2^wordLog2 counters a cycle) and a table of entries (a
+    * sphere index and a mark each); a table of counters more per sort port past the first, and
+    * one more a sort with clearBehind. Counters take one write and one read a cycle; entries
+    * take both ports' scatter writes with two ports a sort. The sphere table it reads is the
+    * AFU's (which holds ceil(lanes / 2) more copies for it: two lanes share a copy's two ports). */
+  def rams(maxSpheres: Int): Seq[BroadPhaseParams.Ram] = {
     val cap = groupCapacity(maxSpheres)
     val countW = chisel3.util.log2Ceil(cap + 1)
     val itemW = chisel3.util.log2Ceil(maxSpheres)
-    val counters = (1L << tableLog2(maxSpheres)) * countW
-    sortGroups * ((lanes + portsPerSort - 1 + (if (clearBehind) 1 else 0)) * counters + lanes * cap.toLong * (itemW + 1))
+    val tLog2 = tableLog2(maxSpheres)
+    val perWordLog2 = math.min(wordLog2, tLog2)
+    Seq(
+      BroadPhaseParams.Ram("counters", sortGroups * (lanes + portsPerSort - 1 + (if (clearBehind) 1 else 0)),
+        1L << (tLog2 - perWordLog2), (1 << perWordLog2) * countW, twoWrites = false),
+      BroadPhaseParams.Ram("entries", sortGroups * lanes, cap.toLong, itemW + 1, twoWrites = portsPerSort == 2))
   }
+  /** RAM bits of the broad phase for `maxSpheres` (all of `rams`). */
+  def ramBits(maxSpheres: Int): Long = rams(maxSpheres).map(_.bits).sum
   /** Sorts the passes use: one, or with four, eight or 16 ports two, four or eight of two ports, group g
     * sorting the g-th half, quarter or eighth of the table (block RAM has two ports; the generators read
     * every group's buckets). */
@@ -186,6 +201,11 @@ final case class BroadPhaseParams(
 }
 
 object BroadPhaseParams {
+  /** `count` RAMs of `words` words of `width` bits; `twoWrites`: both ports write in a cycle (a
+    * true dual-port block RAM), else one writes and one reads. */
+  final case class Ram(what: String, count: Int, words: Long, width: Int, twoWrites: Boolean) {
+    def bits: Long = count * words * width
+  }
   /** The box filter's exponent of level L: ceil(L / 2), the octave the edge lies in. */
   def filterExp(level: Int): Int = Math.floorDiv(level + 1, 2)
   /** The exact edge of level L as a double (for reports). */

@@ -93,7 +93,7 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
                          largeSlots: Int, keyLatency: Int = 1, wordLog2: Int = 0, lanes: Int = 1, groups: Int = 1,
                          coarse: Boolean = false, team: Int = 1, claims: Boolean = false, hitQueue: Int = 0,
                          boxBuckets: Boolean = false, drainBehind: Boolean = false, lookAhead: Int = 3,
-                         scanPairs: Boolean = false)
+                         scanPairs: Boolean = false, nearBits: Int = 0)
     extends Module {
   require(wordLog2 >= 0 && wordLog2 <= bucketsLog2, s"wordLog2 $wordLog2 must be 0..bucketsLog2")
   require(lanes >= 1, s"lanes must be >= 1, got $lanes")
@@ -122,14 +122,17 @@ class CandidateGenerator(itemW: Int, countW: Int, cellBits: Int, qWidth: Int, bu
     s"coarse chunks need words of 8 counters or one word for the table, got wordLog2 $wordLog2 of $bucketsLog2")
   override def desiredName = s"CandidateGenerator_i${itemW}_b${bucketsLog2}_c${cellBits}_q${qWidth}_k${chunk}_L${largeSlots}_r${keyLatency}_w$wordLog2" +
     (if (lanes > 1) s"_l$lanes" else "") + (if (groups > 1) s"_g$groups" else "") + (if (coarse) s"_x$teamSize" else "") + (if (claims) "_u" else "") +
-    (if (hitQueue > 0) s"_h$hitQueue" else "") + (if (boxBuckets) "_bx" else "") + (if (drainBehind) "_d" else "") + (if (lookAhead != 3) s"_a$lookAhead" else "") + (if (scanPairs) "_sp" else "")
+    (if (hitQueue > 0) s"_h$hitQueue" else "") + (if (boxBuckets) "_bx" else "") + (if (drainBehind) "_d" else "") + (if (lookAhead != 3) s"_a$lookAhead" else "") + (if (scanPairs) "_sp" else "") +
+    (if (nearBits > 0) s"_n$nearBits" else "")
   val io = IO(new CandidateGeneratorIO(itemW, countW, cellBits, qWidth, bucketsLog2, largeSlots, perWord, lanes, groups,
     if (claims) CandidateGenerator.claimW(bucketsLog2) else 0, boxBuckets))
   private val laneNo: UInt = io.lane.getOrElse(0.U)
 
   private val visitT = new WorldVisit(cellBits)
   private val stream = Module(new KeyStream(visitT, itemW, countW, cellBits, qWidth, keyLatency, groups))
-  private val matcher = Module(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hitQueue, drainBehind))
+  // The large pass loads at most largeSlots members a round (its rounds are of `chunk`, and
+  // no more than largeCount), so the matcher's wide slots are the first min(chunk, largeSlots).
+  private val matcher = Module(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hitQueue, drainBehind, nearBits, wide = largeSlots))
   io.entry.addr := stream.io.entryAddr
   io.entry.group := stream.io.entryGroup
   stream.io.entryItem := io.entry.item

@@ -39,16 +39,38 @@ class ChunkMatcherIO(p: WorldKey, chunk: Int) extends Bundle {
   val canClear = Output(Bool())
 }
 
-class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue: Int = 0, drainBehind: Boolean = false)
+class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue: Int = 0, drainBehind: Boolean = false,
+    nearBits: Int = 0, wide: Int = 256)
     extends Module {
   require(chunk >= 1 && chunk <= 256)
   require(hitQueue >= 0 && hitQueue <= 16, s"hitQueue must be 0..16, got $hitQueue")
+  require(nearBits == 0 || (nearBits >= 2 && nearBits <= qWidth), s"nearBits must be 0 (every slot wide) or 2..$qWidth, got $nearBits")
+  require(wide >= 0, s"wide must be >= 0, got $wide")
+  /** Slots with the whole box filter: every slot without near ones. */
+  private val wideSlots = if (nearBits == 0) chunk else math.min(wide, chunk)
   override def desiredName = s"ChunkMatcher_i${itemW}_c${cellBits}_q${qWidth}_k$chunk" + (if (hitQueue > 0) s"_h$hitQueue" else "") +
-    (if (drainBehind) "_d" else "")
+    (if (drainBehind) "_d" else "") + (if (nearBits > 0) s"_n${nearBits}w$wideSlots" else "")
   private val key = new WorldKey(itemW, cellBits, qWidth)
   val io = IO(new ChunkMatcherIO(key, chunk))
 
   private val members = Reg(Vec(chunk, new ChunkMember(itemW, cellBits, qWidth)))
+  // Each member's box, q -+ qr on each axis, kept as it loads: the filter then compares it with
+  // the probe's box widened by the slack (two comparisons an axis) instead of computing
+  // |qa - qb| and qa.r + qb.r + slack for every member (a subtraction, a negation, a
+  // multiplexer and two additions more). The same test exactly: qa - qra <= qb + qrb + slack
+  // and qb - qrb - slack <= qa + qra together say |qa - qb| <= qra + qrb + slack.
+  // With near slots (nearBits > 0), the slots from `wide` on keep their box modulo 2^nearBits
+  // only: they hold a chunk of the grid, whose probes are in cells next to the members', where
+  // the filter's differences are below 2^(nearBits-1) (ChunkMatcher.nearBits), so a difference's
+  // sign modulo 2^nearBits is its true sign. The large pass, whose probes may be anywhere, loads
+  // the wide slots only.
+  private val wideBoxes = Reg(Vec(wideSlots, new ChunkMatcher.Box(qWidth + 2)))
+  private val nearBoxes = Reg(Vec(chunk - wideSlots, new ChunkMatcher.NearBox(nearBits max 1)))
+  private def writeBox(slot: UInt, k: WorldKey): Unit = {
+    val w = ChunkMatcher.box(k, None)
+    val n = ChunkMatcher.nearBox(k, None, nearBits max 1)
+    for (m <- 0 until chunk) when(slot === m.U) { if (m < wideSlots) wideBoxes(m) := w else nearBoxes(m - wideSlots) := n }
+  }
   private val used = RegInit(0.U(log2Ceil(chunk + 1).W))
   private val over = RegInit(false.B)
   io.overflow := over
@@ -63,7 +85,7 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
     for (b <- 0 until 2) when(bank === (b == 1).B) { ids(b)(VecIndex(m, chunk)) := index }
   when(io.clear) {
     used := io.load.valid.asUInt; over := false.B
-    when(io.load.valid) { members(0) := io.load.bits }
+    when(io.load.valid) { members(0) := io.load.bits; writeBox(0.U, io.load.bits.key) }
     if (drainBehind) {
       cur := !cur
       when(io.load.valid) { writeId(!cur, 0.U, io.load.bits.key.index) }
@@ -71,7 +93,7 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
   }.elsewhen(io.load.valid) {
     when(used === chunk.U) { over := true.B }
       .otherwise {
-        members(VecIndex(used, chunk)) := io.load.bits; used := used + 1.U
+        members(VecIndex(used, chunk)) := io.load.bits; writeBox(used, io.load.bits.key); used := used + 1.U
         if (drainBehind) writeId(cur, used, io.load.bits.key.index)
       }
   }
@@ -79,13 +101,9 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
   private def memberIndex(bank: Bool, m: UInt): UInt =
     if (drainBehind) Mux(bank, ids(1)(VecIndex(m, chunk)), ids(0)(VecIndex(m, chunk))) else members(VecIndex(m, chunk)).key.index
 
-  private def boxPass(a: WorldKey, b: WorldKey): Bool = {
-    val bound = a.qr +& b.qr +& io.slack
-    (0 until 3).map { ax =>
-      val d = a.q(ax) -& b.q(ax)
-      Mux(d < 0.S, (0.S -& d).asUInt, d.asUInt) <= bound
-    }.reduce(_ && _)
-  }
+  /** The box filter of member box `a` and the probe's box `b` (widened by the slack). */
+  private def boxPass(a: ChunkMatcher.Box, b: ChunkMatcher.Box): Bool =
+    (0 until 3).map(ax => a.lo(ax) <= b.hi(ax) && b.lo(ax) <= a.hi(ax)).reduce(_ && _)
 
   /** The half-shell rule of a member at `place` for a probe of the visit at `off` (both from
     * the chunk's base cell): the member's own cell needs the larger index (`later`); else the
@@ -101,12 +119,17 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
 
   private val probe = io.in.bits
   private val e = probe.key
+  private val probeBox = ChunkMatcher.box(e, Some(io.slack))
+  private val probeNear = ChunkMatcher.nearBox(e, Some(io.slack), nearBits max 1)
+  /** The near filter: hi_p - lo_m >= 0 and hi_m - lo_p >= 0 by their signs modulo 2^nearBits. */
+  private def nearPass(a: ChunkMatcher.NearBox, b: ChunkMatcher.NearBox): Bool =
+    (0 until 3).map(ax => !(b.hi(ax) -% a.lo(ax))(nearBits - 1) && !(a.hi(ax) -% b.lo(ax))(nearBits - 1)).reduce(_ && _)
   private val inCell = e.cell.zip(probe.cell).map { case (a, b) => a === b }.reduce(_ && _)
   private val hitsNow = VecInit((0 until chunk).map { m =>
     val mem = members(m)
     val later = e.index > memberIndex(cur, m.U)
     val takes = Mux(probe.anyCell, !probe.own || later, inCell && owns(mem.place, probe.off, later))
-    m.U < used && takes && boxPass(mem.key, e)
+    m.U < used && takes && (if (m < wideSlots) boxPass(wideBoxes(m), probeBox) else nearPass(nearBoxes(m - wideSlots), probeNear))
   }).asUInt
 
   // The streamed sphere being drained (its index) and the hits it still owes.
@@ -147,4 +170,41 @@ class ChunkMatcher(itemW: Int, cellBits: Int, qWidth: Int, chunk: Int, hitQueue:
     oldQueued := q.io.deq.valid && q.io.deq.bits.bank =/= cur
   }
   io.canClear := (if (drainBehind) !pendOld && !oldQueued else io.idle)
+}
+
+object ChunkMatcher {
+  /** A sphere's box on the box filter's fixed point: lo = q - r and hi = q + r on each axis. */
+  class Box(w: Int) extends Bundle {
+    val lo = Vec(3, SInt(w.W))
+    val hi = Vec(3, SInt(w.W))
+  }
+  /** A box modulo 2^w (near slots): lo = q - r and hi = q + r, their low w bits. */
+  class NearBox(w: Int) extends Bundle {
+    val lo = Vec(3, UInt(w.W))
+    val hi = Vec(3, UInt(w.W))
+  }
+  def nearBox(k: WorldKey, grow: Option[UInt], w: Int): NearBox = {
+    val r = grow.fold(k.qr)(g => k.qr +& g)(w - 1, 0)
+    val b = Wire(new NearBox(w))
+    for (ax <- 0 until 3) { val q = k.q(ax).asUInt(w - 1, 0); b.lo(ax) := q -% r; b.hi(ax) := q +% r }
+    b
+  }
+  /** Near bits that make the near filter exact in the grid (a probe in a cell next to the
+    * members'; every small sphere's qr at most half a cell, E / 2 <= 2^(F-1); the slack at
+    * most 1 + 2^(F - cellOverError)): member and probe cells differ by at most 2 on an axis
+    * (a member's place 0..1 in its coarse cell, a visit's offset -1..2), so |qa - qb| < 3E,
+    * and hi_p - lo_m = qb - qa + qra + qrb + slack lies within (-3E, 4E + slack] with E <=
+    * 2^F (the edge in filter units): below 2^(F+3) in magnitude. */
+  def nearBits(filterFracBits: Int): Int = filterFracBits + 4
+
+  /** Key k's box, widened by `grow` (the probe's slack) when given, in `w` bits: exact, as q
+    * and r below 2^(qWidth-1) and 2^qWidth need qWidth + 2 bits for a member's box and
+    * qWidth + 3 with a slack below 2^qWidth. */
+  def box(k: WorldKey, grow: Option[UInt]): Box = {
+    val w = k.qWidth + (if (grow.isDefined) 3 else 2)
+    val r = grow.fold(k.qr.zext)(g => (k.qr +& g).zext)
+    val b = Wire(new Box(w))
+    for (ax <- 0 until 3) { b.lo(ax) := (k.q(ax) -& r).pad(w)(w - 1, 0).asSInt; b.hi(ax) := (k.q(ax) +& r).pad(w)(w - 1, 0).asSInt }
+    b
+  }
 }

@@ -33,6 +33,13 @@ class GenerateSpec extends AnyFlatSpec {
     // sphere copy per two lanes.
     val group16 = (16 + 1) * 8192L * 11 + 16 * 1024L * 13
     assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseBits").num == 4.0 * group16)
+    // In M20K blocks: a table of counters is 256 words of 32 x 11 = 352 bits, nine 512 x 40
+    // blocks (one write, one read); 1024 entries of 13 bits, written by both ports, one 1K x 20.
+    assert(AfuManifest.json(AfuConfig.world, "")("afu")("ram")("broadPhaseM20k").num == 4.0 * (17 * 9 + 16 * 1))
+    // 16 ports: eight sorts; 10-bit counters, 320 bits a word: eight blocks a table (1,088 for the counters).
+    assert(cfg("--preset", "world", "--world-sort-ports", "16").toOption.get.puc.broadPhaseM20k == 8 * (17 * 8 + 16 * 1))
+    // world32: 32 lanes and a table of cursors more a sort (cleared behind).
+    assert(AfuConfig.world32.puc.broadPhaseM20k == 8 * (34 * 8 + 32 * 1))
     // Four sort ports: two sorts of half the table (12-bit counters, 2048 entries).
     val p4 = cfg("--preset", "world", "--world-sort-ports", "4").toOption.get
     assert(p4.id.endsWith("_world16p4w5e2k32xuh8bxda6sp") && p4.world.get.ramBits(4096) == 2 * ((16 + 1) * 8192L * 12 + 16 * 2048L * 13), p4.id)

@@ -46,6 +46,44 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
 
   private def tuple(k: K) = (BigInt(k.q(0)), BigInt(k.q(1)), BigInt(k.q(2)), BigInt(k.qr))
 
+  /** The pairs the model makes of a chunk's members and the probes streamed past it. */
+  private def expected(members: Seq[(K, Int)], entries: Seq[P], slack: Int): Seq[(Int, Int)] =
+    for (p <- entries; e = p.k; (m, pl) <- members
+         if (if (p.anyCell) !p.own || e.index > m.index else e.cell == p.visit && owns(pl, p.off, m.index, e.index)) &&
+            model.boxPass(tuple(m), tuple(e), BigInt(slack)))
+      yield (math.min(m.index, e.index), math.max(m.index, e.index))
+
+  /** One chunk: loads the members (the clear a cycle before the first load, or with it, as the
+    * generator does), streams the probes past them with the input offered and the output ready
+    * at random, and returns the pairs in the order they left. */
+  private def runChunk(dut: ChunkMatcher, rng: scala.util.Random, members: Seq[(K, Int)], entries: Seq[P], slack: Int): Seq[(Int, Int)] = {
+    val clearWithLoad = rng.nextBoolean()
+    if (!clearWithLoad) { dut.io.clear.poke(true.B); dut.clock.step(); dut.io.clear.poke(false.B) }
+    for ((m, n) <- members.zipWithIndex) {
+      dut.io.clear.poke((clearWithLoad && n == 0).B)
+      dut.io.load.valid.poke(true.B); pokeMember(dut.io.load.bits, m); dut.clock.step()
+    }
+    dut.io.clear.poke(false.B)
+    dut.io.load.valid.poke(false.B)
+    dut.io.slack.poke(slack.U)
+    val got = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
+    var pendingIn = entries
+    var cycles = 0
+    while (pendingIn.nonEmpty || !dut.io.idle.peek().litToBoolean) {
+      val offer = pendingIn.nonEmpty && rng.nextInt(4) != 0
+      dut.io.in.valid.poke(offer.B)
+      if (offer) pokeProbe(dut.io.in.bits, pendingIn.head)
+      dut.io.out.ready.poke((rng.nextInt(3) != 0).B)
+      if (dut.io.out.valid.peek().litToBoolean && dut.io.out.ready.peek().litToBoolean)
+        got += ((dut.io.out.bits.i.peek().litValue.toInt, dut.io.out.bits.j.peek().litValue.toInt))
+      if (offer && dut.io.in.ready.peek().litToBoolean) pendingIn = pendingIn.tail
+      dut.clock.step(); cycles += 1
+      assert(cycles < 10000, "stuck")
+    }
+    dut.io.in.valid.poke(false.B)
+    got.toSeq
+  }
+
   for (hq <- Seq(0, 1, 4)) it should s"emit every member-entry pair in each probe's visited cell that the member owns and the box filter passes, once, in order, under back-pressure (hit queue $hq)" in {
     val rng = Seeds.rng(if (hq == 0) "ChunkMatcherSpec" else s"ChunkMatcherSpec-h$hq")
     test(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hq)) { dut =>
@@ -59,36 +97,8 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
         val entries = (indices.drop(chunk).take(rng.nextInt(30)).map(key(rng, _)) ++ members.take(rng.nextInt(2)).map(_._1))
           .map(k => P(k, Seq(rng.nextInt(2), 3, -2), offset(rng), rng.nextInt(8) == 0, rng.nextBoolean()))
         val slack = rng.nextInt(4)
-        val want = for (p <- entries; e = p.k; (m, pl) <- members
-                        if (if (p.anyCell) !p.own || e.index > m.index else e.cell == p.visit && owns(pl, p.off, m.index, e.index)) &&
-                           model.boxPass(tuple(m), tuple(e), BigInt(slack)))
-          yield (math.min(m.index, e.index), math.max(m.index, e.index))
-        // The clear comes a cycle before the first load, or with it (as the generator does).
-        val clearWithLoad = rng.nextBoolean()
-        if (!clearWithLoad) { dut.io.clear.poke(true.B); dut.clock.step(); dut.io.clear.poke(false.B) }
-        for ((m, n) <- members.zipWithIndex) {
-          dut.io.clear.poke((clearWithLoad && n == 0).B)
-          dut.io.load.valid.poke(true.B); pokeMember(dut.io.load.bits, m); dut.clock.step()
-        }
-        dut.io.clear.poke(false.B)
-        dut.io.load.valid.poke(false.B)
-        dut.io.slack.poke(slack.U)
-        val got = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
-        var pendingIn = entries
-        var cycles = 0
-        while (pendingIn.nonEmpty || !dut.io.idle.peek().litToBoolean) {
-          val offer = pendingIn.nonEmpty && rng.nextInt(4) != 0
-          dut.io.in.valid.poke(offer.B)
-          if (offer) pokeProbe(dut.io.in.bits, pendingIn.head)
-          dut.io.out.ready.poke((rng.nextInt(3) != 0).B)
-          if (dut.io.out.valid.peek().litToBoolean && dut.io.out.ready.peek().litToBoolean)
-            got += ((dut.io.out.bits.i.peek().litValue.toInt, dut.io.out.bits.j.peek().litValue.toInt))
-          if (offer && dut.io.in.ready.peek().litToBoolean) pendingIn = pendingIn.tail
-          dut.clock.step(); cycles += 1
-          assert(cycles < 10000, s"round $round: stuck")
-        }
-        dut.io.in.valid.poke(false.B)
-        assert(got.toSeq == want, s"round $round (slack=$slack, ${members.length} members, ${entries.length} entries)")
+        val want = expected(members, entries, slack)
+        assert(runChunk(dut, rng, members, entries, slack) == want, s"round $round (slack=$slack, ${members.length} members, ${entries.length} entries)")
         assert(!dut.io.overflow.peek().litToBoolean)
         total += want.length
       }
@@ -187,6 +197,121 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
     // Without a queue the stream waits for all but the last of the first sphere's hits.
     assert(stalled == 6 + chunk - 1, s"no queue: 6 probes accepted in $stalled cycles")
     assert(queued == 6, s"a queue of 2: 6 probes accepted in $queued cycles")
+  }
+
+  /** A grid chunk at the near filter's limits, as the broad phase makes them: a coarse chunk's
+    * members in its 8 cells (their q at the cells' edges, radii 0 to half a cell), probes in the
+    * visits' cells (-1..2 from the base) or in the chunk's own coarse cell (pairs in the scan,
+    * any cell), now and then one outside its visit's cell (far off); an edge of E = 256 or 192
+    * filter units (2^F with F = 8, or 1.5 * 2^(F-1)), the slack 0 to its largest, 1 + 2^(F-5). */
+  private def nearChunk(rng: scala.util.Random, first: Int): (Seq[(K, Int)], Seq[P], Int) = {
+    val e = if (rng.nextBoolean()) 256 else 192
+    val base = Seq.fill(3)(2 * (rng.nextInt(5) - 2))
+    def at(cell: Seq[Int]) = cell.map(c => c * e + Seq(0, 1, e - 1, e - 2, rng.nextInt(e))(rng.nextInt(5)))
+    def radius() = Seq(0, e / 2, e / 2 - 1, rng.nextInt(e / 2 + 1))(rng.nextInt(4))
+    val members = (0 until 1 + rng.nextInt(chunk)).map { n =>
+      val pl = rng.nextInt(8); val cell = base.zip(Seq(pl >> 2 & 1, pl >> 1 & 1, pl & 1)).map { case (b, o) => b + o }
+      (K(first + n, cell, at(cell), radius()), pl)
+    }
+    val probes = (0 until rng.nextInt(40)).map { n =>
+      val index = first + chunk + n
+      if (rng.nextInt(4) == 0) { // a pair in the scan: a sphere of the same coarse cell
+        val cell = base.map(_ + rng.nextInt(2))
+        P(K(index, cell, at(cell), radius()), cell, Seq(0, 0, 0), anyCell = true, own = false)
+      } else {
+        val o = BroadPhaseModel.CoarseVisits(rng.nextInt(43)); val off = Seq(o._1, o._2, o._3)
+        val visit = base.zip(off).map { case (b, d) => b + d }
+        val cell = if (rng.nextInt(10) == 0) Seq.fill(3)(rng.nextInt(200) - 100) else visit
+        P(K(index, cell, at(cell), radius()), visit, off, anyCell = false, own = false)
+      }
+    }
+    (members, probes, Seq(0, 1, 9, rng.nextInt(10))(rng.nextInt(4)))
+  }
+
+  /** Rounds of nearChunk on a matcher with `near` bits and two wide slots; the rounds that
+    * came out as the model says, and all of them. */
+  private def nearRounds(name: String, near: Int): (Int, Int, Int) = {
+    val rng = Seeds.rng(name)
+    var same = 0; var rounds = 0; var pairs = 0
+    test(new ChunkMatcher(itemW, cellBits, qWidth, chunk, hitQueue = 2, nearBits = near, wide = 2)) { dut =>
+      dut.clock.setTimeout(0)
+      for (_ <- 0 until Seeds.cases(60)) {
+        val (members, probes, slack) = nearChunk(rng, 16 * rng.nextInt(50))
+        val want = expected(members, probes, slack)
+        if (runChunk(dut, rng, members, probes, slack) == want) same += 1
+        rounds += 1; pairs += want.length
+      }
+    }
+    (same, rounds, pairs)
+  }
+
+  it should "give the model's pairs with near slots, for grid chunks at the edges of their cells, radii and slack" in {
+    val near = ChunkMatcher.nearBits(8)
+    val (same, rounds, pairs) = nearRounds("ChunkMatcherSpec-near", near)
+    println(s"[ChunkMatcherSpec] near filter of $near bits: $rounds grid chunks, $pairs pairs, as the model says in $same")
+    assert(same == rounds, s"${rounds - same} of $rounds chunks differ from the model")
+    assert(pairs > 200, "the rounds should produce pairs")
+    // Two bits fewer wrap differences of two cells: these chunks do reach the width.
+    val (sameShort, roundsShort, _) = nearRounds("ChunkMatcherSpec-near-short", near - 2)
+    assert(sameShort < roundsShort, s"$near - 2 near bits gave the model's pairs in every chunk: the cases do not reach the width")
+  }
+
+  it should "meet a large pass's probes anywhere with its wide slots, near slots built" in {
+    // The large pass loads at most `wide` members: any q and radius (saturated too).
+    val rng = Seeds.rng("ChunkMatcherSpec-near-large")
+    test(new ChunkMatcher(itemW, cellBits, qWidth, chunk, nearBits = ChunkMatcher.nearBits(8), wide = 2)) { dut =>
+      dut.clock.setTimeout(0)
+      var pairs = 0
+      for (r <- 0 until Seeds.cases(30)) {
+        def far(i: Int) = K(i, Seq(0, 0, 0), Seq.fill(3)(rng.nextInt(1 << (qWidth - 1)) - (1 << (qWidth - 2))),
+          Seq((1 << qWidth) - 1, rng.nextInt(1 << 14), rng.nextInt(256))(rng.nextInt(3)))
+        val members = (0 until 1 + rng.nextInt(2)).map(i => (far(i), 0))
+        val probes = (0 until rng.nextInt(30)).map(n => P(far(10 + n), Seq(0, 0, 0), Seq(0, 0, 0), anyCell = true, own = rng.nextBoolean()))
+        val slack = rng.nextInt(10)
+        val want = expected(members, probes, slack)
+        assert(runChunk(dut, rng, members, probes, slack) == want, s"round $r")
+        pairs += want.length
+      }
+      println(s"[ChunkMatcherSpec] large pass with near slots built: $pairs pairs")
+      assert(pairs > 20, "the rounds should produce pairs")
+    }
+  }
+
+  it should "pass the box filter exactly where the model does at the extremes of q, r and the slack" in {
+    // A 4-bit fixed point: q from -8 to 7, r and slack up to 15, so every sum and difference
+    // the filter forms is at the edge of its width. Probes take any cell (the cell rules out).
+    val qw = 4
+    val qs = Seq(-8, -7, -1, 0, 1, 6, 7); val rs = Seq(0, 1, 7, 8, 14, 15)
+    def at(ax: Int, v: Int) = Seq.tabulate(3)(a => if (a == ax) v else 0)
+    val keys = for ((q, n) <- (for (q <- qs; r <- rs) yield (q, r)).zipWithIndex) yield (n, q)
+    val members = keys.map { case (n, (q, r)) => K(n, Seq(0, 0, 0), at(n % 3, q), r) }
+    val probes = keys.map { case (n, (q, r)) => K(100 + n, Seq(0, 0, 0), at((n / 3) % 3, q), r) }
+    test(new ChunkMatcher(itemW, cellBits, qw, chunk)) { dut =>
+      dut.clock.setTimeout(0)
+      var pairs = 0; var misses = 0
+      for (slack <- Seq(0, 1, 15); group <- members.grouped(chunk)) {
+        for ((m, n) <- group.zipWithIndex) {
+          dut.io.clear.poke((n == 0).B); dut.io.load.valid.poke(true.B); pokeMember(dut.io.load.bits, (m, 0)); dut.clock.step()
+        }
+        dut.io.clear.poke(false.B); dut.io.load.valid.poke(false.B)
+        dut.io.slack.poke(slack.U); dut.io.out.ready.poke(true.B)
+        val want = for (p <- probes; m <- group if model.boxPass(tuple(m), tuple(p), BigInt(slack))) yield (m.index, p.index)
+        val got = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
+        var left = probes
+        while (left.nonEmpty || !dut.io.idle.peek().litToBoolean) {
+          dut.io.in.valid.poke(left.nonEmpty.B)
+          if (left.nonEmpty) pokeProbe(dut.io.in.bits, P(left.head, Seq(0, 0, 0), Seq(0, 0, 0), anyCell = true, own = false))
+          if (dut.io.out.valid.peek().litToBoolean) got += ((dut.io.out.bits.i.peek().litValue.toInt, dut.io.out.bits.j.peek().litValue.toInt))
+          if (left.nonEmpty && dut.io.in.ready.peek().litToBoolean) left = left.tail
+          dut.clock.step()
+        }
+        dut.io.in.valid.poke(false.B)
+        assert(got.toSeq == want, s"slack $slack, members ${group.map(m => (m.q, m.qr))}")
+        pairs += want.length; misses += group.length * probes.length - want.length
+      }
+      println(s"[ChunkMatcherSpec] extremes: $pairs pairs passed and $misses refused, as the model says")
+      assert(pairs > 1000 && misses > 300, "the extremes should both pass and fail the filter")
+    }
   }
 
   it should "refuse a member beyond the chunk and say so" in {
