@@ -98,6 +98,14 @@ class AfuWorldReport(unittest.TestCase):
             afu_world.report([self.row("uniform", 670, "qpi")], out, "", lanes=16, ports=8)  # an older CSV: no column
             self.assertNotIn("--clock-mhz", (out / "README.md").read_text())
 
+    def test_a_run_of_the_ideal_link_alone_gets_its_report_and_says_harp_was_not_run(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = Path(d)
+            afu_world.report([self.row("uniform", 670, "ideal"), self.row("diamond", 3894, "ideal")], out, "", lanes=32, ports=16)
+            text = (out / "README.md").read_text()
+            self.assertIn("HARP v1's QPI link was not run here", text)
+            self.assertNotIn("its link bound on HARP v1", text)
+
     def test_a_refused_world_is_listed_under_its_cloud_and_the_diamond_gets_its_section(self):
         with tempfile.TemporaryDirectory() as d:
             out = Path(d)
