@@ -242,16 +242,16 @@ def report(rows, out, machine_md, lanes, ports=1, compare=None):
                      "contact writes are a larger part of the bound. ODE's sweep-and-prune beats our CPU grid on it up to "
                      f"{max([int(r['spheres']) for r in dia if r['ode_sap_ns'] < r['simd_grid_ns']] or [0]):,} spheres "
                      "(the grid's power-of-two cells hold many of its close-packed spheres) and loses above."] if dia else [])
+    within = [f"{r['cloud']} {int(r['spheres']):,}" for r in rows if qpi(r) and r["afu_over_bound"] <= 2.0]
+    link_clause = (f"- It is {rng('afu_over_bound', qpi)[0]:.1f}-{rng('afu_over_bound', qpi)[1]:.1f}x its link bound on HARP v1's "
+                   "QPI link" + (", within 2x only for " + ", ".join(within) if within else ", never within 2x") +
+                   ": the broad phase takes " if any(qpi(r) for r in rows)
+                   else "- HARP v1's QPI link was not run here (`--links`). The broad phase takes ")
     lines += ["## What it shows", "",
               f"- The AFU's world mode is {rng('ode_over_afu')[0]:.1f}-{rng('ode_over_afu')[1]:.1f}x faster than ODE's "
               f"sweep-and-prune space + dCollide and {rng('grid_over_afu')[0]:.1f}-{rng('grid_over_afu')[1]:.1f}x faster "
               "than our CPU grid + simd kernel on every cloud and size here (modelled AFU time against measured CPU time).",
-              (f"- It is {rng('afu_over_bound', qpi)[0]:.1f}-{rng('afu_over_bound', qpi)[1]:.1f}x its link bound on HARP v1's "
-               "QPI link" + (", within 2x only for " + ", ".join(f"{r['cloud']} {int(r['spheres']):,}" for r in rows
-                                                              if qpi(r) and r["afu_over_bound"] <= 2.0)
-                             if any(qpi(r) and r["afu_over_bound"] <= 2.0 for r in rows) else ", never within 2x") +
-               ": the broad phase takes " if any(qpi(r) for r in rows)
-               else "- HARP v1's QPI link was not run here (`--links`). The broad phase takes ") +
+              link_clause +
               f"{min(per):.1f}-{max(per):.1f} cycles a sphere of the world (one run: {min(one):.1f}-{max(one):.1f}; runs re-read their ghosts;",
               f"  its {lanes} candidate lane{plural} and its sort's passes of {spheres_a_cycle}),",
               "  while the link brings four spheres a line and a line a cycle. The cell level is chosen as the table",

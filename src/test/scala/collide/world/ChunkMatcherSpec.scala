@@ -286,27 +286,14 @@ class ChunkMatcherSpec extends AnyFlatSpec with ChiselScalatestTester {
     val keys = for ((q, n) <- (for (q <- qs; r <- rs) yield (q, r)).zipWithIndex) yield (n, q)
     val members = keys.map { case (n, (q, r)) => K(n, Seq(0, 0, 0), at(n % 3, q), r) }
     val probes = keys.map { case (n, (q, r)) => K(100 + n, Seq(0, 0, 0), at((n / 3) % 3, q), r) }
+    val rng = Seeds.rng("ChunkMatcherSpec-extremes") // the back-pressure only
+    val entries = probes.map(P(_, Seq(0, 0, 0), Seq(0, 0, 0), anyCell = true, own = false))
     test(new ChunkMatcher(itemW, cellBits, qw, chunk)) { dut =>
       dut.clock.setTimeout(0)
       var pairs = 0; var misses = 0
       for (slack <- Seq(0, 1, 15); group <- members.grouped(chunk)) {
-        for ((m, n) <- group.zipWithIndex) {
-          dut.io.clear.poke((n == 0).B); dut.io.load.valid.poke(true.B); pokeMember(dut.io.load.bits, (m, 0)); dut.clock.step()
-        }
-        dut.io.clear.poke(false.B); dut.io.load.valid.poke(false.B)
-        dut.io.slack.poke(slack.U); dut.io.out.ready.poke(true.B)
-        val want = for (p <- probes; m <- group if model.boxPass(tuple(m), tuple(p), BigInt(slack))) yield (m.index, p.index)
-        val got = scala.collection.mutable.ArrayBuffer.empty[(Int, Int)]
-        var left = probes
-        while (left.nonEmpty || !dut.io.idle.peek().litToBoolean) {
-          dut.io.in.valid.poke(left.nonEmpty.B)
-          if (left.nonEmpty) pokeProbe(dut.io.in.bits, P(left.head, Seq(0, 0, 0), Seq(0, 0, 0), anyCell = true, own = false))
-          if (dut.io.out.valid.peek().litToBoolean) got += ((dut.io.out.bits.i.peek().litValue.toInt, dut.io.out.bits.j.peek().litValue.toInt))
-          if (left.nonEmpty && dut.io.in.ready.peek().litToBoolean) left = left.tail
-          dut.clock.step()
-        }
-        dut.io.in.valid.poke(false.B)
-        assert(got.toSeq == want, s"slack $slack, members ${group.map(m => (m.q, m.qr))}")
+        val want = expected(group.map((_, 0)), entries, slack)
+        assert(runChunk(dut, rng, group.map((_, 0)), entries, slack) == want, s"slack $slack, members ${group.map(m => (m.q, m.qr))}")
         pairs += want.length; misses += group.length * probes.length - want.length
       }
       println(s"[ChunkMatcherSpec] extremes: $pairs pairs passed and $misses refused, as the model says")
