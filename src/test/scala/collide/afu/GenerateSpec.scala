@@ -124,6 +124,11 @@ class GenerateSpec extends AnyFlatSpec {
     val cb = cfg("--preset", "world", "--world-clear-behind", "true").toOption.get
     assert(cb.id.endsWith("_world16p8w5e2k32xuh8bxda6spcb") && AfuManifest.json(cb, "")("afu")("broadPhase")("clearBehind").bool, cb.id)
     assert(cb.world.get.ramBits(4096) - pw.ramBits(4096) == 4L * 8192 * 11, "a table of 2^13 11-bit counters more in each of the four sorts")
+    // The near filter is the default; off, a name of its own, the same RAM.
+    assert(AfuConfig.world.world.get.nearFilter && AfuManifest.json(AfuConfig.world, "")("afu")("broadPhase")("nearFilter").bool)
+    val wf = cfg("--preset", "world", "--world-near-filter", "false").toOption.get
+    assert(wf.id.endsWith("_world16p8w5e2k32xuh8bxda6spwf") && !AfuManifest.json(wf, "")("afu")("broadPhase")("nearFilter").bool, wf.id)
+    assert(wf.world.get.ramBits(4096) == pw.ramBits(4096))
   }
 
   it should "refuse a configuration that cannot be built, naming the flag and the problem" in {
@@ -139,6 +144,7 @@ class GenerateSpec extends AnyFlatSpec {
     err("--preset", "world", "--world-word-log2", "6")("--world-word-log2", "0..5")
     err("--world-hit-queue", "4")("--world-hit-queue", "world mode is not built")
     err("--world-box-buckets", "true")("--world-box-buckets", "world mode is not built")
+    err("--world-near-filter", "false")("--world-near-filter", "world mode is not built")
     err("--run-queue", "true")("--run-queue", "needs world mode")
     err("--preset", "world", "--run-queue", "false", "--start-ahead", "true")("--start-ahead", "needs the run queue")
     err("--preset", "world", "--world-line-queue", "1")("--world-line-queue", "2..4096")
