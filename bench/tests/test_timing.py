@@ -183,3 +183,28 @@ class AfuTimingCli(unittest.TestCase):
         # Without --area the columns are the timing's alone.
         self.assertNotIn("ff", plain[0])
         self.assertEqual(plain[0]["cyclonev_ps"], rows[0]["cyclonev_ps"])
+
+
+class CommittedResults(unittest.TestCase):
+    """The committed proxy figures of the presets belong to the committed Verilog: each row of
+    bench/results/timing/afu.csv names the commit whose generated/<folder> it timed, and that
+    folder's Verilog must not have changed since (or the figures describe another design)."""
+
+    def git(self, *args):
+        return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True)
+
+    def test_each_preset_row_names_a_commit_whose_verilog_is_the_committed_one(self):
+        if self.git("rev-parse", "--is-shallow-repository").stdout.strip() != "false":
+            self.skipTest("needs the repository's history (a full clone)")
+        with open(ROOT / "bench/results/timing/afu.csv") as f:
+            pairs = {(r["folder"], r["commit"]) for r in csv.DictReader(f)}
+        self.assertTrue(pairs)
+        for folder, commit in sorted(pairs):
+            self.assertNotIn("+changes", commit, f"afu.csv's {folder} rows timed uncommitted Verilog")
+            self.assertEqual(self.git("cat-file", "-e", f"{commit}^{{commit}}").returncode, 0,
+                             f"afu.csv's {folder} rows name {commit}, not a commit of this repository")
+            diff = self.git("diff", "--stat", commit, "HEAD", "--", f"generated/{folder}/*.sv")
+            self.assertEqual(diff.stdout.strip(), "",
+                             f"generated/{folder} changed since {commit}, whose Verilog afu.csv timed: run "
+                             f"tools/pyenv bench/area/afu_timing.py generated/world generated/default again")
+

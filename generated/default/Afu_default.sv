@@ -16624,13 +16624,13 @@ module FpAdd_fp32_L1_default(
   reg  [31:0] io_out_bits_r_bits;
   reg  [4:0]  io_out_bits_r_flags;
   reg         io_out_valid_r;
-  wire        a_expZero = io_in_bits_a[30:23] == 8'h0;
-  wire        a_isInf = (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
-  wire        a_isZero = a_expZero & ~(|(io_in_bits_a[22:0]));
+  wire        s0_a_expZero = io_in_bits_a[30:23] == 8'h0;
+  wire        s1_a_out_isInf = (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
+  wire        s1_a_out_isZero = s0_a_expZero & ~(|(io_in_bits_a[22:0]));
   wire [3:0]  _GEN =
     {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
     | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
-  wire [4:0]  a_lz =
+  wire [4:0]  s0_a_out_lz =
     io_in_bits_a[22]
       ? 5'h0
       : io_in_bits_a[21]
@@ -16676,18 +16676,13 @@ module FpAdd_fp32_L1_default(
                                                                                       : io_in_bits_a[1]
                                                                                           ? 5'h15
                                                                                           : 5'h16;
-  wire [85:0] _a_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, a_lz} + 6'h1;
-  wire [23:0] a_sig = a_expZero ? _a_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]};
-  wire [8:0]  _a_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
-  wire [9:0]  a_sExp =
-    a_expZero ? 10'h381 - {5'h0, a_lz} : {_a_out_sExp_T_1[8], _a_out_sExp_T_1};
-  wire        b_expZero = io_in_bits_b[30:23] == 8'h0;
-  wire        b_isInf = (&(io_in_bits_b[30:23])) & ~(|(io_in_bits_b[22:0]));
-  wire        b_isZero = b_expZero & ~(|(io_in_bits_b[22:0]));
+  wire        s0_b_expZero = io_in_bits_b[30:23] == 8'h0;
+  wire        s1_b_out_isInf = (&(io_in_bits_b[30:23])) & ~(|(io_in_bits_b[22:0]));
+  wire        s1_b_out_isZero = s0_b_expZero & ~(|(io_in_bits_b[22:0]));
   wire [3:0]  _GEN_0 =
     {{io_in_bits_b[5:4], io_in_bits_b[7]} & 3'h5, 1'h0}
     | {io_in_bits_b[7:6], io_in_bits_b[9:8]} & 4'h5;
-  wire [4:0]  b_lz =
+  wire [4:0]  s0_b_out_lz =
     io_in_bits_b[22]
       ? 5'h0
       : io_in_bits_b[21]
@@ -16733,141 +16728,166 @@ module FpAdd_fp32_L1_default(
                                                                                       : io_in_bits_b[1]
                                                                                           ? 5'h15
                                                                                           : 5'h16;
-  wire [85:0] _b_subSig_T_1 = {63'h0, io_in_bits_b[22:0]} << {1'h0, b_lz} + 6'h1;
-  wire [23:0] b_sig = b_expZero ? _b_subSig_T_1[23:0] : {1'h1, io_in_bits_b[22:0]};
-  wire [8:0]  _b_out_sExp_T_1 = {1'h0, io_in_bits_b[30:23]} - 9'h7F;
-  wire [9:0]  b_sExp =
-    b_expZero ? 10'h381 - {5'h0, b_lz} : {_b_out_sExp_T_1[8], _b_out_sExp_T_1};
+  wire [85:0] _s1_a_subSig_T_1 =
+    {63'h0, io_in_bits_a[22:0]} << {1'h0, s0_a_out_lz} + 6'h1;
+  wire [23:0] s1_a_out_sig =
+    s0_a_expZero ? _s1_a_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]};
+  wire [8:0]  _s1_a_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
+  wire [9:0]  s1_a_out_sExp =
+    s0_a_expZero
+      ? 10'h381 - {5'h0, s0_a_out_lz}
+      : {_s1_a_out_sExp_T_1[8], _s1_a_out_sExp_T_1};
+  wire [85:0] _s1_b_subSig_T_1 =
+    {63'h0, io_in_bits_b[22:0]} << {1'h0, s0_b_out_lz} + 6'h1;
+  wire [23:0] s1_b_out_sig =
+    s0_b_expZero ? _s1_b_subSig_T_1[23:0] : {1'h1, io_in_bits_b[22:0]};
+  wire [8:0]  _s1_b_out_sExp_T_1 = {1'h0, io_in_bits_b[30:23]} - 9'h7F;
+  wire [9:0]  s1_b_out_sExp =
+    s0_b_expZero
+      ? 10'h381 - {5'h0, s0_b_out_lz}
+      : {_s1_b_out_sExp_T_1[8], _s1_b_out_sExp_T_1};
   wire        bSign = io_in_bits_b[31] ^ io_in_bits_subtract;
   wire        effSub = io_in_bits_a[31] != bSign;
-  wire [11:0] _GEN_1 = {{2{a_sExp[9]}}, a_sExp};
-  wire [11:0] _GEN_2 = {{2{b_sExp[9]}}, b_sExp};
-  wire        infInvalid = a_isInf & b_isInf & effSub;
-  wire        s1_isNaN =
+  wire        infInvalid = s1_a_out_isInf & s1_b_out_isInf & effSub;
+  wire        s7_isNaN =
     (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) | (&(io_in_bits_b[30:23]))
     & (|(io_in_bits_b[22:0])) | infInvalid;
-  wire        s1_isInf = a_isInf | b_isInf;
-  wire        s1_isZero = a_isZero & b_isZero;
+  wire        s6_c_isInf = s1_a_out_isInf | s1_b_out_isInf;
+  wire        s6_c_isZero = s1_a_out_isZero & s1_b_out_isZero;
   wire        aBig =
-    b_isZero | ~a_isZero
-    & ($signed(_GEN_1) > $signed(_GEN_2) | _GEN_1 == _GEN_2 & a_sig >= b_sig);
-  wire [11:0] bigExp = aBig ? _GEN_1 : _GEN_2;
-  wire [23:0] smlSig = (aBig ? b_isZero : a_isZero) ? 24'h0 : aBig ? b_sig : a_sig;
-  wire [11:0] _dist_T = bigExp - (aBig ? _GEN_2 : _GEN_1);
-  wire [53:0] s1_smlSig_wide = {smlSig, 30'h0} >> (_dist_T > 12'h1C ? 12'h1C : _dist_T);
-  wire [27:0] _GEN_3 = {1'h0, aBig ? a_sig : b_sig, 3'h0};
-  wire [27:0] _GEN_4 =
+    s1_b_out_isZero | ~s1_a_out_isZero
+    & (io_in_bits_a[30:15] > io_in_bits_b[30:15]
+       | io_in_bits_a[30:15] == io_in_bits_b[30:15]
+       & io_in_bits_a[14:0] >= io_in_bits_b[14:0]);
+  wire [23:0] s3_smlSig =
+    (aBig ? s1_b_out_isZero : s1_a_out_isZero)
+      ? 24'h0
+      : aBig ? s1_b_out_sig : s1_a_out_sig;
+  wire [10:0] _GEN_1 = {s1_a_out_sExp[9], s1_a_out_sExp};
+  wire [10:0] _GEN_2 = {s1_b_out_sExp[9], s1_b_out_sExp};
+  wire [10:0] _GEN_3 = _GEN_1 - _GEN_2;
+  wire [10:0] _GEN_4 = _GEN_2 - _GEN_1;
+  wire [11:0] s2_dist = aBig ? {_GEN_3[10], _GEN_3} : {_GEN_4[10], _GEN_4};
+  wire [53:0] s4_smlSig_wide =
+    {s3_smlSig, 30'h0} >> (s2_dist > 12'h1C ? 5'h1C : s2_dist[4:0]);
+  wire [27:0] _GEN_5 = {1'h0, aBig ? s1_a_out_sig : s1_b_out_sig, 3'h0};
+  wire [27:0] _GEN_6 =
     {1'h0,
-     s1_smlSig_wide[53:28],
-     s1_smlSig_wide[27] | (|(s1_smlSig_wide[26:0])) | _dist_T > 12'h1B & (|smlSig)};
-  wire [27:0] sum = effSub ? _GEN_3 - _GEN_4 : _GEN_3 + _GEN_4;
-  wire [3:0]  _GEN_5 = {{sum[5:4], sum[7]} & 3'h5, 1'h0} | {sum[7:6], sum[9:8]} & 4'h5;
-  wire [4:0]  lz =
-    sum[27]
+     s4_smlSig_wide[53:28],
+     s4_smlSig_wide[27] | (|(s4_smlSig_wide[26:0])) | s2_dist > 12'h1B & (|s3_smlSig)};
+  wire [27:0] s6_sum = effSub ? _GEN_5 - _GEN_6 : _GEN_5 + _GEN_6;
+  wire [3:0]  _GEN_7 =
+    {{s6_sum[5:4], s6_sum[7]} & 3'h5, 1'h0} | {s6_sum[7:6], s6_sum[9:8]} & 4'h5;
+  wire [4:0]  s6_lz =
+    s6_sum[27]
       ? 5'h0
-      : sum[26]
+      : s6_sum[26]
           ? 5'h1
-          : sum[25]
+          : s6_sum[25]
               ? 5'h2
-              : sum[24]
+              : s6_sum[24]
                   ? 5'h3
-                  : sum[23]
+                  : s6_sum[23]
                       ? 5'h4
-                      : sum[22]
+                      : s6_sum[22]
                           ? 5'h5
-                          : sum[21]
+                          : s6_sum[21]
                               ? 5'h6
-                              : sum[20]
+                              : s6_sum[20]
                                   ? 5'h7
-                                  : sum[19]
+                                  : s6_sum[19]
                                       ? 5'h8
-                                      : sum[18]
+                                      : s6_sum[18]
                                           ? 5'h9
-                                          : sum[17]
+                                          : s6_sum[17]
                                               ? 5'hA
-                                              : sum[16]
+                                              : s6_sum[16]
                                                   ? 5'hB
-                                                  : sum[15]
+                                                  : s6_sum[15]
                                                       ? 5'hC
-                                                      : sum[14]
+                                                      : s6_sum[14]
                                                           ? 5'hD
-                                                          : sum[13]
+                                                          : s6_sum[13]
                                                               ? 5'hE
-                                                              : sum[12]
+                                                              : s6_sum[12]
                                                                   ? 5'hF
-                                                                  : sum[11]
+                                                                  : s6_sum[11]
                                                                       ? 5'h10
-                                                                      : sum[10]
+                                                                      : s6_sum[10]
                                                                           ? 5'h11
-                                                                          : sum[9]
+                                                                          : s6_sum[9]
                                                                               ? 5'h12
-                                                                              : _GEN_5[0]
+                                                                              : _GEN_7[0]
                                                                                   ? 5'h13
-                                                                                  : _GEN_5[1]
+                                                                                  : _GEN_7[1]
                                                                                       ? 5'h14
-                                                                                      : _GEN_5[2]
+                                                                                      : _GEN_7[2]
                                                                                           ? 5'h15
-                                                                                          : _GEN_5[3]
+                                                                                          : _GEN_7[3]
                                                                                               ? 5'h16
-                                                                                              : sum[4]
+                                                                                              : s6_sum[4]
                                                                                                   ? 5'h17
-                                                                                                  : sum[3]
+                                                                                                  : s6_sum[3]
                                                                                                       ? 5'h18
-                                                                                                      : sum[2]
+                                                                                                      : s6_sum[2]
                                                                                                           ? 5'h19
                                                                                                           : {4'hD,
-                                                                                                             ~(sum[1])};
-  wire [58:0] _norm_T = {31'h0, sum} << lz;
-  wire        sumZero = sum == 28'h0;
-  wire        s2_r_isInf = s1_isInf & ~s1_isNaN;
-  wire        s2_r_isZero = ~s1_isNaN & ~s1_isInf & (s1_isZero | sumZero);
-  wire [11:0] _s2_r_sExp_T_4 = bigExp + 12'h1 - {7'h0, lz};
-  wire [25:0] s2_r_sig = {_norm_T[27:3], |(_norm_T[2:0])};
-  wire        rounded_tiny = $signed(_s2_r_sExp_T_4) < -12'sh7E;
-  wire [11:0] _rounded_dist_T = 12'hF82 - _s2_r_sExp_T_4;
-  wire [51:0] rounded_sig_wide =
+                                                                                                             ~(s6_sum[1])};
+  wire        s6_sumZero = s6_sum == 28'h0;
+  wire [58:0] _norm_T = {31'h0, s6_sum} << s6_lz;
+  wire        s7_isInf = s6_c_isInf & ~s7_isNaN;
+  wire        s7_isZero = ~s7_isNaN & ~s6_c_isInf & (s6_c_isZero | s6_sumZero);
+  wire [11:0] _s7_sExp_T_4 =
+    (aBig
+       ? {{2{s1_a_out_sExp[9]}}, s1_a_out_sExp}
+       : {{2{s1_b_out_sExp[9]}}, s1_b_out_sExp}) + 12'h1 - {7'h0, s6_lz};
+  wire [25:0] s7_sig = {_norm_T[27:3], |(_norm_T[2:0])};
+  wire        s9r_tiny = $signed(_s7_sExp_T_4) < -12'sh7E;
+  wire [11:0] _s8r_dist_T = 12'hF82 - _s7_sExp_T_4;
+  wire [51:0] s9r_sig_wide =
     {_norm_T[27:3], |(_norm_T[2:0]), 26'h0}
-    >> (_rounded_dist_T > 12'h1B ? 12'h1B : _rounded_dist_T);
-  wire [25:0] rounded_sig =
-    rounded_tiny
-      ? {rounded_sig_wide[51:27],
-         rounded_sig_wide[26] | (|(rounded_sig_wide[25:0])) | _rounded_dist_T > 12'h1A
-           & (|s2_r_sig)}
-      : s2_r_sig;
-  wire        rounded_inexact = rounded_sig[1] | rounded_sig[0];
-  wire [24:0] rounded_m1 =
-    {1'h0, rounded_sig[25:2]}
-    + {24'h0, rounded_sig[1] & (rounded_sig[0] | rounded_sig[2])};
-  wire [12:0] rounded_expOut =
-    {_s2_r_sExp_T_4[11], _s2_r_sExp_T_4} + {12'h0, rounded_m1[24]};
-  wire        rounded_overflow = ~rounded_tiny & $signed(rounded_expOut) > 13'sh7F;
+    >> (_s8r_dist_T > 12'h1B ? 5'h1B : _s8r_dist_T[4:0]);
+  wire [25:0] s9r_sig =
+    s9r_tiny
+      ? {s9r_sig_wide[51:27],
+         s9r_sig_wide[26] | (|(s9r_sig_wide[25:0])) | _s8r_dist_T > 12'h1A & (|s7_sig)}
+      : s7_sig;
+  wire        s10r_inexact = s9r_sig[1] | s9r_sig[0];
+  wire [24:0] s10r_m1 =
+    {1'h0, s9r_sig[25:2]} + {24'h0, s9r_sig[1] & (s9r_sig[0] | s9r_sig[2])};
+  wire        io_out_bits_overflow =
+    ~s9r_tiny
+    & (s10r_m1[24] ? $signed(_s7_sExp_T_4) > 12'sh7E : $signed(_s7_sExp_T_4) > 12'sh7F);
   always @(posedge clock) begin
     if (io_en) begin
       io_out_bits_r_bits <=
-        s1_isNaN
+        s7_isNaN
           ? 32'h7FC00000
-          : {s1_isZero
+          : {s6_c_isZero
                ? io_in_bits_a[31] == bSign & io_in_bits_a[31]
-               : ~sumZero & (a_isInf | ~(b_isInf | ~aBig) ? io_in_bits_a[31] : bSign),
-             s2_r_isInf
+               : ~s6_sumZero
+                 & (s1_a_out_isInf | ~(s1_b_out_isInf | ~aBig)
+                      ? io_in_bits_a[31]
+                      : bSign),
+             s7_isInf
                ? 31'h7F800000
-               : s2_r_isZero
+               : s7_isZero
                    ? 31'h0
-                   : rounded_overflow
+                   : io_out_bits_overflow
                        ? 31'h7F800000
-                       : {rounded_tiny
-                            ? {7'h0, rounded_m1[23]}
-                            : rounded_expOut[7:0] + 8'h7F,
-                          rounded_m1[22:0]}};
+                       : {s9r_tiny
+                            ? {7'h0, s10r_m1[23]}
+                            : s10r_m1[24]
+                                ? _s7_sExp_T_4[7:0] - 8'h80
+                                : _s7_sExp_T_4[7:0] + 8'h7F,
+                          s10r_m1[22:0]}};
       io_out_bits_r_flags <=
         {(&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) & ~(io_in_bits_a[22])
            | (&(io_in_bits_b[30:23])) & (|(io_in_bits_b[22:0])) & ~(io_in_bits_b[22])
            | infInvalid,
-         s1_isNaN | s2_r_isInf | s2_r_isZero
+         s7_isNaN | s7_isInf | s7_isZero
            ? 4'h0
-           : rounded_overflow
-               ? 4'h5
-               : {2'h0, rounded_tiny & rounded_inexact, rounded_inexact}};
+           : io_out_bits_overflow ? 4'h5 : {2'h0, s9r_tiny & s10r_inexact, s10r_inexact}};
     end
     if (reset)
       io_out_valid_r <= 1'h0;
@@ -16894,13 +16914,13 @@ module FpMul_fp32_L1_default(
   reg  [31:0] io_out_bits_r_bits;
   reg  [4:0]  io_out_bits_r_flags;
   reg         io_out_valid_r;
-  wire        a_expZero = io_in_bits_a[30:23] == 8'h0;
-  wire        a_isInf = (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
-  wire        a_isZero = a_expZero & ~(|(io_in_bits_a[22:0]));
+  wire        sc_a_expZero = io_in_bits_a[30:23] == 8'h0;
+  wire        s0_a_out_isInf = (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
+  wire        s0_a_out_isZero = sc_a_expZero & ~(|(io_in_bits_a[22:0]));
   wire [3:0]  _GEN =
     {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
     | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
-  wire [4:0]  a_lz =
+  wire [4:0]  sc_a_out_lz =
     io_in_bits_a[22]
       ? 5'h0
       : io_in_bits_a[21]
@@ -16946,16 +16966,13 @@ module FpMul_fp32_L1_default(
                                                                                       : io_in_bits_a[1]
                                                                                           ? 5'h15
                                                                                           : 5'h16;
-  wire [8:0]  _a_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
-  wire [9:0]  a_sExp =
-    a_expZero ? 10'h381 - {5'h0, a_lz} : {_a_out_sExp_T_1[8], _a_out_sExp_T_1};
-  wire        b_expZero = io_in_bits_b[30:23] == 8'h0;
-  wire        b_isInf = (&(io_in_bits_b[30:23])) & ~(|(io_in_bits_b[22:0]));
-  wire        b_isZero = b_expZero & ~(|(io_in_bits_b[22:0]));
+  wire        sc_b_expZero = io_in_bits_b[30:23] == 8'h0;
+  wire        s0_b_out_isInf = (&(io_in_bits_b[30:23])) & ~(|(io_in_bits_b[22:0]));
+  wire        s0_b_out_isZero = sc_b_expZero & ~(|(io_in_bits_b[22:0]));
   wire [3:0]  _GEN_0 =
     {{io_in_bits_b[5:4], io_in_bits_b[7]} & 3'h5, 1'h0}
     | {io_in_bits_b[7:6], io_in_bits_b[9:8]} & 4'h5;
-  wire [4:0]  b_lz =
+  wire [4:0]  sc_b_out_lz =
     io_in_bits_b[22]
       ? 5'h0
       : io_in_bits_b[21]
@@ -17001,68 +17018,76 @@ module FpMul_fp32_L1_default(
                                                                                       : io_in_bits_b[1]
                                                                                           ? 5'h15
                                                                                           : 5'h16;
-  wire [8:0]  _b_out_sExp_T_1 = {1'h0, io_in_bits_b[30:23]} - 9'h7F;
-  wire [9:0]  b_sExp =
-    b_expZero ? 10'h381 - {5'h0, b_lz} : {_b_out_sExp_T_1[8], _b_out_sExp_T_1};
-  wire        invalid = a_isInf & b_isZero | a_isZero & b_isInf;
-  wire        s1_isNaN =
+  wire [8:0]  _s0_a_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
+  wire [9:0]  s0_a_out_sExp =
+    sc_a_expZero
+      ? 10'h381 - {5'h0, sc_a_out_lz}
+      : {_s0_a_out_sExp_T_1[8], _s0_a_out_sExp_T_1};
+  wire [8:0]  _s0_b_out_sExp_T_1 = {1'h0, io_in_bits_b[30:23]} - 9'h7F;
+  wire [9:0]  s0_b_out_sExp =
+    sc_b_expZero
+      ? 10'h381 - {5'h0, sc_b_out_lz}
+      : {_s0_b_out_sExp_T_1[8], _s0_b_out_sExp_T_1};
+  wire        invalid =
+    s0_a_out_isInf & s0_b_out_isZero | s0_a_out_isZero & s0_b_out_isInf;
+  wire        si_isNaN =
     (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) | (&(io_in_bits_b[30:23]))
     & (|(io_in_bits_b[22:0])) | invalid;
-  wire        s1_isInf = a_isInf | b_isInf;
-  wire [10:0] _GEN_1 = {b_sExp[9], b_sExp} + {a_sExp[9], a_sExp};
-  wire [85:0] _b_subSig_T_1 = {63'h0, io_in_bits_b[22:0]} << {1'h0, b_lz} + 6'h1;
-  wire [85:0] _a_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, a_lz} + 6'h1;
-  wire [47:0] s1_prod =
-    {24'h0, a_expZero ? _a_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]}}
-    * {24'h0, b_expZero ? _b_subSig_T_1[23:0] : {1'h1, io_in_bits_b[22:0]}};
-  wire [24:0] hi = s1_prod[47] ? s1_prod[47:23] : s1_prod[46:22];
-  wire        lo = s1_prod[47] ? (|(s1_prod[22:0])) : (|(s1_prod[21:0]));
-  wire        s2_r_isInf = s1_isInf & ~s1_isNaN;
-  wire        s2_r_isZero = (a_isZero | b_isZero) & ~s1_isNaN & ~s1_isInf;
-  wire [11:0] _s2_r_sExp_T_1 = {_GEN_1[10], _GEN_1} + {11'h0, s1_prod[47]};
-  wire [25:0] s2_r_sig = {hi, lo};
-  wire        rounded_tiny = $signed(_s2_r_sExp_T_1) < -12'sh7E;
-  wire [11:0] _rounded_dist_T = 12'hF82 - _s2_r_sExp_T_1;
-  wire [51:0] rounded_sig_wide =
-    {hi, lo, 26'h0} >> (_rounded_dist_T > 12'h1B ? 12'h1B : _rounded_dist_T);
-  wire [25:0] rounded_sig =
-    rounded_tiny
-      ? {rounded_sig_wide[51:27],
-         rounded_sig_wide[26] | (|(rounded_sig_wide[25:0])) | _rounded_dist_T > 12'h1A
-           & (|s2_r_sig)}
-      : s2_r_sig;
-  wire        rounded_inexact = rounded_sig[1] | rounded_sig[0];
-  wire [24:0] rounded_m1 =
-    {1'h0, rounded_sig[25:2]}
-    + {24'h0, rounded_sig[1] & (rounded_sig[0] | rounded_sig[2])};
-  wire [12:0] rounded_expOut =
-    {_s2_r_sExp_T_1[11], _s2_r_sExp_T_1} + {12'h0, rounded_m1[24]};
-  wire        rounded_overflow = ~rounded_tiny & $signed(rounded_expOut) > 13'sh7F;
+  wire        s1_c_isInf = s0_a_out_isInf | s0_b_out_isInf;
+  wire [10:0] _GEN_1 =
+    {s0_b_out_sExp[9], s0_b_out_sExp} + {s0_a_out_sExp[9], s0_a_out_sExp};
+  wire [85:0] _s0_b_subSig_T_1 =
+    {63'h0, io_in_bits_b[22:0]} << {1'h0, sc_b_out_lz} + 6'h1;
+  wire [85:0] _s0_a_subSig_T_1 =
+    {63'h0, io_in_bits_a[22:0]} << {1'h0, sc_a_out_lz} + 6'h1;
+  wire [47:0] products_0 =
+    {24'h0, sc_a_expZero ? _s0_a_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]}}
+    * {24'h0, sc_b_expZero ? _s0_b_subSig_T_1[23:0] : {1'h1, io_in_bits_b[22:0]}};
+  wire [24:0] hi = products_0[47] ? products_0[47:23] : products_0[46:22];
+  wire        lo = products_0[47] ? (|(products_0[22:0])) : (|(products_0[21:0]));
+  wire        si_isInf = s1_c_isInf & ~si_isNaN;
+  wire        si_isZero = (s0_a_out_isZero | s0_b_out_isZero) & ~si_isNaN & ~s1_c_isInf;
+  wire [11:0] _sn_sExp_T_1 = {_GEN_1[10], _GEN_1} + {11'h0, products_0[47]};
+  wire [25:0] sl_sig = {hi, lo};
+  wire        si_tiny = $signed(_sn_sExp_T_1) < -12'sh7E;
+  wire [11:0] _sl_dist_T = 12'hF82 - _sn_sExp_T_1;
+  wire [51:0] sj_sig_wide =
+    {hi, lo, 26'h0} >> (_sl_dist_T > 12'h1B ? 5'h1B : _sl_dist_T[4:0]);
+  wire [25:0] sj_sig =
+    si_tiny
+      ? {sj_sig_wide[51:27],
+         sj_sig_wide[26] | (|(sj_sig_wide[25:0])) | _sl_dist_T > 12'h1A & (|sl_sig)}
+      : sl_sig;
+  wire        si_inexact = sj_sig[1] | sj_sig[0];
+  wire [24:0] si_m1 = {1'h0, sj_sig[25:2]} + {24'h0, sj_sig[1] & (sj_sig[0] | sj_sig[2])};
+  wire        io_out_bits_overflow =
+    ~si_tiny
+    & (si_m1[24] ? $signed(_sn_sExp_T_1) > 12'sh7E : $signed(_sn_sExp_T_1) > 12'sh7F);
   always @(posedge clock) begin
     if (io_en) begin
       io_out_bits_r_bits <=
-        s1_isNaN
+        si_isNaN
           ? 32'h7FC00000
           : {io_in_bits_a[31] ^ io_in_bits_b[31],
-             s2_r_isInf
+             si_isInf
                ? 31'h7F800000
-               : s2_r_isZero
+               : si_isZero
                    ? 31'h0
-                   : rounded_overflow
+                   : io_out_bits_overflow
                        ? 31'h7F800000
-                       : {rounded_tiny
-                            ? {7'h0, rounded_m1[23]}
-                            : rounded_expOut[7:0] + 8'h7F,
-                          rounded_m1[22:0]}};
+                       : {si_tiny
+                            ? {7'h0, si_m1[23]}
+                            : si_m1[24]
+                                ? _sn_sExp_T_1[7:0] - 8'h80
+                                : _sn_sExp_T_1[7:0] + 8'h7F,
+                          si_m1[22:0]}};
       io_out_bits_r_flags <=
         {(&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) & ~(io_in_bits_a[22])
            | (&(io_in_bits_b[30:23])) & (|(io_in_bits_b[22:0])) & ~(io_in_bits_b[22])
            | invalid,
-         s1_isNaN | s2_r_isInf | s2_r_isZero
+         si_isNaN | si_isInf | si_isZero
            ? 4'h0
-           : rounded_overflow
-               ? 4'h5
-               : {2'h0, rounded_tiny & rounded_inexact, rounded_inexact}};
+           : io_out_bits_overflow ? 4'h5 : {2'h0, si_tiny & si_inexact, si_inexact}};
     end
     if (reset)
       io_out_valid_r <= 1'h0;
@@ -17466,7 +17491,7 @@ module FpSqrt_fp32_dr_L7_default(
   wire [3:0]  _GEN =
     {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
     | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
-  wire [4:0]  raw_lz =
+  wire [4:0]  raw_out_lz =
     io_in_bits_a[22]
       ? 5'h0
       : io_in_bits_a[21]
@@ -17512,10 +17537,12 @@ module FpSqrt_fp32_dr_L7_default(
                                                                                       : io_in_bits_a[1]
                                                                                           ? 5'h15
                                                                                           : 5'h16;
-  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, raw_lz} + 6'h1;
+  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, raw_out_lz} + 6'h1;
   wire [8:0]  _raw_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
   wire [9:0]  raw_sExp =
-    raw_expZero ? 10'h381 - {5'h0, raw_lz} : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
+    raw_expZero
+      ? 10'h381 - {5'h0, raw_out_lz}
+      : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
   reg         sideOut_r_isNaN;
   reg         sideOut_r_isInf;
   reg         sideOut_r_isZero;
@@ -17553,29 +17580,27 @@ module FpSqrt_fp32_dr_L7_default(
   reg  [10:0] riR_sExp;
   reg  [25:0] riR_sig;
   reg  [4:0]  riR_flags;
-  reg         vR;
   reg  [31:0] io_out_bits_r_bits;
   reg  [4:0]  io_out_bits_r_flags;
   reg         io_out_valid_r;
+  reg         io_out_valid_r_1;
   wire        raw_isNaN = (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0]));
   wire        raw_isZero = raw_expZero & ~(|(io_in_bits_a[22:0]));
   wire        negInvalid = io_in_bits_a[31] & ~raw_isNaN & ~raw_isZero;
-  wire        rounded_tiny = $signed(riR_sExp) < -11'sh7E;
-  wire [10:0] _rounded_dist_T = 11'h782 - riR_sExp;
-  wire [51:0] rounded_sig_wide =
-    {riR_sig, 26'h0} >> (_rounded_dist_T > 11'h1B ? 11'h1B : _rounded_dist_T);
-  wire [25:0] rounded_sig =
-    rounded_tiny
-      ? {rounded_sig_wide[51:27],
-         rounded_sig_wide[26] | (|(rounded_sig_wide[25:0])) | _rounded_dist_T > 11'h1A
-           & (|riR_sig)}
+  wire        at_tiny = $signed(riR_sExp) < -11'sh7E;
+  wire [10:0] _at_dist_T = 11'h782 - riR_sExp;
+  wire [51:0] mid_sig_wide =
+    {riR_sig, 26'h0} >> (_at_dist_T > 11'h1B ? 5'h1B : _at_dist_T[4:0]);
+  wire [25:0] mid_sig =
+    at_tiny
+      ? {mid_sig_wide[51:27],
+         mid_sig_wide[26] | (|(mid_sig_wide[25:0])) | _at_dist_T > 11'h1A & (|riR_sig)}
       : riR_sig;
-  wire        rounded_inexact = rounded_sig[1] | rounded_sig[0];
-  wire [24:0] rounded_m1 =
-    {1'h0, rounded_sig[25:2]}
-    + {24'h0, rounded_sig[1] & (rounded_sig[0] | rounded_sig[2])};
-  wire [11:0] rounded_expOut = {riR_sExp[10], riR_sExp} + {11'h0, rounded_m1[24]};
-  wire        rounded_overflow = ~rounded_tiny & $signed(rounded_expOut) > 12'sh7F;
+  wire        inc_inexact = mid_sig[1] | mid_sig[0];
+  wire [24:0] inc_m1 =
+    {1'h0, mid_sig[25:2]} + {24'h0, mid_sig[1] & (mid_sig[0] | mid_sig[2])};
+  wire        io_out_bits_overflow =
+    ~at_tiny & (inc_m1[24] ? $signed(riR_sExp) > 11'sh7E : $signed(riR_sExp) > 11'sh7F);
   always @(posedge clock) begin
     if (io_en) begin
       sideOut_r_isNaN <= raw_isNaN | negInvalid;
@@ -17627,28 +17652,28 @@ module FpSqrt_fp32_dr_L7_default(
                ? 31'h7F800000
                : riR_isZero
                    ? 31'h0
-                   : rounded_overflow
+                   : io_out_bits_overflow
                        ? 31'h7F800000
-                       : {rounded_tiny
-                            ? {7'h0, rounded_m1[23]}
-                            : rounded_expOut[7:0] + 8'h7F,
-                          rounded_m1[22:0]}};
+                       : {at_tiny
+                            ? {7'h0, inc_m1[23]}
+                            : inc_m1[24] ? riR_sExp[7:0] - 8'h80 : riR_sExp[7:0] + 8'h7F,
+                          inc_m1[22:0]}};
       io_out_bits_r_flags <=
         riR_isNaN | riR_isInf | riR_isZero
           ? riR_flags
-          : rounded_overflow
+          : io_out_bits_overflow
               ? {riR_flags[4:3], riR_flags[2:1] | 2'h2, 1'h1}
               : {riR_flags[4:2],
-                 riR_flags[1] | rounded_tiny & rounded_inexact,
-                 riR_flags[0] | rounded_inexact};
+                 riR_flags[1] | at_tiny & inc_inexact,
+                 riR_flags[0] | inc_inexact};
     end
     if (reset) begin
-      vR <= 1'h0;
       io_out_valid_r <= 1'h0;
+      io_out_valid_r_1 <= 1'h0;
     end
     else if (io_en) begin
-      vR <= _DigitRecurrenceCore_sqrt_s24_L5_io_out_valid;
-      io_out_valid_r <= vR;
+      io_out_valid_r <= _DigitRecurrenceCore_sqrt_s24_L5_io_out_valid;
+      io_out_valid_r_1 <= io_out_valid_r;
     end
   end // always @(posedge)
   DigitRecurrenceCore_sqrt_s24_L5_default DigitRecurrenceCore_sqrt_s24_L5_default (
@@ -17661,7 +17686,7 @@ module FpSqrt_fp32_dr_L7_default(
     .io_out_valid      (_DigitRecurrenceCore_sqrt_s24_L5_io_out_valid),
     .io_out_bits_sig   (_DigitRecurrenceCore_sqrt_s24_L5_io_out_bits_sig)
   );
-  assign io_out_valid = io_out_valid_r;
+  assign io_out_valid = io_out_valid_r_1;
   assign io_out_bits_bits = io_out_bits_r_bits;
   assign io_out_bits_flags = io_out_bits_r_flags;
 endmodule
@@ -17849,7 +17874,7 @@ module FpRecip_fp32_dr_L7_default(
   wire [3:0]  _GEN =
     {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
     | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
-  wire [4:0]  raw_lz =
+  wire [4:0]  raw_out_lz =
     io_in_bits_a[22]
       ? 5'h0
       : io_in_bits_a[21]
@@ -17895,7 +17920,7 @@ module FpRecip_fp32_dr_L7_default(
                                                                                       : io_in_bits_a[1]
                                                                                           ? 5'h15
                                                                                           : 5'h16;
-  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, raw_lz} + 6'h1;
+  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, raw_out_lz} + 6'h1;
   reg         sideOut_r_isNaN;
   reg         sideOut_r_isInf;
   reg         sideOut_r_isZero;
@@ -17933,33 +17958,31 @@ module FpRecip_fp32_dr_L7_default(
   reg  [10:0] riR_sExp;
   reg  [25:0] riR_sig;
   reg  [4:0]  riR_flags;
-  reg         vR;
   reg  [31:0] io_out_bits_r_bits;
   reg  [4:0]  io_out_bits_r_flags;
   reg         io_out_valid_r;
+  reg         io_out_valid_r_1;
   wire        side_isInf = raw_expZero & ~(|(io_in_bits_a[22:0]));
   wire [8:0]  _raw_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
   wire [9:0]  _side_exp_T =
     10'h0
     - (raw_expZero
-         ? 10'h381 - {5'h0, raw_lz}
+         ? 10'h381 - {5'h0, raw_out_lz}
          : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1});
-  wire        rounded_tiny = $signed(riR_sExp) < -11'sh7E;
-  wire [10:0] _rounded_dist_T = 11'h782 - riR_sExp;
-  wire [51:0] rounded_sig_wide =
-    {riR_sig, 26'h0} >> (_rounded_dist_T > 11'h1B ? 11'h1B : _rounded_dist_T);
-  wire [25:0] rounded_sig =
-    rounded_tiny
-      ? {rounded_sig_wide[51:27],
-         rounded_sig_wide[26] | (|(rounded_sig_wide[25:0])) | _rounded_dist_T > 11'h1A
-           & (|riR_sig)}
+  wire        at_tiny = $signed(riR_sExp) < -11'sh7E;
+  wire [10:0] _at_dist_T = 11'h782 - riR_sExp;
+  wire [51:0] mid_sig_wide =
+    {riR_sig, 26'h0} >> (_at_dist_T > 11'h1B ? 5'h1B : _at_dist_T[4:0]);
+  wire [25:0] mid_sig =
+    at_tiny
+      ? {mid_sig_wide[51:27],
+         mid_sig_wide[26] | (|(mid_sig_wide[25:0])) | _at_dist_T > 11'h1A & (|riR_sig)}
       : riR_sig;
-  wire        rounded_inexact = rounded_sig[1] | rounded_sig[0];
-  wire [24:0] rounded_m1 =
-    {1'h0, rounded_sig[25:2]}
-    + {24'h0, rounded_sig[1] & (rounded_sig[0] | rounded_sig[2])};
-  wire [11:0] rounded_expOut = {riR_sExp[10], riR_sExp} + {11'h0, rounded_m1[24]};
-  wire        rounded_overflow = ~rounded_tiny & $signed(rounded_expOut) > 12'sh7F;
+  wire        inc_inexact = mid_sig[1] | mid_sig[0];
+  wire [24:0] inc_m1 =
+    {1'h0, mid_sig[25:2]} + {24'h0, mid_sig[1] & (mid_sig[0] | mid_sig[2])};
+  wire        io_out_bits_overflow =
+    ~at_tiny & (inc_m1[24] ? $signed(riR_sExp) > 11'sh7E : $signed(riR_sExp) > 11'sh7F);
   always @(posedge clock) begin
     if (io_en) begin
       sideOut_r_isNaN <= (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0]));
@@ -18012,28 +18035,28 @@ module FpRecip_fp32_dr_L7_default(
                ? 31'h7F800000
                : riR_isZero
                    ? 31'h0
-                   : rounded_overflow
+                   : io_out_bits_overflow
                        ? 31'h7F800000
-                       : {rounded_tiny
-                            ? {7'h0, rounded_m1[23]}
-                            : rounded_expOut[7:0] + 8'h7F,
-                          rounded_m1[22:0]}};
+                       : {at_tiny
+                            ? {7'h0, inc_m1[23]}
+                            : inc_m1[24] ? riR_sExp[7:0] - 8'h80 : riR_sExp[7:0] + 8'h7F,
+                          inc_m1[22:0]}};
       io_out_bits_r_flags <=
         riR_isNaN | riR_isInf | riR_isZero
           ? riR_flags
-          : rounded_overflow
+          : io_out_bits_overflow
               ? {riR_flags[4:3], riR_flags[2:1] | 2'h2, 1'h1}
               : {riR_flags[4:2],
-                 riR_flags[1] | rounded_tiny & rounded_inexact,
-                 riR_flags[0] | rounded_inexact};
+                 riR_flags[1] | at_tiny & inc_inexact,
+                 riR_flags[0] | inc_inexact};
     end
     if (reset) begin
-      vR <= 1'h0;
       io_out_valid_r <= 1'h0;
+      io_out_valid_r_1 <= 1'h0;
     end
     else if (io_en) begin
-      vR <= _DigitRecurrenceCore_recip_s24_L5_io_out_valid;
-      io_out_valid_r <= vR;
+      io_out_valid_r <= _DigitRecurrenceCore_recip_s24_L5_io_out_valid;
+      io_out_valid_r_1 <= io_out_valid_r;
     end
   end // always @(posedge)
   DigitRecurrenceCore_recip_s24_L5_default DigitRecurrenceCore_recip_s24_L5_default (
@@ -18047,7 +18070,7 @@ module FpRecip_fp32_dr_L7_default(
     .io_out_bits_sig    (_DigitRecurrenceCore_recip_s24_L5_io_out_bits_sig),
     .io_out_bits_expDec (_DigitRecurrenceCore_recip_s24_L5_io_out_bits_expDec)
   );
-  assign io_out_valid = io_out_valid_r;
+  assign io_out_valid = io_out_valid_r_1;
   assign io_out_bits_bits = io_out_bits_r_bits;
   assign io_out_bits_flags = io_out_bits_r_flags;
 endmodule

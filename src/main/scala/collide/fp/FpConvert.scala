@@ -14,8 +14,8 @@ class FpConvertIn(val w: Int) extends Bundle {
   * from.subnormals is false). Every NaN becomes `to`'s canonical NaN, NV on a signaling NaN.
   * The significand is truncated to to.sigBits + 1 bits with a sticky jam (or zero-padded),
   * the exponent carried as is, and the shared RoundRaw does the rest.
-  * Pipeline cuts (Pipeline.placement over 2 boundaries, latest first): after round (the
-  * output), then before round.
+  * Five stages (unpack, then the rounder's locate, jam, increment and pack); Pipeline.balanced places
+  * the `latency` registers by their estimated delays, the output first.
   */
 class FpConvert(val from: FpParams, val to: FpParams, val latency: Int) extends Module {
   require(latency >= 0, s"FpConvert latency must be >= 0, got $latency")
@@ -28,8 +28,8 @@ class FpConvert(val from: FpParams, val to: FpParams, val latency: Int) extends 
   })
   override def desiredName = s"FpConvert_${from.name}_to_${to.name}_L$latency"
 
-  private val cuts = Pipeline.placement(latency, 2) // (before round, output)
   private val ew   = math.max(ff.rawExpWidth, tf.rawExpWidth) + 1
+  private val cuts = Pipeline.balanced(latency, FpConvert.delays(from, to, ew))
 
   private val a = RawFloat(from, io.in.bits.a)
   val s1 = Wire(new Bundle { val r = new RoundIn(tf, ew); val rm = UInt(3.W) })
@@ -49,7 +49,21 @@ class FpConvert(val from: FpParams, val to: FpParams, val latency: Int) extends 
   s1.rm      := io.in.bits.rm
   private val s1r = Pipeline(s1, cuts(0), io.en)
 
-  private val rounded = RoundRaw(to, s1r.r, s1r.rm)
-  io.out.bits  := Pipeline(rounded, cuts(1), io.en)
+  private val at  = Pipeline(RoundRaw.locate(to, s1r.r, s1r.rm), cuts(1), io.en)
+  private val mid = Pipeline(RoundRaw.jam(to, at), cuts(2), io.en)
+  private val inc = Pipeline(RoundRaw.increment(to, mid), cuts(3), io.en)
+  io.out.bits  := Pipeline(RoundRaw.pack(to, inc), cuts(4), io.en)
   io.out.valid := Pipeline.valid(io.in.valid, latency, io.en)
+}
+
+object FpConvert {
+  /** Its stages: unpack (and the significand cut to the target's width), then the rounder's
+    * four (RoundRaw.locate, jam, increment, pack); a latency of `stages` registers each. */
+  val stages: Int = 5
+
+  /** Estimated delay of each stage on the default family (FpgaFamily's model, ps). */
+  def delays(from: FpParams, to: FpParams, ew: Int): Seq[Double] = {
+    val fam = FpgaFamily.default
+    Seq(RawFloat.delay(from, fam) + fam.reduce(from.format.sigBits)) ++ RoundRaw.delays(fam, to.format, ew)
+  }
 }

@@ -16,10 +16,17 @@ class FpMulIn(val w: Int) extends Bundle {
   * bit at one of the two highest places: one conditional shift normalizes it. The product's
   * exponent spans about twice the format's range (two subnormals multiplied), so RoundIn's
   * exponent is one bit wider than RawFloat's; RoundRaw denormalizes or flushes tiny results.
-  * Pipeline cuts (Pipeline.placement over 3 boundaries, latest first): after round (the
-  * output), before round (after normalize), after the significand multiply.
+  *
+  * The significand product is built from `family`'s DSP tiles (FpMul.tiles: operands cut into
+  * chunks of the tile's width, one product a chunk pair), summed by a tree of adders. Stages,
+  * each ending at a boundary where registers may go: unpack (classify, then normalize
+  * subnormal operands), the tiles' products, one stage a
+  * level of the adder tree (none when one tile holds the product), normalize, and the
+  * rounder's four (locate, jam, increment, pack: the output). Pipeline.balanced places the `latency` registers by their
+  * estimated delays (FpMul.delays), output first, so each register up to the stage count cuts
+  * the longest path left. The result never depends on the family.
   */
-class FpMul(val p: FpParams, val latency: Int) extends Module {
+class FpMul(val p: FpParams, val latency: Int, val family: FpgaFamily = FpgaFamily.default) extends Module {
   require(latency >= 0, s"FpMul latency must be >= 0, got $latency")
   private val f = p.format
   val io = IO(new Bundle {
@@ -27,55 +34,115 @@ class FpMul(val p: FpParams, val latency: Int) extends Module {
     val in  = Input(Valid(new FpMulIn(f.width)))
     val out = Output(Valid(new FpOut(f.width)))
   })
-  override def desiredName = s"FpMul_${p.name}_L$latency"
+  override def desiredName = s"FpMul_${p.name}_L$latency${FpAdd.familySuffix(family)}"
 
-  private val cuts = Pipeline.placement(latency, 3) // (after multiply, before round, output)
-  private val ew   = f.rawExpWidth + 2
+  private val regs = Pipeline.balanced(latency, FpMul.delays(p, family))
+  private def stage[T <: Data](i: Int, x: T): T = Pipeline(x, regs(i), io.en)
+  private val ew = FpMul.expWidth(f)
+  private val pw = 2 * f.sigBits
+  private val chunks = FpMul.chunks(f.sigBits, family.dspTile)
+  private val levels = FpMul.treeLevels(f.sigBits, family.dspTile)
 
-  // ---- Stage 1: unpack, specials, multiply ----
-  val a = RawFloat(p, io.in.bits.a)
-  val b = RawFloat(p, io.in.bits.b)
-  class Product extends Bundle {
+  class Carried extends Bundle {
     val isNaN  = Bool()
     val isInf  = Bool()
     val isZero = Bool()
     val sign   = Bool()
     val flags  = UInt(FpFlags.width.W)
-    val exp    = SInt(ew.W)           // a.sExp + b.sExp: exponent of the product's bit 2*sigBits-2
-    val prod   = UInt((2 * f.sigBits).W)
+    val exp    = SInt(ew.W) // a.sExp + b.sExp: exponent of the product's bit 2*sigBits-2
     val rm     = UInt(3.W)
   }
-  val s1 = Wire(new Product)
-  private val invalid = (a.isInf && b.isZero) || (a.isZero && b.isInf)
-  s1.isNaN  := a.isNaN || b.isNaN || invalid
-  s1.isInf  := a.isInf || b.isInf
-  s1.isZero := a.isZero || b.isZero
-  s1.sign   := a.sign ^ b.sign
-  s1.flags  := Mux(a.isSNaN || b.isSNaN || invalid, FpFlags.Invalid.U, 0.U)
-  s1.exp    := a.sExp.pad(ew) + b.sExp.pad(ew)
-  s1.prod   := a.sig * b.sig
-  s1.rm     := io.in.bits.rm
-  private val s1r = Pipeline(s1, cuts(0), io.en)
 
-  // ---- Stage 2: normalize (product in [1,4) -> [1,2)) ----
-  private val top = s1r.prod(2 * f.sigBits - 1)
-  private val pw  = 2 * f.sigBits
+  // ---- Stages 0 and 1: unpack (classify, then normalize subnormal operands) ----
+  class Classified extends Bundle { val a = new RawClass(f); val b = new RawClass(f); val rm = UInt(3.W) }
+  private val sc = Wire(new Classified)
+  sc.a  := RawFloat.classify(p, io.in.bits.a)
+  sc.b  := RawFloat.classify(p, io.in.bits.b)
+  sc.rm := io.in.bits.rm
+  private val scr = stage(0, sc)
+  class Unpacked extends Bundle { val a = new RawFloat(f); val b = new RawFloat(f); val rm = UInt(3.W) }
+  private val s0 = Wire(new Unpacked)
+  s0.a  := RawFloat.normalize(p, scr.a)
+  s0.b  := RawFloat.normalize(p, scr.b)
+  s0.rm := scr.rm
+  private val s0r = stage(1, s0)
+
+  // ---- Stage 2: specials, the exponent, one product a pair of chunks (a DSP tile each) ----
+  private val nParts = chunks.size * chunks.size
+  class Parts(n: Int) extends Bundle { val c = new Carried; val parts = Vec(n, UInt(pw.W)) }
+  private val s1 = Wire(new Parts(nParts))
+  locally {
+    val a = s0r.a; val b = s0r.b
+    val invalid = (a.isInf && b.isZero) || (a.isZero && b.isInf)
+    s1.c.isNaN  := a.isNaN || b.isNaN || invalid
+    s1.c.isInf  := a.isInf || b.isInf
+    s1.c.isZero := a.isZero || b.isZero
+    s1.c.sign   := a.sign ^ b.sign
+    s1.c.flags  := Mux(a.isSNaN || b.isSNaN || invalid, FpFlags.Invalid.U, 0.U)
+    s1.c.exp    := a.sExp.pad(ew) + b.sExp.pad(ew)
+    s1.c.rm     := s0r.rm
+    val products = for ((alo, aw) <- chunks; (blo, bw) <- chunks)
+      yield (a.sig(alo + aw - 1, alo) * b.sig(blo + bw - 1, blo)) << (alo + blo)
+    s1.parts := VecInit(products.map(_.pad(pw)(pw - 1, 0)))
+  }
+  private val s1r = stage(2, s1)
+
+  // ---- Stages 3 .. 2 + levels: the adder tree, one level a stage ----
+  private val summed = (0 until levels).foldLeft(s1r) { (acc, lvl) =>
+    val next = Wire(new Parts((acc.parts.length + 1) / 2))
+    next.c := acc.c
+    next.parts := VecInit(acc.parts.grouped(2).map(g => g.reduce(_ +% _)).toSeq)
+    stage(3 + lvl, next)
+  }
+  private val prod = summed.parts(0)
+  private val nb   = 3 + levels // the normalize stage's boundary
+
+  // ---- Normalize (product in [1,4) -> [1,2)) ----
+  private val top = prod(pw - 1)
   // sigBits + 1 leading bits then the rest jammed into a sticky bit.
-  private val hi  = Mux(top, s1r.prod(pw - 1, pw - f.sigBits - 1), s1r.prod(pw - 2, pw - f.sigBits - 2))
-  private val lo  = Mux(top, s1r.prod(pw - f.sigBits - 2, 0).orR, s1r.prod(pw - f.sigBits - 3, 0).orR)
-  val s2 = Wire(new Bundle { val r = new RoundIn(f, ew); val rm = UInt(3.W) })
-  s2.r.isNaN  := s1r.isNaN
-  s2.r.isInf  := s1r.isInf && !s1r.isNaN
-  s2.r.isZero := s1r.isZero && !s1r.isNaN && !s1r.isInf
-  s2.r.sign   := s1r.sign
-  s2.r.sExp   := s1r.exp + top.zext
-  s2.r.sig    := Cat(hi, lo)
-  s2.r.flags  := s1r.flags
-  s2.rm       := s1r.rm
-  private val s2r = Pipeline(s2, cuts(1), io.en)
+  private val hi  = Mux(top, prod(pw - 1, pw - f.sigBits - 1), prod(pw - 2, pw - f.sigBits - 2))
+  private val lo  = Mux(top, prod(pw - f.sigBits - 2, 0).orR, prod(pw - f.sigBits - 3, 0).orR)
+  private val sn  = Wire(new RoundIn(f, ew))
+  private val c   = summed.c
+  sn.isNaN  := c.isNaN
+  sn.isInf  := c.isInf && !c.isNaN
+  sn.isZero := c.isZero && !c.isNaN && !c.isInf
+  sn.sign   := c.sign
+  sn.sExp   := c.exp + top.zext
+  sn.sig    := Cat(hi, lo)
+  sn.flags  := c.flags
+  private val snr = stage(nb, sn)
+  private val rmr = stage(nb, c.rm)
 
-  // ---- Stage 3: round ----
-  private val rounded = RoundRaw(p, s2r.r, s2r.rm)
-  io.out.bits  := Pipeline(rounded, cuts(2), io.en)
+  // ---- Round ----
+  private val sl = stage(nb + 1, RoundRaw.locate(p, snr, rmr))
+  private val sj = stage(nb + 2, RoundRaw.jam(p, sl))
+  private val si = stage(nb + 3, RoundRaw.increment(p, sj))
+  io.out.bits  := stage(nb + 4, RoundRaw.pack(p, si))
   io.out.valid := Pipeline.valid(io.in.valid, latency, io.en)
+}
+
+object FpMul {
+  /** One bit wider than RawFloat's exponent: the product's exponent spans twice the range. */
+  def expWidth(f: FloatFormat): Int = f.rawExpWidth + 2
+
+  /** The significand cut into chunks of at most `tile` bits: (lowest bit, width), low first. */
+  def chunks(sigBits: Int, tile: Int): Seq[(Int, Int)] =
+    (0 until sigBits by tile).map(lo => (lo, math.min(tile, sigBits - lo)))
+
+  /** Levels of the adder tree that sums the tiles' products. */
+  def treeLevels(sigBits: Int, tile: Int): Int = log2Ceil(chunks(sigBits, tile).size * chunks(sigBits, tile).size)
+
+  /** Estimated delay of each stage on `fam` (FpgaFamily's model, ps). */
+  def delays(p: FpParams, fam: FpgaFamily): Seq[Double] = {
+    val f = p.format; val pw = 2 * f.sigBits
+    RawFloat.delays(p, fam) ++ Seq(fam.dsp) ++
+      Seq.fill(treeLevels(f.sigBits, fam.dspTile))(fam.adder(pw)) ++
+      Seq(fam.reduce(pw - f.sigBits) + fam.luts(1)) ++
+      RoundRaw.delays(fam, f, expWidth(f))
+  }
+
+  /** The smallest latency whose stages fit `mhz` on `fam`, or Left with the longest stage (ps). */
+  def latencyFor(p: FpParams, fam: FpgaFamily, mhz: Double): Either[Double, Int] =
+    Pipeline.latencyFor(fam.budget(mhz), delays(p, fam))
 }

@@ -12,15 +12,23 @@ class FpRootIn(val w: Int) extends Bundle {
 /** How an operator's `latency` (the total, input to output) is split:
   *  - 1 register after RoundRaw (the output) once latency >= 1,
   *  - 1 register between the significand core and RoundRaw once latency >= 2,
-  *  - the rest, latency - 2, inside the significand core (DigitRecurrenceCore spreads them
-  *    evenly over its sigBits+1 iterations; the Newton-Raphson core places its own).
-  * Unpacking (RawFloat) and the special-case logic sit combinationally before the core's
-  * first iteration.
+  *  - then the core's own, up to `coreCuts` (one a digit-recurrence iteration, one a cut of the
+  *    Newton-Raphson core: RootCoreSelect.cuts), so that a register first shortens the core;
+  *  - then one after the unpack (before the core's first iteration), and one between each two
+  *    of the rounder's locate, jam, increment and pack (RoundRaw), so that at coreCuts + 6
+  *    every stage is one iteration or one piece of the rounder;
+  *  - any more stack in the core (a digit recurrence at its output).
   */
-object RootLatency {
-  def output(latency: Int): Int   = math.min(latency, 1)
-  def preRound(latency: Int): Int = math.min(math.max(latency - 1, 0), 1)
-  def core(latency: Int): Int     = math.max(latency - 2, 0)
+final case class RootLatency(latency: Int, coreCuts: Int) {
+  require(latency >= 0 && coreCuts >= 0)
+  val output: Int   = math.min(latency, 1)
+  val preRound: Int = math.min(math.max(latency - 1, 0), 1)
+  private val extra = math.max(latency - 2 - coreCuts, 0)
+  val unpack: Int      = math.min(extra, 1)
+  val locateJam: Int   = math.min(math.max(extra - 1, 0), 1)
+  val jamInc: Int      = math.min(math.max(extra - 2, 0), 1)
+  val incPack: Int     = math.min(math.max(extra - 3, 0), 1)
+  val core: Int        = latency - output - preRound - unpack - locateJam - jamInc - incPack
 }
 
 /** The datapath shared by FpSqrt, FpRecip and FpRsqrt: unpack, special cases, exponent split,
@@ -38,11 +46,14 @@ abstract class FpRootUnit(val p: FpParams, val alg: RootAlgorithm, val latency: 
     val out = Output(Valid(new FpOut(f.width)))
   })
 
+  private val split = RootLatency(latency, RootCoreSelect.cuts(op, f.sigBits, alg))
   /** Registers inside the significand core (see RootLatency). */
-  val coreLatency: Int = RootLatency.core(latency)
+  val coreLatency: Int = split.core
 
   private val ew  = f.rawExpWidth + 1
-  private val raw = RawFloat(p, io.in.bits.a)
+  private val raw = Pipeline(RawFloat(p, io.in.bits.a), split.unpack, io.en)
+  private val rmIn = Pipeline(io.in.bits.rm, split.unpack, io.en)
+  private val vIn  = Pipeline.valid(io.in.valid, split.unpack, io.en)
   private val e   = raw.sExp
   private val expOdd = e(0)
   private val half   = e >> 1 // arithmetic: floor(e/2)
@@ -60,7 +71,7 @@ abstract class FpRootUnit(val p: FpParams, val alg: RootAlgorithm, val latency: 
     val rm     = UInt(3.W)
   }
   private val side = Wire(new Side)
-  side.rm   := io.in.bits.rm
+  side.rm   := rmIn
   side.sign := raw.sign
   side.flags := Mux(raw.isSNaN, nv, 0.U)
   private val negInvalid = raw.sign && !raw.isNaN && !raw.isZero // -inf or negative finite
@@ -87,7 +98,7 @@ abstract class FpRootUnit(val p: FpParams, val alg: RootAlgorithm, val latency: 
 
   private val core = RootCoreSelect(op, f.sigBits, alg, coreLatency)
   core.en := io.en
-  core.in.valid       := io.in.valid
+  core.in.valid       := vIn
   core.in.bits.sig    := raw.sig
   core.in.bits.expOdd := expOdd
 
@@ -101,15 +112,14 @@ abstract class FpRootUnit(val p: FpParams, val alg: RootAlgorithm, val latency: 
   ri.sig    := core.out.bits.sig
   ri.sExp   := (if (op == RootOp.Sqrt) sideOut.exp else sideOut.exp - core.out.bits.expDec.asUInt.zext)
 
-  private val nPre = RootLatency.preRound(latency)
-  private val riR  = Pipeline(ri, nPre, io.en)
-  private val rmR  = Pipeline(sideOut.rm, nPre, io.en)
-  private val vR   = Pipeline.valid(core.out.valid, nPre, io.en)
-  private val rounded = RoundRaw(p, riR, rmR)
-
-  private val nOut = RootLatency.output(latency)
-  io.out.bits  := Pipeline(rounded, nOut, io.en)
-  io.out.valid := Pipeline.valid(vR, nOut, io.en)
+  private val riR  = Pipeline(ri, split.preRound, io.en)
+  private val rmR  = Pipeline(sideOut.rm, split.preRound, io.en)
+  private val at   = Pipeline(RoundRaw.locate(p, riR, rmR), split.locateJam, io.en)
+  private val mid  = Pipeline(RoundRaw.jam(p, at), split.jamInc, io.en)
+  private val inc  = Pipeline(RoundRaw.increment(p, mid), split.incPack, io.en)
+  io.out.bits  := Pipeline(RoundRaw.pack(p, inc), split.output, io.en)
+  // The core's valid covers its own registers; the rest are counted here.
+  io.out.valid := Pipeline.valid(core.out.valid, split.preRound + split.locateJam + split.jamInc + split.incPack + split.output, io.en)
 
   override def desiredName = s"Fp${op.name.capitalize}_${p.name}_${alg.name}_L$latency"
 }

@@ -14,7 +14,7 @@ final class FpOps(cfg: ScpuConfig, en: Bool) {
   private val rm = cfg.rm.hw
 
   def add(a: UInt, b: UInt, v: Bool, subtract: Boolean = false): Valid[FpOut] = {
-    val m = Module(new FpAdd(p, cfg.addLatency))
+    val m = Module(new FpAdd(p, cfg.addLatency, cfg.family))
     m.io.en := en
     m.io.in.valid := v
     m.io.in.bits.a := a; m.io.in.bits.b := b
@@ -24,7 +24,7 @@ final class FpOps(cfg: ScpuConfig, en: Bool) {
   def sub(a: UInt, b: UInt, v: Bool): Valid[FpOut] = add(a, b, v, subtract = true)
 
   def mul(a: UInt, b: UInt, v: Bool): Valid[FpOut] = {
-    val m = Module(new FpMul(p, cfg.mulLatency))
+    val m = Module(new FpMul(p, cfg.mulLatency, cfg.family))
     m.io.en := en
     m.io.in.valid := v
     m.io.in.bits.a := a; m.io.in.bits.b := b; m.io.in.bits.rm := rm

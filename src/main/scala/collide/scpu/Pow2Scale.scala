@@ -8,7 +8,9 @@ import collide.fp._
   * the format's one rounder (RoundRaw) packs the result, so it is exact unless the result
   * leaves the normal range (then it rounds, overflows or flushes as any operator would).
   * Zeros and infinities keep their sign, NaN becomes the canonical NaN (NV if signaling).
-  * Golden twin: ScpuModel.pow2Scale. `latency` registers sit at the output.
+  * Golden twin: ScpuModel.pow2Scale. Five stages (unpack and the exponent's adder, then the
+  * rounder's four: RoundRaw.locate, jam, increment, pack); Pipeline.balanced places the `latency`
+  * registers among them, the output first.
   */
 class Pow2Scale(p: FpParams, val latency: Int) extends Module {
   private val f = p.format
@@ -26,6 +28,8 @@ class Pow2Scale(p: FpParams, val latency: Int) extends Module {
   override def desiredName = s"Pow2Scale_${p.name}_L$latency"
 
   private val ew  = eWidth + 1
+  private val regs = Pipeline.balanced(latency, Seq(RawFloat.delay(p, FpgaFamily.default) +
+    FpgaFamily.default.adder(ew)) ++ RoundRaw.delays(FpgaFamily.default, f, ew))
   private val raw = RawFloat(p, io.in.bits.a)
   private val ri  = Wire(new RoundIn(f, ew))
   ri.isNaN  := raw.isNaN
@@ -35,6 +39,11 @@ class Pow2Scale(p: FpParams, val latency: Int) extends Module {
   ri.sExp   := raw.sExp +& io.in.bits.e
   ri.sig    := Cat(raw.sig, 0.U(2.W))
   ri.flags  := Mux(raw.isSNaN, FpFlags.Invalid.U, 0.U)
-  io.out.bits  := Pipeline(RoundRaw(p, ri, io.in.bits.rm), latency, io.en)
+  private val riR = Pipeline(ri, regs(0), io.en)
+  private val rmR = Pipeline(io.in.bits.rm, regs(0), io.en)
+  private val at  = Pipeline(RoundRaw.locate(p, riR, rmR), regs(1), io.en)
+  private val mid = Pipeline(RoundRaw.jam(p, at), regs(2), io.en)
+  private val inc = Pipeline(RoundRaw.increment(p, mid), regs(3), io.en)
+  io.out.bits  := Pipeline(RoundRaw.pack(p, inc), regs(4), io.en)
   io.out.valid := Pipeline.valid(io.in.valid, latency, io.en)
 }

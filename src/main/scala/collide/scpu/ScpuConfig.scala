@@ -50,6 +50,9 @@ object DistanceMethod {
   * @param tagBits      width of the tag carried through (the AFU's pair index)
   * @param link         the link's number format; None = [[FloatFormat.linkFormat]] of `format`
   *                     (fp16 and bf16 as themselves, else binary32 or binary64)
+  * @param family       the FPGA family whose DSP tiles build the multipliers and whose cell
+  *                     delays place the adders' and multipliers' registers (FpgaFamily);
+  *                     what is computed never depends on it
   */
 final case class ScpuConfig(
     name: String = "fp32",
@@ -69,7 +72,8 @@ final case class ScpuConfig(
     rsqrtLatency: Option[Int] = None,
     scaleLatency: Int = 1,
     tagBits: Int = 24,
-    link: Option[FloatFormat] = None
+    link: Option[FloatFormat] = None,
+    family: FpgaFamily = FpgaFamily.default
 ) {
   require(name.nonEmpty && name.forall(c => c.isLetterOrDigit || c == '-' || c == '_'),
     s"ScpuConfig name '$name': must be non-empty letters, digits, '-' or '_'")
@@ -169,7 +173,25 @@ final case class ScpuConfig(
     }
     val scale = if (distance == DistanceMethod.Robust) s" scale=L$scaleLatency" else ""
     s"$name: ${format.name}${if (subnormals) "" else " ftz"}${link.fold("")(l => s" link=${l.name}")} $rounding ${distance.name} $roots " +
-      s"cvt=L$cvtLat add=L$addLatency mul=L$mulLatency cmp=L$cmpLatency$scale, latency $latency"
+      s"cvt=L$cvtLat add=L$addLatency mul=L$mulLatency cmp=L$cmpLatency$scale${if (family == FpgaFamily.default) "" else s" family=${family.name}"}, latency $latency"
+  }
+
+  /** This configuration with every operator's latency the smallest that cuts its estimated
+    * stages to `mhz` on its family (FpAdd.latencyFor, FpMul.latencyFor), the roots' every stage
+    * registered (one digit-recurrence iteration or Newton-Raphson cut a stage, RootLatency) and
+    * the conversions' and compare's rounder and output registered. Left names the operator
+    * whose single stage is longer than a period allows. */
+  def atClock(mhz: Double): Either[String, ScpuConfig] = {
+    require(mhz > 0, s"ScpuConfig $name: a clock must be above 0 MHz, got $mhz")
+    def need(op: String, e: Either[Double, Int]) = e.left.map(worst =>
+      f"SCPU $name at $mhz%.1f MHz on ${family.name}: $op has a stage of $worst%.0f ps (estimated), longer than the ${family.budget(mhz)}%.0f ps a period leaves")
+    def rootLat(op: RootOp, alg: RootAlgorithm) = RootCoreSelect.cuts(op, format.sigBits, alg) + 6
+    for {
+      add <- need("FpAdd", FpAdd.latencyFor(params, family, mhz))
+      mul <- need("FpMul", FpMul.latencyFor(params, family, mhz))
+    } yield copy(addLatency = add, mulLatency = mul, cvtLatency = FpConvert.stages, cmpLatency = 1,
+      sqrtLatency = Some(rootLat(RootOp.Sqrt, sqrtAlg)), recipLatency = Some(rootLat(RootOp.Recip, recipAlg)),
+      rsqrtLatency = Some(rootLat(RootOp.Rsqrt, rsqrtAlg)), scaleLatency = 5)
   }
 }
 
@@ -205,7 +227,9 @@ object ScpuConfig {
   /** Parses `preset[:key=value]*`, e.g. `fp16-robust`, `fp32:rm=rtz:sqrt=nr8x2:add=2`.
     * Keys: format (fp16, e8m24, "8,24"), rm (RNE, RTZ, RDN, RUP, RMM), subnormals (on/off),
     * distance (sqrt-recip, rsqrt, robust), sqrt/recip/rsqrt (dr, nr<seed>x<iters>), roots (all
-    * three), cvt/add/mul/cmp/scale/sqrtLat/recipLat/rsqrtLat (latencies), tag (tag bits).
+    * three), cvt/add/mul/cmp/scale/sqrtLat/recipLat/rsqrtLat (latencies), tag (tag bits),
+    * family (cyclonev, arriav, ecp5), mhz (every latency derived for that clock: atClock; a
+    * latency given after it overrides it, as options apply in order).
     * A changed preset keeps the preset's name followed by the options ("fp32_rm_rtz").
     */
   def parse(s: String): Either[String, ScpuConfig] = {
@@ -258,7 +282,10 @@ object ScpuConfig {
       case "rsqrtlat" => int.flatMap(n => safely(s)(c.copy(rsqrtLatency = Some(n))))
       case "tag"      => int.flatMap(n => safely(s)(c.copy(tagBits = n)))
       case "link"     => ctx(FloatFormat.parse(v)).flatMap(f => safely(s)(c.copy(link = Some(f))))
-      case _ => Left(s"SCPU config '$s': unknown option '$k' (format, rm, subnormals, distance, sqrt, recip, rsqrt, roots, cvt, add, mul, cmp, scale, sqrtLat, recipLat, rsqrtLat, tag, link)")
+      case "family"   => ctx(FpgaFamily.parse(v)).map(fam => c.copy(family = fam))
+      case "mhz"      => v.toDoubleOption.filter(_ > 0).toRight(s"SCPU config '$s': option mhz needs a clock above 0 (MHz), got '$v'")
+        .flatMap(m => ctx(c.atClock(m)))
+      case _ => Left(s"SCPU config '$s': unknown option '$k' (format, rm, subnormals, distance, sqrt, recip, rsqrt, roots, cvt, add, mul, cmp, scale, sqrtLat, recipLat, rsqrtLat, tag, link, family, mhz)")
     }
   }
 }

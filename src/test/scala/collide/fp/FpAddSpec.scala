@@ -114,18 +114,28 @@ class FpAddSpec extends AnyFlatSpec with ChiselScalatestTester {
     assert(sv.contains("module FpAdd_fp32_ftz_L2("), sv.take(400))
   }
 
-  val rtlConfigs: Seq[(FpParams, Int)] = collide.testutil.FpRtlMatrix.configs(
-    (FpParams(fp32), 1), (FpParams(fp16), 2), (FpParams(FloatFormat(3, 3)), 0), (FpParams(FloatFormat(10, 40), false), 2))
+  // The preset formats at latencies 0 and 3, a few more, and every stage registered (10): on
+  // the default family and on ECP5, whose delays place the registers elsewhere.
+  val rtlConfigs: Seq[(FpParams, Int, FpgaFamily)] = collide.testutil.FpRtlMatrix.configs(
+    (FpParams(fp32), 1), (FpParams(fp16), 2), (FpParams(FloatFormat(3, 3)), 0), (FpParams(FloatFormat(10, 40), false), 2),
+    (FpParams(fp32), 12), (FpParams(fp64), 12), (FpParams(fp16, false), 6)).map { case (p, l) => (p, l, FpgaFamily.default) } ++
+    Seq((FpParams(fp32), 5, FpgaFamily.ecp5), (FpParams(bf16), 12, FpgaFamily.ecp5), (FpParams(fp32), 15, FpgaFamily.arriaV))
 
-  for ((p, lat) <- rtlConfigs) {
-    it should s"match the golden model for ${p.name} at latency $lat in every rounding mode${if (lat > 0) ", stalls included" else ""}" in {
+  it should "place one register at each of its twelve stage boundaries at latency 12, and stack the rest at the output" in {
+    assert(Pipeline.balanced(12, FpAdd.delays(FpParams(fp32), FpgaFamily.default)) == Seq.fill(12)(1))
+    assert(Pipeline.balanced(15, FpAdd.delays(FpParams(fp32), FpgaFamily.default)) == Seq.fill(11)(1) :+ 4)
+  }
+
+  for ((p, lat, fam) <- rtlConfigs) {
+    val on = if (fam == FpgaFamily.default) "" else s" placed for ${fam.name}"
+    it should s"match the golden model for ${p.name} at latency $lat$on in every rounding mode${if (lat > 0) ", stalls included" else ""}" in {
       val f = p.format
-      val rng = Seeds.rng(s"FpAddSpec-rtl-${p.name}-L$lat")
+      val rng = Seeds.rng(s"FpAddSpec-rtl-${p.name}-L$lat-${fam.name}")
       val n = Seeds.cases(if (f.width > 32) 600 else 1200)
       val vecs = (FpPatterns.pairs(f, rng, n - n / 4) ++ Seq.fill(n / 4)((BigInt(f.width, rng.self), BigInt(f.width, rng.self))))
         .map { case (a, b) => (a, b, rng.nextBoolean(), RoundingMode.all(rng.nextInt(5))) }
       val want = vecs.map { case (a, b, s, rm) => FpAddModel(p, a, b, rm, s) }
-      test(new FpAdd(p, lat)) { c =>
+      test(new FpAdd(p, lat, fam)) { c =>
         PipeDriver.run(lat, vecs.size, rng, stalls = lat > 0)(
           en => c.io.en.poke(en.B),
           {

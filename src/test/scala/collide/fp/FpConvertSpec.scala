@@ -112,7 +112,9 @@ class FpConvertSpec extends AnyFlatSpec with ChiselScalatestTester {
       (F(fp16), F(bf16), 0), (F(bf16), F(fp16), 2), (Z(bf16), Z(fp16), 0),
       (F(fp24), F(fp32), 0), (F(fp32), F(fp24), 1), (F(fp64), F(fp16), 0), (F(fp16), F(fp64), 1),
       (F(fp32), F(fp32), 0), (F(fp32), Z(fp32), 1),
-      (F(FloatFormat(3, 3)), F(fp16), 0), (F(fp16), F(FloatFormat(3, 3)), 1), (F(FloatFormat(6, 12)), Z(bf16), 0)
+      (F(FloatFormat(3, 3)), F(fp16), 0), (F(fp16), F(FloatFormat(3, 3)), 1), (F(FloatFormat(6, 12)), Z(bf16), 0),
+      // every stage registered (FpConvert.stages), and past it
+      (F(fp32), F(fp24), 5), (F(fp64), Z(fp16), 5), (Z(fp32), F(fp16), 7)
     )
   }
 

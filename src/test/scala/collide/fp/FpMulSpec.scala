@@ -121,19 +121,33 @@ class FpMulSpec extends AnyFlatSpec with ChiselScalatestTester {
     assert(sv.contains("module FpMul_bf16_L3("), sv.take(400))
   }
 
-  val rtlConfigs: Seq[(FpParams, Int)] = collide.testutil.FpRtlMatrix.configs(
-    (FpParams(fp32), 1), (FpParams(bf16), 2), (FpParams(FloatFormat(3, 3)), 0), (FpParams(FloatFormat(10, 40), false), 2))
+  // The preset formats at latencies 0 and 3, a few more, and every stage registered: on the
+  // default family (27-bit tiles: one for fp32, four for fp64, two adder levels) and on ECP5
+  // (18-bit tiles: four for fp32, nine for fp64).
+  val rtlConfigs: Seq[(FpParams, Int, FpgaFamily)] = collide.testutil.FpRtlMatrix.configs(
+    (FpParams(fp32), 1), (FpParams(bf16), 2), (FpParams(FloatFormat(3, 3)), 0), (FpParams(FloatFormat(10, 40), false), 2),
+    (FpParams(fp32), 8), (FpParams(fp64), 10), (FpParams(fp16, false), 4)).map { case (p, l) => (p, l, FpgaFamily.default) } ++
+    Seq((FpParams(fp32), 10, FpgaFamily.ecp5), (FpParams(fp64), 12, FpgaFamily.ecp5), (FpParams(fp24), 3, FpgaFamily.ecp5))
 
-  for ((p, lat) <- rtlConfigs) {
-    it should s"match the golden model for ${p.name} at latency $lat in every rounding mode${if (lat > 0) ", stalls included" else ""}" in {
+  it should "cut its significands into the family's DSP tiles and sum them in a tree of one level a stage" in {
+    assert(FpMul.chunks(24, 27) == Seq((0, 24)) && FpMul.treeLevels(24, 27) == 0)
+    assert(FpMul.chunks(53, 27) == Seq((0, 27), (27, 26)) && FpMul.treeLevels(53, 27) == 2)
+    assert(FpMul.chunks(24, 18) == Seq((0, 18), (18, 6)) && FpMul.treeLevels(24, 18) == 2)
+    assert(FpMul.chunks(53, 18).size == 3 && FpMul.treeLevels(53, 18) == 4)
+    assert(FpMul.delays(FpParams(fp64), FpgaFamily.default).size == 10)
+  }
+
+  for ((p, lat, fam) <- rtlConfigs) {
+    val on = if (fam == FpgaFamily.default) "" else s" placed for ${fam.name}"
+    it should s"match the golden model for ${p.name} at latency $lat$on in every rounding mode${if (lat > 0) ", stalls included" else ""}" in {
       val f = p.format
-      val rng = Seeds.rng(s"FpMulSpec-rtl-${p.name}-L$lat")
+      val rng = Seeds.rng(s"FpMulSpec-rtl-${p.name}-L$lat-${fam.name}")
       val n = Seeds.cases(if (f.width > 32) 600 else 1200)
       val vecs = (edgePairs(f, rng, n / 4) ++ FpPatterns.operands(f, rng, n / 2).zip(FpPatterns.operands(f, rng, n / 2)) ++
         Seq.fill(n / 4)((BigInt(f.width, rng.self), BigInt(f.width, rng.self))))
         .map { case (a, b) => (a, b, RoundingMode.all(rng.nextInt(5))) }
       val want = vecs.map { case (a, b, rm) => FpMulModel(p, a, b, rm) }
-      test(new FpMul(p, lat)) { c =>
+      test(new FpMul(p, lat, fam)) { c =>
         PipeDriver.run(lat, vecs.size, rng, stalls = lat > 0)(
           en => c.io.en.poke(en.B),
           {

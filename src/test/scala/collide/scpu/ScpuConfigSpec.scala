@@ -57,6 +57,37 @@ class ScpuConfigSpec extends AnyFlatSpec {
     assert(ScpuConfig.parse("fp32:format=e8m16").toOption.get.format == FloatFormat.fp24)
   }
 
+  it should "derive every operator's latency from a clock (mhz=F), per family, with later options overriding" in {
+    val c = ScpuConfig.parse("fp32:mhz=200").fold(e => fail(e), identity)
+    val fam = FpgaFamily.default
+    // FpAdd and FpMul at the smallest latency whose estimated stages fit the period, and that
+    // latency is what separates them from a shallower one.
+    assert(Right(c.addLatency) == FpAdd.latencyFor(c.params, fam, 200) && Right(c.mulLatency) == FpMul.latencyFor(c.params, fam, 200))
+    for ((l, d) <- Seq(c.addLatency -> FpAdd.delays(c.params, fam), c.mulLatency -> FpMul.delays(c.params, fam))) {
+      assert(Pipeline.longestRun(l, d) <= fam.budget(200))
+      assert(Pipeline.longestRun(l - 1, d) > fam.budget(200))
+    }
+    // Roots: every iteration of the digit recurrence and each of the unpack's and rounder's pieces registered.
+    assert(c.sqrtLat == 24 + 6 && c.recipLat == 24 + 6)
+    assert(c.latency > ScpuConfig.fp32.latency && c.id != ScpuConfig.fp32.id)
+    // A slower clock needs no more registers; ECP5 cuts its multipliers into 18-bit tiles.
+    val slow = ScpuConfig.parse("fp32:mhz=50").toOption.get
+    assert(slow.addLatency <= c.addLatency && slow.mulLatency <= c.mulLatency)
+    val ecp5 = ScpuConfig.parse("fp32:family=ecp5:mhz=100").toOption.get
+    assert(ecp5.family == FpgaFamily.ecp5 && ecp5.mulLatency == FpMul.latencyFor(ecp5.params, FpgaFamily.ecp5, 100).toOption.get)
+    assert(ecp5.describe.contains("family=ecp5"))
+    assert(ScpuConfig.parse("fp32:mhz=200:add=3").toOption.get.addLatency == 3)
+  }
+
+  it should "refuse a clock that an operator's single stage cannot reach, naming the operator and the numbers" in {
+    def err(s: String) = ScpuConfig.parse(s).swap.getOrElse(fail(s"'$s' parsed"))
+    val e = err("fp32:mhz=400")
+    assert(e.contains("at 400.0 MHz on cyclonev") && e.contains("has a stage of") && e.contains("ps a period leaves"), e)
+    assert(err("fp32:mhz=0").contains("option mhz needs a clock above 0"))
+    assert(err("fp32:mhz=fast").contains("option mhz needs a clock above 0"))
+    assert(err("fp32:family=virtex").contains("FPGA family 'virtex': expected one of cyclonev, arriav, ecp5"))
+  }
+
   it should "reject bad names and options with messages that name them" in {
     def err(s: String) = ScpuConfig.parse(s).swap.getOrElse(fail(s"'$s' parsed"))
     assert(err("fp8").contains("unknown preset 'fp8'"))

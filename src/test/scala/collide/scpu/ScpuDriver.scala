@@ -49,7 +49,12 @@ class ScpuBank(val cfgs: Seq[ScpuConfig]) extends Module {
     s.io.out.ready := io(i).out.ready
     s.latency
   }
-  override def desiredName = "ScpuBank_" + cfgs.map(_.id).mkString("_")
+  // Named by its configurations; a long list by a hash of it (Verilator's top-module lookup
+  // failed on a 180-character name).
+  override def desiredName = {
+    val ids = cfgs.map(_.id).mkString("_")
+    "ScpuBank_" + (if (ids.length <= 100) ids else f"${cfgs.size}_${ids.hashCode & 0xffffffffL}%08x")
+  }
 }
 
 /** Streams pairs through one Scpu over its valid/ready handshake and checks every result

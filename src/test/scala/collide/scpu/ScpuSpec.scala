@@ -80,6 +80,14 @@ class ScpuSpec extends AnyFlatSpec with ChiselScalatestTester {
     runBank(ScpuConfig.all, c => if (c == ScpuConfig.fp64) defaultCount / 10 else defaultCount, "ScpuSpec-all")
   }
 
+  it should "match its golden model bit for bit with every operator as deep as a 200 MHz clock needs (mhz=200), and placed for ECP5" in {
+    // FpAdd and FpMul at the latencies their estimated stages need, every root stage registered,
+    // the Robust method's scaling in four stages, the conversions in four, and ECP5's 18-bit tiles.
+    val deep = Seq("fp32:mhz=200", "fp16-robust:mhz=200", "fp24:mhz=200", "bf16:family=ecp5:mhz=100", "fp32-rsqrt-dr:mhz=200")
+      .map(s => ScpuConfig.parse(s).fold(e => fail(e), identity))
+    runBank(deep, _ => Seeds.cases(4000), "ScpuSpec-deep")
+  }
+
   it should "match its golden model on 20,000 pairs for fp64" taggedAs Slow in {
     runBank(Seq(ScpuConfig.fp64), _ => Seeds.cases(20000), "ScpuSpec-fp64")
   }
