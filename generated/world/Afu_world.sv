@@ -56101,227 +56101,199 @@ module DigitRecurrenceCore_sqrt_s24_L5_world(
   wire [1:0]  _s0_r_T_2 = io_in_bits_expOdd ? {1'h0, io_in_bits_sig[22]} + 2'h1 : 2'h0;
   wire [1:0]  sN_nx_r2_rad =
     io_in_bits_expOdd ? io_in_bits_sig[21:20] : io_in_bits_sig[22:21];
-  wire        sN_nx_ge = {25'h0, _s0_r_T_2, sN_nx_r2_rad} > 29'h4;
-  wire [26:0] _GEN = {23'h0, _s0_r_T_2, sN_nx_r2_rad};
-  wire [26:0] sN_out_r = sN_nx_ge ? _GEN - 27'h5 : _GEN;
+  wire [29:0] sN_nx_d = {26'h0, _s0_r_T_2, sN_nx_r2_rad} - 30'h5;
+  wire [26:0] sN_out_r = sN_nx_d[29] ? {23'h0, _s0_r_T_2, sN_nx_r2_rad} : sN_nx_d[26:0];
   wire [1:0]  sN_nx_r2_rad_1 =
     io_in_bits_expOdd ? io_in_bits_sig[19:18] : io_in_bits_sig[20:19];
-  wire        sN_nx_ge_1 = {sN_out_r, sN_nx_r2_rad_1} >= {26'h1, sN_nx_ge, 2'h1};
-  wire [26:0] _GEN_0 = {sN_out_r[24:0], sN_nx_r2_rad_1};
-  wire [26:0] sN_out_1_r = sN_nx_ge_1 ? _GEN_0 - {24'h1, sN_nx_ge, 2'h1} : _GEN_0;
+  wire [29:0] sN_nx_d_1 =
+    {1'h0, sN_out_r, sN_nx_r2_rad_1} - {27'h1, ~(sN_nx_d[29]), 2'h1};
+  wire [26:0] sN_out_1_r =
+    sN_nx_d_1[29] ? {sN_out_r[24:0], sN_nx_r2_rad_1} : sN_nx_d_1[26:0];
   wire [1:0]  sN_nx_r2_rad_2 =
     io_in_bits_expOdd ? io_in_bits_sig[17:16] : io_in_bits_sig[18:17];
-  wire        sN_nx_ge_2 =
-    {sN_out_1_r, sN_nx_r2_rad_2} >= {25'h1, sN_nx_ge, sN_nx_ge_1, 2'h1};
-  wire [26:0] _GEN_1 = {sN_out_1_r[24:0], sN_nx_r2_rad_2};
+  wire [29:0] sN_nx_d_2 =
+    {1'h0, sN_out_1_r, sN_nx_r2_rad_2} - {26'h1, ~(sN_nx_d[29]), ~(sN_nx_d_1[29]), 2'h1};
   wire [26:0] sN_out_2_r =
-    sN_nx_ge_2 ? _GEN_1 - {23'h1, sN_nx_ge, sN_nx_ge_1, 2'h1} : _GEN_1;
+    sN_nx_d_2[29] ? {sN_out_1_r[24:0], sN_nx_r2_rad_2} : sN_nx_d_2[26:0];
   wire [1:0]  sN_nx_r2_rad_3 =
     io_in_bits_expOdd ? io_in_bits_sig[15:14] : io_in_bits_sig[16:15];
-  wire        sN_nx_ge_3 =
-    {sN_out_2_r, sN_nx_r2_rad_3} >= {24'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, 2'h1};
-  wire [26:0] _GEN_2 = {sN_out_2_r[24:0], sN_nx_r2_rad_3};
+  wire [29:0] sN_nx_d_3 =
+    {1'h0, sN_out_2_r, sN_nx_r2_rad_3}
+    - {25'h1, ~(sN_nx_d[29]), ~(sN_nx_d_1[29]), ~(sN_nx_d_2[29]), 2'h1};
   wire [26:0] sN_out_3_r =
-    sN_nx_ge_3 ? _GEN_2 - {22'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, 2'h1} : _GEN_2;
+    sN_nx_d_3[29] ? {sN_out_2_r[24:0], sN_nx_r2_rad_3} : sN_nx_d_3[26:0];
   wire [1:0]  sN_nx_r2_rad_4 =
     io_in_bits_expOdd ? io_in_bits_sig[13:12] : io_in_bits_sig[14:13];
-  wire        sN_nx_ge_4 =
-    {sN_out_3_r,
-     sN_nx_r2_rad_4} >= {23'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1};
-  wire [26:0] _GEN_3 = {sN_out_3_r[24:0], sN_nx_r2_rad_4};
+  wire [29:0] sN_nx_d_4 =
+    {1'h0, sN_out_3_r, sN_nx_r2_rad_4}
+    - {24'h1, ~(sN_nx_d[29]), ~(sN_nx_d_1[29]), ~(sN_nx_d_2[29]), ~(sN_nx_d_3[29]), 2'h1};
   wire [1:0]  sN_nx_r2_rad_5 =
     sN_out_r_expOdd ? sN_out_r_sig[11:10] : sN_out_r_sig[12:11];
-  wire        sN_nx_ge_5 = {sN_out_r_r, sN_nx_r2_rad_5} >= {2'h0, sN_out_r_q, 2'h1};
-  wire [26:0] _GEN_4 = {sN_out_r_r[24:0], sN_nx_r2_rad_5};
-  wire [26:0] sN_out_5_r = sN_nx_ge_5 ? _GEN_4 - {sN_out_r_q, 2'h1} : _GEN_4;
+  wire [29:0] sN_nx_d_5 = {1'h0, sN_out_r_r, sN_nx_r2_rad_5} - {3'h0, sN_out_r_q, 2'h1};
+  wire [26:0] sN_out_5_r =
+    sN_nx_d_5[29] ? {sN_out_r_r[24:0], sN_nx_r2_rad_5} : sN_nx_d_5[26:0];
   wire [1:0]  sN_nx_r2_rad_6 = sN_out_r_expOdd ? sN_out_r_sig[9:8] : sN_out_r_sig[10:9];
-  wire        sN_nx_ge_6 =
-    {sN_out_5_r, sN_nx_r2_rad_6} >= {2'h0, sN_out_r_q[23:0], sN_nx_ge_5, 2'h1};
-  wire [26:0] _GEN_5 = {sN_out_5_r[24:0], sN_nx_r2_rad_6};
+  wire [29:0] sN_nx_d_6 =
+    {1'h0, sN_out_5_r, sN_nx_r2_rad_6} - {3'h0, sN_out_r_q[23:0], ~(sN_nx_d_5[29]), 2'h1};
   wire [26:0] sN_out_6_r =
-    sN_nx_ge_6 ? _GEN_5 - {sN_out_r_q[23:0], sN_nx_ge_5, 2'h1} : _GEN_5;
+    sN_nx_d_6[29] ? {sN_out_5_r[24:0], sN_nx_r2_rad_6} : sN_nx_d_6[26:0];
   wire [1:0]  sN_nx_r2_rad_7 = sN_out_r_expOdd ? sN_out_r_sig[7:6] : sN_out_r_sig[8:7];
-  wire        sN_nx_ge_7 =
-    {sN_out_6_r,
-     sN_nx_r2_rad_7} >= {2'h0, sN_out_r_q[22:0], sN_nx_ge_5, sN_nx_ge_6, 2'h1};
-  wire [26:0] _GEN_6 = {sN_out_6_r[24:0], sN_nx_r2_rad_7};
+  wire [29:0] sN_nx_d_7 =
+    {1'h0, sN_out_6_r, sN_nx_r2_rad_7}
+    - {3'h0, sN_out_r_q[22:0], ~(sN_nx_d_5[29]), ~(sN_nx_d_6[29]), 2'h1};
   wire [26:0] sN_out_7_r =
-    sN_nx_ge_7 ? _GEN_6 - {sN_out_r_q[22:0], sN_nx_ge_5, sN_nx_ge_6, 2'h1} : _GEN_6;
+    sN_nx_d_7[29] ? {sN_out_6_r[24:0], sN_nx_r2_rad_7} : sN_nx_d_7[26:0];
   wire [1:0]  sN_nx_r2_rad_8 = sN_out_r_expOdd ? sN_out_r_sig[5:4] : sN_out_r_sig[6:5];
-  wire        sN_nx_ge_8 =
-    {sN_out_7_r,
-     sN_nx_r2_rad_8} >= {2'h0,
-                         sN_out_r_q[21:0],
-                         sN_nx_ge_5,
-                         sN_nx_ge_6,
-                         sN_nx_ge_7,
-                         2'h1};
-  wire [26:0] _GEN_7 = {sN_out_7_r[24:0], sN_nx_r2_rad_8};
+  wire [29:0] sN_nx_d_8 =
+    {1'h0, sN_out_7_r, sN_nx_r2_rad_8}
+    - {3'h0,
+       sN_out_r_q[21:0],
+       ~(sN_nx_d_5[29]),
+       ~(sN_nx_d_6[29]),
+       ~(sN_nx_d_7[29]),
+       2'h1};
   wire [26:0] sN_out_8_r =
-    sN_nx_ge_8
-      ? _GEN_7 - {sN_out_r_q[21:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, 2'h1}
-      : _GEN_7;
+    sN_nx_d_8[29] ? {sN_out_7_r[24:0], sN_nx_r2_rad_8} : sN_nx_d_8[26:0];
   wire [1:0]  sN_nx_r2_rad_9 = sN_out_r_expOdd ? sN_out_r_sig[3:2] : sN_out_r_sig[4:3];
-  wire        sN_nx_ge_9 =
-    {sN_out_8_r,
-     sN_nx_r2_rad_9} >= {2'h0,
-                         sN_out_r_q[20:0],
-                         sN_nx_ge_5,
-                         sN_nx_ge_6,
-                         sN_nx_ge_7,
-                         sN_nx_ge_8,
-                         2'h1};
-  wire [26:0] _GEN_8 = {sN_out_8_r[24:0], sN_nx_r2_rad_9};
+  wire [29:0] sN_nx_d_9 =
+    {1'h0, sN_out_8_r, sN_nx_r2_rad_9}
+    - {3'h0,
+       sN_out_r_q[20:0],
+       ~(sN_nx_d_5[29]),
+       ~(sN_nx_d_6[29]),
+       ~(sN_nx_d_7[29]),
+       ~(sN_nx_d_8[29]),
+       2'h1};
   wire [1:0]  sN_nx_r2_rad_10 =
     sN_out_r_1_expOdd ? sN_out_r_1_sig[1:0] : sN_out_r_1_sig[2:1];
-  wire        sN_nx_ge_10 = {sN_out_r_1_r, sN_nx_r2_rad_10} >= {2'h0, sN_out_r_1_q, 2'h1};
-  wire [26:0] _GEN_9 = {sN_out_r_1_r[24:0], sN_nx_r2_rad_10};
-  wire [26:0] sN_out_10_r = sN_nx_ge_10 ? _GEN_9 - {sN_out_r_1_q, 2'h1} : _GEN_9;
+  wire [29:0] sN_nx_d_10 =
+    {1'h0, sN_out_r_1_r, sN_nx_r2_rad_10} - {3'h0, sN_out_r_1_q, 2'h1};
+  wire [26:0] sN_out_10_r =
+    sN_nx_d_10[29] ? {sN_out_r_1_r[24:0], sN_nx_r2_rad_10} : sN_nx_d_10[26:0];
   wire [1:0]  sN_nx_r2_rad_11 = sN_out_r_1_expOdd ? 2'h0 : {sN_out_r_1_sig[0], 1'h0};
-  wire        sN_nx_ge_11 =
-    {sN_out_10_r, sN_nx_r2_rad_11} >= {2'h0, sN_out_r_1_q[23:0], sN_nx_ge_10, 2'h1};
-  wire [26:0] _GEN_10 = {sN_out_10_r[24:0], sN_nx_r2_rad_11};
+  wire [29:0] sN_nx_d_11 =
+    {1'h0, sN_out_10_r, sN_nx_r2_rad_11}
+    - {3'h0, sN_out_r_1_q[23:0], ~(sN_nx_d_10[29]), 2'h1};
   wire [26:0] sN_out_11_r =
-    sN_nx_ge_11 ? _GEN_10 - {sN_out_r_1_q[23:0], sN_nx_ge_10, 2'h1} : _GEN_10;
-  wire        sN_nx_ge_12 =
-    {sN_out_11_r, 2'h0} >= {2'h0, sN_out_r_1_q[22:0], sN_nx_ge_10, sN_nx_ge_11, 2'h1};
-  wire [26:0] _GEN_11 = {sN_out_11_r[24:0], 2'h0};
-  wire [26:0] sN_out_12_r =
-    sN_nx_ge_12
-      ? _GEN_11 - {sN_out_r_1_q[22:0], sN_nx_ge_10, sN_nx_ge_11, 2'h1}
-      : _GEN_11;
-  wire        sN_nx_ge_13 =
-    {sN_out_12_r,
-     2'h0} >= {2'h0, sN_out_r_1_q[21:0], sN_nx_ge_10, sN_nx_ge_11, sN_nx_ge_12, 2'h1};
-  wire [26:0] _GEN_12 = {sN_out_12_r[24:0], 2'h0};
-  wire [26:0] sN_out_13_r =
-    sN_nx_ge_13
-      ? _GEN_12 - {sN_out_r_1_q[21:0], sN_nx_ge_10, sN_nx_ge_11, sN_nx_ge_12, 2'h1}
-      : _GEN_12;
-  wire        sN_nx_ge_14 =
-    {sN_out_13_r,
-     2'h0} >= {2'h0,
-               sN_out_r_1_q[20:0],
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               2'h1};
-  wire [26:0] _GEN_13 = {sN_out_13_r[24:0], 2'h0};
-  wire        sN_nx_ge_15 = {sN_out_r_2_r, 2'h0} >= {2'h0, sN_out_r_2_q, 2'h1};
-  wire [26:0] _GEN_14 = {sN_out_r_2_r[24:0], 2'h0};
-  wire [26:0] sN_out_15_r = sN_nx_ge_15 ? _GEN_14 - {sN_out_r_2_q, 2'h1} : _GEN_14;
-  wire        sN_nx_ge_16 =
-    {sN_out_15_r, 2'h0} >= {2'h0, sN_out_r_2_q[23:0], sN_nx_ge_15, 2'h1};
-  wire [26:0] _GEN_15 = {sN_out_15_r[24:0], 2'h0};
-  wire [26:0] sN_out_16_r =
-    sN_nx_ge_16 ? _GEN_15 - {sN_out_r_2_q[23:0], sN_nx_ge_15, 2'h1} : _GEN_15;
-  wire        sN_nx_ge_17 =
-    {sN_out_16_r, 2'h0} >= {2'h0, sN_out_r_2_q[22:0], sN_nx_ge_15, sN_nx_ge_16, 2'h1};
-  wire [26:0] _GEN_16 = {sN_out_16_r[24:0], 2'h0};
-  wire [26:0] sN_out_17_r =
-    sN_nx_ge_17
-      ? _GEN_16 - {sN_out_r_2_q[22:0], sN_nx_ge_15, sN_nx_ge_16, 2'h1}
-      : _GEN_16;
-  wire        sN_nx_ge_18 =
-    {sN_out_17_r,
-     2'h0} >= {2'h0, sN_out_r_2_q[21:0], sN_nx_ge_15, sN_nx_ge_16, sN_nx_ge_17, 2'h1};
-  wire [26:0] _GEN_17 = {sN_out_17_r[24:0], 2'h0};
-  wire [26:0] sN_out_18_r =
-    sN_nx_ge_18
-      ? _GEN_17 - {sN_out_r_2_q[21:0], sN_nx_ge_15, sN_nx_ge_16, sN_nx_ge_17, 2'h1}
-      : _GEN_17;
-  wire        sN_nx_ge_19 =
-    {sN_out_18_r,
-     2'h0} >= {2'h0,
-               sN_out_r_2_q[20:0],
-               sN_nx_ge_15,
-               sN_nx_ge_16,
-               sN_nx_ge_17,
-               sN_nx_ge_18,
-               2'h1};
-  wire [26:0] _GEN_18 = {sN_out_18_r[24:0], 2'h0};
-  wire        sN_nx_ge_20 = {sN_out_r_3_r, 2'h0} >= {2'h0, sN_out_r_3_q, 2'h1};
-  wire [26:0] _GEN_19 = {sN_out_r_3_r[24:0], 2'h0};
-  wire [26:0] sN_out_20_r = sN_nx_ge_20 ? _GEN_19 - {sN_out_r_3_q, 2'h1} : _GEN_19;
-  wire        sN_nx_ge_21 =
-    {sN_out_20_r, 2'h0} >= {2'h0, sN_out_r_3_q[23:0], sN_nx_ge_20, 2'h1};
-  wire [26:0] _GEN_20 = {sN_out_20_r[24:0], 2'h0};
-  wire [26:0] sN_out_21_r =
-    sN_nx_ge_21 ? _GEN_20 - {sN_out_r_3_q[23:0], sN_nx_ge_20, 2'h1} : _GEN_20;
-  wire        sN_nx_ge_22 =
-    {sN_out_21_r, 2'h0} >= {2'h0, sN_out_r_3_q[22:0], sN_nx_ge_20, sN_nx_ge_21, 2'h1};
-  wire [26:0] _GEN_21 = {sN_out_21_r[24:0], 2'h0};
-  wire [26:0] sN_out_22_r =
-    sN_nx_ge_22
-      ? _GEN_21 - {sN_out_r_3_q[22:0], sN_nx_ge_20, sN_nx_ge_21, 2'h1}
-      : _GEN_21;
-  wire        sN_nx_ge_23 =
-    {sN_out_22_r,
-     2'h0} >= {2'h0, sN_out_r_3_q[21:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, 2'h1};
-  wire [26:0] _GEN_22 = {sN_out_22_r[24:0], 2'h0};
+    sN_nx_d_11[29] ? {sN_out_10_r[24:0], sN_nx_r2_rad_11} : sN_nx_d_11[26:0];
+  wire [29:0] sN_nx_d_12 =
+    {1'h0, sN_out_11_r, 2'h0}
+    - {3'h0, sN_out_r_1_q[22:0], ~(sN_nx_d_10[29]), ~(sN_nx_d_11[29]), 2'h1};
+  wire [26:0] sN_out_12_r = sN_nx_d_12[29] ? {sN_out_11_r[24:0], 2'h0} : sN_nx_d_12[26:0];
+  wire [29:0] sN_nx_d_13 =
+    {1'h0, sN_out_12_r, 2'h0}
+    - {3'h0,
+       sN_out_r_1_q[21:0],
+       ~(sN_nx_d_10[29]),
+       ~(sN_nx_d_11[29]),
+       ~(sN_nx_d_12[29]),
+       2'h1};
+  wire [26:0] sN_out_13_r = sN_nx_d_13[29] ? {sN_out_12_r[24:0], 2'h0} : sN_nx_d_13[26:0];
+  wire [29:0] sN_nx_d_14 =
+    {1'h0, sN_out_13_r, 2'h0}
+    - {3'h0,
+       sN_out_r_1_q[20:0],
+       ~(sN_nx_d_10[29]),
+       ~(sN_nx_d_11[29]),
+       ~(sN_nx_d_12[29]),
+       ~(sN_nx_d_13[29]),
+       2'h1};
+  wire [29:0] sN_nx_d_15 = {1'h0, sN_out_r_2_r, 2'h0} - {3'h0, sN_out_r_2_q, 2'h1};
+  wire [26:0] sN_out_15_r =
+    sN_nx_d_15[29] ? {sN_out_r_2_r[24:0], 2'h0} : sN_nx_d_15[26:0];
+  wire [29:0] sN_nx_d_16 =
+    {1'h0, sN_out_15_r, 2'h0} - {3'h0, sN_out_r_2_q[23:0], ~(sN_nx_d_15[29]), 2'h1};
+  wire [26:0] sN_out_16_r = sN_nx_d_16[29] ? {sN_out_15_r[24:0], 2'h0} : sN_nx_d_16[26:0];
+  wire [29:0] sN_nx_d_17 =
+    {1'h0, sN_out_16_r, 2'h0}
+    - {3'h0, sN_out_r_2_q[22:0], ~(sN_nx_d_15[29]), ~(sN_nx_d_16[29]), 2'h1};
+  wire [26:0] sN_out_17_r = sN_nx_d_17[29] ? {sN_out_16_r[24:0], 2'h0} : sN_nx_d_17[26:0];
+  wire [29:0] sN_nx_d_18 =
+    {1'h0, sN_out_17_r, 2'h0}
+    - {3'h0,
+       sN_out_r_2_q[21:0],
+       ~(sN_nx_d_15[29]),
+       ~(sN_nx_d_16[29]),
+       ~(sN_nx_d_17[29]),
+       2'h1};
+  wire [26:0] sN_out_18_r = sN_nx_d_18[29] ? {sN_out_17_r[24:0], 2'h0} : sN_nx_d_18[26:0];
+  wire [29:0] sN_nx_d_19 =
+    {1'h0, sN_out_18_r, 2'h0}
+    - {3'h0,
+       sN_out_r_2_q[20:0],
+       ~(sN_nx_d_15[29]),
+       ~(sN_nx_d_16[29]),
+       ~(sN_nx_d_17[29]),
+       ~(sN_nx_d_18[29]),
+       2'h1};
+  wire [29:0] sN_nx_d_20 = {1'h0, sN_out_r_3_r, 2'h0} - {3'h0, sN_out_r_3_q, 2'h1};
+  wire [26:0] sN_out_20_r =
+    sN_nx_d_20[29] ? {sN_out_r_3_r[24:0], 2'h0} : sN_nx_d_20[26:0];
+  wire [29:0] sN_nx_d_21 =
+    {1'h0, sN_out_20_r, 2'h0} - {3'h0, sN_out_r_3_q[23:0], ~(sN_nx_d_20[29]), 2'h1};
+  wire [26:0] sN_out_21_r = sN_nx_d_21[29] ? {sN_out_20_r[24:0], 2'h0} : sN_nx_d_21[26:0];
+  wire [29:0] sN_nx_d_22 =
+    {1'h0, sN_out_21_r, 2'h0}
+    - {3'h0, sN_out_r_3_q[22:0], ~(sN_nx_d_20[29]), ~(sN_nx_d_21[29]), 2'h1};
+  wire [26:0] sN_out_22_r = sN_nx_d_22[29] ? {sN_out_21_r[24:0], 2'h0} : sN_nx_d_22[26:0];
+  wire [29:0] sN_nx_d_23 =
+    {1'h0, sN_out_22_r, 2'h0}
+    - {3'h0,
+       sN_out_r_3_q[21:0],
+       ~(sN_nx_d_20[29]),
+       ~(sN_nx_d_21[29]),
+       ~(sN_nx_d_22[29]),
+       2'h1};
   always @(posedge clock) begin
     if (io_en) begin
       sN_out_r_sig <= io_in_bits_sig;
       sN_out_r_expOdd <= io_in_bits_expOdd;
-      sN_out_r_q <= {20'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, sN_nx_ge_4};
-      sN_out_r_r <=
-        sN_nx_ge_4
-          ? _GEN_3 - {21'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, 2'h1}
-          : _GEN_3;
+      sN_out_r_q <=
+        {20'h1,
+         ~(sN_nx_d[29]),
+         ~(sN_nx_d_1[29]),
+         ~(sN_nx_d_2[29]),
+         ~(sN_nx_d_3[29]),
+         ~(sN_nx_d_4[29])};
+      sN_out_r_r <= sN_nx_d_4[29] ? {sN_out_3_r[24:0], sN_nx_r2_rad_4} : sN_nx_d_4[26:0];
       sN_out_r_1_sig <= sN_out_r_sig;
       sN_out_r_1_expOdd <= sN_out_r_expOdd;
       sN_out_r_1_q <=
-        {sN_out_r_q[19:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, sN_nx_ge_8, sN_nx_ge_9};
+        {sN_out_r_q[19:0],
+         ~(sN_nx_d_5[29]),
+         ~(sN_nx_d_6[29]),
+         ~(sN_nx_d_7[29]),
+         ~(sN_nx_d_8[29]),
+         ~(sN_nx_d_9[29])};
       sN_out_r_1_r <=
-        sN_nx_ge_9
-          ? _GEN_8
-            - {sN_out_r_q[20:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, sN_nx_ge_8, 2'h1}
-          : _GEN_8;
+        sN_nx_d_9[29] ? {sN_out_8_r[24:0], sN_nx_r2_rad_9} : sN_nx_d_9[26:0];
       sN_out_r_2_sig <= sN_out_r_1_sig;
       sN_out_r_2_expOdd <= sN_out_r_1_expOdd;
       sN_out_r_2_q <=
         {sN_out_r_1_q[19:0],
-         sN_nx_ge_10,
-         sN_nx_ge_11,
-         sN_nx_ge_12,
-         sN_nx_ge_13,
-         sN_nx_ge_14};
-      sN_out_r_2_r <=
-        sN_nx_ge_14
-          ? _GEN_13
-            - {sN_out_r_1_q[20:0],
-               sN_nx_ge_10,
-               sN_nx_ge_11,
-               sN_nx_ge_12,
-               sN_nx_ge_13,
-               2'h1}
-          : _GEN_13;
+         ~(sN_nx_d_10[29]),
+         ~(sN_nx_d_11[29]),
+         ~(sN_nx_d_12[29]),
+         ~(sN_nx_d_13[29]),
+         ~(sN_nx_d_14[29])};
+      sN_out_r_2_r <= sN_nx_d_14[29] ? {sN_out_13_r[24:0], 2'h0} : sN_nx_d_14[26:0];
       sN_out_r_3_sig <= sN_out_r_2_sig;
       sN_out_r_3_expOdd <= sN_out_r_2_expOdd;
       sN_out_r_3_q <=
         {sN_out_r_2_q[19:0],
-         sN_nx_ge_15,
-         sN_nx_ge_16,
-         sN_nx_ge_17,
-         sN_nx_ge_18,
-         sN_nx_ge_19};
-      sN_out_r_3_r <=
-        sN_nx_ge_19
-          ? _GEN_18
-            - {sN_out_r_2_q[20:0],
-               sN_nx_ge_15,
-               sN_nx_ge_16,
-               sN_nx_ge_17,
-               sN_nx_ge_18,
-               2'h1}
-          : _GEN_18;
+         ~(sN_nx_d_15[29]),
+         ~(sN_nx_d_16[29]),
+         ~(sN_nx_d_17[29]),
+         ~(sN_nx_d_18[29]),
+         ~(sN_nx_d_19[29])};
+      sN_out_r_3_r <= sN_nx_d_19[29] ? {sN_out_18_r[24:0], 2'h0} : sN_nx_d_19[26:0];
       sN_out_r_4_q <=
-        {sN_out_r_3_q[20:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, sN_nx_ge_23};
-      sN_out_r_4_r <=
-        sN_nx_ge_23
-          ? _GEN_22 - {sN_out_r_3_q[21:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, 2'h1}
-          : _GEN_22;
+        {sN_out_r_3_q[20:0],
+         ~(sN_nx_d_20[29]),
+         ~(sN_nx_d_21[29]),
+         ~(sN_nx_d_22[29]),
+         ~(sN_nx_d_23[29])};
+      sN_out_r_4_r <= sN_nx_d_23[29] ? {sN_out_22_r[24:0], 2'h0} : sN_nx_d_23[26:0];
     end
     if (reset) begin
       sN_out_valid_r <= 1'h0;
@@ -56355,11 +56327,11 @@ module FpSqrt_fp32_dr_L7_world(
 
   wire        _DigitRecurrenceCore_sqrt_s24_L5_io_out_valid;
   wire [25:0] _DigitRecurrenceCore_sqrt_s24_L5_io_out_bits_sig;
-  wire        raw_expZero = io_in_bits_a[30:23] == 8'h0;
+  wire        cls_expZero = io_in_bits_a[30:23] == 8'h0;
   wire [3:0]  _GEN =
     {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
     | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
-  wire [4:0]  raw_out_lz =
+  wire [4:0]  cls_lz =
     io_in_bits_a[22]
       ? 5'h0
       : io_in_bits_a[21]
@@ -56405,12 +56377,10 @@ module FpSqrt_fp32_dr_L7_world(
                                                                                       : io_in_bits_a[1]
                                                                                           ? 5'h15
                                                                                           : 5'h16;
-  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, raw_out_lz} + 6'h1;
+  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, cls_lz} + 6'h1;
   wire [8:0]  _raw_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
   wire [9:0]  raw_sExp =
-    raw_expZero
-      ? 10'h381 - {5'h0, raw_out_lz}
-      : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
+    cls_expZero ? 10'h381 - {5'h0, cls_lz} : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
   reg         sideOut_r_isNaN;
   reg         sideOut_r_isInf;
   reg         sideOut_r_isZero;
@@ -56453,7 +56423,7 @@ module FpSqrt_fp32_dr_L7_world(
   reg         io_out_valid_r;
   reg         io_out_valid_r_1;
   wire        raw_isNaN = (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0]));
-  wire        raw_isZero = raw_expZero & ~(|(io_in_bits_a[22:0]));
+  wire        raw_isZero = cls_expZero & ~(|(io_in_bits_a[22:0]));
   wire        negInvalid = io_in_bits_a[31] & ~raw_isNaN & ~raw_isZero;
   wire        at_tiny = $signed(riR_sExp) < -11'sh7E;
   wire [10:0] _at_dist_T = 11'h782 - riR_sExp;
@@ -56549,7 +56519,7 @@ module FpSqrt_fp32_dr_L7_world(
     .reset             (reset),
     .io_en             (io_en),
     .io_in_valid       (io_in_valid),
-    .io_in_bits_sig    (raw_expZero ? _raw_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]}),
+    .io_in_bits_sig    (cls_expZero ? _raw_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]}),
     .io_in_bits_expOdd (raw_sExp[0]),
     .io_out_valid      (_DigitRecurrenceCore_sqrt_s24_L5_io_out_valid),
     .io_out_bits_sig   (_DigitRecurrenceCore_sqrt_s24_L5_io_out_bits_sig)
@@ -56595,114 +56565,124 @@ module DigitRecurrenceCore_recip_s24_L5_world(
   reg  [24:0] sN_out_r_4_r;
   reg         sN_out_valid_r_4;
   wire        isOne = io_in_bits_sig == 24'h800000;
-  wire [24:0] _s0_r_T_3 = isOne ? 25'h0 : {24'h0 - io_in_bits_sig, 1'h0};
-  wire [24:0] _GEN = {1'h0, io_in_bits_sig};
-  wire        sN_nx_ge = _s0_r_T_3 >= _GEN;
+  wire [25:0] _GEN = {2'h0, io_in_bits_sig};
+  wire [24:0] s0r_r = isOne ? 25'h0 : {24'h0 - io_in_bits_sig, 1'h0};
+  wire [25:0] sN_nx_d = {1'h0, s0r_r} - _GEN;
+  wire [23:0] _sN_nx_nx_r_T = sN_nx_d[25] ? s0r_r[23:0] : sN_nx_d[23:0];
+  wire [25:0] sN_nx_d_1 = {1'h0, _sN_nx_nx_r_T, 1'h0} - _GEN;
   wire [23:0] _sN_nx_nx_r_T_2 =
-    sN_nx_ge ? _s0_r_T_3[23:0] - io_in_bits_sig : _s0_r_T_3[23:0];
-  wire        sN_nx_ge_1 = {_sN_nx_nx_r_T_2, 1'h0} >= _GEN;
-  wire [23:0] _GEN_0 = {_sN_nx_nx_r_T_2[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_6 = sN_nx_ge_1 ? _GEN_0 - io_in_bits_sig : _GEN_0;
-  wire        sN_nx_ge_2 = {_sN_nx_nx_r_T_6, 1'h0} >= _GEN;
-  wire [23:0] _GEN_1 = {_sN_nx_nx_r_T_6[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_10 = sN_nx_ge_2 ? _GEN_1 - io_in_bits_sig : _GEN_1;
-  wire        sN_nx_ge_3 = {_sN_nx_nx_r_T_10, 1'h0} >= _GEN;
-  wire [23:0] _GEN_2 = {_sN_nx_nx_r_T_10[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_14 = sN_nx_ge_3 ? _GEN_2 - io_in_bits_sig : _GEN_2;
-  wire        sN_nx_ge_4 = {_sN_nx_nx_r_T_14, 1'h0} >= _GEN;
-  wire [23:0] _GEN_3 = {_sN_nx_nx_r_T_14[22:0], 1'h0};
-  wire [24:0] _GEN_4 = {1'h0, sN_out_r_sig};
-  wire        sN_nx_ge_5 = sN_out_r_r >= _GEN_4;
+    sN_nx_d_1[25] ? {_sN_nx_nx_r_T[22:0], 1'h0} : sN_nx_d_1[23:0];
+  wire [25:0] sN_nx_d_2 = {1'h0, _sN_nx_nx_r_T_2, 1'h0} - _GEN;
+  wire [23:0] _sN_nx_nx_r_T_4 =
+    sN_nx_d_2[25] ? {_sN_nx_nx_r_T_2[22:0], 1'h0} : sN_nx_d_2[23:0];
+  wire [25:0] sN_nx_d_3 = {1'h0, _sN_nx_nx_r_T_4, 1'h0} - _GEN;
+  wire [23:0] _sN_nx_nx_r_T_6 =
+    sN_nx_d_3[25] ? {_sN_nx_nx_r_T_4[22:0], 1'h0} : sN_nx_d_3[23:0];
+  wire [25:0] sN_nx_d_4 = {1'h0, _sN_nx_nx_r_T_6, 1'h0} - _GEN;
+  wire [25:0] _GEN_0 = {2'h0, sN_out_r_sig};
+  wire [25:0] sN_nx_d_5 = {1'h0, sN_out_r_r} - _GEN_0;
+  wire [23:0] _sN_nx_nx_r_T_10 = sN_nx_d_5[25] ? sN_out_r_r[23:0] : sN_nx_d_5[23:0];
+  wire [25:0] sN_nx_d_6 = {1'h0, _sN_nx_nx_r_T_10, 1'h0} - _GEN_0;
+  wire [23:0] _sN_nx_nx_r_T_12 =
+    sN_nx_d_6[25] ? {_sN_nx_nx_r_T_10[22:0], 1'h0} : sN_nx_d_6[23:0];
+  wire [25:0] sN_nx_d_7 = {1'h0, _sN_nx_nx_r_T_12, 1'h0} - _GEN_0;
+  wire [23:0] _sN_nx_nx_r_T_14 =
+    sN_nx_d_7[25] ? {_sN_nx_nx_r_T_12[22:0], 1'h0} : sN_nx_d_7[23:0];
+  wire [25:0] sN_nx_d_8 = {1'h0, _sN_nx_nx_r_T_14, 1'h0} - _GEN_0;
+  wire [23:0] _sN_nx_nx_r_T_16 =
+    sN_nx_d_8[25] ? {_sN_nx_nx_r_T_14[22:0], 1'h0} : sN_nx_d_8[23:0];
+  wire [25:0] sN_nx_d_9 = {1'h0, _sN_nx_nx_r_T_16, 1'h0} - _GEN_0;
+  wire [25:0] _GEN_1 = {2'h0, sN_out_r_1_sig};
+  wire [25:0] sN_nx_d_10 = {1'h0, sN_out_r_1_r} - _GEN_1;
+  wire [23:0] _sN_nx_nx_r_T_20 = sN_nx_d_10[25] ? sN_out_r_1_r[23:0] : sN_nx_d_10[23:0];
+  wire [25:0] sN_nx_d_11 = {1'h0, _sN_nx_nx_r_T_20, 1'h0} - _GEN_1;
   wire [23:0] _sN_nx_nx_r_T_22 =
-    sN_nx_ge_5 ? sN_out_r_r[23:0] - sN_out_r_sig : sN_out_r_r[23:0];
-  wire        sN_nx_ge_6 = {_sN_nx_nx_r_T_22, 1'h0} >= _GEN_4;
-  wire [23:0] _GEN_5 = {_sN_nx_nx_r_T_22[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_26 = sN_nx_ge_6 ? _GEN_5 - sN_out_r_sig : _GEN_5;
-  wire        sN_nx_ge_7 = {_sN_nx_nx_r_T_26, 1'h0} >= _GEN_4;
-  wire [23:0] _GEN_6 = {_sN_nx_nx_r_T_26[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_30 = sN_nx_ge_7 ? _GEN_6 - sN_out_r_sig : _GEN_6;
-  wire        sN_nx_ge_8 = {_sN_nx_nx_r_T_30, 1'h0} >= _GEN_4;
-  wire [23:0] _GEN_7 = {_sN_nx_nx_r_T_30[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_34 = sN_nx_ge_8 ? _GEN_7 - sN_out_r_sig : _GEN_7;
-  wire        sN_nx_ge_9 = {_sN_nx_nx_r_T_34, 1'h0} >= _GEN_4;
-  wire [23:0] _GEN_8 = {_sN_nx_nx_r_T_34[22:0], 1'h0};
-  wire [24:0] _GEN_9 = {1'h0, sN_out_r_1_sig};
-  wire        sN_nx_ge_10 = sN_out_r_1_r >= _GEN_9;
+    sN_nx_d_11[25] ? {_sN_nx_nx_r_T_20[22:0], 1'h0} : sN_nx_d_11[23:0];
+  wire [25:0] sN_nx_d_12 = {1'h0, _sN_nx_nx_r_T_22, 1'h0} - _GEN_1;
+  wire [23:0] _sN_nx_nx_r_T_24 =
+    sN_nx_d_12[25] ? {_sN_nx_nx_r_T_22[22:0], 1'h0} : sN_nx_d_12[23:0];
+  wire [25:0] sN_nx_d_13 = {1'h0, _sN_nx_nx_r_T_24, 1'h0} - _GEN_1;
+  wire [23:0] _sN_nx_nx_r_T_26 =
+    sN_nx_d_13[25] ? {_sN_nx_nx_r_T_24[22:0], 1'h0} : sN_nx_d_13[23:0];
+  wire [25:0] sN_nx_d_14 = {1'h0, _sN_nx_nx_r_T_26, 1'h0} - _GEN_1;
+  wire [25:0] _GEN_2 = {2'h0, sN_out_r_2_sig};
+  wire [25:0] sN_nx_d_15 = {1'h0, sN_out_r_2_r} - _GEN_2;
+  wire [23:0] _sN_nx_nx_r_T_30 = sN_nx_d_15[25] ? sN_out_r_2_r[23:0] : sN_nx_d_15[23:0];
+  wire [25:0] sN_nx_d_16 = {1'h0, _sN_nx_nx_r_T_30, 1'h0} - _GEN_2;
+  wire [23:0] _sN_nx_nx_r_T_32 =
+    sN_nx_d_16[25] ? {_sN_nx_nx_r_T_30[22:0], 1'h0} : sN_nx_d_16[23:0];
+  wire [25:0] sN_nx_d_17 = {1'h0, _sN_nx_nx_r_T_32, 1'h0} - _GEN_2;
+  wire [23:0] _sN_nx_nx_r_T_34 =
+    sN_nx_d_17[25] ? {_sN_nx_nx_r_T_32[22:0], 1'h0} : sN_nx_d_17[23:0];
+  wire [25:0] sN_nx_d_18 = {1'h0, _sN_nx_nx_r_T_34, 1'h0} - _GEN_2;
+  wire [23:0] _sN_nx_nx_r_T_36 =
+    sN_nx_d_18[25] ? {_sN_nx_nx_r_T_34[22:0], 1'h0} : sN_nx_d_18[23:0];
+  wire [25:0] sN_nx_d_19 = {1'h0, _sN_nx_nx_r_T_36, 1'h0} - _GEN_2;
+  wire [25:0] _GEN_3 = {2'h0, sN_out_r_3_sig};
+  wire [25:0] sN_nx_d_20 = {1'h0, sN_out_r_3_r} - _GEN_3;
+  wire [23:0] _sN_nx_nx_r_T_40 = sN_nx_d_20[25] ? sN_out_r_3_r[23:0] : sN_nx_d_20[23:0];
+  wire [25:0] sN_nx_d_21 = {1'h0, _sN_nx_nx_r_T_40, 1'h0} - _GEN_3;
   wire [23:0] _sN_nx_nx_r_T_42 =
-    sN_nx_ge_10 ? sN_out_r_1_r[23:0] - sN_out_r_1_sig : sN_out_r_1_r[23:0];
-  wire        sN_nx_ge_11 = {_sN_nx_nx_r_T_42, 1'h0} >= _GEN_9;
-  wire [23:0] _GEN_10 = {_sN_nx_nx_r_T_42[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_46 = sN_nx_ge_11 ? _GEN_10 - sN_out_r_1_sig : _GEN_10;
-  wire        sN_nx_ge_12 = {_sN_nx_nx_r_T_46, 1'h0} >= _GEN_9;
-  wire [23:0] _GEN_11 = {_sN_nx_nx_r_T_46[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_50 = sN_nx_ge_12 ? _GEN_11 - sN_out_r_1_sig : _GEN_11;
-  wire        sN_nx_ge_13 = {_sN_nx_nx_r_T_50, 1'h0} >= _GEN_9;
-  wire [23:0] _GEN_12 = {_sN_nx_nx_r_T_50[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_54 = sN_nx_ge_13 ? _GEN_12 - sN_out_r_1_sig : _GEN_12;
-  wire        sN_nx_ge_14 = {_sN_nx_nx_r_T_54, 1'h0} >= _GEN_9;
-  wire [23:0] _GEN_13 = {_sN_nx_nx_r_T_54[22:0], 1'h0};
-  wire [24:0] _GEN_14 = {1'h0, sN_out_r_2_sig};
-  wire        sN_nx_ge_15 = sN_out_r_2_r >= _GEN_14;
-  wire [23:0] _sN_nx_nx_r_T_62 =
-    sN_nx_ge_15 ? sN_out_r_2_r[23:0] - sN_out_r_2_sig : sN_out_r_2_r[23:0];
-  wire        sN_nx_ge_16 = {_sN_nx_nx_r_T_62, 1'h0} >= _GEN_14;
-  wire [23:0] _GEN_15 = {_sN_nx_nx_r_T_62[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_66 = sN_nx_ge_16 ? _GEN_15 - sN_out_r_2_sig : _GEN_15;
-  wire        sN_nx_ge_17 = {_sN_nx_nx_r_T_66, 1'h0} >= _GEN_14;
-  wire [23:0] _GEN_16 = {_sN_nx_nx_r_T_66[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_70 = sN_nx_ge_17 ? _GEN_16 - sN_out_r_2_sig : _GEN_16;
-  wire        sN_nx_ge_18 = {_sN_nx_nx_r_T_70, 1'h0} >= _GEN_14;
-  wire [23:0] _GEN_17 = {_sN_nx_nx_r_T_70[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_74 = sN_nx_ge_18 ? _GEN_17 - sN_out_r_2_sig : _GEN_17;
-  wire        sN_nx_ge_19 = {_sN_nx_nx_r_T_74, 1'h0} >= _GEN_14;
-  wire [23:0] _GEN_18 = {_sN_nx_nx_r_T_74[22:0], 1'h0};
-  wire [24:0] _GEN_19 = {1'h0, sN_out_r_3_sig};
-  wire        sN_nx_ge_20 = sN_out_r_3_r >= _GEN_19;
-  wire [23:0] _sN_nx_nx_r_T_82 =
-    sN_nx_ge_20 ? sN_out_r_3_r[23:0] - sN_out_r_3_sig : sN_out_r_3_r[23:0];
-  wire        sN_nx_ge_21 = {_sN_nx_nx_r_T_82, 1'h0} >= _GEN_19;
-  wire [23:0] _GEN_20 = {_sN_nx_nx_r_T_82[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_86 = sN_nx_ge_21 ? _GEN_20 - sN_out_r_3_sig : _GEN_20;
-  wire        sN_nx_ge_22 = {_sN_nx_nx_r_T_86, 1'h0} >= _GEN_19;
-  wire [23:0] _GEN_21 = {_sN_nx_nx_r_T_86[22:0], 1'h0};
-  wire [23:0] _sN_nx_nx_r_T_90 = sN_nx_ge_22 ? _GEN_21 - sN_out_r_3_sig : _GEN_21;
-  wire        sN_nx_ge_23 = {_sN_nx_nx_r_T_90, 1'h0} >= _GEN_19;
-  wire [23:0] _GEN_22 = {_sN_nx_nx_r_T_90[22:0], 1'h0};
+    sN_nx_d_21[25] ? {_sN_nx_nx_r_T_40[22:0], 1'h0} : sN_nx_d_21[23:0];
+  wire [25:0] sN_nx_d_22 = {1'h0, _sN_nx_nx_r_T_42, 1'h0} - _GEN_3;
+  wire [23:0] _sN_nx_nx_r_T_44 =
+    sN_nx_d_22[25] ? {_sN_nx_nx_r_T_42[22:0], 1'h0} : sN_nx_d_22[23:0];
+  wire [25:0] sN_nx_d_23 = {1'h0, _sN_nx_nx_r_T_44, 1'h0} - _GEN_3;
   always @(posedge clock) begin
     if (io_en) begin
       sN_out_r_sig <= io_in_bits_sig;
       sN_out_r_expDec <= ~isOne;
-      sN_out_r_q <= {20'h1, sN_nx_ge, sN_nx_ge_1, sN_nx_ge_2, sN_nx_ge_3, sN_nx_ge_4};
-      sN_out_r_r <= {sN_nx_ge_4 ? _GEN_3 - io_in_bits_sig : _GEN_3, 1'h0};
+      sN_out_r_q <=
+        {20'h1,
+         ~(sN_nx_d[25]),
+         ~(sN_nx_d_1[25]),
+         ~(sN_nx_d_2[25]),
+         ~(sN_nx_d_3[25]),
+         ~(sN_nx_d_4[25])};
+      sN_out_r_r <=
+        {sN_nx_d_4[25] ? {_sN_nx_nx_r_T_6[22:0], 1'h0} : sN_nx_d_4[23:0], 1'h0};
       sN_out_r_1_sig <= sN_out_r_sig;
       sN_out_r_1_expDec <= sN_out_r_expDec;
       sN_out_r_1_q <=
-        {sN_out_r_q[19:0], sN_nx_ge_5, sN_nx_ge_6, sN_nx_ge_7, sN_nx_ge_8, sN_nx_ge_9};
-      sN_out_r_1_r <= {sN_nx_ge_9 ? _GEN_8 - sN_out_r_sig : _GEN_8, 1'h0};
+        {sN_out_r_q[19:0],
+         ~(sN_nx_d_5[25]),
+         ~(sN_nx_d_6[25]),
+         ~(sN_nx_d_7[25]),
+         ~(sN_nx_d_8[25]),
+         ~(sN_nx_d_9[25])};
+      sN_out_r_1_r <=
+        {sN_nx_d_9[25] ? {_sN_nx_nx_r_T_16[22:0], 1'h0} : sN_nx_d_9[23:0], 1'h0};
       sN_out_r_2_sig <= sN_out_r_1_sig;
       sN_out_r_2_expDec <= sN_out_r_1_expDec;
       sN_out_r_2_q <=
         {sN_out_r_1_q[19:0],
-         sN_nx_ge_10,
-         sN_nx_ge_11,
-         sN_nx_ge_12,
-         sN_nx_ge_13,
-         sN_nx_ge_14};
-      sN_out_r_2_r <= {sN_nx_ge_14 ? _GEN_13 - sN_out_r_1_sig : _GEN_13, 1'h0};
+         ~(sN_nx_d_10[25]),
+         ~(sN_nx_d_11[25]),
+         ~(sN_nx_d_12[25]),
+         ~(sN_nx_d_13[25]),
+         ~(sN_nx_d_14[25])};
+      sN_out_r_2_r <=
+        {sN_nx_d_14[25] ? {_sN_nx_nx_r_T_26[22:0], 1'h0} : sN_nx_d_14[23:0], 1'h0};
       sN_out_r_3_sig <= sN_out_r_2_sig;
       sN_out_r_3_expDec <= sN_out_r_2_expDec;
       sN_out_r_3_q <=
         {sN_out_r_2_q[19:0],
-         sN_nx_ge_15,
-         sN_nx_ge_16,
-         sN_nx_ge_17,
-         sN_nx_ge_18,
-         sN_nx_ge_19};
-      sN_out_r_3_r <= {sN_nx_ge_19 ? _GEN_18 - sN_out_r_2_sig : _GEN_18, 1'h0};
+         ~(sN_nx_d_15[25]),
+         ~(sN_nx_d_16[25]),
+         ~(sN_nx_d_17[25]),
+         ~(sN_nx_d_18[25]),
+         ~(sN_nx_d_19[25])};
+      sN_out_r_3_r <=
+        {sN_nx_d_19[25] ? {_sN_nx_nx_r_T_36[22:0], 1'h0} : sN_nx_d_19[23:0], 1'h0};
       sN_out_r_4_expDec <= sN_out_r_3_expDec;
       sN_out_r_4_q <=
-        {sN_out_r_3_q[20:0], sN_nx_ge_20, sN_nx_ge_21, sN_nx_ge_22, sN_nx_ge_23};
-      sN_out_r_4_r <= {sN_nx_ge_23 ? _GEN_22 - sN_out_r_3_sig : _GEN_22, 1'h0};
+        {sN_out_r_3_q[20:0],
+         ~(sN_nx_d_20[25]),
+         ~(sN_nx_d_21[25]),
+         ~(sN_nx_d_22[25]),
+         ~(sN_nx_d_23[25])};
+      sN_out_r_4_r <=
+        {sN_nx_d_23[25] ? {_sN_nx_nx_r_T_44[22:0], 1'h0} : sN_nx_d_23[23:0], 1'h0};
     end
     if (reset) begin
       sN_out_valid_r <= 1'h0;
@@ -56738,11 +56718,11 @@ module FpRecip_fp32_dr_L7_world(
   wire        _DigitRecurrenceCore_recip_s24_L5_io_out_valid;
   wire [25:0] _DigitRecurrenceCore_recip_s24_L5_io_out_bits_sig;
   wire        _DigitRecurrenceCore_recip_s24_L5_io_out_bits_expDec;
-  wire        raw_expZero = io_in_bits_a[30:23] == 8'h0;
+  wire        cls_expZero = io_in_bits_a[30:23] == 8'h0;
   wire [3:0]  _GEN =
     {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
     | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
-  wire [4:0]  raw_out_lz =
+  wire [4:0]  cls_lz =
     io_in_bits_a[22]
       ? 5'h0
       : io_in_bits_a[21]
@@ -56788,7 +56768,7 @@ module FpRecip_fp32_dr_L7_world(
                                                                                       : io_in_bits_a[1]
                                                                                           ? 5'h15
                                                                                           : 5'h16;
-  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, raw_out_lz} + 6'h1;
+  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, cls_lz} + 6'h1;
   reg         sideOut_r_isNaN;
   reg         sideOut_r_isInf;
   reg         sideOut_r_isZero;
@@ -56830,12 +56810,12 @@ module FpRecip_fp32_dr_L7_world(
   reg  [4:0]  io_out_bits_r_flags;
   reg         io_out_valid_r;
   reg         io_out_valid_r_1;
-  wire        side_isInf = raw_expZero & ~(|(io_in_bits_a[22:0]));
+  wire        side_isInf = cls_expZero & ~(|(io_in_bits_a[22:0]));
   wire [8:0]  _raw_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
   wire [9:0]  _side_exp_T =
     10'h0
-    - (raw_expZero
-         ? 10'h381 - {5'h0, raw_out_lz}
+    - (cls_expZero
+         ? 10'h381 - {5'h0, cls_lz}
          : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1});
   wire        at_tiny = $signed(riR_sExp) < -11'sh7E;
   wire [10:0] _at_dist_T = 11'h782 - riR_sExp;
@@ -56933,7 +56913,7 @@ module FpRecip_fp32_dr_L7_world(
     .io_en              (io_en),
     .io_in_valid        (io_in_valid),
     .io_in_bits_sig
-      (raw_expZero ? _raw_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]}),
+      (cls_expZero ? _raw_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]}),
     .io_out_valid       (_DigitRecurrenceCore_recip_s24_L5_io_out_valid),
     .io_out_bits_sig    (_DigitRecurrenceCore_recip_s24_L5_io_out_bits_sig),
     .io_out_bits_expDec (_DigitRecurrenceCore_recip_s24_L5_io_out_bits_expDec)

@@ -23,8 +23,8 @@ import chisel3.util._
   *
   * `latency` registers are spread evenly over the n iteration boundaries (Pipeline.spread), so
   * each stage holds about n / latency iterations and the last register is at the output: 0 is
-  * combinational, n is one register per iteration, more stacks extra registers at the output
-  * end. (Placing them latest first, as before, left the first n - latency iterations as one
+  * combinational, n is one register per iteration, n + 1 also registers the initial state
+  * (RootCoreSelect.cuts), more stacks extra registers at the output end. (Placing them latest first, as before, left the first n - latency iterations as one
   * combinational path: the timing proxy's slowest path in the SCPU, docs/afu.md "Timing".)
   */
 class DigitRecurrenceCore(val op: RootOp, val sigBits: Int, val latency: Int) extends Module {
@@ -93,19 +93,28 @@ class DigitRecurrenceCore(val op: RootOp, val sigBits: Int, val latency: Int) ex
     rad(2 * resBits - 3 - 2 * i, 2 * resBits - 4 - 2 * i)
   }
 
+  /** a - b in a's width and whether a >= b, from one subtraction one bit wider. */
+  private def trySub(a: UInt, b: UInt): (Bool, UInt) = {
+    val w = math.max(a.getWidth, b.getWidth)
+    val d = a.pad(w) -& b.pad(w)
+    (!d(w), d(a.getWidth - 1, 0))
+  }
+
   private def step(st: State, i: Int): State = {
     val nx = Wire(new State)
     nx := st
     op match {
+      // Each compare is the subtraction's borrow (one carry chain, not a compare beside a
+      // subtractor), then a select: one chain and a LUT a step.
       case RootOp.Sqrt =>
         val r2 = Cat(st.r, radPair(st, i))
         val t  = Cat(st.q, 1.U(2.W))
-        val ge = r2 >= t
-        nx.r := Mux(ge, r2 - t, r2)
+        val (ge, diff) = trySub(r2, t)
+        nx.r := Mux(ge, diff, r2)
         nx.q := Cat(st.q, ge)
       case RootOp.Recip =>
-        val ge = st.r >= st.sig
-        nx.r := Cat(Mux(ge, st.r - st.sig, st.r), 0.U(1.W))
+        val (ge, diff) = trySub(st.r, st.sig)
+        nx.r := Cat(Mux(ge, diff, st.r), 0.U(1.W))
         nx.q := Cat(st.q, ge)
       case RootOp.Rsqrt =>
         val x  = Mux(st.expOdd, Cat(st.sig, 0.U(1.W)), st.sig) // X = sig << expOdd
@@ -120,8 +129,14 @@ class DigitRecurrenceCore(val op: RootOp, val sigBits: Int, val latency: Int) ex
     nx
   }
 
-  private val regs = Pipeline.spread(latency, n)
-  val sN = (0 until n).foldLeft(s0) { (st, i) =>
+  // Past one register an iteration, the next goes between the initial state and the first
+  // iteration (the initial remainder is a subtraction of its own); any more stack at the output.
+  private val initReg = if (latency > n) 1 else 0
+  private val regs = Pipeline.spread(latency - initReg, n)
+  private val s0r = Wire(new State)
+  s0r := Pipeline(s0, initReg, io.en)
+  if (initReg > 0) s0r.valid := Pipeline.valid(s0.valid, initReg, io.en)
+  val sN = (0 until n).foldLeft(s0r) { (st, i) =>
     val nx = step(st, i)
     val out = Wire(new State)
     out := Pipeline(nx, regs(i), io.en)

@@ -14,9 +14,10 @@ class FpRootIn(val w: Int) extends Bundle {
   *  - 1 register between the significand core and RoundRaw once latency >= 2,
   *  - then the core's own, up to `coreCuts` (one a digit-recurrence iteration, one a cut of the
   *    Newton-Raphson core: RootCoreSelect.cuts), so that a register first shortens the core;
-  *  - then one after the unpack (before the core's first iteration), and one between each two
-  *    of the rounder's locate, jam, increment and pack (RoundRaw), so that at coreCuts + 6
-  *    every stage is one iteration or one piece of the rounder;
+  *  - then one after the unpack (before the core's first iteration), one between each two
+  *    of the rounder's locate, jam, increment and pack (RoundRaw), and one between the
+  *    unpack's two halves (RawFloat.classify and normalize), so that at coreCuts + 7 every
+  *    stage is one iteration or one piece of the unpack or the rounder;
   *  - any more stack in the core (a digit recurrence at its output).
   */
 final case class RootLatency(latency: Int, coreCuts: Int) {
@@ -28,7 +29,8 @@ final case class RootLatency(latency: Int, coreCuts: Int) {
   val locateJam: Int   = math.min(math.max(extra - 1, 0), 1)
   val jamInc: Int      = math.min(math.max(extra - 2, 0), 1)
   val incPack: Int     = math.min(math.max(extra - 3, 0), 1)
-  val core: Int        = latency - output - preRound - unpack - locateJam - jamInc - incPack
+  val classify: Int    = math.min(math.max(extra - 4, 0), 1)
+  val core: Int        = latency - output - preRound - unpack - locateJam - jamInc - incPack - classify
 }
 
 /** The datapath shared by FpSqrt, FpRecip and FpRsqrt: unpack, special cases, exponent split,
@@ -51,9 +53,10 @@ abstract class FpRootUnit(val p: FpParams, val alg: RootAlgorithm, val latency: 
   val coreLatency: Int = split.core
 
   private val ew  = f.rawExpWidth + 1
-  private val raw = Pipeline(RawFloat(p, io.in.bits.a), split.unpack, io.en)
-  private val rmIn = Pipeline(io.in.bits.rm, split.unpack, io.en)
-  private val vIn  = Pipeline.valid(io.in.valid, split.unpack, io.en)
+  private val cls = Pipeline(RawFloat.classify(p, io.in.bits.a), split.classify, io.en)
+  private val raw = Pipeline(RawFloat.normalize(p, cls), split.unpack, io.en)
+  private val rmIn = Pipeline(io.in.bits.rm, split.classify + split.unpack, io.en)
+  private val vIn  = Pipeline.valid(io.in.valid, split.classify + split.unpack, io.en)
   private val e   = raw.sExp
   private val expOdd = e(0)
   private val half   = e >> 1 // arithmetic: floor(e/2)

@@ -17,16 +17,17 @@ object RootCoreSelect {
     collide.fp.model.NewtonRaphsonModel.core(op, nr, sigBits, sig, expOdd)
 
   /** Largest latency the operator accepts for `alg`: the core's own bound plus the operator's
-    * six registers (RootLatency; DigitRecurrence has no bound). */
+    * seven registers (RootLatency; DigitRecurrence has no bound). */
   def maxOperatorLatency(op: RootOp, alg: RootAlgorithm): Int = alg match {
     case RootAlgorithm.DigitRecurrence   => Int.MaxValue
-    case nr: RootAlgorithm.NewtonRaphson => NewtonRaphsonCore.maxLatency(op, nr) + 6
+    case nr: RootAlgorithm.NewtonRaphson => NewtonRaphsonCore.maxLatency(op, nr) + 7
   }
 
   /** Registers the core can place where each cuts a path: one an iteration of the digit
-    * recurrence, one a cut of the Newton-Raphson core (its natural latency). */
+    * recurrence and one after its initial state, one a cut of the Newton-Raphson core (its
+    * natural latency). */
   def cuts(op: RootOp, sigBits: Int, alg: RootAlgorithm): Int = alg match {
-    case RootAlgorithm.DigitRecurrence   => sigBits
+    case RootAlgorithm.DigitRecurrence   => sigBits + 1
     case nr: RootAlgorithm.NewtonRaphson => NewtonRaphsonCore.naturalLatency(op, nr)
   }
 }

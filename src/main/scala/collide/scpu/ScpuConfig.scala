@@ -185,7 +185,7 @@ final case class ScpuConfig(
     require(mhz > 0, s"ScpuConfig $name: a clock must be above 0 MHz, got $mhz")
     def need(op: String, e: Either[Double, Int]) = e.left.map(worst =>
       f"SCPU $name at $mhz%.1f MHz on ${family.name}: $op has a stage of $worst%.0f ps (estimated), longer than the ${family.budget(mhz)}%.0f ps a period leaves")
-    def rootLat(op: RootOp, alg: RootAlgorithm) = RootCoreSelect.cuts(op, format.sigBits, alg) + 6
+    def rootLat(op: RootOp, alg: RootAlgorithm) = RootCoreSelect.cuts(op, format.sigBits, alg) + 7
     for {
       add <- need("FpAdd", FpAdd.latencyFor(params, family, mhz))
       mul <- need("FpMul", FpMul.latencyFor(params, family, mhz))

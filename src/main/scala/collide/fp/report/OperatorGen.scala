@@ -94,7 +94,7 @@ object OperatorGen {
     val shown = delays.map(d => f"$d%.0f").mkString(" ")
     // A digit-recurrence root has no delay model: at a clock, every stage is registered
     // (one iteration, or one piece of the unpack or the rounder, a stage: RootLatency).
-    val lat = rootOp(o.op).map(r => o.latency.getOrElse(RootCoreSelect.cuts(r, p.format.sigBits, RootAlgorithm.DigitRecurrence) + 6)).getOrElse(o.latency.getOrElse {
+    val lat = rootOp(o.op).map(r => o.latency.getOrElse(RootCoreSelect.cuts(r, p.format.sigBits, RootAlgorithm.DigitRecurrence) + 7)).getOrElse(o.latency.getOrElse {
       val mhz = o.mhz.get
       Pipeline.latencyFor(fam.budget(mhz), delays).fold(
         worst => fail(f"--mhz $mhz%.1f: ${o.op} ${p.name} has a stage of $worst%.0f ps on ${fam.name} (stages, ps: $shown), longer than the ${fam.budget(mhz)}%.0f ps a stage may take"),
