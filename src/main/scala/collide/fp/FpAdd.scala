@@ -16,14 +16,15 @@ class FpAddIn(val w: Int) extends Bundle {
   * Single path: swap so the larger magnitude is `big`, align `small` right with a sticky
   * jam into 3 extra bits (guard, round, sticky: enough that a subtraction after a shift of
   * 2 or more cancels at most one bit and still leaves round and sticky exact), add or
-  * subtract, normalize with a leading-zero count, then the shared RoundRaw in two halves.
+  * subtract, normalize with a leading-zero count, then the shared RoundRaw in four stages.
   *
   * Twelve stages, each ending at a boundary where registers may go: classify the operands
   * (and compare their magnitudes), normalize subnormal ones, swap, clamp the shift, align,
   * add, count leading zeros, normalize, and the rounder's four (locate, jam, increment,
   * pack: the output). Pipeline.balanced places the `latency` registers by the stages'
-  * estimated delays on `family` (FpAdd.delays), output first, so each register up to twelve cuts the longest
-  * path left. Only the registers' places depend on the family; the result never does.
+  * estimated delays on `family` (FpAdd.delays), output first, so each register up to twelve
+  * cuts the longest path left. Only the registers' places depend on the family; the result
+  * never does.
   */
 class FpAdd(val p: FpParams, val latency: Int, val family: FpgaFamily = FpgaFamily.default) extends Module {
   require(latency >= 0, s"FpAdd latency must be >= 0, got $latency")
@@ -204,7 +205,7 @@ object FpAdd {
       math.max(raw(0), fam.adder((f.width - 1) - (f.width - 1) / 2)),
       raw(1),
       fam.adder(ew) + fam.luts(2),
-      fam.luts(2), // the clamp: compares with constants
+      fam.adder(ew), // the clamp: compares with constants, which Yosys builds on the carry chain
       fam.shifter(log2Ceil(2 * xw + 2)) + fam.reduce(xw),
       fam.adder(xw + 1) + fam.luts(1),
       fam.lzc(xw + 1),

@@ -17,14 +17,14 @@ class FpMulIn(val w: Int) extends Bundle {
   * exponent spans about twice the format's range (two subnormals multiplied), so RoundIn's
   * exponent is one bit wider than RawFloat's; RoundRaw denormalizes or flushes tiny results.
   *
-  * The significand product is built from `family`'s DSP tiles (FpMul.tiles: operands cut into
-  * chunks of the tile's width, one product a chunk pair), summed by a tree of adders. Stages,
-  * each ending at a boundary where registers may go: unpack (classify, then normalize
-  * subnormal operands), the tiles' products, one stage a
-  * level of the adder tree (none when one tile holds the product), normalize, and the
-  * rounder's four (locate, jam, increment, pack: the output). Pipeline.balanced places the `latency` registers by their
-  * estimated delays (FpMul.delays), output first, so each register up to the stage count cuts
-  * the longest path left. The result never depends on the family.
+  * The significand product is built from `family`'s DSP tiles (FpMul.chunks: operands cut
+  * into chunks of the tile's width, one product a pair of chunks), summed by a tree of adders.
+  * Stages, each ending at a boundary where registers may go: unpack (classify, then normalize
+  * subnormal operands), the tiles' products, one stage a level of the adder tree (none when
+  * one tile holds the product), normalize, and the rounder's four (locate, jam, increment,
+  * pack: the output). Pipeline.balanced places the `latency` registers by their estimated
+  * delays (FpMul.delays), output first, so each register up to the stage count cuts the
+  * longest path left. The result never depends on the family.
   */
 class FpMul(val p: FpParams, val latency: Int, val family: FpgaFamily = FpgaFamily.default) extends Module {
   require(latency >= 0, s"FpMul latency must be >= 0, got $latency")
