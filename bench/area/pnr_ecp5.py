@@ -27,6 +27,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
 import area  # noqa: E402
+from afu_timing import rtl_commit  # noqa: E402
 
 BIN = Path(sys.executable).parent
 # The ECP5 parts nextpnr knows by flag, with the package each is timed in here (the largest
@@ -101,15 +102,9 @@ def proxy(sv: Path, top: str, work: Path) -> dict:
     return dict(zip(("cyclonev_ps", "arriav_ps"), ps))
 
 
-def commit() -> str:
-    def git(*a):
-        return subprocess.run(["git", *a], cwd=ROOT, capture_output=True, text=True).stdout.strip()
-    return git("rev-parse", "--short", "HEAD") + ("+changes" if git("status", "--porcelain", "--", "src/main") else "")
-
-
 def run(designs, device="85k", speed=6, freq=100.0, seed=1, with_proxy=False, work=None):
     rows = []
-    sha = commit()
+    sha = rtl_commit(ROOT)  # this repository's HEAD, "+changes" while its RTL differs
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(work or tmp)
         work.mkdir(parents=True, exist_ok=True)

@@ -34,7 +34,7 @@ class FpAdd(val p: FpParams, val latency: Int, val family: FpgaFamily = FpgaFami
     val in  = Input(Valid(new FpAddIn(f.width)))
     val out = Output(Valid(new FpOut(f.width)))
   })
-  override def desiredName = s"FpAdd_${p.name}_L$latency${FpAdd.familySuffix(family)}"
+  override def desiredName = s"FpAdd_${p.name}_L$latency${family.moduleSuffix}"
 
   private val regs = Pipeline.balanced(latency, FpAdd.delays(p, family))
   private def stage[T <: Data](i: Int, x: T): T = Pipeline(x, regs(i), io.en)
@@ -132,8 +132,9 @@ class FpAdd(val p: FpParams, val latency: Int, val family: FpgaFamily = FpgaFami
   s3.exp    := s2r.exp
   s3.bigSig := s2r.bigSig
   s3.smlSig := s2r.smlSig
-  s3.d      := Mux(s2r.dist > (xw + 1).U, (xw + 1).U, s2r.dist)
-  s3.far    := s2r.dist > xw.U
+  private val (clamped, far) = RoundRaw.clampJam(s2r.dist, xw)
+  s3.d      := clamped
+  s3.far    := far
   private val s3r = stage(3, s3)
 
   // ---- Stage 4: align ----
@@ -216,7 +217,4 @@ object FpAdd {
   /** The smallest latency whose stages fit `mhz` on `fam`, or Left with the longest stage (ps). */
   def latencyFor(p: FpParams, fam: FpgaFamily, mhz: Double): Either[Double, Int] =
     Pipeline.latencyFor(fam.budget(mhz), delays(p, fam))
-
-  /** Module names carry the family when it is not the default (two placements never share a name). */
-  def familySuffix(fam: FpgaFamily): String = if (fam == FpgaFamily.default) "" else s"_${fam.name}"
 }

@@ -34,7 +34,7 @@ class FpMul(val p: FpParams, val latency: Int, val family: FpgaFamily = FpgaFami
     val in  = Input(Valid(new FpMulIn(f.width)))
     val out = Output(Valid(new FpOut(f.width)))
   })
-  override def desiredName = s"FpMul_${p.name}_L$latency${FpAdd.familySuffix(family)}"
+  override def desiredName = s"FpMul_${p.name}_L$latency${family.moduleSuffix}"
 
   private val regs = Pipeline.balanced(latency, FpMul.delays(p, family))
   private def stage[T <: Data](i: Int, x: T): T = Pipeline(x, regs(i), io.en)

@@ -25,11 +25,13 @@ final case class RootLatency(latency: Int, coreCuts: Int) {
   val output: Int   = math.min(latency, 1)
   val preRound: Int = math.min(math.max(latency - 1, 0), 1)
   private val extra = math.max(latency - 2 - coreCuts, 0)
-  val unpack: Int      = math.min(extra, 1)
-  val locateJam: Int   = math.min(math.max(extra - 1, 0), 1)
-  val jamInc: Int      = math.min(math.max(extra - 2, 0), 1)
-  val incPack: Int     = math.min(math.max(extra - 3, 0), 1)
-  val classify: Int    = math.min(math.max(extra - 4, 0), 1)
+  /** One register for the k-th boundary past the core's (0-based), once the latency reaches it. */
+  private def past(k: Int): Int = if (extra > k) 1 else 0
+  val unpack: Int      = past(0)
+  val locateJam: Int   = past(1)
+  val jamInc: Int      = past(2)
+  val incPack: Int     = past(3)
+  val classify: Int    = past(4)
   val core: Int        = latency - output - preRound - unpack - locateJam - jamInc - incPack - classify
 }
 
@@ -117,12 +119,13 @@ abstract class FpRootUnit(val p: FpParams, val alg: RootAlgorithm, val latency: 
 
   private val riR  = Pipeline(ri, split.preRound, io.en)
   private val rmR  = Pipeline(sideOut.rm, split.preRound, io.en)
+  private val rounderRegs = Seq(split.locateJam, split.jamInc, split.incPack, split.output)
   private val at   = Pipeline(RoundRaw.locate(p, riR, rmR), split.locateJam, io.en)
   private val mid  = Pipeline(RoundRaw.jam(p, at), split.jamInc, io.en)
   private val inc  = Pipeline(RoundRaw.increment(p, mid), split.incPack, io.en)
   io.out.bits  := Pipeline(RoundRaw.pack(p, inc), split.output, io.en)
   // The core's valid covers its own registers; the rest are counted here.
-  io.out.valid := Pipeline.valid(core.out.valid, split.preRound + split.locateJam + split.jamInc + split.incPack + split.output, io.en)
+  io.out.valid := Pipeline.valid(core.out.valid, split.preRound + rounderRegs.sum, io.en)
 
   override def desiredName = s"Fp${op.name.capitalize}_${p.name}_${alg.name}_L$latency"
 }

@@ -61,6 +61,10 @@ final case class FpgaFamily(
   def dsp: Double = dspPs.toDouble
   /** The time a stage may take at `mhz`: the period less the launching register's clock-to-output. */
   def budget(mhz: Double): Double = 1e6 / mhz - clkToQPs
+
+  /** What module names carry for operators placed for this family: nothing for the default,
+    * so two placements never share a name and the default's names stay short. */
+  def moduleSuffix: String = if (this == FpgaFamily.default) "" else s"_$name"
 }
 
 object FpgaFamily {

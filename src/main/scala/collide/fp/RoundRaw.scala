@@ -21,7 +21,7 @@ class RoundIn(val f: FloatFormat, val expWidth: Int) extends Bundle {
   val flags  = UInt(FpFlags.width.W)
 }
 
-/** What the rounder's stages hand on (RoundRaw.locate, jam, finish): the specials, whether the
+/** What the rounder's stages hand on (RoundRaw.locate, jam, increment, pack): the specials, whether the
   * result is tiny (then denormalized) or flushed, and the exponent fields and overflow tests for
   * both outcomes of the increment's carry, so the last stage is one significand adder and selects. */
 class RoundCommon(val f: FloatFormat) extends Bundle {
@@ -80,9 +80,13 @@ class FpOut(val w: Int) extends Bundle {
 object RoundRaw {
   /** Shift right, OR-ing every bit shifted out into the result's last bit. */
   def shiftRightJam(x: UInt, dist: UInt): UInt = {
-    val w = x.getWidth
-    jamBy(x, Mux(dist > (w + 1).U, (w + 1).U, dist), dist > w.U)
+    val (d, far) = clampJam(dist, x.getWidth)
+    jamBy(x, d, far)
   }
+
+  /** The distance [[jamBy]] takes for a `w`-bit value: clamped to at most w + 1, and whether it
+    * was above w (every bit falls off). */
+  def clampJam(dist: UInt, w: Int): (UInt, Bool) = (Mux(dist > (w + 1).U, (w + 1).U, dist), dist > w.U)
 
   /** shiftRightJam with the distance already clamped to at most w + 1 (`d`) and `far` when
     * the distance is above w, so a pipeline can compute them a stage earlier. */
@@ -95,10 +99,7 @@ object RoundRaw {
   }
 
   /** Rounds and packs in one combinational step: [[locate]], [[jam]], [[increment]], [[pack]]. */
-  def apply(p: FpParams, in: RoundIn, rm: UInt): FpOut = finish(p, jam(p, locate(p, in, rm)))
-
-  /** The rounder's last two stages in one: [[pack]] of [[increment]]. */
-  def finish(p: FpParams, in: RoundMid): FpOut = pack(p, increment(p, in))
+  def apply(p: FpParams, in: RoundIn, rm: UInt): FpOut = pack(p, increment(p, jam(p, locate(p, in, rm))))
 
   /** The rounder's first stage: is the result tiny, how far to denormalize it, and the
     * exponent fields for either carry of the increment (adders and compares only). */
@@ -109,8 +110,9 @@ object RoundRaw {
     val out = Wire(new RoundAt(f))
     out.tiny := in.sExp < f.minExp.S(ew.W)
     val dist = (f.minExp.S(ew.W) - in.sExp).asUInt
-    out.dist := Mux(dist > (w + 1).U, (w + 1).U, dist)
-    out.far  := dist > w.U
+    val (clamped, far) = clampJam(dist, w)
+    out.dist := clamped
+    out.far  := far
     out.sig  := in.sig
     out.flush := out.tiny && (!p.subnormals).B
     out.toInf := MuxLookup(rm, true.B)(Seq(

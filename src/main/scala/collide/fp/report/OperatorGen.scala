@@ -64,7 +64,7 @@ object OperatorGen {
 
   def moduleName(op: String, p: FpParams, latency: Int, family: FpgaFamily): String =
     if (rootOp(op).isDefined) s"Fp${op.capitalize}_${p.name}_dr_L$latency"
-    else s"Fp${op.capitalize}_${p.name}_L$latency${FpAdd.familySuffix(family)}"
+    else s"Fp${op.capitalize}_${p.name}_L$latency${family.moduleSuffix}"
 
   private val builder = scopt.OParser.builder[Opts]
   private val parser = {
