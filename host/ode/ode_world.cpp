@@ -2,6 +2,8 @@
 
 #include <cstdint>
 
+#include "ode/hash_space_repair.hpp"
+
 namespace collide::ode {
 
 dSpaceID createSpace(limits::OdeSpaceKind kind) {
@@ -54,7 +56,7 @@ World::~World() {
 
 void World::collideSpace(void* data, dNearCallback* callback) {
   spaceLocked_ = true;  // stays set if an ODE error unwinds out of dSpaceCollide
-  dSpaceCollide(space_, data, callback);
+  ode::collideSpace(space_, data, callback);  // dSpaceCollide, with the pairs ODE's hash space drops
   spaceLocked_ = false;
 }
 

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "batch/sane_ranges.hpp"
+#include "ode/hash_space_repair.hpp"
 #include "ode/ode_world.hpp"
 
 namespace collide::world {
@@ -66,7 +67,7 @@ void OdeSpaceBroadPhase::findPairs(const SphereTable& s, const std::vector<std::
     throw std::logic_error("OdeSpaceBroadPhase::findPairs before prepare on this table");
   (void)members;  // the space holds exactly the members prepare() was given
   out_ = &out;
-  dSpaceCollide(space_, this, &OdeSpaceBroadPhase::nearCallback);
+  ode::collideSpace(space_, this, &OdeSpaceBroadPhase::nearCallback);  // dSpaceCollide, made whole
   out_ = nullptr;
   if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
 }
