@@ -259,7 +259,8 @@ elseif(CHECK STREQUAL "cosim_equals_rtl")
     list(GET scene 0 file)
     list(GET scene 1 steps)
     foreach(exe COLLIDE COSIM)
-      execute_process(COMMAND ${${exe}} run ${file} --backend rtl --steps ${steps} --summary ${WORK}/${exe}.json
+      # One clock for both: each binary would otherwise use what its own Verilog reaches.
+      execute_process(COMMAND ${${exe}} run ${file} --backend rtl --steps ${steps} --clock-mhz 200 --summary ${WORK}/${exe}.json
                               --positions ${WORK}/${exe}_pos.csv
                       RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
       expect_rc(0)
@@ -288,7 +289,7 @@ elseif(CHECK STREQUAL "cosim_equals_rtl")
   foreach(exe_dir "COLLIDE;default" "COSIM;cosim")
     list(GET exe_dir 0 exe)
     list(GET exe_dir 1 dir)
-    execute_process(COMMAND ${${exe}} pairs --afu ${REPO}/generated/${dir} --dense --link qpi --in ${WORK}/in.csv
+    execute_process(COMMAND ${${exe}} pairs --afu ${REPO}/generated/${dir} --dense --link qpi --clock-mhz 200 --in ${WORK}/in.csv
                             --out ${WORK}/${exe}_pairs.csv
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     expect_rc(0)
@@ -303,7 +304,13 @@ elseif(CHECK STREQUAL "afu_pairs")
     execute_process(COMMAND ${COLLIDE} pairs --afu ${AFU_DIR} --link ${link} --in ${WORK}/in.csv --out ${WORK}/out.csv
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     expect_rc(0)
+    # The clock line: the link's (the target) or, lower, what the Verilog reaches (timing.json).
+    expect_match("${err}" "\n  AFU clock [0-9.]+ MHz: (the target|what its cells reach, short of the target [0-9.]+ MHz);")
   endforeach()
+  # The baseline of the study below: 200 MHz named, so it does not hang on the Verilog's clock.
+  execute_process(COMMAND ${COLLIDE} pairs --afu ${AFU_DIR} --link qpi --clock-mhz 200 --in ${WORK}/in.csv --out ${WORK}/out.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
   # At another clock: the same contacts, more time, the clock named; out of range or without
   # an AFU it is refused, naming the option.
   execute_process(COMMAND ${COLLIDE} pairs --afu ${AFU_DIR} --link qpi --clock-mhz 50 --in ${WORK}/in.csv
@@ -667,7 +674,26 @@ elseif(CHECK STREQUAL "spheres_afu_world")
   if(NOT got STREQUAL want)
     message(FATAL_ERROR "spheres --afu --clock-mhz 100 differs from --backend simd; see ${WORK}")
   endif()
-  file(READ ${WORK}/afu_ideal.json at200)
+  # Without --clock-mhz the time used the lower of the link's 200 MHz and the Verilog's reach.
+  file(READ ${WORK}/afu_ideal.json atDefault)
+  string(JSON used GET "${atDefault}" afu clock used_mhz)
+  string(JSON reached TYPE "${atDefault}" afu clock reached)
+  if(reached STREQUAL "NULL")
+    set(want_used 200)
+  else()
+    string(JSON want_used GET "${atDefault}" afu clock reached proxy_mhz)
+    if(want_used GREATER 200)
+      set(want_used 200)
+    endif()
+  endif()
+  if(NOT used EQUAL want_used)
+    message(FATAL_ERROR "spheres --afu without --clock-mhz used ${used} MHz, not ${want_used}:\n${atDefault}")
+  endif()
+  execute_process(COMMAND ${COLLIDE} spheres --afu ${AFU_DIR} --link ideal --clock-mhz 200 --in ${in}
+                          --out ${WORK}/afu_200.csv --summary ${WORK}/afu_200.json
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  expect_rc(0)
+  file(READ ${WORK}/afu_200.json at200)
   file(READ ${WORK}/afu_100.json at100)
   string(JSON clock GET "${at100}" afu clock_mhz)
   string(JSON clock200 GET "${at200}" afu clock_mhz)

@@ -14,6 +14,7 @@ Each row: the block, its count in the AFU, the slowest path's cell delay in ps f
 that delay alone allows (MHz), where the path starts and ends and the LUTs and carry cells on
 it, and the commit of the RTL. Cached by each block's Verilog (bench/sweeplib/area.py), as the area is. `--only` keeps the
 blocks whose module name matches (for example `--only Scpu_` to compare SCPU configurations).
+Without `--only`, each folder also gets its timing.json (bench/area/reached_clock.py).
 `--area` also runs the area proxy (bench/area/yosys_area.sh) on each block as it is cut, and adds
 its LUT cells, arithmetic cells, DSP blocks and flip-flops: what a shorter path costs.
 """
@@ -28,6 +29,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
 import area  # noqa: E402
+import reached_clock  # noqa: E402
 
 FIELDS = ["folder", "module", "count", *[f"{f}_ps" for f in area.TIMING_FAMILIES],
           *[f"{f}_mhz" for f in area.TIMING_FAMILIES], "path_from", "path_to", "path_luts", "path_carry",
@@ -107,6 +109,9 @@ def main(argv=None):
         print(f"| {r['module']} | {r['count']} | {r[fam[0] + '_ps']:,} | {r[fam[0] + '_mhz']} | {r[fam[1] + '_ps']:,} | "
               f"{r[fam[1] + '_mhz']} | {r['path_from']} | {r['path_to']} | {r['path_luts']} | {r['path_carry']} |")
     print(f"wrote {a.out}")
+    if not a.only:  # every block timed: the clock each folder reaches, for the host (timing.json)
+        for folder in map(Path, a.folders):
+            print(f"wrote {reached_clock.write(folder, rows, rtl_commit(folder.resolve()))}")
 
 
 if __name__ == "__main__":

@@ -208,3 +208,42 @@ class CommittedResults(unittest.TestCase):
                              f"generated/{folder} changed since {commit}, whose Verilog afu.csv timed: run "
                              f"tools/pyenv bench/area/afu_timing.py generated/world generated/default again")
 
+
+
+class ReachedClock(unittest.TestCase):
+    """bench/area/reached_clock.py: each folder's timing.json, the clock its Verilog reaches."""
+
+    def test_the_slowest_block_of_each_family_sets_the_clock_and_the_verilog_is_named_by_hash(self):
+        import reached_clock
+        with tempfile.TemporaryDirectory() as d:
+            folder = Path(d) / "x"
+            folder.mkdir()
+            (folder / "Afu_x.sv").write_text("module Afu_x; endmodule\n")
+            rows = [{"folder": "x", "module": "A", "cyclonev_ps": "5000", "arriav_ps": "9000"},
+                    {"folder": "x", "module": "B", "cyclonev_ps": "20000", "arriav_ps": "4000"},
+                    {"folder": "y", "module": "C", "cyclonev_ps": "90000", "arriav_ps": "90000"}]
+            pnr = Path(d) / "pnr.csv"
+            pnr.write_text("op,routed_over_cyclonev\nadd,1.5\nmul,2.0\nsqrt,\nrecip,1.0\n")
+            t = reached_clock.describe(folder, rows, "abc1234", pnr)
+            self.assertEqual(t["families"]["cyclonev"], {"slowest_block": "B", "cells_ps": 20000, "proxy_mhz": 50.0,
+                                                         "routed_estimate_mhz": 33.33})
+            self.assertEqual(t["families"]["arriav"]["slowest_block"], "A")
+            self.assertEqual(t["routing_model"]["ratio"], 1.5)
+            self.assertEqual(t["routing_model"]["operators"], 3)
+            self.assertEqual(list(t["verilog"]), ["Afu_x.sv"])
+            self.assertEqual(t["verilog"]["Afu_x.sv"], reached_clock.sha256(folder / "Afu_x.sv"))
+            with self.assertRaises(SystemExit) as e:
+                reached_clock.describe(Path(d) / "z", rows, "abc1234", pnr)
+            self.assertIn("no rows of it", str(e.exception))
+
+    def test_the_committed_timing_json_describes_the_committed_verilog_and_afu_csv(self):
+        import json
+        import reached_clock
+        with open(ROOT / "bench/results/timing/afu.csv") as f:
+            rows = list(csv.DictReader(f))
+        for name in sorted({r["folder"] for r in rows}):
+            folder = ROOT / "generated" / name
+            have = json.loads((folder / "timing.json").read_text())
+            commit = next(r["commit"] for r in rows if r["folder"] == name)
+            self.assertEqual(have, reached_clock.describe(folder, rows, commit),
+                             f"generated/{name}/timing.json is stale: run tools/pyenv bench/area/reached_clock.py generated/{name}")

@@ -1,23 +1,28 @@
 #pragma once
-// --clock-mhz, shared by `run`, `pairs` and `spheres`: the AFU's same cycles timed at another
-// clock than the link preset's (for example the one the timing proxy says its cells allow);
-// the link's own rates and latencies stay in ns. Checked as a link's clock_mhz is.
+// The AFU's clock, shared by `run`, `pairs` and `spheres`: the link's clock_mhz is the target the
+// design is built for; the modelled times use the lower of it and what the built-in AFU's Verilog
+// reaches by the timing proxy (driver/afu_clock.hpp), unless --clock-mhz names one for a study.
+// The link's own rates and latencies stay in ns. Checked as a link's clock_mhz is.
 #include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "driver/afu_clock.hpp"
 #include "link/link_params.hpp"
 
 namespace collide::cli {
 
-inline void applyClockOption(link::LinkParams& lp, const std::optional<double>& mhz) {
-  if (!mhz) return;
-  lp.clockMHz = *mhz;
+inline driver::ClockChoice applyClockOption(link::LinkParams& lp, const std::optional<double>& mhz) {
+  std::string why;
+  const auto reached = driver::builtInReachedClock(why);
+  const auto choice = driver::chooseClock(lp.clockMHz, reached, why, mhz);
+  lp.clockMHz = choice.usedMHz;
   try {
     lp.validate();
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(std::string("--clock-mhz: ") + e.what());
+    throw std::invalid_argument(std::string(mhz ? "--clock-mhz: " : "the AFU's reached clock: ") + e.what());
   }
+  return choice;
 }
 
 // The refusal where no AFU runs: the clock would time nothing.

@@ -1,6 +1,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/clock_option.hpp"
 #include "cli/command_errors.hpp"
@@ -19,11 +20,12 @@ namespace collide::cli {
 int runPairs(const PairsOptions& o) {
   return reportErrors("collide pairs", [&]() -> int {
     BackendRequest req;
+    std::optional<driver::ClockChoice> clock;
     if (!o.afu.empty()) {
       req.name = "rtl";
       req.afuDir = o.afu;
       req.link = link::presetParams(o.link);
-      applyClockOption(req.link, o.clockMHz);
+      clock = applyClockOption(req.link, o.clockMHz);
       req.driver.dense = o.dense;
       req.driver.skipIdle = !o.noSkip;
       req.port.traceFile = o.trace;
@@ -58,7 +60,7 @@ int runPairs(const PairsOptions& o) {
       const auto& b = rtl->lastBatch();
       std::cerr << ", " << b.runs << " AFU runs, " << b.counters.cyclesTotal << " AFU cycles, "
                 << b.stats.modelledNs / 1e3 << " us modelled (link " << req.link.name << " at "
-                << req.link.clockMHz << " MHz)";
+                << req.link.clockMHz << " MHz)\n  " << clock->describe();
     }
     std::cerr << "\n";
     return 0;

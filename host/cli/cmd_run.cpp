@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -106,7 +107,8 @@ int runScene(const RunOptions& o) {
     if (o.steps) sc.steps = *o.steps;
     if (o.link) sc.link = link::presetParams(*o.link);
     const bool rtl = sc.backend == "rtl";
-    if (rtl) applyClockOption(sc.link, o.clockMHz);  // over the scene's link or --link
+    std::optional<driver::ClockChoice> clock;
+    if (rtl) clock = applyClockOption(sc.link, o.clockMHz);  // over the scene's link or --link
     else refuseClockOption(o.clockMHz, "backend " + sc.backend);
     // A scene that cannot fit is refused before ODE allocates it (bench/results/scale).
     if (const auto avail = util::availableMemoryBytes()) {
@@ -153,6 +155,7 @@ int runScene(const RunOptions& o) {
       std::cout << ", AFU " << (driver::builtInAfuPreset().empty() ? "?" : driver::builtInAfuPreset()) << " at "
                 << sc.link.clockMHz << " MHz";
     std::cout << "\n";
+    if (clock) std::cout << "  " << clock->describe() << "\n";
 
     // The same pairs through ODE's collider and the simd batch in binary32 and binary64, timed
     // each step: the CPU's price of precision beside the AFU's.
@@ -330,6 +333,7 @@ int runScene(const RunOptions& o) {
         j["afu"] = {{"preset", driver::builtInAfuPreset()},
                     {"link", sc.link.name},
                     {"clock_mhz", sc.link.clockMHz},
+                    {"clock", clock->toJson()},
                     {"runs", afu.runs},
                     {"modelled_ns", afu.stats.modelledNs},
                     {"cycle_ns", afu.cycleNs},

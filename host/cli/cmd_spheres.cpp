@@ -81,7 +81,7 @@ nlohmann::json statusJson(const driver::StatusLine& s) {
 int runSpheresAfu(const SpheresOptions& o) {
   if (!o.space.empty()) throw std::invalid_argument("--space " + o.space + " applies to --backend ode (the AFU has its own grid)");
   link::LinkParams lp = link::presetParams(o.link);
-  applyClockOption(lp, o.clockMHz);
+  const auto clock = applyClockOption(lp, o.clockMHz);
   driver::AfuPortOptions po;
   po.clockMHz = lp.clockMHz;
   world::AfuWorld afu(o.afu, lp, po);
@@ -102,7 +102,7 @@ int runSpheresAfu(const SpheresOptions& o) {
   std::cerr << "collide spheres: " << spheres.size() << " spheres (" << w.badSpheres.size() << " bad), " << w.candidates
             << " candidate pairs, " << w.pairs.size() << " contacts, on the AFU (world mode, cells of edge " << driver::cellEdge(level) << ", "
             << s.worldLarge << " large; " << toString(w.contacts.format) << ", link " << lp.name << " at "
-            << lp.clockMHz << " MHz)\n"
+            << lp.clockMHz << " MHz)\n  " << clock.describe() << "\n"
             << std::fixed << std::setprecision(1) << "  modelled time " << totalNs / 1e3 << " us (link bound "
             << r.run.stats.linkBoundNs / 1e3 << " us; " << r.run.stats.readLines << " lines read, " << r.run.stats.writeLines
             << " written; " << afu.lastSlabs() << (afu.lastSlabs() == 1 ? " slab, " : " slabs or boxes, ") << r.attempts
@@ -124,6 +124,7 @@ int runSpheresAfu(const SpheresOptions& o) {
                         {"finish_ns", 0}};
     j["afu"] = {{"link", lp.name},
                 {"clock_mhz", lp.clockMHz},
+                {"clock", clock.toJson()},
                 {"modelled_ns", totalNs},
                 {"link_bound_ns", r.run.stats.linkBoundNs},
                 {"runs", r.attempts},

@@ -34,6 +34,9 @@ std::string builtInAfuPreset();
 // The manifest.json text of the AFU compiled into this binary, or "" if none (what an
 // empty AFU folder means: the built-in one).
 std::string builtInAfuManifest();
+// The timing.json text of the AFU compiled into this binary (the clock its Verilog reaches), or
+// "" with the reason in `why` (no AFU, no timing.json, or one describing other Verilog).
+std::string builtInAfuTiming(std::string& why);
 // The manifest of the AFU in `afuDir`, or (empty) of the one built in; errors as
 // loadManifest / parseManifest.
 inline Manifest afuManifest(const std::filesystem::path& afuDir) {

@@ -5,6 +5,10 @@ namespace collide::driver {
 
 std::string builtInAfuPreset() { return ""; }
 std::string builtInAfuManifest() { return ""; }
+std::string builtInAfuTiming(std::string& why) {
+  why = "this collide has no AFU built in";
+  return "";
+}
 
 std::unique_ptr<AfuPort> makeAfuPort(const std::filesystem::path& afuDir, const AfuPortOptions&) {
   throw AfuUnavailable(

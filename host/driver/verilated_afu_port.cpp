@@ -17,10 +17,17 @@
 
 namespace collide::driver {
 
-const char* collideBuiltInManifest();  // generated next to the build (CollideVerilate.cmake)
+// Generated next to the build (CollideVerilate.cmake).
+const char* collideBuiltInManifest();
+const char* collideBuiltInTiming();
+const char* collideBuiltInTimingNote();
 
 std::string builtInAfuPreset() { return COLLIDE_AFU_PRESET; }
 std::string builtInAfuManifest() { return collideBuiltInManifest(); }
+std::string builtInAfuTiming(std::string& why) {
+  why = collideBuiltInTimingNote();
+  return collideBuiltInTiming();
+}
 
 namespace {
 

@@ -1,0 +1,96 @@
+"""The clock a generated AFU reaches, written beside its Verilog as timing.json for the host.
+
+    tools/pyenv bench/area/reached_clock.py generated/default generated/world [--csv bench/results/timing/afu.csv]
+
+From the timing proxy's rows of the folder (bench/area/afu_timing.py, which also calls this
+after a full run): for each family, the slowest block's cells-only delay and the clock it
+allows. That is an upper bound on the frequency (no routing). Beside it, a routing-calibrated
+estimate: the proxy's period times the median ratio of routed (nextpnr-ecp5) to cells-only
+(Cyclone V proxy) delay over the operators of bench/results/pnr/operators.csv, a model, not a
+measurement of an Intel part (docs/timing.md).
+
+timing.json names the Verilog it describes by SHA-256, so the host build (CollideVerilate.cmake)
+uses it only for that Verilog; the rows must come from the commit of the folder's Verilog.
+"""
+import argparse
+import csv
+import hashlib
+import json
+import statistics
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "bench" / "sweeplib"))
+import area  # noqa: E402
+
+PNR_CSV = ROOT / "bench/results/pnr/operators.csv"
+
+
+def routed_ratio(pnr_csv: Path = PNR_CSV):
+    """(median routed / Cyclone V cells-only ratio, how many operators) from the P&R results."""
+    with open(pnr_csv) as f:
+        ratios = [float(r["routed_over_cyclonev"]) for r in csv.DictReader(f) if r["routed_over_cyclonev"]]
+    if not ratios:
+        raise SystemExit(f"{pnr_csv}: no routed_over_cyclonev figures")
+    return statistics.median(ratios), len(ratios)
+
+
+def sha256(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def describe(folder: Path, rows, commit: str, pnr_csv: Path = PNR_CSV) -> dict:
+    """timing.json's content for the folder from its afu.csv rows (dicts as afu_timing writes)."""
+    rows = [r for r in rows if r["folder"] == folder.name]
+    if not rows:
+        raise SystemExit(f"{folder}: no rows of it in the timing CSV (run bench/area/afu_timing.py {folder})")
+    ratio, n = routed_ratio(pnr_csv)
+    families = {}
+    for fam in area.TIMING_FAMILIES:
+        worst = max(rows, key=lambda r: int(r[f"{fam}_ps"]))
+        ps = int(worst[f"{fam}_ps"])
+        if ps <= 0:
+            raise SystemExit(f"{folder}: no timed block for {fam}")
+        families[fam] = {"slowest_block": worst["module"], "cells_ps": ps, "proxy_mhz": round(1e6 / ps, 2),
+                         "routed_estimate_mhz": round(1e6 / (ps * ratio), 2)}
+    return {
+        "what": "the clock this Verilog reaches by the timing proxy: Yosys sta over each family's cell delays, "
+                "block by block, no routing (an upper bound on the frequency); routed_estimate_mhz divides it by the "
+                "median routed/cells-only ratio of the ECP5 place and route (a model)",
+        "commit": commit,
+        "verilog": {sv.name: sha256(sv) for sv in sorted(folder.glob("*.sv"))},
+        "families": families,
+        "routing_model": {"ratio": round(ratio, 3), "operators": n, "source": "bench/results/pnr/operators.csv"},
+    }
+
+
+def write(folder: Path, rows, commit: str) -> Path:
+    out = folder / "timing.json"
+    out.write_text(json.dumps(describe(folder, rows, commit), indent=2) + "\n")
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("folders", nargs="+")
+    ap.add_argument("--csv", default=str(ROOT / "bench/results/timing/afu.csv"))
+    a = ap.parse_args(argv)
+    with open(a.csv) as f:
+        rows = list(csv.DictReader(f))
+    for folder in map(Path, a.folders):
+        commits = {r["commit"] for r in rows if r["folder"] == folder.name}
+        if len(commits) != 1 or "+changes" in next(iter(commits), "+changes"):
+            raise SystemExit(f"{folder}: the CSV's rows name {sorted(commits) or 'no commit'}; need one clean commit")
+        commit = commits.pop()
+        # The rows must describe this Verilog: unchanged since the commit they timed.
+        diff = subprocess.run(["git", "diff", "--quiet", commit, "--", str(folder.resolve() / "*.sv")], cwd=ROOT)
+        if diff.returncode != 0:
+            raise SystemExit(f"{folder}: its Verilog changed since {commit}, which the CSV timed: run "
+                             f"bench/area/afu_timing.py {folder} again")
+        print(f"wrote {write(folder, rows, commit)}")
+
+
+if __name__ == "__main__":
+    main()
