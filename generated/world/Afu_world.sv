@@ -9383,23 +9383,23 @@ module PairDispatcher_n16_world(
 endmodule
 
 // VCS coverage exclude_file
-module ram_32x25_world(
+module ram_32x49_world(
   input  [4:0]  R0_addr,
   input         R0_en,
                 R0_clk,
-  output [24:0] R0_data,
+  output [48:0] R0_data,
   input  [4:0]  W0_addr,
   input         W0_en,
                 W0_clk,
-  input  [24:0] W0_data
+  input  [48:0] W0_data
 );
 
-  reg [24:0] Memory[0:31];
+  reg [48:0] Memory[0:31];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
   end // always @(posedge)
-  assign R0_data = R0_en ? Memory[R0_addr] : 25'bx;
+  assign R0_data = R0_en ? Memory[R0_addr] : 49'bx;
 endmodule
 
 module GroupQueue_d32_world(
@@ -9415,10 +9415,11 @@ module GroupQueue_d32_world(
   output        io_deq_valid,
   output [3:0]  io_deq_bits_base,
   output [4:0]  io_deq_bits_cnt,
-  output [15:0] io_deq_bits_invalid
+  output [15:0] io_deq_bits_invalid,
+  output [23:0] io_deq_bits_first
 );
 
-  wire [24:0] _ram_ext_R0_data;
+  wire [48:0] _ram_ext_R0_data;
   reg  [4:0]  enq_ptr_value;
   reg  [4:0]  deq_ptr_value;
   reg         maybe_full;
@@ -9442,12 +9443,90 @@ module GroupQueue_d32_world(
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_32x25_world ram_ext (
+  ram_32x49_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
     .R0_data (_ram_ext_R0_data),
     .W0_addr (enq_ptr_value),
+    .W0_en   (do_enq),
+    .W0_clk  (clock),
+    .W0_data ({io_enq_bits_first, io_enq_bits_invalid, io_enq_bits_cnt, io_enq_bits_base})
+  );
+  assign io_enq_ready = ~full;
+  assign io_deq_valid = ~empty;
+  assign io_deq_bits_base = _ram_ext_R0_data[3:0];
+  assign io_deq_bits_cnt = _ram_ext_R0_data[8:4];
+  assign io_deq_bits_invalid = _ram_ext_R0_data[24:9];
+  assign io_deq_bits_first = _ram_ext_R0_data[48:25];
+endmodule
+
+// VCS coverage exclude_file
+module ram_2x25_world(
+  input         R0_addr,
+                R0_en,
+                R0_clk,
+  output [24:0] R0_data,
+  input         W0_addr,
+                W0_en,
+                W0_clk,
+  input  [24:0] W0_data
+);
+
+  reg [24:0] Memory[0:1];
+  always @(posedge W0_clk) begin
+    if (W0_en & 1'h1)
+      Memory[W0_addr] <= W0_data;
+  end // always @(posedge)
+  assign R0_data = R0_en ? Memory[R0_addr] : 25'bx;
+endmodule
+
+module CollectorGroupQueue_d2_world(
+  input         clock,
+                reset,
+  output        io_enq_ready,
+  input         io_enq_valid,
+  input  [3:0]  io_enq_bits_base,
+  input  [4:0]  io_enq_bits_cnt,
+  input  [15:0] io_enq_bits_invalid,
+  input  [23:0] io_enq_bits_first,
+  input         io_deq_ready,
+  output        io_deq_valid,
+  output [3:0]  io_deq_bits_base,
+  output [4:0]  io_deq_bits_cnt,
+  output [15:0] io_deq_bits_invalid
+);
+
+  wire [24:0] _ram_ext_R0_data;
+  reg         wrap;
+  reg         wrap_1;
+  reg         maybe_full;
+  wire        ptr_match = wrap == wrap_1;
+  wire        empty = ptr_match & ~maybe_full;
+  wire        full = ptr_match & maybe_full;
+  wire        do_enq = ~full & io_enq_valid;
+  wire        do_deq = io_deq_ready & ~empty;
+  always @(posedge clock) begin
+    if (reset) begin
+      wrap <= 1'h0;
+      wrap_1 <= 1'h0;
+      maybe_full <= 1'h0;
+    end
+    else begin
+      if (do_enq)
+        wrap <= wrap - 1'h1;
+      if (do_deq)
+        wrap_1 <= wrap_1 - 1'h1;
+      if (~(do_enq == do_deq))
+        maybe_full <= do_enq;
+    end
+  end // always @(posedge)
+  ram_2x25_world ram_ext (
+    .R0_addr (wrap_1),
+    .R0_en   (1'h1),
+    .R0_clk  (clock),
+    .R0_data (_ram_ext_R0_data),
+    .W0_addr (wrap),
     .W0_en   (do_enq),
     .W0_clk  (clock),
     .W0_data ({io_enq_bits_invalid, io_enq_bits_cnt, io_enq_bits_base})
@@ -9469,6 +9548,7 @@ module ContactCollector_n16_world(
   input  [3:0]  io_groups_bits_base,
   input  [4:0]  io_groups_bits_cnt,
   input  [15:0] io_groups_bits_invalid,
+  input  [23:0] io_groups_bits_first,
   output        io_scpu_0_ready,
   input         io_scpu_0_valid,
                 io_scpu_0_bits_hit,
@@ -9631,5515 +9711,5299 @@ module ContactCollector_n16_world(
                 io_nFlagged
 );
 
-  reg  [4:0]  sp;
-  wire [4:0]  scpuAt_0 = {1'h0, io_groups_bits_base};
-  wire [4:0]  scpuAt_b_1 = scpuAt_0 + 5'h1;
-  wire [4:0]  scpuAt_1 = scpuAt_b_1[4] ? scpuAt_0 - 5'hF : scpuAt_b_1;
-  wire [4:0]  scpuAt_b_2 = scpuAt_0 + 5'h2;
-  wire [4:0]  scpuAt_2 = scpuAt_b_2[4] ? scpuAt_0 - 5'hE : scpuAt_b_2;
-  wire [4:0]  scpuAt_b_3 = scpuAt_0 + 5'h3;
-  wire [4:0]  scpuAt_3 = scpuAt_b_3[4] ? scpuAt_0 - 5'hD : scpuAt_b_3;
-  wire [4:0]  scpuAt_b_4 = scpuAt_0 + 5'h4;
-  wire [4:0]  scpuAt_4 = scpuAt_b_4[4] ? scpuAt_0 - 5'hC : scpuAt_b_4;
-  wire [4:0]  scpuAt_b_5 = scpuAt_0 + 5'h5;
-  wire [4:0]  scpuAt_5 = scpuAt_b_5[4] ? scpuAt_0 - 5'hB : scpuAt_b_5;
-  wire [4:0]  scpuAt_b_6 = scpuAt_0 + 5'h6;
-  wire [4:0]  scpuAt_6 = scpuAt_b_6[4] ? scpuAt_0 - 5'hA : scpuAt_b_6;
-  wire [4:0]  scpuAt_b_7 = scpuAt_0 + 5'h7;
-  wire [4:0]  scpuAt_7 = scpuAt_b_7[4] ? scpuAt_0 - 5'h9 : scpuAt_b_7;
-  wire [4:0]  scpuAt_b_8 = scpuAt_0 + 5'h8;
-  wire [4:0]  scpuAt_8 = scpuAt_b_8[4] ? scpuAt_0 - 5'h8 : scpuAt_b_8;
-  wire [4:0]  scpuAt_b_9 = scpuAt_0 + 5'h9;
-  wire [4:0]  scpuAt_9 = scpuAt_b_9[4] ? scpuAt_0 - 5'h7 : scpuAt_b_9;
-  wire [4:0]  scpuAt_b_10 = scpuAt_0 + 5'hA;
-  wire [4:0]  scpuAt_10 = scpuAt_b_10[4] ? scpuAt_0 - 5'h6 : scpuAt_b_10;
-  wire [4:0]  scpuAt_b_11 = scpuAt_0 + 5'hB;
-  wire [4:0]  scpuAt_11 = scpuAt_b_11[4] ? scpuAt_0 - 5'h5 : scpuAt_b_11;
-  wire [4:0]  scpuAt_b_12 = scpuAt_0 + 5'hC;
-  wire [4:0]  scpuAt_12 = scpuAt_b_12[4] ? scpuAt_0 - 5'h4 : scpuAt_b_12;
-  wire [4:0]  scpuAt_b_13 = scpuAt_0 + 5'hD;
-  wire [4:0]  scpuAt_13 = scpuAt_b_13[4] ? scpuAt_0 - 5'h3 : scpuAt_b_13;
-  wire [4:0]  scpuAt_b_14 = scpuAt_0 + 5'hE;
-  wire [4:0]  scpuAt_14 = scpuAt_b_14[4] ? scpuAt_0 - 5'h2 : scpuAt_b_14;
-  wire [4:0]  scpuAt_b_15 = scpuAt_0 + 5'hF;
-  wire [4:0]  scpuAt_15 = scpuAt_b_15[4] ? scpuAt_0 - 5'h1 : scpuAt_b_15;
+  wire        s1Free;
+  wire        _head_io_deq_valid;
+  wire [3:0]  _head_io_deq_bits_base;
+  wire [4:0]  _head_io_deq_bits_cnt;
+  wire [15:0] _head_io_deq_bits_invalid;
+  wire [4:0]  _GEN = {1'h0, _head_io_deq_bits_base};
+  wire        _used_T =
+    (_head_io_deq_bits_base == 4'h0
+       ? {1'h0, 4'h0 - _head_io_deq_bits_base}
+       : 5'h10 - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_1 =
+    (_head_io_deq_bits_base < 4'h2
+       ? {1'h0, 4'h1 - _head_io_deq_bits_base}
+       : 5'h11 - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_2 =
+    (_head_io_deq_bits_base < 4'h3
+       ? {1'h0, 4'h2 - _head_io_deq_bits_base}
+       : 5'h12 - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_3 =
+    (_head_io_deq_bits_base < 4'h4
+       ? {1'h0, 4'h3 - _head_io_deq_bits_base}
+       : 5'h13 - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_4 =
+    (_head_io_deq_bits_base < 4'h5
+       ? {1'h0, 4'h4 - _head_io_deq_bits_base}
+       : 5'h14 - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_5 =
+    (_head_io_deq_bits_base < 4'h6
+       ? {1'h0, 4'h5 - _head_io_deq_bits_base}
+       : 5'h15 - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_6 =
+    (_head_io_deq_bits_base < 4'h7
+       ? {1'h0, 4'h6 - _head_io_deq_bits_base}
+       : 5'h16 - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_7 =
+    (_head_io_deq_bits_base[3]
+       ? 5'h17 - _GEN
+       : {1'h0, 4'h7 - _head_io_deq_bits_base}) < _head_io_deq_bits_cnt;
+  wire        _used_T_8 =
+    (_head_io_deq_bits_base < 4'h9
+       ? {1'h0, 4'h8 - _head_io_deq_bits_base}
+       : 5'h18 - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_9 =
+    (_head_io_deq_bits_base < 4'hA
+       ? {1'h0, 4'h9 - _head_io_deq_bits_base}
+       : 5'h19 - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_10 =
+    (_head_io_deq_bits_base < 4'hB
+       ? {1'h0, 4'hA - _head_io_deq_bits_base}
+       : 5'h1A - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_11 =
+    (_head_io_deq_bits_base[3:2] != 2'h3
+       ? {1'h0, 4'hB - _head_io_deq_bits_base}
+       : 5'h1B - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_12 =
+    (_head_io_deq_bits_base < 4'hD
+       ? {1'h0, 4'hC - _head_io_deq_bits_base}
+       : 5'h1C - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_13 =
+    (_head_io_deq_bits_base[3:1] != 3'h7
+       ? {1'h0, 4'hD - _head_io_deq_bits_base}
+       : 5'h1D - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_14 =
+    (_head_io_deq_bits_base != 4'hF
+       ? {1'h0, 4'hE - _head_io_deq_bits_base}
+       : 5'h1E - _GEN) < _head_io_deq_bits_cnt;
+  wire        _used_T_15 = {1'h0, 4'hF - _head_io_deq_bits_base} < _head_io_deq_bits_cnt;
+  reg  [3:0]  s1_g_base;
+  reg  [4:0]  s1_g_cnt;
+  reg  [15:0] s1_g_invalid;
+  reg         s1_out_0_hit;
+  reg  [1:0]  s1_out_0_kind;
+  reg  [31:0] s1_out_0_d;
+  reg  [31:0] s1_out_0_nw;
+  reg         s1_out_0_nonFinite;
+  reg  [4:0]  s1_out_0_flags;
+  reg  [23:0] s1_out_0_tag;
+  reg         s1_out_1_hit;
+  reg  [1:0]  s1_out_1_kind;
+  reg  [31:0] s1_out_1_d;
+  reg  [31:0] s1_out_1_nw;
+  reg         s1_out_1_nonFinite;
+  reg  [4:0]  s1_out_1_flags;
+  reg  [23:0] s1_out_1_tag;
+  reg         s1_out_2_hit;
+  reg  [1:0]  s1_out_2_kind;
+  reg  [31:0] s1_out_2_d;
+  reg  [31:0] s1_out_2_nw;
+  reg         s1_out_2_nonFinite;
+  reg  [4:0]  s1_out_2_flags;
+  reg  [23:0] s1_out_2_tag;
+  reg         s1_out_3_hit;
+  reg  [1:0]  s1_out_3_kind;
+  reg  [31:0] s1_out_3_d;
+  reg  [31:0] s1_out_3_nw;
+  reg         s1_out_3_nonFinite;
+  reg  [4:0]  s1_out_3_flags;
+  reg  [23:0] s1_out_3_tag;
+  reg         s1_out_4_hit;
+  reg  [1:0]  s1_out_4_kind;
+  reg  [31:0] s1_out_4_d;
+  reg  [31:0] s1_out_4_nw;
+  reg         s1_out_4_nonFinite;
+  reg  [4:0]  s1_out_4_flags;
+  reg  [23:0] s1_out_4_tag;
+  reg         s1_out_5_hit;
+  reg  [1:0]  s1_out_5_kind;
+  reg  [31:0] s1_out_5_d;
+  reg  [31:0] s1_out_5_nw;
+  reg         s1_out_5_nonFinite;
+  reg  [4:0]  s1_out_5_flags;
+  reg  [23:0] s1_out_5_tag;
+  reg         s1_out_6_hit;
+  reg  [1:0]  s1_out_6_kind;
+  reg  [31:0] s1_out_6_d;
+  reg  [31:0] s1_out_6_nw;
+  reg         s1_out_6_nonFinite;
+  reg  [4:0]  s1_out_6_flags;
+  reg  [23:0] s1_out_6_tag;
+  reg         s1_out_7_hit;
+  reg  [1:0]  s1_out_7_kind;
+  reg  [31:0] s1_out_7_d;
+  reg  [31:0] s1_out_7_nw;
+  reg         s1_out_7_nonFinite;
+  reg  [4:0]  s1_out_7_flags;
+  reg  [23:0] s1_out_7_tag;
+  reg         s1_out_8_hit;
+  reg  [1:0]  s1_out_8_kind;
+  reg  [31:0] s1_out_8_d;
+  reg  [31:0] s1_out_8_nw;
+  reg         s1_out_8_nonFinite;
+  reg  [4:0]  s1_out_8_flags;
+  reg  [23:0] s1_out_8_tag;
+  reg         s1_out_9_hit;
+  reg  [1:0]  s1_out_9_kind;
+  reg  [31:0] s1_out_9_d;
+  reg  [31:0] s1_out_9_nw;
+  reg         s1_out_9_nonFinite;
+  reg  [4:0]  s1_out_9_flags;
+  reg  [23:0] s1_out_9_tag;
+  reg         s1_out_10_hit;
+  reg  [1:0]  s1_out_10_kind;
+  reg  [31:0] s1_out_10_d;
+  reg  [31:0] s1_out_10_nw;
+  reg         s1_out_10_nonFinite;
+  reg  [4:0]  s1_out_10_flags;
+  reg  [23:0] s1_out_10_tag;
+  reg         s1_out_11_hit;
+  reg  [1:0]  s1_out_11_kind;
+  reg  [31:0] s1_out_11_d;
+  reg  [31:0] s1_out_11_nw;
+  reg         s1_out_11_nonFinite;
+  reg  [4:0]  s1_out_11_flags;
+  reg  [23:0] s1_out_11_tag;
+  reg         s1_out_12_hit;
+  reg  [1:0]  s1_out_12_kind;
+  reg  [31:0] s1_out_12_d;
+  reg  [31:0] s1_out_12_nw;
+  reg         s1_out_12_nonFinite;
+  reg  [4:0]  s1_out_12_flags;
+  reg  [23:0] s1_out_12_tag;
+  reg         s1_out_13_hit;
+  reg  [1:0]  s1_out_13_kind;
+  reg  [31:0] s1_out_13_d;
+  reg  [31:0] s1_out_13_nw;
+  reg         s1_out_13_nonFinite;
+  reg  [4:0]  s1_out_13_flags;
+  reg  [23:0] s1_out_13_tag;
+  reg         s1_out_14_hit;
+  reg  [1:0]  s1_out_14_kind;
+  reg  [31:0] s1_out_14_d;
+  reg  [31:0] s1_out_14_nw;
+  reg         s1_out_14_nonFinite;
+  reg  [4:0]  s1_out_14_flags;
+  reg  [23:0] s1_out_14_tag;
+  reg         s1_out_15_hit;
+  reg  [1:0]  s1_out_15_kind;
+  reg  [31:0] s1_out_15_d;
+  reg  [31:0] s1_out_15_nw;
+  reg         s1_out_15_nonFinite;
+  reg  [4:0]  s1_out_15_flags;
+  reg  [23:0] s1_out_15_tag;
+  reg         s1Valid;
+  wire        gather =
+    _head_io_deq_valid & (~_used_T | io_scpu_0_valid) & (~_used_T_1 | io_scpu_1_valid)
+    & (~_used_T_2 | io_scpu_2_valid) & (~_used_T_3 | io_scpu_3_valid)
+    & (~_used_T_4 | io_scpu_4_valid) & (~_used_T_5 | io_scpu_5_valid)
+    & (~_used_T_6 | io_scpu_6_valid) & (~_used_T_7 | io_scpu_7_valid)
+    & (~_used_T_8 | io_scpu_8_valid) & (~_used_T_9 | io_scpu_9_valid)
+    & (~_used_T_10 | io_scpu_10_valid) & (~_used_T_11 | io_scpu_11_valid)
+    & (~_used_T_12 | io_scpu_12_valid) & (~_used_T_13 | io_scpu_13_valid)
+    & (~_used_T_14 | io_scpu_14_valid) & (~_used_T_15 | io_scpu_15_valid) & s1Free;
+  reg  [4:0]  s2_g_cnt;
+  reg  [95:0] s2_rec_1;
+  reg  [95:0] s2_rec_2;
+  reg  [95:0] s2_rec_3;
+  reg  [95:0] s2_rec_4;
+  reg  [95:0] s2_rec_5;
+  reg  [95:0] s2_rec_6;
+  reg  [95:0] s2_rec_7;
+  reg  [95:0] s2_rec_8;
+  reg  [95:0] s2_rec_9;
+  reg  [95:0] s2_rec_10;
+  reg  [95:0] s2_rec_11;
+  reg  [95:0] s2_rec_12;
+  reg  [95:0] s2_rec_13;
+  reg  [95:0] s2_rec_14;
+  reg  [95:0] s2_rec_15;
+  reg  [95:0] s2_rec_16;
+  reg  [23:0] s2_pair_1;
+  reg  [23:0] s2_pair_2;
+  reg  [23:0] s2_pair_3;
+  reg  [23:0] s2_pair_4;
+  reg  [23:0] s2_pair_5;
+  reg  [23:0] s2_pair_6;
+  reg  [23:0] s2_pair_7;
+  reg  [23:0] s2_pair_8;
+  reg  [23:0] s2_pair_9;
+  reg  [23:0] s2_pair_10;
+  reg  [23:0] s2_pair_11;
+  reg  [23:0] s2_pair_12;
+  reg  [23:0] s2_pair_13;
+  reg  [23:0] s2_pair_14;
+  reg  [23:0] s2_pair_15;
+  reg  [23:0] s2_pair_16;
+  reg         s2_want_1;
+  reg         s2_want_2;
+  reg         s2_want_3;
+  reg         s2_want_4;
+  reg         s2_want_5;
+  reg         s2_want_6;
+  reg         s2_want_7;
+  reg         s2_want_8;
+  reg         s2_want_9;
+  reg         s2_want_10;
+  reg         s2_want_11;
+  reg         s2_want_12;
+  reg         s2_want_13;
+  reg         s2_want_14;
+  reg         s2_want_15;
+  reg         s2_want_16;
+  reg  [4:0]  s2_hits;
+  reg  [4:0]  s2_nonFin;
+  reg  [4:0]  s2_flagged;
+  reg         s2Valid;
+  wire [4:0]  _GEN_0 = {1'h0, s1_g_base};
+  wire [4:0]  at_b_1 = _GEN_0 + 5'h1;
+  wire [3:0]  _at_T_8 = at_b_1[4] ? s1_g_base + 4'h1 : at_b_1[3:0];
+  wire [4:0]  at_b_2 = _GEN_0 + 5'h2;
+  wire [3:0]  _at_T_13 = at_b_2[4] ? s1_g_base + 4'h2 : at_b_2[3:0];
+  wire [4:0]  at_b_3 = _GEN_0 + 5'h3;
+  wire [3:0]  _at_T_18 = at_b_3[4] ? s1_g_base + 4'h3 : at_b_3[3:0];
+  wire [4:0]  at_b_4 = _GEN_0 + 5'h4;
+  wire [3:0]  _at_T_23 = at_b_4[4] ? s1_g_base + 4'h4 : at_b_4[3:0];
+  wire [4:0]  at_b_5 = _GEN_0 + 5'h5;
+  wire [3:0]  _at_T_28 = at_b_5[4] ? s1_g_base + 4'h5 : at_b_5[3:0];
+  wire [4:0]  at_b_6 = _GEN_0 + 5'h6;
+  wire [3:0]  _at_T_33 = at_b_6[4] ? s1_g_base + 4'h6 : at_b_6[3:0];
+  wire [4:0]  at_b_7 = _GEN_0 + 5'h7;
+  wire [3:0]  _at_T_38 = at_b_7[4] ? s1_g_base + 4'h7 : at_b_7[3:0];
+  wire [4:0]  at_b_8 = _GEN_0 + 5'h8;
+  wire [3:0]  _at_T_43 = at_b_8[4] ? s1_g_base - 4'h8 : at_b_8[3:0];
+  wire [4:0]  at_b_9 = _GEN_0 + 5'h9;
+  wire [3:0]  _at_T_48 = at_b_9[4] ? s1_g_base - 4'h7 : at_b_9[3:0];
+  wire [4:0]  at_b_10 = _GEN_0 + 5'hA;
+  wire [3:0]  _at_T_53 = at_b_10[4] ? s1_g_base - 4'h6 : at_b_10[3:0];
+  wire [4:0]  at_b_11 = _GEN_0 + 5'hB;
+  wire [3:0]  _at_T_58 = at_b_11[4] ? s1_g_base - 4'h5 : at_b_11[3:0];
+  wire [4:0]  at_b_12 = _GEN_0 + 5'hC;
+  wire [3:0]  _at_T_63 = at_b_12[4] ? s1_g_base - 4'h4 : at_b_12[3:0];
+  wire [4:0]  at_b_13 = _GEN_0 + 5'hD;
+  wire [3:0]  _at_T_68 = at_b_13[4] ? s1_g_base - 4'h3 : at_b_13[3:0];
+  wire [4:0]  at_b_14 = _GEN_0 + 5'hE;
+  wire [3:0]  _at_T_73 = at_b_14[4] ? s1_g_base - 4'h2 : at_b_14[3:0];
+  wire [4:0]  at_b_15 = _GEN_0 + 5'hF;
+  wire [3:0]  _at_T_78 = at_b_15[4] ? s1_g_base - 4'h1 : at_b_15[3:0];
   reg         casez_tmp;
   always @(*) begin
-    casez (io_groups_bits_base)
+    casez (s1_g_base)
       4'b0000:
-        casez_tmp = io_scpu_0_bits_hit;
+        casez_tmp = s1_out_0_hit;
       4'b0001:
-        casez_tmp = io_scpu_1_bits_hit;
+        casez_tmp = s1_out_1_hit;
       4'b0010:
-        casez_tmp = io_scpu_2_bits_hit;
+        casez_tmp = s1_out_2_hit;
       4'b0011:
-        casez_tmp = io_scpu_3_bits_hit;
+        casez_tmp = s1_out_3_hit;
       4'b0100:
-        casez_tmp = io_scpu_4_bits_hit;
+        casez_tmp = s1_out_4_hit;
       4'b0101:
-        casez_tmp = io_scpu_5_bits_hit;
+        casez_tmp = s1_out_5_hit;
       4'b0110:
-        casez_tmp = io_scpu_6_bits_hit;
+        casez_tmp = s1_out_6_hit;
       4'b0111:
-        casez_tmp = io_scpu_7_bits_hit;
+        casez_tmp = s1_out_7_hit;
       4'b1000:
-        casez_tmp = io_scpu_8_bits_hit;
+        casez_tmp = s1_out_8_hit;
       4'b1001:
-        casez_tmp = io_scpu_9_bits_hit;
+        casez_tmp = s1_out_9_hit;
       4'b1010:
-        casez_tmp = io_scpu_10_bits_hit;
+        casez_tmp = s1_out_10_hit;
       4'b1011:
-        casez_tmp = io_scpu_11_bits_hit;
+        casez_tmp = s1_out_11_hit;
       4'b1100:
-        casez_tmp = io_scpu_12_bits_hit;
+        casez_tmp = s1_out_12_hit;
       4'b1101:
-        casez_tmp = io_scpu_13_bits_hit;
+        casez_tmp = s1_out_13_hit;
       4'b1110:
-        casez_tmp = io_scpu_14_bits_hit;
+        casez_tmp = s1_out_14_hit;
       default:
-        casez_tmp = io_scpu_15_bits_hit;
+        casez_tmp = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_0;
   always @(*) begin
-    casez (io_groups_bits_base)
+    casez (s1_g_base)
       4'b0000:
-        casez_tmp_0 = io_scpu_0_bits_kind;
+        casez_tmp_0 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_0 = io_scpu_1_bits_kind;
+        casez_tmp_0 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_0 = io_scpu_2_bits_kind;
+        casez_tmp_0 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_0 = io_scpu_3_bits_kind;
+        casez_tmp_0 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_0 = io_scpu_4_bits_kind;
+        casez_tmp_0 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_0 = io_scpu_5_bits_kind;
+        casez_tmp_0 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_0 = io_scpu_6_bits_kind;
+        casez_tmp_0 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_0 = io_scpu_7_bits_kind;
+        casez_tmp_0 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_0 = io_scpu_8_bits_kind;
+        casez_tmp_0 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_0 = io_scpu_9_bits_kind;
+        casez_tmp_0 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_0 = io_scpu_10_bits_kind;
+        casez_tmp_0 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_0 = io_scpu_11_bits_kind;
+        casez_tmp_0 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_0 = io_scpu_12_bits_kind;
+        casez_tmp_0 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_0 = io_scpu_13_bits_kind;
+        casez_tmp_0 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_0 = io_scpu_14_bits_kind;
+        casez_tmp_0 = s1_out_14_kind;
       default:
-        casez_tmp_0 = io_scpu_15_bits_kind;
+        casez_tmp_0 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_1;
   always @(*) begin
-    casez (io_groups_bits_base)
+    casez (s1_g_base)
       4'b0000:
-        casez_tmp_1 = io_scpu_0_bits_d;
+        casez_tmp_1 = s1_out_0_d;
       4'b0001:
-        casez_tmp_1 = io_scpu_1_bits_d;
+        casez_tmp_1 = s1_out_1_d;
       4'b0010:
-        casez_tmp_1 = io_scpu_2_bits_d;
+        casez_tmp_1 = s1_out_2_d;
       4'b0011:
-        casez_tmp_1 = io_scpu_3_bits_d;
+        casez_tmp_1 = s1_out_3_d;
       4'b0100:
-        casez_tmp_1 = io_scpu_4_bits_d;
+        casez_tmp_1 = s1_out_4_d;
       4'b0101:
-        casez_tmp_1 = io_scpu_5_bits_d;
+        casez_tmp_1 = s1_out_5_d;
       4'b0110:
-        casez_tmp_1 = io_scpu_6_bits_d;
+        casez_tmp_1 = s1_out_6_d;
       4'b0111:
-        casez_tmp_1 = io_scpu_7_bits_d;
+        casez_tmp_1 = s1_out_7_d;
       4'b1000:
-        casez_tmp_1 = io_scpu_8_bits_d;
+        casez_tmp_1 = s1_out_8_d;
       4'b1001:
-        casez_tmp_1 = io_scpu_9_bits_d;
+        casez_tmp_1 = s1_out_9_d;
       4'b1010:
-        casez_tmp_1 = io_scpu_10_bits_d;
+        casez_tmp_1 = s1_out_10_d;
       4'b1011:
-        casez_tmp_1 = io_scpu_11_bits_d;
+        casez_tmp_1 = s1_out_11_d;
       4'b1100:
-        casez_tmp_1 = io_scpu_12_bits_d;
+        casez_tmp_1 = s1_out_12_d;
       4'b1101:
-        casez_tmp_1 = io_scpu_13_bits_d;
+        casez_tmp_1 = s1_out_13_d;
       4'b1110:
-        casez_tmp_1 = io_scpu_14_bits_d;
+        casez_tmp_1 = s1_out_14_d;
       default:
-        casez_tmp_1 = io_scpu_15_bits_d;
+        casez_tmp_1 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_2;
   always @(*) begin
-    casez (io_groups_bits_base)
+    casez (s1_g_base)
       4'b0000:
-        casez_tmp_2 = io_scpu_0_bits_nw;
+        casez_tmp_2 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_2 = io_scpu_1_bits_nw;
+        casez_tmp_2 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_2 = io_scpu_2_bits_nw;
+        casez_tmp_2 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_2 = io_scpu_3_bits_nw;
+        casez_tmp_2 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_2 = io_scpu_4_bits_nw;
+        casez_tmp_2 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_2 = io_scpu_5_bits_nw;
+        casez_tmp_2 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_2 = io_scpu_6_bits_nw;
+        casez_tmp_2 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_2 = io_scpu_7_bits_nw;
+        casez_tmp_2 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_2 = io_scpu_8_bits_nw;
+        casez_tmp_2 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_2 = io_scpu_9_bits_nw;
+        casez_tmp_2 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_2 = io_scpu_10_bits_nw;
+        casez_tmp_2 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_2 = io_scpu_11_bits_nw;
+        casez_tmp_2 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_2 = io_scpu_12_bits_nw;
+        casez_tmp_2 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_2 = io_scpu_13_bits_nw;
+        casez_tmp_2 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_2 = io_scpu_14_bits_nw;
+        casez_tmp_2 = s1_out_14_nw;
       default:
-        casez_tmp_2 = io_scpu_15_bits_nw;
+        casez_tmp_2 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_3;
   always @(*) begin
-    casez (io_groups_bits_base)
+    casez (s1_g_base)
       4'b0000:
-        casez_tmp_3 = io_scpu_0_bits_nonFinite;
+        casez_tmp_3 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_3 = io_scpu_1_bits_nonFinite;
+        casez_tmp_3 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_3 = io_scpu_2_bits_nonFinite;
+        casez_tmp_3 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_3 = io_scpu_3_bits_nonFinite;
+        casez_tmp_3 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_3 = io_scpu_4_bits_nonFinite;
+        casez_tmp_3 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_3 = io_scpu_5_bits_nonFinite;
+        casez_tmp_3 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_3 = io_scpu_6_bits_nonFinite;
+        casez_tmp_3 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_3 = io_scpu_7_bits_nonFinite;
+        casez_tmp_3 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_3 = io_scpu_8_bits_nonFinite;
+        casez_tmp_3 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_3 = io_scpu_9_bits_nonFinite;
+        casez_tmp_3 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_3 = io_scpu_10_bits_nonFinite;
+        casez_tmp_3 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_3 = io_scpu_11_bits_nonFinite;
+        casez_tmp_3 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_3 = io_scpu_12_bits_nonFinite;
+        casez_tmp_3 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_3 = io_scpu_13_bits_nonFinite;
+        casez_tmp_3 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_3 = io_scpu_14_bits_nonFinite;
+        casez_tmp_3 = s1_out_14_nonFinite;
       default:
-        casez_tmp_3 = io_scpu_15_bits_nonFinite;
+        casez_tmp_3 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_4;
   always @(*) begin
-    casez (io_groups_bits_base)
+    casez (s1_g_base)
       4'b0000:
-        casez_tmp_4 = io_scpu_0_bits_flags;
+        casez_tmp_4 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_4 = io_scpu_1_bits_flags;
+        casez_tmp_4 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_4 = io_scpu_2_bits_flags;
+        casez_tmp_4 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_4 = io_scpu_3_bits_flags;
+        casez_tmp_4 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_4 = io_scpu_4_bits_flags;
+        casez_tmp_4 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_4 = io_scpu_5_bits_flags;
+        casez_tmp_4 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_4 = io_scpu_6_bits_flags;
+        casez_tmp_4 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_4 = io_scpu_7_bits_flags;
+        casez_tmp_4 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_4 = io_scpu_8_bits_flags;
+        casez_tmp_4 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_4 = io_scpu_9_bits_flags;
+        casez_tmp_4 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_4 = io_scpu_10_bits_flags;
+        casez_tmp_4 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_4 = io_scpu_11_bits_flags;
+        casez_tmp_4 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_4 = io_scpu_12_bits_flags;
+        casez_tmp_4 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_4 = io_scpu_13_bits_flags;
+        casez_tmp_4 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_4 = io_scpu_14_bits_flags;
+        casez_tmp_4 = s1_out_14_flags;
       default:
-        casez_tmp_4 = io_scpu_15_bits_flags;
+        casez_tmp_4 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_5;
   always @(*) begin
-    casez (io_groups_bits_base)
+    casez (s1_g_base)
       4'b0000:
-        casez_tmp_5 = io_scpu_0_bits_tag;
+        casez_tmp_5 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_5 = io_scpu_1_bits_tag;
+        casez_tmp_5 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_5 = io_scpu_2_bits_tag;
+        casez_tmp_5 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_5 = io_scpu_3_bits_tag;
+        casez_tmp_5 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_5 = io_scpu_4_bits_tag;
+        casez_tmp_5 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_5 = io_scpu_5_bits_tag;
+        casez_tmp_5 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_5 = io_scpu_6_bits_tag;
+        casez_tmp_5 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_5 = io_scpu_7_bits_tag;
+        casez_tmp_5 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_5 = io_scpu_8_bits_tag;
+        casez_tmp_5 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_5 = io_scpu_9_bits_tag;
+        casez_tmp_5 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_5 = io_scpu_10_bits_tag;
+        casez_tmp_5 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_5 = io_scpu_11_bits_tag;
+        casez_tmp_5 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_5 = io_scpu_12_bits_tag;
+        casez_tmp_5 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_5 = io_scpu_13_bits_tag;
+        casez_tmp_5 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_5 = io_scpu_14_bits_tag;
+        casez_tmp_5 = s1_out_14_tag;
       default:
-        casez_tmp_5 = io_scpu_15_bits_tag;
+        casez_tmp_5 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_6;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (_at_T_8)
       4'b0000:
-        casez_tmp_6 = io_scpu_0_bits_hit;
+        casez_tmp_6 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_6 = io_scpu_1_bits_hit;
+        casez_tmp_6 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_6 = io_scpu_2_bits_hit;
+        casez_tmp_6 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_6 = io_scpu_3_bits_hit;
+        casez_tmp_6 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_6 = io_scpu_4_bits_hit;
+        casez_tmp_6 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_6 = io_scpu_5_bits_hit;
+        casez_tmp_6 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_6 = io_scpu_6_bits_hit;
+        casez_tmp_6 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_6 = io_scpu_7_bits_hit;
+        casez_tmp_6 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_6 = io_scpu_8_bits_hit;
+        casez_tmp_6 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_6 = io_scpu_9_bits_hit;
+        casez_tmp_6 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_6 = io_scpu_10_bits_hit;
+        casez_tmp_6 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_6 = io_scpu_11_bits_hit;
+        casez_tmp_6 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_6 = io_scpu_12_bits_hit;
+        casez_tmp_6 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_6 = io_scpu_13_bits_hit;
+        casez_tmp_6 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_6 = io_scpu_14_bits_hit;
+        casez_tmp_6 = s1_out_14_hit;
       default:
-        casez_tmp_6 = io_scpu_15_bits_hit;
+        casez_tmp_6 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_7;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (_at_T_8)
       4'b0000:
-        casez_tmp_7 = io_scpu_0_bits_kind;
+        casez_tmp_7 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_7 = io_scpu_1_bits_kind;
+        casez_tmp_7 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_7 = io_scpu_2_bits_kind;
+        casez_tmp_7 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_7 = io_scpu_3_bits_kind;
+        casez_tmp_7 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_7 = io_scpu_4_bits_kind;
+        casez_tmp_7 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_7 = io_scpu_5_bits_kind;
+        casez_tmp_7 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_7 = io_scpu_6_bits_kind;
+        casez_tmp_7 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_7 = io_scpu_7_bits_kind;
+        casez_tmp_7 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_7 = io_scpu_8_bits_kind;
+        casez_tmp_7 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_7 = io_scpu_9_bits_kind;
+        casez_tmp_7 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_7 = io_scpu_10_bits_kind;
+        casez_tmp_7 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_7 = io_scpu_11_bits_kind;
+        casez_tmp_7 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_7 = io_scpu_12_bits_kind;
+        casez_tmp_7 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_7 = io_scpu_13_bits_kind;
+        casez_tmp_7 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_7 = io_scpu_14_bits_kind;
+        casez_tmp_7 = s1_out_14_kind;
       default:
-        casez_tmp_7 = io_scpu_15_bits_kind;
+        casez_tmp_7 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_8;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (_at_T_8)
       4'b0000:
-        casez_tmp_8 = io_scpu_0_bits_d;
+        casez_tmp_8 = s1_out_0_d;
       4'b0001:
-        casez_tmp_8 = io_scpu_1_bits_d;
+        casez_tmp_8 = s1_out_1_d;
       4'b0010:
-        casez_tmp_8 = io_scpu_2_bits_d;
+        casez_tmp_8 = s1_out_2_d;
       4'b0011:
-        casez_tmp_8 = io_scpu_3_bits_d;
+        casez_tmp_8 = s1_out_3_d;
       4'b0100:
-        casez_tmp_8 = io_scpu_4_bits_d;
+        casez_tmp_8 = s1_out_4_d;
       4'b0101:
-        casez_tmp_8 = io_scpu_5_bits_d;
+        casez_tmp_8 = s1_out_5_d;
       4'b0110:
-        casez_tmp_8 = io_scpu_6_bits_d;
+        casez_tmp_8 = s1_out_6_d;
       4'b0111:
-        casez_tmp_8 = io_scpu_7_bits_d;
+        casez_tmp_8 = s1_out_7_d;
       4'b1000:
-        casez_tmp_8 = io_scpu_8_bits_d;
+        casez_tmp_8 = s1_out_8_d;
       4'b1001:
-        casez_tmp_8 = io_scpu_9_bits_d;
+        casez_tmp_8 = s1_out_9_d;
       4'b1010:
-        casez_tmp_8 = io_scpu_10_bits_d;
+        casez_tmp_8 = s1_out_10_d;
       4'b1011:
-        casez_tmp_8 = io_scpu_11_bits_d;
+        casez_tmp_8 = s1_out_11_d;
       4'b1100:
-        casez_tmp_8 = io_scpu_12_bits_d;
+        casez_tmp_8 = s1_out_12_d;
       4'b1101:
-        casez_tmp_8 = io_scpu_13_bits_d;
+        casez_tmp_8 = s1_out_13_d;
       4'b1110:
-        casez_tmp_8 = io_scpu_14_bits_d;
+        casez_tmp_8 = s1_out_14_d;
       default:
-        casez_tmp_8 = io_scpu_15_bits_d;
+        casez_tmp_8 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_9;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (_at_T_8)
       4'b0000:
-        casez_tmp_9 = io_scpu_0_bits_nw;
+        casez_tmp_9 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_9 = io_scpu_1_bits_nw;
+        casez_tmp_9 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_9 = io_scpu_2_bits_nw;
+        casez_tmp_9 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_9 = io_scpu_3_bits_nw;
+        casez_tmp_9 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_9 = io_scpu_4_bits_nw;
+        casez_tmp_9 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_9 = io_scpu_5_bits_nw;
+        casez_tmp_9 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_9 = io_scpu_6_bits_nw;
+        casez_tmp_9 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_9 = io_scpu_7_bits_nw;
+        casez_tmp_9 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_9 = io_scpu_8_bits_nw;
+        casez_tmp_9 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_9 = io_scpu_9_bits_nw;
+        casez_tmp_9 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_9 = io_scpu_10_bits_nw;
+        casez_tmp_9 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_9 = io_scpu_11_bits_nw;
+        casez_tmp_9 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_9 = io_scpu_12_bits_nw;
+        casez_tmp_9 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_9 = io_scpu_13_bits_nw;
+        casez_tmp_9 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_9 = io_scpu_14_bits_nw;
+        casez_tmp_9 = s1_out_14_nw;
       default:
-        casez_tmp_9 = io_scpu_15_bits_nw;
+        casez_tmp_9 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_10;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (_at_T_8)
       4'b0000:
-        casez_tmp_10 = io_scpu_0_bits_nonFinite;
+        casez_tmp_10 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_10 = io_scpu_1_bits_nonFinite;
+        casez_tmp_10 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_10 = io_scpu_2_bits_nonFinite;
+        casez_tmp_10 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_10 = io_scpu_3_bits_nonFinite;
+        casez_tmp_10 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_10 = io_scpu_4_bits_nonFinite;
+        casez_tmp_10 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_10 = io_scpu_5_bits_nonFinite;
+        casez_tmp_10 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_10 = io_scpu_6_bits_nonFinite;
+        casez_tmp_10 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_10 = io_scpu_7_bits_nonFinite;
+        casez_tmp_10 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_10 = io_scpu_8_bits_nonFinite;
+        casez_tmp_10 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_10 = io_scpu_9_bits_nonFinite;
+        casez_tmp_10 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_10 = io_scpu_10_bits_nonFinite;
+        casez_tmp_10 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_10 = io_scpu_11_bits_nonFinite;
+        casez_tmp_10 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_10 = io_scpu_12_bits_nonFinite;
+        casez_tmp_10 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_10 = io_scpu_13_bits_nonFinite;
+        casez_tmp_10 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_10 = io_scpu_14_bits_nonFinite;
+        casez_tmp_10 = s1_out_14_nonFinite;
       default:
-        casez_tmp_10 = io_scpu_15_bits_nonFinite;
+        casez_tmp_10 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_11;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (_at_T_8)
       4'b0000:
-        casez_tmp_11 = io_scpu_0_bits_flags;
+        casez_tmp_11 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_11 = io_scpu_1_bits_flags;
+        casez_tmp_11 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_11 = io_scpu_2_bits_flags;
+        casez_tmp_11 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_11 = io_scpu_3_bits_flags;
+        casez_tmp_11 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_11 = io_scpu_4_bits_flags;
+        casez_tmp_11 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_11 = io_scpu_5_bits_flags;
+        casez_tmp_11 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_11 = io_scpu_6_bits_flags;
+        casez_tmp_11 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_11 = io_scpu_7_bits_flags;
+        casez_tmp_11 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_11 = io_scpu_8_bits_flags;
+        casez_tmp_11 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_11 = io_scpu_9_bits_flags;
+        casez_tmp_11 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_11 = io_scpu_10_bits_flags;
+        casez_tmp_11 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_11 = io_scpu_11_bits_flags;
+        casez_tmp_11 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_11 = io_scpu_12_bits_flags;
+        casez_tmp_11 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_11 = io_scpu_13_bits_flags;
+        casez_tmp_11 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_11 = io_scpu_14_bits_flags;
+        casez_tmp_11 = s1_out_14_flags;
       default:
-        casez_tmp_11 = io_scpu_15_bits_flags;
+        casez_tmp_11 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_12;
   always @(*) begin
-    casez (scpuAt_1[3:0])
+    casez (_at_T_8)
       4'b0000:
-        casez_tmp_12 = io_scpu_0_bits_tag;
+        casez_tmp_12 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_12 = io_scpu_1_bits_tag;
+        casez_tmp_12 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_12 = io_scpu_2_bits_tag;
+        casez_tmp_12 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_12 = io_scpu_3_bits_tag;
+        casez_tmp_12 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_12 = io_scpu_4_bits_tag;
+        casez_tmp_12 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_12 = io_scpu_5_bits_tag;
+        casez_tmp_12 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_12 = io_scpu_6_bits_tag;
+        casez_tmp_12 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_12 = io_scpu_7_bits_tag;
+        casez_tmp_12 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_12 = io_scpu_8_bits_tag;
+        casez_tmp_12 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_12 = io_scpu_9_bits_tag;
+        casez_tmp_12 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_12 = io_scpu_10_bits_tag;
+        casez_tmp_12 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_12 = io_scpu_11_bits_tag;
+        casez_tmp_12 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_12 = io_scpu_12_bits_tag;
+        casez_tmp_12 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_12 = io_scpu_13_bits_tag;
+        casez_tmp_12 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_12 = io_scpu_14_bits_tag;
+        casez_tmp_12 = s1_out_14_tag;
       default:
-        casez_tmp_12 = io_scpu_15_bits_tag;
+        casez_tmp_12 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_13;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (_at_T_13)
       4'b0000:
-        casez_tmp_13 = io_scpu_0_bits_hit;
+        casez_tmp_13 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_13 = io_scpu_1_bits_hit;
+        casez_tmp_13 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_13 = io_scpu_2_bits_hit;
+        casez_tmp_13 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_13 = io_scpu_3_bits_hit;
+        casez_tmp_13 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_13 = io_scpu_4_bits_hit;
+        casez_tmp_13 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_13 = io_scpu_5_bits_hit;
+        casez_tmp_13 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_13 = io_scpu_6_bits_hit;
+        casez_tmp_13 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_13 = io_scpu_7_bits_hit;
+        casez_tmp_13 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_13 = io_scpu_8_bits_hit;
+        casez_tmp_13 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_13 = io_scpu_9_bits_hit;
+        casez_tmp_13 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_13 = io_scpu_10_bits_hit;
+        casez_tmp_13 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_13 = io_scpu_11_bits_hit;
+        casez_tmp_13 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_13 = io_scpu_12_bits_hit;
+        casez_tmp_13 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_13 = io_scpu_13_bits_hit;
+        casez_tmp_13 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_13 = io_scpu_14_bits_hit;
+        casez_tmp_13 = s1_out_14_hit;
       default:
-        casez_tmp_13 = io_scpu_15_bits_hit;
+        casez_tmp_13 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_14;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (_at_T_13)
       4'b0000:
-        casez_tmp_14 = io_scpu_0_bits_kind;
+        casez_tmp_14 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_14 = io_scpu_1_bits_kind;
+        casez_tmp_14 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_14 = io_scpu_2_bits_kind;
+        casez_tmp_14 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_14 = io_scpu_3_bits_kind;
+        casez_tmp_14 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_14 = io_scpu_4_bits_kind;
+        casez_tmp_14 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_14 = io_scpu_5_bits_kind;
+        casez_tmp_14 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_14 = io_scpu_6_bits_kind;
+        casez_tmp_14 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_14 = io_scpu_7_bits_kind;
+        casez_tmp_14 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_14 = io_scpu_8_bits_kind;
+        casez_tmp_14 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_14 = io_scpu_9_bits_kind;
+        casez_tmp_14 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_14 = io_scpu_10_bits_kind;
+        casez_tmp_14 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_14 = io_scpu_11_bits_kind;
+        casez_tmp_14 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_14 = io_scpu_12_bits_kind;
+        casez_tmp_14 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_14 = io_scpu_13_bits_kind;
+        casez_tmp_14 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_14 = io_scpu_14_bits_kind;
+        casez_tmp_14 = s1_out_14_kind;
       default:
-        casez_tmp_14 = io_scpu_15_bits_kind;
+        casez_tmp_14 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_15;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (_at_T_13)
       4'b0000:
-        casez_tmp_15 = io_scpu_0_bits_d;
+        casez_tmp_15 = s1_out_0_d;
       4'b0001:
-        casez_tmp_15 = io_scpu_1_bits_d;
+        casez_tmp_15 = s1_out_1_d;
       4'b0010:
-        casez_tmp_15 = io_scpu_2_bits_d;
+        casez_tmp_15 = s1_out_2_d;
       4'b0011:
-        casez_tmp_15 = io_scpu_3_bits_d;
+        casez_tmp_15 = s1_out_3_d;
       4'b0100:
-        casez_tmp_15 = io_scpu_4_bits_d;
+        casez_tmp_15 = s1_out_4_d;
       4'b0101:
-        casez_tmp_15 = io_scpu_5_bits_d;
+        casez_tmp_15 = s1_out_5_d;
       4'b0110:
-        casez_tmp_15 = io_scpu_6_bits_d;
+        casez_tmp_15 = s1_out_6_d;
       4'b0111:
-        casez_tmp_15 = io_scpu_7_bits_d;
+        casez_tmp_15 = s1_out_7_d;
       4'b1000:
-        casez_tmp_15 = io_scpu_8_bits_d;
+        casez_tmp_15 = s1_out_8_d;
       4'b1001:
-        casez_tmp_15 = io_scpu_9_bits_d;
+        casez_tmp_15 = s1_out_9_d;
       4'b1010:
-        casez_tmp_15 = io_scpu_10_bits_d;
+        casez_tmp_15 = s1_out_10_d;
       4'b1011:
-        casez_tmp_15 = io_scpu_11_bits_d;
+        casez_tmp_15 = s1_out_11_d;
       4'b1100:
-        casez_tmp_15 = io_scpu_12_bits_d;
+        casez_tmp_15 = s1_out_12_d;
       4'b1101:
-        casez_tmp_15 = io_scpu_13_bits_d;
+        casez_tmp_15 = s1_out_13_d;
       4'b1110:
-        casez_tmp_15 = io_scpu_14_bits_d;
+        casez_tmp_15 = s1_out_14_d;
       default:
-        casez_tmp_15 = io_scpu_15_bits_d;
+        casez_tmp_15 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_16;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (_at_T_13)
       4'b0000:
-        casez_tmp_16 = io_scpu_0_bits_nw;
+        casez_tmp_16 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_16 = io_scpu_1_bits_nw;
+        casez_tmp_16 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_16 = io_scpu_2_bits_nw;
+        casez_tmp_16 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_16 = io_scpu_3_bits_nw;
+        casez_tmp_16 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_16 = io_scpu_4_bits_nw;
+        casez_tmp_16 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_16 = io_scpu_5_bits_nw;
+        casez_tmp_16 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_16 = io_scpu_6_bits_nw;
+        casez_tmp_16 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_16 = io_scpu_7_bits_nw;
+        casez_tmp_16 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_16 = io_scpu_8_bits_nw;
+        casez_tmp_16 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_16 = io_scpu_9_bits_nw;
+        casez_tmp_16 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_16 = io_scpu_10_bits_nw;
+        casez_tmp_16 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_16 = io_scpu_11_bits_nw;
+        casez_tmp_16 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_16 = io_scpu_12_bits_nw;
+        casez_tmp_16 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_16 = io_scpu_13_bits_nw;
+        casez_tmp_16 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_16 = io_scpu_14_bits_nw;
+        casez_tmp_16 = s1_out_14_nw;
       default:
-        casez_tmp_16 = io_scpu_15_bits_nw;
+        casez_tmp_16 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_17;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (_at_T_13)
       4'b0000:
-        casez_tmp_17 = io_scpu_0_bits_nonFinite;
+        casez_tmp_17 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_17 = io_scpu_1_bits_nonFinite;
+        casez_tmp_17 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_17 = io_scpu_2_bits_nonFinite;
+        casez_tmp_17 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_17 = io_scpu_3_bits_nonFinite;
+        casez_tmp_17 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_17 = io_scpu_4_bits_nonFinite;
+        casez_tmp_17 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_17 = io_scpu_5_bits_nonFinite;
+        casez_tmp_17 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_17 = io_scpu_6_bits_nonFinite;
+        casez_tmp_17 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_17 = io_scpu_7_bits_nonFinite;
+        casez_tmp_17 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_17 = io_scpu_8_bits_nonFinite;
+        casez_tmp_17 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_17 = io_scpu_9_bits_nonFinite;
+        casez_tmp_17 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_17 = io_scpu_10_bits_nonFinite;
+        casez_tmp_17 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_17 = io_scpu_11_bits_nonFinite;
+        casez_tmp_17 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_17 = io_scpu_12_bits_nonFinite;
+        casez_tmp_17 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_17 = io_scpu_13_bits_nonFinite;
+        casez_tmp_17 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_17 = io_scpu_14_bits_nonFinite;
+        casez_tmp_17 = s1_out_14_nonFinite;
       default:
-        casez_tmp_17 = io_scpu_15_bits_nonFinite;
+        casez_tmp_17 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_18;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (_at_T_13)
       4'b0000:
-        casez_tmp_18 = io_scpu_0_bits_flags;
+        casez_tmp_18 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_18 = io_scpu_1_bits_flags;
+        casez_tmp_18 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_18 = io_scpu_2_bits_flags;
+        casez_tmp_18 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_18 = io_scpu_3_bits_flags;
+        casez_tmp_18 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_18 = io_scpu_4_bits_flags;
+        casez_tmp_18 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_18 = io_scpu_5_bits_flags;
+        casez_tmp_18 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_18 = io_scpu_6_bits_flags;
+        casez_tmp_18 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_18 = io_scpu_7_bits_flags;
+        casez_tmp_18 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_18 = io_scpu_8_bits_flags;
+        casez_tmp_18 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_18 = io_scpu_9_bits_flags;
+        casez_tmp_18 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_18 = io_scpu_10_bits_flags;
+        casez_tmp_18 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_18 = io_scpu_11_bits_flags;
+        casez_tmp_18 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_18 = io_scpu_12_bits_flags;
+        casez_tmp_18 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_18 = io_scpu_13_bits_flags;
+        casez_tmp_18 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_18 = io_scpu_14_bits_flags;
+        casez_tmp_18 = s1_out_14_flags;
       default:
-        casez_tmp_18 = io_scpu_15_bits_flags;
+        casez_tmp_18 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_19;
   always @(*) begin
-    casez (scpuAt_2[3:0])
+    casez (_at_T_13)
       4'b0000:
-        casez_tmp_19 = io_scpu_0_bits_tag;
+        casez_tmp_19 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_19 = io_scpu_1_bits_tag;
+        casez_tmp_19 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_19 = io_scpu_2_bits_tag;
+        casez_tmp_19 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_19 = io_scpu_3_bits_tag;
+        casez_tmp_19 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_19 = io_scpu_4_bits_tag;
+        casez_tmp_19 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_19 = io_scpu_5_bits_tag;
+        casez_tmp_19 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_19 = io_scpu_6_bits_tag;
+        casez_tmp_19 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_19 = io_scpu_7_bits_tag;
+        casez_tmp_19 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_19 = io_scpu_8_bits_tag;
+        casez_tmp_19 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_19 = io_scpu_9_bits_tag;
+        casez_tmp_19 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_19 = io_scpu_10_bits_tag;
+        casez_tmp_19 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_19 = io_scpu_11_bits_tag;
+        casez_tmp_19 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_19 = io_scpu_12_bits_tag;
+        casez_tmp_19 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_19 = io_scpu_13_bits_tag;
+        casez_tmp_19 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_19 = io_scpu_14_bits_tag;
+        casez_tmp_19 = s1_out_14_tag;
       default:
-        casez_tmp_19 = io_scpu_15_bits_tag;
+        casez_tmp_19 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_20;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (_at_T_18)
       4'b0000:
-        casez_tmp_20 = io_scpu_0_bits_hit;
+        casez_tmp_20 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_20 = io_scpu_1_bits_hit;
+        casez_tmp_20 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_20 = io_scpu_2_bits_hit;
+        casez_tmp_20 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_20 = io_scpu_3_bits_hit;
+        casez_tmp_20 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_20 = io_scpu_4_bits_hit;
+        casez_tmp_20 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_20 = io_scpu_5_bits_hit;
+        casez_tmp_20 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_20 = io_scpu_6_bits_hit;
+        casez_tmp_20 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_20 = io_scpu_7_bits_hit;
+        casez_tmp_20 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_20 = io_scpu_8_bits_hit;
+        casez_tmp_20 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_20 = io_scpu_9_bits_hit;
+        casez_tmp_20 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_20 = io_scpu_10_bits_hit;
+        casez_tmp_20 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_20 = io_scpu_11_bits_hit;
+        casez_tmp_20 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_20 = io_scpu_12_bits_hit;
+        casez_tmp_20 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_20 = io_scpu_13_bits_hit;
+        casez_tmp_20 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_20 = io_scpu_14_bits_hit;
+        casez_tmp_20 = s1_out_14_hit;
       default:
-        casez_tmp_20 = io_scpu_15_bits_hit;
+        casez_tmp_20 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_21;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (_at_T_18)
       4'b0000:
-        casez_tmp_21 = io_scpu_0_bits_kind;
+        casez_tmp_21 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_21 = io_scpu_1_bits_kind;
+        casez_tmp_21 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_21 = io_scpu_2_bits_kind;
+        casez_tmp_21 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_21 = io_scpu_3_bits_kind;
+        casez_tmp_21 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_21 = io_scpu_4_bits_kind;
+        casez_tmp_21 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_21 = io_scpu_5_bits_kind;
+        casez_tmp_21 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_21 = io_scpu_6_bits_kind;
+        casez_tmp_21 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_21 = io_scpu_7_bits_kind;
+        casez_tmp_21 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_21 = io_scpu_8_bits_kind;
+        casez_tmp_21 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_21 = io_scpu_9_bits_kind;
+        casez_tmp_21 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_21 = io_scpu_10_bits_kind;
+        casez_tmp_21 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_21 = io_scpu_11_bits_kind;
+        casez_tmp_21 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_21 = io_scpu_12_bits_kind;
+        casez_tmp_21 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_21 = io_scpu_13_bits_kind;
+        casez_tmp_21 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_21 = io_scpu_14_bits_kind;
+        casez_tmp_21 = s1_out_14_kind;
       default:
-        casez_tmp_21 = io_scpu_15_bits_kind;
+        casez_tmp_21 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_22;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (_at_T_18)
       4'b0000:
-        casez_tmp_22 = io_scpu_0_bits_d;
+        casez_tmp_22 = s1_out_0_d;
       4'b0001:
-        casez_tmp_22 = io_scpu_1_bits_d;
+        casez_tmp_22 = s1_out_1_d;
       4'b0010:
-        casez_tmp_22 = io_scpu_2_bits_d;
+        casez_tmp_22 = s1_out_2_d;
       4'b0011:
-        casez_tmp_22 = io_scpu_3_bits_d;
+        casez_tmp_22 = s1_out_3_d;
       4'b0100:
-        casez_tmp_22 = io_scpu_4_bits_d;
+        casez_tmp_22 = s1_out_4_d;
       4'b0101:
-        casez_tmp_22 = io_scpu_5_bits_d;
+        casez_tmp_22 = s1_out_5_d;
       4'b0110:
-        casez_tmp_22 = io_scpu_6_bits_d;
+        casez_tmp_22 = s1_out_6_d;
       4'b0111:
-        casez_tmp_22 = io_scpu_7_bits_d;
+        casez_tmp_22 = s1_out_7_d;
       4'b1000:
-        casez_tmp_22 = io_scpu_8_bits_d;
+        casez_tmp_22 = s1_out_8_d;
       4'b1001:
-        casez_tmp_22 = io_scpu_9_bits_d;
+        casez_tmp_22 = s1_out_9_d;
       4'b1010:
-        casez_tmp_22 = io_scpu_10_bits_d;
+        casez_tmp_22 = s1_out_10_d;
       4'b1011:
-        casez_tmp_22 = io_scpu_11_bits_d;
+        casez_tmp_22 = s1_out_11_d;
       4'b1100:
-        casez_tmp_22 = io_scpu_12_bits_d;
+        casez_tmp_22 = s1_out_12_d;
       4'b1101:
-        casez_tmp_22 = io_scpu_13_bits_d;
+        casez_tmp_22 = s1_out_13_d;
       4'b1110:
-        casez_tmp_22 = io_scpu_14_bits_d;
+        casez_tmp_22 = s1_out_14_d;
       default:
-        casez_tmp_22 = io_scpu_15_bits_d;
+        casez_tmp_22 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_23;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (_at_T_18)
       4'b0000:
-        casez_tmp_23 = io_scpu_0_bits_nw;
+        casez_tmp_23 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_23 = io_scpu_1_bits_nw;
+        casez_tmp_23 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_23 = io_scpu_2_bits_nw;
+        casez_tmp_23 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_23 = io_scpu_3_bits_nw;
+        casez_tmp_23 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_23 = io_scpu_4_bits_nw;
+        casez_tmp_23 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_23 = io_scpu_5_bits_nw;
+        casez_tmp_23 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_23 = io_scpu_6_bits_nw;
+        casez_tmp_23 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_23 = io_scpu_7_bits_nw;
+        casez_tmp_23 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_23 = io_scpu_8_bits_nw;
+        casez_tmp_23 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_23 = io_scpu_9_bits_nw;
+        casez_tmp_23 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_23 = io_scpu_10_bits_nw;
+        casez_tmp_23 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_23 = io_scpu_11_bits_nw;
+        casez_tmp_23 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_23 = io_scpu_12_bits_nw;
+        casez_tmp_23 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_23 = io_scpu_13_bits_nw;
+        casez_tmp_23 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_23 = io_scpu_14_bits_nw;
+        casez_tmp_23 = s1_out_14_nw;
       default:
-        casez_tmp_23 = io_scpu_15_bits_nw;
+        casez_tmp_23 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_24;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (_at_T_18)
       4'b0000:
-        casez_tmp_24 = io_scpu_0_bits_nonFinite;
+        casez_tmp_24 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_24 = io_scpu_1_bits_nonFinite;
+        casez_tmp_24 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_24 = io_scpu_2_bits_nonFinite;
+        casez_tmp_24 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_24 = io_scpu_3_bits_nonFinite;
+        casez_tmp_24 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_24 = io_scpu_4_bits_nonFinite;
+        casez_tmp_24 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_24 = io_scpu_5_bits_nonFinite;
+        casez_tmp_24 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_24 = io_scpu_6_bits_nonFinite;
+        casez_tmp_24 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_24 = io_scpu_7_bits_nonFinite;
+        casez_tmp_24 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_24 = io_scpu_8_bits_nonFinite;
+        casez_tmp_24 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_24 = io_scpu_9_bits_nonFinite;
+        casez_tmp_24 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_24 = io_scpu_10_bits_nonFinite;
+        casez_tmp_24 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_24 = io_scpu_11_bits_nonFinite;
+        casez_tmp_24 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_24 = io_scpu_12_bits_nonFinite;
+        casez_tmp_24 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_24 = io_scpu_13_bits_nonFinite;
+        casez_tmp_24 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_24 = io_scpu_14_bits_nonFinite;
+        casez_tmp_24 = s1_out_14_nonFinite;
       default:
-        casez_tmp_24 = io_scpu_15_bits_nonFinite;
+        casez_tmp_24 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_25;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (_at_T_18)
       4'b0000:
-        casez_tmp_25 = io_scpu_0_bits_flags;
+        casez_tmp_25 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_25 = io_scpu_1_bits_flags;
+        casez_tmp_25 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_25 = io_scpu_2_bits_flags;
+        casez_tmp_25 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_25 = io_scpu_3_bits_flags;
+        casez_tmp_25 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_25 = io_scpu_4_bits_flags;
+        casez_tmp_25 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_25 = io_scpu_5_bits_flags;
+        casez_tmp_25 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_25 = io_scpu_6_bits_flags;
+        casez_tmp_25 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_25 = io_scpu_7_bits_flags;
+        casez_tmp_25 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_25 = io_scpu_8_bits_flags;
+        casez_tmp_25 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_25 = io_scpu_9_bits_flags;
+        casez_tmp_25 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_25 = io_scpu_10_bits_flags;
+        casez_tmp_25 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_25 = io_scpu_11_bits_flags;
+        casez_tmp_25 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_25 = io_scpu_12_bits_flags;
+        casez_tmp_25 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_25 = io_scpu_13_bits_flags;
+        casez_tmp_25 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_25 = io_scpu_14_bits_flags;
+        casez_tmp_25 = s1_out_14_flags;
       default:
-        casez_tmp_25 = io_scpu_15_bits_flags;
+        casez_tmp_25 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_26;
   always @(*) begin
-    casez (scpuAt_3[3:0])
+    casez (_at_T_18)
       4'b0000:
-        casez_tmp_26 = io_scpu_0_bits_tag;
+        casez_tmp_26 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_26 = io_scpu_1_bits_tag;
+        casez_tmp_26 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_26 = io_scpu_2_bits_tag;
+        casez_tmp_26 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_26 = io_scpu_3_bits_tag;
+        casez_tmp_26 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_26 = io_scpu_4_bits_tag;
+        casez_tmp_26 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_26 = io_scpu_5_bits_tag;
+        casez_tmp_26 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_26 = io_scpu_6_bits_tag;
+        casez_tmp_26 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_26 = io_scpu_7_bits_tag;
+        casez_tmp_26 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_26 = io_scpu_8_bits_tag;
+        casez_tmp_26 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_26 = io_scpu_9_bits_tag;
+        casez_tmp_26 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_26 = io_scpu_10_bits_tag;
+        casez_tmp_26 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_26 = io_scpu_11_bits_tag;
+        casez_tmp_26 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_26 = io_scpu_12_bits_tag;
+        casez_tmp_26 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_26 = io_scpu_13_bits_tag;
+        casez_tmp_26 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_26 = io_scpu_14_bits_tag;
+        casez_tmp_26 = s1_out_14_tag;
       default:
-        casez_tmp_26 = io_scpu_15_bits_tag;
+        casez_tmp_26 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_27;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (_at_T_23)
       4'b0000:
-        casez_tmp_27 = io_scpu_0_bits_hit;
+        casez_tmp_27 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_27 = io_scpu_1_bits_hit;
+        casez_tmp_27 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_27 = io_scpu_2_bits_hit;
+        casez_tmp_27 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_27 = io_scpu_3_bits_hit;
+        casez_tmp_27 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_27 = io_scpu_4_bits_hit;
+        casez_tmp_27 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_27 = io_scpu_5_bits_hit;
+        casez_tmp_27 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_27 = io_scpu_6_bits_hit;
+        casez_tmp_27 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_27 = io_scpu_7_bits_hit;
+        casez_tmp_27 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_27 = io_scpu_8_bits_hit;
+        casez_tmp_27 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_27 = io_scpu_9_bits_hit;
+        casez_tmp_27 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_27 = io_scpu_10_bits_hit;
+        casez_tmp_27 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_27 = io_scpu_11_bits_hit;
+        casez_tmp_27 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_27 = io_scpu_12_bits_hit;
+        casez_tmp_27 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_27 = io_scpu_13_bits_hit;
+        casez_tmp_27 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_27 = io_scpu_14_bits_hit;
+        casez_tmp_27 = s1_out_14_hit;
       default:
-        casez_tmp_27 = io_scpu_15_bits_hit;
+        casez_tmp_27 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_28;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (_at_T_23)
       4'b0000:
-        casez_tmp_28 = io_scpu_0_bits_kind;
+        casez_tmp_28 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_28 = io_scpu_1_bits_kind;
+        casez_tmp_28 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_28 = io_scpu_2_bits_kind;
+        casez_tmp_28 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_28 = io_scpu_3_bits_kind;
+        casez_tmp_28 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_28 = io_scpu_4_bits_kind;
+        casez_tmp_28 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_28 = io_scpu_5_bits_kind;
+        casez_tmp_28 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_28 = io_scpu_6_bits_kind;
+        casez_tmp_28 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_28 = io_scpu_7_bits_kind;
+        casez_tmp_28 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_28 = io_scpu_8_bits_kind;
+        casez_tmp_28 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_28 = io_scpu_9_bits_kind;
+        casez_tmp_28 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_28 = io_scpu_10_bits_kind;
+        casez_tmp_28 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_28 = io_scpu_11_bits_kind;
+        casez_tmp_28 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_28 = io_scpu_12_bits_kind;
+        casez_tmp_28 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_28 = io_scpu_13_bits_kind;
+        casez_tmp_28 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_28 = io_scpu_14_bits_kind;
+        casez_tmp_28 = s1_out_14_kind;
       default:
-        casez_tmp_28 = io_scpu_15_bits_kind;
+        casez_tmp_28 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_29;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (_at_T_23)
       4'b0000:
-        casez_tmp_29 = io_scpu_0_bits_d;
+        casez_tmp_29 = s1_out_0_d;
       4'b0001:
-        casez_tmp_29 = io_scpu_1_bits_d;
+        casez_tmp_29 = s1_out_1_d;
       4'b0010:
-        casez_tmp_29 = io_scpu_2_bits_d;
+        casez_tmp_29 = s1_out_2_d;
       4'b0011:
-        casez_tmp_29 = io_scpu_3_bits_d;
+        casez_tmp_29 = s1_out_3_d;
       4'b0100:
-        casez_tmp_29 = io_scpu_4_bits_d;
+        casez_tmp_29 = s1_out_4_d;
       4'b0101:
-        casez_tmp_29 = io_scpu_5_bits_d;
+        casez_tmp_29 = s1_out_5_d;
       4'b0110:
-        casez_tmp_29 = io_scpu_6_bits_d;
+        casez_tmp_29 = s1_out_6_d;
       4'b0111:
-        casez_tmp_29 = io_scpu_7_bits_d;
+        casez_tmp_29 = s1_out_7_d;
       4'b1000:
-        casez_tmp_29 = io_scpu_8_bits_d;
+        casez_tmp_29 = s1_out_8_d;
       4'b1001:
-        casez_tmp_29 = io_scpu_9_bits_d;
+        casez_tmp_29 = s1_out_9_d;
       4'b1010:
-        casez_tmp_29 = io_scpu_10_bits_d;
+        casez_tmp_29 = s1_out_10_d;
       4'b1011:
-        casez_tmp_29 = io_scpu_11_bits_d;
+        casez_tmp_29 = s1_out_11_d;
       4'b1100:
-        casez_tmp_29 = io_scpu_12_bits_d;
+        casez_tmp_29 = s1_out_12_d;
       4'b1101:
-        casez_tmp_29 = io_scpu_13_bits_d;
+        casez_tmp_29 = s1_out_13_d;
       4'b1110:
-        casez_tmp_29 = io_scpu_14_bits_d;
+        casez_tmp_29 = s1_out_14_d;
       default:
-        casez_tmp_29 = io_scpu_15_bits_d;
+        casez_tmp_29 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_30;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (_at_T_23)
       4'b0000:
-        casez_tmp_30 = io_scpu_0_bits_nw;
+        casez_tmp_30 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_30 = io_scpu_1_bits_nw;
+        casez_tmp_30 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_30 = io_scpu_2_bits_nw;
+        casez_tmp_30 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_30 = io_scpu_3_bits_nw;
+        casez_tmp_30 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_30 = io_scpu_4_bits_nw;
+        casez_tmp_30 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_30 = io_scpu_5_bits_nw;
+        casez_tmp_30 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_30 = io_scpu_6_bits_nw;
+        casez_tmp_30 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_30 = io_scpu_7_bits_nw;
+        casez_tmp_30 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_30 = io_scpu_8_bits_nw;
+        casez_tmp_30 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_30 = io_scpu_9_bits_nw;
+        casez_tmp_30 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_30 = io_scpu_10_bits_nw;
+        casez_tmp_30 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_30 = io_scpu_11_bits_nw;
+        casez_tmp_30 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_30 = io_scpu_12_bits_nw;
+        casez_tmp_30 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_30 = io_scpu_13_bits_nw;
+        casez_tmp_30 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_30 = io_scpu_14_bits_nw;
+        casez_tmp_30 = s1_out_14_nw;
       default:
-        casez_tmp_30 = io_scpu_15_bits_nw;
+        casez_tmp_30 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_31;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (_at_T_23)
       4'b0000:
-        casez_tmp_31 = io_scpu_0_bits_nonFinite;
+        casez_tmp_31 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_31 = io_scpu_1_bits_nonFinite;
+        casez_tmp_31 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_31 = io_scpu_2_bits_nonFinite;
+        casez_tmp_31 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_31 = io_scpu_3_bits_nonFinite;
+        casez_tmp_31 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_31 = io_scpu_4_bits_nonFinite;
+        casez_tmp_31 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_31 = io_scpu_5_bits_nonFinite;
+        casez_tmp_31 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_31 = io_scpu_6_bits_nonFinite;
+        casez_tmp_31 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_31 = io_scpu_7_bits_nonFinite;
+        casez_tmp_31 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_31 = io_scpu_8_bits_nonFinite;
+        casez_tmp_31 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_31 = io_scpu_9_bits_nonFinite;
+        casez_tmp_31 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_31 = io_scpu_10_bits_nonFinite;
+        casez_tmp_31 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_31 = io_scpu_11_bits_nonFinite;
+        casez_tmp_31 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_31 = io_scpu_12_bits_nonFinite;
+        casez_tmp_31 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_31 = io_scpu_13_bits_nonFinite;
+        casez_tmp_31 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_31 = io_scpu_14_bits_nonFinite;
+        casez_tmp_31 = s1_out_14_nonFinite;
       default:
-        casez_tmp_31 = io_scpu_15_bits_nonFinite;
+        casez_tmp_31 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_32;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (_at_T_23)
       4'b0000:
-        casez_tmp_32 = io_scpu_0_bits_flags;
+        casez_tmp_32 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_32 = io_scpu_1_bits_flags;
+        casez_tmp_32 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_32 = io_scpu_2_bits_flags;
+        casez_tmp_32 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_32 = io_scpu_3_bits_flags;
+        casez_tmp_32 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_32 = io_scpu_4_bits_flags;
+        casez_tmp_32 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_32 = io_scpu_5_bits_flags;
+        casez_tmp_32 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_32 = io_scpu_6_bits_flags;
+        casez_tmp_32 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_32 = io_scpu_7_bits_flags;
+        casez_tmp_32 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_32 = io_scpu_8_bits_flags;
+        casez_tmp_32 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_32 = io_scpu_9_bits_flags;
+        casez_tmp_32 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_32 = io_scpu_10_bits_flags;
+        casez_tmp_32 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_32 = io_scpu_11_bits_flags;
+        casez_tmp_32 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_32 = io_scpu_12_bits_flags;
+        casez_tmp_32 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_32 = io_scpu_13_bits_flags;
+        casez_tmp_32 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_32 = io_scpu_14_bits_flags;
+        casez_tmp_32 = s1_out_14_flags;
       default:
-        casez_tmp_32 = io_scpu_15_bits_flags;
+        casez_tmp_32 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_33;
   always @(*) begin
-    casez (scpuAt_4[3:0])
+    casez (_at_T_23)
       4'b0000:
-        casez_tmp_33 = io_scpu_0_bits_tag;
+        casez_tmp_33 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_33 = io_scpu_1_bits_tag;
+        casez_tmp_33 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_33 = io_scpu_2_bits_tag;
+        casez_tmp_33 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_33 = io_scpu_3_bits_tag;
+        casez_tmp_33 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_33 = io_scpu_4_bits_tag;
+        casez_tmp_33 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_33 = io_scpu_5_bits_tag;
+        casez_tmp_33 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_33 = io_scpu_6_bits_tag;
+        casez_tmp_33 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_33 = io_scpu_7_bits_tag;
+        casez_tmp_33 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_33 = io_scpu_8_bits_tag;
+        casez_tmp_33 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_33 = io_scpu_9_bits_tag;
+        casez_tmp_33 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_33 = io_scpu_10_bits_tag;
+        casez_tmp_33 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_33 = io_scpu_11_bits_tag;
+        casez_tmp_33 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_33 = io_scpu_12_bits_tag;
+        casez_tmp_33 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_33 = io_scpu_13_bits_tag;
+        casez_tmp_33 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_33 = io_scpu_14_bits_tag;
+        casez_tmp_33 = s1_out_14_tag;
       default:
-        casez_tmp_33 = io_scpu_15_bits_tag;
+        casez_tmp_33 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_34;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (_at_T_28)
       4'b0000:
-        casez_tmp_34 = io_scpu_0_bits_hit;
+        casez_tmp_34 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_34 = io_scpu_1_bits_hit;
+        casez_tmp_34 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_34 = io_scpu_2_bits_hit;
+        casez_tmp_34 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_34 = io_scpu_3_bits_hit;
+        casez_tmp_34 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_34 = io_scpu_4_bits_hit;
+        casez_tmp_34 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_34 = io_scpu_5_bits_hit;
+        casez_tmp_34 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_34 = io_scpu_6_bits_hit;
+        casez_tmp_34 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_34 = io_scpu_7_bits_hit;
+        casez_tmp_34 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_34 = io_scpu_8_bits_hit;
+        casez_tmp_34 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_34 = io_scpu_9_bits_hit;
+        casez_tmp_34 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_34 = io_scpu_10_bits_hit;
+        casez_tmp_34 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_34 = io_scpu_11_bits_hit;
+        casez_tmp_34 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_34 = io_scpu_12_bits_hit;
+        casez_tmp_34 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_34 = io_scpu_13_bits_hit;
+        casez_tmp_34 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_34 = io_scpu_14_bits_hit;
+        casez_tmp_34 = s1_out_14_hit;
       default:
-        casez_tmp_34 = io_scpu_15_bits_hit;
+        casez_tmp_34 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_35;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (_at_T_28)
       4'b0000:
-        casez_tmp_35 = io_scpu_0_bits_kind;
+        casez_tmp_35 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_35 = io_scpu_1_bits_kind;
+        casez_tmp_35 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_35 = io_scpu_2_bits_kind;
+        casez_tmp_35 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_35 = io_scpu_3_bits_kind;
+        casez_tmp_35 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_35 = io_scpu_4_bits_kind;
+        casez_tmp_35 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_35 = io_scpu_5_bits_kind;
+        casez_tmp_35 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_35 = io_scpu_6_bits_kind;
+        casez_tmp_35 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_35 = io_scpu_7_bits_kind;
+        casez_tmp_35 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_35 = io_scpu_8_bits_kind;
+        casez_tmp_35 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_35 = io_scpu_9_bits_kind;
+        casez_tmp_35 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_35 = io_scpu_10_bits_kind;
+        casez_tmp_35 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_35 = io_scpu_11_bits_kind;
+        casez_tmp_35 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_35 = io_scpu_12_bits_kind;
+        casez_tmp_35 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_35 = io_scpu_13_bits_kind;
+        casez_tmp_35 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_35 = io_scpu_14_bits_kind;
+        casez_tmp_35 = s1_out_14_kind;
       default:
-        casez_tmp_35 = io_scpu_15_bits_kind;
+        casez_tmp_35 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_36;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (_at_T_28)
       4'b0000:
-        casez_tmp_36 = io_scpu_0_bits_d;
+        casez_tmp_36 = s1_out_0_d;
       4'b0001:
-        casez_tmp_36 = io_scpu_1_bits_d;
+        casez_tmp_36 = s1_out_1_d;
       4'b0010:
-        casez_tmp_36 = io_scpu_2_bits_d;
+        casez_tmp_36 = s1_out_2_d;
       4'b0011:
-        casez_tmp_36 = io_scpu_3_bits_d;
+        casez_tmp_36 = s1_out_3_d;
       4'b0100:
-        casez_tmp_36 = io_scpu_4_bits_d;
+        casez_tmp_36 = s1_out_4_d;
       4'b0101:
-        casez_tmp_36 = io_scpu_5_bits_d;
+        casez_tmp_36 = s1_out_5_d;
       4'b0110:
-        casez_tmp_36 = io_scpu_6_bits_d;
+        casez_tmp_36 = s1_out_6_d;
       4'b0111:
-        casez_tmp_36 = io_scpu_7_bits_d;
+        casez_tmp_36 = s1_out_7_d;
       4'b1000:
-        casez_tmp_36 = io_scpu_8_bits_d;
+        casez_tmp_36 = s1_out_8_d;
       4'b1001:
-        casez_tmp_36 = io_scpu_9_bits_d;
+        casez_tmp_36 = s1_out_9_d;
       4'b1010:
-        casez_tmp_36 = io_scpu_10_bits_d;
+        casez_tmp_36 = s1_out_10_d;
       4'b1011:
-        casez_tmp_36 = io_scpu_11_bits_d;
+        casez_tmp_36 = s1_out_11_d;
       4'b1100:
-        casez_tmp_36 = io_scpu_12_bits_d;
+        casez_tmp_36 = s1_out_12_d;
       4'b1101:
-        casez_tmp_36 = io_scpu_13_bits_d;
+        casez_tmp_36 = s1_out_13_d;
       4'b1110:
-        casez_tmp_36 = io_scpu_14_bits_d;
+        casez_tmp_36 = s1_out_14_d;
       default:
-        casez_tmp_36 = io_scpu_15_bits_d;
+        casez_tmp_36 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_37;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (_at_T_28)
       4'b0000:
-        casez_tmp_37 = io_scpu_0_bits_nw;
+        casez_tmp_37 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_37 = io_scpu_1_bits_nw;
+        casez_tmp_37 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_37 = io_scpu_2_bits_nw;
+        casez_tmp_37 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_37 = io_scpu_3_bits_nw;
+        casez_tmp_37 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_37 = io_scpu_4_bits_nw;
+        casez_tmp_37 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_37 = io_scpu_5_bits_nw;
+        casez_tmp_37 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_37 = io_scpu_6_bits_nw;
+        casez_tmp_37 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_37 = io_scpu_7_bits_nw;
+        casez_tmp_37 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_37 = io_scpu_8_bits_nw;
+        casez_tmp_37 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_37 = io_scpu_9_bits_nw;
+        casez_tmp_37 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_37 = io_scpu_10_bits_nw;
+        casez_tmp_37 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_37 = io_scpu_11_bits_nw;
+        casez_tmp_37 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_37 = io_scpu_12_bits_nw;
+        casez_tmp_37 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_37 = io_scpu_13_bits_nw;
+        casez_tmp_37 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_37 = io_scpu_14_bits_nw;
+        casez_tmp_37 = s1_out_14_nw;
       default:
-        casez_tmp_37 = io_scpu_15_bits_nw;
+        casez_tmp_37 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_38;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (_at_T_28)
       4'b0000:
-        casez_tmp_38 = io_scpu_0_bits_nonFinite;
+        casez_tmp_38 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_38 = io_scpu_1_bits_nonFinite;
+        casez_tmp_38 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_38 = io_scpu_2_bits_nonFinite;
+        casez_tmp_38 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_38 = io_scpu_3_bits_nonFinite;
+        casez_tmp_38 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_38 = io_scpu_4_bits_nonFinite;
+        casez_tmp_38 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_38 = io_scpu_5_bits_nonFinite;
+        casez_tmp_38 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_38 = io_scpu_6_bits_nonFinite;
+        casez_tmp_38 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_38 = io_scpu_7_bits_nonFinite;
+        casez_tmp_38 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_38 = io_scpu_8_bits_nonFinite;
+        casez_tmp_38 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_38 = io_scpu_9_bits_nonFinite;
+        casez_tmp_38 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_38 = io_scpu_10_bits_nonFinite;
+        casez_tmp_38 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_38 = io_scpu_11_bits_nonFinite;
+        casez_tmp_38 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_38 = io_scpu_12_bits_nonFinite;
+        casez_tmp_38 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_38 = io_scpu_13_bits_nonFinite;
+        casez_tmp_38 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_38 = io_scpu_14_bits_nonFinite;
+        casez_tmp_38 = s1_out_14_nonFinite;
       default:
-        casez_tmp_38 = io_scpu_15_bits_nonFinite;
+        casez_tmp_38 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_39;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (_at_T_28)
       4'b0000:
-        casez_tmp_39 = io_scpu_0_bits_flags;
+        casez_tmp_39 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_39 = io_scpu_1_bits_flags;
+        casez_tmp_39 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_39 = io_scpu_2_bits_flags;
+        casez_tmp_39 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_39 = io_scpu_3_bits_flags;
+        casez_tmp_39 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_39 = io_scpu_4_bits_flags;
+        casez_tmp_39 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_39 = io_scpu_5_bits_flags;
+        casez_tmp_39 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_39 = io_scpu_6_bits_flags;
+        casez_tmp_39 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_39 = io_scpu_7_bits_flags;
+        casez_tmp_39 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_39 = io_scpu_8_bits_flags;
+        casez_tmp_39 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_39 = io_scpu_9_bits_flags;
+        casez_tmp_39 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_39 = io_scpu_10_bits_flags;
+        casez_tmp_39 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_39 = io_scpu_11_bits_flags;
+        casez_tmp_39 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_39 = io_scpu_12_bits_flags;
+        casez_tmp_39 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_39 = io_scpu_13_bits_flags;
+        casez_tmp_39 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_39 = io_scpu_14_bits_flags;
+        casez_tmp_39 = s1_out_14_flags;
       default:
-        casez_tmp_39 = io_scpu_15_bits_flags;
+        casez_tmp_39 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_40;
   always @(*) begin
-    casez (scpuAt_5[3:0])
+    casez (_at_T_28)
       4'b0000:
-        casez_tmp_40 = io_scpu_0_bits_tag;
+        casez_tmp_40 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_40 = io_scpu_1_bits_tag;
+        casez_tmp_40 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_40 = io_scpu_2_bits_tag;
+        casez_tmp_40 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_40 = io_scpu_3_bits_tag;
+        casez_tmp_40 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_40 = io_scpu_4_bits_tag;
+        casez_tmp_40 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_40 = io_scpu_5_bits_tag;
+        casez_tmp_40 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_40 = io_scpu_6_bits_tag;
+        casez_tmp_40 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_40 = io_scpu_7_bits_tag;
+        casez_tmp_40 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_40 = io_scpu_8_bits_tag;
+        casez_tmp_40 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_40 = io_scpu_9_bits_tag;
+        casez_tmp_40 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_40 = io_scpu_10_bits_tag;
+        casez_tmp_40 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_40 = io_scpu_11_bits_tag;
+        casez_tmp_40 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_40 = io_scpu_12_bits_tag;
+        casez_tmp_40 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_40 = io_scpu_13_bits_tag;
+        casez_tmp_40 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_40 = io_scpu_14_bits_tag;
+        casez_tmp_40 = s1_out_14_tag;
       default:
-        casez_tmp_40 = io_scpu_15_bits_tag;
+        casez_tmp_40 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_41;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (_at_T_33)
       4'b0000:
-        casez_tmp_41 = io_scpu_0_bits_hit;
+        casez_tmp_41 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_41 = io_scpu_1_bits_hit;
+        casez_tmp_41 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_41 = io_scpu_2_bits_hit;
+        casez_tmp_41 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_41 = io_scpu_3_bits_hit;
+        casez_tmp_41 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_41 = io_scpu_4_bits_hit;
+        casez_tmp_41 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_41 = io_scpu_5_bits_hit;
+        casez_tmp_41 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_41 = io_scpu_6_bits_hit;
+        casez_tmp_41 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_41 = io_scpu_7_bits_hit;
+        casez_tmp_41 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_41 = io_scpu_8_bits_hit;
+        casez_tmp_41 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_41 = io_scpu_9_bits_hit;
+        casez_tmp_41 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_41 = io_scpu_10_bits_hit;
+        casez_tmp_41 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_41 = io_scpu_11_bits_hit;
+        casez_tmp_41 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_41 = io_scpu_12_bits_hit;
+        casez_tmp_41 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_41 = io_scpu_13_bits_hit;
+        casez_tmp_41 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_41 = io_scpu_14_bits_hit;
+        casez_tmp_41 = s1_out_14_hit;
       default:
-        casez_tmp_41 = io_scpu_15_bits_hit;
+        casez_tmp_41 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_42;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (_at_T_33)
       4'b0000:
-        casez_tmp_42 = io_scpu_0_bits_kind;
+        casez_tmp_42 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_42 = io_scpu_1_bits_kind;
+        casez_tmp_42 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_42 = io_scpu_2_bits_kind;
+        casez_tmp_42 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_42 = io_scpu_3_bits_kind;
+        casez_tmp_42 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_42 = io_scpu_4_bits_kind;
+        casez_tmp_42 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_42 = io_scpu_5_bits_kind;
+        casez_tmp_42 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_42 = io_scpu_6_bits_kind;
+        casez_tmp_42 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_42 = io_scpu_7_bits_kind;
+        casez_tmp_42 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_42 = io_scpu_8_bits_kind;
+        casez_tmp_42 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_42 = io_scpu_9_bits_kind;
+        casez_tmp_42 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_42 = io_scpu_10_bits_kind;
+        casez_tmp_42 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_42 = io_scpu_11_bits_kind;
+        casez_tmp_42 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_42 = io_scpu_12_bits_kind;
+        casez_tmp_42 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_42 = io_scpu_13_bits_kind;
+        casez_tmp_42 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_42 = io_scpu_14_bits_kind;
+        casez_tmp_42 = s1_out_14_kind;
       default:
-        casez_tmp_42 = io_scpu_15_bits_kind;
+        casez_tmp_42 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_43;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (_at_T_33)
       4'b0000:
-        casez_tmp_43 = io_scpu_0_bits_d;
+        casez_tmp_43 = s1_out_0_d;
       4'b0001:
-        casez_tmp_43 = io_scpu_1_bits_d;
+        casez_tmp_43 = s1_out_1_d;
       4'b0010:
-        casez_tmp_43 = io_scpu_2_bits_d;
+        casez_tmp_43 = s1_out_2_d;
       4'b0011:
-        casez_tmp_43 = io_scpu_3_bits_d;
+        casez_tmp_43 = s1_out_3_d;
       4'b0100:
-        casez_tmp_43 = io_scpu_4_bits_d;
+        casez_tmp_43 = s1_out_4_d;
       4'b0101:
-        casez_tmp_43 = io_scpu_5_bits_d;
+        casez_tmp_43 = s1_out_5_d;
       4'b0110:
-        casez_tmp_43 = io_scpu_6_bits_d;
+        casez_tmp_43 = s1_out_6_d;
       4'b0111:
-        casez_tmp_43 = io_scpu_7_bits_d;
+        casez_tmp_43 = s1_out_7_d;
       4'b1000:
-        casez_tmp_43 = io_scpu_8_bits_d;
+        casez_tmp_43 = s1_out_8_d;
       4'b1001:
-        casez_tmp_43 = io_scpu_9_bits_d;
+        casez_tmp_43 = s1_out_9_d;
       4'b1010:
-        casez_tmp_43 = io_scpu_10_bits_d;
+        casez_tmp_43 = s1_out_10_d;
       4'b1011:
-        casez_tmp_43 = io_scpu_11_bits_d;
+        casez_tmp_43 = s1_out_11_d;
       4'b1100:
-        casez_tmp_43 = io_scpu_12_bits_d;
+        casez_tmp_43 = s1_out_12_d;
       4'b1101:
-        casez_tmp_43 = io_scpu_13_bits_d;
+        casez_tmp_43 = s1_out_13_d;
       4'b1110:
-        casez_tmp_43 = io_scpu_14_bits_d;
+        casez_tmp_43 = s1_out_14_d;
       default:
-        casez_tmp_43 = io_scpu_15_bits_d;
+        casez_tmp_43 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_44;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (_at_T_33)
       4'b0000:
-        casez_tmp_44 = io_scpu_0_bits_nw;
+        casez_tmp_44 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_44 = io_scpu_1_bits_nw;
+        casez_tmp_44 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_44 = io_scpu_2_bits_nw;
+        casez_tmp_44 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_44 = io_scpu_3_bits_nw;
+        casez_tmp_44 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_44 = io_scpu_4_bits_nw;
+        casez_tmp_44 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_44 = io_scpu_5_bits_nw;
+        casez_tmp_44 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_44 = io_scpu_6_bits_nw;
+        casez_tmp_44 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_44 = io_scpu_7_bits_nw;
+        casez_tmp_44 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_44 = io_scpu_8_bits_nw;
+        casez_tmp_44 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_44 = io_scpu_9_bits_nw;
+        casez_tmp_44 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_44 = io_scpu_10_bits_nw;
+        casez_tmp_44 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_44 = io_scpu_11_bits_nw;
+        casez_tmp_44 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_44 = io_scpu_12_bits_nw;
+        casez_tmp_44 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_44 = io_scpu_13_bits_nw;
+        casez_tmp_44 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_44 = io_scpu_14_bits_nw;
+        casez_tmp_44 = s1_out_14_nw;
       default:
-        casez_tmp_44 = io_scpu_15_bits_nw;
+        casez_tmp_44 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_45;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (_at_T_33)
       4'b0000:
-        casez_tmp_45 = io_scpu_0_bits_nonFinite;
+        casez_tmp_45 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_45 = io_scpu_1_bits_nonFinite;
+        casez_tmp_45 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_45 = io_scpu_2_bits_nonFinite;
+        casez_tmp_45 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_45 = io_scpu_3_bits_nonFinite;
+        casez_tmp_45 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_45 = io_scpu_4_bits_nonFinite;
+        casez_tmp_45 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_45 = io_scpu_5_bits_nonFinite;
+        casez_tmp_45 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_45 = io_scpu_6_bits_nonFinite;
+        casez_tmp_45 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_45 = io_scpu_7_bits_nonFinite;
+        casez_tmp_45 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_45 = io_scpu_8_bits_nonFinite;
+        casez_tmp_45 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_45 = io_scpu_9_bits_nonFinite;
+        casez_tmp_45 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_45 = io_scpu_10_bits_nonFinite;
+        casez_tmp_45 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_45 = io_scpu_11_bits_nonFinite;
+        casez_tmp_45 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_45 = io_scpu_12_bits_nonFinite;
+        casez_tmp_45 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_45 = io_scpu_13_bits_nonFinite;
+        casez_tmp_45 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_45 = io_scpu_14_bits_nonFinite;
+        casez_tmp_45 = s1_out_14_nonFinite;
       default:
-        casez_tmp_45 = io_scpu_15_bits_nonFinite;
+        casez_tmp_45 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_46;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (_at_T_33)
       4'b0000:
-        casez_tmp_46 = io_scpu_0_bits_flags;
+        casez_tmp_46 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_46 = io_scpu_1_bits_flags;
+        casez_tmp_46 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_46 = io_scpu_2_bits_flags;
+        casez_tmp_46 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_46 = io_scpu_3_bits_flags;
+        casez_tmp_46 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_46 = io_scpu_4_bits_flags;
+        casez_tmp_46 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_46 = io_scpu_5_bits_flags;
+        casez_tmp_46 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_46 = io_scpu_6_bits_flags;
+        casez_tmp_46 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_46 = io_scpu_7_bits_flags;
+        casez_tmp_46 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_46 = io_scpu_8_bits_flags;
+        casez_tmp_46 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_46 = io_scpu_9_bits_flags;
+        casez_tmp_46 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_46 = io_scpu_10_bits_flags;
+        casez_tmp_46 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_46 = io_scpu_11_bits_flags;
+        casez_tmp_46 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_46 = io_scpu_12_bits_flags;
+        casez_tmp_46 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_46 = io_scpu_13_bits_flags;
+        casez_tmp_46 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_46 = io_scpu_14_bits_flags;
+        casez_tmp_46 = s1_out_14_flags;
       default:
-        casez_tmp_46 = io_scpu_15_bits_flags;
+        casez_tmp_46 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_47;
   always @(*) begin
-    casez (scpuAt_6[3:0])
+    casez (_at_T_33)
       4'b0000:
-        casez_tmp_47 = io_scpu_0_bits_tag;
+        casez_tmp_47 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_47 = io_scpu_1_bits_tag;
+        casez_tmp_47 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_47 = io_scpu_2_bits_tag;
+        casez_tmp_47 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_47 = io_scpu_3_bits_tag;
+        casez_tmp_47 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_47 = io_scpu_4_bits_tag;
+        casez_tmp_47 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_47 = io_scpu_5_bits_tag;
+        casez_tmp_47 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_47 = io_scpu_6_bits_tag;
+        casez_tmp_47 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_47 = io_scpu_7_bits_tag;
+        casez_tmp_47 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_47 = io_scpu_8_bits_tag;
+        casez_tmp_47 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_47 = io_scpu_9_bits_tag;
+        casez_tmp_47 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_47 = io_scpu_10_bits_tag;
+        casez_tmp_47 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_47 = io_scpu_11_bits_tag;
+        casez_tmp_47 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_47 = io_scpu_12_bits_tag;
+        casez_tmp_47 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_47 = io_scpu_13_bits_tag;
+        casez_tmp_47 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_47 = io_scpu_14_bits_tag;
+        casez_tmp_47 = s1_out_14_tag;
       default:
-        casez_tmp_47 = io_scpu_15_bits_tag;
+        casez_tmp_47 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_48;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (_at_T_38)
       4'b0000:
-        casez_tmp_48 = io_scpu_0_bits_hit;
+        casez_tmp_48 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_48 = io_scpu_1_bits_hit;
+        casez_tmp_48 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_48 = io_scpu_2_bits_hit;
+        casez_tmp_48 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_48 = io_scpu_3_bits_hit;
+        casez_tmp_48 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_48 = io_scpu_4_bits_hit;
+        casez_tmp_48 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_48 = io_scpu_5_bits_hit;
+        casez_tmp_48 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_48 = io_scpu_6_bits_hit;
+        casez_tmp_48 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_48 = io_scpu_7_bits_hit;
+        casez_tmp_48 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_48 = io_scpu_8_bits_hit;
+        casez_tmp_48 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_48 = io_scpu_9_bits_hit;
+        casez_tmp_48 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_48 = io_scpu_10_bits_hit;
+        casez_tmp_48 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_48 = io_scpu_11_bits_hit;
+        casez_tmp_48 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_48 = io_scpu_12_bits_hit;
+        casez_tmp_48 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_48 = io_scpu_13_bits_hit;
+        casez_tmp_48 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_48 = io_scpu_14_bits_hit;
+        casez_tmp_48 = s1_out_14_hit;
       default:
-        casez_tmp_48 = io_scpu_15_bits_hit;
+        casez_tmp_48 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_49;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (_at_T_38)
       4'b0000:
-        casez_tmp_49 = io_scpu_0_bits_kind;
+        casez_tmp_49 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_49 = io_scpu_1_bits_kind;
+        casez_tmp_49 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_49 = io_scpu_2_bits_kind;
+        casez_tmp_49 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_49 = io_scpu_3_bits_kind;
+        casez_tmp_49 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_49 = io_scpu_4_bits_kind;
+        casez_tmp_49 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_49 = io_scpu_5_bits_kind;
+        casez_tmp_49 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_49 = io_scpu_6_bits_kind;
+        casez_tmp_49 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_49 = io_scpu_7_bits_kind;
+        casez_tmp_49 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_49 = io_scpu_8_bits_kind;
+        casez_tmp_49 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_49 = io_scpu_9_bits_kind;
+        casez_tmp_49 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_49 = io_scpu_10_bits_kind;
+        casez_tmp_49 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_49 = io_scpu_11_bits_kind;
+        casez_tmp_49 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_49 = io_scpu_12_bits_kind;
+        casez_tmp_49 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_49 = io_scpu_13_bits_kind;
+        casez_tmp_49 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_49 = io_scpu_14_bits_kind;
+        casez_tmp_49 = s1_out_14_kind;
       default:
-        casez_tmp_49 = io_scpu_15_bits_kind;
+        casez_tmp_49 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_50;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (_at_T_38)
       4'b0000:
-        casez_tmp_50 = io_scpu_0_bits_d;
+        casez_tmp_50 = s1_out_0_d;
       4'b0001:
-        casez_tmp_50 = io_scpu_1_bits_d;
+        casez_tmp_50 = s1_out_1_d;
       4'b0010:
-        casez_tmp_50 = io_scpu_2_bits_d;
+        casez_tmp_50 = s1_out_2_d;
       4'b0011:
-        casez_tmp_50 = io_scpu_3_bits_d;
+        casez_tmp_50 = s1_out_3_d;
       4'b0100:
-        casez_tmp_50 = io_scpu_4_bits_d;
+        casez_tmp_50 = s1_out_4_d;
       4'b0101:
-        casez_tmp_50 = io_scpu_5_bits_d;
+        casez_tmp_50 = s1_out_5_d;
       4'b0110:
-        casez_tmp_50 = io_scpu_6_bits_d;
+        casez_tmp_50 = s1_out_6_d;
       4'b0111:
-        casez_tmp_50 = io_scpu_7_bits_d;
+        casez_tmp_50 = s1_out_7_d;
       4'b1000:
-        casez_tmp_50 = io_scpu_8_bits_d;
+        casez_tmp_50 = s1_out_8_d;
       4'b1001:
-        casez_tmp_50 = io_scpu_9_bits_d;
+        casez_tmp_50 = s1_out_9_d;
       4'b1010:
-        casez_tmp_50 = io_scpu_10_bits_d;
+        casez_tmp_50 = s1_out_10_d;
       4'b1011:
-        casez_tmp_50 = io_scpu_11_bits_d;
+        casez_tmp_50 = s1_out_11_d;
       4'b1100:
-        casez_tmp_50 = io_scpu_12_bits_d;
+        casez_tmp_50 = s1_out_12_d;
       4'b1101:
-        casez_tmp_50 = io_scpu_13_bits_d;
+        casez_tmp_50 = s1_out_13_d;
       4'b1110:
-        casez_tmp_50 = io_scpu_14_bits_d;
+        casez_tmp_50 = s1_out_14_d;
       default:
-        casez_tmp_50 = io_scpu_15_bits_d;
+        casez_tmp_50 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_51;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (_at_T_38)
       4'b0000:
-        casez_tmp_51 = io_scpu_0_bits_nw;
+        casez_tmp_51 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_51 = io_scpu_1_bits_nw;
+        casez_tmp_51 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_51 = io_scpu_2_bits_nw;
+        casez_tmp_51 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_51 = io_scpu_3_bits_nw;
+        casez_tmp_51 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_51 = io_scpu_4_bits_nw;
+        casez_tmp_51 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_51 = io_scpu_5_bits_nw;
+        casez_tmp_51 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_51 = io_scpu_6_bits_nw;
+        casez_tmp_51 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_51 = io_scpu_7_bits_nw;
+        casez_tmp_51 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_51 = io_scpu_8_bits_nw;
+        casez_tmp_51 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_51 = io_scpu_9_bits_nw;
+        casez_tmp_51 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_51 = io_scpu_10_bits_nw;
+        casez_tmp_51 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_51 = io_scpu_11_bits_nw;
+        casez_tmp_51 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_51 = io_scpu_12_bits_nw;
+        casez_tmp_51 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_51 = io_scpu_13_bits_nw;
+        casez_tmp_51 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_51 = io_scpu_14_bits_nw;
+        casez_tmp_51 = s1_out_14_nw;
       default:
-        casez_tmp_51 = io_scpu_15_bits_nw;
+        casez_tmp_51 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_52;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (_at_T_38)
       4'b0000:
-        casez_tmp_52 = io_scpu_0_bits_nonFinite;
+        casez_tmp_52 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_52 = io_scpu_1_bits_nonFinite;
+        casez_tmp_52 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_52 = io_scpu_2_bits_nonFinite;
+        casez_tmp_52 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_52 = io_scpu_3_bits_nonFinite;
+        casez_tmp_52 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_52 = io_scpu_4_bits_nonFinite;
+        casez_tmp_52 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_52 = io_scpu_5_bits_nonFinite;
+        casez_tmp_52 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_52 = io_scpu_6_bits_nonFinite;
+        casez_tmp_52 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_52 = io_scpu_7_bits_nonFinite;
+        casez_tmp_52 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_52 = io_scpu_8_bits_nonFinite;
+        casez_tmp_52 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_52 = io_scpu_9_bits_nonFinite;
+        casez_tmp_52 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_52 = io_scpu_10_bits_nonFinite;
+        casez_tmp_52 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_52 = io_scpu_11_bits_nonFinite;
+        casez_tmp_52 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_52 = io_scpu_12_bits_nonFinite;
+        casez_tmp_52 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_52 = io_scpu_13_bits_nonFinite;
+        casez_tmp_52 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_52 = io_scpu_14_bits_nonFinite;
+        casez_tmp_52 = s1_out_14_nonFinite;
       default:
-        casez_tmp_52 = io_scpu_15_bits_nonFinite;
+        casez_tmp_52 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_53;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (_at_T_38)
       4'b0000:
-        casez_tmp_53 = io_scpu_0_bits_flags;
+        casez_tmp_53 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_53 = io_scpu_1_bits_flags;
+        casez_tmp_53 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_53 = io_scpu_2_bits_flags;
+        casez_tmp_53 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_53 = io_scpu_3_bits_flags;
+        casez_tmp_53 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_53 = io_scpu_4_bits_flags;
+        casez_tmp_53 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_53 = io_scpu_5_bits_flags;
+        casez_tmp_53 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_53 = io_scpu_6_bits_flags;
+        casez_tmp_53 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_53 = io_scpu_7_bits_flags;
+        casez_tmp_53 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_53 = io_scpu_8_bits_flags;
+        casez_tmp_53 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_53 = io_scpu_9_bits_flags;
+        casez_tmp_53 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_53 = io_scpu_10_bits_flags;
+        casez_tmp_53 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_53 = io_scpu_11_bits_flags;
+        casez_tmp_53 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_53 = io_scpu_12_bits_flags;
+        casez_tmp_53 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_53 = io_scpu_13_bits_flags;
+        casez_tmp_53 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_53 = io_scpu_14_bits_flags;
+        casez_tmp_53 = s1_out_14_flags;
       default:
-        casez_tmp_53 = io_scpu_15_bits_flags;
+        casez_tmp_53 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_54;
   always @(*) begin
-    casez (scpuAt_7[3:0])
+    casez (_at_T_38)
       4'b0000:
-        casez_tmp_54 = io_scpu_0_bits_tag;
+        casez_tmp_54 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_54 = io_scpu_1_bits_tag;
+        casez_tmp_54 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_54 = io_scpu_2_bits_tag;
+        casez_tmp_54 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_54 = io_scpu_3_bits_tag;
+        casez_tmp_54 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_54 = io_scpu_4_bits_tag;
+        casez_tmp_54 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_54 = io_scpu_5_bits_tag;
+        casez_tmp_54 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_54 = io_scpu_6_bits_tag;
+        casez_tmp_54 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_54 = io_scpu_7_bits_tag;
+        casez_tmp_54 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_54 = io_scpu_8_bits_tag;
+        casez_tmp_54 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_54 = io_scpu_9_bits_tag;
+        casez_tmp_54 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_54 = io_scpu_10_bits_tag;
+        casez_tmp_54 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_54 = io_scpu_11_bits_tag;
+        casez_tmp_54 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_54 = io_scpu_12_bits_tag;
+        casez_tmp_54 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_54 = io_scpu_13_bits_tag;
+        casez_tmp_54 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_54 = io_scpu_14_bits_tag;
+        casez_tmp_54 = s1_out_14_tag;
       default:
-        casez_tmp_54 = io_scpu_15_bits_tag;
+        casez_tmp_54 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_55;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (_at_T_43)
       4'b0000:
-        casez_tmp_55 = io_scpu_0_bits_hit;
+        casez_tmp_55 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_55 = io_scpu_1_bits_hit;
+        casez_tmp_55 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_55 = io_scpu_2_bits_hit;
+        casez_tmp_55 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_55 = io_scpu_3_bits_hit;
+        casez_tmp_55 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_55 = io_scpu_4_bits_hit;
+        casez_tmp_55 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_55 = io_scpu_5_bits_hit;
+        casez_tmp_55 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_55 = io_scpu_6_bits_hit;
+        casez_tmp_55 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_55 = io_scpu_7_bits_hit;
+        casez_tmp_55 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_55 = io_scpu_8_bits_hit;
+        casez_tmp_55 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_55 = io_scpu_9_bits_hit;
+        casez_tmp_55 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_55 = io_scpu_10_bits_hit;
+        casez_tmp_55 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_55 = io_scpu_11_bits_hit;
+        casez_tmp_55 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_55 = io_scpu_12_bits_hit;
+        casez_tmp_55 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_55 = io_scpu_13_bits_hit;
+        casez_tmp_55 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_55 = io_scpu_14_bits_hit;
+        casez_tmp_55 = s1_out_14_hit;
       default:
-        casez_tmp_55 = io_scpu_15_bits_hit;
+        casez_tmp_55 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_56;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (_at_T_43)
       4'b0000:
-        casez_tmp_56 = io_scpu_0_bits_kind;
+        casez_tmp_56 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_56 = io_scpu_1_bits_kind;
+        casez_tmp_56 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_56 = io_scpu_2_bits_kind;
+        casez_tmp_56 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_56 = io_scpu_3_bits_kind;
+        casez_tmp_56 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_56 = io_scpu_4_bits_kind;
+        casez_tmp_56 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_56 = io_scpu_5_bits_kind;
+        casez_tmp_56 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_56 = io_scpu_6_bits_kind;
+        casez_tmp_56 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_56 = io_scpu_7_bits_kind;
+        casez_tmp_56 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_56 = io_scpu_8_bits_kind;
+        casez_tmp_56 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_56 = io_scpu_9_bits_kind;
+        casez_tmp_56 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_56 = io_scpu_10_bits_kind;
+        casez_tmp_56 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_56 = io_scpu_11_bits_kind;
+        casez_tmp_56 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_56 = io_scpu_12_bits_kind;
+        casez_tmp_56 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_56 = io_scpu_13_bits_kind;
+        casez_tmp_56 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_56 = io_scpu_14_bits_kind;
+        casez_tmp_56 = s1_out_14_kind;
       default:
-        casez_tmp_56 = io_scpu_15_bits_kind;
+        casez_tmp_56 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_57;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (_at_T_43)
       4'b0000:
-        casez_tmp_57 = io_scpu_0_bits_d;
+        casez_tmp_57 = s1_out_0_d;
       4'b0001:
-        casez_tmp_57 = io_scpu_1_bits_d;
+        casez_tmp_57 = s1_out_1_d;
       4'b0010:
-        casez_tmp_57 = io_scpu_2_bits_d;
+        casez_tmp_57 = s1_out_2_d;
       4'b0011:
-        casez_tmp_57 = io_scpu_3_bits_d;
+        casez_tmp_57 = s1_out_3_d;
       4'b0100:
-        casez_tmp_57 = io_scpu_4_bits_d;
+        casez_tmp_57 = s1_out_4_d;
       4'b0101:
-        casez_tmp_57 = io_scpu_5_bits_d;
+        casez_tmp_57 = s1_out_5_d;
       4'b0110:
-        casez_tmp_57 = io_scpu_6_bits_d;
+        casez_tmp_57 = s1_out_6_d;
       4'b0111:
-        casez_tmp_57 = io_scpu_7_bits_d;
+        casez_tmp_57 = s1_out_7_d;
       4'b1000:
-        casez_tmp_57 = io_scpu_8_bits_d;
+        casez_tmp_57 = s1_out_8_d;
       4'b1001:
-        casez_tmp_57 = io_scpu_9_bits_d;
+        casez_tmp_57 = s1_out_9_d;
       4'b1010:
-        casez_tmp_57 = io_scpu_10_bits_d;
+        casez_tmp_57 = s1_out_10_d;
       4'b1011:
-        casez_tmp_57 = io_scpu_11_bits_d;
+        casez_tmp_57 = s1_out_11_d;
       4'b1100:
-        casez_tmp_57 = io_scpu_12_bits_d;
+        casez_tmp_57 = s1_out_12_d;
       4'b1101:
-        casez_tmp_57 = io_scpu_13_bits_d;
+        casez_tmp_57 = s1_out_13_d;
       4'b1110:
-        casez_tmp_57 = io_scpu_14_bits_d;
+        casez_tmp_57 = s1_out_14_d;
       default:
-        casez_tmp_57 = io_scpu_15_bits_d;
+        casez_tmp_57 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_58;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (_at_T_43)
       4'b0000:
-        casez_tmp_58 = io_scpu_0_bits_nw;
+        casez_tmp_58 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_58 = io_scpu_1_bits_nw;
+        casez_tmp_58 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_58 = io_scpu_2_bits_nw;
+        casez_tmp_58 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_58 = io_scpu_3_bits_nw;
+        casez_tmp_58 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_58 = io_scpu_4_bits_nw;
+        casez_tmp_58 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_58 = io_scpu_5_bits_nw;
+        casez_tmp_58 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_58 = io_scpu_6_bits_nw;
+        casez_tmp_58 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_58 = io_scpu_7_bits_nw;
+        casez_tmp_58 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_58 = io_scpu_8_bits_nw;
+        casez_tmp_58 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_58 = io_scpu_9_bits_nw;
+        casez_tmp_58 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_58 = io_scpu_10_bits_nw;
+        casez_tmp_58 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_58 = io_scpu_11_bits_nw;
+        casez_tmp_58 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_58 = io_scpu_12_bits_nw;
+        casez_tmp_58 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_58 = io_scpu_13_bits_nw;
+        casez_tmp_58 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_58 = io_scpu_14_bits_nw;
+        casez_tmp_58 = s1_out_14_nw;
       default:
-        casez_tmp_58 = io_scpu_15_bits_nw;
+        casez_tmp_58 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_59;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (_at_T_43)
       4'b0000:
-        casez_tmp_59 = io_scpu_0_bits_nonFinite;
+        casez_tmp_59 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_59 = io_scpu_1_bits_nonFinite;
+        casez_tmp_59 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_59 = io_scpu_2_bits_nonFinite;
+        casez_tmp_59 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_59 = io_scpu_3_bits_nonFinite;
+        casez_tmp_59 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_59 = io_scpu_4_bits_nonFinite;
+        casez_tmp_59 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_59 = io_scpu_5_bits_nonFinite;
+        casez_tmp_59 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_59 = io_scpu_6_bits_nonFinite;
+        casez_tmp_59 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_59 = io_scpu_7_bits_nonFinite;
+        casez_tmp_59 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_59 = io_scpu_8_bits_nonFinite;
+        casez_tmp_59 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_59 = io_scpu_9_bits_nonFinite;
+        casez_tmp_59 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_59 = io_scpu_10_bits_nonFinite;
+        casez_tmp_59 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_59 = io_scpu_11_bits_nonFinite;
+        casez_tmp_59 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_59 = io_scpu_12_bits_nonFinite;
+        casez_tmp_59 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_59 = io_scpu_13_bits_nonFinite;
+        casez_tmp_59 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_59 = io_scpu_14_bits_nonFinite;
+        casez_tmp_59 = s1_out_14_nonFinite;
       default:
-        casez_tmp_59 = io_scpu_15_bits_nonFinite;
+        casez_tmp_59 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_60;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (_at_T_43)
       4'b0000:
-        casez_tmp_60 = io_scpu_0_bits_flags;
+        casez_tmp_60 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_60 = io_scpu_1_bits_flags;
+        casez_tmp_60 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_60 = io_scpu_2_bits_flags;
+        casez_tmp_60 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_60 = io_scpu_3_bits_flags;
+        casez_tmp_60 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_60 = io_scpu_4_bits_flags;
+        casez_tmp_60 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_60 = io_scpu_5_bits_flags;
+        casez_tmp_60 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_60 = io_scpu_6_bits_flags;
+        casez_tmp_60 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_60 = io_scpu_7_bits_flags;
+        casez_tmp_60 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_60 = io_scpu_8_bits_flags;
+        casez_tmp_60 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_60 = io_scpu_9_bits_flags;
+        casez_tmp_60 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_60 = io_scpu_10_bits_flags;
+        casez_tmp_60 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_60 = io_scpu_11_bits_flags;
+        casez_tmp_60 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_60 = io_scpu_12_bits_flags;
+        casez_tmp_60 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_60 = io_scpu_13_bits_flags;
+        casez_tmp_60 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_60 = io_scpu_14_bits_flags;
+        casez_tmp_60 = s1_out_14_flags;
       default:
-        casez_tmp_60 = io_scpu_15_bits_flags;
+        casez_tmp_60 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_61;
   always @(*) begin
-    casez (scpuAt_8[3:0])
+    casez (_at_T_43)
       4'b0000:
-        casez_tmp_61 = io_scpu_0_bits_tag;
+        casez_tmp_61 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_61 = io_scpu_1_bits_tag;
+        casez_tmp_61 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_61 = io_scpu_2_bits_tag;
+        casez_tmp_61 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_61 = io_scpu_3_bits_tag;
+        casez_tmp_61 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_61 = io_scpu_4_bits_tag;
+        casez_tmp_61 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_61 = io_scpu_5_bits_tag;
+        casez_tmp_61 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_61 = io_scpu_6_bits_tag;
+        casez_tmp_61 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_61 = io_scpu_7_bits_tag;
+        casez_tmp_61 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_61 = io_scpu_8_bits_tag;
+        casez_tmp_61 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_61 = io_scpu_9_bits_tag;
+        casez_tmp_61 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_61 = io_scpu_10_bits_tag;
+        casez_tmp_61 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_61 = io_scpu_11_bits_tag;
+        casez_tmp_61 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_61 = io_scpu_12_bits_tag;
+        casez_tmp_61 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_61 = io_scpu_13_bits_tag;
+        casez_tmp_61 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_61 = io_scpu_14_bits_tag;
+        casez_tmp_61 = s1_out_14_tag;
       default:
-        casez_tmp_61 = io_scpu_15_bits_tag;
+        casez_tmp_61 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_62;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (_at_T_48)
       4'b0000:
-        casez_tmp_62 = io_scpu_0_bits_hit;
+        casez_tmp_62 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_62 = io_scpu_1_bits_hit;
+        casez_tmp_62 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_62 = io_scpu_2_bits_hit;
+        casez_tmp_62 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_62 = io_scpu_3_bits_hit;
+        casez_tmp_62 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_62 = io_scpu_4_bits_hit;
+        casez_tmp_62 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_62 = io_scpu_5_bits_hit;
+        casez_tmp_62 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_62 = io_scpu_6_bits_hit;
+        casez_tmp_62 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_62 = io_scpu_7_bits_hit;
+        casez_tmp_62 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_62 = io_scpu_8_bits_hit;
+        casez_tmp_62 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_62 = io_scpu_9_bits_hit;
+        casez_tmp_62 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_62 = io_scpu_10_bits_hit;
+        casez_tmp_62 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_62 = io_scpu_11_bits_hit;
+        casez_tmp_62 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_62 = io_scpu_12_bits_hit;
+        casez_tmp_62 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_62 = io_scpu_13_bits_hit;
+        casez_tmp_62 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_62 = io_scpu_14_bits_hit;
+        casez_tmp_62 = s1_out_14_hit;
       default:
-        casez_tmp_62 = io_scpu_15_bits_hit;
+        casez_tmp_62 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_63;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (_at_T_48)
       4'b0000:
-        casez_tmp_63 = io_scpu_0_bits_kind;
+        casez_tmp_63 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_63 = io_scpu_1_bits_kind;
+        casez_tmp_63 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_63 = io_scpu_2_bits_kind;
+        casez_tmp_63 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_63 = io_scpu_3_bits_kind;
+        casez_tmp_63 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_63 = io_scpu_4_bits_kind;
+        casez_tmp_63 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_63 = io_scpu_5_bits_kind;
+        casez_tmp_63 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_63 = io_scpu_6_bits_kind;
+        casez_tmp_63 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_63 = io_scpu_7_bits_kind;
+        casez_tmp_63 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_63 = io_scpu_8_bits_kind;
+        casez_tmp_63 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_63 = io_scpu_9_bits_kind;
+        casez_tmp_63 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_63 = io_scpu_10_bits_kind;
+        casez_tmp_63 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_63 = io_scpu_11_bits_kind;
+        casez_tmp_63 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_63 = io_scpu_12_bits_kind;
+        casez_tmp_63 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_63 = io_scpu_13_bits_kind;
+        casez_tmp_63 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_63 = io_scpu_14_bits_kind;
+        casez_tmp_63 = s1_out_14_kind;
       default:
-        casez_tmp_63 = io_scpu_15_bits_kind;
+        casez_tmp_63 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_64;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (_at_T_48)
       4'b0000:
-        casez_tmp_64 = io_scpu_0_bits_d;
+        casez_tmp_64 = s1_out_0_d;
       4'b0001:
-        casez_tmp_64 = io_scpu_1_bits_d;
+        casez_tmp_64 = s1_out_1_d;
       4'b0010:
-        casez_tmp_64 = io_scpu_2_bits_d;
+        casez_tmp_64 = s1_out_2_d;
       4'b0011:
-        casez_tmp_64 = io_scpu_3_bits_d;
+        casez_tmp_64 = s1_out_3_d;
       4'b0100:
-        casez_tmp_64 = io_scpu_4_bits_d;
+        casez_tmp_64 = s1_out_4_d;
       4'b0101:
-        casez_tmp_64 = io_scpu_5_bits_d;
+        casez_tmp_64 = s1_out_5_d;
       4'b0110:
-        casez_tmp_64 = io_scpu_6_bits_d;
+        casez_tmp_64 = s1_out_6_d;
       4'b0111:
-        casez_tmp_64 = io_scpu_7_bits_d;
+        casez_tmp_64 = s1_out_7_d;
       4'b1000:
-        casez_tmp_64 = io_scpu_8_bits_d;
+        casez_tmp_64 = s1_out_8_d;
       4'b1001:
-        casez_tmp_64 = io_scpu_9_bits_d;
+        casez_tmp_64 = s1_out_9_d;
       4'b1010:
-        casez_tmp_64 = io_scpu_10_bits_d;
+        casez_tmp_64 = s1_out_10_d;
       4'b1011:
-        casez_tmp_64 = io_scpu_11_bits_d;
+        casez_tmp_64 = s1_out_11_d;
       4'b1100:
-        casez_tmp_64 = io_scpu_12_bits_d;
+        casez_tmp_64 = s1_out_12_d;
       4'b1101:
-        casez_tmp_64 = io_scpu_13_bits_d;
+        casez_tmp_64 = s1_out_13_d;
       4'b1110:
-        casez_tmp_64 = io_scpu_14_bits_d;
+        casez_tmp_64 = s1_out_14_d;
       default:
-        casez_tmp_64 = io_scpu_15_bits_d;
+        casez_tmp_64 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_65;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (_at_T_48)
       4'b0000:
-        casez_tmp_65 = io_scpu_0_bits_nw;
+        casez_tmp_65 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_65 = io_scpu_1_bits_nw;
+        casez_tmp_65 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_65 = io_scpu_2_bits_nw;
+        casez_tmp_65 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_65 = io_scpu_3_bits_nw;
+        casez_tmp_65 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_65 = io_scpu_4_bits_nw;
+        casez_tmp_65 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_65 = io_scpu_5_bits_nw;
+        casez_tmp_65 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_65 = io_scpu_6_bits_nw;
+        casez_tmp_65 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_65 = io_scpu_7_bits_nw;
+        casez_tmp_65 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_65 = io_scpu_8_bits_nw;
+        casez_tmp_65 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_65 = io_scpu_9_bits_nw;
+        casez_tmp_65 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_65 = io_scpu_10_bits_nw;
+        casez_tmp_65 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_65 = io_scpu_11_bits_nw;
+        casez_tmp_65 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_65 = io_scpu_12_bits_nw;
+        casez_tmp_65 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_65 = io_scpu_13_bits_nw;
+        casez_tmp_65 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_65 = io_scpu_14_bits_nw;
+        casez_tmp_65 = s1_out_14_nw;
       default:
-        casez_tmp_65 = io_scpu_15_bits_nw;
+        casez_tmp_65 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_66;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (_at_T_48)
       4'b0000:
-        casez_tmp_66 = io_scpu_0_bits_nonFinite;
+        casez_tmp_66 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_66 = io_scpu_1_bits_nonFinite;
+        casez_tmp_66 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_66 = io_scpu_2_bits_nonFinite;
+        casez_tmp_66 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_66 = io_scpu_3_bits_nonFinite;
+        casez_tmp_66 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_66 = io_scpu_4_bits_nonFinite;
+        casez_tmp_66 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_66 = io_scpu_5_bits_nonFinite;
+        casez_tmp_66 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_66 = io_scpu_6_bits_nonFinite;
+        casez_tmp_66 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_66 = io_scpu_7_bits_nonFinite;
+        casez_tmp_66 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_66 = io_scpu_8_bits_nonFinite;
+        casez_tmp_66 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_66 = io_scpu_9_bits_nonFinite;
+        casez_tmp_66 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_66 = io_scpu_10_bits_nonFinite;
+        casez_tmp_66 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_66 = io_scpu_11_bits_nonFinite;
+        casez_tmp_66 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_66 = io_scpu_12_bits_nonFinite;
+        casez_tmp_66 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_66 = io_scpu_13_bits_nonFinite;
+        casez_tmp_66 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_66 = io_scpu_14_bits_nonFinite;
+        casez_tmp_66 = s1_out_14_nonFinite;
       default:
-        casez_tmp_66 = io_scpu_15_bits_nonFinite;
+        casez_tmp_66 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_67;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (_at_T_48)
       4'b0000:
-        casez_tmp_67 = io_scpu_0_bits_flags;
+        casez_tmp_67 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_67 = io_scpu_1_bits_flags;
+        casez_tmp_67 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_67 = io_scpu_2_bits_flags;
+        casez_tmp_67 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_67 = io_scpu_3_bits_flags;
+        casez_tmp_67 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_67 = io_scpu_4_bits_flags;
+        casez_tmp_67 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_67 = io_scpu_5_bits_flags;
+        casez_tmp_67 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_67 = io_scpu_6_bits_flags;
+        casez_tmp_67 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_67 = io_scpu_7_bits_flags;
+        casez_tmp_67 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_67 = io_scpu_8_bits_flags;
+        casez_tmp_67 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_67 = io_scpu_9_bits_flags;
+        casez_tmp_67 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_67 = io_scpu_10_bits_flags;
+        casez_tmp_67 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_67 = io_scpu_11_bits_flags;
+        casez_tmp_67 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_67 = io_scpu_12_bits_flags;
+        casez_tmp_67 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_67 = io_scpu_13_bits_flags;
+        casez_tmp_67 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_67 = io_scpu_14_bits_flags;
+        casez_tmp_67 = s1_out_14_flags;
       default:
-        casez_tmp_67 = io_scpu_15_bits_flags;
+        casez_tmp_67 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_68;
   always @(*) begin
-    casez (scpuAt_9[3:0])
+    casez (_at_T_48)
       4'b0000:
-        casez_tmp_68 = io_scpu_0_bits_tag;
+        casez_tmp_68 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_68 = io_scpu_1_bits_tag;
+        casez_tmp_68 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_68 = io_scpu_2_bits_tag;
+        casez_tmp_68 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_68 = io_scpu_3_bits_tag;
+        casez_tmp_68 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_68 = io_scpu_4_bits_tag;
+        casez_tmp_68 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_68 = io_scpu_5_bits_tag;
+        casez_tmp_68 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_68 = io_scpu_6_bits_tag;
+        casez_tmp_68 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_68 = io_scpu_7_bits_tag;
+        casez_tmp_68 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_68 = io_scpu_8_bits_tag;
+        casez_tmp_68 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_68 = io_scpu_9_bits_tag;
+        casez_tmp_68 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_68 = io_scpu_10_bits_tag;
+        casez_tmp_68 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_68 = io_scpu_11_bits_tag;
+        casez_tmp_68 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_68 = io_scpu_12_bits_tag;
+        casez_tmp_68 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_68 = io_scpu_13_bits_tag;
+        casez_tmp_68 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_68 = io_scpu_14_bits_tag;
+        casez_tmp_68 = s1_out_14_tag;
       default:
-        casez_tmp_68 = io_scpu_15_bits_tag;
+        casez_tmp_68 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_69;
   always @(*) begin
-    casez (scpuAt_10[3:0])
+    casez (_at_T_53)
       4'b0000:
-        casez_tmp_69 = io_scpu_0_bits_hit;
+        casez_tmp_69 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_69 = io_scpu_1_bits_hit;
+        casez_tmp_69 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_69 = io_scpu_2_bits_hit;
+        casez_tmp_69 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_69 = io_scpu_3_bits_hit;
+        casez_tmp_69 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_69 = io_scpu_4_bits_hit;
+        casez_tmp_69 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_69 = io_scpu_5_bits_hit;
+        casez_tmp_69 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_69 = io_scpu_6_bits_hit;
+        casez_tmp_69 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_69 = io_scpu_7_bits_hit;
+        casez_tmp_69 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_69 = io_scpu_8_bits_hit;
+        casez_tmp_69 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_69 = io_scpu_9_bits_hit;
+        casez_tmp_69 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_69 = io_scpu_10_bits_hit;
+        casez_tmp_69 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_69 = io_scpu_11_bits_hit;
+        casez_tmp_69 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_69 = io_scpu_12_bits_hit;
+        casez_tmp_69 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_69 = io_scpu_13_bits_hit;
+        casez_tmp_69 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_69 = io_scpu_14_bits_hit;
+        casez_tmp_69 = s1_out_14_hit;
       default:
-        casez_tmp_69 = io_scpu_15_bits_hit;
+        casez_tmp_69 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_70;
   always @(*) begin
-    casez (scpuAt_10[3:0])
+    casez (_at_T_53)
       4'b0000:
-        casez_tmp_70 = io_scpu_0_bits_kind;
+        casez_tmp_70 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_70 = io_scpu_1_bits_kind;
+        casez_tmp_70 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_70 = io_scpu_2_bits_kind;
+        casez_tmp_70 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_70 = io_scpu_3_bits_kind;
+        casez_tmp_70 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_70 = io_scpu_4_bits_kind;
+        casez_tmp_70 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_70 = io_scpu_5_bits_kind;
+        casez_tmp_70 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_70 = io_scpu_6_bits_kind;
+        casez_tmp_70 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_70 = io_scpu_7_bits_kind;
+        casez_tmp_70 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_70 = io_scpu_8_bits_kind;
+        casez_tmp_70 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_70 = io_scpu_9_bits_kind;
+        casez_tmp_70 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_70 = io_scpu_10_bits_kind;
+        casez_tmp_70 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_70 = io_scpu_11_bits_kind;
+        casez_tmp_70 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_70 = io_scpu_12_bits_kind;
+        casez_tmp_70 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_70 = io_scpu_13_bits_kind;
+        casez_tmp_70 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_70 = io_scpu_14_bits_kind;
+        casez_tmp_70 = s1_out_14_kind;
       default:
-        casez_tmp_70 = io_scpu_15_bits_kind;
+        casez_tmp_70 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_71;
   always @(*) begin
-    casez (scpuAt_10[3:0])
+    casez (_at_T_53)
       4'b0000:
-        casez_tmp_71 = io_scpu_0_bits_d;
+        casez_tmp_71 = s1_out_0_d;
       4'b0001:
-        casez_tmp_71 = io_scpu_1_bits_d;
+        casez_tmp_71 = s1_out_1_d;
       4'b0010:
-        casez_tmp_71 = io_scpu_2_bits_d;
+        casez_tmp_71 = s1_out_2_d;
       4'b0011:
-        casez_tmp_71 = io_scpu_3_bits_d;
+        casez_tmp_71 = s1_out_3_d;
       4'b0100:
-        casez_tmp_71 = io_scpu_4_bits_d;
+        casez_tmp_71 = s1_out_4_d;
       4'b0101:
-        casez_tmp_71 = io_scpu_5_bits_d;
+        casez_tmp_71 = s1_out_5_d;
       4'b0110:
-        casez_tmp_71 = io_scpu_6_bits_d;
+        casez_tmp_71 = s1_out_6_d;
       4'b0111:
-        casez_tmp_71 = io_scpu_7_bits_d;
+        casez_tmp_71 = s1_out_7_d;
       4'b1000:
-        casez_tmp_71 = io_scpu_8_bits_d;
+        casez_tmp_71 = s1_out_8_d;
       4'b1001:
-        casez_tmp_71 = io_scpu_9_bits_d;
+        casez_tmp_71 = s1_out_9_d;
       4'b1010:
-        casez_tmp_71 = io_scpu_10_bits_d;
+        casez_tmp_71 = s1_out_10_d;
       4'b1011:
-        casez_tmp_71 = io_scpu_11_bits_d;
+        casez_tmp_71 = s1_out_11_d;
       4'b1100:
-        casez_tmp_71 = io_scpu_12_bits_d;
+        casez_tmp_71 = s1_out_12_d;
       4'b1101:
-        casez_tmp_71 = io_scpu_13_bits_d;
+        casez_tmp_71 = s1_out_13_d;
       4'b1110:
-        casez_tmp_71 = io_scpu_14_bits_d;
+        casez_tmp_71 = s1_out_14_d;
       default:
-        casez_tmp_71 = io_scpu_15_bits_d;
+        casez_tmp_71 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_72;
   always @(*) begin
-    casez (scpuAt_10[3:0])
+    casez (_at_T_53)
       4'b0000:
-        casez_tmp_72 = io_scpu_0_bits_nw;
+        casez_tmp_72 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_72 = io_scpu_1_bits_nw;
+        casez_tmp_72 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_72 = io_scpu_2_bits_nw;
+        casez_tmp_72 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_72 = io_scpu_3_bits_nw;
+        casez_tmp_72 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_72 = io_scpu_4_bits_nw;
+        casez_tmp_72 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_72 = io_scpu_5_bits_nw;
+        casez_tmp_72 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_72 = io_scpu_6_bits_nw;
+        casez_tmp_72 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_72 = io_scpu_7_bits_nw;
+        casez_tmp_72 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_72 = io_scpu_8_bits_nw;
+        casez_tmp_72 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_72 = io_scpu_9_bits_nw;
+        casez_tmp_72 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_72 = io_scpu_10_bits_nw;
+        casez_tmp_72 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_72 = io_scpu_11_bits_nw;
+        casez_tmp_72 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_72 = io_scpu_12_bits_nw;
+        casez_tmp_72 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_72 = io_scpu_13_bits_nw;
+        casez_tmp_72 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_72 = io_scpu_14_bits_nw;
+        casez_tmp_72 = s1_out_14_nw;
       default:
-        casez_tmp_72 = io_scpu_15_bits_nw;
+        casez_tmp_72 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_73;
   always @(*) begin
-    casez (scpuAt_10[3:0])
+    casez (_at_T_53)
       4'b0000:
-        casez_tmp_73 = io_scpu_0_bits_nonFinite;
+        casez_tmp_73 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_73 = io_scpu_1_bits_nonFinite;
+        casez_tmp_73 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_73 = io_scpu_2_bits_nonFinite;
+        casez_tmp_73 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_73 = io_scpu_3_bits_nonFinite;
+        casez_tmp_73 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_73 = io_scpu_4_bits_nonFinite;
+        casez_tmp_73 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_73 = io_scpu_5_bits_nonFinite;
+        casez_tmp_73 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_73 = io_scpu_6_bits_nonFinite;
+        casez_tmp_73 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_73 = io_scpu_7_bits_nonFinite;
+        casez_tmp_73 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_73 = io_scpu_8_bits_nonFinite;
+        casez_tmp_73 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_73 = io_scpu_9_bits_nonFinite;
+        casez_tmp_73 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_73 = io_scpu_10_bits_nonFinite;
+        casez_tmp_73 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_73 = io_scpu_11_bits_nonFinite;
+        casez_tmp_73 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_73 = io_scpu_12_bits_nonFinite;
+        casez_tmp_73 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_73 = io_scpu_13_bits_nonFinite;
+        casez_tmp_73 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_73 = io_scpu_14_bits_nonFinite;
+        casez_tmp_73 = s1_out_14_nonFinite;
       default:
-        casez_tmp_73 = io_scpu_15_bits_nonFinite;
+        casez_tmp_73 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_74;
   always @(*) begin
-    casez (scpuAt_10[3:0])
+    casez (_at_T_53)
       4'b0000:
-        casez_tmp_74 = io_scpu_0_bits_flags;
+        casez_tmp_74 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_74 = io_scpu_1_bits_flags;
+        casez_tmp_74 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_74 = io_scpu_2_bits_flags;
+        casez_tmp_74 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_74 = io_scpu_3_bits_flags;
+        casez_tmp_74 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_74 = io_scpu_4_bits_flags;
+        casez_tmp_74 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_74 = io_scpu_5_bits_flags;
+        casez_tmp_74 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_74 = io_scpu_6_bits_flags;
+        casez_tmp_74 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_74 = io_scpu_7_bits_flags;
+        casez_tmp_74 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_74 = io_scpu_8_bits_flags;
+        casez_tmp_74 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_74 = io_scpu_9_bits_flags;
+        casez_tmp_74 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_74 = io_scpu_10_bits_flags;
+        casez_tmp_74 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_74 = io_scpu_11_bits_flags;
+        casez_tmp_74 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_74 = io_scpu_12_bits_flags;
+        casez_tmp_74 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_74 = io_scpu_13_bits_flags;
+        casez_tmp_74 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_74 = io_scpu_14_bits_flags;
+        casez_tmp_74 = s1_out_14_flags;
       default:
-        casez_tmp_74 = io_scpu_15_bits_flags;
+        casez_tmp_74 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_75;
   always @(*) begin
-    casez (scpuAt_10[3:0])
+    casez (_at_T_53)
       4'b0000:
-        casez_tmp_75 = io_scpu_0_bits_tag;
+        casez_tmp_75 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_75 = io_scpu_1_bits_tag;
+        casez_tmp_75 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_75 = io_scpu_2_bits_tag;
+        casez_tmp_75 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_75 = io_scpu_3_bits_tag;
+        casez_tmp_75 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_75 = io_scpu_4_bits_tag;
+        casez_tmp_75 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_75 = io_scpu_5_bits_tag;
+        casez_tmp_75 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_75 = io_scpu_6_bits_tag;
+        casez_tmp_75 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_75 = io_scpu_7_bits_tag;
+        casez_tmp_75 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_75 = io_scpu_8_bits_tag;
+        casez_tmp_75 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_75 = io_scpu_9_bits_tag;
+        casez_tmp_75 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_75 = io_scpu_10_bits_tag;
+        casez_tmp_75 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_75 = io_scpu_11_bits_tag;
+        casez_tmp_75 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_75 = io_scpu_12_bits_tag;
+        casez_tmp_75 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_75 = io_scpu_13_bits_tag;
+        casez_tmp_75 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_75 = io_scpu_14_bits_tag;
+        casez_tmp_75 = s1_out_14_tag;
       default:
-        casez_tmp_75 = io_scpu_15_bits_tag;
+        casez_tmp_75 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_76;
   always @(*) begin
-    casez (scpuAt_11[3:0])
+    casez (_at_T_58)
       4'b0000:
-        casez_tmp_76 = io_scpu_0_bits_hit;
+        casez_tmp_76 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_76 = io_scpu_1_bits_hit;
+        casez_tmp_76 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_76 = io_scpu_2_bits_hit;
+        casez_tmp_76 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_76 = io_scpu_3_bits_hit;
+        casez_tmp_76 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_76 = io_scpu_4_bits_hit;
+        casez_tmp_76 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_76 = io_scpu_5_bits_hit;
+        casez_tmp_76 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_76 = io_scpu_6_bits_hit;
+        casez_tmp_76 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_76 = io_scpu_7_bits_hit;
+        casez_tmp_76 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_76 = io_scpu_8_bits_hit;
+        casez_tmp_76 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_76 = io_scpu_9_bits_hit;
+        casez_tmp_76 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_76 = io_scpu_10_bits_hit;
+        casez_tmp_76 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_76 = io_scpu_11_bits_hit;
+        casez_tmp_76 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_76 = io_scpu_12_bits_hit;
+        casez_tmp_76 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_76 = io_scpu_13_bits_hit;
+        casez_tmp_76 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_76 = io_scpu_14_bits_hit;
+        casez_tmp_76 = s1_out_14_hit;
       default:
-        casez_tmp_76 = io_scpu_15_bits_hit;
+        casez_tmp_76 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_77;
   always @(*) begin
-    casez (scpuAt_11[3:0])
+    casez (_at_T_58)
       4'b0000:
-        casez_tmp_77 = io_scpu_0_bits_kind;
+        casez_tmp_77 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_77 = io_scpu_1_bits_kind;
+        casez_tmp_77 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_77 = io_scpu_2_bits_kind;
+        casez_tmp_77 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_77 = io_scpu_3_bits_kind;
+        casez_tmp_77 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_77 = io_scpu_4_bits_kind;
+        casez_tmp_77 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_77 = io_scpu_5_bits_kind;
+        casez_tmp_77 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_77 = io_scpu_6_bits_kind;
+        casez_tmp_77 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_77 = io_scpu_7_bits_kind;
+        casez_tmp_77 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_77 = io_scpu_8_bits_kind;
+        casez_tmp_77 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_77 = io_scpu_9_bits_kind;
+        casez_tmp_77 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_77 = io_scpu_10_bits_kind;
+        casez_tmp_77 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_77 = io_scpu_11_bits_kind;
+        casez_tmp_77 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_77 = io_scpu_12_bits_kind;
+        casez_tmp_77 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_77 = io_scpu_13_bits_kind;
+        casez_tmp_77 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_77 = io_scpu_14_bits_kind;
+        casez_tmp_77 = s1_out_14_kind;
       default:
-        casez_tmp_77 = io_scpu_15_bits_kind;
+        casez_tmp_77 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_78;
   always @(*) begin
-    casez (scpuAt_11[3:0])
+    casez (_at_T_58)
       4'b0000:
-        casez_tmp_78 = io_scpu_0_bits_d;
+        casez_tmp_78 = s1_out_0_d;
       4'b0001:
-        casez_tmp_78 = io_scpu_1_bits_d;
+        casez_tmp_78 = s1_out_1_d;
       4'b0010:
-        casez_tmp_78 = io_scpu_2_bits_d;
+        casez_tmp_78 = s1_out_2_d;
       4'b0011:
-        casez_tmp_78 = io_scpu_3_bits_d;
+        casez_tmp_78 = s1_out_3_d;
       4'b0100:
-        casez_tmp_78 = io_scpu_4_bits_d;
+        casez_tmp_78 = s1_out_4_d;
       4'b0101:
-        casez_tmp_78 = io_scpu_5_bits_d;
+        casez_tmp_78 = s1_out_5_d;
       4'b0110:
-        casez_tmp_78 = io_scpu_6_bits_d;
+        casez_tmp_78 = s1_out_6_d;
       4'b0111:
-        casez_tmp_78 = io_scpu_7_bits_d;
+        casez_tmp_78 = s1_out_7_d;
       4'b1000:
-        casez_tmp_78 = io_scpu_8_bits_d;
+        casez_tmp_78 = s1_out_8_d;
       4'b1001:
-        casez_tmp_78 = io_scpu_9_bits_d;
+        casez_tmp_78 = s1_out_9_d;
       4'b1010:
-        casez_tmp_78 = io_scpu_10_bits_d;
+        casez_tmp_78 = s1_out_10_d;
       4'b1011:
-        casez_tmp_78 = io_scpu_11_bits_d;
+        casez_tmp_78 = s1_out_11_d;
       4'b1100:
-        casez_tmp_78 = io_scpu_12_bits_d;
+        casez_tmp_78 = s1_out_12_d;
       4'b1101:
-        casez_tmp_78 = io_scpu_13_bits_d;
+        casez_tmp_78 = s1_out_13_d;
       4'b1110:
-        casez_tmp_78 = io_scpu_14_bits_d;
+        casez_tmp_78 = s1_out_14_d;
       default:
-        casez_tmp_78 = io_scpu_15_bits_d;
+        casez_tmp_78 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_79;
   always @(*) begin
-    casez (scpuAt_11[3:0])
+    casez (_at_T_58)
       4'b0000:
-        casez_tmp_79 = io_scpu_0_bits_nw;
+        casez_tmp_79 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_79 = io_scpu_1_bits_nw;
+        casez_tmp_79 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_79 = io_scpu_2_bits_nw;
+        casez_tmp_79 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_79 = io_scpu_3_bits_nw;
+        casez_tmp_79 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_79 = io_scpu_4_bits_nw;
+        casez_tmp_79 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_79 = io_scpu_5_bits_nw;
+        casez_tmp_79 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_79 = io_scpu_6_bits_nw;
+        casez_tmp_79 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_79 = io_scpu_7_bits_nw;
+        casez_tmp_79 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_79 = io_scpu_8_bits_nw;
+        casez_tmp_79 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_79 = io_scpu_9_bits_nw;
+        casez_tmp_79 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_79 = io_scpu_10_bits_nw;
+        casez_tmp_79 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_79 = io_scpu_11_bits_nw;
+        casez_tmp_79 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_79 = io_scpu_12_bits_nw;
+        casez_tmp_79 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_79 = io_scpu_13_bits_nw;
+        casez_tmp_79 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_79 = io_scpu_14_bits_nw;
+        casez_tmp_79 = s1_out_14_nw;
       default:
-        casez_tmp_79 = io_scpu_15_bits_nw;
+        casez_tmp_79 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_80;
   always @(*) begin
-    casez (scpuAt_11[3:0])
+    casez (_at_T_58)
       4'b0000:
-        casez_tmp_80 = io_scpu_0_bits_nonFinite;
+        casez_tmp_80 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_80 = io_scpu_1_bits_nonFinite;
+        casez_tmp_80 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_80 = io_scpu_2_bits_nonFinite;
+        casez_tmp_80 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_80 = io_scpu_3_bits_nonFinite;
+        casez_tmp_80 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_80 = io_scpu_4_bits_nonFinite;
+        casez_tmp_80 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_80 = io_scpu_5_bits_nonFinite;
+        casez_tmp_80 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_80 = io_scpu_6_bits_nonFinite;
+        casez_tmp_80 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_80 = io_scpu_7_bits_nonFinite;
+        casez_tmp_80 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_80 = io_scpu_8_bits_nonFinite;
+        casez_tmp_80 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_80 = io_scpu_9_bits_nonFinite;
+        casez_tmp_80 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_80 = io_scpu_10_bits_nonFinite;
+        casez_tmp_80 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_80 = io_scpu_11_bits_nonFinite;
+        casez_tmp_80 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_80 = io_scpu_12_bits_nonFinite;
+        casez_tmp_80 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_80 = io_scpu_13_bits_nonFinite;
+        casez_tmp_80 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_80 = io_scpu_14_bits_nonFinite;
+        casez_tmp_80 = s1_out_14_nonFinite;
       default:
-        casez_tmp_80 = io_scpu_15_bits_nonFinite;
+        casez_tmp_80 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_81;
   always @(*) begin
-    casez (scpuAt_11[3:0])
+    casez (_at_T_58)
       4'b0000:
-        casez_tmp_81 = io_scpu_0_bits_flags;
+        casez_tmp_81 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_81 = io_scpu_1_bits_flags;
+        casez_tmp_81 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_81 = io_scpu_2_bits_flags;
+        casez_tmp_81 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_81 = io_scpu_3_bits_flags;
+        casez_tmp_81 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_81 = io_scpu_4_bits_flags;
+        casez_tmp_81 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_81 = io_scpu_5_bits_flags;
+        casez_tmp_81 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_81 = io_scpu_6_bits_flags;
+        casez_tmp_81 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_81 = io_scpu_7_bits_flags;
+        casez_tmp_81 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_81 = io_scpu_8_bits_flags;
+        casez_tmp_81 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_81 = io_scpu_9_bits_flags;
+        casez_tmp_81 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_81 = io_scpu_10_bits_flags;
+        casez_tmp_81 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_81 = io_scpu_11_bits_flags;
+        casez_tmp_81 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_81 = io_scpu_12_bits_flags;
+        casez_tmp_81 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_81 = io_scpu_13_bits_flags;
+        casez_tmp_81 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_81 = io_scpu_14_bits_flags;
+        casez_tmp_81 = s1_out_14_flags;
       default:
-        casez_tmp_81 = io_scpu_15_bits_flags;
+        casez_tmp_81 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_82;
   always @(*) begin
-    casez (scpuAt_11[3:0])
+    casez (_at_T_58)
       4'b0000:
-        casez_tmp_82 = io_scpu_0_bits_tag;
+        casez_tmp_82 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_82 = io_scpu_1_bits_tag;
+        casez_tmp_82 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_82 = io_scpu_2_bits_tag;
+        casez_tmp_82 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_82 = io_scpu_3_bits_tag;
+        casez_tmp_82 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_82 = io_scpu_4_bits_tag;
+        casez_tmp_82 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_82 = io_scpu_5_bits_tag;
+        casez_tmp_82 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_82 = io_scpu_6_bits_tag;
+        casez_tmp_82 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_82 = io_scpu_7_bits_tag;
+        casez_tmp_82 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_82 = io_scpu_8_bits_tag;
+        casez_tmp_82 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_82 = io_scpu_9_bits_tag;
+        casez_tmp_82 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_82 = io_scpu_10_bits_tag;
+        casez_tmp_82 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_82 = io_scpu_11_bits_tag;
+        casez_tmp_82 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_82 = io_scpu_12_bits_tag;
+        casez_tmp_82 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_82 = io_scpu_13_bits_tag;
+        casez_tmp_82 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_82 = io_scpu_14_bits_tag;
+        casez_tmp_82 = s1_out_14_tag;
       default:
-        casez_tmp_82 = io_scpu_15_bits_tag;
+        casez_tmp_82 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_83;
   always @(*) begin
-    casez (scpuAt_12[3:0])
+    casez (_at_T_63)
       4'b0000:
-        casez_tmp_83 = io_scpu_0_bits_hit;
+        casez_tmp_83 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_83 = io_scpu_1_bits_hit;
+        casez_tmp_83 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_83 = io_scpu_2_bits_hit;
+        casez_tmp_83 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_83 = io_scpu_3_bits_hit;
+        casez_tmp_83 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_83 = io_scpu_4_bits_hit;
+        casez_tmp_83 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_83 = io_scpu_5_bits_hit;
+        casez_tmp_83 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_83 = io_scpu_6_bits_hit;
+        casez_tmp_83 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_83 = io_scpu_7_bits_hit;
+        casez_tmp_83 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_83 = io_scpu_8_bits_hit;
+        casez_tmp_83 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_83 = io_scpu_9_bits_hit;
+        casez_tmp_83 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_83 = io_scpu_10_bits_hit;
+        casez_tmp_83 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_83 = io_scpu_11_bits_hit;
+        casez_tmp_83 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_83 = io_scpu_12_bits_hit;
+        casez_tmp_83 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_83 = io_scpu_13_bits_hit;
+        casez_tmp_83 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_83 = io_scpu_14_bits_hit;
+        casez_tmp_83 = s1_out_14_hit;
       default:
-        casez_tmp_83 = io_scpu_15_bits_hit;
+        casez_tmp_83 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_84;
   always @(*) begin
-    casez (scpuAt_12[3:0])
+    casez (_at_T_63)
       4'b0000:
-        casez_tmp_84 = io_scpu_0_bits_kind;
+        casez_tmp_84 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_84 = io_scpu_1_bits_kind;
+        casez_tmp_84 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_84 = io_scpu_2_bits_kind;
+        casez_tmp_84 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_84 = io_scpu_3_bits_kind;
+        casez_tmp_84 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_84 = io_scpu_4_bits_kind;
+        casez_tmp_84 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_84 = io_scpu_5_bits_kind;
+        casez_tmp_84 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_84 = io_scpu_6_bits_kind;
+        casez_tmp_84 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_84 = io_scpu_7_bits_kind;
+        casez_tmp_84 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_84 = io_scpu_8_bits_kind;
+        casez_tmp_84 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_84 = io_scpu_9_bits_kind;
+        casez_tmp_84 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_84 = io_scpu_10_bits_kind;
+        casez_tmp_84 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_84 = io_scpu_11_bits_kind;
+        casez_tmp_84 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_84 = io_scpu_12_bits_kind;
+        casez_tmp_84 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_84 = io_scpu_13_bits_kind;
+        casez_tmp_84 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_84 = io_scpu_14_bits_kind;
+        casez_tmp_84 = s1_out_14_kind;
       default:
-        casez_tmp_84 = io_scpu_15_bits_kind;
+        casez_tmp_84 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_85;
   always @(*) begin
-    casez (scpuAt_12[3:0])
+    casez (_at_T_63)
       4'b0000:
-        casez_tmp_85 = io_scpu_0_bits_d;
+        casez_tmp_85 = s1_out_0_d;
       4'b0001:
-        casez_tmp_85 = io_scpu_1_bits_d;
+        casez_tmp_85 = s1_out_1_d;
       4'b0010:
-        casez_tmp_85 = io_scpu_2_bits_d;
+        casez_tmp_85 = s1_out_2_d;
       4'b0011:
-        casez_tmp_85 = io_scpu_3_bits_d;
+        casez_tmp_85 = s1_out_3_d;
       4'b0100:
-        casez_tmp_85 = io_scpu_4_bits_d;
+        casez_tmp_85 = s1_out_4_d;
       4'b0101:
-        casez_tmp_85 = io_scpu_5_bits_d;
+        casez_tmp_85 = s1_out_5_d;
       4'b0110:
-        casez_tmp_85 = io_scpu_6_bits_d;
+        casez_tmp_85 = s1_out_6_d;
       4'b0111:
-        casez_tmp_85 = io_scpu_7_bits_d;
+        casez_tmp_85 = s1_out_7_d;
       4'b1000:
-        casez_tmp_85 = io_scpu_8_bits_d;
+        casez_tmp_85 = s1_out_8_d;
       4'b1001:
-        casez_tmp_85 = io_scpu_9_bits_d;
+        casez_tmp_85 = s1_out_9_d;
       4'b1010:
-        casez_tmp_85 = io_scpu_10_bits_d;
+        casez_tmp_85 = s1_out_10_d;
       4'b1011:
-        casez_tmp_85 = io_scpu_11_bits_d;
+        casez_tmp_85 = s1_out_11_d;
       4'b1100:
-        casez_tmp_85 = io_scpu_12_bits_d;
+        casez_tmp_85 = s1_out_12_d;
       4'b1101:
-        casez_tmp_85 = io_scpu_13_bits_d;
+        casez_tmp_85 = s1_out_13_d;
       4'b1110:
-        casez_tmp_85 = io_scpu_14_bits_d;
+        casez_tmp_85 = s1_out_14_d;
       default:
-        casez_tmp_85 = io_scpu_15_bits_d;
+        casez_tmp_85 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_86;
   always @(*) begin
-    casez (scpuAt_12[3:0])
+    casez (_at_T_63)
       4'b0000:
-        casez_tmp_86 = io_scpu_0_bits_nw;
+        casez_tmp_86 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_86 = io_scpu_1_bits_nw;
+        casez_tmp_86 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_86 = io_scpu_2_bits_nw;
+        casez_tmp_86 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_86 = io_scpu_3_bits_nw;
+        casez_tmp_86 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_86 = io_scpu_4_bits_nw;
+        casez_tmp_86 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_86 = io_scpu_5_bits_nw;
+        casez_tmp_86 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_86 = io_scpu_6_bits_nw;
+        casez_tmp_86 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_86 = io_scpu_7_bits_nw;
+        casez_tmp_86 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_86 = io_scpu_8_bits_nw;
+        casez_tmp_86 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_86 = io_scpu_9_bits_nw;
+        casez_tmp_86 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_86 = io_scpu_10_bits_nw;
+        casez_tmp_86 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_86 = io_scpu_11_bits_nw;
+        casez_tmp_86 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_86 = io_scpu_12_bits_nw;
+        casez_tmp_86 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_86 = io_scpu_13_bits_nw;
+        casez_tmp_86 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_86 = io_scpu_14_bits_nw;
+        casez_tmp_86 = s1_out_14_nw;
       default:
-        casez_tmp_86 = io_scpu_15_bits_nw;
+        casez_tmp_86 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_87;
   always @(*) begin
-    casez (scpuAt_12[3:0])
+    casez (_at_T_63)
       4'b0000:
-        casez_tmp_87 = io_scpu_0_bits_nonFinite;
+        casez_tmp_87 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_87 = io_scpu_1_bits_nonFinite;
+        casez_tmp_87 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_87 = io_scpu_2_bits_nonFinite;
+        casez_tmp_87 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_87 = io_scpu_3_bits_nonFinite;
+        casez_tmp_87 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_87 = io_scpu_4_bits_nonFinite;
+        casez_tmp_87 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_87 = io_scpu_5_bits_nonFinite;
+        casez_tmp_87 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_87 = io_scpu_6_bits_nonFinite;
+        casez_tmp_87 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_87 = io_scpu_7_bits_nonFinite;
+        casez_tmp_87 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_87 = io_scpu_8_bits_nonFinite;
+        casez_tmp_87 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_87 = io_scpu_9_bits_nonFinite;
+        casez_tmp_87 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_87 = io_scpu_10_bits_nonFinite;
+        casez_tmp_87 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_87 = io_scpu_11_bits_nonFinite;
+        casez_tmp_87 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_87 = io_scpu_12_bits_nonFinite;
+        casez_tmp_87 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_87 = io_scpu_13_bits_nonFinite;
+        casez_tmp_87 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_87 = io_scpu_14_bits_nonFinite;
+        casez_tmp_87 = s1_out_14_nonFinite;
       default:
-        casez_tmp_87 = io_scpu_15_bits_nonFinite;
+        casez_tmp_87 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_88;
   always @(*) begin
-    casez (scpuAt_12[3:0])
+    casez (_at_T_63)
       4'b0000:
-        casez_tmp_88 = io_scpu_0_bits_flags;
+        casez_tmp_88 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_88 = io_scpu_1_bits_flags;
+        casez_tmp_88 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_88 = io_scpu_2_bits_flags;
+        casez_tmp_88 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_88 = io_scpu_3_bits_flags;
+        casez_tmp_88 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_88 = io_scpu_4_bits_flags;
+        casez_tmp_88 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_88 = io_scpu_5_bits_flags;
+        casez_tmp_88 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_88 = io_scpu_6_bits_flags;
+        casez_tmp_88 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_88 = io_scpu_7_bits_flags;
+        casez_tmp_88 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_88 = io_scpu_8_bits_flags;
+        casez_tmp_88 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_88 = io_scpu_9_bits_flags;
+        casez_tmp_88 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_88 = io_scpu_10_bits_flags;
+        casez_tmp_88 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_88 = io_scpu_11_bits_flags;
+        casez_tmp_88 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_88 = io_scpu_12_bits_flags;
+        casez_tmp_88 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_88 = io_scpu_13_bits_flags;
+        casez_tmp_88 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_88 = io_scpu_14_bits_flags;
+        casez_tmp_88 = s1_out_14_flags;
       default:
-        casez_tmp_88 = io_scpu_15_bits_flags;
+        casez_tmp_88 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_89;
   always @(*) begin
-    casez (scpuAt_12[3:0])
+    casez (_at_T_63)
       4'b0000:
-        casez_tmp_89 = io_scpu_0_bits_tag;
+        casez_tmp_89 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_89 = io_scpu_1_bits_tag;
+        casez_tmp_89 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_89 = io_scpu_2_bits_tag;
+        casez_tmp_89 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_89 = io_scpu_3_bits_tag;
+        casez_tmp_89 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_89 = io_scpu_4_bits_tag;
+        casez_tmp_89 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_89 = io_scpu_5_bits_tag;
+        casez_tmp_89 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_89 = io_scpu_6_bits_tag;
+        casez_tmp_89 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_89 = io_scpu_7_bits_tag;
+        casez_tmp_89 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_89 = io_scpu_8_bits_tag;
+        casez_tmp_89 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_89 = io_scpu_9_bits_tag;
+        casez_tmp_89 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_89 = io_scpu_10_bits_tag;
+        casez_tmp_89 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_89 = io_scpu_11_bits_tag;
+        casez_tmp_89 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_89 = io_scpu_12_bits_tag;
+        casez_tmp_89 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_89 = io_scpu_13_bits_tag;
+        casez_tmp_89 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_89 = io_scpu_14_bits_tag;
+        casez_tmp_89 = s1_out_14_tag;
       default:
-        casez_tmp_89 = io_scpu_15_bits_tag;
+        casez_tmp_89 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_90;
   always @(*) begin
-    casez (scpuAt_13[3:0])
+    casez (_at_T_68)
       4'b0000:
-        casez_tmp_90 = io_scpu_0_bits_hit;
+        casez_tmp_90 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_90 = io_scpu_1_bits_hit;
+        casez_tmp_90 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_90 = io_scpu_2_bits_hit;
+        casez_tmp_90 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_90 = io_scpu_3_bits_hit;
+        casez_tmp_90 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_90 = io_scpu_4_bits_hit;
+        casez_tmp_90 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_90 = io_scpu_5_bits_hit;
+        casez_tmp_90 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_90 = io_scpu_6_bits_hit;
+        casez_tmp_90 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_90 = io_scpu_7_bits_hit;
+        casez_tmp_90 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_90 = io_scpu_8_bits_hit;
+        casez_tmp_90 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_90 = io_scpu_9_bits_hit;
+        casez_tmp_90 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_90 = io_scpu_10_bits_hit;
+        casez_tmp_90 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_90 = io_scpu_11_bits_hit;
+        casez_tmp_90 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_90 = io_scpu_12_bits_hit;
+        casez_tmp_90 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_90 = io_scpu_13_bits_hit;
+        casez_tmp_90 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_90 = io_scpu_14_bits_hit;
+        casez_tmp_90 = s1_out_14_hit;
       default:
-        casez_tmp_90 = io_scpu_15_bits_hit;
+        casez_tmp_90 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_91;
   always @(*) begin
-    casez (scpuAt_13[3:0])
+    casez (_at_T_68)
       4'b0000:
-        casez_tmp_91 = io_scpu_0_bits_kind;
+        casez_tmp_91 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_91 = io_scpu_1_bits_kind;
+        casez_tmp_91 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_91 = io_scpu_2_bits_kind;
+        casez_tmp_91 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_91 = io_scpu_3_bits_kind;
+        casez_tmp_91 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_91 = io_scpu_4_bits_kind;
+        casez_tmp_91 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_91 = io_scpu_5_bits_kind;
+        casez_tmp_91 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_91 = io_scpu_6_bits_kind;
+        casez_tmp_91 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_91 = io_scpu_7_bits_kind;
+        casez_tmp_91 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_91 = io_scpu_8_bits_kind;
+        casez_tmp_91 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_91 = io_scpu_9_bits_kind;
+        casez_tmp_91 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_91 = io_scpu_10_bits_kind;
+        casez_tmp_91 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_91 = io_scpu_11_bits_kind;
+        casez_tmp_91 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_91 = io_scpu_12_bits_kind;
+        casez_tmp_91 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_91 = io_scpu_13_bits_kind;
+        casez_tmp_91 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_91 = io_scpu_14_bits_kind;
+        casez_tmp_91 = s1_out_14_kind;
       default:
-        casez_tmp_91 = io_scpu_15_bits_kind;
+        casez_tmp_91 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_92;
   always @(*) begin
-    casez (scpuAt_13[3:0])
+    casez (_at_T_68)
       4'b0000:
-        casez_tmp_92 = io_scpu_0_bits_d;
+        casez_tmp_92 = s1_out_0_d;
       4'b0001:
-        casez_tmp_92 = io_scpu_1_bits_d;
+        casez_tmp_92 = s1_out_1_d;
       4'b0010:
-        casez_tmp_92 = io_scpu_2_bits_d;
+        casez_tmp_92 = s1_out_2_d;
       4'b0011:
-        casez_tmp_92 = io_scpu_3_bits_d;
+        casez_tmp_92 = s1_out_3_d;
       4'b0100:
-        casez_tmp_92 = io_scpu_4_bits_d;
+        casez_tmp_92 = s1_out_4_d;
       4'b0101:
-        casez_tmp_92 = io_scpu_5_bits_d;
+        casez_tmp_92 = s1_out_5_d;
       4'b0110:
-        casez_tmp_92 = io_scpu_6_bits_d;
+        casez_tmp_92 = s1_out_6_d;
       4'b0111:
-        casez_tmp_92 = io_scpu_7_bits_d;
+        casez_tmp_92 = s1_out_7_d;
       4'b1000:
-        casez_tmp_92 = io_scpu_8_bits_d;
+        casez_tmp_92 = s1_out_8_d;
       4'b1001:
-        casez_tmp_92 = io_scpu_9_bits_d;
+        casez_tmp_92 = s1_out_9_d;
       4'b1010:
-        casez_tmp_92 = io_scpu_10_bits_d;
+        casez_tmp_92 = s1_out_10_d;
       4'b1011:
-        casez_tmp_92 = io_scpu_11_bits_d;
+        casez_tmp_92 = s1_out_11_d;
       4'b1100:
-        casez_tmp_92 = io_scpu_12_bits_d;
+        casez_tmp_92 = s1_out_12_d;
       4'b1101:
-        casez_tmp_92 = io_scpu_13_bits_d;
+        casez_tmp_92 = s1_out_13_d;
       4'b1110:
-        casez_tmp_92 = io_scpu_14_bits_d;
+        casez_tmp_92 = s1_out_14_d;
       default:
-        casez_tmp_92 = io_scpu_15_bits_d;
+        casez_tmp_92 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_93;
   always @(*) begin
-    casez (scpuAt_13[3:0])
+    casez (_at_T_68)
       4'b0000:
-        casez_tmp_93 = io_scpu_0_bits_nw;
+        casez_tmp_93 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_93 = io_scpu_1_bits_nw;
+        casez_tmp_93 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_93 = io_scpu_2_bits_nw;
+        casez_tmp_93 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_93 = io_scpu_3_bits_nw;
+        casez_tmp_93 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_93 = io_scpu_4_bits_nw;
+        casez_tmp_93 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_93 = io_scpu_5_bits_nw;
+        casez_tmp_93 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_93 = io_scpu_6_bits_nw;
+        casez_tmp_93 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_93 = io_scpu_7_bits_nw;
+        casez_tmp_93 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_93 = io_scpu_8_bits_nw;
+        casez_tmp_93 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_93 = io_scpu_9_bits_nw;
+        casez_tmp_93 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_93 = io_scpu_10_bits_nw;
+        casez_tmp_93 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_93 = io_scpu_11_bits_nw;
+        casez_tmp_93 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_93 = io_scpu_12_bits_nw;
+        casez_tmp_93 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_93 = io_scpu_13_bits_nw;
+        casez_tmp_93 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_93 = io_scpu_14_bits_nw;
+        casez_tmp_93 = s1_out_14_nw;
       default:
-        casez_tmp_93 = io_scpu_15_bits_nw;
+        casez_tmp_93 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_94;
   always @(*) begin
-    casez (scpuAt_13[3:0])
+    casez (_at_T_68)
       4'b0000:
-        casez_tmp_94 = io_scpu_0_bits_nonFinite;
+        casez_tmp_94 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_94 = io_scpu_1_bits_nonFinite;
+        casez_tmp_94 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_94 = io_scpu_2_bits_nonFinite;
+        casez_tmp_94 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_94 = io_scpu_3_bits_nonFinite;
+        casez_tmp_94 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_94 = io_scpu_4_bits_nonFinite;
+        casez_tmp_94 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_94 = io_scpu_5_bits_nonFinite;
+        casez_tmp_94 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_94 = io_scpu_6_bits_nonFinite;
+        casez_tmp_94 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_94 = io_scpu_7_bits_nonFinite;
+        casez_tmp_94 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_94 = io_scpu_8_bits_nonFinite;
+        casez_tmp_94 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_94 = io_scpu_9_bits_nonFinite;
+        casez_tmp_94 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_94 = io_scpu_10_bits_nonFinite;
+        casez_tmp_94 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_94 = io_scpu_11_bits_nonFinite;
+        casez_tmp_94 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_94 = io_scpu_12_bits_nonFinite;
+        casez_tmp_94 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_94 = io_scpu_13_bits_nonFinite;
+        casez_tmp_94 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_94 = io_scpu_14_bits_nonFinite;
+        casez_tmp_94 = s1_out_14_nonFinite;
       default:
-        casez_tmp_94 = io_scpu_15_bits_nonFinite;
+        casez_tmp_94 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_95;
   always @(*) begin
-    casez (scpuAt_13[3:0])
+    casez (_at_T_68)
       4'b0000:
-        casez_tmp_95 = io_scpu_0_bits_flags;
+        casez_tmp_95 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_95 = io_scpu_1_bits_flags;
+        casez_tmp_95 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_95 = io_scpu_2_bits_flags;
+        casez_tmp_95 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_95 = io_scpu_3_bits_flags;
+        casez_tmp_95 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_95 = io_scpu_4_bits_flags;
+        casez_tmp_95 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_95 = io_scpu_5_bits_flags;
+        casez_tmp_95 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_95 = io_scpu_6_bits_flags;
+        casez_tmp_95 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_95 = io_scpu_7_bits_flags;
+        casez_tmp_95 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_95 = io_scpu_8_bits_flags;
+        casez_tmp_95 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_95 = io_scpu_9_bits_flags;
+        casez_tmp_95 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_95 = io_scpu_10_bits_flags;
+        casez_tmp_95 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_95 = io_scpu_11_bits_flags;
+        casez_tmp_95 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_95 = io_scpu_12_bits_flags;
+        casez_tmp_95 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_95 = io_scpu_13_bits_flags;
+        casez_tmp_95 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_95 = io_scpu_14_bits_flags;
+        casez_tmp_95 = s1_out_14_flags;
       default:
-        casez_tmp_95 = io_scpu_15_bits_flags;
+        casez_tmp_95 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_96;
   always @(*) begin
-    casez (scpuAt_13[3:0])
+    casez (_at_T_68)
       4'b0000:
-        casez_tmp_96 = io_scpu_0_bits_tag;
+        casez_tmp_96 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_96 = io_scpu_1_bits_tag;
+        casez_tmp_96 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_96 = io_scpu_2_bits_tag;
+        casez_tmp_96 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_96 = io_scpu_3_bits_tag;
+        casez_tmp_96 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_96 = io_scpu_4_bits_tag;
+        casez_tmp_96 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_96 = io_scpu_5_bits_tag;
+        casez_tmp_96 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_96 = io_scpu_6_bits_tag;
+        casez_tmp_96 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_96 = io_scpu_7_bits_tag;
+        casez_tmp_96 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_96 = io_scpu_8_bits_tag;
+        casez_tmp_96 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_96 = io_scpu_9_bits_tag;
+        casez_tmp_96 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_96 = io_scpu_10_bits_tag;
+        casez_tmp_96 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_96 = io_scpu_11_bits_tag;
+        casez_tmp_96 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_96 = io_scpu_12_bits_tag;
+        casez_tmp_96 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_96 = io_scpu_13_bits_tag;
+        casez_tmp_96 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_96 = io_scpu_14_bits_tag;
+        casez_tmp_96 = s1_out_14_tag;
       default:
-        casez_tmp_96 = io_scpu_15_bits_tag;
+        casez_tmp_96 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_97;
   always @(*) begin
-    casez (scpuAt_14[3:0])
+    casez (_at_T_73)
       4'b0000:
-        casez_tmp_97 = io_scpu_0_bits_hit;
+        casez_tmp_97 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_97 = io_scpu_1_bits_hit;
+        casez_tmp_97 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_97 = io_scpu_2_bits_hit;
+        casez_tmp_97 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_97 = io_scpu_3_bits_hit;
+        casez_tmp_97 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_97 = io_scpu_4_bits_hit;
+        casez_tmp_97 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_97 = io_scpu_5_bits_hit;
+        casez_tmp_97 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_97 = io_scpu_6_bits_hit;
+        casez_tmp_97 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_97 = io_scpu_7_bits_hit;
+        casez_tmp_97 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_97 = io_scpu_8_bits_hit;
+        casez_tmp_97 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_97 = io_scpu_9_bits_hit;
+        casez_tmp_97 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_97 = io_scpu_10_bits_hit;
+        casez_tmp_97 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_97 = io_scpu_11_bits_hit;
+        casez_tmp_97 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_97 = io_scpu_12_bits_hit;
+        casez_tmp_97 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_97 = io_scpu_13_bits_hit;
+        casez_tmp_97 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_97 = io_scpu_14_bits_hit;
+        casez_tmp_97 = s1_out_14_hit;
       default:
-        casez_tmp_97 = io_scpu_15_bits_hit;
+        casez_tmp_97 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_98;
   always @(*) begin
-    casez (scpuAt_14[3:0])
+    casez (_at_T_73)
       4'b0000:
-        casez_tmp_98 = io_scpu_0_bits_kind;
+        casez_tmp_98 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_98 = io_scpu_1_bits_kind;
+        casez_tmp_98 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_98 = io_scpu_2_bits_kind;
+        casez_tmp_98 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_98 = io_scpu_3_bits_kind;
+        casez_tmp_98 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_98 = io_scpu_4_bits_kind;
+        casez_tmp_98 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_98 = io_scpu_5_bits_kind;
+        casez_tmp_98 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_98 = io_scpu_6_bits_kind;
+        casez_tmp_98 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_98 = io_scpu_7_bits_kind;
+        casez_tmp_98 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_98 = io_scpu_8_bits_kind;
+        casez_tmp_98 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_98 = io_scpu_9_bits_kind;
+        casez_tmp_98 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_98 = io_scpu_10_bits_kind;
+        casez_tmp_98 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_98 = io_scpu_11_bits_kind;
+        casez_tmp_98 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_98 = io_scpu_12_bits_kind;
+        casez_tmp_98 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_98 = io_scpu_13_bits_kind;
+        casez_tmp_98 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_98 = io_scpu_14_bits_kind;
+        casez_tmp_98 = s1_out_14_kind;
       default:
-        casez_tmp_98 = io_scpu_15_bits_kind;
+        casez_tmp_98 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_99;
   always @(*) begin
-    casez (scpuAt_14[3:0])
+    casez (_at_T_73)
       4'b0000:
-        casez_tmp_99 = io_scpu_0_bits_d;
+        casez_tmp_99 = s1_out_0_d;
       4'b0001:
-        casez_tmp_99 = io_scpu_1_bits_d;
+        casez_tmp_99 = s1_out_1_d;
       4'b0010:
-        casez_tmp_99 = io_scpu_2_bits_d;
+        casez_tmp_99 = s1_out_2_d;
       4'b0011:
-        casez_tmp_99 = io_scpu_3_bits_d;
+        casez_tmp_99 = s1_out_3_d;
       4'b0100:
-        casez_tmp_99 = io_scpu_4_bits_d;
+        casez_tmp_99 = s1_out_4_d;
       4'b0101:
-        casez_tmp_99 = io_scpu_5_bits_d;
+        casez_tmp_99 = s1_out_5_d;
       4'b0110:
-        casez_tmp_99 = io_scpu_6_bits_d;
+        casez_tmp_99 = s1_out_6_d;
       4'b0111:
-        casez_tmp_99 = io_scpu_7_bits_d;
+        casez_tmp_99 = s1_out_7_d;
       4'b1000:
-        casez_tmp_99 = io_scpu_8_bits_d;
+        casez_tmp_99 = s1_out_8_d;
       4'b1001:
-        casez_tmp_99 = io_scpu_9_bits_d;
+        casez_tmp_99 = s1_out_9_d;
       4'b1010:
-        casez_tmp_99 = io_scpu_10_bits_d;
+        casez_tmp_99 = s1_out_10_d;
       4'b1011:
-        casez_tmp_99 = io_scpu_11_bits_d;
+        casez_tmp_99 = s1_out_11_d;
       4'b1100:
-        casez_tmp_99 = io_scpu_12_bits_d;
+        casez_tmp_99 = s1_out_12_d;
       4'b1101:
-        casez_tmp_99 = io_scpu_13_bits_d;
+        casez_tmp_99 = s1_out_13_d;
       4'b1110:
-        casez_tmp_99 = io_scpu_14_bits_d;
+        casez_tmp_99 = s1_out_14_d;
       default:
-        casez_tmp_99 = io_scpu_15_bits_d;
+        casez_tmp_99 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_100;
   always @(*) begin
-    casez (scpuAt_14[3:0])
+    casez (_at_T_73)
       4'b0000:
-        casez_tmp_100 = io_scpu_0_bits_nw;
+        casez_tmp_100 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_100 = io_scpu_1_bits_nw;
+        casez_tmp_100 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_100 = io_scpu_2_bits_nw;
+        casez_tmp_100 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_100 = io_scpu_3_bits_nw;
+        casez_tmp_100 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_100 = io_scpu_4_bits_nw;
+        casez_tmp_100 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_100 = io_scpu_5_bits_nw;
+        casez_tmp_100 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_100 = io_scpu_6_bits_nw;
+        casez_tmp_100 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_100 = io_scpu_7_bits_nw;
+        casez_tmp_100 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_100 = io_scpu_8_bits_nw;
+        casez_tmp_100 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_100 = io_scpu_9_bits_nw;
+        casez_tmp_100 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_100 = io_scpu_10_bits_nw;
+        casez_tmp_100 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_100 = io_scpu_11_bits_nw;
+        casez_tmp_100 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_100 = io_scpu_12_bits_nw;
+        casez_tmp_100 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_100 = io_scpu_13_bits_nw;
+        casez_tmp_100 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_100 = io_scpu_14_bits_nw;
+        casez_tmp_100 = s1_out_14_nw;
       default:
-        casez_tmp_100 = io_scpu_15_bits_nw;
+        casez_tmp_100 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_101;
   always @(*) begin
-    casez (scpuAt_14[3:0])
+    casez (_at_T_73)
       4'b0000:
-        casez_tmp_101 = io_scpu_0_bits_nonFinite;
+        casez_tmp_101 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_101 = io_scpu_1_bits_nonFinite;
+        casez_tmp_101 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_101 = io_scpu_2_bits_nonFinite;
+        casez_tmp_101 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_101 = io_scpu_3_bits_nonFinite;
+        casez_tmp_101 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_101 = io_scpu_4_bits_nonFinite;
+        casez_tmp_101 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_101 = io_scpu_5_bits_nonFinite;
+        casez_tmp_101 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_101 = io_scpu_6_bits_nonFinite;
+        casez_tmp_101 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_101 = io_scpu_7_bits_nonFinite;
+        casez_tmp_101 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_101 = io_scpu_8_bits_nonFinite;
+        casez_tmp_101 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_101 = io_scpu_9_bits_nonFinite;
+        casez_tmp_101 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_101 = io_scpu_10_bits_nonFinite;
+        casez_tmp_101 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_101 = io_scpu_11_bits_nonFinite;
+        casez_tmp_101 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_101 = io_scpu_12_bits_nonFinite;
+        casez_tmp_101 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_101 = io_scpu_13_bits_nonFinite;
+        casez_tmp_101 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_101 = io_scpu_14_bits_nonFinite;
+        casez_tmp_101 = s1_out_14_nonFinite;
       default:
-        casez_tmp_101 = io_scpu_15_bits_nonFinite;
+        casez_tmp_101 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_102;
   always @(*) begin
-    casez (scpuAt_14[3:0])
+    casez (_at_T_73)
       4'b0000:
-        casez_tmp_102 = io_scpu_0_bits_flags;
+        casez_tmp_102 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_102 = io_scpu_1_bits_flags;
+        casez_tmp_102 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_102 = io_scpu_2_bits_flags;
+        casez_tmp_102 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_102 = io_scpu_3_bits_flags;
+        casez_tmp_102 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_102 = io_scpu_4_bits_flags;
+        casez_tmp_102 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_102 = io_scpu_5_bits_flags;
+        casez_tmp_102 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_102 = io_scpu_6_bits_flags;
+        casez_tmp_102 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_102 = io_scpu_7_bits_flags;
+        casez_tmp_102 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_102 = io_scpu_8_bits_flags;
+        casez_tmp_102 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_102 = io_scpu_9_bits_flags;
+        casez_tmp_102 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_102 = io_scpu_10_bits_flags;
+        casez_tmp_102 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_102 = io_scpu_11_bits_flags;
+        casez_tmp_102 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_102 = io_scpu_12_bits_flags;
+        casez_tmp_102 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_102 = io_scpu_13_bits_flags;
+        casez_tmp_102 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_102 = io_scpu_14_bits_flags;
+        casez_tmp_102 = s1_out_14_flags;
       default:
-        casez_tmp_102 = io_scpu_15_bits_flags;
+        casez_tmp_102 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_103;
   always @(*) begin
-    casez (scpuAt_14[3:0])
+    casez (_at_T_73)
       4'b0000:
-        casez_tmp_103 = io_scpu_0_bits_tag;
+        casez_tmp_103 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_103 = io_scpu_1_bits_tag;
+        casez_tmp_103 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_103 = io_scpu_2_bits_tag;
+        casez_tmp_103 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_103 = io_scpu_3_bits_tag;
+        casez_tmp_103 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_103 = io_scpu_4_bits_tag;
+        casez_tmp_103 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_103 = io_scpu_5_bits_tag;
+        casez_tmp_103 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_103 = io_scpu_6_bits_tag;
+        casez_tmp_103 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_103 = io_scpu_7_bits_tag;
+        casez_tmp_103 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_103 = io_scpu_8_bits_tag;
+        casez_tmp_103 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_103 = io_scpu_9_bits_tag;
+        casez_tmp_103 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_103 = io_scpu_10_bits_tag;
+        casez_tmp_103 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_103 = io_scpu_11_bits_tag;
+        casez_tmp_103 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_103 = io_scpu_12_bits_tag;
+        casez_tmp_103 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_103 = io_scpu_13_bits_tag;
+        casez_tmp_103 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_103 = io_scpu_14_bits_tag;
+        casez_tmp_103 = s1_out_14_tag;
       default:
-        casez_tmp_103 = io_scpu_15_bits_tag;
+        casez_tmp_103 = s1_out_15_tag;
     endcase
   end // always @(*)
   reg         casez_tmp_104;
   always @(*) begin
-    casez (scpuAt_15[3:0])
+    casez (_at_T_78)
       4'b0000:
-        casez_tmp_104 = io_scpu_0_bits_hit;
+        casez_tmp_104 = s1_out_0_hit;
       4'b0001:
-        casez_tmp_104 = io_scpu_1_bits_hit;
+        casez_tmp_104 = s1_out_1_hit;
       4'b0010:
-        casez_tmp_104 = io_scpu_2_bits_hit;
+        casez_tmp_104 = s1_out_2_hit;
       4'b0011:
-        casez_tmp_104 = io_scpu_3_bits_hit;
+        casez_tmp_104 = s1_out_3_hit;
       4'b0100:
-        casez_tmp_104 = io_scpu_4_bits_hit;
+        casez_tmp_104 = s1_out_4_hit;
       4'b0101:
-        casez_tmp_104 = io_scpu_5_bits_hit;
+        casez_tmp_104 = s1_out_5_hit;
       4'b0110:
-        casez_tmp_104 = io_scpu_6_bits_hit;
+        casez_tmp_104 = s1_out_6_hit;
       4'b0111:
-        casez_tmp_104 = io_scpu_7_bits_hit;
+        casez_tmp_104 = s1_out_7_hit;
       4'b1000:
-        casez_tmp_104 = io_scpu_8_bits_hit;
+        casez_tmp_104 = s1_out_8_hit;
       4'b1001:
-        casez_tmp_104 = io_scpu_9_bits_hit;
+        casez_tmp_104 = s1_out_9_hit;
       4'b1010:
-        casez_tmp_104 = io_scpu_10_bits_hit;
+        casez_tmp_104 = s1_out_10_hit;
       4'b1011:
-        casez_tmp_104 = io_scpu_11_bits_hit;
+        casez_tmp_104 = s1_out_11_hit;
       4'b1100:
-        casez_tmp_104 = io_scpu_12_bits_hit;
+        casez_tmp_104 = s1_out_12_hit;
       4'b1101:
-        casez_tmp_104 = io_scpu_13_bits_hit;
+        casez_tmp_104 = s1_out_13_hit;
       4'b1110:
-        casez_tmp_104 = io_scpu_14_bits_hit;
+        casez_tmp_104 = s1_out_14_hit;
       default:
-        casez_tmp_104 = io_scpu_15_bits_hit;
+        casez_tmp_104 = s1_out_15_hit;
     endcase
   end // always @(*)
   reg  [1:0]  casez_tmp_105;
   always @(*) begin
-    casez (scpuAt_15[3:0])
+    casez (_at_T_78)
       4'b0000:
-        casez_tmp_105 = io_scpu_0_bits_kind;
+        casez_tmp_105 = s1_out_0_kind;
       4'b0001:
-        casez_tmp_105 = io_scpu_1_bits_kind;
+        casez_tmp_105 = s1_out_1_kind;
       4'b0010:
-        casez_tmp_105 = io_scpu_2_bits_kind;
+        casez_tmp_105 = s1_out_2_kind;
       4'b0011:
-        casez_tmp_105 = io_scpu_3_bits_kind;
+        casez_tmp_105 = s1_out_3_kind;
       4'b0100:
-        casez_tmp_105 = io_scpu_4_bits_kind;
+        casez_tmp_105 = s1_out_4_kind;
       4'b0101:
-        casez_tmp_105 = io_scpu_5_bits_kind;
+        casez_tmp_105 = s1_out_5_kind;
       4'b0110:
-        casez_tmp_105 = io_scpu_6_bits_kind;
+        casez_tmp_105 = s1_out_6_kind;
       4'b0111:
-        casez_tmp_105 = io_scpu_7_bits_kind;
+        casez_tmp_105 = s1_out_7_kind;
       4'b1000:
-        casez_tmp_105 = io_scpu_8_bits_kind;
+        casez_tmp_105 = s1_out_8_kind;
       4'b1001:
-        casez_tmp_105 = io_scpu_9_bits_kind;
+        casez_tmp_105 = s1_out_9_kind;
       4'b1010:
-        casez_tmp_105 = io_scpu_10_bits_kind;
+        casez_tmp_105 = s1_out_10_kind;
       4'b1011:
-        casez_tmp_105 = io_scpu_11_bits_kind;
+        casez_tmp_105 = s1_out_11_kind;
       4'b1100:
-        casez_tmp_105 = io_scpu_12_bits_kind;
+        casez_tmp_105 = s1_out_12_kind;
       4'b1101:
-        casez_tmp_105 = io_scpu_13_bits_kind;
+        casez_tmp_105 = s1_out_13_kind;
       4'b1110:
-        casez_tmp_105 = io_scpu_14_bits_kind;
+        casez_tmp_105 = s1_out_14_kind;
       default:
-        casez_tmp_105 = io_scpu_15_bits_kind;
+        casez_tmp_105 = s1_out_15_kind;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_106;
   always @(*) begin
-    casez (scpuAt_15[3:0])
+    casez (_at_T_78)
       4'b0000:
-        casez_tmp_106 = io_scpu_0_bits_d;
+        casez_tmp_106 = s1_out_0_d;
       4'b0001:
-        casez_tmp_106 = io_scpu_1_bits_d;
+        casez_tmp_106 = s1_out_1_d;
       4'b0010:
-        casez_tmp_106 = io_scpu_2_bits_d;
+        casez_tmp_106 = s1_out_2_d;
       4'b0011:
-        casez_tmp_106 = io_scpu_3_bits_d;
+        casez_tmp_106 = s1_out_3_d;
       4'b0100:
-        casez_tmp_106 = io_scpu_4_bits_d;
+        casez_tmp_106 = s1_out_4_d;
       4'b0101:
-        casez_tmp_106 = io_scpu_5_bits_d;
+        casez_tmp_106 = s1_out_5_d;
       4'b0110:
-        casez_tmp_106 = io_scpu_6_bits_d;
+        casez_tmp_106 = s1_out_6_d;
       4'b0111:
-        casez_tmp_106 = io_scpu_7_bits_d;
+        casez_tmp_106 = s1_out_7_d;
       4'b1000:
-        casez_tmp_106 = io_scpu_8_bits_d;
+        casez_tmp_106 = s1_out_8_d;
       4'b1001:
-        casez_tmp_106 = io_scpu_9_bits_d;
+        casez_tmp_106 = s1_out_9_d;
       4'b1010:
-        casez_tmp_106 = io_scpu_10_bits_d;
+        casez_tmp_106 = s1_out_10_d;
       4'b1011:
-        casez_tmp_106 = io_scpu_11_bits_d;
+        casez_tmp_106 = s1_out_11_d;
       4'b1100:
-        casez_tmp_106 = io_scpu_12_bits_d;
+        casez_tmp_106 = s1_out_12_d;
       4'b1101:
-        casez_tmp_106 = io_scpu_13_bits_d;
+        casez_tmp_106 = s1_out_13_d;
       4'b1110:
-        casez_tmp_106 = io_scpu_14_bits_d;
+        casez_tmp_106 = s1_out_14_d;
       default:
-        casez_tmp_106 = io_scpu_15_bits_d;
+        casez_tmp_106 = s1_out_15_d;
     endcase
   end // always @(*)
   reg  [31:0] casez_tmp_107;
   always @(*) begin
-    casez (scpuAt_15[3:0])
+    casez (_at_T_78)
       4'b0000:
-        casez_tmp_107 = io_scpu_0_bits_nw;
+        casez_tmp_107 = s1_out_0_nw;
       4'b0001:
-        casez_tmp_107 = io_scpu_1_bits_nw;
+        casez_tmp_107 = s1_out_1_nw;
       4'b0010:
-        casez_tmp_107 = io_scpu_2_bits_nw;
+        casez_tmp_107 = s1_out_2_nw;
       4'b0011:
-        casez_tmp_107 = io_scpu_3_bits_nw;
+        casez_tmp_107 = s1_out_3_nw;
       4'b0100:
-        casez_tmp_107 = io_scpu_4_bits_nw;
+        casez_tmp_107 = s1_out_4_nw;
       4'b0101:
-        casez_tmp_107 = io_scpu_5_bits_nw;
+        casez_tmp_107 = s1_out_5_nw;
       4'b0110:
-        casez_tmp_107 = io_scpu_6_bits_nw;
+        casez_tmp_107 = s1_out_6_nw;
       4'b0111:
-        casez_tmp_107 = io_scpu_7_bits_nw;
+        casez_tmp_107 = s1_out_7_nw;
       4'b1000:
-        casez_tmp_107 = io_scpu_8_bits_nw;
+        casez_tmp_107 = s1_out_8_nw;
       4'b1001:
-        casez_tmp_107 = io_scpu_9_bits_nw;
+        casez_tmp_107 = s1_out_9_nw;
       4'b1010:
-        casez_tmp_107 = io_scpu_10_bits_nw;
+        casez_tmp_107 = s1_out_10_nw;
       4'b1011:
-        casez_tmp_107 = io_scpu_11_bits_nw;
+        casez_tmp_107 = s1_out_11_nw;
       4'b1100:
-        casez_tmp_107 = io_scpu_12_bits_nw;
+        casez_tmp_107 = s1_out_12_nw;
       4'b1101:
-        casez_tmp_107 = io_scpu_13_bits_nw;
+        casez_tmp_107 = s1_out_13_nw;
       4'b1110:
-        casez_tmp_107 = io_scpu_14_bits_nw;
+        casez_tmp_107 = s1_out_14_nw;
       default:
-        casez_tmp_107 = io_scpu_15_bits_nw;
+        casez_tmp_107 = s1_out_15_nw;
     endcase
   end // always @(*)
   reg         casez_tmp_108;
   always @(*) begin
-    casez (scpuAt_15[3:0])
+    casez (_at_T_78)
       4'b0000:
-        casez_tmp_108 = io_scpu_0_bits_nonFinite;
+        casez_tmp_108 = s1_out_0_nonFinite;
       4'b0001:
-        casez_tmp_108 = io_scpu_1_bits_nonFinite;
+        casez_tmp_108 = s1_out_1_nonFinite;
       4'b0010:
-        casez_tmp_108 = io_scpu_2_bits_nonFinite;
+        casez_tmp_108 = s1_out_2_nonFinite;
       4'b0011:
-        casez_tmp_108 = io_scpu_3_bits_nonFinite;
+        casez_tmp_108 = s1_out_3_nonFinite;
       4'b0100:
-        casez_tmp_108 = io_scpu_4_bits_nonFinite;
+        casez_tmp_108 = s1_out_4_nonFinite;
       4'b0101:
-        casez_tmp_108 = io_scpu_5_bits_nonFinite;
+        casez_tmp_108 = s1_out_5_nonFinite;
       4'b0110:
-        casez_tmp_108 = io_scpu_6_bits_nonFinite;
+        casez_tmp_108 = s1_out_6_nonFinite;
       4'b0111:
-        casez_tmp_108 = io_scpu_7_bits_nonFinite;
+        casez_tmp_108 = s1_out_7_nonFinite;
       4'b1000:
-        casez_tmp_108 = io_scpu_8_bits_nonFinite;
+        casez_tmp_108 = s1_out_8_nonFinite;
       4'b1001:
-        casez_tmp_108 = io_scpu_9_bits_nonFinite;
+        casez_tmp_108 = s1_out_9_nonFinite;
       4'b1010:
-        casez_tmp_108 = io_scpu_10_bits_nonFinite;
+        casez_tmp_108 = s1_out_10_nonFinite;
       4'b1011:
-        casez_tmp_108 = io_scpu_11_bits_nonFinite;
+        casez_tmp_108 = s1_out_11_nonFinite;
       4'b1100:
-        casez_tmp_108 = io_scpu_12_bits_nonFinite;
+        casez_tmp_108 = s1_out_12_nonFinite;
       4'b1101:
-        casez_tmp_108 = io_scpu_13_bits_nonFinite;
+        casez_tmp_108 = s1_out_13_nonFinite;
       4'b1110:
-        casez_tmp_108 = io_scpu_14_bits_nonFinite;
+        casez_tmp_108 = s1_out_14_nonFinite;
       default:
-        casez_tmp_108 = io_scpu_15_bits_nonFinite;
+        casez_tmp_108 = s1_out_15_nonFinite;
     endcase
   end // always @(*)
   reg  [4:0]  casez_tmp_109;
   always @(*) begin
-    casez (scpuAt_15[3:0])
+    casez (_at_T_78)
       4'b0000:
-        casez_tmp_109 = io_scpu_0_bits_flags;
+        casez_tmp_109 = s1_out_0_flags;
       4'b0001:
-        casez_tmp_109 = io_scpu_1_bits_flags;
+        casez_tmp_109 = s1_out_1_flags;
       4'b0010:
-        casez_tmp_109 = io_scpu_2_bits_flags;
+        casez_tmp_109 = s1_out_2_flags;
       4'b0011:
-        casez_tmp_109 = io_scpu_3_bits_flags;
+        casez_tmp_109 = s1_out_3_flags;
       4'b0100:
-        casez_tmp_109 = io_scpu_4_bits_flags;
+        casez_tmp_109 = s1_out_4_flags;
       4'b0101:
-        casez_tmp_109 = io_scpu_5_bits_flags;
+        casez_tmp_109 = s1_out_5_flags;
       4'b0110:
-        casez_tmp_109 = io_scpu_6_bits_flags;
+        casez_tmp_109 = s1_out_6_flags;
       4'b0111:
-        casez_tmp_109 = io_scpu_7_bits_flags;
+        casez_tmp_109 = s1_out_7_flags;
       4'b1000:
-        casez_tmp_109 = io_scpu_8_bits_flags;
+        casez_tmp_109 = s1_out_8_flags;
       4'b1001:
-        casez_tmp_109 = io_scpu_9_bits_flags;
+        casez_tmp_109 = s1_out_9_flags;
       4'b1010:
-        casez_tmp_109 = io_scpu_10_bits_flags;
+        casez_tmp_109 = s1_out_10_flags;
       4'b1011:
-        casez_tmp_109 = io_scpu_11_bits_flags;
+        casez_tmp_109 = s1_out_11_flags;
       4'b1100:
-        casez_tmp_109 = io_scpu_12_bits_flags;
+        casez_tmp_109 = s1_out_12_flags;
       4'b1101:
-        casez_tmp_109 = io_scpu_13_bits_flags;
+        casez_tmp_109 = s1_out_13_flags;
       4'b1110:
-        casez_tmp_109 = io_scpu_14_bits_flags;
+        casez_tmp_109 = s1_out_14_flags;
       default:
-        casez_tmp_109 = io_scpu_15_bits_flags;
+        casez_tmp_109 = s1_out_15_flags;
     endcase
   end // always @(*)
   reg  [23:0] casez_tmp_110;
   always @(*) begin
-    casez (scpuAt_15[3:0])
+    casez (_at_T_78)
       4'b0000:
-        casez_tmp_110 = io_scpu_0_bits_tag;
+        casez_tmp_110 = s1_out_0_tag;
       4'b0001:
-        casez_tmp_110 = io_scpu_1_bits_tag;
+        casez_tmp_110 = s1_out_1_tag;
       4'b0010:
-        casez_tmp_110 = io_scpu_2_bits_tag;
+        casez_tmp_110 = s1_out_2_tag;
       4'b0011:
-        casez_tmp_110 = io_scpu_3_bits_tag;
+        casez_tmp_110 = s1_out_3_tag;
       4'b0100:
-        casez_tmp_110 = io_scpu_4_bits_tag;
+        casez_tmp_110 = s1_out_4_tag;
       4'b0101:
-        casez_tmp_110 = io_scpu_5_bits_tag;
+        casez_tmp_110 = s1_out_5_tag;
       4'b0110:
-        casez_tmp_110 = io_scpu_6_bits_tag;
+        casez_tmp_110 = s1_out_6_tag;
       4'b0111:
-        casez_tmp_110 = io_scpu_7_bits_tag;
+        casez_tmp_110 = s1_out_7_tag;
       4'b1000:
-        casez_tmp_110 = io_scpu_8_bits_tag;
+        casez_tmp_110 = s1_out_8_tag;
       4'b1001:
-        casez_tmp_110 = io_scpu_9_bits_tag;
+        casez_tmp_110 = s1_out_9_tag;
       4'b1010:
-        casez_tmp_110 = io_scpu_10_bits_tag;
+        casez_tmp_110 = s1_out_10_tag;
       4'b1011:
-        casez_tmp_110 = io_scpu_11_bits_tag;
+        casez_tmp_110 = s1_out_11_tag;
       4'b1100:
-        casez_tmp_110 = io_scpu_12_bits_tag;
+        casez_tmp_110 = s1_out_12_tag;
       4'b1101:
-        casez_tmp_110 = io_scpu_13_bits_tag;
+        casez_tmp_110 = s1_out_13_tag;
       4'b1110:
-        casez_tmp_110 = io_scpu_14_bits_tag;
+        casez_tmp_110 = s1_out_14_tag;
       default:
-        casez_tmp_110 = io_scpu_15_bits_tag;
+        casez_tmp_110 = s1_out_15_tag;
     endcase
   end // always @(*)
-  reg         casez_tmp_111;
-  always @(*) begin
-    casez (io_groups_bits_base)
-      4'b0000:
-        casez_tmp_111 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_111 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_111 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_111 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_111 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_111 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_111 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_111 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_111 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_111 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_111 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_111 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_111 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_111 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_111 = io_scpu_14_valid;
-      default:
-        casez_tmp_111 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_112;
-  always @(*) begin
-    casez (scpuAt_1[3:0])
-      4'b0000:
-        casez_tmp_112 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_112 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_112 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_112 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_112 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_112 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_112 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_112 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_112 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_112 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_112 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_112 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_112 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_112 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_112 = io_scpu_14_valid;
-      default:
-        casez_tmp_112 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_113;
-  always @(*) begin
-    casez (scpuAt_2[3:0])
-      4'b0000:
-        casez_tmp_113 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_113 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_113 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_113 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_113 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_113 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_113 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_113 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_113 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_113 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_113 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_113 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_113 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_113 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_113 = io_scpu_14_valid;
-      default:
-        casez_tmp_113 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_114;
-  always @(*) begin
-    casez (scpuAt_3[3:0])
-      4'b0000:
-        casez_tmp_114 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_114 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_114 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_114 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_114 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_114 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_114 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_114 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_114 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_114 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_114 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_114 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_114 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_114 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_114 = io_scpu_14_valid;
-      default:
-        casez_tmp_114 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_115;
-  always @(*) begin
-    casez (scpuAt_4[3:0])
-      4'b0000:
-        casez_tmp_115 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_115 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_115 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_115 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_115 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_115 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_115 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_115 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_115 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_115 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_115 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_115 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_115 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_115 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_115 = io_scpu_14_valid;
-      default:
-        casez_tmp_115 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_116;
-  always @(*) begin
-    casez (scpuAt_5[3:0])
-      4'b0000:
-        casez_tmp_116 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_116 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_116 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_116 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_116 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_116 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_116 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_116 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_116 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_116 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_116 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_116 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_116 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_116 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_116 = io_scpu_14_valid;
-      default:
-        casez_tmp_116 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_117;
-  always @(*) begin
-    casez (scpuAt_6[3:0])
-      4'b0000:
-        casez_tmp_117 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_117 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_117 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_117 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_117 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_117 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_117 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_117 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_117 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_117 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_117 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_117 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_117 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_117 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_117 = io_scpu_14_valid;
-      default:
-        casez_tmp_117 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_118;
-  always @(*) begin
-    casez (scpuAt_7[3:0])
-      4'b0000:
-        casez_tmp_118 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_118 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_118 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_118 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_118 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_118 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_118 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_118 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_118 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_118 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_118 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_118 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_118 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_118 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_118 = io_scpu_14_valid;
-      default:
-        casez_tmp_118 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_119;
-  always @(*) begin
-    casez (scpuAt_8[3:0])
-      4'b0000:
-        casez_tmp_119 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_119 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_119 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_119 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_119 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_119 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_119 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_119 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_119 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_119 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_119 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_119 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_119 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_119 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_119 = io_scpu_14_valid;
-      default:
-        casez_tmp_119 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_120;
-  always @(*) begin
-    casez (scpuAt_9[3:0])
-      4'b0000:
-        casez_tmp_120 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_120 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_120 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_120 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_120 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_120 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_120 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_120 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_120 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_120 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_120 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_120 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_120 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_120 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_120 = io_scpu_14_valid;
-      default:
-        casez_tmp_120 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_121;
-  always @(*) begin
-    casez (scpuAt_10[3:0])
-      4'b0000:
-        casez_tmp_121 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_121 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_121 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_121 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_121 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_121 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_121 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_121 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_121 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_121 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_121 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_121 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_121 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_121 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_121 = io_scpu_14_valid;
-      default:
-        casez_tmp_121 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_122;
-  always @(*) begin
-    casez (scpuAt_11[3:0])
-      4'b0000:
-        casez_tmp_122 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_122 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_122 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_122 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_122 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_122 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_122 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_122 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_122 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_122 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_122 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_122 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_122 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_122 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_122 = io_scpu_14_valid;
-      default:
-        casez_tmp_122 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_123;
-  always @(*) begin
-    casez (scpuAt_12[3:0])
-      4'b0000:
-        casez_tmp_123 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_123 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_123 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_123 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_123 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_123 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_123 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_123 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_123 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_123 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_123 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_123 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_123 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_123 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_123 = io_scpu_14_valid;
-      default:
-        casez_tmp_123 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_124;
-  always @(*) begin
-    casez (scpuAt_13[3:0])
-      4'b0000:
-        casez_tmp_124 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_124 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_124 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_124 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_124 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_124 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_124 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_124 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_124 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_124 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_124 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_124 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_124 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_124 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_124 = io_scpu_14_valid;
-      default:
-        casez_tmp_124 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_125;
-  always @(*) begin
-    casez (scpuAt_14[3:0])
-      4'b0000:
-        casez_tmp_125 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_125 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_125 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_125 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_125 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_125 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_125 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_125 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_125 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_125 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_125 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_125 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_125 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_125 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_125 = io_scpu_14_valid;
-      default:
-        casez_tmp_125 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  reg         casez_tmp_126;
-  always @(*) begin
-    casez (scpuAt_15[3:0])
-      4'b0000:
-        casez_tmp_126 = io_scpu_0_valid;
-      4'b0001:
-        casez_tmp_126 = io_scpu_1_valid;
-      4'b0010:
-        casez_tmp_126 = io_scpu_2_valid;
-      4'b0011:
-        casez_tmp_126 = io_scpu_3_valid;
-      4'b0100:
-        casez_tmp_126 = io_scpu_4_valid;
-      4'b0101:
-        casez_tmp_126 = io_scpu_5_valid;
-      4'b0110:
-        casez_tmp_126 = io_scpu_6_valid;
-      4'b0111:
-        casez_tmp_126 = io_scpu_7_valid;
-      4'b1000:
-        casez_tmp_126 = io_scpu_8_valid;
-      4'b1001:
-        casez_tmp_126 = io_scpu_9_valid;
-      4'b1010:
-        casez_tmp_126 = io_scpu_10_valid;
-      4'b1011:
-        casez_tmp_126 = io_scpu_11_valid;
-      4'b1100:
-        casez_tmp_126 = io_scpu_12_valid;
-      4'b1101:
-        casez_tmp_126 = io_scpu_13_valid;
-      4'b1110:
-        casez_tmp_126 = io_scpu_14_valid;
-      default:
-        casez_tmp_126 = io_scpu_15_valid;
-    endcase
-  end // always @(*)
-  wire        active_0 = io_groups_valid & sp == 5'h0 & (|io_groups_bits_cnt);
-  wire        active_1 = io_groups_valid & sp < 5'h2 & (|(io_groups_bits_cnt[4:1]));
-  wire        active_2 = io_groups_valid & sp < 5'h3 & io_groups_bits_cnt > 5'h2;
-  wire        active_3 = io_groups_valid & sp < 5'h4 & (|(io_groups_bits_cnt[4:2]));
-  wire        active_4 = io_groups_valid & sp < 5'h5 & io_groups_bits_cnt > 5'h4;
-  wire        active_5 = io_groups_valid & sp < 5'h6 & io_groups_bits_cnt > 5'h5;
-  wire        active_6 = io_groups_valid & sp < 5'h7 & io_groups_bits_cnt > 5'h6;
-  wire        active_7 = io_groups_valid & sp < 5'h8 & (|(io_groups_bits_cnt[4:3]));
-  wire        active_8 = io_groups_valid & sp < 5'h9 & io_groups_bits_cnt > 5'h8;
-  wire        active_9 = io_groups_valid & sp < 5'hA & io_groups_bits_cnt > 5'h9;
-  wire        active_10 = io_groups_valid & sp < 5'hB & io_groups_bits_cnt > 5'hA;
-  wire        active_11 = io_groups_valid & sp < 5'hC & io_groups_bits_cnt > 5'hB;
-  wire        active_12 = io_groups_valid & sp < 5'hD & io_groups_bits_cnt > 5'hC;
-  wire        active_13 = io_groups_valid & sp < 5'hE & io_groups_bits_cnt > 5'hD;
-  wire        active_14 = io_groups_valid & sp < 5'hF & io_groups_bits_cnt > 5'hE;
-  wire        active_15 = io_groups_valid & ~(sp[4]) & io_groups_bits_cnt[4];
-  wire        hit_0 = ~(io_groups_bits_invalid[0]) & casez_tmp;
-  wire        hit_1 = ~(io_groups_bits_invalid[1]) & casez_tmp_6;
-  wire        hit_2 = ~(io_groups_bits_invalid[2]) & casez_tmp_13;
-  wire        hit_3 = ~(io_groups_bits_invalid[3]) & casez_tmp_20;
-  wire        hit_4 = ~(io_groups_bits_invalid[4]) & casez_tmp_27;
-  wire        hit_5 = ~(io_groups_bits_invalid[5]) & casez_tmp_34;
-  wire        hit_6 = ~(io_groups_bits_invalid[6]) & casez_tmp_41;
-  wire        hit_7 = ~(io_groups_bits_invalid[7]) & casez_tmp_48;
-  wire        hit_8 = ~(io_groups_bits_invalid[8]) & casez_tmp_55;
-  wire        hit_9 = ~(io_groups_bits_invalid[9]) & casez_tmp_62;
-  wire        hit_10 = ~(io_groups_bits_invalid[10]) & casez_tmp_69;
-  wire        hit_11 = ~(io_groups_bits_invalid[11]) & casez_tmp_76;
-  wire        hit_12 = ~(io_groups_bits_invalid[12]) & casez_tmp_83;
-  wire        hit_13 = ~(io_groups_bits_invalid[13]) & casez_tmp_90;
-  wire        hit_14 = ~(io_groups_bits_invalid[14]) & casez_tmp_97;
-  wire        hit_15 = ~(io_groups_bits_invalid[15]) & casez_tmp_104;
-  wire [1:0]  _GEN = {casez_tmp_4[4], casez_tmp_4[2]};
+  reg  [4:0]  s3_g_cnt;
+  reg  [95:0] s3_rec_1;
+  reg  [95:0] s3_rec_2;
+  reg  [95:0] s3_rec_3;
+  reg  [95:0] s3_rec_4;
+  reg  [95:0] s3_rec_5;
+  reg  [95:0] s3_rec_6;
+  reg  [95:0] s3_rec_7;
+  reg  [95:0] s3_rec_8;
+  reg  [95:0] s3_rec_9;
+  reg  [95:0] s3_rec_10;
+  reg  [95:0] s3_rec_11;
+  reg  [95:0] s3_rec_12;
+  reg  [95:0] s3_rec_13;
+  reg  [95:0] s3_rec_14;
+  reg  [95:0] s3_rec_15;
+  reg  [95:0] s3_rec_16;
+  reg  [23:0] s3_pair_1;
+  reg  [23:0] s3_pair_2;
+  reg  [23:0] s3_pair_3;
+  reg  [23:0] s3_pair_4;
+  reg  [23:0] s3_pair_5;
+  reg  [23:0] s3_pair_6;
+  reg  [23:0] s3_pair_7;
+  reg  [23:0] s3_pair_8;
+  reg  [23:0] s3_pair_9;
+  reg  [23:0] s3_pair_10;
+  reg  [23:0] s3_pair_11;
+  reg  [23:0] s3_pair_12;
+  reg  [23:0] s3_pair_13;
+  reg  [23:0] s3_pair_14;
+  reg  [23:0] s3_pair_15;
+  reg  [23:0] s3_pair_16;
+  reg         s3_want_1;
+  reg         s3_want_2;
+  reg         s3_want_3;
+  reg         s3_want_4;
+  reg         s3_want_5;
+  reg         s3_want_6;
+  reg         s3_want_7;
+  reg         s3_want_8;
+  reg         s3_want_9;
+  reg         s3_want_10;
+  reg         s3_want_11;
+  reg         s3_want_12;
+  reg         s3_want_13;
+  reg         s3_want_14;
+  reg         s3_want_15;
+  reg         s3_want_16;
+  reg  [4:0]  s3_hits;
+  reg  [4:0]  s3_nonFin;
+  reg  [4:0]  s3_flagged;
+  reg  [4:0]  s3Cum_1;
+  reg  [4:0]  s3Cum_2;
+  reg  [4:0]  s3Cum_3;
+  reg  [4:0]  s3Cum_4;
+  reg  [4:0]  s3Cum_5;
+  reg  [4:0]  s3Cum_6;
+  reg  [4:0]  s3Cum_7;
+  reg  [4:0]  s3Cum_8;
+  reg  [4:0]  s3Cum_9;
+  reg  [4:0]  s3Cum_10;
+  reg  [4:0]  s3Cum_11;
+  reg  [4:0]  s3Cum_12;
+  reg  [4:0]  s3Cum_13;
+  reg  [4:0]  s3Cum_14;
+  reg  [4:0]  s3Cum_15;
+  reg  [4:0]  s3Cum_16;
+  reg         s3Valid;
+  reg  [4:0]  sent;
+  wire [5:0]  _GEN_1 = {1'h0, s3Cum_16};
+  wire [5:0]  _GEN_2 = {1'h0, sent};
+  wire [4:0]  _left_T = s3Cum_16 - sent;
+  wire [4:0]  _GEN_3 = {2'h0, io_room};
+  wire [4:0]  take = s3Valid ? (_left_T < _GEN_3 ? _left_T : _GEN_3) : 5'h0;
+  wire [4:0]  _sent_T = sent + take;
+  wire        done = s3Valid & _sent_T == s3Cum_16;
+  wire [5:0]  _sel_T_32 = _GEN_2 + 6'h1;
+  wire [5:0]  _GEN_4 = {1'h0, s3Cum_1};
+  wire        sel_1 = s3_want_1 & _GEN_4 == _sel_T_32;
+  wire [5:0]  _GEN_5 = {1'h0, s3Cum_2};
+  wire        sel_2 = s3_want_2 & _GEN_5 == _sel_T_32;
+  wire [5:0]  _GEN_6 = {1'h0, s3Cum_3};
+  wire        sel_3 = s3_want_3 & _GEN_6 == _sel_T_32;
+  wire [5:0]  _GEN_7 = {1'h0, s3Cum_4};
+  wire        sel_4 = s3_want_4 & _GEN_7 == _sel_T_32;
+  wire [5:0]  _GEN_8 = {1'h0, s3Cum_5};
+  wire        sel_5 = s3_want_5 & _GEN_8 == _sel_T_32;
+  wire [5:0]  _GEN_9 = {1'h0, s3Cum_6};
+  wire        sel_6 = s3_want_6 & _GEN_9 == _sel_T_32;
+  wire [5:0]  _GEN_10 = {1'h0, s3Cum_7};
+  wire        sel_7 = s3_want_7 & _GEN_10 == _sel_T_32;
+  wire [5:0]  _GEN_11 = {1'h0, s3Cum_8};
+  wire        sel_8 = s3_want_8 & _GEN_11 == _sel_T_32;
+  wire [5:0]  _GEN_12 = {1'h0, s3Cum_9};
+  wire        sel_9 = s3_want_9 & _GEN_12 == _sel_T_32;
+  wire [5:0]  _GEN_13 = {1'h0, s3Cum_10};
+  wire        sel_10 = s3_want_10 & _GEN_13 == _sel_T_32;
+  wire [5:0]  _GEN_14 = {1'h0, s3Cum_11};
+  wire        sel_11 = s3_want_11 & _GEN_14 == _sel_T_32;
+  wire [5:0]  _GEN_15 = {1'h0, s3Cum_12};
+  wire        sel_12 = s3_want_12 & _GEN_15 == _sel_T_32;
+  wire [5:0]  _GEN_16 = {1'h0, s3Cum_13};
+  wire        sel_13 = s3_want_13 & _GEN_16 == _sel_T_32;
+  wire [5:0]  _GEN_17 = {1'h0, s3Cum_14};
+  wire        sel_14 = s3_want_14 & _GEN_17 == _sel_T_32;
+  wire [5:0]  _GEN_18 = {1'h0, s3Cum_15};
+  wire        sel_15 = s3_want_15 & _GEN_18 == _sel_T_32;
+  wire        sel_16 = s3_want_16 & _GEN_1 == _sel_T_32;
+  wire [5:0]  _sel_T_66 = _GEN_2 + 6'h2;
+  wire        sel_1_1 = s3_want_1 & _GEN_4 == _sel_T_66;
+  wire        sel_2_1 = s3_want_2 & _GEN_5 == _sel_T_66;
+  wire        sel_3_1 = s3_want_3 & _GEN_6 == _sel_T_66;
+  wire        sel_4_1 = s3_want_4 & _GEN_7 == _sel_T_66;
+  wire        sel_5_1 = s3_want_5 & _GEN_8 == _sel_T_66;
+  wire        sel_6_1 = s3_want_6 & _GEN_9 == _sel_T_66;
+  wire        sel_7_1 = s3_want_7 & _GEN_10 == _sel_T_66;
+  wire        sel_8_1 = s3_want_8 & _GEN_11 == _sel_T_66;
+  wire        sel_9_1 = s3_want_9 & _GEN_12 == _sel_T_66;
+  wire        sel_10_1 = s3_want_10 & _GEN_13 == _sel_T_66;
+  wire        sel_11_1 = s3_want_11 & _GEN_14 == _sel_T_66;
+  wire        sel_12_1 = s3_want_12 & _GEN_15 == _sel_T_66;
+  wire        sel_13_1 = s3_want_13 & _GEN_16 == _sel_T_66;
+  wire        sel_14_1 = s3_want_14 & _GEN_17 == _sel_T_66;
+  wire        sel_15_1 = s3_want_15 & _GEN_18 == _sel_T_66;
+  wire        sel_16_1 = s3_want_16 & _GEN_1 == _sel_T_66;
+  wire [5:0]  _sel_T_100 = _GEN_2 + 6'h3;
+  wire        sel_1_2 = s3_want_1 & _GEN_4 == _sel_T_100;
+  wire        sel_2_2 = s3_want_2 & _GEN_5 == _sel_T_100;
+  wire        sel_3_2 = s3_want_3 & _GEN_6 == _sel_T_100;
+  wire        sel_4_2 = s3_want_4 & _GEN_7 == _sel_T_100;
+  wire        sel_5_2 = s3_want_5 & _GEN_8 == _sel_T_100;
+  wire        sel_6_2 = s3_want_6 & _GEN_9 == _sel_T_100;
+  wire        sel_7_2 = s3_want_7 & _GEN_10 == _sel_T_100;
+  wire        sel_8_2 = s3_want_8 & _GEN_11 == _sel_T_100;
+  wire        sel_9_2 = s3_want_9 & _GEN_12 == _sel_T_100;
+  wire        sel_10_2 = s3_want_10 & _GEN_13 == _sel_T_100;
+  wire        sel_11_2 = s3_want_11 & _GEN_14 == _sel_T_100;
+  wire        sel_12_2 = s3_want_12 & _GEN_15 == _sel_T_100;
+  wire        sel_13_2 = s3_want_13 & _GEN_16 == _sel_T_100;
+  wire        sel_14_2 = s3_want_14 & _GEN_17 == _sel_T_100;
+  wire        sel_15_2 = s3_want_15 & _GEN_18 == _sel_T_100;
+  wire        sel_16_2 = s3_want_16 & _GEN_1 == _sel_T_100;
+  wire [5:0]  _sel_T_134 = _GEN_2 + 6'h4;
+  wire        sel_1_3 = s3_want_1 & _GEN_4 == _sel_T_134;
+  wire        sel_2_3 = s3_want_2 & _GEN_5 == _sel_T_134;
+  wire        sel_3_3 = s3_want_3 & _GEN_6 == _sel_T_134;
+  wire        sel_4_3 = s3_want_4 & _GEN_7 == _sel_T_134;
+  wire        sel_5_3 = s3_want_5 & _GEN_8 == _sel_T_134;
+  wire        sel_6_3 = s3_want_6 & _GEN_9 == _sel_T_134;
+  wire        sel_7_3 = s3_want_7 & _GEN_10 == _sel_T_134;
+  wire        sel_8_3 = s3_want_8 & _GEN_11 == _sel_T_134;
+  wire        sel_9_3 = s3_want_9 & _GEN_12 == _sel_T_134;
+  wire        sel_10_3 = s3_want_10 & _GEN_13 == _sel_T_134;
+  wire        sel_11_3 = s3_want_11 & _GEN_14 == _sel_T_134;
+  wire        sel_12_3 = s3_want_12 & _GEN_15 == _sel_T_134;
+  wire        sel_13_3 = s3_want_13 & _GEN_16 == _sel_T_134;
+  wire        sel_14_3 = s3_want_14 & _GEN_17 == _sel_T_134;
+  wire        sel_15_3 = s3_want_15 & _GEN_18 == _sel_T_134;
+  wire        sel_16_3 = s3_want_16 & _GEN_1 == _sel_T_134;
+  wire [5:0]  _sel_T_168 = _GEN_2 + 6'h5;
+  wire        sel_1_4 = s3_want_1 & _GEN_4 == _sel_T_168;
+  wire        sel_2_4 = s3_want_2 & _GEN_5 == _sel_T_168;
+  wire        sel_3_4 = s3_want_3 & _GEN_6 == _sel_T_168;
+  wire        sel_4_4 = s3_want_4 & _GEN_7 == _sel_T_168;
+  wire        sel_5_4 = s3_want_5 & _GEN_8 == _sel_T_168;
+  wire        sel_6_4 = s3_want_6 & _GEN_9 == _sel_T_168;
+  wire        sel_7_4 = s3_want_7 & _GEN_10 == _sel_T_168;
+  wire        sel_8_4 = s3_want_8 & _GEN_11 == _sel_T_168;
+  wire        sel_9_4 = s3_want_9 & _GEN_12 == _sel_T_168;
+  wire        sel_10_4 = s3_want_10 & _GEN_13 == _sel_T_168;
+  wire        sel_11_4 = s3_want_11 & _GEN_14 == _sel_T_168;
+  wire        sel_12_4 = s3_want_12 & _GEN_15 == _sel_T_168;
+  wire        sel_13_4 = s3_want_13 & _GEN_16 == _sel_T_168;
+  wire        sel_14_4 = s3_want_14 & _GEN_17 == _sel_T_168;
+  wire        sel_15_4 = s3_want_15 & _GEN_18 == _sel_T_168;
+  wire        sel_16_4 = s3_want_16 & _GEN_1 == _sel_T_168;
+  wire        s3Free = ~s3Valid | done;
+  wire        s2Free = ~s2Valid | s3Free;
+  assign s1Free = ~s1Valid | s2Free;
+  wire        active_2 = s1_g_cnt > 5'h2;
+  wire        active_4 = s1_g_cnt > 5'h4;
+  wire        active_5 = s1_g_cnt > 5'h5;
+  wire        active_6 = s1_g_cnt > 5'h6;
+  wire        active_8 = s1_g_cnt > 5'h8;
+  wire        active_9 = s1_g_cnt > 5'h9;
+  wire        active_10 = s1_g_cnt > 5'hA;
+  wire        active_11 = s1_g_cnt > 5'hB;
+  wire        active_12 = s1_g_cnt > 5'hC;
+  wire        active_13 = s1_g_cnt > 5'hD;
+  wire        active_14 = s1_g_cnt > 5'hE;
+  wire        hit_0 = (|s1_g_cnt) & ~(s1_g_invalid[0]) & casez_tmp;
+  wire        hit_1 = (|(s1_g_cnt[4:1])) & ~(s1_g_invalid[1]) & casez_tmp_6;
+  wire        hit_2 = active_2 & ~(s1_g_invalid[2]) & casez_tmp_13;
+  wire        hit_3 = (|(s1_g_cnt[4:2])) & ~(s1_g_invalid[3]) & casez_tmp_20;
+  wire        hit_4 = active_4 & ~(s1_g_invalid[4]) & casez_tmp_27;
+  wire        hit_5 = active_5 & ~(s1_g_invalid[5]) & casez_tmp_34;
+  wire        hit_6 = active_6 & ~(s1_g_invalid[6]) & casez_tmp_41;
+  wire        hit_7 = (|(s1_g_cnt[4:3])) & ~(s1_g_invalid[7]) & casez_tmp_48;
+  wire        hit_8 = active_8 & ~(s1_g_invalid[8]) & casez_tmp_55;
+  wire        hit_9 = active_9 & ~(s1_g_invalid[9]) & casez_tmp_62;
+  wire        hit_10 = active_10 & ~(s1_g_invalid[10]) & casez_tmp_69;
+  wire        hit_11 = active_11 & ~(s1_g_invalid[11]) & casez_tmp_76;
+  wire        hit_12 = active_12 & ~(s1_g_invalid[12]) & casez_tmp_83;
+  wire        hit_13 = active_13 & ~(s1_g_invalid[13]) & casez_tmp_90;
+  wire        hit_14 = active_14 & ~(s1_g_invalid[14]) & casez_tmp_97;
+  wire        hit_15 = s1_g_cnt[4] & ~(s1_g_invalid[15]) & casez_tmp_104;
+  wire [1:0]  _GEN_19 = {casez_tmp_4[4], casez_tmp_4[2]};
   wire        flagged_0 =
-    ~(io_groups_bits_invalid[0]) & ~casez_tmp & (casez_tmp_3 | (|_GEN));
-  wire [1:0]  _GEN_0 = {casez_tmp_11[4], casez_tmp_11[2]};
+    (|s1_g_cnt) & ~(s1_g_invalid[0]) & ~casez_tmp & (casez_tmp_3 | (|_GEN_19));
+  wire [1:0]  _GEN_20 = {casez_tmp_11[4], casez_tmp_11[2]};
   wire        flagged_1 =
-    ~(io_groups_bits_invalid[1]) & ~casez_tmp_6 & (casez_tmp_10 | (|_GEN_0));
-  wire [1:0]  _GEN_1 = {casez_tmp_18[4], casez_tmp_18[2]};
+    (|(s1_g_cnt[4:1])) & ~(s1_g_invalid[1]) & ~casez_tmp_6 & (casez_tmp_10 | (|_GEN_20));
+  wire [1:0]  _GEN_21 = {casez_tmp_18[4], casez_tmp_18[2]};
   wire        flagged_2 =
-    ~(io_groups_bits_invalid[2]) & ~casez_tmp_13 & (casez_tmp_17 | (|_GEN_1));
-  wire [1:0]  _GEN_2 = {casez_tmp_25[4], casez_tmp_25[2]};
+    active_2 & ~(s1_g_invalid[2]) & ~casez_tmp_13 & (casez_tmp_17 | (|_GEN_21));
+  wire [1:0]  _GEN_22 = {casez_tmp_25[4], casez_tmp_25[2]};
   wire        flagged_3 =
-    ~(io_groups_bits_invalid[3]) & ~casez_tmp_20 & (casez_tmp_24 | (|_GEN_2));
-  wire [1:0]  _GEN_3 = {casez_tmp_32[4], casez_tmp_32[2]};
+    (|(s1_g_cnt[4:2])) & ~(s1_g_invalid[3]) & ~casez_tmp_20 & (casez_tmp_24 | (|_GEN_22));
+  wire [1:0]  _GEN_23 = {casez_tmp_32[4], casez_tmp_32[2]};
   wire        flagged_4 =
-    ~(io_groups_bits_invalid[4]) & ~casez_tmp_27 & (casez_tmp_31 | (|_GEN_3));
-  wire [1:0]  _GEN_4 = {casez_tmp_39[4], casez_tmp_39[2]};
+    active_4 & ~(s1_g_invalid[4]) & ~casez_tmp_27 & (casez_tmp_31 | (|_GEN_23));
+  wire [1:0]  _GEN_24 = {casez_tmp_39[4], casez_tmp_39[2]};
   wire        flagged_5 =
-    ~(io_groups_bits_invalid[5]) & ~casez_tmp_34 & (casez_tmp_38 | (|_GEN_4));
-  wire [1:0]  _GEN_5 = {casez_tmp_46[4], casez_tmp_46[2]};
+    active_5 & ~(s1_g_invalid[5]) & ~casez_tmp_34 & (casez_tmp_38 | (|_GEN_24));
+  wire [1:0]  _GEN_25 = {casez_tmp_46[4], casez_tmp_46[2]};
   wire        flagged_6 =
-    ~(io_groups_bits_invalid[6]) & ~casez_tmp_41 & (casez_tmp_45 | (|_GEN_5));
-  wire [1:0]  _GEN_6 = {casez_tmp_53[4], casez_tmp_53[2]};
+    active_6 & ~(s1_g_invalid[6]) & ~casez_tmp_41 & (casez_tmp_45 | (|_GEN_25));
+  wire [1:0]  _GEN_26 = {casez_tmp_53[4], casez_tmp_53[2]};
   wire        flagged_7 =
-    ~(io_groups_bits_invalid[7]) & ~casez_tmp_48 & (casez_tmp_52 | (|_GEN_6));
-  wire [1:0]  _GEN_7 = {casez_tmp_60[4], casez_tmp_60[2]};
+    (|(s1_g_cnt[4:3])) & ~(s1_g_invalid[7]) & ~casez_tmp_48 & (casez_tmp_52 | (|_GEN_26));
+  wire [1:0]  _GEN_27 = {casez_tmp_60[4], casez_tmp_60[2]};
   wire        flagged_8 =
-    ~(io_groups_bits_invalid[8]) & ~casez_tmp_55 & (casez_tmp_59 | (|_GEN_7));
-  wire [1:0]  _GEN_8 = {casez_tmp_67[4], casez_tmp_67[2]};
+    active_8 & ~(s1_g_invalid[8]) & ~casez_tmp_55 & (casez_tmp_59 | (|_GEN_27));
+  wire [1:0]  _GEN_28 = {casez_tmp_67[4], casez_tmp_67[2]};
   wire        flagged_9 =
-    ~(io_groups_bits_invalid[9]) & ~casez_tmp_62 & (casez_tmp_66 | (|_GEN_8));
-  wire [1:0]  _GEN_9 = {casez_tmp_74[4], casez_tmp_74[2]};
+    active_9 & ~(s1_g_invalid[9]) & ~casez_tmp_62 & (casez_tmp_66 | (|_GEN_28));
+  wire [1:0]  _GEN_29 = {casez_tmp_74[4], casez_tmp_74[2]};
   wire        flagged_10 =
-    ~(io_groups_bits_invalid[10]) & ~casez_tmp_69 & (casez_tmp_73 | (|_GEN_9));
-  wire [1:0]  _GEN_10 = {casez_tmp_81[4], casez_tmp_81[2]};
+    active_10 & ~(s1_g_invalid[10]) & ~casez_tmp_69 & (casez_tmp_73 | (|_GEN_29));
+  wire [1:0]  _GEN_30 = {casez_tmp_81[4], casez_tmp_81[2]};
   wire        flagged_11 =
-    ~(io_groups_bits_invalid[11]) & ~casez_tmp_76 & (casez_tmp_80 | (|_GEN_10));
-  wire [1:0]  _GEN_11 = {casez_tmp_88[4], casez_tmp_88[2]};
+    active_11 & ~(s1_g_invalid[11]) & ~casez_tmp_76 & (casez_tmp_80 | (|_GEN_30));
+  wire [1:0]  _GEN_31 = {casez_tmp_88[4], casez_tmp_88[2]};
   wire        flagged_12 =
-    ~(io_groups_bits_invalid[12]) & ~casez_tmp_83 & (casez_tmp_87 | (|_GEN_11));
-  wire [1:0]  _GEN_12 = {casez_tmp_95[4], casez_tmp_95[2]};
+    active_12 & ~(s1_g_invalid[12]) & ~casez_tmp_83 & (casez_tmp_87 | (|_GEN_31));
+  wire [1:0]  _GEN_32 = {casez_tmp_95[4], casez_tmp_95[2]};
   wire        flagged_13 =
-    ~(io_groups_bits_invalid[13]) & ~casez_tmp_90 & (casez_tmp_94 | (|_GEN_12));
-  wire [1:0]  _GEN_13 = {casez_tmp_102[4], casez_tmp_102[2]};
+    active_13 & ~(s1_g_invalid[13]) & ~casez_tmp_90 & (casez_tmp_94 | (|_GEN_32));
+  wire [1:0]  _GEN_33 = {casez_tmp_102[4], casez_tmp_102[2]};
   wire        flagged_14 =
-    ~(io_groups_bits_invalid[14]) & ~casez_tmp_97 & (casez_tmp_101 | (|_GEN_13));
-  wire [1:0]  _GEN_14 = {casez_tmp_109[4], casez_tmp_109[2]};
+    active_14 & ~(s1_g_invalid[14]) & ~casez_tmp_97 & (casez_tmp_101 | (|_GEN_33));
+  wire [1:0]  _GEN_34 = {casez_tmp_109[4], casez_tmp_109[2]};
   wire        flagged_15 =
-    ~(io_groups_bits_invalid[15]) & ~casez_tmp_104 & (casez_tmp_108 | (|_GEN_14));
-  wire        want_0 = active_0 & (io_dense | hit_0 | io_keepFlagged & flagged_0);
-  wire        want_1 = active_1 & (io_dense | hit_1 | io_keepFlagged & flagged_1);
-  wire        want_2 = active_2 & (io_dense | hit_2 | io_keepFlagged & flagged_2);
-  wire        want_3 = active_3 & (io_dense | hit_3 | io_keepFlagged & flagged_3);
-  wire        want_4 = active_4 & (io_dense | hit_4 | io_keepFlagged & flagged_4);
-  wire        want_5 = active_5 & (io_dense | hit_5 | io_keepFlagged & flagged_5);
-  wire        want_6 = active_6 & (io_dense | hit_6 | io_keepFlagged & flagged_6);
-  wire        want_7 = active_7 & (io_dense | hit_7 | io_keepFlagged & flagged_7);
-  wire        want_8 = active_8 & (io_dense | hit_8 | io_keepFlagged & flagged_8);
-  wire        want_9 = active_9 & (io_dense | hit_9 | io_keepFlagged & flagged_9);
-  wire        want_10 = active_10 & (io_dense | hit_10 | io_keepFlagged & flagged_10);
-  wire        want_11 = active_11 & (io_dense | hit_11 | io_keepFlagged & flagged_11);
-  wire        want_12 = active_12 & (io_dense | hit_12 | io_keepFlagged & flagged_12);
-  wire        want_13 = active_13 & (io_dense | hit_13 | io_keepFlagged & flagged_13);
-  wire        want_14 = active_14 & (io_dense | hit_14 | io_keepFlagged & flagged_14);
-  wire        want_15 = active_15 & (io_dense | hit_15 | io_keepFlagged & flagged_15);
-  wire        okPrefix_0 = ~active_0 | casez_tmp_111;
-  wire        _okPrefix_T_5 = ~active_2 | casez_tmp_113;
-  wire        _okPrefix_T_9 = ~active_4 | casez_tmp_115;
-  wire        _okPrefix_T_13 = ~active_6 | casez_tmp_117;
-  wire        _okPrefix_T_17 = ~active_8 | casez_tmp_119;
-  wire        _okPrefix_T_21 = ~active_10 | casez_tmp_121;
-  wire        _okPrefix_T_25 = ~active_12 | casez_tmp_123;
-  wire        _okPrefix_T_29 = ~active_14 | casez_tmp_125;
-  wire        okPrefix_1 = okPrefix_0 & (~active_1 | casez_tmp_112);
-  wire        okPrefix_3 = okPrefix_1 & _okPrefix_T_5 & (~active_3 | casez_tmp_114);
-  wire        _okPrefix_T_36 = _okPrefix_T_9 & (~active_5 | casez_tmp_116);
-  wire        okPrefix_7 =
-    okPrefix_3 & _okPrefix_T_36 & _okPrefix_T_13 & (~active_7 | casez_tmp_118);
-  wire        _okPrefix_T_44 = _okPrefix_T_17 & (~active_9 | casez_tmp_120);
-  wire        _okPrefix_T_47 =
-    _okPrefix_T_44 & _okPrefix_T_21 & (~active_11 | casez_tmp_122);
-  wire        _okPrefix_T_48 = _okPrefix_T_25 & (~active_13 | casez_tmp_124);
-  wire [4:0]  wantCount_1 = {4'h0, want_0} + {4'h0, want_1};
-  wire [4:0]  _GEN_15 = {4'h0, want_2};
-  wire [4:0]  wantCount_2 = wantCount_1 + _GEN_15;
-  wire [4:0]  wantCount_3 = wantCount_1 + _GEN_15 + {4'h0, want_3};
-  wire [4:0]  _GEN_16 = {4'h0, want_4};
-  wire [4:0]  _wantCount_T_24 = _GEN_16 + {4'h0, want_5};
-  wire [4:0]  _GEN_17 = {4'h0, want_6};
-  wire [4:0]  wantCount_4 = wantCount_3 + _GEN_16;
-  wire [4:0]  wantCount_5 = wantCount_3 + _wantCount_T_24;
-  wire [4:0]  wantCount_6 = wantCount_3 + _wantCount_T_24 + _GEN_17;
-  wire [4:0]  wantCount_7 = wantCount_3 + _wantCount_T_24 + _GEN_17 + {4'h0, want_7};
-  wire [4:0]  _GEN_18 = {4'h0, want_8};
-  wire [4:0]  _wantCount_T_40 = _GEN_18 + {4'h0, want_9};
-  wire [4:0]  _GEN_19 = {4'h0, want_10};
-  wire [4:0]  _wantCount_T_46 = _wantCount_T_40 + _GEN_19 + {4'h0, want_11};
-  wire [4:0]  _GEN_20 = {4'h0, want_12};
-  wire [4:0]  _wantCount_T_48 = _GEN_20 + {4'h0, want_13};
-  wire [4:0]  _GEN_21 = {4'h0, want_14};
-  wire [4:0]  wantCount_8 = wantCount_7 + _GEN_18;
-  wire [4:0]  wantCount_9 = wantCount_7 + _wantCount_T_40;
-  wire [4:0]  wantCount_10 = wantCount_7 + _wantCount_T_40 + _GEN_19;
-  wire [4:0]  wantCount_11 = wantCount_7 + _wantCount_T_46;
-  wire [4:0]  wantCount_12 = wantCount_7 + _wantCount_T_46 + _GEN_20;
-  wire [4:0]  wantCount_13 = wantCount_7 + _wantCount_T_46 + _wantCount_T_48;
-  wire [4:0]  wantCount_14 = wantCount_7 + _wantCount_T_46 + _wantCount_T_48 + _GEN_21;
-  wire [4:0]  wantCount_15 =
-    wantCount_7 + _wantCount_T_46 + _wantCount_T_48 + _GEN_21 + {4'h0, want_15};
-  wire [5:0]  _GEN_22 = {3'h0, io_room};
-  wire        take_0 = active_0 & okPrefix_0 & {5'h0, want_0} <= _GEN_22;
-  wire        take_1 = active_1 & okPrefix_1 & {1'h0, wantCount_1} <= _GEN_22;
-  wire        take_2 =
-    active_2 & okPrefix_1 & _okPrefix_T_5 & {1'h0, wantCount_2} <= _GEN_22;
-  wire        take_3 = active_3 & okPrefix_3 & {1'h0, wantCount_3} <= _GEN_22;
-  wire        take_4 =
-    active_4 & okPrefix_3 & _okPrefix_T_9 & {1'h0, wantCount_4} <= _GEN_22;
-  wire        take_5 =
-    active_5 & okPrefix_3 & _okPrefix_T_36 & {1'h0, wantCount_5} <= _GEN_22;
-  wire        take_6 =
-    active_6 & okPrefix_3 & _okPrefix_T_36 & _okPrefix_T_13
-    & {1'h0, wantCount_6} <= _GEN_22;
-  wire        take_7 = active_7 & okPrefix_7 & {1'h0, wantCount_7} <= _GEN_22;
-  wire        take_8 =
-    active_8 & okPrefix_7 & _okPrefix_T_17 & {1'h0, wantCount_8} <= _GEN_22;
-  wire        take_9 =
-    active_9 & okPrefix_7 & _okPrefix_T_44 & {1'h0, wantCount_9} <= _GEN_22;
-  wire        take_10 =
-    active_10 & okPrefix_7 & _okPrefix_T_44 & _okPrefix_T_21
-    & {1'h0, wantCount_10} <= _GEN_22;
-  wire        take_11 =
-    active_11 & okPrefix_7 & _okPrefix_T_47 & {1'h0, wantCount_11} <= _GEN_22;
-  wire        take_12 =
-    active_12 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_25
-    & {1'h0, wantCount_12} <= _GEN_22;
-  wire        take_13 =
-    active_13 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48
-    & {1'h0, wantCount_13} <= _GEN_22;
-  wire        take_14 =
-    active_14 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48 & _okPrefix_T_29
-    & {1'h0, wantCount_14} <= _GEN_22;
-  wire        take_15 =
-    active_15 & okPrefix_7 & _okPrefix_T_47 & _okPrefix_T_48 & _okPrefix_T_29
-    & (~active_15 | casez_tmp_126) & {1'h0, wantCount_15} <= _GEN_22;
-  wire [95:0] records_1_bits =
-    io_groups_bits_invalid[1]
-      ? {8'h6, casez_tmp_12, 64'h0}
-      : {3'h0,
-         |_GEN_0,
-         casez_tmp_10,
-         casez_tmp_7,
-         casez_tmp_6,
-         casez_tmp_12,
-         casez_tmp_9,
-         casez_tmp_8};
-  wire [95:0] records_2_bits =
-    io_groups_bits_invalid[2]
-      ? {8'h6, casez_tmp_19, 64'h0}
-      : {3'h0,
-         |_GEN_1,
-         casez_tmp_17,
-         casez_tmp_14,
-         casez_tmp_13,
-         casez_tmp_19,
-         casez_tmp_16,
-         casez_tmp_15};
-  wire [95:0] records_3_bits =
-    io_groups_bits_invalid[3]
-      ? {8'h6, casez_tmp_26, 64'h0}
-      : {3'h0,
-         |_GEN_2,
-         casez_tmp_24,
-         casez_tmp_21,
-         casez_tmp_20,
-         casez_tmp_26,
-         casez_tmp_23,
-         casez_tmp_22};
-  wire [95:0] records_4_bits =
-    io_groups_bits_invalid[4]
-      ? {8'h6, casez_tmp_33, 64'h0}
-      : {3'h0,
-         |_GEN_3,
-         casez_tmp_31,
-         casez_tmp_28,
-         casez_tmp_27,
-         casez_tmp_33,
-         casez_tmp_30,
-         casez_tmp_29};
-  wire [95:0] records_5_bits =
-    io_groups_bits_invalid[5]
-      ? {8'h6, casez_tmp_40, 64'h0}
-      : {3'h0,
-         |_GEN_4,
-         casez_tmp_38,
-         casez_tmp_35,
-         casez_tmp_34,
-         casez_tmp_40,
-         casez_tmp_37,
-         casez_tmp_36};
-  wire [95:0] records_6_bits =
-    io_groups_bits_invalid[6]
-      ? {8'h6, casez_tmp_47, 64'h0}
-      : {3'h0,
-         |_GEN_5,
-         casez_tmp_45,
-         casez_tmp_42,
-         casez_tmp_41,
-         casez_tmp_47,
-         casez_tmp_44,
-         casez_tmp_43};
-  wire [95:0] records_7_bits =
-    io_groups_bits_invalid[7]
-      ? {8'h6, casez_tmp_54, 64'h0}
-      : {3'h0,
-         |_GEN_6,
-         casez_tmp_52,
-         casez_tmp_49,
-         casez_tmp_48,
-         casez_tmp_54,
-         casez_tmp_51,
-         casez_tmp_50};
-  wire [95:0] records_8_bits =
-    io_groups_bits_invalid[8]
-      ? {8'h6, casez_tmp_61, 64'h0}
-      : {3'h0,
-         |_GEN_7,
-         casez_tmp_59,
-         casez_tmp_56,
-         casez_tmp_55,
-         casez_tmp_61,
-         casez_tmp_58,
-         casez_tmp_57};
-  wire [95:0] records_9_bits =
-    io_groups_bits_invalid[9]
-      ? {8'h6, casez_tmp_68, 64'h0}
-      : {3'h0,
-         |_GEN_8,
-         casez_tmp_66,
-         casez_tmp_63,
-         casez_tmp_62,
-         casez_tmp_68,
-         casez_tmp_65,
-         casez_tmp_64};
-  wire [95:0] records_10_bits =
-    io_groups_bits_invalid[10]
-      ? {8'h6, casez_tmp_75, 64'h0}
-      : {3'h0,
-         |_GEN_9,
-         casez_tmp_73,
-         casez_tmp_70,
-         casez_tmp_69,
-         casez_tmp_75,
-         casez_tmp_72,
-         casez_tmp_71};
-  wire [95:0] records_11_bits =
-    io_groups_bits_invalid[11]
-      ? {8'h6, casez_tmp_82, 64'h0}
-      : {3'h0,
-         |_GEN_10,
-         casez_tmp_80,
-         casez_tmp_77,
-         casez_tmp_76,
-         casez_tmp_82,
-         casez_tmp_79,
-         casez_tmp_78};
-  wire [95:0] records_12_bits =
-    io_groups_bits_invalid[12]
-      ? {8'h6, casez_tmp_89, 64'h0}
-      : {3'h0,
-         |_GEN_11,
-         casez_tmp_87,
-         casez_tmp_84,
-         casez_tmp_83,
-         casez_tmp_89,
-         casez_tmp_86,
-         casez_tmp_85};
-  wire [95:0] records_13_bits =
-    io_groups_bits_invalid[13]
-      ? {8'h6, casez_tmp_96, 64'h0}
-      : {3'h0,
-         |_GEN_12,
-         casez_tmp_94,
-         casez_tmp_91,
-         casez_tmp_90,
-         casez_tmp_96,
-         casez_tmp_93,
-         casez_tmp_92};
-  wire [95:0] records_14_bits =
-    io_groups_bits_invalid[14]
-      ? {8'h6, casez_tmp_103, 64'h0}
-      : {3'h0,
-         |_GEN_13,
-         casez_tmp_101,
-         casez_tmp_98,
-         casez_tmp_97,
-         casez_tmp_103,
-         casez_tmp_100,
-         casez_tmp_99};
-  wire [95:0] records_15_bits =
-    io_groups_bits_invalid[15]
-      ? {8'h6, casez_tmp_110, 64'h0}
-      : {3'h0,
-         |_GEN_14,
-         casez_tmp_108,
-         casez_tmp_105,
-         casez_tmp_104,
-         casez_tmp_110,
-         casez_tmp_107,
-         casez_tmp_106};
-  wire [4:0]  nTaken =
-    {1'h0,
-     {1'h0,
-      {1'h0, {1'h0, take_0} + {1'h0, take_1}} + {1'h0, {1'h0, take_2} + {1'h0, take_3}}}
-       + {1'h0,
-          {1'h0, {1'h0, take_4} + {1'h0, take_5}}
-            + {1'h0, {1'h0, take_6} + {1'h0, take_7}}}}
-    + {1'h0,
-       {1'h0,
-        {1'h0, {1'h0, take_8} + {1'h0, take_9}}
-          + {1'h0, {1'h0, take_10} + {1'h0, take_11}}}
-         + {1'h0,
-            {1'h0, {1'h0, take_12} + {1'h0, take_13}}
-              + {1'h0, {1'h0, take_14} + {1'h0, take_15}}}};
-  wire        _sel_T_192 = take_0 & want_0;
-  wire        _sel_T_195 = take_1 & want_1;
-  wire        _sel_T_198 = take_2 & want_2;
-  wire        _sel_T_201 = take_3 & want_3;
-  wire        _sel_T_204 = take_4 & want_4;
-  wire        _sel_T_207 = take_5 & want_5;
-  wire        _sel_T_210 = take_6 & want_6;
-  wire        _sel_T_213 = take_7 & want_7;
-  wire        _sel_T_216 = take_8 & want_8;
-  wire        _sel_T_219 = take_9 & want_9;
-  wire        _sel_T_222 = take_10 & want_10;
-  wire        _sel_T_225 = take_11 & want_11;
-  wire        _sel_T_228 = take_12 & want_12;
-  wire        _sel_T_231 = take_13 & want_13;
-  wire        _sel_T_234 = take_14 & want_14;
-  wire        _sel_T_237 = take_15 & want_15;
-  wire        sel_0 = _sel_T_192 & want_0;
-  wire        sel_1 = _sel_T_195 & wantCount_1 == 5'h1;
-  wire        sel_2 = _sel_T_198 & wantCount_2 == 5'h1;
-  wire        sel_3 = _sel_T_201 & wantCount_3 == 5'h1;
-  wire        sel_4 = _sel_T_204 & wantCount_4 == 5'h1;
-  wire        sel_5 = _sel_T_207 & wantCount_5 == 5'h1;
-  wire        sel_6 = _sel_T_210 & wantCount_6 == 5'h1;
-  wire        sel_7 = _sel_T_213 & wantCount_7 == 5'h1;
-  wire        sel_8 = _sel_T_216 & wantCount_8 == 5'h1;
-  wire        sel_9 = _sel_T_219 & wantCount_9 == 5'h1;
-  wire        sel_10 = _sel_T_222 & wantCount_10 == 5'h1;
-  wire        sel_11 = _sel_T_225 & wantCount_11 == 5'h1;
-  wire        sel_12 = _sel_T_228 & wantCount_12 == 5'h1;
-  wire        sel_13 = _sel_T_231 & wantCount_13 == 5'h1;
-  wire        sel_14 = _sel_T_234 & wantCount_14 == 5'h1;
-  wire        sel_15 = _sel_T_237 & wantCount_15 == 5'h1;
-  wire        sel_1_1 = _sel_T_195 & wantCount_1 == 5'h2;
-  wire        sel_2_1 = _sel_T_198 & wantCount_2 == 5'h2;
-  wire        sel_3_1 = _sel_T_201 & wantCount_3 == 5'h2;
-  wire        sel_4_1 = _sel_T_204 & wantCount_4 == 5'h2;
-  wire        sel_5_1 = _sel_T_207 & wantCount_5 == 5'h2;
-  wire        sel_6_1 = _sel_T_210 & wantCount_6 == 5'h2;
-  wire        sel_7_1 = _sel_T_213 & wantCount_7 == 5'h2;
-  wire        sel_8_1 = _sel_T_216 & wantCount_8 == 5'h2;
-  wire        sel_9_1 = _sel_T_219 & wantCount_9 == 5'h2;
-  wire        sel_10_1 = _sel_T_222 & wantCount_10 == 5'h2;
-  wire        sel_11_1 = _sel_T_225 & wantCount_11 == 5'h2;
-  wire        sel_12_1 = _sel_T_228 & wantCount_12 == 5'h2;
-  wire        sel_13_1 = _sel_T_231 & wantCount_13 == 5'h2;
-  wire        sel_14_1 = _sel_T_234 & wantCount_14 == 5'h2;
-  wire        sel_15_1 = _sel_T_237 & wantCount_15 == 5'h2;
-  wire        sel_1_2 = _sel_T_195 & wantCount_1 == 5'h3;
-  wire        sel_2_2 = _sel_T_198 & wantCount_2 == 5'h3;
-  wire        sel_3_2 = _sel_T_201 & wantCount_3 == 5'h3;
-  wire        sel_4_2 = _sel_T_204 & wantCount_4 == 5'h3;
-  wire        sel_5_2 = _sel_T_207 & wantCount_5 == 5'h3;
-  wire        sel_6_2 = _sel_T_210 & wantCount_6 == 5'h3;
-  wire        sel_7_2 = _sel_T_213 & wantCount_7 == 5'h3;
-  wire        sel_8_2 = _sel_T_216 & wantCount_8 == 5'h3;
-  wire        sel_9_2 = _sel_T_219 & wantCount_9 == 5'h3;
-  wire        sel_10_2 = _sel_T_222 & wantCount_10 == 5'h3;
-  wire        sel_11_2 = _sel_T_225 & wantCount_11 == 5'h3;
-  wire        sel_12_2 = _sel_T_228 & wantCount_12 == 5'h3;
-  wire        sel_13_2 = _sel_T_231 & wantCount_13 == 5'h3;
-  wire        sel_14_2 = _sel_T_234 & wantCount_14 == 5'h3;
-  wire        sel_15_2 = _sel_T_237 & wantCount_15 == 5'h3;
-  wire        sel_1_3 = _sel_T_195 & wantCount_1 == 5'h4;
-  wire        sel_2_3 = _sel_T_198 & wantCount_2 == 5'h4;
-  wire        sel_3_3 = _sel_T_201 & wantCount_3 == 5'h4;
-  wire        sel_4_3 = _sel_T_204 & wantCount_4 == 5'h4;
-  wire        sel_5_3 = _sel_T_207 & wantCount_5 == 5'h4;
-  wire        sel_6_3 = _sel_T_210 & wantCount_6 == 5'h4;
-  wire        sel_7_3 = _sel_T_213 & wantCount_7 == 5'h4;
-  wire        sel_8_3 = _sel_T_216 & wantCount_8 == 5'h4;
-  wire        sel_9_3 = _sel_T_219 & wantCount_9 == 5'h4;
-  wire        sel_10_3 = _sel_T_222 & wantCount_10 == 5'h4;
-  wire        sel_11_3 = _sel_T_225 & wantCount_11 == 5'h4;
-  wire        sel_12_3 = _sel_T_228 & wantCount_12 == 5'h4;
-  wire        sel_13_3 = _sel_T_231 & wantCount_13 == 5'h4;
-  wire        sel_14_3 = _sel_T_234 & wantCount_14 == 5'h4;
-  wire        sel_15_3 = _sel_T_237 & wantCount_15 == 5'h4;
-  wire        sel_1_4 = _sel_T_195 & wantCount_1 == 5'h5;
-  wire        sel_2_4 = _sel_T_198 & wantCount_2 == 5'h5;
-  wire        sel_3_4 = _sel_T_201 & wantCount_3 == 5'h5;
-  wire        sel_4_4 = _sel_T_204 & wantCount_4 == 5'h5;
-  wire        sel_5_4 = _sel_T_207 & wantCount_5 == 5'h5;
-  wire        sel_6_4 = _sel_T_210 & wantCount_6 == 5'h5;
-  wire        sel_7_4 = _sel_T_213 & wantCount_7 == 5'h5;
-  wire        sel_8_4 = _sel_T_216 & wantCount_8 == 5'h5;
-  wire        sel_9_4 = _sel_T_219 & wantCount_9 == 5'h5;
-  wire        sel_10_4 = _sel_T_222 & wantCount_10 == 5'h5;
-  wire        sel_11_4 = _sel_T_225 & wantCount_11 == 5'h5;
-  wire        sel_12_4 = _sel_T_228 & wantCount_12 == 5'h5;
-  wire        sel_13_4 = _sel_T_231 & wantCount_13 == 5'h5;
-  wire        sel_14_4 = _sel_T_234 & wantCount_14 == 5'h5;
-  wire        sel_15_4 = _sel_T_237 & wantCount_15 == 5'h5;
-  wire [4:0]  _spNext_T = sp + nTaken;
-  wire        io_groups_ready_0 = io_groups_valid & _spNext_T == io_groups_bits_cnt;
+    s1_g_cnt[4] & ~(s1_g_invalid[15]) & ~casez_tmp_104 & (casez_tmp_108 | (|_GEN_34));
+  wire [4:0]  _GEN_35 = {4'h0, s2_want_1};
+  wire [4:0]  _GEN_36 = {4'h0, s2_want_2};
+  wire [4:0]  _GEN_37 = _GEN_35 + _GEN_36 + {4'h0, s2_want_3};
+  wire [4:0]  _GEN_38 = {4'h0, s2_want_4};
+  wire [4:0]  _GEN_39 = _GEN_38 + {4'h0, s2_want_5};
+  wire [4:0]  _GEN_40 = {4'h0, s2_want_6};
+  wire [4:0]  _GEN_41 = _GEN_37 + _GEN_39 + _GEN_40 + {4'h0, s2_want_7};
+  wire [4:0]  _GEN_42 = {4'h0, s2_want_8};
+  wire [4:0]  _GEN_43 = _GEN_42 + {4'h0, s2_want_9};
+  wire [4:0]  _GEN_44 = {4'h0, s2_want_10};
+  wire [4:0]  _GEN_45 = _GEN_43 + _GEN_44 + {4'h0, s2_want_11};
+  wire [4:0]  _GEN_46 = {4'h0, s2_want_12};
+  wire [4:0]  _GEN_47 = _GEN_46 + {4'h0, s2_want_13};
+  wire [4:0]  _GEN_48 = {4'h0, s2_want_15};
+  wire [4:0]  _GEN_49 = {4'h0, s2_want_14};
   always @(posedge clock) begin
-    if (reset)
-      sp <= 5'h0;
-    else if (io_groups_ready_0 & io_groups_valid)
-      sp <= 5'h0;
-    else
-      sp <= _spNext_T;
-  end // always @(posedge)
-  assign io_groups_ready = io_groups_ready_0;
-  assign io_scpu_0_ready =
-    take_0 & io_groups_bits_base == 4'h0 | take_1 & scpuAt_1 == 5'h0 | take_2
-    & scpuAt_2 == 5'h0 | take_3 & scpuAt_3 == 5'h0 | take_4 & scpuAt_4 == 5'h0 | take_5
-    & scpuAt_5 == 5'h0 | take_6 & scpuAt_6 == 5'h0 | take_7 & scpuAt_7 == 5'h0 | take_8
-    & scpuAt_8 == 5'h0 | take_9 & scpuAt_9 == 5'h0 | take_10 & scpuAt_10 == 5'h0 | take_11
-    & scpuAt_11 == 5'h0 | take_12 & scpuAt_12 == 5'h0 | take_13 & scpuAt_13 == 5'h0
-    | take_14 & scpuAt_14 == 5'h0 | take_15 & scpuAt_15 == 5'h0;
-  assign io_scpu_1_ready =
-    take_0 & io_groups_bits_base == 4'h1 | take_1 & scpuAt_1 == 5'h1 | take_2
-    & scpuAt_2 == 5'h1 | take_3 & scpuAt_3 == 5'h1 | take_4 & scpuAt_4 == 5'h1 | take_5
-    & scpuAt_5 == 5'h1 | take_6 & scpuAt_6 == 5'h1 | take_7 & scpuAt_7 == 5'h1 | take_8
-    & scpuAt_8 == 5'h1 | take_9 & scpuAt_9 == 5'h1 | take_10 & scpuAt_10 == 5'h1 | take_11
-    & scpuAt_11 == 5'h1 | take_12 & scpuAt_12 == 5'h1 | take_13 & scpuAt_13 == 5'h1
-    | take_14 & scpuAt_14 == 5'h1 | take_15 & scpuAt_15 == 5'h1;
-  assign io_scpu_2_ready =
-    take_0 & io_groups_bits_base == 4'h2 | take_1 & scpuAt_1 == 5'h2 | take_2
-    & scpuAt_2 == 5'h2 | take_3 & scpuAt_3 == 5'h2 | take_4 & scpuAt_4 == 5'h2 | take_5
-    & scpuAt_5 == 5'h2 | take_6 & scpuAt_6 == 5'h2 | take_7 & scpuAt_7 == 5'h2 | take_8
-    & scpuAt_8 == 5'h2 | take_9 & scpuAt_9 == 5'h2 | take_10 & scpuAt_10 == 5'h2 | take_11
-    & scpuAt_11 == 5'h2 | take_12 & scpuAt_12 == 5'h2 | take_13 & scpuAt_13 == 5'h2
-    | take_14 & scpuAt_14 == 5'h2 | take_15 & scpuAt_15 == 5'h2;
-  assign io_scpu_3_ready =
-    take_0 & io_groups_bits_base == 4'h3 | take_1 & scpuAt_1 == 5'h3 | take_2
-    & scpuAt_2 == 5'h3 | take_3 & scpuAt_3 == 5'h3 | take_4 & scpuAt_4 == 5'h3 | take_5
-    & scpuAt_5 == 5'h3 | take_6 & scpuAt_6 == 5'h3 | take_7 & scpuAt_7 == 5'h3 | take_8
-    & scpuAt_8 == 5'h3 | take_9 & scpuAt_9 == 5'h3 | take_10 & scpuAt_10 == 5'h3 | take_11
-    & scpuAt_11 == 5'h3 | take_12 & scpuAt_12 == 5'h3 | take_13 & scpuAt_13 == 5'h3
-    | take_14 & scpuAt_14 == 5'h3 | take_15 & scpuAt_15 == 5'h3;
-  assign io_scpu_4_ready =
-    take_0 & io_groups_bits_base == 4'h4 | take_1 & scpuAt_1 == 5'h4 | take_2
-    & scpuAt_2 == 5'h4 | take_3 & scpuAt_3 == 5'h4 | take_4 & scpuAt_4 == 5'h4 | take_5
-    & scpuAt_5 == 5'h4 | take_6 & scpuAt_6 == 5'h4 | take_7 & scpuAt_7 == 5'h4 | take_8
-    & scpuAt_8 == 5'h4 | take_9 & scpuAt_9 == 5'h4 | take_10 & scpuAt_10 == 5'h4 | take_11
-    & scpuAt_11 == 5'h4 | take_12 & scpuAt_12 == 5'h4 | take_13 & scpuAt_13 == 5'h4
-    | take_14 & scpuAt_14 == 5'h4 | take_15 & scpuAt_15 == 5'h4;
-  assign io_scpu_5_ready =
-    take_0 & io_groups_bits_base == 4'h5 | take_1 & scpuAt_1 == 5'h5 | take_2
-    & scpuAt_2 == 5'h5 | take_3 & scpuAt_3 == 5'h5 | take_4 & scpuAt_4 == 5'h5 | take_5
-    & scpuAt_5 == 5'h5 | take_6 & scpuAt_6 == 5'h5 | take_7 & scpuAt_7 == 5'h5 | take_8
-    & scpuAt_8 == 5'h5 | take_9 & scpuAt_9 == 5'h5 | take_10 & scpuAt_10 == 5'h5 | take_11
-    & scpuAt_11 == 5'h5 | take_12 & scpuAt_12 == 5'h5 | take_13 & scpuAt_13 == 5'h5
-    | take_14 & scpuAt_14 == 5'h5 | take_15 & scpuAt_15 == 5'h5;
-  assign io_scpu_6_ready =
-    take_0 & io_groups_bits_base == 4'h6 | take_1 & scpuAt_1 == 5'h6 | take_2
-    & scpuAt_2 == 5'h6 | take_3 & scpuAt_3 == 5'h6 | take_4 & scpuAt_4 == 5'h6 | take_5
-    & scpuAt_5 == 5'h6 | take_6 & scpuAt_6 == 5'h6 | take_7 & scpuAt_7 == 5'h6 | take_8
-    & scpuAt_8 == 5'h6 | take_9 & scpuAt_9 == 5'h6 | take_10 & scpuAt_10 == 5'h6 | take_11
-    & scpuAt_11 == 5'h6 | take_12 & scpuAt_12 == 5'h6 | take_13 & scpuAt_13 == 5'h6
-    | take_14 & scpuAt_14 == 5'h6 | take_15 & scpuAt_15 == 5'h6;
-  assign io_scpu_7_ready =
-    take_0 & io_groups_bits_base == 4'h7 | take_1 & scpuAt_1 == 5'h7 | take_2
-    & scpuAt_2 == 5'h7 | take_3 & scpuAt_3 == 5'h7 | take_4 & scpuAt_4 == 5'h7 | take_5
-    & scpuAt_5 == 5'h7 | take_6 & scpuAt_6 == 5'h7 | take_7 & scpuAt_7 == 5'h7 | take_8
-    & scpuAt_8 == 5'h7 | take_9 & scpuAt_9 == 5'h7 | take_10 & scpuAt_10 == 5'h7 | take_11
-    & scpuAt_11 == 5'h7 | take_12 & scpuAt_12 == 5'h7 | take_13 & scpuAt_13 == 5'h7
-    | take_14 & scpuAt_14 == 5'h7 | take_15 & scpuAt_15 == 5'h7;
-  assign io_scpu_8_ready =
-    take_0 & io_groups_bits_base == 4'h8 | take_1 & scpuAt_1 == 5'h8 | take_2
-    & scpuAt_2 == 5'h8 | take_3 & scpuAt_3 == 5'h8 | take_4 & scpuAt_4 == 5'h8 | take_5
-    & scpuAt_5 == 5'h8 | take_6 & scpuAt_6 == 5'h8 | take_7 & scpuAt_7 == 5'h8 | take_8
-    & scpuAt_8 == 5'h8 | take_9 & scpuAt_9 == 5'h8 | take_10 & scpuAt_10 == 5'h8 | take_11
-    & scpuAt_11 == 5'h8 | take_12 & scpuAt_12 == 5'h8 | take_13 & scpuAt_13 == 5'h8
-    | take_14 & scpuAt_14 == 5'h8 | take_15 & scpuAt_15 == 5'h8;
-  assign io_scpu_9_ready =
-    take_0 & io_groups_bits_base == 4'h9 | take_1 & scpuAt_1 == 5'h9 | take_2
-    & scpuAt_2 == 5'h9 | take_3 & scpuAt_3 == 5'h9 | take_4 & scpuAt_4 == 5'h9 | take_5
-    & scpuAt_5 == 5'h9 | take_6 & scpuAt_6 == 5'h9 | take_7 & scpuAt_7 == 5'h9 | take_8
-    & scpuAt_8 == 5'h9 | take_9 & scpuAt_9 == 5'h9 | take_10 & scpuAt_10 == 5'h9 | take_11
-    & scpuAt_11 == 5'h9 | take_12 & scpuAt_12 == 5'h9 | take_13 & scpuAt_13 == 5'h9
-    | take_14 & scpuAt_14 == 5'h9 | take_15 & scpuAt_15 == 5'h9;
-  assign io_scpu_10_ready =
-    take_0 & io_groups_bits_base == 4'hA | take_1 & scpuAt_1 == 5'hA | take_2
-    & scpuAt_2 == 5'hA | take_3 & scpuAt_3 == 5'hA | take_4 & scpuAt_4 == 5'hA | take_5
-    & scpuAt_5 == 5'hA | take_6 & scpuAt_6 == 5'hA | take_7 & scpuAt_7 == 5'hA | take_8
-    & scpuAt_8 == 5'hA | take_9 & scpuAt_9 == 5'hA | take_10 & scpuAt_10 == 5'hA | take_11
-    & scpuAt_11 == 5'hA | take_12 & scpuAt_12 == 5'hA | take_13 & scpuAt_13 == 5'hA
-    | take_14 & scpuAt_14 == 5'hA | take_15 & scpuAt_15 == 5'hA;
-  assign io_scpu_11_ready =
-    take_0 & io_groups_bits_base == 4'hB | take_1 & scpuAt_1 == 5'hB | take_2
-    & scpuAt_2 == 5'hB | take_3 & scpuAt_3 == 5'hB | take_4 & scpuAt_4 == 5'hB | take_5
-    & scpuAt_5 == 5'hB | take_6 & scpuAt_6 == 5'hB | take_7 & scpuAt_7 == 5'hB | take_8
-    & scpuAt_8 == 5'hB | take_9 & scpuAt_9 == 5'hB | take_10 & scpuAt_10 == 5'hB | take_11
-    & scpuAt_11 == 5'hB | take_12 & scpuAt_12 == 5'hB | take_13 & scpuAt_13 == 5'hB
-    | take_14 & scpuAt_14 == 5'hB | take_15 & scpuAt_15 == 5'hB;
-  assign io_scpu_12_ready =
-    take_0 & io_groups_bits_base == 4'hC | take_1 & scpuAt_1 == 5'hC | take_2
-    & scpuAt_2 == 5'hC | take_3 & scpuAt_3 == 5'hC | take_4 & scpuAt_4 == 5'hC | take_5
-    & scpuAt_5 == 5'hC | take_6 & scpuAt_6 == 5'hC | take_7 & scpuAt_7 == 5'hC | take_8
-    & scpuAt_8 == 5'hC | take_9 & scpuAt_9 == 5'hC | take_10 & scpuAt_10 == 5'hC | take_11
-    & scpuAt_11 == 5'hC | take_12 & scpuAt_12 == 5'hC | take_13 & scpuAt_13 == 5'hC
-    | take_14 & scpuAt_14 == 5'hC | take_15 & scpuAt_15 == 5'hC;
-  assign io_scpu_13_ready =
-    take_0 & io_groups_bits_base == 4'hD | take_1 & scpuAt_1 == 5'hD | take_2
-    & scpuAt_2 == 5'hD | take_3 & scpuAt_3 == 5'hD | take_4 & scpuAt_4 == 5'hD | take_5
-    & scpuAt_5 == 5'hD | take_6 & scpuAt_6 == 5'hD | take_7 & scpuAt_7 == 5'hD | take_8
-    & scpuAt_8 == 5'hD | take_9 & scpuAt_9 == 5'hD | take_10 & scpuAt_10 == 5'hD | take_11
-    & scpuAt_11 == 5'hD | take_12 & scpuAt_12 == 5'hD | take_13 & scpuAt_13 == 5'hD
-    | take_14 & scpuAt_14 == 5'hD | take_15 & scpuAt_15 == 5'hD;
-  assign io_scpu_14_ready =
-    take_0 & io_groups_bits_base == 4'hE | take_1 & scpuAt_1 == 5'hE | take_2
-    & scpuAt_2 == 5'hE | take_3 & scpuAt_3 == 5'hE | take_4 & scpuAt_4 == 5'hE | take_5
-    & scpuAt_5 == 5'hE | take_6 & scpuAt_6 == 5'hE | take_7 & scpuAt_7 == 5'hE | take_8
-    & scpuAt_8 == 5'hE | take_9 & scpuAt_9 == 5'hE | take_10 & scpuAt_10 == 5'hE | take_11
-    & scpuAt_11 == 5'hE | take_12 & scpuAt_12 == 5'hE | take_13 & scpuAt_13 == 5'hE
-    | take_14 & scpuAt_14 == 5'hE | take_15 & scpuAt_15 == 5'hE;
-  assign io_scpu_15_ready =
-    take_0 & (&io_groups_bits_base) | take_1 & scpuAt_1 == 5'hF | take_2
-    & scpuAt_2 == 5'hF | take_3 & scpuAt_3 == 5'hF | take_4 & scpuAt_4 == 5'hF | take_5
-    & scpuAt_5 == 5'hF | take_6 & scpuAt_6 == 5'hF | take_7 & scpuAt_7 == 5'hF | take_8
-    & scpuAt_8 == 5'hF | take_9 & scpuAt_9 == 5'hF | take_10 & scpuAt_10 == 5'hF | take_11
-    & scpuAt_11 == 5'hF | take_12 & scpuAt_12 == 5'hF | take_13 & scpuAt_13 == 5'hF
-    | take_14 & scpuAt_14 == 5'hF | take_15 & scpuAt_15 == 5'hF;
-  assign io_recs_0_bits =
-    (sel_0
-       ? (io_groups_bits_invalid[0]
-            ? {8'h6, casez_tmp_5, 64'h0}
-            : {3'h0,
-               |_GEN,
-               casez_tmp_3,
-               casez_tmp_0,
-               casez_tmp,
-               casez_tmp_5,
-               casez_tmp_2,
-               casez_tmp_1})
-       : 96'h0) | (sel_1 ? records_1_bits : 96'h0) | (sel_2 ? records_2_bits : 96'h0)
-    | (sel_3 ? records_3_bits : 96'h0) | (sel_4 ? records_4_bits : 96'h0)
-    | (sel_5 ? records_5_bits : 96'h0) | (sel_6 ? records_6_bits : 96'h0)
-    | (sel_7 ? records_7_bits : 96'h0) | (sel_8 ? records_8_bits : 96'h0)
-    | (sel_9 ? records_9_bits : 96'h0) | (sel_10 ? records_10_bits : 96'h0)
-    | (sel_11 ? records_11_bits : 96'h0) | (sel_12 ? records_12_bits : 96'h0)
-    | (sel_13 ? records_13_bits : 96'h0) | (sel_14 ? records_14_bits : 96'h0)
-    | (sel_15 ? records_15_bits : 96'h0);
-  assign io_recs_0_pair =
-    (sel_0 ? casez_tmp_5 : 24'h0) | (sel_1 ? casez_tmp_12 : 24'h0)
-    | (sel_2 ? casez_tmp_19 : 24'h0) | (sel_3 ? casez_tmp_26 : 24'h0)
-    | (sel_4 ? casez_tmp_33 : 24'h0) | (sel_5 ? casez_tmp_40 : 24'h0)
-    | (sel_6 ? casez_tmp_47 : 24'h0) | (sel_7 ? casez_tmp_54 : 24'h0)
-    | (sel_8 ? casez_tmp_61 : 24'h0) | (sel_9 ? casez_tmp_68 : 24'h0)
-    | (sel_10 ? casez_tmp_75 : 24'h0) | (sel_11 ? casez_tmp_82 : 24'h0)
-    | (sel_12 ? casez_tmp_89 : 24'h0) | (sel_13 ? casez_tmp_96 : 24'h0)
-    | (sel_14 ? casez_tmp_103 : 24'h0) | (sel_15 ? casez_tmp_110 : 24'h0);
-  assign io_recs_1_bits =
-    (sel_1_1 ? records_1_bits : 96'h0) | (sel_2_1 ? records_2_bits : 96'h0)
-    | (sel_3_1 ? records_3_bits : 96'h0) | (sel_4_1 ? records_4_bits : 96'h0)
-    | (sel_5_1 ? records_5_bits : 96'h0) | (sel_6_1 ? records_6_bits : 96'h0)
-    | (sel_7_1 ? records_7_bits : 96'h0) | (sel_8_1 ? records_8_bits : 96'h0)
-    | (sel_9_1 ? records_9_bits : 96'h0) | (sel_10_1 ? records_10_bits : 96'h0)
-    | (sel_11_1 ? records_11_bits : 96'h0) | (sel_12_1 ? records_12_bits : 96'h0)
-    | (sel_13_1 ? records_13_bits : 96'h0) | (sel_14_1 ? records_14_bits : 96'h0)
-    | (sel_15_1 ? records_15_bits : 96'h0);
-  assign io_recs_1_pair =
-    (sel_1_1 ? casez_tmp_12 : 24'h0) | (sel_2_1 ? casez_tmp_19 : 24'h0)
-    | (sel_3_1 ? casez_tmp_26 : 24'h0) | (sel_4_1 ? casez_tmp_33 : 24'h0)
-    | (sel_5_1 ? casez_tmp_40 : 24'h0) | (sel_6_1 ? casez_tmp_47 : 24'h0)
-    | (sel_7_1 ? casez_tmp_54 : 24'h0) | (sel_8_1 ? casez_tmp_61 : 24'h0)
-    | (sel_9_1 ? casez_tmp_68 : 24'h0) | (sel_10_1 ? casez_tmp_75 : 24'h0)
-    | (sel_11_1 ? casez_tmp_82 : 24'h0) | (sel_12_1 ? casez_tmp_89 : 24'h0)
-    | (sel_13_1 ? casez_tmp_96 : 24'h0) | (sel_14_1 ? casez_tmp_103 : 24'h0)
-    | (sel_15_1 ? casez_tmp_110 : 24'h0);
-  assign io_recs_2_bits =
-    (sel_1_2 ? records_1_bits : 96'h0) | (sel_2_2 ? records_2_bits : 96'h0)
-    | (sel_3_2 ? records_3_bits : 96'h0) | (sel_4_2 ? records_4_bits : 96'h0)
-    | (sel_5_2 ? records_5_bits : 96'h0) | (sel_6_2 ? records_6_bits : 96'h0)
-    | (sel_7_2 ? records_7_bits : 96'h0) | (sel_8_2 ? records_8_bits : 96'h0)
-    | (sel_9_2 ? records_9_bits : 96'h0) | (sel_10_2 ? records_10_bits : 96'h0)
-    | (sel_11_2 ? records_11_bits : 96'h0) | (sel_12_2 ? records_12_bits : 96'h0)
-    | (sel_13_2 ? records_13_bits : 96'h0) | (sel_14_2 ? records_14_bits : 96'h0)
-    | (sel_15_2 ? records_15_bits : 96'h0);
-  assign io_recs_2_pair =
-    (sel_1_2 ? casez_tmp_12 : 24'h0) | (sel_2_2 ? casez_tmp_19 : 24'h0)
-    | (sel_3_2 ? casez_tmp_26 : 24'h0) | (sel_4_2 ? casez_tmp_33 : 24'h0)
-    | (sel_5_2 ? casez_tmp_40 : 24'h0) | (sel_6_2 ? casez_tmp_47 : 24'h0)
-    | (sel_7_2 ? casez_tmp_54 : 24'h0) | (sel_8_2 ? casez_tmp_61 : 24'h0)
-    | (sel_9_2 ? casez_tmp_68 : 24'h0) | (sel_10_2 ? casez_tmp_75 : 24'h0)
-    | (sel_11_2 ? casez_tmp_82 : 24'h0) | (sel_12_2 ? casez_tmp_89 : 24'h0)
-    | (sel_13_2 ? casez_tmp_96 : 24'h0) | (sel_14_2 ? casez_tmp_103 : 24'h0)
-    | (sel_15_2 ? casez_tmp_110 : 24'h0);
-  assign io_recs_3_bits =
-    (sel_1_3 ? records_1_bits : 96'h0) | (sel_2_3 ? records_2_bits : 96'h0)
-    | (sel_3_3 ? records_3_bits : 96'h0) | (sel_4_3 ? records_4_bits : 96'h0)
-    | (sel_5_3 ? records_5_bits : 96'h0) | (sel_6_3 ? records_6_bits : 96'h0)
-    | (sel_7_3 ? records_7_bits : 96'h0) | (sel_8_3 ? records_8_bits : 96'h0)
-    | (sel_9_3 ? records_9_bits : 96'h0) | (sel_10_3 ? records_10_bits : 96'h0)
-    | (sel_11_3 ? records_11_bits : 96'h0) | (sel_12_3 ? records_12_bits : 96'h0)
-    | (sel_13_3 ? records_13_bits : 96'h0) | (sel_14_3 ? records_14_bits : 96'h0)
-    | (sel_15_3 ? records_15_bits : 96'h0);
-  assign io_recs_3_pair =
-    (sel_1_3 ? casez_tmp_12 : 24'h0) | (sel_2_3 ? casez_tmp_19 : 24'h0)
-    | (sel_3_3 ? casez_tmp_26 : 24'h0) | (sel_4_3 ? casez_tmp_33 : 24'h0)
-    | (sel_5_3 ? casez_tmp_40 : 24'h0) | (sel_6_3 ? casez_tmp_47 : 24'h0)
-    | (sel_7_3 ? casez_tmp_54 : 24'h0) | (sel_8_3 ? casez_tmp_61 : 24'h0)
-    | (sel_9_3 ? casez_tmp_68 : 24'h0) | (sel_10_3 ? casez_tmp_75 : 24'h0)
-    | (sel_11_3 ? casez_tmp_82 : 24'h0) | (sel_12_3 ? casez_tmp_89 : 24'h0)
-    | (sel_13_3 ? casez_tmp_96 : 24'h0) | (sel_14_3 ? casez_tmp_103 : 24'h0)
-    | (sel_15_3 ? casez_tmp_110 : 24'h0);
-  assign io_recs_4_bits =
-    (sel_1_4 ? records_1_bits : 96'h0) | (sel_2_4 ? records_2_bits : 96'h0)
-    | (sel_3_4 ? records_3_bits : 96'h0) | (sel_4_4 ? records_4_bits : 96'h0)
-    | (sel_5_4 ? records_5_bits : 96'h0) | (sel_6_4 ? records_6_bits : 96'h0)
-    | (sel_7_4 ? records_7_bits : 96'h0) | (sel_8_4 ? records_8_bits : 96'h0)
-    | (sel_9_4 ? records_9_bits : 96'h0) | (sel_10_4 ? records_10_bits : 96'h0)
-    | (sel_11_4 ? records_11_bits : 96'h0) | (sel_12_4 ? records_12_bits : 96'h0)
-    | (sel_13_4 ? records_13_bits : 96'h0) | (sel_14_4 ? records_14_bits : 96'h0)
-    | (sel_15_4 ? records_15_bits : 96'h0);
-  assign io_recs_4_pair =
-    (sel_1_4 ? casez_tmp_12 : 24'h0) | (sel_2_4 ? casez_tmp_19 : 24'h0)
-    | (sel_3_4 ? casez_tmp_26 : 24'h0) | (sel_4_4 ? casez_tmp_33 : 24'h0)
-    | (sel_5_4 ? casez_tmp_40 : 24'h0) | (sel_6_4 ? casez_tmp_47 : 24'h0)
-    | (sel_7_4 ? casez_tmp_54 : 24'h0) | (sel_8_4 ? casez_tmp_61 : 24'h0)
-    | (sel_9_4 ? casez_tmp_68 : 24'h0) | (sel_10_4 ? casez_tmp_75 : 24'h0)
-    | (sel_11_4 ? casez_tmp_82 : 24'h0) | (sel_12_4 ? casez_tmp_89 : 24'h0)
-    | (sel_13_4 ? casez_tmp_96 : 24'h0) | (sel_14_4 ? casez_tmp_103 : 24'h0)
-    | (sel_15_4 ? casez_tmp_110 : 24'h0);
-  assign io_nRecs =
-    {1'h0, {1'h0, _sel_T_192} + {1'h0, _sel_T_195}}
-    + {1'h0, {1'h0, _sel_T_198} + {1'h0, _sel_T_201}}
-    + {1'h0, {1'h0, _sel_T_204} + {1'h0, _sel_T_207}}
-    + {1'h0, {1'h0, _sel_T_210} + {1'h0, _sel_T_213}}
-    + {1'h0, {1'h0, _sel_T_216} + {1'h0, _sel_T_219}}
-    + {1'h0, {1'h0, _sel_T_222} + {1'h0, _sel_T_225}}
-    + {1'h0, {1'h0, _sel_T_228} + {1'h0, _sel_T_231}}
-    + {1'h0, {1'h0, _sel_T_234} + {1'h0, _sel_T_237}};
-  assign io_nPairs = nTaken;
-  assign io_nHits =
-    {1'h0,
-     {1'h0,
-      {1'h0, {1'h0, take_0 & hit_0} + {1'h0, take_1 & hit_1}}
-        + {1'h0, {1'h0, take_2 & hit_2} + {1'h0, take_3 & hit_3}}}
-       + {1'h0,
-          {1'h0, {1'h0, take_4 & hit_4} + {1'h0, take_5 & hit_5}}
-            + {1'h0, {1'h0, take_6 & hit_6} + {1'h0, take_7 & hit_7}}}}
-    + {1'h0,
-       {1'h0,
-        {1'h0, {1'h0, take_8 & hit_8} + {1'h0, take_9 & hit_9}}
-          + {1'h0, {1'h0, take_10 & hit_10} + {1'h0, take_11 & hit_11}}}
-         + {1'h0,
-            {1'h0, {1'h0, take_12 & hit_12} + {1'h0, take_13 & hit_13}}
-              + {1'h0, {1'h0, take_14 & hit_14} + {1'h0, take_15 & hit_15}}}};
-  assign io_nNonFinite =
-    {1'h0,
-     {1'h0,
-      {1'h0,
-       {1'h0, take_0 & ~(io_groups_bits_invalid[0]) & casez_tmp_3}
-         + {1'h0, take_1 & ~(io_groups_bits_invalid[1]) & casez_tmp_10}}
-        + {1'h0,
-           {1'h0, take_2 & ~(io_groups_bits_invalid[2]) & casez_tmp_17}
-             + {1'h0, take_3 & ~(io_groups_bits_invalid[3]) & casez_tmp_24}}}
-       + {1'h0,
-          {1'h0,
-           {1'h0, take_4 & ~(io_groups_bits_invalid[4]) & casez_tmp_31}
-             + {1'h0, take_5 & ~(io_groups_bits_invalid[5]) & casez_tmp_38}}
-            + {1'h0,
-               {1'h0, take_6 & ~(io_groups_bits_invalid[6]) & casez_tmp_45}
-                 + {1'h0, take_7 & ~(io_groups_bits_invalid[7]) & casez_tmp_52}}}}
-    + {1'h0,
-       {1'h0,
+    if (gather) begin
+      s1_g_base <= _head_io_deq_bits_base;
+      s1_g_cnt <= _head_io_deq_bits_cnt;
+      s1_g_invalid <= _head_io_deq_bits_invalid;
+      s1_out_0_hit <= io_scpu_0_bits_hit;
+      s1_out_0_kind <= io_scpu_0_bits_kind;
+      s1_out_0_d <= io_scpu_0_bits_d;
+      s1_out_0_nw <= io_scpu_0_bits_nw;
+      s1_out_0_nonFinite <= io_scpu_0_bits_nonFinite;
+      s1_out_0_flags <= io_scpu_0_bits_flags;
+      s1_out_0_tag <= io_scpu_0_bits_tag;
+      s1_out_1_hit <= io_scpu_1_bits_hit;
+      s1_out_1_kind <= io_scpu_1_bits_kind;
+      s1_out_1_d <= io_scpu_1_bits_d;
+      s1_out_1_nw <= io_scpu_1_bits_nw;
+      s1_out_1_nonFinite <= io_scpu_1_bits_nonFinite;
+      s1_out_1_flags <= io_scpu_1_bits_flags;
+      s1_out_1_tag <= io_scpu_1_bits_tag;
+      s1_out_2_hit <= io_scpu_2_bits_hit;
+      s1_out_2_kind <= io_scpu_2_bits_kind;
+      s1_out_2_d <= io_scpu_2_bits_d;
+      s1_out_2_nw <= io_scpu_2_bits_nw;
+      s1_out_2_nonFinite <= io_scpu_2_bits_nonFinite;
+      s1_out_2_flags <= io_scpu_2_bits_flags;
+      s1_out_2_tag <= io_scpu_2_bits_tag;
+      s1_out_3_hit <= io_scpu_3_bits_hit;
+      s1_out_3_kind <= io_scpu_3_bits_kind;
+      s1_out_3_d <= io_scpu_3_bits_d;
+      s1_out_3_nw <= io_scpu_3_bits_nw;
+      s1_out_3_nonFinite <= io_scpu_3_bits_nonFinite;
+      s1_out_3_flags <= io_scpu_3_bits_flags;
+      s1_out_3_tag <= io_scpu_3_bits_tag;
+      s1_out_4_hit <= io_scpu_4_bits_hit;
+      s1_out_4_kind <= io_scpu_4_bits_kind;
+      s1_out_4_d <= io_scpu_4_bits_d;
+      s1_out_4_nw <= io_scpu_4_bits_nw;
+      s1_out_4_nonFinite <= io_scpu_4_bits_nonFinite;
+      s1_out_4_flags <= io_scpu_4_bits_flags;
+      s1_out_4_tag <= io_scpu_4_bits_tag;
+      s1_out_5_hit <= io_scpu_5_bits_hit;
+      s1_out_5_kind <= io_scpu_5_bits_kind;
+      s1_out_5_d <= io_scpu_5_bits_d;
+      s1_out_5_nw <= io_scpu_5_bits_nw;
+      s1_out_5_nonFinite <= io_scpu_5_bits_nonFinite;
+      s1_out_5_flags <= io_scpu_5_bits_flags;
+      s1_out_5_tag <= io_scpu_5_bits_tag;
+      s1_out_6_hit <= io_scpu_6_bits_hit;
+      s1_out_6_kind <= io_scpu_6_bits_kind;
+      s1_out_6_d <= io_scpu_6_bits_d;
+      s1_out_6_nw <= io_scpu_6_bits_nw;
+      s1_out_6_nonFinite <= io_scpu_6_bits_nonFinite;
+      s1_out_6_flags <= io_scpu_6_bits_flags;
+      s1_out_6_tag <= io_scpu_6_bits_tag;
+      s1_out_7_hit <= io_scpu_7_bits_hit;
+      s1_out_7_kind <= io_scpu_7_bits_kind;
+      s1_out_7_d <= io_scpu_7_bits_d;
+      s1_out_7_nw <= io_scpu_7_bits_nw;
+      s1_out_7_nonFinite <= io_scpu_7_bits_nonFinite;
+      s1_out_7_flags <= io_scpu_7_bits_flags;
+      s1_out_7_tag <= io_scpu_7_bits_tag;
+      s1_out_8_hit <= io_scpu_8_bits_hit;
+      s1_out_8_kind <= io_scpu_8_bits_kind;
+      s1_out_8_d <= io_scpu_8_bits_d;
+      s1_out_8_nw <= io_scpu_8_bits_nw;
+      s1_out_8_nonFinite <= io_scpu_8_bits_nonFinite;
+      s1_out_8_flags <= io_scpu_8_bits_flags;
+      s1_out_8_tag <= io_scpu_8_bits_tag;
+      s1_out_9_hit <= io_scpu_9_bits_hit;
+      s1_out_9_kind <= io_scpu_9_bits_kind;
+      s1_out_9_d <= io_scpu_9_bits_d;
+      s1_out_9_nw <= io_scpu_9_bits_nw;
+      s1_out_9_nonFinite <= io_scpu_9_bits_nonFinite;
+      s1_out_9_flags <= io_scpu_9_bits_flags;
+      s1_out_9_tag <= io_scpu_9_bits_tag;
+      s1_out_10_hit <= io_scpu_10_bits_hit;
+      s1_out_10_kind <= io_scpu_10_bits_kind;
+      s1_out_10_d <= io_scpu_10_bits_d;
+      s1_out_10_nw <= io_scpu_10_bits_nw;
+      s1_out_10_nonFinite <= io_scpu_10_bits_nonFinite;
+      s1_out_10_flags <= io_scpu_10_bits_flags;
+      s1_out_10_tag <= io_scpu_10_bits_tag;
+      s1_out_11_hit <= io_scpu_11_bits_hit;
+      s1_out_11_kind <= io_scpu_11_bits_kind;
+      s1_out_11_d <= io_scpu_11_bits_d;
+      s1_out_11_nw <= io_scpu_11_bits_nw;
+      s1_out_11_nonFinite <= io_scpu_11_bits_nonFinite;
+      s1_out_11_flags <= io_scpu_11_bits_flags;
+      s1_out_11_tag <= io_scpu_11_bits_tag;
+      s1_out_12_hit <= io_scpu_12_bits_hit;
+      s1_out_12_kind <= io_scpu_12_bits_kind;
+      s1_out_12_d <= io_scpu_12_bits_d;
+      s1_out_12_nw <= io_scpu_12_bits_nw;
+      s1_out_12_nonFinite <= io_scpu_12_bits_nonFinite;
+      s1_out_12_flags <= io_scpu_12_bits_flags;
+      s1_out_12_tag <= io_scpu_12_bits_tag;
+      s1_out_13_hit <= io_scpu_13_bits_hit;
+      s1_out_13_kind <= io_scpu_13_bits_kind;
+      s1_out_13_d <= io_scpu_13_bits_d;
+      s1_out_13_nw <= io_scpu_13_bits_nw;
+      s1_out_13_nonFinite <= io_scpu_13_bits_nonFinite;
+      s1_out_13_flags <= io_scpu_13_bits_flags;
+      s1_out_13_tag <= io_scpu_13_bits_tag;
+      s1_out_14_hit <= io_scpu_14_bits_hit;
+      s1_out_14_kind <= io_scpu_14_bits_kind;
+      s1_out_14_d <= io_scpu_14_bits_d;
+      s1_out_14_nw <= io_scpu_14_bits_nw;
+      s1_out_14_nonFinite <= io_scpu_14_bits_nonFinite;
+      s1_out_14_flags <= io_scpu_14_bits_flags;
+      s1_out_14_tag <= io_scpu_14_bits_tag;
+      s1_out_15_hit <= io_scpu_15_bits_hit;
+      s1_out_15_kind <= io_scpu_15_bits_kind;
+      s1_out_15_d <= io_scpu_15_bits_d;
+      s1_out_15_nw <= io_scpu_15_bits_nw;
+      s1_out_15_nonFinite <= io_scpu_15_bits_nonFinite;
+      s1_out_15_flags <= io_scpu_15_bits_flags;
+      s1_out_15_tag <= io_scpu_15_bits_tag;
+    end
+    if (s1Valid & s2Free) begin
+      s2_g_cnt <= s1_g_cnt;
+      s2_rec_1 <=
+        s1_g_invalid[0]
+          ? {8'h6, casez_tmp_5, 64'h0}
+          : {3'h0,
+             |_GEN_19,
+             casez_tmp_3,
+             casez_tmp_0,
+             casez_tmp,
+             casez_tmp_5,
+             casez_tmp_2,
+             casez_tmp_1};
+      s2_rec_2 <=
+        s1_g_invalid[1]
+          ? {8'h6, casez_tmp_12, 64'h0}
+          : {3'h0,
+             |_GEN_20,
+             casez_tmp_10,
+             casez_tmp_7,
+             casez_tmp_6,
+             casez_tmp_12,
+             casez_tmp_9,
+             casez_tmp_8};
+      s2_rec_3 <=
+        s1_g_invalid[2]
+          ? {8'h6, casez_tmp_19, 64'h0}
+          : {3'h0,
+             |_GEN_21,
+             casez_tmp_17,
+             casez_tmp_14,
+             casez_tmp_13,
+             casez_tmp_19,
+             casez_tmp_16,
+             casez_tmp_15};
+      s2_rec_4 <=
+        s1_g_invalid[3]
+          ? {8'h6, casez_tmp_26, 64'h0}
+          : {3'h0,
+             |_GEN_22,
+             casez_tmp_24,
+             casez_tmp_21,
+             casez_tmp_20,
+             casez_tmp_26,
+             casez_tmp_23,
+             casez_tmp_22};
+      s2_rec_5 <=
+        s1_g_invalid[4]
+          ? {8'h6, casez_tmp_33, 64'h0}
+          : {3'h0,
+             |_GEN_23,
+             casez_tmp_31,
+             casez_tmp_28,
+             casez_tmp_27,
+             casez_tmp_33,
+             casez_tmp_30,
+             casez_tmp_29};
+      s2_rec_6 <=
+        s1_g_invalid[5]
+          ? {8'h6, casez_tmp_40, 64'h0}
+          : {3'h0,
+             |_GEN_24,
+             casez_tmp_38,
+             casez_tmp_35,
+             casez_tmp_34,
+             casez_tmp_40,
+             casez_tmp_37,
+             casez_tmp_36};
+      s2_rec_7 <=
+        s1_g_invalid[6]
+          ? {8'h6, casez_tmp_47, 64'h0}
+          : {3'h0,
+             |_GEN_25,
+             casez_tmp_45,
+             casez_tmp_42,
+             casez_tmp_41,
+             casez_tmp_47,
+             casez_tmp_44,
+             casez_tmp_43};
+      s2_rec_8 <=
+        s1_g_invalid[7]
+          ? {8'h6, casez_tmp_54, 64'h0}
+          : {3'h0,
+             |_GEN_26,
+             casez_tmp_52,
+             casez_tmp_49,
+             casez_tmp_48,
+             casez_tmp_54,
+             casez_tmp_51,
+             casez_tmp_50};
+      s2_rec_9 <=
+        s1_g_invalid[8]
+          ? {8'h6, casez_tmp_61, 64'h0}
+          : {3'h0,
+             |_GEN_27,
+             casez_tmp_59,
+             casez_tmp_56,
+             casez_tmp_55,
+             casez_tmp_61,
+             casez_tmp_58,
+             casez_tmp_57};
+      s2_rec_10 <=
+        s1_g_invalid[9]
+          ? {8'h6, casez_tmp_68, 64'h0}
+          : {3'h0,
+             |_GEN_28,
+             casez_tmp_66,
+             casez_tmp_63,
+             casez_tmp_62,
+             casez_tmp_68,
+             casez_tmp_65,
+             casez_tmp_64};
+      s2_rec_11 <=
+        s1_g_invalid[10]
+          ? {8'h6, casez_tmp_75, 64'h0}
+          : {3'h0,
+             |_GEN_29,
+             casez_tmp_73,
+             casez_tmp_70,
+             casez_tmp_69,
+             casez_tmp_75,
+             casez_tmp_72,
+             casez_tmp_71};
+      s2_rec_12 <=
+        s1_g_invalid[11]
+          ? {8'h6, casez_tmp_82, 64'h0}
+          : {3'h0,
+             |_GEN_30,
+             casez_tmp_80,
+             casez_tmp_77,
+             casez_tmp_76,
+             casez_tmp_82,
+             casez_tmp_79,
+             casez_tmp_78};
+      s2_rec_13 <=
+        s1_g_invalid[12]
+          ? {8'h6, casez_tmp_89, 64'h0}
+          : {3'h0,
+             |_GEN_31,
+             casez_tmp_87,
+             casez_tmp_84,
+             casez_tmp_83,
+             casez_tmp_89,
+             casez_tmp_86,
+             casez_tmp_85};
+      s2_rec_14 <=
+        s1_g_invalid[13]
+          ? {8'h6, casez_tmp_96, 64'h0}
+          : {3'h0,
+             |_GEN_32,
+             casez_tmp_94,
+             casez_tmp_91,
+             casez_tmp_90,
+             casez_tmp_96,
+             casez_tmp_93,
+             casez_tmp_92};
+      s2_rec_15 <=
+        s1_g_invalid[14]
+          ? {8'h6, casez_tmp_103, 64'h0}
+          : {3'h0,
+             |_GEN_33,
+             casez_tmp_101,
+             casez_tmp_98,
+             casez_tmp_97,
+             casez_tmp_103,
+             casez_tmp_100,
+             casez_tmp_99};
+      s2_rec_16 <=
+        s1_g_invalid[15]
+          ? {8'h6, casez_tmp_110, 64'h0}
+          : {3'h0,
+             |_GEN_34,
+             casez_tmp_108,
+             casez_tmp_105,
+             casez_tmp_104,
+             casez_tmp_110,
+             casez_tmp_107,
+             casez_tmp_106};
+      s2_pair_1 <= casez_tmp_5;
+      s2_pair_2 <= casez_tmp_12;
+      s2_pair_3 <= casez_tmp_19;
+      s2_pair_4 <= casez_tmp_26;
+      s2_pair_5 <= casez_tmp_33;
+      s2_pair_6 <= casez_tmp_40;
+      s2_pair_7 <= casez_tmp_47;
+      s2_pair_8 <= casez_tmp_54;
+      s2_pair_9 <= casez_tmp_61;
+      s2_pair_10 <= casez_tmp_68;
+      s2_pair_11 <= casez_tmp_75;
+      s2_pair_12 <= casez_tmp_82;
+      s2_pair_13 <= casez_tmp_89;
+      s2_pair_14 <= casez_tmp_96;
+      s2_pair_15 <= casez_tmp_103;
+      s2_pair_16 <= casez_tmp_110;
+      s2_want_1 <= (|s1_g_cnt) & (io_dense | hit_0 | io_keepFlagged & flagged_0);
+      s2_want_2 <= (|(s1_g_cnt[4:1])) & (io_dense | hit_1 | io_keepFlagged & flagged_1);
+      s2_want_3 <= active_2 & (io_dense | hit_2 | io_keepFlagged & flagged_2);
+      s2_want_4 <= (|(s1_g_cnt[4:2])) & (io_dense | hit_3 | io_keepFlagged & flagged_3);
+      s2_want_5 <= active_4 & (io_dense | hit_4 | io_keepFlagged & flagged_4);
+      s2_want_6 <= active_5 & (io_dense | hit_5 | io_keepFlagged & flagged_5);
+      s2_want_7 <= active_6 & (io_dense | hit_6 | io_keepFlagged & flagged_6);
+      s2_want_8 <= (|(s1_g_cnt[4:3])) & (io_dense | hit_7 | io_keepFlagged & flagged_7);
+      s2_want_9 <= active_8 & (io_dense | hit_8 | io_keepFlagged & flagged_8);
+      s2_want_10 <= active_9 & (io_dense | hit_9 | io_keepFlagged & flagged_9);
+      s2_want_11 <= active_10 & (io_dense | hit_10 | io_keepFlagged & flagged_10);
+      s2_want_12 <= active_11 & (io_dense | hit_11 | io_keepFlagged & flagged_11);
+      s2_want_13 <= active_12 & (io_dense | hit_12 | io_keepFlagged & flagged_12);
+      s2_want_14 <= active_13 & (io_dense | hit_13 | io_keepFlagged & flagged_13);
+      s2_want_15 <= active_14 & (io_dense | hit_14 | io_keepFlagged & flagged_14);
+      s2_want_16 <= s1_g_cnt[4] & (io_dense | hit_15 | io_keepFlagged & flagged_15);
+      s2_hits <=
         {1'h0,
-         {1'h0, take_8 & ~(io_groups_bits_invalid[8]) & casez_tmp_59}
-           + {1'h0, take_9 & ~(io_groups_bits_invalid[9]) & casez_tmp_66}}
-          + {1'h0,
-             {1'h0, take_10 & ~(io_groups_bits_invalid[10]) & casez_tmp_73}
-               + {1'h0, take_11 & ~(io_groups_bits_invalid[11]) & casez_tmp_80}}}
-         + {1'h0,
+         {1'h0,
+          {1'h0, {1'h0, hit_0} + {1'h0, hit_1}} + {1'h0, {1'h0, hit_2} + {1'h0, hit_3}}}
+           + {1'h0,
+              {1'h0, {1'h0, hit_4} + {1'h0, hit_5}}
+                + {1'h0, {1'h0, hit_6} + {1'h0, hit_7}}}}
+        + {1'h0,
+           {1'h0,
+            {1'h0, {1'h0, hit_8} + {1'h0, hit_9}}
+              + {1'h0, {1'h0, hit_10} + {1'h0, hit_11}}}
+             + {1'h0,
+                {1'h0, {1'h0, hit_12} + {1'h0, hit_13}}
+                  + {1'h0, {1'h0, hit_14} + {1'h0, hit_15}}}};
+      s2_nonFin <=
+        {1'h0,
+         {1'h0,
+          {1'h0,
+           {1'h0, (|s1_g_cnt) & ~(s1_g_invalid[0]) & casez_tmp_3}
+             + {1'h0, (|(s1_g_cnt[4:1])) & ~(s1_g_invalid[1]) & casez_tmp_10}}
+            + {1'h0,
+               {1'h0, active_2 & ~(s1_g_invalid[2]) & casez_tmp_17}
+                 + {1'h0, (|(s1_g_cnt[4:2])) & ~(s1_g_invalid[3]) & casez_tmp_24}}}
+           + {1'h0,
+              {1'h0,
+               {1'h0, active_4 & ~(s1_g_invalid[4]) & casez_tmp_31}
+                 + {1'h0, active_5 & ~(s1_g_invalid[5]) & casez_tmp_38}}
+                + {1'h0,
+                   {1'h0, active_6 & ~(s1_g_invalid[6]) & casez_tmp_45}
+                     + {1'h0, (|(s1_g_cnt[4:3])) & ~(s1_g_invalid[7]) & casez_tmp_52}}}}
+        + {1'h0,
+           {1'h0,
             {1'h0,
-             {1'h0, take_12 & ~(io_groups_bits_invalid[12]) & casez_tmp_87}
-               + {1'h0, take_13 & ~(io_groups_bits_invalid[13]) & casez_tmp_94}}
+             {1'h0, active_8 & ~(s1_g_invalid[8]) & casez_tmp_59}
+               + {1'h0, active_9 & ~(s1_g_invalid[9]) & casez_tmp_66}}
               + {1'h0,
-                 {1'h0, take_14 & ~(io_groups_bits_invalid[14]) & casez_tmp_101}
-                   + {1'h0, take_15 & ~(io_groups_bits_invalid[15]) & casez_tmp_108}}}};
-  assign io_nFlagged =
-    {1'h0,
-     {1'h0,
-      {1'h0, {1'h0, take_0 & flagged_0} + {1'h0, take_1 & flagged_1}}
-        + {1'h0, {1'h0, take_2 & flagged_2} + {1'h0, take_3 & flagged_3}}}
-       + {1'h0,
-          {1'h0, {1'h0, take_4 & flagged_4} + {1'h0, take_5 & flagged_5}}
-            + {1'h0, {1'h0, take_6 & flagged_6} + {1'h0, take_7 & flagged_7}}}}
-    + {1'h0,
-       {1'h0,
-        {1'h0, {1'h0, take_8 & flagged_8} + {1'h0, take_9 & flagged_9}}
-          + {1'h0, {1'h0, take_10 & flagged_10} + {1'h0, take_11 & flagged_11}}}
-         + {1'h0,
-            {1'h0, {1'h0, take_12 & flagged_12} + {1'h0, take_13 & flagged_13}}
-              + {1'h0, {1'h0, take_14 & flagged_14} + {1'h0, take_15 & flagged_15}}}};
+                 {1'h0, active_10 & ~(s1_g_invalid[10]) & casez_tmp_73}
+                   + {1'h0, active_11 & ~(s1_g_invalid[11]) & casez_tmp_80}}}
+             + {1'h0,
+                {1'h0,
+                 {1'h0, active_12 & ~(s1_g_invalid[12]) & casez_tmp_87}
+                   + {1'h0, active_13 & ~(s1_g_invalid[13]) & casez_tmp_94}}
+                  + {1'h0,
+                     {1'h0, active_14 & ~(s1_g_invalid[14]) & casez_tmp_101}
+                       + {1'h0, s1_g_cnt[4] & ~(s1_g_invalid[15]) & casez_tmp_108}}}};
+      s2_flagged <=
+        {1'h0,
+         {1'h0,
+          {1'h0, {1'h0, flagged_0} + {1'h0, flagged_1}}
+            + {1'h0, {1'h0, flagged_2} + {1'h0, flagged_3}}}
+           + {1'h0,
+              {1'h0, {1'h0, flagged_4} + {1'h0, flagged_5}}
+                + {1'h0, {1'h0, flagged_6} + {1'h0, flagged_7}}}}
+        + {1'h0,
+           {1'h0,
+            {1'h0, {1'h0, flagged_8} + {1'h0, flagged_9}}
+              + {1'h0, {1'h0, flagged_10} + {1'h0, flagged_11}}}
+             + {1'h0,
+                {1'h0, {1'h0, flagged_12} + {1'h0, flagged_13}}
+                  + {1'h0, {1'h0, flagged_14} + {1'h0, flagged_15}}}};
+    end
+    if (s2Valid & s3Free) begin
+      s3_g_cnt <= s2_g_cnt;
+      s3_rec_1 <= s2_rec_1;
+      s3_rec_2 <= s2_rec_2;
+      s3_rec_3 <= s2_rec_3;
+      s3_rec_4 <= s2_rec_4;
+      s3_rec_5 <= s2_rec_5;
+      s3_rec_6 <= s2_rec_6;
+      s3_rec_7 <= s2_rec_7;
+      s3_rec_8 <= s2_rec_8;
+      s3_rec_9 <= s2_rec_9;
+      s3_rec_10 <= s2_rec_10;
+      s3_rec_11 <= s2_rec_11;
+      s3_rec_12 <= s2_rec_12;
+      s3_rec_13 <= s2_rec_13;
+      s3_rec_14 <= s2_rec_14;
+      s3_rec_15 <= s2_rec_15;
+      s3_rec_16 <= s2_rec_16;
+      s3_pair_1 <= s2_pair_1;
+      s3_pair_2 <= s2_pair_2;
+      s3_pair_3 <= s2_pair_3;
+      s3_pair_4 <= s2_pair_4;
+      s3_pair_5 <= s2_pair_5;
+      s3_pair_6 <= s2_pair_6;
+      s3_pair_7 <= s2_pair_7;
+      s3_pair_8 <= s2_pair_8;
+      s3_pair_9 <= s2_pair_9;
+      s3_pair_10 <= s2_pair_10;
+      s3_pair_11 <= s2_pair_11;
+      s3_pair_12 <= s2_pair_12;
+      s3_pair_13 <= s2_pair_13;
+      s3_pair_14 <= s2_pair_14;
+      s3_pair_15 <= s2_pair_15;
+      s3_pair_16 <= s2_pair_16;
+      s3_want_1 <= s2_want_1;
+      s3_want_2 <= s2_want_2;
+      s3_want_3 <= s2_want_3;
+      s3_want_4 <= s2_want_4;
+      s3_want_5 <= s2_want_5;
+      s3_want_6 <= s2_want_6;
+      s3_want_7 <= s2_want_7;
+      s3_want_8 <= s2_want_8;
+      s3_want_9 <= s2_want_9;
+      s3_want_10 <= s2_want_10;
+      s3_want_11 <= s2_want_11;
+      s3_want_12 <= s2_want_12;
+      s3_want_13 <= s2_want_13;
+      s3_want_14 <= s2_want_14;
+      s3_want_15 <= s2_want_15;
+      s3_want_16 <= s2_want_16;
+      s3_hits <= s2_hits;
+      s3_nonFin <= s2_nonFin;
+      s3_flagged <= s2_flagged;
+      s3Cum_1 <= _GEN_35;
+      s3Cum_2 <= _GEN_35 + _GEN_36;
+      s3Cum_3 <= _GEN_37;
+      s3Cum_4 <= _GEN_37 + _GEN_38;
+      s3Cum_5 <= _GEN_37 + _GEN_39;
+      s3Cum_6 <= _GEN_37 + _GEN_39 + _GEN_40;
+      s3Cum_7 <= _GEN_41;
+      s3Cum_8 <= _GEN_41 + _GEN_42;
+      s3Cum_9 <= _GEN_41 + _GEN_43;
+      s3Cum_10 <= _GEN_41 + _GEN_43 + _GEN_44;
+      s3Cum_11 <= _GEN_41 + _GEN_45;
+      s3Cum_12 <= _GEN_41 + _GEN_45 + _GEN_46;
+      s3Cum_13 <= _GEN_41 + _GEN_45 + _GEN_47;
+      s3Cum_14 <= _GEN_41 + _GEN_45 + _GEN_47 + _GEN_49;
+      s3Cum_15 <= _GEN_41 + _GEN_45 + _GEN_47 + _GEN_49 + _GEN_48;
+      s3Cum_16 <= _GEN_41 + _GEN_45 + _GEN_47 + _GEN_49 + _GEN_48 + {4'h0, s2_want_16};
+    end
+    if (reset) begin
+      s1Valid <= 1'h0;
+      s2Valid <= 1'h0;
+      s3Valid <= 1'h0;
+      sent <= 5'h0;
+    end
+    else begin
+      if (s1Free)
+        s1Valid <= gather;
+      if (s2Free)
+        s2Valid <= s1Valid;
+      if (s3Free)
+        s3Valid <= s2Valid;
+      if (done)
+        sent <= 5'h0;
+      else
+        sent <= _sent_T;
+    end
+  end // always @(posedge)
+  CollectorGroupQueue_d2_world head (
+    .clock               (clock),
+    .reset               (reset),
+    .io_enq_ready        (io_groups_ready),
+    .io_enq_valid        (io_groups_valid),
+    .io_enq_bits_base    (io_groups_bits_base),
+    .io_enq_bits_cnt     (io_groups_bits_cnt),
+    .io_enq_bits_invalid (io_groups_bits_invalid),
+    .io_enq_bits_first   (io_groups_bits_first),
+    .io_deq_ready        (gather),
+    .io_deq_valid        (_head_io_deq_valid),
+    .io_deq_bits_base    (_head_io_deq_bits_base),
+    .io_deq_bits_cnt     (_head_io_deq_bits_cnt),
+    .io_deq_bits_invalid (_head_io_deq_bits_invalid)
+  );
+  assign io_scpu_0_ready = gather & _used_T;
+  assign io_scpu_1_ready = gather & _used_T_1;
+  assign io_scpu_2_ready = gather & _used_T_2;
+  assign io_scpu_3_ready = gather & _used_T_3;
+  assign io_scpu_4_ready = gather & _used_T_4;
+  assign io_scpu_5_ready = gather & _used_T_5;
+  assign io_scpu_6_ready = gather & _used_T_6;
+  assign io_scpu_7_ready = gather & _used_T_7;
+  assign io_scpu_8_ready = gather & _used_T_8;
+  assign io_scpu_9_ready = gather & _used_T_9;
+  assign io_scpu_10_ready = gather & _used_T_10;
+  assign io_scpu_11_ready = gather & _used_T_11;
+  assign io_scpu_12_ready = gather & _used_T_12;
+  assign io_scpu_13_ready = gather & _used_T_13;
+  assign io_scpu_14_ready = gather & _used_T_14;
+  assign io_scpu_15_ready = gather & _used_T_15;
+  assign io_recs_0_bits =
+    (sel_1 ? s3_rec_1 : 96'h0) | (sel_2 ? s3_rec_2 : 96'h0) | (sel_3 ? s3_rec_3 : 96'h0)
+    | (sel_4 ? s3_rec_4 : 96'h0) | (sel_5 ? s3_rec_5 : 96'h0) | (sel_6 ? s3_rec_6 : 96'h0)
+    | (sel_7 ? s3_rec_7 : 96'h0) | (sel_8 ? s3_rec_8 : 96'h0) | (sel_9 ? s3_rec_9 : 96'h0)
+    | (sel_10 ? s3_rec_10 : 96'h0) | (sel_11 ? s3_rec_11 : 96'h0)
+    | (sel_12 ? s3_rec_12 : 96'h0) | (sel_13 ? s3_rec_13 : 96'h0)
+    | (sel_14 ? s3_rec_14 : 96'h0) | (sel_15 ? s3_rec_15 : 96'h0)
+    | (sel_16 ? s3_rec_16 : 96'h0);
+  assign io_recs_0_pair =
+    (sel_1 ? s3_pair_1 : 24'h0) | (sel_2 ? s3_pair_2 : 24'h0)
+    | (sel_3 ? s3_pair_3 : 24'h0) | (sel_4 ? s3_pair_4 : 24'h0)
+    | (sel_5 ? s3_pair_5 : 24'h0) | (sel_6 ? s3_pair_6 : 24'h0)
+    | (sel_7 ? s3_pair_7 : 24'h0) | (sel_8 ? s3_pair_8 : 24'h0)
+    | (sel_9 ? s3_pair_9 : 24'h0) | (sel_10 ? s3_pair_10 : 24'h0)
+    | (sel_11 ? s3_pair_11 : 24'h0) | (sel_12 ? s3_pair_12 : 24'h0)
+    | (sel_13 ? s3_pair_13 : 24'h0) | (sel_14 ? s3_pair_14 : 24'h0)
+    | (sel_15 ? s3_pair_15 : 24'h0) | (sel_16 ? s3_pair_16 : 24'h0);
+  assign io_recs_1_bits =
+    (sel_1_1 ? s3_rec_1 : 96'h0) | (sel_2_1 ? s3_rec_2 : 96'h0)
+    | (sel_3_1 ? s3_rec_3 : 96'h0) | (sel_4_1 ? s3_rec_4 : 96'h0)
+    | (sel_5_1 ? s3_rec_5 : 96'h0) | (sel_6_1 ? s3_rec_6 : 96'h0)
+    | (sel_7_1 ? s3_rec_7 : 96'h0) | (sel_8_1 ? s3_rec_8 : 96'h0)
+    | (sel_9_1 ? s3_rec_9 : 96'h0) | (sel_10_1 ? s3_rec_10 : 96'h0)
+    | (sel_11_1 ? s3_rec_11 : 96'h0) | (sel_12_1 ? s3_rec_12 : 96'h0)
+    | (sel_13_1 ? s3_rec_13 : 96'h0) | (sel_14_1 ? s3_rec_14 : 96'h0)
+    | (sel_15_1 ? s3_rec_15 : 96'h0) | (sel_16_1 ? s3_rec_16 : 96'h0);
+  assign io_recs_1_pair =
+    (sel_1_1 ? s3_pair_1 : 24'h0) | (sel_2_1 ? s3_pair_2 : 24'h0)
+    | (sel_3_1 ? s3_pair_3 : 24'h0) | (sel_4_1 ? s3_pair_4 : 24'h0)
+    | (sel_5_1 ? s3_pair_5 : 24'h0) | (sel_6_1 ? s3_pair_6 : 24'h0)
+    | (sel_7_1 ? s3_pair_7 : 24'h0) | (sel_8_1 ? s3_pair_8 : 24'h0)
+    | (sel_9_1 ? s3_pair_9 : 24'h0) | (sel_10_1 ? s3_pair_10 : 24'h0)
+    | (sel_11_1 ? s3_pair_11 : 24'h0) | (sel_12_1 ? s3_pair_12 : 24'h0)
+    | (sel_13_1 ? s3_pair_13 : 24'h0) | (sel_14_1 ? s3_pair_14 : 24'h0)
+    | (sel_15_1 ? s3_pair_15 : 24'h0) | (sel_16_1 ? s3_pair_16 : 24'h0);
+  assign io_recs_2_bits =
+    (sel_1_2 ? s3_rec_1 : 96'h0) | (sel_2_2 ? s3_rec_2 : 96'h0)
+    | (sel_3_2 ? s3_rec_3 : 96'h0) | (sel_4_2 ? s3_rec_4 : 96'h0)
+    | (sel_5_2 ? s3_rec_5 : 96'h0) | (sel_6_2 ? s3_rec_6 : 96'h0)
+    | (sel_7_2 ? s3_rec_7 : 96'h0) | (sel_8_2 ? s3_rec_8 : 96'h0)
+    | (sel_9_2 ? s3_rec_9 : 96'h0) | (sel_10_2 ? s3_rec_10 : 96'h0)
+    | (sel_11_2 ? s3_rec_11 : 96'h0) | (sel_12_2 ? s3_rec_12 : 96'h0)
+    | (sel_13_2 ? s3_rec_13 : 96'h0) | (sel_14_2 ? s3_rec_14 : 96'h0)
+    | (sel_15_2 ? s3_rec_15 : 96'h0) | (sel_16_2 ? s3_rec_16 : 96'h0);
+  assign io_recs_2_pair =
+    (sel_1_2 ? s3_pair_1 : 24'h0) | (sel_2_2 ? s3_pair_2 : 24'h0)
+    | (sel_3_2 ? s3_pair_3 : 24'h0) | (sel_4_2 ? s3_pair_4 : 24'h0)
+    | (sel_5_2 ? s3_pair_5 : 24'h0) | (sel_6_2 ? s3_pair_6 : 24'h0)
+    | (sel_7_2 ? s3_pair_7 : 24'h0) | (sel_8_2 ? s3_pair_8 : 24'h0)
+    | (sel_9_2 ? s3_pair_9 : 24'h0) | (sel_10_2 ? s3_pair_10 : 24'h0)
+    | (sel_11_2 ? s3_pair_11 : 24'h0) | (sel_12_2 ? s3_pair_12 : 24'h0)
+    | (sel_13_2 ? s3_pair_13 : 24'h0) | (sel_14_2 ? s3_pair_14 : 24'h0)
+    | (sel_15_2 ? s3_pair_15 : 24'h0) | (sel_16_2 ? s3_pair_16 : 24'h0);
+  assign io_recs_3_bits =
+    (sel_1_3 ? s3_rec_1 : 96'h0) | (sel_2_3 ? s3_rec_2 : 96'h0)
+    | (sel_3_3 ? s3_rec_3 : 96'h0) | (sel_4_3 ? s3_rec_4 : 96'h0)
+    | (sel_5_3 ? s3_rec_5 : 96'h0) | (sel_6_3 ? s3_rec_6 : 96'h0)
+    | (sel_7_3 ? s3_rec_7 : 96'h0) | (sel_8_3 ? s3_rec_8 : 96'h0)
+    | (sel_9_3 ? s3_rec_9 : 96'h0) | (sel_10_3 ? s3_rec_10 : 96'h0)
+    | (sel_11_3 ? s3_rec_11 : 96'h0) | (sel_12_3 ? s3_rec_12 : 96'h0)
+    | (sel_13_3 ? s3_rec_13 : 96'h0) | (sel_14_3 ? s3_rec_14 : 96'h0)
+    | (sel_15_3 ? s3_rec_15 : 96'h0) | (sel_16_3 ? s3_rec_16 : 96'h0);
+  assign io_recs_3_pair =
+    (sel_1_3 ? s3_pair_1 : 24'h0) | (sel_2_3 ? s3_pair_2 : 24'h0)
+    | (sel_3_3 ? s3_pair_3 : 24'h0) | (sel_4_3 ? s3_pair_4 : 24'h0)
+    | (sel_5_3 ? s3_pair_5 : 24'h0) | (sel_6_3 ? s3_pair_6 : 24'h0)
+    | (sel_7_3 ? s3_pair_7 : 24'h0) | (sel_8_3 ? s3_pair_8 : 24'h0)
+    | (sel_9_3 ? s3_pair_9 : 24'h0) | (sel_10_3 ? s3_pair_10 : 24'h0)
+    | (sel_11_3 ? s3_pair_11 : 24'h0) | (sel_12_3 ? s3_pair_12 : 24'h0)
+    | (sel_13_3 ? s3_pair_13 : 24'h0) | (sel_14_3 ? s3_pair_14 : 24'h0)
+    | (sel_15_3 ? s3_pair_15 : 24'h0) | (sel_16_3 ? s3_pair_16 : 24'h0);
+  assign io_recs_4_bits =
+    (sel_1_4 ? s3_rec_1 : 96'h0) | (sel_2_4 ? s3_rec_2 : 96'h0)
+    | (sel_3_4 ? s3_rec_3 : 96'h0) | (sel_4_4 ? s3_rec_4 : 96'h0)
+    | (sel_5_4 ? s3_rec_5 : 96'h0) | (sel_6_4 ? s3_rec_6 : 96'h0)
+    | (sel_7_4 ? s3_rec_7 : 96'h0) | (sel_8_4 ? s3_rec_8 : 96'h0)
+    | (sel_9_4 ? s3_rec_9 : 96'h0) | (sel_10_4 ? s3_rec_10 : 96'h0)
+    | (sel_11_4 ? s3_rec_11 : 96'h0) | (sel_12_4 ? s3_rec_12 : 96'h0)
+    | (sel_13_4 ? s3_rec_13 : 96'h0) | (sel_14_4 ? s3_rec_14 : 96'h0)
+    | (sel_15_4 ? s3_rec_15 : 96'h0) | (sel_16_4 ? s3_rec_16 : 96'h0);
+  assign io_recs_4_pair =
+    (sel_1_4 ? s3_pair_1 : 24'h0) | (sel_2_4 ? s3_pair_2 : 24'h0)
+    | (sel_3_4 ? s3_pair_3 : 24'h0) | (sel_4_4 ? s3_pair_4 : 24'h0)
+    | (sel_5_4 ? s3_pair_5 : 24'h0) | (sel_6_4 ? s3_pair_6 : 24'h0)
+    | (sel_7_4 ? s3_pair_7 : 24'h0) | (sel_8_4 ? s3_pair_8 : 24'h0)
+    | (sel_9_4 ? s3_pair_9 : 24'h0) | (sel_10_4 ? s3_pair_10 : 24'h0)
+    | (sel_11_4 ? s3_pair_11 : 24'h0) | (sel_12_4 ? s3_pair_12 : 24'h0)
+    | (sel_13_4 ? s3_pair_13 : 24'h0) | (sel_14_4 ? s3_pair_14 : 24'h0)
+    | (sel_15_4 ? s3_pair_15 : 24'h0) | (sel_16_4 ? s3_pair_16 : 24'h0);
+  assign io_nRecs = take[2:0];
+  assign io_nPairs = done ? s3_g_cnt : 5'h0;
+  assign io_nHits = done ? s3_hits : 5'h0;
+  assign io_nNonFinite = done ? s3_nonFin : 5'h0;
+  assign io_nFlagged = done ? s3_flagged : 5'h0;
 endmodule
 
 // VCS coverage exclude_file
@@ -53671,6 +53535,7 @@ module Puc_world(
   wire [3:0]   _groups_io_deq_bits_base;
   wire [4:0]   _groups_io_deq_bits_cnt;
   wire [15:0]  _groups_io_deq_bits_invalid;
+  wire [23:0]  _groups_io_deq_bits_first;
   wire         _disp_io_pairs_ready;
   wire [11:0]  _disp_io_raddr_0_0;
   wire [11:0]  _disp_io_raddr_0_1;
@@ -54909,7 +54774,8 @@ module Puc_world(
     .io_deq_valid        (_groups_io_deq_valid),
     .io_deq_bits_base    (_groups_io_deq_bits_base),
     .io_deq_bits_cnt     (_groups_io_deq_bits_cnt),
-    .io_deq_bits_invalid (_groups_io_deq_bits_invalid)
+    .io_deq_bits_invalid (_groups_io_deq_bits_invalid),
+    .io_deq_bits_first   (_groups_io_deq_bits_first)
   );
   ContactCollector_n16_world coll (
     .clock                     (clock),
@@ -54921,6 +54787,7 @@ module Puc_world(
     .io_groups_bits_base       (_groups_io_deq_bits_base),
     .io_groups_bits_cnt        (_groups_io_deq_bits_cnt),
     .io_groups_bits_invalid    (_groups_io_deq_bits_invalid),
+    .io_groups_bits_first      (_groups_io_deq_bits_first),
     .io_scpu_0_ready           (io_scpuOut_0_ready),
     .io_scpu_0_valid           (io_scpuOut_0_valid),
     .io_scpu_0_bits_hit        (io_scpuOut_0_bits_hit),
