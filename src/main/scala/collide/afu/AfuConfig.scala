@@ -145,7 +145,9 @@ object AfuConfig {
     else indexed
   }
 
-  val default: AfuConfig = AfuConfig()
+  /** 16 fp32 SCPUs whose operators are pipelined for 200 MHz on Cyclone V (ScpuConfig.atClock:
+    * add 12, mul 8, the roots 32 cycles; the SCPU 136 deep, a pair a cycle), the paper's clock. */
+  val default: AfuConfig = AfuConfig(scpu = ScpuConfig.fp32.atClock(200).fold(e => throw new IllegalStateException(e), identity))
   /** The paper's design point in our terms: 16 units, binary32, whole contacts on the link. */
   val paper: AfuConfig   = default.copy(name = "paper", records = Some(RecordLayout.Full))
   val small: AfuConfig   = default.copy(name = "small", scpus = 1, maxSpheres = 256)

@@ -33,21 +33,27 @@ object ContactRecord {
   *    into registers indexed by SCPU (the SCPUs a group used come from a register, so the
   *    decision is an AND over the SCPUs' valids);
   *  - order: the results rotated into the group's pair order, each made a record, and which
-  *    positions write one;
-  *  - count: each slot's running record count (a prefix sum, log2 levels);
-  *  - emit: up to `room` records a cycle, the slot whose count is the next one going to each
-  *    of the packer's places; the group leaves, and its pairs are counted, with its last record.
-  * Each stage holds one group and passes it on as the next frees, so a group a cycle goes
-  * through when its records fit the packer's room; the latency is four cycles.
+  *    of the group's slots (its header, then its pairs) write one;
+  *  - count, in two stages: each slot's running count of records, by tables (ROMs, which map
+  *    to LUTs) over groups of four slots and then over the groups, never a chain of carry cells
+  *    (which the timing proxy showed the prefix sum becoming);
+  *  - emit: up to `room` records a cycle. How many have gone is kept one-hot, so choosing the
+  *    slot for each of the packer's places, how many fit and whether the group is done are
+  *    AND-OR terms, not sums. The next group waits in a second register beside the one being
+  *    emitted, so the stages before never wait on the emit's decision within a cycle.
+  * A group a cycle goes through when its records fit the packer's room; the latency is five
+  * cycles.
   */
 class ContactCollector(p: PucParams) extends Module {
   override def desiredName = s"ContactCollector_n${p.scpus}${p.name}"
   private val n = p.scpus
   private val L = p.lanes
   private val R = p.layout.recordsPerLine
-  private val E = L + 1 // emit slots: the mask header, then the group's L positions
+  private val E = L + 1 // slots: the mask header, then the group's L positions
   private val cntW = log2Ceil(L + 1)
   private val slotW = log2Ceil(E + 1)
+  private val Q = 4     // slots a count table sees
+  private val chunks = (0 until E).grouped(Q).toSeq
   require(L <= n, "a group uses each SCPU at most once")
   val io = IO(new Bundle {
     val dense  = Input(Bool())
@@ -65,21 +71,22 @@ class ContactCollector(p: PucParams) extends Module {
     val nHeaders   = Output(Bool())
   })
   private def arithOf(o: ScpuOut) = (o.flags & (collide.fp.FpFlags.Overflow | collide.fp.FpFlags.Invalid).U).orR
+  private def table(in: UInt, w: Int)(f: Int => Int): UInt = collide.util.Table(in, w)(f)
+  private def sumT(a: UInt, b: UInt): UInt =
+    table(Cat(a, b), slotW)(v => math.min((v >> b.getWidth) + (v & ((1 << b.getWidth) - 1)), (1 << slotW) - 1))
 
   // ---- the group's SCPUs, from a register: (base + k) mod n for k < cnt
-  class Head extends Bundle {
-    val g    = new GroupInfo(p)
-    val used = UInt(n.W)
-  }
   val head = Module(new Queue(new GroupInfo(p), 2) {
     override def desiredName = s"CollectorGroupQueue_d2${p.name}"
   })
   head.io.enq <> io.groups
   val hg = head.io.deq.bits
+  // (Tables here and below, not compares and sums: the proxy maps those to carry chains.)
   val used = VecInit.tabulate(n) { s =>
-    // SCPU s is position k = (s - base) mod n, used if k < cnt
-    val k = Mux(s.U >= hg.base, s.U - hg.base, (s + n).U - hg.base)
-    k < hg.cnt
+    table(Cat(hg.base, hg.cnt), 1) { v =>
+      val (b, c) = (v >> hg.cnt.getWidth, v & ((1 << hg.cnt.getWidth) - 1))
+      if (((s - b) % n + n) % n < c) 1 else 0
+    }.asBool
   }.asUInt
 
   // ---- gather: every result of the group at once, by SCPU
@@ -101,11 +108,14 @@ class ContactCollector(p: PucParams) extends Module {
 
   // ---- order: pair order, records, and which slots write
   class Ordered extends Bundle {
-    val g       = new GroupInfo(p)
+    val cnt     = UInt(cntW.W)
     val rec     = Vec(E, UInt(p.layout.recordBits.W))
     val pair    = Vec(E, UInt(RecordTag.PAIR_BITS.W))
     val want    = Vec(E, Bool())
-    val hits    = UInt(cntW.W)
+    val hitV    = Vec(L, Bool()) // counted by tables in the count stages, as the records are
+    val nonFinV = Vec(L, Bool())
+    val flagV   = Vec(L, Bool())
+    val hits    = UInt(cntW.W)   // set by count, 2
     val nonFin  = UInt(cntW.W)
     val flagged = UInt(cntW.W)
   }
@@ -114,11 +124,8 @@ class ContactCollector(p: PucParams) extends Module {
   val s2Free = Wire(Bool())
   locally {
     val g = s1.g
-    val at = VecInit.tabulate(L) { k =>
-      val b = g.base +& k.U
-      s1.out(Mux(b >= n.U, b - n.U, b))
-    }
-    val active  = VecInit.tabulate(L)(k => k.U < g.cnt)
+    val at = VecInit.tabulate(L)(k => s1.out(table(g.base, log2Ceil(n).max(1))(b => (b + k) % n)))
+    val active  = VecInit.tabulate(L)(k => table(g.cnt, 1)(c => if (k < c) 1 else 0).asBool)
     val inv     = VecInit.tabulate(L)(k => g.invalid(k))
     val hit     = VecInit.tabulate(L)(k => active(k) && !inv(k) && at(k).hit)
     val flagged = VecInit.tabulate(L)(k => active(k) && !inv(k) && !at(k).hit && (at(k).nonFinite || arithOf(at(k))))
@@ -138,7 +145,7 @@ class ContactCollector(p: PucParams) extends Module {
         ContactRecord.pack(p.layout, p.layout.records.fields.map(fields), pair, flags.pad(8)))
     }
     when(s1Valid && s2Free) {
-      s2.g := g
+      s2.cnt := g.cnt
       s2.rec(0)  := ContactRecord.header(p.layout, g.first, VecInit.tabulate(L)(k => active(k) && record(k)).asUInt)
       s2.pair(0) := g.first
       s2.want(0) := hdrMode && record.zip(active).map { case (r, a) => r && a }.reduce(_ || _)
@@ -147,46 +154,89 @@ class ContactCollector(p: PucParams) extends Module {
         s2.pair(k + 1) := at(k).tag(RecordTag.PAIR_BITS - 1, 0)
         s2.want(k + 1) := want(k)
       }
-      s2.hits    := PopCount(hit)
-      s2.nonFin  := PopCount(nonFin)
-      s2.flagged := PopCount(flagged)
+      s2.hitV    := hit
+      s2.nonFinV := nonFin
+      s2.flagV   := flagged
     }
   }
 
-  // ---- count: each slot's running count of records (inclusive)
-  val s3 = Reg(new Ordered)
-  val s3Cum = Reg(Vec(E, UInt(slotW.W)))
-  val s3Valid = RegInit(false.B)
-  val s3Free = Wire(Bool())
-  when(s2Valid && s3Free) {
-    s3 := s2
-    s3Cum := VecInit(Prefix(s2.want.toSeq.map(w => Mux(w, 1.U(slotW.W), 0.U(slotW.W))))(_ + _))
+  // ---- count, 1: running counts within each group of Q slots, and each group's total
+  val c1 = Reg(new Ordered)
+  val c1Local = Reg(Vec(E, UInt(log2Ceil(Q + 1).W)))
+  val c1Total = Reg(Vec(chunks.size, UInt(log2Ceil(Q + 1).W)))
+  val c1Counts = Reg(Vec(3, Vec((L + Q - 1) / Q, UInt(log2Ceil(Q + 1).W)))) // hits, non-finite, flagged
+  val c1Valid = RegInit(false.B)
+  val c1Free = Wire(Bool())
+  when(s2Valid && c1Free) {
+    c1 := s2
+    for ((v, i) <- Seq(s2.hitV, s2.nonFinV, s2.flagV).zipWithIndex; (ch, c) <- (0 until L).grouped(Q).zipWithIndex)
+      c1Counts(i)(c) := table(Cat(ch.map(v(_)).reverse), log2Ceil(Q + 1))(Integer.bitCount)
+    for ((ch, c) <- chunks.zipWithIndex) {
+      val bits = Cat(ch.map(s2.want(_)).reverse)
+      for ((e, i) <- ch.zipWithIndex) c1Local(e) := table(bits, log2Ceil(Q + 1))(v => Integer.bitCount(v & ((2 << i) - 1)))
+      c1Total(c) := table(bits, log2Ceil(Q + 1))(Integer.bitCount)
+    }
   }
 
-  // ---- emit: the next records, as many as the packer has room for
-  val sent = RegInit(0.U(slotW.W)) // records of the s3 group already passed on
-  val total = s3Cum(E - 1)
-  val left = total - sent
-  val take = Mux(s3Valid, Mux(left < io.room, left, io.room), 0.U)
-  val done = s3Valid && sent + take === total
+  // ---- count, 2: each slot's running count over the whole group, one-hot, into `next`
+  class Counted extends Bundle {
+    val o      = new Ordered
+    val cumOH  = Vec(E, UInt((E + 1).W))     // bit k: the slot's running count is k
+    val totTh  = UInt((E + R + 2).W)          // bit k: k <= the group's records
+  }
+  val next = Reg(new Counted)
+  val nextValid = RegInit(false.B)
+  // Records before chunk c: its predecessors' totals summed as a balanced tree of tables.
+  private def sumOf(ts: Seq[UInt]): UInt =
+    if (ts.size == 1) ts.head else sumT(sumOf(ts.take(ts.size / 2)), sumOf(ts.drop(ts.size / 2)))
+  val base = chunks.indices.map(c => if (c == 0) 0.U(slotW.W) else sumOf(c1Total.take(c)))
+  val cum = VecInit.tabulate(E)(e => sumT(base(e / Q), c1Local(e)))
+  val total = cum(E - 1)
+  when(c1Valid && !nextValid) {
+    next.o := c1
+    next.o.hits    := sumOf(c1Counts(0))
+    next.o.nonFin  := sumOf(c1Counts(1))
+    next.o.flagged := sumOf(c1Counts(2))
+    for (e <- 0 until E) next.cumOH(e) := UIntToOH(cum(e), E + 1)
+    next.totTh := VecInit.tabulate(E + R + 2)(k => k.U <= total).asUInt
+  }
+
+  // ---- emit: from `cur`; `sent` one-hot (bit k: k records of cur have gone)
+  val cur = Reg(new Counted)
+  val curValid = RegInit(false.B)
+  val sent = RegInit(1.U((E + 1).W))
+  // Record sent + r + 1 exists (r = 0..R) ...
+  val avail = VecInit.tabulate(R + 1)(r => (0 to E).map(j => sent(j) && cur.totTh(j + r + 1)).reduce(_ || _) && curValid)
+  // ... and place r has room for it: a thermometer, from place 0
+  val slotOk = VecInit.tabulate(R)(r => avail(r) && r.U < io.room)
+  val takeOH = VecInit.tabulate(R + 1)(t => (if (t == 0) true.B else slotOk(t - 1)) && (if (t == R) true.B else !slotOk(t)))
+  val done = curValid && (0 to R).map(t => takeOH(t) && !avail(t)).reduce(_ || _)
   for (r <- 0 until R) {
-    val sel = (0 until E).map(e => s3.want(e) && s3Cum(e) === sent +& (r + 1).U)
-    io.recs(r).bits := Mux1H(sel, s3.rec)
-    io.recs(r).pair := Mux1H(sel, s3.pair)
+    val sel = (0 until E).map(e => cur.o.want(e) && (0 to E - r - 1).map(j => sent(j) && cur.cumOH(e)(j + r + 1)).foldLeft(false.B)(_ || _))
+    io.recs(r).bits := Mux1H(sel, cur.o.rec)
+    io.recs(r).pair := Mux1H(sel, cur.o.pair)
   }
-  io.nRecs      := take
-  io.nPairs     := Mux(done, s3.g.cnt, 0.U)
-  io.nHits      := Mux(done, s3.hits, 0.U)
-  io.nNonFinite := Mux(done, s3.nonFin, 0.U)
-  io.nFlagged   := Mux(done, s3.flagged, 0.U)
-  io.nHeaders   := s3Valid && s3.want(0) && sent === 0.U && take =/= 0.U
-  sent := Mux(done, 0.U, sent + take)
+  io.nRecs      := OHToUInt(takeOH)
+  io.nPairs     := Mux(done, cur.o.cnt, 0.U)
+  io.nHits      := Mux(done, cur.o.hits, 0.U)
+  io.nNonFinite := Mux(done, cur.o.nonFin, 0.U)
+  io.nFlagged   := Mux(done, cur.o.flagged, 0.U)
+  io.nHeaders   := cur.o.want(0) && sent(0) && slotOk(0)
+  val sentOn = VecInit.tabulate(E + 1)(j => (0 to math.min(R, j)).map(t => takeOH(t) && sent(j - t)).reduce(_ || _)).asUInt
+  sent := Mux(done, 1.U, sentOn)
 
-  // ---- the stages' hand-over: each takes the next group as it frees
-  s3Free := !s3Valid || done
-  s2Free := !s2Valid || s3Free
+  // ---- the hand-over: `next` fills while empty, `cur` takes it as its group is done
+  when(done || !curValid) {
+    curValid := nextValid
+    when(nextValid) { cur := next }
+  }
+  val nextTaken = nextValid && (done || !curValid)
+  when(nextTaken) { nextValid := false.B }
+  when(c1Valid && !nextValid) { nextValid := true.B }
+  c1Free := !c1Valid || !nextValid
+  s2Free := !s2Valid || c1Free
   s1Free := !s1Valid || s2Free
-  when(s3Free) { s3Valid := s2Valid }
+  when(c1Free) { c1Valid := s2Valid }
   when(s2Free) { s2Valid := s1Valid }
   when(s1Free) { s1Valid := gather }
 }
