@@ -1,4 +1,4 @@
-// The SCPU fp32 for simulation only: a pipeline of its latency (136) around the C++
+// The SCPU fp32-200 for simulation only: a pipeline of its latency (136) around the C++
 // SCPU model (DPI-C), cycle for cycle the RTL's handshake, bit for bit its results.
 module ScpuModel_cosim(
   input clock, input reset,

@@ -3957,8 +3957,7 @@ module ScpuInQueue_d3_w32_default(
                 io_deq_bits_y2,
                 io_deq_bits_z2,
                 io_deq_bits_r2,
-  output [23:0] io_deq_bits_tag,
-  output [1:0]  io_count
+  output [23:0] io_deq_bits_tag
 );
 
   wire [279:0] _ram_ext_R0_data;
@@ -3969,7 +3968,6 @@ module ScpuInQueue_d3_w32_default(
   wire         empty = ptr_match & ~maybe_full;
   wire         full = ptr_match & maybe_full;
   wire         do_enq = ~full & io_enq_valid;
-  wire [1:0]   _ptr_diff_T = enq_ptr_value - deq_ptr_value;
   wire         do_deq = io_deq_ready & ~empty;
   always @(posedge clock) begin
     if (reset) begin
@@ -4024,10 +4022,6 @@ module ScpuInQueue_d3_w32_default(
   assign io_deq_bits_z2 = _ram_ext_R0_data[223:192];
   assign io_deq_bits_r2 = _ram_ext_R0_data[255:224];
   assign io_deq_bits_tag = _ram_ext_R0_data[279:256];
-  assign io_count =
-    ptr_match
-      ? {2{maybe_full}}
-      : deq_ptr_value > enq_ptr_value ? _ptr_diff_T - 2'h1 : _ptr_diff_T;
 endmodule
 
 module PairDispatcher_n16_default(
@@ -4399,1298 +4393,20602 @@ module PairDispatcher_n16_default(
   output [15:0]  io_groups_bits_invalid,
   output [23:0]  io_groups_bits_first,
   output         io_fired,
-                 io_idle
+                 io_idle,
+                 io_advance
 );
 
   wire         _queues_15_io_enq_ready;
-  wire [1:0]   _queues_15_io_count;
+  wire         _queues_15_io_deq_valid;
   wire         _queues_14_io_enq_ready;
-  wire [1:0]   _queues_14_io_count;
+  wire         _queues_14_io_deq_valid;
   wire         _queues_13_io_enq_ready;
-  wire [1:0]   _queues_13_io_count;
+  wire         _queues_13_io_deq_valid;
   wire         _queues_12_io_enq_ready;
-  wire [1:0]   _queues_12_io_count;
+  wire         _queues_12_io_deq_valid;
   wire         _queues_11_io_enq_ready;
-  wire [1:0]   _queues_11_io_count;
+  wire         _queues_11_io_deq_valid;
   wire         _queues_10_io_enq_ready;
-  wire [1:0]   _queues_10_io_count;
+  wire         _queues_10_io_deq_valid;
   wire         _queues_9_io_enq_ready;
-  wire [1:0]   _queues_9_io_count;
+  wire         _queues_9_io_deq_valid;
   wire         _queues_8_io_enq_ready;
-  wire [1:0]   _queues_8_io_count;
+  wire         _queues_8_io_deq_valid;
   wire         _queues_7_io_enq_ready;
-  wire [1:0]   _queues_7_io_count;
+  wire         _queues_7_io_deq_valid;
   wire         _queues_6_io_enq_ready;
-  wire [1:0]   _queues_6_io_count;
+  wire         _queues_6_io_deq_valid;
   wire         _queues_5_io_enq_ready;
-  wire [1:0]   _queues_5_io_count;
+  wire         _queues_5_io_deq_valid;
   wire         _queues_4_io_enq_ready;
-  wire [1:0]   _queues_4_io_count;
+  wire         _queues_4_io_deq_valid;
   wire         _queues_3_io_enq_ready;
-  wire [1:0]   _queues_3_io_count;
+  wire         _queues_3_io_deq_valid;
   wire         _queues_2_io_enq_ready;
-  wire [1:0]   _queues_2_io_count;
+  wire         _queues_2_io_deq_valid;
   wire         _queues_1_io_enq_ready;
-  wire [1:0]   _queues_1_io_count;
+  wire         _queues_1_io_deq_valid;
   wire         _queues_0_io_enq_ready;
-  wire [1:0]   _queues_0_io_count;
-  reg  [19:0]  cur_line;
+  wire         _queues_0_io_deq_valid;
+  reg  [19:0]  nxt_line;
+  reg  [511:0] nxt_data;
+  reg          nxtValid;
+  reg  [4:0]   nxtCount;
+  reg          nxtBad_0;
+  reg          nxtBad_1;
+  reg          nxtBad_2;
+  reg          nxtBad_3;
+  reg          nxtBad_4;
+  reg          nxtBad_5;
+  reg          nxtBad_6;
+  reg          nxtBad_7;
+  reg          nxtBad_8;
+  reg          nxtBad_9;
+  reg          nxtBad_10;
+  reg          nxtBad_11;
+  reg          nxtBad_12;
+  reg          nxtBad_13;
+  reg          nxtBad_14;
+  reg          nxtBad_15;
   reg  [511:0] cur_data;
+  reg          curBad_0;
+  reg          curBad_1;
+  reg          curBad_2;
+  reg          curBad_3;
+  reg          curBad_4;
+  reg          curBad_5;
+  reg          curBad_6;
+  reg          curBad_7;
+  reg          curBad_8;
+  reg          curBad_9;
+  reg          curBad_10;
+  reg          curBad_11;
+  reg          curBad_12;
+  reg          curBad_13;
+  reg          curBad_14;
+  reg          curBad_15;
   reg          curValid;
   reg  [4:0]   ptr;
+  reg  [4:0]   rem;
+  reg  [23:0]  first_1;
   reg  [3:0]   base;
-  wire [24:0]  left = {1'h0, io_numPairs} - {1'h0, cur_line, 4'h0};
-  wire [4:0]   lineCount = left > 25'h10 ? 5'h10 : left[4:0];
-  wire [4:0]   _rem_T = lineCount - ptr;
-  wire [4:0]   lineCnt = _rem_T > 5'h10 ? 5'h10 : _rem_T;
-  wire [3:0]   slot_1 = ptr[3:0] + 4'h1;
-  wire [3:0]   slot_2 = ptr[3:0] + 4'h2;
-  wire [3:0]   slot_3 = ptr[3:0] + 4'h3;
-  wire [3:0]   slot_4 = ptr[3:0] + 4'h4;
-  wire [3:0]   slot_5 = ptr[3:0] + 4'h5;
-  wire [3:0]   slot_6 = ptr[3:0] + 4'h6;
-  wire [3:0]   slot_7 = ptr[3:0] + 4'h7;
-  wire [3:0]   slot_8 = ptr[3:0] - 4'h8;
-  wire [3:0]   slot_9 = ptr[3:0] - 4'h7;
-  wire [3:0]   slot_10 = ptr[3:0] - 4'h6;
-  wire [3:0]   slot_11 = ptr[3:0] - 4'h5;
-  wire [3:0]   slot_12 = ptr[3:0] - 4'h4;
-  wire [3:0]   slot_13 = ptr[3:0] - 4'h3;
-  wire [3:0]   slot_14 = ptr[3:0] - 4'h2;
-  wire [3:0]   slot_15 = ptr[3:0] - 4'h1;
-  reg  [15:0]  casez_tmp;
+  reg  [3:0]   casez_tmp;
   always @(*) begin
-    casez (ptr[3:0])
-      4'b0000:
-        casez_tmp = cur_data[15:0];
-      4'b0001:
-        casez_tmp = cur_data[47:32];
-      4'b0010:
-        casez_tmp = cur_data[79:64];
-      4'b0011:
-        casez_tmp = cur_data[111:96];
-      4'b0100:
-        casez_tmp = cur_data[143:128];
-      4'b0101:
-        casez_tmp = cur_data[175:160];
-      4'b0110:
-        casez_tmp = cur_data[207:192];
-      4'b0111:
-        casez_tmp = cur_data[239:224];
-      4'b1000:
-        casez_tmp = cur_data[271:256];
-      4'b1001:
-        casez_tmp = cur_data[303:288];
-      4'b1010:
-        casez_tmp = cur_data[335:320];
-      4'b1011:
-        casez_tmp = cur_data[367:352];
-      4'b1100:
-        casez_tmp = cur_data[399:384];
-      4'b1101:
-        casez_tmp = cur_data[431:416];
-      4'b1110:
-        casez_tmp = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp = 4'h0;
+      5'b00001:
+        casez_tmp = 4'h1;
+      5'b00010:
+        casez_tmp = 4'h2;
+      5'b00011:
+        casez_tmp = 4'h3;
+      5'b00100:
+        casez_tmp = 4'h4;
+      5'b00101:
+        casez_tmp = 4'h5;
+      5'b00110:
+        casez_tmp = 4'h6;
+      5'b00111:
+        casez_tmp = 4'h7;
+      5'b01000:
+        casez_tmp = 4'h8;
+      5'b01001:
+        casez_tmp = 4'h9;
+      5'b01010:
+        casez_tmp = 4'hA;
+      5'b01011:
+        casez_tmp = 4'hB;
+      5'b01100:
+        casez_tmp = 4'hC;
+      5'b01101:
+        casez_tmp = 4'hD;
+      5'b01110:
+        casez_tmp = 4'hE;
+      5'b01111:
+        casez_tmp = 4'hF;
+      5'b10000:
+        casez_tmp = 4'h0;
+      5'b10001:
+        casez_tmp = 4'h1;
+      5'b10010:
+        casez_tmp = 4'h2;
+      5'b10011:
+        casez_tmp = 4'h3;
+      5'b10100:
+        casez_tmp = 4'h4;
+      5'b10101:
+        casez_tmp = 4'h5;
+      5'b10110:
+        casez_tmp = 4'h6;
+      5'b10111:
+        casez_tmp = 4'h7;
+      5'b11000:
+        casez_tmp = 4'h8;
+      5'b11001:
+        casez_tmp = 4'h9;
+      5'b11010:
+        casez_tmp = 4'hA;
+      5'b11011:
+        casez_tmp = 4'hB;
+      5'b11100:
+        casez_tmp = 4'hC;
+      5'b11101:
+        casez_tmp = 4'hD;
+      5'b11110:
+        casez_tmp = 4'hE;
       default:
-        casez_tmp = cur_data[495:480];
+        casez_tmp = 4'hF;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_0;
+  reg  [3:0]   casez_tmp_0;
   always @(*) begin
-    casez (slot_1)
-      4'b0000:
-        casez_tmp_0 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_0 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_0 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_0 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_0 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_0 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_0 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_0 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_0 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_0 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_0 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_0 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_0 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_0 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_0 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_0 = 4'h1;
+      5'b00001:
+        casez_tmp_0 = 4'h2;
+      5'b00010:
+        casez_tmp_0 = 4'h3;
+      5'b00011:
+        casez_tmp_0 = 4'h4;
+      5'b00100:
+        casez_tmp_0 = 4'h5;
+      5'b00101:
+        casez_tmp_0 = 4'h6;
+      5'b00110:
+        casez_tmp_0 = 4'h7;
+      5'b00111:
+        casez_tmp_0 = 4'h8;
+      5'b01000:
+        casez_tmp_0 = 4'h9;
+      5'b01001:
+        casez_tmp_0 = 4'hA;
+      5'b01010:
+        casez_tmp_0 = 4'hB;
+      5'b01011:
+        casez_tmp_0 = 4'hC;
+      5'b01100:
+        casez_tmp_0 = 4'hD;
+      5'b01101:
+        casez_tmp_0 = 4'hE;
+      5'b01110:
+        casez_tmp_0 = 4'hF;
+      5'b01111:
+        casez_tmp_0 = 4'h0;
+      5'b10000:
+        casez_tmp_0 = 4'h1;
+      5'b10001:
+        casez_tmp_0 = 4'h2;
+      5'b10010:
+        casez_tmp_0 = 4'h3;
+      5'b10011:
+        casez_tmp_0 = 4'h4;
+      5'b10100:
+        casez_tmp_0 = 4'h5;
+      5'b10101:
+        casez_tmp_0 = 4'h6;
+      5'b10110:
+        casez_tmp_0 = 4'h7;
+      5'b10111:
+        casez_tmp_0 = 4'h8;
+      5'b11000:
+        casez_tmp_0 = 4'h9;
+      5'b11001:
+        casez_tmp_0 = 4'hA;
+      5'b11010:
+        casez_tmp_0 = 4'hB;
+      5'b11011:
+        casez_tmp_0 = 4'hC;
+      5'b11100:
+        casez_tmp_0 = 4'hD;
+      5'b11101:
+        casez_tmp_0 = 4'hE;
+      5'b11110:
+        casez_tmp_0 = 4'hF;
       default:
-        casez_tmp_0 = cur_data[495:480];
+        casez_tmp_0 = 4'h0;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_1;
+  reg  [3:0]   casez_tmp_1;
   always @(*) begin
-    casez (slot_2)
-      4'b0000:
-        casez_tmp_1 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_1 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_1 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_1 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_1 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_1 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_1 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_1 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_1 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_1 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_1 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_1 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_1 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_1 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_1 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_1 = 4'h2;
+      5'b00001:
+        casez_tmp_1 = 4'h3;
+      5'b00010:
+        casez_tmp_1 = 4'h4;
+      5'b00011:
+        casez_tmp_1 = 4'h5;
+      5'b00100:
+        casez_tmp_1 = 4'h6;
+      5'b00101:
+        casez_tmp_1 = 4'h7;
+      5'b00110:
+        casez_tmp_1 = 4'h8;
+      5'b00111:
+        casez_tmp_1 = 4'h9;
+      5'b01000:
+        casez_tmp_1 = 4'hA;
+      5'b01001:
+        casez_tmp_1 = 4'hB;
+      5'b01010:
+        casez_tmp_1 = 4'hC;
+      5'b01011:
+        casez_tmp_1 = 4'hD;
+      5'b01100:
+        casez_tmp_1 = 4'hE;
+      5'b01101:
+        casez_tmp_1 = 4'hF;
+      5'b01110:
+        casez_tmp_1 = 4'h0;
+      5'b01111:
+        casez_tmp_1 = 4'h1;
+      5'b10000:
+        casez_tmp_1 = 4'h2;
+      5'b10001:
+        casez_tmp_1 = 4'h3;
+      5'b10010:
+        casez_tmp_1 = 4'h4;
+      5'b10011:
+        casez_tmp_1 = 4'h5;
+      5'b10100:
+        casez_tmp_1 = 4'h6;
+      5'b10101:
+        casez_tmp_1 = 4'h7;
+      5'b10110:
+        casez_tmp_1 = 4'h8;
+      5'b10111:
+        casez_tmp_1 = 4'h9;
+      5'b11000:
+        casez_tmp_1 = 4'hA;
+      5'b11001:
+        casez_tmp_1 = 4'hB;
+      5'b11010:
+        casez_tmp_1 = 4'hC;
+      5'b11011:
+        casez_tmp_1 = 4'hD;
+      5'b11100:
+        casez_tmp_1 = 4'hE;
+      5'b11101:
+        casez_tmp_1 = 4'hF;
+      5'b11110:
+        casez_tmp_1 = 4'h0;
       default:
-        casez_tmp_1 = cur_data[495:480];
+        casez_tmp_1 = 4'h1;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_2;
+  reg  [3:0]   casez_tmp_2;
   always @(*) begin
-    casez (slot_3)
-      4'b0000:
-        casez_tmp_2 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_2 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_2 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_2 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_2 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_2 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_2 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_2 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_2 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_2 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_2 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_2 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_2 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_2 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_2 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_2 = 4'h3;
+      5'b00001:
+        casez_tmp_2 = 4'h4;
+      5'b00010:
+        casez_tmp_2 = 4'h5;
+      5'b00011:
+        casez_tmp_2 = 4'h6;
+      5'b00100:
+        casez_tmp_2 = 4'h7;
+      5'b00101:
+        casez_tmp_2 = 4'h8;
+      5'b00110:
+        casez_tmp_2 = 4'h9;
+      5'b00111:
+        casez_tmp_2 = 4'hA;
+      5'b01000:
+        casez_tmp_2 = 4'hB;
+      5'b01001:
+        casez_tmp_2 = 4'hC;
+      5'b01010:
+        casez_tmp_2 = 4'hD;
+      5'b01011:
+        casez_tmp_2 = 4'hE;
+      5'b01100:
+        casez_tmp_2 = 4'hF;
+      5'b01101:
+        casez_tmp_2 = 4'h0;
+      5'b01110:
+        casez_tmp_2 = 4'h1;
+      5'b01111:
+        casez_tmp_2 = 4'h2;
+      5'b10000:
+        casez_tmp_2 = 4'h3;
+      5'b10001:
+        casez_tmp_2 = 4'h4;
+      5'b10010:
+        casez_tmp_2 = 4'h5;
+      5'b10011:
+        casez_tmp_2 = 4'h6;
+      5'b10100:
+        casez_tmp_2 = 4'h7;
+      5'b10101:
+        casez_tmp_2 = 4'h8;
+      5'b10110:
+        casez_tmp_2 = 4'h9;
+      5'b10111:
+        casez_tmp_2 = 4'hA;
+      5'b11000:
+        casez_tmp_2 = 4'hB;
+      5'b11001:
+        casez_tmp_2 = 4'hC;
+      5'b11010:
+        casez_tmp_2 = 4'hD;
+      5'b11011:
+        casez_tmp_2 = 4'hE;
+      5'b11100:
+        casez_tmp_2 = 4'hF;
+      5'b11101:
+        casez_tmp_2 = 4'h0;
+      5'b11110:
+        casez_tmp_2 = 4'h1;
       default:
-        casez_tmp_2 = cur_data[495:480];
+        casez_tmp_2 = 4'h2;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_3;
+  reg  [3:0]   casez_tmp_3;
   always @(*) begin
-    casez (slot_4)
-      4'b0000:
-        casez_tmp_3 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_3 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_3 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_3 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_3 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_3 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_3 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_3 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_3 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_3 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_3 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_3 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_3 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_3 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_3 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_3 = 4'h4;
+      5'b00001:
+        casez_tmp_3 = 4'h5;
+      5'b00010:
+        casez_tmp_3 = 4'h6;
+      5'b00011:
+        casez_tmp_3 = 4'h7;
+      5'b00100:
+        casez_tmp_3 = 4'h8;
+      5'b00101:
+        casez_tmp_3 = 4'h9;
+      5'b00110:
+        casez_tmp_3 = 4'hA;
+      5'b00111:
+        casez_tmp_3 = 4'hB;
+      5'b01000:
+        casez_tmp_3 = 4'hC;
+      5'b01001:
+        casez_tmp_3 = 4'hD;
+      5'b01010:
+        casez_tmp_3 = 4'hE;
+      5'b01011:
+        casez_tmp_3 = 4'hF;
+      5'b01100:
+        casez_tmp_3 = 4'h0;
+      5'b01101:
+        casez_tmp_3 = 4'h1;
+      5'b01110:
+        casez_tmp_3 = 4'h2;
+      5'b01111:
+        casez_tmp_3 = 4'h3;
+      5'b10000:
+        casez_tmp_3 = 4'h4;
+      5'b10001:
+        casez_tmp_3 = 4'h5;
+      5'b10010:
+        casez_tmp_3 = 4'h6;
+      5'b10011:
+        casez_tmp_3 = 4'h7;
+      5'b10100:
+        casez_tmp_3 = 4'h8;
+      5'b10101:
+        casez_tmp_3 = 4'h9;
+      5'b10110:
+        casez_tmp_3 = 4'hA;
+      5'b10111:
+        casez_tmp_3 = 4'hB;
+      5'b11000:
+        casez_tmp_3 = 4'hC;
+      5'b11001:
+        casez_tmp_3 = 4'hD;
+      5'b11010:
+        casez_tmp_3 = 4'hE;
+      5'b11011:
+        casez_tmp_3 = 4'hF;
+      5'b11100:
+        casez_tmp_3 = 4'h0;
+      5'b11101:
+        casez_tmp_3 = 4'h1;
+      5'b11110:
+        casez_tmp_3 = 4'h2;
       default:
-        casez_tmp_3 = cur_data[495:480];
+        casez_tmp_3 = 4'h3;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_4;
+  reg  [3:0]   casez_tmp_4;
   always @(*) begin
-    casez (slot_5)
-      4'b0000:
-        casez_tmp_4 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_4 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_4 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_4 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_4 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_4 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_4 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_4 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_4 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_4 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_4 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_4 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_4 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_4 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_4 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_4 = 4'h5;
+      5'b00001:
+        casez_tmp_4 = 4'h6;
+      5'b00010:
+        casez_tmp_4 = 4'h7;
+      5'b00011:
+        casez_tmp_4 = 4'h8;
+      5'b00100:
+        casez_tmp_4 = 4'h9;
+      5'b00101:
+        casez_tmp_4 = 4'hA;
+      5'b00110:
+        casez_tmp_4 = 4'hB;
+      5'b00111:
+        casez_tmp_4 = 4'hC;
+      5'b01000:
+        casez_tmp_4 = 4'hD;
+      5'b01001:
+        casez_tmp_4 = 4'hE;
+      5'b01010:
+        casez_tmp_4 = 4'hF;
+      5'b01011:
+        casez_tmp_4 = 4'h0;
+      5'b01100:
+        casez_tmp_4 = 4'h1;
+      5'b01101:
+        casez_tmp_4 = 4'h2;
+      5'b01110:
+        casez_tmp_4 = 4'h3;
+      5'b01111:
+        casez_tmp_4 = 4'h4;
+      5'b10000:
+        casez_tmp_4 = 4'h5;
+      5'b10001:
+        casez_tmp_4 = 4'h6;
+      5'b10010:
+        casez_tmp_4 = 4'h7;
+      5'b10011:
+        casez_tmp_4 = 4'h8;
+      5'b10100:
+        casez_tmp_4 = 4'h9;
+      5'b10101:
+        casez_tmp_4 = 4'hA;
+      5'b10110:
+        casez_tmp_4 = 4'hB;
+      5'b10111:
+        casez_tmp_4 = 4'hC;
+      5'b11000:
+        casez_tmp_4 = 4'hD;
+      5'b11001:
+        casez_tmp_4 = 4'hE;
+      5'b11010:
+        casez_tmp_4 = 4'hF;
+      5'b11011:
+        casez_tmp_4 = 4'h0;
+      5'b11100:
+        casez_tmp_4 = 4'h1;
+      5'b11101:
+        casez_tmp_4 = 4'h2;
+      5'b11110:
+        casez_tmp_4 = 4'h3;
       default:
-        casez_tmp_4 = cur_data[495:480];
+        casez_tmp_4 = 4'h4;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_5;
+  reg  [3:0]   casez_tmp_5;
   always @(*) begin
-    casez (slot_6)
-      4'b0000:
-        casez_tmp_5 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_5 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_5 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_5 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_5 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_5 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_5 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_5 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_5 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_5 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_5 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_5 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_5 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_5 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_5 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_5 = 4'h6;
+      5'b00001:
+        casez_tmp_5 = 4'h7;
+      5'b00010:
+        casez_tmp_5 = 4'h8;
+      5'b00011:
+        casez_tmp_5 = 4'h9;
+      5'b00100:
+        casez_tmp_5 = 4'hA;
+      5'b00101:
+        casez_tmp_5 = 4'hB;
+      5'b00110:
+        casez_tmp_5 = 4'hC;
+      5'b00111:
+        casez_tmp_5 = 4'hD;
+      5'b01000:
+        casez_tmp_5 = 4'hE;
+      5'b01001:
+        casez_tmp_5 = 4'hF;
+      5'b01010:
+        casez_tmp_5 = 4'h0;
+      5'b01011:
+        casez_tmp_5 = 4'h1;
+      5'b01100:
+        casez_tmp_5 = 4'h2;
+      5'b01101:
+        casez_tmp_5 = 4'h3;
+      5'b01110:
+        casez_tmp_5 = 4'h4;
+      5'b01111:
+        casez_tmp_5 = 4'h5;
+      5'b10000:
+        casez_tmp_5 = 4'h6;
+      5'b10001:
+        casez_tmp_5 = 4'h7;
+      5'b10010:
+        casez_tmp_5 = 4'h8;
+      5'b10011:
+        casez_tmp_5 = 4'h9;
+      5'b10100:
+        casez_tmp_5 = 4'hA;
+      5'b10101:
+        casez_tmp_5 = 4'hB;
+      5'b10110:
+        casez_tmp_5 = 4'hC;
+      5'b10111:
+        casez_tmp_5 = 4'hD;
+      5'b11000:
+        casez_tmp_5 = 4'hE;
+      5'b11001:
+        casez_tmp_5 = 4'hF;
+      5'b11010:
+        casez_tmp_5 = 4'h0;
+      5'b11011:
+        casez_tmp_5 = 4'h1;
+      5'b11100:
+        casez_tmp_5 = 4'h2;
+      5'b11101:
+        casez_tmp_5 = 4'h3;
+      5'b11110:
+        casez_tmp_5 = 4'h4;
       default:
-        casez_tmp_5 = cur_data[495:480];
+        casez_tmp_5 = 4'h5;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_6;
+  reg  [3:0]   casez_tmp_6;
   always @(*) begin
-    casez (slot_7)
-      4'b0000:
-        casez_tmp_6 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_6 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_6 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_6 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_6 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_6 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_6 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_6 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_6 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_6 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_6 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_6 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_6 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_6 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_6 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_6 = 4'h7;
+      5'b00001:
+        casez_tmp_6 = 4'h8;
+      5'b00010:
+        casez_tmp_6 = 4'h9;
+      5'b00011:
+        casez_tmp_6 = 4'hA;
+      5'b00100:
+        casez_tmp_6 = 4'hB;
+      5'b00101:
+        casez_tmp_6 = 4'hC;
+      5'b00110:
+        casez_tmp_6 = 4'hD;
+      5'b00111:
+        casez_tmp_6 = 4'hE;
+      5'b01000:
+        casez_tmp_6 = 4'hF;
+      5'b01001:
+        casez_tmp_6 = 4'h0;
+      5'b01010:
+        casez_tmp_6 = 4'h1;
+      5'b01011:
+        casez_tmp_6 = 4'h2;
+      5'b01100:
+        casez_tmp_6 = 4'h3;
+      5'b01101:
+        casez_tmp_6 = 4'h4;
+      5'b01110:
+        casez_tmp_6 = 4'h5;
+      5'b01111:
+        casez_tmp_6 = 4'h6;
+      5'b10000:
+        casez_tmp_6 = 4'h7;
+      5'b10001:
+        casez_tmp_6 = 4'h8;
+      5'b10010:
+        casez_tmp_6 = 4'h9;
+      5'b10011:
+        casez_tmp_6 = 4'hA;
+      5'b10100:
+        casez_tmp_6 = 4'hB;
+      5'b10101:
+        casez_tmp_6 = 4'hC;
+      5'b10110:
+        casez_tmp_6 = 4'hD;
+      5'b10111:
+        casez_tmp_6 = 4'hE;
+      5'b11000:
+        casez_tmp_6 = 4'hF;
+      5'b11001:
+        casez_tmp_6 = 4'h0;
+      5'b11010:
+        casez_tmp_6 = 4'h1;
+      5'b11011:
+        casez_tmp_6 = 4'h2;
+      5'b11100:
+        casez_tmp_6 = 4'h3;
+      5'b11101:
+        casez_tmp_6 = 4'h4;
+      5'b11110:
+        casez_tmp_6 = 4'h5;
       default:
-        casez_tmp_6 = cur_data[495:480];
+        casez_tmp_6 = 4'h6;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_7;
+  reg  [3:0]   casez_tmp_7;
   always @(*) begin
-    casez (slot_8)
-      4'b0000:
-        casez_tmp_7 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_7 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_7 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_7 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_7 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_7 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_7 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_7 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_7 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_7 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_7 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_7 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_7 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_7 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_7 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_7 = 4'h8;
+      5'b00001:
+        casez_tmp_7 = 4'h9;
+      5'b00010:
+        casez_tmp_7 = 4'hA;
+      5'b00011:
+        casez_tmp_7 = 4'hB;
+      5'b00100:
+        casez_tmp_7 = 4'hC;
+      5'b00101:
+        casez_tmp_7 = 4'hD;
+      5'b00110:
+        casez_tmp_7 = 4'hE;
+      5'b00111:
+        casez_tmp_7 = 4'hF;
+      5'b01000:
+        casez_tmp_7 = 4'h0;
+      5'b01001:
+        casez_tmp_7 = 4'h1;
+      5'b01010:
+        casez_tmp_7 = 4'h2;
+      5'b01011:
+        casez_tmp_7 = 4'h3;
+      5'b01100:
+        casez_tmp_7 = 4'h4;
+      5'b01101:
+        casez_tmp_7 = 4'h5;
+      5'b01110:
+        casez_tmp_7 = 4'h6;
+      5'b01111:
+        casez_tmp_7 = 4'h7;
+      5'b10000:
+        casez_tmp_7 = 4'h8;
+      5'b10001:
+        casez_tmp_7 = 4'h9;
+      5'b10010:
+        casez_tmp_7 = 4'hA;
+      5'b10011:
+        casez_tmp_7 = 4'hB;
+      5'b10100:
+        casez_tmp_7 = 4'hC;
+      5'b10101:
+        casez_tmp_7 = 4'hD;
+      5'b10110:
+        casez_tmp_7 = 4'hE;
+      5'b10111:
+        casez_tmp_7 = 4'hF;
+      5'b11000:
+        casez_tmp_7 = 4'h0;
+      5'b11001:
+        casez_tmp_7 = 4'h1;
+      5'b11010:
+        casez_tmp_7 = 4'h2;
+      5'b11011:
+        casez_tmp_7 = 4'h3;
+      5'b11100:
+        casez_tmp_7 = 4'h4;
+      5'b11101:
+        casez_tmp_7 = 4'h5;
+      5'b11110:
+        casez_tmp_7 = 4'h6;
       default:
-        casez_tmp_7 = cur_data[495:480];
+        casez_tmp_7 = 4'h7;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_8;
+  reg  [3:0]   casez_tmp_8;
   always @(*) begin
-    casez (slot_9)
-      4'b0000:
-        casez_tmp_8 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_8 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_8 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_8 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_8 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_8 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_8 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_8 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_8 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_8 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_8 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_8 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_8 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_8 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_8 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_8 = 4'h9;
+      5'b00001:
+        casez_tmp_8 = 4'hA;
+      5'b00010:
+        casez_tmp_8 = 4'hB;
+      5'b00011:
+        casez_tmp_8 = 4'hC;
+      5'b00100:
+        casez_tmp_8 = 4'hD;
+      5'b00101:
+        casez_tmp_8 = 4'hE;
+      5'b00110:
+        casez_tmp_8 = 4'hF;
+      5'b00111:
+        casez_tmp_8 = 4'h0;
+      5'b01000:
+        casez_tmp_8 = 4'h1;
+      5'b01001:
+        casez_tmp_8 = 4'h2;
+      5'b01010:
+        casez_tmp_8 = 4'h3;
+      5'b01011:
+        casez_tmp_8 = 4'h4;
+      5'b01100:
+        casez_tmp_8 = 4'h5;
+      5'b01101:
+        casez_tmp_8 = 4'h6;
+      5'b01110:
+        casez_tmp_8 = 4'h7;
+      5'b01111:
+        casez_tmp_8 = 4'h8;
+      5'b10000:
+        casez_tmp_8 = 4'h9;
+      5'b10001:
+        casez_tmp_8 = 4'hA;
+      5'b10010:
+        casez_tmp_8 = 4'hB;
+      5'b10011:
+        casez_tmp_8 = 4'hC;
+      5'b10100:
+        casez_tmp_8 = 4'hD;
+      5'b10101:
+        casez_tmp_8 = 4'hE;
+      5'b10110:
+        casez_tmp_8 = 4'hF;
+      5'b10111:
+        casez_tmp_8 = 4'h0;
+      5'b11000:
+        casez_tmp_8 = 4'h1;
+      5'b11001:
+        casez_tmp_8 = 4'h2;
+      5'b11010:
+        casez_tmp_8 = 4'h3;
+      5'b11011:
+        casez_tmp_8 = 4'h4;
+      5'b11100:
+        casez_tmp_8 = 4'h5;
+      5'b11101:
+        casez_tmp_8 = 4'h6;
+      5'b11110:
+        casez_tmp_8 = 4'h7;
       default:
-        casez_tmp_8 = cur_data[495:480];
+        casez_tmp_8 = 4'h8;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_9;
+  reg  [3:0]   casez_tmp_9;
   always @(*) begin
-    casez (slot_10)
-      4'b0000:
-        casez_tmp_9 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_9 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_9 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_9 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_9 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_9 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_9 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_9 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_9 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_9 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_9 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_9 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_9 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_9 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_9 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_9 = 4'hA;
+      5'b00001:
+        casez_tmp_9 = 4'hB;
+      5'b00010:
+        casez_tmp_9 = 4'hC;
+      5'b00011:
+        casez_tmp_9 = 4'hD;
+      5'b00100:
+        casez_tmp_9 = 4'hE;
+      5'b00101:
+        casez_tmp_9 = 4'hF;
+      5'b00110:
+        casez_tmp_9 = 4'h0;
+      5'b00111:
+        casez_tmp_9 = 4'h1;
+      5'b01000:
+        casez_tmp_9 = 4'h2;
+      5'b01001:
+        casez_tmp_9 = 4'h3;
+      5'b01010:
+        casez_tmp_9 = 4'h4;
+      5'b01011:
+        casez_tmp_9 = 4'h5;
+      5'b01100:
+        casez_tmp_9 = 4'h6;
+      5'b01101:
+        casez_tmp_9 = 4'h7;
+      5'b01110:
+        casez_tmp_9 = 4'h8;
+      5'b01111:
+        casez_tmp_9 = 4'h9;
+      5'b10000:
+        casez_tmp_9 = 4'hA;
+      5'b10001:
+        casez_tmp_9 = 4'hB;
+      5'b10010:
+        casez_tmp_9 = 4'hC;
+      5'b10011:
+        casez_tmp_9 = 4'hD;
+      5'b10100:
+        casez_tmp_9 = 4'hE;
+      5'b10101:
+        casez_tmp_9 = 4'hF;
+      5'b10110:
+        casez_tmp_9 = 4'h0;
+      5'b10111:
+        casez_tmp_9 = 4'h1;
+      5'b11000:
+        casez_tmp_9 = 4'h2;
+      5'b11001:
+        casez_tmp_9 = 4'h3;
+      5'b11010:
+        casez_tmp_9 = 4'h4;
+      5'b11011:
+        casez_tmp_9 = 4'h5;
+      5'b11100:
+        casez_tmp_9 = 4'h6;
+      5'b11101:
+        casez_tmp_9 = 4'h7;
+      5'b11110:
+        casez_tmp_9 = 4'h8;
       default:
-        casez_tmp_9 = cur_data[495:480];
+        casez_tmp_9 = 4'h9;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_10;
+  reg  [3:0]   casez_tmp_10;
   always @(*) begin
-    casez (slot_11)
-      4'b0000:
-        casez_tmp_10 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_10 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_10 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_10 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_10 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_10 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_10 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_10 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_10 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_10 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_10 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_10 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_10 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_10 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_10 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_10 = 4'hB;
+      5'b00001:
+        casez_tmp_10 = 4'hC;
+      5'b00010:
+        casez_tmp_10 = 4'hD;
+      5'b00011:
+        casez_tmp_10 = 4'hE;
+      5'b00100:
+        casez_tmp_10 = 4'hF;
+      5'b00101:
+        casez_tmp_10 = 4'h0;
+      5'b00110:
+        casez_tmp_10 = 4'h1;
+      5'b00111:
+        casez_tmp_10 = 4'h2;
+      5'b01000:
+        casez_tmp_10 = 4'h3;
+      5'b01001:
+        casez_tmp_10 = 4'h4;
+      5'b01010:
+        casez_tmp_10 = 4'h5;
+      5'b01011:
+        casez_tmp_10 = 4'h6;
+      5'b01100:
+        casez_tmp_10 = 4'h7;
+      5'b01101:
+        casez_tmp_10 = 4'h8;
+      5'b01110:
+        casez_tmp_10 = 4'h9;
+      5'b01111:
+        casez_tmp_10 = 4'hA;
+      5'b10000:
+        casez_tmp_10 = 4'hB;
+      5'b10001:
+        casez_tmp_10 = 4'hC;
+      5'b10010:
+        casez_tmp_10 = 4'hD;
+      5'b10011:
+        casez_tmp_10 = 4'hE;
+      5'b10100:
+        casez_tmp_10 = 4'hF;
+      5'b10101:
+        casez_tmp_10 = 4'h0;
+      5'b10110:
+        casez_tmp_10 = 4'h1;
+      5'b10111:
+        casez_tmp_10 = 4'h2;
+      5'b11000:
+        casez_tmp_10 = 4'h3;
+      5'b11001:
+        casez_tmp_10 = 4'h4;
+      5'b11010:
+        casez_tmp_10 = 4'h5;
+      5'b11011:
+        casez_tmp_10 = 4'h6;
+      5'b11100:
+        casez_tmp_10 = 4'h7;
+      5'b11101:
+        casez_tmp_10 = 4'h8;
+      5'b11110:
+        casez_tmp_10 = 4'h9;
       default:
-        casez_tmp_10 = cur_data[495:480];
+        casez_tmp_10 = 4'hA;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_11;
+  reg  [3:0]   casez_tmp_11;
   always @(*) begin
-    casez (slot_12)
-      4'b0000:
-        casez_tmp_11 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_11 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_11 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_11 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_11 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_11 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_11 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_11 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_11 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_11 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_11 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_11 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_11 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_11 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_11 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_11 = 4'hC;
+      5'b00001:
+        casez_tmp_11 = 4'hD;
+      5'b00010:
+        casez_tmp_11 = 4'hE;
+      5'b00011:
+        casez_tmp_11 = 4'hF;
+      5'b00100:
+        casez_tmp_11 = 4'h0;
+      5'b00101:
+        casez_tmp_11 = 4'h1;
+      5'b00110:
+        casez_tmp_11 = 4'h2;
+      5'b00111:
+        casez_tmp_11 = 4'h3;
+      5'b01000:
+        casez_tmp_11 = 4'h4;
+      5'b01001:
+        casez_tmp_11 = 4'h5;
+      5'b01010:
+        casez_tmp_11 = 4'h6;
+      5'b01011:
+        casez_tmp_11 = 4'h7;
+      5'b01100:
+        casez_tmp_11 = 4'h8;
+      5'b01101:
+        casez_tmp_11 = 4'h9;
+      5'b01110:
+        casez_tmp_11 = 4'hA;
+      5'b01111:
+        casez_tmp_11 = 4'hB;
+      5'b10000:
+        casez_tmp_11 = 4'hC;
+      5'b10001:
+        casez_tmp_11 = 4'hD;
+      5'b10010:
+        casez_tmp_11 = 4'hE;
+      5'b10011:
+        casez_tmp_11 = 4'hF;
+      5'b10100:
+        casez_tmp_11 = 4'h0;
+      5'b10101:
+        casez_tmp_11 = 4'h1;
+      5'b10110:
+        casez_tmp_11 = 4'h2;
+      5'b10111:
+        casez_tmp_11 = 4'h3;
+      5'b11000:
+        casez_tmp_11 = 4'h4;
+      5'b11001:
+        casez_tmp_11 = 4'h5;
+      5'b11010:
+        casez_tmp_11 = 4'h6;
+      5'b11011:
+        casez_tmp_11 = 4'h7;
+      5'b11100:
+        casez_tmp_11 = 4'h8;
+      5'b11101:
+        casez_tmp_11 = 4'h9;
+      5'b11110:
+        casez_tmp_11 = 4'hA;
       default:
-        casez_tmp_11 = cur_data[495:480];
+        casez_tmp_11 = 4'hB;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_12;
+  reg  [3:0]   casez_tmp_12;
   always @(*) begin
-    casez (slot_13)
-      4'b0000:
-        casez_tmp_12 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_12 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_12 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_12 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_12 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_12 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_12 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_12 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_12 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_12 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_12 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_12 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_12 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_12 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_12 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_12 = 4'hD;
+      5'b00001:
+        casez_tmp_12 = 4'hE;
+      5'b00010:
+        casez_tmp_12 = 4'hF;
+      5'b00011:
+        casez_tmp_12 = 4'h0;
+      5'b00100:
+        casez_tmp_12 = 4'h1;
+      5'b00101:
+        casez_tmp_12 = 4'h2;
+      5'b00110:
+        casez_tmp_12 = 4'h3;
+      5'b00111:
+        casez_tmp_12 = 4'h4;
+      5'b01000:
+        casez_tmp_12 = 4'h5;
+      5'b01001:
+        casez_tmp_12 = 4'h6;
+      5'b01010:
+        casez_tmp_12 = 4'h7;
+      5'b01011:
+        casez_tmp_12 = 4'h8;
+      5'b01100:
+        casez_tmp_12 = 4'h9;
+      5'b01101:
+        casez_tmp_12 = 4'hA;
+      5'b01110:
+        casez_tmp_12 = 4'hB;
+      5'b01111:
+        casez_tmp_12 = 4'hC;
+      5'b10000:
+        casez_tmp_12 = 4'hD;
+      5'b10001:
+        casez_tmp_12 = 4'hE;
+      5'b10010:
+        casez_tmp_12 = 4'hF;
+      5'b10011:
+        casez_tmp_12 = 4'h0;
+      5'b10100:
+        casez_tmp_12 = 4'h1;
+      5'b10101:
+        casez_tmp_12 = 4'h2;
+      5'b10110:
+        casez_tmp_12 = 4'h3;
+      5'b10111:
+        casez_tmp_12 = 4'h4;
+      5'b11000:
+        casez_tmp_12 = 4'h5;
+      5'b11001:
+        casez_tmp_12 = 4'h6;
+      5'b11010:
+        casez_tmp_12 = 4'h7;
+      5'b11011:
+        casez_tmp_12 = 4'h8;
+      5'b11100:
+        casez_tmp_12 = 4'h9;
+      5'b11101:
+        casez_tmp_12 = 4'hA;
+      5'b11110:
+        casez_tmp_12 = 4'hB;
       default:
-        casez_tmp_12 = cur_data[495:480];
+        casez_tmp_12 = 4'hC;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_13;
+  reg  [3:0]   casez_tmp_13;
   always @(*) begin
-    casez (slot_14)
-      4'b0000:
-        casez_tmp_13 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_13 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_13 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_13 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_13 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_13 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_13 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_13 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_13 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_13 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_13 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_13 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_13 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_13 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_13 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_13 = 4'hE;
+      5'b00001:
+        casez_tmp_13 = 4'hF;
+      5'b00010:
+        casez_tmp_13 = 4'h0;
+      5'b00011:
+        casez_tmp_13 = 4'h1;
+      5'b00100:
+        casez_tmp_13 = 4'h2;
+      5'b00101:
+        casez_tmp_13 = 4'h3;
+      5'b00110:
+        casez_tmp_13 = 4'h4;
+      5'b00111:
+        casez_tmp_13 = 4'h5;
+      5'b01000:
+        casez_tmp_13 = 4'h6;
+      5'b01001:
+        casez_tmp_13 = 4'h7;
+      5'b01010:
+        casez_tmp_13 = 4'h8;
+      5'b01011:
+        casez_tmp_13 = 4'h9;
+      5'b01100:
+        casez_tmp_13 = 4'hA;
+      5'b01101:
+        casez_tmp_13 = 4'hB;
+      5'b01110:
+        casez_tmp_13 = 4'hC;
+      5'b01111:
+        casez_tmp_13 = 4'hD;
+      5'b10000:
+        casez_tmp_13 = 4'hE;
+      5'b10001:
+        casez_tmp_13 = 4'hF;
+      5'b10010:
+        casez_tmp_13 = 4'h0;
+      5'b10011:
+        casez_tmp_13 = 4'h1;
+      5'b10100:
+        casez_tmp_13 = 4'h2;
+      5'b10101:
+        casez_tmp_13 = 4'h3;
+      5'b10110:
+        casez_tmp_13 = 4'h4;
+      5'b10111:
+        casez_tmp_13 = 4'h5;
+      5'b11000:
+        casez_tmp_13 = 4'h6;
+      5'b11001:
+        casez_tmp_13 = 4'h7;
+      5'b11010:
+        casez_tmp_13 = 4'h8;
+      5'b11011:
+        casez_tmp_13 = 4'h9;
+      5'b11100:
+        casez_tmp_13 = 4'hA;
+      5'b11101:
+        casez_tmp_13 = 4'hB;
+      5'b11110:
+        casez_tmp_13 = 4'hC;
       default:
-        casez_tmp_13 = cur_data[495:480];
+        casez_tmp_13 = 4'hD;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_14;
+  reg  [3:0]   casez_tmp_14;
   always @(*) begin
-    casez (slot_15)
-      4'b0000:
-        casez_tmp_14 = cur_data[15:0];
-      4'b0001:
-        casez_tmp_14 = cur_data[47:32];
-      4'b0010:
-        casez_tmp_14 = cur_data[79:64];
-      4'b0011:
-        casez_tmp_14 = cur_data[111:96];
-      4'b0100:
-        casez_tmp_14 = cur_data[143:128];
-      4'b0101:
-        casez_tmp_14 = cur_data[175:160];
-      4'b0110:
-        casez_tmp_14 = cur_data[207:192];
-      4'b0111:
-        casez_tmp_14 = cur_data[239:224];
-      4'b1000:
-        casez_tmp_14 = cur_data[271:256];
-      4'b1001:
-        casez_tmp_14 = cur_data[303:288];
-      4'b1010:
-        casez_tmp_14 = cur_data[335:320];
-      4'b1011:
-        casez_tmp_14 = cur_data[367:352];
-      4'b1100:
-        casez_tmp_14 = cur_data[399:384];
-      4'b1101:
-        casez_tmp_14 = cur_data[431:416];
-      4'b1110:
-        casez_tmp_14 = cur_data[463:448];
+    casez (ptr)
+      5'b00000:
+        casez_tmp_14 = 4'hF;
+      5'b00001:
+        casez_tmp_14 = 4'h0;
+      5'b00010:
+        casez_tmp_14 = 4'h1;
+      5'b00011:
+        casez_tmp_14 = 4'h2;
+      5'b00100:
+        casez_tmp_14 = 4'h3;
+      5'b00101:
+        casez_tmp_14 = 4'h4;
+      5'b00110:
+        casez_tmp_14 = 4'h5;
+      5'b00111:
+        casez_tmp_14 = 4'h6;
+      5'b01000:
+        casez_tmp_14 = 4'h7;
+      5'b01001:
+        casez_tmp_14 = 4'h8;
+      5'b01010:
+        casez_tmp_14 = 4'h9;
+      5'b01011:
+        casez_tmp_14 = 4'hA;
+      5'b01100:
+        casez_tmp_14 = 4'hB;
+      5'b01101:
+        casez_tmp_14 = 4'hC;
+      5'b01110:
+        casez_tmp_14 = 4'hD;
+      5'b01111:
+        casez_tmp_14 = 4'hE;
+      5'b10000:
+        casez_tmp_14 = 4'hF;
+      5'b10001:
+        casez_tmp_14 = 4'h0;
+      5'b10010:
+        casez_tmp_14 = 4'h1;
+      5'b10011:
+        casez_tmp_14 = 4'h2;
+      5'b10100:
+        casez_tmp_14 = 4'h3;
+      5'b10101:
+        casez_tmp_14 = 4'h4;
+      5'b10110:
+        casez_tmp_14 = 4'h5;
+      5'b10111:
+        casez_tmp_14 = 4'h6;
+      5'b11000:
+        casez_tmp_14 = 4'h7;
+      5'b11001:
+        casez_tmp_14 = 4'h8;
+      5'b11010:
+        casez_tmp_14 = 4'h9;
+      5'b11011:
+        casez_tmp_14 = 4'hA;
+      5'b11100:
+        casez_tmp_14 = 4'hB;
+      5'b11101:
+        casez_tmp_14 = 4'hC;
+      5'b11110:
+        casez_tmp_14 = 4'hD;
       default:
-        casez_tmp_14 = cur_data[495:480];
+        casez_tmp_14 = 4'hE;
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_15;
   always @(*) begin
-    casez (ptr[3:0])
+    casez (casez_tmp)
       4'b0000:
-        casez_tmp_15 = cur_data[31:16];
+        casez_tmp_15 = cur_data[15:0];
       4'b0001:
-        casez_tmp_15 = cur_data[63:48];
+        casez_tmp_15 = cur_data[47:32];
       4'b0010:
-        casez_tmp_15 = cur_data[95:80];
+        casez_tmp_15 = cur_data[79:64];
       4'b0011:
-        casez_tmp_15 = cur_data[127:112];
+        casez_tmp_15 = cur_data[111:96];
       4'b0100:
-        casez_tmp_15 = cur_data[159:144];
+        casez_tmp_15 = cur_data[143:128];
       4'b0101:
-        casez_tmp_15 = cur_data[191:176];
+        casez_tmp_15 = cur_data[175:160];
       4'b0110:
-        casez_tmp_15 = cur_data[223:208];
+        casez_tmp_15 = cur_data[207:192];
       4'b0111:
-        casez_tmp_15 = cur_data[255:240];
+        casez_tmp_15 = cur_data[239:224];
       4'b1000:
-        casez_tmp_15 = cur_data[287:272];
+        casez_tmp_15 = cur_data[271:256];
       4'b1001:
-        casez_tmp_15 = cur_data[319:304];
+        casez_tmp_15 = cur_data[303:288];
       4'b1010:
-        casez_tmp_15 = cur_data[351:336];
+        casez_tmp_15 = cur_data[335:320];
       4'b1011:
-        casez_tmp_15 = cur_data[383:368];
+        casez_tmp_15 = cur_data[367:352];
       4'b1100:
-        casez_tmp_15 = cur_data[415:400];
+        casez_tmp_15 = cur_data[399:384];
       4'b1101:
-        casez_tmp_15 = cur_data[447:432];
+        casez_tmp_15 = cur_data[431:416];
       4'b1110:
-        casez_tmp_15 = cur_data[479:464];
+        casez_tmp_15 = cur_data[463:448];
       default:
-        casez_tmp_15 = cur_data[511:496];
+        casez_tmp_15 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_16;
   always @(*) begin
-    casez (slot_1)
+    casez (casez_tmp_0)
       4'b0000:
-        casez_tmp_16 = cur_data[31:16];
+        casez_tmp_16 = cur_data[15:0];
       4'b0001:
-        casez_tmp_16 = cur_data[63:48];
+        casez_tmp_16 = cur_data[47:32];
       4'b0010:
-        casez_tmp_16 = cur_data[95:80];
+        casez_tmp_16 = cur_data[79:64];
       4'b0011:
-        casez_tmp_16 = cur_data[127:112];
+        casez_tmp_16 = cur_data[111:96];
       4'b0100:
-        casez_tmp_16 = cur_data[159:144];
+        casez_tmp_16 = cur_data[143:128];
       4'b0101:
-        casez_tmp_16 = cur_data[191:176];
+        casez_tmp_16 = cur_data[175:160];
       4'b0110:
-        casez_tmp_16 = cur_data[223:208];
+        casez_tmp_16 = cur_data[207:192];
       4'b0111:
-        casez_tmp_16 = cur_data[255:240];
+        casez_tmp_16 = cur_data[239:224];
       4'b1000:
-        casez_tmp_16 = cur_data[287:272];
+        casez_tmp_16 = cur_data[271:256];
       4'b1001:
-        casez_tmp_16 = cur_data[319:304];
+        casez_tmp_16 = cur_data[303:288];
       4'b1010:
-        casez_tmp_16 = cur_data[351:336];
+        casez_tmp_16 = cur_data[335:320];
       4'b1011:
-        casez_tmp_16 = cur_data[383:368];
+        casez_tmp_16 = cur_data[367:352];
       4'b1100:
-        casez_tmp_16 = cur_data[415:400];
+        casez_tmp_16 = cur_data[399:384];
       4'b1101:
-        casez_tmp_16 = cur_data[447:432];
+        casez_tmp_16 = cur_data[431:416];
       4'b1110:
-        casez_tmp_16 = cur_data[479:464];
+        casez_tmp_16 = cur_data[463:448];
       default:
-        casez_tmp_16 = cur_data[511:496];
+        casez_tmp_16 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_17;
   always @(*) begin
-    casez (slot_2)
+    casez (casez_tmp_1)
       4'b0000:
-        casez_tmp_17 = cur_data[31:16];
+        casez_tmp_17 = cur_data[15:0];
       4'b0001:
-        casez_tmp_17 = cur_data[63:48];
+        casez_tmp_17 = cur_data[47:32];
       4'b0010:
-        casez_tmp_17 = cur_data[95:80];
+        casez_tmp_17 = cur_data[79:64];
       4'b0011:
-        casez_tmp_17 = cur_data[127:112];
+        casez_tmp_17 = cur_data[111:96];
       4'b0100:
-        casez_tmp_17 = cur_data[159:144];
+        casez_tmp_17 = cur_data[143:128];
       4'b0101:
-        casez_tmp_17 = cur_data[191:176];
+        casez_tmp_17 = cur_data[175:160];
       4'b0110:
-        casez_tmp_17 = cur_data[223:208];
+        casez_tmp_17 = cur_data[207:192];
       4'b0111:
-        casez_tmp_17 = cur_data[255:240];
+        casez_tmp_17 = cur_data[239:224];
       4'b1000:
-        casez_tmp_17 = cur_data[287:272];
+        casez_tmp_17 = cur_data[271:256];
       4'b1001:
-        casez_tmp_17 = cur_data[319:304];
+        casez_tmp_17 = cur_data[303:288];
       4'b1010:
-        casez_tmp_17 = cur_data[351:336];
+        casez_tmp_17 = cur_data[335:320];
       4'b1011:
-        casez_tmp_17 = cur_data[383:368];
+        casez_tmp_17 = cur_data[367:352];
       4'b1100:
-        casez_tmp_17 = cur_data[415:400];
+        casez_tmp_17 = cur_data[399:384];
       4'b1101:
-        casez_tmp_17 = cur_data[447:432];
+        casez_tmp_17 = cur_data[431:416];
       4'b1110:
-        casez_tmp_17 = cur_data[479:464];
+        casez_tmp_17 = cur_data[463:448];
       default:
-        casez_tmp_17 = cur_data[511:496];
+        casez_tmp_17 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_18;
   always @(*) begin
-    casez (slot_3)
+    casez (casez_tmp_2)
       4'b0000:
-        casez_tmp_18 = cur_data[31:16];
+        casez_tmp_18 = cur_data[15:0];
       4'b0001:
-        casez_tmp_18 = cur_data[63:48];
+        casez_tmp_18 = cur_data[47:32];
       4'b0010:
-        casez_tmp_18 = cur_data[95:80];
+        casez_tmp_18 = cur_data[79:64];
       4'b0011:
-        casez_tmp_18 = cur_data[127:112];
+        casez_tmp_18 = cur_data[111:96];
       4'b0100:
-        casez_tmp_18 = cur_data[159:144];
+        casez_tmp_18 = cur_data[143:128];
       4'b0101:
-        casez_tmp_18 = cur_data[191:176];
+        casez_tmp_18 = cur_data[175:160];
       4'b0110:
-        casez_tmp_18 = cur_data[223:208];
+        casez_tmp_18 = cur_data[207:192];
       4'b0111:
-        casez_tmp_18 = cur_data[255:240];
+        casez_tmp_18 = cur_data[239:224];
       4'b1000:
-        casez_tmp_18 = cur_data[287:272];
+        casez_tmp_18 = cur_data[271:256];
       4'b1001:
-        casez_tmp_18 = cur_data[319:304];
+        casez_tmp_18 = cur_data[303:288];
       4'b1010:
-        casez_tmp_18 = cur_data[351:336];
+        casez_tmp_18 = cur_data[335:320];
       4'b1011:
-        casez_tmp_18 = cur_data[383:368];
+        casez_tmp_18 = cur_data[367:352];
       4'b1100:
-        casez_tmp_18 = cur_data[415:400];
+        casez_tmp_18 = cur_data[399:384];
       4'b1101:
-        casez_tmp_18 = cur_data[447:432];
+        casez_tmp_18 = cur_data[431:416];
       4'b1110:
-        casez_tmp_18 = cur_data[479:464];
+        casez_tmp_18 = cur_data[463:448];
       default:
-        casez_tmp_18 = cur_data[511:496];
+        casez_tmp_18 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_19;
   always @(*) begin
-    casez (slot_4)
+    casez (casez_tmp_3)
       4'b0000:
-        casez_tmp_19 = cur_data[31:16];
+        casez_tmp_19 = cur_data[15:0];
       4'b0001:
-        casez_tmp_19 = cur_data[63:48];
+        casez_tmp_19 = cur_data[47:32];
       4'b0010:
-        casez_tmp_19 = cur_data[95:80];
+        casez_tmp_19 = cur_data[79:64];
       4'b0011:
-        casez_tmp_19 = cur_data[127:112];
+        casez_tmp_19 = cur_data[111:96];
       4'b0100:
-        casez_tmp_19 = cur_data[159:144];
+        casez_tmp_19 = cur_data[143:128];
       4'b0101:
-        casez_tmp_19 = cur_data[191:176];
+        casez_tmp_19 = cur_data[175:160];
       4'b0110:
-        casez_tmp_19 = cur_data[223:208];
+        casez_tmp_19 = cur_data[207:192];
       4'b0111:
-        casez_tmp_19 = cur_data[255:240];
+        casez_tmp_19 = cur_data[239:224];
       4'b1000:
-        casez_tmp_19 = cur_data[287:272];
+        casez_tmp_19 = cur_data[271:256];
       4'b1001:
-        casez_tmp_19 = cur_data[319:304];
+        casez_tmp_19 = cur_data[303:288];
       4'b1010:
-        casez_tmp_19 = cur_data[351:336];
+        casez_tmp_19 = cur_data[335:320];
       4'b1011:
-        casez_tmp_19 = cur_data[383:368];
+        casez_tmp_19 = cur_data[367:352];
       4'b1100:
-        casez_tmp_19 = cur_data[415:400];
+        casez_tmp_19 = cur_data[399:384];
       4'b1101:
-        casez_tmp_19 = cur_data[447:432];
+        casez_tmp_19 = cur_data[431:416];
       4'b1110:
-        casez_tmp_19 = cur_data[479:464];
+        casez_tmp_19 = cur_data[463:448];
       default:
-        casez_tmp_19 = cur_data[511:496];
+        casez_tmp_19 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_20;
   always @(*) begin
-    casez (slot_5)
+    casez (casez_tmp_4)
       4'b0000:
-        casez_tmp_20 = cur_data[31:16];
+        casez_tmp_20 = cur_data[15:0];
       4'b0001:
-        casez_tmp_20 = cur_data[63:48];
+        casez_tmp_20 = cur_data[47:32];
       4'b0010:
-        casez_tmp_20 = cur_data[95:80];
+        casez_tmp_20 = cur_data[79:64];
       4'b0011:
-        casez_tmp_20 = cur_data[127:112];
+        casez_tmp_20 = cur_data[111:96];
       4'b0100:
-        casez_tmp_20 = cur_data[159:144];
+        casez_tmp_20 = cur_data[143:128];
       4'b0101:
-        casez_tmp_20 = cur_data[191:176];
+        casez_tmp_20 = cur_data[175:160];
       4'b0110:
-        casez_tmp_20 = cur_data[223:208];
+        casez_tmp_20 = cur_data[207:192];
       4'b0111:
-        casez_tmp_20 = cur_data[255:240];
+        casez_tmp_20 = cur_data[239:224];
       4'b1000:
-        casez_tmp_20 = cur_data[287:272];
+        casez_tmp_20 = cur_data[271:256];
       4'b1001:
-        casez_tmp_20 = cur_data[319:304];
+        casez_tmp_20 = cur_data[303:288];
       4'b1010:
-        casez_tmp_20 = cur_data[351:336];
+        casez_tmp_20 = cur_data[335:320];
       4'b1011:
-        casez_tmp_20 = cur_data[383:368];
+        casez_tmp_20 = cur_data[367:352];
       4'b1100:
-        casez_tmp_20 = cur_data[415:400];
+        casez_tmp_20 = cur_data[399:384];
       4'b1101:
-        casez_tmp_20 = cur_data[447:432];
+        casez_tmp_20 = cur_data[431:416];
       4'b1110:
-        casez_tmp_20 = cur_data[479:464];
+        casez_tmp_20 = cur_data[463:448];
       default:
-        casez_tmp_20 = cur_data[511:496];
+        casez_tmp_20 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_21;
   always @(*) begin
-    casez (slot_6)
+    casez (casez_tmp_5)
       4'b0000:
-        casez_tmp_21 = cur_data[31:16];
+        casez_tmp_21 = cur_data[15:0];
       4'b0001:
-        casez_tmp_21 = cur_data[63:48];
+        casez_tmp_21 = cur_data[47:32];
       4'b0010:
-        casez_tmp_21 = cur_data[95:80];
+        casez_tmp_21 = cur_data[79:64];
       4'b0011:
-        casez_tmp_21 = cur_data[127:112];
+        casez_tmp_21 = cur_data[111:96];
       4'b0100:
-        casez_tmp_21 = cur_data[159:144];
+        casez_tmp_21 = cur_data[143:128];
       4'b0101:
-        casez_tmp_21 = cur_data[191:176];
+        casez_tmp_21 = cur_data[175:160];
       4'b0110:
-        casez_tmp_21 = cur_data[223:208];
+        casez_tmp_21 = cur_data[207:192];
       4'b0111:
-        casez_tmp_21 = cur_data[255:240];
+        casez_tmp_21 = cur_data[239:224];
       4'b1000:
-        casez_tmp_21 = cur_data[287:272];
+        casez_tmp_21 = cur_data[271:256];
       4'b1001:
-        casez_tmp_21 = cur_data[319:304];
+        casez_tmp_21 = cur_data[303:288];
       4'b1010:
-        casez_tmp_21 = cur_data[351:336];
+        casez_tmp_21 = cur_data[335:320];
       4'b1011:
-        casez_tmp_21 = cur_data[383:368];
+        casez_tmp_21 = cur_data[367:352];
       4'b1100:
-        casez_tmp_21 = cur_data[415:400];
+        casez_tmp_21 = cur_data[399:384];
       4'b1101:
-        casez_tmp_21 = cur_data[447:432];
+        casez_tmp_21 = cur_data[431:416];
       4'b1110:
-        casez_tmp_21 = cur_data[479:464];
+        casez_tmp_21 = cur_data[463:448];
       default:
-        casez_tmp_21 = cur_data[511:496];
+        casez_tmp_21 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_22;
   always @(*) begin
-    casez (slot_7)
+    casez (casez_tmp_6)
       4'b0000:
-        casez_tmp_22 = cur_data[31:16];
+        casez_tmp_22 = cur_data[15:0];
       4'b0001:
-        casez_tmp_22 = cur_data[63:48];
+        casez_tmp_22 = cur_data[47:32];
       4'b0010:
-        casez_tmp_22 = cur_data[95:80];
+        casez_tmp_22 = cur_data[79:64];
       4'b0011:
-        casez_tmp_22 = cur_data[127:112];
+        casez_tmp_22 = cur_data[111:96];
       4'b0100:
-        casez_tmp_22 = cur_data[159:144];
+        casez_tmp_22 = cur_data[143:128];
       4'b0101:
-        casez_tmp_22 = cur_data[191:176];
+        casez_tmp_22 = cur_data[175:160];
       4'b0110:
-        casez_tmp_22 = cur_data[223:208];
+        casez_tmp_22 = cur_data[207:192];
       4'b0111:
-        casez_tmp_22 = cur_data[255:240];
+        casez_tmp_22 = cur_data[239:224];
       4'b1000:
-        casez_tmp_22 = cur_data[287:272];
+        casez_tmp_22 = cur_data[271:256];
       4'b1001:
-        casez_tmp_22 = cur_data[319:304];
+        casez_tmp_22 = cur_data[303:288];
       4'b1010:
-        casez_tmp_22 = cur_data[351:336];
+        casez_tmp_22 = cur_data[335:320];
       4'b1011:
-        casez_tmp_22 = cur_data[383:368];
+        casez_tmp_22 = cur_data[367:352];
       4'b1100:
-        casez_tmp_22 = cur_data[415:400];
+        casez_tmp_22 = cur_data[399:384];
       4'b1101:
-        casez_tmp_22 = cur_data[447:432];
+        casez_tmp_22 = cur_data[431:416];
       4'b1110:
-        casez_tmp_22 = cur_data[479:464];
+        casez_tmp_22 = cur_data[463:448];
       default:
-        casez_tmp_22 = cur_data[511:496];
+        casez_tmp_22 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_23;
   always @(*) begin
-    casez (slot_8)
+    casez (casez_tmp_7)
       4'b0000:
-        casez_tmp_23 = cur_data[31:16];
+        casez_tmp_23 = cur_data[15:0];
       4'b0001:
-        casez_tmp_23 = cur_data[63:48];
+        casez_tmp_23 = cur_data[47:32];
       4'b0010:
-        casez_tmp_23 = cur_data[95:80];
+        casez_tmp_23 = cur_data[79:64];
       4'b0011:
-        casez_tmp_23 = cur_data[127:112];
+        casez_tmp_23 = cur_data[111:96];
       4'b0100:
-        casez_tmp_23 = cur_data[159:144];
+        casez_tmp_23 = cur_data[143:128];
       4'b0101:
-        casez_tmp_23 = cur_data[191:176];
+        casez_tmp_23 = cur_data[175:160];
       4'b0110:
-        casez_tmp_23 = cur_data[223:208];
+        casez_tmp_23 = cur_data[207:192];
       4'b0111:
-        casez_tmp_23 = cur_data[255:240];
+        casez_tmp_23 = cur_data[239:224];
       4'b1000:
-        casez_tmp_23 = cur_data[287:272];
+        casez_tmp_23 = cur_data[271:256];
       4'b1001:
-        casez_tmp_23 = cur_data[319:304];
+        casez_tmp_23 = cur_data[303:288];
       4'b1010:
-        casez_tmp_23 = cur_data[351:336];
+        casez_tmp_23 = cur_data[335:320];
       4'b1011:
-        casez_tmp_23 = cur_data[383:368];
+        casez_tmp_23 = cur_data[367:352];
       4'b1100:
-        casez_tmp_23 = cur_data[415:400];
+        casez_tmp_23 = cur_data[399:384];
       4'b1101:
-        casez_tmp_23 = cur_data[447:432];
+        casez_tmp_23 = cur_data[431:416];
       4'b1110:
-        casez_tmp_23 = cur_data[479:464];
+        casez_tmp_23 = cur_data[463:448];
       default:
-        casez_tmp_23 = cur_data[511:496];
+        casez_tmp_23 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_24;
   always @(*) begin
-    casez (slot_9)
+    casez (casez_tmp_8)
       4'b0000:
-        casez_tmp_24 = cur_data[31:16];
+        casez_tmp_24 = cur_data[15:0];
       4'b0001:
-        casez_tmp_24 = cur_data[63:48];
+        casez_tmp_24 = cur_data[47:32];
       4'b0010:
-        casez_tmp_24 = cur_data[95:80];
+        casez_tmp_24 = cur_data[79:64];
       4'b0011:
-        casez_tmp_24 = cur_data[127:112];
+        casez_tmp_24 = cur_data[111:96];
       4'b0100:
-        casez_tmp_24 = cur_data[159:144];
+        casez_tmp_24 = cur_data[143:128];
       4'b0101:
-        casez_tmp_24 = cur_data[191:176];
+        casez_tmp_24 = cur_data[175:160];
       4'b0110:
-        casez_tmp_24 = cur_data[223:208];
+        casez_tmp_24 = cur_data[207:192];
       4'b0111:
-        casez_tmp_24 = cur_data[255:240];
+        casez_tmp_24 = cur_data[239:224];
       4'b1000:
-        casez_tmp_24 = cur_data[287:272];
+        casez_tmp_24 = cur_data[271:256];
       4'b1001:
-        casez_tmp_24 = cur_data[319:304];
+        casez_tmp_24 = cur_data[303:288];
       4'b1010:
-        casez_tmp_24 = cur_data[351:336];
+        casez_tmp_24 = cur_data[335:320];
       4'b1011:
-        casez_tmp_24 = cur_data[383:368];
+        casez_tmp_24 = cur_data[367:352];
       4'b1100:
-        casez_tmp_24 = cur_data[415:400];
+        casez_tmp_24 = cur_data[399:384];
       4'b1101:
-        casez_tmp_24 = cur_data[447:432];
+        casez_tmp_24 = cur_data[431:416];
       4'b1110:
-        casez_tmp_24 = cur_data[479:464];
+        casez_tmp_24 = cur_data[463:448];
       default:
-        casez_tmp_24 = cur_data[511:496];
+        casez_tmp_24 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_25;
   always @(*) begin
-    casez (slot_10)
+    casez (casez_tmp_9)
       4'b0000:
-        casez_tmp_25 = cur_data[31:16];
+        casez_tmp_25 = cur_data[15:0];
       4'b0001:
-        casez_tmp_25 = cur_data[63:48];
+        casez_tmp_25 = cur_data[47:32];
       4'b0010:
-        casez_tmp_25 = cur_data[95:80];
+        casez_tmp_25 = cur_data[79:64];
       4'b0011:
-        casez_tmp_25 = cur_data[127:112];
+        casez_tmp_25 = cur_data[111:96];
       4'b0100:
-        casez_tmp_25 = cur_data[159:144];
+        casez_tmp_25 = cur_data[143:128];
       4'b0101:
-        casez_tmp_25 = cur_data[191:176];
+        casez_tmp_25 = cur_data[175:160];
       4'b0110:
-        casez_tmp_25 = cur_data[223:208];
+        casez_tmp_25 = cur_data[207:192];
       4'b0111:
-        casez_tmp_25 = cur_data[255:240];
+        casez_tmp_25 = cur_data[239:224];
       4'b1000:
-        casez_tmp_25 = cur_data[287:272];
+        casez_tmp_25 = cur_data[271:256];
       4'b1001:
-        casez_tmp_25 = cur_data[319:304];
+        casez_tmp_25 = cur_data[303:288];
       4'b1010:
-        casez_tmp_25 = cur_data[351:336];
+        casez_tmp_25 = cur_data[335:320];
       4'b1011:
-        casez_tmp_25 = cur_data[383:368];
+        casez_tmp_25 = cur_data[367:352];
       4'b1100:
-        casez_tmp_25 = cur_data[415:400];
+        casez_tmp_25 = cur_data[399:384];
       4'b1101:
-        casez_tmp_25 = cur_data[447:432];
+        casez_tmp_25 = cur_data[431:416];
       4'b1110:
-        casez_tmp_25 = cur_data[479:464];
+        casez_tmp_25 = cur_data[463:448];
       default:
-        casez_tmp_25 = cur_data[511:496];
+        casez_tmp_25 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_26;
   always @(*) begin
-    casez (slot_11)
+    casez (casez_tmp_10)
       4'b0000:
-        casez_tmp_26 = cur_data[31:16];
+        casez_tmp_26 = cur_data[15:0];
       4'b0001:
-        casez_tmp_26 = cur_data[63:48];
+        casez_tmp_26 = cur_data[47:32];
       4'b0010:
-        casez_tmp_26 = cur_data[95:80];
+        casez_tmp_26 = cur_data[79:64];
       4'b0011:
-        casez_tmp_26 = cur_data[127:112];
+        casez_tmp_26 = cur_data[111:96];
       4'b0100:
-        casez_tmp_26 = cur_data[159:144];
+        casez_tmp_26 = cur_data[143:128];
       4'b0101:
-        casez_tmp_26 = cur_data[191:176];
+        casez_tmp_26 = cur_data[175:160];
       4'b0110:
-        casez_tmp_26 = cur_data[223:208];
+        casez_tmp_26 = cur_data[207:192];
       4'b0111:
-        casez_tmp_26 = cur_data[255:240];
+        casez_tmp_26 = cur_data[239:224];
       4'b1000:
-        casez_tmp_26 = cur_data[287:272];
+        casez_tmp_26 = cur_data[271:256];
       4'b1001:
-        casez_tmp_26 = cur_data[319:304];
+        casez_tmp_26 = cur_data[303:288];
       4'b1010:
-        casez_tmp_26 = cur_data[351:336];
+        casez_tmp_26 = cur_data[335:320];
       4'b1011:
-        casez_tmp_26 = cur_data[383:368];
+        casez_tmp_26 = cur_data[367:352];
       4'b1100:
-        casez_tmp_26 = cur_data[415:400];
+        casez_tmp_26 = cur_data[399:384];
       4'b1101:
-        casez_tmp_26 = cur_data[447:432];
+        casez_tmp_26 = cur_data[431:416];
       4'b1110:
-        casez_tmp_26 = cur_data[479:464];
+        casez_tmp_26 = cur_data[463:448];
       default:
-        casez_tmp_26 = cur_data[511:496];
+        casez_tmp_26 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_27;
   always @(*) begin
-    casez (slot_12)
+    casez (casez_tmp_11)
       4'b0000:
-        casez_tmp_27 = cur_data[31:16];
+        casez_tmp_27 = cur_data[15:0];
       4'b0001:
-        casez_tmp_27 = cur_data[63:48];
+        casez_tmp_27 = cur_data[47:32];
       4'b0010:
-        casez_tmp_27 = cur_data[95:80];
+        casez_tmp_27 = cur_data[79:64];
       4'b0011:
-        casez_tmp_27 = cur_data[127:112];
+        casez_tmp_27 = cur_data[111:96];
       4'b0100:
-        casez_tmp_27 = cur_data[159:144];
+        casez_tmp_27 = cur_data[143:128];
       4'b0101:
-        casez_tmp_27 = cur_data[191:176];
+        casez_tmp_27 = cur_data[175:160];
       4'b0110:
-        casez_tmp_27 = cur_data[223:208];
+        casez_tmp_27 = cur_data[207:192];
       4'b0111:
-        casez_tmp_27 = cur_data[255:240];
+        casez_tmp_27 = cur_data[239:224];
       4'b1000:
-        casez_tmp_27 = cur_data[287:272];
+        casez_tmp_27 = cur_data[271:256];
       4'b1001:
-        casez_tmp_27 = cur_data[319:304];
+        casez_tmp_27 = cur_data[303:288];
       4'b1010:
-        casez_tmp_27 = cur_data[351:336];
+        casez_tmp_27 = cur_data[335:320];
       4'b1011:
-        casez_tmp_27 = cur_data[383:368];
+        casez_tmp_27 = cur_data[367:352];
       4'b1100:
-        casez_tmp_27 = cur_data[415:400];
+        casez_tmp_27 = cur_data[399:384];
       4'b1101:
-        casez_tmp_27 = cur_data[447:432];
+        casez_tmp_27 = cur_data[431:416];
       4'b1110:
-        casez_tmp_27 = cur_data[479:464];
+        casez_tmp_27 = cur_data[463:448];
       default:
-        casez_tmp_27 = cur_data[511:496];
+        casez_tmp_27 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_28;
   always @(*) begin
-    casez (slot_13)
+    casez (casez_tmp_12)
       4'b0000:
-        casez_tmp_28 = cur_data[31:16];
+        casez_tmp_28 = cur_data[15:0];
       4'b0001:
-        casez_tmp_28 = cur_data[63:48];
+        casez_tmp_28 = cur_data[47:32];
       4'b0010:
-        casez_tmp_28 = cur_data[95:80];
+        casez_tmp_28 = cur_data[79:64];
       4'b0011:
-        casez_tmp_28 = cur_data[127:112];
+        casez_tmp_28 = cur_data[111:96];
       4'b0100:
-        casez_tmp_28 = cur_data[159:144];
+        casez_tmp_28 = cur_data[143:128];
       4'b0101:
-        casez_tmp_28 = cur_data[191:176];
+        casez_tmp_28 = cur_data[175:160];
       4'b0110:
-        casez_tmp_28 = cur_data[223:208];
+        casez_tmp_28 = cur_data[207:192];
       4'b0111:
-        casez_tmp_28 = cur_data[255:240];
+        casez_tmp_28 = cur_data[239:224];
       4'b1000:
-        casez_tmp_28 = cur_data[287:272];
+        casez_tmp_28 = cur_data[271:256];
       4'b1001:
-        casez_tmp_28 = cur_data[319:304];
+        casez_tmp_28 = cur_data[303:288];
       4'b1010:
-        casez_tmp_28 = cur_data[351:336];
+        casez_tmp_28 = cur_data[335:320];
       4'b1011:
-        casez_tmp_28 = cur_data[383:368];
+        casez_tmp_28 = cur_data[367:352];
       4'b1100:
-        casez_tmp_28 = cur_data[415:400];
+        casez_tmp_28 = cur_data[399:384];
       4'b1101:
-        casez_tmp_28 = cur_data[447:432];
+        casez_tmp_28 = cur_data[431:416];
       4'b1110:
-        casez_tmp_28 = cur_data[479:464];
+        casez_tmp_28 = cur_data[463:448];
       default:
-        casez_tmp_28 = cur_data[511:496];
+        casez_tmp_28 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_29;
   always @(*) begin
-    casez (slot_14)
+    casez (casez_tmp_13)
       4'b0000:
-        casez_tmp_29 = cur_data[31:16];
+        casez_tmp_29 = cur_data[15:0];
       4'b0001:
-        casez_tmp_29 = cur_data[63:48];
+        casez_tmp_29 = cur_data[47:32];
       4'b0010:
-        casez_tmp_29 = cur_data[95:80];
+        casez_tmp_29 = cur_data[79:64];
       4'b0011:
-        casez_tmp_29 = cur_data[127:112];
+        casez_tmp_29 = cur_data[111:96];
       4'b0100:
-        casez_tmp_29 = cur_data[159:144];
+        casez_tmp_29 = cur_data[143:128];
       4'b0101:
-        casez_tmp_29 = cur_data[191:176];
+        casez_tmp_29 = cur_data[175:160];
       4'b0110:
-        casez_tmp_29 = cur_data[223:208];
+        casez_tmp_29 = cur_data[207:192];
       4'b0111:
-        casez_tmp_29 = cur_data[255:240];
+        casez_tmp_29 = cur_data[239:224];
       4'b1000:
-        casez_tmp_29 = cur_data[287:272];
+        casez_tmp_29 = cur_data[271:256];
       4'b1001:
-        casez_tmp_29 = cur_data[319:304];
+        casez_tmp_29 = cur_data[303:288];
       4'b1010:
-        casez_tmp_29 = cur_data[351:336];
+        casez_tmp_29 = cur_data[335:320];
       4'b1011:
-        casez_tmp_29 = cur_data[383:368];
+        casez_tmp_29 = cur_data[367:352];
       4'b1100:
-        casez_tmp_29 = cur_data[415:400];
+        casez_tmp_29 = cur_data[399:384];
       4'b1101:
-        casez_tmp_29 = cur_data[447:432];
+        casez_tmp_29 = cur_data[431:416];
       4'b1110:
-        casez_tmp_29 = cur_data[479:464];
+        casez_tmp_29 = cur_data[463:448];
       default:
-        casez_tmp_29 = cur_data[511:496];
+        casez_tmp_29 = cur_data[495:480];
     endcase
   end // always @(*)
   reg  [15:0]  casez_tmp_30;
   always @(*) begin
-    casez (slot_15)
+    casez (casez_tmp_14)
       4'b0000:
-        casez_tmp_30 = cur_data[31:16];
+        casez_tmp_30 = cur_data[15:0];
       4'b0001:
-        casez_tmp_30 = cur_data[63:48];
+        casez_tmp_30 = cur_data[47:32];
       4'b0010:
-        casez_tmp_30 = cur_data[95:80];
+        casez_tmp_30 = cur_data[79:64];
       4'b0011:
-        casez_tmp_30 = cur_data[127:112];
+        casez_tmp_30 = cur_data[111:96];
       4'b0100:
-        casez_tmp_30 = cur_data[159:144];
+        casez_tmp_30 = cur_data[143:128];
       4'b0101:
-        casez_tmp_30 = cur_data[191:176];
+        casez_tmp_30 = cur_data[175:160];
       4'b0110:
-        casez_tmp_30 = cur_data[223:208];
+        casez_tmp_30 = cur_data[207:192];
       4'b0111:
-        casez_tmp_30 = cur_data[255:240];
+        casez_tmp_30 = cur_data[239:224];
       4'b1000:
-        casez_tmp_30 = cur_data[287:272];
+        casez_tmp_30 = cur_data[271:256];
       4'b1001:
-        casez_tmp_30 = cur_data[319:304];
+        casez_tmp_30 = cur_data[303:288];
       4'b1010:
-        casez_tmp_30 = cur_data[351:336];
+        casez_tmp_30 = cur_data[335:320];
       4'b1011:
-        casez_tmp_30 = cur_data[383:368];
+        casez_tmp_30 = cur_data[367:352];
       4'b1100:
-        casez_tmp_30 = cur_data[415:400];
+        casez_tmp_30 = cur_data[399:384];
       4'b1101:
-        casez_tmp_30 = cur_data[447:432];
+        casez_tmp_30 = cur_data[431:416];
       4'b1110:
-        casez_tmp_30 = cur_data[479:464];
+        casez_tmp_30 = cur_data[463:448];
       default:
-        casez_tmp_30 = cur_data[511:496];
+        casez_tmp_30 = cur_data[495:480];
     endcase
   end // always @(*)
-  wire [4:0]   _GEN = {1'h0, base};
-  wire [4:0]   _posOf_d_T = 5'h10 - _GEN;
-  wire [4:0]   posOf_0 = _posOf_d_T[4] ? _posOf_d_T - 5'h10 : _posOf_d_T;
-  wire [4:0]   _posOf_d_T_1 = 5'h11 - _GEN;
-  wire [4:0]   posOf_1 = _posOf_d_T_1[4] ? _posOf_d_T_1 - 5'h10 : _posOf_d_T_1;
-  wire [4:0]   _posOf_d_T_2 = 5'h12 - _GEN;
-  wire [4:0]   posOf_2 = _posOf_d_T_2[4] ? _posOf_d_T_2 - 5'h10 : _posOf_d_T_2;
-  wire [4:0]   _posOf_d_T_3 = 5'h13 - _GEN;
-  wire [4:0]   posOf_3 = _posOf_d_T_3[4] ? _posOf_d_T_3 - 5'h10 : _posOf_d_T_3;
-  wire [4:0]   _posOf_d_T_4 = 5'h14 - _GEN;
-  wire [4:0]   posOf_4 = _posOf_d_T_4[4] ? _posOf_d_T_4 - 5'h10 : _posOf_d_T_4;
-  wire [4:0]   _posOf_d_T_5 = 5'h15 - _GEN;
-  wire [4:0]   posOf_5 = _posOf_d_T_5[4] ? _posOf_d_T_5 - 5'h10 : _posOf_d_T_5;
-  wire [4:0]   _posOf_d_T_6 = 5'h16 - _GEN;
-  wire [4:0]   posOf_6 = _posOf_d_T_6[4] ? _posOf_d_T_6 - 5'h10 : _posOf_d_T_6;
-  wire [4:0]   _posOf_d_T_7 = 5'h17 - _GEN;
-  wire [4:0]   posOf_7 = _posOf_d_T_7[4] ? _posOf_d_T_7 - 5'h10 : _posOf_d_T_7;
-  wire [4:0]   _posOf_d_T_8 = 5'h18 - _GEN;
-  wire [4:0]   posOf_8 = _posOf_d_T_8[4] ? _posOf_d_T_8 - 5'h10 : _posOf_d_T_8;
-  wire [4:0]   _posOf_d_T_9 = 5'h19 - _GEN;
-  wire [4:0]   posOf_9 = _posOf_d_T_9[4] ? _posOf_d_T_9 - 5'h10 : _posOf_d_T_9;
-  wire [4:0]   _posOf_d_T_10 = 5'h1A - _GEN;
-  wire [4:0]   posOf_10 = _posOf_d_T_10[4] ? _posOf_d_T_10 - 5'h10 : _posOf_d_T_10;
-  wire [4:0]   _posOf_d_T_11 = 5'h1B - _GEN;
-  wire [4:0]   posOf_11 = _posOf_d_T_11[4] ? _posOf_d_T_11 - 5'h10 : _posOf_d_T_11;
-  wire [4:0]   _posOf_d_T_12 = 5'h1C - _GEN;
-  wire [4:0]   posOf_12 = _posOf_d_T_12[4] ? _posOf_d_T_12 - 5'h10 : _posOf_d_T_12;
-  wire [4:0]   _posOf_d_T_13 = 5'h1D - _GEN;
-  wire [4:0]   posOf_13 = _posOf_d_T_13[4] ? _posOf_d_T_13 - 5'h10 : _posOf_d_T_13;
-  wire [4:0]   _posOf_d_T_14 = 5'h1E - _GEN;
-  wire [4:0]   posOf_14 = _posOf_d_T_14[4] ? _posOf_d_T_14 - 5'h10 : _posOf_d_T_14;
-  wire [4:0]   _posOf_d_T_15 = 5'h1F - _GEN;
-  wire [4:0]   posOf_15 = _posOf_d_T_15[4] ? _posOf_d_T_15 - 5'h10 : _posOf_d_T_15;
-  wire         inGroup_0 = posOf_0 < lineCnt;
-  wire         inGroup_1 = posOf_1 < lineCnt;
-  wire         inGroup_2 = posOf_2 < lineCnt;
-  wire         inGroup_3 = posOf_3 < lineCnt;
-  wire         inGroup_4 = posOf_4 < lineCnt;
-  wire         inGroup_5 = posOf_5 < lineCnt;
-  wire         inGroup_6 = posOf_6 < lineCnt;
-  wire         inGroup_7 = posOf_7 < lineCnt;
-  wire         inGroup_8 = posOf_8 < lineCnt;
-  wire         inGroup_9 = posOf_9 < lineCnt;
-  wire         inGroup_10 = posOf_10 < lineCnt;
-  wire         inGroup_11 = posOf_11 < lineCnt;
-  wire         inGroup_12 = posOf_12 < lineCnt;
-  wire         inGroup_13 = posOf_13 < lineCnt;
-  wire         inGroup_14 = posOf_14 < lineCnt;
-  wire         inGroup_15 = posOf_15 < lineCnt;
+  reg  [15:0]  casez_tmp_31;
+  always @(*) begin
+    casez (casez_tmp)
+      4'b0000:
+        casez_tmp_31 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_31 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_31 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_31 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_31 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_31 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_31 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_31 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_31 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_31 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_31 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_31 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_31 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_31 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_31 = cur_data[479:464];
+      default:
+        casez_tmp_31 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_32;
+  always @(*) begin
+    casez (casez_tmp_0)
+      4'b0000:
+        casez_tmp_32 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_32 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_32 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_32 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_32 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_32 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_32 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_32 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_32 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_32 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_32 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_32 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_32 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_32 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_32 = cur_data[479:464];
+      default:
+        casez_tmp_32 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_33;
+  always @(*) begin
+    casez (casez_tmp_1)
+      4'b0000:
+        casez_tmp_33 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_33 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_33 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_33 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_33 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_33 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_33 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_33 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_33 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_33 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_33 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_33 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_33 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_33 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_33 = cur_data[479:464];
+      default:
+        casez_tmp_33 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_34;
+  always @(*) begin
+    casez (casez_tmp_2)
+      4'b0000:
+        casez_tmp_34 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_34 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_34 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_34 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_34 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_34 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_34 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_34 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_34 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_34 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_34 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_34 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_34 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_34 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_34 = cur_data[479:464];
+      default:
+        casez_tmp_34 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_35;
+  always @(*) begin
+    casez (casez_tmp_3)
+      4'b0000:
+        casez_tmp_35 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_35 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_35 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_35 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_35 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_35 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_35 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_35 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_35 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_35 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_35 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_35 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_35 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_35 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_35 = cur_data[479:464];
+      default:
+        casez_tmp_35 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_36;
+  always @(*) begin
+    casez (casez_tmp_4)
+      4'b0000:
+        casez_tmp_36 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_36 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_36 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_36 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_36 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_36 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_36 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_36 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_36 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_36 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_36 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_36 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_36 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_36 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_36 = cur_data[479:464];
+      default:
+        casez_tmp_36 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_37;
+  always @(*) begin
+    casez (casez_tmp_5)
+      4'b0000:
+        casez_tmp_37 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_37 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_37 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_37 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_37 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_37 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_37 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_37 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_37 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_37 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_37 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_37 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_37 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_37 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_37 = cur_data[479:464];
+      default:
+        casez_tmp_37 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_38;
+  always @(*) begin
+    casez (casez_tmp_6)
+      4'b0000:
+        casez_tmp_38 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_38 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_38 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_38 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_38 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_38 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_38 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_38 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_38 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_38 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_38 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_38 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_38 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_38 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_38 = cur_data[479:464];
+      default:
+        casez_tmp_38 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_39;
+  always @(*) begin
+    casez (casez_tmp_7)
+      4'b0000:
+        casez_tmp_39 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_39 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_39 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_39 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_39 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_39 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_39 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_39 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_39 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_39 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_39 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_39 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_39 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_39 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_39 = cur_data[479:464];
+      default:
+        casez_tmp_39 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_40;
+  always @(*) begin
+    casez (casez_tmp_8)
+      4'b0000:
+        casez_tmp_40 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_40 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_40 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_40 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_40 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_40 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_40 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_40 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_40 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_40 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_40 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_40 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_40 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_40 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_40 = cur_data[479:464];
+      default:
+        casez_tmp_40 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_41;
+  always @(*) begin
+    casez (casez_tmp_9)
+      4'b0000:
+        casez_tmp_41 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_41 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_41 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_41 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_41 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_41 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_41 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_41 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_41 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_41 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_41 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_41 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_41 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_41 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_41 = cur_data[479:464];
+      default:
+        casez_tmp_41 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_42;
+  always @(*) begin
+    casez (casez_tmp_10)
+      4'b0000:
+        casez_tmp_42 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_42 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_42 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_42 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_42 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_42 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_42 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_42 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_42 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_42 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_42 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_42 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_42 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_42 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_42 = cur_data[479:464];
+      default:
+        casez_tmp_42 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_43;
+  always @(*) begin
+    casez (casez_tmp_11)
+      4'b0000:
+        casez_tmp_43 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_43 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_43 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_43 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_43 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_43 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_43 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_43 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_43 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_43 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_43 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_43 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_43 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_43 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_43 = cur_data[479:464];
+      default:
+        casez_tmp_43 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_44;
+  always @(*) begin
+    casez (casez_tmp_12)
+      4'b0000:
+        casez_tmp_44 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_44 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_44 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_44 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_44 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_44 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_44 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_44 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_44 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_44 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_44 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_44 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_44 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_44 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_44 = cur_data[479:464];
+      default:
+        casez_tmp_44 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_45;
+  always @(*) begin
+    casez (casez_tmp_13)
+      4'b0000:
+        casez_tmp_45 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_45 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_45 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_45 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_45 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_45 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_45 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_45 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_45 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_45 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_45 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_45 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_45 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_45 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_45 = cur_data[479:464];
+      default:
+        casez_tmp_45 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_46;
+  always @(*) begin
+    casez (casez_tmp_14)
+      4'b0000:
+        casez_tmp_46 = cur_data[31:16];
+      4'b0001:
+        casez_tmp_46 = cur_data[63:48];
+      4'b0010:
+        casez_tmp_46 = cur_data[95:80];
+      4'b0011:
+        casez_tmp_46 = cur_data[127:112];
+      4'b0100:
+        casez_tmp_46 = cur_data[159:144];
+      4'b0101:
+        casez_tmp_46 = cur_data[191:176];
+      4'b0110:
+        casez_tmp_46 = cur_data[223:208];
+      4'b0111:
+        casez_tmp_46 = cur_data[255:240];
+      4'b1000:
+        casez_tmp_46 = cur_data[287:272];
+      4'b1001:
+        casez_tmp_46 = cur_data[319:304];
+      4'b1010:
+        casez_tmp_46 = cur_data[351:336];
+      4'b1011:
+        casez_tmp_46 = cur_data[383:368];
+      4'b1100:
+        casez_tmp_46 = cur_data[415:400];
+      4'b1101:
+        casez_tmp_46 = cur_data[447:432];
+      4'b1110:
+        casez_tmp_46 = cur_data[479:464];
+      default:
+        casez_tmp_46 = cur_data[511:496];
+    endcase
+  end // always @(*)
+  reg  [4:0]   casez_tmp_47;
+  always @(*) begin
+    casez (rem)
+      5'b00000:
+        casez_tmp_47 = 5'h0;
+      5'b00001:
+        casez_tmp_47 = 5'h1;
+      5'b00010:
+        casez_tmp_47 = 5'h2;
+      5'b00011:
+        casez_tmp_47 = 5'h3;
+      5'b00100:
+        casez_tmp_47 = 5'h4;
+      5'b00101:
+        casez_tmp_47 = 5'h5;
+      5'b00110:
+        casez_tmp_47 = 5'h6;
+      5'b00111:
+        casez_tmp_47 = 5'h7;
+      5'b01000:
+        casez_tmp_47 = 5'h8;
+      5'b01001:
+        casez_tmp_47 = 5'h9;
+      5'b01010:
+        casez_tmp_47 = 5'hA;
+      5'b01011:
+        casez_tmp_47 = 5'hB;
+      5'b01100:
+        casez_tmp_47 = 5'hC;
+      5'b01101:
+        casez_tmp_47 = 5'hD;
+      5'b01110:
+        casez_tmp_47 = 5'hE;
+      5'b01111:
+        casez_tmp_47 = 5'hF;
+      5'b10000:
+        casez_tmp_47 = 5'h10;
+      5'b10001:
+        casez_tmp_47 = 5'h10;
+      5'b10010:
+        casez_tmp_47 = 5'h10;
+      5'b10011:
+        casez_tmp_47 = 5'h10;
+      5'b10100:
+        casez_tmp_47 = 5'h10;
+      5'b10101:
+        casez_tmp_47 = 5'h10;
+      5'b10110:
+        casez_tmp_47 = 5'h10;
+      5'b10111:
+        casez_tmp_47 = 5'h10;
+      5'b11000:
+        casez_tmp_47 = 5'h10;
+      5'b11001:
+        casez_tmp_47 = 5'h10;
+      5'b11010:
+        casez_tmp_47 = 5'h10;
+      5'b11011:
+        casez_tmp_47 = 5'h10;
+      5'b11100:
+        casez_tmp_47 = 5'h10;
+      5'b11101:
+        casez_tmp_47 = 5'h10;
+      5'b11110:
+        casez_tmp_47 = 5'h10;
+      default:
+        casez_tmp_47 = 5'h10;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_48;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_48 = 1'h0;
+      5'b00001:
+        casez_tmp_48 = 1'h1;
+      5'b00010:
+        casez_tmp_48 = 1'h1;
+      5'b00011:
+        casez_tmp_48 = 1'h1;
+      5'b00100:
+        casez_tmp_48 = 1'h1;
+      5'b00101:
+        casez_tmp_48 = 1'h1;
+      5'b00110:
+        casez_tmp_48 = 1'h1;
+      5'b00111:
+        casez_tmp_48 = 1'h1;
+      5'b01000:
+        casez_tmp_48 = 1'h1;
+      5'b01001:
+        casez_tmp_48 = 1'h1;
+      5'b01010:
+        casez_tmp_48 = 1'h1;
+      5'b01011:
+        casez_tmp_48 = 1'h1;
+      5'b01100:
+        casez_tmp_48 = 1'h1;
+      5'b01101:
+        casez_tmp_48 = 1'h1;
+      5'b01110:
+        casez_tmp_48 = 1'h1;
+      5'b01111:
+        casez_tmp_48 = 1'h1;
+      5'b10000:
+        casez_tmp_48 = 1'h1;
+      5'b10001:
+        casez_tmp_48 = 1'h1;
+      5'b10010:
+        casez_tmp_48 = 1'h1;
+      5'b10011:
+        casez_tmp_48 = 1'h1;
+      5'b10100:
+        casez_tmp_48 = 1'h1;
+      5'b10101:
+        casez_tmp_48 = 1'h1;
+      5'b10110:
+        casez_tmp_48 = 1'h1;
+      5'b10111:
+        casez_tmp_48 = 1'h1;
+      5'b11000:
+        casez_tmp_48 = 1'h1;
+      5'b11001:
+        casez_tmp_48 = 1'h1;
+      5'b11010:
+        casez_tmp_48 = 1'h1;
+      5'b11011:
+        casez_tmp_48 = 1'h1;
+      5'b11100:
+        casez_tmp_48 = 1'h1;
+      5'b11101:
+        casez_tmp_48 = 1'h1;
+      5'b11110:
+        casez_tmp_48 = 1'h1;
+      default:
+        casez_tmp_48 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_49;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_49 = 1'h0;
+      5'b00001:
+        casez_tmp_49 = 1'h0;
+      5'b00010:
+        casez_tmp_49 = 1'h1;
+      5'b00011:
+        casez_tmp_49 = 1'h1;
+      5'b00100:
+        casez_tmp_49 = 1'h1;
+      5'b00101:
+        casez_tmp_49 = 1'h1;
+      5'b00110:
+        casez_tmp_49 = 1'h1;
+      5'b00111:
+        casez_tmp_49 = 1'h1;
+      5'b01000:
+        casez_tmp_49 = 1'h1;
+      5'b01001:
+        casez_tmp_49 = 1'h1;
+      5'b01010:
+        casez_tmp_49 = 1'h1;
+      5'b01011:
+        casez_tmp_49 = 1'h1;
+      5'b01100:
+        casez_tmp_49 = 1'h1;
+      5'b01101:
+        casez_tmp_49 = 1'h1;
+      5'b01110:
+        casez_tmp_49 = 1'h1;
+      5'b01111:
+        casez_tmp_49 = 1'h1;
+      5'b10000:
+        casez_tmp_49 = 1'h1;
+      5'b10001:
+        casez_tmp_49 = 1'h1;
+      5'b10010:
+        casez_tmp_49 = 1'h1;
+      5'b10011:
+        casez_tmp_49 = 1'h1;
+      5'b10100:
+        casez_tmp_49 = 1'h1;
+      5'b10101:
+        casez_tmp_49 = 1'h1;
+      5'b10110:
+        casez_tmp_49 = 1'h1;
+      5'b10111:
+        casez_tmp_49 = 1'h1;
+      5'b11000:
+        casez_tmp_49 = 1'h1;
+      5'b11001:
+        casez_tmp_49 = 1'h1;
+      5'b11010:
+        casez_tmp_49 = 1'h1;
+      5'b11011:
+        casez_tmp_49 = 1'h1;
+      5'b11100:
+        casez_tmp_49 = 1'h1;
+      5'b11101:
+        casez_tmp_49 = 1'h1;
+      5'b11110:
+        casez_tmp_49 = 1'h1;
+      default:
+        casez_tmp_49 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_50;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_50 = 1'h0;
+      5'b00001:
+        casez_tmp_50 = 1'h0;
+      5'b00010:
+        casez_tmp_50 = 1'h0;
+      5'b00011:
+        casez_tmp_50 = 1'h1;
+      5'b00100:
+        casez_tmp_50 = 1'h1;
+      5'b00101:
+        casez_tmp_50 = 1'h1;
+      5'b00110:
+        casez_tmp_50 = 1'h1;
+      5'b00111:
+        casez_tmp_50 = 1'h1;
+      5'b01000:
+        casez_tmp_50 = 1'h1;
+      5'b01001:
+        casez_tmp_50 = 1'h1;
+      5'b01010:
+        casez_tmp_50 = 1'h1;
+      5'b01011:
+        casez_tmp_50 = 1'h1;
+      5'b01100:
+        casez_tmp_50 = 1'h1;
+      5'b01101:
+        casez_tmp_50 = 1'h1;
+      5'b01110:
+        casez_tmp_50 = 1'h1;
+      5'b01111:
+        casez_tmp_50 = 1'h1;
+      5'b10000:
+        casez_tmp_50 = 1'h1;
+      5'b10001:
+        casez_tmp_50 = 1'h1;
+      5'b10010:
+        casez_tmp_50 = 1'h1;
+      5'b10011:
+        casez_tmp_50 = 1'h1;
+      5'b10100:
+        casez_tmp_50 = 1'h1;
+      5'b10101:
+        casez_tmp_50 = 1'h1;
+      5'b10110:
+        casez_tmp_50 = 1'h1;
+      5'b10111:
+        casez_tmp_50 = 1'h1;
+      5'b11000:
+        casez_tmp_50 = 1'h1;
+      5'b11001:
+        casez_tmp_50 = 1'h1;
+      5'b11010:
+        casez_tmp_50 = 1'h1;
+      5'b11011:
+        casez_tmp_50 = 1'h1;
+      5'b11100:
+        casez_tmp_50 = 1'h1;
+      5'b11101:
+        casez_tmp_50 = 1'h1;
+      5'b11110:
+        casez_tmp_50 = 1'h1;
+      default:
+        casez_tmp_50 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_51;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_51 = 1'h0;
+      5'b00001:
+        casez_tmp_51 = 1'h0;
+      5'b00010:
+        casez_tmp_51 = 1'h0;
+      5'b00011:
+        casez_tmp_51 = 1'h0;
+      5'b00100:
+        casez_tmp_51 = 1'h1;
+      5'b00101:
+        casez_tmp_51 = 1'h1;
+      5'b00110:
+        casez_tmp_51 = 1'h1;
+      5'b00111:
+        casez_tmp_51 = 1'h1;
+      5'b01000:
+        casez_tmp_51 = 1'h1;
+      5'b01001:
+        casez_tmp_51 = 1'h1;
+      5'b01010:
+        casez_tmp_51 = 1'h1;
+      5'b01011:
+        casez_tmp_51 = 1'h1;
+      5'b01100:
+        casez_tmp_51 = 1'h1;
+      5'b01101:
+        casez_tmp_51 = 1'h1;
+      5'b01110:
+        casez_tmp_51 = 1'h1;
+      5'b01111:
+        casez_tmp_51 = 1'h1;
+      5'b10000:
+        casez_tmp_51 = 1'h1;
+      5'b10001:
+        casez_tmp_51 = 1'h1;
+      5'b10010:
+        casez_tmp_51 = 1'h1;
+      5'b10011:
+        casez_tmp_51 = 1'h1;
+      5'b10100:
+        casez_tmp_51 = 1'h1;
+      5'b10101:
+        casez_tmp_51 = 1'h1;
+      5'b10110:
+        casez_tmp_51 = 1'h1;
+      5'b10111:
+        casez_tmp_51 = 1'h1;
+      5'b11000:
+        casez_tmp_51 = 1'h1;
+      5'b11001:
+        casez_tmp_51 = 1'h1;
+      5'b11010:
+        casez_tmp_51 = 1'h1;
+      5'b11011:
+        casez_tmp_51 = 1'h1;
+      5'b11100:
+        casez_tmp_51 = 1'h1;
+      5'b11101:
+        casez_tmp_51 = 1'h1;
+      5'b11110:
+        casez_tmp_51 = 1'h1;
+      default:
+        casez_tmp_51 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_52;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_52 = 1'h0;
+      5'b00001:
+        casez_tmp_52 = 1'h0;
+      5'b00010:
+        casez_tmp_52 = 1'h0;
+      5'b00011:
+        casez_tmp_52 = 1'h0;
+      5'b00100:
+        casez_tmp_52 = 1'h0;
+      5'b00101:
+        casez_tmp_52 = 1'h1;
+      5'b00110:
+        casez_tmp_52 = 1'h1;
+      5'b00111:
+        casez_tmp_52 = 1'h1;
+      5'b01000:
+        casez_tmp_52 = 1'h1;
+      5'b01001:
+        casez_tmp_52 = 1'h1;
+      5'b01010:
+        casez_tmp_52 = 1'h1;
+      5'b01011:
+        casez_tmp_52 = 1'h1;
+      5'b01100:
+        casez_tmp_52 = 1'h1;
+      5'b01101:
+        casez_tmp_52 = 1'h1;
+      5'b01110:
+        casez_tmp_52 = 1'h1;
+      5'b01111:
+        casez_tmp_52 = 1'h1;
+      5'b10000:
+        casez_tmp_52 = 1'h1;
+      5'b10001:
+        casez_tmp_52 = 1'h1;
+      5'b10010:
+        casez_tmp_52 = 1'h1;
+      5'b10011:
+        casez_tmp_52 = 1'h1;
+      5'b10100:
+        casez_tmp_52 = 1'h1;
+      5'b10101:
+        casez_tmp_52 = 1'h1;
+      5'b10110:
+        casez_tmp_52 = 1'h1;
+      5'b10111:
+        casez_tmp_52 = 1'h1;
+      5'b11000:
+        casez_tmp_52 = 1'h1;
+      5'b11001:
+        casez_tmp_52 = 1'h1;
+      5'b11010:
+        casez_tmp_52 = 1'h1;
+      5'b11011:
+        casez_tmp_52 = 1'h1;
+      5'b11100:
+        casez_tmp_52 = 1'h1;
+      5'b11101:
+        casez_tmp_52 = 1'h1;
+      5'b11110:
+        casez_tmp_52 = 1'h1;
+      default:
+        casez_tmp_52 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_53;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_53 = 1'h0;
+      5'b00001:
+        casez_tmp_53 = 1'h0;
+      5'b00010:
+        casez_tmp_53 = 1'h0;
+      5'b00011:
+        casez_tmp_53 = 1'h0;
+      5'b00100:
+        casez_tmp_53 = 1'h0;
+      5'b00101:
+        casez_tmp_53 = 1'h0;
+      5'b00110:
+        casez_tmp_53 = 1'h1;
+      5'b00111:
+        casez_tmp_53 = 1'h1;
+      5'b01000:
+        casez_tmp_53 = 1'h1;
+      5'b01001:
+        casez_tmp_53 = 1'h1;
+      5'b01010:
+        casez_tmp_53 = 1'h1;
+      5'b01011:
+        casez_tmp_53 = 1'h1;
+      5'b01100:
+        casez_tmp_53 = 1'h1;
+      5'b01101:
+        casez_tmp_53 = 1'h1;
+      5'b01110:
+        casez_tmp_53 = 1'h1;
+      5'b01111:
+        casez_tmp_53 = 1'h1;
+      5'b10000:
+        casez_tmp_53 = 1'h1;
+      5'b10001:
+        casez_tmp_53 = 1'h1;
+      5'b10010:
+        casez_tmp_53 = 1'h1;
+      5'b10011:
+        casez_tmp_53 = 1'h1;
+      5'b10100:
+        casez_tmp_53 = 1'h1;
+      5'b10101:
+        casez_tmp_53 = 1'h1;
+      5'b10110:
+        casez_tmp_53 = 1'h1;
+      5'b10111:
+        casez_tmp_53 = 1'h1;
+      5'b11000:
+        casez_tmp_53 = 1'h1;
+      5'b11001:
+        casez_tmp_53 = 1'h1;
+      5'b11010:
+        casez_tmp_53 = 1'h1;
+      5'b11011:
+        casez_tmp_53 = 1'h1;
+      5'b11100:
+        casez_tmp_53 = 1'h1;
+      5'b11101:
+        casez_tmp_53 = 1'h1;
+      5'b11110:
+        casez_tmp_53 = 1'h1;
+      default:
+        casez_tmp_53 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_54;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_54 = 1'h0;
+      5'b00001:
+        casez_tmp_54 = 1'h0;
+      5'b00010:
+        casez_tmp_54 = 1'h0;
+      5'b00011:
+        casez_tmp_54 = 1'h0;
+      5'b00100:
+        casez_tmp_54 = 1'h0;
+      5'b00101:
+        casez_tmp_54 = 1'h0;
+      5'b00110:
+        casez_tmp_54 = 1'h0;
+      5'b00111:
+        casez_tmp_54 = 1'h1;
+      5'b01000:
+        casez_tmp_54 = 1'h1;
+      5'b01001:
+        casez_tmp_54 = 1'h1;
+      5'b01010:
+        casez_tmp_54 = 1'h1;
+      5'b01011:
+        casez_tmp_54 = 1'h1;
+      5'b01100:
+        casez_tmp_54 = 1'h1;
+      5'b01101:
+        casez_tmp_54 = 1'h1;
+      5'b01110:
+        casez_tmp_54 = 1'h1;
+      5'b01111:
+        casez_tmp_54 = 1'h1;
+      5'b10000:
+        casez_tmp_54 = 1'h1;
+      5'b10001:
+        casez_tmp_54 = 1'h1;
+      5'b10010:
+        casez_tmp_54 = 1'h1;
+      5'b10011:
+        casez_tmp_54 = 1'h1;
+      5'b10100:
+        casez_tmp_54 = 1'h1;
+      5'b10101:
+        casez_tmp_54 = 1'h1;
+      5'b10110:
+        casez_tmp_54 = 1'h1;
+      5'b10111:
+        casez_tmp_54 = 1'h1;
+      5'b11000:
+        casez_tmp_54 = 1'h1;
+      5'b11001:
+        casez_tmp_54 = 1'h1;
+      5'b11010:
+        casez_tmp_54 = 1'h1;
+      5'b11011:
+        casez_tmp_54 = 1'h1;
+      5'b11100:
+        casez_tmp_54 = 1'h1;
+      5'b11101:
+        casez_tmp_54 = 1'h1;
+      5'b11110:
+        casez_tmp_54 = 1'h1;
+      default:
+        casez_tmp_54 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_55;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_55 = 1'h0;
+      5'b00001:
+        casez_tmp_55 = 1'h0;
+      5'b00010:
+        casez_tmp_55 = 1'h0;
+      5'b00011:
+        casez_tmp_55 = 1'h0;
+      5'b00100:
+        casez_tmp_55 = 1'h0;
+      5'b00101:
+        casez_tmp_55 = 1'h0;
+      5'b00110:
+        casez_tmp_55 = 1'h0;
+      5'b00111:
+        casez_tmp_55 = 1'h0;
+      5'b01000:
+        casez_tmp_55 = 1'h1;
+      5'b01001:
+        casez_tmp_55 = 1'h1;
+      5'b01010:
+        casez_tmp_55 = 1'h1;
+      5'b01011:
+        casez_tmp_55 = 1'h1;
+      5'b01100:
+        casez_tmp_55 = 1'h1;
+      5'b01101:
+        casez_tmp_55 = 1'h1;
+      5'b01110:
+        casez_tmp_55 = 1'h1;
+      5'b01111:
+        casez_tmp_55 = 1'h1;
+      5'b10000:
+        casez_tmp_55 = 1'h1;
+      5'b10001:
+        casez_tmp_55 = 1'h1;
+      5'b10010:
+        casez_tmp_55 = 1'h1;
+      5'b10011:
+        casez_tmp_55 = 1'h1;
+      5'b10100:
+        casez_tmp_55 = 1'h1;
+      5'b10101:
+        casez_tmp_55 = 1'h1;
+      5'b10110:
+        casez_tmp_55 = 1'h1;
+      5'b10111:
+        casez_tmp_55 = 1'h1;
+      5'b11000:
+        casez_tmp_55 = 1'h1;
+      5'b11001:
+        casez_tmp_55 = 1'h1;
+      5'b11010:
+        casez_tmp_55 = 1'h1;
+      5'b11011:
+        casez_tmp_55 = 1'h1;
+      5'b11100:
+        casez_tmp_55 = 1'h1;
+      5'b11101:
+        casez_tmp_55 = 1'h1;
+      5'b11110:
+        casez_tmp_55 = 1'h1;
+      default:
+        casez_tmp_55 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_56;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_56 = 1'h0;
+      5'b00001:
+        casez_tmp_56 = 1'h0;
+      5'b00010:
+        casez_tmp_56 = 1'h0;
+      5'b00011:
+        casez_tmp_56 = 1'h0;
+      5'b00100:
+        casez_tmp_56 = 1'h0;
+      5'b00101:
+        casez_tmp_56 = 1'h0;
+      5'b00110:
+        casez_tmp_56 = 1'h0;
+      5'b00111:
+        casez_tmp_56 = 1'h0;
+      5'b01000:
+        casez_tmp_56 = 1'h0;
+      5'b01001:
+        casez_tmp_56 = 1'h1;
+      5'b01010:
+        casez_tmp_56 = 1'h1;
+      5'b01011:
+        casez_tmp_56 = 1'h1;
+      5'b01100:
+        casez_tmp_56 = 1'h1;
+      5'b01101:
+        casez_tmp_56 = 1'h1;
+      5'b01110:
+        casez_tmp_56 = 1'h1;
+      5'b01111:
+        casez_tmp_56 = 1'h1;
+      5'b10000:
+        casez_tmp_56 = 1'h1;
+      5'b10001:
+        casez_tmp_56 = 1'h1;
+      5'b10010:
+        casez_tmp_56 = 1'h1;
+      5'b10011:
+        casez_tmp_56 = 1'h1;
+      5'b10100:
+        casez_tmp_56 = 1'h1;
+      5'b10101:
+        casez_tmp_56 = 1'h1;
+      5'b10110:
+        casez_tmp_56 = 1'h1;
+      5'b10111:
+        casez_tmp_56 = 1'h1;
+      5'b11000:
+        casez_tmp_56 = 1'h1;
+      5'b11001:
+        casez_tmp_56 = 1'h1;
+      5'b11010:
+        casez_tmp_56 = 1'h1;
+      5'b11011:
+        casez_tmp_56 = 1'h1;
+      5'b11100:
+        casez_tmp_56 = 1'h1;
+      5'b11101:
+        casez_tmp_56 = 1'h1;
+      5'b11110:
+        casez_tmp_56 = 1'h1;
+      default:
+        casez_tmp_56 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_57;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_57 = 1'h0;
+      5'b00001:
+        casez_tmp_57 = 1'h0;
+      5'b00010:
+        casez_tmp_57 = 1'h0;
+      5'b00011:
+        casez_tmp_57 = 1'h0;
+      5'b00100:
+        casez_tmp_57 = 1'h0;
+      5'b00101:
+        casez_tmp_57 = 1'h0;
+      5'b00110:
+        casez_tmp_57 = 1'h0;
+      5'b00111:
+        casez_tmp_57 = 1'h0;
+      5'b01000:
+        casez_tmp_57 = 1'h0;
+      5'b01001:
+        casez_tmp_57 = 1'h0;
+      5'b01010:
+        casez_tmp_57 = 1'h1;
+      5'b01011:
+        casez_tmp_57 = 1'h1;
+      5'b01100:
+        casez_tmp_57 = 1'h1;
+      5'b01101:
+        casez_tmp_57 = 1'h1;
+      5'b01110:
+        casez_tmp_57 = 1'h1;
+      5'b01111:
+        casez_tmp_57 = 1'h1;
+      5'b10000:
+        casez_tmp_57 = 1'h1;
+      5'b10001:
+        casez_tmp_57 = 1'h1;
+      5'b10010:
+        casez_tmp_57 = 1'h1;
+      5'b10011:
+        casez_tmp_57 = 1'h1;
+      5'b10100:
+        casez_tmp_57 = 1'h1;
+      5'b10101:
+        casez_tmp_57 = 1'h1;
+      5'b10110:
+        casez_tmp_57 = 1'h1;
+      5'b10111:
+        casez_tmp_57 = 1'h1;
+      5'b11000:
+        casez_tmp_57 = 1'h1;
+      5'b11001:
+        casez_tmp_57 = 1'h1;
+      5'b11010:
+        casez_tmp_57 = 1'h1;
+      5'b11011:
+        casez_tmp_57 = 1'h1;
+      5'b11100:
+        casez_tmp_57 = 1'h1;
+      5'b11101:
+        casez_tmp_57 = 1'h1;
+      5'b11110:
+        casez_tmp_57 = 1'h1;
+      default:
+        casez_tmp_57 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_58;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_58 = 1'h0;
+      5'b00001:
+        casez_tmp_58 = 1'h0;
+      5'b00010:
+        casez_tmp_58 = 1'h0;
+      5'b00011:
+        casez_tmp_58 = 1'h0;
+      5'b00100:
+        casez_tmp_58 = 1'h0;
+      5'b00101:
+        casez_tmp_58 = 1'h0;
+      5'b00110:
+        casez_tmp_58 = 1'h0;
+      5'b00111:
+        casez_tmp_58 = 1'h0;
+      5'b01000:
+        casez_tmp_58 = 1'h0;
+      5'b01001:
+        casez_tmp_58 = 1'h0;
+      5'b01010:
+        casez_tmp_58 = 1'h0;
+      5'b01011:
+        casez_tmp_58 = 1'h1;
+      5'b01100:
+        casez_tmp_58 = 1'h1;
+      5'b01101:
+        casez_tmp_58 = 1'h1;
+      5'b01110:
+        casez_tmp_58 = 1'h1;
+      5'b01111:
+        casez_tmp_58 = 1'h1;
+      5'b10000:
+        casez_tmp_58 = 1'h1;
+      5'b10001:
+        casez_tmp_58 = 1'h1;
+      5'b10010:
+        casez_tmp_58 = 1'h1;
+      5'b10011:
+        casez_tmp_58 = 1'h1;
+      5'b10100:
+        casez_tmp_58 = 1'h1;
+      5'b10101:
+        casez_tmp_58 = 1'h1;
+      5'b10110:
+        casez_tmp_58 = 1'h1;
+      5'b10111:
+        casez_tmp_58 = 1'h1;
+      5'b11000:
+        casez_tmp_58 = 1'h1;
+      5'b11001:
+        casez_tmp_58 = 1'h1;
+      5'b11010:
+        casez_tmp_58 = 1'h1;
+      5'b11011:
+        casez_tmp_58 = 1'h1;
+      5'b11100:
+        casez_tmp_58 = 1'h1;
+      5'b11101:
+        casez_tmp_58 = 1'h1;
+      5'b11110:
+        casez_tmp_58 = 1'h1;
+      default:
+        casez_tmp_58 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_59;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_59 = 1'h0;
+      5'b00001:
+        casez_tmp_59 = 1'h0;
+      5'b00010:
+        casez_tmp_59 = 1'h0;
+      5'b00011:
+        casez_tmp_59 = 1'h0;
+      5'b00100:
+        casez_tmp_59 = 1'h0;
+      5'b00101:
+        casez_tmp_59 = 1'h0;
+      5'b00110:
+        casez_tmp_59 = 1'h0;
+      5'b00111:
+        casez_tmp_59 = 1'h0;
+      5'b01000:
+        casez_tmp_59 = 1'h0;
+      5'b01001:
+        casez_tmp_59 = 1'h0;
+      5'b01010:
+        casez_tmp_59 = 1'h0;
+      5'b01011:
+        casez_tmp_59 = 1'h0;
+      5'b01100:
+        casez_tmp_59 = 1'h1;
+      5'b01101:
+        casez_tmp_59 = 1'h1;
+      5'b01110:
+        casez_tmp_59 = 1'h1;
+      5'b01111:
+        casez_tmp_59 = 1'h1;
+      5'b10000:
+        casez_tmp_59 = 1'h1;
+      5'b10001:
+        casez_tmp_59 = 1'h1;
+      5'b10010:
+        casez_tmp_59 = 1'h1;
+      5'b10011:
+        casez_tmp_59 = 1'h1;
+      5'b10100:
+        casez_tmp_59 = 1'h1;
+      5'b10101:
+        casez_tmp_59 = 1'h1;
+      5'b10110:
+        casez_tmp_59 = 1'h1;
+      5'b10111:
+        casez_tmp_59 = 1'h1;
+      5'b11000:
+        casez_tmp_59 = 1'h1;
+      5'b11001:
+        casez_tmp_59 = 1'h1;
+      5'b11010:
+        casez_tmp_59 = 1'h1;
+      5'b11011:
+        casez_tmp_59 = 1'h1;
+      5'b11100:
+        casez_tmp_59 = 1'h1;
+      5'b11101:
+        casez_tmp_59 = 1'h1;
+      5'b11110:
+        casez_tmp_59 = 1'h1;
+      default:
+        casez_tmp_59 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_60;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_60 = 1'h0;
+      5'b00001:
+        casez_tmp_60 = 1'h0;
+      5'b00010:
+        casez_tmp_60 = 1'h0;
+      5'b00011:
+        casez_tmp_60 = 1'h0;
+      5'b00100:
+        casez_tmp_60 = 1'h0;
+      5'b00101:
+        casez_tmp_60 = 1'h0;
+      5'b00110:
+        casez_tmp_60 = 1'h0;
+      5'b00111:
+        casez_tmp_60 = 1'h0;
+      5'b01000:
+        casez_tmp_60 = 1'h0;
+      5'b01001:
+        casez_tmp_60 = 1'h0;
+      5'b01010:
+        casez_tmp_60 = 1'h0;
+      5'b01011:
+        casez_tmp_60 = 1'h0;
+      5'b01100:
+        casez_tmp_60 = 1'h0;
+      5'b01101:
+        casez_tmp_60 = 1'h1;
+      5'b01110:
+        casez_tmp_60 = 1'h1;
+      5'b01111:
+        casez_tmp_60 = 1'h1;
+      5'b10000:
+        casez_tmp_60 = 1'h1;
+      5'b10001:
+        casez_tmp_60 = 1'h1;
+      5'b10010:
+        casez_tmp_60 = 1'h1;
+      5'b10011:
+        casez_tmp_60 = 1'h1;
+      5'b10100:
+        casez_tmp_60 = 1'h1;
+      5'b10101:
+        casez_tmp_60 = 1'h1;
+      5'b10110:
+        casez_tmp_60 = 1'h1;
+      5'b10111:
+        casez_tmp_60 = 1'h1;
+      5'b11000:
+        casez_tmp_60 = 1'h1;
+      5'b11001:
+        casez_tmp_60 = 1'h1;
+      5'b11010:
+        casez_tmp_60 = 1'h1;
+      5'b11011:
+        casez_tmp_60 = 1'h1;
+      5'b11100:
+        casez_tmp_60 = 1'h1;
+      5'b11101:
+        casez_tmp_60 = 1'h1;
+      5'b11110:
+        casez_tmp_60 = 1'h1;
+      default:
+        casez_tmp_60 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_61;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_61 = 1'h0;
+      5'b00001:
+        casez_tmp_61 = 1'h0;
+      5'b00010:
+        casez_tmp_61 = 1'h0;
+      5'b00011:
+        casez_tmp_61 = 1'h0;
+      5'b00100:
+        casez_tmp_61 = 1'h0;
+      5'b00101:
+        casez_tmp_61 = 1'h0;
+      5'b00110:
+        casez_tmp_61 = 1'h0;
+      5'b00111:
+        casez_tmp_61 = 1'h0;
+      5'b01000:
+        casez_tmp_61 = 1'h0;
+      5'b01001:
+        casez_tmp_61 = 1'h0;
+      5'b01010:
+        casez_tmp_61 = 1'h0;
+      5'b01011:
+        casez_tmp_61 = 1'h0;
+      5'b01100:
+        casez_tmp_61 = 1'h0;
+      5'b01101:
+        casez_tmp_61 = 1'h0;
+      5'b01110:
+        casez_tmp_61 = 1'h1;
+      5'b01111:
+        casez_tmp_61 = 1'h1;
+      5'b10000:
+        casez_tmp_61 = 1'h1;
+      5'b10001:
+        casez_tmp_61 = 1'h1;
+      5'b10010:
+        casez_tmp_61 = 1'h1;
+      5'b10011:
+        casez_tmp_61 = 1'h1;
+      5'b10100:
+        casez_tmp_61 = 1'h1;
+      5'b10101:
+        casez_tmp_61 = 1'h1;
+      5'b10110:
+        casez_tmp_61 = 1'h1;
+      5'b10111:
+        casez_tmp_61 = 1'h1;
+      5'b11000:
+        casez_tmp_61 = 1'h1;
+      5'b11001:
+        casez_tmp_61 = 1'h1;
+      5'b11010:
+        casez_tmp_61 = 1'h1;
+      5'b11011:
+        casez_tmp_61 = 1'h1;
+      5'b11100:
+        casez_tmp_61 = 1'h1;
+      5'b11101:
+        casez_tmp_61 = 1'h1;
+      5'b11110:
+        casez_tmp_61 = 1'h1;
+      default:
+        casez_tmp_61 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_62;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_62 = 1'h0;
+      5'b00001:
+        casez_tmp_62 = 1'h0;
+      5'b00010:
+        casez_tmp_62 = 1'h0;
+      5'b00011:
+        casez_tmp_62 = 1'h0;
+      5'b00100:
+        casez_tmp_62 = 1'h0;
+      5'b00101:
+        casez_tmp_62 = 1'h0;
+      5'b00110:
+        casez_tmp_62 = 1'h0;
+      5'b00111:
+        casez_tmp_62 = 1'h0;
+      5'b01000:
+        casez_tmp_62 = 1'h0;
+      5'b01001:
+        casez_tmp_62 = 1'h0;
+      5'b01010:
+        casez_tmp_62 = 1'h0;
+      5'b01011:
+        casez_tmp_62 = 1'h0;
+      5'b01100:
+        casez_tmp_62 = 1'h0;
+      5'b01101:
+        casez_tmp_62 = 1'h0;
+      5'b01110:
+        casez_tmp_62 = 1'h0;
+      5'b01111:
+        casez_tmp_62 = 1'h1;
+      5'b10000:
+        casez_tmp_62 = 1'h1;
+      5'b10001:
+        casez_tmp_62 = 1'h1;
+      5'b10010:
+        casez_tmp_62 = 1'h1;
+      5'b10011:
+        casez_tmp_62 = 1'h1;
+      5'b10100:
+        casez_tmp_62 = 1'h1;
+      5'b10101:
+        casez_tmp_62 = 1'h1;
+      5'b10110:
+        casez_tmp_62 = 1'h1;
+      5'b10111:
+        casez_tmp_62 = 1'h1;
+      5'b11000:
+        casez_tmp_62 = 1'h1;
+      5'b11001:
+        casez_tmp_62 = 1'h1;
+      5'b11010:
+        casez_tmp_62 = 1'h1;
+      5'b11011:
+        casez_tmp_62 = 1'h1;
+      5'b11100:
+        casez_tmp_62 = 1'h1;
+      5'b11101:
+        casez_tmp_62 = 1'h1;
+      5'b11110:
+        casez_tmp_62 = 1'h1;
+      default:
+        casez_tmp_62 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_63;
+  always @(*) begin
+    casez (casez_tmp_47)
+      5'b00000:
+        casez_tmp_63 = 1'h0;
+      5'b00001:
+        casez_tmp_63 = 1'h0;
+      5'b00010:
+        casez_tmp_63 = 1'h0;
+      5'b00011:
+        casez_tmp_63 = 1'h0;
+      5'b00100:
+        casez_tmp_63 = 1'h0;
+      5'b00101:
+        casez_tmp_63 = 1'h0;
+      5'b00110:
+        casez_tmp_63 = 1'h0;
+      5'b00111:
+        casez_tmp_63 = 1'h0;
+      5'b01000:
+        casez_tmp_63 = 1'h0;
+      5'b01001:
+        casez_tmp_63 = 1'h0;
+      5'b01010:
+        casez_tmp_63 = 1'h0;
+      5'b01011:
+        casez_tmp_63 = 1'h0;
+      5'b01100:
+        casez_tmp_63 = 1'h0;
+      5'b01101:
+        casez_tmp_63 = 1'h0;
+      5'b01110:
+        casez_tmp_63 = 1'h0;
+      5'b01111:
+        casez_tmp_63 = 1'h0;
+      5'b10000:
+        casez_tmp_63 = 1'h1;
+      5'b10001:
+        casez_tmp_63 = 1'h1;
+      5'b10010:
+        casez_tmp_63 = 1'h1;
+      5'b10011:
+        casez_tmp_63 = 1'h1;
+      5'b10100:
+        casez_tmp_63 = 1'h1;
+      5'b10101:
+        casez_tmp_63 = 1'h1;
+      5'b10110:
+        casez_tmp_63 = 1'h1;
+      5'b10111:
+        casez_tmp_63 = 1'h1;
+      5'b11000:
+        casez_tmp_63 = 1'h1;
+      5'b11001:
+        casez_tmp_63 = 1'h1;
+      5'b11010:
+        casez_tmp_63 = 1'h1;
+      5'b11011:
+        casez_tmp_63 = 1'h1;
+      5'b11100:
+        casez_tmp_63 = 1'h1;
+      5'b11101:
+        casez_tmp_63 = 1'h1;
+      5'b11110:
+        casez_tmp_63 = 1'h1;
+      default:
+        casez_tmp_63 = 1'h1;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_64;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_64 = 4'h0;
+      4'b0001:
+        casez_tmp_64 = 4'hF;
+      4'b0010:
+        casez_tmp_64 = 4'hE;
+      4'b0011:
+        casez_tmp_64 = 4'hD;
+      4'b0100:
+        casez_tmp_64 = 4'hC;
+      4'b0101:
+        casez_tmp_64 = 4'hB;
+      4'b0110:
+        casez_tmp_64 = 4'hA;
+      4'b0111:
+        casez_tmp_64 = 4'h9;
+      4'b1000:
+        casez_tmp_64 = 4'h8;
+      4'b1001:
+        casez_tmp_64 = 4'h7;
+      4'b1010:
+        casez_tmp_64 = 4'h6;
+      4'b1011:
+        casez_tmp_64 = 4'h5;
+      4'b1100:
+        casez_tmp_64 = 4'h4;
+      4'b1101:
+        casez_tmp_64 = 4'h3;
+      4'b1110:
+        casez_tmp_64 = 4'h2;
+      default:
+        casez_tmp_64 = 4'h1;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_65;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_65 = 4'h1;
+      4'b0001:
+        casez_tmp_65 = 4'h0;
+      4'b0010:
+        casez_tmp_65 = 4'hF;
+      4'b0011:
+        casez_tmp_65 = 4'hE;
+      4'b0100:
+        casez_tmp_65 = 4'hD;
+      4'b0101:
+        casez_tmp_65 = 4'hC;
+      4'b0110:
+        casez_tmp_65 = 4'hB;
+      4'b0111:
+        casez_tmp_65 = 4'hA;
+      4'b1000:
+        casez_tmp_65 = 4'h9;
+      4'b1001:
+        casez_tmp_65 = 4'h8;
+      4'b1010:
+        casez_tmp_65 = 4'h7;
+      4'b1011:
+        casez_tmp_65 = 4'h6;
+      4'b1100:
+        casez_tmp_65 = 4'h5;
+      4'b1101:
+        casez_tmp_65 = 4'h4;
+      4'b1110:
+        casez_tmp_65 = 4'h3;
+      default:
+        casez_tmp_65 = 4'h2;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_66;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_66 = 4'h2;
+      4'b0001:
+        casez_tmp_66 = 4'h1;
+      4'b0010:
+        casez_tmp_66 = 4'h0;
+      4'b0011:
+        casez_tmp_66 = 4'hF;
+      4'b0100:
+        casez_tmp_66 = 4'hE;
+      4'b0101:
+        casez_tmp_66 = 4'hD;
+      4'b0110:
+        casez_tmp_66 = 4'hC;
+      4'b0111:
+        casez_tmp_66 = 4'hB;
+      4'b1000:
+        casez_tmp_66 = 4'hA;
+      4'b1001:
+        casez_tmp_66 = 4'h9;
+      4'b1010:
+        casez_tmp_66 = 4'h8;
+      4'b1011:
+        casez_tmp_66 = 4'h7;
+      4'b1100:
+        casez_tmp_66 = 4'h6;
+      4'b1101:
+        casez_tmp_66 = 4'h5;
+      4'b1110:
+        casez_tmp_66 = 4'h4;
+      default:
+        casez_tmp_66 = 4'h3;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_67;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_67 = 4'h3;
+      4'b0001:
+        casez_tmp_67 = 4'h2;
+      4'b0010:
+        casez_tmp_67 = 4'h1;
+      4'b0011:
+        casez_tmp_67 = 4'h0;
+      4'b0100:
+        casez_tmp_67 = 4'hF;
+      4'b0101:
+        casez_tmp_67 = 4'hE;
+      4'b0110:
+        casez_tmp_67 = 4'hD;
+      4'b0111:
+        casez_tmp_67 = 4'hC;
+      4'b1000:
+        casez_tmp_67 = 4'hB;
+      4'b1001:
+        casez_tmp_67 = 4'hA;
+      4'b1010:
+        casez_tmp_67 = 4'h9;
+      4'b1011:
+        casez_tmp_67 = 4'h8;
+      4'b1100:
+        casez_tmp_67 = 4'h7;
+      4'b1101:
+        casez_tmp_67 = 4'h6;
+      4'b1110:
+        casez_tmp_67 = 4'h5;
+      default:
+        casez_tmp_67 = 4'h4;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_68;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_68 = 4'h4;
+      4'b0001:
+        casez_tmp_68 = 4'h3;
+      4'b0010:
+        casez_tmp_68 = 4'h2;
+      4'b0011:
+        casez_tmp_68 = 4'h1;
+      4'b0100:
+        casez_tmp_68 = 4'h0;
+      4'b0101:
+        casez_tmp_68 = 4'hF;
+      4'b0110:
+        casez_tmp_68 = 4'hE;
+      4'b0111:
+        casez_tmp_68 = 4'hD;
+      4'b1000:
+        casez_tmp_68 = 4'hC;
+      4'b1001:
+        casez_tmp_68 = 4'hB;
+      4'b1010:
+        casez_tmp_68 = 4'hA;
+      4'b1011:
+        casez_tmp_68 = 4'h9;
+      4'b1100:
+        casez_tmp_68 = 4'h8;
+      4'b1101:
+        casez_tmp_68 = 4'h7;
+      4'b1110:
+        casez_tmp_68 = 4'h6;
+      default:
+        casez_tmp_68 = 4'h5;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_69;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_69 = 4'h5;
+      4'b0001:
+        casez_tmp_69 = 4'h4;
+      4'b0010:
+        casez_tmp_69 = 4'h3;
+      4'b0011:
+        casez_tmp_69 = 4'h2;
+      4'b0100:
+        casez_tmp_69 = 4'h1;
+      4'b0101:
+        casez_tmp_69 = 4'h0;
+      4'b0110:
+        casez_tmp_69 = 4'hF;
+      4'b0111:
+        casez_tmp_69 = 4'hE;
+      4'b1000:
+        casez_tmp_69 = 4'hD;
+      4'b1001:
+        casez_tmp_69 = 4'hC;
+      4'b1010:
+        casez_tmp_69 = 4'hB;
+      4'b1011:
+        casez_tmp_69 = 4'hA;
+      4'b1100:
+        casez_tmp_69 = 4'h9;
+      4'b1101:
+        casez_tmp_69 = 4'h8;
+      4'b1110:
+        casez_tmp_69 = 4'h7;
+      default:
+        casez_tmp_69 = 4'h6;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_70;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_70 = 4'h6;
+      4'b0001:
+        casez_tmp_70 = 4'h5;
+      4'b0010:
+        casez_tmp_70 = 4'h4;
+      4'b0011:
+        casez_tmp_70 = 4'h3;
+      4'b0100:
+        casez_tmp_70 = 4'h2;
+      4'b0101:
+        casez_tmp_70 = 4'h1;
+      4'b0110:
+        casez_tmp_70 = 4'h0;
+      4'b0111:
+        casez_tmp_70 = 4'hF;
+      4'b1000:
+        casez_tmp_70 = 4'hE;
+      4'b1001:
+        casez_tmp_70 = 4'hD;
+      4'b1010:
+        casez_tmp_70 = 4'hC;
+      4'b1011:
+        casez_tmp_70 = 4'hB;
+      4'b1100:
+        casez_tmp_70 = 4'hA;
+      4'b1101:
+        casez_tmp_70 = 4'h9;
+      4'b1110:
+        casez_tmp_70 = 4'h8;
+      default:
+        casez_tmp_70 = 4'h7;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_71;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_71 = 4'h7;
+      4'b0001:
+        casez_tmp_71 = 4'h6;
+      4'b0010:
+        casez_tmp_71 = 4'h5;
+      4'b0011:
+        casez_tmp_71 = 4'h4;
+      4'b0100:
+        casez_tmp_71 = 4'h3;
+      4'b0101:
+        casez_tmp_71 = 4'h2;
+      4'b0110:
+        casez_tmp_71 = 4'h1;
+      4'b0111:
+        casez_tmp_71 = 4'h0;
+      4'b1000:
+        casez_tmp_71 = 4'hF;
+      4'b1001:
+        casez_tmp_71 = 4'hE;
+      4'b1010:
+        casez_tmp_71 = 4'hD;
+      4'b1011:
+        casez_tmp_71 = 4'hC;
+      4'b1100:
+        casez_tmp_71 = 4'hB;
+      4'b1101:
+        casez_tmp_71 = 4'hA;
+      4'b1110:
+        casez_tmp_71 = 4'h9;
+      default:
+        casez_tmp_71 = 4'h8;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_72;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_72 = 4'h8;
+      4'b0001:
+        casez_tmp_72 = 4'h7;
+      4'b0010:
+        casez_tmp_72 = 4'h6;
+      4'b0011:
+        casez_tmp_72 = 4'h5;
+      4'b0100:
+        casez_tmp_72 = 4'h4;
+      4'b0101:
+        casez_tmp_72 = 4'h3;
+      4'b0110:
+        casez_tmp_72 = 4'h2;
+      4'b0111:
+        casez_tmp_72 = 4'h1;
+      4'b1000:
+        casez_tmp_72 = 4'h0;
+      4'b1001:
+        casez_tmp_72 = 4'hF;
+      4'b1010:
+        casez_tmp_72 = 4'hE;
+      4'b1011:
+        casez_tmp_72 = 4'hD;
+      4'b1100:
+        casez_tmp_72 = 4'hC;
+      4'b1101:
+        casez_tmp_72 = 4'hB;
+      4'b1110:
+        casez_tmp_72 = 4'hA;
+      default:
+        casez_tmp_72 = 4'h9;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_73;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_73 = 4'h9;
+      4'b0001:
+        casez_tmp_73 = 4'h8;
+      4'b0010:
+        casez_tmp_73 = 4'h7;
+      4'b0011:
+        casez_tmp_73 = 4'h6;
+      4'b0100:
+        casez_tmp_73 = 4'h5;
+      4'b0101:
+        casez_tmp_73 = 4'h4;
+      4'b0110:
+        casez_tmp_73 = 4'h3;
+      4'b0111:
+        casez_tmp_73 = 4'h2;
+      4'b1000:
+        casez_tmp_73 = 4'h1;
+      4'b1001:
+        casez_tmp_73 = 4'h0;
+      4'b1010:
+        casez_tmp_73 = 4'hF;
+      4'b1011:
+        casez_tmp_73 = 4'hE;
+      4'b1100:
+        casez_tmp_73 = 4'hD;
+      4'b1101:
+        casez_tmp_73 = 4'hC;
+      4'b1110:
+        casez_tmp_73 = 4'hB;
+      default:
+        casez_tmp_73 = 4'hA;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_74;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_74 = 4'hA;
+      4'b0001:
+        casez_tmp_74 = 4'h9;
+      4'b0010:
+        casez_tmp_74 = 4'h8;
+      4'b0011:
+        casez_tmp_74 = 4'h7;
+      4'b0100:
+        casez_tmp_74 = 4'h6;
+      4'b0101:
+        casez_tmp_74 = 4'h5;
+      4'b0110:
+        casez_tmp_74 = 4'h4;
+      4'b0111:
+        casez_tmp_74 = 4'h3;
+      4'b1000:
+        casez_tmp_74 = 4'h2;
+      4'b1001:
+        casez_tmp_74 = 4'h1;
+      4'b1010:
+        casez_tmp_74 = 4'h0;
+      4'b1011:
+        casez_tmp_74 = 4'hF;
+      4'b1100:
+        casez_tmp_74 = 4'hE;
+      4'b1101:
+        casez_tmp_74 = 4'hD;
+      4'b1110:
+        casez_tmp_74 = 4'hC;
+      default:
+        casez_tmp_74 = 4'hB;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_75;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_75 = 4'hB;
+      4'b0001:
+        casez_tmp_75 = 4'hA;
+      4'b0010:
+        casez_tmp_75 = 4'h9;
+      4'b0011:
+        casez_tmp_75 = 4'h8;
+      4'b0100:
+        casez_tmp_75 = 4'h7;
+      4'b0101:
+        casez_tmp_75 = 4'h6;
+      4'b0110:
+        casez_tmp_75 = 4'h5;
+      4'b0111:
+        casez_tmp_75 = 4'h4;
+      4'b1000:
+        casez_tmp_75 = 4'h3;
+      4'b1001:
+        casez_tmp_75 = 4'h2;
+      4'b1010:
+        casez_tmp_75 = 4'h1;
+      4'b1011:
+        casez_tmp_75 = 4'h0;
+      4'b1100:
+        casez_tmp_75 = 4'hF;
+      4'b1101:
+        casez_tmp_75 = 4'hE;
+      4'b1110:
+        casez_tmp_75 = 4'hD;
+      default:
+        casez_tmp_75 = 4'hC;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_76;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_76 = 4'hC;
+      4'b0001:
+        casez_tmp_76 = 4'hB;
+      4'b0010:
+        casez_tmp_76 = 4'hA;
+      4'b0011:
+        casez_tmp_76 = 4'h9;
+      4'b0100:
+        casez_tmp_76 = 4'h8;
+      4'b0101:
+        casez_tmp_76 = 4'h7;
+      4'b0110:
+        casez_tmp_76 = 4'h6;
+      4'b0111:
+        casez_tmp_76 = 4'h5;
+      4'b1000:
+        casez_tmp_76 = 4'h4;
+      4'b1001:
+        casez_tmp_76 = 4'h3;
+      4'b1010:
+        casez_tmp_76 = 4'h2;
+      4'b1011:
+        casez_tmp_76 = 4'h1;
+      4'b1100:
+        casez_tmp_76 = 4'h0;
+      4'b1101:
+        casez_tmp_76 = 4'hF;
+      4'b1110:
+        casez_tmp_76 = 4'hE;
+      default:
+        casez_tmp_76 = 4'hD;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_77;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_77 = 4'hD;
+      4'b0001:
+        casez_tmp_77 = 4'hC;
+      4'b0010:
+        casez_tmp_77 = 4'hB;
+      4'b0011:
+        casez_tmp_77 = 4'hA;
+      4'b0100:
+        casez_tmp_77 = 4'h9;
+      4'b0101:
+        casez_tmp_77 = 4'h8;
+      4'b0110:
+        casez_tmp_77 = 4'h7;
+      4'b0111:
+        casez_tmp_77 = 4'h6;
+      4'b1000:
+        casez_tmp_77 = 4'h5;
+      4'b1001:
+        casez_tmp_77 = 4'h4;
+      4'b1010:
+        casez_tmp_77 = 4'h3;
+      4'b1011:
+        casez_tmp_77 = 4'h2;
+      4'b1100:
+        casez_tmp_77 = 4'h1;
+      4'b1101:
+        casez_tmp_77 = 4'h0;
+      4'b1110:
+        casez_tmp_77 = 4'hF;
+      default:
+        casez_tmp_77 = 4'hE;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_78;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_78 = 4'hE;
+      4'b0001:
+        casez_tmp_78 = 4'hD;
+      4'b0010:
+        casez_tmp_78 = 4'hC;
+      4'b0011:
+        casez_tmp_78 = 4'hB;
+      4'b0100:
+        casez_tmp_78 = 4'hA;
+      4'b0101:
+        casez_tmp_78 = 4'h9;
+      4'b0110:
+        casez_tmp_78 = 4'h8;
+      4'b0111:
+        casez_tmp_78 = 4'h7;
+      4'b1000:
+        casez_tmp_78 = 4'h6;
+      4'b1001:
+        casez_tmp_78 = 4'h5;
+      4'b1010:
+        casez_tmp_78 = 4'h4;
+      4'b1011:
+        casez_tmp_78 = 4'h3;
+      4'b1100:
+        casez_tmp_78 = 4'h2;
+      4'b1101:
+        casez_tmp_78 = 4'h1;
+      4'b1110:
+        casez_tmp_78 = 4'h0;
+      default:
+        casez_tmp_78 = 4'hF;
+    endcase
+  end // always @(*)
+  reg  [3:0]   casez_tmp_79;
+  always @(*) begin
+    casez (base)
+      4'b0000:
+        casez_tmp_79 = 4'hF;
+      4'b0001:
+        casez_tmp_79 = 4'hE;
+      4'b0010:
+        casez_tmp_79 = 4'hD;
+      4'b0011:
+        casez_tmp_79 = 4'hC;
+      4'b0100:
+        casez_tmp_79 = 4'hB;
+      4'b0101:
+        casez_tmp_79 = 4'hA;
+      4'b0110:
+        casez_tmp_79 = 4'h9;
+      4'b0111:
+        casez_tmp_79 = 4'h8;
+      4'b1000:
+        casez_tmp_79 = 4'h7;
+      4'b1001:
+        casez_tmp_79 = 4'h6;
+      4'b1010:
+        casez_tmp_79 = 4'h5;
+      4'b1011:
+        casez_tmp_79 = 4'h4;
+      4'b1100:
+        casez_tmp_79 = 4'h3;
+      4'b1101:
+        casez_tmp_79 = 4'h2;
+      4'b1110:
+        casez_tmp_79 = 4'h1;
+      default:
+        casez_tmp_79 = 4'h0;
+    endcase
+  end // always @(*)
+  wire [8:0]   _inGroup_T_30 = {base, rem};
+  reg          casez_tmp_80;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_80 = 1'h0;
+      9'b000000001:
+        casez_tmp_80 = 1'h1;
+      9'b000000010:
+        casez_tmp_80 = 1'h1;
+      9'b000000011:
+        casez_tmp_80 = 1'h1;
+      9'b000000100:
+        casez_tmp_80 = 1'h1;
+      9'b000000101:
+        casez_tmp_80 = 1'h1;
+      9'b000000110:
+        casez_tmp_80 = 1'h1;
+      9'b000000111:
+        casez_tmp_80 = 1'h1;
+      9'b000001000:
+        casez_tmp_80 = 1'h1;
+      9'b000001001:
+        casez_tmp_80 = 1'h1;
+      9'b000001010:
+        casez_tmp_80 = 1'h1;
+      9'b000001011:
+        casez_tmp_80 = 1'h1;
+      9'b000001100:
+        casez_tmp_80 = 1'h1;
+      9'b000001101:
+        casez_tmp_80 = 1'h1;
+      9'b000001110:
+        casez_tmp_80 = 1'h1;
+      9'b000001111:
+        casez_tmp_80 = 1'h1;
+      9'b000010000:
+        casez_tmp_80 = 1'h1;
+      9'b000010001:
+        casez_tmp_80 = 1'h1;
+      9'b000010010:
+        casez_tmp_80 = 1'h1;
+      9'b000010011:
+        casez_tmp_80 = 1'h1;
+      9'b000010100:
+        casez_tmp_80 = 1'h1;
+      9'b000010101:
+        casez_tmp_80 = 1'h1;
+      9'b000010110:
+        casez_tmp_80 = 1'h1;
+      9'b000010111:
+        casez_tmp_80 = 1'h1;
+      9'b000011000:
+        casez_tmp_80 = 1'h1;
+      9'b000011001:
+        casez_tmp_80 = 1'h1;
+      9'b000011010:
+        casez_tmp_80 = 1'h1;
+      9'b000011011:
+        casez_tmp_80 = 1'h1;
+      9'b000011100:
+        casez_tmp_80 = 1'h1;
+      9'b000011101:
+        casez_tmp_80 = 1'h1;
+      9'b000011110:
+        casez_tmp_80 = 1'h1;
+      9'b000011111:
+        casez_tmp_80 = 1'h1;
+      9'b000100000:
+        casez_tmp_80 = 1'h0;
+      9'b000100001:
+        casez_tmp_80 = 1'h0;
+      9'b000100010:
+        casez_tmp_80 = 1'h0;
+      9'b000100011:
+        casez_tmp_80 = 1'h0;
+      9'b000100100:
+        casez_tmp_80 = 1'h0;
+      9'b000100101:
+        casez_tmp_80 = 1'h0;
+      9'b000100110:
+        casez_tmp_80 = 1'h0;
+      9'b000100111:
+        casez_tmp_80 = 1'h0;
+      9'b000101000:
+        casez_tmp_80 = 1'h0;
+      9'b000101001:
+        casez_tmp_80 = 1'h0;
+      9'b000101010:
+        casez_tmp_80 = 1'h0;
+      9'b000101011:
+        casez_tmp_80 = 1'h0;
+      9'b000101100:
+        casez_tmp_80 = 1'h0;
+      9'b000101101:
+        casez_tmp_80 = 1'h0;
+      9'b000101110:
+        casez_tmp_80 = 1'h0;
+      9'b000101111:
+        casez_tmp_80 = 1'h0;
+      9'b000110000:
+        casez_tmp_80 = 1'h1;
+      9'b000110001:
+        casez_tmp_80 = 1'h1;
+      9'b000110010:
+        casez_tmp_80 = 1'h1;
+      9'b000110011:
+        casez_tmp_80 = 1'h1;
+      9'b000110100:
+        casez_tmp_80 = 1'h1;
+      9'b000110101:
+        casez_tmp_80 = 1'h1;
+      9'b000110110:
+        casez_tmp_80 = 1'h1;
+      9'b000110111:
+        casez_tmp_80 = 1'h1;
+      9'b000111000:
+        casez_tmp_80 = 1'h1;
+      9'b000111001:
+        casez_tmp_80 = 1'h1;
+      9'b000111010:
+        casez_tmp_80 = 1'h1;
+      9'b000111011:
+        casez_tmp_80 = 1'h1;
+      9'b000111100:
+        casez_tmp_80 = 1'h1;
+      9'b000111101:
+        casez_tmp_80 = 1'h1;
+      9'b000111110:
+        casez_tmp_80 = 1'h1;
+      9'b000111111:
+        casez_tmp_80 = 1'h1;
+      9'b001000000:
+        casez_tmp_80 = 1'h0;
+      9'b001000001:
+        casez_tmp_80 = 1'h0;
+      9'b001000010:
+        casez_tmp_80 = 1'h0;
+      9'b001000011:
+        casez_tmp_80 = 1'h0;
+      9'b001000100:
+        casez_tmp_80 = 1'h0;
+      9'b001000101:
+        casez_tmp_80 = 1'h0;
+      9'b001000110:
+        casez_tmp_80 = 1'h0;
+      9'b001000111:
+        casez_tmp_80 = 1'h0;
+      9'b001001000:
+        casez_tmp_80 = 1'h0;
+      9'b001001001:
+        casez_tmp_80 = 1'h0;
+      9'b001001010:
+        casez_tmp_80 = 1'h0;
+      9'b001001011:
+        casez_tmp_80 = 1'h0;
+      9'b001001100:
+        casez_tmp_80 = 1'h0;
+      9'b001001101:
+        casez_tmp_80 = 1'h0;
+      9'b001001110:
+        casez_tmp_80 = 1'h0;
+      9'b001001111:
+        casez_tmp_80 = 1'h1;
+      9'b001010000:
+        casez_tmp_80 = 1'h1;
+      9'b001010001:
+        casez_tmp_80 = 1'h1;
+      9'b001010010:
+        casez_tmp_80 = 1'h1;
+      9'b001010011:
+        casez_tmp_80 = 1'h1;
+      9'b001010100:
+        casez_tmp_80 = 1'h1;
+      9'b001010101:
+        casez_tmp_80 = 1'h1;
+      9'b001010110:
+        casez_tmp_80 = 1'h1;
+      9'b001010111:
+        casez_tmp_80 = 1'h1;
+      9'b001011000:
+        casez_tmp_80 = 1'h1;
+      9'b001011001:
+        casez_tmp_80 = 1'h1;
+      9'b001011010:
+        casez_tmp_80 = 1'h1;
+      9'b001011011:
+        casez_tmp_80 = 1'h1;
+      9'b001011100:
+        casez_tmp_80 = 1'h1;
+      9'b001011101:
+        casez_tmp_80 = 1'h1;
+      9'b001011110:
+        casez_tmp_80 = 1'h1;
+      9'b001011111:
+        casez_tmp_80 = 1'h1;
+      9'b001100000:
+        casez_tmp_80 = 1'h0;
+      9'b001100001:
+        casez_tmp_80 = 1'h0;
+      9'b001100010:
+        casez_tmp_80 = 1'h0;
+      9'b001100011:
+        casez_tmp_80 = 1'h0;
+      9'b001100100:
+        casez_tmp_80 = 1'h0;
+      9'b001100101:
+        casez_tmp_80 = 1'h0;
+      9'b001100110:
+        casez_tmp_80 = 1'h0;
+      9'b001100111:
+        casez_tmp_80 = 1'h0;
+      9'b001101000:
+        casez_tmp_80 = 1'h0;
+      9'b001101001:
+        casez_tmp_80 = 1'h0;
+      9'b001101010:
+        casez_tmp_80 = 1'h0;
+      9'b001101011:
+        casez_tmp_80 = 1'h0;
+      9'b001101100:
+        casez_tmp_80 = 1'h0;
+      9'b001101101:
+        casez_tmp_80 = 1'h0;
+      9'b001101110:
+        casez_tmp_80 = 1'h1;
+      9'b001101111:
+        casez_tmp_80 = 1'h1;
+      9'b001110000:
+        casez_tmp_80 = 1'h1;
+      9'b001110001:
+        casez_tmp_80 = 1'h1;
+      9'b001110010:
+        casez_tmp_80 = 1'h1;
+      9'b001110011:
+        casez_tmp_80 = 1'h1;
+      9'b001110100:
+        casez_tmp_80 = 1'h1;
+      9'b001110101:
+        casez_tmp_80 = 1'h1;
+      9'b001110110:
+        casez_tmp_80 = 1'h1;
+      9'b001110111:
+        casez_tmp_80 = 1'h1;
+      9'b001111000:
+        casez_tmp_80 = 1'h1;
+      9'b001111001:
+        casez_tmp_80 = 1'h1;
+      9'b001111010:
+        casez_tmp_80 = 1'h1;
+      9'b001111011:
+        casez_tmp_80 = 1'h1;
+      9'b001111100:
+        casez_tmp_80 = 1'h1;
+      9'b001111101:
+        casez_tmp_80 = 1'h1;
+      9'b001111110:
+        casez_tmp_80 = 1'h1;
+      9'b001111111:
+        casez_tmp_80 = 1'h1;
+      9'b010000000:
+        casez_tmp_80 = 1'h0;
+      9'b010000001:
+        casez_tmp_80 = 1'h0;
+      9'b010000010:
+        casez_tmp_80 = 1'h0;
+      9'b010000011:
+        casez_tmp_80 = 1'h0;
+      9'b010000100:
+        casez_tmp_80 = 1'h0;
+      9'b010000101:
+        casez_tmp_80 = 1'h0;
+      9'b010000110:
+        casez_tmp_80 = 1'h0;
+      9'b010000111:
+        casez_tmp_80 = 1'h0;
+      9'b010001000:
+        casez_tmp_80 = 1'h0;
+      9'b010001001:
+        casez_tmp_80 = 1'h0;
+      9'b010001010:
+        casez_tmp_80 = 1'h0;
+      9'b010001011:
+        casez_tmp_80 = 1'h0;
+      9'b010001100:
+        casez_tmp_80 = 1'h0;
+      9'b010001101:
+        casez_tmp_80 = 1'h1;
+      9'b010001110:
+        casez_tmp_80 = 1'h1;
+      9'b010001111:
+        casez_tmp_80 = 1'h1;
+      9'b010010000:
+        casez_tmp_80 = 1'h1;
+      9'b010010001:
+        casez_tmp_80 = 1'h1;
+      9'b010010010:
+        casez_tmp_80 = 1'h1;
+      9'b010010011:
+        casez_tmp_80 = 1'h1;
+      9'b010010100:
+        casez_tmp_80 = 1'h1;
+      9'b010010101:
+        casez_tmp_80 = 1'h1;
+      9'b010010110:
+        casez_tmp_80 = 1'h1;
+      9'b010010111:
+        casez_tmp_80 = 1'h1;
+      9'b010011000:
+        casez_tmp_80 = 1'h1;
+      9'b010011001:
+        casez_tmp_80 = 1'h1;
+      9'b010011010:
+        casez_tmp_80 = 1'h1;
+      9'b010011011:
+        casez_tmp_80 = 1'h1;
+      9'b010011100:
+        casez_tmp_80 = 1'h1;
+      9'b010011101:
+        casez_tmp_80 = 1'h1;
+      9'b010011110:
+        casez_tmp_80 = 1'h1;
+      9'b010011111:
+        casez_tmp_80 = 1'h1;
+      9'b010100000:
+        casez_tmp_80 = 1'h0;
+      9'b010100001:
+        casez_tmp_80 = 1'h0;
+      9'b010100010:
+        casez_tmp_80 = 1'h0;
+      9'b010100011:
+        casez_tmp_80 = 1'h0;
+      9'b010100100:
+        casez_tmp_80 = 1'h0;
+      9'b010100101:
+        casez_tmp_80 = 1'h0;
+      9'b010100110:
+        casez_tmp_80 = 1'h0;
+      9'b010100111:
+        casez_tmp_80 = 1'h0;
+      9'b010101000:
+        casez_tmp_80 = 1'h0;
+      9'b010101001:
+        casez_tmp_80 = 1'h0;
+      9'b010101010:
+        casez_tmp_80 = 1'h0;
+      9'b010101011:
+        casez_tmp_80 = 1'h0;
+      9'b010101100:
+        casez_tmp_80 = 1'h1;
+      9'b010101101:
+        casez_tmp_80 = 1'h1;
+      9'b010101110:
+        casez_tmp_80 = 1'h1;
+      9'b010101111:
+        casez_tmp_80 = 1'h1;
+      9'b010110000:
+        casez_tmp_80 = 1'h1;
+      9'b010110001:
+        casez_tmp_80 = 1'h1;
+      9'b010110010:
+        casez_tmp_80 = 1'h1;
+      9'b010110011:
+        casez_tmp_80 = 1'h1;
+      9'b010110100:
+        casez_tmp_80 = 1'h1;
+      9'b010110101:
+        casez_tmp_80 = 1'h1;
+      9'b010110110:
+        casez_tmp_80 = 1'h1;
+      9'b010110111:
+        casez_tmp_80 = 1'h1;
+      9'b010111000:
+        casez_tmp_80 = 1'h1;
+      9'b010111001:
+        casez_tmp_80 = 1'h1;
+      9'b010111010:
+        casez_tmp_80 = 1'h1;
+      9'b010111011:
+        casez_tmp_80 = 1'h1;
+      9'b010111100:
+        casez_tmp_80 = 1'h1;
+      9'b010111101:
+        casez_tmp_80 = 1'h1;
+      9'b010111110:
+        casez_tmp_80 = 1'h1;
+      9'b010111111:
+        casez_tmp_80 = 1'h1;
+      9'b011000000:
+        casez_tmp_80 = 1'h0;
+      9'b011000001:
+        casez_tmp_80 = 1'h0;
+      9'b011000010:
+        casez_tmp_80 = 1'h0;
+      9'b011000011:
+        casez_tmp_80 = 1'h0;
+      9'b011000100:
+        casez_tmp_80 = 1'h0;
+      9'b011000101:
+        casez_tmp_80 = 1'h0;
+      9'b011000110:
+        casez_tmp_80 = 1'h0;
+      9'b011000111:
+        casez_tmp_80 = 1'h0;
+      9'b011001000:
+        casez_tmp_80 = 1'h0;
+      9'b011001001:
+        casez_tmp_80 = 1'h0;
+      9'b011001010:
+        casez_tmp_80 = 1'h0;
+      9'b011001011:
+        casez_tmp_80 = 1'h1;
+      9'b011001100:
+        casez_tmp_80 = 1'h1;
+      9'b011001101:
+        casez_tmp_80 = 1'h1;
+      9'b011001110:
+        casez_tmp_80 = 1'h1;
+      9'b011001111:
+        casez_tmp_80 = 1'h1;
+      9'b011010000:
+        casez_tmp_80 = 1'h1;
+      9'b011010001:
+        casez_tmp_80 = 1'h1;
+      9'b011010010:
+        casez_tmp_80 = 1'h1;
+      9'b011010011:
+        casez_tmp_80 = 1'h1;
+      9'b011010100:
+        casez_tmp_80 = 1'h1;
+      9'b011010101:
+        casez_tmp_80 = 1'h1;
+      9'b011010110:
+        casez_tmp_80 = 1'h1;
+      9'b011010111:
+        casez_tmp_80 = 1'h1;
+      9'b011011000:
+        casez_tmp_80 = 1'h1;
+      9'b011011001:
+        casez_tmp_80 = 1'h1;
+      9'b011011010:
+        casez_tmp_80 = 1'h1;
+      9'b011011011:
+        casez_tmp_80 = 1'h1;
+      9'b011011100:
+        casez_tmp_80 = 1'h1;
+      9'b011011101:
+        casez_tmp_80 = 1'h1;
+      9'b011011110:
+        casez_tmp_80 = 1'h1;
+      9'b011011111:
+        casez_tmp_80 = 1'h1;
+      9'b011100000:
+        casez_tmp_80 = 1'h0;
+      9'b011100001:
+        casez_tmp_80 = 1'h0;
+      9'b011100010:
+        casez_tmp_80 = 1'h0;
+      9'b011100011:
+        casez_tmp_80 = 1'h0;
+      9'b011100100:
+        casez_tmp_80 = 1'h0;
+      9'b011100101:
+        casez_tmp_80 = 1'h0;
+      9'b011100110:
+        casez_tmp_80 = 1'h0;
+      9'b011100111:
+        casez_tmp_80 = 1'h0;
+      9'b011101000:
+        casez_tmp_80 = 1'h0;
+      9'b011101001:
+        casez_tmp_80 = 1'h0;
+      9'b011101010:
+        casez_tmp_80 = 1'h1;
+      9'b011101011:
+        casez_tmp_80 = 1'h1;
+      9'b011101100:
+        casez_tmp_80 = 1'h1;
+      9'b011101101:
+        casez_tmp_80 = 1'h1;
+      9'b011101110:
+        casez_tmp_80 = 1'h1;
+      9'b011101111:
+        casez_tmp_80 = 1'h1;
+      9'b011110000:
+        casez_tmp_80 = 1'h1;
+      9'b011110001:
+        casez_tmp_80 = 1'h1;
+      9'b011110010:
+        casez_tmp_80 = 1'h1;
+      9'b011110011:
+        casez_tmp_80 = 1'h1;
+      9'b011110100:
+        casez_tmp_80 = 1'h1;
+      9'b011110101:
+        casez_tmp_80 = 1'h1;
+      9'b011110110:
+        casez_tmp_80 = 1'h1;
+      9'b011110111:
+        casez_tmp_80 = 1'h1;
+      9'b011111000:
+        casez_tmp_80 = 1'h1;
+      9'b011111001:
+        casez_tmp_80 = 1'h1;
+      9'b011111010:
+        casez_tmp_80 = 1'h1;
+      9'b011111011:
+        casez_tmp_80 = 1'h1;
+      9'b011111100:
+        casez_tmp_80 = 1'h1;
+      9'b011111101:
+        casez_tmp_80 = 1'h1;
+      9'b011111110:
+        casez_tmp_80 = 1'h1;
+      9'b011111111:
+        casez_tmp_80 = 1'h1;
+      9'b100000000:
+        casez_tmp_80 = 1'h0;
+      9'b100000001:
+        casez_tmp_80 = 1'h0;
+      9'b100000010:
+        casez_tmp_80 = 1'h0;
+      9'b100000011:
+        casez_tmp_80 = 1'h0;
+      9'b100000100:
+        casez_tmp_80 = 1'h0;
+      9'b100000101:
+        casez_tmp_80 = 1'h0;
+      9'b100000110:
+        casez_tmp_80 = 1'h0;
+      9'b100000111:
+        casez_tmp_80 = 1'h0;
+      9'b100001000:
+        casez_tmp_80 = 1'h0;
+      9'b100001001:
+        casez_tmp_80 = 1'h1;
+      9'b100001010:
+        casez_tmp_80 = 1'h1;
+      9'b100001011:
+        casez_tmp_80 = 1'h1;
+      9'b100001100:
+        casez_tmp_80 = 1'h1;
+      9'b100001101:
+        casez_tmp_80 = 1'h1;
+      9'b100001110:
+        casez_tmp_80 = 1'h1;
+      9'b100001111:
+        casez_tmp_80 = 1'h1;
+      9'b100010000:
+        casez_tmp_80 = 1'h1;
+      9'b100010001:
+        casez_tmp_80 = 1'h1;
+      9'b100010010:
+        casez_tmp_80 = 1'h1;
+      9'b100010011:
+        casez_tmp_80 = 1'h1;
+      9'b100010100:
+        casez_tmp_80 = 1'h1;
+      9'b100010101:
+        casez_tmp_80 = 1'h1;
+      9'b100010110:
+        casez_tmp_80 = 1'h1;
+      9'b100010111:
+        casez_tmp_80 = 1'h1;
+      9'b100011000:
+        casez_tmp_80 = 1'h1;
+      9'b100011001:
+        casez_tmp_80 = 1'h1;
+      9'b100011010:
+        casez_tmp_80 = 1'h1;
+      9'b100011011:
+        casez_tmp_80 = 1'h1;
+      9'b100011100:
+        casez_tmp_80 = 1'h1;
+      9'b100011101:
+        casez_tmp_80 = 1'h1;
+      9'b100011110:
+        casez_tmp_80 = 1'h1;
+      9'b100011111:
+        casez_tmp_80 = 1'h1;
+      9'b100100000:
+        casez_tmp_80 = 1'h0;
+      9'b100100001:
+        casez_tmp_80 = 1'h0;
+      9'b100100010:
+        casez_tmp_80 = 1'h0;
+      9'b100100011:
+        casez_tmp_80 = 1'h0;
+      9'b100100100:
+        casez_tmp_80 = 1'h0;
+      9'b100100101:
+        casez_tmp_80 = 1'h0;
+      9'b100100110:
+        casez_tmp_80 = 1'h0;
+      9'b100100111:
+        casez_tmp_80 = 1'h0;
+      9'b100101000:
+        casez_tmp_80 = 1'h1;
+      9'b100101001:
+        casez_tmp_80 = 1'h1;
+      9'b100101010:
+        casez_tmp_80 = 1'h1;
+      9'b100101011:
+        casez_tmp_80 = 1'h1;
+      9'b100101100:
+        casez_tmp_80 = 1'h1;
+      9'b100101101:
+        casez_tmp_80 = 1'h1;
+      9'b100101110:
+        casez_tmp_80 = 1'h1;
+      9'b100101111:
+        casez_tmp_80 = 1'h1;
+      9'b100110000:
+        casez_tmp_80 = 1'h1;
+      9'b100110001:
+        casez_tmp_80 = 1'h1;
+      9'b100110010:
+        casez_tmp_80 = 1'h1;
+      9'b100110011:
+        casez_tmp_80 = 1'h1;
+      9'b100110100:
+        casez_tmp_80 = 1'h1;
+      9'b100110101:
+        casez_tmp_80 = 1'h1;
+      9'b100110110:
+        casez_tmp_80 = 1'h1;
+      9'b100110111:
+        casez_tmp_80 = 1'h1;
+      9'b100111000:
+        casez_tmp_80 = 1'h1;
+      9'b100111001:
+        casez_tmp_80 = 1'h1;
+      9'b100111010:
+        casez_tmp_80 = 1'h1;
+      9'b100111011:
+        casez_tmp_80 = 1'h1;
+      9'b100111100:
+        casez_tmp_80 = 1'h1;
+      9'b100111101:
+        casez_tmp_80 = 1'h1;
+      9'b100111110:
+        casez_tmp_80 = 1'h1;
+      9'b100111111:
+        casez_tmp_80 = 1'h1;
+      9'b101000000:
+        casez_tmp_80 = 1'h0;
+      9'b101000001:
+        casez_tmp_80 = 1'h0;
+      9'b101000010:
+        casez_tmp_80 = 1'h0;
+      9'b101000011:
+        casez_tmp_80 = 1'h0;
+      9'b101000100:
+        casez_tmp_80 = 1'h0;
+      9'b101000101:
+        casez_tmp_80 = 1'h0;
+      9'b101000110:
+        casez_tmp_80 = 1'h0;
+      9'b101000111:
+        casez_tmp_80 = 1'h1;
+      9'b101001000:
+        casez_tmp_80 = 1'h1;
+      9'b101001001:
+        casez_tmp_80 = 1'h1;
+      9'b101001010:
+        casez_tmp_80 = 1'h1;
+      9'b101001011:
+        casez_tmp_80 = 1'h1;
+      9'b101001100:
+        casez_tmp_80 = 1'h1;
+      9'b101001101:
+        casez_tmp_80 = 1'h1;
+      9'b101001110:
+        casez_tmp_80 = 1'h1;
+      9'b101001111:
+        casez_tmp_80 = 1'h1;
+      9'b101010000:
+        casez_tmp_80 = 1'h1;
+      9'b101010001:
+        casez_tmp_80 = 1'h1;
+      9'b101010010:
+        casez_tmp_80 = 1'h1;
+      9'b101010011:
+        casez_tmp_80 = 1'h1;
+      9'b101010100:
+        casez_tmp_80 = 1'h1;
+      9'b101010101:
+        casez_tmp_80 = 1'h1;
+      9'b101010110:
+        casez_tmp_80 = 1'h1;
+      9'b101010111:
+        casez_tmp_80 = 1'h1;
+      9'b101011000:
+        casez_tmp_80 = 1'h1;
+      9'b101011001:
+        casez_tmp_80 = 1'h1;
+      9'b101011010:
+        casez_tmp_80 = 1'h1;
+      9'b101011011:
+        casez_tmp_80 = 1'h1;
+      9'b101011100:
+        casez_tmp_80 = 1'h1;
+      9'b101011101:
+        casez_tmp_80 = 1'h1;
+      9'b101011110:
+        casez_tmp_80 = 1'h1;
+      9'b101011111:
+        casez_tmp_80 = 1'h1;
+      9'b101100000:
+        casez_tmp_80 = 1'h0;
+      9'b101100001:
+        casez_tmp_80 = 1'h0;
+      9'b101100010:
+        casez_tmp_80 = 1'h0;
+      9'b101100011:
+        casez_tmp_80 = 1'h0;
+      9'b101100100:
+        casez_tmp_80 = 1'h0;
+      9'b101100101:
+        casez_tmp_80 = 1'h0;
+      9'b101100110:
+        casez_tmp_80 = 1'h1;
+      9'b101100111:
+        casez_tmp_80 = 1'h1;
+      9'b101101000:
+        casez_tmp_80 = 1'h1;
+      9'b101101001:
+        casez_tmp_80 = 1'h1;
+      9'b101101010:
+        casez_tmp_80 = 1'h1;
+      9'b101101011:
+        casez_tmp_80 = 1'h1;
+      9'b101101100:
+        casez_tmp_80 = 1'h1;
+      9'b101101101:
+        casez_tmp_80 = 1'h1;
+      9'b101101110:
+        casez_tmp_80 = 1'h1;
+      9'b101101111:
+        casez_tmp_80 = 1'h1;
+      9'b101110000:
+        casez_tmp_80 = 1'h1;
+      9'b101110001:
+        casez_tmp_80 = 1'h1;
+      9'b101110010:
+        casez_tmp_80 = 1'h1;
+      9'b101110011:
+        casez_tmp_80 = 1'h1;
+      9'b101110100:
+        casez_tmp_80 = 1'h1;
+      9'b101110101:
+        casez_tmp_80 = 1'h1;
+      9'b101110110:
+        casez_tmp_80 = 1'h1;
+      9'b101110111:
+        casez_tmp_80 = 1'h1;
+      9'b101111000:
+        casez_tmp_80 = 1'h1;
+      9'b101111001:
+        casez_tmp_80 = 1'h1;
+      9'b101111010:
+        casez_tmp_80 = 1'h1;
+      9'b101111011:
+        casez_tmp_80 = 1'h1;
+      9'b101111100:
+        casez_tmp_80 = 1'h1;
+      9'b101111101:
+        casez_tmp_80 = 1'h1;
+      9'b101111110:
+        casez_tmp_80 = 1'h1;
+      9'b101111111:
+        casez_tmp_80 = 1'h1;
+      9'b110000000:
+        casez_tmp_80 = 1'h0;
+      9'b110000001:
+        casez_tmp_80 = 1'h0;
+      9'b110000010:
+        casez_tmp_80 = 1'h0;
+      9'b110000011:
+        casez_tmp_80 = 1'h0;
+      9'b110000100:
+        casez_tmp_80 = 1'h0;
+      9'b110000101:
+        casez_tmp_80 = 1'h1;
+      9'b110000110:
+        casez_tmp_80 = 1'h1;
+      9'b110000111:
+        casez_tmp_80 = 1'h1;
+      9'b110001000:
+        casez_tmp_80 = 1'h1;
+      9'b110001001:
+        casez_tmp_80 = 1'h1;
+      9'b110001010:
+        casez_tmp_80 = 1'h1;
+      9'b110001011:
+        casez_tmp_80 = 1'h1;
+      9'b110001100:
+        casez_tmp_80 = 1'h1;
+      9'b110001101:
+        casez_tmp_80 = 1'h1;
+      9'b110001110:
+        casez_tmp_80 = 1'h1;
+      9'b110001111:
+        casez_tmp_80 = 1'h1;
+      9'b110010000:
+        casez_tmp_80 = 1'h1;
+      9'b110010001:
+        casez_tmp_80 = 1'h1;
+      9'b110010010:
+        casez_tmp_80 = 1'h1;
+      9'b110010011:
+        casez_tmp_80 = 1'h1;
+      9'b110010100:
+        casez_tmp_80 = 1'h1;
+      9'b110010101:
+        casez_tmp_80 = 1'h1;
+      9'b110010110:
+        casez_tmp_80 = 1'h1;
+      9'b110010111:
+        casez_tmp_80 = 1'h1;
+      9'b110011000:
+        casez_tmp_80 = 1'h1;
+      9'b110011001:
+        casez_tmp_80 = 1'h1;
+      9'b110011010:
+        casez_tmp_80 = 1'h1;
+      9'b110011011:
+        casez_tmp_80 = 1'h1;
+      9'b110011100:
+        casez_tmp_80 = 1'h1;
+      9'b110011101:
+        casez_tmp_80 = 1'h1;
+      9'b110011110:
+        casez_tmp_80 = 1'h1;
+      9'b110011111:
+        casez_tmp_80 = 1'h1;
+      9'b110100000:
+        casez_tmp_80 = 1'h0;
+      9'b110100001:
+        casez_tmp_80 = 1'h0;
+      9'b110100010:
+        casez_tmp_80 = 1'h0;
+      9'b110100011:
+        casez_tmp_80 = 1'h0;
+      9'b110100100:
+        casez_tmp_80 = 1'h1;
+      9'b110100101:
+        casez_tmp_80 = 1'h1;
+      9'b110100110:
+        casez_tmp_80 = 1'h1;
+      9'b110100111:
+        casez_tmp_80 = 1'h1;
+      9'b110101000:
+        casez_tmp_80 = 1'h1;
+      9'b110101001:
+        casez_tmp_80 = 1'h1;
+      9'b110101010:
+        casez_tmp_80 = 1'h1;
+      9'b110101011:
+        casez_tmp_80 = 1'h1;
+      9'b110101100:
+        casez_tmp_80 = 1'h1;
+      9'b110101101:
+        casez_tmp_80 = 1'h1;
+      9'b110101110:
+        casez_tmp_80 = 1'h1;
+      9'b110101111:
+        casez_tmp_80 = 1'h1;
+      9'b110110000:
+        casez_tmp_80 = 1'h1;
+      9'b110110001:
+        casez_tmp_80 = 1'h1;
+      9'b110110010:
+        casez_tmp_80 = 1'h1;
+      9'b110110011:
+        casez_tmp_80 = 1'h1;
+      9'b110110100:
+        casez_tmp_80 = 1'h1;
+      9'b110110101:
+        casez_tmp_80 = 1'h1;
+      9'b110110110:
+        casez_tmp_80 = 1'h1;
+      9'b110110111:
+        casez_tmp_80 = 1'h1;
+      9'b110111000:
+        casez_tmp_80 = 1'h1;
+      9'b110111001:
+        casez_tmp_80 = 1'h1;
+      9'b110111010:
+        casez_tmp_80 = 1'h1;
+      9'b110111011:
+        casez_tmp_80 = 1'h1;
+      9'b110111100:
+        casez_tmp_80 = 1'h1;
+      9'b110111101:
+        casez_tmp_80 = 1'h1;
+      9'b110111110:
+        casez_tmp_80 = 1'h1;
+      9'b110111111:
+        casez_tmp_80 = 1'h1;
+      9'b111000000:
+        casez_tmp_80 = 1'h0;
+      9'b111000001:
+        casez_tmp_80 = 1'h0;
+      9'b111000010:
+        casez_tmp_80 = 1'h0;
+      9'b111000011:
+        casez_tmp_80 = 1'h1;
+      9'b111000100:
+        casez_tmp_80 = 1'h1;
+      9'b111000101:
+        casez_tmp_80 = 1'h1;
+      9'b111000110:
+        casez_tmp_80 = 1'h1;
+      9'b111000111:
+        casez_tmp_80 = 1'h1;
+      9'b111001000:
+        casez_tmp_80 = 1'h1;
+      9'b111001001:
+        casez_tmp_80 = 1'h1;
+      9'b111001010:
+        casez_tmp_80 = 1'h1;
+      9'b111001011:
+        casez_tmp_80 = 1'h1;
+      9'b111001100:
+        casez_tmp_80 = 1'h1;
+      9'b111001101:
+        casez_tmp_80 = 1'h1;
+      9'b111001110:
+        casez_tmp_80 = 1'h1;
+      9'b111001111:
+        casez_tmp_80 = 1'h1;
+      9'b111010000:
+        casez_tmp_80 = 1'h1;
+      9'b111010001:
+        casez_tmp_80 = 1'h1;
+      9'b111010010:
+        casez_tmp_80 = 1'h1;
+      9'b111010011:
+        casez_tmp_80 = 1'h1;
+      9'b111010100:
+        casez_tmp_80 = 1'h1;
+      9'b111010101:
+        casez_tmp_80 = 1'h1;
+      9'b111010110:
+        casez_tmp_80 = 1'h1;
+      9'b111010111:
+        casez_tmp_80 = 1'h1;
+      9'b111011000:
+        casez_tmp_80 = 1'h1;
+      9'b111011001:
+        casez_tmp_80 = 1'h1;
+      9'b111011010:
+        casez_tmp_80 = 1'h1;
+      9'b111011011:
+        casez_tmp_80 = 1'h1;
+      9'b111011100:
+        casez_tmp_80 = 1'h1;
+      9'b111011101:
+        casez_tmp_80 = 1'h1;
+      9'b111011110:
+        casez_tmp_80 = 1'h1;
+      9'b111011111:
+        casez_tmp_80 = 1'h1;
+      9'b111100000:
+        casez_tmp_80 = 1'h0;
+      9'b111100001:
+        casez_tmp_80 = 1'h0;
+      9'b111100010:
+        casez_tmp_80 = 1'h1;
+      9'b111100011:
+        casez_tmp_80 = 1'h1;
+      9'b111100100:
+        casez_tmp_80 = 1'h1;
+      9'b111100101:
+        casez_tmp_80 = 1'h1;
+      9'b111100110:
+        casez_tmp_80 = 1'h1;
+      9'b111100111:
+        casez_tmp_80 = 1'h1;
+      9'b111101000:
+        casez_tmp_80 = 1'h1;
+      9'b111101001:
+        casez_tmp_80 = 1'h1;
+      9'b111101010:
+        casez_tmp_80 = 1'h1;
+      9'b111101011:
+        casez_tmp_80 = 1'h1;
+      9'b111101100:
+        casez_tmp_80 = 1'h1;
+      9'b111101101:
+        casez_tmp_80 = 1'h1;
+      9'b111101110:
+        casez_tmp_80 = 1'h1;
+      9'b111101111:
+        casez_tmp_80 = 1'h1;
+      9'b111110000:
+        casez_tmp_80 = 1'h1;
+      9'b111110001:
+        casez_tmp_80 = 1'h1;
+      9'b111110010:
+        casez_tmp_80 = 1'h1;
+      9'b111110011:
+        casez_tmp_80 = 1'h1;
+      9'b111110100:
+        casez_tmp_80 = 1'h1;
+      9'b111110101:
+        casez_tmp_80 = 1'h1;
+      9'b111110110:
+        casez_tmp_80 = 1'h1;
+      9'b111110111:
+        casez_tmp_80 = 1'h1;
+      9'b111111000:
+        casez_tmp_80 = 1'h1;
+      9'b111111001:
+        casez_tmp_80 = 1'h1;
+      9'b111111010:
+        casez_tmp_80 = 1'h1;
+      9'b111111011:
+        casez_tmp_80 = 1'h1;
+      9'b111111100:
+        casez_tmp_80 = 1'h1;
+      9'b111111101:
+        casez_tmp_80 = 1'h1;
+      9'b111111110:
+        casez_tmp_80 = 1'h1;
+      default:
+        casez_tmp_80 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_81;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_81 = 1'h0;
+      9'b000000001:
+        casez_tmp_81 = 1'h0;
+      9'b000000010:
+        casez_tmp_81 = 1'h1;
+      9'b000000011:
+        casez_tmp_81 = 1'h1;
+      9'b000000100:
+        casez_tmp_81 = 1'h1;
+      9'b000000101:
+        casez_tmp_81 = 1'h1;
+      9'b000000110:
+        casez_tmp_81 = 1'h1;
+      9'b000000111:
+        casez_tmp_81 = 1'h1;
+      9'b000001000:
+        casez_tmp_81 = 1'h1;
+      9'b000001001:
+        casez_tmp_81 = 1'h1;
+      9'b000001010:
+        casez_tmp_81 = 1'h1;
+      9'b000001011:
+        casez_tmp_81 = 1'h1;
+      9'b000001100:
+        casez_tmp_81 = 1'h1;
+      9'b000001101:
+        casez_tmp_81 = 1'h1;
+      9'b000001110:
+        casez_tmp_81 = 1'h1;
+      9'b000001111:
+        casez_tmp_81 = 1'h1;
+      9'b000010000:
+        casez_tmp_81 = 1'h1;
+      9'b000010001:
+        casez_tmp_81 = 1'h1;
+      9'b000010010:
+        casez_tmp_81 = 1'h1;
+      9'b000010011:
+        casez_tmp_81 = 1'h1;
+      9'b000010100:
+        casez_tmp_81 = 1'h1;
+      9'b000010101:
+        casez_tmp_81 = 1'h1;
+      9'b000010110:
+        casez_tmp_81 = 1'h1;
+      9'b000010111:
+        casez_tmp_81 = 1'h1;
+      9'b000011000:
+        casez_tmp_81 = 1'h1;
+      9'b000011001:
+        casez_tmp_81 = 1'h1;
+      9'b000011010:
+        casez_tmp_81 = 1'h1;
+      9'b000011011:
+        casez_tmp_81 = 1'h1;
+      9'b000011100:
+        casez_tmp_81 = 1'h1;
+      9'b000011101:
+        casez_tmp_81 = 1'h1;
+      9'b000011110:
+        casez_tmp_81 = 1'h1;
+      9'b000011111:
+        casez_tmp_81 = 1'h1;
+      9'b000100000:
+        casez_tmp_81 = 1'h0;
+      9'b000100001:
+        casez_tmp_81 = 1'h1;
+      9'b000100010:
+        casez_tmp_81 = 1'h1;
+      9'b000100011:
+        casez_tmp_81 = 1'h1;
+      9'b000100100:
+        casez_tmp_81 = 1'h1;
+      9'b000100101:
+        casez_tmp_81 = 1'h1;
+      9'b000100110:
+        casez_tmp_81 = 1'h1;
+      9'b000100111:
+        casez_tmp_81 = 1'h1;
+      9'b000101000:
+        casez_tmp_81 = 1'h1;
+      9'b000101001:
+        casez_tmp_81 = 1'h1;
+      9'b000101010:
+        casez_tmp_81 = 1'h1;
+      9'b000101011:
+        casez_tmp_81 = 1'h1;
+      9'b000101100:
+        casez_tmp_81 = 1'h1;
+      9'b000101101:
+        casez_tmp_81 = 1'h1;
+      9'b000101110:
+        casez_tmp_81 = 1'h1;
+      9'b000101111:
+        casez_tmp_81 = 1'h1;
+      9'b000110000:
+        casez_tmp_81 = 1'h1;
+      9'b000110001:
+        casez_tmp_81 = 1'h1;
+      9'b000110010:
+        casez_tmp_81 = 1'h1;
+      9'b000110011:
+        casez_tmp_81 = 1'h1;
+      9'b000110100:
+        casez_tmp_81 = 1'h1;
+      9'b000110101:
+        casez_tmp_81 = 1'h1;
+      9'b000110110:
+        casez_tmp_81 = 1'h1;
+      9'b000110111:
+        casez_tmp_81 = 1'h1;
+      9'b000111000:
+        casez_tmp_81 = 1'h1;
+      9'b000111001:
+        casez_tmp_81 = 1'h1;
+      9'b000111010:
+        casez_tmp_81 = 1'h1;
+      9'b000111011:
+        casez_tmp_81 = 1'h1;
+      9'b000111100:
+        casez_tmp_81 = 1'h1;
+      9'b000111101:
+        casez_tmp_81 = 1'h1;
+      9'b000111110:
+        casez_tmp_81 = 1'h1;
+      9'b000111111:
+        casez_tmp_81 = 1'h1;
+      9'b001000000:
+        casez_tmp_81 = 1'h0;
+      9'b001000001:
+        casez_tmp_81 = 1'h0;
+      9'b001000010:
+        casez_tmp_81 = 1'h0;
+      9'b001000011:
+        casez_tmp_81 = 1'h0;
+      9'b001000100:
+        casez_tmp_81 = 1'h0;
+      9'b001000101:
+        casez_tmp_81 = 1'h0;
+      9'b001000110:
+        casez_tmp_81 = 1'h0;
+      9'b001000111:
+        casez_tmp_81 = 1'h0;
+      9'b001001000:
+        casez_tmp_81 = 1'h0;
+      9'b001001001:
+        casez_tmp_81 = 1'h0;
+      9'b001001010:
+        casez_tmp_81 = 1'h0;
+      9'b001001011:
+        casez_tmp_81 = 1'h0;
+      9'b001001100:
+        casez_tmp_81 = 1'h0;
+      9'b001001101:
+        casez_tmp_81 = 1'h0;
+      9'b001001110:
+        casez_tmp_81 = 1'h0;
+      9'b001001111:
+        casez_tmp_81 = 1'h0;
+      9'b001010000:
+        casez_tmp_81 = 1'h1;
+      9'b001010001:
+        casez_tmp_81 = 1'h1;
+      9'b001010010:
+        casez_tmp_81 = 1'h1;
+      9'b001010011:
+        casez_tmp_81 = 1'h1;
+      9'b001010100:
+        casez_tmp_81 = 1'h1;
+      9'b001010101:
+        casez_tmp_81 = 1'h1;
+      9'b001010110:
+        casez_tmp_81 = 1'h1;
+      9'b001010111:
+        casez_tmp_81 = 1'h1;
+      9'b001011000:
+        casez_tmp_81 = 1'h1;
+      9'b001011001:
+        casez_tmp_81 = 1'h1;
+      9'b001011010:
+        casez_tmp_81 = 1'h1;
+      9'b001011011:
+        casez_tmp_81 = 1'h1;
+      9'b001011100:
+        casez_tmp_81 = 1'h1;
+      9'b001011101:
+        casez_tmp_81 = 1'h1;
+      9'b001011110:
+        casez_tmp_81 = 1'h1;
+      9'b001011111:
+        casez_tmp_81 = 1'h1;
+      9'b001100000:
+        casez_tmp_81 = 1'h0;
+      9'b001100001:
+        casez_tmp_81 = 1'h0;
+      9'b001100010:
+        casez_tmp_81 = 1'h0;
+      9'b001100011:
+        casez_tmp_81 = 1'h0;
+      9'b001100100:
+        casez_tmp_81 = 1'h0;
+      9'b001100101:
+        casez_tmp_81 = 1'h0;
+      9'b001100110:
+        casez_tmp_81 = 1'h0;
+      9'b001100111:
+        casez_tmp_81 = 1'h0;
+      9'b001101000:
+        casez_tmp_81 = 1'h0;
+      9'b001101001:
+        casez_tmp_81 = 1'h0;
+      9'b001101010:
+        casez_tmp_81 = 1'h0;
+      9'b001101011:
+        casez_tmp_81 = 1'h0;
+      9'b001101100:
+        casez_tmp_81 = 1'h0;
+      9'b001101101:
+        casez_tmp_81 = 1'h0;
+      9'b001101110:
+        casez_tmp_81 = 1'h0;
+      9'b001101111:
+        casez_tmp_81 = 1'h1;
+      9'b001110000:
+        casez_tmp_81 = 1'h1;
+      9'b001110001:
+        casez_tmp_81 = 1'h1;
+      9'b001110010:
+        casez_tmp_81 = 1'h1;
+      9'b001110011:
+        casez_tmp_81 = 1'h1;
+      9'b001110100:
+        casez_tmp_81 = 1'h1;
+      9'b001110101:
+        casez_tmp_81 = 1'h1;
+      9'b001110110:
+        casez_tmp_81 = 1'h1;
+      9'b001110111:
+        casez_tmp_81 = 1'h1;
+      9'b001111000:
+        casez_tmp_81 = 1'h1;
+      9'b001111001:
+        casez_tmp_81 = 1'h1;
+      9'b001111010:
+        casez_tmp_81 = 1'h1;
+      9'b001111011:
+        casez_tmp_81 = 1'h1;
+      9'b001111100:
+        casez_tmp_81 = 1'h1;
+      9'b001111101:
+        casez_tmp_81 = 1'h1;
+      9'b001111110:
+        casez_tmp_81 = 1'h1;
+      9'b001111111:
+        casez_tmp_81 = 1'h1;
+      9'b010000000:
+        casez_tmp_81 = 1'h0;
+      9'b010000001:
+        casez_tmp_81 = 1'h0;
+      9'b010000010:
+        casez_tmp_81 = 1'h0;
+      9'b010000011:
+        casez_tmp_81 = 1'h0;
+      9'b010000100:
+        casez_tmp_81 = 1'h0;
+      9'b010000101:
+        casez_tmp_81 = 1'h0;
+      9'b010000110:
+        casez_tmp_81 = 1'h0;
+      9'b010000111:
+        casez_tmp_81 = 1'h0;
+      9'b010001000:
+        casez_tmp_81 = 1'h0;
+      9'b010001001:
+        casez_tmp_81 = 1'h0;
+      9'b010001010:
+        casez_tmp_81 = 1'h0;
+      9'b010001011:
+        casez_tmp_81 = 1'h0;
+      9'b010001100:
+        casez_tmp_81 = 1'h0;
+      9'b010001101:
+        casez_tmp_81 = 1'h0;
+      9'b010001110:
+        casez_tmp_81 = 1'h1;
+      9'b010001111:
+        casez_tmp_81 = 1'h1;
+      9'b010010000:
+        casez_tmp_81 = 1'h1;
+      9'b010010001:
+        casez_tmp_81 = 1'h1;
+      9'b010010010:
+        casez_tmp_81 = 1'h1;
+      9'b010010011:
+        casez_tmp_81 = 1'h1;
+      9'b010010100:
+        casez_tmp_81 = 1'h1;
+      9'b010010101:
+        casez_tmp_81 = 1'h1;
+      9'b010010110:
+        casez_tmp_81 = 1'h1;
+      9'b010010111:
+        casez_tmp_81 = 1'h1;
+      9'b010011000:
+        casez_tmp_81 = 1'h1;
+      9'b010011001:
+        casez_tmp_81 = 1'h1;
+      9'b010011010:
+        casez_tmp_81 = 1'h1;
+      9'b010011011:
+        casez_tmp_81 = 1'h1;
+      9'b010011100:
+        casez_tmp_81 = 1'h1;
+      9'b010011101:
+        casez_tmp_81 = 1'h1;
+      9'b010011110:
+        casez_tmp_81 = 1'h1;
+      9'b010011111:
+        casez_tmp_81 = 1'h1;
+      9'b010100000:
+        casez_tmp_81 = 1'h0;
+      9'b010100001:
+        casez_tmp_81 = 1'h0;
+      9'b010100010:
+        casez_tmp_81 = 1'h0;
+      9'b010100011:
+        casez_tmp_81 = 1'h0;
+      9'b010100100:
+        casez_tmp_81 = 1'h0;
+      9'b010100101:
+        casez_tmp_81 = 1'h0;
+      9'b010100110:
+        casez_tmp_81 = 1'h0;
+      9'b010100111:
+        casez_tmp_81 = 1'h0;
+      9'b010101000:
+        casez_tmp_81 = 1'h0;
+      9'b010101001:
+        casez_tmp_81 = 1'h0;
+      9'b010101010:
+        casez_tmp_81 = 1'h0;
+      9'b010101011:
+        casez_tmp_81 = 1'h0;
+      9'b010101100:
+        casez_tmp_81 = 1'h0;
+      9'b010101101:
+        casez_tmp_81 = 1'h1;
+      9'b010101110:
+        casez_tmp_81 = 1'h1;
+      9'b010101111:
+        casez_tmp_81 = 1'h1;
+      9'b010110000:
+        casez_tmp_81 = 1'h1;
+      9'b010110001:
+        casez_tmp_81 = 1'h1;
+      9'b010110010:
+        casez_tmp_81 = 1'h1;
+      9'b010110011:
+        casez_tmp_81 = 1'h1;
+      9'b010110100:
+        casez_tmp_81 = 1'h1;
+      9'b010110101:
+        casez_tmp_81 = 1'h1;
+      9'b010110110:
+        casez_tmp_81 = 1'h1;
+      9'b010110111:
+        casez_tmp_81 = 1'h1;
+      9'b010111000:
+        casez_tmp_81 = 1'h1;
+      9'b010111001:
+        casez_tmp_81 = 1'h1;
+      9'b010111010:
+        casez_tmp_81 = 1'h1;
+      9'b010111011:
+        casez_tmp_81 = 1'h1;
+      9'b010111100:
+        casez_tmp_81 = 1'h1;
+      9'b010111101:
+        casez_tmp_81 = 1'h1;
+      9'b010111110:
+        casez_tmp_81 = 1'h1;
+      9'b010111111:
+        casez_tmp_81 = 1'h1;
+      9'b011000000:
+        casez_tmp_81 = 1'h0;
+      9'b011000001:
+        casez_tmp_81 = 1'h0;
+      9'b011000010:
+        casez_tmp_81 = 1'h0;
+      9'b011000011:
+        casez_tmp_81 = 1'h0;
+      9'b011000100:
+        casez_tmp_81 = 1'h0;
+      9'b011000101:
+        casez_tmp_81 = 1'h0;
+      9'b011000110:
+        casez_tmp_81 = 1'h0;
+      9'b011000111:
+        casez_tmp_81 = 1'h0;
+      9'b011001000:
+        casez_tmp_81 = 1'h0;
+      9'b011001001:
+        casez_tmp_81 = 1'h0;
+      9'b011001010:
+        casez_tmp_81 = 1'h0;
+      9'b011001011:
+        casez_tmp_81 = 1'h0;
+      9'b011001100:
+        casez_tmp_81 = 1'h1;
+      9'b011001101:
+        casez_tmp_81 = 1'h1;
+      9'b011001110:
+        casez_tmp_81 = 1'h1;
+      9'b011001111:
+        casez_tmp_81 = 1'h1;
+      9'b011010000:
+        casez_tmp_81 = 1'h1;
+      9'b011010001:
+        casez_tmp_81 = 1'h1;
+      9'b011010010:
+        casez_tmp_81 = 1'h1;
+      9'b011010011:
+        casez_tmp_81 = 1'h1;
+      9'b011010100:
+        casez_tmp_81 = 1'h1;
+      9'b011010101:
+        casez_tmp_81 = 1'h1;
+      9'b011010110:
+        casez_tmp_81 = 1'h1;
+      9'b011010111:
+        casez_tmp_81 = 1'h1;
+      9'b011011000:
+        casez_tmp_81 = 1'h1;
+      9'b011011001:
+        casez_tmp_81 = 1'h1;
+      9'b011011010:
+        casez_tmp_81 = 1'h1;
+      9'b011011011:
+        casez_tmp_81 = 1'h1;
+      9'b011011100:
+        casez_tmp_81 = 1'h1;
+      9'b011011101:
+        casez_tmp_81 = 1'h1;
+      9'b011011110:
+        casez_tmp_81 = 1'h1;
+      9'b011011111:
+        casez_tmp_81 = 1'h1;
+      9'b011100000:
+        casez_tmp_81 = 1'h0;
+      9'b011100001:
+        casez_tmp_81 = 1'h0;
+      9'b011100010:
+        casez_tmp_81 = 1'h0;
+      9'b011100011:
+        casez_tmp_81 = 1'h0;
+      9'b011100100:
+        casez_tmp_81 = 1'h0;
+      9'b011100101:
+        casez_tmp_81 = 1'h0;
+      9'b011100110:
+        casez_tmp_81 = 1'h0;
+      9'b011100111:
+        casez_tmp_81 = 1'h0;
+      9'b011101000:
+        casez_tmp_81 = 1'h0;
+      9'b011101001:
+        casez_tmp_81 = 1'h0;
+      9'b011101010:
+        casez_tmp_81 = 1'h0;
+      9'b011101011:
+        casez_tmp_81 = 1'h1;
+      9'b011101100:
+        casez_tmp_81 = 1'h1;
+      9'b011101101:
+        casez_tmp_81 = 1'h1;
+      9'b011101110:
+        casez_tmp_81 = 1'h1;
+      9'b011101111:
+        casez_tmp_81 = 1'h1;
+      9'b011110000:
+        casez_tmp_81 = 1'h1;
+      9'b011110001:
+        casez_tmp_81 = 1'h1;
+      9'b011110010:
+        casez_tmp_81 = 1'h1;
+      9'b011110011:
+        casez_tmp_81 = 1'h1;
+      9'b011110100:
+        casez_tmp_81 = 1'h1;
+      9'b011110101:
+        casez_tmp_81 = 1'h1;
+      9'b011110110:
+        casez_tmp_81 = 1'h1;
+      9'b011110111:
+        casez_tmp_81 = 1'h1;
+      9'b011111000:
+        casez_tmp_81 = 1'h1;
+      9'b011111001:
+        casez_tmp_81 = 1'h1;
+      9'b011111010:
+        casez_tmp_81 = 1'h1;
+      9'b011111011:
+        casez_tmp_81 = 1'h1;
+      9'b011111100:
+        casez_tmp_81 = 1'h1;
+      9'b011111101:
+        casez_tmp_81 = 1'h1;
+      9'b011111110:
+        casez_tmp_81 = 1'h1;
+      9'b011111111:
+        casez_tmp_81 = 1'h1;
+      9'b100000000:
+        casez_tmp_81 = 1'h0;
+      9'b100000001:
+        casez_tmp_81 = 1'h0;
+      9'b100000010:
+        casez_tmp_81 = 1'h0;
+      9'b100000011:
+        casez_tmp_81 = 1'h0;
+      9'b100000100:
+        casez_tmp_81 = 1'h0;
+      9'b100000101:
+        casez_tmp_81 = 1'h0;
+      9'b100000110:
+        casez_tmp_81 = 1'h0;
+      9'b100000111:
+        casez_tmp_81 = 1'h0;
+      9'b100001000:
+        casez_tmp_81 = 1'h0;
+      9'b100001001:
+        casez_tmp_81 = 1'h0;
+      9'b100001010:
+        casez_tmp_81 = 1'h1;
+      9'b100001011:
+        casez_tmp_81 = 1'h1;
+      9'b100001100:
+        casez_tmp_81 = 1'h1;
+      9'b100001101:
+        casez_tmp_81 = 1'h1;
+      9'b100001110:
+        casez_tmp_81 = 1'h1;
+      9'b100001111:
+        casez_tmp_81 = 1'h1;
+      9'b100010000:
+        casez_tmp_81 = 1'h1;
+      9'b100010001:
+        casez_tmp_81 = 1'h1;
+      9'b100010010:
+        casez_tmp_81 = 1'h1;
+      9'b100010011:
+        casez_tmp_81 = 1'h1;
+      9'b100010100:
+        casez_tmp_81 = 1'h1;
+      9'b100010101:
+        casez_tmp_81 = 1'h1;
+      9'b100010110:
+        casez_tmp_81 = 1'h1;
+      9'b100010111:
+        casez_tmp_81 = 1'h1;
+      9'b100011000:
+        casez_tmp_81 = 1'h1;
+      9'b100011001:
+        casez_tmp_81 = 1'h1;
+      9'b100011010:
+        casez_tmp_81 = 1'h1;
+      9'b100011011:
+        casez_tmp_81 = 1'h1;
+      9'b100011100:
+        casez_tmp_81 = 1'h1;
+      9'b100011101:
+        casez_tmp_81 = 1'h1;
+      9'b100011110:
+        casez_tmp_81 = 1'h1;
+      9'b100011111:
+        casez_tmp_81 = 1'h1;
+      9'b100100000:
+        casez_tmp_81 = 1'h0;
+      9'b100100001:
+        casez_tmp_81 = 1'h0;
+      9'b100100010:
+        casez_tmp_81 = 1'h0;
+      9'b100100011:
+        casez_tmp_81 = 1'h0;
+      9'b100100100:
+        casez_tmp_81 = 1'h0;
+      9'b100100101:
+        casez_tmp_81 = 1'h0;
+      9'b100100110:
+        casez_tmp_81 = 1'h0;
+      9'b100100111:
+        casez_tmp_81 = 1'h0;
+      9'b100101000:
+        casez_tmp_81 = 1'h0;
+      9'b100101001:
+        casez_tmp_81 = 1'h1;
+      9'b100101010:
+        casez_tmp_81 = 1'h1;
+      9'b100101011:
+        casez_tmp_81 = 1'h1;
+      9'b100101100:
+        casez_tmp_81 = 1'h1;
+      9'b100101101:
+        casez_tmp_81 = 1'h1;
+      9'b100101110:
+        casez_tmp_81 = 1'h1;
+      9'b100101111:
+        casez_tmp_81 = 1'h1;
+      9'b100110000:
+        casez_tmp_81 = 1'h1;
+      9'b100110001:
+        casez_tmp_81 = 1'h1;
+      9'b100110010:
+        casez_tmp_81 = 1'h1;
+      9'b100110011:
+        casez_tmp_81 = 1'h1;
+      9'b100110100:
+        casez_tmp_81 = 1'h1;
+      9'b100110101:
+        casez_tmp_81 = 1'h1;
+      9'b100110110:
+        casez_tmp_81 = 1'h1;
+      9'b100110111:
+        casez_tmp_81 = 1'h1;
+      9'b100111000:
+        casez_tmp_81 = 1'h1;
+      9'b100111001:
+        casez_tmp_81 = 1'h1;
+      9'b100111010:
+        casez_tmp_81 = 1'h1;
+      9'b100111011:
+        casez_tmp_81 = 1'h1;
+      9'b100111100:
+        casez_tmp_81 = 1'h1;
+      9'b100111101:
+        casez_tmp_81 = 1'h1;
+      9'b100111110:
+        casez_tmp_81 = 1'h1;
+      9'b100111111:
+        casez_tmp_81 = 1'h1;
+      9'b101000000:
+        casez_tmp_81 = 1'h0;
+      9'b101000001:
+        casez_tmp_81 = 1'h0;
+      9'b101000010:
+        casez_tmp_81 = 1'h0;
+      9'b101000011:
+        casez_tmp_81 = 1'h0;
+      9'b101000100:
+        casez_tmp_81 = 1'h0;
+      9'b101000101:
+        casez_tmp_81 = 1'h0;
+      9'b101000110:
+        casez_tmp_81 = 1'h0;
+      9'b101000111:
+        casez_tmp_81 = 1'h0;
+      9'b101001000:
+        casez_tmp_81 = 1'h1;
+      9'b101001001:
+        casez_tmp_81 = 1'h1;
+      9'b101001010:
+        casez_tmp_81 = 1'h1;
+      9'b101001011:
+        casez_tmp_81 = 1'h1;
+      9'b101001100:
+        casez_tmp_81 = 1'h1;
+      9'b101001101:
+        casez_tmp_81 = 1'h1;
+      9'b101001110:
+        casez_tmp_81 = 1'h1;
+      9'b101001111:
+        casez_tmp_81 = 1'h1;
+      9'b101010000:
+        casez_tmp_81 = 1'h1;
+      9'b101010001:
+        casez_tmp_81 = 1'h1;
+      9'b101010010:
+        casez_tmp_81 = 1'h1;
+      9'b101010011:
+        casez_tmp_81 = 1'h1;
+      9'b101010100:
+        casez_tmp_81 = 1'h1;
+      9'b101010101:
+        casez_tmp_81 = 1'h1;
+      9'b101010110:
+        casez_tmp_81 = 1'h1;
+      9'b101010111:
+        casez_tmp_81 = 1'h1;
+      9'b101011000:
+        casez_tmp_81 = 1'h1;
+      9'b101011001:
+        casez_tmp_81 = 1'h1;
+      9'b101011010:
+        casez_tmp_81 = 1'h1;
+      9'b101011011:
+        casez_tmp_81 = 1'h1;
+      9'b101011100:
+        casez_tmp_81 = 1'h1;
+      9'b101011101:
+        casez_tmp_81 = 1'h1;
+      9'b101011110:
+        casez_tmp_81 = 1'h1;
+      9'b101011111:
+        casez_tmp_81 = 1'h1;
+      9'b101100000:
+        casez_tmp_81 = 1'h0;
+      9'b101100001:
+        casez_tmp_81 = 1'h0;
+      9'b101100010:
+        casez_tmp_81 = 1'h0;
+      9'b101100011:
+        casez_tmp_81 = 1'h0;
+      9'b101100100:
+        casez_tmp_81 = 1'h0;
+      9'b101100101:
+        casez_tmp_81 = 1'h0;
+      9'b101100110:
+        casez_tmp_81 = 1'h0;
+      9'b101100111:
+        casez_tmp_81 = 1'h1;
+      9'b101101000:
+        casez_tmp_81 = 1'h1;
+      9'b101101001:
+        casez_tmp_81 = 1'h1;
+      9'b101101010:
+        casez_tmp_81 = 1'h1;
+      9'b101101011:
+        casez_tmp_81 = 1'h1;
+      9'b101101100:
+        casez_tmp_81 = 1'h1;
+      9'b101101101:
+        casez_tmp_81 = 1'h1;
+      9'b101101110:
+        casez_tmp_81 = 1'h1;
+      9'b101101111:
+        casez_tmp_81 = 1'h1;
+      9'b101110000:
+        casez_tmp_81 = 1'h1;
+      9'b101110001:
+        casez_tmp_81 = 1'h1;
+      9'b101110010:
+        casez_tmp_81 = 1'h1;
+      9'b101110011:
+        casez_tmp_81 = 1'h1;
+      9'b101110100:
+        casez_tmp_81 = 1'h1;
+      9'b101110101:
+        casez_tmp_81 = 1'h1;
+      9'b101110110:
+        casez_tmp_81 = 1'h1;
+      9'b101110111:
+        casez_tmp_81 = 1'h1;
+      9'b101111000:
+        casez_tmp_81 = 1'h1;
+      9'b101111001:
+        casez_tmp_81 = 1'h1;
+      9'b101111010:
+        casez_tmp_81 = 1'h1;
+      9'b101111011:
+        casez_tmp_81 = 1'h1;
+      9'b101111100:
+        casez_tmp_81 = 1'h1;
+      9'b101111101:
+        casez_tmp_81 = 1'h1;
+      9'b101111110:
+        casez_tmp_81 = 1'h1;
+      9'b101111111:
+        casez_tmp_81 = 1'h1;
+      9'b110000000:
+        casez_tmp_81 = 1'h0;
+      9'b110000001:
+        casez_tmp_81 = 1'h0;
+      9'b110000010:
+        casez_tmp_81 = 1'h0;
+      9'b110000011:
+        casez_tmp_81 = 1'h0;
+      9'b110000100:
+        casez_tmp_81 = 1'h0;
+      9'b110000101:
+        casez_tmp_81 = 1'h0;
+      9'b110000110:
+        casez_tmp_81 = 1'h1;
+      9'b110000111:
+        casez_tmp_81 = 1'h1;
+      9'b110001000:
+        casez_tmp_81 = 1'h1;
+      9'b110001001:
+        casez_tmp_81 = 1'h1;
+      9'b110001010:
+        casez_tmp_81 = 1'h1;
+      9'b110001011:
+        casez_tmp_81 = 1'h1;
+      9'b110001100:
+        casez_tmp_81 = 1'h1;
+      9'b110001101:
+        casez_tmp_81 = 1'h1;
+      9'b110001110:
+        casez_tmp_81 = 1'h1;
+      9'b110001111:
+        casez_tmp_81 = 1'h1;
+      9'b110010000:
+        casez_tmp_81 = 1'h1;
+      9'b110010001:
+        casez_tmp_81 = 1'h1;
+      9'b110010010:
+        casez_tmp_81 = 1'h1;
+      9'b110010011:
+        casez_tmp_81 = 1'h1;
+      9'b110010100:
+        casez_tmp_81 = 1'h1;
+      9'b110010101:
+        casez_tmp_81 = 1'h1;
+      9'b110010110:
+        casez_tmp_81 = 1'h1;
+      9'b110010111:
+        casez_tmp_81 = 1'h1;
+      9'b110011000:
+        casez_tmp_81 = 1'h1;
+      9'b110011001:
+        casez_tmp_81 = 1'h1;
+      9'b110011010:
+        casez_tmp_81 = 1'h1;
+      9'b110011011:
+        casez_tmp_81 = 1'h1;
+      9'b110011100:
+        casez_tmp_81 = 1'h1;
+      9'b110011101:
+        casez_tmp_81 = 1'h1;
+      9'b110011110:
+        casez_tmp_81 = 1'h1;
+      9'b110011111:
+        casez_tmp_81 = 1'h1;
+      9'b110100000:
+        casez_tmp_81 = 1'h0;
+      9'b110100001:
+        casez_tmp_81 = 1'h0;
+      9'b110100010:
+        casez_tmp_81 = 1'h0;
+      9'b110100011:
+        casez_tmp_81 = 1'h0;
+      9'b110100100:
+        casez_tmp_81 = 1'h0;
+      9'b110100101:
+        casez_tmp_81 = 1'h1;
+      9'b110100110:
+        casez_tmp_81 = 1'h1;
+      9'b110100111:
+        casez_tmp_81 = 1'h1;
+      9'b110101000:
+        casez_tmp_81 = 1'h1;
+      9'b110101001:
+        casez_tmp_81 = 1'h1;
+      9'b110101010:
+        casez_tmp_81 = 1'h1;
+      9'b110101011:
+        casez_tmp_81 = 1'h1;
+      9'b110101100:
+        casez_tmp_81 = 1'h1;
+      9'b110101101:
+        casez_tmp_81 = 1'h1;
+      9'b110101110:
+        casez_tmp_81 = 1'h1;
+      9'b110101111:
+        casez_tmp_81 = 1'h1;
+      9'b110110000:
+        casez_tmp_81 = 1'h1;
+      9'b110110001:
+        casez_tmp_81 = 1'h1;
+      9'b110110010:
+        casez_tmp_81 = 1'h1;
+      9'b110110011:
+        casez_tmp_81 = 1'h1;
+      9'b110110100:
+        casez_tmp_81 = 1'h1;
+      9'b110110101:
+        casez_tmp_81 = 1'h1;
+      9'b110110110:
+        casez_tmp_81 = 1'h1;
+      9'b110110111:
+        casez_tmp_81 = 1'h1;
+      9'b110111000:
+        casez_tmp_81 = 1'h1;
+      9'b110111001:
+        casez_tmp_81 = 1'h1;
+      9'b110111010:
+        casez_tmp_81 = 1'h1;
+      9'b110111011:
+        casez_tmp_81 = 1'h1;
+      9'b110111100:
+        casez_tmp_81 = 1'h1;
+      9'b110111101:
+        casez_tmp_81 = 1'h1;
+      9'b110111110:
+        casez_tmp_81 = 1'h1;
+      9'b110111111:
+        casez_tmp_81 = 1'h1;
+      9'b111000000:
+        casez_tmp_81 = 1'h0;
+      9'b111000001:
+        casez_tmp_81 = 1'h0;
+      9'b111000010:
+        casez_tmp_81 = 1'h0;
+      9'b111000011:
+        casez_tmp_81 = 1'h0;
+      9'b111000100:
+        casez_tmp_81 = 1'h1;
+      9'b111000101:
+        casez_tmp_81 = 1'h1;
+      9'b111000110:
+        casez_tmp_81 = 1'h1;
+      9'b111000111:
+        casez_tmp_81 = 1'h1;
+      9'b111001000:
+        casez_tmp_81 = 1'h1;
+      9'b111001001:
+        casez_tmp_81 = 1'h1;
+      9'b111001010:
+        casez_tmp_81 = 1'h1;
+      9'b111001011:
+        casez_tmp_81 = 1'h1;
+      9'b111001100:
+        casez_tmp_81 = 1'h1;
+      9'b111001101:
+        casez_tmp_81 = 1'h1;
+      9'b111001110:
+        casez_tmp_81 = 1'h1;
+      9'b111001111:
+        casez_tmp_81 = 1'h1;
+      9'b111010000:
+        casez_tmp_81 = 1'h1;
+      9'b111010001:
+        casez_tmp_81 = 1'h1;
+      9'b111010010:
+        casez_tmp_81 = 1'h1;
+      9'b111010011:
+        casez_tmp_81 = 1'h1;
+      9'b111010100:
+        casez_tmp_81 = 1'h1;
+      9'b111010101:
+        casez_tmp_81 = 1'h1;
+      9'b111010110:
+        casez_tmp_81 = 1'h1;
+      9'b111010111:
+        casez_tmp_81 = 1'h1;
+      9'b111011000:
+        casez_tmp_81 = 1'h1;
+      9'b111011001:
+        casez_tmp_81 = 1'h1;
+      9'b111011010:
+        casez_tmp_81 = 1'h1;
+      9'b111011011:
+        casez_tmp_81 = 1'h1;
+      9'b111011100:
+        casez_tmp_81 = 1'h1;
+      9'b111011101:
+        casez_tmp_81 = 1'h1;
+      9'b111011110:
+        casez_tmp_81 = 1'h1;
+      9'b111011111:
+        casez_tmp_81 = 1'h1;
+      9'b111100000:
+        casez_tmp_81 = 1'h0;
+      9'b111100001:
+        casez_tmp_81 = 1'h0;
+      9'b111100010:
+        casez_tmp_81 = 1'h0;
+      9'b111100011:
+        casez_tmp_81 = 1'h1;
+      9'b111100100:
+        casez_tmp_81 = 1'h1;
+      9'b111100101:
+        casez_tmp_81 = 1'h1;
+      9'b111100110:
+        casez_tmp_81 = 1'h1;
+      9'b111100111:
+        casez_tmp_81 = 1'h1;
+      9'b111101000:
+        casez_tmp_81 = 1'h1;
+      9'b111101001:
+        casez_tmp_81 = 1'h1;
+      9'b111101010:
+        casez_tmp_81 = 1'h1;
+      9'b111101011:
+        casez_tmp_81 = 1'h1;
+      9'b111101100:
+        casez_tmp_81 = 1'h1;
+      9'b111101101:
+        casez_tmp_81 = 1'h1;
+      9'b111101110:
+        casez_tmp_81 = 1'h1;
+      9'b111101111:
+        casez_tmp_81 = 1'h1;
+      9'b111110000:
+        casez_tmp_81 = 1'h1;
+      9'b111110001:
+        casez_tmp_81 = 1'h1;
+      9'b111110010:
+        casez_tmp_81 = 1'h1;
+      9'b111110011:
+        casez_tmp_81 = 1'h1;
+      9'b111110100:
+        casez_tmp_81 = 1'h1;
+      9'b111110101:
+        casez_tmp_81 = 1'h1;
+      9'b111110110:
+        casez_tmp_81 = 1'h1;
+      9'b111110111:
+        casez_tmp_81 = 1'h1;
+      9'b111111000:
+        casez_tmp_81 = 1'h1;
+      9'b111111001:
+        casez_tmp_81 = 1'h1;
+      9'b111111010:
+        casez_tmp_81 = 1'h1;
+      9'b111111011:
+        casez_tmp_81 = 1'h1;
+      9'b111111100:
+        casez_tmp_81 = 1'h1;
+      9'b111111101:
+        casez_tmp_81 = 1'h1;
+      9'b111111110:
+        casez_tmp_81 = 1'h1;
+      default:
+        casez_tmp_81 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_82;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_82 = 1'h0;
+      9'b000000001:
+        casez_tmp_82 = 1'h0;
+      9'b000000010:
+        casez_tmp_82 = 1'h0;
+      9'b000000011:
+        casez_tmp_82 = 1'h1;
+      9'b000000100:
+        casez_tmp_82 = 1'h1;
+      9'b000000101:
+        casez_tmp_82 = 1'h1;
+      9'b000000110:
+        casez_tmp_82 = 1'h1;
+      9'b000000111:
+        casez_tmp_82 = 1'h1;
+      9'b000001000:
+        casez_tmp_82 = 1'h1;
+      9'b000001001:
+        casez_tmp_82 = 1'h1;
+      9'b000001010:
+        casez_tmp_82 = 1'h1;
+      9'b000001011:
+        casez_tmp_82 = 1'h1;
+      9'b000001100:
+        casez_tmp_82 = 1'h1;
+      9'b000001101:
+        casez_tmp_82 = 1'h1;
+      9'b000001110:
+        casez_tmp_82 = 1'h1;
+      9'b000001111:
+        casez_tmp_82 = 1'h1;
+      9'b000010000:
+        casez_tmp_82 = 1'h1;
+      9'b000010001:
+        casez_tmp_82 = 1'h1;
+      9'b000010010:
+        casez_tmp_82 = 1'h1;
+      9'b000010011:
+        casez_tmp_82 = 1'h1;
+      9'b000010100:
+        casez_tmp_82 = 1'h1;
+      9'b000010101:
+        casez_tmp_82 = 1'h1;
+      9'b000010110:
+        casez_tmp_82 = 1'h1;
+      9'b000010111:
+        casez_tmp_82 = 1'h1;
+      9'b000011000:
+        casez_tmp_82 = 1'h1;
+      9'b000011001:
+        casez_tmp_82 = 1'h1;
+      9'b000011010:
+        casez_tmp_82 = 1'h1;
+      9'b000011011:
+        casez_tmp_82 = 1'h1;
+      9'b000011100:
+        casez_tmp_82 = 1'h1;
+      9'b000011101:
+        casez_tmp_82 = 1'h1;
+      9'b000011110:
+        casez_tmp_82 = 1'h1;
+      9'b000011111:
+        casez_tmp_82 = 1'h1;
+      9'b000100000:
+        casez_tmp_82 = 1'h0;
+      9'b000100001:
+        casez_tmp_82 = 1'h0;
+      9'b000100010:
+        casez_tmp_82 = 1'h1;
+      9'b000100011:
+        casez_tmp_82 = 1'h1;
+      9'b000100100:
+        casez_tmp_82 = 1'h1;
+      9'b000100101:
+        casez_tmp_82 = 1'h1;
+      9'b000100110:
+        casez_tmp_82 = 1'h1;
+      9'b000100111:
+        casez_tmp_82 = 1'h1;
+      9'b000101000:
+        casez_tmp_82 = 1'h1;
+      9'b000101001:
+        casez_tmp_82 = 1'h1;
+      9'b000101010:
+        casez_tmp_82 = 1'h1;
+      9'b000101011:
+        casez_tmp_82 = 1'h1;
+      9'b000101100:
+        casez_tmp_82 = 1'h1;
+      9'b000101101:
+        casez_tmp_82 = 1'h1;
+      9'b000101110:
+        casez_tmp_82 = 1'h1;
+      9'b000101111:
+        casez_tmp_82 = 1'h1;
+      9'b000110000:
+        casez_tmp_82 = 1'h1;
+      9'b000110001:
+        casez_tmp_82 = 1'h1;
+      9'b000110010:
+        casez_tmp_82 = 1'h1;
+      9'b000110011:
+        casez_tmp_82 = 1'h1;
+      9'b000110100:
+        casez_tmp_82 = 1'h1;
+      9'b000110101:
+        casez_tmp_82 = 1'h1;
+      9'b000110110:
+        casez_tmp_82 = 1'h1;
+      9'b000110111:
+        casez_tmp_82 = 1'h1;
+      9'b000111000:
+        casez_tmp_82 = 1'h1;
+      9'b000111001:
+        casez_tmp_82 = 1'h1;
+      9'b000111010:
+        casez_tmp_82 = 1'h1;
+      9'b000111011:
+        casez_tmp_82 = 1'h1;
+      9'b000111100:
+        casez_tmp_82 = 1'h1;
+      9'b000111101:
+        casez_tmp_82 = 1'h1;
+      9'b000111110:
+        casez_tmp_82 = 1'h1;
+      9'b000111111:
+        casez_tmp_82 = 1'h1;
+      9'b001000000:
+        casez_tmp_82 = 1'h0;
+      9'b001000001:
+        casez_tmp_82 = 1'h1;
+      9'b001000010:
+        casez_tmp_82 = 1'h1;
+      9'b001000011:
+        casez_tmp_82 = 1'h1;
+      9'b001000100:
+        casez_tmp_82 = 1'h1;
+      9'b001000101:
+        casez_tmp_82 = 1'h1;
+      9'b001000110:
+        casez_tmp_82 = 1'h1;
+      9'b001000111:
+        casez_tmp_82 = 1'h1;
+      9'b001001000:
+        casez_tmp_82 = 1'h1;
+      9'b001001001:
+        casez_tmp_82 = 1'h1;
+      9'b001001010:
+        casez_tmp_82 = 1'h1;
+      9'b001001011:
+        casez_tmp_82 = 1'h1;
+      9'b001001100:
+        casez_tmp_82 = 1'h1;
+      9'b001001101:
+        casez_tmp_82 = 1'h1;
+      9'b001001110:
+        casez_tmp_82 = 1'h1;
+      9'b001001111:
+        casez_tmp_82 = 1'h1;
+      9'b001010000:
+        casez_tmp_82 = 1'h1;
+      9'b001010001:
+        casez_tmp_82 = 1'h1;
+      9'b001010010:
+        casez_tmp_82 = 1'h1;
+      9'b001010011:
+        casez_tmp_82 = 1'h1;
+      9'b001010100:
+        casez_tmp_82 = 1'h1;
+      9'b001010101:
+        casez_tmp_82 = 1'h1;
+      9'b001010110:
+        casez_tmp_82 = 1'h1;
+      9'b001010111:
+        casez_tmp_82 = 1'h1;
+      9'b001011000:
+        casez_tmp_82 = 1'h1;
+      9'b001011001:
+        casez_tmp_82 = 1'h1;
+      9'b001011010:
+        casez_tmp_82 = 1'h1;
+      9'b001011011:
+        casez_tmp_82 = 1'h1;
+      9'b001011100:
+        casez_tmp_82 = 1'h1;
+      9'b001011101:
+        casez_tmp_82 = 1'h1;
+      9'b001011110:
+        casez_tmp_82 = 1'h1;
+      9'b001011111:
+        casez_tmp_82 = 1'h1;
+      9'b001100000:
+        casez_tmp_82 = 1'h0;
+      9'b001100001:
+        casez_tmp_82 = 1'h0;
+      9'b001100010:
+        casez_tmp_82 = 1'h0;
+      9'b001100011:
+        casez_tmp_82 = 1'h0;
+      9'b001100100:
+        casez_tmp_82 = 1'h0;
+      9'b001100101:
+        casez_tmp_82 = 1'h0;
+      9'b001100110:
+        casez_tmp_82 = 1'h0;
+      9'b001100111:
+        casez_tmp_82 = 1'h0;
+      9'b001101000:
+        casez_tmp_82 = 1'h0;
+      9'b001101001:
+        casez_tmp_82 = 1'h0;
+      9'b001101010:
+        casez_tmp_82 = 1'h0;
+      9'b001101011:
+        casez_tmp_82 = 1'h0;
+      9'b001101100:
+        casez_tmp_82 = 1'h0;
+      9'b001101101:
+        casez_tmp_82 = 1'h0;
+      9'b001101110:
+        casez_tmp_82 = 1'h0;
+      9'b001101111:
+        casez_tmp_82 = 1'h0;
+      9'b001110000:
+        casez_tmp_82 = 1'h1;
+      9'b001110001:
+        casez_tmp_82 = 1'h1;
+      9'b001110010:
+        casez_tmp_82 = 1'h1;
+      9'b001110011:
+        casez_tmp_82 = 1'h1;
+      9'b001110100:
+        casez_tmp_82 = 1'h1;
+      9'b001110101:
+        casez_tmp_82 = 1'h1;
+      9'b001110110:
+        casez_tmp_82 = 1'h1;
+      9'b001110111:
+        casez_tmp_82 = 1'h1;
+      9'b001111000:
+        casez_tmp_82 = 1'h1;
+      9'b001111001:
+        casez_tmp_82 = 1'h1;
+      9'b001111010:
+        casez_tmp_82 = 1'h1;
+      9'b001111011:
+        casez_tmp_82 = 1'h1;
+      9'b001111100:
+        casez_tmp_82 = 1'h1;
+      9'b001111101:
+        casez_tmp_82 = 1'h1;
+      9'b001111110:
+        casez_tmp_82 = 1'h1;
+      9'b001111111:
+        casez_tmp_82 = 1'h1;
+      9'b010000000:
+        casez_tmp_82 = 1'h0;
+      9'b010000001:
+        casez_tmp_82 = 1'h0;
+      9'b010000010:
+        casez_tmp_82 = 1'h0;
+      9'b010000011:
+        casez_tmp_82 = 1'h0;
+      9'b010000100:
+        casez_tmp_82 = 1'h0;
+      9'b010000101:
+        casez_tmp_82 = 1'h0;
+      9'b010000110:
+        casez_tmp_82 = 1'h0;
+      9'b010000111:
+        casez_tmp_82 = 1'h0;
+      9'b010001000:
+        casez_tmp_82 = 1'h0;
+      9'b010001001:
+        casez_tmp_82 = 1'h0;
+      9'b010001010:
+        casez_tmp_82 = 1'h0;
+      9'b010001011:
+        casez_tmp_82 = 1'h0;
+      9'b010001100:
+        casez_tmp_82 = 1'h0;
+      9'b010001101:
+        casez_tmp_82 = 1'h0;
+      9'b010001110:
+        casez_tmp_82 = 1'h0;
+      9'b010001111:
+        casez_tmp_82 = 1'h1;
+      9'b010010000:
+        casez_tmp_82 = 1'h1;
+      9'b010010001:
+        casez_tmp_82 = 1'h1;
+      9'b010010010:
+        casez_tmp_82 = 1'h1;
+      9'b010010011:
+        casez_tmp_82 = 1'h1;
+      9'b010010100:
+        casez_tmp_82 = 1'h1;
+      9'b010010101:
+        casez_tmp_82 = 1'h1;
+      9'b010010110:
+        casez_tmp_82 = 1'h1;
+      9'b010010111:
+        casez_tmp_82 = 1'h1;
+      9'b010011000:
+        casez_tmp_82 = 1'h1;
+      9'b010011001:
+        casez_tmp_82 = 1'h1;
+      9'b010011010:
+        casez_tmp_82 = 1'h1;
+      9'b010011011:
+        casez_tmp_82 = 1'h1;
+      9'b010011100:
+        casez_tmp_82 = 1'h1;
+      9'b010011101:
+        casez_tmp_82 = 1'h1;
+      9'b010011110:
+        casez_tmp_82 = 1'h1;
+      9'b010011111:
+        casez_tmp_82 = 1'h1;
+      9'b010100000:
+        casez_tmp_82 = 1'h0;
+      9'b010100001:
+        casez_tmp_82 = 1'h0;
+      9'b010100010:
+        casez_tmp_82 = 1'h0;
+      9'b010100011:
+        casez_tmp_82 = 1'h0;
+      9'b010100100:
+        casez_tmp_82 = 1'h0;
+      9'b010100101:
+        casez_tmp_82 = 1'h0;
+      9'b010100110:
+        casez_tmp_82 = 1'h0;
+      9'b010100111:
+        casez_tmp_82 = 1'h0;
+      9'b010101000:
+        casez_tmp_82 = 1'h0;
+      9'b010101001:
+        casez_tmp_82 = 1'h0;
+      9'b010101010:
+        casez_tmp_82 = 1'h0;
+      9'b010101011:
+        casez_tmp_82 = 1'h0;
+      9'b010101100:
+        casez_tmp_82 = 1'h0;
+      9'b010101101:
+        casez_tmp_82 = 1'h0;
+      9'b010101110:
+        casez_tmp_82 = 1'h1;
+      9'b010101111:
+        casez_tmp_82 = 1'h1;
+      9'b010110000:
+        casez_tmp_82 = 1'h1;
+      9'b010110001:
+        casez_tmp_82 = 1'h1;
+      9'b010110010:
+        casez_tmp_82 = 1'h1;
+      9'b010110011:
+        casez_tmp_82 = 1'h1;
+      9'b010110100:
+        casez_tmp_82 = 1'h1;
+      9'b010110101:
+        casez_tmp_82 = 1'h1;
+      9'b010110110:
+        casez_tmp_82 = 1'h1;
+      9'b010110111:
+        casez_tmp_82 = 1'h1;
+      9'b010111000:
+        casez_tmp_82 = 1'h1;
+      9'b010111001:
+        casez_tmp_82 = 1'h1;
+      9'b010111010:
+        casez_tmp_82 = 1'h1;
+      9'b010111011:
+        casez_tmp_82 = 1'h1;
+      9'b010111100:
+        casez_tmp_82 = 1'h1;
+      9'b010111101:
+        casez_tmp_82 = 1'h1;
+      9'b010111110:
+        casez_tmp_82 = 1'h1;
+      9'b010111111:
+        casez_tmp_82 = 1'h1;
+      9'b011000000:
+        casez_tmp_82 = 1'h0;
+      9'b011000001:
+        casez_tmp_82 = 1'h0;
+      9'b011000010:
+        casez_tmp_82 = 1'h0;
+      9'b011000011:
+        casez_tmp_82 = 1'h0;
+      9'b011000100:
+        casez_tmp_82 = 1'h0;
+      9'b011000101:
+        casez_tmp_82 = 1'h0;
+      9'b011000110:
+        casez_tmp_82 = 1'h0;
+      9'b011000111:
+        casez_tmp_82 = 1'h0;
+      9'b011001000:
+        casez_tmp_82 = 1'h0;
+      9'b011001001:
+        casez_tmp_82 = 1'h0;
+      9'b011001010:
+        casez_tmp_82 = 1'h0;
+      9'b011001011:
+        casez_tmp_82 = 1'h0;
+      9'b011001100:
+        casez_tmp_82 = 1'h0;
+      9'b011001101:
+        casez_tmp_82 = 1'h1;
+      9'b011001110:
+        casez_tmp_82 = 1'h1;
+      9'b011001111:
+        casez_tmp_82 = 1'h1;
+      9'b011010000:
+        casez_tmp_82 = 1'h1;
+      9'b011010001:
+        casez_tmp_82 = 1'h1;
+      9'b011010010:
+        casez_tmp_82 = 1'h1;
+      9'b011010011:
+        casez_tmp_82 = 1'h1;
+      9'b011010100:
+        casez_tmp_82 = 1'h1;
+      9'b011010101:
+        casez_tmp_82 = 1'h1;
+      9'b011010110:
+        casez_tmp_82 = 1'h1;
+      9'b011010111:
+        casez_tmp_82 = 1'h1;
+      9'b011011000:
+        casez_tmp_82 = 1'h1;
+      9'b011011001:
+        casez_tmp_82 = 1'h1;
+      9'b011011010:
+        casez_tmp_82 = 1'h1;
+      9'b011011011:
+        casez_tmp_82 = 1'h1;
+      9'b011011100:
+        casez_tmp_82 = 1'h1;
+      9'b011011101:
+        casez_tmp_82 = 1'h1;
+      9'b011011110:
+        casez_tmp_82 = 1'h1;
+      9'b011011111:
+        casez_tmp_82 = 1'h1;
+      9'b011100000:
+        casez_tmp_82 = 1'h0;
+      9'b011100001:
+        casez_tmp_82 = 1'h0;
+      9'b011100010:
+        casez_tmp_82 = 1'h0;
+      9'b011100011:
+        casez_tmp_82 = 1'h0;
+      9'b011100100:
+        casez_tmp_82 = 1'h0;
+      9'b011100101:
+        casez_tmp_82 = 1'h0;
+      9'b011100110:
+        casez_tmp_82 = 1'h0;
+      9'b011100111:
+        casez_tmp_82 = 1'h0;
+      9'b011101000:
+        casez_tmp_82 = 1'h0;
+      9'b011101001:
+        casez_tmp_82 = 1'h0;
+      9'b011101010:
+        casez_tmp_82 = 1'h0;
+      9'b011101011:
+        casez_tmp_82 = 1'h0;
+      9'b011101100:
+        casez_tmp_82 = 1'h1;
+      9'b011101101:
+        casez_tmp_82 = 1'h1;
+      9'b011101110:
+        casez_tmp_82 = 1'h1;
+      9'b011101111:
+        casez_tmp_82 = 1'h1;
+      9'b011110000:
+        casez_tmp_82 = 1'h1;
+      9'b011110001:
+        casez_tmp_82 = 1'h1;
+      9'b011110010:
+        casez_tmp_82 = 1'h1;
+      9'b011110011:
+        casez_tmp_82 = 1'h1;
+      9'b011110100:
+        casez_tmp_82 = 1'h1;
+      9'b011110101:
+        casez_tmp_82 = 1'h1;
+      9'b011110110:
+        casez_tmp_82 = 1'h1;
+      9'b011110111:
+        casez_tmp_82 = 1'h1;
+      9'b011111000:
+        casez_tmp_82 = 1'h1;
+      9'b011111001:
+        casez_tmp_82 = 1'h1;
+      9'b011111010:
+        casez_tmp_82 = 1'h1;
+      9'b011111011:
+        casez_tmp_82 = 1'h1;
+      9'b011111100:
+        casez_tmp_82 = 1'h1;
+      9'b011111101:
+        casez_tmp_82 = 1'h1;
+      9'b011111110:
+        casez_tmp_82 = 1'h1;
+      9'b011111111:
+        casez_tmp_82 = 1'h1;
+      9'b100000000:
+        casez_tmp_82 = 1'h0;
+      9'b100000001:
+        casez_tmp_82 = 1'h0;
+      9'b100000010:
+        casez_tmp_82 = 1'h0;
+      9'b100000011:
+        casez_tmp_82 = 1'h0;
+      9'b100000100:
+        casez_tmp_82 = 1'h0;
+      9'b100000101:
+        casez_tmp_82 = 1'h0;
+      9'b100000110:
+        casez_tmp_82 = 1'h0;
+      9'b100000111:
+        casez_tmp_82 = 1'h0;
+      9'b100001000:
+        casez_tmp_82 = 1'h0;
+      9'b100001001:
+        casez_tmp_82 = 1'h0;
+      9'b100001010:
+        casez_tmp_82 = 1'h0;
+      9'b100001011:
+        casez_tmp_82 = 1'h1;
+      9'b100001100:
+        casez_tmp_82 = 1'h1;
+      9'b100001101:
+        casez_tmp_82 = 1'h1;
+      9'b100001110:
+        casez_tmp_82 = 1'h1;
+      9'b100001111:
+        casez_tmp_82 = 1'h1;
+      9'b100010000:
+        casez_tmp_82 = 1'h1;
+      9'b100010001:
+        casez_tmp_82 = 1'h1;
+      9'b100010010:
+        casez_tmp_82 = 1'h1;
+      9'b100010011:
+        casez_tmp_82 = 1'h1;
+      9'b100010100:
+        casez_tmp_82 = 1'h1;
+      9'b100010101:
+        casez_tmp_82 = 1'h1;
+      9'b100010110:
+        casez_tmp_82 = 1'h1;
+      9'b100010111:
+        casez_tmp_82 = 1'h1;
+      9'b100011000:
+        casez_tmp_82 = 1'h1;
+      9'b100011001:
+        casez_tmp_82 = 1'h1;
+      9'b100011010:
+        casez_tmp_82 = 1'h1;
+      9'b100011011:
+        casez_tmp_82 = 1'h1;
+      9'b100011100:
+        casez_tmp_82 = 1'h1;
+      9'b100011101:
+        casez_tmp_82 = 1'h1;
+      9'b100011110:
+        casez_tmp_82 = 1'h1;
+      9'b100011111:
+        casez_tmp_82 = 1'h1;
+      9'b100100000:
+        casez_tmp_82 = 1'h0;
+      9'b100100001:
+        casez_tmp_82 = 1'h0;
+      9'b100100010:
+        casez_tmp_82 = 1'h0;
+      9'b100100011:
+        casez_tmp_82 = 1'h0;
+      9'b100100100:
+        casez_tmp_82 = 1'h0;
+      9'b100100101:
+        casez_tmp_82 = 1'h0;
+      9'b100100110:
+        casez_tmp_82 = 1'h0;
+      9'b100100111:
+        casez_tmp_82 = 1'h0;
+      9'b100101000:
+        casez_tmp_82 = 1'h0;
+      9'b100101001:
+        casez_tmp_82 = 1'h0;
+      9'b100101010:
+        casez_tmp_82 = 1'h1;
+      9'b100101011:
+        casez_tmp_82 = 1'h1;
+      9'b100101100:
+        casez_tmp_82 = 1'h1;
+      9'b100101101:
+        casez_tmp_82 = 1'h1;
+      9'b100101110:
+        casez_tmp_82 = 1'h1;
+      9'b100101111:
+        casez_tmp_82 = 1'h1;
+      9'b100110000:
+        casez_tmp_82 = 1'h1;
+      9'b100110001:
+        casez_tmp_82 = 1'h1;
+      9'b100110010:
+        casez_tmp_82 = 1'h1;
+      9'b100110011:
+        casez_tmp_82 = 1'h1;
+      9'b100110100:
+        casez_tmp_82 = 1'h1;
+      9'b100110101:
+        casez_tmp_82 = 1'h1;
+      9'b100110110:
+        casez_tmp_82 = 1'h1;
+      9'b100110111:
+        casez_tmp_82 = 1'h1;
+      9'b100111000:
+        casez_tmp_82 = 1'h1;
+      9'b100111001:
+        casez_tmp_82 = 1'h1;
+      9'b100111010:
+        casez_tmp_82 = 1'h1;
+      9'b100111011:
+        casez_tmp_82 = 1'h1;
+      9'b100111100:
+        casez_tmp_82 = 1'h1;
+      9'b100111101:
+        casez_tmp_82 = 1'h1;
+      9'b100111110:
+        casez_tmp_82 = 1'h1;
+      9'b100111111:
+        casez_tmp_82 = 1'h1;
+      9'b101000000:
+        casez_tmp_82 = 1'h0;
+      9'b101000001:
+        casez_tmp_82 = 1'h0;
+      9'b101000010:
+        casez_tmp_82 = 1'h0;
+      9'b101000011:
+        casez_tmp_82 = 1'h0;
+      9'b101000100:
+        casez_tmp_82 = 1'h0;
+      9'b101000101:
+        casez_tmp_82 = 1'h0;
+      9'b101000110:
+        casez_tmp_82 = 1'h0;
+      9'b101000111:
+        casez_tmp_82 = 1'h0;
+      9'b101001000:
+        casez_tmp_82 = 1'h0;
+      9'b101001001:
+        casez_tmp_82 = 1'h1;
+      9'b101001010:
+        casez_tmp_82 = 1'h1;
+      9'b101001011:
+        casez_tmp_82 = 1'h1;
+      9'b101001100:
+        casez_tmp_82 = 1'h1;
+      9'b101001101:
+        casez_tmp_82 = 1'h1;
+      9'b101001110:
+        casez_tmp_82 = 1'h1;
+      9'b101001111:
+        casez_tmp_82 = 1'h1;
+      9'b101010000:
+        casez_tmp_82 = 1'h1;
+      9'b101010001:
+        casez_tmp_82 = 1'h1;
+      9'b101010010:
+        casez_tmp_82 = 1'h1;
+      9'b101010011:
+        casez_tmp_82 = 1'h1;
+      9'b101010100:
+        casez_tmp_82 = 1'h1;
+      9'b101010101:
+        casez_tmp_82 = 1'h1;
+      9'b101010110:
+        casez_tmp_82 = 1'h1;
+      9'b101010111:
+        casez_tmp_82 = 1'h1;
+      9'b101011000:
+        casez_tmp_82 = 1'h1;
+      9'b101011001:
+        casez_tmp_82 = 1'h1;
+      9'b101011010:
+        casez_tmp_82 = 1'h1;
+      9'b101011011:
+        casez_tmp_82 = 1'h1;
+      9'b101011100:
+        casez_tmp_82 = 1'h1;
+      9'b101011101:
+        casez_tmp_82 = 1'h1;
+      9'b101011110:
+        casez_tmp_82 = 1'h1;
+      9'b101011111:
+        casez_tmp_82 = 1'h1;
+      9'b101100000:
+        casez_tmp_82 = 1'h0;
+      9'b101100001:
+        casez_tmp_82 = 1'h0;
+      9'b101100010:
+        casez_tmp_82 = 1'h0;
+      9'b101100011:
+        casez_tmp_82 = 1'h0;
+      9'b101100100:
+        casez_tmp_82 = 1'h0;
+      9'b101100101:
+        casez_tmp_82 = 1'h0;
+      9'b101100110:
+        casez_tmp_82 = 1'h0;
+      9'b101100111:
+        casez_tmp_82 = 1'h0;
+      9'b101101000:
+        casez_tmp_82 = 1'h1;
+      9'b101101001:
+        casez_tmp_82 = 1'h1;
+      9'b101101010:
+        casez_tmp_82 = 1'h1;
+      9'b101101011:
+        casez_tmp_82 = 1'h1;
+      9'b101101100:
+        casez_tmp_82 = 1'h1;
+      9'b101101101:
+        casez_tmp_82 = 1'h1;
+      9'b101101110:
+        casez_tmp_82 = 1'h1;
+      9'b101101111:
+        casez_tmp_82 = 1'h1;
+      9'b101110000:
+        casez_tmp_82 = 1'h1;
+      9'b101110001:
+        casez_tmp_82 = 1'h1;
+      9'b101110010:
+        casez_tmp_82 = 1'h1;
+      9'b101110011:
+        casez_tmp_82 = 1'h1;
+      9'b101110100:
+        casez_tmp_82 = 1'h1;
+      9'b101110101:
+        casez_tmp_82 = 1'h1;
+      9'b101110110:
+        casez_tmp_82 = 1'h1;
+      9'b101110111:
+        casez_tmp_82 = 1'h1;
+      9'b101111000:
+        casez_tmp_82 = 1'h1;
+      9'b101111001:
+        casez_tmp_82 = 1'h1;
+      9'b101111010:
+        casez_tmp_82 = 1'h1;
+      9'b101111011:
+        casez_tmp_82 = 1'h1;
+      9'b101111100:
+        casez_tmp_82 = 1'h1;
+      9'b101111101:
+        casez_tmp_82 = 1'h1;
+      9'b101111110:
+        casez_tmp_82 = 1'h1;
+      9'b101111111:
+        casez_tmp_82 = 1'h1;
+      9'b110000000:
+        casez_tmp_82 = 1'h0;
+      9'b110000001:
+        casez_tmp_82 = 1'h0;
+      9'b110000010:
+        casez_tmp_82 = 1'h0;
+      9'b110000011:
+        casez_tmp_82 = 1'h0;
+      9'b110000100:
+        casez_tmp_82 = 1'h0;
+      9'b110000101:
+        casez_tmp_82 = 1'h0;
+      9'b110000110:
+        casez_tmp_82 = 1'h0;
+      9'b110000111:
+        casez_tmp_82 = 1'h1;
+      9'b110001000:
+        casez_tmp_82 = 1'h1;
+      9'b110001001:
+        casez_tmp_82 = 1'h1;
+      9'b110001010:
+        casez_tmp_82 = 1'h1;
+      9'b110001011:
+        casez_tmp_82 = 1'h1;
+      9'b110001100:
+        casez_tmp_82 = 1'h1;
+      9'b110001101:
+        casez_tmp_82 = 1'h1;
+      9'b110001110:
+        casez_tmp_82 = 1'h1;
+      9'b110001111:
+        casez_tmp_82 = 1'h1;
+      9'b110010000:
+        casez_tmp_82 = 1'h1;
+      9'b110010001:
+        casez_tmp_82 = 1'h1;
+      9'b110010010:
+        casez_tmp_82 = 1'h1;
+      9'b110010011:
+        casez_tmp_82 = 1'h1;
+      9'b110010100:
+        casez_tmp_82 = 1'h1;
+      9'b110010101:
+        casez_tmp_82 = 1'h1;
+      9'b110010110:
+        casez_tmp_82 = 1'h1;
+      9'b110010111:
+        casez_tmp_82 = 1'h1;
+      9'b110011000:
+        casez_tmp_82 = 1'h1;
+      9'b110011001:
+        casez_tmp_82 = 1'h1;
+      9'b110011010:
+        casez_tmp_82 = 1'h1;
+      9'b110011011:
+        casez_tmp_82 = 1'h1;
+      9'b110011100:
+        casez_tmp_82 = 1'h1;
+      9'b110011101:
+        casez_tmp_82 = 1'h1;
+      9'b110011110:
+        casez_tmp_82 = 1'h1;
+      9'b110011111:
+        casez_tmp_82 = 1'h1;
+      9'b110100000:
+        casez_tmp_82 = 1'h0;
+      9'b110100001:
+        casez_tmp_82 = 1'h0;
+      9'b110100010:
+        casez_tmp_82 = 1'h0;
+      9'b110100011:
+        casez_tmp_82 = 1'h0;
+      9'b110100100:
+        casez_tmp_82 = 1'h0;
+      9'b110100101:
+        casez_tmp_82 = 1'h0;
+      9'b110100110:
+        casez_tmp_82 = 1'h1;
+      9'b110100111:
+        casez_tmp_82 = 1'h1;
+      9'b110101000:
+        casez_tmp_82 = 1'h1;
+      9'b110101001:
+        casez_tmp_82 = 1'h1;
+      9'b110101010:
+        casez_tmp_82 = 1'h1;
+      9'b110101011:
+        casez_tmp_82 = 1'h1;
+      9'b110101100:
+        casez_tmp_82 = 1'h1;
+      9'b110101101:
+        casez_tmp_82 = 1'h1;
+      9'b110101110:
+        casez_tmp_82 = 1'h1;
+      9'b110101111:
+        casez_tmp_82 = 1'h1;
+      9'b110110000:
+        casez_tmp_82 = 1'h1;
+      9'b110110001:
+        casez_tmp_82 = 1'h1;
+      9'b110110010:
+        casez_tmp_82 = 1'h1;
+      9'b110110011:
+        casez_tmp_82 = 1'h1;
+      9'b110110100:
+        casez_tmp_82 = 1'h1;
+      9'b110110101:
+        casez_tmp_82 = 1'h1;
+      9'b110110110:
+        casez_tmp_82 = 1'h1;
+      9'b110110111:
+        casez_tmp_82 = 1'h1;
+      9'b110111000:
+        casez_tmp_82 = 1'h1;
+      9'b110111001:
+        casez_tmp_82 = 1'h1;
+      9'b110111010:
+        casez_tmp_82 = 1'h1;
+      9'b110111011:
+        casez_tmp_82 = 1'h1;
+      9'b110111100:
+        casez_tmp_82 = 1'h1;
+      9'b110111101:
+        casez_tmp_82 = 1'h1;
+      9'b110111110:
+        casez_tmp_82 = 1'h1;
+      9'b110111111:
+        casez_tmp_82 = 1'h1;
+      9'b111000000:
+        casez_tmp_82 = 1'h0;
+      9'b111000001:
+        casez_tmp_82 = 1'h0;
+      9'b111000010:
+        casez_tmp_82 = 1'h0;
+      9'b111000011:
+        casez_tmp_82 = 1'h0;
+      9'b111000100:
+        casez_tmp_82 = 1'h0;
+      9'b111000101:
+        casez_tmp_82 = 1'h1;
+      9'b111000110:
+        casez_tmp_82 = 1'h1;
+      9'b111000111:
+        casez_tmp_82 = 1'h1;
+      9'b111001000:
+        casez_tmp_82 = 1'h1;
+      9'b111001001:
+        casez_tmp_82 = 1'h1;
+      9'b111001010:
+        casez_tmp_82 = 1'h1;
+      9'b111001011:
+        casez_tmp_82 = 1'h1;
+      9'b111001100:
+        casez_tmp_82 = 1'h1;
+      9'b111001101:
+        casez_tmp_82 = 1'h1;
+      9'b111001110:
+        casez_tmp_82 = 1'h1;
+      9'b111001111:
+        casez_tmp_82 = 1'h1;
+      9'b111010000:
+        casez_tmp_82 = 1'h1;
+      9'b111010001:
+        casez_tmp_82 = 1'h1;
+      9'b111010010:
+        casez_tmp_82 = 1'h1;
+      9'b111010011:
+        casez_tmp_82 = 1'h1;
+      9'b111010100:
+        casez_tmp_82 = 1'h1;
+      9'b111010101:
+        casez_tmp_82 = 1'h1;
+      9'b111010110:
+        casez_tmp_82 = 1'h1;
+      9'b111010111:
+        casez_tmp_82 = 1'h1;
+      9'b111011000:
+        casez_tmp_82 = 1'h1;
+      9'b111011001:
+        casez_tmp_82 = 1'h1;
+      9'b111011010:
+        casez_tmp_82 = 1'h1;
+      9'b111011011:
+        casez_tmp_82 = 1'h1;
+      9'b111011100:
+        casez_tmp_82 = 1'h1;
+      9'b111011101:
+        casez_tmp_82 = 1'h1;
+      9'b111011110:
+        casez_tmp_82 = 1'h1;
+      9'b111011111:
+        casez_tmp_82 = 1'h1;
+      9'b111100000:
+        casez_tmp_82 = 1'h0;
+      9'b111100001:
+        casez_tmp_82 = 1'h0;
+      9'b111100010:
+        casez_tmp_82 = 1'h0;
+      9'b111100011:
+        casez_tmp_82 = 1'h0;
+      9'b111100100:
+        casez_tmp_82 = 1'h1;
+      9'b111100101:
+        casez_tmp_82 = 1'h1;
+      9'b111100110:
+        casez_tmp_82 = 1'h1;
+      9'b111100111:
+        casez_tmp_82 = 1'h1;
+      9'b111101000:
+        casez_tmp_82 = 1'h1;
+      9'b111101001:
+        casez_tmp_82 = 1'h1;
+      9'b111101010:
+        casez_tmp_82 = 1'h1;
+      9'b111101011:
+        casez_tmp_82 = 1'h1;
+      9'b111101100:
+        casez_tmp_82 = 1'h1;
+      9'b111101101:
+        casez_tmp_82 = 1'h1;
+      9'b111101110:
+        casez_tmp_82 = 1'h1;
+      9'b111101111:
+        casez_tmp_82 = 1'h1;
+      9'b111110000:
+        casez_tmp_82 = 1'h1;
+      9'b111110001:
+        casez_tmp_82 = 1'h1;
+      9'b111110010:
+        casez_tmp_82 = 1'h1;
+      9'b111110011:
+        casez_tmp_82 = 1'h1;
+      9'b111110100:
+        casez_tmp_82 = 1'h1;
+      9'b111110101:
+        casez_tmp_82 = 1'h1;
+      9'b111110110:
+        casez_tmp_82 = 1'h1;
+      9'b111110111:
+        casez_tmp_82 = 1'h1;
+      9'b111111000:
+        casez_tmp_82 = 1'h1;
+      9'b111111001:
+        casez_tmp_82 = 1'h1;
+      9'b111111010:
+        casez_tmp_82 = 1'h1;
+      9'b111111011:
+        casez_tmp_82 = 1'h1;
+      9'b111111100:
+        casez_tmp_82 = 1'h1;
+      9'b111111101:
+        casez_tmp_82 = 1'h1;
+      9'b111111110:
+        casez_tmp_82 = 1'h1;
+      default:
+        casez_tmp_82 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_83;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_83 = 1'h0;
+      9'b000000001:
+        casez_tmp_83 = 1'h0;
+      9'b000000010:
+        casez_tmp_83 = 1'h0;
+      9'b000000011:
+        casez_tmp_83 = 1'h0;
+      9'b000000100:
+        casez_tmp_83 = 1'h1;
+      9'b000000101:
+        casez_tmp_83 = 1'h1;
+      9'b000000110:
+        casez_tmp_83 = 1'h1;
+      9'b000000111:
+        casez_tmp_83 = 1'h1;
+      9'b000001000:
+        casez_tmp_83 = 1'h1;
+      9'b000001001:
+        casez_tmp_83 = 1'h1;
+      9'b000001010:
+        casez_tmp_83 = 1'h1;
+      9'b000001011:
+        casez_tmp_83 = 1'h1;
+      9'b000001100:
+        casez_tmp_83 = 1'h1;
+      9'b000001101:
+        casez_tmp_83 = 1'h1;
+      9'b000001110:
+        casez_tmp_83 = 1'h1;
+      9'b000001111:
+        casez_tmp_83 = 1'h1;
+      9'b000010000:
+        casez_tmp_83 = 1'h1;
+      9'b000010001:
+        casez_tmp_83 = 1'h1;
+      9'b000010010:
+        casez_tmp_83 = 1'h1;
+      9'b000010011:
+        casez_tmp_83 = 1'h1;
+      9'b000010100:
+        casez_tmp_83 = 1'h1;
+      9'b000010101:
+        casez_tmp_83 = 1'h1;
+      9'b000010110:
+        casez_tmp_83 = 1'h1;
+      9'b000010111:
+        casez_tmp_83 = 1'h1;
+      9'b000011000:
+        casez_tmp_83 = 1'h1;
+      9'b000011001:
+        casez_tmp_83 = 1'h1;
+      9'b000011010:
+        casez_tmp_83 = 1'h1;
+      9'b000011011:
+        casez_tmp_83 = 1'h1;
+      9'b000011100:
+        casez_tmp_83 = 1'h1;
+      9'b000011101:
+        casez_tmp_83 = 1'h1;
+      9'b000011110:
+        casez_tmp_83 = 1'h1;
+      9'b000011111:
+        casez_tmp_83 = 1'h1;
+      9'b000100000:
+        casez_tmp_83 = 1'h0;
+      9'b000100001:
+        casez_tmp_83 = 1'h0;
+      9'b000100010:
+        casez_tmp_83 = 1'h0;
+      9'b000100011:
+        casez_tmp_83 = 1'h1;
+      9'b000100100:
+        casez_tmp_83 = 1'h1;
+      9'b000100101:
+        casez_tmp_83 = 1'h1;
+      9'b000100110:
+        casez_tmp_83 = 1'h1;
+      9'b000100111:
+        casez_tmp_83 = 1'h1;
+      9'b000101000:
+        casez_tmp_83 = 1'h1;
+      9'b000101001:
+        casez_tmp_83 = 1'h1;
+      9'b000101010:
+        casez_tmp_83 = 1'h1;
+      9'b000101011:
+        casez_tmp_83 = 1'h1;
+      9'b000101100:
+        casez_tmp_83 = 1'h1;
+      9'b000101101:
+        casez_tmp_83 = 1'h1;
+      9'b000101110:
+        casez_tmp_83 = 1'h1;
+      9'b000101111:
+        casez_tmp_83 = 1'h1;
+      9'b000110000:
+        casez_tmp_83 = 1'h1;
+      9'b000110001:
+        casez_tmp_83 = 1'h1;
+      9'b000110010:
+        casez_tmp_83 = 1'h1;
+      9'b000110011:
+        casez_tmp_83 = 1'h1;
+      9'b000110100:
+        casez_tmp_83 = 1'h1;
+      9'b000110101:
+        casez_tmp_83 = 1'h1;
+      9'b000110110:
+        casez_tmp_83 = 1'h1;
+      9'b000110111:
+        casez_tmp_83 = 1'h1;
+      9'b000111000:
+        casez_tmp_83 = 1'h1;
+      9'b000111001:
+        casez_tmp_83 = 1'h1;
+      9'b000111010:
+        casez_tmp_83 = 1'h1;
+      9'b000111011:
+        casez_tmp_83 = 1'h1;
+      9'b000111100:
+        casez_tmp_83 = 1'h1;
+      9'b000111101:
+        casez_tmp_83 = 1'h1;
+      9'b000111110:
+        casez_tmp_83 = 1'h1;
+      9'b000111111:
+        casez_tmp_83 = 1'h1;
+      9'b001000000:
+        casez_tmp_83 = 1'h0;
+      9'b001000001:
+        casez_tmp_83 = 1'h0;
+      9'b001000010:
+        casez_tmp_83 = 1'h1;
+      9'b001000011:
+        casez_tmp_83 = 1'h1;
+      9'b001000100:
+        casez_tmp_83 = 1'h1;
+      9'b001000101:
+        casez_tmp_83 = 1'h1;
+      9'b001000110:
+        casez_tmp_83 = 1'h1;
+      9'b001000111:
+        casez_tmp_83 = 1'h1;
+      9'b001001000:
+        casez_tmp_83 = 1'h1;
+      9'b001001001:
+        casez_tmp_83 = 1'h1;
+      9'b001001010:
+        casez_tmp_83 = 1'h1;
+      9'b001001011:
+        casez_tmp_83 = 1'h1;
+      9'b001001100:
+        casez_tmp_83 = 1'h1;
+      9'b001001101:
+        casez_tmp_83 = 1'h1;
+      9'b001001110:
+        casez_tmp_83 = 1'h1;
+      9'b001001111:
+        casez_tmp_83 = 1'h1;
+      9'b001010000:
+        casez_tmp_83 = 1'h1;
+      9'b001010001:
+        casez_tmp_83 = 1'h1;
+      9'b001010010:
+        casez_tmp_83 = 1'h1;
+      9'b001010011:
+        casez_tmp_83 = 1'h1;
+      9'b001010100:
+        casez_tmp_83 = 1'h1;
+      9'b001010101:
+        casez_tmp_83 = 1'h1;
+      9'b001010110:
+        casez_tmp_83 = 1'h1;
+      9'b001010111:
+        casez_tmp_83 = 1'h1;
+      9'b001011000:
+        casez_tmp_83 = 1'h1;
+      9'b001011001:
+        casez_tmp_83 = 1'h1;
+      9'b001011010:
+        casez_tmp_83 = 1'h1;
+      9'b001011011:
+        casez_tmp_83 = 1'h1;
+      9'b001011100:
+        casez_tmp_83 = 1'h1;
+      9'b001011101:
+        casez_tmp_83 = 1'h1;
+      9'b001011110:
+        casez_tmp_83 = 1'h1;
+      9'b001011111:
+        casez_tmp_83 = 1'h1;
+      9'b001100000:
+        casez_tmp_83 = 1'h0;
+      9'b001100001:
+        casez_tmp_83 = 1'h1;
+      9'b001100010:
+        casez_tmp_83 = 1'h1;
+      9'b001100011:
+        casez_tmp_83 = 1'h1;
+      9'b001100100:
+        casez_tmp_83 = 1'h1;
+      9'b001100101:
+        casez_tmp_83 = 1'h1;
+      9'b001100110:
+        casez_tmp_83 = 1'h1;
+      9'b001100111:
+        casez_tmp_83 = 1'h1;
+      9'b001101000:
+        casez_tmp_83 = 1'h1;
+      9'b001101001:
+        casez_tmp_83 = 1'h1;
+      9'b001101010:
+        casez_tmp_83 = 1'h1;
+      9'b001101011:
+        casez_tmp_83 = 1'h1;
+      9'b001101100:
+        casez_tmp_83 = 1'h1;
+      9'b001101101:
+        casez_tmp_83 = 1'h1;
+      9'b001101110:
+        casez_tmp_83 = 1'h1;
+      9'b001101111:
+        casez_tmp_83 = 1'h1;
+      9'b001110000:
+        casez_tmp_83 = 1'h1;
+      9'b001110001:
+        casez_tmp_83 = 1'h1;
+      9'b001110010:
+        casez_tmp_83 = 1'h1;
+      9'b001110011:
+        casez_tmp_83 = 1'h1;
+      9'b001110100:
+        casez_tmp_83 = 1'h1;
+      9'b001110101:
+        casez_tmp_83 = 1'h1;
+      9'b001110110:
+        casez_tmp_83 = 1'h1;
+      9'b001110111:
+        casez_tmp_83 = 1'h1;
+      9'b001111000:
+        casez_tmp_83 = 1'h1;
+      9'b001111001:
+        casez_tmp_83 = 1'h1;
+      9'b001111010:
+        casez_tmp_83 = 1'h1;
+      9'b001111011:
+        casez_tmp_83 = 1'h1;
+      9'b001111100:
+        casez_tmp_83 = 1'h1;
+      9'b001111101:
+        casez_tmp_83 = 1'h1;
+      9'b001111110:
+        casez_tmp_83 = 1'h1;
+      9'b001111111:
+        casez_tmp_83 = 1'h1;
+      9'b010000000:
+        casez_tmp_83 = 1'h0;
+      9'b010000001:
+        casez_tmp_83 = 1'h0;
+      9'b010000010:
+        casez_tmp_83 = 1'h0;
+      9'b010000011:
+        casez_tmp_83 = 1'h0;
+      9'b010000100:
+        casez_tmp_83 = 1'h0;
+      9'b010000101:
+        casez_tmp_83 = 1'h0;
+      9'b010000110:
+        casez_tmp_83 = 1'h0;
+      9'b010000111:
+        casez_tmp_83 = 1'h0;
+      9'b010001000:
+        casez_tmp_83 = 1'h0;
+      9'b010001001:
+        casez_tmp_83 = 1'h0;
+      9'b010001010:
+        casez_tmp_83 = 1'h0;
+      9'b010001011:
+        casez_tmp_83 = 1'h0;
+      9'b010001100:
+        casez_tmp_83 = 1'h0;
+      9'b010001101:
+        casez_tmp_83 = 1'h0;
+      9'b010001110:
+        casez_tmp_83 = 1'h0;
+      9'b010001111:
+        casez_tmp_83 = 1'h0;
+      9'b010010000:
+        casez_tmp_83 = 1'h1;
+      9'b010010001:
+        casez_tmp_83 = 1'h1;
+      9'b010010010:
+        casez_tmp_83 = 1'h1;
+      9'b010010011:
+        casez_tmp_83 = 1'h1;
+      9'b010010100:
+        casez_tmp_83 = 1'h1;
+      9'b010010101:
+        casez_tmp_83 = 1'h1;
+      9'b010010110:
+        casez_tmp_83 = 1'h1;
+      9'b010010111:
+        casez_tmp_83 = 1'h1;
+      9'b010011000:
+        casez_tmp_83 = 1'h1;
+      9'b010011001:
+        casez_tmp_83 = 1'h1;
+      9'b010011010:
+        casez_tmp_83 = 1'h1;
+      9'b010011011:
+        casez_tmp_83 = 1'h1;
+      9'b010011100:
+        casez_tmp_83 = 1'h1;
+      9'b010011101:
+        casez_tmp_83 = 1'h1;
+      9'b010011110:
+        casez_tmp_83 = 1'h1;
+      9'b010011111:
+        casez_tmp_83 = 1'h1;
+      9'b010100000:
+        casez_tmp_83 = 1'h0;
+      9'b010100001:
+        casez_tmp_83 = 1'h0;
+      9'b010100010:
+        casez_tmp_83 = 1'h0;
+      9'b010100011:
+        casez_tmp_83 = 1'h0;
+      9'b010100100:
+        casez_tmp_83 = 1'h0;
+      9'b010100101:
+        casez_tmp_83 = 1'h0;
+      9'b010100110:
+        casez_tmp_83 = 1'h0;
+      9'b010100111:
+        casez_tmp_83 = 1'h0;
+      9'b010101000:
+        casez_tmp_83 = 1'h0;
+      9'b010101001:
+        casez_tmp_83 = 1'h0;
+      9'b010101010:
+        casez_tmp_83 = 1'h0;
+      9'b010101011:
+        casez_tmp_83 = 1'h0;
+      9'b010101100:
+        casez_tmp_83 = 1'h0;
+      9'b010101101:
+        casez_tmp_83 = 1'h0;
+      9'b010101110:
+        casez_tmp_83 = 1'h0;
+      9'b010101111:
+        casez_tmp_83 = 1'h1;
+      9'b010110000:
+        casez_tmp_83 = 1'h1;
+      9'b010110001:
+        casez_tmp_83 = 1'h1;
+      9'b010110010:
+        casez_tmp_83 = 1'h1;
+      9'b010110011:
+        casez_tmp_83 = 1'h1;
+      9'b010110100:
+        casez_tmp_83 = 1'h1;
+      9'b010110101:
+        casez_tmp_83 = 1'h1;
+      9'b010110110:
+        casez_tmp_83 = 1'h1;
+      9'b010110111:
+        casez_tmp_83 = 1'h1;
+      9'b010111000:
+        casez_tmp_83 = 1'h1;
+      9'b010111001:
+        casez_tmp_83 = 1'h1;
+      9'b010111010:
+        casez_tmp_83 = 1'h1;
+      9'b010111011:
+        casez_tmp_83 = 1'h1;
+      9'b010111100:
+        casez_tmp_83 = 1'h1;
+      9'b010111101:
+        casez_tmp_83 = 1'h1;
+      9'b010111110:
+        casez_tmp_83 = 1'h1;
+      9'b010111111:
+        casez_tmp_83 = 1'h1;
+      9'b011000000:
+        casez_tmp_83 = 1'h0;
+      9'b011000001:
+        casez_tmp_83 = 1'h0;
+      9'b011000010:
+        casez_tmp_83 = 1'h0;
+      9'b011000011:
+        casez_tmp_83 = 1'h0;
+      9'b011000100:
+        casez_tmp_83 = 1'h0;
+      9'b011000101:
+        casez_tmp_83 = 1'h0;
+      9'b011000110:
+        casez_tmp_83 = 1'h0;
+      9'b011000111:
+        casez_tmp_83 = 1'h0;
+      9'b011001000:
+        casez_tmp_83 = 1'h0;
+      9'b011001001:
+        casez_tmp_83 = 1'h0;
+      9'b011001010:
+        casez_tmp_83 = 1'h0;
+      9'b011001011:
+        casez_tmp_83 = 1'h0;
+      9'b011001100:
+        casez_tmp_83 = 1'h0;
+      9'b011001101:
+        casez_tmp_83 = 1'h0;
+      9'b011001110:
+        casez_tmp_83 = 1'h1;
+      9'b011001111:
+        casez_tmp_83 = 1'h1;
+      9'b011010000:
+        casez_tmp_83 = 1'h1;
+      9'b011010001:
+        casez_tmp_83 = 1'h1;
+      9'b011010010:
+        casez_tmp_83 = 1'h1;
+      9'b011010011:
+        casez_tmp_83 = 1'h1;
+      9'b011010100:
+        casez_tmp_83 = 1'h1;
+      9'b011010101:
+        casez_tmp_83 = 1'h1;
+      9'b011010110:
+        casez_tmp_83 = 1'h1;
+      9'b011010111:
+        casez_tmp_83 = 1'h1;
+      9'b011011000:
+        casez_tmp_83 = 1'h1;
+      9'b011011001:
+        casez_tmp_83 = 1'h1;
+      9'b011011010:
+        casez_tmp_83 = 1'h1;
+      9'b011011011:
+        casez_tmp_83 = 1'h1;
+      9'b011011100:
+        casez_tmp_83 = 1'h1;
+      9'b011011101:
+        casez_tmp_83 = 1'h1;
+      9'b011011110:
+        casez_tmp_83 = 1'h1;
+      9'b011011111:
+        casez_tmp_83 = 1'h1;
+      9'b011100000:
+        casez_tmp_83 = 1'h0;
+      9'b011100001:
+        casez_tmp_83 = 1'h0;
+      9'b011100010:
+        casez_tmp_83 = 1'h0;
+      9'b011100011:
+        casez_tmp_83 = 1'h0;
+      9'b011100100:
+        casez_tmp_83 = 1'h0;
+      9'b011100101:
+        casez_tmp_83 = 1'h0;
+      9'b011100110:
+        casez_tmp_83 = 1'h0;
+      9'b011100111:
+        casez_tmp_83 = 1'h0;
+      9'b011101000:
+        casez_tmp_83 = 1'h0;
+      9'b011101001:
+        casez_tmp_83 = 1'h0;
+      9'b011101010:
+        casez_tmp_83 = 1'h0;
+      9'b011101011:
+        casez_tmp_83 = 1'h0;
+      9'b011101100:
+        casez_tmp_83 = 1'h0;
+      9'b011101101:
+        casez_tmp_83 = 1'h1;
+      9'b011101110:
+        casez_tmp_83 = 1'h1;
+      9'b011101111:
+        casez_tmp_83 = 1'h1;
+      9'b011110000:
+        casez_tmp_83 = 1'h1;
+      9'b011110001:
+        casez_tmp_83 = 1'h1;
+      9'b011110010:
+        casez_tmp_83 = 1'h1;
+      9'b011110011:
+        casez_tmp_83 = 1'h1;
+      9'b011110100:
+        casez_tmp_83 = 1'h1;
+      9'b011110101:
+        casez_tmp_83 = 1'h1;
+      9'b011110110:
+        casez_tmp_83 = 1'h1;
+      9'b011110111:
+        casez_tmp_83 = 1'h1;
+      9'b011111000:
+        casez_tmp_83 = 1'h1;
+      9'b011111001:
+        casez_tmp_83 = 1'h1;
+      9'b011111010:
+        casez_tmp_83 = 1'h1;
+      9'b011111011:
+        casez_tmp_83 = 1'h1;
+      9'b011111100:
+        casez_tmp_83 = 1'h1;
+      9'b011111101:
+        casez_tmp_83 = 1'h1;
+      9'b011111110:
+        casez_tmp_83 = 1'h1;
+      9'b011111111:
+        casez_tmp_83 = 1'h1;
+      9'b100000000:
+        casez_tmp_83 = 1'h0;
+      9'b100000001:
+        casez_tmp_83 = 1'h0;
+      9'b100000010:
+        casez_tmp_83 = 1'h0;
+      9'b100000011:
+        casez_tmp_83 = 1'h0;
+      9'b100000100:
+        casez_tmp_83 = 1'h0;
+      9'b100000101:
+        casez_tmp_83 = 1'h0;
+      9'b100000110:
+        casez_tmp_83 = 1'h0;
+      9'b100000111:
+        casez_tmp_83 = 1'h0;
+      9'b100001000:
+        casez_tmp_83 = 1'h0;
+      9'b100001001:
+        casez_tmp_83 = 1'h0;
+      9'b100001010:
+        casez_tmp_83 = 1'h0;
+      9'b100001011:
+        casez_tmp_83 = 1'h0;
+      9'b100001100:
+        casez_tmp_83 = 1'h1;
+      9'b100001101:
+        casez_tmp_83 = 1'h1;
+      9'b100001110:
+        casez_tmp_83 = 1'h1;
+      9'b100001111:
+        casez_tmp_83 = 1'h1;
+      9'b100010000:
+        casez_tmp_83 = 1'h1;
+      9'b100010001:
+        casez_tmp_83 = 1'h1;
+      9'b100010010:
+        casez_tmp_83 = 1'h1;
+      9'b100010011:
+        casez_tmp_83 = 1'h1;
+      9'b100010100:
+        casez_tmp_83 = 1'h1;
+      9'b100010101:
+        casez_tmp_83 = 1'h1;
+      9'b100010110:
+        casez_tmp_83 = 1'h1;
+      9'b100010111:
+        casez_tmp_83 = 1'h1;
+      9'b100011000:
+        casez_tmp_83 = 1'h1;
+      9'b100011001:
+        casez_tmp_83 = 1'h1;
+      9'b100011010:
+        casez_tmp_83 = 1'h1;
+      9'b100011011:
+        casez_tmp_83 = 1'h1;
+      9'b100011100:
+        casez_tmp_83 = 1'h1;
+      9'b100011101:
+        casez_tmp_83 = 1'h1;
+      9'b100011110:
+        casez_tmp_83 = 1'h1;
+      9'b100011111:
+        casez_tmp_83 = 1'h1;
+      9'b100100000:
+        casez_tmp_83 = 1'h0;
+      9'b100100001:
+        casez_tmp_83 = 1'h0;
+      9'b100100010:
+        casez_tmp_83 = 1'h0;
+      9'b100100011:
+        casez_tmp_83 = 1'h0;
+      9'b100100100:
+        casez_tmp_83 = 1'h0;
+      9'b100100101:
+        casez_tmp_83 = 1'h0;
+      9'b100100110:
+        casez_tmp_83 = 1'h0;
+      9'b100100111:
+        casez_tmp_83 = 1'h0;
+      9'b100101000:
+        casez_tmp_83 = 1'h0;
+      9'b100101001:
+        casez_tmp_83 = 1'h0;
+      9'b100101010:
+        casez_tmp_83 = 1'h0;
+      9'b100101011:
+        casez_tmp_83 = 1'h1;
+      9'b100101100:
+        casez_tmp_83 = 1'h1;
+      9'b100101101:
+        casez_tmp_83 = 1'h1;
+      9'b100101110:
+        casez_tmp_83 = 1'h1;
+      9'b100101111:
+        casez_tmp_83 = 1'h1;
+      9'b100110000:
+        casez_tmp_83 = 1'h1;
+      9'b100110001:
+        casez_tmp_83 = 1'h1;
+      9'b100110010:
+        casez_tmp_83 = 1'h1;
+      9'b100110011:
+        casez_tmp_83 = 1'h1;
+      9'b100110100:
+        casez_tmp_83 = 1'h1;
+      9'b100110101:
+        casez_tmp_83 = 1'h1;
+      9'b100110110:
+        casez_tmp_83 = 1'h1;
+      9'b100110111:
+        casez_tmp_83 = 1'h1;
+      9'b100111000:
+        casez_tmp_83 = 1'h1;
+      9'b100111001:
+        casez_tmp_83 = 1'h1;
+      9'b100111010:
+        casez_tmp_83 = 1'h1;
+      9'b100111011:
+        casez_tmp_83 = 1'h1;
+      9'b100111100:
+        casez_tmp_83 = 1'h1;
+      9'b100111101:
+        casez_tmp_83 = 1'h1;
+      9'b100111110:
+        casez_tmp_83 = 1'h1;
+      9'b100111111:
+        casez_tmp_83 = 1'h1;
+      9'b101000000:
+        casez_tmp_83 = 1'h0;
+      9'b101000001:
+        casez_tmp_83 = 1'h0;
+      9'b101000010:
+        casez_tmp_83 = 1'h0;
+      9'b101000011:
+        casez_tmp_83 = 1'h0;
+      9'b101000100:
+        casez_tmp_83 = 1'h0;
+      9'b101000101:
+        casez_tmp_83 = 1'h0;
+      9'b101000110:
+        casez_tmp_83 = 1'h0;
+      9'b101000111:
+        casez_tmp_83 = 1'h0;
+      9'b101001000:
+        casez_tmp_83 = 1'h0;
+      9'b101001001:
+        casez_tmp_83 = 1'h0;
+      9'b101001010:
+        casez_tmp_83 = 1'h1;
+      9'b101001011:
+        casez_tmp_83 = 1'h1;
+      9'b101001100:
+        casez_tmp_83 = 1'h1;
+      9'b101001101:
+        casez_tmp_83 = 1'h1;
+      9'b101001110:
+        casez_tmp_83 = 1'h1;
+      9'b101001111:
+        casez_tmp_83 = 1'h1;
+      9'b101010000:
+        casez_tmp_83 = 1'h1;
+      9'b101010001:
+        casez_tmp_83 = 1'h1;
+      9'b101010010:
+        casez_tmp_83 = 1'h1;
+      9'b101010011:
+        casez_tmp_83 = 1'h1;
+      9'b101010100:
+        casez_tmp_83 = 1'h1;
+      9'b101010101:
+        casez_tmp_83 = 1'h1;
+      9'b101010110:
+        casez_tmp_83 = 1'h1;
+      9'b101010111:
+        casez_tmp_83 = 1'h1;
+      9'b101011000:
+        casez_tmp_83 = 1'h1;
+      9'b101011001:
+        casez_tmp_83 = 1'h1;
+      9'b101011010:
+        casez_tmp_83 = 1'h1;
+      9'b101011011:
+        casez_tmp_83 = 1'h1;
+      9'b101011100:
+        casez_tmp_83 = 1'h1;
+      9'b101011101:
+        casez_tmp_83 = 1'h1;
+      9'b101011110:
+        casez_tmp_83 = 1'h1;
+      9'b101011111:
+        casez_tmp_83 = 1'h1;
+      9'b101100000:
+        casez_tmp_83 = 1'h0;
+      9'b101100001:
+        casez_tmp_83 = 1'h0;
+      9'b101100010:
+        casez_tmp_83 = 1'h0;
+      9'b101100011:
+        casez_tmp_83 = 1'h0;
+      9'b101100100:
+        casez_tmp_83 = 1'h0;
+      9'b101100101:
+        casez_tmp_83 = 1'h0;
+      9'b101100110:
+        casez_tmp_83 = 1'h0;
+      9'b101100111:
+        casez_tmp_83 = 1'h0;
+      9'b101101000:
+        casez_tmp_83 = 1'h0;
+      9'b101101001:
+        casez_tmp_83 = 1'h1;
+      9'b101101010:
+        casez_tmp_83 = 1'h1;
+      9'b101101011:
+        casez_tmp_83 = 1'h1;
+      9'b101101100:
+        casez_tmp_83 = 1'h1;
+      9'b101101101:
+        casez_tmp_83 = 1'h1;
+      9'b101101110:
+        casez_tmp_83 = 1'h1;
+      9'b101101111:
+        casez_tmp_83 = 1'h1;
+      9'b101110000:
+        casez_tmp_83 = 1'h1;
+      9'b101110001:
+        casez_tmp_83 = 1'h1;
+      9'b101110010:
+        casez_tmp_83 = 1'h1;
+      9'b101110011:
+        casez_tmp_83 = 1'h1;
+      9'b101110100:
+        casez_tmp_83 = 1'h1;
+      9'b101110101:
+        casez_tmp_83 = 1'h1;
+      9'b101110110:
+        casez_tmp_83 = 1'h1;
+      9'b101110111:
+        casez_tmp_83 = 1'h1;
+      9'b101111000:
+        casez_tmp_83 = 1'h1;
+      9'b101111001:
+        casez_tmp_83 = 1'h1;
+      9'b101111010:
+        casez_tmp_83 = 1'h1;
+      9'b101111011:
+        casez_tmp_83 = 1'h1;
+      9'b101111100:
+        casez_tmp_83 = 1'h1;
+      9'b101111101:
+        casez_tmp_83 = 1'h1;
+      9'b101111110:
+        casez_tmp_83 = 1'h1;
+      9'b101111111:
+        casez_tmp_83 = 1'h1;
+      9'b110000000:
+        casez_tmp_83 = 1'h0;
+      9'b110000001:
+        casez_tmp_83 = 1'h0;
+      9'b110000010:
+        casez_tmp_83 = 1'h0;
+      9'b110000011:
+        casez_tmp_83 = 1'h0;
+      9'b110000100:
+        casez_tmp_83 = 1'h0;
+      9'b110000101:
+        casez_tmp_83 = 1'h0;
+      9'b110000110:
+        casez_tmp_83 = 1'h0;
+      9'b110000111:
+        casez_tmp_83 = 1'h0;
+      9'b110001000:
+        casez_tmp_83 = 1'h1;
+      9'b110001001:
+        casez_tmp_83 = 1'h1;
+      9'b110001010:
+        casez_tmp_83 = 1'h1;
+      9'b110001011:
+        casez_tmp_83 = 1'h1;
+      9'b110001100:
+        casez_tmp_83 = 1'h1;
+      9'b110001101:
+        casez_tmp_83 = 1'h1;
+      9'b110001110:
+        casez_tmp_83 = 1'h1;
+      9'b110001111:
+        casez_tmp_83 = 1'h1;
+      9'b110010000:
+        casez_tmp_83 = 1'h1;
+      9'b110010001:
+        casez_tmp_83 = 1'h1;
+      9'b110010010:
+        casez_tmp_83 = 1'h1;
+      9'b110010011:
+        casez_tmp_83 = 1'h1;
+      9'b110010100:
+        casez_tmp_83 = 1'h1;
+      9'b110010101:
+        casez_tmp_83 = 1'h1;
+      9'b110010110:
+        casez_tmp_83 = 1'h1;
+      9'b110010111:
+        casez_tmp_83 = 1'h1;
+      9'b110011000:
+        casez_tmp_83 = 1'h1;
+      9'b110011001:
+        casez_tmp_83 = 1'h1;
+      9'b110011010:
+        casez_tmp_83 = 1'h1;
+      9'b110011011:
+        casez_tmp_83 = 1'h1;
+      9'b110011100:
+        casez_tmp_83 = 1'h1;
+      9'b110011101:
+        casez_tmp_83 = 1'h1;
+      9'b110011110:
+        casez_tmp_83 = 1'h1;
+      9'b110011111:
+        casez_tmp_83 = 1'h1;
+      9'b110100000:
+        casez_tmp_83 = 1'h0;
+      9'b110100001:
+        casez_tmp_83 = 1'h0;
+      9'b110100010:
+        casez_tmp_83 = 1'h0;
+      9'b110100011:
+        casez_tmp_83 = 1'h0;
+      9'b110100100:
+        casez_tmp_83 = 1'h0;
+      9'b110100101:
+        casez_tmp_83 = 1'h0;
+      9'b110100110:
+        casez_tmp_83 = 1'h0;
+      9'b110100111:
+        casez_tmp_83 = 1'h1;
+      9'b110101000:
+        casez_tmp_83 = 1'h1;
+      9'b110101001:
+        casez_tmp_83 = 1'h1;
+      9'b110101010:
+        casez_tmp_83 = 1'h1;
+      9'b110101011:
+        casez_tmp_83 = 1'h1;
+      9'b110101100:
+        casez_tmp_83 = 1'h1;
+      9'b110101101:
+        casez_tmp_83 = 1'h1;
+      9'b110101110:
+        casez_tmp_83 = 1'h1;
+      9'b110101111:
+        casez_tmp_83 = 1'h1;
+      9'b110110000:
+        casez_tmp_83 = 1'h1;
+      9'b110110001:
+        casez_tmp_83 = 1'h1;
+      9'b110110010:
+        casez_tmp_83 = 1'h1;
+      9'b110110011:
+        casez_tmp_83 = 1'h1;
+      9'b110110100:
+        casez_tmp_83 = 1'h1;
+      9'b110110101:
+        casez_tmp_83 = 1'h1;
+      9'b110110110:
+        casez_tmp_83 = 1'h1;
+      9'b110110111:
+        casez_tmp_83 = 1'h1;
+      9'b110111000:
+        casez_tmp_83 = 1'h1;
+      9'b110111001:
+        casez_tmp_83 = 1'h1;
+      9'b110111010:
+        casez_tmp_83 = 1'h1;
+      9'b110111011:
+        casez_tmp_83 = 1'h1;
+      9'b110111100:
+        casez_tmp_83 = 1'h1;
+      9'b110111101:
+        casez_tmp_83 = 1'h1;
+      9'b110111110:
+        casez_tmp_83 = 1'h1;
+      9'b110111111:
+        casez_tmp_83 = 1'h1;
+      9'b111000000:
+        casez_tmp_83 = 1'h0;
+      9'b111000001:
+        casez_tmp_83 = 1'h0;
+      9'b111000010:
+        casez_tmp_83 = 1'h0;
+      9'b111000011:
+        casez_tmp_83 = 1'h0;
+      9'b111000100:
+        casez_tmp_83 = 1'h0;
+      9'b111000101:
+        casez_tmp_83 = 1'h0;
+      9'b111000110:
+        casez_tmp_83 = 1'h1;
+      9'b111000111:
+        casez_tmp_83 = 1'h1;
+      9'b111001000:
+        casez_tmp_83 = 1'h1;
+      9'b111001001:
+        casez_tmp_83 = 1'h1;
+      9'b111001010:
+        casez_tmp_83 = 1'h1;
+      9'b111001011:
+        casez_tmp_83 = 1'h1;
+      9'b111001100:
+        casez_tmp_83 = 1'h1;
+      9'b111001101:
+        casez_tmp_83 = 1'h1;
+      9'b111001110:
+        casez_tmp_83 = 1'h1;
+      9'b111001111:
+        casez_tmp_83 = 1'h1;
+      9'b111010000:
+        casez_tmp_83 = 1'h1;
+      9'b111010001:
+        casez_tmp_83 = 1'h1;
+      9'b111010010:
+        casez_tmp_83 = 1'h1;
+      9'b111010011:
+        casez_tmp_83 = 1'h1;
+      9'b111010100:
+        casez_tmp_83 = 1'h1;
+      9'b111010101:
+        casez_tmp_83 = 1'h1;
+      9'b111010110:
+        casez_tmp_83 = 1'h1;
+      9'b111010111:
+        casez_tmp_83 = 1'h1;
+      9'b111011000:
+        casez_tmp_83 = 1'h1;
+      9'b111011001:
+        casez_tmp_83 = 1'h1;
+      9'b111011010:
+        casez_tmp_83 = 1'h1;
+      9'b111011011:
+        casez_tmp_83 = 1'h1;
+      9'b111011100:
+        casez_tmp_83 = 1'h1;
+      9'b111011101:
+        casez_tmp_83 = 1'h1;
+      9'b111011110:
+        casez_tmp_83 = 1'h1;
+      9'b111011111:
+        casez_tmp_83 = 1'h1;
+      9'b111100000:
+        casez_tmp_83 = 1'h0;
+      9'b111100001:
+        casez_tmp_83 = 1'h0;
+      9'b111100010:
+        casez_tmp_83 = 1'h0;
+      9'b111100011:
+        casez_tmp_83 = 1'h0;
+      9'b111100100:
+        casez_tmp_83 = 1'h0;
+      9'b111100101:
+        casez_tmp_83 = 1'h1;
+      9'b111100110:
+        casez_tmp_83 = 1'h1;
+      9'b111100111:
+        casez_tmp_83 = 1'h1;
+      9'b111101000:
+        casez_tmp_83 = 1'h1;
+      9'b111101001:
+        casez_tmp_83 = 1'h1;
+      9'b111101010:
+        casez_tmp_83 = 1'h1;
+      9'b111101011:
+        casez_tmp_83 = 1'h1;
+      9'b111101100:
+        casez_tmp_83 = 1'h1;
+      9'b111101101:
+        casez_tmp_83 = 1'h1;
+      9'b111101110:
+        casez_tmp_83 = 1'h1;
+      9'b111101111:
+        casez_tmp_83 = 1'h1;
+      9'b111110000:
+        casez_tmp_83 = 1'h1;
+      9'b111110001:
+        casez_tmp_83 = 1'h1;
+      9'b111110010:
+        casez_tmp_83 = 1'h1;
+      9'b111110011:
+        casez_tmp_83 = 1'h1;
+      9'b111110100:
+        casez_tmp_83 = 1'h1;
+      9'b111110101:
+        casez_tmp_83 = 1'h1;
+      9'b111110110:
+        casez_tmp_83 = 1'h1;
+      9'b111110111:
+        casez_tmp_83 = 1'h1;
+      9'b111111000:
+        casez_tmp_83 = 1'h1;
+      9'b111111001:
+        casez_tmp_83 = 1'h1;
+      9'b111111010:
+        casez_tmp_83 = 1'h1;
+      9'b111111011:
+        casez_tmp_83 = 1'h1;
+      9'b111111100:
+        casez_tmp_83 = 1'h1;
+      9'b111111101:
+        casez_tmp_83 = 1'h1;
+      9'b111111110:
+        casez_tmp_83 = 1'h1;
+      default:
+        casez_tmp_83 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_84;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_84 = 1'h0;
+      9'b000000001:
+        casez_tmp_84 = 1'h0;
+      9'b000000010:
+        casez_tmp_84 = 1'h0;
+      9'b000000011:
+        casez_tmp_84 = 1'h0;
+      9'b000000100:
+        casez_tmp_84 = 1'h0;
+      9'b000000101:
+        casez_tmp_84 = 1'h1;
+      9'b000000110:
+        casez_tmp_84 = 1'h1;
+      9'b000000111:
+        casez_tmp_84 = 1'h1;
+      9'b000001000:
+        casez_tmp_84 = 1'h1;
+      9'b000001001:
+        casez_tmp_84 = 1'h1;
+      9'b000001010:
+        casez_tmp_84 = 1'h1;
+      9'b000001011:
+        casez_tmp_84 = 1'h1;
+      9'b000001100:
+        casez_tmp_84 = 1'h1;
+      9'b000001101:
+        casez_tmp_84 = 1'h1;
+      9'b000001110:
+        casez_tmp_84 = 1'h1;
+      9'b000001111:
+        casez_tmp_84 = 1'h1;
+      9'b000010000:
+        casez_tmp_84 = 1'h1;
+      9'b000010001:
+        casez_tmp_84 = 1'h1;
+      9'b000010010:
+        casez_tmp_84 = 1'h1;
+      9'b000010011:
+        casez_tmp_84 = 1'h1;
+      9'b000010100:
+        casez_tmp_84 = 1'h1;
+      9'b000010101:
+        casez_tmp_84 = 1'h1;
+      9'b000010110:
+        casez_tmp_84 = 1'h1;
+      9'b000010111:
+        casez_tmp_84 = 1'h1;
+      9'b000011000:
+        casez_tmp_84 = 1'h1;
+      9'b000011001:
+        casez_tmp_84 = 1'h1;
+      9'b000011010:
+        casez_tmp_84 = 1'h1;
+      9'b000011011:
+        casez_tmp_84 = 1'h1;
+      9'b000011100:
+        casez_tmp_84 = 1'h1;
+      9'b000011101:
+        casez_tmp_84 = 1'h1;
+      9'b000011110:
+        casez_tmp_84 = 1'h1;
+      9'b000011111:
+        casez_tmp_84 = 1'h1;
+      9'b000100000:
+        casez_tmp_84 = 1'h0;
+      9'b000100001:
+        casez_tmp_84 = 1'h0;
+      9'b000100010:
+        casez_tmp_84 = 1'h0;
+      9'b000100011:
+        casez_tmp_84 = 1'h0;
+      9'b000100100:
+        casez_tmp_84 = 1'h1;
+      9'b000100101:
+        casez_tmp_84 = 1'h1;
+      9'b000100110:
+        casez_tmp_84 = 1'h1;
+      9'b000100111:
+        casez_tmp_84 = 1'h1;
+      9'b000101000:
+        casez_tmp_84 = 1'h1;
+      9'b000101001:
+        casez_tmp_84 = 1'h1;
+      9'b000101010:
+        casez_tmp_84 = 1'h1;
+      9'b000101011:
+        casez_tmp_84 = 1'h1;
+      9'b000101100:
+        casez_tmp_84 = 1'h1;
+      9'b000101101:
+        casez_tmp_84 = 1'h1;
+      9'b000101110:
+        casez_tmp_84 = 1'h1;
+      9'b000101111:
+        casez_tmp_84 = 1'h1;
+      9'b000110000:
+        casez_tmp_84 = 1'h1;
+      9'b000110001:
+        casez_tmp_84 = 1'h1;
+      9'b000110010:
+        casez_tmp_84 = 1'h1;
+      9'b000110011:
+        casez_tmp_84 = 1'h1;
+      9'b000110100:
+        casez_tmp_84 = 1'h1;
+      9'b000110101:
+        casez_tmp_84 = 1'h1;
+      9'b000110110:
+        casez_tmp_84 = 1'h1;
+      9'b000110111:
+        casez_tmp_84 = 1'h1;
+      9'b000111000:
+        casez_tmp_84 = 1'h1;
+      9'b000111001:
+        casez_tmp_84 = 1'h1;
+      9'b000111010:
+        casez_tmp_84 = 1'h1;
+      9'b000111011:
+        casez_tmp_84 = 1'h1;
+      9'b000111100:
+        casez_tmp_84 = 1'h1;
+      9'b000111101:
+        casez_tmp_84 = 1'h1;
+      9'b000111110:
+        casez_tmp_84 = 1'h1;
+      9'b000111111:
+        casez_tmp_84 = 1'h1;
+      9'b001000000:
+        casez_tmp_84 = 1'h0;
+      9'b001000001:
+        casez_tmp_84 = 1'h0;
+      9'b001000010:
+        casez_tmp_84 = 1'h0;
+      9'b001000011:
+        casez_tmp_84 = 1'h1;
+      9'b001000100:
+        casez_tmp_84 = 1'h1;
+      9'b001000101:
+        casez_tmp_84 = 1'h1;
+      9'b001000110:
+        casez_tmp_84 = 1'h1;
+      9'b001000111:
+        casez_tmp_84 = 1'h1;
+      9'b001001000:
+        casez_tmp_84 = 1'h1;
+      9'b001001001:
+        casez_tmp_84 = 1'h1;
+      9'b001001010:
+        casez_tmp_84 = 1'h1;
+      9'b001001011:
+        casez_tmp_84 = 1'h1;
+      9'b001001100:
+        casez_tmp_84 = 1'h1;
+      9'b001001101:
+        casez_tmp_84 = 1'h1;
+      9'b001001110:
+        casez_tmp_84 = 1'h1;
+      9'b001001111:
+        casez_tmp_84 = 1'h1;
+      9'b001010000:
+        casez_tmp_84 = 1'h1;
+      9'b001010001:
+        casez_tmp_84 = 1'h1;
+      9'b001010010:
+        casez_tmp_84 = 1'h1;
+      9'b001010011:
+        casez_tmp_84 = 1'h1;
+      9'b001010100:
+        casez_tmp_84 = 1'h1;
+      9'b001010101:
+        casez_tmp_84 = 1'h1;
+      9'b001010110:
+        casez_tmp_84 = 1'h1;
+      9'b001010111:
+        casez_tmp_84 = 1'h1;
+      9'b001011000:
+        casez_tmp_84 = 1'h1;
+      9'b001011001:
+        casez_tmp_84 = 1'h1;
+      9'b001011010:
+        casez_tmp_84 = 1'h1;
+      9'b001011011:
+        casez_tmp_84 = 1'h1;
+      9'b001011100:
+        casez_tmp_84 = 1'h1;
+      9'b001011101:
+        casez_tmp_84 = 1'h1;
+      9'b001011110:
+        casez_tmp_84 = 1'h1;
+      9'b001011111:
+        casez_tmp_84 = 1'h1;
+      9'b001100000:
+        casez_tmp_84 = 1'h0;
+      9'b001100001:
+        casez_tmp_84 = 1'h0;
+      9'b001100010:
+        casez_tmp_84 = 1'h1;
+      9'b001100011:
+        casez_tmp_84 = 1'h1;
+      9'b001100100:
+        casez_tmp_84 = 1'h1;
+      9'b001100101:
+        casez_tmp_84 = 1'h1;
+      9'b001100110:
+        casez_tmp_84 = 1'h1;
+      9'b001100111:
+        casez_tmp_84 = 1'h1;
+      9'b001101000:
+        casez_tmp_84 = 1'h1;
+      9'b001101001:
+        casez_tmp_84 = 1'h1;
+      9'b001101010:
+        casez_tmp_84 = 1'h1;
+      9'b001101011:
+        casez_tmp_84 = 1'h1;
+      9'b001101100:
+        casez_tmp_84 = 1'h1;
+      9'b001101101:
+        casez_tmp_84 = 1'h1;
+      9'b001101110:
+        casez_tmp_84 = 1'h1;
+      9'b001101111:
+        casez_tmp_84 = 1'h1;
+      9'b001110000:
+        casez_tmp_84 = 1'h1;
+      9'b001110001:
+        casez_tmp_84 = 1'h1;
+      9'b001110010:
+        casez_tmp_84 = 1'h1;
+      9'b001110011:
+        casez_tmp_84 = 1'h1;
+      9'b001110100:
+        casez_tmp_84 = 1'h1;
+      9'b001110101:
+        casez_tmp_84 = 1'h1;
+      9'b001110110:
+        casez_tmp_84 = 1'h1;
+      9'b001110111:
+        casez_tmp_84 = 1'h1;
+      9'b001111000:
+        casez_tmp_84 = 1'h1;
+      9'b001111001:
+        casez_tmp_84 = 1'h1;
+      9'b001111010:
+        casez_tmp_84 = 1'h1;
+      9'b001111011:
+        casez_tmp_84 = 1'h1;
+      9'b001111100:
+        casez_tmp_84 = 1'h1;
+      9'b001111101:
+        casez_tmp_84 = 1'h1;
+      9'b001111110:
+        casez_tmp_84 = 1'h1;
+      9'b001111111:
+        casez_tmp_84 = 1'h1;
+      9'b010000000:
+        casez_tmp_84 = 1'h0;
+      9'b010000001:
+        casez_tmp_84 = 1'h1;
+      9'b010000010:
+        casez_tmp_84 = 1'h1;
+      9'b010000011:
+        casez_tmp_84 = 1'h1;
+      9'b010000100:
+        casez_tmp_84 = 1'h1;
+      9'b010000101:
+        casez_tmp_84 = 1'h1;
+      9'b010000110:
+        casez_tmp_84 = 1'h1;
+      9'b010000111:
+        casez_tmp_84 = 1'h1;
+      9'b010001000:
+        casez_tmp_84 = 1'h1;
+      9'b010001001:
+        casez_tmp_84 = 1'h1;
+      9'b010001010:
+        casez_tmp_84 = 1'h1;
+      9'b010001011:
+        casez_tmp_84 = 1'h1;
+      9'b010001100:
+        casez_tmp_84 = 1'h1;
+      9'b010001101:
+        casez_tmp_84 = 1'h1;
+      9'b010001110:
+        casez_tmp_84 = 1'h1;
+      9'b010001111:
+        casez_tmp_84 = 1'h1;
+      9'b010010000:
+        casez_tmp_84 = 1'h1;
+      9'b010010001:
+        casez_tmp_84 = 1'h1;
+      9'b010010010:
+        casez_tmp_84 = 1'h1;
+      9'b010010011:
+        casez_tmp_84 = 1'h1;
+      9'b010010100:
+        casez_tmp_84 = 1'h1;
+      9'b010010101:
+        casez_tmp_84 = 1'h1;
+      9'b010010110:
+        casez_tmp_84 = 1'h1;
+      9'b010010111:
+        casez_tmp_84 = 1'h1;
+      9'b010011000:
+        casez_tmp_84 = 1'h1;
+      9'b010011001:
+        casez_tmp_84 = 1'h1;
+      9'b010011010:
+        casez_tmp_84 = 1'h1;
+      9'b010011011:
+        casez_tmp_84 = 1'h1;
+      9'b010011100:
+        casez_tmp_84 = 1'h1;
+      9'b010011101:
+        casez_tmp_84 = 1'h1;
+      9'b010011110:
+        casez_tmp_84 = 1'h1;
+      9'b010011111:
+        casez_tmp_84 = 1'h1;
+      9'b010100000:
+        casez_tmp_84 = 1'h0;
+      9'b010100001:
+        casez_tmp_84 = 1'h0;
+      9'b010100010:
+        casez_tmp_84 = 1'h0;
+      9'b010100011:
+        casez_tmp_84 = 1'h0;
+      9'b010100100:
+        casez_tmp_84 = 1'h0;
+      9'b010100101:
+        casez_tmp_84 = 1'h0;
+      9'b010100110:
+        casez_tmp_84 = 1'h0;
+      9'b010100111:
+        casez_tmp_84 = 1'h0;
+      9'b010101000:
+        casez_tmp_84 = 1'h0;
+      9'b010101001:
+        casez_tmp_84 = 1'h0;
+      9'b010101010:
+        casez_tmp_84 = 1'h0;
+      9'b010101011:
+        casez_tmp_84 = 1'h0;
+      9'b010101100:
+        casez_tmp_84 = 1'h0;
+      9'b010101101:
+        casez_tmp_84 = 1'h0;
+      9'b010101110:
+        casez_tmp_84 = 1'h0;
+      9'b010101111:
+        casez_tmp_84 = 1'h0;
+      9'b010110000:
+        casez_tmp_84 = 1'h1;
+      9'b010110001:
+        casez_tmp_84 = 1'h1;
+      9'b010110010:
+        casez_tmp_84 = 1'h1;
+      9'b010110011:
+        casez_tmp_84 = 1'h1;
+      9'b010110100:
+        casez_tmp_84 = 1'h1;
+      9'b010110101:
+        casez_tmp_84 = 1'h1;
+      9'b010110110:
+        casez_tmp_84 = 1'h1;
+      9'b010110111:
+        casez_tmp_84 = 1'h1;
+      9'b010111000:
+        casez_tmp_84 = 1'h1;
+      9'b010111001:
+        casez_tmp_84 = 1'h1;
+      9'b010111010:
+        casez_tmp_84 = 1'h1;
+      9'b010111011:
+        casez_tmp_84 = 1'h1;
+      9'b010111100:
+        casez_tmp_84 = 1'h1;
+      9'b010111101:
+        casez_tmp_84 = 1'h1;
+      9'b010111110:
+        casez_tmp_84 = 1'h1;
+      9'b010111111:
+        casez_tmp_84 = 1'h1;
+      9'b011000000:
+        casez_tmp_84 = 1'h0;
+      9'b011000001:
+        casez_tmp_84 = 1'h0;
+      9'b011000010:
+        casez_tmp_84 = 1'h0;
+      9'b011000011:
+        casez_tmp_84 = 1'h0;
+      9'b011000100:
+        casez_tmp_84 = 1'h0;
+      9'b011000101:
+        casez_tmp_84 = 1'h0;
+      9'b011000110:
+        casez_tmp_84 = 1'h0;
+      9'b011000111:
+        casez_tmp_84 = 1'h0;
+      9'b011001000:
+        casez_tmp_84 = 1'h0;
+      9'b011001001:
+        casez_tmp_84 = 1'h0;
+      9'b011001010:
+        casez_tmp_84 = 1'h0;
+      9'b011001011:
+        casez_tmp_84 = 1'h0;
+      9'b011001100:
+        casez_tmp_84 = 1'h0;
+      9'b011001101:
+        casez_tmp_84 = 1'h0;
+      9'b011001110:
+        casez_tmp_84 = 1'h0;
+      9'b011001111:
+        casez_tmp_84 = 1'h1;
+      9'b011010000:
+        casez_tmp_84 = 1'h1;
+      9'b011010001:
+        casez_tmp_84 = 1'h1;
+      9'b011010010:
+        casez_tmp_84 = 1'h1;
+      9'b011010011:
+        casez_tmp_84 = 1'h1;
+      9'b011010100:
+        casez_tmp_84 = 1'h1;
+      9'b011010101:
+        casez_tmp_84 = 1'h1;
+      9'b011010110:
+        casez_tmp_84 = 1'h1;
+      9'b011010111:
+        casez_tmp_84 = 1'h1;
+      9'b011011000:
+        casez_tmp_84 = 1'h1;
+      9'b011011001:
+        casez_tmp_84 = 1'h1;
+      9'b011011010:
+        casez_tmp_84 = 1'h1;
+      9'b011011011:
+        casez_tmp_84 = 1'h1;
+      9'b011011100:
+        casez_tmp_84 = 1'h1;
+      9'b011011101:
+        casez_tmp_84 = 1'h1;
+      9'b011011110:
+        casez_tmp_84 = 1'h1;
+      9'b011011111:
+        casez_tmp_84 = 1'h1;
+      9'b011100000:
+        casez_tmp_84 = 1'h0;
+      9'b011100001:
+        casez_tmp_84 = 1'h0;
+      9'b011100010:
+        casez_tmp_84 = 1'h0;
+      9'b011100011:
+        casez_tmp_84 = 1'h0;
+      9'b011100100:
+        casez_tmp_84 = 1'h0;
+      9'b011100101:
+        casez_tmp_84 = 1'h0;
+      9'b011100110:
+        casez_tmp_84 = 1'h0;
+      9'b011100111:
+        casez_tmp_84 = 1'h0;
+      9'b011101000:
+        casez_tmp_84 = 1'h0;
+      9'b011101001:
+        casez_tmp_84 = 1'h0;
+      9'b011101010:
+        casez_tmp_84 = 1'h0;
+      9'b011101011:
+        casez_tmp_84 = 1'h0;
+      9'b011101100:
+        casez_tmp_84 = 1'h0;
+      9'b011101101:
+        casez_tmp_84 = 1'h0;
+      9'b011101110:
+        casez_tmp_84 = 1'h1;
+      9'b011101111:
+        casez_tmp_84 = 1'h1;
+      9'b011110000:
+        casez_tmp_84 = 1'h1;
+      9'b011110001:
+        casez_tmp_84 = 1'h1;
+      9'b011110010:
+        casez_tmp_84 = 1'h1;
+      9'b011110011:
+        casez_tmp_84 = 1'h1;
+      9'b011110100:
+        casez_tmp_84 = 1'h1;
+      9'b011110101:
+        casez_tmp_84 = 1'h1;
+      9'b011110110:
+        casez_tmp_84 = 1'h1;
+      9'b011110111:
+        casez_tmp_84 = 1'h1;
+      9'b011111000:
+        casez_tmp_84 = 1'h1;
+      9'b011111001:
+        casez_tmp_84 = 1'h1;
+      9'b011111010:
+        casez_tmp_84 = 1'h1;
+      9'b011111011:
+        casez_tmp_84 = 1'h1;
+      9'b011111100:
+        casez_tmp_84 = 1'h1;
+      9'b011111101:
+        casez_tmp_84 = 1'h1;
+      9'b011111110:
+        casez_tmp_84 = 1'h1;
+      9'b011111111:
+        casez_tmp_84 = 1'h1;
+      9'b100000000:
+        casez_tmp_84 = 1'h0;
+      9'b100000001:
+        casez_tmp_84 = 1'h0;
+      9'b100000010:
+        casez_tmp_84 = 1'h0;
+      9'b100000011:
+        casez_tmp_84 = 1'h0;
+      9'b100000100:
+        casez_tmp_84 = 1'h0;
+      9'b100000101:
+        casez_tmp_84 = 1'h0;
+      9'b100000110:
+        casez_tmp_84 = 1'h0;
+      9'b100000111:
+        casez_tmp_84 = 1'h0;
+      9'b100001000:
+        casez_tmp_84 = 1'h0;
+      9'b100001001:
+        casez_tmp_84 = 1'h0;
+      9'b100001010:
+        casez_tmp_84 = 1'h0;
+      9'b100001011:
+        casez_tmp_84 = 1'h0;
+      9'b100001100:
+        casez_tmp_84 = 1'h0;
+      9'b100001101:
+        casez_tmp_84 = 1'h1;
+      9'b100001110:
+        casez_tmp_84 = 1'h1;
+      9'b100001111:
+        casez_tmp_84 = 1'h1;
+      9'b100010000:
+        casez_tmp_84 = 1'h1;
+      9'b100010001:
+        casez_tmp_84 = 1'h1;
+      9'b100010010:
+        casez_tmp_84 = 1'h1;
+      9'b100010011:
+        casez_tmp_84 = 1'h1;
+      9'b100010100:
+        casez_tmp_84 = 1'h1;
+      9'b100010101:
+        casez_tmp_84 = 1'h1;
+      9'b100010110:
+        casez_tmp_84 = 1'h1;
+      9'b100010111:
+        casez_tmp_84 = 1'h1;
+      9'b100011000:
+        casez_tmp_84 = 1'h1;
+      9'b100011001:
+        casez_tmp_84 = 1'h1;
+      9'b100011010:
+        casez_tmp_84 = 1'h1;
+      9'b100011011:
+        casez_tmp_84 = 1'h1;
+      9'b100011100:
+        casez_tmp_84 = 1'h1;
+      9'b100011101:
+        casez_tmp_84 = 1'h1;
+      9'b100011110:
+        casez_tmp_84 = 1'h1;
+      9'b100011111:
+        casez_tmp_84 = 1'h1;
+      9'b100100000:
+        casez_tmp_84 = 1'h0;
+      9'b100100001:
+        casez_tmp_84 = 1'h0;
+      9'b100100010:
+        casez_tmp_84 = 1'h0;
+      9'b100100011:
+        casez_tmp_84 = 1'h0;
+      9'b100100100:
+        casez_tmp_84 = 1'h0;
+      9'b100100101:
+        casez_tmp_84 = 1'h0;
+      9'b100100110:
+        casez_tmp_84 = 1'h0;
+      9'b100100111:
+        casez_tmp_84 = 1'h0;
+      9'b100101000:
+        casez_tmp_84 = 1'h0;
+      9'b100101001:
+        casez_tmp_84 = 1'h0;
+      9'b100101010:
+        casez_tmp_84 = 1'h0;
+      9'b100101011:
+        casez_tmp_84 = 1'h0;
+      9'b100101100:
+        casez_tmp_84 = 1'h1;
+      9'b100101101:
+        casez_tmp_84 = 1'h1;
+      9'b100101110:
+        casez_tmp_84 = 1'h1;
+      9'b100101111:
+        casez_tmp_84 = 1'h1;
+      9'b100110000:
+        casez_tmp_84 = 1'h1;
+      9'b100110001:
+        casez_tmp_84 = 1'h1;
+      9'b100110010:
+        casez_tmp_84 = 1'h1;
+      9'b100110011:
+        casez_tmp_84 = 1'h1;
+      9'b100110100:
+        casez_tmp_84 = 1'h1;
+      9'b100110101:
+        casez_tmp_84 = 1'h1;
+      9'b100110110:
+        casez_tmp_84 = 1'h1;
+      9'b100110111:
+        casez_tmp_84 = 1'h1;
+      9'b100111000:
+        casez_tmp_84 = 1'h1;
+      9'b100111001:
+        casez_tmp_84 = 1'h1;
+      9'b100111010:
+        casez_tmp_84 = 1'h1;
+      9'b100111011:
+        casez_tmp_84 = 1'h1;
+      9'b100111100:
+        casez_tmp_84 = 1'h1;
+      9'b100111101:
+        casez_tmp_84 = 1'h1;
+      9'b100111110:
+        casez_tmp_84 = 1'h1;
+      9'b100111111:
+        casez_tmp_84 = 1'h1;
+      9'b101000000:
+        casez_tmp_84 = 1'h0;
+      9'b101000001:
+        casez_tmp_84 = 1'h0;
+      9'b101000010:
+        casez_tmp_84 = 1'h0;
+      9'b101000011:
+        casez_tmp_84 = 1'h0;
+      9'b101000100:
+        casez_tmp_84 = 1'h0;
+      9'b101000101:
+        casez_tmp_84 = 1'h0;
+      9'b101000110:
+        casez_tmp_84 = 1'h0;
+      9'b101000111:
+        casez_tmp_84 = 1'h0;
+      9'b101001000:
+        casez_tmp_84 = 1'h0;
+      9'b101001001:
+        casez_tmp_84 = 1'h0;
+      9'b101001010:
+        casez_tmp_84 = 1'h0;
+      9'b101001011:
+        casez_tmp_84 = 1'h1;
+      9'b101001100:
+        casez_tmp_84 = 1'h1;
+      9'b101001101:
+        casez_tmp_84 = 1'h1;
+      9'b101001110:
+        casez_tmp_84 = 1'h1;
+      9'b101001111:
+        casez_tmp_84 = 1'h1;
+      9'b101010000:
+        casez_tmp_84 = 1'h1;
+      9'b101010001:
+        casez_tmp_84 = 1'h1;
+      9'b101010010:
+        casez_tmp_84 = 1'h1;
+      9'b101010011:
+        casez_tmp_84 = 1'h1;
+      9'b101010100:
+        casez_tmp_84 = 1'h1;
+      9'b101010101:
+        casez_tmp_84 = 1'h1;
+      9'b101010110:
+        casez_tmp_84 = 1'h1;
+      9'b101010111:
+        casez_tmp_84 = 1'h1;
+      9'b101011000:
+        casez_tmp_84 = 1'h1;
+      9'b101011001:
+        casez_tmp_84 = 1'h1;
+      9'b101011010:
+        casez_tmp_84 = 1'h1;
+      9'b101011011:
+        casez_tmp_84 = 1'h1;
+      9'b101011100:
+        casez_tmp_84 = 1'h1;
+      9'b101011101:
+        casez_tmp_84 = 1'h1;
+      9'b101011110:
+        casez_tmp_84 = 1'h1;
+      9'b101011111:
+        casez_tmp_84 = 1'h1;
+      9'b101100000:
+        casez_tmp_84 = 1'h0;
+      9'b101100001:
+        casez_tmp_84 = 1'h0;
+      9'b101100010:
+        casez_tmp_84 = 1'h0;
+      9'b101100011:
+        casez_tmp_84 = 1'h0;
+      9'b101100100:
+        casez_tmp_84 = 1'h0;
+      9'b101100101:
+        casez_tmp_84 = 1'h0;
+      9'b101100110:
+        casez_tmp_84 = 1'h0;
+      9'b101100111:
+        casez_tmp_84 = 1'h0;
+      9'b101101000:
+        casez_tmp_84 = 1'h0;
+      9'b101101001:
+        casez_tmp_84 = 1'h0;
+      9'b101101010:
+        casez_tmp_84 = 1'h1;
+      9'b101101011:
+        casez_tmp_84 = 1'h1;
+      9'b101101100:
+        casez_tmp_84 = 1'h1;
+      9'b101101101:
+        casez_tmp_84 = 1'h1;
+      9'b101101110:
+        casez_tmp_84 = 1'h1;
+      9'b101101111:
+        casez_tmp_84 = 1'h1;
+      9'b101110000:
+        casez_tmp_84 = 1'h1;
+      9'b101110001:
+        casez_tmp_84 = 1'h1;
+      9'b101110010:
+        casez_tmp_84 = 1'h1;
+      9'b101110011:
+        casez_tmp_84 = 1'h1;
+      9'b101110100:
+        casez_tmp_84 = 1'h1;
+      9'b101110101:
+        casez_tmp_84 = 1'h1;
+      9'b101110110:
+        casez_tmp_84 = 1'h1;
+      9'b101110111:
+        casez_tmp_84 = 1'h1;
+      9'b101111000:
+        casez_tmp_84 = 1'h1;
+      9'b101111001:
+        casez_tmp_84 = 1'h1;
+      9'b101111010:
+        casez_tmp_84 = 1'h1;
+      9'b101111011:
+        casez_tmp_84 = 1'h1;
+      9'b101111100:
+        casez_tmp_84 = 1'h1;
+      9'b101111101:
+        casez_tmp_84 = 1'h1;
+      9'b101111110:
+        casez_tmp_84 = 1'h1;
+      9'b101111111:
+        casez_tmp_84 = 1'h1;
+      9'b110000000:
+        casez_tmp_84 = 1'h0;
+      9'b110000001:
+        casez_tmp_84 = 1'h0;
+      9'b110000010:
+        casez_tmp_84 = 1'h0;
+      9'b110000011:
+        casez_tmp_84 = 1'h0;
+      9'b110000100:
+        casez_tmp_84 = 1'h0;
+      9'b110000101:
+        casez_tmp_84 = 1'h0;
+      9'b110000110:
+        casez_tmp_84 = 1'h0;
+      9'b110000111:
+        casez_tmp_84 = 1'h0;
+      9'b110001000:
+        casez_tmp_84 = 1'h0;
+      9'b110001001:
+        casez_tmp_84 = 1'h1;
+      9'b110001010:
+        casez_tmp_84 = 1'h1;
+      9'b110001011:
+        casez_tmp_84 = 1'h1;
+      9'b110001100:
+        casez_tmp_84 = 1'h1;
+      9'b110001101:
+        casez_tmp_84 = 1'h1;
+      9'b110001110:
+        casez_tmp_84 = 1'h1;
+      9'b110001111:
+        casez_tmp_84 = 1'h1;
+      9'b110010000:
+        casez_tmp_84 = 1'h1;
+      9'b110010001:
+        casez_tmp_84 = 1'h1;
+      9'b110010010:
+        casez_tmp_84 = 1'h1;
+      9'b110010011:
+        casez_tmp_84 = 1'h1;
+      9'b110010100:
+        casez_tmp_84 = 1'h1;
+      9'b110010101:
+        casez_tmp_84 = 1'h1;
+      9'b110010110:
+        casez_tmp_84 = 1'h1;
+      9'b110010111:
+        casez_tmp_84 = 1'h1;
+      9'b110011000:
+        casez_tmp_84 = 1'h1;
+      9'b110011001:
+        casez_tmp_84 = 1'h1;
+      9'b110011010:
+        casez_tmp_84 = 1'h1;
+      9'b110011011:
+        casez_tmp_84 = 1'h1;
+      9'b110011100:
+        casez_tmp_84 = 1'h1;
+      9'b110011101:
+        casez_tmp_84 = 1'h1;
+      9'b110011110:
+        casez_tmp_84 = 1'h1;
+      9'b110011111:
+        casez_tmp_84 = 1'h1;
+      9'b110100000:
+        casez_tmp_84 = 1'h0;
+      9'b110100001:
+        casez_tmp_84 = 1'h0;
+      9'b110100010:
+        casez_tmp_84 = 1'h0;
+      9'b110100011:
+        casez_tmp_84 = 1'h0;
+      9'b110100100:
+        casez_tmp_84 = 1'h0;
+      9'b110100101:
+        casez_tmp_84 = 1'h0;
+      9'b110100110:
+        casez_tmp_84 = 1'h0;
+      9'b110100111:
+        casez_tmp_84 = 1'h0;
+      9'b110101000:
+        casez_tmp_84 = 1'h1;
+      9'b110101001:
+        casez_tmp_84 = 1'h1;
+      9'b110101010:
+        casez_tmp_84 = 1'h1;
+      9'b110101011:
+        casez_tmp_84 = 1'h1;
+      9'b110101100:
+        casez_tmp_84 = 1'h1;
+      9'b110101101:
+        casez_tmp_84 = 1'h1;
+      9'b110101110:
+        casez_tmp_84 = 1'h1;
+      9'b110101111:
+        casez_tmp_84 = 1'h1;
+      9'b110110000:
+        casez_tmp_84 = 1'h1;
+      9'b110110001:
+        casez_tmp_84 = 1'h1;
+      9'b110110010:
+        casez_tmp_84 = 1'h1;
+      9'b110110011:
+        casez_tmp_84 = 1'h1;
+      9'b110110100:
+        casez_tmp_84 = 1'h1;
+      9'b110110101:
+        casez_tmp_84 = 1'h1;
+      9'b110110110:
+        casez_tmp_84 = 1'h1;
+      9'b110110111:
+        casez_tmp_84 = 1'h1;
+      9'b110111000:
+        casez_tmp_84 = 1'h1;
+      9'b110111001:
+        casez_tmp_84 = 1'h1;
+      9'b110111010:
+        casez_tmp_84 = 1'h1;
+      9'b110111011:
+        casez_tmp_84 = 1'h1;
+      9'b110111100:
+        casez_tmp_84 = 1'h1;
+      9'b110111101:
+        casez_tmp_84 = 1'h1;
+      9'b110111110:
+        casez_tmp_84 = 1'h1;
+      9'b110111111:
+        casez_tmp_84 = 1'h1;
+      9'b111000000:
+        casez_tmp_84 = 1'h0;
+      9'b111000001:
+        casez_tmp_84 = 1'h0;
+      9'b111000010:
+        casez_tmp_84 = 1'h0;
+      9'b111000011:
+        casez_tmp_84 = 1'h0;
+      9'b111000100:
+        casez_tmp_84 = 1'h0;
+      9'b111000101:
+        casez_tmp_84 = 1'h0;
+      9'b111000110:
+        casez_tmp_84 = 1'h0;
+      9'b111000111:
+        casez_tmp_84 = 1'h1;
+      9'b111001000:
+        casez_tmp_84 = 1'h1;
+      9'b111001001:
+        casez_tmp_84 = 1'h1;
+      9'b111001010:
+        casez_tmp_84 = 1'h1;
+      9'b111001011:
+        casez_tmp_84 = 1'h1;
+      9'b111001100:
+        casez_tmp_84 = 1'h1;
+      9'b111001101:
+        casez_tmp_84 = 1'h1;
+      9'b111001110:
+        casez_tmp_84 = 1'h1;
+      9'b111001111:
+        casez_tmp_84 = 1'h1;
+      9'b111010000:
+        casez_tmp_84 = 1'h1;
+      9'b111010001:
+        casez_tmp_84 = 1'h1;
+      9'b111010010:
+        casez_tmp_84 = 1'h1;
+      9'b111010011:
+        casez_tmp_84 = 1'h1;
+      9'b111010100:
+        casez_tmp_84 = 1'h1;
+      9'b111010101:
+        casez_tmp_84 = 1'h1;
+      9'b111010110:
+        casez_tmp_84 = 1'h1;
+      9'b111010111:
+        casez_tmp_84 = 1'h1;
+      9'b111011000:
+        casez_tmp_84 = 1'h1;
+      9'b111011001:
+        casez_tmp_84 = 1'h1;
+      9'b111011010:
+        casez_tmp_84 = 1'h1;
+      9'b111011011:
+        casez_tmp_84 = 1'h1;
+      9'b111011100:
+        casez_tmp_84 = 1'h1;
+      9'b111011101:
+        casez_tmp_84 = 1'h1;
+      9'b111011110:
+        casez_tmp_84 = 1'h1;
+      9'b111011111:
+        casez_tmp_84 = 1'h1;
+      9'b111100000:
+        casez_tmp_84 = 1'h0;
+      9'b111100001:
+        casez_tmp_84 = 1'h0;
+      9'b111100010:
+        casez_tmp_84 = 1'h0;
+      9'b111100011:
+        casez_tmp_84 = 1'h0;
+      9'b111100100:
+        casez_tmp_84 = 1'h0;
+      9'b111100101:
+        casez_tmp_84 = 1'h0;
+      9'b111100110:
+        casez_tmp_84 = 1'h1;
+      9'b111100111:
+        casez_tmp_84 = 1'h1;
+      9'b111101000:
+        casez_tmp_84 = 1'h1;
+      9'b111101001:
+        casez_tmp_84 = 1'h1;
+      9'b111101010:
+        casez_tmp_84 = 1'h1;
+      9'b111101011:
+        casez_tmp_84 = 1'h1;
+      9'b111101100:
+        casez_tmp_84 = 1'h1;
+      9'b111101101:
+        casez_tmp_84 = 1'h1;
+      9'b111101110:
+        casez_tmp_84 = 1'h1;
+      9'b111101111:
+        casez_tmp_84 = 1'h1;
+      9'b111110000:
+        casez_tmp_84 = 1'h1;
+      9'b111110001:
+        casez_tmp_84 = 1'h1;
+      9'b111110010:
+        casez_tmp_84 = 1'h1;
+      9'b111110011:
+        casez_tmp_84 = 1'h1;
+      9'b111110100:
+        casez_tmp_84 = 1'h1;
+      9'b111110101:
+        casez_tmp_84 = 1'h1;
+      9'b111110110:
+        casez_tmp_84 = 1'h1;
+      9'b111110111:
+        casez_tmp_84 = 1'h1;
+      9'b111111000:
+        casez_tmp_84 = 1'h1;
+      9'b111111001:
+        casez_tmp_84 = 1'h1;
+      9'b111111010:
+        casez_tmp_84 = 1'h1;
+      9'b111111011:
+        casez_tmp_84 = 1'h1;
+      9'b111111100:
+        casez_tmp_84 = 1'h1;
+      9'b111111101:
+        casez_tmp_84 = 1'h1;
+      9'b111111110:
+        casez_tmp_84 = 1'h1;
+      default:
+        casez_tmp_84 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_85;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_85 = 1'h0;
+      9'b000000001:
+        casez_tmp_85 = 1'h0;
+      9'b000000010:
+        casez_tmp_85 = 1'h0;
+      9'b000000011:
+        casez_tmp_85 = 1'h0;
+      9'b000000100:
+        casez_tmp_85 = 1'h0;
+      9'b000000101:
+        casez_tmp_85 = 1'h0;
+      9'b000000110:
+        casez_tmp_85 = 1'h1;
+      9'b000000111:
+        casez_tmp_85 = 1'h1;
+      9'b000001000:
+        casez_tmp_85 = 1'h1;
+      9'b000001001:
+        casez_tmp_85 = 1'h1;
+      9'b000001010:
+        casez_tmp_85 = 1'h1;
+      9'b000001011:
+        casez_tmp_85 = 1'h1;
+      9'b000001100:
+        casez_tmp_85 = 1'h1;
+      9'b000001101:
+        casez_tmp_85 = 1'h1;
+      9'b000001110:
+        casez_tmp_85 = 1'h1;
+      9'b000001111:
+        casez_tmp_85 = 1'h1;
+      9'b000010000:
+        casez_tmp_85 = 1'h1;
+      9'b000010001:
+        casez_tmp_85 = 1'h1;
+      9'b000010010:
+        casez_tmp_85 = 1'h1;
+      9'b000010011:
+        casez_tmp_85 = 1'h1;
+      9'b000010100:
+        casez_tmp_85 = 1'h1;
+      9'b000010101:
+        casez_tmp_85 = 1'h1;
+      9'b000010110:
+        casez_tmp_85 = 1'h1;
+      9'b000010111:
+        casez_tmp_85 = 1'h1;
+      9'b000011000:
+        casez_tmp_85 = 1'h1;
+      9'b000011001:
+        casez_tmp_85 = 1'h1;
+      9'b000011010:
+        casez_tmp_85 = 1'h1;
+      9'b000011011:
+        casez_tmp_85 = 1'h1;
+      9'b000011100:
+        casez_tmp_85 = 1'h1;
+      9'b000011101:
+        casez_tmp_85 = 1'h1;
+      9'b000011110:
+        casez_tmp_85 = 1'h1;
+      9'b000011111:
+        casez_tmp_85 = 1'h1;
+      9'b000100000:
+        casez_tmp_85 = 1'h0;
+      9'b000100001:
+        casez_tmp_85 = 1'h0;
+      9'b000100010:
+        casez_tmp_85 = 1'h0;
+      9'b000100011:
+        casez_tmp_85 = 1'h0;
+      9'b000100100:
+        casez_tmp_85 = 1'h0;
+      9'b000100101:
+        casez_tmp_85 = 1'h1;
+      9'b000100110:
+        casez_tmp_85 = 1'h1;
+      9'b000100111:
+        casez_tmp_85 = 1'h1;
+      9'b000101000:
+        casez_tmp_85 = 1'h1;
+      9'b000101001:
+        casez_tmp_85 = 1'h1;
+      9'b000101010:
+        casez_tmp_85 = 1'h1;
+      9'b000101011:
+        casez_tmp_85 = 1'h1;
+      9'b000101100:
+        casez_tmp_85 = 1'h1;
+      9'b000101101:
+        casez_tmp_85 = 1'h1;
+      9'b000101110:
+        casez_tmp_85 = 1'h1;
+      9'b000101111:
+        casez_tmp_85 = 1'h1;
+      9'b000110000:
+        casez_tmp_85 = 1'h1;
+      9'b000110001:
+        casez_tmp_85 = 1'h1;
+      9'b000110010:
+        casez_tmp_85 = 1'h1;
+      9'b000110011:
+        casez_tmp_85 = 1'h1;
+      9'b000110100:
+        casez_tmp_85 = 1'h1;
+      9'b000110101:
+        casez_tmp_85 = 1'h1;
+      9'b000110110:
+        casez_tmp_85 = 1'h1;
+      9'b000110111:
+        casez_tmp_85 = 1'h1;
+      9'b000111000:
+        casez_tmp_85 = 1'h1;
+      9'b000111001:
+        casez_tmp_85 = 1'h1;
+      9'b000111010:
+        casez_tmp_85 = 1'h1;
+      9'b000111011:
+        casez_tmp_85 = 1'h1;
+      9'b000111100:
+        casez_tmp_85 = 1'h1;
+      9'b000111101:
+        casez_tmp_85 = 1'h1;
+      9'b000111110:
+        casez_tmp_85 = 1'h1;
+      9'b000111111:
+        casez_tmp_85 = 1'h1;
+      9'b001000000:
+        casez_tmp_85 = 1'h0;
+      9'b001000001:
+        casez_tmp_85 = 1'h0;
+      9'b001000010:
+        casez_tmp_85 = 1'h0;
+      9'b001000011:
+        casez_tmp_85 = 1'h0;
+      9'b001000100:
+        casez_tmp_85 = 1'h1;
+      9'b001000101:
+        casez_tmp_85 = 1'h1;
+      9'b001000110:
+        casez_tmp_85 = 1'h1;
+      9'b001000111:
+        casez_tmp_85 = 1'h1;
+      9'b001001000:
+        casez_tmp_85 = 1'h1;
+      9'b001001001:
+        casez_tmp_85 = 1'h1;
+      9'b001001010:
+        casez_tmp_85 = 1'h1;
+      9'b001001011:
+        casez_tmp_85 = 1'h1;
+      9'b001001100:
+        casez_tmp_85 = 1'h1;
+      9'b001001101:
+        casez_tmp_85 = 1'h1;
+      9'b001001110:
+        casez_tmp_85 = 1'h1;
+      9'b001001111:
+        casez_tmp_85 = 1'h1;
+      9'b001010000:
+        casez_tmp_85 = 1'h1;
+      9'b001010001:
+        casez_tmp_85 = 1'h1;
+      9'b001010010:
+        casez_tmp_85 = 1'h1;
+      9'b001010011:
+        casez_tmp_85 = 1'h1;
+      9'b001010100:
+        casez_tmp_85 = 1'h1;
+      9'b001010101:
+        casez_tmp_85 = 1'h1;
+      9'b001010110:
+        casez_tmp_85 = 1'h1;
+      9'b001010111:
+        casez_tmp_85 = 1'h1;
+      9'b001011000:
+        casez_tmp_85 = 1'h1;
+      9'b001011001:
+        casez_tmp_85 = 1'h1;
+      9'b001011010:
+        casez_tmp_85 = 1'h1;
+      9'b001011011:
+        casez_tmp_85 = 1'h1;
+      9'b001011100:
+        casez_tmp_85 = 1'h1;
+      9'b001011101:
+        casez_tmp_85 = 1'h1;
+      9'b001011110:
+        casez_tmp_85 = 1'h1;
+      9'b001011111:
+        casez_tmp_85 = 1'h1;
+      9'b001100000:
+        casez_tmp_85 = 1'h0;
+      9'b001100001:
+        casez_tmp_85 = 1'h0;
+      9'b001100010:
+        casez_tmp_85 = 1'h0;
+      9'b001100011:
+        casez_tmp_85 = 1'h1;
+      9'b001100100:
+        casez_tmp_85 = 1'h1;
+      9'b001100101:
+        casez_tmp_85 = 1'h1;
+      9'b001100110:
+        casez_tmp_85 = 1'h1;
+      9'b001100111:
+        casez_tmp_85 = 1'h1;
+      9'b001101000:
+        casez_tmp_85 = 1'h1;
+      9'b001101001:
+        casez_tmp_85 = 1'h1;
+      9'b001101010:
+        casez_tmp_85 = 1'h1;
+      9'b001101011:
+        casez_tmp_85 = 1'h1;
+      9'b001101100:
+        casez_tmp_85 = 1'h1;
+      9'b001101101:
+        casez_tmp_85 = 1'h1;
+      9'b001101110:
+        casez_tmp_85 = 1'h1;
+      9'b001101111:
+        casez_tmp_85 = 1'h1;
+      9'b001110000:
+        casez_tmp_85 = 1'h1;
+      9'b001110001:
+        casez_tmp_85 = 1'h1;
+      9'b001110010:
+        casez_tmp_85 = 1'h1;
+      9'b001110011:
+        casez_tmp_85 = 1'h1;
+      9'b001110100:
+        casez_tmp_85 = 1'h1;
+      9'b001110101:
+        casez_tmp_85 = 1'h1;
+      9'b001110110:
+        casez_tmp_85 = 1'h1;
+      9'b001110111:
+        casez_tmp_85 = 1'h1;
+      9'b001111000:
+        casez_tmp_85 = 1'h1;
+      9'b001111001:
+        casez_tmp_85 = 1'h1;
+      9'b001111010:
+        casez_tmp_85 = 1'h1;
+      9'b001111011:
+        casez_tmp_85 = 1'h1;
+      9'b001111100:
+        casez_tmp_85 = 1'h1;
+      9'b001111101:
+        casez_tmp_85 = 1'h1;
+      9'b001111110:
+        casez_tmp_85 = 1'h1;
+      9'b001111111:
+        casez_tmp_85 = 1'h1;
+      9'b010000000:
+        casez_tmp_85 = 1'h0;
+      9'b010000001:
+        casez_tmp_85 = 1'h0;
+      9'b010000010:
+        casez_tmp_85 = 1'h1;
+      9'b010000011:
+        casez_tmp_85 = 1'h1;
+      9'b010000100:
+        casez_tmp_85 = 1'h1;
+      9'b010000101:
+        casez_tmp_85 = 1'h1;
+      9'b010000110:
+        casez_tmp_85 = 1'h1;
+      9'b010000111:
+        casez_tmp_85 = 1'h1;
+      9'b010001000:
+        casez_tmp_85 = 1'h1;
+      9'b010001001:
+        casez_tmp_85 = 1'h1;
+      9'b010001010:
+        casez_tmp_85 = 1'h1;
+      9'b010001011:
+        casez_tmp_85 = 1'h1;
+      9'b010001100:
+        casez_tmp_85 = 1'h1;
+      9'b010001101:
+        casez_tmp_85 = 1'h1;
+      9'b010001110:
+        casez_tmp_85 = 1'h1;
+      9'b010001111:
+        casez_tmp_85 = 1'h1;
+      9'b010010000:
+        casez_tmp_85 = 1'h1;
+      9'b010010001:
+        casez_tmp_85 = 1'h1;
+      9'b010010010:
+        casez_tmp_85 = 1'h1;
+      9'b010010011:
+        casez_tmp_85 = 1'h1;
+      9'b010010100:
+        casez_tmp_85 = 1'h1;
+      9'b010010101:
+        casez_tmp_85 = 1'h1;
+      9'b010010110:
+        casez_tmp_85 = 1'h1;
+      9'b010010111:
+        casez_tmp_85 = 1'h1;
+      9'b010011000:
+        casez_tmp_85 = 1'h1;
+      9'b010011001:
+        casez_tmp_85 = 1'h1;
+      9'b010011010:
+        casez_tmp_85 = 1'h1;
+      9'b010011011:
+        casez_tmp_85 = 1'h1;
+      9'b010011100:
+        casez_tmp_85 = 1'h1;
+      9'b010011101:
+        casez_tmp_85 = 1'h1;
+      9'b010011110:
+        casez_tmp_85 = 1'h1;
+      9'b010011111:
+        casez_tmp_85 = 1'h1;
+      9'b010100000:
+        casez_tmp_85 = 1'h0;
+      9'b010100001:
+        casez_tmp_85 = 1'h1;
+      9'b010100010:
+        casez_tmp_85 = 1'h1;
+      9'b010100011:
+        casez_tmp_85 = 1'h1;
+      9'b010100100:
+        casez_tmp_85 = 1'h1;
+      9'b010100101:
+        casez_tmp_85 = 1'h1;
+      9'b010100110:
+        casez_tmp_85 = 1'h1;
+      9'b010100111:
+        casez_tmp_85 = 1'h1;
+      9'b010101000:
+        casez_tmp_85 = 1'h1;
+      9'b010101001:
+        casez_tmp_85 = 1'h1;
+      9'b010101010:
+        casez_tmp_85 = 1'h1;
+      9'b010101011:
+        casez_tmp_85 = 1'h1;
+      9'b010101100:
+        casez_tmp_85 = 1'h1;
+      9'b010101101:
+        casez_tmp_85 = 1'h1;
+      9'b010101110:
+        casez_tmp_85 = 1'h1;
+      9'b010101111:
+        casez_tmp_85 = 1'h1;
+      9'b010110000:
+        casez_tmp_85 = 1'h1;
+      9'b010110001:
+        casez_tmp_85 = 1'h1;
+      9'b010110010:
+        casez_tmp_85 = 1'h1;
+      9'b010110011:
+        casez_tmp_85 = 1'h1;
+      9'b010110100:
+        casez_tmp_85 = 1'h1;
+      9'b010110101:
+        casez_tmp_85 = 1'h1;
+      9'b010110110:
+        casez_tmp_85 = 1'h1;
+      9'b010110111:
+        casez_tmp_85 = 1'h1;
+      9'b010111000:
+        casez_tmp_85 = 1'h1;
+      9'b010111001:
+        casez_tmp_85 = 1'h1;
+      9'b010111010:
+        casez_tmp_85 = 1'h1;
+      9'b010111011:
+        casez_tmp_85 = 1'h1;
+      9'b010111100:
+        casez_tmp_85 = 1'h1;
+      9'b010111101:
+        casez_tmp_85 = 1'h1;
+      9'b010111110:
+        casez_tmp_85 = 1'h1;
+      9'b010111111:
+        casez_tmp_85 = 1'h1;
+      9'b011000000:
+        casez_tmp_85 = 1'h0;
+      9'b011000001:
+        casez_tmp_85 = 1'h0;
+      9'b011000010:
+        casez_tmp_85 = 1'h0;
+      9'b011000011:
+        casez_tmp_85 = 1'h0;
+      9'b011000100:
+        casez_tmp_85 = 1'h0;
+      9'b011000101:
+        casez_tmp_85 = 1'h0;
+      9'b011000110:
+        casez_tmp_85 = 1'h0;
+      9'b011000111:
+        casez_tmp_85 = 1'h0;
+      9'b011001000:
+        casez_tmp_85 = 1'h0;
+      9'b011001001:
+        casez_tmp_85 = 1'h0;
+      9'b011001010:
+        casez_tmp_85 = 1'h0;
+      9'b011001011:
+        casez_tmp_85 = 1'h0;
+      9'b011001100:
+        casez_tmp_85 = 1'h0;
+      9'b011001101:
+        casez_tmp_85 = 1'h0;
+      9'b011001110:
+        casez_tmp_85 = 1'h0;
+      9'b011001111:
+        casez_tmp_85 = 1'h0;
+      9'b011010000:
+        casez_tmp_85 = 1'h1;
+      9'b011010001:
+        casez_tmp_85 = 1'h1;
+      9'b011010010:
+        casez_tmp_85 = 1'h1;
+      9'b011010011:
+        casez_tmp_85 = 1'h1;
+      9'b011010100:
+        casez_tmp_85 = 1'h1;
+      9'b011010101:
+        casez_tmp_85 = 1'h1;
+      9'b011010110:
+        casez_tmp_85 = 1'h1;
+      9'b011010111:
+        casez_tmp_85 = 1'h1;
+      9'b011011000:
+        casez_tmp_85 = 1'h1;
+      9'b011011001:
+        casez_tmp_85 = 1'h1;
+      9'b011011010:
+        casez_tmp_85 = 1'h1;
+      9'b011011011:
+        casez_tmp_85 = 1'h1;
+      9'b011011100:
+        casez_tmp_85 = 1'h1;
+      9'b011011101:
+        casez_tmp_85 = 1'h1;
+      9'b011011110:
+        casez_tmp_85 = 1'h1;
+      9'b011011111:
+        casez_tmp_85 = 1'h1;
+      9'b011100000:
+        casez_tmp_85 = 1'h0;
+      9'b011100001:
+        casez_tmp_85 = 1'h0;
+      9'b011100010:
+        casez_tmp_85 = 1'h0;
+      9'b011100011:
+        casez_tmp_85 = 1'h0;
+      9'b011100100:
+        casez_tmp_85 = 1'h0;
+      9'b011100101:
+        casez_tmp_85 = 1'h0;
+      9'b011100110:
+        casez_tmp_85 = 1'h0;
+      9'b011100111:
+        casez_tmp_85 = 1'h0;
+      9'b011101000:
+        casez_tmp_85 = 1'h0;
+      9'b011101001:
+        casez_tmp_85 = 1'h0;
+      9'b011101010:
+        casez_tmp_85 = 1'h0;
+      9'b011101011:
+        casez_tmp_85 = 1'h0;
+      9'b011101100:
+        casez_tmp_85 = 1'h0;
+      9'b011101101:
+        casez_tmp_85 = 1'h0;
+      9'b011101110:
+        casez_tmp_85 = 1'h0;
+      9'b011101111:
+        casez_tmp_85 = 1'h1;
+      9'b011110000:
+        casez_tmp_85 = 1'h1;
+      9'b011110001:
+        casez_tmp_85 = 1'h1;
+      9'b011110010:
+        casez_tmp_85 = 1'h1;
+      9'b011110011:
+        casez_tmp_85 = 1'h1;
+      9'b011110100:
+        casez_tmp_85 = 1'h1;
+      9'b011110101:
+        casez_tmp_85 = 1'h1;
+      9'b011110110:
+        casez_tmp_85 = 1'h1;
+      9'b011110111:
+        casez_tmp_85 = 1'h1;
+      9'b011111000:
+        casez_tmp_85 = 1'h1;
+      9'b011111001:
+        casez_tmp_85 = 1'h1;
+      9'b011111010:
+        casez_tmp_85 = 1'h1;
+      9'b011111011:
+        casez_tmp_85 = 1'h1;
+      9'b011111100:
+        casez_tmp_85 = 1'h1;
+      9'b011111101:
+        casez_tmp_85 = 1'h1;
+      9'b011111110:
+        casez_tmp_85 = 1'h1;
+      9'b011111111:
+        casez_tmp_85 = 1'h1;
+      9'b100000000:
+        casez_tmp_85 = 1'h0;
+      9'b100000001:
+        casez_tmp_85 = 1'h0;
+      9'b100000010:
+        casez_tmp_85 = 1'h0;
+      9'b100000011:
+        casez_tmp_85 = 1'h0;
+      9'b100000100:
+        casez_tmp_85 = 1'h0;
+      9'b100000101:
+        casez_tmp_85 = 1'h0;
+      9'b100000110:
+        casez_tmp_85 = 1'h0;
+      9'b100000111:
+        casez_tmp_85 = 1'h0;
+      9'b100001000:
+        casez_tmp_85 = 1'h0;
+      9'b100001001:
+        casez_tmp_85 = 1'h0;
+      9'b100001010:
+        casez_tmp_85 = 1'h0;
+      9'b100001011:
+        casez_tmp_85 = 1'h0;
+      9'b100001100:
+        casez_tmp_85 = 1'h0;
+      9'b100001101:
+        casez_tmp_85 = 1'h0;
+      9'b100001110:
+        casez_tmp_85 = 1'h1;
+      9'b100001111:
+        casez_tmp_85 = 1'h1;
+      9'b100010000:
+        casez_tmp_85 = 1'h1;
+      9'b100010001:
+        casez_tmp_85 = 1'h1;
+      9'b100010010:
+        casez_tmp_85 = 1'h1;
+      9'b100010011:
+        casez_tmp_85 = 1'h1;
+      9'b100010100:
+        casez_tmp_85 = 1'h1;
+      9'b100010101:
+        casez_tmp_85 = 1'h1;
+      9'b100010110:
+        casez_tmp_85 = 1'h1;
+      9'b100010111:
+        casez_tmp_85 = 1'h1;
+      9'b100011000:
+        casez_tmp_85 = 1'h1;
+      9'b100011001:
+        casez_tmp_85 = 1'h1;
+      9'b100011010:
+        casez_tmp_85 = 1'h1;
+      9'b100011011:
+        casez_tmp_85 = 1'h1;
+      9'b100011100:
+        casez_tmp_85 = 1'h1;
+      9'b100011101:
+        casez_tmp_85 = 1'h1;
+      9'b100011110:
+        casez_tmp_85 = 1'h1;
+      9'b100011111:
+        casez_tmp_85 = 1'h1;
+      9'b100100000:
+        casez_tmp_85 = 1'h0;
+      9'b100100001:
+        casez_tmp_85 = 1'h0;
+      9'b100100010:
+        casez_tmp_85 = 1'h0;
+      9'b100100011:
+        casez_tmp_85 = 1'h0;
+      9'b100100100:
+        casez_tmp_85 = 1'h0;
+      9'b100100101:
+        casez_tmp_85 = 1'h0;
+      9'b100100110:
+        casez_tmp_85 = 1'h0;
+      9'b100100111:
+        casez_tmp_85 = 1'h0;
+      9'b100101000:
+        casez_tmp_85 = 1'h0;
+      9'b100101001:
+        casez_tmp_85 = 1'h0;
+      9'b100101010:
+        casez_tmp_85 = 1'h0;
+      9'b100101011:
+        casez_tmp_85 = 1'h0;
+      9'b100101100:
+        casez_tmp_85 = 1'h0;
+      9'b100101101:
+        casez_tmp_85 = 1'h1;
+      9'b100101110:
+        casez_tmp_85 = 1'h1;
+      9'b100101111:
+        casez_tmp_85 = 1'h1;
+      9'b100110000:
+        casez_tmp_85 = 1'h1;
+      9'b100110001:
+        casez_tmp_85 = 1'h1;
+      9'b100110010:
+        casez_tmp_85 = 1'h1;
+      9'b100110011:
+        casez_tmp_85 = 1'h1;
+      9'b100110100:
+        casez_tmp_85 = 1'h1;
+      9'b100110101:
+        casez_tmp_85 = 1'h1;
+      9'b100110110:
+        casez_tmp_85 = 1'h1;
+      9'b100110111:
+        casez_tmp_85 = 1'h1;
+      9'b100111000:
+        casez_tmp_85 = 1'h1;
+      9'b100111001:
+        casez_tmp_85 = 1'h1;
+      9'b100111010:
+        casez_tmp_85 = 1'h1;
+      9'b100111011:
+        casez_tmp_85 = 1'h1;
+      9'b100111100:
+        casez_tmp_85 = 1'h1;
+      9'b100111101:
+        casez_tmp_85 = 1'h1;
+      9'b100111110:
+        casez_tmp_85 = 1'h1;
+      9'b100111111:
+        casez_tmp_85 = 1'h1;
+      9'b101000000:
+        casez_tmp_85 = 1'h0;
+      9'b101000001:
+        casez_tmp_85 = 1'h0;
+      9'b101000010:
+        casez_tmp_85 = 1'h0;
+      9'b101000011:
+        casez_tmp_85 = 1'h0;
+      9'b101000100:
+        casez_tmp_85 = 1'h0;
+      9'b101000101:
+        casez_tmp_85 = 1'h0;
+      9'b101000110:
+        casez_tmp_85 = 1'h0;
+      9'b101000111:
+        casez_tmp_85 = 1'h0;
+      9'b101001000:
+        casez_tmp_85 = 1'h0;
+      9'b101001001:
+        casez_tmp_85 = 1'h0;
+      9'b101001010:
+        casez_tmp_85 = 1'h0;
+      9'b101001011:
+        casez_tmp_85 = 1'h0;
+      9'b101001100:
+        casez_tmp_85 = 1'h1;
+      9'b101001101:
+        casez_tmp_85 = 1'h1;
+      9'b101001110:
+        casez_tmp_85 = 1'h1;
+      9'b101001111:
+        casez_tmp_85 = 1'h1;
+      9'b101010000:
+        casez_tmp_85 = 1'h1;
+      9'b101010001:
+        casez_tmp_85 = 1'h1;
+      9'b101010010:
+        casez_tmp_85 = 1'h1;
+      9'b101010011:
+        casez_tmp_85 = 1'h1;
+      9'b101010100:
+        casez_tmp_85 = 1'h1;
+      9'b101010101:
+        casez_tmp_85 = 1'h1;
+      9'b101010110:
+        casez_tmp_85 = 1'h1;
+      9'b101010111:
+        casez_tmp_85 = 1'h1;
+      9'b101011000:
+        casez_tmp_85 = 1'h1;
+      9'b101011001:
+        casez_tmp_85 = 1'h1;
+      9'b101011010:
+        casez_tmp_85 = 1'h1;
+      9'b101011011:
+        casez_tmp_85 = 1'h1;
+      9'b101011100:
+        casez_tmp_85 = 1'h1;
+      9'b101011101:
+        casez_tmp_85 = 1'h1;
+      9'b101011110:
+        casez_tmp_85 = 1'h1;
+      9'b101011111:
+        casez_tmp_85 = 1'h1;
+      9'b101100000:
+        casez_tmp_85 = 1'h0;
+      9'b101100001:
+        casez_tmp_85 = 1'h0;
+      9'b101100010:
+        casez_tmp_85 = 1'h0;
+      9'b101100011:
+        casez_tmp_85 = 1'h0;
+      9'b101100100:
+        casez_tmp_85 = 1'h0;
+      9'b101100101:
+        casez_tmp_85 = 1'h0;
+      9'b101100110:
+        casez_tmp_85 = 1'h0;
+      9'b101100111:
+        casez_tmp_85 = 1'h0;
+      9'b101101000:
+        casez_tmp_85 = 1'h0;
+      9'b101101001:
+        casez_tmp_85 = 1'h0;
+      9'b101101010:
+        casez_tmp_85 = 1'h0;
+      9'b101101011:
+        casez_tmp_85 = 1'h1;
+      9'b101101100:
+        casez_tmp_85 = 1'h1;
+      9'b101101101:
+        casez_tmp_85 = 1'h1;
+      9'b101101110:
+        casez_tmp_85 = 1'h1;
+      9'b101101111:
+        casez_tmp_85 = 1'h1;
+      9'b101110000:
+        casez_tmp_85 = 1'h1;
+      9'b101110001:
+        casez_tmp_85 = 1'h1;
+      9'b101110010:
+        casez_tmp_85 = 1'h1;
+      9'b101110011:
+        casez_tmp_85 = 1'h1;
+      9'b101110100:
+        casez_tmp_85 = 1'h1;
+      9'b101110101:
+        casez_tmp_85 = 1'h1;
+      9'b101110110:
+        casez_tmp_85 = 1'h1;
+      9'b101110111:
+        casez_tmp_85 = 1'h1;
+      9'b101111000:
+        casez_tmp_85 = 1'h1;
+      9'b101111001:
+        casez_tmp_85 = 1'h1;
+      9'b101111010:
+        casez_tmp_85 = 1'h1;
+      9'b101111011:
+        casez_tmp_85 = 1'h1;
+      9'b101111100:
+        casez_tmp_85 = 1'h1;
+      9'b101111101:
+        casez_tmp_85 = 1'h1;
+      9'b101111110:
+        casez_tmp_85 = 1'h1;
+      9'b101111111:
+        casez_tmp_85 = 1'h1;
+      9'b110000000:
+        casez_tmp_85 = 1'h0;
+      9'b110000001:
+        casez_tmp_85 = 1'h0;
+      9'b110000010:
+        casez_tmp_85 = 1'h0;
+      9'b110000011:
+        casez_tmp_85 = 1'h0;
+      9'b110000100:
+        casez_tmp_85 = 1'h0;
+      9'b110000101:
+        casez_tmp_85 = 1'h0;
+      9'b110000110:
+        casez_tmp_85 = 1'h0;
+      9'b110000111:
+        casez_tmp_85 = 1'h0;
+      9'b110001000:
+        casez_tmp_85 = 1'h0;
+      9'b110001001:
+        casez_tmp_85 = 1'h0;
+      9'b110001010:
+        casez_tmp_85 = 1'h1;
+      9'b110001011:
+        casez_tmp_85 = 1'h1;
+      9'b110001100:
+        casez_tmp_85 = 1'h1;
+      9'b110001101:
+        casez_tmp_85 = 1'h1;
+      9'b110001110:
+        casez_tmp_85 = 1'h1;
+      9'b110001111:
+        casez_tmp_85 = 1'h1;
+      9'b110010000:
+        casez_tmp_85 = 1'h1;
+      9'b110010001:
+        casez_tmp_85 = 1'h1;
+      9'b110010010:
+        casez_tmp_85 = 1'h1;
+      9'b110010011:
+        casez_tmp_85 = 1'h1;
+      9'b110010100:
+        casez_tmp_85 = 1'h1;
+      9'b110010101:
+        casez_tmp_85 = 1'h1;
+      9'b110010110:
+        casez_tmp_85 = 1'h1;
+      9'b110010111:
+        casez_tmp_85 = 1'h1;
+      9'b110011000:
+        casez_tmp_85 = 1'h1;
+      9'b110011001:
+        casez_tmp_85 = 1'h1;
+      9'b110011010:
+        casez_tmp_85 = 1'h1;
+      9'b110011011:
+        casez_tmp_85 = 1'h1;
+      9'b110011100:
+        casez_tmp_85 = 1'h1;
+      9'b110011101:
+        casez_tmp_85 = 1'h1;
+      9'b110011110:
+        casez_tmp_85 = 1'h1;
+      9'b110011111:
+        casez_tmp_85 = 1'h1;
+      9'b110100000:
+        casez_tmp_85 = 1'h0;
+      9'b110100001:
+        casez_tmp_85 = 1'h0;
+      9'b110100010:
+        casez_tmp_85 = 1'h0;
+      9'b110100011:
+        casez_tmp_85 = 1'h0;
+      9'b110100100:
+        casez_tmp_85 = 1'h0;
+      9'b110100101:
+        casez_tmp_85 = 1'h0;
+      9'b110100110:
+        casez_tmp_85 = 1'h0;
+      9'b110100111:
+        casez_tmp_85 = 1'h0;
+      9'b110101000:
+        casez_tmp_85 = 1'h0;
+      9'b110101001:
+        casez_tmp_85 = 1'h1;
+      9'b110101010:
+        casez_tmp_85 = 1'h1;
+      9'b110101011:
+        casez_tmp_85 = 1'h1;
+      9'b110101100:
+        casez_tmp_85 = 1'h1;
+      9'b110101101:
+        casez_tmp_85 = 1'h1;
+      9'b110101110:
+        casez_tmp_85 = 1'h1;
+      9'b110101111:
+        casez_tmp_85 = 1'h1;
+      9'b110110000:
+        casez_tmp_85 = 1'h1;
+      9'b110110001:
+        casez_tmp_85 = 1'h1;
+      9'b110110010:
+        casez_tmp_85 = 1'h1;
+      9'b110110011:
+        casez_tmp_85 = 1'h1;
+      9'b110110100:
+        casez_tmp_85 = 1'h1;
+      9'b110110101:
+        casez_tmp_85 = 1'h1;
+      9'b110110110:
+        casez_tmp_85 = 1'h1;
+      9'b110110111:
+        casez_tmp_85 = 1'h1;
+      9'b110111000:
+        casez_tmp_85 = 1'h1;
+      9'b110111001:
+        casez_tmp_85 = 1'h1;
+      9'b110111010:
+        casez_tmp_85 = 1'h1;
+      9'b110111011:
+        casez_tmp_85 = 1'h1;
+      9'b110111100:
+        casez_tmp_85 = 1'h1;
+      9'b110111101:
+        casez_tmp_85 = 1'h1;
+      9'b110111110:
+        casez_tmp_85 = 1'h1;
+      9'b110111111:
+        casez_tmp_85 = 1'h1;
+      9'b111000000:
+        casez_tmp_85 = 1'h0;
+      9'b111000001:
+        casez_tmp_85 = 1'h0;
+      9'b111000010:
+        casez_tmp_85 = 1'h0;
+      9'b111000011:
+        casez_tmp_85 = 1'h0;
+      9'b111000100:
+        casez_tmp_85 = 1'h0;
+      9'b111000101:
+        casez_tmp_85 = 1'h0;
+      9'b111000110:
+        casez_tmp_85 = 1'h0;
+      9'b111000111:
+        casez_tmp_85 = 1'h0;
+      9'b111001000:
+        casez_tmp_85 = 1'h1;
+      9'b111001001:
+        casez_tmp_85 = 1'h1;
+      9'b111001010:
+        casez_tmp_85 = 1'h1;
+      9'b111001011:
+        casez_tmp_85 = 1'h1;
+      9'b111001100:
+        casez_tmp_85 = 1'h1;
+      9'b111001101:
+        casez_tmp_85 = 1'h1;
+      9'b111001110:
+        casez_tmp_85 = 1'h1;
+      9'b111001111:
+        casez_tmp_85 = 1'h1;
+      9'b111010000:
+        casez_tmp_85 = 1'h1;
+      9'b111010001:
+        casez_tmp_85 = 1'h1;
+      9'b111010010:
+        casez_tmp_85 = 1'h1;
+      9'b111010011:
+        casez_tmp_85 = 1'h1;
+      9'b111010100:
+        casez_tmp_85 = 1'h1;
+      9'b111010101:
+        casez_tmp_85 = 1'h1;
+      9'b111010110:
+        casez_tmp_85 = 1'h1;
+      9'b111010111:
+        casez_tmp_85 = 1'h1;
+      9'b111011000:
+        casez_tmp_85 = 1'h1;
+      9'b111011001:
+        casez_tmp_85 = 1'h1;
+      9'b111011010:
+        casez_tmp_85 = 1'h1;
+      9'b111011011:
+        casez_tmp_85 = 1'h1;
+      9'b111011100:
+        casez_tmp_85 = 1'h1;
+      9'b111011101:
+        casez_tmp_85 = 1'h1;
+      9'b111011110:
+        casez_tmp_85 = 1'h1;
+      9'b111011111:
+        casez_tmp_85 = 1'h1;
+      9'b111100000:
+        casez_tmp_85 = 1'h0;
+      9'b111100001:
+        casez_tmp_85 = 1'h0;
+      9'b111100010:
+        casez_tmp_85 = 1'h0;
+      9'b111100011:
+        casez_tmp_85 = 1'h0;
+      9'b111100100:
+        casez_tmp_85 = 1'h0;
+      9'b111100101:
+        casez_tmp_85 = 1'h0;
+      9'b111100110:
+        casez_tmp_85 = 1'h0;
+      9'b111100111:
+        casez_tmp_85 = 1'h1;
+      9'b111101000:
+        casez_tmp_85 = 1'h1;
+      9'b111101001:
+        casez_tmp_85 = 1'h1;
+      9'b111101010:
+        casez_tmp_85 = 1'h1;
+      9'b111101011:
+        casez_tmp_85 = 1'h1;
+      9'b111101100:
+        casez_tmp_85 = 1'h1;
+      9'b111101101:
+        casez_tmp_85 = 1'h1;
+      9'b111101110:
+        casez_tmp_85 = 1'h1;
+      9'b111101111:
+        casez_tmp_85 = 1'h1;
+      9'b111110000:
+        casez_tmp_85 = 1'h1;
+      9'b111110001:
+        casez_tmp_85 = 1'h1;
+      9'b111110010:
+        casez_tmp_85 = 1'h1;
+      9'b111110011:
+        casez_tmp_85 = 1'h1;
+      9'b111110100:
+        casez_tmp_85 = 1'h1;
+      9'b111110101:
+        casez_tmp_85 = 1'h1;
+      9'b111110110:
+        casez_tmp_85 = 1'h1;
+      9'b111110111:
+        casez_tmp_85 = 1'h1;
+      9'b111111000:
+        casez_tmp_85 = 1'h1;
+      9'b111111001:
+        casez_tmp_85 = 1'h1;
+      9'b111111010:
+        casez_tmp_85 = 1'h1;
+      9'b111111011:
+        casez_tmp_85 = 1'h1;
+      9'b111111100:
+        casez_tmp_85 = 1'h1;
+      9'b111111101:
+        casez_tmp_85 = 1'h1;
+      9'b111111110:
+        casez_tmp_85 = 1'h1;
+      default:
+        casez_tmp_85 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_86;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_86 = 1'h0;
+      9'b000000001:
+        casez_tmp_86 = 1'h0;
+      9'b000000010:
+        casez_tmp_86 = 1'h0;
+      9'b000000011:
+        casez_tmp_86 = 1'h0;
+      9'b000000100:
+        casez_tmp_86 = 1'h0;
+      9'b000000101:
+        casez_tmp_86 = 1'h0;
+      9'b000000110:
+        casez_tmp_86 = 1'h0;
+      9'b000000111:
+        casez_tmp_86 = 1'h1;
+      9'b000001000:
+        casez_tmp_86 = 1'h1;
+      9'b000001001:
+        casez_tmp_86 = 1'h1;
+      9'b000001010:
+        casez_tmp_86 = 1'h1;
+      9'b000001011:
+        casez_tmp_86 = 1'h1;
+      9'b000001100:
+        casez_tmp_86 = 1'h1;
+      9'b000001101:
+        casez_tmp_86 = 1'h1;
+      9'b000001110:
+        casez_tmp_86 = 1'h1;
+      9'b000001111:
+        casez_tmp_86 = 1'h1;
+      9'b000010000:
+        casez_tmp_86 = 1'h1;
+      9'b000010001:
+        casez_tmp_86 = 1'h1;
+      9'b000010010:
+        casez_tmp_86 = 1'h1;
+      9'b000010011:
+        casez_tmp_86 = 1'h1;
+      9'b000010100:
+        casez_tmp_86 = 1'h1;
+      9'b000010101:
+        casez_tmp_86 = 1'h1;
+      9'b000010110:
+        casez_tmp_86 = 1'h1;
+      9'b000010111:
+        casez_tmp_86 = 1'h1;
+      9'b000011000:
+        casez_tmp_86 = 1'h1;
+      9'b000011001:
+        casez_tmp_86 = 1'h1;
+      9'b000011010:
+        casez_tmp_86 = 1'h1;
+      9'b000011011:
+        casez_tmp_86 = 1'h1;
+      9'b000011100:
+        casez_tmp_86 = 1'h1;
+      9'b000011101:
+        casez_tmp_86 = 1'h1;
+      9'b000011110:
+        casez_tmp_86 = 1'h1;
+      9'b000011111:
+        casez_tmp_86 = 1'h1;
+      9'b000100000:
+        casez_tmp_86 = 1'h0;
+      9'b000100001:
+        casez_tmp_86 = 1'h0;
+      9'b000100010:
+        casez_tmp_86 = 1'h0;
+      9'b000100011:
+        casez_tmp_86 = 1'h0;
+      9'b000100100:
+        casez_tmp_86 = 1'h0;
+      9'b000100101:
+        casez_tmp_86 = 1'h0;
+      9'b000100110:
+        casez_tmp_86 = 1'h1;
+      9'b000100111:
+        casez_tmp_86 = 1'h1;
+      9'b000101000:
+        casez_tmp_86 = 1'h1;
+      9'b000101001:
+        casez_tmp_86 = 1'h1;
+      9'b000101010:
+        casez_tmp_86 = 1'h1;
+      9'b000101011:
+        casez_tmp_86 = 1'h1;
+      9'b000101100:
+        casez_tmp_86 = 1'h1;
+      9'b000101101:
+        casez_tmp_86 = 1'h1;
+      9'b000101110:
+        casez_tmp_86 = 1'h1;
+      9'b000101111:
+        casez_tmp_86 = 1'h1;
+      9'b000110000:
+        casez_tmp_86 = 1'h1;
+      9'b000110001:
+        casez_tmp_86 = 1'h1;
+      9'b000110010:
+        casez_tmp_86 = 1'h1;
+      9'b000110011:
+        casez_tmp_86 = 1'h1;
+      9'b000110100:
+        casez_tmp_86 = 1'h1;
+      9'b000110101:
+        casez_tmp_86 = 1'h1;
+      9'b000110110:
+        casez_tmp_86 = 1'h1;
+      9'b000110111:
+        casez_tmp_86 = 1'h1;
+      9'b000111000:
+        casez_tmp_86 = 1'h1;
+      9'b000111001:
+        casez_tmp_86 = 1'h1;
+      9'b000111010:
+        casez_tmp_86 = 1'h1;
+      9'b000111011:
+        casez_tmp_86 = 1'h1;
+      9'b000111100:
+        casez_tmp_86 = 1'h1;
+      9'b000111101:
+        casez_tmp_86 = 1'h1;
+      9'b000111110:
+        casez_tmp_86 = 1'h1;
+      9'b000111111:
+        casez_tmp_86 = 1'h1;
+      9'b001000000:
+        casez_tmp_86 = 1'h0;
+      9'b001000001:
+        casez_tmp_86 = 1'h0;
+      9'b001000010:
+        casez_tmp_86 = 1'h0;
+      9'b001000011:
+        casez_tmp_86 = 1'h0;
+      9'b001000100:
+        casez_tmp_86 = 1'h0;
+      9'b001000101:
+        casez_tmp_86 = 1'h1;
+      9'b001000110:
+        casez_tmp_86 = 1'h1;
+      9'b001000111:
+        casez_tmp_86 = 1'h1;
+      9'b001001000:
+        casez_tmp_86 = 1'h1;
+      9'b001001001:
+        casez_tmp_86 = 1'h1;
+      9'b001001010:
+        casez_tmp_86 = 1'h1;
+      9'b001001011:
+        casez_tmp_86 = 1'h1;
+      9'b001001100:
+        casez_tmp_86 = 1'h1;
+      9'b001001101:
+        casez_tmp_86 = 1'h1;
+      9'b001001110:
+        casez_tmp_86 = 1'h1;
+      9'b001001111:
+        casez_tmp_86 = 1'h1;
+      9'b001010000:
+        casez_tmp_86 = 1'h1;
+      9'b001010001:
+        casez_tmp_86 = 1'h1;
+      9'b001010010:
+        casez_tmp_86 = 1'h1;
+      9'b001010011:
+        casez_tmp_86 = 1'h1;
+      9'b001010100:
+        casez_tmp_86 = 1'h1;
+      9'b001010101:
+        casez_tmp_86 = 1'h1;
+      9'b001010110:
+        casez_tmp_86 = 1'h1;
+      9'b001010111:
+        casez_tmp_86 = 1'h1;
+      9'b001011000:
+        casez_tmp_86 = 1'h1;
+      9'b001011001:
+        casez_tmp_86 = 1'h1;
+      9'b001011010:
+        casez_tmp_86 = 1'h1;
+      9'b001011011:
+        casez_tmp_86 = 1'h1;
+      9'b001011100:
+        casez_tmp_86 = 1'h1;
+      9'b001011101:
+        casez_tmp_86 = 1'h1;
+      9'b001011110:
+        casez_tmp_86 = 1'h1;
+      9'b001011111:
+        casez_tmp_86 = 1'h1;
+      9'b001100000:
+        casez_tmp_86 = 1'h0;
+      9'b001100001:
+        casez_tmp_86 = 1'h0;
+      9'b001100010:
+        casez_tmp_86 = 1'h0;
+      9'b001100011:
+        casez_tmp_86 = 1'h0;
+      9'b001100100:
+        casez_tmp_86 = 1'h1;
+      9'b001100101:
+        casez_tmp_86 = 1'h1;
+      9'b001100110:
+        casez_tmp_86 = 1'h1;
+      9'b001100111:
+        casez_tmp_86 = 1'h1;
+      9'b001101000:
+        casez_tmp_86 = 1'h1;
+      9'b001101001:
+        casez_tmp_86 = 1'h1;
+      9'b001101010:
+        casez_tmp_86 = 1'h1;
+      9'b001101011:
+        casez_tmp_86 = 1'h1;
+      9'b001101100:
+        casez_tmp_86 = 1'h1;
+      9'b001101101:
+        casez_tmp_86 = 1'h1;
+      9'b001101110:
+        casez_tmp_86 = 1'h1;
+      9'b001101111:
+        casez_tmp_86 = 1'h1;
+      9'b001110000:
+        casez_tmp_86 = 1'h1;
+      9'b001110001:
+        casez_tmp_86 = 1'h1;
+      9'b001110010:
+        casez_tmp_86 = 1'h1;
+      9'b001110011:
+        casez_tmp_86 = 1'h1;
+      9'b001110100:
+        casez_tmp_86 = 1'h1;
+      9'b001110101:
+        casez_tmp_86 = 1'h1;
+      9'b001110110:
+        casez_tmp_86 = 1'h1;
+      9'b001110111:
+        casez_tmp_86 = 1'h1;
+      9'b001111000:
+        casez_tmp_86 = 1'h1;
+      9'b001111001:
+        casez_tmp_86 = 1'h1;
+      9'b001111010:
+        casez_tmp_86 = 1'h1;
+      9'b001111011:
+        casez_tmp_86 = 1'h1;
+      9'b001111100:
+        casez_tmp_86 = 1'h1;
+      9'b001111101:
+        casez_tmp_86 = 1'h1;
+      9'b001111110:
+        casez_tmp_86 = 1'h1;
+      9'b001111111:
+        casez_tmp_86 = 1'h1;
+      9'b010000000:
+        casez_tmp_86 = 1'h0;
+      9'b010000001:
+        casez_tmp_86 = 1'h0;
+      9'b010000010:
+        casez_tmp_86 = 1'h0;
+      9'b010000011:
+        casez_tmp_86 = 1'h1;
+      9'b010000100:
+        casez_tmp_86 = 1'h1;
+      9'b010000101:
+        casez_tmp_86 = 1'h1;
+      9'b010000110:
+        casez_tmp_86 = 1'h1;
+      9'b010000111:
+        casez_tmp_86 = 1'h1;
+      9'b010001000:
+        casez_tmp_86 = 1'h1;
+      9'b010001001:
+        casez_tmp_86 = 1'h1;
+      9'b010001010:
+        casez_tmp_86 = 1'h1;
+      9'b010001011:
+        casez_tmp_86 = 1'h1;
+      9'b010001100:
+        casez_tmp_86 = 1'h1;
+      9'b010001101:
+        casez_tmp_86 = 1'h1;
+      9'b010001110:
+        casez_tmp_86 = 1'h1;
+      9'b010001111:
+        casez_tmp_86 = 1'h1;
+      9'b010010000:
+        casez_tmp_86 = 1'h1;
+      9'b010010001:
+        casez_tmp_86 = 1'h1;
+      9'b010010010:
+        casez_tmp_86 = 1'h1;
+      9'b010010011:
+        casez_tmp_86 = 1'h1;
+      9'b010010100:
+        casez_tmp_86 = 1'h1;
+      9'b010010101:
+        casez_tmp_86 = 1'h1;
+      9'b010010110:
+        casez_tmp_86 = 1'h1;
+      9'b010010111:
+        casez_tmp_86 = 1'h1;
+      9'b010011000:
+        casez_tmp_86 = 1'h1;
+      9'b010011001:
+        casez_tmp_86 = 1'h1;
+      9'b010011010:
+        casez_tmp_86 = 1'h1;
+      9'b010011011:
+        casez_tmp_86 = 1'h1;
+      9'b010011100:
+        casez_tmp_86 = 1'h1;
+      9'b010011101:
+        casez_tmp_86 = 1'h1;
+      9'b010011110:
+        casez_tmp_86 = 1'h1;
+      9'b010011111:
+        casez_tmp_86 = 1'h1;
+      9'b010100000:
+        casez_tmp_86 = 1'h0;
+      9'b010100001:
+        casez_tmp_86 = 1'h0;
+      9'b010100010:
+        casez_tmp_86 = 1'h1;
+      9'b010100011:
+        casez_tmp_86 = 1'h1;
+      9'b010100100:
+        casez_tmp_86 = 1'h1;
+      9'b010100101:
+        casez_tmp_86 = 1'h1;
+      9'b010100110:
+        casez_tmp_86 = 1'h1;
+      9'b010100111:
+        casez_tmp_86 = 1'h1;
+      9'b010101000:
+        casez_tmp_86 = 1'h1;
+      9'b010101001:
+        casez_tmp_86 = 1'h1;
+      9'b010101010:
+        casez_tmp_86 = 1'h1;
+      9'b010101011:
+        casez_tmp_86 = 1'h1;
+      9'b010101100:
+        casez_tmp_86 = 1'h1;
+      9'b010101101:
+        casez_tmp_86 = 1'h1;
+      9'b010101110:
+        casez_tmp_86 = 1'h1;
+      9'b010101111:
+        casez_tmp_86 = 1'h1;
+      9'b010110000:
+        casez_tmp_86 = 1'h1;
+      9'b010110001:
+        casez_tmp_86 = 1'h1;
+      9'b010110010:
+        casez_tmp_86 = 1'h1;
+      9'b010110011:
+        casez_tmp_86 = 1'h1;
+      9'b010110100:
+        casez_tmp_86 = 1'h1;
+      9'b010110101:
+        casez_tmp_86 = 1'h1;
+      9'b010110110:
+        casez_tmp_86 = 1'h1;
+      9'b010110111:
+        casez_tmp_86 = 1'h1;
+      9'b010111000:
+        casez_tmp_86 = 1'h1;
+      9'b010111001:
+        casez_tmp_86 = 1'h1;
+      9'b010111010:
+        casez_tmp_86 = 1'h1;
+      9'b010111011:
+        casez_tmp_86 = 1'h1;
+      9'b010111100:
+        casez_tmp_86 = 1'h1;
+      9'b010111101:
+        casez_tmp_86 = 1'h1;
+      9'b010111110:
+        casez_tmp_86 = 1'h1;
+      9'b010111111:
+        casez_tmp_86 = 1'h1;
+      9'b011000000:
+        casez_tmp_86 = 1'h0;
+      9'b011000001:
+        casez_tmp_86 = 1'h1;
+      9'b011000010:
+        casez_tmp_86 = 1'h1;
+      9'b011000011:
+        casez_tmp_86 = 1'h1;
+      9'b011000100:
+        casez_tmp_86 = 1'h1;
+      9'b011000101:
+        casez_tmp_86 = 1'h1;
+      9'b011000110:
+        casez_tmp_86 = 1'h1;
+      9'b011000111:
+        casez_tmp_86 = 1'h1;
+      9'b011001000:
+        casez_tmp_86 = 1'h1;
+      9'b011001001:
+        casez_tmp_86 = 1'h1;
+      9'b011001010:
+        casez_tmp_86 = 1'h1;
+      9'b011001011:
+        casez_tmp_86 = 1'h1;
+      9'b011001100:
+        casez_tmp_86 = 1'h1;
+      9'b011001101:
+        casez_tmp_86 = 1'h1;
+      9'b011001110:
+        casez_tmp_86 = 1'h1;
+      9'b011001111:
+        casez_tmp_86 = 1'h1;
+      9'b011010000:
+        casez_tmp_86 = 1'h1;
+      9'b011010001:
+        casez_tmp_86 = 1'h1;
+      9'b011010010:
+        casez_tmp_86 = 1'h1;
+      9'b011010011:
+        casez_tmp_86 = 1'h1;
+      9'b011010100:
+        casez_tmp_86 = 1'h1;
+      9'b011010101:
+        casez_tmp_86 = 1'h1;
+      9'b011010110:
+        casez_tmp_86 = 1'h1;
+      9'b011010111:
+        casez_tmp_86 = 1'h1;
+      9'b011011000:
+        casez_tmp_86 = 1'h1;
+      9'b011011001:
+        casez_tmp_86 = 1'h1;
+      9'b011011010:
+        casez_tmp_86 = 1'h1;
+      9'b011011011:
+        casez_tmp_86 = 1'h1;
+      9'b011011100:
+        casez_tmp_86 = 1'h1;
+      9'b011011101:
+        casez_tmp_86 = 1'h1;
+      9'b011011110:
+        casez_tmp_86 = 1'h1;
+      9'b011011111:
+        casez_tmp_86 = 1'h1;
+      9'b011100000:
+        casez_tmp_86 = 1'h0;
+      9'b011100001:
+        casez_tmp_86 = 1'h0;
+      9'b011100010:
+        casez_tmp_86 = 1'h0;
+      9'b011100011:
+        casez_tmp_86 = 1'h0;
+      9'b011100100:
+        casez_tmp_86 = 1'h0;
+      9'b011100101:
+        casez_tmp_86 = 1'h0;
+      9'b011100110:
+        casez_tmp_86 = 1'h0;
+      9'b011100111:
+        casez_tmp_86 = 1'h0;
+      9'b011101000:
+        casez_tmp_86 = 1'h0;
+      9'b011101001:
+        casez_tmp_86 = 1'h0;
+      9'b011101010:
+        casez_tmp_86 = 1'h0;
+      9'b011101011:
+        casez_tmp_86 = 1'h0;
+      9'b011101100:
+        casez_tmp_86 = 1'h0;
+      9'b011101101:
+        casez_tmp_86 = 1'h0;
+      9'b011101110:
+        casez_tmp_86 = 1'h0;
+      9'b011101111:
+        casez_tmp_86 = 1'h0;
+      9'b011110000:
+        casez_tmp_86 = 1'h1;
+      9'b011110001:
+        casez_tmp_86 = 1'h1;
+      9'b011110010:
+        casez_tmp_86 = 1'h1;
+      9'b011110011:
+        casez_tmp_86 = 1'h1;
+      9'b011110100:
+        casez_tmp_86 = 1'h1;
+      9'b011110101:
+        casez_tmp_86 = 1'h1;
+      9'b011110110:
+        casez_tmp_86 = 1'h1;
+      9'b011110111:
+        casez_tmp_86 = 1'h1;
+      9'b011111000:
+        casez_tmp_86 = 1'h1;
+      9'b011111001:
+        casez_tmp_86 = 1'h1;
+      9'b011111010:
+        casez_tmp_86 = 1'h1;
+      9'b011111011:
+        casez_tmp_86 = 1'h1;
+      9'b011111100:
+        casez_tmp_86 = 1'h1;
+      9'b011111101:
+        casez_tmp_86 = 1'h1;
+      9'b011111110:
+        casez_tmp_86 = 1'h1;
+      9'b011111111:
+        casez_tmp_86 = 1'h1;
+      9'b100000000:
+        casez_tmp_86 = 1'h0;
+      9'b100000001:
+        casez_tmp_86 = 1'h0;
+      9'b100000010:
+        casez_tmp_86 = 1'h0;
+      9'b100000011:
+        casez_tmp_86 = 1'h0;
+      9'b100000100:
+        casez_tmp_86 = 1'h0;
+      9'b100000101:
+        casez_tmp_86 = 1'h0;
+      9'b100000110:
+        casez_tmp_86 = 1'h0;
+      9'b100000111:
+        casez_tmp_86 = 1'h0;
+      9'b100001000:
+        casez_tmp_86 = 1'h0;
+      9'b100001001:
+        casez_tmp_86 = 1'h0;
+      9'b100001010:
+        casez_tmp_86 = 1'h0;
+      9'b100001011:
+        casez_tmp_86 = 1'h0;
+      9'b100001100:
+        casez_tmp_86 = 1'h0;
+      9'b100001101:
+        casez_tmp_86 = 1'h0;
+      9'b100001110:
+        casez_tmp_86 = 1'h0;
+      9'b100001111:
+        casez_tmp_86 = 1'h1;
+      9'b100010000:
+        casez_tmp_86 = 1'h1;
+      9'b100010001:
+        casez_tmp_86 = 1'h1;
+      9'b100010010:
+        casez_tmp_86 = 1'h1;
+      9'b100010011:
+        casez_tmp_86 = 1'h1;
+      9'b100010100:
+        casez_tmp_86 = 1'h1;
+      9'b100010101:
+        casez_tmp_86 = 1'h1;
+      9'b100010110:
+        casez_tmp_86 = 1'h1;
+      9'b100010111:
+        casez_tmp_86 = 1'h1;
+      9'b100011000:
+        casez_tmp_86 = 1'h1;
+      9'b100011001:
+        casez_tmp_86 = 1'h1;
+      9'b100011010:
+        casez_tmp_86 = 1'h1;
+      9'b100011011:
+        casez_tmp_86 = 1'h1;
+      9'b100011100:
+        casez_tmp_86 = 1'h1;
+      9'b100011101:
+        casez_tmp_86 = 1'h1;
+      9'b100011110:
+        casez_tmp_86 = 1'h1;
+      9'b100011111:
+        casez_tmp_86 = 1'h1;
+      9'b100100000:
+        casez_tmp_86 = 1'h0;
+      9'b100100001:
+        casez_tmp_86 = 1'h0;
+      9'b100100010:
+        casez_tmp_86 = 1'h0;
+      9'b100100011:
+        casez_tmp_86 = 1'h0;
+      9'b100100100:
+        casez_tmp_86 = 1'h0;
+      9'b100100101:
+        casez_tmp_86 = 1'h0;
+      9'b100100110:
+        casez_tmp_86 = 1'h0;
+      9'b100100111:
+        casez_tmp_86 = 1'h0;
+      9'b100101000:
+        casez_tmp_86 = 1'h0;
+      9'b100101001:
+        casez_tmp_86 = 1'h0;
+      9'b100101010:
+        casez_tmp_86 = 1'h0;
+      9'b100101011:
+        casez_tmp_86 = 1'h0;
+      9'b100101100:
+        casez_tmp_86 = 1'h0;
+      9'b100101101:
+        casez_tmp_86 = 1'h0;
+      9'b100101110:
+        casez_tmp_86 = 1'h1;
+      9'b100101111:
+        casez_tmp_86 = 1'h1;
+      9'b100110000:
+        casez_tmp_86 = 1'h1;
+      9'b100110001:
+        casez_tmp_86 = 1'h1;
+      9'b100110010:
+        casez_tmp_86 = 1'h1;
+      9'b100110011:
+        casez_tmp_86 = 1'h1;
+      9'b100110100:
+        casez_tmp_86 = 1'h1;
+      9'b100110101:
+        casez_tmp_86 = 1'h1;
+      9'b100110110:
+        casez_tmp_86 = 1'h1;
+      9'b100110111:
+        casez_tmp_86 = 1'h1;
+      9'b100111000:
+        casez_tmp_86 = 1'h1;
+      9'b100111001:
+        casez_tmp_86 = 1'h1;
+      9'b100111010:
+        casez_tmp_86 = 1'h1;
+      9'b100111011:
+        casez_tmp_86 = 1'h1;
+      9'b100111100:
+        casez_tmp_86 = 1'h1;
+      9'b100111101:
+        casez_tmp_86 = 1'h1;
+      9'b100111110:
+        casez_tmp_86 = 1'h1;
+      9'b100111111:
+        casez_tmp_86 = 1'h1;
+      9'b101000000:
+        casez_tmp_86 = 1'h0;
+      9'b101000001:
+        casez_tmp_86 = 1'h0;
+      9'b101000010:
+        casez_tmp_86 = 1'h0;
+      9'b101000011:
+        casez_tmp_86 = 1'h0;
+      9'b101000100:
+        casez_tmp_86 = 1'h0;
+      9'b101000101:
+        casez_tmp_86 = 1'h0;
+      9'b101000110:
+        casez_tmp_86 = 1'h0;
+      9'b101000111:
+        casez_tmp_86 = 1'h0;
+      9'b101001000:
+        casez_tmp_86 = 1'h0;
+      9'b101001001:
+        casez_tmp_86 = 1'h0;
+      9'b101001010:
+        casez_tmp_86 = 1'h0;
+      9'b101001011:
+        casez_tmp_86 = 1'h0;
+      9'b101001100:
+        casez_tmp_86 = 1'h0;
+      9'b101001101:
+        casez_tmp_86 = 1'h1;
+      9'b101001110:
+        casez_tmp_86 = 1'h1;
+      9'b101001111:
+        casez_tmp_86 = 1'h1;
+      9'b101010000:
+        casez_tmp_86 = 1'h1;
+      9'b101010001:
+        casez_tmp_86 = 1'h1;
+      9'b101010010:
+        casez_tmp_86 = 1'h1;
+      9'b101010011:
+        casez_tmp_86 = 1'h1;
+      9'b101010100:
+        casez_tmp_86 = 1'h1;
+      9'b101010101:
+        casez_tmp_86 = 1'h1;
+      9'b101010110:
+        casez_tmp_86 = 1'h1;
+      9'b101010111:
+        casez_tmp_86 = 1'h1;
+      9'b101011000:
+        casez_tmp_86 = 1'h1;
+      9'b101011001:
+        casez_tmp_86 = 1'h1;
+      9'b101011010:
+        casez_tmp_86 = 1'h1;
+      9'b101011011:
+        casez_tmp_86 = 1'h1;
+      9'b101011100:
+        casez_tmp_86 = 1'h1;
+      9'b101011101:
+        casez_tmp_86 = 1'h1;
+      9'b101011110:
+        casez_tmp_86 = 1'h1;
+      9'b101011111:
+        casez_tmp_86 = 1'h1;
+      9'b101100000:
+        casez_tmp_86 = 1'h0;
+      9'b101100001:
+        casez_tmp_86 = 1'h0;
+      9'b101100010:
+        casez_tmp_86 = 1'h0;
+      9'b101100011:
+        casez_tmp_86 = 1'h0;
+      9'b101100100:
+        casez_tmp_86 = 1'h0;
+      9'b101100101:
+        casez_tmp_86 = 1'h0;
+      9'b101100110:
+        casez_tmp_86 = 1'h0;
+      9'b101100111:
+        casez_tmp_86 = 1'h0;
+      9'b101101000:
+        casez_tmp_86 = 1'h0;
+      9'b101101001:
+        casez_tmp_86 = 1'h0;
+      9'b101101010:
+        casez_tmp_86 = 1'h0;
+      9'b101101011:
+        casez_tmp_86 = 1'h0;
+      9'b101101100:
+        casez_tmp_86 = 1'h1;
+      9'b101101101:
+        casez_tmp_86 = 1'h1;
+      9'b101101110:
+        casez_tmp_86 = 1'h1;
+      9'b101101111:
+        casez_tmp_86 = 1'h1;
+      9'b101110000:
+        casez_tmp_86 = 1'h1;
+      9'b101110001:
+        casez_tmp_86 = 1'h1;
+      9'b101110010:
+        casez_tmp_86 = 1'h1;
+      9'b101110011:
+        casez_tmp_86 = 1'h1;
+      9'b101110100:
+        casez_tmp_86 = 1'h1;
+      9'b101110101:
+        casez_tmp_86 = 1'h1;
+      9'b101110110:
+        casez_tmp_86 = 1'h1;
+      9'b101110111:
+        casez_tmp_86 = 1'h1;
+      9'b101111000:
+        casez_tmp_86 = 1'h1;
+      9'b101111001:
+        casez_tmp_86 = 1'h1;
+      9'b101111010:
+        casez_tmp_86 = 1'h1;
+      9'b101111011:
+        casez_tmp_86 = 1'h1;
+      9'b101111100:
+        casez_tmp_86 = 1'h1;
+      9'b101111101:
+        casez_tmp_86 = 1'h1;
+      9'b101111110:
+        casez_tmp_86 = 1'h1;
+      9'b101111111:
+        casez_tmp_86 = 1'h1;
+      9'b110000000:
+        casez_tmp_86 = 1'h0;
+      9'b110000001:
+        casez_tmp_86 = 1'h0;
+      9'b110000010:
+        casez_tmp_86 = 1'h0;
+      9'b110000011:
+        casez_tmp_86 = 1'h0;
+      9'b110000100:
+        casez_tmp_86 = 1'h0;
+      9'b110000101:
+        casez_tmp_86 = 1'h0;
+      9'b110000110:
+        casez_tmp_86 = 1'h0;
+      9'b110000111:
+        casez_tmp_86 = 1'h0;
+      9'b110001000:
+        casez_tmp_86 = 1'h0;
+      9'b110001001:
+        casez_tmp_86 = 1'h0;
+      9'b110001010:
+        casez_tmp_86 = 1'h0;
+      9'b110001011:
+        casez_tmp_86 = 1'h1;
+      9'b110001100:
+        casez_tmp_86 = 1'h1;
+      9'b110001101:
+        casez_tmp_86 = 1'h1;
+      9'b110001110:
+        casez_tmp_86 = 1'h1;
+      9'b110001111:
+        casez_tmp_86 = 1'h1;
+      9'b110010000:
+        casez_tmp_86 = 1'h1;
+      9'b110010001:
+        casez_tmp_86 = 1'h1;
+      9'b110010010:
+        casez_tmp_86 = 1'h1;
+      9'b110010011:
+        casez_tmp_86 = 1'h1;
+      9'b110010100:
+        casez_tmp_86 = 1'h1;
+      9'b110010101:
+        casez_tmp_86 = 1'h1;
+      9'b110010110:
+        casez_tmp_86 = 1'h1;
+      9'b110010111:
+        casez_tmp_86 = 1'h1;
+      9'b110011000:
+        casez_tmp_86 = 1'h1;
+      9'b110011001:
+        casez_tmp_86 = 1'h1;
+      9'b110011010:
+        casez_tmp_86 = 1'h1;
+      9'b110011011:
+        casez_tmp_86 = 1'h1;
+      9'b110011100:
+        casez_tmp_86 = 1'h1;
+      9'b110011101:
+        casez_tmp_86 = 1'h1;
+      9'b110011110:
+        casez_tmp_86 = 1'h1;
+      9'b110011111:
+        casez_tmp_86 = 1'h1;
+      9'b110100000:
+        casez_tmp_86 = 1'h0;
+      9'b110100001:
+        casez_tmp_86 = 1'h0;
+      9'b110100010:
+        casez_tmp_86 = 1'h0;
+      9'b110100011:
+        casez_tmp_86 = 1'h0;
+      9'b110100100:
+        casez_tmp_86 = 1'h0;
+      9'b110100101:
+        casez_tmp_86 = 1'h0;
+      9'b110100110:
+        casez_tmp_86 = 1'h0;
+      9'b110100111:
+        casez_tmp_86 = 1'h0;
+      9'b110101000:
+        casez_tmp_86 = 1'h0;
+      9'b110101001:
+        casez_tmp_86 = 1'h0;
+      9'b110101010:
+        casez_tmp_86 = 1'h1;
+      9'b110101011:
+        casez_tmp_86 = 1'h1;
+      9'b110101100:
+        casez_tmp_86 = 1'h1;
+      9'b110101101:
+        casez_tmp_86 = 1'h1;
+      9'b110101110:
+        casez_tmp_86 = 1'h1;
+      9'b110101111:
+        casez_tmp_86 = 1'h1;
+      9'b110110000:
+        casez_tmp_86 = 1'h1;
+      9'b110110001:
+        casez_tmp_86 = 1'h1;
+      9'b110110010:
+        casez_tmp_86 = 1'h1;
+      9'b110110011:
+        casez_tmp_86 = 1'h1;
+      9'b110110100:
+        casez_tmp_86 = 1'h1;
+      9'b110110101:
+        casez_tmp_86 = 1'h1;
+      9'b110110110:
+        casez_tmp_86 = 1'h1;
+      9'b110110111:
+        casez_tmp_86 = 1'h1;
+      9'b110111000:
+        casez_tmp_86 = 1'h1;
+      9'b110111001:
+        casez_tmp_86 = 1'h1;
+      9'b110111010:
+        casez_tmp_86 = 1'h1;
+      9'b110111011:
+        casez_tmp_86 = 1'h1;
+      9'b110111100:
+        casez_tmp_86 = 1'h1;
+      9'b110111101:
+        casez_tmp_86 = 1'h1;
+      9'b110111110:
+        casez_tmp_86 = 1'h1;
+      9'b110111111:
+        casez_tmp_86 = 1'h1;
+      9'b111000000:
+        casez_tmp_86 = 1'h0;
+      9'b111000001:
+        casez_tmp_86 = 1'h0;
+      9'b111000010:
+        casez_tmp_86 = 1'h0;
+      9'b111000011:
+        casez_tmp_86 = 1'h0;
+      9'b111000100:
+        casez_tmp_86 = 1'h0;
+      9'b111000101:
+        casez_tmp_86 = 1'h0;
+      9'b111000110:
+        casez_tmp_86 = 1'h0;
+      9'b111000111:
+        casez_tmp_86 = 1'h0;
+      9'b111001000:
+        casez_tmp_86 = 1'h0;
+      9'b111001001:
+        casez_tmp_86 = 1'h1;
+      9'b111001010:
+        casez_tmp_86 = 1'h1;
+      9'b111001011:
+        casez_tmp_86 = 1'h1;
+      9'b111001100:
+        casez_tmp_86 = 1'h1;
+      9'b111001101:
+        casez_tmp_86 = 1'h1;
+      9'b111001110:
+        casez_tmp_86 = 1'h1;
+      9'b111001111:
+        casez_tmp_86 = 1'h1;
+      9'b111010000:
+        casez_tmp_86 = 1'h1;
+      9'b111010001:
+        casez_tmp_86 = 1'h1;
+      9'b111010010:
+        casez_tmp_86 = 1'h1;
+      9'b111010011:
+        casez_tmp_86 = 1'h1;
+      9'b111010100:
+        casez_tmp_86 = 1'h1;
+      9'b111010101:
+        casez_tmp_86 = 1'h1;
+      9'b111010110:
+        casez_tmp_86 = 1'h1;
+      9'b111010111:
+        casez_tmp_86 = 1'h1;
+      9'b111011000:
+        casez_tmp_86 = 1'h1;
+      9'b111011001:
+        casez_tmp_86 = 1'h1;
+      9'b111011010:
+        casez_tmp_86 = 1'h1;
+      9'b111011011:
+        casez_tmp_86 = 1'h1;
+      9'b111011100:
+        casez_tmp_86 = 1'h1;
+      9'b111011101:
+        casez_tmp_86 = 1'h1;
+      9'b111011110:
+        casez_tmp_86 = 1'h1;
+      9'b111011111:
+        casez_tmp_86 = 1'h1;
+      9'b111100000:
+        casez_tmp_86 = 1'h0;
+      9'b111100001:
+        casez_tmp_86 = 1'h0;
+      9'b111100010:
+        casez_tmp_86 = 1'h0;
+      9'b111100011:
+        casez_tmp_86 = 1'h0;
+      9'b111100100:
+        casez_tmp_86 = 1'h0;
+      9'b111100101:
+        casez_tmp_86 = 1'h0;
+      9'b111100110:
+        casez_tmp_86 = 1'h0;
+      9'b111100111:
+        casez_tmp_86 = 1'h0;
+      9'b111101000:
+        casez_tmp_86 = 1'h1;
+      9'b111101001:
+        casez_tmp_86 = 1'h1;
+      9'b111101010:
+        casez_tmp_86 = 1'h1;
+      9'b111101011:
+        casez_tmp_86 = 1'h1;
+      9'b111101100:
+        casez_tmp_86 = 1'h1;
+      9'b111101101:
+        casez_tmp_86 = 1'h1;
+      9'b111101110:
+        casez_tmp_86 = 1'h1;
+      9'b111101111:
+        casez_tmp_86 = 1'h1;
+      9'b111110000:
+        casez_tmp_86 = 1'h1;
+      9'b111110001:
+        casez_tmp_86 = 1'h1;
+      9'b111110010:
+        casez_tmp_86 = 1'h1;
+      9'b111110011:
+        casez_tmp_86 = 1'h1;
+      9'b111110100:
+        casez_tmp_86 = 1'h1;
+      9'b111110101:
+        casez_tmp_86 = 1'h1;
+      9'b111110110:
+        casez_tmp_86 = 1'h1;
+      9'b111110111:
+        casez_tmp_86 = 1'h1;
+      9'b111111000:
+        casez_tmp_86 = 1'h1;
+      9'b111111001:
+        casez_tmp_86 = 1'h1;
+      9'b111111010:
+        casez_tmp_86 = 1'h1;
+      9'b111111011:
+        casez_tmp_86 = 1'h1;
+      9'b111111100:
+        casez_tmp_86 = 1'h1;
+      9'b111111101:
+        casez_tmp_86 = 1'h1;
+      9'b111111110:
+        casez_tmp_86 = 1'h1;
+      default:
+        casez_tmp_86 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_87;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_87 = 1'h0;
+      9'b000000001:
+        casez_tmp_87 = 1'h0;
+      9'b000000010:
+        casez_tmp_87 = 1'h0;
+      9'b000000011:
+        casez_tmp_87 = 1'h0;
+      9'b000000100:
+        casez_tmp_87 = 1'h0;
+      9'b000000101:
+        casez_tmp_87 = 1'h0;
+      9'b000000110:
+        casez_tmp_87 = 1'h0;
+      9'b000000111:
+        casez_tmp_87 = 1'h0;
+      9'b000001000:
+        casez_tmp_87 = 1'h1;
+      9'b000001001:
+        casez_tmp_87 = 1'h1;
+      9'b000001010:
+        casez_tmp_87 = 1'h1;
+      9'b000001011:
+        casez_tmp_87 = 1'h1;
+      9'b000001100:
+        casez_tmp_87 = 1'h1;
+      9'b000001101:
+        casez_tmp_87 = 1'h1;
+      9'b000001110:
+        casez_tmp_87 = 1'h1;
+      9'b000001111:
+        casez_tmp_87 = 1'h1;
+      9'b000010000:
+        casez_tmp_87 = 1'h1;
+      9'b000010001:
+        casez_tmp_87 = 1'h1;
+      9'b000010010:
+        casez_tmp_87 = 1'h1;
+      9'b000010011:
+        casez_tmp_87 = 1'h1;
+      9'b000010100:
+        casez_tmp_87 = 1'h1;
+      9'b000010101:
+        casez_tmp_87 = 1'h1;
+      9'b000010110:
+        casez_tmp_87 = 1'h1;
+      9'b000010111:
+        casez_tmp_87 = 1'h1;
+      9'b000011000:
+        casez_tmp_87 = 1'h1;
+      9'b000011001:
+        casez_tmp_87 = 1'h1;
+      9'b000011010:
+        casez_tmp_87 = 1'h1;
+      9'b000011011:
+        casez_tmp_87 = 1'h1;
+      9'b000011100:
+        casez_tmp_87 = 1'h1;
+      9'b000011101:
+        casez_tmp_87 = 1'h1;
+      9'b000011110:
+        casez_tmp_87 = 1'h1;
+      9'b000011111:
+        casez_tmp_87 = 1'h1;
+      9'b000100000:
+        casez_tmp_87 = 1'h0;
+      9'b000100001:
+        casez_tmp_87 = 1'h0;
+      9'b000100010:
+        casez_tmp_87 = 1'h0;
+      9'b000100011:
+        casez_tmp_87 = 1'h0;
+      9'b000100100:
+        casez_tmp_87 = 1'h0;
+      9'b000100101:
+        casez_tmp_87 = 1'h0;
+      9'b000100110:
+        casez_tmp_87 = 1'h0;
+      9'b000100111:
+        casez_tmp_87 = 1'h1;
+      9'b000101000:
+        casez_tmp_87 = 1'h1;
+      9'b000101001:
+        casez_tmp_87 = 1'h1;
+      9'b000101010:
+        casez_tmp_87 = 1'h1;
+      9'b000101011:
+        casez_tmp_87 = 1'h1;
+      9'b000101100:
+        casez_tmp_87 = 1'h1;
+      9'b000101101:
+        casez_tmp_87 = 1'h1;
+      9'b000101110:
+        casez_tmp_87 = 1'h1;
+      9'b000101111:
+        casez_tmp_87 = 1'h1;
+      9'b000110000:
+        casez_tmp_87 = 1'h1;
+      9'b000110001:
+        casez_tmp_87 = 1'h1;
+      9'b000110010:
+        casez_tmp_87 = 1'h1;
+      9'b000110011:
+        casez_tmp_87 = 1'h1;
+      9'b000110100:
+        casez_tmp_87 = 1'h1;
+      9'b000110101:
+        casez_tmp_87 = 1'h1;
+      9'b000110110:
+        casez_tmp_87 = 1'h1;
+      9'b000110111:
+        casez_tmp_87 = 1'h1;
+      9'b000111000:
+        casez_tmp_87 = 1'h1;
+      9'b000111001:
+        casez_tmp_87 = 1'h1;
+      9'b000111010:
+        casez_tmp_87 = 1'h1;
+      9'b000111011:
+        casez_tmp_87 = 1'h1;
+      9'b000111100:
+        casez_tmp_87 = 1'h1;
+      9'b000111101:
+        casez_tmp_87 = 1'h1;
+      9'b000111110:
+        casez_tmp_87 = 1'h1;
+      9'b000111111:
+        casez_tmp_87 = 1'h1;
+      9'b001000000:
+        casez_tmp_87 = 1'h0;
+      9'b001000001:
+        casez_tmp_87 = 1'h0;
+      9'b001000010:
+        casez_tmp_87 = 1'h0;
+      9'b001000011:
+        casez_tmp_87 = 1'h0;
+      9'b001000100:
+        casez_tmp_87 = 1'h0;
+      9'b001000101:
+        casez_tmp_87 = 1'h0;
+      9'b001000110:
+        casez_tmp_87 = 1'h1;
+      9'b001000111:
+        casez_tmp_87 = 1'h1;
+      9'b001001000:
+        casez_tmp_87 = 1'h1;
+      9'b001001001:
+        casez_tmp_87 = 1'h1;
+      9'b001001010:
+        casez_tmp_87 = 1'h1;
+      9'b001001011:
+        casez_tmp_87 = 1'h1;
+      9'b001001100:
+        casez_tmp_87 = 1'h1;
+      9'b001001101:
+        casez_tmp_87 = 1'h1;
+      9'b001001110:
+        casez_tmp_87 = 1'h1;
+      9'b001001111:
+        casez_tmp_87 = 1'h1;
+      9'b001010000:
+        casez_tmp_87 = 1'h1;
+      9'b001010001:
+        casez_tmp_87 = 1'h1;
+      9'b001010010:
+        casez_tmp_87 = 1'h1;
+      9'b001010011:
+        casez_tmp_87 = 1'h1;
+      9'b001010100:
+        casez_tmp_87 = 1'h1;
+      9'b001010101:
+        casez_tmp_87 = 1'h1;
+      9'b001010110:
+        casez_tmp_87 = 1'h1;
+      9'b001010111:
+        casez_tmp_87 = 1'h1;
+      9'b001011000:
+        casez_tmp_87 = 1'h1;
+      9'b001011001:
+        casez_tmp_87 = 1'h1;
+      9'b001011010:
+        casez_tmp_87 = 1'h1;
+      9'b001011011:
+        casez_tmp_87 = 1'h1;
+      9'b001011100:
+        casez_tmp_87 = 1'h1;
+      9'b001011101:
+        casez_tmp_87 = 1'h1;
+      9'b001011110:
+        casez_tmp_87 = 1'h1;
+      9'b001011111:
+        casez_tmp_87 = 1'h1;
+      9'b001100000:
+        casez_tmp_87 = 1'h0;
+      9'b001100001:
+        casez_tmp_87 = 1'h0;
+      9'b001100010:
+        casez_tmp_87 = 1'h0;
+      9'b001100011:
+        casez_tmp_87 = 1'h0;
+      9'b001100100:
+        casez_tmp_87 = 1'h0;
+      9'b001100101:
+        casez_tmp_87 = 1'h1;
+      9'b001100110:
+        casez_tmp_87 = 1'h1;
+      9'b001100111:
+        casez_tmp_87 = 1'h1;
+      9'b001101000:
+        casez_tmp_87 = 1'h1;
+      9'b001101001:
+        casez_tmp_87 = 1'h1;
+      9'b001101010:
+        casez_tmp_87 = 1'h1;
+      9'b001101011:
+        casez_tmp_87 = 1'h1;
+      9'b001101100:
+        casez_tmp_87 = 1'h1;
+      9'b001101101:
+        casez_tmp_87 = 1'h1;
+      9'b001101110:
+        casez_tmp_87 = 1'h1;
+      9'b001101111:
+        casez_tmp_87 = 1'h1;
+      9'b001110000:
+        casez_tmp_87 = 1'h1;
+      9'b001110001:
+        casez_tmp_87 = 1'h1;
+      9'b001110010:
+        casez_tmp_87 = 1'h1;
+      9'b001110011:
+        casez_tmp_87 = 1'h1;
+      9'b001110100:
+        casez_tmp_87 = 1'h1;
+      9'b001110101:
+        casez_tmp_87 = 1'h1;
+      9'b001110110:
+        casez_tmp_87 = 1'h1;
+      9'b001110111:
+        casez_tmp_87 = 1'h1;
+      9'b001111000:
+        casez_tmp_87 = 1'h1;
+      9'b001111001:
+        casez_tmp_87 = 1'h1;
+      9'b001111010:
+        casez_tmp_87 = 1'h1;
+      9'b001111011:
+        casez_tmp_87 = 1'h1;
+      9'b001111100:
+        casez_tmp_87 = 1'h1;
+      9'b001111101:
+        casez_tmp_87 = 1'h1;
+      9'b001111110:
+        casez_tmp_87 = 1'h1;
+      9'b001111111:
+        casez_tmp_87 = 1'h1;
+      9'b010000000:
+        casez_tmp_87 = 1'h0;
+      9'b010000001:
+        casez_tmp_87 = 1'h0;
+      9'b010000010:
+        casez_tmp_87 = 1'h0;
+      9'b010000011:
+        casez_tmp_87 = 1'h0;
+      9'b010000100:
+        casez_tmp_87 = 1'h1;
+      9'b010000101:
+        casez_tmp_87 = 1'h1;
+      9'b010000110:
+        casez_tmp_87 = 1'h1;
+      9'b010000111:
+        casez_tmp_87 = 1'h1;
+      9'b010001000:
+        casez_tmp_87 = 1'h1;
+      9'b010001001:
+        casez_tmp_87 = 1'h1;
+      9'b010001010:
+        casez_tmp_87 = 1'h1;
+      9'b010001011:
+        casez_tmp_87 = 1'h1;
+      9'b010001100:
+        casez_tmp_87 = 1'h1;
+      9'b010001101:
+        casez_tmp_87 = 1'h1;
+      9'b010001110:
+        casez_tmp_87 = 1'h1;
+      9'b010001111:
+        casez_tmp_87 = 1'h1;
+      9'b010010000:
+        casez_tmp_87 = 1'h1;
+      9'b010010001:
+        casez_tmp_87 = 1'h1;
+      9'b010010010:
+        casez_tmp_87 = 1'h1;
+      9'b010010011:
+        casez_tmp_87 = 1'h1;
+      9'b010010100:
+        casez_tmp_87 = 1'h1;
+      9'b010010101:
+        casez_tmp_87 = 1'h1;
+      9'b010010110:
+        casez_tmp_87 = 1'h1;
+      9'b010010111:
+        casez_tmp_87 = 1'h1;
+      9'b010011000:
+        casez_tmp_87 = 1'h1;
+      9'b010011001:
+        casez_tmp_87 = 1'h1;
+      9'b010011010:
+        casez_tmp_87 = 1'h1;
+      9'b010011011:
+        casez_tmp_87 = 1'h1;
+      9'b010011100:
+        casez_tmp_87 = 1'h1;
+      9'b010011101:
+        casez_tmp_87 = 1'h1;
+      9'b010011110:
+        casez_tmp_87 = 1'h1;
+      9'b010011111:
+        casez_tmp_87 = 1'h1;
+      9'b010100000:
+        casez_tmp_87 = 1'h0;
+      9'b010100001:
+        casez_tmp_87 = 1'h0;
+      9'b010100010:
+        casez_tmp_87 = 1'h0;
+      9'b010100011:
+        casez_tmp_87 = 1'h1;
+      9'b010100100:
+        casez_tmp_87 = 1'h1;
+      9'b010100101:
+        casez_tmp_87 = 1'h1;
+      9'b010100110:
+        casez_tmp_87 = 1'h1;
+      9'b010100111:
+        casez_tmp_87 = 1'h1;
+      9'b010101000:
+        casez_tmp_87 = 1'h1;
+      9'b010101001:
+        casez_tmp_87 = 1'h1;
+      9'b010101010:
+        casez_tmp_87 = 1'h1;
+      9'b010101011:
+        casez_tmp_87 = 1'h1;
+      9'b010101100:
+        casez_tmp_87 = 1'h1;
+      9'b010101101:
+        casez_tmp_87 = 1'h1;
+      9'b010101110:
+        casez_tmp_87 = 1'h1;
+      9'b010101111:
+        casez_tmp_87 = 1'h1;
+      9'b010110000:
+        casez_tmp_87 = 1'h1;
+      9'b010110001:
+        casez_tmp_87 = 1'h1;
+      9'b010110010:
+        casez_tmp_87 = 1'h1;
+      9'b010110011:
+        casez_tmp_87 = 1'h1;
+      9'b010110100:
+        casez_tmp_87 = 1'h1;
+      9'b010110101:
+        casez_tmp_87 = 1'h1;
+      9'b010110110:
+        casez_tmp_87 = 1'h1;
+      9'b010110111:
+        casez_tmp_87 = 1'h1;
+      9'b010111000:
+        casez_tmp_87 = 1'h1;
+      9'b010111001:
+        casez_tmp_87 = 1'h1;
+      9'b010111010:
+        casez_tmp_87 = 1'h1;
+      9'b010111011:
+        casez_tmp_87 = 1'h1;
+      9'b010111100:
+        casez_tmp_87 = 1'h1;
+      9'b010111101:
+        casez_tmp_87 = 1'h1;
+      9'b010111110:
+        casez_tmp_87 = 1'h1;
+      9'b010111111:
+        casez_tmp_87 = 1'h1;
+      9'b011000000:
+        casez_tmp_87 = 1'h0;
+      9'b011000001:
+        casez_tmp_87 = 1'h0;
+      9'b011000010:
+        casez_tmp_87 = 1'h1;
+      9'b011000011:
+        casez_tmp_87 = 1'h1;
+      9'b011000100:
+        casez_tmp_87 = 1'h1;
+      9'b011000101:
+        casez_tmp_87 = 1'h1;
+      9'b011000110:
+        casez_tmp_87 = 1'h1;
+      9'b011000111:
+        casez_tmp_87 = 1'h1;
+      9'b011001000:
+        casez_tmp_87 = 1'h1;
+      9'b011001001:
+        casez_tmp_87 = 1'h1;
+      9'b011001010:
+        casez_tmp_87 = 1'h1;
+      9'b011001011:
+        casez_tmp_87 = 1'h1;
+      9'b011001100:
+        casez_tmp_87 = 1'h1;
+      9'b011001101:
+        casez_tmp_87 = 1'h1;
+      9'b011001110:
+        casez_tmp_87 = 1'h1;
+      9'b011001111:
+        casez_tmp_87 = 1'h1;
+      9'b011010000:
+        casez_tmp_87 = 1'h1;
+      9'b011010001:
+        casez_tmp_87 = 1'h1;
+      9'b011010010:
+        casez_tmp_87 = 1'h1;
+      9'b011010011:
+        casez_tmp_87 = 1'h1;
+      9'b011010100:
+        casez_tmp_87 = 1'h1;
+      9'b011010101:
+        casez_tmp_87 = 1'h1;
+      9'b011010110:
+        casez_tmp_87 = 1'h1;
+      9'b011010111:
+        casez_tmp_87 = 1'h1;
+      9'b011011000:
+        casez_tmp_87 = 1'h1;
+      9'b011011001:
+        casez_tmp_87 = 1'h1;
+      9'b011011010:
+        casez_tmp_87 = 1'h1;
+      9'b011011011:
+        casez_tmp_87 = 1'h1;
+      9'b011011100:
+        casez_tmp_87 = 1'h1;
+      9'b011011101:
+        casez_tmp_87 = 1'h1;
+      9'b011011110:
+        casez_tmp_87 = 1'h1;
+      9'b011011111:
+        casez_tmp_87 = 1'h1;
+      9'b011100000:
+        casez_tmp_87 = 1'h0;
+      9'b011100001:
+        casez_tmp_87 = 1'h1;
+      9'b011100010:
+        casez_tmp_87 = 1'h1;
+      9'b011100011:
+        casez_tmp_87 = 1'h1;
+      9'b011100100:
+        casez_tmp_87 = 1'h1;
+      9'b011100101:
+        casez_tmp_87 = 1'h1;
+      9'b011100110:
+        casez_tmp_87 = 1'h1;
+      9'b011100111:
+        casez_tmp_87 = 1'h1;
+      9'b011101000:
+        casez_tmp_87 = 1'h1;
+      9'b011101001:
+        casez_tmp_87 = 1'h1;
+      9'b011101010:
+        casez_tmp_87 = 1'h1;
+      9'b011101011:
+        casez_tmp_87 = 1'h1;
+      9'b011101100:
+        casez_tmp_87 = 1'h1;
+      9'b011101101:
+        casez_tmp_87 = 1'h1;
+      9'b011101110:
+        casez_tmp_87 = 1'h1;
+      9'b011101111:
+        casez_tmp_87 = 1'h1;
+      9'b011110000:
+        casez_tmp_87 = 1'h1;
+      9'b011110001:
+        casez_tmp_87 = 1'h1;
+      9'b011110010:
+        casez_tmp_87 = 1'h1;
+      9'b011110011:
+        casez_tmp_87 = 1'h1;
+      9'b011110100:
+        casez_tmp_87 = 1'h1;
+      9'b011110101:
+        casez_tmp_87 = 1'h1;
+      9'b011110110:
+        casez_tmp_87 = 1'h1;
+      9'b011110111:
+        casez_tmp_87 = 1'h1;
+      9'b011111000:
+        casez_tmp_87 = 1'h1;
+      9'b011111001:
+        casez_tmp_87 = 1'h1;
+      9'b011111010:
+        casez_tmp_87 = 1'h1;
+      9'b011111011:
+        casez_tmp_87 = 1'h1;
+      9'b011111100:
+        casez_tmp_87 = 1'h1;
+      9'b011111101:
+        casez_tmp_87 = 1'h1;
+      9'b011111110:
+        casez_tmp_87 = 1'h1;
+      9'b011111111:
+        casez_tmp_87 = 1'h1;
+      9'b100000000:
+        casez_tmp_87 = 1'h0;
+      9'b100000001:
+        casez_tmp_87 = 1'h0;
+      9'b100000010:
+        casez_tmp_87 = 1'h0;
+      9'b100000011:
+        casez_tmp_87 = 1'h0;
+      9'b100000100:
+        casez_tmp_87 = 1'h0;
+      9'b100000101:
+        casez_tmp_87 = 1'h0;
+      9'b100000110:
+        casez_tmp_87 = 1'h0;
+      9'b100000111:
+        casez_tmp_87 = 1'h0;
+      9'b100001000:
+        casez_tmp_87 = 1'h0;
+      9'b100001001:
+        casez_tmp_87 = 1'h0;
+      9'b100001010:
+        casez_tmp_87 = 1'h0;
+      9'b100001011:
+        casez_tmp_87 = 1'h0;
+      9'b100001100:
+        casez_tmp_87 = 1'h0;
+      9'b100001101:
+        casez_tmp_87 = 1'h0;
+      9'b100001110:
+        casez_tmp_87 = 1'h0;
+      9'b100001111:
+        casez_tmp_87 = 1'h0;
+      9'b100010000:
+        casez_tmp_87 = 1'h1;
+      9'b100010001:
+        casez_tmp_87 = 1'h1;
+      9'b100010010:
+        casez_tmp_87 = 1'h1;
+      9'b100010011:
+        casez_tmp_87 = 1'h1;
+      9'b100010100:
+        casez_tmp_87 = 1'h1;
+      9'b100010101:
+        casez_tmp_87 = 1'h1;
+      9'b100010110:
+        casez_tmp_87 = 1'h1;
+      9'b100010111:
+        casez_tmp_87 = 1'h1;
+      9'b100011000:
+        casez_tmp_87 = 1'h1;
+      9'b100011001:
+        casez_tmp_87 = 1'h1;
+      9'b100011010:
+        casez_tmp_87 = 1'h1;
+      9'b100011011:
+        casez_tmp_87 = 1'h1;
+      9'b100011100:
+        casez_tmp_87 = 1'h1;
+      9'b100011101:
+        casez_tmp_87 = 1'h1;
+      9'b100011110:
+        casez_tmp_87 = 1'h1;
+      9'b100011111:
+        casez_tmp_87 = 1'h1;
+      9'b100100000:
+        casez_tmp_87 = 1'h0;
+      9'b100100001:
+        casez_tmp_87 = 1'h0;
+      9'b100100010:
+        casez_tmp_87 = 1'h0;
+      9'b100100011:
+        casez_tmp_87 = 1'h0;
+      9'b100100100:
+        casez_tmp_87 = 1'h0;
+      9'b100100101:
+        casez_tmp_87 = 1'h0;
+      9'b100100110:
+        casez_tmp_87 = 1'h0;
+      9'b100100111:
+        casez_tmp_87 = 1'h0;
+      9'b100101000:
+        casez_tmp_87 = 1'h0;
+      9'b100101001:
+        casez_tmp_87 = 1'h0;
+      9'b100101010:
+        casez_tmp_87 = 1'h0;
+      9'b100101011:
+        casez_tmp_87 = 1'h0;
+      9'b100101100:
+        casez_tmp_87 = 1'h0;
+      9'b100101101:
+        casez_tmp_87 = 1'h0;
+      9'b100101110:
+        casez_tmp_87 = 1'h0;
+      9'b100101111:
+        casez_tmp_87 = 1'h1;
+      9'b100110000:
+        casez_tmp_87 = 1'h1;
+      9'b100110001:
+        casez_tmp_87 = 1'h1;
+      9'b100110010:
+        casez_tmp_87 = 1'h1;
+      9'b100110011:
+        casez_tmp_87 = 1'h1;
+      9'b100110100:
+        casez_tmp_87 = 1'h1;
+      9'b100110101:
+        casez_tmp_87 = 1'h1;
+      9'b100110110:
+        casez_tmp_87 = 1'h1;
+      9'b100110111:
+        casez_tmp_87 = 1'h1;
+      9'b100111000:
+        casez_tmp_87 = 1'h1;
+      9'b100111001:
+        casez_tmp_87 = 1'h1;
+      9'b100111010:
+        casez_tmp_87 = 1'h1;
+      9'b100111011:
+        casez_tmp_87 = 1'h1;
+      9'b100111100:
+        casez_tmp_87 = 1'h1;
+      9'b100111101:
+        casez_tmp_87 = 1'h1;
+      9'b100111110:
+        casez_tmp_87 = 1'h1;
+      9'b100111111:
+        casez_tmp_87 = 1'h1;
+      9'b101000000:
+        casez_tmp_87 = 1'h0;
+      9'b101000001:
+        casez_tmp_87 = 1'h0;
+      9'b101000010:
+        casez_tmp_87 = 1'h0;
+      9'b101000011:
+        casez_tmp_87 = 1'h0;
+      9'b101000100:
+        casez_tmp_87 = 1'h0;
+      9'b101000101:
+        casez_tmp_87 = 1'h0;
+      9'b101000110:
+        casez_tmp_87 = 1'h0;
+      9'b101000111:
+        casez_tmp_87 = 1'h0;
+      9'b101001000:
+        casez_tmp_87 = 1'h0;
+      9'b101001001:
+        casez_tmp_87 = 1'h0;
+      9'b101001010:
+        casez_tmp_87 = 1'h0;
+      9'b101001011:
+        casez_tmp_87 = 1'h0;
+      9'b101001100:
+        casez_tmp_87 = 1'h0;
+      9'b101001101:
+        casez_tmp_87 = 1'h0;
+      9'b101001110:
+        casez_tmp_87 = 1'h1;
+      9'b101001111:
+        casez_tmp_87 = 1'h1;
+      9'b101010000:
+        casez_tmp_87 = 1'h1;
+      9'b101010001:
+        casez_tmp_87 = 1'h1;
+      9'b101010010:
+        casez_tmp_87 = 1'h1;
+      9'b101010011:
+        casez_tmp_87 = 1'h1;
+      9'b101010100:
+        casez_tmp_87 = 1'h1;
+      9'b101010101:
+        casez_tmp_87 = 1'h1;
+      9'b101010110:
+        casez_tmp_87 = 1'h1;
+      9'b101010111:
+        casez_tmp_87 = 1'h1;
+      9'b101011000:
+        casez_tmp_87 = 1'h1;
+      9'b101011001:
+        casez_tmp_87 = 1'h1;
+      9'b101011010:
+        casez_tmp_87 = 1'h1;
+      9'b101011011:
+        casez_tmp_87 = 1'h1;
+      9'b101011100:
+        casez_tmp_87 = 1'h1;
+      9'b101011101:
+        casez_tmp_87 = 1'h1;
+      9'b101011110:
+        casez_tmp_87 = 1'h1;
+      9'b101011111:
+        casez_tmp_87 = 1'h1;
+      9'b101100000:
+        casez_tmp_87 = 1'h0;
+      9'b101100001:
+        casez_tmp_87 = 1'h0;
+      9'b101100010:
+        casez_tmp_87 = 1'h0;
+      9'b101100011:
+        casez_tmp_87 = 1'h0;
+      9'b101100100:
+        casez_tmp_87 = 1'h0;
+      9'b101100101:
+        casez_tmp_87 = 1'h0;
+      9'b101100110:
+        casez_tmp_87 = 1'h0;
+      9'b101100111:
+        casez_tmp_87 = 1'h0;
+      9'b101101000:
+        casez_tmp_87 = 1'h0;
+      9'b101101001:
+        casez_tmp_87 = 1'h0;
+      9'b101101010:
+        casez_tmp_87 = 1'h0;
+      9'b101101011:
+        casez_tmp_87 = 1'h0;
+      9'b101101100:
+        casez_tmp_87 = 1'h0;
+      9'b101101101:
+        casez_tmp_87 = 1'h1;
+      9'b101101110:
+        casez_tmp_87 = 1'h1;
+      9'b101101111:
+        casez_tmp_87 = 1'h1;
+      9'b101110000:
+        casez_tmp_87 = 1'h1;
+      9'b101110001:
+        casez_tmp_87 = 1'h1;
+      9'b101110010:
+        casez_tmp_87 = 1'h1;
+      9'b101110011:
+        casez_tmp_87 = 1'h1;
+      9'b101110100:
+        casez_tmp_87 = 1'h1;
+      9'b101110101:
+        casez_tmp_87 = 1'h1;
+      9'b101110110:
+        casez_tmp_87 = 1'h1;
+      9'b101110111:
+        casez_tmp_87 = 1'h1;
+      9'b101111000:
+        casez_tmp_87 = 1'h1;
+      9'b101111001:
+        casez_tmp_87 = 1'h1;
+      9'b101111010:
+        casez_tmp_87 = 1'h1;
+      9'b101111011:
+        casez_tmp_87 = 1'h1;
+      9'b101111100:
+        casez_tmp_87 = 1'h1;
+      9'b101111101:
+        casez_tmp_87 = 1'h1;
+      9'b101111110:
+        casez_tmp_87 = 1'h1;
+      9'b101111111:
+        casez_tmp_87 = 1'h1;
+      9'b110000000:
+        casez_tmp_87 = 1'h0;
+      9'b110000001:
+        casez_tmp_87 = 1'h0;
+      9'b110000010:
+        casez_tmp_87 = 1'h0;
+      9'b110000011:
+        casez_tmp_87 = 1'h0;
+      9'b110000100:
+        casez_tmp_87 = 1'h0;
+      9'b110000101:
+        casez_tmp_87 = 1'h0;
+      9'b110000110:
+        casez_tmp_87 = 1'h0;
+      9'b110000111:
+        casez_tmp_87 = 1'h0;
+      9'b110001000:
+        casez_tmp_87 = 1'h0;
+      9'b110001001:
+        casez_tmp_87 = 1'h0;
+      9'b110001010:
+        casez_tmp_87 = 1'h0;
+      9'b110001011:
+        casez_tmp_87 = 1'h0;
+      9'b110001100:
+        casez_tmp_87 = 1'h1;
+      9'b110001101:
+        casez_tmp_87 = 1'h1;
+      9'b110001110:
+        casez_tmp_87 = 1'h1;
+      9'b110001111:
+        casez_tmp_87 = 1'h1;
+      9'b110010000:
+        casez_tmp_87 = 1'h1;
+      9'b110010001:
+        casez_tmp_87 = 1'h1;
+      9'b110010010:
+        casez_tmp_87 = 1'h1;
+      9'b110010011:
+        casez_tmp_87 = 1'h1;
+      9'b110010100:
+        casez_tmp_87 = 1'h1;
+      9'b110010101:
+        casez_tmp_87 = 1'h1;
+      9'b110010110:
+        casez_tmp_87 = 1'h1;
+      9'b110010111:
+        casez_tmp_87 = 1'h1;
+      9'b110011000:
+        casez_tmp_87 = 1'h1;
+      9'b110011001:
+        casez_tmp_87 = 1'h1;
+      9'b110011010:
+        casez_tmp_87 = 1'h1;
+      9'b110011011:
+        casez_tmp_87 = 1'h1;
+      9'b110011100:
+        casez_tmp_87 = 1'h1;
+      9'b110011101:
+        casez_tmp_87 = 1'h1;
+      9'b110011110:
+        casez_tmp_87 = 1'h1;
+      9'b110011111:
+        casez_tmp_87 = 1'h1;
+      9'b110100000:
+        casez_tmp_87 = 1'h0;
+      9'b110100001:
+        casez_tmp_87 = 1'h0;
+      9'b110100010:
+        casez_tmp_87 = 1'h0;
+      9'b110100011:
+        casez_tmp_87 = 1'h0;
+      9'b110100100:
+        casez_tmp_87 = 1'h0;
+      9'b110100101:
+        casez_tmp_87 = 1'h0;
+      9'b110100110:
+        casez_tmp_87 = 1'h0;
+      9'b110100111:
+        casez_tmp_87 = 1'h0;
+      9'b110101000:
+        casez_tmp_87 = 1'h0;
+      9'b110101001:
+        casez_tmp_87 = 1'h0;
+      9'b110101010:
+        casez_tmp_87 = 1'h0;
+      9'b110101011:
+        casez_tmp_87 = 1'h1;
+      9'b110101100:
+        casez_tmp_87 = 1'h1;
+      9'b110101101:
+        casez_tmp_87 = 1'h1;
+      9'b110101110:
+        casez_tmp_87 = 1'h1;
+      9'b110101111:
+        casez_tmp_87 = 1'h1;
+      9'b110110000:
+        casez_tmp_87 = 1'h1;
+      9'b110110001:
+        casez_tmp_87 = 1'h1;
+      9'b110110010:
+        casez_tmp_87 = 1'h1;
+      9'b110110011:
+        casez_tmp_87 = 1'h1;
+      9'b110110100:
+        casez_tmp_87 = 1'h1;
+      9'b110110101:
+        casez_tmp_87 = 1'h1;
+      9'b110110110:
+        casez_tmp_87 = 1'h1;
+      9'b110110111:
+        casez_tmp_87 = 1'h1;
+      9'b110111000:
+        casez_tmp_87 = 1'h1;
+      9'b110111001:
+        casez_tmp_87 = 1'h1;
+      9'b110111010:
+        casez_tmp_87 = 1'h1;
+      9'b110111011:
+        casez_tmp_87 = 1'h1;
+      9'b110111100:
+        casez_tmp_87 = 1'h1;
+      9'b110111101:
+        casez_tmp_87 = 1'h1;
+      9'b110111110:
+        casez_tmp_87 = 1'h1;
+      9'b110111111:
+        casez_tmp_87 = 1'h1;
+      9'b111000000:
+        casez_tmp_87 = 1'h0;
+      9'b111000001:
+        casez_tmp_87 = 1'h0;
+      9'b111000010:
+        casez_tmp_87 = 1'h0;
+      9'b111000011:
+        casez_tmp_87 = 1'h0;
+      9'b111000100:
+        casez_tmp_87 = 1'h0;
+      9'b111000101:
+        casez_tmp_87 = 1'h0;
+      9'b111000110:
+        casez_tmp_87 = 1'h0;
+      9'b111000111:
+        casez_tmp_87 = 1'h0;
+      9'b111001000:
+        casez_tmp_87 = 1'h0;
+      9'b111001001:
+        casez_tmp_87 = 1'h0;
+      9'b111001010:
+        casez_tmp_87 = 1'h1;
+      9'b111001011:
+        casez_tmp_87 = 1'h1;
+      9'b111001100:
+        casez_tmp_87 = 1'h1;
+      9'b111001101:
+        casez_tmp_87 = 1'h1;
+      9'b111001110:
+        casez_tmp_87 = 1'h1;
+      9'b111001111:
+        casez_tmp_87 = 1'h1;
+      9'b111010000:
+        casez_tmp_87 = 1'h1;
+      9'b111010001:
+        casez_tmp_87 = 1'h1;
+      9'b111010010:
+        casez_tmp_87 = 1'h1;
+      9'b111010011:
+        casez_tmp_87 = 1'h1;
+      9'b111010100:
+        casez_tmp_87 = 1'h1;
+      9'b111010101:
+        casez_tmp_87 = 1'h1;
+      9'b111010110:
+        casez_tmp_87 = 1'h1;
+      9'b111010111:
+        casez_tmp_87 = 1'h1;
+      9'b111011000:
+        casez_tmp_87 = 1'h1;
+      9'b111011001:
+        casez_tmp_87 = 1'h1;
+      9'b111011010:
+        casez_tmp_87 = 1'h1;
+      9'b111011011:
+        casez_tmp_87 = 1'h1;
+      9'b111011100:
+        casez_tmp_87 = 1'h1;
+      9'b111011101:
+        casez_tmp_87 = 1'h1;
+      9'b111011110:
+        casez_tmp_87 = 1'h1;
+      9'b111011111:
+        casez_tmp_87 = 1'h1;
+      9'b111100000:
+        casez_tmp_87 = 1'h0;
+      9'b111100001:
+        casez_tmp_87 = 1'h0;
+      9'b111100010:
+        casez_tmp_87 = 1'h0;
+      9'b111100011:
+        casez_tmp_87 = 1'h0;
+      9'b111100100:
+        casez_tmp_87 = 1'h0;
+      9'b111100101:
+        casez_tmp_87 = 1'h0;
+      9'b111100110:
+        casez_tmp_87 = 1'h0;
+      9'b111100111:
+        casez_tmp_87 = 1'h0;
+      9'b111101000:
+        casez_tmp_87 = 1'h0;
+      9'b111101001:
+        casez_tmp_87 = 1'h1;
+      9'b111101010:
+        casez_tmp_87 = 1'h1;
+      9'b111101011:
+        casez_tmp_87 = 1'h1;
+      9'b111101100:
+        casez_tmp_87 = 1'h1;
+      9'b111101101:
+        casez_tmp_87 = 1'h1;
+      9'b111101110:
+        casez_tmp_87 = 1'h1;
+      9'b111101111:
+        casez_tmp_87 = 1'h1;
+      9'b111110000:
+        casez_tmp_87 = 1'h1;
+      9'b111110001:
+        casez_tmp_87 = 1'h1;
+      9'b111110010:
+        casez_tmp_87 = 1'h1;
+      9'b111110011:
+        casez_tmp_87 = 1'h1;
+      9'b111110100:
+        casez_tmp_87 = 1'h1;
+      9'b111110101:
+        casez_tmp_87 = 1'h1;
+      9'b111110110:
+        casez_tmp_87 = 1'h1;
+      9'b111110111:
+        casez_tmp_87 = 1'h1;
+      9'b111111000:
+        casez_tmp_87 = 1'h1;
+      9'b111111001:
+        casez_tmp_87 = 1'h1;
+      9'b111111010:
+        casez_tmp_87 = 1'h1;
+      9'b111111011:
+        casez_tmp_87 = 1'h1;
+      9'b111111100:
+        casez_tmp_87 = 1'h1;
+      9'b111111101:
+        casez_tmp_87 = 1'h1;
+      9'b111111110:
+        casez_tmp_87 = 1'h1;
+      default:
+        casez_tmp_87 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_88;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_88 = 1'h0;
+      9'b000000001:
+        casez_tmp_88 = 1'h0;
+      9'b000000010:
+        casez_tmp_88 = 1'h0;
+      9'b000000011:
+        casez_tmp_88 = 1'h0;
+      9'b000000100:
+        casez_tmp_88 = 1'h0;
+      9'b000000101:
+        casez_tmp_88 = 1'h0;
+      9'b000000110:
+        casez_tmp_88 = 1'h0;
+      9'b000000111:
+        casez_tmp_88 = 1'h0;
+      9'b000001000:
+        casez_tmp_88 = 1'h0;
+      9'b000001001:
+        casez_tmp_88 = 1'h1;
+      9'b000001010:
+        casez_tmp_88 = 1'h1;
+      9'b000001011:
+        casez_tmp_88 = 1'h1;
+      9'b000001100:
+        casez_tmp_88 = 1'h1;
+      9'b000001101:
+        casez_tmp_88 = 1'h1;
+      9'b000001110:
+        casez_tmp_88 = 1'h1;
+      9'b000001111:
+        casez_tmp_88 = 1'h1;
+      9'b000010000:
+        casez_tmp_88 = 1'h1;
+      9'b000010001:
+        casez_tmp_88 = 1'h1;
+      9'b000010010:
+        casez_tmp_88 = 1'h1;
+      9'b000010011:
+        casez_tmp_88 = 1'h1;
+      9'b000010100:
+        casez_tmp_88 = 1'h1;
+      9'b000010101:
+        casez_tmp_88 = 1'h1;
+      9'b000010110:
+        casez_tmp_88 = 1'h1;
+      9'b000010111:
+        casez_tmp_88 = 1'h1;
+      9'b000011000:
+        casez_tmp_88 = 1'h1;
+      9'b000011001:
+        casez_tmp_88 = 1'h1;
+      9'b000011010:
+        casez_tmp_88 = 1'h1;
+      9'b000011011:
+        casez_tmp_88 = 1'h1;
+      9'b000011100:
+        casez_tmp_88 = 1'h1;
+      9'b000011101:
+        casez_tmp_88 = 1'h1;
+      9'b000011110:
+        casez_tmp_88 = 1'h1;
+      9'b000011111:
+        casez_tmp_88 = 1'h1;
+      9'b000100000:
+        casez_tmp_88 = 1'h0;
+      9'b000100001:
+        casez_tmp_88 = 1'h0;
+      9'b000100010:
+        casez_tmp_88 = 1'h0;
+      9'b000100011:
+        casez_tmp_88 = 1'h0;
+      9'b000100100:
+        casez_tmp_88 = 1'h0;
+      9'b000100101:
+        casez_tmp_88 = 1'h0;
+      9'b000100110:
+        casez_tmp_88 = 1'h0;
+      9'b000100111:
+        casez_tmp_88 = 1'h0;
+      9'b000101000:
+        casez_tmp_88 = 1'h1;
+      9'b000101001:
+        casez_tmp_88 = 1'h1;
+      9'b000101010:
+        casez_tmp_88 = 1'h1;
+      9'b000101011:
+        casez_tmp_88 = 1'h1;
+      9'b000101100:
+        casez_tmp_88 = 1'h1;
+      9'b000101101:
+        casez_tmp_88 = 1'h1;
+      9'b000101110:
+        casez_tmp_88 = 1'h1;
+      9'b000101111:
+        casez_tmp_88 = 1'h1;
+      9'b000110000:
+        casez_tmp_88 = 1'h1;
+      9'b000110001:
+        casez_tmp_88 = 1'h1;
+      9'b000110010:
+        casez_tmp_88 = 1'h1;
+      9'b000110011:
+        casez_tmp_88 = 1'h1;
+      9'b000110100:
+        casez_tmp_88 = 1'h1;
+      9'b000110101:
+        casez_tmp_88 = 1'h1;
+      9'b000110110:
+        casez_tmp_88 = 1'h1;
+      9'b000110111:
+        casez_tmp_88 = 1'h1;
+      9'b000111000:
+        casez_tmp_88 = 1'h1;
+      9'b000111001:
+        casez_tmp_88 = 1'h1;
+      9'b000111010:
+        casez_tmp_88 = 1'h1;
+      9'b000111011:
+        casez_tmp_88 = 1'h1;
+      9'b000111100:
+        casez_tmp_88 = 1'h1;
+      9'b000111101:
+        casez_tmp_88 = 1'h1;
+      9'b000111110:
+        casez_tmp_88 = 1'h1;
+      9'b000111111:
+        casez_tmp_88 = 1'h1;
+      9'b001000000:
+        casez_tmp_88 = 1'h0;
+      9'b001000001:
+        casez_tmp_88 = 1'h0;
+      9'b001000010:
+        casez_tmp_88 = 1'h0;
+      9'b001000011:
+        casez_tmp_88 = 1'h0;
+      9'b001000100:
+        casez_tmp_88 = 1'h0;
+      9'b001000101:
+        casez_tmp_88 = 1'h0;
+      9'b001000110:
+        casez_tmp_88 = 1'h0;
+      9'b001000111:
+        casez_tmp_88 = 1'h1;
+      9'b001001000:
+        casez_tmp_88 = 1'h1;
+      9'b001001001:
+        casez_tmp_88 = 1'h1;
+      9'b001001010:
+        casez_tmp_88 = 1'h1;
+      9'b001001011:
+        casez_tmp_88 = 1'h1;
+      9'b001001100:
+        casez_tmp_88 = 1'h1;
+      9'b001001101:
+        casez_tmp_88 = 1'h1;
+      9'b001001110:
+        casez_tmp_88 = 1'h1;
+      9'b001001111:
+        casez_tmp_88 = 1'h1;
+      9'b001010000:
+        casez_tmp_88 = 1'h1;
+      9'b001010001:
+        casez_tmp_88 = 1'h1;
+      9'b001010010:
+        casez_tmp_88 = 1'h1;
+      9'b001010011:
+        casez_tmp_88 = 1'h1;
+      9'b001010100:
+        casez_tmp_88 = 1'h1;
+      9'b001010101:
+        casez_tmp_88 = 1'h1;
+      9'b001010110:
+        casez_tmp_88 = 1'h1;
+      9'b001010111:
+        casez_tmp_88 = 1'h1;
+      9'b001011000:
+        casez_tmp_88 = 1'h1;
+      9'b001011001:
+        casez_tmp_88 = 1'h1;
+      9'b001011010:
+        casez_tmp_88 = 1'h1;
+      9'b001011011:
+        casez_tmp_88 = 1'h1;
+      9'b001011100:
+        casez_tmp_88 = 1'h1;
+      9'b001011101:
+        casez_tmp_88 = 1'h1;
+      9'b001011110:
+        casez_tmp_88 = 1'h1;
+      9'b001011111:
+        casez_tmp_88 = 1'h1;
+      9'b001100000:
+        casez_tmp_88 = 1'h0;
+      9'b001100001:
+        casez_tmp_88 = 1'h0;
+      9'b001100010:
+        casez_tmp_88 = 1'h0;
+      9'b001100011:
+        casez_tmp_88 = 1'h0;
+      9'b001100100:
+        casez_tmp_88 = 1'h0;
+      9'b001100101:
+        casez_tmp_88 = 1'h0;
+      9'b001100110:
+        casez_tmp_88 = 1'h1;
+      9'b001100111:
+        casez_tmp_88 = 1'h1;
+      9'b001101000:
+        casez_tmp_88 = 1'h1;
+      9'b001101001:
+        casez_tmp_88 = 1'h1;
+      9'b001101010:
+        casez_tmp_88 = 1'h1;
+      9'b001101011:
+        casez_tmp_88 = 1'h1;
+      9'b001101100:
+        casez_tmp_88 = 1'h1;
+      9'b001101101:
+        casez_tmp_88 = 1'h1;
+      9'b001101110:
+        casez_tmp_88 = 1'h1;
+      9'b001101111:
+        casez_tmp_88 = 1'h1;
+      9'b001110000:
+        casez_tmp_88 = 1'h1;
+      9'b001110001:
+        casez_tmp_88 = 1'h1;
+      9'b001110010:
+        casez_tmp_88 = 1'h1;
+      9'b001110011:
+        casez_tmp_88 = 1'h1;
+      9'b001110100:
+        casez_tmp_88 = 1'h1;
+      9'b001110101:
+        casez_tmp_88 = 1'h1;
+      9'b001110110:
+        casez_tmp_88 = 1'h1;
+      9'b001110111:
+        casez_tmp_88 = 1'h1;
+      9'b001111000:
+        casez_tmp_88 = 1'h1;
+      9'b001111001:
+        casez_tmp_88 = 1'h1;
+      9'b001111010:
+        casez_tmp_88 = 1'h1;
+      9'b001111011:
+        casez_tmp_88 = 1'h1;
+      9'b001111100:
+        casez_tmp_88 = 1'h1;
+      9'b001111101:
+        casez_tmp_88 = 1'h1;
+      9'b001111110:
+        casez_tmp_88 = 1'h1;
+      9'b001111111:
+        casez_tmp_88 = 1'h1;
+      9'b010000000:
+        casez_tmp_88 = 1'h0;
+      9'b010000001:
+        casez_tmp_88 = 1'h0;
+      9'b010000010:
+        casez_tmp_88 = 1'h0;
+      9'b010000011:
+        casez_tmp_88 = 1'h0;
+      9'b010000100:
+        casez_tmp_88 = 1'h0;
+      9'b010000101:
+        casez_tmp_88 = 1'h1;
+      9'b010000110:
+        casez_tmp_88 = 1'h1;
+      9'b010000111:
+        casez_tmp_88 = 1'h1;
+      9'b010001000:
+        casez_tmp_88 = 1'h1;
+      9'b010001001:
+        casez_tmp_88 = 1'h1;
+      9'b010001010:
+        casez_tmp_88 = 1'h1;
+      9'b010001011:
+        casez_tmp_88 = 1'h1;
+      9'b010001100:
+        casez_tmp_88 = 1'h1;
+      9'b010001101:
+        casez_tmp_88 = 1'h1;
+      9'b010001110:
+        casez_tmp_88 = 1'h1;
+      9'b010001111:
+        casez_tmp_88 = 1'h1;
+      9'b010010000:
+        casez_tmp_88 = 1'h1;
+      9'b010010001:
+        casez_tmp_88 = 1'h1;
+      9'b010010010:
+        casez_tmp_88 = 1'h1;
+      9'b010010011:
+        casez_tmp_88 = 1'h1;
+      9'b010010100:
+        casez_tmp_88 = 1'h1;
+      9'b010010101:
+        casez_tmp_88 = 1'h1;
+      9'b010010110:
+        casez_tmp_88 = 1'h1;
+      9'b010010111:
+        casez_tmp_88 = 1'h1;
+      9'b010011000:
+        casez_tmp_88 = 1'h1;
+      9'b010011001:
+        casez_tmp_88 = 1'h1;
+      9'b010011010:
+        casez_tmp_88 = 1'h1;
+      9'b010011011:
+        casez_tmp_88 = 1'h1;
+      9'b010011100:
+        casez_tmp_88 = 1'h1;
+      9'b010011101:
+        casez_tmp_88 = 1'h1;
+      9'b010011110:
+        casez_tmp_88 = 1'h1;
+      9'b010011111:
+        casez_tmp_88 = 1'h1;
+      9'b010100000:
+        casez_tmp_88 = 1'h0;
+      9'b010100001:
+        casez_tmp_88 = 1'h0;
+      9'b010100010:
+        casez_tmp_88 = 1'h0;
+      9'b010100011:
+        casez_tmp_88 = 1'h0;
+      9'b010100100:
+        casez_tmp_88 = 1'h1;
+      9'b010100101:
+        casez_tmp_88 = 1'h1;
+      9'b010100110:
+        casez_tmp_88 = 1'h1;
+      9'b010100111:
+        casez_tmp_88 = 1'h1;
+      9'b010101000:
+        casez_tmp_88 = 1'h1;
+      9'b010101001:
+        casez_tmp_88 = 1'h1;
+      9'b010101010:
+        casez_tmp_88 = 1'h1;
+      9'b010101011:
+        casez_tmp_88 = 1'h1;
+      9'b010101100:
+        casez_tmp_88 = 1'h1;
+      9'b010101101:
+        casez_tmp_88 = 1'h1;
+      9'b010101110:
+        casez_tmp_88 = 1'h1;
+      9'b010101111:
+        casez_tmp_88 = 1'h1;
+      9'b010110000:
+        casez_tmp_88 = 1'h1;
+      9'b010110001:
+        casez_tmp_88 = 1'h1;
+      9'b010110010:
+        casez_tmp_88 = 1'h1;
+      9'b010110011:
+        casez_tmp_88 = 1'h1;
+      9'b010110100:
+        casez_tmp_88 = 1'h1;
+      9'b010110101:
+        casez_tmp_88 = 1'h1;
+      9'b010110110:
+        casez_tmp_88 = 1'h1;
+      9'b010110111:
+        casez_tmp_88 = 1'h1;
+      9'b010111000:
+        casez_tmp_88 = 1'h1;
+      9'b010111001:
+        casez_tmp_88 = 1'h1;
+      9'b010111010:
+        casez_tmp_88 = 1'h1;
+      9'b010111011:
+        casez_tmp_88 = 1'h1;
+      9'b010111100:
+        casez_tmp_88 = 1'h1;
+      9'b010111101:
+        casez_tmp_88 = 1'h1;
+      9'b010111110:
+        casez_tmp_88 = 1'h1;
+      9'b010111111:
+        casez_tmp_88 = 1'h1;
+      9'b011000000:
+        casez_tmp_88 = 1'h0;
+      9'b011000001:
+        casez_tmp_88 = 1'h0;
+      9'b011000010:
+        casez_tmp_88 = 1'h0;
+      9'b011000011:
+        casez_tmp_88 = 1'h1;
+      9'b011000100:
+        casez_tmp_88 = 1'h1;
+      9'b011000101:
+        casez_tmp_88 = 1'h1;
+      9'b011000110:
+        casez_tmp_88 = 1'h1;
+      9'b011000111:
+        casez_tmp_88 = 1'h1;
+      9'b011001000:
+        casez_tmp_88 = 1'h1;
+      9'b011001001:
+        casez_tmp_88 = 1'h1;
+      9'b011001010:
+        casez_tmp_88 = 1'h1;
+      9'b011001011:
+        casez_tmp_88 = 1'h1;
+      9'b011001100:
+        casez_tmp_88 = 1'h1;
+      9'b011001101:
+        casez_tmp_88 = 1'h1;
+      9'b011001110:
+        casez_tmp_88 = 1'h1;
+      9'b011001111:
+        casez_tmp_88 = 1'h1;
+      9'b011010000:
+        casez_tmp_88 = 1'h1;
+      9'b011010001:
+        casez_tmp_88 = 1'h1;
+      9'b011010010:
+        casez_tmp_88 = 1'h1;
+      9'b011010011:
+        casez_tmp_88 = 1'h1;
+      9'b011010100:
+        casez_tmp_88 = 1'h1;
+      9'b011010101:
+        casez_tmp_88 = 1'h1;
+      9'b011010110:
+        casez_tmp_88 = 1'h1;
+      9'b011010111:
+        casez_tmp_88 = 1'h1;
+      9'b011011000:
+        casez_tmp_88 = 1'h1;
+      9'b011011001:
+        casez_tmp_88 = 1'h1;
+      9'b011011010:
+        casez_tmp_88 = 1'h1;
+      9'b011011011:
+        casez_tmp_88 = 1'h1;
+      9'b011011100:
+        casez_tmp_88 = 1'h1;
+      9'b011011101:
+        casez_tmp_88 = 1'h1;
+      9'b011011110:
+        casez_tmp_88 = 1'h1;
+      9'b011011111:
+        casez_tmp_88 = 1'h1;
+      9'b011100000:
+        casez_tmp_88 = 1'h0;
+      9'b011100001:
+        casez_tmp_88 = 1'h0;
+      9'b011100010:
+        casez_tmp_88 = 1'h1;
+      9'b011100011:
+        casez_tmp_88 = 1'h1;
+      9'b011100100:
+        casez_tmp_88 = 1'h1;
+      9'b011100101:
+        casez_tmp_88 = 1'h1;
+      9'b011100110:
+        casez_tmp_88 = 1'h1;
+      9'b011100111:
+        casez_tmp_88 = 1'h1;
+      9'b011101000:
+        casez_tmp_88 = 1'h1;
+      9'b011101001:
+        casez_tmp_88 = 1'h1;
+      9'b011101010:
+        casez_tmp_88 = 1'h1;
+      9'b011101011:
+        casez_tmp_88 = 1'h1;
+      9'b011101100:
+        casez_tmp_88 = 1'h1;
+      9'b011101101:
+        casez_tmp_88 = 1'h1;
+      9'b011101110:
+        casez_tmp_88 = 1'h1;
+      9'b011101111:
+        casez_tmp_88 = 1'h1;
+      9'b011110000:
+        casez_tmp_88 = 1'h1;
+      9'b011110001:
+        casez_tmp_88 = 1'h1;
+      9'b011110010:
+        casez_tmp_88 = 1'h1;
+      9'b011110011:
+        casez_tmp_88 = 1'h1;
+      9'b011110100:
+        casez_tmp_88 = 1'h1;
+      9'b011110101:
+        casez_tmp_88 = 1'h1;
+      9'b011110110:
+        casez_tmp_88 = 1'h1;
+      9'b011110111:
+        casez_tmp_88 = 1'h1;
+      9'b011111000:
+        casez_tmp_88 = 1'h1;
+      9'b011111001:
+        casez_tmp_88 = 1'h1;
+      9'b011111010:
+        casez_tmp_88 = 1'h1;
+      9'b011111011:
+        casez_tmp_88 = 1'h1;
+      9'b011111100:
+        casez_tmp_88 = 1'h1;
+      9'b011111101:
+        casez_tmp_88 = 1'h1;
+      9'b011111110:
+        casez_tmp_88 = 1'h1;
+      9'b011111111:
+        casez_tmp_88 = 1'h1;
+      9'b100000000:
+        casez_tmp_88 = 1'h0;
+      9'b100000001:
+        casez_tmp_88 = 1'h1;
+      9'b100000010:
+        casez_tmp_88 = 1'h1;
+      9'b100000011:
+        casez_tmp_88 = 1'h1;
+      9'b100000100:
+        casez_tmp_88 = 1'h1;
+      9'b100000101:
+        casez_tmp_88 = 1'h1;
+      9'b100000110:
+        casez_tmp_88 = 1'h1;
+      9'b100000111:
+        casez_tmp_88 = 1'h1;
+      9'b100001000:
+        casez_tmp_88 = 1'h1;
+      9'b100001001:
+        casez_tmp_88 = 1'h1;
+      9'b100001010:
+        casez_tmp_88 = 1'h1;
+      9'b100001011:
+        casez_tmp_88 = 1'h1;
+      9'b100001100:
+        casez_tmp_88 = 1'h1;
+      9'b100001101:
+        casez_tmp_88 = 1'h1;
+      9'b100001110:
+        casez_tmp_88 = 1'h1;
+      9'b100001111:
+        casez_tmp_88 = 1'h1;
+      9'b100010000:
+        casez_tmp_88 = 1'h1;
+      9'b100010001:
+        casez_tmp_88 = 1'h1;
+      9'b100010010:
+        casez_tmp_88 = 1'h1;
+      9'b100010011:
+        casez_tmp_88 = 1'h1;
+      9'b100010100:
+        casez_tmp_88 = 1'h1;
+      9'b100010101:
+        casez_tmp_88 = 1'h1;
+      9'b100010110:
+        casez_tmp_88 = 1'h1;
+      9'b100010111:
+        casez_tmp_88 = 1'h1;
+      9'b100011000:
+        casez_tmp_88 = 1'h1;
+      9'b100011001:
+        casez_tmp_88 = 1'h1;
+      9'b100011010:
+        casez_tmp_88 = 1'h1;
+      9'b100011011:
+        casez_tmp_88 = 1'h1;
+      9'b100011100:
+        casez_tmp_88 = 1'h1;
+      9'b100011101:
+        casez_tmp_88 = 1'h1;
+      9'b100011110:
+        casez_tmp_88 = 1'h1;
+      9'b100011111:
+        casez_tmp_88 = 1'h1;
+      9'b100100000:
+        casez_tmp_88 = 1'h0;
+      9'b100100001:
+        casez_tmp_88 = 1'h0;
+      9'b100100010:
+        casez_tmp_88 = 1'h0;
+      9'b100100011:
+        casez_tmp_88 = 1'h0;
+      9'b100100100:
+        casez_tmp_88 = 1'h0;
+      9'b100100101:
+        casez_tmp_88 = 1'h0;
+      9'b100100110:
+        casez_tmp_88 = 1'h0;
+      9'b100100111:
+        casez_tmp_88 = 1'h0;
+      9'b100101000:
+        casez_tmp_88 = 1'h0;
+      9'b100101001:
+        casez_tmp_88 = 1'h0;
+      9'b100101010:
+        casez_tmp_88 = 1'h0;
+      9'b100101011:
+        casez_tmp_88 = 1'h0;
+      9'b100101100:
+        casez_tmp_88 = 1'h0;
+      9'b100101101:
+        casez_tmp_88 = 1'h0;
+      9'b100101110:
+        casez_tmp_88 = 1'h0;
+      9'b100101111:
+        casez_tmp_88 = 1'h0;
+      9'b100110000:
+        casez_tmp_88 = 1'h1;
+      9'b100110001:
+        casez_tmp_88 = 1'h1;
+      9'b100110010:
+        casez_tmp_88 = 1'h1;
+      9'b100110011:
+        casez_tmp_88 = 1'h1;
+      9'b100110100:
+        casez_tmp_88 = 1'h1;
+      9'b100110101:
+        casez_tmp_88 = 1'h1;
+      9'b100110110:
+        casez_tmp_88 = 1'h1;
+      9'b100110111:
+        casez_tmp_88 = 1'h1;
+      9'b100111000:
+        casez_tmp_88 = 1'h1;
+      9'b100111001:
+        casez_tmp_88 = 1'h1;
+      9'b100111010:
+        casez_tmp_88 = 1'h1;
+      9'b100111011:
+        casez_tmp_88 = 1'h1;
+      9'b100111100:
+        casez_tmp_88 = 1'h1;
+      9'b100111101:
+        casez_tmp_88 = 1'h1;
+      9'b100111110:
+        casez_tmp_88 = 1'h1;
+      9'b100111111:
+        casez_tmp_88 = 1'h1;
+      9'b101000000:
+        casez_tmp_88 = 1'h0;
+      9'b101000001:
+        casez_tmp_88 = 1'h0;
+      9'b101000010:
+        casez_tmp_88 = 1'h0;
+      9'b101000011:
+        casez_tmp_88 = 1'h0;
+      9'b101000100:
+        casez_tmp_88 = 1'h0;
+      9'b101000101:
+        casez_tmp_88 = 1'h0;
+      9'b101000110:
+        casez_tmp_88 = 1'h0;
+      9'b101000111:
+        casez_tmp_88 = 1'h0;
+      9'b101001000:
+        casez_tmp_88 = 1'h0;
+      9'b101001001:
+        casez_tmp_88 = 1'h0;
+      9'b101001010:
+        casez_tmp_88 = 1'h0;
+      9'b101001011:
+        casez_tmp_88 = 1'h0;
+      9'b101001100:
+        casez_tmp_88 = 1'h0;
+      9'b101001101:
+        casez_tmp_88 = 1'h0;
+      9'b101001110:
+        casez_tmp_88 = 1'h0;
+      9'b101001111:
+        casez_tmp_88 = 1'h1;
+      9'b101010000:
+        casez_tmp_88 = 1'h1;
+      9'b101010001:
+        casez_tmp_88 = 1'h1;
+      9'b101010010:
+        casez_tmp_88 = 1'h1;
+      9'b101010011:
+        casez_tmp_88 = 1'h1;
+      9'b101010100:
+        casez_tmp_88 = 1'h1;
+      9'b101010101:
+        casez_tmp_88 = 1'h1;
+      9'b101010110:
+        casez_tmp_88 = 1'h1;
+      9'b101010111:
+        casez_tmp_88 = 1'h1;
+      9'b101011000:
+        casez_tmp_88 = 1'h1;
+      9'b101011001:
+        casez_tmp_88 = 1'h1;
+      9'b101011010:
+        casez_tmp_88 = 1'h1;
+      9'b101011011:
+        casez_tmp_88 = 1'h1;
+      9'b101011100:
+        casez_tmp_88 = 1'h1;
+      9'b101011101:
+        casez_tmp_88 = 1'h1;
+      9'b101011110:
+        casez_tmp_88 = 1'h1;
+      9'b101011111:
+        casez_tmp_88 = 1'h1;
+      9'b101100000:
+        casez_tmp_88 = 1'h0;
+      9'b101100001:
+        casez_tmp_88 = 1'h0;
+      9'b101100010:
+        casez_tmp_88 = 1'h0;
+      9'b101100011:
+        casez_tmp_88 = 1'h0;
+      9'b101100100:
+        casez_tmp_88 = 1'h0;
+      9'b101100101:
+        casez_tmp_88 = 1'h0;
+      9'b101100110:
+        casez_tmp_88 = 1'h0;
+      9'b101100111:
+        casez_tmp_88 = 1'h0;
+      9'b101101000:
+        casez_tmp_88 = 1'h0;
+      9'b101101001:
+        casez_tmp_88 = 1'h0;
+      9'b101101010:
+        casez_tmp_88 = 1'h0;
+      9'b101101011:
+        casez_tmp_88 = 1'h0;
+      9'b101101100:
+        casez_tmp_88 = 1'h0;
+      9'b101101101:
+        casez_tmp_88 = 1'h0;
+      9'b101101110:
+        casez_tmp_88 = 1'h1;
+      9'b101101111:
+        casez_tmp_88 = 1'h1;
+      9'b101110000:
+        casez_tmp_88 = 1'h1;
+      9'b101110001:
+        casez_tmp_88 = 1'h1;
+      9'b101110010:
+        casez_tmp_88 = 1'h1;
+      9'b101110011:
+        casez_tmp_88 = 1'h1;
+      9'b101110100:
+        casez_tmp_88 = 1'h1;
+      9'b101110101:
+        casez_tmp_88 = 1'h1;
+      9'b101110110:
+        casez_tmp_88 = 1'h1;
+      9'b101110111:
+        casez_tmp_88 = 1'h1;
+      9'b101111000:
+        casez_tmp_88 = 1'h1;
+      9'b101111001:
+        casez_tmp_88 = 1'h1;
+      9'b101111010:
+        casez_tmp_88 = 1'h1;
+      9'b101111011:
+        casez_tmp_88 = 1'h1;
+      9'b101111100:
+        casez_tmp_88 = 1'h1;
+      9'b101111101:
+        casez_tmp_88 = 1'h1;
+      9'b101111110:
+        casez_tmp_88 = 1'h1;
+      9'b101111111:
+        casez_tmp_88 = 1'h1;
+      9'b110000000:
+        casez_tmp_88 = 1'h0;
+      9'b110000001:
+        casez_tmp_88 = 1'h0;
+      9'b110000010:
+        casez_tmp_88 = 1'h0;
+      9'b110000011:
+        casez_tmp_88 = 1'h0;
+      9'b110000100:
+        casez_tmp_88 = 1'h0;
+      9'b110000101:
+        casez_tmp_88 = 1'h0;
+      9'b110000110:
+        casez_tmp_88 = 1'h0;
+      9'b110000111:
+        casez_tmp_88 = 1'h0;
+      9'b110001000:
+        casez_tmp_88 = 1'h0;
+      9'b110001001:
+        casez_tmp_88 = 1'h0;
+      9'b110001010:
+        casez_tmp_88 = 1'h0;
+      9'b110001011:
+        casez_tmp_88 = 1'h0;
+      9'b110001100:
+        casez_tmp_88 = 1'h0;
+      9'b110001101:
+        casez_tmp_88 = 1'h1;
+      9'b110001110:
+        casez_tmp_88 = 1'h1;
+      9'b110001111:
+        casez_tmp_88 = 1'h1;
+      9'b110010000:
+        casez_tmp_88 = 1'h1;
+      9'b110010001:
+        casez_tmp_88 = 1'h1;
+      9'b110010010:
+        casez_tmp_88 = 1'h1;
+      9'b110010011:
+        casez_tmp_88 = 1'h1;
+      9'b110010100:
+        casez_tmp_88 = 1'h1;
+      9'b110010101:
+        casez_tmp_88 = 1'h1;
+      9'b110010110:
+        casez_tmp_88 = 1'h1;
+      9'b110010111:
+        casez_tmp_88 = 1'h1;
+      9'b110011000:
+        casez_tmp_88 = 1'h1;
+      9'b110011001:
+        casez_tmp_88 = 1'h1;
+      9'b110011010:
+        casez_tmp_88 = 1'h1;
+      9'b110011011:
+        casez_tmp_88 = 1'h1;
+      9'b110011100:
+        casez_tmp_88 = 1'h1;
+      9'b110011101:
+        casez_tmp_88 = 1'h1;
+      9'b110011110:
+        casez_tmp_88 = 1'h1;
+      9'b110011111:
+        casez_tmp_88 = 1'h1;
+      9'b110100000:
+        casez_tmp_88 = 1'h0;
+      9'b110100001:
+        casez_tmp_88 = 1'h0;
+      9'b110100010:
+        casez_tmp_88 = 1'h0;
+      9'b110100011:
+        casez_tmp_88 = 1'h0;
+      9'b110100100:
+        casez_tmp_88 = 1'h0;
+      9'b110100101:
+        casez_tmp_88 = 1'h0;
+      9'b110100110:
+        casez_tmp_88 = 1'h0;
+      9'b110100111:
+        casez_tmp_88 = 1'h0;
+      9'b110101000:
+        casez_tmp_88 = 1'h0;
+      9'b110101001:
+        casez_tmp_88 = 1'h0;
+      9'b110101010:
+        casez_tmp_88 = 1'h0;
+      9'b110101011:
+        casez_tmp_88 = 1'h0;
+      9'b110101100:
+        casez_tmp_88 = 1'h1;
+      9'b110101101:
+        casez_tmp_88 = 1'h1;
+      9'b110101110:
+        casez_tmp_88 = 1'h1;
+      9'b110101111:
+        casez_tmp_88 = 1'h1;
+      9'b110110000:
+        casez_tmp_88 = 1'h1;
+      9'b110110001:
+        casez_tmp_88 = 1'h1;
+      9'b110110010:
+        casez_tmp_88 = 1'h1;
+      9'b110110011:
+        casez_tmp_88 = 1'h1;
+      9'b110110100:
+        casez_tmp_88 = 1'h1;
+      9'b110110101:
+        casez_tmp_88 = 1'h1;
+      9'b110110110:
+        casez_tmp_88 = 1'h1;
+      9'b110110111:
+        casez_tmp_88 = 1'h1;
+      9'b110111000:
+        casez_tmp_88 = 1'h1;
+      9'b110111001:
+        casez_tmp_88 = 1'h1;
+      9'b110111010:
+        casez_tmp_88 = 1'h1;
+      9'b110111011:
+        casez_tmp_88 = 1'h1;
+      9'b110111100:
+        casez_tmp_88 = 1'h1;
+      9'b110111101:
+        casez_tmp_88 = 1'h1;
+      9'b110111110:
+        casez_tmp_88 = 1'h1;
+      9'b110111111:
+        casez_tmp_88 = 1'h1;
+      9'b111000000:
+        casez_tmp_88 = 1'h0;
+      9'b111000001:
+        casez_tmp_88 = 1'h0;
+      9'b111000010:
+        casez_tmp_88 = 1'h0;
+      9'b111000011:
+        casez_tmp_88 = 1'h0;
+      9'b111000100:
+        casez_tmp_88 = 1'h0;
+      9'b111000101:
+        casez_tmp_88 = 1'h0;
+      9'b111000110:
+        casez_tmp_88 = 1'h0;
+      9'b111000111:
+        casez_tmp_88 = 1'h0;
+      9'b111001000:
+        casez_tmp_88 = 1'h0;
+      9'b111001001:
+        casez_tmp_88 = 1'h0;
+      9'b111001010:
+        casez_tmp_88 = 1'h0;
+      9'b111001011:
+        casez_tmp_88 = 1'h1;
+      9'b111001100:
+        casez_tmp_88 = 1'h1;
+      9'b111001101:
+        casez_tmp_88 = 1'h1;
+      9'b111001110:
+        casez_tmp_88 = 1'h1;
+      9'b111001111:
+        casez_tmp_88 = 1'h1;
+      9'b111010000:
+        casez_tmp_88 = 1'h1;
+      9'b111010001:
+        casez_tmp_88 = 1'h1;
+      9'b111010010:
+        casez_tmp_88 = 1'h1;
+      9'b111010011:
+        casez_tmp_88 = 1'h1;
+      9'b111010100:
+        casez_tmp_88 = 1'h1;
+      9'b111010101:
+        casez_tmp_88 = 1'h1;
+      9'b111010110:
+        casez_tmp_88 = 1'h1;
+      9'b111010111:
+        casez_tmp_88 = 1'h1;
+      9'b111011000:
+        casez_tmp_88 = 1'h1;
+      9'b111011001:
+        casez_tmp_88 = 1'h1;
+      9'b111011010:
+        casez_tmp_88 = 1'h1;
+      9'b111011011:
+        casez_tmp_88 = 1'h1;
+      9'b111011100:
+        casez_tmp_88 = 1'h1;
+      9'b111011101:
+        casez_tmp_88 = 1'h1;
+      9'b111011110:
+        casez_tmp_88 = 1'h1;
+      9'b111011111:
+        casez_tmp_88 = 1'h1;
+      9'b111100000:
+        casez_tmp_88 = 1'h0;
+      9'b111100001:
+        casez_tmp_88 = 1'h0;
+      9'b111100010:
+        casez_tmp_88 = 1'h0;
+      9'b111100011:
+        casez_tmp_88 = 1'h0;
+      9'b111100100:
+        casez_tmp_88 = 1'h0;
+      9'b111100101:
+        casez_tmp_88 = 1'h0;
+      9'b111100110:
+        casez_tmp_88 = 1'h0;
+      9'b111100111:
+        casez_tmp_88 = 1'h0;
+      9'b111101000:
+        casez_tmp_88 = 1'h0;
+      9'b111101001:
+        casez_tmp_88 = 1'h0;
+      9'b111101010:
+        casez_tmp_88 = 1'h1;
+      9'b111101011:
+        casez_tmp_88 = 1'h1;
+      9'b111101100:
+        casez_tmp_88 = 1'h1;
+      9'b111101101:
+        casez_tmp_88 = 1'h1;
+      9'b111101110:
+        casez_tmp_88 = 1'h1;
+      9'b111101111:
+        casez_tmp_88 = 1'h1;
+      9'b111110000:
+        casez_tmp_88 = 1'h1;
+      9'b111110001:
+        casez_tmp_88 = 1'h1;
+      9'b111110010:
+        casez_tmp_88 = 1'h1;
+      9'b111110011:
+        casez_tmp_88 = 1'h1;
+      9'b111110100:
+        casez_tmp_88 = 1'h1;
+      9'b111110101:
+        casez_tmp_88 = 1'h1;
+      9'b111110110:
+        casez_tmp_88 = 1'h1;
+      9'b111110111:
+        casez_tmp_88 = 1'h1;
+      9'b111111000:
+        casez_tmp_88 = 1'h1;
+      9'b111111001:
+        casez_tmp_88 = 1'h1;
+      9'b111111010:
+        casez_tmp_88 = 1'h1;
+      9'b111111011:
+        casez_tmp_88 = 1'h1;
+      9'b111111100:
+        casez_tmp_88 = 1'h1;
+      9'b111111101:
+        casez_tmp_88 = 1'h1;
+      9'b111111110:
+        casez_tmp_88 = 1'h1;
+      default:
+        casez_tmp_88 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_89;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_89 = 1'h0;
+      9'b000000001:
+        casez_tmp_89 = 1'h0;
+      9'b000000010:
+        casez_tmp_89 = 1'h0;
+      9'b000000011:
+        casez_tmp_89 = 1'h0;
+      9'b000000100:
+        casez_tmp_89 = 1'h0;
+      9'b000000101:
+        casez_tmp_89 = 1'h0;
+      9'b000000110:
+        casez_tmp_89 = 1'h0;
+      9'b000000111:
+        casez_tmp_89 = 1'h0;
+      9'b000001000:
+        casez_tmp_89 = 1'h0;
+      9'b000001001:
+        casez_tmp_89 = 1'h0;
+      9'b000001010:
+        casez_tmp_89 = 1'h1;
+      9'b000001011:
+        casez_tmp_89 = 1'h1;
+      9'b000001100:
+        casez_tmp_89 = 1'h1;
+      9'b000001101:
+        casez_tmp_89 = 1'h1;
+      9'b000001110:
+        casez_tmp_89 = 1'h1;
+      9'b000001111:
+        casez_tmp_89 = 1'h1;
+      9'b000010000:
+        casez_tmp_89 = 1'h1;
+      9'b000010001:
+        casez_tmp_89 = 1'h1;
+      9'b000010010:
+        casez_tmp_89 = 1'h1;
+      9'b000010011:
+        casez_tmp_89 = 1'h1;
+      9'b000010100:
+        casez_tmp_89 = 1'h1;
+      9'b000010101:
+        casez_tmp_89 = 1'h1;
+      9'b000010110:
+        casez_tmp_89 = 1'h1;
+      9'b000010111:
+        casez_tmp_89 = 1'h1;
+      9'b000011000:
+        casez_tmp_89 = 1'h1;
+      9'b000011001:
+        casez_tmp_89 = 1'h1;
+      9'b000011010:
+        casez_tmp_89 = 1'h1;
+      9'b000011011:
+        casez_tmp_89 = 1'h1;
+      9'b000011100:
+        casez_tmp_89 = 1'h1;
+      9'b000011101:
+        casez_tmp_89 = 1'h1;
+      9'b000011110:
+        casez_tmp_89 = 1'h1;
+      9'b000011111:
+        casez_tmp_89 = 1'h1;
+      9'b000100000:
+        casez_tmp_89 = 1'h0;
+      9'b000100001:
+        casez_tmp_89 = 1'h0;
+      9'b000100010:
+        casez_tmp_89 = 1'h0;
+      9'b000100011:
+        casez_tmp_89 = 1'h0;
+      9'b000100100:
+        casez_tmp_89 = 1'h0;
+      9'b000100101:
+        casez_tmp_89 = 1'h0;
+      9'b000100110:
+        casez_tmp_89 = 1'h0;
+      9'b000100111:
+        casez_tmp_89 = 1'h0;
+      9'b000101000:
+        casez_tmp_89 = 1'h0;
+      9'b000101001:
+        casez_tmp_89 = 1'h1;
+      9'b000101010:
+        casez_tmp_89 = 1'h1;
+      9'b000101011:
+        casez_tmp_89 = 1'h1;
+      9'b000101100:
+        casez_tmp_89 = 1'h1;
+      9'b000101101:
+        casez_tmp_89 = 1'h1;
+      9'b000101110:
+        casez_tmp_89 = 1'h1;
+      9'b000101111:
+        casez_tmp_89 = 1'h1;
+      9'b000110000:
+        casez_tmp_89 = 1'h1;
+      9'b000110001:
+        casez_tmp_89 = 1'h1;
+      9'b000110010:
+        casez_tmp_89 = 1'h1;
+      9'b000110011:
+        casez_tmp_89 = 1'h1;
+      9'b000110100:
+        casez_tmp_89 = 1'h1;
+      9'b000110101:
+        casez_tmp_89 = 1'h1;
+      9'b000110110:
+        casez_tmp_89 = 1'h1;
+      9'b000110111:
+        casez_tmp_89 = 1'h1;
+      9'b000111000:
+        casez_tmp_89 = 1'h1;
+      9'b000111001:
+        casez_tmp_89 = 1'h1;
+      9'b000111010:
+        casez_tmp_89 = 1'h1;
+      9'b000111011:
+        casez_tmp_89 = 1'h1;
+      9'b000111100:
+        casez_tmp_89 = 1'h1;
+      9'b000111101:
+        casez_tmp_89 = 1'h1;
+      9'b000111110:
+        casez_tmp_89 = 1'h1;
+      9'b000111111:
+        casez_tmp_89 = 1'h1;
+      9'b001000000:
+        casez_tmp_89 = 1'h0;
+      9'b001000001:
+        casez_tmp_89 = 1'h0;
+      9'b001000010:
+        casez_tmp_89 = 1'h0;
+      9'b001000011:
+        casez_tmp_89 = 1'h0;
+      9'b001000100:
+        casez_tmp_89 = 1'h0;
+      9'b001000101:
+        casez_tmp_89 = 1'h0;
+      9'b001000110:
+        casez_tmp_89 = 1'h0;
+      9'b001000111:
+        casez_tmp_89 = 1'h0;
+      9'b001001000:
+        casez_tmp_89 = 1'h1;
+      9'b001001001:
+        casez_tmp_89 = 1'h1;
+      9'b001001010:
+        casez_tmp_89 = 1'h1;
+      9'b001001011:
+        casez_tmp_89 = 1'h1;
+      9'b001001100:
+        casez_tmp_89 = 1'h1;
+      9'b001001101:
+        casez_tmp_89 = 1'h1;
+      9'b001001110:
+        casez_tmp_89 = 1'h1;
+      9'b001001111:
+        casez_tmp_89 = 1'h1;
+      9'b001010000:
+        casez_tmp_89 = 1'h1;
+      9'b001010001:
+        casez_tmp_89 = 1'h1;
+      9'b001010010:
+        casez_tmp_89 = 1'h1;
+      9'b001010011:
+        casez_tmp_89 = 1'h1;
+      9'b001010100:
+        casez_tmp_89 = 1'h1;
+      9'b001010101:
+        casez_tmp_89 = 1'h1;
+      9'b001010110:
+        casez_tmp_89 = 1'h1;
+      9'b001010111:
+        casez_tmp_89 = 1'h1;
+      9'b001011000:
+        casez_tmp_89 = 1'h1;
+      9'b001011001:
+        casez_tmp_89 = 1'h1;
+      9'b001011010:
+        casez_tmp_89 = 1'h1;
+      9'b001011011:
+        casez_tmp_89 = 1'h1;
+      9'b001011100:
+        casez_tmp_89 = 1'h1;
+      9'b001011101:
+        casez_tmp_89 = 1'h1;
+      9'b001011110:
+        casez_tmp_89 = 1'h1;
+      9'b001011111:
+        casez_tmp_89 = 1'h1;
+      9'b001100000:
+        casez_tmp_89 = 1'h0;
+      9'b001100001:
+        casez_tmp_89 = 1'h0;
+      9'b001100010:
+        casez_tmp_89 = 1'h0;
+      9'b001100011:
+        casez_tmp_89 = 1'h0;
+      9'b001100100:
+        casez_tmp_89 = 1'h0;
+      9'b001100101:
+        casez_tmp_89 = 1'h0;
+      9'b001100110:
+        casez_tmp_89 = 1'h0;
+      9'b001100111:
+        casez_tmp_89 = 1'h1;
+      9'b001101000:
+        casez_tmp_89 = 1'h1;
+      9'b001101001:
+        casez_tmp_89 = 1'h1;
+      9'b001101010:
+        casez_tmp_89 = 1'h1;
+      9'b001101011:
+        casez_tmp_89 = 1'h1;
+      9'b001101100:
+        casez_tmp_89 = 1'h1;
+      9'b001101101:
+        casez_tmp_89 = 1'h1;
+      9'b001101110:
+        casez_tmp_89 = 1'h1;
+      9'b001101111:
+        casez_tmp_89 = 1'h1;
+      9'b001110000:
+        casez_tmp_89 = 1'h1;
+      9'b001110001:
+        casez_tmp_89 = 1'h1;
+      9'b001110010:
+        casez_tmp_89 = 1'h1;
+      9'b001110011:
+        casez_tmp_89 = 1'h1;
+      9'b001110100:
+        casez_tmp_89 = 1'h1;
+      9'b001110101:
+        casez_tmp_89 = 1'h1;
+      9'b001110110:
+        casez_tmp_89 = 1'h1;
+      9'b001110111:
+        casez_tmp_89 = 1'h1;
+      9'b001111000:
+        casez_tmp_89 = 1'h1;
+      9'b001111001:
+        casez_tmp_89 = 1'h1;
+      9'b001111010:
+        casez_tmp_89 = 1'h1;
+      9'b001111011:
+        casez_tmp_89 = 1'h1;
+      9'b001111100:
+        casez_tmp_89 = 1'h1;
+      9'b001111101:
+        casez_tmp_89 = 1'h1;
+      9'b001111110:
+        casez_tmp_89 = 1'h1;
+      9'b001111111:
+        casez_tmp_89 = 1'h1;
+      9'b010000000:
+        casez_tmp_89 = 1'h0;
+      9'b010000001:
+        casez_tmp_89 = 1'h0;
+      9'b010000010:
+        casez_tmp_89 = 1'h0;
+      9'b010000011:
+        casez_tmp_89 = 1'h0;
+      9'b010000100:
+        casez_tmp_89 = 1'h0;
+      9'b010000101:
+        casez_tmp_89 = 1'h0;
+      9'b010000110:
+        casez_tmp_89 = 1'h1;
+      9'b010000111:
+        casez_tmp_89 = 1'h1;
+      9'b010001000:
+        casez_tmp_89 = 1'h1;
+      9'b010001001:
+        casez_tmp_89 = 1'h1;
+      9'b010001010:
+        casez_tmp_89 = 1'h1;
+      9'b010001011:
+        casez_tmp_89 = 1'h1;
+      9'b010001100:
+        casez_tmp_89 = 1'h1;
+      9'b010001101:
+        casez_tmp_89 = 1'h1;
+      9'b010001110:
+        casez_tmp_89 = 1'h1;
+      9'b010001111:
+        casez_tmp_89 = 1'h1;
+      9'b010010000:
+        casez_tmp_89 = 1'h1;
+      9'b010010001:
+        casez_tmp_89 = 1'h1;
+      9'b010010010:
+        casez_tmp_89 = 1'h1;
+      9'b010010011:
+        casez_tmp_89 = 1'h1;
+      9'b010010100:
+        casez_tmp_89 = 1'h1;
+      9'b010010101:
+        casez_tmp_89 = 1'h1;
+      9'b010010110:
+        casez_tmp_89 = 1'h1;
+      9'b010010111:
+        casez_tmp_89 = 1'h1;
+      9'b010011000:
+        casez_tmp_89 = 1'h1;
+      9'b010011001:
+        casez_tmp_89 = 1'h1;
+      9'b010011010:
+        casez_tmp_89 = 1'h1;
+      9'b010011011:
+        casez_tmp_89 = 1'h1;
+      9'b010011100:
+        casez_tmp_89 = 1'h1;
+      9'b010011101:
+        casez_tmp_89 = 1'h1;
+      9'b010011110:
+        casez_tmp_89 = 1'h1;
+      9'b010011111:
+        casez_tmp_89 = 1'h1;
+      9'b010100000:
+        casez_tmp_89 = 1'h0;
+      9'b010100001:
+        casez_tmp_89 = 1'h0;
+      9'b010100010:
+        casez_tmp_89 = 1'h0;
+      9'b010100011:
+        casez_tmp_89 = 1'h0;
+      9'b010100100:
+        casez_tmp_89 = 1'h0;
+      9'b010100101:
+        casez_tmp_89 = 1'h1;
+      9'b010100110:
+        casez_tmp_89 = 1'h1;
+      9'b010100111:
+        casez_tmp_89 = 1'h1;
+      9'b010101000:
+        casez_tmp_89 = 1'h1;
+      9'b010101001:
+        casez_tmp_89 = 1'h1;
+      9'b010101010:
+        casez_tmp_89 = 1'h1;
+      9'b010101011:
+        casez_tmp_89 = 1'h1;
+      9'b010101100:
+        casez_tmp_89 = 1'h1;
+      9'b010101101:
+        casez_tmp_89 = 1'h1;
+      9'b010101110:
+        casez_tmp_89 = 1'h1;
+      9'b010101111:
+        casez_tmp_89 = 1'h1;
+      9'b010110000:
+        casez_tmp_89 = 1'h1;
+      9'b010110001:
+        casez_tmp_89 = 1'h1;
+      9'b010110010:
+        casez_tmp_89 = 1'h1;
+      9'b010110011:
+        casez_tmp_89 = 1'h1;
+      9'b010110100:
+        casez_tmp_89 = 1'h1;
+      9'b010110101:
+        casez_tmp_89 = 1'h1;
+      9'b010110110:
+        casez_tmp_89 = 1'h1;
+      9'b010110111:
+        casez_tmp_89 = 1'h1;
+      9'b010111000:
+        casez_tmp_89 = 1'h1;
+      9'b010111001:
+        casez_tmp_89 = 1'h1;
+      9'b010111010:
+        casez_tmp_89 = 1'h1;
+      9'b010111011:
+        casez_tmp_89 = 1'h1;
+      9'b010111100:
+        casez_tmp_89 = 1'h1;
+      9'b010111101:
+        casez_tmp_89 = 1'h1;
+      9'b010111110:
+        casez_tmp_89 = 1'h1;
+      9'b010111111:
+        casez_tmp_89 = 1'h1;
+      9'b011000000:
+        casez_tmp_89 = 1'h0;
+      9'b011000001:
+        casez_tmp_89 = 1'h0;
+      9'b011000010:
+        casez_tmp_89 = 1'h0;
+      9'b011000011:
+        casez_tmp_89 = 1'h0;
+      9'b011000100:
+        casez_tmp_89 = 1'h1;
+      9'b011000101:
+        casez_tmp_89 = 1'h1;
+      9'b011000110:
+        casez_tmp_89 = 1'h1;
+      9'b011000111:
+        casez_tmp_89 = 1'h1;
+      9'b011001000:
+        casez_tmp_89 = 1'h1;
+      9'b011001001:
+        casez_tmp_89 = 1'h1;
+      9'b011001010:
+        casez_tmp_89 = 1'h1;
+      9'b011001011:
+        casez_tmp_89 = 1'h1;
+      9'b011001100:
+        casez_tmp_89 = 1'h1;
+      9'b011001101:
+        casez_tmp_89 = 1'h1;
+      9'b011001110:
+        casez_tmp_89 = 1'h1;
+      9'b011001111:
+        casez_tmp_89 = 1'h1;
+      9'b011010000:
+        casez_tmp_89 = 1'h1;
+      9'b011010001:
+        casez_tmp_89 = 1'h1;
+      9'b011010010:
+        casez_tmp_89 = 1'h1;
+      9'b011010011:
+        casez_tmp_89 = 1'h1;
+      9'b011010100:
+        casez_tmp_89 = 1'h1;
+      9'b011010101:
+        casez_tmp_89 = 1'h1;
+      9'b011010110:
+        casez_tmp_89 = 1'h1;
+      9'b011010111:
+        casez_tmp_89 = 1'h1;
+      9'b011011000:
+        casez_tmp_89 = 1'h1;
+      9'b011011001:
+        casez_tmp_89 = 1'h1;
+      9'b011011010:
+        casez_tmp_89 = 1'h1;
+      9'b011011011:
+        casez_tmp_89 = 1'h1;
+      9'b011011100:
+        casez_tmp_89 = 1'h1;
+      9'b011011101:
+        casez_tmp_89 = 1'h1;
+      9'b011011110:
+        casez_tmp_89 = 1'h1;
+      9'b011011111:
+        casez_tmp_89 = 1'h1;
+      9'b011100000:
+        casez_tmp_89 = 1'h0;
+      9'b011100001:
+        casez_tmp_89 = 1'h0;
+      9'b011100010:
+        casez_tmp_89 = 1'h0;
+      9'b011100011:
+        casez_tmp_89 = 1'h1;
+      9'b011100100:
+        casez_tmp_89 = 1'h1;
+      9'b011100101:
+        casez_tmp_89 = 1'h1;
+      9'b011100110:
+        casez_tmp_89 = 1'h1;
+      9'b011100111:
+        casez_tmp_89 = 1'h1;
+      9'b011101000:
+        casez_tmp_89 = 1'h1;
+      9'b011101001:
+        casez_tmp_89 = 1'h1;
+      9'b011101010:
+        casez_tmp_89 = 1'h1;
+      9'b011101011:
+        casez_tmp_89 = 1'h1;
+      9'b011101100:
+        casez_tmp_89 = 1'h1;
+      9'b011101101:
+        casez_tmp_89 = 1'h1;
+      9'b011101110:
+        casez_tmp_89 = 1'h1;
+      9'b011101111:
+        casez_tmp_89 = 1'h1;
+      9'b011110000:
+        casez_tmp_89 = 1'h1;
+      9'b011110001:
+        casez_tmp_89 = 1'h1;
+      9'b011110010:
+        casez_tmp_89 = 1'h1;
+      9'b011110011:
+        casez_tmp_89 = 1'h1;
+      9'b011110100:
+        casez_tmp_89 = 1'h1;
+      9'b011110101:
+        casez_tmp_89 = 1'h1;
+      9'b011110110:
+        casez_tmp_89 = 1'h1;
+      9'b011110111:
+        casez_tmp_89 = 1'h1;
+      9'b011111000:
+        casez_tmp_89 = 1'h1;
+      9'b011111001:
+        casez_tmp_89 = 1'h1;
+      9'b011111010:
+        casez_tmp_89 = 1'h1;
+      9'b011111011:
+        casez_tmp_89 = 1'h1;
+      9'b011111100:
+        casez_tmp_89 = 1'h1;
+      9'b011111101:
+        casez_tmp_89 = 1'h1;
+      9'b011111110:
+        casez_tmp_89 = 1'h1;
+      9'b011111111:
+        casez_tmp_89 = 1'h1;
+      9'b100000000:
+        casez_tmp_89 = 1'h0;
+      9'b100000001:
+        casez_tmp_89 = 1'h0;
+      9'b100000010:
+        casez_tmp_89 = 1'h1;
+      9'b100000011:
+        casez_tmp_89 = 1'h1;
+      9'b100000100:
+        casez_tmp_89 = 1'h1;
+      9'b100000101:
+        casez_tmp_89 = 1'h1;
+      9'b100000110:
+        casez_tmp_89 = 1'h1;
+      9'b100000111:
+        casez_tmp_89 = 1'h1;
+      9'b100001000:
+        casez_tmp_89 = 1'h1;
+      9'b100001001:
+        casez_tmp_89 = 1'h1;
+      9'b100001010:
+        casez_tmp_89 = 1'h1;
+      9'b100001011:
+        casez_tmp_89 = 1'h1;
+      9'b100001100:
+        casez_tmp_89 = 1'h1;
+      9'b100001101:
+        casez_tmp_89 = 1'h1;
+      9'b100001110:
+        casez_tmp_89 = 1'h1;
+      9'b100001111:
+        casez_tmp_89 = 1'h1;
+      9'b100010000:
+        casez_tmp_89 = 1'h1;
+      9'b100010001:
+        casez_tmp_89 = 1'h1;
+      9'b100010010:
+        casez_tmp_89 = 1'h1;
+      9'b100010011:
+        casez_tmp_89 = 1'h1;
+      9'b100010100:
+        casez_tmp_89 = 1'h1;
+      9'b100010101:
+        casez_tmp_89 = 1'h1;
+      9'b100010110:
+        casez_tmp_89 = 1'h1;
+      9'b100010111:
+        casez_tmp_89 = 1'h1;
+      9'b100011000:
+        casez_tmp_89 = 1'h1;
+      9'b100011001:
+        casez_tmp_89 = 1'h1;
+      9'b100011010:
+        casez_tmp_89 = 1'h1;
+      9'b100011011:
+        casez_tmp_89 = 1'h1;
+      9'b100011100:
+        casez_tmp_89 = 1'h1;
+      9'b100011101:
+        casez_tmp_89 = 1'h1;
+      9'b100011110:
+        casez_tmp_89 = 1'h1;
+      9'b100011111:
+        casez_tmp_89 = 1'h1;
+      9'b100100000:
+        casez_tmp_89 = 1'h0;
+      9'b100100001:
+        casez_tmp_89 = 1'h1;
+      9'b100100010:
+        casez_tmp_89 = 1'h1;
+      9'b100100011:
+        casez_tmp_89 = 1'h1;
+      9'b100100100:
+        casez_tmp_89 = 1'h1;
+      9'b100100101:
+        casez_tmp_89 = 1'h1;
+      9'b100100110:
+        casez_tmp_89 = 1'h1;
+      9'b100100111:
+        casez_tmp_89 = 1'h1;
+      9'b100101000:
+        casez_tmp_89 = 1'h1;
+      9'b100101001:
+        casez_tmp_89 = 1'h1;
+      9'b100101010:
+        casez_tmp_89 = 1'h1;
+      9'b100101011:
+        casez_tmp_89 = 1'h1;
+      9'b100101100:
+        casez_tmp_89 = 1'h1;
+      9'b100101101:
+        casez_tmp_89 = 1'h1;
+      9'b100101110:
+        casez_tmp_89 = 1'h1;
+      9'b100101111:
+        casez_tmp_89 = 1'h1;
+      9'b100110000:
+        casez_tmp_89 = 1'h1;
+      9'b100110001:
+        casez_tmp_89 = 1'h1;
+      9'b100110010:
+        casez_tmp_89 = 1'h1;
+      9'b100110011:
+        casez_tmp_89 = 1'h1;
+      9'b100110100:
+        casez_tmp_89 = 1'h1;
+      9'b100110101:
+        casez_tmp_89 = 1'h1;
+      9'b100110110:
+        casez_tmp_89 = 1'h1;
+      9'b100110111:
+        casez_tmp_89 = 1'h1;
+      9'b100111000:
+        casez_tmp_89 = 1'h1;
+      9'b100111001:
+        casez_tmp_89 = 1'h1;
+      9'b100111010:
+        casez_tmp_89 = 1'h1;
+      9'b100111011:
+        casez_tmp_89 = 1'h1;
+      9'b100111100:
+        casez_tmp_89 = 1'h1;
+      9'b100111101:
+        casez_tmp_89 = 1'h1;
+      9'b100111110:
+        casez_tmp_89 = 1'h1;
+      9'b100111111:
+        casez_tmp_89 = 1'h1;
+      9'b101000000:
+        casez_tmp_89 = 1'h0;
+      9'b101000001:
+        casez_tmp_89 = 1'h0;
+      9'b101000010:
+        casez_tmp_89 = 1'h0;
+      9'b101000011:
+        casez_tmp_89 = 1'h0;
+      9'b101000100:
+        casez_tmp_89 = 1'h0;
+      9'b101000101:
+        casez_tmp_89 = 1'h0;
+      9'b101000110:
+        casez_tmp_89 = 1'h0;
+      9'b101000111:
+        casez_tmp_89 = 1'h0;
+      9'b101001000:
+        casez_tmp_89 = 1'h0;
+      9'b101001001:
+        casez_tmp_89 = 1'h0;
+      9'b101001010:
+        casez_tmp_89 = 1'h0;
+      9'b101001011:
+        casez_tmp_89 = 1'h0;
+      9'b101001100:
+        casez_tmp_89 = 1'h0;
+      9'b101001101:
+        casez_tmp_89 = 1'h0;
+      9'b101001110:
+        casez_tmp_89 = 1'h0;
+      9'b101001111:
+        casez_tmp_89 = 1'h0;
+      9'b101010000:
+        casez_tmp_89 = 1'h1;
+      9'b101010001:
+        casez_tmp_89 = 1'h1;
+      9'b101010010:
+        casez_tmp_89 = 1'h1;
+      9'b101010011:
+        casez_tmp_89 = 1'h1;
+      9'b101010100:
+        casez_tmp_89 = 1'h1;
+      9'b101010101:
+        casez_tmp_89 = 1'h1;
+      9'b101010110:
+        casez_tmp_89 = 1'h1;
+      9'b101010111:
+        casez_tmp_89 = 1'h1;
+      9'b101011000:
+        casez_tmp_89 = 1'h1;
+      9'b101011001:
+        casez_tmp_89 = 1'h1;
+      9'b101011010:
+        casez_tmp_89 = 1'h1;
+      9'b101011011:
+        casez_tmp_89 = 1'h1;
+      9'b101011100:
+        casez_tmp_89 = 1'h1;
+      9'b101011101:
+        casez_tmp_89 = 1'h1;
+      9'b101011110:
+        casez_tmp_89 = 1'h1;
+      9'b101011111:
+        casez_tmp_89 = 1'h1;
+      9'b101100000:
+        casez_tmp_89 = 1'h0;
+      9'b101100001:
+        casez_tmp_89 = 1'h0;
+      9'b101100010:
+        casez_tmp_89 = 1'h0;
+      9'b101100011:
+        casez_tmp_89 = 1'h0;
+      9'b101100100:
+        casez_tmp_89 = 1'h0;
+      9'b101100101:
+        casez_tmp_89 = 1'h0;
+      9'b101100110:
+        casez_tmp_89 = 1'h0;
+      9'b101100111:
+        casez_tmp_89 = 1'h0;
+      9'b101101000:
+        casez_tmp_89 = 1'h0;
+      9'b101101001:
+        casez_tmp_89 = 1'h0;
+      9'b101101010:
+        casez_tmp_89 = 1'h0;
+      9'b101101011:
+        casez_tmp_89 = 1'h0;
+      9'b101101100:
+        casez_tmp_89 = 1'h0;
+      9'b101101101:
+        casez_tmp_89 = 1'h0;
+      9'b101101110:
+        casez_tmp_89 = 1'h0;
+      9'b101101111:
+        casez_tmp_89 = 1'h1;
+      9'b101110000:
+        casez_tmp_89 = 1'h1;
+      9'b101110001:
+        casez_tmp_89 = 1'h1;
+      9'b101110010:
+        casez_tmp_89 = 1'h1;
+      9'b101110011:
+        casez_tmp_89 = 1'h1;
+      9'b101110100:
+        casez_tmp_89 = 1'h1;
+      9'b101110101:
+        casez_tmp_89 = 1'h1;
+      9'b101110110:
+        casez_tmp_89 = 1'h1;
+      9'b101110111:
+        casez_tmp_89 = 1'h1;
+      9'b101111000:
+        casez_tmp_89 = 1'h1;
+      9'b101111001:
+        casez_tmp_89 = 1'h1;
+      9'b101111010:
+        casez_tmp_89 = 1'h1;
+      9'b101111011:
+        casez_tmp_89 = 1'h1;
+      9'b101111100:
+        casez_tmp_89 = 1'h1;
+      9'b101111101:
+        casez_tmp_89 = 1'h1;
+      9'b101111110:
+        casez_tmp_89 = 1'h1;
+      9'b101111111:
+        casez_tmp_89 = 1'h1;
+      9'b110000000:
+        casez_tmp_89 = 1'h0;
+      9'b110000001:
+        casez_tmp_89 = 1'h0;
+      9'b110000010:
+        casez_tmp_89 = 1'h0;
+      9'b110000011:
+        casez_tmp_89 = 1'h0;
+      9'b110000100:
+        casez_tmp_89 = 1'h0;
+      9'b110000101:
+        casez_tmp_89 = 1'h0;
+      9'b110000110:
+        casez_tmp_89 = 1'h0;
+      9'b110000111:
+        casez_tmp_89 = 1'h0;
+      9'b110001000:
+        casez_tmp_89 = 1'h0;
+      9'b110001001:
+        casez_tmp_89 = 1'h0;
+      9'b110001010:
+        casez_tmp_89 = 1'h0;
+      9'b110001011:
+        casez_tmp_89 = 1'h0;
+      9'b110001100:
+        casez_tmp_89 = 1'h0;
+      9'b110001101:
+        casez_tmp_89 = 1'h0;
+      9'b110001110:
+        casez_tmp_89 = 1'h1;
+      9'b110001111:
+        casez_tmp_89 = 1'h1;
+      9'b110010000:
+        casez_tmp_89 = 1'h1;
+      9'b110010001:
+        casez_tmp_89 = 1'h1;
+      9'b110010010:
+        casez_tmp_89 = 1'h1;
+      9'b110010011:
+        casez_tmp_89 = 1'h1;
+      9'b110010100:
+        casez_tmp_89 = 1'h1;
+      9'b110010101:
+        casez_tmp_89 = 1'h1;
+      9'b110010110:
+        casez_tmp_89 = 1'h1;
+      9'b110010111:
+        casez_tmp_89 = 1'h1;
+      9'b110011000:
+        casez_tmp_89 = 1'h1;
+      9'b110011001:
+        casez_tmp_89 = 1'h1;
+      9'b110011010:
+        casez_tmp_89 = 1'h1;
+      9'b110011011:
+        casez_tmp_89 = 1'h1;
+      9'b110011100:
+        casez_tmp_89 = 1'h1;
+      9'b110011101:
+        casez_tmp_89 = 1'h1;
+      9'b110011110:
+        casez_tmp_89 = 1'h1;
+      9'b110011111:
+        casez_tmp_89 = 1'h1;
+      9'b110100000:
+        casez_tmp_89 = 1'h0;
+      9'b110100001:
+        casez_tmp_89 = 1'h0;
+      9'b110100010:
+        casez_tmp_89 = 1'h0;
+      9'b110100011:
+        casez_tmp_89 = 1'h0;
+      9'b110100100:
+        casez_tmp_89 = 1'h0;
+      9'b110100101:
+        casez_tmp_89 = 1'h0;
+      9'b110100110:
+        casez_tmp_89 = 1'h0;
+      9'b110100111:
+        casez_tmp_89 = 1'h0;
+      9'b110101000:
+        casez_tmp_89 = 1'h0;
+      9'b110101001:
+        casez_tmp_89 = 1'h0;
+      9'b110101010:
+        casez_tmp_89 = 1'h0;
+      9'b110101011:
+        casez_tmp_89 = 1'h0;
+      9'b110101100:
+        casez_tmp_89 = 1'h0;
+      9'b110101101:
+        casez_tmp_89 = 1'h1;
+      9'b110101110:
+        casez_tmp_89 = 1'h1;
+      9'b110101111:
+        casez_tmp_89 = 1'h1;
+      9'b110110000:
+        casez_tmp_89 = 1'h1;
+      9'b110110001:
+        casez_tmp_89 = 1'h1;
+      9'b110110010:
+        casez_tmp_89 = 1'h1;
+      9'b110110011:
+        casez_tmp_89 = 1'h1;
+      9'b110110100:
+        casez_tmp_89 = 1'h1;
+      9'b110110101:
+        casez_tmp_89 = 1'h1;
+      9'b110110110:
+        casez_tmp_89 = 1'h1;
+      9'b110110111:
+        casez_tmp_89 = 1'h1;
+      9'b110111000:
+        casez_tmp_89 = 1'h1;
+      9'b110111001:
+        casez_tmp_89 = 1'h1;
+      9'b110111010:
+        casez_tmp_89 = 1'h1;
+      9'b110111011:
+        casez_tmp_89 = 1'h1;
+      9'b110111100:
+        casez_tmp_89 = 1'h1;
+      9'b110111101:
+        casez_tmp_89 = 1'h1;
+      9'b110111110:
+        casez_tmp_89 = 1'h1;
+      9'b110111111:
+        casez_tmp_89 = 1'h1;
+      9'b111000000:
+        casez_tmp_89 = 1'h0;
+      9'b111000001:
+        casez_tmp_89 = 1'h0;
+      9'b111000010:
+        casez_tmp_89 = 1'h0;
+      9'b111000011:
+        casez_tmp_89 = 1'h0;
+      9'b111000100:
+        casez_tmp_89 = 1'h0;
+      9'b111000101:
+        casez_tmp_89 = 1'h0;
+      9'b111000110:
+        casez_tmp_89 = 1'h0;
+      9'b111000111:
+        casez_tmp_89 = 1'h0;
+      9'b111001000:
+        casez_tmp_89 = 1'h0;
+      9'b111001001:
+        casez_tmp_89 = 1'h0;
+      9'b111001010:
+        casez_tmp_89 = 1'h0;
+      9'b111001011:
+        casez_tmp_89 = 1'h0;
+      9'b111001100:
+        casez_tmp_89 = 1'h1;
+      9'b111001101:
+        casez_tmp_89 = 1'h1;
+      9'b111001110:
+        casez_tmp_89 = 1'h1;
+      9'b111001111:
+        casez_tmp_89 = 1'h1;
+      9'b111010000:
+        casez_tmp_89 = 1'h1;
+      9'b111010001:
+        casez_tmp_89 = 1'h1;
+      9'b111010010:
+        casez_tmp_89 = 1'h1;
+      9'b111010011:
+        casez_tmp_89 = 1'h1;
+      9'b111010100:
+        casez_tmp_89 = 1'h1;
+      9'b111010101:
+        casez_tmp_89 = 1'h1;
+      9'b111010110:
+        casez_tmp_89 = 1'h1;
+      9'b111010111:
+        casez_tmp_89 = 1'h1;
+      9'b111011000:
+        casez_tmp_89 = 1'h1;
+      9'b111011001:
+        casez_tmp_89 = 1'h1;
+      9'b111011010:
+        casez_tmp_89 = 1'h1;
+      9'b111011011:
+        casez_tmp_89 = 1'h1;
+      9'b111011100:
+        casez_tmp_89 = 1'h1;
+      9'b111011101:
+        casez_tmp_89 = 1'h1;
+      9'b111011110:
+        casez_tmp_89 = 1'h1;
+      9'b111011111:
+        casez_tmp_89 = 1'h1;
+      9'b111100000:
+        casez_tmp_89 = 1'h0;
+      9'b111100001:
+        casez_tmp_89 = 1'h0;
+      9'b111100010:
+        casez_tmp_89 = 1'h0;
+      9'b111100011:
+        casez_tmp_89 = 1'h0;
+      9'b111100100:
+        casez_tmp_89 = 1'h0;
+      9'b111100101:
+        casez_tmp_89 = 1'h0;
+      9'b111100110:
+        casez_tmp_89 = 1'h0;
+      9'b111100111:
+        casez_tmp_89 = 1'h0;
+      9'b111101000:
+        casez_tmp_89 = 1'h0;
+      9'b111101001:
+        casez_tmp_89 = 1'h0;
+      9'b111101010:
+        casez_tmp_89 = 1'h0;
+      9'b111101011:
+        casez_tmp_89 = 1'h1;
+      9'b111101100:
+        casez_tmp_89 = 1'h1;
+      9'b111101101:
+        casez_tmp_89 = 1'h1;
+      9'b111101110:
+        casez_tmp_89 = 1'h1;
+      9'b111101111:
+        casez_tmp_89 = 1'h1;
+      9'b111110000:
+        casez_tmp_89 = 1'h1;
+      9'b111110001:
+        casez_tmp_89 = 1'h1;
+      9'b111110010:
+        casez_tmp_89 = 1'h1;
+      9'b111110011:
+        casez_tmp_89 = 1'h1;
+      9'b111110100:
+        casez_tmp_89 = 1'h1;
+      9'b111110101:
+        casez_tmp_89 = 1'h1;
+      9'b111110110:
+        casez_tmp_89 = 1'h1;
+      9'b111110111:
+        casez_tmp_89 = 1'h1;
+      9'b111111000:
+        casez_tmp_89 = 1'h1;
+      9'b111111001:
+        casez_tmp_89 = 1'h1;
+      9'b111111010:
+        casez_tmp_89 = 1'h1;
+      9'b111111011:
+        casez_tmp_89 = 1'h1;
+      9'b111111100:
+        casez_tmp_89 = 1'h1;
+      9'b111111101:
+        casez_tmp_89 = 1'h1;
+      9'b111111110:
+        casez_tmp_89 = 1'h1;
+      default:
+        casez_tmp_89 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_90;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_90 = 1'h0;
+      9'b000000001:
+        casez_tmp_90 = 1'h0;
+      9'b000000010:
+        casez_tmp_90 = 1'h0;
+      9'b000000011:
+        casez_tmp_90 = 1'h0;
+      9'b000000100:
+        casez_tmp_90 = 1'h0;
+      9'b000000101:
+        casez_tmp_90 = 1'h0;
+      9'b000000110:
+        casez_tmp_90 = 1'h0;
+      9'b000000111:
+        casez_tmp_90 = 1'h0;
+      9'b000001000:
+        casez_tmp_90 = 1'h0;
+      9'b000001001:
+        casez_tmp_90 = 1'h0;
+      9'b000001010:
+        casez_tmp_90 = 1'h0;
+      9'b000001011:
+        casez_tmp_90 = 1'h1;
+      9'b000001100:
+        casez_tmp_90 = 1'h1;
+      9'b000001101:
+        casez_tmp_90 = 1'h1;
+      9'b000001110:
+        casez_tmp_90 = 1'h1;
+      9'b000001111:
+        casez_tmp_90 = 1'h1;
+      9'b000010000:
+        casez_tmp_90 = 1'h1;
+      9'b000010001:
+        casez_tmp_90 = 1'h1;
+      9'b000010010:
+        casez_tmp_90 = 1'h1;
+      9'b000010011:
+        casez_tmp_90 = 1'h1;
+      9'b000010100:
+        casez_tmp_90 = 1'h1;
+      9'b000010101:
+        casez_tmp_90 = 1'h1;
+      9'b000010110:
+        casez_tmp_90 = 1'h1;
+      9'b000010111:
+        casez_tmp_90 = 1'h1;
+      9'b000011000:
+        casez_tmp_90 = 1'h1;
+      9'b000011001:
+        casez_tmp_90 = 1'h1;
+      9'b000011010:
+        casez_tmp_90 = 1'h1;
+      9'b000011011:
+        casez_tmp_90 = 1'h1;
+      9'b000011100:
+        casez_tmp_90 = 1'h1;
+      9'b000011101:
+        casez_tmp_90 = 1'h1;
+      9'b000011110:
+        casez_tmp_90 = 1'h1;
+      9'b000011111:
+        casez_tmp_90 = 1'h1;
+      9'b000100000:
+        casez_tmp_90 = 1'h0;
+      9'b000100001:
+        casez_tmp_90 = 1'h0;
+      9'b000100010:
+        casez_tmp_90 = 1'h0;
+      9'b000100011:
+        casez_tmp_90 = 1'h0;
+      9'b000100100:
+        casez_tmp_90 = 1'h0;
+      9'b000100101:
+        casez_tmp_90 = 1'h0;
+      9'b000100110:
+        casez_tmp_90 = 1'h0;
+      9'b000100111:
+        casez_tmp_90 = 1'h0;
+      9'b000101000:
+        casez_tmp_90 = 1'h0;
+      9'b000101001:
+        casez_tmp_90 = 1'h0;
+      9'b000101010:
+        casez_tmp_90 = 1'h1;
+      9'b000101011:
+        casez_tmp_90 = 1'h1;
+      9'b000101100:
+        casez_tmp_90 = 1'h1;
+      9'b000101101:
+        casez_tmp_90 = 1'h1;
+      9'b000101110:
+        casez_tmp_90 = 1'h1;
+      9'b000101111:
+        casez_tmp_90 = 1'h1;
+      9'b000110000:
+        casez_tmp_90 = 1'h1;
+      9'b000110001:
+        casez_tmp_90 = 1'h1;
+      9'b000110010:
+        casez_tmp_90 = 1'h1;
+      9'b000110011:
+        casez_tmp_90 = 1'h1;
+      9'b000110100:
+        casez_tmp_90 = 1'h1;
+      9'b000110101:
+        casez_tmp_90 = 1'h1;
+      9'b000110110:
+        casez_tmp_90 = 1'h1;
+      9'b000110111:
+        casez_tmp_90 = 1'h1;
+      9'b000111000:
+        casez_tmp_90 = 1'h1;
+      9'b000111001:
+        casez_tmp_90 = 1'h1;
+      9'b000111010:
+        casez_tmp_90 = 1'h1;
+      9'b000111011:
+        casez_tmp_90 = 1'h1;
+      9'b000111100:
+        casez_tmp_90 = 1'h1;
+      9'b000111101:
+        casez_tmp_90 = 1'h1;
+      9'b000111110:
+        casez_tmp_90 = 1'h1;
+      9'b000111111:
+        casez_tmp_90 = 1'h1;
+      9'b001000000:
+        casez_tmp_90 = 1'h0;
+      9'b001000001:
+        casez_tmp_90 = 1'h0;
+      9'b001000010:
+        casez_tmp_90 = 1'h0;
+      9'b001000011:
+        casez_tmp_90 = 1'h0;
+      9'b001000100:
+        casez_tmp_90 = 1'h0;
+      9'b001000101:
+        casez_tmp_90 = 1'h0;
+      9'b001000110:
+        casez_tmp_90 = 1'h0;
+      9'b001000111:
+        casez_tmp_90 = 1'h0;
+      9'b001001000:
+        casez_tmp_90 = 1'h0;
+      9'b001001001:
+        casez_tmp_90 = 1'h1;
+      9'b001001010:
+        casez_tmp_90 = 1'h1;
+      9'b001001011:
+        casez_tmp_90 = 1'h1;
+      9'b001001100:
+        casez_tmp_90 = 1'h1;
+      9'b001001101:
+        casez_tmp_90 = 1'h1;
+      9'b001001110:
+        casez_tmp_90 = 1'h1;
+      9'b001001111:
+        casez_tmp_90 = 1'h1;
+      9'b001010000:
+        casez_tmp_90 = 1'h1;
+      9'b001010001:
+        casez_tmp_90 = 1'h1;
+      9'b001010010:
+        casez_tmp_90 = 1'h1;
+      9'b001010011:
+        casez_tmp_90 = 1'h1;
+      9'b001010100:
+        casez_tmp_90 = 1'h1;
+      9'b001010101:
+        casez_tmp_90 = 1'h1;
+      9'b001010110:
+        casez_tmp_90 = 1'h1;
+      9'b001010111:
+        casez_tmp_90 = 1'h1;
+      9'b001011000:
+        casez_tmp_90 = 1'h1;
+      9'b001011001:
+        casez_tmp_90 = 1'h1;
+      9'b001011010:
+        casez_tmp_90 = 1'h1;
+      9'b001011011:
+        casez_tmp_90 = 1'h1;
+      9'b001011100:
+        casez_tmp_90 = 1'h1;
+      9'b001011101:
+        casez_tmp_90 = 1'h1;
+      9'b001011110:
+        casez_tmp_90 = 1'h1;
+      9'b001011111:
+        casez_tmp_90 = 1'h1;
+      9'b001100000:
+        casez_tmp_90 = 1'h0;
+      9'b001100001:
+        casez_tmp_90 = 1'h0;
+      9'b001100010:
+        casez_tmp_90 = 1'h0;
+      9'b001100011:
+        casez_tmp_90 = 1'h0;
+      9'b001100100:
+        casez_tmp_90 = 1'h0;
+      9'b001100101:
+        casez_tmp_90 = 1'h0;
+      9'b001100110:
+        casez_tmp_90 = 1'h0;
+      9'b001100111:
+        casez_tmp_90 = 1'h0;
+      9'b001101000:
+        casez_tmp_90 = 1'h1;
+      9'b001101001:
+        casez_tmp_90 = 1'h1;
+      9'b001101010:
+        casez_tmp_90 = 1'h1;
+      9'b001101011:
+        casez_tmp_90 = 1'h1;
+      9'b001101100:
+        casez_tmp_90 = 1'h1;
+      9'b001101101:
+        casez_tmp_90 = 1'h1;
+      9'b001101110:
+        casez_tmp_90 = 1'h1;
+      9'b001101111:
+        casez_tmp_90 = 1'h1;
+      9'b001110000:
+        casez_tmp_90 = 1'h1;
+      9'b001110001:
+        casez_tmp_90 = 1'h1;
+      9'b001110010:
+        casez_tmp_90 = 1'h1;
+      9'b001110011:
+        casez_tmp_90 = 1'h1;
+      9'b001110100:
+        casez_tmp_90 = 1'h1;
+      9'b001110101:
+        casez_tmp_90 = 1'h1;
+      9'b001110110:
+        casez_tmp_90 = 1'h1;
+      9'b001110111:
+        casez_tmp_90 = 1'h1;
+      9'b001111000:
+        casez_tmp_90 = 1'h1;
+      9'b001111001:
+        casez_tmp_90 = 1'h1;
+      9'b001111010:
+        casez_tmp_90 = 1'h1;
+      9'b001111011:
+        casez_tmp_90 = 1'h1;
+      9'b001111100:
+        casez_tmp_90 = 1'h1;
+      9'b001111101:
+        casez_tmp_90 = 1'h1;
+      9'b001111110:
+        casez_tmp_90 = 1'h1;
+      9'b001111111:
+        casez_tmp_90 = 1'h1;
+      9'b010000000:
+        casez_tmp_90 = 1'h0;
+      9'b010000001:
+        casez_tmp_90 = 1'h0;
+      9'b010000010:
+        casez_tmp_90 = 1'h0;
+      9'b010000011:
+        casez_tmp_90 = 1'h0;
+      9'b010000100:
+        casez_tmp_90 = 1'h0;
+      9'b010000101:
+        casez_tmp_90 = 1'h0;
+      9'b010000110:
+        casez_tmp_90 = 1'h0;
+      9'b010000111:
+        casez_tmp_90 = 1'h1;
+      9'b010001000:
+        casez_tmp_90 = 1'h1;
+      9'b010001001:
+        casez_tmp_90 = 1'h1;
+      9'b010001010:
+        casez_tmp_90 = 1'h1;
+      9'b010001011:
+        casez_tmp_90 = 1'h1;
+      9'b010001100:
+        casez_tmp_90 = 1'h1;
+      9'b010001101:
+        casez_tmp_90 = 1'h1;
+      9'b010001110:
+        casez_tmp_90 = 1'h1;
+      9'b010001111:
+        casez_tmp_90 = 1'h1;
+      9'b010010000:
+        casez_tmp_90 = 1'h1;
+      9'b010010001:
+        casez_tmp_90 = 1'h1;
+      9'b010010010:
+        casez_tmp_90 = 1'h1;
+      9'b010010011:
+        casez_tmp_90 = 1'h1;
+      9'b010010100:
+        casez_tmp_90 = 1'h1;
+      9'b010010101:
+        casez_tmp_90 = 1'h1;
+      9'b010010110:
+        casez_tmp_90 = 1'h1;
+      9'b010010111:
+        casez_tmp_90 = 1'h1;
+      9'b010011000:
+        casez_tmp_90 = 1'h1;
+      9'b010011001:
+        casez_tmp_90 = 1'h1;
+      9'b010011010:
+        casez_tmp_90 = 1'h1;
+      9'b010011011:
+        casez_tmp_90 = 1'h1;
+      9'b010011100:
+        casez_tmp_90 = 1'h1;
+      9'b010011101:
+        casez_tmp_90 = 1'h1;
+      9'b010011110:
+        casez_tmp_90 = 1'h1;
+      9'b010011111:
+        casez_tmp_90 = 1'h1;
+      9'b010100000:
+        casez_tmp_90 = 1'h0;
+      9'b010100001:
+        casez_tmp_90 = 1'h0;
+      9'b010100010:
+        casez_tmp_90 = 1'h0;
+      9'b010100011:
+        casez_tmp_90 = 1'h0;
+      9'b010100100:
+        casez_tmp_90 = 1'h0;
+      9'b010100101:
+        casez_tmp_90 = 1'h0;
+      9'b010100110:
+        casez_tmp_90 = 1'h1;
+      9'b010100111:
+        casez_tmp_90 = 1'h1;
+      9'b010101000:
+        casez_tmp_90 = 1'h1;
+      9'b010101001:
+        casez_tmp_90 = 1'h1;
+      9'b010101010:
+        casez_tmp_90 = 1'h1;
+      9'b010101011:
+        casez_tmp_90 = 1'h1;
+      9'b010101100:
+        casez_tmp_90 = 1'h1;
+      9'b010101101:
+        casez_tmp_90 = 1'h1;
+      9'b010101110:
+        casez_tmp_90 = 1'h1;
+      9'b010101111:
+        casez_tmp_90 = 1'h1;
+      9'b010110000:
+        casez_tmp_90 = 1'h1;
+      9'b010110001:
+        casez_tmp_90 = 1'h1;
+      9'b010110010:
+        casez_tmp_90 = 1'h1;
+      9'b010110011:
+        casez_tmp_90 = 1'h1;
+      9'b010110100:
+        casez_tmp_90 = 1'h1;
+      9'b010110101:
+        casez_tmp_90 = 1'h1;
+      9'b010110110:
+        casez_tmp_90 = 1'h1;
+      9'b010110111:
+        casez_tmp_90 = 1'h1;
+      9'b010111000:
+        casez_tmp_90 = 1'h1;
+      9'b010111001:
+        casez_tmp_90 = 1'h1;
+      9'b010111010:
+        casez_tmp_90 = 1'h1;
+      9'b010111011:
+        casez_tmp_90 = 1'h1;
+      9'b010111100:
+        casez_tmp_90 = 1'h1;
+      9'b010111101:
+        casez_tmp_90 = 1'h1;
+      9'b010111110:
+        casez_tmp_90 = 1'h1;
+      9'b010111111:
+        casez_tmp_90 = 1'h1;
+      9'b011000000:
+        casez_tmp_90 = 1'h0;
+      9'b011000001:
+        casez_tmp_90 = 1'h0;
+      9'b011000010:
+        casez_tmp_90 = 1'h0;
+      9'b011000011:
+        casez_tmp_90 = 1'h0;
+      9'b011000100:
+        casez_tmp_90 = 1'h0;
+      9'b011000101:
+        casez_tmp_90 = 1'h1;
+      9'b011000110:
+        casez_tmp_90 = 1'h1;
+      9'b011000111:
+        casez_tmp_90 = 1'h1;
+      9'b011001000:
+        casez_tmp_90 = 1'h1;
+      9'b011001001:
+        casez_tmp_90 = 1'h1;
+      9'b011001010:
+        casez_tmp_90 = 1'h1;
+      9'b011001011:
+        casez_tmp_90 = 1'h1;
+      9'b011001100:
+        casez_tmp_90 = 1'h1;
+      9'b011001101:
+        casez_tmp_90 = 1'h1;
+      9'b011001110:
+        casez_tmp_90 = 1'h1;
+      9'b011001111:
+        casez_tmp_90 = 1'h1;
+      9'b011010000:
+        casez_tmp_90 = 1'h1;
+      9'b011010001:
+        casez_tmp_90 = 1'h1;
+      9'b011010010:
+        casez_tmp_90 = 1'h1;
+      9'b011010011:
+        casez_tmp_90 = 1'h1;
+      9'b011010100:
+        casez_tmp_90 = 1'h1;
+      9'b011010101:
+        casez_tmp_90 = 1'h1;
+      9'b011010110:
+        casez_tmp_90 = 1'h1;
+      9'b011010111:
+        casez_tmp_90 = 1'h1;
+      9'b011011000:
+        casez_tmp_90 = 1'h1;
+      9'b011011001:
+        casez_tmp_90 = 1'h1;
+      9'b011011010:
+        casez_tmp_90 = 1'h1;
+      9'b011011011:
+        casez_tmp_90 = 1'h1;
+      9'b011011100:
+        casez_tmp_90 = 1'h1;
+      9'b011011101:
+        casez_tmp_90 = 1'h1;
+      9'b011011110:
+        casez_tmp_90 = 1'h1;
+      9'b011011111:
+        casez_tmp_90 = 1'h1;
+      9'b011100000:
+        casez_tmp_90 = 1'h0;
+      9'b011100001:
+        casez_tmp_90 = 1'h0;
+      9'b011100010:
+        casez_tmp_90 = 1'h0;
+      9'b011100011:
+        casez_tmp_90 = 1'h0;
+      9'b011100100:
+        casez_tmp_90 = 1'h1;
+      9'b011100101:
+        casez_tmp_90 = 1'h1;
+      9'b011100110:
+        casez_tmp_90 = 1'h1;
+      9'b011100111:
+        casez_tmp_90 = 1'h1;
+      9'b011101000:
+        casez_tmp_90 = 1'h1;
+      9'b011101001:
+        casez_tmp_90 = 1'h1;
+      9'b011101010:
+        casez_tmp_90 = 1'h1;
+      9'b011101011:
+        casez_tmp_90 = 1'h1;
+      9'b011101100:
+        casez_tmp_90 = 1'h1;
+      9'b011101101:
+        casez_tmp_90 = 1'h1;
+      9'b011101110:
+        casez_tmp_90 = 1'h1;
+      9'b011101111:
+        casez_tmp_90 = 1'h1;
+      9'b011110000:
+        casez_tmp_90 = 1'h1;
+      9'b011110001:
+        casez_tmp_90 = 1'h1;
+      9'b011110010:
+        casez_tmp_90 = 1'h1;
+      9'b011110011:
+        casez_tmp_90 = 1'h1;
+      9'b011110100:
+        casez_tmp_90 = 1'h1;
+      9'b011110101:
+        casez_tmp_90 = 1'h1;
+      9'b011110110:
+        casez_tmp_90 = 1'h1;
+      9'b011110111:
+        casez_tmp_90 = 1'h1;
+      9'b011111000:
+        casez_tmp_90 = 1'h1;
+      9'b011111001:
+        casez_tmp_90 = 1'h1;
+      9'b011111010:
+        casez_tmp_90 = 1'h1;
+      9'b011111011:
+        casez_tmp_90 = 1'h1;
+      9'b011111100:
+        casez_tmp_90 = 1'h1;
+      9'b011111101:
+        casez_tmp_90 = 1'h1;
+      9'b011111110:
+        casez_tmp_90 = 1'h1;
+      9'b011111111:
+        casez_tmp_90 = 1'h1;
+      9'b100000000:
+        casez_tmp_90 = 1'h0;
+      9'b100000001:
+        casez_tmp_90 = 1'h0;
+      9'b100000010:
+        casez_tmp_90 = 1'h0;
+      9'b100000011:
+        casez_tmp_90 = 1'h1;
+      9'b100000100:
+        casez_tmp_90 = 1'h1;
+      9'b100000101:
+        casez_tmp_90 = 1'h1;
+      9'b100000110:
+        casez_tmp_90 = 1'h1;
+      9'b100000111:
+        casez_tmp_90 = 1'h1;
+      9'b100001000:
+        casez_tmp_90 = 1'h1;
+      9'b100001001:
+        casez_tmp_90 = 1'h1;
+      9'b100001010:
+        casez_tmp_90 = 1'h1;
+      9'b100001011:
+        casez_tmp_90 = 1'h1;
+      9'b100001100:
+        casez_tmp_90 = 1'h1;
+      9'b100001101:
+        casez_tmp_90 = 1'h1;
+      9'b100001110:
+        casez_tmp_90 = 1'h1;
+      9'b100001111:
+        casez_tmp_90 = 1'h1;
+      9'b100010000:
+        casez_tmp_90 = 1'h1;
+      9'b100010001:
+        casez_tmp_90 = 1'h1;
+      9'b100010010:
+        casez_tmp_90 = 1'h1;
+      9'b100010011:
+        casez_tmp_90 = 1'h1;
+      9'b100010100:
+        casez_tmp_90 = 1'h1;
+      9'b100010101:
+        casez_tmp_90 = 1'h1;
+      9'b100010110:
+        casez_tmp_90 = 1'h1;
+      9'b100010111:
+        casez_tmp_90 = 1'h1;
+      9'b100011000:
+        casez_tmp_90 = 1'h1;
+      9'b100011001:
+        casez_tmp_90 = 1'h1;
+      9'b100011010:
+        casez_tmp_90 = 1'h1;
+      9'b100011011:
+        casez_tmp_90 = 1'h1;
+      9'b100011100:
+        casez_tmp_90 = 1'h1;
+      9'b100011101:
+        casez_tmp_90 = 1'h1;
+      9'b100011110:
+        casez_tmp_90 = 1'h1;
+      9'b100011111:
+        casez_tmp_90 = 1'h1;
+      9'b100100000:
+        casez_tmp_90 = 1'h0;
+      9'b100100001:
+        casez_tmp_90 = 1'h0;
+      9'b100100010:
+        casez_tmp_90 = 1'h1;
+      9'b100100011:
+        casez_tmp_90 = 1'h1;
+      9'b100100100:
+        casez_tmp_90 = 1'h1;
+      9'b100100101:
+        casez_tmp_90 = 1'h1;
+      9'b100100110:
+        casez_tmp_90 = 1'h1;
+      9'b100100111:
+        casez_tmp_90 = 1'h1;
+      9'b100101000:
+        casez_tmp_90 = 1'h1;
+      9'b100101001:
+        casez_tmp_90 = 1'h1;
+      9'b100101010:
+        casez_tmp_90 = 1'h1;
+      9'b100101011:
+        casez_tmp_90 = 1'h1;
+      9'b100101100:
+        casez_tmp_90 = 1'h1;
+      9'b100101101:
+        casez_tmp_90 = 1'h1;
+      9'b100101110:
+        casez_tmp_90 = 1'h1;
+      9'b100101111:
+        casez_tmp_90 = 1'h1;
+      9'b100110000:
+        casez_tmp_90 = 1'h1;
+      9'b100110001:
+        casez_tmp_90 = 1'h1;
+      9'b100110010:
+        casez_tmp_90 = 1'h1;
+      9'b100110011:
+        casez_tmp_90 = 1'h1;
+      9'b100110100:
+        casez_tmp_90 = 1'h1;
+      9'b100110101:
+        casez_tmp_90 = 1'h1;
+      9'b100110110:
+        casez_tmp_90 = 1'h1;
+      9'b100110111:
+        casez_tmp_90 = 1'h1;
+      9'b100111000:
+        casez_tmp_90 = 1'h1;
+      9'b100111001:
+        casez_tmp_90 = 1'h1;
+      9'b100111010:
+        casez_tmp_90 = 1'h1;
+      9'b100111011:
+        casez_tmp_90 = 1'h1;
+      9'b100111100:
+        casez_tmp_90 = 1'h1;
+      9'b100111101:
+        casez_tmp_90 = 1'h1;
+      9'b100111110:
+        casez_tmp_90 = 1'h1;
+      9'b100111111:
+        casez_tmp_90 = 1'h1;
+      9'b101000000:
+        casez_tmp_90 = 1'h0;
+      9'b101000001:
+        casez_tmp_90 = 1'h1;
+      9'b101000010:
+        casez_tmp_90 = 1'h1;
+      9'b101000011:
+        casez_tmp_90 = 1'h1;
+      9'b101000100:
+        casez_tmp_90 = 1'h1;
+      9'b101000101:
+        casez_tmp_90 = 1'h1;
+      9'b101000110:
+        casez_tmp_90 = 1'h1;
+      9'b101000111:
+        casez_tmp_90 = 1'h1;
+      9'b101001000:
+        casez_tmp_90 = 1'h1;
+      9'b101001001:
+        casez_tmp_90 = 1'h1;
+      9'b101001010:
+        casez_tmp_90 = 1'h1;
+      9'b101001011:
+        casez_tmp_90 = 1'h1;
+      9'b101001100:
+        casez_tmp_90 = 1'h1;
+      9'b101001101:
+        casez_tmp_90 = 1'h1;
+      9'b101001110:
+        casez_tmp_90 = 1'h1;
+      9'b101001111:
+        casez_tmp_90 = 1'h1;
+      9'b101010000:
+        casez_tmp_90 = 1'h1;
+      9'b101010001:
+        casez_tmp_90 = 1'h1;
+      9'b101010010:
+        casez_tmp_90 = 1'h1;
+      9'b101010011:
+        casez_tmp_90 = 1'h1;
+      9'b101010100:
+        casez_tmp_90 = 1'h1;
+      9'b101010101:
+        casez_tmp_90 = 1'h1;
+      9'b101010110:
+        casez_tmp_90 = 1'h1;
+      9'b101010111:
+        casez_tmp_90 = 1'h1;
+      9'b101011000:
+        casez_tmp_90 = 1'h1;
+      9'b101011001:
+        casez_tmp_90 = 1'h1;
+      9'b101011010:
+        casez_tmp_90 = 1'h1;
+      9'b101011011:
+        casez_tmp_90 = 1'h1;
+      9'b101011100:
+        casez_tmp_90 = 1'h1;
+      9'b101011101:
+        casez_tmp_90 = 1'h1;
+      9'b101011110:
+        casez_tmp_90 = 1'h1;
+      9'b101011111:
+        casez_tmp_90 = 1'h1;
+      9'b101100000:
+        casez_tmp_90 = 1'h0;
+      9'b101100001:
+        casez_tmp_90 = 1'h0;
+      9'b101100010:
+        casez_tmp_90 = 1'h0;
+      9'b101100011:
+        casez_tmp_90 = 1'h0;
+      9'b101100100:
+        casez_tmp_90 = 1'h0;
+      9'b101100101:
+        casez_tmp_90 = 1'h0;
+      9'b101100110:
+        casez_tmp_90 = 1'h0;
+      9'b101100111:
+        casez_tmp_90 = 1'h0;
+      9'b101101000:
+        casez_tmp_90 = 1'h0;
+      9'b101101001:
+        casez_tmp_90 = 1'h0;
+      9'b101101010:
+        casez_tmp_90 = 1'h0;
+      9'b101101011:
+        casez_tmp_90 = 1'h0;
+      9'b101101100:
+        casez_tmp_90 = 1'h0;
+      9'b101101101:
+        casez_tmp_90 = 1'h0;
+      9'b101101110:
+        casez_tmp_90 = 1'h0;
+      9'b101101111:
+        casez_tmp_90 = 1'h0;
+      9'b101110000:
+        casez_tmp_90 = 1'h1;
+      9'b101110001:
+        casez_tmp_90 = 1'h1;
+      9'b101110010:
+        casez_tmp_90 = 1'h1;
+      9'b101110011:
+        casez_tmp_90 = 1'h1;
+      9'b101110100:
+        casez_tmp_90 = 1'h1;
+      9'b101110101:
+        casez_tmp_90 = 1'h1;
+      9'b101110110:
+        casez_tmp_90 = 1'h1;
+      9'b101110111:
+        casez_tmp_90 = 1'h1;
+      9'b101111000:
+        casez_tmp_90 = 1'h1;
+      9'b101111001:
+        casez_tmp_90 = 1'h1;
+      9'b101111010:
+        casez_tmp_90 = 1'h1;
+      9'b101111011:
+        casez_tmp_90 = 1'h1;
+      9'b101111100:
+        casez_tmp_90 = 1'h1;
+      9'b101111101:
+        casez_tmp_90 = 1'h1;
+      9'b101111110:
+        casez_tmp_90 = 1'h1;
+      9'b101111111:
+        casez_tmp_90 = 1'h1;
+      9'b110000000:
+        casez_tmp_90 = 1'h0;
+      9'b110000001:
+        casez_tmp_90 = 1'h0;
+      9'b110000010:
+        casez_tmp_90 = 1'h0;
+      9'b110000011:
+        casez_tmp_90 = 1'h0;
+      9'b110000100:
+        casez_tmp_90 = 1'h0;
+      9'b110000101:
+        casez_tmp_90 = 1'h0;
+      9'b110000110:
+        casez_tmp_90 = 1'h0;
+      9'b110000111:
+        casez_tmp_90 = 1'h0;
+      9'b110001000:
+        casez_tmp_90 = 1'h0;
+      9'b110001001:
+        casez_tmp_90 = 1'h0;
+      9'b110001010:
+        casez_tmp_90 = 1'h0;
+      9'b110001011:
+        casez_tmp_90 = 1'h0;
+      9'b110001100:
+        casez_tmp_90 = 1'h0;
+      9'b110001101:
+        casez_tmp_90 = 1'h0;
+      9'b110001110:
+        casez_tmp_90 = 1'h0;
+      9'b110001111:
+        casez_tmp_90 = 1'h1;
+      9'b110010000:
+        casez_tmp_90 = 1'h1;
+      9'b110010001:
+        casez_tmp_90 = 1'h1;
+      9'b110010010:
+        casez_tmp_90 = 1'h1;
+      9'b110010011:
+        casez_tmp_90 = 1'h1;
+      9'b110010100:
+        casez_tmp_90 = 1'h1;
+      9'b110010101:
+        casez_tmp_90 = 1'h1;
+      9'b110010110:
+        casez_tmp_90 = 1'h1;
+      9'b110010111:
+        casez_tmp_90 = 1'h1;
+      9'b110011000:
+        casez_tmp_90 = 1'h1;
+      9'b110011001:
+        casez_tmp_90 = 1'h1;
+      9'b110011010:
+        casez_tmp_90 = 1'h1;
+      9'b110011011:
+        casez_tmp_90 = 1'h1;
+      9'b110011100:
+        casez_tmp_90 = 1'h1;
+      9'b110011101:
+        casez_tmp_90 = 1'h1;
+      9'b110011110:
+        casez_tmp_90 = 1'h1;
+      9'b110011111:
+        casez_tmp_90 = 1'h1;
+      9'b110100000:
+        casez_tmp_90 = 1'h0;
+      9'b110100001:
+        casez_tmp_90 = 1'h0;
+      9'b110100010:
+        casez_tmp_90 = 1'h0;
+      9'b110100011:
+        casez_tmp_90 = 1'h0;
+      9'b110100100:
+        casez_tmp_90 = 1'h0;
+      9'b110100101:
+        casez_tmp_90 = 1'h0;
+      9'b110100110:
+        casez_tmp_90 = 1'h0;
+      9'b110100111:
+        casez_tmp_90 = 1'h0;
+      9'b110101000:
+        casez_tmp_90 = 1'h0;
+      9'b110101001:
+        casez_tmp_90 = 1'h0;
+      9'b110101010:
+        casez_tmp_90 = 1'h0;
+      9'b110101011:
+        casez_tmp_90 = 1'h0;
+      9'b110101100:
+        casez_tmp_90 = 1'h0;
+      9'b110101101:
+        casez_tmp_90 = 1'h0;
+      9'b110101110:
+        casez_tmp_90 = 1'h1;
+      9'b110101111:
+        casez_tmp_90 = 1'h1;
+      9'b110110000:
+        casez_tmp_90 = 1'h1;
+      9'b110110001:
+        casez_tmp_90 = 1'h1;
+      9'b110110010:
+        casez_tmp_90 = 1'h1;
+      9'b110110011:
+        casez_tmp_90 = 1'h1;
+      9'b110110100:
+        casez_tmp_90 = 1'h1;
+      9'b110110101:
+        casez_tmp_90 = 1'h1;
+      9'b110110110:
+        casez_tmp_90 = 1'h1;
+      9'b110110111:
+        casez_tmp_90 = 1'h1;
+      9'b110111000:
+        casez_tmp_90 = 1'h1;
+      9'b110111001:
+        casez_tmp_90 = 1'h1;
+      9'b110111010:
+        casez_tmp_90 = 1'h1;
+      9'b110111011:
+        casez_tmp_90 = 1'h1;
+      9'b110111100:
+        casez_tmp_90 = 1'h1;
+      9'b110111101:
+        casez_tmp_90 = 1'h1;
+      9'b110111110:
+        casez_tmp_90 = 1'h1;
+      9'b110111111:
+        casez_tmp_90 = 1'h1;
+      9'b111000000:
+        casez_tmp_90 = 1'h0;
+      9'b111000001:
+        casez_tmp_90 = 1'h0;
+      9'b111000010:
+        casez_tmp_90 = 1'h0;
+      9'b111000011:
+        casez_tmp_90 = 1'h0;
+      9'b111000100:
+        casez_tmp_90 = 1'h0;
+      9'b111000101:
+        casez_tmp_90 = 1'h0;
+      9'b111000110:
+        casez_tmp_90 = 1'h0;
+      9'b111000111:
+        casez_tmp_90 = 1'h0;
+      9'b111001000:
+        casez_tmp_90 = 1'h0;
+      9'b111001001:
+        casez_tmp_90 = 1'h0;
+      9'b111001010:
+        casez_tmp_90 = 1'h0;
+      9'b111001011:
+        casez_tmp_90 = 1'h0;
+      9'b111001100:
+        casez_tmp_90 = 1'h0;
+      9'b111001101:
+        casez_tmp_90 = 1'h1;
+      9'b111001110:
+        casez_tmp_90 = 1'h1;
+      9'b111001111:
+        casez_tmp_90 = 1'h1;
+      9'b111010000:
+        casez_tmp_90 = 1'h1;
+      9'b111010001:
+        casez_tmp_90 = 1'h1;
+      9'b111010010:
+        casez_tmp_90 = 1'h1;
+      9'b111010011:
+        casez_tmp_90 = 1'h1;
+      9'b111010100:
+        casez_tmp_90 = 1'h1;
+      9'b111010101:
+        casez_tmp_90 = 1'h1;
+      9'b111010110:
+        casez_tmp_90 = 1'h1;
+      9'b111010111:
+        casez_tmp_90 = 1'h1;
+      9'b111011000:
+        casez_tmp_90 = 1'h1;
+      9'b111011001:
+        casez_tmp_90 = 1'h1;
+      9'b111011010:
+        casez_tmp_90 = 1'h1;
+      9'b111011011:
+        casez_tmp_90 = 1'h1;
+      9'b111011100:
+        casez_tmp_90 = 1'h1;
+      9'b111011101:
+        casez_tmp_90 = 1'h1;
+      9'b111011110:
+        casez_tmp_90 = 1'h1;
+      9'b111011111:
+        casez_tmp_90 = 1'h1;
+      9'b111100000:
+        casez_tmp_90 = 1'h0;
+      9'b111100001:
+        casez_tmp_90 = 1'h0;
+      9'b111100010:
+        casez_tmp_90 = 1'h0;
+      9'b111100011:
+        casez_tmp_90 = 1'h0;
+      9'b111100100:
+        casez_tmp_90 = 1'h0;
+      9'b111100101:
+        casez_tmp_90 = 1'h0;
+      9'b111100110:
+        casez_tmp_90 = 1'h0;
+      9'b111100111:
+        casez_tmp_90 = 1'h0;
+      9'b111101000:
+        casez_tmp_90 = 1'h0;
+      9'b111101001:
+        casez_tmp_90 = 1'h0;
+      9'b111101010:
+        casez_tmp_90 = 1'h0;
+      9'b111101011:
+        casez_tmp_90 = 1'h0;
+      9'b111101100:
+        casez_tmp_90 = 1'h1;
+      9'b111101101:
+        casez_tmp_90 = 1'h1;
+      9'b111101110:
+        casez_tmp_90 = 1'h1;
+      9'b111101111:
+        casez_tmp_90 = 1'h1;
+      9'b111110000:
+        casez_tmp_90 = 1'h1;
+      9'b111110001:
+        casez_tmp_90 = 1'h1;
+      9'b111110010:
+        casez_tmp_90 = 1'h1;
+      9'b111110011:
+        casez_tmp_90 = 1'h1;
+      9'b111110100:
+        casez_tmp_90 = 1'h1;
+      9'b111110101:
+        casez_tmp_90 = 1'h1;
+      9'b111110110:
+        casez_tmp_90 = 1'h1;
+      9'b111110111:
+        casez_tmp_90 = 1'h1;
+      9'b111111000:
+        casez_tmp_90 = 1'h1;
+      9'b111111001:
+        casez_tmp_90 = 1'h1;
+      9'b111111010:
+        casez_tmp_90 = 1'h1;
+      9'b111111011:
+        casez_tmp_90 = 1'h1;
+      9'b111111100:
+        casez_tmp_90 = 1'h1;
+      9'b111111101:
+        casez_tmp_90 = 1'h1;
+      9'b111111110:
+        casez_tmp_90 = 1'h1;
+      default:
+        casez_tmp_90 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_91;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_91 = 1'h0;
+      9'b000000001:
+        casez_tmp_91 = 1'h0;
+      9'b000000010:
+        casez_tmp_91 = 1'h0;
+      9'b000000011:
+        casez_tmp_91 = 1'h0;
+      9'b000000100:
+        casez_tmp_91 = 1'h0;
+      9'b000000101:
+        casez_tmp_91 = 1'h0;
+      9'b000000110:
+        casez_tmp_91 = 1'h0;
+      9'b000000111:
+        casez_tmp_91 = 1'h0;
+      9'b000001000:
+        casez_tmp_91 = 1'h0;
+      9'b000001001:
+        casez_tmp_91 = 1'h0;
+      9'b000001010:
+        casez_tmp_91 = 1'h0;
+      9'b000001011:
+        casez_tmp_91 = 1'h0;
+      9'b000001100:
+        casez_tmp_91 = 1'h1;
+      9'b000001101:
+        casez_tmp_91 = 1'h1;
+      9'b000001110:
+        casez_tmp_91 = 1'h1;
+      9'b000001111:
+        casez_tmp_91 = 1'h1;
+      9'b000010000:
+        casez_tmp_91 = 1'h1;
+      9'b000010001:
+        casez_tmp_91 = 1'h1;
+      9'b000010010:
+        casez_tmp_91 = 1'h1;
+      9'b000010011:
+        casez_tmp_91 = 1'h1;
+      9'b000010100:
+        casez_tmp_91 = 1'h1;
+      9'b000010101:
+        casez_tmp_91 = 1'h1;
+      9'b000010110:
+        casez_tmp_91 = 1'h1;
+      9'b000010111:
+        casez_tmp_91 = 1'h1;
+      9'b000011000:
+        casez_tmp_91 = 1'h1;
+      9'b000011001:
+        casez_tmp_91 = 1'h1;
+      9'b000011010:
+        casez_tmp_91 = 1'h1;
+      9'b000011011:
+        casez_tmp_91 = 1'h1;
+      9'b000011100:
+        casez_tmp_91 = 1'h1;
+      9'b000011101:
+        casez_tmp_91 = 1'h1;
+      9'b000011110:
+        casez_tmp_91 = 1'h1;
+      9'b000011111:
+        casez_tmp_91 = 1'h1;
+      9'b000100000:
+        casez_tmp_91 = 1'h0;
+      9'b000100001:
+        casez_tmp_91 = 1'h0;
+      9'b000100010:
+        casez_tmp_91 = 1'h0;
+      9'b000100011:
+        casez_tmp_91 = 1'h0;
+      9'b000100100:
+        casez_tmp_91 = 1'h0;
+      9'b000100101:
+        casez_tmp_91 = 1'h0;
+      9'b000100110:
+        casez_tmp_91 = 1'h0;
+      9'b000100111:
+        casez_tmp_91 = 1'h0;
+      9'b000101000:
+        casez_tmp_91 = 1'h0;
+      9'b000101001:
+        casez_tmp_91 = 1'h0;
+      9'b000101010:
+        casez_tmp_91 = 1'h0;
+      9'b000101011:
+        casez_tmp_91 = 1'h1;
+      9'b000101100:
+        casez_tmp_91 = 1'h1;
+      9'b000101101:
+        casez_tmp_91 = 1'h1;
+      9'b000101110:
+        casez_tmp_91 = 1'h1;
+      9'b000101111:
+        casez_tmp_91 = 1'h1;
+      9'b000110000:
+        casez_tmp_91 = 1'h1;
+      9'b000110001:
+        casez_tmp_91 = 1'h1;
+      9'b000110010:
+        casez_tmp_91 = 1'h1;
+      9'b000110011:
+        casez_tmp_91 = 1'h1;
+      9'b000110100:
+        casez_tmp_91 = 1'h1;
+      9'b000110101:
+        casez_tmp_91 = 1'h1;
+      9'b000110110:
+        casez_tmp_91 = 1'h1;
+      9'b000110111:
+        casez_tmp_91 = 1'h1;
+      9'b000111000:
+        casez_tmp_91 = 1'h1;
+      9'b000111001:
+        casez_tmp_91 = 1'h1;
+      9'b000111010:
+        casez_tmp_91 = 1'h1;
+      9'b000111011:
+        casez_tmp_91 = 1'h1;
+      9'b000111100:
+        casez_tmp_91 = 1'h1;
+      9'b000111101:
+        casez_tmp_91 = 1'h1;
+      9'b000111110:
+        casez_tmp_91 = 1'h1;
+      9'b000111111:
+        casez_tmp_91 = 1'h1;
+      9'b001000000:
+        casez_tmp_91 = 1'h0;
+      9'b001000001:
+        casez_tmp_91 = 1'h0;
+      9'b001000010:
+        casez_tmp_91 = 1'h0;
+      9'b001000011:
+        casez_tmp_91 = 1'h0;
+      9'b001000100:
+        casez_tmp_91 = 1'h0;
+      9'b001000101:
+        casez_tmp_91 = 1'h0;
+      9'b001000110:
+        casez_tmp_91 = 1'h0;
+      9'b001000111:
+        casez_tmp_91 = 1'h0;
+      9'b001001000:
+        casez_tmp_91 = 1'h0;
+      9'b001001001:
+        casez_tmp_91 = 1'h0;
+      9'b001001010:
+        casez_tmp_91 = 1'h1;
+      9'b001001011:
+        casez_tmp_91 = 1'h1;
+      9'b001001100:
+        casez_tmp_91 = 1'h1;
+      9'b001001101:
+        casez_tmp_91 = 1'h1;
+      9'b001001110:
+        casez_tmp_91 = 1'h1;
+      9'b001001111:
+        casez_tmp_91 = 1'h1;
+      9'b001010000:
+        casez_tmp_91 = 1'h1;
+      9'b001010001:
+        casez_tmp_91 = 1'h1;
+      9'b001010010:
+        casez_tmp_91 = 1'h1;
+      9'b001010011:
+        casez_tmp_91 = 1'h1;
+      9'b001010100:
+        casez_tmp_91 = 1'h1;
+      9'b001010101:
+        casez_tmp_91 = 1'h1;
+      9'b001010110:
+        casez_tmp_91 = 1'h1;
+      9'b001010111:
+        casez_tmp_91 = 1'h1;
+      9'b001011000:
+        casez_tmp_91 = 1'h1;
+      9'b001011001:
+        casez_tmp_91 = 1'h1;
+      9'b001011010:
+        casez_tmp_91 = 1'h1;
+      9'b001011011:
+        casez_tmp_91 = 1'h1;
+      9'b001011100:
+        casez_tmp_91 = 1'h1;
+      9'b001011101:
+        casez_tmp_91 = 1'h1;
+      9'b001011110:
+        casez_tmp_91 = 1'h1;
+      9'b001011111:
+        casez_tmp_91 = 1'h1;
+      9'b001100000:
+        casez_tmp_91 = 1'h0;
+      9'b001100001:
+        casez_tmp_91 = 1'h0;
+      9'b001100010:
+        casez_tmp_91 = 1'h0;
+      9'b001100011:
+        casez_tmp_91 = 1'h0;
+      9'b001100100:
+        casez_tmp_91 = 1'h0;
+      9'b001100101:
+        casez_tmp_91 = 1'h0;
+      9'b001100110:
+        casez_tmp_91 = 1'h0;
+      9'b001100111:
+        casez_tmp_91 = 1'h0;
+      9'b001101000:
+        casez_tmp_91 = 1'h0;
+      9'b001101001:
+        casez_tmp_91 = 1'h1;
+      9'b001101010:
+        casez_tmp_91 = 1'h1;
+      9'b001101011:
+        casez_tmp_91 = 1'h1;
+      9'b001101100:
+        casez_tmp_91 = 1'h1;
+      9'b001101101:
+        casez_tmp_91 = 1'h1;
+      9'b001101110:
+        casez_tmp_91 = 1'h1;
+      9'b001101111:
+        casez_tmp_91 = 1'h1;
+      9'b001110000:
+        casez_tmp_91 = 1'h1;
+      9'b001110001:
+        casez_tmp_91 = 1'h1;
+      9'b001110010:
+        casez_tmp_91 = 1'h1;
+      9'b001110011:
+        casez_tmp_91 = 1'h1;
+      9'b001110100:
+        casez_tmp_91 = 1'h1;
+      9'b001110101:
+        casez_tmp_91 = 1'h1;
+      9'b001110110:
+        casez_tmp_91 = 1'h1;
+      9'b001110111:
+        casez_tmp_91 = 1'h1;
+      9'b001111000:
+        casez_tmp_91 = 1'h1;
+      9'b001111001:
+        casez_tmp_91 = 1'h1;
+      9'b001111010:
+        casez_tmp_91 = 1'h1;
+      9'b001111011:
+        casez_tmp_91 = 1'h1;
+      9'b001111100:
+        casez_tmp_91 = 1'h1;
+      9'b001111101:
+        casez_tmp_91 = 1'h1;
+      9'b001111110:
+        casez_tmp_91 = 1'h1;
+      9'b001111111:
+        casez_tmp_91 = 1'h1;
+      9'b010000000:
+        casez_tmp_91 = 1'h0;
+      9'b010000001:
+        casez_tmp_91 = 1'h0;
+      9'b010000010:
+        casez_tmp_91 = 1'h0;
+      9'b010000011:
+        casez_tmp_91 = 1'h0;
+      9'b010000100:
+        casez_tmp_91 = 1'h0;
+      9'b010000101:
+        casez_tmp_91 = 1'h0;
+      9'b010000110:
+        casez_tmp_91 = 1'h0;
+      9'b010000111:
+        casez_tmp_91 = 1'h0;
+      9'b010001000:
+        casez_tmp_91 = 1'h1;
+      9'b010001001:
+        casez_tmp_91 = 1'h1;
+      9'b010001010:
+        casez_tmp_91 = 1'h1;
+      9'b010001011:
+        casez_tmp_91 = 1'h1;
+      9'b010001100:
+        casez_tmp_91 = 1'h1;
+      9'b010001101:
+        casez_tmp_91 = 1'h1;
+      9'b010001110:
+        casez_tmp_91 = 1'h1;
+      9'b010001111:
+        casez_tmp_91 = 1'h1;
+      9'b010010000:
+        casez_tmp_91 = 1'h1;
+      9'b010010001:
+        casez_tmp_91 = 1'h1;
+      9'b010010010:
+        casez_tmp_91 = 1'h1;
+      9'b010010011:
+        casez_tmp_91 = 1'h1;
+      9'b010010100:
+        casez_tmp_91 = 1'h1;
+      9'b010010101:
+        casez_tmp_91 = 1'h1;
+      9'b010010110:
+        casez_tmp_91 = 1'h1;
+      9'b010010111:
+        casez_tmp_91 = 1'h1;
+      9'b010011000:
+        casez_tmp_91 = 1'h1;
+      9'b010011001:
+        casez_tmp_91 = 1'h1;
+      9'b010011010:
+        casez_tmp_91 = 1'h1;
+      9'b010011011:
+        casez_tmp_91 = 1'h1;
+      9'b010011100:
+        casez_tmp_91 = 1'h1;
+      9'b010011101:
+        casez_tmp_91 = 1'h1;
+      9'b010011110:
+        casez_tmp_91 = 1'h1;
+      9'b010011111:
+        casez_tmp_91 = 1'h1;
+      9'b010100000:
+        casez_tmp_91 = 1'h0;
+      9'b010100001:
+        casez_tmp_91 = 1'h0;
+      9'b010100010:
+        casez_tmp_91 = 1'h0;
+      9'b010100011:
+        casez_tmp_91 = 1'h0;
+      9'b010100100:
+        casez_tmp_91 = 1'h0;
+      9'b010100101:
+        casez_tmp_91 = 1'h0;
+      9'b010100110:
+        casez_tmp_91 = 1'h0;
+      9'b010100111:
+        casez_tmp_91 = 1'h1;
+      9'b010101000:
+        casez_tmp_91 = 1'h1;
+      9'b010101001:
+        casez_tmp_91 = 1'h1;
+      9'b010101010:
+        casez_tmp_91 = 1'h1;
+      9'b010101011:
+        casez_tmp_91 = 1'h1;
+      9'b010101100:
+        casez_tmp_91 = 1'h1;
+      9'b010101101:
+        casez_tmp_91 = 1'h1;
+      9'b010101110:
+        casez_tmp_91 = 1'h1;
+      9'b010101111:
+        casez_tmp_91 = 1'h1;
+      9'b010110000:
+        casez_tmp_91 = 1'h1;
+      9'b010110001:
+        casez_tmp_91 = 1'h1;
+      9'b010110010:
+        casez_tmp_91 = 1'h1;
+      9'b010110011:
+        casez_tmp_91 = 1'h1;
+      9'b010110100:
+        casez_tmp_91 = 1'h1;
+      9'b010110101:
+        casez_tmp_91 = 1'h1;
+      9'b010110110:
+        casez_tmp_91 = 1'h1;
+      9'b010110111:
+        casez_tmp_91 = 1'h1;
+      9'b010111000:
+        casez_tmp_91 = 1'h1;
+      9'b010111001:
+        casez_tmp_91 = 1'h1;
+      9'b010111010:
+        casez_tmp_91 = 1'h1;
+      9'b010111011:
+        casez_tmp_91 = 1'h1;
+      9'b010111100:
+        casez_tmp_91 = 1'h1;
+      9'b010111101:
+        casez_tmp_91 = 1'h1;
+      9'b010111110:
+        casez_tmp_91 = 1'h1;
+      9'b010111111:
+        casez_tmp_91 = 1'h1;
+      9'b011000000:
+        casez_tmp_91 = 1'h0;
+      9'b011000001:
+        casez_tmp_91 = 1'h0;
+      9'b011000010:
+        casez_tmp_91 = 1'h0;
+      9'b011000011:
+        casez_tmp_91 = 1'h0;
+      9'b011000100:
+        casez_tmp_91 = 1'h0;
+      9'b011000101:
+        casez_tmp_91 = 1'h0;
+      9'b011000110:
+        casez_tmp_91 = 1'h1;
+      9'b011000111:
+        casez_tmp_91 = 1'h1;
+      9'b011001000:
+        casez_tmp_91 = 1'h1;
+      9'b011001001:
+        casez_tmp_91 = 1'h1;
+      9'b011001010:
+        casez_tmp_91 = 1'h1;
+      9'b011001011:
+        casez_tmp_91 = 1'h1;
+      9'b011001100:
+        casez_tmp_91 = 1'h1;
+      9'b011001101:
+        casez_tmp_91 = 1'h1;
+      9'b011001110:
+        casez_tmp_91 = 1'h1;
+      9'b011001111:
+        casez_tmp_91 = 1'h1;
+      9'b011010000:
+        casez_tmp_91 = 1'h1;
+      9'b011010001:
+        casez_tmp_91 = 1'h1;
+      9'b011010010:
+        casez_tmp_91 = 1'h1;
+      9'b011010011:
+        casez_tmp_91 = 1'h1;
+      9'b011010100:
+        casez_tmp_91 = 1'h1;
+      9'b011010101:
+        casez_tmp_91 = 1'h1;
+      9'b011010110:
+        casez_tmp_91 = 1'h1;
+      9'b011010111:
+        casez_tmp_91 = 1'h1;
+      9'b011011000:
+        casez_tmp_91 = 1'h1;
+      9'b011011001:
+        casez_tmp_91 = 1'h1;
+      9'b011011010:
+        casez_tmp_91 = 1'h1;
+      9'b011011011:
+        casez_tmp_91 = 1'h1;
+      9'b011011100:
+        casez_tmp_91 = 1'h1;
+      9'b011011101:
+        casez_tmp_91 = 1'h1;
+      9'b011011110:
+        casez_tmp_91 = 1'h1;
+      9'b011011111:
+        casez_tmp_91 = 1'h1;
+      9'b011100000:
+        casez_tmp_91 = 1'h0;
+      9'b011100001:
+        casez_tmp_91 = 1'h0;
+      9'b011100010:
+        casez_tmp_91 = 1'h0;
+      9'b011100011:
+        casez_tmp_91 = 1'h0;
+      9'b011100100:
+        casez_tmp_91 = 1'h0;
+      9'b011100101:
+        casez_tmp_91 = 1'h1;
+      9'b011100110:
+        casez_tmp_91 = 1'h1;
+      9'b011100111:
+        casez_tmp_91 = 1'h1;
+      9'b011101000:
+        casez_tmp_91 = 1'h1;
+      9'b011101001:
+        casez_tmp_91 = 1'h1;
+      9'b011101010:
+        casez_tmp_91 = 1'h1;
+      9'b011101011:
+        casez_tmp_91 = 1'h1;
+      9'b011101100:
+        casez_tmp_91 = 1'h1;
+      9'b011101101:
+        casez_tmp_91 = 1'h1;
+      9'b011101110:
+        casez_tmp_91 = 1'h1;
+      9'b011101111:
+        casez_tmp_91 = 1'h1;
+      9'b011110000:
+        casez_tmp_91 = 1'h1;
+      9'b011110001:
+        casez_tmp_91 = 1'h1;
+      9'b011110010:
+        casez_tmp_91 = 1'h1;
+      9'b011110011:
+        casez_tmp_91 = 1'h1;
+      9'b011110100:
+        casez_tmp_91 = 1'h1;
+      9'b011110101:
+        casez_tmp_91 = 1'h1;
+      9'b011110110:
+        casez_tmp_91 = 1'h1;
+      9'b011110111:
+        casez_tmp_91 = 1'h1;
+      9'b011111000:
+        casez_tmp_91 = 1'h1;
+      9'b011111001:
+        casez_tmp_91 = 1'h1;
+      9'b011111010:
+        casez_tmp_91 = 1'h1;
+      9'b011111011:
+        casez_tmp_91 = 1'h1;
+      9'b011111100:
+        casez_tmp_91 = 1'h1;
+      9'b011111101:
+        casez_tmp_91 = 1'h1;
+      9'b011111110:
+        casez_tmp_91 = 1'h1;
+      9'b011111111:
+        casez_tmp_91 = 1'h1;
+      9'b100000000:
+        casez_tmp_91 = 1'h0;
+      9'b100000001:
+        casez_tmp_91 = 1'h0;
+      9'b100000010:
+        casez_tmp_91 = 1'h0;
+      9'b100000011:
+        casez_tmp_91 = 1'h0;
+      9'b100000100:
+        casez_tmp_91 = 1'h1;
+      9'b100000101:
+        casez_tmp_91 = 1'h1;
+      9'b100000110:
+        casez_tmp_91 = 1'h1;
+      9'b100000111:
+        casez_tmp_91 = 1'h1;
+      9'b100001000:
+        casez_tmp_91 = 1'h1;
+      9'b100001001:
+        casez_tmp_91 = 1'h1;
+      9'b100001010:
+        casez_tmp_91 = 1'h1;
+      9'b100001011:
+        casez_tmp_91 = 1'h1;
+      9'b100001100:
+        casez_tmp_91 = 1'h1;
+      9'b100001101:
+        casez_tmp_91 = 1'h1;
+      9'b100001110:
+        casez_tmp_91 = 1'h1;
+      9'b100001111:
+        casez_tmp_91 = 1'h1;
+      9'b100010000:
+        casez_tmp_91 = 1'h1;
+      9'b100010001:
+        casez_tmp_91 = 1'h1;
+      9'b100010010:
+        casez_tmp_91 = 1'h1;
+      9'b100010011:
+        casez_tmp_91 = 1'h1;
+      9'b100010100:
+        casez_tmp_91 = 1'h1;
+      9'b100010101:
+        casez_tmp_91 = 1'h1;
+      9'b100010110:
+        casez_tmp_91 = 1'h1;
+      9'b100010111:
+        casez_tmp_91 = 1'h1;
+      9'b100011000:
+        casez_tmp_91 = 1'h1;
+      9'b100011001:
+        casez_tmp_91 = 1'h1;
+      9'b100011010:
+        casez_tmp_91 = 1'h1;
+      9'b100011011:
+        casez_tmp_91 = 1'h1;
+      9'b100011100:
+        casez_tmp_91 = 1'h1;
+      9'b100011101:
+        casez_tmp_91 = 1'h1;
+      9'b100011110:
+        casez_tmp_91 = 1'h1;
+      9'b100011111:
+        casez_tmp_91 = 1'h1;
+      9'b100100000:
+        casez_tmp_91 = 1'h0;
+      9'b100100001:
+        casez_tmp_91 = 1'h0;
+      9'b100100010:
+        casez_tmp_91 = 1'h0;
+      9'b100100011:
+        casez_tmp_91 = 1'h1;
+      9'b100100100:
+        casez_tmp_91 = 1'h1;
+      9'b100100101:
+        casez_tmp_91 = 1'h1;
+      9'b100100110:
+        casez_tmp_91 = 1'h1;
+      9'b100100111:
+        casez_tmp_91 = 1'h1;
+      9'b100101000:
+        casez_tmp_91 = 1'h1;
+      9'b100101001:
+        casez_tmp_91 = 1'h1;
+      9'b100101010:
+        casez_tmp_91 = 1'h1;
+      9'b100101011:
+        casez_tmp_91 = 1'h1;
+      9'b100101100:
+        casez_tmp_91 = 1'h1;
+      9'b100101101:
+        casez_tmp_91 = 1'h1;
+      9'b100101110:
+        casez_tmp_91 = 1'h1;
+      9'b100101111:
+        casez_tmp_91 = 1'h1;
+      9'b100110000:
+        casez_tmp_91 = 1'h1;
+      9'b100110001:
+        casez_tmp_91 = 1'h1;
+      9'b100110010:
+        casez_tmp_91 = 1'h1;
+      9'b100110011:
+        casez_tmp_91 = 1'h1;
+      9'b100110100:
+        casez_tmp_91 = 1'h1;
+      9'b100110101:
+        casez_tmp_91 = 1'h1;
+      9'b100110110:
+        casez_tmp_91 = 1'h1;
+      9'b100110111:
+        casez_tmp_91 = 1'h1;
+      9'b100111000:
+        casez_tmp_91 = 1'h1;
+      9'b100111001:
+        casez_tmp_91 = 1'h1;
+      9'b100111010:
+        casez_tmp_91 = 1'h1;
+      9'b100111011:
+        casez_tmp_91 = 1'h1;
+      9'b100111100:
+        casez_tmp_91 = 1'h1;
+      9'b100111101:
+        casez_tmp_91 = 1'h1;
+      9'b100111110:
+        casez_tmp_91 = 1'h1;
+      9'b100111111:
+        casez_tmp_91 = 1'h1;
+      9'b101000000:
+        casez_tmp_91 = 1'h0;
+      9'b101000001:
+        casez_tmp_91 = 1'h0;
+      9'b101000010:
+        casez_tmp_91 = 1'h1;
+      9'b101000011:
+        casez_tmp_91 = 1'h1;
+      9'b101000100:
+        casez_tmp_91 = 1'h1;
+      9'b101000101:
+        casez_tmp_91 = 1'h1;
+      9'b101000110:
+        casez_tmp_91 = 1'h1;
+      9'b101000111:
+        casez_tmp_91 = 1'h1;
+      9'b101001000:
+        casez_tmp_91 = 1'h1;
+      9'b101001001:
+        casez_tmp_91 = 1'h1;
+      9'b101001010:
+        casez_tmp_91 = 1'h1;
+      9'b101001011:
+        casez_tmp_91 = 1'h1;
+      9'b101001100:
+        casez_tmp_91 = 1'h1;
+      9'b101001101:
+        casez_tmp_91 = 1'h1;
+      9'b101001110:
+        casez_tmp_91 = 1'h1;
+      9'b101001111:
+        casez_tmp_91 = 1'h1;
+      9'b101010000:
+        casez_tmp_91 = 1'h1;
+      9'b101010001:
+        casez_tmp_91 = 1'h1;
+      9'b101010010:
+        casez_tmp_91 = 1'h1;
+      9'b101010011:
+        casez_tmp_91 = 1'h1;
+      9'b101010100:
+        casez_tmp_91 = 1'h1;
+      9'b101010101:
+        casez_tmp_91 = 1'h1;
+      9'b101010110:
+        casez_tmp_91 = 1'h1;
+      9'b101010111:
+        casez_tmp_91 = 1'h1;
+      9'b101011000:
+        casez_tmp_91 = 1'h1;
+      9'b101011001:
+        casez_tmp_91 = 1'h1;
+      9'b101011010:
+        casez_tmp_91 = 1'h1;
+      9'b101011011:
+        casez_tmp_91 = 1'h1;
+      9'b101011100:
+        casez_tmp_91 = 1'h1;
+      9'b101011101:
+        casez_tmp_91 = 1'h1;
+      9'b101011110:
+        casez_tmp_91 = 1'h1;
+      9'b101011111:
+        casez_tmp_91 = 1'h1;
+      9'b101100000:
+        casez_tmp_91 = 1'h0;
+      9'b101100001:
+        casez_tmp_91 = 1'h1;
+      9'b101100010:
+        casez_tmp_91 = 1'h1;
+      9'b101100011:
+        casez_tmp_91 = 1'h1;
+      9'b101100100:
+        casez_tmp_91 = 1'h1;
+      9'b101100101:
+        casez_tmp_91 = 1'h1;
+      9'b101100110:
+        casez_tmp_91 = 1'h1;
+      9'b101100111:
+        casez_tmp_91 = 1'h1;
+      9'b101101000:
+        casez_tmp_91 = 1'h1;
+      9'b101101001:
+        casez_tmp_91 = 1'h1;
+      9'b101101010:
+        casez_tmp_91 = 1'h1;
+      9'b101101011:
+        casez_tmp_91 = 1'h1;
+      9'b101101100:
+        casez_tmp_91 = 1'h1;
+      9'b101101101:
+        casez_tmp_91 = 1'h1;
+      9'b101101110:
+        casez_tmp_91 = 1'h1;
+      9'b101101111:
+        casez_tmp_91 = 1'h1;
+      9'b101110000:
+        casez_tmp_91 = 1'h1;
+      9'b101110001:
+        casez_tmp_91 = 1'h1;
+      9'b101110010:
+        casez_tmp_91 = 1'h1;
+      9'b101110011:
+        casez_tmp_91 = 1'h1;
+      9'b101110100:
+        casez_tmp_91 = 1'h1;
+      9'b101110101:
+        casez_tmp_91 = 1'h1;
+      9'b101110110:
+        casez_tmp_91 = 1'h1;
+      9'b101110111:
+        casez_tmp_91 = 1'h1;
+      9'b101111000:
+        casez_tmp_91 = 1'h1;
+      9'b101111001:
+        casez_tmp_91 = 1'h1;
+      9'b101111010:
+        casez_tmp_91 = 1'h1;
+      9'b101111011:
+        casez_tmp_91 = 1'h1;
+      9'b101111100:
+        casez_tmp_91 = 1'h1;
+      9'b101111101:
+        casez_tmp_91 = 1'h1;
+      9'b101111110:
+        casez_tmp_91 = 1'h1;
+      9'b101111111:
+        casez_tmp_91 = 1'h1;
+      9'b110000000:
+        casez_tmp_91 = 1'h0;
+      9'b110000001:
+        casez_tmp_91 = 1'h0;
+      9'b110000010:
+        casez_tmp_91 = 1'h0;
+      9'b110000011:
+        casez_tmp_91 = 1'h0;
+      9'b110000100:
+        casez_tmp_91 = 1'h0;
+      9'b110000101:
+        casez_tmp_91 = 1'h0;
+      9'b110000110:
+        casez_tmp_91 = 1'h0;
+      9'b110000111:
+        casez_tmp_91 = 1'h0;
+      9'b110001000:
+        casez_tmp_91 = 1'h0;
+      9'b110001001:
+        casez_tmp_91 = 1'h0;
+      9'b110001010:
+        casez_tmp_91 = 1'h0;
+      9'b110001011:
+        casez_tmp_91 = 1'h0;
+      9'b110001100:
+        casez_tmp_91 = 1'h0;
+      9'b110001101:
+        casez_tmp_91 = 1'h0;
+      9'b110001110:
+        casez_tmp_91 = 1'h0;
+      9'b110001111:
+        casez_tmp_91 = 1'h0;
+      9'b110010000:
+        casez_tmp_91 = 1'h1;
+      9'b110010001:
+        casez_tmp_91 = 1'h1;
+      9'b110010010:
+        casez_tmp_91 = 1'h1;
+      9'b110010011:
+        casez_tmp_91 = 1'h1;
+      9'b110010100:
+        casez_tmp_91 = 1'h1;
+      9'b110010101:
+        casez_tmp_91 = 1'h1;
+      9'b110010110:
+        casez_tmp_91 = 1'h1;
+      9'b110010111:
+        casez_tmp_91 = 1'h1;
+      9'b110011000:
+        casez_tmp_91 = 1'h1;
+      9'b110011001:
+        casez_tmp_91 = 1'h1;
+      9'b110011010:
+        casez_tmp_91 = 1'h1;
+      9'b110011011:
+        casez_tmp_91 = 1'h1;
+      9'b110011100:
+        casez_tmp_91 = 1'h1;
+      9'b110011101:
+        casez_tmp_91 = 1'h1;
+      9'b110011110:
+        casez_tmp_91 = 1'h1;
+      9'b110011111:
+        casez_tmp_91 = 1'h1;
+      9'b110100000:
+        casez_tmp_91 = 1'h0;
+      9'b110100001:
+        casez_tmp_91 = 1'h0;
+      9'b110100010:
+        casez_tmp_91 = 1'h0;
+      9'b110100011:
+        casez_tmp_91 = 1'h0;
+      9'b110100100:
+        casez_tmp_91 = 1'h0;
+      9'b110100101:
+        casez_tmp_91 = 1'h0;
+      9'b110100110:
+        casez_tmp_91 = 1'h0;
+      9'b110100111:
+        casez_tmp_91 = 1'h0;
+      9'b110101000:
+        casez_tmp_91 = 1'h0;
+      9'b110101001:
+        casez_tmp_91 = 1'h0;
+      9'b110101010:
+        casez_tmp_91 = 1'h0;
+      9'b110101011:
+        casez_tmp_91 = 1'h0;
+      9'b110101100:
+        casez_tmp_91 = 1'h0;
+      9'b110101101:
+        casez_tmp_91 = 1'h0;
+      9'b110101110:
+        casez_tmp_91 = 1'h0;
+      9'b110101111:
+        casez_tmp_91 = 1'h1;
+      9'b110110000:
+        casez_tmp_91 = 1'h1;
+      9'b110110001:
+        casez_tmp_91 = 1'h1;
+      9'b110110010:
+        casez_tmp_91 = 1'h1;
+      9'b110110011:
+        casez_tmp_91 = 1'h1;
+      9'b110110100:
+        casez_tmp_91 = 1'h1;
+      9'b110110101:
+        casez_tmp_91 = 1'h1;
+      9'b110110110:
+        casez_tmp_91 = 1'h1;
+      9'b110110111:
+        casez_tmp_91 = 1'h1;
+      9'b110111000:
+        casez_tmp_91 = 1'h1;
+      9'b110111001:
+        casez_tmp_91 = 1'h1;
+      9'b110111010:
+        casez_tmp_91 = 1'h1;
+      9'b110111011:
+        casez_tmp_91 = 1'h1;
+      9'b110111100:
+        casez_tmp_91 = 1'h1;
+      9'b110111101:
+        casez_tmp_91 = 1'h1;
+      9'b110111110:
+        casez_tmp_91 = 1'h1;
+      9'b110111111:
+        casez_tmp_91 = 1'h1;
+      9'b111000000:
+        casez_tmp_91 = 1'h0;
+      9'b111000001:
+        casez_tmp_91 = 1'h0;
+      9'b111000010:
+        casez_tmp_91 = 1'h0;
+      9'b111000011:
+        casez_tmp_91 = 1'h0;
+      9'b111000100:
+        casez_tmp_91 = 1'h0;
+      9'b111000101:
+        casez_tmp_91 = 1'h0;
+      9'b111000110:
+        casez_tmp_91 = 1'h0;
+      9'b111000111:
+        casez_tmp_91 = 1'h0;
+      9'b111001000:
+        casez_tmp_91 = 1'h0;
+      9'b111001001:
+        casez_tmp_91 = 1'h0;
+      9'b111001010:
+        casez_tmp_91 = 1'h0;
+      9'b111001011:
+        casez_tmp_91 = 1'h0;
+      9'b111001100:
+        casez_tmp_91 = 1'h0;
+      9'b111001101:
+        casez_tmp_91 = 1'h0;
+      9'b111001110:
+        casez_tmp_91 = 1'h1;
+      9'b111001111:
+        casez_tmp_91 = 1'h1;
+      9'b111010000:
+        casez_tmp_91 = 1'h1;
+      9'b111010001:
+        casez_tmp_91 = 1'h1;
+      9'b111010010:
+        casez_tmp_91 = 1'h1;
+      9'b111010011:
+        casez_tmp_91 = 1'h1;
+      9'b111010100:
+        casez_tmp_91 = 1'h1;
+      9'b111010101:
+        casez_tmp_91 = 1'h1;
+      9'b111010110:
+        casez_tmp_91 = 1'h1;
+      9'b111010111:
+        casez_tmp_91 = 1'h1;
+      9'b111011000:
+        casez_tmp_91 = 1'h1;
+      9'b111011001:
+        casez_tmp_91 = 1'h1;
+      9'b111011010:
+        casez_tmp_91 = 1'h1;
+      9'b111011011:
+        casez_tmp_91 = 1'h1;
+      9'b111011100:
+        casez_tmp_91 = 1'h1;
+      9'b111011101:
+        casez_tmp_91 = 1'h1;
+      9'b111011110:
+        casez_tmp_91 = 1'h1;
+      9'b111011111:
+        casez_tmp_91 = 1'h1;
+      9'b111100000:
+        casez_tmp_91 = 1'h0;
+      9'b111100001:
+        casez_tmp_91 = 1'h0;
+      9'b111100010:
+        casez_tmp_91 = 1'h0;
+      9'b111100011:
+        casez_tmp_91 = 1'h0;
+      9'b111100100:
+        casez_tmp_91 = 1'h0;
+      9'b111100101:
+        casez_tmp_91 = 1'h0;
+      9'b111100110:
+        casez_tmp_91 = 1'h0;
+      9'b111100111:
+        casez_tmp_91 = 1'h0;
+      9'b111101000:
+        casez_tmp_91 = 1'h0;
+      9'b111101001:
+        casez_tmp_91 = 1'h0;
+      9'b111101010:
+        casez_tmp_91 = 1'h0;
+      9'b111101011:
+        casez_tmp_91 = 1'h0;
+      9'b111101100:
+        casez_tmp_91 = 1'h0;
+      9'b111101101:
+        casez_tmp_91 = 1'h1;
+      9'b111101110:
+        casez_tmp_91 = 1'h1;
+      9'b111101111:
+        casez_tmp_91 = 1'h1;
+      9'b111110000:
+        casez_tmp_91 = 1'h1;
+      9'b111110001:
+        casez_tmp_91 = 1'h1;
+      9'b111110010:
+        casez_tmp_91 = 1'h1;
+      9'b111110011:
+        casez_tmp_91 = 1'h1;
+      9'b111110100:
+        casez_tmp_91 = 1'h1;
+      9'b111110101:
+        casez_tmp_91 = 1'h1;
+      9'b111110110:
+        casez_tmp_91 = 1'h1;
+      9'b111110111:
+        casez_tmp_91 = 1'h1;
+      9'b111111000:
+        casez_tmp_91 = 1'h1;
+      9'b111111001:
+        casez_tmp_91 = 1'h1;
+      9'b111111010:
+        casez_tmp_91 = 1'h1;
+      9'b111111011:
+        casez_tmp_91 = 1'h1;
+      9'b111111100:
+        casez_tmp_91 = 1'h1;
+      9'b111111101:
+        casez_tmp_91 = 1'h1;
+      9'b111111110:
+        casez_tmp_91 = 1'h1;
+      default:
+        casez_tmp_91 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_92;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_92 = 1'h0;
+      9'b000000001:
+        casez_tmp_92 = 1'h0;
+      9'b000000010:
+        casez_tmp_92 = 1'h0;
+      9'b000000011:
+        casez_tmp_92 = 1'h0;
+      9'b000000100:
+        casez_tmp_92 = 1'h0;
+      9'b000000101:
+        casez_tmp_92 = 1'h0;
+      9'b000000110:
+        casez_tmp_92 = 1'h0;
+      9'b000000111:
+        casez_tmp_92 = 1'h0;
+      9'b000001000:
+        casez_tmp_92 = 1'h0;
+      9'b000001001:
+        casez_tmp_92 = 1'h0;
+      9'b000001010:
+        casez_tmp_92 = 1'h0;
+      9'b000001011:
+        casez_tmp_92 = 1'h0;
+      9'b000001100:
+        casez_tmp_92 = 1'h0;
+      9'b000001101:
+        casez_tmp_92 = 1'h1;
+      9'b000001110:
+        casez_tmp_92 = 1'h1;
+      9'b000001111:
+        casez_tmp_92 = 1'h1;
+      9'b000010000:
+        casez_tmp_92 = 1'h1;
+      9'b000010001:
+        casez_tmp_92 = 1'h1;
+      9'b000010010:
+        casez_tmp_92 = 1'h1;
+      9'b000010011:
+        casez_tmp_92 = 1'h1;
+      9'b000010100:
+        casez_tmp_92 = 1'h1;
+      9'b000010101:
+        casez_tmp_92 = 1'h1;
+      9'b000010110:
+        casez_tmp_92 = 1'h1;
+      9'b000010111:
+        casez_tmp_92 = 1'h1;
+      9'b000011000:
+        casez_tmp_92 = 1'h1;
+      9'b000011001:
+        casez_tmp_92 = 1'h1;
+      9'b000011010:
+        casez_tmp_92 = 1'h1;
+      9'b000011011:
+        casez_tmp_92 = 1'h1;
+      9'b000011100:
+        casez_tmp_92 = 1'h1;
+      9'b000011101:
+        casez_tmp_92 = 1'h1;
+      9'b000011110:
+        casez_tmp_92 = 1'h1;
+      9'b000011111:
+        casez_tmp_92 = 1'h1;
+      9'b000100000:
+        casez_tmp_92 = 1'h0;
+      9'b000100001:
+        casez_tmp_92 = 1'h0;
+      9'b000100010:
+        casez_tmp_92 = 1'h0;
+      9'b000100011:
+        casez_tmp_92 = 1'h0;
+      9'b000100100:
+        casez_tmp_92 = 1'h0;
+      9'b000100101:
+        casez_tmp_92 = 1'h0;
+      9'b000100110:
+        casez_tmp_92 = 1'h0;
+      9'b000100111:
+        casez_tmp_92 = 1'h0;
+      9'b000101000:
+        casez_tmp_92 = 1'h0;
+      9'b000101001:
+        casez_tmp_92 = 1'h0;
+      9'b000101010:
+        casez_tmp_92 = 1'h0;
+      9'b000101011:
+        casez_tmp_92 = 1'h0;
+      9'b000101100:
+        casez_tmp_92 = 1'h1;
+      9'b000101101:
+        casez_tmp_92 = 1'h1;
+      9'b000101110:
+        casez_tmp_92 = 1'h1;
+      9'b000101111:
+        casez_tmp_92 = 1'h1;
+      9'b000110000:
+        casez_tmp_92 = 1'h1;
+      9'b000110001:
+        casez_tmp_92 = 1'h1;
+      9'b000110010:
+        casez_tmp_92 = 1'h1;
+      9'b000110011:
+        casez_tmp_92 = 1'h1;
+      9'b000110100:
+        casez_tmp_92 = 1'h1;
+      9'b000110101:
+        casez_tmp_92 = 1'h1;
+      9'b000110110:
+        casez_tmp_92 = 1'h1;
+      9'b000110111:
+        casez_tmp_92 = 1'h1;
+      9'b000111000:
+        casez_tmp_92 = 1'h1;
+      9'b000111001:
+        casez_tmp_92 = 1'h1;
+      9'b000111010:
+        casez_tmp_92 = 1'h1;
+      9'b000111011:
+        casez_tmp_92 = 1'h1;
+      9'b000111100:
+        casez_tmp_92 = 1'h1;
+      9'b000111101:
+        casez_tmp_92 = 1'h1;
+      9'b000111110:
+        casez_tmp_92 = 1'h1;
+      9'b000111111:
+        casez_tmp_92 = 1'h1;
+      9'b001000000:
+        casez_tmp_92 = 1'h0;
+      9'b001000001:
+        casez_tmp_92 = 1'h0;
+      9'b001000010:
+        casez_tmp_92 = 1'h0;
+      9'b001000011:
+        casez_tmp_92 = 1'h0;
+      9'b001000100:
+        casez_tmp_92 = 1'h0;
+      9'b001000101:
+        casez_tmp_92 = 1'h0;
+      9'b001000110:
+        casez_tmp_92 = 1'h0;
+      9'b001000111:
+        casez_tmp_92 = 1'h0;
+      9'b001001000:
+        casez_tmp_92 = 1'h0;
+      9'b001001001:
+        casez_tmp_92 = 1'h0;
+      9'b001001010:
+        casez_tmp_92 = 1'h0;
+      9'b001001011:
+        casez_tmp_92 = 1'h1;
+      9'b001001100:
+        casez_tmp_92 = 1'h1;
+      9'b001001101:
+        casez_tmp_92 = 1'h1;
+      9'b001001110:
+        casez_tmp_92 = 1'h1;
+      9'b001001111:
+        casez_tmp_92 = 1'h1;
+      9'b001010000:
+        casez_tmp_92 = 1'h1;
+      9'b001010001:
+        casez_tmp_92 = 1'h1;
+      9'b001010010:
+        casez_tmp_92 = 1'h1;
+      9'b001010011:
+        casez_tmp_92 = 1'h1;
+      9'b001010100:
+        casez_tmp_92 = 1'h1;
+      9'b001010101:
+        casez_tmp_92 = 1'h1;
+      9'b001010110:
+        casez_tmp_92 = 1'h1;
+      9'b001010111:
+        casez_tmp_92 = 1'h1;
+      9'b001011000:
+        casez_tmp_92 = 1'h1;
+      9'b001011001:
+        casez_tmp_92 = 1'h1;
+      9'b001011010:
+        casez_tmp_92 = 1'h1;
+      9'b001011011:
+        casez_tmp_92 = 1'h1;
+      9'b001011100:
+        casez_tmp_92 = 1'h1;
+      9'b001011101:
+        casez_tmp_92 = 1'h1;
+      9'b001011110:
+        casez_tmp_92 = 1'h1;
+      9'b001011111:
+        casez_tmp_92 = 1'h1;
+      9'b001100000:
+        casez_tmp_92 = 1'h0;
+      9'b001100001:
+        casez_tmp_92 = 1'h0;
+      9'b001100010:
+        casez_tmp_92 = 1'h0;
+      9'b001100011:
+        casez_tmp_92 = 1'h0;
+      9'b001100100:
+        casez_tmp_92 = 1'h0;
+      9'b001100101:
+        casez_tmp_92 = 1'h0;
+      9'b001100110:
+        casez_tmp_92 = 1'h0;
+      9'b001100111:
+        casez_tmp_92 = 1'h0;
+      9'b001101000:
+        casez_tmp_92 = 1'h0;
+      9'b001101001:
+        casez_tmp_92 = 1'h0;
+      9'b001101010:
+        casez_tmp_92 = 1'h1;
+      9'b001101011:
+        casez_tmp_92 = 1'h1;
+      9'b001101100:
+        casez_tmp_92 = 1'h1;
+      9'b001101101:
+        casez_tmp_92 = 1'h1;
+      9'b001101110:
+        casez_tmp_92 = 1'h1;
+      9'b001101111:
+        casez_tmp_92 = 1'h1;
+      9'b001110000:
+        casez_tmp_92 = 1'h1;
+      9'b001110001:
+        casez_tmp_92 = 1'h1;
+      9'b001110010:
+        casez_tmp_92 = 1'h1;
+      9'b001110011:
+        casez_tmp_92 = 1'h1;
+      9'b001110100:
+        casez_tmp_92 = 1'h1;
+      9'b001110101:
+        casez_tmp_92 = 1'h1;
+      9'b001110110:
+        casez_tmp_92 = 1'h1;
+      9'b001110111:
+        casez_tmp_92 = 1'h1;
+      9'b001111000:
+        casez_tmp_92 = 1'h1;
+      9'b001111001:
+        casez_tmp_92 = 1'h1;
+      9'b001111010:
+        casez_tmp_92 = 1'h1;
+      9'b001111011:
+        casez_tmp_92 = 1'h1;
+      9'b001111100:
+        casez_tmp_92 = 1'h1;
+      9'b001111101:
+        casez_tmp_92 = 1'h1;
+      9'b001111110:
+        casez_tmp_92 = 1'h1;
+      9'b001111111:
+        casez_tmp_92 = 1'h1;
+      9'b010000000:
+        casez_tmp_92 = 1'h0;
+      9'b010000001:
+        casez_tmp_92 = 1'h0;
+      9'b010000010:
+        casez_tmp_92 = 1'h0;
+      9'b010000011:
+        casez_tmp_92 = 1'h0;
+      9'b010000100:
+        casez_tmp_92 = 1'h0;
+      9'b010000101:
+        casez_tmp_92 = 1'h0;
+      9'b010000110:
+        casez_tmp_92 = 1'h0;
+      9'b010000111:
+        casez_tmp_92 = 1'h0;
+      9'b010001000:
+        casez_tmp_92 = 1'h0;
+      9'b010001001:
+        casez_tmp_92 = 1'h1;
+      9'b010001010:
+        casez_tmp_92 = 1'h1;
+      9'b010001011:
+        casez_tmp_92 = 1'h1;
+      9'b010001100:
+        casez_tmp_92 = 1'h1;
+      9'b010001101:
+        casez_tmp_92 = 1'h1;
+      9'b010001110:
+        casez_tmp_92 = 1'h1;
+      9'b010001111:
+        casez_tmp_92 = 1'h1;
+      9'b010010000:
+        casez_tmp_92 = 1'h1;
+      9'b010010001:
+        casez_tmp_92 = 1'h1;
+      9'b010010010:
+        casez_tmp_92 = 1'h1;
+      9'b010010011:
+        casez_tmp_92 = 1'h1;
+      9'b010010100:
+        casez_tmp_92 = 1'h1;
+      9'b010010101:
+        casez_tmp_92 = 1'h1;
+      9'b010010110:
+        casez_tmp_92 = 1'h1;
+      9'b010010111:
+        casez_tmp_92 = 1'h1;
+      9'b010011000:
+        casez_tmp_92 = 1'h1;
+      9'b010011001:
+        casez_tmp_92 = 1'h1;
+      9'b010011010:
+        casez_tmp_92 = 1'h1;
+      9'b010011011:
+        casez_tmp_92 = 1'h1;
+      9'b010011100:
+        casez_tmp_92 = 1'h1;
+      9'b010011101:
+        casez_tmp_92 = 1'h1;
+      9'b010011110:
+        casez_tmp_92 = 1'h1;
+      9'b010011111:
+        casez_tmp_92 = 1'h1;
+      9'b010100000:
+        casez_tmp_92 = 1'h0;
+      9'b010100001:
+        casez_tmp_92 = 1'h0;
+      9'b010100010:
+        casez_tmp_92 = 1'h0;
+      9'b010100011:
+        casez_tmp_92 = 1'h0;
+      9'b010100100:
+        casez_tmp_92 = 1'h0;
+      9'b010100101:
+        casez_tmp_92 = 1'h0;
+      9'b010100110:
+        casez_tmp_92 = 1'h0;
+      9'b010100111:
+        casez_tmp_92 = 1'h0;
+      9'b010101000:
+        casez_tmp_92 = 1'h1;
+      9'b010101001:
+        casez_tmp_92 = 1'h1;
+      9'b010101010:
+        casez_tmp_92 = 1'h1;
+      9'b010101011:
+        casez_tmp_92 = 1'h1;
+      9'b010101100:
+        casez_tmp_92 = 1'h1;
+      9'b010101101:
+        casez_tmp_92 = 1'h1;
+      9'b010101110:
+        casez_tmp_92 = 1'h1;
+      9'b010101111:
+        casez_tmp_92 = 1'h1;
+      9'b010110000:
+        casez_tmp_92 = 1'h1;
+      9'b010110001:
+        casez_tmp_92 = 1'h1;
+      9'b010110010:
+        casez_tmp_92 = 1'h1;
+      9'b010110011:
+        casez_tmp_92 = 1'h1;
+      9'b010110100:
+        casez_tmp_92 = 1'h1;
+      9'b010110101:
+        casez_tmp_92 = 1'h1;
+      9'b010110110:
+        casez_tmp_92 = 1'h1;
+      9'b010110111:
+        casez_tmp_92 = 1'h1;
+      9'b010111000:
+        casez_tmp_92 = 1'h1;
+      9'b010111001:
+        casez_tmp_92 = 1'h1;
+      9'b010111010:
+        casez_tmp_92 = 1'h1;
+      9'b010111011:
+        casez_tmp_92 = 1'h1;
+      9'b010111100:
+        casez_tmp_92 = 1'h1;
+      9'b010111101:
+        casez_tmp_92 = 1'h1;
+      9'b010111110:
+        casez_tmp_92 = 1'h1;
+      9'b010111111:
+        casez_tmp_92 = 1'h1;
+      9'b011000000:
+        casez_tmp_92 = 1'h0;
+      9'b011000001:
+        casez_tmp_92 = 1'h0;
+      9'b011000010:
+        casez_tmp_92 = 1'h0;
+      9'b011000011:
+        casez_tmp_92 = 1'h0;
+      9'b011000100:
+        casez_tmp_92 = 1'h0;
+      9'b011000101:
+        casez_tmp_92 = 1'h0;
+      9'b011000110:
+        casez_tmp_92 = 1'h0;
+      9'b011000111:
+        casez_tmp_92 = 1'h1;
+      9'b011001000:
+        casez_tmp_92 = 1'h1;
+      9'b011001001:
+        casez_tmp_92 = 1'h1;
+      9'b011001010:
+        casez_tmp_92 = 1'h1;
+      9'b011001011:
+        casez_tmp_92 = 1'h1;
+      9'b011001100:
+        casez_tmp_92 = 1'h1;
+      9'b011001101:
+        casez_tmp_92 = 1'h1;
+      9'b011001110:
+        casez_tmp_92 = 1'h1;
+      9'b011001111:
+        casez_tmp_92 = 1'h1;
+      9'b011010000:
+        casez_tmp_92 = 1'h1;
+      9'b011010001:
+        casez_tmp_92 = 1'h1;
+      9'b011010010:
+        casez_tmp_92 = 1'h1;
+      9'b011010011:
+        casez_tmp_92 = 1'h1;
+      9'b011010100:
+        casez_tmp_92 = 1'h1;
+      9'b011010101:
+        casez_tmp_92 = 1'h1;
+      9'b011010110:
+        casez_tmp_92 = 1'h1;
+      9'b011010111:
+        casez_tmp_92 = 1'h1;
+      9'b011011000:
+        casez_tmp_92 = 1'h1;
+      9'b011011001:
+        casez_tmp_92 = 1'h1;
+      9'b011011010:
+        casez_tmp_92 = 1'h1;
+      9'b011011011:
+        casez_tmp_92 = 1'h1;
+      9'b011011100:
+        casez_tmp_92 = 1'h1;
+      9'b011011101:
+        casez_tmp_92 = 1'h1;
+      9'b011011110:
+        casez_tmp_92 = 1'h1;
+      9'b011011111:
+        casez_tmp_92 = 1'h1;
+      9'b011100000:
+        casez_tmp_92 = 1'h0;
+      9'b011100001:
+        casez_tmp_92 = 1'h0;
+      9'b011100010:
+        casez_tmp_92 = 1'h0;
+      9'b011100011:
+        casez_tmp_92 = 1'h0;
+      9'b011100100:
+        casez_tmp_92 = 1'h0;
+      9'b011100101:
+        casez_tmp_92 = 1'h0;
+      9'b011100110:
+        casez_tmp_92 = 1'h1;
+      9'b011100111:
+        casez_tmp_92 = 1'h1;
+      9'b011101000:
+        casez_tmp_92 = 1'h1;
+      9'b011101001:
+        casez_tmp_92 = 1'h1;
+      9'b011101010:
+        casez_tmp_92 = 1'h1;
+      9'b011101011:
+        casez_tmp_92 = 1'h1;
+      9'b011101100:
+        casez_tmp_92 = 1'h1;
+      9'b011101101:
+        casez_tmp_92 = 1'h1;
+      9'b011101110:
+        casez_tmp_92 = 1'h1;
+      9'b011101111:
+        casez_tmp_92 = 1'h1;
+      9'b011110000:
+        casez_tmp_92 = 1'h1;
+      9'b011110001:
+        casez_tmp_92 = 1'h1;
+      9'b011110010:
+        casez_tmp_92 = 1'h1;
+      9'b011110011:
+        casez_tmp_92 = 1'h1;
+      9'b011110100:
+        casez_tmp_92 = 1'h1;
+      9'b011110101:
+        casez_tmp_92 = 1'h1;
+      9'b011110110:
+        casez_tmp_92 = 1'h1;
+      9'b011110111:
+        casez_tmp_92 = 1'h1;
+      9'b011111000:
+        casez_tmp_92 = 1'h1;
+      9'b011111001:
+        casez_tmp_92 = 1'h1;
+      9'b011111010:
+        casez_tmp_92 = 1'h1;
+      9'b011111011:
+        casez_tmp_92 = 1'h1;
+      9'b011111100:
+        casez_tmp_92 = 1'h1;
+      9'b011111101:
+        casez_tmp_92 = 1'h1;
+      9'b011111110:
+        casez_tmp_92 = 1'h1;
+      9'b011111111:
+        casez_tmp_92 = 1'h1;
+      9'b100000000:
+        casez_tmp_92 = 1'h0;
+      9'b100000001:
+        casez_tmp_92 = 1'h0;
+      9'b100000010:
+        casez_tmp_92 = 1'h0;
+      9'b100000011:
+        casez_tmp_92 = 1'h0;
+      9'b100000100:
+        casez_tmp_92 = 1'h0;
+      9'b100000101:
+        casez_tmp_92 = 1'h1;
+      9'b100000110:
+        casez_tmp_92 = 1'h1;
+      9'b100000111:
+        casez_tmp_92 = 1'h1;
+      9'b100001000:
+        casez_tmp_92 = 1'h1;
+      9'b100001001:
+        casez_tmp_92 = 1'h1;
+      9'b100001010:
+        casez_tmp_92 = 1'h1;
+      9'b100001011:
+        casez_tmp_92 = 1'h1;
+      9'b100001100:
+        casez_tmp_92 = 1'h1;
+      9'b100001101:
+        casez_tmp_92 = 1'h1;
+      9'b100001110:
+        casez_tmp_92 = 1'h1;
+      9'b100001111:
+        casez_tmp_92 = 1'h1;
+      9'b100010000:
+        casez_tmp_92 = 1'h1;
+      9'b100010001:
+        casez_tmp_92 = 1'h1;
+      9'b100010010:
+        casez_tmp_92 = 1'h1;
+      9'b100010011:
+        casez_tmp_92 = 1'h1;
+      9'b100010100:
+        casez_tmp_92 = 1'h1;
+      9'b100010101:
+        casez_tmp_92 = 1'h1;
+      9'b100010110:
+        casez_tmp_92 = 1'h1;
+      9'b100010111:
+        casez_tmp_92 = 1'h1;
+      9'b100011000:
+        casez_tmp_92 = 1'h1;
+      9'b100011001:
+        casez_tmp_92 = 1'h1;
+      9'b100011010:
+        casez_tmp_92 = 1'h1;
+      9'b100011011:
+        casez_tmp_92 = 1'h1;
+      9'b100011100:
+        casez_tmp_92 = 1'h1;
+      9'b100011101:
+        casez_tmp_92 = 1'h1;
+      9'b100011110:
+        casez_tmp_92 = 1'h1;
+      9'b100011111:
+        casez_tmp_92 = 1'h1;
+      9'b100100000:
+        casez_tmp_92 = 1'h0;
+      9'b100100001:
+        casez_tmp_92 = 1'h0;
+      9'b100100010:
+        casez_tmp_92 = 1'h0;
+      9'b100100011:
+        casez_tmp_92 = 1'h0;
+      9'b100100100:
+        casez_tmp_92 = 1'h1;
+      9'b100100101:
+        casez_tmp_92 = 1'h1;
+      9'b100100110:
+        casez_tmp_92 = 1'h1;
+      9'b100100111:
+        casez_tmp_92 = 1'h1;
+      9'b100101000:
+        casez_tmp_92 = 1'h1;
+      9'b100101001:
+        casez_tmp_92 = 1'h1;
+      9'b100101010:
+        casez_tmp_92 = 1'h1;
+      9'b100101011:
+        casez_tmp_92 = 1'h1;
+      9'b100101100:
+        casez_tmp_92 = 1'h1;
+      9'b100101101:
+        casez_tmp_92 = 1'h1;
+      9'b100101110:
+        casez_tmp_92 = 1'h1;
+      9'b100101111:
+        casez_tmp_92 = 1'h1;
+      9'b100110000:
+        casez_tmp_92 = 1'h1;
+      9'b100110001:
+        casez_tmp_92 = 1'h1;
+      9'b100110010:
+        casez_tmp_92 = 1'h1;
+      9'b100110011:
+        casez_tmp_92 = 1'h1;
+      9'b100110100:
+        casez_tmp_92 = 1'h1;
+      9'b100110101:
+        casez_tmp_92 = 1'h1;
+      9'b100110110:
+        casez_tmp_92 = 1'h1;
+      9'b100110111:
+        casez_tmp_92 = 1'h1;
+      9'b100111000:
+        casez_tmp_92 = 1'h1;
+      9'b100111001:
+        casez_tmp_92 = 1'h1;
+      9'b100111010:
+        casez_tmp_92 = 1'h1;
+      9'b100111011:
+        casez_tmp_92 = 1'h1;
+      9'b100111100:
+        casez_tmp_92 = 1'h1;
+      9'b100111101:
+        casez_tmp_92 = 1'h1;
+      9'b100111110:
+        casez_tmp_92 = 1'h1;
+      9'b100111111:
+        casez_tmp_92 = 1'h1;
+      9'b101000000:
+        casez_tmp_92 = 1'h0;
+      9'b101000001:
+        casez_tmp_92 = 1'h0;
+      9'b101000010:
+        casez_tmp_92 = 1'h0;
+      9'b101000011:
+        casez_tmp_92 = 1'h1;
+      9'b101000100:
+        casez_tmp_92 = 1'h1;
+      9'b101000101:
+        casez_tmp_92 = 1'h1;
+      9'b101000110:
+        casez_tmp_92 = 1'h1;
+      9'b101000111:
+        casez_tmp_92 = 1'h1;
+      9'b101001000:
+        casez_tmp_92 = 1'h1;
+      9'b101001001:
+        casez_tmp_92 = 1'h1;
+      9'b101001010:
+        casez_tmp_92 = 1'h1;
+      9'b101001011:
+        casez_tmp_92 = 1'h1;
+      9'b101001100:
+        casez_tmp_92 = 1'h1;
+      9'b101001101:
+        casez_tmp_92 = 1'h1;
+      9'b101001110:
+        casez_tmp_92 = 1'h1;
+      9'b101001111:
+        casez_tmp_92 = 1'h1;
+      9'b101010000:
+        casez_tmp_92 = 1'h1;
+      9'b101010001:
+        casez_tmp_92 = 1'h1;
+      9'b101010010:
+        casez_tmp_92 = 1'h1;
+      9'b101010011:
+        casez_tmp_92 = 1'h1;
+      9'b101010100:
+        casez_tmp_92 = 1'h1;
+      9'b101010101:
+        casez_tmp_92 = 1'h1;
+      9'b101010110:
+        casez_tmp_92 = 1'h1;
+      9'b101010111:
+        casez_tmp_92 = 1'h1;
+      9'b101011000:
+        casez_tmp_92 = 1'h1;
+      9'b101011001:
+        casez_tmp_92 = 1'h1;
+      9'b101011010:
+        casez_tmp_92 = 1'h1;
+      9'b101011011:
+        casez_tmp_92 = 1'h1;
+      9'b101011100:
+        casez_tmp_92 = 1'h1;
+      9'b101011101:
+        casez_tmp_92 = 1'h1;
+      9'b101011110:
+        casez_tmp_92 = 1'h1;
+      9'b101011111:
+        casez_tmp_92 = 1'h1;
+      9'b101100000:
+        casez_tmp_92 = 1'h0;
+      9'b101100001:
+        casez_tmp_92 = 1'h0;
+      9'b101100010:
+        casez_tmp_92 = 1'h1;
+      9'b101100011:
+        casez_tmp_92 = 1'h1;
+      9'b101100100:
+        casez_tmp_92 = 1'h1;
+      9'b101100101:
+        casez_tmp_92 = 1'h1;
+      9'b101100110:
+        casez_tmp_92 = 1'h1;
+      9'b101100111:
+        casez_tmp_92 = 1'h1;
+      9'b101101000:
+        casez_tmp_92 = 1'h1;
+      9'b101101001:
+        casez_tmp_92 = 1'h1;
+      9'b101101010:
+        casez_tmp_92 = 1'h1;
+      9'b101101011:
+        casez_tmp_92 = 1'h1;
+      9'b101101100:
+        casez_tmp_92 = 1'h1;
+      9'b101101101:
+        casez_tmp_92 = 1'h1;
+      9'b101101110:
+        casez_tmp_92 = 1'h1;
+      9'b101101111:
+        casez_tmp_92 = 1'h1;
+      9'b101110000:
+        casez_tmp_92 = 1'h1;
+      9'b101110001:
+        casez_tmp_92 = 1'h1;
+      9'b101110010:
+        casez_tmp_92 = 1'h1;
+      9'b101110011:
+        casez_tmp_92 = 1'h1;
+      9'b101110100:
+        casez_tmp_92 = 1'h1;
+      9'b101110101:
+        casez_tmp_92 = 1'h1;
+      9'b101110110:
+        casez_tmp_92 = 1'h1;
+      9'b101110111:
+        casez_tmp_92 = 1'h1;
+      9'b101111000:
+        casez_tmp_92 = 1'h1;
+      9'b101111001:
+        casez_tmp_92 = 1'h1;
+      9'b101111010:
+        casez_tmp_92 = 1'h1;
+      9'b101111011:
+        casez_tmp_92 = 1'h1;
+      9'b101111100:
+        casez_tmp_92 = 1'h1;
+      9'b101111101:
+        casez_tmp_92 = 1'h1;
+      9'b101111110:
+        casez_tmp_92 = 1'h1;
+      9'b101111111:
+        casez_tmp_92 = 1'h1;
+      9'b110000000:
+        casez_tmp_92 = 1'h0;
+      9'b110000001:
+        casez_tmp_92 = 1'h1;
+      9'b110000010:
+        casez_tmp_92 = 1'h1;
+      9'b110000011:
+        casez_tmp_92 = 1'h1;
+      9'b110000100:
+        casez_tmp_92 = 1'h1;
+      9'b110000101:
+        casez_tmp_92 = 1'h1;
+      9'b110000110:
+        casez_tmp_92 = 1'h1;
+      9'b110000111:
+        casez_tmp_92 = 1'h1;
+      9'b110001000:
+        casez_tmp_92 = 1'h1;
+      9'b110001001:
+        casez_tmp_92 = 1'h1;
+      9'b110001010:
+        casez_tmp_92 = 1'h1;
+      9'b110001011:
+        casez_tmp_92 = 1'h1;
+      9'b110001100:
+        casez_tmp_92 = 1'h1;
+      9'b110001101:
+        casez_tmp_92 = 1'h1;
+      9'b110001110:
+        casez_tmp_92 = 1'h1;
+      9'b110001111:
+        casez_tmp_92 = 1'h1;
+      9'b110010000:
+        casez_tmp_92 = 1'h1;
+      9'b110010001:
+        casez_tmp_92 = 1'h1;
+      9'b110010010:
+        casez_tmp_92 = 1'h1;
+      9'b110010011:
+        casez_tmp_92 = 1'h1;
+      9'b110010100:
+        casez_tmp_92 = 1'h1;
+      9'b110010101:
+        casez_tmp_92 = 1'h1;
+      9'b110010110:
+        casez_tmp_92 = 1'h1;
+      9'b110010111:
+        casez_tmp_92 = 1'h1;
+      9'b110011000:
+        casez_tmp_92 = 1'h1;
+      9'b110011001:
+        casez_tmp_92 = 1'h1;
+      9'b110011010:
+        casez_tmp_92 = 1'h1;
+      9'b110011011:
+        casez_tmp_92 = 1'h1;
+      9'b110011100:
+        casez_tmp_92 = 1'h1;
+      9'b110011101:
+        casez_tmp_92 = 1'h1;
+      9'b110011110:
+        casez_tmp_92 = 1'h1;
+      9'b110011111:
+        casez_tmp_92 = 1'h1;
+      9'b110100000:
+        casez_tmp_92 = 1'h0;
+      9'b110100001:
+        casez_tmp_92 = 1'h0;
+      9'b110100010:
+        casez_tmp_92 = 1'h0;
+      9'b110100011:
+        casez_tmp_92 = 1'h0;
+      9'b110100100:
+        casez_tmp_92 = 1'h0;
+      9'b110100101:
+        casez_tmp_92 = 1'h0;
+      9'b110100110:
+        casez_tmp_92 = 1'h0;
+      9'b110100111:
+        casez_tmp_92 = 1'h0;
+      9'b110101000:
+        casez_tmp_92 = 1'h0;
+      9'b110101001:
+        casez_tmp_92 = 1'h0;
+      9'b110101010:
+        casez_tmp_92 = 1'h0;
+      9'b110101011:
+        casez_tmp_92 = 1'h0;
+      9'b110101100:
+        casez_tmp_92 = 1'h0;
+      9'b110101101:
+        casez_tmp_92 = 1'h0;
+      9'b110101110:
+        casez_tmp_92 = 1'h0;
+      9'b110101111:
+        casez_tmp_92 = 1'h0;
+      9'b110110000:
+        casez_tmp_92 = 1'h1;
+      9'b110110001:
+        casez_tmp_92 = 1'h1;
+      9'b110110010:
+        casez_tmp_92 = 1'h1;
+      9'b110110011:
+        casez_tmp_92 = 1'h1;
+      9'b110110100:
+        casez_tmp_92 = 1'h1;
+      9'b110110101:
+        casez_tmp_92 = 1'h1;
+      9'b110110110:
+        casez_tmp_92 = 1'h1;
+      9'b110110111:
+        casez_tmp_92 = 1'h1;
+      9'b110111000:
+        casez_tmp_92 = 1'h1;
+      9'b110111001:
+        casez_tmp_92 = 1'h1;
+      9'b110111010:
+        casez_tmp_92 = 1'h1;
+      9'b110111011:
+        casez_tmp_92 = 1'h1;
+      9'b110111100:
+        casez_tmp_92 = 1'h1;
+      9'b110111101:
+        casez_tmp_92 = 1'h1;
+      9'b110111110:
+        casez_tmp_92 = 1'h1;
+      9'b110111111:
+        casez_tmp_92 = 1'h1;
+      9'b111000000:
+        casez_tmp_92 = 1'h0;
+      9'b111000001:
+        casez_tmp_92 = 1'h0;
+      9'b111000010:
+        casez_tmp_92 = 1'h0;
+      9'b111000011:
+        casez_tmp_92 = 1'h0;
+      9'b111000100:
+        casez_tmp_92 = 1'h0;
+      9'b111000101:
+        casez_tmp_92 = 1'h0;
+      9'b111000110:
+        casez_tmp_92 = 1'h0;
+      9'b111000111:
+        casez_tmp_92 = 1'h0;
+      9'b111001000:
+        casez_tmp_92 = 1'h0;
+      9'b111001001:
+        casez_tmp_92 = 1'h0;
+      9'b111001010:
+        casez_tmp_92 = 1'h0;
+      9'b111001011:
+        casez_tmp_92 = 1'h0;
+      9'b111001100:
+        casez_tmp_92 = 1'h0;
+      9'b111001101:
+        casez_tmp_92 = 1'h0;
+      9'b111001110:
+        casez_tmp_92 = 1'h0;
+      9'b111001111:
+        casez_tmp_92 = 1'h1;
+      9'b111010000:
+        casez_tmp_92 = 1'h1;
+      9'b111010001:
+        casez_tmp_92 = 1'h1;
+      9'b111010010:
+        casez_tmp_92 = 1'h1;
+      9'b111010011:
+        casez_tmp_92 = 1'h1;
+      9'b111010100:
+        casez_tmp_92 = 1'h1;
+      9'b111010101:
+        casez_tmp_92 = 1'h1;
+      9'b111010110:
+        casez_tmp_92 = 1'h1;
+      9'b111010111:
+        casez_tmp_92 = 1'h1;
+      9'b111011000:
+        casez_tmp_92 = 1'h1;
+      9'b111011001:
+        casez_tmp_92 = 1'h1;
+      9'b111011010:
+        casez_tmp_92 = 1'h1;
+      9'b111011011:
+        casez_tmp_92 = 1'h1;
+      9'b111011100:
+        casez_tmp_92 = 1'h1;
+      9'b111011101:
+        casez_tmp_92 = 1'h1;
+      9'b111011110:
+        casez_tmp_92 = 1'h1;
+      9'b111011111:
+        casez_tmp_92 = 1'h1;
+      9'b111100000:
+        casez_tmp_92 = 1'h0;
+      9'b111100001:
+        casez_tmp_92 = 1'h0;
+      9'b111100010:
+        casez_tmp_92 = 1'h0;
+      9'b111100011:
+        casez_tmp_92 = 1'h0;
+      9'b111100100:
+        casez_tmp_92 = 1'h0;
+      9'b111100101:
+        casez_tmp_92 = 1'h0;
+      9'b111100110:
+        casez_tmp_92 = 1'h0;
+      9'b111100111:
+        casez_tmp_92 = 1'h0;
+      9'b111101000:
+        casez_tmp_92 = 1'h0;
+      9'b111101001:
+        casez_tmp_92 = 1'h0;
+      9'b111101010:
+        casez_tmp_92 = 1'h0;
+      9'b111101011:
+        casez_tmp_92 = 1'h0;
+      9'b111101100:
+        casez_tmp_92 = 1'h0;
+      9'b111101101:
+        casez_tmp_92 = 1'h0;
+      9'b111101110:
+        casez_tmp_92 = 1'h1;
+      9'b111101111:
+        casez_tmp_92 = 1'h1;
+      9'b111110000:
+        casez_tmp_92 = 1'h1;
+      9'b111110001:
+        casez_tmp_92 = 1'h1;
+      9'b111110010:
+        casez_tmp_92 = 1'h1;
+      9'b111110011:
+        casez_tmp_92 = 1'h1;
+      9'b111110100:
+        casez_tmp_92 = 1'h1;
+      9'b111110101:
+        casez_tmp_92 = 1'h1;
+      9'b111110110:
+        casez_tmp_92 = 1'h1;
+      9'b111110111:
+        casez_tmp_92 = 1'h1;
+      9'b111111000:
+        casez_tmp_92 = 1'h1;
+      9'b111111001:
+        casez_tmp_92 = 1'h1;
+      9'b111111010:
+        casez_tmp_92 = 1'h1;
+      9'b111111011:
+        casez_tmp_92 = 1'h1;
+      9'b111111100:
+        casez_tmp_92 = 1'h1;
+      9'b111111101:
+        casez_tmp_92 = 1'h1;
+      9'b111111110:
+        casez_tmp_92 = 1'h1;
+      default:
+        casez_tmp_92 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_93;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_93 = 1'h0;
+      9'b000000001:
+        casez_tmp_93 = 1'h0;
+      9'b000000010:
+        casez_tmp_93 = 1'h0;
+      9'b000000011:
+        casez_tmp_93 = 1'h0;
+      9'b000000100:
+        casez_tmp_93 = 1'h0;
+      9'b000000101:
+        casez_tmp_93 = 1'h0;
+      9'b000000110:
+        casez_tmp_93 = 1'h0;
+      9'b000000111:
+        casez_tmp_93 = 1'h0;
+      9'b000001000:
+        casez_tmp_93 = 1'h0;
+      9'b000001001:
+        casez_tmp_93 = 1'h0;
+      9'b000001010:
+        casez_tmp_93 = 1'h0;
+      9'b000001011:
+        casez_tmp_93 = 1'h0;
+      9'b000001100:
+        casez_tmp_93 = 1'h0;
+      9'b000001101:
+        casez_tmp_93 = 1'h0;
+      9'b000001110:
+        casez_tmp_93 = 1'h1;
+      9'b000001111:
+        casez_tmp_93 = 1'h1;
+      9'b000010000:
+        casez_tmp_93 = 1'h1;
+      9'b000010001:
+        casez_tmp_93 = 1'h1;
+      9'b000010010:
+        casez_tmp_93 = 1'h1;
+      9'b000010011:
+        casez_tmp_93 = 1'h1;
+      9'b000010100:
+        casez_tmp_93 = 1'h1;
+      9'b000010101:
+        casez_tmp_93 = 1'h1;
+      9'b000010110:
+        casez_tmp_93 = 1'h1;
+      9'b000010111:
+        casez_tmp_93 = 1'h1;
+      9'b000011000:
+        casez_tmp_93 = 1'h1;
+      9'b000011001:
+        casez_tmp_93 = 1'h1;
+      9'b000011010:
+        casez_tmp_93 = 1'h1;
+      9'b000011011:
+        casez_tmp_93 = 1'h1;
+      9'b000011100:
+        casez_tmp_93 = 1'h1;
+      9'b000011101:
+        casez_tmp_93 = 1'h1;
+      9'b000011110:
+        casez_tmp_93 = 1'h1;
+      9'b000011111:
+        casez_tmp_93 = 1'h1;
+      9'b000100000:
+        casez_tmp_93 = 1'h0;
+      9'b000100001:
+        casez_tmp_93 = 1'h0;
+      9'b000100010:
+        casez_tmp_93 = 1'h0;
+      9'b000100011:
+        casez_tmp_93 = 1'h0;
+      9'b000100100:
+        casez_tmp_93 = 1'h0;
+      9'b000100101:
+        casez_tmp_93 = 1'h0;
+      9'b000100110:
+        casez_tmp_93 = 1'h0;
+      9'b000100111:
+        casez_tmp_93 = 1'h0;
+      9'b000101000:
+        casez_tmp_93 = 1'h0;
+      9'b000101001:
+        casez_tmp_93 = 1'h0;
+      9'b000101010:
+        casez_tmp_93 = 1'h0;
+      9'b000101011:
+        casez_tmp_93 = 1'h0;
+      9'b000101100:
+        casez_tmp_93 = 1'h0;
+      9'b000101101:
+        casez_tmp_93 = 1'h1;
+      9'b000101110:
+        casez_tmp_93 = 1'h1;
+      9'b000101111:
+        casez_tmp_93 = 1'h1;
+      9'b000110000:
+        casez_tmp_93 = 1'h1;
+      9'b000110001:
+        casez_tmp_93 = 1'h1;
+      9'b000110010:
+        casez_tmp_93 = 1'h1;
+      9'b000110011:
+        casez_tmp_93 = 1'h1;
+      9'b000110100:
+        casez_tmp_93 = 1'h1;
+      9'b000110101:
+        casez_tmp_93 = 1'h1;
+      9'b000110110:
+        casez_tmp_93 = 1'h1;
+      9'b000110111:
+        casez_tmp_93 = 1'h1;
+      9'b000111000:
+        casez_tmp_93 = 1'h1;
+      9'b000111001:
+        casez_tmp_93 = 1'h1;
+      9'b000111010:
+        casez_tmp_93 = 1'h1;
+      9'b000111011:
+        casez_tmp_93 = 1'h1;
+      9'b000111100:
+        casez_tmp_93 = 1'h1;
+      9'b000111101:
+        casez_tmp_93 = 1'h1;
+      9'b000111110:
+        casez_tmp_93 = 1'h1;
+      9'b000111111:
+        casez_tmp_93 = 1'h1;
+      9'b001000000:
+        casez_tmp_93 = 1'h0;
+      9'b001000001:
+        casez_tmp_93 = 1'h0;
+      9'b001000010:
+        casez_tmp_93 = 1'h0;
+      9'b001000011:
+        casez_tmp_93 = 1'h0;
+      9'b001000100:
+        casez_tmp_93 = 1'h0;
+      9'b001000101:
+        casez_tmp_93 = 1'h0;
+      9'b001000110:
+        casez_tmp_93 = 1'h0;
+      9'b001000111:
+        casez_tmp_93 = 1'h0;
+      9'b001001000:
+        casez_tmp_93 = 1'h0;
+      9'b001001001:
+        casez_tmp_93 = 1'h0;
+      9'b001001010:
+        casez_tmp_93 = 1'h0;
+      9'b001001011:
+        casez_tmp_93 = 1'h0;
+      9'b001001100:
+        casez_tmp_93 = 1'h1;
+      9'b001001101:
+        casez_tmp_93 = 1'h1;
+      9'b001001110:
+        casez_tmp_93 = 1'h1;
+      9'b001001111:
+        casez_tmp_93 = 1'h1;
+      9'b001010000:
+        casez_tmp_93 = 1'h1;
+      9'b001010001:
+        casez_tmp_93 = 1'h1;
+      9'b001010010:
+        casez_tmp_93 = 1'h1;
+      9'b001010011:
+        casez_tmp_93 = 1'h1;
+      9'b001010100:
+        casez_tmp_93 = 1'h1;
+      9'b001010101:
+        casez_tmp_93 = 1'h1;
+      9'b001010110:
+        casez_tmp_93 = 1'h1;
+      9'b001010111:
+        casez_tmp_93 = 1'h1;
+      9'b001011000:
+        casez_tmp_93 = 1'h1;
+      9'b001011001:
+        casez_tmp_93 = 1'h1;
+      9'b001011010:
+        casez_tmp_93 = 1'h1;
+      9'b001011011:
+        casez_tmp_93 = 1'h1;
+      9'b001011100:
+        casez_tmp_93 = 1'h1;
+      9'b001011101:
+        casez_tmp_93 = 1'h1;
+      9'b001011110:
+        casez_tmp_93 = 1'h1;
+      9'b001011111:
+        casez_tmp_93 = 1'h1;
+      9'b001100000:
+        casez_tmp_93 = 1'h0;
+      9'b001100001:
+        casez_tmp_93 = 1'h0;
+      9'b001100010:
+        casez_tmp_93 = 1'h0;
+      9'b001100011:
+        casez_tmp_93 = 1'h0;
+      9'b001100100:
+        casez_tmp_93 = 1'h0;
+      9'b001100101:
+        casez_tmp_93 = 1'h0;
+      9'b001100110:
+        casez_tmp_93 = 1'h0;
+      9'b001100111:
+        casez_tmp_93 = 1'h0;
+      9'b001101000:
+        casez_tmp_93 = 1'h0;
+      9'b001101001:
+        casez_tmp_93 = 1'h0;
+      9'b001101010:
+        casez_tmp_93 = 1'h0;
+      9'b001101011:
+        casez_tmp_93 = 1'h1;
+      9'b001101100:
+        casez_tmp_93 = 1'h1;
+      9'b001101101:
+        casez_tmp_93 = 1'h1;
+      9'b001101110:
+        casez_tmp_93 = 1'h1;
+      9'b001101111:
+        casez_tmp_93 = 1'h1;
+      9'b001110000:
+        casez_tmp_93 = 1'h1;
+      9'b001110001:
+        casez_tmp_93 = 1'h1;
+      9'b001110010:
+        casez_tmp_93 = 1'h1;
+      9'b001110011:
+        casez_tmp_93 = 1'h1;
+      9'b001110100:
+        casez_tmp_93 = 1'h1;
+      9'b001110101:
+        casez_tmp_93 = 1'h1;
+      9'b001110110:
+        casez_tmp_93 = 1'h1;
+      9'b001110111:
+        casez_tmp_93 = 1'h1;
+      9'b001111000:
+        casez_tmp_93 = 1'h1;
+      9'b001111001:
+        casez_tmp_93 = 1'h1;
+      9'b001111010:
+        casez_tmp_93 = 1'h1;
+      9'b001111011:
+        casez_tmp_93 = 1'h1;
+      9'b001111100:
+        casez_tmp_93 = 1'h1;
+      9'b001111101:
+        casez_tmp_93 = 1'h1;
+      9'b001111110:
+        casez_tmp_93 = 1'h1;
+      9'b001111111:
+        casez_tmp_93 = 1'h1;
+      9'b010000000:
+        casez_tmp_93 = 1'h0;
+      9'b010000001:
+        casez_tmp_93 = 1'h0;
+      9'b010000010:
+        casez_tmp_93 = 1'h0;
+      9'b010000011:
+        casez_tmp_93 = 1'h0;
+      9'b010000100:
+        casez_tmp_93 = 1'h0;
+      9'b010000101:
+        casez_tmp_93 = 1'h0;
+      9'b010000110:
+        casez_tmp_93 = 1'h0;
+      9'b010000111:
+        casez_tmp_93 = 1'h0;
+      9'b010001000:
+        casez_tmp_93 = 1'h0;
+      9'b010001001:
+        casez_tmp_93 = 1'h0;
+      9'b010001010:
+        casez_tmp_93 = 1'h1;
+      9'b010001011:
+        casez_tmp_93 = 1'h1;
+      9'b010001100:
+        casez_tmp_93 = 1'h1;
+      9'b010001101:
+        casez_tmp_93 = 1'h1;
+      9'b010001110:
+        casez_tmp_93 = 1'h1;
+      9'b010001111:
+        casez_tmp_93 = 1'h1;
+      9'b010010000:
+        casez_tmp_93 = 1'h1;
+      9'b010010001:
+        casez_tmp_93 = 1'h1;
+      9'b010010010:
+        casez_tmp_93 = 1'h1;
+      9'b010010011:
+        casez_tmp_93 = 1'h1;
+      9'b010010100:
+        casez_tmp_93 = 1'h1;
+      9'b010010101:
+        casez_tmp_93 = 1'h1;
+      9'b010010110:
+        casez_tmp_93 = 1'h1;
+      9'b010010111:
+        casez_tmp_93 = 1'h1;
+      9'b010011000:
+        casez_tmp_93 = 1'h1;
+      9'b010011001:
+        casez_tmp_93 = 1'h1;
+      9'b010011010:
+        casez_tmp_93 = 1'h1;
+      9'b010011011:
+        casez_tmp_93 = 1'h1;
+      9'b010011100:
+        casez_tmp_93 = 1'h1;
+      9'b010011101:
+        casez_tmp_93 = 1'h1;
+      9'b010011110:
+        casez_tmp_93 = 1'h1;
+      9'b010011111:
+        casez_tmp_93 = 1'h1;
+      9'b010100000:
+        casez_tmp_93 = 1'h0;
+      9'b010100001:
+        casez_tmp_93 = 1'h0;
+      9'b010100010:
+        casez_tmp_93 = 1'h0;
+      9'b010100011:
+        casez_tmp_93 = 1'h0;
+      9'b010100100:
+        casez_tmp_93 = 1'h0;
+      9'b010100101:
+        casez_tmp_93 = 1'h0;
+      9'b010100110:
+        casez_tmp_93 = 1'h0;
+      9'b010100111:
+        casez_tmp_93 = 1'h0;
+      9'b010101000:
+        casez_tmp_93 = 1'h0;
+      9'b010101001:
+        casez_tmp_93 = 1'h1;
+      9'b010101010:
+        casez_tmp_93 = 1'h1;
+      9'b010101011:
+        casez_tmp_93 = 1'h1;
+      9'b010101100:
+        casez_tmp_93 = 1'h1;
+      9'b010101101:
+        casez_tmp_93 = 1'h1;
+      9'b010101110:
+        casez_tmp_93 = 1'h1;
+      9'b010101111:
+        casez_tmp_93 = 1'h1;
+      9'b010110000:
+        casez_tmp_93 = 1'h1;
+      9'b010110001:
+        casez_tmp_93 = 1'h1;
+      9'b010110010:
+        casez_tmp_93 = 1'h1;
+      9'b010110011:
+        casez_tmp_93 = 1'h1;
+      9'b010110100:
+        casez_tmp_93 = 1'h1;
+      9'b010110101:
+        casez_tmp_93 = 1'h1;
+      9'b010110110:
+        casez_tmp_93 = 1'h1;
+      9'b010110111:
+        casez_tmp_93 = 1'h1;
+      9'b010111000:
+        casez_tmp_93 = 1'h1;
+      9'b010111001:
+        casez_tmp_93 = 1'h1;
+      9'b010111010:
+        casez_tmp_93 = 1'h1;
+      9'b010111011:
+        casez_tmp_93 = 1'h1;
+      9'b010111100:
+        casez_tmp_93 = 1'h1;
+      9'b010111101:
+        casez_tmp_93 = 1'h1;
+      9'b010111110:
+        casez_tmp_93 = 1'h1;
+      9'b010111111:
+        casez_tmp_93 = 1'h1;
+      9'b011000000:
+        casez_tmp_93 = 1'h0;
+      9'b011000001:
+        casez_tmp_93 = 1'h0;
+      9'b011000010:
+        casez_tmp_93 = 1'h0;
+      9'b011000011:
+        casez_tmp_93 = 1'h0;
+      9'b011000100:
+        casez_tmp_93 = 1'h0;
+      9'b011000101:
+        casez_tmp_93 = 1'h0;
+      9'b011000110:
+        casez_tmp_93 = 1'h0;
+      9'b011000111:
+        casez_tmp_93 = 1'h0;
+      9'b011001000:
+        casez_tmp_93 = 1'h1;
+      9'b011001001:
+        casez_tmp_93 = 1'h1;
+      9'b011001010:
+        casez_tmp_93 = 1'h1;
+      9'b011001011:
+        casez_tmp_93 = 1'h1;
+      9'b011001100:
+        casez_tmp_93 = 1'h1;
+      9'b011001101:
+        casez_tmp_93 = 1'h1;
+      9'b011001110:
+        casez_tmp_93 = 1'h1;
+      9'b011001111:
+        casez_tmp_93 = 1'h1;
+      9'b011010000:
+        casez_tmp_93 = 1'h1;
+      9'b011010001:
+        casez_tmp_93 = 1'h1;
+      9'b011010010:
+        casez_tmp_93 = 1'h1;
+      9'b011010011:
+        casez_tmp_93 = 1'h1;
+      9'b011010100:
+        casez_tmp_93 = 1'h1;
+      9'b011010101:
+        casez_tmp_93 = 1'h1;
+      9'b011010110:
+        casez_tmp_93 = 1'h1;
+      9'b011010111:
+        casez_tmp_93 = 1'h1;
+      9'b011011000:
+        casez_tmp_93 = 1'h1;
+      9'b011011001:
+        casez_tmp_93 = 1'h1;
+      9'b011011010:
+        casez_tmp_93 = 1'h1;
+      9'b011011011:
+        casez_tmp_93 = 1'h1;
+      9'b011011100:
+        casez_tmp_93 = 1'h1;
+      9'b011011101:
+        casez_tmp_93 = 1'h1;
+      9'b011011110:
+        casez_tmp_93 = 1'h1;
+      9'b011011111:
+        casez_tmp_93 = 1'h1;
+      9'b011100000:
+        casez_tmp_93 = 1'h0;
+      9'b011100001:
+        casez_tmp_93 = 1'h0;
+      9'b011100010:
+        casez_tmp_93 = 1'h0;
+      9'b011100011:
+        casez_tmp_93 = 1'h0;
+      9'b011100100:
+        casez_tmp_93 = 1'h0;
+      9'b011100101:
+        casez_tmp_93 = 1'h0;
+      9'b011100110:
+        casez_tmp_93 = 1'h0;
+      9'b011100111:
+        casez_tmp_93 = 1'h1;
+      9'b011101000:
+        casez_tmp_93 = 1'h1;
+      9'b011101001:
+        casez_tmp_93 = 1'h1;
+      9'b011101010:
+        casez_tmp_93 = 1'h1;
+      9'b011101011:
+        casez_tmp_93 = 1'h1;
+      9'b011101100:
+        casez_tmp_93 = 1'h1;
+      9'b011101101:
+        casez_tmp_93 = 1'h1;
+      9'b011101110:
+        casez_tmp_93 = 1'h1;
+      9'b011101111:
+        casez_tmp_93 = 1'h1;
+      9'b011110000:
+        casez_tmp_93 = 1'h1;
+      9'b011110001:
+        casez_tmp_93 = 1'h1;
+      9'b011110010:
+        casez_tmp_93 = 1'h1;
+      9'b011110011:
+        casez_tmp_93 = 1'h1;
+      9'b011110100:
+        casez_tmp_93 = 1'h1;
+      9'b011110101:
+        casez_tmp_93 = 1'h1;
+      9'b011110110:
+        casez_tmp_93 = 1'h1;
+      9'b011110111:
+        casez_tmp_93 = 1'h1;
+      9'b011111000:
+        casez_tmp_93 = 1'h1;
+      9'b011111001:
+        casez_tmp_93 = 1'h1;
+      9'b011111010:
+        casez_tmp_93 = 1'h1;
+      9'b011111011:
+        casez_tmp_93 = 1'h1;
+      9'b011111100:
+        casez_tmp_93 = 1'h1;
+      9'b011111101:
+        casez_tmp_93 = 1'h1;
+      9'b011111110:
+        casez_tmp_93 = 1'h1;
+      9'b011111111:
+        casez_tmp_93 = 1'h1;
+      9'b100000000:
+        casez_tmp_93 = 1'h0;
+      9'b100000001:
+        casez_tmp_93 = 1'h0;
+      9'b100000010:
+        casez_tmp_93 = 1'h0;
+      9'b100000011:
+        casez_tmp_93 = 1'h0;
+      9'b100000100:
+        casez_tmp_93 = 1'h0;
+      9'b100000101:
+        casez_tmp_93 = 1'h0;
+      9'b100000110:
+        casez_tmp_93 = 1'h1;
+      9'b100000111:
+        casez_tmp_93 = 1'h1;
+      9'b100001000:
+        casez_tmp_93 = 1'h1;
+      9'b100001001:
+        casez_tmp_93 = 1'h1;
+      9'b100001010:
+        casez_tmp_93 = 1'h1;
+      9'b100001011:
+        casez_tmp_93 = 1'h1;
+      9'b100001100:
+        casez_tmp_93 = 1'h1;
+      9'b100001101:
+        casez_tmp_93 = 1'h1;
+      9'b100001110:
+        casez_tmp_93 = 1'h1;
+      9'b100001111:
+        casez_tmp_93 = 1'h1;
+      9'b100010000:
+        casez_tmp_93 = 1'h1;
+      9'b100010001:
+        casez_tmp_93 = 1'h1;
+      9'b100010010:
+        casez_tmp_93 = 1'h1;
+      9'b100010011:
+        casez_tmp_93 = 1'h1;
+      9'b100010100:
+        casez_tmp_93 = 1'h1;
+      9'b100010101:
+        casez_tmp_93 = 1'h1;
+      9'b100010110:
+        casez_tmp_93 = 1'h1;
+      9'b100010111:
+        casez_tmp_93 = 1'h1;
+      9'b100011000:
+        casez_tmp_93 = 1'h1;
+      9'b100011001:
+        casez_tmp_93 = 1'h1;
+      9'b100011010:
+        casez_tmp_93 = 1'h1;
+      9'b100011011:
+        casez_tmp_93 = 1'h1;
+      9'b100011100:
+        casez_tmp_93 = 1'h1;
+      9'b100011101:
+        casez_tmp_93 = 1'h1;
+      9'b100011110:
+        casez_tmp_93 = 1'h1;
+      9'b100011111:
+        casez_tmp_93 = 1'h1;
+      9'b100100000:
+        casez_tmp_93 = 1'h0;
+      9'b100100001:
+        casez_tmp_93 = 1'h0;
+      9'b100100010:
+        casez_tmp_93 = 1'h0;
+      9'b100100011:
+        casez_tmp_93 = 1'h0;
+      9'b100100100:
+        casez_tmp_93 = 1'h0;
+      9'b100100101:
+        casez_tmp_93 = 1'h1;
+      9'b100100110:
+        casez_tmp_93 = 1'h1;
+      9'b100100111:
+        casez_tmp_93 = 1'h1;
+      9'b100101000:
+        casez_tmp_93 = 1'h1;
+      9'b100101001:
+        casez_tmp_93 = 1'h1;
+      9'b100101010:
+        casez_tmp_93 = 1'h1;
+      9'b100101011:
+        casez_tmp_93 = 1'h1;
+      9'b100101100:
+        casez_tmp_93 = 1'h1;
+      9'b100101101:
+        casez_tmp_93 = 1'h1;
+      9'b100101110:
+        casez_tmp_93 = 1'h1;
+      9'b100101111:
+        casez_tmp_93 = 1'h1;
+      9'b100110000:
+        casez_tmp_93 = 1'h1;
+      9'b100110001:
+        casez_tmp_93 = 1'h1;
+      9'b100110010:
+        casez_tmp_93 = 1'h1;
+      9'b100110011:
+        casez_tmp_93 = 1'h1;
+      9'b100110100:
+        casez_tmp_93 = 1'h1;
+      9'b100110101:
+        casez_tmp_93 = 1'h1;
+      9'b100110110:
+        casez_tmp_93 = 1'h1;
+      9'b100110111:
+        casez_tmp_93 = 1'h1;
+      9'b100111000:
+        casez_tmp_93 = 1'h1;
+      9'b100111001:
+        casez_tmp_93 = 1'h1;
+      9'b100111010:
+        casez_tmp_93 = 1'h1;
+      9'b100111011:
+        casez_tmp_93 = 1'h1;
+      9'b100111100:
+        casez_tmp_93 = 1'h1;
+      9'b100111101:
+        casez_tmp_93 = 1'h1;
+      9'b100111110:
+        casez_tmp_93 = 1'h1;
+      9'b100111111:
+        casez_tmp_93 = 1'h1;
+      9'b101000000:
+        casez_tmp_93 = 1'h0;
+      9'b101000001:
+        casez_tmp_93 = 1'h0;
+      9'b101000010:
+        casez_tmp_93 = 1'h0;
+      9'b101000011:
+        casez_tmp_93 = 1'h0;
+      9'b101000100:
+        casez_tmp_93 = 1'h1;
+      9'b101000101:
+        casez_tmp_93 = 1'h1;
+      9'b101000110:
+        casez_tmp_93 = 1'h1;
+      9'b101000111:
+        casez_tmp_93 = 1'h1;
+      9'b101001000:
+        casez_tmp_93 = 1'h1;
+      9'b101001001:
+        casez_tmp_93 = 1'h1;
+      9'b101001010:
+        casez_tmp_93 = 1'h1;
+      9'b101001011:
+        casez_tmp_93 = 1'h1;
+      9'b101001100:
+        casez_tmp_93 = 1'h1;
+      9'b101001101:
+        casez_tmp_93 = 1'h1;
+      9'b101001110:
+        casez_tmp_93 = 1'h1;
+      9'b101001111:
+        casez_tmp_93 = 1'h1;
+      9'b101010000:
+        casez_tmp_93 = 1'h1;
+      9'b101010001:
+        casez_tmp_93 = 1'h1;
+      9'b101010010:
+        casez_tmp_93 = 1'h1;
+      9'b101010011:
+        casez_tmp_93 = 1'h1;
+      9'b101010100:
+        casez_tmp_93 = 1'h1;
+      9'b101010101:
+        casez_tmp_93 = 1'h1;
+      9'b101010110:
+        casez_tmp_93 = 1'h1;
+      9'b101010111:
+        casez_tmp_93 = 1'h1;
+      9'b101011000:
+        casez_tmp_93 = 1'h1;
+      9'b101011001:
+        casez_tmp_93 = 1'h1;
+      9'b101011010:
+        casez_tmp_93 = 1'h1;
+      9'b101011011:
+        casez_tmp_93 = 1'h1;
+      9'b101011100:
+        casez_tmp_93 = 1'h1;
+      9'b101011101:
+        casez_tmp_93 = 1'h1;
+      9'b101011110:
+        casez_tmp_93 = 1'h1;
+      9'b101011111:
+        casez_tmp_93 = 1'h1;
+      9'b101100000:
+        casez_tmp_93 = 1'h0;
+      9'b101100001:
+        casez_tmp_93 = 1'h0;
+      9'b101100010:
+        casez_tmp_93 = 1'h0;
+      9'b101100011:
+        casez_tmp_93 = 1'h1;
+      9'b101100100:
+        casez_tmp_93 = 1'h1;
+      9'b101100101:
+        casez_tmp_93 = 1'h1;
+      9'b101100110:
+        casez_tmp_93 = 1'h1;
+      9'b101100111:
+        casez_tmp_93 = 1'h1;
+      9'b101101000:
+        casez_tmp_93 = 1'h1;
+      9'b101101001:
+        casez_tmp_93 = 1'h1;
+      9'b101101010:
+        casez_tmp_93 = 1'h1;
+      9'b101101011:
+        casez_tmp_93 = 1'h1;
+      9'b101101100:
+        casez_tmp_93 = 1'h1;
+      9'b101101101:
+        casez_tmp_93 = 1'h1;
+      9'b101101110:
+        casez_tmp_93 = 1'h1;
+      9'b101101111:
+        casez_tmp_93 = 1'h1;
+      9'b101110000:
+        casez_tmp_93 = 1'h1;
+      9'b101110001:
+        casez_tmp_93 = 1'h1;
+      9'b101110010:
+        casez_tmp_93 = 1'h1;
+      9'b101110011:
+        casez_tmp_93 = 1'h1;
+      9'b101110100:
+        casez_tmp_93 = 1'h1;
+      9'b101110101:
+        casez_tmp_93 = 1'h1;
+      9'b101110110:
+        casez_tmp_93 = 1'h1;
+      9'b101110111:
+        casez_tmp_93 = 1'h1;
+      9'b101111000:
+        casez_tmp_93 = 1'h1;
+      9'b101111001:
+        casez_tmp_93 = 1'h1;
+      9'b101111010:
+        casez_tmp_93 = 1'h1;
+      9'b101111011:
+        casez_tmp_93 = 1'h1;
+      9'b101111100:
+        casez_tmp_93 = 1'h1;
+      9'b101111101:
+        casez_tmp_93 = 1'h1;
+      9'b101111110:
+        casez_tmp_93 = 1'h1;
+      9'b101111111:
+        casez_tmp_93 = 1'h1;
+      9'b110000000:
+        casez_tmp_93 = 1'h0;
+      9'b110000001:
+        casez_tmp_93 = 1'h0;
+      9'b110000010:
+        casez_tmp_93 = 1'h1;
+      9'b110000011:
+        casez_tmp_93 = 1'h1;
+      9'b110000100:
+        casez_tmp_93 = 1'h1;
+      9'b110000101:
+        casez_tmp_93 = 1'h1;
+      9'b110000110:
+        casez_tmp_93 = 1'h1;
+      9'b110000111:
+        casez_tmp_93 = 1'h1;
+      9'b110001000:
+        casez_tmp_93 = 1'h1;
+      9'b110001001:
+        casez_tmp_93 = 1'h1;
+      9'b110001010:
+        casez_tmp_93 = 1'h1;
+      9'b110001011:
+        casez_tmp_93 = 1'h1;
+      9'b110001100:
+        casez_tmp_93 = 1'h1;
+      9'b110001101:
+        casez_tmp_93 = 1'h1;
+      9'b110001110:
+        casez_tmp_93 = 1'h1;
+      9'b110001111:
+        casez_tmp_93 = 1'h1;
+      9'b110010000:
+        casez_tmp_93 = 1'h1;
+      9'b110010001:
+        casez_tmp_93 = 1'h1;
+      9'b110010010:
+        casez_tmp_93 = 1'h1;
+      9'b110010011:
+        casez_tmp_93 = 1'h1;
+      9'b110010100:
+        casez_tmp_93 = 1'h1;
+      9'b110010101:
+        casez_tmp_93 = 1'h1;
+      9'b110010110:
+        casez_tmp_93 = 1'h1;
+      9'b110010111:
+        casez_tmp_93 = 1'h1;
+      9'b110011000:
+        casez_tmp_93 = 1'h1;
+      9'b110011001:
+        casez_tmp_93 = 1'h1;
+      9'b110011010:
+        casez_tmp_93 = 1'h1;
+      9'b110011011:
+        casez_tmp_93 = 1'h1;
+      9'b110011100:
+        casez_tmp_93 = 1'h1;
+      9'b110011101:
+        casez_tmp_93 = 1'h1;
+      9'b110011110:
+        casez_tmp_93 = 1'h1;
+      9'b110011111:
+        casez_tmp_93 = 1'h1;
+      9'b110100000:
+        casez_tmp_93 = 1'h0;
+      9'b110100001:
+        casez_tmp_93 = 1'h1;
+      9'b110100010:
+        casez_tmp_93 = 1'h1;
+      9'b110100011:
+        casez_tmp_93 = 1'h1;
+      9'b110100100:
+        casez_tmp_93 = 1'h1;
+      9'b110100101:
+        casez_tmp_93 = 1'h1;
+      9'b110100110:
+        casez_tmp_93 = 1'h1;
+      9'b110100111:
+        casez_tmp_93 = 1'h1;
+      9'b110101000:
+        casez_tmp_93 = 1'h1;
+      9'b110101001:
+        casez_tmp_93 = 1'h1;
+      9'b110101010:
+        casez_tmp_93 = 1'h1;
+      9'b110101011:
+        casez_tmp_93 = 1'h1;
+      9'b110101100:
+        casez_tmp_93 = 1'h1;
+      9'b110101101:
+        casez_tmp_93 = 1'h1;
+      9'b110101110:
+        casez_tmp_93 = 1'h1;
+      9'b110101111:
+        casez_tmp_93 = 1'h1;
+      9'b110110000:
+        casez_tmp_93 = 1'h1;
+      9'b110110001:
+        casez_tmp_93 = 1'h1;
+      9'b110110010:
+        casez_tmp_93 = 1'h1;
+      9'b110110011:
+        casez_tmp_93 = 1'h1;
+      9'b110110100:
+        casez_tmp_93 = 1'h1;
+      9'b110110101:
+        casez_tmp_93 = 1'h1;
+      9'b110110110:
+        casez_tmp_93 = 1'h1;
+      9'b110110111:
+        casez_tmp_93 = 1'h1;
+      9'b110111000:
+        casez_tmp_93 = 1'h1;
+      9'b110111001:
+        casez_tmp_93 = 1'h1;
+      9'b110111010:
+        casez_tmp_93 = 1'h1;
+      9'b110111011:
+        casez_tmp_93 = 1'h1;
+      9'b110111100:
+        casez_tmp_93 = 1'h1;
+      9'b110111101:
+        casez_tmp_93 = 1'h1;
+      9'b110111110:
+        casez_tmp_93 = 1'h1;
+      9'b110111111:
+        casez_tmp_93 = 1'h1;
+      9'b111000000:
+        casez_tmp_93 = 1'h0;
+      9'b111000001:
+        casez_tmp_93 = 1'h0;
+      9'b111000010:
+        casez_tmp_93 = 1'h0;
+      9'b111000011:
+        casez_tmp_93 = 1'h0;
+      9'b111000100:
+        casez_tmp_93 = 1'h0;
+      9'b111000101:
+        casez_tmp_93 = 1'h0;
+      9'b111000110:
+        casez_tmp_93 = 1'h0;
+      9'b111000111:
+        casez_tmp_93 = 1'h0;
+      9'b111001000:
+        casez_tmp_93 = 1'h0;
+      9'b111001001:
+        casez_tmp_93 = 1'h0;
+      9'b111001010:
+        casez_tmp_93 = 1'h0;
+      9'b111001011:
+        casez_tmp_93 = 1'h0;
+      9'b111001100:
+        casez_tmp_93 = 1'h0;
+      9'b111001101:
+        casez_tmp_93 = 1'h0;
+      9'b111001110:
+        casez_tmp_93 = 1'h0;
+      9'b111001111:
+        casez_tmp_93 = 1'h0;
+      9'b111010000:
+        casez_tmp_93 = 1'h1;
+      9'b111010001:
+        casez_tmp_93 = 1'h1;
+      9'b111010010:
+        casez_tmp_93 = 1'h1;
+      9'b111010011:
+        casez_tmp_93 = 1'h1;
+      9'b111010100:
+        casez_tmp_93 = 1'h1;
+      9'b111010101:
+        casez_tmp_93 = 1'h1;
+      9'b111010110:
+        casez_tmp_93 = 1'h1;
+      9'b111010111:
+        casez_tmp_93 = 1'h1;
+      9'b111011000:
+        casez_tmp_93 = 1'h1;
+      9'b111011001:
+        casez_tmp_93 = 1'h1;
+      9'b111011010:
+        casez_tmp_93 = 1'h1;
+      9'b111011011:
+        casez_tmp_93 = 1'h1;
+      9'b111011100:
+        casez_tmp_93 = 1'h1;
+      9'b111011101:
+        casez_tmp_93 = 1'h1;
+      9'b111011110:
+        casez_tmp_93 = 1'h1;
+      9'b111011111:
+        casez_tmp_93 = 1'h1;
+      9'b111100000:
+        casez_tmp_93 = 1'h0;
+      9'b111100001:
+        casez_tmp_93 = 1'h0;
+      9'b111100010:
+        casez_tmp_93 = 1'h0;
+      9'b111100011:
+        casez_tmp_93 = 1'h0;
+      9'b111100100:
+        casez_tmp_93 = 1'h0;
+      9'b111100101:
+        casez_tmp_93 = 1'h0;
+      9'b111100110:
+        casez_tmp_93 = 1'h0;
+      9'b111100111:
+        casez_tmp_93 = 1'h0;
+      9'b111101000:
+        casez_tmp_93 = 1'h0;
+      9'b111101001:
+        casez_tmp_93 = 1'h0;
+      9'b111101010:
+        casez_tmp_93 = 1'h0;
+      9'b111101011:
+        casez_tmp_93 = 1'h0;
+      9'b111101100:
+        casez_tmp_93 = 1'h0;
+      9'b111101101:
+        casez_tmp_93 = 1'h0;
+      9'b111101110:
+        casez_tmp_93 = 1'h0;
+      9'b111101111:
+        casez_tmp_93 = 1'h1;
+      9'b111110000:
+        casez_tmp_93 = 1'h1;
+      9'b111110001:
+        casez_tmp_93 = 1'h1;
+      9'b111110010:
+        casez_tmp_93 = 1'h1;
+      9'b111110011:
+        casez_tmp_93 = 1'h1;
+      9'b111110100:
+        casez_tmp_93 = 1'h1;
+      9'b111110101:
+        casez_tmp_93 = 1'h1;
+      9'b111110110:
+        casez_tmp_93 = 1'h1;
+      9'b111110111:
+        casez_tmp_93 = 1'h1;
+      9'b111111000:
+        casez_tmp_93 = 1'h1;
+      9'b111111001:
+        casez_tmp_93 = 1'h1;
+      9'b111111010:
+        casez_tmp_93 = 1'h1;
+      9'b111111011:
+        casez_tmp_93 = 1'h1;
+      9'b111111100:
+        casez_tmp_93 = 1'h1;
+      9'b111111101:
+        casez_tmp_93 = 1'h1;
+      9'b111111110:
+        casez_tmp_93 = 1'h1;
+      default:
+        casez_tmp_93 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_94;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_94 = 1'h0;
+      9'b000000001:
+        casez_tmp_94 = 1'h0;
+      9'b000000010:
+        casez_tmp_94 = 1'h0;
+      9'b000000011:
+        casez_tmp_94 = 1'h0;
+      9'b000000100:
+        casez_tmp_94 = 1'h0;
+      9'b000000101:
+        casez_tmp_94 = 1'h0;
+      9'b000000110:
+        casez_tmp_94 = 1'h0;
+      9'b000000111:
+        casez_tmp_94 = 1'h0;
+      9'b000001000:
+        casez_tmp_94 = 1'h0;
+      9'b000001001:
+        casez_tmp_94 = 1'h0;
+      9'b000001010:
+        casez_tmp_94 = 1'h0;
+      9'b000001011:
+        casez_tmp_94 = 1'h0;
+      9'b000001100:
+        casez_tmp_94 = 1'h0;
+      9'b000001101:
+        casez_tmp_94 = 1'h0;
+      9'b000001110:
+        casez_tmp_94 = 1'h0;
+      9'b000001111:
+        casez_tmp_94 = 1'h1;
+      9'b000010000:
+        casez_tmp_94 = 1'h1;
+      9'b000010001:
+        casez_tmp_94 = 1'h1;
+      9'b000010010:
+        casez_tmp_94 = 1'h1;
+      9'b000010011:
+        casez_tmp_94 = 1'h1;
+      9'b000010100:
+        casez_tmp_94 = 1'h1;
+      9'b000010101:
+        casez_tmp_94 = 1'h1;
+      9'b000010110:
+        casez_tmp_94 = 1'h1;
+      9'b000010111:
+        casez_tmp_94 = 1'h1;
+      9'b000011000:
+        casez_tmp_94 = 1'h1;
+      9'b000011001:
+        casez_tmp_94 = 1'h1;
+      9'b000011010:
+        casez_tmp_94 = 1'h1;
+      9'b000011011:
+        casez_tmp_94 = 1'h1;
+      9'b000011100:
+        casez_tmp_94 = 1'h1;
+      9'b000011101:
+        casez_tmp_94 = 1'h1;
+      9'b000011110:
+        casez_tmp_94 = 1'h1;
+      9'b000011111:
+        casez_tmp_94 = 1'h1;
+      9'b000100000:
+        casez_tmp_94 = 1'h0;
+      9'b000100001:
+        casez_tmp_94 = 1'h0;
+      9'b000100010:
+        casez_tmp_94 = 1'h0;
+      9'b000100011:
+        casez_tmp_94 = 1'h0;
+      9'b000100100:
+        casez_tmp_94 = 1'h0;
+      9'b000100101:
+        casez_tmp_94 = 1'h0;
+      9'b000100110:
+        casez_tmp_94 = 1'h0;
+      9'b000100111:
+        casez_tmp_94 = 1'h0;
+      9'b000101000:
+        casez_tmp_94 = 1'h0;
+      9'b000101001:
+        casez_tmp_94 = 1'h0;
+      9'b000101010:
+        casez_tmp_94 = 1'h0;
+      9'b000101011:
+        casez_tmp_94 = 1'h0;
+      9'b000101100:
+        casez_tmp_94 = 1'h0;
+      9'b000101101:
+        casez_tmp_94 = 1'h0;
+      9'b000101110:
+        casez_tmp_94 = 1'h1;
+      9'b000101111:
+        casez_tmp_94 = 1'h1;
+      9'b000110000:
+        casez_tmp_94 = 1'h1;
+      9'b000110001:
+        casez_tmp_94 = 1'h1;
+      9'b000110010:
+        casez_tmp_94 = 1'h1;
+      9'b000110011:
+        casez_tmp_94 = 1'h1;
+      9'b000110100:
+        casez_tmp_94 = 1'h1;
+      9'b000110101:
+        casez_tmp_94 = 1'h1;
+      9'b000110110:
+        casez_tmp_94 = 1'h1;
+      9'b000110111:
+        casez_tmp_94 = 1'h1;
+      9'b000111000:
+        casez_tmp_94 = 1'h1;
+      9'b000111001:
+        casez_tmp_94 = 1'h1;
+      9'b000111010:
+        casez_tmp_94 = 1'h1;
+      9'b000111011:
+        casez_tmp_94 = 1'h1;
+      9'b000111100:
+        casez_tmp_94 = 1'h1;
+      9'b000111101:
+        casez_tmp_94 = 1'h1;
+      9'b000111110:
+        casez_tmp_94 = 1'h1;
+      9'b000111111:
+        casez_tmp_94 = 1'h1;
+      9'b001000000:
+        casez_tmp_94 = 1'h0;
+      9'b001000001:
+        casez_tmp_94 = 1'h0;
+      9'b001000010:
+        casez_tmp_94 = 1'h0;
+      9'b001000011:
+        casez_tmp_94 = 1'h0;
+      9'b001000100:
+        casez_tmp_94 = 1'h0;
+      9'b001000101:
+        casez_tmp_94 = 1'h0;
+      9'b001000110:
+        casez_tmp_94 = 1'h0;
+      9'b001000111:
+        casez_tmp_94 = 1'h0;
+      9'b001001000:
+        casez_tmp_94 = 1'h0;
+      9'b001001001:
+        casez_tmp_94 = 1'h0;
+      9'b001001010:
+        casez_tmp_94 = 1'h0;
+      9'b001001011:
+        casez_tmp_94 = 1'h0;
+      9'b001001100:
+        casez_tmp_94 = 1'h0;
+      9'b001001101:
+        casez_tmp_94 = 1'h1;
+      9'b001001110:
+        casez_tmp_94 = 1'h1;
+      9'b001001111:
+        casez_tmp_94 = 1'h1;
+      9'b001010000:
+        casez_tmp_94 = 1'h1;
+      9'b001010001:
+        casez_tmp_94 = 1'h1;
+      9'b001010010:
+        casez_tmp_94 = 1'h1;
+      9'b001010011:
+        casez_tmp_94 = 1'h1;
+      9'b001010100:
+        casez_tmp_94 = 1'h1;
+      9'b001010101:
+        casez_tmp_94 = 1'h1;
+      9'b001010110:
+        casez_tmp_94 = 1'h1;
+      9'b001010111:
+        casez_tmp_94 = 1'h1;
+      9'b001011000:
+        casez_tmp_94 = 1'h1;
+      9'b001011001:
+        casez_tmp_94 = 1'h1;
+      9'b001011010:
+        casez_tmp_94 = 1'h1;
+      9'b001011011:
+        casez_tmp_94 = 1'h1;
+      9'b001011100:
+        casez_tmp_94 = 1'h1;
+      9'b001011101:
+        casez_tmp_94 = 1'h1;
+      9'b001011110:
+        casez_tmp_94 = 1'h1;
+      9'b001011111:
+        casez_tmp_94 = 1'h1;
+      9'b001100000:
+        casez_tmp_94 = 1'h0;
+      9'b001100001:
+        casez_tmp_94 = 1'h0;
+      9'b001100010:
+        casez_tmp_94 = 1'h0;
+      9'b001100011:
+        casez_tmp_94 = 1'h0;
+      9'b001100100:
+        casez_tmp_94 = 1'h0;
+      9'b001100101:
+        casez_tmp_94 = 1'h0;
+      9'b001100110:
+        casez_tmp_94 = 1'h0;
+      9'b001100111:
+        casez_tmp_94 = 1'h0;
+      9'b001101000:
+        casez_tmp_94 = 1'h0;
+      9'b001101001:
+        casez_tmp_94 = 1'h0;
+      9'b001101010:
+        casez_tmp_94 = 1'h0;
+      9'b001101011:
+        casez_tmp_94 = 1'h0;
+      9'b001101100:
+        casez_tmp_94 = 1'h1;
+      9'b001101101:
+        casez_tmp_94 = 1'h1;
+      9'b001101110:
+        casez_tmp_94 = 1'h1;
+      9'b001101111:
+        casez_tmp_94 = 1'h1;
+      9'b001110000:
+        casez_tmp_94 = 1'h1;
+      9'b001110001:
+        casez_tmp_94 = 1'h1;
+      9'b001110010:
+        casez_tmp_94 = 1'h1;
+      9'b001110011:
+        casez_tmp_94 = 1'h1;
+      9'b001110100:
+        casez_tmp_94 = 1'h1;
+      9'b001110101:
+        casez_tmp_94 = 1'h1;
+      9'b001110110:
+        casez_tmp_94 = 1'h1;
+      9'b001110111:
+        casez_tmp_94 = 1'h1;
+      9'b001111000:
+        casez_tmp_94 = 1'h1;
+      9'b001111001:
+        casez_tmp_94 = 1'h1;
+      9'b001111010:
+        casez_tmp_94 = 1'h1;
+      9'b001111011:
+        casez_tmp_94 = 1'h1;
+      9'b001111100:
+        casez_tmp_94 = 1'h1;
+      9'b001111101:
+        casez_tmp_94 = 1'h1;
+      9'b001111110:
+        casez_tmp_94 = 1'h1;
+      9'b001111111:
+        casez_tmp_94 = 1'h1;
+      9'b010000000:
+        casez_tmp_94 = 1'h0;
+      9'b010000001:
+        casez_tmp_94 = 1'h0;
+      9'b010000010:
+        casez_tmp_94 = 1'h0;
+      9'b010000011:
+        casez_tmp_94 = 1'h0;
+      9'b010000100:
+        casez_tmp_94 = 1'h0;
+      9'b010000101:
+        casez_tmp_94 = 1'h0;
+      9'b010000110:
+        casez_tmp_94 = 1'h0;
+      9'b010000111:
+        casez_tmp_94 = 1'h0;
+      9'b010001000:
+        casez_tmp_94 = 1'h0;
+      9'b010001001:
+        casez_tmp_94 = 1'h0;
+      9'b010001010:
+        casez_tmp_94 = 1'h0;
+      9'b010001011:
+        casez_tmp_94 = 1'h1;
+      9'b010001100:
+        casez_tmp_94 = 1'h1;
+      9'b010001101:
+        casez_tmp_94 = 1'h1;
+      9'b010001110:
+        casez_tmp_94 = 1'h1;
+      9'b010001111:
+        casez_tmp_94 = 1'h1;
+      9'b010010000:
+        casez_tmp_94 = 1'h1;
+      9'b010010001:
+        casez_tmp_94 = 1'h1;
+      9'b010010010:
+        casez_tmp_94 = 1'h1;
+      9'b010010011:
+        casez_tmp_94 = 1'h1;
+      9'b010010100:
+        casez_tmp_94 = 1'h1;
+      9'b010010101:
+        casez_tmp_94 = 1'h1;
+      9'b010010110:
+        casez_tmp_94 = 1'h1;
+      9'b010010111:
+        casez_tmp_94 = 1'h1;
+      9'b010011000:
+        casez_tmp_94 = 1'h1;
+      9'b010011001:
+        casez_tmp_94 = 1'h1;
+      9'b010011010:
+        casez_tmp_94 = 1'h1;
+      9'b010011011:
+        casez_tmp_94 = 1'h1;
+      9'b010011100:
+        casez_tmp_94 = 1'h1;
+      9'b010011101:
+        casez_tmp_94 = 1'h1;
+      9'b010011110:
+        casez_tmp_94 = 1'h1;
+      9'b010011111:
+        casez_tmp_94 = 1'h1;
+      9'b010100000:
+        casez_tmp_94 = 1'h0;
+      9'b010100001:
+        casez_tmp_94 = 1'h0;
+      9'b010100010:
+        casez_tmp_94 = 1'h0;
+      9'b010100011:
+        casez_tmp_94 = 1'h0;
+      9'b010100100:
+        casez_tmp_94 = 1'h0;
+      9'b010100101:
+        casez_tmp_94 = 1'h0;
+      9'b010100110:
+        casez_tmp_94 = 1'h0;
+      9'b010100111:
+        casez_tmp_94 = 1'h0;
+      9'b010101000:
+        casez_tmp_94 = 1'h0;
+      9'b010101001:
+        casez_tmp_94 = 1'h0;
+      9'b010101010:
+        casez_tmp_94 = 1'h1;
+      9'b010101011:
+        casez_tmp_94 = 1'h1;
+      9'b010101100:
+        casez_tmp_94 = 1'h1;
+      9'b010101101:
+        casez_tmp_94 = 1'h1;
+      9'b010101110:
+        casez_tmp_94 = 1'h1;
+      9'b010101111:
+        casez_tmp_94 = 1'h1;
+      9'b010110000:
+        casez_tmp_94 = 1'h1;
+      9'b010110001:
+        casez_tmp_94 = 1'h1;
+      9'b010110010:
+        casez_tmp_94 = 1'h1;
+      9'b010110011:
+        casez_tmp_94 = 1'h1;
+      9'b010110100:
+        casez_tmp_94 = 1'h1;
+      9'b010110101:
+        casez_tmp_94 = 1'h1;
+      9'b010110110:
+        casez_tmp_94 = 1'h1;
+      9'b010110111:
+        casez_tmp_94 = 1'h1;
+      9'b010111000:
+        casez_tmp_94 = 1'h1;
+      9'b010111001:
+        casez_tmp_94 = 1'h1;
+      9'b010111010:
+        casez_tmp_94 = 1'h1;
+      9'b010111011:
+        casez_tmp_94 = 1'h1;
+      9'b010111100:
+        casez_tmp_94 = 1'h1;
+      9'b010111101:
+        casez_tmp_94 = 1'h1;
+      9'b010111110:
+        casez_tmp_94 = 1'h1;
+      9'b010111111:
+        casez_tmp_94 = 1'h1;
+      9'b011000000:
+        casez_tmp_94 = 1'h0;
+      9'b011000001:
+        casez_tmp_94 = 1'h0;
+      9'b011000010:
+        casez_tmp_94 = 1'h0;
+      9'b011000011:
+        casez_tmp_94 = 1'h0;
+      9'b011000100:
+        casez_tmp_94 = 1'h0;
+      9'b011000101:
+        casez_tmp_94 = 1'h0;
+      9'b011000110:
+        casez_tmp_94 = 1'h0;
+      9'b011000111:
+        casez_tmp_94 = 1'h0;
+      9'b011001000:
+        casez_tmp_94 = 1'h0;
+      9'b011001001:
+        casez_tmp_94 = 1'h1;
+      9'b011001010:
+        casez_tmp_94 = 1'h1;
+      9'b011001011:
+        casez_tmp_94 = 1'h1;
+      9'b011001100:
+        casez_tmp_94 = 1'h1;
+      9'b011001101:
+        casez_tmp_94 = 1'h1;
+      9'b011001110:
+        casez_tmp_94 = 1'h1;
+      9'b011001111:
+        casez_tmp_94 = 1'h1;
+      9'b011010000:
+        casez_tmp_94 = 1'h1;
+      9'b011010001:
+        casez_tmp_94 = 1'h1;
+      9'b011010010:
+        casez_tmp_94 = 1'h1;
+      9'b011010011:
+        casez_tmp_94 = 1'h1;
+      9'b011010100:
+        casez_tmp_94 = 1'h1;
+      9'b011010101:
+        casez_tmp_94 = 1'h1;
+      9'b011010110:
+        casez_tmp_94 = 1'h1;
+      9'b011010111:
+        casez_tmp_94 = 1'h1;
+      9'b011011000:
+        casez_tmp_94 = 1'h1;
+      9'b011011001:
+        casez_tmp_94 = 1'h1;
+      9'b011011010:
+        casez_tmp_94 = 1'h1;
+      9'b011011011:
+        casez_tmp_94 = 1'h1;
+      9'b011011100:
+        casez_tmp_94 = 1'h1;
+      9'b011011101:
+        casez_tmp_94 = 1'h1;
+      9'b011011110:
+        casez_tmp_94 = 1'h1;
+      9'b011011111:
+        casez_tmp_94 = 1'h1;
+      9'b011100000:
+        casez_tmp_94 = 1'h0;
+      9'b011100001:
+        casez_tmp_94 = 1'h0;
+      9'b011100010:
+        casez_tmp_94 = 1'h0;
+      9'b011100011:
+        casez_tmp_94 = 1'h0;
+      9'b011100100:
+        casez_tmp_94 = 1'h0;
+      9'b011100101:
+        casez_tmp_94 = 1'h0;
+      9'b011100110:
+        casez_tmp_94 = 1'h0;
+      9'b011100111:
+        casez_tmp_94 = 1'h0;
+      9'b011101000:
+        casez_tmp_94 = 1'h1;
+      9'b011101001:
+        casez_tmp_94 = 1'h1;
+      9'b011101010:
+        casez_tmp_94 = 1'h1;
+      9'b011101011:
+        casez_tmp_94 = 1'h1;
+      9'b011101100:
+        casez_tmp_94 = 1'h1;
+      9'b011101101:
+        casez_tmp_94 = 1'h1;
+      9'b011101110:
+        casez_tmp_94 = 1'h1;
+      9'b011101111:
+        casez_tmp_94 = 1'h1;
+      9'b011110000:
+        casez_tmp_94 = 1'h1;
+      9'b011110001:
+        casez_tmp_94 = 1'h1;
+      9'b011110010:
+        casez_tmp_94 = 1'h1;
+      9'b011110011:
+        casez_tmp_94 = 1'h1;
+      9'b011110100:
+        casez_tmp_94 = 1'h1;
+      9'b011110101:
+        casez_tmp_94 = 1'h1;
+      9'b011110110:
+        casez_tmp_94 = 1'h1;
+      9'b011110111:
+        casez_tmp_94 = 1'h1;
+      9'b011111000:
+        casez_tmp_94 = 1'h1;
+      9'b011111001:
+        casez_tmp_94 = 1'h1;
+      9'b011111010:
+        casez_tmp_94 = 1'h1;
+      9'b011111011:
+        casez_tmp_94 = 1'h1;
+      9'b011111100:
+        casez_tmp_94 = 1'h1;
+      9'b011111101:
+        casez_tmp_94 = 1'h1;
+      9'b011111110:
+        casez_tmp_94 = 1'h1;
+      9'b011111111:
+        casez_tmp_94 = 1'h1;
+      9'b100000000:
+        casez_tmp_94 = 1'h0;
+      9'b100000001:
+        casez_tmp_94 = 1'h0;
+      9'b100000010:
+        casez_tmp_94 = 1'h0;
+      9'b100000011:
+        casez_tmp_94 = 1'h0;
+      9'b100000100:
+        casez_tmp_94 = 1'h0;
+      9'b100000101:
+        casez_tmp_94 = 1'h0;
+      9'b100000110:
+        casez_tmp_94 = 1'h0;
+      9'b100000111:
+        casez_tmp_94 = 1'h1;
+      9'b100001000:
+        casez_tmp_94 = 1'h1;
+      9'b100001001:
+        casez_tmp_94 = 1'h1;
+      9'b100001010:
+        casez_tmp_94 = 1'h1;
+      9'b100001011:
+        casez_tmp_94 = 1'h1;
+      9'b100001100:
+        casez_tmp_94 = 1'h1;
+      9'b100001101:
+        casez_tmp_94 = 1'h1;
+      9'b100001110:
+        casez_tmp_94 = 1'h1;
+      9'b100001111:
+        casez_tmp_94 = 1'h1;
+      9'b100010000:
+        casez_tmp_94 = 1'h1;
+      9'b100010001:
+        casez_tmp_94 = 1'h1;
+      9'b100010010:
+        casez_tmp_94 = 1'h1;
+      9'b100010011:
+        casez_tmp_94 = 1'h1;
+      9'b100010100:
+        casez_tmp_94 = 1'h1;
+      9'b100010101:
+        casez_tmp_94 = 1'h1;
+      9'b100010110:
+        casez_tmp_94 = 1'h1;
+      9'b100010111:
+        casez_tmp_94 = 1'h1;
+      9'b100011000:
+        casez_tmp_94 = 1'h1;
+      9'b100011001:
+        casez_tmp_94 = 1'h1;
+      9'b100011010:
+        casez_tmp_94 = 1'h1;
+      9'b100011011:
+        casez_tmp_94 = 1'h1;
+      9'b100011100:
+        casez_tmp_94 = 1'h1;
+      9'b100011101:
+        casez_tmp_94 = 1'h1;
+      9'b100011110:
+        casez_tmp_94 = 1'h1;
+      9'b100011111:
+        casez_tmp_94 = 1'h1;
+      9'b100100000:
+        casez_tmp_94 = 1'h0;
+      9'b100100001:
+        casez_tmp_94 = 1'h0;
+      9'b100100010:
+        casez_tmp_94 = 1'h0;
+      9'b100100011:
+        casez_tmp_94 = 1'h0;
+      9'b100100100:
+        casez_tmp_94 = 1'h0;
+      9'b100100101:
+        casez_tmp_94 = 1'h0;
+      9'b100100110:
+        casez_tmp_94 = 1'h1;
+      9'b100100111:
+        casez_tmp_94 = 1'h1;
+      9'b100101000:
+        casez_tmp_94 = 1'h1;
+      9'b100101001:
+        casez_tmp_94 = 1'h1;
+      9'b100101010:
+        casez_tmp_94 = 1'h1;
+      9'b100101011:
+        casez_tmp_94 = 1'h1;
+      9'b100101100:
+        casez_tmp_94 = 1'h1;
+      9'b100101101:
+        casez_tmp_94 = 1'h1;
+      9'b100101110:
+        casez_tmp_94 = 1'h1;
+      9'b100101111:
+        casez_tmp_94 = 1'h1;
+      9'b100110000:
+        casez_tmp_94 = 1'h1;
+      9'b100110001:
+        casez_tmp_94 = 1'h1;
+      9'b100110010:
+        casez_tmp_94 = 1'h1;
+      9'b100110011:
+        casez_tmp_94 = 1'h1;
+      9'b100110100:
+        casez_tmp_94 = 1'h1;
+      9'b100110101:
+        casez_tmp_94 = 1'h1;
+      9'b100110110:
+        casez_tmp_94 = 1'h1;
+      9'b100110111:
+        casez_tmp_94 = 1'h1;
+      9'b100111000:
+        casez_tmp_94 = 1'h1;
+      9'b100111001:
+        casez_tmp_94 = 1'h1;
+      9'b100111010:
+        casez_tmp_94 = 1'h1;
+      9'b100111011:
+        casez_tmp_94 = 1'h1;
+      9'b100111100:
+        casez_tmp_94 = 1'h1;
+      9'b100111101:
+        casez_tmp_94 = 1'h1;
+      9'b100111110:
+        casez_tmp_94 = 1'h1;
+      9'b100111111:
+        casez_tmp_94 = 1'h1;
+      9'b101000000:
+        casez_tmp_94 = 1'h0;
+      9'b101000001:
+        casez_tmp_94 = 1'h0;
+      9'b101000010:
+        casez_tmp_94 = 1'h0;
+      9'b101000011:
+        casez_tmp_94 = 1'h0;
+      9'b101000100:
+        casez_tmp_94 = 1'h0;
+      9'b101000101:
+        casez_tmp_94 = 1'h1;
+      9'b101000110:
+        casez_tmp_94 = 1'h1;
+      9'b101000111:
+        casez_tmp_94 = 1'h1;
+      9'b101001000:
+        casez_tmp_94 = 1'h1;
+      9'b101001001:
+        casez_tmp_94 = 1'h1;
+      9'b101001010:
+        casez_tmp_94 = 1'h1;
+      9'b101001011:
+        casez_tmp_94 = 1'h1;
+      9'b101001100:
+        casez_tmp_94 = 1'h1;
+      9'b101001101:
+        casez_tmp_94 = 1'h1;
+      9'b101001110:
+        casez_tmp_94 = 1'h1;
+      9'b101001111:
+        casez_tmp_94 = 1'h1;
+      9'b101010000:
+        casez_tmp_94 = 1'h1;
+      9'b101010001:
+        casez_tmp_94 = 1'h1;
+      9'b101010010:
+        casez_tmp_94 = 1'h1;
+      9'b101010011:
+        casez_tmp_94 = 1'h1;
+      9'b101010100:
+        casez_tmp_94 = 1'h1;
+      9'b101010101:
+        casez_tmp_94 = 1'h1;
+      9'b101010110:
+        casez_tmp_94 = 1'h1;
+      9'b101010111:
+        casez_tmp_94 = 1'h1;
+      9'b101011000:
+        casez_tmp_94 = 1'h1;
+      9'b101011001:
+        casez_tmp_94 = 1'h1;
+      9'b101011010:
+        casez_tmp_94 = 1'h1;
+      9'b101011011:
+        casez_tmp_94 = 1'h1;
+      9'b101011100:
+        casez_tmp_94 = 1'h1;
+      9'b101011101:
+        casez_tmp_94 = 1'h1;
+      9'b101011110:
+        casez_tmp_94 = 1'h1;
+      9'b101011111:
+        casez_tmp_94 = 1'h1;
+      9'b101100000:
+        casez_tmp_94 = 1'h0;
+      9'b101100001:
+        casez_tmp_94 = 1'h0;
+      9'b101100010:
+        casez_tmp_94 = 1'h0;
+      9'b101100011:
+        casez_tmp_94 = 1'h0;
+      9'b101100100:
+        casez_tmp_94 = 1'h1;
+      9'b101100101:
+        casez_tmp_94 = 1'h1;
+      9'b101100110:
+        casez_tmp_94 = 1'h1;
+      9'b101100111:
+        casez_tmp_94 = 1'h1;
+      9'b101101000:
+        casez_tmp_94 = 1'h1;
+      9'b101101001:
+        casez_tmp_94 = 1'h1;
+      9'b101101010:
+        casez_tmp_94 = 1'h1;
+      9'b101101011:
+        casez_tmp_94 = 1'h1;
+      9'b101101100:
+        casez_tmp_94 = 1'h1;
+      9'b101101101:
+        casez_tmp_94 = 1'h1;
+      9'b101101110:
+        casez_tmp_94 = 1'h1;
+      9'b101101111:
+        casez_tmp_94 = 1'h1;
+      9'b101110000:
+        casez_tmp_94 = 1'h1;
+      9'b101110001:
+        casez_tmp_94 = 1'h1;
+      9'b101110010:
+        casez_tmp_94 = 1'h1;
+      9'b101110011:
+        casez_tmp_94 = 1'h1;
+      9'b101110100:
+        casez_tmp_94 = 1'h1;
+      9'b101110101:
+        casez_tmp_94 = 1'h1;
+      9'b101110110:
+        casez_tmp_94 = 1'h1;
+      9'b101110111:
+        casez_tmp_94 = 1'h1;
+      9'b101111000:
+        casez_tmp_94 = 1'h1;
+      9'b101111001:
+        casez_tmp_94 = 1'h1;
+      9'b101111010:
+        casez_tmp_94 = 1'h1;
+      9'b101111011:
+        casez_tmp_94 = 1'h1;
+      9'b101111100:
+        casez_tmp_94 = 1'h1;
+      9'b101111101:
+        casez_tmp_94 = 1'h1;
+      9'b101111110:
+        casez_tmp_94 = 1'h1;
+      9'b101111111:
+        casez_tmp_94 = 1'h1;
+      9'b110000000:
+        casez_tmp_94 = 1'h0;
+      9'b110000001:
+        casez_tmp_94 = 1'h0;
+      9'b110000010:
+        casez_tmp_94 = 1'h0;
+      9'b110000011:
+        casez_tmp_94 = 1'h1;
+      9'b110000100:
+        casez_tmp_94 = 1'h1;
+      9'b110000101:
+        casez_tmp_94 = 1'h1;
+      9'b110000110:
+        casez_tmp_94 = 1'h1;
+      9'b110000111:
+        casez_tmp_94 = 1'h1;
+      9'b110001000:
+        casez_tmp_94 = 1'h1;
+      9'b110001001:
+        casez_tmp_94 = 1'h1;
+      9'b110001010:
+        casez_tmp_94 = 1'h1;
+      9'b110001011:
+        casez_tmp_94 = 1'h1;
+      9'b110001100:
+        casez_tmp_94 = 1'h1;
+      9'b110001101:
+        casez_tmp_94 = 1'h1;
+      9'b110001110:
+        casez_tmp_94 = 1'h1;
+      9'b110001111:
+        casez_tmp_94 = 1'h1;
+      9'b110010000:
+        casez_tmp_94 = 1'h1;
+      9'b110010001:
+        casez_tmp_94 = 1'h1;
+      9'b110010010:
+        casez_tmp_94 = 1'h1;
+      9'b110010011:
+        casez_tmp_94 = 1'h1;
+      9'b110010100:
+        casez_tmp_94 = 1'h1;
+      9'b110010101:
+        casez_tmp_94 = 1'h1;
+      9'b110010110:
+        casez_tmp_94 = 1'h1;
+      9'b110010111:
+        casez_tmp_94 = 1'h1;
+      9'b110011000:
+        casez_tmp_94 = 1'h1;
+      9'b110011001:
+        casez_tmp_94 = 1'h1;
+      9'b110011010:
+        casez_tmp_94 = 1'h1;
+      9'b110011011:
+        casez_tmp_94 = 1'h1;
+      9'b110011100:
+        casez_tmp_94 = 1'h1;
+      9'b110011101:
+        casez_tmp_94 = 1'h1;
+      9'b110011110:
+        casez_tmp_94 = 1'h1;
+      9'b110011111:
+        casez_tmp_94 = 1'h1;
+      9'b110100000:
+        casez_tmp_94 = 1'h0;
+      9'b110100001:
+        casez_tmp_94 = 1'h0;
+      9'b110100010:
+        casez_tmp_94 = 1'h1;
+      9'b110100011:
+        casez_tmp_94 = 1'h1;
+      9'b110100100:
+        casez_tmp_94 = 1'h1;
+      9'b110100101:
+        casez_tmp_94 = 1'h1;
+      9'b110100110:
+        casez_tmp_94 = 1'h1;
+      9'b110100111:
+        casez_tmp_94 = 1'h1;
+      9'b110101000:
+        casez_tmp_94 = 1'h1;
+      9'b110101001:
+        casez_tmp_94 = 1'h1;
+      9'b110101010:
+        casez_tmp_94 = 1'h1;
+      9'b110101011:
+        casez_tmp_94 = 1'h1;
+      9'b110101100:
+        casez_tmp_94 = 1'h1;
+      9'b110101101:
+        casez_tmp_94 = 1'h1;
+      9'b110101110:
+        casez_tmp_94 = 1'h1;
+      9'b110101111:
+        casez_tmp_94 = 1'h1;
+      9'b110110000:
+        casez_tmp_94 = 1'h1;
+      9'b110110001:
+        casez_tmp_94 = 1'h1;
+      9'b110110010:
+        casez_tmp_94 = 1'h1;
+      9'b110110011:
+        casez_tmp_94 = 1'h1;
+      9'b110110100:
+        casez_tmp_94 = 1'h1;
+      9'b110110101:
+        casez_tmp_94 = 1'h1;
+      9'b110110110:
+        casez_tmp_94 = 1'h1;
+      9'b110110111:
+        casez_tmp_94 = 1'h1;
+      9'b110111000:
+        casez_tmp_94 = 1'h1;
+      9'b110111001:
+        casez_tmp_94 = 1'h1;
+      9'b110111010:
+        casez_tmp_94 = 1'h1;
+      9'b110111011:
+        casez_tmp_94 = 1'h1;
+      9'b110111100:
+        casez_tmp_94 = 1'h1;
+      9'b110111101:
+        casez_tmp_94 = 1'h1;
+      9'b110111110:
+        casez_tmp_94 = 1'h1;
+      9'b110111111:
+        casez_tmp_94 = 1'h1;
+      9'b111000000:
+        casez_tmp_94 = 1'h0;
+      9'b111000001:
+        casez_tmp_94 = 1'h1;
+      9'b111000010:
+        casez_tmp_94 = 1'h1;
+      9'b111000011:
+        casez_tmp_94 = 1'h1;
+      9'b111000100:
+        casez_tmp_94 = 1'h1;
+      9'b111000101:
+        casez_tmp_94 = 1'h1;
+      9'b111000110:
+        casez_tmp_94 = 1'h1;
+      9'b111000111:
+        casez_tmp_94 = 1'h1;
+      9'b111001000:
+        casez_tmp_94 = 1'h1;
+      9'b111001001:
+        casez_tmp_94 = 1'h1;
+      9'b111001010:
+        casez_tmp_94 = 1'h1;
+      9'b111001011:
+        casez_tmp_94 = 1'h1;
+      9'b111001100:
+        casez_tmp_94 = 1'h1;
+      9'b111001101:
+        casez_tmp_94 = 1'h1;
+      9'b111001110:
+        casez_tmp_94 = 1'h1;
+      9'b111001111:
+        casez_tmp_94 = 1'h1;
+      9'b111010000:
+        casez_tmp_94 = 1'h1;
+      9'b111010001:
+        casez_tmp_94 = 1'h1;
+      9'b111010010:
+        casez_tmp_94 = 1'h1;
+      9'b111010011:
+        casez_tmp_94 = 1'h1;
+      9'b111010100:
+        casez_tmp_94 = 1'h1;
+      9'b111010101:
+        casez_tmp_94 = 1'h1;
+      9'b111010110:
+        casez_tmp_94 = 1'h1;
+      9'b111010111:
+        casez_tmp_94 = 1'h1;
+      9'b111011000:
+        casez_tmp_94 = 1'h1;
+      9'b111011001:
+        casez_tmp_94 = 1'h1;
+      9'b111011010:
+        casez_tmp_94 = 1'h1;
+      9'b111011011:
+        casez_tmp_94 = 1'h1;
+      9'b111011100:
+        casez_tmp_94 = 1'h1;
+      9'b111011101:
+        casez_tmp_94 = 1'h1;
+      9'b111011110:
+        casez_tmp_94 = 1'h1;
+      9'b111011111:
+        casez_tmp_94 = 1'h1;
+      9'b111100000:
+        casez_tmp_94 = 1'h0;
+      9'b111100001:
+        casez_tmp_94 = 1'h0;
+      9'b111100010:
+        casez_tmp_94 = 1'h0;
+      9'b111100011:
+        casez_tmp_94 = 1'h0;
+      9'b111100100:
+        casez_tmp_94 = 1'h0;
+      9'b111100101:
+        casez_tmp_94 = 1'h0;
+      9'b111100110:
+        casez_tmp_94 = 1'h0;
+      9'b111100111:
+        casez_tmp_94 = 1'h0;
+      9'b111101000:
+        casez_tmp_94 = 1'h0;
+      9'b111101001:
+        casez_tmp_94 = 1'h0;
+      9'b111101010:
+        casez_tmp_94 = 1'h0;
+      9'b111101011:
+        casez_tmp_94 = 1'h0;
+      9'b111101100:
+        casez_tmp_94 = 1'h0;
+      9'b111101101:
+        casez_tmp_94 = 1'h0;
+      9'b111101110:
+        casez_tmp_94 = 1'h0;
+      9'b111101111:
+        casez_tmp_94 = 1'h0;
+      9'b111110000:
+        casez_tmp_94 = 1'h1;
+      9'b111110001:
+        casez_tmp_94 = 1'h1;
+      9'b111110010:
+        casez_tmp_94 = 1'h1;
+      9'b111110011:
+        casez_tmp_94 = 1'h1;
+      9'b111110100:
+        casez_tmp_94 = 1'h1;
+      9'b111110101:
+        casez_tmp_94 = 1'h1;
+      9'b111110110:
+        casez_tmp_94 = 1'h1;
+      9'b111110111:
+        casez_tmp_94 = 1'h1;
+      9'b111111000:
+        casez_tmp_94 = 1'h1;
+      9'b111111001:
+        casez_tmp_94 = 1'h1;
+      9'b111111010:
+        casez_tmp_94 = 1'h1;
+      9'b111111011:
+        casez_tmp_94 = 1'h1;
+      9'b111111100:
+        casez_tmp_94 = 1'h1;
+      9'b111111101:
+        casez_tmp_94 = 1'h1;
+      9'b111111110:
+        casez_tmp_94 = 1'h1;
+      default:
+        casez_tmp_94 = 1'h1;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_95;
+  always @(*) begin
+    casez (_inGroup_T_30)
+      9'b000000000:
+        casez_tmp_95 = 1'h0;
+      9'b000000001:
+        casez_tmp_95 = 1'h0;
+      9'b000000010:
+        casez_tmp_95 = 1'h0;
+      9'b000000011:
+        casez_tmp_95 = 1'h0;
+      9'b000000100:
+        casez_tmp_95 = 1'h0;
+      9'b000000101:
+        casez_tmp_95 = 1'h0;
+      9'b000000110:
+        casez_tmp_95 = 1'h0;
+      9'b000000111:
+        casez_tmp_95 = 1'h0;
+      9'b000001000:
+        casez_tmp_95 = 1'h0;
+      9'b000001001:
+        casez_tmp_95 = 1'h0;
+      9'b000001010:
+        casez_tmp_95 = 1'h0;
+      9'b000001011:
+        casez_tmp_95 = 1'h0;
+      9'b000001100:
+        casez_tmp_95 = 1'h0;
+      9'b000001101:
+        casez_tmp_95 = 1'h0;
+      9'b000001110:
+        casez_tmp_95 = 1'h0;
+      9'b000001111:
+        casez_tmp_95 = 1'h0;
+      9'b000010000:
+        casez_tmp_95 = 1'h1;
+      9'b000010001:
+        casez_tmp_95 = 1'h1;
+      9'b000010010:
+        casez_tmp_95 = 1'h1;
+      9'b000010011:
+        casez_tmp_95 = 1'h1;
+      9'b000010100:
+        casez_tmp_95 = 1'h1;
+      9'b000010101:
+        casez_tmp_95 = 1'h1;
+      9'b000010110:
+        casez_tmp_95 = 1'h1;
+      9'b000010111:
+        casez_tmp_95 = 1'h1;
+      9'b000011000:
+        casez_tmp_95 = 1'h1;
+      9'b000011001:
+        casez_tmp_95 = 1'h1;
+      9'b000011010:
+        casez_tmp_95 = 1'h1;
+      9'b000011011:
+        casez_tmp_95 = 1'h1;
+      9'b000011100:
+        casez_tmp_95 = 1'h1;
+      9'b000011101:
+        casez_tmp_95 = 1'h1;
+      9'b000011110:
+        casez_tmp_95 = 1'h1;
+      9'b000011111:
+        casez_tmp_95 = 1'h1;
+      9'b000100000:
+        casez_tmp_95 = 1'h0;
+      9'b000100001:
+        casez_tmp_95 = 1'h0;
+      9'b000100010:
+        casez_tmp_95 = 1'h0;
+      9'b000100011:
+        casez_tmp_95 = 1'h0;
+      9'b000100100:
+        casez_tmp_95 = 1'h0;
+      9'b000100101:
+        casez_tmp_95 = 1'h0;
+      9'b000100110:
+        casez_tmp_95 = 1'h0;
+      9'b000100111:
+        casez_tmp_95 = 1'h0;
+      9'b000101000:
+        casez_tmp_95 = 1'h0;
+      9'b000101001:
+        casez_tmp_95 = 1'h0;
+      9'b000101010:
+        casez_tmp_95 = 1'h0;
+      9'b000101011:
+        casez_tmp_95 = 1'h0;
+      9'b000101100:
+        casez_tmp_95 = 1'h0;
+      9'b000101101:
+        casez_tmp_95 = 1'h0;
+      9'b000101110:
+        casez_tmp_95 = 1'h0;
+      9'b000101111:
+        casez_tmp_95 = 1'h1;
+      9'b000110000:
+        casez_tmp_95 = 1'h1;
+      9'b000110001:
+        casez_tmp_95 = 1'h1;
+      9'b000110010:
+        casez_tmp_95 = 1'h1;
+      9'b000110011:
+        casez_tmp_95 = 1'h1;
+      9'b000110100:
+        casez_tmp_95 = 1'h1;
+      9'b000110101:
+        casez_tmp_95 = 1'h1;
+      9'b000110110:
+        casez_tmp_95 = 1'h1;
+      9'b000110111:
+        casez_tmp_95 = 1'h1;
+      9'b000111000:
+        casez_tmp_95 = 1'h1;
+      9'b000111001:
+        casez_tmp_95 = 1'h1;
+      9'b000111010:
+        casez_tmp_95 = 1'h1;
+      9'b000111011:
+        casez_tmp_95 = 1'h1;
+      9'b000111100:
+        casez_tmp_95 = 1'h1;
+      9'b000111101:
+        casez_tmp_95 = 1'h1;
+      9'b000111110:
+        casez_tmp_95 = 1'h1;
+      9'b000111111:
+        casez_tmp_95 = 1'h1;
+      9'b001000000:
+        casez_tmp_95 = 1'h0;
+      9'b001000001:
+        casez_tmp_95 = 1'h0;
+      9'b001000010:
+        casez_tmp_95 = 1'h0;
+      9'b001000011:
+        casez_tmp_95 = 1'h0;
+      9'b001000100:
+        casez_tmp_95 = 1'h0;
+      9'b001000101:
+        casez_tmp_95 = 1'h0;
+      9'b001000110:
+        casez_tmp_95 = 1'h0;
+      9'b001000111:
+        casez_tmp_95 = 1'h0;
+      9'b001001000:
+        casez_tmp_95 = 1'h0;
+      9'b001001001:
+        casez_tmp_95 = 1'h0;
+      9'b001001010:
+        casez_tmp_95 = 1'h0;
+      9'b001001011:
+        casez_tmp_95 = 1'h0;
+      9'b001001100:
+        casez_tmp_95 = 1'h0;
+      9'b001001101:
+        casez_tmp_95 = 1'h0;
+      9'b001001110:
+        casez_tmp_95 = 1'h1;
+      9'b001001111:
+        casez_tmp_95 = 1'h1;
+      9'b001010000:
+        casez_tmp_95 = 1'h1;
+      9'b001010001:
+        casez_tmp_95 = 1'h1;
+      9'b001010010:
+        casez_tmp_95 = 1'h1;
+      9'b001010011:
+        casez_tmp_95 = 1'h1;
+      9'b001010100:
+        casez_tmp_95 = 1'h1;
+      9'b001010101:
+        casez_tmp_95 = 1'h1;
+      9'b001010110:
+        casez_tmp_95 = 1'h1;
+      9'b001010111:
+        casez_tmp_95 = 1'h1;
+      9'b001011000:
+        casez_tmp_95 = 1'h1;
+      9'b001011001:
+        casez_tmp_95 = 1'h1;
+      9'b001011010:
+        casez_tmp_95 = 1'h1;
+      9'b001011011:
+        casez_tmp_95 = 1'h1;
+      9'b001011100:
+        casez_tmp_95 = 1'h1;
+      9'b001011101:
+        casez_tmp_95 = 1'h1;
+      9'b001011110:
+        casez_tmp_95 = 1'h1;
+      9'b001011111:
+        casez_tmp_95 = 1'h1;
+      9'b001100000:
+        casez_tmp_95 = 1'h0;
+      9'b001100001:
+        casez_tmp_95 = 1'h0;
+      9'b001100010:
+        casez_tmp_95 = 1'h0;
+      9'b001100011:
+        casez_tmp_95 = 1'h0;
+      9'b001100100:
+        casez_tmp_95 = 1'h0;
+      9'b001100101:
+        casez_tmp_95 = 1'h0;
+      9'b001100110:
+        casez_tmp_95 = 1'h0;
+      9'b001100111:
+        casez_tmp_95 = 1'h0;
+      9'b001101000:
+        casez_tmp_95 = 1'h0;
+      9'b001101001:
+        casez_tmp_95 = 1'h0;
+      9'b001101010:
+        casez_tmp_95 = 1'h0;
+      9'b001101011:
+        casez_tmp_95 = 1'h0;
+      9'b001101100:
+        casez_tmp_95 = 1'h0;
+      9'b001101101:
+        casez_tmp_95 = 1'h1;
+      9'b001101110:
+        casez_tmp_95 = 1'h1;
+      9'b001101111:
+        casez_tmp_95 = 1'h1;
+      9'b001110000:
+        casez_tmp_95 = 1'h1;
+      9'b001110001:
+        casez_tmp_95 = 1'h1;
+      9'b001110010:
+        casez_tmp_95 = 1'h1;
+      9'b001110011:
+        casez_tmp_95 = 1'h1;
+      9'b001110100:
+        casez_tmp_95 = 1'h1;
+      9'b001110101:
+        casez_tmp_95 = 1'h1;
+      9'b001110110:
+        casez_tmp_95 = 1'h1;
+      9'b001110111:
+        casez_tmp_95 = 1'h1;
+      9'b001111000:
+        casez_tmp_95 = 1'h1;
+      9'b001111001:
+        casez_tmp_95 = 1'h1;
+      9'b001111010:
+        casez_tmp_95 = 1'h1;
+      9'b001111011:
+        casez_tmp_95 = 1'h1;
+      9'b001111100:
+        casez_tmp_95 = 1'h1;
+      9'b001111101:
+        casez_tmp_95 = 1'h1;
+      9'b001111110:
+        casez_tmp_95 = 1'h1;
+      9'b001111111:
+        casez_tmp_95 = 1'h1;
+      9'b010000000:
+        casez_tmp_95 = 1'h0;
+      9'b010000001:
+        casez_tmp_95 = 1'h0;
+      9'b010000010:
+        casez_tmp_95 = 1'h0;
+      9'b010000011:
+        casez_tmp_95 = 1'h0;
+      9'b010000100:
+        casez_tmp_95 = 1'h0;
+      9'b010000101:
+        casez_tmp_95 = 1'h0;
+      9'b010000110:
+        casez_tmp_95 = 1'h0;
+      9'b010000111:
+        casez_tmp_95 = 1'h0;
+      9'b010001000:
+        casez_tmp_95 = 1'h0;
+      9'b010001001:
+        casez_tmp_95 = 1'h0;
+      9'b010001010:
+        casez_tmp_95 = 1'h0;
+      9'b010001011:
+        casez_tmp_95 = 1'h0;
+      9'b010001100:
+        casez_tmp_95 = 1'h1;
+      9'b010001101:
+        casez_tmp_95 = 1'h1;
+      9'b010001110:
+        casez_tmp_95 = 1'h1;
+      9'b010001111:
+        casez_tmp_95 = 1'h1;
+      9'b010010000:
+        casez_tmp_95 = 1'h1;
+      9'b010010001:
+        casez_tmp_95 = 1'h1;
+      9'b010010010:
+        casez_tmp_95 = 1'h1;
+      9'b010010011:
+        casez_tmp_95 = 1'h1;
+      9'b010010100:
+        casez_tmp_95 = 1'h1;
+      9'b010010101:
+        casez_tmp_95 = 1'h1;
+      9'b010010110:
+        casez_tmp_95 = 1'h1;
+      9'b010010111:
+        casez_tmp_95 = 1'h1;
+      9'b010011000:
+        casez_tmp_95 = 1'h1;
+      9'b010011001:
+        casez_tmp_95 = 1'h1;
+      9'b010011010:
+        casez_tmp_95 = 1'h1;
+      9'b010011011:
+        casez_tmp_95 = 1'h1;
+      9'b010011100:
+        casez_tmp_95 = 1'h1;
+      9'b010011101:
+        casez_tmp_95 = 1'h1;
+      9'b010011110:
+        casez_tmp_95 = 1'h1;
+      9'b010011111:
+        casez_tmp_95 = 1'h1;
+      9'b010100000:
+        casez_tmp_95 = 1'h0;
+      9'b010100001:
+        casez_tmp_95 = 1'h0;
+      9'b010100010:
+        casez_tmp_95 = 1'h0;
+      9'b010100011:
+        casez_tmp_95 = 1'h0;
+      9'b010100100:
+        casez_tmp_95 = 1'h0;
+      9'b010100101:
+        casez_tmp_95 = 1'h0;
+      9'b010100110:
+        casez_tmp_95 = 1'h0;
+      9'b010100111:
+        casez_tmp_95 = 1'h0;
+      9'b010101000:
+        casez_tmp_95 = 1'h0;
+      9'b010101001:
+        casez_tmp_95 = 1'h0;
+      9'b010101010:
+        casez_tmp_95 = 1'h0;
+      9'b010101011:
+        casez_tmp_95 = 1'h1;
+      9'b010101100:
+        casez_tmp_95 = 1'h1;
+      9'b010101101:
+        casez_tmp_95 = 1'h1;
+      9'b010101110:
+        casez_tmp_95 = 1'h1;
+      9'b010101111:
+        casez_tmp_95 = 1'h1;
+      9'b010110000:
+        casez_tmp_95 = 1'h1;
+      9'b010110001:
+        casez_tmp_95 = 1'h1;
+      9'b010110010:
+        casez_tmp_95 = 1'h1;
+      9'b010110011:
+        casez_tmp_95 = 1'h1;
+      9'b010110100:
+        casez_tmp_95 = 1'h1;
+      9'b010110101:
+        casez_tmp_95 = 1'h1;
+      9'b010110110:
+        casez_tmp_95 = 1'h1;
+      9'b010110111:
+        casez_tmp_95 = 1'h1;
+      9'b010111000:
+        casez_tmp_95 = 1'h1;
+      9'b010111001:
+        casez_tmp_95 = 1'h1;
+      9'b010111010:
+        casez_tmp_95 = 1'h1;
+      9'b010111011:
+        casez_tmp_95 = 1'h1;
+      9'b010111100:
+        casez_tmp_95 = 1'h1;
+      9'b010111101:
+        casez_tmp_95 = 1'h1;
+      9'b010111110:
+        casez_tmp_95 = 1'h1;
+      9'b010111111:
+        casez_tmp_95 = 1'h1;
+      9'b011000000:
+        casez_tmp_95 = 1'h0;
+      9'b011000001:
+        casez_tmp_95 = 1'h0;
+      9'b011000010:
+        casez_tmp_95 = 1'h0;
+      9'b011000011:
+        casez_tmp_95 = 1'h0;
+      9'b011000100:
+        casez_tmp_95 = 1'h0;
+      9'b011000101:
+        casez_tmp_95 = 1'h0;
+      9'b011000110:
+        casez_tmp_95 = 1'h0;
+      9'b011000111:
+        casez_tmp_95 = 1'h0;
+      9'b011001000:
+        casez_tmp_95 = 1'h0;
+      9'b011001001:
+        casez_tmp_95 = 1'h0;
+      9'b011001010:
+        casez_tmp_95 = 1'h1;
+      9'b011001011:
+        casez_tmp_95 = 1'h1;
+      9'b011001100:
+        casez_tmp_95 = 1'h1;
+      9'b011001101:
+        casez_tmp_95 = 1'h1;
+      9'b011001110:
+        casez_tmp_95 = 1'h1;
+      9'b011001111:
+        casez_tmp_95 = 1'h1;
+      9'b011010000:
+        casez_tmp_95 = 1'h1;
+      9'b011010001:
+        casez_tmp_95 = 1'h1;
+      9'b011010010:
+        casez_tmp_95 = 1'h1;
+      9'b011010011:
+        casez_tmp_95 = 1'h1;
+      9'b011010100:
+        casez_tmp_95 = 1'h1;
+      9'b011010101:
+        casez_tmp_95 = 1'h1;
+      9'b011010110:
+        casez_tmp_95 = 1'h1;
+      9'b011010111:
+        casez_tmp_95 = 1'h1;
+      9'b011011000:
+        casez_tmp_95 = 1'h1;
+      9'b011011001:
+        casez_tmp_95 = 1'h1;
+      9'b011011010:
+        casez_tmp_95 = 1'h1;
+      9'b011011011:
+        casez_tmp_95 = 1'h1;
+      9'b011011100:
+        casez_tmp_95 = 1'h1;
+      9'b011011101:
+        casez_tmp_95 = 1'h1;
+      9'b011011110:
+        casez_tmp_95 = 1'h1;
+      9'b011011111:
+        casez_tmp_95 = 1'h1;
+      9'b011100000:
+        casez_tmp_95 = 1'h0;
+      9'b011100001:
+        casez_tmp_95 = 1'h0;
+      9'b011100010:
+        casez_tmp_95 = 1'h0;
+      9'b011100011:
+        casez_tmp_95 = 1'h0;
+      9'b011100100:
+        casez_tmp_95 = 1'h0;
+      9'b011100101:
+        casez_tmp_95 = 1'h0;
+      9'b011100110:
+        casez_tmp_95 = 1'h0;
+      9'b011100111:
+        casez_tmp_95 = 1'h0;
+      9'b011101000:
+        casez_tmp_95 = 1'h0;
+      9'b011101001:
+        casez_tmp_95 = 1'h1;
+      9'b011101010:
+        casez_tmp_95 = 1'h1;
+      9'b011101011:
+        casez_tmp_95 = 1'h1;
+      9'b011101100:
+        casez_tmp_95 = 1'h1;
+      9'b011101101:
+        casez_tmp_95 = 1'h1;
+      9'b011101110:
+        casez_tmp_95 = 1'h1;
+      9'b011101111:
+        casez_tmp_95 = 1'h1;
+      9'b011110000:
+        casez_tmp_95 = 1'h1;
+      9'b011110001:
+        casez_tmp_95 = 1'h1;
+      9'b011110010:
+        casez_tmp_95 = 1'h1;
+      9'b011110011:
+        casez_tmp_95 = 1'h1;
+      9'b011110100:
+        casez_tmp_95 = 1'h1;
+      9'b011110101:
+        casez_tmp_95 = 1'h1;
+      9'b011110110:
+        casez_tmp_95 = 1'h1;
+      9'b011110111:
+        casez_tmp_95 = 1'h1;
+      9'b011111000:
+        casez_tmp_95 = 1'h1;
+      9'b011111001:
+        casez_tmp_95 = 1'h1;
+      9'b011111010:
+        casez_tmp_95 = 1'h1;
+      9'b011111011:
+        casez_tmp_95 = 1'h1;
+      9'b011111100:
+        casez_tmp_95 = 1'h1;
+      9'b011111101:
+        casez_tmp_95 = 1'h1;
+      9'b011111110:
+        casez_tmp_95 = 1'h1;
+      9'b011111111:
+        casez_tmp_95 = 1'h1;
+      9'b100000000:
+        casez_tmp_95 = 1'h0;
+      9'b100000001:
+        casez_tmp_95 = 1'h0;
+      9'b100000010:
+        casez_tmp_95 = 1'h0;
+      9'b100000011:
+        casez_tmp_95 = 1'h0;
+      9'b100000100:
+        casez_tmp_95 = 1'h0;
+      9'b100000101:
+        casez_tmp_95 = 1'h0;
+      9'b100000110:
+        casez_tmp_95 = 1'h0;
+      9'b100000111:
+        casez_tmp_95 = 1'h0;
+      9'b100001000:
+        casez_tmp_95 = 1'h1;
+      9'b100001001:
+        casez_tmp_95 = 1'h1;
+      9'b100001010:
+        casez_tmp_95 = 1'h1;
+      9'b100001011:
+        casez_tmp_95 = 1'h1;
+      9'b100001100:
+        casez_tmp_95 = 1'h1;
+      9'b100001101:
+        casez_tmp_95 = 1'h1;
+      9'b100001110:
+        casez_tmp_95 = 1'h1;
+      9'b100001111:
+        casez_tmp_95 = 1'h1;
+      9'b100010000:
+        casez_tmp_95 = 1'h1;
+      9'b100010001:
+        casez_tmp_95 = 1'h1;
+      9'b100010010:
+        casez_tmp_95 = 1'h1;
+      9'b100010011:
+        casez_tmp_95 = 1'h1;
+      9'b100010100:
+        casez_tmp_95 = 1'h1;
+      9'b100010101:
+        casez_tmp_95 = 1'h1;
+      9'b100010110:
+        casez_tmp_95 = 1'h1;
+      9'b100010111:
+        casez_tmp_95 = 1'h1;
+      9'b100011000:
+        casez_tmp_95 = 1'h1;
+      9'b100011001:
+        casez_tmp_95 = 1'h1;
+      9'b100011010:
+        casez_tmp_95 = 1'h1;
+      9'b100011011:
+        casez_tmp_95 = 1'h1;
+      9'b100011100:
+        casez_tmp_95 = 1'h1;
+      9'b100011101:
+        casez_tmp_95 = 1'h1;
+      9'b100011110:
+        casez_tmp_95 = 1'h1;
+      9'b100011111:
+        casez_tmp_95 = 1'h1;
+      9'b100100000:
+        casez_tmp_95 = 1'h0;
+      9'b100100001:
+        casez_tmp_95 = 1'h0;
+      9'b100100010:
+        casez_tmp_95 = 1'h0;
+      9'b100100011:
+        casez_tmp_95 = 1'h0;
+      9'b100100100:
+        casez_tmp_95 = 1'h0;
+      9'b100100101:
+        casez_tmp_95 = 1'h0;
+      9'b100100110:
+        casez_tmp_95 = 1'h0;
+      9'b100100111:
+        casez_tmp_95 = 1'h1;
+      9'b100101000:
+        casez_tmp_95 = 1'h1;
+      9'b100101001:
+        casez_tmp_95 = 1'h1;
+      9'b100101010:
+        casez_tmp_95 = 1'h1;
+      9'b100101011:
+        casez_tmp_95 = 1'h1;
+      9'b100101100:
+        casez_tmp_95 = 1'h1;
+      9'b100101101:
+        casez_tmp_95 = 1'h1;
+      9'b100101110:
+        casez_tmp_95 = 1'h1;
+      9'b100101111:
+        casez_tmp_95 = 1'h1;
+      9'b100110000:
+        casez_tmp_95 = 1'h1;
+      9'b100110001:
+        casez_tmp_95 = 1'h1;
+      9'b100110010:
+        casez_tmp_95 = 1'h1;
+      9'b100110011:
+        casez_tmp_95 = 1'h1;
+      9'b100110100:
+        casez_tmp_95 = 1'h1;
+      9'b100110101:
+        casez_tmp_95 = 1'h1;
+      9'b100110110:
+        casez_tmp_95 = 1'h1;
+      9'b100110111:
+        casez_tmp_95 = 1'h1;
+      9'b100111000:
+        casez_tmp_95 = 1'h1;
+      9'b100111001:
+        casez_tmp_95 = 1'h1;
+      9'b100111010:
+        casez_tmp_95 = 1'h1;
+      9'b100111011:
+        casez_tmp_95 = 1'h1;
+      9'b100111100:
+        casez_tmp_95 = 1'h1;
+      9'b100111101:
+        casez_tmp_95 = 1'h1;
+      9'b100111110:
+        casez_tmp_95 = 1'h1;
+      9'b100111111:
+        casez_tmp_95 = 1'h1;
+      9'b101000000:
+        casez_tmp_95 = 1'h0;
+      9'b101000001:
+        casez_tmp_95 = 1'h0;
+      9'b101000010:
+        casez_tmp_95 = 1'h0;
+      9'b101000011:
+        casez_tmp_95 = 1'h0;
+      9'b101000100:
+        casez_tmp_95 = 1'h0;
+      9'b101000101:
+        casez_tmp_95 = 1'h0;
+      9'b101000110:
+        casez_tmp_95 = 1'h1;
+      9'b101000111:
+        casez_tmp_95 = 1'h1;
+      9'b101001000:
+        casez_tmp_95 = 1'h1;
+      9'b101001001:
+        casez_tmp_95 = 1'h1;
+      9'b101001010:
+        casez_tmp_95 = 1'h1;
+      9'b101001011:
+        casez_tmp_95 = 1'h1;
+      9'b101001100:
+        casez_tmp_95 = 1'h1;
+      9'b101001101:
+        casez_tmp_95 = 1'h1;
+      9'b101001110:
+        casez_tmp_95 = 1'h1;
+      9'b101001111:
+        casez_tmp_95 = 1'h1;
+      9'b101010000:
+        casez_tmp_95 = 1'h1;
+      9'b101010001:
+        casez_tmp_95 = 1'h1;
+      9'b101010010:
+        casez_tmp_95 = 1'h1;
+      9'b101010011:
+        casez_tmp_95 = 1'h1;
+      9'b101010100:
+        casez_tmp_95 = 1'h1;
+      9'b101010101:
+        casez_tmp_95 = 1'h1;
+      9'b101010110:
+        casez_tmp_95 = 1'h1;
+      9'b101010111:
+        casez_tmp_95 = 1'h1;
+      9'b101011000:
+        casez_tmp_95 = 1'h1;
+      9'b101011001:
+        casez_tmp_95 = 1'h1;
+      9'b101011010:
+        casez_tmp_95 = 1'h1;
+      9'b101011011:
+        casez_tmp_95 = 1'h1;
+      9'b101011100:
+        casez_tmp_95 = 1'h1;
+      9'b101011101:
+        casez_tmp_95 = 1'h1;
+      9'b101011110:
+        casez_tmp_95 = 1'h1;
+      9'b101011111:
+        casez_tmp_95 = 1'h1;
+      9'b101100000:
+        casez_tmp_95 = 1'h0;
+      9'b101100001:
+        casez_tmp_95 = 1'h0;
+      9'b101100010:
+        casez_tmp_95 = 1'h0;
+      9'b101100011:
+        casez_tmp_95 = 1'h0;
+      9'b101100100:
+        casez_tmp_95 = 1'h0;
+      9'b101100101:
+        casez_tmp_95 = 1'h1;
+      9'b101100110:
+        casez_tmp_95 = 1'h1;
+      9'b101100111:
+        casez_tmp_95 = 1'h1;
+      9'b101101000:
+        casez_tmp_95 = 1'h1;
+      9'b101101001:
+        casez_tmp_95 = 1'h1;
+      9'b101101010:
+        casez_tmp_95 = 1'h1;
+      9'b101101011:
+        casez_tmp_95 = 1'h1;
+      9'b101101100:
+        casez_tmp_95 = 1'h1;
+      9'b101101101:
+        casez_tmp_95 = 1'h1;
+      9'b101101110:
+        casez_tmp_95 = 1'h1;
+      9'b101101111:
+        casez_tmp_95 = 1'h1;
+      9'b101110000:
+        casez_tmp_95 = 1'h1;
+      9'b101110001:
+        casez_tmp_95 = 1'h1;
+      9'b101110010:
+        casez_tmp_95 = 1'h1;
+      9'b101110011:
+        casez_tmp_95 = 1'h1;
+      9'b101110100:
+        casez_tmp_95 = 1'h1;
+      9'b101110101:
+        casez_tmp_95 = 1'h1;
+      9'b101110110:
+        casez_tmp_95 = 1'h1;
+      9'b101110111:
+        casez_tmp_95 = 1'h1;
+      9'b101111000:
+        casez_tmp_95 = 1'h1;
+      9'b101111001:
+        casez_tmp_95 = 1'h1;
+      9'b101111010:
+        casez_tmp_95 = 1'h1;
+      9'b101111011:
+        casez_tmp_95 = 1'h1;
+      9'b101111100:
+        casez_tmp_95 = 1'h1;
+      9'b101111101:
+        casez_tmp_95 = 1'h1;
+      9'b101111110:
+        casez_tmp_95 = 1'h1;
+      9'b101111111:
+        casez_tmp_95 = 1'h1;
+      9'b110000000:
+        casez_tmp_95 = 1'h0;
+      9'b110000001:
+        casez_tmp_95 = 1'h0;
+      9'b110000010:
+        casez_tmp_95 = 1'h0;
+      9'b110000011:
+        casez_tmp_95 = 1'h0;
+      9'b110000100:
+        casez_tmp_95 = 1'h1;
+      9'b110000101:
+        casez_tmp_95 = 1'h1;
+      9'b110000110:
+        casez_tmp_95 = 1'h1;
+      9'b110000111:
+        casez_tmp_95 = 1'h1;
+      9'b110001000:
+        casez_tmp_95 = 1'h1;
+      9'b110001001:
+        casez_tmp_95 = 1'h1;
+      9'b110001010:
+        casez_tmp_95 = 1'h1;
+      9'b110001011:
+        casez_tmp_95 = 1'h1;
+      9'b110001100:
+        casez_tmp_95 = 1'h1;
+      9'b110001101:
+        casez_tmp_95 = 1'h1;
+      9'b110001110:
+        casez_tmp_95 = 1'h1;
+      9'b110001111:
+        casez_tmp_95 = 1'h1;
+      9'b110010000:
+        casez_tmp_95 = 1'h1;
+      9'b110010001:
+        casez_tmp_95 = 1'h1;
+      9'b110010010:
+        casez_tmp_95 = 1'h1;
+      9'b110010011:
+        casez_tmp_95 = 1'h1;
+      9'b110010100:
+        casez_tmp_95 = 1'h1;
+      9'b110010101:
+        casez_tmp_95 = 1'h1;
+      9'b110010110:
+        casez_tmp_95 = 1'h1;
+      9'b110010111:
+        casez_tmp_95 = 1'h1;
+      9'b110011000:
+        casez_tmp_95 = 1'h1;
+      9'b110011001:
+        casez_tmp_95 = 1'h1;
+      9'b110011010:
+        casez_tmp_95 = 1'h1;
+      9'b110011011:
+        casez_tmp_95 = 1'h1;
+      9'b110011100:
+        casez_tmp_95 = 1'h1;
+      9'b110011101:
+        casez_tmp_95 = 1'h1;
+      9'b110011110:
+        casez_tmp_95 = 1'h1;
+      9'b110011111:
+        casez_tmp_95 = 1'h1;
+      9'b110100000:
+        casez_tmp_95 = 1'h0;
+      9'b110100001:
+        casez_tmp_95 = 1'h0;
+      9'b110100010:
+        casez_tmp_95 = 1'h0;
+      9'b110100011:
+        casez_tmp_95 = 1'h1;
+      9'b110100100:
+        casez_tmp_95 = 1'h1;
+      9'b110100101:
+        casez_tmp_95 = 1'h1;
+      9'b110100110:
+        casez_tmp_95 = 1'h1;
+      9'b110100111:
+        casez_tmp_95 = 1'h1;
+      9'b110101000:
+        casez_tmp_95 = 1'h1;
+      9'b110101001:
+        casez_tmp_95 = 1'h1;
+      9'b110101010:
+        casez_tmp_95 = 1'h1;
+      9'b110101011:
+        casez_tmp_95 = 1'h1;
+      9'b110101100:
+        casez_tmp_95 = 1'h1;
+      9'b110101101:
+        casez_tmp_95 = 1'h1;
+      9'b110101110:
+        casez_tmp_95 = 1'h1;
+      9'b110101111:
+        casez_tmp_95 = 1'h1;
+      9'b110110000:
+        casez_tmp_95 = 1'h1;
+      9'b110110001:
+        casez_tmp_95 = 1'h1;
+      9'b110110010:
+        casez_tmp_95 = 1'h1;
+      9'b110110011:
+        casez_tmp_95 = 1'h1;
+      9'b110110100:
+        casez_tmp_95 = 1'h1;
+      9'b110110101:
+        casez_tmp_95 = 1'h1;
+      9'b110110110:
+        casez_tmp_95 = 1'h1;
+      9'b110110111:
+        casez_tmp_95 = 1'h1;
+      9'b110111000:
+        casez_tmp_95 = 1'h1;
+      9'b110111001:
+        casez_tmp_95 = 1'h1;
+      9'b110111010:
+        casez_tmp_95 = 1'h1;
+      9'b110111011:
+        casez_tmp_95 = 1'h1;
+      9'b110111100:
+        casez_tmp_95 = 1'h1;
+      9'b110111101:
+        casez_tmp_95 = 1'h1;
+      9'b110111110:
+        casez_tmp_95 = 1'h1;
+      9'b110111111:
+        casez_tmp_95 = 1'h1;
+      9'b111000000:
+        casez_tmp_95 = 1'h0;
+      9'b111000001:
+        casez_tmp_95 = 1'h0;
+      9'b111000010:
+        casez_tmp_95 = 1'h1;
+      9'b111000011:
+        casez_tmp_95 = 1'h1;
+      9'b111000100:
+        casez_tmp_95 = 1'h1;
+      9'b111000101:
+        casez_tmp_95 = 1'h1;
+      9'b111000110:
+        casez_tmp_95 = 1'h1;
+      9'b111000111:
+        casez_tmp_95 = 1'h1;
+      9'b111001000:
+        casez_tmp_95 = 1'h1;
+      9'b111001001:
+        casez_tmp_95 = 1'h1;
+      9'b111001010:
+        casez_tmp_95 = 1'h1;
+      9'b111001011:
+        casez_tmp_95 = 1'h1;
+      9'b111001100:
+        casez_tmp_95 = 1'h1;
+      9'b111001101:
+        casez_tmp_95 = 1'h1;
+      9'b111001110:
+        casez_tmp_95 = 1'h1;
+      9'b111001111:
+        casez_tmp_95 = 1'h1;
+      9'b111010000:
+        casez_tmp_95 = 1'h1;
+      9'b111010001:
+        casez_tmp_95 = 1'h1;
+      9'b111010010:
+        casez_tmp_95 = 1'h1;
+      9'b111010011:
+        casez_tmp_95 = 1'h1;
+      9'b111010100:
+        casez_tmp_95 = 1'h1;
+      9'b111010101:
+        casez_tmp_95 = 1'h1;
+      9'b111010110:
+        casez_tmp_95 = 1'h1;
+      9'b111010111:
+        casez_tmp_95 = 1'h1;
+      9'b111011000:
+        casez_tmp_95 = 1'h1;
+      9'b111011001:
+        casez_tmp_95 = 1'h1;
+      9'b111011010:
+        casez_tmp_95 = 1'h1;
+      9'b111011011:
+        casez_tmp_95 = 1'h1;
+      9'b111011100:
+        casez_tmp_95 = 1'h1;
+      9'b111011101:
+        casez_tmp_95 = 1'h1;
+      9'b111011110:
+        casez_tmp_95 = 1'h1;
+      9'b111011111:
+        casez_tmp_95 = 1'h1;
+      9'b111100000:
+        casez_tmp_95 = 1'h0;
+      9'b111100001:
+        casez_tmp_95 = 1'h1;
+      9'b111100010:
+        casez_tmp_95 = 1'h1;
+      9'b111100011:
+        casez_tmp_95 = 1'h1;
+      9'b111100100:
+        casez_tmp_95 = 1'h1;
+      9'b111100101:
+        casez_tmp_95 = 1'h1;
+      9'b111100110:
+        casez_tmp_95 = 1'h1;
+      9'b111100111:
+        casez_tmp_95 = 1'h1;
+      9'b111101000:
+        casez_tmp_95 = 1'h1;
+      9'b111101001:
+        casez_tmp_95 = 1'h1;
+      9'b111101010:
+        casez_tmp_95 = 1'h1;
+      9'b111101011:
+        casez_tmp_95 = 1'h1;
+      9'b111101100:
+        casez_tmp_95 = 1'h1;
+      9'b111101101:
+        casez_tmp_95 = 1'h1;
+      9'b111101110:
+        casez_tmp_95 = 1'h1;
+      9'b111101111:
+        casez_tmp_95 = 1'h1;
+      9'b111110000:
+        casez_tmp_95 = 1'h1;
+      9'b111110001:
+        casez_tmp_95 = 1'h1;
+      9'b111110010:
+        casez_tmp_95 = 1'h1;
+      9'b111110011:
+        casez_tmp_95 = 1'h1;
+      9'b111110100:
+        casez_tmp_95 = 1'h1;
+      9'b111110101:
+        casez_tmp_95 = 1'h1;
+      9'b111110110:
+        casez_tmp_95 = 1'h1;
+      9'b111110111:
+        casez_tmp_95 = 1'h1;
+      9'b111111000:
+        casez_tmp_95 = 1'h1;
+      9'b111111001:
+        casez_tmp_95 = 1'h1;
+      9'b111111010:
+        casez_tmp_95 = 1'h1;
+      9'b111111011:
+        casez_tmp_95 = 1'h1;
+      9'b111111100:
+        casez_tmp_95 = 1'h1;
+      9'b111111101:
+        casez_tmp_95 = 1'h1;
+      9'b111111110:
+        casez_tmp_95 = 1'h1;
+      default:
+        casez_tmp_95 = 1'h1;
+    endcase
+  end // always @(*)
   reg          inflight_0;
   reg          inflight_1;
   reg          inflight_2;
@@ -5707,31 +25005,833 @@ module PairDispatcher_n16_default(
   reg          inflight_13;
   reg          inflight_14;
   reg          inflight_15;
-  wire         credit_0 = {1'h0, _queues_0_io_count} + {2'h0, inflight_0} < 3'h3;
-  wire         credit_1 = {1'h0, _queues_1_io_count} + {2'h0, inflight_1} < 3'h3;
-  wire         credit_2 = {1'h0, _queues_2_io_count} + {2'h0, inflight_2} < 3'h3;
-  wire         credit_3 = {1'h0, _queues_3_io_count} + {2'h0, inflight_3} < 3'h3;
-  wire         credit_4 = {1'h0, _queues_4_io_count} + {2'h0, inflight_4} < 3'h3;
-  wire         credit_5 = {1'h0, _queues_5_io_count} + {2'h0, inflight_5} < 3'h3;
-  wire         credit_6 = {1'h0, _queues_6_io_count} + {2'h0, inflight_6} < 3'h3;
-  wire         credit_7 = {1'h0, _queues_7_io_count} + {2'h0, inflight_7} < 3'h3;
-  wire         credit_8 = {1'h0, _queues_8_io_count} + {2'h0, inflight_8} < 3'h3;
-  wire         credit_9 = {1'h0, _queues_9_io_count} + {2'h0, inflight_9} < 3'h3;
-  wire         credit_10 = {1'h0, _queues_10_io_count} + {2'h0, inflight_10} < 3'h3;
-  wire         credit_11 = {1'h0, _queues_11_io_count} + {2'h0, inflight_11} < 3'h3;
-  wire         credit_12 = {1'h0, _queues_12_io_count} + {2'h0, inflight_12} < 3'h3;
-  wire         credit_13 = {1'h0, _queues_13_io_count} + {2'h0, inflight_13} < 3'h3;
-  wire         credit_14 = {1'h0, _queues_14_io_count} + {2'h0, inflight_14} < 3'h3;
-  wire         credit_15 = {1'h0, _queues_15_io_count} + {2'h0, inflight_15} < 3'h3;
-  wire         haveGroup = io_go & curValid & (|lineCnt);
-  wire         fire =
-    haveGroup & io_groups_ready & (~inGroup_0 | credit_0) & (~inGroup_1 | credit_1)
-    & (~inGroup_2 | credit_2) & (~inGroup_3 | credit_3) & (~inGroup_4 | credit_4)
-    & (~inGroup_5 | credit_5) & (~inGroup_6 | credit_6) & (~inGroup_7 | credit_7)
-    & (~inGroup_8 | credit_8) & (~inGroup_9 | credit_9) & (~inGroup_10 | credit_10)
-    & (~inGroup_11 | credit_11) & (~inGroup_12 | credit_12) & (~inGroup_13 | credit_13)
-    & (~inGroup_14 | credit_14) & (~inGroup_15 | credit_15);
-  wire [23:0]  _tagNext_15_T_2 = {cur_line, 4'h0} + {19'h0, ptr};
+  reg  [1:0]   held_0;
+  reg  [1:0]   held_1;
+  reg  [1:0]   held_2;
+  reg  [1:0]   held_3;
+  reg  [1:0]   held_4;
+  reg  [1:0]   held_5;
+  reg  [1:0]   held_6;
+  reg  [1:0]   held_7;
+  reg  [1:0]   held_8;
+  reg  [1:0]   held_9;
+  reg  [1:0]   held_10;
+  reg  [1:0]   held_11;
+  reg  [1:0]   held_12;
+  reg  [1:0]   held_13;
+  reg  [1:0]   held_14;
+  reg  [1:0]   held_15;
+  reg          casez_tmp_96;
+  always @(*) begin
+    casez (held_0)
+      2'b00:
+        casez_tmp_96 = 1'h1;
+      2'b01:
+        casez_tmp_96 = 1'h1;
+      2'b10:
+        casez_tmp_96 = 1'h1;
+      default:
+        casez_tmp_96 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_97;
+  always @(*) begin
+    casez (held_1)
+      2'b00:
+        casez_tmp_97 = 1'h1;
+      2'b01:
+        casez_tmp_97 = 1'h1;
+      2'b10:
+        casez_tmp_97 = 1'h1;
+      default:
+        casez_tmp_97 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_98;
+  always @(*) begin
+    casez (held_2)
+      2'b00:
+        casez_tmp_98 = 1'h1;
+      2'b01:
+        casez_tmp_98 = 1'h1;
+      2'b10:
+        casez_tmp_98 = 1'h1;
+      default:
+        casez_tmp_98 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_99;
+  always @(*) begin
+    casez (held_3)
+      2'b00:
+        casez_tmp_99 = 1'h1;
+      2'b01:
+        casez_tmp_99 = 1'h1;
+      2'b10:
+        casez_tmp_99 = 1'h1;
+      default:
+        casez_tmp_99 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_100;
+  always @(*) begin
+    casez (held_4)
+      2'b00:
+        casez_tmp_100 = 1'h1;
+      2'b01:
+        casez_tmp_100 = 1'h1;
+      2'b10:
+        casez_tmp_100 = 1'h1;
+      default:
+        casez_tmp_100 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_101;
+  always @(*) begin
+    casez (held_5)
+      2'b00:
+        casez_tmp_101 = 1'h1;
+      2'b01:
+        casez_tmp_101 = 1'h1;
+      2'b10:
+        casez_tmp_101 = 1'h1;
+      default:
+        casez_tmp_101 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_102;
+  always @(*) begin
+    casez (held_6)
+      2'b00:
+        casez_tmp_102 = 1'h1;
+      2'b01:
+        casez_tmp_102 = 1'h1;
+      2'b10:
+        casez_tmp_102 = 1'h1;
+      default:
+        casez_tmp_102 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_103;
+  always @(*) begin
+    casez (held_7)
+      2'b00:
+        casez_tmp_103 = 1'h1;
+      2'b01:
+        casez_tmp_103 = 1'h1;
+      2'b10:
+        casez_tmp_103 = 1'h1;
+      default:
+        casez_tmp_103 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_104;
+  always @(*) begin
+    casez (held_8)
+      2'b00:
+        casez_tmp_104 = 1'h1;
+      2'b01:
+        casez_tmp_104 = 1'h1;
+      2'b10:
+        casez_tmp_104 = 1'h1;
+      default:
+        casez_tmp_104 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_105;
+  always @(*) begin
+    casez (held_9)
+      2'b00:
+        casez_tmp_105 = 1'h1;
+      2'b01:
+        casez_tmp_105 = 1'h1;
+      2'b10:
+        casez_tmp_105 = 1'h1;
+      default:
+        casez_tmp_105 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_106;
+  always @(*) begin
+    casez (held_10)
+      2'b00:
+        casez_tmp_106 = 1'h1;
+      2'b01:
+        casez_tmp_106 = 1'h1;
+      2'b10:
+        casez_tmp_106 = 1'h1;
+      default:
+        casez_tmp_106 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_107;
+  always @(*) begin
+    casez (held_11)
+      2'b00:
+        casez_tmp_107 = 1'h1;
+      2'b01:
+        casez_tmp_107 = 1'h1;
+      2'b10:
+        casez_tmp_107 = 1'h1;
+      default:
+        casez_tmp_107 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_108;
+  always @(*) begin
+    casez (held_12)
+      2'b00:
+        casez_tmp_108 = 1'h1;
+      2'b01:
+        casez_tmp_108 = 1'h1;
+      2'b10:
+        casez_tmp_108 = 1'h1;
+      default:
+        casez_tmp_108 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_109;
+  always @(*) begin
+    casez (held_13)
+      2'b00:
+        casez_tmp_109 = 1'h1;
+      2'b01:
+        casez_tmp_109 = 1'h1;
+      2'b10:
+        casez_tmp_109 = 1'h1;
+      default:
+        casez_tmp_109 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_110;
+  always @(*) begin
+    casez (held_14)
+      2'b00:
+        casez_tmp_110 = 1'h1;
+      2'b01:
+        casez_tmp_110 = 1'h1;
+      2'b10:
+        casez_tmp_110 = 1'h1;
+      default:
+        casez_tmp_110 = 1'h0;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_111;
+  always @(*) begin
+    casez (held_15)
+      2'b00:
+        casez_tmp_111 = 1'h1;
+      2'b01:
+        casez_tmp_111 = 1'h1;
+      2'b10:
+        casez_tmp_111 = 1'h1;
+      default:
+        casez_tmp_111 = 1'h0;
+    endcase
+  end // always @(*)
+  wire         haveGroup = io_go & curValid & (|casez_tmp_47);
+  wire         ready =
+    (~casez_tmp_80 | casez_tmp_96) & (~casez_tmp_81 | casez_tmp_97)
+    & (~casez_tmp_82 | casez_tmp_98) & (~casez_tmp_83 | casez_tmp_99)
+    & (~casez_tmp_84 | casez_tmp_100) & (~casez_tmp_85 | casez_tmp_101)
+    & (~casez_tmp_86 | casez_tmp_102) & (~casez_tmp_87 | casez_tmp_103)
+    & (~casez_tmp_88 | casez_tmp_104) & (~casez_tmp_89 | casez_tmp_105)
+    & (~casez_tmp_90 | casez_tmp_106) & (~casez_tmp_91 | casez_tmp_107)
+    & (~casez_tmp_92 | casez_tmp_108) & (~casez_tmp_93 | casez_tmp_109)
+    & (~casez_tmp_94 | casez_tmp_110) & (~casez_tmp_95 | casez_tmp_111);
+  wire         fire = haveGroup & io_groups_ready & ready;
+  reg          casez_tmp_112;
+  always @(*) begin
+    casez (casez_tmp)
+      4'b0000:
+        casez_tmp_112 = curBad_0;
+      4'b0001:
+        casez_tmp_112 = curBad_1;
+      4'b0010:
+        casez_tmp_112 = curBad_2;
+      4'b0011:
+        casez_tmp_112 = curBad_3;
+      4'b0100:
+        casez_tmp_112 = curBad_4;
+      4'b0101:
+        casez_tmp_112 = curBad_5;
+      4'b0110:
+        casez_tmp_112 = curBad_6;
+      4'b0111:
+        casez_tmp_112 = curBad_7;
+      4'b1000:
+        casez_tmp_112 = curBad_8;
+      4'b1001:
+        casez_tmp_112 = curBad_9;
+      4'b1010:
+        casez_tmp_112 = curBad_10;
+      4'b1011:
+        casez_tmp_112 = curBad_11;
+      4'b1100:
+        casez_tmp_112 = curBad_12;
+      4'b1101:
+        casez_tmp_112 = curBad_13;
+      4'b1110:
+        casez_tmp_112 = curBad_14;
+      default:
+        casez_tmp_112 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_113;
+  always @(*) begin
+    casez (casez_tmp_0)
+      4'b0000:
+        casez_tmp_113 = curBad_0;
+      4'b0001:
+        casez_tmp_113 = curBad_1;
+      4'b0010:
+        casez_tmp_113 = curBad_2;
+      4'b0011:
+        casez_tmp_113 = curBad_3;
+      4'b0100:
+        casez_tmp_113 = curBad_4;
+      4'b0101:
+        casez_tmp_113 = curBad_5;
+      4'b0110:
+        casez_tmp_113 = curBad_6;
+      4'b0111:
+        casez_tmp_113 = curBad_7;
+      4'b1000:
+        casez_tmp_113 = curBad_8;
+      4'b1001:
+        casez_tmp_113 = curBad_9;
+      4'b1010:
+        casez_tmp_113 = curBad_10;
+      4'b1011:
+        casez_tmp_113 = curBad_11;
+      4'b1100:
+        casez_tmp_113 = curBad_12;
+      4'b1101:
+        casez_tmp_113 = curBad_13;
+      4'b1110:
+        casez_tmp_113 = curBad_14;
+      default:
+        casez_tmp_113 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_114;
+  always @(*) begin
+    casez (casez_tmp_1)
+      4'b0000:
+        casez_tmp_114 = curBad_0;
+      4'b0001:
+        casez_tmp_114 = curBad_1;
+      4'b0010:
+        casez_tmp_114 = curBad_2;
+      4'b0011:
+        casez_tmp_114 = curBad_3;
+      4'b0100:
+        casez_tmp_114 = curBad_4;
+      4'b0101:
+        casez_tmp_114 = curBad_5;
+      4'b0110:
+        casez_tmp_114 = curBad_6;
+      4'b0111:
+        casez_tmp_114 = curBad_7;
+      4'b1000:
+        casez_tmp_114 = curBad_8;
+      4'b1001:
+        casez_tmp_114 = curBad_9;
+      4'b1010:
+        casez_tmp_114 = curBad_10;
+      4'b1011:
+        casez_tmp_114 = curBad_11;
+      4'b1100:
+        casez_tmp_114 = curBad_12;
+      4'b1101:
+        casez_tmp_114 = curBad_13;
+      4'b1110:
+        casez_tmp_114 = curBad_14;
+      default:
+        casez_tmp_114 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_115;
+  always @(*) begin
+    casez (casez_tmp_2)
+      4'b0000:
+        casez_tmp_115 = curBad_0;
+      4'b0001:
+        casez_tmp_115 = curBad_1;
+      4'b0010:
+        casez_tmp_115 = curBad_2;
+      4'b0011:
+        casez_tmp_115 = curBad_3;
+      4'b0100:
+        casez_tmp_115 = curBad_4;
+      4'b0101:
+        casez_tmp_115 = curBad_5;
+      4'b0110:
+        casez_tmp_115 = curBad_6;
+      4'b0111:
+        casez_tmp_115 = curBad_7;
+      4'b1000:
+        casez_tmp_115 = curBad_8;
+      4'b1001:
+        casez_tmp_115 = curBad_9;
+      4'b1010:
+        casez_tmp_115 = curBad_10;
+      4'b1011:
+        casez_tmp_115 = curBad_11;
+      4'b1100:
+        casez_tmp_115 = curBad_12;
+      4'b1101:
+        casez_tmp_115 = curBad_13;
+      4'b1110:
+        casez_tmp_115 = curBad_14;
+      default:
+        casez_tmp_115 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_116;
+  always @(*) begin
+    casez (casez_tmp_3)
+      4'b0000:
+        casez_tmp_116 = curBad_0;
+      4'b0001:
+        casez_tmp_116 = curBad_1;
+      4'b0010:
+        casez_tmp_116 = curBad_2;
+      4'b0011:
+        casez_tmp_116 = curBad_3;
+      4'b0100:
+        casez_tmp_116 = curBad_4;
+      4'b0101:
+        casez_tmp_116 = curBad_5;
+      4'b0110:
+        casez_tmp_116 = curBad_6;
+      4'b0111:
+        casez_tmp_116 = curBad_7;
+      4'b1000:
+        casez_tmp_116 = curBad_8;
+      4'b1001:
+        casez_tmp_116 = curBad_9;
+      4'b1010:
+        casez_tmp_116 = curBad_10;
+      4'b1011:
+        casez_tmp_116 = curBad_11;
+      4'b1100:
+        casez_tmp_116 = curBad_12;
+      4'b1101:
+        casez_tmp_116 = curBad_13;
+      4'b1110:
+        casez_tmp_116 = curBad_14;
+      default:
+        casez_tmp_116 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_117;
+  always @(*) begin
+    casez (casez_tmp_4)
+      4'b0000:
+        casez_tmp_117 = curBad_0;
+      4'b0001:
+        casez_tmp_117 = curBad_1;
+      4'b0010:
+        casez_tmp_117 = curBad_2;
+      4'b0011:
+        casez_tmp_117 = curBad_3;
+      4'b0100:
+        casez_tmp_117 = curBad_4;
+      4'b0101:
+        casez_tmp_117 = curBad_5;
+      4'b0110:
+        casez_tmp_117 = curBad_6;
+      4'b0111:
+        casez_tmp_117 = curBad_7;
+      4'b1000:
+        casez_tmp_117 = curBad_8;
+      4'b1001:
+        casez_tmp_117 = curBad_9;
+      4'b1010:
+        casez_tmp_117 = curBad_10;
+      4'b1011:
+        casez_tmp_117 = curBad_11;
+      4'b1100:
+        casez_tmp_117 = curBad_12;
+      4'b1101:
+        casez_tmp_117 = curBad_13;
+      4'b1110:
+        casez_tmp_117 = curBad_14;
+      default:
+        casez_tmp_117 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_118;
+  always @(*) begin
+    casez (casez_tmp_5)
+      4'b0000:
+        casez_tmp_118 = curBad_0;
+      4'b0001:
+        casez_tmp_118 = curBad_1;
+      4'b0010:
+        casez_tmp_118 = curBad_2;
+      4'b0011:
+        casez_tmp_118 = curBad_3;
+      4'b0100:
+        casez_tmp_118 = curBad_4;
+      4'b0101:
+        casez_tmp_118 = curBad_5;
+      4'b0110:
+        casez_tmp_118 = curBad_6;
+      4'b0111:
+        casez_tmp_118 = curBad_7;
+      4'b1000:
+        casez_tmp_118 = curBad_8;
+      4'b1001:
+        casez_tmp_118 = curBad_9;
+      4'b1010:
+        casez_tmp_118 = curBad_10;
+      4'b1011:
+        casez_tmp_118 = curBad_11;
+      4'b1100:
+        casez_tmp_118 = curBad_12;
+      4'b1101:
+        casez_tmp_118 = curBad_13;
+      4'b1110:
+        casez_tmp_118 = curBad_14;
+      default:
+        casez_tmp_118 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_119;
+  always @(*) begin
+    casez (casez_tmp_6)
+      4'b0000:
+        casez_tmp_119 = curBad_0;
+      4'b0001:
+        casez_tmp_119 = curBad_1;
+      4'b0010:
+        casez_tmp_119 = curBad_2;
+      4'b0011:
+        casez_tmp_119 = curBad_3;
+      4'b0100:
+        casez_tmp_119 = curBad_4;
+      4'b0101:
+        casez_tmp_119 = curBad_5;
+      4'b0110:
+        casez_tmp_119 = curBad_6;
+      4'b0111:
+        casez_tmp_119 = curBad_7;
+      4'b1000:
+        casez_tmp_119 = curBad_8;
+      4'b1001:
+        casez_tmp_119 = curBad_9;
+      4'b1010:
+        casez_tmp_119 = curBad_10;
+      4'b1011:
+        casez_tmp_119 = curBad_11;
+      4'b1100:
+        casez_tmp_119 = curBad_12;
+      4'b1101:
+        casez_tmp_119 = curBad_13;
+      4'b1110:
+        casez_tmp_119 = curBad_14;
+      default:
+        casez_tmp_119 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_120;
+  always @(*) begin
+    casez (casez_tmp_7)
+      4'b0000:
+        casez_tmp_120 = curBad_0;
+      4'b0001:
+        casez_tmp_120 = curBad_1;
+      4'b0010:
+        casez_tmp_120 = curBad_2;
+      4'b0011:
+        casez_tmp_120 = curBad_3;
+      4'b0100:
+        casez_tmp_120 = curBad_4;
+      4'b0101:
+        casez_tmp_120 = curBad_5;
+      4'b0110:
+        casez_tmp_120 = curBad_6;
+      4'b0111:
+        casez_tmp_120 = curBad_7;
+      4'b1000:
+        casez_tmp_120 = curBad_8;
+      4'b1001:
+        casez_tmp_120 = curBad_9;
+      4'b1010:
+        casez_tmp_120 = curBad_10;
+      4'b1011:
+        casez_tmp_120 = curBad_11;
+      4'b1100:
+        casez_tmp_120 = curBad_12;
+      4'b1101:
+        casez_tmp_120 = curBad_13;
+      4'b1110:
+        casez_tmp_120 = curBad_14;
+      default:
+        casez_tmp_120 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_121;
+  always @(*) begin
+    casez (casez_tmp_8)
+      4'b0000:
+        casez_tmp_121 = curBad_0;
+      4'b0001:
+        casez_tmp_121 = curBad_1;
+      4'b0010:
+        casez_tmp_121 = curBad_2;
+      4'b0011:
+        casez_tmp_121 = curBad_3;
+      4'b0100:
+        casez_tmp_121 = curBad_4;
+      4'b0101:
+        casez_tmp_121 = curBad_5;
+      4'b0110:
+        casez_tmp_121 = curBad_6;
+      4'b0111:
+        casez_tmp_121 = curBad_7;
+      4'b1000:
+        casez_tmp_121 = curBad_8;
+      4'b1001:
+        casez_tmp_121 = curBad_9;
+      4'b1010:
+        casez_tmp_121 = curBad_10;
+      4'b1011:
+        casez_tmp_121 = curBad_11;
+      4'b1100:
+        casez_tmp_121 = curBad_12;
+      4'b1101:
+        casez_tmp_121 = curBad_13;
+      4'b1110:
+        casez_tmp_121 = curBad_14;
+      default:
+        casez_tmp_121 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_122;
+  always @(*) begin
+    casez (casez_tmp_9)
+      4'b0000:
+        casez_tmp_122 = curBad_0;
+      4'b0001:
+        casez_tmp_122 = curBad_1;
+      4'b0010:
+        casez_tmp_122 = curBad_2;
+      4'b0011:
+        casez_tmp_122 = curBad_3;
+      4'b0100:
+        casez_tmp_122 = curBad_4;
+      4'b0101:
+        casez_tmp_122 = curBad_5;
+      4'b0110:
+        casez_tmp_122 = curBad_6;
+      4'b0111:
+        casez_tmp_122 = curBad_7;
+      4'b1000:
+        casez_tmp_122 = curBad_8;
+      4'b1001:
+        casez_tmp_122 = curBad_9;
+      4'b1010:
+        casez_tmp_122 = curBad_10;
+      4'b1011:
+        casez_tmp_122 = curBad_11;
+      4'b1100:
+        casez_tmp_122 = curBad_12;
+      4'b1101:
+        casez_tmp_122 = curBad_13;
+      4'b1110:
+        casez_tmp_122 = curBad_14;
+      default:
+        casez_tmp_122 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_123;
+  always @(*) begin
+    casez (casez_tmp_10)
+      4'b0000:
+        casez_tmp_123 = curBad_0;
+      4'b0001:
+        casez_tmp_123 = curBad_1;
+      4'b0010:
+        casez_tmp_123 = curBad_2;
+      4'b0011:
+        casez_tmp_123 = curBad_3;
+      4'b0100:
+        casez_tmp_123 = curBad_4;
+      4'b0101:
+        casez_tmp_123 = curBad_5;
+      4'b0110:
+        casez_tmp_123 = curBad_6;
+      4'b0111:
+        casez_tmp_123 = curBad_7;
+      4'b1000:
+        casez_tmp_123 = curBad_8;
+      4'b1001:
+        casez_tmp_123 = curBad_9;
+      4'b1010:
+        casez_tmp_123 = curBad_10;
+      4'b1011:
+        casez_tmp_123 = curBad_11;
+      4'b1100:
+        casez_tmp_123 = curBad_12;
+      4'b1101:
+        casez_tmp_123 = curBad_13;
+      4'b1110:
+        casez_tmp_123 = curBad_14;
+      default:
+        casez_tmp_123 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_124;
+  always @(*) begin
+    casez (casez_tmp_11)
+      4'b0000:
+        casez_tmp_124 = curBad_0;
+      4'b0001:
+        casez_tmp_124 = curBad_1;
+      4'b0010:
+        casez_tmp_124 = curBad_2;
+      4'b0011:
+        casez_tmp_124 = curBad_3;
+      4'b0100:
+        casez_tmp_124 = curBad_4;
+      4'b0101:
+        casez_tmp_124 = curBad_5;
+      4'b0110:
+        casez_tmp_124 = curBad_6;
+      4'b0111:
+        casez_tmp_124 = curBad_7;
+      4'b1000:
+        casez_tmp_124 = curBad_8;
+      4'b1001:
+        casez_tmp_124 = curBad_9;
+      4'b1010:
+        casez_tmp_124 = curBad_10;
+      4'b1011:
+        casez_tmp_124 = curBad_11;
+      4'b1100:
+        casez_tmp_124 = curBad_12;
+      4'b1101:
+        casez_tmp_124 = curBad_13;
+      4'b1110:
+        casez_tmp_124 = curBad_14;
+      default:
+        casez_tmp_124 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_125;
+  always @(*) begin
+    casez (casez_tmp_12)
+      4'b0000:
+        casez_tmp_125 = curBad_0;
+      4'b0001:
+        casez_tmp_125 = curBad_1;
+      4'b0010:
+        casez_tmp_125 = curBad_2;
+      4'b0011:
+        casez_tmp_125 = curBad_3;
+      4'b0100:
+        casez_tmp_125 = curBad_4;
+      4'b0101:
+        casez_tmp_125 = curBad_5;
+      4'b0110:
+        casez_tmp_125 = curBad_6;
+      4'b0111:
+        casez_tmp_125 = curBad_7;
+      4'b1000:
+        casez_tmp_125 = curBad_8;
+      4'b1001:
+        casez_tmp_125 = curBad_9;
+      4'b1010:
+        casez_tmp_125 = curBad_10;
+      4'b1011:
+        casez_tmp_125 = curBad_11;
+      4'b1100:
+        casez_tmp_125 = curBad_12;
+      4'b1101:
+        casez_tmp_125 = curBad_13;
+      4'b1110:
+        casez_tmp_125 = curBad_14;
+      default:
+        casez_tmp_125 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_126;
+  always @(*) begin
+    casez (casez_tmp_13)
+      4'b0000:
+        casez_tmp_126 = curBad_0;
+      4'b0001:
+        casez_tmp_126 = curBad_1;
+      4'b0010:
+        casez_tmp_126 = curBad_2;
+      4'b0011:
+        casez_tmp_126 = curBad_3;
+      4'b0100:
+        casez_tmp_126 = curBad_4;
+      4'b0101:
+        casez_tmp_126 = curBad_5;
+      4'b0110:
+        casez_tmp_126 = curBad_6;
+      4'b0111:
+        casez_tmp_126 = curBad_7;
+      4'b1000:
+        casez_tmp_126 = curBad_8;
+      4'b1001:
+        casez_tmp_126 = curBad_9;
+      4'b1010:
+        casez_tmp_126 = curBad_10;
+      4'b1011:
+        casez_tmp_126 = curBad_11;
+      4'b1100:
+        casez_tmp_126 = curBad_12;
+      4'b1101:
+        casez_tmp_126 = curBad_13;
+      4'b1110:
+        casez_tmp_126 = curBad_14;
+      default:
+        casez_tmp_126 = curBad_15;
+    endcase
+  end // always @(*)
+  reg          casez_tmp_127;
+  always @(*) begin
+    casez (casez_tmp_14)
+      4'b0000:
+        casez_tmp_127 = curBad_0;
+      4'b0001:
+        casez_tmp_127 = curBad_1;
+      4'b0010:
+        casez_tmp_127 = curBad_2;
+      4'b0011:
+        casez_tmp_127 = curBad_3;
+      4'b0100:
+        casez_tmp_127 = curBad_4;
+      4'b0101:
+        casez_tmp_127 = curBad_5;
+      4'b0110:
+        casez_tmp_127 = curBad_6;
+      4'b0111:
+        casez_tmp_127 = curBad_7;
+      4'b1000:
+        casez_tmp_127 = curBad_8;
+      4'b1001:
+        casez_tmp_127 = curBad_9;
+      4'b1010:
+        casez_tmp_127 = curBad_10;
+      4'b1011:
+        casez_tmp_127 = curBad_11;
+      4'b1100:
+        casez_tmp_127 = curBad_12;
+      4'b1101:
+        casez_tmp_127 = curBad_13;
+      4'b1110:
+        casez_tmp_127 = curBad_14;
+      default:
+        casez_tmp_127 = curBad_15;
+    endcase
+  end // always @(*)
   reg  [23:0]  tagNext_0;
   reg  [23:0]  tagNext_1;
   reg  [23:0]  tagNext_2;
@@ -5748,1350 +25848,3045 @@ module PairDispatcher_n16_default(
   reg  [23:0]  tagNext_13;
   reg  [23:0]  tagNext_14;
   reg  [23:0]  tagNext_15;
-  wire         io_ren_0_0 = fire & inGroup_0;
-  reg  [15:0]  casez_tmp_31;
+  wire         io_ren_0_0 = fire & casez_tmp_80;
+  reg  [15:0]  casez_tmp_128;
   always @(*) begin
-    casez (posOf_0[3:0])
+    casez (casez_tmp_64)
       4'b0000:
-        casez_tmp_31 = casez_tmp;
+        casez_tmp_128 = casez_tmp_15;
       4'b0001:
-        casez_tmp_31 = casez_tmp_0;
+        casez_tmp_128 = casez_tmp_16;
       4'b0010:
-        casez_tmp_31 = casez_tmp_1;
+        casez_tmp_128 = casez_tmp_17;
       4'b0011:
-        casez_tmp_31 = casez_tmp_2;
+        casez_tmp_128 = casez_tmp_18;
       4'b0100:
-        casez_tmp_31 = casez_tmp_3;
+        casez_tmp_128 = casez_tmp_19;
       4'b0101:
-        casez_tmp_31 = casez_tmp_4;
+        casez_tmp_128 = casez_tmp_20;
       4'b0110:
-        casez_tmp_31 = casez_tmp_5;
+        casez_tmp_128 = casez_tmp_21;
       4'b0111:
-        casez_tmp_31 = casez_tmp_6;
+        casez_tmp_128 = casez_tmp_22;
       4'b1000:
-        casez_tmp_31 = casez_tmp_7;
+        casez_tmp_128 = casez_tmp_23;
       4'b1001:
-        casez_tmp_31 = casez_tmp_8;
+        casez_tmp_128 = casez_tmp_24;
       4'b1010:
-        casez_tmp_31 = casez_tmp_9;
+        casez_tmp_128 = casez_tmp_25;
       4'b1011:
-        casez_tmp_31 = casez_tmp_10;
+        casez_tmp_128 = casez_tmp_26;
       4'b1100:
-        casez_tmp_31 = casez_tmp_11;
+        casez_tmp_128 = casez_tmp_27;
       4'b1101:
-        casez_tmp_31 = casez_tmp_12;
+        casez_tmp_128 = casez_tmp_28;
       4'b1110:
-        casez_tmp_31 = casez_tmp_13;
+        casez_tmp_128 = casez_tmp_29;
       default:
-        casez_tmp_31 = casez_tmp_14;
+        casez_tmp_128 = casez_tmp_30;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_32;
+  reg  [15:0]  casez_tmp_129;
   always @(*) begin
-    casez (posOf_0[3:0])
+    casez (casez_tmp_64)
       4'b0000:
-        casez_tmp_32 = casez_tmp_15;
+        casez_tmp_129 = casez_tmp_31;
       4'b0001:
-        casez_tmp_32 = casez_tmp_16;
+        casez_tmp_129 = casez_tmp_32;
       4'b0010:
-        casez_tmp_32 = casez_tmp_17;
+        casez_tmp_129 = casez_tmp_33;
       4'b0011:
-        casez_tmp_32 = casez_tmp_18;
+        casez_tmp_129 = casez_tmp_34;
       4'b0100:
-        casez_tmp_32 = casez_tmp_19;
+        casez_tmp_129 = casez_tmp_35;
       4'b0101:
-        casez_tmp_32 = casez_tmp_20;
+        casez_tmp_129 = casez_tmp_36;
       4'b0110:
-        casez_tmp_32 = casez_tmp_21;
+        casez_tmp_129 = casez_tmp_37;
       4'b0111:
-        casez_tmp_32 = casez_tmp_22;
+        casez_tmp_129 = casez_tmp_38;
       4'b1000:
-        casez_tmp_32 = casez_tmp_23;
+        casez_tmp_129 = casez_tmp_39;
       4'b1001:
-        casez_tmp_32 = casez_tmp_24;
+        casez_tmp_129 = casez_tmp_40;
       4'b1010:
-        casez_tmp_32 = casez_tmp_25;
+        casez_tmp_129 = casez_tmp_41;
       4'b1011:
-        casez_tmp_32 = casez_tmp_26;
+        casez_tmp_129 = casez_tmp_42;
       4'b1100:
-        casez_tmp_32 = casez_tmp_27;
+        casez_tmp_129 = casez_tmp_43;
       4'b1101:
-        casez_tmp_32 = casez_tmp_28;
+        casez_tmp_129 = casez_tmp_44;
       4'b1110:
-        casez_tmp_32 = casez_tmp_29;
+        casez_tmp_129 = casez_tmp_45;
       default:
-        casez_tmp_32 = casez_tmp_30;
+        casez_tmp_129 = casez_tmp_46;
     endcase
   end // always @(*)
-  wire         io_ren_1_0 = fire & inGroup_1;
-  reg  [15:0]  casez_tmp_33;
+  reg  [1:0]   casez_tmp_130;
   always @(*) begin
-    casez (posOf_1[3:0])
+    casez ({held_0, io_ren_0_0, io_scpu_0_ready & _queues_0_io_deq_valid})
       4'b0000:
-        casez_tmp_33 = casez_tmp;
+        casez_tmp_130 = 2'h0;
       4'b0001:
-        casez_tmp_33 = casez_tmp_0;
+        casez_tmp_130 = 2'h0;
       4'b0010:
-        casez_tmp_33 = casez_tmp_1;
+        casez_tmp_130 = 2'h1;
       4'b0011:
-        casez_tmp_33 = casez_tmp_2;
+        casez_tmp_130 = 2'h0;
       4'b0100:
-        casez_tmp_33 = casez_tmp_3;
+        casez_tmp_130 = 2'h1;
       4'b0101:
-        casez_tmp_33 = casez_tmp_4;
+        casez_tmp_130 = 2'h0;
       4'b0110:
-        casez_tmp_33 = casez_tmp_5;
+        casez_tmp_130 = 2'h2;
       4'b0111:
-        casez_tmp_33 = casez_tmp_6;
+        casez_tmp_130 = 2'h1;
       4'b1000:
-        casez_tmp_33 = casez_tmp_7;
+        casez_tmp_130 = 2'h2;
       4'b1001:
-        casez_tmp_33 = casez_tmp_8;
+        casez_tmp_130 = 2'h1;
       4'b1010:
-        casez_tmp_33 = casez_tmp_9;
+        casez_tmp_130 = 2'h3;
       4'b1011:
-        casez_tmp_33 = casez_tmp_10;
+        casez_tmp_130 = 2'h2;
       4'b1100:
-        casez_tmp_33 = casez_tmp_11;
+        casez_tmp_130 = 2'h3;
       4'b1101:
-        casez_tmp_33 = casez_tmp_12;
+        casez_tmp_130 = 2'h2;
       4'b1110:
-        casez_tmp_33 = casez_tmp_13;
+        casez_tmp_130 = 2'h3;
       default:
-        casez_tmp_33 = casez_tmp_14;
+        casez_tmp_130 = 2'h3;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_34;
+  wire         io_ren_1_0 = fire & casez_tmp_81;
+  reg  [15:0]  casez_tmp_131;
   always @(*) begin
-    casez (posOf_1[3:0])
+    casez (casez_tmp_65)
       4'b0000:
-        casez_tmp_34 = casez_tmp_15;
+        casez_tmp_131 = casez_tmp_15;
       4'b0001:
-        casez_tmp_34 = casez_tmp_16;
+        casez_tmp_131 = casez_tmp_16;
       4'b0010:
-        casez_tmp_34 = casez_tmp_17;
+        casez_tmp_131 = casez_tmp_17;
       4'b0011:
-        casez_tmp_34 = casez_tmp_18;
+        casez_tmp_131 = casez_tmp_18;
       4'b0100:
-        casez_tmp_34 = casez_tmp_19;
+        casez_tmp_131 = casez_tmp_19;
       4'b0101:
-        casez_tmp_34 = casez_tmp_20;
+        casez_tmp_131 = casez_tmp_20;
       4'b0110:
-        casez_tmp_34 = casez_tmp_21;
+        casez_tmp_131 = casez_tmp_21;
       4'b0111:
-        casez_tmp_34 = casez_tmp_22;
+        casez_tmp_131 = casez_tmp_22;
       4'b1000:
-        casez_tmp_34 = casez_tmp_23;
+        casez_tmp_131 = casez_tmp_23;
       4'b1001:
-        casez_tmp_34 = casez_tmp_24;
+        casez_tmp_131 = casez_tmp_24;
       4'b1010:
-        casez_tmp_34 = casez_tmp_25;
+        casez_tmp_131 = casez_tmp_25;
       4'b1011:
-        casez_tmp_34 = casez_tmp_26;
+        casez_tmp_131 = casez_tmp_26;
       4'b1100:
-        casez_tmp_34 = casez_tmp_27;
+        casez_tmp_131 = casez_tmp_27;
       4'b1101:
-        casez_tmp_34 = casez_tmp_28;
+        casez_tmp_131 = casez_tmp_28;
       4'b1110:
-        casez_tmp_34 = casez_tmp_29;
+        casez_tmp_131 = casez_tmp_29;
       default:
-        casez_tmp_34 = casez_tmp_30;
+        casez_tmp_131 = casez_tmp_30;
     endcase
   end // always @(*)
-  wire         io_ren_2_0 = fire & inGroup_2;
-  reg  [15:0]  casez_tmp_35;
+  reg  [15:0]  casez_tmp_132;
   always @(*) begin
-    casez (posOf_2[3:0])
+    casez (casez_tmp_65)
       4'b0000:
-        casez_tmp_35 = casez_tmp;
+        casez_tmp_132 = casez_tmp_31;
       4'b0001:
-        casez_tmp_35 = casez_tmp_0;
+        casez_tmp_132 = casez_tmp_32;
       4'b0010:
-        casez_tmp_35 = casez_tmp_1;
+        casez_tmp_132 = casez_tmp_33;
       4'b0011:
-        casez_tmp_35 = casez_tmp_2;
+        casez_tmp_132 = casez_tmp_34;
       4'b0100:
-        casez_tmp_35 = casez_tmp_3;
+        casez_tmp_132 = casez_tmp_35;
       4'b0101:
-        casez_tmp_35 = casez_tmp_4;
+        casez_tmp_132 = casez_tmp_36;
       4'b0110:
-        casez_tmp_35 = casez_tmp_5;
+        casez_tmp_132 = casez_tmp_37;
       4'b0111:
-        casez_tmp_35 = casez_tmp_6;
+        casez_tmp_132 = casez_tmp_38;
       4'b1000:
-        casez_tmp_35 = casez_tmp_7;
+        casez_tmp_132 = casez_tmp_39;
       4'b1001:
-        casez_tmp_35 = casez_tmp_8;
+        casez_tmp_132 = casez_tmp_40;
       4'b1010:
-        casez_tmp_35 = casez_tmp_9;
+        casez_tmp_132 = casez_tmp_41;
       4'b1011:
-        casez_tmp_35 = casez_tmp_10;
+        casez_tmp_132 = casez_tmp_42;
       4'b1100:
-        casez_tmp_35 = casez_tmp_11;
+        casez_tmp_132 = casez_tmp_43;
       4'b1101:
-        casez_tmp_35 = casez_tmp_12;
+        casez_tmp_132 = casez_tmp_44;
       4'b1110:
-        casez_tmp_35 = casez_tmp_13;
+        casez_tmp_132 = casez_tmp_45;
       default:
-        casez_tmp_35 = casez_tmp_14;
+        casez_tmp_132 = casez_tmp_46;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_36;
+  reg  [1:0]   casez_tmp_133;
   always @(*) begin
-    casez (posOf_2[3:0])
+    casez ({held_1, io_ren_1_0, io_scpu_1_ready & _queues_1_io_deq_valid})
       4'b0000:
-        casez_tmp_36 = casez_tmp_15;
+        casez_tmp_133 = 2'h0;
       4'b0001:
-        casez_tmp_36 = casez_tmp_16;
+        casez_tmp_133 = 2'h0;
       4'b0010:
-        casez_tmp_36 = casez_tmp_17;
+        casez_tmp_133 = 2'h1;
       4'b0011:
-        casez_tmp_36 = casez_tmp_18;
+        casez_tmp_133 = 2'h0;
       4'b0100:
-        casez_tmp_36 = casez_tmp_19;
+        casez_tmp_133 = 2'h1;
       4'b0101:
-        casez_tmp_36 = casez_tmp_20;
+        casez_tmp_133 = 2'h0;
       4'b0110:
-        casez_tmp_36 = casez_tmp_21;
+        casez_tmp_133 = 2'h2;
       4'b0111:
-        casez_tmp_36 = casez_tmp_22;
+        casez_tmp_133 = 2'h1;
       4'b1000:
-        casez_tmp_36 = casez_tmp_23;
+        casez_tmp_133 = 2'h2;
       4'b1001:
-        casez_tmp_36 = casez_tmp_24;
+        casez_tmp_133 = 2'h1;
       4'b1010:
-        casez_tmp_36 = casez_tmp_25;
+        casez_tmp_133 = 2'h3;
       4'b1011:
-        casez_tmp_36 = casez_tmp_26;
+        casez_tmp_133 = 2'h2;
       4'b1100:
-        casez_tmp_36 = casez_tmp_27;
+        casez_tmp_133 = 2'h3;
       4'b1101:
-        casez_tmp_36 = casez_tmp_28;
+        casez_tmp_133 = 2'h2;
       4'b1110:
-        casez_tmp_36 = casez_tmp_29;
+        casez_tmp_133 = 2'h3;
       default:
-        casez_tmp_36 = casez_tmp_30;
+        casez_tmp_133 = 2'h3;
     endcase
   end // always @(*)
-  wire         io_ren_3_0 = fire & inGroup_3;
-  reg  [15:0]  casez_tmp_37;
+  wire         io_ren_2_0 = fire & casez_tmp_82;
+  reg  [15:0]  casez_tmp_134;
   always @(*) begin
-    casez (posOf_3[3:0])
+    casez (casez_tmp_66)
       4'b0000:
-        casez_tmp_37 = casez_tmp;
+        casez_tmp_134 = casez_tmp_15;
       4'b0001:
-        casez_tmp_37 = casez_tmp_0;
+        casez_tmp_134 = casez_tmp_16;
       4'b0010:
-        casez_tmp_37 = casez_tmp_1;
+        casez_tmp_134 = casez_tmp_17;
       4'b0011:
-        casez_tmp_37 = casez_tmp_2;
+        casez_tmp_134 = casez_tmp_18;
       4'b0100:
-        casez_tmp_37 = casez_tmp_3;
+        casez_tmp_134 = casez_tmp_19;
       4'b0101:
-        casez_tmp_37 = casez_tmp_4;
+        casez_tmp_134 = casez_tmp_20;
       4'b0110:
-        casez_tmp_37 = casez_tmp_5;
+        casez_tmp_134 = casez_tmp_21;
       4'b0111:
-        casez_tmp_37 = casez_tmp_6;
+        casez_tmp_134 = casez_tmp_22;
       4'b1000:
-        casez_tmp_37 = casez_tmp_7;
+        casez_tmp_134 = casez_tmp_23;
       4'b1001:
-        casez_tmp_37 = casez_tmp_8;
+        casez_tmp_134 = casez_tmp_24;
       4'b1010:
-        casez_tmp_37 = casez_tmp_9;
+        casez_tmp_134 = casez_tmp_25;
       4'b1011:
-        casez_tmp_37 = casez_tmp_10;
+        casez_tmp_134 = casez_tmp_26;
       4'b1100:
-        casez_tmp_37 = casez_tmp_11;
+        casez_tmp_134 = casez_tmp_27;
       4'b1101:
-        casez_tmp_37 = casez_tmp_12;
+        casez_tmp_134 = casez_tmp_28;
       4'b1110:
-        casez_tmp_37 = casez_tmp_13;
+        casez_tmp_134 = casez_tmp_29;
       default:
-        casez_tmp_37 = casez_tmp_14;
+        casez_tmp_134 = casez_tmp_30;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_38;
+  reg  [15:0]  casez_tmp_135;
   always @(*) begin
-    casez (posOf_3[3:0])
+    casez (casez_tmp_66)
       4'b0000:
-        casez_tmp_38 = casez_tmp_15;
+        casez_tmp_135 = casez_tmp_31;
       4'b0001:
-        casez_tmp_38 = casez_tmp_16;
+        casez_tmp_135 = casez_tmp_32;
       4'b0010:
-        casez_tmp_38 = casez_tmp_17;
+        casez_tmp_135 = casez_tmp_33;
       4'b0011:
-        casez_tmp_38 = casez_tmp_18;
+        casez_tmp_135 = casez_tmp_34;
       4'b0100:
-        casez_tmp_38 = casez_tmp_19;
+        casez_tmp_135 = casez_tmp_35;
       4'b0101:
-        casez_tmp_38 = casez_tmp_20;
+        casez_tmp_135 = casez_tmp_36;
       4'b0110:
-        casez_tmp_38 = casez_tmp_21;
+        casez_tmp_135 = casez_tmp_37;
       4'b0111:
-        casez_tmp_38 = casez_tmp_22;
+        casez_tmp_135 = casez_tmp_38;
       4'b1000:
-        casez_tmp_38 = casez_tmp_23;
+        casez_tmp_135 = casez_tmp_39;
       4'b1001:
-        casez_tmp_38 = casez_tmp_24;
+        casez_tmp_135 = casez_tmp_40;
       4'b1010:
-        casez_tmp_38 = casez_tmp_25;
+        casez_tmp_135 = casez_tmp_41;
       4'b1011:
-        casez_tmp_38 = casez_tmp_26;
+        casez_tmp_135 = casez_tmp_42;
       4'b1100:
-        casez_tmp_38 = casez_tmp_27;
+        casez_tmp_135 = casez_tmp_43;
       4'b1101:
-        casez_tmp_38 = casez_tmp_28;
+        casez_tmp_135 = casez_tmp_44;
       4'b1110:
-        casez_tmp_38 = casez_tmp_29;
+        casez_tmp_135 = casez_tmp_45;
       default:
-        casez_tmp_38 = casez_tmp_30;
+        casez_tmp_135 = casez_tmp_46;
     endcase
   end // always @(*)
-  wire         io_ren_4_0 = fire & inGroup_4;
-  reg  [15:0]  casez_tmp_39;
+  reg  [1:0]   casez_tmp_136;
   always @(*) begin
-    casez (posOf_4[3:0])
+    casez ({held_2, io_ren_2_0, io_scpu_2_ready & _queues_2_io_deq_valid})
       4'b0000:
-        casez_tmp_39 = casez_tmp;
+        casez_tmp_136 = 2'h0;
       4'b0001:
-        casez_tmp_39 = casez_tmp_0;
+        casez_tmp_136 = 2'h0;
       4'b0010:
-        casez_tmp_39 = casez_tmp_1;
+        casez_tmp_136 = 2'h1;
       4'b0011:
-        casez_tmp_39 = casez_tmp_2;
+        casez_tmp_136 = 2'h0;
       4'b0100:
-        casez_tmp_39 = casez_tmp_3;
+        casez_tmp_136 = 2'h1;
       4'b0101:
-        casez_tmp_39 = casez_tmp_4;
+        casez_tmp_136 = 2'h0;
       4'b0110:
-        casez_tmp_39 = casez_tmp_5;
+        casez_tmp_136 = 2'h2;
       4'b0111:
-        casez_tmp_39 = casez_tmp_6;
+        casez_tmp_136 = 2'h1;
       4'b1000:
-        casez_tmp_39 = casez_tmp_7;
+        casez_tmp_136 = 2'h2;
       4'b1001:
-        casez_tmp_39 = casez_tmp_8;
+        casez_tmp_136 = 2'h1;
       4'b1010:
-        casez_tmp_39 = casez_tmp_9;
+        casez_tmp_136 = 2'h3;
       4'b1011:
-        casez_tmp_39 = casez_tmp_10;
+        casez_tmp_136 = 2'h2;
       4'b1100:
-        casez_tmp_39 = casez_tmp_11;
+        casez_tmp_136 = 2'h3;
       4'b1101:
-        casez_tmp_39 = casez_tmp_12;
+        casez_tmp_136 = 2'h2;
       4'b1110:
-        casez_tmp_39 = casez_tmp_13;
+        casez_tmp_136 = 2'h3;
       default:
-        casez_tmp_39 = casez_tmp_14;
+        casez_tmp_136 = 2'h3;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_40;
+  wire         io_ren_3_0 = fire & casez_tmp_83;
+  reg  [15:0]  casez_tmp_137;
   always @(*) begin
-    casez (posOf_4[3:0])
+    casez (casez_tmp_67)
       4'b0000:
-        casez_tmp_40 = casez_tmp_15;
+        casez_tmp_137 = casez_tmp_15;
       4'b0001:
-        casez_tmp_40 = casez_tmp_16;
+        casez_tmp_137 = casez_tmp_16;
       4'b0010:
-        casez_tmp_40 = casez_tmp_17;
+        casez_tmp_137 = casez_tmp_17;
       4'b0011:
-        casez_tmp_40 = casez_tmp_18;
+        casez_tmp_137 = casez_tmp_18;
       4'b0100:
-        casez_tmp_40 = casez_tmp_19;
+        casez_tmp_137 = casez_tmp_19;
       4'b0101:
-        casez_tmp_40 = casez_tmp_20;
+        casez_tmp_137 = casez_tmp_20;
       4'b0110:
-        casez_tmp_40 = casez_tmp_21;
+        casez_tmp_137 = casez_tmp_21;
       4'b0111:
-        casez_tmp_40 = casez_tmp_22;
+        casez_tmp_137 = casez_tmp_22;
       4'b1000:
-        casez_tmp_40 = casez_tmp_23;
+        casez_tmp_137 = casez_tmp_23;
       4'b1001:
-        casez_tmp_40 = casez_tmp_24;
+        casez_tmp_137 = casez_tmp_24;
       4'b1010:
-        casez_tmp_40 = casez_tmp_25;
+        casez_tmp_137 = casez_tmp_25;
       4'b1011:
-        casez_tmp_40 = casez_tmp_26;
+        casez_tmp_137 = casez_tmp_26;
       4'b1100:
-        casez_tmp_40 = casez_tmp_27;
+        casez_tmp_137 = casez_tmp_27;
       4'b1101:
-        casez_tmp_40 = casez_tmp_28;
+        casez_tmp_137 = casez_tmp_28;
       4'b1110:
-        casez_tmp_40 = casez_tmp_29;
+        casez_tmp_137 = casez_tmp_29;
       default:
-        casez_tmp_40 = casez_tmp_30;
+        casez_tmp_137 = casez_tmp_30;
     endcase
   end // always @(*)
-  wire         io_ren_5_0 = fire & inGroup_5;
-  reg  [15:0]  casez_tmp_41;
+  reg  [15:0]  casez_tmp_138;
   always @(*) begin
-    casez (posOf_5[3:0])
+    casez (casez_tmp_67)
       4'b0000:
-        casez_tmp_41 = casez_tmp;
+        casez_tmp_138 = casez_tmp_31;
       4'b0001:
-        casez_tmp_41 = casez_tmp_0;
+        casez_tmp_138 = casez_tmp_32;
       4'b0010:
-        casez_tmp_41 = casez_tmp_1;
+        casez_tmp_138 = casez_tmp_33;
       4'b0011:
-        casez_tmp_41 = casez_tmp_2;
+        casez_tmp_138 = casez_tmp_34;
       4'b0100:
-        casez_tmp_41 = casez_tmp_3;
+        casez_tmp_138 = casez_tmp_35;
       4'b0101:
-        casez_tmp_41 = casez_tmp_4;
+        casez_tmp_138 = casez_tmp_36;
       4'b0110:
-        casez_tmp_41 = casez_tmp_5;
+        casez_tmp_138 = casez_tmp_37;
       4'b0111:
-        casez_tmp_41 = casez_tmp_6;
+        casez_tmp_138 = casez_tmp_38;
       4'b1000:
-        casez_tmp_41 = casez_tmp_7;
+        casez_tmp_138 = casez_tmp_39;
       4'b1001:
-        casez_tmp_41 = casez_tmp_8;
+        casez_tmp_138 = casez_tmp_40;
       4'b1010:
-        casez_tmp_41 = casez_tmp_9;
+        casez_tmp_138 = casez_tmp_41;
       4'b1011:
-        casez_tmp_41 = casez_tmp_10;
+        casez_tmp_138 = casez_tmp_42;
       4'b1100:
-        casez_tmp_41 = casez_tmp_11;
+        casez_tmp_138 = casez_tmp_43;
       4'b1101:
-        casez_tmp_41 = casez_tmp_12;
+        casez_tmp_138 = casez_tmp_44;
       4'b1110:
-        casez_tmp_41 = casez_tmp_13;
+        casez_tmp_138 = casez_tmp_45;
       default:
-        casez_tmp_41 = casez_tmp_14;
+        casez_tmp_138 = casez_tmp_46;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_42;
+  reg  [1:0]   casez_tmp_139;
   always @(*) begin
-    casez (posOf_5[3:0])
+    casez ({held_3, io_ren_3_0, io_scpu_3_ready & _queues_3_io_deq_valid})
       4'b0000:
-        casez_tmp_42 = casez_tmp_15;
+        casez_tmp_139 = 2'h0;
       4'b0001:
-        casez_tmp_42 = casez_tmp_16;
+        casez_tmp_139 = 2'h0;
       4'b0010:
-        casez_tmp_42 = casez_tmp_17;
+        casez_tmp_139 = 2'h1;
       4'b0011:
-        casez_tmp_42 = casez_tmp_18;
+        casez_tmp_139 = 2'h0;
       4'b0100:
-        casez_tmp_42 = casez_tmp_19;
+        casez_tmp_139 = 2'h1;
       4'b0101:
-        casez_tmp_42 = casez_tmp_20;
+        casez_tmp_139 = 2'h0;
       4'b0110:
-        casez_tmp_42 = casez_tmp_21;
+        casez_tmp_139 = 2'h2;
       4'b0111:
-        casez_tmp_42 = casez_tmp_22;
+        casez_tmp_139 = 2'h1;
       4'b1000:
-        casez_tmp_42 = casez_tmp_23;
+        casez_tmp_139 = 2'h2;
       4'b1001:
-        casez_tmp_42 = casez_tmp_24;
+        casez_tmp_139 = 2'h1;
       4'b1010:
-        casez_tmp_42 = casez_tmp_25;
+        casez_tmp_139 = 2'h3;
       4'b1011:
-        casez_tmp_42 = casez_tmp_26;
+        casez_tmp_139 = 2'h2;
       4'b1100:
-        casez_tmp_42 = casez_tmp_27;
+        casez_tmp_139 = 2'h3;
       4'b1101:
-        casez_tmp_42 = casez_tmp_28;
+        casez_tmp_139 = 2'h2;
       4'b1110:
-        casez_tmp_42 = casez_tmp_29;
+        casez_tmp_139 = 2'h3;
       default:
-        casez_tmp_42 = casez_tmp_30;
+        casez_tmp_139 = 2'h3;
     endcase
   end // always @(*)
-  wire         io_ren_6_0 = fire & inGroup_6;
-  reg  [15:0]  casez_tmp_43;
+  wire         io_ren_4_0 = fire & casez_tmp_84;
+  reg  [15:0]  casez_tmp_140;
   always @(*) begin
-    casez (posOf_6[3:0])
+    casez (casez_tmp_68)
       4'b0000:
-        casez_tmp_43 = casez_tmp;
+        casez_tmp_140 = casez_tmp_15;
       4'b0001:
-        casez_tmp_43 = casez_tmp_0;
+        casez_tmp_140 = casez_tmp_16;
       4'b0010:
-        casez_tmp_43 = casez_tmp_1;
+        casez_tmp_140 = casez_tmp_17;
       4'b0011:
-        casez_tmp_43 = casez_tmp_2;
+        casez_tmp_140 = casez_tmp_18;
       4'b0100:
-        casez_tmp_43 = casez_tmp_3;
+        casez_tmp_140 = casez_tmp_19;
       4'b0101:
-        casez_tmp_43 = casez_tmp_4;
+        casez_tmp_140 = casez_tmp_20;
       4'b0110:
-        casez_tmp_43 = casez_tmp_5;
+        casez_tmp_140 = casez_tmp_21;
       4'b0111:
-        casez_tmp_43 = casez_tmp_6;
+        casez_tmp_140 = casez_tmp_22;
       4'b1000:
-        casez_tmp_43 = casez_tmp_7;
+        casez_tmp_140 = casez_tmp_23;
       4'b1001:
-        casez_tmp_43 = casez_tmp_8;
+        casez_tmp_140 = casez_tmp_24;
       4'b1010:
-        casez_tmp_43 = casez_tmp_9;
+        casez_tmp_140 = casez_tmp_25;
       4'b1011:
-        casez_tmp_43 = casez_tmp_10;
+        casez_tmp_140 = casez_tmp_26;
       4'b1100:
-        casez_tmp_43 = casez_tmp_11;
+        casez_tmp_140 = casez_tmp_27;
       4'b1101:
-        casez_tmp_43 = casez_tmp_12;
+        casez_tmp_140 = casez_tmp_28;
       4'b1110:
-        casez_tmp_43 = casez_tmp_13;
+        casez_tmp_140 = casez_tmp_29;
       default:
-        casez_tmp_43 = casez_tmp_14;
+        casez_tmp_140 = casez_tmp_30;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_44;
+  reg  [15:0]  casez_tmp_141;
   always @(*) begin
-    casez (posOf_6[3:0])
+    casez (casez_tmp_68)
       4'b0000:
-        casez_tmp_44 = casez_tmp_15;
+        casez_tmp_141 = casez_tmp_31;
       4'b0001:
-        casez_tmp_44 = casez_tmp_16;
+        casez_tmp_141 = casez_tmp_32;
       4'b0010:
-        casez_tmp_44 = casez_tmp_17;
+        casez_tmp_141 = casez_tmp_33;
       4'b0011:
-        casez_tmp_44 = casez_tmp_18;
+        casez_tmp_141 = casez_tmp_34;
       4'b0100:
-        casez_tmp_44 = casez_tmp_19;
+        casez_tmp_141 = casez_tmp_35;
       4'b0101:
-        casez_tmp_44 = casez_tmp_20;
+        casez_tmp_141 = casez_tmp_36;
       4'b0110:
-        casez_tmp_44 = casez_tmp_21;
+        casez_tmp_141 = casez_tmp_37;
       4'b0111:
-        casez_tmp_44 = casez_tmp_22;
+        casez_tmp_141 = casez_tmp_38;
       4'b1000:
-        casez_tmp_44 = casez_tmp_23;
+        casez_tmp_141 = casez_tmp_39;
       4'b1001:
-        casez_tmp_44 = casez_tmp_24;
+        casez_tmp_141 = casez_tmp_40;
       4'b1010:
-        casez_tmp_44 = casez_tmp_25;
+        casez_tmp_141 = casez_tmp_41;
       4'b1011:
-        casez_tmp_44 = casez_tmp_26;
+        casez_tmp_141 = casez_tmp_42;
       4'b1100:
-        casez_tmp_44 = casez_tmp_27;
+        casez_tmp_141 = casez_tmp_43;
       4'b1101:
-        casez_tmp_44 = casez_tmp_28;
+        casez_tmp_141 = casez_tmp_44;
       4'b1110:
-        casez_tmp_44 = casez_tmp_29;
+        casez_tmp_141 = casez_tmp_45;
       default:
-        casez_tmp_44 = casez_tmp_30;
+        casez_tmp_141 = casez_tmp_46;
     endcase
   end // always @(*)
-  wire         io_ren_7_0 = fire & inGroup_7;
-  reg  [15:0]  casez_tmp_45;
+  reg  [1:0]   casez_tmp_142;
   always @(*) begin
-    casez (posOf_7[3:0])
+    casez ({held_4, io_ren_4_0, io_scpu_4_ready & _queues_4_io_deq_valid})
       4'b0000:
-        casez_tmp_45 = casez_tmp;
+        casez_tmp_142 = 2'h0;
       4'b0001:
-        casez_tmp_45 = casez_tmp_0;
+        casez_tmp_142 = 2'h0;
       4'b0010:
-        casez_tmp_45 = casez_tmp_1;
+        casez_tmp_142 = 2'h1;
       4'b0011:
-        casez_tmp_45 = casez_tmp_2;
+        casez_tmp_142 = 2'h0;
       4'b0100:
-        casez_tmp_45 = casez_tmp_3;
+        casez_tmp_142 = 2'h1;
       4'b0101:
-        casez_tmp_45 = casez_tmp_4;
+        casez_tmp_142 = 2'h0;
       4'b0110:
-        casez_tmp_45 = casez_tmp_5;
+        casez_tmp_142 = 2'h2;
       4'b0111:
-        casez_tmp_45 = casez_tmp_6;
+        casez_tmp_142 = 2'h1;
       4'b1000:
-        casez_tmp_45 = casez_tmp_7;
+        casez_tmp_142 = 2'h2;
       4'b1001:
-        casez_tmp_45 = casez_tmp_8;
+        casez_tmp_142 = 2'h1;
       4'b1010:
-        casez_tmp_45 = casez_tmp_9;
+        casez_tmp_142 = 2'h3;
       4'b1011:
-        casez_tmp_45 = casez_tmp_10;
+        casez_tmp_142 = 2'h2;
       4'b1100:
-        casez_tmp_45 = casez_tmp_11;
+        casez_tmp_142 = 2'h3;
       4'b1101:
-        casez_tmp_45 = casez_tmp_12;
+        casez_tmp_142 = 2'h2;
       4'b1110:
-        casez_tmp_45 = casez_tmp_13;
+        casez_tmp_142 = 2'h3;
       default:
-        casez_tmp_45 = casez_tmp_14;
+        casez_tmp_142 = 2'h3;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_46;
+  wire         io_ren_5_0 = fire & casez_tmp_85;
+  reg  [15:0]  casez_tmp_143;
   always @(*) begin
-    casez (posOf_7[3:0])
+    casez (casez_tmp_69)
       4'b0000:
-        casez_tmp_46 = casez_tmp_15;
+        casez_tmp_143 = casez_tmp_15;
       4'b0001:
-        casez_tmp_46 = casez_tmp_16;
+        casez_tmp_143 = casez_tmp_16;
       4'b0010:
-        casez_tmp_46 = casez_tmp_17;
+        casez_tmp_143 = casez_tmp_17;
       4'b0011:
-        casez_tmp_46 = casez_tmp_18;
+        casez_tmp_143 = casez_tmp_18;
       4'b0100:
-        casez_tmp_46 = casez_tmp_19;
+        casez_tmp_143 = casez_tmp_19;
       4'b0101:
-        casez_tmp_46 = casez_tmp_20;
+        casez_tmp_143 = casez_tmp_20;
       4'b0110:
-        casez_tmp_46 = casez_tmp_21;
+        casez_tmp_143 = casez_tmp_21;
       4'b0111:
-        casez_tmp_46 = casez_tmp_22;
+        casez_tmp_143 = casez_tmp_22;
       4'b1000:
-        casez_tmp_46 = casez_tmp_23;
+        casez_tmp_143 = casez_tmp_23;
       4'b1001:
-        casez_tmp_46 = casez_tmp_24;
+        casez_tmp_143 = casez_tmp_24;
       4'b1010:
-        casez_tmp_46 = casez_tmp_25;
+        casez_tmp_143 = casez_tmp_25;
       4'b1011:
-        casez_tmp_46 = casez_tmp_26;
+        casez_tmp_143 = casez_tmp_26;
       4'b1100:
-        casez_tmp_46 = casez_tmp_27;
+        casez_tmp_143 = casez_tmp_27;
       4'b1101:
-        casez_tmp_46 = casez_tmp_28;
+        casez_tmp_143 = casez_tmp_28;
       4'b1110:
-        casez_tmp_46 = casez_tmp_29;
+        casez_tmp_143 = casez_tmp_29;
       default:
-        casez_tmp_46 = casez_tmp_30;
+        casez_tmp_143 = casez_tmp_30;
     endcase
   end // always @(*)
-  wire         io_ren_8_0 = fire & inGroup_8;
-  reg  [15:0]  casez_tmp_47;
+  reg  [15:0]  casez_tmp_144;
   always @(*) begin
-    casez (posOf_8[3:0])
+    casez (casez_tmp_69)
       4'b0000:
-        casez_tmp_47 = casez_tmp;
+        casez_tmp_144 = casez_tmp_31;
       4'b0001:
-        casez_tmp_47 = casez_tmp_0;
+        casez_tmp_144 = casez_tmp_32;
       4'b0010:
-        casez_tmp_47 = casez_tmp_1;
+        casez_tmp_144 = casez_tmp_33;
       4'b0011:
-        casez_tmp_47 = casez_tmp_2;
+        casez_tmp_144 = casez_tmp_34;
       4'b0100:
-        casez_tmp_47 = casez_tmp_3;
+        casez_tmp_144 = casez_tmp_35;
       4'b0101:
-        casez_tmp_47 = casez_tmp_4;
+        casez_tmp_144 = casez_tmp_36;
       4'b0110:
-        casez_tmp_47 = casez_tmp_5;
+        casez_tmp_144 = casez_tmp_37;
       4'b0111:
-        casez_tmp_47 = casez_tmp_6;
+        casez_tmp_144 = casez_tmp_38;
       4'b1000:
-        casez_tmp_47 = casez_tmp_7;
+        casez_tmp_144 = casez_tmp_39;
       4'b1001:
-        casez_tmp_47 = casez_tmp_8;
+        casez_tmp_144 = casez_tmp_40;
       4'b1010:
-        casez_tmp_47 = casez_tmp_9;
+        casez_tmp_144 = casez_tmp_41;
       4'b1011:
-        casez_tmp_47 = casez_tmp_10;
+        casez_tmp_144 = casez_tmp_42;
       4'b1100:
-        casez_tmp_47 = casez_tmp_11;
+        casez_tmp_144 = casez_tmp_43;
       4'b1101:
-        casez_tmp_47 = casez_tmp_12;
+        casez_tmp_144 = casez_tmp_44;
       4'b1110:
-        casez_tmp_47 = casez_tmp_13;
+        casez_tmp_144 = casez_tmp_45;
       default:
-        casez_tmp_47 = casez_tmp_14;
+        casez_tmp_144 = casez_tmp_46;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_48;
+  reg  [1:0]   casez_tmp_145;
   always @(*) begin
-    casez (posOf_8[3:0])
+    casez ({held_5, io_ren_5_0, io_scpu_5_ready & _queues_5_io_deq_valid})
       4'b0000:
-        casez_tmp_48 = casez_tmp_15;
+        casez_tmp_145 = 2'h0;
       4'b0001:
-        casez_tmp_48 = casez_tmp_16;
+        casez_tmp_145 = 2'h0;
       4'b0010:
-        casez_tmp_48 = casez_tmp_17;
+        casez_tmp_145 = 2'h1;
       4'b0011:
-        casez_tmp_48 = casez_tmp_18;
+        casez_tmp_145 = 2'h0;
       4'b0100:
-        casez_tmp_48 = casez_tmp_19;
+        casez_tmp_145 = 2'h1;
       4'b0101:
-        casez_tmp_48 = casez_tmp_20;
+        casez_tmp_145 = 2'h0;
       4'b0110:
-        casez_tmp_48 = casez_tmp_21;
+        casez_tmp_145 = 2'h2;
       4'b0111:
-        casez_tmp_48 = casez_tmp_22;
+        casez_tmp_145 = 2'h1;
       4'b1000:
-        casez_tmp_48 = casez_tmp_23;
+        casez_tmp_145 = 2'h2;
       4'b1001:
-        casez_tmp_48 = casez_tmp_24;
+        casez_tmp_145 = 2'h1;
       4'b1010:
-        casez_tmp_48 = casez_tmp_25;
+        casez_tmp_145 = 2'h3;
       4'b1011:
-        casez_tmp_48 = casez_tmp_26;
+        casez_tmp_145 = 2'h2;
       4'b1100:
-        casez_tmp_48 = casez_tmp_27;
+        casez_tmp_145 = 2'h3;
       4'b1101:
-        casez_tmp_48 = casez_tmp_28;
+        casez_tmp_145 = 2'h2;
       4'b1110:
-        casez_tmp_48 = casez_tmp_29;
+        casez_tmp_145 = 2'h3;
       default:
-        casez_tmp_48 = casez_tmp_30;
+        casez_tmp_145 = 2'h3;
     endcase
   end // always @(*)
-  wire         io_ren_9_0 = fire & inGroup_9;
-  reg  [15:0]  casez_tmp_49;
+  wire         io_ren_6_0 = fire & casez_tmp_86;
+  reg  [15:0]  casez_tmp_146;
   always @(*) begin
-    casez (posOf_9[3:0])
+    casez (casez_tmp_70)
       4'b0000:
-        casez_tmp_49 = casez_tmp;
+        casez_tmp_146 = casez_tmp_15;
       4'b0001:
-        casez_tmp_49 = casez_tmp_0;
+        casez_tmp_146 = casez_tmp_16;
       4'b0010:
-        casez_tmp_49 = casez_tmp_1;
+        casez_tmp_146 = casez_tmp_17;
       4'b0011:
-        casez_tmp_49 = casez_tmp_2;
+        casez_tmp_146 = casez_tmp_18;
       4'b0100:
-        casez_tmp_49 = casez_tmp_3;
+        casez_tmp_146 = casez_tmp_19;
       4'b0101:
-        casez_tmp_49 = casez_tmp_4;
+        casez_tmp_146 = casez_tmp_20;
       4'b0110:
-        casez_tmp_49 = casez_tmp_5;
+        casez_tmp_146 = casez_tmp_21;
       4'b0111:
-        casez_tmp_49 = casez_tmp_6;
+        casez_tmp_146 = casez_tmp_22;
       4'b1000:
-        casez_tmp_49 = casez_tmp_7;
+        casez_tmp_146 = casez_tmp_23;
       4'b1001:
-        casez_tmp_49 = casez_tmp_8;
+        casez_tmp_146 = casez_tmp_24;
       4'b1010:
-        casez_tmp_49 = casez_tmp_9;
+        casez_tmp_146 = casez_tmp_25;
       4'b1011:
-        casez_tmp_49 = casez_tmp_10;
+        casez_tmp_146 = casez_tmp_26;
       4'b1100:
-        casez_tmp_49 = casez_tmp_11;
+        casez_tmp_146 = casez_tmp_27;
       4'b1101:
-        casez_tmp_49 = casez_tmp_12;
+        casez_tmp_146 = casez_tmp_28;
       4'b1110:
-        casez_tmp_49 = casez_tmp_13;
+        casez_tmp_146 = casez_tmp_29;
       default:
-        casez_tmp_49 = casez_tmp_14;
+        casez_tmp_146 = casez_tmp_30;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_50;
+  reg  [15:0]  casez_tmp_147;
   always @(*) begin
-    casez (posOf_9[3:0])
+    casez (casez_tmp_70)
       4'b0000:
-        casez_tmp_50 = casez_tmp_15;
+        casez_tmp_147 = casez_tmp_31;
       4'b0001:
-        casez_tmp_50 = casez_tmp_16;
+        casez_tmp_147 = casez_tmp_32;
       4'b0010:
-        casez_tmp_50 = casez_tmp_17;
+        casez_tmp_147 = casez_tmp_33;
       4'b0011:
-        casez_tmp_50 = casez_tmp_18;
+        casez_tmp_147 = casez_tmp_34;
       4'b0100:
-        casez_tmp_50 = casez_tmp_19;
+        casez_tmp_147 = casez_tmp_35;
       4'b0101:
-        casez_tmp_50 = casez_tmp_20;
+        casez_tmp_147 = casez_tmp_36;
       4'b0110:
-        casez_tmp_50 = casez_tmp_21;
+        casez_tmp_147 = casez_tmp_37;
       4'b0111:
-        casez_tmp_50 = casez_tmp_22;
+        casez_tmp_147 = casez_tmp_38;
       4'b1000:
-        casez_tmp_50 = casez_tmp_23;
+        casez_tmp_147 = casez_tmp_39;
       4'b1001:
-        casez_tmp_50 = casez_tmp_24;
+        casez_tmp_147 = casez_tmp_40;
       4'b1010:
-        casez_tmp_50 = casez_tmp_25;
+        casez_tmp_147 = casez_tmp_41;
       4'b1011:
-        casez_tmp_50 = casez_tmp_26;
+        casez_tmp_147 = casez_tmp_42;
       4'b1100:
-        casez_tmp_50 = casez_tmp_27;
+        casez_tmp_147 = casez_tmp_43;
       4'b1101:
-        casez_tmp_50 = casez_tmp_28;
+        casez_tmp_147 = casez_tmp_44;
       4'b1110:
-        casez_tmp_50 = casez_tmp_29;
+        casez_tmp_147 = casez_tmp_45;
       default:
-        casez_tmp_50 = casez_tmp_30;
+        casez_tmp_147 = casez_tmp_46;
     endcase
   end // always @(*)
-  wire         io_ren_10_0 = fire & inGroup_10;
-  reg  [15:0]  casez_tmp_51;
+  reg  [1:0]   casez_tmp_148;
   always @(*) begin
-    casez (posOf_10[3:0])
+    casez ({held_6, io_ren_6_0, io_scpu_6_ready & _queues_6_io_deq_valid})
       4'b0000:
-        casez_tmp_51 = casez_tmp;
+        casez_tmp_148 = 2'h0;
       4'b0001:
-        casez_tmp_51 = casez_tmp_0;
+        casez_tmp_148 = 2'h0;
       4'b0010:
-        casez_tmp_51 = casez_tmp_1;
+        casez_tmp_148 = 2'h1;
       4'b0011:
-        casez_tmp_51 = casez_tmp_2;
+        casez_tmp_148 = 2'h0;
       4'b0100:
-        casez_tmp_51 = casez_tmp_3;
+        casez_tmp_148 = 2'h1;
       4'b0101:
-        casez_tmp_51 = casez_tmp_4;
+        casez_tmp_148 = 2'h0;
       4'b0110:
-        casez_tmp_51 = casez_tmp_5;
+        casez_tmp_148 = 2'h2;
       4'b0111:
-        casez_tmp_51 = casez_tmp_6;
+        casez_tmp_148 = 2'h1;
       4'b1000:
-        casez_tmp_51 = casez_tmp_7;
+        casez_tmp_148 = 2'h2;
       4'b1001:
-        casez_tmp_51 = casez_tmp_8;
+        casez_tmp_148 = 2'h1;
       4'b1010:
-        casez_tmp_51 = casez_tmp_9;
+        casez_tmp_148 = 2'h3;
       4'b1011:
-        casez_tmp_51 = casez_tmp_10;
+        casez_tmp_148 = 2'h2;
       4'b1100:
-        casez_tmp_51 = casez_tmp_11;
+        casez_tmp_148 = 2'h3;
       4'b1101:
-        casez_tmp_51 = casez_tmp_12;
+        casez_tmp_148 = 2'h2;
       4'b1110:
-        casez_tmp_51 = casez_tmp_13;
+        casez_tmp_148 = 2'h3;
       default:
-        casez_tmp_51 = casez_tmp_14;
+        casez_tmp_148 = 2'h3;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_52;
+  wire         io_ren_7_0 = fire & casez_tmp_87;
+  reg  [15:0]  casez_tmp_149;
   always @(*) begin
-    casez (posOf_10[3:0])
+    casez (casez_tmp_71)
       4'b0000:
-        casez_tmp_52 = casez_tmp_15;
+        casez_tmp_149 = casez_tmp_15;
       4'b0001:
-        casez_tmp_52 = casez_tmp_16;
+        casez_tmp_149 = casez_tmp_16;
       4'b0010:
-        casez_tmp_52 = casez_tmp_17;
+        casez_tmp_149 = casez_tmp_17;
       4'b0011:
-        casez_tmp_52 = casez_tmp_18;
+        casez_tmp_149 = casez_tmp_18;
       4'b0100:
-        casez_tmp_52 = casez_tmp_19;
+        casez_tmp_149 = casez_tmp_19;
       4'b0101:
-        casez_tmp_52 = casez_tmp_20;
+        casez_tmp_149 = casez_tmp_20;
       4'b0110:
-        casez_tmp_52 = casez_tmp_21;
+        casez_tmp_149 = casez_tmp_21;
       4'b0111:
-        casez_tmp_52 = casez_tmp_22;
+        casez_tmp_149 = casez_tmp_22;
       4'b1000:
-        casez_tmp_52 = casez_tmp_23;
+        casez_tmp_149 = casez_tmp_23;
       4'b1001:
-        casez_tmp_52 = casez_tmp_24;
+        casez_tmp_149 = casez_tmp_24;
       4'b1010:
-        casez_tmp_52 = casez_tmp_25;
+        casez_tmp_149 = casez_tmp_25;
       4'b1011:
-        casez_tmp_52 = casez_tmp_26;
+        casez_tmp_149 = casez_tmp_26;
       4'b1100:
-        casez_tmp_52 = casez_tmp_27;
+        casez_tmp_149 = casez_tmp_27;
       4'b1101:
-        casez_tmp_52 = casez_tmp_28;
+        casez_tmp_149 = casez_tmp_28;
       4'b1110:
-        casez_tmp_52 = casez_tmp_29;
+        casez_tmp_149 = casez_tmp_29;
       default:
-        casez_tmp_52 = casez_tmp_30;
+        casez_tmp_149 = casez_tmp_30;
     endcase
   end // always @(*)
-  wire         io_ren_11_0 = fire & inGroup_11;
-  reg  [15:0]  casez_tmp_53;
+  reg  [15:0]  casez_tmp_150;
   always @(*) begin
-    casez (posOf_11[3:0])
+    casez (casez_tmp_71)
       4'b0000:
-        casez_tmp_53 = casez_tmp;
+        casez_tmp_150 = casez_tmp_31;
       4'b0001:
-        casez_tmp_53 = casez_tmp_0;
+        casez_tmp_150 = casez_tmp_32;
       4'b0010:
-        casez_tmp_53 = casez_tmp_1;
+        casez_tmp_150 = casez_tmp_33;
       4'b0011:
-        casez_tmp_53 = casez_tmp_2;
+        casez_tmp_150 = casez_tmp_34;
       4'b0100:
-        casez_tmp_53 = casez_tmp_3;
+        casez_tmp_150 = casez_tmp_35;
       4'b0101:
-        casez_tmp_53 = casez_tmp_4;
+        casez_tmp_150 = casez_tmp_36;
       4'b0110:
-        casez_tmp_53 = casez_tmp_5;
+        casez_tmp_150 = casez_tmp_37;
       4'b0111:
-        casez_tmp_53 = casez_tmp_6;
+        casez_tmp_150 = casez_tmp_38;
       4'b1000:
-        casez_tmp_53 = casez_tmp_7;
+        casez_tmp_150 = casez_tmp_39;
       4'b1001:
-        casez_tmp_53 = casez_tmp_8;
+        casez_tmp_150 = casez_tmp_40;
       4'b1010:
-        casez_tmp_53 = casez_tmp_9;
+        casez_tmp_150 = casez_tmp_41;
       4'b1011:
-        casez_tmp_53 = casez_tmp_10;
+        casez_tmp_150 = casez_tmp_42;
       4'b1100:
-        casez_tmp_53 = casez_tmp_11;
+        casez_tmp_150 = casez_tmp_43;
       4'b1101:
-        casez_tmp_53 = casez_tmp_12;
+        casez_tmp_150 = casez_tmp_44;
       4'b1110:
-        casez_tmp_53 = casez_tmp_13;
+        casez_tmp_150 = casez_tmp_45;
       default:
-        casez_tmp_53 = casez_tmp_14;
+        casez_tmp_150 = casez_tmp_46;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_54;
+  reg  [1:0]   casez_tmp_151;
   always @(*) begin
-    casez (posOf_11[3:0])
+    casez ({held_7, io_ren_7_0, io_scpu_7_ready & _queues_7_io_deq_valid})
       4'b0000:
-        casez_tmp_54 = casez_tmp_15;
+        casez_tmp_151 = 2'h0;
       4'b0001:
-        casez_tmp_54 = casez_tmp_16;
+        casez_tmp_151 = 2'h0;
       4'b0010:
-        casez_tmp_54 = casez_tmp_17;
+        casez_tmp_151 = 2'h1;
       4'b0011:
-        casez_tmp_54 = casez_tmp_18;
+        casez_tmp_151 = 2'h0;
       4'b0100:
-        casez_tmp_54 = casez_tmp_19;
+        casez_tmp_151 = 2'h1;
       4'b0101:
-        casez_tmp_54 = casez_tmp_20;
+        casez_tmp_151 = 2'h0;
       4'b0110:
-        casez_tmp_54 = casez_tmp_21;
+        casez_tmp_151 = 2'h2;
       4'b0111:
-        casez_tmp_54 = casez_tmp_22;
+        casez_tmp_151 = 2'h1;
       4'b1000:
-        casez_tmp_54 = casez_tmp_23;
+        casez_tmp_151 = 2'h2;
       4'b1001:
-        casez_tmp_54 = casez_tmp_24;
+        casez_tmp_151 = 2'h1;
       4'b1010:
-        casez_tmp_54 = casez_tmp_25;
+        casez_tmp_151 = 2'h3;
       4'b1011:
-        casez_tmp_54 = casez_tmp_26;
+        casez_tmp_151 = 2'h2;
       4'b1100:
-        casez_tmp_54 = casez_tmp_27;
+        casez_tmp_151 = 2'h3;
       4'b1101:
-        casez_tmp_54 = casez_tmp_28;
+        casez_tmp_151 = 2'h2;
       4'b1110:
-        casez_tmp_54 = casez_tmp_29;
+        casez_tmp_151 = 2'h3;
       default:
-        casez_tmp_54 = casez_tmp_30;
+        casez_tmp_151 = 2'h3;
     endcase
   end // always @(*)
-  wire         io_ren_12_0 = fire & inGroup_12;
-  reg  [15:0]  casez_tmp_55;
+  wire         io_ren_8_0 = fire & casez_tmp_88;
+  reg  [15:0]  casez_tmp_152;
   always @(*) begin
-    casez (posOf_12[3:0])
+    casez (casez_tmp_72)
       4'b0000:
-        casez_tmp_55 = casez_tmp;
+        casez_tmp_152 = casez_tmp_15;
       4'b0001:
-        casez_tmp_55 = casez_tmp_0;
+        casez_tmp_152 = casez_tmp_16;
       4'b0010:
-        casez_tmp_55 = casez_tmp_1;
+        casez_tmp_152 = casez_tmp_17;
       4'b0011:
-        casez_tmp_55 = casez_tmp_2;
+        casez_tmp_152 = casez_tmp_18;
       4'b0100:
-        casez_tmp_55 = casez_tmp_3;
+        casez_tmp_152 = casez_tmp_19;
       4'b0101:
-        casez_tmp_55 = casez_tmp_4;
+        casez_tmp_152 = casez_tmp_20;
       4'b0110:
-        casez_tmp_55 = casez_tmp_5;
+        casez_tmp_152 = casez_tmp_21;
       4'b0111:
-        casez_tmp_55 = casez_tmp_6;
+        casez_tmp_152 = casez_tmp_22;
       4'b1000:
-        casez_tmp_55 = casez_tmp_7;
+        casez_tmp_152 = casez_tmp_23;
       4'b1001:
-        casez_tmp_55 = casez_tmp_8;
+        casez_tmp_152 = casez_tmp_24;
       4'b1010:
-        casez_tmp_55 = casez_tmp_9;
+        casez_tmp_152 = casez_tmp_25;
       4'b1011:
-        casez_tmp_55 = casez_tmp_10;
+        casez_tmp_152 = casez_tmp_26;
       4'b1100:
-        casez_tmp_55 = casez_tmp_11;
+        casez_tmp_152 = casez_tmp_27;
       4'b1101:
-        casez_tmp_55 = casez_tmp_12;
+        casez_tmp_152 = casez_tmp_28;
       4'b1110:
-        casez_tmp_55 = casez_tmp_13;
+        casez_tmp_152 = casez_tmp_29;
       default:
-        casez_tmp_55 = casez_tmp_14;
+        casez_tmp_152 = casez_tmp_30;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_56;
+  reg  [15:0]  casez_tmp_153;
   always @(*) begin
-    casez (posOf_12[3:0])
+    casez (casez_tmp_72)
       4'b0000:
-        casez_tmp_56 = casez_tmp_15;
+        casez_tmp_153 = casez_tmp_31;
       4'b0001:
-        casez_tmp_56 = casez_tmp_16;
+        casez_tmp_153 = casez_tmp_32;
       4'b0010:
-        casez_tmp_56 = casez_tmp_17;
+        casez_tmp_153 = casez_tmp_33;
       4'b0011:
-        casez_tmp_56 = casez_tmp_18;
+        casez_tmp_153 = casez_tmp_34;
       4'b0100:
-        casez_tmp_56 = casez_tmp_19;
+        casez_tmp_153 = casez_tmp_35;
       4'b0101:
-        casez_tmp_56 = casez_tmp_20;
+        casez_tmp_153 = casez_tmp_36;
       4'b0110:
-        casez_tmp_56 = casez_tmp_21;
+        casez_tmp_153 = casez_tmp_37;
       4'b0111:
-        casez_tmp_56 = casez_tmp_22;
+        casez_tmp_153 = casez_tmp_38;
       4'b1000:
-        casez_tmp_56 = casez_tmp_23;
+        casez_tmp_153 = casez_tmp_39;
       4'b1001:
-        casez_tmp_56 = casez_tmp_24;
+        casez_tmp_153 = casez_tmp_40;
       4'b1010:
-        casez_tmp_56 = casez_tmp_25;
+        casez_tmp_153 = casez_tmp_41;
       4'b1011:
-        casez_tmp_56 = casez_tmp_26;
+        casez_tmp_153 = casez_tmp_42;
       4'b1100:
-        casez_tmp_56 = casez_tmp_27;
+        casez_tmp_153 = casez_tmp_43;
       4'b1101:
-        casez_tmp_56 = casez_tmp_28;
+        casez_tmp_153 = casez_tmp_44;
       4'b1110:
-        casez_tmp_56 = casez_tmp_29;
+        casez_tmp_153 = casez_tmp_45;
       default:
-        casez_tmp_56 = casez_tmp_30;
+        casez_tmp_153 = casez_tmp_46;
     endcase
   end // always @(*)
-  wire         io_ren_13_0 = fire & inGroup_13;
-  reg  [15:0]  casez_tmp_57;
+  reg  [1:0]   casez_tmp_154;
   always @(*) begin
-    casez (posOf_13[3:0])
+    casez ({held_8, io_ren_8_0, io_scpu_8_ready & _queues_8_io_deq_valid})
       4'b0000:
-        casez_tmp_57 = casez_tmp;
+        casez_tmp_154 = 2'h0;
       4'b0001:
-        casez_tmp_57 = casez_tmp_0;
+        casez_tmp_154 = 2'h0;
       4'b0010:
-        casez_tmp_57 = casez_tmp_1;
+        casez_tmp_154 = 2'h1;
       4'b0011:
-        casez_tmp_57 = casez_tmp_2;
+        casez_tmp_154 = 2'h0;
       4'b0100:
-        casez_tmp_57 = casez_tmp_3;
+        casez_tmp_154 = 2'h1;
       4'b0101:
-        casez_tmp_57 = casez_tmp_4;
+        casez_tmp_154 = 2'h0;
       4'b0110:
-        casez_tmp_57 = casez_tmp_5;
+        casez_tmp_154 = 2'h2;
       4'b0111:
-        casez_tmp_57 = casez_tmp_6;
+        casez_tmp_154 = 2'h1;
       4'b1000:
-        casez_tmp_57 = casez_tmp_7;
+        casez_tmp_154 = 2'h2;
       4'b1001:
-        casez_tmp_57 = casez_tmp_8;
+        casez_tmp_154 = 2'h1;
       4'b1010:
-        casez_tmp_57 = casez_tmp_9;
+        casez_tmp_154 = 2'h3;
       4'b1011:
-        casez_tmp_57 = casez_tmp_10;
+        casez_tmp_154 = 2'h2;
       4'b1100:
-        casez_tmp_57 = casez_tmp_11;
+        casez_tmp_154 = 2'h3;
       4'b1101:
-        casez_tmp_57 = casez_tmp_12;
+        casez_tmp_154 = 2'h2;
       4'b1110:
-        casez_tmp_57 = casez_tmp_13;
+        casez_tmp_154 = 2'h3;
       default:
-        casez_tmp_57 = casez_tmp_14;
+        casez_tmp_154 = 2'h3;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_58;
+  wire         io_ren_9_0 = fire & casez_tmp_89;
+  reg  [15:0]  casez_tmp_155;
   always @(*) begin
-    casez (posOf_13[3:0])
+    casez (casez_tmp_73)
       4'b0000:
-        casez_tmp_58 = casez_tmp_15;
+        casez_tmp_155 = casez_tmp_15;
       4'b0001:
-        casez_tmp_58 = casez_tmp_16;
+        casez_tmp_155 = casez_tmp_16;
       4'b0010:
-        casez_tmp_58 = casez_tmp_17;
+        casez_tmp_155 = casez_tmp_17;
       4'b0011:
-        casez_tmp_58 = casez_tmp_18;
+        casez_tmp_155 = casez_tmp_18;
       4'b0100:
-        casez_tmp_58 = casez_tmp_19;
+        casez_tmp_155 = casez_tmp_19;
       4'b0101:
-        casez_tmp_58 = casez_tmp_20;
+        casez_tmp_155 = casez_tmp_20;
       4'b0110:
-        casez_tmp_58 = casez_tmp_21;
+        casez_tmp_155 = casez_tmp_21;
       4'b0111:
-        casez_tmp_58 = casez_tmp_22;
+        casez_tmp_155 = casez_tmp_22;
       4'b1000:
-        casez_tmp_58 = casez_tmp_23;
+        casez_tmp_155 = casez_tmp_23;
       4'b1001:
-        casez_tmp_58 = casez_tmp_24;
+        casez_tmp_155 = casez_tmp_24;
       4'b1010:
-        casez_tmp_58 = casez_tmp_25;
+        casez_tmp_155 = casez_tmp_25;
       4'b1011:
-        casez_tmp_58 = casez_tmp_26;
+        casez_tmp_155 = casez_tmp_26;
       4'b1100:
-        casez_tmp_58 = casez_tmp_27;
+        casez_tmp_155 = casez_tmp_27;
       4'b1101:
-        casez_tmp_58 = casez_tmp_28;
+        casez_tmp_155 = casez_tmp_28;
       4'b1110:
-        casez_tmp_58 = casez_tmp_29;
+        casez_tmp_155 = casez_tmp_29;
       default:
-        casez_tmp_58 = casez_tmp_30;
+        casez_tmp_155 = casez_tmp_30;
     endcase
   end // always @(*)
-  wire         io_ren_14_0 = fire & inGroup_14;
-  reg  [15:0]  casez_tmp_59;
+  reg  [15:0]  casez_tmp_156;
   always @(*) begin
-    casez (posOf_14[3:0])
+    casez (casez_tmp_73)
       4'b0000:
-        casez_tmp_59 = casez_tmp;
+        casez_tmp_156 = casez_tmp_31;
       4'b0001:
-        casez_tmp_59 = casez_tmp_0;
+        casez_tmp_156 = casez_tmp_32;
       4'b0010:
-        casez_tmp_59 = casez_tmp_1;
+        casez_tmp_156 = casez_tmp_33;
       4'b0011:
-        casez_tmp_59 = casez_tmp_2;
+        casez_tmp_156 = casez_tmp_34;
       4'b0100:
-        casez_tmp_59 = casez_tmp_3;
+        casez_tmp_156 = casez_tmp_35;
       4'b0101:
-        casez_tmp_59 = casez_tmp_4;
+        casez_tmp_156 = casez_tmp_36;
       4'b0110:
-        casez_tmp_59 = casez_tmp_5;
+        casez_tmp_156 = casez_tmp_37;
       4'b0111:
-        casez_tmp_59 = casez_tmp_6;
+        casez_tmp_156 = casez_tmp_38;
       4'b1000:
-        casez_tmp_59 = casez_tmp_7;
+        casez_tmp_156 = casez_tmp_39;
       4'b1001:
-        casez_tmp_59 = casez_tmp_8;
+        casez_tmp_156 = casez_tmp_40;
       4'b1010:
-        casez_tmp_59 = casez_tmp_9;
+        casez_tmp_156 = casez_tmp_41;
       4'b1011:
-        casez_tmp_59 = casez_tmp_10;
+        casez_tmp_156 = casez_tmp_42;
       4'b1100:
-        casez_tmp_59 = casez_tmp_11;
+        casez_tmp_156 = casez_tmp_43;
       4'b1101:
-        casez_tmp_59 = casez_tmp_12;
+        casez_tmp_156 = casez_tmp_44;
       4'b1110:
-        casez_tmp_59 = casez_tmp_13;
+        casez_tmp_156 = casez_tmp_45;
       default:
-        casez_tmp_59 = casez_tmp_14;
+        casez_tmp_156 = casez_tmp_46;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_60;
+  reg  [1:0]   casez_tmp_157;
   always @(*) begin
-    casez (posOf_14[3:0])
+    casez ({held_9, io_ren_9_0, io_scpu_9_ready & _queues_9_io_deq_valid})
       4'b0000:
-        casez_tmp_60 = casez_tmp_15;
+        casez_tmp_157 = 2'h0;
       4'b0001:
-        casez_tmp_60 = casez_tmp_16;
+        casez_tmp_157 = 2'h0;
       4'b0010:
-        casez_tmp_60 = casez_tmp_17;
+        casez_tmp_157 = 2'h1;
       4'b0011:
-        casez_tmp_60 = casez_tmp_18;
+        casez_tmp_157 = 2'h0;
       4'b0100:
-        casez_tmp_60 = casez_tmp_19;
+        casez_tmp_157 = 2'h1;
       4'b0101:
-        casez_tmp_60 = casez_tmp_20;
+        casez_tmp_157 = 2'h0;
       4'b0110:
-        casez_tmp_60 = casez_tmp_21;
+        casez_tmp_157 = 2'h2;
       4'b0111:
-        casez_tmp_60 = casez_tmp_22;
+        casez_tmp_157 = 2'h1;
       4'b1000:
-        casez_tmp_60 = casez_tmp_23;
+        casez_tmp_157 = 2'h2;
       4'b1001:
-        casez_tmp_60 = casez_tmp_24;
+        casez_tmp_157 = 2'h1;
       4'b1010:
-        casez_tmp_60 = casez_tmp_25;
+        casez_tmp_157 = 2'h3;
       4'b1011:
-        casez_tmp_60 = casez_tmp_26;
+        casez_tmp_157 = 2'h2;
       4'b1100:
-        casez_tmp_60 = casez_tmp_27;
+        casez_tmp_157 = 2'h3;
       4'b1101:
-        casez_tmp_60 = casez_tmp_28;
+        casez_tmp_157 = 2'h2;
       4'b1110:
-        casez_tmp_60 = casez_tmp_29;
+        casez_tmp_157 = 2'h3;
       default:
-        casez_tmp_60 = casez_tmp_30;
+        casez_tmp_157 = 2'h3;
     endcase
   end // always @(*)
-  wire         io_ren_15_0 = fire & inGroup_15;
-  reg  [15:0]  casez_tmp_61;
+  wire         io_ren_10_0 = fire & casez_tmp_90;
+  reg  [15:0]  casez_tmp_158;
   always @(*) begin
-    casez (posOf_15[3:0])
+    casez (casez_tmp_74)
       4'b0000:
-        casez_tmp_61 = casez_tmp;
+        casez_tmp_158 = casez_tmp_15;
       4'b0001:
-        casez_tmp_61 = casez_tmp_0;
+        casez_tmp_158 = casez_tmp_16;
       4'b0010:
-        casez_tmp_61 = casez_tmp_1;
+        casez_tmp_158 = casez_tmp_17;
       4'b0011:
-        casez_tmp_61 = casez_tmp_2;
+        casez_tmp_158 = casez_tmp_18;
       4'b0100:
-        casez_tmp_61 = casez_tmp_3;
+        casez_tmp_158 = casez_tmp_19;
       4'b0101:
-        casez_tmp_61 = casez_tmp_4;
+        casez_tmp_158 = casez_tmp_20;
       4'b0110:
-        casez_tmp_61 = casez_tmp_5;
+        casez_tmp_158 = casez_tmp_21;
       4'b0111:
-        casez_tmp_61 = casez_tmp_6;
+        casez_tmp_158 = casez_tmp_22;
       4'b1000:
-        casez_tmp_61 = casez_tmp_7;
+        casez_tmp_158 = casez_tmp_23;
       4'b1001:
-        casez_tmp_61 = casez_tmp_8;
+        casez_tmp_158 = casez_tmp_24;
       4'b1010:
-        casez_tmp_61 = casez_tmp_9;
+        casez_tmp_158 = casez_tmp_25;
       4'b1011:
-        casez_tmp_61 = casez_tmp_10;
+        casez_tmp_158 = casez_tmp_26;
       4'b1100:
-        casez_tmp_61 = casez_tmp_11;
+        casez_tmp_158 = casez_tmp_27;
       4'b1101:
-        casez_tmp_61 = casez_tmp_12;
+        casez_tmp_158 = casez_tmp_28;
       4'b1110:
-        casez_tmp_61 = casez_tmp_13;
+        casez_tmp_158 = casez_tmp_29;
       default:
-        casez_tmp_61 = casez_tmp_14;
+        casez_tmp_158 = casez_tmp_30;
     endcase
   end // always @(*)
-  reg  [15:0]  casez_tmp_62;
+  reg  [15:0]  casez_tmp_159;
   always @(*) begin
-    casez (posOf_15[3:0])
+    casez (casez_tmp_74)
       4'b0000:
-        casez_tmp_62 = casez_tmp_15;
+        casez_tmp_159 = casez_tmp_31;
       4'b0001:
-        casez_tmp_62 = casez_tmp_16;
+        casez_tmp_159 = casez_tmp_32;
       4'b0010:
-        casez_tmp_62 = casez_tmp_17;
+        casez_tmp_159 = casez_tmp_33;
       4'b0011:
-        casez_tmp_62 = casez_tmp_18;
+        casez_tmp_159 = casez_tmp_34;
       4'b0100:
-        casez_tmp_62 = casez_tmp_19;
+        casez_tmp_159 = casez_tmp_35;
       4'b0101:
-        casez_tmp_62 = casez_tmp_20;
+        casez_tmp_159 = casez_tmp_36;
       4'b0110:
-        casez_tmp_62 = casez_tmp_21;
+        casez_tmp_159 = casez_tmp_37;
       4'b0111:
-        casez_tmp_62 = casez_tmp_22;
+        casez_tmp_159 = casez_tmp_38;
       4'b1000:
-        casez_tmp_62 = casez_tmp_23;
+        casez_tmp_159 = casez_tmp_39;
       4'b1001:
-        casez_tmp_62 = casez_tmp_24;
+        casez_tmp_159 = casez_tmp_40;
       4'b1010:
-        casez_tmp_62 = casez_tmp_25;
+        casez_tmp_159 = casez_tmp_41;
       4'b1011:
-        casez_tmp_62 = casez_tmp_26;
+        casez_tmp_159 = casez_tmp_42;
       4'b1100:
-        casez_tmp_62 = casez_tmp_27;
+        casez_tmp_159 = casez_tmp_43;
       4'b1101:
-        casez_tmp_62 = casez_tmp_28;
+        casez_tmp_159 = casez_tmp_44;
       4'b1110:
-        casez_tmp_62 = casez_tmp_29;
+        casez_tmp_159 = casez_tmp_45;
       default:
-        casez_tmp_62 = casez_tmp_30;
+        casez_tmp_159 = casez_tmp_46;
+    endcase
+  end // always @(*)
+  reg  [1:0]   casez_tmp_160;
+  always @(*) begin
+    casez ({held_10, io_ren_10_0, io_scpu_10_ready & _queues_10_io_deq_valid})
+      4'b0000:
+        casez_tmp_160 = 2'h0;
+      4'b0001:
+        casez_tmp_160 = 2'h0;
+      4'b0010:
+        casez_tmp_160 = 2'h1;
+      4'b0011:
+        casez_tmp_160 = 2'h0;
+      4'b0100:
+        casez_tmp_160 = 2'h1;
+      4'b0101:
+        casez_tmp_160 = 2'h0;
+      4'b0110:
+        casez_tmp_160 = 2'h2;
+      4'b0111:
+        casez_tmp_160 = 2'h1;
+      4'b1000:
+        casez_tmp_160 = 2'h2;
+      4'b1001:
+        casez_tmp_160 = 2'h1;
+      4'b1010:
+        casez_tmp_160 = 2'h3;
+      4'b1011:
+        casez_tmp_160 = 2'h2;
+      4'b1100:
+        casez_tmp_160 = 2'h3;
+      4'b1101:
+        casez_tmp_160 = 2'h2;
+      4'b1110:
+        casez_tmp_160 = 2'h3;
+      default:
+        casez_tmp_160 = 2'h3;
+    endcase
+  end // always @(*)
+  wire         io_ren_11_0 = fire & casez_tmp_91;
+  reg  [15:0]  casez_tmp_161;
+  always @(*) begin
+    casez (casez_tmp_75)
+      4'b0000:
+        casez_tmp_161 = casez_tmp_15;
+      4'b0001:
+        casez_tmp_161 = casez_tmp_16;
+      4'b0010:
+        casez_tmp_161 = casez_tmp_17;
+      4'b0011:
+        casez_tmp_161 = casez_tmp_18;
+      4'b0100:
+        casez_tmp_161 = casez_tmp_19;
+      4'b0101:
+        casez_tmp_161 = casez_tmp_20;
+      4'b0110:
+        casez_tmp_161 = casez_tmp_21;
+      4'b0111:
+        casez_tmp_161 = casez_tmp_22;
+      4'b1000:
+        casez_tmp_161 = casez_tmp_23;
+      4'b1001:
+        casez_tmp_161 = casez_tmp_24;
+      4'b1010:
+        casez_tmp_161 = casez_tmp_25;
+      4'b1011:
+        casez_tmp_161 = casez_tmp_26;
+      4'b1100:
+        casez_tmp_161 = casez_tmp_27;
+      4'b1101:
+        casez_tmp_161 = casez_tmp_28;
+      4'b1110:
+        casez_tmp_161 = casez_tmp_29;
+      default:
+        casez_tmp_161 = casez_tmp_30;
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_162;
+  always @(*) begin
+    casez (casez_tmp_75)
+      4'b0000:
+        casez_tmp_162 = casez_tmp_31;
+      4'b0001:
+        casez_tmp_162 = casez_tmp_32;
+      4'b0010:
+        casez_tmp_162 = casez_tmp_33;
+      4'b0011:
+        casez_tmp_162 = casez_tmp_34;
+      4'b0100:
+        casez_tmp_162 = casez_tmp_35;
+      4'b0101:
+        casez_tmp_162 = casez_tmp_36;
+      4'b0110:
+        casez_tmp_162 = casez_tmp_37;
+      4'b0111:
+        casez_tmp_162 = casez_tmp_38;
+      4'b1000:
+        casez_tmp_162 = casez_tmp_39;
+      4'b1001:
+        casez_tmp_162 = casez_tmp_40;
+      4'b1010:
+        casez_tmp_162 = casez_tmp_41;
+      4'b1011:
+        casez_tmp_162 = casez_tmp_42;
+      4'b1100:
+        casez_tmp_162 = casez_tmp_43;
+      4'b1101:
+        casez_tmp_162 = casez_tmp_44;
+      4'b1110:
+        casez_tmp_162 = casez_tmp_45;
+      default:
+        casez_tmp_162 = casez_tmp_46;
+    endcase
+  end // always @(*)
+  reg  [1:0]   casez_tmp_163;
+  always @(*) begin
+    casez ({held_11, io_ren_11_0, io_scpu_11_ready & _queues_11_io_deq_valid})
+      4'b0000:
+        casez_tmp_163 = 2'h0;
+      4'b0001:
+        casez_tmp_163 = 2'h0;
+      4'b0010:
+        casez_tmp_163 = 2'h1;
+      4'b0011:
+        casez_tmp_163 = 2'h0;
+      4'b0100:
+        casez_tmp_163 = 2'h1;
+      4'b0101:
+        casez_tmp_163 = 2'h0;
+      4'b0110:
+        casez_tmp_163 = 2'h2;
+      4'b0111:
+        casez_tmp_163 = 2'h1;
+      4'b1000:
+        casez_tmp_163 = 2'h2;
+      4'b1001:
+        casez_tmp_163 = 2'h1;
+      4'b1010:
+        casez_tmp_163 = 2'h3;
+      4'b1011:
+        casez_tmp_163 = 2'h2;
+      4'b1100:
+        casez_tmp_163 = 2'h3;
+      4'b1101:
+        casez_tmp_163 = 2'h2;
+      4'b1110:
+        casez_tmp_163 = 2'h3;
+      default:
+        casez_tmp_163 = 2'h3;
+    endcase
+  end // always @(*)
+  wire         io_ren_12_0 = fire & casez_tmp_92;
+  reg  [15:0]  casez_tmp_164;
+  always @(*) begin
+    casez (casez_tmp_76)
+      4'b0000:
+        casez_tmp_164 = casez_tmp_15;
+      4'b0001:
+        casez_tmp_164 = casez_tmp_16;
+      4'b0010:
+        casez_tmp_164 = casez_tmp_17;
+      4'b0011:
+        casez_tmp_164 = casez_tmp_18;
+      4'b0100:
+        casez_tmp_164 = casez_tmp_19;
+      4'b0101:
+        casez_tmp_164 = casez_tmp_20;
+      4'b0110:
+        casez_tmp_164 = casez_tmp_21;
+      4'b0111:
+        casez_tmp_164 = casez_tmp_22;
+      4'b1000:
+        casez_tmp_164 = casez_tmp_23;
+      4'b1001:
+        casez_tmp_164 = casez_tmp_24;
+      4'b1010:
+        casez_tmp_164 = casez_tmp_25;
+      4'b1011:
+        casez_tmp_164 = casez_tmp_26;
+      4'b1100:
+        casez_tmp_164 = casez_tmp_27;
+      4'b1101:
+        casez_tmp_164 = casez_tmp_28;
+      4'b1110:
+        casez_tmp_164 = casez_tmp_29;
+      default:
+        casez_tmp_164 = casez_tmp_30;
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_165;
+  always @(*) begin
+    casez (casez_tmp_76)
+      4'b0000:
+        casez_tmp_165 = casez_tmp_31;
+      4'b0001:
+        casez_tmp_165 = casez_tmp_32;
+      4'b0010:
+        casez_tmp_165 = casez_tmp_33;
+      4'b0011:
+        casez_tmp_165 = casez_tmp_34;
+      4'b0100:
+        casez_tmp_165 = casez_tmp_35;
+      4'b0101:
+        casez_tmp_165 = casez_tmp_36;
+      4'b0110:
+        casez_tmp_165 = casez_tmp_37;
+      4'b0111:
+        casez_tmp_165 = casez_tmp_38;
+      4'b1000:
+        casez_tmp_165 = casez_tmp_39;
+      4'b1001:
+        casez_tmp_165 = casez_tmp_40;
+      4'b1010:
+        casez_tmp_165 = casez_tmp_41;
+      4'b1011:
+        casez_tmp_165 = casez_tmp_42;
+      4'b1100:
+        casez_tmp_165 = casez_tmp_43;
+      4'b1101:
+        casez_tmp_165 = casez_tmp_44;
+      4'b1110:
+        casez_tmp_165 = casez_tmp_45;
+      default:
+        casez_tmp_165 = casez_tmp_46;
+    endcase
+  end // always @(*)
+  reg  [1:0]   casez_tmp_166;
+  always @(*) begin
+    casez ({held_12, io_ren_12_0, io_scpu_12_ready & _queues_12_io_deq_valid})
+      4'b0000:
+        casez_tmp_166 = 2'h0;
+      4'b0001:
+        casez_tmp_166 = 2'h0;
+      4'b0010:
+        casez_tmp_166 = 2'h1;
+      4'b0011:
+        casez_tmp_166 = 2'h0;
+      4'b0100:
+        casez_tmp_166 = 2'h1;
+      4'b0101:
+        casez_tmp_166 = 2'h0;
+      4'b0110:
+        casez_tmp_166 = 2'h2;
+      4'b0111:
+        casez_tmp_166 = 2'h1;
+      4'b1000:
+        casez_tmp_166 = 2'h2;
+      4'b1001:
+        casez_tmp_166 = 2'h1;
+      4'b1010:
+        casez_tmp_166 = 2'h3;
+      4'b1011:
+        casez_tmp_166 = 2'h2;
+      4'b1100:
+        casez_tmp_166 = 2'h3;
+      4'b1101:
+        casez_tmp_166 = 2'h2;
+      4'b1110:
+        casez_tmp_166 = 2'h3;
+      default:
+        casez_tmp_166 = 2'h3;
+    endcase
+  end // always @(*)
+  wire         io_ren_13_0 = fire & casez_tmp_93;
+  reg  [15:0]  casez_tmp_167;
+  always @(*) begin
+    casez (casez_tmp_77)
+      4'b0000:
+        casez_tmp_167 = casez_tmp_15;
+      4'b0001:
+        casez_tmp_167 = casez_tmp_16;
+      4'b0010:
+        casez_tmp_167 = casez_tmp_17;
+      4'b0011:
+        casez_tmp_167 = casez_tmp_18;
+      4'b0100:
+        casez_tmp_167 = casez_tmp_19;
+      4'b0101:
+        casez_tmp_167 = casez_tmp_20;
+      4'b0110:
+        casez_tmp_167 = casez_tmp_21;
+      4'b0111:
+        casez_tmp_167 = casez_tmp_22;
+      4'b1000:
+        casez_tmp_167 = casez_tmp_23;
+      4'b1001:
+        casez_tmp_167 = casez_tmp_24;
+      4'b1010:
+        casez_tmp_167 = casez_tmp_25;
+      4'b1011:
+        casez_tmp_167 = casez_tmp_26;
+      4'b1100:
+        casez_tmp_167 = casez_tmp_27;
+      4'b1101:
+        casez_tmp_167 = casez_tmp_28;
+      4'b1110:
+        casez_tmp_167 = casez_tmp_29;
+      default:
+        casez_tmp_167 = casez_tmp_30;
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_168;
+  always @(*) begin
+    casez (casez_tmp_77)
+      4'b0000:
+        casez_tmp_168 = casez_tmp_31;
+      4'b0001:
+        casez_tmp_168 = casez_tmp_32;
+      4'b0010:
+        casez_tmp_168 = casez_tmp_33;
+      4'b0011:
+        casez_tmp_168 = casez_tmp_34;
+      4'b0100:
+        casez_tmp_168 = casez_tmp_35;
+      4'b0101:
+        casez_tmp_168 = casez_tmp_36;
+      4'b0110:
+        casez_tmp_168 = casez_tmp_37;
+      4'b0111:
+        casez_tmp_168 = casez_tmp_38;
+      4'b1000:
+        casez_tmp_168 = casez_tmp_39;
+      4'b1001:
+        casez_tmp_168 = casez_tmp_40;
+      4'b1010:
+        casez_tmp_168 = casez_tmp_41;
+      4'b1011:
+        casez_tmp_168 = casez_tmp_42;
+      4'b1100:
+        casez_tmp_168 = casez_tmp_43;
+      4'b1101:
+        casez_tmp_168 = casez_tmp_44;
+      4'b1110:
+        casez_tmp_168 = casez_tmp_45;
+      default:
+        casez_tmp_168 = casez_tmp_46;
+    endcase
+  end // always @(*)
+  reg  [1:0]   casez_tmp_169;
+  always @(*) begin
+    casez ({held_13, io_ren_13_0, io_scpu_13_ready & _queues_13_io_deq_valid})
+      4'b0000:
+        casez_tmp_169 = 2'h0;
+      4'b0001:
+        casez_tmp_169 = 2'h0;
+      4'b0010:
+        casez_tmp_169 = 2'h1;
+      4'b0011:
+        casez_tmp_169 = 2'h0;
+      4'b0100:
+        casez_tmp_169 = 2'h1;
+      4'b0101:
+        casez_tmp_169 = 2'h0;
+      4'b0110:
+        casez_tmp_169 = 2'h2;
+      4'b0111:
+        casez_tmp_169 = 2'h1;
+      4'b1000:
+        casez_tmp_169 = 2'h2;
+      4'b1001:
+        casez_tmp_169 = 2'h1;
+      4'b1010:
+        casez_tmp_169 = 2'h3;
+      4'b1011:
+        casez_tmp_169 = 2'h2;
+      4'b1100:
+        casez_tmp_169 = 2'h3;
+      4'b1101:
+        casez_tmp_169 = 2'h2;
+      4'b1110:
+        casez_tmp_169 = 2'h3;
+      default:
+        casez_tmp_169 = 2'h3;
+    endcase
+  end // always @(*)
+  wire         io_ren_14_0 = fire & casez_tmp_94;
+  reg  [15:0]  casez_tmp_170;
+  always @(*) begin
+    casez (casez_tmp_78)
+      4'b0000:
+        casez_tmp_170 = casez_tmp_15;
+      4'b0001:
+        casez_tmp_170 = casez_tmp_16;
+      4'b0010:
+        casez_tmp_170 = casez_tmp_17;
+      4'b0011:
+        casez_tmp_170 = casez_tmp_18;
+      4'b0100:
+        casez_tmp_170 = casez_tmp_19;
+      4'b0101:
+        casez_tmp_170 = casez_tmp_20;
+      4'b0110:
+        casez_tmp_170 = casez_tmp_21;
+      4'b0111:
+        casez_tmp_170 = casez_tmp_22;
+      4'b1000:
+        casez_tmp_170 = casez_tmp_23;
+      4'b1001:
+        casez_tmp_170 = casez_tmp_24;
+      4'b1010:
+        casez_tmp_170 = casez_tmp_25;
+      4'b1011:
+        casez_tmp_170 = casez_tmp_26;
+      4'b1100:
+        casez_tmp_170 = casez_tmp_27;
+      4'b1101:
+        casez_tmp_170 = casez_tmp_28;
+      4'b1110:
+        casez_tmp_170 = casez_tmp_29;
+      default:
+        casez_tmp_170 = casez_tmp_30;
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_171;
+  always @(*) begin
+    casez (casez_tmp_78)
+      4'b0000:
+        casez_tmp_171 = casez_tmp_31;
+      4'b0001:
+        casez_tmp_171 = casez_tmp_32;
+      4'b0010:
+        casez_tmp_171 = casez_tmp_33;
+      4'b0011:
+        casez_tmp_171 = casez_tmp_34;
+      4'b0100:
+        casez_tmp_171 = casez_tmp_35;
+      4'b0101:
+        casez_tmp_171 = casez_tmp_36;
+      4'b0110:
+        casez_tmp_171 = casez_tmp_37;
+      4'b0111:
+        casez_tmp_171 = casez_tmp_38;
+      4'b1000:
+        casez_tmp_171 = casez_tmp_39;
+      4'b1001:
+        casez_tmp_171 = casez_tmp_40;
+      4'b1010:
+        casez_tmp_171 = casez_tmp_41;
+      4'b1011:
+        casez_tmp_171 = casez_tmp_42;
+      4'b1100:
+        casez_tmp_171 = casez_tmp_43;
+      4'b1101:
+        casez_tmp_171 = casez_tmp_44;
+      4'b1110:
+        casez_tmp_171 = casez_tmp_45;
+      default:
+        casez_tmp_171 = casez_tmp_46;
+    endcase
+  end // always @(*)
+  reg  [1:0]   casez_tmp_172;
+  always @(*) begin
+    casez ({held_14, io_ren_14_0, io_scpu_14_ready & _queues_14_io_deq_valid})
+      4'b0000:
+        casez_tmp_172 = 2'h0;
+      4'b0001:
+        casez_tmp_172 = 2'h0;
+      4'b0010:
+        casez_tmp_172 = 2'h1;
+      4'b0011:
+        casez_tmp_172 = 2'h0;
+      4'b0100:
+        casez_tmp_172 = 2'h1;
+      4'b0101:
+        casez_tmp_172 = 2'h0;
+      4'b0110:
+        casez_tmp_172 = 2'h2;
+      4'b0111:
+        casez_tmp_172 = 2'h1;
+      4'b1000:
+        casez_tmp_172 = 2'h2;
+      4'b1001:
+        casez_tmp_172 = 2'h1;
+      4'b1010:
+        casez_tmp_172 = 2'h3;
+      4'b1011:
+        casez_tmp_172 = 2'h2;
+      4'b1100:
+        casez_tmp_172 = 2'h3;
+      4'b1101:
+        casez_tmp_172 = 2'h2;
+      4'b1110:
+        casez_tmp_172 = 2'h3;
+      default:
+        casez_tmp_172 = 2'h3;
+    endcase
+  end // always @(*)
+  wire         io_ren_15_0 = fire & casez_tmp_95;
+  reg  [15:0]  casez_tmp_173;
+  always @(*) begin
+    casez (casez_tmp_79)
+      4'b0000:
+        casez_tmp_173 = casez_tmp_15;
+      4'b0001:
+        casez_tmp_173 = casez_tmp_16;
+      4'b0010:
+        casez_tmp_173 = casez_tmp_17;
+      4'b0011:
+        casez_tmp_173 = casez_tmp_18;
+      4'b0100:
+        casez_tmp_173 = casez_tmp_19;
+      4'b0101:
+        casez_tmp_173 = casez_tmp_20;
+      4'b0110:
+        casez_tmp_173 = casez_tmp_21;
+      4'b0111:
+        casez_tmp_173 = casez_tmp_22;
+      4'b1000:
+        casez_tmp_173 = casez_tmp_23;
+      4'b1001:
+        casez_tmp_173 = casez_tmp_24;
+      4'b1010:
+        casez_tmp_173 = casez_tmp_25;
+      4'b1011:
+        casez_tmp_173 = casez_tmp_26;
+      4'b1100:
+        casez_tmp_173 = casez_tmp_27;
+      4'b1101:
+        casez_tmp_173 = casez_tmp_28;
+      4'b1110:
+        casez_tmp_173 = casez_tmp_29;
+      default:
+        casez_tmp_173 = casez_tmp_30;
+    endcase
+  end // always @(*)
+  reg  [15:0]  casez_tmp_174;
+  always @(*) begin
+    casez (casez_tmp_79)
+      4'b0000:
+        casez_tmp_174 = casez_tmp_31;
+      4'b0001:
+        casez_tmp_174 = casez_tmp_32;
+      4'b0010:
+        casez_tmp_174 = casez_tmp_33;
+      4'b0011:
+        casez_tmp_174 = casez_tmp_34;
+      4'b0100:
+        casez_tmp_174 = casez_tmp_35;
+      4'b0101:
+        casez_tmp_174 = casez_tmp_36;
+      4'b0110:
+        casez_tmp_174 = casez_tmp_37;
+      4'b0111:
+        casez_tmp_174 = casez_tmp_38;
+      4'b1000:
+        casez_tmp_174 = casez_tmp_39;
+      4'b1001:
+        casez_tmp_174 = casez_tmp_40;
+      4'b1010:
+        casez_tmp_174 = casez_tmp_41;
+      4'b1011:
+        casez_tmp_174 = casez_tmp_42;
+      4'b1100:
+        casez_tmp_174 = casez_tmp_43;
+      4'b1101:
+        casez_tmp_174 = casez_tmp_44;
+      4'b1110:
+        casez_tmp_174 = casez_tmp_45;
+      default:
+        casez_tmp_174 = casez_tmp_46;
     endcase
   end // always @(*)
   `ifndef SYNTHESIS
     always @(posedge clock) begin
       if (~reset & ~(~inflight_0 | _queues_0_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_1 | _queues_1_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_2 | _queues_2_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_3 | _queues_3_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_4 | _queues_4_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_5 | _queues_5_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_6 | _queues_6_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_7 | _queues_7_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_8 | _queues_8_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_9 | _queues_9_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_10 | _queues_10_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_11 | _queues_11_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_12 | _queues_12_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_13 | _queues_13_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_14 | _queues_14_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~inflight_15 | _queues_15_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:144 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
+          $error("Assertion failed: PairDispatcher: SCPU input queue overflow (credit broken)\n    at PairDispatcher.scala:175 assert(!q.valid || q.ready, \"PairDispatcher: SCPU input queue overflow (credit broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [4:0]   _ptr_T = ptr + lineCnt;
-  wire         lineDone = fire & _ptr_T == lineCount;
-  wire         io_pairs_ready_0 = ~curValid | lineDone;
-  wire         _GEN_0 = io_pairs_ready_0 & io_pairs_valid;
+  reg  [1:0]   casez_tmp_175;
+  always @(*) begin
+    casez ({held_15, io_ren_15_0, io_scpu_15_ready & _queues_15_io_deq_valid})
+      4'b0000:
+        casez_tmp_175 = 2'h0;
+      4'b0001:
+        casez_tmp_175 = 2'h0;
+      4'b0010:
+        casez_tmp_175 = 2'h1;
+      4'b0011:
+        casez_tmp_175 = 2'h0;
+      4'b0100:
+        casez_tmp_175 = 2'h1;
+      4'b0101:
+        casez_tmp_175 = 2'h0;
+      4'b0110:
+        casez_tmp_175 = 2'h2;
+      4'b0111:
+        casez_tmp_175 = 2'h1;
+      4'b1000:
+        casez_tmp_175 = 2'h2;
+      4'b1001:
+        casez_tmp_175 = 2'h1;
+      4'b1010:
+        casez_tmp_175 = 2'h3;
+      4'b1011:
+        casez_tmp_175 = 2'h2;
+      4'b1100:
+        casez_tmp_175 = 2'h3;
+      4'b1101:
+        casez_tmp_175 = 2'h2;
+      4'b1110:
+        casez_tmp_175 = 2'h3;
+      default:
+        casez_tmp_175 = 2'h3;
+    endcase
+  end // always @(*)
+  wire         lineDone = fire & rem == casez_tmp_47;
+  wire         takeNxt = nxtValid & (~curValid | lineDone);
+  reg  [3:0]   casez_tmp_176;
+  always @(*) begin
+    casez ({base, casez_tmp_47})
+      9'b000000000:
+        casez_tmp_176 = 4'h0;
+      9'b000000001:
+        casez_tmp_176 = 4'h1;
+      9'b000000010:
+        casez_tmp_176 = 4'h2;
+      9'b000000011:
+        casez_tmp_176 = 4'h3;
+      9'b000000100:
+        casez_tmp_176 = 4'h4;
+      9'b000000101:
+        casez_tmp_176 = 4'h5;
+      9'b000000110:
+        casez_tmp_176 = 4'h6;
+      9'b000000111:
+        casez_tmp_176 = 4'h7;
+      9'b000001000:
+        casez_tmp_176 = 4'h8;
+      9'b000001001:
+        casez_tmp_176 = 4'h9;
+      9'b000001010:
+        casez_tmp_176 = 4'hA;
+      9'b000001011:
+        casez_tmp_176 = 4'hB;
+      9'b000001100:
+        casez_tmp_176 = 4'hC;
+      9'b000001101:
+        casez_tmp_176 = 4'hD;
+      9'b000001110:
+        casez_tmp_176 = 4'hE;
+      9'b000001111:
+        casez_tmp_176 = 4'hF;
+      9'b000010000:
+        casez_tmp_176 = 4'h0;
+      9'b000010001:
+        casez_tmp_176 = 4'h1;
+      9'b000010010:
+        casez_tmp_176 = 4'h2;
+      9'b000010011:
+        casez_tmp_176 = 4'h3;
+      9'b000010100:
+        casez_tmp_176 = 4'h4;
+      9'b000010101:
+        casez_tmp_176 = 4'h5;
+      9'b000010110:
+        casez_tmp_176 = 4'h6;
+      9'b000010111:
+        casez_tmp_176 = 4'h7;
+      9'b000011000:
+        casez_tmp_176 = 4'h8;
+      9'b000011001:
+        casez_tmp_176 = 4'h9;
+      9'b000011010:
+        casez_tmp_176 = 4'hA;
+      9'b000011011:
+        casez_tmp_176 = 4'hB;
+      9'b000011100:
+        casez_tmp_176 = 4'hC;
+      9'b000011101:
+        casez_tmp_176 = 4'hD;
+      9'b000011110:
+        casez_tmp_176 = 4'hE;
+      9'b000011111:
+        casez_tmp_176 = 4'hF;
+      9'b000100000:
+        casez_tmp_176 = 4'h1;
+      9'b000100001:
+        casez_tmp_176 = 4'h2;
+      9'b000100010:
+        casez_tmp_176 = 4'h3;
+      9'b000100011:
+        casez_tmp_176 = 4'h4;
+      9'b000100100:
+        casez_tmp_176 = 4'h5;
+      9'b000100101:
+        casez_tmp_176 = 4'h6;
+      9'b000100110:
+        casez_tmp_176 = 4'h7;
+      9'b000100111:
+        casez_tmp_176 = 4'h8;
+      9'b000101000:
+        casez_tmp_176 = 4'h9;
+      9'b000101001:
+        casez_tmp_176 = 4'hA;
+      9'b000101010:
+        casez_tmp_176 = 4'hB;
+      9'b000101011:
+        casez_tmp_176 = 4'hC;
+      9'b000101100:
+        casez_tmp_176 = 4'hD;
+      9'b000101101:
+        casez_tmp_176 = 4'hE;
+      9'b000101110:
+        casez_tmp_176 = 4'hF;
+      9'b000101111:
+        casez_tmp_176 = 4'h0;
+      9'b000110000:
+        casez_tmp_176 = 4'h1;
+      9'b000110001:
+        casez_tmp_176 = 4'h2;
+      9'b000110010:
+        casez_tmp_176 = 4'h3;
+      9'b000110011:
+        casez_tmp_176 = 4'h4;
+      9'b000110100:
+        casez_tmp_176 = 4'h5;
+      9'b000110101:
+        casez_tmp_176 = 4'h6;
+      9'b000110110:
+        casez_tmp_176 = 4'h7;
+      9'b000110111:
+        casez_tmp_176 = 4'h8;
+      9'b000111000:
+        casez_tmp_176 = 4'h9;
+      9'b000111001:
+        casez_tmp_176 = 4'hA;
+      9'b000111010:
+        casez_tmp_176 = 4'hB;
+      9'b000111011:
+        casez_tmp_176 = 4'hC;
+      9'b000111100:
+        casez_tmp_176 = 4'hD;
+      9'b000111101:
+        casez_tmp_176 = 4'hE;
+      9'b000111110:
+        casez_tmp_176 = 4'hF;
+      9'b000111111:
+        casez_tmp_176 = 4'h0;
+      9'b001000000:
+        casez_tmp_176 = 4'h2;
+      9'b001000001:
+        casez_tmp_176 = 4'h3;
+      9'b001000010:
+        casez_tmp_176 = 4'h4;
+      9'b001000011:
+        casez_tmp_176 = 4'h5;
+      9'b001000100:
+        casez_tmp_176 = 4'h6;
+      9'b001000101:
+        casez_tmp_176 = 4'h7;
+      9'b001000110:
+        casez_tmp_176 = 4'h8;
+      9'b001000111:
+        casez_tmp_176 = 4'h9;
+      9'b001001000:
+        casez_tmp_176 = 4'hA;
+      9'b001001001:
+        casez_tmp_176 = 4'hB;
+      9'b001001010:
+        casez_tmp_176 = 4'hC;
+      9'b001001011:
+        casez_tmp_176 = 4'hD;
+      9'b001001100:
+        casez_tmp_176 = 4'hE;
+      9'b001001101:
+        casez_tmp_176 = 4'hF;
+      9'b001001110:
+        casez_tmp_176 = 4'h0;
+      9'b001001111:
+        casez_tmp_176 = 4'h1;
+      9'b001010000:
+        casez_tmp_176 = 4'h2;
+      9'b001010001:
+        casez_tmp_176 = 4'h3;
+      9'b001010010:
+        casez_tmp_176 = 4'h4;
+      9'b001010011:
+        casez_tmp_176 = 4'h5;
+      9'b001010100:
+        casez_tmp_176 = 4'h6;
+      9'b001010101:
+        casez_tmp_176 = 4'h7;
+      9'b001010110:
+        casez_tmp_176 = 4'h8;
+      9'b001010111:
+        casez_tmp_176 = 4'h9;
+      9'b001011000:
+        casez_tmp_176 = 4'hA;
+      9'b001011001:
+        casez_tmp_176 = 4'hB;
+      9'b001011010:
+        casez_tmp_176 = 4'hC;
+      9'b001011011:
+        casez_tmp_176 = 4'hD;
+      9'b001011100:
+        casez_tmp_176 = 4'hE;
+      9'b001011101:
+        casez_tmp_176 = 4'hF;
+      9'b001011110:
+        casez_tmp_176 = 4'h0;
+      9'b001011111:
+        casez_tmp_176 = 4'h1;
+      9'b001100000:
+        casez_tmp_176 = 4'h3;
+      9'b001100001:
+        casez_tmp_176 = 4'h4;
+      9'b001100010:
+        casez_tmp_176 = 4'h5;
+      9'b001100011:
+        casez_tmp_176 = 4'h6;
+      9'b001100100:
+        casez_tmp_176 = 4'h7;
+      9'b001100101:
+        casez_tmp_176 = 4'h8;
+      9'b001100110:
+        casez_tmp_176 = 4'h9;
+      9'b001100111:
+        casez_tmp_176 = 4'hA;
+      9'b001101000:
+        casez_tmp_176 = 4'hB;
+      9'b001101001:
+        casez_tmp_176 = 4'hC;
+      9'b001101010:
+        casez_tmp_176 = 4'hD;
+      9'b001101011:
+        casez_tmp_176 = 4'hE;
+      9'b001101100:
+        casez_tmp_176 = 4'hF;
+      9'b001101101:
+        casez_tmp_176 = 4'h0;
+      9'b001101110:
+        casez_tmp_176 = 4'h1;
+      9'b001101111:
+        casez_tmp_176 = 4'h2;
+      9'b001110000:
+        casez_tmp_176 = 4'h3;
+      9'b001110001:
+        casez_tmp_176 = 4'h4;
+      9'b001110010:
+        casez_tmp_176 = 4'h5;
+      9'b001110011:
+        casez_tmp_176 = 4'h6;
+      9'b001110100:
+        casez_tmp_176 = 4'h7;
+      9'b001110101:
+        casez_tmp_176 = 4'h8;
+      9'b001110110:
+        casez_tmp_176 = 4'h9;
+      9'b001110111:
+        casez_tmp_176 = 4'hA;
+      9'b001111000:
+        casez_tmp_176 = 4'hB;
+      9'b001111001:
+        casez_tmp_176 = 4'hC;
+      9'b001111010:
+        casez_tmp_176 = 4'hD;
+      9'b001111011:
+        casez_tmp_176 = 4'hE;
+      9'b001111100:
+        casez_tmp_176 = 4'hF;
+      9'b001111101:
+        casez_tmp_176 = 4'h0;
+      9'b001111110:
+        casez_tmp_176 = 4'h1;
+      9'b001111111:
+        casez_tmp_176 = 4'h2;
+      9'b010000000:
+        casez_tmp_176 = 4'h4;
+      9'b010000001:
+        casez_tmp_176 = 4'h5;
+      9'b010000010:
+        casez_tmp_176 = 4'h6;
+      9'b010000011:
+        casez_tmp_176 = 4'h7;
+      9'b010000100:
+        casez_tmp_176 = 4'h8;
+      9'b010000101:
+        casez_tmp_176 = 4'h9;
+      9'b010000110:
+        casez_tmp_176 = 4'hA;
+      9'b010000111:
+        casez_tmp_176 = 4'hB;
+      9'b010001000:
+        casez_tmp_176 = 4'hC;
+      9'b010001001:
+        casez_tmp_176 = 4'hD;
+      9'b010001010:
+        casez_tmp_176 = 4'hE;
+      9'b010001011:
+        casez_tmp_176 = 4'hF;
+      9'b010001100:
+        casez_tmp_176 = 4'h0;
+      9'b010001101:
+        casez_tmp_176 = 4'h1;
+      9'b010001110:
+        casez_tmp_176 = 4'h2;
+      9'b010001111:
+        casez_tmp_176 = 4'h3;
+      9'b010010000:
+        casez_tmp_176 = 4'h4;
+      9'b010010001:
+        casez_tmp_176 = 4'h5;
+      9'b010010010:
+        casez_tmp_176 = 4'h6;
+      9'b010010011:
+        casez_tmp_176 = 4'h7;
+      9'b010010100:
+        casez_tmp_176 = 4'h8;
+      9'b010010101:
+        casez_tmp_176 = 4'h9;
+      9'b010010110:
+        casez_tmp_176 = 4'hA;
+      9'b010010111:
+        casez_tmp_176 = 4'hB;
+      9'b010011000:
+        casez_tmp_176 = 4'hC;
+      9'b010011001:
+        casez_tmp_176 = 4'hD;
+      9'b010011010:
+        casez_tmp_176 = 4'hE;
+      9'b010011011:
+        casez_tmp_176 = 4'hF;
+      9'b010011100:
+        casez_tmp_176 = 4'h0;
+      9'b010011101:
+        casez_tmp_176 = 4'h1;
+      9'b010011110:
+        casez_tmp_176 = 4'h2;
+      9'b010011111:
+        casez_tmp_176 = 4'h3;
+      9'b010100000:
+        casez_tmp_176 = 4'h5;
+      9'b010100001:
+        casez_tmp_176 = 4'h6;
+      9'b010100010:
+        casez_tmp_176 = 4'h7;
+      9'b010100011:
+        casez_tmp_176 = 4'h8;
+      9'b010100100:
+        casez_tmp_176 = 4'h9;
+      9'b010100101:
+        casez_tmp_176 = 4'hA;
+      9'b010100110:
+        casez_tmp_176 = 4'hB;
+      9'b010100111:
+        casez_tmp_176 = 4'hC;
+      9'b010101000:
+        casez_tmp_176 = 4'hD;
+      9'b010101001:
+        casez_tmp_176 = 4'hE;
+      9'b010101010:
+        casez_tmp_176 = 4'hF;
+      9'b010101011:
+        casez_tmp_176 = 4'h0;
+      9'b010101100:
+        casez_tmp_176 = 4'h1;
+      9'b010101101:
+        casez_tmp_176 = 4'h2;
+      9'b010101110:
+        casez_tmp_176 = 4'h3;
+      9'b010101111:
+        casez_tmp_176 = 4'h4;
+      9'b010110000:
+        casez_tmp_176 = 4'h5;
+      9'b010110001:
+        casez_tmp_176 = 4'h6;
+      9'b010110010:
+        casez_tmp_176 = 4'h7;
+      9'b010110011:
+        casez_tmp_176 = 4'h8;
+      9'b010110100:
+        casez_tmp_176 = 4'h9;
+      9'b010110101:
+        casez_tmp_176 = 4'hA;
+      9'b010110110:
+        casez_tmp_176 = 4'hB;
+      9'b010110111:
+        casez_tmp_176 = 4'hC;
+      9'b010111000:
+        casez_tmp_176 = 4'hD;
+      9'b010111001:
+        casez_tmp_176 = 4'hE;
+      9'b010111010:
+        casez_tmp_176 = 4'hF;
+      9'b010111011:
+        casez_tmp_176 = 4'h0;
+      9'b010111100:
+        casez_tmp_176 = 4'h1;
+      9'b010111101:
+        casez_tmp_176 = 4'h2;
+      9'b010111110:
+        casez_tmp_176 = 4'h3;
+      9'b010111111:
+        casez_tmp_176 = 4'h4;
+      9'b011000000:
+        casez_tmp_176 = 4'h6;
+      9'b011000001:
+        casez_tmp_176 = 4'h7;
+      9'b011000010:
+        casez_tmp_176 = 4'h8;
+      9'b011000011:
+        casez_tmp_176 = 4'h9;
+      9'b011000100:
+        casez_tmp_176 = 4'hA;
+      9'b011000101:
+        casez_tmp_176 = 4'hB;
+      9'b011000110:
+        casez_tmp_176 = 4'hC;
+      9'b011000111:
+        casez_tmp_176 = 4'hD;
+      9'b011001000:
+        casez_tmp_176 = 4'hE;
+      9'b011001001:
+        casez_tmp_176 = 4'hF;
+      9'b011001010:
+        casez_tmp_176 = 4'h0;
+      9'b011001011:
+        casez_tmp_176 = 4'h1;
+      9'b011001100:
+        casez_tmp_176 = 4'h2;
+      9'b011001101:
+        casez_tmp_176 = 4'h3;
+      9'b011001110:
+        casez_tmp_176 = 4'h4;
+      9'b011001111:
+        casez_tmp_176 = 4'h5;
+      9'b011010000:
+        casez_tmp_176 = 4'h6;
+      9'b011010001:
+        casez_tmp_176 = 4'h7;
+      9'b011010010:
+        casez_tmp_176 = 4'h8;
+      9'b011010011:
+        casez_tmp_176 = 4'h9;
+      9'b011010100:
+        casez_tmp_176 = 4'hA;
+      9'b011010101:
+        casez_tmp_176 = 4'hB;
+      9'b011010110:
+        casez_tmp_176 = 4'hC;
+      9'b011010111:
+        casez_tmp_176 = 4'hD;
+      9'b011011000:
+        casez_tmp_176 = 4'hE;
+      9'b011011001:
+        casez_tmp_176 = 4'hF;
+      9'b011011010:
+        casez_tmp_176 = 4'h0;
+      9'b011011011:
+        casez_tmp_176 = 4'h1;
+      9'b011011100:
+        casez_tmp_176 = 4'h2;
+      9'b011011101:
+        casez_tmp_176 = 4'h3;
+      9'b011011110:
+        casez_tmp_176 = 4'h4;
+      9'b011011111:
+        casez_tmp_176 = 4'h5;
+      9'b011100000:
+        casez_tmp_176 = 4'h7;
+      9'b011100001:
+        casez_tmp_176 = 4'h8;
+      9'b011100010:
+        casez_tmp_176 = 4'h9;
+      9'b011100011:
+        casez_tmp_176 = 4'hA;
+      9'b011100100:
+        casez_tmp_176 = 4'hB;
+      9'b011100101:
+        casez_tmp_176 = 4'hC;
+      9'b011100110:
+        casez_tmp_176 = 4'hD;
+      9'b011100111:
+        casez_tmp_176 = 4'hE;
+      9'b011101000:
+        casez_tmp_176 = 4'hF;
+      9'b011101001:
+        casez_tmp_176 = 4'h0;
+      9'b011101010:
+        casez_tmp_176 = 4'h1;
+      9'b011101011:
+        casez_tmp_176 = 4'h2;
+      9'b011101100:
+        casez_tmp_176 = 4'h3;
+      9'b011101101:
+        casez_tmp_176 = 4'h4;
+      9'b011101110:
+        casez_tmp_176 = 4'h5;
+      9'b011101111:
+        casez_tmp_176 = 4'h6;
+      9'b011110000:
+        casez_tmp_176 = 4'h7;
+      9'b011110001:
+        casez_tmp_176 = 4'h8;
+      9'b011110010:
+        casez_tmp_176 = 4'h9;
+      9'b011110011:
+        casez_tmp_176 = 4'hA;
+      9'b011110100:
+        casez_tmp_176 = 4'hB;
+      9'b011110101:
+        casez_tmp_176 = 4'hC;
+      9'b011110110:
+        casez_tmp_176 = 4'hD;
+      9'b011110111:
+        casez_tmp_176 = 4'hE;
+      9'b011111000:
+        casez_tmp_176 = 4'hF;
+      9'b011111001:
+        casez_tmp_176 = 4'h0;
+      9'b011111010:
+        casez_tmp_176 = 4'h1;
+      9'b011111011:
+        casez_tmp_176 = 4'h2;
+      9'b011111100:
+        casez_tmp_176 = 4'h3;
+      9'b011111101:
+        casez_tmp_176 = 4'h4;
+      9'b011111110:
+        casez_tmp_176 = 4'h5;
+      9'b011111111:
+        casez_tmp_176 = 4'h6;
+      9'b100000000:
+        casez_tmp_176 = 4'h8;
+      9'b100000001:
+        casez_tmp_176 = 4'h9;
+      9'b100000010:
+        casez_tmp_176 = 4'hA;
+      9'b100000011:
+        casez_tmp_176 = 4'hB;
+      9'b100000100:
+        casez_tmp_176 = 4'hC;
+      9'b100000101:
+        casez_tmp_176 = 4'hD;
+      9'b100000110:
+        casez_tmp_176 = 4'hE;
+      9'b100000111:
+        casez_tmp_176 = 4'hF;
+      9'b100001000:
+        casez_tmp_176 = 4'h0;
+      9'b100001001:
+        casez_tmp_176 = 4'h1;
+      9'b100001010:
+        casez_tmp_176 = 4'h2;
+      9'b100001011:
+        casez_tmp_176 = 4'h3;
+      9'b100001100:
+        casez_tmp_176 = 4'h4;
+      9'b100001101:
+        casez_tmp_176 = 4'h5;
+      9'b100001110:
+        casez_tmp_176 = 4'h6;
+      9'b100001111:
+        casez_tmp_176 = 4'h7;
+      9'b100010000:
+        casez_tmp_176 = 4'h8;
+      9'b100010001:
+        casez_tmp_176 = 4'h9;
+      9'b100010010:
+        casez_tmp_176 = 4'hA;
+      9'b100010011:
+        casez_tmp_176 = 4'hB;
+      9'b100010100:
+        casez_tmp_176 = 4'hC;
+      9'b100010101:
+        casez_tmp_176 = 4'hD;
+      9'b100010110:
+        casez_tmp_176 = 4'hE;
+      9'b100010111:
+        casez_tmp_176 = 4'hF;
+      9'b100011000:
+        casez_tmp_176 = 4'h0;
+      9'b100011001:
+        casez_tmp_176 = 4'h1;
+      9'b100011010:
+        casez_tmp_176 = 4'h2;
+      9'b100011011:
+        casez_tmp_176 = 4'h3;
+      9'b100011100:
+        casez_tmp_176 = 4'h4;
+      9'b100011101:
+        casez_tmp_176 = 4'h5;
+      9'b100011110:
+        casez_tmp_176 = 4'h6;
+      9'b100011111:
+        casez_tmp_176 = 4'h7;
+      9'b100100000:
+        casez_tmp_176 = 4'h9;
+      9'b100100001:
+        casez_tmp_176 = 4'hA;
+      9'b100100010:
+        casez_tmp_176 = 4'hB;
+      9'b100100011:
+        casez_tmp_176 = 4'hC;
+      9'b100100100:
+        casez_tmp_176 = 4'hD;
+      9'b100100101:
+        casez_tmp_176 = 4'hE;
+      9'b100100110:
+        casez_tmp_176 = 4'hF;
+      9'b100100111:
+        casez_tmp_176 = 4'h0;
+      9'b100101000:
+        casez_tmp_176 = 4'h1;
+      9'b100101001:
+        casez_tmp_176 = 4'h2;
+      9'b100101010:
+        casez_tmp_176 = 4'h3;
+      9'b100101011:
+        casez_tmp_176 = 4'h4;
+      9'b100101100:
+        casez_tmp_176 = 4'h5;
+      9'b100101101:
+        casez_tmp_176 = 4'h6;
+      9'b100101110:
+        casez_tmp_176 = 4'h7;
+      9'b100101111:
+        casez_tmp_176 = 4'h8;
+      9'b100110000:
+        casez_tmp_176 = 4'h9;
+      9'b100110001:
+        casez_tmp_176 = 4'hA;
+      9'b100110010:
+        casez_tmp_176 = 4'hB;
+      9'b100110011:
+        casez_tmp_176 = 4'hC;
+      9'b100110100:
+        casez_tmp_176 = 4'hD;
+      9'b100110101:
+        casez_tmp_176 = 4'hE;
+      9'b100110110:
+        casez_tmp_176 = 4'hF;
+      9'b100110111:
+        casez_tmp_176 = 4'h0;
+      9'b100111000:
+        casez_tmp_176 = 4'h1;
+      9'b100111001:
+        casez_tmp_176 = 4'h2;
+      9'b100111010:
+        casez_tmp_176 = 4'h3;
+      9'b100111011:
+        casez_tmp_176 = 4'h4;
+      9'b100111100:
+        casez_tmp_176 = 4'h5;
+      9'b100111101:
+        casez_tmp_176 = 4'h6;
+      9'b100111110:
+        casez_tmp_176 = 4'h7;
+      9'b100111111:
+        casez_tmp_176 = 4'h8;
+      9'b101000000:
+        casez_tmp_176 = 4'hA;
+      9'b101000001:
+        casez_tmp_176 = 4'hB;
+      9'b101000010:
+        casez_tmp_176 = 4'hC;
+      9'b101000011:
+        casez_tmp_176 = 4'hD;
+      9'b101000100:
+        casez_tmp_176 = 4'hE;
+      9'b101000101:
+        casez_tmp_176 = 4'hF;
+      9'b101000110:
+        casez_tmp_176 = 4'h0;
+      9'b101000111:
+        casez_tmp_176 = 4'h1;
+      9'b101001000:
+        casez_tmp_176 = 4'h2;
+      9'b101001001:
+        casez_tmp_176 = 4'h3;
+      9'b101001010:
+        casez_tmp_176 = 4'h4;
+      9'b101001011:
+        casez_tmp_176 = 4'h5;
+      9'b101001100:
+        casez_tmp_176 = 4'h6;
+      9'b101001101:
+        casez_tmp_176 = 4'h7;
+      9'b101001110:
+        casez_tmp_176 = 4'h8;
+      9'b101001111:
+        casez_tmp_176 = 4'h9;
+      9'b101010000:
+        casez_tmp_176 = 4'hA;
+      9'b101010001:
+        casez_tmp_176 = 4'hB;
+      9'b101010010:
+        casez_tmp_176 = 4'hC;
+      9'b101010011:
+        casez_tmp_176 = 4'hD;
+      9'b101010100:
+        casez_tmp_176 = 4'hE;
+      9'b101010101:
+        casez_tmp_176 = 4'hF;
+      9'b101010110:
+        casez_tmp_176 = 4'h0;
+      9'b101010111:
+        casez_tmp_176 = 4'h1;
+      9'b101011000:
+        casez_tmp_176 = 4'h2;
+      9'b101011001:
+        casez_tmp_176 = 4'h3;
+      9'b101011010:
+        casez_tmp_176 = 4'h4;
+      9'b101011011:
+        casez_tmp_176 = 4'h5;
+      9'b101011100:
+        casez_tmp_176 = 4'h6;
+      9'b101011101:
+        casez_tmp_176 = 4'h7;
+      9'b101011110:
+        casez_tmp_176 = 4'h8;
+      9'b101011111:
+        casez_tmp_176 = 4'h9;
+      9'b101100000:
+        casez_tmp_176 = 4'hB;
+      9'b101100001:
+        casez_tmp_176 = 4'hC;
+      9'b101100010:
+        casez_tmp_176 = 4'hD;
+      9'b101100011:
+        casez_tmp_176 = 4'hE;
+      9'b101100100:
+        casez_tmp_176 = 4'hF;
+      9'b101100101:
+        casez_tmp_176 = 4'h0;
+      9'b101100110:
+        casez_tmp_176 = 4'h1;
+      9'b101100111:
+        casez_tmp_176 = 4'h2;
+      9'b101101000:
+        casez_tmp_176 = 4'h3;
+      9'b101101001:
+        casez_tmp_176 = 4'h4;
+      9'b101101010:
+        casez_tmp_176 = 4'h5;
+      9'b101101011:
+        casez_tmp_176 = 4'h6;
+      9'b101101100:
+        casez_tmp_176 = 4'h7;
+      9'b101101101:
+        casez_tmp_176 = 4'h8;
+      9'b101101110:
+        casez_tmp_176 = 4'h9;
+      9'b101101111:
+        casez_tmp_176 = 4'hA;
+      9'b101110000:
+        casez_tmp_176 = 4'hB;
+      9'b101110001:
+        casez_tmp_176 = 4'hC;
+      9'b101110010:
+        casez_tmp_176 = 4'hD;
+      9'b101110011:
+        casez_tmp_176 = 4'hE;
+      9'b101110100:
+        casez_tmp_176 = 4'hF;
+      9'b101110101:
+        casez_tmp_176 = 4'h0;
+      9'b101110110:
+        casez_tmp_176 = 4'h1;
+      9'b101110111:
+        casez_tmp_176 = 4'h2;
+      9'b101111000:
+        casez_tmp_176 = 4'h3;
+      9'b101111001:
+        casez_tmp_176 = 4'h4;
+      9'b101111010:
+        casez_tmp_176 = 4'h5;
+      9'b101111011:
+        casez_tmp_176 = 4'h6;
+      9'b101111100:
+        casez_tmp_176 = 4'h7;
+      9'b101111101:
+        casez_tmp_176 = 4'h8;
+      9'b101111110:
+        casez_tmp_176 = 4'h9;
+      9'b101111111:
+        casez_tmp_176 = 4'hA;
+      9'b110000000:
+        casez_tmp_176 = 4'hC;
+      9'b110000001:
+        casez_tmp_176 = 4'hD;
+      9'b110000010:
+        casez_tmp_176 = 4'hE;
+      9'b110000011:
+        casez_tmp_176 = 4'hF;
+      9'b110000100:
+        casez_tmp_176 = 4'h0;
+      9'b110000101:
+        casez_tmp_176 = 4'h1;
+      9'b110000110:
+        casez_tmp_176 = 4'h2;
+      9'b110000111:
+        casez_tmp_176 = 4'h3;
+      9'b110001000:
+        casez_tmp_176 = 4'h4;
+      9'b110001001:
+        casez_tmp_176 = 4'h5;
+      9'b110001010:
+        casez_tmp_176 = 4'h6;
+      9'b110001011:
+        casez_tmp_176 = 4'h7;
+      9'b110001100:
+        casez_tmp_176 = 4'h8;
+      9'b110001101:
+        casez_tmp_176 = 4'h9;
+      9'b110001110:
+        casez_tmp_176 = 4'hA;
+      9'b110001111:
+        casez_tmp_176 = 4'hB;
+      9'b110010000:
+        casez_tmp_176 = 4'hC;
+      9'b110010001:
+        casez_tmp_176 = 4'hD;
+      9'b110010010:
+        casez_tmp_176 = 4'hE;
+      9'b110010011:
+        casez_tmp_176 = 4'hF;
+      9'b110010100:
+        casez_tmp_176 = 4'h0;
+      9'b110010101:
+        casez_tmp_176 = 4'h1;
+      9'b110010110:
+        casez_tmp_176 = 4'h2;
+      9'b110010111:
+        casez_tmp_176 = 4'h3;
+      9'b110011000:
+        casez_tmp_176 = 4'h4;
+      9'b110011001:
+        casez_tmp_176 = 4'h5;
+      9'b110011010:
+        casez_tmp_176 = 4'h6;
+      9'b110011011:
+        casez_tmp_176 = 4'h7;
+      9'b110011100:
+        casez_tmp_176 = 4'h8;
+      9'b110011101:
+        casez_tmp_176 = 4'h9;
+      9'b110011110:
+        casez_tmp_176 = 4'hA;
+      9'b110011111:
+        casez_tmp_176 = 4'hB;
+      9'b110100000:
+        casez_tmp_176 = 4'hD;
+      9'b110100001:
+        casez_tmp_176 = 4'hE;
+      9'b110100010:
+        casez_tmp_176 = 4'hF;
+      9'b110100011:
+        casez_tmp_176 = 4'h0;
+      9'b110100100:
+        casez_tmp_176 = 4'h1;
+      9'b110100101:
+        casez_tmp_176 = 4'h2;
+      9'b110100110:
+        casez_tmp_176 = 4'h3;
+      9'b110100111:
+        casez_tmp_176 = 4'h4;
+      9'b110101000:
+        casez_tmp_176 = 4'h5;
+      9'b110101001:
+        casez_tmp_176 = 4'h6;
+      9'b110101010:
+        casez_tmp_176 = 4'h7;
+      9'b110101011:
+        casez_tmp_176 = 4'h8;
+      9'b110101100:
+        casez_tmp_176 = 4'h9;
+      9'b110101101:
+        casez_tmp_176 = 4'hA;
+      9'b110101110:
+        casez_tmp_176 = 4'hB;
+      9'b110101111:
+        casez_tmp_176 = 4'hC;
+      9'b110110000:
+        casez_tmp_176 = 4'hD;
+      9'b110110001:
+        casez_tmp_176 = 4'hE;
+      9'b110110010:
+        casez_tmp_176 = 4'hF;
+      9'b110110011:
+        casez_tmp_176 = 4'h0;
+      9'b110110100:
+        casez_tmp_176 = 4'h1;
+      9'b110110101:
+        casez_tmp_176 = 4'h2;
+      9'b110110110:
+        casez_tmp_176 = 4'h3;
+      9'b110110111:
+        casez_tmp_176 = 4'h4;
+      9'b110111000:
+        casez_tmp_176 = 4'h5;
+      9'b110111001:
+        casez_tmp_176 = 4'h6;
+      9'b110111010:
+        casez_tmp_176 = 4'h7;
+      9'b110111011:
+        casez_tmp_176 = 4'h8;
+      9'b110111100:
+        casez_tmp_176 = 4'h9;
+      9'b110111101:
+        casez_tmp_176 = 4'hA;
+      9'b110111110:
+        casez_tmp_176 = 4'hB;
+      9'b110111111:
+        casez_tmp_176 = 4'hC;
+      9'b111000000:
+        casez_tmp_176 = 4'hE;
+      9'b111000001:
+        casez_tmp_176 = 4'hF;
+      9'b111000010:
+        casez_tmp_176 = 4'h0;
+      9'b111000011:
+        casez_tmp_176 = 4'h1;
+      9'b111000100:
+        casez_tmp_176 = 4'h2;
+      9'b111000101:
+        casez_tmp_176 = 4'h3;
+      9'b111000110:
+        casez_tmp_176 = 4'h4;
+      9'b111000111:
+        casez_tmp_176 = 4'h5;
+      9'b111001000:
+        casez_tmp_176 = 4'h6;
+      9'b111001001:
+        casez_tmp_176 = 4'h7;
+      9'b111001010:
+        casez_tmp_176 = 4'h8;
+      9'b111001011:
+        casez_tmp_176 = 4'h9;
+      9'b111001100:
+        casez_tmp_176 = 4'hA;
+      9'b111001101:
+        casez_tmp_176 = 4'hB;
+      9'b111001110:
+        casez_tmp_176 = 4'hC;
+      9'b111001111:
+        casez_tmp_176 = 4'hD;
+      9'b111010000:
+        casez_tmp_176 = 4'hE;
+      9'b111010001:
+        casez_tmp_176 = 4'hF;
+      9'b111010010:
+        casez_tmp_176 = 4'h0;
+      9'b111010011:
+        casez_tmp_176 = 4'h1;
+      9'b111010100:
+        casez_tmp_176 = 4'h2;
+      9'b111010101:
+        casez_tmp_176 = 4'h3;
+      9'b111010110:
+        casez_tmp_176 = 4'h4;
+      9'b111010111:
+        casez_tmp_176 = 4'h5;
+      9'b111011000:
+        casez_tmp_176 = 4'h6;
+      9'b111011001:
+        casez_tmp_176 = 4'h7;
+      9'b111011010:
+        casez_tmp_176 = 4'h8;
+      9'b111011011:
+        casez_tmp_176 = 4'h9;
+      9'b111011100:
+        casez_tmp_176 = 4'hA;
+      9'b111011101:
+        casez_tmp_176 = 4'hB;
+      9'b111011110:
+        casez_tmp_176 = 4'hC;
+      9'b111011111:
+        casez_tmp_176 = 4'hD;
+      9'b111100000:
+        casez_tmp_176 = 4'hF;
+      9'b111100001:
+        casez_tmp_176 = 4'h0;
+      9'b111100010:
+        casez_tmp_176 = 4'h1;
+      9'b111100011:
+        casez_tmp_176 = 4'h2;
+      9'b111100100:
+        casez_tmp_176 = 4'h3;
+      9'b111100101:
+        casez_tmp_176 = 4'h4;
+      9'b111100110:
+        casez_tmp_176 = 4'h5;
+      9'b111100111:
+        casez_tmp_176 = 4'h6;
+      9'b111101000:
+        casez_tmp_176 = 4'h7;
+      9'b111101001:
+        casez_tmp_176 = 4'h8;
+      9'b111101010:
+        casez_tmp_176 = 4'h9;
+      9'b111101011:
+        casez_tmp_176 = 4'hA;
+      9'b111101100:
+        casez_tmp_176 = 4'hB;
+      9'b111101101:
+        casez_tmp_176 = 4'hC;
+      9'b111101110:
+        casez_tmp_176 = 4'hD;
+      9'b111101111:
+        casez_tmp_176 = 4'hE;
+      9'b111110000:
+        casez_tmp_176 = 4'hF;
+      9'b111110001:
+        casez_tmp_176 = 4'h0;
+      9'b111110010:
+        casez_tmp_176 = 4'h1;
+      9'b111110011:
+        casez_tmp_176 = 4'h2;
+      9'b111110100:
+        casez_tmp_176 = 4'h3;
+      9'b111110101:
+        casez_tmp_176 = 4'h4;
+      9'b111110110:
+        casez_tmp_176 = 4'h5;
+      9'b111110111:
+        casez_tmp_176 = 4'h6;
+      9'b111111000:
+        casez_tmp_176 = 4'h7;
+      9'b111111001:
+        casez_tmp_176 = 4'h8;
+      9'b111111010:
+        casez_tmp_176 = 4'h9;
+      9'b111111011:
+        casez_tmp_176 = 4'hA;
+      9'b111111100:
+        casez_tmp_176 = 4'hB;
+      9'b111111101:
+        casez_tmp_176 = 4'hC;
+      9'b111111110:
+        casez_tmp_176 = 4'hD;
+      default:
+        casez_tmp_176 = 4'hE;
+    endcase
+  end // always @(*)
+  wire         io_pairs_ready_0 = ~nxtValid | takeNxt;
+  wire [24:0]  left = {1'h0, io_numPairs} - {1'h0, io_pairs_bits_line, 4'h0};
+  wire         _GEN = io_pairs_ready_0 & io_pairs_valid;
   always @(posedge clock) begin
-    if (_GEN_0) begin
-      cur_line <= io_pairs_bits_line;
-      cur_data <= io_pairs_bits_data;
+    if (_GEN) begin
+      nxt_line <= io_pairs_bits_line;
+      nxt_data <= io_pairs_bits_data;
+      nxtCount <= left > 25'h10 ? 5'h10 : left[4:0];
+      nxtBad_0 <=
+        {1'h0, io_pairs_bits_data[15:0]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[31:16]} >= io_numSpheres;
+      nxtBad_1 <=
+        {1'h0, io_pairs_bits_data[47:32]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[63:48]} >= io_numSpheres;
+      nxtBad_2 <=
+        {1'h0, io_pairs_bits_data[79:64]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[95:80]} >= io_numSpheres;
+      nxtBad_3 <=
+        {1'h0, io_pairs_bits_data[111:96]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[127:112]} >= io_numSpheres;
+      nxtBad_4 <=
+        {1'h0, io_pairs_bits_data[143:128]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[159:144]} >= io_numSpheres;
+      nxtBad_5 <=
+        {1'h0, io_pairs_bits_data[175:160]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[191:176]} >= io_numSpheres;
+      nxtBad_6 <=
+        {1'h0, io_pairs_bits_data[207:192]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[223:208]} >= io_numSpheres;
+      nxtBad_7 <=
+        {1'h0, io_pairs_bits_data[239:224]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[255:240]} >= io_numSpheres;
+      nxtBad_8 <=
+        {1'h0, io_pairs_bits_data[271:256]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[287:272]} >= io_numSpheres;
+      nxtBad_9 <=
+        {1'h0, io_pairs_bits_data[303:288]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[319:304]} >= io_numSpheres;
+      nxtBad_10 <=
+        {1'h0, io_pairs_bits_data[335:320]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[351:336]} >= io_numSpheres;
+      nxtBad_11 <=
+        {1'h0, io_pairs_bits_data[367:352]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[383:368]} >= io_numSpheres;
+      nxtBad_12 <=
+        {1'h0, io_pairs_bits_data[399:384]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[415:400]} >= io_numSpheres;
+      nxtBad_13 <=
+        {1'h0, io_pairs_bits_data[431:416]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[447:432]} >= io_numSpheres;
+      nxtBad_14 <=
+        {1'h0, io_pairs_bits_data[463:448]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[479:464]} >= io_numSpheres;
+      nxtBad_15 <=
+        {1'h0, io_pairs_bits_data[495:480]} >= io_numSpheres
+        | {1'h0, io_pairs_bits_data[511:496]} >= io_numSpheres;
     end
+    if (takeNxt) begin
+      cur_data <= nxt_data;
+      curBad_0 <= nxtBad_0;
+      curBad_1 <= nxtBad_1;
+      curBad_2 <= nxtBad_2;
+      curBad_3 <= nxtBad_3;
+      curBad_4 <= nxtBad_4;
+      curBad_5 <= nxtBad_5;
+      curBad_6 <= nxtBad_6;
+      curBad_7 <= nxtBad_7;
+      curBad_8 <= nxtBad_8;
+      curBad_9 <= nxtBad_9;
+      curBad_10 <= nxtBad_10;
+      curBad_11 <= nxtBad_11;
+      curBad_12 <= nxtBad_12;
+      curBad_13 <= nxtBad_13;
+      curBad_14 <= nxtBad_14;
+      curBad_15 <= nxtBad_15;
+      first_1 <= {nxt_line, 4'h0};
+    end
+    else if (fire)
+      first_1 <= first_1 + {19'h0, casez_tmp_47};
     if (io_ren_0_0)
-      tagNext_0 <= _tagNext_15_T_2 + {20'h0, posOf_0[3:0]};
+      tagNext_0 <= first_1 + {20'h0, casez_tmp_64};
     if (io_ren_1_0)
-      tagNext_1 <= _tagNext_15_T_2 + {20'h0, posOf_1[3:0]};
+      tagNext_1 <= first_1 + {20'h0, casez_tmp_65};
     if (io_ren_2_0)
-      tagNext_2 <= _tagNext_15_T_2 + {20'h0, posOf_2[3:0]};
+      tagNext_2 <= first_1 + {20'h0, casez_tmp_66};
     if (io_ren_3_0)
-      tagNext_3 <= _tagNext_15_T_2 + {20'h0, posOf_3[3:0]};
+      tagNext_3 <= first_1 + {20'h0, casez_tmp_67};
     if (io_ren_4_0)
-      tagNext_4 <= _tagNext_15_T_2 + {20'h0, posOf_4[3:0]};
+      tagNext_4 <= first_1 + {20'h0, casez_tmp_68};
     if (io_ren_5_0)
-      tagNext_5 <= _tagNext_15_T_2 + {20'h0, posOf_5[3:0]};
+      tagNext_5 <= first_1 + {20'h0, casez_tmp_69};
     if (io_ren_6_0)
-      tagNext_6 <= _tagNext_15_T_2 + {20'h0, posOf_6[3:0]};
+      tagNext_6 <= first_1 + {20'h0, casez_tmp_70};
     if (io_ren_7_0)
-      tagNext_7 <= _tagNext_15_T_2 + {20'h0, posOf_7[3:0]};
+      tagNext_7 <= first_1 + {20'h0, casez_tmp_71};
     if (io_ren_8_0)
-      tagNext_8 <= _tagNext_15_T_2 + {20'h0, posOf_8[3:0]};
+      tagNext_8 <= first_1 + {20'h0, casez_tmp_72};
     if (io_ren_9_0)
-      tagNext_9 <= _tagNext_15_T_2 + {20'h0, posOf_9[3:0]};
+      tagNext_9 <= first_1 + {20'h0, casez_tmp_73};
     if (io_ren_10_0)
-      tagNext_10 <= _tagNext_15_T_2 + {20'h0, posOf_10[3:0]};
+      tagNext_10 <= first_1 + {20'h0, casez_tmp_74};
     if (io_ren_11_0)
-      tagNext_11 <= _tagNext_15_T_2 + {20'h0, posOf_11[3:0]};
+      tagNext_11 <= first_1 + {20'h0, casez_tmp_75};
     if (io_ren_12_0)
-      tagNext_12 <= _tagNext_15_T_2 + {20'h0, posOf_12[3:0]};
+      tagNext_12 <= first_1 + {20'h0, casez_tmp_76};
     if (io_ren_13_0)
-      tagNext_13 <= _tagNext_15_T_2 + {20'h0, posOf_13[3:0]};
+      tagNext_13 <= first_1 + {20'h0, casez_tmp_77};
     if (io_ren_14_0)
-      tagNext_14 <= _tagNext_15_T_2 + {20'h0, posOf_14[3:0]};
+      tagNext_14 <= first_1 + {20'h0, casez_tmp_78};
     if (io_ren_15_0)
-      tagNext_15 <= _tagNext_15_T_2 + {20'h0, posOf_15[3:0]};
+      tagNext_15 <= first_1 + {20'h0, casez_tmp_79};
     if (reset) begin
+      nxtValid <= 1'h0;
       curValid <= 1'h0;
       ptr <= 5'h0;
+      rem <= 5'h0;
       base <= 4'h0;
       inflight_0 <= 1'h0;
       inflight_1 <= 1'h0;
@@ -7109,15 +28904,36 @@ module PairDispatcher_n16_default(
       inflight_13 <= 1'h0;
       inflight_14 <= 1'h0;
       inflight_15 <= 1'h0;
+      held_0 <= 2'h0;
+      held_1 <= 2'h0;
+      held_2 <= 2'h0;
+      held_3 <= 2'h0;
+      held_4 <= 2'h0;
+      held_5 <= 2'h0;
+      held_6 <= 2'h0;
+      held_7 <= 2'h0;
+      held_8 <= 2'h0;
+      held_9 <= 2'h0;
+      held_10 <= 2'h0;
+      held_11 <= 2'h0;
+      held_12 <= 2'h0;
+      held_13 <= 2'h0;
+      held_14 <= 2'h0;
+      held_15 <= 2'h0;
     end
     else begin
-      curValid <= _GEN_0 | ~lineDone & curValid;
-      if (_GEN_0)
+      nxtValid <= _GEN | ~takeNxt & nxtValid;
+      curValid <= takeNxt | ~lineDone & curValid;
+      if (takeNxt) begin
         ptr <= 5'h0;
-      else if (fire)
-        ptr <= _ptr_T;
+        rem <= nxtCount;
+      end
+      else if (fire) begin
+        ptr <= ptr + casez_tmp_47;
+        rem <= rem - casez_tmp_47;
+      end
       if (fire)
-        base <= base + lineCnt[3:0];
+        base <= casez_tmp_176;
       inflight_0 <= io_ren_0_0;
       inflight_1 <= io_ren_1_0;
       inflight_2 <= io_ren_2_0;
@@ -7134,6 +28950,22 @@ module PairDispatcher_n16_default(
       inflight_13 <= io_ren_13_0;
       inflight_14 <= io_ren_14_0;
       inflight_15 <= io_ren_15_0;
+      held_0 <= casez_tmp_130;
+      held_1 <= casez_tmp_133;
+      held_2 <= casez_tmp_136;
+      held_3 <= casez_tmp_139;
+      held_4 <= casez_tmp_142;
+      held_5 <= casez_tmp_145;
+      held_6 <= casez_tmp_148;
+      held_7 <= casez_tmp_151;
+      held_8 <= casez_tmp_154;
+      held_9 <= casez_tmp_157;
+      held_10 <= casez_tmp_160;
+      held_11 <= casez_tmp_163;
+      held_12 <= casez_tmp_166;
+      held_13 <= casez_tmp_169;
+      held_14 <= casez_tmp_172;
+      held_15 <= casez_tmp_175;
     end
   end // always @(posedge)
   ScpuInQueue_d3_w32_default queues_0 (
@@ -7151,7 +28983,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_0_1_r),
     .io_enq_bits_tag (tagNext_0),
     .io_deq_ready    (io_scpu_0_ready),
-    .io_deq_valid    (io_scpu_0_valid),
+    .io_deq_valid    (_queues_0_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_0_bits_x1),
     .io_deq_bits_y1  (io_scpu_0_bits_y1),
     .io_deq_bits_z1  (io_scpu_0_bits_z1),
@@ -7160,8 +28992,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_0_bits_y2),
     .io_deq_bits_z2  (io_scpu_0_bits_z2),
     .io_deq_bits_r2  (io_scpu_0_bits_r2),
-    .io_deq_bits_tag (io_scpu_0_bits_tag),
-    .io_count        (_queues_0_io_count)
+    .io_deq_bits_tag (io_scpu_0_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_1 (
     .clock           (clock),
@@ -7178,7 +29009,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_1_1_r),
     .io_enq_bits_tag (tagNext_1),
     .io_deq_ready    (io_scpu_1_ready),
-    .io_deq_valid    (io_scpu_1_valid),
+    .io_deq_valid    (_queues_1_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_1_bits_x1),
     .io_deq_bits_y1  (io_scpu_1_bits_y1),
     .io_deq_bits_z1  (io_scpu_1_bits_z1),
@@ -7187,8 +29018,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_1_bits_y2),
     .io_deq_bits_z2  (io_scpu_1_bits_z2),
     .io_deq_bits_r2  (io_scpu_1_bits_r2),
-    .io_deq_bits_tag (io_scpu_1_bits_tag),
-    .io_count        (_queues_1_io_count)
+    .io_deq_bits_tag (io_scpu_1_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_2 (
     .clock           (clock),
@@ -7205,7 +29035,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_2_1_r),
     .io_enq_bits_tag (tagNext_2),
     .io_deq_ready    (io_scpu_2_ready),
-    .io_deq_valid    (io_scpu_2_valid),
+    .io_deq_valid    (_queues_2_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_2_bits_x1),
     .io_deq_bits_y1  (io_scpu_2_bits_y1),
     .io_deq_bits_z1  (io_scpu_2_bits_z1),
@@ -7214,8 +29044,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_2_bits_y2),
     .io_deq_bits_z2  (io_scpu_2_bits_z2),
     .io_deq_bits_r2  (io_scpu_2_bits_r2),
-    .io_deq_bits_tag (io_scpu_2_bits_tag),
-    .io_count        (_queues_2_io_count)
+    .io_deq_bits_tag (io_scpu_2_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_3 (
     .clock           (clock),
@@ -7232,7 +29061,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_3_1_r),
     .io_enq_bits_tag (tagNext_3),
     .io_deq_ready    (io_scpu_3_ready),
-    .io_deq_valid    (io_scpu_3_valid),
+    .io_deq_valid    (_queues_3_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_3_bits_x1),
     .io_deq_bits_y1  (io_scpu_3_bits_y1),
     .io_deq_bits_z1  (io_scpu_3_bits_z1),
@@ -7241,8 +29070,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_3_bits_y2),
     .io_deq_bits_z2  (io_scpu_3_bits_z2),
     .io_deq_bits_r2  (io_scpu_3_bits_r2),
-    .io_deq_bits_tag (io_scpu_3_bits_tag),
-    .io_count        (_queues_3_io_count)
+    .io_deq_bits_tag (io_scpu_3_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_4 (
     .clock           (clock),
@@ -7259,7 +29087,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_4_1_r),
     .io_enq_bits_tag (tagNext_4),
     .io_deq_ready    (io_scpu_4_ready),
-    .io_deq_valid    (io_scpu_4_valid),
+    .io_deq_valid    (_queues_4_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_4_bits_x1),
     .io_deq_bits_y1  (io_scpu_4_bits_y1),
     .io_deq_bits_z1  (io_scpu_4_bits_z1),
@@ -7268,8 +29096,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_4_bits_y2),
     .io_deq_bits_z2  (io_scpu_4_bits_z2),
     .io_deq_bits_r2  (io_scpu_4_bits_r2),
-    .io_deq_bits_tag (io_scpu_4_bits_tag),
-    .io_count        (_queues_4_io_count)
+    .io_deq_bits_tag (io_scpu_4_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_5 (
     .clock           (clock),
@@ -7286,7 +29113,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_5_1_r),
     .io_enq_bits_tag (tagNext_5),
     .io_deq_ready    (io_scpu_5_ready),
-    .io_deq_valid    (io_scpu_5_valid),
+    .io_deq_valid    (_queues_5_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_5_bits_x1),
     .io_deq_bits_y1  (io_scpu_5_bits_y1),
     .io_deq_bits_z1  (io_scpu_5_bits_z1),
@@ -7295,8 +29122,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_5_bits_y2),
     .io_deq_bits_z2  (io_scpu_5_bits_z2),
     .io_deq_bits_r2  (io_scpu_5_bits_r2),
-    .io_deq_bits_tag (io_scpu_5_bits_tag),
-    .io_count        (_queues_5_io_count)
+    .io_deq_bits_tag (io_scpu_5_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_6 (
     .clock           (clock),
@@ -7313,7 +29139,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_6_1_r),
     .io_enq_bits_tag (tagNext_6),
     .io_deq_ready    (io_scpu_6_ready),
-    .io_deq_valid    (io_scpu_6_valid),
+    .io_deq_valid    (_queues_6_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_6_bits_x1),
     .io_deq_bits_y1  (io_scpu_6_bits_y1),
     .io_deq_bits_z1  (io_scpu_6_bits_z1),
@@ -7322,8 +29148,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_6_bits_y2),
     .io_deq_bits_z2  (io_scpu_6_bits_z2),
     .io_deq_bits_r2  (io_scpu_6_bits_r2),
-    .io_deq_bits_tag (io_scpu_6_bits_tag),
-    .io_count        (_queues_6_io_count)
+    .io_deq_bits_tag (io_scpu_6_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_7 (
     .clock           (clock),
@@ -7340,7 +29165,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_7_1_r),
     .io_enq_bits_tag (tagNext_7),
     .io_deq_ready    (io_scpu_7_ready),
-    .io_deq_valid    (io_scpu_7_valid),
+    .io_deq_valid    (_queues_7_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_7_bits_x1),
     .io_deq_bits_y1  (io_scpu_7_bits_y1),
     .io_deq_bits_z1  (io_scpu_7_bits_z1),
@@ -7349,8 +29174,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_7_bits_y2),
     .io_deq_bits_z2  (io_scpu_7_bits_z2),
     .io_deq_bits_r2  (io_scpu_7_bits_r2),
-    .io_deq_bits_tag (io_scpu_7_bits_tag),
-    .io_count        (_queues_7_io_count)
+    .io_deq_bits_tag (io_scpu_7_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_8 (
     .clock           (clock),
@@ -7367,7 +29191,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_8_1_r),
     .io_enq_bits_tag (tagNext_8),
     .io_deq_ready    (io_scpu_8_ready),
-    .io_deq_valid    (io_scpu_8_valid),
+    .io_deq_valid    (_queues_8_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_8_bits_x1),
     .io_deq_bits_y1  (io_scpu_8_bits_y1),
     .io_deq_bits_z1  (io_scpu_8_bits_z1),
@@ -7376,8 +29200,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_8_bits_y2),
     .io_deq_bits_z2  (io_scpu_8_bits_z2),
     .io_deq_bits_r2  (io_scpu_8_bits_r2),
-    .io_deq_bits_tag (io_scpu_8_bits_tag),
-    .io_count        (_queues_8_io_count)
+    .io_deq_bits_tag (io_scpu_8_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_9 (
     .clock           (clock),
@@ -7394,7 +29217,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_9_1_r),
     .io_enq_bits_tag (tagNext_9),
     .io_deq_ready    (io_scpu_9_ready),
-    .io_deq_valid    (io_scpu_9_valid),
+    .io_deq_valid    (_queues_9_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_9_bits_x1),
     .io_deq_bits_y1  (io_scpu_9_bits_y1),
     .io_deq_bits_z1  (io_scpu_9_bits_z1),
@@ -7403,8 +29226,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_9_bits_y2),
     .io_deq_bits_z2  (io_scpu_9_bits_z2),
     .io_deq_bits_r2  (io_scpu_9_bits_r2),
-    .io_deq_bits_tag (io_scpu_9_bits_tag),
-    .io_count        (_queues_9_io_count)
+    .io_deq_bits_tag (io_scpu_9_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_10 (
     .clock           (clock),
@@ -7421,7 +29243,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_10_1_r),
     .io_enq_bits_tag (tagNext_10),
     .io_deq_ready    (io_scpu_10_ready),
-    .io_deq_valid    (io_scpu_10_valid),
+    .io_deq_valid    (_queues_10_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_10_bits_x1),
     .io_deq_bits_y1  (io_scpu_10_bits_y1),
     .io_deq_bits_z1  (io_scpu_10_bits_z1),
@@ -7430,8 +29252,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_10_bits_y2),
     .io_deq_bits_z2  (io_scpu_10_bits_z2),
     .io_deq_bits_r2  (io_scpu_10_bits_r2),
-    .io_deq_bits_tag (io_scpu_10_bits_tag),
-    .io_count        (_queues_10_io_count)
+    .io_deq_bits_tag (io_scpu_10_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_11 (
     .clock           (clock),
@@ -7448,7 +29269,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_11_1_r),
     .io_enq_bits_tag (tagNext_11),
     .io_deq_ready    (io_scpu_11_ready),
-    .io_deq_valid    (io_scpu_11_valid),
+    .io_deq_valid    (_queues_11_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_11_bits_x1),
     .io_deq_bits_y1  (io_scpu_11_bits_y1),
     .io_deq_bits_z1  (io_scpu_11_bits_z1),
@@ -7457,8 +29278,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_11_bits_y2),
     .io_deq_bits_z2  (io_scpu_11_bits_z2),
     .io_deq_bits_r2  (io_scpu_11_bits_r2),
-    .io_deq_bits_tag (io_scpu_11_bits_tag),
-    .io_count        (_queues_11_io_count)
+    .io_deq_bits_tag (io_scpu_11_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_12 (
     .clock           (clock),
@@ -7475,7 +29295,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_12_1_r),
     .io_enq_bits_tag (tagNext_12),
     .io_deq_ready    (io_scpu_12_ready),
-    .io_deq_valid    (io_scpu_12_valid),
+    .io_deq_valid    (_queues_12_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_12_bits_x1),
     .io_deq_bits_y1  (io_scpu_12_bits_y1),
     .io_deq_bits_z1  (io_scpu_12_bits_z1),
@@ -7484,8 +29304,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_12_bits_y2),
     .io_deq_bits_z2  (io_scpu_12_bits_z2),
     .io_deq_bits_r2  (io_scpu_12_bits_r2),
-    .io_deq_bits_tag (io_scpu_12_bits_tag),
-    .io_count        (_queues_12_io_count)
+    .io_deq_bits_tag (io_scpu_12_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_13 (
     .clock           (clock),
@@ -7502,7 +29321,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_13_1_r),
     .io_enq_bits_tag (tagNext_13),
     .io_deq_ready    (io_scpu_13_ready),
-    .io_deq_valid    (io_scpu_13_valid),
+    .io_deq_valid    (_queues_13_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_13_bits_x1),
     .io_deq_bits_y1  (io_scpu_13_bits_y1),
     .io_deq_bits_z1  (io_scpu_13_bits_z1),
@@ -7511,8 +29330,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_13_bits_y2),
     .io_deq_bits_z2  (io_scpu_13_bits_z2),
     .io_deq_bits_r2  (io_scpu_13_bits_r2),
-    .io_deq_bits_tag (io_scpu_13_bits_tag),
-    .io_count        (_queues_13_io_count)
+    .io_deq_bits_tag (io_scpu_13_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_14 (
     .clock           (clock),
@@ -7529,7 +29347,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_14_1_r),
     .io_enq_bits_tag (tagNext_14),
     .io_deq_ready    (io_scpu_14_ready),
-    .io_deq_valid    (io_scpu_14_valid),
+    .io_deq_valid    (_queues_14_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_14_bits_x1),
     .io_deq_bits_y1  (io_scpu_14_bits_y1),
     .io_deq_bits_z1  (io_scpu_14_bits_z1),
@@ -7538,8 +29356,7 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_14_bits_y2),
     .io_deq_bits_z2  (io_scpu_14_bits_z2),
     .io_deq_bits_r2  (io_scpu_14_bits_r2),
-    .io_deq_bits_tag (io_scpu_14_bits_tag),
-    .io_count        (_queues_14_io_count)
+    .io_deq_bits_tag (io_scpu_14_bits_tag)
   );
   ScpuInQueue_d3_w32_default queues_15 (
     .clock           (clock),
@@ -7556,7 +29373,7 @@ module PairDispatcher_n16_default(
     .io_enq_bits_r2  (io_rdata_15_1_r),
     .io_enq_bits_tag (tagNext_15),
     .io_deq_ready    (io_scpu_15_ready),
-    .io_deq_valid    (io_scpu_15_valid),
+    .io_deq_valid    (_queues_15_io_deq_valid),
     .io_deq_bits_x1  (io_scpu_15_bits_x1),
     .io_deq_bits_y1  (io_scpu_15_bits_y1),
     .io_deq_bits_z1  (io_scpu_15_bits_z1),
@@ -7565,42 +29382,41 @@ module PairDispatcher_n16_default(
     .io_deq_bits_y2  (io_scpu_15_bits_y2),
     .io_deq_bits_z2  (io_scpu_15_bits_z2),
     .io_deq_bits_r2  (io_scpu_15_bits_r2),
-    .io_deq_bits_tag (io_scpu_15_bits_tag),
-    .io_count        (_queues_15_io_count)
+    .io_deq_bits_tag (io_scpu_15_bits_tag)
   );
   assign io_pairs_ready = io_pairs_ready_0;
-  assign io_raddr_0_0 = casez_tmp_31[9:0];
-  assign io_raddr_0_1 = casez_tmp_32[9:0];
-  assign io_raddr_1_0 = casez_tmp_33[9:0];
-  assign io_raddr_1_1 = casez_tmp_34[9:0];
-  assign io_raddr_2_0 = casez_tmp_35[9:0];
-  assign io_raddr_2_1 = casez_tmp_36[9:0];
-  assign io_raddr_3_0 = casez_tmp_37[9:0];
-  assign io_raddr_3_1 = casez_tmp_38[9:0];
-  assign io_raddr_4_0 = casez_tmp_39[9:0];
-  assign io_raddr_4_1 = casez_tmp_40[9:0];
-  assign io_raddr_5_0 = casez_tmp_41[9:0];
-  assign io_raddr_5_1 = casez_tmp_42[9:0];
-  assign io_raddr_6_0 = casez_tmp_43[9:0];
-  assign io_raddr_6_1 = casez_tmp_44[9:0];
-  assign io_raddr_7_0 = casez_tmp_45[9:0];
-  assign io_raddr_7_1 = casez_tmp_46[9:0];
-  assign io_raddr_8_0 = casez_tmp_47[9:0];
-  assign io_raddr_8_1 = casez_tmp_48[9:0];
-  assign io_raddr_9_0 = casez_tmp_49[9:0];
-  assign io_raddr_9_1 = casez_tmp_50[9:0];
-  assign io_raddr_10_0 = casez_tmp_51[9:0];
-  assign io_raddr_10_1 = casez_tmp_52[9:0];
-  assign io_raddr_11_0 = casez_tmp_53[9:0];
-  assign io_raddr_11_1 = casez_tmp_54[9:0];
-  assign io_raddr_12_0 = casez_tmp_55[9:0];
-  assign io_raddr_12_1 = casez_tmp_56[9:0];
-  assign io_raddr_13_0 = casez_tmp_57[9:0];
-  assign io_raddr_13_1 = casez_tmp_58[9:0];
-  assign io_raddr_14_0 = casez_tmp_59[9:0];
-  assign io_raddr_14_1 = casez_tmp_60[9:0];
-  assign io_raddr_15_0 = casez_tmp_61[9:0];
-  assign io_raddr_15_1 = casez_tmp_62[9:0];
+  assign io_raddr_0_0 = casez_tmp_128[9:0];
+  assign io_raddr_0_1 = casez_tmp_129[9:0];
+  assign io_raddr_1_0 = casez_tmp_131[9:0];
+  assign io_raddr_1_1 = casez_tmp_132[9:0];
+  assign io_raddr_2_0 = casez_tmp_134[9:0];
+  assign io_raddr_2_1 = casez_tmp_135[9:0];
+  assign io_raddr_3_0 = casez_tmp_137[9:0];
+  assign io_raddr_3_1 = casez_tmp_138[9:0];
+  assign io_raddr_4_0 = casez_tmp_140[9:0];
+  assign io_raddr_4_1 = casez_tmp_141[9:0];
+  assign io_raddr_5_0 = casez_tmp_143[9:0];
+  assign io_raddr_5_1 = casez_tmp_144[9:0];
+  assign io_raddr_6_0 = casez_tmp_146[9:0];
+  assign io_raddr_6_1 = casez_tmp_147[9:0];
+  assign io_raddr_7_0 = casez_tmp_149[9:0];
+  assign io_raddr_7_1 = casez_tmp_150[9:0];
+  assign io_raddr_8_0 = casez_tmp_152[9:0];
+  assign io_raddr_8_1 = casez_tmp_153[9:0];
+  assign io_raddr_9_0 = casez_tmp_155[9:0];
+  assign io_raddr_9_1 = casez_tmp_156[9:0];
+  assign io_raddr_10_0 = casez_tmp_158[9:0];
+  assign io_raddr_10_1 = casez_tmp_159[9:0];
+  assign io_raddr_11_0 = casez_tmp_161[9:0];
+  assign io_raddr_11_1 = casez_tmp_162[9:0];
+  assign io_raddr_12_0 = casez_tmp_164[9:0];
+  assign io_raddr_12_1 = casez_tmp_165[9:0];
+  assign io_raddr_13_0 = casez_tmp_167[9:0];
+  assign io_raddr_13_1 = casez_tmp_168[9:0];
+  assign io_raddr_14_0 = casez_tmp_170[9:0];
+  assign io_raddr_14_1 = casez_tmp_171[9:0];
+  assign io_raddr_15_0 = casez_tmp_173[9:0];
+  assign io_raddr_15_1 = casez_tmp_174[9:0];
   assign io_ren_0 = io_ren_0_0;
   assign io_ren_1 = io_ren_1_0;
   assign io_ren_2 = io_ren_2_0;
@@ -7617,51 +29433,46 @@ module PairDispatcher_n16_default(
   assign io_ren_13 = io_ren_13_0;
   assign io_ren_14 = io_ren_14_0;
   assign io_ren_15 = io_ren_15_0;
-  assign io_groups_valid =
-    haveGroup & (~inGroup_0 | credit_0) & (~inGroup_1 | credit_1)
-    & (~inGroup_2 | credit_2) & (~inGroup_3 | credit_3) & (~inGroup_4 | credit_4)
-    & (~inGroup_5 | credit_5) & (~inGroup_6 | credit_6) & (~inGroup_7 | credit_7)
-    & (~inGroup_8 | credit_8) & (~inGroup_9 | credit_9) & (~inGroup_10 | credit_10)
-    & (~inGroup_11 | credit_11) & (~inGroup_12 | credit_12) & (~inGroup_13 | credit_13)
-    & (~inGroup_14 | credit_14) & (~inGroup_15 | credit_15);
+  assign io_scpu_0_valid = _queues_0_io_deq_valid;
+  assign io_scpu_1_valid = _queues_1_io_deq_valid;
+  assign io_scpu_2_valid = _queues_2_io_deq_valid;
+  assign io_scpu_3_valid = _queues_3_io_deq_valid;
+  assign io_scpu_4_valid = _queues_4_io_deq_valid;
+  assign io_scpu_5_valid = _queues_5_io_deq_valid;
+  assign io_scpu_6_valid = _queues_6_io_deq_valid;
+  assign io_scpu_7_valid = _queues_7_io_deq_valid;
+  assign io_scpu_8_valid = _queues_8_io_deq_valid;
+  assign io_scpu_9_valid = _queues_9_io_deq_valid;
+  assign io_scpu_10_valid = _queues_10_io_deq_valid;
+  assign io_scpu_11_valid = _queues_11_io_deq_valid;
+  assign io_scpu_12_valid = _queues_12_io_deq_valid;
+  assign io_scpu_13_valid = _queues_13_io_deq_valid;
+  assign io_scpu_14_valid = _queues_14_io_deq_valid;
+  assign io_scpu_15_valid = _queues_15_io_deq_valid;
+  assign io_groups_valid = haveGroup & ready;
   assign io_groups_bits_base = base;
-  assign io_groups_bits_cnt = lineCnt;
+  assign io_groups_bits_cnt = casez_tmp_47;
   assign io_groups_bits_invalid =
-    {({1'h0, casez_tmp_14} >= io_numSpheres | {1'h0, casez_tmp_30} >= io_numSpheres)
-       & lineCnt[4],
-     ({1'h0, casez_tmp_13} >= io_numSpheres | {1'h0, casez_tmp_29} >= io_numSpheres)
-       & lineCnt > 5'hE,
-     ({1'h0, casez_tmp_12} >= io_numSpheres | {1'h0, casez_tmp_28} >= io_numSpheres)
-       & lineCnt > 5'hD,
-     ({1'h0, casez_tmp_11} >= io_numSpheres | {1'h0, casez_tmp_27} >= io_numSpheres)
-       & lineCnt > 5'hC,
-     ({1'h0, casez_tmp_10} >= io_numSpheres | {1'h0, casez_tmp_26} >= io_numSpheres)
-       & lineCnt > 5'hB,
-     ({1'h0, casez_tmp_9} >= io_numSpheres | {1'h0, casez_tmp_25} >= io_numSpheres)
-       & lineCnt > 5'hA,
-     ({1'h0, casez_tmp_8} >= io_numSpheres | {1'h0, casez_tmp_24} >= io_numSpheres)
-       & lineCnt > 5'h9,
-     ({1'h0, casez_tmp_7} >= io_numSpheres | {1'h0, casez_tmp_23} >= io_numSpheres)
-       & lineCnt > 5'h8,
-     ({1'h0, casez_tmp_6} >= io_numSpheres | {1'h0, casez_tmp_22} >= io_numSpheres)
-       & (|(lineCnt[4:3])),
-     ({1'h0, casez_tmp_5} >= io_numSpheres | {1'h0, casez_tmp_21} >= io_numSpheres)
-       & lineCnt > 5'h6,
-     ({1'h0, casez_tmp_4} >= io_numSpheres | {1'h0, casez_tmp_20} >= io_numSpheres)
-       & lineCnt > 5'h5,
-     ({1'h0, casez_tmp_3} >= io_numSpheres | {1'h0, casez_tmp_19} >= io_numSpheres)
-       & lineCnt > 5'h4,
-     ({1'h0, casez_tmp_2} >= io_numSpheres | {1'h0, casez_tmp_18} >= io_numSpheres)
-       & (|(lineCnt[4:2])),
-     ({1'h0, casez_tmp_1} >= io_numSpheres | {1'h0, casez_tmp_17} >= io_numSpheres)
-       & lineCnt > 5'h2,
-     ({1'h0, casez_tmp_0} >= io_numSpheres | {1'h0, casez_tmp_16} >= io_numSpheres)
-       & (|(lineCnt[4:1])),
-     ({1'h0, casez_tmp} >= io_numSpheres | {1'h0, casez_tmp_15} >= io_numSpheres)
-       & (|lineCnt)};
-  assign io_groups_bits_first = _tagNext_15_T_2;
+    {casez_tmp_127 & casez_tmp_63,
+     casez_tmp_126 & casez_tmp_62,
+     casez_tmp_125 & casez_tmp_61,
+     casez_tmp_124 & casez_tmp_60,
+     casez_tmp_123 & casez_tmp_59,
+     casez_tmp_122 & casez_tmp_58,
+     casez_tmp_121 & casez_tmp_57,
+     casez_tmp_120 & casez_tmp_56,
+     casez_tmp_119 & casez_tmp_55,
+     casez_tmp_118 & casez_tmp_54,
+     casez_tmp_117 & casez_tmp_53,
+     casez_tmp_116 & casez_tmp_52,
+     casez_tmp_115 & casez_tmp_51,
+     casez_tmp_114 & casez_tmp_50,
+     casez_tmp_113 & casez_tmp_49,
+     casez_tmp_112 & casez_tmp_48};
+  assign io_groups_bits_first = first_1;
   assign io_fired = fire;
-  assign io_idle = ~curValid;
+  assign io_idle = ~curValid & ~nxtValid;
+  assign io_advance = takeNxt;
 endmodule
 
 // VCS coverage exclude_file
@@ -51078,6 +72889,7 @@ module ContactPacker_w32_derivedmasked_r7_default(
 );
 
   wire        _q_io_enq_ready;
+  wire [63:0] _q_io_deq_bits_addr;
   reg  [2:0]  fill;
   reg  [71:0] held_0;
   reg  [71:0] held_1;
@@ -51133,56 +72945,59 @@ module ContactPacker_w32_derivedmasked_r7_default(
       : lineNo;
   wire [24:0] _rnOf_T_2 = io_dense ? {1'h0, io_recs_0_pair} : count;
   wire [24:0] rnOf = (|fill) ? heldRn : _rnOf_T_2;
+  reg  [25:0] capLess_0;
+  reg  [25:0] capLess_1;
+  reg  [25:0] capLess_2;
+  reg  [25:0] capLess_3;
+  reg  [25:0] capLess_4;
+  reg  [25:0] capLess_5;
+  reg  [25:0] capLess_6;
   wire [3:0]  total = {1'h0, fill} + {1'h0, io_nRecs};
-  reg  [71:0] casez_tmp_0;
+  reg         casez_tmp_0;
   always @(*) begin
-    casez (3'h0 - fill)
+    casez (fill)
       3'b000:
-        casez_tmp_0 = io_recs_0_bits;
+        casez_tmp_0 = 1'h0;
       3'b001:
-        casez_tmp_0 = io_recs_1_bits;
+        casez_tmp_0 = 1'h1;
       3'b010:
-        casez_tmp_0 = io_recs_2_bits;
+        casez_tmp_0 = 1'h1;
       3'b011:
-        casez_tmp_0 = io_recs_3_bits;
+        casez_tmp_0 = 1'h1;
       3'b100:
-        casez_tmp_0 = io_recs_4_bits;
+        casez_tmp_0 = 1'h1;
       3'b101:
-        casez_tmp_0 = io_recs_5_bits;
+        casez_tmp_0 = 1'h1;
       3'b110:
-        casez_tmp_0 = io_recs_6_bits;
+        casez_tmp_0 = 1'h1;
       default:
-        casez_tmp_0 = io_recs_0_bits;
+        casez_tmp_0 = 1'h1;
     endcase
   end // always @(*)
-  wire [63:0] _GEN = {39'h0, rnOf};
-  wire        _slots_T_4 = (|total) & _GEN < io_capacity;
-  reg  [71:0] casez_tmp_1;
+  reg  [2:0]  casez_tmp_1;
   always @(*) begin
-    casez (3'h1 - fill)
+    casez (fill)
       3'b000:
-        casez_tmp_1 = io_recs_0_bits;
+        casez_tmp_1 = 3'h0;
       3'b001:
-        casez_tmp_1 = io_recs_1_bits;
+        casez_tmp_1 = 3'h6;
       3'b010:
-        casez_tmp_1 = io_recs_2_bits;
+        casez_tmp_1 = 3'h5;
       3'b011:
-        casez_tmp_1 = io_recs_3_bits;
+        casez_tmp_1 = 3'h4;
       3'b100:
-        casez_tmp_1 = io_recs_4_bits;
+        casez_tmp_1 = 3'h3;
       3'b101:
-        casez_tmp_1 = io_recs_5_bits;
+        casez_tmp_1 = 3'h2;
       3'b110:
-        casez_tmp_1 = io_recs_6_bits;
+        casez_tmp_1 = 3'h1;
       default:
-        casez_tmp_1 = io_recs_0_bits;
+        casez_tmp_1 = 3'h0;
     endcase
   end // always @(*)
-  wire        _slots_T_10 = (|(total[3:1])) & {39'h0, rnOf + 25'h1} < io_capacity;
-  wire        _slots_v_T_8 = fill > 3'h2;
   reg  [71:0] casez_tmp_2;
   always @(*) begin
-    casez (3'h2 - fill)
+    casez (casez_tmp_1)
       3'b000:
         casez_tmp_2 = io_recs_0_bits;
       3'b001:
@@ -51201,81 +73016,191 @@ module ContactPacker_w32_derivedmasked_r7_default(
         casez_tmp_2 = io_recs_0_bits;
     endcase
   end // always @(*)
-  wire        _slots_T_12 = total > 4'h2;
-  wire        _slots_T_16 = _slots_T_12 & {39'h0, rnOf + 25'h2} < io_capacity;
-  reg  [71:0] casez_tmp_3;
+  wire [5:0]  _slots_inLine_T_6 = {fill, io_nRecs};
+  reg         casez_tmp_3;
   always @(*) begin
-    casez (3'h3 - fill)
-      3'b000:
-        casez_tmp_3 = io_recs_0_bits;
-      3'b001:
-        casez_tmp_3 = io_recs_1_bits;
-      3'b010:
-        casez_tmp_3 = io_recs_2_bits;
-      3'b011:
-        casez_tmp_3 = io_recs_3_bits;
-      3'b100:
-        casez_tmp_3 = io_recs_4_bits;
-      3'b101:
-        casez_tmp_3 = io_recs_5_bits;
-      3'b110:
-        casez_tmp_3 = io_recs_6_bits;
+    casez (_slots_inLine_T_6)
+      6'b000000:
+        casez_tmp_3 = 1'h0;
+      6'b000001:
+        casez_tmp_3 = 1'h1;
+      6'b000010:
+        casez_tmp_3 = 1'h1;
+      6'b000011:
+        casez_tmp_3 = 1'h1;
+      6'b000100:
+        casez_tmp_3 = 1'h1;
+      6'b000101:
+        casez_tmp_3 = 1'h1;
+      6'b000110:
+        casez_tmp_3 = 1'h1;
+      6'b000111:
+        casez_tmp_3 = 1'h1;
+      6'b001000:
+        casez_tmp_3 = 1'h1;
+      6'b001001:
+        casez_tmp_3 = 1'h1;
+      6'b001010:
+        casez_tmp_3 = 1'h1;
+      6'b001011:
+        casez_tmp_3 = 1'h1;
+      6'b001100:
+        casez_tmp_3 = 1'h1;
+      6'b001101:
+        casez_tmp_3 = 1'h1;
+      6'b001110:
+        casez_tmp_3 = 1'h1;
+      6'b001111:
+        casez_tmp_3 = 1'h1;
+      6'b010000:
+        casez_tmp_3 = 1'h1;
+      6'b010001:
+        casez_tmp_3 = 1'h1;
+      6'b010010:
+        casez_tmp_3 = 1'h1;
+      6'b010011:
+        casez_tmp_3 = 1'h1;
+      6'b010100:
+        casez_tmp_3 = 1'h1;
+      6'b010101:
+        casez_tmp_3 = 1'h1;
+      6'b010110:
+        casez_tmp_3 = 1'h1;
+      6'b010111:
+        casez_tmp_3 = 1'h1;
+      6'b011000:
+        casez_tmp_3 = 1'h1;
+      6'b011001:
+        casez_tmp_3 = 1'h1;
+      6'b011010:
+        casez_tmp_3 = 1'h1;
+      6'b011011:
+        casez_tmp_3 = 1'h1;
+      6'b011100:
+        casez_tmp_3 = 1'h1;
+      6'b011101:
+        casez_tmp_3 = 1'h1;
+      6'b011110:
+        casez_tmp_3 = 1'h1;
+      6'b011111:
+        casez_tmp_3 = 1'h1;
+      6'b100000:
+        casez_tmp_3 = 1'h1;
+      6'b100001:
+        casez_tmp_3 = 1'h1;
+      6'b100010:
+        casez_tmp_3 = 1'h1;
+      6'b100011:
+        casez_tmp_3 = 1'h1;
+      6'b100100:
+        casez_tmp_3 = 1'h1;
+      6'b100101:
+        casez_tmp_3 = 1'h1;
+      6'b100110:
+        casez_tmp_3 = 1'h1;
+      6'b100111:
+        casez_tmp_3 = 1'h1;
+      6'b101000:
+        casez_tmp_3 = 1'h1;
+      6'b101001:
+        casez_tmp_3 = 1'h1;
+      6'b101010:
+        casez_tmp_3 = 1'h1;
+      6'b101011:
+        casez_tmp_3 = 1'h1;
+      6'b101100:
+        casez_tmp_3 = 1'h1;
+      6'b101101:
+        casez_tmp_3 = 1'h1;
+      6'b101110:
+        casez_tmp_3 = 1'h1;
+      6'b101111:
+        casez_tmp_3 = 1'h1;
+      6'b110000:
+        casez_tmp_3 = 1'h1;
+      6'b110001:
+        casez_tmp_3 = 1'h1;
+      6'b110010:
+        casez_tmp_3 = 1'h1;
+      6'b110011:
+        casez_tmp_3 = 1'h1;
+      6'b110100:
+        casez_tmp_3 = 1'h1;
+      6'b110101:
+        casez_tmp_3 = 1'h1;
+      6'b110110:
+        casez_tmp_3 = 1'h1;
+      6'b110111:
+        casez_tmp_3 = 1'h1;
+      6'b111000:
+        casez_tmp_3 = 1'h1;
+      6'b111001:
+        casez_tmp_3 = 1'h1;
+      6'b111010:
+        casez_tmp_3 = 1'h1;
+      6'b111011:
+        casez_tmp_3 = 1'h1;
+      6'b111100:
+        casez_tmp_3 = 1'h1;
+      6'b111101:
+        casez_tmp_3 = 1'h1;
+      6'b111110:
+        casez_tmp_3 = 1'h1;
       default:
-        casez_tmp_3 = io_recs_0_bits;
+        casez_tmp_3 = 1'h1;
     endcase
   end // always @(*)
-  wire        _slots_T_22 = (|(total[3:2])) & {39'h0, rnOf + 25'h3} < io_capacity;
-  wire        _slots_v_T_16 = fill > 3'h4;
-  reg  [71:0] casez_tmp_4;
+  wire [25:0] _GEN = {1'h0, heldRn};
+  wire [25:0] _GEN_0 = {2'h0, io_recs_0_pair};
+  wire [25:0] _GEN_1 = {1'h0, count};
+  wire        _slots_T_6 =
+    casez_tmp_3
+    & ((|fill) ? _GEN < capLess_0 : io_dense ? _GEN_0 < capLess_0 : _GEN_1 < capLess_0);
+  reg         casez_tmp_4;
   always @(*) begin
-    casez (3'h4 - fill)
+    casez (fill)
       3'b000:
-        casez_tmp_4 = io_recs_0_bits;
+        casez_tmp_4 = 1'h0;
       3'b001:
-        casez_tmp_4 = io_recs_1_bits;
+        casez_tmp_4 = 1'h0;
       3'b010:
-        casez_tmp_4 = io_recs_2_bits;
+        casez_tmp_4 = 1'h1;
       3'b011:
-        casez_tmp_4 = io_recs_3_bits;
+        casez_tmp_4 = 1'h1;
       3'b100:
-        casez_tmp_4 = io_recs_4_bits;
+        casez_tmp_4 = 1'h1;
       3'b101:
-        casez_tmp_4 = io_recs_5_bits;
+        casez_tmp_4 = 1'h1;
       3'b110:
-        casez_tmp_4 = io_recs_6_bits;
+        casez_tmp_4 = 1'h1;
       default:
-        casez_tmp_4 = io_recs_0_bits;
+        casez_tmp_4 = 1'h1;
     endcase
   end // always @(*)
-  wire        _slots_T_24 = total > 4'h4;
-  wire        _slots_T_28 = _slots_T_24 & {39'h0, rnOf + 25'h4} < io_capacity;
-  wire        _slots_v_T_20 = fill > 3'h5;
-  reg  [71:0] casez_tmp_5;
+  reg  [2:0]  casez_tmp_5;
   always @(*) begin
-    casez (3'h5 - fill)
+    casez (fill)
       3'b000:
-        casez_tmp_5 = io_recs_0_bits;
+        casez_tmp_5 = 3'h1;
       3'b001:
-        casez_tmp_5 = io_recs_1_bits;
+        casez_tmp_5 = 3'h0;
       3'b010:
-        casez_tmp_5 = io_recs_2_bits;
+        casez_tmp_5 = 3'h6;
       3'b011:
-        casez_tmp_5 = io_recs_3_bits;
+        casez_tmp_5 = 3'h5;
       3'b100:
-        casez_tmp_5 = io_recs_4_bits;
+        casez_tmp_5 = 3'h4;
       3'b101:
-        casez_tmp_5 = io_recs_5_bits;
+        casez_tmp_5 = 3'h3;
       3'b110:
-        casez_tmp_5 = io_recs_6_bits;
+        casez_tmp_5 = 3'h2;
       default:
-        casez_tmp_5 = io_recs_0_bits;
+        casez_tmp_5 = 3'h1;
     endcase
   end // always @(*)
-  wire        _slots_T_30 = total > 4'h5;
-  wire        _slots_T_34 = _slots_T_30 & {39'h0, rnOf + 25'h5} < io_capacity;
   reg  [71:0] casez_tmp_6;
   always @(*) begin
-    casez (3'h6 - fill)
+    casez (casez_tmp_5)
       3'b000:
         casez_tmp_6 = io_recs_0_bits;
       3'b001:
@@ -51294,78 +73219,187 @@ module ContactPacker_w32_derivedmasked_r7_default(
         casez_tmp_6 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [23:0] casez_tmp_7;
+  reg         casez_tmp_7;
   always @(*) begin
-    casez (io_nRecs - 3'h1)
-      3'b000:
-        casez_tmp_7 = io_recs_0_pair;
-      3'b001:
-        casez_tmp_7 = io_recs_1_pair;
-      3'b010:
-        casez_tmp_7 = io_recs_2_pair;
-      3'b011:
-        casez_tmp_7 = io_recs_3_pair;
-      3'b100:
-        casez_tmp_7 = io_recs_4_pair;
-      3'b101:
-        casez_tmp_7 = io_recs_5_pair;
-      3'b110:
-        casez_tmp_7 = io_recs_6_pair;
+    casez (_slots_inLine_T_6)
+      6'b000000:
+        casez_tmp_7 = 1'h0;
+      6'b000001:
+        casez_tmp_7 = 1'h0;
+      6'b000010:
+        casez_tmp_7 = 1'h1;
+      6'b000011:
+        casez_tmp_7 = 1'h1;
+      6'b000100:
+        casez_tmp_7 = 1'h1;
+      6'b000101:
+        casez_tmp_7 = 1'h1;
+      6'b000110:
+        casez_tmp_7 = 1'h1;
+      6'b000111:
+        casez_tmp_7 = 1'h1;
+      6'b001000:
+        casez_tmp_7 = 1'h0;
+      6'b001001:
+        casez_tmp_7 = 1'h1;
+      6'b001010:
+        casez_tmp_7 = 1'h1;
+      6'b001011:
+        casez_tmp_7 = 1'h1;
+      6'b001100:
+        casez_tmp_7 = 1'h1;
+      6'b001101:
+        casez_tmp_7 = 1'h1;
+      6'b001110:
+        casez_tmp_7 = 1'h1;
+      6'b001111:
+        casez_tmp_7 = 1'h1;
+      6'b010000:
+        casez_tmp_7 = 1'h1;
+      6'b010001:
+        casez_tmp_7 = 1'h1;
+      6'b010010:
+        casez_tmp_7 = 1'h1;
+      6'b010011:
+        casez_tmp_7 = 1'h1;
+      6'b010100:
+        casez_tmp_7 = 1'h1;
+      6'b010101:
+        casez_tmp_7 = 1'h1;
+      6'b010110:
+        casez_tmp_7 = 1'h1;
+      6'b010111:
+        casez_tmp_7 = 1'h1;
+      6'b011000:
+        casez_tmp_7 = 1'h1;
+      6'b011001:
+        casez_tmp_7 = 1'h1;
+      6'b011010:
+        casez_tmp_7 = 1'h1;
+      6'b011011:
+        casez_tmp_7 = 1'h1;
+      6'b011100:
+        casez_tmp_7 = 1'h1;
+      6'b011101:
+        casez_tmp_7 = 1'h1;
+      6'b011110:
+        casez_tmp_7 = 1'h1;
+      6'b011111:
+        casez_tmp_7 = 1'h1;
+      6'b100000:
+        casez_tmp_7 = 1'h1;
+      6'b100001:
+        casez_tmp_7 = 1'h1;
+      6'b100010:
+        casez_tmp_7 = 1'h1;
+      6'b100011:
+        casez_tmp_7 = 1'h1;
+      6'b100100:
+        casez_tmp_7 = 1'h1;
+      6'b100101:
+        casez_tmp_7 = 1'h1;
+      6'b100110:
+        casez_tmp_7 = 1'h1;
+      6'b100111:
+        casez_tmp_7 = 1'h1;
+      6'b101000:
+        casez_tmp_7 = 1'h1;
+      6'b101001:
+        casez_tmp_7 = 1'h1;
+      6'b101010:
+        casez_tmp_7 = 1'h1;
+      6'b101011:
+        casez_tmp_7 = 1'h1;
+      6'b101100:
+        casez_tmp_7 = 1'h1;
+      6'b101101:
+        casez_tmp_7 = 1'h1;
+      6'b101110:
+        casez_tmp_7 = 1'h1;
+      6'b101111:
+        casez_tmp_7 = 1'h1;
+      6'b110000:
+        casez_tmp_7 = 1'h1;
+      6'b110001:
+        casez_tmp_7 = 1'h1;
+      6'b110010:
+        casez_tmp_7 = 1'h1;
+      6'b110011:
+        casez_tmp_7 = 1'h1;
+      6'b110100:
+        casez_tmp_7 = 1'h1;
+      6'b110101:
+        casez_tmp_7 = 1'h1;
+      6'b110110:
+        casez_tmp_7 = 1'h1;
+      6'b110111:
+        casez_tmp_7 = 1'h1;
+      6'b111000:
+        casez_tmp_7 = 1'h1;
+      6'b111001:
+        casez_tmp_7 = 1'h1;
+      6'b111010:
+        casez_tmp_7 = 1'h1;
+      6'b111011:
+        casez_tmp_7 = 1'h1;
+      6'b111100:
+        casez_tmp_7 = 1'h1;
+      6'b111101:
+        casez_tmp_7 = 1'h1;
+      6'b111110:
+        casez_tmp_7 = 1'h1;
       default:
-        casez_tmp_7 = io_recs_0_pair;
+        casez_tmp_7 = 1'h1;
     endcase
   end // always @(*)
-  wire        emit =
-    _q_io_enq_ready
-    & (total > 4'h6 | io_dense & (|io_nRecs)
-       & ((&(casez_tmp_7[3:0])) | casez_tmp_7 == io_numPairs - 24'h1) & (|total)
-       | io_flush & (|total));
-  wire        _q_io_enq_valid_T_1 = emit & _GEN < io_capacity;
-  reg  [71:0] casez_tmp_8;
+  wire        _slots_T_14 =
+    casez_tmp_7
+    & ((|fill) ? _GEN < capLess_1 : io_dense ? _GEN_0 < capLess_1 : _GEN_1 < capLess_1);
+  reg         casez_tmp_8;
   always @(*) begin
-    casez (3'h7 - fill)
+    casez (fill)
       3'b000:
-        casez_tmp_8 = io_recs_0_bits;
+        casez_tmp_8 = 1'h0;
       3'b001:
-        casez_tmp_8 = io_recs_1_bits;
+        casez_tmp_8 = 1'h0;
       3'b010:
-        casez_tmp_8 = io_recs_2_bits;
+        casez_tmp_8 = 1'h0;
       3'b011:
-        casez_tmp_8 = io_recs_3_bits;
+        casez_tmp_8 = 1'h1;
       3'b100:
-        casez_tmp_8 = io_recs_4_bits;
+        casez_tmp_8 = 1'h1;
       3'b101:
-        casez_tmp_8 = io_recs_5_bits;
+        casez_tmp_8 = 1'h1;
       3'b110:
-        casez_tmp_8 = io_recs_6_bits;
+        casez_tmp_8 = 1'h1;
       default:
-        casez_tmp_8 = io_recs_0_bits;
+        casez_tmp_8 = 1'h1;
     endcase
   end // always @(*)
-  reg  [71:0] casez_tmp_9;
+  reg  [2:0]  casez_tmp_9;
   always @(*) begin
-    casez (3'h0 - fill)
+    casez (fill)
       3'b000:
-        casez_tmp_9 = io_recs_0_bits;
+        casez_tmp_9 = 3'h2;
       3'b001:
-        casez_tmp_9 = io_recs_1_bits;
+        casez_tmp_9 = 3'h1;
       3'b010:
-        casez_tmp_9 = io_recs_2_bits;
+        casez_tmp_9 = 3'h0;
       3'b011:
-        casez_tmp_9 = io_recs_3_bits;
+        casez_tmp_9 = 3'h6;
       3'b100:
-        casez_tmp_9 = io_recs_4_bits;
+        casez_tmp_9 = 3'h5;
       3'b101:
-        casez_tmp_9 = io_recs_5_bits;
+        casez_tmp_9 = 3'h4;
       3'b110:
-        casez_tmp_9 = io_recs_6_bits;
+        casez_tmp_9 = 3'h3;
       default:
-        casez_tmp_9 = io_recs_0_bits;
+        casez_tmp_9 = 3'h2;
     endcase
   end // always @(*)
   reg  [71:0] casez_tmp_10;
   always @(*) begin
-    casez (3'h1 - fill)
+    casez (casez_tmp_9)
       3'b000:
         casez_tmp_10 = io_recs_0_bits;
       3'b001:
@@ -51384,80 +73418,1099 @@ module ContactPacker_w32_derivedmasked_r7_default(
         casez_tmp_10 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [71:0] casez_tmp_11;
+  reg         casez_tmp_11;
+  always @(*) begin
+    casez (_slots_inLine_T_6)
+      6'b000000:
+        casez_tmp_11 = 1'h0;
+      6'b000001:
+        casez_tmp_11 = 1'h0;
+      6'b000010:
+        casez_tmp_11 = 1'h0;
+      6'b000011:
+        casez_tmp_11 = 1'h1;
+      6'b000100:
+        casez_tmp_11 = 1'h1;
+      6'b000101:
+        casez_tmp_11 = 1'h1;
+      6'b000110:
+        casez_tmp_11 = 1'h1;
+      6'b000111:
+        casez_tmp_11 = 1'h1;
+      6'b001000:
+        casez_tmp_11 = 1'h0;
+      6'b001001:
+        casez_tmp_11 = 1'h0;
+      6'b001010:
+        casez_tmp_11 = 1'h1;
+      6'b001011:
+        casez_tmp_11 = 1'h1;
+      6'b001100:
+        casez_tmp_11 = 1'h1;
+      6'b001101:
+        casez_tmp_11 = 1'h1;
+      6'b001110:
+        casez_tmp_11 = 1'h1;
+      6'b001111:
+        casez_tmp_11 = 1'h1;
+      6'b010000:
+        casez_tmp_11 = 1'h0;
+      6'b010001:
+        casez_tmp_11 = 1'h1;
+      6'b010010:
+        casez_tmp_11 = 1'h1;
+      6'b010011:
+        casez_tmp_11 = 1'h1;
+      6'b010100:
+        casez_tmp_11 = 1'h1;
+      6'b010101:
+        casez_tmp_11 = 1'h1;
+      6'b010110:
+        casez_tmp_11 = 1'h1;
+      6'b010111:
+        casez_tmp_11 = 1'h1;
+      6'b011000:
+        casez_tmp_11 = 1'h1;
+      6'b011001:
+        casez_tmp_11 = 1'h1;
+      6'b011010:
+        casez_tmp_11 = 1'h1;
+      6'b011011:
+        casez_tmp_11 = 1'h1;
+      6'b011100:
+        casez_tmp_11 = 1'h1;
+      6'b011101:
+        casez_tmp_11 = 1'h1;
+      6'b011110:
+        casez_tmp_11 = 1'h1;
+      6'b011111:
+        casez_tmp_11 = 1'h1;
+      6'b100000:
+        casez_tmp_11 = 1'h1;
+      6'b100001:
+        casez_tmp_11 = 1'h1;
+      6'b100010:
+        casez_tmp_11 = 1'h1;
+      6'b100011:
+        casez_tmp_11 = 1'h1;
+      6'b100100:
+        casez_tmp_11 = 1'h1;
+      6'b100101:
+        casez_tmp_11 = 1'h1;
+      6'b100110:
+        casez_tmp_11 = 1'h1;
+      6'b100111:
+        casez_tmp_11 = 1'h1;
+      6'b101000:
+        casez_tmp_11 = 1'h1;
+      6'b101001:
+        casez_tmp_11 = 1'h1;
+      6'b101010:
+        casez_tmp_11 = 1'h1;
+      6'b101011:
+        casez_tmp_11 = 1'h1;
+      6'b101100:
+        casez_tmp_11 = 1'h1;
+      6'b101101:
+        casez_tmp_11 = 1'h1;
+      6'b101110:
+        casez_tmp_11 = 1'h1;
+      6'b101111:
+        casez_tmp_11 = 1'h1;
+      6'b110000:
+        casez_tmp_11 = 1'h1;
+      6'b110001:
+        casez_tmp_11 = 1'h1;
+      6'b110010:
+        casez_tmp_11 = 1'h1;
+      6'b110011:
+        casez_tmp_11 = 1'h1;
+      6'b110100:
+        casez_tmp_11 = 1'h1;
+      6'b110101:
+        casez_tmp_11 = 1'h1;
+      6'b110110:
+        casez_tmp_11 = 1'h1;
+      6'b110111:
+        casez_tmp_11 = 1'h1;
+      6'b111000:
+        casez_tmp_11 = 1'h1;
+      6'b111001:
+        casez_tmp_11 = 1'h1;
+      6'b111010:
+        casez_tmp_11 = 1'h1;
+      6'b111011:
+        casez_tmp_11 = 1'h1;
+      6'b111100:
+        casez_tmp_11 = 1'h1;
+      6'b111101:
+        casez_tmp_11 = 1'h1;
+      6'b111110:
+        casez_tmp_11 = 1'h1;
+      default:
+        casez_tmp_11 = 1'h1;
+    endcase
+  end // always @(*)
+  wire        _slots_T_22 =
+    casez_tmp_11
+    & ((|fill) ? _GEN < capLess_2 : io_dense ? _GEN_0 < capLess_2 : _GEN_1 < capLess_2);
+  reg         casez_tmp_12;
+  always @(*) begin
+    casez (fill)
+      3'b000:
+        casez_tmp_12 = 1'h0;
+      3'b001:
+        casez_tmp_12 = 1'h0;
+      3'b010:
+        casez_tmp_12 = 1'h0;
+      3'b011:
+        casez_tmp_12 = 1'h0;
+      3'b100:
+        casez_tmp_12 = 1'h1;
+      3'b101:
+        casez_tmp_12 = 1'h1;
+      3'b110:
+        casez_tmp_12 = 1'h1;
+      default:
+        casez_tmp_12 = 1'h1;
+    endcase
+  end // always @(*)
+  reg  [2:0]  casez_tmp_13;
+  always @(*) begin
+    casez (fill)
+      3'b000:
+        casez_tmp_13 = 3'h3;
+      3'b001:
+        casez_tmp_13 = 3'h2;
+      3'b010:
+        casez_tmp_13 = 3'h1;
+      3'b011:
+        casez_tmp_13 = 3'h0;
+      3'b100:
+        casez_tmp_13 = 3'h6;
+      3'b101:
+        casez_tmp_13 = 3'h5;
+      3'b110:
+        casez_tmp_13 = 3'h4;
+      default:
+        casez_tmp_13 = 3'h3;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_14;
+  always @(*) begin
+    casez (casez_tmp_13)
+      3'b000:
+        casez_tmp_14 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_14 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_14 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_14 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_14 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_14 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_14 = io_recs_6_bits;
+      default:
+        casez_tmp_14 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_15;
+  always @(*) begin
+    casez (_slots_inLine_T_6)
+      6'b000000:
+        casez_tmp_15 = 1'h0;
+      6'b000001:
+        casez_tmp_15 = 1'h0;
+      6'b000010:
+        casez_tmp_15 = 1'h0;
+      6'b000011:
+        casez_tmp_15 = 1'h0;
+      6'b000100:
+        casez_tmp_15 = 1'h1;
+      6'b000101:
+        casez_tmp_15 = 1'h1;
+      6'b000110:
+        casez_tmp_15 = 1'h1;
+      6'b000111:
+        casez_tmp_15 = 1'h1;
+      6'b001000:
+        casez_tmp_15 = 1'h0;
+      6'b001001:
+        casez_tmp_15 = 1'h0;
+      6'b001010:
+        casez_tmp_15 = 1'h0;
+      6'b001011:
+        casez_tmp_15 = 1'h1;
+      6'b001100:
+        casez_tmp_15 = 1'h1;
+      6'b001101:
+        casez_tmp_15 = 1'h1;
+      6'b001110:
+        casez_tmp_15 = 1'h1;
+      6'b001111:
+        casez_tmp_15 = 1'h1;
+      6'b010000:
+        casez_tmp_15 = 1'h0;
+      6'b010001:
+        casez_tmp_15 = 1'h0;
+      6'b010010:
+        casez_tmp_15 = 1'h1;
+      6'b010011:
+        casez_tmp_15 = 1'h1;
+      6'b010100:
+        casez_tmp_15 = 1'h1;
+      6'b010101:
+        casez_tmp_15 = 1'h1;
+      6'b010110:
+        casez_tmp_15 = 1'h1;
+      6'b010111:
+        casez_tmp_15 = 1'h1;
+      6'b011000:
+        casez_tmp_15 = 1'h0;
+      6'b011001:
+        casez_tmp_15 = 1'h1;
+      6'b011010:
+        casez_tmp_15 = 1'h1;
+      6'b011011:
+        casez_tmp_15 = 1'h1;
+      6'b011100:
+        casez_tmp_15 = 1'h1;
+      6'b011101:
+        casez_tmp_15 = 1'h1;
+      6'b011110:
+        casez_tmp_15 = 1'h1;
+      6'b011111:
+        casez_tmp_15 = 1'h1;
+      6'b100000:
+        casez_tmp_15 = 1'h1;
+      6'b100001:
+        casez_tmp_15 = 1'h1;
+      6'b100010:
+        casez_tmp_15 = 1'h1;
+      6'b100011:
+        casez_tmp_15 = 1'h1;
+      6'b100100:
+        casez_tmp_15 = 1'h1;
+      6'b100101:
+        casez_tmp_15 = 1'h1;
+      6'b100110:
+        casez_tmp_15 = 1'h1;
+      6'b100111:
+        casez_tmp_15 = 1'h1;
+      6'b101000:
+        casez_tmp_15 = 1'h1;
+      6'b101001:
+        casez_tmp_15 = 1'h1;
+      6'b101010:
+        casez_tmp_15 = 1'h1;
+      6'b101011:
+        casez_tmp_15 = 1'h1;
+      6'b101100:
+        casez_tmp_15 = 1'h1;
+      6'b101101:
+        casez_tmp_15 = 1'h1;
+      6'b101110:
+        casez_tmp_15 = 1'h1;
+      6'b101111:
+        casez_tmp_15 = 1'h1;
+      6'b110000:
+        casez_tmp_15 = 1'h1;
+      6'b110001:
+        casez_tmp_15 = 1'h1;
+      6'b110010:
+        casez_tmp_15 = 1'h1;
+      6'b110011:
+        casez_tmp_15 = 1'h1;
+      6'b110100:
+        casez_tmp_15 = 1'h1;
+      6'b110101:
+        casez_tmp_15 = 1'h1;
+      6'b110110:
+        casez_tmp_15 = 1'h1;
+      6'b110111:
+        casez_tmp_15 = 1'h1;
+      6'b111000:
+        casez_tmp_15 = 1'h1;
+      6'b111001:
+        casez_tmp_15 = 1'h1;
+      6'b111010:
+        casez_tmp_15 = 1'h1;
+      6'b111011:
+        casez_tmp_15 = 1'h1;
+      6'b111100:
+        casez_tmp_15 = 1'h1;
+      6'b111101:
+        casez_tmp_15 = 1'h1;
+      6'b111110:
+        casez_tmp_15 = 1'h1;
+      default:
+        casez_tmp_15 = 1'h1;
+    endcase
+  end // always @(*)
+  wire        _slots_T_30 =
+    casez_tmp_15
+    & ((|fill) ? _GEN < capLess_3 : io_dense ? _GEN_0 < capLess_3 : _GEN_1 < capLess_3);
+  reg         casez_tmp_16;
+  always @(*) begin
+    casez (fill)
+      3'b000:
+        casez_tmp_16 = 1'h0;
+      3'b001:
+        casez_tmp_16 = 1'h0;
+      3'b010:
+        casez_tmp_16 = 1'h0;
+      3'b011:
+        casez_tmp_16 = 1'h0;
+      3'b100:
+        casez_tmp_16 = 1'h0;
+      3'b101:
+        casez_tmp_16 = 1'h1;
+      3'b110:
+        casez_tmp_16 = 1'h1;
+      default:
+        casez_tmp_16 = 1'h1;
+    endcase
+  end // always @(*)
+  reg  [2:0]  casez_tmp_17;
+  always @(*) begin
+    casez (fill)
+      3'b000:
+        casez_tmp_17 = 3'h4;
+      3'b001:
+        casez_tmp_17 = 3'h3;
+      3'b010:
+        casez_tmp_17 = 3'h2;
+      3'b011:
+        casez_tmp_17 = 3'h1;
+      3'b100:
+        casez_tmp_17 = 3'h0;
+      3'b101:
+        casez_tmp_17 = 3'h6;
+      3'b110:
+        casez_tmp_17 = 3'h5;
+      default:
+        casez_tmp_17 = 3'h4;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_18;
+  always @(*) begin
+    casez (casez_tmp_17)
+      3'b000:
+        casez_tmp_18 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_18 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_18 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_18 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_18 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_18 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_18 = io_recs_6_bits;
+      default:
+        casez_tmp_18 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_19;
+  always @(*) begin
+    casez (_slots_inLine_T_6)
+      6'b000000:
+        casez_tmp_19 = 1'h0;
+      6'b000001:
+        casez_tmp_19 = 1'h0;
+      6'b000010:
+        casez_tmp_19 = 1'h0;
+      6'b000011:
+        casez_tmp_19 = 1'h0;
+      6'b000100:
+        casez_tmp_19 = 1'h0;
+      6'b000101:
+        casez_tmp_19 = 1'h1;
+      6'b000110:
+        casez_tmp_19 = 1'h1;
+      6'b000111:
+        casez_tmp_19 = 1'h1;
+      6'b001000:
+        casez_tmp_19 = 1'h0;
+      6'b001001:
+        casez_tmp_19 = 1'h0;
+      6'b001010:
+        casez_tmp_19 = 1'h0;
+      6'b001011:
+        casez_tmp_19 = 1'h0;
+      6'b001100:
+        casez_tmp_19 = 1'h1;
+      6'b001101:
+        casez_tmp_19 = 1'h1;
+      6'b001110:
+        casez_tmp_19 = 1'h1;
+      6'b001111:
+        casez_tmp_19 = 1'h1;
+      6'b010000:
+        casez_tmp_19 = 1'h0;
+      6'b010001:
+        casez_tmp_19 = 1'h0;
+      6'b010010:
+        casez_tmp_19 = 1'h0;
+      6'b010011:
+        casez_tmp_19 = 1'h1;
+      6'b010100:
+        casez_tmp_19 = 1'h1;
+      6'b010101:
+        casez_tmp_19 = 1'h1;
+      6'b010110:
+        casez_tmp_19 = 1'h1;
+      6'b010111:
+        casez_tmp_19 = 1'h1;
+      6'b011000:
+        casez_tmp_19 = 1'h0;
+      6'b011001:
+        casez_tmp_19 = 1'h0;
+      6'b011010:
+        casez_tmp_19 = 1'h1;
+      6'b011011:
+        casez_tmp_19 = 1'h1;
+      6'b011100:
+        casez_tmp_19 = 1'h1;
+      6'b011101:
+        casez_tmp_19 = 1'h1;
+      6'b011110:
+        casez_tmp_19 = 1'h1;
+      6'b011111:
+        casez_tmp_19 = 1'h1;
+      6'b100000:
+        casez_tmp_19 = 1'h0;
+      6'b100001:
+        casez_tmp_19 = 1'h1;
+      6'b100010:
+        casez_tmp_19 = 1'h1;
+      6'b100011:
+        casez_tmp_19 = 1'h1;
+      6'b100100:
+        casez_tmp_19 = 1'h1;
+      6'b100101:
+        casez_tmp_19 = 1'h1;
+      6'b100110:
+        casez_tmp_19 = 1'h1;
+      6'b100111:
+        casez_tmp_19 = 1'h1;
+      6'b101000:
+        casez_tmp_19 = 1'h1;
+      6'b101001:
+        casez_tmp_19 = 1'h1;
+      6'b101010:
+        casez_tmp_19 = 1'h1;
+      6'b101011:
+        casez_tmp_19 = 1'h1;
+      6'b101100:
+        casez_tmp_19 = 1'h1;
+      6'b101101:
+        casez_tmp_19 = 1'h1;
+      6'b101110:
+        casez_tmp_19 = 1'h1;
+      6'b101111:
+        casez_tmp_19 = 1'h1;
+      6'b110000:
+        casez_tmp_19 = 1'h1;
+      6'b110001:
+        casez_tmp_19 = 1'h1;
+      6'b110010:
+        casez_tmp_19 = 1'h1;
+      6'b110011:
+        casez_tmp_19 = 1'h1;
+      6'b110100:
+        casez_tmp_19 = 1'h1;
+      6'b110101:
+        casez_tmp_19 = 1'h1;
+      6'b110110:
+        casez_tmp_19 = 1'h1;
+      6'b110111:
+        casez_tmp_19 = 1'h1;
+      6'b111000:
+        casez_tmp_19 = 1'h1;
+      6'b111001:
+        casez_tmp_19 = 1'h1;
+      6'b111010:
+        casez_tmp_19 = 1'h1;
+      6'b111011:
+        casez_tmp_19 = 1'h1;
+      6'b111100:
+        casez_tmp_19 = 1'h1;
+      6'b111101:
+        casez_tmp_19 = 1'h1;
+      6'b111110:
+        casez_tmp_19 = 1'h1;
+      default:
+        casez_tmp_19 = 1'h1;
+    endcase
+  end // always @(*)
+  wire        _slots_T_38 =
+    casez_tmp_19
+    & ((|fill) ? _GEN < capLess_4 : io_dense ? _GEN_0 < capLess_4 : _GEN_1 < capLess_4);
+  reg         casez_tmp_20;
+  always @(*) begin
+    casez (fill)
+      3'b000:
+        casez_tmp_20 = 1'h0;
+      3'b001:
+        casez_tmp_20 = 1'h0;
+      3'b010:
+        casez_tmp_20 = 1'h0;
+      3'b011:
+        casez_tmp_20 = 1'h0;
+      3'b100:
+        casez_tmp_20 = 1'h0;
+      3'b101:
+        casez_tmp_20 = 1'h0;
+      3'b110:
+        casez_tmp_20 = 1'h1;
+      default:
+        casez_tmp_20 = 1'h1;
+    endcase
+  end // always @(*)
+  reg  [2:0]  casez_tmp_21;
+  always @(*) begin
+    casez (fill)
+      3'b000:
+        casez_tmp_21 = 3'h5;
+      3'b001:
+        casez_tmp_21 = 3'h4;
+      3'b010:
+        casez_tmp_21 = 3'h3;
+      3'b011:
+        casez_tmp_21 = 3'h2;
+      3'b100:
+        casez_tmp_21 = 3'h1;
+      3'b101:
+        casez_tmp_21 = 3'h0;
+      3'b110:
+        casez_tmp_21 = 3'h6;
+      default:
+        casez_tmp_21 = 3'h5;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_22;
+  always @(*) begin
+    casez (casez_tmp_21)
+      3'b000:
+        casez_tmp_22 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_22 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_22 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_22 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_22 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_22 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_22 = io_recs_6_bits;
+      default:
+        casez_tmp_22 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_23;
+  always @(*) begin
+    casez (_slots_inLine_T_6)
+      6'b000000:
+        casez_tmp_23 = 1'h0;
+      6'b000001:
+        casez_tmp_23 = 1'h0;
+      6'b000010:
+        casez_tmp_23 = 1'h0;
+      6'b000011:
+        casez_tmp_23 = 1'h0;
+      6'b000100:
+        casez_tmp_23 = 1'h0;
+      6'b000101:
+        casez_tmp_23 = 1'h0;
+      6'b000110:
+        casez_tmp_23 = 1'h1;
+      6'b000111:
+        casez_tmp_23 = 1'h1;
+      6'b001000:
+        casez_tmp_23 = 1'h0;
+      6'b001001:
+        casez_tmp_23 = 1'h0;
+      6'b001010:
+        casez_tmp_23 = 1'h0;
+      6'b001011:
+        casez_tmp_23 = 1'h0;
+      6'b001100:
+        casez_tmp_23 = 1'h0;
+      6'b001101:
+        casez_tmp_23 = 1'h1;
+      6'b001110:
+        casez_tmp_23 = 1'h1;
+      6'b001111:
+        casez_tmp_23 = 1'h1;
+      6'b010000:
+        casez_tmp_23 = 1'h0;
+      6'b010001:
+        casez_tmp_23 = 1'h0;
+      6'b010010:
+        casez_tmp_23 = 1'h0;
+      6'b010011:
+        casez_tmp_23 = 1'h0;
+      6'b010100:
+        casez_tmp_23 = 1'h1;
+      6'b010101:
+        casez_tmp_23 = 1'h1;
+      6'b010110:
+        casez_tmp_23 = 1'h1;
+      6'b010111:
+        casez_tmp_23 = 1'h1;
+      6'b011000:
+        casez_tmp_23 = 1'h0;
+      6'b011001:
+        casez_tmp_23 = 1'h0;
+      6'b011010:
+        casez_tmp_23 = 1'h0;
+      6'b011011:
+        casez_tmp_23 = 1'h1;
+      6'b011100:
+        casez_tmp_23 = 1'h1;
+      6'b011101:
+        casez_tmp_23 = 1'h1;
+      6'b011110:
+        casez_tmp_23 = 1'h1;
+      6'b011111:
+        casez_tmp_23 = 1'h1;
+      6'b100000:
+        casez_tmp_23 = 1'h0;
+      6'b100001:
+        casez_tmp_23 = 1'h0;
+      6'b100010:
+        casez_tmp_23 = 1'h1;
+      6'b100011:
+        casez_tmp_23 = 1'h1;
+      6'b100100:
+        casez_tmp_23 = 1'h1;
+      6'b100101:
+        casez_tmp_23 = 1'h1;
+      6'b100110:
+        casez_tmp_23 = 1'h1;
+      6'b100111:
+        casez_tmp_23 = 1'h1;
+      6'b101000:
+        casez_tmp_23 = 1'h0;
+      6'b101001:
+        casez_tmp_23 = 1'h1;
+      6'b101010:
+        casez_tmp_23 = 1'h1;
+      6'b101011:
+        casez_tmp_23 = 1'h1;
+      6'b101100:
+        casez_tmp_23 = 1'h1;
+      6'b101101:
+        casez_tmp_23 = 1'h1;
+      6'b101110:
+        casez_tmp_23 = 1'h1;
+      6'b101111:
+        casez_tmp_23 = 1'h1;
+      6'b110000:
+        casez_tmp_23 = 1'h1;
+      6'b110001:
+        casez_tmp_23 = 1'h1;
+      6'b110010:
+        casez_tmp_23 = 1'h1;
+      6'b110011:
+        casez_tmp_23 = 1'h1;
+      6'b110100:
+        casez_tmp_23 = 1'h1;
+      6'b110101:
+        casez_tmp_23 = 1'h1;
+      6'b110110:
+        casez_tmp_23 = 1'h1;
+      6'b110111:
+        casez_tmp_23 = 1'h1;
+      6'b111000:
+        casez_tmp_23 = 1'h1;
+      6'b111001:
+        casez_tmp_23 = 1'h1;
+      6'b111010:
+        casez_tmp_23 = 1'h1;
+      6'b111011:
+        casez_tmp_23 = 1'h1;
+      6'b111100:
+        casez_tmp_23 = 1'h1;
+      6'b111101:
+        casez_tmp_23 = 1'h1;
+      6'b111110:
+        casez_tmp_23 = 1'h1;
+      default:
+        casez_tmp_23 = 1'h1;
+    endcase
+  end // always @(*)
+  wire        _slots_T_46 =
+    casez_tmp_23
+    & ((|fill) ? _GEN < capLess_5 : io_dense ? _GEN_0 < capLess_5 : _GEN_1 < capLess_5);
+  reg         casez_tmp_24;
+  always @(*) begin
+    casez (fill)
+      3'b000:
+        casez_tmp_24 = 1'h0;
+      3'b001:
+        casez_tmp_24 = 1'h0;
+      3'b010:
+        casez_tmp_24 = 1'h0;
+      3'b011:
+        casez_tmp_24 = 1'h0;
+      3'b100:
+        casez_tmp_24 = 1'h0;
+      3'b101:
+        casez_tmp_24 = 1'h0;
+      3'b110:
+        casez_tmp_24 = 1'h0;
+      default:
+        casez_tmp_24 = 1'h1;
+    endcase
+  end // always @(*)
+  reg  [2:0]  casez_tmp_25;
+  always @(*) begin
+    casez (fill)
+      3'b000:
+        casez_tmp_25 = 3'h6;
+      3'b001:
+        casez_tmp_25 = 3'h5;
+      3'b010:
+        casez_tmp_25 = 3'h4;
+      3'b011:
+        casez_tmp_25 = 3'h3;
+      3'b100:
+        casez_tmp_25 = 3'h2;
+      3'b101:
+        casez_tmp_25 = 3'h1;
+      3'b110:
+        casez_tmp_25 = 3'h0;
+      default:
+        casez_tmp_25 = 3'h6;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_26;
+  always @(*) begin
+    casez (casez_tmp_25)
+      3'b000:
+        casez_tmp_26 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_26 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_26 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_26 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_26 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_26 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_26 = io_recs_6_bits;
+      default:
+        casez_tmp_26 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg         casez_tmp_27;
+  always @(*) begin
+    casez (_slots_inLine_T_6)
+      6'b000000:
+        casez_tmp_27 = 1'h0;
+      6'b000001:
+        casez_tmp_27 = 1'h0;
+      6'b000010:
+        casez_tmp_27 = 1'h0;
+      6'b000011:
+        casez_tmp_27 = 1'h0;
+      6'b000100:
+        casez_tmp_27 = 1'h0;
+      6'b000101:
+        casez_tmp_27 = 1'h0;
+      6'b000110:
+        casez_tmp_27 = 1'h0;
+      6'b000111:
+        casez_tmp_27 = 1'h1;
+      6'b001000:
+        casez_tmp_27 = 1'h0;
+      6'b001001:
+        casez_tmp_27 = 1'h0;
+      6'b001010:
+        casez_tmp_27 = 1'h0;
+      6'b001011:
+        casez_tmp_27 = 1'h0;
+      6'b001100:
+        casez_tmp_27 = 1'h0;
+      6'b001101:
+        casez_tmp_27 = 1'h0;
+      6'b001110:
+        casez_tmp_27 = 1'h1;
+      6'b001111:
+        casez_tmp_27 = 1'h1;
+      6'b010000:
+        casez_tmp_27 = 1'h0;
+      6'b010001:
+        casez_tmp_27 = 1'h0;
+      6'b010010:
+        casez_tmp_27 = 1'h0;
+      6'b010011:
+        casez_tmp_27 = 1'h0;
+      6'b010100:
+        casez_tmp_27 = 1'h0;
+      6'b010101:
+        casez_tmp_27 = 1'h1;
+      6'b010110:
+        casez_tmp_27 = 1'h1;
+      6'b010111:
+        casez_tmp_27 = 1'h1;
+      6'b011000:
+        casez_tmp_27 = 1'h0;
+      6'b011001:
+        casez_tmp_27 = 1'h0;
+      6'b011010:
+        casez_tmp_27 = 1'h0;
+      6'b011011:
+        casez_tmp_27 = 1'h0;
+      6'b011100:
+        casez_tmp_27 = 1'h1;
+      6'b011101:
+        casez_tmp_27 = 1'h1;
+      6'b011110:
+        casez_tmp_27 = 1'h1;
+      6'b011111:
+        casez_tmp_27 = 1'h1;
+      6'b100000:
+        casez_tmp_27 = 1'h0;
+      6'b100001:
+        casez_tmp_27 = 1'h0;
+      6'b100010:
+        casez_tmp_27 = 1'h0;
+      6'b100011:
+        casez_tmp_27 = 1'h1;
+      6'b100100:
+        casez_tmp_27 = 1'h1;
+      6'b100101:
+        casez_tmp_27 = 1'h1;
+      6'b100110:
+        casez_tmp_27 = 1'h1;
+      6'b100111:
+        casez_tmp_27 = 1'h1;
+      6'b101000:
+        casez_tmp_27 = 1'h0;
+      6'b101001:
+        casez_tmp_27 = 1'h0;
+      6'b101010:
+        casez_tmp_27 = 1'h1;
+      6'b101011:
+        casez_tmp_27 = 1'h1;
+      6'b101100:
+        casez_tmp_27 = 1'h1;
+      6'b101101:
+        casez_tmp_27 = 1'h1;
+      6'b101110:
+        casez_tmp_27 = 1'h1;
+      6'b101111:
+        casez_tmp_27 = 1'h1;
+      6'b110000:
+        casez_tmp_27 = 1'h0;
+      6'b110001:
+        casez_tmp_27 = 1'h1;
+      6'b110010:
+        casez_tmp_27 = 1'h1;
+      6'b110011:
+        casez_tmp_27 = 1'h1;
+      6'b110100:
+        casez_tmp_27 = 1'h1;
+      6'b110101:
+        casez_tmp_27 = 1'h1;
+      6'b110110:
+        casez_tmp_27 = 1'h1;
+      6'b110111:
+        casez_tmp_27 = 1'h1;
+      6'b111000:
+        casez_tmp_27 = 1'h1;
+      6'b111001:
+        casez_tmp_27 = 1'h1;
+      6'b111010:
+        casez_tmp_27 = 1'h1;
+      6'b111011:
+        casez_tmp_27 = 1'h1;
+      6'b111100:
+        casez_tmp_27 = 1'h1;
+      6'b111101:
+        casez_tmp_27 = 1'h1;
+      6'b111110:
+        casez_tmp_27 = 1'h1;
+      default:
+        casez_tmp_27 = 1'h1;
+    endcase
+  end // always @(*)
+  reg  [23:0] casez_tmp_28;
+  always @(*) begin
+    casez (io_nRecs - 3'h1)
+      3'b000:
+        casez_tmp_28 = io_recs_0_pair;
+      3'b001:
+        casez_tmp_28 = io_recs_1_pair;
+      3'b010:
+        casez_tmp_28 = io_recs_2_pair;
+      3'b011:
+        casez_tmp_28 = io_recs_3_pair;
+      3'b100:
+        casez_tmp_28 = io_recs_4_pair;
+      3'b101:
+        casez_tmp_28 = io_recs_5_pair;
+      3'b110:
+        casez_tmp_28 = io_recs_6_pair;
+      default:
+        casez_tmp_28 = io_recs_0_pair;
+    endcase
+  end // always @(*)
+  wire        emit =
+    _q_io_enq_ready
+    & (total > 4'h6 | io_dense & (|io_nRecs)
+       & ((&(casez_tmp_28[3:0])) | casez_tmp_28 == io_numPairs - 24'h1) & (|total)
+       | io_flush & (|total));
+  wire        _q_io_enq_valid_T_1 = emit & {1'h0, rnOf} < capLess_0;
+  reg  [71:0] casez_tmp_29;
+  always @(*) begin
+    casez (3'h7 - fill)
+      3'b000:
+        casez_tmp_29 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_29 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_29 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_29 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_29 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_29 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_29 = io_recs_6_bits;
+      default:
+        casez_tmp_29 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_30;
+  always @(*) begin
+    casez (3'h0 - fill)
+      3'b000:
+        casez_tmp_30 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_30 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_30 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_30 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_30 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_30 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_30 = io_recs_6_bits;
+      default:
+        casez_tmp_30 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_31;
+  always @(*) begin
+    casez (3'h1 - fill)
+      3'b000:
+        casez_tmp_31 = io_recs_0_bits;
+      3'b001:
+        casez_tmp_31 = io_recs_1_bits;
+      3'b010:
+        casez_tmp_31 = io_recs_2_bits;
+      3'b011:
+        casez_tmp_31 = io_recs_3_bits;
+      3'b100:
+        casez_tmp_31 = io_recs_4_bits;
+      3'b101:
+        casez_tmp_31 = io_recs_5_bits;
+      3'b110:
+        casez_tmp_31 = io_recs_6_bits;
+      default:
+        casez_tmp_31 = io_recs_0_bits;
+    endcase
+  end // always @(*)
+  reg  [71:0] casez_tmp_32;
   always @(*) begin
     casez (3'h2 - fill)
       3'b000:
-        casez_tmp_11 = io_recs_0_bits;
+        casez_tmp_32 = io_recs_0_bits;
       3'b001:
-        casez_tmp_11 = io_recs_1_bits;
+        casez_tmp_32 = io_recs_1_bits;
       3'b010:
-        casez_tmp_11 = io_recs_2_bits;
+        casez_tmp_32 = io_recs_2_bits;
       3'b011:
-        casez_tmp_11 = io_recs_3_bits;
+        casez_tmp_32 = io_recs_3_bits;
       3'b100:
-        casez_tmp_11 = io_recs_4_bits;
+        casez_tmp_32 = io_recs_4_bits;
       3'b101:
-        casez_tmp_11 = io_recs_5_bits;
+        casez_tmp_32 = io_recs_5_bits;
       3'b110:
-        casez_tmp_11 = io_recs_6_bits;
+        casez_tmp_32 = io_recs_6_bits;
       default:
-        casez_tmp_11 = io_recs_0_bits;
+        casez_tmp_32 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [71:0] casez_tmp_12;
+  reg  [71:0] casez_tmp_33;
   always @(*) begin
     casez (3'h3 - fill)
       3'b000:
-        casez_tmp_12 = io_recs_0_bits;
+        casez_tmp_33 = io_recs_0_bits;
       3'b001:
-        casez_tmp_12 = io_recs_1_bits;
+        casez_tmp_33 = io_recs_1_bits;
       3'b010:
-        casez_tmp_12 = io_recs_2_bits;
+        casez_tmp_33 = io_recs_2_bits;
       3'b011:
-        casez_tmp_12 = io_recs_3_bits;
+        casez_tmp_33 = io_recs_3_bits;
       3'b100:
-        casez_tmp_12 = io_recs_4_bits;
+        casez_tmp_33 = io_recs_4_bits;
       3'b101:
-        casez_tmp_12 = io_recs_5_bits;
+        casez_tmp_33 = io_recs_5_bits;
       3'b110:
-        casez_tmp_12 = io_recs_6_bits;
+        casez_tmp_33 = io_recs_6_bits;
       default:
-        casez_tmp_12 = io_recs_0_bits;
+        casez_tmp_33 = io_recs_0_bits;
     endcase
   end // always @(*)
-  reg  [71:0] casez_tmp_13;
+  reg  [71:0] casez_tmp_34;
   always @(*) begin
     casez (3'h4 - fill)
       3'b000:
-        casez_tmp_13 = io_recs_0_bits;
+        casez_tmp_34 = io_recs_0_bits;
       3'b001:
-        casez_tmp_13 = io_recs_1_bits;
+        casez_tmp_34 = io_recs_1_bits;
       3'b010:
-        casez_tmp_13 = io_recs_2_bits;
+        casez_tmp_34 = io_recs_2_bits;
       3'b011:
-        casez_tmp_13 = io_recs_3_bits;
+        casez_tmp_34 = io_recs_3_bits;
       3'b100:
-        casez_tmp_13 = io_recs_4_bits;
+        casez_tmp_34 = io_recs_4_bits;
       3'b101:
-        casez_tmp_13 = io_recs_5_bits;
+        casez_tmp_34 = io_recs_5_bits;
       3'b110:
-        casez_tmp_13 = io_recs_6_bits;
+        casez_tmp_34 = io_recs_6_bits;
       default:
-        casez_tmp_13 = io_recs_0_bits;
+        casez_tmp_34 = io_recs_0_bits;
     endcase
   end // always @(*)
   `ifndef SYNTHESIS
     always @(posedge clock) begin
       if (~reset & io_nRecs > io_room_0) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ContactPacker: more records than room\n    at ContactPacker.scala:102 assert(io.nRecs <= io.room, \"ContactPacker: more records than room\")\n");
+          $error("Assertion failed: ContactPacker: more records than room\n    at ContactPacker.scala:122 assert(io.nRecs <= io.room, \"ContactPacker: more records than room\")\n");
         if (`STOP_COND_)
           $fatal;
       end
       if (~reset & ~(~_q_io_enq_valid_T_1 | _q_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ContactPacker: line queue overflow\n    at ContactPacker.scala:103 assert(!q.io.enq.valid || q.io.enq.ready, \"ContactPacker: line queue overflow\")\n");
+          $error("Assertion failed: ContactPacker: line queue overflow\n    at ContactPacker.scala:123 assert(!q.io.enq.valid || q.io.enq.ready, \"ContactPacker: line queue overflow\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -51489,67 +74542,77 @@ module ContactPacker_w32_derivedmasked_r7_default(
     end
     if (emit) begin
       if (|carry)
-        held_0 <= casez_tmp_8;
+        held_0 <= casez_tmp_29;
       if (|(carry[3:1]))
-        held_1 <= casez_tmp_9;
+        held_1 <= casez_tmp_30;
       if (carry > 4'h2)
-        held_2 <= casez_tmp_10;
+        held_2 <= casez_tmp_31;
       if (|(carry[3:2]))
-        held_3 <= casez_tmp_11;
+        held_3 <= casez_tmp_32;
       if (carry > 4'h4)
-        held_4 <= casez_tmp_12;
+        held_4 <= casez_tmp_33;
       if (carry > 4'h5)
-        held_5 <= casez_tmp_13;
+        held_5 <= casez_tmp_34;
       heldLine <= lineNo + 25'h1;
       heldRn <= rnOf + 25'h7;
     end
     else begin
       if (|total) begin
-        if (_slots_T_4) begin
-          if (~(|fill))
-            held_0 <= casez_tmp_0;
+        if (_slots_T_6) begin
+          if (casez_tmp_0) begin
+          end
+          else
+            held_0 <= casez_tmp_2;
         end
         else
           held_0 <= 72'h0;
       end
       if (|(total[3:1])) begin
-        if (_slots_T_10) begin
-          if (~(|(fill[2:1])))
-            held_1 <= casez_tmp_1;
+        if (_slots_T_14) begin
+          if (casez_tmp_4) begin
+          end
+          else
+            held_1 <= casez_tmp_6;
         end
         else
           held_1 <= 72'h0;
       end
-      if (_slots_T_12) begin
-        if (_slots_T_16) begin
-          if (~_slots_v_T_8)
-            held_2 <= casez_tmp_2;
+      if (total > 4'h2) begin
+        if (_slots_T_22) begin
+          if (casez_tmp_8) begin
+          end
+          else
+            held_2 <= casez_tmp_10;
         end
         else
           held_2 <= 72'h0;
       end
       if (|(total[3:2])) begin
-        if (_slots_T_22) begin
-          if (fill[2]) begin
+        if (_slots_T_30) begin
+          if (casez_tmp_12) begin
           end
           else
-            held_3 <= casez_tmp_3;
+            held_3 <= casez_tmp_14;
         end
         else
           held_3 <= 72'h0;
       end
-      if (_slots_T_24) begin
-        if (_slots_T_28) begin
-          if (~_slots_v_T_16)
-            held_4 <= casez_tmp_4;
+      if (total > 4'h4) begin
+        if (_slots_T_38) begin
+          if (casez_tmp_16) begin
+          end
+          else
+            held_4 <= casez_tmp_18;
         end
         else
           held_4 <= 72'h0;
       end
-      if (_slots_T_30) begin
-        if (_slots_T_34) begin
-          if (~_slots_v_T_20)
-            held_5 <= casez_tmp_5;
+      if (total > 4'h5) begin
+        if (_slots_T_46) begin
+          if (casez_tmp_20) begin
+          end
+          else
+            held_5 <= casez_tmp_22;
         end
         else
           held_5 <= 72'h0;
@@ -51559,31 +74622,61 @@ module ContactPacker_w32_derivedmasked_r7_default(
         heldRn <= _rnOf_T_2;
       end
     end
+    capLess_0 <=
+      (|(io_capacity[63:25])) ? 26'h2000000 : (|io_capacity) ? io_capacity[25:0] : 26'h0;
+    capLess_1 <=
+      io_capacity > 64'h2000000
+        ? 26'h2000000
+        : (|(io_capacity[63:1])) ? io_capacity[25:0] - 26'h1 : 26'h0;
+    capLess_2 <=
+      io_capacity > 64'h2000001
+        ? 26'h2000000
+        : io_capacity > 64'h2 ? io_capacity[25:0] - 26'h2 : 26'h0;
+    capLess_3 <=
+      io_capacity > 64'h2000002
+        ? 26'h2000000
+        : (|(io_capacity[63:2])) ? io_capacity[25:0] - 26'h3 : 26'h0;
+    capLess_4 <=
+      io_capacity > 64'h2000003
+        ? 26'h2000000
+        : io_capacity > 64'h4 ? io_capacity[25:0] - 26'h4 : 26'h0;
+    capLess_5 <=
+      io_capacity > 64'h2000004
+        ? 26'h2000000
+        : io_capacity > 64'h5 ? io_capacity[25:0] - 26'h5 : 26'h0;
+    capLess_6 <=
+      io_capacity > 64'h2000005
+        ? 26'h2000000
+        : io_capacity > 64'h6 ? io_capacity[25:0] - 26'h6 : 26'h0;
   end // always @(posedge)
   ContactLineQueue_d8_default q (
     .clock            (clock),
     .reset            (reset),
     .io_enq_ready     (_q_io_enq_ready),
     .io_enq_valid     (_q_io_enq_valid_T_1),
-    .io_enq_bits_addr (io_base + {39'h0, (|fill) ? heldLine : _lineOf_T_4}),
+    .io_enq_bits_addr ({39'h0, (|fill) ? heldLine : _lineOf_T_4}),
     .io_enq_bits_data
       ({8'h0,
-        ~(total > 4'h6 & {39'h0, rnOf + 25'h6} < io_capacity) | (&fill)
+        ~(casez_tmp_27
+          & ((|fill)
+               ? _GEN < capLess_6
+               : io_dense ? _GEN_0 < capLess_6 : _GEN_1 < capLess_6)) | casez_tmp_24
           ? 72'h0
-          : casez_tmp_6,
-        _slots_T_34 ? (_slots_v_T_20 ? held_5 : casez_tmp_5) : 72'h0,
-        _slots_T_28 ? (_slots_v_T_16 ? held_4 : casez_tmp_4) : 72'h0,
-        _slots_T_22 ? (fill[2] ? held_3 : casez_tmp_3) : 72'h0,
-        _slots_T_16 ? (_slots_v_T_8 ? held_2 : casez_tmp_2) : 72'h0,
-        _slots_T_10 ? ((|(fill[2:1])) ? held_1 : casez_tmp_1) : 72'h0,
-        _slots_T_4 ? ((|fill) ? held_0 : casez_tmp_0) : 72'h0}),
+          : casez_tmp_26,
+        _slots_T_46 ? (casez_tmp_20 ? held_5 : casez_tmp_22) : 72'h0,
+        _slots_T_38 ? (casez_tmp_16 ? held_4 : casez_tmp_18) : 72'h0,
+        _slots_T_30 ? (casez_tmp_12 ? held_3 : casez_tmp_14) : 72'h0,
+        _slots_T_22 ? (casez_tmp_8 ? held_2 : casez_tmp_10) : 72'h0,
+        _slots_T_14 ? (casez_tmp_4 ? held_1 : casez_tmp_6) : 72'h0,
+        _slots_T_6 ? (casez_tmp_0 ? held_0 : casez_tmp_2) : 72'h0}),
     .io_deq_ready     (io_lines_ready),
     .io_deq_valid     (io_lines_valid),
-    .io_deq_bits_addr (io_lines_bits_addr),
+    .io_deq_bits_addr (_q_io_deq_bits_addr),
     .io_deq_bits_data (io_lines_bits_data)
   );
   assign io_room = io_room_0;
   assign io_idle = fill == 3'h0;
+  assign io_lines_bits_addr = io_base + _q_io_deq_bits_addr;
 endmodule
 
 module TagPool_n64_default_wr(
@@ -52749,6 +75842,7 @@ module Puc_default(
   wire [23:0]  _disp_io_groups_bits_first;
   wire         _disp_io_fired;
   wire         _disp_io_idle;
+  wire         _disp_io_advance;
   wire [31:0]  _ram_io_rdata_0_0_x;
   wire [31:0]  _ram_io_rdata_0_0_y;
   wire [31:0]  _ram_io_rdata_0_0_z;
@@ -52946,7 +76040,7 @@ module Puc_default(
   wire [2:0]   _GEN_4 = _GEN_3[2:0] | {_capErr_T & ~(|_GEN_2), 2'h0};
   wire         _wr_io_status_valid_T = state == 3'h4;
   wire         quietRun =
-    ~_disp_io_fired & ~(_disp_io_pairs_ready & _rd_io_pairs_valid)
+    ~_disp_io_fired & ~_disp_io_advance & ~(_disp_io_pairs_ready & _rd_io_pairs_valid)
     & pairsInFlight == 25'h0;
   wire         io_idle_0 =
     ~_rd_io_rdReq_valid & ~_wr_io_wrReq_valid
@@ -53694,7 +76788,8 @@ module Puc_default(
     .io_groups_bits_invalid (_disp_io_groups_bits_invalid),
     .io_groups_bits_first   (_disp_io_groups_bits_first),
     .io_fired               (_disp_io_fired),
-    .io_idle                (_disp_io_idle)
+    .io_idle                (_disp_io_idle),
+    .io_advance             (_disp_io_advance)
   );
   GroupQueue_d256_default groups (
     .clock               (clock),
@@ -53964,7 +77059,7 @@ module Puc_default(
   assign io_idle = io_idle_0;
 endmodule
 
-module ScpuConvertIn_fp32_42eced49_default(
+module ScpuConvertIn_fp32_200_default(
   input         io_in_valid,
   input  [31:0] io_in_bits_x1,
                 io_in_bits_y1,
@@ -54917,7 +78012,7 @@ module FpMul_fp32_L8_default(
   assign io_out_bits_flags = io_out_bits_r_flags;
 endmodule
 
-module SumOfSquares_fp32_42eced49_default(
+module SumOfSquares_fp32_200_default(
   input         clock,
                 reset,
                 io_en,
@@ -56917,7 +80012,7 @@ module FpRecip_fp32_dr_L32_default(
   assign io_out_bits_flags = io_out_bits_r_flags;
 endmodule
 
-module SqrtRecipDistance_fp32_42eced49_default(
+module SqrtRecipDistance_fp32_200_default(
   input         clock,
                 reset,
                 io_en,
@@ -57586,7 +80681,7 @@ module SqrtRecipDistance_fp32_42eced49_default(
       u_dz <= u_r_94_dz;
     end
   end // always @(posedge)
-  SumOfSquares_fp32_42eced49_default ss (
+  SumOfSquares_fp32_200_default ss (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -57664,7 +80759,7 @@ module FpCompare_fp32_L1_default(
   assign io_out_bits_flags = io_out_bits_r_flags;
 endmodule
 
-module ScpuDatapath_fp32_42eced49_default(
+module ScpuDatapath_fp32_200_default(
   input         clock,
                 reset,
                 io_en,
@@ -60901,7 +83996,7 @@ module ScpuDatapath_fp32_42eced49_default(
     .io_out_bits_bits    (_rdiff_m_io_out_bits_bits),
     .io_out_bits_flags   (_rdiff_m_io_out_bits_flags)
   );
-  SqrtRecipDistance_fp32_42eced49_default dist_0 (
+  SqrtRecipDistance_fp32_200_default dist_0 (
     .clock           (clock),
     .reset           (reset),
     .io_en           (io_en),
@@ -61081,7 +84176,7 @@ module ScpuDatapath_fp32_42eced49_default(
          : 5'h0);
 endmodule
 
-module ScpuConvertOut_fp32_42eced49_default(
+module ScpuConvertOut_fp32_200_default(
   input         io_in_valid,
                 io_in_bits_hit,
   input  [1:0]  io_in_bits_kind,
@@ -61110,7 +84205,7 @@ module ScpuConvertOut_fp32_42eced49_default(
   assign io_out_bits_tag = io_in_bits_meta_tag;
 endmodule
 
-module Scpu_fp32_42eced49_default(
+module Scpu_fp32_200_default(
   input         clock,
                 reset,
   output        io_in_ready,
@@ -61156,7 +84251,7 @@ module Scpu_fp32_42eced49_default(
   wire [23:0] _cin_io_out_bits_meta_tag;
   wire        _cin_io_out_bits_meta_nonFinite;
   wire        en = ~_cout_io_out_valid | io_out_ready;
-  ScpuConvertIn_fp32_42eced49_default cin (
+  ScpuConvertIn_fp32_200_default cin (
     .io_in_valid                (io_in_valid),
     .io_in_bits_x1              (io_in_bits_x1),
     .io_in_bits_y1              (io_in_bits_y1),
@@ -61179,7 +84274,7 @@ module Scpu_fp32_42eced49_default(
     .io_out_bits_meta_tag       (_cin_io_out_bits_meta_tag),
     .io_out_bits_meta_nonFinite (_cin_io_out_bits_meta_nonFinite)
   );
-  ScpuDatapath_fp32_42eced49_default core (
+  ScpuDatapath_fp32_200_default core (
     .clock                      (clock),
     .reset                      (reset),
     .io_en                      (en),
@@ -61203,7 +84298,7 @@ module Scpu_fp32_42eced49_default(
     .io_out_bits_meta_nonFinite (_core_io_out_bits_meta_nonFinite),
     .io_out_bits_meta_flags     (_core_io_out_bits_meta_flags)
   );
-  ScpuConvertOut_fp32_42eced49_default cout (
+  ScpuConvertOut_fp32_200_default cout (
     .io_in_valid               (_core_io_out_valid),
     .io_in_bits_hit            (_core_io_out_bits_hit),
     .io_in_bits_kind           (_core_io_out_bits_kind),
@@ -61914,7 +85009,7 @@ module Afu_default(
     .io_idle                      (io_idle),
     .io_skipCycles                (io_skipCycles)
   );
-  Scpu_fp32_42eced49_default units_0 (
+  Scpu_fp32_200_default units_0 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_0_io_in_ready),
@@ -61938,7 +85033,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_0_io_out_bits_flags),
     .io_out_bits_tag       (_units_0_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_1 (
+  Scpu_fp32_200_default units_1 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_1_io_in_ready),
@@ -61962,7 +85057,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_1_io_out_bits_flags),
     .io_out_bits_tag       (_units_1_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_2 (
+  Scpu_fp32_200_default units_2 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_2_io_in_ready),
@@ -61986,7 +85081,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_2_io_out_bits_flags),
     .io_out_bits_tag       (_units_2_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_3 (
+  Scpu_fp32_200_default units_3 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_3_io_in_ready),
@@ -62010,7 +85105,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_3_io_out_bits_flags),
     .io_out_bits_tag       (_units_3_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_4 (
+  Scpu_fp32_200_default units_4 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_4_io_in_ready),
@@ -62034,7 +85129,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_4_io_out_bits_flags),
     .io_out_bits_tag       (_units_4_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_5 (
+  Scpu_fp32_200_default units_5 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_5_io_in_ready),
@@ -62058,7 +85153,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_5_io_out_bits_flags),
     .io_out_bits_tag       (_units_5_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_6 (
+  Scpu_fp32_200_default units_6 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_6_io_in_ready),
@@ -62082,7 +85177,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_6_io_out_bits_flags),
     .io_out_bits_tag       (_units_6_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_7 (
+  Scpu_fp32_200_default units_7 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_7_io_in_ready),
@@ -62106,7 +85201,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_7_io_out_bits_flags),
     .io_out_bits_tag       (_units_7_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_8 (
+  Scpu_fp32_200_default units_8 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_8_io_in_ready),
@@ -62130,7 +85225,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_8_io_out_bits_flags),
     .io_out_bits_tag       (_units_8_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_9 (
+  Scpu_fp32_200_default units_9 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_9_io_in_ready),
@@ -62154,7 +85249,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_9_io_out_bits_flags),
     .io_out_bits_tag       (_units_9_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_10 (
+  Scpu_fp32_200_default units_10 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_10_io_in_ready),
@@ -62178,7 +85273,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_10_io_out_bits_flags),
     .io_out_bits_tag       (_units_10_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_11 (
+  Scpu_fp32_200_default units_11 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_11_io_in_ready),
@@ -62202,7 +85297,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_11_io_out_bits_flags),
     .io_out_bits_tag       (_units_11_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_12 (
+  Scpu_fp32_200_default units_12 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_12_io_in_ready),
@@ -62226,7 +85321,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_12_io_out_bits_flags),
     .io_out_bits_tag       (_units_12_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_13 (
+  Scpu_fp32_200_default units_13 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_13_io_in_ready),
@@ -62250,7 +85345,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_13_io_out_bits_flags),
     .io_out_bits_tag       (_units_13_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_14 (
+  Scpu_fp32_200_default units_14 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_14_io_in_ready),
@@ -62274,7 +85369,7 @@ module Afu_default(
     .io_out_bits_flags     (_units_14_io_out_bits_flags),
     .io_out_bits_tag       (_units_14_io_out_bits_tag)
   );
-  Scpu_fp32_42eced49_default units_15 (
+  Scpu_fp32_200_default units_15 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_15_io_in_ready),

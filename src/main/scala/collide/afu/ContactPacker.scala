@@ -47,7 +47,10 @@ class ContactPacker(p: PucParams) extends Module {
   val q = Module(new Queue(new LineWrite, p.writeQueueLines) {
     override def desiredName = s"ContactLineQueue_d${p.writeQueueLines}${p.name}"
   })
+  // The queue holds each line's number in the buffer; the base address is added as it
+  // leaves, so no 64-bit sum sits on the path that forms a line.
   io.lines <> q.io.deq
+  io.lines.bits.addr := io.base + q.io.deq.bits.addr
 
   val fill     = RegInit(0.U(log2Ceil(R + 1).W))     // records held, < R
   val held     = Reg(Vec(math.max(R - 1, 1), UInt(recBits.W)))
@@ -68,12 +71,29 @@ class ContactPacker(p: PucParams) extends Module {
   val lineOf   = Mux(fill =/= 0.U, heldLine, Mux(io.dense, denseLine(first.pair), lineNo))
   val rnOf     = Mux(fill =/= 0.U, heldRn, Mux(io.dense, first.pair.pad(idxBits + 1), count))
 
+  // Record rn + s is below the capacity when rn < capacity - s: each slot's bound registered
+  // and saturated past any record number, so the per-cycle test is a short compare, not a
+  // 64-bit sum and compare (the packer's slowest path by the timing proxy). The capacity is
+  // set before a run starts, many cycles before its first record.
+  private val rnW = idxBits + 1
+  val capLess = Reg(Vec(R, UInt((rnW + 1).W)))
+  for (s <- 0 until R)
+    capLess(s) := Mux(io.capacity >= ((BigInt(1) << rnW) + s).U, (BigInt(1) << rnW).U, Mux(io.capacity > s.U, io.capacity - s.U, 0.U))
   val total = fill +& io.nRecs   // < 2R: at most one full line
   private def idx(x: UInt): UInt = if (R == 1) 0.U else x(log2Ceil(R) - 1, 0)
+  // The three record numbers a line can start from, each compared with the slot's bound at
+  // once, and the answer chosen after (not the number chosen, then compared).
+  private def below(s: Int) = {
+    val first = io.recs(0).pair.pad(idxBits + 1)
+    Mux(fill =/= 0.U, heldRn < capLess(s), Mux(io.dense, first < capLess(s), count < capLess(s)))
+  }
+  private val fnW = log2Ceil(R + 1)
   val slots = VecInit.tabulate(R) { s =>
     val fromHeld = if (s < R - 1) held(s) else 0.U(recBits.W)
-    val v = Mux(s.U < fill, fromHeld, io.recs(idx(s.U - fill)).bits)
-    Mux(s.U < total && (rnOf + s.U) < io.capacity, v, 0.U(recBits.W))
+    val inHeld = collide.util.Table(fill, 1)(f => if (s < f) 1 else 0).asBool
+    val v = Mux(inHeld, fromHeld, io.recs(collide.util.Table(fill, math.max(log2Ceil(R), 1))(f => ((s - f) % R + R) % R)).bits)
+    val inLine = collide.util.Table(Cat(fill, io.nRecs), 1)(x => if (s < (x >> fnW) + (x & ((1 << fnW) - 1))) 1 else 0).asBool
+    Mux(inLine && below(s), v, 0.U(recBits.W))
   }
   // Dense: a pair line's last record (pair 15 of its line, or the run's last pair) ends the line.
   val lastIn   = io.recs(idx(io.nRecs - 1.U)).pair
@@ -82,8 +102,8 @@ class ContactPacker(p: PucParams) extends Module {
   val emit = q.io.enq.ready && (total >= R.U || (endsPairLine && total =/= 0.U) || (io.flush && total =/= 0.U))
   // Compact: the records that pass the completed line stay, shifted to slot 0.
   val carry = Mux(total > R.U, total - R.U, 0.U)
-  q.io.enq.valid     := emit && rnOf < io.capacity
-  q.io.enq.bits.addr := io.base + lineOf
+  q.io.enq.valid     := emit && rnOf < capLess(0)
+  q.io.enq.bits.addr := lineOf
   q.io.enq.bits.data := Cat(slots.reverse).pad(Link.lineBits)
   when(emit) {
     fill := carry

@@ -43,24 +43,49 @@ class PairDispatcher(p: PucParams) extends Module {
     val groups     = Decoupled(new GroupInfo(p))
     val fired      = Output(Bool())  // a group went out this cycle (the "computing" counter)
     val idle       = Output(Bool())  // no line held
+    val advance    = Output(Bool())  // a waiting line moves up this cycle (not idle: skipping would miss it)
     val world      = Input(Bool())
   })
 
+  private def table(in: UInt, w: Int)(f: Int => Int): UInt = collide.util.Table(in, w)(f)
+  private val ptrW = log2Ceil(ppl + 1)
+  private val cntW = log2Ceil(p.lanes + 1)
+  private def pairI(line: UInt, k: Int) = line(32 * k + 15, 32 * k)
+  private def pairJ(line: UInt, k: Int) = line(32 * k + 31, 32 * k + 16)
+
+  // ---- a line waits one cycle in `nxt`: its pair count and its pairs' range checks are
+  // registered there, so the per-group logic below starts from registers. (In world mode
+  // numPairs grows, but only by lines after this one: a line's count is final once it is out.)
+  val nxt      = Reg(new PairLine(p.pairLineBits))
+  val nxtValid = RegInit(false.B)
+  val nxtCount = Reg(UInt(ptrW.W))
+  val nxtBad   = Reg(Vec(ppl, Bool()))
+  locally {
+    val first = (io.pairs.bits.line << log2Ceil(ppl)).asUInt.pad(p.layout.pairIndexBits + 1)
+    val left  = io.numPairs.pad(p.layout.pairIndexBits + 1) - first
+    when(io.pairs.fire) {
+      nxt := io.pairs.bits
+      nxtCount := Mux(left > ppl.U, ppl.U, left(ptrW - 1, 0))
+      for (k <- 0 until ppl)
+        nxtBad(k) := pairI(io.pairs.bits.data, k) >= io.numSpheres || pairJ(io.pairs.bits.data, k) >= io.numSpheres
+    }
+  }
+
+  // ---- the line being dispatched: `rem` pairs left from slot `ptr`, the group's first pair
+  // index `first`; SCPUs round robin from `base`
   val cur      = Reg(new PairLine(p.pairLineBits))
+  val curBad   = Reg(Vec(ppl, Bool()))
   val curValid = RegInit(false.B)
-  val ptr      = RegInit(0.U(log2Ceil(ppl + 1).W))
+  val ptr      = RegInit(0.U(ptrW.W))
+  val rem      = RegInit(0.U(ptrW.W))
+  val first    = Reg(UInt(p.layout.pairIndexBits.W))
   val base     = RegInit(0.U(baseBits.W))
 
-  val lineFirst = (cur.line << log2Ceil(ppl)).asUInt.pad(p.layout.pairIndexBits + 1)
-  val left      = io.numPairs.pad(p.layout.pairIndexBits + 1) - lineFirst
-  val lineCount = Mux(left > ppl.U, ppl.U, left(log2Ceil(ppl + 1) - 1, 0))
-  val rem       = lineCount - ptr
-  val lineCnt   = Mux(rem > p.lanes.U, p.lanes.U, rem)(log2Ceil(p.lanes + 1) - 1, 0)
-
-  val pi = VecInit.tabulate(ppl)(k => cur.data(32 * k + 15, 32 * k))
-  val pj = VecInit.tabulate(ppl)(k => cur.data(32 * k + 31, 32 * k + 16))
+  val lineCnt = table(rem, cntW)(r => math.min(r, p.lanes))
+  val pi = VecInit.tabulate(ppl)(k => pairI(cur.data, k))
+  val pj = VecInit.tabulate(ppl)(k => pairJ(cur.data, k))
   // Position k of the group: slot ptr + k of the line.
-  val slot = VecInit.tabulate(p.lanes)(k => (ptr +& k.U)(log2Ceil(ppl) - 1, 0))
+  val slot = VecInit.tabulate(p.lanes)(k => table(ptr, log2Ceil(ppl).max(1))(v => (v + k) % ppl))
   val posI = VecInit.tabulate(p.lanes)(k => pi(slot(k)))
   val posJ = VecInit.tabulate(p.lanes)(k => pj(slot(k)))
 
@@ -93,36 +118,42 @@ class PairDispatcher(p: PucParams) extends Module {
       }
       val fits = (0 until p.lanes).map(k => !third(2 * k) && !third(2 * k + 1))
       val fitLen = PriorityEncoder(fits.map(!_) :+ true.B)
-      (Mux(fitLen < lineCnt, fitLen, lineCnt)(log2Ceil(p.lanes + 1) - 1, 0), Some(VecInit(port)))
+      (Mux(fitLen < lineCnt, fitLen, lineCnt)(cntW - 1, 0), Some(VecInit(port)))
   }
-  val posBad = VecInit.tabulate(p.lanes)(k => posI(k) >= io.numSpheres || posJ(k) >= io.numSpheres)
+  val inGroupK = VecInit.tabulate(p.lanes)(k => table(cnt, 1)(c => if (k < c) 1 else 0).asBool)
 
-  // Per SCPU: its position in the group, if any.
-  val posOf = VecInit.tabulate(n) { s =>
-    val d = (s + n).U - base
-    Mux(d >= n.U, d - n.U, d)
+  // Per SCPU: its position in the group, and whether it has one (tables on the registers).
+  val posOf = VecInit.tabulate(n)(s => table(base, log2Ceil(n).max(1))(b => ((s - b) % n + n) % n))
+  val inGroup = VecInit.tabulate(n) { s =>
+    if (p.banked) posOf(s) < cnt
+    else table(Cat(base, rem), 1) { v =>
+      val (b, r) = (v >> ptrW, v & ((1 << ptrW) - 1))
+      if (((s - b) % n + n) % n < math.min(r, p.lanes)) 1 else 0
+    }.asBool
   }
-  val inGroup = VecInit.tabulate(n)(s => posOf(s) < cnt)
 
-  // Input queue per SCPU, with a credit for the RAM read in flight.
+  // Input queue per SCPU; `held` counts its entries and the RAM read in flight to it.
   val inflight = RegInit(VecInit(Seq.fill(n)(false.B)))
   val queues = Seq.tabulate(n) { s =>
     Module(new Queue(new ScpuIn(p.linkWidth, p.scpuTagBits), p.scpuQueueDepth) {
       override def desiredName = s"ScpuInQueue_d${p.scpuQueueDepth}_w${p.linkWidth}${p.name}"
     })
   }
-  val credit = VecInit.tabulate(n)(s => queues(s).io.count +& inflight(s).asUInt < p.scpuQueueDepth.U)
+  private val heldW = log2Ceil(p.scpuQueueDepth + 1)
+  val held = RegInit(VecInit(Seq.fill(n)(0.U(heldW.W))))
+  val credit = VecInit.tabulate(n)(s => table(held(s), 1)(h => if (h < p.scpuQueueDepth) 1 else 0).asBool)
 
   val haveGroup = io.go && curValid && cnt =/= 0.U
-  val fire = haveGroup && io.groups.ready && (0 until n).map(s => !inGroup(s) || credit(s)).reduce(_ && _)
+  val ready = (0 until n).map(s => !inGroup(s) || credit(s)).reduce(_ && _)
+  val fire = haveGroup && io.groups.ready && ready
   io.fired := fire
-  io.idle  := !curValid
+  io.idle  := !curValid && !nxtValid
 
-  io.groups.valid        := haveGroup && (0 until n).map(s => !inGroup(s) || credit(s)).reduce(_ && _)
+  io.groups.valid        := haveGroup && ready
   io.groups.bits.base    := base
   io.groups.bits.cnt     := cnt
-  io.groups.bits.invalid := VecInit.tabulate(p.lanes)(k => posBad(k) && k.U < cnt).asUInt
-  io.groups.bits.first   := lineFirst + ptr
+  io.groups.bits.invalid := VecInit.tabulate(p.lanes)(k => curBad(slot(k)) && inGroupK(k)).asUInt
+  io.groups.bits.first   := first
 
   val tagNext = Reg(Vec(n, UInt(p.layout.pairIndexBits.W)))
   for (s <- 0 until n) {
@@ -135,7 +166,7 @@ class PairDispatcher(p: PucParams) extends Module {
     inflight(s)    := io.ren(s)
     val wb = RecordTag.WORLD_INDEX_BITS
     val worldTag = if (p.world.isDefined) Cat(posJ(kk)(wb - 1, 0), posI(kk)(wb - 1, 0)) else 0.U
-    when(io.ren(s)) { tagNext(s) := Mux(io.world && p.world.isDefined.B, worldTag, lineFirst + ptr + kk) }
+    when(io.ren(s)) { tagNext(s) := Mux(io.world && p.world.isDefined.B, worldTag, first + kk) }
     val q = queues(s).io.enq
     q.valid := inflight(s)
     q.bits.x1 := io.rdata(s)(0).x; q.bits.y1 := io.rdata(s)(0).y; q.bits.z1 := io.rdata(s)(0).z; q.bits.r1 := io.rdata(s)(0).r
@@ -143,16 +174,25 @@ class PairDispatcher(p: PucParams) extends Module {
     q.bits.tag := tagNext(s)
     assert(!q.valid || q.ready, "PairDispatcher: SCPU input queue overflow (credit broken)")
     io.scpu(s) <> queues(s).io.deq
+    // (combinations that cannot happen, a take from nothing or a read past the depth, clamp)
+    held(s) := table(Cat(held(s), io.ren(s), queues(s).io.deq.fire), heldW) { v =>
+      ((v >> 2) + (v >> 1 & 1) - (v & 1)).max(0).min(p.scpuQueueDepth)
+    }
   }
 
-  val lineDone = fire && ptr + cnt === lineCount
+  val lineDone = fire && rem === cnt
+  val takeNxt  = nxtValid && (!curValid || lineDone)
   when(fire) {
     ptr := ptr + cnt
-    val b = base +& cnt
-    base := Mux(b >= n.U, b - n.U, b)
+    rem := rem - cnt
+    first := first + cnt
+    base := table(Cat(base, cnt), baseBits)(v => ((v >> cntW) + (v & ((1 << cntW) - 1))) % n)
   }
-  io.pairs.ready := !curValid || lineDone
-  when(io.pairs.fire) {
-    cur := io.pairs.bits; curValid := true.B; ptr := 0.U
+  when(takeNxt) {
+    cur := nxt; curBad := nxtBad; curValid := true.B
+    ptr := 0.U; rem := nxtCount; first := (nxt.line << log2Ceil(ppl)).asUInt
   }.elsewhen(lineDone) { curValid := false.B }
+  io.advance := takeNxt
+  io.pairs.ready := !nxtValid || takeNxt
+  when(io.pairs.fire) { nxtValid := true.B }.elsewhen(takeNxt) { nxtValid := false.B }
 }

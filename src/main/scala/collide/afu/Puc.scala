@@ -356,7 +356,7 @@ class Puc(p: PucParams) extends Module {
   // collector hold nothing valid and no record reaches the packer), and the state machine
   // waits on a response (sRun, sDrain: packer empty; sStatus: no free write tag; sStatusWait).
   val noRequest = !io.link.rdReq.valid && !io.link.wrReq.valid
-  val quietRun  = !disp.io.fired && !rd.io.pairs.fire && pairsInFlight === 0.U && !worldActive
+  val quietRun  = !disp.io.fired && !disp.io.advance && !rd.io.pairs.fire && pairsInFlight === 0.U && !worldActive
   io.idle := noRequest && !prefetchGo && !aheadGo && bpQuiet && MuxLookup(state, false.B)(Seq(
     sIdle       -> true.B,
     sRun        -> (quietRun && !runDone),
