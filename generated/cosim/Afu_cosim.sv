@@ -29476,18 +29476,18 @@ module PairDispatcher_n16_cosim(
 endmodule
 
 // VCS coverage exclude_file
-module ram_256x49_cosim(
-  input  [7:0]  R0_addr,
+module ram_32x49_cosim(
+  input  [4:0]  R0_addr,
   input         R0_en,
                 R0_clk,
   output [48:0] R0_data,
-  input  [7:0]  W0_addr,
+  input  [4:0]  W0_addr,
   input         W0_en,
                 W0_clk,
   input  [48:0] W0_data
 );
 
-  reg [48:0] Memory[0:255];
+  reg [48:0] Memory[0:31];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
@@ -29495,7 +29495,7 @@ module ram_256x49_cosim(
   assign R0_data = R0_en ? Memory[R0_addr] : 49'bx;
 endmodule
 
-module GroupQueue_d256_cosim(
+module GroupQueue_d32_cosim(
   input         clock,
                 reset,
   output        io_enq_ready,
@@ -29513,8 +29513,8 @@ module GroupQueue_d256_cosim(
 );
 
   wire [48:0] _ram_ext_R0_data;
-  reg  [7:0]  enq_ptr_value;
-  reg  [7:0]  deq_ptr_value;
+  reg  [4:0]  enq_ptr_value;
+  reg  [4:0]  deq_ptr_value;
   reg         maybe_full;
   wire        ptr_match = enq_ptr_value == deq_ptr_value;
   wire        empty = ptr_match & ~maybe_full;
@@ -29523,20 +29523,20 @@ module GroupQueue_d256_cosim(
   wire        do_deq = io_deq_ready & ~empty;
   always @(posedge clock) begin
     if (reset) begin
-      enq_ptr_value <= 8'h0;
-      deq_ptr_value <= 8'h0;
+      enq_ptr_value <= 5'h0;
+      deq_ptr_value <= 5'h0;
       maybe_full <= 1'h0;
     end
     else begin
       if (do_enq)
-        enq_ptr_value <= enq_ptr_value + 8'h1;
+        enq_ptr_value <= enq_ptr_value + 5'h1;
       if (do_deq)
-        deq_ptr_value <= deq_ptr_value + 8'h1;
+        deq_ptr_value <= deq_ptr_value + 5'h1;
       if (~(do_enq == do_deq))
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_256x49_cosim ram_ext (
+  ram_32x49_cosim ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -76791,7 +76791,7 @@ module Puc_cosim(
     .io_idle                (_disp_io_idle),
     .io_advance             (_disp_io_advance)
   );
-  GroupQueue_d256_cosim groups (
+  GroupQueue_d32_cosim groups (
     .clock               (clock),
     .reset               (reset),
     .io_enq_ready        (_groups_io_enq_ready),

@@ -42,7 +42,7 @@ import collide.scpu.{ScpuConfig, ScpuImpl}
 final case class AfuConfig(
     name: String = "default",
     scpus: Int = 16,
-    scpu: ScpuConfig = ScpuConfig.fp32At200,
+    scpu: ScpuConfig = ScpuConfig.fp32,
     maxSpheres: Int = 1024,
     maxReadsOutstanding: Int = 64,
     maxWritesOutstanding: Int = 64,
@@ -145,9 +145,7 @@ object AfuConfig {
     else indexed
   }
 
-  /** 16 fp32 SCPUs whose operators are pipelined for 200 MHz on Cyclone V (ScpuConfig.atClock:
-    * add 12, mul 8, the roots 32 cycles; the SCPU 136 deep, a pair a cycle), the paper's clock. */
-  val default: AfuConfig = AfuConfig(scpu = ScpuConfig.fp32At200)
+  val default: AfuConfig = AfuConfig()
   /** The paper's design point in our terms: 16 units, binary32, whole contacts on the link. */
   val paper: AfuConfig   = default.copy(name = "paper", records = Some(RecordLayout.Full))
   val small: AfuConfig   = default.copy(name = "small", scpus = 1, maxSpheres = 256)
