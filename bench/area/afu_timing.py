@@ -111,7 +111,8 @@ def main(argv=None):
     print(f"wrote {a.out}")
     if not a.only:  # every block timed: the clock each folder reaches, for the host (timing.json)
         for folder in map(Path, a.folders):
-            print(f"wrote {reached_clock.write(folder, rows, rtl_commit(folder.resolve()))}")
+            commit = next(r["commit"] for r in rows if r["folder"] == folder.name)  # as timed, before any write
+            print(f"wrote {reached_clock.write(folder, rows, commit)}")
 
 
 if __name__ == "__main__":
