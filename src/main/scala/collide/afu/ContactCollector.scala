@@ -3,7 +3,6 @@ package collide.afu
 import chisel3._
 import chisel3.util._
 import collide.scpu.{ContactKind, ScpuOut}
-import collide.util.Prefix
 
 /** One slot as it goes into a line (docs/afu-interface.md, Contacts): a record (the
   * layout's value fields, then the tag word or, masked, the flags byte) or a mask header,
@@ -85,7 +84,7 @@ class ContactCollector(p: PucParams) extends Module {
   val used = VecInit.tabulate(n) { s =>
     table(Cat(hg.base, hg.cnt), 1) { v =>
       val (b, c) = (v >> hg.cnt.getWidth, v & ((1 << hg.cnt.getWidth) - 1))
-      if (((s - b) % n + n) % n < c) 1 else 0
+      if (GroupInfo.position(n, b, s) < c) 1 else 0
     }.asBool
   }.asUInt
 

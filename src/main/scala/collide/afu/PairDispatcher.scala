@@ -123,12 +123,12 @@ class PairDispatcher(p: PucParams) extends Module {
   val inGroupK = VecInit.tabulate(p.lanes)(k => table(cnt, 1)(c => if (k < c) 1 else 0).asBool)
 
   // Per SCPU: its position in the group, and whether it has one (tables on the registers).
-  val posOf = VecInit.tabulate(n)(s => table(base, log2Ceil(n).max(1))(b => ((s - b) % n + n) % n))
+  val posOf = VecInit.tabulate(n)(s => table(base, log2Ceil(n).max(1))(b => GroupInfo.position(n, b, s)))
   val inGroup = VecInit.tabulate(n) { s =>
     if (p.banked) posOf(s) < cnt
     else table(Cat(base, rem), 1) { v =>
       val (b, r) = (v >> ptrW, v & ((1 << ptrW) - 1))
-      if (((s - b) % n + n) % n < math.min(r, p.lanes)) 1 else 0
+      if (GroupInfo.position(n, b, s) < math.min(r, p.lanes)) 1 else 0
     }.asBool
   }
 
@@ -195,4 +195,10 @@ class PairDispatcher(p: PucParams) extends Module {
   io.advance := takeNxt
   io.pairs.ready := !nxtValid || takeNxt
   when(io.pairs.fire) { nxtValid := true.B }.elsewhen(takeNxt) { nxtValid := false.B }
+}
+
+object GroupInfo {
+  /** Position of SCPU `s` in a group starting at SCPU `base` of `n`: (s - base) mod n. For the
+    * tables that give the collector and the dispatcher a group's SCPUs. */
+  def position(n: Int, base: Int, s: Int): Int = ((s - base) % n + n) % n
 }
