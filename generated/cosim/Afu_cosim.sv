@@ -946,6 +946,10 @@ module ReadEngine_r64_p64_cosim(
   wire        _tags_io_alloc_ready_T =
     wantSphere | io_active & ~wantSphere & pairIssued < io_pairLines & ~(reserved[6]);
   wire        io_rdReq_valid_0 = _tags_io_alloc_valid & _tags_io_alloc_ready_T;
+  wire [10:0] io_rdReq_bits_addr_lo = {1'h0, io_sphereBase[9:0]} + {2'h0, sphereIssued};
+  reg  [53:0] io_rdReq_bits_addr_hiPlus1;
+  wire [22:0] io_rdReq_bits_addr_lo_1 = {1'h0, io_pairBase[21:0]} + {2'h0, pairIssued};
+  reg  [41:0] io_rdReq_bits_addr_hiPlus1_1;
   reg         casez_tmp;
   always @(*) begin
     casez (io_rdResp_bits_tag)
@@ -1217,7 +1221,7 @@ module ReadEngine_r64_p64_cosim(
     always @(posedge clock) begin
       if (~reset & ~(~_buffer_io_enq_valid_T | _buffer_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ReadEngine: no room for a pair line (reservation broken)\n    at ReadEngine.scala:87 assert(!buffer.io.enq.valid || buffer.io.enq.ready, \"ReadEngine: no room for a pair line (reservation broken)\")\n");
+          $error("Assertion failed: ReadEngine: no room for a pair line (reservation broken)\n    at ReadEngine.scala:88 assert(!buffer.io.enq.valid || buffer.io.enq.ready, \"ReadEngine: no room for a pair line (reservation broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -1507,6 +1511,8 @@ module ReadEngine_r64_p64_cosim(
       tagIsPair_63 <= ~wantSphere;
       tagLine_63 <= _tagLine_T;
     end
+    io_rdReq_bits_addr_hiPlus1 <= io_sphereBase[63:10] + 54'h1;
+    io_rdReq_bits_addr_hiPlus1_1 <= io_pairBase[63:22] + 42'h1;
   end // always @(posedge)
   TagPool_n64_cosim tags (
     .clock          (clock),
@@ -1533,8 +1539,10 @@ module ReadEngine_r64_p64_cosim(
   assign io_rdReq_valid = io_rdReq_valid_0;
   assign io_rdReq_bits_addr =
     wantSphere
-      ? io_sphereBase + {55'h0, sphereIssued}
-      : io_pairBase + {43'h0, pairIssued};
+      ? {io_rdReq_bits_addr_lo[10] ? io_rdReq_bits_addr_hiPlus1 : io_sphereBase[63:10],
+         io_rdReq_bits_addr_lo[9:0]}
+      : {io_rdReq_bits_addr_lo_1[22] ? io_rdReq_bits_addr_hiPlus1_1 : io_pairBase[63:22],
+         io_rdReq_bits_addr_lo_1[21:0]};
   assign io_rdReq_bits_tag = _tags_io_alloc_bits;
   assign io_sphereWrite_valid = io_rdResp_valid & ~casez_tmp;
   assign io_sphereWrite_bits_line = casez_tmp_0[7:0];
@@ -29476,18 +29484,18 @@ module PairDispatcher_n16_cosim(
 endmodule
 
 // VCS coverage exclude_file
-module ram_32x49_cosim(
-  input  [4:0]  R0_addr,
+module ram_256x49_cosim(
+  input  [7:0]  R0_addr,
   input         R0_en,
                 R0_clk,
   output [48:0] R0_data,
-  input  [4:0]  W0_addr,
+  input  [7:0]  W0_addr,
   input         W0_en,
                 W0_clk,
   input  [48:0] W0_data
 );
 
-  reg [48:0] Memory[0:31];
+  reg [48:0] Memory[0:255];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
@@ -29495,7 +29503,7 @@ module ram_32x49_cosim(
   assign R0_data = R0_en ? Memory[R0_addr] : 49'bx;
 endmodule
 
-module GroupQueue_d32_cosim(
+module GroupQueue_d256_cosim(
   input         clock,
                 reset,
   output        io_enq_ready,
@@ -29513,8 +29521,8 @@ module GroupQueue_d32_cosim(
 );
 
   wire [48:0] _ram_ext_R0_data;
-  reg  [4:0]  enq_ptr_value;
-  reg  [4:0]  deq_ptr_value;
+  reg  [7:0]  enq_ptr_value;
+  reg  [7:0]  deq_ptr_value;
   reg         maybe_full;
   wire        ptr_match = enq_ptr_value == deq_ptr_value;
   wire        empty = ptr_match & ~maybe_full;
@@ -29523,20 +29531,20 @@ module GroupQueue_d32_cosim(
   wire        do_deq = io_deq_ready & ~empty;
   always @(posedge clock) begin
     if (reset) begin
-      enq_ptr_value <= 5'h0;
-      deq_ptr_value <= 5'h0;
+      enq_ptr_value <= 8'h0;
+      deq_ptr_value <= 8'h0;
       maybe_full <= 1'h0;
     end
     else begin
       if (do_enq)
-        enq_ptr_value <= enq_ptr_value + 5'h1;
+        enq_ptr_value <= enq_ptr_value + 8'h1;
       if (do_deq)
-        deq_ptr_value <= deq_ptr_value + 5'h1;
+        deq_ptr_value <= deq_ptr_value + 8'h1;
       if (~(do_enq == do_deq))
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_32x49_cosim ram_ext (
+  ram_256x49_cosim ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -76001,9 +76009,9 @@ module Puc_cosim(
   reg  [5:0]   errors;
   reg  [31:0]  processed;
   reg  [31:0]  found;
-  reg  [31:0]  headers;
   reg  [31:0]  nonFinite;
   reg  [31:0]  flaggedMiss;
+  reg  [34:0]  records;
   reg  [31:0]  firstBad;
   reg  [31:0]  cycTotal;
   reg  [31:0]  cycLoad;
@@ -76030,14 +76038,12 @@ module Puc_cosim(
   wire         runDone =
     processed == {8'h0, run_4[23:0]} & loaded & ~(|_rd_io_outstanding);
   wire         drainDone = _pack_io_idle & ~_pack_io_lines_valid & ~(|_wr_io_outstanding);
-  wire [63:0]  totalRecords =
-    run_8[0]
-      ? {40'h0, run_4[23:0]}
-      : {32'h0, headers} + {31'h0, {1'h0, flaggedMiss} + {1'h0, found}};
-  wire         _capErr_T = totalRecords > run_6;
+  wire [34:0]  totalRecords = run_8[0] ? {11'h0, run_4[23:0]} : records;
+  reg          capHigh;
+  wire         overCap = ~capHigh & totalRecords > run_6[34:0];
   wire [1:0]   _GEN_2 = {errors[4], errors[1]};
   wire [3:0]   _GEN_3 = errors[3:0] | {|nonFinite, 3'h0};
-  wire [2:0]   _GEN_4 = _GEN_3[2:0] | {_capErr_T & ~(|_GEN_2), 2'h0};
+  wire [2:0]   _GEN_4 = _GEN_3[2:0] | {overCap & ~(|_GEN_2), 2'h0};
   wire         _wr_io_status_valid_T = state == 3'h4;
   wire         quietRun =
     ~_disp_io_fired & ~_disp_io_advance & ~(_disp_io_pairs_ready & _rd_io_pairs_valid)
@@ -76054,7 +76060,7 @@ module Puc_cosim(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:367 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:374 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -76115,9 +76121,9 @@ module Puc_cosim(
       errors <= 6'h0;
       processed <= 32'h0;
       found <= 32'h0;
-      headers <= 32'h0;
       nonFinite <= 32'h0;
       flaggedMiss <= 32'h0;
+      records <= 35'h0;
       firstBad <= 32'hFFFFFFFF;
       cycTotal <= 32'h0;
       cycLoad <= 32'h0;
@@ -76160,9 +76166,9 @@ module Puc_cosim(
         errors <= {1'h0, badConfig, 2'h0, tooMany, 1'h0};
         processed <= 32'h0;
         found <= 32'h0;
-        headers <= 32'h0;
         nonFinite <= 32'h0;
         flaggedMiss <= 32'h0;
+        records <= 35'h0;
         firstBad <= 32'hFFFFFFFF;
         cycLoad <= 32'h0;
         cycCompute <= 32'h0;
@@ -76172,9 +76178,13 @@ module Puc_cosim(
       else begin
         processed <= processed + {27'h0, _coll_io_nPairs};
         found <= found + {27'h0, _coll_io_nHits};
-        headers <= headers + {31'h0, _coll_io_nHeaders};
         nonFinite <= nonFinite + {27'h0, _coll_io_nNonFinite};
         flaggedMiss <= flaggedMiss + {27'h0, _coll_io_nFlagged};
+        records <=
+          records
+          + {28'h0,
+             {1'h0, {1'h0, _coll_io_nHits} + {1'h0, _coll_io_nFlagged}}
+               + {6'h0, _coll_io_nHeaders}};
         if (_groups_io_enq_ready & _disp_io_groups_valid & (|_disp_io_groups_bits_invalid)
             & _GEN_5 < firstBad)
           firstBad <= _GEN_5;
@@ -76209,6 +76219,7 @@ module Puc_cosim(
       run_7 <= csr_7;
       run_8 <= csr_8;
     end
+    capHigh <= |(run_6[63:35]);
   end // always @(posedge)
   ReadEngine_r64_p64_cosim rd (
     .clock                    (clock),
@@ -76791,7 +76802,7 @@ module Puc_cosim(
     .io_idle                (_disp_io_idle),
     .io_advance             (_disp_io_advance)
   );
-  GroupQueue_d32_cosim groups (
+  GroupQueue_d256_cosim groups (
     .clock               (clock),
     .reset               (reset),
     .io_enq_ready        (_groups_io_enq_ready),
@@ -77034,7 +77045,7 @@ module Puc_cosim(
         flaggedMiss,
         firstBad,
         nonFinite,
-        (|_GEN_2) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
+        (|_GEN_2) ? 32'h0 : overCap ? run_6[31:0] : totalRecords[31:0],
         found,
         processed,
         26'h0,

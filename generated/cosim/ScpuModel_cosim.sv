@@ -1,4 +1,4 @@
-// The SCPU fp32 for simulation only: a pipeline of its latency (21) around the C++
+// The SCPU fp32-200 for simulation only: a pipeline of its latency (136) around the C++
 // SCPU model (DPI-C), cycle for cycle the RTL's handshake, bit for bit its results.
 module ScpuModel_cosim(
   input clock, input reset,
@@ -30,18 +30,18 @@ module ScpuModel_cosim(
     input longint x1, input longint y1, input longint z1, input longint r1, input longint x2, input longint y2, input longint z2, input longint r2,
     output longint px, output longint py, output longint pz, output longint nx, output longint ny, output longint nz, output longint depth, output longint d, output longint nw, output int info);
   // A ring of its latency: every stage advances together (en), so the slot written now is
-  // the one whose result leaves now, 21 cycles after it entered; nothing is shifted.
-  reg valid_q [0:20];
-  reg [320:0] data_q [0:20];
-  reg [4:0] at;
+  // the one whose result leaves now, 136 cycles after it entered; nothing is shifted.
+  reg valid_q [0:135];
+  reg [320:0] data_q [0:135];
+  reg [7:0] at;
   wire en = !valid_q[at] || out_ready;
   assign in_ready = en;
   longint r_px, r_py, r_pz, r_nx, r_ny, r_nz, r_depth, r_d, r_nw;
   int info;
   always @(posedge clock) begin
     if (reset) begin
-      for (int k = 0; k < 21; k++) valid_q[k] <= 1'b0;
-      at <= 5'd0;
+      for (int k = 0; k < 136; k++) valid_q[k] <= 1'b0;
+      at <= 8'd0;
     end else if (en) begin
       if (in_valid) begin
         collide_scpu_model(8, 24, 8, 24, 0,
@@ -50,7 +50,7 @@ module ScpuModel_cosim(
         data_q[at] <= {info[0], info[2:1], r_px[31:0], r_py[31:0], r_pz[31:0], r_nx[31:0], r_ny[31:0], r_nz[31:0], r_depth[31:0], r_d[31:0], r_nw[31:0], info[3], info[12:8], in_bits_tag};
       end
       valid_q[at] <= in_valid;
-      at <= at == 5'd20 ? 5'd0 : at + 5'd1;
+      at <= at == 8'd135 ? 8'd0 : at + 8'd1;
     end
   end
   assign out_valid = valid_q[at];

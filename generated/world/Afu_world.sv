@@ -814,6 +814,8 @@ module ReadEngine_r64_p64_world(
   reg  [10:0] sphereGot;
   reg  [20:0] pairIssued;
   reg  [6:0]  reserved;
+  reg  [10:0] sphereLeft;
+  reg  [20:0] pairLeft;
   reg         tagIsPair_0;
   reg         tagIsPair_1;
   reg         tagIsPair_2;
@@ -942,10 +944,14 @@ module ReadEngine_r64_p64_world(
   reg  [19:0] tagLine_61;
   reg  [19:0] tagLine_62;
   reg  [19:0] tagLine_63;
-  wire        wantSphere = io_active & sphereIssued < io_sphereLines;
+  wire        wantSphere = io_active & (|sphereLeft);
   wire        _tags_io_alloc_ready_T =
-    wantSphere | io_active & ~wantSphere & pairIssued < io_pairLines & ~(reserved[6]);
+    wantSphere | io_active & ~wantSphere & (|pairLeft) & ~(reserved[6]);
   wire        io_rdReq_valid_0 = _tags_io_alloc_valid & _tags_io_alloc_ready_T;
+  wire [12:0] io_rdReq_bits_addr_lo = {1'h0, io_sphereBase[11:0]} + {2'h0, sphereIssued};
+  reg  [51:0] io_rdReq_bits_addr_hiPlus1;
+  wire [22:0] io_rdReq_bits_addr_lo_1 = {1'h0, io_pairBase[21:0]} + {2'h0, pairIssued};
+  reg  [41:0] io_rdReq_bits_addr_hiPlus1_1;
   reg         casez_tmp;
   always @(*) begin
     casez (io_rdResp_bits_tag)
@@ -1217,7 +1223,7 @@ module ReadEngine_r64_p64_world(
     always @(posedge clock) begin
       if (~reset & ~(~_buffer_io_enq_valid_T | _buffer_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ReadEngine: no room for a pair line (reservation broken)\n    at ReadEngine.scala:87 assert(!buffer.io.enq.valid || buffer.io.enq.ready, \"ReadEngine: no room for a pair line (reservation broken)\")\n");
+          $error("Assertion failed: ReadEngine: no room for a pair line (reservation broken)\n    at ReadEngine.scala:95 assert(!buffer.io.enq.valid || buffer.io.enq.ready, \"ReadEngine: no room for a pair line (reservation broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -1225,23 +1231,30 @@ module ReadEngine_r64_p64_world(
   `endif // not def SYNTHESIS
   wire        _reserved_T = io_rdReq_ready & io_rdReq_valid_0;
   wire [19:0] _tagLine_T = wantSphere ? {9'h0, sphereIssued} : pairIssued[19:0];
+  wire        _GEN = ~_reserved_T | wantSphere;
   always @(posedge clock) begin
     if (reset) begin
       sphereIssued <= 11'h0;
       sphereGot <= 11'h0;
       pairIssued <= 21'h0;
       reserved <= 7'h0;
+      sphereLeft <= 11'h0;
+      pairLeft <= 21'h0;
     end
     else begin
-      if (_reserved_T & wantSphere)
+      if (_reserved_T & wantSphere) begin
         sphereIssued <= sphereIssued + 11'h1;
-      else if (io_start)
+        sphereLeft <= sphereLeft - 11'h1;
+      end
+      else if (io_start) begin
         sphereIssued <= 11'h0;
+        sphereLeft <= io_sphereLines;
+      end
       if (io_rdResp_valid & ~casez_tmp)
         sphereGot <= sphereGot + 11'h1;
       else if (io_start)
         sphereGot <= 11'h0;
-      if (~_reserved_T | wantSphere) begin
+      if (_GEN) begin
         if (io_start)
           pairIssued <= 21'h0;
       end
@@ -1250,6 +1263,12 @@ module ReadEngine_r64_p64_world(
       reserved <=
         reserved + {6'h0, _reserved_T & ~wantSphere}
         - {6'h0, io_pairs_ready & _buffer_io_deq_valid};
+      if (_GEN) begin
+        if (io_start)
+          pairLeft <= io_pairLines;
+      end
+      else
+        pairLeft <= pairLeft - 21'h1;
     end
     if (_reserved_T & _tags_io_alloc_bits == 6'h0) begin
       tagIsPair_0 <= ~wantSphere;
@@ -1507,6 +1526,8 @@ module ReadEngine_r64_p64_world(
       tagIsPair_63 <= ~wantSphere;
       tagLine_63 <= _tagLine_T;
     end
+    io_rdReq_bits_addr_hiPlus1 <= io_sphereBase[63:12] + 52'h1;
+    io_rdReq_bits_addr_hiPlus1_1 <= io_pairBase[63:22] + 42'h1;
   end // always @(posedge)
   TagPool_n64_world tags (
     .clock          (clock),
@@ -1533,15 +1554,16 @@ module ReadEngine_r64_p64_world(
   assign io_rdReq_valid = io_rdReq_valid_0;
   assign io_rdReq_bits_addr =
     wantSphere
-      ? io_sphereBase + {53'h0, sphereIssued}
-      : io_pairBase + {43'h0, pairIssued};
+      ? {io_rdReq_bits_addr_lo[12] ? io_rdReq_bits_addr_hiPlus1 : io_sphereBase[63:12],
+         io_rdReq_bits_addr_lo[11:0]}
+      : {io_rdReq_bits_addr_lo_1[22] ? io_rdReq_bits_addr_hiPlus1_1 : io_pairBase[63:22],
+         io_rdReq_bits_addr_lo_1[21:0]};
   assign io_rdReq_bits_tag = _tags_io_alloc_bits;
   assign io_sphereWrite_valid = io_rdResp_valid & ~casez_tmp;
   assign io_sphereWrite_bits_line = casez_tmp_0[9:0];
   assign io_sphereWrite_bits_data = io_rdResp_bits_data;
   assign io_pairs_valid = _buffer_io_deq_valid;
-  assign io_loaded =
-    io_active & sphereGot == io_sphereLines & sphereIssued == io_sphereLines;
+  assign io_loaded = io_active & sphereLeft == 11'h0 & sphereGot == sphereIssued;
   assign io_pairBufferEmpty = ~_buffer_io_deq_valid;
 endmodule
 
@@ -31194,18 +31216,18 @@ module PairDispatcher_n16_world(
 endmodule
 
 // VCS coverage exclude_file
-module ram_32x49_world(
-  input  [4:0]  R0_addr,
+module ram_256x49_world(
+  input  [7:0]  R0_addr,
   input         R0_en,
                 R0_clk,
   output [48:0] R0_data,
-  input  [4:0]  W0_addr,
+  input  [7:0]  W0_addr,
   input         W0_en,
                 W0_clk,
   input  [48:0] W0_data
 );
 
-  reg [48:0] Memory[0:31];
+  reg [48:0] Memory[0:255];
   always @(posedge W0_clk) begin
     if (W0_en & 1'h1)
       Memory[W0_addr] <= W0_data;
@@ -31213,7 +31235,7 @@ module ram_32x49_world(
   assign R0_data = R0_en ? Memory[R0_addr] : 49'bx;
 endmodule
 
-module GroupQueue_d32_world(
+module GroupQueue_d256_world(
   input         clock,
                 reset,
   output        io_enq_ready,
@@ -31231,8 +31253,8 @@ module GroupQueue_d32_world(
 );
 
   wire [48:0] _ram_ext_R0_data;
-  reg  [4:0]  enq_ptr_value;
-  reg  [4:0]  deq_ptr_value;
+  reg  [7:0]  enq_ptr_value;
+  reg  [7:0]  deq_ptr_value;
   reg         maybe_full;
   wire        ptr_match = enq_ptr_value == deq_ptr_value;
   wire        empty = ptr_match & ~maybe_full;
@@ -31241,20 +31263,20 @@ module GroupQueue_d32_world(
   wire        do_deq = io_deq_ready & ~empty;
   always @(posedge clock) begin
     if (reset) begin
-      enq_ptr_value <= 5'h0;
-      deq_ptr_value <= 5'h0;
+      enq_ptr_value <= 8'h0;
+      deq_ptr_value <= 8'h0;
       maybe_full <= 1'h0;
     end
     else begin
       if (do_enq)
-        enq_ptr_value <= enq_ptr_value + 5'h1;
+        enq_ptr_value <= enq_ptr_value + 8'h1;
       if (do_deq)
-        deq_ptr_value <= deq_ptr_value + 5'h1;
+        deq_ptr_value <= deq_ptr_value + 8'h1;
       if (~(do_enq == do_deq))
         maybe_full <= do_enq;
     end
   end // always @(posedge)
-  ram_32x49_world ram_ext (
+  ram_256x49_world ram_ext (
     .R0_addr (deq_ptr_value),
     .R0_en   (1'h1),
     .R0_clk  (clock),
@@ -113267,6 +113289,7 @@ module Puc_world(
   reg  [31:0]  found;
   reg  [31:0]  nonFinite;
   reg  [31:0]  flaggedMiss;
+  reg  [34:0]  records;
   reg  [31:0]  firstBad;
   reg  [31:0]  cycTotal;
   reg  [31:0]  cycLoad;
@@ -113277,35 +113300,43 @@ module Puc_world(
   wire         _GEN = state == 3'h1;
   wire         _badConfig_T_9 = run_7 == 64'h0;
   wire         badConfig =
-    ~(run_8[1]) & ((|(run_4[63:24])) | (|run_4) & run_3 == 64'h0) | run_8[1] & run_8[0]
-    | (|run_2) & run_1 == 64'h0 | (|run_6) & run_5 == 64'h0 | _badConfig_T_9;
-  wire         tooMany = run_2 > 64'h1000;
+    ~(run_8[1]) & ((|(run_4[63:25])) | run_4[24] | (|run_4) & run_3 == 64'h0) | run_8[1]
+    & run_8[0] | (|run_2) & run_1 == 64'h0 | (|run_6) & run_5 == 64'h0 | _badConfig_T_9;
+  wire         tooMany = (|(run_2[63:13])) | run_2[12:0] > 13'h1000;
   wire         _GEN_0 = badConfig & _badConfig_T_9;
   wire         _GEN_1 = badConfig | tooMany;
   assign runStart = _GEN & ~_GEN_0 & ~_GEN_1;
   wire         _running_T = state == 3'h2;
   wire         _pack_io_flush_T = state == 3'h3;
   wire         running = _running_T | _pack_io_flush_T;
-  wire [63:0]  feedNum = nextLoading ? next_2 : run_2;
-  wire [12:0]  _rd_io_sphereLines_T_1 = feedNum[12:0] + 13'h3;
-  wire         _bp_io_feed_3_valid_T = run_8[1] | nextLoading;
+  wire         loadingNext = nextLoading | prefetchGo;
+  wire [12:0]  _rd_io_sphereLines_T_1 = next_2[12:0] + 13'h3;
+  wire [12:0]  _rd_io_sphereLines_T_5 = run_2[12:0] + 13'h3;
   wire [24:0]  _rd_io_pairLines_T_1 = {1'h0, run_4[23:0]} + 25'hF;
   reg          tableIn;
   wire         loaded = running & (tableIn | _rd_io_loaded & ~nextLoading);
   assign prefetchGo =
     nextValid & ~nextLoading & next_8[1]
-    & ~(~(next_8[1]) & ((|(next_4[63:24])) | (|next_4) & next_3 == 64'h0) | next_8[1]
-        & next_8[0] | (|next_2) & next_1 == 64'h0 | (|next_6) & next_5 == 64'h0
-        | next_7 == 64'h0) & next_2 < 64'h1001 & run_8[1] & loaded
+    & ~(~(next_8[1]) & ((|(next_4[63:25])) | next_4[24] | (|next_4) & next_3 == 64'h0)
+        | next_8[1] & next_8[0] | (|next_2) & next_1 == 64'h0 | (|next_6)
+        & next_5 == 64'h0 | next_7 == 64'h0)
+    & ~((|(next_2[63:13])) | next_2[12:0] > 13'h1000) & run_8[1] & loaded
     & ~(|_rd_io_outstanding) & _bp_io_canBegin;
   reg          bpStarted;
   wire         bpStart = run_8[1] & loaded & ~bpStarted;
+  wire [12:0]  feedNum = nextLoading ? next_2[12:0] : run_2[12:0];
+  wire         _bp_io_feed_3_valid_T = run_8[1] | nextLoading;
   wire [12:0]  _GEN_2 = {1'h0, _rd_io_sphereWrite_bits_line, 2'h0};
   reg          bpOver;
   wire         _bpDoneNow_T_1 = bpStarted & ~_bp_io_busy;
   wire         bpDone = bpOver | _bpDoneNow_T_1;
   wire         worldDone = bpDone & _lines_io_idle;
   wire         _rd_io_pairs_ready_T_1 = ~(run_8[1]) & _disp_io_pairs_ready;
+  reg          bad1;
+  reg  [15:0]  grp1_invalid;
+  reg  [23:0]  grp1_first;
+  reg          bad2;
+  reg  [23:0]  idx2;
   reg  [24:0]  pairsInFlight;
   wire         runDone =
     (run_8[1]
@@ -113313,14 +113344,12 @@ module Puc_world(
        : processed == {8'h0, run_4[23:0]}) & loaded
     & (nextLoading | ~(|_rd_io_outstanding));
   wire         drainDone = _pack_io_idle & ~_pack_io_lines_valid & ~(|_wr_io_outstanding);
-  wire [63:0]  totalRecords =
-    run_8[0]
-      ? {40'h0, run_4[23:0]}
-      : {32'h0, found} + (run_8[1] ? 64'h0 : {32'h0, flaggedMiss});
-  wire         _capErr_T = totalRecords > run_6;
+  wire [34:0]  totalRecords = run_8[0] ? {11'h0, run_4[23:0]} : records;
+  reg          capHigh;
+  wire         overCap = ~capHigh & totalRecords > run_6[34:0];
   wire [1:0]   _GEN_3 = {errors[4], errors[1]};
   wire [3:0]   _GEN_4 = errors[3:0] | {|nonFinite, 3'h0};
-  wire [2:0]   _GEN_5 = _GEN_4[2:0] | {_capErr_T & ~(|_GEN_3), 2'h0};
+  wire [2:0]   _GEN_5 = _GEN_4[2:0] | {overCap & ~(|_GEN_3), 2'h0};
   wire         _wr_io_status_valid_T = state == 3'h4;
   wire         quietRun =
     ~_disp_io_fired & ~_disp_io_advance & ~(_rd_io_pairs_ready_T_1 & _rd_io_pairs_valid)
@@ -113337,46 +113366,13 @@ module Puc_world(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:367 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:391 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [31:0]  _GEN_6 =
-    {8'h0,
-     _disp_io_groups_bits_first
-       + {20'h0,
-          _disp_io_groups_bits_invalid[0]
-            ? 4'h0
-            : _disp_io_groups_bits_invalid[1]
-                ? 4'h1
-                : _disp_io_groups_bits_invalid[2]
-                    ? 4'h2
-                    : _disp_io_groups_bits_invalid[3]
-                        ? 4'h3
-                        : _disp_io_groups_bits_invalid[4]
-                            ? 4'h4
-                            : _disp_io_groups_bits_invalid[5]
-                                ? 4'h5
-                                : _disp_io_groups_bits_invalid[6]
-                                    ? 4'h6
-                                    : _disp_io_groups_bits_invalid[7]
-                                        ? 4'h7
-                                        : _disp_io_groups_bits_invalid[8]
-                                            ? 4'h8
-                                            : _disp_io_groups_bits_invalid[9]
-                                                ? 4'h9
-                                                : _disp_io_groups_bits_invalid[10]
-                                                    ? 4'hA
-                                                    : _disp_io_groups_bits_invalid[11]
-                                                        ? 4'hB
-                                                        : _disp_io_groups_bits_invalid[12]
-                                                            ? 4'hC
-                                                            : _disp_io_groups_bits_invalid[13]
-                                                                ? 4'hD
-                                                                : {3'h7,
-                                                                   ~(_disp_io_groups_bits_invalid[14])}}};
+  wire [31:0]  _GEN_6 = {8'h0, idx2};
   wire         _GEN_7 =
     io_link_csr_valid & (|io_link_csr_bits_index) & io_link_csr_bits_index < 8'h9;
   wire [31:0]  tick = (|io_skipCycles) ? io_skipCycles : 32'h1;
@@ -113387,6 +113383,7 @@ module Puc_world(
     io_link_csr_valid & ~(|io_link_csr_bits_index) & io_link_csr_bits_data == 64'h1;
   wire         _GEN_11 = ~(|state) & startReq;
   wire         _GEN_12 = _GEN & _GEN_0 & nextValid;
+  wire         _grp1_T = _groups_io_enq_ready & _disp_io_groups_valid;
   wire         _GEN_13 = state == 3'h5 & ~(|_wr_io_outstanding);
   wire         _GEN_14 = _GEN_13 & nextValid | _GEN_12;
   wire         _GEN_15 = startReq & (|state) & (~nextValid | _GEN_13 | _GEN & _GEN_0);
@@ -113410,6 +113407,7 @@ module Puc_world(
       found <= 32'h0;
       nonFinite <= 32'h0;
       flaggedMiss <= 32'h0;
+      records <= 35'h0;
       firstBad <= 32'hFFFFFFFF;
       cycTotal <= 32'h0;
       cycLoad <= 32'h0;
@@ -113419,6 +113417,8 @@ module Puc_world(
       tableIn <= 1'h0;
       bpStarted <= 1'h0;
       bpOver <= 1'h0;
+      bad1 <= 1'h0;
+      bad2 <= 1'h0;
       pairsInFlight <= 25'h0;
     end
     else begin
@@ -113467,6 +113467,7 @@ module Puc_world(
         found <= 32'h0;
         nonFinite <= 32'h0;
         flaggedMiss <= 32'h0;
+        records <= 35'h0;
         firstBad <= 32'hFFFFFFFF;
         cycLoad <= 32'h0;
         cycCompute <= 32'h0;
@@ -113478,8 +113479,10 @@ module Puc_world(
         found <= found + {27'h0, _coll_io_nHits};
         nonFinite <= nonFinite + {27'h0, _coll_io_nNonFinite};
         flaggedMiss <= flaggedMiss + {27'h0, _coll_io_nFlagged};
-        if (_groups_io_enq_ready & _disp_io_groups_valid & (|_disp_io_groups_bits_invalid)
-            & _GEN_6 < firstBad)
+        records <=
+          {29'h0, {1'h0, _coll_io_nHits} + {1'h0, run_8[1] ? 5'h0 : _coll_io_nFlagged}}
+          + records;
+        if (bad2 & _GEN_6 < firstBad)
           firstBad <= _GEN_6;
         if (running & ~loaded)
           cycLoad <= cycLoad + tick;
@@ -113500,6 +113503,8 @@ module Puc_world(
       tableIn <= ~_GEN & (loaded | tableIn);
       bpStarted <= ~_GEN & (bpStart | bpStarted);
       bpOver <= ~_GEN & (_bpDoneNow_T_1 | bpOver);
+      bad1 <= _grp1_T & (|_disp_io_groups_bits_invalid);
+      bad2 <= bad1;
       pairsInFlight <=
         pairsInFlight + {20'h0, _disp_io_fired ? _disp_io_groups_bits_cnt : 5'h0}
         - {20'h0, _coll_io_nPairs};
@@ -113534,17 +113539,56 @@ module Puc_world(
       next_7 <= csr_7;
       next_8 <= csr_8;
     end
+    if (_grp1_T) begin
+      grp1_invalid <= _disp_io_groups_bits_invalid;
+      grp1_first <= _disp_io_groups_bits_first;
+    end
+    idx2 <=
+      grp1_first
+      + {20'h0,
+         grp1_invalid[0]
+           ? 4'h0
+           : grp1_invalid[1]
+               ? 4'h1
+               : grp1_invalid[2]
+                   ? 4'h2
+                   : grp1_invalid[3]
+                       ? 4'h3
+                       : grp1_invalid[4]
+                           ? 4'h4
+                           : grp1_invalid[5]
+                               ? 4'h5
+                               : grp1_invalid[6]
+                                   ? 4'h6
+                                   : grp1_invalid[7]
+                                       ? 4'h7
+                                       : grp1_invalid[8]
+                                           ? 4'h8
+                                           : grp1_invalid[9]
+                                               ? 4'h9
+                                               : grp1_invalid[10]
+                                                   ? 4'hA
+                                                   : grp1_invalid[11]
+                                                       ? 4'hB
+                                                       : grp1_invalid[12]
+                                                           ? 4'hC
+                                                           : grp1_invalid[13]
+                                                               ? 4'hD
+                                                               : {3'h7,
+                                                                  ~(grp1_invalid[14])}};
+    capHigh <= |(run_6[63:35]);
   end // always @(posedge)
   ReadEngine_r64_p64_world rd (
     .clock                    (clock),
     .reset                    (reset),
     .io_start                 (loadStart | prefetchGo),
     .io_active                (running | nextLoading),
-    .io_sphereBase            (nextLoading ? next_1 : run_1),
-    .io_sphereLines           (_rd_io_sphereLines_T_1[12:2]),
+    .io_sphereBase            (loadingNext ? next_1 : run_1),
+    .io_sphereLines
+      (loadingNext ? _rd_io_sphereLines_T_1[12:2] : _rd_io_sphereLines_T_5[12:2]),
     .io_pairBase              (run_3),
     .io_pairLines
-      (_bp_io_feed_3_valid_T ? 21'h0 : _rd_io_pairLines_T_1[24:4]),
+      (run_8[1] | loadingNext ? 21'h0 : _rd_io_pairLines_T_1[24:4]),
     .io_rdReq_ready           (io_link_rdReq_ready),
     .io_rdReq_valid           (_rd_io_rdReq_valid),
     .io_rdReq_bits_addr       (io_link_rdReq_bits_addr),
@@ -114201,7 +114245,7 @@ module Puc_world(
     .io_advance             (_disp_io_advance),
     .io_world               (run_8[1])
   );
-  GroupQueue_d32_world groups (
+  GroupQueue_d256_world groups (
     .clock               (clock),
     .reset               (reset),
     .io_enq_ready        (_groups_io_enq_ready),
@@ -114440,7 +114484,7 @@ module Puc_world(
         flaggedMiss,
         firstBad,
         nonFinite,
-        (|_GEN_3) ? 32'h0 : _capErr_T ? run_6[31:0] : totalRecords[31:0],
+        (|_GEN_3) ? 32'h0 : overCap ? run_6[31:0] : totalRecords[31:0],
         found,
         processed,
         26'h0,
@@ -114469,29 +114513,25 @@ module Puc_world(
     .io_begin                (loadStart & run_8[1] | prefetchGo),
     .io_canBegin             (_bp_io_canBegin),
     .io_feed_0_valid
-      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T
-       & {52'h0, _rd_io_sphereWrite_bits_line, 2'h0} < feedNum),
+      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T & _GEN_2 < feedNum),
     .io_feed_0_bits_0        (_rd_io_sphereWrite_bits_data[31:0]),
     .io_feed_0_bits_1        (_rd_io_sphereWrite_bits_data[63:32]),
     .io_feed_0_bits_2        (_rd_io_sphereWrite_bits_data[95:64]),
     .io_feed_0_bits_3        (_rd_io_sphereWrite_bits_data[127:96]),
     .io_feed_1_valid
-      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T
-       & {51'h0, _GEN_2 + 13'h1} < feedNum),
+      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T & _GEN_2 + 13'h1 < feedNum),
     .io_feed_1_bits_0        (_rd_io_sphereWrite_bits_data[159:128]),
     .io_feed_1_bits_1        (_rd_io_sphereWrite_bits_data[191:160]),
     .io_feed_1_bits_2        (_rd_io_sphereWrite_bits_data[223:192]),
     .io_feed_1_bits_3        (_rd_io_sphereWrite_bits_data[255:224]),
     .io_feed_2_valid
-      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T
-       & {51'h0, _GEN_2 + 13'h2} < feedNum),
+      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T & _GEN_2 + 13'h2 < feedNum),
     .io_feed_2_bits_0        (_rd_io_sphereWrite_bits_data[287:256]),
     .io_feed_2_bits_1        (_rd_io_sphereWrite_bits_data[319:288]),
     .io_feed_2_bits_2        (_rd_io_sphereWrite_bits_data[351:320]),
     .io_feed_2_bits_3        (_rd_io_sphereWrite_bits_data[383:352]),
     .io_feed_3_valid
-      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T
-       & {51'h0, _GEN_2 + 13'h3} < feedNum),
+      (_rd_io_sphereWrite_valid & _bp_io_feed_3_valid_T & _GEN_2 + 13'h3 < feedNum),
     .io_feed_3_bits_0        (_rd_io_sphereWrite_bits_data[415:384]),
     .io_feed_3_bits_1        (_rd_io_sphereWrite_bits_data[447:416]),
     .io_feed_3_bits_2        (_rd_io_sphereWrite_bits_data[479:448]),
@@ -114735,7 +114775,7 @@ module Puc_world(
   assign io_idle = io_idle_0;
 endmodule
 
-module ScpuConvertIn_fp32_world(
+module ScpuConvertIn_fp32_200_world(
   input         io_in_valid,
   input  [31:0] io_in_bits_x1,
                 io_in_bits_y1,
@@ -114783,7 +114823,7 @@ module ScpuConvertIn_fp32_world(
     | (&(io_in_bits_r2[30:23])) & ~(|(io_in_bits_r2[22:0]));
 endmodule
 
-module FpAdd_fp32_L1_world(
+module FpAdd_fp32_L12_world(
   input         clock,
                 reset,
                 io_en,
@@ -114796,285 +114836,538 @@ module FpAdd_fp32_L1_world(
   output [4:0]  io_out_bits_flags
 );
 
+  reg         s0r_a_isNaN;
+  reg         s0r_a_isSNaN;
+  reg         s0r_a_isInf;
+  reg         s0r_a_isZero;
+  reg         s0r_a_sign;
+  reg         s0r_a_expZero;
+  reg  [7:0]  s0r_a_e;
+  reg  [22:0] s0r_a_frac;
+  reg  [4:0]  s0r_a_lz;
+  reg         s0r_b_isNaN;
+  reg         s0r_b_isSNaN;
+  reg         s0r_b_isInf;
+  reg         s0r_b_isZero;
+  reg         s0r_b_sign;
+  reg         s0r_b_expZero;
+  reg  [7:0]  s0r_b_e;
+  reg  [22:0] s0r_b_frac;
+  reg  [4:0]  s0r_b_lz;
+  reg         s0r_subtract;
+  reg         s0r_hiGt;
+  reg         s0r_hiEq;
+  reg         s0r_loGe;
+  reg         s1r_a_isNaN;
+  reg         s1r_a_isSNaN;
+  reg         s1r_a_isInf;
+  reg         s1r_a_isZero;
+  reg         s1r_a_sign;
+  reg  [9:0]  s1r_a_sExp;
+  reg  [23:0] s1r_a_sig;
+  reg         s1r_b_isNaN;
+  reg         s1r_b_isSNaN;
+  reg         s1r_b_isInf;
+  reg         s1r_b_isZero;
+  reg         s1r_b_sign;
+  reg  [9:0]  s1r_b_sExp;
+  reg  [23:0] s1r_b_sig;
+  reg         s1r_subtract;
+  reg         s1r_aGe;
+  reg         s2r_c_isNaN;
+  reg         s2r_c_isInf;
+  reg         s2r_c_isZero;
+  reg         s2r_c_sign;
+  reg         s2r_c_zSign;
+  reg  [4:0]  s2r_c_flags;
+  reg         s2r_c_effSub;
+  reg  [11:0] s2r_exp;
+  reg  [23:0] s2r_bigSig;
+  reg  [23:0] s2r_smlSig;
+  reg  [11:0] s2r_dist;
+  reg         s3r_c_isNaN;
+  reg         s3r_c_isInf;
+  reg         s3r_c_isZero;
+  reg         s3r_c_sign;
+  reg         s3r_c_zSign;
+  reg  [4:0]  s3r_c_flags;
+  reg         s3r_c_effSub;
+  reg  [11:0] s3r_exp;
+  reg  [23:0] s3r_bigSig;
+  reg  [23:0] s3r_smlSig;
+  reg  [4:0]  s3r_d;
+  reg         s3r_far;
+  reg         s4r_c_isNaN;
+  reg         s4r_c_isInf;
+  reg         s4r_c_isZero;
+  reg         s4r_c_sign;
+  reg         s4r_c_zSign;
+  reg  [4:0]  s4r_c_flags;
+  reg         s4r_c_effSub;
+  reg  [11:0] s4r_exp;
+  reg  [26:0] s4r_bigSig;
+  reg  [26:0] s4r_smlSig;
+  reg         s5r_c_isNaN;
+  reg         s5r_c_isInf;
+  reg         s5r_c_isZero;
+  reg         s5r_c_sign;
+  reg         s5r_c_zSign;
+  reg  [4:0]  s5r_c_flags;
+  reg  [11:0] s5r_exp;
+  reg  [27:0] s5r_sum;
+  reg         s6r_c_isNaN;
+  reg         s6r_c_isInf;
+  reg         s6r_c_isZero;
+  reg         s6r_c_sign;
+  reg         s6r_c_zSign;
+  reg  [4:0]  s6r_c_flags;
+  reg  [11:0] s6r_exp;
+  reg  [27:0] s6r_sum;
+  reg  [4:0]  s6r_lz;
+  reg         s6r_sumZero;
+  reg         s7r_isNaN;
+  reg         s7r_isInf;
+  reg         s7r_isZero;
+  reg         s7r_sign;
+  reg  [11:0] s7r_sExp;
+  reg  [25:0] s7r_sig;
+  reg  [4:0]  s7r_flags;
+  reg         s8r_isNaN;
+  reg         s8r_isInf;
+  reg         s8r_isZero;
+  reg         s8r_sign;
+  reg  [4:0]  s8r_flags;
+  reg         s8r_tiny;
+  reg  [7:0]  s8r_exp0;
+  reg  [7:0]  s8r_exp1;
+  reg         s8r_over0;
+  reg         s8r_over1;
+  reg  [25:0] s8r_sig;
+  reg  [4:0]  s8r_dist;
+  reg         s8r_far;
+  reg         s9r_isNaN;
+  reg         s9r_isInf;
+  reg         s9r_isZero;
+  reg         s9r_sign;
+  reg  [4:0]  s9r_flags;
+  reg         s9r_tiny;
+  reg  [7:0]  s9r_exp0;
+  reg  [7:0]  s9r_exp1;
+  reg         s9r_over0;
+  reg         s9r_over1;
+  reg  [23:0] s9r_m;
+  reg         s9r_rnd;
+  reg         s9r_stk;
+  reg         s10r_isNaN;
+  reg         s10r_isInf;
+  reg         s10r_isZero;
+  reg         s10r_sign;
+  reg  [4:0]  s10r_flags;
+  reg         s10r_tiny;
+  reg  [7:0]  s10r_exp0;
+  reg  [7:0]  s10r_exp1;
+  reg         s10r_over0;
+  reg         s10r_over1;
+  reg  [24:0] s10r_m1;
+  reg         s10r_inexact;
   reg  [31:0] io_out_bits_r_bits;
   reg  [4:0]  io_out_bits_r_flags;
   reg         io_out_valid_r;
+  reg         io_out_valid_r_1;
+  reg         io_out_valid_r_2;
+  reg         io_out_valid_r_3;
+  reg         io_out_valid_r_4;
+  reg         io_out_valid_r_5;
+  reg         io_out_valid_r_6;
+  reg         io_out_valid_r_7;
+  reg         io_out_valid_r_8;
+  reg         io_out_valid_r_9;
+  reg         io_out_valid_r_10;
+  reg         io_out_valid_r_11;
   wire        s0_a_expZero = io_in_bits_a[30:23] == 8'h0;
-  wire        s1_a_out_isInf = (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
-  wire        s1_a_out_isZero = s0_a_expZero & ~(|(io_in_bits_a[22:0]));
   wire [3:0]  _GEN =
     {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
     | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
-  wire [4:0]  s0_a_out_lz =
-    io_in_bits_a[22]
-      ? 5'h0
-      : io_in_bits_a[21]
-          ? 5'h1
-          : io_in_bits_a[20]
-              ? 5'h2
-              : io_in_bits_a[19]
-                  ? 5'h3
-                  : io_in_bits_a[18]
-                      ? 5'h4
-                      : io_in_bits_a[17]
-                          ? 5'h5
-                          : io_in_bits_a[16]
-                              ? 5'h6
-                              : io_in_bits_a[15]
-                                  ? 5'h7
-                                  : io_in_bits_a[14]
-                                      ? 5'h8
-                                      : io_in_bits_a[13]
-                                          ? 5'h9
-                                          : io_in_bits_a[12]
-                                              ? 5'hA
-                                              : io_in_bits_a[11]
-                                                  ? 5'hB
-                                                  : io_in_bits_a[10]
-                                                      ? 5'hC
-                                                      : io_in_bits_a[9]
-                                                          ? 5'hD
-                                                          : _GEN[0]
-                                                              ? 5'hE
-                                                              : _GEN[1]
-                                                                  ? 5'hF
-                                                                  : _GEN[2]
-                                                                      ? 5'h10
-                                                                      : _GEN[3]
-                                                                          ? 5'h11
-                                                                          : io_in_bits_a[4]
-                                                                              ? 5'h12
-                                                                              : io_in_bits_a[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_bits_a[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_bits_a[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
   wire        s0_b_expZero = io_in_bits_b[30:23] == 8'h0;
-  wire        s1_b_out_isInf = (&(io_in_bits_b[30:23])) & ~(|(io_in_bits_b[22:0]));
-  wire        s1_b_out_isZero = s0_b_expZero & ~(|(io_in_bits_b[22:0]));
   wire [3:0]  _GEN_0 =
     {{io_in_bits_b[5:4], io_in_bits_b[7]} & 3'h5, 1'h0}
     | {io_in_bits_b[7:6], io_in_bits_b[9:8]} & 4'h5;
-  wire [4:0]  s0_b_out_lz =
-    io_in_bits_b[22]
-      ? 5'h0
-      : io_in_bits_b[21]
-          ? 5'h1
-          : io_in_bits_b[20]
-              ? 5'h2
-              : io_in_bits_b[19]
-                  ? 5'h3
-                  : io_in_bits_b[18]
-                      ? 5'h4
-                      : io_in_bits_b[17]
-                          ? 5'h5
-                          : io_in_bits_b[16]
-                              ? 5'h6
-                              : io_in_bits_b[15]
-                                  ? 5'h7
-                                  : io_in_bits_b[14]
-                                      ? 5'h8
-                                      : io_in_bits_b[13]
-                                          ? 5'h9
-                                          : io_in_bits_b[12]
-                                              ? 5'hA
-                                              : io_in_bits_b[11]
-                                                  ? 5'hB
-                                                  : io_in_bits_b[10]
-                                                      ? 5'hC
-                                                      : io_in_bits_b[9]
-                                                          ? 5'hD
-                                                          : _GEN_0[0]
-                                                              ? 5'hE
-                                                              : _GEN_0[1]
-                                                                  ? 5'hF
-                                                                  : _GEN_0[2]
-                                                                      ? 5'h10
-                                                                      : _GEN_0[3]
-                                                                          ? 5'h11
-                                                                          : io_in_bits_b[4]
-                                                                              ? 5'h12
-                                                                              : io_in_bits_b[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_bits_b[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_bits_b[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [85:0] _s1_a_subSig_T_1 =
-    {63'h0, io_in_bits_a[22:0]} << {1'h0, s0_a_out_lz} + 6'h1;
-  wire [23:0] s1_a_out_sig =
-    s0_a_expZero ? _s1_a_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]};
-  wire [8:0]  _s1_a_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
-  wire [9:0]  s1_a_out_sExp =
-    s0_a_expZero
-      ? 10'h381 - {5'h0, s0_a_out_lz}
-      : {_s1_a_out_sExp_T_1[8], _s1_a_out_sExp_T_1};
-  wire [85:0] _s1_b_subSig_T_1 =
-    {63'h0, io_in_bits_b[22:0]} << {1'h0, s0_b_out_lz} + 6'h1;
-  wire [23:0] s1_b_out_sig =
-    s0_b_expZero ? _s1_b_subSig_T_1[23:0] : {1'h1, io_in_bits_b[22:0]};
-  wire [8:0]  _s1_b_out_sExp_T_1 = {1'h0, io_in_bits_b[30:23]} - 9'h7F;
-  wire [9:0]  s1_b_out_sExp =
-    s0_b_expZero
-      ? 10'h381 - {5'h0, s0_b_out_lz}
-      : {_s1_b_out_sExp_T_1[8], _s1_b_out_sExp_T_1};
-  wire        bSign = io_in_bits_b[31] ^ io_in_bits_subtract;
-  wire        effSub = io_in_bits_a[31] != bSign;
-  wire        infInvalid = s1_a_out_isInf & s1_b_out_isInf & effSub;
-  wire        s7_isNaN =
-    (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) | (&(io_in_bits_b[30:23]))
-    & (|(io_in_bits_b[22:0])) | infInvalid;
-  wire        s6_c_isInf = s1_a_out_isInf | s1_b_out_isInf;
-  wire        s6_c_isZero = s1_a_out_isZero & s1_b_out_isZero;
-  wire        aBig =
-    s1_b_out_isZero | ~s1_a_out_isZero
-    & (io_in_bits_a[30:15] > io_in_bits_b[30:15]
-       | io_in_bits_a[30:15] == io_in_bits_b[30:15]
-       & io_in_bits_a[14:0] >= io_in_bits_b[14:0]);
-  wire [23:0] s3_smlSig =
-    (aBig ? s1_b_out_isZero : s1_a_out_isZero)
-      ? 24'h0
-      : aBig ? s1_b_out_sig : s1_a_out_sig;
-  wire [10:0] _GEN_1 = {s1_a_out_sExp[9], s1_a_out_sExp};
-  wire [10:0] _GEN_2 = {s1_b_out_sExp[9], s1_b_out_sExp};
+  wire [8:0]  _s1_a_out_sExp_T_1 = {1'h0, s0r_a_e} - 9'h7F;
+  wire [8:0]  _s1_b_out_sExp_T_1 = {1'h0, s0r_b_e} - 9'h7F;
+  wire        bSign = s1r_b_sign ^ s1r_subtract;
+  wire        effSub = s1r_a_sign != bSign;
+  wire        infInvalid = s1r_a_isInf & s1r_b_isInf & effSub;
+  wire        aBig = s1r_b_isZero | ~s1r_a_isZero & s1r_aGe;
+  wire [10:0] _GEN_1 = {s1r_a_sExp[9], s1r_a_sExp};
+  wire [10:0] _GEN_2 = {s1r_b_sExp[9], s1r_b_sExp};
   wire [10:0] _GEN_3 = _GEN_1 - _GEN_2;
   wire [10:0] _GEN_4 = _GEN_2 - _GEN_1;
-  wire [11:0] s2_dist = aBig ? {_GEN_3[10], _GEN_3} : {_GEN_4[10], _GEN_4};
-  wire [53:0] s4_smlSig_wide =
-    {s3_smlSig, 30'h0} >> (s2_dist > 12'h1C ? 5'h1C : s2_dist[4:0]);
-  wire [27:0] _GEN_5 = {1'h0, aBig ? s1_a_out_sig : s1_b_out_sig, 3'h0};
-  wire [27:0] _GEN_6 =
-    {1'h0,
-     s4_smlSig_wide[53:28],
-     s4_smlSig_wide[27] | (|(s4_smlSig_wide[26:0])) | s2_dist > 12'h1B & (|s3_smlSig)};
-  wire [27:0] s6_sum = effSub ? _GEN_5 - _GEN_6 : _GEN_5 + _GEN_6;
+  wire [53:0] s4_smlSig_wide = {s3r_smlSig, 30'h0} >> s3r_d;
+  wire [27:0] _GEN_5 = {1'h0, s4r_bigSig};
+  wire [27:0] _GEN_6 = {1'h0, s4r_smlSig};
   wire [3:0]  _GEN_7 =
-    {{s6_sum[5:4], s6_sum[7]} & 3'h5, 1'h0} | {s6_sum[7:6], s6_sum[9:8]} & 4'h5;
-  wire [4:0]  s6_lz =
-    s6_sum[27]
-      ? 5'h0
-      : s6_sum[26]
-          ? 5'h1
-          : s6_sum[25]
-              ? 5'h2
-              : s6_sum[24]
-                  ? 5'h3
-                  : s6_sum[23]
-                      ? 5'h4
-                      : s6_sum[22]
-                          ? 5'h5
-                          : s6_sum[21]
-                              ? 5'h6
-                              : s6_sum[20]
-                                  ? 5'h7
-                                  : s6_sum[19]
-                                      ? 5'h8
-                                      : s6_sum[18]
-                                          ? 5'h9
-                                          : s6_sum[17]
-                                              ? 5'hA
-                                              : s6_sum[16]
-                                                  ? 5'hB
-                                                  : s6_sum[15]
-                                                      ? 5'hC
-                                                      : s6_sum[14]
-                                                          ? 5'hD
-                                                          : s6_sum[13]
-                                                              ? 5'hE
-                                                              : s6_sum[12]
-                                                                  ? 5'hF
-                                                                  : s6_sum[11]
-                                                                      ? 5'h10
-                                                                      : s6_sum[10]
-                                                                          ? 5'h11
-                                                                          : s6_sum[9]
-                                                                              ? 5'h12
-                                                                              : _GEN_7[0]
-                                                                                  ? 5'h13
-                                                                                  : _GEN_7[1]
-                                                                                      ? 5'h14
-                                                                                      : _GEN_7[2]
-                                                                                          ? 5'h15
-                                                                                          : _GEN_7[3]
-                                                                                              ? 5'h16
-                                                                                              : s6_sum[4]
-                                                                                                  ? 5'h17
-                                                                                                  : s6_sum[3]
-                                                                                                      ? 5'h18
-                                                                                                      : s6_sum[2]
-                                                                                                          ? 5'h19
-                                                                                                          : {4'hD,
-                                                                                                             ~(s6_sum[1])};
-  wire        s6_sumZero = s6_sum == 28'h0;
-  wire [58:0] _norm_T = {31'h0, s6_sum} << s6_lz;
-  wire        s7_isInf = s6_c_isInf & ~s7_isNaN;
-  wire        s7_isZero = ~s7_isNaN & ~s6_c_isInf & (s6_c_isZero | s6_sumZero);
-  wire [11:0] _s7_sExp_T_4 =
-    (aBig
-       ? {{2{s1_a_out_sExp[9]}}, s1_a_out_sExp}
-       : {{2{s1_b_out_sExp[9]}}, s1_b_out_sExp}) + 12'h1 - {7'h0, s6_lz};
-  wire [25:0] s7_sig = {_norm_T[27:3], |(_norm_T[2:0])};
-  wire        s9r_tiny = $signed(_s7_sExp_T_4) < -12'sh7E;
-  wire [11:0] _s8r_dist_T = 12'hF82 - _s7_sExp_T_4;
-  wire [51:0] s9r_sig_wide =
-    {_norm_T[27:3], |(_norm_T[2:0]), 26'h0}
-    >> (_s8r_dist_T > 12'h1B ? 5'h1B : _s8r_dist_T[4:0]);
+    {{s5r_sum[5:4], s5r_sum[7]} & 3'h5, 1'h0} | {s5r_sum[7:6], s5r_sum[9:8]} & 4'h5;
+  wire [58:0] _norm_T = {31'h0, s6r_sum} << s6r_lz;
+  wire [11:0] _s8r_dist_T = 12'hF82 - s7r_sExp;
+  wire [51:0] s9r_sig_wide = {s8r_sig, 26'h0} >> s8r_dist;
   wire [25:0] s9r_sig =
-    s9r_tiny
+    s8r_tiny
       ? {s9r_sig_wide[51:27],
-         s9r_sig_wide[26] | (|(s9r_sig_wide[25:0])) | _s8r_dist_T > 12'h1A & (|s7_sig)}
-      : s7_sig;
-  wire        s10r_inexact = s9r_sig[1] | s9r_sig[0];
-  wire [24:0] s10r_m1 =
-    {1'h0, s9r_sig[25:2]} + {24'h0, s9r_sig[1] & (s9r_sig[0] | s9r_sig[2])};
-  wire        io_out_bits_overflow =
-    ~s9r_tiny
-    & (s10r_m1[24] ? $signed(_s7_sExp_T_4) > 12'sh7E : $signed(_s7_sExp_T_4) > 12'sh7F);
+         s9r_sig_wide[26] | (|(s9r_sig_wide[25:0])) | s8r_far & (|s8r_sig)}
+      : s8r_sig;
+  wire        io_out_bits_overflow = ~s10r_tiny & (s10r_m1[24] ? s10r_over1 : s10r_over0);
+  wire [85:0] _s1_a_subSig_T_1 = {63'h0, s0r_a_frac} << {1'h0, s0r_a_lz} + 6'h1;
+  wire [85:0] _s1_b_subSig_T_1 = {63'h0, s0r_b_frac} << {1'h0, s0r_b_lz} + 6'h1;
   always @(posedge clock) begin
     if (io_en) begin
+      s0r_a_isNaN <= (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0]));
+      s0r_a_isSNaN <=
+        (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) & ~(io_in_bits_a[22]);
+      s0r_a_isInf <= (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
+      s0r_a_isZero <= s0_a_expZero & ~(|(io_in_bits_a[22:0]));
+      s0r_a_sign <= io_in_bits_a[31];
+      s0r_a_expZero <= s0_a_expZero;
+      s0r_a_e <= io_in_bits_a[30:23];
+      s0r_a_frac <= io_in_bits_a[22:0];
+      s0r_a_lz <=
+        io_in_bits_a[22]
+          ? 5'h0
+          : io_in_bits_a[21]
+              ? 5'h1
+              : io_in_bits_a[20]
+                  ? 5'h2
+                  : io_in_bits_a[19]
+                      ? 5'h3
+                      : io_in_bits_a[18]
+                          ? 5'h4
+                          : io_in_bits_a[17]
+                              ? 5'h5
+                              : io_in_bits_a[16]
+                                  ? 5'h6
+                                  : io_in_bits_a[15]
+                                      ? 5'h7
+                                      : io_in_bits_a[14]
+                                          ? 5'h8
+                                          : io_in_bits_a[13]
+                                              ? 5'h9
+                                              : io_in_bits_a[12]
+                                                  ? 5'hA
+                                                  : io_in_bits_a[11]
+                                                      ? 5'hB
+                                                      : io_in_bits_a[10]
+                                                          ? 5'hC
+                                                          : io_in_bits_a[9]
+                                                              ? 5'hD
+                                                              : _GEN[0]
+                                                                  ? 5'hE
+                                                                  : _GEN[1]
+                                                                      ? 5'hF
+                                                                      : _GEN[2]
+                                                                          ? 5'h10
+                                                                          : _GEN[3]
+                                                                              ? 5'h11
+                                                                              : io_in_bits_a[4]
+                                                                                  ? 5'h12
+                                                                                  : io_in_bits_a[3]
+                                                                                      ? 5'h13
+                                                                                      : io_in_bits_a[2]
+                                                                                          ? 5'h14
+                                                                                          : io_in_bits_a[1]
+                                                                                              ? 5'h15
+                                                                                              : 5'h16;
+      s0r_b_isNaN <= (&(io_in_bits_b[30:23])) & (|(io_in_bits_b[22:0]));
+      s0r_b_isSNaN <=
+        (&(io_in_bits_b[30:23])) & (|(io_in_bits_b[22:0])) & ~(io_in_bits_b[22]);
+      s0r_b_isInf <= (&(io_in_bits_b[30:23])) & ~(|(io_in_bits_b[22:0]));
+      s0r_b_isZero <= s0_b_expZero & ~(|(io_in_bits_b[22:0]));
+      s0r_b_sign <= io_in_bits_b[31];
+      s0r_b_expZero <= s0_b_expZero;
+      s0r_b_e <= io_in_bits_b[30:23];
+      s0r_b_frac <= io_in_bits_b[22:0];
+      s0r_b_lz <=
+        io_in_bits_b[22]
+          ? 5'h0
+          : io_in_bits_b[21]
+              ? 5'h1
+              : io_in_bits_b[20]
+                  ? 5'h2
+                  : io_in_bits_b[19]
+                      ? 5'h3
+                      : io_in_bits_b[18]
+                          ? 5'h4
+                          : io_in_bits_b[17]
+                              ? 5'h5
+                              : io_in_bits_b[16]
+                                  ? 5'h6
+                                  : io_in_bits_b[15]
+                                      ? 5'h7
+                                      : io_in_bits_b[14]
+                                          ? 5'h8
+                                          : io_in_bits_b[13]
+                                              ? 5'h9
+                                              : io_in_bits_b[12]
+                                                  ? 5'hA
+                                                  : io_in_bits_b[11]
+                                                      ? 5'hB
+                                                      : io_in_bits_b[10]
+                                                          ? 5'hC
+                                                          : io_in_bits_b[9]
+                                                              ? 5'hD
+                                                              : _GEN_0[0]
+                                                                  ? 5'hE
+                                                                  : _GEN_0[1]
+                                                                      ? 5'hF
+                                                                      : _GEN_0[2]
+                                                                          ? 5'h10
+                                                                          : _GEN_0[3]
+                                                                              ? 5'h11
+                                                                              : io_in_bits_b[4]
+                                                                                  ? 5'h12
+                                                                                  : io_in_bits_b[3]
+                                                                                      ? 5'h13
+                                                                                      : io_in_bits_b[2]
+                                                                                          ? 5'h14
+                                                                                          : io_in_bits_b[1]
+                                                                                              ? 5'h15
+                                                                                              : 5'h16;
+      s0r_subtract <= io_in_bits_subtract;
+      s0r_hiGt <= io_in_bits_a[30:15] > io_in_bits_b[30:15];
+      s0r_hiEq <= io_in_bits_a[30:15] == io_in_bits_b[30:15];
+      s0r_loGe <= io_in_bits_a[14:0] >= io_in_bits_b[14:0];
+      s1r_a_isNaN <= s0r_a_isNaN;
+      s1r_a_isSNaN <= s0r_a_isSNaN;
+      s1r_a_isInf <= s0r_a_isInf;
+      s1r_a_isZero <= s0r_a_isZero;
+      s1r_a_sign <= s0r_a_sign;
+      s1r_a_sExp <=
+        s0r_a_expZero
+          ? 10'h381 - {5'h0, s0r_a_lz}
+          : {_s1_a_out_sExp_T_1[8], _s1_a_out_sExp_T_1};
+      s1r_a_sig <= s0r_a_expZero ? _s1_a_subSig_T_1[23:0] : {1'h1, s0r_a_frac};
+      s1r_b_isNaN <= s0r_b_isNaN;
+      s1r_b_isSNaN <= s0r_b_isSNaN;
+      s1r_b_isInf <= s0r_b_isInf;
+      s1r_b_isZero <= s0r_b_isZero;
+      s1r_b_sign <= s0r_b_sign;
+      s1r_b_sExp <=
+        s0r_b_expZero
+          ? 10'h381 - {5'h0, s0r_b_lz}
+          : {_s1_b_out_sExp_T_1[8], _s1_b_out_sExp_T_1};
+      s1r_b_sig <= s0r_b_expZero ? _s1_b_subSig_T_1[23:0] : {1'h1, s0r_b_frac};
+      s1r_subtract <= s0r_subtract;
+      s1r_aGe <= s0r_hiGt | s0r_hiEq & s0r_loGe;
+      s2r_c_isNaN <= s1r_a_isNaN | s1r_b_isNaN | infInvalid;
+      s2r_c_isInf <= s1r_a_isInf | s1r_b_isInf;
+      s2r_c_isZero <= s1r_a_isZero & s1r_b_isZero;
+      s2r_c_sign <= s1r_a_isInf | ~(s1r_b_isInf | ~aBig) ? s1r_a_sign : bSign;
+      s2r_c_zSign <= s1r_a_sign == bSign & s1r_a_sign;
+      s2r_c_flags <= {s1r_a_isSNaN | s1r_b_isSNaN | infInvalid, 4'h0};
+      s2r_c_effSub <= effSub;
+      s2r_exp <=
+        aBig ? {{2{s1r_a_sExp[9]}}, s1r_a_sExp} : {{2{s1r_b_sExp[9]}}, s1r_b_sExp};
+      s2r_bigSig <= aBig ? s1r_a_sig : s1r_b_sig;
+      s2r_smlSig <=
+        (aBig ? s1r_b_isZero : s1r_a_isZero) ? 24'h0 : aBig ? s1r_b_sig : s1r_a_sig;
+      s2r_dist <= aBig ? {_GEN_3[10], _GEN_3} : {_GEN_4[10], _GEN_4};
+      s3r_c_isNaN <= s2r_c_isNaN;
+      s3r_c_isInf <= s2r_c_isInf;
+      s3r_c_isZero <= s2r_c_isZero;
+      s3r_c_sign <= s2r_c_sign;
+      s3r_c_zSign <= s2r_c_zSign;
+      s3r_c_flags <= s2r_c_flags;
+      s3r_c_effSub <= s2r_c_effSub;
+      s3r_exp <= s2r_exp;
+      s3r_bigSig <= s2r_bigSig;
+      s3r_smlSig <= s2r_smlSig;
+      s3r_d <= s2r_dist > 12'h1C ? 5'h1C : s2r_dist[4:0];
+      s3r_far <= s2r_dist > 12'h1B;
+      s4r_c_isNaN <= s3r_c_isNaN;
+      s4r_c_isInf <= s3r_c_isInf;
+      s4r_c_isZero <= s3r_c_isZero;
+      s4r_c_sign <= s3r_c_sign;
+      s4r_c_zSign <= s3r_c_zSign;
+      s4r_c_flags <= s3r_c_flags;
+      s4r_c_effSub <= s3r_c_effSub;
+      s4r_exp <= s3r_exp;
+      s4r_bigSig <= {s3r_bigSig, 3'h0};
+      s4r_smlSig <=
+        {s4_smlSig_wide[53:28],
+         s4_smlSig_wide[27] | (|(s4_smlSig_wide[26:0])) | s3r_far & (|s3r_smlSig)};
+      s5r_c_isNaN <= s4r_c_isNaN;
+      s5r_c_isInf <= s4r_c_isInf;
+      s5r_c_isZero <= s4r_c_isZero;
+      s5r_c_sign <= s4r_c_sign;
+      s5r_c_zSign <= s4r_c_zSign;
+      s5r_c_flags <= s4r_c_flags;
+      s5r_exp <= s4r_exp;
+      s5r_sum <= s4r_c_effSub ? _GEN_5 - _GEN_6 : _GEN_5 + _GEN_6;
+      s6r_c_isNaN <= s5r_c_isNaN;
+      s6r_c_isInf <= s5r_c_isInf;
+      s6r_c_isZero <= s5r_c_isZero;
+      s6r_c_sign <= s5r_c_sign;
+      s6r_c_zSign <= s5r_c_zSign;
+      s6r_c_flags <= s5r_c_flags;
+      s6r_exp <= s5r_exp;
+      s6r_sum <= s5r_sum;
+      s6r_lz <=
+        s5r_sum[27]
+          ? 5'h0
+          : s5r_sum[26]
+              ? 5'h1
+              : s5r_sum[25]
+                  ? 5'h2
+                  : s5r_sum[24]
+                      ? 5'h3
+                      : s5r_sum[23]
+                          ? 5'h4
+                          : s5r_sum[22]
+                              ? 5'h5
+                              : s5r_sum[21]
+                                  ? 5'h6
+                                  : s5r_sum[20]
+                                      ? 5'h7
+                                      : s5r_sum[19]
+                                          ? 5'h8
+                                          : s5r_sum[18]
+                                              ? 5'h9
+                                              : s5r_sum[17]
+                                                  ? 5'hA
+                                                  : s5r_sum[16]
+                                                      ? 5'hB
+                                                      : s5r_sum[15]
+                                                          ? 5'hC
+                                                          : s5r_sum[14]
+                                                              ? 5'hD
+                                                              : s5r_sum[13]
+                                                                  ? 5'hE
+                                                                  : s5r_sum[12]
+                                                                      ? 5'hF
+                                                                      : s5r_sum[11]
+                                                                          ? 5'h10
+                                                                          : s5r_sum[10]
+                                                                              ? 5'h11
+                                                                              : s5r_sum[9]
+                                                                                  ? 5'h12
+                                                                                  : _GEN_7[0]
+                                                                                      ? 5'h13
+                                                                                      : _GEN_7[1]
+                                                                                          ? 5'h14
+                                                                                          : _GEN_7[2]
+                                                                                              ? 5'h15
+                                                                                              : _GEN_7[3]
+                                                                                                  ? 5'h16
+                                                                                                  : s5r_sum[4]
+                                                                                                      ? 5'h17
+                                                                                                      : s5r_sum[3]
+                                                                                                          ? 5'h18
+                                                                                                          : s5r_sum[2]
+                                                                                                              ? 5'h19
+                                                                                                              : {4'hD,
+                                                                                                                 ~(s5r_sum[1])};
+      s6r_sumZero <= s5r_sum == 28'h0;
+      s7r_isNaN <= s6r_c_isNaN;
+      s7r_isInf <= s6r_c_isInf & ~s6r_c_isNaN;
+      s7r_isZero <= ~s6r_c_isNaN & ~s6r_c_isInf & (s6r_c_isZero | s6r_sumZero);
+      s7r_sign <= s6r_c_isZero ? s6r_c_zSign : ~s6r_sumZero & s6r_c_sign;
+      s7r_sExp <= s6r_exp + 12'h1 - {7'h0, s6r_lz};
+      s7r_sig <= {_norm_T[27:3], |(_norm_T[2:0])};
+      s7r_flags <= s6r_c_flags;
+      s8r_isNaN <= s7r_isNaN;
+      s8r_isInf <= s7r_isInf;
+      s8r_isZero <= s7r_isZero;
+      s8r_sign <= s7r_sign;
+      s8r_flags <= s7r_flags;
+      s8r_tiny <= $signed(s7r_sExp) < -12'sh7E;
+      s8r_exp0 <= s7r_sExp[7:0] + 8'h7F;
+      s8r_exp1 <= s7r_sExp[7:0] - 8'h80;
+      s8r_over0 <= $signed(s7r_sExp) > 12'sh7F;
+      s8r_over1 <= $signed(s7r_sExp) > 12'sh7E;
+      s8r_sig <= s7r_sig;
+      s8r_dist <= _s8r_dist_T > 12'h1B ? 5'h1B : _s8r_dist_T[4:0];
+      s8r_far <= _s8r_dist_T > 12'h1A;
+      s9r_isNaN <= s8r_isNaN;
+      s9r_isInf <= s8r_isInf;
+      s9r_isZero <= s8r_isZero;
+      s9r_sign <= s8r_sign;
+      s9r_flags <= s8r_flags;
+      s9r_tiny <= s8r_tiny;
+      s9r_exp0 <= s8r_exp0;
+      s9r_exp1 <= s8r_exp1;
+      s9r_over0 <= s8r_over0;
+      s9r_over1 <= s8r_over1;
+      s9r_m <= s9r_sig[25:2];
+      s9r_rnd <= s9r_sig[1];
+      s9r_stk <= s9r_sig[0];
+      s10r_isNaN <= s9r_isNaN;
+      s10r_isInf <= s9r_isInf;
+      s10r_isZero <= s9r_isZero;
+      s10r_sign <= s9r_sign;
+      s10r_flags <= s9r_flags;
+      s10r_tiny <= s9r_tiny;
+      s10r_exp0 <= s9r_exp0;
+      s10r_exp1 <= s9r_exp1;
+      s10r_over0 <= s9r_over0;
+      s10r_over1 <= s9r_over1;
+      s10r_m1 <= {1'h0, s9r_m} + {24'h0, s9r_rnd & (s9r_stk | s9r_m[0])};
+      s10r_inexact <= s9r_rnd | s9r_stk;
       io_out_bits_r_bits <=
-        s7_isNaN
+        s10r_isNaN
           ? 32'h7FC00000
-          : {s6_c_isZero
-               ? io_in_bits_a[31] == bSign & io_in_bits_a[31]
-               : ~s6_sumZero
-                 & (s1_a_out_isInf | ~(s1_b_out_isInf | ~aBig)
-                      ? io_in_bits_a[31]
-                      : bSign),
-             s7_isInf
+          : {s10r_sign,
+             s10r_isInf
                ? 31'h7F800000
-               : s7_isZero
+               : s10r_isZero
                    ? 31'h0
                    : io_out_bits_overflow
                        ? 31'h7F800000
-                       : {s9r_tiny
+                       : {s10r_tiny
                             ? {7'h0, s10r_m1[23]}
-                            : s10r_m1[24]
-                                ? _s7_sExp_T_4[7:0] - 8'h80
-                                : _s7_sExp_T_4[7:0] + 8'h7F,
+                            : s10r_m1[24] ? s10r_exp1 : s10r_exp0,
                           s10r_m1[22:0]}};
       io_out_bits_r_flags <=
-        {(&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) & ~(io_in_bits_a[22])
-           | (&(io_in_bits_b[30:23])) & (|(io_in_bits_b[22:0])) & ~(io_in_bits_b[22])
-           | infInvalid,
-         s7_isNaN | s7_isInf | s7_isZero
-           ? 4'h0
-           : io_out_bits_overflow ? 4'h5 : {2'h0, s9r_tiny & s10r_inexact, s10r_inexact}};
+        s10r_isNaN | s10r_isInf | s10r_isZero
+          ? s10r_flags
+          : io_out_bits_overflow
+              ? {s10r_flags[4:3], s10r_flags[2:1] | 2'h2, 1'h1}
+              : {s10r_flags[4:2],
+                 s10r_flags[1] | s10r_tiny & s10r_inexact,
+                 s10r_flags[0] | s10r_inexact};
     end
-    if (reset)
+    if (reset) begin
       io_out_valid_r <= 1'h0;
-    else if (io_en)
+      io_out_valid_r_1 <= 1'h0;
+      io_out_valid_r_2 <= 1'h0;
+      io_out_valid_r_3 <= 1'h0;
+      io_out_valid_r_4 <= 1'h0;
+      io_out_valid_r_5 <= 1'h0;
+      io_out_valid_r_6 <= 1'h0;
+      io_out_valid_r_7 <= 1'h0;
+      io_out_valid_r_8 <= 1'h0;
+      io_out_valid_r_9 <= 1'h0;
+      io_out_valid_r_10 <= 1'h0;
+      io_out_valid_r_11 <= 1'h0;
+    end
+    else if (io_en) begin
       io_out_valid_r <= io_in_valid;
+      io_out_valid_r_1 <= io_out_valid_r;
+      io_out_valid_r_2 <= io_out_valid_r_1;
+      io_out_valid_r_3 <= io_out_valid_r_2;
+      io_out_valid_r_4 <= io_out_valid_r_3;
+      io_out_valid_r_5 <= io_out_valid_r_4;
+      io_out_valid_r_6 <= io_out_valid_r_5;
+      io_out_valid_r_7 <= io_out_valid_r_6;
+      io_out_valid_r_8 <= io_out_valid_r_7;
+      io_out_valid_r_9 <= io_out_valid_r_8;
+      io_out_valid_r_10 <= io_out_valid_r_9;
+      io_out_valid_r_11 <= io_out_valid_r_10;
+    end
   end // always @(posedge)
-  assign io_out_valid = io_out_valid_r;
+  assign io_out_valid = io_out_valid_r_11;
   assign io_out_bits_bits = io_out_bits_r_bits;
   assign io_out_bits_flags = io_out_bits_r_flags;
 endmodule
 
-module FpMul_fp32_L1_world(
+module FpMul_fp32_L8_world(
   input         clock,
                 reset,
                 io_en,
@@ -115086,195 +115379,356 @@ module FpMul_fp32_L1_world(
   output [4:0]  io_out_bits_flags
 );
 
+  reg         scr_a_isNaN;
+  reg         scr_a_isSNaN;
+  reg         scr_a_isInf;
+  reg         scr_a_isZero;
+  reg         scr_a_sign;
+  reg         scr_a_expZero;
+  reg  [7:0]  scr_a_e;
+  reg  [22:0] scr_a_frac;
+  reg  [4:0]  scr_a_lz;
+  reg         scr_b_isNaN;
+  reg         scr_b_isSNaN;
+  reg         scr_b_isInf;
+  reg         scr_b_isZero;
+  reg         scr_b_sign;
+  reg         scr_b_expZero;
+  reg  [7:0]  scr_b_e;
+  reg  [22:0] scr_b_frac;
+  reg  [4:0]  scr_b_lz;
+  reg         s0r_a_isNaN;
+  reg         s0r_a_isSNaN;
+  reg         s0r_a_isInf;
+  reg         s0r_a_isZero;
+  reg         s0r_a_sign;
+  reg  [9:0]  s0r_a_sExp;
+  reg  [23:0] s0r_a_sig;
+  reg         s0r_b_isNaN;
+  reg         s0r_b_isSNaN;
+  reg         s0r_b_isInf;
+  reg         s0r_b_isZero;
+  reg         s0r_b_sign;
+  reg  [9:0]  s0r_b_sExp;
+  reg  [23:0] s0r_b_sig;
+  reg         s1r_c_isNaN;
+  reg         s1r_c_isInf;
+  reg         s1r_c_isZero;
+  reg         s1r_c_sign;
+  reg  [4:0]  s1r_c_flags;
+  reg  [11:0] s1r_c_exp;
+  reg  [47:0] s1r_parts_0;
+  reg         snr_isNaN;
+  reg         snr_isInf;
+  reg         snr_isZero;
+  reg         snr_sign;
+  reg  [11:0] snr_sExp;
+  reg  [25:0] snr_sig;
+  reg  [4:0]  snr_flags;
+  reg         sl_isNaN;
+  reg         sl_isInf;
+  reg         sl_isZero;
+  reg         sl_sign;
+  reg  [4:0]  sl_flags;
+  reg         sl_tiny;
+  reg  [7:0]  sl_exp0;
+  reg  [7:0]  sl_exp1;
+  reg         sl_over0;
+  reg         sl_over1;
+  reg  [25:0] sl_sig;
+  reg  [4:0]  sl_dist;
+  reg         sl_far;
+  reg         sj_isNaN;
+  reg         sj_isInf;
+  reg         sj_isZero;
+  reg         sj_sign;
+  reg  [4:0]  sj_flags;
+  reg         sj_tiny;
+  reg  [7:0]  sj_exp0;
+  reg  [7:0]  sj_exp1;
+  reg         sj_over0;
+  reg         sj_over1;
+  reg  [23:0] sj_m;
+  reg         sj_rnd;
+  reg         sj_stk;
+  reg         si_isNaN;
+  reg         si_isInf;
+  reg         si_isZero;
+  reg         si_sign;
+  reg  [4:0]  si_flags;
+  reg         si_tiny;
+  reg  [7:0]  si_exp0;
+  reg  [7:0]  si_exp1;
+  reg         si_over0;
+  reg         si_over1;
+  reg  [24:0] si_m1;
+  reg         si_inexact;
   reg  [31:0] io_out_bits_r_bits;
   reg  [4:0]  io_out_bits_r_flags;
   reg         io_out_valid_r;
+  reg         io_out_valid_r_1;
+  reg         io_out_valid_r_2;
+  reg         io_out_valid_r_3;
+  reg         io_out_valid_r_4;
+  reg         io_out_valid_r_5;
+  reg         io_out_valid_r_6;
+  reg         io_out_valid_r_7;
   wire        sc_a_expZero = io_in_bits_a[30:23] == 8'h0;
-  wire        s0_a_out_isInf = (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
-  wire        s0_a_out_isZero = sc_a_expZero & ~(|(io_in_bits_a[22:0]));
   wire [3:0]  _GEN =
     {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
     | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
-  wire [4:0]  sc_a_out_lz =
-    io_in_bits_a[22]
-      ? 5'h0
-      : io_in_bits_a[21]
-          ? 5'h1
-          : io_in_bits_a[20]
-              ? 5'h2
-              : io_in_bits_a[19]
-                  ? 5'h3
-                  : io_in_bits_a[18]
-                      ? 5'h4
-                      : io_in_bits_a[17]
-                          ? 5'h5
-                          : io_in_bits_a[16]
-                              ? 5'h6
-                              : io_in_bits_a[15]
-                                  ? 5'h7
-                                  : io_in_bits_a[14]
-                                      ? 5'h8
-                                      : io_in_bits_a[13]
-                                          ? 5'h9
-                                          : io_in_bits_a[12]
-                                              ? 5'hA
-                                              : io_in_bits_a[11]
-                                                  ? 5'hB
-                                                  : io_in_bits_a[10]
-                                                      ? 5'hC
-                                                      : io_in_bits_a[9]
-                                                          ? 5'hD
-                                                          : _GEN[0]
-                                                              ? 5'hE
-                                                              : _GEN[1]
-                                                                  ? 5'hF
-                                                                  : _GEN[2]
-                                                                      ? 5'h10
-                                                                      : _GEN[3]
-                                                                          ? 5'h11
-                                                                          : io_in_bits_a[4]
-                                                                              ? 5'h12
-                                                                              : io_in_bits_a[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_bits_a[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_bits_a[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
   wire        sc_b_expZero = io_in_bits_b[30:23] == 8'h0;
-  wire        s0_b_out_isInf = (&(io_in_bits_b[30:23])) & ~(|(io_in_bits_b[22:0]));
-  wire        s0_b_out_isZero = sc_b_expZero & ~(|(io_in_bits_b[22:0]));
   wire [3:0]  _GEN_0 =
     {{io_in_bits_b[5:4], io_in_bits_b[7]} & 3'h5, 1'h0}
     | {io_in_bits_b[7:6], io_in_bits_b[9:8]} & 4'h5;
-  wire [4:0]  sc_b_out_lz =
-    io_in_bits_b[22]
-      ? 5'h0
-      : io_in_bits_b[21]
-          ? 5'h1
-          : io_in_bits_b[20]
-              ? 5'h2
-              : io_in_bits_b[19]
-                  ? 5'h3
-                  : io_in_bits_b[18]
-                      ? 5'h4
-                      : io_in_bits_b[17]
-                          ? 5'h5
-                          : io_in_bits_b[16]
-                              ? 5'h6
-                              : io_in_bits_b[15]
-                                  ? 5'h7
-                                  : io_in_bits_b[14]
-                                      ? 5'h8
-                                      : io_in_bits_b[13]
-                                          ? 5'h9
-                                          : io_in_bits_b[12]
-                                              ? 5'hA
-                                              : io_in_bits_b[11]
-                                                  ? 5'hB
-                                                  : io_in_bits_b[10]
-                                                      ? 5'hC
-                                                      : io_in_bits_b[9]
-                                                          ? 5'hD
-                                                          : _GEN_0[0]
-                                                              ? 5'hE
-                                                              : _GEN_0[1]
-                                                                  ? 5'hF
-                                                                  : _GEN_0[2]
-                                                                      ? 5'h10
-                                                                      : _GEN_0[3]
-                                                                          ? 5'h11
-                                                                          : io_in_bits_b[4]
-                                                                              ? 5'h12
-                                                                              : io_in_bits_b[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_bits_b[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_bits_b[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [8:0]  _s0_a_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
-  wire [9:0]  s0_a_out_sExp =
-    sc_a_expZero
-      ? 10'h381 - {5'h0, sc_a_out_lz}
-      : {_s0_a_out_sExp_T_1[8], _s0_a_out_sExp_T_1};
-  wire [8:0]  _s0_b_out_sExp_T_1 = {1'h0, io_in_bits_b[30:23]} - 9'h7F;
-  wire [9:0]  s0_b_out_sExp =
-    sc_b_expZero
-      ? 10'h381 - {5'h0, sc_b_out_lz}
-      : {_s0_b_out_sExp_T_1[8], _s0_b_out_sExp_T_1};
-  wire        invalid =
-    s0_a_out_isInf & s0_b_out_isZero | s0_a_out_isZero & s0_b_out_isInf;
-  wire        si_isNaN =
-    (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) | (&(io_in_bits_b[30:23]))
-    & (|(io_in_bits_b[22:0])) | invalid;
-  wire        s1_c_isInf = s0_a_out_isInf | s0_b_out_isInf;
-  wire [10:0] _GEN_1 =
-    {s0_b_out_sExp[9], s0_b_out_sExp} + {s0_a_out_sExp[9], s0_a_out_sExp};
-  wire [85:0] _s0_b_subSig_T_1 =
-    {63'h0, io_in_bits_b[22:0]} << {1'h0, sc_b_out_lz} + 6'h1;
-  wire [85:0] _s0_a_subSig_T_1 =
-    {63'h0, io_in_bits_a[22:0]} << {1'h0, sc_a_out_lz} + 6'h1;
-  wire [47:0] products_0 =
-    {24'h0, sc_a_expZero ? _s0_a_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]}}
-    * {24'h0, sc_b_expZero ? _s0_b_subSig_T_1[23:0] : {1'h1, io_in_bits_b[22:0]}};
-  wire [24:0] hi = products_0[47] ? products_0[47:23] : products_0[46:22];
-  wire        lo = products_0[47] ? (|(products_0[22:0])) : (|(products_0[21:0]));
-  wire        si_isInf = s1_c_isInf & ~si_isNaN;
-  wire        si_isZero = (s0_a_out_isZero | s0_b_out_isZero) & ~si_isNaN & ~s1_c_isInf;
-  wire [11:0] _sn_sExp_T_1 = {_GEN_1[10], _GEN_1} + {11'h0, products_0[47]};
-  wire [25:0] sl_sig = {hi, lo};
-  wire        si_tiny = $signed(_sn_sExp_T_1) < -12'sh7E;
-  wire [11:0] _sl_dist_T = 12'hF82 - _sn_sExp_T_1;
-  wire [51:0] sj_sig_wide =
-    {hi, lo, 26'h0} >> (_sl_dist_T > 12'h1B ? 5'h1B : _sl_dist_T[4:0]);
+  wire [8:0]  _s0_a_out_sExp_T_1 = {1'h0, scr_a_e} - 9'h7F;
+  wire [8:0]  _s0_b_out_sExp_T_1 = {1'h0, scr_b_e} - 9'h7F;
+  wire        invalid = s0r_a_isInf & s0r_b_isZero | s0r_a_isZero & s0r_b_isInf;
+  wire [10:0] _GEN_1 = {s0r_b_sExp[9], s0r_b_sExp} + {s0r_a_sExp[9], s0r_a_sExp};
+  wire [11:0] _sl_dist_T = 12'hF82 - snr_sExp;
+  wire [51:0] sj_sig_wide = {sl_sig, 26'h0} >> sl_dist;
   wire [25:0] sj_sig =
-    si_tiny
+    sl_tiny
       ? {sj_sig_wide[51:27],
-         sj_sig_wide[26] | (|(sj_sig_wide[25:0])) | _sl_dist_T > 12'h1A & (|sl_sig)}
+         sj_sig_wide[26] | (|(sj_sig_wide[25:0])) | sl_far & (|sl_sig)}
       : sl_sig;
-  wire        si_inexact = sj_sig[1] | sj_sig[0];
-  wire [24:0] si_m1 = {1'h0, sj_sig[25:2]} + {24'h0, sj_sig[1] & (sj_sig[0] | sj_sig[2])};
-  wire        io_out_bits_overflow =
-    ~si_tiny
-    & (si_m1[24] ? $signed(_sn_sExp_T_1) > 12'sh7E : $signed(_sn_sExp_T_1) > 12'sh7F);
+  wire        io_out_bits_overflow = ~si_tiny & (si_m1[24] ? si_over1 : si_over0);
+  wire [85:0] _s0_a_subSig_T_1 = {63'h0, scr_a_frac} << {1'h0, scr_a_lz} + 6'h1;
+  wire [85:0] _s0_b_subSig_T_1 = {63'h0, scr_b_frac} << {1'h0, scr_b_lz} + 6'h1;
   always @(posedge clock) begin
     if (io_en) begin
+      scr_a_isNaN <= (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0]));
+      scr_a_isSNaN <=
+        (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) & ~(io_in_bits_a[22]);
+      scr_a_isInf <= (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
+      scr_a_isZero <= sc_a_expZero & ~(|(io_in_bits_a[22:0]));
+      scr_a_sign <= io_in_bits_a[31];
+      scr_a_expZero <= sc_a_expZero;
+      scr_a_e <= io_in_bits_a[30:23];
+      scr_a_frac <= io_in_bits_a[22:0];
+      scr_a_lz <=
+        io_in_bits_a[22]
+          ? 5'h0
+          : io_in_bits_a[21]
+              ? 5'h1
+              : io_in_bits_a[20]
+                  ? 5'h2
+                  : io_in_bits_a[19]
+                      ? 5'h3
+                      : io_in_bits_a[18]
+                          ? 5'h4
+                          : io_in_bits_a[17]
+                              ? 5'h5
+                              : io_in_bits_a[16]
+                                  ? 5'h6
+                                  : io_in_bits_a[15]
+                                      ? 5'h7
+                                      : io_in_bits_a[14]
+                                          ? 5'h8
+                                          : io_in_bits_a[13]
+                                              ? 5'h9
+                                              : io_in_bits_a[12]
+                                                  ? 5'hA
+                                                  : io_in_bits_a[11]
+                                                      ? 5'hB
+                                                      : io_in_bits_a[10]
+                                                          ? 5'hC
+                                                          : io_in_bits_a[9]
+                                                              ? 5'hD
+                                                              : _GEN[0]
+                                                                  ? 5'hE
+                                                                  : _GEN[1]
+                                                                      ? 5'hF
+                                                                      : _GEN[2]
+                                                                          ? 5'h10
+                                                                          : _GEN[3]
+                                                                              ? 5'h11
+                                                                              : io_in_bits_a[4]
+                                                                                  ? 5'h12
+                                                                                  : io_in_bits_a[3]
+                                                                                      ? 5'h13
+                                                                                      : io_in_bits_a[2]
+                                                                                          ? 5'h14
+                                                                                          : io_in_bits_a[1]
+                                                                                              ? 5'h15
+                                                                                              : 5'h16;
+      scr_b_isNaN <= (&(io_in_bits_b[30:23])) & (|(io_in_bits_b[22:0]));
+      scr_b_isSNaN <=
+        (&(io_in_bits_b[30:23])) & (|(io_in_bits_b[22:0])) & ~(io_in_bits_b[22]);
+      scr_b_isInf <= (&(io_in_bits_b[30:23])) & ~(|(io_in_bits_b[22:0]));
+      scr_b_isZero <= sc_b_expZero & ~(|(io_in_bits_b[22:0]));
+      scr_b_sign <= io_in_bits_b[31];
+      scr_b_expZero <= sc_b_expZero;
+      scr_b_e <= io_in_bits_b[30:23];
+      scr_b_frac <= io_in_bits_b[22:0];
+      scr_b_lz <=
+        io_in_bits_b[22]
+          ? 5'h0
+          : io_in_bits_b[21]
+              ? 5'h1
+              : io_in_bits_b[20]
+                  ? 5'h2
+                  : io_in_bits_b[19]
+                      ? 5'h3
+                      : io_in_bits_b[18]
+                          ? 5'h4
+                          : io_in_bits_b[17]
+                              ? 5'h5
+                              : io_in_bits_b[16]
+                                  ? 5'h6
+                                  : io_in_bits_b[15]
+                                      ? 5'h7
+                                      : io_in_bits_b[14]
+                                          ? 5'h8
+                                          : io_in_bits_b[13]
+                                              ? 5'h9
+                                              : io_in_bits_b[12]
+                                                  ? 5'hA
+                                                  : io_in_bits_b[11]
+                                                      ? 5'hB
+                                                      : io_in_bits_b[10]
+                                                          ? 5'hC
+                                                          : io_in_bits_b[9]
+                                                              ? 5'hD
+                                                              : _GEN_0[0]
+                                                                  ? 5'hE
+                                                                  : _GEN_0[1]
+                                                                      ? 5'hF
+                                                                      : _GEN_0[2]
+                                                                          ? 5'h10
+                                                                          : _GEN_0[3]
+                                                                              ? 5'h11
+                                                                              : io_in_bits_b[4]
+                                                                                  ? 5'h12
+                                                                                  : io_in_bits_b[3]
+                                                                                      ? 5'h13
+                                                                                      : io_in_bits_b[2]
+                                                                                          ? 5'h14
+                                                                                          : io_in_bits_b[1]
+                                                                                              ? 5'h15
+                                                                                              : 5'h16;
+      s0r_a_isNaN <= scr_a_isNaN;
+      s0r_a_isSNaN <= scr_a_isSNaN;
+      s0r_a_isInf <= scr_a_isInf;
+      s0r_a_isZero <= scr_a_isZero;
+      s0r_a_sign <= scr_a_sign;
+      s0r_a_sExp <=
+        scr_a_expZero
+          ? 10'h381 - {5'h0, scr_a_lz}
+          : {_s0_a_out_sExp_T_1[8], _s0_a_out_sExp_T_1};
+      s0r_a_sig <= scr_a_expZero ? _s0_a_subSig_T_1[23:0] : {1'h1, scr_a_frac};
+      s0r_b_isNaN <= scr_b_isNaN;
+      s0r_b_isSNaN <= scr_b_isSNaN;
+      s0r_b_isInf <= scr_b_isInf;
+      s0r_b_isZero <= scr_b_isZero;
+      s0r_b_sign <= scr_b_sign;
+      s0r_b_sExp <=
+        scr_b_expZero
+          ? 10'h381 - {5'h0, scr_b_lz}
+          : {_s0_b_out_sExp_T_1[8], _s0_b_out_sExp_T_1};
+      s0r_b_sig <= scr_b_expZero ? _s0_b_subSig_T_1[23:0] : {1'h1, scr_b_frac};
+      s1r_c_isNaN <= s0r_a_isNaN | s0r_b_isNaN | invalid;
+      s1r_c_isInf <= s0r_a_isInf | s0r_b_isInf;
+      s1r_c_isZero <= s0r_a_isZero | s0r_b_isZero;
+      s1r_c_sign <= s0r_a_sign ^ s0r_b_sign;
+      s1r_c_flags <= {s0r_a_isSNaN | s0r_b_isSNaN | invalid, 4'h0};
+      s1r_c_exp <= {_GEN_1[10], _GEN_1};
+      s1r_parts_0 <= {24'h0, s0r_a_sig} * {24'h0, s0r_b_sig};
+      snr_isNaN <= s1r_c_isNaN;
+      snr_isInf <= s1r_c_isInf & ~s1r_c_isNaN;
+      snr_isZero <= s1r_c_isZero & ~s1r_c_isNaN & ~s1r_c_isInf;
+      snr_sign <= s1r_c_sign;
+      snr_sExp <= s1r_c_exp + {11'h0, s1r_parts_0[47]};
+      snr_sig <=
+        {s1r_parts_0[47] ? s1r_parts_0[47:23] : s1r_parts_0[46:22],
+         s1r_parts_0[47] ? (|(s1r_parts_0[22:0])) : (|(s1r_parts_0[21:0]))};
+      snr_flags <= s1r_c_flags;
+      sl_isNaN <= snr_isNaN;
+      sl_isInf <= snr_isInf;
+      sl_isZero <= snr_isZero;
+      sl_sign <= snr_sign;
+      sl_flags <= snr_flags;
+      sl_tiny <= $signed(snr_sExp) < -12'sh7E;
+      sl_exp0 <= snr_sExp[7:0] + 8'h7F;
+      sl_exp1 <= snr_sExp[7:0] - 8'h80;
+      sl_over0 <= $signed(snr_sExp) > 12'sh7F;
+      sl_over1 <= $signed(snr_sExp) > 12'sh7E;
+      sl_sig <= snr_sig;
+      sl_dist <= _sl_dist_T > 12'h1B ? 5'h1B : _sl_dist_T[4:0];
+      sl_far <= _sl_dist_T > 12'h1A;
+      sj_isNaN <= sl_isNaN;
+      sj_isInf <= sl_isInf;
+      sj_isZero <= sl_isZero;
+      sj_sign <= sl_sign;
+      sj_flags <= sl_flags;
+      sj_tiny <= sl_tiny;
+      sj_exp0 <= sl_exp0;
+      sj_exp1 <= sl_exp1;
+      sj_over0 <= sl_over0;
+      sj_over1 <= sl_over1;
+      sj_m <= sj_sig[25:2];
+      sj_rnd <= sj_sig[1];
+      sj_stk <= sj_sig[0];
+      si_isNaN <= sj_isNaN;
+      si_isInf <= sj_isInf;
+      si_isZero <= sj_isZero;
+      si_sign <= sj_sign;
+      si_flags <= sj_flags;
+      si_tiny <= sj_tiny;
+      si_exp0 <= sj_exp0;
+      si_exp1 <= sj_exp1;
+      si_over0 <= sj_over0;
+      si_over1 <= sj_over1;
+      si_m1 <= {1'h0, sj_m} + {24'h0, sj_rnd & (sj_stk | sj_m[0])};
+      si_inexact <= sj_rnd | sj_stk;
       io_out_bits_r_bits <=
         si_isNaN
           ? 32'h7FC00000
-          : {io_in_bits_a[31] ^ io_in_bits_b[31],
+          : {si_sign,
              si_isInf
                ? 31'h7F800000
                : si_isZero
                    ? 31'h0
                    : io_out_bits_overflow
                        ? 31'h7F800000
-                       : {si_tiny
-                            ? {7'h0, si_m1[23]}
-                            : si_m1[24]
-                                ? _sn_sExp_T_1[7:0] - 8'h80
-                                : _sn_sExp_T_1[7:0] + 8'h7F,
+                       : {si_tiny ? {7'h0, si_m1[23]} : si_m1[24] ? si_exp1 : si_exp0,
                           si_m1[22:0]}};
       io_out_bits_r_flags <=
-        {(&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) & ~(io_in_bits_a[22])
-           | (&(io_in_bits_b[30:23])) & (|(io_in_bits_b[22:0])) & ~(io_in_bits_b[22])
-           | invalid,
-         si_isNaN | si_isInf | si_isZero
-           ? 4'h0
-           : io_out_bits_overflow ? 4'h5 : {2'h0, si_tiny & si_inexact, si_inexact}};
+        si_isNaN | si_isInf | si_isZero
+          ? si_flags
+          : io_out_bits_overflow
+              ? {si_flags[4:3], si_flags[2:1] | 2'h2, 1'h1}
+              : {si_flags[4:2],
+                 si_flags[1] | si_tiny & si_inexact,
+                 si_flags[0] | si_inexact};
     end
-    if (reset)
+    if (reset) begin
       io_out_valid_r <= 1'h0;
-    else if (io_en)
+      io_out_valid_r_1 <= 1'h0;
+      io_out_valid_r_2 <= 1'h0;
+      io_out_valid_r_3 <= 1'h0;
+      io_out_valid_r_4 <= 1'h0;
+      io_out_valid_r_5 <= 1'h0;
+      io_out_valid_r_6 <= 1'h0;
+      io_out_valid_r_7 <= 1'h0;
+    end
+    else if (io_en) begin
       io_out_valid_r <= io_in_valid;
+      io_out_valid_r_1 <= io_out_valid_r;
+      io_out_valid_r_2 <= io_out_valid_r_1;
+      io_out_valid_r_3 <= io_out_valid_r_2;
+      io_out_valid_r_4 <= io_out_valid_r_3;
+      io_out_valid_r_5 <= io_out_valid_r_4;
+      io_out_valid_r_6 <= io_out_valid_r_5;
+      io_out_valid_r_7 <= io_out_valid_r_6;
+    end
   end // always @(posedge)
-  assign io_out_valid = io_out_valid_r;
+  assign io_out_valid = io_out_valid_r_7;
   assign io_out_bits_bits = io_out_bits_r_bits;
   assign io_out_bits_flags = io_out_bits_r_flags;
 endmodule
 
-module SumOfSquares_fp32_world(
+module SumOfSquares_fp32_200_world(
   input         clock,
                 reset,
                 io_en,
@@ -115298,20 +115752,108 @@ module SumOfSquares_fp32_world(
   wire        _sx_m_io_out_valid;
   wire [31:0] _sx_m_io_out_bits_bits;
   wire [4:0]  _sx_m_io_out_bits_flags;
+  reg  [31:0] szD_r_bits;
+  reg  [31:0] szD_r_1_bits;
+  reg  [31:0] szD_r_2_bits;
+  reg  [31:0] szD_r_3_bits;
+  reg  [31:0] szD_r_4_bits;
+  reg  [31:0] szD_r_5_bits;
+  reg  [31:0] szD_r_6_bits;
+  reg  [31:0] szD_r_7_bits;
+  reg  [31:0] szD_r_8_bits;
+  reg  [31:0] szD_r_9_bits;
+  reg  [31:0] szD_r_10_bits;
   reg  [31:0] szD_bits;
   reg  [4:0]  flags_r;
   reg  [4:0]  flags_r_1;
   reg  [4:0]  flags_r_2;
+  reg  [4:0]  flags_r_3;
+  reg  [4:0]  flags_r_4;
+  reg  [4:0]  flags_r_5;
+  reg  [4:0]  flags_r_6;
+  reg  [4:0]  flags_r_7;
+  reg  [4:0]  flags_r_8;
+  reg  [4:0]  flags_r_9;
+  reg  [4:0]  flags_r_10;
+  reg  [4:0]  flags_r_11;
+  reg  [4:0]  flags_r_12;
+  reg  [4:0]  flags_r_13;
+  reg  [4:0]  flags_r_14;
+  reg  [4:0]  flags_r_15;
+  reg  [4:0]  flags_r_16;
+  reg  [4:0]  flags_r_17;
+  reg  [4:0]  flags_r_18;
+  reg  [4:0]  flags_r_19;
+  reg  [4:0]  flags_r_20;
+  reg  [4:0]  flags_r_21;
+  reg  [4:0]  flags_r_22;
+  reg  [4:0]  flags_r_23;
+  reg  [4:0]  flags_r_24;
+  reg  [4:0]  flags_r_25;
+  reg  [4:0]  flags_r_26;
+  reg  [4:0]  flags_r_27;
+  reg  [4:0]  flags_r_28;
+  reg  [4:0]  flags_r_29;
+  reg  [4:0]  flags_r_30;
+  reg  [4:0]  flags_r_31;
+  reg  [4:0]  flags_r_32;
+  reg  [4:0]  flags_r_33;
+  reg  [4:0]  flags_r_34;
+  reg  [4:0]  flags_r_35;
   always @(posedge clock) begin
     if (io_en) begin
-      szD_bits <= _sz_m_io_out_bits_bits;
+      szD_r_bits <= _sz_m_io_out_bits_bits;
+      szD_r_1_bits <= szD_r_bits;
+      szD_r_2_bits <= szD_r_1_bits;
+      szD_r_3_bits <= szD_r_2_bits;
+      szD_r_4_bits <= szD_r_3_bits;
+      szD_r_5_bits <= szD_r_4_bits;
+      szD_r_6_bits <= szD_r_5_bits;
+      szD_r_7_bits <= szD_r_6_bits;
+      szD_r_8_bits <= szD_r_7_bits;
+      szD_r_9_bits <= szD_r_8_bits;
+      szD_r_10_bits <= szD_r_9_bits;
+      szD_bits <= szD_r_10_bits;
       flags_r <=
         _sx_m_io_out_bits_flags | _sy_m_io_out_bits_flags | _sz_m_io_out_bits_flags;
       flags_r_1 <= flags_r;
-      flags_r_2 <= _s_m_io_out_bits_flags;
+      flags_r_2 <= flags_r_1;
+      flags_r_3 <= flags_r_2;
+      flags_r_4 <= flags_r_3;
+      flags_r_5 <= flags_r_4;
+      flags_r_6 <= flags_r_5;
+      flags_r_7 <= flags_r_6;
+      flags_r_8 <= flags_r_7;
+      flags_r_9 <= flags_r_8;
+      flags_r_10 <= flags_r_9;
+      flags_r_11 <= flags_r_10;
+      flags_r_12 <= flags_r_11;
+      flags_r_13 <= flags_r_12;
+      flags_r_14 <= flags_r_13;
+      flags_r_15 <= flags_r_14;
+      flags_r_16 <= flags_r_15;
+      flags_r_17 <= flags_r_16;
+      flags_r_18 <= flags_r_17;
+      flags_r_19 <= flags_r_18;
+      flags_r_20 <= flags_r_19;
+      flags_r_21 <= flags_r_20;
+      flags_r_22 <= flags_r_21;
+      flags_r_23 <= flags_r_22;
+      flags_r_24 <= _s_m_io_out_bits_flags;
+      flags_r_25 <= flags_r_24;
+      flags_r_26 <= flags_r_25;
+      flags_r_27 <= flags_r_26;
+      flags_r_28 <= flags_r_27;
+      flags_r_29 <= flags_r_28;
+      flags_r_30 <= flags_r_29;
+      flags_r_31 <= flags_r_30;
+      flags_r_32 <= flags_r_31;
+      flags_r_33 <= flags_r_32;
+      flags_r_34 <= flags_r_33;
+      flags_r_35 <= flags_r_34;
     end
   end // always @(posedge)
-  FpMul_fp32_L1_world sx_m (
+  FpMul_fp32_L8_world sx_m (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -115322,7 +115864,7 @@ module SumOfSquares_fp32_world(
     .io_out_bits_bits  (_sx_m_io_out_bits_bits),
     .io_out_bits_flags (_sx_m_io_out_bits_flags)
   );
-  FpMul_fp32_L1_world sy_m (
+  FpMul_fp32_L8_world sy_m (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -115333,7 +115875,7 @@ module SumOfSquares_fp32_world(
     .io_out_bits_bits  (_sy_m_io_out_bits_bits),
     .io_out_bits_flags (_sy_m_io_out_bits_flags)
   );
-  FpMul_fp32_L1_world sz_m (
+  FpMul_fp32_L8_world sz_m (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -115344,7 +115886,7 @@ module SumOfSquares_fp32_world(
     .io_out_bits_bits  (_sz_m_io_out_bits_bits),
     .io_out_bits_flags (_sz_m_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world s_m (
+  FpAdd_fp32_L12_world s_m (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -115356,7 +115898,7 @@ module SumOfSquares_fp32_world(
     .io_out_bits_bits    (_s_m_io_out_bits_bits),
     .io_out_bits_flags   (_s_m_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world d2_m (
+  FpAdd_fp32_L12_world d2_m (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -115368,10 +115910,10 @@ module SumOfSquares_fp32_world(
     .io_out_bits_bits    (io_out_bits_bits),
     .io_out_bits_flags   (_d2_m_io_out_bits_flags)
   );
-  assign io_out_bits_flags = flags_r_1 | flags_r_2 | _d2_m_io_out_bits_flags;
+  assign io_out_bits_flags = flags_r_23 | flags_r_35 | _d2_m_io_out_bits_flags;
 endmodule
 
-module DigitRecurrenceCore_sqrt_s24_L5_world(
+module DigitRecurrenceCore_sqrt_s24_L25_world(
   input         clock,
                 reset,
                 io_en,
@@ -115382,6 +115924,10 @@ module DigitRecurrenceCore_sqrt_s24_L5_world(
   output [25:0] io_out_bits_sig
 );
 
+  reg  [23:0] s0r_r_sig;
+  reg         s0r_r_expOdd;
+  reg  [26:0] s0r_r_r;
+  reg         s0r_valid_r;
   reg  [23:0] sN_out_r_sig;
   reg         sN_out_r_expOdd;
   reg  [24:0] sN_out_r_q;
@@ -115402,226 +115948,331 @@ module DigitRecurrenceCore_sqrt_s24_L5_world(
   reg  [24:0] sN_out_r_3_q;
   reg  [26:0] sN_out_r_3_r;
   reg         sN_out_valid_r_3;
+  reg  [23:0] sN_out_r_4_sig;
+  reg         sN_out_r_4_expOdd;
   reg  [24:0] sN_out_r_4_q;
   reg  [26:0] sN_out_r_4_r;
   reg         sN_out_valid_r_4;
-  wire [1:0]  _s0_r_T_2 = io_in_bits_expOdd ? {1'h0, io_in_bits_sig[22]} + 2'h1 : 2'h0;
-  wire [1:0]  sN_nx_r2_rad =
-    io_in_bits_expOdd ? io_in_bits_sig[21:20] : io_in_bits_sig[22:21];
-  wire [29:0] sN_nx_d = {26'h0, _s0_r_T_2, sN_nx_r2_rad} - 30'h5;
-  wire [26:0] sN_out_r = sN_nx_d[29] ? {23'h0, _s0_r_T_2, sN_nx_r2_rad} : sN_nx_d[26:0];
+  reg  [23:0] sN_out_r_5_sig;
+  reg         sN_out_r_5_expOdd;
+  reg  [24:0] sN_out_r_5_q;
+  reg  [26:0] sN_out_r_5_r;
+  reg         sN_out_valid_r_5;
+  reg  [23:0] sN_out_r_6_sig;
+  reg         sN_out_r_6_expOdd;
+  reg  [24:0] sN_out_r_6_q;
+  reg  [26:0] sN_out_r_6_r;
+  reg         sN_out_valid_r_6;
+  reg  [23:0] sN_out_r_7_sig;
+  reg         sN_out_r_7_expOdd;
+  reg  [24:0] sN_out_r_7_q;
+  reg  [26:0] sN_out_r_7_r;
+  reg         sN_out_valid_r_7;
+  reg  [23:0] sN_out_r_8_sig;
+  reg         sN_out_r_8_expOdd;
+  reg  [24:0] sN_out_r_8_q;
+  reg  [26:0] sN_out_r_8_r;
+  reg         sN_out_valid_r_8;
+  reg  [23:0] sN_out_r_9_sig;
+  reg         sN_out_r_9_expOdd;
+  reg  [24:0] sN_out_r_9_q;
+  reg  [26:0] sN_out_r_9_r;
+  reg         sN_out_valid_r_9;
+  reg  [23:0] sN_out_r_10_sig;
+  reg         sN_out_r_10_expOdd;
+  reg  [24:0] sN_out_r_10_q;
+  reg  [26:0] sN_out_r_10_r;
+  reg         sN_out_valid_r_10;
+  reg  [23:0] sN_out_r_11_sig;
+  reg         sN_out_r_11_expOdd;
+  reg  [24:0] sN_out_r_11_q;
+  reg  [26:0] sN_out_r_11_r;
+  reg         sN_out_valid_r_11;
+  reg  [23:0] sN_out_r_12_sig;
+  reg         sN_out_r_12_expOdd;
+  reg  [24:0] sN_out_r_12_q;
+  reg  [26:0] sN_out_r_12_r;
+  reg         sN_out_valid_r_12;
+  reg  [23:0] sN_out_r_13_sig;
+  reg         sN_out_r_13_expOdd;
+  reg  [24:0] sN_out_r_13_q;
+  reg  [26:0] sN_out_r_13_r;
+  reg         sN_out_valid_r_13;
+  reg  [23:0] sN_out_r_14_sig;
+  reg         sN_out_r_14_expOdd;
+  reg  [24:0] sN_out_r_14_q;
+  reg  [26:0] sN_out_r_14_r;
+  reg         sN_out_valid_r_14;
+  reg  [23:0] sN_out_r_15_sig;
+  reg         sN_out_r_15_expOdd;
+  reg  [24:0] sN_out_r_15_q;
+  reg  [26:0] sN_out_r_15_r;
+  reg         sN_out_valid_r_15;
+  reg  [23:0] sN_out_r_16_sig;
+  reg         sN_out_r_16_expOdd;
+  reg  [24:0] sN_out_r_16_q;
+  reg  [26:0] sN_out_r_16_r;
+  reg         sN_out_valid_r_16;
+  reg  [23:0] sN_out_r_17_sig;
+  reg         sN_out_r_17_expOdd;
+  reg  [24:0] sN_out_r_17_q;
+  reg  [26:0] sN_out_r_17_r;
+  reg         sN_out_valid_r_17;
+  reg  [23:0] sN_out_r_18_sig;
+  reg         sN_out_r_18_expOdd;
+  reg  [24:0] sN_out_r_18_q;
+  reg  [26:0] sN_out_r_18_r;
+  reg         sN_out_valid_r_18;
+  reg  [23:0] sN_out_r_19_sig;
+  reg         sN_out_r_19_expOdd;
+  reg  [24:0] sN_out_r_19_q;
+  reg  [26:0] sN_out_r_19_r;
+  reg         sN_out_valid_r_19;
+  reg  [23:0] sN_out_r_20_sig;
+  reg         sN_out_r_20_expOdd;
+  reg  [24:0] sN_out_r_20_q;
+  reg  [26:0] sN_out_r_20_r;
+  reg         sN_out_valid_r_20;
+  reg  [23:0] sN_out_r_21_sig;
+  reg         sN_out_r_21_expOdd;
+  reg  [24:0] sN_out_r_21_q;
+  reg  [26:0] sN_out_r_21_r;
+  reg         sN_out_valid_r_21;
+  reg  [23:0] sN_out_r_22_sig;
+  reg         sN_out_r_22_expOdd;
+  reg  [24:0] sN_out_r_22_q;
+  reg  [26:0] sN_out_r_22_r;
+  reg         sN_out_valid_r_22;
+  reg  [24:0] sN_out_r_23_q;
+  reg  [26:0] sN_out_r_23_r;
+  reg         sN_out_valid_r_23;
+  wire [1:0]  sN_nx_r2_rad = s0r_r_expOdd ? s0r_r_sig[21:20] : s0r_r_sig[22:21];
+  wire [29:0] sN_nx_d = {1'h0, s0r_r_r, sN_nx_r2_rad} - 30'h5;
   wire [1:0]  sN_nx_r2_rad_1 =
-    io_in_bits_expOdd ? io_in_bits_sig[19:18] : io_in_bits_sig[20:19];
-  wire [29:0] sN_nx_d_1 =
-    {1'h0, sN_out_r, sN_nx_r2_rad_1} - {27'h1, ~(sN_nx_d[29]), 2'h1};
-  wire [26:0] sN_out_1_r =
-    sN_nx_d_1[29] ? {sN_out_r[24:0], sN_nx_r2_rad_1} : sN_nx_d_1[26:0];
+    sN_out_r_expOdd ? sN_out_r_sig[19:18] : sN_out_r_sig[20:19];
+  wire [29:0] sN_nx_d_1 = {1'h0, sN_out_r_r, sN_nx_r2_rad_1} - {3'h0, sN_out_r_q, 2'h1};
   wire [1:0]  sN_nx_r2_rad_2 =
-    io_in_bits_expOdd ? io_in_bits_sig[17:16] : io_in_bits_sig[18:17];
+    sN_out_r_1_expOdd ? sN_out_r_1_sig[17:16] : sN_out_r_1_sig[18:17];
   wire [29:0] sN_nx_d_2 =
-    {1'h0, sN_out_1_r, sN_nx_r2_rad_2} - {26'h1, ~(sN_nx_d[29]), ~(sN_nx_d_1[29]), 2'h1};
-  wire [26:0] sN_out_2_r =
-    sN_nx_d_2[29] ? {sN_out_1_r[24:0], sN_nx_r2_rad_2} : sN_nx_d_2[26:0];
+    {1'h0, sN_out_r_1_r, sN_nx_r2_rad_2} - {3'h0, sN_out_r_1_q, 2'h1};
   wire [1:0]  sN_nx_r2_rad_3 =
-    io_in_bits_expOdd ? io_in_bits_sig[15:14] : io_in_bits_sig[16:15];
+    sN_out_r_2_expOdd ? sN_out_r_2_sig[15:14] : sN_out_r_2_sig[16:15];
   wire [29:0] sN_nx_d_3 =
-    {1'h0, sN_out_2_r, sN_nx_r2_rad_3}
-    - {25'h1, ~(sN_nx_d[29]), ~(sN_nx_d_1[29]), ~(sN_nx_d_2[29]), 2'h1};
-  wire [26:0] sN_out_3_r =
-    sN_nx_d_3[29] ? {sN_out_2_r[24:0], sN_nx_r2_rad_3} : sN_nx_d_3[26:0];
+    {1'h0, sN_out_r_2_r, sN_nx_r2_rad_3} - {3'h0, sN_out_r_2_q, 2'h1};
   wire [1:0]  sN_nx_r2_rad_4 =
-    io_in_bits_expOdd ? io_in_bits_sig[13:12] : io_in_bits_sig[14:13];
+    sN_out_r_3_expOdd ? sN_out_r_3_sig[13:12] : sN_out_r_3_sig[14:13];
   wire [29:0] sN_nx_d_4 =
-    {1'h0, sN_out_3_r, sN_nx_r2_rad_4}
-    - {24'h1, ~(sN_nx_d[29]), ~(sN_nx_d_1[29]), ~(sN_nx_d_2[29]), ~(sN_nx_d_3[29]), 2'h1};
+    {1'h0, sN_out_r_3_r, sN_nx_r2_rad_4} - {3'h0, sN_out_r_3_q, 2'h1};
   wire [1:0]  sN_nx_r2_rad_5 =
-    sN_out_r_expOdd ? sN_out_r_sig[11:10] : sN_out_r_sig[12:11];
-  wire [29:0] sN_nx_d_5 = {1'h0, sN_out_r_r, sN_nx_r2_rad_5} - {3'h0, sN_out_r_q, 2'h1};
-  wire [26:0] sN_out_5_r =
-    sN_nx_d_5[29] ? {sN_out_r_r[24:0], sN_nx_r2_rad_5} : sN_nx_d_5[26:0];
-  wire [1:0]  sN_nx_r2_rad_6 = sN_out_r_expOdd ? sN_out_r_sig[9:8] : sN_out_r_sig[10:9];
+    sN_out_r_4_expOdd ? sN_out_r_4_sig[11:10] : sN_out_r_4_sig[12:11];
+  wire [29:0] sN_nx_d_5 =
+    {1'h0, sN_out_r_4_r, sN_nx_r2_rad_5} - {3'h0, sN_out_r_4_q, 2'h1};
+  wire [1:0]  sN_nx_r2_rad_6 =
+    sN_out_r_5_expOdd ? sN_out_r_5_sig[9:8] : sN_out_r_5_sig[10:9];
   wire [29:0] sN_nx_d_6 =
-    {1'h0, sN_out_5_r, sN_nx_r2_rad_6} - {3'h0, sN_out_r_q[23:0], ~(sN_nx_d_5[29]), 2'h1};
-  wire [26:0] sN_out_6_r =
-    sN_nx_d_6[29] ? {sN_out_5_r[24:0], sN_nx_r2_rad_6} : sN_nx_d_6[26:0];
-  wire [1:0]  sN_nx_r2_rad_7 = sN_out_r_expOdd ? sN_out_r_sig[7:6] : sN_out_r_sig[8:7];
+    {1'h0, sN_out_r_5_r, sN_nx_r2_rad_6} - {3'h0, sN_out_r_5_q, 2'h1};
+  wire [1:0]  sN_nx_r2_rad_7 =
+    sN_out_r_6_expOdd ? sN_out_r_6_sig[7:6] : sN_out_r_6_sig[8:7];
   wire [29:0] sN_nx_d_7 =
-    {1'h0, sN_out_6_r, sN_nx_r2_rad_7}
-    - {3'h0, sN_out_r_q[22:0], ~(sN_nx_d_5[29]), ~(sN_nx_d_6[29]), 2'h1};
-  wire [26:0] sN_out_7_r =
-    sN_nx_d_7[29] ? {sN_out_6_r[24:0], sN_nx_r2_rad_7} : sN_nx_d_7[26:0];
-  wire [1:0]  sN_nx_r2_rad_8 = sN_out_r_expOdd ? sN_out_r_sig[5:4] : sN_out_r_sig[6:5];
+    {1'h0, sN_out_r_6_r, sN_nx_r2_rad_7} - {3'h0, sN_out_r_6_q, 2'h1};
+  wire [1:0]  sN_nx_r2_rad_8 =
+    sN_out_r_7_expOdd ? sN_out_r_7_sig[5:4] : sN_out_r_7_sig[6:5];
   wire [29:0] sN_nx_d_8 =
-    {1'h0, sN_out_7_r, sN_nx_r2_rad_8}
-    - {3'h0,
-       sN_out_r_q[21:0],
-       ~(sN_nx_d_5[29]),
-       ~(sN_nx_d_6[29]),
-       ~(sN_nx_d_7[29]),
-       2'h1};
-  wire [26:0] sN_out_8_r =
-    sN_nx_d_8[29] ? {sN_out_7_r[24:0], sN_nx_r2_rad_8} : sN_nx_d_8[26:0];
-  wire [1:0]  sN_nx_r2_rad_9 = sN_out_r_expOdd ? sN_out_r_sig[3:2] : sN_out_r_sig[4:3];
+    {1'h0, sN_out_r_7_r, sN_nx_r2_rad_8} - {3'h0, sN_out_r_7_q, 2'h1};
+  wire [1:0]  sN_nx_r2_rad_9 =
+    sN_out_r_8_expOdd ? sN_out_r_8_sig[3:2] : sN_out_r_8_sig[4:3];
   wire [29:0] sN_nx_d_9 =
-    {1'h0, sN_out_8_r, sN_nx_r2_rad_9}
-    - {3'h0,
-       sN_out_r_q[20:0],
-       ~(sN_nx_d_5[29]),
-       ~(sN_nx_d_6[29]),
-       ~(sN_nx_d_7[29]),
-       ~(sN_nx_d_8[29]),
-       2'h1};
+    {1'h0, sN_out_r_8_r, sN_nx_r2_rad_9} - {3'h0, sN_out_r_8_q, 2'h1};
   wire [1:0]  sN_nx_r2_rad_10 =
-    sN_out_r_1_expOdd ? sN_out_r_1_sig[1:0] : sN_out_r_1_sig[2:1];
+    sN_out_r_9_expOdd ? sN_out_r_9_sig[1:0] : sN_out_r_9_sig[2:1];
   wire [29:0] sN_nx_d_10 =
-    {1'h0, sN_out_r_1_r, sN_nx_r2_rad_10} - {3'h0, sN_out_r_1_q, 2'h1};
-  wire [26:0] sN_out_10_r =
-    sN_nx_d_10[29] ? {sN_out_r_1_r[24:0], sN_nx_r2_rad_10} : sN_nx_d_10[26:0];
-  wire [1:0]  sN_nx_r2_rad_11 = sN_out_r_1_expOdd ? 2'h0 : {sN_out_r_1_sig[0], 1'h0};
+    {1'h0, sN_out_r_9_r, sN_nx_r2_rad_10} - {3'h0, sN_out_r_9_q, 2'h1};
+  wire [1:0]  sN_nx_r2_rad_11 = sN_out_r_10_expOdd ? 2'h0 : {sN_out_r_10_sig[0], 1'h0};
   wire [29:0] sN_nx_d_11 =
-    {1'h0, sN_out_10_r, sN_nx_r2_rad_11}
-    - {3'h0, sN_out_r_1_q[23:0], ~(sN_nx_d_10[29]), 2'h1};
-  wire [26:0] sN_out_11_r =
-    sN_nx_d_11[29] ? {sN_out_10_r[24:0], sN_nx_r2_rad_11} : sN_nx_d_11[26:0];
-  wire [29:0] sN_nx_d_12 =
-    {1'h0, sN_out_11_r, 2'h0}
-    - {3'h0, sN_out_r_1_q[22:0], ~(sN_nx_d_10[29]), ~(sN_nx_d_11[29]), 2'h1};
-  wire [26:0] sN_out_12_r = sN_nx_d_12[29] ? {sN_out_11_r[24:0], 2'h0} : sN_nx_d_12[26:0];
-  wire [29:0] sN_nx_d_13 =
-    {1'h0, sN_out_12_r, 2'h0}
-    - {3'h0,
-       sN_out_r_1_q[21:0],
-       ~(sN_nx_d_10[29]),
-       ~(sN_nx_d_11[29]),
-       ~(sN_nx_d_12[29]),
-       2'h1};
-  wire [26:0] sN_out_13_r = sN_nx_d_13[29] ? {sN_out_12_r[24:0], 2'h0} : sN_nx_d_13[26:0];
-  wire [29:0] sN_nx_d_14 =
-    {1'h0, sN_out_13_r, 2'h0}
-    - {3'h0,
-       sN_out_r_1_q[20:0],
-       ~(sN_nx_d_10[29]),
-       ~(sN_nx_d_11[29]),
-       ~(sN_nx_d_12[29]),
-       ~(sN_nx_d_13[29]),
-       2'h1};
-  wire [29:0] sN_nx_d_15 = {1'h0, sN_out_r_2_r, 2'h0} - {3'h0, sN_out_r_2_q, 2'h1};
-  wire [26:0] sN_out_15_r =
-    sN_nx_d_15[29] ? {sN_out_r_2_r[24:0], 2'h0} : sN_nx_d_15[26:0];
-  wire [29:0] sN_nx_d_16 =
-    {1'h0, sN_out_15_r, 2'h0} - {3'h0, sN_out_r_2_q[23:0], ~(sN_nx_d_15[29]), 2'h1};
-  wire [26:0] sN_out_16_r = sN_nx_d_16[29] ? {sN_out_15_r[24:0], 2'h0} : sN_nx_d_16[26:0];
-  wire [29:0] sN_nx_d_17 =
-    {1'h0, sN_out_16_r, 2'h0}
-    - {3'h0, sN_out_r_2_q[22:0], ~(sN_nx_d_15[29]), ~(sN_nx_d_16[29]), 2'h1};
-  wire [26:0] sN_out_17_r = sN_nx_d_17[29] ? {sN_out_16_r[24:0], 2'h0} : sN_nx_d_17[26:0];
-  wire [29:0] sN_nx_d_18 =
-    {1'h0, sN_out_17_r, 2'h0}
-    - {3'h0,
-       sN_out_r_2_q[21:0],
-       ~(sN_nx_d_15[29]),
-       ~(sN_nx_d_16[29]),
-       ~(sN_nx_d_17[29]),
-       2'h1};
-  wire [26:0] sN_out_18_r = sN_nx_d_18[29] ? {sN_out_17_r[24:0], 2'h0} : sN_nx_d_18[26:0];
-  wire [29:0] sN_nx_d_19 =
-    {1'h0, sN_out_18_r, 2'h0}
-    - {3'h0,
-       sN_out_r_2_q[20:0],
-       ~(sN_nx_d_15[29]),
-       ~(sN_nx_d_16[29]),
-       ~(sN_nx_d_17[29]),
-       ~(sN_nx_d_18[29]),
-       2'h1};
-  wire [29:0] sN_nx_d_20 = {1'h0, sN_out_r_3_r, 2'h0} - {3'h0, sN_out_r_3_q, 2'h1};
-  wire [26:0] sN_out_20_r =
-    sN_nx_d_20[29] ? {sN_out_r_3_r[24:0], 2'h0} : sN_nx_d_20[26:0];
-  wire [29:0] sN_nx_d_21 =
-    {1'h0, sN_out_20_r, 2'h0} - {3'h0, sN_out_r_3_q[23:0], ~(sN_nx_d_20[29]), 2'h1};
-  wire [26:0] sN_out_21_r = sN_nx_d_21[29] ? {sN_out_20_r[24:0], 2'h0} : sN_nx_d_21[26:0];
-  wire [29:0] sN_nx_d_22 =
-    {1'h0, sN_out_21_r, 2'h0}
-    - {3'h0, sN_out_r_3_q[22:0], ~(sN_nx_d_20[29]), ~(sN_nx_d_21[29]), 2'h1};
-  wire [26:0] sN_out_22_r = sN_nx_d_22[29] ? {sN_out_21_r[24:0], 2'h0} : sN_nx_d_22[26:0];
-  wire [29:0] sN_nx_d_23 =
-    {1'h0, sN_out_22_r, 2'h0}
-    - {3'h0,
-       sN_out_r_3_q[21:0],
-       ~(sN_nx_d_20[29]),
-       ~(sN_nx_d_21[29]),
-       ~(sN_nx_d_22[29]),
-       2'h1};
+    {1'h0, sN_out_r_10_r, sN_nx_r2_rad_11} - {3'h0, sN_out_r_10_q, 2'h1};
+  wire [29:0] sN_nx_d_12 = {1'h0, sN_out_r_11_r, 2'h0} - {3'h0, sN_out_r_11_q, 2'h1};
+  wire [29:0] sN_nx_d_13 = {1'h0, sN_out_r_12_r, 2'h0} - {3'h0, sN_out_r_12_q, 2'h1};
+  wire [29:0] sN_nx_d_14 = {1'h0, sN_out_r_13_r, 2'h0} - {3'h0, sN_out_r_13_q, 2'h1};
+  wire [29:0] sN_nx_d_15 = {1'h0, sN_out_r_14_r, 2'h0} - {3'h0, sN_out_r_14_q, 2'h1};
+  wire [29:0] sN_nx_d_16 = {1'h0, sN_out_r_15_r, 2'h0} - {3'h0, sN_out_r_15_q, 2'h1};
+  wire [29:0] sN_nx_d_17 = {1'h0, sN_out_r_16_r, 2'h0} - {3'h0, sN_out_r_16_q, 2'h1};
+  wire [29:0] sN_nx_d_18 = {1'h0, sN_out_r_17_r, 2'h0} - {3'h0, sN_out_r_17_q, 2'h1};
+  wire [29:0] sN_nx_d_19 = {1'h0, sN_out_r_18_r, 2'h0} - {3'h0, sN_out_r_18_q, 2'h1};
+  wire [29:0] sN_nx_d_20 = {1'h0, sN_out_r_19_r, 2'h0} - {3'h0, sN_out_r_19_q, 2'h1};
+  wire [29:0] sN_nx_d_21 = {1'h0, sN_out_r_20_r, 2'h0} - {3'h0, sN_out_r_20_q, 2'h1};
+  wire [29:0] sN_nx_d_22 = {1'h0, sN_out_r_21_r, 2'h0} - {3'h0, sN_out_r_21_q, 2'h1};
+  wire [29:0] sN_nx_d_23 = {1'h0, sN_out_r_22_r, 2'h0} - {3'h0, sN_out_r_22_q, 2'h1};
   always @(posedge clock) begin
     if (io_en) begin
-      sN_out_r_sig <= io_in_bits_sig;
-      sN_out_r_expOdd <= io_in_bits_expOdd;
-      sN_out_r_q <=
-        {20'h1,
-         ~(sN_nx_d[29]),
-         ~(sN_nx_d_1[29]),
-         ~(sN_nx_d_2[29]),
-         ~(sN_nx_d_3[29]),
-         ~(sN_nx_d_4[29])};
-      sN_out_r_r <= sN_nx_d_4[29] ? {sN_out_3_r[24:0], sN_nx_r2_rad_4} : sN_nx_d_4[26:0];
+      s0r_r_sig <= io_in_bits_sig;
+      s0r_r_expOdd <= io_in_bits_expOdd;
+      s0r_r_r <= {25'h0, io_in_bits_expOdd ? {1'h0, io_in_bits_sig[22]} + 2'h1 : 2'h0};
+      sN_out_r_sig <= s0r_r_sig;
+      sN_out_r_expOdd <= s0r_r_expOdd;
+      sN_out_r_q <= {24'h1, ~(sN_nx_d[29])};
+      sN_out_r_r <= sN_nx_d[29] ? {s0r_r_r[24:0], sN_nx_r2_rad} : sN_nx_d[26:0];
       sN_out_r_1_sig <= sN_out_r_sig;
       sN_out_r_1_expOdd <= sN_out_r_expOdd;
-      sN_out_r_1_q <=
-        {sN_out_r_q[19:0],
-         ~(sN_nx_d_5[29]),
-         ~(sN_nx_d_6[29]),
-         ~(sN_nx_d_7[29]),
-         ~(sN_nx_d_8[29]),
-         ~(sN_nx_d_9[29])};
+      sN_out_r_1_q <= {sN_out_r_q[23:0], ~(sN_nx_d_1[29])};
       sN_out_r_1_r <=
-        sN_nx_d_9[29] ? {sN_out_8_r[24:0], sN_nx_r2_rad_9} : sN_nx_d_9[26:0];
+        sN_nx_d_1[29] ? {sN_out_r_r[24:0], sN_nx_r2_rad_1} : sN_nx_d_1[26:0];
       sN_out_r_2_sig <= sN_out_r_1_sig;
       sN_out_r_2_expOdd <= sN_out_r_1_expOdd;
-      sN_out_r_2_q <=
-        {sN_out_r_1_q[19:0],
-         ~(sN_nx_d_10[29]),
-         ~(sN_nx_d_11[29]),
-         ~(sN_nx_d_12[29]),
-         ~(sN_nx_d_13[29]),
-         ~(sN_nx_d_14[29])};
-      sN_out_r_2_r <= sN_nx_d_14[29] ? {sN_out_13_r[24:0], 2'h0} : sN_nx_d_14[26:0];
+      sN_out_r_2_q <= {sN_out_r_1_q[23:0], ~(sN_nx_d_2[29])};
+      sN_out_r_2_r <=
+        sN_nx_d_2[29] ? {sN_out_r_1_r[24:0], sN_nx_r2_rad_2} : sN_nx_d_2[26:0];
       sN_out_r_3_sig <= sN_out_r_2_sig;
       sN_out_r_3_expOdd <= sN_out_r_2_expOdd;
-      sN_out_r_3_q <=
-        {sN_out_r_2_q[19:0],
-         ~(sN_nx_d_15[29]),
-         ~(sN_nx_d_16[29]),
-         ~(sN_nx_d_17[29]),
-         ~(sN_nx_d_18[29]),
-         ~(sN_nx_d_19[29])};
-      sN_out_r_3_r <= sN_nx_d_19[29] ? {sN_out_18_r[24:0], 2'h0} : sN_nx_d_19[26:0];
-      sN_out_r_4_q <=
-        {sN_out_r_3_q[20:0],
-         ~(sN_nx_d_20[29]),
-         ~(sN_nx_d_21[29]),
-         ~(sN_nx_d_22[29]),
-         ~(sN_nx_d_23[29])};
-      sN_out_r_4_r <= sN_nx_d_23[29] ? {sN_out_22_r[24:0], 2'h0} : sN_nx_d_23[26:0];
+      sN_out_r_3_q <= {sN_out_r_2_q[23:0], ~(sN_nx_d_3[29])};
+      sN_out_r_3_r <=
+        sN_nx_d_3[29] ? {sN_out_r_2_r[24:0], sN_nx_r2_rad_3} : sN_nx_d_3[26:0];
+      sN_out_r_4_sig <= sN_out_r_3_sig;
+      sN_out_r_4_expOdd <= sN_out_r_3_expOdd;
+      sN_out_r_4_q <= {sN_out_r_3_q[23:0], ~(sN_nx_d_4[29])};
+      sN_out_r_4_r <=
+        sN_nx_d_4[29] ? {sN_out_r_3_r[24:0], sN_nx_r2_rad_4} : sN_nx_d_4[26:0];
+      sN_out_r_5_sig <= sN_out_r_4_sig;
+      sN_out_r_5_expOdd <= sN_out_r_4_expOdd;
+      sN_out_r_5_q <= {sN_out_r_4_q[23:0], ~(sN_nx_d_5[29])};
+      sN_out_r_5_r <=
+        sN_nx_d_5[29] ? {sN_out_r_4_r[24:0], sN_nx_r2_rad_5} : sN_nx_d_5[26:0];
+      sN_out_r_6_sig <= sN_out_r_5_sig;
+      sN_out_r_6_expOdd <= sN_out_r_5_expOdd;
+      sN_out_r_6_q <= {sN_out_r_5_q[23:0], ~(sN_nx_d_6[29])};
+      sN_out_r_6_r <=
+        sN_nx_d_6[29] ? {sN_out_r_5_r[24:0], sN_nx_r2_rad_6} : sN_nx_d_6[26:0];
+      sN_out_r_7_sig <= sN_out_r_6_sig;
+      sN_out_r_7_expOdd <= sN_out_r_6_expOdd;
+      sN_out_r_7_q <= {sN_out_r_6_q[23:0], ~(sN_nx_d_7[29])};
+      sN_out_r_7_r <=
+        sN_nx_d_7[29] ? {sN_out_r_6_r[24:0], sN_nx_r2_rad_7} : sN_nx_d_7[26:0];
+      sN_out_r_8_sig <= sN_out_r_7_sig;
+      sN_out_r_8_expOdd <= sN_out_r_7_expOdd;
+      sN_out_r_8_q <= {sN_out_r_7_q[23:0], ~(sN_nx_d_8[29])};
+      sN_out_r_8_r <=
+        sN_nx_d_8[29] ? {sN_out_r_7_r[24:0], sN_nx_r2_rad_8} : sN_nx_d_8[26:0];
+      sN_out_r_9_sig <= sN_out_r_8_sig;
+      sN_out_r_9_expOdd <= sN_out_r_8_expOdd;
+      sN_out_r_9_q <= {sN_out_r_8_q[23:0], ~(sN_nx_d_9[29])};
+      sN_out_r_9_r <=
+        sN_nx_d_9[29] ? {sN_out_r_8_r[24:0], sN_nx_r2_rad_9} : sN_nx_d_9[26:0];
+      sN_out_r_10_sig <= sN_out_r_9_sig;
+      sN_out_r_10_expOdd <= sN_out_r_9_expOdd;
+      sN_out_r_10_q <= {sN_out_r_9_q[23:0], ~(sN_nx_d_10[29])};
+      sN_out_r_10_r <=
+        sN_nx_d_10[29] ? {sN_out_r_9_r[24:0], sN_nx_r2_rad_10} : sN_nx_d_10[26:0];
+      sN_out_r_11_sig <= sN_out_r_10_sig;
+      sN_out_r_11_expOdd <= sN_out_r_10_expOdd;
+      sN_out_r_11_q <= {sN_out_r_10_q[23:0], ~(sN_nx_d_11[29])};
+      sN_out_r_11_r <=
+        sN_nx_d_11[29] ? {sN_out_r_10_r[24:0], sN_nx_r2_rad_11} : sN_nx_d_11[26:0];
+      sN_out_r_12_sig <= sN_out_r_11_sig;
+      sN_out_r_12_expOdd <= sN_out_r_11_expOdd;
+      sN_out_r_12_q <= {sN_out_r_11_q[23:0], ~(sN_nx_d_12[29])};
+      sN_out_r_12_r <= sN_nx_d_12[29] ? {sN_out_r_11_r[24:0], 2'h0} : sN_nx_d_12[26:0];
+      sN_out_r_13_sig <= sN_out_r_12_sig;
+      sN_out_r_13_expOdd <= sN_out_r_12_expOdd;
+      sN_out_r_13_q <= {sN_out_r_12_q[23:0], ~(sN_nx_d_13[29])};
+      sN_out_r_13_r <= sN_nx_d_13[29] ? {sN_out_r_12_r[24:0], 2'h0} : sN_nx_d_13[26:0];
+      sN_out_r_14_sig <= sN_out_r_13_sig;
+      sN_out_r_14_expOdd <= sN_out_r_13_expOdd;
+      sN_out_r_14_q <= {sN_out_r_13_q[23:0], ~(sN_nx_d_14[29])};
+      sN_out_r_14_r <= sN_nx_d_14[29] ? {sN_out_r_13_r[24:0], 2'h0} : sN_nx_d_14[26:0];
+      sN_out_r_15_sig <= sN_out_r_14_sig;
+      sN_out_r_15_expOdd <= sN_out_r_14_expOdd;
+      sN_out_r_15_q <= {sN_out_r_14_q[23:0], ~(sN_nx_d_15[29])};
+      sN_out_r_15_r <= sN_nx_d_15[29] ? {sN_out_r_14_r[24:0], 2'h0} : sN_nx_d_15[26:0];
+      sN_out_r_16_sig <= sN_out_r_15_sig;
+      sN_out_r_16_expOdd <= sN_out_r_15_expOdd;
+      sN_out_r_16_q <= {sN_out_r_15_q[23:0], ~(sN_nx_d_16[29])};
+      sN_out_r_16_r <= sN_nx_d_16[29] ? {sN_out_r_15_r[24:0], 2'h0} : sN_nx_d_16[26:0];
+      sN_out_r_17_sig <= sN_out_r_16_sig;
+      sN_out_r_17_expOdd <= sN_out_r_16_expOdd;
+      sN_out_r_17_q <= {sN_out_r_16_q[23:0], ~(sN_nx_d_17[29])};
+      sN_out_r_17_r <= sN_nx_d_17[29] ? {sN_out_r_16_r[24:0], 2'h0} : sN_nx_d_17[26:0];
+      sN_out_r_18_sig <= sN_out_r_17_sig;
+      sN_out_r_18_expOdd <= sN_out_r_17_expOdd;
+      sN_out_r_18_q <= {sN_out_r_17_q[23:0], ~(sN_nx_d_18[29])};
+      sN_out_r_18_r <= sN_nx_d_18[29] ? {sN_out_r_17_r[24:0], 2'h0} : sN_nx_d_18[26:0];
+      sN_out_r_19_sig <= sN_out_r_18_sig;
+      sN_out_r_19_expOdd <= sN_out_r_18_expOdd;
+      sN_out_r_19_q <= {sN_out_r_18_q[23:0], ~(sN_nx_d_19[29])};
+      sN_out_r_19_r <= sN_nx_d_19[29] ? {sN_out_r_18_r[24:0], 2'h0} : sN_nx_d_19[26:0];
+      sN_out_r_20_sig <= sN_out_r_19_sig;
+      sN_out_r_20_expOdd <= sN_out_r_19_expOdd;
+      sN_out_r_20_q <= {sN_out_r_19_q[23:0], ~(sN_nx_d_20[29])};
+      sN_out_r_20_r <= sN_nx_d_20[29] ? {sN_out_r_19_r[24:0], 2'h0} : sN_nx_d_20[26:0];
+      sN_out_r_21_sig <= sN_out_r_20_sig;
+      sN_out_r_21_expOdd <= sN_out_r_20_expOdd;
+      sN_out_r_21_q <= {sN_out_r_20_q[23:0], ~(sN_nx_d_21[29])};
+      sN_out_r_21_r <= sN_nx_d_21[29] ? {sN_out_r_20_r[24:0], 2'h0} : sN_nx_d_21[26:0];
+      sN_out_r_22_sig <= sN_out_r_21_sig;
+      sN_out_r_22_expOdd <= sN_out_r_21_expOdd;
+      sN_out_r_22_q <= {sN_out_r_21_q[23:0], ~(sN_nx_d_22[29])};
+      sN_out_r_22_r <= sN_nx_d_22[29] ? {sN_out_r_21_r[24:0], 2'h0} : sN_nx_d_22[26:0];
+      sN_out_r_23_q <= {sN_out_r_22_q[23:0], ~(sN_nx_d_23[29])};
+      sN_out_r_23_r <= sN_nx_d_23[29] ? {sN_out_r_22_r[24:0], 2'h0} : sN_nx_d_23[26:0];
     end
     if (reset) begin
+      s0r_valid_r <= 1'h0;
       sN_out_valid_r <= 1'h0;
       sN_out_valid_r_1 <= 1'h0;
       sN_out_valid_r_2 <= 1'h0;
       sN_out_valid_r_3 <= 1'h0;
       sN_out_valid_r_4 <= 1'h0;
+      sN_out_valid_r_5 <= 1'h0;
+      sN_out_valid_r_6 <= 1'h0;
+      sN_out_valid_r_7 <= 1'h0;
+      sN_out_valid_r_8 <= 1'h0;
+      sN_out_valid_r_9 <= 1'h0;
+      sN_out_valid_r_10 <= 1'h0;
+      sN_out_valid_r_11 <= 1'h0;
+      sN_out_valid_r_12 <= 1'h0;
+      sN_out_valid_r_13 <= 1'h0;
+      sN_out_valid_r_14 <= 1'h0;
+      sN_out_valid_r_15 <= 1'h0;
+      sN_out_valid_r_16 <= 1'h0;
+      sN_out_valid_r_17 <= 1'h0;
+      sN_out_valid_r_18 <= 1'h0;
+      sN_out_valid_r_19 <= 1'h0;
+      sN_out_valid_r_20 <= 1'h0;
+      sN_out_valid_r_21 <= 1'h0;
+      sN_out_valid_r_22 <= 1'h0;
+      sN_out_valid_r_23 <= 1'h0;
     end
     else if (io_en) begin
-      sN_out_valid_r <= io_in_valid;
+      s0r_valid_r <= io_in_valid;
+      sN_out_valid_r <= s0r_valid_r;
       sN_out_valid_r_1 <= sN_out_valid_r;
       sN_out_valid_r_2 <= sN_out_valid_r_1;
       sN_out_valid_r_3 <= sN_out_valid_r_2;
       sN_out_valid_r_4 <= sN_out_valid_r_3;
+      sN_out_valid_r_5 <= sN_out_valid_r_4;
+      sN_out_valid_r_6 <= sN_out_valid_r_5;
+      sN_out_valid_r_7 <= sN_out_valid_r_6;
+      sN_out_valid_r_8 <= sN_out_valid_r_7;
+      sN_out_valid_r_9 <= sN_out_valid_r_8;
+      sN_out_valid_r_10 <= sN_out_valid_r_9;
+      sN_out_valid_r_11 <= sN_out_valid_r_10;
+      sN_out_valid_r_12 <= sN_out_valid_r_11;
+      sN_out_valid_r_13 <= sN_out_valid_r_12;
+      sN_out_valid_r_14 <= sN_out_valid_r_13;
+      sN_out_valid_r_15 <= sN_out_valid_r_14;
+      sN_out_valid_r_16 <= sN_out_valid_r_15;
+      sN_out_valid_r_17 <= sN_out_valid_r_16;
+      sN_out_valid_r_18 <= sN_out_valid_r_17;
+      sN_out_valid_r_19 <= sN_out_valid_r_18;
+      sN_out_valid_r_20 <= sN_out_valid_r_19;
+      sN_out_valid_r_21 <= sN_out_valid_r_20;
+      sN_out_valid_r_22 <= sN_out_valid_r_21;
+      sN_out_valid_r_23 <= sN_out_valid_r_22;
     end
   end // always @(posedge)
-  assign io_out_valid = sN_out_valid_r_4;
-  assign io_out_bits_sig = {sN_out_r_4_q, |sN_out_r_4_r};
+  assign io_out_valid = sN_out_valid_r_23;
+  assign io_out_bits_sig = {sN_out_r_23_q, |sN_out_r_23_r};
 endmodule
 
-module FpSqrt_fp32_dr_L7_world(
+module FpSqrt_fp32_dr_L32_world(
   input         clock,
                 reset,
                 io_en,
@@ -115632,62 +116283,26 @@ module FpSqrt_fp32_dr_L7_world(
   output [4:0]  io_out_bits_flags
 );
 
-  wire        _DigitRecurrenceCore_sqrt_s24_L5_io_out_valid;
-  wire [25:0] _DigitRecurrenceCore_sqrt_s24_L5_io_out_bits_sig;
-  wire        cls_expZero = io_in_bits_a[30:23] == 8'h0;
-  wire [3:0]  _GEN =
-    {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
-    | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
-  wire [4:0]  cls_lz =
-    io_in_bits_a[22]
-      ? 5'h0
-      : io_in_bits_a[21]
-          ? 5'h1
-          : io_in_bits_a[20]
-              ? 5'h2
-              : io_in_bits_a[19]
-                  ? 5'h3
-                  : io_in_bits_a[18]
-                      ? 5'h4
-                      : io_in_bits_a[17]
-                          ? 5'h5
-                          : io_in_bits_a[16]
-                              ? 5'h6
-                              : io_in_bits_a[15]
-                                  ? 5'h7
-                                  : io_in_bits_a[14]
-                                      ? 5'h8
-                                      : io_in_bits_a[13]
-                                          ? 5'h9
-                                          : io_in_bits_a[12]
-                                              ? 5'hA
-                                              : io_in_bits_a[11]
-                                                  ? 5'hB
-                                                  : io_in_bits_a[10]
-                                                      ? 5'hC
-                                                      : io_in_bits_a[9]
-                                                          ? 5'hD
-                                                          : _GEN[0]
-                                                              ? 5'hE
-                                                              : _GEN[1]
-                                                                  ? 5'hF
-                                                                  : _GEN[2]
-                                                                      ? 5'h10
-                                                                      : _GEN[3]
-                                                                          ? 5'h11
-                                                                          : io_in_bits_a[4]
-                                                                              ? 5'h12
-                                                                              : io_in_bits_a[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_bits_a[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_bits_a[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, cls_lz} + 6'h1;
-  wire [8:0]  _raw_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
-  wire [9:0]  raw_sExp =
-    cls_expZero ? 10'h381 - {5'h0, cls_lz} : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
+  wire        _DigitRecurrenceCore_sqrt_s24_L25_io_out_valid;
+  wire [25:0] _DigitRecurrenceCore_sqrt_s24_L25_io_out_bits_sig;
+  reg         cls_isNaN;
+  reg         cls_isSNaN;
+  reg         cls_isInf;
+  reg         cls_isZero;
+  reg         cls_sign;
+  reg         cls_expZero;
+  reg  [7:0]  cls_e;
+  reg  [22:0] cls_frac;
+  reg  [4:0]  cls_lz;
+  reg         raw_isNaN;
+  reg         raw_isSNaN;
+  reg         raw_isInf;
+  reg         raw_isZero;
+  reg         raw_sign;
+  reg  [9:0]  raw_sExp;
+  reg  [23:0] raw_sig;
+  reg         vIn_r;
+  reg         vIn;
   reg         sideOut_r_isNaN;
   reg         sideOut_r_isInf;
   reg         sideOut_r_isZero;
@@ -115712,6 +116327,126 @@ module FpSqrt_fp32_dr_L7_world(
   reg         sideOut_r_3_sign;
   reg  [4:0]  sideOut_r_3_flags;
   reg  [10:0] sideOut_r_3_exp;
+  reg         sideOut_r_4_isNaN;
+  reg         sideOut_r_4_isInf;
+  reg         sideOut_r_4_isZero;
+  reg         sideOut_r_4_sign;
+  reg  [4:0]  sideOut_r_4_flags;
+  reg  [10:0] sideOut_r_4_exp;
+  reg         sideOut_r_5_isNaN;
+  reg         sideOut_r_5_isInf;
+  reg         sideOut_r_5_isZero;
+  reg         sideOut_r_5_sign;
+  reg  [4:0]  sideOut_r_5_flags;
+  reg  [10:0] sideOut_r_5_exp;
+  reg         sideOut_r_6_isNaN;
+  reg         sideOut_r_6_isInf;
+  reg         sideOut_r_6_isZero;
+  reg         sideOut_r_6_sign;
+  reg  [4:0]  sideOut_r_6_flags;
+  reg  [10:0] sideOut_r_6_exp;
+  reg         sideOut_r_7_isNaN;
+  reg         sideOut_r_7_isInf;
+  reg         sideOut_r_7_isZero;
+  reg         sideOut_r_7_sign;
+  reg  [4:0]  sideOut_r_7_flags;
+  reg  [10:0] sideOut_r_7_exp;
+  reg         sideOut_r_8_isNaN;
+  reg         sideOut_r_8_isInf;
+  reg         sideOut_r_8_isZero;
+  reg         sideOut_r_8_sign;
+  reg  [4:0]  sideOut_r_8_flags;
+  reg  [10:0] sideOut_r_8_exp;
+  reg         sideOut_r_9_isNaN;
+  reg         sideOut_r_9_isInf;
+  reg         sideOut_r_9_isZero;
+  reg         sideOut_r_9_sign;
+  reg  [4:0]  sideOut_r_9_flags;
+  reg  [10:0] sideOut_r_9_exp;
+  reg         sideOut_r_10_isNaN;
+  reg         sideOut_r_10_isInf;
+  reg         sideOut_r_10_isZero;
+  reg         sideOut_r_10_sign;
+  reg  [4:0]  sideOut_r_10_flags;
+  reg  [10:0] sideOut_r_10_exp;
+  reg         sideOut_r_11_isNaN;
+  reg         sideOut_r_11_isInf;
+  reg         sideOut_r_11_isZero;
+  reg         sideOut_r_11_sign;
+  reg  [4:0]  sideOut_r_11_flags;
+  reg  [10:0] sideOut_r_11_exp;
+  reg         sideOut_r_12_isNaN;
+  reg         sideOut_r_12_isInf;
+  reg         sideOut_r_12_isZero;
+  reg         sideOut_r_12_sign;
+  reg  [4:0]  sideOut_r_12_flags;
+  reg  [10:0] sideOut_r_12_exp;
+  reg         sideOut_r_13_isNaN;
+  reg         sideOut_r_13_isInf;
+  reg         sideOut_r_13_isZero;
+  reg         sideOut_r_13_sign;
+  reg  [4:0]  sideOut_r_13_flags;
+  reg  [10:0] sideOut_r_13_exp;
+  reg         sideOut_r_14_isNaN;
+  reg         sideOut_r_14_isInf;
+  reg         sideOut_r_14_isZero;
+  reg         sideOut_r_14_sign;
+  reg  [4:0]  sideOut_r_14_flags;
+  reg  [10:0] sideOut_r_14_exp;
+  reg         sideOut_r_15_isNaN;
+  reg         sideOut_r_15_isInf;
+  reg         sideOut_r_15_isZero;
+  reg         sideOut_r_15_sign;
+  reg  [4:0]  sideOut_r_15_flags;
+  reg  [10:0] sideOut_r_15_exp;
+  reg         sideOut_r_16_isNaN;
+  reg         sideOut_r_16_isInf;
+  reg         sideOut_r_16_isZero;
+  reg         sideOut_r_16_sign;
+  reg  [4:0]  sideOut_r_16_flags;
+  reg  [10:0] sideOut_r_16_exp;
+  reg         sideOut_r_17_isNaN;
+  reg         sideOut_r_17_isInf;
+  reg         sideOut_r_17_isZero;
+  reg         sideOut_r_17_sign;
+  reg  [4:0]  sideOut_r_17_flags;
+  reg  [10:0] sideOut_r_17_exp;
+  reg         sideOut_r_18_isNaN;
+  reg         sideOut_r_18_isInf;
+  reg         sideOut_r_18_isZero;
+  reg         sideOut_r_18_sign;
+  reg  [4:0]  sideOut_r_18_flags;
+  reg  [10:0] sideOut_r_18_exp;
+  reg         sideOut_r_19_isNaN;
+  reg         sideOut_r_19_isInf;
+  reg         sideOut_r_19_isZero;
+  reg         sideOut_r_19_sign;
+  reg  [4:0]  sideOut_r_19_flags;
+  reg  [10:0] sideOut_r_19_exp;
+  reg         sideOut_r_20_isNaN;
+  reg         sideOut_r_20_isInf;
+  reg         sideOut_r_20_isZero;
+  reg         sideOut_r_20_sign;
+  reg  [4:0]  sideOut_r_20_flags;
+  reg  [10:0] sideOut_r_20_exp;
+  reg         sideOut_r_21_isNaN;
+  reg         sideOut_r_21_isInf;
+  reg         sideOut_r_21_isZero;
+  reg         sideOut_r_21_sign;
+  reg  [4:0]  sideOut_r_21_flags;
+  reg  [10:0] sideOut_r_21_exp;
+  reg         sideOut_r_22_isNaN;
+  reg         sideOut_r_22_isInf;
+  reg         sideOut_r_22_isZero;
+  reg         sideOut_r_22_sign;
+  reg  [4:0]  sideOut_r_22_flags;
+  reg  [10:0] sideOut_r_22_exp;
+  reg         sideOut_r_23_isNaN;
+  reg         sideOut_r_23_isInf;
+  reg         sideOut_r_23_isZero;
+  reg         sideOut_r_23_sign;
+  reg  [4:0]  sideOut_r_23_flags;
+  reg  [10:0] sideOut_r_23_exp;
   reg         sideOut_isNaN;
   reg         sideOut_isInf;
   reg         sideOut_isZero;
@@ -115725,38 +116460,138 @@ module FpSqrt_fp32_dr_L7_world(
   reg  [10:0] riR_sExp;
   reg  [25:0] riR_sig;
   reg  [4:0]  riR_flags;
+  reg         at_isNaN;
+  reg         at_isInf;
+  reg         at_isZero;
+  reg         at_sign;
+  reg  [4:0]  at_flags;
+  reg         at_tiny;
+  reg  [7:0]  at_exp0;
+  reg  [7:0]  at_exp1;
+  reg         at_over0;
+  reg         at_over1;
+  reg  [25:0] at_sig;
+  reg  [4:0]  at_dist;
+  reg         at_far;
+  reg         mid_isNaN;
+  reg         mid_isInf;
+  reg         mid_isZero;
+  reg         mid_sign;
+  reg  [4:0]  mid_flags;
+  reg         mid_tiny;
+  reg  [7:0]  mid_exp0;
+  reg  [7:0]  mid_exp1;
+  reg         mid_over0;
+  reg         mid_over1;
+  reg  [23:0] mid_m;
+  reg         mid_rnd;
+  reg         mid_stk;
+  reg         inc_isNaN;
+  reg         inc_isInf;
+  reg         inc_isZero;
+  reg         inc_sign;
+  reg  [4:0]  inc_flags;
+  reg         inc_tiny;
+  reg  [7:0]  inc_exp0;
+  reg  [7:0]  inc_exp1;
+  reg         inc_over0;
+  reg         inc_over1;
+  reg  [24:0] inc_m1;
+  reg         inc_inexact;
   reg  [31:0] io_out_bits_r_bits;
   reg  [4:0]  io_out_bits_r_flags;
   reg         io_out_valid_r;
   reg         io_out_valid_r_1;
-  wire        raw_isNaN = (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0]));
-  wire        raw_isZero = cls_expZero & ~(|(io_in_bits_a[22:0]));
-  wire        negInvalid = io_in_bits_a[31] & ~raw_isNaN & ~raw_isZero;
-  wire        at_tiny = $signed(riR_sExp) < -11'sh7E;
+  reg         io_out_valid_r_2;
+  reg         io_out_valid_r_3;
+  reg         io_out_valid_r_4;
+  wire        cls_expZero_0 = io_in_bits_a[30:23] == 8'h0;
+  wire [3:0]  _GEN =
+    {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
+    | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
+  wire [8:0]  _raw_out_sExp_T_1 = {1'h0, cls_e} - 9'h7F;
+  wire        negInvalid = raw_sign & ~raw_isNaN & ~raw_isZero;
   wire [10:0] _at_dist_T = 11'h782 - riR_sExp;
-  wire [51:0] mid_sig_wide =
-    {riR_sig, 26'h0} >> (_at_dist_T > 11'h1B ? 5'h1B : _at_dist_T[4:0]);
+  wire [51:0] mid_sig_wide = {at_sig, 26'h0} >> at_dist;
   wire [25:0] mid_sig =
     at_tiny
       ? {mid_sig_wide[51:27],
-         mid_sig_wide[26] | (|(mid_sig_wide[25:0])) | _at_dist_T > 11'h1A & (|riR_sig)}
-      : riR_sig;
-  wire        inc_inexact = mid_sig[1] | mid_sig[0];
-  wire [24:0] inc_m1 =
-    {1'h0, mid_sig[25:2]} + {24'h0, mid_sig[1] & (mid_sig[0] | mid_sig[2])};
-  wire        io_out_bits_overflow =
-    ~at_tiny & (inc_m1[24] ? $signed(riR_sExp) > 11'sh7E : $signed(riR_sExp) > 11'sh7F);
+         mid_sig_wide[26] | (|(mid_sig_wide[25:0])) | at_far & (|at_sig)}
+      : at_sig;
+  wire        io_out_bits_overflow = ~inc_tiny & (inc_m1[24] ? inc_over1 : inc_over0);
+  wire [85:0] _raw_subSig_T_1 = {63'h0, cls_frac} << {1'h0, cls_lz} + 6'h1;
   always @(posedge clock) begin
     if (io_en) begin
+      cls_isNaN <= (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0]));
+      cls_isSNaN <=
+        (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) & ~(io_in_bits_a[22]);
+      cls_isInf <= (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
+      cls_isZero <= cls_expZero_0 & ~(|(io_in_bits_a[22:0]));
+      cls_sign <= io_in_bits_a[31];
+      cls_expZero <= cls_expZero_0;
+      cls_e <= io_in_bits_a[30:23];
+      cls_frac <= io_in_bits_a[22:0];
+      cls_lz <=
+        io_in_bits_a[22]
+          ? 5'h0
+          : io_in_bits_a[21]
+              ? 5'h1
+              : io_in_bits_a[20]
+                  ? 5'h2
+                  : io_in_bits_a[19]
+                      ? 5'h3
+                      : io_in_bits_a[18]
+                          ? 5'h4
+                          : io_in_bits_a[17]
+                              ? 5'h5
+                              : io_in_bits_a[16]
+                                  ? 5'h6
+                                  : io_in_bits_a[15]
+                                      ? 5'h7
+                                      : io_in_bits_a[14]
+                                          ? 5'h8
+                                          : io_in_bits_a[13]
+                                              ? 5'h9
+                                              : io_in_bits_a[12]
+                                                  ? 5'hA
+                                                  : io_in_bits_a[11]
+                                                      ? 5'hB
+                                                      : io_in_bits_a[10]
+                                                          ? 5'hC
+                                                          : io_in_bits_a[9]
+                                                              ? 5'hD
+                                                              : _GEN[0]
+                                                                  ? 5'hE
+                                                                  : _GEN[1]
+                                                                      ? 5'hF
+                                                                      : _GEN[2]
+                                                                          ? 5'h10
+                                                                          : _GEN[3]
+                                                                              ? 5'h11
+                                                                              : io_in_bits_a[4]
+                                                                                  ? 5'h12
+                                                                                  : io_in_bits_a[3]
+                                                                                      ? 5'h13
+                                                                                      : io_in_bits_a[2]
+                                                                                          ? 5'h14
+                                                                                          : io_in_bits_a[1]
+                                                                                              ? 5'h15
+                                                                                              : 5'h16;
+      raw_isNaN <= cls_isNaN;
+      raw_isSNaN <= cls_isSNaN;
+      raw_isInf <= cls_isInf;
+      raw_isZero <= cls_isZero;
+      raw_sign <= cls_sign;
+      raw_sExp <=
+        cls_expZero
+          ? 10'h381 - {5'h0, cls_lz}
+          : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
+      raw_sig <= cls_expZero ? _raw_subSig_T_1[23:0] : {1'h1, cls_frac};
       sideOut_r_isNaN <= raw_isNaN | negInvalid;
-      sideOut_r_isInf <=
-        (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0])) & ~(io_in_bits_a[31]);
+      sideOut_r_isInf <= raw_isInf & ~raw_sign;
       sideOut_r_isZero <= raw_isZero;
-      sideOut_r_sign <= io_in_bits_a[31];
-      sideOut_r_flags <=
-        {negInvalid | (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0]))
-           & ~(io_in_bits_a[22]),
-         4'h0};
+      sideOut_r_sign <= raw_sign;
+      sideOut_r_flags <= {negInvalid | raw_isSNaN, 4'h0};
       sideOut_r_exp <= {{2{raw_sExp[9]}}, raw_sExp[9:1]};
       sideOut_r_1_isNaN <= sideOut_r_isNaN;
       sideOut_r_1_isInf <= sideOut_r_isInf;
@@ -115776,67 +116611,235 @@ module FpSqrt_fp32_dr_L7_world(
       sideOut_r_3_sign <= sideOut_r_2_sign;
       sideOut_r_3_flags <= sideOut_r_2_flags;
       sideOut_r_3_exp <= sideOut_r_2_exp;
-      sideOut_isNaN <= sideOut_r_3_isNaN;
-      sideOut_isInf <= sideOut_r_3_isInf;
-      sideOut_isZero <= sideOut_r_3_isZero;
-      sideOut_sign <= sideOut_r_3_sign;
-      sideOut_flags <= sideOut_r_3_flags;
-      sideOut_exp <= sideOut_r_3_exp;
+      sideOut_r_4_isNaN <= sideOut_r_3_isNaN;
+      sideOut_r_4_isInf <= sideOut_r_3_isInf;
+      sideOut_r_4_isZero <= sideOut_r_3_isZero;
+      sideOut_r_4_sign <= sideOut_r_3_sign;
+      sideOut_r_4_flags <= sideOut_r_3_flags;
+      sideOut_r_4_exp <= sideOut_r_3_exp;
+      sideOut_r_5_isNaN <= sideOut_r_4_isNaN;
+      sideOut_r_5_isInf <= sideOut_r_4_isInf;
+      sideOut_r_5_isZero <= sideOut_r_4_isZero;
+      sideOut_r_5_sign <= sideOut_r_4_sign;
+      sideOut_r_5_flags <= sideOut_r_4_flags;
+      sideOut_r_5_exp <= sideOut_r_4_exp;
+      sideOut_r_6_isNaN <= sideOut_r_5_isNaN;
+      sideOut_r_6_isInf <= sideOut_r_5_isInf;
+      sideOut_r_6_isZero <= sideOut_r_5_isZero;
+      sideOut_r_6_sign <= sideOut_r_5_sign;
+      sideOut_r_6_flags <= sideOut_r_5_flags;
+      sideOut_r_6_exp <= sideOut_r_5_exp;
+      sideOut_r_7_isNaN <= sideOut_r_6_isNaN;
+      sideOut_r_7_isInf <= sideOut_r_6_isInf;
+      sideOut_r_7_isZero <= sideOut_r_6_isZero;
+      sideOut_r_7_sign <= sideOut_r_6_sign;
+      sideOut_r_7_flags <= sideOut_r_6_flags;
+      sideOut_r_7_exp <= sideOut_r_6_exp;
+      sideOut_r_8_isNaN <= sideOut_r_7_isNaN;
+      sideOut_r_8_isInf <= sideOut_r_7_isInf;
+      sideOut_r_8_isZero <= sideOut_r_7_isZero;
+      sideOut_r_8_sign <= sideOut_r_7_sign;
+      sideOut_r_8_flags <= sideOut_r_7_flags;
+      sideOut_r_8_exp <= sideOut_r_7_exp;
+      sideOut_r_9_isNaN <= sideOut_r_8_isNaN;
+      sideOut_r_9_isInf <= sideOut_r_8_isInf;
+      sideOut_r_9_isZero <= sideOut_r_8_isZero;
+      sideOut_r_9_sign <= sideOut_r_8_sign;
+      sideOut_r_9_flags <= sideOut_r_8_flags;
+      sideOut_r_9_exp <= sideOut_r_8_exp;
+      sideOut_r_10_isNaN <= sideOut_r_9_isNaN;
+      sideOut_r_10_isInf <= sideOut_r_9_isInf;
+      sideOut_r_10_isZero <= sideOut_r_9_isZero;
+      sideOut_r_10_sign <= sideOut_r_9_sign;
+      sideOut_r_10_flags <= sideOut_r_9_flags;
+      sideOut_r_10_exp <= sideOut_r_9_exp;
+      sideOut_r_11_isNaN <= sideOut_r_10_isNaN;
+      sideOut_r_11_isInf <= sideOut_r_10_isInf;
+      sideOut_r_11_isZero <= sideOut_r_10_isZero;
+      sideOut_r_11_sign <= sideOut_r_10_sign;
+      sideOut_r_11_flags <= sideOut_r_10_flags;
+      sideOut_r_11_exp <= sideOut_r_10_exp;
+      sideOut_r_12_isNaN <= sideOut_r_11_isNaN;
+      sideOut_r_12_isInf <= sideOut_r_11_isInf;
+      sideOut_r_12_isZero <= sideOut_r_11_isZero;
+      sideOut_r_12_sign <= sideOut_r_11_sign;
+      sideOut_r_12_flags <= sideOut_r_11_flags;
+      sideOut_r_12_exp <= sideOut_r_11_exp;
+      sideOut_r_13_isNaN <= sideOut_r_12_isNaN;
+      sideOut_r_13_isInf <= sideOut_r_12_isInf;
+      sideOut_r_13_isZero <= sideOut_r_12_isZero;
+      sideOut_r_13_sign <= sideOut_r_12_sign;
+      sideOut_r_13_flags <= sideOut_r_12_flags;
+      sideOut_r_13_exp <= sideOut_r_12_exp;
+      sideOut_r_14_isNaN <= sideOut_r_13_isNaN;
+      sideOut_r_14_isInf <= sideOut_r_13_isInf;
+      sideOut_r_14_isZero <= sideOut_r_13_isZero;
+      sideOut_r_14_sign <= sideOut_r_13_sign;
+      sideOut_r_14_flags <= sideOut_r_13_flags;
+      sideOut_r_14_exp <= sideOut_r_13_exp;
+      sideOut_r_15_isNaN <= sideOut_r_14_isNaN;
+      sideOut_r_15_isInf <= sideOut_r_14_isInf;
+      sideOut_r_15_isZero <= sideOut_r_14_isZero;
+      sideOut_r_15_sign <= sideOut_r_14_sign;
+      sideOut_r_15_flags <= sideOut_r_14_flags;
+      sideOut_r_15_exp <= sideOut_r_14_exp;
+      sideOut_r_16_isNaN <= sideOut_r_15_isNaN;
+      sideOut_r_16_isInf <= sideOut_r_15_isInf;
+      sideOut_r_16_isZero <= sideOut_r_15_isZero;
+      sideOut_r_16_sign <= sideOut_r_15_sign;
+      sideOut_r_16_flags <= sideOut_r_15_flags;
+      sideOut_r_16_exp <= sideOut_r_15_exp;
+      sideOut_r_17_isNaN <= sideOut_r_16_isNaN;
+      sideOut_r_17_isInf <= sideOut_r_16_isInf;
+      sideOut_r_17_isZero <= sideOut_r_16_isZero;
+      sideOut_r_17_sign <= sideOut_r_16_sign;
+      sideOut_r_17_flags <= sideOut_r_16_flags;
+      sideOut_r_17_exp <= sideOut_r_16_exp;
+      sideOut_r_18_isNaN <= sideOut_r_17_isNaN;
+      sideOut_r_18_isInf <= sideOut_r_17_isInf;
+      sideOut_r_18_isZero <= sideOut_r_17_isZero;
+      sideOut_r_18_sign <= sideOut_r_17_sign;
+      sideOut_r_18_flags <= sideOut_r_17_flags;
+      sideOut_r_18_exp <= sideOut_r_17_exp;
+      sideOut_r_19_isNaN <= sideOut_r_18_isNaN;
+      sideOut_r_19_isInf <= sideOut_r_18_isInf;
+      sideOut_r_19_isZero <= sideOut_r_18_isZero;
+      sideOut_r_19_sign <= sideOut_r_18_sign;
+      sideOut_r_19_flags <= sideOut_r_18_flags;
+      sideOut_r_19_exp <= sideOut_r_18_exp;
+      sideOut_r_20_isNaN <= sideOut_r_19_isNaN;
+      sideOut_r_20_isInf <= sideOut_r_19_isInf;
+      sideOut_r_20_isZero <= sideOut_r_19_isZero;
+      sideOut_r_20_sign <= sideOut_r_19_sign;
+      sideOut_r_20_flags <= sideOut_r_19_flags;
+      sideOut_r_20_exp <= sideOut_r_19_exp;
+      sideOut_r_21_isNaN <= sideOut_r_20_isNaN;
+      sideOut_r_21_isInf <= sideOut_r_20_isInf;
+      sideOut_r_21_isZero <= sideOut_r_20_isZero;
+      sideOut_r_21_sign <= sideOut_r_20_sign;
+      sideOut_r_21_flags <= sideOut_r_20_flags;
+      sideOut_r_21_exp <= sideOut_r_20_exp;
+      sideOut_r_22_isNaN <= sideOut_r_21_isNaN;
+      sideOut_r_22_isInf <= sideOut_r_21_isInf;
+      sideOut_r_22_isZero <= sideOut_r_21_isZero;
+      sideOut_r_22_sign <= sideOut_r_21_sign;
+      sideOut_r_22_flags <= sideOut_r_21_flags;
+      sideOut_r_22_exp <= sideOut_r_21_exp;
+      sideOut_r_23_isNaN <= sideOut_r_22_isNaN;
+      sideOut_r_23_isInf <= sideOut_r_22_isInf;
+      sideOut_r_23_isZero <= sideOut_r_22_isZero;
+      sideOut_r_23_sign <= sideOut_r_22_sign;
+      sideOut_r_23_flags <= sideOut_r_22_flags;
+      sideOut_r_23_exp <= sideOut_r_22_exp;
+      sideOut_isNaN <= sideOut_r_23_isNaN;
+      sideOut_isInf <= sideOut_r_23_isInf;
+      sideOut_isZero <= sideOut_r_23_isZero;
+      sideOut_sign <= sideOut_r_23_sign;
+      sideOut_flags <= sideOut_r_23_flags;
+      sideOut_exp <= sideOut_r_23_exp;
       riR_isNaN <= sideOut_isNaN;
       riR_isInf <= sideOut_isInf;
       riR_isZero <= sideOut_isZero;
       riR_sign <= sideOut_sign & ~sideOut_isNaN;
       riR_sExp <= sideOut_exp;
-      riR_sig <= _DigitRecurrenceCore_sqrt_s24_L5_io_out_bits_sig;
+      riR_sig <= _DigitRecurrenceCore_sqrt_s24_L25_io_out_bits_sig;
       riR_flags <= sideOut_flags;
+      at_isNaN <= riR_isNaN;
+      at_isInf <= riR_isInf;
+      at_isZero <= riR_isZero;
+      at_sign <= riR_sign;
+      at_flags <= riR_flags;
+      at_tiny <= $signed(riR_sExp) < -11'sh7E;
+      at_exp0 <= riR_sExp[7:0] + 8'h7F;
+      at_exp1 <= riR_sExp[7:0] - 8'h80;
+      at_over0 <= $signed(riR_sExp) > 11'sh7F;
+      at_over1 <= $signed(riR_sExp) > 11'sh7E;
+      at_sig <= riR_sig;
+      at_dist <= _at_dist_T > 11'h1B ? 5'h1B : _at_dist_T[4:0];
+      at_far <= _at_dist_T > 11'h1A;
+      mid_isNaN <= at_isNaN;
+      mid_isInf <= at_isInf;
+      mid_isZero <= at_isZero;
+      mid_sign <= at_sign;
+      mid_flags <= at_flags;
+      mid_tiny <= at_tiny;
+      mid_exp0 <= at_exp0;
+      mid_exp1 <= at_exp1;
+      mid_over0 <= at_over0;
+      mid_over1 <= at_over1;
+      mid_m <= mid_sig[25:2];
+      mid_rnd <= mid_sig[1];
+      mid_stk <= mid_sig[0];
+      inc_isNaN <= mid_isNaN;
+      inc_isInf <= mid_isInf;
+      inc_isZero <= mid_isZero;
+      inc_sign <= mid_sign;
+      inc_flags <= mid_flags;
+      inc_tiny <= mid_tiny;
+      inc_exp0 <= mid_exp0;
+      inc_exp1 <= mid_exp1;
+      inc_over0 <= mid_over0;
+      inc_over1 <= mid_over1;
+      inc_m1 <= {1'h0, mid_m} + {24'h0, mid_rnd & (mid_stk | mid_m[0])};
+      inc_inexact <= mid_rnd | mid_stk;
       io_out_bits_r_bits <=
-        riR_isNaN
+        inc_isNaN
           ? 32'h7FC00000
-          : {riR_sign,
-             riR_isInf
+          : {inc_sign,
+             inc_isInf
                ? 31'h7F800000
-               : riR_isZero
+               : inc_isZero
                    ? 31'h0
                    : io_out_bits_overflow
                        ? 31'h7F800000
-                       : {at_tiny
+                       : {inc_tiny
                             ? {7'h0, inc_m1[23]}
-                            : inc_m1[24] ? riR_sExp[7:0] - 8'h80 : riR_sExp[7:0] + 8'h7F,
+                            : inc_m1[24] ? inc_exp1 : inc_exp0,
                           inc_m1[22:0]}};
       io_out_bits_r_flags <=
-        riR_isNaN | riR_isInf | riR_isZero
-          ? riR_flags
+        inc_isNaN | inc_isInf | inc_isZero
+          ? inc_flags
           : io_out_bits_overflow
-              ? {riR_flags[4:3], riR_flags[2:1] | 2'h2, 1'h1}
-              : {riR_flags[4:2],
-                 riR_flags[1] | at_tiny & inc_inexact,
-                 riR_flags[0] | inc_inexact};
+              ? {inc_flags[4:3], inc_flags[2:1] | 2'h2, 1'h1}
+              : {inc_flags[4:2],
+                 inc_flags[1] | inc_tiny & inc_inexact,
+                 inc_flags[0] | inc_inexact};
     end
     if (reset) begin
+      vIn_r <= 1'h0;
+      vIn <= 1'h0;
       io_out_valid_r <= 1'h0;
       io_out_valid_r_1 <= 1'h0;
+      io_out_valid_r_2 <= 1'h0;
+      io_out_valid_r_3 <= 1'h0;
+      io_out_valid_r_4 <= 1'h0;
     end
     else if (io_en) begin
-      io_out_valid_r <= _DigitRecurrenceCore_sqrt_s24_L5_io_out_valid;
+      vIn_r <= io_in_valid;
+      vIn <= vIn_r;
+      io_out_valid_r <= _DigitRecurrenceCore_sqrt_s24_L25_io_out_valid;
       io_out_valid_r_1 <= io_out_valid_r;
+      io_out_valid_r_2 <= io_out_valid_r_1;
+      io_out_valid_r_3 <= io_out_valid_r_2;
+      io_out_valid_r_4 <= io_out_valid_r_3;
     end
   end // always @(posedge)
-  DigitRecurrenceCore_sqrt_s24_L5_world DigitRecurrenceCore_sqrt_s24_L5_world (
+  DigitRecurrenceCore_sqrt_s24_L25_world DigitRecurrenceCore_sqrt_s24_L25_world (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
-    .io_in_valid       (io_in_valid),
-    .io_in_bits_sig    (cls_expZero ? _raw_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]}),
+    .io_in_valid       (vIn),
+    .io_in_bits_sig    (raw_sig),
     .io_in_bits_expOdd (raw_sExp[0]),
-    .io_out_valid      (_DigitRecurrenceCore_sqrt_s24_L5_io_out_valid),
-    .io_out_bits_sig   (_DigitRecurrenceCore_sqrt_s24_L5_io_out_bits_sig)
+    .io_out_valid      (_DigitRecurrenceCore_sqrt_s24_L25_io_out_valid),
+    .io_out_bits_sig   (_DigitRecurrenceCore_sqrt_s24_L25_io_out_bits_sig)
   );
-  assign io_out_valid = io_out_valid_r_1;
+  assign io_out_valid = io_out_valid_r_4;
   assign io_out_bits_bits = io_out_bits_r_bits;
   assign io_out_bits_flags = io_out_bits_r_flags;
 endmodule
 
-module DigitRecurrenceCore_recip_s24_L5_world(
+module DigitRecurrenceCore_recip_s24_L25_world(
   input         clock,
                 reset,
                 io_en,
@@ -115847,6 +116850,10 @@ module DigitRecurrenceCore_recip_s24_L5_world(
   output        io_out_bits_expDec
 );
 
+  reg  [23:0] s0r_r_sig;
+  reg         s0r_r_expDec;
+  reg  [24:0] s0r_r_r;
+  reg         s0r_valid_r;
   reg  [23:0] sN_out_r_sig;
   reg         sN_out_r_expDec;
   reg  [24:0] sN_out_r_q;
@@ -115867,151 +116874,292 @@ module DigitRecurrenceCore_recip_s24_L5_world(
   reg  [24:0] sN_out_r_3_q;
   reg  [24:0] sN_out_r_3_r;
   reg         sN_out_valid_r_3;
+  reg  [23:0] sN_out_r_4_sig;
   reg         sN_out_r_4_expDec;
   reg  [24:0] sN_out_r_4_q;
   reg  [24:0] sN_out_r_4_r;
   reg         sN_out_valid_r_4;
+  reg  [23:0] sN_out_r_5_sig;
+  reg         sN_out_r_5_expDec;
+  reg  [24:0] sN_out_r_5_q;
+  reg  [24:0] sN_out_r_5_r;
+  reg         sN_out_valid_r_5;
+  reg  [23:0] sN_out_r_6_sig;
+  reg         sN_out_r_6_expDec;
+  reg  [24:0] sN_out_r_6_q;
+  reg  [24:0] sN_out_r_6_r;
+  reg         sN_out_valid_r_6;
+  reg  [23:0] sN_out_r_7_sig;
+  reg         sN_out_r_7_expDec;
+  reg  [24:0] sN_out_r_7_q;
+  reg  [24:0] sN_out_r_7_r;
+  reg         sN_out_valid_r_7;
+  reg  [23:0] sN_out_r_8_sig;
+  reg         sN_out_r_8_expDec;
+  reg  [24:0] sN_out_r_8_q;
+  reg  [24:0] sN_out_r_8_r;
+  reg         sN_out_valid_r_8;
+  reg  [23:0] sN_out_r_9_sig;
+  reg         sN_out_r_9_expDec;
+  reg  [24:0] sN_out_r_9_q;
+  reg  [24:0] sN_out_r_9_r;
+  reg         sN_out_valid_r_9;
+  reg  [23:0] sN_out_r_10_sig;
+  reg         sN_out_r_10_expDec;
+  reg  [24:0] sN_out_r_10_q;
+  reg  [24:0] sN_out_r_10_r;
+  reg         sN_out_valid_r_10;
+  reg  [23:0] sN_out_r_11_sig;
+  reg         sN_out_r_11_expDec;
+  reg  [24:0] sN_out_r_11_q;
+  reg  [24:0] sN_out_r_11_r;
+  reg         sN_out_valid_r_11;
+  reg  [23:0] sN_out_r_12_sig;
+  reg         sN_out_r_12_expDec;
+  reg  [24:0] sN_out_r_12_q;
+  reg  [24:0] sN_out_r_12_r;
+  reg         sN_out_valid_r_12;
+  reg  [23:0] sN_out_r_13_sig;
+  reg         sN_out_r_13_expDec;
+  reg  [24:0] sN_out_r_13_q;
+  reg  [24:0] sN_out_r_13_r;
+  reg         sN_out_valid_r_13;
+  reg  [23:0] sN_out_r_14_sig;
+  reg         sN_out_r_14_expDec;
+  reg  [24:0] sN_out_r_14_q;
+  reg  [24:0] sN_out_r_14_r;
+  reg         sN_out_valid_r_14;
+  reg  [23:0] sN_out_r_15_sig;
+  reg         sN_out_r_15_expDec;
+  reg  [24:0] sN_out_r_15_q;
+  reg  [24:0] sN_out_r_15_r;
+  reg         sN_out_valid_r_15;
+  reg  [23:0] sN_out_r_16_sig;
+  reg         sN_out_r_16_expDec;
+  reg  [24:0] sN_out_r_16_q;
+  reg  [24:0] sN_out_r_16_r;
+  reg         sN_out_valid_r_16;
+  reg  [23:0] sN_out_r_17_sig;
+  reg         sN_out_r_17_expDec;
+  reg  [24:0] sN_out_r_17_q;
+  reg  [24:0] sN_out_r_17_r;
+  reg         sN_out_valid_r_17;
+  reg  [23:0] sN_out_r_18_sig;
+  reg         sN_out_r_18_expDec;
+  reg  [24:0] sN_out_r_18_q;
+  reg  [24:0] sN_out_r_18_r;
+  reg         sN_out_valid_r_18;
+  reg  [23:0] sN_out_r_19_sig;
+  reg         sN_out_r_19_expDec;
+  reg  [24:0] sN_out_r_19_q;
+  reg  [24:0] sN_out_r_19_r;
+  reg         sN_out_valid_r_19;
+  reg  [23:0] sN_out_r_20_sig;
+  reg         sN_out_r_20_expDec;
+  reg  [24:0] sN_out_r_20_q;
+  reg  [24:0] sN_out_r_20_r;
+  reg         sN_out_valid_r_20;
+  reg  [23:0] sN_out_r_21_sig;
+  reg         sN_out_r_21_expDec;
+  reg  [24:0] sN_out_r_21_q;
+  reg  [24:0] sN_out_r_21_r;
+  reg         sN_out_valid_r_21;
+  reg  [23:0] sN_out_r_22_sig;
+  reg         sN_out_r_22_expDec;
+  reg  [24:0] sN_out_r_22_q;
+  reg  [24:0] sN_out_r_22_r;
+  reg         sN_out_valid_r_22;
+  reg         sN_out_r_23_expDec;
+  reg  [24:0] sN_out_r_23_q;
+  reg  [24:0] sN_out_r_23_r;
+  reg         sN_out_valid_r_23;
   wire        isOne = io_in_bits_sig == 24'h800000;
-  wire [25:0] _GEN = {2'h0, io_in_bits_sig};
-  wire [24:0] s0r_r = isOne ? 25'h0 : {24'h0 - io_in_bits_sig, 1'h0};
-  wire [25:0] sN_nx_d = {1'h0, s0r_r} - _GEN;
-  wire [23:0] _sN_nx_nx_r_T = sN_nx_d[25] ? s0r_r[23:0] : sN_nx_d[23:0];
-  wire [25:0] sN_nx_d_1 = {1'h0, _sN_nx_nx_r_T, 1'h0} - _GEN;
-  wire [23:0] _sN_nx_nx_r_T_2 =
-    sN_nx_d_1[25] ? {_sN_nx_nx_r_T[22:0], 1'h0} : sN_nx_d_1[23:0];
-  wire [25:0] sN_nx_d_2 = {1'h0, _sN_nx_nx_r_T_2, 1'h0} - _GEN;
-  wire [23:0] _sN_nx_nx_r_T_4 =
-    sN_nx_d_2[25] ? {_sN_nx_nx_r_T_2[22:0], 1'h0} : sN_nx_d_2[23:0];
-  wire [25:0] sN_nx_d_3 = {1'h0, _sN_nx_nx_r_T_4, 1'h0} - _GEN;
-  wire [23:0] _sN_nx_nx_r_T_6 =
-    sN_nx_d_3[25] ? {_sN_nx_nx_r_T_4[22:0], 1'h0} : sN_nx_d_3[23:0];
-  wire [25:0] sN_nx_d_4 = {1'h0, _sN_nx_nx_r_T_6, 1'h0} - _GEN;
-  wire [25:0] _GEN_0 = {2'h0, sN_out_r_sig};
-  wire [25:0] sN_nx_d_5 = {1'h0, sN_out_r_r} - _GEN_0;
-  wire [23:0] _sN_nx_nx_r_T_10 = sN_nx_d_5[25] ? sN_out_r_r[23:0] : sN_nx_d_5[23:0];
-  wire [25:0] sN_nx_d_6 = {1'h0, _sN_nx_nx_r_T_10, 1'h0} - _GEN_0;
-  wire [23:0] _sN_nx_nx_r_T_12 =
-    sN_nx_d_6[25] ? {_sN_nx_nx_r_T_10[22:0], 1'h0} : sN_nx_d_6[23:0];
-  wire [25:0] sN_nx_d_7 = {1'h0, _sN_nx_nx_r_T_12, 1'h0} - _GEN_0;
-  wire [23:0] _sN_nx_nx_r_T_14 =
-    sN_nx_d_7[25] ? {_sN_nx_nx_r_T_12[22:0], 1'h0} : sN_nx_d_7[23:0];
-  wire [25:0] sN_nx_d_8 = {1'h0, _sN_nx_nx_r_T_14, 1'h0} - _GEN_0;
-  wire [23:0] _sN_nx_nx_r_T_16 =
-    sN_nx_d_8[25] ? {_sN_nx_nx_r_T_14[22:0], 1'h0} : sN_nx_d_8[23:0];
-  wire [25:0] sN_nx_d_9 = {1'h0, _sN_nx_nx_r_T_16, 1'h0} - _GEN_0;
-  wire [25:0] _GEN_1 = {2'h0, sN_out_r_1_sig};
-  wire [25:0] sN_nx_d_10 = {1'h0, sN_out_r_1_r} - _GEN_1;
-  wire [23:0] _sN_nx_nx_r_T_20 = sN_nx_d_10[25] ? sN_out_r_1_r[23:0] : sN_nx_d_10[23:0];
-  wire [25:0] sN_nx_d_11 = {1'h0, _sN_nx_nx_r_T_20, 1'h0} - _GEN_1;
-  wire [23:0] _sN_nx_nx_r_T_22 =
-    sN_nx_d_11[25] ? {_sN_nx_nx_r_T_20[22:0], 1'h0} : sN_nx_d_11[23:0];
-  wire [25:0] sN_nx_d_12 = {1'h0, _sN_nx_nx_r_T_22, 1'h0} - _GEN_1;
-  wire [23:0] _sN_nx_nx_r_T_24 =
-    sN_nx_d_12[25] ? {_sN_nx_nx_r_T_22[22:0], 1'h0} : sN_nx_d_12[23:0];
-  wire [25:0] sN_nx_d_13 = {1'h0, _sN_nx_nx_r_T_24, 1'h0} - _GEN_1;
-  wire [23:0] _sN_nx_nx_r_T_26 =
-    sN_nx_d_13[25] ? {_sN_nx_nx_r_T_24[22:0], 1'h0} : sN_nx_d_13[23:0];
-  wire [25:0] sN_nx_d_14 = {1'h0, _sN_nx_nx_r_T_26, 1'h0} - _GEN_1;
-  wire [25:0] _GEN_2 = {2'h0, sN_out_r_2_sig};
-  wire [25:0] sN_nx_d_15 = {1'h0, sN_out_r_2_r} - _GEN_2;
-  wire [23:0] _sN_nx_nx_r_T_30 = sN_nx_d_15[25] ? sN_out_r_2_r[23:0] : sN_nx_d_15[23:0];
-  wire [25:0] sN_nx_d_16 = {1'h0, _sN_nx_nx_r_T_30, 1'h0} - _GEN_2;
-  wire [23:0] _sN_nx_nx_r_T_32 =
-    sN_nx_d_16[25] ? {_sN_nx_nx_r_T_30[22:0], 1'h0} : sN_nx_d_16[23:0];
-  wire [25:0] sN_nx_d_17 = {1'h0, _sN_nx_nx_r_T_32, 1'h0} - _GEN_2;
-  wire [23:0] _sN_nx_nx_r_T_34 =
-    sN_nx_d_17[25] ? {_sN_nx_nx_r_T_32[22:0], 1'h0} : sN_nx_d_17[23:0];
-  wire [25:0] sN_nx_d_18 = {1'h0, _sN_nx_nx_r_T_34, 1'h0} - _GEN_2;
-  wire [23:0] _sN_nx_nx_r_T_36 =
-    sN_nx_d_18[25] ? {_sN_nx_nx_r_T_34[22:0], 1'h0} : sN_nx_d_18[23:0];
-  wire [25:0] sN_nx_d_19 = {1'h0, _sN_nx_nx_r_T_36, 1'h0} - _GEN_2;
-  wire [25:0] _GEN_3 = {2'h0, sN_out_r_3_sig};
-  wire [25:0] sN_nx_d_20 = {1'h0, sN_out_r_3_r} - _GEN_3;
-  wire [23:0] _sN_nx_nx_r_T_40 = sN_nx_d_20[25] ? sN_out_r_3_r[23:0] : sN_nx_d_20[23:0];
-  wire [25:0] sN_nx_d_21 = {1'h0, _sN_nx_nx_r_T_40, 1'h0} - _GEN_3;
-  wire [23:0] _sN_nx_nx_r_T_42 =
-    sN_nx_d_21[25] ? {_sN_nx_nx_r_T_40[22:0], 1'h0} : sN_nx_d_21[23:0];
-  wire [25:0] sN_nx_d_22 = {1'h0, _sN_nx_nx_r_T_42, 1'h0} - _GEN_3;
-  wire [23:0] _sN_nx_nx_r_T_44 =
-    sN_nx_d_22[25] ? {_sN_nx_nx_r_T_42[22:0], 1'h0} : sN_nx_d_22[23:0];
-  wire [25:0] sN_nx_d_23 = {1'h0, _sN_nx_nx_r_T_44, 1'h0} - _GEN_3;
+  wire [25:0] sN_nx_d = {1'h0, s0r_r_r} - {2'h0, s0r_r_sig};
+  wire [25:0] sN_nx_d_1 = {1'h0, sN_out_r_r} - {2'h0, sN_out_r_sig};
+  wire [25:0] sN_nx_d_2 = {1'h0, sN_out_r_1_r} - {2'h0, sN_out_r_1_sig};
+  wire [25:0] sN_nx_d_3 = {1'h0, sN_out_r_2_r} - {2'h0, sN_out_r_2_sig};
+  wire [25:0] sN_nx_d_4 = {1'h0, sN_out_r_3_r} - {2'h0, sN_out_r_3_sig};
+  wire [25:0] sN_nx_d_5 = {1'h0, sN_out_r_4_r} - {2'h0, sN_out_r_4_sig};
+  wire [25:0] sN_nx_d_6 = {1'h0, sN_out_r_5_r} - {2'h0, sN_out_r_5_sig};
+  wire [25:0] sN_nx_d_7 = {1'h0, sN_out_r_6_r} - {2'h0, sN_out_r_6_sig};
+  wire [25:0] sN_nx_d_8 = {1'h0, sN_out_r_7_r} - {2'h0, sN_out_r_7_sig};
+  wire [25:0] sN_nx_d_9 = {1'h0, sN_out_r_8_r} - {2'h0, sN_out_r_8_sig};
+  wire [25:0] sN_nx_d_10 = {1'h0, sN_out_r_9_r} - {2'h0, sN_out_r_9_sig};
+  wire [25:0] sN_nx_d_11 = {1'h0, sN_out_r_10_r} - {2'h0, sN_out_r_10_sig};
+  wire [25:0] sN_nx_d_12 = {1'h0, sN_out_r_11_r} - {2'h0, sN_out_r_11_sig};
+  wire [25:0] sN_nx_d_13 = {1'h0, sN_out_r_12_r} - {2'h0, sN_out_r_12_sig};
+  wire [25:0] sN_nx_d_14 = {1'h0, sN_out_r_13_r} - {2'h0, sN_out_r_13_sig};
+  wire [25:0] sN_nx_d_15 = {1'h0, sN_out_r_14_r} - {2'h0, sN_out_r_14_sig};
+  wire [25:0] sN_nx_d_16 = {1'h0, sN_out_r_15_r} - {2'h0, sN_out_r_15_sig};
+  wire [25:0] sN_nx_d_17 = {1'h0, sN_out_r_16_r} - {2'h0, sN_out_r_16_sig};
+  wire [25:0] sN_nx_d_18 = {1'h0, sN_out_r_17_r} - {2'h0, sN_out_r_17_sig};
+  wire [25:0] sN_nx_d_19 = {1'h0, sN_out_r_18_r} - {2'h0, sN_out_r_18_sig};
+  wire [25:0] sN_nx_d_20 = {1'h0, sN_out_r_19_r} - {2'h0, sN_out_r_19_sig};
+  wire [25:0] sN_nx_d_21 = {1'h0, sN_out_r_20_r} - {2'h0, sN_out_r_20_sig};
+  wire [25:0] sN_nx_d_22 = {1'h0, sN_out_r_21_r} - {2'h0, sN_out_r_21_sig};
+  wire [25:0] sN_nx_d_23 = {1'h0, sN_out_r_22_r} - {2'h0, sN_out_r_22_sig};
   always @(posedge clock) begin
     if (io_en) begin
-      sN_out_r_sig <= io_in_bits_sig;
-      sN_out_r_expDec <= ~isOne;
-      sN_out_r_q <=
-        {20'h1,
-         ~(sN_nx_d[25]),
-         ~(sN_nx_d_1[25]),
-         ~(sN_nx_d_2[25]),
-         ~(sN_nx_d_3[25]),
-         ~(sN_nx_d_4[25])};
-      sN_out_r_r <=
-        {sN_nx_d_4[25] ? {_sN_nx_nx_r_T_6[22:0], 1'h0} : sN_nx_d_4[23:0], 1'h0};
+      s0r_r_sig <= io_in_bits_sig;
+      s0r_r_expDec <= ~isOne;
+      s0r_r_r <= isOne ? 25'h0 : {24'h0 - io_in_bits_sig, 1'h0};
+      sN_out_r_sig <= s0r_r_sig;
+      sN_out_r_expDec <= s0r_r_expDec;
+      sN_out_r_q <= {24'h1, ~(sN_nx_d[25])};
+      sN_out_r_r <= {sN_nx_d[25] ? s0r_r_r[23:0] : sN_nx_d[23:0], 1'h0};
       sN_out_r_1_sig <= sN_out_r_sig;
       sN_out_r_1_expDec <= sN_out_r_expDec;
-      sN_out_r_1_q <=
-        {sN_out_r_q[19:0],
-         ~(sN_nx_d_5[25]),
-         ~(sN_nx_d_6[25]),
-         ~(sN_nx_d_7[25]),
-         ~(sN_nx_d_8[25]),
-         ~(sN_nx_d_9[25])};
-      sN_out_r_1_r <=
-        {sN_nx_d_9[25] ? {_sN_nx_nx_r_T_16[22:0], 1'h0} : sN_nx_d_9[23:0], 1'h0};
+      sN_out_r_1_q <= {sN_out_r_q[23:0], ~(sN_nx_d_1[25])};
+      sN_out_r_1_r <= {sN_nx_d_1[25] ? sN_out_r_r[23:0] : sN_nx_d_1[23:0], 1'h0};
       sN_out_r_2_sig <= sN_out_r_1_sig;
       sN_out_r_2_expDec <= sN_out_r_1_expDec;
-      sN_out_r_2_q <=
-        {sN_out_r_1_q[19:0],
-         ~(sN_nx_d_10[25]),
-         ~(sN_nx_d_11[25]),
-         ~(sN_nx_d_12[25]),
-         ~(sN_nx_d_13[25]),
-         ~(sN_nx_d_14[25])};
-      sN_out_r_2_r <=
-        {sN_nx_d_14[25] ? {_sN_nx_nx_r_T_26[22:0], 1'h0} : sN_nx_d_14[23:0], 1'h0};
+      sN_out_r_2_q <= {sN_out_r_1_q[23:0], ~(sN_nx_d_2[25])};
+      sN_out_r_2_r <= {sN_nx_d_2[25] ? sN_out_r_1_r[23:0] : sN_nx_d_2[23:0], 1'h0};
       sN_out_r_3_sig <= sN_out_r_2_sig;
       sN_out_r_3_expDec <= sN_out_r_2_expDec;
-      sN_out_r_3_q <=
-        {sN_out_r_2_q[19:0],
-         ~(sN_nx_d_15[25]),
-         ~(sN_nx_d_16[25]),
-         ~(sN_nx_d_17[25]),
-         ~(sN_nx_d_18[25]),
-         ~(sN_nx_d_19[25])};
-      sN_out_r_3_r <=
-        {sN_nx_d_19[25] ? {_sN_nx_nx_r_T_36[22:0], 1'h0} : sN_nx_d_19[23:0], 1'h0};
+      sN_out_r_3_q <= {sN_out_r_2_q[23:0], ~(sN_nx_d_3[25])};
+      sN_out_r_3_r <= {sN_nx_d_3[25] ? sN_out_r_2_r[23:0] : sN_nx_d_3[23:0], 1'h0};
+      sN_out_r_4_sig <= sN_out_r_3_sig;
       sN_out_r_4_expDec <= sN_out_r_3_expDec;
-      sN_out_r_4_q <=
-        {sN_out_r_3_q[20:0],
-         ~(sN_nx_d_20[25]),
-         ~(sN_nx_d_21[25]),
-         ~(sN_nx_d_22[25]),
-         ~(sN_nx_d_23[25])};
-      sN_out_r_4_r <=
-        {sN_nx_d_23[25] ? {_sN_nx_nx_r_T_44[22:0], 1'h0} : sN_nx_d_23[23:0], 1'h0};
+      sN_out_r_4_q <= {sN_out_r_3_q[23:0], ~(sN_nx_d_4[25])};
+      sN_out_r_4_r <= {sN_nx_d_4[25] ? sN_out_r_3_r[23:0] : sN_nx_d_4[23:0], 1'h0};
+      sN_out_r_5_sig <= sN_out_r_4_sig;
+      sN_out_r_5_expDec <= sN_out_r_4_expDec;
+      sN_out_r_5_q <= {sN_out_r_4_q[23:0], ~(sN_nx_d_5[25])};
+      sN_out_r_5_r <= {sN_nx_d_5[25] ? sN_out_r_4_r[23:0] : sN_nx_d_5[23:0], 1'h0};
+      sN_out_r_6_sig <= sN_out_r_5_sig;
+      sN_out_r_6_expDec <= sN_out_r_5_expDec;
+      sN_out_r_6_q <= {sN_out_r_5_q[23:0], ~(sN_nx_d_6[25])};
+      sN_out_r_6_r <= {sN_nx_d_6[25] ? sN_out_r_5_r[23:0] : sN_nx_d_6[23:0], 1'h0};
+      sN_out_r_7_sig <= sN_out_r_6_sig;
+      sN_out_r_7_expDec <= sN_out_r_6_expDec;
+      sN_out_r_7_q <= {sN_out_r_6_q[23:0], ~(sN_nx_d_7[25])};
+      sN_out_r_7_r <= {sN_nx_d_7[25] ? sN_out_r_6_r[23:0] : sN_nx_d_7[23:0], 1'h0};
+      sN_out_r_8_sig <= sN_out_r_7_sig;
+      sN_out_r_8_expDec <= sN_out_r_7_expDec;
+      sN_out_r_8_q <= {sN_out_r_7_q[23:0], ~(sN_nx_d_8[25])};
+      sN_out_r_8_r <= {sN_nx_d_8[25] ? sN_out_r_7_r[23:0] : sN_nx_d_8[23:0], 1'h0};
+      sN_out_r_9_sig <= sN_out_r_8_sig;
+      sN_out_r_9_expDec <= sN_out_r_8_expDec;
+      sN_out_r_9_q <= {sN_out_r_8_q[23:0], ~(sN_nx_d_9[25])};
+      sN_out_r_9_r <= {sN_nx_d_9[25] ? sN_out_r_8_r[23:0] : sN_nx_d_9[23:0], 1'h0};
+      sN_out_r_10_sig <= sN_out_r_9_sig;
+      sN_out_r_10_expDec <= sN_out_r_9_expDec;
+      sN_out_r_10_q <= {sN_out_r_9_q[23:0], ~(sN_nx_d_10[25])};
+      sN_out_r_10_r <= {sN_nx_d_10[25] ? sN_out_r_9_r[23:0] : sN_nx_d_10[23:0], 1'h0};
+      sN_out_r_11_sig <= sN_out_r_10_sig;
+      sN_out_r_11_expDec <= sN_out_r_10_expDec;
+      sN_out_r_11_q <= {sN_out_r_10_q[23:0], ~(sN_nx_d_11[25])};
+      sN_out_r_11_r <= {sN_nx_d_11[25] ? sN_out_r_10_r[23:0] : sN_nx_d_11[23:0], 1'h0};
+      sN_out_r_12_sig <= sN_out_r_11_sig;
+      sN_out_r_12_expDec <= sN_out_r_11_expDec;
+      sN_out_r_12_q <= {sN_out_r_11_q[23:0], ~(sN_nx_d_12[25])};
+      sN_out_r_12_r <= {sN_nx_d_12[25] ? sN_out_r_11_r[23:0] : sN_nx_d_12[23:0], 1'h0};
+      sN_out_r_13_sig <= sN_out_r_12_sig;
+      sN_out_r_13_expDec <= sN_out_r_12_expDec;
+      sN_out_r_13_q <= {sN_out_r_12_q[23:0], ~(sN_nx_d_13[25])};
+      sN_out_r_13_r <= {sN_nx_d_13[25] ? sN_out_r_12_r[23:0] : sN_nx_d_13[23:0], 1'h0};
+      sN_out_r_14_sig <= sN_out_r_13_sig;
+      sN_out_r_14_expDec <= sN_out_r_13_expDec;
+      sN_out_r_14_q <= {sN_out_r_13_q[23:0], ~(sN_nx_d_14[25])};
+      sN_out_r_14_r <= {sN_nx_d_14[25] ? sN_out_r_13_r[23:0] : sN_nx_d_14[23:0], 1'h0};
+      sN_out_r_15_sig <= sN_out_r_14_sig;
+      sN_out_r_15_expDec <= sN_out_r_14_expDec;
+      sN_out_r_15_q <= {sN_out_r_14_q[23:0], ~(sN_nx_d_15[25])};
+      sN_out_r_15_r <= {sN_nx_d_15[25] ? sN_out_r_14_r[23:0] : sN_nx_d_15[23:0], 1'h0};
+      sN_out_r_16_sig <= sN_out_r_15_sig;
+      sN_out_r_16_expDec <= sN_out_r_15_expDec;
+      sN_out_r_16_q <= {sN_out_r_15_q[23:0], ~(sN_nx_d_16[25])};
+      sN_out_r_16_r <= {sN_nx_d_16[25] ? sN_out_r_15_r[23:0] : sN_nx_d_16[23:0], 1'h0};
+      sN_out_r_17_sig <= sN_out_r_16_sig;
+      sN_out_r_17_expDec <= sN_out_r_16_expDec;
+      sN_out_r_17_q <= {sN_out_r_16_q[23:0], ~(sN_nx_d_17[25])};
+      sN_out_r_17_r <= {sN_nx_d_17[25] ? sN_out_r_16_r[23:0] : sN_nx_d_17[23:0], 1'h0};
+      sN_out_r_18_sig <= sN_out_r_17_sig;
+      sN_out_r_18_expDec <= sN_out_r_17_expDec;
+      sN_out_r_18_q <= {sN_out_r_17_q[23:0], ~(sN_nx_d_18[25])};
+      sN_out_r_18_r <= {sN_nx_d_18[25] ? sN_out_r_17_r[23:0] : sN_nx_d_18[23:0], 1'h0};
+      sN_out_r_19_sig <= sN_out_r_18_sig;
+      sN_out_r_19_expDec <= sN_out_r_18_expDec;
+      sN_out_r_19_q <= {sN_out_r_18_q[23:0], ~(sN_nx_d_19[25])};
+      sN_out_r_19_r <= {sN_nx_d_19[25] ? sN_out_r_18_r[23:0] : sN_nx_d_19[23:0], 1'h0};
+      sN_out_r_20_sig <= sN_out_r_19_sig;
+      sN_out_r_20_expDec <= sN_out_r_19_expDec;
+      sN_out_r_20_q <= {sN_out_r_19_q[23:0], ~(sN_nx_d_20[25])};
+      sN_out_r_20_r <= {sN_nx_d_20[25] ? sN_out_r_19_r[23:0] : sN_nx_d_20[23:0], 1'h0};
+      sN_out_r_21_sig <= sN_out_r_20_sig;
+      sN_out_r_21_expDec <= sN_out_r_20_expDec;
+      sN_out_r_21_q <= {sN_out_r_20_q[23:0], ~(sN_nx_d_21[25])};
+      sN_out_r_21_r <= {sN_nx_d_21[25] ? sN_out_r_20_r[23:0] : sN_nx_d_21[23:0], 1'h0};
+      sN_out_r_22_sig <= sN_out_r_21_sig;
+      sN_out_r_22_expDec <= sN_out_r_21_expDec;
+      sN_out_r_22_q <= {sN_out_r_21_q[23:0], ~(sN_nx_d_22[25])};
+      sN_out_r_22_r <= {sN_nx_d_22[25] ? sN_out_r_21_r[23:0] : sN_nx_d_22[23:0], 1'h0};
+      sN_out_r_23_expDec <= sN_out_r_22_expDec;
+      sN_out_r_23_q <= {sN_out_r_22_q[23:0], ~(sN_nx_d_23[25])};
+      sN_out_r_23_r <= {sN_nx_d_23[25] ? sN_out_r_22_r[23:0] : sN_nx_d_23[23:0], 1'h0};
     end
     if (reset) begin
+      s0r_valid_r <= 1'h0;
       sN_out_valid_r <= 1'h0;
       sN_out_valid_r_1 <= 1'h0;
       sN_out_valid_r_2 <= 1'h0;
       sN_out_valid_r_3 <= 1'h0;
       sN_out_valid_r_4 <= 1'h0;
+      sN_out_valid_r_5 <= 1'h0;
+      sN_out_valid_r_6 <= 1'h0;
+      sN_out_valid_r_7 <= 1'h0;
+      sN_out_valid_r_8 <= 1'h0;
+      sN_out_valid_r_9 <= 1'h0;
+      sN_out_valid_r_10 <= 1'h0;
+      sN_out_valid_r_11 <= 1'h0;
+      sN_out_valid_r_12 <= 1'h0;
+      sN_out_valid_r_13 <= 1'h0;
+      sN_out_valid_r_14 <= 1'h0;
+      sN_out_valid_r_15 <= 1'h0;
+      sN_out_valid_r_16 <= 1'h0;
+      sN_out_valid_r_17 <= 1'h0;
+      sN_out_valid_r_18 <= 1'h0;
+      sN_out_valid_r_19 <= 1'h0;
+      sN_out_valid_r_20 <= 1'h0;
+      sN_out_valid_r_21 <= 1'h0;
+      sN_out_valid_r_22 <= 1'h0;
+      sN_out_valid_r_23 <= 1'h0;
     end
     else if (io_en) begin
-      sN_out_valid_r <= io_in_valid;
+      s0r_valid_r <= io_in_valid;
+      sN_out_valid_r <= s0r_valid_r;
       sN_out_valid_r_1 <= sN_out_valid_r;
       sN_out_valid_r_2 <= sN_out_valid_r_1;
       sN_out_valid_r_3 <= sN_out_valid_r_2;
       sN_out_valid_r_4 <= sN_out_valid_r_3;
+      sN_out_valid_r_5 <= sN_out_valid_r_4;
+      sN_out_valid_r_6 <= sN_out_valid_r_5;
+      sN_out_valid_r_7 <= sN_out_valid_r_6;
+      sN_out_valid_r_8 <= sN_out_valid_r_7;
+      sN_out_valid_r_9 <= sN_out_valid_r_8;
+      sN_out_valid_r_10 <= sN_out_valid_r_9;
+      sN_out_valid_r_11 <= sN_out_valid_r_10;
+      sN_out_valid_r_12 <= sN_out_valid_r_11;
+      sN_out_valid_r_13 <= sN_out_valid_r_12;
+      sN_out_valid_r_14 <= sN_out_valid_r_13;
+      sN_out_valid_r_15 <= sN_out_valid_r_14;
+      sN_out_valid_r_16 <= sN_out_valid_r_15;
+      sN_out_valid_r_17 <= sN_out_valid_r_16;
+      sN_out_valid_r_18 <= sN_out_valid_r_17;
+      sN_out_valid_r_19 <= sN_out_valid_r_18;
+      sN_out_valid_r_20 <= sN_out_valid_r_19;
+      sN_out_valid_r_21 <= sN_out_valid_r_20;
+      sN_out_valid_r_22 <= sN_out_valid_r_21;
+      sN_out_valid_r_23 <= sN_out_valid_r_22;
     end
   end // always @(posedge)
-  assign io_out_valid = sN_out_valid_r_4;
-  assign io_out_bits_sig = {sN_out_r_4_q, |sN_out_r_4_r};
-  assign io_out_bits_expDec = sN_out_r_4_expDec;
+  assign io_out_valid = sN_out_valid_r_23;
+  assign io_out_bits_sig = {sN_out_r_23_q, |sN_out_r_23_r};
+  assign io_out_bits_expDec = sN_out_r_23_expDec;
 endmodule
 
-module FpRecip_fp32_dr_L7_world(
+module FpRecip_fp32_dr_L32_world(
   input         clock,
                 reset,
                 io_en,
@@ -116022,60 +117170,27 @@ module FpRecip_fp32_dr_L7_world(
   output [4:0]  io_out_bits_flags
 );
 
-  wire        _DigitRecurrenceCore_recip_s24_L5_io_out_valid;
-  wire [25:0] _DigitRecurrenceCore_recip_s24_L5_io_out_bits_sig;
-  wire        _DigitRecurrenceCore_recip_s24_L5_io_out_bits_expDec;
-  wire        cls_expZero = io_in_bits_a[30:23] == 8'h0;
-  wire [3:0]  _GEN =
-    {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
-    | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
-  wire [4:0]  cls_lz =
-    io_in_bits_a[22]
-      ? 5'h0
-      : io_in_bits_a[21]
-          ? 5'h1
-          : io_in_bits_a[20]
-              ? 5'h2
-              : io_in_bits_a[19]
-                  ? 5'h3
-                  : io_in_bits_a[18]
-                      ? 5'h4
-                      : io_in_bits_a[17]
-                          ? 5'h5
-                          : io_in_bits_a[16]
-                              ? 5'h6
-                              : io_in_bits_a[15]
-                                  ? 5'h7
-                                  : io_in_bits_a[14]
-                                      ? 5'h8
-                                      : io_in_bits_a[13]
-                                          ? 5'h9
-                                          : io_in_bits_a[12]
-                                              ? 5'hA
-                                              : io_in_bits_a[11]
-                                                  ? 5'hB
-                                                  : io_in_bits_a[10]
-                                                      ? 5'hC
-                                                      : io_in_bits_a[9]
-                                                          ? 5'hD
-                                                          : _GEN[0]
-                                                              ? 5'hE
-                                                              : _GEN[1]
-                                                                  ? 5'hF
-                                                                  : _GEN[2]
-                                                                      ? 5'h10
-                                                                      : _GEN[3]
-                                                                          ? 5'h11
-                                                                          : io_in_bits_a[4]
-                                                                              ? 5'h12
-                                                                              : io_in_bits_a[3]
-                                                                                  ? 5'h13
-                                                                                  : io_in_bits_a[2]
-                                                                                      ? 5'h14
-                                                                                      : io_in_bits_a[1]
-                                                                                          ? 5'h15
-                                                                                          : 5'h16;
-  wire [85:0] _raw_subSig_T_1 = {63'h0, io_in_bits_a[22:0]} << {1'h0, cls_lz} + 6'h1;
+  wire        _DigitRecurrenceCore_recip_s24_L25_io_out_valid;
+  wire [25:0] _DigitRecurrenceCore_recip_s24_L25_io_out_bits_sig;
+  wire        _DigitRecurrenceCore_recip_s24_L25_io_out_bits_expDec;
+  reg         cls_isNaN;
+  reg         cls_isSNaN;
+  reg         cls_isInf;
+  reg         cls_isZero;
+  reg         cls_sign;
+  reg         cls_expZero;
+  reg  [7:0]  cls_e;
+  reg  [22:0] cls_frac;
+  reg  [4:0]  cls_lz;
+  reg         raw_isNaN;
+  reg         raw_isSNaN;
+  reg         raw_isInf;
+  reg         raw_isZero;
+  reg         raw_sign;
+  reg  [9:0]  raw_sExp;
+  reg  [23:0] raw_sig;
+  reg         vIn_r;
+  reg         vIn;
   reg         sideOut_r_isNaN;
   reg         sideOut_r_isInf;
   reg         sideOut_r_isZero;
@@ -116100,6 +117215,126 @@ module FpRecip_fp32_dr_L7_world(
   reg         sideOut_r_3_sign;
   reg  [4:0]  sideOut_r_3_flags;
   reg  [10:0] sideOut_r_3_exp;
+  reg         sideOut_r_4_isNaN;
+  reg         sideOut_r_4_isInf;
+  reg         sideOut_r_4_isZero;
+  reg         sideOut_r_4_sign;
+  reg  [4:0]  sideOut_r_4_flags;
+  reg  [10:0] sideOut_r_4_exp;
+  reg         sideOut_r_5_isNaN;
+  reg         sideOut_r_5_isInf;
+  reg         sideOut_r_5_isZero;
+  reg         sideOut_r_5_sign;
+  reg  [4:0]  sideOut_r_5_flags;
+  reg  [10:0] sideOut_r_5_exp;
+  reg         sideOut_r_6_isNaN;
+  reg         sideOut_r_6_isInf;
+  reg         sideOut_r_6_isZero;
+  reg         sideOut_r_6_sign;
+  reg  [4:0]  sideOut_r_6_flags;
+  reg  [10:0] sideOut_r_6_exp;
+  reg         sideOut_r_7_isNaN;
+  reg         sideOut_r_7_isInf;
+  reg         sideOut_r_7_isZero;
+  reg         sideOut_r_7_sign;
+  reg  [4:0]  sideOut_r_7_flags;
+  reg  [10:0] sideOut_r_7_exp;
+  reg         sideOut_r_8_isNaN;
+  reg         sideOut_r_8_isInf;
+  reg         sideOut_r_8_isZero;
+  reg         sideOut_r_8_sign;
+  reg  [4:0]  sideOut_r_8_flags;
+  reg  [10:0] sideOut_r_8_exp;
+  reg         sideOut_r_9_isNaN;
+  reg         sideOut_r_9_isInf;
+  reg         sideOut_r_9_isZero;
+  reg         sideOut_r_9_sign;
+  reg  [4:0]  sideOut_r_9_flags;
+  reg  [10:0] sideOut_r_9_exp;
+  reg         sideOut_r_10_isNaN;
+  reg         sideOut_r_10_isInf;
+  reg         sideOut_r_10_isZero;
+  reg         sideOut_r_10_sign;
+  reg  [4:0]  sideOut_r_10_flags;
+  reg  [10:0] sideOut_r_10_exp;
+  reg         sideOut_r_11_isNaN;
+  reg         sideOut_r_11_isInf;
+  reg         sideOut_r_11_isZero;
+  reg         sideOut_r_11_sign;
+  reg  [4:0]  sideOut_r_11_flags;
+  reg  [10:0] sideOut_r_11_exp;
+  reg         sideOut_r_12_isNaN;
+  reg         sideOut_r_12_isInf;
+  reg         sideOut_r_12_isZero;
+  reg         sideOut_r_12_sign;
+  reg  [4:0]  sideOut_r_12_flags;
+  reg  [10:0] sideOut_r_12_exp;
+  reg         sideOut_r_13_isNaN;
+  reg         sideOut_r_13_isInf;
+  reg         sideOut_r_13_isZero;
+  reg         sideOut_r_13_sign;
+  reg  [4:0]  sideOut_r_13_flags;
+  reg  [10:0] sideOut_r_13_exp;
+  reg         sideOut_r_14_isNaN;
+  reg         sideOut_r_14_isInf;
+  reg         sideOut_r_14_isZero;
+  reg         sideOut_r_14_sign;
+  reg  [4:0]  sideOut_r_14_flags;
+  reg  [10:0] sideOut_r_14_exp;
+  reg         sideOut_r_15_isNaN;
+  reg         sideOut_r_15_isInf;
+  reg         sideOut_r_15_isZero;
+  reg         sideOut_r_15_sign;
+  reg  [4:0]  sideOut_r_15_flags;
+  reg  [10:0] sideOut_r_15_exp;
+  reg         sideOut_r_16_isNaN;
+  reg         sideOut_r_16_isInf;
+  reg         sideOut_r_16_isZero;
+  reg         sideOut_r_16_sign;
+  reg  [4:0]  sideOut_r_16_flags;
+  reg  [10:0] sideOut_r_16_exp;
+  reg         sideOut_r_17_isNaN;
+  reg         sideOut_r_17_isInf;
+  reg         sideOut_r_17_isZero;
+  reg         sideOut_r_17_sign;
+  reg  [4:0]  sideOut_r_17_flags;
+  reg  [10:0] sideOut_r_17_exp;
+  reg         sideOut_r_18_isNaN;
+  reg         sideOut_r_18_isInf;
+  reg         sideOut_r_18_isZero;
+  reg         sideOut_r_18_sign;
+  reg  [4:0]  sideOut_r_18_flags;
+  reg  [10:0] sideOut_r_18_exp;
+  reg         sideOut_r_19_isNaN;
+  reg         sideOut_r_19_isInf;
+  reg         sideOut_r_19_isZero;
+  reg         sideOut_r_19_sign;
+  reg  [4:0]  sideOut_r_19_flags;
+  reg  [10:0] sideOut_r_19_exp;
+  reg         sideOut_r_20_isNaN;
+  reg         sideOut_r_20_isInf;
+  reg         sideOut_r_20_isZero;
+  reg         sideOut_r_20_sign;
+  reg  [4:0]  sideOut_r_20_flags;
+  reg  [10:0] sideOut_r_20_exp;
+  reg         sideOut_r_21_isNaN;
+  reg         sideOut_r_21_isInf;
+  reg         sideOut_r_21_isZero;
+  reg         sideOut_r_21_sign;
+  reg  [4:0]  sideOut_r_21_flags;
+  reg  [10:0] sideOut_r_21_exp;
+  reg         sideOut_r_22_isNaN;
+  reg         sideOut_r_22_isInf;
+  reg         sideOut_r_22_isZero;
+  reg         sideOut_r_22_sign;
+  reg  [4:0]  sideOut_r_22_flags;
+  reg  [10:0] sideOut_r_22_exp;
+  reg         sideOut_r_23_isNaN;
+  reg         sideOut_r_23_isInf;
+  reg         sideOut_r_23_isZero;
+  reg         sideOut_r_23_sign;
+  reg  [4:0]  sideOut_r_23_flags;
+  reg  [10:0] sideOut_r_23_exp;
   reg         sideOut_isNaN;
   reg         sideOut_isInf;
   reg         sideOut_isZero;
@@ -116113,42 +117348,138 @@ module FpRecip_fp32_dr_L7_world(
   reg  [10:0] riR_sExp;
   reg  [25:0] riR_sig;
   reg  [4:0]  riR_flags;
+  reg         at_isNaN;
+  reg         at_isInf;
+  reg         at_isZero;
+  reg         at_sign;
+  reg  [4:0]  at_flags;
+  reg         at_tiny;
+  reg  [7:0]  at_exp0;
+  reg  [7:0]  at_exp1;
+  reg         at_over0;
+  reg         at_over1;
+  reg  [25:0] at_sig;
+  reg  [4:0]  at_dist;
+  reg         at_far;
+  reg         mid_isNaN;
+  reg         mid_isInf;
+  reg         mid_isZero;
+  reg         mid_sign;
+  reg  [4:0]  mid_flags;
+  reg         mid_tiny;
+  reg  [7:0]  mid_exp0;
+  reg  [7:0]  mid_exp1;
+  reg         mid_over0;
+  reg         mid_over1;
+  reg  [23:0] mid_m;
+  reg         mid_rnd;
+  reg         mid_stk;
+  reg         inc_isNaN;
+  reg         inc_isInf;
+  reg         inc_isZero;
+  reg         inc_sign;
+  reg  [4:0]  inc_flags;
+  reg         inc_tiny;
+  reg  [7:0]  inc_exp0;
+  reg  [7:0]  inc_exp1;
+  reg         inc_over0;
+  reg         inc_over1;
+  reg  [24:0] inc_m1;
+  reg         inc_inexact;
   reg  [31:0] io_out_bits_r_bits;
   reg  [4:0]  io_out_bits_r_flags;
   reg         io_out_valid_r;
   reg         io_out_valid_r_1;
-  wire        side_isInf = cls_expZero & ~(|(io_in_bits_a[22:0]));
-  wire [8:0]  _raw_out_sExp_T_1 = {1'h0, io_in_bits_a[30:23]} - 9'h7F;
-  wire [9:0]  _side_exp_T =
-    10'h0
-    - (cls_expZero
-         ? 10'h381 - {5'h0, cls_lz}
-         : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1});
-  wire        at_tiny = $signed(riR_sExp) < -11'sh7E;
+  reg         io_out_valid_r_2;
+  reg         io_out_valid_r_3;
+  reg         io_out_valid_r_4;
+  wire        cls_expZero_0 = io_in_bits_a[30:23] == 8'h0;
+  wire [3:0]  _GEN =
+    {{io_in_bits_a[5:4], io_in_bits_a[7]} & 3'h5, 1'h0}
+    | {io_in_bits_a[7:6], io_in_bits_a[9:8]} & 4'h5;
+  wire [8:0]  _raw_out_sExp_T_1 = {1'h0, cls_e} - 9'h7F;
+  wire [9:0]  _side_exp_T = 10'h0 - raw_sExp;
   wire [10:0] _at_dist_T = 11'h782 - riR_sExp;
-  wire [51:0] mid_sig_wide =
-    {riR_sig, 26'h0} >> (_at_dist_T > 11'h1B ? 5'h1B : _at_dist_T[4:0]);
+  wire [51:0] mid_sig_wide = {at_sig, 26'h0} >> at_dist;
   wire [25:0] mid_sig =
     at_tiny
       ? {mid_sig_wide[51:27],
-         mid_sig_wide[26] | (|(mid_sig_wide[25:0])) | _at_dist_T > 11'h1A & (|riR_sig)}
-      : riR_sig;
-  wire        inc_inexact = mid_sig[1] | mid_sig[0];
-  wire [24:0] inc_m1 =
-    {1'h0, mid_sig[25:2]} + {24'h0, mid_sig[1] & (mid_sig[0] | mid_sig[2])};
-  wire        io_out_bits_overflow =
-    ~at_tiny & (inc_m1[24] ? $signed(riR_sExp) > 11'sh7E : $signed(riR_sExp) > 11'sh7F);
+         mid_sig_wide[26] | (|(mid_sig_wide[25:0])) | at_far & (|at_sig)}
+      : at_sig;
+  wire        io_out_bits_overflow = ~inc_tiny & (inc_m1[24] ? inc_over1 : inc_over0);
+  wire [85:0] _raw_subSig_T_1 = {63'h0, cls_frac} << {1'h0, cls_lz} + 6'h1;
   always @(posedge clock) begin
     if (io_en) begin
-      sideOut_r_isNaN <= (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0]));
-      sideOut_r_isInf <= side_isInf;
-      sideOut_r_isZero <= (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
-      sideOut_r_sign <= io_in_bits_a[31];
-      sideOut_r_flags <=
-        side_isInf
-          ? 5'h8
-          : {(&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) & ~(io_in_bits_a[22]),
-             4'h0};
+      cls_isNaN <= (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0]));
+      cls_isSNaN <=
+        (&(io_in_bits_a[30:23])) & (|(io_in_bits_a[22:0])) & ~(io_in_bits_a[22]);
+      cls_isInf <= (&(io_in_bits_a[30:23])) & ~(|(io_in_bits_a[22:0]));
+      cls_isZero <= cls_expZero_0 & ~(|(io_in_bits_a[22:0]));
+      cls_sign <= io_in_bits_a[31];
+      cls_expZero <= cls_expZero_0;
+      cls_e <= io_in_bits_a[30:23];
+      cls_frac <= io_in_bits_a[22:0];
+      cls_lz <=
+        io_in_bits_a[22]
+          ? 5'h0
+          : io_in_bits_a[21]
+              ? 5'h1
+              : io_in_bits_a[20]
+                  ? 5'h2
+                  : io_in_bits_a[19]
+                      ? 5'h3
+                      : io_in_bits_a[18]
+                          ? 5'h4
+                          : io_in_bits_a[17]
+                              ? 5'h5
+                              : io_in_bits_a[16]
+                                  ? 5'h6
+                                  : io_in_bits_a[15]
+                                      ? 5'h7
+                                      : io_in_bits_a[14]
+                                          ? 5'h8
+                                          : io_in_bits_a[13]
+                                              ? 5'h9
+                                              : io_in_bits_a[12]
+                                                  ? 5'hA
+                                                  : io_in_bits_a[11]
+                                                      ? 5'hB
+                                                      : io_in_bits_a[10]
+                                                          ? 5'hC
+                                                          : io_in_bits_a[9]
+                                                              ? 5'hD
+                                                              : _GEN[0]
+                                                                  ? 5'hE
+                                                                  : _GEN[1]
+                                                                      ? 5'hF
+                                                                      : _GEN[2]
+                                                                          ? 5'h10
+                                                                          : _GEN[3]
+                                                                              ? 5'h11
+                                                                              : io_in_bits_a[4]
+                                                                                  ? 5'h12
+                                                                                  : io_in_bits_a[3]
+                                                                                      ? 5'h13
+                                                                                      : io_in_bits_a[2]
+                                                                                          ? 5'h14
+                                                                                          : io_in_bits_a[1]
+                                                                                              ? 5'h15
+                                                                                              : 5'h16;
+      raw_isNaN <= cls_isNaN;
+      raw_isSNaN <= cls_isSNaN;
+      raw_isInf <= cls_isInf;
+      raw_isZero <= cls_isZero;
+      raw_sign <= cls_sign;
+      raw_sExp <=
+        cls_expZero
+          ? 10'h381 - {5'h0, cls_lz}
+          : {_raw_out_sExp_T_1[8], _raw_out_sExp_T_1};
+      raw_sig <= cls_expZero ? _raw_subSig_T_1[23:0] : {1'h1, cls_frac};
+      sideOut_r_isNaN <= raw_isNaN;
+      sideOut_r_isInf <= raw_isZero;
+      sideOut_r_isZero <= raw_isInf;
+      sideOut_r_sign <= raw_sign;
+      sideOut_r_flags <= raw_isZero ? 5'h8 : {raw_isSNaN, 4'h0};
       sideOut_r_exp <= {_side_exp_T[9], _side_exp_T};
       sideOut_r_1_isNaN <= sideOut_r_isNaN;
       sideOut_r_1_isInf <= sideOut_r_isInf;
@@ -116168,69 +117499,236 @@ module FpRecip_fp32_dr_L7_world(
       sideOut_r_3_sign <= sideOut_r_2_sign;
       sideOut_r_3_flags <= sideOut_r_2_flags;
       sideOut_r_3_exp <= sideOut_r_2_exp;
-      sideOut_isNaN <= sideOut_r_3_isNaN;
-      sideOut_isInf <= sideOut_r_3_isInf;
-      sideOut_isZero <= sideOut_r_3_isZero;
-      sideOut_sign <= sideOut_r_3_sign;
-      sideOut_flags <= sideOut_r_3_flags;
-      sideOut_exp <= sideOut_r_3_exp;
+      sideOut_r_4_isNaN <= sideOut_r_3_isNaN;
+      sideOut_r_4_isInf <= sideOut_r_3_isInf;
+      sideOut_r_4_isZero <= sideOut_r_3_isZero;
+      sideOut_r_4_sign <= sideOut_r_3_sign;
+      sideOut_r_4_flags <= sideOut_r_3_flags;
+      sideOut_r_4_exp <= sideOut_r_3_exp;
+      sideOut_r_5_isNaN <= sideOut_r_4_isNaN;
+      sideOut_r_5_isInf <= sideOut_r_4_isInf;
+      sideOut_r_5_isZero <= sideOut_r_4_isZero;
+      sideOut_r_5_sign <= sideOut_r_4_sign;
+      sideOut_r_5_flags <= sideOut_r_4_flags;
+      sideOut_r_5_exp <= sideOut_r_4_exp;
+      sideOut_r_6_isNaN <= sideOut_r_5_isNaN;
+      sideOut_r_6_isInf <= sideOut_r_5_isInf;
+      sideOut_r_6_isZero <= sideOut_r_5_isZero;
+      sideOut_r_6_sign <= sideOut_r_5_sign;
+      sideOut_r_6_flags <= sideOut_r_5_flags;
+      sideOut_r_6_exp <= sideOut_r_5_exp;
+      sideOut_r_7_isNaN <= sideOut_r_6_isNaN;
+      sideOut_r_7_isInf <= sideOut_r_6_isInf;
+      sideOut_r_7_isZero <= sideOut_r_6_isZero;
+      sideOut_r_7_sign <= sideOut_r_6_sign;
+      sideOut_r_7_flags <= sideOut_r_6_flags;
+      sideOut_r_7_exp <= sideOut_r_6_exp;
+      sideOut_r_8_isNaN <= sideOut_r_7_isNaN;
+      sideOut_r_8_isInf <= sideOut_r_7_isInf;
+      sideOut_r_8_isZero <= sideOut_r_7_isZero;
+      sideOut_r_8_sign <= sideOut_r_7_sign;
+      sideOut_r_8_flags <= sideOut_r_7_flags;
+      sideOut_r_8_exp <= sideOut_r_7_exp;
+      sideOut_r_9_isNaN <= sideOut_r_8_isNaN;
+      sideOut_r_9_isInf <= sideOut_r_8_isInf;
+      sideOut_r_9_isZero <= sideOut_r_8_isZero;
+      sideOut_r_9_sign <= sideOut_r_8_sign;
+      sideOut_r_9_flags <= sideOut_r_8_flags;
+      sideOut_r_9_exp <= sideOut_r_8_exp;
+      sideOut_r_10_isNaN <= sideOut_r_9_isNaN;
+      sideOut_r_10_isInf <= sideOut_r_9_isInf;
+      sideOut_r_10_isZero <= sideOut_r_9_isZero;
+      sideOut_r_10_sign <= sideOut_r_9_sign;
+      sideOut_r_10_flags <= sideOut_r_9_flags;
+      sideOut_r_10_exp <= sideOut_r_9_exp;
+      sideOut_r_11_isNaN <= sideOut_r_10_isNaN;
+      sideOut_r_11_isInf <= sideOut_r_10_isInf;
+      sideOut_r_11_isZero <= sideOut_r_10_isZero;
+      sideOut_r_11_sign <= sideOut_r_10_sign;
+      sideOut_r_11_flags <= sideOut_r_10_flags;
+      sideOut_r_11_exp <= sideOut_r_10_exp;
+      sideOut_r_12_isNaN <= sideOut_r_11_isNaN;
+      sideOut_r_12_isInf <= sideOut_r_11_isInf;
+      sideOut_r_12_isZero <= sideOut_r_11_isZero;
+      sideOut_r_12_sign <= sideOut_r_11_sign;
+      sideOut_r_12_flags <= sideOut_r_11_flags;
+      sideOut_r_12_exp <= sideOut_r_11_exp;
+      sideOut_r_13_isNaN <= sideOut_r_12_isNaN;
+      sideOut_r_13_isInf <= sideOut_r_12_isInf;
+      sideOut_r_13_isZero <= sideOut_r_12_isZero;
+      sideOut_r_13_sign <= sideOut_r_12_sign;
+      sideOut_r_13_flags <= sideOut_r_12_flags;
+      sideOut_r_13_exp <= sideOut_r_12_exp;
+      sideOut_r_14_isNaN <= sideOut_r_13_isNaN;
+      sideOut_r_14_isInf <= sideOut_r_13_isInf;
+      sideOut_r_14_isZero <= sideOut_r_13_isZero;
+      sideOut_r_14_sign <= sideOut_r_13_sign;
+      sideOut_r_14_flags <= sideOut_r_13_flags;
+      sideOut_r_14_exp <= sideOut_r_13_exp;
+      sideOut_r_15_isNaN <= sideOut_r_14_isNaN;
+      sideOut_r_15_isInf <= sideOut_r_14_isInf;
+      sideOut_r_15_isZero <= sideOut_r_14_isZero;
+      sideOut_r_15_sign <= sideOut_r_14_sign;
+      sideOut_r_15_flags <= sideOut_r_14_flags;
+      sideOut_r_15_exp <= sideOut_r_14_exp;
+      sideOut_r_16_isNaN <= sideOut_r_15_isNaN;
+      sideOut_r_16_isInf <= sideOut_r_15_isInf;
+      sideOut_r_16_isZero <= sideOut_r_15_isZero;
+      sideOut_r_16_sign <= sideOut_r_15_sign;
+      sideOut_r_16_flags <= sideOut_r_15_flags;
+      sideOut_r_16_exp <= sideOut_r_15_exp;
+      sideOut_r_17_isNaN <= sideOut_r_16_isNaN;
+      sideOut_r_17_isInf <= sideOut_r_16_isInf;
+      sideOut_r_17_isZero <= sideOut_r_16_isZero;
+      sideOut_r_17_sign <= sideOut_r_16_sign;
+      sideOut_r_17_flags <= sideOut_r_16_flags;
+      sideOut_r_17_exp <= sideOut_r_16_exp;
+      sideOut_r_18_isNaN <= sideOut_r_17_isNaN;
+      sideOut_r_18_isInf <= sideOut_r_17_isInf;
+      sideOut_r_18_isZero <= sideOut_r_17_isZero;
+      sideOut_r_18_sign <= sideOut_r_17_sign;
+      sideOut_r_18_flags <= sideOut_r_17_flags;
+      sideOut_r_18_exp <= sideOut_r_17_exp;
+      sideOut_r_19_isNaN <= sideOut_r_18_isNaN;
+      sideOut_r_19_isInf <= sideOut_r_18_isInf;
+      sideOut_r_19_isZero <= sideOut_r_18_isZero;
+      sideOut_r_19_sign <= sideOut_r_18_sign;
+      sideOut_r_19_flags <= sideOut_r_18_flags;
+      sideOut_r_19_exp <= sideOut_r_18_exp;
+      sideOut_r_20_isNaN <= sideOut_r_19_isNaN;
+      sideOut_r_20_isInf <= sideOut_r_19_isInf;
+      sideOut_r_20_isZero <= sideOut_r_19_isZero;
+      sideOut_r_20_sign <= sideOut_r_19_sign;
+      sideOut_r_20_flags <= sideOut_r_19_flags;
+      sideOut_r_20_exp <= sideOut_r_19_exp;
+      sideOut_r_21_isNaN <= sideOut_r_20_isNaN;
+      sideOut_r_21_isInf <= sideOut_r_20_isInf;
+      sideOut_r_21_isZero <= sideOut_r_20_isZero;
+      sideOut_r_21_sign <= sideOut_r_20_sign;
+      sideOut_r_21_flags <= sideOut_r_20_flags;
+      sideOut_r_21_exp <= sideOut_r_20_exp;
+      sideOut_r_22_isNaN <= sideOut_r_21_isNaN;
+      sideOut_r_22_isInf <= sideOut_r_21_isInf;
+      sideOut_r_22_isZero <= sideOut_r_21_isZero;
+      sideOut_r_22_sign <= sideOut_r_21_sign;
+      sideOut_r_22_flags <= sideOut_r_21_flags;
+      sideOut_r_22_exp <= sideOut_r_21_exp;
+      sideOut_r_23_isNaN <= sideOut_r_22_isNaN;
+      sideOut_r_23_isInf <= sideOut_r_22_isInf;
+      sideOut_r_23_isZero <= sideOut_r_22_isZero;
+      sideOut_r_23_sign <= sideOut_r_22_sign;
+      sideOut_r_23_flags <= sideOut_r_22_flags;
+      sideOut_r_23_exp <= sideOut_r_22_exp;
+      sideOut_isNaN <= sideOut_r_23_isNaN;
+      sideOut_isInf <= sideOut_r_23_isInf;
+      sideOut_isZero <= sideOut_r_23_isZero;
+      sideOut_sign <= sideOut_r_23_sign;
+      sideOut_flags <= sideOut_r_23_flags;
+      sideOut_exp <= sideOut_r_23_exp;
       riR_isNaN <= sideOut_isNaN;
       riR_isInf <= sideOut_isInf;
       riR_isZero <= sideOut_isZero;
       riR_sign <= sideOut_sign & ~sideOut_isNaN;
       riR_sExp <=
-        sideOut_exp - {10'h0, _DigitRecurrenceCore_recip_s24_L5_io_out_bits_expDec};
-      riR_sig <= _DigitRecurrenceCore_recip_s24_L5_io_out_bits_sig;
+        sideOut_exp - {10'h0, _DigitRecurrenceCore_recip_s24_L25_io_out_bits_expDec};
+      riR_sig <= _DigitRecurrenceCore_recip_s24_L25_io_out_bits_sig;
       riR_flags <= sideOut_flags;
+      at_isNaN <= riR_isNaN;
+      at_isInf <= riR_isInf;
+      at_isZero <= riR_isZero;
+      at_sign <= riR_sign;
+      at_flags <= riR_flags;
+      at_tiny <= $signed(riR_sExp) < -11'sh7E;
+      at_exp0 <= riR_sExp[7:0] + 8'h7F;
+      at_exp1 <= riR_sExp[7:0] - 8'h80;
+      at_over0 <= $signed(riR_sExp) > 11'sh7F;
+      at_over1 <= $signed(riR_sExp) > 11'sh7E;
+      at_sig <= riR_sig;
+      at_dist <= _at_dist_T > 11'h1B ? 5'h1B : _at_dist_T[4:0];
+      at_far <= _at_dist_T > 11'h1A;
+      mid_isNaN <= at_isNaN;
+      mid_isInf <= at_isInf;
+      mid_isZero <= at_isZero;
+      mid_sign <= at_sign;
+      mid_flags <= at_flags;
+      mid_tiny <= at_tiny;
+      mid_exp0 <= at_exp0;
+      mid_exp1 <= at_exp1;
+      mid_over0 <= at_over0;
+      mid_over1 <= at_over1;
+      mid_m <= mid_sig[25:2];
+      mid_rnd <= mid_sig[1];
+      mid_stk <= mid_sig[0];
+      inc_isNaN <= mid_isNaN;
+      inc_isInf <= mid_isInf;
+      inc_isZero <= mid_isZero;
+      inc_sign <= mid_sign;
+      inc_flags <= mid_flags;
+      inc_tiny <= mid_tiny;
+      inc_exp0 <= mid_exp0;
+      inc_exp1 <= mid_exp1;
+      inc_over0 <= mid_over0;
+      inc_over1 <= mid_over1;
+      inc_m1 <= {1'h0, mid_m} + {24'h0, mid_rnd & (mid_stk | mid_m[0])};
+      inc_inexact <= mid_rnd | mid_stk;
       io_out_bits_r_bits <=
-        riR_isNaN
+        inc_isNaN
           ? 32'h7FC00000
-          : {riR_sign,
-             riR_isInf
+          : {inc_sign,
+             inc_isInf
                ? 31'h7F800000
-               : riR_isZero
+               : inc_isZero
                    ? 31'h0
                    : io_out_bits_overflow
                        ? 31'h7F800000
-                       : {at_tiny
+                       : {inc_tiny
                             ? {7'h0, inc_m1[23]}
-                            : inc_m1[24] ? riR_sExp[7:0] - 8'h80 : riR_sExp[7:0] + 8'h7F,
+                            : inc_m1[24] ? inc_exp1 : inc_exp0,
                           inc_m1[22:0]}};
       io_out_bits_r_flags <=
-        riR_isNaN | riR_isInf | riR_isZero
-          ? riR_flags
+        inc_isNaN | inc_isInf | inc_isZero
+          ? inc_flags
           : io_out_bits_overflow
-              ? {riR_flags[4:3], riR_flags[2:1] | 2'h2, 1'h1}
-              : {riR_flags[4:2],
-                 riR_flags[1] | at_tiny & inc_inexact,
-                 riR_flags[0] | inc_inexact};
+              ? {inc_flags[4:3], inc_flags[2:1] | 2'h2, 1'h1}
+              : {inc_flags[4:2],
+                 inc_flags[1] | inc_tiny & inc_inexact,
+                 inc_flags[0] | inc_inexact};
     end
     if (reset) begin
+      vIn_r <= 1'h0;
+      vIn <= 1'h0;
       io_out_valid_r <= 1'h0;
       io_out_valid_r_1 <= 1'h0;
+      io_out_valid_r_2 <= 1'h0;
+      io_out_valid_r_3 <= 1'h0;
+      io_out_valid_r_4 <= 1'h0;
     end
     else if (io_en) begin
-      io_out_valid_r <= _DigitRecurrenceCore_recip_s24_L5_io_out_valid;
+      vIn_r <= io_in_valid;
+      vIn <= vIn_r;
+      io_out_valid_r <= _DigitRecurrenceCore_recip_s24_L25_io_out_valid;
       io_out_valid_r_1 <= io_out_valid_r;
+      io_out_valid_r_2 <= io_out_valid_r_1;
+      io_out_valid_r_3 <= io_out_valid_r_2;
+      io_out_valid_r_4 <= io_out_valid_r_3;
     end
   end // always @(posedge)
-  DigitRecurrenceCore_recip_s24_L5_world DigitRecurrenceCore_recip_s24_L5_world (
+  DigitRecurrenceCore_recip_s24_L25_world DigitRecurrenceCore_recip_s24_L25_world (
     .clock              (clock),
     .reset              (reset),
     .io_en              (io_en),
-    .io_in_valid        (io_in_valid),
-    .io_in_bits_sig
-      (cls_expZero ? _raw_subSig_T_1[23:0] : {1'h1, io_in_bits_a[22:0]}),
-    .io_out_valid       (_DigitRecurrenceCore_recip_s24_L5_io_out_valid),
-    .io_out_bits_sig    (_DigitRecurrenceCore_recip_s24_L5_io_out_bits_sig),
-    .io_out_bits_expDec (_DigitRecurrenceCore_recip_s24_L5_io_out_bits_expDec)
+    .io_in_valid        (vIn),
+    .io_in_bits_sig     (raw_sig),
+    .io_out_valid       (_DigitRecurrenceCore_recip_s24_L25_io_out_valid),
+    .io_out_bits_sig    (_DigitRecurrenceCore_recip_s24_L25_io_out_bits_sig),
+    .io_out_bits_expDec (_DigitRecurrenceCore_recip_s24_L25_io_out_bits_expDec)
   );
-  assign io_out_valid = io_out_valid_r_1;
+  assign io_out_valid = io_out_valid_r_4;
   assign io_out_bits_bits = io_out_bits_r_bits;
   assign io_out_bits_flags = io_out_bits_r_flags;
 endmodule
 
-module SqrtRecipDistance_fp32_world(
+module SqrtRecipDistance_fp32_200_world(
   input         clock,
                 reset,
                 io_en,
@@ -116249,9 +117747,9 @@ module SqrtRecipDistance_fp32_world(
   output [4:0]  io_w_bits_flags
 );
 
-  wire        _FpSqrt_fp32_dr_L7_io_out_valid;
-  wire [31:0] _FpSqrt_fp32_dr_L7_io_out_bits_bits;
-  wire [4:0]  _FpSqrt_fp32_dr_L7_io_out_bits_flags;
+  wire        _FpSqrt_fp32_dr_L32_io_out_valid;
+  wire [31:0] _FpSqrt_fp32_dr_L32_io_out_bits_bits;
+  wire [4:0]  _FpSqrt_fp32_dr_L32_io_out_bits_flags;
   wire        _ss_io_out_valid;
   wire [31:0] _ss_io_out_bits_bits;
   wire [4:0]  _ss_io_out_bits_flags;
@@ -116262,6 +117760,31 @@ module SqrtRecipDistance_fp32_world(
   reg  [4:0]  io_d_bits_flags_r_4;
   reg  [4:0]  io_d_bits_flags_r_5;
   reg  [4:0]  io_d_bits_flags_r_6;
+  reg  [4:0]  io_d_bits_flags_r_7;
+  reg  [4:0]  io_d_bits_flags_r_8;
+  reg  [4:0]  io_d_bits_flags_r_9;
+  reg  [4:0]  io_d_bits_flags_r_10;
+  reg  [4:0]  io_d_bits_flags_r_11;
+  reg  [4:0]  io_d_bits_flags_r_12;
+  reg  [4:0]  io_d_bits_flags_r_13;
+  reg  [4:0]  io_d_bits_flags_r_14;
+  reg  [4:0]  io_d_bits_flags_r_15;
+  reg  [4:0]  io_d_bits_flags_r_16;
+  reg  [4:0]  io_d_bits_flags_r_17;
+  reg  [4:0]  io_d_bits_flags_r_18;
+  reg  [4:0]  io_d_bits_flags_r_19;
+  reg  [4:0]  io_d_bits_flags_r_20;
+  reg  [4:0]  io_d_bits_flags_r_21;
+  reg  [4:0]  io_d_bits_flags_r_22;
+  reg  [4:0]  io_d_bits_flags_r_23;
+  reg  [4:0]  io_d_bits_flags_r_24;
+  reg  [4:0]  io_d_bits_flags_r_25;
+  reg  [4:0]  io_d_bits_flags_r_26;
+  reg  [4:0]  io_d_bits_flags_r_27;
+  reg  [4:0]  io_d_bits_flags_r_28;
+  reg  [4:0]  io_d_bits_flags_r_29;
+  reg  [4:0]  io_d_bits_flags_r_30;
+  reg  [4:0]  io_d_bits_flags_r_31;
   reg  [31:0] u_r_dx;
   reg  [31:0] u_r_dy;
   reg  [31:0] u_r_dz;
@@ -116310,6 +117833,243 @@ module SqrtRecipDistance_fp32_world(
   reg  [31:0] u_r_15_dx;
   reg  [31:0] u_r_15_dy;
   reg  [31:0] u_r_15_dz;
+  reg  [31:0] u_r_16_dx;
+  reg  [31:0] u_r_16_dy;
+  reg  [31:0] u_r_16_dz;
+  reg  [31:0] u_r_17_dx;
+  reg  [31:0] u_r_17_dy;
+  reg  [31:0] u_r_17_dz;
+  reg  [31:0] u_r_18_dx;
+  reg  [31:0] u_r_18_dy;
+  reg  [31:0] u_r_18_dz;
+  reg  [31:0] u_r_19_dx;
+  reg  [31:0] u_r_19_dy;
+  reg  [31:0] u_r_19_dz;
+  reg  [31:0] u_r_20_dx;
+  reg  [31:0] u_r_20_dy;
+  reg  [31:0] u_r_20_dz;
+  reg  [31:0] u_r_21_dx;
+  reg  [31:0] u_r_21_dy;
+  reg  [31:0] u_r_21_dz;
+  reg  [31:0] u_r_22_dx;
+  reg  [31:0] u_r_22_dy;
+  reg  [31:0] u_r_22_dz;
+  reg  [31:0] u_r_23_dx;
+  reg  [31:0] u_r_23_dy;
+  reg  [31:0] u_r_23_dz;
+  reg  [31:0] u_r_24_dx;
+  reg  [31:0] u_r_24_dy;
+  reg  [31:0] u_r_24_dz;
+  reg  [31:0] u_r_25_dx;
+  reg  [31:0] u_r_25_dy;
+  reg  [31:0] u_r_25_dz;
+  reg  [31:0] u_r_26_dx;
+  reg  [31:0] u_r_26_dy;
+  reg  [31:0] u_r_26_dz;
+  reg  [31:0] u_r_27_dx;
+  reg  [31:0] u_r_27_dy;
+  reg  [31:0] u_r_27_dz;
+  reg  [31:0] u_r_28_dx;
+  reg  [31:0] u_r_28_dy;
+  reg  [31:0] u_r_28_dz;
+  reg  [31:0] u_r_29_dx;
+  reg  [31:0] u_r_29_dy;
+  reg  [31:0] u_r_29_dz;
+  reg  [31:0] u_r_30_dx;
+  reg  [31:0] u_r_30_dy;
+  reg  [31:0] u_r_30_dz;
+  reg  [31:0] u_r_31_dx;
+  reg  [31:0] u_r_31_dy;
+  reg  [31:0] u_r_31_dz;
+  reg  [31:0] u_r_32_dx;
+  reg  [31:0] u_r_32_dy;
+  reg  [31:0] u_r_32_dz;
+  reg  [31:0] u_r_33_dx;
+  reg  [31:0] u_r_33_dy;
+  reg  [31:0] u_r_33_dz;
+  reg  [31:0] u_r_34_dx;
+  reg  [31:0] u_r_34_dy;
+  reg  [31:0] u_r_34_dz;
+  reg  [31:0] u_r_35_dx;
+  reg  [31:0] u_r_35_dy;
+  reg  [31:0] u_r_35_dz;
+  reg  [31:0] u_r_36_dx;
+  reg  [31:0] u_r_36_dy;
+  reg  [31:0] u_r_36_dz;
+  reg  [31:0] u_r_37_dx;
+  reg  [31:0] u_r_37_dy;
+  reg  [31:0] u_r_37_dz;
+  reg  [31:0] u_r_38_dx;
+  reg  [31:0] u_r_38_dy;
+  reg  [31:0] u_r_38_dz;
+  reg  [31:0] u_r_39_dx;
+  reg  [31:0] u_r_39_dy;
+  reg  [31:0] u_r_39_dz;
+  reg  [31:0] u_r_40_dx;
+  reg  [31:0] u_r_40_dy;
+  reg  [31:0] u_r_40_dz;
+  reg  [31:0] u_r_41_dx;
+  reg  [31:0] u_r_41_dy;
+  reg  [31:0] u_r_41_dz;
+  reg  [31:0] u_r_42_dx;
+  reg  [31:0] u_r_42_dy;
+  reg  [31:0] u_r_42_dz;
+  reg  [31:0] u_r_43_dx;
+  reg  [31:0] u_r_43_dy;
+  reg  [31:0] u_r_43_dz;
+  reg  [31:0] u_r_44_dx;
+  reg  [31:0] u_r_44_dy;
+  reg  [31:0] u_r_44_dz;
+  reg  [31:0] u_r_45_dx;
+  reg  [31:0] u_r_45_dy;
+  reg  [31:0] u_r_45_dz;
+  reg  [31:0] u_r_46_dx;
+  reg  [31:0] u_r_46_dy;
+  reg  [31:0] u_r_46_dz;
+  reg  [31:0] u_r_47_dx;
+  reg  [31:0] u_r_47_dy;
+  reg  [31:0] u_r_47_dz;
+  reg  [31:0] u_r_48_dx;
+  reg  [31:0] u_r_48_dy;
+  reg  [31:0] u_r_48_dz;
+  reg  [31:0] u_r_49_dx;
+  reg  [31:0] u_r_49_dy;
+  reg  [31:0] u_r_49_dz;
+  reg  [31:0] u_r_50_dx;
+  reg  [31:0] u_r_50_dy;
+  reg  [31:0] u_r_50_dz;
+  reg  [31:0] u_r_51_dx;
+  reg  [31:0] u_r_51_dy;
+  reg  [31:0] u_r_51_dz;
+  reg  [31:0] u_r_52_dx;
+  reg  [31:0] u_r_52_dy;
+  reg  [31:0] u_r_52_dz;
+  reg  [31:0] u_r_53_dx;
+  reg  [31:0] u_r_53_dy;
+  reg  [31:0] u_r_53_dz;
+  reg  [31:0] u_r_54_dx;
+  reg  [31:0] u_r_54_dy;
+  reg  [31:0] u_r_54_dz;
+  reg  [31:0] u_r_55_dx;
+  reg  [31:0] u_r_55_dy;
+  reg  [31:0] u_r_55_dz;
+  reg  [31:0] u_r_56_dx;
+  reg  [31:0] u_r_56_dy;
+  reg  [31:0] u_r_56_dz;
+  reg  [31:0] u_r_57_dx;
+  reg  [31:0] u_r_57_dy;
+  reg  [31:0] u_r_57_dz;
+  reg  [31:0] u_r_58_dx;
+  reg  [31:0] u_r_58_dy;
+  reg  [31:0] u_r_58_dz;
+  reg  [31:0] u_r_59_dx;
+  reg  [31:0] u_r_59_dy;
+  reg  [31:0] u_r_59_dz;
+  reg  [31:0] u_r_60_dx;
+  reg  [31:0] u_r_60_dy;
+  reg  [31:0] u_r_60_dz;
+  reg  [31:0] u_r_61_dx;
+  reg  [31:0] u_r_61_dy;
+  reg  [31:0] u_r_61_dz;
+  reg  [31:0] u_r_62_dx;
+  reg  [31:0] u_r_62_dy;
+  reg  [31:0] u_r_62_dz;
+  reg  [31:0] u_r_63_dx;
+  reg  [31:0] u_r_63_dy;
+  reg  [31:0] u_r_63_dz;
+  reg  [31:0] u_r_64_dx;
+  reg  [31:0] u_r_64_dy;
+  reg  [31:0] u_r_64_dz;
+  reg  [31:0] u_r_65_dx;
+  reg  [31:0] u_r_65_dy;
+  reg  [31:0] u_r_65_dz;
+  reg  [31:0] u_r_66_dx;
+  reg  [31:0] u_r_66_dy;
+  reg  [31:0] u_r_66_dz;
+  reg  [31:0] u_r_67_dx;
+  reg  [31:0] u_r_67_dy;
+  reg  [31:0] u_r_67_dz;
+  reg  [31:0] u_r_68_dx;
+  reg  [31:0] u_r_68_dy;
+  reg  [31:0] u_r_68_dz;
+  reg  [31:0] u_r_69_dx;
+  reg  [31:0] u_r_69_dy;
+  reg  [31:0] u_r_69_dz;
+  reg  [31:0] u_r_70_dx;
+  reg  [31:0] u_r_70_dy;
+  reg  [31:0] u_r_70_dz;
+  reg  [31:0] u_r_71_dx;
+  reg  [31:0] u_r_71_dy;
+  reg  [31:0] u_r_71_dz;
+  reg  [31:0] u_r_72_dx;
+  reg  [31:0] u_r_72_dy;
+  reg  [31:0] u_r_72_dz;
+  reg  [31:0] u_r_73_dx;
+  reg  [31:0] u_r_73_dy;
+  reg  [31:0] u_r_73_dz;
+  reg  [31:0] u_r_74_dx;
+  reg  [31:0] u_r_74_dy;
+  reg  [31:0] u_r_74_dz;
+  reg  [31:0] u_r_75_dx;
+  reg  [31:0] u_r_75_dy;
+  reg  [31:0] u_r_75_dz;
+  reg  [31:0] u_r_76_dx;
+  reg  [31:0] u_r_76_dy;
+  reg  [31:0] u_r_76_dz;
+  reg  [31:0] u_r_77_dx;
+  reg  [31:0] u_r_77_dy;
+  reg  [31:0] u_r_77_dz;
+  reg  [31:0] u_r_78_dx;
+  reg  [31:0] u_r_78_dy;
+  reg  [31:0] u_r_78_dz;
+  reg  [31:0] u_r_79_dx;
+  reg  [31:0] u_r_79_dy;
+  reg  [31:0] u_r_79_dz;
+  reg  [31:0] u_r_80_dx;
+  reg  [31:0] u_r_80_dy;
+  reg  [31:0] u_r_80_dz;
+  reg  [31:0] u_r_81_dx;
+  reg  [31:0] u_r_81_dy;
+  reg  [31:0] u_r_81_dz;
+  reg  [31:0] u_r_82_dx;
+  reg  [31:0] u_r_82_dy;
+  reg  [31:0] u_r_82_dz;
+  reg  [31:0] u_r_83_dx;
+  reg  [31:0] u_r_83_dy;
+  reg  [31:0] u_r_83_dz;
+  reg  [31:0] u_r_84_dx;
+  reg  [31:0] u_r_84_dy;
+  reg  [31:0] u_r_84_dz;
+  reg  [31:0] u_r_85_dx;
+  reg  [31:0] u_r_85_dy;
+  reg  [31:0] u_r_85_dz;
+  reg  [31:0] u_r_86_dx;
+  reg  [31:0] u_r_86_dy;
+  reg  [31:0] u_r_86_dz;
+  reg  [31:0] u_r_87_dx;
+  reg  [31:0] u_r_87_dy;
+  reg  [31:0] u_r_87_dz;
+  reg  [31:0] u_r_88_dx;
+  reg  [31:0] u_r_88_dy;
+  reg  [31:0] u_r_88_dz;
+  reg  [31:0] u_r_89_dx;
+  reg  [31:0] u_r_89_dy;
+  reg  [31:0] u_r_89_dz;
+  reg  [31:0] u_r_90_dx;
+  reg  [31:0] u_r_90_dy;
+  reg  [31:0] u_r_90_dz;
+  reg  [31:0] u_r_91_dx;
+  reg  [31:0] u_r_91_dy;
+  reg  [31:0] u_r_91_dz;
+  reg  [31:0] u_r_92_dx;
+  reg  [31:0] u_r_92_dy;
+  reg  [31:0] u_r_92_dz;
+  reg  [31:0] u_r_93_dx;
+  reg  [31:0] u_r_93_dy;
+  reg  [31:0] u_r_93_dz;
+  reg  [31:0] u_r_94_dx;
+  reg  [31:0] u_r_94_dy;
+  reg  [31:0] u_r_94_dz;
   reg  [31:0] u_dx;
   reg  [31:0] u_dy;
   reg  [31:0] u_dz;
@@ -116322,6 +118082,31 @@ module SqrtRecipDistance_fp32_world(
       io_d_bits_flags_r_4 <= io_d_bits_flags_r_3;
       io_d_bits_flags_r_5 <= io_d_bits_flags_r_4;
       io_d_bits_flags_r_6 <= io_d_bits_flags_r_5;
+      io_d_bits_flags_r_7 <= io_d_bits_flags_r_6;
+      io_d_bits_flags_r_8 <= io_d_bits_flags_r_7;
+      io_d_bits_flags_r_9 <= io_d_bits_flags_r_8;
+      io_d_bits_flags_r_10 <= io_d_bits_flags_r_9;
+      io_d_bits_flags_r_11 <= io_d_bits_flags_r_10;
+      io_d_bits_flags_r_12 <= io_d_bits_flags_r_11;
+      io_d_bits_flags_r_13 <= io_d_bits_flags_r_12;
+      io_d_bits_flags_r_14 <= io_d_bits_flags_r_13;
+      io_d_bits_flags_r_15 <= io_d_bits_flags_r_14;
+      io_d_bits_flags_r_16 <= io_d_bits_flags_r_15;
+      io_d_bits_flags_r_17 <= io_d_bits_flags_r_16;
+      io_d_bits_flags_r_18 <= io_d_bits_flags_r_17;
+      io_d_bits_flags_r_19 <= io_d_bits_flags_r_18;
+      io_d_bits_flags_r_20 <= io_d_bits_flags_r_19;
+      io_d_bits_flags_r_21 <= io_d_bits_flags_r_20;
+      io_d_bits_flags_r_22 <= io_d_bits_flags_r_21;
+      io_d_bits_flags_r_23 <= io_d_bits_flags_r_22;
+      io_d_bits_flags_r_24 <= io_d_bits_flags_r_23;
+      io_d_bits_flags_r_25 <= io_d_bits_flags_r_24;
+      io_d_bits_flags_r_26 <= io_d_bits_flags_r_25;
+      io_d_bits_flags_r_27 <= io_d_bits_flags_r_26;
+      io_d_bits_flags_r_28 <= io_d_bits_flags_r_27;
+      io_d_bits_flags_r_29 <= io_d_bits_flags_r_28;
+      io_d_bits_flags_r_30 <= io_d_bits_flags_r_29;
+      io_d_bits_flags_r_31 <= io_d_bits_flags_r_30;
       u_r_dx <= io_in_bits_dx;
       u_r_dy <= io_in_bits_dy;
       u_r_dz <= io_in_bits_dz;
@@ -116370,12 +118155,249 @@ module SqrtRecipDistance_fp32_world(
       u_r_15_dx <= u_r_14_dx;
       u_r_15_dy <= u_r_14_dy;
       u_r_15_dz <= u_r_14_dz;
-      u_dx <= u_r_15_dx;
-      u_dy <= u_r_15_dy;
-      u_dz <= u_r_15_dz;
+      u_r_16_dx <= u_r_15_dx;
+      u_r_16_dy <= u_r_15_dy;
+      u_r_16_dz <= u_r_15_dz;
+      u_r_17_dx <= u_r_16_dx;
+      u_r_17_dy <= u_r_16_dy;
+      u_r_17_dz <= u_r_16_dz;
+      u_r_18_dx <= u_r_17_dx;
+      u_r_18_dy <= u_r_17_dy;
+      u_r_18_dz <= u_r_17_dz;
+      u_r_19_dx <= u_r_18_dx;
+      u_r_19_dy <= u_r_18_dy;
+      u_r_19_dz <= u_r_18_dz;
+      u_r_20_dx <= u_r_19_dx;
+      u_r_20_dy <= u_r_19_dy;
+      u_r_20_dz <= u_r_19_dz;
+      u_r_21_dx <= u_r_20_dx;
+      u_r_21_dy <= u_r_20_dy;
+      u_r_21_dz <= u_r_20_dz;
+      u_r_22_dx <= u_r_21_dx;
+      u_r_22_dy <= u_r_21_dy;
+      u_r_22_dz <= u_r_21_dz;
+      u_r_23_dx <= u_r_22_dx;
+      u_r_23_dy <= u_r_22_dy;
+      u_r_23_dz <= u_r_22_dz;
+      u_r_24_dx <= u_r_23_dx;
+      u_r_24_dy <= u_r_23_dy;
+      u_r_24_dz <= u_r_23_dz;
+      u_r_25_dx <= u_r_24_dx;
+      u_r_25_dy <= u_r_24_dy;
+      u_r_25_dz <= u_r_24_dz;
+      u_r_26_dx <= u_r_25_dx;
+      u_r_26_dy <= u_r_25_dy;
+      u_r_26_dz <= u_r_25_dz;
+      u_r_27_dx <= u_r_26_dx;
+      u_r_27_dy <= u_r_26_dy;
+      u_r_27_dz <= u_r_26_dz;
+      u_r_28_dx <= u_r_27_dx;
+      u_r_28_dy <= u_r_27_dy;
+      u_r_28_dz <= u_r_27_dz;
+      u_r_29_dx <= u_r_28_dx;
+      u_r_29_dy <= u_r_28_dy;
+      u_r_29_dz <= u_r_28_dz;
+      u_r_30_dx <= u_r_29_dx;
+      u_r_30_dy <= u_r_29_dy;
+      u_r_30_dz <= u_r_29_dz;
+      u_r_31_dx <= u_r_30_dx;
+      u_r_31_dy <= u_r_30_dy;
+      u_r_31_dz <= u_r_30_dz;
+      u_r_32_dx <= u_r_31_dx;
+      u_r_32_dy <= u_r_31_dy;
+      u_r_32_dz <= u_r_31_dz;
+      u_r_33_dx <= u_r_32_dx;
+      u_r_33_dy <= u_r_32_dy;
+      u_r_33_dz <= u_r_32_dz;
+      u_r_34_dx <= u_r_33_dx;
+      u_r_34_dy <= u_r_33_dy;
+      u_r_34_dz <= u_r_33_dz;
+      u_r_35_dx <= u_r_34_dx;
+      u_r_35_dy <= u_r_34_dy;
+      u_r_35_dz <= u_r_34_dz;
+      u_r_36_dx <= u_r_35_dx;
+      u_r_36_dy <= u_r_35_dy;
+      u_r_36_dz <= u_r_35_dz;
+      u_r_37_dx <= u_r_36_dx;
+      u_r_37_dy <= u_r_36_dy;
+      u_r_37_dz <= u_r_36_dz;
+      u_r_38_dx <= u_r_37_dx;
+      u_r_38_dy <= u_r_37_dy;
+      u_r_38_dz <= u_r_37_dz;
+      u_r_39_dx <= u_r_38_dx;
+      u_r_39_dy <= u_r_38_dy;
+      u_r_39_dz <= u_r_38_dz;
+      u_r_40_dx <= u_r_39_dx;
+      u_r_40_dy <= u_r_39_dy;
+      u_r_40_dz <= u_r_39_dz;
+      u_r_41_dx <= u_r_40_dx;
+      u_r_41_dy <= u_r_40_dy;
+      u_r_41_dz <= u_r_40_dz;
+      u_r_42_dx <= u_r_41_dx;
+      u_r_42_dy <= u_r_41_dy;
+      u_r_42_dz <= u_r_41_dz;
+      u_r_43_dx <= u_r_42_dx;
+      u_r_43_dy <= u_r_42_dy;
+      u_r_43_dz <= u_r_42_dz;
+      u_r_44_dx <= u_r_43_dx;
+      u_r_44_dy <= u_r_43_dy;
+      u_r_44_dz <= u_r_43_dz;
+      u_r_45_dx <= u_r_44_dx;
+      u_r_45_dy <= u_r_44_dy;
+      u_r_45_dz <= u_r_44_dz;
+      u_r_46_dx <= u_r_45_dx;
+      u_r_46_dy <= u_r_45_dy;
+      u_r_46_dz <= u_r_45_dz;
+      u_r_47_dx <= u_r_46_dx;
+      u_r_47_dy <= u_r_46_dy;
+      u_r_47_dz <= u_r_46_dz;
+      u_r_48_dx <= u_r_47_dx;
+      u_r_48_dy <= u_r_47_dy;
+      u_r_48_dz <= u_r_47_dz;
+      u_r_49_dx <= u_r_48_dx;
+      u_r_49_dy <= u_r_48_dy;
+      u_r_49_dz <= u_r_48_dz;
+      u_r_50_dx <= u_r_49_dx;
+      u_r_50_dy <= u_r_49_dy;
+      u_r_50_dz <= u_r_49_dz;
+      u_r_51_dx <= u_r_50_dx;
+      u_r_51_dy <= u_r_50_dy;
+      u_r_51_dz <= u_r_50_dz;
+      u_r_52_dx <= u_r_51_dx;
+      u_r_52_dy <= u_r_51_dy;
+      u_r_52_dz <= u_r_51_dz;
+      u_r_53_dx <= u_r_52_dx;
+      u_r_53_dy <= u_r_52_dy;
+      u_r_53_dz <= u_r_52_dz;
+      u_r_54_dx <= u_r_53_dx;
+      u_r_54_dy <= u_r_53_dy;
+      u_r_54_dz <= u_r_53_dz;
+      u_r_55_dx <= u_r_54_dx;
+      u_r_55_dy <= u_r_54_dy;
+      u_r_55_dz <= u_r_54_dz;
+      u_r_56_dx <= u_r_55_dx;
+      u_r_56_dy <= u_r_55_dy;
+      u_r_56_dz <= u_r_55_dz;
+      u_r_57_dx <= u_r_56_dx;
+      u_r_57_dy <= u_r_56_dy;
+      u_r_57_dz <= u_r_56_dz;
+      u_r_58_dx <= u_r_57_dx;
+      u_r_58_dy <= u_r_57_dy;
+      u_r_58_dz <= u_r_57_dz;
+      u_r_59_dx <= u_r_58_dx;
+      u_r_59_dy <= u_r_58_dy;
+      u_r_59_dz <= u_r_58_dz;
+      u_r_60_dx <= u_r_59_dx;
+      u_r_60_dy <= u_r_59_dy;
+      u_r_60_dz <= u_r_59_dz;
+      u_r_61_dx <= u_r_60_dx;
+      u_r_61_dy <= u_r_60_dy;
+      u_r_61_dz <= u_r_60_dz;
+      u_r_62_dx <= u_r_61_dx;
+      u_r_62_dy <= u_r_61_dy;
+      u_r_62_dz <= u_r_61_dz;
+      u_r_63_dx <= u_r_62_dx;
+      u_r_63_dy <= u_r_62_dy;
+      u_r_63_dz <= u_r_62_dz;
+      u_r_64_dx <= u_r_63_dx;
+      u_r_64_dy <= u_r_63_dy;
+      u_r_64_dz <= u_r_63_dz;
+      u_r_65_dx <= u_r_64_dx;
+      u_r_65_dy <= u_r_64_dy;
+      u_r_65_dz <= u_r_64_dz;
+      u_r_66_dx <= u_r_65_dx;
+      u_r_66_dy <= u_r_65_dy;
+      u_r_66_dz <= u_r_65_dz;
+      u_r_67_dx <= u_r_66_dx;
+      u_r_67_dy <= u_r_66_dy;
+      u_r_67_dz <= u_r_66_dz;
+      u_r_68_dx <= u_r_67_dx;
+      u_r_68_dy <= u_r_67_dy;
+      u_r_68_dz <= u_r_67_dz;
+      u_r_69_dx <= u_r_68_dx;
+      u_r_69_dy <= u_r_68_dy;
+      u_r_69_dz <= u_r_68_dz;
+      u_r_70_dx <= u_r_69_dx;
+      u_r_70_dy <= u_r_69_dy;
+      u_r_70_dz <= u_r_69_dz;
+      u_r_71_dx <= u_r_70_dx;
+      u_r_71_dy <= u_r_70_dy;
+      u_r_71_dz <= u_r_70_dz;
+      u_r_72_dx <= u_r_71_dx;
+      u_r_72_dy <= u_r_71_dy;
+      u_r_72_dz <= u_r_71_dz;
+      u_r_73_dx <= u_r_72_dx;
+      u_r_73_dy <= u_r_72_dy;
+      u_r_73_dz <= u_r_72_dz;
+      u_r_74_dx <= u_r_73_dx;
+      u_r_74_dy <= u_r_73_dy;
+      u_r_74_dz <= u_r_73_dz;
+      u_r_75_dx <= u_r_74_dx;
+      u_r_75_dy <= u_r_74_dy;
+      u_r_75_dz <= u_r_74_dz;
+      u_r_76_dx <= u_r_75_dx;
+      u_r_76_dy <= u_r_75_dy;
+      u_r_76_dz <= u_r_75_dz;
+      u_r_77_dx <= u_r_76_dx;
+      u_r_77_dy <= u_r_76_dy;
+      u_r_77_dz <= u_r_76_dz;
+      u_r_78_dx <= u_r_77_dx;
+      u_r_78_dy <= u_r_77_dy;
+      u_r_78_dz <= u_r_77_dz;
+      u_r_79_dx <= u_r_78_dx;
+      u_r_79_dy <= u_r_78_dy;
+      u_r_79_dz <= u_r_78_dz;
+      u_r_80_dx <= u_r_79_dx;
+      u_r_80_dy <= u_r_79_dy;
+      u_r_80_dz <= u_r_79_dz;
+      u_r_81_dx <= u_r_80_dx;
+      u_r_81_dy <= u_r_80_dy;
+      u_r_81_dz <= u_r_80_dz;
+      u_r_82_dx <= u_r_81_dx;
+      u_r_82_dy <= u_r_81_dy;
+      u_r_82_dz <= u_r_81_dz;
+      u_r_83_dx <= u_r_82_dx;
+      u_r_83_dy <= u_r_82_dy;
+      u_r_83_dz <= u_r_82_dz;
+      u_r_84_dx <= u_r_83_dx;
+      u_r_84_dy <= u_r_83_dy;
+      u_r_84_dz <= u_r_83_dz;
+      u_r_85_dx <= u_r_84_dx;
+      u_r_85_dy <= u_r_84_dy;
+      u_r_85_dz <= u_r_84_dz;
+      u_r_86_dx <= u_r_85_dx;
+      u_r_86_dy <= u_r_85_dy;
+      u_r_86_dz <= u_r_85_dz;
+      u_r_87_dx <= u_r_86_dx;
+      u_r_87_dy <= u_r_86_dy;
+      u_r_87_dz <= u_r_86_dz;
+      u_r_88_dx <= u_r_87_dx;
+      u_r_88_dy <= u_r_87_dy;
+      u_r_88_dz <= u_r_87_dz;
+      u_r_89_dx <= u_r_88_dx;
+      u_r_89_dy <= u_r_88_dy;
+      u_r_89_dz <= u_r_88_dz;
+      u_r_90_dx <= u_r_89_dx;
+      u_r_90_dy <= u_r_89_dy;
+      u_r_90_dz <= u_r_89_dz;
+      u_r_91_dx <= u_r_90_dx;
+      u_r_91_dy <= u_r_90_dy;
+      u_r_91_dz <= u_r_90_dz;
+      u_r_92_dx <= u_r_91_dx;
+      u_r_92_dy <= u_r_91_dy;
+      u_r_92_dz <= u_r_91_dz;
+      u_r_93_dx <= u_r_92_dx;
+      u_r_93_dy <= u_r_92_dy;
+      u_r_93_dz <= u_r_92_dz;
+      u_r_94_dx <= u_r_93_dx;
+      u_r_94_dy <= u_r_93_dy;
+      u_r_94_dz <= u_r_93_dz;
+      u_dx <= u_r_94_dx;
+      u_dy <= u_r_94_dy;
+      u_dz <= u_r_94_dz;
     end
   end // always @(posedge)
-  SumOfSquares_fp32_world ss (
+  SumOfSquares_fp32_200_world ss (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -116387,29 +118409,29 @@ module SqrtRecipDistance_fp32_world(
     .io_out_bits_bits  (_ss_io_out_bits_bits),
     .io_out_bits_flags (_ss_io_out_bits_flags)
   );
-  FpSqrt_fp32_dr_L7_world FpSqrt_fp32_dr_L7_world (
+  FpSqrt_fp32_dr_L32_world FpSqrt_fp32_dr_L32_world (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
     .io_in_valid       (_ss_io_out_valid),
     .io_in_bits_a      (_ss_io_out_bits_bits),
-    .io_out_valid      (_FpSqrt_fp32_dr_L7_io_out_valid),
-    .io_out_bits_bits  (_FpSqrt_fp32_dr_L7_io_out_bits_bits),
-    .io_out_bits_flags (_FpSqrt_fp32_dr_L7_io_out_bits_flags)
+    .io_out_valid      (_FpSqrt_fp32_dr_L32_io_out_valid),
+    .io_out_bits_bits  (_FpSqrt_fp32_dr_L32_io_out_bits_bits),
+    .io_out_bits_flags (_FpSqrt_fp32_dr_L32_io_out_bits_flags)
   );
-  FpRecip_fp32_dr_L7_world FpRecip_fp32_dr_L7_world (
+  FpRecip_fp32_dr_L32_world FpRecip_fp32_dr_L32_world (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
-    .io_in_valid       (_FpSqrt_fp32_dr_L7_io_out_valid),
-    .io_in_bits_a      (_FpSqrt_fp32_dr_L7_io_out_bits_bits),
+    .io_in_valid       (_FpSqrt_fp32_dr_L32_io_out_valid),
+    .io_in_bits_a      (_FpSqrt_fp32_dr_L32_io_out_bits_bits),
     .io_out_valid      (io_w_valid),
     .io_out_bits_bits  (io_w_bits_w),
     .io_out_bits_flags (io_w_bits_flags)
   );
-  assign io_d_valid = _FpSqrt_fp32_dr_L7_io_out_valid;
-  assign io_d_bits_d = _FpSqrt_fp32_dr_L7_io_out_bits_bits;
-  assign io_d_bits_flags = io_d_bits_flags_r_6 | _FpSqrt_fp32_dr_L7_io_out_bits_flags;
+  assign io_d_valid = _FpSqrt_fp32_dr_L32_io_out_valid;
+  assign io_d_bits_d = _FpSqrt_fp32_dr_L32_io_out_bits_bits;
+  assign io_d_bits_flags = io_d_bits_flags_r_31 | _FpSqrt_fp32_dr_L32_io_out_bits_flags;
   assign io_w_bits_ux = u_dx;
   assign io_w_bits_uy = u_dy;
   assign io_w_bits_uz = u_dz;
@@ -116453,7 +118475,7 @@ module FpCompare_fp32_L1_world(
   assign io_out_bits_flags = io_out_bits_r_flags;
 endmodule
 
-module ScpuDatapath_fp32_world(
+module ScpuDatapath_fp32_200_world(
   input         clock,
                 reset,
                 io_en,
@@ -116535,6 +118557,60 @@ module ScpuDatapath_fp32_world(
   reg  [31:0] rsD_r_6_bits;
   reg  [31:0] rsD_r_7_bits;
   reg  [31:0] rsD_r_8_bits;
+  reg  [31:0] rsD_r_9_bits;
+  reg  [31:0] rsD_r_10_bits;
+  reg  [31:0] rsD_r_11_bits;
+  reg  [31:0] rsD_r_12_bits;
+  reg  [31:0] rsD_r_13_bits;
+  reg  [31:0] rsD_r_14_bits;
+  reg  [31:0] rsD_r_15_bits;
+  reg  [31:0] rsD_r_16_bits;
+  reg  [31:0] rsD_r_17_bits;
+  reg  [31:0] rsD_r_18_bits;
+  reg  [31:0] rsD_r_19_bits;
+  reg  [31:0] rsD_r_20_bits;
+  reg  [31:0] rsD_r_21_bits;
+  reg  [31:0] rsD_r_22_bits;
+  reg  [31:0] rsD_r_23_bits;
+  reg  [31:0] rsD_r_24_bits;
+  reg  [31:0] rsD_r_25_bits;
+  reg  [31:0] rsD_r_26_bits;
+  reg  [31:0] rsD_r_27_bits;
+  reg  [31:0] rsD_r_28_bits;
+  reg  [31:0] rsD_r_29_bits;
+  reg  [31:0] rsD_r_30_bits;
+  reg  [31:0] rsD_r_31_bits;
+  reg  [31:0] rsD_r_32_bits;
+  reg  [31:0] rsD_r_33_bits;
+  reg  [31:0] rsD_r_34_bits;
+  reg  [31:0] rsD_r_35_bits;
+  reg  [31:0] rsD_r_36_bits;
+  reg  [31:0] rsD_r_37_bits;
+  reg  [31:0] rsD_r_38_bits;
+  reg  [31:0] rsD_r_39_bits;
+  reg  [31:0] rsD_r_40_bits;
+  reg  [31:0] rsD_r_41_bits;
+  reg  [31:0] rsD_r_42_bits;
+  reg  [31:0] rsD_r_43_bits;
+  reg  [31:0] rsD_r_44_bits;
+  reg  [31:0] rsD_r_45_bits;
+  reg  [31:0] rsD_r_46_bits;
+  reg  [31:0] rsD_r_47_bits;
+  reg  [31:0] rsD_r_48_bits;
+  reg  [31:0] rsD_r_49_bits;
+  reg  [31:0] rsD_r_50_bits;
+  reg  [31:0] rsD_r_51_bits;
+  reg  [31:0] rsD_r_52_bits;
+  reg  [31:0] rsD_r_53_bits;
+  reg  [31:0] rsD_r_54_bits;
+  reg  [31:0] rsD_r_55_bits;
+  reg  [31:0] rsD_r_56_bits;
+  reg  [31:0] rsD_r_57_bits;
+  reg  [31:0] rsD_r_58_bits;
+  reg  [31:0] rsD_r_59_bits;
+  reg  [31:0] rsD_r_60_bits;
+  reg  [31:0] rsD_r_61_bits;
+  reg  [31:0] rsD_r_62_bits;
   reg  [31:0] rsD_bits;
   reg  [31:0] k0_r;
   reg  [31:0] k0_r_1;
@@ -116546,17 +118622,99 @@ module ScpuDatapath_fp32_world(
   reg  [31:0] k0_r_7;
   reg  [31:0] k0_r_8;
   reg  [31:0] k0_r_9;
+  reg  [31:0] k0_r_10;
+  reg  [31:0] k0_r_11;
+  reg  [31:0] k0_r_12;
+  reg  [31:0] k0_r_13;
+  reg  [31:0] k0_r_14;
+  reg  [31:0] k0_r_15;
+  reg  [31:0] k0_r_16;
+  reg  [31:0] k0_r_17;
+  reg  [31:0] k0_r_18;
+  reg  [31:0] k0_r_19;
+  reg  [31:0] k0_r_20;
+  reg  [31:0] k0_r_21;
+  reg  [31:0] k0_r_22;
+  reg  [31:0] k0_r_23;
+  reg  [31:0] k0_r_24;
+  reg  [31:0] k0_r_25;
+  reg  [31:0] k0_r_26;
+  reg  [31:0] k0_r_27;
+  reg  [31:0] k0_r_28;
+  reg  [31:0] k0_r_29;
+  reg  [31:0] k0_r_30;
+  reg  [31:0] k0_r_31;
+  reg  [31:0] k0_r_32;
+  reg  [31:0] k0_r_33;
+  reg  [31:0] k0_r_34;
+  reg  [31:0] k0_r_35;
+  reg  [31:0] k0_r_36;
+  reg  [31:0] k0_r_37;
+  reg  [31:0] k0_r_38;
+  reg  [31:0] k0_r_39;
+  reg  [31:0] k0_r_40;
+  reg  [31:0] k0_r_41;
+  reg  [31:0] k0_r_42;
+  reg  [31:0] k0_r_43;
+  reg  [31:0] k0_r_44;
+  reg  [31:0] k0_r_45;
+  reg  [31:0] k0_r_46;
+  reg  [31:0] k0_r_47;
+  reg  [31:0] k0_r_48;
+  reg  [31:0] k0_r_49;
+  reg  [31:0] k0_r_50;
+  reg  [31:0] k0_r_51;
+  reg  [31:0] k0_r_52;
+  reg  [31:0] k0_r_53;
+  reg  [31:0] k0_r_54;
+  reg  [31:0] k0_r_55;
+  reg  [31:0] k0_r_56;
+  reg  [31:0] k0_r_57;
+  reg  [31:0] k0_r_58;
+  reg  [31:0] k0_r_59;
+  reg  [31:0] k0_r_60;
+  reg  [31:0] k0_r_61;
+  reg  [31:0] k0_r_62;
+  reg  [31:0] k0_r_63;
   reg  [31:0] kM_r;
   reg  [31:0] kM_r_1;
   reg  [31:0] kM_r_2;
   reg  [31:0] kM_r_3;
   reg  [31:0] kM_r_4;
+  reg  [31:0] kM_r_5;
+  reg  [31:0] kM_r_6;
+  reg  [31:0] kM_r_7;
+  reg  [31:0] kM_r_8;
+  reg  [31:0] kM_r_9;
+  reg  [31:0] kM_r_10;
+  reg  [31:0] kM_r_11;
+  reg  [31:0] kM_r_12;
+  reg  [31:0] kM_r_13;
+  reg  [31:0] kM_r_14;
+  reg  [31:0] kM_r_15;
+  reg  [31:0] kM_r_16;
+  reg  [31:0] kM_r_17;
+  reg  [31:0] kM_r_18;
   reg  [31:0] kM;
   reg         vM_r;
   reg         vM_r_1;
   reg         vM_r_2;
   reg         vM_r_3;
   reg         vM_r_4;
+  reg         vM_r_5;
+  reg         vM_r_6;
+  reg         vM_r_7;
+  reg         vM_r_8;
+  reg         vM_r_9;
+  reg         vM_r_10;
+  reg         vM_r_11;
+  reg         vM_r_12;
+  reg         vM_r_13;
+  reg         vM_r_14;
+  reg         vM_r_15;
+  reg         vM_r_16;
+  reg         vM_r_17;
+  reg         vM_r_18;
   reg         vM;
   reg  [31:0] p1_r;
   reg  [31:0] p1_r_1;
@@ -116577,7 +118735,6 @@ module ScpuDatapath_fp32_world(
   reg  [31:0] p1_r_16;
   reg  [31:0] p1_r_17;
   reg  [31:0] p1_r_18;
-  reg  [31:0] p1_0;
   reg  [31:0] p1_r_19;
   reg  [31:0] p1_r_20;
   reg  [31:0] p1_r_21;
@@ -116597,7 +118754,6 @@ module ScpuDatapath_fp32_world(
   reg  [31:0] p1_r_35;
   reg  [31:0] p1_r_36;
   reg  [31:0] p1_r_37;
-  reg  [31:0] p1_1;
   reg  [31:0] p1_r_38;
   reg  [31:0] p1_r_39;
   reg  [31:0] p1_r_40;
@@ -116617,46 +118773,564 @@ module ScpuDatapath_fp32_world(
   reg  [31:0] p1_r_54;
   reg  [31:0] p1_r_55;
   reg  [31:0] p1_r_56;
+  reg  [31:0] p1_r_57;
+  reg  [31:0] p1_r_58;
+  reg  [31:0] p1_r_59;
+  reg  [31:0] p1_r_60;
+  reg  [31:0] p1_r_61;
+  reg  [31:0] p1_r_62;
+  reg  [31:0] p1_r_63;
+  reg  [31:0] p1_r_64;
+  reg  [31:0] p1_r_65;
+  reg  [31:0] p1_r_66;
+  reg  [31:0] p1_r_67;
+  reg  [31:0] p1_r_68;
+  reg  [31:0] p1_r_69;
+  reg  [31:0] p1_r_70;
+  reg  [31:0] p1_r_71;
+  reg  [31:0] p1_r_72;
+  reg  [31:0] p1_r_73;
+  reg  [31:0] p1_r_74;
+  reg  [31:0] p1_r_75;
+  reg  [31:0] p1_r_76;
+  reg  [31:0] p1_r_77;
+  reg  [31:0] p1_r_78;
+  reg  [31:0] p1_r_79;
+  reg  [31:0] p1_r_80;
+  reg  [31:0] p1_r_81;
+  reg  [31:0] p1_r_82;
+  reg  [31:0] p1_r_83;
+  reg  [31:0] p1_r_84;
+  reg  [31:0] p1_r_85;
+  reg  [31:0] p1_r_86;
+  reg  [31:0] p1_r_87;
+  reg  [31:0] p1_r_88;
+  reg  [31:0] p1_r_89;
+  reg  [31:0] p1_r_90;
+  reg  [31:0] p1_r_91;
+  reg  [31:0] p1_r_92;
+  reg  [31:0] p1_r_93;
+  reg  [31:0] p1_r_94;
+  reg  [31:0] p1_r_95;
+  reg  [31:0] p1_r_96;
+  reg  [31:0] p1_r_97;
+  reg  [31:0] p1_r_98;
+  reg  [31:0] p1_r_99;
+  reg  [31:0] p1_r_100;
+  reg  [31:0] p1_r_101;
+  reg  [31:0] p1_r_102;
+  reg  [31:0] p1_r_103;
+  reg  [31:0] p1_r_104;
+  reg  [31:0] p1_r_105;
+  reg  [31:0] p1_r_106;
+  reg  [31:0] p1_r_107;
+  reg  [31:0] p1_r_108;
+  reg  [31:0] p1_r_109;
+  reg  [31:0] p1_r_110;
+  reg  [31:0] p1_r_111;
+  reg  [31:0] p1_r_112;
+  reg  [31:0] p1_r_113;
+  reg  [31:0] p1_r_114;
+  reg  [31:0] p1_r_115;
+  reg  [31:0] p1_r_116;
+  reg  [31:0] p1_r_117;
+  reg  [31:0] p1_r_118;
+  reg  [31:0] p1_r_119;
+  reg  [31:0] p1_r_120;
+  reg  [31:0] p1_r_121;
+  reg  [31:0] p1_r_122;
+  reg  [31:0] p1_0;
+  reg  [31:0] p1_r_123;
+  reg  [31:0] p1_r_124;
+  reg  [31:0] p1_r_125;
+  reg  [31:0] p1_r_126;
+  reg  [31:0] p1_r_127;
+  reg  [31:0] p1_r_128;
+  reg  [31:0] p1_r_129;
+  reg  [31:0] p1_r_130;
+  reg  [31:0] p1_r_131;
+  reg  [31:0] p1_r_132;
+  reg  [31:0] p1_r_133;
+  reg  [31:0] p1_r_134;
+  reg  [31:0] p1_r_135;
+  reg  [31:0] p1_r_136;
+  reg  [31:0] p1_r_137;
+  reg  [31:0] p1_r_138;
+  reg  [31:0] p1_r_139;
+  reg  [31:0] p1_r_140;
+  reg  [31:0] p1_r_141;
+  reg  [31:0] p1_r_142;
+  reg  [31:0] p1_r_143;
+  reg  [31:0] p1_r_144;
+  reg  [31:0] p1_r_145;
+  reg  [31:0] p1_r_146;
+  reg  [31:0] p1_r_147;
+  reg  [31:0] p1_r_148;
+  reg  [31:0] p1_r_149;
+  reg  [31:0] p1_r_150;
+  reg  [31:0] p1_r_151;
+  reg  [31:0] p1_r_152;
+  reg  [31:0] p1_r_153;
+  reg  [31:0] p1_r_154;
+  reg  [31:0] p1_r_155;
+  reg  [31:0] p1_r_156;
+  reg  [31:0] p1_r_157;
+  reg  [31:0] p1_r_158;
+  reg  [31:0] p1_r_159;
+  reg  [31:0] p1_r_160;
+  reg  [31:0] p1_r_161;
+  reg  [31:0] p1_r_162;
+  reg  [31:0] p1_r_163;
+  reg  [31:0] p1_r_164;
+  reg  [31:0] p1_r_165;
+  reg  [31:0] p1_r_166;
+  reg  [31:0] p1_r_167;
+  reg  [31:0] p1_r_168;
+  reg  [31:0] p1_r_169;
+  reg  [31:0] p1_r_170;
+  reg  [31:0] p1_r_171;
+  reg  [31:0] p1_r_172;
+  reg  [31:0] p1_r_173;
+  reg  [31:0] p1_r_174;
+  reg  [31:0] p1_r_175;
+  reg  [31:0] p1_r_176;
+  reg  [31:0] p1_r_177;
+  reg  [31:0] p1_r_178;
+  reg  [31:0] p1_r_179;
+  reg  [31:0] p1_r_180;
+  reg  [31:0] p1_r_181;
+  reg  [31:0] p1_r_182;
+  reg  [31:0] p1_r_183;
+  reg  [31:0] p1_r_184;
+  reg  [31:0] p1_r_185;
+  reg  [31:0] p1_r_186;
+  reg  [31:0] p1_r_187;
+  reg  [31:0] p1_r_188;
+  reg  [31:0] p1_r_189;
+  reg  [31:0] p1_r_190;
+  reg  [31:0] p1_r_191;
+  reg  [31:0] p1_r_192;
+  reg  [31:0] p1_r_193;
+  reg  [31:0] p1_r_194;
+  reg  [31:0] p1_r_195;
+  reg  [31:0] p1_r_196;
+  reg  [31:0] p1_r_197;
+  reg  [31:0] p1_r_198;
+  reg  [31:0] p1_r_199;
+  reg  [31:0] p1_r_200;
+  reg  [31:0] p1_r_201;
+  reg  [31:0] p1_r_202;
+  reg  [31:0] p1_r_203;
+  reg  [31:0] p1_r_204;
+  reg  [31:0] p1_r_205;
+  reg  [31:0] p1_r_206;
+  reg  [31:0] p1_r_207;
+  reg  [31:0] p1_r_208;
+  reg  [31:0] p1_r_209;
+  reg  [31:0] p1_r_210;
+  reg  [31:0] p1_r_211;
+  reg  [31:0] p1_r_212;
+  reg  [31:0] p1_r_213;
+  reg  [31:0] p1_r_214;
+  reg  [31:0] p1_r_215;
+  reg  [31:0] p1_r_216;
+  reg  [31:0] p1_r_217;
+  reg  [31:0] p1_r_218;
+  reg  [31:0] p1_r_219;
+  reg  [31:0] p1_r_220;
+  reg  [31:0] p1_r_221;
+  reg  [31:0] p1_r_222;
+  reg  [31:0] p1_r_223;
+  reg  [31:0] p1_r_224;
+  reg  [31:0] p1_r_225;
+  reg  [31:0] p1_r_226;
+  reg  [31:0] p1_r_227;
+  reg  [31:0] p1_r_228;
+  reg  [31:0] p1_r_229;
+  reg  [31:0] p1_r_230;
+  reg  [31:0] p1_r_231;
+  reg  [31:0] p1_r_232;
+  reg  [31:0] p1_r_233;
+  reg  [31:0] p1_r_234;
+  reg  [31:0] p1_r_235;
+  reg  [31:0] p1_r_236;
+  reg  [31:0] p1_r_237;
+  reg  [31:0] p1_r_238;
+  reg  [31:0] p1_r_239;
+  reg  [31:0] p1_r_240;
+  reg  [31:0] p1_r_241;
+  reg  [31:0] p1_r_242;
+  reg  [31:0] p1_r_243;
+  reg  [31:0] p1_r_244;
+  reg  [31:0] p1_r_245;
+  reg  [31:0] p1_1;
+  reg  [31:0] p1_r_246;
+  reg  [31:0] p1_r_247;
+  reg  [31:0] p1_r_248;
+  reg  [31:0] p1_r_249;
+  reg  [31:0] p1_r_250;
+  reg  [31:0] p1_r_251;
+  reg  [31:0] p1_r_252;
+  reg  [31:0] p1_r_253;
+  reg  [31:0] p1_r_254;
+  reg  [31:0] p1_r_255;
+  reg  [31:0] p1_r_256;
+  reg  [31:0] p1_r_257;
+  reg  [31:0] p1_r_258;
+  reg  [31:0] p1_r_259;
+  reg  [31:0] p1_r_260;
+  reg  [31:0] p1_r_261;
+  reg  [31:0] p1_r_262;
+  reg  [31:0] p1_r_263;
+  reg  [31:0] p1_r_264;
+  reg  [31:0] p1_r_265;
+  reg  [31:0] p1_r_266;
+  reg  [31:0] p1_r_267;
+  reg  [31:0] p1_r_268;
+  reg  [31:0] p1_r_269;
+  reg  [31:0] p1_r_270;
+  reg  [31:0] p1_r_271;
+  reg  [31:0] p1_r_272;
+  reg  [31:0] p1_r_273;
+  reg  [31:0] p1_r_274;
+  reg  [31:0] p1_r_275;
+  reg  [31:0] p1_r_276;
+  reg  [31:0] p1_r_277;
+  reg  [31:0] p1_r_278;
+  reg  [31:0] p1_r_279;
+  reg  [31:0] p1_r_280;
+  reg  [31:0] p1_r_281;
+  reg  [31:0] p1_r_282;
+  reg  [31:0] p1_r_283;
+  reg  [31:0] p1_r_284;
+  reg  [31:0] p1_r_285;
+  reg  [31:0] p1_r_286;
+  reg  [31:0] p1_r_287;
+  reg  [31:0] p1_r_288;
+  reg  [31:0] p1_r_289;
+  reg  [31:0] p1_r_290;
+  reg  [31:0] p1_r_291;
+  reg  [31:0] p1_r_292;
+  reg  [31:0] p1_r_293;
+  reg  [31:0] p1_r_294;
+  reg  [31:0] p1_r_295;
+  reg  [31:0] p1_r_296;
+  reg  [31:0] p1_r_297;
+  reg  [31:0] p1_r_298;
+  reg  [31:0] p1_r_299;
+  reg  [31:0] p1_r_300;
+  reg  [31:0] p1_r_301;
+  reg  [31:0] p1_r_302;
+  reg  [31:0] p1_r_303;
+  reg  [31:0] p1_r_304;
+  reg  [31:0] p1_r_305;
+  reg  [31:0] p1_r_306;
+  reg  [31:0] p1_r_307;
+  reg  [31:0] p1_r_308;
+  reg  [31:0] p1_r_309;
+  reg  [31:0] p1_r_310;
+  reg  [31:0] p1_r_311;
+  reg  [31:0] p1_r_312;
+  reg  [31:0] p1_r_313;
+  reg  [31:0] p1_r_314;
+  reg  [31:0] p1_r_315;
+  reg  [31:0] p1_r_316;
+  reg  [31:0] p1_r_317;
+  reg  [31:0] p1_r_318;
+  reg  [31:0] p1_r_319;
+  reg  [31:0] p1_r_320;
+  reg  [31:0] p1_r_321;
+  reg  [31:0] p1_r_322;
+  reg  [31:0] p1_r_323;
+  reg  [31:0] p1_r_324;
+  reg  [31:0] p1_r_325;
+  reg  [31:0] p1_r_326;
+  reg  [31:0] p1_r_327;
+  reg  [31:0] p1_r_328;
+  reg  [31:0] p1_r_329;
+  reg  [31:0] p1_r_330;
+  reg  [31:0] p1_r_331;
+  reg  [31:0] p1_r_332;
+  reg  [31:0] p1_r_333;
+  reg  [31:0] p1_r_334;
+  reg  [31:0] p1_r_335;
+  reg  [31:0] p1_r_336;
+  reg  [31:0] p1_r_337;
+  reg  [31:0] p1_r_338;
+  reg  [31:0] p1_r_339;
+  reg  [31:0] p1_r_340;
+  reg  [31:0] p1_r_341;
+  reg  [31:0] p1_r_342;
+  reg  [31:0] p1_r_343;
+  reg  [31:0] p1_r_344;
+  reg  [31:0] p1_r_345;
+  reg  [31:0] p1_r_346;
+  reg  [31:0] p1_r_347;
+  reg  [31:0] p1_r_348;
+  reg  [31:0] p1_r_349;
+  reg  [31:0] p1_r_350;
+  reg  [31:0] p1_r_351;
+  reg  [31:0] p1_r_352;
+  reg  [31:0] p1_r_353;
+  reg  [31:0] p1_r_354;
+  reg  [31:0] p1_r_355;
+  reg  [31:0] p1_r_356;
+  reg  [31:0] p1_r_357;
+  reg  [31:0] p1_r_358;
+  reg  [31:0] p1_r_359;
+  reg  [31:0] p1_r_360;
+  reg  [31:0] p1_r_361;
+  reg  [31:0] p1_r_362;
+  reg  [31:0] p1_r_363;
+  reg  [31:0] p1_r_364;
+  reg  [31:0] p1_r_365;
+  reg  [31:0] p1_r_366;
+  reg  [31:0] p1_r_367;
+  reg  [31:0] p1_r_368;
   reg  [31:0] p1_2;
-  reg  [4:0]  baseFlags_r_21;
-  reg  [4:0]  baseFlags_r_22;
-  reg  [4:0]  baseFlags_r_23;
-  reg  [4:0]  baseFlags_r_24;
-  reg  [4:0]  baseFlags_r_25;
-  reg  [4:0]  baseFlags_r_26;
-  reg  [4:0]  baseFlags_r_27;
-  reg  [4:0]  baseFlags_r_28;
-  reg  [4:0]  baseFlags_r_29;
-  reg  [4:0]  baseFlags_r_30;
-  reg  [4:0]  baseFlags_r_31;
-  reg  [4:0]  baseFlags_r_32;
-  reg  [4:0]  baseFlags_r_33;
-  reg  [4:0]  baseFlags_r_34;
-  reg  [4:0]  baseFlags_r_35;
-  reg  [4:0]  baseFlags_r_36;
-  reg  [4:0]  baseFlags_r_37;
-  reg  [4:0]  baseFlags_r_38;
-  reg  [4:0]  baseFlags_r_39;
-  reg  [4:0]  baseFlags_r_40;
-  reg  [4:0]  baseFlags_r_41;
-  reg  [4:0]  baseFlags_r_42;
-  reg  [4:0]  baseFlags_r_43;
-  reg  [4:0]  baseFlags_r_44;
-  reg  [4:0]  baseFlags_r_45;
-  reg  [4:0]  baseFlags_r_46;
-  reg  [4:0]  baseFlags_r_47;
-  reg  [4:0]  baseFlags_r_48;
-  reg  [4:0]  baseFlags_r_49;
-  reg  [4:0]  baseFlags_r_50;
-  reg  [4:0]  baseFlags_r_51;
-  reg  [4:0]  baseFlags_r_52;
-  reg  [4:0]  baseFlags_r_53;
-  reg  [4:0]  baseFlags_r_54;
-  reg  [4:0]  baseFlags_r_55;
-  reg  [4:0]  baseFlags_r_56;
-  reg  [4:0]  baseFlags_r_57;
-  reg  [4:0]  baseFlags_r_58;
-  reg  [4:0]  baseFlags_r_59;
+  reg  [4:0]  baseFlags_r_136;
+  reg  [4:0]  baseFlags_r_137;
+  reg  [4:0]  baseFlags_r_138;
+  reg  [4:0]  baseFlags_r_139;
+  reg  [4:0]  baseFlags_r_140;
+  reg  [4:0]  baseFlags_r_141;
+  reg  [4:0]  baseFlags_r_142;
+  reg  [4:0]  baseFlags_r_143;
+  reg  [4:0]  baseFlags_r_144;
+  reg  [4:0]  baseFlags_r_145;
+  reg  [4:0]  baseFlags_r_146;
+  reg  [4:0]  baseFlags_r_147;
+  reg  [4:0]  baseFlags_r_148;
+  reg  [4:0]  baseFlags_r_149;
+  reg  [4:0]  baseFlags_r_150;
+  reg  [4:0]  baseFlags_r_151;
+  reg  [4:0]  baseFlags_r_152;
+  reg  [4:0]  baseFlags_r_153;
+  reg  [4:0]  baseFlags_r_154;
+  reg  [4:0]  baseFlags_r_155;
+  reg  [4:0]  baseFlags_r_156;
+  reg  [4:0]  baseFlags_r_157;
+  reg  [4:0]  baseFlags_r_158;
+  reg  [4:0]  baseFlags_r_159;
+  reg  [4:0]  baseFlags_r_160;
+  reg  [4:0]  baseFlags_r_161;
+  reg  [4:0]  baseFlags_r_162;
+  reg  [4:0]  baseFlags_r_163;
+  reg  [4:0]  baseFlags_r_164;
+  reg  [4:0]  baseFlags_r_165;
+  reg  [4:0]  baseFlags_r_166;
+  reg  [4:0]  baseFlags_r_167;
+  reg  [4:0]  baseFlags_r_168;
+  reg  [4:0]  baseFlags_r_169;
+  reg  [4:0]  baseFlags_r_170;
+  reg  [4:0]  baseFlags_r_171;
+  reg  [4:0]  baseFlags_r_172;
+  reg  [4:0]  baseFlags_r_173;
+  reg  [4:0]  baseFlags_r_174;
+  reg  [4:0]  baseFlags_r_175;
+  reg  [4:0]  baseFlags_r_176;
+  reg  [4:0]  baseFlags_r_177;
+  reg  [4:0]  baseFlags_r_178;
+  reg  [4:0]  baseFlags_r_179;
+  reg  [4:0]  baseFlags_r_180;
+  reg  [4:0]  baseFlags_r_181;
+  reg  [4:0]  baseFlags_r_182;
+  reg  [4:0]  baseFlags_r_183;
+  reg  [4:0]  baseFlags_r_184;
+  reg  [4:0]  baseFlags_r_185;
+  reg  [4:0]  baseFlags_r_186;
+  reg  [4:0]  baseFlags_r_187;
+  reg  [4:0]  baseFlags_r_188;
+  reg  [4:0]  baseFlags_r_189;
+  reg  [4:0]  baseFlags_r_190;
+  reg  [4:0]  baseFlags_r_191;
+  reg  [4:0]  baseFlags_r_192;
+  reg  [4:0]  baseFlags_r_193;
+  reg  [4:0]  baseFlags_r_194;
+  reg  [4:0]  baseFlags_r_195;
+  reg  [4:0]  baseFlags_r_196;
+  reg  [4:0]  baseFlags_r_197;
+  reg  [4:0]  baseFlags_r_198;
+  reg  [4:0]  baseFlags_r_199;
+  reg  [4:0]  baseFlags_r_200;
+  reg  [4:0]  baseFlags_r_201;
+  reg  [4:0]  baseFlags_r_202;
+  reg  [4:0]  baseFlags_r_203;
+  reg  [4:0]  baseFlags_r_204;
+  reg  [4:0]  baseFlags_r_205;
+  reg  [4:0]  baseFlags_r_206;
+  reg  [4:0]  baseFlags_r_207;
+  reg  [4:0]  baseFlags_r_208;
+  reg  [4:0]  baseFlags_r_209;
+  reg  [4:0]  baseFlags_r_210;
+  reg  [4:0]  baseFlags_r_211;
+  reg  [4:0]  baseFlags_r_212;
+  reg  [4:0]  baseFlags_r_213;
+  reg  [4:0]  baseFlags_r_214;
+  reg  [4:0]  baseFlags_r_215;
+  reg  [4:0]  baseFlags_r_216;
+  reg  [4:0]  baseFlags_r_217;
+  reg  [4:0]  baseFlags_r_218;
+  reg  [4:0]  baseFlags_r_219;
+  reg  [4:0]  baseFlags_r_220;
+  reg  [4:0]  baseFlags_r_221;
+  reg  [4:0]  baseFlags_r_222;
+  reg  [4:0]  baseFlags_r_223;
+  reg  [4:0]  baseFlags_r_224;
+  reg  [4:0]  baseFlags_r_225;
+  reg  [4:0]  baseFlags_r_226;
+  reg  [4:0]  baseFlags_r_227;
+  reg  [4:0]  baseFlags_r_228;
+  reg  [4:0]  baseFlags_r_229;
+  reg  [4:0]  baseFlags_r_230;
+  reg  [4:0]  baseFlags_r_231;
+  reg  [4:0]  baseFlags_r_232;
+  reg  [4:0]  baseFlags_r_233;
+  reg  [4:0]  baseFlags_r_234;
+  reg  [4:0]  baseFlags_r_235;
+  reg  [4:0]  baseFlags_r_236;
+  reg  [4:0]  baseFlags_r_237;
+  reg  [4:0]  baseFlags_r_238;
+  reg  [4:0]  baseFlags_r_239;
+  reg  [4:0]  baseFlags_r_240;
+  reg  [4:0]  baseFlags_r_241;
+  reg  [4:0]  baseFlags_r_242;
+  reg  [4:0]  baseFlags_r_243;
+  reg  [4:0]  baseFlags_r_244;
+  reg  [4:0]  baseFlags_r_245;
+  reg  [4:0]  baseFlags_r_246;
+  reg  [4:0]  baseFlags_r_247;
+  reg  [4:0]  baseFlags_r_248;
+  reg  [4:0]  baseFlags_r_249;
+  reg  [4:0]  baseFlags_r_250;
+  reg  [4:0]  baseFlags_r_251;
+  reg  [4:0]  baseFlags_r_252;
+  reg  [4:0]  baseFlags_r_253;
+  reg  [4:0]  baseFlags_r_254;
+  reg  [4:0]  baseFlags_r_255;
+  reg  [4:0]  baseFlags_r_256;
+  reg  [4:0]  baseFlags_r_257;
+  reg  [4:0]  baseFlags_r_258;
+  reg  [4:0]  baseFlags_r_259;
+  reg  [4:0]  baseFlags_r_260;
+  reg  [4:0]  baseFlags_r_261;
+  reg  [4:0]  baseFlags_r_262;
+  reg  [4:0]  baseFlags_r_263;
+  reg  [4:0]  baseFlags_r_264;
+  reg  [4:0]  baseFlags_r_265;
+  reg  [4:0]  baseFlags_r_266;
+  reg  [4:0]  baseFlags_r_267;
+  reg  [4:0]  baseFlags_r_268;
+  reg  [4:0]  baseFlags_r_269;
+  reg  [4:0]  baseFlags_r_270;
+  reg  [4:0]  baseFlags_r_271;
+  reg  [4:0]  baseFlags_r_272;
+  reg  [4:0]  baseFlags_r_273;
+  reg  [4:0]  baseFlags_r_274;
+  reg  [4:0]  baseFlags_r_275;
+  reg  [4:0]  baseFlags_r_276;
+  reg  [4:0]  baseFlags_r_277;
+  reg  [4:0]  baseFlags_r_278;
+  reg  [4:0]  baseFlags_r_279;
+  reg  [4:0]  baseFlags_r_280;
+  reg  [4:0]  baseFlags_r_281;
+  reg  [4:0]  baseFlags_r_282;
+  reg  [4:0]  baseFlags_r_283;
+  reg  [4:0]  baseFlags_r_284;
+  reg  [4:0]  baseFlags_r_285;
+  reg  [4:0]  baseFlags_r_286;
+  reg  [4:0]  baseFlags_r_287;
+  reg  [4:0]  baseFlags_r_288;
+  reg  [4:0]  baseFlags_r_289;
+  reg  [4:0]  baseFlags_r_290;
+  reg  [4:0]  baseFlags_r_291;
+  reg  [4:0]  baseFlags_r_292;
+  reg  [4:0]  baseFlags_r_293;
+  reg  [4:0]  baseFlags_r_294;
+  reg  [4:0]  baseFlags_r_295;
+  reg  [4:0]  baseFlags_r_296;
+  reg  [4:0]  baseFlags_r_297;
+  reg  [4:0]  baseFlags_r_298;
+  reg  [4:0]  baseFlags_r_299;
+  reg  [4:0]  baseFlags_r_300;
+  reg  [4:0]  baseFlags_r_301;
+  reg  [4:0]  baseFlags_r_302;
+  reg  [4:0]  baseFlags_r_303;
+  reg  [4:0]  baseFlags_r_304;
+  reg  [4:0]  baseFlags_r_305;
+  reg  [4:0]  baseFlags_r_306;
+  reg  [4:0]  baseFlags_r_307;
+  reg  [4:0]  baseFlags_r_308;
+  reg  [4:0]  baseFlags_r_309;
+  reg  [4:0]  baseFlags_r_310;
+  reg  [4:0]  baseFlags_r_311;
+  reg  [4:0]  baseFlags_r_312;
+  reg  [4:0]  baseFlags_r_313;
+  reg  [4:0]  baseFlags_r_314;
+  reg  [4:0]  baseFlags_r_315;
+  reg  [4:0]  baseFlags_r_316;
+  reg  [4:0]  baseFlags_r_317;
+  reg  [4:0]  baseFlags_r_318;
+  reg  [4:0]  baseFlags_r_319;
+  reg  [4:0]  baseFlags_r_320;
+  reg  [4:0]  baseFlags_r_321;
+  reg  [4:0]  baseFlags_r_322;
+  reg  [4:0]  baseFlags_r_323;
+  reg  [4:0]  baseFlags_r_324;
+  reg  [4:0]  baseFlags_r_325;
+  reg  [4:0]  baseFlags_r_326;
+  reg  [4:0]  baseFlags_r_327;
+  reg  [4:0]  baseFlags_r_328;
+  reg  [4:0]  baseFlags_r_329;
+  reg  [4:0]  baseFlags_r_330;
+  reg  [4:0]  baseFlags_r_331;
+  reg  [4:0]  baseFlags_r_332;
+  reg  [4:0]  baseFlags_r_333;
+  reg  [4:0]  baseFlags_r_334;
+  reg  [4:0]  baseFlags_r_335;
+  reg  [4:0]  baseFlags_r_336;
+  reg  [4:0]  baseFlags_r_337;
+  reg  [4:0]  baseFlags_r_338;
+  reg  [4:0]  baseFlags_r_339;
+  reg  [4:0]  baseFlags_r_340;
+  reg  [4:0]  baseFlags_r_341;
+  reg  [4:0]  baseFlags_r_342;
+  reg  [4:0]  baseFlags_r_343;
+  reg  [4:0]  baseFlags_r_344;
+  reg  [4:0]  baseFlags_r_345;
+  reg  [4:0]  baseFlags_r_346;
+  reg  [4:0]  baseFlags_r_347;
+  reg  [4:0]  baseFlags_r_348;
+  reg  [4:0]  baseFlags_r_349;
+  reg  [4:0]  baseFlags_r_350;
+  reg  [4:0]  baseFlags_r_351;
+  reg  [4:0]  baseFlags_r_352;
+  reg  [4:0]  baseFlags_r_353;
+  reg  [4:0]  baseFlags_r_354;
+  reg  [4:0]  baseFlags_r_355;
+  reg  [4:0]  baseFlags_r_356;
+  reg  [4:0]  baseFlags_r_357;
+  reg  [4:0]  baseFlags_r_358;
+  reg  [4:0]  baseFlags_r_359;
+  reg  [4:0]  baseFlags_r_360;
+  reg  [4:0]  baseFlags_r_361;
+  reg  [4:0]  baseFlags_r_362;
+  reg  [4:0]  baseFlags_r_363;
+  reg  [4:0]  baseFlags_r_364;
+  reg  [4:0]  baseFlags_r_365;
+  reg  [4:0]  baseFlags_r_366;
+  reg  [4:0]  baseFlags_r_367;
+  reg  [4:0]  baseFlags_r_368;
+  reg  [4:0]  baseFlags_r_369;
+  reg  [4:0]  baseFlags_r_370;
+  reg  [4:0]  baseFlags_r_371;
+  reg  [4:0]  baseFlags_r_372;
+  reg  [4:0]  baseFlags_r_373;
+  reg  [4:0]  baseFlags_r_374;
+  reg  [4:0]  baseFlags_r_375;
+  reg  [4:0]  baseFlags_r_376;
+  reg  [4:0]  baseFlags_r_377;
+  reg  [4:0]  baseFlags_r_378;
   reg  [4:0]  contactFlags_r;
   reg  [4:0]  contactFlags_r_1;
   reg  [4:0]  contactFlags_r_2;
@@ -116700,6 +119374,235 @@ module ScpuDatapath_fp32_world(
   reg  [4:0]  contactFlags_r_40;
   reg  [4:0]  contactFlags_r_41;
   reg  [4:0]  contactFlags_r_42;
+  reg  [4:0]  contactFlags_r_43;
+  reg  [4:0]  contactFlags_r_44;
+  reg  [4:0]  contactFlags_r_45;
+  reg  [4:0]  contactFlags_r_46;
+  reg  [4:0]  contactFlags_r_47;
+  reg  [4:0]  contactFlags_r_48;
+  reg  [4:0]  contactFlags_r_49;
+  reg  [4:0]  contactFlags_r_50;
+  reg  [4:0]  contactFlags_r_51;
+  reg  [4:0]  contactFlags_r_52;
+  reg  [4:0]  contactFlags_r_53;
+  reg  [4:0]  contactFlags_r_54;
+  reg  [4:0]  contactFlags_r_55;
+  reg  [4:0]  contactFlags_r_56;
+  reg  [4:0]  contactFlags_r_57;
+  reg  [4:0]  contactFlags_r_58;
+  reg  [4:0]  contactFlags_r_59;
+  reg  [4:0]  contactFlags_r_60;
+  reg  [4:0]  contactFlags_r_61;
+  reg  [4:0]  contactFlags_r_62;
+  reg  [4:0]  contactFlags_r_63;
+  reg  [4:0]  contactFlags_r_64;
+  reg  [4:0]  contactFlags_r_65;
+  reg  [4:0]  contactFlags_r_66;
+  reg  [4:0]  contactFlags_r_67;
+  reg  [4:0]  contactFlags_r_68;
+  reg  [4:0]  contactFlags_r_69;
+  reg  [4:0]  contactFlags_r_70;
+  reg  [4:0]  contactFlags_r_71;
+  reg  [4:0]  contactFlags_r_72;
+  reg  [4:0]  contactFlags_r_73;
+  reg  [4:0]  contactFlags_r_74;
+  reg  [4:0]  contactFlags_r_75;
+  reg  [4:0]  contactFlags_r_76;
+  reg  [4:0]  contactFlags_r_77;
+  reg  [4:0]  contactFlags_r_78;
+  reg  [4:0]  contactFlags_r_79;
+  reg  [4:0]  contactFlags_r_80;
+  reg  [4:0]  contactFlags_r_81;
+  reg  [4:0]  contactFlags_r_82;
+  reg  [4:0]  contactFlags_r_83;
+  reg  [4:0]  contactFlags_r_84;
+  reg  [4:0]  contactFlags_r_85;
+  reg  [4:0]  contactFlags_r_86;
+  reg  [4:0]  contactFlags_r_87;
+  reg  [4:0]  contactFlags_r_88;
+  reg  [4:0]  contactFlags_r_89;
+  reg  [4:0]  contactFlags_r_90;
+  reg  [4:0]  contactFlags_r_91;
+  reg  [4:0]  contactFlags_r_92;
+  reg  [4:0]  contactFlags_r_93;
+  reg  [4:0]  contactFlags_r_94;
+  reg  [4:0]  contactFlags_r_95;
+  reg  [4:0]  contactFlags_r_96;
+  reg  [4:0]  contactFlags_r_97;
+  reg  [4:0]  contactFlags_r_98;
+  reg  [4:0]  contactFlags_r_99;
+  reg  [4:0]  contactFlags_r_100;
+  reg  [4:0]  contactFlags_r_101;
+  reg  [4:0]  contactFlags_r_102;
+  reg  [4:0]  contactFlags_r_103;
+  reg  [4:0]  contactFlags_r_104;
+  reg  [4:0]  contactFlags_r_105;
+  reg  [4:0]  contactFlags_r_106;
+  reg  [4:0]  contactFlags_r_107;
+  reg  [4:0]  contactFlags_r_108;
+  reg  [4:0]  contactFlags_r_109;
+  reg  [4:0]  contactFlags_r_110;
+  reg  [4:0]  contactFlags_r_111;
+  reg  [4:0]  contactFlags_r_112;
+  reg  [4:0]  contactFlags_r_113;
+  reg  [4:0]  contactFlags_r_114;
+  reg  [4:0]  contactFlags_r_115;
+  reg  [4:0]  contactFlags_r_116;
+  reg  [4:0]  contactFlags_r_117;
+  reg  [4:0]  contactFlags_r_118;
+  reg  [4:0]  contactFlags_r_119;
+  reg  [4:0]  contactFlags_r_120;
+  reg  [4:0]  contactFlags_r_121;
+  reg  [4:0]  contactFlags_r_122;
+  reg  [4:0]  contactFlags_r_123;
+  reg  [4:0]  contactFlags_r_124;
+  reg  [4:0]  contactFlags_r_125;
+  reg  [4:0]  contactFlags_r_126;
+  reg  [4:0]  contactFlags_r_127;
+  reg  [4:0]  contactFlags_r_128;
+  reg  [4:0]  contactFlags_r_129;
+  reg  [4:0]  contactFlags_r_130;
+  reg  [4:0]  contactFlags_r_131;
+  reg  [4:0]  contactFlags_r_132;
+  reg  [4:0]  contactFlags_r_133;
+  reg  [4:0]  contactFlags_r_134;
+  reg  [4:0]  contactFlags_r_135;
+  reg  [4:0]  contactFlags_r_136;
+  reg  [4:0]  contactFlags_r_137;
+  reg  [4:0]  contactFlags_r_138;
+  reg  [4:0]  contactFlags_r_139;
+  reg  [4:0]  contactFlags_r_140;
+  reg  [4:0]  contactFlags_r_141;
+  reg  [4:0]  contactFlags_r_142;
+  reg  [4:0]  contactFlags_r_143;
+  reg  [4:0]  contactFlags_r_144;
+  reg  [4:0]  contactFlags_r_145;
+  reg  [4:0]  contactFlags_r_146;
+  reg  [4:0]  contactFlags_r_147;
+  reg  [4:0]  contactFlags_r_148;
+  reg  [4:0]  contactFlags_r_149;
+  reg  [4:0]  contactFlags_r_150;
+  reg  [4:0]  contactFlags_r_151;
+  reg  [4:0]  contactFlags_r_152;
+  reg  [4:0]  contactFlags_r_153;
+  reg  [4:0]  contactFlags_r_154;
+  reg  [4:0]  contactFlags_r_155;
+  reg  [4:0]  contactFlags_r_156;
+  reg  [4:0]  contactFlags_r_157;
+  reg  [4:0]  contactFlags_r_158;
+  reg  [4:0]  contactFlags_r_159;
+  reg  [4:0]  contactFlags_r_160;
+  reg  [4:0]  contactFlags_r_161;
+  reg  [4:0]  contactFlags_r_162;
+  reg  [4:0]  contactFlags_r_163;
+  reg  [4:0]  contactFlags_r_164;
+  reg  [4:0]  contactFlags_r_165;
+  reg  [4:0]  contactFlags_r_166;
+  reg  [4:0]  contactFlags_r_167;
+  reg  [4:0]  contactFlags_r_168;
+  reg  [4:0]  contactFlags_r_169;
+  reg  [4:0]  contactFlags_r_170;
+  reg  [4:0]  contactFlags_r_171;
+  reg  [4:0]  contactFlags_r_172;
+  reg  [4:0]  contactFlags_r_173;
+  reg  [4:0]  contactFlags_r_174;
+  reg  [4:0]  contactFlags_r_175;
+  reg  [4:0]  contactFlags_r_176;
+  reg  [4:0]  contactFlags_r_177;
+  reg  [4:0]  contactFlags_r_178;
+  reg  [4:0]  contactFlags_r_179;
+  reg  [4:0]  contactFlags_r_180;
+  reg  [4:0]  contactFlags_r_181;
+  reg  [4:0]  contactFlags_r_182;
+  reg  [4:0]  contactFlags_r_183;
+  reg  [4:0]  contactFlags_r_184;
+  reg  [4:0]  contactFlags_r_185;
+  reg  [4:0]  contactFlags_r_186;
+  reg  [4:0]  contactFlags_r_187;
+  reg  [4:0]  contactFlags_r_188;
+  reg  [4:0]  contactFlags_r_189;
+  reg  [4:0]  contactFlags_r_190;
+  reg  [4:0]  contactFlags_r_191;
+  reg  [4:0]  contactFlags_r_192;
+  reg  [4:0]  contactFlags_r_193;
+  reg  [4:0]  contactFlags_r_194;
+  reg  [4:0]  contactFlags_r_195;
+  reg  [4:0]  contactFlags_r_196;
+  reg  [4:0]  contactFlags_r_197;
+  reg  [4:0]  contactFlags_r_198;
+  reg  [4:0]  contactFlags_r_199;
+  reg  [4:0]  contactFlags_r_200;
+  reg  [4:0]  contactFlags_r_201;
+  reg  [4:0]  contactFlags_r_202;
+  reg  [4:0]  contactFlags_r_203;
+  reg  [4:0]  contactFlags_r_204;
+  reg  [4:0]  contactFlags_r_205;
+  reg  [4:0]  contactFlags_r_206;
+  reg  [4:0]  contactFlags_r_207;
+  reg  [4:0]  contactFlags_r_208;
+  reg  [4:0]  contactFlags_r_209;
+  reg  [4:0]  contactFlags_r_210;
+  reg  [4:0]  contactFlags_r_211;
+  reg  [4:0]  contactFlags_r_212;
+  reg  [4:0]  contactFlags_r_213;
+  reg  [4:0]  contactFlags_r_214;
+  reg  [4:0]  contactFlags_r_215;
+  reg  [4:0]  contactFlags_r_216;
+  reg  [4:0]  contactFlags_r_217;
+  reg  [4:0]  contactFlags_r_218;
+  reg  [4:0]  contactFlags_r_219;
+  reg  [4:0]  contactFlags_r_220;
+  reg  [4:0]  contactFlags_r_221;
+  reg  [4:0]  contactFlags_r_222;
+  reg  [4:0]  contactFlags_r_223;
+  reg  [4:0]  contactFlags_r_224;
+  reg  [4:0]  contactFlags_r_225;
+  reg  [4:0]  contactFlags_r_226;
+  reg  [4:0]  contactFlags_r_227;
+  reg  [4:0]  contactFlags_r_228;
+  reg  [4:0]  contactFlags_r_229;
+  reg  [4:0]  contactFlags_r_230;
+  reg  [4:0]  contactFlags_r_231;
+  reg  [4:0]  contactFlags_r_232;
+  reg  [4:0]  contactFlags_r_233;
+  reg  [4:0]  contactFlags_r_234;
+  reg  [4:0]  contactFlags_r_235;
+  reg  [4:0]  contactFlags_r_236;
+  reg  [4:0]  contactFlags_r_237;
+  reg  [4:0]  contactFlags_r_238;
+  reg  [4:0]  contactFlags_r_239;
+  reg  [4:0]  contactFlags_r_240;
+  reg  [4:0]  contactFlags_r_241;
+  reg  [4:0]  contactFlags_r_242;
+  reg  [4:0]  contactFlags_r_243;
+  reg  [4:0]  contactFlags_r_244;
+  reg  [4:0]  contactFlags_r_245;
+  reg  [4:0]  contactFlags_r_246;
+  reg  [4:0]  contactFlags_r_247;
+  reg  [4:0]  contactFlags_r_248;
+  reg  [4:0]  contactFlags_r_249;
+  reg  [4:0]  contactFlags_r_250;
+  reg  [4:0]  contactFlags_r_251;
+  reg  [4:0]  contactFlags_r_252;
+  reg  [4:0]  contactFlags_r_253;
+  reg  [4:0]  contactFlags_r_254;
+  reg  [4:0]  contactFlags_r_255;
+  reg  [4:0]  contactFlags_r_256;
+  reg  [4:0]  contactFlags_r_257;
+  reg  [4:0]  contactFlags_r_258;
+  reg  [4:0]  contactFlags_r_259;
+  reg  [4:0]  contactFlags_r_260;
+  reg  [4:0]  contactFlags_r_261;
+  reg  [4:0]  contactFlags_r_262;
+  reg  [4:0]  contactFlags_r_263;
+  reg  [4:0]  contactFlags_r_264;
+  reg  [4:0]  contactFlags_r_265;
+  reg  [4:0]  contactFlags_r_266;
+  reg  [4:0]  contactFlags_r_267;
+  reg  [4:0]  contactFlags_r_268;
+  reg  [4:0]  contactFlags_r_269;
+  reg  [4:0]  contactFlags_r_270;
+  reg  [4:0]  contactFlags_r_271;
   reg         le_r;
   reg         le_r_1;
   reg         le_r_2;
@@ -116708,6 +119611,56 @@ module ScpuDatapath_fp32_world(
   reg         le_r_5;
   reg         le_r_6;
   reg         le_r_7;
+  reg         le_r_8;
+  reg         le_r_9;
+  reg         le_r_10;
+  reg         le_r_11;
+  reg         le_r_12;
+  reg         le_r_13;
+  reg         le_r_14;
+  reg         le_r_15;
+  reg         le_r_16;
+  reg         le_r_17;
+  reg         le_r_18;
+  reg         le_r_19;
+  reg         le_r_20;
+  reg         le_r_21;
+  reg         le_r_22;
+  reg         le_r_23;
+  reg         le_r_24;
+  reg         le_r_25;
+  reg         le_r_26;
+  reg         le_r_27;
+  reg         le_r_28;
+  reg         le_r_29;
+  reg         le_r_30;
+  reg         le_r_31;
+  reg         le_r_32;
+  reg         le_r_33;
+  reg         le_r_34;
+  reg         le_r_35;
+  reg         le_r_36;
+  reg         le_r_37;
+  reg         le_r_38;
+  reg         le_r_39;
+  reg         le_r_40;
+  reg         le_r_41;
+  reg         le_r_42;
+  reg         le_r_43;
+  reg         le_r_44;
+  reg         le_r_45;
+  reg         le_r_46;
+  reg         le_r_47;
+  reg         le_r_48;
+  reg         le_r_49;
+  reg         le_r_50;
+  reg         le_r_51;
+  reg         le_r_52;
+  reg         le_r_53;
+  reg         le_r_54;
+  reg         le_r_55;
+  reg         le_r_56;
+  reg         le_r_57;
   reg         le;
   reg         zero_r;
   reg         zero_r_1;
@@ -116718,6 +119671,56 @@ module ScpuDatapath_fp32_world(
   reg         zero_r_6;
   reg         zero_r_7;
   reg         zero_r_8;
+  reg         zero_r_9;
+  reg         zero_r_10;
+  reg         zero_r_11;
+  reg         zero_r_12;
+  reg         zero_r_13;
+  reg         zero_r_14;
+  reg         zero_r_15;
+  reg         zero_r_16;
+  reg         zero_r_17;
+  reg         zero_r_18;
+  reg         zero_r_19;
+  reg         zero_r_20;
+  reg         zero_r_21;
+  reg         zero_r_22;
+  reg         zero_r_23;
+  reg         zero_r_24;
+  reg         zero_r_25;
+  reg         zero_r_26;
+  reg         zero_r_27;
+  reg         zero_r_28;
+  reg         zero_r_29;
+  reg         zero_r_30;
+  reg         zero_r_31;
+  reg         zero_r_32;
+  reg         zero_r_33;
+  reg         zero_r_34;
+  reg         zero_r_35;
+  reg         zero_r_36;
+  reg         zero_r_37;
+  reg         zero_r_38;
+  reg         zero_r_39;
+  reg         zero_r_40;
+  reg         zero_r_41;
+  reg         zero_r_42;
+  reg         zero_r_43;
+  reg         zero_r_44;
+  reg         zero_r_45;
+  reg         zero_r_46;
+  reg         zero_r_47;
+  reg         zero_r_48;
+  reg         zero_r_49;
+  reg         zero_r_50;
+  reg         zero_r_51;
+  reg         zero_r_52;
+  reg         zero_r_53;
+  reg         zero_r_54;
+  reg         zero_r_55;
+  reg         zero_r_56;
+  reg         zero_r_57;
+  reg         zero_r_58;
   reg         zero;
   wire        contact = le & ~zero;
   reg  [31:0] dO_r;
@@ -116729,9 +119732,84 @@ module ScpuDatapath_fp32_world(
   reg  [31:0] dO_r_6;
   reg  [31:0] dO_r_7;
   reg  [31:0] dO_r_8;
+  reg  [31:0] dO_r_9;
+  reg  [31:0] dO_r_10;
+  reg  [31:0] dO_r_11;
+  reg  [31:0] dO_r_12;
+  reg  [31:0] dO_r_13;
+  reg  [31:0] dO_r_14;
+  reg  [31:0] dO_r_15;
+  reg  [31:0] dO_r_16;
+  reg  [31:0] dO_r_17;
+  reg  [31:0] dO_r_18;
+  reg  [31:0] dO_r_19;
+  reg  [31:0] dO_r_20;
+  reg  [31:0] dO_r_21;
+  reg  [31:0] dO_r_22;
+  reg  [31:0] dO_r_23;
+  reg  [31:0] dO_r_24;
+  reg  [31:0] dO_r_25;
+  reg  [31:0] dO_r_26;
+  reg  [31:0] dO_r_27;
+  reg  [31:0] dO_r_28;
+  reg  [31:0] dO_r_29;
+  reg  [31:0] dO_r_30;
+  reg  [31:0] dO_r_31;
+  reg  [31:0] dO_r_32;
+  reg  [31:0] dO_r_33;
+  reg  [31:0] dO_r_34;
+  reg  [31:0] dO_r_35;
+  reg  [31:0] dO_r_36;
+  reg  [31:0] dO_r_37;
+  reg  [31:0] dO_r_38;
+  reg  [31:0] dO_r_39;
+  reg  [31:0] dO_r_40;
+  reg  [31:0] dO_r_41;
+  reg  [31:0] dO_r_42;
+  reg  [31:0] dO_r_43;
+  reg  [31:0] dO_r_44;
+  reg  [31:0] dO_r_45;
+  reg  [31:0] dO_r_46;
+  reg  [31:0] dO_r_47;
+  reg  [31:0] dO_r_48;
+  reg  [31:0] dO_r_49;
+  reg  [31:0] dO_r_50;
+  reg  [31:0] dO_r_51;
+  reg  [31:0] dO_r_52;
+  reg  [31:0] dO_r_53;
+  reg  [31:0] dO_r_54;
+  reg  [31:0] dO_r_55;
+  reg  [31:0] dO_r_56;
+  reg  [31:0] dO_r_57;
+  reg  [31:0] dO_r_58;
   reg  [31:0] dO;
   reg  [31:0] wO_r;
   reg  [31:0] wO_r_1;
+  reg  [31:0] wO_r_2;
+  reg  [31:0] wO_r_3;
+  reg  [31:0] wO_r_4;
+  reg  [31:0] wO_r_5;
+  reg  [31:0] wO_r_6;
+  reg  [31:0] wO_r_7;
+  reg  [31:0] wO_r_8;
+  reg  [31:0] wO_r_9;
+  reg  [31:0] wO_r_10;
+  reg  [31:0] wO_r_11;
+  reg  [31:0] wO_r_12;
+  reg  [31:0] wO_r_13;
+  reg  [31:0] wO_r_14;
+  reg  [31:0] wO_r_15;
+  reg  [31:0] wO_r_16;
+  reg  [31:0] wO_r_17;
+  reg  [31:0] wO_r_18;
+  reg  [31:0] wO_r_19;
+  reg  [31:0] wO_r_20;
+  reg  [31:0] wO_r_21;
+  reg  [31:0] wO_r_22;
+  reg  [31:0] wO_r_23;
+  reg  [31:0] wO_r_24;
+  reg  [31:0] wO_r_25;
+  reg  [31:0] wO_r_26;
   reg  [31:0] wO;
   reg  [23:0] io_out_bits_meta_tag_r;
   reg  [23:0] io_out_bits_meta_tag_r_1;
@@ -116754,6 +119832,121 @@ module ScpuDatapath_fp32_world(
   reg  [23:0] io_out_bits_meta_tag_r_18;
   reg  [23:0] io_out_bits_meta_tag_r_19;
   reg  [23:0] io_out_bits_meta_tag_r_20;
+  reg  [23:0] io_out_bits_meta_tag_r_21;
+  reg  [23:0] io_out_bits_meta_tag_r_22;
+  reg  [23:0] io_out_bits_meta_tag_r_23;
+  reg  [23:0] io_out_bits_meta_tag_r_24;
+  reg  [23:0] io_out_bits_meta_tag_r_25;
+  reg  [23:0] io_out_bits_meta_tag_r_26;
+  reg  [23:0] io_out_bits_meta_tag_r_27;
+  reg  [23:0] io_out_bits_meta_tag_r_28;
+  reg  [23:0] io_out_bits_meta_tag_r_29;
+  reg  [23:0] io_out_bits_meta_tag_r_30;
+  reg  [23:0] io_out_bits_meta_tag_r_31;
+  reg  [23:0] io_out_bits_meta_tag_r_32;
+  reg  [23:0] io_out_bits_meta_tag_r_33;
+  reg  [23:0] io_out_bits_meta_tag_r_34;
+  reg  [23:0] io_out_bits_meta_tag_r_35;
+  reg  [23:0] io_out_bits_meta_tag_r_36;
+  reg  [23:0] io_out_bits_meta_tag_r_37;
+  reg  [23:0] io_out_bits_meta_tag_r_38;
+  reg  [23:0] io_out_bits_meta_tag_r_39;
+  reg  [23:0] io_out_bits_meta_tag_r_40;
+  reg  [23:0] io_out_bits_meta_tag_r_41;
+  reg  [23:0] io_out_bits_meta_tag_r_42;
+  reg  [23:0] io_out_bits_meta_tag_r_43;
+  reg  [23:0] io_out_bits_meta_tag_r_44;
+  reg  [23:0] io_out_bits_meta_tag_r_45;
+  reg  [23:0] io_out_bits_meta_tag_r_46;
+  reg  [23:0] io_out_bits_meta_tag_r_47;
+  reg  [23:0] io_out_bits_meta_tag_r_48;
+  reg  [23:0] io_out_bits_meta_tag_r_49;
+  reg  [23:0] io_out_bits_meta_tag_r_50;
+  reg  [23:0] io_out_bits_meta_tag_r_51;
+  reg  [23:0] io_out_bits_meta_tag_r_52;
+  reg  [23:0] io_out_bits_meta_tag_r_53;
+  reg  [23:0] io_out_bits_meta_tag_r_54;
+  reg  [23:0] io_out_bits_meta_tag_r_55;
+  reg  [23:0] io_out_bits_meta_tag_r_56;
+  reg  [23:0] io_out_bits_meta_tag_r_57;
+  reg  [23:0] io_out_bits_meta_tag_r_58;
+  reg  [23:0] io_out_bits_meta_tag_r_59;
+  reg  [23:0] io_out_bits_meta_tag_r_60;
+  reg  [23:0] io_out_bits_meta_tag_r_61;
+  reg  [23:0] io_out_bits_meta_tag_r_62;
+  reg  [23:0] io_out_bits_meta_tag_r_63;
+  reg  [23:0] io_out_bits_meta_tag_r_64;
+  reg  [23:0] io_out_bits_meta_tag_r_65;
+  reg  [23:0] io_out_bits_meta_tag_r_66;
+  reg  [23:0] io_out_bits_meta_tag_r_67;
+  reg  [23:0] io_out_bits_meta_tag_r_68;
+  reg  [23:0] io_out_bits_meta_tag_r_69;
+  reg  [23:0] io_out_bits_meta_tag_r_70;
+  reg  [23:0] io_out_bits_meta_tag_r_71;
+  reg  [23:0] io_out_bits_meta_tag_r_72;
+  reg  [23:0] io_out_bits_meta_tag_r_73;
+  reg  [23:0] io_out_bits_meta_tag_r_74;
+  reg  [23:0] io_out_bits_meta_tag_r_75;
+  reg  [23:0] io_out_bits_meta_tag_r_76;
+  reg  [23:0] io_out_bits_meta_tag_r_77;
+  reg  [23:0] io_out_bits_meta_tag_r_78;
+  reg  [23:0] io_out_bits_meta_tag_r_79;
+  reg  [23:0] io_out_bits_meta_tag_r_80;
+  reg  [23:0] io_out_bits_meta_tag_r_81;
+  reg  [23:0] io_out_bits_meta_tag_r_82;
+  reg  [23:0] io_out_bits_meta_tag_r_83;
+  reg  [23:0] io_out_bits_meta_tag_r_84;
+  reg  [23:0] io_out_bits_meta_tag_r_85;
+  reg  [23:0] io_out_bits_meta_tag_r_86;
+  reg  [23:0] io_out_bits_meta_tag_r_87;
+  reg  [23:0] io_out_bits_meta_tag_r_88;
+  reg  [23:0] io_out_bits_meta_tag_r_89;
+  reg  [23:0] io_out_bits_meta_tag_r_90;
+  reg  [23:0] io_out_bits_meta_tag_r_91;
+  reg  [23:0] io_out_bits_meta_tag_r_92;
+  reg  [23:0] io_out_bits_meta_tag_r_93;
+  reg  [23:0] io_out_bits_meta_tag_r_94;
+  reg  [23:0] io_out_bits_meta_tag_r_95;
+  reg  [23:0] io_out_bits_meta_tag_r_96;
+  reg  [23:0] io_out_bits_meta_tag_r_97;
+  reg  [23:0] io_out_bits_meta_tag_r_98;
+  reg  [23:0] io_out_bits_meta_tag_r_99;
+  reg  [23:0] io_out_bits_meta_tag_r_100;
+  reg  [23:0] io_out_bits_meta_tag_r_101;
+  reg  [23:0] io_out_bits_meta_tag_r_102;
+  reg  [23:0] io_out_bits_meta_tag_r_103;
+  reg  [23:0] io_out_bits_meta_tag_r_104;
+  reg  [23:0] io_out_bits_meta_tag_r_105;
+  reg  [23:0] io_out_bits_meta_tag_r_106;
+  reg  [23:0] io_out_bits_meta_tag_r_107;
+  reg  [23:0] io_out_bits_meta_tag_r_108;
+  reg  [23:0] io_out_bits_meta_tag_r_109;
+  reg  [23:0] io_out_bits_meta_tag_r_110;
+  reg  [23:0] io_out_bits_meta_tag_r_111;
+  reg  [23:0] io_out_bits_meta_tag_r_112;
+  reg  [23:0] io_out_bits_meta_tag_r_113;
+  reg  [23:0] io_out_bits_meta_tag_r_114;
+  reg  [23:0] io_out_bits_meta_tag_r_115;
+  reg  [23:0] io_out_bits_meta_tag_r_116;
+  reg  [23:0] io_out_bits_meta_tag_r_117;
+  reg  [23:0] io_out_bits_meta_tag_r_118;
+  reg  [23:0] io_out_bits_meta_tag_r_119;
+  reg  [23:0] io_out_bits_meta_tag_r_120;
+  reg  [23:0] io_out_bits_meta_tag_r_121;
+  reg  [23:0] io_out_bits_meta_tag_r_122;
+  reg  [23:0] io_out_bits_meta_tag_r_123;
+  reg  [23:0] io_out_bits_meta_tag_r_124;
+  reg  [23:0] io_out_bits_meta_tag_r_125;
+  reg  [23:0] io_out_bits_meta_tag_r_126;
+  reg  [23:0] io_out_bits_meta_tag_r_127;
+  reg  [23:0] io_out_bits_meta_tag_r_128;
+  reg  [23:0] io_out_bits_meta_tag_r_129;
+  reg  [23:0] io_out_bits_meta_tag_r_130;
+  reg  [23:0] io_out_bits_meta_tag_r_131;
+  reg  [23:0] io_out_bits_meta_tag_r_132;
+  reg  [23:0] io_out_bits_meta_tag_r_133;
+  reg  [23:0] io_out_bits_meta_tag_r_134;
+  reg  [23:0] io_out_bits_meta_tag_r_135;
   reg         io_out_bits_meta_nonFinite_r;
   reg         io_out_bits_meta_nonFinite_r_1;
   reg         io_out_bits_meta_nonFinite_r_2;
@@ -116775,6 +119968,121 @@ module ScpuDatapath_fp32_world(
   reg         io_out_bits_meta_nonFinite_r_18;
   reg         io_out_bits_meta_nonFinite_r_19;
   reg         io_out_bits_meta_nonFinite_r_20;
+  reg         io_out_bits_meta_nonFinite_r_21;
+  reg         io_out_bits_meta_nonFinite_r_22;
+  reg         io_out_bits_meta_nonFinite_r_23;
+  reg         io_out_bits_meta_nonFinite_r_24;
+  reg         io_out_bits_meta_nonFinite_r_25;
+  reg         io_out_bits_meta_nonFinite_r_26;
+  reg         io_out_bits_meta_nonFinite_r_27;
+  reg         io_out_bits_meta_nonFinite_r_28;
+  reg         io_out_bits_meta_nonFinite_r_29;
+  reg         io_out_bits_meta_nonFinite_r_30;
+  reg         io_out_bits_meta_nonFinite_r_31;
+  reg         io_out_bits_meta_nonFinite_r_32;
+  reg         io_out_bits_meta_nonFinite_r_33;
+  reg         io_out_bits_meta_nonFinite_r_34;
+  reg         io_out_bits_meta_nonFinite_r_35;
+  reg         io_out_bits_meta_nonFinite_r_36;
+  reg         io_out_bits_meta_nonFinite_r_37;
+  reg         io_out_bits_meta_nonFinite_r_38;
+  reg         io_out_bits_meta_nonFinite_r_39;
+  reg         io_out_bits_meta_nonFinite_r_40;
+  reg         io_out_bits_meta_nonFinite_r_41;
+  reg         io_out_bits_meta_nonFinite_r_42;
+  reg         io_out_bits_meta_nonFinite_r_43;
+  reg         io_out_bits_meta_nonFinite_r_44;
+  reg         io_out_bits_meta_nonFinite_r_45;
+  reg         io_out_bits_meta_nonFinite_r_46;
+  reg         io_out_bits_meta_nonFinite_r_47;
+  reg         io_out_bits_meta_nonFinite_r_48;
+  reg         io_out_bits_meta_nonFinite_r_49;
+  reg         io_out_bits_meta_nonFinite_r_50;
+  reg         io_out_bits_meta_nonFinite_r_51;
+  reg         io_out_bits_meta_nonFinite_r_52;
+  reg         io_out_bits_meta_nonFinite_r_53;
+  reg         io_out_bits_meta_nonFinite_r_54;
+  reg         io_out_bits_meta_nonFinite_r_55;
+  reg         io_out_bits_meta_nonFinite_r_56;
+  reg         io_out_bits_meta_nonFinite_r_57;
+  reg         io_out_bits_meta_nonFinite_r_58;
+  reg         io_out_bits_meta_nonFinite_r_59;
+  reg         io_out_bits_meta_nonFinite_r_60;
+  reg         io_out_bits_meta_nonFinite_r_61;
+  reg         io_out_bits_meta_nonFinite_r_62;
+  reg         io_out_bits_meta_nonFinite_r_63;
+  reg         io_out_bits_meta_nonFinite_r_64;
+  reg         io_out_bits_meta_nonFinite_r_65;
+  reg         io_out_bits_meta_nonFinite_r_66;
+  reg         io_out_bits_meta_nonFinite_r_67;
+  reg         io_out_bits_meta_nonFinite_r_68;
+  reg         io_out_bits_meta_nonFinite_r_69;
+  reg         io_out_bits_meta_nonFinite_r_70;
+  reg         io_out_bits_meta_nonFinite_r_71;
+  reg         io_out_bits_meta_nonFinite_r_72;
+  reg         io_out_bits_meta_nonFinite_r_73;
+  reg         io_out_bits_meta_nonFinite_r_74;
+  reg         io_out_bits_meta_nonFinite_r_75;
+  reg         io_out_bits_meta_nonFinite_r_76;
+  reg         io_out_bits_meta_nonFinite_r_77;
+  reg         io_out_bits_meta_nonFinite_r_78;
+  reg         io_out_bits_meta_nonFinite_r_79;
+  reg         io_out_bits_meta_nonFinite_r_80;
+  reg         io_out_bits_meta_nonFinite_r_81;
+  reg         io_out_bits_meta_nonFinite_r_82;
+  reg         io_out_bits_meta_nonFinite_r_83;
+  reg         io_out_bits_meta_nonFinite_r_84;
+  reg         io_out_bits_meta_nonFinite_r_85;
+  reg         io_out_bits_meta_nonFinite_r_86;
+  reg         io_out_bits_meta_nonFinite_r_87;
+  reg         io_out_bits_meta_nonFinite_r_88;
+  reg         io_out_bits_meta_nonFinite_r_89;
+  reg         io_out_bits_meta_nonFinite_r_90;
+  reg         io_out_bits_meta_nonFinite_r_91;
+  reg         io_out_bits_meta_nonFinite_r_92;
+  reg         io_out_bits_meta_nonFinite_r_93;
+  reg         io_out_bits_meta_nonFinite_r_94;
+  reg         io_out_bits_meta_nonFinite_r_95;
+  reg         io_out_bits_meta_nonFinite_r_96;
+  reg         io_out_bits_meta_nonFinite_r_97;
+  reg         io_out_bits_meta_nonFinite_r_98;
+  reg         io_out_bits_meta_nonFinite_r_99;
+  reg         io_out_bits_meta_nonFinite_r_100;
+  reg         io_out_bits_meta_nonFinite_r_101;
+  reg         io_out_bits_meta_nonFinite_r_102;
+  reg         io_out_bits_meta_nonFinite_r_103;
+  reg         io_out_bits_meta_nonFinite_r_104;
+  reg         io_out_bits_meta_nonFinite_r_105;
+  reg         io_out_bits_meta_nonFinite_r_106;
+  reg         io_out_bits_meta_nonFinite_r_107;
+  reg         io_out_bits_meta_nonFinite_r_108;
+  reg         io_out_bits_meta_nonFinite_r_109;
+  reg         io_out_bits_meta_nonFinite_r_110;
+  reg         io_out_bits_meta_nonFinite_r_111;
+  reg         io_out_bits_meta_nonFinite_r_112;
+  reg         io_out_bits_meta_nonFinite_r_113;
+  reg         io_out_bits_meta_nonFinite_r_114;
+  reg         io_out_bits_meta_nonFinite_r_115;
+  reg         io_out_bits_meta_nonFinite_r_116;
+  reg         io_out_bits_meta_nonFinite_r_117;
+  reg         io_out_bits_meta_nonFinite_r_118;
+  reg         io_out_bits_meta_nonFinite_r_119;
+  reg         io_out_bits_meta_nonFinite_r_120;
+  reg         io_out_bits_meta_nonFinite_r_121;
+  reg         io_out_bits_meta_nonFinite_r_122;
+  reg         io_out_bits_meta_nonFinite_r_123;
+  reg         io_out_bits_meta_nonFinite_r_124;
+  reg         io_out_bits_meta_nonFinite_r_125;
+  reg         io_out_bits_meta_nonFinite_r_126;
+  reg         io_out_bits_meta_nonFinite_r_127;
+  reg         io_out_bits_meta_nonFinite_r_128;
+  reg         io_out_bits_meta_nonFinite_r_129;
+  reg         io_out_bits_meta_nonFinite_r_130;
+  reg         io_out_bits_meta_nonFinite_r_131;
+  reg         io_out_bits_meta_nonFinite_r_132;
+  reg         io_out_bits_meta_nonFinite_r_133;
+  reg         io_out_bits_meta_nonFinite_r_134;
+  reg         io_out_bits_meta_nonFinite_r_135;
   always @(posedge clock) begin
     if (io_en) begin
       rsD_r_bits <= _rs_m_io_out_bits_bits;
@@ -116786,7 +120094,61 @@ module ScpuDatapath_fp32_world(
       rsD_r_6_bits <= rsD_r_5_bits;
       rsD_r_7_bits <= rsD_r_6_bits;
       rsD_r_8_bits <= rsD_r_7_bits;
-      rsD_bits <= rsD_r_8_bits;
+      rsD_r_9_bits <= rsD_r_8_bits;
+      rsD_r_10_bits <= rsD_r_9_bits;
+      rsD_r_11_bits <= rsD_r_10_bits;
+      rsD_r_12_bits <= rsD_r_11_bits;
+      rsD_r_13_bits <= rsD_r_12_bits;
+      rsD_r_14_bits <= rsD_r_13_bits;
+      rsD_r_15_bits <= rsD_r_14_bits;
+      rsD_r_16_bits <= rsD_r_15_bits;
+      rsD_r_17_bits <= rsD_r_16_bits;
+      rsD_r_18_bits <= rsD_r_17_bits;
+      rsD_r_19_bits <= rsD_r_18_bits;
+      rsD_r_20_bits <= rsD_r_19_bits;
+      rsD_r_21_bits <= rsD_r_20_bits;
+      rsD_r_22_bits <= rsD_r_21_bits;
+      rsD_r_23_bits <= rsD_r_22_bits;
+      rsD_r_24_bits <= rsD_r_23_bits;
+      rsD_r_25_bits <= rsD_r_24_bits;
+      rsD_r_26_bits <= rsD_r_25_bits;
+      rsD_r_27_bits <= rsD_r_26_bits;
+      rsD_r_28_bits <= rsD_r_27_bits;
+      rsD_r_29_bits <= rsD_r_28_bits;
+      rsD_r_30_bits <= rsD_r_29_bits;
+      rsD_r_31_bits <= rsD_r_30_bits;
+      rsD_r_32_bits <= rsD_r_31_bits;
+      rsD_r_33_bits <= rsD_r_32_bits;
+      rsD_r_34_bits <= rsD_r_33_bits;
+      rsD_r_35_bits <= rsD_r_34_bits;
+      rsD_r_36_bits <= rsD_r_35_bits;
+      rsD_r_37_bits <= rsD_r_36_bits;
+      rsD_r_38_bits <= rsD_r_37_bits;
+      rsD_r_39_bits <= rsD_r_38_bits;
+      rsD_r_40_bits <= rsD_r_39_bits;
+      rsD_r_41_bits <= rsD_r_40_bits;
+      rsD_r_42_bits <= rsD_r_41_bits;
+      rsD_r_43_bits <= rsD_r_42_bits;
+      rsD_r_44_bits <= rsD_r_43_bits;
+      rsD_r_45_bits <= rsD_r_44_bits;
+      rsD_r_46_bits <= rsD_r_45_bits;
+      rsD_r_47_bits <= rsD_r_46_bits;
+      rsD_r_48_bits <= rsD_r_47_bits;
+      rsD_r_49_bits <= rsD_r_48_bits;
+      rsD_r_50_bits <= rsD_r_49_bits;
+      rsD_r_51_bits <= rsD_r_50_bits;
+      rsD_r_52_bits <= rsD_r_51_bits;
+      rsD_r_53_bits <= rsD_r_52_bits;
+      rsD_r_54_bits <= rsD_r_53_bits;
+      rsD_r_55_bits <= rsD_r_54_bits;
+      rsD_r_56_bits <= rsD_r_55_bits;
+      rsD_r_57_bits <= rsD_r_56_bits;
+      rsD_r_58_bits <= rsD_r_57_bits;
+      rsD_r_59_bits <= rsD_r_58_bits;
+      rsD_r_60_bits <= rsD_r_59_bits;
+      rsD_r_61_bits <= rsD_r_60_bits;
+      rsD_r_62_bits <= rsD_r_61_bits;
+      rsD_bits <= rsD_r_62_bits;
       k0_r <= _rdiff_m_io_out_bits_bits;
       k0_r_1 <= k0_r;
       k0_r_2 <= k0_r_1;
@@ -116797,12 +120159,80 @@ module ScpuDatapath_fp32_world(
       k0_r_7 <= k0_r_6;
       k0_r_8 <= k0_r_7;
       k0_r_9 <= k0_r_8;
+      k0_r_10 <= k0_r_9;
+      k0_r_11 <= k0_r_10;
+      k0_r_12 <= k0_r_11;
+      k0_r_13 <= k0_r_12;
+      k0_r_14 <= k0_r_13;
+      k0_r_15 <= k0_r_14;
+      k0_r_16 <= k0_r_15;
+      k0_r_17 <= k0_r_16;
+      k0_r_18 <= k0_r_17;
+      k0_r_19 <= k0_r_18;
+      k0_r_20 <= k0_r_19;
+      k0_r_21 <= k0_r_20;
+      k0_r_22 <= k0_r_21;
+      k0_r_23 <= k0_r_22;
+      k0_r_24 <= k0_r_23;
+      k0_r_25 <= k0_r_24;
+      k0_r_26 <= k0_r_25;
+      k0_r_27 <= k0_r_26;
+      k0_r_28 <= k0_r_27;
+      k0_r_29 <= k0_r_28;
+      k0_r_30 <= k0_r_29;
+      k0_r_31 <= k0_r_30;
+      k0_r_32 <= k0_r_31;
+      k0_r_33 <= k0_r_32;
+      k0_r_34 <= k0_r_33;
+      k0_r_35 <= k0_r_34;
+      k0_r_36 <= k0_r_35;
+      k0_r_37 <= k0_r_36;
+      k0_r_38 <= k0_r_37;
+      k0_r_39 <= k0_r_38;
+      k0_r_40 <= k0_r_39;
+      k0_r_41 <= k0_r_40;
+      k0_r_42 <= k0_r_41;
+      k0_r_43 <= k0_r_42;
+      k0_r_44 <= k0_r_43;
+      k0_r_45 <= k0_r_44;
+      k0_r_46 <= k0_r_45;
+      k0_r_47 <= k0_r_46;
+      k0_r_48 <= k0_r_47;
+      k0_r_49 <= k0_r_48;
+      k0_r_50 <= k0_r_49;
+      k0_r_51 <= k0_r_50;
+      k0_r_52 <= k0_r_51;
+      k0_r_53 <= k0_r_52;
+      k0_r_54 <= k0_r_53;
+      k0_r_55 <= k0_r_54;
+      k0_r_56 <= k0_r_55;
+      k0_r_57 <= k0_r_56;
+      k0_r_58 <= k0_r_57;
+      k0_r_59 <= k0_r_58;
+      k0_r_60 <= k0_r_59;
+      k0_r_61 <= k0_r_60;
+      k0_r_62 <= k0_r_61;
+      k0_r_63 <= k0_r_62;
       kM_r <= _k_m_io_out_bits_bits;
       kM_r_1 <= kM_r;
       kM_r_2 <= kM_r_1;
       kM_r_3 <= kM_r_2;
       kM_r_4 <= kM_r_3;
-      kM <= kM_r_4;
+      kM_r_5 <= kM_r_4;
+      kM_r_6 <= kM_r_5;
+      kM_r_7 <= kM_r_6;
+      kM_r_8 <= kM_r_7;
+      kM_r_9 <= kM_r_8;
+      kM_r_10 <= kM_r_9;
+      kM_r_11 <= kM_r_10;
+      kM_r_12 <= kM_r_11;
+      kM_r_13 <= kM_r_12;
+      kM_r_14 <= kM_r_13;
+      kM_r_15 <= kM_r_14;
+      kM_r_16 <= kM_r_15;
+      kM_r_17 <= kM_r_16;
+      kM_r_18 <= kM_r_17;
+      kM <= kM_r_18;
       p1_r <= io_in_bits_x1;
       p1_r_1 <= p1_r;
       p1_r_2 <= p1_r_1;
@@ -116822,8 +120252,7 @@ module ScpuDatapath_fp32_world(
       p1_r_16 <= p1_r_15;
       p1_r_17 <= p1_r_16;
       p1_r_18 <= p1_r_17;
-      p1_0 <= p1_r_18;
-      p1_r_19 <= io_in_bits_y1;
+      p1_r_19 <= p1_r_18;
       p1_r_20 <= p1_r_19;
       p1_r_21 <= p1_r_20;
       p1_r_22 <= p1_r_21;
@@ -116842,8 +120271,7 @@ module ScpuDatapath_fp32_world(
       p1_r_35 <= p1_r_34;
       p1_r_36 <= p1_r_35;
       p1_r_37 <= p1_r_36;
-      p1_1 <= p1_r_37;
-      p1_r_38 <= io_in_bits_z1;
+      p1_r_38 <= p1_r_37;
       p1_r_39 <= p1_r_38;
       p1_r_40 <= p1_r_39;
       p1_r_41 <= p1_r_40;
@@ -116862,48 +120290,566 @@ module ScpuDatapath_fp32_world(
       p1_r_54 <= p1_r_53;
       p1_r_55 <= p1_r_54;
       p1_r_56 <= p1_r_55;
-      p1_2 <= p1_r_56;
-      baseFlags_r_21 <=
+      p1_r_57 <= p1_r_56;
+      p1_r_58 <= p1_r_57;
+      p1_r_59 <= p1_r_58;
+      p1_r_60 <= p1_r_59;
+      p1_r_61 <= p1_r_60;
+      p1_r_62 <= p1_r_61;
+      p1_r_63 <= p1_r_62;
+      p1_r_64 <= p1_r_63;
+      p1_r_65 <= p1_r_64;
+      p1_r_66 <= p1_r_65;
+      p1_r_67 <= p1_r_66;
+      p1_r_68 <= p1_r_67;
+      p1_r_69 <= p1_r_68;
+      p1_r_70 <= p1_r_69;
+      p1_r_71 <= p1_r_70;
+      p1_r_72 <= p1_r_71;
+      p1_r_73 <= p1_r_72;
+      p1_r_74 <= p1_r_73;
+      p1_r_75 <= p1_r_74;
+      p1_r_76 <= p1_r_75;
+      p1_r_77 <= p1_r_76;
+      p1_r_78 <= p1_r_77;
+      p1_r_79 <= p1_r_78;
+      p1_r_80 <= p1_r_79;
+      p1_r_81 <= p1_r_80;
+      p1_r_82 <= p1_r_81;
+      p1_r_83 <= p1_r_82;
+      p1_r_84 <= p1_r_83;
+      p1_r_85 <= p1_r_84;
+      p1_r_86 <= p1_r_85;
+      p1_r_87 <= p1_r_86;
+      p1_r_88 <= p1_r_87;
+      p1_r_89 <= p1_r_88;
+      p1_r_90 <= p1_r_89;
+      p1_r_91 <= p1_r_90;
+      p1_r_92 <= p1_r_91;
+      p1_r_93 <= p1_r_92;
+      p1_r_94 <= p1_r_93;
+      p1_r_95 <= p1_r_94;
+      p1_r_96 <= p1_r_95;
+      p1_r_97 <= p1_r_96;
+      p1_r_98 <= p1_r_97;
+      p1_r_99 <= p1_r_98;
+      p1_r_100 <= p1_r_99;
+      p1_r_101 <= p1_r_100;
+      p1_r_102 <= p1_r_101;
+      p1_r_103 <= p1_r_102;
+      p1_r_104 <= p1_r_103;
+      p1_r_105 <= p1_r_104;
+      p1_r_106 <= p1_r_105;
+      p1_r_107 <= p1_r_106;
+      p1_r_108 <= p1_r_107;
+      p1_r_109 <= p1_r_108;
+      p1_r_110 <= p1_r_109;
+      p1_r_111 <= p1_r_110;
+      p1_r_112 <= p1_r_111;
+      p1_r_113 <= p1_r_112;
+      p1_r_114 <= p1_r_113;
+      p1_r_115 <= p1_r_114;
+      p1_r_116 <= p1_r_115;
+      p1_r_117 <= p1_r_116;
+      p1_r_118 <= p1_r_117;
+      p1_r_119 <= p1_r_118;
+      p1_r_120 <= p1_r_119;
+      p1_r_121 <= p1_r_120;
+      p1_r_122 <= p1_r_121;
+      p1_0 <= p1_r_122;
+      p1_r_123 <= io_in_bits_y1;
+      p1_r_124 <= p1_r_123;
+      p1_r_125 <= p1_r_124;
+      p1_r_126 <= p1_r_125;
+      p1_r_127 <= p1_r_126;
+      p1_r_128 <= p1_r_127;
+      p1_r_129 <= p1_r_128;
+      p1_r_130 <= p1_r_129;
+      p1_r_131 <= p1_r_130;
+      p1_r_132 <= p1_r_131;
+      p1_r_133 <= p1_r_132;
+      p1_r_134 <= p1_r_133;
+      p1_r_135 <= p1_r_134;
+      p1_r_136 <= p1_r_135;
+      p1_r_137 <= p1_r_136;
+      p1_r_138 <= p1_r_137;
+      p1_r_139 <= p1_r_138;
+      p1_r_140 <= p1_r_139;
+      p1_r_141 <= p1_r_140;
+      p1_r_142 <= p1_r_141;
+      p1_r_143 <= p1_r_142;
+      p1_r_144 <= p1_r_143;
+      p1_r_145 <= p1_r_144;
+      p1_r_146 <= p1_r_145;
+      p1_r_147 <= p1_r_146;
+      p1_r_148 <= p1_r_147;
+      p1_r_149 <= p1_r_148;
+      p1_r_150 <= p1_r_149;
+      p1_r_151 <= p1_r_150;
+      p1_r_152 <= p1_r_151;
+      p1_r_153 <= p1_r_152;
+      p1_r_154 <= p1_r_153;
+      p1_r_155 <= p1_r_154;
+      p1_r_156 <= p1_r_155;
+      p1_r_157 <= p1_r_156;
+      p1_r_158 <= p1_r_157;
+      p1_r_159 <= p1_r_158;
+      p1_r_160 <= p1_r_159;
+      p1_r_161 <= p1_r_160;
+      p1_r_162 <= p1_r_161;
+      p1_r_163 <= p1_r_162;
+      p1_r_164 <= p1_r_163;
+      p1_r_165 <= p1_r_164;
+      p1_r_166 <= p1_r_165;
+      p1_r_167 <= p1_r_166;
+      p1_r_168 <= p1_r_167;
+      p1_r_169 <= p1_r_168;
+      p1_r_170 <= p1_r_169;
+      p1_r_171 <= p1_r_170;
+      p1_r_172 <= p1_r_171;
+      p1_r_173 <= p1_r_172;
+      p1_r_174 <= p1_r_173;
+      p1_r_175 <= p1_r_174;
+      p1_r_176 <= p1_r_175;
+      p1_r_177 <= p1_r_176;
+      p1_r_178 <= p1_r_177;
+      p1_r_179 <= p1_r_178;
+      p1_r_180 <= p1_r_179;
+      p1_r_181 <= p1_r_180;
+      p1_r_182 <= p1_r_181;
+      p1_r_183 <= p1_r_182;
+      p1_r_184 <= p1_r_183;
+      p1_r_185 <= p1_r_184;
+      p1_r_186 <= p1_r_185;
+      p1_r_187 <= p1_r_186;
+      p1_r_188 <= p1_r_187;
+      p1_r_189 <= p1_r_188;
+      p1_r_190 <= p1_r_189;
+      p1_r_191 <= p1_r_190;
+      p1_r_192 <= p1_r_191;
+      p1_r_193 <= p1_r_192;
+      p1_r_194 <= p1_r_193;
+      p1_r_195 <= p1_r_194;
+      p1_r_196 <= p1_r_195;
+      p1_r_197 <= p1_r_196;
+      p1_r_198 <= p1_r_197;
+      p1_r_199 <= p1_r_198;
+      p1_r_200 <= p1_r_199;
+      p1_r_201 <= p1_r_200;
+      p1_r_202 <= p1_r_201;
+      p1_r_203 <= p1_r_202;
+      p1_r_204 <= p1_r_203;
+      p1_r_205 <= p1_r_204;
+      p1_r_206 <= p1_r_205;
+      p1_r_207 <= p1_r_206;
+      p1_r_208 <= p1_r_207;
+      p1_r_209 <= p1_r_208;
+      p1_r_210 <= p1_r_209;
+      p1_r_211 <= p1_r_210;
+      p1_r_212 <= p1_r_211;
+      p1_r_213 <= p1_r_212;
+      p1_r_214 <= p1_r_213;
+      p1_r_215 <= p1_r_214;
+      p1_r_216 <= p1_r_215;
+      p1_r_217 <= p1_r_216;
+      p1_r_218 <= p1_r_217;
+      p1_r_219 <= p1_r_218;
+      p1_r_220 <= p1_r_219;
+      p1_r_221 <= p1_r_220;
+      p1_r_222 <= p1_r_221;
+      p1_r_223 <= p1_r_222;
+      p1_r_224 <= p1_r_223;
+      p1_r_225 <= p1_r_224;
+      p1_r_226 <= p1_r_225;
+      p1_r_227 <= p1_r_226;
+      p1_r_228 <= p1_r_227;
+      p1_r_229 <= p1_r_228;
+      p1_r_230 <= p1_r_229;
+      p1_r_231 <= p1_r_230;
+      p1_r_232 <= p1_r_231;
+      p1_r_233 <= p1_r_232;
+      p1_r_234 <= p1_r_233;
+      p1_r_235 <= p1_r_234;
+      p1_r_236 <= p1_r_235;
+      p1_r_237 <= p1_r_236;
+      p1_r_238 <= p1_r_237;
+      p1_r_239 <= p1_r_238;
+      p1_r_240 <= p1_r_239;
+      p1_r_241 <= p1_r_240;
+      p1_r_242 <= p1_r_241;
+      p1_r_243 <= p1_r_242;
+      p1_r_244 <= p1_r_243;
+      p1_r_245 <= p1_r_244;
+      p1_1 <= p1_r_245;
+      p1_r_246 <= io_in_bits_z1;
+      p1_r_247 <= p1_r_246;
+      p1_r_248 <= p1_r_247;
+      p1_r_249 <= p1_r_248;
+      p1_r_250 <= p1_r_249;
+      p1_r_251 <= p1_r_250;
+      p1_r_252 <= p1_r_251;
+      p1_r_253 <= p1_r_252;
+      p1_r_254 <= p1_r_253;
+      p1_r_255 <= p1_r_254;
+      p1_r_256 <= p1_r_255;
+      p1_r_257 <= p1_r_256;
+      p1_r_258 <= p1_r_257;
+      p1_r_259 <= p1_r_258;
+      p1_r_260 <= p1_r_259;
+      p1_r_261 <= p1_r_260;
+      p1_r_262 <= p1_r_261;
+      p1_r_263 <= p1_r_262;
+      p1_r_264 <= p1_r_263;
+      p1_r_265 <= p1_r_264;
+      p1_r_266 <= p1_r_265;
+      p1_r_267 <= p1_r_266;
+      p1_r_268 <= p1_r_267;
+      p1_r_269 <= p1_r_268;
+      p1_r_270 <= p1_r_269;
+      p1_r_271 <= p1_r_270;
+      p1_r_272 <= p1_r_271;
+      p1_r_273 <= p1_r_272;
+      p1_r_274 <= p1_r_273;
+      p1_r_275 <= p1_r_274;
+      p1_r_276 <= p1_r_275;
+      p1_r_277 <= p1_r_276;
+      p1_r_278 <= p1_r_277;
+      p1_r_279 <= p1_r_278;
+      p1_r_280 <= p1_r_279;
+      p1_r_281 <= p1_r_280;
+      p1_r_282 <= p1_r_281;
+      p1_r_283 <= p1_r_282;
+      p1_r_284 <= p1_r_283;
+      p1_r_285 <= p1_r_284;
+      p1_r_286 <= p1_r_285;
+      p1_r_287 <= p1_r_286;
+      p1_r_288 <= p1_r_287;
+      p1_r_289 <= p1_r_288;
+      p1_r_290 <= p1_r_289;
+      p1_r_291 <= p1_r_290;
+      p1_r_292 <= p1_r_291;
+      p1_r_293 <= p1_r_292;
+      p1_r_294 <= p1_r_293;
+      p1_r_295 <= p1_r_294;
+      p1_r_296 <= p1_r_295;
+      p1_r_297 <= p1_r_296;
+      p1_r_298 <= p1_r_297;
+      p1_r_299 <= p1_r_298;
+      p1_r_300 <= p1_r_299;
+      p1_r_301 <= p1_r_300;
+      p1_r_302 <= p1_r_301;
+      p1_r_303 <= p1_r_302;
+      p1_r_304 <= p1_r_303;
+      p1_r_305 <= p1_r_304;
+      p1_r_306 <= p1_r_305;
+      p1_r_307 <= p1_r_306;
+      p1_r_308 <= p1_r_307;
+      p1_r_309 <= p1_r_308;
+      p1_r_310 <= p1_r_309;
+      p1_r_311 <= p1_r_310;
+      p1_r_312 <= p1_r_311;
+      p1_r_313 <= p1_r_312;
+      p1_r_314 <= p1_r_313;
+      p1_r_315 <= p1_r_314;
+      p1_r_316 <= p1_r_315;
+      p1_r_317 <= p1_r_316;
+      p1_r_318 <= p1_r_317;
+      p1_r_319 <= p1_r_318;
+      p1_r_320 <= p1_r_319;
+      p1_r_321 <= p1_r_320;
+      p1_r_322 <= p1_r_321;
+      p1_r_323 <= p1_r_322;
+      p1_r_324 <= p1_r_323;
+      p1_r_325 <= p1_r_324;
+      p1_r_326 <= p1_r_325;
+      p1_r_327 <= p1_r_326;
+      p1_r_328 <= p1_r_327;
+      p1_r_329 <= p1_r_328;
+      p1_r_330 <= p1_r_329;
+      p1_r_331 <= p1_r_330;
+      p1_r_332 <= p1_r_331;
+      p1_r_333 <= p1_r_332;
+      p1_r_334 <= p1_r_333;
+      p1_r_335 <= p1_r_334;
+      p1_r_336 <= p1_r_335;
+      p1_r_337 <= p1_r_336;
+      p1_r_338 <= p1_r_337;
+      p1_r_339 <= p1_r_338;
+      p1_r_340 <= p1_r_339;
+      p1_r_341 <= p1_r_340;
+      p1_r_342 <= p1_r_341;
+      p1_r_343 <= p1_r_342;
+      p1_r_344 <= p1_r_343;
+      p1_r_345 <= p1_r_344;
+      p1_r_346 <= p1_r_345;
+      p1_r_347 <= p1_r_346;
+      p1_r_348 <= p1_r_347;
+      p1_r_349 <= p1_r_348;
+      p1_r_350 <= p1_r_349;
+      p1_r_351 <= p1_r_350;
+      p1_r_352 <= p1_r_351;
+      p1_r_353 <= p1_r_352;
+      p1_r_354 <= p1_r_353;
+      p1_r_355 <= p1_r_354;
+      p1_r_356 <= p1_r_355;
+      p1_r_357 <= p1_r_356;
+      p1_r_358 <= p1_r_357;
+      p1_r_359 <= p1_r_358;
+      p1_r_360 <= p1_r_359;
+      p1_r_361 <= p1_r_360;
+      p1_r_362 <= p1_r_361;
+      p1_r_363 <= p1_r_362;
+      p1_r_364 <= p1_r_363;
+      p1_r_365 <= p1_r_364;
+      p1_r_366 <= p1_r_365;
+      p1_r_367 <= p1_r_366;
+      p1_r_368 <= p1_r_367;
+      p1_2 <= p1_r_368;
+      baseFlags_r_136 <=
         _dx_m_io_out_bits_flags | _dy_m_io_out_bits_flags | _dz_m_io_out_bits_flags
         | _rs_m_io_out_bits_flags;
-      baseFlags_r_22 <= baseFlags_r_21;
-      baseFlags_r_23 <= baseFlags_r_22;
-      baseFlags_r_24 <= baseFlags_r_23;
-      baseFlags_r_25 <= baseFlags_r_24;
-      baseFlags_r_26 <= baseFlags_r_25;
-      baseFlags_r_27 <= baseFlags_r_26;
-      baseFlags_r_28 <= baseFlags_r_27;
-      baseFlags_r_29 <= baseFlags_r_28;
-      baseFlags_r_30 <= baseFlags_r_29;
-      baseFlags_r_31 <= baseFlags_r_30;
-      baseFlags_r_32 <= baseFlags_r_31;
-      baseFlags_r_33 <= baseFlags_r_32;
-      baseFlags_r_34 <= baseFlags_r_33;
-      baseFlags_r_35 <= baseFlags_r_34;
-      baseFlags_r_36 <= baseFlags_r_35;
-      baseFlags_r_37 <= baseFlags_r_36;
-      baseFlags_r_38 <= baseFlags_r_37;
-      baseFlags_r_39 <= baseFlags_r_38;
-      baseFlags_r_40 <= baseFlags_r_39;
-      baseFlags_r_41 <= _dist_io_d_bits_flags;
-      baseFlags_r_42 <= baseFlags_r_41;
-      baseFlags_r_43 <= baseFlags_r_42;
-      baseFlags_r_44 <= baseFlags_r_43;
-      baseFlags_r_45 <= baseFlags_r_44;
-      baseFlags_r_46 <= baseFlags_r_45;
-      baseFlags_r_47 <= baseFlags_r_46;
-      baseFlags_r_48 <= baseFlags_r_47;
-      baseFlags_r_49 <= baseFlags_r_48;
-      baseFlags_r_50 <= baseFlags_r_49;
-      baseFlags_r_51 <= _cmp_m_io_out_bits_flags;
-      baseFlags_r_52 <= baseFlags_r_51;
-      baseFlags_r_53 <= baseFlags_r_52;
-      baseFlags_r_54 <= baseFlags_r_53;
-      baseFlags_r_55 <= baseFlags_r_54;
-      baseFlags_r_56 <= baseFlags_r_55;
-      baseFlags_r_57 <= baseFlags_r_56;
-      baseFlags_r_58 <= baseFlags_r_57;
-      baseFlags_r_59 <= baseFlags_r_58;
+      baseFlags_r_137 <= baseFlags_r_136;
+      baseFlags_r_138 <= baseFlags_r_137;
+      baseFlags_r_139 <= baseFlags_r_138;
+      baseFlags_r_140 <= baseFlags_r_139;
+      baseFlags_r_141 <= baseFlags_r_140;
+      baseFlags_r_142 <= baseFlags_r_141;
+      baseFlags_r_143 <= baseFlags_r_142;
+      baseFlags_r_144 <= baseFlags_r_143;
+      baseFlags_r_145 <= baseFlags_r_144;
+      baseFlags_r_146 <= baseFlags_r_145;
+      baseFlags_r_147 <= baseFlags_r_146;
+      baseFlags_r_148 <= baseFlags_r_147;
+      baseFlags_r_149 <= baseFlags_r_148;
+      baseFlags_r_150 <= baseFlags_r_149;
+      baseFlags_r_151 <= baseFlags_r_150;
+      baseFlags_r_152 <= baseFlags_r_151;
+      baseFlags_r_153 <= baseFlags_r_152;
+      baseFlags_r_154 <= baseFlags_r_153;
+      baseFlags_r_155 <= baseFlags_r_154;
+      baseFlags_r_156 <= baseFlags_r_155;
+      baseFlags_r_157 <= baseFlags_r_156;
+      baseFlags_r_158 <= baseFlags_r_157;
+      baseFlags_r_159 <= baseFlags_r_158;
+      baseFlags_r_160 <= baseFlags_r_159;
+      baseFlags_r_161 <= baseFlags_r_160;
+      baseFlags_r_162 <= baseFlags_r_161;
+      baseFlags_r_163 <= baseFlags_r_162;
+      baseFlags_r_164 <= baseFlags_r_163;
+      baseFlags_r_165 <= baseFlags_r_164;
+      baseFlags_r_166 <= baseFlags_r_165;
+      baseFlags_r_167 <= baseFlags_r_166;
+      baseFlags_r_168 <= baseFlags_r_167;
+      baseFlags_r_169 <= baseFlags_r_168;
+      baseFlags_r_170 <= baseFlags_r_169;
+      baseFlags_r_171 <= baseFlags_r_170;
+      baseFlags_r_172 <= baseFlags_r_171;
+      baseFlags_r_173 <= baseFlags_r_172;
+      baseFlags_r_174 <= baseFlags_r_173;
+      baseFlags_r_175 <= baseFlags_r_174;
+      baseFlags_r_176 <= baseFlags_r_175;
+      baseFlags_r_177 <= baseFlags_r_176;
+      baseFlags_r_178 <= baseFlags_r_177;
+      baseFlags_r_179 <= baseFlags_r_178;
+      baseFlags_r_180 <= baseFlags_r_179;
+      baseFlags_r_181 <= baseFlags_r_180;
+      baseFlags_r_182 <= baseFlags_r_181;
+      baseFlags_r_183 <= baseFlags_r_182;
+      baseFlags_r_184 <= baseFlags_r_183;
+      baseFlags_r_185 <= baseFlags_r_184;
+      baseFlags_r_186 <= baseFlags_r_185;
+      baseFlags_r_187 <= baseFlags_r_186;
+      baseFlags_r_188 <= baseFlags_r_187;
+      baseFlags_r_189 <= baseFlags_r_188;
+      baseFlags_r_190 <= baseFlags_r_189;
+      baseFlags_r_191 <= baseFlags_r_190;
+      baseFlags_r_192 <= baseFlags_r_191;
+      baseFlags_r_193 <= baseFlags_r_192;
+      baseFlags_r_194 <= baseFlags_r_193;
+      baseFlags_r_195 <= baseFlags_r_194;
+      baseFlags_r_196 <= baseFlags_r_195;
+      baseFlags_r_197 <= baseFlags_r_196;
+      baseFlags_r_198 <= baseFlags_r_197;
+      baseFlags_r_199 <= baseFlags_r_198;
+      baseFlags_r_200 <= baseFlags_r_199;
+      baseFlags_r_201 <= baseFlags_r_200;
+      baseFlags_r_202 <= baseFlags_r_201;
+      baseFlags_r_203 <= baseFlags_r_202;
+      baseFlags_r_204 <= baseFlags_r_203;
+      baseFlags_r_205 <= baseFlags_r_204;
+      baseFlags_r_206 <= baseFlags_r_205;
+      baseFlags_r_207 <= baseFlags_r_206;
+      baseFlags_r_208 <= baseFlags_r_207;
+      baseFlags_r_209 <= baseFlags_r_208;
+      baseFlags_r_210 <= baseFlags_r_209;
+      baseFlags_r_211 <= baseFlags_r_210;
+      baseFlags_r_212 <= baseFlags_r_211;
+      baseFlags_r_213 <= baseFlags_r_212;
+      baseFlags_r_214 <= baseFlags_r_213;
+      baseFlags_r_215 <= baseFlags_r_214;
+      baseFlags_r_216 <= baseFlags_r_215;
+      baseFlags_r_217 <= baseFlags_r_216;
+      baseFlags_r_218 <= baseFlags_r_217;
+      baseFlags_r_219 <= baseFlags_r_218;
+      baseFlags_r_220 <= baseFlags_r_219;
+      baseFlags_r_221 <= baseFlags_r_220;
+      baseFlags_r_222 <= baseFlags_r_221;
+      baseFlags_r_223 <= baseFlags_r_222;
+      baseFlags_r_224 <= baseFlags_r_223;
+      baseFlags_r_225 <= baseFlags_r_224;
+      baseFlags_r_226 <= baseFlags_r_225;
+      baseFlags_r_227 <= baseFlags_r_226;
+      baseFlags_r_228 <= baseFlags_r_227;
+      baseFlags_r_229 <= baseFlags_r_228;
+      baseFlags_r_230 <= baseFlags_r_229;
+      baseFlags_r_231 <= baseFlags_r_230;
+      baseFlags_r_232 <= baseFlags_r_231;
+      baseFlags_r_233 <= baseFlags_r_232;
+      baseFlags_r_234 <= baseFlags_r_233;
+      baseFlags_r_235 <= baseFlags_r_234;
+      baseFlags_r_236 <= baseFlags_r_235;
+      baseFlags_r_237 <= baseFlags_r_236;
+      baseFlags_r_238 <= baseFlags_r_237;
+      baseFlags_r_239 <= baseFlags_r_238;
+      baseFlags_r_240 <= baseFlags_r_239;
+      baseFlags_r_241 <= baseFlags_r_240;
+      baseFlags_r_242 <= baseFlags_r_241;
+      baseFlags_r_243 <= baseFlags_r_242;
+      baseFlags_r_244 <= baseFlags_r_243;
+      baseFlags_r_245 <= baseFlags_r_244;
+      baseFlags_r_246 <= baseFlags_r_245;
+      baseFlags_r_247 <= baseFlags_r_246;
+      baseFlags_r_248 <= baseFlags_r_247;
+      baseFlags_r_249 <= baseFlags_r_248;
+      baseFlags_r_250 <= baseFlags_r_249;
+      baseFlags_r_251 <= baseFlags_r_250;
+      baseFlags_r_252 <= baseFlags_r_251;
+      baseFlags_r_253 <= baseFlags_r_252;
+      baseFlags_r_254 <= baseFlags_r_253;
+      baseFlags_r_255 <= baseFlags_r_254;
+      baseFlags_r_256 <= baseFlags_r_255;
+      baseFlags_r_257 <= baseFlags_r_256;
+      baseFlags_r_258 <= baseFlags_r_257;
+      baseFlags_r_259 <= baseFlags_r_258;
+      baseFlags_r_260 <= _dist_io_d_bits_flags;
+      baseFlags_r_261 <= baseFlags_r_260;
+      baseFlags_r_262 <= baseFlags_r_261;
+      baseFlags_r_263 <= baseFlags_r_262;
+      baseFlags_r_264 <= baseFlags_r_263;
+      baseFlags_r_265 <= baseFlags_r_264;
+      baseFlags_r_266 <= baseFlags_r_265;
+      baseFlags_r_267 <= baseFlags_r_266;
+      baseFlags_r_268 <= baseFlags_r_267;
+      baseFlags_r_269 <= baseFlags_r_268;
+      baseFlags_r_270 <= baseFlags_r_269;
+      baseFlags_r_271 <= baseFlags_r_270;
+      baseFlags_r_272 <= baseFlags_r_271;
+      baseFlags_r_273 <= baseFlags_r_272;
+      baseFlags_r_274 <= baseFlags_r_273;
+      baseFlags_r_275 <= baseFlags_r_274;
+      baseFlags_r_276 <= baseFlags_r_275;
+      baseFlags_r_277 <= baseFlags_r_276;
+      baseFlags_r_278 <= baseFlags_r_277;
+      baseFlags_r_279 <= baseFlags_r_278;
+      baseFlags_r_280 <= baseFlags_r_279;
+      baseFlags_r_281 <= baseFlags_r_280;
+      baseFlags_r_282 <= baseFlags_r_281;
+      baseFlags_r_283 <= baseFlags_r_282;
+      baseFlags_r_284 <= baseFlags_r_283;
+      baseFlags_r_285 <= baseFlags_r_284;
+      baseFlags_r_286 <= baseFlags_r_285;
+      baseFlags_r_287 <= baseFlags_r_286;
+      baseFlags_r_288 <= baseFlags_r_287;
+      baseFlags_r_289 <= baseFlags_r_288;
+      baseFlags_r_290 <= baseFlags_r_289;
+      baseFlags_r_291 <= baseFlags_r_290;
+      baseFlags_r_292 <= baseFlags_r_291;
+      baseFlags_r_293 <= baseFlags_r_292;
+      baseFlags_r_294 <= baseFlags_r_293;
+      baseFlags_r_295 <= baseFlags_r_294;
+      baseFlags_r_296 <= baseFlags_r_295;
+      baseFlags_r_297 <= baseFlags_r_296;
+      baseFlags_r_298 <= baseFlags_r_297;
+      baseFlags_r_299 <= baseFlags_r_298;
+      baseFlags_r_300 <= baseFlags_r_299;
+      baseFlags_r_301 <= baseFlags_r_300;
+      baseFlags_r_302 <= baseFlags_r_301;
+      baseFlags_r_303 <= baseFlags_r_302;
+      baseFlags_r_304 <= baseFlags_r_303;
+      baseFlags_r_305 <= baseFlags_r_304;
+      baseFlags_r_306 <= baseFlags_r_305;
+      baseFlags_r_307 <= baseFlags_r_306;
+      baseFlags_r_308 <= baseFlags_r_307;
+      baseFlags_r_309 <= baseFlags_r_308;
+      baseFlags_r_310 <= baseFlags_r_309;
+      baseFlags_r_311 <= baseFlags_r_310;
+      baseFlags_r_312 <= baseFlags_r_311;
+      baseFlags_r_313 <= baseFlags_r_312;
+      baseFlags_r_314 <= baseFlags_r_313;
+      baseFlags_r_315 <= baseFlags_r_314;
+      baseFlags_r_316 <= baseFlags_r_315;
+      baseFlags_r_317 <= baseFlags_r_316;
+      baseFlags_r_318 <= baseFlags_r_317;
+      baseFlags_r_319 <= baseFlags_r_318;
+      baseFlags_r_320 <= _cmp_m_io_out_bits_flags;
+      baseFlags_r_321 <= baseFlags_r_320;
+      baseFlags_r_322 <= baseFlags_r_321;
+      baseFlags_r_323 <= baseFlags_r_322;
+      baseFlags_r_324 <= baseFlags_r_323;
+      baseFlags_r_325 <= baseFlags_r_324;
+      baseFlags_r_326 <= baseFlags_r_325;
+      baseFlags_r_327 <= baseFlags_r_326;
+      baseFlags_r_328 <= baseFlags_r_327;
+      baseFlags_r_329 <= baseFlags_r_328;
+      baseFlags_r_330 <= baseFlags_r_329;
+      baseFlags_r_331 <= baseFlags_r_330;
+      baseFlags_r_332 <= baseFlags_r_331;
+      baseFlags_r_333 <= baseFlags_r_332;
+      baseFlags_r_334 <= baseFlags_r_333;
+      baseFlags_r_335 <= baseFlags_r_334;
+      baseFlags_r_336 <= baseFlags_r_335;
+      baseFlags_r_337 <= baseFlags_r_336;
+      baseFlags_r_338 <= baseFlags_r_337;
+      baseFlags_r_339 <= baseFlags_r_338;
+      baseFlags_r_340 <= baseFlags_r_339;
+      baseFlags_r_341 <= baseFlags_r_340;
+      baseFlags_r_342 <= baseFlags_r_341;
+      baseFlags_r_343 <= baseFlags_r_342;
+      baseFlags_r_344 <= baseFlags_r_343;
+      baseFlags_r_345 <= baseFlags_r_344;
+      baseFlags_r_346 <= baseFlags_r_345;
+      baseFlags_r_347 <= baseFlags_r_346;
+      baseFlags_r_348 <= baseFlags_r_347;
+      baseFlags_r_349 <= baseFlags_r_348;
+      baseFlags_r_350 <= baseFlags_r_349;
+      baseFlags_r_351 <= baseFlags_r_350;
+      baseFlags_r_352 <= baseFlags_r_351;
+      baseFlags_r_353 <= baseFlags_r_352;
+      baseFlags_r_354 <= baseFlags_r_353;
+      baseFlags_r_355 <= baseFlags_r_354;
+      baseFlags_r_356 <= baseFlags_r_355;
+      baseFlags_r_357 <= baseFlags_r_356;
+      baseFlags_r_358 <= baseFlags_r_357;
+      baseFlags_r_359 <= baseFlags_r_358;
+      baseFlags_r_360 <= baseFlags_r_359;
+      baseFlags_r_361 <= baseFlags_r_360;
+      baseFlags_r_362 <= baseFlags_r_361;
+      baseFlags_r_363 <= baseFlags_r_362;
+      baseFlags_r_364 <= baseFlags_r_363;
+      baseFlags_r_365 <= baseFlags_r_364;
+      baseFlags_r_366 <= baseFlags_r_365;
+      baseFlags_r_367 <= baseFlags_r_366;
+      baseFlags_r_368 <= baseFlags_r_367;
+      baseFlags_r_369 <= baseFlags_r_368;
+      baseFlags_r_370 <= baseFlags_r_369;
+      baseFlags_r_371 <= baseFlags_r_370;
+      baseFlags_r_372 <= baseFlags_r_371;
+      baseFlags_r_373 <= baseFlags_r_372;
+      baseFlags_r_374 <= baseFlags_r_373;
+      baseFlags_r_375 <= baseFlags_r_374;
+      baseFlags_r_376 <= baseFlags_r_375;
+      baseFlags_r_377 <= baseFlags_r_376;
+      baseFlags_r_378 <= baseFlags_r_377;
       contactFlags_r <= _rdiff_m_io_out_bits_flags;
       contactFlags_r_1 <= contactFlags_r;
       contactFlags_r_2 <= contactFlags_r_1;
@@ -116924,10 +120870,10 @@ module ScpuDatapath_fp32_world(
       contactFlags_r_17 <= contactFlags_r_16;
       contactFlags_r_18 <= contactFlags_r_17;
       contactFlags_r_19 <= contactFlags_r_18;
-      contactFlags_r_20 <= _dist_io_w_bits_flags;
+      contactFlags_r_20 <= contactFlags_r_19;
       contactFlags_r_21 <= contactFlags_r_20;
       contactFlags_r_22 <= contactFlags_r_21;
-      contactFlags_r_23 <= _depth_m_io_out_bits_flags | _k0_m_io_out_bits_flags;
+      contactFlags_r_23 <= contactFlags_r_22;
       contactFlags_r_24 <= contactFlags_r_23;
       contactFlags_r_25 <= contactFlags_r_24;
       contactFlags_r_26 <= contactFlags_r_25;
@@ -116936,7 +120882,7 @@ module ScpuDatapath_fp32_world(
       contactFlags_r_29 <= contactFlags_r_28;
       contactFlags_r_30 <= contactFlags_r_29;
       contactFlags_r_31 <= contactFlags_r_30;
-      contactFlags_r_32 <= _k_m_io_out_bits_flags;
+      contactFlags_r_32 <= contactFlags_r_31;
       contactFlags_r_33 <= contactFlags_r_32;
       contactFlags_r_34 <= contactFlags_r_33;
       contactFlags_r_35 <= contactFlags_r_34;
@@ -116944,11 +120890,240 @@ module ScpuDatapath_fp32_world(
       contactFlags_r_37 <= contactFlags_r_36;
       contactFlags_r_38 <= contactFlags_r_37;
       contactFlags_r_39 <= contactFlags_r_38;
-      contactFlags_r_40 <=
-        _n_m_io_out_bits_flags | _n_m_1_io_out_bits_flags | _n_m_2_io_out_bits_flags;
+      contactFlags_r_40 <= contactFlags_r_39;
       contactFlags_r_41 <= contactFlags_r_40;
-      contactFlags_r_42 <=
+      contactFlags_r_42 <= contactFlags_r_41;
+      contactFlags_r_43 <= contactFlags_r_42;
+      contactFlags_r_44 <= contactFlags_r_43;
+      contactFlags_r_45 <= contactFlags_r_44;
+      contactFlags_r_46 <= contactFlags_r_45;
+      contactFlags_r_47 <= contactFlags_r_46;
+      contactFlags_r_48 <= contactFlags_r_47;
+      contactFlags_r_49 <= contactFlags_r_48;
+      contactFlags_r_50 <= contactFlags_r_49;
+      contactFlags_r_51 <= contactFlags_r_50;
+      contactFlags_r_52 <= contactFlags_r_51;
+      contactFlags_r_53 <= contactFlags_r_52;
+      contactFlags_r_54 <= contactFlags_r_53;
+      contactFlags_r_55 <= contactFlags_r_54;
+      contactFlags_r_56 <= contactFlags_r_55;
+      contactFlags_r_57 <= contactFlags_r_56;
+      contactFlags_r_58 <= contactFlags_r_57;
+      contactFlags_r_59 <= contactFlags_r_58;
+      contactFlags_r_60 <= contactFlags_r_59;
+      contactFlags_r_61 <= contactFlags_r_60;
+      contactFlags_r_62 <= contactFlags_r_61;
+      contactFlags_r_63 <= contactFlags_r_62;
+      contactFlags_r_64 <= contactFlags_r_63;
+      contactFlags_r_65 <= contactFlags_r_64;
+      contactFlags_r_66 <= contactFlags_r_65;
+      contactFlags_r_67 <= contactFlags_r_66;
+      contactFlags_r_68 <= contactFlags_r_67;
+      contactFlags_r_69 <= contactFlags_r_68;
+      contactFlags_r_70 <= contactFlags_r_69;
+      contactFlags_r_71 <= contactFlags_r_70;
+      contactFlags_r_72 <= contactFlags_r_71;
+      contactFlags_r_73 <= contactFlags_r_72;
+      contactFlags_r_74 <= contactFlags_r_73;
+      contactFlags_r_75 <= contactFlags_r_74;
+      contactFlags_r_76 <= contactFlags_r_75;
+      contactFlags_r_77 <= contactFlags_r_76;
+      contactFlags_r_78 <= contactFlags_r_77;
+      contactFlags_r_79 <= contactFlags_r_78;
+      contactFlags_r_80 <= contactFlags_r_79;
+      contactFlags_r_81 <= contactFlags_r_80;
+      contactFlags_r_82 <= contactFlags_r_81;
+      contactFlags_r_83 <= contactFlags_r_82;
+      contactFlags_r_84 <= contactFlags_r_83;
+      contactFlags_r_85 <= contactFlags_r_84;
+      contactFlags_r_86 <= contactFlags_r_85;
+      contactFlags_r_87 <= contactFlags_r_86;
+      contactFlags_r_88 <= contactFlags_r_87;
+      contactFlags_r_89 <= contactFlags_r_88;
+      contactFlags_r_90 <= contactFlags_r_89;
+      contactFlags_r_91 <= contactFlags_r_90;
+      contactFlags_r_92 <= contactFlags_r_91;
+      contactFlags_r_93 <= contactFlags_r_92;
+      contactFlags_r_94 <= contactFlags_r_93;
+      contactFlags_r_95 <= contactFlags_r_94;
+      contactFlags_r_96 <= contactFlags_r_95;
+      contactFlags_r_97 <= contactFlags_r_96;
+      contactFlags_r_98 <= contactFlags_r_97;
+      contactFlags_r_99 <= contactFlags_r_98;
+      contactFlags_r_100 <= contactFlags_r_99;
+      contactFlags_r_101 <= contactFlags_r_100;
+      contactFlags_r_102 <= contactFlags_r_101;
+      contactFlags_r_103 <= contactFlags_r_102;
+      contactFlags_r_104 <= contactFlags_r_103;
+      contactFlags_r_105 <= contactFlags_r_104;
+      contactFlags_r_106 <= contactFlags_r_105;
+      contactFlags_r_107 <= contactFlags_r_106;
+      contactFlags_r_108 <= contactFlags_r_107;
+      contactFlags_r_109 <= contactFlags_r_108;
+      contactFlags_r_110 <= contactFlags_r_109;
+      contactFlags_r_111 <= contactFlags_r_110;
+      contactFlags_r_112 <= contactFlags_r_111;
+      contactFlags_r_113 <= contactFlags_r_112;
+      contactFlags_r_114 <= contactFlags_r_113;
+      contactFlags_r_115 <= contactFlags_r_114;
+      contactFlags_r_116 <= contactFlags_r_115;
+      contactFlags_r_117 <= contactFlags_r_116;
+      contactFlags_r_118 <= contactFlags_r_117;
+      contactFlags_r_119 <= contactFlags_r_118;
+      contactFlags_r_120 <= contactFlags_r_119;
+      contactFlags_r_121 <= contactFlags_r_120;
+      contactFlags_r_122 <= contactFlags_r_121;
+      contactFlags_r_123 <= contactFlags_r_122;
+      contactFlags_r_124 <= _dist_io_w_bits_flags;
+      contactFlags_r_125 <= contactFlags_r_124;
+      contactFlags_r_126 <= contactFlags_r_125;
+      contactFlags_r_127 <= contactFlags_r_126;
+      contactFlags_r_128 <= contactFlags_r_127;
+      contactFlags_r_129 <= contactFlags_r_128;
+      contactFlags_r_130 <= contactFlags_r_129;
+      contactFlags_r_131 <= contactFlags_r_130;
+      contactFlags_r_132 <= contactFlags_r_131;
+      contactFlags_r_133 <= contactFlags_r_132;
+      contactFlags_r_134 <= contactFlags_r_133;
+      contactFlags_r_135 <= contactFlags_r_134;
+      contactFlags_r_136 <= contactFlags_r_135;
+      contactFlags_r_137 <= contactFlags_r_136;
+      contactFlags_r_138 <= contactFlags_r_137;
+      contactFlags_r_139 <= contactFlags_r_138;
+      contactFlags_r_140 <= contactFlags_r_139;
+      contactFlags_r_141 <= contactFlags_r_140;
+      contactFlags_r_142 <= contactFlags_r_141;
+      contactFlags_r_143 <= contactFlags_r_142;
+      contactFlags_r_144 <= contactFlags_r_143;
+      contactFlags_r_145 <= contactFlags_r_144;
+      contactFlags_r_146 <= contactFlags_r_145;
+      contactFlags_r_147 <= contactFlags_r_146;
+      contactFlags_r_148 <= contactFlags_r_147;
+      contactFlags_r_149 <= contactFlags_r_148;
+      contactFlags_r_150 <= contactFlags_r_149;
+      contactFlags_r_151 <= contactFlags_r_150;
+      contactFlags_r_152 <= _depth_m_io_out_bits_flags | _k0_m_io_out_bits_flags;
+      contactFlags_r_153 <= contactFlags_r_152;
+      contactFlags_r_154 <= contactFlags_r_153;
+      contactFlags_r_155 <= contactFlags_r_154;
+      contactFlags_r_156 <= contactFlags_r_155;
+      contactFlags_r_157 <= contactFlags_r_156;
+      contactFlags_r_158 <= contactFlags_r_157;
+      contactFlags_r_159 <= contactFlags_r_158;
+      contactFlags_r_160 <= contactFlags_r_159;
+      contactFlags_r_161 <= contactFlags_r_160;
+      contactFlags_r_162 <= contactFlags_r_161;
+      contactFlags_r_163 <= contactFlags_r_162;
+      contactFlags_r_164 <= contactFlags_r_163;
+      contactFlags_r_165 <= contactFlags_r_164;
+      contactFlags_r_166 <= contactFlags_r_165;
+      contactFlags_r_167 <= contactFlags_r_166;
+      contactFlags_r_168 <= contactFlags_r_167;
+      contactFlags_r_169 <= contactFlags_r_168;
+      contactFlags_r_170 <= contactFlags_r_169;
+      contactFlags_r_171 <= contactFlags_r_170;
+      contactFlags_r_172 <= contactFlags_r_171;
+      contactFlags_r_173 <= contactFlags_r_172;
+      contactFlags_r_174 <= contactFlags_r_173;
+      contactFlags_r_175 <= contactFlags_r_174;
+      contactFlags_r_176 <= contactFlags_r_175;
+      contactFlags_r_177 <= contactFlags_r_176;
+      contactFlags_r_178 <= contactFlags_r_177;
+      contactFlags_r_179 <= contactFlags_r_178;
+      contactFlags_r_180 <= contactFlags_r_179;
+      contactFlags_r_181 <= contactFlags_r_180;
+      contactFlags_r_182 <= contactFlags_r_181;
+      contactFlags_r_183 <= contactFlags_r_182;
+      contactFlags_r_184 <= contactFlags_r_183;
+      contactFlags_r_185 <= contactFlags_r_184;
+      contactFlags_r_186 <= contactFlags_r_185;
+      contactFlags_r_187 <= contactFlags_r_186;
+      contactFlags_r_188 <= contactFlags_r_187;
+      contactFlags_r_189 <= contactFlags_r_188;
+      contactFlags_r_190 <= contactFlags_r_189;
+      contactFlags_r_191 <= contactFlags_r_190;
+      contactFlags_r_192 <= contactFlags_r_191;
+      contactFlags_r_193 <= contactFlags_r_192;
+      contactFlags_r_194 <= contactFlags_r_193;
+      contactFlags_r_195 <= contactFlags_r_194;
+      contactFlags_r_196 <= contactFlags_r_195;
+      contactFlags_r_197 <= contactFlags_r_196;
+      contactFlags_r_198 <= contactFlags_r_197;
+      contactFlags_r_199 <= contactFlags_r_198;
+      contactFlags_r_200 <= _k_m_io_out_bits_flags;
+      contactFlags_r_201 <= contactFlags_r_200;
+      contactFlags_r_202 <= contactFlags_r_201;
+      contactFlags_r_203 <= contactFlags_r_202;
+      contactFlags_r_204 <= contactFlags_r_203;
+      contactFlags_r_205 <= contactFlags_r_204;
+      contactFlags_r_206 <= contactFlags_r_205;
+      contactFlags_r_207 <= contactFlags_r_206;
+      contactFlags_r_208 <= contactFlags_r_207;
+      contactFlags_r_209 <= contactFlags_r_208;
+      contactFlags_r_210 <= contactFlags_r_209;
+      contactFlags_r_211 <= contactFlags_r_210;
+      contactFlags_r_212 <= contactFlags_r_211;
+      contactFlags_r_213 <= contactFlags_r_212;
+      contactFlags_r_214 <= contactFlags_r_213;
+      contactFlags_r_215 <= contactFlags_r_214;
+      contactFlags_r_216 <= contactFlags_r_215;
+      contactFlags_r_217 <= contactFlags_r_216;
+      contactFlags_r_218 <= contactFlags_r_217;
+      contactFlags_r_219 <= contactFlags_r_218;
+      contactFlags_r_220 <= contactFlags_r_219;
+      contactFlags_r_221 <= contactFlags_r_220;
+      contactFlags_r_222 <= contactFlags_r_221;
+      contactFlags_r_223 <= contactFlags_r_222;
+      contactFlags_r_224 <= contactFlags_r_223;
+      contactFlags_r_225 <= contactFlags_r_224;
+      contactFlags_r_226 <= contactFlags_r_225;
+      contactFlags_r_227 <= contactFlags_r_226;
+      contactFlags_r_228 <= contactFlags_r_227;
+      contactFlags_r_229 <= contactFlags_r_228;
+      contactFlags_r_230 <= contactFlags_r_229;
+      contactFlags_r_231 <= contactFlags_r_230;
+      contactFlags_r_232 <= contactFlags_r_231;
+      contactFlags_r_233 <= contactFlags_r_232;
+      contactFlags_r_234 <= contactFlags_r_233;
+      contactFlags_r_235 <= contactFlags_r_234;
+      contactFlags_r_236 <= contactFlags_r_235;
+      contactFlags_r_237 <= contactFlags_r_236;
+      contactFlags_r_238 <= contactFlags_r_237;
+      contactFlags_r_239 <= contactFlags_r_238;
+      contactFlags_r_240 <=
+        _n_m_io_out_bits_flags | _n_m_1_io_out_bits_flags | _n_m_2_io_out_bits_flags;
+      contactFlags_r_241 <= contactFlags_r_240;
+      contactFlags_r_242 <= contactFlags_r_241;
+      contactFlags_r_243 <= contactFlags_r_242;
+      contactFlags_r_244 <= contactFlags_r_243;
+      contactFlags_r_245 <= contactFlags_r_244;
+      contactFlags_r_246 <= contactFlags_r_245;
+      contactFlags_r_247 <= contactFlags_r_246;
+      contactFlags_r_248 <= contactFlags_r_247;
+      contactFlags_r_249 <= contactFlags_r_248;
+      contactFlags_r_250 <= contactFlags_r_249;
+      contactFlags_r_251 <= contactFlags_r_250;
+      contactFlags_r_252 <= contactFlags_r_251;
+      contactFlags_r_253 <= contactFlags_r_252;
+      contactFlags_r_254 <= contactFlags_r_253;
+      contactFlags_r_255 <= contactFlags_r_254;
+      contactFlags_r_256 <= contactFlags_r_255;
+      contactFlags_r_257 <= contactFlags_r_256;
+      contactFlags_r_258 <= contactFlags_r_257;
+      contactFlags_r_259 <= contactFlags_r_258;
+      contactFlags_r_260 <=
         _nk_m_io_out_bits_flags | _nk_m_1_io_out_bits_flags | _nk_m_2_io_out_bits_flags;
+      contactFlags_r_261 <= contactFlags_r_260;
+      contactFlags_r_262 <= contactFlags_r_261;
+      contactFlags_r_263 <= contactFlags_r_262;
+      contactFlags_r_264 <= contactFlags_r_263;
+      contactFlags_r_265 <= contactFlags_r_264;
+      contactFlags_r_266 <= contactFlags_r_265;
+      contactFlags_r_267 <= contactFlags_r_266;
+      contactFlags_r_268 <= contactFlags_r_267;
+      contactFlags_r_269 <= contactFlags_r_268;
+      contactFlags_r_270 <= contactFlags_r_269;
+      contactFlags_r_271 <= contactFlags_r_270;
       le_r <= _cmp_m_io_out_bits_lt | _cmp_m_io_out_bits_eq;
       le_r_1 <= le_r;
       le_r_2 <= le_r_1;
@@ -116957,7 +121132,57 @@ module ScpuDatapath_fp32_world(
       le_r_5 <= le_r_4;
       le_r_6 <= le_r_5;
       le_r_7 <= le_r_6;
-      le <= le_r_7;
+      le_r_8 <= le_r_7;
+      le_r_9 <= le_r_8;
+      le_r_10 <= le_r_9;
+      le_r_11 <= le_r_10;
+      le_r_12 <= le_r_11;
+      le_r_13 <= le_r_12;
+      le_r_14 <= le_r_13;
+      le_r_15 <= le_r_14;
+      le_r_16 <= le_r_15;
+      le_r_17 <= le_r_16;
+      le_r_18 <= le_r_17;
+      le_r_19 <= le_r_18;
+      le_r_20 <= le_r_19;
+      le_r_21 <= le_r_20;
+      le_r_22 <= le_r_21;
+      le_r_23 <= le_r_22;
+      le_r_24 <= le_r_23;
+      le_r_25 <= le_r_24;
+      le_r_26 <= le_r_25;
+      le_r_27 <= le_r_26;
+      le_r_28 <= le_r_27;
+      le_r_29 <= le_r_28;
+      le_r_30 <= le_r_29;
+      le_r_31 <= le_r_30;
+      le_r_32 <= le_r_31;
+      le_r_33 <= le_r_32;
+      le_r_34 <= le_r_33;
+      le_r_35 <= le_r_34;
+      le_r_36 <= le_r_35;
+      le_r_37 <= le_r_36;
+      le_r_38 <= le_r_37;
+      le_r_39 <= le_r_38;
+      le_r_40 <= le_r_39;
+      le_r_41 <= le_r_40;
+      le_r_42 <= le_r_41;
+      le_r_43 <= le_r_42;
+      le_r_44 <= le_r_43;
+      le_r_45 <= le_r_44;
+      le_r_46 <= le_r_45;
+      le_r_47 <= le_r_46;
+      le_r_48 <= le_r_47;
+      le_r_49 <= le_r_48;
+      le_r_50 <= le_r_49;
+      le_r_51 <= le_r_50;
+      le_r_52 <= le_r_51;
+      le_r_53 <= le_r_52;
+      le_r_54 <= le_r_53;
+      le_r_55 <= le_r_54;
+      le_r_56 <= le_r_55;
+      le_r_57 <= le_r_56;
+      le <= le_r_57;
       zero_r <=
         _dist_io_d_bits_d[30:23] == 8'h0 & ~(|(_dist_io_d_bits_d[22:0]))
         | _dist_io_d_bits_d[31]
@@ -116970,7 +121195,57 @@ module ScpuDatapath_fp32_world(
       zero_r_6 <= zero_r_5;
       zero_r_7 <= zero_r_6;
       zero_r_8 <= zero_r_7;
-      zero <= zero_r_8;
+      zero_r_9 <= zero_r_8;
+      zero_r_10 <= zero_r_9;
+      zero_r_11 <= zero_r_10;
+      zero_r_12 <= zero_r_11;
+      zero_r_13 <= zero_r_12;
+      zero_r_14 <= zero_r_13;
+      zero_r_15 <= zero_r_14;
+      zero_r_16 <= zero_r_15;
+      zero_r_17 <= zero_r_16;
+      zero_r_18 <= zero_r_17;
+      zero_r_19 <= zero_r_18;
+      zero_r_20 <= zero_r_19;
+      zero_r_21 <= zero_r_20;
+      zero_r_22 <= zero_r_21;
+      zero_r_23 <= zero_r_22;
+      zero_r_24 <= zero_r_23;
+      zero_r_25 <= zero_r_24;
+      zero_r_26 <= zero_r_25;
+      zero_r_27 <= zero_r_26;
+      zero_r_28 <= zero_r_27;
+      zero_r_29 <= zero_r_28;
+      zero_r_30 <= zero_r_29;
+      zero_r_31 <= zero_r_30;
+      zero_r_32 <= zero_r_31;
+      zero_r_33 <= zero_r_32;
+      zero_r_34 <= zero_r_33;
+      zero_r_35 <= zero_r_34;
+      zero_r_36 <= zero_r_35;
+      zero_r_37 <= zero_r_36;
+      zero_r_38 <= zero_r_37;
+      zero_r_39 <= zero_r_38;
+      zero_r_40 <= zero_r_39;
+      zero_r_41 <= zero_r_40;
+      zero_r_42 <= zero_r_41;
+      zero_r_43 <= zero_r_42;
+      zero_r_44 <= zero_r_43;
+      zero_r_45 <= zero_r_44;
+      zero_r_46 <= zero_r_45;
+      zero_r_47 <= zero_r_46;
+      zero_r_48 <= zero_r_47;
+      zero_r_49 <= zero_r_48;
+      zero_r_50 <= zero_r_49;
+      zero_r_51 <= zero_r_50;
+      zero_r_52 <= zero_r_51;
+      zero_r_53 <= zero_r_52;
+      zero_r_54 <= zero_r_53;
+      zero_r_55 <= zero_r_54;
+      zero_r_56 <= zero_r_55;
+      zero_r_57 <= zero_r_56;
+      zero_r_58 <= zero_r_57;
+      zero <= zero_r_58;
       dO_r <= _dist_io_d_bits_d;
       dO_r_1 <= dO_r;
       dO_r_2 <= dO_r_1;
@@ -116980,10 +121255,85 @@ module ScpuDatapath_fp32_world(
       dO_r_6 <= dO_r_5;
       dO_r_7 <= dO_r_6;
       dO_r_8 <= dO_r_7;
-      dO <= dO_r_8;
+      dO_r_9 <= dO_r_8;
+      dO_r_10 <= dO_r_9;
+      dO_r_11 <= dO_r_10;
+      dO_r_12 <= dO_r_11;
+      dO_r_13 <= dO_r_12;
+      dO_r_14 <= dO_r_13;
+      dO_r_15 <= dO_r_14;
+      dO_r_16 <= dO_r_15;
+      dO_r_17 <= dO_r_16;
+      dO_r_18 <= dO_r_17;
+      dO_r_19 <= dO_r_18;
+      dO_r_20 <= dO_r_19;
+      dO_r_21 <= dO_r_20;
+      dO_r_22 <= dO_r_21;
+      dO_r_23 <= dO_r_22;
+      dO_r_24 <= dO_r_23;
+      dO_r_25 <= dO_r_24;
+      dO_r_26 <= dO_r_25;
+      dO_r_27 <= dO_r_26;
+      dO_r_28 <= dO_r_27;
+      dO_r_29 <= dO_r_28;
+      dO_r_30 <= dO_r_29;
+      dO_r_31 <= dO_r_30;
+      dO_r_32 <= dO_r_31;
+      dO_r_33 <= dO_r_32;
+      dO_r_34 <= dO_r_33;
+      dO_r_35 <= dO_r_34;
+      dO_r_36 <= dO_r_35;
+      dO_r_37 <= dO_r_36;
+      dO_r_38 <= dO_r_37;
+      dO_r_39 <= dO_r_38;
+      dO_r_40 <= dO_r_39;
+      dO_r_41 <= dO_r_40;
+      dO_r_42 <= dO_r_41;
+      dO_r_43 <= dO_r_42;
+      dO_r_44 <= dO_r_43;
+      dO_r_45 <= dO_r_44;
+      dO_r_46 <= dO_r_45;
+      dO_r_47 <= dO_r_46;
+      dO_r_48 <= dO_r_47;
+      dO_r_49 <= dO_r_48;
+      dO_r_50 <= dO_r_49;
+      dO_r_51 <= dO_r_50;
+      dO_r_52 <= dO_r_51;
+      dO_r_53 <= dO_r_52;
+      dO_r_54 <= dO_r_53;
+      dO_r_55 <= dO_r_54;
+      dO_r_56 <= dO_r_55;
+      dO_r_57 <= dO_r_56;
+      dO_r_58 <= dO_r_57;
+      dO <= dO_r_58;
       wO_r <= _dist_io_w_bits_w;
       wO_r_1 <= wO_r;
-      wO <= wO_r_1;
+      wO_r_2 <= wO_r_1;
+      wO_r_3 <= wO_r_2;
+      wO_r_4 <= wO_r_3;
+      wO_r_5 <= wO_r_4;
+      wO_r_6 <= wO_r_5;
+      wO_r_7 <= wO_r_6;
+      wO_r_8 <= wO_r_7;
+      wO_r_9 <= wO_r_8;
+      wO_r_10 <= wO_r_9;
+      wO_r_11 <= wO_r_10;
+      wO_r_12 <= wO_r_11;
+      wO_r_13 <= wO_r_12;
+      wO_r_14 <= wO_r_13;
+      wO_r_15 <= wO_r_14;
+      wO_r_16 <= wO_r_15;
+      wO_r_17 <= wO_r_16;
+      wO_r_18 <= wO_r_17;
+      wO_r_19 <= wO_r_18;
+      wO_r_20 <= wO_r_19;
+      wO_r_21 <= wO_r_20;
+      wO_r_22 <= wO_r_21;
+      wO_r_23 <= wO_r_22;
+      wO_r_24 <= wO_r_23;
+      wO_r_25 <= wO_r_24;
+      wO_r_26 <= wO_r_25;
+      wO <= wO_r_26;
       io_out_bits_meta_tag_r <= io_in_bits_meta_tag;
       io_out_bits_meta_tag_r_1 <= io_out_bits_meta_tag_r;
       io_out_bits_meta_tag_r_2 <= io_out_bits_meta_tag_r_1;
@@ -117005,6 +121355,121 @@ module ScpuDatapath_fp32_world(
       io_out_bits_meta_tag_r_18 <= io_out_bits_meta_tag_r_17;
       io_out_bits_meta_tag_r_19 <= io_out_bits_meta_tag_r_18;
       io_out_bits_meta_tag_r_20 <= io_out_bits_meta_tag_r_19;
+      io_out_bits_meta_tag_r_21 <= io_out_bits_meta_tag_r_20;
+      io_out_bits_meta_tag_r_22 <= io_out_bits_meta_tag_r_21;
+      io_out_bits_meta_tag_r_23 <= io_out_bits_meta_tag_r_22;
+      io_out_bits_meta_tag_r_24 <= io_out_bits_meta_tag_r_23;
+      io_out_bits_meta_tag_r_25 <= io_out_bits_meta_tag_r_24;
+      io_out_bits_meta_tag_r_26 <= io_out_bits_meta_tag_r_25;
+      io_out_bits_meta_tag_r_27 <= io_out_bits_meta_tag_r_26;
+      io_out_bits_meta_tag_r_28 <= io_out_bits_meta_tag_r_27;
+      io_out_bits_meta_tag_r_29 <= io_out_bits_meta_tag_r_28;
+      io_out_bits_meta_tag_r_30 <= io_out_bits_meta_tag_r_29;
+      io_out_bits_meta_tag_r_31 <= io_out_bits_meta_tag_r_30;
+      io_out_bits_meta_tag_r_32 <= io_out_bits_meta_tag_r_31;
+      io_out_bits_meta_tag_r_33 <= io_out_bits_meta_tag_r_32;
+      io_out_bits_meta_tag_r_34 <= io_out_bits_meta_tag_r_33;
+      io_out_bits_meta_tag_r_35 <= io_out_bits_meta_tag_r_34;
+      io_out_bits_meta_tag_r_36 <= io_out_bits_meta_tag_r_35;
+      io_out_bits_meta_tag_r_37 <= io_out_bits_meta_tag_r_36;
+      io_out_bits_meta_tag_r_38 <= io_out_bits_meta_tag_r_37;
+      io_out_bits_meta_tag_r_39 <= io_out_bits_meta_tag_r_38;
+      io_out_bits_meta_tag_r_40 <= io_out_bits_meta_tag_r_39;
+      io_out_bits_meta_tag_r_41 <= io_out_bits_meta_tag_r_40;
+      io_out_bits_meta_tag_r_42 <= io_out_bits_meta_tag_r_41;
+      io_out_bits_meta_tag_r_43 <= io_out_bits_meta_tag_r_42;
+      io_out_bits_meta_tag_r_44 <= io_out_bits_meta_tag_r_43;
+      io_out_bits_meta_tag_r_45 <= io_out_bits_meta_tag_r_44;
+      io_out_bits_meta_tag_r_46 <= io_out_bits_meta_tag_r_45;
+      io_out_bits_meta_tag_r_47 <= io_out_bits_meta_tag_r_46;
+      io_out_bits_meta_tag_r_48 <= io_out_bits_meta_tag_r_47;
+      io_out_bits_meta_tag_r_49 <= io_out_bits_meta_tag_r_48;
+      io_out_bits_meta_tag_r_50 <= io_out_bits_meta_tag_r_49;
+      io_out_bits_meta_tag_r_51 <= io_out_bits_meta_tag_r_50;
+      io_out_bits_meta_tag_r_52 <= io_out_bits_meta_tag_r_51;
+      io_out_bits_meta_tag_r_53 <= io_out_bits_meta_tag_r_52;
+      io_out_bits_meta_tag_r_54 <= io_out_bits_meta_tag_r_53;
+      io_out_bits_meta_tag_r_55 <= io_out_bits_meta_tag_r_54;
+      io_out_bits_meta_tag_r_56 <= io_out_bits_meta_tag_r_55;
+      io_out_bits_meta_tag_r_57 <= io_out_bits_meta_tag_r_56;
+      io_out_bits_meta_tag_r_58 <= io_out_bits_meta_tag_r_57;
+      io_out_bits_meta_tag_r_59 <= io_out_bits_meta_tag_r_58;
+      io_out_bits_meta_tag_r_60 <= io_out_bits_meta_tag_r_59;
+      io_out_bits_meta_tag_r_61 <= io_out_bits_meta_tag_r_60;
+      io_out_bits_meta_tag_r_62 <= io_out_bits_meta_tag_r_61;
+      io_out_bits_meta_tag_r_63 <= io_out_bits_meta_tag_r_62;
+      io_out_bits_meta_tag_r_64 <= io_out_bits_meta_tag_r_63;
+      io_out_bits_meta_tag_r_65 <= io_out_bits_meta_tag_r_64;
+      io_out_bits_meta_tag_r_66 <= io_out_bits_meta_tag_r_65;
+      io_out_bits_meta_tag_r_67 <= io_out_bits_meta_tag_r_66;
+      io_out_bits_meta_tag_r_68 <= io_out_bits_meta_tag_r_67;
+      io_out_bits_meta_tag_r_69 <= io_out_bits_meta_tag_r_68;
+      io_out_bits_meta_tag_r_70 <= io_out_bits_meta_tag_r_69;
+      io_out_bits_meta_tag_r_71 <= io_out_bits_meta_tag_r_70;
+      io_out_bits_meta_tag_r_72 <= io_out_bits_meta_tag_r_71;
+      io_out_bits_meta_tag_r_73 <= io_out_bits_meta_tag_r_72;
+      io_out_bits_meta_tag_r_74 <= io_out_bits_meta_tag_r_73;
+      io_out_bits_meta_tag_r_75 <= io_out_bits_meta_tag_r_74;
+      io_out_bits_meta_tag_r_76 <= io_out_bits_meta_tag_r_75;
+      io_out_bits_meta_tag_r_77 <= io_out_bits_meta_tag_r_76;
+      io_out_bits_meta_tag_r_78 <= io_out_bits_meta_tag_r_77;
+      io_out_bits_meta_tag_r_79 <= io_out_bits_meta_tag_r_78;
+      io_out_bits_meta_tag_r_80 <= io_out_bits_meta_tag_r_79;
+      io_out_bits_meta_tag_r_81 <= io_out_bits_meta_tag_r_80;
+      io_out_bits_meta_tag_r_82 <= io_out_bits_meta_tag_r_81;
+      io_out_bits_meta_tag_r_83 <= io_out_bits_meta_tag_r_82;
+      io_out_bits_meta_tag_r_84 <= io_out_bits_meta_tag_r_83;
+      io_out_bits_meta_tag_r_85 <= io_out_bits_meta_tag_r_84;
+      io_out_bits_meta_tag_r_86 <= io_out_bits_meta_tag_r_85;
+      io_out_bits_meta_tag_r_87 <= io_out_bits_meta_tag_r_86;
+      io_out_bits_meta_tag_r_88 <= io_out_bits_meta_tag_r_87;
+      io_out_bits_meta_tag_r_89 <= io_out_bits_meta_tag_r_88;
+      io_out_bits_meta_tag_r_90 <= io_out_bits_meta_tag_r_89;
+      io_out_bits_meta_tag_r_91 <= io_out_bits_meta_tag_r_90;
+      io_out_bits_meta_tag_r_92 <= io_out_bits_meta_tag_r_91;
+      io_out_bits_meta_tag_r_93 <= io_out_bits_meta_tag_r_92;
+      io_out_bits_meta_tag_r_94 <= io_out_bits_meta_tag_r_93;
+      io_out_bits_meta_tag_r_95 <= io_out_bits_meta_tag_r_94;
+      io_out_bits_meta_tag_r_96 <= io_out_bits_meta_tag_r_95;
+      io_out_bits_meta_tag_r_97 <= io_out_bits_meta_tag_r_96;
+      io_out_bits_meta_tag_r_98 <= io_out_bits_meta_tag_r_97;
+      io_out_bits_meta_tag_r_99 <= io_out_bits_meta_tag_r_98;
+      io_out_bits_meta_tag_r_100 <= io_out_bits_meta_tag_r_99;
+      io_out_bits_meta_tag_r_101 <= io_out_bits_meta_tag_r_100;
+      io_out_bits_meta_tag_r_102 <= io_out_bits_meta_tag_r_101;
+      io_out_bits_meta_tag_r_103 <= io_out_bits_meta_tag_r_102;
+      io_out_bits_meta_tag_r_104 <= io_out_bits_meta_tag_r_103;
+      io_out_bits_meta_tag_r_105 <= io_out_bits_meta_tag_r_104;
+      io_out_bits_meta_tag_r_106 <= io_out_bits_meta_tag_r_105;
+      io_out_bits_meta_tag_r_107 <= io_out_bits_meta_tag_r_106;
+      io_out_bits_meta_tag_r_108 <= io_out_bits_meta_tag_r_107;
+      io_out_bits_meta_tag_r_109 <= io_out_bits_meta_tag_r_108;
+      io_out_bits_meta_tag_r_110 <= io_out_bits_meta_tag_r_109;
+      io_out_bits_meta_tag_r_111 <= io_out_bits_meta_tag_r_110;
+      io_out_bits_meta_tag_r_112 <= io_out_bits_meta_tag_r_111;
+      io_out_bits_meta_tag_r_113 <= io_out_bits_meta_tag_r_112;
+      io_out_bits_meta_tag_r_114 <= io_out_bits_meta_tag_r_113;
+      io_out_bits_meta_tag_r_115 <= io_out_bits_meta_tag_r_114;
+      io_out_bits_meta_tag_r_116 <= io_out_bits_meta_tag_r_115;
+      io_out_bits_meta_tag_r_117 <= io_out_bits_meta_tag_r_116;
+      io_out_bits_meta_tag_r_118 <= io_out_bits_meta_tag_r_117;
+      io_out_bits_meta_tag_r_119 <= io_out_bits_meta_tag_r_118;
+      io_out_bits_meta_tag_r_120 <= io_out_bits_meta_tag_r_119;
+      io_out_bits_meta_tag_r_121 <= io_out_bits_meta_tag_r_120;
+      io_out_bits_meta_tag_r_122 <= io_out_bits_meta_tag_r_121;
+      io_out_bits_meta_tag_r_123 <= io_out_bits_meta_tag_r_122;
+      io_out_bits_meta_tag_r_124 <= io_out_bits_meta_tag_r_123;
+      io_out_bits_meta_tag_r_125 <= io_out_bits_meta_tag_r_124;
+      io_out_bits_meta_tag_r_126 <= io_out_bits_meta_tag_r_125;
+      io_out_bits_meta_tag_r_127 <= io_out_bits_meta_tag_r_126;
+      io_out_bits_meta_tag_r_128 <= io_out_bits_meta_tag_r_127;
+      io_out_bits_meta_tag_r_129 <= io_out_bits_meta_tag_r_128;
+      io_out_bits_meta_tag_r_130 <= io_out_bits_meta_tag_r_129;
+      io_out_bits_meta_tag_r_131 <= io_out_bits_meta_tag_r_130;
+      io_out_bits_meta_tag_r_132 <= io_out_bits_meta_tag_r_131;
+      io_out_bits_meta_tag_r_133 <= io_out_bits_meta_tag_r_132;
+      io_out_bits_meta_tag_r_134 <= io_out_bits_meta_tag_r_133;
+      io_out_bits_meta_tag_r_135 <= io_out_bits_meta_tag_r_134;
       io_out_bits_meta_nonFinite_r <= io_in_bits_meta_nonFinite;
       io_out_bits_meta_nonFinite_r_1 <= io_out_bits_meta_nonFinite_r;
       io_out_bits_meta_nonFinite_r_2 <= io_out_bits_meta_nonFinite_r_1;
@@ -117026,6 +121491,121 @@ module ScpuDatapath_fp32_world(
       io_out_bits_meta_nonFinite_r_18 <= io_out_bits_meta_nonFinite_r_17;
       io_out_bits_meta_nonFinite_r_19 <= io_out_bits_meta_nonFinite_r_18;
       io_out_bits_meta_nonFinite_r_20 <= io_out_bits_meta_nonFinite_r_19;
+      io_out_bits_meta_nonFinite_r_21 <= io_out_bits_meta_nonFinite_r_20;
+      io_out_bits_meta_nonFinite_r_22 <= io_out_bits_meta_nonFinite_r_21;
+      io_out_bits_meta_nonFinite_r_23 <= io_out_bits_meta_nonFinite_r_22;
+      io_out_bits_meta_nonFinite_r_24 <= io_out_bits_meta_nonFinite_r_23;
+      io_out_bits_meta_nonFinite_r_25 <= io_out_bits_meta_nonFinite_r_24;
+      io_out_bits_meta_nonFinite_r_26 <= io_out_bits_meta_nonFinite_r_25;
+      io_out_bits_meta_nonFinite_r_27 <= io_out_bits_meta_nonFinite_r_26;
+      io_out_bits_meta_nonFinite_r_28 <= io_out_bits_meta_nonFinite_r_27;
+      io_out_bits_meta_nonFinite_r_29 <= io_out_bits_meta_nonFinite_r_28;
+      io_out_bits_meta_nonFinite_r_30 <= io_out_bits_meta_nonFinite_r_29;
+      io_out_bits_meta_nonFinite_r_31 <= io_out_bits_meta_nonFinite_r_30;
+      io_out_bits_meta_nonFinite_r_32 <= io_out_bits_meta_nonFinite_r_31;
+      io_out_bits_meta_nonFinite_r_33 <= io_out_bits_meta_nonFinite_r_32;
+      io_out_bits_meta_nonFinite_r_34 <= io_out_bits_meta_nonFinite_r_33;
+      io_out_bits_meta_nonFinite_r_35 <= io_out_bits_meta_nonFinite_r_34;
+      io_out_bits_meta_nonFinite_r_36 <= io_out_bits_meta_nonFinite_r_35;
+      io_out_bits_meta_nonFinite_r_37 <= io_out_bits_meta_nonFinite_r_36;
+      io_out_bits_meta_nonFinite_r_38 <= io_out_bits_meta_nonFinite_r_37;
+      io_out_bits_meta_nonFinite_r_39 <= io_out_bits_meta_nonFinite_r_38;
+      io_out_bits_meta_nonFinite_r_40 <= io_out_bits_meta_nonFinite_r_39;
+      io_out_bits_meta_nonFinite_r_41 <= io_out_bits_meta_nonFinite_r_40;
+      io_out_bits_meta_nonFinite_r_42 <= io_out_bits_meta_nonFinite_r_41;
+      io_out_bits_meta_nonFinite_r_43 <= io_out_bits_meta_nonFinite_r_42;
+      io_out_bits_meta_nonFinite_r_44 <= io_out_bits_meta_nonFinite_r_43;
+      io_out_bits_meta_nonFinite_r_45 <= io_out_bits_meta_nonFinite_r_44;
+      io_out_bits_meta_nonFinite_r_46 <= io_out_bits_meta_nonFinite_r_45;
+      io_out_bits_meta_nonFinite_r_47 <= io_out_bits_meta_nonFinite_r_46;
+      io_out_bits_meta_nonFinite_r_48 <= io_out_bits_meta_nonFinite_r_47;
+      io_out_bits_meta_nonFinite_r_49 <= io_out_bits_meta_nonFinite_r_48;
+      io_out_bits_meta_nonFinite_r_50 <= io_out_bits_meta_nonFinite_r_49;
+      io_out_bits_meta_nonFinite_r_51 <= io_out_bits_meta_nonFinite_r_50;
+      io_out_bits_meta_nonFinite_r_52 <= io_out_bits_meta_nonFinite_r_51;
+      io_out_bits_meta_nonFinite_r_53 <= io_out_bits_meta_nonFinite_r_52;
+      io_out_bits_meta_nonFinite_r_54 <= io_out_bits_meta_nonFinite_r_53;
+      io_out_bits_meta_nonFinite_r_55 <= io_out_bits_meta_nonFinite_r_54;
+      io_out_bits_meta_nonFinite_r_56 <= io_out_bits_meta_nonFinite_r_55;
+      io_out_bits_meta_nonFinite_r_57 <= io_out_bits_meta_nonFinite_r_56;
+      io_out_bits_meta_nonFinite_r_58 <= io_out_bits_meta_nonFinite_r_57;
+      io_out_bits_meta_nonFinite_r_59 <= io_out_bits_meta_nonFinite_r_58;
+      io_out_bits_meta_nonFinite_r_60 <= io_out_bits_meta_nonFinite_r_59;
+      io_out_bits_meta_nonFinite_r_61 <= io_out_bits_meta_nonFinite_r_60;
+      io_out_bits_meta_nonFinite_r_62 <= io_out_bits_meta_nonFinite_r_61;
+      io_out_bits_meta_nonFinite_r_63 <= io_out_bits_meta_nonFinite_r_62;
+      io_out_bits_meta_nonFinite_r_64 <= io_out_bits_meta_nonFinite_r_63;
+      io_out_bits_meta_nonFinite_r_65 <= io_out_bits_meta_nonFinite_r_64;
+      io_out_bits_meta_nonFinite_r_66 <= io_out_bits_meta_nonFinite_r_65;
+      io_out_bits_meta_nonFinite_r_67 <= io_out_bits_meta_nonFinite_r_66;
+      io_out_bits_meta_nonFinite_r_68 <= io_out_bits_meta_nonFinite_r_67;
+      io_out_bits_meta_nonFinite_r_69 <= io_out_bits_meta_nonFinite_r_68;
+      io_out_bits_meta_nonFinite_r_70 <= io_out_bits_meta_nonFinite_r_69;
+      io_out_bits_meta_nonFinite_r_71 <= io_out_bits_meta_nonFinite_r_70;
+      io_out_bits_meta_nonFinite_r_72 <= io_out_bits_meta_nonFinite_r_71;
+      io_out_bits_meta_nonFinite_r_73 <= io_out_bits_meta_nonFinite_r_72;
+      io_out_bits_meta_nonFinite_r_74 <= io_out_bits_meta_nonFinite_r_73;
+      io_out_bits_meta_nonFinite_r_75 <= io_out_bits_meta_nonFinite_r_74;
+      io_out_bits_meta_nonFinite_r_76 <= io_out_bits_meta_nonFinite_r_75;
+      io_out_bits_meta_nonFinite_r_77 <= io_out_bits_meta_nonFinite_r_76;
+      io_out_bits_meta_nonFinite_r_78 <= io_out_bits_meta_nonFinite_r_77;
+      io_out_bits_meta_nonFinite_r_79 <= io_out_bits_meta_nonFinite_r_78;
+      io_out_bits_meta_nonFinite_r_80 <= io_out_bits_meta_nonFinite_r_79;
+      io_out_bits_meta_nonFinite_r_81 <= io_out_bits_meta_nonFinite_r_80;
+      io_out_bits_meta_nonFinite_r_82 <= io_out_bits_meta_nonFinite_r_81;
+      io_out_bits_meta_nonFinite_r_83 <= io_out_bits_meta_nonFinite_r_82;
+      io_out_bits_meta_nonFinite_r_84 <= io_out_bits_meta_nonFinite_r_83;
+      io_out_bits_meta_nonFinite_r_85 <= io_out_bits_meta_nonFinite_r_84;
+      io_out_bits_meta_nonFinite_r_86 <= io_out_bits_meta_nonFinite_r_85;
+      io_out_bits_meta_nonFinite_r_87 <= io_out_bits_meta_nonFinite_r_86;
+      io_out_bits_meta_nonFinite_r_88 <= io_out_bits_meta_nonFinite_r_87;
+      io_out_bits_meta_nonFinite_r_89 <= io_out_bits_meta_nonFinite_r_88;
+      io_out_bits_meta_nonFinite_r_90 <= io_out_bits_meta_nonFinite_r_89;
+      io_out_bits_meta_nonFinite_r_91 <= io_out_bits_meta_nonFinite_r_90;
+      io_out_bits_meta_nonFinite_r_92 <= io_out_bits_meta_nonFinite_r_91;
+      io_out_bits_meta_nonFinite_r_93 <= io_out_bits_meta_nonFinite_r_92;
+      io_out_bits_meta_nonFinite_r_94 <= io_out_bits_meta_nonFinite_r_93;
+      io_out_bits_meta_nonFinite_r_95 <= io_out_bits_meta_nonFinite_r_94;
+      io_out_bits_meta_nonFinite_r_96 <= io_out_bits_meta_nonFinite_r_95;
+      io_out_bits_meta_nonFinite_r_97 <= io_out_bits_meta_nonFinite_r_96;
+      io_out_bits_meta_nonFinite_r_98 <= io_out_bits_meta_nonFinite_r_97;
+      io_out_bits_meta_nonFinite_r_99 <= io_out_bits_meta_nonFinite_r_98;
+      io_out_bits_meta_nonFinite_r_100 <= io_out_bits_meta_nonFinite_r_99;
+      io_out_bits_meta_nonFinite_r_101 <= io_out_bits_meta_nonFinite_r_100;
+      io_out_bits_meta_nonFinite_r_102 <= io_out_bits_meta_nonFinite_r_101;
+      io_out_bits_meta_nonFinite_r_103 <= io_out_bits_meta_nonFinite_r_102;
+      io_out_bits_meta_nonFinite_r_104 <= io_out_bits_meta_nonFinite_r_103;
+      io_out_bits_meta_nonFinite_r_105 <= io_out_bits_meta_nonFinite_r_104;
+      io_out_bits_meta_nonFinite_r_106 <= io_out_bits_meta_nonFinite_r_105;
+      io_out_bits_meta_nonFinite_r_107 <= io_out_bits_meta_nonFinite_r_106;
+      io_out_bits_meta_nonFinite_r_108 <= io_out_bits_meta_nonFinite_r_107;
+      io_out_bits_meta_nonFinite_r_109 <= io_out_bits_meta_nonFinite_r_108;
+      io_out_bits_meta_nonFinite_r_110 <= io_out_bits_meta_nonFinite_r_109;
+      io_out_bits_meta_nonFinite_r_111 <= io_out_bits_meta_nonFinite_r_110;
+      io_out_bits_meta_nonFinite_r_112 <= io_out_bits_meta_nonFinite_r_111;
+      io_out_bits_meta_nonFinite_r_113 <= io_out_bits_meta_nonFinite_r_112;
+      io_out_bits_meta_nonFinite_r_114 <= io_out_bits_meta_nonFinite_r_113;
+      io_out_bits_meta_nonFinite_r_115 <= io_out_bits_meta_nonFinite_r_114;
+      io_out_bits_meta_nonFinite_r_116 <= io_out_bits_meta_nonFinite_r_115;
+      io_out_bits_meta_nonFinite_r_117 <= io_out_bits_meta_nonFinite_r_116;
+      io_out_bits_meta_nonFinite_r_118 <= io_out_bits_meta_nonFinite_r_117;
+      io_out_bits_meta_nonFinite_r_119 <= io_out_bits_meta_nonFinite_r_118;
+      io_out_bits_meta_nonFinite_r_120 <= io_out_bits_meta_nonFinite_r_119;
+      io_out_bits_meta_nonFinite_r_121 <= io_out_bits_meta_nonFinite_r_120;
+      io_out_bits_meta_nonFinite_r_122 <= io_out_bits_meta_nonFinite_r_121;
+      io_out_bits_meta_nonFinite_r_123 <= io_out_bits_meta_nonFinite_r_122;
+      io_out_bits_meta_nonFinite_r_124 <= io_out_bits_meta_nonFinite_r_123;
+      io_out_bits_meta_nonFinite_r_125 <= io_out_bits_meta_nonFinite_r_124;
+      io_out_bits_meta_nonFinite_r_126 <= io_out_bits_meta_nonFinite_r_125;
+      io_out_bits_meta_nonFinite_r_127 <= io_out_bits_meta_nonFinite_r_126;
+      io_out_bits_meta_nonFinite_r_128 <= io_out_bits_meta_nonFinite_r_127;
+      io_out_bits_meta_nonFinite_r_129 <= io_out_bits_meta_nonFinite_r_128;
+      io_out_bits_meta_nonFinite_r_130 <= io_out_bits_meta_nonFinite_r_129;
+      io_out_bits_meta_nonFinite_r_131 <= io_out_bits_meta_nonFinite_r_130;
+      io_out_bits_meta_nonFinite_r_132 <= io_out_bits_meta_nonFinite_r_131;
+      io_out_bits_meta_nonFinite_r_133 <= io_out_bits_meta_nonFinite_r_132;
+      io_out_bits_meta_nonFinite_r_134 <= io_out_bits_meta_nonFinite_r_133;
+      io_out_bits_meta_nonFinite_r_135 <= io_out_bits_meta_nonFinite_r_134;
     end
     if (reset) begin
       vM_r <= 1'h0;
@@ -117033,6 +121613,20 @@ module ScpuDatapath_fp32_world(
       vM_r_2 <= 1'h0;
       vM_r_3 <= 1'h0;
       vM_r_4 <= 1'h0;
+      vM_r_5 <= 1'h0;
+      vM_r_6 <= 1'h0;
+      vM_r_7 <= 1'h0;
+      vM_r_8 <= 1'h0;
+      vM_r_9 <= 1'h0;
+      vM_r_10 <= 1'h0;
+      vM_r_11 <= 1'h0;
+      vM_r_12 <= 1'h0;
+      vM_r_13 <= 1'h0;
+      vM_r_14 <= 1'h0;
+      vM_r_15 <= 1'h0;
+      vM_r_16 <= 1'h0;
+      vM_r_17 <= 1'h0;
+      vM_r_18 <= 1'h0;
       vM <= 1'h0;
     end
     else if (io_en) begin
@@ -117041,10 +121635,24 @@ module ScpuDatapath_fp32_world(
       vM_r_2 <= vM_r_1;
       vM_r_3 <= vM_r_2;
       vM_r_4 <= vM_r_3;
-      vM <= vM_r_4;
+      vM_r_5 <= vM_r_4;
+      vM_r_6 <= vM_r_5;
+      vM_r_7 <= vM_r_6;
+      vM_r_8 <= vM_r_7;
+      vM_r_9 <= vM_r_8;
+      vM_r_10 <= vM_r_9;
+      vM_r_11 <= vM_r_10;
+      vM_r_12 <= vM_r_11;
+      vM_r_13 <= vM_r_12;
+      vM_r_14 <= vM_r_13;
+      vM_r_15 <= vM_r_14;
+      vM_r_16 <= vM_r_15;
+      vM_r_17 <= vM_r_16;
+      vM_r_18 <= vM_r_17;
+      vM <= vM_r_18;
     end
   end // always @(posedge)
-  FpAdd_fp32_L1_world dx_m (
+  FpAdd_fp32_L12_world dx_m (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -117056,7 +121664,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits    (_dx_m_io_out_bits_bits),
     .io_out_bits_flags   (_dx_m_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world dy_m (
+  FpAdd_fp32_L12_world dy_m (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -117068,7 +121676,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits    (_dy_m_io_out_bits_bits),
     .io_out_bits_flags   (_dy_m_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world dz_m (
+  FpAdd_fp32_L12_world dz_m (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -117080,7 +121688,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits    (_dz_m_io_out_bits_bits),
     .io_out_bits_flags   (_dz_m_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world rs_m (
+  FpAdd_fp32_L12_world rs_m (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -117092,7 +121700,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits    (_rs_m_io_out_bits_bits),
     .io_out_bits_flags   (_rs_m_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world rdiff_m (
+  FpAdd_fp32_L12_world rdiff_m (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -117104,7 +121712,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits    (_rdiff_m_io_out_bits_bits),
     .io_out_bits_flags   (_rdiff_m_io_out_bits_flags)
   );
-  SqrtRecipDistance_fp32_world dist_0 (
+  SqrtRecipDistance_fp32_200_world dist_0 (
     .clock           (clock),
     .reset           (reset),
     .io_en           (io_en),
@@ -117131,7 +121739,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_eq    (_cmp_m_io_out_bits_eq),
     .io_out_bits_flags (_cmp_m_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world depth_m (
+  FpAdd_fp32_L12_world depth_m (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -117143,19 +121751,19 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits    (/* unused */),
     .io_out_bits_flags   (_depth_m_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world k0_m (
+  FpAdd_fp32_L12_world k0_m (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
     .io_in_valid         (_dist_io_d_valid),
-    .io_in_bits_a        (k0_r_9),
+    .io_in_bits_a        (k0_r_63),
     .io_in_bits_b        (_dist_io_d_bits_d),
     .io_in_bits_subtract (1'h1),
     .io_out_valid        (_k0_m_io_out_valid),
     .io_out_bits_bits    (_k0_m_io_out_bits_bits),
     .io_out_bits_flags   (_k0_m_io_out_bits_flags)
   );
-  FpMul_fp32_L1_world k_m (
+  FpMul_fp32_L8_world k_m (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -117166,7 +121774,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits  (_k_m_io_out_bits_bits),
     .io_out_bits_flags (_k_m_io_out_bits_flags)
   );
-  FpMul_fp32_L1_world n_m (
+  FpMul_fp32_L8_world n_m (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -117177,7 +121785,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits  (_n_m_io_out_bits_bits),
     .io_out_bits_flags (_n_m_io_out_bits_flags)
   );
-  FpMul_fp32_L1_world n_m_1 (
+  FpMul_fp32_L8_world n_m_1 (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -117188,7 +121796,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits  (_n_m_1_io_out_bits_bits),
     .io_out_bits_flags (_n_m_1_io_out_bits_flags)
   );
-  FpMul_fp32_L1_world n_m_2 (
+  FpMul_fp32_L8_world n_m_2 (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -117199,7 +121807,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits  (_n_m_2_io_out_bits_bits),
     .io_out_bits_flags (_n_m_2_io_out_bits_flags)
   );
-  FpMul_fp32_L1_world nk_m (
+  FpMul_fp32_L8_world nk_m (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -117210,7 +121818,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits  (_nk_m_io_out_bits_bits),
     .io_out_bits_flags (_nk_m_io_out_bits_flags)
   );
-  FpMul_fp32_L1_world nk_m_1 (
+  FpMul_fp32_L8_world nk_m_1 (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -117221,7 +121829,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits  (_nk_m_1_io_out_bits_bits),
     .io_out_bits_flags (_nk_m_1_io_out_bits_flags)
   );
-  FpMul_fp32_L1_world nk_m_2 (
+  FpMul_fp32_L8_world nk_m_2 (
     .clock             (clock),
     .reset             (reset),
     .io_en             (io_en),
@@ -117232,7 +121840,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits  (_nk_m_2_io_out_bits_bits),
     .io_out_bits_flags (_nk_m_2_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world pos_m (
+  FpAdd_fp32_L12_world pos_m (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -117244,7 +121852,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits    (/* unused */),
     .io_out_bits_flags   (_pos_m_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world pos_m_1 (
+  FpAdd_fp32_L12_world pos_m_1 (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -117256,7 +121864,7 @@ module ScpuDatapath_fp32_world(
     .io_out_bits_bits    (/* unused */),
     .io_out_bits_flags   (_pos_m_1_io_out_bits_flags)
   );
-  FpAdd_fp32_L1_world pos_m_2 (
+  FpAdd_fp32_L12_world pos_m_2 (
     .clock               (clock),
     .reset               (reset),
     .io_en               (io_en),
@@ -117272,18 +121880,19 @@ module ScpuDatapath_fp32_world(
   assign io_out_bits_kind = contact ? 2'h1 : {le & zero, 1'h0};
   assign io_out_bits_d = contact ? dO : 32'h0;
   assign io_out_bits_nw = contact ? wO : 32'h0;
-  assign io_out_bits_meta_tag = io_out_bits_meta_tag_r_20;
-  assign io_out_bits_meta_nonFinite = io_out_bits_meta_nonFinite_r_20;
+  assign io_out_bits_meta_tag = io_out_bits_meta_tag_r_135;
+  assign io_out_bits_meta_nonFinite = io_out_bits_meta_nonFinite_r_135;
   assign io_out_bits_meta_flags =
-    baseFlags_r_40 | baseFlags_r_50 | baseFlags_r_59
+    baseFlags_r_259 | baseFlags_r_319 | baseFlags_r_378
     | (contact
-         ? contactFlags_r_19 | contactFlags_r_22 | contactFlags_r_31 | contactFlags_r_39
-           | contactFlags_r_41 | contactFlags_r_42 | _pos_m_io_out_bits_flags
-           | _pos_m_1_io_out_bits_flags | _pos_m_2_io_out_bits_flags
+         ? contactFlags_r_123 | contactFlags_r_151 | contactFlags_r_199
+           | contactFlags_r_239 | contactFlags_r_259 | contactFlags_r_271
+           | _pos_m_io_out_bits_flags | _pos_m_1_io_out_bits_flags
+           | _pos_m_2_io_out_bits_flags
          : 5'h0);
 endmodule
 
-module ScpuConvertOut_fp32_world(
+module ScpuConvertOut_fp32_200_world(
   input         io_in_valid,
                 io_in_bits_hit,
   input  [1:0]  io_in_bits_kind,
@@ -117312,7 +121921,7 @@ module ScpuConvertOut_fp32_world(
   assign io_out_bits_tag = io_in_bits_meta_tag;
 endmodule
 
-module Scpu_fp32_world(
+module Scpu_fp32_200_world(
   input         clock,
                 reset,
   output        io_in_ready,
@@ -117358,7 +121967,7 @@ module Scpu_fp32_world(
   wire [23:0] _cin_io_out_bits_meta_tag;
   wire        _cin_io_out_bits_meta_nonFinite;
   wire        en = ~_cout_io_out_valid | io_out_ready;
-  ScpuConvertIn_fp32_world cin (
+  ScpuConvertIn_fp32_200_world cin (
     .io_in_valid                (io_in_valid),
     .io_in_bits_x1              (io_in_bits_x1),
     .io_in_bits_y1              (io_in_bits_y1),
@@ -117381,7 +121990,7 @@ module Scpu_fp32_world(
     .io_out_bits_meta_tag       (_cin_io_out_bits_meta_tag),
     .io_out_bits_meta_nonFinite (_cin_io_out_bits_meta_nonFinite)
   );
-  ScpuDatapath_fp32_world core (
+  ScpuDatapath_fp32_200_world core (
     .clock                      (clock),
     .reset                      (reset),
     .io_en                      (en),
@@ -117405,7 +122014,7 @@ module Scpu_fp32_world(
     .io_out_bits_meta_nonFinite (_core_io_out_bits_meta_nonFinite),
     .io_out_bits_meta_flags     (_core_io_out_bits_meta_flags)
   );
-  ScpuConvertOut_fp32_world cout (
+  ScpuConvertOut_fp32_200_world cout (
     .io_in_valid               (_core_io_out_valid),
     .io_in_bits_hit            (_core_io_out_bits_hit),
     .io_in_bits_kind           (_core_io_out_bits_kind),
@@ -118116,7 +122725,7 @@ module Afu_world(
     .io_idle                      (io_idle),
     .io_skipCycles                (io_skipCycles)
   );
-  Scpu_fp32_world units_0 (
+  Scpu_fp32_200_world units_0 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_0_io_in_ready),
@@ -118140,7 +122749,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_0_io_out_bits_flags),
     .io_out_bits_tag       (_units_0_io_out_bits_tag)
   );
-  Scpu_fp32_world units_1 (
+  Scpu_fp32_200_world units_1 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_1_io_in_ready),
@@ -118164,7 +122773,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_1_io_out_bits_flags),
     .io_out_bits_tag       (_units_1_io_out_bits_tag)
   );
-  Scpu_fp32_world units_2 (
+  Scpu_fp32_200_world units_2 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_2_io_in_ready),
@@ -118188,7 +122797,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_2_io_out_bits_flags),
     .io_out_bits_tag       (_units_2_io_out_bits_tag)
   );
-  Scpu_fp32_world units_3 (
+  Scpu_fp32_200_world units_3 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_3_io_in_ready),
@@ -118212,7 +122821,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_3_io_out_bits_flags),
     .io_out_bits_tag       (_units_3_io_out_bits_tag)
   );
-  Scpu_fp32_world units_4 (
+  Scpu_fp32_200_world units_4 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_4_io_in_ready),
@@ -118236,7 +122845,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_4_io_out_bits_flags),
     .io_out_bits_tag       (_units_4_io_out_bits_tag)
   );
-  Scpu_fp32_world units_5 (
+  Scpu_fp32_200_world units_5 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_5_io_in_ready),
@@ -118260,7 +122869,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_5_io_out_bits_flags),
     .io_out_bits_tag       (_units_5_io_out_bits_tag)
   );
-  Scpu_fp32_world units_6 (
+  Scpu_fp32_200_world units_6 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_6_io_in_ready),
@@ -118284,7 +122893,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_6_io_out_bits_flags),
     .io_out_bits_tag       (_units_6_io_out_bits_tag)
   );
-  Scpu_fp32_world units_7 (
+  Scpu_fp32_200_world units_7 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_7_io_in_ready),
@@ -118308,7 +122917,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_7_io_out_bits_flags),
     .io_out_bits_tag       (_units_7_io_out_bits_tag)
   );
-  Scpu_fp32_world units_8 (
+  Scpu_fp32_200_world units_8 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_8_io_in_ready),
@@ -118332,7 +122941,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_8_io_out_bits_flags),
     .io_out_bits_tag       (_units_8_io_out_bits_tag)
   );
-  Scpu_fp32_world units_9 (
+  Scpu_fp32_200_world units_9 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_9_io_in_ready),
@@ -118356,7 +122965,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_9_io_out_bits_flags),
     .io_out_bits_tag       (_units_9_io_out_bits_tag)
   );
-  Scpu_fp32_world units_10 (
+  Scpu_fp32_200_world units_10 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_10_io_in_ready),
@@ -118380,7 +122989,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_10_io_out_bits_flags),
     .io_out_bits_tag       (_units_10_io_out_bits_tag)
   );
-  Scpu_fp32_world units_11 (
+  Scpu_fp32_200_world units_11 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_11_io_in_ready),
@@ -118404,7 +123013,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_11_io_out_bits_flags),
     .io_out_bits_tag       (_units_11_io_out_bits_tag)
   );
-  Scpu_fp32_world units_12 (
+  Scpu_fp32_200_world units_12 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_12_io_in_ready),
@@ -118428,7 +123037,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_12_io_out_bits_flags),
     .io_out_bits_tag       (_units_12_io_out_bits_tag)
   );
-  Scpu_fp32_world units_13 (
+  Scpu_fp32_200_world units_13 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_13_io_in_ready),
@@ -118452,7 +123061,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_13_io_out_bits_flags),
     .io_out_bits_tag       (_units_13_io_out_bits_tag)
   );
-  Scpu_fp32_world units_14 (
+  Scpu_fp32_200_world units_14 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_14_io_in_ready),
@@ -118476,7 +123085,7 @@ module Afu_world(
     .io_out_bits_flags     (_units_14_io_out_bits_flags),
     .io_out_bits_tag       (_units_14_io_out_bits_tag)
   );
-  Scpu_fp32_world units_15 (
+  Scpu_fp32_200_world units_15 (
     .clock                 (clock),
     .reset                 (reset),
     .io_in_ready           (_units_15_io_in_ready),

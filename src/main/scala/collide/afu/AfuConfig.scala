@@ -3,7 +3,8 @@ package collide.afu
 import collide.scpu.{ScpuConfig, ScpuImpl}
 
 /** One AFU configuration: the SCPUs it holds and the PUC around them. Every field has a
-  * default; the default is the `default` preset (16 fp32 correctly rounded SCPUs).
+  * default; the default is the `default` preset (16 fp32 correctly rounded SCPUs, each operator
+  * pipelined for 200 MHz: ScpuConfig.fp32At200).
   *
   * @param name                 preset name (the output folder and the module names' suffix
   *                             when the configuration is exactly that preset)
@@ -42,7 +43,7 @@ import collide.scpu.{ScpuConfig, ScpuImpl}
 final case class AfuConfig(
     name: String = "default",
     scpus: Int = 16,
-    scpu: ScpuConfig = ScpuConfig.fp32,
+    scpu: ScpuConfig = ScpuConfig.fp32At200,
     maxSpheres: Int = 1024,
     maxReadsOutstanding: Int = 64,
     maxWritesOutstanding: Int = 64,

@@ -63,6 +63,7 @@ class Puc(p: PucParams) extends Module {
   val headers    = RegInit(0.U(32.W))   // masked compact: mask headers handed to the packer
   val nonFinite  = RegInit(0.U(32.W))
   val flaggedMiss = RegInit(0.U(32.W))  // misses with NONFINITE or ARITH (pair mode: records too)
+  val records    = RegInit(0.U(35.W))   // compact: hits, flagged misses (pair mode) and headers
   val firstBad   = RegInit(StatusLine.NO_BAD_PAIR.U(32.W))
   val cycTotal   = RegInit(0.U(32.W))
   val cycLoad    = RegInit(0.U(32.W))
@@ -76,12 +77,18 @@ class Puc(p: PucParams) extends Module {
   /** A run's CSRs refused: (a bad configuration, more spheres than the table holds). */
   private def refusal(c: Vec[UInt]): (Bool, Bool) = {
     val wb = c(Csr.MODE)(1); val n = c(Csr.NUM_PAIRS)
+    // x > bound as "a high bit set, or the low bits above it": a zero test and a short compare
+    // rather than a 64-bit carry chain in front of the state register.
+    def above(x: UInt, bound: BigInt): Bool = {
+      val k = math.max(1, (bound + 1).bitLength)
+      x(63, k).orR || x(k - 1, 0) > bound.U
+    }
     // World mode ignores PAIR_BASE and NUM_PAIRS; it is refused where it is not built, and dense.
-    val badPairs = !wb && (n >= lay.maxPairs.U || (n =/= 0.U && c(Csr.PAIR_BASE) === 0.U))
+    val badPairs = !wb && (above(n, BigInt(lay.maxPairs) - 1) || (n =/= 0.U && c(Csr.PAIR_BASE) === 0.U))
     val badWorld = wb && (!p.world.isDefined.B || c(Csr.MODE)(0))
     val badConfig = badPairs || badWorld || (c(Csr.NUM_SPHERES) =/= 0.U && c(Csr.SPHERE_BASE) === 0.U) ||
       (c(Csr.CONTACT_CAPACITY) =/= 0.U && c(Csr.CONTACT_BASE) === 0.U) || c(Csr.STATUS_ADDR) === 0.U
-    (badConfig, c(Csr.NUM_SPHERES) > p.maxSpheres.U)
+    (badConfig, above(c(Csr.NUM_SPHERES), p.maxSpheres))
   }
   /** The run is over (its status written, or nowhere to write it): the queued run is next. */
   private val runEnds = WireDefault(false.B) // endRun() was called this cycle
@@ -127,11 +134,16 @@ class Puc(p: PucParams) extends Module {
   val bpQuiet = WireDefault(true.B) // the broad phase clears nothing and holds no fed sphere
   rd.io.start       := loadStart || prefetchGo
   rd.io.active      := running || nextLoading
-  rd.io.sphereBase  := Mux(nextLoading, next(Csr.SPHERE_BASE), sphereBase)
-  rd.io.sphereLines := ((Mux(nextLoading, next(Csr.NUM_SPHERES), numSpheres) +& (lay.spheresPerLine - 1).U) >>
-    log2Ceil(lay.spheresPerLine))(p.sphereLineBits, 0)
+  // The next run's from the cycle its table's load starts (the engine takes them at its start).
+  // NUM_SPHERES is within the table whenever a read starts (refused runs read nothing), so
+  // only its low bits are summed.
+  // (Summed before the choice, so the late prefetchGo passes one multiplexer only.)
+  val loadingNext = nextLoading || prefetchGo
+  def sphereLines(n: UInt) = ((n(log2Ceil(p.maxSpheres + 1) - 1, 0) +& (lay.spheresPerLine - 1).U) >> log2Ceil(lay.spheresPerLine))(p.sphereLineBits, 0)
+  rd.io.sphereBase  := Mux(loadingNext, next(Csr.SPHERE_BASE), sphereBase)
+  rd.io.sphereLines := Mux(loadingNext, sphereLines(next(Csr.NUM_SPHERES)), sphereLines(numSpheres))
   rd.io.pairBase    := pairBase
-  rd.io.pairLines   := Mux(world || nextLoading, 0.U, ((numPairs +& (lay.pairsPerLine - 1).U) >> log2Ceil(lay.pairsPerLine))(p.pairLineBits, 0))
+  rd.io.pairLines   := Mux(world || loadingNext, 0.U, ((numPairs +& (lay.pairsPerLine - 1).U) >> log2Ceil(lay.pairsPerLine))(p.pairLineBits, 0))
   io.link.rdReq <> rd.io.rdReq
   rd.io.rdResp := io.link.rdResp
   ram.io.write  := rd.io.sphereWrite
@@ -193,7 +205,7 @@ class Puc(p: PucParams) extends Module {
         // lines come (a queued table may still be arriving when its run becomes current); the
         // broad phase ignores lines of a world whose begin it did not take.
         f.valid := wr.valid && (world || nextLoading) &&
-          ((wr.bits.line << log2Ceil(spl)) +& s.U).pad(64) < feedNum
+          ((wr.bits.line << log2Ceil(spl)) +& s.U) < feedNum(log2Ceil(p.maxSpheres + 1) - 1, 0) // <= maxSpheres
         f.bits := Sphere.at(wr.bits.data, s * 4 * p.linkWidth, p.linkWidth).fields
       }
       for ((port, lane) <- ram.io.world.get.zip(bp.io.sphere)) {
@@ -273,9 +285,15 @@ class Puc(p: PucParams) extends Module {
   io.link.wrReq <> wr.io.wrReq
 
   // ---- first pair with an out-of-range index: the lowest such pair index seen
-  when(groups.io.enq.fire && groups.io.enq.bits.invalid.orR) {
-    val idx = groups.io.enq.bits.first + PriorityEncoder(groups.io.enq.bits.invalid)
-    when(idx < firstBad) { firstBad := idx }
+  // In three steps (the group's bits, its lowest bad index, the compare), off the dispatcher's
+  // path; its pairs take the SCPUs' whole latency to reach the status, so it is in time.
+  locally {
+    val enq  = groups.io.enq
+    val bad1 = RegNext(enq.fire && enq.bits.invalid.orR, false.B)
+    val grp1 = RegEnable(enq.bits, enq.fire)
+    val bad2 = RegNext(bad1, false.B)
+    val idx2 = RegNext(grp1.first + PriorityEncoder(grp1.invalid))
+    when(bad2 && idx2 < firstBad) { firstBad := idx2 }
   }
 
   // ---- counting
@@ -284,6 +302,9 @@ class Puc(p: PucParams) extends Module {
   headers   := headers + coll.io.nHeaders
   nonFinite := nonFinite + coll.io.nNonFinite
   flaggedMiss := flaggedMiss + coll.io.nFlagged
+  // Records of a compact run, counted as they come rather than summed from the counters at the
+  // status: that sum and its compare with the capacity were the PUC's slowest path.
+  records := records + (coll.io.nHits +& Mux(world, 0.U, coll.io.nFlagged) +& coll.io.nHeaders) // one wide adder
   when(running) {
     cycTotal := cycTotal + tick
     when(!loaded) { cycLoad := cycLoad + tick }
@@ -300,7 +321,7 @@ class Puc(p: PucParams) extends Module {
   pairsInFlight := pairsInFlight + Mux(disp.io.fired, groups.io.enq.bits.cnt, 0.U) - coll.io.nPairs
 
   when(state === sCheck) { // a new run: after the counting above, so these win
-    processed := 0.U; found := 0.U; headers := 0.U; nonFinite := 0.U; flaggedMiss := 0.U
+    processed := 0.U; found := 0.U; headers := 0.U; nonFinite := 0.U; flaggedMiss := 0.U; records := 0.U
     firstBad := StatusLine.NO_BAD_PAIR.U
     cycTotal := 1.U; cycLoad := 0.U; cycCompute := 0.U; cycWaitRd := 0.U; cycWaitWr := 0.U
   }
@@ -312,11 +333,14 @@ class Puc(p: PucParams) extends Module {
   when(state === sDrain && drainDone) { state := sStatus }
 
   // ---- the status line
-  val compactRecs  = found.pad(64) + Mux(world, 0.U, flaggedMiss.pad(64)) // world mode writes hits only
-  val totalRecords = Mux(dense, numPairs.pad(64), compactRecs + headers.pad(64)) // slots, headers included
-  val written      = Mux(totalRecords > capacity, capacity, totalRecords)(31, 0)
+  val totalRecords = Mux(dense, numPairs.pad(records.getWidth), records) // slots, headers included
+  // The capacity's bits above the records' width, tested a cycle ahead: it is a run register,
+  // and the status comes at least a cycle after the run's check.
+  val capHigh      = RegNext(capacity(63, records.getWidth) =/= 0.U)
+  val overCap      = !capHigh && totalRecords > capacity(records.getWidth - 1, 0)
+  val written      = Mux(overCap, capacity, totalRecords)(31, 0)
   val nothingRun   = (errors & (ErrorFlags.TOO_MANY_SPHERES | ErrorFlags.BAD_CONFIG).U).orR
-  val capErr       = totalRecords > capacity && !nothingRun
+  val capErr       = overCap && !nothingRun
   val errFlags     = errors | Mux(nonFinite =/= 0.U, ErrorFlags.NONFINITE.U, 0.U) | Mux(capErr, ErrorFlags.CAPACITY.U, 0.U) |
     Mux(firstBad =/= StatusLine.NO_BAD_PAIR.U, ErrorFlags.INDEX_RANGE.U, 0.U) |
     Mux(world && worldCheck && !nothingRun, ErrorFlags.WORLD_CHECK.U, 0.U)

@@ -28,6 +28,8 @@ class ReadEngine(p: PucParams) extends Module {
   val io = IO(new Bundle {
     val start       = Input(Bool())   // resets the counters; a cycle before `active`
     val active      = Input(Bool())   // the run is on: issue reads
+    // The bases and line counts hold from the cycle of `start` on (the counts are taken then;
+    // lineAddr reads the bases' high bits a cycle late).
     val sphereBase  = Input(UInt(Link.addrBits.W))
     val sphereLines = Input(UInt((p.sphereLineBits + 1).W))
     val pairBase    = Input(UInt(Link.addrBits.W))
@@ -46,9 +48,14 @@ class ReadEngine(p: PucParams) extends Module {
   val sphereGot    = RegInit(0.U((p.sphereLineBits + 1).W))
   val pairIssued   = RegInit(0.U((p.pairLineBits + 1).W))
   val reserved     = RegInit(0.U(log2Ceil(p.pairBufferLines + 1).W)) // pair reads in flight + lines buffered
+  // Lines still to ask for, counted down: "any left" is then a zero test, not a compare of the
+  // issued count with the run's lines (on the path to every tag's record by the timing proxy).
+  val sphereLeft   = RegInit(0.U((p.sphereLineBits + 1).W))
+  val pairLeft     = RegInit(0.U((p.pairLineBits + 1).W))
   val running      = io.active
   when(io.start) {
     sphereIssued := 0.U; sphereGot := 0.U; pairIssued := 0.U
+    sphereLeft := io.sphereLines; pairLeft := io.pairLines
   }
 
   val tags = Module(new TagPool(p.maxReads, p.tagBits, p.name))
@@ -56,16 +63,17 @@ class ReadEngine(p: PucParams) extends Module {
   val tagIsPair = Reg(Vec(p.maxReads, Bool()))
   val tagLine   = Reg(Vec(p.maxReads, UInt(math.max(p.pairLineBits, spLineBits).W)))
 
-  val wantSphere = running && sphereIssued < io.sphereLines
-  val wantPair   = running && !wantSphere && pairIssued < io.pairLines && reserved < p.pairBufferLines.U
+  val wantSphere = running && sphereLeft =/= 0.U
+  val wantPair   = running && !wantSphere && pairLeft =/= 0.U && reserved < p.pairBufferLines.U
   io.rdReq.valid     := tags.io.alloc.valid && (wantSphere || wantPair)
   io.rdReq.bits.tag  := tags.io.alloc.bits
-  io.rdReq.bits.addr := Mux(wantSphere, io.sphereBase + sphereIssued, io.pairBase + pairIssued)
+  io.rdReq.bits.addr := Mux(wantSphere, ReadEngine.lineAddr(io.sphereBase, sphereIssued), ReadEngine.lineAddr(io.pairBase, pairIssued))
   tags.io.alloc.ready := io.rdReq.ready && (wantSphere || wantPair)
   when(io.rdReq.fire) {
     tagIsPair(tags.io.alloc.bits) := !wantSphere
     tagLine(tags.io.alloc.bits)   := Mux(wantSphere, sphereIssued, pairIssued)
-    when(wantSphere) { sphereIssued := sphereIssued + 1.U }.otherwise { pairIssued := pairIssued + 1.U }
+    when(wantSphere) { sphereIssued := sphereIssued + 1.U; sphereLeft := sphereLeft - 1.U }
+      .otherwise { pairIssued := pairIssued + 1.U; pairLeft := pairLeft - 1.U }
   }
 
   val rTag   = io.rdResp.bits.tag(log2Ceil(p.maxReads) - 1, 0)
@@ -89,7 +97,21 @@ class ReadEngine(p: PucParams) extends Module {
   reserved := reserved + (io.rdReq.fire && !wantSphere).asUInt - buffer.io.deq.fire.asUInt
   io.pairBufferEmpty := !buffer.io.deq.valid
 
-  io.loaded      := running && sphereGot === io.sphereLines && sphereIssued === io.sphereLines
+  io.loaded      := running && sphereLeft === 0.U && sphereGot === sphereIssued // every line asked for is in
   io.outstanding := tags.io.inUse
   io.dbg := Cat(running, sphereIssued.pad(8), sphereGot.pad(8), io.sphereLines.pad(8))
+}
+
+object ReadEngine {
+  /** base + off with the carry chain of the offset's width, not the address's: the base's high
+    * bits come as they are or from a register holding them plus one, a cycle late. So the base
+    * must hold from the cycle before the sum is used. (A 64-bit add here was the read engine's
+    * slowest path by the timing proxy: 64 carry cells.) */
+  def lineAddr(base: UInt, off: UInt): UInt = {
+    val k       = off.getWidth + 1
+    val lo      = base(k - 1, 0) +& off
+    val hi      = base(base.getWidth - 1, k)
+    val hiPlus1 = RegNext(hi + 1.U)
+    Cat(Mux(lo(k), hiPlus1, hi), lo(k - 1, 0))
+  }
 }
