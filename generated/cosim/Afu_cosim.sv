@@ -814,6 +814,8 @@ module ReadEngine_r64_p64_cosim(
   reg  [8:0]  sphereGot;
   reg  [20:0] pairIssued;
   reg  [6:0]  reserved;
+  reg  [8:0]  sphereLeft;
+  reg  [20:0] pairLeft;
   reg         tagIsPair_0;
   reg         tagIsPair_1;
   reg         tagIsPair_2;
@@ -942,9 +944,9 @@ module ReadEngine_r64_p64_cosim(
   reg  [19:0] tagLine_61;
   reg  [19:0] tagLine_62;
   reg  [19:0] tagLine_63;
-  wire        wantSphere = io_active & sphereIssued < io_sphereLines;
+  wire        wantSphere = io_active & (|sphereLeft);
   wire        _tags_io_alloc_ready_T =
-    wantSphere | io_active & ~wantSphere & pairIssued < io_pairLines & ~(reserved[6]);
+    wantSphere | io_active & ~wantSphere & (|pairLeft) & ~(reserved[6]);
   wire        io_rdReq_valid_0 = _tags_io_alloc_valid & _tags_io_alloc_ready_T;
   wire [10:0] io_rdReq_bits_addr_lo = {1'h0, io_sphereBase[9:0]} + {2'h0, sphereIssued};
   reg  [53:0] io_rdReq_bits_addr_hiPlus1;
@@ -1221,7 +1223,7 @@ module ReadEngine_r64_p64_cosim(
     always @(posedge clock) begin
       if (~reset & ~(~_buffer_io_enq_valid_T | _buffer_io_enq_ready)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: ReadEngine: no room for a pair line (reservation broken)\n    at ReadEngine.scala:88 assert(!buffer.io.enq.valid || buffer.io.enq.ready, \"ReadEngine: no room for a pair line (reservation broken)\")\n");
+          $error("Assertion failed: ReadEngine: no room for a pair line (reservation broken)\n    at ReadEngine.scala:95 assert(!buffer.io.enq.valid || buffer.io.enq.ready, \"ReadEngine: no room for a pair line (reservation broken)\")\n");
         if (`STOP_COND_)
           $fatal;
       end
@@ -1229,23 +1231,30 @@ module ReadEngine_r64_p64_cosim(
   `endif // not def SYNTHESIS
   wire        _reserved_T = io_rdReq_ready & io_rdReq_valid_0;
   wire [19:0] _tagLine_T = wantSphere ? {11'h0, sphereIssued} : pairIssued[19:0];
+  wire        _GEN = ~_reserved_T | wantSphere;
   always @(posedge clock) begin
     if (reset) begin
       sphereIssued <= 9'h0;
       sphereGot <= 9'h0;
       pairIssued <= 21'h0;
       reserved <= 7'h0;
+      sphereLeft <= 9'h0;
+      pairLeft <= 21'h0;
     end
     else begin
-      if (_reserved_T & wantSphere)
+      if (_reserved_T & wantSphere) begin
         sphereIssued <= sphereIssued + 9'h1;
-      else if (io_start)
+        sphereLeft <= sphereLeft - 9'h1;
+      end
+      else if (io_start) begin
         sphereIssued <= 9'h0;
+        sphereLeft <= io_sphereLines;
+      end
       if (io_rdResp_valid & ~casez_tmp)
         sphereGot <= sphereGot + 9'h1;
       else if (io_start)
         sphereGot <= 9'h0;
-      if (~_reserved_T | wantSphere) begin
+      if (_GEN) begin
         if (io_start)
           pairIssued <= 21'h0;
       end
@@ -1254,6 +1263,12 @@ module ReadEngine_r64_p64_cosim(
       reserved <=
         reserved + {6'h0, _reserved_T & ~wantSphere}
         - {6'h0, io_pairs_ready & _buffer_io_deq_valid};
+      if (_GEN) begin
+        if (io_start)
+          pairLeft <= io_pairLines;
+      end
+      else
+        pairLeft <= pairLeft - 21'h1;
     end
     if (_reserved_T & _tags_io_alloc_bits == 6'h0) begin
       tagIsPair_0 <= ~wantSphere;
@@ -1548,8 +1563,7 @@ module ReadEngine_r64_p64_cosim(
   assign io_sphereWrite_bits_line = casez_tmp_0[7:0];
   assign io_sphereWrite_bits_data = io_rdResp_bits_data;
   assign io_pairs_valid = _buffer_io_deq_valid;
-  assign io_loaded =
-    io_active & sphereGot == io_sphereLines & sphereIssued == io_sphereLines;
+  assign io_loaded = io_active & sphereLeft == 9'h0 & sphereGot == sphereIssued;
   assign io_pairBufferEmpty = ~_buffer_io_deq_valid;
 endmodule
 
@@ -76021,19 +76035,24 @@ module Puc_cosim(
   wire         _GEN = state == 3'h1;
   wire         _badConfig_T_9 = run_7 == 64'h0;
   wire         badConfig =
-    ~(run_8[1]) & ((|(run_4[63:24])) | (|run_4) & run_3 == 64'h0) | run_8[1] | (|run_2)
-    & run_1 == 64'h0 | (|run_6) & run_5 == 64'h0 | _badConfig_T_9;
-  wire         tooMany = run_2 > 64'h400;
+    ~(run_8[1]) & ((|(run_4[63:25])) | run_4[24] | (|run_4) & run_3 == 64'h0) | run_8[1]
+    | (|run_2) & run_1 == 64'h0 | (|run_6) & run_5 == 64'h0 | _badConfig_T_9;
+  wire         tooMany = (|(run_2[63:11])) | run_2[10:0] > 11'h400;
   wire         _GEN_0 = badConfig & _badConfig_T_9;
   wire         _GEN_1 = badConfig | tooMany;
   wire         runStart = _GEN & ~_GEN_0 & ~_GEN_1;
   wire         _running_T = state == 3'h2;
   wire         _pack_io_flush_T = state == 3'h3;
   wire         running = _running_T | _pack_io_flush_T;
-  wire [10:0]  _rd_io_sphereLines_T_1 = run_2[10:0] + 11'h3;
+  wire [10:0]  _rd_io_sphereLines_T_5 = run_2[10:0] + 11'h3;
   wire [24:0]  _rd_io_pairLines_T_1 = {1'h0, run_4[23:0]} + 25'hF;
   reg          tableIn;
   wire         loaded = running & (tableIn | _rd_io_loaded);
+  reg          bad1;
+  reg  [15:0]  grp1_invalid;
+  reg  [23:0]  grp1_first;
+  reg          bad2;
+  reg  [23:0]  idx2;
   reg  [24:0]  pairsInFlight;
   wire         runDone =
     processed == {8'h0, run_4[23:0]} & loaded & ~(|_rd_io_outstanding);
@@ -76060,46 +76079,13 @@ module Puc_cosim(
     always @(posedge clock) begin
       if (~reset & ~(io_skipCycles == 32'h0 | io_idle_0)) begin
         if (`ASSERT_VERBOSE_COND_)
-          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:374 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
+          $error("Assertion failed: Puc: skipCycles given while not idle\n    at Puc.scala:391 assert(io.skipCycles === 0.U || io.idle, \"Puc: skipCycles given while not idle\")\n");
         if (`STOP_COND_)
           $fatal;
       end
     end // always @(posedge)
   `endif // not def SYNTHESIS
-  wire [31:0]  _GEN_5 =
-    {8'h0,
-     _disp_io_groups_bits_first
-       + {20'h0,
-          _disp_io_groups_bits_invalid[0]
-            ? 4'h0
-            : _disp_io_groups_bits_invalid[1]
-                ? 4'h1
-                : _disp_io_groups_bits_invalid[2]
-                    ? 4'h2
-                    : _disp_io_groups_bits_invalid[3]
-                        ? 4'h3
-                        : _disp_io_groups_bits_invalid[4]
-                            ? 4'h4
-                            : _disp_io_groups_bits_invalid[5]
-                                ? 4'h5
-                                : _disp_io_groups_bits_invalid[6]
-                                    ? 4'h6
-                                    : _disp_io_groups_bits_invalid[7]
-                                        ? 4'h7
-                                        : _disp_io_groups_bits_invalid[8]
-                                            ? 4'h8
-                                            : _disp_io_groups_bits_invalid[9]
-                                                ? 4'h9
-                                                : _disp_io_groups_bits_invalid[10]
-                                                    ? 4'hA
-                                                    : _disp_io_groups_bits_invalid[11]
-                                                        ? 4'hB
-                                                        : _disp_io_groups_bits_invalid[12]
-                                                            ? 4'hC
-                                                            : _disp_io_groups_bits_invalid[13]
-                                                                ? 4'hD
-                                                                : {3'h7,
-                                                                   ~(_disp_io_groups_bits_invalid[14])}}};
+  wire [31:0]  _GEN_5 = {8'h0, idx2};
   wire         _GEN_6 =
     io_link_csr_valid & (|io_link_csr_bits_index) & io_link_csr_bits_index < 8'h9;
   wire [31:0]  tick = (|io_skipCycles) ? io_skipCycles : 32'h1;
@@ -76107,6 +76093,7 @@ module Puc_cosim(
   wire         _GEN_8 =
     ~(|state) & io_link_csr_valid & ~(|io_link_csr_bits_index)
     & io_link_csr_bits_data == 64'h1;
+  wire         _grp1_T = _groups_io_enq_ready & _disp_io_groups_valid;
   always @(posedge clock) begin
     if (reset) begin
       csr_1 <= 64'h0;
@@ -76131,6 +76118,8 @@ module Puc_cosim(
       cycWaitRd <= 32'h0;
       cycWaitWr <= 32'h0;
       tableIn <= 1'h0;
+      bad1 <= 1'h0;
+      bad2 <= 1'h0;
       pairsInFlight <= 25'h0;
     end
     else begin
@@ -76185,8 +76174,7 @@ module Puc_cosim(
           + {28'h0,
              {1'h0, {1'h0, _coll_io_nHits} + {1'h0, _coll_io_nFlagged}}
                + {6'h0, _coll_io_nHeaders}};
-        if (_groups_io_enq_ready & _disp_io_groups_valid & (|_disp_io_groups_bits_invalid)
-            & _GEN_5 < firstBad)
+        if (bad2 & _GEN_5 < firstBad)
           firstBad <= _GEN_5;
         if (running & ~loaded)
           cycLoad <= cycLoad + tick;
@@ -76205,6 +76193,8 @@ module Puc_cosim(
       else if (running)
         cycTotal <= cycTotal + tick;
       tableIn <= ~_GEN & (loaded | tableIn);
+      bad1 <= _grp1_T & (|_disp_io_groups_bits_invalid);
+      bad2 <= bad1;
       pairsInFlight <=
         pairsInFlight + {20'h0, _disp_io_fired ? _disp_io_groups_bits_cnt : 5'h0}
         - {20'h0, _coll_io_nPairs};
@@ -76219,6 +76209,43 @@ module Puc_cosim(
       run_7 <= csr_7;
       run_8 <= csr_8;
     end
+    if (_grp1_T) begin
+      grp1_invalid <= _disp_io_groups_bits_invalid;
+      grp1_first <= _disp_io_groups_bits_first;
+    end
+    idx2 <=
+      grp1_first
+      + {20'h0,
+         grp1_invalid[0]
+           ? 4'h0
+           : grp1_invalid[1]
+               ? 4'h1
+               : grp1_invalid[2]
+                   ? 4'h2
+                   : grp1_invalid[3]
+                       ? 4'h3
+                       : grp1_invalid[4]
+                           ? 4'h4
+                           : grp1_invalid[5]
+                               ? 4'h5
+                               : grp1_invalid[6]
+                                   ? 4'h6
+                                   : grp1_invalid[7]
+                                       ? 4'h7
+                                       : grp1_invalid[8]
+                                           ? 4'h8
+                                           : grp1_invalid[9]
+                                               ? 4'h9
+                                               : grp1_invalid[10]
+                                                   ? 4'hA
+                                                   : grp1_invalid[11]
+                                                       ? 4'hB
+                                                       : grp1_invalid[12]
+                                                           ? 4'hC
+                                                           : grp1_invalid[13]
+                                                               ? 4'hD
+                                                               : {3'h7,
+                                                                  ~(grp1_invalid[14])}};
     capHigh <= |(run_6[63:35]);
   end // always @(posedge)
   ReadEngine_r64_p64_cosim rd (
@@ -76227,7 +76254,7 @@ module Puc_cosim(
     .io_start                 (runStart),
     .io_active                (running),
     .io_sphereBase            (run_1),
-    .io_sphereLines           (_rd_io_sphereLines_T_1[10:2]),
+    .io_sphereLines           (_rd_io_sphereLines_T_5[10:2]),
     .io_pairBase              (run_3),
     .io_pairLines             (_rd_io_pairLines_T_1[24:4]),
     .io_rdReq_ready           (io_link_rdReq_ready),

@@ -31,7 +31,9 @@ module ScpuModel_cosim(
     output longint px, output longint py, output longint pz, output longint nx, output longint ny, output longint nz, output longint depth, output longint d, output longint nw, output int info);
   // A ring of its latency: every stage advances together (en), so the slot written now is
   // the one whose result leaves now, 136 cycles after it entered; nothing is shifted.
-  reg valid_q [0:135];
+  // valid_q is one vector, cleared whole at reset (Verilator refuses a delayed reset loop
+  // over more than 64 slots of an unpacked array).
+  reg [135:0] valid_q;
   reg [320:0] data_q [0:135];
   reg [7:0] at;
   wire en = !valid_q[at] || out_ready;
@@ -40,7 +42,7 @@ module ScpuModel_cosim(
   int info;
   always @(posedge clock) begin
     if (reset) begin
-      for (int k = 0; k < 136; k++) valid_q[k] <= 1'b0;
+      valid_q <= 136'd0;
       at <= 8'd0;
     end else if (en) begin
       if (in_valid) begin

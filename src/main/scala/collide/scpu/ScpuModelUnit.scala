@@ -90,7 +90,9 @@ object ScpuModelUnit {
        |    ${values.map(n => s"output longint $n").mkString(", ")}, output int info);
        |  // A ring of its latency: every stage advances together (en), so the slot written now is
        |  // the one whose result leaves now, $l cycles after it entered; nothing is shifted.
-       |  reg valid_q [0:${l - 1}];
+       |  // valid_q is one vector, cleared whole at reset (Verilator refuses a delayed reset loop
+       |  // over more than 64 slots of an unpacked array).
+       |  reg [${l - 1}:0] valid_q;
        |  reg [${resultBits - 1}:0] data_q [0:${l - 1}];
        |  reg [${idxBits - 1}:0] at;
        |  wire en = !valid_q[at] || out_ready;
@@ -99,7 +101,7 @@ object ScpuModelUnit {
        |  int info;
        |  always @(posedge clock) begin
        |    if (reset) begin
-       |      for (int k = 0; k < $l; k++) valid_q[k] <= 1'b0;
+       |      valid_q <= ${l}'d0;
        |      at <= ${idxBits}'d0;
        |    end else if (en) begin
        |      if (in_valid) begin

@@ -201,13 +201,13 @@ class GenerateSpec extends AnyFlatSpec {
     // Its Verilog: the pipeline of the SCPU's latency around the DPI-C import
     val v = collide.scpu.ScpuModelUnit.verilog(collide.scpu.ScpuConfig.fp32, "ScpuModel_x")
     assert(v.contains("module ScpuModel_x(") && v.contains("import \"DPI-C\" function void collide_scpu_model(") &&
-      v.contains(s"reg valid_q [0:${collide.scpu.ScpuConfig.fp32.latency - 1}];"), v.take(400))
+      v.contains(s"reg [${collide.scpu.ScpuConfig.fp32.latency - 1}:0] valid_q;"), v.take(400))
   }
 
   it should "bank the sphere table instead of copying it per SCPU, and say what each costs in RAM" in {
     val rep = AfuConfig.default.copy(maxSpheres = 65536)
     val bank = cfg("--max-spheres", "65536", "--ram-ports", "banked").toOption.get
-    assert(bank.ramPorts == SphereRamPorts.Banked() && bank.id == "n16_fp32_s65536_r64_w64_t6_bank")
+    assert(bank.ramPorts == SphereRamPorts.Banked() && bank.id == "n16_fp32_200_s65536_r64_w64_t6_bank")
     assert(bank.puc.banks == 32 && bank.puc.ramCopies == 1 && rep.puc.ramCopies == 16)
     assert(bank.puc.ramBits == 65536L * 128 && rep.puc.ramBits == 16 * 65536L * 128)
     // 64k fp32 spheres: 32 banks of 2K x 128 bits, 13 M20Ks each (2K x 10 mode), fit a
