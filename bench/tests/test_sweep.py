@@ -43,18 +43,18 @@ class ConfigIds(unittest.TestCase):
 
     def test_the_generator_gets_the_count_and_the_spec(self):
         c = Config(8, "fp32:sqrt=nr8x1:recip=nr8x1")
-        self.assertEqual(c.generator_args(), "--scpus 8 --scpu fp32:sqrt=nr8x1:recip=nr8x1")
+        self.assertEqual(c.generator_args(), "--scpus 8 --scpu fp32:sqrt=nr8x1:recip=nr8x1 --allow-overfit")
         self.assertEqual(c.id, "n8_fp32_sqrt_nr8x1_recip_nr8x1")
 
     def test_a_record_layout_is_passed_on_and_named_only_when_asked_for(self):
-        self.assertEqual(Config(16, "fp16", "full").generator_args(), "--scpus 16 --scpu fp16 --records full")
+        self.assertEqual(Config(16, "fp16", "full").generator_args(), "--scpus 16 --scpu fp16 --records full --allow-overfit")
         self.assertEqual(Config(16, "fp16", "full").id, "n16_fp16_full")
         self.assertEqual(Config(16, "fp16").id, "n16_fp16")
         r = sweep.row(SWEEPS["links"], Config(16, "fp32"), MANIFEST, Scene(10), "pac", summary(), {}, {}, {})
         self.assertEqual((r["link_format"], r["records"], r["record_bytes"], r["link"]), ("binary32", "derived", 12, "pac"))
 
     def test_a_banked_sphere_table_is_passed_on_and_named_only_when_asked_for(self):
-        self.assertEqual(Config(16, "fp32", "", "banked").generator_args(), "--scpus 16 --scpu fp32 --ram-ports banked")
+        self.assertEqual(Config(16, "fp32", "", "banked").generator_args(), "--scpus 16 --scpu fp32 --ram-ports banked --allow-overfit")
         self.assertEqual(Config(16, "fp32", "", "banked:64").id, "n16_fp32_banked64")
         self.assertNotEqual(Config(16, "fp32", "", "banked").id, Config(16, "fp32").id)
         rep = sweep.row(SWEEPS["banked"], Config(4, "fp32"), MANIFEST, Scene(10), "qpi", summary(), {}, {}, {})

@@ -27,6 +27,8 @@ object Generate {
       folder: Option[String] = None,
       split: Boolean = false,
       noVerilog: Boolean = false,
+      device: Option[String] = None,
+      allowOverfit: Boolean = false,
       world: Option[Boolean] = None,
       worldLanes: Option[Int] = None,
       worldSortPorts: Option[Int] = None,
@@ -137,6 +139,10 @@ object Generate {
         .text("output folder name (default: the preset's name, or a name derived from every parameter)"),
       opt[Unit]("split").action((_, o) => o.copy(split = true)).text("one .sv file per module (and filelist.f)"),
       opt[Unit]("no-verilog").action((_, o) => o.copy(noVerilog = true)).text("write only manifest.json and the contract headers"),
+      opt[String]("device").valueName("NAME").action((v, o) => o.copy(device = Some(v)))
+        .text(s"the FPGA part the AFU must fit (${Device.all.map(_.name).mkString(", ")}; default: the preset's)"),
+      opt[Unit]("allow-overfit").action((_, o) => o.copy(allowOverfit = true))
+        .text("build a configuration that exceeds its device's M20K or DSP blocks (a study; the manifest says so)"),
       opt[Unit]("list-presets").action((_, o) => o.copy(listPresets = true)).text("print the presets and exit"),
       help("help").text("this text"))
   }
@@ -198,7 +204,8 @@ object Generate {
       c28 <- opt("--start-ahead", o.startAhead)((c, v) => step("--start-ahead", c.copy(startAhead = v)))(c27)
       c29 <- world("--world-clear-behind", o.worldClearBehind)((bp, v) => bp.copy(clearBehind = v))(c28)
       c30 <- world("--world-near-filter", o.worldNearFilter)((bp, v) => bp.copy(nearFilter = v))(c29)
-    } yield c30
+      c31 <- opt("--device", o.device)((c, v) => Device.byName(v).left.map(e => s"--device: $e").map(d => c.copy(device = d)))(c30)
+    } yield c31
   }
 
   val firtoolOpts: Array[String] = Array(
@@ -209,13 +216,24 @@ object Generate {
     "--disable-all-randomization", "--strip-debug-info")
 
   /** Writes the folder; returns the files written. */
-  def generate(cfg: AfuConfig, dir: File, split: Boolean, verilog: Boolean, command: String): Seq[File] = {
+  def generate(cfg: AfuConfig, dir: File, split: Boolean, verilog: Boolean, command: String, allowOverfit: Boolean = false): Seq[File] = {
+    // The device: what can be counted before elaboration is checked first, the DSP tiles after.
+    def fits(r: AfuResources): Unit = {
+      val over = r.overfit(cfg.device)
+      if (over.nonEmpty && !allowOverfit)
+        throw new IllegalArgumentException(s"it does not fit its device, ${cfg.device.name} (${cfg.device.part}): " +
+          over.mkString("; ") + ". Name a larger one (--device), make it smaller, or pass --allow-overfit for a study")
+    }
+    fits(AfuResources.of(cfg, None))
     dir.mkdirs()
     val written = scala.collection.mutable.ArrayBuffer[File]()
+    var resources = AfuResources.of(cfg, None)
     if (verilog) {
       val tmp = Files.createTempDirectory("collide-gen").toFile
       val args = Array("--target-dir", tmp.getPath) ++ (if (split) Array("--split-verilog") else Array[String]())
-      circt.stage.ChiselStage.emitSystemVerilogFile(new Afu(cfg), args, firtoolOpts)
+      val (_, dsp) = AfuResources.counting(circt.stage.ChiselStage.emitSystemVerilogFile(new Afu(cfg), args, firtoolOpts))
+      resources = AfuResources.of(cfg, Some(dsp))
+      fits(resources)
       val svs = tmp.listFiles().filter(f => f.getName.endsWith(".sv") || f.getName.endsWith(".f")).sortBy(_.getName)
       val texts = svs.map(f => f.getName -> new String(Files.readAllBytes(f.toPath), "UTF-8")).toSeq
       val rename = foreignModules(texts.map(_._2), cfg.id)
@@ -236,7 +254,7 @@ object Generate {
       rm(tmp)
     }
     val manifest = new File(dir, "manifest.json")
-    writeIfChanged(manifest, ujson.write(AfuManifest.json(cfg, command), indent = 2) + "\n")
+    writeIfChanged(manifest, ujson.write(AfuManifest.json(cfg, command, resources), indent = 2) + "\n")
     (written :+ manifest).toSeq ++ writeContract(dir.getAbsoluteFile.getParentFile)
   }
 
@@ -277,7 +295,7 @@ object Generate {
     val dir = new File(o.out, folder)
     val command = s"""sbt "run ${args.mkString(" ")}""""
     try {
-      val files = generate(cfg, dir, o.split, !o.noVerilog, command)
+      val files = generate(cfg, dir, o.split, !o.noVerilog, command, o.allowOverfit)
       println(s"${cfg.describe}")
       files.foreach(f => println(s"  wrote ${f.getPath}"))
     } catch {

@@ -36,6 +36,9 @@ import collide.scpu.{ScpuConfig, ScpuImpl}
   *                             as the current run's is over and the queued table is in, while the
   *                             current run's last pairs are still computed and written; its
   *                             candidates wait for its own run (docs/afu.md, "Starting ahead")
+  * @param device               the FPGA part it must fit (Device; the generator refuses a
+  *                             configuration whose M20K blocks or DSP tiles exceed it unless
+  *                             --allow-overfit)
   * @param scpuImpl             how the SCPUs are built: RTL, or (simulation only) the C++ SCPU
   *                             model behind a pipeline of the SCPU's latency (ScpuModelUnit): the
   *                             same cycles and records, a far cheaper co-simulation
@@ -55,7 +58,8 @@ final case class AfuConfig(
     scpuImpl: ScpuImpl = ScpuImpl.Rtl,
     runQueue: Boolean = false,
     worldLineQueue: Int = 2,
-    startAhead: Boolean = false) {
+    startAhead: Boolean = false,
+    device: Device = Device.stratixVA7) {
   require(name.nonEmpty && name.forall(c => c.isLetterOrDigit || c == '-' || c == '_'),
     s"AfuConfig name '$name': must be non-empty letters, digits, '-' or '_'")
   require(scpus >= 1 && scpus <= 64, s"AfuConfig $name: scpus must be 1..64, got $scpus")
@@ -167,7 +171,7 @@ object AfuConfig {
   val world: AfuConfig   = big.copy(name = "world",
     world = Some(collide.world.BroadPhaseParams.default.copy(lanes = 16, sortPorts = 8, wordLog2 = 5, chunk = 32,
       cellSteps = 2, coarseChunks = true, claims = true, hitQueue = 8, boxBuckets = true, drainBehind = true, lookAhead = 6, scanPairs = true)),
-    runQueue = true)
+    runQueue = true, device = Device.arria10GX1150)
 
   /** World mode at twice the lanes: the `world` preset with 32 candidate lanes and its sort's
     * passes 16 spheres a cycle, 256 candidate lines queued for the dispatcher, the sort's counters

@@ -9,7 +9,10 @@ object AfuManifest {
   /** CCI interface clock of HARP v1 (docs/host.md, link presets). */
   val clockMHz = 200
 
-  def json(cfg: AfuConfig, command: String): ujson.Obj = {
+  /** The manifest without an elaboration: no DSP count. */
+  def json(cfg: AfuConfig, command: String): ujson.Obj = json(cfg, command, AfuResources.of(cfg, None))
+
+  def json(cfg: AfuConfig, command: String, resources: AfuResources): ujson.Obj = {
     val p = cfg.puc; val lay = cfg.layout; val s = cfg.scpu
     ujson.Obj(
       "name" -> cfg.name, "id" -> cfg.id, "isPreset" -> cfg.isPreset,
@@ -41,6 +44,10 @@ object AfuManifest {
           "sphereTableBits" -> p.ramBits.toDouble, "pairBufferBits" -> p.pairBufferBits.toDouble,
           "broadPhaseBits" -> ujson.Num(cfg.world.map(_.ramBits(cfg.maxSpheres).toDouble).getOrElse(0.0)),
           "broadPhaseM20k" -> p.broadPhaseM20k.toDouble)),
+      "device" -> ujson.Obj("name" -> cfg.device.name, "part" -> cfg.device.part, "alms" -> cfg.device.alms,
+        "m20k" -> cfg.device.m20k, "dspBlocks" -> cfg.device.dspBlocks, "source" -> cfg.device.source,
+        "utilization" -> resources.json(cfg.device), "fits" -> resources.overfit(cfg.device).isEmpty,
+        "overfit" -> ujson.Arr.from(resources.overfit(cfg.device).map(ujson.Str))),
       "scpu" -> { val o = scpuJson(s); o("impl") = cfg.scpuImpl.name; o },
       "link" -> ujson.Obj(
         "format" -> AfuContract.linkName(cfg.scpu.linkFormat), "width" -> cfg.linkWidth,

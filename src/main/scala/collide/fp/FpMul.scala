@@ -120,6 +120,8 @@ class FpMul(val p: FpParams, val latency: Int, val family: FpgaFamily = FpgaFami
   private val si = stage(nb + 3, RoundRaw.increment(p, sj))
   io.out.bits  := stage(nb + 4, RoundRaw.pack(p, si))
   io.out.valid := Pipeline.valid(io.in.valid, latency, io.en)
+  // The device census (collide.afu.AfuResources): this multiplier's product tiles.
+  collide.afu.AfuResources.dspTiles(FpMul.chunks(f.sigBits, family.dspTile).size * FpMul.chunks(f.sigBits, family.dspTile).size)
 }
 
 object FpMul {
