@@ -225,7 +225,6 @@ object Generate {
           over.mkString("; ") + ". Name a larger one (--device), make it smaller, or pass --allow-overfit for a study")
     }
     fits(AfuResources.of(cfg, None))
-    dir.mkdirs()
     val written = scala.collection.mutable.ArrayBuffer[File]()
     var resources = AfuResources.of(cfg, None)
     if (verilog) {
@@ -234,6 +233,7 @@ object Generate {
       val (_, dsp) = AfuResources.counting(circt.stage.ChiselStage.emitSystemVerilogFile(new Afu(cfg), args, firtoolOpts))
       resources = AfuResources.of(cfg, Some(dsp))
       fits(resources)
+      dir.mkdirs()
       val svs = tmp.listFiles().filter(f => f.getName.endsWith(".sv") || f.getName.endsWith(".f")).sortBy(_.getName)
       val texts = svs.map(f => f.getName -> new String(Files.readAllBytes(f.toPath), "UTF-8")).toSeq
       val rename = foreignModules(texts.map(_._2), cfg.id)
@@ -253,6 +253,7 @@ object Generate {
       def rm(f: File): Unit = { Option(f.listFiles()).foreach(_.foreach(rm)); f.delete() }
       rm(tmp)
     }
+    dir.mkdirs()
     val manifest = new File(dir, "manifest.json")
     writeIfChanged(manifest, ujson.write(AfuManifest.json(cfg, command, resources), indent = 2) + "\n")
     (written :+ manifest).toSeq ++ writeContract(dir.getAbsoluteFile.getParentFile)
