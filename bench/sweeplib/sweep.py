@@ -269,6 +269,19 @@ def timing_columns(scpu: dict, rest: dict, config_id: str) -> dict:
     return r
 
 
+def clock_columns(c) -> dict:
+    """Which clock a row's AFU times use and whether its design reaches it: the run summary's
+    afu.clock (the host times at the lower of the target and the timing proxy's clock, where
+    its build has the Verilog's timing.json; --clock-mhz is a study)."""
+    if not c:
+        return {"clock_kind": "", "clock_reached": "", "proxy_mhz": "", "routed_estimate_mhz": ""}
+    r = c.get("reached") or {}
+    kind = "study" if c.get("study") else ("target" if c.get("reaches_target") else
+                                           ("reached" if r else "target, not measured"))
+    return {"clock_kind": kind, "clock_reached": "" if not r else c.get("reaches_target", ""),
+            "proxy_mhz": r.get("proxy_mhz", ""), "routed_estimate_mhz": r.get("routed_estimate_mhz", "")}
+
+
 def row(sw, cfg, m, scene, link, s, areas, acc, drift, where=""):
     a, sc = s["afu"], m["scpu"]
     pairs, contacts = s["pairs"], s["contacts"]
@@ -295,6 +308,7 @@ def row(sw, cfg, m, scene, link, s, areas, acc, drift, where=""):
         "node": where,  # the machine whose clock the timing columns are from (MACHINE.md describes it)
         "rtl_wall_ns": s["backend_wall_ns"], "rtl_wall_over_ode": per(s["backend_wall_ns"], s["ode_ns"]),
         "clock_mhz": round(1e3 / a["cycle_ns"], 3) if a.get("cycle_ns") else "",
+        **clock_columns(a.get("clock")),
         "cycles_stepped": a["cycles_stepped"], "cycles_skipped": a["cycles_skipped"],
         "ram_bits": m["afu"]["ram"]["sphereTableBits"] + m["afu"]["ram"]["pairBufferBits"],
         "ram_ports": cfg.ram or "replicated", "sphere_table_bits": m["afu"]["ram"]["sphereTableBits"],

@@ -33,6 +33,20 @@ def summary(pairs=5829, contacts=3593, modelled=31100.0, bound=28829.0):
                     "cycles_stepped": 5011, "cycles_skipped": 94}}
 
 
+class ClockColumns(unittest.TestCase):
+    def test_a_row_says_which_clock_its_times_use_and_whether_the_design_reaches_it(self):
+        reached = {"proxy_mhz": 202.1, "routed_estimate_mhz": 131.23, "slowest_block": "Puc_default"}
+        at = lambda **c: sweep.clock_columns(c)
+        self.assertEqual(at(target_mhz=200.0, used_mhz=200.0, study=False, reaches_target=True, reached=reached),
+                         {"clock_kind": "target", "clock_reached": True, "proxy_mhz": 202.1, "routed_estimate_mhz": 131.23})
+        short = at(target_mhz=200.0, used_mhz=38.4, study=False, reaches_target=False, reached=dict(reached, proxy_mhz=38.4))
+        self.assertEqual((short["clock_kind"], short["clock_reached"], short["proxy_mhz"]), ("reached", False, 38.4))
+        self.assertEqual(at(target_mhz=200.0, used_mhz=200.0, study=False, reaches_target=False, reached=None)["clock_kind"],
+                         "target, not measured")
+        self.assertEqual(at(target_mhz=200.0, used_mhz=131.2, study=True, reaches_target=True, reached=reached)["clock_kind"], "study")
+        self.assertEqual(sweep.clock_columns(None)["clock_kind"], "")
+
+
 class ConfigIds(unittest.TestCase):
     def test_every_configuration_of_every_sweep_has_a_distinct_folder_name(self):
         cfgs = {c for s in SWEEPS.values() for c in s.configs}
